@@ -112,11 +112,10 @@ import numpy as np
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
-
 import bench_autocheck65 as autocheck  # noqa: E402
 import bench_autorep65 as autorep  # noqa: E402
 import bench_remeasure62 as remeasure  # noqa: E402
-from cpu import cpu_seconds  # noqa: E402
+from _cli import run_commands  # noqa: E402
 
 from thermocomp.core.metrics import rmse  # noqa: E402
 from thermocomp.core.models.auto import BASELINE  # noqa: E402
@@ -353,20 +352,17 @@ def readme() -> list[str]:
 
 
 def main(argv: list[str]) -> int:
-    start = cpu_seconds()
-    if argv[0] == "readme":
-        print("\n".join(readme()))
-    else:
-        what, root, which, rest = argv[0], Path(argv[1]).resolve(), argv[2], argv[3:]
-        names = rest or list(SETS[which][0])
-        if what == "run":
-            run(root, which, names)
-        elif what == "score":
-            lines, passed = verdict(score(root, names))
-            print(remeasure._wrapped(lines, 110))
-            print(json.dumps(passed))
-    print(f"CPU s (user + sys) of this process: {cpu_seconds() - start:.1f}")
-    return 0
+    def scored(root: str, which: str, *names: str) -> None:
+        lines, passed = verdict(score(Path(root).resolve(), list(names) or list(SETS[which][0])))
+        print(remeasure._wrapped(lines, 110))
+        print(json.dumps(passed))
+
+    return run_commands(__doc__, {
+        "readme": lambda *_: print("\n".join(readme())),
+        "run": lambda root, which, *names: run(Path(root).resolve(), which,
+                                               list(names) or list(SETS[which][0])),
+        "score": scored,
+    }, argv, cpu=sys.stdout)
 
 
 if __name__ == "__main__":

@@ -88,6 +88,7 @@ import numpy as np
 from sklearn.base import clone
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _cli import run_commands  # noqa: E402
 from bench_auto_rank import setup  # noqa: E402
 
 from thermocomp.core.context import AMBIENT_C0, groups_of, subset  # noqa: E402
@@ -183,19 +184,19 @@ def clip_interaction() -> None:
 
 
 def main(argv=None) -> int:
-    argv = sys.argv[1:] if argv is None else argv
-    if argv[0] == "folds":
-        folds(argv[1], argv[2:])
-    elif argv[0] == "after":
+    def after(name: str, *overrides: str) -> None:
         from bench_auto_rank import main as rank
 
         clip_interaction()
-        rank(argv[1], argv[2:])
-    elif argv[0] == "summary":    # summary BEFORE_DIR AFTER_DIR NAME ...
-        summary(Path(argv[1]), Path(argv[2]), argv[3:])
-    elif argv[0] == "runs":
-        per_run(argv[1], argv[2:])
-    return 0
+        rank(name, list(overrides))
+
+    return run_commands(__doc__, {
+        "folds": lambda name, *overrides: folds(name, list(overrides)),
+        "after": after,
+        # summary BEFORE_DIR AFTER_DIR NAME ...
+        "summary": lambda before, done, *names: summary(Path(before), Path(done), list(names)),
+        "runs": lambda name, *overrides: per_run(name, list(overrides)),
+    }, sys.argv[1:] if argv is None else argv)
 
 
 

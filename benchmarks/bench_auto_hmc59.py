@@ -3,7 +3,7 @@
     .venv/bin/python benchmarks/bench_new_machines59.py write ROOT --data hmc
     .venv/bin/python benchmarks/bench_new_machines59.py init ROOT --data hmc
     .venv/bin/python benchmarks/bench_auto_hmc59.py forensics ROOT      # ~5 s CPU
-    .venv/bin/python benchmarks/bench_auto_hmc59.py score OUT           # the rule on the records below
+    .venv/bin/python benchmarks/bench_auto_hmc59.py score OUT ROOT      # the rule on the records below
 
 The record: ``bench_new_machines59``'s ``hmc`` (8 runs of a pallet-shuttle HMC, the last two test,
 6 train: 3 blocked forward folds fitting runs 1-3 / 1-4 / 1-5).  auto kept hammerstein alone on
@@ -102,6 +102,7 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).parent))
+from _cli import run_commands  # noqa: E402
 from bench_auto_rank import main as rank  # noqa: E402
 from bench_auto_rank import setup  # noqa: E402
 
@@ -188,9 +189,13 @@ def score(out: Path, root: Path) -> None:
             rank(name, [*args, f"model.candidate_params={{hammerstein:{{state_start:{start}}}}}"])
 
 
+def main(argv: list[str]) -> int:
+    return run_commands(__doc__, {
+        # forensics ROOT [STATE_START]
+        "forensics": lambda root, *rest: forensics(Path(root).resolve(), *rest[:1]),
+        "score": lambda out, root, *_: score(Path(out).resolve(), Path(root).resolve()),
+    }, argv)
+
+
 if __name__ == "__main__":
-    step, where = sys.argv[1], Path(sys.argv[2]).resolve()
-    if step == "forensics":
-        forensics(where, *sys.argv[3:4])
-    else:
-        score(where, Path(sys.argv[3]).resolve())
+    raise SystemExit(main(sys.argv[1:]))

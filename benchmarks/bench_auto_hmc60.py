@@ -125,6 +125,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).parent))
 import bench_new_machines57 as b57  # noqa: E402
 import bench_new_machines59 as b59  # noqa: E402
+from _cli import run_commands  # noqa: E402
 from bench_auto_hmc59 import _fit, _residuals, hmc_args  # noqa: E402
 from bench_auto_rank import setup  # noqa: E402
 
@@ -371,7 +372,12 @@ def forensics(root: Path) -> None:
     table(root)
 
 
+def main(argv: list[str]) -> int:
+    steps = {"variants": variants, "forensics": forensics, "offsets": offsets, "in_sample": in_sample,
+             "penalties": penalties, "leave_one_out": leave_one_out, "table": table}
+    return run_commands(__doc__, {name: lambda root, *_, step=step: step(Path(root).resolve())
+                                  for name, step in steps.items()}, argv)
+
+
 if __name__ == "__main__":
-    step, where = sys.argv[1], Path(sys.argv[2]).resolve()
-    {"variants": variants, "forensics": forensics, "offsets": offsets, "in_sample": in_sample,
-     "penalties": penalties, "leave_one_out": leave_one_out, "table": table}[step](where)
+    raise SystemExit(main(sys.argv[1:]))

@@ -104,6 +104,7 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _cli import run_commands  # noqa: E402
 
 ARGS = {"vtl": lambda root: [f"hydra.searchpath=[file://{root}/init-vtl/conf]", "data=VTL01_history"],
         "jig_grinder": lambda root: [f"hydra.searchpath=[file://{root}/init-jig_grinder/conf]",
@@ -216,13 +217,12 @@ def folds(root: Path, record: str, families=FAMILIES, gap_blocks: float | None =
 
 
 def main(argv=None) -> int:
-    argv = sys.argv[1:] if argv is None else argv
-    if len(argv) < 3 or argv[0] != "folds":
-        print(__doc__)
-        return 2
-    gap = next((float(g.split("=", 1)[1]) for g in argv[3:] if g.startswith("gap=")), None)
-    folds(Path(argv[1]), argv[2], tuple(g for g in argv[3:] if "=" not in g) or FAMILIES, gap)
-    return 0
+    def folds_of(root: str, record: str, *words: str) -> None:
+        """``gap=H`` among the words: the gap in blocks; the others the families."""
+        gap = next((float(g.split("=", 1)[1]) for g in words if g.startswith("gap=")), None)
+        folds(Path(root), record, tuple(g for g in words if "=" not in g) or FAMILIES, gap)
+
+    return run_commands(__doc__, {"folds": folds_of}, sys.argv[1:] if argv is None else argv)
 
 
 if __name__ == "__main__":

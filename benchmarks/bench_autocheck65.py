@@ -162,10 +162,9 @@ import numpy as np
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
-
 import bench_autorep65 as autorep  # noqa: E402
 import bench_remeasure62 as remeasure  # noqa: E402
-from cpu import cpu_seconds  # noqa: E402
+from _cli import run_commands  # noqa: E402
 from rereference65 import rereferenced_squares  # noqa: E402
 
 from thermocomp.core.metrics import rmse  # noqa: E402
@@ -330,16 +329,12 @@ def verdict(root: Path, names: list[str]) -> list[str]:
 
 
 def main(argv: list[str]) -> int:
-    what, root, rest = argv[0], Path(argv[1]).resolve(), argv[2:]
-    start = cpu_seconds()
-    if what == "write":
-        write(root)
-    elif what == "run":
-        run(root, rest or list(RECORDS))
-    elif what == "score":
-        print(remeasure._wrapped(verdict(root, rest or list(RECORDS)), 106))
-    print(f"CPU s (user + sys) of this process: {cpu_seconds() - start:.1f}")
-    return 0
+    return run_commands(__doc__, {
+        "write": lambda root, *_: write(Path(root).resolve()),
+        "run": lambda root, *names: run(Path(root).resolve(), list(names) or list(RECORDS)),
+        "score": lambda root, *names: print(remeasure._wrapped(
+            verdict(Path(root).resolve(), list(names) or list(RECORDS)), 106)),
+    }, argv, cpu=sys.stdout)
 
 
 if __name__ == "__main__":

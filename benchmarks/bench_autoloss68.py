@@ -109,12 +109,11 @@ import numpy as np
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
-
 import bench_autocheck65 as autocheck  # noqa: E402
 import bench_autorep65 as autorep  # noqa: E402
 import bench_remeasure62 as remeasure  # noqa: E402
 import bench_zerofew67 as zerofew  # noqa: E402
-from cpu import cpu_seconds  # noqa: E402
+from _cli import run_commands  # noqa: E402
 
 from thermocomp.core.metrics import rmse  # noqa: E402
 from thermocomp.core.models.auto import BASELINE  # noqa: E402
@@ -317,24 +316,18 @@ def forensics(root: Path, names: list[str]) -> list[str]:
 
 
 def main(argv: list[str]) -> int:
-    what, root, rest = argv[0], Path(argv[1]).resolve(), argv[2:]
-    start = cpu_seconds()
-    if what == "run":
-        fitted(root, rest[1:] or RECORDS, records(Path(rest[0]).resolve()))
-    elif what == "write":
-        write(root, Path(rest[0]).resolve())
-    elif what == "guard":
-        fitted(root, rest or list(GUARD), GUARD)
-    elif what == "fresh":
-        fitted(root, rest or list(FRESH), FRESH)
-    elif what == "score":
-        print(remeasure._wrapped(score(root, Path(rest[0]).resolve()), 110))
-    elif what == "check":
-        print(remeasure._wrapped(check(root), 110))
-    elif what == "forensics":
-        print("\n".join(forensics(root, rest or RECORDS)))
-    print(f"CPU s (user + sys) of this process: {cpu_seconds() - start:.1f}")
-    return 0
+    return run_commands(__doc__, {
+        "run": lambda root, iso, *names: fitted(Path(root).resolve(), list(names) or RECORDS,
+                                                records(Path(iso).resolve())),
+        "write": lambda root, few, *_: write(Path(root).resolve(), Path(few).resolve()),
+        "guard": lambda root, *names: fitted(Path(root).resolve(), list(names) or list(GUARD), GUARD),
+        "fresh": lambda root, *names: fitted(Path(root).resolve(), list(names) or list(FRESH), FRESH),
+        "score": lambda root, few, *_: print(remeasure._wrapped(
+            score(Path(root).resolve(), Path(few).resolve()), 110)),
+        "check": lambda root, *_: print(remeasure._wrapped(check(Path(root).resolve()), 110)),
+        "forensics": lambda root, *names: print("\n".join(
+            forensics(Path(root).resolve(), list(names) or RECORDS))),
+    }, argv, cpu=sys.stdout)
 
 
 if __name__ == "__main__":

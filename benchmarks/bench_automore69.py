@@ -131,10 +131,9 @@ import numpy as np
 
 HERE = Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE), str(HERE.parent / "tests" / "apps")]
-
 import bench_autorep65 as autorep  # noqa: E402
 import bench_remeasure62 as remeasure  # noqa: E402
-from cpu import cpu_seconds  # noqa: E402
+from _cli import run_commands  # noqa: E402
 
 SEEDS = list(range(6911, 6923))
 YEAR_SEEDS, YEAR6_SEEDS = [6911, 6912], list(range(6911, 6919))
@@ -455,21 +454,13 @@ def halves(work: Path, names: list[str]) -> None:
 
 
 def main(argv: list[str]) -> int:
-    what, rest = (argv or [""])[0], argv[1:]
-    start = cpu_seconds()
-    if what == "write":
-        write(Path(rest[0]).resolve())
-    elif what == "rows":
-        rows(Path(rest[0]).resolve(), Path(rest[1]).resolve(), rest[2:] or list(OF))
-    elif what == "halves":
-        halves(Path(rest[0]).resolve(), rest[1:])
-    elif what == "table":
-        table([Path(w).resolve() for w in rest])
-    else:
-        print(__doc__)
-        return 2
-    print(f"CPU s (user + sys) of this process: {cpu_seconds() - start:.1f}", file=sys.stderr)
-    return 0
+    return run_commands(__doc__, {
+        "write": lambda root, *_: write(Path(root).resolve()),
+        "rows": lambda root, work, *records: rows(Path(root).resolve(), Path(work).resolve(),
+                                                  list(records) or list(OF)),
+        "halves": lambda work, *records: halves(Path(work).resolve(), list(records)),
+        "table": lambda *works: table([Path(w).resolve() for w in works]),
+    }, argv, cpu=sys.stderr)
 
 
 if __name__ == "__main__":

@@ -161,9 +161,8 @@ import numpy as np
 HERE = Path(__file__).resolve().parent
 REPO = HERE.parent
 sys.path.insert(0, str(HERE))
-
 import bench_remeasure62 as remeasure  # noqa: E402
-from cpu import cpu_seconds  # noqa: E402
+from _cli import run_commands  # noqa: E402
 from rereference65 import rereferenced_squares  # noqa: E402
 
 from thermocomp.core.metrics import rmse  # noqa: E402
@@ -351,16 +350,9 @@ def check(before: Path, after: Path) -> list[str]:
 
 
 def main(argv: list[str]) -> int:
-    what, root, rest = argv[0], Path(argv[1]).resolve(), argv[2:]
-    start = cpu_seconds()
-    if what == "run":
-        run(root, rest or RECORDS)
-    elif what == "fl60":
-        fl60(root)
-    elif what == "check":
-        print("\n".join(check(root, Path(rest[0]).resolve())))
-    elif what == "score":
-        print(remeasure._wrapped(table(score(root, rest or RECORDS)), 110))
+    def scored(root: str, *names: str) -> None:
+        root = Path(root).resolve()
+        print(remeasure._wrapped(table(score(root, list(names) or RECORDS)), 110))
         fl = root / "fl60.json"
         if fl.exists():
             row = json.loads(fl.read_text())
@@ -369,8 +361,14 @@ def main(argv: list[str]) -> int:
             print("fl602020 (val split: the rule not reached) auto test MAE "
                   + " / ".join(f"{m:.3f}" for m in mae) + f", mean {np.mean(mae):.3f}; below the "
                   f"authors' on {below} of 5 (mean {np.mean(AUTHORS):.2f}); CPU s {row['cpu_s']}")
-    print(f"CPU s (user + sys) of this process: {cpu_seconds() - start:.1f}")
-    return 0
+
+    return run_commands(__doc__, {
+        "run": lambda root, *names: run(Path(root).resolve(), list(names) or RECORDS),
+        "fl60": lambda root, *_: fl60(Path(root).resolve()),
+        "check": lambda root, after, *_: print("\n".join(
+            check(Path(root).resolve(), Path(after).resolve()))),
+        "score": scored,
+    }, argv, cpu=sys.stdout)
 
 
 if __name__ == "__main__":

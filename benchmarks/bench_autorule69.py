@@ -107,9 +107,8 @@ import numpy as np
 
 HERE = Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE), str(HERE.parent / "tests" / "apps")]
-
 import bench_automore69 as automore  # noqa: E402
-from cpu import cpu_seconds  # noqa: E402
+from _cli import run_commands  # noqa: E402
 
 from thermocomp.core.metrics import rmse  # noqa: E402
 from thermocomp.core.models.auto import BASELINE, NONE, PERSISTENCE, AutoRegressor  # noqa: E402
@@ -244,20 +243,13 @@ def score(works: list[Path]) -> None:
 
 
 def main(argv: list[str]) -> int:
-    what, rest = (argv or [""])[0], argv[1:]
-    start = cpu_seconds()
     os.environ.setdefault("OUT", "/tmp/autorule69-out")   # bench_auto_rank's (nothing written)
-    if what == "folds":
-        folds(Path(rest[0]), rest[1:])
-    elif what == "fresh":
-        fresh(Path(rest[0]).resolve(), rest[1], rest[2].split(","), rest[3].split(","))
-    elif what == "score":
-        score([Path(w) for w in rest])
-    else:
-        print(__doc__)
-        return 2
-    print(f"CPU s (user + sys) of this process: {cpu_seconds() - start:.1f}", file=sys.stderr)
-    return 0
+    return run_commands(__doc__, {
+        "folds": lambda work, *records: folds(Path(work), list(records)),
+        "fresh": lambda root, record, families, targets, *_: fresh(
+            Path(root).resolve(), record, families.split(","), targets.split(",")),
+        "score": lambda *works: score([Path(w) for w in works]),
+    }, argv, cpu=sys.stderr)
 
 
 if __name__ == "__main__":

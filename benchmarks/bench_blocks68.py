@@ -86,7 +86,7 @@ from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
-
+from _cli import made_folder, run_commands  # noqa: E402
 from cpu import cpu_seconds  # noqa: E402
 
 ISO = {"iso_a": 6701}
@@ -276,13 +276,12 @@ def compare(root: Path) -> None:
 
 
 def main(argv: list[str]) -> int:
-    step, root, rest = argv[0], Path(argv[1]).resolve(), argv[2:]
-    root.mkdir(parents=True, exist_ok=True)
-    if step == "rows":
-        rows(root, rest[0], rest[1:])
-    else:
-        {"write": write, "trace": trace, "compare": compare}[step](root)
-    return 0
+    return run_commands(__doc__, {
+        "rows": lambda root, kind, *groups: rows(made_folder(root), kind, list(groups)),
+        "write": lambda root, *_: write(made_folder(root)),
+        "trace": lambda root, *_: trace(made_folder(root)),
+        "compare": lambda root, *_: compare(made_folder(root)),
+    }, argv)
 
 
 if __name__ == "__main__":

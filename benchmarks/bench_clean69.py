@@ -113,6 +113,7 @@ import numpy as np
 
 HERE = Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE), str(HERE.parent / "tests" / "apps")]
+from _cli import run_commands  # noqa: E402
 
 NEW_SEEDS = (6981, 6982)
 
@@ -301,15 +302,13 @@ def compare(base: Path, new: Path) -> None:
 
 
 def main(argv: list[str]) -> int:
-    what, rest = (argv or [""])[0], argv[1:]
-    commands = {"moretest": lambda: moretest(rest), "trace": lambda: trace(rest),
-                "campaigns": lambda: campaigns(rest), "fresh": lambda: fresh(Path(rest[0]).resolve()),
-                "compare": lambda: compare(Path(rest[0]).resolve(), Path(rest[1]).resolve())}
-    if what not in commands:
-        print(__doc__)
-        return 2
-    commands[what]()
-    return 0
+    return run_commands(__doc__, {
+        "moretest": lambda *cases: moretest(list(cases)),
+        "trace": lambda *cases: trace(list(cases)),
+        "campaigns": lambda *cases: campaigns(list(cases)),
+        "fresh": lambda root, *_: fresh(Path(root).resolve()),
+        "compare": lambda base, new, *_: compare(Path(base).resolve(), Path(new).resolve()),
+    }, argv)
 
 
 if __name__ == "__main__":

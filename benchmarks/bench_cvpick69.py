@@ -72,6 +72,7 @@ from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE), str(HERE.parent / "tests" / "apps")]
+from _cli import run_commands  # noqa: E402
 
 ALPHA = 0.01
 
@@ -129,17 +130,12 @@ def compare(base: Path, new: Path) -> None:
 
 
 def main(argv: list[str]) -> int:
-    what, rest = (argv or [""])[0], argv[1:]
-    if what == "rows":
-        rows(Path(rest[0]).resolve(), Path(rest[1]).resolve(), rest[2:] or ("mill", "jig", "om"))
-    elif what == "gpg":
-        gpg(Path(rest[0]).resolve())
-    elif what == "compare":
-        compare(Path(rest[0]).resolve(), Path(rest[1]).resolve())
-    else:
-        print(__doc__)
-        return 2
-    return 0
+    return run_commands(__doc__, {
+        "rows": lambda root, work, *groups: rows(Path(root).resolve(), Path(work).resolve(),
+                                                 list(groups) or ("mill", "jig", "om")),
+        "gpg": lambda root, *_: gpg(Path(root).resolve()),
+        "compare": lambda base, new, *_: compare(Path(base).resolve(), Path(new).resolve()),
+    }, argv)
 
 
 if __name__ == "__main__":

@@ -122,8 +122,8 @@ import numpy as np
 HERE = Path(__file__).resolve().parent
 REPO = HERE.parent
 sys.path.insert(0, str(HERE))
-
 import bench_remeasure62 as rm62  # noqa: E402
+from _cli import run_commands  # noqa: E402
 
 
 def rule_module():
@@ -310,22 +310,21 @@ def score(rm: Path, shipped: str, new: str) -> None:
 
 def main(argv: list[str]) -> int:
     """``--rule`` anywhere: the step under the refused rule (as measured with it in src)."""
-    with_rule = "--rule" in argv
-    argv = [a for a in argv if a != "--rule"]
-    what, root, rest = argv[0], Path(argv[1]).resolve(), argv[2:]
-    with rule() if with_rule else contextlib.nullcontext():
-        if what == "forensics":
-            forensics(root, rest or ("edm_a2", "edm_b"))
-        elif what == "faults":
-            faults(root, Path(rest[0]).resolve())
-        elif what == "edm":
-            edm(root, Path(rest[0]).resolve())
-        elif what == "run":           # bench_remeasure62's diagnose runner, rows to ROOT/<stem>.jsonl
-            groups = ["cases", "few", "fresh", "null", "jig"]
-            rm62.measure(root / f"{rest[0]}.jsonl", rm62.diagnose_rows(root, groups))
-        elif what == "score":
-            score(root, rest[0], rest[1])
-    return 0
+    def remeasured(root: str, stem: str, *_) -> None:
+        """bench_remeasure62's diagnose runner, rows to ROOT/<stem>.jsonl."""
+        groups = ["cases", "few", "fresh", "null", "jig"]
+        rm62.measure(Path(root).resolve() / f"{stem}.jsonl",
+                     rm62.diagnose_rows(Path(root).resolve(), groups))
+
+    with rule() if "--rule" in argv else contextlib.nullcontext():
+        return run_commands(__doc__, {
+            "forensics": lambda root, *names: forensics(Path(root).resolve(),
+                                                        list(names) or ("edm_a2", "edm_b")),
+            "faults": lambda root, out, *_: faults(Path(root).resolve(), Path(out).resolve()),
+            "edm": lambda root, out, *_: edm(Path(root).resolve(), Path(out).resolve()),
+            "run": remeasured,
+            "score": lambda root, shipped, new, *_: score(Path(root).resolve(), shipped, new),
+        }, [a for a in argv if a != "--rule"])
 
 
 if __name__ == "__main__":

@@ -116,6 +116,7 @@ from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE), str(HERE.parent / "tests" / "apps")]
+from _cli import run_commands  # noqa: E402
 
 FRESH_PLANTED = list(range(6701, 6711))
 FRESH_CLEAN = list(range(6711, 6721))
@@ -247,20 +248,14 @@ def compare(base: Path, new: Path) -> None:
 
 
 def main(argv: list[str]) -> int:
-    what, rest = (argv or [""])[0], [a for a in argv[1:] if a != "--within"]
+    """``--within`` anywhere: the command under the within rule."""
     with within_rule() if "--within" in argv else contextlib.nullcontext():
-        if what == "trace":
-            trace(rest)
-        elif what == "fresh":
-            fresh(Path(rest[0]).resolve())
-        elif what == "rows":
-            rows(Path(rest[0]).resolve())
-        elif what == "compare":
-            compare(Path(rest[0]).resolve(), Path(rest[1]).resolve())
-        else:
-            print(__doc__)
-            return 2
-    return 0
+        return run_commands(__doc__, {
+            "trace": lambda *cases: trace(list(cases)),
+            "fresh": lambda root, *_: fresh(Path(root).resolve()),
+            "rows": lambda root, *_: rows(Path(root).resolve()),
+            "compare": lambda base, new, *_: compare(Path(base).resolve(), Path(new).resolve()),
+        }, [a for a in argv if a != "--within"])
 
 
 if __name__ == "__main__":

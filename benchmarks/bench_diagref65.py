@@ -120,8 +120,8 @@ import numpy as np
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
-
 import bench_remeasure62 as rm62  # noqa: E402
+from _cli import run_commands  # noqa: E402
 
 
 def whole_runs(p) -> np.ndarray:
@@ -258,21 +258,24 @@ def trace(root: Path, cases: list[str]) -> None:
 
 
 def main(argv: list[str]) -> int:
-    what, root, rest = argv[0], Path(argv[1]).resolve(), argv[2:]
-    if what == "run":
-        groups = rest or ["cases", "few", "fresh", "null", "jig"]
+    def measured(root: str, *groups: str) -> None:
         with rule():
-            rm62.measure(root / "diagref65.jsonl", rm62.diagnose_rows(root, groups))
-    elif what == "score":
+            rm62.measure(Path(root).resolve() / "diagref65.jsonl", rm62.diagnose_rows(
+                Path(root).resolve(), list(groups) or ["cases", "few", "fresh", "null", "jig"]))
+
+    def scored(root: str, *_) -> None:
+        root = Path(root).resolve()
         shipped, new = rm62._read(root / "diagnose.jsonl"), rm62._read(root / "diagref65.jsonl")
         print(rm62._wrapped(["shipped"] + ["  " + s for s in rm62.diagnose_table(shipped)[-4:]]))
         print(rm62._wrapped(["rule"] + ["  " + s for s in rm62.diagnose_table(new)]))
         print(rm62._wrapped(["changed"] + ["  " + s for s in rm62.compare(shipped, new)]))
         print(rm62._wrapped(bar(shipped, new)))
-    elif what == "trace":
-        with contextlib.nullcontext() if rest[0] == "shipped" else rule():
-            trace(root, rest[1:])
-    return 0
+
+    def traced(root: str, which: str, *cases: str) -> None:
+        with contextlib.nullcontext() if which == "shipped" else rule():
+            trace(Path(root).resolve(), list(cases))
+
+    return run_commands(__doc__, {"run": measured, "score": scored, "trace": traced}, argv)
 
 
 if __name__ == "__main__":

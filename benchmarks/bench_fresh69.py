@@ -82,6 +82,7 @@ from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE), str(HERE.parent / "tests" / "apps")]
+from _cli import run_commands  # noqa: E402
 
 PLANTED = [f"planted:{s}" for s in range(7001, 7011)]
 CLEAN = [f"clean:{s}" for s in range(7011, 7021)]
@@ -197,15 +198,10 @@ def compare(base: Path, new: Path) -> None:
 
 
 def main(argv: list[str]) -> int:
-    what, rest = (argv or [""])[0], argv[1:]
-    if what == "rows" and rest:
-        rows(Path(rest[0]).resolve(), rest[1:])
-    elif what == "compare" and len(rest) == 2:
-        compare(Path(rest[0]).resolve(), Path(rest[1]).resolve())
-    else:
-        print(__doc__)
-        return 2
-    return 0
+    return run_commands(__doc__, {
+        "rows": lambda root, *records: rows(Path(root).resolve(), list(records)),
+        "compare": lambda base, new: compare(Path(base).resolve(), Path(new).resolve()),
+    }, argv)
 
 
 if __name__ == "__main__":

@@ -97,6 +97,7 @@ from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE), str(HERE.parent / "tests" / "apps")]
+from _cli import run_commands  # noqa: E402
 
 
 def _parts(problem, residual, ok):
@@ -196,27 +197,23 @@ def test_parts(d, target: str) -> None:
         print(f"  {c}: " + " | ".join(line), flush=True)
 
 
-def main(argv: list[str]) -> int:
+def commands() -> dict:
+    """The commands (bench_within67 takes its ``rows``, ``fresh``, ``fresh41`` and ``compare``)."""
     import bench_diagpower67 as power
     import bench_margin67 as margin
 
-    what, rest = (argv or [""])[0], argv[1:]
-    if what == "decompose":
-        decompose(rest)
-    elif what == "test":
-        test(rest)
-    elif what == "rows":
-        power.rows(Path(rest[0]).resolve())
-    elif what == "fresh":
-        power.fresh(Path(rest[0]).resolve())
-    elif what == "fresh41":
-        margin.fresh41(Path(rest[0]).resolve())
-    elif what == "compare":
-        margin.compare(Path(rest[0]).resolve(), Path(rest[1]).resolve())
-    else:
-        print(__doc__)
-        return 2
-    return 0
+    return {
+        "decompose": lambda *cases: decompose(list(cases)),
+        "test": lambda *cases: test(list(cases)),
+        "rows": lambda root, *_: power.rows(Path(root).resolve()),
+        "fresh": lambda root, *_: power.fresh(Path(root).resolve()),
+        "fresh41": lambda root, *_: margin.fresh41(Path(root).resolve()),
+        "compare": lambda base, new, *_: margin.compare(Path(base).resolve(), Path(new).resolve()),
+    }
+
+
+def main(argv: list[str]) -> int:
+    return run_commands(__doc__, commands(), argv)
 
 
 if __name__ == "__main__":

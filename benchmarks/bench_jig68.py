@@ -148,6 +148,7 @@ MORE_SEEDS = (6801, 6802)       # moretest: the same machines drawn again (never
 FRESH_PLANTED = list(range(6811, 6816))
 FRESH_CLEAN = list(range(6816, 6821))
 sys.path[:0] = [str(HERE), str(HERE.parent / "tests" / "apps")]
+from _cli import run_commands  # noqa: E402
 
 
 def _split(index, residual, ok, n):
@@ -401,36 +402,28 @@ def main(argv: list[str]) -> int:
     import bench_diagpower67 as power
     import bench_margin67 as margin
 
-    what, rest = (argv or [""])[0], argv[1:]
-    if what == "trace":
-        trace(Path(rest[0]).resolve())
-        return 0
-    if what == "moretest":
-        moretest(Path(rest[0]).resolve(), Path(rest[1]).resolve())
-        return 0
-    if what == "forward":
+    def forward(root: str, work: str, *_) -> None:
         with forward_within():
-            moretest(Path(rest[0]).resolve(), Path(rest[1]).resolve(), grinder=False)
-        return 0
-    if what == "forwardrows":      # bench_remeasure62's cases (every forward row but the jig's)
+            moretest(Path(root).resolve(), Path(work).resolve(), grinder=False)
+
+    def forward_rows(root: str, *_) -> None:
+        """bench_remeasure62's cases (every forward row but the jig's), the within check forward."""
         import bench_remeasure62 as rm
 
-        root = Path(rest[0]).resolve()
         with forward_within():
-            rm.measure(root / "diagnose.jsonl", rm.diagnose_rows(root, ["cases"]))
-        return 0
-    if what == "rows":
-        power.rows(Path(rest[0]).resolve())
-        return 0
-    if what == "fresh":
-        fresh(Path(rest[0]).resolve())
-        return 0
-    if what == "compare":
-        margin.compare(Path(rest[0]).resolve(), Path(rest[1]).resolve(),
-                       ("diagnose.jsonl", "fresh68.jsonl"))
-        return 0
-    print(__doc__)
-    return 2
+            rm.measure(Path(root).resolve() / "diagnose.jsonl",
+                       rm.diagnose_rows(Path(root).resolve(), ["cases"]))
+
+    return run_commands(__doc__, {
+        "trace": lambda root, *_: trace(Path(root).resolve()),
+        "moretest": lambda root, work, *_: moretest(Path(root).resolve(), Path(work).resolve()),
+        "forward": forward,
+        "forwardrows": forward_rows,
+        "rows": lambda root, *_: power.rows(Path(root).resolve()),
+        "fresh": lambda root, *_: fresh(Path(root).resolve()),
+        "compare": lambda base, new, *_: margin.compare(Path(base).resolve(), Path(new).resolve(),
+                                                        ("diagnose.jsonl", "fresh68.jsonl")),
+    }, argv)
 
 
 if __name__ == "__main__":

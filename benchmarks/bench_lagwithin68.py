@@ -92,6 +92,8 @@ import numpy as np
 
 HERE = Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE), str(HERE.parent / "tests" / "apps")]
+from _cli import run_commands  # noqa: E402
+
 PLANTED = "S_pos_Y"     # the few-campaign records' planted column (bench_diagnose_memory.dataset)
 
 
@@ -175,15 +177,10 @@ def compare(base: Path, new: Path) -> None:
 
 
 def main(argv: list[str]) -> int:
-    what, rest = (argv or [""])[0], argv[1:]
-    if what == "trace":
-        trace(Path(rest[0]).resolve())
-        return 0
-    if what == "compare":
-        compare(Path(rest[0]).resolve(), Path(rest[1]).resolve())
-        return 0
-    print(__doc__)
-    return 2
+    return run_commands(__doc__, {
+        "trace": lambda root, *_: trace(Path(root).resolve()),
+        "compare": lambda base, new, *_: compare(Path(base).resolve(), Path(new).resolve()),
+    }, argv)
 
 
 if __name__ == "__main__":

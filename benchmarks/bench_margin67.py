@@ -109,6 +109,7 @@ from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE), str(HERE.parent / "tests" / "apps")]
+from _cli import run_commands  # noqa: E402
 
 FRESH41_PLANTED = list(range(6741, 6751))
 FRESH41_CLEAN = list(range(6751, 6761))
@@ -211,21 +212,13 @@ def compare(base: Path, new: Path, names=("diagnose.jsonl", "fresh.jsonl", "fres
 def main(argv: list[str]) -> int:
     import bench_diagpower67 as power
 
-    what, rest = (argv or [""])[0], argv[1:]
-    if what == "distribution":
-        distribution(rest)
-    elif what == "rows":
-        power.rows(Path(rest[0]).resolve())
-    elif what == "fresh":
-        power.fresh(Path(rest[0]).resolve())
-    elif what == "fresh41":
-        fresh41(Path(rest[0]).resolve())
-    elif what == "compare":
-        compare(Path(rest[0]).resolve(), Path(rest[1]).resolve())
-    else:
-        print(__doc__)
-        return 2
-    return 0
+    return run_commands(__doc__, {
+        "distribution": lambda *cases: distribution(list(cases)),
+        "rows": lambda root, *_: power.rows(Path(root).resolve()),
+        "fresh": lambda root, *_: power.fresh(Path(root).resolve()),
+        "fresh41": lambda root, *_: fresh41(Path(root).resolve()),
+        "compare": lambda base, new, *_: compare(Path(base).resolve(), Path(new).resolve()),
+    }, argv)
 
 
 if __name__ == "__main__":

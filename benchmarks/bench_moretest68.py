@@ -92,6 +92,7 @@ import pandas as pd
 
 HERE = Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE), str(HERE.parent / "tests" / "apps")]
+from _cli import run_commands  # noqa: E402
 
 FEW_SEEDS = (6881, 6882)
 GRINDER_SEEDS = (6883, 6884)
@@ -463,15 +464,12 @@ def table(work: Path, base: Path | None) -> None:
 
 
 def main(argv: list[str]) -> int:
-    what, rest = (argv or [""])[0], argv[1:]
-    if what == "rows":
-        rows(Path(rest[0]).resolve(), Path(rest[1]).resolve(), rest[2:] or GROUPS)
-        return 0
-    if what == "table":
-        table(Path(rest[0]).resolve(), Path(rest[1]).resolve() if len(rest) > 1 else None)
-        return 0
-    print(__doc__)
-    return 2
+    return run_commands(__doc__, {
+        "rows": lambda root, work, *groups: rows(Path(root).resolve(), Path(work).resolve(),
+                                                 list(groups) or GROUPS),
+        "table": lambda work, base=None, *_: table(Path(work).resolve(),
+                                                   Path(base).resolve() if base is not None else None),
+    }, argv)
 
 
 if __name__ == "__main__":

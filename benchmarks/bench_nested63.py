@@ -172,6 +172,7 @@ import numpy as np
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
+from _cli import run_commands  # noqa: E402
 
 from thermocomp.core.metrics import rmse  # noqa: E402
 from thermocomp.core.models.auto import BASELINE  # noqa: E402
@@ -307,15 +308,17 @@ def check(before: Path, after: Path) -> list[str]:
 
 
 def main(argv: list[str]) -> int:
-    what, root = argv[0], Path(argv[1]).resolve()
-    if what == "score":
-        print("\n".join(table(score(root, argv[2:] or RECORDS))))
-        if not argv[2:]:
+    def scored(root: str, *names: str) -> None:
+        print("\n".join(table(score(Path(root).resolve(), list(names) or RECORDS))))
+        if not names:
             print("\nrank57's fresh batch (bench_auto_rank seeds 5791/5792 but col5791, above)")
-            print("\n".join(table(score(root, RANK57))))
-    elif what == "check":
-        print("\n".join(check(root, Path(argv[2]).resolve())))
-    return 0
+            print("\n".join(table(score(Path(root).resolve(), RANK57))))
+
+    return run_commands(__doc__, {
+        "score": scored,
+        "check": lambda root, after, *_: print("\n".join(
+            check(Path(root).resolve(), Path(after).resolve()))),
+    }, argv)
 
 
 if __name__ == "__main__":

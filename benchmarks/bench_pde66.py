@@ -83,6 +83,8 @@ from pathlib import Path
 
 REPO = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO / "benchmarks"))
+from _cli import run_commands  # noqa: E402
+
 RECORDS = ("pde6611", "pde6612")
 FAMILIES = {
     "mlr": ["model=mlr"], "pcr": ["model=pcr"], "arx": ["model=arx"],
@@ -239,24 +241,20 @@ def table(root: Path) -> str:
     return "\n".join(out)
 
 
-def main(argv: list[str]) -> None:
-    step, root = argv[0], Path(argv[1]).resolve()
-    records = argv[2:] or list(RECORDS)
-    if step == "write":
+def main(argv: list[str]) -> int:
+    def written(root: str, *_) -> None:
         import pde66
 
-        pde66.write(root / "data")
-    elif step == "matrix":
-        matrix(root, records)
-    elif step == "diagnose":
-        diagnose(root, records)
-    elif step == "monitor":
-        monitor(root, records)
-    elif step == "table":
-        print(table(root))
-    else:
-        raise SystemExit(f"unknown step {step!r}")
+        pde66.write(Path(root).resolve() / "data")
+
+    return run_commands(__doc__, {
+        "write": written,
+        "matrix": lambda root, *names: matrix(Path(root).resolve(), list(names) or list(RECORDS)),
+        "diagnose": lambda root, *names: diagnose(Path(root).resolve(), list(names) or list(RECORDS)),
+        "monitor": lambda root, *names: monitor(Path(root).resolve(), list(names) or list(RECORDS)),
+        "table": lambda root, *_: print(table(Path(root).resolve())),
+    }, argv)
 
 
 if __name__ == "__main__":
-    main(sys.argv[1:])
+    raise SystemExit(main(sys.argv[1:]))

@@ -90,6 +90,7 @@ import time
 from pathlib import Path
 
 import numpy as np
+from _cli import run_commands
 from scipy.linalg import svdvals
 
 CUTOFF = 1e-6          # LinearRegression().tol: lstsq's relative cut-off of the singular values
@@ -241,15 +242,12 @@ def square(test: Path) -> None:
 
 
 def main(argv: list[str]) -> int:
-    if argv[0] == "rows":
-        rows(Path(argv[1]).resolve(), Path(argv[2]).resolve(), argv[3:])
-        return 0
-    if argv[0] == "compare":
-        return compare(Path(argv[1]), Path(argv[2]))
-    if argv[0] == "square":
-        square(Path(argv[1]))
-        return 0
-    raise SystemExit(__doc__)
+    return run_commands(__doc__, {
+        "rows": lambda root, out, *groups: rows(Path(root).resolve(), Path(out).resolve(), list(groups)),
+        # the bar's verdict is the exit status
+        "compare": lambda before, after, *_: sys.exit(compare(Path(before), Path(after))),
+        "square": lambda test, *_: square(Path(test)),
+    }, argv)
 
 
 if __name__ == "__main__":

@@ -142,6 +142,7 @@ import numpy as np
 
 HERE = Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE), str(HERE.parent / "tests" / "apps")]
+from _cli import run_commands  # noqa: E402
 
 FRESH_PLANTED = list(range(6941, 6951))
 FRESH_CLEAN = list(range(6951, 6961))
@@ -268,17 +269,11 @@ def compare(base: Path, new: Path) -> None:
 
 
 def main(argv: list[str]) -> int:
-    what, rest = (argv or [""])[0], argv[1:]
-    if what == "trace":
-        trace(rest)
-    elif what == "fresh":
-        fresh(Path(rest[0]).resolve())
-    elif what == "compare":
-        compare(Path(rest[0]).resolve(), Path(rest[1]).resolve())
-    else:
-        print(__doc__)
-        return 2
-    return 0
+    return run_commands(__doc__, {
+        "trace": lambda *cases: trace(list(cases)),
+        "fresh": lambda root, *_: fresh(Path(root).resolve()),
+        "compare": lambda base, new, *_: compare(Path(base).resolve(), Path(new).resolve()),
+    }, argv)
 
 
 if __name__ == "__main__":

@@ -237,7 +237,7 @@ import numpy as np
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 sys.path.insert(0, str(HERE.parent / "tests" / "apps"))
-
+from _cli import run_commands  # noqa: E402
 from cpu import cpu_seconds  # noqa: E402
 
 FEW_PLANTED = [626, 6, 101, 848, 959, 1070, 1181, 1292]      # bench_diagnose_few's, not in memory's
@@ -531,25 +531,35 @@ def _read(path: Path) -> list[dict]:
 
 
 def main(argv: list[str]) -> int:
-    what, root, rest = argv[0], Path(argv[1]).resolve(), argv[2:]
-    if what == "write":
-        write(root)
-    elif what in ("diagnose", "second_sample", "second_gain"):
-        groups = rest or ["cases", "few", "fresh", "null", "jig"]
-        with (contextlib.nullcontext() if what == "diagnose"
-              else second_sample_bar(with_p=what == "second_sample")):
-            measure(root / f"{what}.jsonl", diagnose_rows(root, groups))
-    elif what == "auto":
-        measure(root / "auto.jsonl", (("auto", auto_row(root, name)) for name in rest or AUTO))
-    elif what == "compare":
+    def diagnosed(what: str):
+        """``diagnose`` (shipped) or a second-sample rule over ROOT's GROUPs -> ROOT/<what>.jsonl."""
+        def command(root: str, *groups: str) -> None:
+            with (contextlib.nullcontext() if what == "diagnose"
+                  else second_sample_bar(with_p=what == "second_sample")):
+                measure(Path(root).resolve() / f"{what}.jsonl", diagnose_rows(
+                    Path(root).resolve(), list(groups) or ["cases", "few", "fresh", "null", "jig"]))
+        return command
+
+    def compared(root: str, *_) -> None:
+        root = Path(root).resolve()
         for name in ("second_sample", "second_gain"):
             print(_wrapped([name] + ["  " + line for line in compare(
                 _read(root / "diagnose.jsonl"), _read(root / f"{name}.jsonl"))]))
-    elif what == "table":
-        print(_wrapped(diagnose_table(_read(root / (rest[0] if rest else "diagnose.jsonl")))))
+
+    def tables(root: str, name: str = "diagnose.jsonl", *_) -> None:
+        root = Path(root).resolve()
+        print(_wrapped(diagnose_table(_read(root / name))))
         print()
         print(_wrapped(auto_table(_read(root / "auto.jsonl"), root / "rank")))
-    return 0
+
+    return run_commands(__doc__, {
+        "write": lambda root, *_: write(Path(root).resolve()),
+        **{what: diagnosed(what) for what in ("diagnose", "second_sample", "second_gain")},
+        "auto": lambda root, *names: measure(Path(root).resolve() / "auto.jsonl", (
+            ("auto", auto_row(Path(root).resolve(), name)) for name in list(names) or AUTO)),
+        "compare": compared,
+        "table": tables,
+    }, argv)
 
 
 if __name__ == "__main__":

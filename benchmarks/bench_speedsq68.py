@@ -98,9 +98,9 @@ from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
-
 import bench_iso67 as iso67  # noqa: E402
 import lab_matrix  # noqa: E402
+from _cli import made_folder, run_commands  # noqa: E402
 from cpu import cpu_seconds  # noqa: E402
 
 ISO = {"iso_a": 6701, "iso_6801": 6801, "iso_6802": 6802}
@@ -188,10 +188,11 @@ def clean_rows(root: Path) -> None:
 
 
 def main(argv: list[str]) -> int:
-    step, root = argv[0], Path(argv[1]).resolve()
-    root.mkdir(parents=True, exist_ok=True)
-    {"iso": iso_rows, "clean": clean_rows, "summary": summary}[step](root)
-    return 0
+    return run_commands(__doc__, {
+        "iso": lambda root, *_: iso_rows(made_folder(root)),
+        "clean": lambda root, *_: clean_rows(made_folder(root)),
+        "summary": lambda root, *_: summary(made_folder(root)),
+    }, argv)
 
 
 if __name__ == "__main__":

@@ -135,8 +135,8 @@ def diagnosed(root: Path, name: str, family: str, *extra: str) -> None:
                      default=str), flush=True)
 
 
-def main(argv: list[str]) -> None:
-    lab_matrix.main(argv, SEEDS, FAMILIES, WRAPPERS, {
+def main(argv: list[str]) -> int:
+    return lab_matrix.main(__doc__, argv, SEEDS, FAMILIES, WRAPPERS, {
         "write": lambda root, rest: write(root),
         # monitor ROOT name family...
         "monitor": lambda root, rest: monitored_healthy(root, rest[0], rest[1:]),
@@ -146,4 +146,4 @@ def main(argv: list[str]) -> None:
 
 
 if __name__ == "__main__":
-    main(sys.argv[1:])
+    raise SystemExit(main(sys.argv[1:]))

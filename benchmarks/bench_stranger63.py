@@ -123,6 +123,8 @@ import pandas as pd
 
 REPO = Path(__file__).resolve().parents[1]
 sys.path[:0] = [str(REPO / "benchmarks")]
+from _cli import run_commands  # noqa: E402
+
 SEEDS = {"trunnion": 6301, "trunnion_b": 6302}
 HEADERS = {"T_spindle_front": "T Spindel vorn [°C]", "T_spindle_motor": "T Spindelmotor [°C]",
            "T_coolant_return": "T Kühlmittel Rücklauf [°C]", "T_ram": "T Pinole [°C]",
@@ -215,19 +217,23 @@ def monitoring(root: Path, name: str, family: str, sensors) -> None:
 
 
 def main(argv=None) -> int:
-    argv = sys.argv[1:] if argv is None else argv
-    what, root = argv[0], Path(argv[1]).resolve()
-    if what == "write":
+    def written(root: str, *_) -> None:
+        root = Path(root).resolve()
         write(root)
         print(json.dumps({p.name: sorted(x.name for x in p.iterdir())
                           for p in (root / n for n in SEEDS)}))
-    if what == "matrix":          # matrix ROOT [names] [--families ...] [--wrappers ...]
-        matrix_step(root, argv[2:], SEEDS, FAMILIES, WRAPPERS, FAMILIES)
-    if what == "table":           # table ROOT name
-        print(table(root, argv[2]))
-    if what == "monitor":         # monitor ROOT name family sensor-header...
-        monitoring(root, argv[2], argv[3], argv[4:])
-    return 0
+
+    return run_commands(__doc__, {
+        "write": written,
+        # matrix ROOT [names] [--families ...] [--wrappers ...]
+        "matrix": lambda root, *rest: matrix_step(Path(root).resolve(), list(rest), SEEDS, FAMILIES,
+                                                  WRAPPERS, FAMILIES),
+        # table ROOT name
+        "table": lambda root, name, *_: print(table(Path(root).resolve(), name)),
+        # monitor ROOT name family sensor-header...
+        "monitor": lambda root, name, family, *headers: monitoring(Path(root).resolve(), name, family,
+                                                                   list(headers)),
+    }, sys.argv[1:] if argv is None else argv)
 
 
 if __name__ == "__main__":

@@ -297,8 +297,8 @@ def initialised(root: Path) -> None:
         print(json.dumps({"init": name, "rc": rc, "said": said, "cpu": round(cpu, 1)}))
 
 
-def main(argv: list[str]) -> None:
-    lab_matrix.main(argv, SEEDS, FAMILIES, WRAPPERS, {
+def main(argv: list[str]) -> int:
+    return lab_matrix.main(__doc__, argv, SEEDS, FAMILIES, WRAPPERS, {
         "write": lambda root, rest: write(root),
         "init": lambda root, rest: initialised(root),
         # monitor ROOT name family sensor-header...
@@ -311,4 +311,4 @@ def main(argv: list[str]) -> None:
 
 
 if __name__ == "__main__":
-    main(sys.argv[1:])
+    raise SystemExit(main(sys.argv[1:]))

@@ -293,8 +293,8 @@ def once(root: Path) -> None:
         print(json.dumps(row, default=str), flush=True)
 
 
-def main(argv: list[str]) -> None:
-    lab_matrix.main(argv, SEEDS, FAMILIES, WRAPPERS, {
+def main(argv: list[str]) -> int:
+    return lab_matrix.main(__doc__, argv, SEEDS, FAMILIES, WRAPPERS, {
         "write": lambda root, rest: write(root),
         "init": lambda root, rest: initialised(root),
         "once": lambda root, rest: once(root),
@@ -307,4 +307,4 @@ def main(argv: list[str]) -> None:
 
 
 if __name__ == "__main__":
-    main(sys.argv[1:])
+    raise SystemExit(main(sys.argv[1:]))

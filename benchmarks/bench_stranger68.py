@@ -248,8 +248,8 @@ def monitoring(root: Path, name: str, family: str, sensors, onset_row: int = 600
     (root / f"monitor-{name}.json").write_text(json.dumps(rows, indent=1))
 
 
-def main(argv: list[str]) -> None:
-    lab_matrix.main(argv, SEEDS, FAMILIES, WRAPPERS, {
+def main(argv: list[str]) -> int:
+    return lab_matrix.main(__doc__, argv, SEEDS, FAMILIES, WRAPPERS, {
         "write": lambda root, rest: write(root),
         # init ROOT name [override ...]
         "init": lambda root, rest: initialised(root, rest[0], rest[1:]),
@@ -259,4 +259,4 @@ def main(argv: list[str]) -> None:
 
 
 if __name__ == "__main__":
-    main(sys.argv[1:])
+    raise SystemExit(main(sys.argv[1:]))

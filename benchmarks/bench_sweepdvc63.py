@@ -60,6 +60,7 @@ import sys
 from pathlib import Path
 
 import pandas as pd
+from _cli import made_folder, run_commands
 
 REPO = Path(__file__).resolve().parents[1]
 VENV = REPO / ".venv"
@@ -148,7 +149,10 @@ def adapt(root: Path) -> None:
                   + " ".join(f"{k} {r['rmse']:.3f}" for k, r in t.items()))
 
 
+def main(argv: list[str]) -> int:
+    return run_commands(__doc__, {"dvc": lambda root, *_: dvc(made_folder(root)),
+                                  "adapt": lambda root, *_: adapt(made_folder(root))}, argv)
+
+
 if __name__ == "__main__":
-    what, root = sys.argv[1], Path(sys.argv[2]).resolve()
-    root.mkdir(parents=True, exist_ok=True)
-    {"dvc": dvc, "adapt": adapt}[what](root)
+    raise SystemExit(main(sys.argv[1:]))

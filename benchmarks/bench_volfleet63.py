@@ -59,6 +59,7 @@ from pathlib import Path
 
 import numpy as np
 import pandas as pd
+from _cli import run_commands
 
 REPO = Path(__file__).resolve().parents[1]
 CLONE_ENV = {"PYTHONPATH": "", "THERMOCOMP_ROOT": ""}   # pipelines/thermocomp sets the clone's
@@ -200,7 +201,16 @@ def off(root: Path) -> None:
     print("   out written:", (root / "orun").exists())
 
 
+def main(argv: list[str]) -> int:
+    def new_folder(word: str) -> Path:
+        """ROOT: a folder that must not exist yet."""
+        root = Path(word).resolve()
+        root.mkdir(parents=True, exist_ok=False)
+        return root
+
+    return run_commands(__doc__, {"documented": lambda root, *_: documented(new_folder(root)),
+                                  "off": lambda root, *_: off(new_folder(root))}, argv)
+
+
 if __name__ == "__main__":
-    mode, root = sys.argv[1], Path(sys.argv[2]).resolve()
-    root.mkdir(parents=True, exist_ok=False)
-    {"documented": documented, "off": off}[mode](root)
+    raise SystemExit(main(sys.argv[1:]))

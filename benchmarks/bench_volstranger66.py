@@ -76,6 +76,7 @@ from pathlib import Path
 
 import numpy as np
 import pandas as pd
+from _cli import run_commands
 
 REPO = Path(__file__).resolve().parents[1]
 CLI = REPO / "pipelines" / "thermocomp"
@@ -226,6 +227,10 @@ def lines(log: str, *starts: str) -> list[str]:
     return [ln for ln in log.splitlines() if ln.startswith(starts)]
 
 
+def main(argv: list[str]) -> int:
+    return run_commands(__doc__, {"make": lambda root, *_: make(Path(root)),
+                                  "cli": lambda root, *_: cli(Path(root))}, argv)
+
+
 if __name__ == "__main__":
-    what, root = sys.argv[1], Path(sys.argv[2])
-    {"make": make, "cli": cli}[what](root)
+    raise SystemExit(main(sys.argv[1:]))

@@ -92,6 +92,7 @@ from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE), str(HERE.parent / "tests" / "apps")]
+from _cli import run_commands  # noqa: E402
 
 
 def decompose(root: Path, cases: list[str]) -> None:
@@ -112,14 +113,12 @@ def decompose(root: Path, cases: list[str]) -> None:
 def main(argv: list[str]) -> int:
     import bench_initlag67 as initlag
 
-    what, rest = (argv or [""])[0], argv[1:]
-    if what == "decompose":
-        decompose(Path(rest[0]).resolve(), rest[1:])
-        return 0
-    if what in ("rows", "fresh", "fresh41", "compare"):
-        return initlag.main(argv)
-    print(__doc__)
-    return 2
+    shared = {word: command for word, command in initlag.commands().items()
+              if word in ("rows", "fresh", "fresh41", "compare")}
+    return run_commands(__doc__, {
+        "decompose": lambda root, *cases: decompose(Path(root).resolve(), list(cases)),
+        **shared,
+    }, argv)
 
 
 if __name__ == "__main__":

@@ -89,11 +89,10 @@ import numpy as np
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
-
 import bench_autocheck65 as autocheck  # noqa: E402
 import bench_autorep65 as autorep  # noqa: E402
 import bench_remeasure62 as remeasure  # noqa: E402
-from cpu import cpu_seconds  # noqa: E402
+from _cli import run_commands  # noqa: E402
 
 from thermocomp.core.metrics import rmse  # noqa: E402
 from thermocomp.core.models.auto import BASELINE  # noqa: E402
@@ -207,18 +206,13 @@ def verdict(roots: dict) -> list[str]:
 
 
 def main(argv: list[str]) -> int:
-    what, root, rest = argv[0], Path(argv[1]).resolve(), argv[2:]
-    start = cpu_seconds()
-    if what == "run16":
-        run16(root, rest)
-    elif what == "run12":
-        run12(root, rest)
-    elif what == "score":
-        roots = {"autorep65 (16)": (root, autorep.RECORDS),
-                 "autocheck65 (12)": (Path(rest[0]).resolve(), list(autocheck.RECORDS))}
-        print(remeasure._wrapped(verdict(roots), 106))
-    print(f"CPU s (user + sys) of this process: {cpu_seconds() - start:.1f}")
-    return 0
+    return run_commands(__doc__, {
+        "run16": lambda root, *names: run16(Path(root).resolve(), list(names)),
+        "run12": lambda root, *names: run12(Path(root).resolve(), list(names)),
+        "score": lambda root_a, root_b, *_: print(remeasure._wrapped(verdict({
+            "autorep65 (16)": (Path(root_a).resolve(), autorep.RECORDS),
+            "autocheck65 (12)": (Path(root_b).resolve(), list(autocheck.RECORDS))}), 106)),
+    }, argv, cpu=sys.stdout)
 
 
 if __name__ == "__main__":

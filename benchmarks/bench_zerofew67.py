@@ -99,12 +99,11 @@ import numpy as np
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
-
 import bench_autocheck65 as autocheck  # noqa: E402
 import bench_autorep65 as autorep  # noqa: E402
 import bench_remeasure62 as remeasure  # noqa: E402
 import bench_zerocheck67 as zerocheck  # noqa: E402
-from cpu import cpu_seconds  # noqa: E402
+from _cli import run_commands  # noqa: E402
 
 from thermocomp.core.models.auto import BASELINE  # noqa: E402
 from thermocomp.core.models.blend import N_RESAMPLES, _nested_resamples  # noqa: E402
@@ -269,17 +268,15 @@ def verdict(root: Path, zero_a: Path | None, zero_b: Path | None) -> list[str]:
 
 
 def main(argv: list[str]) -> int:
-    what, root, rest = argv[0], Path(argv[1]).resolve(), argv[2:]
-    start = cpu_seconds()
-    if what == "write":
-        write(root)
-    elif what == "run":
-        run(root, rest or list(RECORDS))
-    elif what == "score":
-        zc = [Path(p).resolve() for p in rest] + [None, None]
-        print(remeasure._wrapped(verdict(root, zc[0], zc[1]), 106))
-    print(f"CPU s (user + sys) of this process: {cpu_seconds() - start:.1f}")
-    return 0
+    def verdict_of(root: str, *zerochecks: str) -> None:
+        zc = [Path(p).resolve() for p in zerochecks] + [None, None]
+        print(remeasure._wrapped(verdict(Path(root).resolve(), zc[0], zc[1]), 106))
+
+    return run_commands(__doc__, {
+        "write": lambda root, *_: write(Path(root).resolve()),
+        "run": lambda root, *names: run(Path(root).resolve(), list(names) or list(RECORDS)),
+        "score": verdict_of,
+    }, argv, cpu=sys.stdout)
 
 
 if __name__ == "__main__":

@@ -89,11 +89,11 @@ import numpy as np
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
-
 import bench_autoloss68 as autoloss  # noqa: E402
 import bench_iso67 as iso  # noqa: E402
 import bench_remeasure62 as remeasure  # noqa: E402
 import bench_zerofew67 as zerofew  # noqa: E402
+from _cli import run_commands  # noqa: E402
 from cpu import cpu_seconds  # noqa: E402
 
 ISO = {f"iso{s}": s for s in (6861, 6862, 6863)}
@@ -188,18 +188,13 @@ def check(root: Path, names: list[str]) -> list[str]:
 
 
 def main(argv: list[str]) -> int:
-    what, root, rest = argv[0], Path(argv[1]).resolve(), argv[2:]
-    start = cpu_seconds()
-    if what == "write":
-        write(root)
-    elif what == "run":
-        autoloss.fitted(root, rest or list(RECORDS), RECORDS)
-    elif what == "score":
-        print(remeasure._wrapped(verdict(root)[0], 110))
-    elif what == "check":
-        print("\n".join(check(root, rest)))
-    print(f"CPU s (user + sys) of this process: {cpu_seconds() - start:.1f}")
-    return 0
+    return run_commands(__doc__, {
+        "write": lambda root, *_: write(Path(root).resolve()),
+        "run": lambda root, *names: autoloss.fitted(Path(root).resolve(), list(names) or list(RECORDS),
+                                                    RECORDS),
+        "score": lambda root, *_: print(remeasure._wrapped(verdict(Path(root).resolve())[0], 110)),
+        "check": lambda root, *names: print("\n".join(check(Path(root).resolve(), list(names)))),
+    }, argv, cpu=sys.stdout)
 
 
 if __name__ == "__main__":

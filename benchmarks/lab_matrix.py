@@ -17,6 +17,7 @@ import sys
 from pathlib import Path
 
 import numpy as np
+from _cli import run_commands
 
 from thermocomp.core.metrics import unit
 from thermocomp.core.scoring.leaderboard import mean_over
@@ -261,22 +262,19 @@ def monitoring(root: Path, name: str, family: str, sensors, plant, kinds=("jump"
     (root / f"monitor-{name}.json").write_text(json.dumps(rows, indent=1))
 
 
-def main(argv: list[str], seeds, families, wrappers, steps: dict) -> None:
-    """A bench's command line ``STEP ROOT [args]``: ``matrix ROOT [names] [--families ...]
-    [--wrappers ...]`` (:func:`matrix_step`), ``table ROOT name``, ``diagnose ROOT name family
-    [override ...]`` (:func:`diagnosed`), or the bench's own ``steps``
-    (name -> function of ``(root, args)``)."""
-    step, root, rest = argv[0], Path(argv[1]).resolve(), argv[2:]
+def main(doc: str | None, argv: list[str], seeds, families, wrappers, steps: dict) -> int:
+    """A bench's command line ``STEP ROOT [args]`` (:func:`_cli.run_commands`; ``doc``: the bench's
+    usage): ``matrix ROOT [names] [--families ...] [--wrappers ...]`` (:func:`matrix_step`), ``table
+    ROOT name``, ``diagnose ROOT name family [override ...]`` (:func:`diagnosed`), or the bench's own
+    ``steps`` (name -> function of ``(root, args)``)."""
     shared = {"matrix": lambda root, rest: matrix_step(root, rest, seeds, families, wrappers,
                                                         families),
               "table": lambda root, rest: print(table(root, rest[0])),
               # diagnose ROOT name family [override ...]: the row with the accepted effects
               "diagnose": lambda root, rest: print(json.dumps(
                   diagnosed(root, rest[0], rest[1], *rest[2:], accepted=True)[0], default=str))}
-    known = {**shared, **steps}
-    if step not in known:
-        raise SystemExit(f"unknown step {step!r}")
-    known[step](root, rest)
+    return run_commands(doc, {name: lambda root, *rest, step=step: step(Path(root).resolve(), list(rest))
+                              for name, step in {**shared, **steps}.items()}, argv)
 
 
 def table(root: Path, name: str) -> str:

@@ -1,0 +1,157 @@
+"""The benches' one command line (benchmarks/_cli.py): ``python benchmarks/X.py COMMAND ARG...``.
+
+A bench that takes a command prints its docstring (its usage) and exits 2 when the command is
+missing, unknown or given words that do not fit it, and runs nothing then.  Every such bench is
+imported in one child process (the benches put their folders on ``sys.path`` and set environment
+variables as they import) and its ``main([])`` called there; no bench's own work is run.
+"""
+
+from __future__ import annotations
+
+import io
+import json
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+BENCHMARKS = Path(__file__).resolve().parents[1] / "benchmarks"
+
+# the benches whose first word is a command (converted to _cli.run_commands on stop 70)
+COMMAND_BENCHES = (
+    "bench_anchor66", "bench_auto_ati58", "bench_auto_hmc59", "bench_auto_hmc60", "bench_auto_vtl60",
+    "bench_autocheck65", "bench_autoloss68", "bench_automore69", "bench_autorep65", "bench_autorule69",
+    "bench_blocks68", "bench_clean69", "bench_cvpick69", "bench_diagfault65", "bench_diagpower67",
+    "bench_diagref65", "bench_fresh69", "bench_initlag67", "bench_iso67", "bench_jig68",
+    "bench_lagwithin68", "bench_margin67", "bench_moretest68", "bench_nested63", "bench_pde66",
+    "bench_pen0b69", "bench_planted69", "bench_remeasure62", "bench_speedsq68", "bench_stable67",
+    "bench_stranger63", "bench_stranger64", "bench_stranger65", "bench_stranger66", "bench_stranger68",
+    "bench_stranger69", "bench_sweepdvc63", "bench_volfleet63", "bench_volstranger66", "bench_within67",
+    "bench_zerocheck67", "bench_zerofew67", "bench_zerofold68",
+)
+
+# Run in the child: per bench, main([])'s status and what it printed, and, for every usage line of
+# its docstring (``X.py WORD ARG ...``; ``[...]`` optional, ``...`` more of the same), whether
+# WORD is a command the words after it fit (the commands seen as the bench hands them over).
+PROBE = r'''
+import contextlib, importlib, io, json, re, shlex, sys
+sys.path.insert(0, sys.argv[1])
+try:
+    import _cli
+except ModuleNotFoundError:
+    _cli = None
+seen = {}
+if _cli is not None:
+    handed = _cli.run_commands
+
+    def recording(doc, commands, argv, **kwargs):
+        seen["commands"] = commands
+        return handed(doc, commands, argv, **kwargs)
+    _cli.run_commands = recording
+
+out = {}
+for name in sys.argv[2:]:
+    seen.clear()
+    try:
+        module = importlib.import_module(name)
+    except ModuleNotFoundError as exc:          # an optional extra the bench needs
+        out[name] = {"skip": str(exc)}
+        continue
+    printed = io.StringIO()
+    try:
+        with contextlib.redirect_stdout(printed):
+            status = module.main([])
+    except BaseException as exc:
+        status = f"{type(exc).__name__}: {exc}"[:200]
+    doc, usage = module.__doc__ or "", []
+    for line in doc.splitlines():
+        found = re.search(re.escape(name) + r"\.py\s+(.*)", line)
+        words = [w for w in shlex.split(re.sub(r"\[[^\]]*\]", "", found.group(1).split("#")[0]))
+                 if w != "..."] if found else []
+        if words:
+            command = seen.get("commands", {}).get(words[0])
+            usage.append([line.strip(), command is not None and _cli._fits(command, words[1:])])
+    out[name] = {"status": status, "printed": printed.getvalue(), "doc": doc, "usage": usage}
+print(json.dumps(out))
+'''
+
+
+@pytest.fixture(scope="module")
+def probed(tmp_path_factory) -> dict:
+    """Every command bench's ``main([])`` and usage lines, from one child process."""
+    run = subprocess.run([sys.executable, "-c", PROBE, str(BENCHMARKS), *COMMAND_BENCHES],
+                         capture_output=True, text=True, cwd=tmp_path_factory.mktemp("benches"))
+    assert run.returncode == 0, run.stderr[-3000:]
+    return json.loads(run.stdout.splitlines()[-1])
+
+
+def _cli():
+    sys.path.insert(0, str(BENCHMARKS))
+    try:
+        import _cli
+    finally:
+        sys.path.remove(str(BENCHMARKS))
+    return _cli
+
+
+@pytest.mark.parametrize("name", COMMAND_BENCHES)
+def test_a_bench_without_a_command_prints_its_usage_and_returns_2(probed, name):
+    got = probed[name]
+    if "skip" in got:
+        pytest.skip(got["skip"])
+    assert got["doc"].strip(), f"{name} has no docstring to print"
+    assert got["status"] == 2
+    assert got["printed"] == got["doc"] + "\n"
+
+
+@pytest.mark.parametrize("name", COMMAND_BENCHES)
+def test_every_command_line_a_bench_documents_is_one_of_its_commands(probed, name):
+    got = probed[name]
+    if "skip" in got:
+        pytest.skip(got["skip"])
+    assert got["usage"], f"{name}'s docstring shows no command line"
+    assert [line for line, fits in got["usage"] if not fits] == []
+
+
+def test_every_bench_that_dispatches_by_run_commands_is_probed():
+    using = {p.stem for p in BENCHMARKS.glob("bench_*.py") if "run_commands(" in p.read_text()
+             or "lab_matrix.main(" in p.read_text()}
+    assert using == set(COMMAND_BENCHES)
+
+
+def test_the_first_word_picks_the_command_and_the_rest_are_its_arguments_in_order(capsys):
+    cli, calls = _cli(), []
+    commands = {"pair": lambda first, second: calls.append(("pair", first, second)),
+                "many": lambda *words: calls.append(("many", *words))}
+    assert cli.run_commands("usage", commands, ["pair", "a", "b"]) == 0
+    assert cli.run_commands("usage", commands, ["many"]) == 0
+    assert cli.run_commands("usage", commands, ["many", "x", "y", "z"]) == 0
+    assert calls == [("pair", "a", "b"), ("many",), ("many", "x", "y", "z")]
+    assert capsys.readouterr().out == ""
+
+
+@pytest.mark.parametrize("argv", [[], ["nope"], ["pair", "a"], ["pair", "a", "b", "c"], ["a", "pair"]])
+def test_a_missing_unknown_or_unfitting_command_prints_the_usage_returns_2_and_runs_nothing(capsys, argv):
+    cli, calls = _cli(), []
+    commands = {"pair": lambda first, second: calls.append((first, second))}
+    assert cli.run_commands("Usage: X.py pair A B", commands, argv, cpu=sys.stdout) == 2
+    assert capsys.readouterr().out == "Usage: X.py pair A B\n"
+    assert calls == []
+
+
+def test_the_cpu_line_goes_to_the_stream_asked_after_the_command():
+    cli, stream = _cli(), io.StringIO()
+    assert cli.run_commands("usage", {"say": lambda: print("said", file=stream)}, ["say"],
+                           cpu=stream) == 0
+    said, line = stream.getvalue().splitlines()
+    assert said == "said"
+    assert re.fullmatch(r"CPU s \(user \+ sys\) of this process: \d+\.\d", line)
+
+
+def test_a_command_s_folder_is_made_and_resolved(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    folder = _cli().made_folder("a/b")
+    assert folder == (tmp_path / "a" / "b").resolve() and folder.is_dir()
+    assert _cli().made_folder("a/b") == folder          # there already: the same folder
