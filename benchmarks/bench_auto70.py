@@ -91,6 +91,7 @@ HERE = Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE), str(HERE.parent / "tests" / "apps")]
 
 import bench_automore69 as automore  # noqa: E402
+from _cli import run_commands  # noqa: E402
 from cpu import cpu_seconds  # noqa: E402
 
 from thermocomp.core.models.auto import BASELINE  # noqa: E402
@@ -335,17 +336,11 @@ def measure(out: Path, works: list[Path]) -> None:
 
 
 def main(argv: list[str]) -> int:
-    what, rest = (argv or [""])[0], argv[1:]
-    start = cpu_seconds()
-    if what == "novelty":
-        novelty(Path(rest[0]).resolve(), Path(rest[1]).resolve(), [Path(w).resolve() for w in rest[2:]])
-    elif what == "measure":
-        measure(Path(rest[0]).resolve(), [Path(w).resolve() for w in rest[1:]])
-    else:
-        print(__doc__)
-        return 2
-    print(f"CPU s (user + sys) of this process: {cpu_seconds() - start:.1f}", file=sys.stderr)
-    return 0
+    return run_commands(__doc__, {
+        "novelty": lambda root, out, *works: novelty(Path(root).resolve(), Path(out).resolve(),
+                                                     [Path(w).resolve() for w in works]),
+        "measure": lambda out, *works: measure(Path(out).resolve(), [Path(w).resolve() for w in works]),
+    }, argv, cpu=sys.stderr)
 
 
 if __name__ == "__main__":
