@@ -57,6 +57,22 @@ What is measured (written before anything ran)
 
 No rule is adopted from these records: they are a check, not a tuning set.
 
+Measured (2026-12-02, every step once, 2 shared cores, other sessions' load; docs/own-data.md)
+----------------------------------------------------------------------------------------------
+``init dmu_a`` at b20c26c1: "value '03/01/2027 06:00:00:011' is a date with slashes, day or month
+first?"; with ``data.time='%m/%d/%Y %H:%M:%S'`` (its hint) and with ``...:%f``: "not a time in
+data.time's format": stuck after 3 tries (both records; the colon before the ms read by no
+format).  Mended (e5ca9645, then the C): the Keysight Time month first, its ms read; Scan and
+the 13 Alarm columns left out (Scan was refused as 201 °C, the alarms read as temperatures);
+a role pattern's own unit for the VDC-labelled probes.  After: dmu_a 1 try (2.8 s CPU), dmu_b 2
+(the first names ``data.roles.error=['201 <DISP_X> (um)', ...]``; 2.6 s).  ``matrix`` (test RMSE
+X / Y / Z µm; before 8.28 / 22.84 / 88.77 and 8.09 / 24.21 / 73.62): dmu_a mlr 0.34 / 5.68 /
+4.84, lagbank 0.29 / 5.29 / 4.28, auto 0.33 / 1.98 / 1.82; dmu_b mlr 0.23 / 6.43 / 5.27,
+lagbank 0.31 / 5.97 / 4.90, auto 0.27 / 2.01 / 1.58; replay = run (<= 8.9e-16), promote = run,
+C pack passed (refused at export before: data.time %m/%d/%Y).  ``monitor`` mlr healthy: 0
+events on both (file and stdin).  ``diagnose`` mlr: FOUND on both (dmu_a A x T_Table rise, Y
+5.68 -> 0.84; dmu_b A x T_KSS rise, Y 6.43 -> 0.87; 16.9 / 18.9 s CPU).
+
     ... bench_keysight70.py init ROOT dmu_a [override ...]   # init as a stranger, one try
     ... bench_keysight70.py matrix ROOT dmu_a                # run -> replay -> promote -> C
     ... bench_keysight70.py table ROOT dmu_a
