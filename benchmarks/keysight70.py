@@ -79,7 +79,7 @@ from dataclasses import dataclass
 from datetime import datetime
 
 import numpy as np
-from scenario_tail import DayRunsScenario, LoggedStateEffect, day_runs, merge, working
+from scenario_tail import DayRunsScenario, TurnedGrowth, day_runs, merge, working
 
 from thermocomp.apps.sim.ambient import DAY_S, AmbientModel
 from thermocomp.apps.sim.campaign import Machine
@@ -131,20 +131,11 @@ def machine() -> Machine:
                    ThermoelasticMap(linear=ERRORS, reference_c=20.0))
 
 
-class TableNormal(LoggedStateEffect):
+class TableNormal(TurnedGrowth):
     """The table's growth along its normal, turned from Z toward Y by the tilt (S_pos_A logged)."""
 
-    name, state = "table_normal", A_DEG
+    name, state, node, along_cos, along_sin = "table_normal", A_DEG, "table", "E_Z", "E_Y"
     defaults = {"gain": TABLE_UM_PER_K, "targets": ["E_Y", "E_Z"]}
-
-    def modify_errors(self, ctx, errors):
-        errors = errors.copy()
-        targets = ctx.machine.thermoelastic.targets
-        angle = np.radians(self.logged(ctx))
-        growth = float(self.params["gain"]) * self.rise(ctx, "table")
-        errors[:, targets.index("E_Y")] += growth * np.sin(angle)
-        errors[:, targets.index("E_Z")] += growth * np.cos(angle)
-        return errors
 
 
 def programme(rng, period_s: float, duration_s: float):
