@@ -146,13 +146,16 @@ def test_a_time_cell_no_keysight_time_is_refused_naming_file_column_and_line(tmp
 
 
 @needs_cc
-@pytest.mark.parametrize("sep, decimal, probe", [(",", ".", "um"), (";", ",", "VDC")])
+@pytest.mark.parametrize("sep, decimal, probe, time", [
+    (",", ".", "um", ["data.time='%m/%d/%Y %H:%M:%S'"]),     # as init writes it
+    (";", ",", "VDC", [])])                                  # data.time=auto: the file says it
 def test_the_compiled_stream_reads_the_keysight_export_as_the_reader_does(tmp_path, sep, decimal,
-                                                                          probe):
+                                                                          probe, time):
     """Before: the C export refused ('data.time=%m/%d/%Y %H:%M:%S, which stream.c cannot
-    convert'); a lag bank reads the time: the ms after a colon count."""
+    convert'), or, with data.time=auto, its stream refused the raw file's every time; a lag
+    bank reads the time: the ms after a colon count."""
     path = _export(tmp_path / "run.csv", dt.datetime(2027, 3, 1, 6), _values(1), sep=sep,
                    decimal=decimal, probe_unit=probe)
-    common = [f"data.path={path}", f"data.roles.error=[{', '.join(VOLTS)}]",
-              "data.time='%m/%d/%Y %H:%M:%S'", "data.test_fraction=0.3", "data.reference=none"]
+    common = [f"data.path={path}", f"data.roles.error=[{', '.join(VOLTS)}]", *time,
+              "data.test_fraction=0.3", "data.reference=none"]
     _compiled_stream_equals_its_pack(tmp_path, path, common)

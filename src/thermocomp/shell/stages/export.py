@@ -33,7 +33,7 @@ from ...base.files import staged_outputs
 from ...base.log import say
 from ...base.paths import resolve
 from ...core.continuation import lead_ins
-from ...core.io.contract import TIME
+from ...core.io.contract import TIME, ContractError
 from ...core.io.roles import RUN
 from ...core.io.source import check_streamed_columns
 from ...core.io.timestamps import CLOCK
@@ -225,6 +225,27 @@ def _convertible(cfg: DictConfig, converted: dict, time_header, clock: list) -> 
                           "times): convert the time, or export as json")
 
 
+def _slashed(cfg: DictConfig, ds) -> int:
+    """``TC_SLASHED``: the order of ``data.time``'s dates with slashes, or, where it is ``auto``,
+    of the record's (the order its first file's time column says, as ``init`` writes it: a
+    Keysight DAQ's ``Time`` or a field past 12; a run of such a record without ``init`` exported
+    a stream that refused the raw export's every time); 0 where none is."""
+    written = str(cfg.data.get("time") or "auto")
+    if written != "auto" or ds is None:
+        return SLASHED.get(written, 0)
+    from ...core.io import ReadOptions
+    from ...core.io.detect import head, slashed_order
+    from ..config.checks import data_options
+
+    root = resolve(cfg.data.path)
+    sample = root if root.is_file() else root / str(ds.manifest["file"].iloc[0])
+    try:
+        opts, header, first, _ = head(sample, ReadOptions.from_cfg(data_options(cfg)))
+        return SLASHED.get(slashed_order(sample, opts, header, dict(zip(header, first))) or "", 0)
+    except (ContractError, OSError, ValueError):     # (no text file: nothing said by its cells)
+        return 0
+
+
 def export(cfg: DictConfig) -> dict:
     """Write the export of ``export.model`` in ``export.format`` to ``out``; ``{file: path}``."""
     # a registered model is read from the store: none created (export logs no run)
@@ -267,7 +288,7 @@ def export(cfg: DictConfig) -> dict:
     thousands = cfg.data.get("thousands")       # (the lab's 1.234,5: stream.c ungroups it)
     provenance.update(thousands=None if thousands is None else str(thousands)[:1],
                       elapsed=str(cfg.data.get("time") or "auto") == "elapsed",
-                      slashed=SLASHED.get(str(cfg.data.get("time") or "auto"), 0))
+                      slashed=_slashed(cfg, ds))
     # (streamraw65: the lab's raw file as the reader reads it -- its character set and its marks
     # of a value not measured travel with the model, as data.thousands does)
     provenance.update(encoding=_stream_encoding(cfg, fmt),
