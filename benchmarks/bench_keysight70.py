@@ -64,8 +64,8 @@ first?"; with ``data.time='%m/%d/%Y %H:%M:%S'`` (its hint) and with ``...:%f``: 
 data.time's format": stuck after 3 tries (both records; the colon before the ms read by no
 format).  Mended (e5ca9645, then the C): the Keysight Time month first, its ms read; Scan and
 the 13 Alarm columns left out (Scan was refused as 201 °C, the alarms read as temperatures);
-a role pattern's own unit for the VDC-labelled probes.  After: dmu_a 1 try (2.8 s CPU), dmu_b 2
-(the first names ``data.roles.error=['201 <DISP_X> (um)', ...]``; 2.6 s).  ``matrix`` (test RMSE
+a role pattern's own unit for the VDC-labelled probes.  After: dmu_a 1 try (2.8-3.6 s CPU), dmu_b
+2 (the first names ``data.roles.error=['201 <DISP_X> (um)', ...]``; 2.6-3.7 s).  ``matrix`` (test RMSE
 X / Y / Z µm; before 8.28 / 22.84 / 88.77 and 8.09 / 24.21 / 73.62): dmu_a mlr 0.34 / 5.68 /
 4.84, lagbank 0.29 / 5.29 / 4.28, auto 0.33 / 1.98 / 1.82; dmu_b mlr 0.23 / 6.43 / 5.27,
 lagbank 0.31 / 5.97 / 4.90, auto 0.27 / 2.01 / 1.58; replay = run (<= 8.9e-16), promote = run,
