@@ -80,7 +80,7 @@ from dataclasses import dataclass
 from datetime import datetime
 
 import numpy as np
-from scenario_tail import DayRunsScenario, LoggedStateEffect, day_runs, either, merge, working
+from scenario_tail import DayRunsScenario, TurnedGrowth, day_runs, either, merge, working
 
 from thermocomp.apps.sim.ambient import DAY_S, AmbientModel
 from thermocomp.apps.sim.campaign import Machine
@@ -132,20 +132,11 @@ def machine() -> Machine:
                    ThermoelasticMap(linear=ERRORS, reference_c=20.0))
 
 
-class ToolAxis(LoggedStateEffect):
+class ToolAxis(TurnedGrowth):
     """The tool spindle's axial growth along the tool's axis, turned by B (S_B_deg is logged)."""
 
-    name, state = "tool_axis", B
+    name, state, node, along_cos, along_sin = "tool_axis", B, "tool_spindle", "E_X", "E_Z"
     defaults = {"gain": TOOL_UM_PER_K, "targets": ["E_X", "E_Z"]}
-
-    def modify_errors(self, ctx, errors):
-        errors = errors.copy()
-        targets = ctx.machine.thermoelastic.targets
-        angle = np.radians(self.logged(ctx))
-        growth = float(self.params["gain"]) * self.rise(ctx, "tool_spindle")
-        errors[:, targets.index("E_X")] += growth * np.cos(angle)
-        errors[:, targets.index("E_Z")] += growth * np.sin(angle)
-        return errors
 
 
 def programme(rng, period_s: float, duration_s: float):

@@ -11,6 +11,7 @@
   :class:`DayRunsScenario`, its parameters declared once;
 * :class:`LoggedStateEffect`: the base of a planted effect of a LOGGED state (its column, so
   declared) on the errors, with a node's rise from the campaign's first sample;
+  :class:`TurnedGrowth`, a node's growth along an axis a logged angle turns (mtc68, keysight70);
 * :class:`PlantedScenario`: a :class:`~thermocomp.apps.sim.scenario.DeclaredScenario` (its
   parameters declared once, as dataclass fields: leftovers67) with ONE planted
   effect the default model lacks (an :class:`~thermocomp.apps.sim.effects.UndeclaredEffect`
@@ -129,6 +130,25 @@ class LoggedStateEffect(UndeclaredEffect):
         return ctx.node_temps[:, index[node]] - ctx.node_temps[0, index[node]]
 
 
+class TurnedGrowth(LoggedStateEffect):
+    """A node's growth (``gain`` µm/K of its rise) along an axis that the logged angle ``state``
+    (degrees) turns: ``cos`` of it onto the target ``along_cos``, ``sin`` onto ``along_sin``
+    (mtc68's tool spindle turned by B, keysight70's table by the tilt A)."""
+
+    node: ClassVar[str] = ""
+    along_cos: ClassVar[str] = ""
+    along_sin: ClassVar[str] = ""
+
+    def modify_errors(self, ctx, errors):
+        errors = errors.copy()
+        targets = ctx.machine.thermoelastic.targets
+        angle = np.radians(self.logged(ctx))
+        growth = float(self.params["gain"]) * self.rise(ctx, self.node)
+        errors[:, targets.index(self.along_cos)] += growth * np.cos(angle)
+        errors[:, targets.index(self.along_sin)] += growth * np.sin(angle)
+        return errors
+
+
 class PlantedScenario(DeclaredScenario):
     """A scenario with one planted effect, ``planted`` (its class), in every record.
 
@@ -164,5 +184,5 @@ class DayRunsScenario(PlantedScenario):
     weeks_later: int = 0
 
 
-__all__ = ["DayRunsScenario", "LoggedStateEffect", "PlantedScenario", "day_runs", "either", "held",
-           "merge", "weekday_shift", "working"]
+__all__ = ["DayRunsScenario", "LoggedStateEffect", "PlantedScenario", "TurnedGrowth", "day_runs",
+           "either", "held", "merge", "weekday_shift", "working"]

@@ -38,12 +38,15 @@ from .rates import period_groups
 from .read import run_column, run_counter
 from .record import check_record_file
 from .roles import (
+    LOGGER,
     RUN,
     date_and_time_of_day,
+    logger_columns,
     matching_roles,
     named_as_time,
     naming,
     split_unit,
+    voltage_hint,
 )
 from .runs import looks_like_run_labels, says_run
 from .separators import reads_as_number
@@ -451,8 +454,9 @@ def check_an_error_is_named(header: list[str], first: dict, roles: dict, opts, f
     named = [*header, *opts.columns.values()]
     if roles["error"] or any(role(h) == "E" for h in named):
         return
+    bookkeeping = logger_columns(header)
     numeric = [h for h in header if h.strip() and reads_as_number(first.get(h), opts.decimal)
-               and not named_as_time(h)]
+               and not named_as_time(h) and h not in bookkeeping]
     either = [ambiguity(h, split_unit(h)[0]) for h in header if h.strip() and not _named(
         h, roles, opts) and role_by_unit(*_unit_of(h, opts)) == AMBIGUOUS]
     # a MATLAB field or a TDMS channel has no header a lab can edit: its unit goes in data.units
@@ -462,7 +466,9 @@ def check_an_error_is_named(header: list[str], first: dict, roles: dict, opts, f
                         "mm, no E_ name): name it, data.roles.error=[<header>], or give its unit, "
                         f"{unit_hint}; the numeric columns: "
                         f"{', '.join(map(repr, numeric)) or 'none'}"
-                        + "".join(f"; {line}" for line in either), file=file)
+                        + "".join(f"; {line}" for line in either)
+                        + (f"; {voltage_hint(*numeric)[2:-1]}" if voltage_hint(*numeric) else ""),
+                        file=file)
 
 
 def _unit_of(header: str, opts) -> tuple[str, str | None]:
@@ -523,10 +529,14 @@ def detection_lines(layout: str, opts, header, plan, ds, report, period_s: float
     for h in header:
         contract = plan.names.get(h)
         role = plan.roles.get(h, "ignore") if contract else "ignore (left out)"
+        if plan.roles.get(h) == LOGGER:       # (an alarm flag, the sweep number)
+            role = LOGGER
         if plan.roles.get(h) == "empty":
             h, role = "(no header)", "empty (left out)"
         h = h or "(no header)"
         shown = {CLOCK: "time", RUN: "(each run a campaign)"}.get(contract, contract or "-")
+        if role == LOGGER:
+            shown = "- (left out: no measurement)"
         if contract and plan.roles.get(h) == "error" and angular(contract):   # (iso67)
             unit, scale = split_unit(h)[1], plan.scales.get(contract, (1.0, 0.0))[0]
             shown += (" (an angle, in µm/m = µrad" + (f": {unit} x {scale:.6g}" if unit and

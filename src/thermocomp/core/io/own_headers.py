@@ -9,16 +9,11 @@ import re
 from collections.abc import Mapping
 
 from .contract import ContractError
-from .roles import split_unit
+from .roles import header_pattern
 
-_GLOB = re.compile(r"([*?\[])")      # a header's glob characters, matched as themselves
+__all__ = ["header_pattern", "with_own_header"]
+
 _QUOTED = re.compile(r"'([^']+)'")
-
-
-def header_pattern(header: str) -> str:
-    """The ``data.roles`` pattern that matches ``header`` alone: a role pattern matches a header
-    without its unit, so the base, its glob characters escaped."""
-    return _GLOB.sub(r"[\1]", split_unit(header)[0] or header)
 
 
 def with_own_header(exc: ContractError, renamed: Mapping[str, str]) -> ContractError:

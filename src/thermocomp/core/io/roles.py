@@ -36,7 +36,7 @@ from .timestamps import (
     TIME_OF_DAY,
     looks_like_timestamp,
 )
-from .units import AMBIGUOUS, LETTER_UNITS, STATE_UNITS, UNITS, ambiguity, role_by_unit
+from .units import AMBIGUOUS, LETTER_UNITS, STATE_UNITS, UNITS, VOLTS, ambiguity, role_by_unit
 
 _UNIT = re.compile(r"^(.*?)\s*[\[(]([^\[\]()]*)[\])]\s*$")
 # a unit in brackets followed by a note in brackets, a sign convention ('dX [mm] (+ = Werkzeug
@@ -55,6 +55,12 @@ _UNSAFE = re.compile(r"[^\w.\-]+")
 TIME_HEADERS = frozenset({"time", "t", "ts", "zeit", "時間", "时间", "timestamp", "datetime", "date_time",
                           "zeitstempel", "temps", "tiempo", "tempo", "seconds", *ELAPSED_HEADERS})
 RUN = " campaign"     # data.roles.campaign's column as read: no contract column has this name
+LOGGER = "DAQ's own"  # a column a Keysight DAQ writes of its own scans (:func:`logger_columns`)
+# a Keysight DAQ's export (BenchLink Data Logger's, the DAQ970A's): ``Alarm <channel>`` beside
+# each channel's ``<channel> <label> (<unit>)`` (0, or 1 / 2: below its LO / above its HI
+# limit), and the sweep number ``Scan``
+_ALARM = re.compile(r"^\s*Alarm\s+(\d{3,4})\s*$", re.IGNORECASE)
+_SCAN = frozenset({"scan", "scan number", "sweep", "sweep number"})
 PREFIX = {"error": "E_", "state": "S_", "temperature": "T_", "ambient": "T_"}
 
 
@@ -217,6 +223,7 @@ def naming(headers: Sequence[str], roles: Mapping, columns: Mapping, first: Mapp
     time_header, clock_header = (_time_header(headers, roles, columns, first, problems)
                                  + [None, None])[:2]
     ambient = [h for h in headers if h not in columns and matching_roles(h, roles) == ["ambient"]]
+    bookkeeping = logger_columns(headers)
     run = _run_header(headers, roles, columns, problems)
     for header in headers:
         base, unit = split_unit(header)
@@ -247,6 +254,11 @@ def naming(headers: Sequence[str], roles: Mapping, columns: Mapping, first: Mapp
             continue
         kind = hits[0] if hits else None
         if kind == "ignore":
+            continue
+        if kind is not None and header not in units:
+            unit = pattern_unit(header, roles, kind) or unit
+        if kind is None and header in bookkeeping:   # (keysight70: read as temperatures, silently)
+            out.roles[header] = LOGGER
             continue
         # a contract name with a unit ('E_S1x1d1_B01_B02 [mm]', a lab's software writing its
         # unit): read as the name, converted, with or without data.roles (volstranger66: a
@@ -297,6 +309,18 @@ def naming(headers: Sequence[str], roles: Mapping, columns: Mapping, first: Mapp
     return out
 
 
+def logger_columns(headers: Sequence[str]) -> frozenset:
+    """The headers of a Keysight DAQ's export that are its bookkeeping, no measurement: each
+    ``Alarm <channel>`` beside a channel's column (``Alarm 101`` beside ``101 <Air> (C)``), and,
+    in a file with such columns, the sweep number ``Scan``.  Left out by every reader of the
+    headers (a role pattern matching one still gives it that role)."""
+    channels = {h.strip().split(" ", 1)[0] for h in headers}
+    alarms = {h for h in headers if (m := _ALARM.match(h)) and m[1] in channels}
+    if not alarms:
+        return frozenset()
+    return frozenset(alarms | {h for h in headers if h.strip().lower() in _SCAN})
+
+
 def by_header(headers: Sequence[str], columns: Mapping) -> dict:
     """``data.columns`` keyed by the file's headers: a key that is no header but the name of
     exactly one header without its unit (``T Wasser`` for ``T Wasser [°C]``, the unit from a
@@ -328,10 +352,36 @@ def _mapped_scale(out: Naming, name: str, unit: str | None) -> None:
 
 
 def matching_roles(header: str, roles: Mapping) -> list[str]:
-    """The roles among ``data.roles``' patterns that match ``header`` (with or without its unit)."""
+    """The roles among ``data.roles``' patterns that match ``header`` (with or without its unit;
+    a pattern's own unit, :func:`pattern_unit`, is no part of what it matches)."""
     base = split_unit(header)[0]
     return [k for k in ROLE_PATTERNS if any(fnmatch.fnmatchcase(header, p) or
-                                            fnmatch.fnmatchcase(base, p) for p in roles.get(k, ()))]
+                                            fnmatch.fnmatchcase(base, p)
+                                            for p in map(_without_unit, roles.get(k, ())))]
+
+
+# a role pattern ending in the unit its columns' values are in: '*DISP* (um)', a space before
+# the brackets and no glob character in them ('Kanal[*]' is a glob)
+_PATTERN_UNIT = re.compile(r"^(.*\S)\s+[\[(]([^\[\]()*?]+)[\])]\s*$")
+
+
+def _without_unit(pattern: str) -> str:
+    match = _PATTERN_UNIT.match(pattern)
+    return match.group(1) if match and _a_unit(match.group(2)) else pattern
+
+
+def pattern_unit(header: str, roles: Mapping, kind: str) -> str | None:
+    """The unit that the first ``data.roles.<kind>`` pattern matching ``header`` ends in
+    (``data.roles.error=['*DISP* (um)']``): the unit its values are in, whatever the header says
+    (keysight70: a Keysight DAQ's probe channel scaled to µm by its Mx+B, its label left
+    ``VDC``); None where the pattern has none."""
+    base = split_unit(header)[0]
+    for pattern in roles.get(kind, ()):
+        match = _PATTERN_UNIT.match(pattern)
+        if match and _a_unit(match.group(2)) and (fnmatch.fnmatchcase(header, match.group(1))
+                                                  or fnmatch.fnmatchcase(base, match.group(1))):
+            return match.group(2).strip()
+    return None
 
 
 def _time_header(headers, roles, columns, first, problems) -> list[str]:
@@ -408,9 +458,32 @@ def _scale(out: Naming, name: str, kind: str | None, unit: str | None, header: s
         what = {"E": "an error's (µm, mm, m, nm; an angle's µrad, mrad, arcsec)",
                 "angle": "an angle's (µrad, mrad, arcsec)", "T": "a temperature's (°C, K, °F)",
                 "time": "a time's (s, ms, min, h, d)"}[kind]
-        problems.append(f"{header!r}: unit {unit!r} is not {what}")
+        problems.append(f"{header!r}: unit {unit!r} is not {what}" + (
+            voltage_hint(header, kind) if kind == "E" else ""))
     elif scale != (1.0, 0.0) or kind == "time":   # (a time's unit stated: no ms to suspect)
         out.scales[name] = scale
+
+
+def voltage_hint(*headers: str) -> str:
+    """What to say of errors' columns in volts (``201 <DISP_X> (VDC)``): a probe's voltage the
+    logger scaled (Keysight's Mx+B) with its unit label left, or its raw volts; '' where no
+    header's unit is a voltage."""
+    volts = [h for h in headers if (split_unit(h)[1] or "").lower().replace(" ", "") in VOLTS]
+    if not volts:
+        return ""
+    patterns = ", ".join(f"'{header_pattern(h)} (um)'" for h in volts)
+    return (f" (a voltage: scaled to µm by the logger, Keysight's Mx+B, its label left "
+            f"{split_unit(volts[0])[1]!r}? say the unit its values are in after the pattern, "
+            f"data.roles.error=[{patterns}]; raw volts need the probe's scale applied first)")
+
+
+_GLOB = re.compile(r"([*?\[])")      # a header's glob characters, matched as themselves
+
+
+def header_pattern(header: str) -> str:
+    """The ``data.roles`` pattern that matches ``header`` alone: a role pattern matches a header
+    without its unit, so the base, its glob characters escaped."""
+    return _GLOB.sub(r"[\1]", split_unit(header)[0] or header)
 
 
 def _angle(unit: str | None) -> bool:

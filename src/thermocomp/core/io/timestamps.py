@@ -4,7 +4,8 @@ the strptime format ``data.time`` names, or a logger's elapsed time ``25:30:00``
 hours past 24: :func:`elapsed_seconds`).
 A date with slashes (``03/11/2026``) is day-first in Europe and month-first in the US: never
 guessed, refused naming ``data.time``; where a field is past 12 (``15/06/2026``) the order is no
-guess, and the date is read so (:func:`slashed_format`)."""
+guess, and the date is read so (:func:`slashed_format`); so is a Keysight DAQ's ``Time``,
+``MM/DD/YYYY HH:MM:SS:mmm``, its milliseconds after a colon (keysight70)."""
 
 from __future__ import annotations
 
@@ -24,15 +25,16 @@ from .contract import TIME, ContractError
 # a first cell that is a date and a time of day (the time column when no header says so)
 _STAMP = re.compile(r"\s*\d{1,4}[-./]\d{1,2}[-./]\d{2,4}[T ]\d\d?:\d\d")
 _DAY_FIRST = re.compile(r"\s*\d{1,2}\.\d{1,2}\.(?P<y>\d{4}|\d\d)[ T]\d{1,2}:\d\d"
-                        r"(?P<s>:\d\d([.,]\d+)?)?\s*")
+                        r"(?P<s>:\d\d([.,:]\d+)?)?\s*")
 _SLASHED = re.compile(r"\s*\d{1,2}/\d{1,2}/\d{2,4}\b")
 _SLASHED_STAMP = re.compile(r"\s*(?P<a>\d{1,2})/(?P<b>\d{1,2})/(?P<y>\d{4}|\d\d)(?P<sep>[ T])"
-                            r"\d{1,2}:\d\d(?P<s>:\d\d([.,]\d+)?)?\s*")
+                            r"\d{1,2}:\d\d(?P<s>:\d\d([.,:]\d+)?)?\s*")
+_KEYSIGHT_MS = re.compile(r"\d:\d\d:\d\d:\d{3}\s*$")     # HH:MM:SS:mmm, a Keysight DAQ's Time
 DATE = re.compile(r"\s*(\d{1,2}\.\d{1,2}\.(\d{4}|\d\d)|\d{4}-\d\d-\d\d|\d{1,2}/\d{1,2}/\d{2,4})\s*")
-TIME_OF_DAY = re.compile(r"\s*\d{1,2}:\d\d(:\d\d([.,]\d+)?)?\s*")
+TIME_OF_DAY = re.compile(r"\s*\d{1,2}:\d\d(:\d\d([.,:]\d+)?)?\s*")
 _ZONE_OFFSET = re.compile(r"\d:\d\d(?::\d\d(?:[.,]\d+)?)?\s*(?:Z|[+-]\d\d(?::?\d\d)?)$")
 COMMA_FRACTION = r"(\d:\d\d:\d\d),(\d)"     # a second's fraction after a comma
-FRACTION = r"\d:\d\d:\d\d[.,](?P<f>\d{1,9})"   # a second's fraction
+FRACTION = r"\d:\d\d:\d\d[.,:](?P<f>\d{1,9})"   # a second's fraction (Keysight's after a colon)
 EXAMPLE = "'%d/%m/%Y %H:%M:%S'"
 CLOCK = " time of day"       # the column joined to the date (data.roles.time: [date, time]); no
 # contract name has a space
@@ -141,20 +143,28 @@ def dated_format(value: str) -> str | None:
 def slashed_format(value: str) -> str | None:
     """The strptime format of a date with slashes and a time of day whose order the date itself
     says: a first field past 12 is the day (``15/06/2026 06:00:00``: ``%d/%m/%Y %H:%M:%S``), a
-    second past 12 the day after the month (``06/15/2026``); None for ``03/11/2026`` (either
-    order) and for anything else."""
+    second past 12 the day after the month (``06/15/2026``), and, where neither is, the
+    milliseconds after a colon of a Keysight DAQ's ``Time`` (``03/01/2027 06:00:00:011``, as
+    BenchLink Data Logger and the DAQ970A write it: month first); None for ``03/11/2026``
+    (either order) and for anything else."""
     match = _SLASHED_STAMP.fullmatch(value)
     if match is None:
         return None
     first, second = int(match["a"]), int(match["b"])
     if first > 12 >= second:
         date = "%d/%m/"
-    elif second > 12 >= first:
+    elif second > 12 >= first or first <= 12 and keysight_stamp(value):
         date = "%m/%d/"
     else:
         return None
     year = "%Y" if len(match["y"]) == 4 else "%y"
     return f"{date}{year}{match['sep']}%H:%M" + (":%S" if match["s"] else "")
+
+
+def keysight_stamp(value: str) -> bool:
+    """``value`` is a Keysight DAQ's ``Time``, its milliseconds after a colon
+    (``03/01/2027 06:00:00:011``): month first."""
+    return bool(_SLASHED_STAMP.fullmatch(value) and _KEYSIGHT_MS.search(value))
 
 
 def is_slashed_stamp(value: str) -> bool:
@@ -175,8 +185,8 @@ def _strptime(values, kind: str):
     seconds (``29.03.2026 00:59:59,500``; ``,%f`` or ``.%f`` in ``kind`` says it, or nothing)
     added to them: Arrow's strptime reads none."""
     fraction = pc.struct_field(pc.extract_regex(values, FRACTION), "f")
-    whole = pc.replace_substring_regex(values, r"(\d:\d\d:\d\d)[.,]\d{1,9}", r"\1")
-    stamps = pc.strptime(whole, format=re.sub(r"[.,]%f", "", kind), unit="ns",
+    whole = pc.replace_substring_regex(values, r"(\d:\d\d:\d\d)[.,:]\d{1,9}", r"\1")
+    stamps = pc.strptime(whole, format=re.sub(r"[.,:]%f", "", kind), unit="ns",
                          error_is_null=False)
     ns = pc.fill_null(pc.cast(pc.utf8_rpad(fraction, 9, "0"), pa.int64()), 0)
     return pc.add(stamps, pc.cast(ns, pa.duration("ns")))

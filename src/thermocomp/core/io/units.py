@@ -42,6 +42,8 @@ LETTER_UNITS = {"k": 150.0, "f": 45.0}
 # units that say "a machine state" (speeds, loads, positions, on/off)
 STATE_UNITS = {"rpm", "krpm", "1/min", "min-1", "u/min", "%", "hz", "a", "w", "kw", "nm", "bar", "v",
                "on/off", "0/1", "mm/min"}
+# a voltage as a DAQ labels a DC or AC volts channel (Keysight's VDC, VAC): a probe's signal
+VOLTS = {"v", "vdc", "vac", "mv", "mvdc"}
 # a dimensionless unit in brackets, '[-]' or '[1]' (DIN 1313's "no unit"): an on/off flag, a
 # ratio, a count, never a temperature, so a state (the contract's S_door, 0 closed, 1 open).
 # Not among STATE_UNITS: as a header's last word ('Sensor 1') it is part of a name

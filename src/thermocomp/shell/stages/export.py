@@ -33,7 +33,7 @@ from ...base.files import staged_outputs
 from ...base.log import say
 from ...base.paths import resolve
 from ...core.continuation import lead_ins
-from ...core.io.contract import TIME
+from ...core.io.contract import TIME, ContractError
 from ...core.io.roles import RUN
 from ...core.io.source import check_streamed_columns
 from ...core.io.timestamps import CLOCK
@@ -174,6 +174,9 @@ def _code_sizes(files: dict) -> dict:
             if name.endswith((".c", ".st")) and name != "stream.c"}
 
 
+# keysight70: a date with slashes in either order (TC_SLASHED: 1 day first, 2 month first)
+SLASHED = {f"{date}{year} %H:%M{seconds}": order for date, order in (("%d/%m/", 1), ("%m/%d/", 2))
+           for year in ("%Y", "%y") for seconds in (":%S", "")}
 # data.time values whose times stream.c reads as the reader does (its own parser: driver.py):
 # day-first with a four- or two-digit year, ISO 8601's order, the seconds optional in each
 # (iso67: and a logger's elapsed h:mm:ss, TC_ELAPSED)
@@ -181,7 +184,8 @@ STREAM_C_TIMES = frozenset({"auto", "seconds", "iso8601", "elapsed",
                             *(f"{date} %H:%M{seconds}" for date in ("%d.%m.%Y", "%d.%m.%y")
                               for seconds in (":%S", "")),
                             *(f"%Y-%m-%d{sep}%H:%M{seconds}" for sep in (" ", "T")
-                              for seconds in (":%S", ""))})
+                              for seconds in (":%S", "")),
+                            *SLASHED})
 
 
 def _stream_encoding(cfg, fmt: str) -> str:
@@ -217,8 +221,29 @@ def _convertible(cfg: DictConfig, converted: dict, time_header, clock: list) -> 
     if written not in STREAM_C_TIMES:
         raise ConfigError(f"export.format=c: the time column {shown!r} is read as data.time="
                           f"{written}, which stream.c cannot convert (it reads seconds, elapsed "
-                          "h:mm:ss, ISO 8601 or day-first dates and times): convert the time, or "
-                          "export as json")
+                          "h:mm:ss, ISO 8601, day-first dates with dots or dates with slashes and "
+                          "times): convert the time, or export as json")
+
+
+def _slashed(cfg: DictConfig, ds) -> int:
+    """``TC_SLASHED``: the order of ``data.time``'s dates with slashes, or, where it is ``auto``,
+    of the record's (the order its first file's time column says, as ``init`` writes it: a
+    Keysight DAQ's ``Time`` or a field past 12; a run of such a record without ``init`` exported
+    a stream that refused the raw export's every time); 0 where none is."""
+    written = str(cfg.data.get("time") or "auto")
+    if written != "auto" or ds is None:
+        return SLASHED.get(written, 0)
+    from ...core.io import ReadOptions
+    from ...core.io.detect import head, slashed_order
+    from ..config.checks import data_options
+
+    root = resolve(cfg.data.path)
+    sample = root if root.is_file() else root / str(ds.manifest["file"].iloc[0])
+    try:
+        opts, header, first, _ = head(sample, ReadOptions.from_cfg(data_options(cfg)))
+        return SLASHED.get(slashed_order(sample, opts, header, dict(zip(header, first))) or "", 0)
+    except (ContractError, OSError, ValueError):     # (no text file: nothing said by its cells)
+        return 0
 
 
 def export(cfg: DictConfig) -> dict:
@@ -262,7 +287,8 @@ def export(cfg: DictConfig) -> dict:
         provenance.update(clock_column=str(clock[0]) if clock else None)
     thousands = cfg.data.get("thousands")       # (the lab's 1.234,5: stream.c ungroups it)
     provenance.update(thousands=None if thousands is None else str(thousands)[:1],
-                      elapsed=str(cfg.data.get("time") or "auto") == "elapsed")
+                      elapsed=str(cfg.data.get("time") or "auto") == "elapsed",
+                      slashed=_slashed(cfg, ds))
     # (streamraw65: the lab's raw file as the reader reads it -- its character set and its marks
     # of a value not measured travel with the model, as data.thousands does)
     provenance.update(encoding=_stream_encoding(cfg, fmt),

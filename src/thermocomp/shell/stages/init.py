@@ -52,7 +52,7 @@ from ...core.io.plain import is_converted, is_lab_file, lab_as_csv
 from ...core.io.roles import excel_days_header, naming, split_unit
 from ...core.io.starts import stated_start
 from ...core.io.tables import peek_csv
-from ...core.io.timestamps import ELAPSED
+from ...core.io.timestamps import ELAPSED, keysight_stamp
 from ...core.io.workbook import csv_options
 from ...core.timerule import median_step
 from ..config.checks import check_config, data_options
@@ -218,8 +218,10 @@ def _init(cfg: DictConfig) -> dict:
     if order:              # (13/07/2026: day first, for every file: written to the config)
         given["time"] = order
         opts = replace(opts, time=order)
+        keysight = any(keysight_stamp(str(v).strip()) for v in cells_of_first.values())
         print(f"{sample.name}: dates with slashes read as data.time={order!r}, the order its "
-              "rows say (a day or month past 12)")
+              + ("rows say (a Keysight DAQ's Time, its ms after a colon: month first)" if keysight
+                 else "rows say (a day or month past 12)"))
     elapsed = elapsed_column(src, manifest, opts, header, cells_of_first)
     if elapsed:            # (a run past 24:00:00: each file's, a shorter run's too, read so)
         given["time"] = ELAPSED

@@ -84,6 +84,8 @@ def _lab_names(ss: StateSpace) -> str:
             "  /* the time of day joined to the date column's cell (\"\": none) */\n"
             f"#define TC_ELAPSED {int(bool(ss.provenance.get('elapsed')))}"
             "   /* data.time=elapsed: the time a logger's h:mm:ss since the start (iso67) */\n"
+            f"#define TC_SLASHED {int(ss.provenance.get('slashed') or 0)}"
+            "   /* data.time's dates with slashes: 1 day first, 2 month first (keysight70) */\n"
             f"static const char *const TC_THOUSANDS = "
             f"{c_string(ss.provenance.get('thousands') or '')};"
             "  /* data.thousands: the digits' grouping mark (\"\": none) */\n"

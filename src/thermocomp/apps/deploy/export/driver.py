@@ -16,7 +16,9 @@ DRIVER = r"""/* stream.c: CSV rows of raw inputs on stdin -> corrections C_<axis
  * separator is the header's: ';', a tab or '|' where it holds one, else ','; with another
  * separator than ',' a decimal comma reads (12,5).  The time is seconds, or a logger's
  * wall-clock time (ISO 8601 2023-01-07T08:45:00, a zone offset or none; day-first
- * 07.01.2023 08:45:00, or 07.01.23 08:45 with a two-digit year) read as seconds since the
+ * 07.01.2023 08:45:00, or 07.01.23 08:45 with a two-digit year; with TC_SLASHED a date with
+ * slashes in data.time's order, a Keysight DAQ's 03/01/2027 06:00:00:011, its ms after a
+ * colon: keysight70) read as seconds since the
  * campaign's first, as the served model reads it; every time of a stream in the form of its
  * first; with TC_ELAPSED (data.time=elapsed) a logger's h:mm:ss since the start, 59:59:00.5.
  * A cell that is no number (a time of day alone, 08:45:00) is refused with its row.
@@ -315,7 +317,9 @@ static long long days_from_civil(long y, long m, long d) {
 /* A wall-clock time as whole seconds since 1970 (a zone offset taken off: UTC) and a fraction
    (s): ISO 8601 `2023-01-07T08:45:00` (a space for the T, seconds optional, a fraction after
    '.' or ',', then `Z`, `+01:00`, `+0100` or `+01`) or day-first `07.01.2023 08:45:00` (or
-   `07.01.23 08:45`, a two-digit year: 69-99 the 1900s, as strptime's %y reads it).
+   `07.01.23 08:45`, a two-digit year: 69-99 the 1900s, as strptime's %y reads it), or with
+   TC_SLASHED a date with slashes in data.time's order (1 day first, 2 month first: a Keysight
+   DAQ's `03/01/2027 06:00:00:011`, its milliseconds after a colon).
    Returns LOCAL_TIME without an offset, ZONED_TIME with one, 0 for anything else (a date or a
    time of day alone, an impossible date).  Without an offset it is the logger's own clock, as
    the served model reads it (no daylight saving time). */
@@ -333,8 +337,13 @@ static int wall_clock(const char *cell, long long *whole, double *fraction) {
     } else {
         p = cell;
         const char *year;
-        if (!digits(&p, 1, 2, &d) || *p++ != '.' || !digits(&p, 1, 2, &mo) || *p++ != '.')
+        char mark;
+        if (!digits(&p, 1, 2, &d)) return 0;
+        mark = *p++;
+        if (!(mark == '.' || (TC_SLASHED && mark == '/')) || !digits(&p, 1, 2, &mo)
+            || *p++ != mark)
             return 0;
+        if (mark == '/' && TC_SLASHED == 2) { long first = d; d = mo; mo = first; }
         year = p;
         if (!digits(&p, 2, 4, &y) || p - year == 3) return 0;
         if (p - year == 2) y += y < 69 ? 2000 : 1900;   /* Excel's 07.01.23: strptime's %y */
@@ -345,7 +354,8 @@ static int wall_clock(const char *cell, long long *whole, double *fraction) {
     if (*p == ':') {
         p++;
         if (!digits(&p, 2, 2, &s)) return 0;
-        if (*p == '.' || *p == ',') {     /* to the nanosecond, as the served model reads it */
+        /* to the nanosecond, as the served model reads it (a Keysight DAQ's after a colon) */
+        if (*p == '.' || *p == ',' || (TC_SLASHED && *p == ':')) {
             p++;
             if (!(*p >= '0' && *p <= '9')) return 0;
             for (; *p >= '0' && *p <= '9'; p++)

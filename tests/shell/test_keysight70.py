@@ -1,0 +1,161 @@
+"""A lab's Keysight DAQ exports of a 5-axis trunnion machining centre's runs (keysight70): one CSV
+per run as BenchLink Data Logger (a 34970A) or a DAQ970A writes it: a block of ``key,value``
+lines above the table, ``Scan``, ``Time`` as ``MM/DD/YYYY HH:MM:SS:mmm`` (the milliseconds after
+a colon), each channel ``101 <Air> (C)`` followed by its ``Alarm 101``, a trailing separator;
+a German PC's with ``;`` and decimal commas, the probes' channels scaled to µm by the logger's
+Mx+B with their label left ``VDC`` (``benchmarks/bench_keysight70.py`` writes the lab's full
+record; these are a few rows of it)."""
+
+from __future__ import annotations
+
+import datetime as dt
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from conftest import FAST, refused
+from test_export import needs_cc
+from test_stranger65 import _compiled_stream_equals_its_pack
+from test_stranger68 import ROWS, linear_run
+from thermocomp.core.io import read_dataset
+from thermocomp.shell.cli import main
+
+LABELS = ["Air", "Column", "Table", "DISP_X", "DISP_Z", "A axis"]
+CHANNELS = [101, 102, 103, 201, 202, 205]
+HEADER = ["Name,DMU thermal run", "Owner,Thermal lab", "Acquisition Date,{start}",
+          "Instrument,34970A (Serial Number MY41012345) at GPIB0::9::INSTR",
+          "Total Sweeps,{rows}", "Total Channels,6", ""]
+VOLTS = ["'201 <DISP_X> (um)'", "'202 <DISP_Z> (um)'"]
+
+
+def _values(run: int) -> np.ndarray:
+    """A run's rows: test_stranger68's three temperatures and two errors, the tilt A."""
+    a = np.where((np.arange(ROWS) // 30) % 2, 90.0, 0.0)
+    return np.round(np.column_stack([linear_run(7043, run), a]), 3)
+
+
+def _export(path: Path, start: dt.datetime, values: np.ndarray, sep: str = ",",
+            decimal: str = ".", probe_unit: str = "um") -> Path:
+    """``values`` as the logger's software exports them (scans 13 ms late now and then: the
+    milliseconds after a colon; an alarm above 21 °C on the table)."""
+    units = ["C", "C", "C", probe_unit, probe_unit, "DEG"]
+    names = ["Scan", "Time"]
+    for channel, label, unit in zip(CHANNELS, LABELS, units):
+        names += [f"{channel} <{label}> ({unit})", f"Alarm {channel}"]
+    lines = [line.replace(",", sep).format(start=f"{start:%m/%d/%Y %H:%M:%S}", rows=len(values))
+             for line in HEADER] + [sep.join(names) + sep]
+    for k, row in enumerate(values):
+        at = start + dt.timedelta(minutes=k, milliseconds=13 * (k % 3 == 1))
+        cells = [str(k + 1), f"{at:%m/%d/%Y %H:%M:%S}:{at.microsecond // 1000:03d}"]
+        for i, v in enumerate(row):
+            cells += [f"{v:.3f}".replace(".", decimal), "2" if i == 2 and v > 21 else "0"]
+        lines.append(sep.join(cells) + sep)
+    path.write_bytes("\r\n".join(lines).encode("utf-8") + b"\r\n")
+    return path
+
+
+def _folder(root: Path, **kw) -> Path:
+    root.mkdir()
+    for run in (1, 2, 3):      # March 1, 3 and 5: every date reads either way round
+        _export(root / f"dmu_run{run:02d}.csv", dt.datetime(2027, 3, 2 * run - 1, 6),
+                _values(run), **kw)
+    return root
+
+
+def test_a_benchlink_folder_reads_each_run_month_first_without_the_daqs_own_columns(tmp_path):
+    ds, _ = read_dataset(_folder(tmp_path / "runs"), {"roles": {"error": ["*DISP*"]},
+                                                      "test_fraction": 0.34})
+    assert list(ds.manifest["split"]) == ["train", "train", "test"]
+    # March, not January (a Keysight DAQ's Time is month first), to the millisecond
+    assert list(ds.manifest["start"]) == [np.datetime64(f"2027-03-0{d}T06:00") for d in (1, 3, 5)]
+    frame = ds.campaigns["dmu_run02"]
+    assert list(frame.columns) == ["time", "T_101_Air", "T_102_Column", "T_103_Table",
+                                   "E_201_DISP_X", "E_202_DISP_Z", "S_205_A_axis"]
+    np.testing.assert_allclose(frame["time"].to_numpy()[:4], [0.0, 60.013, 120.0, 180.0])
+    np.testing.assert_allclose(frame.iloc[:, 1:].to_numpy(), _values(2))
+
+
+def test_init_and_run_on_the_benchlink_folder(tmp_path, capsys):
+    folder = _folder(tmp_path / "runs")
+    assert main(["init", str(folder), f"out={tmp_path / 'init'}"]) == 0
+    said = capsys.readouterr().out
+    assert ("dmu_run01.csv: dates with slashes read as data.time='%m/%d/%Y %H:%M:%S', the order "
+            "its rows say (a Keysight DAQ's Time, its ms after a colon: month first)") in said
+    assert "timestamps from 2027-03-01T06:00:00" in said
+    assert "  Scan                DAQ's own    - (left out: no measurement)" in said
+    assert "  Alarm 103           DAQ's own    - (left out: no measurement)" in said
+    assert "  201 <DISP_X> (um)   error        E_201_DISP_X" in said
+    assert "  205 <A axis> (DEG)  state        S_205_A_axis" in said
+    conf = (tmp_path / "init" / "conf" / "data" / "runs.yaml").read_text(encoding="utf-8")
+    assert "Alarm" not in conf and "Scan" not in conf
+    assert main(["run", f"hydra.searchpath=[file://{tmp_path / 'init' / 'conf'}]", "data=runs",
+                 "model=mlr", *FAST, f"out={tmp_path / 'out'}"]) == 0
+    metrics = json.loads((tmp_path / "out" / "metrics.json").read_text())
+    assert metrics["targets"]["E_201_DISP_X"]["test"]["rmse"] < 0.2     # (the map is linear)
+    assert set(metrics["targets"]) == {"E_201_DISP_X", "E_202_DISP_Z"}
+
+
+def test_probes_left_at_vdc_are_refused_naming_the_patterns_that_give_their_unit(tmp_path,
+                                                                                  capsys):
+    """A DAQ970A's export on a German PC (``;``, decimal commas), the probes' Mx+B label left
+    ``VDC``: init names the patterns that say µm (a map's key with brackets is not read on the
+    command line, so ``data.units`` could not), and with them reads the values as written."""
+    folder = _folder(tmp_path / "runs", sep=";", decimal=",", probe_unit="VDC")
+    refused(["init", str(folder), f"out={tmp_path / 'init'}"], capsys,
+            "no column reads as a measured error",
+            f"data.roles.error=[{', '.join(VOLTS)}]; raw volts need the probe's scale applied")
+    refused(["init", str(folder), "data.roles.error=['*DISP*']", f"out={tmp_path / 'init'}"],
+            capsys, "'201 <DISP_X> (VDC)': unit 'VDC' is not an error's",
+            f"data.roles.error=[{VOLTS[0]}]")
+    assert main(["init", str(folder), f"data.roles.error=[{', '.join(VOLTS)}]",
+                 f"out={tmp_path / 'init'}"]) == 0
+    assert "  201 <DISP_X> (VDC)  error        E_201_DISP_X" in capsys.readouterr().out
+    ds, _ = read_dataset(folder, {"roles": {"error": ["*DISP* (um)"]}, "delimiter": ";",
+                                  "decimal": ","})
+    np.testing.assert_allclose(ds.campaigns["dmu_run03"].iloc[:, 1:].to_numpy(), _values(3))
+
+
+@pytest.mark.parametrize("pattern, unit", [("*DISP* [mm]", 1000.0), ("Kanal[*]", None)])
+def test_a_role_patterns_own_unit_converts_and_a_glob_bracket_is_no_unit(tmp_path, pattern,
+                                                                         unit):
+    path = tmp_path / "lab.csv"
+    path.write_text("time;Kanal*;DISP_X (VDC);Air\n0;1;0,001;20\n60;2;0,002;20,1\n"
+                    "120;3;0,004;20,3\n", encoding="utf-8")
+    roles = {"error": [pattern, "DISP_X (mm)"]} if unit else {"state": [pattern],
+                                                               "error": ["DISP* (mm)"]}
+    ds, _ = read_dataset(path, {"roles": roles, "delimiter": ";", "decimal": ","})
+    frame = ds.campaigns["lab"]
+    np.testing.assert_allclose(frame["E_DISP_X"], [1.0, 2.0, 4.0])   # mm -> µm
+    if unit is None:
+        np.testing.assert_allclose(frame["S_Kanal"], [1.0, 2.0, 3.0])
+
+
+def test_a_time_cell_no_keysight_time_is_refused_naming_file_column_and_line(tmp_path, capsys):
+    folder = _folder(tmp_path / "runs")
+    path = folder / "dmu_run02.csv"
+    lines = path.read_bytes().split(b"\r\n")
+    lines[20] = lines[20].replace(b":000,", b":0x0,", 1)
+    path.write_bytes(b"\r\n".join(lines))
+    refused(["run", f"data.path={folder}", "data.roles.error=['*DISP*']", "data.test_fraction=0.34",
+             *FAST, f"out={tmp_path / 'out'}"], capsys,
+            f"file {path}, column 'time', line 21 (data row 13): value '03/03/2027 06:12:00:0x0' "
+            "is not a time in data.time's format '%m/%d/%Y %H:%M:%S'")
+    assert not (tmp_path / "out").exists()
+
+
+@needs_cc
+@pytest.mark.parametrize("sep, decimal, probe, time", [
+    (",", ".", "um", ["data.time='%m/%d/%Y %H:%M:%S'"]),     # as init writes it
+    (";", ",", "VDC", [])])                                  # data.time=auto: the file says it
+def test_the_compiled_stream_reads_the_keysight_export_as_the_reader_does(tmp_path, sep, decimal,
+                                                                          probe, time):
+    """Before: the C export refused ('data.time=%m/%d/%Y %H:%M:%S, which stream.c cannot
+    convert'), or, with data.time=auto, its stream refused the raw file's every time; a lag
+    bank reads the time: the ms after a colon count."""
+    path = _export(tmp_path / "run.csv", dt.datetime(2027, 3, 1, 6), _values(1), sep=sep,
+                   decimal=decimal, probe_unit=probe)
+    common = [f"data.path={path}", f"data.roles.error=[{', '.join(VOLTS)}]", *time,
+              "data.test_fraction=0.3", "data.reference=none"]
+    _compiled_stream_equals_its_pack(tmp_path, path, common)
