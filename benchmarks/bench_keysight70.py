@@ -192,8 +192,8 @@ def initialised(root: Path, name: str, extra: list[str]) -> None:
                       "cpu": round(cpu, 2)}), flush=True)
 
 
-def main(argv: list[str]) -> None:
-    lab_matrix.main(argv, SEEDS, FAMILIES, WRAPPERS, {
+def main(argv: list[str]) -> int:
+    return lab_matrix.main(__doc__, argv, SEEDS, FAMILIES, WRAPPERS, {
         "write": lambda root, rest: write(root),
         # init ROOT name [override ...]
         "init": lambda root, rest: initialised(root, rest[0], rest[1:]),
@@ -203,4 +203,4 @@ def main(argv: list[str]) -> None:
 
 
 if __name__ == "__main__":
-    main(sys.argv[1:])
+    raise SystemExit(main(sys.argv[1:]))
