@@ -73,7 +73,12 @@ def read_manifest(root: str | Path, opts: ReadOptions | None = None) -> pd.DataF
     files = [] if path.is_file() else campaign_files(root)
     if files:    # a lab's folder of runs: every file a train campaign, in natural name order
         _check_no_manifest_among(files)
-        raw = pd.DataFrame({"campaign": [f.stem for f in files], "file": [f.name for f in files]})
+        from .loggers import logger_pairs, paired_id  # (it reads a folder through this module)
+
+        pairs = logger_pairs(files, opts)     # a run of two loggers: its temperature file
+        files = [f for f in files if f not in set(pairs.values())]
+        raw = pd.DataFrame({"campaign": [paired_id(f) if f in pairs else f.stem for f in files],
+                            "file": [f.name for f in files]})
     else:
         raw = _load_manifest(path, opts.delimiter, optional=("split",) if held_out else (),
                              encoding=opts.encoding)

@@ -10,6 +10,7 @@ campaigns: a group is read without the others' files.
 from __future__ import annotations
 
 import re
+from dataclasses import replace
 from pathlib import Path
 
 import pandas as pd
@@ -59,8 +60,8 @@ def first_timestamp(path: Path, opts: ReadOptions) -> pd.Timestamp:
             raise
         except ContractError:
             return pd.NaT
-    try:
-        header, first, names, opts = named_head(path, opts)
+    try:     # (half: a run's temperature file, its errors in another logger's: joined.py)
+        header, first, names, opts = named_head(path, replace(opts, half=True))
     except NoRows:
         raise
     except ContractError:
