@@ -26,7 +26,7 @@ from .options import ReadOptions
 from .plain import as_read, is_converted
 from .roles import matching_roles, named_as_time, split_unit
 from .separators import reads_as_number
-from .starts import _first_row, named_head
+from .starts import first_row, named_head
 from .units import role_by_unit
 from .workbook import HEAD_ROWS
 
@@ -40,8 +40,8 @@ def errors_elsewhere(exc: ContractError, root: Path, manifest: pd.DataFrame, cid
                      opts: ReadOptions) -> ContractError:
     """``exc`` (campaign ``cid`` of the folder ``root`` refused) as it is, or, where it has no
     error column and another file of ``manifest`` holds errors but no temperature, a refusal
-    naming that file and saying that files are not joined; a file without data rows, said
-    to be left out (:func:`unrecorded`)."""
+    naming that file and how a pair is named to be joined (:func:`logger_pairs`); a file
+    without data rows, said to be left out (:func:`unrecorded`)."""
     if exc.reason.endswith("no data rows") and exc.row is None:
         return unrecorded(exc, root)
     if not exc.reason.startswith(NO_ERROR):
@@ -54,7 +54,7 @@ def errors_elsewhere(exc: ContractError, root: Path, manifest: pd.DataFrame, cid
                 "temperature: the errors and the temperatures of one run in two files (two "
                 "loggers)? Two files are read as one run, joined by time, where their names "
                 "are one stem and a last word each (run03_temp.csv and run03_disp.csv): rename "
-                "them so", file=exc.file)
+                "them so, or join them into one file first, one row per time", file=exc.file)
     return exc
 
 
@@ -100,15 +100,13 @@ def logger_pairs(files: list[Path], opts: ReadOptions) -> dict[Path, Path]:
     return out
 
 
-def partner(path: Path, opts: ReadOptions) -> Path | None:
-    """The error file ``path`` (a file without an error column) pairs with in its folder, or
-    None (a manifest lists the temperature file alone)."""
-    from .manifest import campaign_files  # (manifest lists a folder through this module)
-
+def partner(path: Path, opts: ReadOptions, files: list[Path]) -> Path | None:
+    """The error file ``path`` (a file without an error column) pairs with among ``files`` (its
+    folder's campaign files), or None (a manifest lists the temperature file alone)."""
     split = stem_and_word(path)
     if split is None:
         return None
-    group = [f for f in campaign_files(path.parent)
+    group = [f for f in files
              if (s := stem_and_word(f)) is not None and s[0] == split[0]]
     pair = _ordered_pair(group, opts) if len(group) == 2 else None
     return pair[1] if pair is not None and pair[0].resolve() == path.resolve() else None
@@ -138,7 +136,7 @@ def header_roles(path: Path, opts: ReadOptions) -> set[str]:
         if is_converted(path, opts):
             with as_read(path, opts, rows=HEAD_ROWS) as (source, source_opts):
                 return header_roles(source, source_opts)
-        header, first, opts = _first_row(path, opts)
+        header, first, opts = first_row(path, opts)
     except (ContractError, OSError, ValueError):
         return set()
     out = set()

@@ -8,6 +8,7 @@ from collections.abc import Callable
 from pathlib import Path
 
 from .loggers import partner
+from .manifest import campaign_files
 from .roles import named_as_time
 from .separators import reads_as_number
 from .timestamps import looks_like_timestamp
@@ -16,7 +17,7 @@ from .timestamps import looks_like_timestamp
 def paired_head(sample: Path, opts, head: Callable) -> tuple | None:
     """``(header, first row, layout line, same separators)`` of ``sample`` and the error file
     it pairs with, ``head`` (:func:`.detect.head`) reading each; None where it pairs with none."""
-    errors = partner(sample, opts)
+    errors = partner(sample, opts, campaign_files(sample.parent))
     if errors is None:
         return None
     t_opts, header, first, layout = head(sample, opts)

@@ -84,7 +84,13 @@ from .instants import START, start_instants, start_stamp
 from .joined import joined
 from .lines import Lines
 from .loggers import NO_ERROR, errors_elsewhere, partner, unrecorded
-from .manifest import apply_split_overrides, read_manifest, said_subfolders, subfolder_runs
+from .manifest import (
+    apply_split_overrides,
+    campaign_files,
+    read_manifest,
+    said_subfolders,
+    subfolder_runs,
+)
 from .options import ROLE_ORDER, RUN_ROLE, ReadOptions
 from .own_headers import with_own_header
 from .plain import as_read
@@ -203,7 +209,8 @@ def read_campaign(path: str | Path, cfg: Mapping | ReadOptions | None = None,
         with as_read(path, opts, one_run=one_run) as (source, source_opts):   # a workbook: as CSV
             return _read_file(source, source_opts)
     except ContractError as exc:     # a folder's file of temperatures: its run's other logger's?
-        errors = partner(path, opts) if one_run and exc.reason.startswith(NO_ERROR) else None
+        errors = (partner(path, opts, campaign_files(path.parent))
+                  if one_run and exc.reason.startswith(NO_ERROR) else None)
         if errors is None:
             raise
     return _read_pair(path, errors, opts)
