@@ -35,13 +35,14 @@ def _error(t: np.ndarray, run: int) -> np.ndarray:
 
 
 def _run(folder: Path, run: int, late_s: float = 0.0, stop_early_s: float = 0.0,
-         ahead_s: float = AHEAD_S, stamped: bool = True) -> None:
+         ahead_s: float = AHEAD_S, stamped: bool = True, pause: tuple = ()) -> None:
     """Run ``run`` as its two loggers wrote it (``late_s``: the DAQ started so late;
     ``stop_early_s``: the probes stopped so early; ``stamped``: the DAQ's time a timestamp,
-    else seconds from its start)."""
+    else seconds from its start; ``pause``: the DAQ logged nothing between these times)."""
     start = START + dt.timedelta(days=run)
     t = np.arange(0.0, 1200.0 + 1e-9, 10.0)
-    t = t[t >= late_s]
+    paused = (t > pause[0]) & (t < pause[1]) if pause else np.zeros(len(t), bool)
+    t = t[(t >= late_s) & ~paused]
     temp = pd.DataFrame({
         "Time": [(start + dt.timedelta(seconds=s)).strftime("%Y-%m-%d %H:%M:%S") for s in t]
         if stamped else t - t[0],
@@ -93,6 +94,19 @@ def test_the_clock_offset_moves_the_error_samples_on_the_temperature_clock(tmp_p
     te = np.arange(0.0, 1200.0 - 60.0 + 1e-9, 60.0)  # its last, 1207 s on the DAQ's clock: cut
     np.testing.assert_allclose(frame["T_Spindle"], _spindle(te + AHEAD_S, 2), atol=2e-4)
     assert report["campaigns"]["run02"]["paired"]["cut"] == {"before": 0, "after": 1, "gaps": 0}
+
+
+def test_error_samples_in_a_pause_of_the_temperature_logger_are_cut_unless_tolerated(tmp_path):
+    folder = _folder(tmp_path / "runs", pause=(400.0, 700.0))     # 5 min without a DAQ row
+    cfg = {**CFG, "join": {"offset_s": AHEAD_S}}
+    ds, report = read_dataset(folder, cfg)
+    assert report["campaigns"]["run01"]["paired"]["cut"] == {"before": 0, "after": 0, "gaps": 5}
+    np.testing.assert_array_equal(ds.campaigns["run01"]["time"],
+                                  [0, 60, 120, 180, 240, 300, 360, 720, 780, 840, 900, 960, 1020,
+                                   1080, 1140, 1200])
+    ds, report = read_dataset(folder, {**cfg, "join": {"offset_s": AHEAD_S, "tolerance_s": 400}})
+    assert report["campaigns"]["run01"]["paired"]["cut"]["gaps"] == 0
+    assert len(ds.campaigns["run01"]) == 21
 
 
 def test_init_says_what_it_paired_and_run_replay_fit_the_joined_runs(tmp_path, capsys):

@@ -56,8 +56,8 @@ def joined(temps: pa.Table, temp_report: dict, errors: pa.Table, error_report: d
             "loggers' files of one run must overlap in time (check both clocks' dates and "
             "data.join.offset_s)", file=temp_file)
     if any(cut.values()):
-        logger.warning("%s: %s; cut: temperatures are not read beyond their logger's samples "
-                       "(%s)", error_file.name, _said(cut, temp_file.name, tolerance),
+        logger.warning("%s: error samples cut where %s has no temperatures around them: %s (%s)",
+                       error_file.name, temp_file.name, _said(cut, tolerance),
                        "data.join.tolerance_s" if cut["gaps"] else "the run's rows start and "
                        "end where both loggers logged")
     grid = t_error[keep]
@@ -108,16 +108,15 @@ def _covered(t_temp: np.ndarray, t_error: np.ndarray, tolerance: float
                             "gaps": int(wide.sum())}
 
 
-def _said(cut: dict, temp_name: str, tolerance: float) -> str:
+def _said(cut: dict, tolerance: float) -> str:
     parts = []
     if cut["before"]:
-        parts.append(f"{cut['before']} error sample(s) before {temp_name}'s first (its logger "
-                     "started later)")
+        parts.append(f"{cut['before']} before its first sample (its logger started later)")
     if cut["after"]:
         parts.append(f"{cut['after']} after its last (it stopped earlier)")
     if cut["gaps"]:
         parts.append(f"{cut['gaps']} inside its steps longer than {tolerance:g} s")
-    return "; ".join(parts)
+    return ", ".join(parts)
 
 
 def _span(seconds: np.ndarray, temp_report: dict) -> str:
