@@ -20,7 +20,7 @@ def two_loggers(folder) -> None:
 
 def test_a_folder_of_two_loggers_files_is_refused_naming_the_file_with_the_errors(tmp_path):
     # the temperatures' file was refused for having no error column, asking to name one in it
-    # (data.roles.error=[<header>]): the errors are in the other file, which is never joined
+    # (data.roles.error=[<header>]): the errors are in the other file, not joined by these names
     two_loggers(tmp_path / "lab")
     roles = {"roles": {"error": ["d*"]}}
     with pytest.raises(ContractError) as refused:
@@ -28,4 +28,6 @@ def test_a_folder_of_two_loggers_files_is_refused_naming_the_file_with_the_error
     message = str(refused.value)
     assert "temperatures.csv: no E_ column, and displacements.csv beside it holds errors " \
            "(E_dX, E_dZ) without a temperature" in message
-    assert "files are not joined by time: join them into one file first" in message
+    # (twolog70: files named as one run's pair are joined; these are named apart)
+    assert ("joined by time, where their names are one stem and a last word each "
+            "(run03_temp.csv and run03_disp.csv): rename them so") in message

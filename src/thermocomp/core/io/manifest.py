@@ -15,9 +15,11 @@ from .contract import AMBIENT_C, MANIFEST, MANIFEST_REQUIRED, SPLITS, ContractEr
 from .encoding import UTF8, check_text, fields, text_codec, undecodable
 from .instants import on_clock, start_instants, start_stamp
 from .jsonlines import JSON_LINES_SUFFIXES
+from .loggers import logger_pairs, paired_id
 from .lvm import LVM_SUFFIXES
 from .matfile import MAT_SUFFIXES
 from .options import _OTHER_DELIMITERS, AUTO, ReadOptions, _first_line
+from .suffixes import TEXT_SUFFIXES, is_text
 from .tdms import TDMS_SUFFIXES
 from .workbook import WORKBOOK_SUFFIXES
 
@@ -25,17 +27,9 @@ from .workbook import WORKBOOK_SUFFIXES
 # TDMS log, a MATLAB file or a LabVIEW Measurement File as its channels', :mod:`.labfile`)
 LAB_SUFFIXES = (*TDMS_SUFFIXES, *MAT_SUFFIXES, *LVM_SUFFIXES)
 CAMPAIGN_SUFFIXES = (".csv", ".parquet", *WORKBOOK_SUFFIXES, *JSON_LINES_SUFFIXES, *LAB_SUFFIXES)
-# a one-file record may also carry a logger's text suffix: read as CSV is (delimiter detected)
-# (JSON Lines: read through its CSV text, :mod:`.jsonlines`)
-TEXT_SUFFIXES = (".csv", ".txt", ".tsv", ".dat", *JSON_LINES_SUFFIXES)
 RECORD_SUFFIXES = (*TEXT_SUFFIXES, ".parquet", *WORKBOOK_SUFFIXES, *LAB_SUFFIXES)
 EXCEL_OWNER = "~$"     # the lock file Excel leaves beside a workbook it has open
 _UNSAFE_ID = re.compile(r"[/\\\x00-\x1f]|^\.")
-
-
-def is_text(path) -> bool:
-    """Read as delimited text (else Parquet)."""
-    return Path(path).suffix.lower() in TEXT_SUFFIXES
 
 
 # ---------------------------------------------------------------------------
@@ -73,7 +67,10 @@ def read_manifest(root: str | Path, opts: ReadOptions | None = None) -> pd.DataF
     files = [] if path.is_file() else campaign_files(root)
     if files:    # a lab's folder of runs: every file a train campaign, in natural name order
         _check_no_manifest_among(files)
-        raw = pd.DataFrame({"campaign": [f.stem for f in files], "file": [f.name for f in files]})
+        pairs = logger_pairs(files, opts)     # a run of two loggers: its temperature file
+        files = [f for f in files if f not in set(pairs.values())]
+        raw = pd.DataFrame({"campaign": [paired_id(f) if f in pairs else f.stem for f in files],
+                            "file": [f.name for f in files]})
     else:
         raw = _load_manifest(path, opts.delimiter, optional=("split",) if held_out else (),
                              encoding=opts.encoding)

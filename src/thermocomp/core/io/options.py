@@ -67,12 +67,18 @@ class ReadOptions:
     val_fraction: float | None = None
     split_order: list = field(default_factory=lambda: list(SPLIT_ORDER))
     sheet: str | None = None      # a workbook's sheet (None: the first)
+    # data.join: a run logged by two loggers (:mod:`.joined`): how far the error logger's clock
+    # runs ahead of the temperature logger's (s), and the longest temperature step an error
+    # sample is interpolated across (None: 3 times the temperature logger's median step)
+    join_offset_s: float = 0.0
+    join_tolerance_s: float | None = None
     # internal (no data config key): "keep" leaves missing values NaN; "keep_errors" only the
     # E_ columns' (a volumetric dataset's distances not measured), the rest repaired
     missing: str = "repair"
     skip_rows: int = 1        # internal: lines above a CSV's first data row (preamble, header, units)
     data_bytes: int | None = None   # internal: the bytes of a CSV above its footer (None: unknown)
     drop_bytes: tuple = ()    # internal: byte spans of a CSV left out (its header written again)
+    half: bool = False        # internal: one logger's file of a run of two (:mod:`.joined`)
 
     def __post_init__(self):
         if self.missing not in MISSING_MODES:  # a caller's mistake, not the user's
@@ -117,6 +123,7 @@ class ReadOptions:
             val_fraction=_fraction(cfg, "val_fraction"),
             split_order=_split_order(cfg),
             sheet=None if cfg.get("sheet") is None else str(cfg.get("sheet")),
+            **_join(cfg),
         )
         opts._check()
         return opts
@@ -215,6 +222,19 @@ def _roles(cfg: Mapping) -> dict:
     if run is not None:
         out[RUN_ROLE] = run.strip()
     return out
+
+
+def _join(cfg: Mapping) -> dict:
+    """``data.join`` (``offset_s``, ``tolerance_s``) as the ReadOptions fields ``join_*``."""
+    value = cfg.get("join") or {}
+    if not hasattr(value, "items"):
+        raise ContractError(f"data.join must be a mapping (offset_s, tolerance_s), got {value!r}")
+    unknown = [k for k in value if k not in ("offset_s", "tolerance_s")]
+    if unknown:
+        raise ContractError(f"data.join.{unknown[0]}: unknown key; keys: offset_s, tolerance_s")
+    named = {f"join.{k}": v for k, v in value.items()}     # (named so in a refusal)
+    return {"join_offset_s": _float(named, "join.offset_s", 0.0),
+            "join_tolerance_s": _positive_float(named, "join.tolerance_s", nullable=True)}
 
 
 def _missing_values(cfg: Mapping) -> list:

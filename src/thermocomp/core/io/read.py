@@ -81,9 +81,16 @@ from .contract import (
     role,
 )
 from .instants import START, start_instants, start_stamp
+from .joined import joined
 from .lines import Lines
-from .loggers import errors_elsewhere, unrecorded
-from .manifest import apply_split_overrides, read_manifest, said_subfolders, subfolder_runs
+from .loggers import NO_ERROR, errors_elsewhere, partner, unrecorded
+from .manifest import (
+    apply_split_overrides,
+    campaign_files,
+    read_manifest,
+    said_subfolders,
+    subfolder_runs,
+)
 from .options import ROLE_ORDER, RUN_ROLE, ReadOptions
 from .own_headers import with_own_header
 from .plain import as_read
@@ -110,7 +117,7 @@ MIN_ROWS = 2  # the first sample is the reference: one more is needed to have an
 MAX_GRID_ROWS = 5_000_000
 _READ_ATTEMPTS = 5
 # ReadOptions fields that are no data config key
-INTERNAL = ("missing", "skip_rows", "data_bytes", "drop_bytes")
+INTERNAL = ("missing", "skip_rows", "data_bytes", "drop_bytes", "half")
 DEAD_ROLES = ("E", "T")   # columns said when constant over a whole campaign (a dead channel)
 
 
@@ -198,8 +205,38 @@ def read_campaign(path: str | Path, cfg: Mapping | ReadOptions | None = None,
         raise ContractError("campaign file not found", file=path)
     if path.stat().st_size == 0:
         raise ContractError("empty file", file=path)
-    with as_read(path, opts, one_run=one_run) as (source, source_opts):   # a workbook: as CSV
-        return _read_file(source, source_opts)
+    try:
+        with as_read(path, opts, one_run=one_run) as (source, source_opts):   # a workbook: as CSV
+            return _read_file(source, source_opts)
+    except ContractError as exc:     # a folder's file of temperatures: its run's other logger's?
+        errors = (partner(path, opts, campaign_files(path.parent))
+                  if one_run and exc.reason.startswith(NO_ERROR) else None)
+        if errors is None:
+            raise
+    return _read_pair(path, errors, opts)
+
+
+def _read_pair(path: Path, errors: Path, opts: ReadOptions) -> tuple[pa.Table, dict]:
+    """The run whose temperatures ``path`` holds and errors the file ``errors`` (two loggers),
+    each file read as a campaign file is, joined on the errors' times (:mod:`.joined`)."""
+    halves = [_read_half(f, opts) for f in (path, errors)]
+    columns, report = joined(*halves[0], *halves[1], (path, errors), opts)
+    if opts.resample_s is not None:
+        _resample(columns, opts.resample_s, errors, opts.max_resample_factor,
+                  report.get("sparse_targets", {}))
+        report["resampled_s"] = opts.resample_s
+        _check_length(len(columns[TIME]), errors, f"(after data.resample_s={opts.resample_s:g}) ")
+    table = pa.table({name: columns.pop(name) for name in _ordered(list(columns))})
+    return table, {**report, "rows": table.num_rows}
+
+
+def _read_half(path: Path, opts: ReadOptions) -> tuple[pa.Table, dict]:
+    """One logger's file of a run of two, read and checked as a campaign file (no error column
+    needed, not resampled: the join makes the run's rows)."""
+    opts = replace(opts, half=True, resample_s=None)
+    with as_read(path, opts, one_run=True) as (source, source_opts):
+        columns, renamed, rescaled, lines = _loaded(source, source_opts)
+        return _assembled(columns, renamed, rescaled, source, source_opts, lines)
 
 
 def _read_file(path: Path, opts: ReadOptions) -> tuple[pa.Table, dict]:

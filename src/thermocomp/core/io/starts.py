@@ -10,6 +10,7 @@ campaigns: a group is read without the others' files.
 from __future__ import annotations
 
 import re
+from dataclasses import replace
 from pathlib import Path
 
 import pandas as pd
@@ -18,10 +19,10 @@ import pyarrow as pa
 from .contract import TIME, ContractError
 from .instants import START, on_clock, start_instants, start_stamp
 from .layout import header_line
-from .manifest import is_text
 from .options import ReadOptions
 from .plain import as_read, is_converted
 from .sniff import head_lines, resolved
+from .suffixes import is_text
 from .tables import (
     NoRows,
     _contract_names,
@@ -59,8 +60,8 @@ def first_timestamp(path: Path, opts: ReadOptions) -> pd.Timestamp:
             raise
         except ContractError:
             return pd.NaT
-    try:
-        header, first, names, opts = named_head(path, opts)
+    try:     # (half: a run's temperature file, its errors in another logger's: joined.py)
+        header, first, names, opts = named_head(path, replace(opts, half=True))
     except NoRows:
         raise
     except ContractError:
@@ -175,13 +176,13 @@ def _first_stamp(path: Path, header, first, names, opts) -> pd.Timestamp:
 
 def named_head(path: Path, opts: ReadOptions) -> tuple[list[str], dict, list[str | None],
                                                        ReadOptions]:
-    """A text or Parquet file's header, its first row (:func:`_first_row`), the contract names
+    """A text or Parquet file's header, its first row (:func:`first_row`), the contract names
     of its columns (None: ignored) and the options with its separators detected."""
-    header, first, opts = _first_row(path, opts)
+    header, first, opts = first_row(path, opts)
     return header, first, _contract_names(header, opts, path, first=first)[0], opts
 
 
-def _first_row(path: Path, opts: ReadOptions) -> tuple[list[str], dict, ReadOptions]:
+def first_row(path: Path, opts: ReadOptions) -> tuple[list[str], dict, ReadOptions]:
     """A file's header, its first row (cells as text; a Parquet timestamp as it is) and the
     options with its separators detected (a decimal comma's cells are numbers to the naming:
     with ``auto`` they read as text, every temperature refused and the file's start lost)."""

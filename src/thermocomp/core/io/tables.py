@@ -70,7 +70,9 @@ def _contract_names(raw_names: list[str], opts: ReadOptions, file: Path, *,
                     first: dict | None = None) -> tuple[list[str | None], dict]:
     """Contract names of the file's columns (None: left out by ``data.roles.ignore``) and the
     unit conversions (:mod:`.roles`), checked against the contract's vocabulary."""
-    plan = naming(raw_names, opts.roles, opts.columns, first, opts.decimal, file, opts.units)
+    # one logger's file of a run of two: data.units may name the other file's headers
+    units = {h: u for h, u in opts.units.items() if h in raw_names} if opts.half else opts.units
+    plan = naming(raw_names, opts.roles, opts.columns, first, opts.decimal, file, units)
     names: list[str | None] = []
     seen: set[str] = set()
     for raw in raw_names:
@@ -94,7 +96,7 @@ def _contract_names(raw_names: list[str], opts: ReadOptions, file: Path, *,
                                 "mapping)", file=file, column=name)
         names.append(name)
         seen.add(name)
-    if not any(role(n) == "E" for n in names if n):
+    if not opts.half and not any(role(n) == "E" for n in names if n):
         read_as = [raw for raw, n in zip(raw_names, names) if n and role(n) in ("T", "S")]
         hint = (f"; name it, data.roles.error=[<header>], or give its unit in the header ('dX "
                 f"[µm]'): read as temperatures or states here: {', '.join(map(repr, read_as))}"

@@ -48,6 +48,7 @@ from ...core.io.historian import (
 )
 from ...core.io.historian_layout import long_layout
 from ...core.io.manifest import is_text
+from ...core.io.pairhead import paired_head, paired_lines
 from ...core.io.plain import is_converted, is_lab_file, lab_as_csv
 from ...core.io.roles import excel_days_header, naming, split_unit
 from ...core.io.starts import stated_start
@@ -213,6 +214,10 @@ def _init(cfg: DictConfig) -> dict:
     sample = sample_file(src, manifest)
     long = long_period(sample, given)        # a historian's long file: the grid it is held onto
     opts, header, first, layout = head(sample, io.ReadOptions.from_cfg(given))
+    pair = paired_head(sample, io.ReadOptions.from_cfg(given), head) if manifest is not None \
+        else None
+    if pair is not None:    # a run of two loggers: both files' columns, its rows the errors'
+        header, first, layout, same_separators = pair
     cells_of_first = dict(zip(header, first))       # the first data row, by header
     order = slashed_order(sample, opts, header, cells_of_first)
     if order:              # (13/07/2026: day first, for every file: written to the config)
@@ -270,6 +275,8 @@ def _init(cfg: DictConfig) -> dict:
               f"error tag {tag!r} (written into the config: check it; the tags': "
               f"{intervals_said(long)})")
     defaults = OmegaConf.to_container(OmegaConf.load(conf_dir() / "data" / "default.yaml"))
+    if pair is not None and not pair[3]:     # each logger's file its own separators: detected
+        opts = replace(opts, delimiter="auto", decimal="auto")
     config = data_config(src, given, opts, roles, defaults, manifest)
     ds = open_source(cfg, detected=config)      # refused here as `run` would refuse it
     flags = flag_headers(ds, plan.names)        # 0 / 1 under a header that did not say a flag
@@ -302,6 +309,8 @@ def _init(cfg: DictConfig) -> dict:
     check_declared(cfg, ds, model=False)        # (a folder's run with a sensor the others lack)
     report = ds.meta["read_report"]
     stated_starts(src, ds, report, opts)        # a DAQ's '# start:' line over a time in s
+    for line in paired_lines(report):           # the runs of two loggers: what was paired
+        print(line)
     path = resolve(cfg.out) / "conf" / "data" / f"{ds.name}.yaml"
     text = yaml.safe_dump({"defaults": ["default"], **config}, allow_unicode=True, sort_keys=False)
     if long is not None:
