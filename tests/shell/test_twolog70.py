@@ -1,7 +1,7 @@
 """A run logged by two loggers (twolog70): the temperatures in ``<run>_temp.csv`` (a DAQ, every
 10 s, its clock the reference), the displacements in ``<run>_disp.csv`` (the probe software, every
 60 s, ``;`` and decimal commas, its clock 7 s ahead), read as one campaign on the errors' times
-(``benchmarks/twolog70.py`` writes a lathe's full record so; these are a few rows)."""
+(``benchmarks/bench_twolog70.py`` writes a lathe's full record so; these are a few rows)."""
 
 from __future__ import annotations
 

@@ -1,10 +1,10 @@
 """A stranger's record logged by TWO loggers per run: the temperatures in one file, the
 displacements in another, each with its own clock and rate (twolog70).
 
-    PYTHONPATH=$PWD/src .venv/bin/python benchmarks/twolog70.py write ROOT
-    PYTHONPATH=$PWD/src .venv/bin/python benchmarks/twolog70.py init ROOT lathe_a [override ...]
-    PYTHONPATH=$PWD/src .venv/bin/python benchmarks/twolog70.py matrix ROOT lathe_a joined_a
-    PYTHONPATH=$PWD/src .venv/bin/python benchmarks/twolog70.py table ROOT lathe_a
+    PYTHONPATH=$PWD/src .venv/bin/python benchmarks/bench_twolog70.py write ROOT
+    PYTHONPATH=$PWD/src .venv/bin/python benchmarks/bench_twolog70.py init ROOT lathe_a [override ...]
+    PYTHONPATH=$PWD/src .venv/bin/python benchmarks/bench_twolog70.py matrix ROOT lathe_a joined_a
+    PYTHONPATH=$PWD/src .venv/bin/python benchmarks/bench_twolog70.py table ROOT lathe_a
 
 The machine is the Swiss-type lathe of ``conf/sim/swiss_lathe_door.yaml`` (paper 004: 12
 temperatures, the door, the spindle and tool speeds; E_X / E_Y measured by probes every 5 min),
@@ -175,8 +175,13 @@ import lab_matrix  # noqa: E402  (the benches' shared matrix and steps)
 
 FAMILIES = {k: v for k, v in lab_matrix.matrix_families().items() if k in ("mlr", "lagbank", "auto")}
 
-if __name__ == "__main__":
+
+def main(argv: list[str]) -> int:
     np.seterr(all="ignore")
-    lab_matrix.main(sys.argv[1:], SEEDS, FAMILIES, ("plain",),
-                    {"write": lambda root, rest: write(root), "init": initialised,
-                     "same": lambda root, rest: same_rows(root)})
+    return lab_matrix.main(__doc__, argv, SEEDS, FAMILIES, ("plain",),
+                           {"write": lambda root, rest: write(root), "init": initialised,
+                            "same": lambda root, rest: same_rows(root)})
+
+
+if __name__ == "__main__":
+    raise SystemExit(main(sys.argv[1:]))
