@@ -1,0 +1,169 @@
+"""A slow sensor drift caught by a CUSUM of its self-prediction error (cusum70): rule and bar.
+
+    PYTHONPATH=src .venv/bin/python benchmarks/bench_cusum70.py ROOT [--jobs 2] [--part fresh|healthy|all]
+
+The gap (docs/monitoring.md, tests/shell/test_monitor.py ``SLOW_DRIFT``): a drift of 0.5 or
+0.2 K/h on ``T_motor2`` of the default record is read as temperature until its self-prediction
+error leaves the 0.4 °C warning band (10 / 18-21 samples of 5 min after the onset), and the
+MLR leans on it: worst test campaign 1.79x / 1.74x the healthy RMSE, the bar 1.5x.
+
+Measured first, offline (the default record's 8 test campaigns, MLR, the drift planted from
+each campaign's middle row; ``/tmp`` scratch, not in this file's code): excluding ``T_motor2``
+by hand k samples after the onset, and keeping it out, gives a worst ratio of 1.09 / 1.19 / 1.79
+(0.5 K/h, k = 0 / 6 / 12, the monitor itself at 10-11) and 1.09 / 1.25 / 1.69 / 1.74 (0.2 K/h,
+k = 6 / 12 / 18 / 24): the drift must be out within about an hour (12 samples), at 0.2 °C,
+half the band.  The sensor's leave-one-out error is close to white (sd 0.043-0.063 °C, one
+sample to the next 0.05 °C), so no rule on its slope helps; a level rule against zero flags a
+constant offset of half the band too, which ``test_an_offset_inside_the_band...`` prices as
+unseen.  A CUSUM against the sensor's own level at the campaign's start separates them: the
+constant offset sits in that level, a drift leaves it.  Its largest value on healthy rows, in
+band x samples, K = 0.25 (below): default record train 0.28 / test 0.22, yearround s5301 2.06 /
+0.22, s5302 0.25 / 0.19, swiss_lathe s5304 5.40 / 1.40, column no Q3 s5305 23.4 / 14.1,
+long_record s5306 15.2 / 5.1, large_mill s5303 (48 h March train, June test) 186 / 764 -- the
+mill's test leaves its training (its known false alarm), with 5 sensors at half the limit
+together when the first passes it.
+
+Rule ``cusum`` (written before scoring; ``SensorMonitor``, on by default,
+``monitor.detectors.cusum_k=null`` turns it off):
+
+* For each sensor the others predict (leverage below ``pod.max_leverage`` with every sensor in),
+  its error against the leave-one-out prediction of the POD operator with EVERY sensor in
+  (fixed, whatever is excluded: a drifting sensor's own error stays exactly its drift), on the
+  readings referenced to the campaign's first sample.
+* Its baseline: the mean of that error over the campaign's samples 1..``window`` (the reference
+  sample's is 0); from sample ``window`` + 1 on, two one-sided CUSUMs of (error - baseline) with
+  reference ``k_j`` = ``cusum_k`` (0.25) x the sensor's warning band; the statistic is the larger,
+  divided by the warning band.  A sample with any reading missing leaves the sums as they are.
+* Limit ``h`` (one for all sensors): ``cusum_factor`` (2) x the largest statistic any judged
+  sensor reached over the training campaigns (in sample, learned in ``from_training``), at least
+  0.5 band x samples.
+* A sensor is excluded for drift on this evidence when its statistic exceeds ``h``, every sensor
+  is active, no new thermal state is declared, no other exclusion happened on the sample, at
+  most one other judged sensor's statistic is at ``h``/2 or more (a lone fault, its coupled
+  partner allowed; several sensors leaving their levels together are a field training never saw,
+  the mill) and the new-state check of the band rule does not refuse it (``_drift_vetoed``).  The
+  exclusion is a drift exclusion as the band's (the field may follow it: a new thermal state),
+  without the band rule's blind-partner exclusion (once the drifting sensor is out, a partner no
+  other sensor predicts is no longer judged and stays in).
+* A sensor out on this evidence comes back only when its error's mean over the last ``window``
+  samples is within ``k_j`` of its baseline (and the usual re-admission holds); its sums restart.
+
+Bar (all must hold, else REFUSED, the src change reverted, the rule in
+``benchmarks/cusum70_rule.patch``):
+
+1. ``tests/shell/test_monitor.py``: both ``SLOW_DRIFT`` cases pass with their xfail marks removed
+   (worst test campaign <= 1.5x the healthy RMSE on every target).
+2. Every other monitor test passes: ``tests/shell/test_monitor*.py``, ``tests/apps/test_monitor*.py``,
+   ``tests/shell/test_ambient_step54.py``; ``tests/shell/test_monitor_healthy53.py`` keeps its
+   xfail or passes.
+3. ``bench_monitor_healthy.py``'s 11 healthy records x (mlr, lagbank), adaptive from the files:
+   no exclusion on CUSUM evidence (every monitor.json as with ``cusum_k=null``).
+4. Fresh healthy records, seeds 7101-7110 (never used), MLR, adaptive from the files: no
+   exclusion on CUSUM evidence.  Records (written before any was built):
+   7101, 7102 ``yearround_spindle`` (12 campaigns); 7103, 7104 ``swiss_lathe_door`` (40 h
+   calibration); 7105, 7106 ``column_moving_source`` without Q3 (shipped 40 h / 40 h);
+   7107, 7108 ``large_mill_week`` (120 h train, 24 h test); 7109, 7110 ``long_record``
+   (4 days, 25 % test).
+Reported beside the bar (not part of it): the detection delay of 0.5 / 0.2 K/h on the default
+record's ``T_motor2``, and the drift faults of ``bench_monitor_healthy.py`` where run.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import bench_monitor_healthy as healthy  # noqa: E402
+
+FRESH = {
+    "yearround s7101": ["sim=yearround_spindle", "seed=7101", "sim.generator.n_campaigns=12"],
+    "yearround s7102": ["sim=yearround_spindle", "seed=7102", "sim.generator.n_campaigns=12"],
+    "swiss_lathe s7103": ["sim=swiss_lathe_door", "seed=7103", "sim.generator.calibration_hours=40"],
+    "swiss_lathe s7104": ["sim=swiss_lathe_door", "seed=7104", "sim.generator.calibration_hours=40"],
+    "column no Q3 s7105": ["sim=column_moving_source", "seed=7105", "sim.generator.q3=false"],
+    "column no Q3 s7106": ["sim=column_moving_source", "seed=7106", "sim.generator.q3=false"],
+    "large_mill s7107": ["sim=large_mill_week", "seed=7107", "sim.generator.train_hours=120",
+                         "sim.generator.test_hours=24"],
+    "large_mill s7108": ["sim=large_mill_week", "seed=7108", "sim.generator.train_hours=120",
+                         "sim.generator.test_hours=24"],
+    "long_record s7109": ["sim=long_record", "seed=7109", "sim.generator.duration_days=4",
+                          "sim.generator.test_fraction=0.25"],
+    "long_record s7110": ["sim=long_record", "seed=7110", "sim.generator.duration_days=4",
+                          "sim.generator.test_fraction=0.25"],
+}
+OFF = "monitor.detectors.cusum_k=null"
+
+
+def fresh_records(root: Path) -> dict:
+    """``{record: data overrides}`` of the fresh records, written in ``root``."""
+    records = {}
+    for name, sim in FRESH.items():
+        path = root / "fresh" / name.replace(" ", "_")
+        if not (path / "campaigns.csv").exists():
+            assert healthy.thermocomp("simulate", *sim, f"data.path={path}",
+                                      *healthy.QUIET).returncode == 0, name
+        extra = ["sim=long_record"] if name.startswith("long_record") else []
+        records[name] = [f"data.path={path}", *extra]
+    return records
+
+
+def cusum_events(out: Path) -> list:
+    """The monitor.json's exclusions on CUSUM evidence."""
+    report = json.loads((out / "monitor.json").read_text())
+    return [e for e in report["events"] if e["to"] == "excluded" and "CUSUM" in e["reason"]]
+
+
+def on_off(root: Path, name: str, args: list, model: str) -> dict:
+    """One record x model, adaptive from the files, the rule on and off."""
+    key = f"{name.replace(' ', '_')}-{model}"
+    row = {"record": name, "model": model}
+    for mode, extra in (("on", []), ("off", [OFF])):
+        out = root / "out" / key / mode
+        proc = healthy.thermocomp("monitor", *args, f"model={model}", *extra, *healthy.QUIET,
+                                  f"out={out}")
+        if proc.returncode:
+            row[mode] = {"error": proc.stderr.decode(errors="replace").strip().splitlines()[-1:]}
+            continue
+        report = json.loads((out / "monitor.json").read_text())
+        row[mode] = healthy.summary(report)
+        row[mode]["cusum"] = [(e["campaign"], e["sensor"], e["time"]) for e in cusum_events(out)]
+        row[mode]["events_list"] = report["events"]
+    row["identical"] = (row["on"].get("events_list") == row["off"].get("events_list")
+                        and row["on"].get("rmse") == row["off"].get("rmse"))
+    for mode in ("on", "off"):
+        row[mode].pop("events_list", None)
+    print(json.dumps(row), flush=True)
+    return row
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("root")
+    parser.add_argument("--jobs", type=int, default=2)
+    parser.add_argument("--part", choices=("fresh", "healthy", "all"), default="all")
+    a = parser.parse_args(argv)
+    root = Path(a.root)
+    jobs = []
+    if a.part in ("fresh", "all"):
+        jobs += [(n, args, "mlr") for n, args in fresh_records(root).items()]
+    if a.part in ("healthy", "all"):
+        jobs += [(n, args, m) for n, (args, _) in healthy.build(root).items()
+                 for m in ("mlr", "lagbank")]
+    with ThreadPoolExecutor(a.jobs) as pool:
+        rows = list(pool.map(lambda j: on_off(root, *j), jobs))
+    (root / "results.json").write_text(json.dumps(rows, indent=1))
+    print(f"\n{'record':20s} {'model':8s} exclusions on/off  CUSUM exclusions  identical")
+    for r in rows:
+        on, off = r["on"], r["off"]
+        print(f"{r['record']:20s} {r['model']:8s} {on.get('exclusions', 'err')!s:>6}/"
+              f"{off.get('exclusions', 'err')!s:<8} {len(on.get('cusum', []))!s:>5}  "
+              f"{r['identical']}  {on.get('cusum', '')}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
