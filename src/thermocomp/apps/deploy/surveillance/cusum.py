@@ -94,8 +94,18 @@ class LevelCusum:
         self._cs_up, self._cs_down = np.zeros(n), np.zeros(n)
         self._cs_out = np.zeros(n, dtype=bool)    # excluded on this evidence
 
-    def _cusum_watching(self) -> bool:
-        return self._cs_live and self._all_active and not self._novel
+    def _cusum_watching(self, d: np.ndarray) -> bool:
+        """Whether the sums run at the referenced sample ``d``: every sensor in, no new thermal
+        state, and every reading within its training range -- beyond it every error grows with
+        the distance from training (a line warmed 16 °C along its two trained modes: T_6
+        persistently off its level at 6 °C beyond, read as a drift)."""
+        return self._cs_live and self._all_active and not self._novel and not self._beyond(d)
+
+    def _beyond(self, d: np.ndarray) -> np.ndarray:
+        """Per row of referenced readings ``d``: a reading beyond its training range."""
+        x = d + self._ref
+        with np.errstate(invalid="ignore"):
+            return ((x < self.lo_c) | (x > self.hi_c)).any(axis=-1)
 
     def _cusum_errors(self, D: np.ndarray) -> np.ndarray:
         """Full-set leave-one-out errors of referenced readings ``D`` ((m, n) or (n,))."""
@@ -124,7 +134,7 @@ class LevelCusum:
             if self._cs_n == self.window:
                 self._cs_sum /= self.window
             return
-        if not self._cusum_watching():
+        if not self._cusum_watching(d):
             self._cs_up[:], self._cs_down[:] = 0.0, 0.0
             return
         self._cs_up, self._cs_down = sums or self._cusum_next(d)
@@ -145,11 +155,15 @@ class LevelCusum:
         up = cusum_sums(dev, self._cs_k, self._cs_up)
         down = cusum_sums(-dev, self._cs_k, self._cs_down)
         ok = ~(self._cusum_statistic(up, down) > self.cusum_limit).any(axis=1)
+        beyond = self._beyond(d)
+        if beyond.any():             # the sums drop to 0 there (row by row)
+            ok &= np.cumsum(beyond) == 0
         return ok, up, down
 
     def _exclude_by_cusum(self, level, err, time, events) -> None:
         """Exclude the lone sensor past the limit (module doc), as a drift."""
-        if not (self.adaptive and self._cusum_watching()) or self._active.sum() <= self.min_active_:
+        if not (self.adaptive and self._cs_live and self._all_active and not self._novel) \
+                or self._active.sum() <= self.min_active_:
             return
         s = self._cusum_statistic(self._cs_up, self._cs_down)
         near = s >= 0.5 * self.cusum_limit

@@ -376,7 +376,7 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, LevelCusum):
                 return None
             if ((self._calm + 1 >= self.window) & ~self._active).any():
                 return None                  # an excluded sensor may be due for re-admission
-        sums = self._cusum_next(d) if self._cs_live and self._cusum_watching() else None
+        sums = self._cusum_next(d) if self._cs_live and self._cusum_watching(d) else None
         if sums is not None and self._cusum_due(*sums):
             return None
         same = step == 0
