@@ -138,8 +138,6 @@ class Detectors:
     jump_factor: float = key(POSITIVE)
     freeze_factor: float = key(POSITIVE)
     range_margin_c: float = key(NON_NEGATIVE)
-    cusum_k: Optional[float] = key(optional(POSITIVE))
-    cusum_factor: float = key(POSITIVE)
 
 
 @dataclass

@@ -12,25 +12,13 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 
 from ..pod import ThermalPOD, windowed_mean
-from .cusum import LevelCusum, training_limit
 from .faults import InstantFaults
 from .judgement import Judgement
 from .readmission import Readmission
-from .states import (
-    ALARM,
-    COMMON_MIN,
-    CUSUM_FACTOR,
-    CUSUM_K,
-    EXCLUDED,
-    MAX_BACKOFF,
-    OK,
-    SPREAD_FACTOR,
-    STATES,
-    WARNING,
-)
+from .states import ALARM, COMMON_MIN, EXCLUDED, MAX_BACKOFF, OK, SPREAD_FACTOR, STATES, WARNING
 
 
-class SensorMonitor(InstantFaults, Judgement, Readmission, LevelCusum):
+class SensorMonitor(InstantFaults, Judgement, Readmission):
     """Stateful monitor of ``names`` (see module doc).
 
     Parameters
@@ -67,9 +55,6 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, LevelCusum):
     new_state_others : int
         Other judged sensors out of their warning band, soon after a drift exclusion, that
         re-admit it and call a new thermal state.
-    cusum_k, cusum_limit : float, optional
-        The CUSUM of a slow drift (:mod:`.cusum`): its reference (share of the warning band)
-        and limit (band × samples, learned by :meth:`from_training`); either ``None``: off.
     """
 
     new_state, new_state_others = False, 2   # a monitor pickled before them judged as before
@@ -79,17 +64,13 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, LevelCusum):
         if "_since" not in state:      # pickled before the new-state rule: its state, idle
             self._novel, self._calm_field = False, 0
             self._since = np.full(len(self.names), -1, dtype=np.int64)
-        if "_cs_live" not in state:    # pickled before the CUSUM (cusum70): off
-            self._cs_live = False
-            self._cusum_reset()
 
     def __init__(self, pod: ThermalPOD, names: Sequence[str], *, warning_c=0.4, alarm_c=0.8,
                  window: int = 10, confirm: int = 2, adaptive: bool = True,
                  exclude_at: str = "warning", max_step_c=None, longest_run=None,
                  lo_c=None, hi_c=None, first_c=None, jump_factor: float = 3.0,
                  freeze_factor: float = 2.0, range_margin_c: float = 10.0,
-                 new_state: bool = True, new_state_others: int = 2,
-                 cusum_k: float | None = None, cusum_limit: float | None = None):
+                 new_state: bool = True, new_state_others: int = 2):
         n = len(names)
         if pod.n_features_in_ != n:
             raise ValueError(f"POD has {pod.n_features_in_} sensors, names {n}")
@@ -137,9 +118,6 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, LevelCusum):
         self._recent = (np.arange(self.window)[:, None] - 1 - np.arange(self.confirm)) % self.window
         self.r_ = pod.n_modes_
         self.min_active_ = self.r_ + 1
-        self.cusum_k = None if cusum_k is None else float(cusum_k)
-        self.cusum_limit = None if cusum_limit is None else float(cusum_limit)
-        self._cusum_setup()
         self.reset()
 
     @classmethod
@@ -185,23 +163,14 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, LevelCusum):
             floor = factor * spread
             warn, alarm = np.maximum(warn, floor), np.maximum(alarm, 2 * floor)
         options = {**options, "warning_c": warn, "alarm_c": alarm}
-        k = options.pop("cusum_k", CUSUM_K)
-        factor = float(options.pop("cusum_factor", CUSUM_FACTOR))
-        if k is not None:       # the CUSUM's limit, from the training campaigns (cusum.py)
-            lev = pod.operator(np.ones(len(names), dtype=bool))[1]
-            band = np.broadcast_to(warn, (len(names),))
-            options["cusum_limit"] = training_limit(
-                pod, arrays, float(k) * band, band, lev < pod.max_leverage,
-                int(options.get("window", 10)), factor)
         return cls(pod, names, max_step_c=steps.max(0), longest_run=runs, lo_c=lo, hi_c=hi,
-                   first_c=first, cusum_k=k, **options)
+                   first_c=first, **options)
 
     # -- state ------------------------------------------------------------------------------
     _STATE = ("_ref", "_active", "_state", "_hist", "_err", "_pos", "_count", "_prev",
               "_prev_e", "_run", "_run_pred", "_clean", "_quiet", "_calm", "_prev_other",
               "_last_good", "_by_field", "_jumps", "_ref0", "_dropped", "_gap", "_gapped", "_dwell",
-              "_outs", "_explains", "_novel", "_calm_field", "_since", "_cs_sum", "_cs_n",
-              "_cs_up", "_cs_down", "_cs_out")
+              "_outs", "_explains", "_novel", "_calm_field", "_since")
 
     def reset(self) -> None:
         """New campaign: the next sample is the reference; every sensor active and ok."""
@@ -238,7 +207,6 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, LevelCusum):
         self._novel = False          # a new thermal state is declared (module doc)
         self._calm_field = 0         # samples since a judged sensor was last out of band
         self._since = np.full(n, -1, dtype=np.int64)   # sample count at its drift exclusion
-        self._cusum_reset()
         self._set_operator()
 
     def _operator(self, subset: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -376,9 +344,6 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, LevelCusum):
                 return None
             if ((self._calm + 1 >= self.window) & ~self._active).any():
                 return None                  # an excluded sensor may be due for re-admission
-        sums = self._cusum_next(d) if self._cs_live and self._cusum_watching(d) else None
-        if sums is not None and self._cusum_due(*sums):
-            return None
         same = step == 0
         if same.any():
             other = np.where(self._judged, d - e, pred)
@@ -390,7 +355,6 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, LevelCusum):
             self._run, self._run_pred = run, run_pred
         else:
             self._run = self._zero_run
-        self._cusum_step(d, sums)
         self._hist[pos] = d
         self._err[pos] = e
         self._pos = (pos + 1) % self.window
@@ -458,15 +422,9 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, LevelCusum):
             run_pred = np.where(begun >= 0, np.take_along_axis(other, np.maximum(begun, 0), axis=0),
                                 self._run_pred)
             ok &= ~self._frozen(same, run, np.abs(other - run_pred)).any(axis=1)
-            sums = self._cusum_block(d)
-            if sums is None:                 # the CUSUM's baseline is taken row by row
-                return np.empty((0, n))
-            ok &= sums[0]
         m = len(d) if ok.all() else int(np.argmin(ok))
         if not m:
             return np.empty((0, n))
-        if sums[1] is not None:
-            self._cs_up, self._cs_down = sums[1][m - 1], sums[2][m - 1]
         last = np.arange(max(0, m - window), m)
         where = (self._pos + last) % window
         self._hist[where], self._err[where] = d[last], e[last]
@@ -532,12 +490,6 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, LevelCusum):
         self._check_freeze(x, d, e, pred, same, instant, time, events)
         self._check_stepped(e, instant, time, events)
         level, err = self._exclude_by_judgement(time, events)
-        if self._count > 1:         # not the reference sample
-            self._cusum_step(d)
-            if self._cs_live and self._active.all():
-                self._exclude_by_cusum(level, err, time, events)
-                if not self._all_active:
-                    level, err = self._judge()
         if self.adaptive and not self._all_active and self._count >= self.window:
             if self._readmit(d, finite, instant, time, events):
                 level, err = self._judge()
@@ -621,7 +573,6 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, LevelCusum):
         if not self._predictable[j]:   # say so: for a frozen sensor the exclusion changes nothing
             reason += "; held at its last good reading: no other sensor predicts it"
         self._active[j] = False
-        self._cs_out[j] = False      # (the CUSUM's exclusion says otherwise after this)
         self._calm[j] = 0            # back in only after a whole window inside the band
         if by_field:      # out by its error again since its first return: it waits longer
             self._dwell[j] = self.window * 2 ** min(self._outs[j], MAX_BACKOFF)

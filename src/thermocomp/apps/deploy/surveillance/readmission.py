@@ -16,7 +16,6 @@ class Readmission:
         Whether any sensor came back."""
         due = ~self._active & finite & (self._run == 0) & (self._calm >= self._dwell)
         due[list(instant)] = False
-        due &= self._cusum_calm()      # one out on the CUSUM's evidence: back at its level first
         back = self._returning(due) if due.any() else due
         for j in np.flatnonzero(back):
             why = f"re-admitted: within ±{self._readmit_c()[j]:.3g} °C for {self._calm[j]} samples"
@@ -36,7 +35,6 @@ class Readmission:
                 why += f"; its {self._jumps[j]} jump(s) undone: the reading returned ({shift:+.3g} °C)"
             self._set_state(j, OK, time, why, events)
             self._jumps[j] = 0
-            self._cs_out[j] = False
             self._active[j] = True
             self._by_field[j] = False
             self._explains[j] = False

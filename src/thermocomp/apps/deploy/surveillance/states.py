@@ -8,6 +8,3 @@ STATES = ("ok", "warning", "alarm", "excluded")
 COMMON_MIN = 3        # jumping sensors, at least, that a common step (a logger's fault) needs
 COMMON_SPREAD = 2.0   # ... each within this factor of their median step (about the same size)
 NEW_STATE, TRAINED = "new thermal state", "trained"   # the field's states (events, sensor None)
-CUSUM_K = 0.25        # the CUSUM's reference: this share of the warning band (cusum.py)
-CUSUM_FACTOR = 2.0    # its limit: this × the largest statistic on the training campaigns ...
-CUSUM_FLOOR = 0.5     # ... at least this (band × samples)
