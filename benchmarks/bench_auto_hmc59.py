@@ -59,7 +59,7 @@ first-sample frame takes the temperatures); any other state (a temperature, a po
 number) keeps the steady start.  The same in ``predict``, ``stream_step`` and every fit (folds,
 CV), nothing else changed.
 
-Records scored (chosen before running, the stop-57 batch of ``docs/models.md``'s "Where it stands"
+Records scored (chosen before running, the stop-57 batch of ``docs/measured/models.md``'s "Where it stands"
 without the two ``large_mill_week`` records, ~170 s CPU per fit of auto there):
 ``column_moving_source``, ``swiss_lathe_door``, ``yearround_spindle``, seeds 5791 and 5792
 (``bench_auto_rank.py``, defaults).  Acceptance (fixed with the rule): auto better than MLR on at
@@ -78,7 +78,7 @@ Mean test RMSE over the targets (µm), auto steady -> rest; MLR; hammerstein alo
     col5791 / col5792: unchanged by construction (their one state, S_pos_Z, is never below 250 mm:
     no state at rest; checked, ``rest_states_`` empty on every target), 9.13 / 7.98 (MLR 6.97 / 9.54)
 
-Better than MLR: 5 of 6 either way (col5791 the loss, docs/models.md).  Worst record: year5792
+Better than MLR: 5 of 6 either way (col5791 the loss, docs/measured/models.md).  Worst record: year5792
 +0.7 % (< 2 %).  Geometric mean of auto over the best single family: 1.030 -> 1.024 (each with
 its own best family; over the steady start's best family 0.966).  ADOPTED (the default,
 ``conf/model/hammerstein.yaml``).

@@ -11,7 +11,7 @@ before ATI's ``min_campaigns``; after it at the end):
 * B a lab's record: ``sim=large_mill_week seed=5401 sim.generator.train_hours=30
   test_hours=12``, the train week cut into three 10 h runs (``Lauf_1..3``, each its own time
   origin), the test ``Lauf_4`` (:func:`lab_record`); MLR 2.64 / 2.12 / 1.28, the figures of
-  docs/dvc.md, so this is the record docs/models.md describes.  auto 2.14, MLR 2.01.  One
+  docs/dvc.md, so this is the record docs/measured/models.md describes.  auto 2.14, MLR 2.01.  One
   blocked forward fold: fit ``Lauf_1 + Lauf_2``, predict ``Lauf_3``.
 
 Who carries the weight where auto loses (test RMSE; MSE ratios to MLR per fold / per block):

@@ -71,7 +71,7 @@ holds Q3, so no weighting of the folds can see it: not a defect, no src change. 
 
 The earlier losses re-run on stop 57's code (2026-11-30, once each), auto; MLR before -> now:
 col1403 9.47; 7.40 -> 9.47; 7.40 | col1514 10.5; 10.4 -> 10.5; 10.4 | mill1514 2.22; 2.21 -> 2.22;
-2.21 | swiss303 (docs/models.md) 1.41; 1.37 -> 1.41; 1.37 | col5454 11.5; 13.8 -> 11.5; 13.8 |
+2.21 | swiss303 (docs/measured/models.md) 1.41; 1.37 -> 1.41; 1.37 | col5454 11.5; 13.8 -> 11.5; 13.8 |
 swiss5454 1.32; 1.46 -> 1.32; 1.46. The same to the digits printed: stop 56 changed ATI, a
 candidate on none of these records. Where auto stays behind MLR: col1403 E_Y (0.84 on lagbank,
 folds 0.33 0.07 1.09 0.40 0.64 of MLR's MSE, test 4.29; behind in both halves, 20.2 against 11.6

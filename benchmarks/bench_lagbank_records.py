@@ -51,7 +51,7 @@ mill7717: two paths) chooses ``free`` on every mill, col0, col5 and swiss0 targe
 fl602020's ch3/ch4: the CV cannot tell.  ``blocks`` leaves the mill as it was, ``in range``
 mends mill11 only (its folds 2-3 keep almost every row: a 52-sensor ellipsoid is wide).  So
 the default stays ``level_penalty=1``; ``level_penalty=0`` is the option for a single training
-record on which MLR holds (``docs/models.md``).  Fit CPU of the default, before -> after the
+record on which MLR holds (``docs/measured/models.md``).  Fit CPU of the default, before -> after the
 option (mill7717 / 11 / 23, two runs each, one process): 4.14 / 3.78 / 3.47 and 4.90 / 3.76 /
 3.52 -> 3.63 / 3.98 / 3.45 and 3.73 / 4.74 / 3.31 s (sums 23.6 -> 22.8 s).
 """

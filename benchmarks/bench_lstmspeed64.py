@@ -30,7 +30,7 @@ Measured 2026-12-01 (2 shared cores, load 4-6; each run once per seed), CPU s be
 (0.668 / 0.678 / 0.679 -> 0.665 / 0.669 / 0.686), fl90 71.4 -> 33.1 (2.75 / 3.13 / 3.19 ->
 2.65 / 3.41 / 3.06), fl60 29.0 -> 15.3 (8.13 / 9.32 / 8.15 -> 9.07 / 9.81 / 8.71), door 12.8 ->
 8.9 (0.901 / 0.904 / 0.913 -> 0.908 / 0.903 / 0.905), grinder 164.8 -> 101.7 (0.780 / 0.764 /
-0.758 -> 0.759 / 0.770 / 0.758); mlr 3.2 / 2.1 / 2.0 / 2.1 / 3.0 s (docs/models.md).  These
+0.758 -> 0.759 / 0.770 / 0.758); mlr 3.2 / 2.1 / 2.0 / 2.1 / 3.0 s (docs/measured/models.md).  These
 figures were taken with an equivalent shell loop over the same commands; this script repeats it.
 
 lstmbatch64 (refused): ``--before b7fc1b0d --label lstmbatch64 --json lstmbatch64.json --no-mlr``
@@ -39,7 +39,7 @@ from 2d8c6dcf (``batch_size: auto``, 16 pieces a step unless an epoch would have
 mean of seeds 0-2 today -> auto and test MAE per seed: fl60 16.6 -> 20.6 (9.073 / 9.807 / 8.705 ->
 9.070 / 9.728 / 8.217), fl90 36.6 -> 42.6 (2.649 / 3.405 / 3.063 -> 2.769 / 3.093 / 3.308), lathe
 21.9 -> 23.3 (identical fits and MAE), door 9.5 -> 10.9 (0.908 / 0.903 / 0.905 -> 0.901 / 0.904 /
-0.913); docs/models.md.
+0.913); docs/measured/models.md.
 """
 
 from __future__ import annotations

@@ -99,7 +99,7 @@ the 10 fresh grinders, the 20 null draws, the jig grinder; test RMSE µm)::
 
 ``model=auto`` (``bench_auto_rank``: test RMSE µm of MLR, of the best of auto's candidates fitted
 alone, of auto; ``mill`` is ``large_mill_week`` with ``sim.generator.sample_period_s=120`` as in
-docs/models.md -- its MLR 2.09 is not the 2.21 quoted in bench_auto_rank, whose mill overrides
+docs/measured/models.md -- its MLR 2.09 is not the 2.21 quoted in bench_auto_rank, whose mill overrides
 are not written there)::
 
   record      target            MLR   best (family)      auto  /MLR /best  auto's weights

@@ -1,5 +1,5 @@
 """`thermocomp connect` restarted mid-campaign against the twin (restart69; the connect rows of
-docs/to-the-machine.md "Restarted mid-campaign", measured by hand in restart58).
+docs/measured/to-the-machine.md "Restarted mid-campaign: measured", measured by hand in restart58).
 
     .venv/bin/python benchmarks/bench_restart69.py DIR [--src SRC] [--runs uninterrupted cold warm]
 

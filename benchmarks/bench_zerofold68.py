@@ -71,8 +71,9 @@ would have undone: 1.664 -> 2.042 µm, +22.7 %).  Test RMSE zero -> Z2 (MLR):
 Records better than MLR 7 -> 10 of 12; within 10 % of the best family 6 -> 7.
 (1) 12 records >= 3; (2) 3 records differ, geometric mean 0.1123, worst 0.1759; (3) ``check``:
 Z2's src end to end on iso6861-6863 equals the arrays' Z2 on every target (<= 2.2e-16 relative,
-the reason says "fold by fold"); ``make run``'s record auto 0.6481 / 0.8429 / 0.9943 (docs/models.md's
-0.648 / 0.843 / 0.994) and ``fl_thermal`` 90/10 auto mean 2.481, the rule firing on neither.
+the reason says "fold by fold"); ``make run``'s record auto 0.6481 / 0.8429 / 0.9943
+(docs/measured/models.md's 0.648 / 0.843 / 0.994) and ``fl_thermal`` 90/10 auto mean 2.481, the
+rule firing on neither.
 **Verdict: PASSES, Z2 adopted.**  Its limit: every zero undone is iso67's one kind of fold (its test
 plan puts the X-axis test in fold 0 on every seed), and no target fell between 1.044 and 5.5.
 """

@@ -16,7 +16,7 @@ from thermocomp.shell.stages import STAGES
 
 CLI = (ROOT / "docs" / "cli.md").read_text()
 DATA_FORMAT = (ROOT / "docs" / "data-format.md").read_text()
-DOCS = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
+DOCS = [ROOT / "README.md", *sorted((ROOT / "docs").rglob("*.md"))]   # measured/ too
 
 
 def _documented(key: str, text: str) -> bool:
@@ -154,6 +154,32 @@ def test_links_resolve_inside_the_repository(doc):
         path = (doc.parent / target.split("#", 1)[0]).resolve()
         assert path.exists(), f"{doc.name} links {target}, which does not exist"
         assert ROOT in path.parents, f"{doc.name} links {target}, outside the repository"
+
+
+def _heading_anchors(text: str) -> set[str]:
+    """The ids Python-Markdown's toc gives a page's headings (code spans and link targets
+    dropped, punctuation removed, spaces joined by '-')."""
+    text = re.sub(r"```.*?```", "", text, flags=re.S)
+    ids = set()
+    for title in re.findall(r"^#{1,6} (.+)$", text, flags=re.M):
+        title = re.sub(r"\[([^\]]*)\]\([^)]*\)", r"\1", title.replace("`", ""))
+        title = title.encode("ascii", "ignore").decode()
+        ids.add(re.sub(r"[-\s]+", "-", re.sub(r"[^\w\s-]", "", title).strip().lower()))
+    return ids
+
+
+@pytest.mark.parametrize("guide", ["models.md", "to-the-machine.md"])
+def test_a_guide_page_links_its_measurement_record_by_heading(guide):
+    # the guide keeps what a user needs; each section's history is one link away, in
+    # docs/measured/<page>, and every such link lands on a heading there
+    text = (ROOT / "docs" / guide).read_text()
+    record = ROOT / "docs" / "measured" / guide
+    links = [t for t in _links(text) if t.startswith(f"measured/{guide}#")]
+    assert record.exists() and len(links) >= 5, f"docs/{guide} links no sections of {record.name}"
+    ids = _heading_anchors(record.read_text())
+    assert not [t for t in links if t.split("#", 1)[1] not in ids]
+    nav = yaml.safe_load((ROOT / "mkdocs.yml").read_text())["nav"]
+    assert f"measured/{guide}" in json.dumps(nav), "the record is not in mkdocs.yml's nav"
 
 
 def test_the_link_check_sees_links_and_skips_code():

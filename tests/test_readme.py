@@ -238,7 +238,7 @@ def test_readme_blocks_are_all_accounted_for():
     assert sum(b["kind"] != "skip" and b["lang"] == "bash" for b in blocks) >= 8
     # a page with commands outside the nav would never be run
     listed = set(pages())
-    unlisted = [p.name for p in (ROOT / "docs").glob("*.md")
+    unlisted = [p.name for p in (ROOT / "docs").rglob("*.md")
                 if p not in listed and readme_blocks(p.read_text())]
     assert not unlisted, f"docs pages with commands but not in mkdocs.yml's nav: {unlisted}"
 

@@ -131,7 +131,7 @@ class LSTM(SideInputs, RegressorMixin, BaseEstimator):
         recurrence is sequential in time; the batch is the cheap dimension), so few large
         batches are cheap; 16 at 6e-3 (4 at 3e-3 before lstmspeed64: the rate scaled by the
         square root of the batch ratio) reached the same held-out MSE on a lathe-sized set's
-        fits at under half the CPU (docs/models.md).
+        fits at under half the CPU (docs/measured/models.md).
     max_epochs : int, default 100
     patience : int, default 10
         Epochs without a better validation loss before stopping.  A shorter patience runs the
