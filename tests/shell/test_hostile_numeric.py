@@ -56,15 +56,27 @@ def _numbers(node, prefix: str = ""):
 
 @functools.cache
 def _composed(overrides: tuple[str, ...]):
+    """The config of ``overrides``; options that only pick what the defaults pick (``model=mlr``,
+    19 of the 44) compose the defaults' config: one composition, not 20 (~0.2 s of CPU each)."""
+    if overrides and all(_default_choices().get(o.split("=")[0]) == o.split("=")[1] for o in overrides):
+        return _composed(())
     with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3"):
         return compose(config_name="config", overrides=[*overrides, "track=false"])
+
+
+@functools.cache
+def _default_choices() -> dict[str, str]:
+    """The option each config group takes in the default composition (Hydra's runtime choices)."""
+    with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3"):
+        cfg = compose(config_name="config", overrides=["track=false"], return_hydra_config=True)
+    return dict(cfg.hydra.runtime.choices)
 
 
 @functools.cache
 def _knobs() -> dict[str, tuple[tuple[str, ...], object]]:
     """Every numeric config key -> (the overrides composing a config that has it, its value).
 
-    Composed when a test first asks (~44 compositions, ~12 s of CPU), not when the module is
+    Composed when a test first asks (27 compositions, ~5 s of CPU), not when the module is
     collected: every xdist worker collects every module, and only one runs these tests."""
     knobs = {}
     for overrides in _options():
