@@ -6,7 +6,7 @@ draw these rows: ``scenario`` was left, ``record`` cannot be drawn again).
 Usage (from the repository root, ``PYTHONPATH=<tree>/src``: the code measured is that tree's)::
 
     python benchmarks/bench_diag70.py scenario WORK      # -> WORK/scenario.jsonl
-    python benchmarks/bench_diag70.py record WORK        # -> WORK/record.jsonl
+    python benchmarks/bench_diag70.py record WORK [SPLIT ...]  # -> WORK/record.jsonl
     python benchmarks/bench_diag70.py table WORK         # both, the verdicts
 
 Every diagnosis is the ``diagnose`` stage itself (``thermocomp diagnose``'s code, its config
@@ -82,7 +82,26 @@ RECORD_SEEDS = (0, 7111, 7112)          # make run's (seed 0) and two fresh
 NEW_SEEDS = tuple(range(7115, 7131))    # 16 draws x 8 test campaigns
 SPLITS = {"90/10": ["data=fl_thermal"],
           "60/20/20": ["data=fl_thermal", "data.split_order=[train,test,val]",
-                       "data.test_fraction=0.2", "data.val_fraction=0.2"]}
+                       "data.test_fraction=0.2", "data.val_fraction=0.2"],
+          # added after the two above were scored: what the 90/10 cut's warning suggests (its 6
+          # forward test blocks cannot reach alpha); informative, not under F5
+          "90/10 cv=campaigns": ["data=fl_thermal", "diagnose.cv=campaigns"],
+          # model=auto refused: the family auto kept per channel on 60/20/20 (docs/own-data.md:
+          # lagbank, lagbank, lagbank, hammerstein, arx), each diagnosed on its channels
+          **{f"60/20/20 {family}": ["data=fl_thermal", "data.split_order=[train,test,val]",
+                                    "data.test_fraction=0.2", "data.val_fraction=0.2",
+                                    f"model={family}", f"diagnose.targets=[{targets}]"]
+             for family, targets in (("lagbank", "E_ch1,E_ch2,E_ch3"), ("hammerstein", "E_ch4"),
+                                     ("arx", "E_ch5"))}}
+# the trace of the one row > 2 % worse (hammerstein's E_ch4 above, T_t5 removed as a fault),
+# added after it was scored: MLR on E_ch4 alone, hammerstein without the fault family, with all
+# five channels
+NO_FAULT = "diagnose.families=[signal,dynamics,ambient_interval,interaction,nonlinear]"
+SPLITS |= {f"60/20/20 {name}": [*SPLITS["60/20/20"], *extra] for name, extra in (
+    ("mlr E_ch4", ["diagnose.targets=[E_ch4]"]),
+    ("hammerstein E_ch4 no fault family", ["model=hammerstein", "diagnose.targets=[E_ch4]", NO_FAULT]),
+    ("hammerstein all", ["model=hammerstein"]))}
+VERDICT = ("90/10", "60/20/20")          # the defaults: F5's rows; the others informative
 
 
 @contextlib.contextmanager
@@ -128,8 +147,11 @@ def _measured(d, target: str) -> dict:
     """Per target of diagnosis ``d`` as the stage reports it: accepted effects, the control, the
     own test's uncompensated / before / after RMSE (deployed)."""
     j = d.to_json(target)
+    keys = ("cv_rmse_gain_pct", "p_value", "p_value_family", "p_value_margin", "n_features",
+            "shrink_alpha", "cv_rmse_gain_pct_within", "cv_rmse_gain_pct_within_rest")
     return {"accepted": [f'{e["kind"]} {e["column"]} {e["transform"]}' for e in j["effects"]
                          if e["accepted"]],
+            "evidence": [{k: e["evidence"].get(k) for k in keys} for e in j["effects"] if e["accepted"]],
             "control_clears": j["control_ever_clears_bar"],
             "cv": [j["before"]["cv_rmse"], j["after"]["cv_rmse"]],
             "measured": j["before"]["test_rms_measured"],
@@ -169,19 +191,25 @@ def scenario(work: Path) -> None:
             own_rmse = scores(d, t, own)["own"]["rmse"]
             same = a["accepted"] == b["accepted"] and np.allclose(a["test_rmse"], own_rmse, rtol=5e-4)
             assert same, (seed, t, a, own_rmse)
-            row["targets"][t] = {**a, **scores(d, t, own)}
+            # the stage's deployed figure over all 136 test campaigns beside the batch pooled one
+            # the rows above use (bench_jig68.scores: run's predictions, as moretest68's)
+            per = np.array([*scores(d, t, own)["own"]["per_campaign"],
+                            *scores(d, t, own)["new"]["per_campaign"]], float)
+            row["targets"][t] = {**a, **scores(d, t, own), "all_deployed": b["test_rmse"],
+                                 "all_batch": list(np.sqrt(per[:, 1:].sum(0) / per[:, 0].sum()))}
         row["cpu_s"] = round(cpu_seconds(children=True) - start, 1)
         rm._append(work / "scenario.jsonl", row)
 
 
-def record(work: Path) -> None:
+def record(work: Path, splits: list[str]) -> None:
     import bench_remeasure62 as rm
 
     from thermocomp.base.errors import ConfigError
 
-    for split, overrides in SPLITS.items():
-        start = cpu_seconds()
-        d = run_stage([*overrides, f"out={work / 'out' / split.replace('/', '-')}"])["d"]
+    for split in splits:
+        overrides, start = SPLITS[split], cpu_seconds()
+        folder = work / "out" / "".join(c if c.isalnum() else "-" for c in split)
+        d = run_stage([*overrides, f"out={folder}"])["d"]
         tests = list(d.predictions["before"])
         row = {"split": split, "test_campaigns": len(tests), "targets": {}}
         for t in d.targets:
@@ -191,12 +219,17 @@ def record(work: Path) -> None:
                                     - np.asarray(d.predictions[w][c][1][t], float) for c in tests])
                 errors[w] = e[np.isfinite(e)]
             row["test_rows"] = int(errors["before"].size)
-            row["targets"][t] = {**_measured(d, t),
+            faults = [{"sensor": e.effect.column, "jump": e.jump_ratio, "cv_pct": e.gain_pct,
+                       "in_range_pct": e.gain_pct_in_range, "clears": e.clears_bar, "accepted": e.accepted}
+                      for r in d.targets[t].search.rounds for e in r.evaluated
+                      if e.effect.transform == "remove"]
+            row["targets"][t] = {**_measured(d, t), "faults": faults,
                                  "rmse": [float(np.sqrt(np.mean(errors[w] ** 2))) for w in errors],
                                  "mae": [float(np.mean(np.abs(errors[w]))) for w in errors]}
         try:
-            run_stage([*overrides, "model=auto", f"out={work / 'out' / 'auto'}"])
-            row["auto"] = "diagnosed"
+            if split in VERDICT:
+                run_stage([*overrides, "model=auto", f"out={work / 'out' / 'auto'}"])
+                row["auto"] = "diagnosed"
         except ConfigError as exc:
             row["auto"] = f"refused: {exc}"
         row["cpu_s"] = round(cpu_seconds() - start, 1)
@@ -214,7 +247,7 @@ def table(work: Path) -> None:
     lines, fails = [], []
     rows = rm._read(work / "scenario.jsonl") if (work / "scenario.jsonl").exists() else []
     for r in rows:
-        if r.get("draws"):
+        if "seed" not in r:
             lines.append(f"new campaigns drawn: CPU s {r['cpu_s']}")
             continue
         for t, o in r["targets"].items():
@@ -230,25 +263,43 @@ def table(work: Path) -> None:
                          f"{o['new']['worse']} / {o['new']['better']}; {o['cv_scheme']}, min p "
                          f"{o['min_p']:.2g}; accepted: " + ("; ".join(o["accepted"]) or "none")
                          + (f"; excluded {o['excluded']}" if o["excluded"] else ""))
-            if o["accepted"] and new != 0.0:
-                lines.append(f"    per draw: {draws}")
+            if o["accepted"]:
+                n = o["own"]["campaigns"] + o["new"]["campaigns"]
+                lines.append(f"    per draw: {draws}; all {n} test campaigns, "
+                             f"deployed {o['all_deployed'][0]:.4f} -> {o['all_deployed'][1]:.4f}, batch "
+                             f"{o['all_batch'][0]:.4f} -> {o['all_batch'][1]:.4f}")
+                lines += [f"    evidence {k + 1}: " + ", ".join(f"{n} {v:.3g}" for n, v in e.items()
+                                                            if v is not None)
+                          for k, e in enumerate(o["evidence"])]
             name = f"seed {r['seed']} {t}"
-            fails += [f"F1 {name} {own:+.1f} %"] * (own > 2) + [f"F2 {name} {new:+.1f} %"] * (lo > 2)
-            fails += [f"F3 {name}"] * (bool(o["accepted"]) and not hi < -2)
+            fails += [f"F1 {name} {own:+.1f} %"] * bool(own > 2) + [f"F2 {name} {new:+.1f} %"] * bool(lo > 2)
+            fails += [f"F3 {name}"] * bool(o["accepted"] and not hi < -2)
             fails += [f"F4 {name}"] * o["control_clears"]
         lines.append(f"  CPU s {r['cpu_s']} (simulate, the diagnosis alone and with the new campaigns)")
     recs = rm._read(work / "record.jsonl") if (work / "record.jsonl").exists() else []
     for r in recs:
         lines.append(f"fl_thermal {r['split']}: test {r['test_campaigns']} campaign(s), "
-                     f"{r['test_rows']} rows; model=auto: {r['auto'][:90]}; CPU s {r['cpu_s']}")
+                     f"{r['test_rows']} rows; model=auto: {r.get('auto', 'not tried')[:8]}; "
+                     f"CPU s {r['cpu_s']}")
         for t, o in r["targets"].items():
-            (rb, ra), (mb, ma) = o["rmse"], o["mae"]
-            lines.append(f"  {t}: RMSE {rb:.3f} -> {ra:.3f} ({_pct(ra, rb):+.1f} %), MAE {mb:.3f} -> "
-                         f"{ma:.3f} ({_pct(ma, mb):+.1f} %); {o['cv_scheme']}, min p {o['min_p']:.2g}; "
-                         "accepted: "
-                         + ("; ".join(o["accepted"]) or "none")
+            # RMSE: diagnose's (deployed) and run's (batch: the predictions), MAE from the latter
+            (db, da), (rb, ra), (mb, ma) = o["test_rmse"], o["rmse"], o["mae"]
+            lines.append(f"  {t}: measured {o['measured']:.2f}; RMSE {db:.3f} -> {da:.3f} "
+                         f"({_pct(da, db):+.1f} %), batch {rb:.3f} -> {ra:.3f}; MAE {mb:.3f} -> {ma:.3f} "
+                         f"({_pct(ma, mb):+.1f} %); CV "
+                         f"{o['cv'][0]:.3f} -> {o['cv'][1]:.3f}; {o['cv_scheme']}, min p {o['min_p']:.2g}; "
+                         "accepted: " + ("; ".join(o["accepted"]) or "none")
                          + (f"; excluded {o['excluded']}" if o["excluded"] else ""))
-            fails += [f"F5 fl_thermal {r['split']} {t} {_pct(ra, rb):+.1f} %"] * (ra > 1.02 * rb)
+            lines += [f"    evidence {k + 1}: " + ", ".join(f"{n} {v:.3g}" for n, v in e.items()
+                                                            if v is not None)
+                      for k, e in enumerate(o.get("evidence", []))]
+            lines += [f"    fault check {f['sensor']}: jump ratio {f['jump']:.2f}, CV RMSE gain without it "
+                      f"{f['cv_pct']:+.2f} % (rows in range {f['in_range_pct']:+.2f} %), clears {f['clears']}, "
+                      f"accepted {f['accepted']}"
+                      for f in o.get("faults", [])]
+            worse = [f"F5 fl_thermal {r['split']} {t} {_pct(x, y):+.1f} %"
+                     for x, y in ((da, db), (ra, rb)) if x > 1.02 * y]
+            fails += worse[:1] if r["split"] in VERDICT else []
     lines += ["", "failures: " + ("; ".join(fails) or "none")]
     print(rm._wrapped(lines, 150))
 
@@ -256,7 +307,7 @@ def table(work: Path) -> None:
 def main(argv: list[str]) -> int:
     return run_commands(__doc__, {
         "scenario": lambda work: scenario(made_folder(work)),
-        "record": lambda work: record(made_folder(work)),
+        "record": lambda work, *splits: record(made_folder(work), list(splits) or list(SPLITS)),
         "table": lambda work: table(Path(work).resolve()),
     }, argv, cpu=sys.stderr)
 
