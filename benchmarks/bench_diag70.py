@@ -294,8 +294,8 @@ def table(work: Path) -> None:
                                                             if v is not None)
                       for k, e in enumerate(o.get("evidence", []))]
             lines += [f"    fault check {f['sensor']}: jump ratio {f['jump']:.2f}, CV RMSE gain without it "
-                      f"{f['cv_pct']:+.2f} % (rows in range {f['in_range_pct']:+.2f} %), clears {f['clears']}, "
-                      f"accepted {f['accepted']}"
+                      f"{f['cv_pct']:+.2f} % (rows in range {f['in_range_pct']:+.2f} %), "
+                      f"clears {f['clears']}, accepted {f['accepted']}"
                       for f in o.get("faults", [])]
             worse = [f"F5 fl_thermal {r['split']} {t} {_pct(x, y):+.1f} %"
                      for x, y in ((da, db), (ra, rb)) if x > 1.02 * y]
