@@ -62,6 +62,38 @@ Record (``fl_thermal``, 5 channels x 2 splits = 10 rows):
 
 Any failure is traced (which candidate, its CV gain in the held-out units' means vs within them,
 as bench_jig68 / bench_clean69 did) and reported; a rule only with its bar committed first.
+
+Measured (2026-12-02, stop 70, main 547d6bb9's src; 2 shared cores, load 7-14; CPU user + sys)
+--------------------------------------------------------------------------------------------
+Scenario (``scenario``; 57.6 s with the three records simulated and the 16 draws, 8.8 s of them):
+16 train campaigns, the campaigns scheme, 16 test blocks (min p 1.5e-5).  Test RMSE µm, MLR ->
+diagnosed, own 8 test campaigns | 128 new, the change's 90 % interval (%)::
+
+  seed  target  accepted                          own: MLR -> diagnosed | new: MLR -> diagnosed [90 %]
+  0     E_X     nothing                           0.7504                | 0.6794
+  0     E_Y     T_motor1 2 h lag +init (2 dir.)   1.4235 -> 1.0628      | 1.3462 -> 1.0163 [-29.5, -19.4]
+  0     E_Z     inputs x (A0 - 20)                5.8019 -> 0.9403      | 5.3558 -> 1.0251 [-82.5, -79.0]
+  7111  E_X     nothing                           0.6151                | 0.6960
+  7111  E_Y     inputs' 4 h lag +init;            1.6893 -> 1.5119      | 1.3627 -> 1.0975 [-25.8, -12.9]
+                T_bearing_r 1 h lag +init
+  7111  E_Z     inputs x (A0 - 20)                6.4131 -> 0.8710      | 5.3353 -> 0.9648 [-83.4, -80.4]
+  7112  E_X     nothing                           0.7531                | 0.6981
+  7112  E_Y     inputs x [A0 > 18.02]             1.8908 -> 1.5437      | 1.4816 -> 1.0896 [-30.1, -22.4]
+  7112  E_Z     inputs x (A0 - 20)                6.1400 -> 1.0521      | 5.0007 -> 0.9525 [-82.4, -79.3]
+
+failures: none (F1-F4).  Every accepted effect's interval lies below -2 %; the control never clears.
+
+Record (``record``; the defaults 17.5 s with the refused ``model=auto``): 90/10, 1,112 test rows,
+forward chaining, 6 test blocks (min p 0.016 > alpha): nothing can be accepted, nothing is.
+60/20/20, 2,223 test rows, 10 blocks: ch1, ch2 take S_spindle's 1 h lag, RMSE 9.53 -> 3.79 and
+7.77 -> 2.94 (MAE 9.21 -> 3.61, 7.59 -> 2.80), ch3-ch5 nothing.  F5: none.  ``model=auto``:
+refused, exit 2.  Informative (not under F5): 90/10 with ``diagnose.cv=campaigns`` takes the
+inputs' lags on all five, each better (mean RMSE 4.06 -> 3.25; 15.3 s); the families auto kept on
+60/20/20: lagbank ch1 1.49 -> 0.85, ch2 / ch3 nothing, arx ch5 nothing, hammerstein ch4 excludes
+T_t5 as a sensor fault, 1.84 -> 5.41 (+194 %; 120 s for the three).  Traced (``record WORK/trace
+...``, 262 s): hammerstein on all five excludes T_t5 too, ch1-ch4 +7.7 / +8.4 / +21.5 / +194 %;
+MLR at the defaults keeps it only because ch5's CV is 9.2 % worse without it (MLR on ch4 alone
+excludes it, +1.0 %); hammerstein on ch4 without the sensor_fault family accepts nothing.
 """
 
 from __future__ import annotations
