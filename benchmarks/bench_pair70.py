@@ -31,7 +31,18 @@ What is measured (written before anything ran)
   ``lathe_first_s`` at ``data.join.offset_s=1200`` (the error logger's start that much before
   the DAQ's) = ``lathe_first``; at 0 (what "taken as started together" reads) worse; replay = run.
 
-Measured: docs/own-data.md ("Two loggers, other units, the probes first").
+Measured (2026-12-02, every step once, 2 shared cores; docs/own-data.md, "Two loggers, other
+units, the probes first")
+-----------------------------------------------------------------------------------------
+``init``: one try on every folder (1.8-2.2 s CPU in process).  ``matrix`` (18 cells, 81.4 + 6.0 s
+CPU): mm, K and the Keysight K/mm export = their base (relative difference <= 9.7e-14), MET;
+``lathe_first_s`` at offset 1200 = ``lathe_first`` (0.0 difference), MET; at offset 0 (a ``run``
+each): dX 4.55 (mlr) / 2.32 (lagbank) µm against 1.84 / 1.52.  replay = run (<= 1.3e-15) in 14
+of 18 cells; MISSED on seed 7141 (base and mm alike): the sensor monitor excluded
+``T_NC_X1_drive`` twice (drift over its last 2 samples, the joined rows every 300 s), replay dX
+2.175 against run 1.827 (mlr), 2.131 against 2.105 (lagbank), the C pack cut at its first event
+(13 rows); the simulated run at 60 s (errors now and then) has none (replay = run, 1.807).
+Every C pack passed, promote = the run's mean where replay = run.
 """
 
 from __future__ import annotations
