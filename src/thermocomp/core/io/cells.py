@@ -63,6 +63,21 @@ class Cells:
     said: list = field(default_factory=list)
     runs: list = field(default_factory=list)         # a marked column's :class:`_Runs`, per file
 
+    def merged(self, other: Cells) -> Cells:
+        """These cells' findings and ``other``'s (another logger's files, scanned with their
+        own separators: pair70): one thousands separator where only one says one or both say
+        the same (two: none written, said), the marks and their runs of both."""
+        said, both = [*self.said, *other.said], (self.thousands, other.thousands)
+        thousands = self.thousands or other.thousands
+        if None not in both and both[0] != both[1]:
+            said.append(f"the two loggers' files group thousands apart ({both[0]!r} and "
+                        f"{both[1]!r}): no data.thousands written (one key reads both)")
+            thousands = None
+        marks = {m: dict(c) for m, c in self.marks.items()}
+        for mark, columns in other.marks.items():
+            marks.setdefault(mark, {}).update(columns)
+        return Cells(thousands, marks, said, [*self.runs, *other.runs])
+
     def longest(self, errors, sparse_targets: str = "auto") -> tuple[int, int, list]:
         """``(longest run of a mark's inside a file, at a file's start or end, lines said)``
         over the marked columns but an error column (a header in ``errors``) read as measured

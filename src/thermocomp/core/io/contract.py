@@ -155,6 +155,8 @@ def write_dataset(ds: Dataset, path: str | os.PathLike, fmt: str = "csv",
     manifest = ds.manifest.copy()
     manifest.index.name = "campaign"
     manifest["file"] = [f"{cid}.{fmt}" for cid in manifest.index]
+    # (a run of two loggers is written joined: its error file (pair70) no longer beside it)
+    manifest = manifest.drop(columns="error_file", errors="ignore")
     with atomic_dir(path) as tmp:
         for cid in manifest.index:
             df = ds.campaigns[cid]

@@ -584,7 +584,7 @@ def jumpy_temperatures(plan, ds) -> list[str]:
 
 
 # manifest columns that are the contract's or say one campaign, not a group of them
-NOT_GROUPS = {"campaign", "file", "split", "start", "notes", "continues"}
+NOT_GROUPS = {"campaign", "file", "split", "start", "notes", "continues", "error_file"}
 
 
 def group_columns(manifest: pd.DataFrame) -> dict[str, list[str]]:

@@ -9,7 +9,9 @@ A pair is two files of one folder whose names are one stem and a last word each 
 (each judged by its header as the read names it: a contract name, ``data.columns``,
 ``data.roles``, a length's unit; the error file may log temperatures too, an interferometer's
 air and material sensors).  The temperature file is the campaign's file (a manifest's ``file``),
-the stem its id in a folder without a manifest.
+the stem its id in a folder without a manifest.  A manifest may name a run's error file in its
+column ``error_file`` (extension, pair70: two loggers' files named apart, ``daq_0412.csv`` and
+``laser_0412.csv``), checked by :mod:`.manifest`.
 """
 
 from __future__ import annotations
@@ -34,6 +36,16 @@ _LAST_WORD = re.compile(r"^(.+?)[_\-. ]([^_\-. ]+)$")
 _KINDS = {"error": "E", "state": "S", "ambient": "T", "temperature": "T"}
 
 NO_ERROR = "no E_ column"     # the refusal of a campaign file without a measured error
+ERROR_FILE = "error_file"     # a manifest's column naming a run's error file (pair70)
+
+
+def named_error_file(root: Path, manifest: pd.DataFrame, cid: str) -> Path | None:
+    """The error file the manifest's ``error_file`` column names for campaign ``cid`` of the
+    folder ``root``; None where the column is absent or the cell empty (found by name then)."""
+    if ERROR_FILE not in manifest.columns:
+        return None
+    name = manifest.at[cid, ERROR_FILE]
+    return None if pd.isna(name) or not str(name).strip() else root / str(name).strip()
 
 
 def errors_elsewhere(exc: ContractError, root: Path, manifest: pd.DataFrame, cid: str,
@@ -54,7 +66,8 @@ def errors_elsewhere(exc: ContractError, root: Path, manifest: pd.DataFrame, cid
                 "temperature: the errors and the temperatures of one run in two files (two "
                 "loggers)? Two files are read as one run, joined by time, where their names "
                 "are one stem and a last word each (run03_temp.csv and run03_disp.csv): rename "
-                "them so, or join them into one file first, one row per time", file=exc.file)
+                f"them so, or name it in {MANIFEST}'s column {ERROR_FILE}, or join them into "
+                "one file first, one row per time", file=exc.file)
     return exc
 
 

@@ -15,7 +15,7 @@ from .contract import AMBIENT_C, MANIFEST, MANIFEST_REQUIRED, SPLITS, ContractEr
 from .encoding import UTF8, check_text, fields, text_codec, undecodable
 from .instants import on_clock, start_instants, start_stamp
 from .jsonlines import JSON_LINES_SUFFIXES
-from .loggers import logger_pairs, paired_id
+from .loggers import ERROR_FILE, logger_pairs, paired_id
 from .lvm import LVM_SUFFIXES
 from .matfile import MAT_SUFFIXES
 from .options import _OTHER_DELIMITERS, AUTO, ReadOptions, _first_line
@@ -77,6 +77,7 @@ def read_manifest(root: str | Path, opts: ReadOptions | None = None) -> pd.DataF
     if "split" not in raw.columns:    # every campaign train: data.test_fraction holds some out
         raw.insert(2, "split", "train")
     _check_manifest_rows(raw, path, root)
+    _check_error_files(raw, path, root)
     _check_continues(raw, path)
     manifest = raw.set_index("campaign")
     apply_split_overrides(manifest, opts.split_overrides, path)
@@ -248,6 +249,39 @@ def _check_manifest_rows(raw: pd.DataFrame, path: Path, root: Path) -> None:
             raise ContractError(message, file=path, column=column, row=row)
         seen[cid] = row
         files[(root / fname).resolve()] = row
+
+
+def _check_error_files(raw: pd.DataFrame, path: Path, root: Path) -> None:
+    """The ``error_file`` column (a run's other logger's file, pair70), where there is one: each
+    name a file of the folder, neither a campaign's file nor another run's error file."""
+    if ERROR_FILE not in raw.columns:
+        return
+    listed = {(root / str(f)).resolve(): row for row, f in enumerate(raw["file"], 1)}
+    seen: dict[Path, int] = {}
+    for row, name in enumerate(raw[ERROR_FILE], 1):
+        name = "" if pd.isna(name) else str(name).strip()
+        if not name:
+            continue           # (a run of one file, or its pair found by name)
+        where = (root / name).resolve()
+        problem = _error_file_problem(name, root, listed.get(where), seen.get(where))
+        if problem:
+            raise ContractError(problem, file=path, column=ERROR_FILE, row=row)
+        seen[where] = row
+
+
+def _error_file_problem(name: str, root: Path, campaign_row: int | None,
+                        earlier_row: int | None) -> str | None:
+    if os.path.isabs(name) or os.path.normpath(name).split(os.sep)[0] == "..":
+        return (f"error file {name!r} lies outside the dataset folder: files are paths relative "
+                "to it, without '..'")
+    if not (root / name).is_file():
+        return f"error file {name!r} not found in {root}"
+    if campaign_row is not None:
+        return (f"error file {name!r} is the campaign file of row {campaign_row}: the "
+                f"{ERROR_FILE} column names the run's other logger's file")
+    if earlier_row is not None:
+        return f"error file {name!r} is already listed at row {earlier_row}: one run per file"
+    return None
 
 
 def _check_continues(raw: pd.DataFrame, path: Path) -> None:

@@ -83,7 +83,14 @@ from .contract import (
 from .instants import START, start_instants, start_stamp
 from .joined import joined
 from .lines import Lines
-from .loggers import NO_ERROR, errors_elsewhere, partner, unrecorded
+from .loggers import (
+    ERROR_FILE,
+    NO_ERROR,
+    errors_elsewhere,
+    named_error_file,
+    partner,
+    unrecorded,
+)
 from .manifest import (
     apply_split_overrides,
     campaign_files,
@@ -168,7 +175,7 @@ def _resample(columns: dict, step: float, path: Path, max_factor: float,
 
 
 def read_campaign(path: str | Path, cfg: Mapping | ReadOptions | None = None,
-                  one_run: bool = False) -> tuple[pa.Table, dict]:
+                  one_run: bool = False, errors: Path | None = None) -> tuple[pa.Table, dict]:
     """Read and validate one campaign file into an Arrow table.
 
     Parameters
@@ -180,6 +187,10 @@ def read_campaign(path: str | Path, cfg: Mapping | ReadOptions | None = None,
         The ``data`` config (see :func:`read_dataset`).
     one_run : bool
         ``path`` is a folder's campaign file: a TDMS or MATLAB file of several runs is refused.
+    errors : Path, optional
+        The file of the run's errors, its other logger's, as a manifest's ``error_file`` names
+        it (:func:`.loggers.named_error_file`); without it, a file without an error column is
+        joined with the one its name pairs it with (:func:`.loggers.partner`).
 
     Returns
     -------
@@ -205,6 +216,8 @@ def read_campaign(path: str | Path, cfg: Mapping | ReadOptions | None = None,
         raise ContractError("campaign file not found", file=path)
     if path.stat().st_size == 0:
         raise ContractError("empty file", file=path)
+    if errors is not None:           # (a manifest's error_file: the pair named, not found)
+        return _read_pair(path, errors, opts)
     try:
         with as_read(path, opts, one_run=one_run) as (source, source_opts):   # a workbook: as CSV
             return _read_file(source, source_opts)
@@ -327,7 +340,8 @@ def _iter_campaigns(root: Path, manifest: pd.DataFrame, opts: ReadOptions
     periods, ranges = {}, {}
     for cid, row in manifest.iterrows():
         try:
-            table, report = read_campaign(root / row["file"], opts, one_run=True)
+            table, report = read_campaign(root / row["file"], opts, one_run=True,
+                                          errors=named_error_file(root, manifest, cid))
         except ContractError as exc:     # (a file of two loggers' pair: said so)
             raise errors_elsewhere(exc, root, manifest, cid, opts) from None
         periods[cid] = median_step(table.column(TIME).to_numpy())
@@ -880,7 +894,8 @@ def check_separate(src: Path, dest: Path) -> None:
 
 
 def _manifest_csv(manifest: pd.DataFrame) -> str:
-    out = manifest.copy()
+    # (a run of two loggers is written joined: its error file is no longer beside it)
+    out = manifest.drop(columns=ERROR_FILE, errors="ignore")
     if START in out.columns:
         out[START] = [t.isoformat() if pd.notna(t) else "" for t in out[START]]
     ordered = ["file", "split"] + [c for c in out.columns if c not in ("file", "split")]

@@ -17,6 +17,7 @@ from pathlib import Path
 
 from ...base.files import folder_digest
 from .contract import ContractError, Dataset
+from .loggers import named_error_file
 from .options import ReadOptions
 from .own_headers import with_own_header
 from .read import read_campaign, read_dataset, repaired_part
@@ -55,7 +56,9 @@ def _repair_train(ds: Dataset, report: dict, options: Mapping | None) -> None:
                     table = repaired_part(df, Path(ds.meta["path"]), options,
                                           entry["record_rows"][0])
                 else:
-                    table, _ = read_campaign(ds.file_path(cid), options, one_run=True)
+                    errors = named_error_file(Path(ds.meta["path"]), ds.manifest, cid)
+                    table, _ = read_campaign(ds.file_path(cid), options, one_run=True,
+                                             errors=errors)
             except ContractError as exc:
                 # the lab's own header of the column, as a batch's refusal names it
                 exc = with_own_header(exc, ds.meta.get("column_map", {}))

@@ -48,9 +48,10 @@ from ...core.io.historian import (
 )
 from ...core.io.historian_layout import long_layout
 from ...core.io.manifest import is_text
-from ...core.io.pairhead import paired_head, paired_lines
+from ...core.io.pairhead import error_files, pair_time, paired_head, paired_lines
 from ...core.io.plain import is_converted, is_lab_file, lab_as_csv
 from ...core.io.roles import excel_days_header, naming, split_unit
+from ...core.io.sniff import resolved
 from ...core.io.starts import stated_start
 from ...core.io.tables import peek_csv
 from ...core.io.timestamps import ELAPSED, keysight_stamp
@@ -95,9 +96,17 @@ def number_cells(src, manifest, sample, given: dict, opts):
     files = [f for f in files if is_text(f) and not is_converted(f, opts)]
     if not files or not is_text(sample):
         return opts, None
-    found = scanned(files, opts.delimiter, opts.decimal, opts.encoding, opts.thousands,
-                    list(opts.missing_values), peek_csv,
-                    decimal_given=str(given.get("decimal", "auto")) != "auto")
+    asked = io.ReadOptions.from_cfg(given)
+    # (pair70: the runs' error files, another logger's, their own separators and marks)
+    errors = [f for f in error_files(src, manifest, asked)
+              if is_text(f) and not is_converted(f, asked)]
+    found = None
+    for group, group_opts in ((files, opts), (errors, errors and resolved(errors[0], asked))):
+        if group:
+            cells = scanned(group, group_opts.delimiter, group_opts.decimal, opts.encoding,
+                            opts.thousands, list(opts.missing_values), peek_csv,
+                            decimal_given=str(given.get("decimal", "auto")) != "auto")
+            found = cells if found is None else found.merged(cells)
     for line in found.said:
         print(f"{src.name}: {line}")
     if found.thousands is not None and opts.thousands is None:
@@ -214,10 +223,10 @@ def _init(cfg: DictConfig) -> dict:
     sample = sample_file(src, manifest)
     long = long_period(sample, given)        # a historian's long file: the grid it is held onto
     opts, header, first, layout = head(sample, io.ReadOptions.from_cfg(given))
-    pair = paired_head(sample, io.ReadOptions.from_cfg(given), head) if manifest is not None \
-        else None
+    pair = paired_head(sample, manifest.index[0], manifest, io.ReadOptions.from_cfg(given),
+                       head) if manifest is not None else None
     if pair is not None:    # a run of two loggers: both files' columns, its rows the errors'
-        header, first, layout, same_separators = pair
+        header, first, layout = pair.header, pair.first, pair.layout
     cells_of_first = dict(zip(header, first))       # the first data row, by header
     order = slashed_order(sample, opts, header, cells_of_first)
     if order:              # (13/07/2026: day first, for every file: written to the config)
@@ -229,10 +238,16 @@ def _init(cfg: DictConfig) -> dict:
                  else "rows say (a day or month past 12)"))
     elapsed = elapsed_column(src, manifest, opts, header, cells_of_first)
     if elapsed:            # (a run past 24:00:00: each file's, a shorter run's too, read so)
-        given["time"] = ELAPSED
-        opts = replace(opts, time=ELAPSED)
         print(f"{src.name}: {elapsed!r} h:mm:ss past 24 h in a file: read as data.time="
               f"{ELAPSED!r}, a logger's time since its start, in every file")
+    elif pair is not None and pair_time(pair, sample, header, cells_of_first, opts):
+        elapsed = ELAPSED  # (both loggers' time h:mm:ss: one file's header said it, or none)
+        print(f"{sample.name} and {pair.errors.name}: {pair.error_time[0]!r} h:mm:ss as the "
+              f"temperatures' time: read as data.time={ELAPSED!r}, each logger's time since "
+              "its start, in both files (taken as started together)")
+    if elapsed:
+        given["time"] = ELAPSED
+        opts = replace(opts, time=ELAPSED)
     epoch = epoch_ms_column(header, cells_of_first, opts)
     if epoch:              # (a gateway's time stamp: read as seconds, 1000 times too long)
         given["units"] = {**(given.get("units") or {}), epoch: "ms"}
@@ -275,7 +290,7 @@ def _init(cfg: DictConfig) -> dict:
               f"error tag {tag!r} (written into the config: check it; the tags': "
               f"{intervals_said(long)})")
     defaults = OmegaConf.to_container(OmegaConf.load(conf_dir() / "data" / "default.yaml"))
-    if pair is not None and not pair[3]:     # each logger's file its own separators: detected
+    if pair is not None and not pair.same_separators:   # each logger's file its own: detected
         opts = replace(opts, delimiter="auto", decimal="auto")
     config = data_config(src, given, opts, roles, defaults, manifest)
     ds = open_source(cfg, detected=config)      # refused here as `run` would refuse it
