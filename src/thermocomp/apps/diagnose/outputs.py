@@ -159,19 +159,21 @@ def parted_lines(result) -> list[str]:
     """Where the deployed stream clamped a test input or its guard changed a correction, a line
     saying so and run's batch figures (the model's own prediction, ``*_as_run``) beside the
     deployed ones the table shows; nothing where they are one computation."""
-    guarded = {w: {t: n for t, n in g.items() if n} for w, g in result.guarded.items()}
-    if not any(result.clamped.values()) and not any(guarded.values()):
+    which = ("before", "after")
+    clamped = [result.clamped.get(w, 0) for w in which]
+    guarded = {t: [result.guarded.get(w, {}).get(t, 0) for w in which] for t in result.targets}
+    guarded = {t: n for t, n in guarded.items() if any(n)}
+    if not any(clamped) and not guarded:
         return []
-    causes = [f"{result.clamped.get(w, 0)} test row(s) {w} clamped to the training envelope"
-              for w in ("before", "after") if result.clamped.get(w)]
-    causes += [f"{w}: correction bounded or rate-limited by the guard (monitor.guard) on "
-               + ", ".join(f"{t} {n}" for t, n in g.items()) + " test row(s)"
-               for w, g in guarded.items() if g]
+    causes = [f"{clamped[0]} / {clamped[1]} test row(s) clamped to the training envelope"] * any(clamped)
+    causes += ["the guard (monitor.guard) bounded or rate-limited the correction on "
+               + ", ".join(f"{t} {b} / {a}" for t, (b, a) in guarded.items()) + " test row(s)"] * bool(guarded)
     as_run = "; ".join(f"{t} {TargetResult(d.before_as_run).test.rmse:.3f} -> "
                        f"{TargetResult(d.after_as_run).test.rmse:.3f}"
                        for t, d in result.targets.items() if d.after_as_run is not None)
-    return [f"test RMSE as deployed (promote/replay/export: the stream; {'; '.join(causes)}); "
-            f"`thermocomp run` scores the model's own prediction in batch: {as_run}"]
+    return [f"test RMSE as deployed (promote/replay/export: the stream; before / after: "
+            f"{'; '.join(causes)}); `thermocomp run` scores the model's own prediction in batch: "
+            f"{as_run}"]
 
 
 def summary_table(result, named: str = "") -> str:
