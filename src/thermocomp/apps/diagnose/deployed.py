@@ -28,9 +28,11 @@ from ...core.continuation import lead_ins
 from ...core.io.contract import Dataset
 from ...core.metrics import split_scores
 from ...core.scoring.evaluation import sample_period
-from ..deploy.streaming import GUARDED
 
 CLAMPED = "n_clamped"       # the replayed frame's count of inputs clamped in the row
+# its attrs' rows per target whose correction the guard changed (deploy.streaming.GUARDED; not
+# imported: the deploy app imports this one)
+GUARDED = "guarded"
 
 
 def deployed_scores(comp: Compensator, ds: Dataset, ids, measured: Mapping, stream_of: Callable,

@@ -167,7 +167,8 @@ def parted_lines(result) -> list[str]:
         return []
     causes = [f"{clamped[0]} / {clamped[1]} test row(s) clamped to the training envelope"] * any(clamped)
     causes += ["the guard (monitor.guard) bounded or rate-limited the correction on "
-               + ", ".join(f"{t} {b} / {a}" for t, (b, a) in guarded.items()) + " test row(s)"] * bool(guarded)
+               + ", ".join(f"{t} {b} / {a}" for t, (b, a) in guarded.items())
+               + " test row(s)"] * bool(guarded)
     as_run = "; ".join(f"{t} {TargetResult(d.before_as_run).test.rmse:.3f} -> "
                        f"{TargetResult(d.after_as_run).test.rmse:.3f}"
                        for t, d in result.targets.items() if d.after_as_run is not None)
