@@ -43,6 +43,10 @@ class CorrectionGuard:
     # the bound following the inputs on the training pattern (None: fixed; older pickles):
     # |step gain| (targets, inputs) and the inputs' training range, in the model's frame
     in_gain = in_lo = in_hi = None
+    # per target, the rows whose correction it changed (bounded, rate-limited, held) since the
+    # last reset: why a deployed figure leaves the model's batch one with no input clamped
+    # (depl70; None: older pickles until their first reset)
+    changed_ = None
 
     def __init__(self, targets: Sequence[str], lo, hi, max_rate_per_s, period_s: float,
                  lo_new=None, hi_new=None):
@@ -101,6 +105,7 @@ class CorrectionGuard:
         self._state = [FREE] * len(self.targets)
         self._free = True
         self._calm = np.zeros(len(self.targets), dtype=np.int64)
+        self.changed_ = np.zeros(len(self.targets), dtype=np.int64)
 
     def snapshot(self) -> tuple:
         return (None if self._prev is None else self._prev.copy(), list(self._state),
@@ -160,6 +165,7 @@ class CorrectionGuard:
         out = np.minimum(np.maximum(out, lo), hi)
         state[outside & ~held] = BOUNDED
         events = []
+        self.changed_ = (0 if self.changed_ is None else self.changed_) + (state != FREE)
         self._calm = np.where(state == FREE, self._calm + 1, 0)
         for k, new in enumerate(state):
             if new == FREE and self._calm[k] < CALM:
@@ -172,6 +178,15 @@ class CorrectionGuard:
         self._free = all(s == FREE for s in self._state)
         self._prev = out
         return out, events
+
+
+def guard_changes(deployed) -> np.ndarray | None:
+    """A copy of the rows per target whose correction ``deployed``'s guard changed since its
+    reset (:attr:`CorrectionGuard.changed_`); None without a guard (the plain stream)."""
+    guard = getattr(deployed, "guard", None)
+    if guard is None:
+        return None
+    return np.zeros(len(guard.targets), np.int64) if guard.changed_ is None else guard.changed_.copy()
 
 
 def widening(x: np.ndarray, lo: np.ndarray, hi: np.ndarray, gain: np.ndarray,

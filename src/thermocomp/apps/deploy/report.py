@@ -37,6 +37,7 @@ from ...core.metrics import RMSE
 from ...core.timerule import stream_start
 from .adapt import adapt_figures, finite_rms
 from .adaptive import AdaptiveCompensator
+from .guard import guard_changes
 from .streaming import OutOfEnvelopeError, StreamingCompensator, batch_prediction, warm
 from .surveillance import NEW_STATE
 
@@ -50,6 +51,7 @@ class Streamed:
     seconds: float                     # time spent in the step loop
     events: list = field(default_factory=list)     # the adaptive compensator's, in order
     excluded: list = field(default_factory=list)   # sensors excluded after the last row
+    guarded: np.ndarray | None = None  # rows per target whose correction the guard changed
 
 
 def plain(deployed) -> StreamingCompensator:
@@ -123,6 +125,7 @@ def stream_rows(deployed, campaign: pd.DataFrame, cid: str = "", file=None,
         warm(deployed, lead_in, campaign)
     except OutOfEnvelopeError as exc:
         raise ContractError(f"campaign {cid}: {exc}", file=file) from None
+    warmed = guard_changes(deployed)
     step = deployed._step   # returns the clamp count too
     start = clock.perf_counter()
     i = 0
@@ -144,8 +147,9 @@ def stream_rows(deployed, campaign: pd.DataFrame, cid: str = "", file=None,
         raise ContractError(f"campaign {cid}: {exc}", file=file, row=i + 1) from None
     seconds = clock.perf_counter() - start
     excluded = list(deployed.excluded_inputs) if adaptive else []
+    guarded = None if warmed is None else guard_changes(deployed) - warmed
     deployed.reset()
-    return Streamed(y, clamped, seconds, events, excluded)
+    return Streamed(y, clamped, seconds, events, excluded, guarded)
 
 
 def complete_rows(campaign: pd.DataFrame, columns) -> int:
@@ -170,7 +174,9 @@ def replay_report(deployed, campaigns: Mapping[str, pd.DataFrame],
         ``rmse``, of the residual the deployed correction leaves (missing
         measurements skipped); ``rmse_batch``, the batch prediction's over the
         complete rows; ``us_per_sample``; ``clamped_samples``; ``max_abs_correction``
-        and ``all_finite`` of the deployed stream; ``streamed_range`` [min, max] of it;
+        and ``all_finite`` of the deployed stream; ``guarded_samples``, the samples whose
+        correction the guard bounded, rate-limited or held (None without a guard);
+        ``streamed_range`` [min, max] of it;
         ``bound``, the guard's [lo, hi] or null), ``excluded_inputs`` (sensors excluded
         at the end of any campaign, sorted) and ``events`` (every event with its
         ``campaign``), plus :func:`summary`'s ``adaptive`` and ``pod``, and for the adaptive
@@ -188,6 +194,7 @@ def replay_report(deployed, campaigns: Mapping[str, pd.DataFrame],
     diffs, residuals, batch_residuals, outputs, frozen = [], [], [], [], []
     events, excluded = [], set()
     clamps, seconds, n, hours = 0, 0.0, 0, 0.0
+    guarded = np.zeros(len(deployed.targets_), np.int64)
     from ...base.progress import bar
 
     rows = bar(total=sum(len(df) for df in campaigns.values()), desc="replay", unit="row")
@@ -211,6 +218,7 @@ def replay_report(deployed, campaigns: Mapping[str, pd.DataFrame],
         events += run.events
         excluded.update(run.excluded)
         clamps += int((run.clamped > 0).sum())
+        guarded += 0 if run.guarded is None else run.guarded
         seconds += run.seconds
         n += len(df)
         hours += streamed_hours(df, getattr(deployed, "period_s", 1.0))
@@ -231,6 +239,7 @@ def replay_report(deployed, campaigns: Mapping[str, pd.DataFrame],
                   "us_per_sample": us,
                   "rmse_batch": rms(bres[:, j]),
                   "clamped_samples": clamps,
+                  "guarded_samples": None if guard is None else int(guarded[j]),
                   "max_abs_correction": float(np.max(np.abs(out[:, j]))) if n else 0.0,
                   "all_finite": bool(np.all(np.isfinite(out[:, j]))),
                   "streamed_range": [float(np.min(out[:, j])), float(np.max(out[:, j]))] if n else None,
@@ -322,6 +331,12 @@ def replay_lines(report: dict) -> list[str]:
         lines.append(f"clamped: {clamped} of {n} samples had an input outside the training "
                      f"envelope (promote.envelope.policy={policy}); RMSE is the clamped "
                      "stream's, RMSE batch the model's own")
+    guarded = {t: r["guarded_samples"] for t, r in targets.items() if r.get("guarded_samples")}
+    if guarded:     # why RMSE leaves RMSE batch where no input was clamped (depl70)
+        n = next(iter(targets.values()))["n_samples"]
+        lines.append("guarded: " + ", ".join(f"{t} {k}" for t, k in guarded.items())
+                     + f" of {n} samples had the correction bounded or rate-limited by the guard "
+                     "(monitor.guard); RMSE is the guarded stream's, RMSE batch the model's own")
     if report["adaptive"]:
         lines.append(f"events: {len(report['events'])}, excluded at a campaign's end: "
                      f"{', '.join(report['excluded_inputs']) or 'none'}"

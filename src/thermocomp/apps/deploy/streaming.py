@@ -84,9 +84,11 @@ from ...core.frame import ambient_c0, context_record
 from ...core.io.contract import is_ambient, manifest_ambient
 from ...core.metrics import split_scores
 from ...core.timerule import SampleClock
+from .guard import guard_changes
 
 POLICIES = ("clamp", "refuse", "off")
 STREAM_ID = "stream"
+GUARDED = "guarded"     # replay's frame attrs: rows per target the correction guard changed
 
 
 class OutOfEnvelopeError(ValueError):
@@ -691,8 +693,17 @@ def end_states(deployed, campaigns: Mapping[str, pd.DataFrame],
 def replay(streaming: StreamingCompensator, campaign: pd.DataFrame, chunk: int | None = None,
            lead_in: pd.DataFrame | None = None) -> pd.DataFrame:
     """Stream one whole campaign from its start (:func:`warm`), in blocks of ``chunk`` samples
-    (all at once if None)."""
+    (all at once if None).  Of an adaptive compensator the frame's ``attrs[GUARDED]`` holds,
+    per target, the campaign's rows whose correction its guard changed (the lead-in's not)."""
     warm(streaming, lead_in, campaign)
+    warmed = guard_changes(streaming)
+    out = _streamed(streaming, campaign, chunk)
+    if warmed is not None:
+        out.attrs[GUARDED] = dict(zip(streaming.targets_, (guard_changes(streaming) - warmed).tolist()))
+    return out
+
+
+def _streamed(streaming, campaign: pd.DataFrame, chunk: int | None) -> pd.DataFrame:
     step = chunk or max(len(campaign), 1)
     if isinstance(streaming, StreamingCompensator):
         # predict's blocks on the arrays read once: a DataFrame per block of 7 rows was most of

@@ -5,11 +5,16 @@ exported code run it as a stream (by default inside the adaptive compensator: it
 and correction guard, matrix61) whose inputs are held to the training envelope
 (``promote.envelope``: a sample that leaves the training pattern beyond the envelope is clamped,
 :class:`~thermocomp.apps.deploy.streaming.StreamingCompensator`).  Where no test sample is
-clamped the two are one computation (within rounding); where one is, they part: a lag bank
+clamped, no sensor excluded and no correction guarded the two are one computation (within
+rounding); where one is, they part: a lag bank
 on a planted ambient law (``yearround_spindle`` seed 6003) was diagnosed at 0.66 µm on E_Z
-and deployed at 0.688, the last sample of test campaign K03 clamped (``bench_diagnosed_to_code59``).
+and deployed at 0.688, the last sample of test campaign K03 clamped (``bench_diagnosed_to_code59``);
+on ``fl_thermal``'s 60/20/20 split no input is clamped but the guard bounds MLR's correction of
+E_ch1 / E_ch2 to the training error range widened by ``monitor.guard.margin`` (depl70: 9.53 /
+7.77 µm deployed, 9.57 / 7.95 in batch).
 ``diagnose`` reports the deployed figures; the batch ones stay beside them (``*_as_run``,
-what ``thermocomp run`` of the written config puts in ``metrics.json``).
+what ``thermocomp run`` of the written config puts in ``metrics.json``), with the rows clamped
+and, per target, the rows guarded.
 """
 
 from __future__ import annotations
@@ -25,11 +30,16 @@ from ...core.metrics import split_scores
 from ...core.scoring.evaluation import sample_period
 
 CLAMPED = "n_clamped"       # the replayed frame's count of inputs clamped in the row
+# its attrs' rows per target whose correction the guard changed (deploy.streaming.GUARDED; not
+# imported: the deploy app imports this one)
+GUARDED = "guarded"
 
 
 def deployed_scores(comp: Compensator, ds: Dataset, ids, measured: Mapping, stream_of: Callable,
-                    train: Mapping, statistic: str, points) -> tuple[dict, dict, int]:
-    """``({target: {"test": ...}}, {campaign: predicted}, rows clamped)`` of ``comp`` deployed.
+                    train: Mapping, statistic: str, points) -> tuple[dict, dict, int, dict]:
+    """``({target: {"test": ...}}, {campaign: predicted}, rows clamped, {target: rows guarded})``
+    of ``comp`` deployed (rows guarded: whose correction the guard bounded, rate-limited or held;
+    ``{}`` for the plain stream).
 
     ``stream_of(comp, train)`` gives ``replay(campaign, lead_in)``: the campaign streamed from
     its start through what ``promote`` registers (the plain stream, its envelope fitted on
@@ -45,10 +55,12 @@ def deployed_scores(comp: Compensator, ds: Dataset, ids, measured: Mapping, stre
     predicted = {c: replay(ds.campaigns[c], leads.get(c)) for c in ids}
     clamped = int(sum(int(np.count_nonzero(p[CLAMPED].to_numpy())) for p in predicted.values()
                       if CLAMPED in p))
+    guarded = {t: sum(int(p.attrs[GUARDED][t]) for p in predicted.values())
+               for t in comp.targets_} if all(GUARDED in p.attrs for p in predicted.values()) else {}
     dt = sample_period(ds, ids)
     out = {}
     for t in comp.targets_:
         y = {c: measured[c][t].to_numpy() for c in ids}
         r = {c: y[c] - predicted[c][t].to_numpy() for c in ids}
         out[t] = {"test": split_scores(y, r, dt, statistic, points, with_before_after=True)}
-    return out, predicted, clamped
+    return out, predicted, clamped, guarded

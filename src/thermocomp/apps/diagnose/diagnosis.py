@@ -92,6 +92,8 @@ class Diagnosis:
     # how the test figures were scored: "deployed" (streamed, envelope on), else "batch" (why)
     scored: str = "batch"
     clamped: dict = field(default_factory=dict)        # "before"/"after" -> test rows clamped
+    # "before"/"after" -> {target: test rows whose correction the guard changed}
+    guarded: dict = field(default_factory=dict)
 
     @property
     def primary(self) -> str:
@@ -117,9 +119,9 @@ class Diagnosis:
         return json_safe({
             "target": t,
             "model": self.model,
-            "before": _summary(te_b, d.original_cv_rmse),
+            "before": _summary(te_b, d.original_cv_rmse) | self._as_run(d.before_as_run, "before", t),
             "effects": effects,
-            "after": _summary(te_a, d.final_cv_rmse) | self._as_run(d.after_as_run, "after"),
+            "after": _summary(te_a, d.final_cv_rmse) | self._as_run(d.after_as_run, "after", t),
             "dataset": self.dataset,
             "mode": self.mode,
             "ati": self.ati,
@@ -162,13 +164,15 @@ class Diagnosis:
         })
 
 
-    def _as_run(self, as_run: dict | None, which: str) -> dict:
-        """The batch test RMSE (``thermocomp run``'s of the written config) and the test rows
-        the deployed stream clamped, beside deployed figures."""
+    def _as_run(self, as_run: dict | None, which: str, target: str) -> dict:
+        """The batch test RMSE (``thermocomp run``'s of the written config), the test rows the
+        deployed stream clamped and those of ``target`` whose correction its guard changed,
+        beside deployed figures (why the two differ)."""
         if as_run is None:
             return {}
         return {"test_rmse_as_run": TargetResult(as_run).test.rmse,
-                "test_rows_clamped": self.clamped.get(which, 0)}
+                "test_rows_clamped": self.clamped.get(which, 0),
+                "test_rows_guarded": self.guarded.get(which, {}).get(target)}
 
 
 def test_scores(comp: Compensator, ds: Dataset, ids, mode: str, statistic: str, points
@@ -394,7 +398,7 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
     after_scores, after_pred = test_scores(after, ds, test_ids, mode, e_p95_statistic, e_p95_points)
     out = {t: TargetDiagnosis(t, r, original[t].rmse, r.final.rmse, before_scores[t], after_scores[t])
            for t, r in found.items()}
-    scored, clamped = _deployed(out, {"before": (before, before_pred), "after": (after, after_pred)},
+    scored, clamped, guarded = _deployed(out, {"before": (before, before_pred), "after": (after, after_pred)},
                                 ds, train_ids, test_ids, mode, stream_of,
                                 e_p95_statistic, e_p95_points)
     if scheme == "forward":
@@ -419,28 +423,30 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
            "train_campaigns": train_ids, "test_campaigns": test_ids}
     return Diagnosis(model_name or type(compensator.estimator).__name__, ds.name, mode, out,
                      excluded, before, after, {"before": before_pred, "after": after_pred},
-                     options, cv, time.perf_counter() - t0, test_sensors, ati, scored, clamped)
+                     options, cv, time.perf_counter() - t0, test_sensors, ati, scored, clamped,
+                     guarded)
 
 
 def _deployed(out: dict, models: dict, ds, train_ids, test_ids, mode, stream_of, statistic,
-              points) -> tuple[str, dict]:
+              points) -> tuple[str, dict, dict]:
     """Put the deployed test figures of ``models`` (``{"before"|"after": (fitted, predictions)}``)
-    in ``out``'s TargetDiagnosis, the batch ones kept as ``*_as_run``; ``(scored, clamped)``."""
+    in ``out``'s TargetDiagnosis, the batch ones kept as ``*_as_run``; ``(scored, clamped,
+    guarded)``."""
     if stream_of is None:
-        return "batch", {}
+        return "batch", {}, {}
     if mode != "simulation":     # the stream runs in simulation: one_step's figures stay batch
-        return f"batch (eval.mode={mode})", {}
+        return f"batch (eval.mode={mode})", {}, {}
     train = {c: ds.campaigns[c] for c in train_ids}
-    scores, clamped = {}, {}
+    scores, clamped, guarded = {}, {}, {}
     try:
         for which, (comp, pred) in models.items():
             measured = {c: m for c, (m, _) in pred.items()}
-            scores[which], _, clamped[which] = deployed_scores(
+            scores[which], _, clamped[which], guarded[which] = deployed_scores(
                 comp, ds, test_ids, measured, stream_of, train, statistic, points)
     except ValueError as exc:    # a model without the streaming protocol: its batch figures
         logger.warning(f"diagnose: the test figures are run's (batch), not the deployed "
                        f"stream's: {exc}")
-        return "batch (not streamed)", {}
+        return "batch (not streamed)", {}, {}
     for t, d in out.items():
         d.before_as_run, d.after_as_run = d.before, d.after
         d.before, d.after = scores["before"][t], scores["after"][t]
@@ -448,4 +454,4 @@ def _deployed(out: dict, models: dict, ds, train_ids, test_ids, mode, stream_of,
         logger.info(f"diagnose: the deployed stream clamps {clamped['after']} test row(s) to the "
                     "training envelope (promote.envelope); before/after are its figures, run's "
                     "batch ones are after.test_rmse_as_run")
-    return "deployed", clamped
+    return "deployed", clamped, guarded

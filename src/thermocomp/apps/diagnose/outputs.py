@@ -155,6 +155,28 @@ def tracked(result) -> tuple[dict, dict]:
     return metrics, tags
 
 
+def parted_lines(result) -> list[str]:
+    """Where the deployed stream clamped a test input or its guard changed a correction, a line
+    saying so and run's batch figures (the model's own prediction, ``*_as_run``) beside the
+    deployed ones the table shows; nothing where they are one computation."""
+    which = ("before", "after")
+    clamped = [result.clamped.get(w, 0) for w in which]
+    guarded = {t: [result.guarded.get(w, {}).get(t, 0) for w in which] for t in result.targets}
+    guarded = {t: n for t, n in guarded.items() if any(n)}
+    if not any(clamped) and not guarded:
+        return []
+    causes = [f"{clamped[0]} / {clamped[1]} test row(s) clamped to the training envelope"] * any(clamped)
+    causes += ["the guard (monitor.guard) bounded or rate-limited the correction on "
+               + ", ".join(f"{t} {b} / {a}" for t, (b, a) in guarded.items())
+               + " test row(s)"] * bool(guarded)
+    as_run = "; ".join(f"{t} {TargetResult(d.before_as_run).test.rmse:.3f} -> "
+                       f"{TargetResult(d.after_as_run).test.rmse:.3f}"
+                       for t, d in result.targets.items() if d.after_as_run is not None)
+    return [f"test RMSE as deployed (promote/replay/export: the stream; before / after: "
+            f"{'; '.join(causes)}); `thermocomp run` scores the model's own prediction in batch: "
+            f"{as_run}"]
+
+
 def summary_table(result, named: str = "") -> str:
     """What the stage prints: per target, test RMSE before -> after and the accepted effects;
     ``named``: what the header says after the model (`` ati=cmeans``)."""
@@ -168,14 +190,7 @@ def summary_table(result, named: str = "") -> str:
         before, after = TargetResult(d.before).test.rmse, TargetResult(d.after).test.rmse
         lines.append(f"{t:<{w}} {before:>16.2f} -> {after:>6.2f}   "
                      f"{d.original_cv_rmse:>9.2f} -> {d.final_cv_rmse:>6.2f}   {acc}")
-    if result.clamped.get("after") or result.clamped.get("before"):
-        # the deployed stream held test inputs to the training envelope: run's batch figures differ
-        as_run = "; ".join(f"{t} {TargetResult(d.after_as_run).test.rmse:.3f}"
-                           for t, d in result.targets.items() if d.after_as_run is not None)
-        lines.append(f"test RMSE as deployed (promote/replay/export: the stream, "
-                     f"{result.clamped.get('after', 0)} test row(s) clamped to the training "
-                     f"envelope); `thermocomp run` of the written config scores it in batch: "
-                     f"after {as_run}")
+    lines += parted_lines(result)
     cv = result.cv
     samples = "measured samples" if cv.get("measured_rows") is not None else "samples"
     lines.append(f"acceptance test: {cv['test_blocks']} time blocks of ~{cv['block_samples']} {samples} "

@@ -257,11 +257,15 @@ def markdown(jsons: dict[str, dict], figures: dict[str, list[str]] | None = None
                   "reproduces the \"after\" figures and can be swept and promoted like any model:", "",
                   "```", rerun, "```", ""]
         clamped = {t: j["after"].get("test_rows_clamped") for t, j in jsons.items()}
-        if any(clamped.values()):
-            # the deployed stream held test inputs to the training envelope: run scores in batch
+        guarded = {t: j["after"].get("test_rows_guarded") for t, j in jsons.items()}
+        if any(clamped.values()) or any(guarded.values()):
+            # the deployed stream held test inputs to the training envelope or its guard bounded
+            # a correction: run scores the model's own prediction in batch
             lines += ["\"After\" is the model as deployed (promote, replay, exported code: "
-                      f"{max(clamped.values())} test row(s) clamped to the training envelope); "
-                      "this run scores it in batch: test RMSE "
+                      f"{max(n or 0 for n in clamped.values())} test row(s) clamped to the "
+                      "training envelope; corrections bounded or rate-limited by the guard on "
+                      + (", ".join(f"{t} {n}" for t, n in guarded.items() if n) or "none")
+                      + " test row(s)); this run scores it in batch: test RMSE "
                       + ", ".join(f"{t} {j['after']['test_rmse_as_run']:.3f} {unit(t)}"
                                   for t, j in jsons.items() if clamped[t] is not None) + ".", ""]
     lines.append(f"_Diagnosis time: {first['seconds']:.1f} s._")
