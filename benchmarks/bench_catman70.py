@@ -174,6 +174,9 @@ def initialised(root: Path, name: str, extra: list[str]) -> None:
     if name == "rig_b":
         path = path / "ISO230-3_week17.txt"
     rc, said, cpu = stage("init", str(path), *extra, f"out={root / f'init-{name}'}")
+    written = root / f"init-{name}" / "conf" / "data" / f"{path.stem}.yaml"
+    if name == "rig_b" and written.exists():     # (the matrix reads data=<record name>)
+        written.replace(written.with_name("rig_b.yaml"))
     print(json.dumps({"init": name, "extra": extra, "rc": rc, "said": said[:600],
                       "cpu": round(cpu, 2)}), flush=True)
 

@@ -67,6 +67,7 @@ class ReadOptions:
     val_fraction: float | None = None
     split_order: list = field(default_factory=lambda: list(SPLIT_ORDER))
     sheet: str | None = None      # a workbook's sheet (None: the first)
+    runs_at_pauses: bool = False  # one file's runs parted where its time pauses (.runs)
     # internal (no data config key): "keep" leaves missing values NaN; "keep_errors" only the
     # E_ columns' (a volumetric dataset's distances not measured), the rest repaired
     missing: str = "repair"
@@ -117,6 +118,7 @@ class ReadOptions:
             val_fraction=_fraction(cfg, "val_fraction"),
             split_order=_split_order(cfg),
             sheet=None if cfg.get("sheet") is None else str(cfg.get("sheet")),
+            runs_at_pauses=_flag(cfg, "runs_at_pauses"),
         )
         opts._check()
         return opts
@@ -215,6 +217,13 @@ def _roles(cfg: Mapping) -> dict:
     if run is not None:
         out[RUN_ROLE] = run.strip()
     return out
+
+
+def _flag(cfg: Mapping, key: str) -> bool:
+    value = cfg.get(key, False)
+    if not isinstance(value, bool):
+        raise ContractError(f"data.{key} must be true or false, got {value!r}")
+    return value
 
 
 def _missing_values(cfg: Mapping) -> list:
