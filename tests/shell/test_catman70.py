@@ -193,3 +193,27 @@ def test_the_compiled_stream_reads_a_catman_easy_file_as_the_reader_does(tmp_pat
     got = pd.read_csv(io.BytesIO(done.stdout)).to_numpy(float)
     want = pd.read_csv(next((tmp_path / "code" / "check").glob("*/expected.csv"))).to_numpy(float)
     assert len(got) == ROWS and np.abs(got[:len(want)] - want).max() < 1e-9
+
+
+@needs_cc
+def test_the_compiled_stream_restarts_each_appended_test_as_the_reader_splits_them(tmp_path):
+    """Before: the raw UTF-16 file read as no header ('lacks input column T_air'); converted to
+    UTF-8, its en-US dates refused (TC_SLASHED 0: the order was not looked for in a UTF-16
+    file) and, given data.time, the three tests streamed as one (the held-out test's
+    corrections off by the state the others left)."""
+    path = _week(tmp_path / "week17.txt")
+    common = [f"data.path={path}", "data.runs_at_pauses=true", "data.test_fraction=0.34",
+              "data.roles.error=['MCS*']"]
+    assert main(["run", *common, *FAST, "model=lagbank", f"out={tmp_path / 'run'}"]) == 0
+    assert main(["export", *common, "track=false", "export.format=c",
+                 f"export.model={tmp_path / 'run' / 'model.pkl'}", f"out={tmp_path / 'code'}"]) == 0
+    checked_pack(tmp_path / "code")
+    stream = str(tmp_path / "code" / "stream")
+    done = subprocess.run([stream], input=path.read_bytes(), capture_output=True)
+    assert done.returncode == 2 and b"line 1 is UTF-16 text (its byte-order mark)" in done.stderr
+    utf8 = path.read_bytes().decode("utf-16").encode("utf-8")
+    done = subprocess.run([stream], input=utf8, capture_output=True)
+    assert done.returncode == 0, done.stderr
+    got = pd.read_csv(io.BytesIO(done.stdout)).to_numpy(float)
+    want = pd.read_csv(next((tmp_path / "code" / "check").glob("*/expected.csv"))).to_numpy(float)
+    assert len(got) == 3 * ROWS and np.abs(got[2 * ROWS:][:len(want)] - want).max() < 1e-9

@@ -22,10 +22,11 @@ DRIVER = r"""/* stream.c: CSV rows of raw inputs on stdin -> corrections C_<axis
  * campaign's first, as the served model reads it; every time of a stream in the form of its
  * first; with TC_ELAPSED (data.time=elapsed) a logger's h:mm:ss since the start, 59:59:00.5.
  * A cell that is no number (a time of day alone, 08:45:00) is refused with its row.
- * A blank row, a `reset` column holding 1, or a new value in the run-number column
- * TC_RUN_COLUMN starts a campaign (the row is its reference).  With TC_ADAPT, a row carrying
- * a measured error in a TC_ERROR_NAMES column (E_<axis>, optional; blank: none) is a reference
- * measurement: its correction is printed, then the bias learns.
+ * A blank row, a `reset` column holding 1, a new value in the run-number column
+ * TC_RUN_COLUMN, or a time more than TC_PAUSE_S after the last (data.runs_at_pauses: a lab's
+ * tests appended in one file, catman70) starts a campaign (the row is its reference).  With
+ * TC_ADAPT, a row carrying a measured error in a TC_ERROR_NAMES column (E_<axis>, optional;
+ * blank: none) is a reference measurement: its correction is printed, then the bias learns.
  * With `--state FILE` a restarted process goes on where the last one stopped: FILE, where it
  * exists, is read back at the start (the compensator's tc_state, the stream's clock and its
  * run), and written after every row (to FILE.tmp, then renamed over FILE: a process killed
@@ -40,7 +41,8 @@ DRIVER = r"""/* stream.c: CSV rows of raw inputs on stdin -> corrections C_<axis
  * (a logger restarted), with its unit row, is left out and said; a cell holding a mark of
  * data.missing_values (TC_MISSING: `---`) is a missing value, as an empty cell is, and a cell
  * of an input that is no number nor a mark is refused with its row, as the reader refuses it.
- * A file in fixed-width columns, JSON Lines, a TDMS log or a MATLAB file is refused: convert
+ * A file in fixed-width columns, JSON Lines, UTF-16 text, a TDMS log or a MATLAB file is
+ * refused: convert
  * it to CSV first (the export's check/<campaign>/rows.csv holds such a record's rows as this
  * reads them).
  * With `--check FILE` (a pack's check/<campaign>/expected.csv, export writes them with the
@@ -703,6 +705,14 @@ int main(int argc, char **argv) {
     }
     if (!next_line(line, sizeof line, 1)) { fprintf(stderr, "stream: no header on stdin\n"); return 2; }
     if (strncmp(line, "\xEF\xBB\xBF", 3) == 0) memmove(line, line + 3, strlen(line + 3) + 1);
+    if ((unsigned char)line[0] + (unsigned char)line[1] == 0xFF + 0xFE
+        && ((unsigned char)line[0] == 0xFF || (unsigned char)line[0] == 0xFE)) {
+        /* (catman70) a Unicode export (catman AP's, Excel's 'Unicode Text'): two bytes a
+           character, whose zero bytes no line of CSV text holds */
+        fprintf(stderr, "stream: line 1 is UTF-16 text (its byte-order mark): convert the file "
+                "to UTF-8 first (iconv -f UTF-16 -t UTF-8), as the model's reader reads it\n");
+        return 2;
+    }
     if (strncmp(line, "TDSm", 4) == 0 || (strncmp(line, "MATLAB ", 7) == 0
                                           && strstr(line, "MAT-file") != NULL)) {
         /* a lab's binary log fed as it is: its bytes are no header to name a column of */
@@ -911,6 +921,16 @@ int main(int argc, char **argv) {
             if (time_of(stamp, row, 1.0, 0.0, &t) != 0) return 2;
         } else if (time_col >= 0 && time_of(cells[time_col], row, scale_of[time_col],
                                             offset_of[time_col], &t) != 0) return 2;
+        if (TC_PAUSE_S > 0 && isfinite(t) && !s.first && isfinite(s.t_read)
+            && t - s.t_read > TC_PAUSE_S) {
+            /* (catman70) the logger silent longer than data.runs_at_pauses' pause: the next
+               test, a campaign of its own (as the reader splits the file), its clock from here */
+            restart(&s, 1);
+            if (time_col >= 0 && clock_col >= 0) {
+                if (time_of(stamp, row, 1.0, 0.0, &t) != 0) return 2;
+            } else if (time_of(cells[time_col], row, scale_of[time_col], offset_of[time_col],
+                               &t) != 0) return 2;
+        }
         if (TC_SUBSTITUTE_TIME && isfinite(t) && !s.first && isfinite(s.t_read) && t <= s.t_read
             && !isfinite(s.t_back) && said_back++ < 5)
             /* (restart66) the time rule (timerule.py): said where it sets in */
