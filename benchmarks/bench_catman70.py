@@ -59,6 +59,27 @@ What is measured (written before anything ran)
 
 No rule is adopted from these records: they are a check, not a tuning set.
 
+Measured (2026-12-02, every step once, 2 shared cores, other sessions' load; docs/own-data.md)
+----------------------------------------------------------------------------------------------
+``init rig_a`` at 49dcf7b7: "no column reads as a measured error ... the numeric columns: 's'"
+(the unit row taken for the header); with ``data.roles.error=['Sonde*']``: "'1/min' is not
+numeric ('Analogausgang Umrichter')"; with ``data.roles.time='Zeit*'`` too: "names no header":
+stuck after 3 tries.  ``rig_b``: the same first refusal ("the numeric columns: none"), then
+"'°C' is not numeric ('04/26/2027 07:00:00')" (the T0 row read as a sample): stuck after 2.
+Mended (278ac2ca, b04c5915): the channel rows left out, catman's time channel the time,
+``data.runs_at_pauses``; stream.c alike (TC_PAUSE_S, the UTF-16 refusal, the dates' order of a
+UTF-16 file).  After: rig_a 1 try (2.2-2.9 s CPU, three times), rig_b 2 (the second with
+``data.runs_at_pauses=true``, as the first's warning says; 2.0-2.2 s).  ``matrix`` (test RMSE
+X1 / Y1 / X2 / Y2 / Z µm; before 3.28 / 7.43 / 5.56 / 8.09 / 49.31 and 5.76 / 14.18 / 9.97 /
+15.21 / 96.84): rig_a mlr 0.16 / 0.19 / 0.16 / 0.30 / 1.20, lagbank 0.53 / 0.34 / 0.19 / 0.11 /
+1.01, auto 0.27 / 0.20 / 0.14 / 0.11 / 0.55; rig_b mlr 0.15 / 0.23 / 0.19 / 0.25 / 1.48,
+lagbank 0.14 / 0.11 / 0.11 / 0.13 / 0.91, auto 0.13 / 0.11 / 0.14 / 0.13 / 0.26; replay = run
+(<= 7.8e-16), promote = run, C pack passed; the raw files streamed through stream.c give the
+packs' corrections (rig_a 6.0e-14 µm; rig_b through iconv 1.1e-13, 2.34 µm off before
+TC_PAUSE_S).  ``monitor`` mlr healthy: 0 events on both.  ``diagnose`` mlr: rig_a FOUND (the
+speed x the inputs' rises on Z, 1.20 -> 0.81; lags accepted on the radial probes, Y1 0.19 ->
+0.29 and X2 0.16 -> 0.26 worse), rig_b nothing accepted (15.8 / 8.5 s CPU).
+
     ... bench_catman70.py init ROOT rig_a [override ...]   # init as a stranger, one try
     ... bench_catman70.py matrix ROOT rig_a                # run -> replay -> promote -> C
     ... bench_catman70.py table ROOT rig_a
