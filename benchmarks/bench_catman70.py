@@ -89,7 +89,6 @@ speed x the inputs' rises on Z, 1.20 -> 0.81; lags accepted on the radial probes
 
 from __future__ import annotations
 
-import json
 import sys
 from datetime import datetime, timedelta
 from pathlib import Path
@@ -180,7 +179,6 @@ def write(root: Path) -> None:
 
 
 import lab_matrix  # noqa: E402  (the benches' shared matrix and steps)
-from lab_matrix import project, stage  # noqa: E402
 
 FAMILIES = {k: v for k, v in lab_matrix.matrix_families().items()
             if k in ("mlr", "lagbank", "auto")}
@@ -188,18 +186,12 @@ WRAPPERS = ("plain",)
 
 
 def initialised(root: Path, name: str, extra: list[str]) -> None:
-    """``thermocomp init`` of the record ``name`` (rig_a: its folder, rig_b: its one file) with
-    ``extra`` (one try, as a stranger types it)."""
-    project(root)
-    path = root / name
-    if name == "rig_b":
-        path = path / "ISO230-3_week17.txt"
-    rc, said, cpu = stage("init", str(path), *extra, f"out={root / f'init-{name}'}")
-    written = root / f"init-{name}" / "conf" / "data" / f"{path.stem}.yaml"
-    if name == "rig_b" and written.exists():     # (the matrix reads data=<record name>)
+    """``thermocomp init`` of the record ``name`` (rig_a: its folder, rig_b: its one file)."""
+    path = root / name / "ISO230-3_week17.txt" if name == "rig_b" else None
+    lab_matrix.initialised(root, name, extra, path)
+    written = root / f"init-{name}" / "conf" / "data" / "ISO230-3_week17.yaml"
+    if path is not None and written.exists():     # (the matrix reads data=<record name>)
         written.replace(written.with_name("rig_b.yaml"))
-    print(json.dumps({"init": name, "extra": extra, "rc": rc, "said": said[:600],
-                      "cpu": round(cpu, 2)}), flush=True)
 
 
 def main(argv: list[str]) -> int:

@@ -9,18 +9,17 @@ the tests appended in one file, the time as dates, silent between the tests)
 from __future__ import annotations
 
 import datetime as dt
-import io
 import json
 import logging
 import subprocess
 from pathlib import Path
 
 import numpy as np
-import pandas as pd
 import pytest
 
 from conftest import FAST, refused
-from test_export import checked_pack, needs_cc
+from test_export import needs_cc
+from test_stranger65 import _compiled_stream_equals_its_pack
 from test_stranger68 import ROWS, linear_run
 from thermocomp.core.io import read_dataset
 from thermocomp.shell.cli import main
@@ -177,22 +176,11 @@ def test_init_writes_runs_at_pauses_and_replay_equals_run(tmp_path, capsys):
 @needs_cc
 def test_the_compiled_stream_reads_a_catman_easy_file_as_the_reader_does(tmp_path):
     """Before: 'stream: line 8: input T_Luft: 'MX1609 Typ K' is no number' (the comments row
-    under the units read as a sample).  The lab's file as written gives the pack's corrections
-    (its rows as thermocomp read them; the pack ends where the served model's sensor monitor
-    acted, which is not in the code)."""
+    under the units read as a sample)."""
     path = _easy(tmp_path / "Spindeltest_01.TXT", 1, _values(1))
-    common = [f"data.path={path}", "data.encoding=cp1252", ROLES, "data.test_fraction=0.3",
-              "data.reference=none"]
-    assert main(["run", *common, *FAST, "model=lagbank", f"out={tmp_path / 'run'}"]) == 0
-    assert main(["export", *common, "track=false", "export.format=c",
-                 f"export.model={tmp_path / 'run' / 'model.pkl'}", f"out={tmp_path / 'code'}"]) == 0
-    checked_pack(tmp_path / "code")
-    done = subprocess.run([str(tmp_path / "code" / "stream")], input=path.read_bytes(),
-                          capture_output=True)
-    assert done.returncode == 0, done.stderr
-    got = pd.read_csv(io.BytesIO(done.stdout)).to_numpy(float)
-    want = pd.read_csv(next((tmp_path / "code" / "check").glob("*/expected.csv"))).to_numpy(float)
-    assert len(got) == ROWS and np.abs(got[:len(want)] - want).max() < 1e-9
+    _compiled_stream_equals_its_pack(tmp_path, path, [
+        f"data.path={path}", "data.encoding=cp1252", ROLES, "data.test_fraction=0.3",
+        "data.reference=none"], rows=ROWS)
 
 
 @needs_cc
@@ -202,18 +190,10 @@ def test_the_compiled_stream_restarts_each_appended_test_as_the_reader_splits_th
     file) and, given data.time, the three tests streamed as one (the held-out test's
     corrections off by the state the others left)."""
     path = _week(tmp_path / "week17.txt")
-    common = [f"data.path={path}", "data.runs_at_pauses=true", "data.test_fraction=0.34",
-              "data.roles.error=['MCS*']"]
-    assert main(["run", *common, *FAST, "model=lagbank", f"out={tmp_path / 'run'}"]) == 0
-    assert main(["export", *common, "track=false", "export.format=c",
-                 f"export.model={tmp_path / 'run' / 'model.pkl'}", f"out={tmp_path / 'code'}"]) == 0
-    checked_pack(tmp_path / "code")
-    stream = str(tmp_path / "code" / "stream")
-    done = subprocess.run([stream], input=path.read_bytes(), capture_output=True)
+    _compiled_stream_equals_its_pack(tmp_path, path, [
+        f"data.path={path}", "data.runs_at_pauses=true", "data.test_fraction=0.34",
+        "data.roles.error=['MCS*']"], fed=path.read_bytes().decode("utf-16").encode("utf-8"),
+        rows=3 * ROWS, first=2 * ROWS)
+    done = subprocess.run([str(tmp_path / "code" / "stream")], input=path.read_bytes(),
+                          capture_output=True)
     assert done.returncode == 2 and b"line 1 is UTF-16 text (its byte-order mark)" in done.stderr
-    utf8 = path.read_bytes().decode("utf-16").encode("utf-8")
-    done = subprocess.run([stream], input=utf8, capture_output=True)
-    assert done.returncode == 0, done.stderr
-    got = pd.read_csv(io.BytesIO(done.stdout)).to_numpy(float)
-    want = pd.read_csv(next((tmp_path / "code" / "check").glob("*/expected.csv"))).to_numpy(float)
-    assert len(got) == 3 * ROWS and np.abs(got[2 * ROWS:][:len(want)] - want).max() < 1e-9
