@@ -62,14 +62,14 @@ def _preamble(above: list[str], below: list[str], sep: str) -> bool:
     """Lines of text, the last a header (no number in it) over a row holding a number (under
     a unit row and rows of channel properties, maybe)."""
     rows = [cells(ln, sep) for ln in below[:MAX_PROPERTY_ROWS + 3] if ln.strip()]
-    under = rows[1:] if rows and is_unit_row(rows[0]) else rows
-    samples = under[property_rows(under):]
+    # (rows describing channels only under a unit row: a group row over the names is no header)
+    samples = rows[1 + property_rows(rows[1:]):] if rows and is_unit_row(rows[0]) else []
     return (all(map(_text, above)) and not any(any_number(c) for c in cells(above[-1], sep))
             and any(any_number(c) for row in rows[:2] + samples[:1] for c in row))
 
 
 def property_rows(rows: list[list[str]]) -> int:
-    """How many of ``rows`` (the lines under the header and its unit row, split) describe the
+    """How many of ``rows`` (the lines under the header's unit row, split) describe the
     channels, not samples: rows before the first that holds a number (catman's channel
     comments, its ``T0`` row of dates), and rows labelled in the first cell (``dt``) over a
     first column the samples start with a number or a date in; none where no sample row follows

@@ -307,7 +307,7 @@ def peek_csv(path: Path, delimiter: str, encoding: str) -> tuple[list[str], list
             if units:
                 header, first = with_units(header, first), next((r for r in rows if r), None)
             below = [first, *(r for _, r in zip(range(MAX_PROPERTY_ROWS), rows) if r)]
-            described = property_rows(below) if first is not None else 0
+            described = property_rows(below) if units and first is not None else 0
             first = below[described] if described else first
     except UnicodeDecodeError:
         raise undecodable(path, delimiter, encoding=encoding) from None

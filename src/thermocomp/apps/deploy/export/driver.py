@@ -659,6 +659,7 @@ int main(int argc, char **argv) {
     int ambient_col = -1;
     int said_back = 0;         /* rows said whose time is not after the last read */
     int sampled = 0;           /* a sample row read (rows describing channels are above it) */
+    int unit_rowed = 0;        /* a unit row under the header (rows describing channels: below) */
     double ambient = NAN;      /* --ambient: a campaign's initial ambient (TC_AMBIENT_GIVEN) */
     int ncols, i, j, ignored, measured, restored = 0, failed;
     /* the line of the file read last (1: its first), as an editor numbers it: the preamble
@@ -775,6 +776,7 @@ int main(int argc, char **argv) {
         }
         if (filled && unit_row) {
             pending = 0;
+            unit_rowed = 1;
             row++;
             units_raw[strcspn(units_raw, "\r\n")] = '\0';
             for (j = 0; j < ncols && j < n; j++) {
@@ -867,10 +869,11 @@ int main(int argc, char **argv) {
                         said_hash == 5 ? " (no more said)" : "");
             continue;
         }
-        /* (catman70) a row describing the channels under the header (and its unit row), before
-           the first sample: catman's channel comments or T0 row (no input cell a number), its
+        /* (catman70) a row describing the channels under the header's unit row, before the
+           first sample: catman's channel comments or T0 row (no input cell a number), its
            dt row (a label in the first column, the time's or an input's): left out */
-        if (!sampled && row - top <= MAX_PROPERTY_ROWS + 1 && described(line, where, time_col))
+        if (unit_rowed && !sampled && row - top <= MAX_PROPERTY_ROWS + 1
+            && described(line, where, time_col))
             continue;
         strcpy(row_raw, line);
         if (line[strspn(line, " \t\r\n")] == '\0') {
