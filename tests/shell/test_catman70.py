@@ -9,9 +9,11 @@ the tests appended in one file, the time as dates, silent between the tests)
 from __future__ import annotations
 
 import datetime as dt
+import io
 import json
 import logging
 import subprocess
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -107,6 +109,26 @@ def test_init_names_catmans_time_channel_and_run_fits_the_probes(tmp_path, capsy
     metrics = json.loads((tmp_path / "out" / "metrics.json").read_text())
     assert set(metrics["targets"]) == {"E_Sonde_X1", "E_Sonde_Z"}
     assert metrics["targets"]["E_Sonde_X1"]["test"]["rmse"] < 0.2     # (the map is linear)
+
+
+def test_a_catman_file_piped_into_monitor_streams_as_the_folder_reads(tmp_path, capsys,
+                                                                      monkeypatch):
+    """Before: 'file <stdin>: 6 column(s) not read: 'T Luft [°C]' is not numeric ('MX1609 Typ
+    K')' (the comments row under the units read as a sample)."""
+    folder = _easy_folder(tmp_path / "rig")
+    assert main(["init", str(folder), f"out={tmp_path / 'init'}"]) == 0
+    data = [f"hydra.searchpath=[file://{tmp_path / 'init' / 'conf'}]", "data=rig"]
+    assert main(["run", *data, "model=mlr", *FAST, f"out={tmp_path / 'out'}"]) == 0
+    text = (folder / "Spindeltest_03.TXT").read_bytes().decode("cp1252")
+    monkeypatch.setattr(sys, "stdin", io.StringIO(text))
+    assert main(["monitor", *data, "monitor.input=-", "track=false",
+                 "promote.envelope.policy=off",        # (test 3 runs faster than the others)
+                 f"monitor.model={tmp_path / 'out' / 'model.pkl'}", f"out={tmp_path / 'mon'}"]) == 0
+    run = json.loads((tmp_path / "out" / "metrics.json").read_text())["targets"]
+    report = json.loads((tmp_path / "mon" / "monitor.json").read_text())
+    assert report["events"] == []
+    for target, r in report["targets"].items():
+        assert abs(r["rmse_fixed"] - run[target]["test"]["rmse"]) < 1e-9
 
 
 def test_a_bad_cell_under_the_channel_rows_is_refused_naming_its_line(tmp_path, capsys):
