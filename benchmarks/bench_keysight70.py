@@ -82,7 +82,6 @@ events on both (file and stdin).  ``diagnose`` mlr: FOUND on both (dmu_a A x T_T
 
 from __future__ import annotations
 
-import json
 import sys
 from datetime import datetime, timedelta
 from pathlib import Path
@@ -176,27 +175,17 @@ def write(root: Path) -> None:
 
 
 import lab_matrix  # noqa: E402  (the benches' shared matrix and steps)
-from lab_matrix import project, stage  # noqa: E402
 
 FAMILIES = {k: v for k, v in lab_matrix.matrix_families().items()
             if k in ("mlr", "lagbank", "auto")}
 WRAPPERS = ("plain",)
 
 
-def initialised(root: Path, name: str, extra: list[str]) -> None:
-    """``thermocomp init`` of the record ``name``'s folder with ``extra`` (one try, as a stranger
-    types it)."""
-    project(root)
-    rc, said, cpu = stage("init", str(root / name), *extra, f"out={root / f'init-{name}'}")
-    print(json.dumps({"init": name, "extra": extra, "rc": rc, "said": said[:600],
-                      "cpu": round(cpu, 2)}), flush=True)
-
-
 def main(argv: list[str]) -> int:
     return lab_matrix.main(__doc__, argv, SEEDS, FAMILIES, WRAPPERS, {
         "write": lambda root, rest: write(root),
         # init ROOT name [override ...]
-        "init": lambda root, rest: initialised(root, rest[0], rest[1:]),
+        "init": lambda root, rest: lab_matrix.initialised(root, rest[0], rest[1:]),
         # monitor ROOT name family: the healthy test run only
         "monitor": lambda root, rest: lab_matrix.monitoring(root, rest[0], rest[1], [], None),
     })

@@ -66,6 +66,16 @@ def project(root: Path) -> None:
         (root / "tc" / "conf").symlink_to(REPO / "conf")
 
 
+def initialised(root: Path, name: str, extra: list[str], path: Path | None = None) -> None:
+    """``thermocomp init`` of the record ``name`` (its folder ``ROOT/<name>``, or ``path``) with
+    ``extra`` (one try, as a stranger types it): a row of its exit status, its last line on
+    stderr and its CPU, into ``ROOT/init-<name>`` (keysight70, catman70)."""
+    project(root)
+    rc, said, cpu = stage("init", str(path or root / name), *extra, f"out={root / f'init-{name}'}")
+    print(json.dumps({"init": name, "extra": extra, "rc": rc, "said": said[:600],
+                      "cpu": round(cpu, 2)}), flush=True)
+
+
 def data_args(root: Path, name: str) -> list[str]:
     return [f"hydra.searchpath=[file://{root}/init-{name}/conf]", f"data={name}"]
 

@@ -150,20 +150,25 @@ def spreadsheet(path: Path, rows: int = 240) -> Path:
     return path
 
 
-def _compiled_stream_equals_its_pack(tmp_path, path, common: list) -> None:
+def _compiled_stream_equals_its_pack(tmp_path, path, common: list, fed: bytes | None = None,
+                                     rows: int | None = None, first: int = 0) -> None:
     """A lag bank run and exported as C on ``common``; the compiled stream fed the lab's file as
-    written gives the check pack's corrections (its rows as thermocomp read them)."""
+    written (``fed``: these bytes of it instead) gives the check pack's corrections (its rows as
+    thermocomp read them).  ``rows``: the rows it prints, the pack's campaign from ``first`` on
+    (the file's other runs before it), maybe ended early (the pack cut where the served model's
+    sensor monitor acted); None: the pack's rows exactly."""
     assert main(["run", *common, *FAST, "model=lagbank", "plots=none",
                  f"out={tmp_path / 'run'}"]) == 0
     assert main(["export", *common, "track=false", "export.format=c",
                  f"export.model={tmp_path / 'run' / 'model.pkl'}", f"out={tmp_path / 'code'}"]) == 0
     checked_pack(tmp_path / "code")
-    done = subprocess.run([str(tmp_path / "code" / "stream")], input=path.read_bytes(),
-                          capture_output=True)
+    done = subprocess.run([str(tmp_path / "code" / "stream")],
+                          input=path.read_bytes() if fed is None else fed, capture_output=True)
     assert done.returncode == 0, done.stderr
     got = pd.read_csv(io.BytesIO(done.stdout)).to_numpy(float)
     want = pd.read_csv(next((tmp_path / "code" / "check").glob("*/expected.csv"))).to_numpy(float)
-    assert got.shape == want.shape and np.abs(got - want).max() < 1e-9
+    assert len(got) == (len(want) if rows is None else rows)
+    assert np.abs(got[first:][:len(want)] - want).max() < 1e-9
 
 
 @needs_cc

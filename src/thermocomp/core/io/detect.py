@@ -193,7 +193,12 @@ def slashed_order(sample: Path, opts, header: list[str], first: dict) -> str | N
     their order (``13/07/2026 ...``: day first; the first, ``01/07/2026 13:22:42``, may not),
     every row saying it agreeing: written to the config, so that each file of a folder is read
     so (one starting ``01/07`` too); None where none says it or rows disagree (refused naming
-    ``data.time`` as before), where ``data.time`` is given, or for another column."""
+    ``data.time`` as before), where ``data.time`` is given, or for another column.  A UTF-16
+    file is looked at as the UTF-8 text it is read as (catman70: catman AP's Unicode export, its
+    en-US dates; ``opts`` are that text's)."""
+    if opts.time == "auto" and is_utf16(sample):
+        with utf16_as_utf8(sample) as text:
+            return slashed_order(text, opts, header, first)
     if opts.time != "auto" or is_converted(sample) or not is_text(sample):
         return None
     for i, h in enumerate(header):

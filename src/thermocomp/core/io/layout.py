@@ -7,7 +7,10 @@ never taken for it).  A
 unit row is the line under the header whose every cell is a unit the reader knows (or empty):
 its units join the headers (``T1`` over ``°C`` is ``T1 [°C]``).  A logger writes the time
 column's FORMAT in that row (``h:mm:ss``, ``yyyy/mm/dd hh:mm:ss``): a cell of the row, joined to
-no header (the column's cells say their time themselves).
+no header (the column's cells say their time themselves).  Between the unit row and the samples
+a logger may write rows that describe its channels (HBM catman's ASCII export: a row of channel
+comments, rows ``T0`` / ``dt`` of each channel's start and step, catman70): they are left out
+(:func:`property_rows`).
 """
 
 from __future__ import annotations
@@ -17,9 +20,13 @@ import re
 from .csvline import EMPTY, split_line
 from .roles import STATE_UNITS, UNITS, split_unit
 from .separators import any_number
+from .timestamps import looks_like_timestamp
 from .units import ANGLE_UNITS
 
 MAX_PREAMBLE = 20
+MAX_PROPERTY_ROWS = 6
+# a channel property's label in a row's first cell ('T0', 'dt', 'Delta t'): a word, no number
+_LABEL = re.compile(r"[^\W\d][\w.]*(?: [^\W\d][\w.]*)?")
 # a time column's format as a logger's unit row spells it: a date of y / m / d letters, a time
 # of h : mm (: ss, a fraction), or both ('h:mm:ss', '[h]:mm:ss', 'yyyy/mm/dd hh:mm:ss.000')
 _DATE_FORMAT = r"(?:[ymd]{1,4}[-/.]){2}[ymd]{1,4}"
@@ -53,10 +60,35 @@ def header_line(lines: list[str], sep: str) -> int | None:
 
 def _preamble(above: list[str], below: list[str], sep: str) -> bool:
     """Lines of text, the last a header (no number in it) over a row holding a number (under
-    a unit row, maybe)."""
-    rows = [ln for ln in below if ln.strip()][:2]
+    a unit row and rows of channel properties, maybe)."""
+    rows = [cells(ln, sep) for ln in below[:MAX_PROPERTY_ROWS + 3] if ln.strip()]
+    # (rows describing channels only under a unit row: a group row over the names is no header)
+    samples = rows[1 + property_rows(rows[1:]):] if rows and is_unit_row(rows[0]) else []
     return (all(map(_text, above)) and not any(any_number(c) for c in cells(above[-1], sep))
-            and any(any_number(c) for row in rows for c in cells(row, sep)))
+            and any(any_number(c) for row in rows[:2] + samples[:1] for c in row))
+
+
+def property_rows(rows: list[list[str]]) -> int:
+    """How many of ``rows`` (the lines under the header's unit row, split) describe the
+    channels, not samples: rows before the first that holds a number (catman's channel
+    comments, its ``T0`` row of dates), and rows labelled in the first cell (``dt``) over a
+    first column the samples start with a number or a date in; none where no sample row follows
+    within :data:`MAX_PROPERTY_ROWS` (a text row there is the reader's to refuse)."""
+    def labelled(row, first):
+        return bool(row and _LABEL.fullmatch(row[0].strip())) and (
+            any_number(first) or looks_like_timestamp(first))
+
+    for k, row in enumerate(rows[:MAX_PROPERTY_ROWS + 1]):
+        if not any(c.strip() for c in row):
+            return 0
+        if any(any_number(c) for c in row):
+            rest = rows[k:]
+            first = next((r[0] for r in rest if r and not _LABEL.fullmatch(r[0].strip())), "")
+            labels = 0
+            while labels < len(rest) - 1 and labelled(rest[labels], first):
+                labels += 1
+            return k + labels if k + labels <= MAX_PROPERTY_ROWS else 0
+    return 0
 
 
 def _named(fields: list[str]) -> bool:

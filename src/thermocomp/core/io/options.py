@@ -72,6 +72,7 @@ class ReadOptions:
     # sample is interpolated across (None: 3 times the temperature logger's median step)
     join_offset_s: float = 0.0
     join_tolerance_s: float | None = None
+    runs_at_pauses: bool = False  # one file's runs parted where its time pauses (.runs)
     # internal (no data config key): "keep" leaves missing values NaN; "keep_errors" only the
     # E_ columns' (a volumetric dataset's distances not measured), the rest repaired
     missing: str = "repair"
@@ -124,6 +125,7 @@ class ReadOptions:
             split_order=_split_order(cfg),
             sheet=None if cfg.get("sheet") is None else str(cfg.get("sheet")),
             **_join(cfg),
+            runs_at_pauses=_flag(cfg, "runs_at_pauses"),
         )
         opts._check()
         return opts
@@ -235,6 +237,13 @@ def _join(cfg: Mapping) -> dict:
     named = {f"join.{k}": v for k, v in value.items()}     # (named so in a refusal)
     return {"join_offset_s": _float(named, "join.offset_s", 0.0),
             "join_tolerance_s": _positive_float(named, "join.tolerance_s", nullable=True)}
+
+
+def _flag(cfg: Mapping, key: str) -> bool:
+    value = cfg.get(key, False)
+    if not isinstance(value, bool):
+        raise ContractError(f"data.{key} must be true or false, got {value!r}")
+    return value
 
 
 def _missing_values(cfg: Mapping) -> list:

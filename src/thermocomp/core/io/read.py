@@ -103,7 +103,14 @@ from .own_headers import with_own_header
 from .plain import as_read
 from .record import check_record_file, cut, hold_out, record_id, shares
 from .roles import RUN, split_unit
-from .runs import looks_like_run_counter, run_blocks, run_ends, run_hint, run_values
+from .runs import (
+    looks_like_run_counter,
+    pause_blocks,
+    run_blocks,
+    run_ends,
+    run_hint,
+    run_values,
+)
 from .sheetruns import several_runs, sheet_parts
 from .sparse import measured_on, on_grid, said, sparse_totals
 from .starts import campaign_starts, commented_start
@@ -571,14 +578,18 @@ def _source(path: Path, opts: ReadOptions, campaigns=None) -> tuple[Path, pd.Dat
     if not path.exists():     # (a folder's name mistyped was refused for its manifest)
         raise ContractError("no such file or folder (data.path: a dataset folder or one "
                             "record's file)", file=path)
-    if path.is_file() and opts.roles.get(RUN_ROLE):
+    if opts.roles.get(RUN_ROLE) and opts.runs_at_pauses:
+        raise ContractError(f"data.roles.{RUN_ROLE} and data.runs_at_pauses both split one file "
+                            "into its runs: give one of them", file=path)
+    if path.is_file() and (opts.roles.get(RUN_ROLE) or opts.runs_at_pauses):
         check_record_file(path)
         manifest, parts = _run_parts(path, opts)
         ids = list(manifest.index if campaigns is None else campaigns)
         return path.parent, manifest.loc[ids], ((c, *parts.pop(c)) for c in ids)
-    if opts.roles.get(RUN_ROLE):
-        raise ContractError(f"data.roles.{RUN_ROLE} splits one long file into its runs: data.path "
-                            "is a folder, whose files are a campaign each (leave it out)", file=path)
+    if opts.roles.get(RUN_ROLE) or opts.runs_at_pauses:
+        key = f"roles.{RUN_ROLE}" if opts.roles.get(RUN_ROLE) else "runs_at_pauses"
+        raise ContractError(f"data.{key} splits one long file into its runs: data.path is a "
+                            "folder, whose files are a campaign each (leave it out)", file=path)
     if path.is_file() and several_runs(path, opts):     # a workbook of runs, one a sheet
         check_record_file(path)
         manifest, parts = sheet_parts(path, opts, read_campaign)
@@ -684,20 +695,26 @@ def _numbers(column) -> np.ndarray | None:
 
 
 def _run_parts(path: Path, opts: ReadOptions) -> tuple[pd.DataFrame, dict]:
-    """One long file split into campaigns by ``data.roles.campaign`` (:mod:`.runs`), each read as
-    a file of that run alone; the last runs held out as a folder's are (by their first
-    timestamps, else in file order)."""
+    """One long file split into campaigns by ``data.roles.campaign`` or, with
+    ``data.runs_at_pauses``, where its time pauses (:mod:`.runs`), each read as a file of that
+    run alone; the last runs held out as a folder's are (by their first timestamps, else in
+    file order)."""
     with as_read(path, opts) as (source, source_opts):
         columns, renamed, rescaled, lines = _loaded(source, source_opts)
-        header = next(raw for raw, name in renamed.items() if name == RUN)
-        renamed = {raw: name for raw, name in renamed.items() if name != RUN}
-        blocks = run_blocks(run_values(columns.pop(RUN)), header, path)
+        if opts.runs_at_pauses:
+            header = None
+            blocks = pause_blocks(_numbers(columns.get(TIME)), record_id(path), path)
+        else:
+            header = next(raw for raw, name in renamed.items() if name == RUN)
+            renamed = {raw: name for raw, name in renamed.items() if name != RUN}
+            blocks = run_blocks(run_values(columns.pop(RUN)), header, path)
         parts = {}
         for cid, start, end in blocks:
             part = {name: column.slice(start, end - start) for name, column in columns.items()}
             table, report = _assembled(part, renamed, rescaled, source, source_opts, lines, start)
             parts[cid] = table, {"file": path.name, "split": "train", **report,
-                                 "record_rows": [start, end], "run_column": header}
+                                 "record_rows": [start, end],
+                                 **({"run_column": header} if header else {})}
     _check_runs(parts, path, opts)
     manifest = pd.DataFrame({"file": path.name, "split": "train"}, index=pd.Index(
         list(parts), name="campaign"))
@@ -710,7 +727,8 @@ def _run_parts(path: Path, opts: ReadOptions) -> tuple[pd.DataFrame, dict]:
         manifest = hold_out(manifest, opts, path.parent, starts, listed="in file order")
     except ContractError as exc:          # (about the runs, not a manifest file)
         raise ContractError(exc.reason, file=path, column=header) from None
-    logger.info(f"{path.name}: {len(parts)} runs by {header!r} read as campaigns")
+    by = repr(header) if header else "the time's pauses (data.runs_at_pauses)"
+    logger.info(f"{path.name}: {len(parts)} runs by {by} read as campaigns")
     for cid, (_, entry) in parts.items():
         entry["split"] = manifest.at[cid, "split"]
     return manifest, parts

@@ -121,8 +121,9 @@ def _warn_pauses(path: Path, table: pa.Table) -> None:
         logger.warning(f"{path.name}: one record, yet it pauses {len(pauses)} "
                        f"time(s) for more than {PAUSE_PERIODS} sample periods (the longest "
                        f"{steps[k] / 3600:.3g} h, after data row {k + 1}): runs joined in one "
-                       "file? One file per run in a folder, or a column numbering the runs "
-                       "(data.roles.campaign=<header>), reads each as a campaign (referenced to its "
+                       "file? One file per run in a folder, a column numbering the runs "
+                       "(data.roles.campaign=<header>), or data.runs_at_pauses=true (each stretch "
+                       "between the pauses a run) reads each as a campaign (referenced to its "
                        "first sample, the last runs held out by data.test_fraction)")
 
 

@@ -54,6 +54,8 @@ _SUFFIX = re.compile(r"^(.*?[^\s_])_([^\s_]+)$")
 _UNSAFE = re.compile(r"[^\w.\-]+")
 TIME_HEADERS = frozenset({"time", "t", "ts", "zeit", "時間", "时间", "timestamp", "datetime", "date_time",
                           "zeitstempel", "temps", "tiempo", "tempo", "seconds", *ELAPSED_HEADERS})
+# HBM catman's time channel, one per rate group: 'Zeit  1 - Standardmessrate', 'Time  2 - 10 Hz'
+_RATE_GROUP_TIME = re.compile(r"(?i)(?:time|zeit|temps|tiempo|tempo)\s+\d+\s+-\s+\S.*")
 RUN = " campaign"     # data.roles.campaign's column as read: no contract column has this name
 LOGGER = "DAQ's own"  # a column a Keysight DAQ writes of its own scans (:func:`logger_columns`)
 # a Keysight DAQ's export (BenchLink Data Logger's, the DAQ970A's): ``Alarm <channel>`` beside
@@ -116,12 +118,14 @@ def _bare_unit(header: str) -> tuple[str, str] | None:
 
 
 def named_as_time(header: str) -> bool:
-    """A header naming the time (:data:`TIME_HEADERS`) without another quantity's unit: ``T
-    [°C]`` is a temperature, not the time (``Zeit [hh:mm:ss]``, ``timestamp (UTC)`` are times)."""
+    """A header naming the time (:data:`TIME_HEADERS`, or catman's time channel of a rate group,
+    ``Zeit  1 - Standardmessrate``) without another quantity's unit: ``T [°C]`` is a
+    temperature, not the time (``Zeit [hh:mm:ss]``, ``timestamp (UTC)`` are times)."""
     base, unit = split_unit(header)
     other = unit is not None and unit.lower().replace(" ", "") not in UNITS["time"] and (
         any(unit.lower() in UNITS[k] for k in ("E", "T", "angle")) or unit.lower() in STATE_UNITS)
-    return base.lower() in TIME_HEADERS and not other
+    named = base.lower() in TIME_HEADERS or bool(_RATE_GROUP_TIME.fullmatch(base.strip()))
+    return named and not other
 
 
 # a column of dates a spreadsheet shows as numbers: 'Date', 'Datum', 'Fecha' (or a time's name)

@@ -7,6 +7,12 @@ gaps, edges and checks per run).  A value that comes back after another is refus
 row: the rows of a run stand together, and a number used twice (``Messung`` 1, 2, 3 each day)
 needs a value of its own.  The id is the value where it holds a letter (``K07``), else the
 header's name before it (``Lauf_3``).
+
+A file without such a column, its runs appended one after the other with the logger silent
+between them (catman70: a lab's week of ISO 230-3 tests in one catman export), is split where
+its time pauses for more than :data:`.rates.PAUSE_PERIODS` sample periods with
+``data.runs_at_pauses=true`` (extension; :func:`pause_blocks`): the runs ``<file>_1``,
+``<file>_2`` ..., read as those of a run column are.
 """
 
 from __future__ import annotations
@@ -22,6 +28,7 @@ import pyarrow.compute as pc
 from ..timerule import median_step
 from .contract import ContractError
 from .options import RUN_ROLE
+from .rates import PAUSE_PERIODS
 from .roles import split_unit
 
 MIN_RUN_ROWS = 10        # a run counter holds each value this many rows on average at least
@@ -75,6 +82,28 @@ def run_blocks(values: Sequence[str | None], header: str, path: Path | str
         raise ContractError(f"two runs give the campaign id {twice!r}: give them values that "
                             "differ in letters or digits", file=path, column=header)
     return [(cid, start, end) for cid, (_, start, _), end in zip(ids, blocks, ends)]
+
+
+def pause_blocks(seconds: np.ndarray, stem: str, path: Path | str
+                 ) -> list[tuple[str, int, int]]:
+    """``(campaign id, first row, end row)`` of each stretch of ``seconds`` (the record's time)
+    between pauses longer than :data:`.rates.PAUSE_PERIODS` sample periods; ids ``<stem>_<k>``
+    from 1.
+
+    Raises
+    ------
+    ContractError
+        No pause: one run (``data.runs_at_pauses`` splits nothing).
+    """
+    period = median_step(seconds)
+    steps = np.diff(seconds)
+    pauses = np.flatnonzero(steps > PAUSE_PERIODS * period) + 1 if period else np.array([], int)
+    if not pauses.size:
+        raise ContractError(f"data.runs_at_pauses: the time never pauses for more than "
+                            f"{PAUSE_PERIODS} sample periods ({period:g} s): one run, nothing to "
+                            "split (leave the key out)", file=path, column="time")
+    edges = [0, *map(int, pauses), len(seconds)]
+    return [(f"{stem}_{k}", a, b) for k, (a, b) in enumerate(zip(edges, edges[1:]), 1)]
 
 
 def campaign_id(value: str, header: str) -> str:

@@ -23,7 +23,14 @@ from .again import STRAY, comments_in, kept, lines_in, spans_in, warn
 from .contract import ContractError
 from .csvline import EMPTY, SPLIT, split_line
 from .encoding import UTF8, check_text, text_codec
-from .layout import header_line, is_unit_row, uncommented, with_units
+from .layout import (
+    MAX_PROPERTY_ROWS,
+    header_line,
+    is_unit_row,
+    property_rows,
+    uncommented,
+    with_units,
+)
 from .options import RUN_ROLE
 from .roles import RUN, active, naming, same_header, split_unit
 from .runs import run_blocks, run_values
@@ -156,7 +163,7 @@ def stream_campaigns(text: str, columns: list[str], opts) -> tuple[dict, dict]:
 def _table(text: str, sep: str) -> str:
     """``text`` from its header on, a unit row's units joined to the headers (``T1`` over
     ``°C``: ``T1 [°C]``), as a campaign file's table is found (:mod:`.layout`): a logger's
-    preamble and unit row stream as they are written."""
+    preamble, unit row and rows describing the channels under it stream as they are written."""
     lines = text.splitlines()
     start = header_line(lines[:SNIFF_LINES], sep) or 0
     units = len(lines) > start + 1 and is_unit_row(split_line(lines[start + 1], sep, EMPTY))
@@ -171,6 +178,9 @@ def _table(text: str, sep: str) -> str:
     if units:
         header = with_units(header, split_line(lines[start + 1], sep, EMPTY))
     body = lines[start + 1 + units:]
+    if units:      # (catman70: rows describing the channels under the unit row, left out)
+        body = body[property_rows([split_line(ln, sep, EMPTY)
+                                   for ln in body[:MAX_PROPERTY_ROWS + 1] if ln.strip()]):]
     out = StringIO()
     csv.writer(out, delimiter=sep, lineterminator="\n").writerow(header)
     return out.getvalue() + "\n".join(body) + "\n"

@@ -22,7 +22,14 @@ from .contract import TIME, ContractError, role
 from .csvline import SPLIT, split_line
 from .encoding import arrow_encoding, first_undecodable, text_codec, undecodable
 from .footer import blank_inside, footer, source
-from .layout import header_line, is_unit_row, uncommented, with_units
+from .layout import (
+    MAX_PROPERTY_ROWS,
+    header_line,
+    is_unit_row,
+    property_rows,
+    uncommented,
+    with_units,
+)
 from .lines import Lines
 from .options import _OTHER_DELIMITERS, ROLE_ORDER, ReadOptions, _first_line
 from .own_headers import with_own_header
@@ -301,6 +308,9 @@ def peek_csv(path: Path, delimiter: str, encoding: str) -> tuple[list[str], list
             units = first is not None and header is not None and is_unit_row(first)
             if units:
                 header, first = with_units(header, first), next((r for r in rows if r), None)
+            below = [first, *(r for _, r in zip(range(MAX_PROPERTY_ROWS), rows) if r)]
+            described = property_rows(below) if units and first is not None else 0
+            first = below[described] if described else first
     except UnicodeDecodeError:
         raise undecodable(path, delimiter, encoding=encoding) from None
     except csv.Error as exc:       # binary content (a gzip named .csv): no CSV text
@@ -310,7 +320,7 @@ def peek_csv(path: Path, delimiter: str, encoding: str) -> tuple[list[str], list
         raise NoRows("empty file", file=path)
     if first is None:
         raise NoRows("file has a header but no data rows", file=path)
-    return [name.strip() for name in header], first, preamble + 1 + units
+    return [name.strip() for name in header], first, preamble + 1 + units + described
 
 
 # what a test record read as recorded (``missing="keep"``) with a bad time is told to do instead

@@ -246,6 +246,20 @@ def _slashed(cfg: DictConfig, ds) -> int:
         return 0
 
 
+def _pause_s(cfg: DictConfig, ds) -> float:
+    """``TC_PAUSE_S``: with ``data.runs_at_pauses``, the step of the time after which the reader
+    starts the next run (:func:`.runs.pause_blocks`: PAUSE_PERIODS of the record's period), so
+    that the lab's file of appended tests streams each as the campaign it was scored as; 0
+    without it (or without the record read)."""
+    if not cfg.data.get("runs_at_pauses") or ds is None:
+        return 0.0
+    from ...core.io.rates import PAUSE_PERIODS
+    from ...core.timerule import median_step
+
+    first = next(iter(ds.campaigns.values()))
+    return PAUSE_PERIODS * float(median_step(first[TIME].to_numpy(float)) or 0.0)
+
+
 def export(cfg: DictConfig) -> dict:
     """Write the export of ``export.model`` in ``export.format`` to ``out``; ``{file: path}``."""
     # a registered model is read from the store: none created (export logs no run)
@@ -288,7 +302,7 @@ def export(cfg: DictConfig) -> dict:
     thousands = cfg.data.get("thousands")       # (the lab's 1.234,5: stream.c ungroups it)
     provenance.update(thousands=None if thousands is None else str(thousands)[:1],
                       elapsed=str(cfg.data.get("time") or "auto") == "elapsed",
-                      slashed=_slashed(cfg, ds))
+                      slashed=_slashed(cfg, ds), pause_s=_pause_s(cfg, ds))
     # (streamraw65: the lab's raw file as the reader reads it -- its character set and its marks
     # of a value not measured travel with the model, as data.thousands does)
     provenance.update(encoding=_stream_encoding(cfg, fmt),

@@ -22,10 +22,11 @@ DRIVER = r"""/* stream.c: CSV rows of raw inputs on stdin -> corrections C_<axis
  * campaign's first, as the served model reads it; every time of a stream in the form of its
  * first; with TC_ELAPSED (data.time=elapsed) a logger's h:mm:ss since the start, 59:59:00.5.
  * A cell that is no number (a time of day alone, 08:45:00) is refused with its row.
- * A blank row, a `reset` column holding 1, or a new value in the run-number column
- * TC_RUN_COLUMN starts a campaign (the row is its reference).  With TC_ADAPT, a row carrying
- * a measured error in a TC_ERROR_NAMES column (E_<axis>, optional; blank: none) is a reference
- * measurement: its correction is printed, then the bias learns.
+ * A blank row, a `reset` column holding 1, a new value in the run-number column
+ * TC_RUN_COLUMN, or a time more than TC_PAUSE_S after the last (data.runs_at_pauses: a lab's
+ * tests appended in one file, catman70) starts a campaign (the row is its reference).  With
+ * TC_ADAPT, a row carrying a measured error in a TC_ERROR_NAMES column (E_<axis>, optional;
+ * blank: none) is a reference measurement: its correction is printed, then the bias learns.
  * With `--state FILE` a restarted process goes on where the last one stopped: FILE, where it
  * exists, is read back at the start (the compensator's tc_state, the stream's clock and its
  * run), and written after every row (to FILE.tmp, then renamed over FILE: a process killed
@@ -33,12 +34,15 @@ DRIVER = r"""/* stream.c: CSV rows of raw inputs on stdin -> corrections C_<axis
  * A logger's preamble above the header (`Machine;PM-12`, `Operator: ...`: at most MAX_PREAMBLE
  * lines) is skipped as the model's reader skips it: the header is the first line naming every
  * input.  A unit row under the header (`;;degC;W;um`) is left out, each header read with its
- * unit (`T Halle [degC]`); a line in data.encoding (TC_ENCODING: a Windows logger's cp1252) is
+ * unit (`T Halle [degC]`), and rows under them that describe the channels before the first
+ * sample (catman70: HBM catman's row of channel comments, its T0 / dt rows) are left out as the
+ * reader leaves them out; a line in data.encoding (TC_ENCODING: a Windows logger's cp1252) is
  * read as UTF-8 (a line that is UTF-8 already as it is); the header written again further down
  * (a logger restarted), with its unit row, is left out and said; a cell holding a mark of
  * data.missing_values (TC_MISSING: `---`) is a missing value, as an empty cell is, and a cell
  * of an input that is no number nor a mark is refused with its row, as the reader refuses it.
- * A file in fixed-width columns, JSON Lines, a TDMS log or a MATLAB file is refused: convert
+ * A file in fixed-width columns, JSON Lines, UTF-16 text, a TDMS log or a MATLAB file is
+ * refused: convert
  * it to CSV first (the export's check/<campaign>/rows.csv holds such a record's rows as this
  * reads them).
  * With `--check FILE` (a pack's check/<campaign>/expected.csv, export writes them with the
@@ -60,6 +64,7 @@ DRIVER = r"""/* stream.c: CSV rows of raw inputs on stdin -> corrections C_<axis
 
 #define MAX_LINE 65536
 #define MAX_PREAMBLE 20   /* lines above the header, as the model's reader allows */
+#define MAX_PROPERTY_ROWS 6   /* rows describing the channels under the header, likewise */
 #define MAX_COLS 1024
 #define MAX_CELL 256
 #define CHECK_UM 1e-9          /* --check: |c - expected| <= CHECK_UM + CHECK_RELATIVE * |expected| */
@@ -270,6 +275,25 @@ static double value(const char *cell, int *bad) {
     while (*end == ' ' || *end == '"') end++;
     if (end == text || *end != '\0') { *bad = 1; return NAN; }
     return v;
+}
+
+/* 1: `cell` is a channel property's label ('T0', 'dt', 'Delta t'): a letter, then letters,
+   digits, '_' or '.', one space at most. */
+static int is_label(const char *cell) {
+    int spaces = 0;
+    while (*cell == ' ' || *cell == '"') cell++;
+    if (!((*cell >= 'A' && *cell <= 'Z') || (*cell >= 'a' && *cell <= 'z'))) return 0;
+    for (; *cell && *cell != '"' && *cell != '\r' && *cell != '\n'; cell++) {
+        if (*cell == ' ' && cell[1] && cell[1] != ' ' && cell[1] != '\r' && cell[1] != '\n') {
+            if (++spaces > 1) return 0;
+        } else if (*cell == ' ') {
+            break;
+        } else if (!((*cell >= 'A' && *cell <= 'Z') || (*cell >= 'a' && *cell <= 'z')
+                     || (*cell >= '0' && *cell <= '9') || *cell == '_' || *cell == '.')) {
+            return 0;
+        }
+    }
+    return 1;
 }
 
 /* `line` without its line end (in place). */
@@ -596,6 +620,30 @@ static void restart(tc_state *s, int reset) {
     clock_.started = 0;
 }
 
+/* 1: `line` (not changed), a row under the header, describes the channels (catman70): a cell
+   filled, no input's cell a number, or the first cell a label in the time's or an input's
+   column (`dt` over seconds). */
+static int described(const char *line, const int *where, int time_col) {
+    static char copy[MAX_LINE];
+    char *cells[MAX_COLS];
+    int n, i, bad, filled = 0, number = 0;
+    strcpy(copy, line);
+    n = split(copy, cells);
+    for (i = 0; i < TC_N_INPUTS; i++) {
+        if (where[i] < 0 || where[i] >= n || !*trimmed(cells[where[i]])) continue;
+        bad = 0;
+        filled = 1;
+        if (is_mark(cells[where[i]]) || isfinite(value(cells[where[i]], &bad)) || !bad)
+            number = 1;
+    }
+    if (filled && !number) return 1;
+    if (n < 1 || !is_label(cells[0])) return 0;
+    if (time_col == 0) return 1;
+    for (i = 0; i < TC_N_INPUTS; i++)
+        if (where[i] == 0) return 1;
+    return 0;
+}
+
 int main(int argc, char **argv) {
     static char line[MAX_LINE], run[MAX_CELL] = "";
     char *cells[MAX_COLS], *state_path = NULL, *state_tmp = NULL, *end;
@@ -610,6 +658,8 @@ int main(int argc, char **argv) {
     static char stamp[2 * MAX_CELL + 2];
     int ambient_col = -1;
     int said_back = 0;         /* rows said whose time is not after the last read */
+    int sampled = 0;           /* a sample row read (rows describing channels are above it) */
+    int unit_rowed = 0;        /* a unit row under the header (rows describing channels: below) */
     double ambient = NAN;      /* --ambient: a campaign's initial ambient (TC_AMBIENT_GIVEN) */
     int ncols, i, j, ignored, measured, restored = 0, failed;
     /* the line of the file read last (1: its first), as an editor numbers it: the preamble
@@ -656,6 +706,14 @@ int main(int argc, char **argv) {
     }
     if (!next_line(line, sizeof line, 1)) { fprintf(stderr, "stream: no header on stdin\n"); return 2; }
     if (strncmp(line, "\xEF\xBB\xBF", 3) == 0) memmove(line, line + 3, strlen(line + 3) + 1);
+    if ((unsigned char)line[0] + (unsigned char)line[1] == 0xFF + 0xFE
+        && ((unsigned char)line[0] == 0xFF || (unsigned char)line[0] == 0xFE)) {
+        /* (catman70) a Unicode export (catman AP's, Excel's 'Unicode Text'): two bytes a
+           character, whose zero bytes no line of CSV text holds */
+        fprintf(stderr, "stream: line 1 is UTF-16 text (its byte-order mark): convert the file "
+                "to UTF-8 first (iconv -f UTF-16 -t UTF-8), as the model's reader reads it\n");
+        return 2;
+    }
     if (strncmp(line, "TDSm", 4) == 0 || (strncmp(line, "MATLAB ", 7) == 0
                                           && strstr(line, "MAT-file") != NULL)) {
         /* a lab's binary log fed as it is: its bytes are no header to name a column of */
@@ -718,6 +776,7 @@ int main(int argc, char **argv) {
         }
         if (filled && unit_row) {
             pending = 0;
+            unit_rowed = 1;
             row++;
             units_raw[strcspn(units_raw, "\r\n")] = '\0';
             for (j = 0; j < ncols && j < n; j++) {
@@ -810,12 +869,19 @@ int main(int argc, char **argv) {
                         said_hash == 5 ? " (no more said)" : "");
             continue;
         }
+        /* (catman70) a row describing the channels under the header's unit row, before the
+           first sample: catman's channel comments or T0 row (no input cell a number), its
+           dt row (a label in the first column, the time's or an input's): left out */
+        if (unit_rowed && !sampled && row - top <= MAX_PROPERTY_ROWS + 1
+            && described(line, where, time_col))
+            continue;
         strcpy(row_raw, line);
         if (line[strspn(line, " \t\r\n")] == '\0') {
             restart(&s, 1);
             if (!saved(state_path, state_tmp, &s, run)) return 2;
             continue;
         }
+        sampled = 1;
         if (split(line, cells) != ncols) {
             fprintf(stderr, "stream: line %ld has not %d cells%s\n", row, ncols,
                     line[strspn(line, " \t")] == '#' ? ": a '#' line among the rows: a comment? "
@@ -858,6 +924,16 @@ int main(int argc, char **argv) {
             if (time_of(stamp, row, 1.0, 0.0, &t) != 0) return 2;
         } else if (time_col >= 0 && time_of(cells[time_col], row, scale_of[time_col],
                                             offset_of[time_col], &t) != 0) return 2;
+        if (TC_PAUSE_S > 0 && isfinite(t) && !s.first && isfinite(s.t_read)
+            && t - s.t_read > TC_PAUSE_S) {
+            /* (catman70) the logger silent longer than data.runs_at_pauses' pause: the next
+               test, a campaign of its own (as the reader splits the file), its clock from here */
+            restart(&s, 1);
+            if (time_col >= 0 && clock_col >= 0) {
+                if (time_of(stamp, row, 1.0, 0.0, &t) != 0) return 2;
+            } else if (time_of(cells[time_col], row, scale_of[time_col], offset_of[time_col],
+                               &t) != 0) return 2;
+        }
         if (TC_SUBSTITUTE_TIME && isfinite(t) && !s.first && isfinite(s.t_read) && t <= s.t_read
             && !isfinite(s.t_back) && said_back++ < 5)
             /* (restart66) the time rule (timerule.py): said where it sets in */
