@@ -281,6 +281,74 @@ def test_the_served_model_answers_a_block_within_the_limits_as_without_them(scor
     assert len(limited[1]["predictions"]) == 20
 
 
+@pytest.fixture(scope="module", params=["mlr", "arx"])
+def served_short(short_dataset, tmp_path_factory, request):
+    """``(a function giving a fresh limited scoring app, a test campaign's rows)`` of the short
+    scenario's MLR or ARX (a lag model), behind the monitor as ``promote`` registers it."""
+    import mlflow
+    from mlflow.pyfunc import scoring_server
+
+    from thermocomp.apps.deploy.pyfunc import save_compensator
+    from thermocomp.apps.deploy.server import RequestLimits
+
+    ds, _ = io.read_dataset(short_dataset, {})
+    train = {c: ds.campaigns[c] for c in ds.ids("train")}
+    est = instantiate(OmegaConf.load(ROOT / f"conf/model/{request.param}.yaml").estimator)
+    streaming = StreamingCompensator.from_training(Compensator(est).fit(train), train)
+    adaptive = AdaptiveCompensator.from_training(streaming, train)
+    rows = ds.campaigns[ds.ids("test")[0]][adaptive.columns_ + ["time"]].reset_index(drop=True)
+    folder = save_compensator(adaptive, tmp_path_factory.mktemp("csv") / "model")
+
+    def fresh_app():          # a server just started: no session held
+        return RequestLimits(scoring_server.init(mlflow.pyfunc.load_model(str(folder))),
+                             max_body_bytes=1 << 20, max_rows=1000)
+    return fresh_app, rows
+
+
+def _csv(frame: pd.DataFrame) -> bytes:
+    return frame.to_csv(index=False).encode()
+
+
+@pytest.mark.parametrize("clock", ["seconds", "timestamps"])
+def test_rows_posted_as_csv_get_the_corrections_the_same_rows_get_as_json(served_short, clock):
+    """csv70: every ``text/csv`` request was refused (400, MLflow's "some of the inputs types are
+    not DataType": its CSV parse wants a pandas type for the time column, which takes seconds
+    or timestamps).  Two blocks of a campaign, a missing cell in the second, as CSV (no params:
+    the default session, started at its first block) and as JSON (``reset`` first): the same."""
+    fresh_app, rows = served_short
+    rows = rows.head(30).astype({"time": object})
+    if clock == "timestamps":
+        start = pd.Timestamp("2026-12-01 08:00:00")
+        rows["time"] = [(start + pd.Timedelta(seconds=float(t))).strftime("%Y-%m-%d %H:%M:%S")
+                        for t in rows["time"]]
+    rows.loc[20, rows.columns[1]] = np.nan
+    as_json, as_csv = fresh_app(), fresh_app()
+    for block, params in ((rows.iloc[:15], {"reset": True}), (rows.iloc[15:], {})):
+        by_json = _asgi(as_json, _split(block, **params))
+        by_csv = _asgi(as_csv, _csv(block), content_type="text/csv")
+        assert by_json[0] == by_csv[0] == 200, by_csv[1]
+        assert by_csv[1] == by_json[1]
+    assert np.isfinite([r["C_X"] for r in by_csv[1]["predictions"]]).all()
+
+
+def test_a_csv_with_a_bad_cell_is_refused_naming_its_column_and_row(served_short):
+    fresh_app, rows = served_short
+    block = rows.head(5).astype(object)
+    column = block.columns[1]
+    block.loc[2, column] = "20,6"            # a decimal comma
+    status, answer, _ = _asgi(fresh_app(), _csv(block), content_type="text/csv; charset=utf-8")
+    assert status == 400
+    assert answer["message"] == (f"column '{column}', data row 3 of the block: value '20,6' is not "
+                                 "a number (float64; a decimal point, a missing value as an empty "
+                                 "cell)")
+    lines = _csv(rows.head(5)).decode().splitlines()
+    lines[4] += ",7"                         # data row 4: a cell more than the header
+    status, answer, _ = _asgi(fresh_app(), "\n".join(lines).encode(), content_type="text/csv")
+    assert status == 400 and answer["message"] == (
+        f"CSV body, data row 4: {len(rows.columns) + 1} cells under a header of "
+        f"{len(rows.columns)} columns")
+
+
 def test_serve_runs_the_limited_app_and_warns_when_the_network_can_reach_it(scoring, tmp_path,
                                                                             caplog):
     from thermocomp.apps.deploy import server

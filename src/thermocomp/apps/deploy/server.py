@@ -20,11 +20,16 @@ the server as a child that ends with its parent and whose folder is removed howe
 
 Request: ``POST http://<host>:<port>/invocations`` with
 ``{"dataframe_split": {"columns": [...], "data": [[...]]}, "params": {"session": "machine-7",
-"reset": true}}`` (``reset`` on the first block of each campaign).
+"reset": true}}`` (``reset`` on the first block of each campaign).  A ``text/csv`` body (a
+logger's rows, header first) is answered as the ``dataframe_split`` of the same cells
+(:func:`csv_as_split`): MLflow's own CSV parse needs a pandas type for every column its
+signature names, and the time column (seconds or a logger's timestamps) has none.
 """
 
 from __future__ import annotations
 
+import csv
+import io
 import json
 import math
 import os
@@ -63,6 +68,54 @@ def count_rows(body: bytes, content_type: str) -> tuple[int, int]:
     return json_shape(body)
 
 
+_NUMBER = re.compile(r"[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?|[+-]?(nan|inf|infinity)", re.I)
+_INTEGER = re.compile(r"[+-]?\d+")
+
+
+def _cell(text: str):
+    """A CSV cell as JSON carries it: a number (an integer as one), a missing value (an empty
+    cell, ``nan``) as null, any other text as it is (the model refuses it naming its row)."""
+    value = text.strip()
+    if not value:
+        return None
+    if _INTEGER.fullmatch(value):
+        return int(value)
+    if _NUMBER.fullmatch(value):
+        number = float(value)
+        return None if number != number else number
+    return text
+
+
+def is_csv(content_type: str) -> bool:
+    """Whether a request's ``Content-Type`` is CSV in UTF-8 (another charset: MLflow's 415)."""
+    mime, *params = (p.strip().lower() for p in content_type.split(";"))
+    return mime == "text/csv" and all(p in ("charset=utf-8", "charset=utf8") for p in params)
+
+
+def csv_as_split(body: bytes) -> bytes:
+    """A CSV block (header first, comma-separated, UTF-8) as the JSON body ``{"dataframe_split":
+    ...}`` of the same cells (:func:`_cell`), so that CSV and JSON take one path to the model
+    (its columns' types, its refusals).  A body that is not such a table: ValueError naming the
+    data row (1-based, after the header)."""
+    try:
+        text = body.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        raise ValueError(f"CSV body: byte {exc.start} is not UTF-8") from None
+    lines = csv.reader(io.StringIO(text, newline=""))
+    columns = next(lines, None)
+    if not columns:
+        raise ValueError("CSV body: no header row (the column names first)")
+    data = []
+    for row, cells in enumerate(lines, start=1):
+        if not cells:              # a blank line (the body's last newline)
+            continue
+        if len(cells) != len(columns):
+            raise ValueError(f"CSV body, data row {row}: {len(cells)} cells under a header of "
+                             f"{len(columns)} columns")
+        data.append([_cell(c) for c in cells])
+    return json.dumps({"dataframe_split": {"columns": columns, "data": data}}).encode()
+
+
 class RequestLimits:
     """ASGI middleware around ``app``: the limits of the module doc on every POST."""
 
@@ -89,13 +142,23 @@ class RequestLimits:
             if not message.get("more_body", False):
                 break
         body = bytes(body)
-        depth, rows = count_rows(body, headers.get(b"content-type", b"").decode("latin-1"))
+        content_type = headers.get(b"content-type", b"").decode("latin-1")
+        depth, rows = count_rows(body, content_type)
         if depth > MAX_DEPTH:
             return await _refuse(send, 400, f"JSON nested more than {MAX_DEPTH} deep: not a table "
                                             "of sensor readings")
         if rows > self.max_rows:
             return await _refuse(send, 413, f"{rows} rows over serve.max_rows ({self.max_rows}): "
                                             "send the rows in smaller blocks")
+        if is_csv(content_type):
+            try:
+                body = csv_as_split(body)
+            except ValueError as exc:
+                return await _refuse(send, 400, str(exc))
+            scope = {**scope, "headers": [(k, v) for k, v in scope["headers"]
+                                          if k not in (b"content-type", b"content-length")]
+                     + [(b"content-type", b"application/json"),
+                        (b"content-length", str(len(body)).encode())]}
         replayed = False
 
         async def replay():
@@ -105,7 +168,7 @@ class RequestLimits:
             replayed = True
             return {"type": "http.request", "body": body, "more_body": False}
 
-        return await self.app(scope, replay, one_line_refusals(send, body))
+        return await self.app(scope, replay, one_line_refusals(send, body, from_csv=is_csv(content_type)))
 
 
 QUOTED = "Failed to predict data '"     # MLflow's prefix of every refusal: the block, quoted
@@ -124,7 +187,7 @@ def _number(value) -> bool:
     return True
 
 
-def unconverted_row(message: str, body: bytes) -> str | None:
+def unconverted_row(message: str, body: bytes, from_csv: bool = False) -> str | None:
     """MLflow's "Failed to convert column X to type 'float64'" as a row's refusal: ``column 'X',
     data row N of the block: value 'v' is not a number`` (N 1-based, as a lab's file is counted),
     found in a ``dataframe_split`` or ``dataframe_records`` body; None for any other answer."""
@@ -145,15 +208,18 @@ def unconverted_row(message: str, body: bytes) -> str | None:
     bad = next((i for i, v in enumerate(values) if not _number(v)), None)
     if bad is None:
         return None
+    how = ("a decimal point, a missing value as an empty cell" if from_csv
+           else "send numbers as JSON numbers, a missing value as null")
     return (f"column {column!r}, data row {bad + 1} of the block: value {values[bad]!r} is not a "
-            f"number ({found['type']}; send numbers as JSON numbers, a missing value as null)")
+            f"number ({found['type']}; {how})")
 
 
-def one_line_refusals(send, body: bytes = b""):
+def one_line_refusals(send, body: bytes = b"", from_csv: bool = False):
     """``send`` with an HTTP 400 answer's ``message`` cut to its reason: MLflow's app quotes
     the whole block before it (a sensor column missing from 35 rows: 3 KB on 37 lines, the reason
     last), which a caller's log cannot show in one line; a value that is no number said with its
-    row of the request ``body`` (MLflow names the column alone); every other answer as it is."""
+    row of the request ``body`` (MLflow names the column alone; ``from_csv``: the body came as CSV,
+    the hint says how a CSV cell is written); every other answer as it is."""
     held: list = []
 
     async def cut(message):
@@ -177,7 +243,7 @@ def one_line_refusals(send, body: bytes = b""):
             answer["message"] = " ".join(reason.split())
             answered = json.dumps(answer).encode()
         elif isinstance(answer, dict) and (row := unconverted_row(str(answer.get("message", "")),
-                                                                  body)):
+                                                                  body, from_csv)):
             answer["message"] = row
             answered = json.dumps(answer).encode()
         headers = [(k, str(len(answered)).encode() if k.lower() == b"content-length" else v)
