@@ -335,6 +335,7 @@ def test_stream_scores_match_batch_residuals(data):
     r = np.concatenate([meas[c]["E_Z"] - pred[c]["E_Z"] for c in test])
     assert scores["E_Z"]["test"]["rmse"] == pytest.approx(np.sqrt(np.mean(r**2)), rel=1e-9)
     assert scores["E_Z"]["test"]["rms_after"] < 0.3 * scores["E_Z"]["test"]["rms_before"]
+    assert scores["E_Z"]["guarded_samples"] is None     # the plain stream has no guard (guard70)
 
 
 def test_envelope_margin_and_constant_columns():

@@ -23,7 +23,8 @@ the champion decision itself is :mod:`thermocomp.core.scoring.champion`.  The st
    ``deploy_config``), its validation figures (from its run's ``metrics.json``)
    and its test figures (streamed per test campaign as deployed, from a reset
    or, for a campaign that continues others, warmed on them: reported, never
-   used to decide).
+   used to decide; ``promote.json`` adds, per target, the test rows whose correction the
+   guard changed).
 3. The gate compares validation scores on the same dataset: the candidate's
    against the one the champion was promoted with, when the champion's
    ``dataset_hash``, ``criterion_target`` and ``validation_mode`` tags match
@@ -74,6 +75,9 @@ class Candidate:
     val_figures: dict
     figures: dict = field(default_factory=dict)
     test_figures: dict = field(default_factory=dict)
+    # per target, the test rows whose correction the guard changed (None: the plain stream)
+    test_guarded: dict | None = None
+    test_samples: int = 0
     deviation: float = 0.0
     deployed: object = None
     streaming: object = None
@@ -177,6 +181,10 @@ def deploy(cand: Candidate, comp, ds, *, stream_of: Callable, deployed_of: Calla
     scores = stream_scores(cand.deployed, test, sample_period(ds, test_ids), *e_p95, leads,
                            adapt=adapt_of(len(cand.deployed.targets_)))
     cand.test_figures = {k: v for k, v in figures_of(scores, target).items() if not is_validation(k)}
+    # why "as deployed" leaves run's test figure with no input clamped (guard70, as replay says it)
+    guarded = {t: s["guarded_samples"] for t, s in scores.items()}
+    cand.test_guarded = None if None in guarded.values() else guarded
+    cand.test_samples = sum(len(df) for df in test.values())
     cand.figures = {**cand.val_figures, **cand.test_figures}
 
 
@@ -218,7 +226,8 @@ def promote_report(cand: Candidate, outcome: Outcome, *, name: str, alias: str,
             "moved": o.moved, "registered": o.registered, "reason": o.why,
             "criterion": criterion, "ranked_by": cand.basis,
             "candidate": {"score": cand.score, "figures": cand.figures,
-                          "validation": cand.val_figures, "test_reported": cand.test_figures},
+                          "validation": cand.val_figures, "test_reported": cand.test_figures,
+                          "test_rows_guarded": cand.test_guarded},
             "champion": None if o.champion_version is None else {"version": o.champion_version,
                                                                  "score": o.champion_score},
             "stream_deviation_um": cand.deviation, "model_uri": f"models:/{name}/{o.version}",

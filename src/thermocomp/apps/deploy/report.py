@@ -272,6 +272,19 @@ def adapt_line(targets: Mapping, what: str, key: str) -> list[str]:
                         and r["adapt"]["rmse_frozen"] is not None)]
 
 
+def guarded_line(guarded: Mapping[str, int | None], n: int, figures: str) -> list[str]:
+    """The line saying, per target, how many of the ``n`` streamed samples had their correction
+    changed by the guard (``guarded``: :func:`~.guard.guard_changes` summed over the campaigns;
+    None without a guard), and which figures are the guarded stream's (``figures``); none
+    where it changed no row.  One wording for replay, monitor and promote (depl70, guard70)."""
+    shown = {t: k for t, k in guarded.items() if k}
+    if not shown:
+        return []
+    return ["guarded: " + ", ".join(f"{t} {k}" for t, k in shown.items())
+            + f" of {n} samples had the correction bounded or rate-limited by the guard "
+            f"(monitor.guard); {figures}"]
+
+
 def first_exclusion(events: list[dict]) -> str:
     """``, first: <sensor> (<campaign>, <h> h)``: the first sensor excluded and when (hours
     from its campaign's start), or nothing; the end of the events line `replay` and `monitor`
@@ -331,12 +344,10 @@ def replay_lines(report: dict) -> list[str]:
         lines.append(f"clamped: {clamped} of {n} samples had an input outside the training "
                      f"envelope (promote.envelope.policy={policy}); RMSE is the clamped "
                      "stream's, RMSE batch the model's own")
-    guarded = {t: r["guarded_samples"] for t, r in targets.items() if r.get("guarded_samples")}
-    if guarded:     # why RMSE leaves RMSE batch where no input was clamped (depl70)
-        n = next(iter(targets.values()))["n_samples"]
-        lines.append("guarded: " + ", ".join(f"{t} {k}" for t, k in guarded.items())
-                     + f" of {n} samples had the correction bounded or rate-limited by the guard "
-                     "(monitor.guard); RMSE is the guarded stream's, RMSE batch the model's own")
+    # why RMSE leaves RMSE batch where no input was clamped (depl70)
+    lines += guarded_line({t: r.get("guarded_samples") for t, r in targets.items()},
+                          next(iter(targets.values()), {}).get("n_samples", 0),
+                          "RMSE is the guarded stream's, RMSE batch the model's own")
     if report["adaptive"]:
         lines.append(f"events: {len(report['events'])}, excluded at a campaign's end: "
                      f"{', '.join(report['excluded_inputs']) or 'none'}"

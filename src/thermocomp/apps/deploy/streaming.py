@@ -749,10 +749,13 @@ def stream_scores(streaming: StreamingCompensator, campaigns: Mapping[str, pd.Da
     (see :func:`thermocomp.core.metrics.split_scores`).  With ``adapt`` (an
     :class:`~.adapt.Adaptation` with its schedule, ``adapt.method`` not ``none``) the
     corrections are adapted as ``replay`` adapts them: the campaigns in their order, what is
-    learned from the references carried from one to the next.
+    learned from the references carried from one to the next.  Each target's
+    ``guarded_samples`` (beside ``test``) counts the rows whose correction the guard changed, as
+    ``replay.json``'s (the frames' ``attrs[GUARDED]``; None without a guard: the plain stream).
     """
     lead_ins = lead_ins or {}
     predicted = {c: replay(streaming, df, lead_in=lead_ins.get(c)) for c, df in campaigns.items()}
+    guarded = all(GUARDED in p.attrs for p in predicted.values())
     streaming.reset()
     # (a probe's first reading after the first row: the deployed y_hat(m) completes the label)
     measured = streaming.compensator.measured(campaigns, predicted=predicted)
@@ -767,5 +770,7 @@ def stream_scores(streaming: StreamingCompensator, campaigns: Mapping[str, pd.Da
     for t in streaming.targets_:
         y = {c: measured[c][t].to_numpy() for c in campaigns}
         r = {c: y[c] - predicted[c][t].to_numpy() for c in campaigns}
-        out[t] = {"test": split_scores(y, r, sample_period_s, statistic, points)}
+        out[t] = {"test": split_scores(y, r, sample_period_s, statistic, points),
+                  "guarded_samples": sum(int(p.attrs[GUARDED][t]) for p in predicted.values())
+                  if guarded else None}
     return out

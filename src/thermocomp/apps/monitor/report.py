@@ -15,11 +15,13 @@ from ...core.context import TIME
 from ...core.metrics import unit
 from ..deploy.adapt import Adaptation, adapt_figures
 from ..deploy.adaptive import AdaptiveCompensator
+from ..deploy.guard import guard_changes
 from ..deploy.report import (
     adapt_line,
     alarm_rate,
     campaign_start,
     first_exclusion,
+    guarded_line,
     new_states,
     streamed_hours,
 )
@@ -30,7 +32,7 @@ from .placement import covariance_sensors, qr_sensors
 
 
 def stream_campaign(model, df: pd.DataFrame, lead_in: pd.DataFrame | None = None,
-                    clamped: list | None = None
+                    clamped: list | None = None, guarded: list | None = None
                     ) -> tuple[np.ndarray, list[dict], tuple[list, list]]:
     """Stream one campaign from its start (a reset, or warmed on ``lead_in``, the campaigns it
     continues: :func:`~thermocomp.apps.deploy.streaming.warm`); a step of the fixed compensator
@@ -38,12 +40,15 @@ def stream_campaign(model, df: pd.DataFrame, lead_in: pd.DataFrame | None = None
     row: a failure there is a defect, raised, not a held correction whose row re-reported the
     previous row's events; their times from the campaign's first row on the stream's
     clock, :mod:`~thermocomp.core.timerule`).  ``clamped``: a list given gets each
-    row's count of inputs clamped to the training envelope."""
+    row's count of inputs clamped to the training envelope; ``guarded``: a list given gets, of a
+    model with a correction guard, the campaign's rows per target whose correction it changed
+    (:func:`~thermocomp.apps.deploy.guard.guard_changes`, the lead-in's not)."""
     X = df[model.columns_].to_numpy(float)
     t = df[TIME].to_numpy(float) if TIME in df.columns else np.arange(len(df), dtype=float)
     y = np.zeros((len(X), len(model.targets_)))
     events, states, errors = [], [], []
     warm(model, lead_in, df)
+    warmed = guard_changes(model)
     t0 = 0.0
     for i in range(len(X)):
         n = 0
@@ -62,6 +67,8 @@ def stream_campaign(model, df: pd.DataFrame, lead_in: pd.DataFrame | None = None
             events += [{**e, "time": e["time"] - t0} for e in model.last_events_]
             states.append(mon.states)
             errors.append(mon.last_error_)
+    if guarded is not None and warmed is not None:
+        guarded.append(guard_changes(model) - warmed)
     model.reset()
     return y, events, (states, errors)
 
@@ -80,7 +87,7 @@ def _stream_all(adaptive, fixed, comp, streamed: dict, leads: dict,
     names = adaptive.monitor.names
     out = {"counts": np.zeros((len(names), len(STATES)), dtype=np.int64), "first_alarm": {},
            "events": [], "traces": {}, "res_f": [], "res_a": [], "res_frozen": [], "corr": [],
-           "hours": 0.0, "clamped": 0, "samples": 0}
+           "hours": 0.0, "clamped": 0, "samples": 0, "guarded": []}
     measured = comp.measured(streamed) if any(t in df.columns for df in streamed.values()
                                               for t in comp.targets_) else None
     for cid, df in streamed.items():
@@ -88,7 +95,8 @@ def _stream_all(adaptive, fixed, comp, streamed: dict, leads: dict,
         y_fix, _, _ = stream_campaign(fixed, df, leads.get(cid), clamped)
         out["clamped"] += int(np.count_nonzero(clamped))
         out["samples"] += len(df)
-        y_ad, ev, (states, errors) = stream_campaign(adaptive, df, leads.get(cid))
+        y_ad, ev, (states, errors) = stream_campaign(adaptive, df, leads.get(cid),
+                                                     guarded=out["guarded"])
         start = campaign_start(df, adaptive.period_s)   # CLI.md: times in s from the campaign start
         t = (df[TIME].to_numpy(float) if TIME in df.columns else np.arange(len(df), dtype=float)) - start
         m = None if measured is None else measured[cid][adaptive.targets_].to_numpy()
@@ -118,13 +126,15 @@ def _stream_all(adaptive, fixed, comp, streamed: dict, leads: dict,
 
 def _targets(adaptive, run: dict) -> dict:
     C = np.vstack(run["corr"])
+    guarded = np.sum(run["guarded"], axis=0) if run["guarded"] else None
     rf = np.vstack(run["res_f"]) if run["res_f"] else None
     ra = np.vstack(run["res_a"]) if run["res_a"] else None
     return {t: {"rmse_fixed": _rmse(rf, k), "rmse_adaptive": _rmse(ra, k),
                 "max_abs_correction": float(np.max(np.abs(C[:, k]))) if len(C) else 0.0,
                 "all_finite": bool(np.all(np.isfinite(C[:, k]))),
                 "bound": [float(adaptive.guard.lo[k]), float(adaptive.guard.hi[k])],
-                "clamped_samples": run["clamped"], "n_samples": run["samples"]}
+                "clamped_samples": run["clamped"], "n_samples": run["samples"],
+                "guarded_samples": None if guarded is None else int(guarded[k])}
             for k, t in enumerate(adaptive.targets_)}
 
 
@@ -188,6 +198,8 @@ def summary_lines(report: dict) -> list[str]:
         lines.append(f"clamped: {first['clamped_samples']} of {first['n_samples']} samples had an "
                      "input outside the training envelope (promote.envelope.policy); both RMSEs "
                      "are the clamped streams'")
+    lines += guarded_line({t: r.get("guarded_samples") for t, r in report["targets"].items()},
+                          first.get("n_samples", 0), "RMSE adaptive is the guarded stream's")
     lines += _offset_lines(report["sensors"])
     lines += adapt_line(report["targets"], "adaptive without -> with", "rmse_adaptive")
     excl = [e for e in report["events"] if e["to"] == "excluded"]

@@ -15,6 +15,7 @@ from omegaconf import DictConfig, OmegaConf
 from ...apps.deploy import POLICIES
 from ...apps.deploy.adapt import from_config as adapt_from_config
 from ...apps.deploy.promotion import deploy, deploy_key, promote_report
+from ...apps.deploy.report import guarded_line
 from ...base.files import write_json
 from ...base.log import logger
 from ...base.params import choice
@@ -80,4 +81,7 @@ def promote(cfg: DictConfig) -> dict:
     write_json(resolve(cfg.out) / "promote.json", report)
     print(outcome_line(name, outcome.version, alias, outcome.moved, outcome.why,
                        outcome.champion_version))
+    for line in guarded_line(cand.test_guarded or {}, cand.test_samples,
+                             "the test figures are the guarded stream's, run's the model's own"):
+        print(line)
     return report
