@@ -80,6 +80,12 @@ TC_PAUSE_S).  ``monitor`` mlr healthy: 0 events on both.  ``diagnose`` mlr: rig_
 speed x the inputs' rises on Z, 1.20 -> 0.81; lags accepted on the radial probes, Y1 0.19 ->
 0.29 and X2 0.16 -> 0.26 worse), rig_b nothing accepted (15.8 / 8.5 s CPU).
 
+amb70 (2026-12-02, after a1cc3ab6): ``init`` names ``T Luft`` / ``T air`` the ambient sensor
+(``T_amb``) and writes ``runs_at_pauses: true`` for ``rig_b`` ("its time pauses 7 time(s) ...
+the longest 60 h"): ``rig_b`` in 1 try (2.27 / 2.32 s CPU; 1.91 / 2.27 s at cb9f7c02, whose
+config read one record cut 90/10), ``rig_a`` 1 try (2.18 s); ``run model=mlr`` on ``rig_b``'s
+written config: 0.15 / 0.23 / 0.19 / 0.25 / 1.48 as above.  ``auto`` (now offered ATI) not rerun.
+
     ... bench_catman70.py init ROOT rig_a [override ...]   # init as a stranger, one try
     ... bench_catman70.py matrix ROOT rig_a                # run -> replay -> promote -> C
     ... bench_catman70.py table ROOT rig_a

@@ -68,14 +68,19 @@ HELD_OUT = 0.1    # the test share init writes for a record or runs without test
 
 _GLOB = re.compile(r"([*?\[])")
 _WORDS = re.compile(r"[\s_.\-]+")
-# a header word that says "the air around the machine" ('air' and 'Luft' not: an air bearing);
-# an Italian / French / Spanish lab's 'ambiente', 'ambiante', 'capannone' (the shop's hall);
-# the place the air is in: a French 'atelier', a Spanish 'nave' or 'taller', 'sala' / 'salle',
-# a gateway's 'shop_air'
+# a header word that says "the air around the machine"; an Italian / French / Spanish lab's
+# 'ambiente', 'ambiante', 'capannone' (the shop's hall); the place the air is in: a French
+# 'atelier', a Spanish 'nave' or 'taller', 'sala' / 'salle', a gateway's 'shop_air'
 AMBIENT_WORDS = {"amb", "ambient", "umgebung", "umgebungstemperatur", "raum", "raumtemperatur",
                  "room", "hall", "halle", "hallentemperatur", "ambiente", "ambiante", "capannone",
                  "atelier", "nave", "taller", "sala", "salle", "officina", "werkstatt", "workshop",
-                 "shop"}
+                 "shop", *("raumluft", "hallenluft", "umgebungsluft", "lufttemperatur")}
+# the air itself ('T Luft', 'T air'; amb70), as a whole word ('Luftlager', 'Airbag' are not),
+# unless another word says whose air it is: an air bearing's, the cooling's, a supply's
+AIR_WORDS = {"air", "luft"}
+NOT_THE_AIRS = {"bearing", "bearings", "lager", "cooling", "coolant", "cooler", "kühlung",
+                "kuehlung", "compressed", "pressure", "druck", "supply", "exhaust", "inlet",
+                "outlet", "intake", "flow", "gap", "spalt", "blast", "blow", "purge"}
 _WHERE = ("interim", "processed")     # where stages write: the project's, not the data's
 
 
@@ -330,9 +335,14 @@ def without_own_names(header: list[str], first: dict, roles: dict, opts) -> tupl
 
 def air_words(name: str) -> set[str]:
     """The words of a header's ``name``, and of a word that is a ``T`` before an air's word
-    (MATLAB's field ``Troom``, ``Tamb``: a name cannot hold a space) that word too."""
+    (MATLAB's field ``Troom``, ``Tamb``: a name cannot hold a space) that word too; with
+    ``ambient`` where a word is the air (:data:`AIR_WORDS`) and none an air bearing's, the
+    cooling's (:data:`NOT_THE_AIRS`)."""
     words = set(_WORDS.split(name.lower()))
-    return words | {w[1:] for w in words if w.startswith("t") and w[1:] in AMBIENT_WORDS}
+    words |= {w[1:] for w in words if w.startswith("t") and w[1:] in AMBIENT_WORDS | AIR_WORDS}
+    if words & AIR_WORDS and not words & NOT_THE_AIRS:
+        words.add("ambient")                  # the air, not an air bearing's
+    return words
 
 
 def flag_headers(ds, names: dict) -> list[str]:

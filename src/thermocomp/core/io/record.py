@@ -18,10 +18,9 @@ import pandas as pd
 import pyarrow as pa
 
 from ...base.log import logger
-from ..timerule import median_step
 from .contract import MANIFEST, ContractError
 from .manifest import RECORD_SUFFIXES
-from .rates import PAUSE_PERIODS
+from .rates import PAUSE_PERIODS, pauses
 from .sparse import probe_cycle
 from .workbook import not_read
 
@@ -114,11 +113,10 @@ def _warn_pauses(path: Path, table: pa.Table) -> None:
     if "time" not in table.column_names or table.num_rows < 3:
         return
     time = table.column("time").to_numpy(zero_copy_only=False).astype(float)
-    steps, period = np.diff(time), median_step(time)
-    pauses = np.flatnonzero(steps > PAUSE_PERIODS * period) if period else []
-    if len(pauses):
-        k = int(pauses[np.argmax(steps[pauses])])
-        logger.warning(f"{path.name}: one record, yet it pauses {len(pauses)} "
+    steps, found = np.diff(time), pauses(time)
+    if len(found):
+        k = int(found[np.argmax(steps[found])])
+        logger.warning(f"{path.name}: one record, yet it pauses {len(found)} "
                        f"time(s) for more than {PAUSE_PERIODS} sample periods (the longest "
                        f"{steps[k] / 3600:.3g} h, after data row {k + 1}): runs joined in one "
                        "file? One file per run in a folder, a column numbering the runs "

@@ -28,7 +28,7 @@ import pyarrow.compute as pc
 from ..timerule import median_step
 from .contract import ContractError
 from .options import RUN_ROLE
-from .rates import PAUSE_PERIODS
+from .rates import PAUSE_PERIODS, pauses
 from .roles import split_unit
 
 MIN_RUN_ROWS = 10        # a run counter holds each value this many rows on average at least
@@ -95,14 +95,13 @@ def pause_blocks(seconds: np.ndarray, stem: str, path: Path | str
     ContractError
         No pause: one run (``data.runs_at_pauses`` splits nothing).
     """
-    period = median_step(seconds)
-    steps = np.diff(seconds)
-    pauses = np.flatnonzero(steps > PAUSE_PERIODS * period) + 1 if period else np.array([], int)
-    if not pauses.size:
+    found = pauses(seconds) + 1
+    if not found.size:
         raise ContractError(f"data.runs_at_pauses: the time never pauses for more than "
-                            f"{PAUSE_PERIODS} sample periods ({period:g} s): one run, nothing to "
-                            "split (leave the key out)", file=path, column="time")
-    edges = [0, *map(int, pauses), len(seconds)]
+                            f"{PAUSE_PERIODS} sample periods ({median_step(seconds) or 0:g} s): "
+                            "one run, nothing to split (leave the key out)", file=path,
+                            column="time")
+    edges = [0, *map(int, found), len(seconds)]
     return [(f"{stem}_{k}", a, b) for k, (a, b) in enumerate(zip(edges, edges[1:]), 1)]
 
 

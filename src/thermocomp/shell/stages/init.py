@@ -10,6 +10,7 @@ from __future__ import annotations
 import fnmatch
 from dataclasses import replace
 
+import numpy as np
 import pandas as pd
 import yaml
 from omegaconf import DictConfig, OmegaConf
@@ -48,8 +49,10 @@ from ...core.io.historian import (
 )
 from ...core.io.historian_layout import long_layout
 from ...core.io.manifest import is_text
+from ...core.io.options import RUN_ROLE
 from ...core.io.pairhead import error_files, pair_time, paired_head, paired_lines
 from ...core.io.plain import is_converted, is_lab_file, lab_as_csv
+from ...core.io.rates import PAUSE_PERIODS, pauses
 from ...core.io.roles import excel_days_header, naming, split_unit
 from ...core.io.sniff import resolved
 from ...core.io.starts import stated_start
@@ -195,6 +198,26 @@ def stated_starts(src, ds, report: dict, opts) -> None:
     print(line)
 
 
+def appended_runs(src, ds, opts) -> str | None:
+    """Why one record ``src`` (read as ``ds``, cut into parts) is runs appended in one file: its
+    time pauses (the reader's rule, :func:`.io.rates.pauses`) -- how many times and the longest;
+    None where it does not, or where its runs are otherwise told (a run column, a folder)."""
+    if not src.is_file() or opts.runs_at_pauses or opts.roles.get(RUN_ROLE):
+        return None
+    entries = ds.meta["read_report"]["campaigns"]
+    if not all("record_rows" in entries[cid] for cid in ds.ids()):    # (a workbook's sheets)
+        return None
+    parts = sorted(ds.ids(), key=lambda cid: entries[cid]["record_rows"][0])
+    time = np.concatenate([ds.campaigns[cid][TIME].to_numpy(float) for cid in parts])
+    found = pauses(time)
+    if not found.size:
+        return None
+    longest = float(np.diff(time)[found].max())
+    return (f"its time pauses {found.size} time(s) for more than {PAUSE_PERIODS} sample periods "
+            f"(the longest {longest / 3600:.3g} h): runs appended in one file, its {found.size + 1} "
+            "stretches read as a campaign each (runs_at_pauses: true, written into the config)")
+
+
 def init(cfg: DictConfig) -> dict:
     """Detect, propose, check by reading, write ``<out>/conf/data/<name>.yaml``; print the run
     command.  A volumetric folder of one distance per row is refused as ``calibrate`` refuses
@@ -321,7 +344,20 @@ def _init(cfg: DictConfig) -> dict:
         opts = replace(opts, columns={**opts.columns, **given["columns"]})
         config = data_config(src, given, opts, roles, defaults, manifest)
         ds = open_source(cfg, detected=config)
+    appended = appended_runs(src, ds, opts)     # a week of tests in one export (catman70)
+    if appended:
+        split = data_config(src, {**given, "runs_at_pauses": True}, opts, roles, defaults, manifest)
+        try:
+            ds, config = open_source(cfg, detected=split), split
+            given["runs_at_pauses"], opts = True, replace(opts, runs_at_pauses=True)
+            print(f"{src.name}: {appended}")
+        except ContractError as exc:            # (runs the reader refuses: one record, as before)
+            print(f"{src.name}: {appended.split(': runs')[0]}: not read at them ({exc}), one record")
     check_declared(cfg, ds, model=False)        # (a folder's run with a sensor the others lack)
+    air = [h for h, why in plan.roles.items() if why == "ambient" and not asked.roles["ambient"]]
+    if air:                                     # by its words (the reader's default: a temperature)
+        print(f"ambient: {', '.join(map(repr, air))} ({'their names' if len(air) > 1 else 'its name'}"
+              f": the air around the machine, data.roles.ambient; ati reads it)")
     report = ds.meta["read_report"]
     stated_starts(src, ds, report, opts)        # a DAQ's '# start:' line over a time in s
     for line in paired_lines(report):           # the runs of two loggers: what was paired
