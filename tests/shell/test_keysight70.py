@@ -37,9 +37,11 @@ def _values(run: int) -> np.ndarray:
 
 
 def _export(path: Path, start: dt.datetime, values: np.ndarray, sep: str = ",",
-            decimal: str = ".", probe_unit: str = "um") -> Path:
+            decimal: str = ".", probe_unit: str = "um", day_first: bool = False) -> Path:
     """``values`` as the logger's software exports them (scans 13 ms late now and then: the
-    milliseconds after a colon; an alarm above 21 °C on the table)."""
+    milliseconds after a colon; an alarm above 21 °C on the table; ``day_first``: a European
+    PC's date order)."""
+    date = "%d/%m/%Y" if day_first else "%m/%d/%Y"
     units = ["C", "C", "C", probe_unit, probe_unit, "DEG"]
     names = ["Scan", "Time"]
     for channel, label, unit in zip(CHANNELS, LABELS, units):
@@ -48,7 +50,7 @@ def _export(path: Path, start: dt.datetime, values: np.ndarray, sep: str = ",",
              for line in HEADER] + [sep.join(names) + sep]
     for k, row in enumerate(values):
         at = start + dt.timedelta(minutes=k, milliseconds=13 * (k % 3 == 1))
-        cells = [str(k + 1), f"{at:%m/%d/%Y %H:%M:%S}:{at.microsecond // 1000:03d}"]
+        cells = [str(k + 1), f"{at.strftime(date)} {at:%H:%M:%S}:{at.microsecond // 1000:03d}"]
         for i, v in enumerate(row):
             cells += [f"{v:.3f}".replace(".", decimal), "2" if i == 2 and v > 21 else "0"]
         lines.append(sep.join(cells) + sep)
@@ -159,3 +161,17 @@ def test_the_compiled_stream_reads_the_keysight_export_as_the_reader_does(tmp_pa
     common = [f"data.path={path}", f"data.roles.error=[{', '.join(VOLTS)}]", *time,
               "data.test_fraction=0.3", "data.reference=none"]
     _compiled_stream_equals_its_pack(tmp_path, path, common)
+
+
+def test_a_day_first_keysight_file_is_read_as_its_rows_past_the_12th_say(tmp_path, capsys):
+    """A European PC's export writes its day first: a run from 12/03 22:00 into 13/03 is March
+    the 12th and 13th, not December the 3rd (the Keysight month first is the order only where no
+    row says one); before, init read it month first and refused the 13th's rows."""
+    path, start = tmp_path / "dmu_eu.csv", dt.datetime(2027, 3, 12, 22, 0)
+    _export(path, start, np.vstack([_values(1)] * 3), day_first=True)
+    assert main(["init", str(path), f"out={tmp_path / 'init'}"]) == 0
+    said = capsys.readouterr().out
+    assert ("dmu_eu.csv: dates with slashes read as data.time='%d/%m/%Y %H:%M:%S', the order its "
+            "rows say (a day or month past 12)") in said
+    ds, _ = read_dataset(path, {"roles": {"error": ["*DISP*"]}, "time": "%d/%m/%Y %H:%M:%S"})
+    assert list(ds.manifest["start"]) == [np.datetime64("2027-03-12T22:00")]

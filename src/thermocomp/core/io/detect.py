@@ -211,7 +211,11 @@ def slashed_order(sample: Path, opts, header: list[str], first: dict) -> str | N
             continue
         column = pd.read_csv(sample, sep=opts.delimiter, header=None, skiprows=opts.skip_rows,
                              usecols=[i], dtype=str, encoding=opts.encoding).iloc[:, 0]
-        said = {slashed_format(v.strip()) for v in column.dropna().unique()} - {None}
+        values = [v.strip() for v in column.dropna().unique()]
+        # a row whose day or month is past 12 says the order; a Keysight DAQ's month first is
+        # the order only where no row says one (a European PC's export writes its day first)
+        said = {slashed_format(v, keysight=False) for v in values} - {None}
+        said = said or {slashed_format(v) for v in values} - {None}
         return said.pop() if len(said) == 1 else None
     return None
 

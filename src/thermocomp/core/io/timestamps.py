@@ -140,20 +140,20 @@ def dated_format(value: str) -> str | None:
     return slashed_format(value)
 
 
-def slashed_format(value: str) -> str | None:
+def slashed_format(value: str, keysight: bool = True) -> str | None:
     """The strptime format of a date with slashes and a time of day whose order the date itself
     says: a first field past 12 is the day (``15/06/2026 06:00:00``: ``%d/%m/%Y %H:%M:%S``), a
-    second past 12 the day after the month (``06/15/2026``), and, where neither is, the
-    milliseconds after a colon of a Keysight DAQ's ``Time`` (``03/01/2027 06:00:00:011``, as
-    BenchLink Data Logger and the DAQ970A write it: month first); None for ``03/11/2026``
-    (either order) and for anything else."""
+    second past 12 the day after the month (``06/15/2026``), and, where neither is and
+    ``keysight``, the milliseconds after a colon of a Keysight DAQ's ``Time``
+    (``03/01/2027 06:00:00:011``, as BenchLink Data Logger and the DAQ970A write it: month
+    first); None for ``03/11/2026`` (either order) and for anything else."""
     match = _SLASHED_STAMP.fullmatch(value)
     if match is None:
         return None
     first, second = int(match["a"]), int(match["b"])
     if first > 12 >= second:
         date = "%d/%m/"
-    elif second > 12 >= first or first <= 12 and keysight_stamp(value):
+    elif second > 12 >= first or keysight and first <= 12 and keysight_stamp(value):
         date = "%m/%d/"
     else:
         return None

@@ -255,7 +255,8 @@ def _init(cfg: DictConfig) -> dict:
     if order:              # (13/07/2026: day first, for every file: written to the config)
         given["time"] = order
         opts = replace(opts, time=order)
-        keysight = any(keysight_stamp(str(v).strip()) for v in cells_of_first.values())
+        keysight = order.startswith("%m/%d/") and any(keysight_stamp(str(v).strip())
+                                                      for v in cells_of_first.values())
         print(f"{sample.name}: dates with slashes read as data.time={order!r}, the order its "
               + ("rows say (a Keysight DAQ's Time, its ms after a colon: month first)" if keysight
                  else "rows say (a day or month past 12)"))
