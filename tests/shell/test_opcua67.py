@@ -449,6 +449,8 @@ def test_a_server_clock_gone_on_hours_is_kept_as_a_files_gap_and_said(fitted, tm
     gaps = [e for e in link["events"] if e["event"] == "clock_gap"]
     assert [e["sample"] for e in gaps] == [19, ROWS + 29]     # each after its last sample before
     assert f"{pause + period:g} s" in gaps[0]["detail"] and "pause" in gaps[0]["detail"]
+    # (connect71) this server's clock runs ~1000 times the client's: a set not told, said
+    assert "times the client's" in gaps[0]["detail"] and "not told" in gaps[0]["detail"]
     assert f"{3 * period:g} s" in gaps[1]["detail"] and "2 counted missed" in gaps[1]["detail"]
     assert link["samples"] == 2 * ROWS - 2 and link["samples_missed"] == 2
     assert [e["event"] for e in link["events"]].count("campaign") == 2
@@ -456,6 +458,23 @@ def test_a_server_clock_gone_on_hours_is_kept_as_a_files_gap_and_said(fitted, tm
 
 DOUBLES = {t: (node.replace("_01um", ""), ua.VariantType.Double, 1.0)
            for t, (node, _, _) in OFFSETS.items()}      # offsets as they are computed
+
+
+def client_clock(monkeypatch, machine: VendorMachine) -> None:
+    """The client's clock the machine's time at the server's clock it read last (not at the
+    moment it asks: the lockstep server may be publishing the next row by then)."""
+    from thermocomp.apps.machine import client
+
+    read = [None]
+
+    def seconds(dv):
+        read[0] = client_seconds(dv)
+        return read[0]
+
+    client_seconds = client.seconds
+    monkeypatch.setattr(client, "seconds", seconds)
+    monkeypatch.setattr(client, "own_clock", lambda: machine.machine_at.get(read[0], 0.0),
+                        raising=False)
 
 
 def test_a_server_clock_set_forward_is_told_from_a_pause_by_the_clients_clock(fitted, tmp_path,
@@ -475,13 +494,11 @@ def test_a_server_clock_set_forward_is_told_from_a_pause_by_the_clients_clock(fi
     at P06's row 30 (both clocks go on), the client's clock the machine's time: every offset the
     machine holds is the run's without the clock set (replay of the rows, to 1e-12 µm), the pause
     kept as a file's; before, the 3 h were kept as a pause in P05 too."""
-    from thermocomp.apps.machine import client
-
     data, pkl = fitted
     frames, hours3 = programs(data), 3 * 3600.0
     frames["P06.MPF"].loc[30:, "time"] += hours3        # the machine off: both clocks go on
     machine = VendorMachine(frames, free_port(), offsets=DOUBLES, clock_set=(20, hours3))
-    monkeypatch.setattr(client, "own_clock", lambda: machine.machine_s, raising=False)
+    client_clock(monkeypatch, machine)
     code, link = run_connect(data, pkl, tmp_path, machine, nodes=connect_nodes(offsets=DOUBLES))
     assert code == 0 and all(machine.served.answered) and len(machine.served.offsets) == 2 * ROWS
     held = np.vstack(machine.served.offsets)
