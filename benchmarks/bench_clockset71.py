@@ -88,7 +88,7 @@ def _one(t, data: Path, pkl: Path, out: Path, run: str) -> dict:
             "vs_without_set": largest(without), "vs_step_kept": largest(with_step),
             "rms_rows_20_49": np.sqrt(np.mean((error - held[:n])[SET_ROW:] ** 2, 0)).round(4).tolist(),
             "rms_without_set": np.sqrt(np.mean((error - without[:n])[SET_ROW:] ** 2, 0)).round(4).tolist(),
-            "events": [(e["event"], e["sample"], e.get("step_s"), e["detail"][:200])
+            "events": [(e["event"], e["sample"], e.get("step_s"), e["detail"])
                        for e in link["events"] if e["event"].startswith("clock")]}
 
 
