@@ -449,6 +449,104 @@ def test_a_server_clock_gone_on_hours_is_kept_as_a_files_gap_and_said(fitted, tm
     gaps = [e for e in link["events"] if e["event"] == "clock_gap"]
     assert [e["sample"] for e in gaps] == [19, ROWS + 29]     # each after its last sample before
     assert f"{pause + period:g} s" in gaps[0]["detail"] and "pause" in gaps[0]["detail"]
+    # (connect71) this server's clock runs ~1000 times the client's: a set not told, said
+    assert "times the client's" in gaps[0]["detail"] and "not told" in gaps[0]["detail"]
     assert f"{3 * period:g} s" in gaps[1]["detail"] and "2 counted missed" in gaps[1]["detail"]
     assert link["samples"] == 2 * ROWS - 2 and link["samples_missed"] == 2
     assert [e["event"] for e in link["events"]].count("campaign") == 2
+
+
+DOUBLES = {t: (node.replace("_01um", ""), ua.VariantType.Double, 1.0)
+           for t, (node, _, _) in OFFSETS.items()}      # offsets as they are computed
+
+
+def client_clock(monkeypatch, machine: VendorMachine) -> None:
+    """The client's clock the machine's time at the server's clock it read last (not at the
+    moment it asks: the lockstep server may be publishing the next row by then)."""
+    from thermocomp.apps.machine import client
+
+    read = [None]
+
+    def seconds(dv):
+        read[0] = client_seconds(dv)
+        return read[0]
+
+    client_seconds = client.seconds
+    monkeypatch.setattr(client, "seconds", seconds)
+    monkeypatch.setattr(client, "own_clock", lambda: machine.machine_at.get(read[0], 0.0),
+                        raising=False)
+
+
+def test_a_server_clock_set_forward_is_told_from_a_pause_by_the_clients_clock(fitted, tmp_path,
+                                                                              monkeypatch):
+    """(connect71) The rule: the client times the samples it takes on its own clock; where the
+    server's clock runs at the client's rate (over its last 8 steps of under 1.5 periods, within
+    10 %), a step of the server's clock 1 period or more beyond the client's (or back at all) is
+    the clock set (an operator, DST, NTP) while the machine ran: said (`clock_set`, `step_s` the
+    difference), the stream's time goes on as the client's clock did (the model's time continuous,
+    the next sample a period after the last on the client's clock).  A pause (the machine off, the
+    server down) advances both clocks: kept as before (`clock_gap`, the step in the time).  What
+    must not change: a pause, a server whose clock runs faster than the client's (a simulated
+    machine: the tests above) and a new process with no step timed (it cannot tell: the step
+    kept, said).
+
+    The server's clock set forward 3 h at P05's row 20 (the machine ran on), the machine off 3 h
+    at P06's row 30 (both clocks go on), the client's clock the machine's time: every offset the
+    machine holds is the run's without the clock set (replay of the rows, to 1e-12 µm), the pause
+    kept as a file's; before, the 3 h were kept as a pause in P05 too."""
+    data, pkl = fitted
+    frames, hours3 = programs(data), 3 * 3600.0
+    frames["P06.MPF"].loc[30:, "time"] += hours3        # the machine off: both clocks go on
+    machine = VendorMachine(frames, free_port(), offsets=DOUBLES, clock_set=(20, hours3))
+    client_clock(monkeypatch, machine)
+    code, link = run_connect(data, pkl, tmp_path, machine, nodes=connect_nodes(offsets=DOUBLES))
+    assert code == 0 and all(machine.served.answered) and len(machine.served.offsets) == 2 * ROWS
+    held = np.vstack(machine.served.offsets)
+    np.testing.assert_allclose(held, corrections(data, pkl, as_published(frames)), rtol=0, atol=1e-12)
+    told = [(e["event"], e["sample"], e.get("step_s")) for e in link["events"]
+            if e["event"] in ("clock_set", "clock_gap", "clock_back")]
+    assert told == [("clock_set", 19, hours3), ("clock_gap", ROWS + 29, None)]
+    gap = next(e["detail"] for e in link["events"] if e["event"] == "clock_gap")
+    assert f"{hours3 + 60:g} s" in gap and "pause" in gap and "client's clock went on" in gap
+    assert link["samples"] == 2 * ROWS and link["samples_missed"] == 0
+
+
+def test_a_clock_set_back_and_a_new_process_on_the_clients_clock(monkeypatch):
+    """(connect71) Offline, the server's clock ticking each second at the client's rate: set
+    forward an hour mid-period, then back two hours: the samples go on a period apart on the
+    client's clock, the stream's time continuous, each said as `clock_set` (before: the hour
+    forward a gap of 61 periods, 60 counted missed, the two back a sample at once, one period on).
+    A new process (no step of the server's clock timed yet) cannot tell: the hour kept, said."""
+    from datetime import datetime, timedelta, timezone
+
+    from conftest import offline_connection
+    from thermocomp.apps.machine import client
+    from thermocomp.apps.machine.client import _Plan
+
+    epoch = datetime(2026, 3, 2, 6, 0, tzinfo=timezone.utc)
+    plan = _Plan(inputs=[object(), None], labels=["T_a", "time"], status={}, clock=object(),
+                 offsets=[], types=[], answered=None, watched=[], registers=np.zeros(0))
+    wall = [0.0]
+    monkeypatch.setattr(client, "own_clock", lambda: wall[0], raising=False)
+
+    def run(ticks):
+        conn, taken = offline_connection(clock="server", period_s=60.0), []
+        for w, s in ticks:
+            wall[0] = float(w)
+            got = conn._sample(plan, [ua.DataValue(ua.Variant(20.0, ua.VariantType.Float)),
+                                      ua.DataValue(ua.Variant(epoch + timedelta(seconds=s)))])
+            if got is not None:
+                conn._step(*got)
+                taken.append((w, got[2], got[1][1]))
+        return conn, taken
+
+    ticks = [(w, w + 3600 * (w >= 610) - 7200 * (w >= 1250)) for w in range(0, 1500)]
+    conn, taken = run(ticks)
+    assert taken == [(60 * k, k, 60.0 * k) for k in range(25)]
+    sets = [e for e in conn.events if e["event"].startswith("clock")]
+    assert [(e["event"], e["step_s"]) for e in sets] == [("clock_set", 3600.0), ("clock_set", -7200.0)]
+    assert conn.missed == 0
+    conn, taken = run([(0, 0), (10, 3610), *((w, w + 3600) for w in range(11, 200))])
+    assert [t[2] for t in taken][:3] == [0.0, 3610.0, 3670.0] and conn.missed == 59
+    gap = [e for e in conn.events if e["event"] == "clock_gap"]
+    assert len(gap) == 1 and "no step of the server's clock timed yet" in gap[0]["detail"]

@@ -26,9 +26,12 @@ the test says it ended (``stopped``), the next ``rows`` are published with no cl
 machine runs on), the one after them too, then ``handed_over`` is set and it waits for a new
 client's answer (small69: before, a write of 0 at its connection came first).  ``refused``
 offset nodes are not writable for the session's user (BadUserAccessDenied); with ``users`` a
-session needs one of them.  After the last row (or ``stop_after`` rows) answered it sends the
-process ``stop_signal`` (the user's Ctrl-C or the service manager's SIGTERM: a vendor's server
-never says it is done).
+session needs one of them.  ``clock_set=(row, s)`` (connect71): from that running row on the
+server's clock is ``s`` ahead of the machine's (an operator set it forward, the machine ran on);
+``machine_at`` maps each time the server's clock showed (s) to the machine's own (the record's,
+no clock set: a client's clock driven by it runs at the server's rate, as a real machine's).
+After the last row (or ``stop_after`` rows) answered it sends the process ``stop_signal`` (the
+user's Ctrl-C or the service manager's SIGTERM: a vendor's server never says it is done).
 """
 
 from __future__ import annotations
@@ -118,7 +121,8 @@ class VendorMachine:
                  stop_after: int | None = None, stop_signal=signal.SIGTERM,
                  stop_pid: int | None = None, sensors: dict | None = None,
                  offsets: dict | None = None, users: dict | None = None,
-                 renumbered: bool = False, handover: tuple[int, int] | None = None):
+                 renumbered: bool = False, handover: tuple[int, int] | None = None,
+                 clock_set: tuple[int, float] | None = None):
         self.campaigns, self.port, self.deadband = campaigns, port, float(deadband)
         self.sensors, self.offsets = sensors or SENSORS, offsets or OFFSETS
         self.stop_pid = stop_pid        # the client's process (None: this one)
@@ -141,6 +145,8 @@ class VendorMachine:
         self._writes = 0
         self._watchers = 0               # monitored items clients created: a client is there
         self._row = 0                    # the running row being served
+        self.clock_set = clock_set       # (row, s): the server's clock set forward from that row
+        self.machine_at: dict[float, float] = {}   # the server's clock (s) -> the machine's
 
     async def _start(self, companions=COMPANIONS, registers=None) -> None:
         server = Server(user_manager=_Users(self.users))
@@ -207,7 +213,10 @@ class VendorMachine:
                          for t in self.offsets])
 
     async def _publish(self, row: pd.Series, k: int, program: str, last: dict, start: float) -> None:
-        at = EPOCH + timedelta(seconds=start + float(row["time"]))
+        machine_s = start + float(row["time"])
+        ahead = self.clock_set[1] if self.clock_set and k >= self.clock_set[0] else 0.0
+        at = EPOCH + timedelta(seconds=machine_s + ahead)
+        self.machine_at[at.timestamp()] = machine_s
         for column, var in self.sensor_nodes.items():
             first, end, code = self.bad.get(column, (-1, -2, None))
             if first <= k <= end:        # the sensor dropped: its last value held, not Good

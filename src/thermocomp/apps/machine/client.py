@@ -26,6 +26,8 @@ the registers keep what they hold (an earlier client's last offsets; event ``off
 (restart69) joining a campaign mid-way it moves them at the rate limit, not in one jump.
 (connect68) Without ``campaign_sample``, ``connect.warm``'s rows are the first sample's
 campaign's, placed on the server's clock by their timestamps (:meth:`Connection._joined`).
+(connect71) The server's clock set while the machine ran is told from a pause by the client's
+own clock (:mod:`.clockset`): the stream's time goes on as the client's did (``clock_set``).
 """
 
 from __future__ import annotations
@@ -47,6 +49,7 @@ from asyncua import Client, ua
 from ...core.context import TIME
 from ...core.io.rates import GAP_PERIODS, PAUSE_PERIODS
 from ...core.io.stdin import TIME_ORIGIN
+from .clockset import OwnClock
 from .nodes import NodeMap, NodesUnknown, quiet_asyncua, resolve_id
 from .offsets import OffsetLimiter
 from .registers import WRITABLE, WriteRefused, as_registers
@@ -170,6 +173,7 @@ class Connection:
         self.periods = 1.0           # the periods the server's clock went on to the last sample
         self.stopped = None          # the signal that stopped the client, if one did
         self._placed = ""            # how connect.warm's log was placed on the server's clock
+        self.own = OwnClock(period_s)    # the client's clock against the server's (connect71)
 
     def _event(self, kind: str, detail: str, level: int = logging.INFO, **extra) -> None:
         e = {"wall_s": round(clock_now() - self._start, 3), "sample": self._last,
@@ -343,17 +347,21 @@ class Connection:
             return DONE
         row = [self._reading(lab, given[lab]) if lab in given else math.nan for lab in plan.labels]
         if plan.clock is not None:
-            at = seconds(got[-1])
+            at, now = seconds(got[-1]), own_clock()
             if at is None:
                 return None
         else:
-            at = row[plan.labels.index(TIME)]
+            at, now = row[plan.labels.index(TIME)], None
         cid = str(value["campaign"]) if "campaign" in value else NO_CAMPAIGN
         new = cid != self._campaign
-        if plan.clock is not None and self._at is not None and at < self._at:
-            # the server's clock set back (NTP, a reset clock): time goes on a period
+        told = (self._clock_set(at, now) if plan.clock is not None and self._at is not None
+                and not new else None)
+        if told is None and plan.clock is not None and self._at is not None and at < self._at:
+            # the server's clock set back (NTP, a reset clock), not told: time goes on a period
             self._event("clock_back", f"the server's clock went back {self._at - at:g} s: the "
-                        "stream's time goes on from its last sample", logging.WARNING)
+                        "stream's time goes on from its last sample"
+                        + (f" ({self.own.why_not()})" if self.own.why_not() else ""),
+                        logging.WARNING)
             self._t0 -= self._at - at + self.period_s
             self._at = at - self.period_s
         steps = (1 if self._at is None or new or not self.period_s
@@ -377,6 +385,9 @@ class Connection:
             if self.warm is not None and "campaign_sample" not in value:
                 self._t0, self._i = self._joined(at, plan.clock is not None)
         self._i = int(value["campaign_sample"]) if "campaign_sample" in value else self._i + steps
+        if now is not None:
+            self.own.taken(None if new or told is not None or self._at is None else at - self._at,
+                           now)
         self._at = at
         if plan.clock is not None:          # the stream's time: s since the campaign's start
             row[plan.labels.index(TIME)] = at - self._t0
@@ -409,6 +420,25 @@ class Connection:
         periods = (at - t0) / period
         return t0, (max(1, round(periods)) if math.isfinite(periods) else 1) - 1
 
+    def _clock_set(self, at: float, now: float) -> float | None:
+        """(connect71) The seconds the server's clock was set by since the last sample, told by
+        the client's own clock (:meth:`~.clockset.OwnClock.set_by`), or None.  Set, the stream's
+        time and the server's clock at the last sample move with it: the model's time goes on as
+        the client's clock did, the next sample a period after the last on it, the guard's rate
+        over that time (a pause, kept, goes on by the server's step)."""
+        step = self.own.set_by(at - self._at, now)
+        if step is None:
+            return None
+        went = now - self.own.at
+        self._event("clock_set", f"the server's clock went {at - self._at:g} s since the last "
+                    f"sample while the client's went on {went:g} s: set "
+                    f"{'forward' if step > 0 else 'back'} {abs(step):g} s (an operator, DST, NTP) "
+                    "while the machine ran: the stream's time goes on as the client's clock did",
+                    logging.WARNING, step_s=step)
+        self._t0 += step
+        self._at += step
+        return step
+
     def _clock_gap(self, gap: float, steps: int) -> int:
         """(opcleft67) A step of the server's clock of :data:`~...core.io.rates.GAP_PERIODS`
         periods or more since the last sample is kept in the stream's time, as ``replay`` and
@@ -420,9 +450,13 @@ class Connection:
         if gap < GAP_PERIODS * self.period_s:
             return steps
         paused = gap > PAUSE_PERIODS * self.period_s
+        why_not = self.own.why_not()    # '': the client's clock went on as much (connect71)
         what = (f"more than {PAUSE_PERIODS} periods: a pause (the machine off?) or its clock set "
-                "forward, no sample counted missed" if paused else
+                "forward, no sample counted missed" if paused and why_not else
+                f"more than {PAUSE_PERIODS} periods: a pause (the client's clock went on as much: "
+                "the machine off, not its clock set), no sample counted missed" if paused else
                 f"a stretch without samples ({steps - 1} counted missed)")
+        what += f" ({why_not})" if why_not else ""
         self._event("clock_gap", f"the server's clock went on {gap:g} s ({gap / self.period_s:.4g} "
                     f"periods of {self.period_s:g} s) since the last sample, {what}: the stream's "
                     "time keeps the step, as replay reads a file's (a lag model steps over it)",
@@ -568,6 +602,14 @@ async def _written(client, nodes: list, data: list) -> None:
 
 def clock_now() -> float:
     return clock.monotonic()
+
+
+def own_clock() -> float:
+    """(connect71) The client's clock a step of the server's is timed by: monotonic, going on
+    while the client's host is suspended (CLOCK_BOOTTIME where there is one: a suspended host is
+    not the server's clock set forward)."""
+    boot = getattr(clock, "CLOCK_BOOTTIME", None)
+    return clock.clock_gettime(boot) if boot is not None else clock.monotonic()
 
 
 def seconds(dv) -> float | None:
