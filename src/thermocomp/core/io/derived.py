@@ -163,6 +163,35 @@ def with_derived(table: pa.Table, derive: Mapping[str, str], path: Path) -> pa.T
     return table
 
 
+def on_frame(frame, derive: Mapping[str, str], source) -> object:
+    """A stream's ``frame`` (pandas: stdin's rows, a served block) with each derived column
+    whose errors it carries (a reference measurement, a scored stream) and does not carry
+    itself; one it cannot compute is left out, as a measurement not taken."""
+    todo = {n: t for n, t in derive.items() if n not in frame.columns
+            and all(c in frame.columns for c in columns_of(_tree(f"{KEY}.{n}", t), KEY))}
+    if not todo:
+        return frame
+    columns = {c: frame[c].to_numpy(float) for c in frame.columns if str(c).startswith("E_")}
+    return frame.assign(**{n: evaluated(n, t, columns, source) for n, t in todo.items()})
+
+
+def probe_pairs(errors) -> list[tuple[str, str, str]]:
+    """``(first, second, tilt name)`` of each pair of error columns named alike but for a last
+    1 and 2 (``E_Sonde_X1``, ``E_Sonde_X2`` -> ``E_tilt_Sonde_X``): two probes of a sensor
+    nest along the spindle, whose difference over their spacing is a tilt (ISO 230-3)."""
+    names = set(errors)
+    return [(n, f"{n[:-1]}2", f"E_tilt_{n[2:-1]}") for n in errors
+            if n.endswith("1") and not n[-2].isdigit() and f"{n[:-1]}2" in names
+            and f"E_tilt_{n[2:-1]}" not in names]
+
+
+def proposal(pairs) -> str:
+    """``data.derive``'s entries for ``pairs`` as YAML comment lines (the spacing left to say)."""
+    return "\n".join(["# the probe pairs' tilts as targets (data.derive, µm/m): give the spacing "
+                      "in metres", "# derive:"]
+                     + [f"#   {t}: ({a} - {b}) / <spacing_m>" for a, b, t in pairs]) + "\n"
+
+
 def without_derived(names, derive: Mapping[str, str]) -> list[str]:
     """``names`` less the derived columns (what a repair reads, the derived computed after)."""
     return [n for n in names if n not in derive]

@@ -720,9 +720,9 @@ def _run_parts(path: Path, opts: ReadOptions) -> tuple[pd.DataFrame, dict]:
         for cid, start, end in blocks:
             part = {name: column.slice(start, end - start) for name, column in columns.items()}
             table, report = _assembled(part, renamed, rescaled, source, source_opts, lines, start)
-            parts[cid] = with_derived(table, opts.derive, path), {"file": path.name, "split": "train", **report,
-                                 "record_rows": [start, end],
-                                 **({"run_column": header} if header else {})}
+            parts[cid] = with_derived(table, opts.derive, path), {
+                "file": path.name, "split": "train", **report, "record_rows": [start, end],
+                **({"run_column": header} if header else {})}
     _check_runs(parts, path, opts)
     manifest = pd.DataFrame({"file": path.name, "split": "train"}, index=pd.Index(
         list(parts), name="campaign"))
