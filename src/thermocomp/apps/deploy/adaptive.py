@@ -56,6 +56,7 @@ class AdaptiveCompensator:
 
     lab_names_: dict = {}      # replaced, never mutated (older pickles have none)
     lab_units_: dict = {}      # the lab's headers in another unit (naming.lab_units): likewise
+    derived_: dict = {}        # data.derive's targets, computed from a block's errors: likewise
     end_states_: dict = {}
     adapt_ = None
 

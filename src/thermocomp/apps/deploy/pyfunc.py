@@ -32,7 +32,8 @@ sessions, so serve with one worker (``thermocomp serve`` does).
 
 A model deployed with ``adapt.method`` other than ``none`` (``adapt_``, extension) learns from
 reference measurements: a row that carries a finite measured error ``E_<axis>`` (optional
-input columns; a probe touch, an artefact cycle) is one; that row's correction is given with
+input columns; a probe touch, an artefact cycle; a ``data.derive`` target computed from the
+errors it carries, as a file's is) is one; that row's correction is given with
 what was learned before it, then the gain/bias of :mod:`thermocomp.apps.deploy.adapt` is updated,
 per session (each machine learns its own; ``reset`` keeps what the session learned, a new
 session starts from the model as promoted).
@@ -89,6 +90,7 @@ from ...base.errors import ContractError
 from ...base.log import NAME as LOG_NAME
 from ...base.log import configure as configure_log
 from ...core.context import TIME
+from ...core.io.derived import on_frame
 from ...core.io.stdin import since, stream_stamps
 from .adaptive import AdaptiveCompensator
 from .naming import correction_column, raw_names, to_contract
@@ -184,6 +186,8 @@ class CompensatorModel(mlflow.pyfunc.PythonModel):
         names = self.streaming.lab_names_
         try:
             frame = to_contract(pd.DataFrame(model_input), names)
+            # a reference measurement's derived targets (data.derive), as a file's are computed
+            frame = on_frame(frame, getattr(self.streaming, "derived_", {}), "the request")
         except ValueError as exc:
             raise MlflowException(str(exc), error_code=INVALID_PARAMETER_VALUE) from exc
         # Serving may call from several threads: one session's samples in order, one at a time.

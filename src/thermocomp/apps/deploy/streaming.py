@@ -260,6 +260,9 @@ class StreamingCompensator:
         ``{the lab's header: [contract name, scale, offset]}`` of the columns read in another
         unit (:func:`~thermocomp.apps.deploy.naming.lab_units`): the exported ``stream.c``
         converts them; set by the stage that deploys.
+    derived_ : dict
+        ``data.derive`` (extension, derive71): ``{derived target: its arithmetic of errors}``;
+        a served block's reference measurements give them (:func:`.pyfunc.references`).
     end_states_ : dict
         ``{campaign: EndState}`` of the record it was deployed on (:func:`end_states`), from
         which a served stream may continue; set by ``promote``.
@@ -277,6 +280,7 @@ class StreamingCompensator:
 
     lab_names_: dict = {}      # replaced, never mutated (older pickles have none)
     lab_units_: dict = {}      # the lab's headers in another unit (naming.lab_units): likewise
+    derived_: dict = {}        # data.derive's targets, computed from a block's errors: likewise
     end_states_: dict = {}
     ambient_given_ = False
     ambient_optional_ = False  # older pickles: an ambient given is needed

@@ -12,6 +12,7 @@ import numpy as np
 
 from ...base.params import MAX_COUNT
 from .contract import SPLITS, ContractError
+from .derived import parsed as parsed_derive
 from .encoding import UTF8, codec
 from .separators import NO_BREAK_SPACES, any_number
 
@@ -73,6 +74,7 @@ class ReadOptions:
     join_offset_s: float = 0.0
     join_tolerance_s: float | None = None
     runs_at_pauses: bool = False  # one file's runs parted where its time pauses (.runs)
+    derive: dict = field(default_factory=dict)    # derived error columns (.derived): name -> text
     # internal (no data config key): "keep" leaves missing values NaN; "keep_errors" only the
     # E_ columns' (a volumetric dataset's distances not measured), the rest repaired
     missing: str = "repair"
@@ -126,6 +128,7 @@ class ReadOptions:
             sheet=None if cfg.get("sheet") is None else str(cfg.get("sheet")),
             **_join(cfg),
             runs_at_pauses=_flag(cfg, "runs_at_pauses"),
+            derive=parsed_derive(cfg.get("derive")),
         )
         opts._check()
         return opts

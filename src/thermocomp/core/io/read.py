@@ -80,6 +80,7 @@ from .contract import (
     is_ambient,
     role,
 )
+from .derived import with_derived, without_derived
 from .instants import START, start_instants, start_stamp
 from .joined import joined
 from .lines import Lines
@@ -218,7 +219,13 @@ def read_campaign(path: str | Path, cfg: Mapping | ReadOptions | None = None,
         If the file breaks the contract; see :func:`read_dataset`.
     """
     opts = cfg if isinstance(cfg, ReadOptions) else ReadOptions.from_cfg(cfg)
-    path = Path(path)
+    table, report = _campaign(Path(path), opts, one_run, errors)
+    return with_derived(table, opts.derive, Path(path)), report
+
+
+def _campaign(path: Path, opts: ReadOptions, one_run: bool, errors: Path | None
+              ) -> tuple[pa.Table, dict]:
+    """:func:`read_campaign` but ``data.derive``'s columns."""
     if not path.is_file():
         raise ContractError("campaign file not found", file=path)
     if path.stat().st_size == 0:
@@ -331,13 +338,14 @@ def repaired_part(frame: pd.DataFrame, path: Path, cfg: Mapping | None, first_ro
     campaign (gaps, edges, kelvin refused); ``first_row``: its first row in the record ``path``
     (0-based), so that an error names the record's row."""
     opts = replace(ReadOptions.from_cfg(cfg), missing="repair")
-    columns = {c: pa.chunked_array([pa.array(frame[c].to_numpy(float))]) for c in frame.columns}
+    columns = {c: pa.chunked_array([pa.array(frame[c].to_numpy(float))])
+               for c in without_derived(frame.columns, opts.derive)}   # (derived after)
     try:
         _repair_missing(columns, len(frame), path, opts)
     except ContractError as exc:
         raise ContractError(exc.reason, file=exc.file, column=exc.column,
                             row=None if exc.row is None else exc.row + first_row) from None
-    return pa.table(columns)
+    return with_derived(pa.table(columns), opts.derive, path)
 
 
 def _iter_campaigns(root: Path, manifest: pd.DataFrame, opts: ReadOptions
@@ -712,9 +720,9 @@ def _run_parts(path: Path, opts: ReadOptions) -> tuple[pd.DataFrame, dict]:
         for cid, start, end in blocks:
             part = {name: column.slice(start, end - start) for name, column in columns.items()}
             table, report = _assembled(part, renamed, rescaled, source, source_opts, lines, start)
-            parts[cid] = table, {"file": path.name, "split": "train", **report,
-                                 "record_rows": [start, end],
-                                 **({"run_column": header} if header else {})}
+            parts[cid] = with_derived(table, opts.derive, path), {
+                "file": path.name, "split": "train", **report, "record_rows": [start, end],
+                **({"run_column": header} if header else {})}
     _check_runs(parts, path, opts)
     manifest = pd.DataFrame({"file": path.name, "split": "train"}, index=pd.Index(
         list(parts), name="campaign"))

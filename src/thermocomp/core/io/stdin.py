@@ -22,6 +22,7 @@ from ..context import TIME
 from .again import STRAY, comments_in, kept, lines_in, spans_in, warn
 from .contract import ContractError
 from .csvline import EMPTY, SPLIT, split_line
+from .derived import on_frame
 from .encoding import UTF8, check_text, text_codec
 from .layout import (
     MAX_PROPERTY_ROWS,
@@ -140,6 +141,7 @@ def _read_runs(text: str, columns: list[str], opts
         if c in scales:            # a unit in the header (or data.units): the contract's
             scale, offset = scales[c]
             df[c] = df[c] * scale + offset
+    df = on_frame(df, opts.derive, SOURCE)      # data.derive: the same arithmetic as a file's
     return df, {c: int(n) for c, n in df[numeric].isna().sum().items() if n}, blocks, origins
 
 

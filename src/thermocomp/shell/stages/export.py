@@ -275,6 +275,11 @@ def export(cfg: DictConfig) -> dict:
     deployed, provenance, ds = _deployed(cfg, source, fmt)
     stream = plain(deployed)
     left = not_in_code(deployed)
+    derived = sorted(getattr(deployed, "derived_", {}) or {})
+    if derived and getattr(deployed, "adapt_", None) is not None:
+        # (stream.c learns from a row's E_ cells as written; data.derive is the reader's)
+        left = [*left, f"a reference of {', '.join(derived)} from its probes (data.derive): the "
+                "code learns from a row carrying the column itself"]
     if left:
         say(f"not in the code (the served model only): {'; '.join(left)}")
     family = model_family(stream.compensator)

@@ -21,6 +21,7 @@ from ...base.paths import conf_dir, resolve
 from ...core import io
 from ...core.io.cells import scanned
 from ...core.io.contract import MANIFEST, TIME
+from ...core.io.derived import probe_pairs, proposal
 from ...core.io.detect import (
     TRAVEL_UM,
     axis_lengths,
@@ -367,6 +368,12 @@ def _init(cfg: DictConfig) -> dict:
     text = yaml.safe_dump({"defaults": ["default"], **config}, allow_unicode=True, sort_keys=False)
     if long is not None:
         text = text.replace("\nresample_s:", f"\n{PERIOD_COMMENT}\nresample_s:", 1)
+    pairs = [] if asked.derive else probe_pairs(report["columns"]["E"])
+    if pairs:              # an ISO 230-3 nest's probes: their tilts, the spacing the lab's to say
+        text += proposal(pairs)
+        print(f"probe pairs {', '.join(f'{a} / {b}' for a, b, _ in pairs)}: their tilts as "
+              f"targets, data.derive={{{pairs[0][2]}: '({pairs[0][0]} - {pairs[0][1]}) / "
+              "<spacing in m>'}, proposed as a comment in the config")
     atomic_write_text(path, f"# written by `thermocomp init {src}`\n{text}")
     period = median_step([df[TIME].to_numpy(float) for df in ds.campaigns.values()]) or float("nan")
     print("\n".join(detection_lines(layout, opts, header, plan, ds, report, period, path, ds.name)))
