@@ -86,6 +86,12 @@ the longest 60 h"): ``rig_b`` in 1 try (2.27 / 2.32 s CPU; 1.91 / 2.27 s at cb9f
 config read one record cut 90/10), ``rig_a`` 1 try (2.18 s); ``run model=mlr`` on ``rig_b``'s
 written config: 0.15 / 0.23 / 0.19 / 0.25 / 1.48 as above.  ``auto`` (now offered ATI) not rerun.
 
+deploy71 (2026-12-02): stream.c reads UTF-16 with its mark (transcoded by hand).  ``rig_b``'s
+week as written (UTF-16 LE, 11,520 rows) through the compiled mlr and lagbank packs (``run``
+``track=false``, ``export`` C with its check, both passed): stdout byte for byte that of its
+UTF-8 copy (``iconv``) and of a UTF-16 BE copy; the held-out test 5.7e-14 / 1.1e-13 um from the
+packs' expected.csv; 0.03 / 0.04 s CPU a stream.  Before: exit 2, "line 1 is UTF-16 text".
+
     ... bench_catman70.py init ROOT rig_a [override ...]   # init as a stranger, one try
     ... bench_catman70.py matrix ROOT rig_a                # run -> replay -> promote -> C
     ... bench_catman70.py table ROOT rig_a

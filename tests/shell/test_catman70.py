@@ -8,6 +8,7 @@ the tests appended in one file, the time as dates, silent between the tests)
 
 from __future__ import annotations
 
+import codecs
 import datetime as dt
 import io
 import json
@@ -24,6 +25,7 @@ from test_export import needs_cc
 from test_stranger65 import _compiled_stream_equals_its_pack
 from test_stranger68 import ROWS, linear_run
 from thermocomp.core.io import read_dataset
+from thermocomp.core.io.contract import ContractError
 from thermocomp.shell.cli import main
 
 NAMES = [("T Luft", "T air"), ("T Ständer", "T column"), ("T Lager vorn", "T front bearing"),
@@ -210,12 +212,31 @@ def test_the_compiled_stream_restarts_each_appended_test_as_the_reader_splits_th
     """Before: the raw UTF-16 file read as no header ('lacks input column T_air'); converted to
     UTF-8, its en-US dates refused (TC_SLASHED 0: the order was not looked for in a UTF-16
     file) and, given data.time, the three tests streamed as one (the held-out test's
-    corrections off by the state the others left)."""
+    corrections off by the state the others left).  deploy71: the UTF-16 file as written (it
+    was refused, 'convert the file to UTF-8 first (iconv ...)'), little- or big-endian, gives
+    what its UTF-8 copy gives; two bytes that are no character are refused as the reader
+    refuses them, naming the line and the bytes."""
     path = _week(tmp_path / "week17.txt")
-    _compiled_stream_equals_its_pack(tmp_path, path, [
-        f"data.path={path}", "data.runs_at_pauses=true", "data.test_fraction=0.34",
-        "data.roles.error=['MCS*']"], fed=path.read_bytes().decode("utf-16").encode("utf-8"),
-        rows=3 * ROWS, first=2 * ROWS)
-    done = subprocess.run([str(tmp_path / "code" / "stream")], input=path.read_bytes(),
-                          capture_output=True)
-    assert done.returncode == 2 and b"line 1 is UTF-16 text (its byte-order mark)" in done.stderr
+    common = [f"data.path={path}", "data.runs_at_pauses=true", "data.test_fraction=0.34",
+              "data.roles.error=['MCS*']"]
+    _compiled_stream_equals_its_pack(tmp_path, path, common, rows=3 * ROWS, first=2 * ROWS)
+
+    def streamed(data: bytes) -> subprocess.CompletedProcess:
+        return subprocess.run([str(tmp_path / "code" / "stream")], input=data, capture_output=True)
+
+    text = path.read_bytes().decode("utf-16")
+    as_written = streamed(path.read_bytes())
+    for other in (text.encode("utf-8"), codecs.BOM_UTF16_BE + text.encode("utf-16-be")):
+        done = streamed(other)
+        assert done.returncode == 0 and done.stdout == as_written.stdout, done.stderr
+    lines = text.splitlines(keepends=True)
+    lines[11] = lines[11][:5] + "\ud800" + lines[11][5:]          # a lone surrogate, line 12
+    for name, data in (("surrogate", codecs.BOM_UTF16_LE + "".join(lines).encode(
+            "utf-16-le", "surrogatepass")), ("odd", path.read_bytes()[:-1])):
+        bad = tmp_path / f"{name}.txt"
+        bad.write_bytes(data)
+        with pytest.raises(ContractError) as reader:
+            read_dataset(bad, {"runs_at_pauses": True, "test_fraction": 0.34, **AP_ROLES})
+        said = str(reader.value).split(", ", 1)[1].split(" (")[0]   # 'line 12: bytes 1064-1065 ...'
+        done = streamed(data)
+        assert done.returncode == 2 and f"stream: {said} (".encode() in done.stderr, done.stderr

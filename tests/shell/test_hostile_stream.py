@@ -189,7 +189,7 @@ def test_a_failing_adaptive_step_is_raised_not_logged_again_with_the_last_rows_e
 # -- the served model: request limits (item 10) and a warning for a public host (item 14) --------
 
 def _asgi(app, body: bytes, chunk: int = 1 << 16, content_type: str = "application/json",
-          declare: bool = True) -> tuple[int, dict, int]:
+          declare: bool = True, query: str = "") -> tuple[int, dict, int]:
     """``(status, JSON answer, bytes the app let the client send)`` of one POST through ``app``."""
     import asyncio
 
@@ -211,7 +211,7 @@ def _asgi(app, body: bytes, chunk: int = 1 << 16, content_type: str = "applicati
         headers.append((b"content-length", str(len(body)).encode()))
     scope = {"type": "http", "asgi": {"version": "3.0"}, "http_version": "1.1", "method": "POST",
              "scheme": "http", "path": "/invocations", "raw_path": b"/invocations",
-             "query_string": b"", "headers": headers, "server": ("127.0.0.1", 80),
+             "query_string": query.encode(), "headers": headers, "server": ("127.0.0.1", 80),
              "client": ("127.0.0.1", 1)}
     asyncio.run(app(scope, receive, send))
     answer = b"".join(m.get("body", b"") for m in sent if m["type"] == "http.response.body")
@@ -281,28 +281,43 @@ def test_the_served_model_answers_a_block_within_the_limits_as_without_them(scor
     assert len(limited[1]["predictions"]) == 20
 
 
-@pytest.fixture(scope="module", params=["mlr", "arx"])
+@pytest.fixture(scope="module", params=["mlr", "arx", "mlr+bias"])
 def served_short(short_dataset, tmp_path_factory, request):
     """``(a function giving a fresh limited scoring app, a test campaign's rows)`` of the short
-    scenario's MLR or ARX (a lag model), behind the monitor as ``promote`` registers it."""
-    import mlflow
-    from mlflow.pyfunc import scoring_server
-
+    scenario's MLR or ARX (a lag model), behind the monitor as ``promote`` registers it; or MLR
+    deployed with ``adapt.method=bias`` (its rows carry ``E_X`` references every 10th row)."""
+    from thermocomp.apps.deploy.adapt import Adaptation, ReferenceAdapter
     from thermocomp.apps.deploy.pyfunc import save_compensator
-    from thermocomp.apps.deploy.server import RequestLimits
 
+    family, _, adapt = request.param.partition("+")
     ds, _ = io.read_dataset(short_dataset, {})
     train = {c: ds.campaigns[c] for c in ds.ids("train")}
-    est = instantiate(OmegaConf.load(ROOT / f"conf/model/{request.param}.yaml").estimator)
+    est = instantiate(OmegaConf.load(ROOT / f"conf/model/{family}.yaml").estimator)
     streaming = StreamingCompensator.from_training(Compensator(est).fit(train), train)
     adaptive = AdaptiveCompensator.from_training(streaming, train)
+    if adapt:
+        adaptive.adapt_ = Adaptation(ReferenceAdapter(len(adaptive.targets_), adapt))
     rows = ds.campaigns[ds.ids("test")[0]][adaptive.columns_ + ["time"]].reset_index(drop=True)
+    if adapt:
+        rows["E_X"] = ds.campaigns[ds.ids("test")[0]]["E_X"].to_numpy()
+        rows.loc[rows.index % 10 != 5, "E_X"] = np.nan
     folder = save_compensator(adaptive, tmp_path_factory.mktemp("csv") / "model")
+    return (lambda: _served_app(folder)), rows      # a server just started: no session held
 
-    def fresh_app():          # a server just started: no session held
-        return RequestLimits(scoring_server.init(mlflow.pyfunc.load_model(str(folder))),
-                             max_body_bytes=1 << 20, max_rows=1000)
-    return fresh_app, rows
+
+def _served_app(folder, max_rows: int = 1000):
+    """``thermocomp serve``'s app (:func:`~thermocomp.apps.deploy.server.scoring_app`) on the
+    pyfunc ``folder``, as its server process starts it (its limits in the environment)."""
+    from unittest import mock
+
+    from mlflow.pyfunc.scoring_server import _SERVER_MODEL_PATH
+
+    from thermocomp.apps.deploy import server
+
+    with mock.patch.dict("os.environ", {_SERVER_MODEL_PATH: folder.as_uri(),
+                                        server.ROWS_ENV: str(max_rows),
+                                        server.BODY_ENV: str(1 << 20)}):
+        return server.scoring_app()
 
 
 def _csv(frame: pd.DataFrame) -> bytes:
@@ -329,6 +344,70 @@ def test_rows_posted_as_csv_get_the_corrections_the_same_rows_get_as_json(served
         assert by_json[0] == by_csv[0] == 200, by_csv[1]
         assert by_csv[1] == by_json[1]
     assert np.isfinite([r["C_X"] for r in by_csv[1]["predictions"]]).all()
+
+
+def test_csv_sessions_by_the_query_string_interleave_as_each_alone_and_equal_json_params(
+        served_short):
+    """deploy71: a CSV request carried no params (every CSV client in the session ``default``, no
+    way to restart a campaign).  ``?session=..&reset=true`` gives them: two sessions' blocks
+    interleaved get what each gets alone, a reset restarts, and the answers are the JSON body's
+    ``params``' (and a JSON body's with the query string), exactly."""
+    fresh_app, rows = served_short
+    first, second = rows.head(30).copy(), rows.iloc[30:60].reset_index(drop=True)
+    first.loc[20, first.columns[1]] = np.nan            # a missing cell
+    blocks = {"A": (first.iloc[:15], first.iloc[15:]), "B": (second.iloc[:15], second.iloc[15:])}
+
+    def post(app, block, session, reset, how):
+        query = f"session={session}" + ("&reset=true" if reset else "")
+        if how == "csv":
+            return _asgi(app, _csv(block), content_type="text/csv", query=query)
+        if how == "json+query":
+            return _asgi(app, _split(block), query=query)
+        return _asgi(app, _split(block, session=session, **({"reset": True} if reset else {})))
+
+    def answers(app, order, how="csv"):
+        got = {}
+        for session, k in order:
+            status, answer, _ = post(app, blocks[session][k], session, k == 0, how)
+            assert status == 200, answer
+            got[session, k] = answer
+        return got
+
+    alone = {**answers(fresh_app(), [("A", 0), ("A", 1)]), **answers(fresh_app(), [("B", 0), ("B", 1)])}
+    order = [("A", 0), ("B", 0), ("A", 1), ("B", 1)]
+    assert answers(fresh_app(), order) == alone
+    assert answers(fresh_app(), order, "json") == alone
+    assert answers(fresh_app(), order, "json+query") == alone
+    by_csv, by_json = fresh_app(), fresh_app()
+    answers(by_csv, order)
+    answers(by_json, order, "json")
+    again = answers(by_csv, [("A", 0)])            # reset: the campaign started again
+    assert again == answers(by_json, [("A", 0)], "json")
+    if "E_X" not in rows:                          # (a model that learns keeps what it learned)
+        assert again == {("A", 0): alone["A", 0]}
+    assert alone["A", 0] != alone["B", 0]
+
+
+@pytest.mark.parametrize("query, says", [
+    ("sesion=M1", "query parameter 'sesion': the model takes reset, session, continues, ambient_c"),
+    ("reset=yes", "query parameter reset='yes': not true or false (true, false, 1, 0)"),
+    ("session=M1&ambient_c=warm", "query parameter ambient_c='warm': not a finite number (double)"),
+    ("session=M1&session=M2", "query parameter 'session' given twice"),
+    ("session", "query string 'session': not name=value pairs joined by '&' (percent-encoded "
+                "UTF-8)"),
+    ("session=M2&reset=1", "parameter 'session': 'M2' in the query string, 'M1' in the body's "
+                           "params"),
+    ("session=M1&continues=R9", "continues='R9': the model holds no end state of that campaign"),
+])
+def test_a_bad_query_parameter_is_refused_in_one_line(scoring, query, says):
+    folder, _, rows = scoring
+    app = _served_app(folder)
+    status, answer, _ = _asgi(app, _split(rows.head(3), session="M1"), query=query)
+    assert status == 400 and answer["message"].startswith(says), answer
+    assert "\n" not in answer["message"]
+    if "body" not in says:                  # (a CSV body has no params of its own)
+        status, answer, _ = _asgi(app, _csv(rows.head(3)), content_type="text/csv", query=query)
+        assert status == 400 and answer["message"].startswith(says), answer
 
 
 def test_a_csv_with_a_bad_cell_is_refused_naming_its_column_and_row(served_short):

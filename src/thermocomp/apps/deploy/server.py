@@ -24,6 +24,9 @@ Request: ``POST http://<host>:<port>/invocations`` with
 logger's rows, header first) is answered as the ``dataframe_split`` of the same cells
 (:func:`csv_as_split`): MLflow's own CSV parse needs a pandas type for every column its
 signature names, and the time column (seconds or a logger's timestamps) has none.
+The ``params`` may come in the query string instead (:func:`query_params`, extension deploy71:
+``POST /invocations?session=machine-7&reset=true``), the one way a CSV body carries them; a JSON
+body may take them so too (merged into its ``params``; a parameter given both ways must agree).
 """
 
 from __future__ import annotations
@@ -37,6 +40,7 @@ import re
 import shutil
 import sys
 from pathlib import Path
+from urllib.parse import parse_qsl
 
 import numpy as np
 
@@ -92,11 +96,11 @@ def is_csv(content_type: str) -> bool:
     return mime == "text/csv" and all(p in ("charset=utf-8", "charset=utf8") for p in params)
 
 
-def csv_as_split(body: bytes) -> bytes:
+def csv_as_split(body: bytes, params: dict | None = None) -> bytes:
     """A CSV block (header first, comma-separated, UTF-8) as the JSON body ``{"dataframe_split":
-    ...}`` of the same cells (:func:`_cell`), so that CSV and JSON take one path to the model
-    (its columns' types, its refusals).  A body that is not such a table: ValueError naming the
-    data row (1-based, after the header)."""
+    ..., "params": params}`` of the same cells (:func:`_cell`), so that CSV and JSON take one path
+    to the model (its columns' types, its refusals).  A body that is not such a table: ValueError
+    naming the data row (1-based, after the header)."""
     try:
         text = body.decode("utf-8-sig")
     except UnicodeDecodeError as exc:
@@ -113,14 +117,83 @@ def csv_as_split(body: bytes) -> bytes:
             raise ValueError(f"CSV body, data row {row}: {len(cells)} cells under a header of "
                              f"{len(columns)} columns")
         data.append([_cell(c) for c in cells])
-    return json.dumps({"dataframe_split": {"columns": columns, "data": data}}).encode()
+    table = {"dataframe_split": {"columns": columns, "data": data}}
+    return json.dumps({**table, "params": params} if params else table).encode()
+
+
+def model_params(model) -> dict[str, str]:
+    """The parameters a loaded pyfunc ``model`` declares: name -> MLflow's type (``boolean``,
+    ``string``, ``double``, ...), as :func:`query_params` reads them."""
+    schema = model.metadata.get_params_schema()
+    return {p.name: p.dtype.name for p in schema.params} if schema else {}
+
+
+_TRUE, _FALSE = ("true", "1"), ("false", "0")
+
+
+def _param(name: str, text: str, kind: str):
+    """The query string's ``name=text`` as the JSON value of MLflow type ``kind``."""
+    if kind == "boolean":
+        if text.lower() in _TRUE + _FALSE:
+            return text.lower() in _TRUE
+        raise ValueError(f"query parameter {name}={text!r}: not true or false (true, false, 1, 0)")
+    if kind in ("double", "float", "long", "integer"):
+        try:
+            number = int(text) if kind in ("long", "integer") else float(text)
+        except ValueError:
+            number = None
+        if number is None or not math.isfinite(number):
+            raise ValueError(f"query parameter {name}={text!r}: not a finite number ({kind})")
+        return number
+    return text
+
+
+def query_params(query: bytes, declared: dict[str, str]) -> dict:
+    """The ``params`` a request's query string gives (``session=machine-7&reset=true``,
+    percent-encoded UTF-8), each as the JSON value of the type the model ``declared`` for it
+    (:func:`model_params`; a boolean as ``true``/``false``/``1``/``0``).  A name the model does
+    not declare, one given twice or a value not of its type: ValueError saying which, in one
+    line."""
+    try:
+        pairs = parse_qsl(query.decode("ascii"), keep_blank_values=True, strict_parsing=True,
+                          errors="strict")
+    except (UnicodeDecodeError, ValueError):
+        raise ValueError(f"query string {query.decode('latin-1')!r}: not name=value pairs joined "
+                         "by '&' (percent-encoded UTF-8)") from None
+    params: dict = {}
+    for name, text in pairs:
+        if name not in declared:
+            raise ValueError(f"query parameter {name!r}: the model takes "
+                             f"{', '.join(declared) or 'no parameters'}")
+        if name in params:
+            raise ValueError(f"query parameter {name!r} given twice")
+        params[name] = _param(name, text, declared[name])
+    return params
+
+
+def with_params(body: bytes, params: dict) -> bytes:
+    """The JSON request ``body`` with ``params`` (the query string's) in its ``params``; one
+    given there too must be the same value."""
+    try:
+        table = json.loads(body)
+    except ValueError:
+        raise ValueError("JSON body: not valid JSON") from None
+    given = table.get("params") if isinstance(table, dict) else None
+    if not isinstance(table, dict) or not isinstance(given or {}, dict):
+        raise ValueError("JSON body: not an object with a params object")
+    for name, value in params.items():
+        if name in (given or {}) and given[name] != value:
+            raise ValueError(f"parameter {name!r}: {value!r} in the query string, "
+                             f"{given[name]!r} in the body's params")
+    return json.dumps({**table, "params": {**(given or {}), **params}}).encode()
 
 
 class RequestLimits:
     """ASGI middleware around ``app``: the limits of the module doc on every POST."""
 
-    def __init__(self, app, max_body_bytes: int, max_rows: int):
+    def __init__(self, app, max_body_bytes: int, max_rows: int, params: dict[str, str] | None = None):
         self.app, self.max_body_bytes, self.max_rows = app, int(max_body_bytes), int(max_rows)
+        self.params = params or {}       # the model's parameters, for the query string's
 
     async def __call__(self, scope, receive, send):
         if scope["type"] != "http" or scope["method"] != "POST":
@@ -150,11 +223,16 @@ class RequestLimits:
         if rows > self.max_rows:
             return await _refuse(send, 413, f"{rows} rows over serve.max_rows ({self.max_rows}): "
                                             "send the rows in smaller blocks")
-        if is_csv(content_type):
-            try:
-                body = csv_as_split(body)
-            except ValueError as exc:
-                return await _refuse(send, 400, str(exc))
+        query, sent = scope.get("query_string", b""), body
+        try:
+            params = query_params(query, self.params) if query else {}
+            if is_csv(content_type):
+                body = csv_as_split(body, params)
+            elif params and "json" in content_type:   # (another type: MLflow's 415)
+                body = with_params(body, params)
+        except ValueError as exc:
+            return await _refuse(send, 400, str(exc))
+        if body is not sent:
             scope = {**scope, "headers": [(k, v) for k, v in scope["headers"]
                                           if k not in (b"content-type", b"content-length")]
                      + [(b"content-type", b"application/json"),
@@ -277,7 +355,8 @@ def scoring_app():
     # against every installed package (~1-1.5 s CPU at each server start) could find nothing
     model = mlflow.pyfunc.load_model(os.environ[scoring_server._SERVER_MODEL_PATH],
                                      suppress_warnings=True)
-    return RequestLimits(scoring_server.init(model), int(os.environ[BODY_ENV]), int(os.environ[ROWS_ENV]))
+    return RequestLimits(scoring_server.init(model), int(os.environ[BODY_ENV]), int(os.environ[ROWS_ENV]),
+                         model_params(model))
 
 
 def is_loopback(host: str) -> bool:

@@ -41,7 +41,11 @@ DRIVER = r"""/* stream.c: CSV rows of raw inputs on stdin -> corrections C_<axis
  * (a logger restarted), with its unit row, is left out and said; a cell holding a mark of
  * data.missing_values (TC_MISSING: `---`) is a missing value, as an empty cell is, and a cell
  * of an input that is no number nor a mark is refused with its row, as the reader refuses it.
- * A file in fixed-width columns, JSON Lines, UTF-16 text, a TDMS log or a MATLAB file is
+ * UTF-16 text with its byte-order mark, little- or big-endian (catman AP's or Excel's Unicode
+ * export) is read as its UTF-8 text (transcoded here; data.encoding does not apply to it), as
+ * the model's reader reads it; two bytes that are no UTF-16 character (a lone surrogate, an odd
+ * byte at the end) are refused with their line.
+ * A file in fixed-width columns, JSON Lines, UTF-32 text, a TDMS log or a MATLAB file is
  * refused: convert
  * it to CSV first (the export's check/<campaign>/rows.csv holds such a record's rows as this
  * reads them).
@@ -183,10 +187,101 @@ static int decoded(char *line, size_t size) {
     return 1;
 }
 
-/* The next line of stdin (line `row` of the file), decoded (TC_ENCODING): 1, 0 at its end;
-   a byte data.encoding does not read: said, exit 2. */
+/* (deploy71) stdin in UTF-16: 1 little-endian, 2 big-endian (its byte-order mark said so);
+   0: bytes, UTF-8 or data.encoding. */
+static int utf16_;
+static long utf16_at;      /* bytes of a UTF-16 stdin read so far, its mark's two included */
+
+/* A UTF-16 stdin's next two bytes as a code unit (utf16_'s order); -1 at its end, -2 where one
+   byte is left (an odd byte count). */
+static long utf16_unit(void) {
+    int a = getc(stdin), b;
+    if (a == EOF) return -1;
+    if ((b = getc(stdin)) == EOF) return -2;
+    utf16_at += 2;
+    return utf16_ == 1 ? (long)(a | b << 8) : (long)(a << 8 | b);
+}
+
+/* (deploy71) The next line of a UTF-16 stdin as UTF-8 into `line`, its line end kept.  The
+   code takes no library (iconv is POSIX, not on every PLC or NC toolchain), so the transcoding
+   is written here: a pair of surrogates is one character.  1, 0 at the end; two bytes that are
+   no character (a lone surrogate, an odd byte at the end: said with their line and bytes, as
+   the model's reader says them), a NUL (UTF-32 text?) or a line that outgrows the buffer: said,
+   exit 2. */
+static int utf16_line(char *line, size_t size, long row) {
+    size_t n = 0;
+    long code, low, at = utf16_at;
+    const char *why = NULL;
+    while ((code = utf16_unit()) != -1) {
+        if (code >= 0xD800 && code < 0xDC00) {       /* a high surrogate: its low one next */
+            low = utf16_unit();
+            code = low >= 0xDC00 && low <= 0xDFFF ? 0x10000 + ((code - 0xD800) << 10)
+                   + (low - 0xDC00) : 0xDC00;
+        }
+        why = code == -2 ? "an odd byte at the end: UTF-16 writes two a character"
+              : code >= 0xDC00 && code < 0xE000 ? "a lone surrogate" : NULL;
+        if (why) break;
+        if (code == 0 || n + 5 > size) {
+            fprintf(stderr, "stream: line %ld: %s\n", row, code ? "longer than the reader's "
+                    "buffer" : "a NUL character (UTF-32 text? convert it to UTF-8 first)");
+            exit(2);
+        }
+        if (code < 0x80) {
+            line[n++] = (char)code;
+        } else if (code < 0x800) {
+            line[n++] = (char)(0xC0 | code >> 6);
+            line[n++] = (char)(0x80 | (code & 0x3F));
+        } else if (code < 0x10000) {
+            line[n++] = (char)(0xE0 | code >> 12);
+            line[n++] = (char)(0x80 | (code >> 6 & 0x3F));
+            line[n++] = (char)(0x80 | (code & 0x3F));
+        } else {
+            line[n++] = (char)(0xF0 | code >> 18);
+            line[n++] = (char)(0x80 | (code >> 12 & 0x3F));
+            line[n++] = (char)(0x80 | (code >> 6 & 0x3F));
+            line[n++] = (char)(0x80 | (code & 0x3F));
+        }
+        if (code == '\n') break;
+        at = utf16_at;
+    }
+    if (why) {
+        fprintf(stderr, "stream: line %ld: bytes %ld-%ld are no UTF-16 character (%s; the file "
+                "begins with UTF-16's byte-order mark)\n", row, at, code == -2 ? at : at + 1,
+                why);
+        exit(2);
+    }
+    line[n] = '\0';
+    return n > 0;
+}
+
+/* stdin's first bytes: a UTF-16 byte-order mark sets utf16_ (and is dropped); other bytes read
+   are put back, or (two of them, the first 0xFF or 0xFE) begin `line`: their count. */
+static size_t byte_order(char *line) {
+    int a = getc(stdin), b;
+    line[0] = '\0';
+    if (a != 0xFF && a != 0xFE) {
+        if (a != EOF) ungetc(a, stdin);
+        return 0;
+    }
+    if ((b = getc(stdin)) == (a ^ 1)) {       /* FF FE: little-endian, FE FF: big-endian */
+        utf16_ = a == 0xFF ? 1 : 2;
+        utf16_at = 2;
+        return 0;
+    }
+    line[0] = (char)a;
+    line[1] = (char)(b == EOF ? '\0' : b);
+    line[2] = '\0';
+    return b == EOF ? 1 : 2;
+}
+
+/* The next line of stdin (line `row` of the file), decoded (TC_ENCODING; UTF-16 after its
+   mark, utf16_line): 1, 0 at its end; a byte data.encoding does not read: said, exit 2. */
 static int next_line(char *line, size_t size, long row) {
-    if (!fgets(line, (int)size, stdin)) return 0;
+    static int started;
+    size_t n = 0;
+    if (!started) started = 1, n = byte_order(line);    /* (the file's first bytes) */
+    if (utf16_) return utf16_line(line, size, row);
+    if (!(n && line[n - 1] == '\n') && !fgets(line + n, (int)(size - n), stdin) && !n) return 0;
     if (!decoded(line, size)) {
         fprintf(stderr, "stream: line %ld: a byte %s does not read (data.encoding of the model's "
                 "data), or the line is too long\n", row,
@@ -706,14 +801,6 @@ int main(int argc, char **argv) {
     }
     if (!next_line(line, sizeof line, 1)) { fprintf(stderr, "stream: no header on stdin\n"); return 2; }
     if (strncmp(line, "\xEF\xBB\xBF", 3) == 0) memmove(line, line + 3, strlen(line + 3) + 1);
-    if ((unsigned char)line[0] + (unsigned char)line[1] == 0xFF + 0xFE
-        && ((unsigned char)line[0] == 0xFF || (unsigned char)line[0] == 0xFE)) {
-        /* (catman70) a Unicode export (catman AP's, Excel's 'Unicode Text'): two bytes a
-           character, whose zero bytes no line of CSV text holds */
-        fprintf(stderr, "stream: line 1 is UTF-16 text (its byte-order mark): convert the file "
-                "to UTF-8 first (iconv -f UTF-16 -t UTF-8), as the model's reader reads it\n");
-        return 2;
-    }
     if (strncmp(line, "TDSm", 4) == 0 || (strncmp(line, "MATLAB ", 7) == 0
                                           && strstr(line, "MAT-file") != NULL)) {
         /* a lab's binary log fed as it is: its bytes are no header to name a column of */
