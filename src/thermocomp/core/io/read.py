@@ -112,6 +112,7 @@ from .runs import (
     run_values,
 )
 from .sheetruns import several_runs, sheet_parts
+from .slashed import record_order
 from .sparse import measured_on, on_grid, said, sparse_totals
 from .starts import campaign_starts, commented_start
 from .steps import check_unit_steps
@@ -581,6 +582,7 @@ def _source(path: Path, opts: ReadOptions, campaigns=None) -> tuple[Path, pd.Dat
     if opts.roles.get(RUN_ROLE) and opts.runs_at_pauses:
         raise ContractError(f"data.roles.{RUN_ROLE} and data.runs_at_pauses both split one file "
                             "into its runs: give one of them", file=path)
+    opts = _recorded_time(path, opts)
     if path.is_file() and (opts.roles.get(RUN_ROLE) or opts.runs_at_pauses):
         check_record_file(path)
         manifest, parts = _run_parts(path, opts)
@@ -617,6 +619,22 @@ def _source(path: Path, opts: ReadOptions, campaigns=None) -> tuple[Path, pd.Dat
     if campaigns is not None:
         manifest = manifest.loc[list(campaigns)]
     return path, manifest, _iter_campaigns(path, manifest, opts)
+
+
+def _recorded_time(path: Path, opts: ReadOptions) -> ReadOptions:
+    """``opts`` with ``time`` the order of the record's dates with slashes that its rows say,
+    every file's (:mod:`.slashed`; ``data.time=auto``: a file's first row alone read a folder
+    of a European PC's Keysight exports month first, its 13th refused)."""
+    if opts.time != "auto" or not (path.is_file() or path.is_dir()):
+        return opts
+    files = [path] if path.is_file() else [path / f for f in read_manifest(path, opts)["file"]]
+    order = record_order(files, opts)
+    if order is None:
+        return opts
+    if (order.file, order.row) != (files[0], 1):     # (else the first row says it, as before)
+        logger.info(f"{path.name}: dates with slashes read as data.time={order.format!r}, the "
+                    f"order {order.file.name}'s data row {order.row} says ({order.value!r})")
+    return replace(opts, time=order.format)
 
 
 def _record(path: Path, opts: ReadOptions) -> tuple[pa.Table, dict]:
