@@ -86,6 +86,18 @@ the longest 60 h"): ``rig_b`` in 1 try (2.27 / 2.32 s CPU; 1.91 / 2.27 s at cb9f
 config read one record cut 90/10), ``rig_a`` 1 try (2.18 s); ``run model=mlr`` on ``rig_b``'s
 written config: 0.15 / 0.23 / 0.19 / 0.25 / 1.48 as above.  ``auto`` (now offered ATI) not rerun.
 
+small71 (2026-12-02, at dffecdbc, once each; init's config, the air named ``T_amb``):
+``matrix rig_b --families auto`` 0.13 / 0.11 / 0.14 / 0.13 / 0.26 (0.1251 / 0.1064 / 0.1439 /
+0.1264 / 0.2647; 9.0 s CPU), as before: arx / lagbank / arx / hammerstein / hammerstein chosen,
+ATI skipped still, now as "the train campaigns span 2 ambient level(s), fewer than 3" (before:
+"no campaign ambient"); replay = run (3.3e-16), promote 0.153 = run's mean, C pack passed.
+``diagnose rig_b mlr``: nothing accepted, 0.15 / 0.23 / 0.19 / 0.25 / 1.48 as before (9.5 s
+CPU).  ``rig_a`` ``auto``: 0.27 / 0.20 / 0.14 / 0.11 / 0.55 as before (12.2 s CPU); ATI
+validated now (``T Luft`` named), its validation RMSE MLR's on every probe, no weight.  The same
+code with the air left unnamed (``data.roles.ambient=[]``): all three identical to the last
+digit: naming the air changes nothing on these records (rig_a's diagnose with it:
+bench_rigdiag70).
+
     ... bench_catman70.py init ROOT rig_a [override ...]   # init as a stranger, one try
     ... bench_catman70.py matrix ROOT rig_a                # run -> replay -> promote -> C
     ... bench_catman70.py table ROOT rig_a

@@ -229,8 +229,8 @@ def _slashed(cfg: DictConfig, ds) -> int:
     """``TC_SLASHED``: the order of ``data.time``'s dates with slashes, or, where it is ``auto``,
     of the record's (the order its files' time columns say, as ``init`` writes it and the
     reader reads it, :mod:`~thermocomp.core.io.slashed`: a Keysight DAQ's ``Time`` or a field
-    past 12; a run of such a record without ``init`` exported
-    a stream that refused the raw export's every time); 0 where none is."""
+    past 12; a run of such a record without ``init`` exported a stream that refused the raw
+    export's every time); 0 where none is."""
     written = str(cfg.data.get("time") or "auto")
     if written != "auto" or ds is None:
         return SLASHED.get(written, 0)
