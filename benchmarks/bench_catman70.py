@@ -92,6 +92,18 @@ week as written (UTF-16 LE, 11,520 rows) through the compiled mlr and lagbank pa
 UTF-8 copy (``iconv``) and of a UTF-16 BE copy; the held-out test 5.7e-14 / 1.1e-13 um from the
 packs' expected.csv; 0.03 / 0.04 s CPU a stream.  Before: exit 2, "line 1 is UTF-16 text".
 
+small71 (2026-12-02, at dffecdbc, once each; init's config, the air named ``T_amb``):
+``matrix rig_b --families auto`` 0.13 / 0.11 / 0.14 / 0.13 / 0.26 (0.1251 / 0.1064 / 0.1439 /
+0.1264 / 0.2647; 9.0 s CPU), as before: arx / lagbank / arx / hammerstein / hammerstein chosen,
+ATI skipped still, now as "the train campaigns span 2 ambient level(s), fewer than 3" (before:
+"no campaign ambient"); replay = run (3.3e-16), promote 0.153 = run's mean, C pack passed.
+``diagnose rig_b mlr``: nothing accepted, 0.15 / 0.23 / 0.19 / 0.25 / 1.48 as before (9.5 s
+CPU).  ``rig_a`` ``auto``: 0.27 / 0.20 / 0.14 / 0.11 / 0.55 as before (12.2 s CPU); ATI
+validated now (``T Luft`` named), its validation RMSE MLR's on every probe, no weight.  The same
+code with the air left unnamed (``data.roles.ambient=[]``): all three identical to the last
+digit: naming the air changes nothing on these records (rig_a's diagnose with it:
+bench_rigdiag70).
+
     ... bench_catman70.py init ROOT rig_a [override ...]   # init as a stranger, one try
     ... bench_catman70.py matrix ROOT rig_a                # run -> replay -> promote -> C
     ... bench_catman70.py table ROOT rig_a

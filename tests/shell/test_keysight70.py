@@ -175,3 +175,49 @@ def test_a_day_first_keysight_file_is_read_as_its_rows_past_the_12th_say(tmp_pat
             "rows say (a day or month past 12)") in said
     ds, _ = read_dataset(path, {"roles": {"error": ["*DISP*"]}, "time": "%d/%m/%Y %H:%M:%S"})
     assert list(ds.manifest["start"]) == [np.datetime64("2027-03-12T22:00")]
+
+
+def _two_runs(root: Path, first_from: int = 10, second_day_first: bool = True) -> Path:
+    """A European PC's two runs (small71): the first from March ``first_from`` 06:00 (the 10th:
+    no day past 12, either order reads), the second from 12/03 23:00 into 13/03 (its 61st row
+    says day first), or, not ``second_day_first``, a US PC's (``03/13``: month first)."""
+    root.mkdir()
+    _export(root / "dmu_run01.csv", dt.datetime(2027, 3, first_from, 6), _values(1),
+            day_first=True)
+    _export(root / "dmu_run02.csv", dt.datetime(2027, 3, 12, 23), _values(2),
+            day_first=second_day_first)
+    return root
+
+
+def test_a_later_file_past_the_12th_says_the_order_of_the_whole_folder(tmp_path, capsys):
+    """Before: read by its first file (a Keysight Time: month first), the folder's second run
+    was refused at its 13th's row (init and run alike); the first run was October the 3rd."""
+    folder = _two_runs(tmp_path / "runs")
+    ds, _ = read_dataset(folder, {"roles": {"error": ["*DISP*"]}})      # data.time=auto
+    assert list(ds.manifest["start"]) == [np.datetime64("2027-03-10T06:00"),
+                                          np.datetime64("2027-03-12T23:00")]
+    np.testing.assert_allclose(ds.campaigns["dmu_run02"]["time"].to_numpy()[59:62],
+                               [3540.0, 3600.0, 3660.013])         # past midnight, into the 13th
+    assert main(["init", str(folder), f"out={tmp_path / 'init'}"]) == 0
+    assert ("dmu_run01.csv: dates with slashes read as data.time='%d/%m/%Y %H:%M:%S', the order "
+            "the rows of dmu_run02.csv say (a day or month past 12: its data row 61, "
+            "'13/03/2027 00:00:00:000'), in every file") in capsys.readouterr().out
+    conf = (tmp_path / "init" / "conf" / "data" / "runs.yaml").read_text(encoding="utf-8")
+    assert "time: '%d/%m/%Y %H:%M:%S'" in conf
+
+
+def test_files_that_contradict_each_other_are_refused_naming_both(tmp_path, capsys):
+    """Day first by the first (13/03 from its first row), month first by the second (03/13 from
+    its row 61): one data.time cannot read both.  Before, init wrote the first's order and the
+    second was refused at its row 61 naming only that file; a run read each by its own first
+    row, two orders in one record, without a word."""
+    folder = _two_runs(tmp_path / "runs", first_from=13, second_day_first=False)
+    first, second = folder / "dmu_run01.csv", folder / "dmu_run02.csv"
+    for stage in (["init", str(folder)], ["run", f"data.path={folder}",
+                                          "data.roles.error=['*DISP*']", *FAST]):
+        refused([*stage, f"out={tmp_path / 'out'}"], capsys,
+                f"file {first}, column 'Time', data row 1: value '13/03/2027 06:00:00:000' says "
+                "its dates with slashes are day first",
+                f"but file {second}, column 'Time', data row 61: '03/13/2027 00:00:00:000' says "
+                "month first", "data.time")
+        assert not (tmp_path / "out").exists()

@@ -33,6 +33,7 @@ import pandas as pd
 from ...base.errors import ContractError
 from ...base.tables import name_width
 from ...core.context import TIME
+from ...core.guarded import summed
 from ...core.metrics import RMSE
 from ...core.timerule import stream_start
 from .adapt import adapt_figures, finite_rms
@@ -194,7 +195,7 @@ def replay_report(deployed, campaigns: Mapping[str, pd.DataFrame],
     diffs, residuals, batch_residuals, outputs, frozen = [], [], [], [], []
     events, excluded = [], set()
     clamps, seconds, n, hours = 0, 0.0, 0, 0.0
-    guarded = np.zeros(len(deployed.targets_), np.int64)
+    guarded_each = []       # per campaign: rows per target the guard changed (None: no guard)
     from ...base.progress import bar
 
     rows = bar(total=sum(len(df) for df in campaigns.values()), desc="replay", unit="row")
@@ -218,7 +219,7 @@ def replay_report(deployed, campaigns: Mapping[str, pd.DataFrame],
         events += run.events
         excluded.update(run.excluded)
         clamps += int((run.clamped > 0).sum())
-        guarded += 0 if run.guarded is None else run.guarded
+        guarded_each.append(run.guarded)
         seconds += run.seconds
         n += len(df)
         hours += streamed_hours(df, getattr(deployed, "period_s", 1.0))
@@ -230,6 +231,7 @@ def replay_report(deployed, campaigns: Mapping[str, pd.DataFrame],
     bres = np.concatenate(batch_residuals) if batch_residuals else np.empty((0, k_targets))
     out = np.concatenate(outputs) if outputs else np.empty((0, k_targets))
     guard = deployed.guard if isinstance(deployed, AdaptiveCompensator) else None
+    guarded = summed(guarded_each, targets)
     us = 1e6 * seconds / max(n, 1)
 
     rms = finite_rms
@@ -239,7 +241,7 @@ def replay_report(deployed, campaigns: Mapping[str, pd.DataFrame],
                   "us_per_sample": us,
                   "rmse_batch": rms(bres[:, j]),
                   "clamped_samples": clamps,
-                  "guarded_samples": None if guard is None else int(guarded[j]),
+                  "guarded_samples": None if guard is None else guarded[t],
                   "max_abs_correction": float(np.max(np.abs(out[:, j]))) if n else 0.0,
                   "all_finite": bool(np.all(np.isfinite(out[:, j]))),
                   "streamed_range": [float(np.min(out[:, j])), float(np.max(out[:, j]))] if n else None,

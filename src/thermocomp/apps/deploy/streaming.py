@@ -81,6 +81,7 @@ from ...core.context import (
 )
 from ...core.continuation import campaign_period
 from ...core.frame import ambient_c0, context_record
+from ...core.guarded import mark_guarded, summed_frames
 from ...core.io.contract import is_ambient, manifest_ambient
 from ...core.metrics import split_scores
 from ...core.timerule import SampleClock
@@ -88,7 +89,6 @@ from .guard import guard_changes
 
 POLICIES = ("clamp", "refuse", "off")
 STREAM_ID = "stream"
-GUARDED = "guarded"     # replay's frame attrs: rows per target the correction guard changed
 
 
 class OutOfEnvelopeError(ValueError):
@@ -697,13 +697,14 @@ def end_states(deployed, campaigns: Mapping[str, pd.DataFrame],
 def replay(streaming: StreamingCompensator, campaign: pd.DataFrame, chunk: int | None = None,
            lead_in: pd.DataFrame | None = None) -> pd.DataFrame:
     """Stream one whole campaign from its start (:func:`warm`), in blocks of ``chunk`` samples
-    (all at once if None).  Of an adaptive compensator the frame's ``attrs[GUARDED]`` holds,
-    per target, the campaign's rows whose correction its guard changed (the lead-in's not)."""
+    (all at once if None).  Of an adaptive compensator the frame's attrs hold, per target, the
+    campaign's rows whose correction its guard changed (the lead-in's not;
+    :func:`~thermocomp.core.guarded.mark_guarded`)."""
     warm(streaming, lead_in, campaign)
     warmed = guard_changes(streaming)
     out = _streamed(streaming, campaign, chunk)
     if warmed is not None:
-        out.attrs[GUARDED] = dict(zip(streaming.targets_, (guard_changes(streaming) - warmed).tolist()))
+        mark_guarded(out, streaming.targets_, guard_changes(streaming) - warmed)
     return out
 
 
@@ -755,11 +756,12 @@ def stream_scores(streaming: StreamingCompensator, campaigns: Mapping[str, pd.Da
     corrections are adapted as ``replay`` adapts them: the campaigns in their order, what is
     learned from the references carried from one to the next.  Each target's
     ``guarded_samples`` (beside ``test``) counts the rows whose correction the guard changed, as
-    ``replay.json``'s (the frames' ``attrs[GUARDED]``; None without a guard: the plain stream).
+    ``replay.json``'s (:func:`~thermocomp.core.guarded.summed_frames`; None without a guard:
+    the plain stream).
     """
     lead_ins = lead_ins or {}
     predicted = {c: replay(streaming, df, lead_in=lead_ins.get(c)) for c, df in campaigns.items()}
-    guarded = all(GUARDED in p.attrs for p in predicted.values())
+    guarded = summed_frames(predicted.values(), streaming.targets_)
     streaming.reset()
     # (a probe's first reading after the first row: the deployed y_hat(m) completes the label)
     measured = streaming.compensator.measured(campaigns, predicted=predicted)
@@ -775,6 +777,5 @@ def stream_scores(streaming: StreamingCompensator, campaigns: Mapping[str, pd.Da
         y = {c: measured[c][t].to_numpy() for c in campaigns}
         r = {c: y[c] - predicted[c][t].to_numpy() for c in campaigns}
         out[t] = {"test": split_scores(y, r, sample_period_s, statistic, points),
-                  "guarded_samples": sum(int(p.attrs[GUARDED][t]) for p in predicted.values())
-                  if guarded else None}
+                  "guarded_samples": None if guarded is None else guarded[t]}
     return out

@@ -25,14 +25,12 @@ import numpy as np
 
 from ...core.compensator import Compensator
 from ...core.continuation import lead_ins
+from ...core.guarded import summed_frames
 from ...core.io.contract import Dataset
 from ...core.metrics import split_scores
 from ...core.scoring.evaluation import sample_period
 
 CLAMPED = "n_clamped"       # the replayed frame's count of inputs clamped in the row
-# its attrs' rows per target whose correction the guard changed (deploy.streaming.GUARDED; not
-# imported: the deploy app imports this one)
-GUARDED = "guarded"
 
 
 def deployed_scores(comp: Compensator, ds: Dataset, ids, measured: Mapping, stream_of: Callable,
@@ -55,8 +53,7 @@ def deployed_scores(comp: Compensator, ds: Dataset, ids, measured: Mapping, stre
     predicted = {c: replay(ds.campaigns[c], leads.get(c)) for c in ids}
     clamped = int(sum(int(np.count_nonzero(p[CLAMPED].to_numpy())) for p in predicted.values()
                       if CLAMPED in p))
-    guarded = {t: sum(int(p.attrs[GUARDED][t]) for p in predicted.values())
-               for t in comp.targets_} if all(GUARDED in p.attrs for p in predicted.values()) else {}
+    guarded = summed_frames(predicted.values(), comp.targets_) or {}
     dt = sample_period(ds, ids)
     out = {}
     for t in comp.targets_:

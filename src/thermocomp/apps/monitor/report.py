@@ -12,6 +12,7 @@ import pandas as pd
 
 from ...base.tables import name_width
 from ...core.context import TIME
+from ...core.guarded import summed
 from ...core.metrics import unit
 from ..deploy.adapt import Adaptation, adapt_figures
 from ..deploy.adaptive import AdaptiveCompensator
@@ -126,7 +127,7 @@ def _stream_all(adaptive, fixed, comp, streamed: dict, leads: dict,
 
 def _targets(adaptive, run: dict) -> dict:
     C = np.vstack(run["corr"])
-    guarded = np.sum(run["guarded"], axis=0) if run["guarded"] else None
+    guarded = summed(run["guarded"], adaptive.targets_)
     rf = np.vstack(run["res_f"]) if run["res_f"] else None
     ra = np.vstack(run["res_a"]) if run["res_a"] else None
     return {t: {"rmse_fixed": _rmse(rf, k), "rmse_adaptive": _rmse(ra, k),
@@ -134,7 +135,7 @@ def _targets(adaptive, run: dict) -> dict:
                 "all_finite": bool(np.all(np.isfinite(C[:, k]))),
                 "bound": [float(adaptive.guard.lo[k]), float(adaptive.guard.hi[k])],
                 "clamped_samples": run["clamped"], "n_samples": run["samples"],
-                "guarded_samples": None if guarded is None else int(guarded[k])}
+                "guarded_samples": None if guarded is None else guarded[t]}
             for k, t in enumerate(adaptive.targets_)}
 
 

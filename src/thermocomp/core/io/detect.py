@@ -54,10 +54,8 @@ from .sniff import head_lines, resolved
 from .tables import parquet, peek_csv, without_pandas_index
 from .timestamps import (
     CLOCK,
-    is_slashed_stamp,
     looks_like_timestamp,
     maybe_elapsed,
-    slashed_format,
 )
 from .units import AMBIGUOUS, UNITS, ambiguity, is_flag, role_by_unit
 from .utf16 import is_utf16, utf8_options, utf16_as_utf8
@@ -191,33 +189,6 @@ def head(sample: Path, opts) -> tuple[object, list[str], list[str], str]:
     header, first, skip = peek_csv(sample, opts.delimiter, opts.encoding)
     opts = replace(opts, skip_rows=skip)
     return opts, header, first, _separators(sample, opts) + _table_start(sample, opts)
-
-
-def slashed_order(sample: Path, opts, header: list[str], first: dict) -> str | None:
-    """The strptime format of a text file's time column of dates with slashes where a row says
-    their order (``13/07/2026 ...``: day first; the first, ``01/07/2026 13:22:42``, may not),
-    every row saying it agreeing: written to the config, so that each file of a folder is read
-    so (one starting ``01/07`` too); None where none says it or rows disagree (refused naming
-    ``data.time`` as before), where ``data.time`` is given, or for another column.  A UTF-16
-    file is looked at as the UTF-8 text it is read as (catman70: catman AP's Unicode export, its
-    en-US dates; ``opts`` are that text's)."""
-    if opts.time == "auto" and is_utf16(sample):
-        with utf16_as_utf8(sample) as text:
-            return slashed_order(text, opts, header, first)
-    if opts.time != "auto" or is_converted(sample) or not is_text(sample):
-        return None
-    for i, h in enumerate(header):
-        if not is_slashed_stamp(str(first.get(h) or "")):
-            continue
-        column = pd.read_csv(sample, sep=opts.delimiter, header=None, skiprows=opts.skip_rows,
-                             usecols=[i], dtype=str, encoding=opts.encoding).iloc[:, 0]
-        values = [v.strip() for v in column.dropna().unique()]
-        # a row whose day or month is past 12 says the order; a Keysight DAQ's month first is
-        # the order only where no row says one (a European PC's export writes its day first)
-        said = {slashed_format(v, keysight=False) for v in values} - {None}
-        said = said or {slashed_format(v) for v in values} - {None}
-        return said.pop() if len(said) == 1 else None
-    return None
 
 
 def epoch_ms_column(header: list[str], first: dict, opts) -> str | None:

@@ -113,6 +113,7 @@ from .runs import (
     run_values,
 )
 from .sheetruns import several_runs, sheet_parts
+from .slashed import record_order
 from .sparse import measured_on, on_grid, said, sparse_totals
 from .starts import campaign_starts, commented_start
 from .steps import check_unit_steps
@@ -555,11 +556,13 @@ def _name(path) -> str:
     return record_id(path) if path.is_file() else path.name
 
 
-def folder_splits(path: Path, opts: ReadOptions) -> pd.DataFrame:
-    """A dataset folder's manifest with every campaign's split as a read of it assigns them
-    (the manifest, ``data.split_overrides``, the last train campaigns held out by
-    ``data.test_fraction``): a group of the folder holds out what the whole folder does."""
-    manifest = read_manifest(path, opts)
+def folder_splits(path: Path, opts: ReadOptions, manifest: pd.DataFrame | None = None
+                  ) -> pd.DataFrame:
+    """A dataset folder's manifest (``manifest``: as read already) with every campaign's split
+    as a read of it assigns them (the manifest, ``data.split_overrides``, the last train
+    campaigns held out by ``data.test_fraction``): a group of the folder holds out what the
+    whole folder does."""
+    manifest = read_manifest(path, opts) if manifest is None else manifest
     if shares(opts) and len(manifest) == 1 and not (path / MANIFEST).is_file():
         # a lab's one export put in a folder: its one file is one campaign, nothing to hold out
         # (the refusal named a campaigns.csv that is not there and said to lower the fraction)
@@ -589,6 +592,8 @@ def _source(path: Path, opts: ReadOptions, campaigns=None) -> tuple[Path, pd.Dat
     if opts.roles.get(RUN_ROLE) and opts.runs_at_pauses:
         raise ContractError(f"data.roles.{RUN_ROLE} and data.runs_at_pauses both split one file "
                             "into its runs: give one of them", file=path)
+    if path.is_file():         # (a folder's: its manifest read first)
+        opts = _recorded_time(path, [path], opts)
     if path.is_file() and (opts.roles.get(RUN_ROLE) or opts.runs_at_pauses):
         check_record_file(path)
         manifest, parts = _run_parts(path, opts)
@@ -613,7 +618,9 @@ def _source(path: Path, opts: ReadOptions, campaigns=None) -> tuple[Path, pd.Dat
         del table
         ids = list(manifest.index if campaigns is None else campaigns)
         return path.parent, manifest.loc[ids], ((c, *parts.pop(c)) for c in ids)
-    manifest = folder_splits(path, opts)
+    listed = read_manifest(path, opts)
+    opts = _recorded_time(path, [path / f for f in listed["file"]], opts)   # before the starts
+    manifest = folder_splits(path, opts, listed)
     if not (path / MANIFEST).is_file():      # said once per read, not per look at the folder
         logger.info(f"{path.name}: no {MANIFEST}; its {len(manifest)} campaign files read as "
                     "train campaigns in name order (data.test_fraction holds the last out)")
@@ -625,6 +632,20 @@ def _source(path: Path, opts: ReadOptions, campaigns=None) -> tuple[Path, pd.Dat
     if campaigns is not None:
         manifest = manifest.loc[list(campaigns)]
     return path, manifest, _iter_campaigns(path, manifest, opts)
+
+
+def _recorded_time(path: Path, files: list[Path], opts: ReadOptions) -> ReadOptions:
+    """``opts`` with ``time`` the order of the dates with slashes that the rows of the record
+    ``path`` say, every one of its ``files``' (:mod:`.slashed`; ``data.time=auto``: a file's
+    first row alone read a folder of a European PC's Keysight exports month first, its 13th
+    refused)."""
+    order = record_order(files, opts)
+    if order is None:
+        return opts
+    if (order.file, order.row) != (files[0], 1):     # (else the first row says it, as before)
+        logger.info(f"{path.name}: dates with slashes read as data.time={order.format!r}, the "
+                    f"order {order.file.name}'s data row {order.row} says ({order.value!r})")
+    return replace(opts, time=order.format)
 
 
 def _record(path: Path, opts: ReadOptions) -> tuple[pa.Table, dict]:

@@ -227,23 +227,24 @@ def _convertible(cfg: DictConfig, converted: dict, time_header, clock: list) -> 
 
 def _slashed(cfg: DictConfig, ds) -> int:
     """``TC_SLASHED``: the order of ``data.time``'s dates with slashes, or, where it is ``auto``,
-    of the record's (the order its first file's time column says, as ``init`` writes it: a
-    Keysight DAQ's ``Time`` or a field past 12; a run of such a record without ``init`` exported
-    a stream that refused the raw export's every time); 0 where none is."""
+    of the record's (the order its files' time columns say, as ``init`` writes it and the
+    reader reads it, :mod:`~thermocomp.core.io.slashed`: a Keysight DAQ's ``Time`` or a field
+    past 12; a run of such a record without ``init`` exported a stream that refused the raw
+    export's every time); 0 where none is."""
     written = str(cfg.data.get("time") or "auto")
     if written != "auto" or ds is None:
         return SLASHED.get(written, 0)
     from ...core.io import ReadOptions
-    from ...core.io.detect import head, slashed_order
+    from ...core.io.slashed import record_order
     from ..config.checks import data_options
 
     root = resolve(cfg.data.path)
-    sample = root if root.is_file() else root / str(ds.manifest["file"].iloc[0])
+    files = [root] if root.is_file() else [root / str(f) for f in ds.manifest["file"]]
     try:
-        opts, header, first, _ = head(sample, ReadOptions.from_cfg(data_options(cfg)))
-        return SLASHED.get(slashed_order(sample, opts, header, dict(zip(header, first))) or "", 0)
+        order = record_order(files, ReadOptions.from_cfg(data_options(cfg)))
     except (ContractError, OSError, ValueError):     # (no text file: nothing said by its cells)
         return 0
+    return 0 if order is None else SLASHED.get(order.format, 0)
 
 
 def _pause_s(cfg: DictConfig, ds) -> float:

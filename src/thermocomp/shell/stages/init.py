@@ -38,7 +38,6 @@ from ...core.io.detect import (
     proposed_campaign,
     proposed_roles,
     sample_file,
-    slashed_order,
     travel_headers,
     without_own_names,
 )
@@ -55,10 +54,11 @@ from ...core.io.pairhead import error_files, pair_time, paired_head, paired_line
 from ...core.io.plain import is_converted, is_lab_file, lab_as_csv
 from ...core.io.rates import PAUSE_PERIODS, pauses
 from ...core.io.roles import excel_days_header, naming, split_unit
+from ...core.io.slashed import record_order
 from ...core.io.sniff import resolved
 from ...core.io.starts import stated_start
 from ...core.io.tables import peek_csv
-from ...core.io.timestamps import ELAPSED, keysight_stamp
+from ...core.io.timestamps import ELAPSED
 from ...core.io.workbook import csv_options
 from ...core.timerule import median_step
 from ..config.checks import check_config, data_options
@@ -252,15 +252,18 @@ def _init(cfg: DictConfig) -> dict:
     if pair is not None:    # a run of two loggers: both files' columns, its rows the errors'
         header, first, layout = pair.header, pair.first, pair.layout
     cells_of_first = dict(zip(header, first))       # the first data row, by header
-    order = slashed_order(sample, opts, header, cells_of_first)
+    # every file's rows count: a folder's first may say nothing (days <= 12), a later one a 13th
+    order = record_order([src] if manifest is None else [src / f for f in manifest["file"]],
+                         io.ReadOptions.from_cfg(given))
     if order:              # (13/07/2026: day first, for every file: written to the config)
-        given["time"] = order
-        opts = replace(opts, time=order)
-        keysight = order.startswith("%m/%d/") and any(keysight_stamp(str(v).strip())
-                                                      for v in cells_of_first.values())
-        print(f"{sample.name}: dates with slashes read as data.time={order!r}, the order its "
-              + ("rows say (a Keysight DAQ's Time, its ms after a colon: month first)" if keysight
-                 else "rows say (a day or month past 12)"))
+        given["time"] = order.format
+        opts = replace(opts, time=order.format)
+        why = ("a Keysight DAQ's Time, its ms after a colon: month first" if order.keysight
+               else "a day or month past 12")
+        print(f"{sample.name}: dates with slashes read as data.time={order.format!r}, the order "
+              + (f"its rows say ({why})" if order.file == sample else
+                 f"the rows of {order.file.name} say ({why}: its data row {order.row}, "
+                 f"{order.value!r}), in every file"))
     elapsed = elapsed_column(src, manifest, opts, header, cells_of_first)
     if elapsed:            # (a run past 24:00:00: each file's, a shorter run's too, read so)
         print(f"{src.name}: {elapsed!r} h:mm:ss past 24 h in a file: read as data.time="

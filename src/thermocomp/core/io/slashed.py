@@ -1,0 +1,121 @@
+"""The order of a record's dates with slashes, one decision for all its files (small71).
+
+``03/11/2026`` is day first in Europe and month first in the US; a row whose day or month is
+past 12 says which (:func:`.timestamps.slashed_format`), and a Keysight DAQ's ``Time`` (its
+milliseconds after a colon) is month first where no row says otherwise (lead70).  A folder's
+first file alone may say nothing (every day <= 12) where a later one says day first (a 13th):
+read by its first file, the later one was refused at its 13th's row, or, where the later one's
+first row said day first, the first was read month first without a word (10/03: October).  So
+every row of every file of the record counts: one order for the record (``init`` writes it as
+``data.time``; a read with ``data.time=auto`` takes it), and files that contradict each other
+(one says day first, another month first) are refused naming both.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from dataclasses import dataclass, replace
+from pathlib import Path
+
+import pandas as pd
+
+from .contract import TIME, ContractError
+from .plain import is_converted
+from .sniff import resolved
+from .suffixes import is_text
+from .tables import peek_csv
+from .timestamps import is_slashed_stamp, slashed_format
+from .utf16 import is_utf16, utf8_options, utf16_as_utf8
+
+
+@dataclass(frozen=True)
+class Order:
+    """A record's order (``format``, strptime's) and the first row that says it."""
+
+    format: str
+    file: Path
+    header: str      # the time column's header in ``file``
+    row: int         # 1-based data row
+    value: str
+    keysight: bool   # said only by a Keysight DAQ's ms after a colon (no day or month past 12)
+
+    @property
+    def day_first(self) -> bool:
+        return self.format.startswith("%d/")
+
+
+def record_order(files: Iterable[Path], opts) -> Order | None:
+    """The order every row of ``files`` (one record's) says of its dates with slashes: a day or
+    month past 12 in any file, else a Keysight ``Time`` (month first).  None where ``data.time``
+    is given, the first file's time is no date with slashes, nothing says an order, or rows of
+    one file disagree (its read refuses naming ``data.time``, as before).
+
+    Raises
+    ------
+    ContractError
+        Where one file says day first and another month first, naming both.
+    """
+    files = list(files)
+    if opts.time != "auto" or not files:
+        return None
+    strong, weak = {}, {}          # format -> its first Order, by a field past 12 / by Keysight
+    for i, path in enumerate(files):
+        said = _said(path, opts)
+        if said is None:
+            if i == 0:             # (the record's time is no date with slashes)
+                return None
+            continue
+        own, keysight = said
+        if len(own) > 1:
+            return None
+        for found, into in ((own, strong), (keysight, weak)):
+            for order in found.values():
+                into.setdefault(order.format, order)
+    orders = list((strong or weak).values())      # (a row past 12 outweighs a Keysight stamp)
+    day = next((o for o in orders if o.day_first), None)
+    month = next((o for o in orders if not o.day_first), None)
+    if day and month:
+        raise _contradiction(day, month)
+    return orders[0] if len(orders) == 1 else None
+
+
+def _contradiction(day: Order, month: Order) -> ContractError:
+    first, second = sorted((day, month), key=lambda o: str(o.file))
+    way = {True: "day first", False: "month first"}
+    return ContractError(
+        f"value {first.value!r} says its dates with slashes are {way[first.day_first]} "
+        f"({first.format!r}), but file {second.file}, column {second.header!r}, data row "
+        f"{second.row}: {second.value!r} says {way[second.day_first]} ({second.format!r}): the "
+        "files of one record are read in one order (data.time); export them from one PC, or "
+        "read each as a record of its own", file=first.file, column=first.header, row=first.row)
+
+
+def _said(path: Path, opts) -> tuple[dict[str, Order], dict[str, Order]] | None:
+    """The orders ``path``'s rows say (``format``: its first row saying it) by a field past 12,
+    and by a Keysight stamp; None where its first time cell is no date with slashes, it is no
+    text file (a workbook's cells are dates already) or it does not read."""
+    if is_utf16(path):           # looked at as the UTF-8 text it is read as (catman70)
+        with utf16_as_utf8(path) as text:
+            said = _said(text, utf8_options(opts))
+        return None if said is None else tuple({f: replace(o, file=path) for f, o in d.items()}
+                                               for d in said)
+    if not is_text(path) or is_converted(path, opts):
+        return None
+    try:
+        opts = resolved(path, opts)
+        header, first, skip = peek_csv(path, opts.delimiter, opts.encoding)
+        column = next((i for i, cell in enumerate(first) if is_slashed_stamp(cell.strip())), None)
+        if column is None:
+            return None
+        cells = pd.read_csv(path, sep=opts.delimiter, header=None, skiprows=skip,
+                            usecols=[column], dtype=str, encoding=opts.encoding).iloc[:, 0]
+    except (ContractError, ValueError):   # (no evidence: the file's read says what is wrong)
+        return None
+    own, keysight = {}, {}
+    for row, value in cells.dropna().str.strip().drop_duplicates().items():
+        told = slashed_format(value, keysight=False)
+        found, into = (told, own) if told else (slashed_format(value), keysight)
+        if found and found not in into:
+            into[found] = Order(found, path, header[column] if column < len(header) else TIME,
+                                row + 1, value, keysight=into is keysight)
+    return own, keysight
