@@ -89,3 +89,12 @@ def test_init_writes_runs_at_pauses_for_a_week_of_tests_appended_in_one_file(tmp
     _table(one / "test01.csv", ["T Ständer [°C]"])
     assert main(["init", str(one / "test01.csv"), f"out={tmp_path / 'init1'}"]) == 0
     assert "runs_at_pauses" not in _written(tmp_path / "init1", "test01")
+
+
+def test_a_keysight_label_in_angle_brackets_names_the_air(tmp_path, capsys):
+    """A Keysight DAQ's header puts the channel's label in angle brackets (``101 <Air> (C)``);
+    before, ``<air>`` was one word and the air a plain temperature (small71's check)."""
+    _table(tmp_path / "daq.csv", ["101 <Air> [°C]", "102 <Bed> [°C]", "103 <Luft Lager> [°C]"])
+    assert main(["init", str(tmp_path / "daq.csv"), f"out={tmp_path / 'init'}"]) == 0
+    assert "ambient: '101 <Air> [°C]' (its name" in capsys.readouterr().out
+    assert _written(tmp_path / "init", "daq")["roles"]["ambient"] == ["101 <Air>"]

@@ -65,7 +65,7 @@ from .workbook import HEAD_ROWS, csv_options, is_workbook, sheet_as_csv
 HELD_OUT = 0.1    # the test share init writes for a record or runs without test campaigns
 
 _GLOB = re.compile(r"([*?\[])")
-_WORDS = re.compile(r"[\s_.\-]+")
+_WORDS = re.compile(r"[\s_.\-<>]+")   # (a Keysight label in angle brackets: `101 <Air>`)
 # a header word that says "the air around the machine"; an Italian / French / Spanish lab's
 # 'ambiente', 'ambiante', 'capannone' (the shop's hall); the place the air is in: a French
 # 'atelier', a Spanish 'nave' or 'taller', 'sala' / 'salle', a gateway's 'shop_air'
