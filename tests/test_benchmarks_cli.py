@@ -25,6 +25,7 @@ COMMAND_BENCHES = (
     "bench_auto_vtl60", "bench_autocheck65", "bench_autoloss68", "bench_automore69", "bench_autorep65",
     "bench_autorule69", "bench_blocks68", "bench_catman70", "bench_clean69", "bench_cvpick69",
     "bench_diag70", "bench_diagfault65", "bench_diagpower67", "bench_diagref65", "bench_fault70",
+    "bench_faults71",
     "bench_fresh69", "bench_initlag67", "bench_iso67", "bench_jig68", "bench_keysight70",
     "bench_lagwithin68", "bench_margin67", "bench_moretest68", "bench_nested63", "bench_pair70",
     "bench_pde66", "bench_pen0b69", "bench_planted69", "bench_remeasure62", "bench_rigdiag70",
