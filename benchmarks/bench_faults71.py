@@ -1,7 +1,7 @@
 """Faults in the RAW exports of stop 70's three lab records, sent through every deployed form (faults71).
 
     PYTHONPATH=$PWD/src .venv/bin/python benchmarks/bench_faults71.py write ROOT
-    PYTHONPATH=$PWD/src .venv/bin/python benchmarks/bench_faults71.py faults ROOT [family]
+    PYTHONPATH=$PWD/src .venv/bin/python benchmarks/bench_faults71.py faults ROOT [family] [record]
 
 ``bench_deploy_faults.py`` faults the contract's columns of a simulated record; stop 70's lab
 records were never faulted in their deployed forms.  Here a stranger's faults are written into the
@@ -11,8 +11,10 @@ model ``run`` fitted on the healthy record (``family``: mlr by default):
 
 * ``replay`` (``monitor.adaptive=true``, the adaptive compensator, and ``false``, the plain
   stream) and ``monitor``, as the CLI runs them with ``data.path=<faulted folder>``;
-* the served model (:class:`~thermocomp.apps.deploy.pyfunc.CompensatorModel` in process, the body
-  a ``text/csv`` request as the server turns it into cells, :func:`server.csv_as_split`): the
+* the served model (:class:`~thermocomp.apps.deploy.pyfunc.CompensatorModel` in process,
+  adaptive as promote registers it and plain, ``served_plain``; the body a ``text/csv`` request
+  as the server turns it into cells, :func:`server.csv_as_split`, then MLflow's schema step, a
+  refusal worded as the server words it, :func:`server.unconverted_row`): the
   test file's table from its header row (the Keysight export as written; catman's unit and
   comment rows dropped, its TABs made commas and its decimal commas points by the client; the
   lathe's temperature file as written);
@@ -47,6 +49,10 @@ no word, a correction non-finite or beyond the bounded bar, or a number read as 
   overload value, what an open thermocouple reads): adaptive forms flagged (the spindle sensor
   excluded), plain stream and C bounded (the envelope clamp), or refused naming the row; never
   SILENTLY WRONG (a reading of 1e37 °C taken as a temperature, a correction of 1e20 µm).
+* ``unplugged_listed``: the same file, the refusal's hint followed where it gives one
+  (``data.missing_values=['+9.90000000E+37']`` in every form that reads the data config;
+  added after the first run, before it ran): adaptive forms flagged, bounded; the plain stream
+  refuses the row (exit 2 naming file, column, row), as for an empty cell.
 * ``dash``: ``105 <Spindle> (C)`` reads ``---`` for 5 rows from ``h`` (init listed no mark):
   refused (exit 2 naming file, column, row, the cell and ``data.missing_values``) in replay /
   monitor; the C exit 2 naming line and input; the served model 400 naming column and row.
@@ -217,15 +223,21 @@ def client_body(name: str, lines: list[str]) -> bytes:
 
 def served(deployed, body: bytes) -> tuple[np.ndarray | None, str, int]:
     """The served model's corrections for a ``text/csv`` body: (corrections, refusal, events)."""
-    from thermocomp.apps.deploy.pyfunc import CompensatorModel
-    from thermocomp.apps.deploy.server import csv_as_split
+    from mlflow.models.utils import _enforce_schema
 
+    from thermocomp.apps.deploy.pyfunc import CompensatorModel, signature
+    from thermocomp.apps.deploy.server import csv_as_split, unconverted_row
+
+    split = None
     try:
-        split = json.loads(csv_as_split(body))["dataframe_split"]
-        frame = pd.DataFrame(split["data"], columns=split["columns"])
+        split = csv_as_split(body)
+        table = json.loads(split)["dataframe_split"]
+        frame = pd.DataFrame(table["data"], columns=table["columns"])
+        frame = _enforce_schema(frame, signature(deployed).inputs)     # MLflow's, as served
         out = CompensatorModel(deployed).predict(None, frame, {"session": "m", "reset": True})
     except Exception as exc:  # noqa: BLE001  (what the server answers 400 with)
-        return None, f"400: {str(exc)[:240]}", 0
+        said = (unconverted_row(str(exc), split, from_csv=True) if split else None) or str(exc)
+        return None, f"400: {said[:240]}", 0
     c = out[[k for k in out.columns if k.startswith("C_")]].to_numpy(float)
     return c, "", sum(1 for e in out["events"] if e not in ("", "[]", None))
 
@@ -249,7 +261,7 @@ def _change(c: np.ndarray | None, healthy: np.ndarray, said: str) -> str:
     return text + ("" if np.isfinite(c).all() else " NON-FINITE") + (f" [{said}]" if said else "")
 
 
-def deployed_model(root: Path, name: str, family: str):
+def deployed_model(root: Path, name: str, family: str, adaptive: str = "true"):
     from hydra import compose, initialize_config_dir
 
     from thermocomp.shell.builders import deployable_model
@@ -257,26 +269,38 @@ def deployed_model(root: Path, name: str, family: str):
 
     with initialize_config_dir(config_dir=str(root / "tc" / "conf"), version_base="1.3"):
         cfg = compose(config_name="config", overrides=[
-            *lab_matrix.data_args(root, name), "track=false"])
+            *lab_matrix.data_args(root, name), "track=false", f"monitor.adaptive={adaptive}"])
     ds, train, _, _ = read_streamed(cfg)
     return deployable_model(cfg, ds, train, str(root / "out" / f"{name}-{family}-plain" /
                                                  "model.pkl"), "replay.model")[0]
 
 
-def run_faults(root: Path, family: str = "mlr") -> None:
-    """Every record x fault x form; a row per fault into ``ROOT/faults-<family>.jsonl``."""
+HINTED = {"unplugged_listed": ("unplugged", ["data.missing_values=['+9.90000000E+37']"])}
+
+
+def run_faults(root: Path, family: str = "mlr", record: str = "") -> None:
+    """Every record (or ``record``) x fault x form; a row per fault into
+    ``ROOT/faults-<family>.jsonl``."""
     lab_matrix.project(root)
     out_file = root / f"faults-{family}.jsonl"
     for name, (_, test, *_rest) in RECORDS.items():
+        if record and name != record:
+            continue
         model = str(root / "out" / f"{name}-{family}-plain" / "model.pkl")
         deployed = deployed_model(root, name, family)
+        plain_served = deployed_model(root, name, family, "false")
         code = root / "code" / f"{name}-{family}"
         lines = _lines(root, name)
         healthy_served = served(deployed, client_body(name, lines))[0]
+        healthy_plain = served(plain_served, client_body(name, lines))[0]
         healthy_c = streamed_c(code, root / name / test)[0]
-        for fault, faulted in {"healthy": lines, **faults(name, lines)}.items():
+        cases = {"healthy": lines, **faults(name, lines)}
+        cases.update({k: cases[of] for k, (of, _) in HINTED.items() if of in cases
+                      and name == "dmu_a"})
+        for fault, faulted in cases.items():
             folder = faulted_folder(root, name, fault, faulted)
-            data = [*lab_matrix.data_args(root, name), f"data.path={folder}"]
+            hint = HINTED.get(fault, ("", []))[1]
+            data = [*lab_matrix.data_args(root, name), f"data.path={folder}", *hint]
             row: dict = {"record": name, "family": family, "fault": fault}
             for adaptive in ("true", "false"):
                 rep = lab_matrix.replayed(data, model, root / "rep" / f"{name}-{fault}-{adaptive}",
@@ -286,9 +310,11 @@ def run_faults(root: Path, family: str = "mlr") -> None:
                 row[f"replay_{'adaptive' if adaptive == 'true' else 'plain'}"] = rep
             row["monitor"] = lab_matrix.monitored(root, name, family,
                                                   root / "mon" / f"{name}-{fault}-{family}",
-                                                  f"data.path={folder}", "plots=none")
+                                                  f"data.path={folder}", "plots=none", *hint)
             c, said, events = served(deployed, client_body(name, faulted))
             row["served"] = _change(c, healthy_served, said) + f" events {events}"
+            c, said, _ = served(plain_served, client_body(name, faulted))
+            row["served_plain"] = _change(c, healthy_plain, said)
             c, said = streamed_c(code, folder / test)
             row["c"] = _change(c, healthy_c, said)
             print(json.dumps(row, default=str), flush=True)
@@ -299,7 +325,8 @@ def run_faults(root: Path, family: str = "mlr") -> None:
 def main(argv: list[str]) -> int:
     return run_commands(__doc__, {
         "write": lambda root: write(Path(root).resolve()),
-        "faults": lambda root, family="mlr": run_faults(Path(root).resolve(), family),
+        "faults": lambda root, family="mlr", record="": run_faults(Path(root).resolve(), family,
+                                                                   record),
     }, argv, cpu=sys.stdout)
 
 
