@@ -239,7 +239,8 @@ def served(deployed, body: bytes) -> tuple[np.ndarray | None, str, int]:
         said = (unconverted_row(str(exc), split, from_csv=True) if split else None) or str(exc)
         return None, f"400: {said[:240]}", 0
     c = out[[k for k in out.columns if k.startswith("C_")]].to_numpy(float)
-    return c, "", sum(1 for e in out["events"] if e not in ("", "[]", None))
+    events = out["events"] if "events" in out else []
+    return c, "", sum(1 for e in events if e not in ("", "[]", None))
 
 
 def streamed_c(code: Path, path: Path) -> tuple[np.ndarray | None, str]:
