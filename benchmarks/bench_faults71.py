@@ -224,6 +224,7 @@ def client_body(name: str, lines: list[str]) -> bytes:
 def served(deployed, body: bytes) -> tuple[np.ndarray | None, str, int]:
     """The served model's corrections for a ``text/csv`` body: (corrections, refusal, events)."""
     from mlflow.models.utils import _enforce_schema
+    from mlflow.pyfunc.scoring_server import infer_and_parse_data
 
     from thermocomp.apps.deploy.pyfunc import CompensatorModel, signature
     from thermocomp.apps.deploy.server import csv_as_split, unconverted_row
@@ -231,9 +232,8 @@ def served(deployed, body: bytes) -> tuple[np.ndarray | None, str, int]:
     split = None
     try:
         split = csv_as_split(body)
-        table = json.loads(split)["dataframe_split"]
-        frame = pd.DataFrame(table["data"], columns=table["columns"])
-        frame = _enforce_schema(frame, signature(deployed).inputs)     # MLflow's, as served
+        schema = signature(deployed).inputs        # MLflow's parse and schema step, as served
+        frame = _enforce_schema(infer_and_parse_data(json.loads(split), schema), schema)
         out = CompensatorModel(deployed).predict(None, frame, {"session": "m", "reset": True})
     except Exception as exc:  # noqa: BLE001  (what the server answers 400 with)
         said = (unconverted_row(str(exc), split, from_csv=True) if split else None) or str(exc)

@@ -983,4 +983,4 @@ int main(int argc, char **argv) {
 }
 """
 # the reader's limit of a temperature, one number in both (values.MAX_ABS_T_C)
-DRIVER = DRIVER.replace("@MAX_ABS_T_C@", f"{MAX_ABS_T_C:g}")
+DRIVER = DRIVER.replace("@MAX_ABS_T_C@", repr(float(MAX_ABS_T_C)))
