@@ -9,9 +9,12 @@ import subprocess
 
 import pytest
 
+from conftest import FAST
 from test_export import needs_cc
 from test_streamraw65 import _common, _mlr_stream, logger_file
+from test_twolog70 import _folder
 from thermocomp.core.io import ContractError, read_dataset
+from thermocomp.shell.cli import main
 
 OVERLOAD = "+9.90000000E+37"
 
@@ -62,3 +65,24 @@ def test_the_compiled_stream_refuses_an_overload_mark_as_the_reader_does(tmp_pat
     assert "line 22: input T_Ständer: 9.9e+37 degC is beyond 10000 degC" in said
     assert "data.missing_values" in said
     assert len(done.stdout.decode().splitlines()) == 1 + 20          # the rows before it
+
+
+def test_a_dropout_in_a_two_logger_run_is_refused_naming_whose_rows_it_counts(tmp_path, capsys):
+    # before: "file .../run03_temp.csv, column 'T_Bed', data row 13: ..." of a file whose
+    # empty cell is on its line 71 (the rows counted were run03_disp.csv's samples)
+    folder = _folder(tmp_path / "runs")
+    data = [f"data.path={folder}", "data.roles.error=[dX]", "data.roles.state=[Door]",
+            "data.test_fraction=0.34"]
+    assert main(["run", *data, "model=mlr", *FAST, f"out={tmp_path / 'out'}"]) == 0
+    temp = folder / "run03_temp.csv"
+    lines = temp.read_text().splitlines()
+    lines[70:] = [",".join(c if k != 2 else "" for k, c in enumerate(x.split(",")))
+                  for x in lines[70:]]                        # 'Bed [°C]' unplugged
+    temp.write_text("\n".join(lines) + "\n")
+    capsys.readouterr()
+    assert main(["replay", *data, f"replay.model={tmp_path / 'out' / 'model.pkl'}",
+                 "monitor.adaptive=false", "track=false", f"out={tmp_path / 'replay'}"]) == 2
+    said = capsys.readouterr().err
+    assert "run03_temp.csv (its rows: run03_disp.csv's samples" in said, said
+    assert ("column 'T_Bed', data row 13: campaign run03: no finite value at 720 s "
+            "from its first row") in said
