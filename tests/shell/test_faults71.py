@@ -7,13 +7,18 @@ from __future__ import annotations
 
 import subprocess
 
+import numpy as np
 import pytest
 
 from conftest import FAST
+from test_deploy import campaigns
 from test_export import needs_cc
 from test_streamraw65 import _common, _mlr_stream, logger_file
 from test_twolog70 import _folder
+from thermocomp.apps.deploy import OutOfEnvelopeError, StreamingCompensator
+from thermocomp.core.compensator import Compensator
 from thermocomp.core.io import ContractError, read_dataset
+from thermocomp.core.models import MLR
 from thermocomp.shell.cli import main
 
 OVERLOAD = "+9.90000000E+37"
@@ -86,3 +91,19 @@ def test_a_dropout_in_a_two_logger_run_is_refused_naming_whose_rows_it_counts(tm
     assert "run03_temp.csv (its rows: run03_disp.csv's samples" in said, said
     assert ("column 'T_Bed', data row 13: campaign run03: no finite value at 720 s "
             "from its first row") in said
+
+
+@pytest.mark.parametrize("policy", ["clamp", "off"])
+def test_the_plain_stream_refuses_an_overload_mark_as_it_refuses_a_missing_value(policy):
+    # before: read as a temperature (clamp: at the envelope's edge; a lag bank's served plain
+    # stream on keysight70's test run gave 1.2e39 µm; off: as it came)
+    camps = campaigns(0)
+    train = {c: camps[c] for c in list(camps)[:4]}
+    stream = StreamingCompensator.from_training(Compensator(MLR()).fit(train), train,
+                                                policy=policy)
+    bad = camps["K05"].copy()
+    bad.loc[3:, "T_2"] = 9.9e37
+    with pytest.raises(OutOfEnvelopeError, match=r"T_2 reads 9.9e\+37 at row 3, beyond 10000 °C"):
+        stream.predict(bad)
+    assert stream.n_samples_ == 0               # the refused block left no trace
+    assert np.isfinite(stream.predict(bad.iloc[:3])["E_Z"]).all()
