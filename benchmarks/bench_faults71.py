@@ -86,9 +86,45 @@ the adaptive forms 0 events.  Nothing is tuned on these faults: a form found SIL
 refusing unclearly is fixed in src (a test that fails on the old code); the monitor's detection
 thresholds are not changed here (helper mon71 changes its exclusion rules this stop).
 
-Measured
---------
-(filled in after the run)
+Measured (2026-12-02, once, 2 shared cores; ``write`` 20.6 s CPU, ``faults`` mlr 43.8 s, lagbank 57.0 s)
+------------------------------------------------------------------------------------------------------
+Healthy: every form as healthy, 0 monitor events on all three records, both families, but the
+served lag bank on ``lathe_a``'s temperature file (the DAQ's 60 s rows; the model scored on the
+probes' 300 s rows): 88 guard events (``rate_limited`` / ``free``), 51 of 1441 rows changed, by
+3.02 µm at most (0.16 µm RMS) against the plain stream: NOT quiet (the guard's rate from the
+5-min training rows; not changed here).  As expected, in every form that reads the file
+(replay adaptive and plain, monitor: exit 2 naming file, column, line and data row; served: 400
+naming column and row of the block; C: exit 2 naming line and input): ``dash``, ``comma_garbage``,
+``comma_cell``, ``description_row`` (``'MCS kapazitiv, 0-500 µm' is not a number``), ``ovld_probe``
+(replay / monitor; the served model and the C read no probe: as healthy), ``point_decimal``
+(replay / monitor refuse ``25.19000``; the C reads it as 25.19: as healthy), ``clock_back``
+(replay / monitor: ``time decreases ... (row 720)``; the C says its time rule and streams on, as
+healthy for mlr, 3.26 µm for lagbank), ``alarm`` (as healthy).  ``clock_ahead``: replay / monitor
+warn (``the clock jumps an hour forward ... line 722``), cut 12 probe rows, score 3.82 / 2.44 µm
+(mlr; healthy 2.07 / 1.40): the rest of the run is joined to temperatures an hour off.
+``unplugged`` (empty cells): plain stream and C refuse naming the row; adaptive forms flag the
+sensor (``excluded``) and stay bounded: rig_a test RMSE Z 1.20 -> 7.91 µm (mlr; 12.30 without
+the exclusion), lagbank 1.01 -> 6.48; lathe_a 2.07 / 1.40 -> 2.07 / 1.40.
+
+Not as expected, before the fixes (at 108935ae):
+
+* ``unplugged`` (+9.90000000E+37, dmu_a): replay and monitor refused it with a wrong reason (``no
+  temperature, in °C or kelvin (the column's median is 4.95e+37): another quantity? give its
+  column a role, data.roles.state=...``); the C took it as a temperature, clamped it without a
+  word (mlr: 160 µm off the healthy corrections); the served PLAIN stream likewise (mlr 160 µm;
+  lagbank 1.16e+39 µm, SILENTLY WRONG); following the hint one would need,
+  ``data.missing_values=['+9.90000000E+37']``, was refused (``marks that are no number``).
+  Now: the reader says ``9.9e+37 °C is beyond 10000 °C, which no sensor reads ... list it ... in
+  data.missing_values``; that key takes it; ``stream.c`` exits 2 (``line 730: input
+  T_105_Spindle: 9.9e+37 degC is beyond 10000 degC ...``); the plain stream refuses it as a
+  missing value (served: 400).  The adaptive forms flag it (excluded) but stay far off on E_Z:
+  ``unplugged_listed`` test RMSE E_Z 4.84 -> 66.06 µm (mlr), 4.28 -> 36.44 (lagbank); served
+  129 / 69.6 µm off at the run's end: the spindle's thermocouple is reconstructed from sensors
+  that do not follow the spindle (reported, the sensor monitor is not changed here).
+* ``unplugged`` (lathe_a, plain replay): ``production_temp.csv, column 'T_Headstock', data row
+  145`` for a cell on that file's line 722 (the rows counted were the probe file's).  Now
+  ``production_temp.csv (its rows: production_disp.csv's samples, the temperatures interpolated
+  onto them), ..., data row 145: ... no finite value at <t> s from its first row``.
 """
 
 from __future__ import annotations
