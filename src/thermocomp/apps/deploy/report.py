@@ -141,7 +141,8 @@ def stream_rows(deployed, campaign: pd.DataFrame, cid: str = "", file=None,
         deployed.reset()
         gap = np.flatnonzero(~np.isfinite(X[i]))
         if len(gap):
-            raise ContractError(f"campaign {cid}: no finite value (sensor dropout?), which the plain "
+            raise ContractError(f"campaign {cid}: no finite value at {t[i] - t[0]:g} s from its "
+                                "first row (sensor dropout?), which the plain "
                                 "streaming compensator refuses (monitor.adaptive=true holds or "
                                 "reconstructs it)", file=file, column=deployed.columns_[gap[0]],
                                 row=i + 1) from None

@@ -83,6 +83,7 @@ from ...core.continuation import campaign_period
 from ...core.frame import ambient_c0, context_record
 from ...core.guarded import mark_guarded, summed_frames
 from ...core.io.contract import is_ambient, manifest_ambient
+from ...core.io.values import MAX_ABS_T_C
 from ...core.metrics import split_scores
 from ...core.timerule import SampleClock
 from .guard import guard_changes
@@ -454,6 +455,11 @@ class StreamingCompensator:
             j = int(np.flatnonzero(~np.isfinite(checked))[0])
             raise MissingValueError(f"input {self.columns_[j]} has no finite value at row "
                                      f"{self.n_samples_} (sensor dropout?)")
+        if (np.abs(checked) > self._limits()).any():
+            j = int(np.flatnonzero(np.abs(checked) > self._limits())[0])
+            raise MissingValueError(f"input {self.columns_[j]} reads {checked[j]:g} at row "
+                                     f"{self.n_samples_}, beyond {MAX_ABS_T_C:g} °C, which no "
+                                     "sensor reads (an overload or open-circuit mark?)")
         if self._clock is not None and not clocked:
             time = self._clock.step(float(time))[0]
         first = self._ref is None
@@ -593,12 +599,24 @@ class StreamingCompensator:
         first, _, _, shift = self._clock.snapshot()[:4]
         return not first and bool(np.isfinite(shift))
 
+    def _limits(self) -> np.ndarray:
+        """The largest |value| of each checked input a sensor reads (faults71: a temperature
+        within the reader's :data:`MAX_ABS_T_C`; a Keysight DAQ's +9.9E+37 overload mark in a
+        lag bank's served plain stream gave corrections of 1e39 µm), inf for any other."""
+        limits = getattr(self, "_limits_", None)
+        if limits is None:        # (set on first use: a compensator pickled before has none)
+            limits = self._limits_ = np.array([MAX_ABS_T_C if str(c).startswith("T_") else np.inf
+                                               for c in self.columns_[:self._n_checked]])
+        return limits
+
     def _batchable(self, X, time, start: int, size: int, clocked: bool) -> int:
         """How many rows from ``start`` (at most ``size``) :meth:`_step` would take as they are:
         every checked input finite, inside the envelope or (clamp) on its training pattern, each
         time read after the last one."""
         block = X[start:start + size]
-        ok = np.isfinite(block[:, :self._n_checked]).all(axis=1)
+        checked = block[:, :self._n_checked]
+        with np.errstate(invalid="ignore"):
+            ok = (np.isfinite(checked) & (np.abs(checked) <= self._limits())).all(axis=1)
         if self._clock is not None and not clocked:
             t = np.asarray(time[start:start + len(block)], dtype=float)
             with np.errstate(invalid="ignore"):      # a missing time compares False: not read

@@ -98,6 +98,15 @@ class Dataset:
         # joined to itself, 'spindle_test.csv/spindle_test.csv', in every refusal naming it)
         return path if path.is_file() else path / self.manifest.loc[cid, "file"]
 
+    def rows_named(self, cid: str) -> str:
+        """What a refusal of campaign ``cid``'s row N names: its file, and (faults71) for a run
+        of two loggers whose rows the second's are (:mod:`.joined`), that file: the plain
+        stream's refusal named the temperature file's 'data row 145' of its line 722."""
+        paired = (self.meta.get("read_report") or {}).get("campaigns", {}).get(cid, {}).get("paired")
+        where = str(self.file_path(cid))
+        return where if not paired else (f"{where} (its rows: {paired['errors']}'s samples, the "
+                                         "temperatures interpolated onto them)")
+
     def ids(self, split: str | None = None) -> list[str]:
         if split is None:
             return list(self.manifest.index)

@@ -250,13 +250,24 @@ def _flag(cfg: Mapping, key: str) -> bool:
 
 
 def _missing_values(cfg: Mapping) -> list:
-    """``data.missing_values``: what a lab writes for a value not measured (``-``, ``n/a``)."""
+    """``data.missing_values``: what a lab writes for a value not measured (``-``, ``n/a``; a
+    number only beyond what any column may read, an instrument's overload mark)."""
     value = cfg.get("missing_values") or []
     value = [value] if isinstance(value, str) else value
-    if not all(isinstance(v, str) and v.strip() and not any_number(v) for v in value):
+    if not all(isinstance(v, str) and v.strip() and (not any_number(v) or _overload(v, cfg))
+               for v in value):
         raise ContractError(f"data.missing_values must be a list of marks that are no number "
-                            f"(e.g. ['-', 'n/a', '#DIV/0!']), got {cfg.get('missing_values')!r}")
+                            f"(e.g. ['-', 'n/a', '#DIV/0!']) or a number beyond any reading "
+                            f"(data.max_abs_error, data.max_abs_state: an instrument's overload "
+                            f"mark, '+9.90000000E+37'), got {cfg.get('missing_values')!r}")
     return [str(v) for v in value]
+
+
+def _overload(mark: str, cfg: Mapping) -> bool:
+    """(faults71) ``mark`` a number no column may read: a Keysight DAQ's +9.90000000E+37, what an
+    open thermocouple or an overloaded channel reads, is refused as a reading by every role."""
+    beyond = max(_positive_float(cfg, "max_abs_error", 1e6), _positive_float(cfg, "max_abs_state", 1e9))
+    return abs(float(mark.replace(",", "."))) > beyond
 
 
 def _fraction(cfg: Mapping, key: str) -> float | None:

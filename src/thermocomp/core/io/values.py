@@ -332,6 +332,17 @@ def _check_celsius(values: np.ndarray, name: str, path: Path, threshold: float,
             # median 400, was told to be kelvin: 0 K)
             finite = values[np.isfinite(values)]
             as_kelvin = (finite > threshold) & (finite <= threshold - ABSOLUTE_ZERO_C)
+            readings = finite[np.abs(finite) <= MAX_ABS_T_C]
+            if highest > MAX_ABS_T_C and readings.size and np.median(readings) <= threshold:
+                # (faults71) a logger's mark among temperatures: it was told to be another
+                # quantity where it filled half the column, or a fault replay streams (it refuses)
+                row = int(np.argmax(values > MAX_ABS_T_C)) + 1
+                raise ContractError(
+                    f"{values[row - 1]:g} °C is beyond {MAX_ABS_T_C:g} °C, which no sensor reads "
+                    "(the column's other readings are temperatures): the logger's mark for an "
+                    "overload or an open circuit (a Keysight DAQ writes +9.90000000E+37)? list "
+                    "it as the file writes it in data.missing_values: a value not measured",
+                    file=path, column=name, row=row)
             why = ("temperatures look like kelvin, convert to °C, or say so: "
                    "data.units={<its header>: K}"
                    if threshold < median <= threshold - ABSOLUTE_ZERO_C

@@ -106,8 +106,7 @@ def _pack(cfg: DictConfig, deployed, ds, compensator_json: str, fmt: str
                               f"of data.path (it has {', '.join(map(repr, list(ds.campaigns)[:8]))}"
                               f"{', ...' if len(ds.campaigns) > 8 else ''})")
     check_streamed_columns(ds, ids, plain(deployed).columns_, "the deployed model")
-    root = resolve(cfg.data.path)
-    files = {c: root / str(ds.manifest.loc[c, "file"]) for c in ids}
+    files = {c: ds.rows_named(c) for c in ids}
     ss = StateSpace.from_dict(json.loads(compensator_json))
     return conformance_pack(deployed, ss, {c: ds.campaigns[c] for c in ids},
                             lead_ins(plain(deployed).compensator, ds, ids), files,

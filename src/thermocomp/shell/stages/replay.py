@@ -35,7 +35,6 @@ def replay(cfg: DictConfig) -> dict:
     if model is not None and not str(model).strip():     # resolved, '' is the project root
         raise ConfigError("replay.model is empty: a model.pkl, a pyfunc folder or models:/<name>@<alias>")
     ds, train_ids, test_ids, gaps = read_streamed(cfg)
-    root = resolve(cfg.data.path)
     with stage_run(cfg, "replay", given_model=model is not None) as tr:
         deployed, source, name = deployable_model(cfg, ds, train_ids, model, "replay.model")
         if model is not None:
@@ -46,7 +45,7 @@ def replay(cfg: DictConfig) -> dict:
         say(f"streaming {len(test_ids)} test campaigns row by row through the {kind} compensator "
             f"({', '.join(deployed.columns_)})")
         result = replay_report(deployed, {c: ds.campaigns[c] for c in test_ids},
-                               {c: root / str(ds.manifest.loc[c, "file"]) for c in test_ids},
+                               {c: ds.rows_named(c) for c in test_ids},
                                lead_ins(plain(deployed).compensator, ds, test_ids),
                                adapt_from_config(cfg.get("adapt"), len(deployed.targets_)))
         report = replay_json(deployed, result, name=name, source=source, test_ids=test_ids,
