@@ -145,17 +145,9 @@ class SensorMonitor(InstantFaults, Judgement, Readmission):
         hi = np.max([a.max(0) for a in arrays], axis=0)
         first = np.mean([a[0] for a in arrays], axis=0)
         # the training spread of each sensor: 99.5th percentile of its windowed leave-one-out error
-        E = np.nan_to_num(pod.deleted_residuals(snaps))
-        W = windowed_mean(E, groups, pod.window)
-        spread = np.quantile(np.abs(W), 0.995, axis=0)
-        # ... also against each campaign's mean error over its first window: every error of a
-        # campaign is its sample's less its first sample's, which lies in the start-up transient
-        # the basis fits least, so a campaign started elsewhere in it carries another offset for
-        # its whole length (mon71: a lathe's calibration referenced 5 min into its warm-up, the
-        # production run started cold: T_Tool_holder_1 0.56 °C off for 24 h against a 0.54 band)
-        ends = np.cumsum([0, *map(len, arrays)])
-        start = np.vstack([E[a:b][:pod.window].mean(axis=0) for a, b in zip(ends, ends[1:])])
-        spread = np.maximum(spread, np.quantile(np.abs(W - start[groups]), 0.995, axis=0))
+        E = pod.deleted_residuals(snaps)
+        spread = np.nanquantile(np.abs(windowed_mean(np.nan_to_num(E), groups, pod.window)),
+                                0.995, axis=0)
         warn = np.asarray(options.get("warning_c", 0.4), float)
         alarm = np.asarray(options.get("alarm_c", 0.8), float)
         factor = float(options.pop("spread_factor", SPREAD_FACTOR))
