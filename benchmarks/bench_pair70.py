@@ -163,10 +163,6 @@ def write(root: Path) -> None:
     write_dmu(root)
 
 
-def initialised(root: Path, rest: list) -> None:
-    keysight.initialised(root, rest[0], rest[1:])
-
-
 FAMILIES = {k: v for k, v in lab_matrix.matrix_families().items() if k in ("mlr", "lagbank")}
 
 
@@ -175,7 +171,8 @@ def main(argv: list[str]) -> int:
     names = {**SEEDS, "lathe_first_s": 7143, **{n.replace("lathe", "base").replace("dmu", "base"): s
                                                 for n, s in SEEDS.items()}}
     return lab_matrix.main(__doc__, argv, names, FAMILIES, ("plain",),
-                           {"write": lambda root, rest: write(root), "init": initialised})
+                           {"write": lambda root, rest: write(root),
+                            "init": lambda root, rest: lab_matrix.initialised(root, rest[0], rest[1:])})
 
 
 if __name__ == "__main__":
