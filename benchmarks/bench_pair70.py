@@ -42,6 +42,9 @@ of 18 cells; MISSED on seed 7141 (base and mm alike): the sensor monitor exclude
 ``T_NC_X1_drive`` twice (drift over its last 2 samples, the joined rows every 300 s), replay dX
 2.175 against run 1.827 (mlr), 2.131 against 2.105 (lagbank), the C pack cut at its first event
 (13 rows); the simulated run at 60 s (errors now and then) has none (replay = run, 1.807).
+(mon71 traced it: not the 300 s period but the training's first joined row, 5 min into a
+warm-up, the monitor's reference; at 60 s started 5 min late the same exclusion:
+bench_mon71.)
 Every C pack passed, promote = the run's mean where replay = run.
 """
 
