@@ -72,6 +72,9 @@ lagbank 0.31 / 5.97 / 4.90, auto 0.27 / 2.01 / 1.58; replay = run (<= 8.9e-16), 
 C pack passed (refused at export before: data.time %m/%d/%Y).  ``monitor`` mlr healthy: 0
 events on both (file and stdin).  ``diagnose`` mlr: FOUND on both (dmu_a A x T_Table rise, Y
 5.68 -> 0.84; dmu_b A x T_KSS rise, Y 6.43 -> 0.87; 16.9 / 18.9 s CPU).
+lead71 (2026-12-02, at f37527c1, once): ``init dmu_a`` now names ``101 <Air> (C)`` ambient
+(the angle brackets split as word marks); ``matrix dmu_a --families auto``: 0.327 / 1.975 /
+1.818, as before; replay = run (5.6e-17), promote = run, C pack passed, 0 events (16.5 s CPU).
 
     ... bench_keysight70.py init ROOT dmu_a [override ...]   # init as a stranger, one try
     ... bench_keysight70.py matrix ROOT dmu_a                # run -> replay -> promote -> C
