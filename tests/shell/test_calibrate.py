@@ -41,14 +41,17 @@ def test_round_trip_random_parameters_within_2u(default_calibration):
     uncertainties of the truth they can be compared with, and the uncertainties are the spread."""
     setup, cal = default_calibration
     rng = np.random.default_rng(20240)
-    z = []
+    truths, distances = [], []
     for _ in range(60):
         truth = rng.normal(0.0, 10.0, (2, len(setup.model.names)))      # µm, µm/m
         balls = setup.ball_um * rng.standard_normal((setup.array.n_balls, 3))
-        P, flagged = cal.identify(simulate_distances(setup, truth, rng, balls))
-        assert not flagged
-        z.append((P - equivalent_truth(cal, truth)) / cal.uncertainty_)
-    z = np.vstack(z)
+        truths.append(truth)
+        distances.append(simulate_distances(setup, truth, rng, balls))
+    # the 120 cycles identified at once: each cycle's fit is its own, and one call factorises
+    # the noise covariance once instead of 60 times (1.5 s of CPU -> 0.4)
+    P, flagged = cal.identify(np.vstack(distances))
+    assert not flagged
+    z = (P - equivalent_truth(cal, np.vstack(truths))) / cal.uncertainty_
     assert np.mean(np.abs(z) <= 2.0) >= 0.95
     assert 0.9 < np.std(z) < 1.1
     assert np.all(0.75 < np.std(z, axis=0)) and np.all(np.std(z, axis=0) < 1.3)
