@@ -83,7 +83,7 @@ from ...core.continuation import campaign_period
 from ...core.frame import ambient_c0, context_record
 from ...core.guarded import mark_guarded, summed_frames
 from ...core.io.contract import is_ambient, manifest_ambient
-from ...core.io.values import MAX_ABS_T_C
+from ...core.io.values import MAX_ABS_T_C, reading_limit
 from ...core.metrics import split_scores
 from ...core.timerule import SampleClock
 from .guard import guard_changes
@@ -605,7 +605,7 @@ class StreamingCompensator:
         lag bank's served plain stream gave corrections of 1e39 µm), inf for any other."""
         limits = getattr(self, "_limits_", None)
         if limits is None:        # (set on first use: a compensator pickled before has none)
-            limits = self._limits_ = np.array([MAX_ABS_T_C if str(c).startswith("T_") else np.inf
+            limits = self._limits_ = np.array([reading_limit(c)
                                                for c in self.columns_[:self._n_checked]])
         return limits
 
