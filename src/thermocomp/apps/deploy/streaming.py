@@ -264,6 +264,10 @@ class StreamingCompensator:
     derived_ : dict
         ``data.derive`` (extension, derive71): ``{derived target: its arithmetic of errors}``;
         a served block's reference measurements give them (:func:`.pyfunc.references`).
+    slashed_ : str or None
+        The strptime format of the record's dates with slashes (code71: ``data.time``, or the
+        order its rows said, :func:`thermocomp.shell.source.slashed_time`): a served block's
+        are read in that order (a block's first row alone decided); set by the stage that deploys.
     end_states_ : dict
         ``{campaign: EndState}`` of the record it was deployed on (:func:`end_states`), from
         which a served stream may continue; set by ``promote``.
@@ -282,6 +286,7 @@ class StreamingCompensator:
     lab_names_: dict = {}      # replaced, never mutated (older pickles have none)
     lab_units_: dict = {}      # the lab's headers in another unit (naming.lab_units): likewise
     derived_: dict = {}        # data.derive's targets, computed from a block's errors: likewise
+    slashed_ = None            # the record's order of dates with slashes (older pickles: none)
     end_states_: dict = {}
     ambient_given_ = False
     ambient_optional_ = False  # older pickles: an ambient given is needed
