@@ -6,7 +6,8 @@ held out, 5-min samples), each model fitted by ``thermocomp run`` and made deplo
 ``replay`` makes it.  Test campaign K06 (47 rows), from its middle row (23) on ``T_motor2``, the
 sensor the models lean on: one empty cell (``nan_1``), 16 (``nan_16``), to the end
 (``nan_end``), its first cell (``nan_first``); stuck at its value; a one-sample +50 °C spike; the
-reading in K (+273.15) from the middle or throughout; the time +3 h from the middle
+reading in K (+273.15) from the middle or throughout; (code71) a DAQ's overload mark +9.9E+37
+for one sample (``ovld_1``) or to the end (``ovld_end``, an open thermocouple); the time +3 h from the middle
 (``gap3h``); a duplicated row, a duplicated time, two rows swapped; the first time blank; and
 (session 54) ``T_amb``'s column +5 K from the middle row on (``amb_offset5``: the column alone,
 the machine unchanged: a sensor's offset, which session 54 first took for a real step of the air).
@@ -57,6 +58,17 @@ arithmetic exported from the adaptive deployable (its guard included, no sensor 
   swap              arx        25.4 / 0.4 / 0.0     25.4 / 0.4 / 0.0       25.4 / 0.4 / 0.0 (time substituted)
                     lagbank    24.3 / 0.8 / 0.0     24.3 / 0.8 / 0.0       24.3 / 0.8 / 0.0
   dup_time, time_first_blank: every form as healthy (0.0)
+
+(code71, 2026-12-02, 12.1 s CPU) ``ovld_1`` / ``ovld_end``: adaptive and plain as ``nan_1`` /
+``nan_end`` (held; plain refused at row 24); the code took +9.9E+37 as a temperature and clamped
+it (before -> now, as ``nan_1`` / ``nan_end`` to the digit)::
+
+  ovld_1            mlr        27.5 / 16.7 / 0.0  -> 27.5 / 2.7 / 0.0
+                    arx        21.2 / 25.4 / 25.4 -> 25.4 / 0.5 / 0.0
+                    lagbank    19.1 / 24.2 / 24.2 -> 24.2 / 0.6 / 0.0
+  ovld_end          mlr        19.4 / 27.5 / 26.0 -> 19.4 / 8.1 / 6.6
+                    arx        21.2 / 25.4 / 25.4 -> 21.2 / 4.2 / 4.2
+                    lagbank    19.1 / 34.6 / 34.6 -> 19.1 / 5.5 / 5.5
 
 The compiled C (``tc_step`` in a small harness) equals the code on every fault to 2.3e-13 µm.
 Every correction of every form is finite.  Before session 53 the code stepped a NaN: one empty
@@ -241,6 +253,8 @@ def faults(df: pd.DataFrame) -> dict[str, pd.DataFrame]:
     put("amb_offset5", list(range(h, len(df))), "T_amb", lambda v: v + 5)   # the column only
     put("kelvin_half", list(range(h, len(df))), SENSOR, lambda v: v + 273.15)
     put("kelvin_all", list(range(len(df))), SENSOR, lambda v: v + 273.15)
+    put("ovld_1", [h], SENSOR, lambda v: 9.9e37)     # a DAQ's overload mark (code71)
+    put("ovld_end", list(range(h, len(df))), SENSOR, lambda v: 9.9e37)   # the thermocouple open
     put("gap3h", list(range(h, len(df))), "time", lambda v: v + 3 * 3600)
     put("dup_time", [h + 1], "time", lambda v: df.loc[h, "time"])
     put("time_first_blank", [0], "time", lambda v: np.nan)

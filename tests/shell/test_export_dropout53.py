@@ -70,6 +70,11 @@ def _c(deployed, folder, tests, columns) -> tuple[np.ndarray, np.ndarray]:
     (folder / "harness.c").write_text(HARNESS)
     subprocess.run(["gcc", "-std=c99", "-O2", "compensator.c", "harness.c", "-lm", "-o", "harness"],
                    cwd=folder, check=True, capture_output=True)
+    return _c_run(folder, tests, columns)
+
+
+def _c_run(folder, tests, columns) -> tuple[np.ndarray, np.ndarray]:
+    """``(tc_step's returns, corrections)`` of the harness built in ``folder``."""
     lines = [" ".join([str(int(k == 0)), repr(float(t)), *(repr(float(v)) for v in u)])
              for df in tests for k, (t, u) in enumerate(zip(df["time"], df[columns].to_numpy(float)))]
     run = subprocess.run([str(folder / "harness")], input="\n".join(lines) + "\n", text=True,
@@ -112,6 +117,29 @@ def test_a_sensor_dropout_is_refused_by_every_form_of_the_code_and_the_stream_go
             for k, df in enumerate(bad)]
     clean = _simulated(ss, kept, cols)
     assert np.max(np.abs(np.delete(c_out, at, axis=0) - clean)) <= TOLERANCE_UM
+
+
+@needs_cc
+def test_an_overload_mark_in_a_temperature_is_a_missing_value_in_every_form_of_the_code(dataset,
+                                                                                       tmp_path):
+    """A DAQ's +9.9E+37 (an open thermocouple) is beyond MAX_ABS_T_C, which no sensor reads: a PLC
+    cannot refuse the row, so tc_step, the ST block and the Simulator take it as they take NaN
+    (code71; they clamped it into the model before: a lag bank's corrections far off)."""
+    deployed, tests = _adaptive(dataset, "arx")
+    cols = deployed.columns_
+    column = next(c for c in cols if c.startswith("T_"))
+    marked = [df.copy() for df in tests]
+    marked[0].loc[7, column], marked[1].loc[20:24, column] = 9.9e37, -9.9e37   # mid-run
+    missing = [df.copy() for df in tests]
+    missing[0].loc[7, column], missing[1].loc[20:24, column] = np.nan, np.nan
+    returned, c_out = _c(deployed, tmp_path, marked, cols)
+    expected = _c_run(tmp_path, missing, cols)
+    assert (returned < 0).sum() == 6
+    assert np.array_equal(returned, expected[0]) and np.array_equal(c_out, expected[1])
+    for form in (_st, lambda d, t, c: (None, _simulated(state_space(d), t, c))):
+        got, want = form(deployed, marked, cols), form(deployed, missing, cols)
+        assert np.array_equal(got[1], want[1])
+        assert got[0] is None or np.array_equal(got[0], want[0])
 
 
 def test_no_reference_is_taken_at_a_refused_sample(dataset):

@@ -8,11 +8,14 @@ record; these are a few rows of it)."""
 
 from __future__ import annotations
 
+import copy
 import datetime as dt
+import io
 import json
 from pathlib import Path
 
 import numpy as np
+import pandas as pd
 import pytest
 
 from conftest import FAST, refused
@@ -221,3 +224,71 @@ def test_files_that_contradict_each_other_are_refused_naming_both(tmp_path, caps
                 f"but file {second}, column 'Time', data row 61: '03/13/2027 00:00:00:000' says "
                 "month first", "data.time")
         assert not (tmp_path / "out").exists()
+
+
+def _monitored(tmp_path, monkeypatch, capsys, stream: Path, name: str) -> tuple[int, str]:
+    """``monitor`` of the lab's export ``stream`` on stdin (``data.time=auto``, no init) with
+    the model fitted on ``_two_runs``' folder (day first: its second run's row 61 says so)."""
+    folder = tmp_path / "runs"
+    if not folder.exists():
+        _two_runs(folder)
+    monkeypatch.setattr("sys.stdin", io.StringIO(stream.read_text(encoding="utf-8")))
+    code = main(["monitor", f"data.path={folder}", "data.roles.error=['*DISP*']", "model=lagbank",
+                 "monitor.input=-", f"out={tmp_path / name}", *FAST])
+    return code, capsys.readouterr().err
+
+
+def test_a_stream_reads_its_dates_in_the_order_its_training_record_decided(tmp_path, monkeypatch,
+                                                                          capsys):
+    """code71: the stream's first row alone decided (a Keysight Time: month first): the lab's
+    next run from 10/03 23:00 into 11/03 (no day past 12) was read October 3rd, then November
+    3rd, without a word (a lag bank's RMSE 3.24 / 6.66 µm against 0.036 / 0.061), and one into
+    13/03 refused at its 61st row.  Now both are read day first, as the record was; a US PC's
+    run (03/13 at row 61) is refused naming the row."""
+    for start in (10, 12):                  # no row says the order / row 61 says day first
+        stream = _export(tmp_path / f"next_{start}.csv", dt.datetime(2027, 3, start, 23),
+                         _values(3), day_first=True)
+        code, err = _monitored(tmp_path, monkeypatch, capsys, stream, f"m{start}")
+        assert code == 0, err
+        report = json.loads((tmp_path / f"m{start}" / "monitor.json").read_text())
+        assert report["events"] == [] and report["targets"]["E_201_DISP_X"]["n_samples"] == ROWS
+        assert report["targets"]["E_201_DISP_X"]["rmse_fixed"] < 0.1
+    us = _export(tmp_path / "us.csv", dt.datetime(2027, 3, 12, 23), _values(3))
+    monkeypatch.setattr("sys.stdin", io.StringIO(us.read_text(encoding="utf-8")))
+    refused(["monitor", f"data.path={tmp_path / 'runs'}", "data.roles.error=['*DISP*']",
+             "monitor.input=-", f"out={tmp_path / 'us'}", *FAST], capsys,
+            "file <stdin>, column 'time', data row 61: value '03/13/2027 00:00:00:000' says its "
+            "dates with slashes are month first, but the record the model was trained on says "
+            "day first (data.time='%d/%m/%Y %H:%M:%S')")
+    assert not (tmp_path / "us").exists()
+
+
+def test_the_served_model_reads_a_blocks_dates_in_its_records_order(tmp_path):
+    """code71: each served block's first row decided (a Keysight Time: month first): the lab's
+    run from 10/03 23:00 into 11/03 was served as October 3rd, then November 3rd (a lag bank's
+    corrections 9.46 µm off those of the same rows timed in seconds).  The deployed model
+    carries the record's order (``slashed_``); a row saying the other order is a 400."""
+    from mlflow.exceptions import MlflowException
+
+    from test_export import _compose
+    from thermocomp.apps.deploy.pyfunc import CompensatorModel
+    from thermocomp.shell.builders import deployable_model
+    from thermocomp.shell.source import read_streamed
+
+    cfg = _compose(f"data.path={_two_runs(tmp_path / 'runs')}", "data.roles.error=['*DISP*']",
+                   "model=lagbank", "track=false", "monitor.adaptive=false")
+    ds, train, _, _ = read_streamed(cfg, test=False)
+    deployed = deployable_model(cfg, ds, train, None, "serve.model")[0]
+    block = pd.read_csv(_export(tmp_path / "next.csv", dt.datetime(2027, 3, 10, 23), _values(3),
+                                day_first=True), skiprows=len(HEADER))
+    seconds = block.assign(Time=np.arange(ROWS) * 60.0 + 0.013 * (np.arange(ROWS) % 3 == 1))
+    served, timed = (CompensatorModel(copy.deepcopy(deployed)).predict(None, b, {"reset": True})
+                     for b in (block, seconds))
+    corrections = [c for c in served.columns if c.startswith("C_")]
+    assert len(corrections) == 2
+    np.testing.assert_array_equal(served[corrections], timed[corrections])
+    us = pd.read_csv(_export(tmp_path / "us.csv", dt.datetime(2027, 3, 12, 23), _values(3)),
+                     skiprows=len(HEADER))
+    with pytest.raises(MlflowException, match="data row 61 of the block: value '03/13/2027 "
+                       "00:00:00:000' says its dates with slashes are month first"):
+        CompensatorModel(copy.deepcopy(deployed)).predict(None, us, {"reset": True})

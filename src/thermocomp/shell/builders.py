@@ -16,7 +16,7 @@ from ..core.scoring.auto_validation import val_split_scores
 from .build import build
 from .config.candidates import build_candidates, is_auto
 from .model_store import load_model, model_family
-from .source import is_volumetric, reference
+from .source import is_volumetric, reference, slashed_time
 from .store import is_registered_model
 
 
@@ -146,6 +146,7 @@ def deployable(cfg: DictConfig, streaming, train: dict, ds=None):
     deployed.lab_names_ = lab_names(cfg, ds)
     deployed.lab_units_ = lab_units(ds)    # (the exported stream.c converts these headers)
     deployed.derived_ = parsed_derive(cfg.data.get("derive"))   # a reference's derived targets
+    deployed.slashed_ = slashed_time(cfg, ds)     # a served block's dates read in its order
     # served: every row that carries a measured error is a reference (no schedule)
     deployed.adapt_ = adapt_from_config(cfg.get("adapt"), len(deployed.targets_), scheduled=False)
     return deployed

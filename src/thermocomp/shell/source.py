@@ -188,6 +188,29 @@ def read_streamed(cfg: DictConfig, test: bool = True):
     return ds, train, require_split(ds, "test") if test else [], ds.meta.get("missing", {})
 
 
+def slashed_time(cfg: DictConfig, ds) -> str | None:
+    """The strptime format the record ``data.path`` (``ds`` as read) reads its dates with slashes
+    in: ``data.time`` where it is one, else (``auto``) the order every row of its files says, as
+    its read took it (:func:`~thermocomp.core.io.slashed.record_order`); None where there is none.
+    What a stream of the lab's rows reads them in (``monitor.input=-``, the served model, the
+    exported ``TC_SLASHED``): a stream cannot see the future (code71)."""
+    given = str(cfg.data.get("time") or "auto")
+    if given != "auto":
+        return given if given.startswith(("%d/%m/", "%m/%d/")) else None
+    if ds is None:
+        return None
+    from ..core.io.contract import ContractError
+    from ..core.io.slashed import record_order
+
+    root = resolve(cfg.data.path)
+    files = [root] if root.is_file() else [root / str(f) for f in ds.manifest["file"]]
+    try:
+        order = record_order(files, io.ReadOptions.from_cfg(data_options(cfg)))
+    except (ContractError, OSError, ValueError):     # (no text file: nothing said by its cells)
+        return None
+    return None if order is None else order.format
+
+
 def dataset_digest(cfg: DictConfig) -> str | None:
     """The digest of ``data.path`` (what :func:`open_source` records in ``meta["digest"]``), None
     when it is gone."""

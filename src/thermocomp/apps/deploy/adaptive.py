@@ -50,13 +50,15 @@ class AdaptiveCompensator:
     period_s : float
         Nominal sampling period (substitute for a bad ``time``).
 
-    Attributes ``lab_names_``, ``end_states_`` and ``adapt_``: as :class:`StreamingCompensator`'s (the
-    deployed object carries them; end states are of this adaptive stream).
+    Attributes ``lab_names_``, ``slashed_``, ``end_states_`` and ``adapt_``: as
+    :class:`StreamingCompensator`'s (the deployed object carries them; end states are of this
+    adaptive stream).
     """
 
     lab_names_: dict = {}      # replaced, never mutated (older pickles have none)
     lab_units_: dict = {}      # the lab's headers in another unit (naming.lab_units): likewise
     derived_: dict = {}        # data.derive's targets, computed from a block's errors: likewise
+    slashed_ = None            # the record's order of dates with slashes (older pickles: none)
     end_states_: dict = {}
     adapt_ = None
 

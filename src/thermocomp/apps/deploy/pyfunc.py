@@ -91,6 +91,7 @@ from ...base.log import NAME as LOG_NAME
 from ...base.log import configure as configure_log
 from ...core.context import TIME
 from ...core.io.derived import on_frame
+from ...core.io.slashed import stream_format
 from ...core.io.stdin import since, stream_stamps
 from .adaptive import AdaptiveCompensator
 from .naming import correction_column, raw_names, to_contract
@@ -195,7 +196,7 @@ class CompensatorModel(mlflow.pyfunc.PythonModel):
             state = self._state(session, bool(params.get("reset")), str(params.get("continues") or ""),
                                 params.get("ambient_c"))
             if TIME in frame.columns:
-                frame = _on_campaign_clock(frame, state)
+                frame = _on_campaign_clock(frame, state, self.streaming.slashed_)
             if isinstance(state[1], EndState):
                 # a continuing campaign's clock follows its predecessor's last sample by one
                 # period, as `run` joins them (the client's own clock may restart at 0)
@@ -243,12 +244,15 @@ def unheld_session(session: str) -> str:
             "to resume it; start a new campaign with reset=true to say so")
 
 
-def _on_campaign_clock(frame: pd.DataFrame, state: list) -> pd.DataFrame:
+def _on_campaign_clock(frame: pd.DataFrame, state: list, slashed: str | None = None
+                       ) -> pd.DataFrame:
     """``frame`` with wall-clock times (a lab's logger: ``07.01.2023 08:45:00``, ISO 8601) as
     seconds since its campaign's first (the session's origin, kept over its blocks until a
-    reset), as ``run`` and ``replay`` read a campaign's timestamps; seconds as they are."""
+    reset), as ``run`` and ``replay`` read a campaign's timestamps, dates with slashes in the
+    record's order ``slashed`` (code71: a block's first row alone decided); seconds as they are."""
     try:
-        stamps = stream_stamps(frame[TIME])
+        stamps = stream_stamps(frame[TIME], stream_format(frame[TIME], slashed, "the request")
+                               or "auto")
     except ContractError as exc:     # a time that is no time: its row of the block, not of stdin
         where = f"column {exc.column!r}, data row {exc.row} of the block: " if exc.row else ""
         raise MlflowException(where + exc.reason, error_code=INVALID_PARAMETER_VALUE) from exc

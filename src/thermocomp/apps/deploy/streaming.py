@@ -83,7 +83,7 @@ from ...core.continuation import campaign_period
 from ...core.frame import ambient_c0, context_record
 from ...core.guarded import mark_guarded, summed_frames
 from ...core.io.contract import is_ambient, manifest_ambient
-from ...core.io.values import MAX_ABS_T_C
+from ...core.io.values import MAX_ABS_T_C, reading_limit
 from ...core.metrics import split_scores
 from ...core.timerule import SampleClock
 from .guard import guard_changes
@@ -264,6 +264,10 @@ class StreamingCompensator:
     derived_ : dict
         ``data.derive`` (extension, derive71): ``{derived target: its arithmetic of errors}``;
         a served block's reference measurements give them (:func:`.pyfunc.references`).
+    slashed_ : str or None
+        The strptime format of the record's dates with slashes (code71: ``data.time``, or the
+        order its rows said, :func:`thermocomp.shell.source.slashed_time`): a served block's
+        are read in that order (a block's first row alone decided); set by the stage that deploys.
     end_states_ : dict
         ``{campaign: EndState}`` of the record it was deployed on (:func:`end_states`), from
         which a served stream may continue; set by ``promote``.
@@ -282,6 +286,7 @@ class StreamingCompensator:
     lab_names_: dict = {}      # replaced, never mutated (older pickles have none)
     lab_units_: dict = {}      # the lab's headers in another unit (naming.lab_units): likewise
     derived_: dict = {}        # data.derive's targets, computed from a block's errors: likewise
+    slashed_ = None            # the record's order of dates with slashes (older pickles: none)
     end_states_: dict = {}
     ambient_given_ = False
     ambient_optional_ = False  # older pickles: an ambient given is needed
@@ -605,7 +610,7 @@ class StreamingCompensator:
         lag bank's served plain stream gave corrections of 1e39 µm), inf for any other."""
         limits = getattr(self, "_limits_", None)
         if limits is None:        # (set on first use: a compensator pickled before has none)
-            limits = self._limits_ = np.array([MAX_ABS_T_C if str(c).startswith("T_") else np.inf
+            limits = self._limits_ = np.array([reading_limit(c)
                                                for c in self.columns_[:self._n_checked]])
         return limits
 

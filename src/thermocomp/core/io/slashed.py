@@ -9,6 +9,11 @@ first row said day first, the first was read month first without a word (10/03: 
 every row of every file of the record counts: one order for the record (``init`` writes it as
 ``data.time``; a read with ``data.time=auto`` takes it), and files that contradict each other
 (one says day first, another month first) are refused naming both.
+
+A stream (``monitor.input=-``) cannot see the future: its first row alone decided, and a stream
+of the lab's rows from 10/03 23:00 into 11/03 was read month first (October, then November)
+without a word.  With ``data.time=auto`` it reads in the order its training record decided
+(:func:`stream_format`, code71), and a row of it that says the other order is refused.
 """
 
 from __future__ import annotations
@@ -79,13 +84,45 @@ def record_order(files: Iterable[Path], opts) -> Order | None:
     return orders[0] if len(orders) == 1 else None
 
 
+WAY = {True: "day first", False: "month first"}
+
+
+def stream_format(time: pd.Series, recorded: str | None, source: str) -> str | None:
+    """``data.time`` of a stream's time cells ``time`` (index: the stream's data row - 1) read in
+    the order of the training record's dates with slashes, ``recorded`` (the format its read
+    took, :func:`record_order`), in the shape of the stream's first time (its seconds, its
+    year); None where no order was recorded or that first time is no date with slashes (the
+    stream's first row decides, as before).
+
+    Raises
+    ------
+    ContractError
+        At the first row that says the other order (a day or month past 12), naming it.
+    """
+    if not recorded or not recorded.startswith(("%d/%m/", "%m/%d/")):
+        return None
+    cells = time.dropna().astype(str).str.strip()
+    if cells.empty or not is_slashed_stamp(cells.iloc[0]):
+        return None
+    day_first = recorded.startswith("%d/")
+    for row, value in cells.drop_duplicates().items():
+        told = slashed_format(value, keysight=False)
+        if told and told.startswith("%d/") != day_first:
+            raise ContractError(
+                f"value {value!r} says its dates with slashes are {WAY[not day_first]}, but the "
+                f"record the model was trained on says {WAY[day_first]} (data.time={recorded!r}): "
+                "a stream is read in its record's order; stream the rows of the PC that wrote "
+                "the record, or set data.time to the stream's format",
+                file=source, column=TIME, row=int(row) + 1)
+    return slashed_format(cells.iloc[0], order=recorded[:6])
+
+
 def _contradiction(day: Order, month: Order) -> ContractError:
     first, second = sorted((day, month), key=lambda o: str(o.file))
-    way = {True: "day first", False: "month first"}
     return ContractError(
-        f"value {first.value!r} says its dates with slashes are {way[first.day_first]} "
+        f"value {first.value!r} says its dates with slashes are {WAY[first.day_first]} "
         f"({first.format!r}), but file {second.file}, column {second.header!r}, data row "
-        f"{second.row}: {second.value!r} says {way[second.day_first]} ({second.format!r}): the "
+        f"{second.row}: {second.value!r} says {WAY[second.day_first]} ({second.format!r}): the "
         "files of one record are read in one order (data.time); export them from one PC, or "
         "read each as a record of its own", file=first.file, column=first.header, row=first.row)
 

@@ -36,6 +36,7 @@ from .options import RUN_ROLE
 from .roles import RUN, active, naming, same_header, split_unit
 from .runs import run_blocks, run_values
 from .separators import UNICODE_MINUS, grouped
+from .slashed import stream_format
 from .sniff import SNIFF_LINES, detected
 from .tables import first_cast_failure
 from .timestamps import (
@@ -80,18 +81,20 @@ def stdin_text(stream, encoding: str = UTF8) -> str:
                             file=SOURCE, row=row or None) from None
 
 
-def read_stream(text: str, columns: list[str], opts) -> tuple[pd.DataFrame, dict]:
+def read_stream(text: str, columns: list[str], opts, recorded: str | None = None
+                ) -> tuple[pd.DataFrame, dict]:
     """``(frame, missing cells per column)`` of CSV ``text`` (header first) holding ``columns``
     (those the compensator reads).  ``time`` in seconds or as ISO 8601 timestamps (``auto``: as
-    the first row reads, like a campaign file; the instant they count from in ``attrs``
-    :data:`TIME_ORIGIN`, None for seconds); the headers named as a campaign file's are
-    (``data.columns``, ``data.roles`` with a date and a time of day joined, ``data.units``)."""
-    df, counts, _, origins = _read_runs(text, columns, opts)
+    the first row reads, like a campaign file, dates with slashes in the order ``recorded``, the
+    training record's, where one is: :func:`.slashed.stream_format`; the instant they count from
+    in ``attrs`` :data:`TIME_ORIGIN`, None for seconds); the headers named as a campaign file's
+    are (``data.columns``, ``data.roles`` with a date and a time of day joined, ``data.units``)."""
+    df, counts, _, origins = _read_runs(text, columns, opts, recorded)
     df.attrs[TIME_ORIGIN] = origins[0]
     return df, counts
 
 
-def _read_runs(text: str, columns: list[str], opts
+def _read_runs(text: str, columns: list[str], opts, recorded: str | None = None
                ) -> tuple[pd.DataFrame, dict, list | None, list]:
     """:func:`read_stream`'s ``(frame, missing cells per column)``, the runs' row blocks
     ``(campaign id, first row, end row)`` (None without a run column) and each run's
@@ -125,7 +128,8 @@ def _read_runs(text: str, columns: list[str], opts
     if TIME in df.columns:        # timestamps counted from each run's first, as a file's runs
         runs = [df[TIME]] if blocks is None else [df[TIME].iloc[start:end]
                                                   for _, start, end in blocks]
-        timed = [seconds_and_origin(t, opts.time, opts.timezone) for t in runs]
+        timed = [seconds_and_origin(t, _time_format(t, opts.time, recorded), opts.timezone)
+                 for t in runs]
         df[TIME] = pd.concat([seconds for seconds, _ in timed])
         origins = [origin for _, origin in timed]
     # every data column is numeric (the contract's T_, E_, S_ and time), not only those the
@@ -145,11 +149,22 @@ def _read_runs(text: str, columns: list[str], opts
     return df, {c: int(n) for c, n in df[numeric].isna().sum().items() if n}, blocks, origins
 
 
-def stream_campaigns(text: str, columns: list[str], opts) -> tuple[dict, dict]:
+def _time_format(time: pd.Series, given: str, recorded: str | None) -> str:
+    """``data.time`` of a run's time cells: as given, or (``auto``) in the order of the training
+    record's dates with slashes, ``recorded`` (:func:`.slashed.stream_format`; a row saying the
+    other order refused), where it holds such dates."""
+    if given != "auto":
+        return given
+    return stream_format(time, recorded, SOURCE) or given
+
+
+def stream_campaigns(text: str, columns: list[str], opts, recorded: str | None = None
+                     ) -> tuple[dict, dict]:
     """``({campaign id: frame}, {campaign id: missing cells per column})`` of the stream: one
     campaign ``stdin``, or, with ``data.roles.campaign``, a campaign per run named as the long
-    file's are (:mod:`.runs`), so each starts from a reset as a file's run does (:func:`read_stream`)."""
-    df, counts, blocks, origins = _read_runs(text, columns, opts)
+    file's are (:mod:`.runs`), so each starts from a reset as a file's run does (:func:`read_stream`;
+    ``recorded``: the training record's order of dates with slashes)."""
+    df, counts, blocks, origins = _read_runs(text, columns, opts, recorded)
     if blocks is None:
         df.attrs[TIME_ORIGIN] = origins[0]
         return {STDIN: df}, ({STDIN: counts} if counts else {})

@@ -140,18 +140,21 @@ def dated_format(value: str) -> str | None:
     return slashed_format(value)
 
 
-def slashed_format(value: str, keysight: bool = True) -> str | None:
+def slashed_format(value: str, keysight: bool = True, order: str | None = None) -> str | None:
     """The strptime format of a date with slashes and a time of day whose order the date itself
     says: a first field past 12 is the day (``15/06/2026 06:00:00``: ``%d/%m/%Y %H:%M:%S``), a
     second past 12 the day after the month (``06/15/2026``), and, where neither is and
     ``keysight``, the milliseconds after a colon of a Keysight DAQ's ``Time``
     (``03/01/2027 06:00:00:011``, as BenchLink Data Logger and the DAQ970A write it: month
-    first); None for ``03/11/2026`` (either order) and for anything else."""
+    first); None for ``03/11/2026`` (either order) and for anything else.  ``order``
+    (``'%d/%m/'`` or ``'%m/%d/'``, a record's, code71): ``value``'s format in that order."""
     match = _SLASHED_STAMP.fullmatch(value)
     if match is None:
         return None
     first, second = int(match["a"]), int(match["b"])
-    if first > 12 >= second:
+    if order is not None:
+        date = order
+    elif first > 12 >= second:
         date = "%d/%m/"
     elif second > 12 >= first or keysight and first <= 12 and keysight_stamp(value):
         date = "%m/%d/"

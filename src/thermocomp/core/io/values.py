@@ -26,6 +26,14 @@ ABSOLUTE_ZERO_C = -273.15
 MAX_ABS_T_C = 1e4  # refused whatever data.kelvin_threshold_c says
 FAULTY_SHARE = 0.1  # at most this share of a streamed T_ column above the kelvin threshold: faults
 
+
+def reading_limit(column: str) -> float:
+    """The largest |value| a sensor of ``column`` reads: a temperature's :data:`MAX_ABS_T_C`
+    (beyond it a logger's overload or open-circuit mark, a Keysight DAQ's +9.9E+37), inf for any
+    other column.  What the streams refuse and the exported code takes as a missing value."""
+    return MAX_ABS_T_C if str(column).startswith("T_") else float("inf")
+
+
 # ---------------------------------------------------------------------------
 # Time
 

@@ -33,7 +33,7 @@ from ...base.files import staged_outputs
 from ...base.log import say
 from ...base.paths import resolve
 from ...core.continuation import lead_ins
-from ...core.io.contract import TIME, ContractError
+from ...core.io.contract import TIME
 from ...core.io.roles import RUN
 from ...core.io.source import check_streamed_columns
 from ...core.io.timestamps import CLOCK
@@ -42,7 +42,7 @@ from ..builders import deployable_model, is_registered
 from ..config.checks import check_config
 from ..model_store import load_model, model_family
 from ..registry import registered_version
-from ..source import read_streamed
+from ..source import read_streamed, slashed_time
 from ..store import is_registered_model
 
 
@@ -230,20 +230,7 @@ def _slashed(cfg: DictConfig, ds) -> int:
     reader reads it, :mod:`~thermocomp.core.io.slashed`: a Keysight DAQ's ``Time`` or a field
     past 12; a run of such a record without ``init`` exported a stream that refused the raw
     export's every time); 0 where none is."""
-    written = str(cfg.data.get("time") or "auto")
-    if written != "auto" or ds is None:
-        return SLASHED.get(written, 0)
-    from ...core.io import ReadOptions
-    from ...core.io.slashed import record_order
-    from ..config.checks import data_options
-
-    root = resolve(cfg.data.path)
-    files = [root] if root.is_file() else [root / str(f) for f in ds.manifest["file"]]
-    try:
-        order = record_order(files, ReadOptions.from_cfg(data_options(cfg)))
-    except (ContractError, OSError, ValueError):     # (no text file: nothing said by its cells)
-        return 0
-    return 0 if order is None else SLASHED.get(order.format, 0)
+    return SLASHED.get(slashed_time(cfg, ds) or "", 0)
 
 
 def _pause_s(cfg: DictConfig, ds) -> float:

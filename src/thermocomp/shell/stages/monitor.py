@@ -38,7 +38,7 @@ from ...core.io.stdin import TIME_ORIGIN, stdin_text, stream_campaigns
 from ..builders import build_adaptive, build_compensator, deploy_stream, warn_stream_mode
 from ..config.checks import check_config, data_options
 from ..model_store import load_model, model_family
-from ..source import check_volumetric_targets, read_streamed
+from ..source import check_volumetric_targets, read_streamed, slashed_time
 from ..store import is_registered_model
 from ..tracking import name_given_model, stage_run
 
@@ -98,8 +98,10 @@ def monitor(cfg: DictConfig) -> dict:
                               f"model, got {[c for c in adaptive.columns_ if c.startswith('T_')]}")
         if stdin:
             opts = io.ReadOptions.from_cfg(data_options(cfg))
+            # (code71) dates with slashes in the order the training record decided: a stream
+            # cannot see the future, its first row alone read 10/03 into 11/03 month first
             streamed, missing = stream_campaigns(stdin_text(sys.stdin, opts.encoding),
-                                                 adaptive.columns_, opts)
+                                                 adaptive.columns_, opts, slashed_time(cfg, ds))
             if cfg.monitor.get("ambient_c") is not None:   # as the manifest's ambient_c is carried
                 for df in streamed.values():
                     df.attrs[AMBIENT_C] = float(cfg.monitor.ambient_c)

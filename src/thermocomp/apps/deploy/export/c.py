@@ -223,6 +223,9 @@ typedef struct {{
 static const char *const TC_INPUT_NAMES[TC_N_INPUTS] = {{{names}}};
 /* 1: a signal a diagnosed effect reads, whose missing value (NAN) tc_step holds */
 static const int TC_INPUT_HELD[TC_N_INPUTS] = {{{", ".join(str(int(h)) for h in ss.held or [0] * n)}}};
+/* the largest |value| a sensor of each input reads (a temperature: 10000 degC); beyond it (a
+   logger's overload mark, +9.9E+37 for an open thermocouple) tc_step takes it as NAN, missing */
+static const double TC_INPUT_LIMIT[TC_N_INPUTS] = {{{", ".join(number(v) for v in ss.limits)}}};
 static const char *const TC_OUTPUT_NAMES[TC_N_OUTPUTS] = {{{outs}}};
 static const char *const TC_ERROR_NAMES[TC_N_OUTPUTS] = {{{errors}}};  /* measured errors */
 /* The headers of the data the model was made from, which a stream may use instead */
@@ -243,9 +246,10 @@ void tc_set_ambient(tc_state *s, double ambient_c);
 
 /* One sample: raw inputs u (order TC_INPUT_NAMES), its time in s (NAN: one period after the
    previous one) -> corrections c (um, order TC_OUTPUT_NAMES).  Returns the number of inputs
-   clamped to the training envelope, or -1 when an input is not finite (a sensor dropout): the
-   sample is refused, nothing remembered changes and c holds the last corrections given (0 before
-   a campaign's first sample), as the plain stream refuses such a row. */
+   clamped to the training envelope, or -1 when an input is not measured (not finite, a sensor
+   dropout, or beyond its TC_INPUT_LIMIT, an overload mark; a held one is held): the sample is
+   refused, nothing remembered changes and c holds the last corrections given (0 before a
+   campaign's first sample), as the plain stream refuses such a row. */
 int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N_OUTPUTS]);
 
 /* A reference measurement of the error (um, order TC_ERROR_NAMES; NAN: not measured) at the
@@ -425,6 +429,10 @@ static void lstms(tc_state *s, const double x[2][TC_WIDTH], double y[]) {{
     }}
 }}
 
+/* a raw value a sensor reads: within its input's limit (NAN, an infinity and a temperature's
+   overload mark are not: missing, as the Simulator's StateSpace.measured) */
+static int measured(const double u[TC_N_INPUTS], int j) {{ return fabs(u[j]) <= TC_INPUT_LIMIT[j]; }}
+
 int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N_OUTPUTS]) {{
     double uu[TC_N_INPUTS];                 /* u, a held signal's missing value filled */
     double v[TC_N_INPUTS], x[2][TC_WIDTH], xl[2][{max(k, 1)}], ych[2];
@@ -432,12 +440,12 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
     double allow[TC_N_OUTPUTS];
     double dt, now, step;
     int i, j, l, h, r, clamped = 0;
-    /* a non-finite input refuses the sample before anything is remembered: one NaN would
+    /* an input not measured refuses the sample before anything is remembered: one NaN would
        otherwise stay in the lags, the AR feedback and the guard to the campaign's end; so does
        a campaign's first sample without its given ambient (TC_AMBIENT_GIVEN) */
     s->refused = TC_AMBIENT_GIVEN && !TC_AMBIENT_OPTIONAL && s->first && !isfinite(s->ambient_c);
     for (j = 0; j < TC_N_INPUTS; j++)
-        if (!TC_INPUT_HELD[j] && !isfinite(u[j])) s->refused = 1;
+        if (!TC_INPUT_HELD[j] && !measured(u, j)) s->refused = 1;
     if (s->refused) {{
         for (i = 0; i < TC_N_OUTPUTS; i++) c[i] = s->c[i];
         return -1;
@@ -446,8 +454,8 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
        last value, 0 before any (its derived inputs 0), as the diagnosed model holds it */
     for (j = 0; j < TC_N_INPUTS; j++) {{
         if (s->first) s->seen[j] = 0;
-        if (isfinite(u[j])) s->last[j] = u[j];
-        uu[j] = isfinite(u[j]) ? u[j] : (s->seen[j] ? s->last[j] : 0.0);
+        if (measured(u, j)) s->last[j] = u[j];
+        uu[j] = measured(u, j) ? u[j] : (s->seen[j] ? s->last[j] : 0.0);
     }}
     /* causal FIR denoiser */
     for (l = TC_TAPS - 1; l >= 0; l--)
@@ -492,7 +500,7 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
     /* a diagnosed model's derived inputs: r_a r_b (b < 0: r_a), r_j = v_j - its first value
        where REF (the effect's frame), 0 before any, as the stream's model reads its context */
     for (j = 0; j < TC_N_INPUTS; j++)
-        if (!s->seen[j] && isfinite(u[j])) {{
+        if (!s->seen[j] && measured(u, j)) {{
             s->v0[j] = v[j];
             s->seen[j] = 1;
         }}
@@ -537,11 +545,11 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
         if (!isfinite(ref)) {{   /* A0 not given (TC_AMBIENT_OPTIONAL): its sensors' mean */
             ref = 0.0;
             for (j = 0; j < TC_N_INPUTS; j++)
-                if (INITIAL_SENSOR[l][j] != 0.0 && isfinite(u[j])) ref += v[j], seen += 1.0;
+                if (INITIAL_SENSOR[l][j] != 0.0 && measured(u, j)) ref += v[j], seen += 1.0;
             ref = seen > 0.0 ? ref / seen : 0.0;
         }}
         for (j = 0; j < TC_N_INPUTS && !s->started[l]; j++)
-            if (INITIAL_SENSOR[l][j] != 0.0 && isfinite(u[j])) {{
+            if (INITIAL_SENSOR[l][j] != 0.0 && measured(u, j)) {{
                 start += INITIAL_W[l][j] * (v[j] - ref);
                 any = 1;
             }}

@@ -3,8 +3,6 @@ on stdout, the lab's own file as it is written (its headers, separator, decimal 
 column and wall-clock times: ``docs/to-the-machine.md``).  The same text for every model: what
 differs (the names, the run column) is in ``compensator.h`` (:mod:`.c`)."""
 
-from ....core.io.values import MAX_ABS_T_C
-
 DRIVER = r"""/* stream.c: CSV rows of raw inputs on stdin -> corrections C_<axis> in um as CSV on stdout.
  *
  * The header names the columns (any order, extra columns ignored) by their contract names or
@@ -75,7 +73,6 @@ DRIVER = r"""/* stream.c: CSV rows of raw inputs on stdin -> corrections C_<axis
 #define MAX_CELL 256
 #define CHECK_UM 1e-9          /* --check: |c - expected| <= CHECK_UM + CHECK_RELATIVE * |expected| */
 #define CHECK_RELATIVE 1e-9    /* (float64 in another order: check/check.json says why) */
-#define MAX_ABS_T_C @MAX_ABS_T_C@   /* degC: no sensor reads beyond it (the reader's limit) */
 
 enum { SECONDS = 1, LOCAL_TIME, ZONED_TIME };   /* a stream's time: as its first is written */
 
@@ -1000,13 +997,13 @@ int main(int argc, char **argv) {
                         TC_INPUT_NAMES[i], trimmed(cells[where[i]]), TC_N_MISSING);
                 return 2;
             }
-            if (strncmp(TC_INPUT_NAMES[i], "T_", 2) == 0 && fabs(u[i]) > MAX_ABS_T_C) {
+            if (isfinite(u[i]) && fabs(u[i]) > TC_INPUT_LIMIT[i]) {   /* (a temperature's) */
                 /* (faults71) as the reader refuses it: a Keysight DAQ's +9.9E+37 was read as
                    a temperature and clamped, corrections off by up to the whole correction */
                 fprintf(stderr, "stream: line %ld: input %s: %g degC is beyond %g degC, which no "
                         "sensor reads: the logger's mark for an overload or an open circuit? "
                         "the reader refuses it; list it in the model's data.missing_values (a "
-                        "value not measured)\n", row, TC_INPUT_NAMES[i], u[i], MAX_ABS_T_C);
+                        "value not measured)\n", row, TC_INPUT_NAMES[i], u[i], TC_INPUT_LIMIT[i]);
                 return 2;
             }
             if (!isfinite(u[i]) && !TC_INPUT_HELD[i]) {    /* (a held signal: tc_step holds it) */
@@ -1069,5 +1066,3 @@ int main(int argc, char **argv) {
     return check_.f != NULL ? check_end(row) : 0;
 }
 """
-# the reader's limit of a temperature, one number in both (values.MAX_ABS_T_C)
-DRIVER = DRIVER.replace("@MAX_ABS_T_C@", repr(float(MAX_ABS_T_C)))

@@ -105,10 +105,10 @@ def _fed(campaign: pd.DataFrame, lead_in: pd.DataFrame | None) -> pd.DataFrame:
 
 
 def _refused_row(frame: pd.DataFrame, ss: StateSpace) -> tuple[int, str] | None:
-    """``(row, input)`` of the first row with an input the code refuses (not finite, not held)."""
-    held = ss.held or [0] * len(ss.inputs)
+    """``(row, input)`` of the first row with an input the code refuses (not measured, not held)."""
+    held = np.asarray(ss.held or [0] * len(ss.inputs), bool)
     checked = [c for c, h in zip(ss.inputs, held) if not h]
-    bad = ~np.isfinite(frame[checked].to_numpy(float))
+    bad = ~ss.measured(frame[ss.inputs].to_numpy(float))[:, ~held]
     if not bad.any():
         return None
     i = int(np.argmax(bad.any(axis=1)))

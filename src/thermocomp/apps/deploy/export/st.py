@@ -7,8 +7,9 @@ Inputs ``u`` (raw values, order of the banner), ``time_s`` and ``has_time`` (FAL
 initial ambient, its manifest ``ambient_c``, read at its first sample where ``AMBIENT_GIVEN``,
 a model without an ambient sensor; else not read), ``ref_valid`` and ``ref_error`` (per target: a
 reference measurement of the error at this sample, which ``tc_reference`` takes after the
-step); outputs ``c`` (µm), ``n_clamped`` and ``refused`` (an input not finite, NaN or infinity:
-the sample and its reference are not taken and ``c`` holds, as ``tc_step`` returns -1).  What
+step); outputs ``c`` (µm), ``n_clamped`` and ``refused`` (an input not measured: NaN, infinity, or
+beyond its ``U_LIMIT``, a temperature's overload mark; the sample and its reference are not taken
+and ``c`` holds, as ``tc_step`` returns -1).  What
 was learned from references survives ``reset`` (the instance's initial values are the exported
 ones).  Only assignments, ``IF``, ``FOR``, ``EXP``, ``EXPT`` and (an arx_rf model's forest)
 ``LREAL_TO_REAL``, ``REAL_TO_LREAL`` and ``DINT_TO_LREAL`` are used, one statement a line (an
@@ -230,6 +231,7 @@ def function_block(ss: StateSpace) -> str:
         _constant("POWER_SCALE", [q[1] for q in ss.powers], (p,)),
         _constant("POWER_EXP", [q[2] for q in ss.powers], (p,)),
         _constant("HELD", ss.held or [], (n,), "INT"),
+        _constant("U_LIMIT", ss.limits, (n,)),
         _constant("INITIAL_TAU", [f[0] for f in ss.initial], (qi,)),
         _constant("INITIAL_W", [_spread(f[1], f[2], n) for f in ss.initial], (qi, n)),
         _constant("INITIAL_SENSOR", [_spread(f[1], [1] * len(f[1]), n) for f in ss.initial],
@@ -400,11 +402,12 @@ IF reset THEN
         c[i] := 0.0;
     END_FOR;
 END_IF;
-(* an input not finite (NaN, infinity: every IEEE comparison false) refuses the sample, as tc_step: *)
+(* an input not measured refuses the sample, as tc_step: not finite (NaN, infinity: every IEEE *)
+(* comparison false) or beyond its U_LIMIT (a temperature's 10000 degC: an overload mark) *)
 (* nothing remembered changes, c keeps the last corrections (0 before a campaign's first sample) *)
 refused := FALSE;
 FOR j := 0 TO N_INPUTS - 1 DO
-    IF HELD[j] = 0 AND NOT (u[j] >= -REAL_LIMIT AND u[j] <= REAL_LIMIT) THEN
+    IF HELD[j] = 0 AND NOT (u[j] >= -U_LIMIT[j] AND u[j] <= U_LIMIT[j]) THEN
         refused := TRUE;
     END_IF;
 END_FOR;
@@ -423,7 +426,7 @@ IF NOT refused THEN
         IF first THEN
             seen[j] := FALSE;
         END_IF;
-        IF u[j] >= -REAL_LIMIT AND u[j] <= REAL_LIMIT THEN
+        IF u[j] >= -U_LIMIT[j] AND u[j] <= U_LIMIT[j] THEN
             last[j] := u[j];
             uu[j] := u[j];
         ELSIF seen[j] THEN
@@ -556,7 +559,7 @@ IF NOT refused THEN
     (* a diagnosed model's derived inputs: r_a r_b (b < 0: r_a), r_j = v_j - its first *)
     (* value where REF (the effect's frame), 0 before any, as the stream's model reads its context *)
     FOR j := 0 TO N_INPUTS - 1 DO
-        IF NOT seen[j] AND u[j] >= -REAL_LIMIT AND u[j] <= REAL_LIMIT THEN
+        IF NOT seen[j] AND u[j] >= -U_LIMIT[j] AND u[j] <= U_LIMIT[j] THEN
             v0[j] := v[j];
             seen[j] := TRUE;
         END_IF;
@@ -642,7 +645,7 @@ IF NOT refused THEN
                 init_a0 := 0.0;
                 init_n := 0.0;
                 FOR j := 0 TO N_INPUTS - 1 DO
-                    IF INITIAL_SENSOR[l, j] <> 0 AND u[j] >= -REAL_LIMIT AND u[j] <= REAL_LIMIT THEN
+                    IF INITIAL_SENSOR[l, j] <> 0 AND u[j] >= -U_LIMIT[j] AND u[j] <= U_LIMIT[j] THEN
                         init_a0 := init_a0 + v[j];
                         init_n := init_n + 1.0;
                     END_IF;
@@ -652,7 +655,7 @@ IF NOT refused THEN
                 END_IF;
             END_IF;
             FOR j := 0 TO N_INPUTS - 1 DO
-                IF INITIAL_SENSOR[l, j] <> 0 AND u[j] >= -REAL_LIMIT AND u[j] <= REAL_LIMIT THEN
+                IF INITIAL_SENSOR[l, j] <> 0 AND u[j] >= -U_LIMIT[j] AND u[j] <= U_LIMIT[j] THEN
                     w := w + INITIAL_W[l, j] * (v[j] - init_a0);
                     any_seen := TRUE;
                 END_IF;

@@ -61,6 +61,10 @@ A sample with an input that is not finite (a sensor dropout) is refused before a
 state is untouched and the last correction given is repeated (0 before a campaign's first
 sample), as the plain stream refuses such a row and ``monitor``'s fixed stream holds its
 correction; one NaN stepped would stay in the lags, the feedback and the guard to the campaign's end.
+A value beyond its input's ``input_limit`` (a temperature beyond ``MAX_ABS_T_C``, 10000 °C: a
+logger's overload mark, +9.9E+37 for an open thermocouple) is such a missing value too (a held
+signal's held), where the streams refuse it: a PLC cannot refuse a row (code71; the code clamped
+it into the model before).
 
 At a campaign's first sample every memory starts in steady state on it (FIR buffer and input
 history full of it, lags on it, previous outputs 0), as the stream starts.  Between the
@@ -76,6 +80,7 @@ import numpy as np
 
 from ....core.frame import ambient_c0
 from ....core.gains import GainTerm, gain_at, gain_terms
+from ....core.io.values import reading_limit
 from ....core.timerule import SampleClock
 from ..adaptive import AdaptiveCompensator
 from ..streaming import Envelope
@@ -126,6 +131,11 @@ class _System:
     # not refuse the sample, it is held at the campaign's last one (0 before any: its derived
     # inputs 0, its first value their reference), as the diagnosed model holds its context
     held: list = field(default_factory=list)
+    # (n_inputs,) the largest |value| a sensor of each input reads (a temperature's MAX_ABS_T_C,
+    # UNBOUNDED for any other): beyond it (a logger's overload mark, +9.9E+37) the value is
+    # missing, as NaN, in every form of the code (:meth:`StateSpace.measured`; code71); empty (an
+    # older export): any finite value
+    input_limit: list = field(default_factory=list)
     # (n_derived,) 1: r_b is the model's input's rise x_b - x_b(0), the clamped one in the excess
     # channel (e_b - e_b(0), e(0) the excess at the campaign's first sample): a state times the
     # inputs' rises (inputs_product, export62); [] none
@@ -210,6 +220,17 @@ class StateSpace(NetArrays, ForestArrays, _System):
     @classmethod
     def from_dict(cls, d: dict) -> "StateSpace":
         return cls(**d)
+
+    def measured(self, u) -> np.ndarray:
+        """Per input, whether the raw value ``u`` is one a sensor reads: within its
+        ``input_limit`` (NaN, an infinity, a temperature's overload mark: missing)."""
+        with np.errstate(invalid="ignore"):
+            return np.abs(np.asarray(u, float)) <= np.asarray(self.limits, float)
+
+    @property
+    def limits(self) -> list:
+        """``input_limit``, or (an older export) UNBOUNDED for every input."""
+        return list(self.input_limit) or [UNBOUNDED] * len(self.inputs)
 
     @property
     def laws(self) -> list:
@@ -347,6 +368,7 @@ def state_space(deployed, provenance: dict | None = None, known_ambient: bool = 
         if any(k[5:] for k in derived) else [],
         initial=[[k[3], list(k[1]), list(k[2])] for k in initial],
         held=_held(inputs, n, powers, ambient, switches),
+        input_limit=[min(reading_limit(c), UNBOUNDED) for c in inputs],
         **forests.fields(), **nets.fields(place, {(tau, j): at for (tau, j, src), at in where.items()
                                                    if src == PLAIN}, width),
         clamp_gain=[(law.gain if law.gain is not None else np.zeros(N)).tolist()
@@ -537,13 +559,15 @@ class Simulator:
 
     def step(self, u, time: float = float("nan")) -> np.ndarray:
         """Correction ``C`` (µm, = -predicted error) per target for one sample.  A sample with
-        an input that is not finite is refused (``refused`` true): nothing remembered changes and
-        the last corrections given are returned (0 before a campaign's first sample)."""
+        an input not measured (not finite, or beyond its ``input_limit``) is refused (``refused``
+        true): nothing remembered changes and the last corrections given are returned (0 before a
+        campaign's first sample)."""
         u = np.asarray(u, float)
         ss = self.ss
         held = np.asarray(ss.held or [0] * len(u), bool)
+        measured = ss.measured(u)
         # A0 not given where the code has no input for it: no campaign starts (the stream's refusal)
-        self.refused = not np.isfinite(u[~held]).all() or (
+        self.refused = not measured[~held].all() or (
             self.first and ss.ambient_given and not ss.ambient_optional
             and not np.isfinite(self.ambient_c))
         if self.refused:
@@ -551,7 +575,6 @@ class Simulator:
         if self.first:
             self.clock.reset()
             self.seen, self.last = np.zeros(len(u), bool), np.zeros(len(u))
-        measured = np.isfinite(u)
         self.last = np.where(measured, u, self.last)
         u = np.where(measured, u, np.where(self.seen, self.last, 0.0))     # a held signal
         now, dt, _ = self.clock.step(float(time))
