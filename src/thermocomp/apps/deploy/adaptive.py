@@ -25,6 +25,7 @@ import pandas as pd
 
 from ...core.context import TIME, step_gain
 from ...core.timerule import SampleClock
+from .fallback import priced_fallbacks
 from .guard import CorrectionGuard
 from .pod import ThermalPOD
 from .streaming import OutOfEnvelopeError, StreamingCompensator, step_block
@@ -59,6 +60,8 @@ class AdaptiveCompensator:
     derived_: dict = {}        # data.derive's targets, computed from a block's errors: likewise
     end_states_: dict = {}
     adapt_ = None
+    # {sensor: the family fitted without it} (fallback.py): its correction while the sensor is out
+    fallbacks_: dict = {}
 
     def __init__(self, streaming: StreamingCompensator, monitor: SensorMonitor | None = None,
                  guard: CorrectionGuard | None = None, period_s: float = 1.0):
@@ -77,9 +80,10 @@ class AdaptiveCompensator:
     @classmethod
     def from_training(cls, streaming: StreamingCompensator, campaigns: Mapping[str, pd.DataFrame],
                       *, monitor: dict | None = None, pod: dict | None = None,
-                      guard: dict | None = None, learned_bands: bool = False
-                      ) -> "AdaptiveCompensator":
-        """Fit the POD, the detectors' limits and the guard on the training campaigns."""
+                      guard: dict | None = None, learned_bands: bool = False,
+                      fallbacks: str = "none") -> "AdaptiveCompensator":
+        """Fit the POD, the detectors' limits and the guard on the training campaigns;
+        ``fallbacks``: ``priced`` fits the sensor fallbacks (:mod:`.fallback`), ``none`` none."""
         comp = streaming.compensator
         names = [c for c in streaming.columns_ if c.startswith("T_")]
         mon = None
@@ -101,7 +105,13 @@ class AdaptiveCompensator:
             X = comp.stacked(campaigns, targets=[]).X     # the envelope's data, before its margin
             g.follow_inputs(input_gains(streaming), X.min().to_numpy(float),
                             X.max().to_numpy(float))
-        return cls(streaming, mon, g, g.period_s)
+        out = cls(streaming, mon, g, g.period_s)
+        if mon is not None and fallbacks == "priced":
+            out.fallbacks_ = priced_fallbacks(streaming, mon, campaigns)
+            out.reset()
+        elif fallbacks not in ("none", "priced"):
+            raise ValueError(f"fallbacks must be 'none' or 'priced', got {fallbacks!r}")
+        return out
 
     # -- the streaming-compensator interface ---------------------------------------------------
     @property
@@ -151,6 +161,8 @@ class AdaptiveCompensator:
     def reset(self, ambient_c: float = float("nan")) -> None:
         """New campaign (see :meth:`StreamingCompensator.reset`)."""
         self.streaming.reset(ambient_c)
+        for fallback in self.fallbacks_.values():
+            fallback.reset(ambient_c)
         if self.monitor is not None:
             self.monitor.reset()
         if self.guard is not None:
@@ -178,13 +190,19 @@ class AdaptiveCompensator:
                 None if self._base is None else self._base.copy(),
                 None if self._late is None else self._late.copy(), self._clock.snapshot(),
                 self._held.copy(), self._held_state.copy(), self._time_bad,
-                None if self._y is None else self._y.copy(), self.n_samples_)
+                None if self._y is None else self._y.copy(), self.n_samples_,
+                {s: f._snapshot() for s, f in self.fallbacks_.items()})
 
     def _restore(self, snap: tuple) -> None:
-        if len(snap) == 12:     # taken before the time rule (an older model's end states)
+        if len(snap) == 12 and not isinstance(snap[-1], dict):   # taken before the time rule
             snap = (*snap[:5], _clock_of(snap[5], snap[6]), *snap[7:])
+        if len(snap) == 11:     # taken before the fallbacks (fallback.py): none to restore
+            snap = (*snap, {})
         (s, m, g, self._base, self._late, clock, self._held,
-         self._held_state, self._time_bad, self._y, self.n_samples_) = snap
+         self._held_state, self._time_bad, self._y, self.n_samples_, falls) = snap
+        for sensor, fallback in self.fallbacks_.items():
+            if sensor in falls:
+                fallback._restore(falls[sensor])
         self._clock.restore(clock)
         self.streaming._restore(s)
         if self.monitor is not None:
@@ -208,8 +226,25 @@ class AdaptiveCompensator:
         except ValueError as exc:    # OutOfEnvelopeError (policy=refuse) and its kin
             y, clamped, stepped = np.full(len(self.targets_), np.nan), 0, False
             events.append(_held_event(t, exc))
+        if self.fallbacks_:
+            out = self._fallen_back()
+            falls = {}
+            for sensor, fallback in self.fallbacks_.items():
+                try:
+                    falls[sensor] = fallback._step(x, t, clocked=True)[0]
+                except ValueError:
+                    pass
+            if stepped and out in falls:
+                y = falls[out]
         self._output(y, dt, t, self._allowance(stepped), events)
         return self._y, clamped
+
+    def _fallen_back(self) -> str | None:
+        """The excluded sensor whose fallback gives the correction (the first of the monitor's
+        order with one), or ``None``."""
+        if not self.fallbacks_ or self.monitor is None:
+            return None
+        return next((s for s in self.monitor.excluded if s in self.fallbacks_), None)
 
     def _inputs(self, x: np.ndarray, t: float, events: list, dt: float | None = None
                 ) -> np.ndarray:
@@ -268,6 +303,7 @@ class AdaptiveCompensator:
         xs = np.array(X, dtype=float, copy=True)
         ts, dts = np.empty(n), np.empty(n)
         novel = np.zeros(n, dtype=bool)
+        fallen = np.full(n, None, dtype=object)     # the fallback each row reads (none: the model)
         events: dict[int, list] = {}
         done = np.ones(n, dtype=bool)
         i = 0
@@ -281,6 +317,7 @@ class AdaptiveCompensator:
                 ts[i], dts[i] = self._check_time(float(time[i]), row_events)
                 xs[i] = self._inputs(xs[i], ts[i], row_events, dts[i])
                 novel[i] = self.monitor is not None and self.monitor.new_state_
+                fallen[i] = self._fallen_back()
             except ValueError as exc:
                 if on_refused is None:
                     raise
@@ -295,6 +332,11 @@ class AdaptiveCompensator:
 
         rows = np.flatnonzero(done)
         y, clamps, dx = self.streaming.run_rows(xs[rows], ts[rows], clocked=True, on_refused=held)
+        for sensor, fallback in self.fallbacks_.items():
+            ys = fallback.run_rows(xs[rows], ts[rows], clocked=True,
+                                   on_refused=lambda k, exc: None)[0]
+            use = (fallen[rows] == sensor) & ~refused[rows] & np.isfinite(ys).all(axis=1)
+            y[use] = ys[use]
         out = np.full((n, len(self.targets_)), np.nan)
         clamped = np.zeros(n, dtype=np.int64)
         clamped[rows] = clamps
