@@ -40,24 +40,84 @@ def without_sensor(streaming: StreamingCompensator, campaigns: Mapping[str, pd.D
     return stream if stream.columns_ == streaming.columns_ else None
 
 
-def _rmse(comp, campaigns: Mapping[str, pd.DataFrame]) -> float:
-    """RMSE over targets and rows of ``comp``'s simulation on ``campaigns``."""
+def _residuals(comp, campaigns: Mapping[str, pd.DataFrame]) -> np.ndarray:
+    """Measured minus ``comp``'s simulation on ``campaigns`` (rows x targets)."""
     predicted = comp.predict(campaigns, mode="simulation")
     measured = comp.measured(campaigns, predicted=predicted)
-    r = np.concatenate([(measured[c][comp.targets_] - predicted[c][comp.targets_]).to_numpy(float)
-                        for c in campaigns])
-    return float(np.sqrt(np.nanmean(r ** 2)))
+    return np.concatenate([(measured[c][comp.targets_] - predicted[c][comp.targets_])
+                           .to_numpy(float) for c in campaigns])
 
 
-def reconstructed(monitor, campaigns: Mapping[str, pd.DataFrame], sensor: str
+def _rmse(comp, campaigns: Mapping[str, pd.DataFrame]) -> float:
+    """RMSE over targets and rows of ``comp``'s simulation on ``campaigns``."""
+    return float(np.sqrt(np.nanmean(_residuals(comp, campaigns) ** 2)))
+
+
+def _reads(comp, sensor: str) -> bool:
+    return any(sensor in comp.selected_[t] for t in comp.targets_)
+
+
+def _without(comp, sensor: str | None) -> dict:
+    return {t: [c for c in comp.selected_[t] if c != sensor] for t in comp.targets_}
+
+
+def heldout_fallbacks(streaming: StreamingCompensator, monitor,
+                      campaigns: Mapping[str, pd.DataFrame]) -> dict[str, StreamingCompensator]:
+    """``{sensor: fallback}`` for each monitored sensor whose fallback predicts the train
+    campaigns held out one at a time (fitted on the others) with a smaller squared error than the
+    model fitted on the others fed the sensor's reconstruction by a POD of the others; none with
+    fewer than 3 train campaigns."""
+    comp = streaming.compensator
+    ids = list(campaigns)
+    sensors = [s for s in monitor.names if _reads(comp, s) and all(_without(comp, s).values())]
+    if len(ids) < 3 or not sensors:
+        return {}
+    names = list(monitor.names)
+    cost = {s: np.zeros(2) for s in sensors}        # squared error: reconstruction, fallback
+    for held in ids:
+        rest = {c: campaigns[c] for c in ids if c != held}
+        one = {held: campaigns[held]}
+        model = clone(comp).set_params(selection=_without(comp, None)).fit(rest)
+        raw = [df[names].to_numpy(float) for df in rest.values()]
+        pod = clone(monitor.pod).fit(np.vstack([a - a[0] for a in raw]), groups=np.concatenate(
+            [np.full(len(a), k) for k, a in enumerate(raw)]))
+        for s in sensors:
+            fallback = clone(comp).set_params(selection=_without(comp, s)).fit(rest)
+            cost[s] += [np.nansum(_residuals(model, reconstructed(monitor, one, s, pod)) ** 2),
+                        np.nansum(_residuals(fallback, one) ** 2)]
+    out = {}
+    for s in sensors:
+        if cost[s][1] < cost[s][0]:
+            fallback = without_sensor(streaming, campaigns, s)
+            if fallback is not None:
+                out[s] = fallback
+    return out
+
+
+def unobservable_fallbacks(streaming: StreamingCompensator, monitor,
+                           campaigns: Mapping[str, pd.DataFrame]) -> dict[str, StreamingCompensator]:
+    """``{sensor: fallback}`` for each monitored sensor the others cannot predict (its leverage
+    in the monitor's POD at least ``max_leverage``: judged by its own detectors only)."""
+    _, lev = monitor.pod.operator(np.ones(len(monitor.names), dtype=bool))
+    out = {}
+    for s, h in zip(monitor.names, lev):
+        if h >= monitor.pod.max_leverage:
+            fallback = without_sensor(streaming, campaigns, s)
+            if fallback is not None:
+                out[s] = fallback
+    return out
+
+
+def reconstructed(monitor, campaigns: Mapping[str, pd.DataFrame], sensor: str, pod=None
                   ) -> dict[str, pd.DataFrame]:
-    """``campaigns`` with ``sensor`` replaced by the monitor's reconstruction from the others
-    (each campaign referenced to its first sample, as the monitor reads a stream)."""
+    """``campaigns`` with ``sensor`` replaced by its reconstruction from the others by ``pod``
+    (the monitor's by default; each campaign referenced to its first sample, as the monitor reads
+    a stream)."""
     names = list(monitor.names)
     j = names.index(sensor)
     active = np.ones(len(names), dtype=bool)
     active[j] = False
-    M, _ = monitor.pod.operator(active)
+    M, _ = (pod or monitor.pod).operator(active)
     out = {}
     for cid, df in campaigns.items():
         T = df[names].to_numpy(float)
