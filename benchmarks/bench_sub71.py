@@ -78,6 +78,41 @@ scored with the same bar 1-4 above, the first of them in this order that passes 
 * ``unobservable``: a fallback only for a sensor no other predicts (leverage in the monitor's
   POD at least ``max_leverage``, the sensor the monitor judges by its own detectors only and
   holds at its last good reading when out).
+
+Measured (2026-12-02; ``heldout`` 63.7 s user + 0.8 s sys, ``unobservable`` 15.4 + 0.5, fits
+made).  RMSE after the fault, today -> candidate (µm):
+
+========================================  =====================  =====================
+case                                      heldout                unobservable
+========================================  =====================  =====================
+dmu_a mlr / lagbank                       -91.9 % / -87.7 %      -91.9 % / -87.7 %
+rig_a mlr / lagbank                       -74.2 % / -93.3 %      -74.2 % / -93.3 %
+nan_end, nan_16 T_motor2 mlr/arx/lagbank  +0.0 / +44.4 / +27.9   +0.0 / +0.0 / +0.0
+stuck T_motor2 mlr/arx/lagbank            +0.0 / +20.7 / -2.6    +0.0 / +0.0 / +0.0
+healthy streams                           byte-unchanged         byte-unchanged
+build CPU (sim mlr/arx/lagbank; dmu_a,    +2.3 / 4.7 / 5.4;      +0.0 / 0.0 / 0.1;
+rig_a mlr/lagbank)                        3.5/19.7, 3.5/8.6 s    0.1/0.9, 0.1/0.4 s
+========================================  =====================  =====================
+
+``heldout`` REFUSED (bar 2: arx +44.4 %).  ``unobservable`` passes bars 1-4: it keeps fallbacks
+for ``T_amb`` only on the simulated record (``T_motor2``, predicted by ``T_motor1``, is
+reconstructed as before), for ``T_101_Air``, ``T_104_Headstock`` and ``T_105_Spindle`` on
+``dmu_a`` (the spindle was held at its last good reading, not reconstructed: no other sensor
+predicts it) and ``T_Lager_vorn``, ``T_amb`` on ``rig_a``.  Merged (``monitor.fallbacks``, default
+``unobservable``).  The whole ``bench_deploy_faults.py`` with it: only ``T_amb``'s lines move
+(every other line identical): ``amb_offset5`` largest change from healthy mlr 1.8 -> 1.0, arx
+1.1 -> 0.8, lagbank 1.1 -> 1.2 µm; RMS from the step on (adaptive), real +5 K 10.77 / 10.57 /
+7.20 -> 10.29 / 10.19 / 6.70, +2 K 6.30 / 6.58 / 3.92 -> 5.87 / 6.43 / 3.60, +5 K/30 min 7.90 /
+8.37 / 5.57 -> 6.21 / 7.39 / 3.93, offset +5 K and +2 K 4.70 / 5.78 / 3.99 -> 4.37 / 5.81 / 3.72.
+
+Its refinement (written after the project's tests ran on it, before it was scored again): four
+tests failed, two on what the fallback did.  A logger row with no temperature at all
+(``tests/shell/test_hostile_stream.py``: the correction held; ``test_monitor_lab57.py``: one empty
+row cost 1.35 against 1.30 µm, the bar 1.02x): every sensor out for a dropout, the unobservable
+ones' fallbacks took over.  So a fallback gives the correction only while the monitor has enough
+sensors in to rebuild the field, and not for a sensor out for a dropout that reads again (its
+held reading, at most a window old, is the better stand-in while it waits out its window).  The
+bar is the same; scored again below.
 """
 
 from __future__ import annotations
@@ -108,17 +143,99 @@ def _cpu() -> float:
     return r.ru_utime + r.ru_stime
 
 
-CANDIDATE = ["priced"]
+CANDIDATE = ["unobservable"]
+
+
+def _residuals(comp, campaigns) -> np.ndarray:
+    """Measured minus ``comp``'s simulation on ``campaigns`` (rows x targets)."""
+    predicted = comp.predict(campaigns, mode="simulation")
+    measured = comp.measured(campaigns, predicted=predicted)
+    return np.concatenate([(measured[c][comp.targets_] - predicted[c][comp.targets_])
+                           .to_numpy(float) for c in campaigns])
+
+
+def _reconstructed(monitor, campaigns, sensor: str, pod=None) -> dict:
+    """``campaigns`` with ``sensor`` replaced by its reconstruction from the others by ``pod``
+    (the monitor's by default), each campaign referenced to its first sample."""
+    names = list(monitor.names)
+    j = names.index(sensor)
+    active = np.ones(len(names), dtype=bool)
+    active[j] = False
+    M, _ = (pod or monitor.pod).operator(active)
+    out = {}
+    for cid, df in campaigns.items():
+        T = df[names].to_numpy(float)
+        out[cid] = df.assign(**{sensor: T[0, j] + (T - T[0])[:, active] @ M[j]})
+    return out
+
+
+def _without(comp, sensor) -> dict:
+    return {t: [c for c in comp.selected_[t] if c != sensor] for t in comp.targets_}
+
+
+def priced_fallbacks(streaming, monitor, campaigns) -> dict:
+    """Refused candidate ``priced`` (module doc): in-sample training RMSE."""
+    from thermocomp.apps.deploy.fallback import without_sensor
+
+    comp, out = streaming.compensator, {}
+    for sensor in monitor.names:
+        fallback = without_sensor(streaming, campaigns, sensor)
+        if fallback is None:
+            continue
+        own = np.sqrt(np.nanmean(_residuals(fallback.compensator, campaigns) ** 2))
+        if own < np.sqrt(np.nanmean(_residuals(comp, _reconstructed(monitor, campaigns, sensor)) ** 2)):
+            out[sensor] = fallback
+    return out
+
+
+def heldout_fallbacks(streaming, monitor, campaigns) -> dict:
+    """Refused candidate ``heldout`` (module doc): each train campaign held out in turn."""
+    from sklearn.base import clone
+
+    from thermocomp.apps.deploy.fallback import without_sensor
+
+    comp, ids, names = streaming.compensator, list(campaigns), list(monitor.names)
+    sensors = [s for s in names if _without(comp, s) != _without(comp, None)
+               and all(_without(comp, s).values())]
+    if len(ids) < 3 or not sensors:
+        return {}
+    cost = {s: np.zeros(2) for s in sensors}        # squared error: reconstruction, fallback
+    for held in ids:
+        rest = {c: campaigns[c] for c in ids if c != held}
+        one = {held: campaigns[held]}
+        model = clone(comp).set_params(selection=_without(comp, None)).fit(rest)
+        raw = [df[names].to_numpy(float) for df in rest.values()]
+        pod = clone(monitor.pod).fit(np.vstack([a - a[0] for a in raw]), groups=np.concatenate(
+            [np.full(len(a), k) for k, a in enumerate(raw)]))
+        for s in sensors:
+            fallback = clone(comp).set_params(selection=_without(comp, s)).fit(rest)
+            cost[s] += [np.nansum(_residuals(model, _reconstructed(monitor, one, s, pod)) ** 2),
+                        np.nansum(_residuals(fallback, one) ** 2)]
+    out = {}
+    for s in sensors:
+        if cost[s][1] < cost[s][0]:
+            fallback = without_sensor(streaming, campaigns, s)
+            if fallback is not None:
+                out[s] = fallback
+    return out
+
+
+def unobservable_fallbacks(streaming, monitor, campaigns) -> dict:
+    """The merged candidate (:func:`thermocomp.apps.deploy.fallback.sensor_fallbacks`)."""
+    from thermocomp.apps.deploy.fallback import sensor_fallbacks
+    return sensor_fallbacks(streaming, monitor, campaigns)
 
 
 def _deployables(cfg, ds, train_ids, model: str):
-    """(today's adaptive deployable, the same with the candidate's fallbacks, their build CPU s)."""
-    from thermocomp.apps.deploy import fallback
+    """(today's adaptive deployable, no fallback; the same with the candidate's fallbacks; their
+    build CPU s)."""
     from thermocomp.shell.builders import deployable_model
 
-    chosen = getattr(fallback, f"{CANDIDATE[0]}_fallbacks")
+    chosen = globals()[f"{CANDIDATE[0]}_fallbacks"]
 
     today = deployable_model(cfg, ds, train_ids, model, "replay.model")[0]
+    today.fallbacks_ = {}                   # today's compensator: none
+    today.reset()
     priced = deployable_model(cfg, ds, train_ids, model, "replay.model")[0]
     train = {c: ds.campaigns[c] for c in train_ids}
     start = _cpu()
@@ -220,7 +337,7 @@ def simulated(root: Path) -> None:
 
 
 def score(root: str = "/tmp/sub71-root", faults_root: str = "/tmp/faults71-root",
-          candidate: str = "priced") -> None:
+          candidate: str = "unobservable") -> None:
     CANDIDATE[0] = candidate
     start = time.process_time()
     simulated(Path(root).resolve())
