@@ -106,7 +106,11 @@ exclusions) / plain::
   T_amb offset +5 K  4.70 (1) / 8.01  5.78 (1) / 8.82  3.99 (1) / 18.18
   T_amb offset +2 K  4.70 (1) / 6.33  5.78 (1) / 7.95  3.99 (1) / 10.80
 
-The offset is held at the healthy error; the real step is re-referenced away as the offset is
+(sub71, ``monitor.fallbacks``: while ``T_amb``, which no other sensor predicts, is out the
+correction is the family's fitted without it; measured 2026-12-02, adaptive: air +5 K 10.29 /
+10.19 / 6.70, +2 K 5.87 / 6.43 / 3.60, +5 K/30 min 6.21 / 7.39 / 3.93, offset +5 K and +2 K 4.37 /
+5.81 / 3.72; ``amb_offset5``'s largest change mlr 1.0, arx 0.8, lagbank 1.2 µm; every other line
+the same.)  The offset is held at the healthy error; the real step is re-referenced away as the offset is
 (never re-admitted as measured), and the MLR and ARX corrections lose 1.2-2.0x against the plain
 stream that follows it; the lag bank extrapolates the step worse than it ignores it.  A model of the
 structure following the air, fitted on the train campaigns (``air_evidence``; squared

@@ -16,7 +16,8 @@ def test_a_drift_no_other_sensor_predicts_is_not_blamed_on_a_healthy_sensor(reco
     the sensors that give it weight until one (T_xdrive) leaves its band; the culprit rule, blind
     to T_table, then excluded the healthy T_bed_right (which only hid T_xdrive's error) and kept
     the drifting one.  Now T_table, whose exclusion brings them back within band, is out and
-    stays out while it drifts (calm alone had re-admitted it 10 samples later)."""
+    stays out while it drifts (calm alone had re-admitted it 10 samples later), and the
+    correction is the model's fitted without it (sub71, monitor.fallbacks)."""
     cut = ("data.test_fraction=0.1", *FAST)
     thermocomp("run", f"data.path={record}", *cut, "model=mlr", f"out={tmp_path / 'run'}")
     drifting = drifted(record, tmp_path / "run", UNSEEN, tmp_path / "data")
@@ -25,7 +26,11 @@ def test_a_drift_no_other_sensor_predicts_is_not_blamed_on_a_healthy_sensor(reco
     report = json.loads((tmp_path / "mon" / "monitor.json").read_text())
     assert report["sensors"][UNSEEN]["observable"] is False
     assert report["events"], "the drift leaks past a band before the record ends"
-    assert [(e["sensor"], e["to"]) for e in report["events"]] == [(UNSEEN, "excluded")]
+    # (sub71: out, its correction is the model fitted without it, the switch rate-limited once:
+    # E_Z adaptive 19.61 -> 15.29 µm, fixed 20.57)
+    assert [(e["sensor"], e["to"]) for e in report["events"] if e["sensor"]] == [(UNSEEN, "excluded")]
+    assert {e["to"] for e in report["events"] if not e["sensor"]} <= {"rate_limited", "free"}
+    assert report["targets"]["E_Z"]["rmse_adaptive"] < 0.8 * report["targets"]["E_Z"]["rmse_fixed"]
     reason = report["events"][0]["reason"]
     assert reason.startswith("drift: its reading explains the others'") and "no other sensor" in reason
     healthy = [s for s in report["sensors"] if s != UNSEEN]

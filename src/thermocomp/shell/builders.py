@@ -128,7 +128,8 @@ def build_adaptive(cfg: DictConfig, streaming, train: dict, ds=None):
     try:
         return AdaptiveCompensator.from_training(
             streaming, train, monitor=options, pod=pod,
-            guard=OmegaConf.to_container(m.guard), learned_bands=bool(m.bands.learned))
+            guard=OmegaConf.to_container(m.guard), learned_bands=bool(m.bands.learned),
+            fallbacks=str(m.get("fallbacks", "unobservable")))
     except ValueError as exc:
         raise ConfigError(f"monitor: {exc}") from None
 

@@ -25,6 +25,7 @@ import pandas as pd
 
 from ...core.context import TIME, step_gain
 from ...core.timerule import SampleClock
+from .fallback import sensor_fallbacks
 from .guard import CorrectionGuard
 from .pod import ThermalPOD
 from .streaming import OutOfEnvelopeError, StreamingCompensator, step_block
@@ -61,6 +62,8 @@ class AdaptiveCompensator:
     slashed_ = None            # the record's order of dates with slashes (older pickles: none)
     end_states_: dict = {}
     adapt_ = None
+    # {sensor: the family fitted without it} (fallback.py): its correction while the sensor is out
+    fallbacks_: dict = {}
 
     def __init__(self, streaming: StreamingCompensator, monitor: SensorMonitor | None = None,
                  guard: CorrectionGuard | None = None, period_s: float = 1.0):
@@ -79,9 +82,10 @@ class AdaptiveCompensator:
     @classmethod
     def from_training(cls, streaming: StreamingCompensator, campaigns: Mapping[str, pd.DataFrame],
                       *, monitor: dict | None = None, pod: dict | None = None,
-                      guard: dict | None = None, learned_bands: bool = False
-                      ) -> "AdaptiveCompensator":
-        """Fit the POD, the detectors' limits and the guard on the training campaigns."""
+                      guard: dict | None = None, learned_bands: bool = False,
+                      fallbacks: str = "unobservable") -> "AdaptiveCompensator":
+        """Fit the POD, the detectors' limits, the guard and (``fallbacks``, :mod:`.fallback`)
+        the sensor fallbacks on the training campaigns."""
         comp = streaming.compensator
         names = [c for c in streaming.columns_ if c.startswith("T_")]
         mon = None
@@ -103,7 +107,11 @@ class AdaptiveCompensator:
             X = comp.stacked(campaigns, targets=[]).X     # the envelope's data, before its margin
             g.follow_inputs(input_gains(streaming), X.min().to_numpy(float),
                             X.max().to_numpy(float))
-        return cls(streaming, mon, g, g.period_s)
+        out = cls(streaming, mon, g, g.period_s)
+        if mon is not None:
+            out.fallbacks_ = sensor_fallbacks(streaming, mon, campaigns, fallbacks)
+            out.reset()
+        return out
 
     # -- the streaming-compensator interface ---------------------------------------------------
     @property
@@ -153,6 +161,8 @@ class AdaptiveCompensator:
     def reset(self, ambient_c: float = float("nan")) -> None:
         """New campaign (see :meth:`StreamingCompensator.reset`)."""
         self.streaming.reset(ambient_c)
+        for fallback in self.fallbacks_.values():
+            fallback.reset(ambient_c)
         if self.monitor is not None:
             self.monitor.reset()
         if self.guard is not None:
@@ -180,13 +190,19 @@ class AdaptiveCompensator:
                 None if self._base is None else self._base.copy(),
                 None if self._late is None else self._late.copy(), self._clock.snapshot(),
                 self._held.copy(), self._held_state.copy(), self._time_bad,
-                None if self._y is None else self._y.copy(), self.n_samples_)
+                None if self._y is None else self._y.copy(), self.n_samples_,
+                {s: f._snapshot() for s, f in self.fallbacks_.items()})
 
     def _restore(self, snap: tuple) -> None:
-        if len(snap) == 12:     # taken before the time rule (an older model's end states)
+        if not isinstance(snap[5], tuple):   # taken before the time rule (an older model's)
             snap = (*snap[:5], _clock_of(snap[5], snap[6]), *snap[7:])
+        if len(snap) == 11:     # taken before the fallbacks (fallback.py): none to restore
+            snap = (*snap, {})
         (s, m, g, self._base, self._late, clock, self._held,
-         self._held_state, self._time_bad, self._y, self.n_samples_) = snap
+         self._held_state, self._time_bad, self._y, self.n_samples_, falls) = snap
+        for sensor, fallback in self.fallbacks_.items():
+            if sensor in falls:
+                fallback._restore(falls[sensor])
         self._clock.restore(clock)
         self.streaming._restore(s)
         if self.monitor is not None:
@@ -203,6 +219,7 @@ class AdaptiveCompensator:
         self.last_events_: list[dict] = []    # a step that fails reports none, not the last ones
         events: list[dict] = []
         t, dt = self._check_time(float(time), events)
+        read = x if self._mon_all else x[self._mon]
         x = self._inputs(x, t, events, dt)
         try:
             y, clamped = self.streaming._step(x, t, clocked=True)
@@ -210,8 +227,32 @@ class AdaptiveCompensator:
         except ValueError as exc:    # OutOfEnvelopeError (policy=refuse) and its kin
             y, clamped, stepped = np.full(len(self.targets_), np.nan), 0, False
             events.append(_held_event(t, exc))
+        if self.fallbacks_:
+            out = self._fallen_back(read)
+            falls = {}
+            for sensor, fallback in self.fallbacks_.items():
+                try:
+                    falls[sensor] = fallback._step(x, t, clocked=True)[0]
+                except ValueError:
+                    pass
+            if stepped and out in falls:
+                y = falls[out]
         self._output(y, dt, t, self._allowance(stepped), events)
         return self._y, clamped
+
+    def _fallen_back(self, read: np.ndarray) -> str | None:
+        """The excluded sensor whose fallback gives the correction (the first of the monitor's
+        order with one), or ``None``: not while too few sensors are in to rebuild the field (the
+        fallback would read stand-ins only; the correction is held), nor for a sensor out for a
+        dropout that reads again (``read``: the monitored readings of the row) while it waits
+        out its window (its held reading, a window old at most, is the better stand-in: one
+        empty logger row cost 1.35 against 1.30 µm, tests/shell/test_monitor_lab57.py)."""
+        mon = self.monitor
+        if not self.fallbacks_ or mon is None or not mon._rebuilds:
+            return None
+        back = mon._dropped & np.isfinite(read)
+        return next((s for s, out, b in zip(mon.names, ~mon._active, back)
+                     if out and not b and s in self.fallbacks_), None)
 
     def _inputs(self, x: np.ndarray, t: float, events: list, dt: float | None = None
                 ) -> np.ndarray:
@@ -270,6 +311,7 @@ class AdaptiveCompensator:
         xs = np.array(X, dtype=float, copy=True)
         ts, dts = np.empty(n), np.empty(n)
         novel = np.zeros(n, dtype=bool)
+        fallen = np.full(n, None, dtype=object)     # the fallback each row reads (none: the model)
         events: dict[int, list] = {}
         done = np.ones(n, dtype=bool)
         i = 0
@@ -283,6 +325,7 @@ class AdaptiveCompensator:
                 ts[i], dts[i] = self._check_time(float(time[i]), row_events)
                 xs[i] = self._inputs(xs[i], ts[i], row_events, dts[i])
                 novel[i] = self.monitor is not None and self.monitor.new_state_
+                fallen[i] = self._fallen_back(X[i] if self._mon_all else X[i, self._mon])
             except ValueError as exc:
                 if on_refused is None:
                     raise
@@ -297,6 +340,11 @@ class AdaptiveCompensator:
 
         rows = np.flatnonzero(done)
         y, clamps, dx = self.streaming.run_rows(xs[rows], ts[rows], clocked=True, on_refused=held)
+        for sensor, fallback in self.fallbacks_.items():
+            ys = fallback.run_rows(xs[rows], ts[rows], clocked=True,
+                                   on_refused=lambda k, exc: None)[0]
+            use = (fallen[rows] == sensor) & ~refused[rows] & np.isfinite(ys).all(axis=1)
+            y[use] = ys[use]
         out = np.full((n, len(self.targets_)), np.nan)
         clamped = np.zeros(n, dtype=np.int64)
         clamped[rows] = clamps
