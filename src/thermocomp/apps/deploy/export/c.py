@@ -630,7 +630,8 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
         if (TC_GUARD) {{
             if (!s->first) {{
                 double lim, d = y - s->out[i];
-                step = (isfinite(dt) && dt > 0.0) ? dt : GUARD_PERIOD;
+                /* over a step or one training period, whichever is longer */
+                step = (isfinite(dt) && dt > GUARD_PERIOD) ? dt : GUARD_PERIOD;
                 lim = GUARD_RATE[i] * step;
                 if (d > lim) y = s->out[i] + lim;
                 else if (d < -lim) y = s->out[i] - lim;

@@ -10,7 +10,8 @@ the reference update (pure core).
   ``guard_lo``, ``guard_hi`` (µm of predicted error) and ``guard_rate`` (µm/s; null: none) per
   target, and one state, the previous guarded output.  A campaign's first output is bounded
   only; every later one is first held within ``guard_rate * dt`` of the previous one (``dt`` the
-  time since the previous sample; ``guard_period`` when no later time is given), then bounded.
+  time since the previous sample, at least ``guard_period``, the training period: also when no
+  later time is given; rate71), then bounded.
   With ``guard_inputs`` (the clamp's training pattern in the code) the bound widens on each side
   by ``guard_gain . d`` at a sample on the pattern whose referenced inputs lie beyond their
   training range ``[guard_in_lo, guard_in_hi]`` by ``d`` (the guard's own rule, guard.py).
@@ -34,7 +35,7 @@ import sys
 import numpy as np
 
 from ..adaptive import AdaptiveCompensator
-from ..guard import widening
+from ..guard import rate_span, widening
 from .errors import NotExportable
 
 UNBOUNDED = sys.float_info.max   # a machine state's range: never beyond it
@@ -126,7 +127,7 @@ class Output:
         sample (NaN: ``guard_period``); ``allowance``: the bound widened by it (:meth:`allowance`)."""
         if self.ss.guard:
             if not first:
-                lim = self.rate * (dt if np.isfinite(dt) and dt > 0 else self.ss.guard_period)
+                lim = self.rate * rate_span(dt, self.ss.guard_period)
                 d = y - self.y
                 y = np.where(d > lim, self.y + lim, np.where(d < -lim, self.y - lim, y))
             lo, hi = (self.lo, self.hi) if allowance is None else (self.lo - allowance,

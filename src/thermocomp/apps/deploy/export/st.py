@@ -832,7 +832,7 @@ IF NOT refused THEN
         (* correction guard: within the rate limit of the previous output, then the bound *)
         IF USE_GUARD THEN
             IF NOT first THEN
-                IF dt > 0.0 THEN
+                IF dt > GUARD_PERIOD THEN   (* a step or one training period, the longer *)
                     lim := GUARD_RATE[i] * dt;
                 ELSE
                     lim := GUARD_RATE[i] * GUARD_PERIOD;

@@ -171,7 +171,7 @@ class _System:
     guard_lo: list | None = None     # (n_targets,) µm of predicted error
     guard_hi: list | None = None
     guard_rate: list | None = None   # (n_targets,) µm/s; null: no rate limit
-    guard_period: float = 0.0        # s: ``dt`` when no later time is given
+    guard_period: float = 0.0        # s: the shortest ``dt`` of the rate limit (training's period)
     # the bound following the inputs on the training pattern (pattern only; :mod:`.output`)
     guard_inputs: bool = False
     guard_gain: list | None = None   # (n_targets, n_inputs) |step gain| (a state's: 0)

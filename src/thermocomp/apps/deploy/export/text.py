@@ -72,7 +72,8 @@ def banner(ss, open_: str, middle: str, close: str) -> str:
     for i, t in enumerate(ss.targets if ss.guard else []):
         rate, um = ss.guard_rate[i], "um/m" if angular(t) else "um"
         lines.append(f"guard {ascii_name(t)}: bound [{ss.guard_lo[i]:.6g}, {ss.guard_hi[i]:.6g}] "
-                     f"{um}, rate limit " + ("none" if rate is None else f"{rate:.6g} {um}/s"))
+                     f"{um}, rate limit " + ("none" if rate is None else (
+                         f"over a step or {ss.guard_period:.6g} s, the longer: {rate:.6g} {um}/s")))
     if ss.guard and ss.guard_inputs:
         lines.append("guard bound widens by guard_gain . d on the training pattern, d the inputs' "
                      "distance beyond their training range [guard_in_lo, guard_in_hi]")
