@@ -170,7 +170,7 @@ READ_CASES = {
     "1e300 error": (_cell("K03", "E_X", 7, 1e300), [],
                     ["K03.csv", "column 'E_X'", "row 7", "data.max_abs_error"]),
     "1e300 temperature": (_cell("K02", "T_amb", 3, 1e300), [],
-                          ["K02.csv", "column 'T_amb'", "row 3", "kelvin"]),
+                          ["K02.csv", "column 'T_amb'", "row 3", "beyond 10000 °C", "data.missing_values"]),
     "single-row campaign": (_single_row, [], ["K04.csv", "1 complete sample", "at least 2"]),
     "resample to 30 GB": (lambda ds: None, ["data.resample_s=0.0001"],
                           ["K01.csv", "data.resample_s=0.0001 would make 1.74e+07 rows from the file's 30"]),
