@@ -310,3 +310,31 @@ def test_a_new_store_is_the_migrated_template_copied_with_its_own_default_experi
         assert con.execute("SELECT experiment_id, name, artifact_location FROM experiments"
                            ).fetchall() == [(0, "Default", (db.parent / "0").as_uri())]
     assert sorted(p.name for p in db.parent.iterdir()) == ["mlflow.db"]   # no temp file left
+
+
+def test_a_store_another_run_holds_locked_a_moment_is_read_not_refused(tmp_path, monkeypatch):
+    """Another run writing the store locks it longer than SQLite's wait (5 s; here 0.05 s, the
+    lock 0.3 s); the schema check read that as damage ("not an SQLite database (database is
+    locked)": a fresh-clone CI's two parallel runs on a fresh store, lead71)."""
+    import threading
+    from contextlib import closing
+
+    from mlflow.store.tracking.dbmodels import models  # noqa: F401  (imported before the lock)
+
+    from thermocomp.shell import store
+
+    connect = sqlite3.connect
+    monkeypatch.setattr(store.sqlite3, "connect", lambda *a, **k: connect(*a, **{**k, "timeout": 0.05}))
+
+    db = tmp_path / "mlflow.db"
+    with closing(sqlite3.connect(db)) as con:
+        con.execute("CREATE TABLE t (x)")
+    writer = sqlite3.connect(db, check_same_thread=False, isolation_level=None)
+    writer.execute("BEGIN EXCLUSIVE")
+    release = threading.Timer(0.3, lambda: writer.execute("COMMIT"))
+    release.start()
+    try:
+        store.check_schema(f"sqlite:///{db}", db)    # no alembic_version: nothing else to check
+    finally:
+        release.join()
+        writer.close()

@@ -60,11 +60,16 @@ def check_schema(uri: str, db: Path, head: bool = False) -> None:
     """
     from mlflow.store.tracking.dbmodels.models import Base
 
-    try:
+    def read() -> tuple[set, str | None]:
         with closing(sqlite3.connect(f"file:{db}?mode=ro", uri=True)) as con:
             tables = {r[0] for r in con.execute("SELECT name FROM sqlite_master WHERE type='table'")}
-            version = (con.execute("SELECT version_num FROM alembic_version").fetchone() or [None])[0] \
-                if "alembic_version" in tables else None
+            return tables, (con.execute("SELECT version_num FROM alembic_version").fetchone()
+                            or [None])[0] if "alembic_version" in tables else None
+
+    try:
+        # another run writing the store holds its lock a moment: that is no damage (two runs
+        # on a fresh store were refused as "not an SQLite database (database is locked)")
+        tables, version = retry_locked(read)
     except sqlite3.DatabaseError as err:
         raise ConfigError(f"tracking_uri={uri}: {db} is not an SQLite database ({err})") from None
     missing = set(Base.metadata.tables) - tables
