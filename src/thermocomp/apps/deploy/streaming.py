@@ -460,8 +460,9 @@ class StreamingCompensator:
             j = int(np.flatnonzero(~np.isfinite(checked))[0])
             raise MissingValueError(f"input {self.columns_[j]} has no finite value at row "
                                      f"{self.n_samples_} (sensor dropout?)")
-        if (np.abs(checked) > self._limits()).any():
-            j = int(np.flatnonzero(np.abs(checked) > self._limits())[0])
+        beyond = np.flatnonzero(np.abs(checked) > self._limits())
+        if len(beyond):
+            j = int(beyond[0])
             raise MissingValueError(f"input {self.columns_[j]} reads {checked[j]:g} at row "
                                      f"{self.n_samples_}, beyond {MAX_ABS_T_C:g} °C, which no "
                                      "sensor reads (an overload or open-circuit mark?)")
