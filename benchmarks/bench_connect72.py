@@ -70,21 +70,12 @@ def _one(t, data: Path, pkl: Path, out: Path, every: int) -> dict:
 
 
 def measure(where: str) -> None:
-    import test_opcua67 as t
-    from thermocomp.shell.cli import main
+    from bench_clockset71 import lathe_models
 
     root = Path(where)
-    root.mkdir(parents=True, exist_ok=True)
-    data = root / "data"
-    if not (data / "campaigns.csv").is_file():
-        t.record(data)
+    t, data, pkls = lathe_models(root)
     results = {}
-    for model in ("lagbank", "mlr"):
-        pkl = root / model / "model.pkl"
-        if not pkl.is_file():
-            assert main(["run", f"data.path={data}", f"out={pkl.parent}", f"model_path={pkl}",
-                         *t.FAST, f"model={model}", "eval.validation=false",
-                         "eval.mutual_prediction=false"]) == 0
+    for model, pkl in pkls.items():
         for every in EVERY:
             out = Path(tempfile.mkdtemp(prefix=f"{model}-every{every}-", dir=root))
             r = _one(t, data, pkl, out, every)
