@@ -92,22 +92,31 @@ def _one(t, data: Path, pkl: Path, out: Path, run: str) -> dict:
                        for e in link["events"] if e["event"].startswith("clock")]}
 
 
-def measure(where: str) -> None:
+def lathe_models(root: Path):
+    """``(test_opcua67, the record's folder, {model: model.pkl})``: the small lathe record and
+    ``lagbank`` and ``mlr`` fitted on its train programs, under ``root`` (made once)."""
     import test_opcua67 as t
     from thermocomp.shell.cli import main
 
-    root = Path(where)
     root.mkdir(parents=True, exist_ok=True)
     data = root / "data"
     if not (data / "campaigns.csv").is_file():
         t.record(data)
-    results = {}
+    pkls = {}
     for model in ("lagbank", "mlr"):
-        pkl = root / model / "model.pkl"
+        pkls[model] = pkl = root / model / "model.pkl"
         if not pkl.is_file():
             assert main(["run", f"data.path={data}", f"out={pkl.parent}", f"model_path={pkl}",
                          *t.FAST, f"model={model}", "eval.validation=false",
                          "eval.mutual_prediction=false"]) == 0
+    return t, data, pkls
+
+
+def measure(where: str) -> None:
+    root = Path(where)
+    t, data, pkls = lathe_models(root)
+    results = {}
+    for model, pkl in pkls.items():
         for run in ("forward", "back", "simulated"):
             out = Path(tempfile.mkdtemp(prefix=f"{model}-{run}-", dir=root))
             results[f"{model} {run}"] = _one(t, data, pkl, out, run)

@@ -550,3 +550,20 @@ def test_a_clock_set_back_and_a_new_process_on_the_clients_clock(monkeypatch):
     assert [t[2] for t in taken][:3] == [0.0, 3610.0, 3670.0] and conn.missed == 59
     gap = [e for e in conn.events if e["event"] == "clock_gap"]
     assert len(gap) == 1 and "no step of the server's clock timed yet" in gap[0]["detail"]
+
+
+def test_a_server_publishing_every_3_periods_gets_the_guards_rate_over_each_step(fitted, tmp_path):
+    """(connect72) One rate rule: the offsets may change by the guard's rate over the stream's
+    step (``guard.rate_span``: at least one training period), as the compensator's guard
+    allows.  The lag bank fitted at 60 s, the control publishing every 3rd row (180 s,
+    connect.period_s=180): every offset is replay's guarded correction; before, the limiter
+    allowed one training period's change per sample and E_X lagged it by up to 0.76 µm."""
+    data, pkl = fitted
+    frames = {p: df.iloc[::3].reset_index(drop=True) for p, df in programs(data).items()}
+    machine = VendorMachine(frames, free_port(), offsets=DOUBLES)
+    code, link = run_connect(data, pkl, tmp_path, machine, "connect.period_s=180",
+                             nodes=connect_nodes(offsets=DOUBLES))
+    assert code == 0 and link["samples"] == sum(map(len, frames.values())) == 34
+    assert link["samples_missed"] == 0 and all(machine.served.answered)
+    replayed = corrections(data, pkl, as_published(frames))
+    np.testing.assert_allclose(np.vstack(machine.served.offsets), replayed, rtol=0, atol=1e-12)

@@ -187,7 +187,8 @@ def rate_span(dt, period_s: float):
     rows one period apart: it says how far a correction moves in a period, nothing within one; a
     correction's sample-to-sample jitter does not shrink with a faster stream (rate71: a lag bank
     trained on 300 s rows and fed 60 s rows was rate-limited 88 times on a healthy run).  The one
-    rule of the guard and of the exported code (:mod:`.export.output`, the C, the ST)."""
+    rule of the guard, of the exported code (:mod:`.export.output`, the C, the ST) and of the
+    offsets ``connect`` writes (:class:`thermocomp.apps.machine.offsets.OffsetLimiter`, connect72)."""
     with np.errstate(invalid="ignore"):
         return np.where(np.isfinite(dt) & (np.asarray(dt) > period_s), dt, period_s)
 

@@ -170,7 +170,7 @@ class Connection:
         self._quality: dict[str, str] = {}      # input -> Good / Uncertain / Bad, as last read
         self._held = None            # the offsets last written (a held one is not written again)
         self._kept = None            # what the offset nodes held at the first connection (µm)
-        self.periods = 1.0           # the periods the server's clock went on to the last sample
+        self._time = math.nan        # the stream's time the last sample was stepped at
         self.stopped = None          # the signal that stopped the client, if one did
         self._placed = ""            # how connect.warm's log was placed on the server's clock
         self.own = OwnClock(period_s)    # the client's clock against the server's (connect71)
@@ -327,7 +327,7 @@ class Connection:
                 if sample is not None:
                     cid, row, k, i = sample
                     y = self._step(cid, row, k, i)
-                    await self._write(client, plan, k, self.limiter.fresh(y, now(), self.periods))
+                    await self._write(client, plan, k, self.limiter.fresh(y, now(), self._time))
         finally:
             try:     # a dead link would keep the goodbye waiting for the request timeout
                 await asyncio.wait_for(client.disconnect(), self.retry_s)
@@ -377,9 +377,6 @@ class Connection:
             if plan.clock is not None and not new and self._at is not None:
                 steps = self._clock_gap(at - self._at, steps)
             k = self._last + steps
-        # the periods the server's clock went on since the last sample (the limiter's allowance)
-        self.periods = ((at - self._at) / self.period_s if plan.clock is not None and not new
-                        and self._at is not None and self.period_s else 1.0)
         if new:
             self._t0, self._i = at, -1
             if self.warm is not None and "campaign_sample" not in value:
@@ -510,6 +507,7 @@ class Connection:
         for e in getattr(d, "last_events_", []):
             self._event("compensator", e.get("reason", ""), sensor=e.get("sensor"))
         self.samples += 1
+        self._time = t
         return y
 
     def _warm(self, cid: str, i: int, row: list[float]) -> None:

@@ -10,24 +10,36 @@ fresh offset widens as the compensator's guard widens it for a machine hotter th
 (``widen()``: µm per target, or None; :func:`thermocomp.apps.deploy.adaptive.stream_allowance`),
 so that what reaches the machine is what the compensator computed; a stale offset decays inside
 the bound of its last fresh one.
+
+The rate limit is the guard's rule (connect72: :func:`~thermocomp.apps.deploy.guard.rate_span`
+of the step of the stream's time, read by the stream's time rule).  Before, one training
+period's change per sample, counted in ``connect.period_s`` (on the twin's ``time`` node not at
+all): stricter than the guard where samples come further apart (a control publishing every 3
+periods: the lag bank's offsets up to 0.76 µm behind its guarded correction, bench_connect72).
 """
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 
 import numpy as np
 
+from ...core.timerule import SampleClock
+from ..deploy.guard import rate_span
+
 
 class OffsetLimiter:
-    """Per target: bound ``[lo, hi]`` µm and a largest change ``max_step`` µm per sample."""
+    """Per target: bound ``[lo, hi]`` µm and a largest rate ``max_rate_per_s`` µm/s over each
+    step of the stream's time, at least one training period ``period_s`` (the guard's)."""
 
-    def __init__(self, lo, hi, max_step, hold_s: float, decay_s: float,
-                 widen: Callable[[], np.ndarray | None] | None = None):
+    def __init__(self, lo, hi, max_rate_per_s, hold_s: float, decay_s: float,
+                 widen: Callable[[], np.ndarray | None] | None = None, period_s: float = 1.0):
         self.lo, self.hi = np.asarray(lo, float), np.asarray(hi, float)
         self.widen = widen
         self._lo_now, self._hi_now = self.lo, self.hi     # the bound of the last fresh offset
-        self.max_step = np.asarray(max_step, float)
+        self.max_rate_per_s, self.period_s = np.asarray(max_rate_per_s, float), float(period_s)
+        self._clock = SampleClock(self.period_s)   # the step, as the guard's stream reads it
         self.hold_s, self.decay_s = float(hold_s), float(decay_s)
         self.offset = np.zeros_like(self.lo)
         self._fresh_at = None          # wall time of the last fresh correction
@@ -39,6 +51,7 @@ class OffsetLimiter:
         (restart69): the campaign is joined mid-way (a new process), its error not zeroed: the
         first correction is rate-limited from the offsets the machine holds (µm; NaN: this
         limiter's own), as after a decay, not taken in one jump."""
+        self._clock.reset()
         if held is None:
             self._free = True
             return
@@ -46,13 +59,13 @@ class OffsetLimiter:
         self.offset = np.where(np.isfinite(held), held, self.offset)
         self._free = False
 
-    def fresh(self, y, now: float, periods: float = 1.0) -> np.ndarray:
-        """The offset to write for a new correction ``y`` (NaN entries: held); ``periods``: the
-        sample periods the stream's time went on since the last one (opcleft67: after a gap the
-        change allowed is the guard's, its rate over the time gone on; never less than one
-        sample's)."""
+    def fresh(self, y, now: float, time: float = math.nan) -> np.ndarray:
+        """The offset to write for a new correction ``y`` (NaN entries: held) of the sample at
+        ``time`` (s, the stream's time the compensator was given; NaN: one period on): the change
+        allowed is the guard's, its rate over :func:`rate_span` of the step (opcleft67: after a
+        gap, the time gone on)."""
         y = np.where(np.isfinite(y), np.asarray(y, float), self.offset)
-        most = self.max_step * (max(1.0, periods) if np.isfinite(periods) else 1.0)
+        most = self.max_rate_per_s * rate_span(self._clock.step(float(time))[1], self.period_s)
         step = y - self.offset if self._free else np.clip(y - self.offset, -most, most)
         extra = self.widen() if self.widen is not None else None
         self._lo_now, self._hi_now = ((self.lo, self.hi) if extra is None

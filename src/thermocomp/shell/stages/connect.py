@@ -46,16 +46,17 @@ def _guard(cfg: DictConfig, deployed, ds, train_ids):
 
 def offset_limiter(deployed, guard, hold_s: float, decay_s: float):
     """What may reach the machine: ``guard``'s bound (widened as the guard widens it for the
-    inputs the model read: :func:`~thermocomp.apps.deploy.adaptive.stream_allowance`) and rate,
-    held ``hold_s`` and decaying over ``decay_s`` while stale."""
+    inputs the model read: :func:`~thermocomp.apps.deploy.adaptive.stream_allowance`) and rate
+    (over a step or one training period, the longer: the guard's rule), held ``hold_s`` and
+    decaying over ``decay_s`` while stale."""
     from functools import partial
 
     from ...apps.deploy.adaptive import stream_allowance
     from ...apps.machine.offsets import OffsetLimiter
 
-    return OffsetLimiter(guard.lo, guard.hi, guard.max_rate_per_s * guard.period_s, hold_s,
-                         decay_s, widen=partial(stream_allowance, guard,
-                                                getattr(deployed, "streaming", deployed)))
+    return OffsetLimiter(guard.lo, guard.hi, guard.max_rate_per_s, hold_s, decay_s,
+                         widen=partial(stream_allowance, guard, getattr(deployed, "streaming", deployed)),
+                         period_s=guard.period_s)
 
 
 def _warm_rows(cfg: DictConfig, deployed):
