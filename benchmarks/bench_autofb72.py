@@ -1,0 +1,194 @@
+"""Under ``model=auto``, a sensor no other predicts, out in service: auto's choice refitted without it.
+
+(autofb72)
+
+    PYTHONPATH=$PWD/src .venv/bin/python benchmarks/bench_autofb72.py fit [FAULTS_ROOT] [ROOT]
+    PYTHONPATH=$PWD/src .venv/bin/python benchmarks/bench_autofb72.py score [FAULTS_ROOT] [ROOT]
+
+``FAULTS_ROOT`` (default ``/tmp/faults71-root``, read only) is bench_faults71's (``write``): its
+records ``dmu_a`` (keysight70, seed 7041) and ``rig_a`` (catman70, seed 7131), their ``init``
+configs and faulted folders.  ``ROOT`` (default ``/tmp/autofb72-root``) gets (``fit``) a
+``model=auto`` run on each healthy record, on bench_sub71's simulated record (``yearround_spindle``
+seed 5353, 9 campaigns of 3-5 h) and on ``make run``'s record (``simulate`` with no override).
+
+sub71 (``benchmarks/bench_sub71.py``) gave every family a fallback for each monitored sensor no
+other predicts (leverage in the monitor's POD at least ``max_leverage``): the same family fitted
+without it, streamed beside the model, its correction while the sensor is excluded.  But not
+``auto``: its refit ran every candidate's validation again (replay of make run's record 2.8 ->
+10.3 s CPU), so lead71 left auto out and its sensor is held at its last good reading.
+
+Rule (the only candidate; :func:`thermocomp.core.models.auto.refit_as_chosen`): under ``auto``
+the fallback refits, per target, the family or blend auto CHOSE, each member with the
+hyper-parameters its own CV chose (as mutual prediction's single-campaign models are made): no
+candidate validated, no family's CV run again.  Everything else as sub71's ``unobservable``.
+
+Bar (written and committed before any scoring; merged when all hold, else the src change is
+reverted and the rule REFUSED).  ``held`` is today's auto (no fallback):
+
+1. ``dmu_a`` ``unplugged_listed`` (the spindle thermocouple, from the test run's middle row) under
+   auto: RMSE after the fault (over rows and targets, measured minus the adaptive stream) at least
+   50 % below held; ``rig_a`` ``unplugged`` (``T Lager vorn`` emptied): not worse than held by > 5 %;
+2. bench_deploy_faults' ``nan_end``, ``stuck``, ``nan_16`` on ``T_motor2`` (K06) under auto: not
+   worse than held by > 5 %;
+3. every healthy stream under auto byte-unchanged (``dmu_a``, ``rig_a``'s test runs; K03, K06,
+   K09): max |fallback - held| == 0 on every row, so replay = run where it was;
+4. ``replay`` of make run's record under auto (the CLI, ``monitor.adaptive=true``, its default):
+   CPU (user + sys of the process) at most 6.0 s, well under the 10.3 s of the whole choice
+   again, and ``replay.json`` equal (all but its timings) to ``monitor.fallbacks=none``'s (held);
+   the deploy build's extra CPU stated per record.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
+import numpy as np
+
+REPO = Path(__file__).resolve().parents[1]
+sys.path[:0] = [str(REPO / "benchmarks")]
+
+import bench_sub71 as sub71  # noqa: E402
+import lab_matrix  # noqa: E402
+from _cli import run_commands  # noqa: E402
+
+FAULTS = "/tmp/faults71-root"
+ROOT = "/tmp/autofb72-root"
+
+
+def _thermocomp(*args: str) -> float:
+    """``thermocomp <args>`` in a child process (this tree's code): its CPU s, user + sys."""
+    import resource
+
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    env = {**os.environ, "PYTHONPATH": str(REPO / "src")}
+    subprocess.run([sys.executable, "-m", "thermocomp", "-q", *args], check=True, env=env,
+                   stdout=subprocess.DEVNULL)
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return after.ru_utime + after.ru_stime - before.ru_utime - before.ru_stime
+
+
+def fit(faults_root: str = FAULTS, root: str = ROOT) -> None:
+    """``model=auto`` runs: the lab records, bench_sub71's simulated record, make run's."""
+    faults, out = Path(faults_root).resolve(), Path(root).resolve()
+    for name in sub71.LAB:
+        model = out / f"{name}-auto"
+        if not (model / "model.pkl").exists():
+            cpu = _thermocomp("run", *lab_matrix.data_args(faults, name), "model=auto", "plots=none",
+                              "track=false", f"out={model}")
+            print(name, f"run model=auto {cpu:.1f} s CPU", flush=True)
+    sim = out / "ys"
+    if not sim.exists():
+        _thermocomp("simulate", "sim=yearround_spindle", "seed=5353", "sim.generator.n_campaigns=9",
+                    "sim.generator.duration_h=[3.0,5.0]", f"data.path={sim}", f"out={out / 'sim'}")
+    if not (out / "ys-auto" / "model.pkl").exists():
+        _thermocomp("run", f"data.path={sim}", "model=auto", "track=false", "plots=none",
+                    f"out={out / 'ys-auto'}")
+    made = out / "make"
+    if not made.exists():
+        _thermocomp("simulate", f"data.path={made / 'data'}", f"out={made / 'sim'}")
+    if not (made / "auto" / "model.pkl").exists():
+        _thermocomp("run", f"data.path={made / 'data'}", "model=auto", "track=false", "plots=none",
+                    f"out={made / 'auto'}")
+
+
+def lab(faults: Path, out: Path) -> None:
+    """Bar 1 and 3 on ``dmu_a`` and ``rig_a`` (bench_sub71's ``lab`` with auto's model)."""
+    from hydra import compose, initialize_config_dir
+
+    from thermocomp.shell.source import read_streamed
+
+    for name, (fault, hint) in sub71.LAB.items():
+        folder = faults / "faulted" / f"{name}-{fault}"
+        with initialize_config_dir(config_dir=str(REPO / "conf"), version_base="1.3"):
+            cfg = compose(config_name="config", overrides=[
+                *lab_matrix.data_args(faults, name), f"data.path={folder}", *hint,
+                "track=false", "monitor.adaptive=true"])
+            healthy_cfg = compose(config_name="config", overrides=[
+                *lab_matrix.data_args(faults, name), *hint, "track=false"])
+        ds, train_ids, test_ids, _ = read_streamed(cfg)
+        cid = test_ids[-1]
+        df, healthy = ds.campaigns[cid], read_streamed(healthy_cfg)[0].campaigns[cid]
+        held, fallback, cpu = sub71._deployables(cfg, ds, train_ids, str(out / f"{name}-auto" / "model.pkl"))
+        errors = sub71._measured(held, healthy, cid)
+        cols = [c for c in held.columns_ if c.startswith("T_")]
+        bad = ~np.isfinite(df[cols].to_numpy(float)).all(axis=1)
+        h = int(np.argmax(bad)) if bad.any() else len(df) // 2
+        a, b = sub71._after(held, df, cid, h, errors), sub71._after(fallback, df, cid, h, errors)
+        ha, hb = sub71._after(held, healthy, cid, h, errors), sub71._after(fallback, healthy, cid, h, errors)
+        print(sub71._line(f"{name} {fault}", "auto", a, b, cpu, sorted(fallback.fallbacks_), ha[1],
+                          hb[1]), flush=True)
+
+
+def simulated(out: Path) -> None:
+    """Bar 2 and 3 on bench_sub71's simulated record (bench_deploy_faults' T_motor2 cases)."""
+    import bench_deploy_faults as bdf
+
+    from thermocomp.shell.source import read_streamed
+
+    cfg = bdf._cfg(out / "ys", "monitor.adaptive=true")
+    ds, train_ids, test_ids, _ = read_streamed(cfg)
+    raw = ds.campaigns[bdf.CAMPAIGN]
+    h = len(raw) // 2
+    held, fallback, cpu = sub71._deployables(cfg, ds, train_ids, str(out / "ys-auto" / "model.pkl"))
+    for cid in test_ids:
+        df = ds.campaigns[cid]
+        errors = sub71._measured(held, df, cid)
+        ha, hb = sub71._after(held, df, cid, 0, errors), sub71._after(fallback, df, cid, 0, errors)
+        print(sub71._line(f"healthy {cid}", "auto", ha, hb, cpu, sorted(fallback.fallbacks_), ha[1],
+                          hb[1]), flush=True)
+    errors = sub71._measured(held, raw, bdf.CAMPAIGN)
+    faults = bdf.faults(raw.reset_index(drop=True))
+    for fault in sub71.SIM_FAULTS:
+        df = faults[fault]
+        a, b = (sub71._after(d, df, bdf.CAMPAIGN, h, errors) for d in (held, fallback))
+        print(sub71._line(f"{fault} {bdf.SENSOR}", "auto", a, b, cpu, sorted(fallback.fallbacks_),
+                          a[1][:0], b[1][:0]), flush=True)
+
+
+def replayed(out: Path, runs: int = 2) -> None:
+    """Bar 4: the CLI's replay of make run's record under auto, held and with fallbacks."""
+    made, seen = out / "make", {}
+    for fallbacks in ("none", "unobservable"):
+        cpus = []
+        for k in range(runs):
+            folder = out / f"replay-{fallbacks}-{k}"
+            cpus.append(_thermocomp("replay", f"data.path={made / 'data'}",
+                                    f"replay.model={made / 'auto' / 'model.pkl'}",
+                                    f"monitor.fallbacks={fallbacks}", "track=false", f"out={folder}"))
+            seen[fallbacks] = _untimed(json.loads((folder / "replay.json").read_text()))
+        print(f"replay make run's record, auto, monitor.fallbacks={fallbacks}: CPU "
+              + " / ".join(f"{c:.2f}" for c in cpus) + " s", flush=True)
+    print("replay.json (all but timings) equal:", seen["none"] == seen["unobservable"], flush=True)
+
+
+def _untimed(value):
+    """``value`` without its keys that hold timings (seconds)."""
+    if isinstance(value, dict):
+        return {k: _untimed(v) for k, v in value.items() if "second" not in k and not k.endswith("_s")}
+    if isinstance(value, list):
+        return [_untimed(v) for v in value]
+    return value
+
+
+def score(faults_root: str = FAULTS, root: str = ROOT) -> None:
+    start = time.process_time()
+    out = Path(root).resolve()
+    simulated(out)
+    lab(Path(faults_root).resolve(), out)
+    replayed(out)
+    print(f"CPU {time.process_time() - start:.1f} s (this process)")
+
+
+def main(argv: list[str]) -> int:
+    return run_commands(__doc__, {"fit": fit, "score": score}, argv, cpu=sys.stdout)
+
+
+if __name__ == "__main__":
+    raise SystemExit(main(sys.argv[1:]))
