@@ -169,9 +169,10 @@ def replayed(out: Path, runs: int = 2) -> None:
 
 
 def _untimed(value):
-    """``value`` without its keys that hold timings (seconds)."""
+    """``value`` without its keys that hold timings (seconds, µs per sample)."""
     if isinstance(value, dict):
-        return {k: _untimed(v) for k, v in value.items() if "second" not in k and not k.endswith("_s")}
+        return {k: _untimed(v) for k, v in value.items()
+                if "second" not in k and not k.endswith("_s") and not k.startswith("us_per")}
     if isinstance(value, list):
         return [_untimed(v) for v in value]
     return value
