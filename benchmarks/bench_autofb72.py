@@ -8,8 +8,10 @@
 ``FAULTS_ROOT`` (default ``/tmp/faults71-root``, read only) is bench_faults71's (``write``): its
 records ``dmu_a`` (keysight70, seed 7041) and ``rig_a`` (catman70, seed 7131), their ``init``
 configs and faulted folders.  ``ROOT`` (default ``/tmp/autofb72-root``) gets (``fit``) a
-``model=auto`` run on each healthy record, on bench_sub71's simulated record (``yearround_spindle``
-seed 5353, 9 campaigns of 3-5 h) and on ``make run``'s record (``simulate`` with no override).
+``model=auto`` run on each healthy record and on ``make run``'s record (``simulate`` with no
+override); ``score`` fits one on bench_sub71's simulated record (``yearround_spindle`` seed 5353,
+9 campaigns of 3-5 h, ``ROOT/ys``) where it is not there yet (bench_sub71's ``lab`` and
+``simulated`` with ``auto``'s models).
 
 sub71 (``benchmarks/bench_sub71.py``) gave every family a fallback for each monitored sensor no
 other predicts (leverage in the monitor's POD at least ``max_leverage``): the same family fitted
@@ -49,8 +51,6 @@ from pathlib import Path
 
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
-import numpy as np
-
 REPO = Path(__file__).resolve().parents[1]
 sys.path[:0] = [str(REPO / "benchmarks")]
 
@@ -75,7 +75,8 @@ def _thermocomp(*args: str) -> float:
 
 
 def fit(faults_root: str = FAULTS, root: str = ROOT) -> None:
-    """``model=auto`` runs: the lab records, bench_sub71's simulated record, make run's."""
+    """``model=auto`` runs on the lab records and make run's (bench_sub71's simulated record:
+    ``score`` fits it, ``ROOT/auto``)."""
     faults, out = Path(faults_root).resolve(), Path(root).resolve()
     for name in sub71.LAB:
         model = out / f"{name}-auto"
@@ -83,73 +84,12 @@ def fit(faults_root: str = FAULTS, root: str = ROOT) -> None:
             cpu = _thermocomp("run", *lab_matrix.data_args(faults, name), "model=auto", "plots=none",
                               "track=false", f"out={model}")
             print(name, f"run model=auto {cpu:.1f} s CPU", flush=True)
-    sim = out / "ys"
-    if not sim.exists():
-        _thermocomp("simulate", "sim=yearround_spindle", "seed=5353", "sim.generator.n_campaigns=9",
-                    "sim.generator.duration_h=[3.0,5.0]", f"data.path={sim}", f"out={out / 'sim'}")
-    if not (out / "ys-auto" / "model.pkl").exists():
-        _thermocomp("run", f"data.path={sim}", "model=auto", "track=false", "plots=none",
-                    f"out={out / 'ys-auto'}")
     made = out / "make"
     if not made.exists():
         _thermocomp("simulate", f"data.path={made / 'data'}", f"out={made / 'sim'}")
     if not (made / "auto" / "model.pkl").exists():
         _thermocomp("run", f"data.path={made / 'data'}", "model=auto", "track=false", "plots=none",
                     f"out={made / 'auto'}")
-
-
-def lab(faults: Path, out: Path) -> None:
-    """Bar 1 and 3 on ``dmu_a`` and ``rig_a`` (bench_sub71's ``lab`` with auto's model)."""
-    from hydra import compose, initialize_config_dir
-
-    from thermocomp.shell.source import read_streamed
-
-    for name, (fault, hint) in sub71.LAB.items():
-        folder = faults / "faulted" / f"{name}-{fault}"
-        with initialize_config_dir(config_dir=str(REPO / "conf"), version_base="1.3"):
-            cfg = compose(config_name="config", overrides=[
-                *lab_matrix.data_args(faults, name), f"data.path={folder}", *hint,
-                "track=false", "monitor.adaptive=true"])
-            healthy_cfg = compose(config_name="config", overrides=[
-                *lab_matrix.data_args(faults, name), *hint, "track=false"])
-        ds, train_ids, test_ids, _ = read_streamed(cfg)
-        cid = test_ids[-1]
-        df, healthy = ds.campaigns[cid], read_streamed(healthy_cfg)[0].campaigns[cid]
-        held, fallback, cpu = sub71._deployables(cfg, ds, train_ids, str(out / f"{name}-auto" / "model.pkl"))
-        errors = sub71._measured(held, healthy, cid)
-        cols = [c for c in held.columns_ if c.startswith("T_")]
-        bad = ~np.isfinite(df[cols].to_numpy(float)).all(axis=1)
-        h = int(np.argmax(bad)) if bad.any() else len(df) // 2
-        a, b = sub71._after(held, df, cid, h, errors), sub71._after(fallback, df, cid, h, errors)
-        ha, hb = sub71._after(held, healthy, cid, h, errors), sub71._after(fallback, healthy, cid, h, errors)
-        print(sub71._line(f"{name} {fault}", "auto", a, b, cpu, sorted(fallback.fallbacks_), ha[1],
-                          hb[1]), flush=True)
-
-
-def simulated(out: Path) -> None:
-    """Bar 2 and 3 on bench_sub71's simulated record (bench_deploy_faults' T_motor2 cases)."""
-    import bench_deploy_faults as bdf
-
-    from thermocomp.shell.source import read_streamed
-
-    cfg = bdf._cfg(out / "ys", "monitor.adaptive=true")
-    ds, train_ids, test_ids, _ = read_streamed(cfg)
-    raw = ds.campaigns[bdf.CAMPAIGN]
-    h = len(raw) // 2
-    held, fallback, cpu = sub71._deployables(cfg, ds, train_ids, str(out / "ys-auto" / "model.pkl"))
-    for cid in test_ids:
-        df = ds.campaigns[cid]
-        errors = sub71._measured(held, df, cid)
-        ha, hb = sub71._after(held, df, cid, 0, errors), sub71._after(fallback, df, cid, 0, errors)
-        print(sub71._line(f"healthy {cid}", "auto", ha, hb, cpu, sorted(fallback.fallbacks_), ha[1],
-                          hb[1]), flush=True)
-    errors = sub71._measured(held, raw, bdf.CAMPAIGN)
-    faults = bdf.faults(raw.reset_index(drop=True))
-    for fault in sub71.SIM_FAULTS:
-        df = faults[fault]
-        a, b = (sub71._after(d, df, bdf.CAMPAIGN, h, errors) for d in (held, fallback))
-        print(sub71._line(f"{fault} {bdf.SENSOR}", "auto", a, b, cpu, sorted(fallback.fallbacks_),
-                          a[1][:0], b[1][:0]), flush=True)
 
 
 def replayed(out: Path, runs: int = 2) -> None:
@@ -181,8 +121,9 @@ def _untimed(value):
 def score(faults_root: str = FAULTS, root: str = ROOT) -> None:
     start = time.process_time()
     out = Path(root).resolve()
-    simulated(out)
-    lab(Path(faults_root).resolve(), out)
+    sub71.simulated(out, families=("auto",))
+    sub71.lab(Path(faults_root).resolve(), families=("auto",),
+              model_of=lambda name, family: out / f"{name}-{family}" / "model.pkl")
     replayed(out)
     print(f"CPU {time.process_time() - start:.1f} s (this process)")
 
