@@ -19,7 +19,7 @@ without it, streamed beside the model, its correction while the sensor is exclud
 ``auto``: its refit ran every candidate's validation again (replay of make run's record 2.8 ->
 10.3 s CPU), so lead71 left auto out and its sensor is held at its last good reading.
 
-Rule (the only candidate; :func:`thermocomp.core.models.auto.refit_as_chosen`): under ``auto``
+Rule (the only candidate; :func:`thermocomp.core.compensator.refit_as_chosen`): under ``auto``
 the fallback refits, per target, the family or blend auto CHOSE, each member with the
 hyper-parameters its own CV chose (as mutual prediction's single-campaign models are made): no
 candidate validated, no family's CV run again.  Everything else as sub71's ``unobservable``.
@@ -38,6 +38,28 @@ reverted and the rule REFUSED).  ``held`` is today's auto (no fallback):
    CPU (user + sys of the process) at most 6.0 s, well under the 10.3 s of the whole choice
    again, and ``replay.json`` equal (all but its timings) to ``monitor.fallbacks=none``'s (held);
    the deploy build's extra CPU stated per record.
+
+Measured (2026-12-02, three scores, the same figures each time; 29.6-40.3 s CPU of the process, on
+a machine loaded by other jobs).  RMSE after the fault (µm; exclusions), held -> fallback:
+
+=========================  ==================  ========  =========================================
+case                       held -> fallback    change    fallbacks (auto's choice refitted)
+=========================  ==================  ========  =========================================
+dmu_a unplugged_listed     47.136 -> 2.850     -94.0 %   T_101_Air, T_104_Headstock, T_105_Spindle
+rig_a unplugged            4.631 -> 0.555      -88.0 %   T_Lager_vorn, T_amb
+nan_end / nan_16 T_motor2  1.645 -> 1.645      +0.0 %    T_amb
+stuck T_motor2             2.027 -> 2.027      +0.0 %    T_amb
+=========================  ==================  ========  =========================================
+
+Healthy streams (K03, K06, K09; dmu_a, rig_a): byte-unchanged.  Build: +0.0-0.1 s CPU on the
+simulated record, +0.5-0.7 dmu_a, +1.4-2.0 rig_a (a blend with an LSTM member).  Replay of make
+run's record under auto: 3.15 / 3.34, 4.22 / 4.64, 4.90 / 4.93 s CPU against 3.05 / 3.32, 3.37 /
+3.38, 4.09 / 3.97 with ``monitor.fallbacks=none`` (the load rose from one score to the next);
+``replay.json`` equal but its timings (the first score's filter missed ``us_per_sample``, the
+only key that differed, and said False: fixed, scored again).  Against the tree before autofb72
+(the CLI, alternated, six runs each): 4.11-5.33 s against 3.82-4.82 s; the build 0.17 s of it
+(in process), the rest the fallback stepping beside the model (``us_per_sample`` about doubles:
+auto's blends for E_X, E_Y and its ATI for E_Z, twice).  Bars 1-4 pass: merged.
 """
 
 from __future__ import annotations

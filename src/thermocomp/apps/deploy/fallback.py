@@ -22,7 +22,7 @@ from collections.abc import Mapping
 import numpy as np
 import pandas as pd
 
-from ...core.models.auto import refit_as_chosen
+from ...core.compensator import refit_as_chosen
 from .streaming import StreamingCompensator
 
 CHOICES = ("unobservable", "none")
@@ -33,7 +33,7 @@ def without_sensor(streaming: StreamingCompensator, campaigns: Mapping[str, pd.D
     """The model's family refitted on ``campaigns`` with ``sensor`` out of every target's inputs,
     as a stream with the model's envelope; ``None`` where the model does not read it or a target
     would read nothing else.  Under ``auto``, per target the family (or blend) it chose with the
-    hyper-parameters it chose (:func:`~thermocomp.core.models.auto.refit_as_chosen`): its whole
+    hyper-parameters it chose (:func:`~thermocomp.core.compensator.refit_as_chosen`): its whole
     choice again (every candidate's folds) took replay of make run's record 2.8 -> 10.3 s CPU."""
     comp = streaming.compensator
     selection = {t: [c for c in comp.selected_[t] if c != sensor] for t in comp.targets_}

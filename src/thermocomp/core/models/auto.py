@@ -545,24 +545,6 @@ def as_chosen(template, fitted):
     return template.set_params(estimator__chosen=chosen)
 
 
-def refit_as_chosen(fitted):
-    """``fitted`` (a compensator) unfitted again, to refit without choosing again: under
-    model=auto, per target the family or blend auto chose (:func:`as_chosen`), each member with
-    the hyper-parameters its own CV chose (as mutual prediction's single-campaign models are
-    made), so no candidate is validated and no family's CV runs again; any other model as
-    configured (its family's own CV, if any, runs).  None where model=auto chose but the
-    compensator's estimator cannot be told its choice (a wrapper without ``chosen``)."""
-    from ..compensator import with_chosen_hyperparameters  # (compensator imports the models)
-
-    template = clone(fitted)
-    if not any(hasattr(est, "chosen_") for est in getattr(fitted, "estimators_", {}).values()):
-        return template
-    template = as_chosen(template, fitted)
-    if template.estimator.get_params(deep=False).get("chosen") is None:
-        return None
-    return with_chosen_hyperparameters(template, fitted)
-
-
 def check_candidates(candidates, params, defaults, sequence=(list, tuple), mapping=(dict,)
                      ) -> list:
     """The names of ``model.candidates``, it and ``model.candidate_params`` /
