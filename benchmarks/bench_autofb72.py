@@ -39,8 +39,8 @@ reverted and the rule REFUSED).  ``held`` is today's auto (no fallback):
    again, and ``replay.json`` equal (all but its timings) to ``monitor.fallbacks=none``'s (held);
    the deploy build's extra CPU stated per record.
 
-Measured (2026-12-02, four scores, the last on the final code, the same figures each time; 29.6-40.3 s CPU of the process, on
-a machine loaded by other jobs).  RMSE after the fault (µm; exclusions), held -> fallback:
+Measured (2026-12-02, four scores, the last on the final code, the same figures each time;
+29.6-40.3 s CPU of the process, on a machine loaded by other jobs).  RMSE after the fault (µm; exclusions), held -> fallback:
 
 =========================  ==================  ========  =========================================
 case                       held -> fallback    change    fallbacks (auto's choice refitted)
@@ -54,7 +54,7 @@ stuck T_motor2             2.027 -> 2.027      +0.0 %    T_amb
 Healthy streams (K03, K06, K09; dmu_a, rig_a): byte-unchanged.  Build: +0.0-0.1 s CPU on the
 simulated record, +0.5-0.7 dmu_a, +1.4-2.0 rig_a (a blend with an LSTM member).  Replay of make
 run's record under auto: 3.15 / 3.34, 4.22 / 4.64, 4.90 / 4.93, 4.00 / 3.54 s CPU against 3.05 /
-3.32, 3.37 / 3.38, 4.09 / 3.97, 3.30 / 3.92 with ``monitor.fallbacks=none`` (the load rose from one score to the next);
+3.32, 3.37 / 3.38, 4.09 / 3.97, 3.30 / 3.92 with ``monitor.fallbacks=none`` (the load varied);
 ``replay.json`` equal but its timings (the first score's filter missed ``us_per_sample``, the
 only key that differed, and said False: fixed, scored again).  Against the tree before autofb72
 (the CLI, alternated, six runs each): 4.11-5.33 s against 3.82-4.82 s; the build 0.17 s of it
