@@ -40,7 +40,8 @@ reverted and the rule REFUSED).  ``held`` is today's auto (no fallback):
    the deploy build's extra CPU stated per record.
 
 Measured (2026-12-02, four scores, the last on the final code, the same figures each time;
-29.6-40.3 s CPU of the process, on a machine loaded by other jobs).  RMSE after the fault (µm; exclusions), held -> fallback:
+29.6-40.3 s CPU of the process, on a machine loaded by other jobs).  RMSE after the fault (µm;
+exclusions), held -> fallback:
 
 =========================  ==================  ========  =========================================
 case                       held -> fallback    change    fallbacks (auto's choice refitted)
