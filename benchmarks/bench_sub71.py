@@ -277,8 +277,9 @@ def _line(case, family, today, priced, cpu, falls, h_today, h_priced) -> str:
             f"build +{cpu:.1f} s CPU")
 
 
-def lab(faults_root: Path) -> None:
-    """``dmu_a`` and ``rig_a``'s unplugged sensor, mlr and lagbank."""
+def lab(faults_root: Path, families=("mlr", "lagbank"), model_of=None) -> None:
+    """``dmu_a`` and ``rig_a``'s unplugged sensor, mlr and lagbank (``families``; ``model_of(name,
+    family)``: the model.pkl, by default faults71's)."""
     import lab_matrix
     from hydra import compose, initialize_config_dir
 
@@ -296,8 +297,9 @@ def lab(faults_root: Path) -> None:
         hds = read_streamed(healthy_cfg)[0]
         cid = test_ids[-1]
         df, healthy = ds.campaigns[cid], hds.campaigns[cid]
-        for family in ("mlr", "lagbank"):
-            model = str(faults_root / "out" / f"{name}-{family}-plain" / "model.pkl")
+        for family in families:
+            model = str(model_of(name, family) if model_of else
+                        faults_root / "out" / f"{name}-{family}-plain" / "model.pkl")
             today, priced, cpu = _deployables(cfg, ds, train_ids, model)
             errors = _measured(today, healthy, cid)
             cols = [c for c in today.columns_ if c.startswith("T_")]
@@ -309,8 +311,9 @@ def lab(faults_root: Path) -> None:
                         hb[1]), flush=True)
 
 
-def simulated(root: Path) -> None:
-    """bench_deploy_faults' nan_end, stuck, nan_16 on K06's T_motor2, mlr, arx, lagbank."""
+def simulated(root: Path, families=None) -> None:
+    """bench_deploy_faults' nan_end, stuck, nan_16 on K06's T_motor2, mlr, arx, lagbank
+    (``families``), each fitted into ``root / family`` where it is not there yet."""
     import bench_deploy_faults as bdf
 
     from thermocomp.shell.cli import main
@@ -324,7 +327,7 @@ def simulated(root: Path) -> None:
     ds, train_ids, test_ids, _ = read_streamed(cfg)
     raw = ds.campaigns[bdf.CAMPAIGN]
     h = len(raw) // 2
-    for family in bdf.FAMILIES:
+    for family in families or bdf.FAMILIES:
         model = root / family / "model.pkl"
         if not model.exists():
             main(["run", f"data.path={data}", f"model={family}", "track=false", "plots=none",

@@ -98,3 +98,39 @@ def test_an_unknown_choice_is_refused(deployed):
     stream = StreamingCompensator.from_training(Compensator(MLR()).fit(train), train)
     with pytest.raises(ValueError, match="monitor.fallbacks"):
         AdaptiveCompensator.from_training(stream, train, fallbacks="all")
+
+
+def test_under_auto_the_fallback_is_the_chosen_family_refitted_as_chosen():
+    """model=auto (autofb72): the fallback refits, per target, what auto chose with the
+    hyper-parameters it chose (no candidate validated, the family's own CV not run again);
+    before, auto had no fallback and the spindle was held."""
+    from thermocomp.core.models import LagBank
+    from thermocomp.core.models.auto import AutoRegressor
+
+    train = {f"K{i}": _campaign(i) for i in range(4)}
+    comp = Compensator(AutoRegressor({"lagbank": LagBank(n_taus=3)}, n_folds=2)).fit(train)
+    stream = StreamingCompensator.from_training(comp, train)
+    deployed = AdaptiveCompensator.from_training(stream, train)
+    held = AdaptiveCompensator.from_training(stream, train, fallbacks="none")
+    assert sorted(deployed.fallbacks_) == ["T_head", "T_spindle"]
+    chosen = comp.estimators_["E_Z"].estimator_
+    refitted = deployed.fallbacks_["T_spindle"].compensator.estimators_["E_Z"]
+    assert type(refitted) is LagBank                          # not auto: nothing validated again
+    assert refitted.get_params()["alphas"] == [chosen.alpha_]  # its CV's choice, fixed
+    test = _campaign(7277)
+    h = N // 2
+    out = test.copy()
+    out.loc[h:, "T_spindle"] = np.nan
+    error = (test["E_Z"] - test["E_Z"][0]).to_numpy()
+
+    def after(compensator):
+        y = stream_rows(compensator, out, "T").y[:, 0]
+        return float(np.sqrt(np.mean((error[h:] - y[h:]) ** 2)))
+    assert after(deployed) < 0.5 * after(held)                # 1.98 against 7.99 µm
+    # the chosen family as chosen, fitted without the spindle (the guard then bounds it)
+    without = {"E_Z": [c for c in train["K0"].columns if c.startswith("T_") and c != "T_spindle"]}
+    batch = Compensator(LagBank(n_taus=3, **chosen.chosen_params()), selection=without).fit(train)
+    fallback = deployed.fallbacks_["T_spindle"].compensator
+    np.testing.assert_array_equal(fallback.predict({"T": test})["T"]["E_Z"],
+                                  batch.predict({"T": test})["T"]["E_Z"])
+    np.testing.assert_array_equal(stream_rows(deployed, test, "T").y, stream_rows(held, test, "T").y)

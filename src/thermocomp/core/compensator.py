@@ -262,3 +262,21 @@ def with_chosen_hyperparameters(template: Compensator, fitted: Compensator) -> C
     if not chosen:
         return template
     return clone(template).set_params(estimator=PerTarget(template.estimator, chosen))
+
+
+def refit_as_chosen(fitted: Compensator) -> Compensator | None:
+    """``fitted`` unfitted again, to refit without choosing again: under model=auto, per target
+    the family or blend auto chose (:func:`~.models.auto.as_chosen`), each member with the
+    hyper-parameters its own CV chose (:func:`with_chosen_hyperparameters`, as mutual
+    prediction's single-campaign models are made), so no candidate is validated again; any other
+    model as configured (its family's own CV, if any, runs).  None where model=auto chose but
+    the estimator cannot be told its choice (a wrapper without ``chosen``)."""
+    from .models.auto import as_chosen
+
+    template = clone(fitted)
+    if not any(hasattr(est, "chosen_") for est in getattr(fitted, "estimators_", {}).values()):
+        return template
+    template = as_chosen(template, fitted)
+    if template.estimator.get_params(deep=False).get("chosen") is None:
+        return None
+    return with_chosen_hyperparameters(template, fitted)

@@ -9,7 +9,9 @@ with that sensor out of every target's inputs, streamed beside the model from th
 start; while the sensor is excluded the correction (before the guard) is its fallback's (7.6 and
 6.4 µm there).  Fallbacks are fitted at deploy build, for the unpredictable sensors the model
 reads only: where the others predict a sensor its reconstruction did better than a fallback
-(``benchmarks/bench_sub71.py``).  A healthy stream never reads a fallback: its corrections are
+(``benchmarks/bench_sub71.py``).  Under ``model=auto`` the family (or blend) auto chose per target
+is refitted with the hyper-parameters it chose, not the candidates' validation again
+(``benchmarks/bench_autofb72.py``).  A healthy stream never reads a fallback: its corrections are
 the model's, to the bit.
 """
 
@@ -19,9 +21,8 @@ from collections.abc import Mapping
 
 import numpy as np
 import pandas as pd
-from sklearn.base import clone
 
-from ...core.models.auto import AutoRegressor
+from ...core.compensator import refit_as_chosen
 from .streaming import StreamingCompensator
 
 CHOICES = ("unobservable", "none")
@@ -30,18 +31,17 @@ CHOICES = ("unobservable", "none")
 def without_sensor(streaming: StreamingCompensator, campaigns: Mapping[str, pd.DataFrame],
                    sensor: str) -> StreamingCompensator | None:
     """The model's family refitted on ``campaigns`` with ``sensor`` out of every target's inputs,
-    as a stream with the model's envelope; ``None`` where the model does not read it, a target
-    would read nothing else, or the model is ``auto`` (its refit would validate every candidate
-    again)."""
+    as a stream with the model's envelope; ``None`` where the model does not read it or a target
+    would read nothing else.  Under ``auto``, per target the family (or blend) it chose with the
+    hyper-parameters it chose (:func:`~thermocomp.core.compensator.refit_as_chosen`): its whole
+    choice again (every candidate's folds) took replay of make run's record 2.8 -> 10.3 s CPU."""
     comp = streaming.compensator
-    if isinstance(comp.estimator, AutoRegressor):
-        # auto's refit is its whole validation again (every candidate's folds: replay of make
-        # run's record 2.8 -> 10.3 s CPU); its sensor is held, as before sub71
-        return None
     selection = {t: [c for c in comp.selected_[t] if c != sensor] for t in comp.targets_}
-    if selection == {t: list(comp.selected_[t]) for t in comp.targets_} or not all(selection.values()):
+    template = refit_as_chosen(comp)
+    if (template is None or not all(selection.values())
+            or selection == {t: list(comp.selected_[t]) for t in comp.targets_}):
         return None
-    fitted = clone(comp).set_params(selection=selection).fit(campaigns)
+    fitted = template.set_params(selection=selection).fit(campaigns)
     if list(fitted.inputs_) != list(comp.inputs_):
         return None
     stream = StreamingCompensator(fitted, streaming.envelope, streaming.policy,
