@@ -200,7 +200,15 @@ def _user_env(home: Path) -> dict:
                            if not p.startswith(sys.prefix))
     # PYTHONPATH too: one pointed at a checkout's src would run (and write to) that checkout
     env = {k: v for k, v in os.environ.items() if not k.startswith(NOT_A_USERS)}
-    return {**env, "PATH": path, "HOME": str(home)}
+    return {**env, "PATH": path, "HOME": str(home), **ONE_CPU}
+
+
+# A user's machine of one CPU: a joblib sweep's `n_jobs=-1` (hydra/launcher=joblib) is then one job
+# at a time in the command's process (as in test_dvc_metrics' sweep). Beside the other xdist worker, two
+# loky workers each importing the stack and opening the store gain no time and cost CPU:
+# docs/sweeps.md's sweep 25-31 s of CPU on two, 17.6 s on one (a joblib sweep on two workers is
+# tests/shell/test_sweep.py's).
+ONE_CPU = {"LOKY_MAX_CPU_COUNT": "1"}
 
 
 def test_a_pages_shell_has_no_project_variables_and_writes_byte_code(monkeypatch, tmp_path):
@@ -212,6 +220,7 @@ def test_a_pages_shell_has_no_project_variables_and_writes_byte_code(monkeypatch
     assert not {"PYTHONDONTWRITEBYTECODE", "PYTHONPATH", "THERMOCOMP_TRACKING_URI",
                 "VIRTUAL_ENV"} & set(env)
     assert env["PATH"] == "/usr/bin" and env["HOME"] == str(tmp_path)
+    assert env["LOKY_MAX_CPU_COUNT"] == "1"
     # what the pages' commands then do: a module imported once is not compiled again
     (tmp_path / "probe.py").write_text("x = 1\n")
     subprocess.run([sys.executable, "-c", "import probe"], cwd=tmp_path, env=env, check=True)

@@ -4,12 +4,14 @@ Every linear family x denoise x selector is fitted on a small simulated dataset,
 as `replay` does with `monitor.adaptive=false` (the plain stream, envelope clamp on), exported;
 the C is compiled with the system compiler and the test campaigns (one sensor pushed out of the
 training envelope half-way, so the clamp acts) are streamed through the binary as CSV; the
-Structured Text is parsed with blark (one short block, whose constructs every other block has)
-and run by a small transpiler of the subset it uses.  Both must equal the stream `replay` runs to 1e-6 µm.
+Structured Text is parsed with blark (one short block, whose constructs every other block has;
+`make test` holds it to the construct blark parsed, `make test-all` parses it again) and run by
+a small transpiler of the subset it uses.  Both must equal the stream `replay` runs to 1e-6 µm.
 """
 
 from __future__ import annotations
 
+import hashlib
 import io
 import json
 import re
@@ -303,8 +305,8 @@ def _construct(st: str) -> str:
 
 def parses_as_the_parsed_block(text: str, parsed: str) -> None:
     """``text`` parses as IEC 61131-3 as ``parsed`` does (conftest's ``parsed_block``, the block
-    :func:`test_the_structured_text_parses_as_iec_61131_3` parses with blark: an Earley parser,
-    15-40 s of CPU a block whatever its constants): the comments before its block are comments
+    :func:`test_the_structured_text_parses_as_iec_61131_3` holds to what blark parsed: an Earley
+    parser, 15-40 s of CPU a block whatever its constants): the comments before its block are comments
     (none opened or closed within), and the block is ``parsed``'s up to literal values of the
     same kind and list lengths."""
     head = text[:text.index("\nFUNCTION_BLOCK") + 1]
@@ -312,30 +314,67 @@ def parses_as_the_parsed_block(text: str, parsed: str) -> None:
     assert _construct(text) == _construct(parsed)
 
 
-def test_the_structured_text_parses_as_iec_61131_3(dataset, parsed_block):
-    """blark's grammar (an Earley parser: seconds per block, more for long constant lists).  The
-    block is one text around the model's constants, so a short one (no FIR taps, no lags) is
-    parsed and every family's block, with and without the FIR denoiser, must equal it up to
-    literal values and list lengths: the same declarations and statements, all parsed here.
-    Other modules' blocks are held to it so (:func:`parses_as_the_parsed_block`)."""
+# The construct (:func:`_construct`) of the block blark parsed, and blark's and lark's versions
+# then (:func:`_parsed_digest`): `make test` holds the block to it instead of parsing it again
+# (blark's Earley parse: 15-18 s of CPU, a tenth of what the export tests cost); `make test-all`
+# parses it every time (:func:`test_blark_parses_the_block`). A new construct is parsed, and its
+# digest asked for here.
+PARSED_DIGEST = "680cde59cc89d0dab9abdbe0a0ed7238659bf19a86ca70f255f2c97dc6890953"
+
+
+def _parsed_digest(block: str) -> str:
+    """sha256 of ``block``'s construct with the versions of the parser: a block equal to the one
+    blark parsed up to literal values and list lengths, for the same grammar."""
+    from importlib.metadata import version
+
+    parser = f"blark {version('blark')}, lark {version('lark')}\n"
+    return hashlib.sha256((parser + _construct(block)).encode()).hexdigest()
+
+
+def _parses(block: str) -> None:
+    """blark parses ``block`` as IEC 61131-3 (an Earley parser: seconds per block, more for long
+    constant lists) into the function block."""
     from blark import parse_source_code
 
-    text = exported_files(_deployed(dataset, *PARSED_BLOCK)[0], "st")["compensator.st"]
-    assert text == parsed_block          # the same data, the same block
-    parsed = parse_source_code(text, fn="compensator.st")
+    parsed = parse_source_code(block, fn="compensator.st")
     assert parsed.exception is None, parsed.exception
     assert "FB_ThermoComp" in str(parsed.transform())
+
+
+def test_the_structured_text_parses_as_iec_61131_3(dataset, parsed_block):
+    """The block is one text around the model's constants, so a short one (no FIR taps, no lags)
+    is parsed and every family's block, with and without the FIR denoiser, must equal it up to
+    literal values and list lengths: the same declarations and statements, all parsed here.
+    Other modules' blocks are held to it so (:func:`parses_as_the_parsed_block`). The short one
+    is the construct blark parsed (:data:`PARSED_DIGEST`), or it is parsed now."""
+    text = exported_files(_deployed(dataset, *PARSED_BLOCK)[0], "st")["compensator.st"]
+    assert text == parsed_block          # the same data, the same block
+    parses_as_the_parsed_block(text, text)     # its banner plain comments, as any block's
+    digest = _parsed_digest(text)
+    if digest != PARSED_DIGEST:
+        _parses(text)
+        pytest.fail(f"a new construct of the block, and blark parses it: PARSED_DIGEST = {digest!r}")
     for family in FAMILIES:
         for denoise in DENOISERS:
             stream, _ = _deployed(dataset, family, denoise, "all")
             parses_as_the_parsed_block(exported_files(stream, "st")["compensator.st"], text)
 
 
+@pytest.mark.full
+def test_blark_parses_the_block(parsed_block):
+    """`make test-all`: the block parsed again, whatever :data:`PARSED_DIGEST` says (`make test`
+    parses it only when its construct is new)."""
+    _parses(parsed_block)
+    assert _parsed_digest(parsed_block) == PARSED_DIGEST
+
+
 def test_a_block_held_to_the_parsed_one_is_no_rubber_stamp(parsed_block):
     """:func:`parses_as_the_parsed_block` takes the parsed block itself, and fails a statement
     without its semicolon, a real literal where an integer stands (an array bound), a comment
-    closed within the banner, a name changed."""
+    closed within the banner, a name changed; and :data:`PARSED_DIGEST` tells each from the
+    block blark parsed (the banner's by the same check of its comments)."""
     parses_as_the_parsed_block(parsed_block, parsed_block)
+    assert _parsed_digest(parsed_block) == PARSED_DIGEST
     bad = [parsed_block.replace("lfac := factor[LSTM_LAW[nk]];", "lfac := factor[LSTM_LAW[nk]]"),
            parsed_block.replace("ARRAY[0..2] OF", "ARRAY[0..2.0] OF", 1),
            parsed_block.replace("(*\n", "(*\n*) x\n", 1),
@@ -344,6 +383,9 @@ def test_a_block_held_to_the_parsed_one_is_no_rubber_stamp(parsed_block):
     for text in bad:
         with pytest.raises(AssertionError):
             parses_as_the_parsed_block(text, parsed_block)
+    assert [_parsed_digest(text) == PARSED_DIGEST for text in bad] == [False, False, True, False]
+    with pytest.raises(AssertionError):
+        parses_as_the_parsed_block(bad[2], bad[2])
 
 
 def _fitted(dataset, tmp_path, model: str, *extra: str) -> Path:

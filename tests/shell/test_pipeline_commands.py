@@ -1,7 +1,7 @@
 """Every stage command of every DVC pipeline as committed (`dvc.yaml`, `pipelines/*/dvc.yaml`)
 names a stage, and its config (each job of a sweep) composes and passes the checks a stage runs
 before it reads anything: in a second, without DVC or a process.  DVC runs them end to end in
-test_dvc_metrics (the default study), test_dvc_sweep and test_dvc_volumetric (marked ``full``:
+test_dvc_metrics (the default study and the sweep) and test_dvc_volumetric (marked ``full``:
 `make test-all` only)."""
 
 from __future__ import annotations
