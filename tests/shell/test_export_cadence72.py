@@ -11,14 +11,13 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from test_export import StructuredText, _compiled, _compose, _make_dataset, _streamed, needs_cc
+import test_export_first_time as first_time
+from test_export import StructuredText, _compiled, _make_dataset, _streamed, needs_cc
 from test_export_guard import _rows, _simulated, _st
 from thermocomp.apps.deploy.export import exported_files, state_space
 from thermocomp.apps.deploy.streaming import batch_prediction, replay
 from thermocomp.core.context import keeps_memory
 from thermocomp.core.models import MLR
-from thermocomp.shell.builders import build_compensator, deploy_stream, deployable
-from thermocomp.shell.source import read_streamed
 
 FASTER = 4              # the stream's rows per training row
 AGREE_UM = 1e-9
@@ -31,14 +30,8 @@ def dataset(tmp_path_factory):
 
 def _deployed(dataset, adaptive: bool):
     """``(lag bank deployed as replay deploys it, its compensator, its first test campaign)``."""
-    cfg = _compose(f"data.path={dataset}", "track=false", f"monitor.adaptive={str(adaptive).lower()}",
-                   "model=lagbank", "model.estimator.n_taus=3")
-    ds, train_ids, test_ids, _ = read_streamed(cfg)
-    train = {c: ds.campaigns[c] for c in train_ids}
-    comp = build_compensator(cfg, ds=ds).fit(train)
-    stream = deploy_stream(cfg, comp, train)
-    deployed = deployable(cfg, stream, train, ds) if adaptive else stream
-    return deployed, comp, ds.campaigns[test_ids[0]].reset_index(drop=True)
+    deployed, test = first_time._deployed(dataset, adaptive)
+    return deployed, getattr(deployed, "streaming", deployed).compensator, test
 
 
 def _faster(df: pd.DataFrame) -> pd.DataFrame:
