@@ -14,7 +14,7 @@ import pandas as pd
 from sklearn.base import BaseEstimator, clone
 
 from .choices import MODES
-from .context import Y_MEASURED, for_target, with_column
+from .context import Y_MEASURED, for_target, keeps_memory, with_column
 from .denoise import denoise_campaigns, fit_denoiser
 from .first_probe import REFITS, completed, frame_loss, late_starts
 from .frame import Matrices, resolve_columns, stack
@@ -22,6 +22,7 @@ from .models.one_step import OneStepLaw
 from .select import AllInputs
 from .select.per_target import measured
 from .shared_fits import fitted
+from .timerule import grid_rows, median_step
 
 OFFSETS = ("predict", "drop")
 
@@ -77,6 +78,11 @@ class Compensator(BaseEstimator):
         estimator's own simulation prediction (``eval.mode=one_step``).
     offsets_ : dict target -> float
         The intercepts left out (``offsets='drop'``), in the targets' unit.
+    grid_period_s_ : float or None
+        The training sample period where a model keeps a memory (cadence72): on rows closer
+        together it steps once a period, on the row nearest each period on, and holds its
+        prediction between (:func:`~thermocomp.core.timerule.on_grid`; every deployed form
+        does the same); None (a static law, no time, an older pickle): every row.
     """
 
     def __init__(self, estimator, selector=None, inputs=("T_*",), targets=None,
@@ -140,6 +146,8 @@ class Compensator(BaseEstimator):
             self.one_step_[target] = OneStepLaw().fit(
                 s, self.scored_label(m.Y[target].to_numpy(), m.groups, s[:, 0]), context=context)
             self.selected_[target], self.estimators_[target] = names, est
+        memory = any(keeps_memory(e, len(self.selected_[t])) for t, e in self.estimators_.items())
+        self.grid_period_s_ = median_step(m.time, m.groups) if memory else None
         return self
 
     def _fit_in_frame(self, template, X, y, groups, context):
@@ -174,6 +182,12 @@ class Compensator(BaseEstimator):
         """Predicted error ``(n_rows, n_targets)`` of stacked matrices (see :meth:`stacked`)."""
         if mode not in MODES:
             raise ValueError(f"eval.mode must be one of {MODES}, got {mode!r}")
+        period = getattr(self, "grid_period_s_", None)
+        if period:      # rows closer than the training period: stepped on its grid, held between
+            stepped = grid_rows(m.time, m.groups, period)
+            if not stepped.all():
+                on = self.predict_stacked(m.subset(stepped), mode)
+                return on[np.cumsum(stepped) - 1]
         out = np.empty((len(m.X), len(self.targets_)))
         laws = getattr(self, "one_step_", None)   # None: a model pickled before the law existed
         context = _simulation(m.context) if laws is not None else m.context

@@ -163,6 +163,29 @@ def stream_steps(estimator, X: np.ndarray, state, context: Mapping | None = None
     return y, state
 
 
+def keeps_memory(estimator, n_inputs: int) -> bool:
+    """Whether a fitted estimator's stream carries a memory from sample to sample (a lag, a
+    history, a feedback, a cell state): what the training grid paces (cadence72,
+    :func:`thermocomp.core.timerule.on_grid`).  Asked of the stream itself: a ramp of four
+    samples streamed answers otherwise than each sample from a fresh start (a static law, an
+    ARX that kept no delay nor feedback, answer alike); a stream that cannot be asked without
+    its raw columns counts as one with a memory (the safe side: held between grid rows)."""
+    def at(i: int) -> dict:
+        return {CAMPAIGN: "grid", TIME: 60.0 * i, AMBIENT_C0: 20.0}
+
+    try:
+        state = estimator.stream_init(at(0))
+        for i in range(4):
+            x = np.full(n_inputs, float(i))
+            y, state = estimator.stream_step(x, state, at(i))
+            alone, _ = estimator.stream_step(x, estimator.stream_init(at(i)), at(i))
+            if not np.isclose(y, alone, rtol=1e-12, atol=1e-12):
+                return True
+    except Exception:  # noqa: BLE001
+        return True
+    return False
+
+
 def feedback_gain(gain: np.ndarray, ar_coef: float) -> np.ndarray | None:
     """Steady-state gain of ``y(t) = a y(t-1) + gain . x``: ``gain / (1 - a)``, ``None`` when the
     feedback has no steady state (``|a| >= 1``)."""

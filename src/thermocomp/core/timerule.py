@@ -230,3 +230,50 @@ ELSE
     dt := now - t_prev;
 END_IF;
 """
+
+
+# -- the training grid (cadence72) ---------------------------------------------------------------
+
+def on_grid(elapsed, step, period_s: float):
+    """Whether the models step on a sample ``elapsed`` seconds after the last one they stepped
+    on and ``step`` after the previous sample (arrays element-wise).  A model with a memory
+    (ARX's history, a lag bank's feedback and its lags' hold of each input over the step before
+    it) answers for the period it was fitted at: a lag bank fitted on 300 s rows and fed 60 s
+    ones was 10.2 µm off its own 300 s answer (rate71).  A sample of a FASTER stream, a step
+    of at most half a training ``period_s``, is held unless it is the one nearest a period on
+    (the first at least ``period_s - step / 2`` after the last stepped); every other sample is
+    stepped as it comes: the training period, a slower stream, a clock's jitter, a gap, a
+    repeated or substituted time (a step of 0), a missing one (NaN)."""
+    elapsed, step = np.asarray(elapsed), np.asarray(step)
+    with np.errstate(invalid="ignore"):
+        return np.logical_not((step > 0) & (step <= period_s / 2) & (elapsed + step / 2 < period_s))
+
+
+def grid_rows(time, groups, period_s: float) -> np.ndarray:
+    """Per row, whether the model steps on it (:func:`on_grid`), each segment of ``groups`` a
+    stream from its first row, the times on the stream's clock (:func:`step_time`: a missing
+    or repeated time one period on).  All True where every step is over half a period."""
+    time = np.asarray(time, dtype=float)
+    n = len(time)
+    steps = np.diff(time)
+    with np.errstate(invalid="ignore"):       # after a stepped row each step is its elapsed
+        each = on_grid(steps, steps, period_s) & (steps > 0)
+    quick = bool(each.all())
+    if groups is not None and not quick:
+        g = np.asarray(groups)
+        quick = bool(np.all(each | (g[1:] != g[:-1])))
+    stepped = np.ones(n, dtype=bool)
+    if quick or n < 2:
+        return stepped
+    starts = np.r_[True, np.asarray(groups)[1:] != np.asarray(groups)[:-1]] if groups is not None \
+        else np.r_[True, np.zeros(n - 1, bool)]
+    clock, grid = CLOCK_START, math.nan
+    for i in range(n):
+        if starts[i]:
+            clock = CLOCK_START
+        clock, now, dt, _ = step_time(clock, float(time[i]), period_s, judge=True)
+        if starts[i] or bool(on_grid(now - grid, dt, period_s)):
+            grid = now
+        else:
+            stepped[i] = False
+    return stepped

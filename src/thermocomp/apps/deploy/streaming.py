@@ -85,7 +85,7 @@ from ...core.guarded import mark_guarded, summed_frames
 from ...core.io.contract import is_ambient, manifest_ambient
 from ...core.io.values import MAX_ABS_T_C, reading_limit
 from ...core.metrics import split_scores
-from ...core.timerule import SampleClock
+from ...core.timerule import SampleClock, on_grid
 from .guard import guard_changes
 
 POLICIES = ("clamp", "refuse", "off")
@@ -385,7 +385,10 @@ class StreamingCompensator:
         self._bounds: dict = {}           # per target: |gain @ e| of the last sample out of range
         self._den_state = None
         self.n_samples_ = 0
-        period = lag_period(est for _, est, _ in self._plan)
+        # the training grid (cadence72): the models step once a training period, held between
+        self._grid = getattr(self.compensator, "grid_period_s_", None)
+        self._on_grid = (float("nan"), float("nan"), None)   # (last stepped, last row, its y)
+        period = lag_period(est for _, est, _ in self._plan) or self._grid
         # the time rule of every deployed form (timerule.py): the models see the stream's clock.
         # A time not after the last one read is taken as missing (a scored record's times always
         # increase, so batch and stream agree): as read, the lag bank's exp(-dt/tau) of a time set
@@ -405,13 +408,15 @@ class StreamingCompensator:
     def _snapshot(self) -> tuple:
         return (self._ref, self._ambient_c0, copy.deepcopy(self._states),
                 copy.deepcopy(self._den_state), self.n_samples_, copy.deepcopy(self._held),
-                self._gains, self._clock and self._clock.snapshot(), dict(self._bounds))
+                self._gains, self._clock and self._clock.snapshot(), dict(self._bounds),
+                self._on_grid)
 
     def _restore(self, snap: tuple) -> None:
         (self._ref, self._ambient_c0, self._states, self._den_state, self.n_samples_, self._held,
          self._gains, *later) = snap      # (an older model's end states have no clock, no bounds)
         clock = later[0] if later else None
         self._bounds = dict(later[1]) if len(later) > 1 else {}
+        self._on_grid = later[2] if len(later) > 2 else (float("nan"), float("nan"), None)
         if self._clock is not None:
             if clock is not None:
                 self._clock.restore(clock)
@@ -475,6 +480,11 @@ class StreamingCompensator:
                 x[:self._n_inputs], self.denoiser.stream_init() if first else self._den_state)
             seen = x.copy()
             seen[:self._n_inputs] = den
+        if not first and self._grid:
+            held = self._held_row(float(time))
+            if held is not None:
+                self.n_samples_ += 1
+                return held, 0
         if first:
             # refused before the stream starts: a half-started one (its reference set, no
             # model state) failed at the next row on a KeyError naming a target
@@ -529,7 +539,21 @@ class StreamingCompensator:
             bound = self._bounds.get(t, 0.0)
             y[k] -= min(max(y[k] - clamped, -bound), bound)
         self.n_samples_ += 1
+        if self._grid:
+            self._on_grid = (float(time), float(time), y.copy())
         return y, n_clamped
+
+    def _held_row(self, time: float) -> np.ndarray | None:
+        """The prediction held at a row between two of the training grid (a copy), None at a
+        row the models step on (:func:`~thermocomp.core.timerule.on_grid`; a row without a time
+        is one period on: stepped)."""
+        stepped, last, y = self._on_grid
+        if y is None or not (np.isfinite(time) and np.isfinite(stepped)):
+            return None
+        if on_grid(time - stepped, time - last, self._grid):
+            return None
+        self._on_grid = (stepped, time, y)
+        return y.copy()
 
     # -- blocks of rows ---------------------------------------------------------------------
     def run_rows(self, X: np.ndarray, time: np.ndarray, clocked: bool = False, on_refused=None
@@ -578,6 +602,8 @@ class StreamingCompensator:
         m = self._batchable(X, time, start, PROBE_ROWS, clocked)
         if m == PROBE_ROWS:
             m = self._batchable(X, time, start, BLOCK_ROWS, clocked)
+        if m and self._grid:
+            m = self._grid_rows(time, start, m, clocked)
         if not m:
             return start
         block = X[start:start + m]
@@ -596,7 +622,22 @@ class StreamingCompensator:
         dx[rows] = d
         self.last_x_ = d[-1]
         self.n_samples_ += m
+        if self._grid:
+            self._on_grid = (float(t[-1]), float(t[-1]), y[start + m - 1].copy())
         return start + m
+
+    def _grid_rows(self, time, start: int, m: int, clocked: bool) -> int:
+        """How many of the ``m`` rows from ``start`` the models step on one after the other
+        (:func:`~thermocomp.core.timerule.on_grid`; a held row goes through :meth:`_step`)."""
+        t = np.asarray(time[start:start + m], dtype=float)
+        if self._clock is not None and not clocked:
+            t = t - self._clock.shift
+        stepped, last, y = self._on_grid
+        steps = np.diff(np.r_[last, t])
+        ok = on_grid(steps, steps, self._grid)     # after a stepped row its step is its elapsed
+        ok[0] = y is None or not np.isfinite(stepped) or bool(on_grid(t[0] - stepped, steps[0],
+                                                                      self._grid))
+        return m if ok.all() else int(np.argmin(ok))
 
     def _clock_set(self, clocked: bool) -> bool:
         """The stream's clock reads a time as it is (its offset set by an earlier row)."""

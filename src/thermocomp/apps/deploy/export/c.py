@@ -207,6 +207,9 @@ typedef struct {{
     double bound[TC_N_OUTPUTS];                 /* limit of what the clamp takes out: the last
                                                    sample out of the envelope's */
     double t;                                   /* previous sample time, s */
+    double t_grid;                              /* the last sample the model stepped on, s */
+    double y_grid[TC_N_OUTPUTS];                /* ... its output before the guard (held) */
+    double allow_grid[TC_N_OUTPUTS];            /* ... its guard's widening (held) */
     double t_read;                              /* last good time read, s */
     double shift;                               /* time read - the stream's clock, s */
     double t_back;                              /* the previous row's time where it was not
@@ -433,12 +436,30 @@ static void lstms(tc_state *s, const double x[2][TC_WIDTH], double y[]) {{
    overload mark are not: missing, as the Simulator's StateSpace.measured) */
 static int measured(const double u[TC_N_INPUTS], int j) {{ return fabs(u[j]) <= TC_INPUT_LIMIT[j]; }}
 
+/* the correction of output i from the model's y: the guard (within the rate limit of the
+   previous output over a step or one training period, whichever is longer, then the bound
+   widened by allow), then the reference update's gain and bias */
+static double corrected(tc_state *s, int i, double y, double dt, double allow) {{
+    if (TC_GUARD) {{
+        if (!s->first) {{
+            double step = (isfinite(dt) && dt > GUARD_PERIOD) ? dt : GUARD_PERIOD;
+            double lim = GUARD_RATE[i] * step, d = y - s->out[i];
+            if (d > lim) y = s->out[i] + lim;
+            else if (d < -lim) y = s->out[i] - lim;
+        }}
+        if (y < GUARD_LO[i] - allow) y = GUARD_LO[i] - allow;
+        else if (y > GUARD_HI[i] + allow) y = GUARD_HI[i] + allow;
+    }}
+    s->out[i] = y;
+    return s->c[i] = TC_ADAPT ? -(s->gain[i] * y + s->bias[i]) : -y;
+}}
+
 int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N_OUTPUTS]) {{
     double uu[TC_N_INPUTS];                 /* u, a held signal's missing value filled */
     double v[TC_N_INPUTS], x[2][TC_WIDTH], xl[2][{max(k, 1)}], ych[2];
     double ysum[2][TC_N_OUTPUTS], excess[TC_N_OUTPUTS];
     double allow[TC_N_OUTPUTS];
-    double dt, now, step;
+    double dt, now, lag_dt;
     int i, j, l, h, r, clamped = 0;
     /* an input not measured refuses the sample before anything is remembered: one NaN would
        otherwise stay in the lags, the AR feedback and the guard to the campaign's end; so does
@@ -461,6 +482,20 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
     for (l = TC_TAPS - 1; l >= 0; l--)
         for (j = 0; j < TC_N_INPUTS; j++)
             s->buf[l][j] = (s->first || l == 0) ? uu[j] : s->buf[l - 1][j];
+    /* the training grid (cadence72, timerule.on_grid): a sample of a faster stream (a step of
+       at most half GRID_PERIOD) less than a period after the last one the model stepped on
+       (the one nearest a period on is stepped) repeats that one's output; the model's memory
+       steps by the time since it */
+    lag_dt = dt;
+    if (GRID_PERIOD > 0.0 && !s->first) {{
+        if (dt > 0.0 && dt <= GRID_PERIOD / 2 && now - s->t_grid + dt / 2 < GRID_PERIOD) {{
+            s->t = now;
+            for (i = 0; i < TC_N_OUTPUTS; i++) c[i] = corrected(s, i, s->y_grid[i], dt, s->allow_grid[i]);
+            return 0;
+        }}
+        lag_dt = now - s->t_grid;
+    }}
+    s->t_grid = now;
     for (j = 0; j < TC_N_INPUTS; j++) {{
         v[j] = 0.0;
         for (l = 0; l < TC_TAPS; l++) v[j] += s->buf[l][j] * FIR[l][j];
@@ -565,7 +600,7 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
             if (s->first) {{   /* a machine state at rest (Hammerstein) starts at 0 */
                 s->z[h][l] = LAG_REST[l] ? 0.0 : xl[h][l];
             }} else {{
-                double e = exp(-dt / TAU[l]);
+                double e = exp(-lag_dt / TAU[l]);
                 s->z[h][l] = e * s->z[h][l] + (1.0 - e) * xl[h][l];
             }}
         }}
@@ -626,21 +661,9 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
         /* outright: no step gain (or none yet: a state's, out at the campaign's first sample) */
         bound = (CLAMP_OUTRIGHT[i] || s->by_outright[i]) ? HUGE_VAL : s->bound[i];
         y = ych[0] - (ych[1] > bound ? bound : (ych[1] < -bound ? -bound : ych[1]));
-        /* correction guard: within the rate limit of the previous output, then the bound */
-        if (TC_GUARD) {{
-            if (!s->first) {{
-                double lim, d = y - s->out[i];
-                /* over a step or one training period, whichever is longer */
-                step = (isfinite(dt) && dt > GUARD_PERIOD) ? dt : GUARD_PERIOD;
-                lim = GUARD_RATE[i] * step;
-                if (d > lim) y = s->out[i] + lim;
-                else if (d < -lim) y = s->out[i] - lim;
-            }}
-            if (y < GUARD_LO[i] - allow[i]) y = GUARD_LO[i] - allow[i];
-            else if (y > GUARD_HI[i] + allow[i]) y = GUARD_HI[i] + allow[i];
-        }}
-        s->out[i] = y;
-        c[i] = s->c[i] = TC_ADAPT ? -(s->gain[i] * y + s->bias[i]) : -y;
+        s->y_grid[i] = y;
+        s->allow_grid[i] = allow[i];
+        c[i] = corrected(s, i, y, dt, allow[i]);
     }}
     for (h = 0; h < 2; h++)
         for (l = TC_DEPTH - 1; l >= 0; l--)
@@ -724,6 +747,7 @@ def _output_constants(ss: StateSpace) -> list[str]:
     m, n = len(ss.targets), len(ss.inputs)
     rate = [math.inf if r is None else r for r in ss.guard_rate or [0.0] * m]
     return [f"static const double TIME_PERIOD = {number(ss.time_period)};",
+            f"static const double GRID_PERIOD = {number(ss.grid_period)};",
             _array("GUARD_LO", ss.guard_lo or [0.0] * m, (m,)),
             _array("GUARD_HI", ss.guard_hi or [0.0] * m, (m,)), _array("GUARD_RATE", rate, (m,)),
             f"static const double GUARD_PERIOD = {number(ss.guard_period)};",

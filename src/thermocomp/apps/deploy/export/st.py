@@ -249,6 +249,7 @@ def function_block(ss: StateSpace) -> str:
         *_lstm_constants(ss),
         f"    SUBSTITUTE_TIME : BOOL := {'TRUE' if ss.substitute_time else 'FALSE'};",
         f"    TIME_PERIOD : LREAL := {literal(ss.time_period)};",
+        f"    GRID_PERIOD : LREAL := {literal(ss.grid_period)};",
         f"    USE_GUARD : BOOL := {'TRUE' if ss.guard else 'FALSE'};",
         _constant("GUARD_LO", ss.guard_lo or [], (m,)), _constant("GUARD_HI", ss.guard_hi or [], (m,)),
         _constant("GUARD_RATE", [LREAL_MAX if r is None else r for r in ss.guard_rate or []], (m,)),
@@ -319,6 +320,11 @@ VAR
     init_n : LREAL;
     pg : LREAL;
     t_prev : LREAL;
+    t_grid : LREAL;
+    y_grid : ARRAY[{_dims(m)}] OF LREAL;
+    allow_grid : ARRAY[{_dims(m)}] OF LREAL;
+    held : BOOL;
+    lag_dt : LREAL;
     t_read : LREAL;
     read_valid : BOOL;
     shift : LREAL;
@@ -445,6 +451,21 @@ IF NOT refused THEN
             END_IF;
         END_FOR;
     END_FOR;
+    (* the training grid (cadence72, timerule.on_grid): a sample of a faster stream (a step of *)
+    (* at most half GRID_PERIOD) less than a period after the last one the model stepped on *)
+    (* (the one nearest a period on is stepped) repeats that one's output; *)
+    (* the model's memory steps by the time since it *)
+    held := FALSE;
+    lag_dt := dt;
+    IF GRID_PERIOD > 0.0 AND NOT first THEN
+        IF dt > 0.0 AND dt <= GRID_PERIOD / 2.0 AND now - t_grid + dt / 2.0 < GRID_PERIOD THEN
+            held := TRUE;
+        ELSE
+            lag_dt := now - t_grid;
+        END_IF;
+    END_IF;
+    IF NOT held THEN
+    t_grid := now;
     FOR j := 0 TO N_INPUTS - 1 DO
         v[j] := 0.0;
         FOR l := 0 TO TAPS - 1 DO
@@ -682,7 +703,7 @@ IF NOT refused THEN
             ELSIF first THEN
                 z[h, l] := xl[h, l];
             ELSE
-                e := EXP(-dt / TAU[l]);
+                e := EXP(-lag_dt / TAU[l]);
                 z[h, l] := e * z[h, l] + (1.0 - e) * xl[h, l];
             END_IF;
         END_FOR;
@@ -699,7 +720,6 @@ IF NOT refused THEN
             END_FOR;
         END_FOR;
     END_IF;
-    t_prev := now;
     (* outputs: static part, input history, lags, AR feedback; *)
     (* the excess's response out, within the held one *)
     FOR i := 0 TO N_OUTPUTS - 1 DO
@@ -806,7 +826,13 @@ IF NOT refused THEN
             END_IF;
         END_FOR;
     END_IF;
-{LSTM_BLOCK}    FOR i := 0 TO N_OUTPUTS - 1 DO
+{LSTM_BLOCK}    END_IF;
+    t_prev := now;
+    FOR i := 0 TO N_OUTPUTS - 1 DO
+        IF held THEN
+            y := y_grid[i];
+            allow[i] := allow_grid[i];
+        ELSE
         ych[0] := ysum[0, i];
         ych[1] := ysum[1, i];
         bound := excess[i];
@@ -828,6 +854,9 @@ IF NOT refused THEN
             y := ych[0] + bound;
         ELSE
             y := ych[0] - ych[1];
+        END_IF;
+        y_grid[i] := y;
+        allow_grid[i] := allow[i];
         END_IF;
         (* correction guard: within the rate limit of the previous output, then the bound *)
         IF USE_GUARD THEN
@@ -912,6 +941,7 @@ IF NOT refused THEN
             END_IF;
         END_FOR;
     END_IF;
+    IF NOT held THEN
     FOR h := 0 TO 1 DO
         FOR l := DEPTH - 1 TO 0 BY -1 DO
             FOR j := 0 TO N_INPUTS - 1 DO
@@ -923,6 +953,7 @@ IF NOT refused THEN
             END_FOR;
         END_FOR;
     END_FOR;
+    END_IF;
     first := FALSE;
 END_IF;
 END_FUNCTION_BLOCK

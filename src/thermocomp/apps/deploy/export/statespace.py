@@ -81,7 +81,7 @@ import numpy as np
 from ....core.frame import ambient_c0
 from ....core.gains import GainTerm, gain_at, gain_terms
 from ....core.io.values import reading_limit
-from ....core.timerule import SampleClock
+from ....core.timerule import SampleClock, on_grid
 from ..adaptive import AdaptiveCompensator
 from ..streaming import Envelope
 from .derived import CLAMPED, DERIVED, INITIAL
@@ -167,6 +167,9 @@ class _System:
     # what follows the system: the correction guard and the reference update (:mod:`.output`)
     substitute_time: bool = False    # a non-increasing time too is substituted (timerule.py)
     time_period: float = 0.0         # s: a sample without time is this after the previous
+    # s: the training period a model with a memory steps on (cadence72): a sample less than it
+    # after the last one stepped (timerule.on_grid) is held, its pre-guard output repeated; 0: none
+    grid_period: float = 0.0
     guard: bool = False
     guard_lo: list | None = None     # (n_targets,) µm of predicted error
     guard_hi: list | None = None
@@ -339,6 +342,7 @@ def state_space(deployed, provenance: dict | None = None, known_ambient: bool = 
         for d, row in law.delayed.items():
             bd[r, d - 1] = row
     period = float(period) if period is not None else 0.0
+    grid = float(getattr(comp, "grid_period_s_", None) or 0.0)
     states_by = sorted({key for _, law in laws for key in law.gain_by})
     state_gain = np.zeros((len(laws), len(states_by), N))
     for r, (_, law) in enumerate(laws):
@@ -361,7 +365,7 @@ def state_space(deployed, provenance: dict | None = None, known_ambient: bool = 
         law_hi=[law.hi for _, law in laws], law_ambient=[int(law.ambient) for _, law in laws],
         ambient_inputs=ambient, ambient_centre=AMBIENT_CENTRE_C, ambient_given=given,
         ambient_optional=bool(given and not ati and stream.ambient_optional_),
-        uses_time=bool(keys) or bool(initial) or bool(switches),
+        uses_time=bool(keys) or bool(initial) or bool(switches) or bool(grid),
         powers=[list(k) for k in sorted(powers, key=powers.get) if k[0] not in (DERIVED, INITIAL)],
         derived=[list(k[1:5]) for k in derived],
         derived_clamped=[int(k[5:] == (CLAMPED,)) for k in derived]
@@ -378,7 +382,8 @@ def state_space(deployed, provenance: dict | None = None, known_ambient: bool = 
         if states_by else [], clamp_state_first=by_state if states_by else [],
         **_pattern_fields(env if clamp else None, len(states)),
         # a sample without time: one period later (timerule.py); a plain stream's: the lags'
-        **time_fields(deployed, period),
+        **time_fields(deployed, period or grid),
+        grid_period=grid,
         **guard_fields(deployed, len(states), clamp and env.basis is not None),
         **adapt_fields(deployed),
         provenance={**(provenance or {}), **({"laws": chosen} if chosen else {})})
@@ -583,6 +588,14 @@ class Simulator:
         else:
             self.buf = np.vstack([u[None, :], self.buf[:-1]])
         v = (self.buf * self.fir).sum(axis=0)
+        if not self.first and ss.grid_period:
+            if not on_grid(now - self.t_grid, dt, ss.grid_period):    # held (cadence72)
+                self.c = self.output.step(self.y_grid, False, dt, self.allow_grid)
+                return self.c.copy()
+            lag_dt = now - self.t_grid
+        else:
+            lag_dt = dt
+        self.t_grid = now
         if self.first:
             self.ref = np.where(np.asarray(ss.referenced, bool), v, 0.0)
             a0 = ambient_c0(v[ss.ambient_inputs]) if ss.ambient_inputs else (
@@ -626,7 +639,7 @@ class Simulator:
                                   np.zeros(len(ss.initial))]])
         xl = xs[:, self.lag_input]
         first = self.first
-        e = None if self.first else np.exp(-dt / self.taus)
+        e = None if self.first else np.exp(-lag_dt / self.taus)
         if self.first:
             self.hist = np.repeat(xs[:, None, :len(x)], ss.depth, axis=1)
             z, self.y = np.where(self.lag_rest, 0.0, xl), np.zeros((2, len(ss.laws)))
@@ -655,8 +668,9 @@ class Simulator:
             self.bound = np.abs(self._summed(gain @ excess))
         outright = np.asarray(ss.clamp_outright or [0] * len(y[0]), bool) | self.by_outright
         bound = np.where(outright, np.inf, self.bound)
-        self.c = self.output.step(y[0] - np.clip(y[1], -bound, bound), first, dt,
-                                  self.output.allowance(x, self.envelope))
+        self.y_grid = y[0] - np.clip(y[1], -bound, bound)
+        self.allow_grid = self.output.allowance(x, self.envelope)
+        self.c = self.output.step(self.y_grid, first, dt, self.allow_grid)
         return self.c.copy()
 
     def _beside(self, y: np.ndarray, targets: list, weights: list, laws: list,
