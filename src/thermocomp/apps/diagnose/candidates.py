@@ -149,7 +149,8 @@ def candidates(problem, model_inputs: list[str], excluded: set, accepted: list[E
             out += [Effect("interaction", "product", s, other=t, frame=f) for f in frames for t in temps]
         # the state's change times a temperature's rise over the air's (each ambient sensor's): a
         # tilt is a structure's gradient, one face held by the air, which no sensor's rise alone
-        # reads; through the lever p - p(0) only, so the family grows by one product per sensor
+        # reads; through the lever p - p(0) only, one product per sensor; the search keeps them
+        # only where the bank below cannot be tested (Search._bank_untestable, planted72)
         airs = [c for c in temps if is_ambient(c)]
         lever = None if problem.reference == "first_sample" else "referenced"
         out += [Effect("interaction", "product", s, other=t, frame=lever, over=a)

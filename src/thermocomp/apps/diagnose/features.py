@@ -29,7 +29,7 @@ temperature's rise *over the air's* (``over``: the ambient sensor): a tilt is a 
 structure, one face heated, the other held by the air, so a sensor's rise less the air's reads it
 where no sensor's rise alone does (planted72: the year-round VMC's column tilt, back less front,
 unmeasured: the best single rise explains 82-85 % of it, ``T_box1``'s rise over ``T_amb``'s
-94-96 %).  Every transform is causal (the value at
+94-96 %; tried where the bank of all the rises cannot be tested).  Every transform is causal (the value at
 ``t`` uses samples up to ``t`` of the same campaign), so it runs on a machine.
 
 ==================  ====================  =================================================
