@@ -95,6 +95,30 @@ regressors saturate 7 campaigns), 4001 not (67 ranked blocks), 7298 / 7300 as sh
 Its bar: the same three items against the same shipped rows, with this caveat stated: the
 fresh seeds 7291-7300 (the only fresh range given) were seen by rule ``over`` first, so item 3
 is no longer a never-seen check for this rule.
+
+Scored (2026-12-02; ``overstand`` 0e0c3a36 from a ``git archive``; shipped 75d52cca; ``compare``)
+-------------------------------------------------------------------------------------------------
+1. bench_moretest68's 133 rows: 3 differ, each a planted row now found (test RMSE after, µm)::
+
+     row            own test (4 campaigns)    new campaigns (24)
+     planted:515    4.744 -> 1.610 (-66.1 %)  4.574 -> 1.772 (-61.3 %)   S_pos_Y x T_box1 over T_amb
+     planted:737    6.894 -> 2.060 (-70.1 %)  4.895 -> 1.789 (-63.5 %)   the same
+     planted:1514   3.785 -> 1.502 (-60.3 %)  5.285 -> 1.747 (-67.0 %)   the same
+
+   planted found 19 -> 22 of 23 (missed 4001; none lost); clean + null accepting 0 of 44 both;
+   > 2 % worse on the new campaigns with the 90 % interval above +2 %: 0; rows > 2 % above the
+   shipped after (own or new): 0; the control: never.  Held.
+2. pde66: all 12 targets identical (the screw product kept on both planted copies; nothing on
+   the clean ones).  Held.
+3. Fresh 7291-7300: identical rows (clean accepting 0 of 5; planted found 4 of 5, 7299 missed
+   by both).  Held.
+
+**ADOPTED.**  Rule ``over``'s trace on the rows it reached before it was stopped (27 of the
+moretest lines, the few-campaign cases): besides 515 / 737 / 1514 it replaced the bank or a
+single product on 4004, 4006-4012 (own test +17.7 % on 4004, new campaigns +16.8 / +4.8 / +16.7
+% on 4006 / 4008 / 4011, -29.8 % on 4004): where the bank can be tested it is the better reading.
+CPU (user + sys, /usr/bin/time, the draws' simulation included): moretest rows (their own) 389 s
+shipped / 399 s overstand; pde66 write + diagnose 89.0 / 90.4 s; fresh 12.5 / 14.5 s.
 """
 
 from __future__ import annotations
