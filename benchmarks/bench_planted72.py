@@ -237,16 +237,7 @@ def compare(base: Path, new: Path) -> None:
     p69.moretest_bar(base / "work", new / "work")
     rows_bar("moretest", rm._read(base / "work" / "moretest.jsonl"),
              rm._read(new / "work" / "moretest.jsonl"))
-    print("== 2. pde66 (test RMSE after, shipped -> rule; accepted on E_Y)")
-    b, n = p69._pde(base / "pde" / "diagnose.jsonl"), p69._pde(new / "pde" / "diagnose.jsonl")
-    for k in b:
-        x, y = b[k]["after"], n[k]["after"]
-        flag = " ABOVE +2 %" if y > 1.02 * x else ""
-        print(f"  {k[0]} {k[1]}: {x:.4f} -> {y:.4f} ({100 * (y / x - 1):+.1f} %){flag}"
-              + (f"  {[a[:3] for a in n[k]['accepted']]}" if k[1] == "E_Y" else ""))
-    clean_pos = [k for k, o in n.items() if not k[0].endswith("_planted")
-                 and any(a[1] == "S_pos_Y" for a in o["accepted"])]
-    print(f"  S_pos_Y accepted on a clean copy: {clean_pos or 'none'}")
+    p69.pde_bar(base / "pde" / "diagnose.jsonl", new / "pde" / "diagnose.jsonl")
     print("== 3. fresh rows")
     rows_bar("fresh", rm._read(base / "fresh.jsonl"), rm._read(new / "fresh.jsonl"))
 

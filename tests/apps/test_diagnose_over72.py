@@ -13,11 +13,10 @@ import numpy as np
 import pandas as pd
 
 from test_diagnose_few import diagnosis
-from test_diagnose_positions61 import gantry
+from test_diagnose_positions61 import INPUTS, gantry, train_problem
 from thermocomp.apps.deploy.export.derived import exports
 from thermocomp.apps.diagnose.augmented import AugmentedRegressor
 from thermocomp.apps.diagnose.candidates import CandidateOptions, candidates
-from thermocomp.apps.diagnose.cv import Problem
 from thermocomp.apps.diagnose.features import Effect, effect_features
 from thermocomp.core.models import MLR
 
@@ -57,17 +56,9 @@ def test_the_product_over_the_air_streams_as_it_predicts():
 
 
 def test_the_search_tries_each_sensor_over_each_ambient_sensor():
-    ds = gantry()
-    rows = [ds.campaigns[c] for c in ds.ids("train")]
-    stacked = pd.concat(rows, ignore_index=True)
-    groups = np.repeat(ds.ids("train"), [len(r) for r in rows])
-    inputs = ["T_amb", "T_rail", "T_rail_top", "T_head", "T_bed"]
-    X = stacked[inputs] - stacked.groupby(groups)[inputs].transform("first")
-    problem = Problem(X, stacked["E_Y"].to_numpy(), stacked.assign(campaign=groups), groups,
-                      groups, "E_Y")
-    got = [c for c in candidates(problem, inputs, set(), [], CandidateOptions()) if c.over]
+    got = [c for c in candidates(train_problem(), INPUTS, set(), [], CandidateOptions()) if c.over]
     assert set(got) == {Effect("interaction", "product", "S_y_pos", other=t, over="T_amb")
-                        for t in inputs[1:]}
+                        for t in INPUTS[1:]}
 
 
 def test_seed_515s_planted_tilt_is_taken_over_the_air():
