@@ -254,8 +254,15 @@ def compare(base: Path, new: Path) -> None:
     """Bar 1 (the moretest rows), bar 2 (pde66) and bar 3 (the fresh rows)."""
     print("== 1. bench_moretest68's rows")
     moretest_bar(base, new)
+    pde_bar(base / "diagnose.jsonl", new / "diagnose.jsonl")
+    print("== 3. fresh rows")
+    fresh_bar(base, new)
+
+
+def pde_bar(base: Path, new: Path) -> None:
+    """Bar 2: pde66's targets (``bench_pde66.py diagnose``'s rows of two trees), after."""
     print("== 2. pde66 (test RMSE after, shipped -> rule; accepted on E_Y)")
-    b, n = _pde(base / "diagnose.jsonl"), _pde(new / "diagnose.jsonl")
+    b, n = _pde(base), _pde(new)
     for k in b:
         x, y = b[k]["after"], n[k]["after"]
         flag = " ABOVE +2 %" if y > 1.02 * x else ""
@@ -264,8 +271,6 @@ def compare(base: Path, new: Path) -> None:
     clean_pos = [k for k, o in n.items() if not k[0].endswith("_planted")
                  and any(a[1] == "S_pos_Y" for a in o["accepted"])]
     print(f"  S_pos_Y accepted on a clean copy: {clean_pos or 'none'}")
-    print("== 3. fresh rows")
-    fresh_bar(base, new)
 
 
 def main(argv: list[str]) -> int:

@@ -64,6 +64,20 @@ def gantry(seed: int = 61) -> Dataset:
     return Dataset(manifest.set_index("campaign"), frames, name="gantry61")
 
 
+INPUTS = ["T_amb", "T_rail", "T_rail_top", "T_head", "T_bed"]
+
+
+def train_problem() -> Problem:
+    """The gantry's train campaigns as the search's problem (E_Y, the inputs' rises)."""
+    ds = gantry()
+    rows = [ds.campaigns[c] for c in ds.ids("train")]
+    stacked = pd.concat(rows, ignore_index=True)
+    groups = np.repeat(ds.ids("train"), [len(r) for r in rows])
+    X = stacked[INPUTS] - stacked.groupby(groups)[INPUTS].transform("first")
+    return Problem(X, stacked["E_Y"].to_numpy(), stacked.assign(campaign=groups), groups, groups,
+                   "E_Y")
+
+
 def test_a_position_times_the_rises_of_all_inputs_is_a_candidate():
     frame = gantry().campaigns["C0"]
     X = frame[["T_rail", "T_rail_top"]] - frame[["T_rail", "T_rail_top"]].iloc[0]
@@ -74,15 +88,7 @@ def test_a_position_times_the_rises_of_all_inputs_is_a_candidate():
     assert F.shape == (len(frame), 2) and np.allclose(F, want)
     assert e.context_columns == ["S_y_pos"] and e.uses_inputs
     # the search builds it for every state, in both frames where the state's start varies
-    ds = gantry()
-    rows = [ds.campaigns[c] for c in ds.ids("train")]
-    stacked = pd.concat(rows, ignore_index=True)
-    groups = np.repeat(ds.ids("train"), [len(r) for r in rows])
-    inputs = ["T_amb", "T_rail", "T_rail_top", "T_head", "T_bed"]
-    X = stacked[inputs] - stacked.groupby(groups)[inputs].transform("first")
-    problem = Problem(X, stacked["E_Y"].to_numpy(), stacked.assign(campaign=groups), groups,
-                      groups, "E_Y")
-    got = candidates(problem, inputs, set(), [], CandidateOptions())
+    got = candidates(train_problem(), INPUTS, set(), [], CandidateOptions())
     banks = [c for c in got if c.transform == "inputs_product"]
     assert set(banks) == {Effect("interaction", "inputs_product", "S_y_pos", frame=f)
                           for f in ("absolute", "referenced")}

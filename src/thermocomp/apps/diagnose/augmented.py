@@ -349,8 +349,10 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
                 if tr == "first_order_lag" and e.initial_state:
                     parts.append(self._initial_state(i, e, context, a0, t, state))
             elif tr == "product":
-                parts.append(np.array([self._raw(e.column, context, state, own)
-                                       * self._raw(e.other, context, state, other)]))
+                o = self._raw(e.other, context, state, other)
+                if e.over is not None:      # the temperature over the air (features.effect_features)
+                    o -= self._raw(e.over, context, state, other)
+                parts.append(np.array([self._raw(e.column, context, state, own) * o]))
             elif tr == "inputs_product":
                 value = self._raw(e.column, context, state, own)
                 state.setdefault("state_of", {})[i] = value

@@ -31,6 +31,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
+from ...core.io.contract import is_ambient
 from .features import Effect
 
 CONTROL = "control:random_walk"
@@ -146,6 +147,14 @@ def candidates(problem, model_inputs: list[str], excluded: set, accepted: list[E
             frames = ([] if problem.reference == "first_sample" else ["referenced"]) + (
                 ["absolute"] if _start_varies(problem, s) else [])
             out += [Effect("interaction", "product", s, other=t, frame=f) for f in frames for t in temps]
+        # the state's change times a temperature's rise over the air's (each ambient sensor's): a
+        # tilt is a structure's gradient, one face held by the air, which no sensor's rise alone
+        # reads; through the lever p - p(0) only, one product per sensor; the search keeps them
+        # only where the bank below cannot be tested (Search._bank_untestable, planted72)
+        airs = [c for c in temps if is_ambient(c)]
+        lever = None if problem.reference == "first_sample" else "referenced"
+        out += [Effect("interaction", "product", s, other=t, frame=lever, over=a)
+                for s in s_cols for a in airs for t in temps if not is_ambient(t)]
         # the state times the rise of every model input at once (its lever on each structure's
         # growth): a law of two sensors' rises times a position is no single product
         out += [Effect("interaction", "inputs_product", s, frame=f) for s in s_cols

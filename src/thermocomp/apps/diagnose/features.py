@@ -24,7 +24,12 @@ that grows from the campaign start).  ``inputs_product`` multiplies a state by t
 structure's growth or bend reaches the tool, so a position scales the inputs' gains, as the
 initial ambient does in ``ambient_linear`` (a rail that grows and bows by two sensors' rises
 reaches the tool in proportion to where the saddle stands: one product of the position with
-one sensor is half the law, and the search takes one effect a round).  Every transform is causal (the value at
+one sensor is half the law, and the search takes one effect a round).  A product may take the
+temperature's rise *over the air's* (``over``: the ambient sensor): a tilt is a gradient across a
+structure, one face heated, the other held by the air, so a sensor's rise less the air's reads it
+where no sensor's rise alone does (planted72: the year-round VMC's column tilt, back less front,
+unmeasured: the best single rise explains 82-85 % of it, ``T_box1``'s rise over ``T_amb``'s
+94-96 %; tried where the bank of all the rises cannot be tested).  Every transform is causal (the value at
 ``t`` uses samples up to ``t`` of the same campaign), so it runs on a machine.
 
 ==================  ====================  =================================================
@@ -37,7 +42,8 @@ dynamics            ``lowpass_inputs``    :math:`L_\tau[x_i](t)` for every model
 (both lags)         ``initial_state``     also :math:`w_k^\top(c(0) - A_0)\,(1 - e^{-t/\tau})`
 ambient_interval    ``ambient_linear``    :math:`x_i(t)\,(A_0 - 20\,°C)` for every input
 ambient_interval    ``ambient_step``      :math:`x_i(t)\,[A_0 > A_{thr}]` for every input
-interaction         ``product``           :math:`\Delta c(t)\,\Delta o(t)`
+interaction         ``product``           :math:`\Delta c(t)\,\Delta o(t)`; with ``over``
+                                          :math:`\Delta c(t)\,(\Delta o(t) - \Delta a(t))`
 interaction         ``inputs_product``    :math:`c(t)\,(x_i(t) - x_i(0))` for every input
 (signal, product)   ``frame``             :math:`c` absolute or :math:`c - c(0)` (then
                                           :math:`o - o(0)` in a product)
@@ -121,6 +127,9 @@ class Effect:
         sample, whatever the data's reference; a ``product`` then multiplies it
         by the rise of ``other`` since the first sample.  ``None``: both in the
         data's frame (``reference``).
+    over : str or None
+        A ``product`` only: take ``other`` over this column (the air), ``o - a`` in
+        ``other``'s frame: a structure's gradient to the air.
     """
 
     kind: str
@@ -132,6 +141,7 @@ class Effect:
     initial_state: tuple | None = None
     initial_directions: int | None = None
     frame: str | None = None
+    over: str | None = None     # product: ``other``'s rise taken over this column's (the air's)
 
     def __post_init__(self):
         object.__setattr__(self, "initial_state", _tuple(self.initial_state))
@@ -155,6 +165,9 @@ class Effect:
                 or self.kind == "dynamics"):
             raise ParameterError(f"effect frame {self.frame!r} must be one of {list(FRAMES)}, on a "
                                  "raw, first_order_lag, square, product or inputs_product of a signal")
+        if self.over is not None and (self.transform != "product" or self.over == self.other):
+            raise ParameterError("effect over (the air a product's temperature is taken over) only "
+                                 "goes with a product, and names another column than its other")
         if self.initial_directions is not None and not (
                 self.initial_state and 1 <= int(self.initial_directions) <= len(self.initial_state)):
             raise ParameterError("effect initial_directions must be 1 .. the number of initial_state sensors")
@@ -183,7 +196,8 @@ class Effect:
             "ambient_linear": f"model inputs x (ambient_c0 - {AMBIENT_CENTRE_C:g}°C)",
             "ambient_step": f"model inputs x [ambient_c0 > {self.threshold_c:.2f}°C]"
             if self.threshold_c is not None else "",
-            "product": f"product({self.other}{' rise' if self.frame else ''}){frame}",
+            "product": f"product({self.other}{' rise' if self.frame else ''}"
+                       f"{f' over {self.over}' if self.over else ''}){frame}",
             "inputs_product": f"product(model inputs' rises){frame}",
             "square": f"square{frame}",
             "remove": "remove from the inputs",
@@ -204,7 +218,7 @@ class Effect:
         """Context columns the features need (besides ``time``/``campaign``/``ambient_c0``)."""
         if self.transform == "remove":
             return []
-        own = [c for c in (self.column, self.other) if c is not None] \
+        own = [c for c in (self.column, self.other, self.over) if c is not None] \
             if not self.uses_inputs or self.transform == "inputs_product" else []
         return list(dict.fromkeys(own + list(self.initial_state or ())))
 
@@ -390,6 +404,8 @@ def effect_features(effect: Effect, X, context: pd.DataFrame | None = None, grou
     if tr == "product":
         a = in_frame(_context_column(context, effect.column), g, own)
         b = in_frame(_context_column(context, effect.other), g, other)
+        if effect.over is not None:
+            b = b - in_frame(_context_column(context, effect.over), g, other)
         return (a * b)[:, None]
     if tr == "inputs_product":
         return in_frame(_context_column(context, effect.column), g, own)[:, None] * rises(X, g)

@@ -481,6 +481,18 @@ class Search:
         trained = self.problem.units_trained
         return trained is not None and n_features + 1 >= trained
 
+    def _bank_untestable(self, n_inputs: int) -> bool:
+        """True when a state times the rises of all ``n_inputs`` inputs (``inputs_product``) cannot
+        clear: one test block per CV unit and the bank saturates (:meth:`saturates`).  Only then
+        does a state times one temperature's rise over the air's (``Effect.over``) stand in for
+        it (planted72): a tilt is a structure's gradient to the air, which the bank reads (the
+        year-round VMC's column tilt: R^2 .96-.98) and one sensor's rise does not (.82-.85), the
+        rise over the air's in one regressor nearly (.94-.96).  Offered beside a bank that can be
+        tested it was taken as the simpler within one standard error and read the tilt less well
+        (fresh 7298 / 7300: test +10.0 / +5.2 %; ``benchmarks/bench_planted72.py``)."""
+        p = self.problem
+        return p.n_blocks_tested <= p.n_units and self.saturates(n_inputs)
+
     def _shortlist(self, scored: list[tuple[Effect, float]]) -> list[tuple[Effect, float]]:
         opts = self.options
         ranked = sorted((s for s in scored if s[0].column != CONTROL
@@ -514,6 +526,8 @@ class Search:
         for step in bar(range(int(opts.max_effects)), desc="diagnose rounds", unit="round"):
             names = self.cv.selection(self.inputs(), None)
             cands = candidates(p, names, set(self.excluded), self.effects, opts.candidates, used)
+            if not self._bank_untestable(len(names)):
+                cands = [e for e in cands if e.over is None]
             ok = p.validated                  # the rows CV scores (forward: not the first part)
             Z = np.column_stack([np.ones(len(p.y)), self.cv.design(names, self.effects)])[ok]
             Q = _orthonormal(Z)

@@ -37,7 +37,7 @@ EXPORTED_EFFECTS = ("a sensor's removal, the inputs' ambient law x (A0 - 20) and
 def is_derived(e) -> bool:
     """True for an effect whose feature is a derived input of the code (its initial-state
     transient too)."""
-    return e.transform in DERIVED_TRANSFORMS
+    return e.transform in DERIVED_TRANSFORMS and getattr(e, "over", None) is None  # not over the air
 
 
 def exports(e) -> bool:
