@@ -39,8 +39,7 @@ class Judgement:
             # column with more nodes than sensors: the far T_left1 went out first on 3 of 5 runs)
             z = np.where(self._judged, np.abs(np.nan_to_num(err)) * self._std ** 2, -1)
             j, resolves = self._lone_fault(int(np.argmax(z)), z, level, err)
-            if self._waits_for_alarm(j, level) or self._drift_vetoed(j, level, err, time, events,
-                                                                      resolves):
+            if self._drift_vetoed(j, level, err, time, events, resolves):
                 break
             self._exclude(j, f"drift: self-prediction error {err[j]:+.2g} °C over the last "
                              f"{self.confirm} samples", time, events, by_field=True)
@@ -66,16 +65,6 @@ class Judgement:
         elif self.new_state:
             self._name_state(level, err, time, events)
         return level, err
-
-    def _waits_for_alarm(self, j: int, level: np.ndarray) -> bool:
-        """Whether the drift exclusion of ``j``, within its own warning band, waits until a judged
-        sensor is beyond its alarm band.  A sensor barely past its warning band whose error the
-        exclusion of an in-band partner would mend is as often a regime training never held as a
-        fault on the partner (mon72: a lathe's steady 5000 rpm kept the healthy T_Tool_holder_1
-        0.4-0.6 °C off the field for 24 h, and the healthy T_NC_X1_drive, within its band, went
-        out twice); a fault on the partner grows on until a sensor passes its alarm band."""
-        return (self.new_state and bool(level[j] < WARNING)
-                and not (self._judged & (level >= ALARM)).any())
 
     # -- a new thermal state (module doc) ------------------------------------------------------
     def _drift_vetoed(self, j: int, level, err, time, events, resolves: bool | None = None) -> bool:
