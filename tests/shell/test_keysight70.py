@@ -209,6 +209,23 @@ def test_a_later_file_past_the_12th_says_the_order_of_the_whole_folder(tmp_path,
     assert "time: '%d/%m/%Y %H:%M:%S'" in conf
 
 
+def test_a_one_file_record_takes_the_order_its_read_reads_once(tmp_path, monkeypatch, caplog):
+    """A one file record's order is decided from the rows its read reads (small72): before, every
+    row was read once for the order (slashed._said) and again for the record."""
+    import thermocomp.core.io.slashed as slashed
+
+    path = _export(tmp_path / "dmu_eu.csv", dt.datetime(2027, 3, 12, 23), _values(2),
+                   day_first=True)           # its row 61 (13/03) says day first
+    monkeypatch.setattr(slashed, "_said", lambda *a: pytest.fail("the file read for its order"))
+    with caplog.at_level("INFO", logger="thermocomp"):
+        ds, _ = read_dataset(path, {"roles": {"error": ["*DISP*"]}})     # data.time=auto
+    assert list(ds.manifest["start"]) == [np.datetime64("2027-03-12T23:00")]
+    np.testing.assert_allclose(ds.campaigns["dmu_eu"]["time"].to_numpy()[59:62],
+                               [3540.0, 3600.0, 3660.013])         # past midnight, into the 13th
+    assert ("dates with slashes read as data.time='%d/%m/%Y %H:%M:%S', the order dmu_eu.csv's "
+            "data row 61 says ('13/03/2027 00:00:00:000')") in caplog.text
+
+
 def test_files_that_contradict_each_other_are_refused_naming_both(tmp_path, capsys):
     """Day first by the first (13/03 from its first row), month first by the second (03/13 from
     its row 61): one data.time cannot read both.  Before, init wrote the first's order and the

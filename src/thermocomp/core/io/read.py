@@ -113,7 +113,8 @@ from .runs import (
     run_values,
 )
 from .sheetruns import several_runs, sheet_parts
-from .slashed import record_order
+from .slashed import record_order, rows_tell
+from .slashed_rows import read_in
 from .sparse import measured_on, on_grid, said, sparse_totals
 from .starts import campaign_starts, commented_start
 from .steps import check_unit_steps
@@ -638,14 +639,11 @@ def _recorded_time(path: Path, files: list[Path], opts: ReadOptions) -> ReadOpti
     """``opts`` with ``time`` the order of the dates with slashes that the rows of the record
     ``path`` say, every one of its ``files``' (:mod:`.slashed`; ``data.time=auto``: a file's
     first row alone read a folder of a European PC's Keysight exports month first, its 13th
-    refused)."""
-    order = record_order(files, opts)
-    if order is None:
-        return opts
-    if (order.file, order.row) != (files[0], 1):     # (else the first row says it, as before)
-        logger.info(f"{path.name}: dates with slashes read as data.time={order.format!r}, the "
-                    f"order {order.file.name}'s data row {order.row} says ({order.value!r})")
-    return replace(opts, time=order.format)
+    refused).  A one-file record's read decides from the rows it reads (``order_in_rows``):
+    read once, not once for the order and again for the record (small72)."""
+    if path.is_file():
+        return replace(opts, order_in_rows=opts.time == "auto" and rows_tell(path, opts))
+    return read_in(record_order(files, opts), opts, path, files[0])
 
 
 def _record(path: Path, opts: ReadOptions) -> tuple[pa.Table, dict]:
