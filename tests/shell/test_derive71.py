@@ -34,15 +34,18 @@ DERIVE = {"E_tilt_X": TILT}
 OVERRIDE = f"data.derive={{E_tilt_X: '{TILT}'}}"
 
 
-def _folder(root: Path, hand: bool = False) -> Path:
+def _folder(root: Path, hand: bool = False, probed: tuple | None = None) -> Path:
     """Three runs of two probes 100 mm apart (three temperatures); ``hand``: with the tilt
-    column the lab computed, every digit kept."""
+    column the lab computed, every digit kept; ``probed``: ``(every, first row)`` of each probe
+    measured now and then, a probe cycle (``data.sparse_targets``)."""
     root.mkdir()
     for run in (1, 2, 3):
         temps, dx, dz = np.split(linear_run(7181, run), [3, 4], axis=1)
         frame = pd.DataFrame(np.round(temps, 3), columns=["T_a", "T_b", "T_c"])
         frame.insert(0, "time", 30.0 * np.arange(ROWS))
         frame["E_X1"], frame["E_X2"] = np.round(dx[:, 0], 3), np.round(0.4 * dx[:, 0] + dz[:, 0], 3)
+        for probe, (every, first) in zip(["E_X1", "E_X2"], probed or ()):
+            frame.loc[np.arange(ROWS) % every != first, probe] = np.nan
         if hand:
             frame["E_tilt_X"] = (frame["E_X1"] - frame["E_X2"]) / 0.1
         frame.to_csv(root / f"run{run}.csv", index=False, float_format="%.17g")
@@ -91,6 +94,34 @@ def test_a_bad_expression_is_refused_naming_the_key_and_nothing_is_written(tmp_p
              f"data.derive={{E_tilt_X: '{expression}'}}", "data.test_fraction=0.3", *FAST,
              f"out={tmp_path / 'out'}"], capsys, says)
     assert not (tmp_path / "out").exists()
+
+
+def test_a_derived_target_of_probe_cycles_is_one_measured_where_its_probes_both_are(tmp_path,
+                                                                                  capsys):
+    """small72: X1 probed every 4th row, X2 every 6th: the tilt is measured on every 12th, read
+    as a probe cycle (before: not said, not in the report) and scored there; probes never
+    measured on one row are refused naming the key (before: 'MLR: the target is measured on no
+    row'), nothing written."""
+    folder = _folder(tmp_path / "lab", probed=((4, 0), (6, 0)))
+    ds, report = read_dataset(folder, {"derive": DERIVE, "test_fraction": 0.3})
+    assert report["sparse_targets"]["E_tilt_X"]["every"] == 12
+    assert report["campaigns"]["run3"]["sparse_targets"]["E_tilt_X"] == {"measured": 10,
+                                                                         "every": 12}
+    measured = np.flatnonzero(np.isfinite(ds.campaigns["run3"]["E_tilt_X"].to_numpy()))
+    np.testing.assert_array_equal(measured, np.arange(0, ROWS, 12))
+    assert main(["run", f"data.path={folder}", OVERRIDE, "data.test_fraction=0.3", *FAST,
+                 f"out={tmp_path / 'a'}"]) == 0
+    assert "E_tilt_X measured on 1 row in 12 (30 rows): read as a probe cycle" in \
+        capsys.readouterr().err
+    tilt = json.loads((tmp_path / "a" / "metrics.json").read_text())["targets"]["E_tilt_X"]
+    assert tilt["test"]["measured_rows"] == 10
+    apart = _folder(tmp_path / "apart", probed=((4, 0), (4, 2)))
+    refused(["run", f"data.path={apart}", OVERRIDE, "data.test_fraction=0.3", *FAST,
+             f"out={tmp_path / 'b'}"], capsys,
+            "run1.csv, column 'E_tilt_X': data.derive.E_tilt_X: (E_X1 - E_X2) / 0.1 is measured "
+            "on no row: its error columns are never measured on the same row (E_X1 on 1 row in "
+            "4, E_X2 on 1 row in 4)")
+    assert not (tmp_path / "b").exists()
 
 
 def test_a_stream_and_a_served_reference_give_the_derived_target_by_the_same_arithmetic(tmp_path):

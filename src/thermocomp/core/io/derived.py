@@ -25,6 +25,7 @@ import numpy as np
 import pyarrow as pa
 
 from .contract import ContractError
+from .sparse import measured_on
 
 KEY = "data.derive"
 _NAME = re.compile(r"^E_\w+$")
@@ -161,6 +162,30 @@ def with_derived(table: pa.Table, derive: Mapping[str, str], path: Path) -> pa.T
     for offset, (name, values) in enumerate(added.items(), 1):
         table = table.add_column(last_error + offset, name, values)
     return table
+
+
+def sparse_derived(table: pa.Table, derive: Mapping[str, str], sparse: Mapping, path: Path
+                   ) -> dict:
+    """``{name: {"measured": rows, "every": rows}}`` of each derived column of ``table`` that
+    reads a target measured now and then (``sparse``: the campaign's ``sparse_targets``): a
+    target like them, measured on the rows where all its sources are (small72), fitted and
+    scored there; ContractError naming the key where its sources are each measured but never on
+    one row (no row to fit or score: 'MLR: the target is measured on no row' before)."""
+    out = {}
+    for name, text in derive.items():
+        sources = columns_of(_tree(f"{KEY}.{name}", text), KEY)
+        if not any(c in sparse for c in sources):
+            continue
+        out[name] = measured_on(_floats(table.column(name)))
+        if not out[name]["measured"] and all(
+                np.isfinite(_floats(table.column(c))).any() for c in sources):
+            cycles = ", ".join(f"{c} on 1 row in {sparse[c]['every']}" for c in sources
+                               if c in sparse)
+            raise ContractError(f"{KEY}.{name}: {text} is measured on no row: its error columns "
+                                f"are never measured on the same row ({cycles}); derive it from "
+                                "columns measured together (one probe cycle)", file=path,
+                                column=name)
+    return out
 
 
 def on_frame(frame, derive: Mapping[str, str], source) -> object:

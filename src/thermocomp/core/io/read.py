@@ -80,7 +80,7 @@ from .contract import (
     is_ambient,
     role,
 )
-from .derived import with_derived, without_derived
+from .derived import sparse_derived, with_derived, without_derived
 from .instants import START, start_instants, start_stamp
 from .joined import joined
 from .lines import Lines
@@ -221,8 +221,18 @@ def read_campaign(path: str | Path, cfg: Mapping | ReadOptions | None = None,
         If the file breaks the contract; see :func:`read_dataset`.
     """
     opts = cfg if isinstance(cfg, ReadOptions) else ReadOptions.from_cfg(cfg)
-    table, report = _campaign(Path(path), opts, one_run, errors)
-    return with_derived(table, opts.derive, Path(path)), report
+    return _derived(*_campaign(Path(path), opts, one_run, errors), opts, Path(path))
+
+
+def _derived(table: pa.Table, report: dict, opts: ReadOptions, path: Path
+             ) -> tuple[pa.Table, dict]:
+    """A campaign's ``table`` with ``data.derive``'s columns and its ``report`` with those of
+    them measured now and then (:func:`.derived.sparse_derived`)."""
+    table = with_derived(table, opts.derive, path)
+    sparse = sparse_derived(table, opts.derive, report.get("sparse_targets", {}), path)
+    if sparse:
+        report = {**report, "sparse_targets": {**report.get("sparse_targets", {}), **sparse}}
+    return table, report
 
 
 def _campaign(path: Path, opts: ReadOptions, one_run: bool, errors: Path | None
@@ -738,8 +748,9 @@ def _run_parts(path: Path, opts: ReadOptions) -> tuple[pd.DataFrame, dict]:
         parts = {}
         for cid, start, end in blocks:
             part = {name: column.slice(start, end - start) for name, column in columns.items()}
-            table, report = _assembled(part, renamed, rescaled, source, source_opts, lines, start)
-            parts[cid] = with_derived(table, opts.derive, path), {
+            table, report = _derived(*_assembled(part, renamed, rescaled, source, source_opts,
+                                                 lines, start), opts, path)
+            parts[cid] = table, {
                 "file": path.name, "split": "train", **report, "record_rows": [start, end],
                 **({"run_column": header} if header else {})}
     _check_runs(parts, path, opts)
