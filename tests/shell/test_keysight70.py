@@ -309,3 +309,42 @@ def test_the_served_model_reads_a_blocks_dates_in_its_records_order(tmp_path):
     with pytest.raises(MlflowException, match="data row 61 of the block: value '03/13/2027 "
                        "00:00:00:000' says its dates with slashes are month first"):
         CompensatorModel(copy.deepcopy(deployed)).predict(None, us, {"reset": True})
+
+
+def test_a_model_deployed_before_code71_says_it_reads_a_blocks_first_row_once(tmp_path, caplog,
+                                                                             capsys):
+    """small72: a model pickled before code71 has no ``slashed_``: its streams read dates with
+    slashes by each block's first row, without a word before; loading it says so, naming it,
+    once (serve's trusted copy of it does not say it again)."""
+    import mlflow
+
+    from test_export import _compose
+    from thermocomp.apps.deploy.pyfunc import load_deployed, save_compensator
+    from thermocomp.shell.builders import deployable_model
+    from thermocomp.shell.source import read_streamed
+
+    cfg = _compose(f"data.path={_two_runs(tmp_path / 'runs')}", "data.roles.error=['*DISP*']",
+                   "model=mlr", "track=false", "monitor.adaptive=false")
+    ds, train, _, _ = read_streamed(cfg, test=False)
+    deployed = deployable_model(cfg, ds, train, None, "serve.model")[0]
+    assert deployed.slashed_ == "%d/%m/%Y %H:%M:%S"
+    del deployed.slashed_                                   # as pickled before code71
+    old = save_compensator(deployed, tmp_path / "old")
+    capsys.readouterr()
+
+    def said() -> list[str]:     # (a serving process logs to stderr itself: load_context)
+        lines = [r.getMessage() for r in caplog.records] + capsys.readouterr().err.splitlines()
+        caplog.clear()
+        return [line for line in lines if "before code71" in line]
+
+    with caplog.at_level("WARNING"):
+        copied = save_compensator(load_deployed(str(old), old), tmp_path / "copy")
+        first = said()
+        assert len(first) == 1 and first[0].startswith(f"model {old} was deployed before code71")
+        assert "read in the order each block's first row says" in first[0]
+        assert "promote its run's model.pkl again" in first[0]
+        mlflow.pyfunc.load_model(str(old))                  # a serving process loads it
+        assert len(said()) == 1
+        mlflow.pyfunc.load_model(str(copied))
+        load_deployed(str(copied), copied)
+        assert said() == []
