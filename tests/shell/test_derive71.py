@@ -9,6 +9,7 @@ rig_a in full, with the C pack)."""
 from __future__ import annotations
 
 import copy
+import io
 import json
 from pathlib import Path
 
@@ -164,3 +165,36 @@ def test_init_proposes_the_probe_pairs_tilts_leaving_the_spacing_to_say(tmp_path
     filled = yaml.safe_load(text.replace("# derive:", "derive:").replace("#   E_", "  E_")
                             .replace("<spacing_m>", "0.1"))
     assert ReadOptions.from_cfg(filled).derive == DERIVE
+
+
+def test_the_compiled_stream_learns_from_a_derived_reference_by_the_readers_arithmetic(tmp_path):
+    """small72: stream.c (adapt.method=bias) computes the tilt's reference from a row's E_X1 and
+    E_X2 as the reader does (TC_DERIVED_REFERENCE, from derived.py's parsed tree): its
+    corrections equal those of the same rows carrying the tilt the lab computed (before: no
+    reference of the tilt, its corrections those of rows without any error)."""
+    import shutil
+    import subprocess
+
+    from test_export import checked_pack
+
+    if shutil.which("gcc") is None:
+        pytest.skip("no C compiler")
+    folder = _folder(tmp_path / "lab")
+    data = [f"data.path={folder}", OVERRIDE, "data.test_fraction=0.3"]
+    assert main(["run", *data, *FAST, "model=mlr", f"out={tmp_path / 'run'}"]) == 0
+    assert main(["export", *data, "track=false", "export.format=c", "adapt.method=bias",
+                 f"export.model={tmp_path / 'run' / 'model.pkl'}", f"out={tmp_path / 'code'}"]) == 0
+    checked_pack(tmp_path / "code")
+    rows = pd.read_csv(folder / "run3.csv").iloc[::3]          # a probe touch on every row
+    hand = rows.assign(E_tilt_X=(rows["E_X1"] - rows["E_X2"]) / 0.1)
+
+    def streamed(frame: pd.DataFrame) -> np.ndarray:
+        done = subprocess.run([str(tmp_path / "code" / "stream")], capture_output=True,
+                              input=frame.to_csv(index=False, float_format="%.17g").encode())
+        assert done.returncode == 0, done.stderr
+        return pd.read_csv(io.BytesIO(done.stdout))["C_tilt_X"].to_numpy(float)
+
+    derived, by_hand = streamed(rows), streamed(hand)
+    unreferenced = streamed(rows.drop(columns=["E_X1", "E_X2"]))
+    np.testing.assert_allclose(derived, by_hand, rtol=0, atol=1e-9)
+    assert np.abs(derived - unreferenced).max() > 1.0           # it learned (µm/m)
