@@ -9,6 +9,7 @@ rig_a in full, with the C pack)."""
 from __future__ import annotations
 
 import copy
+import io
 import json
 from pathlib import Path
 
@@ -34,15 +35,18 @@ DERIVE = {"E_tilt_X": TILT}
 OVERRIDE = f"data.derive={{E_tilt_X: '{TILT}'}}"
 
 
-def _folder(root: Path, hand: bool = False) -> Path:
+def _folder(root: Path, hand: bool = False, probed: tuple | None = None) -> Path:
     """Three runs of two probes 100 mm apart (three temperatures); ``hand``: with the tilt
-    column the lab computed, every digit kept."""
+    column the lab computed, every digit kept; ``probed``: ``(every, first row)`` of each probe
+    measured now and then, a probe cycle (``data.sparse_targets``)."""
     root.mkdir()
     for run in (1, 2, 3):
         temps, dx, dz = np.split(linear_run(7181, run), [3, 4], axis=1)
         frame = pd.DataFrame(np.round(temps, 3), columns=["T_a", "T_b", "T_c"])
         frame.insert(0, "time", 30.0 * np.arange(ROWS))
         frame["E_X1"], frame["E_X2"] = np.round(dx[:, 0], 3), np.round(0.4 * dx[:, 0] + dz[:, 0], 3)
+        for probe, (every, first) in zip(["E_X1", "E_X2"], probed or ()):
+            frame.loc[np.arange(ROWS) % every != first, probe] = np.nan
         if hand:
             frame["E_tilt_X"] = (frame["E_X1"] - frame["E_X2"]) / 0.1
         frame.to_csv(root / f"run{run}.csv", index=False, float_format="%.17g")
@@ -93,6 +97,34 @@ def test_a_bad_expression_is_refused_naming_the_key_and_nothing_is_written(tmp_p
     assert not (tmp_path / "out").exists()
 
 
+def test_a_derived_target_of_probe_cycles_is_one_measured_where_its_probes_both_are(tmp_path,
+                                                                                  capsys):
+    """small72: X1 probed every 4th row, X2 every 6th: the tilt is measured on every 12th, read
+    as a probe cycle (before: not said, not in the report) and scored there; probes never
+    measured on one row are refused naming the key (before: 'MLR: the target is measured on no
+    row'), nothing written."""
+    folder = _folder(tmp_path / "lab", probed=((4, 0), (6, 0)))
+    ds, report = read_dataset(folder, {"derive": DERIVE, "test_fraction": 0.3})
+    assert report["sparse_targets"]["E_tilt_X"]["every"] == 12
+    assert report["campaigns"]["run3"]["sparse_targets"]["E_tilt_X"] == {"measured": 10,
+                                                                         "every": 12}
+    measured = np.flatnonzero(np.isfinite(ds.campaigns["run3"]["E_tilt_X"].to_numpy()))
+    np.testing.assert_array_equal(measured, np.arange(0, ROWS, 12))
+    assert main(["run", f"data.path={folder}", OVERRIDE, "data.test_fraction=0.3", *FAST,
+                 f"out={tmp_path / 'a'}"]) == 0
+    assert "E_tilt_X measured on 1 row in 12 (30 rows): read as a probe cycle" in \
+        capsys.readouterr().err
+    tilt = json.loads((tmp_path / "a" / "metrics.json").read_text())["targets"]["E_tilt_X"]
+    assert tilt["test"]["measured_rows"] == 10
+    apart = _folder(tmp_path / "apart", probed=((4, 0), (4, 2)))
+    refused(["run", f"data.path={apart}", OVERRIDE, "data.test_fraction=0.3", *FAST,
+             f"out={tmp_path / 'b'}"], capsys,
+            "run1.csv, column 'E_tilt_X': data.derive.E_tilt_X: (E_X1 - E_X2) / 0.1 is measured "
+            "on no row: its error columns are never measured on the same row (E_X1 on 1 row in "
+            "4, E_X2 on 1 row in 4)")
+    assert not (tmp_path / "b").exists()
+
+
 def test_a_stream_and_a_served_reference_give_the_derived_target_by_the_same_arithmetic(tmp_path):
     """stdin's rows (monitor.input=-) carry E_X1 and E_X2: E_tilt_X is scored from them; a
     served block whose probe touch measured E_X1 and E_X2 adapts E_tilt_X as one carrying it
@@ -133,3 +165,36 @@ def test_init_proposes_the_probe_pairs_tilts_leaving_the_spacing_to_say(tmp_path
     filled = yaml.safe_load(text.replace("# derive:", "derive:").replace("#   E_", "  E_")
                             .replace("<spacing_m>", "0.1"))
     assert ReadOptions.from_cfg(filled).derive == DERIVE
+
+
+def test_the_compiled_stream_learns_from_a_derived_reference_by_the_readers_arithmetic(tmp_path):
+    """small72: stream.c (adapt.method=bias) computes the tilt's reference from a row's E_X1 and
+    E_X2 as the reader does (TC_DERIVED_REFERENCE, from derived.py's parsed tree): its
+    corrections equal those of the same rows carrying the tilt the lab computed (before: no
+    reference of the tilt, its corrections those of rows without any error)."""
+    import shutil
+    import subprocess
+
+    from test_export import checked_pack
+
+    if shutil.which("gcc") is None:
+        pytest.skip("no C compiler")
+    folder = _folder(tmp_path / "lab")
+    data = [f"data.path={folder}", OVERRIDE, "data.test_fraction=0.3"]
+    assert main(["run", *data, *FAST, "model=mlr", f"out={tmp_path / 'run'}"]) == 0
+    assert main(["export", *data, "track=false", "export.format=c", "adapt.method=bias",
+                 f"export.model={tmp_path / 'run' / 'model.pkl'}", f"out={tmp_path / 'code'}"]) == 0
+    checked_pack(tmp_path / "code")
+    rows = pd.read_csv(folder / "run3.csv").iloc[::3]          # a probe touch on every row
+    hand = rows.assign(E_tilt_X=(rows["E_X1"] - rows["E_X2"]) / 0.1)
+
+    def streamed(frame: pd.DataFrame) -> np.ndarray:
+        done = subprocess.run([str(tmp_path / "code" / "stream")], capture_output=True,
+                              input=frame.to_csv(index=False, float_format="%.17g").encode())
+        assert done.returncode == 0, done.stderr
+        return pd.read_csv(io.BytesIO(done.stdout))["C_tilt_X"].to_numpy(float)
+
+    derived, by_hand = streamed(rows), streamed(hand)
+    unreferenced = streamed(rows.drop(columns=["E_X1", "E_X2"]))
+    np.testing.assert_allclose(derived, by_hand, rtol=0, atol=1e-9)
+    assert np.abs(derived - unreferenced).max() > 1.0           # it learned (µm/m)

@@ -209,6 +209,23 @@ def test_a_later_file_past_the_12th_says_the_order_of_the_whole_folder(tmp_path,
     assert "time: '%d/%m/%Y %H:%M:%S'" in conf
 
 
+def test_a_one_file_record_takes_the_order_its_read_reads_once(tmp_path, monkeypatch, caplog):
+    """A one file record's order is decided from the rows its read reads (small72): before, every
+    row was read once for the order (slashed._said) and again for the record."""
+    import thermocomp.core.io.slashed as slashed
+
+    path = _export(tmp_path / "dmu_eu.csv", dt.datetime(2027, 3, 12, 23), _values(2),
+                   day_first=True)           # its row 61 (13/03) says day first
+    monkeypatch.setattr(slashed, "_said", lambda *a: pytest.fail("the file read for its order"))
+    with caplog.at_level("INFO", logger="thermocomp"):
+        ds, _ = read_dataset(path, {"roles": {"error": ["*DISP*"]}})     # data.time=auto
+    assert list(ds.manifest["start"]) == [np.datetime64("2027-03-12T23:00")]
+    np.testing.assert_allclose(ds.campaigns["dmu_eu"]["time"].to_numpy()[59:62],
+                               [3540.0, 3600.0, 3660.013])         # past midnight, into the 13th
+    assert ("dates with slashes read as data.time='%d/%m/%Y %H:%M:%S', the order dmu_eu.csv's "
+            "data row 61 says ('13/03/2027 00:00:00:000')") in caplog.text
+
+
 def test_files_that_contradict_each_other_are_refused_naming_both(tmp_path, capsys):
     """Day first by the first (13/03 from its first row), month first by the second (03/13 from
     its row 61): one data.time cannot read both.  Before, init wrote the first's order and the
@@ -292,3 +309,43 @@ def test_the_served_model_reads_a_blocks_dates_in_its_records_order(tmp_path):
     with pytest.raises(MlflowException, match="data row 61 of the block: value '03/13/2027 "
                        "00:00:00:000' says its dates with slashes are month first"):
         CompensatorModel(copy.deepcopy(deployed)).predict(None, us, {"reset": True})
+
+
+def test_a_model_deployed_before_code71_says_it_reads_a_blocks_first_row_once(tmp_path, caplog,
+                                                                             capsys):
+    """small72: a model pickled before code71 has no ``slashed_``: its streams read dates with
+    slashes by each block's first row, without a word before; loading it says so, naming it,
+    once (serve's trusted copy of it does not say it again)."""
+    import mlflow
+
+    from test_export import _compose
+    from thermocomp.apps.deploy.pyfunc import load_deployed, save_compensator
+    from thermocomp.shell.builders import deployable_model
+    from thermocomp.shell.source import read_streamed
+
+    cfg = _compose(f"data.path={_two_runs(tmp_path / 'runs')}", "data.roles.error=['*DISP*']",
+                   "model=mlr", "track=false", "monitor.adaptive=false")
+    ds, train, _, _ = read_streamed(cfg, test=False)
+    deployed = deployable_model(cfg, ds, train, None, "serve.model")[0]
+    assert deployed.slashed_ == "%d/%m/%Y %H:%M:%S"
+    del deployed.slashed_                                   # as pickled before code71
+    old = save_compensator(deployed, tmp_path / "old")
+    capsys.readouterr()
+
+    def said() -> list[str]:     # (a serving process logs to stderr itself: load_context)
+        lines = [r.getMessage() for r in caplog.records] + [
+            line.removeprefix("[thermocomp] warning: ") for line in capsys.readouterr().err.splitlines()]
+        caplog.clear()
+        return sorted({line for line in lines if "before code71" in line})   # (each said once)
+
+    with caplog.at_level("WARNING"):
+        copied = save_compensator(load_deployed(str(old), old), tmp_path / "copy")
+        first = said()
+        assert len(first) == 1 and first[0].startswith(f"model {old} was deployed before code71")
+        assert "read in the order each block's first row says" in first[0]
+        assert "promote its run's model.pkl again" in first[0]
+        mlflow.pyfunc.load_model(str(old))                  # a serving process loads it
+        assert len(said()) == 1
+        mlflow.pyfunc.load_model(str(copied))
+        load_deployed(str(copied), copied)
+        assert said() == []

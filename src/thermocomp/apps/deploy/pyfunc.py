@@ -145,6 +145,7 @@ class CompensatorModel(mlflow.pyfunc.PythonModel):
             # the signature is checked on the bytes before anything is unpickled
             self.streaming = signing.load(artifacts[COMPENSATOR_ARTIFACT], DEPLOYABLE,
                                           sig=artifacts.get(SIGNATURE_ARTIFACT))
+            said_if_unordered(self.streaming, str(artifacts[COMPENSATOR_ARTIFACT]))
         self.streaming.reset()
         self._sessions.clear()
         self._learned0 = self._learned_at_promotion()
@@ -442,4 +443,22 @@ def load_deployed(source: str, folder: str | Path | None = None):
                 raise ContractError("the artifacts it names lie outside the model folder", file=spec)
         else:
             pickled, sig = (files.fetch(named[k], k) for k in (COMPENSATOR_ARTIFACT, SIGNATURE_ARTIFACT))
-        return signing.load(pickled, DEPLOYABLE, sig=sig)
+        deployed = signing.load(pickled, DEPLOYABLE, sig=sig)
+    said_if_unordered(deployed, source)
+    return deployed
+
+
+def said_if_unordered(deployed, model: str) -> None:
+    """A model deployed before code71 carries no order of its record's dates with slashes
+    (``slashed_``, none in its pickle): said where it is loaded, naming it ``model``, and marked
+    said (``slashed_`` None of its own), so that a copy of it (``serve``'s trusted copy) does not
+    say it again (small72).  Its record is not in it: the order cannot be read again here."""
+    if "slashed_" in vars(deployed):
+        return
+    log.warning(f"model {model} was deployed before code71 and carries no order of its training "
+                "record's dates with slashes: a block's or connect.warm's dates with slashes "
+                "(03/11/2027 ...) are read in the order each block's first row says (10/03 then "
+                "11/03: October, then November); promote its run's model.pkl again (thermocomp "
+                "promote reads its record) to read them in its record's order. Times in seconds "
+                "or ISO 8601 are read as before")
+    deployed.slashed_ = None

@@ -18,13 +18,14 @@ from __future__ import annotations
 import ast
 import operator
 import re
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from pathlib import Path
 
 import numpy as np
 import pyarrow as pa
 
 from .contract import ContractError
+from .sparse import measured_on
 
 KEY = "data.derive"
 _NAME = re.compile(r"^E_\w+$")
@@ -93,6 +94,12 @@ def columns_of(tree: ast.Expression, key: str) -> list[str]:
     return names
 
 
+def sources(name: str, text: str) -> list[str]:
+    """The error columns the derived column ``name``'s expression ``text`` reads, in order."""
+    key = f"{KEY}.{name}"
+    return columns_of(_tree(key, text), key)
+
+
 def _tree(key: str, text: str) -> ast.Expression:
     try:
         return ast.parse(text.strip(), mode="eval")
@@ -121,6 +128,28 @@ def _value(node: ast.AST, columns: Mapping):
         inner = _value(node.operand, columns)
         return -inner if isinstance(node.op, ast.USub) else inner
     return _OPS[type(node.op)](_value(node.left, columns), _value(node.right, columns))
+
+
+def rendered(name: str, text: str, column: Callable[[str], str],
+             number: Callable[[float], str]) -> str:
+    """``data.derive``'s expression ``text`` of ``name`` written in another language's
+    arithmetic (C's: export), fully parenthesised, node by node as :func:`_value` computes it:
+    ``column`` writes a source column, ``number`` a constant (small72: the exported stream's
+    reference of a derived target)."""
+    def written(node: ast.AST) -> str:
+        if isinstance(node, ast.Expression):
+            return written(node.body)
+        if isinstance(node, ast.Constant):
+            return number(float(node.value))
+        if isinstance(node, ast.Name):
+            return column(node.id)
+        if isinstance(node, ast.UnaryOp):
+            return f"({'-' if isinstance(node.op, ast.USub) else '+'}{written(node.operand)})"
+        sign = {ast.Add: "+", ast.Sub: "-", ast.Mult: "*", ast.Div: "/"}[type(node.op)]
+        return f"({written(node.left)} {sign} {written(node.right)})"
+
+    sources(name, text)             # (checked: arithmetic of error columns and numbers only)
+    return written(_tree(f"{KEY}.{name}", text))
 
 
 def evaluated(name: str, text: str, columns: Mapping[str, np.ndarray], path: Path) -> np.ndarray:
@@ -161,6 +190,30 @@ def with_derived(table: pa.Table, derive: Mapping[str, str], path: Path) -> pa.T
     for offset, (name, values) in enumerate(added.items(), 1):
         table = table.add_column(last_error + offset, name, values)
     return table
+
+
+def sparse_derived(table: pa.Table, derive: Mapping[str, str], sparse: Mapping, path: Path
+                   ) -> dict:
+    """``{name: {"measured": rows, "every": rows}}`` of each derived column of ``table`` that
+    reads a target measured now and then (``sparse``: the campaign's ``sparse_targets``): a
+    target like them, measured on the rows where all its sources are (small72), fitted and
+    scored there; ContractError naming the key where its sources are each measured but never on
+    one row (no row to fit or score: 'MLR: the target is measured on no row' before)."""
+    out = {}
+    for name, text in derive.items():
+        read = sources(name, text)
+        if not any(c in sparse for c in read):
+            continue
+        out[name] = measured_on(_floats(table.column(name)))
+        if not out[name]["measured"] and all(
+                np.isfinite(_floats(table.column(c))).any() for c in read):
+            cycles = ", ".join(f"{c} on 1 row in {sparse[c]['every']}" for c in read
+                               if c in sparse)
+            raise ContractError(f"{KEY}.{name}: {text} is measured on no row: its error columns "
+                                f"are never measured on the same row ({cycles}); derive it from "
+                                "columns measured together (one probe cycle)", file=path,
+                                column=name)
+    return out
 
 
 def on_frame(frame, derive: Mapping[str, str], source) -> object:

@@ -82,6 +82,9 @@ class ReadOptions:
     data_bytes: int | None = None   # internal: the bytes of a CSV above its footer (None: unknown)
     drop_bytes: tuple = ()    # internal: byte spans of a CSV left out (its header written again)
     half: bool = False        # internal: one logger's file of a run of two (:mod:`.joined`)
+    # internal: a one-file record whose dates with slashes take the order its rows say, decided
+    # in its read (:mod:`.slashed`), not in a read of its own before
+    order_in_rows: bool = False
 
     def __post_init__(self):
         if self.missing not in MISSING_MODES:  # a caller's mistake, not the user's

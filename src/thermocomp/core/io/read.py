@@ -80,7 +80,7 @@ from .contract import (
     is_ambient,
     role,
 )
-from .derived import with_derived, without_derived
+from .derived import sparse_derived, with_derived, without_derived
 from .instants import START, start_instants, start_stamp
 from .joined import joined
 from .lines import Lines
@@ -113,7 +113,8 @@ from .runs import (
     run_values,
 )
 from .sheetruns import several_runs, sheet_parts
-from .slashed import record_order
+from .slashed import record_order, rows_tell
+from .slashed_rows import read_in
 from .sparse import measured_on, on_grid, said, sparse_totals
 from .starts import campaign_starts, commented_start
 from .steps import check_unit_steps
@@ -220,8 +221,18 @@ def read_campaign(path: str | Path, cfg: Mapping | ReadOptions | None = None,
         If the file breaks the contract; see :func:`read_dataset`.
     """
     opts = cfg if isinstance(cfg, ReadOptions) else ReadOptions.from_cfg(cfg)
-    table, report = _campaign(Path(path), opts, one_run, errors)
-    return with_derived(table, opts.derive, Path(path)), report
+    return _derived(*_campaign(Path(path), opts, one_run, errors), opts, Path(path))
+
+
+def _derived(table: pa.Table, report: dict, opts: ReadOptions, path: Path
+             ) -> tuple[pa.Table, dict]:
+    """A campaign's ``table`` with ``data.derive``'s columns and its ``report`` with those of
+    them measured now and then (:func:`.derived.sparse_derived`)."""
+    table = with_derived(table, opts.derive, path)
+    sparse = sparse_derived(table, opts.derive, report.get("sparse_targets", {}), path)
+    if sparse:
+        report = {**report, "sparse_targets": {**report.get("sparse_targets", {}), **sparse}}
+    return table, report
 
 
 def _campaign(path: Path, opts: ReadOptions, one_run: bool, errors: Path | None
@@ -638,14 +649,11 @@ def _recorded_time(path: Path, files: list[Path], opts: ReadOptions) -> ReadOpti
     """``opts`` with ``time`` the order of the dates with slashes that the rows of the record
     ``path`` say, every one of its ``files``' (:mod:`.slashed`; ``data.time=auto``: a file's
     first row alone read a folder of a European PC's Keysight exports month first, its 13th
-    refused)."""
-    order = record_order(files, opts)
-    if order is None:
-        return opts
-    if (order.file, order.row) != (files[0], 1):     # (else the first row says it, as before)
-        logger.info(f"{path.name}: dates with slashes read as data.time={order.format!r}, the "
-                    f"order {order.file.name}'s data row {order.row} says ({order.value!r})")
-    return replace(opts, time=order.format)
+    refused).  A one-file record's read decides from the rows it reads (``order_in_rows``):
+    read once, not once for the order and again for the record (small72)."""
+    if path.is_file():
+        return replace(opts, order_in_rows=opts.time == "auto" and rows_tell(path, opts))
+    return read_in(record_order(files, opts), opts, path, files[0])
 
 
 def _record(path: Path, opts: ReadOptions) -> tuple[pa.Table, dict]:
@@ -740,8 +748,9 @@ def _run_parts(path: Path, opts: ReadOptions) -> tuple[pd.DataFrame, dict]:
         parts = {}
         for cid, start, end in blocks:
             part = {name: column.slice(start, end - start) for name, column in columns.items()}
-            table, report = _assembled(part, renamed, rescaled, source, source_opts, lines, start)
-            parts[cid] = with_derived(table, opts.derive, path), {
+            table, report = _derived(*_assembled(part, renamed, rescaled, source, source_opts,
+                                                 lines, start), opts, path)
+            parts[cid] = table, {
                 "file": path.name, "split": "train", **report, "record_rows": [start, end],
                 **({"run_column": header} if header else {})}
     _check_runs(parts, path, opts)

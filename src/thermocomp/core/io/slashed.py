@@ -19,34 +19,20 @@ without a word.  With ``data.time=auto`` it reads in the order its training reco
 from __future__ import annotations
 
 from collections.abc import Iterable
-from dataclasses import dataclass, replace
+from dataclasses import replace
 from pathlib import Path
 
 import pandas as pd
+import pyarrow as pa
 
 from .contract import TIME, ContractError
 from .plain import is_converted
+from .slashed_rows import WAY, Order, decided, said_by
 from .sniff import resolved
 from .suffixes import is_text
 from .tables import peek_csv
 from .timestamps import is_slashed_stamp, slashed_format
 from .utf16 import is_utf16, utf8_options, utf16_as_utf8
-
-
-@dataclass(frozen=True)
-class Order:
-    """A record's order (``format``, strptime's) and the first row that says it."""
-
-    format: str
-    file: Path
-    header: str      # the time column's header in ``file``
-    row: int         # 1-based data row
-    value: str
-    keysight: bool   # said only by a Keysight DAQ's ms after a colon (no day or month past 12)
-
-    @property
-    def day_first(self) -> bool:
-        return self.format.startswith("%d/")
 
 
 def record_order(files: Iterable[Path], opts) -> Order | None:
@@ -63,28 +49,14 @@ def record_order(files: Iterable[Path], opts) -> Order | None:
     files = list(files)
     if opts.time != "auto" or not files:
         return None
-    strong, weak = {}, {}          # format -> its first Order, by a field past 12 / by Keysight
-    for i, path in enumerate(files):
-        said = _said(path, opts)
-        if said is None:
-            if i == 0:             # (the record's time is no date with slashes)
-                return None
-            continue
-        own, keysight = said
-        if len(own) > 1:
-            return None
-        for found, into in ((own, strong), (keysight, weak)):
-            for order in found.values():
-                into.setdefault(order.format, order)
-    orders = list((strong or weak).values())      # (a row past 12 outweighs a Keysight stamp)
-    day = next((o for o in orders if o.day_first), None)
-    month = next((o for o in orders if not o.day_first), None)
-    if day and month:
-        raise _contradiction(day, month)
-    return orders[0] if len(orders) == 1 else None
+    return decided(_said(path, opts) for path in files)
 
 
-WAY = {True: "day first", False: "month first"}
+def rows_tell(path: Path, opts) -> bool:
+    """``path``'s rows may say the order of its dates with slashes: a text file read as it is
+    or as the UTF-8 text of its UTF-16 (a workbook's cells are dates already; the other
+    converted forms' first row decides, as before)."""
+    return is_utf16(path) or is_text(path) and not is_converted(path, opts)
 
 
 def stream_format(time: pd.Series, recorded: str | None, source: str) -> str | None:
@@ -117,16 +89,6 @@ def stream_format(time: pd.Series, recorded: str | None, source: str) -> str | N
     return slashed_format(cells.iloc[0], order=recorded[:6])
 
 
-def _contradiction(day: Order, month: Order) -> ContractError:
-    first, second = sorted((day, month), key=lambda o: str(o.file))
-    return ContractError(
-        f"value {first.value!r} says its dates with slashes are {WAY[first.day_first]} "
-        f"({first.format!r}), but file {second.file}, column {second.header!r}, data row "
-        f"{second.row}: {second.value!r} says {WAY[second.day_first]} ({second.format!r}): the "
-        "files of one record are read in one order (data.time); export them from one PC, or "
-        "read each as a record of its own", file=first.file, column=first.header, row=first.row)
-
-
 def _said(path: Path, opts) -> tuple[dict[str, Order], dict[str, Order]] | None:
     """The orders ``path``'s rows say (``format``: its first row saying it) by a field past 12,
     and by a Keysight stamp; None where its first time cell is no date with slashes, it is no
@@ -136,7 +98,7 @@ def _said(path: Path, opts) -> tuple[dict[str, Order], dict[str, Order]] | None:
             said = _said(text, utf8_options(opts))
         return None if said is None else tuple({f: replace(o, file=path) for f, o in d.items()}
                                                for d in said)
-    if not is_text(path) or is_converted(path, opts):
+    if not rows_tell(path, opts):
         return None
     try:
         opts = resolved(path, opts)
@@ -148,11 +110,7 @@ def _said(path: Path, opts) -> tuple[dict[str, Order], dict[str, Order]] | None:
                             usecols=[column], dtype=str, encoding=opts.encoding).iloc[:, 0]
     except (ContractError, ValueError):   # (no evidence: the file's read says what is wrong)
         return None
-    own, keysight = {}, {}
-    for row, value in cells.dropna().str.strip().drop_duplicates().items():
-        told = slashed_format(value, keysight=False)
-        found, into = (told, own) if told else (slashed_format(value), keysight)
-        if found and found not in into:
-            into[found] = Order(found, path, header[column] if column < len(header) else TIME,
-                                row + 1, value, keysight=into is keysight)
-    return own, keysight
+    return said_by(pa.array(cells, type=pa.string(), from_pandas=True), path,
+                   header[column] if column < len(header) else TIME)
+
+

@@ -35,6 +35,7 @@ from .options import _OTHER_DELIMITERS, ROLE_ORDER, ReadOptions, _first_line
 from .own_headers import with_own_header
 from .roles import RUN, active, excel_days_header, naming, same_header, split_unit
 from .separators import UNICODE_MINUS, misgrouped, reads_as_number, thousands_hint, ungrouped
+from .slashed_rows import decided, read_in, said_by
 from .sniff import head_lines, resolved
 from .timestamps import (
     CLOCK,
@@ -43,6 +44,7 @@ from .timestamps import (
     described,
     elapsed_seconds,
     is_format,
+    is_slashed_stamp,
     maybe_elapsed,
     parsed,
     said_if_not_seconds,
@@ -199,14 +201,16 @@ def _typed_columns(path: Path, header: list[str], first_row: list[str], opts: Re
     # a column left out (data.roles.ignore) is read under a name no contract column can have
     names = [n if n is not None else f" ignored {i}" for i, n in enumerate(named)]
     types = {n: pa.float64() for n in named if n is not None and n not in (TIME, CLOCK, RUN)}
+    in_rows = False
     if RUN in names:           # a run's number or name, as written: split by it (.runs)
         types[RUN] = pa.string()
     if CLOCK in names:         # a date and a time of day: read as text, joined, then parsed
         types.update({TIME: pa.string(), CLOCK: pa.string()})
     elif TIME in names:
         first = first_row[names.index(TIME)].strip()
-        if maybe_elapsed(first, opts.time):      # h:mm:ss: read as text, the column tells
-            types[TIME] = pa.string()
+        in_rows = _order_in_rows(first, opts)
+        if maybe_elapsed(first, opts.time) or in_rows:
+            types[TIME] = pa.string()     # (h:mm:ss, a date with slashes: the column tells)
         else:
             opts = _timed(path, first, opts, header[names.index(TIME)])
             # (a second's fraction Arrow does not read, 13:05:00,500: read as text, parsed here)
@@ -223,6 +227,8 @@ def _typed_columns(path: Path, header: list[str], first_row: list[str], opts: Re
         types[TIME] = pa.string()     # the column as text, read and located by _stamps
         table = _read_csv_typed(path, names, {**types, **unnamed}, opts)
     _check_unnamed_empty(table, header, names, unnamed, path)
+    if in_rows:
+        opts = _read_in_rows_order(table.column(TIME), path, header[names.index(TIME)], opts)
     if TIME in types:          # and from here on rows are counted without them
         table = _without_empty_rows(table, path, lines)
         lines = replace(lines, empty_left_out=True)
@@ -235,7 +241,7 @@ def _typed_columns(path: Path, header: list[str], first_row: list[str], opts: Re
         if CLOCK in columns:
             columns[TIME] = _joined_time(columns[TIME], columns.pop(CLOCK), path, opts)
         elif TIME in types and pa.types.is_string(types[TIME]) and (
-                opts.time == "iso8601" or is_format(opts.time)):
+                opts.time == "iso8601" or is_format(opts.time) or in_rows):
             columns[TIME] = _stamps(columns[TIME], path, opts)
         elif TIME in types and pa.types.is_string(types[TIME]):
             columns[TIME] = elapsed_seconds(columns[TIME], opts.time, path,
@@ -243,6 +249,19 @@ def _typed_columns(path: Path, header: list[str], first_row: list[str], opts: Re
     except ContractError as exc:
         raise lines.located(exc) from None
     return _converted(columns, scales), _renames(header, named), _rescaled(scales), lines
+
+
+def _order_in_rows(first: str, opts: ReadOptions) -> bool:
+    """A one-file record's time of dates with slashes, ``data.time=auto``: the order its rows
+    say is decided from the cells its read reads (:mod:`.slashed`)."""
+    return opts.order_in_rows and opts.time == "auto" and is_slashed_stamp(first)
+
+
+def _read_in_rows_order(cells: pa.ChunkedArray, path: Path, header: str, opts: ReadOptions
+                        ) -> ReadOptions:
+    """``opts`` with ``time`` the order the time cells ``cells`` say (unchanged where none: its
+    first row's, as a record whose rows disagree is read, refused naming ``data.time``)."""
+    return read_in(decided([said_by(cells, path, header)]), opts, path, path)
 
 
 def _without_empty_rows(table: pa.Table, path: Path, lines: Lines) -> pa.Table:

@@ -34,6 +34,7 @@ from ...base.log import say
 from ...base.paths import resolve
 from ...core.continuation import lead_ins
 from ...core.io.contract import TIME
+from ...core.io.derived import sources as derived_sources
 from ...core.io.roles import RUN
 from ...core.io.source import check_streamed_columns
 from ...core.io.timestamps import CLOCK
@@ -262,11 +263,10 @@ def export(cfg: DictConfig) -> dict:
     deployed, provenance, ds = _deployed(cfg, source, fmt)
     stream = plain(deployed)
     left = not_in_code(deployed)
-    derived = sorted(getattr(deployed, "derived_", {}) or {})
-    if derived and getattr(deployed, "adapt_", None) is not None:
-        # (stream.c learns from a row's E_ cells as written; data.derive is the reader's)
-        left = [*left, f"a reference of {', '.join(derived)} from its probes (data.derive): the "
-                "code learns from a row carrying the column itself"]
+    # (small72) stream.c computes a derived target's reference from its error columns as the
+    # reader does (TC_DERIVED_REFERENCE): they are read under their lab's headers too
+    derive = dict(getattr(deployed, "derived_", {}) or {})
+    sources = [c for name, text in derive.items() for c in derived_sources(name, text)]
     if left:
         say(f"not in the code (the served model only): {'; '.join(left)}")
     family = model_family(stream.compensator)
@@ -275,10 +275,11 @@ def export(cfg: DictConfig) -> dict:
     # the machine's signals are called where the model was made; the code reads either name
     named = getattr(deployed, "lab_names_", {}) or {}
     lab = {c: raws[0] if len(raws) == 1 else raws
-           for c in (*stream.columns_, TIME, *stream.targets_) if (raws := raw_names(named, c))}
+           for c in dict.fromkeys((*stream.columns_, TIME, *stream.targets_, *sources))
+           if (raws := raw_names(named, c))}
     # the long file's run column travels with the model's names: from the registry as from a run
     run_column = next(iter(raw_names(named, RUN)), None)
-    read = {*stream.columns_, TIME, *stream.targets_}
+    read = {*stream.columns_, TIME, *stream.targets_, *sources}
     converted = {raw: unit for raw, unit in (getattr(deployed, "lab_units_", {}) or {}).items()
                  if unit[0] in read}
     if fmt == "c":
@@ -300,7 +301,7 @@ def export(cfg: DictConfig) -> dict:
     provenance.update(encoding=_stream_encoding(cfg, fmt),
                       missing_values=[str(m) for m in cfg.data.get("missing_values") or ()])
     provenance.update(model=family, source=source, version=version(), units=units, lab_names=lab,
-                      lab_units=converted, run_column=run_column,
+                      lab_units=converted, run_column=run_column, derive=derive,
                       exported=datetime.now(timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ"),
                       not_in_code=left)
     try:

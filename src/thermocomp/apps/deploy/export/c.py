@@ -10,6 +10,8 @@ from __future__ import annotations
 
 import math
 
+from ....core.io.derived import rendered
+from ....core.io.derived import sources as sources_of
 from ....core.timerule import C_TIME_RULE
 from .forest import forest_arrays
 from .laws import UNBOUNDED
@@ -92,6 +94,28 @@ def _lab_names(ss: StateSpace) -> str:
             f"{c_string(ss.provenance.get('thousands') or '')};"
             "  /* data.thousands: the digits' grouping mark (\"\": none) */\n"
             + _raw_file(ss))
+
+
+def _derived_references(ss: StateSpace) -> str:
+    """The reference of each target derived from error columns (``data.derive``, in the
+    provenance) where a row does not carry the column itself: the reader's arithmetic of the
+    error columns ``TC_SOURCE_NAMES`` (``r``, contract names, in um as read), generated from its
+    parsed tree (:func:`thermocomp.core.io.derived.rendered`; small72: the stream learned from
+    none).  A macro: compensator.c, which includes the header too, uses none of it."""
+    derive = {t: ss.provenance["derive"][t] for t in ss.targets
+              if t in (ss.provenance.get("derive") or {})}
+    sources = list(dict.fromkeys(c for t, text in derive.items() for c in sources_of(t, text)))
+    cases = "".join(f"(i) == {ss.targets.index(t)} ? "
+                    + rendered(t, text, lambda c: f"(r)[{sources.index(c)}]", number) + " : "
+                    for t, text in derive.items())
+    names = ", ".join(map(c_string, [*sources, ""]))
+    return ("/* a target derived from error columns (data.derive): where a row does not carry it,\n"
+            "   its reference is the reader's arithmetic of the error columns TC_SOURCE_NAMES\n"
+            "   (r, um; NAN where one is missing; NAN for a target measured itself) */\n"
+            f"#define TC_N_SOURCES {len(sources)}\n"
+            f"static const char *const TC_SOURCE_NAMES[TC_N_SOURCES + 1] = {{{names}}};\n"
+            # ((void)(r): read, where no target is derived, so no compiler says r is unused)
+            f"#define TC_DERIVED_REFERENCE(i, r) ((void)(r), {cases}NAN)")
 
 
 ENCODINGS = {"utf-8": 0, "cp1252": 1, "latin-1": 2}
@@ -231,6 +255,7 @@ static const int TC_INPUT_HELD[TC_N_INPUTS] = {{{", ".join(str(int(h)) for h in 
 static const double TC_INPUT_LIMIT[TC_N_INPUTS] = {{{", ".join(number(v) for v in ss.limits)}}};
 static const char *const TC_OUTPUT_NAMES[TC_N_OUTPUTS] = {{{outs}}};
 static const char *const TC_ERROR_NAMES[TC_N_OUTPUTS] = {{{errors}}};  /* measured errors */
+{_derived_references(ss)}
 /* The headers of the data the model was made from, which a stream may use instead */
 {_lab_names(ss)}
 

@@ -26,7 +26,9 @@ DRIVER = r"""/* stream.c: CSV rows of raw inputs on stdin -> corrections C_<axis
  * TC_RUN_COLUMN, or a time more than TC_PAUSE_S after the last (data.runs_at_pauses: a lab's
  * tests appended in one file, catman70) starts a campaign (the row is its reference).  With
  * TC_ADAPT, a row carrying a measured error in a TC_ERROR_NAMES column (E_<axis>, optional;
- * blank: none) is a reference measurement: its correction is printed, then the bias learns.
+ * blank: none) is a reference measurement: its correction is printed, then the bias learns;
+ * a target derived from error columns (data.derive) is measured where the row carries its
+ * TC_SOURCE_NAMES columns, by the reader's arithmetic (TC_DERIVED_REFERENCE).
  * With `--state FILE` a restarted process goes on where the last one stopped: FILE, where it
  * exists, is read back at the start (the compensator's tc_state, the stream's clock and its
  * run), and written after every row (to FILE.tmp, then renamed over FILE: a process killed
@@ -743,6 +745,8 @@ int main(int argc, char **argv) {
     static char line[MAX_LINE], run[MAX_CELL] = "";
     char *cells[MAX_COLS], *state_path = NULL, *state_tmp = NULL, *end;
     int where[TC_N_INPUTS], error_col[TC_N_OUTPUTS], time_col = -1, reset_col = -1, run_col = -1;
+    int source_col[TC_N_SOURCES + 1], k;
+    double r[TC_N_SOURCES + 1];        /* a row's error columns of derived targets (um) */
     int clock_col = -1;        /* a time of day beside the date (TC_CLOCK_COLUMN): joined */
     static char header_raw[MAX_LINE], units_raw[MAX_LINE], first_row[MAX_LINE], row_raw[MAX_LINE];
     char *raw[MAX_COLS];
@@ -909,6 +913,11 @@ int main(int argc, char **argv) {
         for (j = 0; TC_ADAPT && j < ncols; j++)
             if (strcmp(cells[j], TC_ERROR_NAMES[i]) == 0) error_col[i] = j;
     }
+    for (k = 0; k < TC_N_SOURCES; k++) {   /* a derived target's error columns (data.derive) */
+        source_col[k] = -1;
+        for (j = 0; TC_ADAPT && j < ncols; j++)
+            if (strcmp(cells[j], TC_SOURCE_NAMES[k]) == 0) source_col[k] = j;
+    }
     for (j = 0; j < ncols; j++) {
         if (strcmp(cells[j], "time") == 0) time_col = j;
         if (strcmp(cells[j], "reset") == 0) reset_col = j;
@@ -1056,8 +1065,14 @@ int main(int argc, char **argv) {
             fflush(stdout);
             return failed;
         }
+        for (k = 0; k < TC_N_SOURCES; k++)
+            r[k] = source_col[k] >= 0 ? converted(cells, source_col[k], &ignored) : NAN;
         for (i = measured = 0; i < TC_N_OUTPUTS; i++) {
-            e[i] = error_col[i] >= 0 ? converted(cells, error_col[i], &ignored) : NAN;
+            /* a derived target's reference: the reader's arithmetic of its error columns where
+               the row does not carry it (small72); no number (a missing one): not measured */
+            e[i] = error_col[i] >= 0 ? converted(cells, error_col[i], &ignored)
+                                     : TC_DERIVED_REFERENCE(i, r);
+            if (!isfinite(e[i])) e[i] = NAN;
             measured |= isfinite(e[i]);
         }
         if (measured) tc_reference(&s, e);

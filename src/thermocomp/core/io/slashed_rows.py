@@ -1,0 +1,118 @@
+"""What the rows of a record say of the order of its dates with slashes (small72): the shapes of
+its time cells, one decision for the record's files (:mod:`.slashed` looks at a folder's files;
+a one-file record's read decides from the cells it reads, :mod:`.tables`)."""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from dataclasses import dataclass, replace
+from pathlib import Path
+
+import numpy as np
+import pyarrow as pa
+import pyarrow.compute as pc
+
+from ...base.log import logger
+from .contract import ContractError
+from .timestamps import slashed_format
+
+
+@dataclass(frozen=True)
+class Order:
+    """A record's order (``format``, strptime's) and the first row that says it."""
+
+    format: str
+    file: Path
+    header: str      # the time column's header in ``file``
+    row: int         # 1-based data row
+    value: str
+    keysight: bool   # said only by a Keysight DAQ's ms after a colon (no day or month past 12)
+
+    @property
+    def day_first(self) -> bool:
+        return self.format.startswith("%d/")
+
+
+def decided(saids: Iterable[tuple[dict, dict] | None]) -> Order | None:
+    """:func:`record_order` of what each file's rows said (:func:`said_by`; None: its first
+    time is no date with slashes, the first file's saying the record's is none)."""
+    strong, weak = {}, {}          # format -> its first Order, by a field past 12 / by Keysight
+    for i, said in enumerate(saids):
+        if said is None:
+            if i == 0:             # (the record's time is no date with slashes)
+                return None
+            continue
+        own, keysight = said
+        if len(own) > 1:
+            return None
+        for found, into in ((own, strong), (keysight, weak)):
+            for order in found.values():
+                into.setdefault(order.format, order)
+    orders = list((strong or weak).values())      # (a row past 12 outweighs a Keysight stamp)
+    day = next((o for o in orders if o.day_first), None)
+    month = next((o for o in orders if not o.day_first), None)
+    if day and month:
+        raise _contradiction(day, month)
+    return orders[0] if len(orders) == 1 else None
+
+
+def read_in(order: Order | None, opts, record: Path, first: Path):
+    """``opts`` with ``time`` the record's ``order`` (unchanged where None), said where a row
+    other than the first of ``record``'s first file ``first`` says it."""
+    if order is None:
+        return opts
+    if (order.file, order.row) != (first, 1):     # (else the first row says it, as before)
+        logger.info(f"{record.name}: dates with slashes read as data.time={order.format!r}, the "
+                    f"order {order.file.name}'s data row {order.row} says ({order.value!r})")
+    return replace(opts, time=order.format)
+
+
+WAY = {True: "day first", False: "month first"}
+
+
+def _contradiction(day: Order, month: Order) -> ContractError:
+    first, second = sorted((day, month), key=lambda o: str(o.file))
+    return ContractError(
+        f"value {first.value!r} says its dates with slashes are {WAY[first.day_first]} "
+        f"({first.format!r}), but file {second.file}, column {second.header!r}, data row "
+        f"{second.row}: {second.value!r} says {WAY[second.day_first]} ({second.format!r}): the "
+        "files of one record are read in one order (data.time); export them from one PC, or "
+        "read each as a record of its own", file=first.file, column=first.header, row=first.row)
+
+
+# a date with slashes and a time of day, its parts that decide its format (Arrow's regex: no
+# unnamed group; the cell trimmed first), as timestamps.slashed_format reads them
+_PARTS = (r"^(?P<a>\d{1,2})/(?P<b>\d{1,2})/(?P<y>\d{4}|\d\d)(?P<sep>[ T])\d{1,2}:\d\d"
+          r"(?P<s>:\d\d(?:[.,:]\d+)?)?$")
+_KEYSIGHT = r"\d:\d\d:\d\d:\d{3}$"
+
+
+def said_by(cells: pa.Array | pa.ChunkedArray, path: Path, header: str
+            ) -> tuple[dict[str, Order], dict[str, Order]]:
+    """The orders the time cells ``cells`` (position: data row - 1) of ``path``'s column
+    ``header`` say (``format``: its first row saying it) by a field past 12, and by a Keysight
+    stamp.  A cell's format depends on its parts alone (a field past 12, the year's digits, the
+    separator, the seconds, a Keysight stamp's ms), so each shape is looked at once, at its first
+    row, not every row in Python (small72: the scan was the read's dearest part)."""
+    text = pc.utf8_trim_whitespace(cells)
+    parts = pc.extract_regex(text, _PARTS)
+    if parts.null_count == len(parts):     # (none, or no cell a date with slashes)
+        return {}, {}
+    field = {n: pc.struct_field(parts, n) for n in ("a", "b", "y", "sep", "s")}
+    shape = [pc.greater(pc.cast(field["a"], pa.int8()), 12),
+             pc.greater(pc.cast(field["b"], pa.int8()), 12), pc.equal(pc.utf8_length(field["y"]), 4),
+             pc.equal(field["sep"], "T"), pc.not_equal(field["s"], ""),
+             pc.match_substring_regex(text, _KEYSIGHT)]
+    code = sum(pc.fill_null(flag, False).to_numpy(zero_copy_only=False).astype(np.int8) << bit
+               for bit, flag in enumerate(shape))
+    code[~parts.is_valid().to_numpy(zero_copy_only=False)] = -1     # (no date with slashes)
+    kinds, first = np.unique(code, return_index=True)
+    rows = np.sort(first[kinds >= 0])
+    own, keysight = {}, {}
+    for row in rows.tolist():      # each shape at its first row, in the order of the rows
+        value = text[row].as_py()
+        told = slashed_format(value, keysight=False)
+        found, into = (told, own) if told else (slashed_format(value), keysight)
+        if found and found not in into:
+            into[found] = Order(found, path, header, row + 1, value, keysight=into is keysight)
+    return own, keysight
