@@ -176,4 +176,6 @@ def self_prediction(problem: Problem, inputs, later: pd.DataFrame | None = None,
         "own_ratio": own,
         "jump_ratio": np.minimum(cross, own),
     }, index=pd.Index([sensors[j] for j in judged], name="sensor"))
+    # a sensor whose neighbours extrapolate in every unit is not judged (no evidence either way)
+    out = out[np.isfinite(out["worst_unit_rmse"].to_numpy(float))]
     return out.sort_values("jump_ratio", ascending=False)
