@@ -98,8 +98,9 @@ T_t16 3.07.  RANGE (first form): 60/20/20 T_t4 4.31, T_t16 3.13 (second pass).
      90/10 mlr / arx / lagbank / pcr   nothing accepted, ch1-5 unchanged    8.5 / 31.1 / 109.8 / 26.1 s
 
    No removal tried in any row.  (Shipped, docs/diagnose.md diag70: hammerstein on all five
-   removes T_t5, ch1-ch4 +7.7 / +8.4 / +21.5 / +194 %, ch5 -6.7 %.)  90/10 hammerstein: see the
-   report of the stop (running at the verdict).
+   removes T_t5, ch1-ch4 +7.7 / +8.4 / +21.5 / +194 %, ch5 -6.7 %.)  90/10 hammerstein (scored
+   after the verdict): nothing accepted, ch1-5 2.773 / 2.746 / 3.455 / 2.497 / 3.271 unchanged
+   (316.5 s).
 2. Holds: faults58's planted found 10 -> 10 of 16 (climate room 4/4, Swiss drift + stuck, twin
    4/4), one unit 5 -> 5 of 16 (year-round drift1, offset1, stuck1; Swiss offset1, contact1): the
    same cases.  Test RMSE after as shipped on every case but the twin lathe: its one-unit cases
