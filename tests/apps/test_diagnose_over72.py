@@ -4,7 +4,9 @@ The year-round VMC's planted position effect acts through a column tilt, back le
 nodes no sensor reads: one sensor's rise reads it with R^2 0.82-0.85, ``T_box1``'s rise over
 ``T_amb``'s with 0.94-0.96 (``benchmarks/bench_planted72.py tilt``).  With 8 train campaigns the
 single products lost 1-3 campaigns and the bank of all the rises saturated, so seed 515 accepted
-nothing; the product over the air gains in all 8 and is taken.
+nothing; the product over the air gains in all 8 and is taken.  It exports (overexport72; refused
+by name before): a product's derived input with its second factor less the air's, ``r_a (r_b -
+r_c)``, in C, Structured Text and the Simulator as the served model streams it.
 """
 
 from __future__ import annotations
@@ -14,11 +16,14 @@ import pandas as pd
 
 from test_diagnose_few import diagnosis
 from test_diagnose_positions61 import INPUTS, gantry, train_problem
-from thermocomp.apps.deploy.export.derived import exports
+from test_export import needs_cc, parses_as_the_parsed_block
+from test_export_auto57 import TOLERANCE_UM, _proved
+from test_export_inputs_product62 import _diagnosed, _gantry
+from thermocomp.apps.deploy.export import exported_files, state_space
 from thermocomp.apps.diagnose.augmented import AugmentedRegressor
 from thermocomp.apps.diagnose.candidates import CandidateOptions, candidates
 from thermocomp.apps.diagnose.features import Effect, effect_features
-from thermocomp.core.models import MLR
+from thermocomp.core.models import MLR, LagBank
 
 OVER = {"kind": "interaction", "transform": "product", "column": "S_y_pos", "other": "T_rail_top",
         "over": "T_amb"}
@@ -33,8 +38,6 @@ def test_a_product_over_the_air_is_the_lever_times_the_rise_less_the_airs():
     assert np.allclose(F[:, 0], rise("S_y_pos") * (rise("T_rail_top") - rise("T_amb")))
     assert e.context_columns == ["S_y_pos", "T_rail_top", "T_amb"]
     assert "over T_amb" in e.title and Effect.from_dict(e.to_dict()) == e
-    # the code does not hold it (export refuses it by name); the plain product it does
-    assert not exports(e) and exports(Effect(**{**OVER, "over": None}))
 
 
 def test_the_product_over_the_air_streams_as_it_predicts():
@@ -68,3 +71,19 @@ def test_seed_515s_planted_tilt_is_taken_over_the_air():
     assert top["evidence"]["p_value_family"] <= 0.01
     assert j["after"]["test_rmse"] <= 0.6 * j["before"]["test_rmse"]
     assert not j["control_ever_clears_bar"]
+
+
+@needs_cc
+def test_the_product_over_the_air_exports_and_equals_the_stream(tmp_path, parsed_block):
+    """export62's gantry (a rail ``T_a``, its top plate ``T_b``, the air, a saddle's position):
+    the position times the plate's rise over the air's, around a lag bank (which lags the derived
+    input too).  The compiled C, the Structured Text and the Simulator equal ``replay`` (the served
+    model's stream, the clamp acting) to 1e-9 µm; export refused it by name before."""
+    over = {**OVER, "other": "T_b", "frame": "absolute"}
+    stream, tests, _ = _diagnosed(_gantry(tmp_path / "data"), [over], LagBank(n_taus=2))
+    ss = state_space(stream)
+    state, plate, air = (ss.inputs.index(c) for c in ("S_y_pos", "T_b", "T_amb"))
+    assert ss.derived == [[state, plate, 0, 1]] and ss.derived_over == [air]
+    assert "product(T_b rise over T_amb) (absolute)" in ss.provenance["laws"]["E_X"]
+    assert _proved(stream, tests, tmp_path) <= TOLERANCE_UM
+    parses_as_the_parsed_block(exported_files(stream, "st")["compensator.st"], parsed_block)

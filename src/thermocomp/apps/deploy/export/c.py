@@ -313,6 +313,7 @@ def source(ss: StateSpace) -> str:
         *(_ints(f"DERIVED_{name}", [f[i] for f in ss.derived])
           for i, name in enumerate(("A", "B", "REF_A", "REF_B"))),
         _ints("DERIVED_CLAMPED", ss.derived_clamped or [0] * len(ss.derived)),
+        _ints("DERIVED_OVER", ss.derived_over or [-1] * len(ss.derived)),
         _ints("STATE_INPUT", [st[0] for st in ss.clamp_states]),
         _ints("STATE_REF", [st[1] for st in ss.clamp_states]),
         _array("STATE_GAIN", ss.clamp_state_gain or [[[0.0] * n]] * r,
@@ -567,9 +568,11 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
     if (s->first)   /* the model's inputs and their excess at its first sample */
         for (j = 0; j < TC_N_INPUTS; j++) s->x0[0][j] = x[0][j], s->x0[1][j] = x[1][j];
     for (l = 0; l < TC_N_DERIVED; l++) {{
-        int a = DERIVED_A[l], b = DERIVED_B[l];
+        int a = DERIVED_A[l], b = DERIVED_B[l], c = DERIVED_OVER[l];
         double ra = s->seen[a] ? v[a] - (DERIVED_REF_A[l] ? s->v0[a] : 0.0) : 0.0;
         double rb = b < 0 ? 1.0 : (s->seen[b] ? v[b] - (DERIVED_REF_B[l] ? s->v0[b] : 0.0) : 0.0);
+        if (c >= 0 && s->seen[c])   /* a rise over the air's: r_b - r_c, in r_b's frame */
+            rb -= v[c] - (DERIVED_REF_B[l] ? s->v0[c] : 0.0);
         if (DERIVED_CLAMPED[l]) {{   /* a state times the model input's rise, clamped in channel 1 */
             x[0][TC_N_INPUTS + TC_N_POWERS + l] = ra * (x[0][b] - s->x0[0][b]);
             x[1][TC_N_INPUTS + TC_N_POWERS + l] = ra * (x[1][b] - s->x0[1][b]);

@@ -6,6 +6,8 @@ from its context, the raw value of each column it reads (a declared input denois
 read; missing: held).  A lag, a product, a square or a raw signal of those columns is a feature
 the code computes the same way from its inputs (``derived`` of :class:`~.statespace.StateSpace`),
 a lag a lag-bank channel on it; a low-pass of the model inputs is a channel on each input.  A
+product whose temperature is taken over the air (``over``, planted72) is that product, its second
+factor less the air's in the same frame, ``r_a (r_b - r_c)`` (``derived_over``, overexport72).  A
 state times the rises of all the inputs, ``c (x_i - x_i(0))`` (``inputs_product``, diagpos61), is
 one derived input per input (export62), its second factor the model's input ``x_i`` itself, the
 clamped one in the code's excess channel as the stream's model reads it (``derived_clamped``).  A
@@ -29,15 +31,15 @@ DERIVED_TRANSFORMS = ("first_order_lag", "product", "square", "raw", "inputs_pro
 AMBIENT_TRANSFORMS = ("ambient_linear", "ambient_step")     # laws on x the campaign's A0 switches
 EXPORTED_EFFECTS = ("a sensor's removal, the inputs' ambient law x (A0 - 20) and ambient step "
                     "x [A0 > A_thr], a first-order lag of a signal or input and of all the inputs "
-                    "(with or without its initial-state transient), a product of two columns, a "
-                    "state times the rises of all the inputs (inputs_product), a square of one "
-                    "and a signal as read (raw)")
+                    "(with or without its initial-state transient), a product of two columns "
+                    "(the second's rise over the air's too), a state times the rises of all the "
+                    "inputs (inputs_product), a square of one and a signal as read (raw)")
 
 
 def is_derived(e) -> bool:
     """True for an effect whose feature is a derived input of the code (its initial-state
     transient too)."""
-    return e.transform in DERIVED_TRANSFORMS and getattr(e, "over", None) is None  # not over the air
+    return e.transform in DERIVED_TRANSFORMS
 
 
 def exports(e) -> bool:
@@ -145,8 +147,10 @@ def derived_inputs(derived: Derived, inputs: list, powers: dict,
     ``r_a r_b`` (``b`` = -1: ``r_a`` alone) of ``r_j = v_j - ra v_j(0)``, the input as the
     stream's model reads it from its context (a declared input denoised, a state raw; its change
     since the campaign's first sample where ``ra``: the effect's frame, whatever the inputs'
-    reference); a lag is its lag bank channel on ``r_a``.  An ``inputs_product``'s, one per
-    model input ``i`` (the code's input ``cols[i]``), as ``(DERIVED, a, cols[i], ra, 1, CLAMPED)``:
+    reference); a lag is its lag bank channel on ``r_a``.  A product over the air ``c`` as
+    ``(DERIVED, a, b, ra, rb, OVER, c)``: ``r_a (r_b - r_c)``, ``r_c`` in ``r_b``'s frame.  An
+    ``inputs_product``'s, one per model input ``i`` (the code's input ``cols[i]``), as
+    ``(DERIVED, a, cols[i], ra, 1, CLAMPED)``:
     ``r_b`` is the model's input's rise ``x_i - x_i(0)``, which the clamp moves (its excess
     channel: ``r_a (e_i - e_i(0))``), not the context's value.  A transient's direction is registered
     as ``(INITIAL, sensors, weights, tau)`` (no lag channel: a static input of the laws)."""
@@ -170,7 +174,8 @@ def derived_inputs(derived: Derived, inputs: list, powers: dict,
             b, rb = inputs.index(e.other), other
         elif e.transform == "square":
             b, rb = a, own
-        key = (DERIVED, a, b, own, rb)
+        over = (OVER, inputs.index(e.over)) if getattr(e, "over", None) is not None else ()
+        key = (DERIVED, a, b, own, rb, *over)
         out.append((powers.setdefault(key, len(powers)), e.tau_s))
     return out
 
@@ -178,3 +183,4 @@ def derived_inputs(derived: Derived, inputs: list, powers: dict,
 DERIVED = "derived"     # the key of a derived input among the registered features
 INITIAL = "initial"     # the key of an initial-state transient's direction
 CLAMPED = "clamped"     # a derived input's second factor is the model's (clamped) input
+OVER = "over"           # a derived input's second factor is taken over the air's (planted72)

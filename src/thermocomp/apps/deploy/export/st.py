@@ -239,6 +239,8 @@ def function_block(ss: StateSpace) -> str:
         *(_constant(f"DERIVED_{name}", [f[i] for f in ss.derived], (len(ss.derived),), "INT")
           for i, name in enumerate(("A", "B", "REF_A", "REF_B"))),
         _constant("DERIVED_CLAMPED", ss.derived_clamped or [], (len(ss.derived),), "INT"),
+        _constant("DERIVED_OVER", ss.derived_over or [-1] * len(ss.derived), (len(ss.derived),),
+                  "INT"),
         f"    N_STATE_GAIN : INT := {nb};",
         _constant("STATE_INPUT", [st[0] for st in ss.clamp_states], (nb,), "INT"),
         _constant("STATE_REF", [st[1] for st in ss.clamp_states], (nb,), "INT"),
@@ -607,6 +609,16 @@ IF NOT refused THEN
                 rb := v[DERIVED_B[l]];
                 IF DERIVED_REF_B[l] <> 0 THEN
                     rb := rb - v0[DERIVED_B[l]];
+                END_IF;
+            END_IF;
+            (* a rise over the air's: r_b - r_c, in r_b's frame *)
+            IF DERIVED_OVER[l] >= 0 THEN
+                IF seen[DERIVED_OVER[l]] THEN
+                    IF DERIVED_REF_B[l] <> 0 THEN
+                        rb := rb - (v[DERIVED_OVER[l]] - v0[DERIVED_OVER[l]]);
+                    ELSE
+                        rb := rb - v[DERIVED_OVER[l]];
+                    END_IF;
                 END_IF;
             END_IF;
         END_IF;

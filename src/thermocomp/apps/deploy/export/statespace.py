@@ -16,7 +16,9 @@ everything its :meth:`~thermocomp.apps.deploy.StreamingCompensator.step` does to
    - v_j(0)`` in the effect's frame, ``v(0)`` the first value; a signal only they read is
    ``held`` when missing, as the model holds its context): :func:`.derived.derived_inputs`; where
    ``derived_clamped`` (a state times the inputs' rises, export62) ``r_b`` is the model's input's
-   rise ``x_b - x_b(0)``, and in the excess channel ``r_a (ex_b - ex_b(0))``;
+   rise ``x_b - x_b(0)``, and in the excess channel ``r_a (ex_b - ex_b(0))``; where
+   ``derived_over`` names an input ``c`` (a temperature's rise over the air's, overexport72)
+   ``r_b - r_c``, ``r_c`` in ``r_b``'s frame;
    then a diagnosed lag's initial-state transient (``initial``: ``w . (c(0) - A0) (1 - exp(-(t
    - t0)/tau))``, ``c(0)`` its sensors at the first sample that has one of them, a missing one
    0, ``A0`` the campaign's initial ambient, ``t0`` its first sample's time; exportrest60);
@@ -84,7 +86,7 @@ from ....core.io.values import reading_limit
 from ....core.timerule import SampleClock, on_grid
 from ..adaptive import AdaptiveCompensator
 from ..streaming import Envelope
-from .derived import CLAMPED, DERIVED, INITIAL
+from .derived import CLAMPED, DERIVED, INITIAL, OVER
 from .errors import NotExportable
 from .forest import ForestArrays, Forests, Switches
 from .laws import AMBIENT_CENTRE_C, LINEAR_FAMILIES, PLAIN, UNBOUNDED, Powers, target_laws, with_gains
@@ -140,6 +142,9 @@ class _System:
     # channel (e_b - e_b(0), e(0) the excess at the campaign's first sample): a state times the
     # inputs' rises (inputs_product, export62); [] none
     derived_clamped: list = field(default_factory=list)
+    # (n_derived,) the input c whose r_c the second factor is taken over, r_a (r_b - r_c): a
+    # temperature's rise over the air's (Effect.over, overexport72); -1 none; [] none at all
+    derived_over: list = field(default_factory=list)
     # a diagnosed lag's initial-state transient, after the derived inputs, one per direction:
     # [tau, [sensor input indices], [weights]]: w . (v(0) - A0) (1 - exp(-(t - t0) / tau)),
     # v(0) the sensors at the campaign's first sample that has one of them (a missing one: 0)
@@ -369,7 +374,9 @@ def state_space(deployed, provenance: dict | None = None, known_ambient: bool = 
         powers=[list(k) for k in sorted(powers, key=powers.get) if k[0] not in (DERIVED, INITIAL)],
         derived=[list(k[1:5]) for k in derived],
         derived_clamped=[int(k[5:] == (CLAMPED,)) for k in derived]
-        if any(k[5:] for k in derived) else [],
+        if any(k[5:] == (CLAMPED,) for k in derived) else [],
+        derived_over=[k[6] if k[5:6] == (OVER,) else -1 for k in derived]
+        if any(k[5:6] == (OVER,) for k in derived) else [],
         initial=[[k[3], list(k[1]), list(k[2])] for k in initial],
         held=_held(inputs, n, powers, ambient, switches),
         input_limit=[min(reading_limit(c), UNBOUNDED) for c in inputs],
@@ -460,7 +467,7 @@ def _read(powers: dict) -> set:
     out = set()
     for k in powers:
         if k[0] == DERIVED:
-            out |= {j for j in k[1:3] if j >= 0}
+            out |= {j for j in (*k[1:3], *k[6:7]) if j >= 0}     # an air's too (OVER)
         elif k[0] == INITIAL:
             out |= set(k[1])
         else:
@@ -626,6 +633,9 @@ class Simulator:
             a, b, ra, rb = (np.array(c, int) for c in zip(*ss.derived))
             ta = np.where(self.seen[a], v[a] - ra * self.v0[a], 0.0)
             tb = np.where(b < 0, 1.0, np.where(self.seen[b], v[b] - rb * self.v0[b], 0.0))
+            if ss.derived_over:     # a rise over the air's: r_b - r_c, r_c in r_b's frame
+                c = np.asarray(ss.derived_over, int)
+                tb = tb - np.where((c >= 0) & self.seen[c], v[c] - rb * self.v0[c], 0.0)
             # an inputs_product's: the model's input's rise, the clamped one's in channel 1
             clamped = np.asarray(ss.derived_clamped or [0] * len(a), bool)
             tb = np.where(clamped, x[b] - self.x0[b], tb)
