@@ -331,14 +331,13 @@ def test_a_value_held_with_an_uncertain_status_is_a_dropout(tmp_path, monkeypatc
     assert abs(twin["targets"]["E_X"]["rms_compensated"] - ref) <= 0.05 * ref
 
 
-def test_sigterm_ends_connect_with_its_report(tmp_path, monkeypatch):
-    """SIGTERM mid-run (a service manager stopping it): before, status 1 and no connect.json.
-
-    Synchronised on what the client did, not on time (small69: it failed once under a load of
-    ~20): the twin's first sample waits for the client's connection (twin.wait_s 2 s: a connect
-    that took longer to fit its model and connect found the 120 samples served unanswered, one
-    period each, and no SIGTERM was sent), the signal goes once the client has answered a sample
-    from the 30th on, and the samples after it go on at the twin's pace (no client to wait for)."""
+def _stopped_twin_and_connect(tmp_path, monkeypatch, *, waited: int, kill: bool,
+                              speed: float = 20) -> dict:
+    """connect against the twin (lockstep, its first sample waiting for the client: twin.wait_s),
+    stopped mid-run; its connect.json.  Synchronised on what the client did, not on time
+    (small69: it failed once under a load of ~20): once the client has answered a sample from
+    the ``waited``-th on (``kill``: then SIGTERM to this process) the twin goes on at its own
+    pace (``speed`` samples a second: no client to wait for)."""
     import os
 
     from thermocomp.apps.machine import twin as machine
@@ -349,24 +348,89 @@ def test_sigterm_ends_connect_with_its_report(tmp_path, monkeypatch):
 
         async def _read_offsets(self, k):
             answered = await super()._read_offsets(k)
-            if k >= 30 and answered and not self.sent:
+            if k >= waited and answered and not self.sent:
                 self.sent, self.wait_s = True, 0.0
-                os.kill(os.getpid(), signal.SIGTERM)
+                if kill:
+                    os.kill(os.getpid(), signal.SIGTERM)
             return answered
 
     monkeypatch.setattr(machine, "Twin", Stopped)
     data, port = _twin_data(tmp_path), free_port()
     thread, raised = _served_in_thread([f"data.path={data}", f"out={tmp_path / 'twin'}",
-                                        f"twin.port={port}", "twin.speed=20", "twin.lockstep=true",
+                                        f"twin.port={port}", f"twin.speed={speed}", "twin.lockstep=true",
                                         "twin.wait_s=120", *FAST])
     code = main(["connect", f"data.path={data}", f"out={tmp_path / 'connect'}", *FAST,
                  f"connect.endpoint=opc.tcp://127.0.0.1:{port}", "connect.retry_s=0.2"])
     thread.join(timeout=60)
     assert not raised, raised
     assert code == 0
-    link = json.loads((tmp_path / "connect" / "connect.json").read_text())
+    return json.loads((tmp_path / "connect" / "connect.json").read_text())
+
+
+def test_sigterm_ends_connect_with_its_report(tmp_path, monkeypatch):
+    """SIGTERM mid-run (a service manager stopping it): before, status 1 and no connect.json.
+    (twin.wait_s 2 s: a connect that took longer to fit its model and connect found the 120
+    samples served unanswered, one period each, and no SIGTERM was sent.)"""
+    link = _stopped_twin_and_connect(tmp_path, monkeypatch, waited=30, kill=True)
     assert link["stopped"] == "SIGTERM" and link["events"][-1]["event"] == "stopped"
     assert 30 <= link["samples"] < 120
+
+
+def test_a_stop_as_a_sample_comes_ends_connect(tmp_path, monkeypatch):
+    """(sig72) The stop (what SIGTERM's handler does) in the loop pass that queues sample 30's
+    change while the session waits on its queue: before, Python 3.11's asyncio.wait_for returned
+    the sample and dropped run()'s cancel of the session (cpython #86296); the client streamed
+    every sample on until the twin said done (the test above failed so in 2 of 8 runs at
+    7227ab61; against a server without done it never ended)."""
+    import asyncio
+    from contextlib import contextmanager
+
+    from thermocomp.apps.machine import client
+
+    stops = []
+    handlers_set = client._stop_on_signals
+
+    @contextmanager
+    def kept(stop, link):
+        stops.append((stop, link))
+        with handlers_set(stop, link):
+            yield
+
+    class StopAsSample30Comes(client._Changes):
+        """Sample 30's change (or the last one after it, the twin going on) held until the
+        session waits on its queue, then queued with the stop in one pass: the order the race
+        lost in, every run."""
+
+        def __init__(self, queue):
+            super().__init__(queue)
+            self.held, get = None, queue.get
+
+            async def waiting_get():
+                if self.held is not None:
+                    asyncio.get_running_loop().call_soon(self.release)
+                return await get()
+
+            queue.get = waiting_get
+
+        def datachange_notification(self, node, val, data):
+            if type(val) is int and val >= 30 and not stops[0][1].stopped:
+                self.held = val
+                return
+            super().datachange_notification(node, val, data)
+
+        def release(self):
+            stop, link = stops[0]
+            link.stopped = "SIGTERM"
+            stop.set()
+            self.queue.put_nowait(self.held)
+            self.held = None
+
+    monkeypatch.setattr(client, "_stop_on_signals", kept)
+    monkeypatch.setattr(client, "_Changes", StopAsSample30Comes)
+    link = _stopped_twin_and_connect(tmp_path, monkeypatch, waited=29, kill=False, speed=100)
+    events = [e["event"] for e in link["events"]]
+    assert events[-1] == "stopped" and "done" not in events, events
+    assert 30 <= link["samples"] <= 31, link["samples"]     # the one read as it stopped, or not
 
 
 def test_the_server_clock_ticking_each_second_gives_a_sample_each_period():

@@ -38,7 +38,7 @@ import math
 import signal
 import threading
 import time as clock
-from contextlib import contextmanager
+from contextlib import contextmanager, suppress
 from dataclasses import dataclass
 from datetime import datetime, timezone
 
@@ -213,10 +213,9 @@ class Connection:
                     lost_at = now
                 if now - lost_at > self.give_up_s:
                     raise LinkLost(f"no OPC UA server at {self.endpoint} for {self.give_up_s:g} s")
-                try:
-                    await asyncio.wait_for(stop.wait(), self.retry_s)
-                except asyncio.TimeoutError:
-                    pass
+                with suppress(TimeoutError):
+                    async with asyncio.timeout(self.retry_s):
+                        await stop.wait()
 
     async def _plan(self, client) -> _Plan:
         """The session's nodes: ids resolved (``nsu=``), each checked to be there, the offset
@@ -308,9 +307,12 @@ class Connection:
             reads = [n for n in plan.inputs if n is not None] + list(plan.status.values())
             reads += [plan.clock] if plan.clock is not None else []
             while True:
+                # asyncio.timeout, not wait_for: 3.11's wait_for returns the item when run()'s
+                # cancel comes as it arrives (cpython #86296): SIGTERM was then lost until done
                 try:
-                    await asyncio.wait_for(queue.get(), timeout=self.retry_s / 4)
-                except asyncio.TimeoutError:
+                    async with asyncio.timeout(self.retry_s / 4):
+                        await queue.get()
+                except TimeoutError:
                     await client.check_connection()
                     if self.limiter.decaying(now()) and not self._stale:
                         self._stale = True
@@ -330,7 +332,8 @@ class Connection:
                     await self._write(client, plan, k, self.limiter.fresh(y, now(), self._time))
         finally:
             try:     # a dead link would keep the goodbye waiting for the request timeout
-                await asyncio.wait_for(client.disconnect(), self.retry_s)
+                async with asyncio.timeout(self.retry_s):
+                    await client.disconnect()
             except Exception:            # the link is gone already
                 client.disconnect_socket()
 
