@@ -82,31 +82,31 @@ def _imports(name: str, path: Path, modules: set[str], import_time: bool = False
     return out
 
 
-@functools.cache
 def _graph() -> dict[str, set[str]]:
     """Each module's imports: parsed by the first test that asks (1.1 s of CPU), not at
     collection, which every xdist worker does and one of them for nothing."""
-    files = {_module_name(p): p for p in sorted((SRC / ROOT).rglob("*.py"))}
-    modules = set(files)
-    return {name: _imports(name, path, modules, tree=_trees()[name]) for name, path in files.items()}
+    return _graphs()[0]
 
 
-@functools.cache
-def _trees() -> dict[str, ast.AST]:
-    return {_module_name(p): ast.parse(p.read_text(), str(p)) for p in sorted((SRC / ROOT).rglob("*.py"))}
-
-
-@functools.cache
 def _import_time_graph() -> dict[str, set[str]]:
     """What importing each module runs: its imports outside functions, and the packages above
     each of ours it imports (``from ..machine.record import x`` runs ``apps/machine/__init__``)."""
+    return _graphs()[1]
+
+
+@functools.cache
+def _graphs() -> tuple[dict[str, set[str]], dict[str, set[str]]]:
+    """:func:`_graph` and :func:`_import_time_graph` from one parse of each file (no tree kept:
+    held, the trees made the collector's every pass over them cost 3 s of CPU more)."""
     files = {_module_name(p): p for p in sorted((SRC / ROOT).rglob("*.py"))}
     modules = set(files)
-    graph = {}
+    graph, import_time = {}, {}
     for name, path in files.items():
-        deps = _imports(name, path, modules, import_time=True, tree=_trees()[name])
-        graph[name] = deps | {p for d in deps if d in modules for p in _packages_above(d)} - {name}
-    return graph
+        tree = ast.parse(path.read_text(), str(path))
+        graph[name] = _imports(name, path, modules, tree=tree)
+        deps = _imports(name, path, modules, import_time=True, tree=tree)
+        import_time[name] = deps | {p for d in deps if d in modules for p in _packages_above(d)} - {name}
+    return graph, import_time
 
 
 def _packages_above(module: str) -> list[str]:
