@@ -8,6 +8,9 @@ imported), so the test sees module-level and function-level imports alike; only 
 ``if TYPE_CHECKING:`` are left out (they never run).  A package's ``__init__`` is a module of its
 own: ``from ..models import ARX`` depends on ``thermocomp.core.models`` (the ``__init__``),
 ``from . import cv`` on ``thermocomp.apps.diagnose.cv``.
+
+A command's start-up (the console command, a stage's module, what their import runs: functions'
+bodies left out, the packages above an imported module in) loads none of :data:`LOADED_ON_USE`.
 """
 
 from __future__ import annotations
@@ -42,8 +45,9 @@ def _module_name(path: Path) -> str:
     return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
 
 
-def _runtime_nodes(tree: ast.AST):
-    """Every node except the bodies of ``if TYPE_CHECKING:`` blocks."""
+def _runtime_nodes(tree: ast.AST, import_time: bool = False):
+    """Every node except the bodies of ``if TYPE_CHECKING:`` blocks (``import_time``: and of
+    functions, which the module's import does not run; a class body it does)."""
     stack = [tree]
     while stack:
         node = stack.pop()
@@ -51,15 +55,19 @@ def _runtime_nodes(tree: ast.AST):
         for child in ast.iter_child_nodes(node):
             if isinstance(child, ast.If) and "TYPE_CHECKING" in ast.unparse(child.test):
                 stack.extend(child.orelse)
-            else:
+            elif import_time and isinstance(child, (ast.FunctionDef, ast.AsyncFunctionDef)):
+                stack.extend([*child.decorator_list, child.args])    # these run at import
+            elif not (import_time and isinstance(child, ast.Lambda)):
                 stack.append(child)
 
 
-def _imports(name: str, path: Path, modules: set[str]) -> set[str]:
-    """Names this module imports: modules of the package where they resolve, else top-level names."""
+def _imports(name: str, path: Path, modules: set[str], import_time: bool = False,
+             tree: ast.AST | None = None) -> set[str]:
+    """Names this module imports: modules of the package where they resolve, else top-level names
+    (``import_time``: only those its import itself runs, not those inside its functions)."""
     package = name if path.name == "__init__.py" else name.rpartition(".")[0]
     out = set()
-    for node in _runtime_nodes(ast.parse(path.read_text(), str(path))):
+    for node in _runtime_nodes(tree or ast.parse(path.read_text(), str(path)), import_time):
         if isinstance(node, ast.Import):
             out.update(alias.name for alias in node.names)
         elif isinstance(node, ast.ImportFrom):
@@ -74,13 +82,36 @@ def _imports(name: str, path: Path, modules: set[str]) -> set[str]:
     return out
 
 
-@functools.cache
 def _graph() -> dict[str, set[str]]:
     """Each module's imports: parsed by the first test that asks (1.1 s of CPU), not at
     collection, which every xdist worker does and one of them for nothing."""
+    return _graphs()[0]
+
+
+def _import_time_graph() -> dict[str, set[str]]:
+    """What importing each module runs: its imports outside functions, and the packages above
+    each of ours it imports (``from ..machine.record import x`` runs ``apps/machine/__init__``)."""
+    return _graphs()[1]
+
+
+@functools.cache
+def _graphs() -> tuple[dict[str, set[str]], dict[str, set[str]]]:
+    """:func:`_graph` and :func:`_import_time_graph` from one parse of each file (no tree kept:
+    held, the trees made the collector's every pass over them cost 3 s of CPU more)."""
     files = {_module_name(p): p for p in sorted((SRC / ROOT).rglob("*.py"))}
     modules = set(files)
-    return {name: _imports(name, path, modules) for name, path in files.items()}
+    graph, import_time = {}, {}
+    for name, path in files.items():
+        tree = ast.parse(path.read_text(), str(path))
+        graph[name] = _imports(name, path, modules, tree=tree)
+        deps = _imports(name, path, modules, import_time=True, tree=tree)
+        import_time[name] = deps | {p for d in deps if d in modules for p in _packages_above(d)} - {name}
+    return graph, import_time
+
+
+def _packages_above(module: str) -> list[str]:
+    parts = module.split(".")
+    return [".".join(parts[:i]) for i in range(1, len(parts))]
 
 
 def _edges() -> dict[str, set[str]]:
@@ -303,3 +334,22 @@ def _private_imports() -> dict[str, set[str]]:
 def test_private_helpers_are_imported_only_where_listed():
     # a new one: make it public where it is defined; one gone: take it off the list
     assert _private_imports() == PRIVATE_IMPORTS_LEFT
+
+
+# Libraries a command loads only where it uses them (a local import, with a comment why): at
+# import of the console command, of a stage's module and of what that imports, none.  Each costs
+# every CLI process that does not use it: skfuzzy (select=cluster_grey, ati clustering=fuzzy),
+# MLflow (a run tracked, only once there is one), matplotlib (a figure), torch (model=lstm), ...
+LOADED_ON_USE = ("torch", "mlflow", "matplotlib", "skfuzzy", "PyEMD", "asyncua", "ray", "optuna",
+                 "submitit", "blark", "onnx", "onnxruntime", "psycopg2", "dvc", "uvicorn")
+
+
+def test_commands_load_optional_libraries_only_on_use():
+    graph = _import_time_graph()
+    # the parser sees a package's __init__ run by an import below it, and not a function's body
+    assert f"{ROOT}.apps.machine" in graph[f"{ROOT}.shell.stages.twin"]
+    assert "asyncua" not in graph[f"{ROOT}.shell.stages.twin"]      # inside twin()
+    starts = sorted(_stage_modules() | {f"{ROOT}.__main__", f"{ROOT}.shell.cli"})
+    chains = [c for m in starts for c in _reaches(m, graph, LOADED_ON_USE)]
+    assert not chains, "a command's start-up imports a library it may not use:\n" + "\n".join(
+        "  " + " -> ".join(c) for c in chains)

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import numpy as np
-import skfuzzy
 
 from ...base.params import integer, number
 from .base import TSPSelector
@@ -52,6 +51,8 @@ def fuzzy_clusters(points: np.ndarray, c: int, m: float, seed: int) -> np.ndarra
         return np.arange(len(points))
     if c == 1:
         return np.zeros(len(points), dtype=int)
+    import skfuzzy  # here: every command loads this module (the selectors), few use it
+
     _, u, *_ = skfuzzy.cluster.cmeans(points.T, c, m, error=1e-6, maxiter=1000, seed=seed)
     return np.argmax(u, axis=0)
 
