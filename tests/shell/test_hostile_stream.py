@@ -233,6 +233,7 @@ def scoring(deployed, tmp_path_factory):
     from thermocomp.apps.deploy.pyfunc import save_compensator
 
     adaptive, test = deployed
+    adaptive.slashed_ = None     # as builders.deployable sets it: a record without dates with slashes
     rows = next(iter(test.values()))[adaptive.columns_ + ["time"]].reset_index(drop=True)
     folder = save_compensator(adaptive, tmp_path_factory.mktemp("served") / "model",
                               input_example=rows.head(3))

@@ -341,7 +341,8 @@ def test_a_model_deployed_before_code71_says_it_reads_a_blocks_first_row_once(tm
     with caplog.at_level("WARNING"):
         copied = save_compensator(load_deployed(str(old), old), tmp_path / "copy")
         first = said()
-        assert len(first) == 1 and first[0].startswith(f"model {old} was deployed before code71")
+        assert len(first) == 1 and first[0].startswith(f"model {old} carries no order of its training")
+        assert "(deployed before code71, or built outside thermocomp's deploy)" in first[0]
         assert "read in the order each block's first row says" in first[0]
         assert "promote its run's model.pkl again" in first[0]
         mlflow.pyfunc.load_model(str(old))                  # a serving process loads it

@@ -455,9 +455,9 @@ def said_if_unordered(deployed, model: str) -> None:
     say it again (small72).  Its record is not in it: the order cannot be read again here."""
     if "slashed_" in vars(deployed):
         return
-    log.warning(f"model {model} was deployed before code71 and carries no order of its training "
-                "record's dates with slashes: a block's or connect.warm's dates with slashes "
-                "(03/11/2027 ...) are read in the order each block's first row says (10/03 then "
+    log.warning(f"model {model} carries no order of its training record's dates with slashes "
+                "(deployed before code71, or built outside thermocomp's deploy): a block's or "
+                "connect.warm's dates with slashes (03/11/2027 ...) are read in the order each block's first row says (10/03 then "
                 "11/03: October, then November); promote its run's model.pkl again (thermocomp "
                 "promote reads its record) to read them in its record's order. Times in seconds "
                 "or ISO 8601 are read as before")
