@@ -457,8 +457,8 @@ def said_if_unordered(deployed, model: str) -> None:
         return
     log.warning(f"model {model} carries no order of its training record's dates with slashes "
                 "(deployed before code71, or built outside thermocomp's deploy): a block's or "
-                "connect.warm's dates with slashes (03/11/2027 ...) are read in the order each block's first row says (10/03 then "
-                "11/03: October, then November); promote its run's model.pkl again (thermocomp "
-                "promote reads its record) to read them in its record's order. Times in seconds "
-                "or ISO 8601 are read as before")
+                "connect.warm's dates with slashes (03/11/2027 ...) are read in the order each "
+                "block's first row says (10/03 then 11/03: October, then November); promote its "
+                "run's model.pkl again (thermocomp promote reads its record) to read them in its "
+                "record's order. Times in seconds or ISO 8601 are read as before")
     deployed.slashed_ = None
