@@ -15,6 +15,7 @@ import pytest
 
 from conftest import LIGHT, UNTRACKED, thermocomp
 from thermocomp.core.io.lvm import lvm_records
+from thermocomp.core.io.stdin import stream_stamps
 
 DATA = Path(__file__).parents[1] / "data" / "realexport73"
 FLUX = DATA / "21031_Statistics_AmeriFlux37_head.dat"
@@ -32,6 +33,15 @@ def test_an_ameriflux_tables_timestamp_start_is_its_time_and_its_end_left_out(tm
     assert "time: 'TIMESTAMP_START', timestamps from 2025-03-27T23:30:00" in said, said
     assert "sample period: 1800 s, 16 rows" in said, said
     assert "TIMESTAMP_END    DAQ's own    - (left out: no measurement)" in said, said
+
+
+def test_a_stream_reads_the_tables_digits_as_its_timestamps():
+    """``monitor monitor.input=-``: the piped table's ``TIMESTAMP_START`` column, read by pandas
+    as integers, is timestamps (before: seconds, every 70 or 30 s)."""
+    ns, valid = stream_stamps(pd.read_csv(FLUX)["TIMESTAMP_START"])
+    assert valid.all()
+    assert pd.Timestamp(ns[0]) == pd.Timestamp("2025-03-27 23:30")
+    assert np.diff(ns).tolist() == [1800 * 10**9] * 15
 
 
 @pytest.mark.skipif(shutil.which("cc") is None, reason="no C compiler")
