@@ -18,7 +18,11 @@ file without any ``Date`` and ``Time`` is timed in seconds (its X values, or ``X
 ``Delta_X`` steps); without those either, untimed (``data.sample_period_s``).  A unit label is
 the header's unit (``Luft [Deg C]``), read by the CSV header rules; the ``Comment`` column is
 left out.  The segments of one file are one run; the CSV reader's checks (a time that goes
-back, a gap) then see them as one.
+back, a gap) then see them as one.  A VI run again appending to the file writes the file header
+again before its segments: each such session is a run (realexport73: refused before, "a
+segment begins with its 'Channels' line"), read as the runs of a TDMS log are.  With
+``X_Columns No`` LabVIEW still heads an ``X_Value`` column and leaves its cells empty: the time
+is then ``Delta_X`` steps (realexport73: read as no time at all before, ``NaT``).
 """
 
 from __future__ import annotations
@@ -45,7 +49,8 @@ def is_lvm(path) -> bool:
 
 
 def lvm_records(path: Path, encoding: str = UTF8) -> list[Record]:
-    """The run of the LabVIEW Measurement File ``path`` (one record)."""
+    """The runs of the LabVIEW Measurement File ``path``: one, or one per session that
+    appended to it (each writes its own file header, ``LabVIEW Measurement`` again)."""
     raw = path.read_bytes()
     check_text(raw[:1 << 16], encoding, path)
     try:
@@ -60,8 +65,14 @@ def lvm_records(path: Path, encoding: str = UTF8) -> list[Record]:
     sep = _separator(lines)
     header, k = _block(lines, 1, sep, path)
     decimal = header.get("Decimal_Separator", ["."])[0] or "."
-    segments = []
+    runs, segments = [], []
     while (k := _next_text(lines, k)) < len(lines):
+        if lines[k].startswith(MAGIC) and segments:    # a later session appending: a run
+            runs.append((header, decimal, segments))
+            header, k = _block(lines, k + 1, sep, path)
+            decimal = header.get("Decimal_Separator", ["."])[0] or "."
+            segments = []
+            continue
         if _cells(lines[k], sep)[0] != "Channels":
             raise ContractError(f"a segment begins with its 'Channels' line, not "
                                 f"{lines[k][:40]!r}", file=path, line=k + 1)
@@ -76,7 +87,9 @@ def lvm_records(path: Path, encoding: str = UTF8) -> list[Record]:
         segments.append({"header": seg_header, "names": names, "rows": rows, "line": first_line})
     if not segments:
         raise ContractError("no segment with rows in the LabVIEW Measurement File", file=path)
-    return [_record(path, header, segments, sep, decimal)]
+    runs.append((header, decimal, segments))
+    labels = [path.stem] if len(runs) == 1 else [f"{path.stem}_{i + 1}" for i in range(len(runs))]
+    return [_record(path, label, *run, sep) for label, run in zip(labels, runs)]
 
 
 def lvm_layout(path: Path, encoding: str = UTF8) -> str:
@@ -158,7 +171,8 @@ def _is_number(cell: str, decimal: str) -> bool:
         return False
 
 
-def _record(path: Path, header: dict, segments: list[dict], sep: str, decimal: str) -> Record:
+def _record(path: Path, label: str, header: dict, decimal: str, segments: list[dict],
+            sep: str) -> Record:
     """The segments' channels joined, each with its time."""
     names = segments[0]["names"]
     if COMMENT in names:
@@ -178,8 +192,10 @@ def _record(path: Path, header: dict, segments: list[dict], sep: str, decimal: s
         keys = seg["header"]
         for c, j in enumerate(columns):
             x_col = max((i for i in x_at if i < j), default=None)
-            t, kind = _time(path, header, keys, c, table[:, x_col] if x_col is not None
-                            else None, len(table), decimal, seg["line"])
+            x = table[:, x_col] if x_col is not None else None
+            if x is not None and np.isnan(x).all():
+                x = None     # (X_Columns No: LabVIEW still heads an X_Value column, empty)
+            t, kind = _time(path, header, keys, c, x, len(table), decimal, seg["line"])
             timed[kind] = True
             values[j].append(table[:, j])
             times[j].append(t)
@@ -194,7 +210,7 @@ def _record(path: Path, header: dict, segments: list[dict], sep: str, decimal: s
         t = None if timed["untimed"] else np.concatenate(times[j])
         channels.append(Channel(with_unit(names[j], unit), np.concatenate(values[j]), t,
                                 f"channel {names[j]!r}"))
-    return Record(path.stem, channels, utc=False)
+    return Record(label, channels, utc=False)
 
 
 def _numbers(path: Path, seg: dict, names: list[str], decimal: str) -> np.ndarray:

@@ -53,7 +53,8 @@ _LAST_WORD = re.compile(r"^(.*?\S)\s+(\S+)$")
 _SUFFIX = re.compile(r"^(.*?[^\s_])_([^\s_]+)$")
 _UNSAFE = re.compile(r"[^\w.\-]+")
 TIME_HEADERS = frozenset({"time", "t", "ts", "zeit", "時間", "时间", "timestamp", "datetime", "date_time",
-                          "zeitstempel", "temps", "tiempo", "tempo", "seconds", *ELAPSED_HEADERS})
+                          "zeitstempel", "temps", "tiempo", "tempo", "seconds", "timestamp_start",
+                          *ELAPSED_HEADERS})
 # HBM catman's time channel, one per rate group: 'Zeit  1 - Standardmessrate', 'Time  2 - 10 Hz'
 _RATE_GROUP_TIME = re.compile(r"(?i)(?:time|zeit|temps|tiempo|tempo)\s+\d+\s+-\s+\S.*")
 RUN = " campaign"     # data.roles.campaign's column as read: no contract column has this name
@@ -63,6 +64,9 @@ LOGGER = "DAQ's own"  # a column a Keysight DAQ writes of its own scans (:func:`
 # limit), and the sweep number ``Scan``
 _ALARM = re.compile(r"^\s*Alarm\s+(\d{3,4})\s*$", re.IGNORECASE)
 _SCAN = frozenset({"scan", "scan number", "sweep", "sweep number"})
+# an AmeriFlux table's averaging interval (a Campbell Scientific logger's flux program writes
+# both): its start is the time, its end no measurement
+_INTERVAL = ("timestamp_start", "timestamp_end")
 PREFIX = {"error": "E_", "state": "S_", "temperature": "T_", "ambient": "T_"}
 
 
@@ -314,15 +318,18 @@ def naming(headers: Sequence[str], roles: Mapping, columns: Mapping, first: Mapp
 
 
 def logger_columns(headers: Sequence[str]) -> frozenset:
-    """The headers of a Keysight DAQ's export that are its bookkeeping, no measurement: each
-    ``Alarm <channel>`` beside a channel's column (``Alarm 101`` beside ``101 <Air> (C)``), and,
-    in a file with such columns, the sweep number ``Scan``.  Left out by every reader of the
-    headers (a role pattern matching one still gives it that role)."""
+    """The headers of a logger's export that are its bookkeeping, no measurement: a Keysight
+    DAQ's ``Alarm <channel>`` beside each channel's column (``Alarm 101`` beside ``101 <Air>
+    (C)``) and, in a file with such columns, the sweep number ``Scan``; an AmeriFlux table's
+    ``TIMESTAMP_END`` beside its ``TIMESTAMP_START`` (the time; realexport73).  Left out by
+    every reader of the headers (a role pattern matching one still gives it that role)."""
+    bare = {h.strip().lower(): h for h in headers}
+    ends = {bare[_INTERVAL[1]]} if all(k in bare for k in _INTERVAL) else set()
     channels = {h.strip().split(" ", 1)[0] for h in headers}
     alarms = {h for h in headers if (m := _ALARM.match(h)) and m[1] in channels}
     if not alarms:
-        return frozenset()
-    return frozenset(alarms | {h for h in headers if h.strip().lower() in _SCAN})
+        return frozenset(ends)
+    return frozenset(ends | alarms | {h for h in headers if h.strip().lower() in _SCAN})
 
 
 def by_header(headers: Sequence[str], columns: Mapping) -> dict:

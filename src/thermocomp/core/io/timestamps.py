@@ -10,6 +10,7 @@ guess, and the date is read so (:func:`slashed_format`); so is a Keysight DAQ's 
 from __future__ import annotations
 
 import re
+from datetime import datetime
 from pathlib import Path
 
 import numpy as np
@@ -105,7 +106,7 @@ def time_kind(value: str, kind: str, number: bool, path: Path, header: str | Non
     if kind != "auto":
         return kind
     if number:
-        return "seconds"
+        return compact_format(value) or "seconds"
     name = repr(header) if header else "<this column>"
     if TIME_OF_DAY.fullmatch(value):
         way = STREAMED if stream else (f"name the date column with it, data.roles.time=[<date "
@@ -127,6 +128,25 @@ def time_kind(value: str, kind: str, number: bool, path: Path, header: str | Non
                             f"data.time to its format, e.g. data.time={EXAMPLE} (or "
                             "'%m/%d/%Y %H:%M:%S')", file=path, column=TIME, row=1)
     return "iso8601"
+
+
+# a date and time written as digits alone, ``yyyymmddHHMM[SS]``: the AmeriFlux / FLUXNET
+# ``TIMESTAMP_START`` a Campbell Scientific logger's flux table writes (``202503272330``)
+_COMPACT = re.compile(r"\s*(?:19|20|21)\d{10}(?:\d\d)?\s*")
+
+
+def compact_format(value: str) -> str | None:
+    """The strptime format of a time written as 12 or 14 digits that are a date and a time of
+    day (``202503272330``: ``%Y%m%d%H%M``), None otherwise.  No elapsed time in seconds has such
+    a value (2e11 s are 6,000 years), nor milliseconds since 1970 (13 digits)."""
+    if not _COMPACT.fullmatch(value):
+        return None
+    form = "%Y%m%d%H%M%S" if len(value.strip()) == 14 else "%Y%m%d%H%M"
+    try:
+        datetime.strptime(value.strip(), form)
+    except ValueError:
+        return None
+    return form
 
 
 def dated_format(value: str) -> str | None:

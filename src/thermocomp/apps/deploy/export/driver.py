@@ -18,7 +18,8 @@ DRIVER = r"""/* stream.c: CSV rows of raw inputs on stdin -> corrections C_<axis
  * wall-clock time (ISO 8601 2023-01-07T08:45:00, a zone offset or none; day-first
  * 07.01.2023 08:45:00, or 07.01.23 08:45 with a two-digit year; with TC_SLASHED a date with
  * slashes in data.time's order, a Keysight DAQ's 03/01/2027 06:00:00:011, its ms after a
- * colon: keysight70) read as seconds since the
+ * colon: keysight70; 12 or 14 digits that are a date and time, an AmeriFlux table's
+ * 202503272330: realexport73) read as seconds since the
  * campaign's first, as the served model reads it; every time of a stream in the form of its
  * first; with TC_ELAPSED (data.time=elapsed) a logger's h:mm:ss since the start, 59:59:00.5.
  * A cell that is no number (a time of day alone, 08:45:00) is refused with its row.
@@ -504,6 +505,36 @@ static int wall_clock(const char *cell, long long *whole, double *fraction) {
     return kind;
 }
 
+/* (realexport73) A date and time written as 12 or 14 digits alone, `yyyymmddHHMM[SS]` (the
+   AmeriFlux TIMESTAMP_START of a Campbell Scientific logger's flux table, 202503272330), as
+   whole seconds since 1970 into *whole, as the model's reader reads it: 1 where the cell is
+   one (a year 1900-2199, a date of the calendar), else 0 (a number of seconds). */
+static int compact_clock(const char *cell, long long *whole) {
+    static const int month_days[12] = {31, 29, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
+    const char *p = cell, *start;
+    long y, mo, d, h, mi, s = 0;
+    while (*p == ' ' || *p == '"') p++;
+    start = p;
+    while (*p >= '0' && *p <= '9') p++;
+    if (p - start != 12 && p - start != 14) return 0;
+    p = start;
+    y = (p[0] - '0') * 1000 + (p[1] - '0') * 100 + (p[2] - '0') * 10 + (p[3] - '0');
+    if (y < 1900 || y > 2199) return 0;
+    p = start + 4;
+    mo = (p[0] - '0') * 10 + (p[1] - '0');
+    d = (p[2] - '0') * 10 + (p[3] - '0');
+    h = (p[4] - '0') * 10 + (p[5] - '0');
+    mi = (p[6] - '0') * 10 + (p[7] - '0');
+    if (p[8] >= '0' && p[8] <= '9') s = (p[8] - '0') * 10 + (p[9] - '0');
+    p = start + (p[8] >= '0' && p[8] <= '9' ? 14 : 12);
+    while (*p == ' ' || *p == '"') p++;
+    if (*p != '\0' || mo < 1 || mo > 12 || d < 1 || d > month_days[mo - 1] || h > 23 || mi > 59
+        || s > 59 || (mo == 2 && d == 29 && (y % 4 != 0 || (y % 100 == 0 && y % 400 != 0))))
+        return 0;
+    *whole = days_from_civil(y, mo, d) * 86400 + h * 3600 + mi * 60 + s;
+    return 1;
+}
+
 /* (iso67) A logger's time since its start, `h:mm:ss` (data.time=elapsed, TC_ELAPSED): hours
    past 24 as they are (`59:59:00.0`), a fraction of a second after '.' or ',', as seconds into
    *t; 0 for anything else. */
@@ -546,7 +577,8 @@ static int time_of(const char *cell, long row, double scale, double offset, doub
         clock_.kind = SECONDS;
         return 0;
     }
-    kind = isfinite(*t) ? SECONDS : bad ? wall_clock(cell, &whole, &fraction) : 0;
+    kind = isfinite(*t) ? (compact_clock(cell, &whole) ? LOCAL_TIME : SECONDS)
+         : bad ? wall_clock(cell, &whole, &fraction) : 0;
     if (bad && !kind) {
         fprintf(stderr, "stream: line %ld: the time is no number of seconds nor a date and time "
                 "(2023-01-07T08:45:00, 07.01.2023 08:45:00; a time of day alone goes back at "
