@@ -88,3 +88,18 @@ def test_a_second_labview_session_appending_to_the_file_is_a_run(capsys, tmp_pat
     proc = thermocomp("init", str(DATA / "appended_runs.lvm"), f"out={tmp_path}", check=False)
     assert proc.returncode == 2
     assert "run 'appended_runs_2' holds other channels than run 'appended_runs_1'" in proc.stderr
+
+
+def test_a_record_too_short_for_a_validation_fold_is_refused_naming_the_fold(tmp_path):
+    """The table's first 8 rows, cut 6 / 2: forward chaining's first fold fits a lag bank on one
+    row. Refused with exit status 2 naming the fold's rows and the way out (before: the model's
+    ``ValueError`` escaped as a traceback, exit status 1)."""
+    short = tmp_path / "short.dat"
+    short.write_text("".join(FLUX.read_text().splitlines(keepends=True)[:9]))
+    proc = thermocomp("run", f"data.path={short}", *ROLES, "data.test_fraction=0.25",
+                      "model=lagbank", *UNTRACKED, *LIGHT, f"out={tmp_path / 'run'}", check=False)
+    assert proc.returncode == 2, proc.stderr
+    assert ("validation: a fold fits on the first 1 row of short_train, too few: LagBank needs at "
+            "least 3 samples") in proc.stderr, proc.stderr
+    assert "eval.validation=false" in proc.stderr
+    assert not (tmp_path / "run" / "metrics.json").exists()

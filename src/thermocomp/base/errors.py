@@ -60,6 +60,11 @@ class ContractError(ThermocompError):
         super().__init__(f"{where}: {message}" if where else message)
 
 
+class TooFewSamples(ContractError):
+    """A model given fewer rows than its fit needs (a record, or a validation fold of it, too
+    short); the message keeps scikit-learn's ``n_samples=`` wording."""
+
+
 def position(row: int | None, line: int | None = None, unit: str = "line") -> str | None:
     """``line 13 (data row 9)``, ``data row 9`` or ``line 13``: where a message points in a file
     (``unit="row"``: a sheet's row, ``row 13 (data row 9)``)."""

@@ -8,7 +8,7 @@ from scipy.linalg import lstsq, solve
 from sklearn.base import BaseEstimator, RegressorMixin
 from sklearn.utils.validation import check_is_fitted, validate_data
 
-from ...base.errors import ParameterError
+from ...base.errors import ParameterError, TooFewSamples
 from ...base.params import BOOLEAN, check_estimator, choice, either, integer, integers
 from ..context import Y_MEASURED, SideInputs, feedback_gain, groups_of, values
 from ..model_selection.criteria import CRITERIA, LABELS, information_criteria
@@ -161,7 +161,7 @@ class ARX(SideInputs, RegressorMixin, BaseEstimator):
         X = np.asarray(X, dtype=float)
         n, p = X.shape
         if n < 2:
-            raise ValueError(f"ARX needs at least 2 samples, got n_samples={n}")
+            raise TooFewSamples(f"ARX needs at least 2 samples, got n_samples={n}")
         self._check_delays(delays, groups, n)
         terms = [(j, d) for d in delays for j in range(p)]
         options = [False, True] if self.ar == "auto" else [bool(self.ar)]

@@ -39,7 +39,7 @@ from sklearn.preprocessing._data import _handle_zeros_in_scale, _is_constant_fea
 from sklearn.utils.validation import check_is_fitted, validate_data
 from threadpoolctl import threadpool_limits
 
-from ...base.errors import ContractError, ParameterError
+from ...base.errors import ParameterError, TooFewSamples
 from ...base.params import (
     NON_NEGATIVE,
     POSITIVE,
@@ -583,7 +583,7 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         X = np.asarray(X, dtype=float)
         n, p = X.shape
         if n < MIN_SPLITS + 1:
-            raise ValueError(f"LagBank needs at least {MIN_SPLITS + 1} samples for its time-series "
+            raise TooFewSamples(f"LagBank needs at least {MIN_SPLITS + 1} samples for its time-series "
                              f"CV, got n_samples={n}")
         groups = groups_of(context)
         time = values(context, TIME, n)
@@ -668,7 +668,7 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         rows = np.flatnonzero(measured)
         m = rows.size
         if m < MIN_SPLITS + 1:
-            raise ContractError(f"LagBank: the target is measured on {m} rows, its time-series CV "
+            raise TooFewSamples(f"LagBank: the target is measured on {m} rows, its time-series CV "
                                 f"needs at least {MIN_SPLITS + 1}")
         F = self._features(X, context)[rows]
         g = None if groups is None else np.asarray(groups, dtype=object)[rows]

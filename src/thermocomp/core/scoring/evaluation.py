@@ -10,10 +10,11 @@ from __future__ import annotations
 
 import warnings
 from collections.abc import Callable
+from contextlib import contextmanager
 
 import numpy as np
 
-from ...base.errors import FallbackWarning
+from ...base.errors import FallbackWarning, TooFewSamples
 from ...base.jsonsafe import json_safe
 from .. import continuation
 from ..compensator import MODES, Compensator
@@ -444,7 +445,8 @@ def _fold_residuals_stacked(template: Compensator, camps: dict, folds, modes) ->
     for fit_rows, pred_rows, units, _ in folds:
         comp = clone(template)
         comp.inputs_, comp.targets_, comp.denoiser_ = inputs, targets, None
-        comp.fit_stacked(_rows(m, _mask(start, fit_rows, len(m.X))))
+        with _fold_named(fit_rows):
+            comp.fit_stacked(_rows(m, _mask(start, fit_rows, len(m.X))))
         sub = _rows(m, _mask(start, pred_rows, len(m.X)))
         order = [c for c in camps if c in pred_rows]      # the stack's order
         offsets = dict(zip(order, np.cumsum([0] + [pred_rows[c] for c in order])))
@@ -523,7 +525,8 @@ def _fold_residuals(template: Compensator, camps: dict, folds, modes) -> dict:
     for fit_rows, pred_rows, units, _ in folds:
         # (a run of files joined, :func:`continuation.fit_campaigns`, is denoised here as one
         # campaign, not file by file as run's final fit: a fold ends inside the run)
-        comp = clone(template).fit({c: camps[c].iloc[:n] for c, n in fit_rows.items()})
+        with _fold_named(fit_rows):
+            comp = clone(template).fit({c: camps[c].iloc[:n] for c, n in fit_rows.items()})
         part = {c: camps[c].iloc[:n] for c, n in pred_rows.items()}
         preds = {mode: comp.predict(part, mode=mode) for mode in modes}
         meas = comp.measured(part, predicted=preds.get("simulation"))
@@ -533,6 +536,18 @@ def _fold_residuals(template: Compensator, camps: dict, folds, modes) -> dict:
                     pred = 0.0 if mode == BEFORE else preds[mode][c][t].to_numpy()[a:b]
                     residual[mode].setdefault(t, {})[unit] = meas[c][t].to_numpy()[a:b] - pred
     return residual
+
+
+@contextmanager
+def _fold_named(fit_rows: dict):
+    """A fold too short for the model's fit refused naming the fold's rows (a short record's
+    first forward fold fits a few rows: the model's own message alone read as a bug)."""
+    try:
+        yield
+    except TooFewSamples as error:
+        rows = ", ".join(f"the first {n} row{'s' * (n != 1)} of {c}" for c, n in fit_rows.items())
+        raise TooFewSamples(f"validation: a fold fits on {rows}, too few: {error.reason}; give "
+                            "the train part more rows or set eval.validation=false") from None
 
 
 def _mask(start: dict, rows: dict, n: int) -> np.ndarray:
