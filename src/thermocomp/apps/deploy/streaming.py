@@ -395,6 +395,12 @@ class StreamingCompensator:
         # back by an hour was ~1e12 µm of correction
         self._clock = SampleClock(period) if period else None
 
+    @property
+    def clock_time_(self) -> float | None:
+        """The last sample's time on the stream's clock (NaN before a campaign's first); None
+        without a clock (a static law: the models read the time as given)."""
+        return None if self._clock is None else self._clock.t
+
     @contextmanager
     def envelope_off(self):
         """Within the block the envelope is off (the inputs reach the models as batch gets them);
