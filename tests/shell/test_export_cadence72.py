@@ -77,3 +77,28 @@ def test_only_a_model_with_a_memory_is_held_between_grid_rows(dataset):
     assert all(keeps_memory(e, len(comp.selected_[t])) for t, e in comp.estimators_.items())
     static = MLR().fit(np.arange(8.0).reshape(4, 2), np.arange(4.0))
     assert not keeps_memory(static, 2)
+
+
+def test_a_fit_asks_no_memory_and_the_grid_is_asked_once_when_read(dataset, monkeypatch):
+    """(deploy73) A fit, CV folds included, asked every model whether it keeps a memory (a ramp
+    streamed twice per target: 3.4 % of MLR's fit CPU on make run's record); the grid is now
+    asked once, when first read (by a stream, the export, a prediction between grid rows), and
+    is what it was; a compensator pickled by cadence72's code keeps the grid it found."""
+    import pickle
+
+    from sklearn.base import clone
+
+    from thermocomp.core import compensator as module
+
+    _, comp, test = _deployed(dataset, False)
+    asked = []
+    monkeypatch.setattr(module, "keeps_memory", lambda *a: asked.append(a) or keeps_memory(*a))
+    fresh = pickle.loads(pickle.dumps(clone(comp).fit({"A": test, "B": test.assign(E_X=test["E_Z"])})))
+    assert not asked                               # the fit asked none
+    assert fresh.grid_period_s_ == 120.0 and asked
+    n = len(asked)
+    assert fresh.grid_period_s_ == 120.0 and len(asked) == n          # asked once
+    state = {k: v for k, v in fresh.__dict__.items() if k not in ("_grid_period_s", "_sample_period_s")}
+    older = comp.__class__.__new__(comp.__class__)
+    older.__setstate__({**state, "grid_period_s_": 120.0})     # as cadence72's code pickled it
+    assert older.grid_period_s_ == 120.0 and len(asked) == n
