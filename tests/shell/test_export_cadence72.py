@@ -102,3 +102,27 @@ def test_a_fit_asks_no_memory_and_the_grid_is_asked_once_when_read(dataset, monk
     older = comp.__class__.__new__(comp.__class__)
     older.__setstate__({**state, "grid_period_s_": 120.0})     # as cadence72's code pickled it
     assert older.grid_period_s_ == 120.0 and len(asked) == n
+
+
+def test_a_state_saved_before_the_grid_steps_its_next_row_and_says_so(dataset, caplog):
+    """(deploy73) A stream state saved before cadence72 holds no grid (its stream stepped every
+    row, its last answer not saved): restored into a model with a training grid, the next row
+    is stepped, not held (there is no answer to repeat), the grid counting from it; said once
+    (before: restored without a word)."""
+    deployed, _, test = _deployed(dataset, False)
+    fast, k = _faster(test), 2 * FASTER + 2            # row k lies between two grid rows
+    deployed.reset()
+    deployed.predict(fast.iloc[:k])
+    saved = deployed._snapshot()
+    rest = fast.iloc[k:].reset_index(drop=True)
+    held = deployed.predict(rest)[deployed.targets_].to_numpy(float)
+    assert np.array_equal(held[0], held[1])             # uninterrupted: row k held
+    with caplog.at_level("WARNING"):
+        deployed._restore(saved[:9])                    # as saved before cadence72
+        deployed._restore(saved[:9])
+    said = [r.getMessage() for r in caplog.records if "saved before cadence72" in r.getMessage()]
+    assert len(said) == 1 and "120 s grid" in said[0] and "next sample is stepped" in said[0]
+    y = deployed.predict(rest)[deployed.targets_].to_numpy(float)
+    assert not np.allclose(y[0], held[0])               # stepped ...
+    assert all(np.array_equal(y[i], y[0]) for i in range(1, FASTER))   # ... the grid from it
+    assert not np.array_equal(y[FASTER], y[0])
