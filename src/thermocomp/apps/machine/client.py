@@ -27,7 +27,8 @@ the registers keep what they hold (an earlier client's last offsets; event ``off
 (connect68) Without ``campaign_sample``, ``connect.warm``'s rows are the first sample's
 campaign's, placed on the server's clock by their timestamps (:meth:`Connection._joined`).
 (connect71) The server's clock set while the machine ran is told from a pause by the client's
-own clock (:mod:`.clockset`): the stream's time goes on as the client's did (``clock_set``).
+own clock (:mod:`.clockset`): the stream's time goes on as the client's did (``clock_set``; its
+server times, deploy73, let ``data.clock_sets`` undo it in the machine's log).
 """
 
 from __future__ import annotations
@@ -435,7 +436,7 @@ class Connection:
                     f"sample while the client's went on {went:g} s: set "
                     f"{'forward' if step > 0 else 'back'} {abs(step):g} s (an operator, DST, NTP) "
                     "while the machine ran: the stream's time goes on as the client's clock did",
-                    logging.WARNING, step_s=step)
+                    logging.WARNING, step_s=step, from_utc=utc(self._at), at_utc=utc(at))
         self._t0 += step
         self._at += step
         return step
@@ -621,6 +622,12 @@ def own_clock() -> float:
     not the server's clock set forward)."""
     boot = getattr(clock, "CLOCK_BOOTTIME", None)
     return clock.clock_gettime(boot) if boot is not None else clock.monotonic()
+
+
+def utc(s: float) -> str:
+    """The server's clock ``s`` (s since the epoch) as an ISO 8601 time in UTC: where a
+    ``clock_set`` event finds its rows in the machine's log (``data.clock_sets``, deploy73)."""
+    return datetime.fromtimestamp(s, timezone.utc).isoformat()
 
 
 def seconds(dv) -> float | None:
