@@ -77,3 +77,73 @@ def test_only_a_model_with_a_memory_is_held_between_grid_rows(dataset):
     assert all(keeps_memory(e, len(comp.selected_[t])) for t, e in comp.estimators_.items())
     static = MLR().fit(np.arange(8.0).reshape(4, 2), np.arange(4.0))
     assert not keeps_memory(static, 2)
+
+
+def test_a_fit_asks_no_memory_and_the_grid_is_asked_once_when_read(dataset, monkeypatch):
+    """(deploy73) A fit, CV folds included, asked every model whether it keeps a memory (a ramp
+    streamed twice per target: 3.4 % of MLR's fit CPU on make run's record); the grid is now
+    asked once, when first read (by a stream, the export, a prediction between grid rows), and
+    is what it was; a compensator pickled by cadence72's code keeps the grid it found."""
+    import pickle
+
+    from sklearn.base import clone
+
+    from thermocomp.core import compensator as module
+
+    _, comp, test = _deployed(dataset, False)
+    asked = []
+    monkeypatch.setattr(module, "keeps_memory", lambda *a: asked.append(a) or keeps_memory(*a))
+    fresh = pickle.loads(pickle.dumps(clone(comp).fit({"A": test, "B": test.assign(E_X=test["E_Z"])})))
+    assert not asked                               # the fit asked none
+    assert fresh.grid_period_s_ == 120.0 and asked
+    n = len(asked)
+    assert fresh.grid_period_s_ == 120.0 and len(asked) == n          # asked once
+    state = {k: v for k, v in fresh.__dict__.items() if k not in ("_grid_period_s", "_sample_period_s")}
+    older = comp.__class__.__new__(comp.__class__)
+    older.__setstate__({**state, "grid_period_s_": 120.0})     # as cadence72's code pickled it
+    assert older.grid_period_s_ == 120.0 and len(asked) == n
+
+
+def test_a_state_saved_before_the_grid_steps_its_next_row_and_says_so(dataset, caplog):
+    """(deploy73) A stream state saved before cadence72 holds no grid (its stream stepped every
+    row, its last answer not saved): restored into a model with a training grid, the next row
+    is stepped, not held (there is no answer to repeat), the grid counting from it; said once
+    (before: restored without a word)."""
+    deployed, _, test = _deployed(dataset, False)
+    fast, k = _faster(test), 2 * FASTER + 2            # row k lies between two grid rows
+    deployed.reset()
+    deployed.predict(fast.iloc[:k])
+    saved = deployed._snapshot()
+    rest = fast.iloc[k:].reset_index(drop=True)
+    held = deployed.predict(rest)[deployed.targets_].to_numpy(float)
+    assert np.array_equal(held[0], held[1])             # uninterrupted: row k held
+    with caplog.at_level("WARNING"):
+        deployed._restore(saved[:9])                    # as saved before cadence72
+        deployed._restore(saved[:9])
+    said = [r.getMessage() for r in caplog.records if "saved before cadence72" in r.getMessage()]
+    assert len(said) == 1 and "120 s grid" in said[0] and "next sample is stepped" in said[0]
+    y = deployed.predict(rest)[deployed.targets_].to_numpy(float)
+    assert not np.allclose(y[0], held[0])               # stepped ...
+    assert all(np.array_equal(y[i], y[0]) for i in range(1, FASTER))   # ... the grid from it
+    assert not np.array_equal(y[FASTER], y[0])
+
+
+def test_a_record_with_one_faster_train_campaign_is_fitted_on_every_row_and_held(dataset):
+    """(deploy73, benchmarks/bench_deploy73.py) A record whose one train campaign (its first 20
+    min) was logged 4 times faster is fitted on every row, its grid the median step (most rows
+    at 120 s), and a fast campaign is predicted on that grid, held between (the rule as shipped:
+    kept, for no one rule was better for both lag models there; the bench's figures in its
+    docstring)."""
+    from sklearn.base import clone
+
+    from test_export import CAMPAIGNS
+
+    _, comp, test = _deployed(dataset, False)
+    frames = {c: pd.read_csv(dataset / f"{c}.csv") for c, s in CAMPAIGNS if s == "train"}
+    first = next(iter(frames))
+    frames[first] = _faster(frames[first].iloc[:10])
+    mixed = clone(comp).fit(frames)
+    assert mixed.grid_period_s_ == 120.0
+    fast = _faster(test)
+    y = mixed.predict({"t": fast})["t"][mixed.targets_].to_numpy(float)
+    assert np.array_equal(y, np.repeat(y[::FASTER], FASTER, axis=0)[:len(fast)])

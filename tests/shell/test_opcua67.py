@@ -573,6 +573,44 @@ def test_a_server_clock_set_forward_is_told_from_a_pause_by_the_clients_clock(fi
     gap = next(e["detail"] for e in link["events"] if e["event"] == "clock_gap")
     assert f"{hours3 + 60:g} s" in gap and "pause" in gap and "client's clock went on" in gap
     assert link["samples"] == 2 * ROWS and link["samples_missed"] == 0
+    # (deploy73) the machine's log (its server's timestamps hold the set): read with the
+    # connect.json, the set undone, it streams what connect served; read alone, a pause
+    logged = machine_log(machine, frames, tmp_path / "log")
+    with_sets = read_log(logged, tmp_path / "connect" / "connect.json")
+    assert with_sets.attrs["clock_sets_undone"] == {"P05.MPF": 1, "P06.MPF": 0}
+    np.testing.assert_allclose(corrections(data, pkl, with_sets.frames), held, rtol=0, atol=1e-12)
+    alone = read_log(logged, None)
+    assert np.max(np.abs(corrections(data, pkl, alone.frames) - held)) > 1.0
+
+
+def machine_log(machine: VendorMachine, frames: dict, root: Path) -> Path:
+    """The rows as the machine served them, stamped with its server's clock (ISO 8601, UTC), a
+    file per program: the machine's own log."""
+    from datetime import datetime, timezone
+
+    root.mkdir()
+    stamps = iter(list(machine.machine_at))
+    for program, df in as_published(frames).items():
+        df = df[["time", *SENSORS, "E_X", "E_Z"]].copy()
+        df["time"] = [datetime.fromtimestamp(next(stamps), timezone.utc).isoformat()
+                      for _ in range(len(df))]
+        df.to_csv(root / f"{program}.csv", index=False)
+    pd.DataFrame([(p, f"{p}.csv", "test") for p in frames],
+                 columns=["campaign", "file", "split"]).to_csv(root / "campaigns.csv", index=False)
+    return root
+
+
+def read_log(root: Path, sets: Path | None):
+    """The log read as ``replay`` reads ``data.path``, ``data.clock_sets=sets``: its programs'
+    frames (``.frames``, from each one's start) and, per program, the sets undone."""
+    from types import SimpleNamespace
+
+    from thermocomp.core.io import read_dataset
+
+    ds, report = read_dataset(root, {"clock_sets": None if sets is None else str(sets)})
+    frames = {c: df.reset_index(drop=True) for c, df in ds.campaigns.items()}
+    undone = {c: r.get("clock_sets_undone", 0) for c, r in report["campaigns"].items()}
+    return SimpleNamespace(frames=frames, attrs={"clock_sets_undone": undone})
 
 
 def test_a_clock_set_back_and_a_new_process_on_the_clients_clock(monkeypatch):

@@ -49,13 +49,14 @@ def test_a_restart_that_renumbers_the_vendor_namespace_is_followed(fitted, tmp_p
 STOP, GAP = 19, 4        # P05's row 19 answered, then the client stopped; rows 20-23 with none
 
 
-def restarted(data, pkl, tmp_path, log_time) -> tuple[VendorMachine, dict, dict]:
-    """P05 and P06 served; connect stopped (SIGTERM) once P05's row STOP is answered, GAP rows
-    pass with no client, a new connect joins at the next with ``connect.warm=<P05's rows 0 to
-    STOP as published>``, their time ``log_time(seconds)``; both connect.json."""
+def restarted(data, pkl, tmp_path, log_time, stop: int = STOP, gap: int = GAP
+              ) -> tuple[VendorMachine, dict, dict]:
+    """P05 and P06 served; connect stopped (SIGTERM) once P05's row ``stop`` is answered, ``gap``
+    rows pass with no client, a new connect joins at the next with ``connect.warm=<P05's rows 0
+    to stop as published>``, their time ``log_time(seconds)``; both connect.json."""
     frames = programs(data)
-    machine = VendorMachine(frames, free_port(), handover=(STOP, GAP))
-    log = as_published(frames)["P05.MPF"].iloc[:STOP + 1]
+    machine = VendorMachine(frames, free_port(), handover=(stop, gap))
+    log = as_published(frames)["P05.MPF"].iloc[:stop + 1]
     log = log[["time", *SENSORS]].assign(time=log_time(log["time"]))
     log.to_csv(tmp_path / "log.csv", index=False)
     args = ["connect", f"data.path={data}", f"connect.model={pkl}", *FAST, *CLIENT, *connect_nodes(),
@@ -105,6 +106,23 @@ def test_a_connect_restarted_mid_program_is_warmed_on_its_log(fitted, tmp_path, 
     else:
         assert "one period (60 s) after the log's last row" in warmed[0]["detail"]
         seen["P05.MPF"].loc[STOP + GAP + 1:, "time"] -= GAP * 60.0
+    written_as(np.vstack(machine.served.offsets)[answered], corrections(data, pkl, seen))
+
+
+def test_the_offsets_after_a_warmed_join_move_at_the_guards_rate_over_the_gap(fitted, tmp_path):  # noqa: F811
+    """(deploy73) One clock: the offsets' rate limit spans the compensator's own step.  Joined
+    14 samples after the first client stopped (early in P05, the spindle heating fast), the
+    warmed stream's first step spans the 15 periods no client saw, and its guard lets the
+    correction move by its rate over them; the limiter kept a clock of its own, started at the
+    joined sample, and allowed one period's change: the offsets lagged replay's guarded
+    correction after the join.  Now they are replay's on the rows the clients saw."""
+    data, pkl = fitted
+    stop, gap = 4, 14
+    machine, _, second = restarted(data, pkl, tmp_path, stamped, stop, gap)
+    answered = np.array(machine.served.answered)
+    assert answered[:stop + 1].all() and answered[stop + gap + 1:].all()
+    seen = as_published(programs(data))
+    seen["P05.MPF"] = seen["P05.MPF"].drop(index=range(stop + 1, stop + gap + 1))
     written_as(np.vstack(machine.served.offsets)[answered], corrections(data, pkl, seen))
 
 

@@ -62,6 +62,7 @@ it carries are what the fitted estimators declare in ``context_columns_``.
 from __future__ import annotations
 
 import copy
+import logging
 from collections.abc import Mapping
 from contextlib import contextmanager
 from dataclasses import dataclass
@@ -88,6 +89,7 @@ from ...core.metrics import split_scores
 from ...core.timerule import SampleClock, on_grid
 from .guard import guard_changes
 
+log = logging.getLogger(__name__)
 POLICIES = ("clamp", "refuse", "off")
 STREAM_ID = "stream"
 
@@ -395,6 +397,12 @@ class StreamingCompensator:
         # back by an hour was ~1e12 µm of correction
         self._clock = SampleClock(period) if period else None
 
+    @property
+    def clock_time_(self) -> float | None:
+        """The last sample's time on the stream's clock (NaN before a campaign's first); None
+        without a clock (a static law: the models read the time as given)."""
+        return None if self._clock is None else self._clock.t
+
     @contextmanager
     def envelope_off(self):
         """Within the block the envelope is off (the inputs reach the models as batch gets them);
@@ -416,12 +424,27 @@ class StreamingCompensator:
          self._gains, *later) = snap      # (an older model's end states have no clock, no bounds)
         clock = later[0] if later else None
         self._bounds = dict(later[1]) if len(later) > 1 else {}
-        self._on_grid = later[2] if len(later) > 2 else (float("nan"), float("nan"), None)
+        self._on_grid = later[2] if len(later) > 2 else self._gridless()
         if self._clock is not None:
             if clock is not None:
                 self._clock.restore(clock)
             else:                # the models' own times: a time read passes as it is
                 self._clock.reset()
+
+    def _gridless(self) -> tuple:
+        """(deploy73) The grid of a state saved before cadence72 (none in it), for a model with a
+        training grid: its stream stepped every row, so its last row was stepped, but its answer
+        there was not saved, and a row it would hold has no answer to repeat: the next row is
+        stepped, the grid counting from it (a faster stream's first row after the state steps
+        a fraction of a period; at the training period every row is stepped anyway).  Said once
+        per stream, where the state is mid-campaign."""
+        if self._grid and self._ref is not None and not getattr(self, "_said_gridless", False):
+            self._said_gridless = True
+            log.warning(f"a stream state saved before cadence72 (no training grid in it) restored "
+                        f"into a model stepped on a {self._grid:g} s grid: the next sample is "
+                        "stepped, not held, and the grid counts from it; deploy the model again "
+                        "for end states with the grid")
+        return float("nan"), float("nan"), None
 
     # -- prediction -------------------------------------------------------------------------
 

@@ -27,7 +27,8 @@ the registers keep what they hold (an earlier client's last offsets; event ``off
 (connect68) Without ``campaign_sample``, ``connect.warm``'s rows are the first sample's
 campaign's, placed on the server's clock by their timestamps (:meth:`Connection._joined`).
 (connect71) The server's clock set while the machine ran is told from a pause by the client's
-own clock (:mod:`.clockset`): the stream's time goes on as the client's did (``clock_set``).
+own clock (:mod:`.clockset`): the stream's time goes on as the client's did (``clock_set``; its
+server times, deploy73, let ``data.clock_sets`` undo it in the machine's log).
 """
 
 from __future__ import annotations
@@ -170,7 +171,8 @@ class Connection:
         self._quality: dict[str, str] = {}      # input -> Good / Uncertain / Bad, as last read
         self._held = None            # the offsets last written (a held one is not written again)
         self._kept = None            # what the offset nodes held at the first connection (µm)
-        self._time = math.nan        # the stream's time the last sample was stepped at
+        self._time = math.nan        # the last sample's time on the compensator's clock
+        self._step_s = math.nan      # its step from the sample before (NaN: a campaign's first)
         self.stopped = None          # the signal that stopped the client, if one did
         self._placed = ""            # how connect.warm's log was placed on the server's clock
         self.own = OwnClock(period_s)    # the client's clock against the server's (connect71)
@@ -329,7 +331,7 @@ class Connection:
                 if sample is not None:
                     cid, row, k, i = sample
                     y = self._step(cid, row, k, i)
-                    await self._write(client, plan, k, self.limiter.fresh(y, now(), self._time))
+                    await self._write(client, plan, k, self.limiter.fresh(y, now(), self._step_s))
         finally:
             try:     # a dead link would keep the goodbye waiting for the request timeout
                 async with asyncio.timeout(self.retry_s):
@@ -434,7 +436,7 @@ class Connection:
                     f"sample while the client's went on {went:g} s: set "
                     f"{'forward' if step > 0 else 'back'} {abs(step):g} s (an operator, DST, NTP) "
                     "while the machine ran: the stream's time goes on as the client's clock did",
-                    logging.WARNING, step_s=step)
+                    logging.WARNING, step_s=step, from_utc=utc(self._at), at_utc=utc(at))
         self._t0 += step
         self._at += step
         return step
@@ -484,7 +486,7 @@ class Connection:
                 self.adapt.start()      # what was learned is kept: the same machine
             # joined mid-way (i > 0) by a new process: rate-limited from what the machine holds
             self.limiter.new_campaign(self._kept if i > 0 and not self.limiter.started else None)
-            self._campaign = cid
+            self._campaign, self._time = cid, math.nan
             # a campaign that continues others comes after their rows (twin: its samples < 0)
             ahead = (f" ({-i} sample(s) of the campaign(s) it continues first, unscored)"
                      if i < 0 else "")
@@ -503,6 +505,7 @@ class Connection:
         x = np.asarray(row[:len(d.columns_)], float)
         reads = len(d.columns_) + (TIME not in d.columns_)
         t = row[d.columns_.index(TIME)] if TIME in d.columns_ else row[reads - 1]
+        before = self._clock_time(self._time)
         y = d.step(x, t)
         if self.adapt is not None:      # the correction first, then what its reference teaches
             measured = np.asarray(row[reads:], float)[None]
@@ -510,8 +513,16 @@ class Connection:
         for e in getattr(d, "last_events_", []):
             self._event("compensator", e.get("reason", ""), sensor=e.get("sensor"))
         self.samples += 1
-        self._time = t
+        # (deploy73) the offsets' rate over the compensator's own step (one clock, the guard's)
+        now = self._clock_time(t)
+        self._step_s, self._time = now - before, now
         return y
+
+    def _clock_time(self, given: float) -> float:
+        """The last sample's time on the compensator's clock (its time rule's: the adaptive's,
+        a plain lag stream's); a plain stream of a static law keeps none: the time ``given``."""
+        t = getattr(self.deployed, "clock_time_", None)
+        return given if t is None else float(t)
 
     def _warm(self, cid: str, i: int, row: list[float]) -> None:
         """Step the rows logged before the joined sample (``connect.warm``: those with an earlier
@@ -611,6 +622,12 @@ def own_clock() -> float:
     not the server's clock set forward)."""
     boot = getattr(clock, "CLOCK_BOOTTIME", None)
     return clock.clock_gettime(boot) if boot is not None else clock.monotonic()
+
+
+def utc(s: float) -> str:
+    """The server's clock ``s`` (s since the epoch) as an ISO 8601 time in UTC: where a
+    ``clock_set`` event finds its rows in the machine's log (``data.clock_sets``, deploy73)."""
+    return datetime.fromtimestamp(s, timezone.utc).isoformat()
 
 
 def seconds(dv) -> float | None:

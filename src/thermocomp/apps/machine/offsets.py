@@ -12,10 +12,12 @@ so that what reaches the machine is what the compensator computed; a stale offse
 the bound of its last fresh one.
 
 The rate limit is the guard's rule (connect72: :func:`~thermocomp.apps.deploy.guard.rate_span`
-of the step of the stream's time, read by the stream's time rule).  Before, one training
-period's change per sample, counted in ``connect.period_s`` (on the twin's ``time`` node not at
-all): stricter than the guard where samples come further apart (a control publishing every 3
-periods: the lag bank's offsets up to 0.76 µm behind its guarded correction, bench_connect72).
+of the step of the stream's time).  Before, one training period's change per sample, counted in
+``connect.period_s`` (on the twin's ``time`` node not at all): stricter than the guard where
+samples come further apart (a control publishing every 3 periods: the lag bank's offsets up to
+0.76 µm behind its guarded correction, bench_connect72).  (deploy73) The step is the
+compensator's own, its clock's (the client passes it): the limiter keeps no second clock of the
+same time.
 """
 
 from __future__ import annotations
@@ -25,7 +27,6 @@ from collections.abc import Callable
 
 import numpy as np
 
-from ...core.timerule import SampleClock
 from ..deploy.guard import rate_span
 
 
@@ -39,7 +40,6 @@ class OffsetLimiter:
         self.widen = widen
         self._lo_now, self._hi_now = self.lo, self.hi     # the bound of the last fresh offset
         self.max_rate_per_s, self.period_s = np.asarray(max_rate_per_s, float), float(period_s)
-        self._clock = SampleClock(self.period_s)   # the step, as the guard's stream reads it
         self.hold_s, self.decay_s = float(hold_s), float(decay_s)
         self.offset = np.zeros_like(self.lo)
         self._fresh_at = None          # wall time of the last fresh correction
@@ -51,7 +51,6 @@ class OffsetLimiter:
         (restart69): the campaign is joined mid-way (a new process), its error not zeroed: the
         first correction is rate-limited from the offsets the machine holds (µm; NaN: this
         limiter's own), as after a decay, not taken in one jump."""
-        self._clock.reset()
         if held is None:
             self._free = True
             return
@@ -59,13 +58,13 @@ class OffsetLimiter:
         self.offset = np.where(np.isfinite(held), held, self.offset)
         self._free = False
 
-    def fresh(self, y, now: float, time: float = math.nan) -> np.ndarray:
-        """The offset to write for a new correction ``y`` (NaN entries: held) of the sample at
-        ``time`` (s, the stream's time the compensator was given; NaN: one period on): the change
-        allowed is the guard's, its rate over :func:`rate_span` of the step (opcleft67: after a
-        gap, the time gone on)."""
+    def fresh(self, y, now: float, step_s: float = math.nan) -> np.ndarray:
+        """The offset to write for a new correction ``y`` (NaN entries: held) of a sample
+        ``step_s`` after the previous one on the compensator's clock (NaN: a campaign's first,
+        one period): the change allowed is the guard's, its rate over :func:`rate_span` of the
+        step (opcleft67: after a gap, the time gone on)."""
         y = np.where(np.isfinite(y), np.asarray(y, float), self.offset)
-        most = self.max_rate_per_s * rate_span(self._clock.step(float(time))[1], self.period_s)
+        most = self.max_rate_per_s * rate_span(float(step_s), self.period_s)
         step = y - self.offset if self._free else np.clip(y - self.offset, -most, most)
         extra = self.widen() if self.widen is not None else None
         self._lo_now, self._hi_now = ((self.lo, self.hi) if extra is None

@@ -11,6 +11,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ...base.params import MAX_COUNT
+from ...base.paths import resolve
+from .clocksets import clock_sets
 from .contract import SPLITS, ContractError
 from .derived import parsed as parsed_derive
 from .encoding import UTF8, codec
@@ -75,6 +77,8 @@ class ReadOptions:
     join_tolerance_s: float | None = None
     runs_at_pauses: bool = False  # one file's runs parted where its time pauses (.runs)
     derive: dict = field(default_factory=dict)    # derived error columns (.derived): name -> text
+    # (deploy73) the server's clock sets connect told, undone in a log's timestamps (.clocksets)
+    clock_sets: tuple = ()
     # internal (no data config key): "keep" leaves missing values NaN; "keep_errors" only the
     # E_ columns' (a volumetric dataset's distances not measured), the rest repaired
     missing: str = "repair"
@@ -132,6 +136,8 @@ class ReadOptions:
             **_join(cfg),
             runs_at_pauses=_flag(cfg, "runs_at_pauses"),
             derive=parsed_derive(cfg.get("derive")),
+            clock_sets=(() if cfg.get("clock_sets") is None
+                        else clock_sets(resolve(str(cfg.get("clock_sets"))))),
         )
         opts._check()
         return opts

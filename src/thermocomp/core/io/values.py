@@ -14,6 +14,7 @@ import pyarrow.compute as pc
 from ...base.errors import listed
 from ...base.log import logger
 from ..timerule import median_step
+from .clocksets import undone
 from .contract import TIME, ContractError, role
 from .lines import Lines, at
 from .options import ReadOptions
@@ -51,6 +52,9 @@ def _set_time_seconds(columns: dict, rows: int, path: Path, opts: ReadOptions,
             row = int(np.argmax(column.is_null().to_numpy(zero_copy_only=False))) + 1
             raise ContractError("missing time value", file=path, column=TIME, row=row)
         seconds, info = _seconds(column, path, opts.timezone)
+        seconds, sets = undone(seconds, info.get("time_origin"), opts.clock_sets, path)
+        if sets:
+            info["clock_sets_undone"] = sets
         # timestamps on a local clock without an offset, and no data.timezone to read it
         local = (pa.types.is_timestamp(column.type) and column.type.tz is None
                  and opts.timezone is None)
