@@ -33,6 +33,7 @@ from .layout import (
 from .lines import Lines
 from .options import _OTHER_DELIMITERS, ROLE_ORDER, ReadOptions, _first_line
 from .own_headers import with_own_header
+from .period_line import period_hint
 from .roles import RUN, active, excel_days_header, naming, same_header, split_unit
 from .separators import UNICODE_MINUS, misgrouped, reads_as_number, thousands_hint, ungrouped
 from .slashed_rows import decided, read_in, said_by
@@ -125,7 +126,8 @@ def _contract_names(raw_names: list[str], opts: ReadOptions, file: Path, *,
                                 "writes both)", file=file)
         raise ContractError("no 'time' column (none named like 'time', 't(s)', 'Zeit', no ISO "
                             "8601 timestamps, no data.roles.time): set data.sample_period_s "
-                            "(the seconds between rows)", file=file)
+                            "(the seconds between rows)"
+                            + period_hint(file, opts.delimiter, opts.encoding), file=file)
     return names, plan.scales
 
 
