@@ -38,7 +38,7 @@ from .runs import run_blocks, run_values
 from .separators import UNICODE_MINUS, grouped
 from .slashed import stream_format
 from .sniff import SNIFF_LINES, detected
-from .tables import first_cast_failure
+from .tables import NO_TIME_COLUMN, first_cast_failure
 from .timestamps import (
     CLOCK,
     ELAPSED,
@@ -155,9 +155,7 @@ def _untimed(rows: int, blocks: list | None, period_s: float | None) -> np.ndarr
     """The time of rows without a time column, as a file's: ``row * data.sample_period_s``,
     from 0 in each run (``blocks``); refused as a file is without the period."""
     if period_s is None:
-        raise ContractError("no 'time' column (none named like 'time', 't(s)', 'Zeit', no ISO "
-                            "8601 timestamps, no data.roles.time): set data.sample_period_s "
-                            "(the seconds between rows)", file=SOURCE)
+        raise ContractError(NO_TIME_COLUMN, file=SOURCE)
     row = np.arange(rows, dtype=float)
     for _, start, end in blocks or ():
         row[start:end] -= start
