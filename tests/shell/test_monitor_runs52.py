@@ -19,9 +19,10 @@ from thermocomp.shell.cli import main
 HEAT = (2, 5, 3, 4)      # °C each run warms by: the held-out runs 3 and 4 within the train's
 
 
-def _long(path, clock: bool):
+def _long(path, clock: bool | None):
     """Four 30-min runs in one ``;`` file with decimal commas, ``Lauf`` numbering them; the
-    time restarting at 0 s in each, or wall-clock times a day apart."""
+    time restarting at 0 s in each, or wall-clock times a day apart, or (None) no time column,
+    the rows a minute apart (``data.sample_period_s=60``)."""
     rng = np.random.default_rng(52)
     runs = []
     for k, heat in enumerate(HEAT, 1):
@@ -36,20 +37,24 @@ def _long(path, clock: bool):
             start = pd.Timestamp("2023-03-01 08:00") + pd.Timedelta(days=k)
             run.insert(1, "Zeit", (start + pd.to_timedelta(run.pop("Zeit [s]"), unit="s"))
                        .dt.strftime("%d.%m.%Y %H:%M:%S"))
+        if clock is None:
+            run = run.drop(columns="Zeit [s]")
         runs.append(run)
     pd.concat(runs).to_csv(path, sep=";", decimal=",", index=False)
     return path
 
 
-@pytest.mark.parametrize("clock", [False, True], ids=["seconds", "wall-clock"])
+@pytest.mark.parametrize("clock", [False, True, None], ids=["seconds", "wall-clock", "untimed"])
 def test_a_long_file_on_stdin_is_monitored_run_by_run_as_the_file_is(tmp_path, monkeypatch, clock):
     # before: one campaign 'stdin'; at run 4's first row (30 min in) the time went back to 0 s
     # and every sensor fell a few °C in one sample: 9 events, 3 exclusions, the fixed RMSE 1e12 µm,
     # the adaptive 1.80 µm where the file's runs gave 0.104 and no event (wall-clock: the time
-    # jumped a day, 8 events, 3 exclusions, the adaptive 1.87 µm)
+    # jumped a day, 8 events, 3 exclusions, the adaptive 1.87 µm); untimed (stranger73): the
+    # file read, the stream crashed, KeyError 'time' (exit 1)
     path = _long(tmp_path / "alle.csv", clock)
     common = [f"data.path={path}", "data.roles.error=[dX]", "data.roles.campaign=Lauf",
-              "data.test_fraction=0.5", "model=lagbank", *FAST]
+              "data.test_fraction=0.5", "model=lagbank", *FAST,
+              *(["data.sample_period_s=60"] if clock is None else [])]
     assert main(["monitor", f"out={tmp_path / 'file'}", *common]) == 0
     lines = path.read_text(encoding="utf-8").splitlines()
     monkeypatch.setattr("sys.stdin", io.StringIO("\n".join(
@@ -78,3 +83,16 @@ def test_a_stream_whose_run_comes_back_is_refused_naming_its_row(tmp_path):
     back = "\n".join([*lines[:62], lines[1], *lines[62:]])     # a row of run 1 within run 3
     with pytest.raises(ContractError, match=r"column 'Lauf', .*row 62.*run '1' comes back"):
         stream_campaigns(back, ["T_T0"], opts)
+
+
+def test_untimed_rows_on_stdin_are_a_period_apart_from_each_runs_start(tmp_path):
+    # stranger73: the monitor crashed (KeyError 'time') on a lab's export without a time column
+    text = _long(tmp_path / "alle.csv", clock=None).read_text(encoding="utf-8")
+    roles = {"error": ["dX"], "campaign": "Lauf"}
+    runs, _ = stream_campaigns(text, ["T_T0"], ReadOptions.from_cfg(
+        {"roles": roles, "sample_period_s": 60}))
+    assert [r["time"].iloc[0] for r in runs.values()] == [0.0] * 4
+    assert runs["Lauf_2"]["time"].iloc[-1] == 29 * 60.0
+    with pytest.raises(ContractError, match=r"file <stdin>: no 'time' column .*set "
+                                            r"data.sample_period_s"):
+        stream_campaigns(text, ["T_T0"], ReadOptions.from_cfg({"roles": roles}))

@@ -157,8 +157,12 @@ def test_the_compiled_stream_skips_a_loggers_preamble_as_the_reader_does(tmp_pat
         out[name] = done.stdout
     assert out["as written"] == out["without it"]
     assert len(out["as written"].splitlines()) == 241
-    # a file whose header lacks an input is still refused, naming its line 1
-    text = "".join(lines).replace("T ram [°C]", "T rim [°C]")
-    done = subprocess.run([str(tmp_path / "code" / "stream")], input=text.encode(),
-                          capture_output=True)
-    assert done.returncode == 2 and b"(line 1" in done.stderr and b"T_ram" in done.stderr
+    # a file whose header lacks an input is still refused, naming the header's line and the
+    # input it lacks (stranger73: it named line 1, the preamble's, and the first input of all,
+    # T_ram, whichever was missing)
+    for header, lacking in (("T ram [°C]", b"T_ram"), ("T hall [°C]", b"T_hall")):
+        text = "".join(lines).replace(header, "T rim [°C]")
+        done = subprocess.run([str(tmp_path / "code" / "stream")], input=text.encode(),
+                              capture_output=True)
+        assert done.returncode == 2 and b"(line 5" in done.stderr, done.stderr
+        assert done.stderr.rstrip().endswith(b"lacks input column " + lacking), done.stderr

@@ -38,7 +38,7 @@ from .runs import run_blocks, run_values
 from .separators import UNICODE_MINUS, grouped
 from .slashed import stream_format
 from .sniff import SNIFF_LINES, detected
-from .tables import first_cast_failure
+from .tables import NO_TIME_COLUMN, first_cast_failure
 from .timestamps import (
     CLOCK,
     ELAPSED,
@@ -133,6 +133,8 @@ def _read_runs(text: str, columns: list[str], opts, recorded: str | None = None
                  for t in runs]
         df[TIME] = pd.concat([seconds for seconds, _ in timed])
         origins = [origin for _, origin in timed]
+    else:                         # (stranger73: a lab's untimed rows crashed the monitor)
+        df.insert(0, TIME, _untimed(len(df), blocks, opts.sample_period_s))
     # every data column is numeric (the contract's T_, E_, S_ and time), not only those the
     # model reads: the measured errors and the context are read from the same frame
     numeric = list(dict.fromkeys([*columns, *(c for c in df.columns
@@ -148,6 +150,17 @@ def _read_runs(text: str, columns: list[str], opts, recorded: str | None = None
             df[c] = df[c] * scale + offset
     df = on_frame(df, opts.derive, SOURCE)      # data.derive: the same arithmetic as a file's
     return df, {c: int(n) for c, n in df[numeric].isna().sum().items() if n}, blocks, origins
+
+
+def _untimed(rows: int, blocks: list | None, period_s: float | None) -> np.ndarray:
+    """The time of rows without a time column, as a file's: ``row * data.sample_period_s``,
+    from 0 in each run (``blocks``); refused as a file is without the period."""
+    if period_s is None:
+        raise ContractError(NO_TIME_COLUMN, file=SOURCE)
+    row = np.arange(rows, dtype=float)
+    for _, start, end in blocks or ():
+        row[start:end] -= start
+    return row * float(period_s)
 
 
 def _time_format(time: pd.Series, given: str, recorded: str | None) -> str:

@@ -33,6 +33,7 @@ from .layout import (
 from .lines import Lines
 from .options import _OTHER_DELIMITERS, ROLE_ORDER, ReadOptions, _first_line
 from .own_headers import with_own_header
+from .period_line import period_hint
 from .roles import RUN, active, excel_days_header, naming, same_header, split_unit
 from .separators import UNICODE_MINUS, misgrouped, reads_as_number, thousands_hint, ungrouped
 from .slashed_rows import decided, read_in, said_by
@@ -65,6 +66,10 @@ _ARROW_SOURCE = re.compile(r"^Could not open Parquet input source '.*?': ")
 # A contract name: prefix + identifier-like name (it becomes part of file names: no path
 # separators, '..', spaces or control characters).
 _NAME = re.compile(r"[TES]_[\w.\-]+")
+# A file's (or a stream's) rows without a time column and without the period between them.
+NO_TIME_COLUMN = ("no 'time' column (none named like 'time', 't(s)', 'Zeit', no ISO 8601 "
+                  "timestamps, no data.roles.time): set data.sample_period_s (the seconds "
+                  "between rows)")
 
 # ---------------------------------------------------------------------------
 # Column names
@@ -123,9 +128,8 @@ def _contract_names(raw_names: list[str], opts: ReadOptions, file: Path, *,
                                 "as Excel's serial days (a date saved as a number): data.roles."
                                 f"time={days!r} 'data.units={{{days}: d}}' (thermocomp init "
                                 "writes both)", file=file)
-        raise ContractError("no 'time' column (none named like 'time', 't(s)', 'Zeit', no ISO "
-                            "8601 timestamps, no data.roles.time): set data.sample_period_s "
-                            "(the seconds between rows)", file=file)
+        raise ContractError(NO_TIME_COLUMN + period_hint(file, opts.delimiter, opts.encoding),
+                            file=file)
     return names, plan.scales
 
 

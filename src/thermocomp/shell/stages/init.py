@@ -51,6 +51,7 @@ from ...core.io.historian_layout import long_layout
 from ...core.io.manifest import is_text
 from ...core.io.options import RUN_ROLE
 from ...core.io.pairhead import error_files, pair_time, paired_head, paired_lines
+from ...core.io.period_line import stated_period
 from ...core.io.plain import is_converted, is_lab_file, lab_as_csv
 from ...core.io.rates import PAUSE_PERIODS, pauses
 from ...core.io.roles import excel_days_header, naming, split_unit
@@ -145,6 +146,20 @@ def mark_gaps(src, found, errors: set, given: dict, opts):
             opts = replace(opts, **{key: n})
             print(f"{src.name}: " + GAP_SAID[key].format(n=n, s="s" * (n > 1)))
     return opts
+
+
+def stated_period_given(sample, plan, given: dict, opts):
+    """``opts`` (and ``given``) with the sample period a preamble line of a file without a time
+    column states (:mod:`.io.period_line`), said with the line; as they were otherwise."""
+    if opts.sample_period_s is not None or TIME in plan.names.values():
+        return opts
+    said = stated_period(sample, opts.delimiter, opts.encoding)
+    if said is None:
+        return opts
+    given["sample_period_s"] = said.seconds
+    print(f"{sample.name}: no time column, and {said.said()}: data.sample_period_s="
+          f"{said.seconds:g} (written into the config)")
+    return replace(opts, sample_period_s=said.seconds)
 
 
 def renamed(ds) -> dict:
@@ -306,6 +321,7 @@ def _init(cfg: DictConfig) -> dict:
     plan = naming(header, roles, opts.columns, cells_of_first, opts.decimal, sample,
                   opts.units)
     errors = [h for h, n in plan.names.items() if str(n).startswith("E_")]
+    opts = stated_period_given(sample, plan, given, opts)    # `Abtastrate 15 s` above the table
     opts = mark_gaps(src, cells, set(errors), given, opts)   # the marks' gaps, a probe's left out
     if long is not None:                     # the period: the fastest error tag's, said
         period, tag = proposed_period(long, errors)

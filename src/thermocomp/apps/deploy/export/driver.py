@@ -326,12 +326,11 @@ static char separator_of(const char *line) {
     return strchr(line, ';') ? ';' : strchr(line, '\t') ? '\t' : strchr(line, '|') ? '|' : ',';
 }
 
-/* `line` (not changed) names every input of TC_INPUT_NAMES, as the header must: a logger's
-   preamble line above the header does not (sets `sep` to the line's). */
-static int names_every_input(const char *line) {
+/* How many inputs of TC_INPUT_NAMES `line` (not changed) names (sets `sep` to the line's). */
+static int inputs_named(const char *line) {
     static char text[MAX_LINE];
     char *cells[MAX_COLS];
-    int ncols, i, j, found;
+    int ncols, i, j, found, n = 0;
     strcpy(text, line);
     sep = separator_of(text);
     ncols = split(text, cells);
@@ -340,9 +339,14 @@ static int names_every_input(const char *line) {
     for (i = 0; i < TC_N_INPUTS; i++) {
         for (found = 0, j = 0; j < ncols && !found; j++)
             found = strcmp(named(cells[j], j), TC_INPUT_NAMES[i]) == 0;
-        if (!found) return 0;
+        n += found;
     }
-    return 1;
+    return n;
+}
+
+/* `line` names every input, as the header must: a logger's preamble line above it does not. */
+static int names_every_input(const char *line) {
+    return inputs_named(line) == TC_N_INPUTS;
 }
 
 /* `text` without the thousands separator `mark` where it groups digits by three (data.thousands:
@@ -854,19 +858,29 @@ int main(int argc, char **argv) {
     if (!names_every_input(line)) {
         /* a logger's preamble (stranger64: `Machine;PM-12`, `Operator: ...` above the header):
            the first of the next MAX_PREAMBLE lines naming every input is the header */
-        static char first[MAX_LINE];
+        static char first[MAX_LINE], most[MAX_LINE];
+        int named_most = inputs_named(line), most_row = 1, most_commented = 0, most_noted = 0, n;
         strcpy(first, line);
+        strcpy(most, line);
         commented = commented && comment_or_blank(line);
         noted = noted || line[strspn(line, " \t")] == '#';
         for (i = 0; i < MAX_PREAMBLE && next_line(line, sizeof line, i + 2); i++) {
-            if (names_every_input(line)) break;
+            if ((n = inputs_named(line)) == TC_N_INPUTS) break;
+            if (n > named_most)      /* (the lines above it: comments, a '#' among them?) */
+                named_most = n, most_row = i + 2, most_commented = commented,
+                most_noted = noted, strcpy(most, line);
             commented = commented && comment_or_blank(line);
             noted = noted || line[strspn(line, " \t")] == '#';
         }
-        if (i == MAX_PREAMBLE || !names_every_input(line))
-            strcpy(line, first), commented = 1, noted = 0;
-        else
+        if (i < MAX_PREAMBLE && names_every_input(line))
             row = i + 2;                          /* the header's line */
+        else if (most_row > 1)
+            /* (stranger73) no line names every input: the one naming the most is the header
+               whose missing input is said (line 1, a preamble's, was, naming the first input
+               of all as missing) */
+            strcpy(line, most), row = most_row, commented = most_commented, noted = most_noted;
+        else
+            strcpy(line, first), commented = 1, noted = 0;
     }
     sep = separator_of(line);
     strcpy(header_raw, line);
@@ -931,10 +945,10 @@ int main(int argc, char **argv) {
         if (where[i] < 0) {
             /* a lab's report or gateway file fed as it is (a title line read as the header):
                what the stream reads, said with the missing name */
-            fprintf(stderr, "stream: the header (line 1: CSV naming the inputs as TC_INPUT_NAMES "
+            fprintf(stderr, "stream: the header (line %ld: CSV naming the inputs as TC_INPUT_NAMES "
                     "in compensator.h does, in degC%s; a file in fixed-width columns, JSON "
                     "Lines or a historian's or InfluxDB export: converted first, to CSV, as the "
-                    "export's check/<campaign>/rows.csv are) lacks input column %s\n",
+                    "export's check/<campaign>/rows.csv are) lacks input column %s\n", top,
                     TC_LAB_NAMES[0][0][0] ? ", or by a lab's header TC_LAB_NAMES lists, in its "
                     "unit" : "", TC_INPUT_NAMES[i]);
             return 2;
