@@ -163,6 +163,38 @@ def stream_steps(estimator, X: np.ndarray, state, context: Mapping | None = None
     return y, state
 
 
+def between_steps(estimator, X: np.ndarray, context, stepped: np.ndarray) -> np.ndarray:
+    """The batch's answer at the rows not ``stepped`` (between two rows of the training grid,
+    :func:`thermocomp.core.timerule.grid_rows`), as the stream gives it (between73): the
+    estimator's own step from the state its last stepped row committed, with the row's inputs
+    and ``context`` (a DataFrame, one row per row of ``X``), that state kept.  The stepped rows
+    of each campaign are streamed from ``stream_init`` at its first row (always stepped).
+    Returns one value per row not stepped, in row order."""
+    import copy
+
+    X = np.asarray(X, dtype=float)
+    n = len(X)
+    cols = {} if context is None else {c: context[c].to_numpy() for c in context.columns}
+    groups = groups_of(context)
+    start = np.r_[True, groups[1:] != groups[:-1]] if groups is not None and n \
+        else np.r_[True, np.zeros(max(n - 1, 0), bool)]
+    out, state, i = [], None, 0
+    while i < n:
+        if start[i]:
+            state = estimator.stream_init(row_context(cols, i, n))
+        if not stepped[i]:
+            ctx = row_context(cols, i, n)
+            out.append(estimator.stream_step(X[i], copy.deepcopy(state), ctx)[0])
+            i += 1
+            continue
+        j = i + 1
+        while j < n and stepped[j] and not start[j]:
+            j += 1
+        block = {k: v[i:j] for k, v in cols.items()}
+        state = stream_steps(estimator, X[i:j], state, block)[1]
+        i = j
+    return np.asarray(out, dtype=float)
+
 def keeps_memory(estimator, n_inputs: int) -> bool:
     """Whether a fitted estimator's stream carries a memory from sample to sample (a lag, a
     history, a feedback, a cell state): what the training grid paces (cadence72,
