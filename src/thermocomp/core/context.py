@@ -180,8 +180,11 @@ def between_steps(estimator, X: np.ndarray, context, stepped: np.ndarray) -> np.
         else np.r_[True, np.zeros(max(n - 1, 0), bool)]
     out, state, i = [], None, 0
     while i < n:
-        if start[i]:
-            state = estimator.stream_init(row_context(cols, i, n))
+        if start[i]:      # a campaign's first row stepped alone, as the stream steps it
+            ctx = row_context(cols, i, n)
+            state = estimator.stream_step(X[i], estimator.stream_init(ctx), ctx)[1]
+            i += 1
+            continue
         if not stepped[i]:
             ctx = row_context(cols, i, n)
             out.append(estimator.stream_step(X[i], copy.deepcopy(state), ctx)[0])
