@@ -25,11 +25,12 @@ import pandas as pd
 import pytest
 
 from test_export import EVERY_EXCURSION, _compose, needs_cc
+from test_export_cadence72 import FASTER, _faster
 from test_export_dropout53 import _c, _st
 from test_export_guard import _simulated, _spindle_dataset
 from thermocomp.apps.deploy.adaptive import AdaptiveCompensator
 from thermocomp.apps.deploy.export import state_space
-from thermocomp.apps.deploy.streaming import replay
+from thermocomp.apps.deploy.streaming import batch_prediction, replay
 from thermocomp.shell.builders import build_compensator, deploy_stream, deployable
 from thermocomp.shell.source import read_streamed
 
@@ -152,9 +153,6 @@ def test_a_faster_stream_between_grid_rows_in_every_form_out_of_the_envelope(dat
     moves between them (it held the grid row's), the batch ``run`` predicts is the stream's (a
     campaign's first row stepped alone: the lags of the states' powers start at rest), and the
     code follows the stream while the clamp forks, bounds and returns on rows between."""
-    from test_export_cadence72 import FASTER, _faster
-    from thermocomp.apps.deploy.streaming import batch_prediction
-
     adaptive, healthy = _fitted(datasets["independent"], "declared_too")
     stream, cols = adaptive.streaming, adaptive.streaming.columns_
     assert stream.compensator.grid_period_s_ > 0
