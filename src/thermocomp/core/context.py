@@ -49,6 +49,7 @@ cross-validation tools slice it per fold like ``X``.
 
 from __future__ import annotations
 
+import copy
 from collections.abc import Mapping
 
 import numpy as np
@@ -170,8 +171,6 @@ def between_steps(estimator, X: np.ndarray, context, stepped: np.ndarray) -> np.
     and ``context`` (a DataFrame, one row per row of ``X``), that state kept.  The stepped rows
     of each campaign are streamed from ``stream_init`` at its first row (always stepped).
     Returns one value per row not stepped, in row order."""
-    import copy
-
     X = np.asarray(X, dtype=float)
     n = len(X)
     cols = {} if context is None else {c: context[c].to_numpy() for c in context.columns}
@@ -197,6 +196,7 @@ def between_steps(estimator, X: np.ndarray, context, stepped: np.ndarray) -> np.
         state = stream_steps(estimator, X[i:j], state, block)[1]
         i = j
     return np.asarray(out, dtype=float)
+
 
 def keeps_memory(estimator, n_inputs: int) -> bool:
     """Whether a fitted estimator's stream carries a memory from sample to sample (a lag, a
