@@ -25,11 +25,12 @@ import pandas as pd
 import pytest
 
 from test_export import EVERY_EXCURSION, _compose, needs_cc
+from test_export_cadence72 import FASTER, _faster
 from test_export_dropout53 import _c, _st
 from test_export_guard import _simulated, _spindle_dataset
 from thermocomp.apps.deploy.adaptive import AdaptiveCompensator
 from thermocomp.apps.deploy.export import state_space
-from thermocomp.apps.deploy.streaming import replay
+from thermocomp.apps.deploy.streaming import batch_prediction, replay
 from thermocomp.shell.builders import build_compensator, deploy_stream, deployable
 from thermocomp.shell.source import read_streamed
 
@@ -142,4 +143,33 @@ def test_a_missing_machine_state_is_held_in_the_code_as_the_stream_holds_it(data
     refused, st_out = _st(stream, [gappy], cols)
     assert (returned >= 0).all() and not refused.any()
     for form in (c_out, st_out, _simulated(ss, [gappy], cols)):
+        np.testing.assert_allclose(form, expected, rtol=0, atol=TOLERANCE_UM)
+
+
+@needs_cc
+def test_a_faster_stream_between_grid_rows_in_every_form_out_of_the_envelope(datasets, tmp_path):
+    """Streamed FASTER times as often as trained, a row between two of the training grid is the
+    model's step from the state the last grid row committed, not kept (between73): its answer
+    moves between them (it held the grid row's), the batch ``run`` predicts is the stream's (a
+    campaign's first row stepped alone: the lags of the states' powers start at rest), and the
+    code follows the stream while the clamp forks, bounds and returns on rows between."""
+    adaptive, healthy = _fitted(datasets["independent"], "declared_too")
+    stream, cols = adaptive.streaming, adaptive.streaming.columns_
+    assert stream.compensator.grid_period_s_ > 0
+    ss = state_space(stream)
+    records = [_faster(df) for name, df in _excursions(healthy, ss.powers[0][1]).items()
+               if name in ("out_and_back", "state_beyond", "healthy")]
+    expected = [-replay(stream, df)[stream.targets_].to_numpy(float) for df in records]
+    fast = expected[-1]
+    at_training = -replay(stream, healthy)[stream.targets_].to_numpy(float)
+    np.testing.assert_allclose(fast[::FASTER], at_training, rtol=0, atol=TOLERANCE_UM)
+    between = np.flatnonzero(np.arange(len(fast)) % FASTER)
+    assert np.min(np.abs(fast[between] - at_training[between // FASTER])) > 0
+    batch = -batch_prediction(stream.compensator, records[-1])[stream.targets_].to_numpy(float)
+    np.testing.assert_allclose(batch, fast, rtol=0, atol=TOLERANCE_UM)
+    expected = np.vstack(expected)
+    returned, c_out = _c(stream, tmp_path, records, cols)
+    refused, st_out = _st(stream, records, cols)
+    assert (returned >= 0).all() and not refused.any()
+    for form in (c_out, st_out, _simulated(ss, records, cols)):
         np.testing.assert_allclose(form, expected, rtol=0, atol=TOLERANCE_UM)

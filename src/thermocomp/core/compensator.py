@@ -14,7 +14,7 @@ import pandas as pd
 from sklearn.base import BaseEstimator, clone
 
 from .choices import MODES
-from .context import Y_MEASURED, for_target, keeps_memory, with_column
+from .context import Y_MEASURED, between_steps, for_target, keeps_memory, with_column
 from .denoise import denoise_campaigns, fit_denoiser
 from .first_probe import REFITS, completed, frame_loss, late_starts
 from .frame import Matrices, resolve_columns, stack
@@ -80,13 +80,14 @@ class Compensator(BaseEstimator):
         The intercepts left out (``offsets='drop'``), in the targets' unit.
     grid_period_s_ : float or None
         The training sample period where a model keeps a memory (cadence72): on rows closer
-        together it steps once a period, on the row nearest each period on, and holds its
-        prediction between (:func:`~thermocomp.core.timerule.on_grid`; every deployed form
-        does the same); None (a static law, no time, an older pickle): every row.  (deploy73)
-        Asked of the models (:func:`~thermocomp.core.context.keeps_memory`) when first read,
-        not at every fit: a fit keeps the training period alone, and a prediction asks only
-        where a row falls between two of its grid (3.4 % of MLR's fit CPU on make run's record,
-        CV folds included, was the question asked at every fit).
+        together it steps once a period, on the row nearest each period on, and answers a row
+        between from the state that row committed, not committing (between73; one-step mode
+        holds; :func:`~thermocomp.core.timerule.on_grid`; every deployed form does the same);
+        None (a static law, no time, an older pickle): every row.  (deploy73) Asked of the
+        models (:func:`~thermocomp.core.context.keeps_memory`) when first read, not at every
+        fit: a fit keeps the training period alone, and a prediction asks only where a row
+        falls between two of its grid (3.4 % of MLR's fit CPU on make run's record, CV folds
+        included, was the question asked at every fit).
     """
 
     def __init__(self, estimator, selector=None, inputs=("T_*",), targets=None,
@@ -209,11 +210,16 @@ class Compensator(BaseEstimator):
         if mode not in MODES:
             raise ValueError(f"eval.mode must be one of {MODES}, got {mode!r}")
         period = self._grid_candidate()
-        if period:      # rows closer than the training period: stepped on its grid, held between
+        if period:      # rows closer than the training period: stepped on its grid
             stepped = grid_rows(m.time, m.groups, period)
             if not stepped.all() and self.grid_period_s_:
-                on = self.predict_stacked(m.subset(stepped), mode)
-                return on[np.cumsum(stepped) - 1]
+                out = self.predict_stacked(m.subset(stepped), mode)[np.cumsum(stepped) - 1]
+                if mode == "simulation":   # a row between: from the committed state (between73)
+                    context = _simulation(m.context)
+                    for k, (target, est) in enumerate(self.estimators_.items()):
+                        X = m.X[self.selected_[target]].to_numpy()
+                        out[~stepped, k] = between_steps(est, X, context, stepped)
+                return out
         out = np.empty((len(m.X), len(self.targets_)))
         laws = getattr(self, "one_step_", None)   # None: a model pickled before the law existed
         context = _simulation(m.context) if laws is not None else m.context

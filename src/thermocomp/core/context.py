@@ -49,6 +49,7 @@ cross-validation tools slice it per fold like ``X``.
 
 from __future__ import annotations
 
+import copy
 from collections.abc import Mapping
 
 import numpy as np
@@ -161,6 +162,40 @@ def stream_steps(estimator, X: np.ndarray, state, context: Mapping | None = None
     for i in range(len(X)):
         y[i], state = estimator.stream_step(X[i], state, row_context(context, i, len(X)))
     return y, state
+
+
+def between_steps(estimator, X: np.ndarray, context, stepped: np.ndarray) -> np.ndarray:
+    """The batch's answer at the rows not ``stepped`` (between two rows of the training grid,
+    :func:`thermocomp.core.timerule.grid_rows`), as the stream gives it (between73): the
+    estimator's own step from the state its last stepped row committed, with the row's inputs
+    and ``context`` (a DataFrame, one row per row of ``X``), that state kept.  The stepped rows
+    of each campaign are streamed from ``stream_init`` at its first row (always stepped).
+    Returns one value per row not stepped, in row order."""
+    X = np.asarray(X, dtype=float)
+    n = len(X)
+    cols = {} if context is None else {c: context[c].to_numpy() for c in context.columns}
+    groups = groups_of(context)
+    start = np.r_[True, groups[1:] != groups[:-1]] if groups is not None and n \
+        else np.r_[True, np.zeros(max(n - 1, 0), bool)]
+    out, state, i = [], None, 0
+    while i < n:
+        if start[i]:      # a campaign's first row stepped alone, as the stream steps it
+            ctx = row_context(cols, i, n)
+            state = estimator.stream_step(X[i], estimator.stream_init(ctx), ctx)[1]
+            i += 1
+            continue
+        if not stepped[i]:
+            ctx = row_context(cols, i, n)
+            out.append(estimator.stream_step(X[i], copy.deepcopy(state), ctx)[0])
+            i += 1
+            continue
+        j = i + 1
+        while j < n and stepped[j] and not start[j]:
+            j += 1
+        block = {k: v[i:j] for k, v in cols.items()}
+        state = stream_steps(estimator, X[i:j], state, block)[1]
+        i = j
+    return np.asarray(out, dtype=float)
 
 
 def keeps_memory(estimator, n_inputs: int) -> bool:

@@ -387,7 +387,8 @@ class StreamingCompensator:
         self._bounds: dict = {}           # per target: |gain @ e| of the last sample out of range
         self._den_state = None
         self.n_samples_ = 0
-        # the training grid (cadence72): the models step once a training period, held between
+        # the training grid (cadence72): the models commit a step once a training period; a row
+        # between is answered from the committed state (between73)
         self._grid = getattr(self.compensator, "grid_period_s_", None)
         self._on_grid = (float("nan"), float("nan"), None)   # (last stepped, last row, its y)
         period = lag_period(est for _, est, _ in self._plan) or self._grid
@@ -503,11 +504,22 @@ class StreamingCompensator:
                 x[:self._n_inputs], self.denoiser.stream_init() if first else self._den_state)
             seen = x.copy()
             seen[:self._n_inputs] = den
-        if not first and self._grid:
-            held = self._held_row(float(time))
-            if held is not None:
-                self.n_samples_ += 1
-                return held, 0
+        if not first and self._grid and self._between(float(time)):
+            # between two grid rows: the models' step from the committed state, not committed
+            committed = (self._states, self._held, self._gains, self._bounds)
+            self._states, self._held = copy.deepcopy(self._states), copy.deepcopy(self._held)
+            try:
+                return self._models(seen, time, first)
+            finally:
+                self._states, self._held, self._gains, self._bounds = committed
+        y, n_clamped = self._models(seen, time, first)
+        if self._grid:
+            self._on_grid = (float(time), float(time), y.copy())
+        return y, n_clamped
+
+    def _models(self, seen: np.ndarray, time: float, first: bool) -> tuple[np.ndarray, int]:
+        """``(prediction, n_clamped)`` of the models on the (denoised) sample ``seen`` at the
+        stream's ``time``, their states stepped."""
         if first:
             # refused before the stream starts: a half-started one (its reference set, no
             # model state) failed at the next row on a KeyError naming a target
@@ -562,21 +574,19 @@ class StreamingCompensator:
             bound = self._bounds.get(t, 0.0)
             y[k] -= min(max(y[k] - clamped, -bound), bound)
         self.n_samples_ += 1
-        if self._grid:
-            self._on_grid = (float(time), float(time), y.copy())
         return y, n_clamped
 
-    def _held_row(self, time: float) -> np.ndarray | None:
-        """The prediction held at a row between two of the training grid (a copy), None at a
-        row the models step on (:func:`~thermocomp.core.timerule.on_grid`; a row without a time
-        is one period on: stepped)."""
+    def _between(self, time: float) -> bool:
+        """Whether a row lies between two of the training grid (between73), answered from the
+        last committed state; False at a row the models step on
+        (:func:`~thermocomp.core.timerule.on_grid`; a row without a time is one period on)."""
         stepped, last, y = self._on_grid
         if y is None or not (np.isfinite(time) and np.isfinite(stepped)):
-            return None
+            return False
         if on_grid(time - stepped, time - last, self._grid):
-            return None
+            return False
         self._on_grid = (stepped, time, y)
-        return y.copy()
+        return True
 
     # -- blocks of rows ---------------------------------------------------------------------
     def run_rows(self, X: np.ndarray, time: np.ndarray, clocked: bool = False, on_refused=None
@@ -651,7 +661,7 @@ class StreamingCompensator:
 
     def _grid_rows(self, time, start: int, m: int, clocked: bool) -> int:
         """How many of the ``m`` rows from ``start`` the models step on one after the other
-        (:func:`~thermocomp.core.timerule.on_grid`; a held row goes through :meth:`_step`)."""
+        (:func:`~thermocomp.core.timerule.on_grid`; a row between goes through :meth:`_step`)."""
         t = np.asarray(time[start:start + m], dtype=float)
         if self._clock is not None and not clocked:
             t = t - self._clock.shift

@@ -232,8 +232,6 @@ typedef struct {{
                                                    sample out of the envelope's */
     double t;                                   /* previous sample time, s */
     double t_grid;                              /* the last sample the model stepped on, s */
-    double y_grid[TC_N_OUTPUTS];                /* ... its output before the guard (held) */
-    double allow_grid[TC_N_OUTPUTS];            /* ... its guard's widening (held) */
     double t_read;                              /* last good time read, s */
     double shift;                               /* time read - the stream's clock, s */
     double t_back;                              /* the previous row's time where it was not
@@ -484,9 +482,10 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
     double uu[TC_N_INPUTS];                 /* u, a held signal's missing value filled */
     double v[TC_N_INPUTS], x[2][TC_WIDTH], xl[2][{max(k, 1)}], ych[2];
     double ysum[2][TC_N_OUTPUTS], excess[TC_N_OUTPUTS];
-    double allow[TC_N_OUTPUTS];
+    double allow[TC_N_OUTPUTS], yout[TC_N_OUTPUTS];
     double dt, now, lag_dt;
-    int i, j, l, h, r, clamped = 0;
+    int i, j, l, h, r, clamped = 0, between = 0;
+    tc_state committed;
     /* an input not measured refuses the sample before anything is remembered: one NaN would
        otherwise stay in the lags, the AR feedback and the guard to the campaign's end; so does
        a campaign's first sample without its given ambient (TC_AMBIENT_GIVEN) */
@@ -508,18 +507,15 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
     for (l = TC_TAPS - 1; l >= 0; l--)
         for (j = 0; j < TC_N_INPUTS; j++)
             s->buf[l][j] = (s->first || l == 0) ? uu[j] : s->buf[l - 1][j];
-    /* the training grid (cadence72, timerule.on_grid): a sample of a faster stream (a step of
-       at most half GRID_PERIOD) less than a period after the last one the model stepped on
-       (the one nearest a period on is stepped) repeats that one's output; the model's memory
-       steps by the time since it */
+    /* the training grid (cadence72, timerule.on_grid): the model's memory steps by the time
+       since the last sample it stepped on; a sample of a faster stream (a step of at most half
+       GRID_PERIOD) less than a period after it (the one nearest a period on is stepped) is
+       answered by the model's step from that one's state, which is kept (between73) */
     lag_dt = dt;
     if (GRID_PERIOD > 0.0 && !s->first) {{
-        if (dt > 0.0 && dt <= GRID_PERIOD / 2 && now - s->t_grid + dt / 2 < GRID_PERIOD) {{
-            s->t = now;
-            for (i = 0; i < TC_N_OUTPUTS; i++) c[i] = corrected(s, i, s->y_grid[i], dt, s->allow_grid[i]);
-            return 0;
-        }}
         lag_dt = now - s->t_grid;
+        between = dt > 0.0 && dt <= GRID_PERIOD / 2 && lag_dt + dt / 2 < GRID_PERIOD;
+        if (between) committed = *s;
     }}
     s->t_grid = now;
     for (j = 0; j < TC_N_INPUTS; j++) {{
@@ -681,22 +677,24 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
     if (TC_N_FORESTS) forests(s, v, TC_SWITCH_RAW_TIME ? time : now, ysum[0]);
     if (TC_N_LSTM) lstms(s, (const double (*)[TC_WIDTH])x, ysum[0]);
     for (i = 0; i < TC_N_OUTPUTS; i++) {{
-        double y, bound = 0.0;
+        double bound = 0.0;
         ych[0] = ysum[0][i];
         ych[1] = ysum[1][i];
         bound = excess[i];
         if (s->first || clamped) s->bound[i] = fabs(bound);
         /* outright: no step gain (or none yet: a state's, out at the campaign's first sample) */
         bound = (CLAMP_OUTRIGHT[i] || s->by_outright[i]) ? HUGE_VAL : s->bound[i];
-        y = ych[0] - (ych[1] > bound ? bound : (ych[1] < -bound ? -bound : ych[1]));
-        s->y_grid[i] = y;
-        s->allow_grid[i] = allow[i];
-        c[i] = corrected(s, i, y, dt, allow[i]);
+        yout[i] = ych[0] - (ych[1] > bound ? bound : (ych[1] < -bound ? -bound : ych[1]));
     }}
     for (h = 0; h < 2; h++)
         for (l = TC_DEPTH - 1; l >= 0; l--)
             for (j = 0; j < TC_N_INPUTS; j++)
                 s->hist[h][l][j] = l == 0 ? x[h][j] : s->hist[h][l - 1][j];
+    if (between) {{   /* the model's state back to the grid sample's; the time, the guard go on */
+        *s = committed;
+        s->t = now;
+    }}
+    for (i = 0; i < TC_N_OUTPUTS; i++) c[i] = corrected(s, i, yout[i], dt, allow[i]);
     s->first = 0;
     return clamped;
 }}

@@ -188,6 +188,39 @@ LSTM_BLOCK = """\
 """
 
 
+def _memory(ss: StateSpace) -> list[tuple[str, str, tuple]]:
+    """The model's memory a sample between two grid rows steps on a copy of (between73): per
+    variable its name, type and shape (``()`` a scalar); what only a campaign's first sample
+    sets is not among them (never such a sample)."""
+    n, m, k, d, r = len(ss.inputs), len(ss.targets), len(ss.taus), ss.depth, len(ss.laws)
+    nb, qi, ns = len(ss.clamp_states), len(ss.initial), len(ss.switch_input)
+    cells = (len(ss.lstm_target), ss.lstm_layers, ss.lstm_hidden)
+    return [("v0", "LREAL", (n,)), ("seen", "BOOL", (n,)), ("by_prev", "LREAL", (nb,)),
+            ("by_held", "LREAL", (nb,)), ("excessed", "BOOL", ()), ("by_outright", "BOOL", (m,)),
+            ("init_start", "LREAL", (qi,)), ("init_started", "BOOL", (qi,)),
+            ("hist", "LREAL", (2, d, n)), ("z", "LREAL", (2, k)), ("y_prev", "LREAL", (2, r)),
+            ("bound_held", "LREAL", (m,)), ("sw_on", "BOOL", (ns,)), ("sw_changed", "BOOL", (ns,)),
+            ("sw_t0", "LREAL", (ns,)), ("lstm_h", "LREAL", cells), ("lstm_c", "LREAL", cells)]
+
+
+def _copied(ss: StateSpace, back: bool, indent: str = "        ") -> str:
+    """Every variable of :func:`_memory` copied to its ``_kept`` twin, or back (element by
+    element: an array assignment is not every PLC's)."""
+    lines = []
+    for name, _, shape in _memory(ss):
+        src, dst = (f"{name}_kept", name) if back else (name, f"{name}_kept")
+        if not shape:
+            lines.append(f"{indent}{dst} := {src};")
+            continue
+        index = ("i", "j", "l")[:len(shape)]
+        at = ", ".join(index)
+        for depth, (v, size) in enumerate(zip(index, shape)):
+            lines.append(f"{indent}{'    ' * depth}FOR {v} := 0 TO {max(size, 1) - 1} DO")
+        lines.append(f"{indent}{'    ' * len(shape)}{dst}[{at}] := {src}[{at}];")
+        lines += [f"{indent}{'    ' * depth}END_FOR;" for depth in reversed(range(len(shape)))]
+    return "\n".join(lines)
+
+
 def function_block(ss: StateSpace) -> str:
     n, m, taps, k, d = len(ss.inputs), len(ss.targets), len(ss.fir), len(ss.taus), ss.depth
     p, r, qi = len(ss.powers), len(ss.laws), len(ss.initial)
@@ -266,6 +299,9 @@ def function_block(ss: StateSpace) -> str:
         f"    FORGETTING : LREAL := {literal(ss.adapt_forgetting)};",
         f"    MAX_BIAS : LREAL := {literal(ss.adapt_max_bias)};",
         f"    CAP_VARIANCE : LREAL := {literal(ss.adapt_var_cap)};"])
+    kept = "\n".join(f"    {name}_kept : " + (f"ARRAY[{_dims(*shape)}] OF {kind};" if shape else f"{kind};")
+                     for name, kind, shape in _memory(ss))
+    save, restore = _copied(ss, back=False, indent="            "), _copied(ss, back=True)
     learned = "\n".join([_constant("gain", ss.adapt_gain or [1.0] * m, (m,)),
                          _constant("bias", ss.adapt_bias or [], (m,)),
                          _constant("variance", ss.adapt_var or [], (m,)),
@@ -323,9 +359,8 @@ VAR
     pg : LREAL;
     t_prev : LREAL;
     t_grid : LREAL;
-    y_grid : ARRAY[{_dims(m)}] OF LREAL;
-    allow_grid : ARRAY[{_dims(m)}] OF LREAL;
-    held : BOOL;
+    between : BOOL;
+{kept}
     lag_dt : LREAL;
     t_read : LREAL;
     read_valid : BOOL;
@@ -453,21 +488,22 @@ IF NOT refused THEN
             END_IF;
         END_FOR;
     END_FOR;
-    (* the training grid (cadence72, timerule.on_grid): a sample of a faster stream (a step of *)
-    (* at most half GRID_PERIOD) less than a period after the last one the model stepped on *)
-    (* (the one nearest a period on is stepped) repeats that one's output; *)
-    (* the model's memory steps by the time since it *)
-    held := FALSE;
+    (* the training grid (cadence72, timerule.on_grid): the model's memory steps by the time *)
+    (* since the last sample it stepped on; a sample of a faster stream (a step of at most half *)
+    (* GRID_PERIOD) less than a period after it (the one nearest a period on is stepped) is *)
+    (* answered by the model's step from that one's state, which is kept (between73) *)
+    between := FALSE;
     lag_dt := dt;
     IF GRID_PERIOD > 0.0 AND NOT first THEN
-        IF dt > 0.0 AND dt <= GRID_PERIOD / 2.0 AND now - t_grid + dt / 2.0 < GRID_PERIOD THEN
-            held := TRUE;
-        ELSE
-            lag_dt := now - t_grid;
+        lag_dt := now - t_grid;
+        IF dt > 0.0 AND dt <= GRID_PERIOD / 2.0 AND lag_dt + dt / 2.0 < GRID_PERIOD THEN
+            between := TRUE;
+{save}
         END_IF;
     END_IF;
-    IF NOT held THEN
-    t_grid := now;
+    IF NOT between THEN
+        t_grid := now;
+    END_IF;
     FOR j := 0 TO N_INPUTS - 1 DO
         v[j] := 0.0;
         FOR l := 0 TO TAPS - 1 DO
@@ -838,13 +874,8 @@ IF NOT refused THEN
             END_IF;
         END_FOR;
     END_IF;
-{LSTM_BLOCK}    END_IF;
-    t_prev := now;
+{LSTM_BLOCK}    t_prev := now;
     FOR i := 0 TO N_OUTPUTS - 1 DO
-        IF held THEN
-            y := y_grid[i];
-            allow[i] := allow_grid[i];
-        ELSE
         ych[0] := ysum[0, i];
         ych[1] := ysum[1, i];
         bound := excess[i];
@@ -866,9 +897,6 @@ IF NOT refused THEN
             y := ych[0] + bound;
         ELSE
             y := ych[0] - ych[1];
-        END_IF;
-        y_grid[i] := y;
-        allow_grid[i] := allow[i];
         END_IF;
         (* correction guard: within the rate limit of the previous output, then the bound *)
         IF USE_GUARD THEN
@@ -953,7 +981,6 @@ IF NOT refused THEN
             END_IF;
         END_FOR;
     END_IF;
-    IF NOT held THEN
     FOR h := 0 TO 1 DO
         FOR l := DEPTH - 1 TO 0 BY -1 DO
             FOR j := 0 TO N_INPUTS - 1 DO
@@ -965,6 +992,8 @@ IF NOT refused THEN
             END_FOR;
         END_FOR;
     END_FOR;
+    IF between THEN   (* the model's memory back to the grid sample's (between73) *)
+{restore}
     END_IF;
     first := FALSE;
 END_IF;

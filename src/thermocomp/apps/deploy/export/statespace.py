@@ -76,6 +76,7 @@ last three for each channel (``y_prev`` per law), and the limit keeps one number
 
 from __future__ import annotations
 
+import copy
 from dataclasses import asdict, dataclass, field
 
 import numpy as np
@@ -173,7 +174,8 @@ class _System:
     substitute_time: bool = False    # a non-increasing time too is substituted (timerule.py)
     time_period: float = 0.0         # s: a sample without time is this after the previous
     # s: the training period a model with a memory steps on (cadence72): a sample less than it
-    # after the last one stepped (timerule.on_grid) is held, its pre-guard output repeated; 0: none
+    # after the last one stepped (timerule.on_grid) is answered by the model's step from that
+    # one's state, not kept (between73); 0: none
     grid_period: float = 0.0
     guard: bool = False
     guard_lo: list | None = None     # (n_targets,) µm of predicted error
@@ -595,13 +597,21 @@ class Simulator:
         else:
             self.buf = np.vstack([u[None, :], self.buf[:-1]])
         v = (self.buf * self.fir).sum(axis=0)
-        if not self.first and ss.grid_period:
-            if not on_grid(now - self.t_grid, dt, ss.grid_period):    # held (cadence72)
-                self.c = self.output.step(self.y_grid, False, dt, self.allow_grid)
-                return self.c.copy()
-            lag_dt = now - self.t_grid
-        else:
-            lag_dt = dt
+        first, model, lag_dt = self.first, self, dt
+        if not first and ss.grid_period:      # the training grid (cadence72): lags by the time
+            lag_dt = now - self.t_grid         # since the last grid row
+            if not on_grid(lag_dt, dt, ss.grid_period):
+                # a row between (between73): the model's step from the committed state, on a copy
+                model = copy.deepcopy(self, {id(ss): ss, id(self.output): self.output,
+                                             id(self.clock): self.clock})
+        y, allow = model._model(u, v, measured, now, lag_dt, time)
+        self.c = self.output.step(y, first, dt, allow)
+        return self.c.copy()
+
+    def _model(self, u, v, measured, now: float, lag_dt: float, time: float
+               ) -> tuple[np.ndarray, np.ndarray]:
+        """The model's step on the denoised sample ``v``: ``(y before the guard, its widening)``."""
+        ss = self.ss
         self.t_grid = now
         if self.first:
             self.ref = np.where(np.asarray(ss.referenced, bool), v, 0.0)
@@ -678,10 +688,7 @@ class Simulator:
             self.bound = np.abs(self._summed(gain @ excess))
         outright = np.asarray(ss.clamp_outright or [0] * len(y[0]), bool) | self.by_outright
         bound = np.where(outright, np.inf, self.bound)
-        self.y_grid = y[0] - np.clip(y[1], -bound, bound)
-        self.allow_grid = self.output.allowance(x, self.envelope)
-        self.c = self.output.step(self.y_grid, first, dt, self.allow_grid)
-        return self.c.copy()
+        return y[0] - np.clip(y[1], -bound, bound), self.output.allowance(x, self.envelope)
 
     def _beside(self, y: np.ndarray, targets: list, weights: list, laws: list,
                 value: np.ndarray) -> None:
