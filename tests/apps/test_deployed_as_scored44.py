@@ -38,9 +38,10 @@ FAMILIES = ("mlr", "pcr", "arx", "arx_rf", "lagbank", "hammerstein", "lstm", "au
 CELLS = ([(m, w, "campaigns") for m in FAMILIES for w in ("none", "cmeans")]
          + [(m, "none", "record") for m in FAMILIES])
 PLAIN = ("monitor.adaptive=false", "promote.envelope.policy=off")
-# the elbow refits the lag bank on every campaign left out for each number of intervals (6 s):
-# Hammerstein's ATI gets two intervals, fixed, as in test_replay
-SMALL_ATI = {"hammerstein": ("ati.estimator.n_intervals=2",)}
+# ATI's elbow refits the base model on every campaign left out for each number of intervals
+# (~7 s of CPU over the cells, the forest's and the LSTM's most; tests/shell/test_ati.py tests
+# it): two intervals, fixed, as in test_replay, so every cell deploys a model of two intervals
+ATI_INTERVALS = ("ati.estimator.n_intervals=2",)
 
 
 @pytest.fixture(scope="module")
@@ -75,8 +76,8 @@ def _run(runs, data, model, ati, where) -> Path:
     if key not in runs:
         out = runs["root"] / "-".join(key)
         extra = AUTO_ATI if (model, ati) == ("auto", "cmeans") else SMALL.get(model, ())
-        if ati == "cmeans":
-            extra += SMALL_ATI.get(model, ())
+        if ati == "cmeans" and model != "auto":
+            extra += ATI_INTERVALS
         wrapper = () if (model, ati) == ("auto", "cmeans") else (f"ati={ati}",)
         thermocomp("run", *data[where], f"model={model}", *wrapper, *extra, f"out={out}", *FAST)
         runs[key] = out

@@ -26,25 +26,28 @@ from thermocomp.shell.cli import main
 BENCHMARKS = Path(__file__).resolve().parents[2] / "benchmarks"
 
 
-def _record(root: Path, planted: bool) -> Path:
+def _records(root: Path) -> dict[str, Path]:
+    """The clean and the planted copy of one record: pde66.record simulates both at once
+    (~1 s of CPU), so once for the two."""
     sys.path.insert(0, str(BENCHMARKS))
     try:
         import pde66
     finally:
         sys.path.remove(str(BENCHMARKS))
     manifest, clean, screw = pde66.record(6611)
-    folder = root / ("planted" if planted else "clean")
-    folder.mkdir()
-    for cid, frame in (screw if planted else clean).items():
-        frame.to_csv(folder / f"{cid}.csv", index=False, float_format="%.6g")
-    manifest.to_csv(folder / "campaigns.csv", index=False)
-    return folder
+    folders = {}
+    for name, frames in (("planted", screw), ("clean", clean)):
+        folder = folders[name] = root / name
+        folder.mkdir()
+        for cid, frame in frames.items():
+            frame.to_csv(folder / f"{cid}.csv", index=False, float_format="%.6g")
+        manifest.to_csv(folder / "campaigns.csv", index=False)
+    return folders
 
 
 @pytest.fixture(scope="module")
 def records(tmp_path_factory) -> dict:
-    root = tmp_path_factory.mktemp("pde66")
-    return {k: _record(root, k == "planted") for k in ("planted", "clean")}
+    return _records(tmp_path_factory.mktemp("pde66"))
 
 
 def _diagnosed(path: Path, out: Path) -> dict:
