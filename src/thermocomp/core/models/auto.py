@@ -37,9 +37,6 @@ NONE = "none"            # no correction: validated beside them, kept where noth
 FOLD_MARGIN = 2.0
 FORWARD_ONE = "forward-chaining (one record)"
 MIN_IN_RANGE_ROWS = 20   # validation_rows='in_range': a fold with fewer in-range rows is scored whole
-# one record's forward folds: the votes count a fold only where its fit holds this share of the
-# train rows (the final fit's); shorter fits of the lag families are other models (auto73)
-MIN_FIT_SHARE = 0.7
 BLOCKS_ONE = {"blocks": "leave-block-out (one record)", "late_blocks": "leave-late-block-out (one record)"}
 CAMPAIGN_FOLDS = ("blocked forward", "leave-campaigns-out")   # folds holding out whole campaigns
 
@@ -291,22 +288,10 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
 
     def _voting_rows(self) -> np.ndarray:
         """The out-of-fold rows the votes score: all, or (``validation_rows='in_range'``) those
-        where the fold does not extrapolate (:func:`in_range_rows`); on one record's forward
-        folds only those of the folds fitted on ``MIN_FIT_SHARE`` of the train rows or more
-        (every fold where none is).  A lag family fitted on less can be another model: on a
-        36 h grinder record (stranger73's vgm73, seed 7356, E_dZ) the lag bank's fold fits on
-        45-65 % of the train rows tested 9-43x MLR's MSE on the record's test, those on 75-85 %
-        0.02x, as the final fit (1.11 against MLR's 7.37 µm); their folds' ratios 4.5 / 0.03 /
-        7.1 against 0.07 / 0.17 gave it 0.03 of the votes (benchmarks/bench_auto73.py)."""
-        rows = (in_range_rows(self.oof_in_range_, self.oof_fold_) if self.validation_rows == "in_range"
-                else np.ones(len(self.oof_y_), bool))
-        if self.scheme_ == FORWARD_ONE:
-            n, folds = self.oof_folds_
-            long_fits = np.isin(self.oof_fold_, [k for k, (fit, _) in enumerate(folds)
-                                                 if fit.size >= MIN_FIT_SHARE * n])
-            if (rows & long_fits).any():
-                rows &= long_fits
-        return rows
+        where the fold does not extrapolate (:func:`in_range_rows`)."""
+        if self.validation_rows == "in_range":
+            return in_range_rows(self.oof_in_range_, self.oof_fold_)
+        return np.ones(len(self.oof_y_), bool)
 
     def _refit(self, X, y, context):
         self.estimator_ = self._estimator(self.chosen_).fit(X, y, context=context)
