@@ -303,43 +303,8 @@ def instrument(*works: str) -> None:
     ``score``, each one-record record's forward folds given to ``_blend``)."""
     import bench_autorule69 as autorule
 
-    rows = autorule._rows([Path(w) for w in works])
-    _score_all(autorule, rows,
-               lambda a, name: rule_weights(a, name in ONE_RECORD, autorule._members(a)))
-
-
-def _score_all(autorule, rows: dict, weights) -> None:
-    import bench_automore69 as automore
-
-    lines, sums, worse = [], [], []
-    for name, (work, r) in rows.items():
-        ids, rule = r["own"] + r["new"], {}
-        for t, stored in r["weights"].items():
-            a = np.load(work / "pred" / f"{name}.{t}.npz")
-            y, shipped = automore.label(a, r["reference"]), r["squares"]["auto"][t]
-            again = autorule._squares(a, y, stored, ids, shipped)
-            assert all(np.isclose(again[c][1], shipped[c][1], rtol=1e-6, atol=1e-9) for c in ids), (name, t)
-            rule[t] = autorule._squares(a, y, weights(a, name), ids, shipped)
-        row = dict(r, squares={"auto": rule, **{m: v for m, v in r["squares"].items() if m != "auto"},
-                               "shipped": r["squares"]["auto"]})
-        s = automore.summary(row)
-        models, _, new = automore._arrays(row, row["new"])
-        _, _, own = automore._arrays(row, row["own"])
-        i, j = models.index("auto"), models.index("shipped")
-        ratio = automore.record_rmse(new)[i] / automore.record_rmse(new)[j]
-        own_ratio = automore.record_rmse(own)[i] / automore.record_rmse(own)[j]
-        lo, hi = automore.interval(new, i, j)
-        worse.append(ratio > 1.02 and lo > 1.02)
-        sums.append(s)
-        lines.append(f"{name:12s}{'*' if name in ONE_RECORD else ' '} auto/MLR own {s['to_mlr'][0]:.3f} new "
-                     f"{s['to_mlr'][1]:.3f} [{s['to_mlr'][2]:.2f}, {s['to_mlr'][3]:.2f}] {s['verdict']:10s} "
-                     f"rule/shipped own {own_ratio:.4f} new {ratio:.4f} [{lo:.4f}, {hi:.4f}]")
-    real = [s["record"] for s in sums if s["verdict"] == "real"]
-    better = sum(s["to_mlr"][1] < 1 for s in sums)
-    print("\n".join(lines))
-    print(f"(* one record: the rule reaches it) real losses {len(real)} ({', '.join(real)}); > 2 % worse "
-          f"than shipped with the interval above +2 %: {sum(worse)}; better than MLR on the new "
-          f"campaigns {better} of {len(sums)}")
+    autorule.score([Path(w) for w in works],
+                   lambda a, name: rule_weights(a, name in ONE_RECORD, autorule._members(a)))
 
 
 def main(argv: list[str]) -> int:
