@@ -212,8 +212,10 @@ def _squares(a, y, w: dict, ids: list[str], none: dict) -> dict:
                 none[c][2]) for k, c in enumerate(ids)}
 
 
-def score(works: list[Path]) -> None:
-    """The rule (the src's weights now) against shipped auto (the stored weights), per record."""
+def score(works: list[Path], weigh=None) -> None:
+    """The rule (the src's weights now; ``weigh(arrays, record)``: another bench's) against
+    shipped auto (the stored weights), per record."""
+    weigh = weigh or (lambda a, _: weights(a))
     lines, sums, worse = [], [], []
     for name, (work, r) in _rows(works).items():
         ids, rule = r["own"] + r["new"], {}
@@ -222,7 +224,7 @@ def score(works: list[Path]) -> None:
             y, shipped = automore.label(a, r["reference"]), r["squares"]["auto"][t]
             again = _squares(a, y, stored, ids, shipped)   # the stored weights give the stored squares
             assert all(np.isclose(again[c][1], shipped[c][1], rtol=1e-6, atol=1e-9) for c in ids), (name, t)
-            rule[t] = _squares(a, y, weights(a), ids, shipped)
+            rule[t] = _squares(a, y, weigh(a, name), ids, shipped)
         row = dict(r, squares={"auto": rule, **{m: v for m, v in r["squares"].items() if m != "auto"},
                                "shipped": r["squares"]["auto"]})
         s = automore.summary(row)
