@@ -435,9 +435,10 @@ class StreamingCompensator:
     def _gridless(self) -> tuple:
         """(deploy73) The grid of a state saved before cadence72 (none in it), for a model with a
         training grid: its stream stepped every row, so its last row was stepped, but where its
-        grid stood was not saved: the next row is stepped and kept, the grid counting from it (a faster stream's first row after the state steps
-        a fraction of a period; at the training period every row is stepped anyway).  Said once
-        per stream, where the state is mid-campaign."""
+        grid stood was not saved: the next row is stepped and kept, the grid counting from it (a
+        faster stream's first row after the state steps a fraction of a period; at the training
+        period every row is stepped anyway).  Said once per stream, where the state is
+        mid-campaign."""
         if self._grid and self._ref is not None and not getattr(self, "_said_gridless", False):
             self._said_gridless = True
             log.warning(f"a stream state saved before cadence72 (no training grid in it) restored "
