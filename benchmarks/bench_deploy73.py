@@ -57,6 +57,12 @@ the lag bank would cost Hammerstein 7.7 %), the shipped rule kept, pinned by
 the lag bank's grid answer worse on an unseen 60 s campaign than stepping every row (its lags'
 weights fitted on both discretisations), and a rule that fits on the grid too (the 60 s
 campaign's held rows out of the fit).
+
+Again after between73's merge (lead73, 2026-12-02, 106 s CPU): a row between grid rows is now
+answered from the committed grid state (the model's own step), not held; ``held`` below is
+that grid rule.  K03 mean over the five seeds, grid rule / every row: lagbank 2.868 / 2.720
+(every row better by 5.16 %, on 4 of 5 seeds), hammerstein 1.419 / 1.540 (worse by 8.50 %,
+better on 2 of 5): the same verdict, the grid rule kept for both.
 """
 
 from __future__ import annotations
