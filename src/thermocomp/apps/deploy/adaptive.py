@@ -246,16 +246,13 @@ class AdaptiveCompensator:
         fallback would read stand-ins only; the correction is held), nor for a sensor out for a
         dropout that reads again (``read``: the monitored readings of the row) while it waits
         out its window (its held reading, a window old at most, is the better stand-in: one
-        empty logger row cost 1.35 against 1.30 µm, tests/shell/test_monitor_lab57.py), nor
-        before the sensor has been out for its fallback's priced delay (``switch_after_``)."""
+        empty logger row cost 1.35 against 1.30 µm, tests/shell/test_monitor_lab57.py)."""
         mon = self.monitor
         if not self.fallbacks_ or mon is None or not mon._rebuilds:
             return None
         back = mon._dropped & np.isfinite(read)
-        since = mon._count - mon._out_at      # samples out (fallback.switch_delay: held before)
-        return next((s for s, out, b, n in zip(mon.names, ~mon._active, back, since)
-                     if out and not b and s in self.fallbacks_
-                     and n >= getattr(self.fallbacks_[s], "switch_after_", 0)), None)
+        return next((s for s, out, b in zip(mon.names, ~mon._active, back)
+                     if out and not b and s in self.fallbacks_), None)
 
     def _inputs(self, x: np.ndarray, t: float, events: list, dt: float | None = None
                 ) -> np.ndarray:

@@ -33,22 +33,6 @@ class InstantFaults:
         kept[cand] = beyond & (np.abs(x[cand] - p) < 0.5 * np.abs(x[cand] - edge))
         return kept
 
-    def _regime(self, d: np.ndarray, rng: np.ndarray) -> np.ndarray:
-        """Of the active sensors out of range (``rng``) that no other predicts (nothing in the field
-        can corroborate them), those that left it continuously: the last reading taken as a
-        measurement, this step within the jump limit, the change over the last ``window`` samples
-        within the largest training saw over as many.  A machine run longer or hotter than
-        training (range73: a grinder's healthy spindle climbing to 92-110 °C at its training
-        rates, training maximum 81.3 + 10, excluded by range alone and its fallback then 26-173
-        µm off against 8-35 fixed).  A spike, an open circuit, a unit change jump there; their
-        jump and freeze detectors judge the kept ones on."""
-        if self._count <= self.window:
-            return np.zeros(len(d), dtype=bool)
-        with np.errstate(invalid="ignore"):      # NaN (never read, an older monitor) compares False
-            return (rng & self._active & ~self._predictable
-                    & (np.abs(d - self._prev) <= self._jump_lim * self._gap)
-                    & (np.abs(d - self._hist[self._pos]) <= self.max_rise_c))
-
     def _reference_glitch(self, d, step, big, pos, time, events) -> tuple[np.ndarray, np.ndarray]:
         """A jump right after the reference sample: the reference is the glitch (or the sensor
         took an offset at once: the same thing to a model of changes since the start), so the

@@ -41,9 +41,6 @@ class SensorMonitor(InstantFaults, Judgement, Readmission):
         Exclude and re-admit sensors (otherwise only judge them).
     max_step_c : array
         Largest one-sample change of each sensor in training (°C).
-    max_rise_c : array
-        Largest change of each sensor over ``window`` samples in training (°C): the rate at which
-        a sensor no other predicts may leave its range as a regime (``_regime``); NaN: never.
     longest_run : array
         Longest run of identical readings of each sensor in training.
     lo_c, hi_c : array
@@ -67,13 +64,10 @@ class SensorMonitor(InstantFaults, Judgement, Readmission):
         if "_since" not in state:      # pickled before the new-state rule: its state, idle
             self._novel, self._calm_field = False, 0
             self._since = np.full(len(self.names), -1, dtype=np.int64)
-        if "max_rise_c" not in state:  # pickled before range73: out of range is out, as then
-            self.max_rise_c = np.full(len(self.names), np.nan)
-            self._out_at = np.full(len(self.names), -1, dtype=np.int64)
 
     def __init__(self, pod: ThermalPOD, names: Sequence[str], *, warning_c=0.4, alarm_c=0.8,
                  window: int = 10, confirm: int = 2, adaptive: bool = True,
-                 exclude_at: str = "warning", max_step_c=None, max_rise_c=None, longest_run=None,
+                 exclude_at: str = "warning", max_step_c=None, longest_run=None,
                  lo_c=None, hi_c=None, first_c=None, jump_factor: float = 3.0,
                  freeze_factor: float = 2.0, range_margin_c: float = 10.0,
                  new_state: bool = True, new_state_others: int = 2):
@@ -99,7 +93,6 @@ class SensorMonitor(InstantFaults, Judgement, Readmission):
             return np.full(n, default, float) if v is None else np.asarray(v, float).copy()
 
         self.max_step_c = arr(max_step_c, np.inf)
-        self.max_rise_c = arr(max_rise_c, np.nan)
         self.longest_run = arr(longest_run, np.inf)
         self.lo_c, self.hi_c = arr(lo_c, -np.inf), arr(hi_c, np.inf)
         self.first_c = arr(first_c, 0.0)
@@ -147,8 +140,6 @@ class SensorMonitor(InstantFaults, Judgement, Readmission):
             pod.fit(snaps, groups=groups)
         steps = np.vstack([np.abs(np.diff(a, axis=0)) for a in arrays if len(a) > 1]
                           or [np.zeros((1, len(names)))])
-        w = int(options.get("window", 10))
-        rises = [np.abs(a[w:] - a[:-w]).max(0) for a in arrays if len(a) > w]
         runs = np.max([_longest_runs(a) for a in arrays], axis=0)
         lo = np.min([a.min(0) for a in arrays], axis=0)
         hi = np.max([a.max(0) for a in arrays], axis=0)
@@ -173,14 +164,13 @@ class SensorMonitor(InstantFaults, Judgement, Readmission):
             warn, alarm = np.maximum(warn, floor), np.maximum(alarm, 2 * floor)
         options = {**options, "warning_c": warn, "alarm_c": alarm}
         return cls(pod, names, max_step_c=steps.max(0), longest_run=runs, lo_c=lo, hi_c=hi,
-                   max_rise_c=np.max(rises, axis=0) if rises else None,
                    first_c=first, **options)
 
     # -- state ------------------------------------------------------------------------------
     _STATE = ("_ref", "_active", "_state", "_hist", "_err", "_pos", "_count", "_prev",
               "_prev_e", "_run", "_run_pred", "_clean", "_quiet", "_calm", "_prev_other",
               "_last_good", "_by_field", "_jumps", "_ref0", "_dropped", "_gap", "_gapped", "_dwell",
-              "_outs", "_explains", "_novel", "_calm_field", "_since", "_out_at")
+              "_outs", "_explains", "_novel", "_calm_field", "_since")
 
     def reset(self) -> None:
         """New campaign: the next sample is the reference; every sensor active and ok."""
@@ -217,7 +207,6 @@ class SensorMonitor(InstantFaults, Judgement, Readmission):
         self._novel = False          # a new thermal state is declared (module doc)
         self._calm_field = 0         # samples since a judged sensor was last out of band
         self._since = np.full(n, -1, dtype=np.int64)   # sample count at its drift exclusion
-        self._out_at = np.full(n, -1, dtype=np.int64)  # sample count at its latest exclusion
         self._set_operator()
 
     def _operator(self, subset: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -459,7 +448,7 @@ class SensorMonitor(InstantFaults, Judgement, Readmission):
             self._ref = np.where(np.isfinite(x) & ~rng, x, np.nan)
         d = x - self._ref
         if rng.any() and self._count:
-            rng = rng & ~self._hotter(x, d, rng) & ~self._regime(d, rng)
+            rng = rng & ~self._hotter(x, d, rng)
         all_finite = bool(np.isfinite(d.sum()))
         finite = np.isfinite(d) if not all_finite else self._true
         pos = self._pos
@@ -583,8 +572,6 @@ class SensorMonitor(InstantFaults, Judgement, Readmission):
             return
         if not self._predictable[j]:   # say so: for a frozen sensor the exclusion changes nothing
             reason += "; held at its last good reading: no other sensor predicts it"
-        if self._active[j]:
-            self._out_at[j] = self._count
         self._active[j] = False
         self._calm[j] = 0            # back in only after a whole window inside the band
         if by_field:      # out by its error again since its first return: it waits longer
