@@ -382,7 +382,7 @@ class AdaptiveCompensator:
         if mon is not None:
             if gap[0]:
                 mon.skipped((t[0] - t_read) / self.period_s)
-            clean = mon.update_block(block if self._mon_all else block[:, self._mon])
+            clean = mon.update_block(block if self._mon_all else block[:, self._mon], t - shift)
             m = len(clean)
             if not m:
                 return 0

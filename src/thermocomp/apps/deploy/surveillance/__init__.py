@@ -61,6 +61,10 @@ its coupled neighbour's larger error; a sensor within its band whose exclusion l
 of band unjudged gives way to one out of band that explains the others and is the likelier
 single fault); otherwise no exclusion and an event
 ``"to": "new thermal state"`` (sensor ``None``, the sensors out of band in ``sensors``).
+A sensor within its band is not excluded for the others' excursion while that hovers (each
+error out of band no larger a share of its sensor's rise than ``EXCURSION_GROWTH`` × its share
+``EXCURSION_TAU_S`` seconds before, :mod:`.excursion`: a regime, not a fault); no event, the
+sensors out of band warn.
 A drift-excluded sensor (by the largest error, a lone fault or as explaining the others) is
 re-admitted when, within ``window`` samples of its exclusion, ``new_state_others``
 other judged sensors leave their warning band (the field followed it), which

@@ -41,6 +41,10 @@ class Judgement:
             j, resolves = self._lone_fault(int(np.argmax(z)), z, level, err)
             if self._drift_vetoed(j, level, err, time, events, resolves):
                 break
+            # a culprit within its own band is blamed for another's excursion only while that
+            # grows: one that reached its offset and hovers is a regime (module excursion.py)
+            if self.new_state and level[j] < WARNING and self._excursion_hovers(level, err):
+                break
             self._exclude(j, f"drift: self-prediction error {err[j]:+.2g} °C over the last "
                              f"{self.confirm} samples", time, events, by_field=True)
             self._since[j] = self._count
@@ -250,3 +254,4 @@ class Judgement:
         002: a new source), which self-prediction cannot pin on a sensor -- the paper excludes
         a sensor then only beyond its tolerance (the alarm band)."""
         return ALARM if (self._by_field & ~self._active).any() else self.exclude_level
+

@@ -12,13 +12,14 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 
 from ..pod import ThermalPOD, windowed_mean
+from .excursion import Excursion
 from .faults import InstantFaults
 from .judgement import Judgement
 from .readmission import Readmission
 from .states import ALARM, COMMON_MIN, EXCLUDED, MAX_BACKOFF, OK, SPREAD_FACTOR, STATES, WARNING
 
 
-class SensorMonitor(InstantFaults, Judgement, Readmission):
+class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
     """Stateful monitor of ``names`` (see module doc).
 
     Parameters
@@ -64,6 +65,9 @@ class SensorMonitor(InstantFaults, Judgement, Readmission):
         if "_since" not in state:      # pickled before the new-state rule: its state, idle
             self._novel, self._calm_field = False, 0
             self._since = np.full(len(self.names), -1, dtype=np.int64)
+        if "_slow" not in state:       # pickled before mon73: no memory of the field, no hover
+            self._slow_reset()
+            self._slow_ok = False
 
     def __init__(self, pod: ThermalPOD, names: Sequence[str], *, warning_c=0.4, alarm_c=0.8,
                  window: int = 10, confirm: int = 2, adaptive: bool = True,
@@ -170,7 +174,8 @@ class SensorMonitor(InstantFaults, Judgement, Readmission):
     _STATE = ("_ref", "_active", "_state", "_hist", "_err", "_pos", "_count", "_prev",
               "_prev_e", "_run", "_run_pred", "_clean", "_quiet", "_calm", "_prev_other",
               "_last_good", "_by_field", "_jumps", "_ref0", "_dropped", "_gap", "_gapped", "_dwell",
-              "_outs", "_explains", "_novel", "_calm_field", "_since")
+              "_outs", "_explains", "_novel", "_calm_field", "_since", "_slow", "_slow_t",
+              "_slow_ok")
 
     def reset(self) -> None:
         """New campaign: the next sample is the reference; every sensor active and ok."""
@@ -207,6 +212,7 @@ class SensorMonitor(InstantFaults, Judgement, Readmission):
         self._novel = False          # a new thermal state is declared (module doc)
         self._calm_field = 0         # samples since a judged sensor was last out of band
         self._since = np.full(n, -1, dtype=np.int64)   # sample count at its drift exclusion
+        self._slow_reset()
         self._set_operator()
 
     def _operator(self, subset: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -300,8 +306,10 @@ class SensorMonitor(InstantFaults, Judgement, Readmission):
             if self._quiet:
                 clean = self._fast(x)
                 if clean is not None:
+                    self._slow_step(self._hist[(self._pos - 1) % self.window], float(time))
                     return clean, []
             out = self._update(x, time)
+        self._slow_step(self._hist[(self._pos - 1) % self.window], float(time))
         # a new thermal state counts its calm samples on the full path
         self._quiet = self._rebuilds and not self._novel and not self._state[self._active].any()
         return out
@@ -379,14 +387,15 @@ class SensorMonitor(InstantFaults, Judgement, Readmission):
         self._clean = clean
         return clean
 
-    def update_block(self, X: np.ndarray) -> np.ndarray:
+    def update_block(self, X: np.ndarray, times=None) -> np.ndarray:
         """The referenced field of the first rows of ``X`` (absolute °C, (m, order of ``names``))
         that :meth:`update` takes on its fast path (:meth:`_fast`: every sensor active and ok,
         every reading there, nothing firing), in one go; the rows after them are for
         :meth:`update`.  Returns as many rows as it took (none: the next row needs the full
         path).  The state is the one :meth:`update` leaves row by row (the ring of readings and
         errors, the runs of equal readings, the calm counts): a lead-in of a year is read at
-        once (warm59), each detector judged on every row as :meth:`_fast` judges it."""
+        once (warm59), each detector judged on every row as :meth:`_fast` judges it.  ``times``:
+        the rows' times (s), for the memory of the field (:mod:`.excursion`; none: unknown)."""
         n = len(self.names)
         X = np.asarray(X, dtype=float)
         if (not self._quiet or not self._all_active or self._M is None
@@ -437,6 +446,7 @@ class SensorMonitor(InstantFaults, Judgement, Readmission):
         if self._gapped:
             self._gap, self._gapped = np.ones(n), False
         self._last_good = self._clean = d[m - 1]
+        self._slow_block(d[:m], None if times is None else np.asarray(times, float)[:m])
         return d[:m]
 
     def _update(self, x: np.ndarray, time: float) -> tuple[np.ndarray, list[dict]]:
