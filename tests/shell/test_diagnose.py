@@ -311,6 +311,28 @@ def test_self_prediction_flags_the_drifting_sensor_not_its_neighbours():
     assert (self_prediction(problem, sensors, tolerance=3.0)["jump_ratio"] < 3.0).all()
 
 
+def test_a_hot_sensor_in_a_state_no_fold_fitted_is_a_regime_not_a_fault():
+    # diagfault72: the last campaign heats the whole field beyond every other (its predictors
+    # leave the folds' range) and T_6, by its own source, more than linearly.  Judged where the
+    # folds extrapolate it jumped (ratio 8.0 on this draw) and was a fault (fl_thermal's T_t5:
+    # hammerstein E_ch4 1.84 -> 5.41 µm without it); now it is judged where they do not
+    rng = np.random.default_rng(7)
+    campaigns = {}
+    for k in range(12):
+        df = _field(rng, k)
+        if k == 11:
+            rise = 6.0 * (1 - np.exp(-df["time"].to_numpy() / 5000))
+            for i, w in enumerate([1.0, 0.8, 0.6, 0.9, 0.7], start=1):
+                df[f"T_{i}"] += 0.6 * w * rise
+            df["T_6"] += 2.0 * rise ** 1.5 / 6 ** 0.5
+        campaigns[f"C{k:02d}"] = df
+    sensors = [f"T_{i}" for i in range(1, 7)] + ["T_amb"]
+    m = stack(campaigns, sensors, ["E_Z"])
+    problem = Problem(m.X, m.Y["E_Z"].to_numpy(), m.context, m.groups, m.groups, "E_Z")
+    sp = self_prediction(problem, sensors, tolerance=3.0)
+    assert (sp["jump_ratio"] < 3.0).all() and sp.loc["T_6", "worst_unit"] != "C11"
+
+
 # -- the loop ---------------------------------------------------------------------------------
 @pytest.fixture(scope="session")
 def door_diagnosis():

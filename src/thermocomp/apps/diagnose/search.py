@@ -196,6 +196,8 @@ def gain_lower_bound(mse_before, mse_after, level: float = 0.95) -> float:
     over an equal gain a few campaigns carry.
     """
     d = np.asarray(mse_before, float) - np.asarray(mse_after, float)
+    judged = np.isfinite(d)                  # a block without a figure (diag73) is left out
+    d, mse_before = d[judged], np.asarray(mse_before, float)[judged]
     n = d.size
     if n < 2:
         return float("nan")
@@ -376,10 +378,12 @@ class Search:
         if not family:
             return
         D = np.array([current.block_mse - ev.result.block_mse for ev in family])
+        judged = np.isfinite(D).all(axis=0)      # blocks with a figure: in range (diag73)
+        D, before = D[:, judged], current.block_mse[judged]
         if self.problem.n_blocks_tested > self.problem.n_units:
             D = np.sign(D) * rankdata(np.abs(D), axis=1)
         else:   # one block per unit (or per run of forward units): its gain as a share of its MSE
-            D = np.clip(D / np.maximum(current.block_mse, 1e-300), -1.0, 1.0)
+            D = np.clip(D / np.maximum(before, 1e-300), -1.0, 1.0)
         p = sign_flip_maxt(D, seed=self.options.seed)
         for ev, pf in zip(family, p):
             ev.p_family = float(pf)
