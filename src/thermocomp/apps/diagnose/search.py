@@ -20,9 +20,11 @@ once, at the end, to report before and after):
    sign-flip p-value of the gains in mean squared error of the test blocks:
    time blocks within the held-out campaigns (validation blocks), as long as
    the residual takes to decorrelate (:mod:`~thermocomp.core.model_selection.blocks`), so
-   that 8 campaigns are not 256 outcomes.  With an MLR base the effect features are shrunk by
-   the ridge penalty of least CV error (:mod:`.shrink`), so an effect of many
-   correlated regressors competes at its best generalising strength.  (The deployed model of
+   that 8 campaigns are not 256 outcomes, each judged on its rows where no fold extrapolates
+   (:attr:`~.cv.CVResult.block_mse`: fl_thermal's E_ch5 took a product on the gains of runs
+   faster than any its folds fitted, and its test error rose 14 %; diag73).  With an MLR base
+   the effect features are shrunk by the ridge penalty of least CV error (:mod:`.shrink`), so an
+   effect of many correlated regressors competes at its best generalising strength.  (The deployed model of
    effects that all have several features takes the largest penalty within one standard error
    of it instead: :meth:`Search._deployed`.)
 5. **Accept**, among the candidates that clear the bar (:math:`g \ge`
