@@ -79,6 +79,40 @@ The bar (all must hold, else REFUSED: src reverted, this bench kept, the rule as
 
 Reported beside, not in the bar: fresh few-campaign records of this stop's seeds (``fresh``:
 clean 7306-7310, planted 7311-7315; bench_planted72's rows), shipped and rule; CPU.
+
+Measured (2026-12-02, rule e24b31a3, shipped = 2f2e7dd4 from a ``git archive``; 2 shared cores,
+load 12-17; CPU user + sys of each row)
+---------------------------------------------------------------------------------------------
+1. Holds.  Test RMSE µm before -> after diagnose, with the rule (``record``)::
+
+     60/20/20 hammerstein E_ch4  1.839 -> 1.839 (shipped: T_t5 removed, 5.41)        68.3 s
+     60/20/20 hammerstein all    3.211 / 3.544 / 2.347 / 1.839 / 3.269, nothing       255.2 s
+                                 accepted (RANGE2 alone: ch5 3.269 -> 3.726)
+     60/20/20 mlr / pcr / arx    nothing accepted, ch1-5 unchanged           11.3 / 16.1 / 23.3 s
+     60/20/20 lagbank            ch1 1.489 -> 0.851 (S_spindle 4 h lag), ch2-5 =       99.9 s
+     90/10 mlr / pcr / arx / lagbank  nothing accepted, unchanged   8.8 / 17.5 / 26.2 / 114.0 s
+     90/10 hammerstein           not finished by the deadline (RANGE2 alone accepted nothing)
+
+   THE COST, not in the bar: with all five channels the test blocks are 10 (the slowest
+   channel's length), 6 of them judged, smallest reachable p 1/64 > alpha: on the 60/20/20 cut
+   nothing can be accepted any more by mlr, pcr, arx, whose S_spindle lags RANGE2 (and shipped)
+   took with large test gains: mlr ch1 9.528 -> 3.789, ch2 7.769 -> 2.936; arx ch1 15.045 ->
+   2.393; pcr ch2 4.407 -> 2.970 µm (each gained in all 6 judged blocks: p 1/64).
+   ``cv.min_p`` still reports the design's 1/1024 (not the judged blocks').
+2. Holds on the 83 of 90 lines scored by the deadline (both trees): planted found 22 -> 22 of
+   23, none lost; clean + null accepting 0 -> 0; one row differs, planted:1292 (own 1.191 ->
+   1.164, new 1.587 -> 1.545 µm); no row above shipped.  Not scored: lathe43m, rig40, vendor5,
+   twin_lathe(-noair), gantry(-noY).
+3. Holds: faults found 10 -> 10 of 16, one unit 5 -> 5 of 16 (the same cases); clean: no
+   removal or effect beyond shipped.  Not in the bar, accepted effects lost (after, µm, shipped
+   -> rule): twin lathe E_Z1 offset 0.319 -> 0.383, stuck 0.321 -> 0.383, stuck1 0.322 -> 0.376;
+   Swiss offset1 E_Y 0.862 -> 0.896.
+4. Holds: tests/apps/test_diagnose*, tests/shell/test_diagnose* 121 passed (124 s CPU).
+
+Verdict: the bar as written holds on what was scored (item 2 partly), but the rule trades the
+one harm for the loss of four real fl_thermal gains and of effects on the twin lathe: judged
+blocks are few where a record extrapolates often, and the test loses its resolution.  Not
+recommended for main as it stands (see the report of stop 73).
 """
 
 from __future__ import annotations
