@@ -12,7 +12,6 @@ from sklearn.utils.estimator_checks import check_estimator
 from thermocomp.apps.diagnose import CONTROL, AugmentedRegressor, Effect, SearchOptions, diagnose
 from thermocomp.apps.diagnose.cv import Problem, sign_flip_maxt, sign_flip_pvalue
 from thermocomp.apps.diagnose.features import effect_features, first_order_lag, in_frame
-from thermocomp.apps.diagnose.search import Search
 from thermocomp.apps.diagnose.sensors import self_prediction
 from thermocomp.apps.diagnose.shrink import PartialRidgePath
 from thermocomp.base.errors import ConfigError, ParameterError
@@ -312,28 +311,6 @@ def test_self_prediction_flags_the_drifting_sensor_not_its_neighbours():
     assert (self_prediction(problem, sensors, tolerance=3.0)["jump_ratio"] < 3.0).all()
 
 
-def test_a_hot_sensor_in_a_state_no_fold_fitted_is_a_regime_not_a_fault():
-    # diagfault72: the last campaign heats the whole field beyond every other (its predictors
-    # leave the folds' range) and T_6, by its own source, more than linearly.  Judged where the
-    # folds extrapolate it jumped (ratio 8.0 on this draw) and was a fault (fl_thermal's T_t5:
-    # hammerstein E_ch4 1.84 -> 5.41 µm without it); now it is judged where they do not
-    rng = np.random.default_rng(7)
-    campaigns = {}
-    for k in range(12):
-        df = _field(rng, k)
-        if k == 11:
-            rise = 6.0 * (1 - np.exp(-df["time"].to_numpy() / 5000))
-            for i, w in enumerate([1.0, 0.8, 0.6, 0.9, 0.7], start=1):
-                df[f"T_{i}"] += 0.6 * w * rise
-            df["T_6"] += 2.0 * rise ** 1.5 / 6 ** 0.5
-        campaigns[f"C{k:02d}"] = df
-    sensors = [f"T_{i}" for i in range(1, 7)] + ["T_amb"]
-    m = stack(campaigns, sensors, ["E_Z"])
-    problem = Problem(m.X, m.Y["E_Z"].to_numpy(), m.context, m.groups, m.groups, "E_Z")
-    sp = self_prediction(problem, sensors, tolerance=3.0)
-    assert (sp["jump_ratio"] < 3.0).all() and sp.loc["T_6", "worst_unit"] != "C11"
-
-
 # -- the loop ---------------------------------------------------------------------------------
 @pytest.fixture(scope="session")
 def door_diagnosis():
@@ -434,29 +411,6 @@ def test_forward_folds_train_only_on_the_past_and_run_through_it():
         run = np.flatnonzero(p.predict_rows(k))
         assert run[0] == 0 and run[-1] == test[-1]                 # states carry over to the block
     assert not p.validated[:100].any() and p.validated[100:].all()
-
-
-def test_the_acceptance_test_judges_a_block_where_no_fold_extrapolates():
-    # diag73: fl_thermal's E_ch5 took S_spindle x T_t5's rise on the CV gains of runs faster than
-    # any its folds fitted (family-wise p 0.008; on its in-range blocks 0.068) and its test error
-    # rose 3.27 -> 3.73 µm.  Here T_c moves off its neighbours from row 650: the 6th of the 8
-    # validation blocks is beyond every fold's fit rows and has no figure; the next ones, whose
-    # folds fitted it, are judged
-    rng = np.random.default_rng(11)
-    df = _campaign(rng, 0, n=800, door_gain=4.0)
-    df.loc[650:, "T_c"] += 1.0
-    sensors = ["T_a", "T_b", "T_c", "T_amb"]
-    m = stack({"L": df}, sensors, ["E_Z"], reference="none")
-    p = Problem(m.X, m.Y["E_Z"].to_numpy(), m.context, m.groups, m.groups, "E_Z", reference="none",
-                scheme="forward", n_blocks=8, gap=5, min_train_fraction=0.5)
-    search = Search(p, MLR(), None, sensors, SearchOptions())
-    before = search.cv.run(search.inputs(), [])
-    assert np.isnan(before.block_mse[5]) and np.isfinite(np.delete(before.block_mse, 5)).all()
-    inside = p.in_range & (p.unit_index == 6)
-    assert before.block_mse[6] == pytest.approx(np.mean(before.residual[inside] ** 2))
-    door = search._evaluate(Effect("signal", "first_order_lag", "S_door", tau_s=1800.0), before, 0.5)
-    # the planted door lag gains in each of the 7 judged blocks: p 1/128 (on all 8 it was 1/256)
-    assert door.p_value == pytest.approx(2.0 ** -7) and door.p_value <= SearchOptions().alpha
 
 
 def _core_record(seed=3, n=1200):

@@ -219,9 +219,7 @@ class CVResult:
     rmse: float
     unit_mse: np.ndarray      # mean squared residual of each held-out unit
     alpha: float | None = None   # penalty on the effect features (MLR base; None: none)
-    # ... of each test block (the acceptance test's units) on its rows where no fold extrapolates;
-    # NaN: a block judged on fewer than half its rows (diag73, :func:`judged_mean_square`)
-    block_mse: np.ndarray | None = None
+    block_mse: np.ndarray | None = None   # ... of each test block (the acceptance test's units)
     in_range_rmse: float = float("nan")   # RMSE on the rows no fold extrapolates to
 
 
@@ -419,30 +417,13 @@ class CrossValidator:
         ok = p.validated
         sums = np.bincount(p.unit_index[ok], weights=r[ok] ** 2, minlength=p.n_units)
         counts = np.bincount(p.unit_index[ok], minlength=p.n_units)
+        n_blocks = p.n_blocks_tested
+        block_sums = np.bincount(p.block_index[ok], weights=r[ok] ** 2, minlength=n_blocks)
+        block_mse = block_sums / np.maximum(np.bincount(p.block_index[ok], minlength=n_blocks), 1)
         inside = p.in_range
         in_range = float(np.sqrt(np.mean(r[inside] ** 2))) if inside.any() else float("nan")
-        judged = np.where(inside, r, np.nan)[:, None]    # the test's blocks on their in-range rows
-        block_mse = judged_mean_square(judged, np.where(ok, p.block_index, -1), p.n_blocks_tested)[0]
         return CVResult(pred, r, float(np.sqrt(np.mean(r[ok] ** 2))), sums / np.maximum(counts, 1),
                         alpha, block_mse, in_range)
-
-
-def judged_mean_square(errors: np.ndarray, index: np.ndarray, n_units: int) -> np.ndarray:
-    """Mean square of each column of ``errors`` (rows x columns) per unit: (columns, units).
-
-    ``index`` -1: a row of no unit; a NaN error: a row not judged (where the fold extrapolates).
-    A unit judged on fewer than half of its rows has no figure (NaN): a few rows are not its
-    usual error.  The one rule of the health check (:mod:`.sensors`, diagfault72) and of the
-    acceptance test's blocks (:attr:`CVResult.block_mse`, diag73)."""
-    rows = np.bincount(index[index >= 0], minlength=n_units)
-    out = np.full((errors.shape[1], n_units), np.nan)
-    for col, e in enumerate(errors.T):
-        ok = (index >= 0) & np.isfinite(e)
-        counts = np.bincount(index[ok], minlength=n_units)
-        sums = np.bincount(index[ok], weights=e[ok] ** 2, minlength=n_units)
-        most = (counts > 0) & (2 * counts >= rows)
-        out[col, most] = sums[most] / counts[most]
-    return out
 
 
 @lru_cache(maxsize=8)

@@ -20,11 +20,9 @@ once, at the end, to report before and after):
    sign-flip p-value of the gains in mean squared error of the test blocks:
    time blocks within the held-out campaigns (validation blocks), as long as
    the residual takes to decorrelate (:mod:`~thermocomp.core.model_selection.blocks`), so
-   that 8 campaigns are not 256 outcomes, each judged on its rows where no fold extrapolates
-   (:attr:`~.cv.CVResult.block_mse`: fl_thermal's E_ch5 took a product on the gains of runs
-   faster than any its folds fitted, and its test error rose 14 %; diag73).  With an MLR base
-   the effect features are shrunk by the ridge penalty of least CV error (:mod:`.shrink`), so an
-   effect of many correlated regressors competes at its best generalising strength.  (The deployed model of
+   that 8 campaigns are not 256 outcomes.  With an MLR base the effect features are shrunk by
+   the ridge penalty of least CV error (:mod:`.shrink`), so an effect of many
+   correlated regressors competes at its best generalising strength.  (The deployed model of
    effects that all have several features takes the largest penalty within one standard error
    of it instead: :meth:`Search._deployed`.)
 5. **Accept**, among the candidates that clear the bar (:math:`g \ge`
@@ -198,8 +196,6 @@ def gain_lower_bound(mse_before, mse_after, level: float = 0.95) -> float:
     over an equal gain a few campaigns carry.
     """
     d = np.asarray(mse_before, float) - np.asarray(mse_after, float)
-    judged = np.isfinite(d)                  # a block without a figure (diag73) is left out
-    d, mse_before = d[judged], np.asarray(mse_before, float)[judged]
     n = d.size
     if n < 2:
         return float("nan")
@@ -380,12 +376,10 @@ class Search:
         if not family:
             return
         D = np.array([current.block_mse - ev.result.block_mse for ev in family])
-        judged = np.isfinite(D).all(axis=0)      # blocks with a figure: in range (diag73)
-        D, before = D[:, judged], current.block_mse[judged]
         if self.problem.n_blocks_tested > self.problem.n_units:
             D = np.sign(D) * rankdata(np.abs(D), axis=1)
         else:   # one block per unit (or per run of forward units): its gain as a share of its MSE
-            D = np.clip(D / np.maximum(before, 1e-300), -1.0, 1.0)
+            D = np.clip(D / np.maximum(current.block_mse, 1e-300), -1.0, 1.0)
         p = sign_flip_maxt(D, seed=self.options.seed)
         for ev, pf in zip(family, p):
             ev.p_family = float(pf)

@@ -15,9 +15,7 @@ for the report only, also on every later campaign the compensator will face
 campaigns: a sensor broken there is said, not removed (the test split chooses
 nothing).  A healthy thermal field is smooth, so
 every sensor is well predicted by its neighbours and the errors of all
-sensors are of one size; a faulty one jumps above it.  A held-out row is judged only where the
-fold does not extrapolate in the sensor's predictors (:func:`_errors`): a field in a state no
-fold fitted is a regime, not a fault.  The statistic is the
+sensors are of one size; a faulty one jumps above it.  The statistic is the
 *jump ratio*
 
 .. math:: J_j = \min\left(\frac{\max_u r_{j,u}}{\operatorname{median}_k \max_u r_{k,u}},\;
@@ -39,13 +37,10 @@ it, and no structure sensor predicts its daily swing.
 
 from __future__ import annotations
 
-import warnings
-
 import numpy as np
 import pandas as pd
 
-from ...core.model_selection.extrapolation import within_range
-from .cv import Problem, judged_mean_square
+from .cv import Problem
 
 COLUMNS = ["cv_rmse", "worst_unit", "worst_unit_rmse", "cross_ratio", "own_ratio", "jump_ratio"]
 
@@ -73,22 +68,15 @@ def _health_units(problem: Problem) -> tuple[np.ndarray, int, list[str]]:
 
 
 def _unit_rms(errors: np.ndarray, index: np.ndarray, n_units: int) -> np.ndarray:
-    """RMS of each column of ``errors`` per unit: shape (columns, units); index -1: not scored.
-    NaN errors are rows not judged (:func:`_errors`); a unit judged on fewer than half its rows
-    is NaN (:func:`~.cv.judged_mean_square`: on fl_thermal one judged on 1-8 of 416 rows made a
-    healthy sensor's quartile, and a suspect; diagfault72)."""
-    return np.sqrt(judged_mean_square(errors, index, n_units))
+    """RMS of each column of ``errors`` per unit: shape (columns, units); index -1: not scored."""
+    ok = index >= 0
+    counts = np.maximum(np.bincount(index[ok], minlength=n_units), 1)
+    return np.vstack([np.sqrt(np.bincount(index[ok], weights=e[ok] ** 2, minlength=n_units) / counts)
+                      for e in errors.T])
 
 
 def _errors(problem: Problem, T, judged, predictors, L=None):
-    """Held-out self-prediction errors on the train rows (and on ``L``, fitted on all rows).
-
-    A held-out row counts only where the fold does not extrapolate in the sensor's predictors
-    (diagfault72; elsewhere NaN): beyond the field the fold fitted, the prediction extrapolates,
-    and a healthy sensor near a source seen there first moves most (fl_thermal's T_t5 heats 4 K
-    while the others' median moves 0.3-0.5 K, its predictors in range on 0-2 % of those rows:
-    jump ratio 4.25, removed as a fault, hammerstein's E_ch4 test 1.84 -> 5.41 µm).  The suspect
-    is not in the check, so a fault that carries it out of its own range is still judged."""
+    """Held-out self-prediction errors on the train rows (and on ``L``, fitted on all rows)."""
     E = np.full((len(T), len(judged)), np.nan)     # rows no fold scores stay NaN
     folds = list(problem.splits)
     if L is not None:
@@ -104,8 +92,7 @@ def _errors(problem: Problem, T, judged, predictors, L=None):
             if te is None:
                 EL[:, col] = L[:, j] - mean[j] - (L[:, cols] - mean[cols]) @ coef
             else:
-                inside = within_range(T[:, cols], tr, te)
-                E[inside, col] = T[inside, j] - mean[j] - (T[inside][:, cols] - mean[cols]) @ coef
+                E[te, col] = T[te, j] - mean[j] - (T[te][:, cols] - mean[cols]) @ coef
     return E, (EL if L is not None else None)
 
 
@@ -142,11 +129,10 @@ def self_prediction(problem: Problem, inputs, later: pd.DataFrame | None = None,
         per_unit = _unit_rms(E, unit_index, n_units)
         if EL is not None:
             per_unit = np.hstack([per_unit, _unit_rms(EL, index, len(names) - n_units)])
-        with np.errstate(divide="ignore", invalid="ignore"), warnings.catch_warnings():
-            warnings.simplefilter("ignore", RuntimeWarning)    # a sensor with no row judged
-            worst = np.nanmax(per_unit, axis=1)
-            cross = worst / float(np.nanmedian(worst))
-            own = worst / np.nanquantile(per_unit, 0.25, axis=1)
+        worst = per_unit.max(axis=1)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            cross = worst / float(np.median(worst))
+            own = worst / np.quantile(per_unit, 0.25, axis=1)
         return E, per_unit, worst, np.nan_to_num(cross, nan=0.0), np.nan_to_num(own, nan=0.0)
 
     everyone = {j: [i for i in range(len(sensors)) if i != j] for j in judged}
@@ -157,17 +143,12 @@ def self_prediction(problem: Problem, inputs, later: pd.DataFrame | None = None,
             apart = {j: [i for i in everyone[j] if i not in suspects - {j}] for j in judged}
             if all(apart[j] for j in judged):
                 E, per_unit, worst, cross, own = jumps(apart)
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", RuntimeWarning)        # a sensor with no row judged
-        cv_rmse = np.sqrt(np.nanmean(E[problem.held_out] ** 2, axis=0))
     out = pd.DataFrame({
-        "cv_rmse": cv_rmse,
-        "worst_unit": [names[i] for i in np.nanargmax(np.nan_to_num(per_unit, nan=-1.0), axis=1)],
+        "cv_rmse": np.sqrt(np.mean(E[problem.held_out] ** 2, axis=0)),
+        "worst_unit": [names[i] for i in per_unit.argmax(axis=1)],
         "worst_unit_rmse": worst,
         "cross_ratio": cross,
         "own_ratio": own,
         "jump_ratio": np.minimum(cross, own),
     }, index=pd.Index([sensors[j] for j in judged], name="sensor"))
-    # a sensor whose neighbours extrapolate in every unit is not judged (no evidence either way)
-    out = out[np.isfinite(out["worst_unit_rmse"].to_numpy(float))]
     return out.sort_values("jump_ratio", ascending=False)
