@@ -51,3 +51,18 @@ def test_clock_sets_that_are_no_connect_json_are_refused_naming_the_file(tmp_pat
         with pytest.raises(ContractError, match="data.clock_sets") as refused:
             read_dataset(root, {"clock_sets": str(root / name)})
         assert name in str(refused.value)
+
+
+def test_a_clock_set_not_found_in_the_log_is_said(tmp_path, caplog):
+    """(lead73) A set whose instants no row of the log holds (a log sampled at another rate,
+    another clock) is left as the log has it and said (before: without a word)."""
+    root = _log(tmp_path / "log")
+    events = json.loads((root / "connect.json").read_text())
+    events["events"].append({**events["events"][-1], "from_utc": "2026-03-03T06:00:00+00:00",
+                             "at_utc": "2026-03-03T06:01:00+00:00"})
+    (root / "connect.json").write_text(json.dumps(events))
+    with caplog.at_level("WARNING"):
+        _, report = read_dataset(root, {"clock_sets": str(root / "connect.json")})
+    assert report["clock_sets_undone"] == 1
+    said = [r.getMessage() for r in caplog.records if "data.clock_sets" in r.getMessage()]
+    assert len(said) == 1 and "1 of the 2 clock set(s) found" in said[0], said

@@ -397,7 +397,21 @@ def _dataset_report(name: str, entries: dict, columns: dict, opts: ReadOptions) 
     sparse = sparse_totals(entries)
     if sparse:          # a target measured now and then: rows measured, per campaign too
         report["sparse_targets"] = sparse
+    if opts.clock_sets:
+        _said_clock_sets(report, entries, opts)
     return report
+
+
+def _said_clock_sets(report: dict, entries: dict, opts: ReadOptions) -> None:
+    """How many of ``data.clock_sets``' sets were found in the record's timestamps; a warning
+    where some were not (lead73: it said nothing, a set unfound left as a pause)."""
+    found = sum(e.get("clock_sets_undone", 0) for e in entries.values())
+    report["clock_sets_undone"] = found
+    if found < len(opts.clock_sets):
+        logger.warning(f"data.clock_sets: {found} of the {len(opts.clock_sets)} clock set(s) "
+                       "found in the record's timestamps (a row at the set's instant after a row at "
+                       "the one before it); the others are left as the log has them (a log sampled "
+                       "at another rate than connect's samples, or on another clock or time zone?)")
 
 
 def lab_units(entries: dict) -> dict[str, list]:
