@@ -39,6 +39,7 @@ def test_a_preamble_line_stating_the_period_is_read(tmp_path, line, seconds):
     "Messung VGM 3;Abtastrate 15\n",                       # no unit: no evidence
     "Separate run 3 h\n",                                  # no keyword (a word holding 'rate')
     "Abtastrate 15 s\nSample interval: 30 s\n",            # two lines, two periods
+    "Sample rate: 10 S/s\n",                                # samples a second (lead73: 10 s)
     "",                                                    # no preamble
 ])
 def test_nothing_is_proposed_without_a_clear_statement(tmp_path, preamble):

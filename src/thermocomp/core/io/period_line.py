@@ -23,7 +23,9 @@ _KEYWORD = (r"\b(?:sampl\w*[ _-]?(?:period|interval|rate|time)|scan[ _-]?(?:rate
             r"speicher(?:intervall|rate)|aufzeichnungs\w*|intervall?|takt|rate)")
 _SEP = r"[\s:=;,\t]*"
 _AMOUNT = re.compile(_KEYWORD + _SEP + r"(?P<value>\d+(?:[.,]\d+)?)\s*(?P<unit>ms|s|secs?|seconds?|"
-                     r"sekunden?|min|minutes?|minuten?|h|hours?|stunden?|khz|hz)\b", re.I)
+                     r"sekunden?|min|minutes?|minuten?|h|hours?|stunden?|khz|hz)\b(?!\s*/)", re.I)
+# (a unit before a slash is a rate's numerator: NI's "Sample rate: 10 S/s" is 10 samples a
+# second, not a 10 s period)
 _CLOCK = re.compile(_KEYWORD + _SEP + r"(?P<h>\d{1,2}):(?P<m>\d{2}):(?P<s>\d{2}(?:[.,]\d+)?)\b",
                     re.I)
 _SECONDS = {"ms": 1e-3, "s": 1.0, "sec": 1.0, "secs": 1.0, "second": 1.0, "seconds": 1.0,
