@@ -391,7 +391,8 @@ def _dataset_report(name: str, entries: dict, columns: dict, opts: ReadOptions) 
               "campaigns": entries, "repairs": totals("repairs"),
               "columns": {r: list(columns.get(r, {})) for r in ROLE_ORDER},
               **_renamed(entries),
-              "settings": {k: v for k, v in asdict(opts).items() if k not in INTERNAL}}
+              "settings": {k: [list(v) for v in value] if k == "clock_sets" else value
+                           for k, value in asdict(opts).items() if k not in INTERNAL}}
     if opts.missing != "repair":
         report["missing"] = totals("missing")
     sparse = sparse_totals(entries)
