@@ -254,4 +254,3 @@ class Judgement:
         002: a new source), which self-prediction cannot pin on a sensor -- the paper excludes
         a sensor then only beyond its tolerance (the alarm band)."""
         return ALARM if (self._by_field & ~self._active).any() else self.exclude_level
-

@@ -303,15 +303,11 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
         events).  Never NaN unless every sensor has been missing since the start."""
         x = np.asarray(reading, dtype=float)
         with np.errstate(invalid="ignore"):    # NaN (missing, unobservable) compares False
-            if self._quiet:
-                clean = self._fast(x)
-                if clean is not None:
-                    self._slow_step(self._hist[(self._pos - 1) % self.window], float(time))
-                    return clean, []
-            out = self._update(x, time)
+            clean = self._fast(x) if self._quiet else None
+            out = (clean, []) if clean is not None else self._update(x, time)
         self._slow_step(self._hist[(self._pos - 1) % self.window], float(time))
-        # a new thermal state counts its calm samples on the full path
-        self._quiet = self._rebuilds and not self._novel and not self._state[self._active].any()
+        if clean is None:    # a new thermal state counts its calm samples on the full path
+            self._quiet = self._rebuilds and not self._novel and not self._state[self._active].any()
         return out
 
     @property
