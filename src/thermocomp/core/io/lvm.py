@@ -64,13 +64,13 @@ def lvm_records(path: Path, encoding: str = UTF8) -> list[Record]:
                             file=path, line=1)
     sep = _separator(lines)
     header, k = _block(lines, 1, sep, path)
-    decimal = header.get("Decimal_Separator", ["."])[0] or "."
+    decimal = _decimal(header)
     runs, segments = [], []
     while (k := _next_text(lines, k)) < len(lines):
         if lines[k].startswith(MAGIC) and segments:    # a later session appending: a run
-            runs.append((header, decimal, segments))
+            runs.append((header, segments))
             header, k = _block(lines, k + 1, sep, path)
-            decimal = header.get("Decimal_Separator", ["."])[0] or "."
+            decimal = _decimal(header)
             segments = []
             continue
         if _cells(lines[k], sep)[0] != "Channels":
@@ -87,7 +87,7 @@ def lvm_records(path: Path, encoding: str = UTF8) -> list[Record]:
         segments.append({"header": seg_header, "names": names, "rows": rows, "line": first_line})
     if not segments:
         raise ContractError("no segment with rows in the LabVIEW Measurement File", file=path)
-    runs.append((header, decimal, segments))
+    runs.append((header, segments))
     labels = [path.stem] if len(runs) == 1 else [f"{path.stem}_{i + 1}" for i in range(len(runs))]
     return [_record(path, label, *run, sep) for label, run in zip(labels, runs)]
 
@@ -171,9 +171,14 @@ def _is_number(cell: str, decimal: str) -> bool:
         return False
 
 
-def _record(path: Path, label: str, header: dict, decimal: str, segments: list[dict],
-            sep: str) -> Record:
+def _decimal(header: dict) -> str:
+    """The decimal mark a file header declares (``Decimal_Separator``; ``.`` without one)."""
+    return header.get("Decimal_Separator", ["."])[0] or "."
+
+
+def _record(path: Path, label: str, header: dict, segments: list[dict], sep: str) -> Record:
     """The segments' channels joined, each with its time."""
+    decimal = _decimal(header)
     names = segments[0]["names"]
     if COMMENT in names:
         names = names[:names.index(COMMENT)]
