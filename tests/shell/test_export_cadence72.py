@@ -172,3 +172,27 @@ def test_a_record_with_one_faster_train_campaign_is_fitted_on_every_row_and_held
     on_grid = mixed.predict({"t": grid})["t"][mixed.targets_].to_numpy(float)
     assert np.array_equal(y[::FASTER], on_grid)         # stepped on the median step's grid
     assert not np.array_equal(y, np.repeat(on_grid, FASTER, axis=0)[:len(fast)])   # not held
+
+
+def test_a_state_saved_with_the_grid_rows_output_restores_to_the_same_next_outputs(dataset):
+    """(deploy74) The grid state keeps the times alone: the last stepped row's output it held,
+    unread since between73, is gone; a state saved with it (``tests/data/deploy74/old_state.pkl``,
+    this module's lag bank streamed 30 s rows up to row 2 * FASTER + 2 by the code of 4812ce97,
+    its next 12 outputs with it) restores, and its stream goes on to the outputs that code gave,
+    to the bit; pickled, a stream that holds one loads alike."""
+    import pickle
+    from pathlib import Path
+
+    saved = (Path(__file__).parents[1] / "data" / "deploy74" / "old_state.pkl").read_bytes()
+    old = pickle.loads(saved)
+    deployed, _, test = _deployed(dataset, False)
+    assert len(deployed._snapshot()[9]) == 2                # the times alone
+    rest = _faster(test).iloc[old["k"]:old["k"] + old["rows"]].reset_index(drop=True)
+    assert len(old["state"][9]) == 3                        # the old state holds the output
+    deployed._restore(old["state"])
+    np.testing.assert_array_equal(deployed.predict(rest)[deployed.targets_].to_numpy(float), old["next"])
+    old = pickle.loads(saved)                               # (the stream stepped its states)
+    deployed._restore(old["state"])
+    deployed.__dict__["_on_grid"] = old["state"][9]         # a stream pickled with it
+    again = pickle.loads(pickle.dumps(deployed))
+    np.testing.assert_array_equal(again.predict(rest)[again.targets_].to_numpy(float), old["next"])

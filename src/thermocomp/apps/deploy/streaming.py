@@ -214,6 +214,14 @@ def step_block(deployed, X: np.ndarray, time: np.ndarray, after_row=None) -> tup
     return y, clamps
 
 
+def grid_times(saved) -> tuple[float, float]:
+    """A stream's grid state as it keeps it: ``(the last stepped row's time, the last row's)``.
+    A state saved before deploy74 held the last stepped row's output too, unread since
+    between73 (whether a row was stepped its time says): dropped, so such a state (an end state
+    in a registered model, a served session, a pickled stream) still restores."""
+    return float(saved[0]), float(saved[1])
+
+
 def lag_period(estimators) -> float | None:
     """The training sample period the models keep for their lags (a lag bank's, a Hammerstein
     model's lag bank's, a diagnosed model's): a sample without time is one period after the
@@ -390,13 +398,18 @@ class StreamingCompensator:
         # the training grid (cadence72): the models commit a step once a training period; a row
         # between is answered from the committed state (between73)
         self._grid = getattr(self.compensator, "grid_period_s_", None)
-        self._on_grid = (float("nan"), float("nan"), None)   # (last stepped, last row, its y)
+        self._on_grid = (float("nan"), float("nan"))   # (last stepped row's time, last row's)
         period = lag_period(est for _, est, _ in self._plan) or self._grid
         # the time rule of every deployed form (timerule.py): the models see the stream's clock.
         # A time not after the last one read is taken as missing (a scored record's times always
         # increase, so batch and stream agree): as read, the lag bank's exp(-dt/tau) of a time set
         # back by an hour was ~1e12 µm of correction
         self._clock = SampleClock(period) if period else None
+
+    def __setstate__(self, state: dict) -> None:
+        self.__dict__.update(state)
+        if "_on_grid" in state:          # (a stream pickled before deploy74: grid_times)
+            self._on_grid = grid_times(state["_on_grid"])
 
     @property
     def clock_time_(self) -> float | None:
@@ -425,7 +438,7 @@ class StreamingCompensator:
          self._gains, *later) = snap      # (an older model's end states have no clock, no bounds)
         clock = later[0] if later else None
         self._bounds = dict(later[1]) if len(later) > 1 else {}
-        self._on_grid = later[2] if len(later) > 2 else self._gridless()
+        self._on_grid = grid_times(later[2]) if len(later) > 2 else self._gridless()
         if self._clock is not None:
             if clock is not None:
                 self._clock.restore(clock)
@@ -445,7 +458,7 @@ class StreamingCompensator:
                         f"into a model stepped on a {self._grid:g} s grid: the next sample is "
                         "stepped and kept, and the grid counts from it; deploy the model again "
                         "for end states with the grid")
-        return float("nan"), float("nan"), None
+        return float("nan"), float("nan")
 
     # -- prediction -------------------------------------------------------------------------
 
@@ -514,7 +527,7 @@ class StreamingCompensator:
                 self._states, self._held, self._gains, self._bounds = committed
         y, n_clamped = self._models(seen, time, first)
         if self._grid:
-            self._on_grid = (float(time), float(time), y.copy())
+            self._on_grid = (float(time), float(time))
         return y, n_clamped
 
     def _models(self, seen: np.ndarray, time: float, first: bool) -> tuple[np.ndarray, int]:
@@ -580,12 +593,12 @@ class StreamingCompensator:
         """Whether a row lies between two of the training grid (between73), answered from the
         last committed state; False at a row the models step on
         (:func:`~thermocomp.core.timerule.on_grid`; a row without a time is one period on)."""
-        stepped, last, y = self._on_grid
-        if y is None or not (np.isfinite(time) and np.isfinite(stepped)):
+        stepped, last = self._on_grid
+        if not (np.isfinite(time) and np.isfinite(stepped)):
             return False
         if on_grid(time - stepped, time - last, self._grid):
             return False
-        self._on_grid = (stepped, time, y)
+        self._on_grid = (stepped, time)
         return True
 
     # -- blocks of rows ---------------------------------------------------------------------
@@ -656,7 +669,7 @@ class StreamingCompensator:
         self.last_x_ = d[-1]
         self.n_samples_ += m
         if self._grid:
-            self._on_grid = (float(t[-1]), float(t[-1]), y[start + m - 1].copy())
+            self._on_grid = (float(t[-1]), float(t[-1]))
         return start + m
 
     def _grid_rows(self, time, start: int, m: int, clocked: bool) -> int:
@@ -665,11 +678,10 @@ class StreamingCompensator:
         t = np.asarray(time[start:start + m], dtype=float)
         if self._clock is not None and not clocked:
             t = t - self._clock.shift
-        stepped, last, y = self._on_grid
+        stepped, last = self._on_grid
         steps = np.diff(np.r_[last, t])
         ok = on_grid(steps, steps, self._grid)     # after a stepped row its step is its elapsed
-        ok[0] = y is None or not np.isfinite(stepped) or bool(on_grid(t[0] - stepped, steps[0],
-                                                                      self._grid))
+        ok[0] = not np.isfinite(stepped) or bool(on_grid(t[0] - stepped, steps[0], self._grid))
         return m if ok.all() else int(np.argmin(ok))
 
     def _clock_set(self, clocked: bool) -> bool:

@@ -48,8 +48,9 @@ import pandas as pd
 from asyncua import Client, ua
 
 from ...core.context import TIME
+from ...core.io.clocksets import after
 from ...core.io.rates import GAP_PERIODS, PAUSE_PERIODS
-from ...core.io.stdin import TIME_ORIGIN
+from ...core.io.stdin import CLOCK_SETS, LAST_READ, TIME_ORIGIN
 from .clockset import OwnClock
 from .nodes import NodeMap, NodesUnknown, quiet_asyncua, resolve_id
 from .offsets import OffsetLimiter
@@ -411,7 +412,7 @@ class Connection:
         if not server_clock:
             t0, self._placed = 0.0, ""
         elif origin is not None:
-            t0 = origin.timestamp()
+            t0 = origin.timestamp() + self._sets_before(at)
             self._placed = (f" (the log's timestamps place it {at - t0 - last:g} s after the "
                             "log's last row)")
         else:
@@ -421,6 +422,18 @@ class Connection:
                             "no client saw is not known: a log with timestamps spans it)")
         periods = (at - t0) / period
         return t0, (max(1, round(periods)) if math.isfinite(periods) else 1) - 1
+
+    def _sets_before(self, at: float) -> float:
+        """(deploy74) The seconds ``data.clock_sets`` moves the joined sample (``at``, the
+        server's clock) back by: the sets undone in the log before its last row and those
+        between it and ``at``, the sample read as the log's next row (:func:`.clocksets.after`),
+        so that its time continues the log's as ``replay`` of the whole log reads it; 0 without."""
+        warm = self.warm
+        last = warm.attrs.get(LAST_READ)
+        if not warm.attrs.get(CLOCK_SETS) or last is None:
+            return 0.0
+        moved = last - warm.attrs[TIME_ORIGIN].timestamp() - float(warm[TIME].dropna().iloc[-1])
+        return moved + after(last, at, warm.attrs[CLOCK_SETS])
 
     def _clock_set(self, at: float, now: float) -> float | None:
         """(connect71) The seconds the server's clock was set by since the last sample, told by

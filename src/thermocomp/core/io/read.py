@@ -70,6 +70,7 @@ import pyarrow as pa
 from ...base.files import atomic_dir, folder_digest, write_json
 from ...base.log import logger
 from ..timerule import median_step
+from .clocksets import unfound
 from .contract import (
     AMBIENT_C,
     MANIFEST,
@@ -404,15 +405,17 @@ def _dataset_report(name: str, entries: dict, columns: dict, opts: ReadOptions) 
 
 
 def _said_clock_sets(report: dict, entries: dict, opts: ReadOptions) -> None:
-    """How many of ``data.clock_sets``' sets were found in the record's timestamps; a warning
-    where some were not (lead73: it said nothing, a set unfound left as a pause)."""
-    found = sum(e.get("clock_sets_undone", 0) for e in entries.values())
-    report["clock_sets_undone"] = found
-    if found < len(opts.clock_sets):
-        logger.warning(f"data.clock_sets: {found} of the {len(opts.clock_sets)} clock set(s) "
-                       "found in the record's timestamps (a row at the set's instant after a row at "
-                       "the one before it); the others are left as the log has them (a log sampled "
-                       "at another rate than connect's samples, or on another clock or time zone?)")
+    """How many of ``data.clock_sets``' sets were found in the record's timestamps (a set
+    found in several files once: a file rotated after it); a warning naming those that were not
+    (lead73: it said nothing, a set unfound left as a pause)."""
+    found = {k for e in entries.values() for k in e.pop("clock_sets_found", ())}
+    report["clock_sets_undone"] = len(found)
+    if len(found) < len(opts.clock_sets):
+        logger.warning(f"data.clock_sets: {len(found)} of the {len(opts.clock_sets)} clock set(s) "
+                       "found in the record's timestamps (a row at or after the set's at_utc, the "
+                       "row before it at or before its from_utc); not found: "
+                       f"{unfound(opts.clock_sets, found)}: left as the log has them (a log of "
+                       "another machine, clock or time zone, or of other days?)")
 
 
 def lab_units(entries: dict) -> dict[str, list]:

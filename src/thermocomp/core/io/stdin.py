@@ -20,6 +20,7 @@ import pyarrow.compute as pc
 from ...base.log import say
 from ..context import TIME
 from .again import STRAY, comments_in, kept, lines_in, spans_in, warn
+from .clocksets import undone
 from .contract import ContractError
 from .csvline import EMPTY, SPLIT, split_line
 from .derived import on_frame
@@ -58,6 +59,10 @@ HEADERS = "headers"             # frame attrs: contract name -> the stream's own
 # frame attrs: the instant (UTC) a campaign's timestamps count from (its first read), where its
 # time is timestamps: a stream said to continue a campaign is placed on that campaign's clock
 TIME_ORIGIN = "time_origin"
+# frame attrs (deploy74): data.clock_sets' sets and the server's clock at the last timed row as
+# the rows have it (s since the epoch), where sets were given: a restarted connect's live
+# sample is read as the log's next row (:func:`.clocksets.after`)
+CLOCK_SETS, LAST_READ = "clock_sets", "last_read"
 _UNNAMED = re.compile(r"Unnamed: \d+")      # pandas' name for a column without a header
 
 
@@ -129,7 +134,8 @@ def _read_runs(text: str, columns: list[str], opts, recorded: str | None = None
     if TIME in df.columns:        # timestamps counted from each run's first, as a file's runs
         runs = [df[TIME]] if blocks is None else [df[TIME].iloc[start:end]
                                                   for _, start, end in blocks]
-        timed = [seconds_and_origin(t, _time_format(t, opts.time, recorded), opts.timezone)
+        timed = [_sets_undone(*seconds_and_origin(t, _time_format(t, opts.time, recorded),
+                                                  opts.timezone), opts.clock_sets, df.attrs)
                  for t in runs]
         df[TIME] = pd.concat([seconds for seconds, _ in timed])
         origins = [origin for _, origin in timed]
@@ -150,6 +156,22 @@ def _read_runs(text: str, columns: list[str], opts, recorded: str | None = None
             df[c] = df[c] * scale + offset
     df = on_frame(df, opts.derive, SOURCE)      # data.derive: the same arithmetic as a file's
     return df, {c: int(n) for c, n in df[numeric].isna().sum().items() if n}, blocks, origins
+
+
+def _sets_undone(seconds: pd.Series, origin, sets, attrs: dict):
+    """``(seconds, origin)`` of a run with ``data.clock_sets`` undone in them, as a file's are
+    (:func:`.clocksets.undone`: the rows streamed are the machine's log as ``replay`` reads it);
+    the sets and the last row's clock as the stream has it kept in ``attrs``."""
+    if not sets or origin is None:
+        return seconds, origin
+    read = seconds.dropna()
+    attrs.update({CLOCK_SETS: sets,
+                  LAST_READ: origin.timestamp() + float(read.iloc[-1]) if len(read) else None})
+    values, origin, found = undone(seconds.to_numpy(float), origin, sets, SOURCE)
+    if found:
+        say(f"data.clock_sets: {len(found)} of the {len(sets)} clock set(s) undone in "
+            f"{SOURCE}'s times")
+    return pd.Series(values, index=seconds.index), origin
 
 
 def _untimed(rows: int, blocks: list | None, period_s: float | None) -> np.ndarray:

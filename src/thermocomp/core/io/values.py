@@ -52,9 +52,9 @@ def _set_time_seconds(columns: dict, rows: int, path: Path, opts: ReadOptions,
             row = int(np.argmax(column.is_null().to_numpy(zero_copy_only=False))) + 1
             raise ContractError("missing time value", file=path, column=TIME, row=row)
         seconds, info = _seconds(column, path, opts.timezone)
-        seconds, sets = undone(seconds, info.get("time_origin"), opts.clock_sets, path)
-        if sets:
-            info["clock_sets_undone"] = sets
+        seconds, origin, found = undone(seconds, info.get("time_origin"), opts.clock_sets, path)
+        if found:       # (the sets found, by index: the record's report names those not found)
+            info.update(time_origin=origin, clock_sets_undone=len(found), clock_sets_found=found)
         # timestamps on a local clock without an offset, and no data.timezone to read it
         local = (pa.types.is_timestamp(column.type) and column.type.tz is None
                  and opts.timezone is None)
