@@ -23,7 +23,8 @@ out as the reader leaves it out, :mod:`.again`):
 - a mark: a cell's text in a number column that is no number and either holds no digit
   (``---``, ``n/a``, ``#N/A``) or is a formula's error (``Err:502``, ``#DIV/0!``); the text
   the reader reads as missing already (``NaN``, empty) is no mark to list but a missing value;
-- its gap: the longest run of missing cells in a column holding at least one mark, inside the
+- its gap: the longest run of missing cells in a column holding at least one mark (or a NaN
+  written out, ``NAN`` as a Campbell Scientific logger writes it: lab74), inside the
   file (``max_gap_samples``) or at its start or end (``max_edge_samples``); an error column
   measured now and then (a probe cycle, :mod:`.sparse`) has none: the reader keeps its empty
   cells empty, a mark's too (:meth:`Cells.longest`, told the error columns by ``init``).
@@ -282,17 +283,18 @@ def _marks(numbers: list[_Column], decimal: str, found: Cells, given: list) -> N
     for c in numbers:
         numeric = c.plain | (c.grouped[thousands] if thousands in c.grouped else False)
         other = ~numeric & ~c.missing
-        if not other.any():
-            continue
+        # a NaN written out (a Campbell logger's NAN, lab74): missing as read, its runs a mark's
+        written = c.missing & _matches(c.text, ".")
         counts = pc.value_counts(pc.filter(c.text, pa.array(other))).to_pylist()
         marks = {v["values"]: v["counts"] for v in counts
                  if v["values"] in given or is_mark(v["values"])}
-        if not marks:
+        if not marks and not written.any():
             continue
         for mark, n in marks.items():
             found.marks.setdefault(mark, {})
             found.marks[mark][c.header] = found.marks[mark].get(c.header, 0) + n
-        marked = pc.is_in(c.text, value_set=pa.array(list(marks))).to_numpy(zero_copy_only=False)
+        marked = written | pc.is_in(c.text, value_set=pa.array(list(marks), pa.string())
+                                    ).to_numpy(zero_copy_only=False)
         missing = c.missing | marked
         edges = np.flatnonzero(np.diff(np.concatenate([[0], missing.astype(np.int8), [0]])))
         gap = edge = 0

@@ -18,6 +18,8 @@ import pyarrow.csv as pacsv
 from ...base.log import logger
 from .again import STRAY, header_again, line_numbers, without
 from .again import said as said_again
+from .campbell import has_unit_row
+from .campbell import units as campbell_units
 from .contract import TIME, ContractError, role
 from .csvline import SPLIT, split_line
 from .encoding import arrow_encoding, first_undecodable, text_codec, undecodable
@@ -328,9 +330,11 @@ def peek_csv(path: Path, delimiter: str, encoding: str) -> tuple[list[str], list
             header = next(rows, None)
             header = header and uncommented(header, head[:preamble])
             first = next((r for r in rows if r), None)
-            units = first is not None and header is not None and is_unit_row(first)
+            campbell = has_unit_row(head)          # (a TOA5 file's units, in its own words)
+            units = first is not None and header is not None and (campbell or is_unit_row(first))
             if units:
-                header, first = with_units(header, first), next((r for r in rows if r), None)
+                header = with_units(header, campbell_units(first) if campbell else first)
+                first = next((r for r in rows if r), None)
             below = [first, *(r for _, r in zip(range(MAX_PROPERTY_ROWS), rows) if r)]
             described = property_rows(below) if units and first is not None else 0
             first = below[described] if described else first
