@@ -19,6 +19,7 @@ import pyarrow.compute as pc
 
 from ...base.log import say
 from ..context import TIME
+from . import marks
 from .again import STRAY, comments_in, kept, lines_in, spans_in, warn
 from .campbell import has_unit_row
 from .campbell import units as campbell_units
@@ -110,7 +111,7 @@ def _read_runs(text: str, columns: list[str], opts, recorded: str | None = None
     if twice is not None:                 # (pandas would read them as 'T1' and 'T1.1')
         raise ContractError(twice.reason, file=SOURCE, column=twice.column)
     # (the file reader's missing values: pandas' own lack a Campbell logger's NAN, lab74)
-    texts = [*MISSING_TOKENS, *opts.missing_values]
+    texts = [*MISSING_TOKENS, *marks.texts(opts.missing_values)]   # (a number's: by value)
     try:
         if opts.thousands is None:
             df = pd.read_csv(StringIO(text), sep=opts.delimiter, decimal=opts.decimal,
@@ -149,6 +150,8 @@ def _read_runs(text: str, columns: list[str], opts, recorded: str | None = None
             raise ContractError("non-numeric value", file=SOURCE, column=c,
                                 row=int(np.flatnonzero(bad)[0]) + 1)
         df[c] = pd.to_numeric(df[c], errors="coerce")
+        if c != TIME:          # data.missing_values' -9999, however written (.marks)
+            df[c] = df[c].mask(marks.hits(df[c], opts.missing_values))
         if c in scales:            # a unit in the header (or data.units): the contract's
             scale, offset = scales[c]
             df[c] = df[c] * scale + offset
