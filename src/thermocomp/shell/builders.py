@@ -148,6 +148,7 @@ def deployable(cfg: DictConfig, streaming, train: dict, ds=None):
     deployed.lab_units_ = lab_units(ds)    # (the exported stream.c converts these headers)
     deployed.derived_ = parsed_derive(cfg.data.get("derive"))   # a reference's derived targets
     deployed.slashed_ = slashed_time(cfg, ds)     # a served block's dates read in its order
+    deployed.missing_values_ = [str(m) for m in cfg.data.get("missing_values") or ()]   # (-9999)
     # served: every row that carries a measured error is a reference (no schedule)
     deployed.adapt_ = adapt_from_config(cfg.get("adapt"), len(deployed.targets_), scheduled=False)
     return deployed

@@ -90,6 +90,7 @@ from ...base.errors import ContractError
 from ...base.log import NAME as LOG_NAME
 from ...base.log import configure as configure_log
 from ...core.context import TIME
+from ...core.io import marks
 from ...core.io.derived import on_frame
 from ...core.io.slashed import stream_format
 from ...core.io.stdin import since, stream_stamps
@@ -188,6 +189,8 @@ class CompensatorModel(mlflow.pyfunc.PythonModel):
         names = self.streaming.lab_names_
         try:
             frame = to_contract(pd.DataFrame(model_input), names)
+            # data.missing_values' marks (-9999 however written) missing, as the reader's (lab74)
+            frame = marks.in_frame(frame, getattr(self.streaming, "missing_values_", ()), TIME)
             # a reference measurement's derived targets (data.derive), as a file's are computed
             frame = on_frame(frame, getattr(self.streaming, "derived_", {}), "the request")
         except ValueError as exc:

@@ -23,7 +23,8 @@ out as the reader leaves it out, :mod:`.again`):
 - a mark: a cell's text in a number column that is no number and either holds no digit
   (``---``, ``n/a``, ``#N/A``) or is a formula's error (``Err:502``, ``#DIV/0!``); the text
   the reader reads as missing already (``NaN``, empty) is no mark to list but a missing value;
-- its gap: the longest run of missing cells in a column holding at least one mark, inside the
+- its gap: the longest run of missing cells in a column holding at least one mark (or a NaN
+  written out, ``NAN`` as a Campbell Scientific logger writes it: lab74), inside the
   file (``max_gap_samples``) or at its start or end (``max_edge_samples``); an error column
   measured now and then (a probe cycle, :mod:`.sparse`) has none: the reader keeps its empty
   cells empty, a mark's too (:meth:`Cells.longest`, told the error columns by ``init``).
@@ -32,7 +33,7 @@ out as the reader leaves it out, :mod:`.again`):
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
@@ -45,6 +46,7 @@ from .contract import ContractError
 from .encoding import arrow_encoding
 from .footer import footer, source
 from .layout import header_line
+from .marks import AMERIFLUX, value_of
 from .roles import named_as_time
 from .separators import GROUP_MARKS, NO_BREAK_SPACES, UNICODE_MINUS, grouped
 from .sniff import head_lines
@@ -52,6 +54,8 @@ from .sparse import intermittent
 from .tables import EXCEL_ERROR, MISSING_TOKENS, is_mark  # the reader's own rules
 
 NUMBER_SHARE = 0.5       # a number column: at least this share of its non-empty cells numbers
+AMERIFLUX_TIME = "timestamp_start"      # the header that says an AmeriFlux table
+_NINES = r"^-9999(?:[.,]0*)?$"          # AmeriFlux's -9999, as a program writes it
 
 
 @dataclass
@@ -159,6 +163,7 @@ class _Column:
     missing: np.ndarray          # read as missing already (empty, NaN)
     plain: np.ndarray            # a number with the decimal mark
     grouped: dict                # mark -> grouped by three with it
+    ameriflux: bool = False      # the file is an AmeriFlux table (its TIMESTAMP_START)
 
     def first(self, mask: np.ndarray) -> str:
         return str(self.text[int(np.argmax(mask))].as_py())
@@ -195,11 +200,12 @@ def scanned(files: list[Path], delimiter: str, decimal: str, encoding: str,
         table = _table(path, delimiter, encoding, skip, preamble, len(header))
         if table is None:
             continue
+        ameriflux = any(h.strip().lower() == AMERIFLUX_TIME for h in header)
         for h, column in zip(header, table.columns):
             if h.strip() and not named_as_time(h):
                 found = _column(h, path, _texts(column), decimal)
                 if found is not None:
-                    numbers.append(found)
+                    numbers.append(replace(found, ameriflux=ameriflux))
     found = Cells(thousands=thousands)
     if thousands is None:
         found.thousands = _thousands(numbers, decimal, found.said)
@@ -279,20 +285,28 @@ def _decimal_doubt(numbers: list[_Column], decimal: str, found: Cells) -> None:
 
 def _marks(numbers: list[_Column], decimal: str, found: Cells, given: list) -> None:
     thousands = found.thousands
+    nines_said: dict = {}         # a -9999 in a file that is no AmeriFlux table: header -> cells
     for c in numbers:
         numeric = c.plain | (c.grouped[thousands] if thousands in c.grouped else False)
         other = ~numeric & ~c.missing
-        if not other.any():
-            continue
+        # a NaN written out (a Campbell logger's NAN, lab74): missing as read, its runs a mark's
+        written = c.missing & _matches(c.text, ".")
         counts = pc.value_counts(pc.filter(c.text, pa.array(other))).to_pylist()
         marks = {v["values"]: v["counts"] for v in counts
                  if v["values"] in given or is_mark(v["values"])}
-        if not marks:
+        nines = _matches(c.text, _NINES)       # AmeriFlux's mark, however written (lab74)
+        if nines.any() and not c.ameriflux:    # (a reading, maybe: said, not written)
+            nines_said.setdefault(c.header, int(nines.sum()))
+            nines[:] = False
+        if nines.any():
+            marks[AMERIFLUX] = int(nines.sum())
+        if not marks and not written.any():
             continue
         for mark, n in marks.items():
             found.marks.setdefault(mark, {})
             found.marks[mark][c.header] = found.marks[mark].get(c.header, 0) + n
-        marked = pc.is_in(c.text, value_set=pa.array(list(marks))).to_numpy(zero_copy_only=False)
+        marked = written | nines | pc.is_in(c.text, value_set=pa.array(list(marks), pa.string())
+                                            ).to_numpy(zero_copy_only=False)
         missing = c.missing | marked
         edges = np.flatnonzero(np.diff(np.concatenate([[0], missing.astype(np.int8), [0]])))
         gap = edge = 0
@@ -310,7 +324,17 @@ def _marks(numbers: list[_Column], decimal: str, found: Cells, given: list) -> N
         cells = sum(where.values())
         found.said.append(f"{mark!r} in {cells} cell{'s' * (cells > 1)} of number column"
                           f"{'s' * (len(where) > 1)} {', '.join(map(repr, list(where)[:4]))}"
-                          f"{', ...' if len(where) > 4 else ''}: no number, "
-                          + ("a formula's error" if EXCEL_ERROR.fullmatch(mark) else "no digit")
+                          f"{', ...' if len(where) > 4 else ''}: "
+                          + ("AmeriFlux's mark, in an AmeriFlux table (its TIMESTAMP_START)"
+                             if mark == AMERIFLUX else "no number, a formula's error"
+                             if EXCEL_ERROR.fullmatch(mark) else "no number, no digit")
                           + ": a mark for a value not measured, read as missing "
                           "(data.missing_values)")
+    if nines_said and not any(value_of(m) == -9999.0 for m in given):
+        cells = sum(nines_said.values())
+        found.said.append(f"-9999 in {cells} cell{'s' * (cells > 1)} of "
+                          f"{', '.join(map(repr, list(nines_said)[:4]))}"
+                          f"{', ...' if len(nines_said) > 4 else ''}: AmeriFlux's mark for a value "
+                          "not measured? not written: the file is no AmeriFlux table (no "
+                          "TIMESTAMP_START), so it may be a reading; data.missing_values=[-9999] "
+                          "if it is the mark")

@@ -22,6 +22,7 @@ import pandas as pd
 
 from ..metrics import angular
 from ..timerule import median_step
+from . import campbell
 from .contract import MANIFEST, TIME, ContractError, role
 from .encoding import UTF8, WINDOWS, detect
 from .fixedwidth import is_fixed_width
@@ -188,7 +189,10 @@ def head(sample: Path, opts) -> tuple[object, list[str], list[str], str]:
     opts = resolved(sample, opts)
     header, first, skip = peek_csv(sample, opts.delimiter, opts.encoding)
     opts = replace(opts, skip_rows=skip)
-    return opts, header, first, _separators(sample, opts) + _table_start(sample, opts)
+    layout = _separators(sample, opts) + _table_start(sample, opts)
+    kind = campbell.said(next(iter(head_lines(sample, opts.encoding)), None))   # (its preamble)
+    return opts, header, first, layout.replace(f"{sample.name}: ", f"{sample.name}: {kind}, ", 1
+                                               ) if kind else layout
 
 
 def epoch_ms_column(header: list[str], first: dict, opts) -> str | None:

@@ -43,6 +43,7 @@ import pyarrow.compute as pc
 
 from ...base.errors import listed
 from ...base.log import logger
+from . import marks
 from .contract import ContractError
 from .converted import named_as
 from .encoding import UTF8
@@ -175,7 +176,9 @@ def _values(column: pd.Series, good: np.ndarray, tag: pd.Series, opts, layout, r
     if layout.decimal != ".":
         text = text.str.replace(layout.decimal, ".", regex=False)
     value = pd.to_numeric(text, errors="coerce").to_numpy(float)
-    marked = column.isin([str(m) for m in opts.missing_values]).to_numpy() | (column == "").to_numpy()
+    numbered = marks.hits(value, opts.missing_values)        # -9999 however written (lab74)
+    marked = (column.isin(marks.texts(opts.missing_values)).to_numpy() | (column == "").to_numpy()
+              | numbered)
     bad = np.isnan(value) & ~marked & good & ~column.str.lower().isin(["nan"]).to_numpy()
     if bad.any():
         at = int(np.argmax(bad))
@@ -184,7 +187,7 @@ def _values(column: pd.Series, good: np.ndarray, tag: pd.Series, opts, layout, r
             "says Good: a historian's state text (a digital state, 'I/O Timeout')? list it in "
             f"data.missing_values (['{column.iloc[at]}'])", file=path,
             column=layout.header[layout.value], **_at(layout, int(row[at])))
-    return np.where(good, value, np.nan)
+    return np.where(good & ~numbered, value, np.nan)
 
 
 def _times(column: pd.Series, tag: pd.Series, opts, layout: Layout, row, path

@@ -10,13 +10,15 @@ column's FORMAT in that row (``h:mm:ss``, ``yyyy/mm/dd hh:mm:ss``): a cell of th
 no header (the column's cells say their time themselves).  Between the unit row and the samples
 a logger may write rows that describe its channels (HBM catman's ASCII export: a row of channel
 comments, rows ``T0`` / ``dt`` of each channel's start and step, catman70): they are left out
-(:func:`property_rows`).
+(:func:`property_rows`).  A Campbell Scientific logger's TOA5 file has a fixed layout, read so
+(:mod:`.campbell`): its environment line above the header, a units row and a processing row.
 """
 
 from __future__ import annotations
 
 import re
 
+from .campbell import environment
 from .csvline import EMPTY, split_line
 from .roles import STATE_UNITS, UNITS, split_unit
 from .separators import any_number
@@ -41,6 +43,8 @@ def cells(line: str, sep: str) -> list[str]:
 def header_line(lines: list[str], sep: str) -> int | None:
     """Index of the header among ``lines`` (the file's first, physical), None when no line
     starts a table of ``sep``-separated fields."""
+    if sep == "," and len(lines) > 1 and environment(lines[0]) is not None:
+        return 1           # (a TOA5 environment line of the table's width was taken for its header)
     widths = [len(cells(ln, sep)) if ln.strip() else None for ln in lines]
     for k, width in enumerate(widths[:MAX_PREAMBLE + 1]):
         if width is None or width < 2 or not _named(cells(lines[k], sep)):

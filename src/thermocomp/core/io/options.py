@@ -16,6 +16,7 @@ from .clocksets import clock_sets
 from .contract import SPLITS, ContractError
 from .derived import parsed as parsed_derive
 from .encoding import UTF8, codec
+from .marks import is_number_mark
 from .separators import NO_BREAK_SPACES, any_number
 
 TIME_FORMATS = ("auto", "seconds", "iso8601", "elapsed")
@@ -260,23 +261,23 @@ def _flag(cfg: Mapping, key: str) -> bool:
 
 def _missing_values(cfg: Mapping) -> list:
     """``data.missing_values``: what a lab writes for a value not measured (``-``, ``n/a``; a
-    number only beyond what any column may read, an instrument's overload mark)."""
+    number only where it is no reading, :func:`.marks.is_number_mark`: an instrument's overload
+    mark, faults71, or AmeriFlux's -9999, below absolute zero, lab74).  A number written as a
+    YAML number (``[-9999]``) is taken as its text."""
     value = cfg.get("missing_values") or []
-    value = [value] if isinstance(value, str) else value
-    if not all(isinstance(v, str) and v.strip() and (not any_number(v) or _overload(v, cfg))
+    value = [value] if isinstance(value, (str, int, float)) else value
+    value = [str(v) if isinstance(v, (int, float)) and not isinstance(v, bool) else v
+             for v in value]
+    beyond = max(_positive_float(cfg, "max_abs_error", 1e6), _positive_float(cfg, "max_abs_state", 1e9))
+    if not all(isinstance(v, str) and v.strip() and (not any_number(v) or is_number_mark(v, beyond))
                for v in value):
         raise ContractError(f"data.missing_values must be a list of marks that are no number "
-                            f"(e.g. ['-', 'n/a', '#DIV/0!']) or a number beyond any reading "
-                            f"(data.max_abs_error, data.max_abs_state: an instrument's overload "
-                            f"mark, '+9.90000000E+37'), got {cfg.get('missing_values')!r}")
+                            f"(e.g. ['-', 'n/a', '#DIV/0!']) or a number beyond any reading: "
+                            f"below absolute zero (AmeriFlux's -9999), or above "
+                            f"data.max_abs_error and data.max_abs_state (an instrument's "
+                            f"overload mark, '+9.90000000E+37'), got "
+                            f"{cfg.get('missing_values')!r}")
     return [str(v) for v in value]
-
-
-def _overload(mark: str, cfg: Mapping) -> bool:
-    """(faults71) ``mark`` a number no column may read: a Keysight DAQ's +9.90000000E+37, what an
-    open thermocouple or an overloaded channel reads, is refused as a reading by every role."""
-    beyond = max(_positive_float(cfg, "max_abs_error", 1e6), _positive_float(cfg, "max_abs_state", 1e9))
-    return abs(float(mark.replace(",", "."))) > beyond
 
 
 def _fraction(cfg: Mapping, key: str) -> float | None:

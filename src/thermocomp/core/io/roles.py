@@ -25,6 +25,7 @@ from pathlib import Path
 
 from ...base.errors import listed
 from ..metrics import angular
+from . import campbell
 from .contract import TIME, ContractError, role
 from .options import AUTO, ROLE_PATTERNS, RUN_ROLE, _roles
 from .separators import number, reads_as_number
@@ -54,6 +55,7 @@ _SUFFIX = re.compile(r"^(.*?[^\s_])_([^\s_]+)$")
 _UNSAFE = re.compile(r"[^\w.\-]+")
 TIME_HEADERS = frozenset({"time", "t", "ts", "zeit", "時間", "时间", "timestamp", "datetime", "date_time",
                           "zeitstempel", "temps", "tiempo", "tempo", "seconds", "timestamp_start",
+                          "tmstamp",     # (a Campbell Scientific logger's TOACI1 file, lab74)
                           *ELAPSED_HEADERS})
 # HBM catman's time channel, one per rate group: 'Zeit  1 - Standardmessrate', 'Time  2 - 10 Hz'
 _RATE_GROUP_TIME = re.compile(r"(?i)(?:time|zeit|temps|tiempo|tempo)\s+\d+\s+-\s+\S.*")
@@ -321,10 +323,14 @@ def logger_columns(headers: Sequence[str]) -> frozenset:
     """The headers of a logger's export that are its bookkeeping, no measurement: a Keysight
     DAQ's ``Alarm <channel>`` beside each channel's column (``Alarm 101`` beside ``101 <Air>
     (C)``) and, in a file with such columns, the sweep number ``Scan``; an AmeriFlux table's
-    ``TIMESTAMP_END`` beside its ``TIMESTAMP_START`` (the time; realexport73).  Left out by
-    every reader of the headers (a role pattern matching one still gives it that role)."""
+    ``TIMESTAMP_END`` beside its ``TIMESTAMP_START`` (the time; realexport73); a Campbell
+    Scientific logger's ``RECORD`` (``RECNBR``) beside its ``TIMESTAMP`` (``TMSTAMP``; lab74).
+    Left out by every reader of the headers (a role pattern matching one still gives it that
+    role)."""
     bare = {h.strip().lower(): h for h in headers}
     ends = {bare[_INTERVAL[1]]} if all(k in bare for k in _INTERVAL) else set()
+    if any(k in bare for k in campbell.TIME_HEADERS):
+        ends |= {bare[k] for k in campbell.COUNTERS if k in bare}
     channels = {h.strip().split(" ", 1)[0] for h in headers}
     alarms = {h for h in headers if (m := _ALARM.match(h)) and m[1] in channels}
     if not alarms:

@@ -19,7 +19,10 @@ import pyarrow.compute as pc
 
 from ...base.log import say
 from ..context import TIME
+from . import marks
 from .again import STRAY, comments_in, kept, lines_in, spans_in, warn
+from .campbell import has_unit_row
+from .campbell import units as campbell_units
 from .clocksets import undone
 from .contract import ContractError
 from .csvline import EMPTY, SPLIT, split_line
@@ -39,7 +42,7 @@ from .runs import run_blocks, run_values
 from .separators import UNICODE_MINUS, grouped
 from .slashed import stream_format
 from .sniff import SNIFF_LINES, detected
-from .tables import NO_TIME_COLUMN, first_cast_failure
+from .tables import MISSING_TOKENS, NO_TIME_COLUMN, first_cast_failure
 from .timestamps import (
     CLOCK,
     ELAPSED,
@@ -112,13 +115,15 @@ def _read_runs(text: str, columns: list[str], opts, recorded: str | None = None
     twice = same_header(split_line(text.split("\n", 1)[0], opts.delimiter, SPLIT))
     if twice is not None:                 # (pandas would read them as 'T1' and 'T1.1')
         raise ContractError(twice.reason, file=SOURCE, column=twice.column)
+    # (the file reader's missing values: pandas' own lack a Campbell logger's NAN, lab74)
+    texts = [*MISSING_TOKENS, *marks.texts(opts.missing_values)]   # (a number's: by value)
     try:
         if opts.thousands is None:
             df = pd.read_csv(StringIO(text), sep=opts.delimiter, decimal=opts.decimal,
-                             na_values=list(opts.missing_values))
+                             na_values=texts)
         else:
             df = _grouped(pd.read_csv(StringIO(text), sep=opts.delimiter, dtype=str,
-                                      na_values=list(opts.missing_values)), opts)
+                                      na_values=texts), opts)
     except Exception as exc:    # pandas raises several kinds for a bad stream
         raise ContractError(f"stdin is not a CSV table with a header, data.delimiter="
                             f"{opts.delimiter!r} ({' '.join(str(exc).split())})",
@@ -151,6 +156,8 @@ def _read_runs(text: str, columns: list[str], opts, recorded: str | None = None
             raise ContractError("non-numeric value", file=SOURCE, column=c,
                                 row=int(np.flatnonzero(bad)[0]) + 1)
         df[c] = pd.to_numeric(df[c], errors="coerce")
+        if c != TIME:          # data.missing_values' -9999, however written (.marks)
+            df[c] = df[c].mask(marks.hits(df[c], opts.missing_values))
         if c in scales:            # a unit in the header (or data.units): the contract's
             scale, offset = scales[c]
             df[c] = df[c] * scale + offset
@@ -219,7 +226,9 @@ def _table(text: str, sep: str) -> str:
     preamble, unit row and rows describing the channels under it stream as they are written."""
     lines = text.splitlines()
     start = header_line(lines[:SNIFF_LINES], sep) or 0
-    units = len(lines) > start + 1 and is_unit_row(split_line(lines[start + 1], sep, EMPTY))
+    campbell = has_unit_row(lines)          # (a TOA5 file's units, in its own words)
+    units = len(lines) > start + 1 and (
+        campbell or is_unit_row(split_line(lines[start + 1], sep, EMPTY)))
     text = _without_again(text, start, units, sep)
     lines = text.splitlines()
     if not lines:
@@ -229,7 +238,8 @@ def _table(text: str, sep: str) -> str:
     if not start and not units and header == written:
         return text
     if units:
-        header = with_units(header, split_line(lines[start + 1], sep, EMPTY))
+        row = split_line(lines[start + 1], sep, EMPTY)
+        header = with_units(header, campbell_units(row) if campbell else row)
     body = lines[start + 1 + units:]
     if units:      # (catman70: rows describing the channels under the unit row, left out)
         body = body[property_rows([split_line(ln, sep, EMPTY)

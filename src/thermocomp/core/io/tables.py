@@ -16,8 +16,11 @@ import pyarrow.compute as pc
 import pyarrow.csv as pacsv
 
 from ...base.log import logger
+from . import marks
 from .again import STRAY, header_again, line_numbers, without
 from .again import said as said_again
+from .campbell import has_unit_row
+from .campbell import units as campbell_units
 from .contract import TIME, ContractError, role
 from .csvline import SPLIT, split_line
 from .encoding import arrow_encoding, first_undecodable, text_codec, undecodable
@@ -241,6 +244,7 @@ def _typed_columns(path: Path, header: list[str], first_row: list[str], opts: Re
                             own=active(opts.roles))
     columns = _columns(table.select(list(types)))
     columns.update({n: pc.cast(columns[n], pa.float64()) for n in flags})
+    columns.update(_unmarked(columns, types, opts, path))
     try:
         if CLOCK in columns:
             columns[TIME] = _joined_time(columns[TIME], columns.pop(CLOCK), path, opts)
@@ -253,6 +257,26 @@ def _typed_columns(path: Path, header: list[str], first_row: list[str], opts: Re
     except ContractError as exc:
         raise lines.located(exc) from None
     return _converted(columns, scales), _renames(header, named), _rescaled(scales), lines
+
+
+def _unmarked(columns: dict, types: dict, opts: ReadOptions, path: Path) -> dict:
+    """The number columns holding a numeric mark of ``data.missing_values`` (-9999), its cells
+    missing, however written (:mod:`.marks`); said where the column is no temperature's (an
+    error or a state could read the number)."""
+    out = {}
+    for name, column in columns.items():
+        if types.get(name) != pa.float64() or name == TIME:
+            continue
+        values = _values(column)
+        where = marks.hits(values, opts.missing_values)
+        if not where.any():
+            continue
+        out[name] = pa.chunked_array([pa.array(values, pa.float64(), mask=where | np.isnan(values))])
+        if role(name) != "T":
+            logger.warning(f"{path}: column {name!r}: {int(where.sum())} cell(s) equal to a number "
+                           f"of data.missing_values ({marks.numbers_given(opts.missing_values)}) "
+                           "read as missing")
+    return out
 
 
 def _order_in_rows(first: str, opts: ReadOptions) -> bool:
@@ -328,9 +352,11 @@ def peek_csv(path: Path, delimiter: str, encoding: str) -> tuple[list[str], list
             header = next(rows, None)
             header = header and uncommented(header, head[:preamble])
             first = next((r for r in rows if r), None)
-            units = first is not None and header is not None and is_unit_row(first)
+            campbell = has_unit_row(head)          # (a TOA5 file's units, in its own words)
+            units = first is not None and header is not None and (campbell or is_unit_row(first))
             if units:
-                header, first = with_units(header, first), next((r for r in rows if r), None)
+                header = with_units(header, campbell_units(first) if campbell else first)
+                first = next((r for r in rows if r), None)
             below = [first, *(r for _, r in zip(range(MAX_PROPERTY_ROWS), rows) if r)]
             described = property_rows(below) if units and first is not None else 0
             first = below[described] if described else first
@@ -390,7 +416,7 @@ def _csv_options(names: list[str], opts: ReadOptions, *, types=None, include=Non
     parse = pacsv.ParseOptions(delimiter=opts.delimiter, invalid_row_handler=invalid_row_handler)
     convert = pacsv.ConvertOptions(column_types=types or {}, include_columns=include or [],
                                    decimal_point=opts.decimal, strings_can_be_null=True,
-                                   null_values=[*MISSING_TOKENS, *opts.missing_values],
+                                   null_values=[*MISSING_TOKENS, *marks.texts(opts.missing_values)],
                                    timestamp_parsers=[opts.time] if is_format(opts.time) else None)
     return dict(read_options=read, parse_options=parse, convert_options=convert)
 

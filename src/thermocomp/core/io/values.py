@@ -17,13 +17,13 @@ from ..timerule import median_step
 from .clocksets import undone
 from .contract import TIME, ContractError, role
 from .lines import Lines, at
+from .marks import ABSOLUTE_ZERO_C
 from .options import ReadOptions
 from .rates import period_groups, said_if_rate_changes, said_if_rows_missing
 from .sparse import intermittent, probe_cycle
 from .tables import PIPED_HINT, _chunks, _values
 from .timestamps import clock_set_back, on_local_clock, said_if_clock_skips
 
-ABSOLUTE_ZERO_C = -273.15
 MAX_ABS_T_C = 1e4  # refused whatever data.kelvin_threshold_c says
 FAULTY_SHARE = 0.1  # at most this share of a streamed T_ column above the kelvin threshold: faults
 
@@ -368,7 +368,10 @@ def _check_celsius(values: np.ndarray, name: str, path: Path, threshold: float,
                                 f"{threshold:g}: {why}", file=path, column=name, row=row)
     if lowest < ABSOLUTE_ZERO_C:
         row = int(np.argmax(values < ABSOLUTE_ZERO_C)) + 1
-        raise ContractError(f"{values[row - 1]:g} °C is below absolute zero",
+        # (lab74) a logger's mark for a value not measured, as AmeriFlux's -9999: said so
+        hint = (f": the logger's mark for a value not measured? data.missing_values="
+                f"[{values[row - 1]:g}] reads it as missing" if values[row - 1] <= -999 else "")
+        raise ContractError(f"{values[row - 1]:g} °C is below absolute zero{hint}",
                             file=path, column=name, row=row)
 
 

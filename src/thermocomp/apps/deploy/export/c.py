@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 
+from ....core.io import marks as missing_marks
 from ....core.io.derived import rendered
 from ....core.io.derived import sources as sources_of
 from ....core.timerule import C_TIME_RULE
@@ -127,11 +128,16 @@ def _raw_file(ss: StateSpace) -> str:
     it writes for a value not measured (``data.missing_values``: read as an empty cell)."""
     marks = [str(m) for m in ss.provenance.get("missing_values") or ()]
     items = ", ".join(map(c_string, marks)) or '""'
+    numbers = missing_marks.values(marks)       # (-9999: by value, however a cell writes it)
     code = ENCODINGS.get(str(ss.provenance.get("encoding") or "utf-8"), 0)
     return (f"#define TC_ENCODING {code}   /* data.encoding: 0 utf-8, 1 cp1252, 2 latin-1 */\n"
             f"#define TC_N_MISSING {len(marks)}\n"
             f"static const char *const TC_MISSING[{max(len(marks), 1)}] = {{{items}}};"
-            "  /* data.missing_values: a cell holding one is a missing value */")
+            "  /* data.missing_values: a cell holding one is a missing value */\n"
+            f"#define TC_N_MISSING_VALUES {len(numbers)}\n"
+            f"static const double TC_MISSING_VALUE[{max(len(numbers), 1)}] = "
+            f"{{{', '.join(map(repr, numbers)) or '0.0'}}};"
+            "  /* its numbers: a cell of that value, however written, is one */")
 
 
 def _pattern_constants(ss: StateSpace) -> list:

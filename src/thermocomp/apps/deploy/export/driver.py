@@ -42,7 +42,8 @@ DRIVER = r"""/* stream.c: CSV rows of raw inputs on stdin -> corrections C_<axis
  * reader leaves them out; a line in data.encoding (TC_ENCODING: a Windows logger's cp1252) is
  * read as UTF-8 (a line that is UTF-8 already as it is); the header written again further down
  * (a logger restarted), with its unit row, is left out and said; a cell holding a mark of
- * data.missing_values (TC_MISSING: `---`) is a missing value, as an empty cell is, and a cell
+ * data.missing_values (TC_MISSING: `---`; TC_MISSING_VALUE: -9999 however written) is a
+ * missing value, as an empty cell is, and a cell
  * of an input that is no number nor a mark is refused with its row, as the reader refuses it.
  * UTF-16 text with its byte-order mark, little- or big-endian (catman AP's or Excel's Unicode
  * export) is read as its UTF-8 text (transcoded here; data.encoding does not apply to it), as
@@ -294,7 +295,7 @@ static int next_line(char *line, size_t size, long row) {
     return 1;
 }
 
-/* 1: `cell` (spaces and quotes round it dropped) is one of data.missing_values' marks. */
+/* 1: `cell` (spaces and quotes round it dropped) is one of data.missing_values' text marks. */
 static int is_mark(const char *cell) {
     size_t len;
     int k;
@@ -305,6 +306,15 @@ static int is_mark(const char *cell) {
     for (k = 0; k < TC_N_MISSING; k++)
         if (TC_MISSING[k][0] && strlen(TC_MISSING[k]) == len && strncmp(cell, TC_MISSING[k], len) == 0)
             return 1;
+    return 0;
+}
+
+/* 1: `v` (a cell's number) is one of data.missing_values' numbers, however the cell wrote it
+   (lab74: AmeriFlux's -9999 as -9999.000). */
+static int is_number_mark(double v) {
+    int k;
+    for (k = 0; k < TC_N_MISSING_VALUES; k++)
+        if (v == TC_MISSING_VALUE[k]) return 1;
     return 0;
 }
 
@@ -376,7 +386,7 @@ static double value(const char *cell, int *bad) {
     v = strtod(text, &end);
     while (*end == ' ' || *end == '"') end++;
     if (end == text || *end != '\0') { *bad = 1; return NAN; }
-    return v;
+    return is_number_mark(v) ? NAN : v;
 }
 
 /* 1: `cell` is a channel property's label ('T0', 'dt', 'Delta t'): a letter, then letters,
