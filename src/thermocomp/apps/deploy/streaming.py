@@ -84,6 +84,7 @@ from ...core.continuation import campaign_period
 from ...core.frame import ambient_c0, context_record
 from ...core.guarded import mark_guarded, summed_frames
 from ...core.io.contract import is_ambient, manifest_ambient
+from ...core.io.own_headers import as_named
 from ...core.io.values import MAX_ABS_T_C, reading_limit
 from ...core.metrics import split_scores
 from ...core.timerule import SampleClock, on_grid
@@ -463,7 +464,8 @@ class StreamingCompensator:
         need = self.columns_ + ([TIME] if self.time_required_ else [])
         missing = [c for c in need if c not in frame.columns]
         if missing:
-            raise OutOfEnvelopeError(f"input lacks column(s) {missing} (need {need})")
+            raise OutOfEnvelopeError(f"input lacks column(s) {as_named(missing, self.lab_names_)} "
+                                     f"(need {need})")
         X = np.column_stack([frame[c].to_numpy(dtype=float) for c in self.columns_]) \
             if self.columns_ else np.empty((len(frame), 0))
         time = frame[TIME].to_numpy(float) if TIME in frame.columns else np.full(len(frame), np.nan)
