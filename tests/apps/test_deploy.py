@@ -297,6 +297,20 @@ def test_envelope_clamp_refuse_and_off(data):
     off = StreamingCompensator(comp, env, "off").predict(hot)
     assert off["n_clamped"].eq(0).all() and (off["E_Z"] - out["E_Z"]).abs().max() > 1.0
     np.testing.assert_allclose(ok["E_Z"], out["E_Z"].iloc[:50])
+    # (stranger74) the test figures "as deployed" count the clamped rows, and promote says them:
+    # it said only the guard's, where the clamp made most of the gap to run's figure
+    from thermocomp.apps.deploy.promotion import Candidate
+    from thermocomp.shell.stages.promote import deployed_lines
+
+    clamp.reset()
+    scores = stream_scores(clamp, {"K05": hot}, 60.0)
+    assert {s["clamped_samples"] for s in scores.values()} == {len(hot) - 50}
+    cand = Candidate("r", {}, "d", 0.0, "simulation", "simulation", {}, {}, test_samples=len(hot),
+                     test_clamped=len(hot) - 50)
+    assert deployed_lines(cand, "clamp") == [
+        f"clamped: {len(hot) - 50} of {len(hot)} samples had an input outside the training "
+        "envelope (promote.envelope.policy=clamp); the test figures are the clamped stream's, "
+        "run's the model's own"]
 
 
 def test_missing_values_and_columns_are_refused_clearly(data):

@@ -69,6 +69,11 @@ def test_the_compiled_c_streams_the_labs_raw_long_file_as_replay(tmp_path):
     assert clock != raw
     bad = subprocess.run([str(code / "stream")], input=clock.encode(), capture_output=True)
     assert bad.returncode == 2 and b"line 2: the time is no number" in bad.stderr
+    # (stranger74) a column the file lacks is said by the lab's header, not only T_T0
+    lacking = subprocess.run([str(code / "stream")], input=raw.replace("T0 [°C]", "T9 [°C]", 1)
+                             .encode(), capture_output=True)
+    assert lacking.returncode == 2
+    assert "lacks input column T_T0 (the lab's header 'T0 [°C]')".encode() in lacking.stderr
 
 
 @pytest.mark.parametrize("text, want", [("T0 [°C]", '"T0 [\\302\\260C]"'),
@@ -114,3 +119,6 @@ def test_the_served_model_reads_a_labs_wall_clock_times_as_replay_does(tmp_path)
     assert np.abs(got - want).max() <= 1e-9
     with pytest.raises(MlflowException, match="time of day without its date"):
         served.predict(rows.assign(Zeit=rows["Zeit"].str[-8:]), params={"reset": True})
+    # (stranger74) a column the request lacks is named as the lab sends it, not only as T_T0
+    with pytest.raises(MlflowException, match=r"lacks column\(s\) \['T0 \[°C\]' \(read as T_T0\)\]"):
+        served.predict(rows.drop(columns="T0 [°C]"), params={"reset": True})

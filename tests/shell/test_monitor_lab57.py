@@ -113,7 +113,8 @@ def test_a_renamed_column_in_the_stream_is_named_with_its_own_header(lab, tmp_pa
     monkeypatch.setattr("sys.stdin", io.StringIO(rows.to_csv(sep=";", decimal=",", index=False)))
     refused(["monitor", f"data.path={lab / 'messung.csv'}", f"out={tmp_path / 'o'}", *ROLES,
              *FAST, "monitor.input=-"], capsys,
-            "'T_Bett'", "stdin lacks a column", "'Bett2 [°C]' (read as T_Bett2)", "renamed?")
+            "'T_Bett'", "stdin lacks a column", "'Bett2 [°C]' (read as T_Bett2)", "renamed?",
+            "'Bett [°C]' (read as T_Bett)")   # (stranger74) the lacking one by its own header too
 
 
 def test_a_stream_said_to_continue_a_run_it_does_not_continue_is_refused(lab, tmp_path,

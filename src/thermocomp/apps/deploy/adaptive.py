@@ -24,6 +24,7 @@ import numpy as np
 import pandas as pd
 
 from ...core.context import TIME, step_gain
+from ...core.io.own_headers import as_named
 from ...core.timerule import SampleClock
 from .fallback import sensor_fallbacks
 from .guard import CorrectionGuard
@@ -479,7 +480,8 @@ class AdaptiveCompensator:
         ``excluded_inputs`` (comma-separated) and ``events`` (JSON list of the row's events)."""
         missing = [c for c in self.columns_ if c not in frame.columns]
         if missing:
-            raise OutOfEnvelopeError(f"input lacks column(s) {missing} (need {self.columns_})")
+            raise OutOfEnvelopeError(f"input lacks column(s) {as_named(missing, self.lab_names_)} "
+                                     f"(need {self.columns_})")
         X = np.column_stack([pd.to_numeric(frame[c], errors="coerce").to_numpy(dtype=float)
                              for c in self.columns_]) if self.columns_ else np.empty((len(frame), 0))
         time = (pd.to_numeric(frame[TIME], errors="coerce").to_numpy(float) if TIME in frame.columns

@@ -78,6 +78,9 @@ class Candidate:
     # per target, the test rows whose correction the guard changed (None: the plain stream)
     test_guarded: dict | None = None
     test_samples: int = 0
+    # the test rows with an input clamped to the envelope / excluded by the sensor monitor
+    test_clamped: int = 0
+    test_excluded: int = 0
     deviation: float = 0.0
     deployed: object = None
     streaming: object = None
@@ -185,6 +188,9 @@ def deploy(cand: Candidate, comp, ds, *, stream_of: Callable, deployed_of: Calla
     guarded = {t: s["guarded_samples"] for t, s in scores.items()}
     cand.test_guarded = None if None in guarded.values() else guarded
     cand.test_samples = sum(len(df) for df in test.values())
+    first = next(iter(scores.values()), {})
+    cand.test_clamped, cand.test_excluded = first.get("clamped_samples", 0), first.get(
+        "excluded_samples", 0)
     cand.figures = {**cand.val_figures, **cand.test_figures}
 
 
@@ -227,7 +233,9 @@ def promote_report(cand: Candidate, outcome: Outcome, *, name: str, alias: str,
             "criterion": criterion, "ranked_by": cand.basis,
             "candidate": {"score": cand.score, "figures": cand.figures,
                           "validation": cand.val_figures, "test_reported": cand.test_figures,
-                          "test_rows_guarded": cand.test_guarded},
+                          "test_rows_guarded": cand.test_guarded,
+                          "test_rows_clamped": cand.test_clamped,
+                          "test_rows_excluded": cand.test_excluded},
             "champion": None if o.champion_version is None else {"version": o.champion_version,
                                                                  "score": o.champion_score},
             "stream_deviation_um": cand.deviation, "model_uri": f"models:/{name}/{o.version}",

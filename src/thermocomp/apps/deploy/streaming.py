@@ -84,6 +84,7 @@ from ...core.continuation import campaign_period
 from ...core.frame import ambient_c0, context_record
 from ...core.guarded import mark_guarded, summed_frames
 from ...core.io.contract import is_ambient, manifest_ambient
+from ...core.io.own_headers import as_named
 from ...core.io.values import MAX_ABS_T_C, reading_limit
 from ...core.metrics import split_scores
 from ...core.timerule import SampleClock, on_grid
@@ -477,7 +478,8 @@ class StreamingCompensator:
         need = self.columns_ + ([TIME] if self.time_required_ else [])
         missing = [c for c in need if c not in frame.columns]
         if missing:
-            raise OutOfEnvelopeError(f"input lacks column(s) {missing} (need {need})")
+            raise OutOfEnvelopeError(f"input lacks column(s) {as_named(missing, self.lab_names_)} "
+                                     f"(need {need})")
         X = np.column_stack([frame[c].to_numpy(dtype=float) for c in self.columns_]) \
             if self.columns_ else np.empty((len(frame), 0))
         time = frame[TIME].to_numpy(float) if TIME in frame.columns else np.full(len(frame), np.nan)
@@ -868,11 +870,17 @@ def stream_scores(streaming: StreamingCompensator, campaigns: Mapping[str, pd.Da
     learned from the references carried from one to the next.  Each target's
     ``guarded_samples`` (beside ``test``) counts the rows whose correction the guard changed, as
     ``replay.json``'s (:func:`~thermocomp.core.guarded.summed_frames`; None without a guard:
-    the plain stream).
+    the plain stream), ``clamped_samples`` the rows with an input clamped to the envelope and
+    ``excluded_samples`` those with an input the sensor monitor excluded (stranger74: promote
+    said the guard's 2 rows where 109 were clamped and a sensor excluded, its "as deployed"
+    1.18 µm against run's 0.71).
     """
     lead_ins = lead_ins or {}
     predicted = {c: replay(streaming, df, lead_in=lead_ins.get(c)) for c, df in campaigns.items()}
     guarded = summed_frames(predicted.values(), streaming.targets_)
+    clamped = sum(int((p["n_clamped"].to_numpy() > 0).sum()) for p in predicted.values())
+    excluded = sum(int((p["excluded_inputs"].fillna("").astype(str) != "").sum())
+                   for p in predicted.values() if "excluded_inputs" in p.columns)
     streaming.reset()
     # (a probe's first reading after the first row: the deployed y_hat(m) completes the label)
     measured = streaming.compensator.measured(campaigns, predicted=predicted)
@@ -888,5 +896,6 @@ def stream_scores(streaming: StreamingCompensator, campaigns: Mapping[str, pd.Da
         y = {c: measured[c][t].to_numpy() for c in campaigns}
         r = {c: y[c] - predicted[c][t].to_numpy() for c in campaigns}
         out[t] = {"test": split_scores(y, r, sample_period_s, statistic, points),
-                  "guarded_samples": None if guarded is None else guarded[t]}
+                  "guarded_samples": None if guarded is None else guarded[t],
+                  "clamped_samples": clamped, "excluded_samples": excluded}
     return out

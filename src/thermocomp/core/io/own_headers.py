@@ -11,7 +11,7 @@ from collections.abc import Mapping
 from .contract import ContractError
 from .roles import header_pattern
 
-__all__ = ["header_pattern", "with_own_header"]
+__all__ = ["as_named", "header_pattern", "with_own_header"]
 
 _QUOTED = re.compile(r"'([^']+)'")
 
@@ -33,3 +33,15 @@ def with_own_header(exc: ContractError, renamed: Mapping[str, str]) -> ContractE
             f"their headers in the file: {', '.join(map(repr, headers))}")
     return ContractError(f"{reason} ({said})", file=exc.file, column=exc.column, row=exc.row,
                          line=exc.line, sheet=exc.sheet)
+
+
+def as_named(columns, names: Mapping) -> str:
+    """``columns`` (contract names) listed as the lab named them, ``names`` being ``{contract
+    name: the lab's header(s)}`` (a deployed model's ``lab_names_``): a stream lacking a sensor
+    was refused naming ``T_Hydraulik``, a name none of the lab's files holds ('Hydraulik (°C)')."""
+    said = []
+    for column in columns:
+        raws = names.get(column) or []
+        raws = [raws] if isinstance(raws, str) else list(raws)
+        said.append(" or ".join(map(repr, raws)) + f" (read as {column})" if raws else repr(column))
+    return f"[{', '.join(said)}]"

@@ -10,6 +10,7 @@ from __future__ import annotations
 import csv
 import fnmatch
 import re
+from collections.abc import Mapping
 from io import StringIO
 
 import numpy as np
@@ -37,6 +38,7 @@ from .layout import (
     with_units,
 )
 from .options import RUN_ROLE
+from .own_headers import as_named
 from .roles import RUN, active, naming, same_header, split_unit
 from .runs import run_blocks, run_values
 from .separators import UNICODE_MINUS, grouped
@@ -90,21 +92,22 @@ def stdin_text(stream, encoding: str = UTF8) -> str:
                             file=SOURCE, row=row or None) from None
 
 
-def read_stream(text: str, columns: list[str], opts, recorded: str | None = None
-                ) -> tuple[pd.DataFrame, dict]:
+def read_stream(text: str, columns: list[str], opts, recorded: str | None = None,
+                lab: Mapping | None = None) -> tuple[pd.DataFrame, dict]:
     """``(frame, missing cells per column)`` of CSV ``text`` (header first) holding ``columns``
     (those the compensator reads).  ``time`` in seconds or as ISO 8601 timestamps (``auto``: as
     the first row reads, like a campaign file, dates with slashes in the order ``recorded``, the
     training record's, where one is: :func:`.slashed.stream_format`; the instant they count from
     in ``attrs`` :data:`TIME_ORIGIN`, None for seconds); the headers named as a campaign file's
-    are (``data.columns``, ``data.roles`` with a date and a time of day joined, ``data.units``)."""
-    df, counts, _, origins = _read_runs(text, columns, opts, recorded)
+    are (``data.columns``, ``data.roles`` with a date and a time of day joined, ``data.units``);
+    a column it lacks is named as ``lab`` (the model's ``lab_names_``) names it."""
+    df, counts, _, origins = _read_runs(text, columns, opts, recorded, lab)
     df.attrs[TIME_ORIGIN] = origins[0]
     return df, counts
 
 
-def _read_runs(text: str, columns: list[str], opts, recorded: str | None = None
-               ) -> tuple[pd.DataFrame, dict, list | None, list]:
+def _read_runs(text: str, columns: list[str], opts, recorded: str | None = None,
+               lab: Mapping | None = None) -> tuple[pd.DataFrame, dict, list | None, list]:
     """:func:`read_stream`'s ``(frame, missing cells per column)``, the runs' row blocks
     ``(campaign id, first row, end row)`` (None without a run column) and each run's
     :data:`TIME_ORIGIN` (None: its time is no timestamp): the runs are found once, where their
@@ -133,7 +136,8 @@ def _read_runs(text: str, columns: list[str], opts, recorded: str | None = None
     if not absent and df.empty:
         raise ContractError("stdin has a header but no data row", file=SOURCE)
     if absent:
-        raise ContractError("stdin lacks a column the compensator reads" + _unread(df, columns),
+        raise ContractError("stdin lacks a column the compensator reads, "
+                            + as_named(absent, lab or {}) + _unread(df, columns),
                             file=SOURCE, column=",".join(absent))
     origins = [None] * (1 if blocks is None else len(blocks))
     if TIME in df.columns:        # timestamps counted from each run's first, as a file's runs
@@ -201,13 +205,13 @@ def _time_format(time: pd.Series, given: str, recorded: str | None) -> str:
     return stream_format(time, recorded, SOURCE) or given
 
 
-def stream_campaigns(text: str, columns: list[str], opts, recorded: str | None = None
-                     ) -> tuple[dict, dict]:
+def stream_campaigns(text: str, columns: list[str], opts, recorded: str | None = None,
+                     lab: Mapping | None = None) -> tuple[dict, dict]:
     """``({campaign id: frame}, {campaign id: missing cells per column})`` of the stream: one
     campaign ``stdin``, or, with ``data.roles.campaign``, a campaign per run named as the long
     file's are (:mod:`.runs`), so each starts from a reset as a file's run does (:func:`read_stream`;
-    ``recorded``: the training record's order of dates with slashes)."""
-    df, counts, blocks, origins = _read_runs(text, columns, opts, recorded)
+    ``recorded``: the training record's order of dates with slashes; ``lab``: as there)."""
+    df, counts, blocks, origins = _read_runs(text, columns, opts, recorded, lab)
     if blocks is None:
         df.attrs[TIME_ORIGIN] = origins[0]
         return {STDIN: df}, ({STDIN: counts} if counts else {})

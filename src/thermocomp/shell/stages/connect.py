@@ -78,7 +78,8 @@ def _warm_rows(cfg: DictConfig, deployed):
     opts = io.ReadOptions.from_cfg(data_options(cfg))
     with open(path, "rb") as raw:
         frame, _ = read_stream(stdin_text(TextIOWrapper(raw), opts.encoding), deployed.columns_, opts,
-                               getattr(deployed, "slashed_", None))   # the record's order (code71)
+                               getattr(deployed, "slashed_", None),   # the record's order (code71)
+                               getattr(deployed, "lab_names_", None))
     return frame
 
 

@@ -16,6 +16,7 @@ from pathlib import Path
 from omegaconf import DictConfig
 
 from ...apps.deploy.adapt import from_config as adapt_from_config
+from ...apps.deploy.naming import lab_names
 from ...apps.monitor.report import monitor_report, summary_lines
 from ...apps.monitor.stdin import (
     check_continued,
@@ -101,7 +102,8 @@ def monitor(cfg: DictConfig) -> dict:
             # (code71) dates with slashes in the order the training record decided: a stream
             # cannot see the future, its first row alone read 10/03 into 11/03 month first
             streamed, missing = stream_campaigns(stdin_text(sys.stdin, opts.encoding),
-                                                 adaptive.columns_, opts, slashed_time(cfg, ds))
+                                                 adaptive.columns_, opts, slashed_time(cfg, ds),
+                                                 lab_names(cfg, ds))
             if cfg.monitor.get("ambient_c") is not None:   # as the manifest's ambient_c is carried
                 for df in streamed.values():
                     df.attrs[AMBIENT_C] = float(cfg.monitor.ambient_c)

@@ -81,7 +81,22 @@ def promote(cfg: DictConfig) -> dict:
     write_json(resolve(cfg.out) / "promote.json", report)
     print(outcome_line(name, outcome.version, alias, outcome.moved, outcome.why,
                        outcome.champion_version))
-    for line in guarded_line(cand.test_guarded or {}, cand.test_samples,
-                             "the test figures are the guarded stream's, run's the model's own"):
+    for line in deployed_lines(cand, str(cfg.promote.envelope.policy)):
         print(line)
     return report
+
+
+def deployed_lines(cand, policy: str) -> list[str]:
+    """Why the test figures "as deployed" leave run's: the rows clamped to the envelope, with an
+    input the sensor monitor excluded, whose correction the guard changed (replay's lines)."""
+    n, why = cand.test_samples, "the test figures are the {} stream's, run's the model's own"
+    lines = []
+    if cand.test_clamped:
+        lines.append(f"clamped: {cand.test_clamped} of {n} samples had an input outside the "
+                     f"training envelope (promote.envelope.policy={policy}); "
+                     + why.format("clamped"))
+    if cand.test_excluded:
+        lines.append(f"excluded: {cand.test_excluded} of {n} samples had an input excluded by "
+                     "the sensor monitor (monitor.adaptive; replay names them); "
+                     + why.format("adaptive"))
+    return lines + guarded_line(cand.test_guarded or {}, n, why.format("guarded"))

@@ -117,6 +117,16 @@ static const char *lab_named(const char *cell, int j) {
     return NULL;
 }
 
+/* The lab's header of contract name `input`, "" where the model's data names it so itself: a
+   column the file lacks is said as the lab wrote it (stranger74: `T_Hydraulik`, a name none of
+   the lab's files holds, for its `Hydraulik (degC)`). */
+static const char *lab_header(const char *input) {
+    int k;
+    for (k = 0; k < TC_N_LAB_NAMES; k++)
+        if (strcmp(input, TC_LAB_NAMES[k][1]) == 0) return TC_LAB_NAMES[k][0];
+    return "";
+}
+
 static const char *named(char *cell, int j) {
     size_t len;
     int k;
@@ -955,12 +965,14 @@ int main(int argc, char **argv) {
         if (where[i] < 0) {
             /* a lab's report or gateway file fed as it is (a title line read as the header):
                what the stream reads, said with the missing name */
+            const char *lab = lab_header(TC_INPUT_NAMES[i]);
             fprintf(stderr, "stream: the header (line %ld: CSV naming the inputs as TC_INPUT_NAMES "
                     "in compensator.h does, in degC%s; a file in fixed-width columns, JSON "
                     "Lines or a historian's or InfluxDB export: converted first, to CSV, as the "
-                    "export's check/<campaign>/rows.csv are) lacks input column %s\n", top,
+                    "export's check/<campaign>/rows.csv are) lacks input column %s%s%s%s\n", top,
                     TC_LAB_NAMES[0][0][0] ? ", or by a lab's header TC_LAB_NAMES lists, in its "
-                    "unit" : "", TC_INPUT_NAMES[i]);
+                    "unit" : "", TC_INPUT_NAMES[i], lab[0] ? " (the lab's header '" : "", lab,
+                    lab[0] ? "')" : "");
             return 2;
         }
     }
