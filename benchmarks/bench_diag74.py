@@ -44,6 +44,38 @@ The bar (all must hold, else REFUSED: src reverted, this bench kept, the rule as
 4. tests/apps/test_diagnose*, tests/shell/test_diagnose* pass.
 
 Reported beside, not in the bar: CPU of each row, shipped vs rule where measured.
+
+Measured (2026-12-02, rule 97047f95's src, shipped = a ``git archive`` of 4812ce97; 2 shared
+cores, load 4-23; CPU user + sys of each row)
+---------------------------------------------------------------------------------------------
+1. Holds.  Test RMSE µm before -> after diagnose, the rule (``record``)::
+
+     60/20/20 hammerstein E_ch4  1.839 -> 1.839: T_t5 (jump 4.25) kept, CV -13.4 % without it    34.4 s
+                                 (shipped: CV -0.12 %, removed, 1.839 -> 5.405; 58.9 s)
+     60/20/20 hammerstein all    3.211 / 3.544 / 2.347 / 1.839 / 3.269, nothing accepted      91.5 s
+                                 (T_t5 kept: ch3 -10.0 %, ch4 -13.4 % without it; ch5's best
+                                 S_spindle x inputs' rises CV 34 %, family-wise p 0.12)
+     60/20/20 lagbank            nothing accepted, ch1-5 unchanged (T_t5 kept)               76.3 s
+     60/20/20 mlr                ch1 9.528 -> 3.789, ch2 7.769 -> 2.936 (S_spindle 1 h lag)    12.7 s
+     60/20/20 pcr                ch2 4.407 -> 2.970 (S_spindle 1 h lag), others unchanged     23.7 s
+     60/20/20 arx                ch1 15.045 -> 2.393 (S_spindle 15 min lag), others =         34.2 s
+     90/10 hammerstein           nothing accepted, 2.773 / 2.746 / 3.455 / 2.497 / 3.271     133.9 s
+     90/10 lagbank / mlr / pcr   nothing accepted, unchanged                 106.3 / 12.3 / 26.5 s
+     90/10 arx                   nothing accepted, unchanged                                  36.1 s
+
+   THE COST, not in the bar: shipped 60/20/20 lagbank takes S_spindle's 4 h lag on ch1, 1.489 ->
+   0.851 µm (107.8 s); with the rule its CV gain is 33.8 % but family-wise p 0.023 over 13 test
+   blocks (the base's CV at its own choices changes the residual, so the blocks), not accepted:
+   ch1 ends 1.489, 75 % above shipped's after (still = before diagnose).
+2. MORETEST
+3. Holds: faults found 10 -> 10 of 16, one unit 5 -> 5 of 16; all 36 cases' targets (removals,
+   effects, test RMSE) identical to the shipped run of bench_diag73 (2f2e7dd4; MLR, whose
+   path the rule leaves as it is); CPU 154.1 -> 156.4 s.
+4. Holds: tests/apps/test_diagnose*, tests/shell/test_diagnose*, test_docs, test_imports: 165
+   passed (134 s CPU), with tests/apps/test_diagnose_choices74.py (fails on 4812ce97: the folds'
+   penalties 0.01 .. 1e4, every one of the grid, against the base's 10).
+
+Verdict: VERDICT
 """
 
 from __future__ import annotations
