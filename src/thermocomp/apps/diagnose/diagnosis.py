@@ -12,7 +12,7 @@ from threadpoolctl import threadpool_limits
 
 from ...base.jsonsafe import json_safe
 from ...base.log import logger
-from ...core.compensator import Compensator
+from ...core.compensator import Compensator, with_chosen_hyperparameters
 from ...core.continuation import fit_campaigns, fit_joined
 from ...core.denoise import denoise_campaigns
 from ...core.first_probe import completed, late_starts
@@ -289,10 +289,13 @@ def _design(scheme, m, labels, context, before, compensator, targets, mode, opti
     whole diagnosis."""
     units = unit_labels(m.groups, options.n_blocks) if scheme == "campaigns" else m.groups
     gap = _gap(m.context, m.groups, options) if scheme == "forward" else 0
+    # every fold fits at the choices the deployed base made on all train rows (diag74), so a
+    # candidate gains by what it adds, not by moving the base's own choices (Search's docstring)
+    estimator = with_chosen_hyperparameters(compensator, before).estimator
     searches = {t: Search(Problem(m.X, labels[t], context, m.groups, units, t, mode,
                                   before.reference, options.n_folds, scheme, options.n_blocks, gap,
                                   options.min_train_fraction),
-                          compensator.estimator, compensator.selector, before.inputs_, options)
+                          estimator, compensator.selector, before.inputs_, options)
                 for t in targets}
     start = {t: s.cv.run(s.inputs([]), []) for t, s in searches.items()}
     # (an error measured on 1 row in N: its measured series at its own spacing, the length in

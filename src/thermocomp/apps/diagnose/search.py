@@ -4,7 +4,10 @@ One target at a time, on the train split only (the test split is touched
 once, at the end, to report before and after):
 
 1. **Residual** of the current model by cross-validation (:mod:`.cv`): leave
-   campaigns out, or forward chaining over one long record.
+   campaigns out, or forward chaining over one long record.  Every CV fit (the model as it is,
+   each candidate, each sensor removal) keeps the hyper-parameters the deployed base chose on all
+   train rows (``chosen_params``: a lag bank's penalty, the hammerstein's powers; diag74), so a
+   candidate gains by what it adds, not by moving the base's own choices.
 2. **Candidates** of every family (:mod:`.candidates`), the random-walk control
    among them; ``sensor_fault`` candidates come from self-prediction
    (:mod:`.sensors`), which also watches the *temperatures* of the campaigns
