@@ -62,6 +62,39 @@ faults: nan40 E_dZ 8.441 -> 22.121, E_dX 0.229 -> 0.732; dead 122.593 -> 161.074
 stuck 122.560 -> 160.821, 4.845 -> 1.741.  Healthy: 7367 25.990 / 7.785, 7368 93.640 / 16.699,
 7371 72.788 / 12.782, 7375 173.054 / 34.514, 7376 123.253 / 21.538, 7377 159.754 / 42.664,
 7380 60.435 / 11.785, 7381 129.833 / 36.335, 7382 27.078 / 8.349 (E_dZ adaptive / fixed).
+
+Scored (2026-12-02, commit f5436997: rules (a) + (b); fixed -> adaptive, µm, (ratio))
+-------------------------------------------------------------------------------------
+(a) on the grinder's model: ``T_spindle`` upper side priced a regime, fallback 56.71 µm against
+the model refitted up to 71.26 °C and extrapolating 3.46 µm (its lower side not priced: the
+record starts at the training minimum).
+
+1. Healthy, 30 records: every ``out of range`` exclusion gone (shipped: 30 on 17 records).  Adaptive
+   = fixed to the digit on 24 records; the others (E_dZ / E_dX ratio; shipped in brackets):
+   7375 1.026 / 1.037 (5.01 / 2.83), 7377 1.000 / 1.028 (3.74 / 8.63; guarded 2204 -> 344 with (a)
+   alone -> (a)+(b)), 7384 1.004 / 1.041 (1.21 / 1.17), 7429 0.912 / 1.026 (the same), 7431 1.000 /
+   1.010 (4.34 / 8.89), **7432 0.934 / 1.081** (7.09 / 1.306).  7375, 7384, 7429 and 7432 are each
+   one drift exclusion of the healthy ``T_Bett`` the shipped code makes too (7432:
+   ``T_Bett`` out from 16.09 h to 27.35 h, -1.2 °C over 2 samples, in both), not range or guard; 7377 and
+   7431 the guard (bounded 344 / 319 samples: an input beyond range no monitor vouches for).
+   (a) alone (before (b) was wired to envelopes without a pattern, the grinder's five inputs
+   having none): 7377 E_dX 1.289, 7384 1.136, as range73's R.
+   BAR 1 FAILS on 7432's E_dX (1.081 > 1.05).
+2. ``faults``: nan40 22.121 / 0.732, dead 161.074 / 1.775, stuck 160.821 / 1.741: as shipped to
+   the digit.  ``bench_deploy_faults.py``: every printed figure as shipped (diff of the outputs
+   empty but paths and timings).  Passes.
+3. ``bench_monitor_healthy.py``: 15 of the 22 record x model pairs run (the other machines' 7 not:
+   time): 13 (yearround s5301 / s5302, swiss_lathe, large_mill, long_record, fl_thermal x mlr /
+   lagbank, column mlr) give results.json rows identical to a run of the shipped tree on the same
+   records, healthy and faulted; column lagbank and lathe43 mlr print the docstring's figures.
+   Passes on what ran.
+4. ``tests/shell/test_monitor*.py`` 111 passed, 3 xfailed (as before); ``tests/apps/test_monitor*``
+   25 passed (blame44 included).  Passes.
+
+REFUSED (bar 1): src reverted; the change (src, tests, docs) is ``benchmarks/mon74_rule.patch``.
+CPU (user + sys): healthy 30 records about 200 s (98.1 for the 10 fresh), faults 11.9,
+bench_deploy_faults 15.2 (12.4 shipped), the monitor tests 68.2 + 8.3; a grinder ``monitor`` run
+with the pricing 7.80 / 9.45 s against 7.46 / 8.50 shipped (two runs each, a loaded machine).
 """
 
 from __future__ import annotations
