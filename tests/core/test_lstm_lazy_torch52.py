@@ -29,7 +29,7 @@ def test_a_refused_lstm_value_imports_no_torch():
 
 def test_a_model_pickled_with_the_network_at_its_old_place_loads(monkeypatch):
     """Pickles written before the network moved to ``_lstm_net`` name it ``lstm._Net``."""
-    # here, not at the module's top: collection imported torch in every worker (~2.4 s of CPU)
+    # here, not at the module's top: collection imported torch in every worker (~2 s of CPU)
     pytest.importorskip("torch")
     import pickle
 

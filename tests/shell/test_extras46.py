@@ -112,7 +112,7 @@ def test_an_arx_rf_forest_predicts_each_distinct_state_once_with_the_same_number
 
 
 def test_an_lstm_predicts_campaigns_of_like_length_in_one_pass_with_the_same_numbers(monkeypatch):
-    from thermocomp.core.models._lstm_net import _Net   # torch: not imported at collection
+    from thermocomp.core.models._lstm_net import _Net  # torch: not imported at collection
 
     rng = np.random.default_rng(1)
     camps = {f"K{i}": door_campaign(rng, n=n) for i, n in enumerate((200, 300, 480))}

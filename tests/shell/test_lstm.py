@@ -67,7 +67,7 @@ def test_an_untrained_network_is_ordinary_least_squares():
 
 
 def test_fit_is_deterministic_per_seed_and_leaves_torch_globals_alone():
-    import torch     # in the tests that use it: not imported at collection (~2.4 s of CPU per worker)
+    import torch  # in the tests that use it: not imported at collection (~2 s of CPU per worker)
 
     X, y, g = lagged_data(n_campaigns=5)
     torch.manual_seed(123)

@@ -35,7 +35,7 @@ def test_the_default_patience_runs_the_same_epochs_as_20_and_stops_sooner():
 
 
 def test_an_epoch_is_one_adam_step_per_16_training_pieces():
-    import torch     # in the tests that use it: not imported at collection (~2.4 s of CPU per worker)
+    import torch  # in the tests that use it: not imported at collection (~2 s of CPU per worker)
 
     X, y, g = lagged_data(n_campaigns=40, n=64)
     steps = []
