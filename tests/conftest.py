@@ -304,6 +304,21 @@ def poisoned_copy(src: Path, dest: Path, scale: float = -50.0, offset: float = 1
     return dest
 
 
+@pytest.hookimpl(wrapper=True)
+def pytest_collection(session):
+    """Collection with byte code written: pytest caches each test module with its asserts
+    rewritten (tests/**/__pycache__) only where Python may write byte code, and
+    PYTHONDONTWRITEBYTECODE (set on these machines) forbade it, so every worker parsed and
+    rewrote every module again (~6 s of a worker's ~13 s of CPU).  This process and this phase
+    only: the imports of collection come from tests/, src/ and the venv; a command's process
+    (its environment unchanged) writes none, nor does a test in a folder it digests."""
+    writes, sys.dont_write_bytecode = sys.dont_write_bytecode, False
+    try:
+        return (yield)
+    finally:
+        sys.dont_write_bytecode = writes
+
+
 def pytest_collection_finish(session):
     """What collection imported (the whole stack: pandas, sklearn, MLflow, torch, ...) lives as
     long as the process: frozen out of the collector, the full collections of the tests that

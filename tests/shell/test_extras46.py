@@ -22,7 +22,6 @@ from test_stats import _campaign
 from thermocomp.core.compensator import Compensator, with_chosen_hyperparameters
 from thermocomp.core.metrics import rsd
 from thermocomp.core.models import ARXRF, LSTM, MLR, Hammerstein, LagBank
-from thermocomp.core.models._lstm_net import _Net
 from thermocomp.core.models.lstm import _like_lengths
 from thermocomp.core.scoring.evaluation import spread_campaigns
 from thermocomp.core.scoring.stats import mutual_prediction
@@ -113,6 +112,8 @@ def test_an_arx_rf_forest_predicts_each_distinct_state_once_with_the_same_number
 
 
 def test_an_lstm_predicts_campaigns_of_like_length_in_one_pass_with_the_same_numbers(monkeypatch):
+    from thermocomp.core.models._lstm_net import _Net  # torch: not imported at collection
+
     rng = np.random.default_rng(1)
     camps = {f"K{i}": door_campaign(rng, n=n) for i, n in enumerate((200, 300, 480))}
     comp = Compensator(LSTM(hidden_size=4, max_epochs=3, chunk=64)).fit(camps)

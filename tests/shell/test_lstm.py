@@ -4,7 +4,6 @@ import pickle
 
 import numpy as np
 import pytest
-import torch
 from sklearn.utils.estimator_checks import check_estimator
 
 from conftest import FAST, ctx, poisoned_copy, stream_predictions, thermocomp
@@ -68,6 +67,8 @@ def test_an_untrained_network_is_ordinary_least_squares():
 
 
 def test_fit_is_deterministic_per_seed_and_leaves_torch_globals_alone():
+    import torch  # in the tests that use it: not imported at collection (~2 s of CPU per worker)
+
     X, y, g = lagged_data(n_campaigns=5)
     torch.manual_seed(123)
     before_rng, before_threads = torch.get_rng_state(), torch.get_num_threads()
@@ -126,6 +127,8 @@ def test_bad_hyperparameters_are_config_errors(bad):
 @pytest.mark.slow
 def test_poisoned_test_campaigns_do_not_change_the_fitted_network(tmp_path):
     """Early stopping holds out train campaigns only: the test split never reaches ``fit``."""
+    import torch
+
     clean = tmp_path / "clean"
     thermocomp("simulate", f"data.path={clean}", "track=false", "sim.generator.n_campaigns=6",
                "sim.generator.duration_h=[2.0,3.0]")

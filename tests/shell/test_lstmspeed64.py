@@ -5,7 +5,6 @@ import math
 from unittest import mock
 
 import numpy as np
-import torch
 import yaml
 from threadpoolctl import threadpool_info
 
@@ -36,6 +35,8 @@ def test_the_default_patience_runs_the_same_epochs_as_20_and_stops_sooner():
 
 
 def test_an_epoch_is_one_adam_step_per_16_training_pieces():
+    import torch  # in the tests that use it: not imported at collection (~2 s of CPU per worker)
+
     X, y, g = lagged_data(n_campaigns=40, n=64)
     steps = []
     real = torch.optim.Adam.step
@@ -68,6 +69,8 @@ def test_the_least_squares_run_on_one_blas_thread():
 
 
 def test_a_piece_inside_a_campaign_starts_from_the_state_reached_there():
+    import torch
+
     n_campaigns, length, chunk, layers, hidden = 3, 10, 4, 1, 2
     pieces = [(b, k) for b in range(n_campaigns) for k in range(0, length, chunk)]
     xs = torch.arange(n_campaigns * length * 1, dtype=torch.float32).reshape(n_campaigns, length, 1)

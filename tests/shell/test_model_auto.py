@@ -92,13 +92,11 @@ def test_the_test_split_chooses_nothing(two_targets, tmp_path):
 
 
 def test_the_composite_streams_in_replay_as_it_predicts_in_run(two_targets, tmp_path):
-    data, _, _ = two_targets
+    data, run, root = two_targets          # the fixture's run: model=auto, PAIR, FAST
     common = [f"data.path={data}", "track=false", "model=auto", PAIR]
-    assert main(["run", *common, *FAST[1:], f"out={tmp_path / 'run'}"]) == 0
-    assert main(["replay", *common, f"replay.model={tmp_path / 'run' / 'model.pkl'}",
+    assert main(["replay", *common, f"replay.model={root / 'auto' / 'model.pkl'}",
                  f"out={tmp_path / 'replay'}"]) == 0     # the run's model, not a refit
     replay = json.loads((tmp_path / "replay" / "replay.json").read_text())
-    run = json.loads((tmp_path / "run" / "metrics.json").read_text())
     for t in ("E_A", "E_B"):
         assert replay["targets"][t]["max_abs_stream_minus_batch"] < 1e-6
         assert replay["targets"][t]["rmse"] == pytest.approx(run["targets"][t]["test"]["rmse"], rel=1e-6)
@@ -471,17 +469,26 @@ def test_auto_with_three_train_campaigns_keeps_mlr_against_a_twin_that_won_its_o
     assert len(weights) >= 3 and min(weights) > 0 and np.mean(weights) > 0.4
 
 
-def test_a_blend_streams_in_replay_as_it_predicts_in_run(two_targets, tmp_path):
+THREE = "model.candidates=[mlr,arx,lagbank]"      # E_B: arx and lagbank validate alike
+
+
+@pytest.fixture(scope="module")
+def blend_run(two_targets, tmp_path_factory):
+    """``run model=auto`` of :data:`THREE`, validated (the model it fits is the same either way):
+    its folder and metrics, for the replay and the validation of a blend."""
+    out = tmp_path_factory.mktemp("blend") / "auto"
+    return out, _run(two_targets[0], out, "model=auto", THREE, "eval.validation=true")
+
+
+def test_a_blend_streams_in_replay_as_it_predicts_in_run(two_targets, blend_run, tmp_path):
     data, _, _ = two_targets
-    three = "model.candidates=[mlr,arx,lagbank]"      # E_B: arx and lagbank validate alike
-    common = [f"data.path={data}", "track=false", "model=auto", three]
-    assert main(["run", *common, *FAST[1:], f"out={tmp_path / 'run'}"]) == 0
-    run = json.loads((tmp_path / "run" / "metrics.json").read_text())
+    common = [f"data.path={data}", "track=false", "model=auto", THREE]
+    out, run = blend_run
     blend = run["targets"]["E_B"]["auto"]
     assert blend["combine"] == "vote" and len(blend["weights"]) == 2
     assert sum(blend["weights"].values()) == pytest.approx(1, abs=1e-3)
     assert blend["chosen"] == max(blend["weights"], key=blend["weights"].get)
-    assert main(["replay", *common, f"replay.model={tmp_path / 'run' / 'model.pkl'}",
+    assert main(["replay", *common, f"replay.model={out / 'model.pkl'}",
                  f"out={tmp_path / 'replay'}"]) == 0
     replay = json.loads((tmp_path / "replay" / "replay.json").read_text())
     for t in ("E_A", "E_B"):
@@ -489,10 +496,8 @@ def test_a_blend_streams_in_replay_as_it_predicts_in_run(two_targets, tmp_path):
         assert replay["targets"][t]["rmse"] == pytest.approx(run["targets"][t]["test"]["rmse"], rel=1e-6)
 
 
-def test_the_run_validates_a_blend_as_blended_with_its_weights(two_targets, tmp_path):
-    data, _, _ = two_targets
-    metrics = _run(data, tmp_path / "auto", "model=auto", "model.candidates=[mlr,arx,lagbank]",
-                   "eval.validation=true")
+def test_the_run_validates_a_blend_as_blended_with_its_weights(blend_run):
+    metrics = blend_run[1]
     b = metrics["targets"]["E_B"]
     assert len(b["auto"]["weights"]) == 2
     # the blend refitted per fold with its weights: between its members' own validations or below
