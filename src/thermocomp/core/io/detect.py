@@ -58,6 +58,7 @@ from .timestamps import (
     looks_like_timestamp,
     maybe_elapsed,
 )
+from .twins import left_out
 from .units import AMBIGUOUS, UNITS, ambiguity, is_flag, role_by_unit
 from .utf16 import is_utf16, utf8_options, utf16_as_utf8
 from .values import EPOCH_MS
@@ -66,7 +67,8 @@ from .workbook import HEAD_ROWS, csv_options, is_workbook, sheet_as_csv
 HELD_OUT = 0.1    # the test share init writes for a record or runs without test campaigns
 
 _GLOB = re.compile(r"([*?\[])")
-_WORDS = re.compile(r"[\s_.\-<>]+")   # (a Keysight label in angle brackets: `101 <Air>`)
+# (a Keysight label in angle brackets: `101 <Air>`; a header's second occurrence, `Halle#2`)
+_WORDS = re.compile(r"[\s_.\-<>#]+")
 # a header word that says "the air around the machine"; an Italian / French / Spanish lab's
 # 'ambiente', 'ambiante', 'capannone' (the shop's hall); the place the air is in: a French
 # 'atelier', a Spanish 'nave' or 'taller', 'sala' / 'salle', a gateway's 'shop_air'
@@ -262,7 +264,7 @@ def proposed_roles(header: list[str], first: dict, opts) -> dict:
     taken = [h for h in header if _named(h, roles, opts)]
     air_given = bool(roles["ambient"])
     for h in filter(str.strip, header):       # (no header: left out if empty, else refused)
-        if h in taken:
+        if h in taken or left_out(h) is not None:     # (a channel exported twice: read once)
             continue
         base, unit = _unit_of(h, opts)
         if not base:                          # a unit alone ('[°C]'): the reader refuses it
