@@ -99,3 +99,19 @@ def test_contract_names_twice_are_refused_naming_the_key_that_mends_it(tmp_path,
     frame = next(iter(read_dataset(path, {"columns": {"T_1#2": "T_2"}, "decimal": ","})[0]
                       .campaigns.values()))
     np.testing.assert_allclose(np.diff(frame["T_2"]), np.diff(right[:len(frame)]), atol=2e-3)
+
+
+def test_a_run_of_empty_cells_is_a_gap_init_proposes_with_its_span(tmp_path, capsys):
+    # before: init proposed data.max_gap_samples for a mark's runs ('---') only, and refused
+    # the file of 12 empty cells by the config it wrote (gap longer than max_gap_samples=0)
+    t, left, _, spindle, e = _columns()
+    header = ["Zeit (s)", "Halle (°C)", "Motor X (°C)", "Spindel (°C)", "dX (µm)"]
+    path = _write(tmp_path / "gap.txt", header, [t, left, spindle + 1, spindle, e],
+                  blank={2: range(10, 22)})
+    config, said = _init(path, tmp_path / "init", capsys)
+    assert config["max_gap_samples"] == 12
+    assert "is 12 samples, 720 s of 'Motor X (°C)': data.max_gap_samples=12" in said
+    frame = next(iter(_read(path, config).campaigns.values()))
+    ends = spindle[[9, 22]] + 1                  # (read as written: 3 decimals)
+    motor = frame["T_Motor_X"].to_numpy() - frame["T_Motor_X"].iloc[0] + spindle[0] + 1
+    np.testing.assert_allclose(motor[10:22], np.interp(t[10:22], t[[9, 22]], ends), atol=2e-3)
