@@ -7,10 +7,12 @@ from __future__ import annotations
 from pathlib import Path
 
 import numpy as np
+import pytest
 import yaml
 
 from conftest import refused
 from thermocomp.core.io import read_dataset
+from thermocomp.core.io.detect import proposed_roles
 from thermocomp.core.io.options import ReadOptions
 from thermocomp.core.io.stdin import read_stream
 from thermocomp.shell.cli import main
@@ -115,3 +117,16 @@ def test_a_run_of_empty_cells_is_a_gap_init_proposes_with_its_span(tmp_path, cap
     ends = spindle[[9, 22]] + 1                  # (read as written: 3 decimals)
     motor = frame["T_Motor_X"].to_numpy() - frame["T_Motor_X"].iloc[0] + spindle[0] + 1
     np.testing.assert_allclose(motor[10:22], np.interp(t[10:22], t[[9, 22]], ends), atol=2e-3)
+
+
+@pytest.mark.parametrize("header, air", [
+    ("Hallenmitte", True), ("Umgebungstemp", True), ("RoomTemp", True), ("ambientLeft", True),
+    ("Halle#2", True), ("T Luft", True),
+    ("Luftlager", False), ("Air_spindle_housing", False), ("AirSpindleHousing", False),
+    ("Hallenboden", False), ("Raumachse", False), ("Hallsensor", False)])
+def test_the_airs_compound_names_are_ambient_a_parts_are_not(header, air):
+    # before: 'Hallenmitte' (the hall's middle) a temperature beside 'Halle' the ambient, and
+    # 'Air_spindle_housing' (an aerostatic spindle's housing) taken as the air
+    names = ["Zeit (s)", f"{header} (°C)", "dX (µm)"]
+    roles = proposed_roles(names, {h: "1" for h in names}, ReadOptions())
+    assert (roles["ambient"] == [header]) is air, roles
