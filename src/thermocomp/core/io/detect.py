@@ -42,6 +42,7 @@ from .roles import (
     LOGGER,
     RUN,
     date_and_time_of_day,
+    left_out,
     logger_columns,
     matching_roles,
     named_as_time,
@@ -58,7 +59,6 @@ from .timestamps import (
     looks_like_timestamp,
     maybe_elapsed,
 )
-from .twins import left_out
 from .units import AMBIGUOUS, UNITS, ambiguity, is_flag, role_by_unit
 from .utf16 import is_utf16, utf8_options, utf16_as_utf8
 from .values import EPOCH_MS

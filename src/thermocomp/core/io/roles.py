@@ -37,7 +37,6 @@ from .timestamps import (
     TIME_OF_DAY,
     looks_like_timestamp,
 )
-from .twins import first_of, left_out
 from .units import AMBIGUOUS, LETTER_UNITS, STATE_UNITS, UNITS, VOLTS, ambiguity, role_by_unit
 
 _UNIT = re.compile(r"^(.*?)\s*[\[(]([^\[\]()]*)[\])]\s*$")
@@ -123,6 +122,28 @@ def _bare_unit(header: str) -> tuple[str, str] | None:
                 or base.lower() in TIME_HEADERS and known in UNITS["time"]):
             return base, unit
     return None
+
+
+# a header written twice (:mod:`.twins`): the k-th occurrence read as '<name>#<k>' before its
+# unit, one holding the first's values marked left out with the column it repeats
+_TWIN_LEFT_OUT = re.compile(r"^(.*) \[= column (\d+)\]$")
+_OCCURRENCE = re.compile(r"#(\d+)$")
+
+
+def left_out(header: str) -> int | None:
+    """The (1-based) column a twin left out repeats; None for any other header."""
+    match = _TWIN_LEFT_OUT.match(header)
+    return int(match.group(2)) if match else None
+
+
+def first_of(header: Sequence[str], twin: str) -> int | None:
+    """The index in ``header`` of the first occurrence of a twin read as ``<name>#<k>``; None
+    for any other header (a lab's own ``Kanal#2`` beside no ``Kanal``)."""
+    base = split_unit(twin)[0]
+    if left_out(twin) is not None or not _OCCURRENCE.search(base) or not twin.startswith(base):
+        return None
+    original = _OCCURRENCE.sub("", base) + twin[len(base):]
+    return header.index(original) if original in header else None
 
 
 def named_as_time(header: str) -> bool:

@@ -39,7 +39,7 @@ from .layout import (
 )
 from .options import RUN_ROLE
 from .own_headers import as_named
-from .roles import RUN, active, naming, split_unit
+from .roles import RUN, active, left_out, naming, split_unit
 from .runs import run_blocks, run_values
 from .separators import UNICODE_MINUS, grouped
 from .slashed import stream_format
@@ -56,7 +56,7 @@ from .timestamps import (
     time_kind,
     time_type,
 )
-from .twins import left_out, occurrences, same_cells
+from .twins import occurrences, same_cells
 from .twins import said as said_twice
 from .utf16 import has_utf16_mark
 

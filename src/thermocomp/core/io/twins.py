@@ -2,17 +2,16 @@
 columns 18 and 19): each occurrence after the first is read as ``<name>#<k>`` (``Halle#2
 (°C)``, the unit kept after it), the name ``data.columns`` and ``data.roles`` address it by;
 one whose cells are those of the first, row for row, is the same channel exported twice and
-left out (``Halle#2 (°C) [= column 18]``), said by the reader.  A header holding no name (an
+left out (``Halle#2 (°C) [= column 18]``), said by the reader (both read back by :func:`.roles.
+left_out` / :func:`.roles.first_of`, which name the headers).  A header holding no name (an
 empty one, Excel's trailing separators) is left as it is.
 """
 
 from __future__ import annotations
 
-import re
 from collections.abc import Iterable, Sequence
 
-_SAME = re.compile(r"^(.*) \[= column (\d+)\]$")      # a twin left out: the column it repeats
-_OCCURRENCE = re.compile(r"#(\d+)$")
+from .roles import first_of, left_out, split_unit
 
 
 def occurrences(header: Sequence[str]) -> tuple[list[str], dict[int, int]]:
@@ -32,7 +31,6 @@ def occurrences(header: Sequence[str]) -> tuple[list[str], dict[int, int]]:
 
 
 def _numbered(header: str, k: int, taken: set) -> str:
-    from .roles import split_unit  # (roles leaves a twin out by left_out: imported late)
 
     base = split_unit(header)[0]
     while True:
@@ -60,12 +58,6 @@ def _cell(row: Sequence[str], i: int) -> str:
     return row[i].strip() if i < len(row) else ""
 
 
-def left_out(header: str) -> int | None:
-    """The (1-based) column a twin left out repeats; None for any other header."""
-    match = _SAME.match(header)
-    return int(match.group(2)) if match else None
-
-
 def said(header: Sequence[str], names: dict) -> list[str]:
     """What the reader says of ``header``'s twins (``names``: header -> contract name as read)."""
     lines = []
@@ -79,15 +71,3 @@ def said(header: Sequence[str], names: dict) -> list[str]:
                          f"{header[first]!r}, different values: column {i + 1} read as "
                          f"{h!r} ({names[h]}; data.columns / data.roles name it so)")
     return lines
-
-
-def first_of(header: Sequence[str], twin: str) -> int | None:
-    """The index in ``header`` of the first occurrence of a twin read as ``<name>#<k>``; None
-    for any other header (a lab's own ``Kanal#2`` beside no ``Kanal``)."""
-    from .roles import split_unit
-
-    base = split_unit(twin)[0]
-    if left_out(twin) is not None or not _OCCURRENCE.search(base) or not twin.startswith(base):
-        return None
-    original = _OCCURRENCE.sub("", base) + twin[len(base):]
-    return header.index(original) if original in header else None
