@@ -10,11 +10,16 @@ pendulum machining in two zones, 22 sensors, one record; seeds 7441-7455 only).
 ``write``: the record (48 h at 30 s unless given) as the lab exports it, ``ROOT/fs<SEED>.txt``:
 a title line, tab-delimited, decimal commas, ``Datum/Uhrzeit`` as ``dd.mm.yyyy HH:MM:SS``,
 units in parentheses (``T_Spindel (°C)``, ``dX (µm)``), the X motor's sensor empty for 120 rows
-from a third of the record on; the hall sensor at both ends of the bed was exported twice as
-``Halle (°C)`` (``init`` refuses it, naming both columns: no setting tells them apart), renamed
-here by hand as a lab would, the second ``Halle rechts (°C)``. Then the data config
-``ROOT/conf/data/fs<SEED>.yaml`` as ``thermocomp init`` writes it with
-``data.max_gap_samples=120`` (``init`` refuses the empty hour otherwise, naming the key).
+from a third of the record on; the hall sensor at both ends of the bed exported as
+``Halle (°C)`` twice (columns 18 and 19; until init74 renamed here by hand, the second ``Halle
+rechts (°C)``, as init refused it: the reader now reads the second as ``Halle#2 (°C)``). Then
+the data config ``ROOT/conf/data/fs<SEED>.yaml`` (``Hallenmitte`` a temperature, as measured
+below). Measured 2026-12-02 (init74), seed 7481 (48 h at 30 s): ``thermocomp init
+ROOT/fs7481.txt`` with no key given writes a config (``ambient: [Halle, Halle#2,
+Hallenmitte]``, ``max_gap_samples: 120``, ``test_fraction: 0.1``; 2.9 s CPU) that ``run
+model=mlr`` reads, no hand edit: test RMSE 0.275 / 0.293 / 0.754 µm (dX / dY / dZ; 46.19 /
+10.49 / 30.17 before), the same to the printed digit with this config; before init74, init
+refused the file (the header twice), and with it renamed, the empty hour (max_gap_samples=0).
 
 ``faults``: four copies of the record with one fault each in its test part (the last tenth):
 ``nan`` (30 empty cells of 'Stößel vorn'), ``stuck`` ('T_Spindel' frozen from test row 100),
@@ -25,9 +30,9 @@ here by hand as a lab would, the second ``Halle rechts (°C)``. Then the data co
 record cut 70/30; prints per target run's test RMSE, replay's RMSE (the deployed, adaptive
 compensator) and its RMSE batch.
 
-Measured 2026-12-02 (stop 74), the record of seed 7442 (24 h at 60 s, cut 70/30: the test part
-is the night, colder than any train row; no fault simulated), ``matrix``, run / replay test RMSE
-(µm) E_dX, E_dY, E_dZ::
+Measured 2026-12-02 (stop 74; the second hall header renamed by hand), the record of seed
+7442 (24 h at 60 s, cut 70/30: the test part is the night, colder than any train row; no fault
+simulated), ``matrix``, run / replay test RMSE (µm) E_dX, E_dY, E_dZ::
 
     cell                 run: dX    dY    dZ    replay: dX    dY    dZ    clamped
     mlr-none             0.865 0.242 1.010   1.428 0.389 1.720    109
@@ -69,7 +74,7 @@ NAMES = {"T_bed1a": "Bett 1 oben (°C)", "T_bed1b": "Bett 1 unten (°C)", "T_bed
          "T_ram_front": "Stößel vorn (°C)", "T_ram_rear": "Stößel hinten (°C)",
          "T_sp_front": "T_Spindel (°C)", "T_sp_rear": "Spindel hinten (°C)",
          "T_motor": "Linearmotor X (°C)", "T_hyd": "Hydraulik (°C)",
-         "T_hall_left": "Halle (°C)", "T_hall_right": "Halle rechts (°C)",
+         "T_hall_left": "Halle (°C)", "T_hall_right": "Halle (°C)",     # (exported twice)
          "T_floor": "Fundament (°C)", "T_coolant": "KSS Rücklauf (°C)", "T_cabinet": "Schaltschrank (°C)",
          "T_hall_mid": "Hallenmitte (°C)",
          "S_n_rpm": "Drehzahl (1/min)", "S_zone1": "Zone 1 (-)", "S_zone2": "Zone 2 (-)",
@@ -83,7 +88,7 @@ decimal: ','
 roles:
   error: [dX, dY, dZ]
   state: [Drehzahl, Zone 1, Zone 2]
-  ambient: [Halle, Halle rechts]
+  ambient: [Halle, Halle#2]
   ignore: []
   time: auto
 max_gap_samples: 120
@@ -118,8 +123,9 @@ def write(root: str, seed: str, hours: str = "48", period: str = "30") -> None:
     t0 = datetime(2027, 3, 8, 6)
     lab = pd.DataFrame({"Datum/Uhrzeit": [(t0 + timedelta(seconds=float(s))).strftime(
         "%d.%m.%Y %H:%M:%S") for s in f.time]})
-    for column, header in NAMES.items():
-        lab[header] = _cells(f[column])
+    for column in NAMES:
+        lab[column] = _cells(f[column])
+    lab.columns = ["Datum/Uhrzeit", *NAMES.values()]    # (the hall's header twice, as exported)
     n = len(lab)
     lab.loc[n // 3: n // 3 + 119, "Linearmotor X (°C)"] = ""       # the sensor out: 120 rows
     path = root_p / f"fs{seed}.txt"
@@ -137,6 +143,7 @@ def faults(root: str, seed: str) -> None:
     root_p = Path(root)
     f = pd.read_csv(root_p / f"fs{seed}.txt", sep="\t", skiprows=1, dtype=str,
                     keep_default_na=False)
+    f.columns = ["Datum/Uhrzeit", *NAMES.values()]      # (not pandas' 'Halle (°C).1')
     t0 = len(f) - len(f) // 10
 
     def num(s):

@@ -64,15 +64,17 @@ def test_a_header_that_is_only_a_unit_is_refused_not_named_after_it(tmp_path, ca
     assert not out.exists()
 
 
-def test_two_columns_under_one_header_are_refused_naming_both(tmp_path, capsys):
-    # before: "duplicate column (after data.columns mapping)", which no mapping had made
+def test_two_columns_under_one_header_are_read_by_their_occurrence(tmp_path):
+    # before (raw45): "duplicate column (after data.columns mapping)", which no mapping had made;
+    # then (until init74) refused naming both, no setting telling them apart: the second is
+    # read as 'T1#2' (test_init74), in a file and on stdin alike
     t, t1, t2, e = _record()
     path = _write(tmp_path / "twice.csv", ["time", "T1", "T1", "dX [µm]"], [t, t1, t2, e], sep=";")
-    refused(["init", str(path), f"out={tmp_path / 'init'}"], capsys, str(path),
-            "columns 2 and 3 have the same header 'T1'")
-    with pytest.raises(ContractError, match="columns 2 and 3 have the same header 'T1'"):
-        read_stream(path.read_text(encoding="utf-8"), ["T_T1"],
-                    ReadOptions.from_cfg({"roles": {"error": ["dX"]}}))
+    frame = _read(path, roles={"error": ["dX"]})
+    assert list(frame.columns) == ["time", "T_T1", "T_T1_2", "E_dX"]
+    stream = read_stream(path.read_text(encoding="utf-8"), ["T_T1_2"],
+                         ReadOptions.from_cfg({"roles": {"error": ["dX"]}}))[0]
+    np.testing.assert_allclose(stream["T_T1_2"], t2, atol=1e-4)
 
 
 def test_a_time_of_day_alone_under_any_header_is_refused_saying_so(tmp_path, capsys):

@@ -23,9 +23,10 @@ out as the reader leaves it out, :mod:`.again`):
 - a mark: a cell's text in a number column that is no number and either holds no digit
   (``---``, ``n/a``, ``#N/A``) or is a formula's error (``Err:502``, ``#DIV/0!``); the text
   the reader reads as missing already (``NaN``, empty) is no mark to list but a missing value;
-- its gap: the longest run of missing cells in a column holding at least one mark (or a NaN
-  written out, ``NAN`` as a Campbell Scientific logger writes it: lab74), inside the
-  file (``max_gap_samples``) or at its start or end (``max_edge_samples``); an error column
+- its gap: the longest run of missing cells in a number column (empty, a mark, a NaN written
+  out as a Campbell Scientific logger's ``NAN``: lab74; empty cells alone too: stranger74, a
+  row empty in every column left out as the reader leaves it), inside the file
+  (``max_gap_samples``) or at its start or end (``max_edge_samples``); an error column
   measured now and then (a probe cycle, :mod:`.sparse`) has none: the reader keeps its empty
   cells empty, a mark's too (:meth:`Cells.longest`, told the error columns by ``init``).
 """
@@ -82,18 +83,22 @@ class Cells:
             marks.setdefault(mark, {}).update(columns)
         return Cells(thousands, marks, said, [*self.runs, *other.runs])
 
-    def longest(self, errors, sparse_targets: str = "auto") -> tuple[int, int, list]:
-        """``(longest run of a mark's inside a file, at a file's start or end, lines said)``
+    def longest(self, errors, sparse_targets: str = "auto") -> tuple[int, int, list, dict]:
+        """``(longest run of missing cells inside a file, at a file's start or end, lines said,
+        {"gap" / "edge": the header of the column holding it})``
         over the marked columns but an error column (a header in ``errors``) read as measured
         now and then (``data.sparse_targets``, :mod:`.sparse`): its empty cells, a mark's too,
         are a probe cycle's rows between readings, kept empty, never interpolated, so no gap
         (its run between two readings set data.max_gap_samples to the probe's spacing, and every
         column's gap was then interpolated up to it: leftovers66)."""
         gap = edge = 0
+        where: dict = {}
         cycles: dict = {}                    # header -> the probe's spacing in each file
         for r in self.runs:
             cycle = intermittent(r.missing, r.rows, sparse_targets) if r.header in errors else None
             if cycle is None:
+                where.update({"gap": r.header} if r.gap > gap else {})
+                where.update({"edge": r.header} if r.edge > edge else {})
                 gap, edge = max(gap, r.gap), max(edge, r.edge)
             elif r.gap or r.edge:
                 cycles.setdefault(r.header, []).append(cycle["every"])
@@ -104,7 +109,7 @@ class Cells:
                         f"{f' ({len(every)} files)' if len(every) > 1 else ''}: its marks are a "
                         "probe cycle's readings not taken, kept empty as the rows between its "
                         "readings are (no gap: data.max_gap_samples not set by them)")
-        return gap, edge, said
+        return gap, edge, said, where
 
 
 @dataclass
@@ -164,15 +169,20 @@ class _Column:
     plain: np.ndarray            # a number with the decimal mark
     grouped: dict                # mark -> grouped by three with it
     ameriflux: bool = False      # the file is an AmeriFlux table (its TIMESTAMP_START)
+    blank: np.ndarray | bool = False    # the file's rows empty in every column (left out)
 
     def first(self, mask: np.ndarray) -> str:
         return str(self.text[int(np.argmax(mask))].as_py())
 
 
+def _empty(text) -> np.ndarray:
+    """The cells the reader reads as missing already (empty, a NaN written out)."""
+    return pc.is_in(text, value_set=pa.array(list(MISSING_TOKENS))).to_numpy(zero_copy_only=False)
+
+
 def _column(header: str, path: Path, text, decimal: str) -> _Column | None:
     """The column's masks, or None where it is no number column (:data:`NUMBER_SHARE`)."""
-    missing = pc.is_in(text, value_set=pa.array(list(MISSING_TOKENS))).to_numpy(
-        zero_copy_only=False)
+    missing = _empty(text)
     filled = int((~missing).sum())
     if not filled:
         return None
@@ -201,11 +211,12 @@ def scanned(files: list[Path], delimiter: str, decimal: str, encoding: str,
         if table is None:
             continue
         ameriflux = any(h.strip().lower() == AMERIFLUX_TIME for h in header)
+        blank = np.logical_and.reduce([_empty(_texts(column)) for column in table.columns])
         for h, column in zip(header, table.columns):
             if h.strip() and not named_as_time(h):
                 found = _column(h, path, _texts(column), decimal)
                 if found is not None:
-                    numbers.append(replace(found, ameriflux=ameriflux))
+                    numbers.append(replace(found, ameriflux=ameriflux, blank=blank))
     found = Cells(thousands=thousands)
     if thousands is None:
         found.thousands = _thousands(numbers, decimal, found.said)
@@ -300,19 +311,20 @@ def _marks(numbers: list[_Column], decimal: str, found: Cells, given: list) -> N
             nines[:] = False
         if nines.any():
             marks[AMERIFLUX] = int(nines.sum())
-        if not marks and not written.any():
-            continue
         for mark, n in marks.items():
             found.marks.setdefault(mark, {})
             found.marks[mark][c.header] = found.marks[mark].get(c.header, 0) + n
         marked = written | nines | pc.is_in(c.text, value_set=pa.array(list(marks), pa.string())
                                             ).to_numpy(zero_copy_only=False)
-        missing = c.missing | marked
+        # a run of empty cells is a gap as a mark's is (stranger74: an hour of a sensor's
+        # cells left empty, refused by the config init wrote); a row empty in every column is
+        # none: the reader leaves it out, as a blank line
+        missing = (c.missing | marked)[~c.blank]
+        if not missing.any():
+            continue
         edges = np.flatnonzero(np.diff(np.concatenate([[0], missing.astype(np.int8), [0]])))
         gap = edge = 0
         for a, b in zip(edges[::2], edges[1::2]):
-            if not marked[a:b].any():
-                continue
             if a == 0 or b == len(missing):
                 edge = max(edge, int(b - a))
             else:

@@ -42,6 +42,7 @@ from .roles import (
     LOGGER,
     RUN,
     date_and_time_of_day,
+    left_out,
     logger_columns,
     matching_roles,
     named_as_time,
@@ -66,7 +67,9 @@ from .workbook import HEAD_ROWS, csv_options, is_workbook, sheet_as_csv
 HELD_OUT = 0.1    # the test share init writes for a record or runs without test campaigns
 
 _GLOB = re.compile(r"([*?\[])")
-_WORDS = re.compile(r"[\s_.\-<>]+")   # (a Keysight label in angle brackets: `101 <Air>`)
+# (a Keysight label in angle brackets: `101 <Air>`; a header's second occurrence, `Halle#2`)
+_WORDS = re.compile(r"[\s_.\-<>#]+")
+_CAMEL = re.compile(r"([a-zäöü])([A-ZÄÖÜ])")    # 'RoomTemp', 'AirSpindleHousing': two words
 # a header word that says "the air around the machine"; an Italian / French / Spanish lab's
 # 'ambiente', 'ambiante', 'capannone' (the shop's hall); the place the air is in: a French
 # 'atelier', a Spanish 'nave' or 'taller', 'sala' / 'salle', a gateway's 'shop_air'
@@ -80,6 +83,21 @@ AIR_WORDS = {"air", "luft"}
 NOT_THE_AIRS = {"bearing", "bearings", "lager", "cooling", "coolant", "cooler", "kühlung",
                 "kuehlung", "compressed", "pressure", "druck", "supply", "exhaust", "inlet",
                 "outlet", "intake", "flow", "gap", "spalt", "blast", "blow", "purge"}
+# a compound of the air's place (stranger74: 'Hallenmitte' was a temperature beside 'Halle'
+# the ambient): a German compound, or an English one written as one word, told by its first
+# stem ('Hallenmitte', 'Raumtemperatur2', 'Umgebungsluft', 'ambientT', 'roomtemp', 'hallwest');
+# not where the rest names a surface or a thing in the hall ('Hallenboden', 'Hallenkran') or a
+# part of the machine ('Raumachse'): :func:`air_words`
+_PLACE = re.compile(r"^(umgebungs?|hallen|halle|raum|ambient|room|hall)(.+)$")
+NOT_THE_HALLS = ("boden", "wand", "decke", "kran", "tor", "tür", "tuer", "fundament", "floor",
+                 "wall", "ceiling", "crane", "door", "gate", "sensor")
+# a part of the machine: the air's word beside one is that part's ('Air_spindle_housing', an
+# aerostatic spindle's housing; 'Luft Spindel'), the place's is not ('Umgebung Spindel' is air)
+PART_WORDS = {"spindle", "spindel", "housing", "gehäuse", "gehaeuse", "motor", "bed", "bett",
+              "column", "ständer", "staender", "ram", "stößel", "stoessel", "head", "kopf",
+              "table", "tisch", "slide", "schlitten", "saddle", "screw", "axis", "achse", "guide",
+              "führung", "fuehrung", "nut", "mutter", "frame", "gestell"}
+AIR_COMPOUNDS = {"airtemp", "airtemperature", "lufttemp"}     # the air's own, one word
 _WHERE = ("interim", "processed")     # where stages write: the project's, not the data's
 
 
@@ -262,7 +280,7 @@ def proposed_roles(header: list[str], first: dict, opts) -> dict:
     taken = [h for h in header if _named(h, roles, opts)]
     air_given = bool(roles["ambient"])
     for h in filter(str.strip, header):       # (no header: left out if empty, else refused)
-        if h in taken:
+        if h in taken or left_out(h) is not None:     # (a channel exported twice: read once)
             continue
         base, unit = _unit_of(h, opts)
         if not base:                          # a unit alone ('[°C]'): the reader refuses it
@@ -316,12 +334,22 @@ def air_words(name: str) -> set[str]:
     """The words of a header's ``name``, and of a word that is a ``T`` before an air's word
     (MATLAB's field ``Troom``, ``Tamb``: a name cannot hold a space) that word too; with
     ``ambient`` where a word is the air (:data:`AIR_WORDS`) and none an air bearing's, the
-    cooling's (:data:`NOT_THE_AIRS`)."""
-    words = set(_WORDS.split(name.lower()))
+    cooling's (:data:`NOT_THE_AIRS`) nor a part's (:data:`PART_WORDS`), or a compound of the
+    air's place (:data:`_PLACE`, ``Hallenmitte``)."""
+    words = set(_WORDS.split(_CAMEL.sub(r"\1 \2", name).lower()))
     words |= {w[1:] for w in words if w.startswith("t") and w[1:] in AMBIENT_WORDS | AIR_WORDS}
-    if words & AIR_WORDS and not words & NOT_THE_AIRS:
-        words.add("ambient")                  # the air, not an air bearing's
+    if any(_a_place(w) for w in words):
+        words.add("ambient")                  # 'Hallenmitte': the hall's air, its middle
+    if words & (AIR_WORDS | AIR_COMPOUNDS) and not words & (NOT_THE_AIRS | PART_WORDS):
+        words.add("ambient")                  # the air, not an air bearing's nor a part's
     return words
+
+
+def _a_place(word: str) -> bool:
+    """``word`` is a compound of the air's place (:data:`_PLACE`) naming no thing in it."""
+    match = _PLACE.match(word)
+    rest = match.group(2) if match else ""
+    return bool(rest) and not rest.startswith((*NOT_THE_HALLS, *PART_WORDS, *NOT_THE_AIRS))
 
 
 def flag_headers(ds, names: dict) -> list[str]:

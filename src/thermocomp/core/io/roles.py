@@ -59,6 +59,7 @@ TIME_HEADERS = frozenset({"time", "t", "ts", "zeit", "時間", "时间", "timest
                           *ELAPSED_HEADERS})
 # HBM catman's time channel, one per rate group: 'Zeit  1 - Standardmessrate', 'Time  2 - 10 Hz'
 _RATE_GROUP_TIME = re.compile(r"(?i)(?:time|zeit|temps|tiempo|tempo)\s+\d+\s+-\s+\S.*")
+TWIN = "twin"         # a header written twice (:mod:`.twins`): left out, or refused as unnamed
 RUN = " campaign"     # data.roles.campaign's column as read: no contract column has this name
 LOGGER = "DAQ's own"  # a column a Keysight DAQ writes of its own scans (:func:`logger_columns`)
 # a Keysight DAQ's export (BenchLink Data Logger's, the DAQ970A's): ``Alarm <channel>`` beside
@@ -123,6 +124,28 @@ def _bare_unit(header: str) -> tuple[str, str] | None:
     return None
 
 
+# a header written twice (:mod:`.twins`): the k-th occurrence read as '<name>#<k>' before its
+# unit, one holding the first's values marked left out with the column it repeats
+_TWIN_LEFT_OUT = re.compile(r"^(.*) \[= column (\d+)\]$")
+_OCCURRENCE = re.compile(r"#(\d+)$")
+
+
+def left_out(header: str) -> int | None:
+    """The (1-based) column a twin left out repeats; None for any other header."""
+    match = _TWIN_LEFT_OUT.match(header)
+    return int(match.group(2)) if match else None
+
+
+def first_of(header: Sequence[str], twin: str) -> int | None:
+    """The index in ``header`` of the first occurrence of a twin read as ``<name>#<k>``; None
+    for any other header (a lab's own ``Kanal#2`` beside no ``Kanal``)."""
+    base = split_unit(twin)[0]
+    if left_out(twin) is not None or not _OCCURRENCE.search(base) or not twin.startswith(base):
+        return None
+    original = _OCCURRENCE.sub("", base) + twin[len(base):]
+    return header.index(original) if original in header else None
+
+
 def named_as_time(header: str) -> bool:
     """A header naming the time (:data:`TIME_HEADERS`, or catman's time channel of a rate group,
     ``Zeit  1 - Standardmessrate``) without another quantity's unit: ``T [°C]`` is a
@@ -179,18 +202,6 @@ def _a_unit(text: str) -> bool:
     return _known_unit(unit) or unit in STATE_UNITS
 
 
-def same_header(headers: Sequence[str]) -> ContractError | None:
-    """The refusal of two columns under one header (``T1;T1``): no setting tells them apart."""
-    seen: dict[str, int] = {}
-    for i, header in enumerate(h.strip() for h in headers):
-        if header and header in seen:
-            return ContractError(f"columns {seen[header] + 1} and {i + 1} have the same header "
-                                 f"{header!r}: no setting tells them apart, give each its own "
-                                 "header", column=header)
-        seen.setdefault(header, i)
-    return None
-
-
 def active(roles: Mapping) -> bool:
     """Any role pattern (or an explicit time column) set: headers are named by role."""
     return (any(roles.get(k) for k in ROLE_PATTERNS) or roles.get("time", AUTO) != AUTO
@@ -226,9 +237,12 @@ def naming(headers: Sequence[str], roles: Mapping, columns: Mapping, first: Mapp
     """:func:`contract_columns` with the unit conversions (``roles`` as ``ReadOptions.roles``;
     ``units``: ``data.units``, header -> unit, for a header that does not say it)."""
     first, units = first or {}, units or {}
+    out, problems = Naming(), []
+    every = headers
+    out.roles.update({h: TWIN for h in headers if left_out(h) is not None})
+    headers = [h for h in headers if h not in out.roles]     # (a channel exported twice: one)
     columns = by_header(headers, columns)
     by_role = active(roles)
-    out, problems = Naming(), []
     problems += [f"data.units names {h!r}, no header" for h in units if h not in headers]
     time_header, clock_header = (_time_header(headers, roles, columns, first, problems)
                                  + [None, None])[:2]
@@ -276,6 +290,14 @@ def naming(headers: Sequence[str], roles: Mapping, columns: Mapping, first: Mapp
         if kind is None and unit and role(base) in ("E", "S", "T") and (
                 by_role or (not _UNSAFE.search(base) and ".." not in base)):
             kind = {"E": "error", "S": "state", "T": "temperature"}[role(base)]
+        twin = (first_of(every, header) if kind is None and (not by_role or role(header))
+                else None)
+        if twin is not None:       # (T1;T1, different values: the second read as 'T1#2')
+            problems.append(f"columns {twin + 1} and {every.index(header) + 1} have the same "
+                            f"header {every[twin]!r}, different values: name the second, "
+                            f"data.columns={{{header!r}: {PREFIX['temperature']}<name>}}")
+            out.roles[header] = TWIN
+            continue
         if kind is None and (role(header) is not None or not by_role):
             out.names[header], out.roles[header] = header, "contract"   # its own name, or unmapped
             if role(header) is None:

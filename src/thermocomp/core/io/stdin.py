@@ -39,7 +39,7 @@ from .layout import (
 )
 from .options import RUN_ROLE
 from .own_headers import as_named
-from .roles import RUN, active, naming, same_header, split_unit
+from .roles import RUN, active, left_out, naming, split_unit
 from .runs import run_blocks, run_values
 from .separators import UNICODE_MINUS, grouped
 from .slashed import stream_format
@@ -56,6 +56,8 @@ from .timestamps import (
     time_kind,
     time_type,
 )
+from .twins import occurrences, same_cells
+from .twins import said as said_twice
 from .utf16 import has_utf16_mark
 
 SOURCE = "<stdin>"
@@ -115,9 +117,7 @@ def _read_runs(text: str, columns: list[str], opts, recorded: str | None = None,
     text = text.lstrip("\ufeff").replace(UNICODE_MINUS, "-")
     opts = detected(text.splitlines()[:SNIFF_LINES], opts, SOURCE)   # data.delimiter=auto ...
     text = _table(text, opts.delimiter)
-    twice = same_header(split_line(text.split("\n", 1)[0], opts.delimiter, SPLIT))
-    if twice is not None:                 # (pandas would read them as 'T1' and 'T1.1')
-        raise ContractError(twice.reason, file=SOURCE, column=twice.column)
+    header = split_line(text.split("\n", 1)[0], opts.delimiter, SPLIT)
     # (the file reader's missing values: pandas' own lack a Campbell logger's NAN, lab74)
     texts = [*MISSING_TOKENS, *marks.texts(opts.missing_values)]   # (a number's: by value)
     try:
@@ -131,6 +131,7 @@ def _read_runs(text: str, columns: list[str], opts, recorded: str | None = None,
         raise ContractError(f"stdin is not a CSV table with a header, data.delimiter="
                             f"{opts.delimiter!r} ({' '.join(str(exc).split())})",
                             file=SOURCE) from None
+    df = _twins(df, header)
     df, scales, blocks = _named(df, opts)
     absent = [c for c in columns if c not in df.columns]
     if not absent and df.empty:
@@ -301,6 +302,18 @@ def _grouped(df: pd.DataFrame, opts) -> pd.DataFrame:
         if number.notna().sum() == df[c].notna().sum():
             df[c] = number
     return df
+
+
+def _twins(df: pd.DataFrame, header: list[str]) -> pd.DataFrame:
+    """``df`` with a header written twice read as a file's is (:mod:`.twins`: pandas read them
+    as 'T1' and 'T1.1'): the second ``T1#2``, or left out where its values are the first's."""
+    names, doubled = occurrences([h.strip() for h in header])
+    if not doubled or len(names) != len(df.columns):
+        return df
+    names = same_cells(names, doubled, df.astype(str).itertuples(index=False))
+    for line in said_twice(names, dict(zip(names, names))):
+        say(f"{SOURCE}: {line}")
+    return df.set_axis(names, axis=1).drop(columns=[n for n in names if left_out(n) is not None])
 
 
 def _named(df: pd.DataFrame, opts) -> tuple[pd.DataFrame, dict, list | None]:

@@ -8,6 +8,7 @@ import csv
 import mmap
 import re
 from dataclasses import replace
+from itertools import chain
 from pathlib import Path
 
 import numpy as np
@@ -37,7 +38,7 @@ from .lines import Lines
 from .options import _OTHER_DELIMITERS, ROLE_ORDER, ReadOptions, _first_line
 from .own_headers import with_own_header
 from .period_line import period_hint
-from .roles import RUN, active, excel_days_header, naming, same_header, split_unit
+from .roles import RUN, active, excel_days_header, naming, split_unit
 from .separators import UNICODE_MINUS, misgrouped, reads_as_number, thousands_hint, ungrouped
 from .slashed_rows import decided, read_in, said_by
 from .sniff import head_lines, resolved
@@ -56,6 +57,8 @@ from .timestamps import (
     time_type,
     unread_fraction,
 )
+from .twins import occurrences, same_cells
+from .twins import said as said_twice
 from .units import is_flag
 
 # Larger blocks than Arrow's 1 MiB default: fewer chunks, faster multithreaded parsing.
@@ -108,9 +111,8 @@ def _contract_names(raw_names: list[str], opts: ReadOptions, file: Path, *,
                                 "or control character): map it with data.columns",
                                 file=file, column=name)
         if name in seen:
-            twice = same_header(raw_names)
-            raise ContractError(twice.reason if twice else "duplicate column (after data.columns "
-                                "mapping)", file=file, column=name)
+            raise ContractError("duplicate column (after data.columns mapping)", file=file,
+                                column=name)
         names.append(name)
         seen.add(name)
     if not opts.half and not any(role(n) == "E" for n in names if n):
@@ -192,6 +194,8 @@ def _typed_columns(path: Path, header: list[str], first_row: list[str], opts: Re
     if len(header) == 1:
         _check_delimiter(header[0], opts.delimiter.join(first_row), path, opts)
     named, scales = _contract_names(header, opts, path, first=dict(zip(header, first_row)))
+    for line in said_twice(header, {h: n for h, n in zip(header, named) if n}):
+        logger.warning(f"{path}: {line}")
     said, cut = footer(path, opts.delimiter, len(header), opts.encoding)
     opts = replace(opts, data_bytes=cut,        # (the tail read once: every read of the data)
                    drop_bytes=tuple((a, b) for a, b in opts.drop_bytes if a < cut))
@@ -360,6 +364,9 @@ def peek_csv(path: Path, delimiter: str, encoding: str) -> tuple[list[str], list
             below = [first, *(r for _, r in zip(range(MAX_PROPERTY_ROWS), rows) if r)]
             described = property_rows(below) if units and first is not None else 0
             first = below[described] if described else first
+            header, doubled = occurrences([name.strip() for name in header or []])
+            if doubled and first is not None:        # (a header written twice: every row read)
+                header = same_cells(header, doubled, chain(below[described:], rows))
     except UnicodeDecodeError:
         raise undecodable(path, delimiter, encoding=encoding) from None
     except csv.Error as exc:       # binary content (a gzip named .csv): no CSV text
@@ -369,7 +376,7 @@ def peek_csv(path: Path, delimiter: str, encoding: str) -> tuple[list[str], list
         raise NoRows("empty file", file=path)
     if first is None:
         raise NoRows("file has a header but no data rows", file=path)
-    return [name.strip() for name in header], first, preamble + 1 + units + described
+    return header, first, preamble + 1 + units + described
 
 
 # what a test record read as recorded (``missing="keep"``) with a bad time is told to do instead

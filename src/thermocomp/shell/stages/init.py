@@ -124,28 +124,42 @@ def number_cells(src, manifest, sample, given: dict, opts):
     return opts, found
 
 
-GAP_SAID = {"max_gap_samples": "the marks' longest run inside a file is {n} sample{s}: "
-                               "data.max_gap_samples={n} interpolates them linearly (each repair "
-                               "counted in the ingest report)",
-            "max_edge_samples": "a run of marks at a file's start or end, {n} sample{s} at most: "
-                                "data.max_edge_samples={n} drops those rows"}
+GAP_SAID = {"max_gap_samples": "the longest run of missing cells (empty or a mark) inside a "
+                               "file is {n} sample{s}, {span} of {header!r}: "
+                               "data.max_gap_samples={n} interpolates such runs linearly (each "
+                               "repair counted in the ingest report)",
+            "max_edge_samples": "a run of missing cells at a file's start or end, {n} sample{s} "
+                                "at most, {span} of {header!r}: data.max_edge_samples={n} drops "
+                                "those rows"}
 
 
 def mark_gaps(src, found, errors: set, given: dict, opts):
-    """``opts`` (and ``given``) with the ``data.max_gap_samples`` / ``max_edge_samples`` that
-    read the marks' longest runs, each said; an error column (a header in ``errors``) read as a
-    probe cycle sets neither (its empty cells are kept: :meth:`.io.cells.Cells.longest`)."""
+    """``(opts, said)``: ``opts`` (and ``given``) with the ``data.max_gap_samples`` /
+    ``max_edge_samples`` that read the longest runs of missing cells (empty, or a mark's), and
+    the lines saying each (``{span}`` left for the sample period, known once read: :func:
+    `gaps_said`); an error column (a header in ``errors``) read as a probe cycle sets neither
+    (its empty cells are kept: :meth:`.io.cells.Cells.longest`)."""
     if found is None:
-        return opts
-    gap, edge, said = found.longest(errors, opts.sparse_targets)
+        return opts, []
+    gap, edge, said, where = found.longest(errors, opts.sparse_targets)
     for line in said:
         print(f"{src.name}: {line}")
+    pending = []
     for key, n in (("max_gap_samples", gap), ("max_edge_samples", edge)):
         if n > getattr(opts, key):
             given[key] = n
             opts = replace(opts, **{key: n})
-            print(f"{src.name}: " + GAP_SAID[key].format(n=n, s="s" * (n > 1)))
-    return opts
+            pending.append((key, n, where[key.split("_")[1]]))
+    return opts, pending
+
+
+def gaps_said(src, pending: list, period: float) -> None:
+    """Say :func:`mark_gaps`' keys, each run's samples with the time they span (``period``: the
+    record's sample period, s)."""
+    for key, n, header in pending:
+        span = f"{n * period / 3600:.3g} h" if n * period >= 3600 else f"{n * period:.4g} s"
+        print(f"{src.name}: " + GAP_SAID[key].format(n=n, s="s" * (n > 1), header=header,
+                                                     span=span if period == period else "?"))
 
 
 def stated_period_given(sample, plan, given: dict, opts):
@@ -322,7 +336,7 @@ def _init(cfg: DictConfig) -> dict:
                   opts.units)
     errors = [h for h, n in plan.names.items() if str(n).startswith("E_")]
     opts = stated_period_given(sample, plan, given, opts)    # `Abtastrate 15 s` above the table
-    opts = mark_gaps(src, cells, set(errors), given, opts)   # the marks' gaps, a probe's left out
+    opts, gaps = mark_gaps(src, cells, set(errors), given, opts)   # a probe's left out
     if long is not None:                     # the period: the fastest error tag's, said
         period, tag = proposed_period(long, errors)
         given["resample_s"] = period
@@ -395,5 +409,6 @@ def _init(cfg: DictConfig) -> dict:
               "<spacing in m>'}, proposed as a comment in the config")
     atomic_write_text(path, f"# written by `thermocomp init {src}`\n{text}")
     period = median_step([df[TIME].to_numpy(float) for df in ds.campaigns.values()]) or float("nan")
+    gaps_said(src, gaps, period)
     print("\n".join(detection_lines(layout, opts, header, plan, ds, report, period, path, ds.name)))
     return {"config": str(path), "columns": plan.names}

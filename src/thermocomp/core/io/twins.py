@@ -1,0 +1,73 @@
+"""A header written twice (a lab's export of one sensor under two channels: ``Halle (°C)`` at
+columns 18 and 19): each occurrence after the first is read as ``<name>#<k>`` (``Halle#2
+(°C)``, the unit kept after it), the name ``data.columns`` and ``data.roles`` address it by;
+one whose cells are those of the first, row for row, is the same channel exported twice and
+left out (``Halle#2 (°C) [= column 18]``), said by the reader (both read back by :func:`.roles.
+left_out` / :func:`.roles.first_of`, which name the headers).  A header holding no name (an
+empty one, Excel's trailing separators) is left as it is.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Sequence
+
+from .roles import first_of, left_out, split_unit
+
+
+def occurrences(header: Sequence[str]) -> tuple[list[str], dict[int, int]]:
+    """``(names, twins)``: ``header`` with the k-th occurrence of a name (k >= 2) renamed
+    ``<name>#<k>`` before its unit, and ``{its index: the first occurrence's index}``."""
+    names, first, twins = list(header), {}, {}
+    for i, h in enumerate(header):
+        if not h.strip():
+            continue
+        if h not in first:
+            first[h] = i
+            continue
+        twins[i] = first[h]
+        k = sum(1 for j in twins.values() if j == first[h]) + 1
+        names[i] = _numbered(h, k, set(header) | set(names))
+    return names, twins
+
+
+def _numbered(header: str, k: int, taken: set) -> str:
+
+    base = split_unit(header)[0]
+    while True:
+        name = (base + f"#{k}" + header[len(base):] if base and header.startswith(base)
+                else f"{header}#{k}")
+        if name not in taken:
+            return name
+        k += 1
+
+
+def same_cells(names: list[str], twins: dict[int, int], rows: Iterable[Sequence[str]]) -> list[str]:
+    """``names`` with each twin whose cells equal its first occurrence's in every one of
+    ``rows`` (as text, stripped) marked as left out (:func:`left_out`)."""
+    alike = dict.fromkeys(twins, True)
+    for row in rows:
+        for i, j in twins.items():
+            if alike[i] and _cell(row, i) != _cell(row, j):
+                alike[i] = False
+        if not any(alike.values()):
+            break
+    return [f"{n} [= column {twins[i] + 1}]" if alike.get(i) else n for i, n in enumerate(names)]
+
+
+def _cell(row: Sequence[str], i: int) -> str:
+    return row[i].strip() if i < len(row) else ""
+
+
+def said(header: Sequence[str], names: dict) -> list[str]:
+    """What the reader says of ``header``'s twins (``names``: header -> contract name as read)."""
+    lines = []
+    for i, h in enumerate(header):
+        column = left_out(h)
+        if column is not None:
+            lines.append(f"columns {column} and {i + 1} have the same header and the same "
+                         f"values ({header[column - 1]!r}): column {i + 1} left out")
+        elif (first := first_of(header, h)) is not None and h in names:
+            lines.append(f"columns {first + 1} and {i + 1} have the same header "
+                         f"{header[first]!r}, different values: column {i + 1} read as "
+                         f"{h!r} ({names[h]}; data.columns / data.roles name it so)")
+    return lines
