@@ -29,14 +29,18 @@ the lone-fault rule excludes ``T_Bett``.  Not a slow ambient: the hall air is re
 Rule (written and committed before any scoring)
 -----------------------------------------------
 A drift exclusion by the culprit rule (``Judgement._exclude_by_judgement``, ``new_state`` on,
-the default) of a sensor out of its warning band but within its alarm band is not made while its
-own reading did not move toward its error: ``sign(e_j) (d_j - d_slow_j) <= 0``, ``d_j`` its
-referenced reading over the last ``confirm`` samples, ``d_slow_j`` the monitor's memory of it
-(``EXCURSION_TAU_S`` = 1800 s, mon73's ``excursion.py``; unknown memory: the rule is off).  The
-field left the sensor (its prediction moved away), not the sensor the field: it warns.  A
-drift fault moves the faulty reading itself toward its error and is excluded as today; past
-the alarm band, every excursion is excluded as today.  Nothing else changes (instant detectors,
-``_explaining``, the blind partners, re-admission, new state).
+the default) of a sensor out of its warning band but within its alarm band is not made while the
+excursion is not its own since the monitor's memory (``EXCURSION_TAU_S`` = 1800 s, mon73's
+``excursion.py``; unknown memory: the rule is off): its referenced reading over the last
+``confirm`` samples did not move toward its error's side from the memory's
+(``sign(e_j) (d_j - d_slow_j) <= 0``: its prediction left it), or its error on that side is no
+larger than ``EXCURSION_GROWTH`` (1.5) x the memory's own error (it hovers).  The sensor warns.
+A drift fault does both (it moves the faulty reading itself, and its error keeps growing) and
+is excluded as today; past the alarm band, every excursion is excluded as today.  Nothing else
+changes (instant detectors, ``_explaining``, the blind partners, re-admission, new state).
+Traced on 7432 alone before this was committed: the reading's clause alone delayed the
+exclusion to 18.90 h (the bed cools a little at night, toward its negative error); with the
+hover clause, no exclusion.
 
 Bar (written before scoring; the rule is kept only if every point holds, else src reverted)
 ------------------------------------------------------------------------------------------
