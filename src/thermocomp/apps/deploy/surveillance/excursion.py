@@ -8,16 +8,16 @@ linear in the readings).  A sensor out of band whose error is a share of its ris
 it was that long ago (the error hovers, or grows with the field) shows a regime training never
 held; one whose error outgrows its rise (``EXCURSION_GROWTH``) shows a fault: a drift, a leak, a
 sensor frozen while the field moves.  A lathe's steady 5000 rpm put ``T_Tool_holder_1`` just
-past its band within 25 min and held it there for 24 h (mon73).  A culprit between its warning and alarm bands whose own reading
-did not move toward its error since then was left by the field, not the reverse: a grinder's
-healthy bed, predicted from a column that a hotter spindle warmed past training, read -1.2 °C
-against its 1.23 °C band for 11 h (drift74)."""
+past its band within 25 min and held it there for 24 h (mon73).  A culprit between its warning
+and alarm bands whose own reading did not lead its error, or whose error hovers, was left by the
+field (drift74): a grinder's healthy bed, predicted from a column that a spindle hotter than
+training warmed, read -1.2 °C against its 1.23 °C band for 11 h."""
 
 from __future__ import annotations
 
 import numpy as np
 
-from .states import ALARM, EXCURSION_GROWTH, EXCURSION_TAU_S, WARNING
+from .states import EXCURSION_GROWTH, EXCURSION_TAU_S, WARNING
 
 
 class Excursion:
@@ -78,7 +78,7 @@ class Excursion:
         its error's side (its prediction left it), or its error on that side is no larger than
         ``EXCURSION_GROWTH`` x the memory's (it hovers).  A drift does both: it moves the faulty
         reading itself and its error keeps growing.  False where the memory is not known."""
-        if not self._slow_ok or not np.isfinite(self._slow_t) or level[j] >= ALARM:
+        if not self._slow_ok or not np.isfinite(self._slow_t) or level[j] != WARNING:
             return False
         rows = self._hist[self._recent[self._pos, :min(self._count, self.confirm)]]
         side = np.sign(err[j])
