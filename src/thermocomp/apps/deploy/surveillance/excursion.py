@@ -8,10 +8,7 @@ linear in the readings).  A sensor out of band whose error is a share of its ris
 it was that long ago (the error hovers, or grows with the field) shows a regime training never
 held; one whose error outgrows its rise (``EXCURSION_GROWTH``) shows a fault: a drift, a leak, a
 sensor frozen while the field moves.  A lathe's steady 5000 rpm put ``T_Tool_holder_1`` just
-past its band within 25 min and held it there for 24 h (mon73).  A culprit between its warning
-and alarm bands whose own reading did not lead its error, or whose error hovers, was left by the
-field (drift74): a grinder's healthy bed, predicted from a column that a spindle hotter than
-training warmed, read -1.2 °C against its 1.23 °C band for 11 h."""
+past its band within 25 min and held it there for 24 h (mon73)."""
 
 from __future__ import annotations
 
@@ -71,17 +68,3 @@ class Excursion:
         now = np.abs(err[out]) * np.abs(self._slow[out])
         then = np.maximum(past[out] * np.sign(err[out]), 0.0) * rise[out]
         return bool(np.all(now <= EXCURSION_GROWTH * then))
-
-    def _left_by_field(self, j: int, level: np.ndarray, err: np.ndarray) -> bool:
-        """Whether the excursion of ``j``, out of its warning band but within its alarm band, is
-        not its own since ``EXCURSION_TAU_S`` ago (the memory): its reading did not move toward
-        its error's side (its prediction left it), or its error on that side is no larger than
-        ``EXCURSION_GROWTH`` x the memory's (it hovers).  A drift does both: it moves the faulty
-        reading itself and its error keeps growing.  False where the memory is not known."""
-        if not self._slow_ok or not np.isfinite(self._slow_t) or level[j] != WARNING:
-            return False
-        rows = self._hist[self._recent[self._pos, :min(self._count, self.confirm)]]
-        side = np.sign(err[j])
-        moved = side * (float(np.nanmean(rows[:, j])) - self._slow[j])
-        past = (self._slow[j] - self._M[j] @ self._slow[self._active]) * self._scale[j]
-        return bool(moved <= 0 or side * err[j] <= EXCURSION_GROWTH * max(side * past, 0.0))

@@ -45,9 +45,6 @@ class Judgement:
             # grows: one that reached its offset and hovers is a regime (module excursion.py)
             if self.new_state and level[j] < WARNING and self._excursion_hovers(level, err):
                 break
-            # out of band, its reading still: the field left it (excursion.py), it warns
-            if self.new_state and self._left_by_field(j, level, err):
-                break
             self._exclude(j, f"drift: self-prediction error {err[j]:+.2g} °C over the last "
                              f"{self.confirm} samples", time, events, by_field=True)
             self._since[j] = self._count
