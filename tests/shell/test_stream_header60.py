@@ -22,4 +22,4 @@ def test_a_file_the_stream_does_not_read_is_refused_saying_what_it_reads(tmp_pat
     assert run.returncode == 2 and len(said.splitlines()) == 1
     assert "line 1: CSV naming the inputs as TC_INPUT_NAMES" in said and "converted first" in said
     assert "check/<campaign>/rows.csv" in said      # where the export wrote the converted rows
-    assert said.endswith("lacks input column T_T0")
+    assert said.endswith("lacks input column T_T0 (the lab's header 'T0 [°C]')")   # stranger74
