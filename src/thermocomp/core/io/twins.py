@@ -31,7 +31,7 @@ def occurrences(header: Sequence[str]) -> tuple[list[str], dict[int, int]]:
 
 
 def _numbered(header: str, k: int, taken: set) -> str:
-
+    """``header`` numbered ``#k`` before its unit, the next k where a header already holds it."""
     base = split_unit(header)[0]
     while True:
         name = (base + f"#{k}" + header[len(base):] if base and header.startswith(base)
