@@ -288,6 +288,16 @@ def guarded_line(guarded: Mapping[str, int | None], n: int, figures: str) -> lis
             f"(monitor.guard); {figures}"]
 
 
+def clamped_line(clamped: int, n: int, policy: str, figures: str) -> list[str]:
+    """The line saying how many of the ``n`` streamed samples had an input clamped to the
+    training envelope (``policy``: promote.envelope.policy) and which figures are the clamped
+    stream's (``figures``); none where none was.  One wording for replay and promote."""
+    if not clamped:
+        return []
+    return [f"clamped: {clamped} of {n} samples had an input outside the training envelope "
+            f"(promote.envelope.policy={policy}); {figures}"]
+
+
 def first_exclusion(events: list[dict]) -> str:
     """``, first: <sensor> (<campaign>, <h> h)``: the first sensor excluded and when (hours
     from its campaign's start), or nothing; the end of the events line `replay` and `monitor`
@@ -342,11 +352,9 @@ def replay_lines(report: dict) -> list[str]:
     lines += adapt_line(targets, "frozen -> adapted", RMSE)
     clamped = max((r.get("clamped_samples") or 0 for r in targets.values()), default=0)
     if clamped:     # why RMSE leaves RMSE batch where no sensor was excluded
-        n = next(iter(targets.values()))["n_samples"]
-        policy = (report.get("envelope") or {}).get("policy", "clamp")
-        lines.append(f"clamped: {clamped} of {n} samples had an input outside the training "
-                     f"envelope (promote.envelope.policy={policy}); RMSE is the clamped "
-                     "stream's, RMSE batch the model's own")
+        lines += clamped_line(clamped, next(iter(targets.values()))["n_samples"],
+                              (report.get("envelope") or {}).get("policy", "clamp"),
+                              "RMSE is the clamped stream's, RMSE batch the model's own")
     # why RMSE leaves RMSE batch where no input was clamped (depl70)
     lines += guarded_line({t: r.get("guarded_samples") for t, r in targets.items()},
                           next(iter(targets.values()), {}).get("n_samples", 0),

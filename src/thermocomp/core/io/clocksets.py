@@ -116,6 +116,7 @@ def _first_after(stamps: np.ndarray, before: float, at: float, step: float, path
 
 def unfound(sets, found) -> str:
     """The sets of ``sets`` whose indices are not in ``found``, each by its instants."""
+    found = set(found)
     return "; ".join(f"{pd.Timestamp(at, unit='s', tz='UTC').isoformat()} ({step:+g} s, from "
                      f"{pd.Timestamp(before, unit='s', tz='UTC').isoformat()})"
-                     for k, (before, at, step) in enumerate(sets) if k not in set(found))
+                     for k, (before, at, step) in enumerate(sets) if k not in found)

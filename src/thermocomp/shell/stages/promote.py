@@ -15,7 +15,7 @@ from omegaconf import DictConfig, OmegaConf
 from ...apps.deploy import POLICIES
 from ...apps.deploy.adapt import from_config as adapt_from_config
 from ...apps.deploy.promotion import deploy, deploy_key, promote_report
-from ...apps.deploy.report import guarded_line
+from ...apps.deploy.report import clamped_line, guarded_line
 from ...base.files import write_json
 from ...base.log import logger
 from ...base.params import choice
@@ -90,11 +90,7 @@ def deployed_lines(cand, policy: str) -> list[str]:
     """Why the test figures "as deployed" leave run's: the rows clamped to the envelope, with an
     input the sensor monitor excluded, whose correction the guard changed (replay's lines)."""
     n, why = cand.test_samples, "the test figures are the {} stream's, run's the model's own"
-    lines = []
-    if cand.test_clamped:
-        lines.append(f"clamped: {cand.test_clamped} of {n} samples had an input outside the "
-                     f"training envelope (promote.envelope.policy={policy}); "
-                     + why.format("clamped"))
+    lines = clamped_line(cand.test_clamped, n, policy, why.format("clamped"))
     if cand.test_excluded:
         lines.append(f"excluded: {cand.test_excluded} of {n} samples had an input excluded by "
                      "the sensor monitor (monitor.adaptive; replay names them); "
