@@ -34,10 +34,12 @@ from ...core.io.detect import (
     flag_headers,
     flags_as_states,
     folder_manifest,
+    foreign_said,
     head,
     proposed_campaign,
     proposed_roles,
     sample_file,
+    stated_units,
     travel_headers,
     without_own_names,
 )
@@ -321,7 +323,10 @@ def _init(cfg: DictConfig) -> dict:
               f"days (since 1899-12-30), read as the time, data.roles.time={days!r} "
               f"data.units={{{days!r}: d}}")
     opts, cells = number_cells(src, manifest, sample, given, opts)   # thousands, marks
-    roles = proposed_roles(header, cells_of_first, opts)
+    stated = stated_units(sample, opts)             # (a TOA5 file's units row)
+    roles = proposed_roles(header, cells_of_first, opts, stated)
+    for line in foreign_said(header, roles, opts, stated):   # W/m^2, m/s: left out, said
+        print(f"{sample.name}: {line}")
     check_an_error_is_named(header, cells_of_first, roles, opts, sample)
     either = axis_lengths(header, roles, opts)     # read as errors for their span, below
     roles = {**roles, "error": [*roles["error"], *either]}
