@@ -240,7 +240,7 @@ def test_infinite_value_is_missing_and_said(tmp_path, caplog):
     """An infinite reading (a logger's overflow or open input, lab75) is a missing value, said
     with its column and row; before, the file was refused ("infinite value inf")."""
     write_raw(tmp_path / "ds", {"K01.csv": "time,T_0,E_X\n0,20,0\n1,20,inf\n2,20,2\n"})
-    ds, report = read_dataset(tmp_path / "ds")
+    ds, report = read_dataset(tmp_path / "ds", {"max_gap_samples": 1})
     assert ds.campaigns["K01"]["E_X"].tolist() == [0.0, 1.0, 2.0]
     assert report["campaigns"]["K01"]["repairs"] == {"E_X": 1}
     assert "column 'E_X': 1 infinite reading(s) (line 3 (data row 2))" in caplog.text
