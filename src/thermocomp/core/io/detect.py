@@ -59,6 +59,7 @@ from .timestamps import (
     looks_like_timestamp,
     maybe_elapsed,
 )
+from .tob1 import first_line, is_tob1
 from .units import AMBIGUOUS, UNITS, ambiguity, foreign_unit, is_flag, role_by_unit
 from .utf16 import is_utf16, utf8_options, utf16_as_utf8
 from .values import EPOCH_MS
@@ -168,6 +169,7 @@ def head(sample: Path, opts) -> tuple[object, list[str], list[str], str]:
     if is_lab_file(sample):         # a TDMS log, a MATLAB file: the CSV its channels are written to
         kind = ("a MATLAB file" + (" saved -v7.3" if is_v73(sample) else "") if is_mat(sample)
                 else "a LabVIEW Measurement File" if is_lvm(sample)
+                else campbell.said(first_line(sample)) if is_tob1(sample)
                 else "a TDMS log") + " (its channels as columns)"
         encoding = opts.encoding                 # (the file's: the temporary CSV is UTF-8)
         with lab_as_csv(sample, encoding=encoding) as text:

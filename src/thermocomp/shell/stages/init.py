@@ -43,6 +43,7 @@ from ...core.io.detect import (
     travel_headers,
     without_own_names,
 )
+from ...core.io.encoding import UTF8
 from ...core.io.historian import (
     PERIOD_COMMENT,
     intervals_said,
@@ -101,6 +102,9 @@ def number_cells(src, manifest, sample, given: dict, opts):
     their marks leave, which :func:`mark_gaps` reads once the error columns are named."""
     files = [src] if manifest is None else [src / str(f) for f in manifest["file"]]
     files = [f for f in files if is_text(f) and not is_converted(f, opts)]
+    if manifest is None and is_lab_file(src):    # (lab75: a TOB1 table's, a TDMS log's gaps)
+        with lab_as_csv(src, encoding=opts.encoding) as text:
+            return opts, scanned([text], ",", ".", UTF8, None, [], peek_csv, decimal_given=True)
     if not files or not is_text(sample):
         return opts, None
     asked = io.ReadOptions.from_cfg(given)
