@@ -11,12 +11,11 @@ import subprocess
 
 import numpy as np
 
-from conftest import FAST
 from test_export import _compose, needs_cc
 from test_lab75 import HALLE
+from test_nines_deploy74 import built_stream
 from thermocomp.core.io.options import ReadOptions
 from thermocomp.core.io.stdin import read_stream
-from thermocomp.shell.cli import main
 
 COMMON = [f"data.path={HALLE}", "data.roles.error=[d*]", "data.roles.ignore=[SW_in_Avg,WS_ms]",
           "data.max_gap_samples=2", "data.test_fraction=0.25"]
@@ -49,11 +48,7 @@ def test_the_served_model_reads_an_infinity_as_a_missing_value():
 def test_the_exported_stream_reads_an_infinity_as_an_empty_cell(tmp_path):
     """``stream.c`` fed the raw TOA5 file: its rows until the first ``INF`` (line 9), then what
     it says of an empty cell there (a missing input the plain stream refuses, exit 2)."""
-    assert main(["run", *COMMON, *FAST, "plots=none", f"out={tmp_path / 'run'}"]) == 0
-    assert main(["export", *COMMON, "track=false", "export.format=c",
-                 f"export.model={tmp_path / 'run' / 'model.pkl'}", f"out={tmp_path / 'code'}"]) == 0
-    subprocess.run(["cc", "-O2", "compensator.c", "stream.c", "-lm", "-o", "stream"],
-                   cwd=tmp_path / "code", check=True)
+    built_stream(tmp_path, COMMON)
     lines = HALLE.read_text().splitlines()
 
     def fed(cell: str) -> subprocess.CompletedProcess:
