@@ -78,9 +78,11 @@ _POSITION_WORD = re.compile(r".*positions?|pos|[xyzuvw]pos|coordinates?|koordina
 _AXIS_WORD = re.compile(r"[xyzuvw]\d*|.*achse|axis")
 
 
-# a unit written as one (lab75): a quotient or a power, W/m^2, m/s, g/m³, as a flux station's
-# logger writes its radiation and wind beside the machine's channels; a TOA5 program's "unitless"
-_UNIT_FORM = re.compile(r"[^\s/]+(?:/|\^|[²³]|\*\*)\S*|unitless")
+# a unit written as one (lab75): per second, metre, hour, square or cubic metre, or a power,
+# W/m^2, m/s, g/m³, as a flux station's logger writes its radiation and wind beside the
+# machine's channels; a TOA5 program's "unitless" ('T1 (front/left)' is a note: no unit)
+_UNIT_FORM = re.compile(r"[^\s/]+(?:/(?:s|m|h|min|kg|l|mol|m\^?[23²³]))+|\S*(?:\^\d|[²³])\S*"
+                        r"|unitless")
 
 
 def is_known_unit(unit: str) -> bool:
