@@ -100,3 +100,13 @@ def test_a_header_quoted_twice_is_its_text_in_the_file_and_on_stdin(tmp_path):
     streamed, _ = read_stream(path.read_text(), ["T_1_5_1"], ReadOptions.from_cfg(cfg))
     assert streamed["T_1_5_1"].tolist() == want["T_1_5_1"].tolist()
     assert np.diff(streamed["time"]).tolist() == [1800.0] * (len(streamed) - 1)
+
+
+def test_a_note_in_parentheses_is_no_foreign_unit():
+    """Only a unit the units row states, or one written as a unit (per s, m, h, m^2, a power),
+    is left out by ``init``: a lab's note, ``T1 (front/left)``, is refused as before."""
+    from thermocomp.core.io.units import foreign_unit
+
+    assert all(map(foreign_unit, ("W/m^2", "m/s", "W/m2", "g/m³", "umol/m^2/s", "unitless")))
+    assert not any(map(foreign_unit, ("front/left", "front", "mm/rev", "W", "%", "°C", "mm/min")))
+    assert foreign_unit("front", stated=True) and not foreign_unit("W", stated=True)
