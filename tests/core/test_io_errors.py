@@ -236,9 +236,14 @@ def test_temperature_below_absolute_zero(tmp_path):
     refused(tmp_path / "ds", file="K01.csv", column="T_0", row=2, says="absolute zero")
 
 
-def test_infinite_value(tmp_path):
-    write_raw(tmp_path / "ds", {"K01.csv": "time,T_0,E_X\n0,20,0\n1,20,inf\n"})
-    refused(tmp_path / "ds", file="K01.csv", column="E_X", row=2, says="infinite")
+def test_infinite_value_is_missing_and_said(tmp_path, caplog):
+    """An infinite reading (a logger's overflow or open input, lab75) is a missing value, said
+    with its column and row; before, the file was refused ("infinite value inf")."""
+    write_raw(tmp_path / "ds", {"K01.csv": "time,T_0,E_X\n0,20,0\n1,20,inf\n2,20,2\n"})
+    ds, report = read_dataset(tmp_path / "ds", {"max_gap_samples": 1})
+    assert ds.campaigns["K01"]["E_X"].tolist() == [0.0, 1.0, 2.0]
+    assert report["campaigns"]["K01"]["repairs"] == {"E_X": 1}
+    assert "column 'E_X': 1 infinite reading(s) (line 3 (data row 2))" in caplog.text
 
 
 def test_all_nan_sensor(tmp_path):

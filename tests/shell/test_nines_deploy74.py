@@ -40,17 +40,21 @@ def test_the_served_model_reads_the_mark_as_a_missing_value(tmp_path):
     assert served["C_T_1_9_1"].iloc[3] != read["C_T_1_9_1"].iloc[3]
 
 
-@needs_cc
-def test_the_exported_stream_reads_the_mark_as_an_empty_cell(tmp_path):
-    """``stream.c`` fed ``-9999.000`` in an input says what it says of an empty cell there (a
-    missing input the plain stream refuses, exit 2); its rows before are the check pack's."""
-    path = nines(tmp_path / "flux.dat")
-    common = [f"data.path={path}", *COMMON]
+def built_stream(tmp_path, common: list[str]) -> None:
+    """``tmp_path / 'code' / 'stream'``: the model ``run`` fits with the overrides ``common``,
+    exported as C and compiled."""
     assert main(["run", *common, *FAST, "plots=none", f"out={tmp_path / 'run'}"]) == 0
     assert main(["export", *common, "track=false", "export.format=c",
                  f"export.model={tmp_path / 'run' / 'model.pkl'}", f"out={tmp_path / 'code'}"]) == 0
     subprocess.run(["cc", "-O2", "compensator.c", "stream.c", "-lm", "-o", "stream"],
                    cwd=tmp_path / "code", check=True)
+
+
+@needs_cc
+def test_the_exported_stream_reads_the_mark_as_an_empty_cell(tmp_path):
+    """``stream.c`` fed ``-9999.000`` in an input says what it says of an empty cell there (a
+    missing input the plain stream refuses, exit 2); its rows before are the check pack's."""
+    built_stream(tmp_path, [f"data.path={nines(tmp_path / 'flux.dat')}", *COMMON])
     lines = FLUX.read_text().splitlines()
     column = lines[0].split(",").index('"T_1_5_1"')
 

@@ -20,13 +20,14 @@ from .csvline import EMPTY, split_line
 
 # the format a file's first field names -> whether a units row (and a processing row) follow
 # the names
-FORMATS = {"TOA5": True, "TOACI1": False}
+FORMATS = {"TOA5": True, "TOACI1": False, "TOB1": True}   # (TOB1: its rows binary, :mod:`.tob1`)
 TIME_HEADERS = ("timestamp", "tmstamp")
 COUNTERS = ("record", "recnbr")         # the logger's record number beside its timestamp
 _NO_UNIT = {"TS", "RN"}                 # the units row's marks of the timestamp and the counter
 _SPELLED = {"volts": "V", "millivolts": "mV"}    # CRBasic's manual spells a logger's battery so
 # the environment line's fields after the format's, by format
-_FIELDS = {"TOA5": ("station", "logger", "serial", "os", "program", "signature", "table"),
+_FIELDS = {**dict.fromkeys(("TOA5", "TOB1"), ("station", "logger", "serial", "os", "program",
+                                                "signature", "table")),
            "TOACI1": ("station", "table")}
 
 

@@ -47,7 +47,7 @@ from .contract import ContractError
 from .encoding import arrow_encoding
 from .footer import footer, source
 from .layout import header_line
-from .marks import AMERIFLUX, value_of
+from .marks import AMERIFLUX, INFINITE, value_of
 from .roles import named_as_time
 from .separators import GROUP_MARKS, NO_BREAK_SPACES, UNICODE_MINUS, grouped
 from .sniff import head_lines
@@ -57,6 +57,7 @@ from .tables import EXCEL_ERROR, MISSING_TOKENS, is_mark  # the reader's own rul
 NUMBER_SHARE = 0.5       # a number column: at least this share of its non-empty cells numbers
 AMERIFLUX_TIME = "timestamp_start"      # the header that says an AmeriFlux table
 _NINES = r"^-9999(?:[.,]0*)?$"          # AmeriFlux's -9999, as a program writes it
+_INFINITE = rf"^\s*(?i:{INFINITE.pattern})\s*$"    # INF, -INF, Infinity (lab75: missing as read)
 
 
 @dataclass
@@ -299,7 +300,14 @@ def _marks(numbers: list[_Column], decimal: str, found: Cells, given: list) -> N
     nines_said: dict = {}         # a -9999 in a file that is no AmeriFlux table: header -> cells
     for c in numbers:
         numeric = c.plain | (c.grouped[thousands] if thousands in c.grouped else False)
-        other = ~numeric & ~c.missing
+        # an infinite reading (a Campbell logger's INF, lab75): missing as read, no mark to list
+        infinite = _matches(c.text, _INFINITE)
+        if infinite.any():
+            spelled = sorted(set(pc.filter(c.text, pa.array(infinite)).to_pylist()))
+            found.said.append(f"{', '.join(map(repr, spelled))} in {int(infinite.sum())} cell(s) "
+                              f"of {c.header!r}: an infinite reading (a logger's overflow or an "
+                              "open input), read as missing (no key: the reader names its rows)")
+        other = ~numeric & ~c.missing & ~infinite
         # a NaN written out (a Campbell logger's NAN, lab74): missing as read, its runs a mark's
         written = c.missing & _matches(c.text, ".")
         counts = pc.value_counts(pc.filter(c.text, pa.array(other))).to_pylist()
@@ -314,7 +322,7 @@ def _marks(numbers: list[_Column], decimal: str, found: Cells, given: list) -> N
         for mark, n in marks.items():
             found.marks.setdefault(mark, {})
             found.marks[mark][c.header] = found.marks[mark].get(c.header, 0) + n
-        marked = written | nines | pc.is_in(c.text, value_set=pa.array(list(marks), pa.string())
+        marked = written | infinite | nines | pc.is_in(c.text, value_set=pa.array(list(marks), pa.string())
                                             ).to_numpy(zero_copy_only=False)
         # a run of empty cells is a gap as a mark's is (stranger74: an hour of a sensor's
         # cells left empty, refused by the config init wrote); a row empty in every column is

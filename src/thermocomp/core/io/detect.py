@@ -59,7 +59,8 @@ from .timestamps import (
     looks_like_timestamp,
     maybe_elapsed,
 )
-from .units import AMBIGUOUS, UNITS, ambiguity, is_flag, role_by_unit
+from .tob1 import first_line, is_tob1
+from .units import AMBIGUOUS, UNITS, ambiguity, foreign_unit, is_flag, role_by_unit
 from .utf16 import is_utf16, utf8_options, utf16_as_utf8
 from .values import EPOCH_MS
 from .workbook import HEAD_ROWS, csv_options, is_workbook, sheet_as_csv
@@ -168,6 +169,7 @@ def head(sample: Path, opts) -> tuple[object, list[str], list[str], str]:
     if is_lab_file(sample):         # a TDMS log, a MATLAB file: the CSV its channels are written to
         kind = ("a MATLAB file" + (" saved -v7.3" if is_v73(sample) else "") if is_mat(sample)
                 else "a LabVIEW Measurement File" if is_lvm(sample)
+                else campbell.said(first_line(sample)) if is_tob1(sample)
                 else "a TDMS log") + " (its channels as columns)"
         encoding = opts.encoding                 # (the file's: the temporary CSV is UTF-8)
         with lab_as_csv(sample, encoding=encoding) as text:
@@ -263,14 +265,16 @@ def _separators(sample: Path, opts) -> str:
     return f"{sample.name}: {charset}delimiter {opts.delimiter!r}, decimal {opts.decimal!r}"
 
 
-def proposed_roles(header: list[str], first: dict, opts) -> dict:
+def proposed_roles(header: list[str], first: dict, opts, stated: bool = False) -> dict:
     """``data.roles`` as given, and for every header none of its patterns (nor ``data.columns``,
     the time, the campaign) names, a pattern proposed from its unit (:func:`.units.role_by_unit`:
     µm/mm an error, rpm or ``[-]`` a state; ``run`` reads such a header so too), its words (the
     air's temperature: ambient, where no ambient is given) or its cell (``true`` / ``false``: a
     state; other text: ignore); a date column followed by a time of day: the time, ``[date,
     time of day]``.  A length named by its axis alone (``X [mm]``) is proposed nothing: the
-    reading lists it."""
+    reading lists it.  A unit of no sensor of the model (``W/m^2``, ``m/s``: :func:`.units.
+    foreign_unit`, ``stated``: the file's unit row says the units) is proposed ``ignore``
+    (lab75: the reader read it as a temperature and refused it)."""
     roles = {k: list(opts.roles.get(k, [])) for k in ROLE_PATTERNS}
     roles["time"] = opts.roles.get("time", "auto")
     if opts.roles.get(RUN_ROLE):
@@ -294,6 +298,8 @@ def proposed_roles(header: list[str], first: dict, opts) -> dict:
             roles[kind].append(pattern)
         elif kind == AMBIGUOUS:
             continue
+        elif foreign_unit(unit, stated):
+            roles["ignore"].append(pattern)
         elif not air_given and role(base) is None and AMBIENT_WORDS & air_words(base) and (
                 not unit or unit.replace(" ", "").lower() in UNITS["T"]):
             roles["ambient"].append(pattern)
@@ -305,6 +311,25 @@ def proposed_roles(header: list[str], first: dict, opts) -> dict:
             # (the reader reads 'Dauer' 25:30:00)
             roles["ignore"].append(pattern)
     return _by_role(roles, header, first)
+
+
+def stated_units(sample: Path, opts) -> bool:
+    """The units under ``sample``'s header are a unit row's, each a unit whatever it spells
+    (a Campbell Scientific TOA5 table's line 3)."""
+    return campbell.has_unit_row(head_lines(sample, opts.encoding))
+
+
+def foreign_said(header: list[str], roles: dict, opts, stated: bool) -> list[str]:
+    """What ``init`` says of the headers ``roles`` leave out for their unit (:func:`proposed_roles`)."""
+    out = []
+    for h in header:
+        base, unit = _unit_of(h, opts)
+        if base and foreign_unit(unit, stated) and matching_roles(h, {"ignore": roles["ignore"]}):
+            pattern = _GLOB.sub(r"[\1]", base)
+            out.append(f"{h!r}: unit {unit!r} is no temperature's, displacement's nor machine "
+                       "state's (°C, µm, W, rpm ...): not a sensor of the model, proposed "
+                       f"data.roles.ignore (data.roles.state=[{pattern}] if it is a machine state)")
+    return out
 
 
 def without_own_names(header: list[str], first: dict, roles: dict, opts) -> tuple[dict, list[str]]:

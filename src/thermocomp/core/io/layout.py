@@ -135,6 +135,20 @@ def uncommented(header: list[str], above: list[str]) -> list[str]:
     return [_COMMENTED.sub("", header[0].lstrip(), count=1), *header[1:]]
 
 
+def unquoted(header: list[str]) -> list[str]:
+    """``header`` with a name still in double quotes after the CSV reading read as its text
+    (lab75: AmeriFlux's ``_21`` tables quote their names twice, ``\"\"\"TIMESTAMP_START\"\"\"``,
+    which the CSV dialect reads as ``\"TIMESTAMP_START\"``): a quoted header is its text, as
+    ``stream.c`` reads it."""
+    out = []
+    for name in header:
+        bare = name.strip()
+        while len(bare) >= 2 and bare[0] == bare[-1] == '"':
+            bare = bare[1:-1].strip()
+        out.append(bare if bare != name.strip() else name)
+    return out
+
+
 def with_units(header: list[str], units: list[str]) -> list[str]:
     """``header`` with the unit row's units, where a header says none itself."""
     return [f"{h} [{u.strip().strip('[]()')}]"

@@ -10,10 +10,16 @@ A number may be a mark only where it is no reading (:func:`is_number_mark`): bel
 does).  The mark is the lab's statement and applies to every column; where it takes a cell of a
 column that is no temperature (an error's or a state's, where the number could be measured), the
 file reader says so.
+
+An infinite reading (lab75: a Campbell Scientific logger's ``INF`` / ``-INF`` for an overflow or an
+open input; ``inf``, ``Infinity`` as other programs write it) is a missing value in every column,
+mark or not (:func:`hits`), as ``NAN`` is: no key lists it, and the reader says its column and rows
+(:func:`infinite_said`).
 """
 
 from __future__ import annotations
 
+import re
 from collections.abc import Iterable
 
 import numpy as np
@@ -23,11 +29,13 @@ from .separators import any_number, number
 
 ABSOLUTE_ZERO_C = -273.15
 AMERIFLUX = "-9999"      # AmeriFlux's mark for a value not measured (its processed products)
+INFINITE = re.compile(r"[+-]?(?:inf|infinity)", re.IGNORECASE)   # as a cell writes an infinity
+SHOWN_ROWS = 3           # the rows of infinite readings a warning names
 
 
 def value_of(mark: str) -> float | None:
     """The finite number ``mark`` is (a decimal comma read as a point), None for text (and for
-    ``INF``, ``-INF``: matched as written, as a Campbell logger writes them)."""
+    ``INF``, ``-INF``: an infinity is missing without being listed, :func:`hits`)."""
     found = _number(mark)
     return found if found is not None and np.isfinite(found) else None
 
@@ -58,19 +66,32 @@ def numbers_given(marks: Iterable) -> str:
     return ", ".join(repr(str(m)) for m in marks if value_of(str(m)) is not None)
 
 
+def is_infinite(cell) -> bool:
+    """``cell`` (text as written, quotes round it dropped) spells an infinity."""
+    return bool(INFINITE.fullmatch(str(cell).strip().strip('"').strip()))
+
+
 def hits(column, marks: Iterable) -> np.ndarray:
-    """Where the numbers of ``column`` (an array of floats) are a mark's."""
+    """Where the numbers of ``column`` (an array of floats) are missing by their value: a mark's,
+    or infinite (a logger's overflow, never a reading)."""
     found = values(marks)
     column = np.asarray(column, dtype=float)
-    return np.isin(column, found) if found else np.zeros(column.shape, bool)
+    return np.isinf(column) | (np.isin(column, found) if found else False)
+
+
+def infinite_said(column: str, rows: list[str], count: int) -> str:
+    """What a reader says of ``count`` infinite readings of ``column`` (the first ``rows`` as
+    the reader names a row)."""
+    more = ", ..." if count > len(rows) else ""
+    return (f"column {column!r}: {count} infinite reading(s) ({', '.join(rows)}{more}): a "
+            "logger's overflow or an open input, read as missing")
 
 
 def in_frame(frame, given: Iterable, skip: str):
     """``frame`` (a served block: numbers, text a CSV body's cells kept) with each cell that is a
-    mark NaN, the column ``skip`` (the time) as it is: a number's by value, a text's as written."""
+    mark or infinite NaN, the column ``skip`` (the time) as it is: a number's by value, a
+    text's as written."""
     given = [str(m) for m in given]
-    if not given:
-        return frame
     words = set(texts(given))
     out = frame.copy()
     for c in out.columns:

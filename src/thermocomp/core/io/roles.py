@@ -37,7 +37,16 @@ from .timestamps import (
     TIME_OF_DAY,
     looks_like_timestamp,
 )
-from .units import AMBIGUOUS, LETTER_UNITS, STATE_UNITS, UNITS, VOLTS, ambiguity, role_by_unit
+from .units import (
+    AMBIGUOUS,
+    LETTER_UNITS,
+    STATE_UNITS,
+    UNITS,
+    VOLTS,
+    ambiguity,
+    is_known_unit,
+    role_by_unit,
+)
 
 _UNIT = re.compile(r"^(.*?)\s*[\[(]([^\[\]()]*)[\])]\s*$")
 # a unit in brackets followed by a note in brackets, a sign convention ('dX [mm] (+ = Werkzeug
@@ -302,7 +311,9 @@ def naming(headers: Sequence[str], roles: Mapping, columns: Mapping, first: Mapp
             out.names[header], out.roles[header] = header, "contract"   # its own name, or unmapped
             if role(header) is None:
                 out.roles[header] = "unmapped"
-                problems.append(f"{header!r} has no role")
+                problems.append(f"{header!r} has no role" + (     # (lab75: W/m^2, m/s)
+                    f" (unit {unit!r}: no temperature's, displacement's nor machine state's)"
+                    if unit and not is_known_unit(unit) else ""))
             elif header in units:
                 _scale(out, header, role(header) if role(header) != "S" else None, unit, header,
                        problems, None, decimal)
@@ -498,7 +509,11 @@ def _scale(out: Naming, name: str, kind: str | None, unit: str | None, header: s
                 "angle": "an angle's (µrad, mrad, arcsec)", "T": "a temperature's (°C, K, °F)",
                 "time": "a time's (s, ms, min, h, d)"}[kind]
         problems.append(f"{header!r}: unit {unit!r} is not {what}" + (
-            voltage_hint(header, kind) if kind == "E" else ""))
+            voltage_hint(header, kind) if kind == "E" else
+            # (lab75: a flux station's W/m^2, m/s beside the machine's: `init` leaves them out)
+            f" nor a displacement's or a machine state's: no sensor of the model? "
+            f"data.roles.ignore=[{header_pattern(header)}]" if kind == "T" and not is_known_unit(unit)
+            else ""))
     elif scale != (1.0, 0.0) or kind == "time":   # (a time's unit stated: no ms to suspect)
         out.scales[name] = scale
 

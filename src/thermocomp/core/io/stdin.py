@@ -18,7 +18,8 @@ import pandas as pd
 import pyarrow as pa
 import pyarrow.compute as pc
 
-from ...base.log import say
+from ...base.errors import position
+from ...base.log import logger, say
 from ..context import TIME
 from . import marks
 from .again import STRAY, comments_in, kept, lines_in, spans_in, warn
@@ -35,6 +36,7 @@ from .layout import (
     is_unit_row,
     property_rows,
     uncommented,
+    unquoted,
     with_units,
 )
 from .options import RUN_ROLE
@@ -161,13 +163,23 @@ def _read_runs(text: str, columns: list[str], opts, recorded: str | None = None,
             raise ContractError("non-numeric value", file=SOURCE, column=c,
                                 row=int(np.flatnonzero(bad)[0]) + 1)
         df[c] = pd.to_numeric(df[c], errors="coerce")
-        if c != TIME:          # data.missing_values' -9999, however written (.marks)
+        if c != TIME:          # data.missing_values' -9999, however written, and INF (.marks)
+            _infinite_said(df[c], c)
             df[c] = df[c].mask(marks.hits(df[c], opts.missing_values))
         if c in scales:            # a unit in the header (or data.units): the contract's
             scale, offset = scales[c]
             df[c] = df[c] * scale + offset
     df = on_frame(df, opts.derive, SOURCE)      # data.derive: the same arithmetic as a file's
     return df, {c: int(n) for c, n in df[numeric].isna().sum().items() if n}, blocks, origins
+
+
+def _infinite_said(column: pd.Series, name: str) -> None:
+    """Say the infinite readings of ``column`` (``INF``), read as missing, as the file reader
+    says them (stream rows counted as a file's data rows)."""
+    infinite = np.flatnonzero(np.isinf(column.to_numpy(float)))
+    if infinite.size:
+        shown = [position(int(r) + 1) for r in infinite[:marks.SHOWN_ROWS]]
+        logger.warning(f"{SOURCE}: {marks.infinite_said(name, shown, infinite.size)}")
 
 
 def _sets_undone(seconds: pd.Series, origin, sets, attrs: dict):
@@ -239,7 +251,7 @@ def _table(text: str, sep: str) -> str:
     if not lines:
         return text
     written = split_line(lines[start], sep, SPLIT)
-    header = uncommented(written, lines[:start])   # (stranger66: '# t [s]' as savetxt writes it)
+    header = unquoted(uncommented(written, lines[:start]))   # (stranger66: '# t [s]'; lab75)
     if not start and not units and header == written:
         return text
     if units:

@@ -32,6 +32,7 @@ from .layout import (
     is_unit_row,
     property_rows,
     uncommented,
+    unquoted,
     with_units,
 )
 from .lines import Lines
@@ -248,7 +249,8 @@ def _typed_columns(path: Path, header: list[str], first_row: list[str], opts: Re
                             own=active(opts.roles))
     columns = _columns(table.select(list(types)))
     columns.update({n: pc.cast(columns[n], pa.float64()) for n in flags})
-    columns.update(_unmarked(columns, types, opts, path))
+    columns.update(_unmarked(columns, types, opts, path, lines,
+                             {n: h for n, h in zip(names, header)}))
     try:
         if CLOCK in columns:
             columns[TIME] = _joined_time(columns[TIME], columns.pop(CLOCK), path, opts)
@@ -263,10 +265,12 @@ def _typed_columns(path: Path, header: list[str], first_row: list[str], opts: Re
     return _converted(columns, scales), _renames(header, named), _rescaled(scales), lines
 
 
-def _unmarked(columns: dict, types: dict, opts: ReadOptions, path: Path) -> dict:
-    """The number columns holding a numeric mark of ``data.missing_values`` (-9999), its cells
-    missing, however written (:mod:`.marks`); said where the column is no temperature's (an
-    error or a state could read the number)."""
+def _unmarked(columns: dict, types: dict, opts: ReadOptions, path: Path, lines: Lines,
+              header: dict) -> dict:
+    """The number columns holding a numeric mark of ``data.missing_values`` (-9999) or an
+    infinite reading (``INF``), its cells missing, however written (:mod:`.marks`); said where
+    the column is no temperature's (an error or a state could read the number), and an infinity
+    always, with its rows (``header``: the file's header of a contract name, for the message)."""
     out = {}
     for name, column in columns.items():
         if types.get(name) != pa.float64() or name == TIME:
@@ -276,10 +280,16 @@ def _unmarked(columns: dict, types: dict, opts: ReadOptions, path: Path) -> dict
         if not where.any():
             continue
         out[name] = pa.chunked_array([pa.array(values, pa.float64(), mask=where | np.isnan(values))])
-        if role(name) != "T":
-            logger.warning(f"{path}: column {name!r}: {int(where.sum())} cell(s) equal to a number "
-                           f"of data.missing_values ({marks.numbers_given(opts.missing_values)}) "
-                           "read as missing")
+        infinite = np.flatnonzero(np.isinf(values))
+        if infinite.size:
+            own = f" (its header in the file: {header[name]!r})" if header.get(name, name) != name \
+                else ""
+            shown = [lines.at(int(r) + 1) for r in infinite[:marks.SHOWN_ROWS]]
+            logger.warning(f"{path}: {marks.infinite_said(name, shown, infinite.size)}{own}")
+        if role(name) != "T" and (where & ~np.isinf(values)).any():
+            logger.warning(f"{path}: column {name!r}: {int((where & ~np.isinf(values)).sum())} "
+                           "cell(s) equal to a number of data.missing_values "
+                           f"({marks.numbers_given(opts.missing_values)}) read as missing")
     return out
 
 
@@ -354,7 +364,7 @@ def peek_csv(path: Path, delimiter: str, encoding: str) -> tuple[list[str], list
                 f.readline()
             rows = csv.reader(f, delimiter=delimiter)
             header = next(rows, None)
-            header = header and uncommented(header, head[:preamble])
+            header = header and unquoted(uncommented(header, head[:preamble]))
             first = next((r for r in rows if r), None)
             campbell = has_unit_row(head)          # (a TOA5 file's units, in its own words)
             units = first is not None and header is not None and (campbell or is_unit_row(first))

@@ -78,6 +78,30 @@ _POSITION_WORD = re.compile(r".*positions?|pos|[xyzuvw]pos|coordinates?|koordina
 _AXIS_WORD = re.compile(r"[xyzuvw]\d*|.*achse|axis")
 
 
+# a unit written as one (lab75): per second, metre, hour, square or cubic metre, or a power,
+# W/m^2, m/s, g/m³, as a flux station's logger writes its radiation and wind beside the
+# machine's channels; a TOA5 program's "unitless" ('T1 (front/left)' is a note: no unit)
+_UNIT_FORM = re.compile(r"[^\s/]+(?:/(?:s|m|h|min|kg|l|mol|m\^?[23²³]))+|\S*(?:\^\d|[²³])\S*"
+                        r"|unitless")
+
+
+def is_known_unit(unit: str) -> bool:
+    """``unit`` is one the reader reads (a length, a temperature, a time, an angle, a state's)."""
+    known = unit.lower().replace(" ", "")
+    return (any(known in table for table in UNITS.values()) or known in STATE_UNITS
+            or known in VOLTS or known in DIMENSIONLESS or known in ANGLE_UNITS)
+
+
+def foreign_unit(unit: str | None, stated: bool = False) -> bool:
+    """``unit`` is a unit, but of no sensor of the model (W/m^2, m/s, unitless: no temperature,
+    displacement or machine state): a unit the reader does not know, written as one, or stated
+    by the file's unit row (``stated``: Campbell's units line says units, where a header's
+    parentheses may hold a note, ``T1 (front)``)."""
+    if not unit or is_known_unit(unit):
+        return False
+    return stated or bool(_UNIT_FORM.fullmatch(unit.strip().lower()))
+
+
 def is_flag(cell) -> bool:
     """``cell`` is an on/off flag's word (:data:`FLAG_WORDS`)."""
     return str(cell).strip() in FLAG_WORDS

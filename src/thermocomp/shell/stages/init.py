@@ -34,13 +34,16 @@ from ...core.io.detect import (
     flag_headers,
     flags_as_states,
     folder_manifest,
+    foreign_said,
     head,
     proposed_campaign,
     proposed_roles,
     sample_file,
+    stated_units,
     travel_headers,
     without_own_names,
 )
+from ...core.io.encoding import UTF8
 from ...core.io.historian import (
     PERIOD_COMMENT,
     intervals_said,
@@ -99,6 +102,9 @@ def number_cells(src, manifest, sample, given: dict, opts):
     their marks leave, which :func:`mark_gaps` reads once the error columns are named."""
     files = [src] if manifest is None else [src / str(f) for f in manifest["file"]]
     files = [f for f in files if is_text(f) and not is_converted(f, opts)]
+    if manifest is None and is_lab_file(src):    # (lab75: a TOB1 table's, a TDMS log's gaps)
+        with lab_as_csv(src, encoding=opts.encoding) as text:
+            return opts, scanned([text], ",", ".", UTF8, None, [], peek_csv, decimal_given=True)
     if not files or not is_text(sample):
         return opts, None
     asked = io.ReadOptions.from_cfg(given)
@@ -321,7 +327,10 @@ def _init(cfg: DictConfig) -> dict:
               f"days (since 1899-12-30), read as the time, data.roles.time={days!r} "
               f"data.units={{{days!r}: d}}")
     opts, cells = number_cells(src, manifest, sample, given, opts)   # thousands, marks
-    roles = proposed_roles(header, cells_of_first, opts)
+    stated = stated_units(sample, opts)             # (a TOA5 file's units row)
+    roles = proposed_roles(header, cells_of_first, opts, stated)
+    for line in foreign_said(header, roles, opts, stated):   # W/m^2, m/s: left out, said
+        print(f"{sample.name}: {line}")
     check_an_error_is_named(header, cells_of_first, roles, opts, sample)
     either = axis_lengths(header, roles, opts)     # read as errors for their span, below
     roles = {**roles, "error": [*roles["error"], *either]}

@@ -42,8 +42,8 @@ DRIVER = r"""/* stream.c: CSV rows of raw inputs on stdin -> corrections C_<axis
  * reader leaves them out; a line in data.encoding (TC_ENCODING: a Windows logger's cp1252) is
  * read as UTF-8 (a line that is UTF-8 already as it is); the header written again further down
  * (a logger restarted), with its unit row, is left out and said; a cell holding a mark of
- * data.missing_values (TC_MISSING: `---`; TC_MISSING_VALUE: -9999 however written) is a
- * missing value, as an empty cell is, and a cell
+ * data.missing_values (TC_MISSING: `---`; TC_MISSING_VALUE: -9999 however written) or an
+ * infinite reading (`INF`, `-INF`, `Infinity`) is a missing value, as an empty cell is, and a cell
  * of an input that is no number nor a mark is refused with its row, as the reader refuses it.
  * UTF-16 text with its byte-order mark, little- or big-endian (catman AP's or Excel's Unicode
  * export) is read as its UTF-8 text (transcoded here; data.encoding does not apply to it), as
@@ -396,7 +396,8 @@ static double value(const char *cell, int *bad) {
     v = strtod(text, &end);
     while (*end == ' ' || *end == '"') end++;
     if (end == text || *end != '\0') { *bad = 1; return NAN; }
-    return is_number_mark(v) ? NAN : v;
+    /* (lab75: an infinite reading, a logger's INF for an overflow or an open input: missing) */
+    return is_number_mark(v) || isinf(v) ? NAN : v;
 }
 
 /* 1: `cell` is a channel property's label ('T0', 'dt', 'Delta t'): a letter, then letters,
