@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 import yaml
 
-from conftest import refused
+from conftest import FAST, refused
 from thermocomp.core.io import read_dataset
 from thermocomp.core.io.detect import proposed_roles
 from thermocomp.core.io.options import ReadOptions
@@ -130,3 +130,20 @@ def test_the_airs_compound_names_are_ambient_a_parts_are_not(header, air):
     names = ["Zeit (s)", f"{header} (°C)", "dX (µm)"]
     roles = proposed_roles(names, {h: "1" for h in names}, ReadOptions())
     assert (roles["ambient"] == [header]) is air, roles
+
+
+@pytest.mark.parametrize("stem", ["2024", "inf", "true"])
+def test_a_file_named_like_a_number_gets_a_config_name_hydra_reads_as_a_name(stem, tmp_path, capsys):
+    """A lab's file `2024.csv` (a year), `inf.csv`, `true.csv`: `data=2024` is an int to Hydra
+    ("Config group override must be a string", a traceback). init names the config
+    `data_<stem>`, and the command it prints runs."""
+    src = _write(tmp_path / f"{stem}.csv", ["Zeit (s)", "Halle (°C)", "Spindel (°C)", "dX (µm)"],
+                 [c for i, c in enumerate(_columns()) if i != 2])
+    assert main(["init", str(src), f"out={tmp_path / 'o'}"]) == 0
+    said = capsys.readouterr().out
+    assert f"data=data_{stem}" in said.split("next: ")[-1]
+    assert (tmp_path / "o" / "conf" / "data" / f"data_{stem}.yaml").is_file()
+    search = f"hydra.searchpath=[file://{tmp_path / 'o' / 'conf'}]"
+    assert main(["run", search, f"data=data_{stem}", "model=mlr", f"out={tmp_path / 'r'}",
+                 *FAST]) == 0
+    assert (tmp_path / "r" / "metrics.json").is_file()

@@ -55,7 +55,12 @@ def check_record_file(path: Path) -> None:
 
 def record_id(path: Path) -> str:
     """The campaign id of a one-file record: its stem, in characters an id may hold."""
-    return _UNSAFE_ID.sub("_", path.stem).strip("._") or "record"
+    return safe_id(path.stem)
+
+
+def safe_id(text: str) -> str:
+    """``text`` in characters an id (a campaign's, a config's name) may hold."""
+    return _UNSAFE_ID.sub("_", text).strip("._") or "record"
 
 
 def cut(path: Path, table: pa.Table, report: dict, opts) -> tuple[pd.DataFrame, dict]:

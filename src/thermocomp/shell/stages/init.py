@@ -57,6 +57,7 @@ from ...core.io.pairhead import error_files, pair_time, paired_head, paired_line
 from ...core.io.period_line import stated_period
 from ...core.io.plain import is_converted, is_lab_file, lab_as_csv
 from ...core.io.rates import PAUSE_PERIODS, pauses
+from ...core.io.record import safe_id
 from ...core.io.roles import excel_days_header, naming, split_unit
 from ...core.io.slashed import record_order
 from ...core.io.sniff import resolved
@@ -254,6 +255,21 @@ def appended_runs(src, ds, opts) -> str | None:
             "stretches read as a campaign each (runs_at_pauses: true, written into the config)")
 
 
+def config_name(name: str) -> str:
+    """The data config's name for the record ``name``: one that ``data=<name>`` on the command
+    line reads as itself.  Hydra reads ``data=inf`` / ``2024`` / ``true`` / ``null`` as a number,
+    a bool or null ("Config group override must be a string"), and a folder's name may hold a
+    space: such a name gets the prefix ``data_`` (``data_2024``), its unsafe characters ``_``."""
+    from hydra.core.override_parser.overrides_parser import OverridesParser
+
+    safe = safe_id(name)
+    try:
+        read = OverridesParser.create().parse_override(f"data={safe}").value()
+    except Exception:           # (any name its grammar does not take as a plain word)
+        read = None
+    return safe if read == safe else f"data_{safe}"
+
+
 def init(cfg: DictConfig) -> dict:
     """Detect, propose, check by reading, write ``<out>/conf/data/<name>.yaml``; print the run
     command.  A volumetric folder of one distance per row is refused as ``calibrate`` refuses
@@ -406,7 +422,8 @@ def _init(cfg: DictConfig) -> dict:
     stated_starts(src, ds, report, opts)        # a DAQ's '# start:' line over a time in s
     for line in paired_lines(report):           # the runs of two loggers: what was paired
         print(line)
-    path = resolve(cfg.out) / "conf" / "data" / f"{ds.name}.yaml"
+    name = config_name(ds.name)
+    path = resolve(cfg.out) / "conf" / "data" / f"{name}.yaml"
     text = yaml.safe_dump({"defaults": ["default"], **config}, allow_unicode=True, sort_keys=False)
     if long is not None:
         text = text.replace("\nresample_s:", f"\n{PERIOD_COMMENT}\nresample_s:", 1)
@@ -419,5 +436,5 @@ def _init(cfg: DictConfig) -> dict:
     atomic_write_text(path, f"# written by `thermocomp init {src}`\n{text}")
     period = median_step([df[TIME].to_numpy(float) for df in ds.campaigns.values()]) or float("nan")
     gaps_said(src, gaps, period)
-    print("\n".join(detection_lines(layout, opts, header, plan, ds, report, period, path, ds.name)))
+    print("\n".join(detection_lines(layout, opts, header, plan, ds, report, period, path, name)))
     return {"config": str(path), "columns": plan.names}
