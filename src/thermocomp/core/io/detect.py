@@ -400,19 +400,24 @@ def travel_headers(ds, names: dict, given_roles: dict, opts) -> dict:
     whose values span more than :data:`TRAVEL_UM` over ``ds``: an axis position, not a thermal
     error (stranger64: a portal mill's ``Z ram [mm]``, 0-800 mm, was proposed the error
     ``E_Z_ram``)."""
-    given = {k: list(v) for k, v in given_roles.items() if k == "error" and isinstance(v, list)}
     out = {}
-    for header, name in names.items():
-        if not str(name).startswith("E_") or role(header) == "E" or (
-                given and matching_roles(header, given)):
-            continue
-        if role_by_unit(*_unit_of(header, opts)) not in ("error", AMBIGUOUS):
-            continue
+    for header, name in length_errors(names, given_roles, opts).items():
         values = pd.concat([df[name] for df in ds.campaigns.values() if name in df]).dropna()
         span = float(values.max() - values.min()) if len(values) else 0.0
         if span > TRAVEL_UM:
             out[header] = span / 1000.0
     return out
+
+
+def length_errors(names: dict, given_roles: dict, opts) -> dict:
+    """Header -> contract name of each header proposed as an error by its length unit alone
+    (no ``data.roles.error`` pattern of the user names it): an error or an axis' position,
+    which :func:`travel_headers` tells apart by its span once read."""
+    given = {k: list(v) for k, v in given_roles.items() if k == "error" and isinstance(v, list)}
+    return {header: name for header, name in names.items()
+            if str(name).startswith("E_") and role(header) != "E"
+            and not (given and matching_roles(header, given))
+            and role_by_unit(*_unit_of(header, opts)) in ("error", AMBIGUOUS)}
 
 
 def _named(header: str, roles: dict, opts) -> bool:

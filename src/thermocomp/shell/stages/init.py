@@ -35,6 +35,7 @@ from ...core.io.detect import (
     flags_as_states,
     folder_manifest,
     head,
+    length_errors,
     proposed_campaign,
     proposed_roles,
     sample_file,
@@ -248,6 +249,13 @@ def appended_runs(src, ds, opts) -> str | None:
             "stretches read as a campaign each (runs_at_pauses: true, written into the config)")
 
 
+def beyond(ds, names: dict, limit: float | None) -> bool:
+    """A column of ``names`` (header -> contract name) holds a value beyond ``limit``."""
+    return limit is not None and any(
+        float(np.nanmax(np.abs(df[n].to_numpy(float)), initial=0.0)) > limit
+        for df in ds.campaigns.values() for n in names.values() if n in df)
+
+
 def init(cfg: DictConfig) -> dict:
     """Detect, propose, check by reading, write ``<out>/conf/data/<name>.yaml``; print the run
     command.  A volumetric folder of one distance per row is refused as ``calibrate`` refuses
@@ -351,12 +359,17 @@ def _init(cfg: DictConfig) -> dict:
     if pair is not None and not pair.same_separators:   # each logger's file its own: detected
         opts = replace(opts, delimiter="auto", decimal="auto")
     config = data_config(src, given, opts, roles, defaults, manifest)
-    ds = open_source(cfg, detected=config)      # refused here as `run` would refuse it
+    # refused here as `run` would refuse it; a length read as an error for a look at its span
+    # is not held to data.max_abs_error (stranger75: a boring mill's `Y head (mm)`, 150-1850
+    # mm, was refused as an error of 1.85e6 µm before it could be proposed as a state)
+    spans = length_errors(plan.names, asked.roles, opts)
+    ds = open_source(cfg, detected={**config, "max_abs_error": None} if spans else config)
     flags = flag_headers(ds, plan.names)        # 0 / 1 under a header that did not say a flag
     travels = travel_headers(ds, plan.names, asked.roles, opts)   # an axis' position in mm
     undecided = [p for p in either if p in roles["error"] and not any(
         fnmatch.fnmatchcase(split_unit(h)[0], p) for h in travels)]
-    if flags or travels or undecided:           # proposed as states, the record read once more
+    if flags or travels or undecided or beyond(ds, spans, asked.max_abs_error):
+        # proposed as states, the record read once more (an error beyond its bound: refused)
         # (an axis' length of a thermal error's span stays unread: the reader asks which)
         roles = flags_as_states({**roles, "error": [p for p in roles["error"]
                                                     if p not in undecided]},

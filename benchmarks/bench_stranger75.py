@@ -1,0 +1,109 @@
+"""A stranger's pass on a horizontal boring mill and its lab's run files (stranger75).
+
+    PYTHONPATH=$PWD/src .venv/bin/python benchmarks/bench_stranger75.py write ROOT SEED
+    PYTHONPATH=$PWD/src .venv/bin/python benchmarks/bench_stranger75.py matrix ROOT SEED CONF
+
+The machine is ``benchmarks/hbm75.py`` (a table-type horizontal boring mill: the headstock's
+height heating the column where it stands, a gearbox, an NC rotary table indexed by a torque
+motor, a lube unit; 22 sensors, six runs of 22 h at 60 s; seeds 7601-7640 only).
+
+``write``: the runs as the lab's logger PC writes them, ``ROOT/hbm<SEED>/HBM160_<yyyymmdd>.csv``
+(one file a run, no ``campaigns.csv``): ``,``-separated, decimal points, UTF-8, units in
+parentheses (``Quill front (°C)``, ``dZ (µm)``, ``Spindle (rpm)``, ``Y head (mm)``); quirks:
+the time ``Date/Time`` on the PC's LOCAL clock without an offset (``2027-10-31 02:59:00``
+written twice: Saturday's run crosses the end of daylight saving time); an ISO WEEKDAY column
+``Weekday`` (1 = Monday ... 7 = Sunday, the logger's own), and under every run's rows a ``#``
+BLOCK of the logger's run summary (seven lines: ``# --- run summary ---``, start, stop,
+samples, the largest speed, operator, a note).
+
+``matrix``: per family (mlr, pcr, arx, lagbank, hammerstein, lstm, auto; ``ati=cmeans`` on mlr)
+``run`` on the data config ``init`` wrote (``ROOT/init/<...>.yaml``, given as CONF), ``replay``
+of its model.pkl and ``promote`` of the run: per target run's test RMSE, replay's RMSE, its RMSE
+batch, promote's as-deployed figure.
+"""
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from _cli import run_commands  # noqa: E402
+
+NAMES = {"T_air_floor": "Air floor (°C)", "T_air_top": "Air 3m (°C)", "T_foundation": "Foundation (°C)",
+         "T_xbed_front": "X bed front (°C)", "T_xbed_rear": "X bed rear (°C)", "T_saddle": "Saddle (°C)",
+         "T_table_top": "Table top (°C)", "T_table_rim": "Table rim (°C)", "T_bmotor": "B motor (°C)",
+         "T_col_foot": "Column foot (°C)", "T_col_mid": "Column mid (°C)", "T_col_head": "Column head (°C)",
+         "T_hs_left": "Headstock L (°C)", "T_hs_right": "Headstock R (°C)",
+         "T_quill_front": "Quill front (°C)", "T_quill_rear": "Quill rear (°C)",
+         "T_quill_sleeve": "Quill sleeve (°C)", "T_gearbox": "Gearbox (°C)",
+         "T_lube_tank": "Lube tank (°C)", "T_lube_return": "Lube return (°C)",
+         "T_cabinet": "Cabinet (°C)", "T_coolant": "Coolant (°C)",
+         "S_n_rpm": "Spindle (rpm)", "S_Y_mm": "Y head (mm)", "S_B_turn": "B indexing (-)",
+         "E_X": "dX (µm)", "E_Y": "dY (µm)", "E_Z": "dZ (µm)"}
+FAMILIES = ("mlr", "pcr", "arx", "lagbank", "hammerstein", "lstm", "auto")
+
+
+def _summary(k: int, stamps: list[str], frame) -> str:
+    return (f"# --- run summary ---\n# start: {stamps[0]}\n# stop: {stamps[-1]}\n"
+            f"# samples: {len(frame)}\n# max spindle speed: {frame.S_n_rpm.max():.0f} rpm\n"
+            f"# operator: M. Keller\n# note: run {k + 1}, test mandrel 300 mm, probe checked\n")
+
+
+def write(root: str, seed: str) -> None:
+    """The lab's run files of seed ``seed`` in ``ROOT/hbm<SEED>/``."""
+    import pandas as pd
+    from hbm75 import Hbm75, local_clock, run_starts
+
+    from thermocomp.apps.sim.scenario import write_scenario
+
+    raw, folder = Path(root) / f"raw{seed}", Path(root) / f"hbm{seed}"
+    folder.mkdir(parents=True, exist_ok=True)
+    write_scenario(Hbm75(seed=int(seed)), raw)
+    for k, start in enumerate(run_starts()):
+        f = pd.read_csv(raw / f"run{k + 1}.csv")
+        stamps = local_clock(start, f.time)
+        lab = pd.DataFrame({"Date/Time": stamps,
+                            "Weekday": [pd.Timestamp(s).isoweekday() for s in stamps]})
+        for column, header in NAMES.items():
+            lab[header] = f[column].round(3 if column.startswith("E_") else 2)
+        path = folder / f"HBM160_{start:%Y%m%d}.csv"
+        with open(path, "w", encoding="utf-8", newline="") as fh:
+            lab.to_csv(fh, index=False, lineterminator="\r\n")
+            fh.write(_summary(k, stamps, f).replace("\n", "\r\n"))
+        print(f"wrote {path} ({len(lab)} rows)")
+
+
+def matrix(root: str, seed: str, conf: str) -> None:
+    """``run`` -> ``replay`` -> ``promote`` per family on the data config ``conf`` (init's)."""
+    root_p, conf_p = Path(root).resolve(), Path(conf).resolve()
+    common = [f"hydra.searchpath=[file://{conf_p.parent.parent}]", f"data={conf_p.stem}", "track=false"]
+    cli = [sys.executable, "-m", "thermocomp"]
+    cells = [(f, []) for f in FAMILIES] + [("mlr", ["ati=cmeans"])]
+    for family, keys in cells:
+        out = root_p / "mx" / (family + ("-ati" if keys else ""))
+        ran = subprocess.run([*cli, "run", *common, f"model={family}", *keys, "plots=none",
+                              f"out={out}"], capture_output=True, text=True)
+        if ran.returncode:
+            print(f"{out.name}: run exit {ran.returncode}: {ran.stderr[-400:]}")
+            continue
+        rep = subprocess.run([*cli, "replay", *common, f"replay.model={out / 'model.pkl'}",
+                              f"out={out / 'replay'}"], capture_output=True, text=True)
+        if rep.returncode:
+            print(f"{out.name}: replay exit {rep.returncode}: {rep.stderr[-400:]}")
+            continue
+        scored = json.loads((out / "metrics.json").read_text())["targets"]
+        streamed = json.loads((out / "replay" / "replay.json").read_text())["targets"]
+        line = "; ".join(f"{t} {scored[t]['test']['rmse']:.3f} / {r['rmse']:.3f} / {r['rmse_batch']:.3f}"
+                         for t, r in streamed.items())
+        print(f"{out.name}: (run / replay / batch) {line}", flush=True)
+
+
+def main(argv: list[str]) -> int:
+    return run_commands(__doc__, {"write": write, "matrix": matrix}, argv, cpu=sys.stderr)
+
+
+if __name__ == "__main__":
+    raise SystemExit(main(sys.argv[1:]))

@@ -1,0 +1,59 @@
+"""What a stranger met on a horizontal boring mill's run files (stranger75, ``bench_stranger75.py``);
+each test fails on the code before its mend.  Small files written here: hours, not the bench's days."""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+import pytest
+import yaml
+
+from conftest import refused
+from thermocomp.core.io import read_dataset
+from thermocomp.shell.cli import main
+
+
+def boring_mill(rows: int = 180, seed: int = 75) -> pd.DataFrame:
+    """A boring mill's hours at 60 s: the headstock's height in mm (150-1850, a job at a time),
+    two temperatures, the Y error in µm."""
+    rng = np.random.default_rng(seed)
+    t = np.arange(rows) * 60.0
+    heat = 16 + 5 * (1 - np.exp(-t / 2400)) + rng.normal(0, 0.02, rows)
+    height = np.repeat(rng.integers(15, 186, rows // 30 + 1) * 10.0, 30)[:rows]
+    return pd.DataFrame({"Date/Time": pd.Timestamp("2027-10-27 06:00") + pd.to_timedelta(t, "s"),
+                         "Column (°C)": heat, "Air (°C)": 16 + 0.0002 * t,
+                         "Y head (mm)": height, "dY (µm)": (4.5 * (heat - 16)).round(2)})
+
+
+def _config(out) -> dict:
+    [path] = (out / "conf" / "data").glob("*.yaml")
+    return yaml.safe_load(path.read_text())
+
+
+def test_init_proposes_an_axis_travel_past_a_metre_as_a_state(tmp_path, capsys):
+    # before: 'Y head (mm)' up to 1850 mm, read as an error for a look at its span, was refused
+    # as an error of 1.85e6 µm beyond data.max_abs_error before init could propose it a state
+    path = tmp_path / "hbm.csv"
+    frame = boring_mill()
+    frame.to_csv(path, index=False)
+    assert main(["init", str(path), f"out={tmp_path / 'init'}"]) == 0
+    roles = _config(tmp_path / "init")["roles"]
+    assert "Y head" in roles["state"] and roles["error"] == ["dY"]
+    assert f"'Y head (mm)' spans {np.ptp(frame['Y head (mm)']):.4g} mm" in capsys.readouterr().out
+    # an error beyond the bound, no travel (an axis' reading, 1.2 m off), stays refused by
+    # init, as `run` refuses it
+    frame.assign(**{"dY (µm)": frame["dY (µm)"] + 1.2e6}).to_csv(path, index=False)
+    refused(["init", str(path), f"out={tmp_path / 'far'}"], capsys, "data.max_abs_error")
+
+
+def test_a_null_bound_switches_its_check_off_as_the_docs_say(tmp_path):
+    # before: data.max_abs_error=null (own-data.md: "Set a key to null to switch that check
+    # off") was read as its default, 1e6 µm
+    path = tmp_path / "hbm.csv"
+    boring_mill().to_csv(path, index=False)
+    roles = {"error": ["dY", "Y head"], "state": [], "ambient": [], "ignore": [], "time": "auto"}
+    with pytest.raises(Exception, match="max_abs_error"):
+        read_dataset(path, {"roles": roles, "test_fraction": 0.2})
+    ds, _ = read_dataset(path, {"roles": roles, "test_fraction": 0.2, "max_abs_error": None})
+    top = boring_mill()["Y head (mm)"].iloc[:len(ds.campaigns[ds.ids("train")[0]])].max()
+    assert ds.campaigns[ds.ids("train")[0]]["E_Y_head"].max() == pytest.approx(top * 1000.0)
