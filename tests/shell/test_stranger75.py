@@ -57,3 +57,40 @@ def test_a_null_bound_switches_its_check_off_as_the_docs_say(tmp_path):
     ds, _ = read_dataset(path, {"roles": roles, "test_fraction": 0.2, "max_abs_error": None})
     top = boring_mill()["Y head (mm)"].iloc[:len(ds.campaigns[ds.ids("train")[0]])].max()
     assert ds.campaigns[ds.ids("train")[0]]["E_Y_head"].max() == pytest.approx(top * 1000.0)
+
+
+SUMMARY = ("# --- run summary ---\n# start: 2027-10-27 06:00:00\n# stop: 2027-10-27 08:59:00\n"
+           "# samples: 180\n# max spindle speed: 3000 rpm\n# operator: M. Keller\n"
+           "# note: run 1, test mandrel 300 mm, probe checked\n")
+
+
+def test_a_block_of_comments_under_the_rows_is_left_out_and_said(tmp_path, caplog):
+    # before: "a '#' line among the rows, of other than the header's width: a comment?" -- a
+    # logger's seven-line run summary under its rows refused every run file
+    path = tmp_path / "hbm.csv"
+    frame = boring_mill()
+    path.write_text(frame.to_csv(index=False, lineterminator="\r\n") + SUMMARY.replace("\n", "\r\n"),
+                    encoding="utf-8")
+    roles = {"error": ["dY"], "state": ["Y head"], "ambient": [], "ignore": [], "time": "auto"}
+    with caplog.at_level("WARNING"):
+        ds, _ = read_dataset(path, {"roles": roles, "test_fraction": 0.2})
+    assert sum(len(f) for f in ds.campaigns.values()) == len(frame)
+    assert "footer left out (7 line(s) under the data: '# --- run summary ---')" in caplog.text
+    # a '#' line among the rows of a file that writes no comment is still refused
+    body = frame.to_csv(index=False).splitlines()
+    path.write_text("\n".join([*body[:50], "# tool change", *body[50:]]) + "\n", encoding="utf-8")
+    with pytest.raises(Exception, match="a '#' line among the rows"):
+        read_dataset(path, {"roles": roles, "test_fraction": 0.2})
+
+
+def test_init_leaves_a_loggers_weekday_out_and_says_so(tmp_path, capsys):
+    # before: 'Weekday' (ISO 1-7) was proposed the temperature T_Weekday without a word
+    path = tmp_path / "hbm.csv"
+    frame = boring_mill(rows=2 * 72)                # two days at 20 min, Friday to Sunday
+    frame["Date/Time"] = pd.Timestamp("2027-10-29 06:00") + pd.to_timedelta(np.arange(144) * 1200, "s")
+    frame.insert(1, "Weekday", frame["Date/Time"].dt.isocalendar().day.astype(int))
+    frame.to_csv(path, index=False)
+    assert main(["init", str(path), f"out={tmp_path / 'init'}"]) == 0
+    said = capsys.readouterr().out
+    assert _config(tmp_path / "init")["roles"]["ignore"] == ["Weekday"]
+    assert "'Weekday': the day of the week" in said and "T_Weekday" not in said

@@ -369,6 +369,34 @@ def flag_headers(ds, names: dict) -> list[str]:
     return flags
 
 
+# a logger's day of the week: ISO's 1 (Monday) ... 7 (Sunday), or a 0-6 count
+_WEEKDAY = re.compile(r"(iso[ _-]?)?(week[ _-]?day|day[ _-]?of[ _-]?(the[ _-]?)?week|dow|wochentag|"
+                      r"jour[ _-]?de[ _-]?la[ _-]?semaine|giorno[ _-]?della[ _-]?settimana)",
+                      re.IGNORECASE)
+
+
+def weekday_headers(ds, names: dict, opts) -> list[str]:
+    """The headers proposed as a temperature that name the day of the week (``Weekday``,
+    ``Wochentag``, ``DOW``) and hold whole numbers 0-7 over ``ds``: a calendar number, no
+    reading (stranger75: a logger's ISO weekday was read as the temperature ``T_Weekday``,
+    unsaid, and fitted: Monday's 1 after Sunday's 7 a step of 6 "K")."""
+    days = []
+    for header, name in names.items():
+        if not str(name).startswith("T_") or not _WEEKDAY.fullmatch(_unit_of(header, opts)[0].strip()):
+            continue
+        values = pd.concat([df[name] for df in ds.campaigns.values() if name in df]).dropna()
+        v = values.to_numpy(float)
+        if v.size and np.all(v == np.round(v)) and v.min() >= 0 and v.max() <= 7:
+            days.append(header)
+    return days
+
+
+def ignored(roles: dict, headers: list[str], opts) -> dict:
+    """``roles`` with each of ``headers`` left out (``data.roles.ignore``)."""
+    patterns = [_GLOB.sub(r"[\1]", _unit_of(h, opts)[0]) for h in headers]
+    return {**roles, "ignore": [*roles["ignore"], *patterns]}
+
+
 def flags_as_states(roles: dict, headers: list[str], opts) -> dict:
     """``roles`` with each of ``headers`` a state (out of the ambient and error patterns)."""
     roles = {k: (list(v) if isinstance(v, list) else v) for k, v in roles.items()}

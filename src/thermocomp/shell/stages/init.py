@@ -35,11 +35,13 @@ from ...core.io.detect import (
     flags_as_states,
     folder_manifest,
     head,
+    ignored,
     length_errors,
     proposed_campaign,
     proposed_roles,
     sample_file,
     travel_headers,
+    weekday_headers,
     without_own_names,
 )
 from ...core.io.historian import (
@@ -364,16 +366,19 @@ def _init(cfg: DictConfig) -> dict:
     # mm, was refused as an error of 1.85e6 µm before it could be proposed as a state)
     spans = length_errors(plan.names, asked.roles, opts)
     ds = open_source(cfg, detected={**config, "max_abs_error": None} if spans else config)
-    flags = flag_headers(ds, plan.names)        # 0 / 1 under a header that did not say a flag
+    days = weekday_headers(ds, plan.names, opts)  # a logger's day of the week: left out
+    # 0 / 1 under a header that did not say a flag (a weekday over two days is no flag)
+    flags = [h for h in flag_headers(ds, plan.names) if h not in days]
     travels = travel_headers(ds, plan.names, asked.roles, opts)   # an axis' position in mm
     undecided = [p for p in either if p in roles["error"] and not any(
         fnmatch.fnmatchcase(split_unit(h)[0], p) for h in travels)]
-    if flags or travels or undecided or beyond(ds, spans, asked.max_abs_error):
+    if flags or travels or undecided or days or beyond(ds, spans, asked.max_abs_error):
         # proposed as states, the record read once more (an error beyond its bound: refused)
         # (an axis' length of a thermal error's span stays unread: the reader asks which)
         roles = flags_as_states({**roles, "error": [p for p in roles["error"]
                                                     if p not in undecided]},
                                 [*flags, *travels], opts)
+        roles = ignored(roles, days, opts)
         plan = naming(header, roles, opts.columns, cells_of_first, opts.decimal,
                       sample, opts.units)
         config = data_config(src, given, opts, roles, defaults, manifest)
@@ -381,6 +386,9 @@ def _init(cfg: DictConfig) -> dict:
     if flags:
         print(f"{', '.join(map(repr, flags))}: only two values one apart (0 / 1) over the "
               "record: an on/off flag, proposed as a state (data.roles.state)")
+    if days:
+        print(f"{', '.join(map(repr, days))}: the day of the week (whole numbers 0-7), a "
+              "calendar number, not a temperature: left out (data.roles.ignore)")
     if travels:
         print("; ".join(f"{h!r} spans {span:.4g} mm" for h, span in travels.items())
               + f": more than a thermal error does ({TRAVEL_UM / 1000:g} mm), an axis position, "
