@@ -9,7 +9,8 @@ import pytest
 import yaml
 
 from conftest import refused
-from thermocomp.core.io import read_dataset
+from thermocomp.core.io import ReadOptions, read_dataset
+from thermocomp.core.io.stdin import read_stream
 from thermocomp.shell.cli import main
 
 
@@ -76,6 +77,12 @@ def test_a_block_of_comments_under_the_rows_is_left_out_and_said(tmp_path, caplo
         ds, _ = read_dataset(path, {"roles": roles, "test_fraction": 0.2})
     assert sum(len(f) for f in ds.campaigns.values()) == len(frame)
     assert "footer left out (7 line(s) under the data: '# --- run summary ---')" in caplog.text
+    # piped in as written, the stream reads it as the file reader does (it refused it)
+    roles_cfg = {"roles": roles, "timezone": None}
+    text = path.read_text(encoding="utf-8")
+    with caplog.at_level("WARNING"):
+        streamed, _ = read_stream(text, ["T_Column", "T_Air"], ReadOptions.from_cfg(roles_cfg))
+    assert len(streamed) == len(frame) and "<stdin>: footer left out (7 line(s)" in caplog.text
     # a '#' line among the rows of a file that writes no comment is still refused
     body = frame.to_csv(index=False).splitlines()
     path.write_text("\n".join([*body[:50], "# tool change", *body[50:]]) + "\n", encoding="utf-8")

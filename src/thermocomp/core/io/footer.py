@@ -16,7 +16,7 @@ import pyarrow as pa
 from .csvline import EMPTY, split_line
 from .encoding import UTF8
 
-_TAIL_BYTES = 1 << 14
+TAIL_BYTES = 1 << 14
 MAX_LINES = 5
 # a summary row's label (its first word, any case): a statistic a lab's export writes under
 # the data; a word else in a last row (``later``) stays a time or a value not read, refused
@@ -34,11 +34,20 @@ def footer(path: Path, delimiter: str, fields: int, encoding: str = UTF8
     if fields < 2:                         # one column: every line is one field
         return [], size
     with open(path, "rb") as f:
-        f.seek(max(0, size - _TAIL_BYTES))
+        f.seek(max(0, size - TAIL_BYTES))
         tail = f.read()
+    return footer_of(tail, size, delimiter, fields, encoding)
+
+
+def footer_of(tail: bytes, size: int, delimiter: str, fields: int, encoding: str = UTF8
+              ) -> tuple[list[str], int]:
+    """:func:`footer` of the last bytes ``tail`` of ``size`` (a file's, or a stream's whole:
+    a lab's run file piped into ``monitor monitor.input=-`` reads as the file reader reads it)."""
+    if fields < 2:
+        return [], size
     lines = tail.splitlines(keepends=True)
     found, cut, above, summary, comments = [], size, "", False, 0
-    for raw in reversed(lines[1:] if size > _TAIL_BYTES else lines):
+    for raw in reversed(lines[1:] if size > TAIL_BYTES else lines):
         text = raw.decode(encoding, "replace").strip()
         if text and not any(c.strip() for c in split_line(text, delimiter, EMPTY)):
             text = ""       # a row of empty cells (a sheet's empty row above its summary rows)
