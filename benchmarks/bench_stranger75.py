@@ -1,6 +1,7 @@
 """A stranger's pass on a horizontal boring mill and its lab's run files (stranger75).
 
     PYTHONPATH=$PWD/src .venv/bin/python benchmarks/bench_stranger75.py write ROOT SEED
+    PYTHONPATH=$PWD/src .venv/bin/python benchmarks/bench_stranger75.py faults ROOT SEED
     PYTHONPATH=$PWD/src .venv/bin/python benchmarks/bench_stranger75.py matrix ROOT SEED CONF
 
 The machine is ``benchmarks/hbm75.py`` (a table-type horizontal boring mill: the headstock's
@@ -26,6 +27,7 @@ from __future__ import annotations
 import json
 import subprocess
 import sys
+from io import StringIO
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
@@ -76,6 +78,35 @@ def write(root: str, seed: str) -> None:
         print(f"wrote {path} ({len(lab)} rows)")
 
 
+def faults(root: str, seed: str) -> None:
+    """``ROOT/fault_<kind>_<SEED>.csv``: the test run's file (the last) as written, one fault in
+    each: ``stuck`` (Quill front frozen from row 300), ``jump`` (+2 K on Column head from row
+    600), ``drift`` (Gearbox +1 K/h from row 400), ``nan`` (20 empty cells of Headstock L)."""
+    import pandas as pd
+
+    folder = Path(root) / f"hbm{seed}"
+    path = sorted(folder.glob("HBM160_*.csv"))[-1]
+    text = path.read_text(encoding="utf-8")
+    body, block = text[:text.index("#")], text[text.index("#"):]
+    f = pd.read_csv(StringIO(body), dtype=str, keep_default_na=False)
+
+    def shifted(column, start, by):
+        out = f.copy()
+        out.loc[start:, column] = (out.loc[start:, column].astype(float) + by).round(2).astype(str)
+        return out
+    stuck = f.copy()
+    stuck.loc[300:, "Quill front (°C)"] = stuck.at[300, "Quill front (°C)"]
+    nan = f.copy()
+    nan.loc[700:719, "Headstock L (°C)"] = ""
+    ramp = (pd.Series(range(len(f))) - 400).clip(lower=0) / 60.0
+    cases = {"stuck": stuck, "jump": shifted("Column head (°C)", 600, 2.0),
+             "drift": shifted("Gearbox (°C)", 0, ramp.to_numpy()), "nan": nan}
+    for kind, frame in cases.items():
+        out = Path(root) / f"fault_{kind}_{seed}.csv"
+        out.write_text(frame.to_csv(index=False, lineterminator="\r\n") + block, encoding="utf-8")
+        print(f"wrote {out}")
+
+
 def matrix(root: str, seed: str, conf: str) -> None:
     """``run`` -> ``replay`` -> ``promote`` per family on the data config ``conf`` (init's)."""
     root_p, conf_p = Path(root).resolve(), Path(conf).resolve()
@@ -102,7 +133,8 @@ def matrix(root: str, seed: str, conf: str) -> None:
 
 
 def main(argv: list[str]) -> int:
-    return run_commands(__doc__, {"write": write, "matrix": matrix}, argv, cpu=sys.stderr)
+    return run_commands(__doc__, {"write": write, "faults": faults, "matrix": matrix}, argv,
+                        cpu=sys.stderr)
 
 
 if __name__ == "__main__":
