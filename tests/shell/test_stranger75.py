@@ -8,7 +8,7 @@ import pandas as pd
 import pytest
 import yaml
 
-from conftest import refused
+from conftest import FAST, refused
 from thermocomp.core.io import ReadOptions, read_dataset
 from thermocomp.core.io.stdin import read_stream
 from thermocomp.shell.cli import main
@@ -101,3 +101,11 @@ def test_init_leaves_a_loggers_weekday_out_and_says_so(tmp_path, capsys):
     said = capsys.readouterr().out
     assert _config(tmp_path / "init")["roles"]["ignore"] == ["Weekday"]
     assert "'Weekday': the day of the week" in said and "T_Weekday" not in said
+    # `run` by roles alone (no init) says it, where it read it silently
+    common = ["run", f"data.path={path}", "data.roles.error=[dY]", "data.roles.state=[Y head]",
+              "data.test_fraction=0.2", *FAST, "plots=none", "track=false"]
+    assert main([*common, f"out={tmp_path / 'run'}"]) == 0
+    assert ("'Weekday' (T_Weekday) names the day of the week (whole numbers 0-7): a calendar number "
+            "read as a temperature; data.roles.ignore=['Weekday']") in capsys.readouterr().err
+    assert main([*common, "data.roles.ignore=[Weekday]", f"out={tmp_path / 'quiet'}"]) == 0
+    assert "day of the week" not in capsys.readouterr().err
