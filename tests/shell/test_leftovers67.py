@@ -141,6 +141,23 @@ def test_the_compiled_stream_leaves_a_comment_out_of_a_file_that_writes_them(lab
 
 
 @needs_cc
+def test_the_compiled_stream_leaves_a_block_of_comments_under_the_rows_out(lab_stream):
+    # (stranger75) before: "line 182 has not 6 cells: a '#' line among the rows" -- a logger's
+    # run summary under the rows of a file that writes no comment, which the reader leaves out
+    stream, _, plain = lab_stream
+    text = sorted(plain.glob("*.csv"))[-1].read_text()
+    want = _streamed(stream, text)
+    block = "# --- run summary ---\n# samples: 180\n\n# note: run 6, mandrel 300 mm, checked\n"
+    got = _streamed(stream, text + block)
+    assert got.returncode == 0 and got.stdout == want.stdout, got.stderr
+    assert "stream: lines 182-185: a '#' block under the rows (a logger's summary): left out" in got.stderr
+    lines = text.splitlines(keepends=True)        # a row after it: refused at the '#' line
+    got = _streamed(stream, "".join(lines[:-1]) + block + lines[-1])
+    assert got.returncode == 2
+    assert "stream: line 181 has not 6 cells: a '#' line among the rows: a comment?" in got.stderr
+
+
+@needs_cc
 def test_the_compiled_stream_names_the_files_own_line_as_the_reader_does(lab_stream, tmp_path,
                                                                          capsys):
     # before: the rows were counted from the header ("row 21: input T_Bed: 'n.v.' is no

@@ -83,27 +83,37 @@ def open_source(cfg: DictConfig, *, stream: bool = False, ingested: bool = False
     else:
         ds = open_dataset(root, data_options(cfg), stream=stream, campaigns=campaigns,
                           digest=digest)
-        said_travels(cfg, ds)
+        said_misread(cfg, ds)
     resolve_reference(cfg, ds)
     return ds
 
 
-def said_travels(cfg: DictConfig, ds) -> None:
-    """Warn of each column read as an error by its length unit alone whose values span an
-    axis' travel (:func:`~thermocomp.core.io.detect.travel_headers`; ``init`` proposes it a
-    state): stranger64's ``Z ram [mm]``, 0-800 mm, scored as a thermal error of 0.8 m."""
-    from ..core.io.detect import TRAVEL_UM, travel_headers
+def said_misread(cfg: DictConfig, ds) -> None:
+    """Warn of each column a role read by its unit alone as what it is not, as ``init`` would
+    propose it: an error whose values span an axis' travel
+    (:func:`~thermocomp.core.io.detect.travel_headers`; stranger64's ``Z ram [mm]``, 0-800 mm,
+    scored as a thermal error of 0.8 m), a temperature naming the day of the week
+    (:func:`~thermocomp.core.io.detect.weekday_headers`; stranger75's ``Weekday``, 1-7)."""
+    from ..core.io.detect import TRAVEL_UM, travel_headers, weekday_headers
 
     names = ds.meta.get("column_map") or {}
     if not names:
         return
     opts = io.ReadOptions.from_cfg(data_options(cfg))
     for header, span in travel_headers(ds, names, opts.roles, opts).items():
-        base = header.split(" [")[0].split(" (")[0]
         logger.warning(f"{header!r} ({names[header]}), an error by its unit, spans {span:.4g} mm "
                        f"over the record, more than a thermal error does ({TRAVEL_UM / 1000:g} "
-                       f"mm): an axis position? data.roles.state=[{base!r}] (thermocomp init "
-                       "proposes it)")
+                       f"mm): an axis position? data.roles.state=[{_base(header)!r}] (thermocomp "
+                       "init proposes it)")
+    for header in weekday_headers(ds, names, opts):
+        logger.warning(f"{header!r} ({names[header]}) names the day of the week (whole numbers "
+                       f"0-7): a calendar number read as a temperature; data.roles.ignore="
+                       f"[{_base(header)!r}] leaves it out (thermocomp init does)")
+
+
+def _base(header: str) -> str:
+    """``header`` without its unit (``Z ram [mm]``: ``Z ram``), as a role pattern names it."""
+    return header.split(" [")[0].split(" (")[0]
 
 
 def calibration_of(ds: io.Dataset):

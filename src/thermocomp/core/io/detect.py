@@ -394,6 +394,34 @@ def flag_headers(ds, names: dict) -> list[str]:
     return flags
 
 
+# a logger's day of the week: ISO's 1 (Monday) ... 7 (Sunday), or a 0-6 count
+_WEEKDAY = re.compile(r"(iso[ _-]?)?(week[ _-]?day|day[ _-]?of[ _-]?(the[ _-]?)?week|dow|wochentag|"
+                      r"jour[ _-]?de[ _-]?la[ _-]?semaine|giorno[ _-]?della[ _-]?settimana)",
+                      re.IGNORECASE)
+
+
+def weekday_headers(ds, names: dict, opts) -> list[str]:
+    """The headers proposed as a temperature that name the day of the week (``Weekday``,
+    ``Wochentag``, ``DOW``) and hold whole numbers 0-7 over ``ds``: a calendar number, no
+    reading (stranger75: a logger's ISO weekday was read as the temperature ``T_Weekday``,
+    unsaid, and fitted: Monday's 1 after Sunday's 7 a step of 6 "K")."""
+    days = []
+    for header, name in names.items():
+        if not str(name).startswith("T_") or not _WEEKDAY.fullmatch(_unit_of(header, opts)[0].strip()):
+            continue
+        values = pd.concat([df[name] for df in ds.campaigns.values() if name in df]).dropna()
+        v = values.to_numpy(float)
+        if v.size and np.all(v == np.round(v)) and v.min() >= 0 and v.max() <= 7:
+            days.append(header)
+    return days
+
+
+def ignored(roles: dict, headers: list[str], opts) -> dict:
+    """``roles`` with each of ``headers`` left out (``data.roles.ignore``)."""
+    patterns = [_GLOB.sub(r"[\1]", _unit_of(h, opts)[0]) for h in headers]
+    return {**roles, "ignore": [*roles["ignore"], *patterns]}
+
+
 def flags_as_states(roles: dict, headers: list[str], opts) -> dict:
     """``roles`` with each of ``headers`` a state (out of the ambient and error patterns)."""
     roles = {k: (list(v) if isinstance(v, list) else v) for k, v in roles.items()}
@@ -425,19 +453,24 @@ def travel_headers(ds, names: dict, given_roles: dict, opts) -> dict:
     whose values span more than :data:`TRAVEL_UM` over ``ds``: an axis position, not a thermal
     error (stranger64: a portal mill's ``Z ram [mm]``, 0-800 mm, was proposed the error
     ``E_Z_ram``)."""
-    given = {k: list(v) for k, v in given_roles.items() if k == "error" and isinstance(v, list)}
     out = {}
-    for header, name in names.items():
-        if not str(name).startswith("E_") or role(header) == "E" or (
-                given and matching_roles(header, given)):
-            continue
-        if role_by_unit(*_unit_of(header, opts)) not in ("error", AMBIGUOUS):
-            continue
+    for header, name in length_errors(names, given_roles, opts).items():
         values = pd.concat([df[name] for df in ds.campaigns.values() if name in df]).dropna()
         span = float(values.max() - values.min()) if len(values) else 0.0
         if span > TRAVEL_UM:
             out[header] = span / 1000.0
     return out
+
+
+def length_errors(names: dict, given_roles: dict, opts) -> dict:
+    """Header -> contract name of each header proposed as an error by its length unit alone
+    (no ``data.roles.error`` pattern of the user names it): an error or an axis' position,
+    which :func:`travel_headers` tells apart by its span once read."""
+    given = {k: list(v) for k, v in given_roles.items() if k == "error" and isinstance(v, list)}
+    return {header: name for header, name in names.items()
+            if str(name).startswith("E_") and role(header) != "E"
+            and not (given and matching_roles(header, given))
+            and role_by_unit(*_unit_of(header, opts)) in ("error", AMBIGUOUS)}
 
 
 def _named(header: str, roles: dict, opts) -> bool:

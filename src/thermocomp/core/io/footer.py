@@ -1,7 +1,8 @@
 """A footer under a lab's CSV export (``End of data``, ``Stop 13:45``): the last lines of one
 field of text, left out (and said), where every line above holds the header's fields; so are
 summary rows (messy58: ``Mittelwert;25,3;...``, a statistic's word then numbers) under rows
-whose first cell holds a digit (a time, a number).  A last
+whose first cell holds a digit (a time, a number), and a block of ``#`` comments under the rows
+(stranger75), however many lines (:data:`MAX_LINES` bounds the others).  A last
 line of numbers cut short stays a malformed row, refused with its row."""
 
 from __future__ import annotations
@@ -15,7 +16,7 @@ import pyarrow as pa
 from .csvline import EMPTY, split_line
 from .encoding import UTF8
 
-_TAIL_BYTES = 1 << 14
+TAIL_BYTES = 1 << 14
 MAX_LINES = 5
 # a summary row's label (its first word, any case): a statistic a lab's export writes under
 # the data; a word else in a last row (``later``) stays a time or a value not read, refused
@@ -33,20 +34,31 @@ def footer(path: Path, delimiter: str, fields: int, encoding: str = UTF8
     if fields < 2:                         # one column: every line is one field
         return [], size
     with open(path, "rb") as f:
-        f.seek(max(0, size - _TAIL_BYTES))
+        f.seek(max(0, size - TAIL_BYTES))
         tail = f.read()
+    return footer_of(tail, size, delimiter, fields, encoding)
+
+
+def footer_of(tail: bytes, size: int, delimiter: str, fields: int, encoding: str = UTF8
+              ) -> tuple[list[str], int]:
+    """:func:`footer` of the last bytes ``tail`` of ``size`` (a file's, or a stream's whole:
+    a lab's run file piped into ``monitor monitor.input=-`` reads as the file reader reads it)."""
+    if fields < 2:
+        return [], size
     lines = tail.splitlines(keepends=True)
-    found, cut, above, summary = [], size, "", False
-    for raw in reversed(lines[1:] if size > _TAIL_BYTES else lines):
+    found, cut, above, summary, comments = [], size, "", False, 0
+    for raw in reversed(lines[1:] if size > TAIL_BYTES else lines):
         text = raw.decode(encoding, "replace").strip()
         if text and not any(c.strip() for c in split_line(text, delimiter, EMPTY)):
             text = ""       # a row of empty cells (a sheet's empty row above its summary rows)
-        if text and not _footer_line(text, delimiter):
+        comment = _comment_line(text, delimiter, fields)
+        if text and not comment and not _footer_line(text, delimiter):
             if not _summary_line(text, delimiter):
                 above = text
                 break
             summary = True
-        if len(found) == MAX_LINES:
+        comments += comment
+        if len(found) - comments == MAX_LINES:
             return [], size
         cut -= len(raw)
         if text:
@@ -62,6 +74,14 @@ def source(path: Path, cut: int | None):
     if cut is None or cut >= path.stat().st_size:
         return path
     return pa.BufferReader(pa.memory_map(str(path)).read_buffer(cut))
+
+
+def _comment_line(text: str, delimiter: str, fields: int) -> bool:
+    """A ``#`` line of other than the header's width: no row (Excel's ``#N/A`` in a row's first
+    cell keeps the row's width), a logger's run summary under its rows (stranger75: seven
+    ``# start: ...``, ``# note: run 4, test mandrel 300 mm`` lines, refused as a '#' line among
+    the rows); any number of them, their commas too."""
+    return text.startswith("#") and len(split_line(text, delimiter, EMPTY)) != fields
 
 
 def _footer_line(text: str, delimiter: str) -> bool:

@@ -53,8 +53,8 @@ class ReadOptions:
     resample_s: float | None = None
     kelvin_threshold_c: float = 200.0
     fahrenheit_threshold_c: float | None = 45.0
-    max_abs_error: float = 1e6
-    max_abs_state: float = 1e9
+    max_abs_error: float | None = 1e6
+    max_abs_state: float | None = 1e9
     max_period_ratio: float | None = 100.0
     max_duration_days: float | None = 366.0
     max_resample_factor: float = 10.0
@@ -116,8 +116,8 @@ class ReadOptions:
             resample_s=_positive_float(cfg, "resample_s"),
             kelvin_threshold_c=_float(cfg, "kelvin_threshold_c", 200.0),
             fahrenheit_threshold_c=_float(cfg, "fahrenheit_threshold_c", 45.0, nullable=True),
-            max_abs_error=_positive_float(cfg, "max_abs_error", 1e6),
-            max_abs_state=_positive_float(cfg, "max_abs_state", 1e9),
+            max_abs_error=_positive_float(cfg, "max_abs_error", 1e6, nullable=True),
+            max_abs_state=_positive_float(cfg, "max_abs_state", 1e9, nullable=True),
             max_period_ratio=_positive_float(cfg, "max_period_ratio", 100.0, nullable=True),
             max_duration_days=_positive_float(cfg, "max_duration_days", 366.0, nullable=True),
             max_resample_factor=_positive_float(cfg, "max_resample_factor", 10.0),
@@ -268,7 +268,9 @@ def _missing_values(cfg: Mapping) -> list:
     value = [value] if isinstance(value, (str, int, float)) else value
     value = [str(v) if isinstance(v, (int, float)) and not isinstance(v, bool) else v
              for v in value]
-    beyond = max(_positive_float(cfg, "max_abs_error", 1e6), _positive_float(cfg, "max_abs_state", 1e9))
+    # (a bound switched off, null: a mark is beyond the other's, or its default's)
+    beyond = max(_positive_float(cfg, "max_abs_error", 1e6, nullable=True) or 1e6,
+                 _positive_float(cfg, "max_abs_state", 1e9, nullable=True) or 1e9)
     if not all(isinstance(v, str) and v.strip() and (not any_number(v) or is_number_mark(v, beyond))
                for v in value):
         raise ContractError(f"data.missing_values must be a list of marks that are no number "

@@ -30,6 +30,7 @@ from .contract import ContractError
 from .csvline import EMPTY, SPLIT, split_line
 from .derived import on_frame
 from .encoding import UTF8, check_text, text_codec
+from .footer import TAIL_BYTES, footer_of
 from .layout import (
     MAX_PROPERTY_ROWS,
     header_line,
@@ -46,7 +47,7 @@ from .runs import run_blocks, run_values
 from .separators import UNICODE_MINUS, grouped
 from .slashed import stream_format
 from .sniff import SNIFF_LINES, detected
-from .tables import MISSING_TOKENS, NO_TIME_COLUMN, first_cast_failure
+from .tables import MISSING_TOKENS, NO_TIME_COLUMN, first_cast_failure, shortened
 from .timestamps import (
     CLOCK,
     ELAPSED,
@@ -246,7 +247,7 @@ def _table(text: str, sep: str) -> str:
     campbell = has_unit_row(lines)          # (a TOA5 file's units, in its own words)
     units = len(lines) > start + 1 and (
         campbell or is_unit_row(split_line(lines[start + 1], sep, EMPTY)))
-    text = _without_again(text, start, units, sep)
+    text = _without_again(_without_footer(text, lines, start, sep), start, units, sep)
     lines = text.splitlines()
     if not lines:
         return text
@@ -264,6 +265,21 @@ def _table(text: str, sep: str) -> str:
     out = StringIO()
     csv.writer(out, delimiter=sep, lineterminator="\n").writerow(header)
     return out.getvalue() + "\n".join(body) + "\n"
+
+
+def _without_footer(text: str, lines: list[str], start: int, sep: str) -> str:
+    """``text`` without the footer under its rows (a logger's ``#`` run summary, ``End of
+    data``), left out and said as the file reader says it (stranger75: the run file the
+    reader read was refused on stdin, "a '#' line among the rows")."""
+    if len(lines) <= start:
+        return text
+    data = text.encode()
+    said, cut = footer_of(data[-TAIL_BYTES:], len(data), sep, len(split_line(lines[start], sep, EMPTY)))
+    if not said:
+        return text
+    logger.warning(f"{SOURCE}: footer left out ({len(said)} line(s) under the data: "
+                   f"{shortened(said[0])!r})")
+    return data[:cut].decode()
 
 
 def _without_again(text: str, start: int, units: bool, sep: str) -> str:

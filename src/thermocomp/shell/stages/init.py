@@ -36,11 +36,14 @@ from ...core.io.detect import (
     folder_manifest,
     foreign_said,
     head,
+    ignored,
+    length_errors,
     proposed_campaign,
     proposed_roles,
     sample_file,
     stated_units,
     travel_headers,
+    weekday_headers,
     without_own_names,
 )
 from ...core.io.encoding import UTF8
@@ -270,6 +273,13 @@ def config_name(name: str) -> str:
     return safe if read == safe else f"data_{safe}"
 
 
+def beyond(ds, names: dict, limit: float | None) -> bool:
+    """A column of ``names`` (header -> contract name) holds a value beyond ``limit``."""
+    return limit is not None and any(
+        float(np.nanmax(np.abs(df[n].to_numpy(float)), initial=0.0)) > limit
+        for df in ds.campaigns.values() for n in names.values() if n in df)
+
+
 def init(cfg: DictConfig) -> dict:
     """Detect, propose, check by reading, write ``<out>/conf/data/<name>.yaml``; print the run
     command.  A volumetric folder of one distance per row is refused as ``calibrate`` refuses
@@ -376,16 +386,24 @@ def _init(cfg: DictConfig) -> dict:
     if pair is not None and not pair.same_separators:   # each logger's file its own: detected
         opts = replace(opts, delimiter="auto", decimal="auto")
     config = data_config(src, given, opts, roles, defaults, manifest)
-    ds = open_source(cfg, detected=config)      # refused here as `run` would refuse it
-    flags = flag_headers(ds, plan.names)        # 0 / 1 under a header that did not say a flag
+    # refused here as `run` would refuse it; a length read as an error for a look at its span
+    # is not held to data.max_abs_error (stranger75: a boring mill's `Y head (mm)`, 150-1850
+    # mm, was refused as an error of 1.85e6 µm before it could be proposed as a state)
+    spans = length_errors(plan.names, asked.roles, opts)
+    ds = open_source(cfg, detected={**config, "max_abs_error": None} if spans else config)
+    days = weekday_headers(ds, plan.names, opts)  # a logger's day of the week: left out
+    # 0 / 1 under a header that did not say a flag (a weekday over two days is no flag)
+    flags = [h for h in flag_headers(ds, plan.names) if h not in days]
     travels = travel_headers(ds, plan.names, asked.roles, opts)   # an axis' position in mm
     undecided = [p for p in either if p in roles["error"] and not any(
         fnmatch.fnmatchcase(split_unit(h)[0], p) for h in travels)]
-    if flags or travels or undecided:           # proposed as states, the record read once more
+    if flags or travels or undecided or days or beyond(ds, spans, asked.max_abs_error):
+        # proposed as states, the record read once more (an error beyond its bound: refused)
         # (an axis' length of a thermal error's span stays unread: the reader asks which)
         roles = flags_as_states({**roles, "error": [p for p in roles["error"]
                                                     if p not in undecided]},
                                 [*flags, *travels], opts)
+        roles = ignored(roles, days, opts)
         plan = naming(header, roles, opts.columns, cells_of_first, opts.decimal,
                       sample, opts.units)
         config = data_config(src, given, opts, roles, defaults, manifest)
@@ -393,6 +411,9 @@ def _init(cfg: DictConfig) -> dict:
     if flags:
         print(f"{', '.join(map(repr, flags))}: only two values one apart (0 / 1) over the "
               "record: an on/off flag, proposed as a state (data.roles.state)")
+    if days:
+        print(f"{', '.join(map(repr, days))}: the day of the week (whole numbers 0-7), a "
+              "calendar number, not a temperature: left out (data.roles.ignore)")
     if travels:
         print("; ".join(f"{h!r} spans {span:.4g} mm" for h, span in travels.items())
               + f": more than a thermal error does ({TRAVEL_UM / 1000:g} mm), an axis position, "

@@ -814,6 +814,7 @@ int main(int argc, char **argv) {
     static char stamp[2 * MAX_CELL + 2];
     int ambient_col = -1;
     int said_back = 0;         /* rows said whose time is not after the last read */
+    long footer_at = 0;        /* the first line of a `#` block under the rows (0: none yet) */
     int sampled = 0;           /* a sample row read (rows describing channels are above it) */
     int unit_rowed = 0;        /* a unit row under the header (rows describing channels: below) */
     double ambient = NAN;      /* --ambient: a campaign's initial ambient (TC_AMBIENT_GIVEN) */
@@ -1041,6 +1042,22 @@ int main(int argc, char **argv) {
             && described(line, where, time_col))
             continue;
         strcpy(row_raw, line);
+        /* (stranger75) a `#` line of other than the header's width: a logger's run summary
+           under the rows, left out where only `#` lines (or blank ones) follow it, as the
+           reader leaves a footer out; a row after it: refused at the `#` line, as before */
+        if (line[strspn(line, " \t")] == '#' && split(row_raw, cells) != ncols) {
+            if (!footer_at) footer_at = row;
+            strcpy(row_raw, line);
+            continue;
+        }
+        if (footer_at && line[strspn(line, " \t\r\n")] == '\0') continue;
+        if (footer_at) {
+            fprintf(stderr, "stream: line %ld has not %d cells: a '#' line among the rows: a "
+                    "comment? a '#' line is left out as one only in a file that writes '#' "
+                    "comments (its lines above the header, or its header itself), or in a block "
+                    "under the rows\n", footer_at, ncols);
+            return 2;
+        }
         if (line[strspn(line, " \t\r\n")] == '\0') {
             restart(&s, 1);
             if (!saved(state_path, state_tmp, &s, run)) return 2;
@@ -1048,10 +1065,7 @@ int main(int argc, char **argv) {
         }
         sampled = 1;
         if (split(line, cells) != ncols) {
-            fprintf(stderr, "stream: line %ld has not %d cells%s\n", row, ncols,
-                    line[strspn(line, " \t")] == '#' ? ": a '#' line among the rows: a comment? "
-                    "a '#' line is left out as one only in a file that writes '#' comments (its "
-                    "lines above the header, or its header itself)" : "");
+            fprintf(stderr, "stream: line %ld has not %d cells\n", row, ncols);
             return 2;
         }
         if (reset_col >= 0 && value(cells[reset_col], &ignored) == 1.0) restart(&s, 1);
@@ -1147,6 +1161,9 @@ int main(int argc, char **argv) {
         if (measured) tc_reference(&s, e);
         if (!saved(state_path, state_tmp, &s, run)) return 2;
     }
+    if (footer_at)
+        fprintf(stderr, "stream: lines %ld-%ld: a '#' block under the rows (a logger's summary): "
+                "left out\n", footer_at, row);
     return check_.f != NULL ? check_end(row) : 0;
 }
 """
