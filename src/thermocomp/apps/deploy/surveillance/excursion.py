@@ -8,13 +8,16 @@ linear in the readings).  A sensor out of band whose error is a share of its ris
 it was that long ago (the error hovers, or grows with the field) shows a regime training never
 held; one whose error outgrows its rise (``EXCURSION_GROWTH``) shows a fault: a drift, a leak, a
 sensor frozen while the field moves.  A lathe's steady 5000 rpm put ``T_Tool_holder_1`` just
-past its band within 25 min and held it there for 24 h (mon73)."""
+past its band within 25 min and held it there for 24 h (mon73).  A culprit between its warning
+and alarm bands whose own reading did not lead its error, or whose error hovers, was left by the
+field (drift74): a grinder's healthy bed, predicted from a column that a spindle hotter than
+training warmed, read -1.2 °C against its 1.23 °C band for 11 h."""
 
 from __future__ import annotations
 
 import numpy as np
 
-from .states import EXCURSION_GROWTH, EXCURSION_TAU_S, WARNING
+from .states import EXCURSION_GROWTH, EXCURSION_TAU_S, READMIT, WARNING
 
 
 class Excursion:
@@ -68,3 +71,40 @@ class Excursion:
         now = np.abs(err[out]) * np.abs(self._slow[out])
         then = np.maximum(past[out] * np.sign(err[out]), 0.0) * rise[out]
         return bool(np.all(now <= EXCURSION_GROWTH * then))
+
+    def _own_excursions(self, err: np.ndarray) -> np.ndarray:
+        """Per sensor, whether its excursion since ``EXCURSION_TAU_S`` ago (the memory) is its
+        own: its reading moved toward its error's side and its error on that side outgrew
+        ``EXCURSION_GROWTH`` x the memory's.  A drift does both (it moves the faulty reading
+        itself, and its error keeps growing); a healthy sensor the field left does not.  All
+        False where the memory is not known."""
+        if not self._slow_ok or not np.isfinite(self._slow_t):
+            return np.zeros(len(self.names), dtype=bool)
+        rows = self._hist[self._recent[self._pos, :min(self._count, self.confirm)]]
+        side = np.sign(np.nan_to_num(err))
+        with np.errstate(invalid="ignore"):      # (an excluded or unjudged sensor: NaN, False)
+            moved = side * (np.nanmean(rows, axis=0) - self._slow)
+            past = (self._slow - self._M @ self._slow[self._active]) * self._scale
+            return (moved > 0) & (side * err > EXCURSION_GROWTH * np.maximum(side * past, 0.0))
+
+    def _left_by_field(self, j: int, level: np.ndarray, err: np.ndarray) -> bool:
+        """Whether ``j``, out of its warning band but within its alarm band, was left by the
+        field: its excursion is not its own (:meth:`_own_excursions`).  False where the memory
+        is not known."""
+        return (level[j] == WARNING and self._slow_ok and bool(np.isfinite(self._slow_t))
+                and not self._own_excursions(err)[j])
+
+    def _drifting_instead(self, j: int, z: np.ndarray, err: np.ndarray) -> int | None:
+        """The sensor whose drift left ``j`` (:meth:`_left_by_field`), if one: judged, its
+        excursion its own, its error beyond ``READMIT`` of its warning band, and with it out
+        every other judged sensor, ``j`` included, within band (:meth:`_resolves`); of several,
+        the largest self-prediction error ``z`` first.  A 1 K/h drift of a spindle's motor
+        sensor left its coupled partner (T_motor1 -1.26 x its band, T_motor2 0.85-1.09 x its own,
+        grown 2.9-5.0 x): holding the partner had delayed the motor's exclusion 1-2 samples."""
+        own = self._own_excursions(err) & self._judged
+        own &= np.abs(np.nan_to_num(err)) >= READMIT * self.warning_c
+        own[j] = False
+        for k in np.argsort(-z):
+            if own[k] and self._resolves(int(k)):
+                return int(k)
+        return None
