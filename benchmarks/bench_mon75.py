@@ -11,7 +11,8 @@ the fresh seeds 7521-7530 exported the same way) and ``ROOT`` (default ``/tmp/mo
 bench_drift74's line (RMSE fixed -> adaptive per target, exclusions, drift exclusions); ``faults``
 bench_mon74's (``T_spindle`` 40 samples missing, dead, stuck); ``drift`` the drifts: 1 K/h on the
 grinder's ``T_base`` from 20 h of seed 7432, either way (the monitor alone, fitted as in
-``tests/apps/test_monitor_drift74.py``: hours to its exclusion), and tests/shell/test_monitor.py's
+``tests/apps/test_monitor_drift74.py``: the hours of its exclusions to 26 h, whether out at
+22.5 h), and tests/shell/test_monitor.py's
 ``[drift]`` case, 1 K/h on the most influential sensor of the default scenario (``DEFAULT``: a
 ``thermocomp simulate`` of it; ``mlr``): per test campaign, samples from onset to the sensor's first
 exclusion and the adaptive / healthy RMSE ratios (the test's bar: 1.5).
@@ -52,9 +53,10 @@ Bar (written before scoring; the rule is kept only if every point holds, else sr
 1. ``healthy``, the 40 seeds: no record's adaptive RMSE above 1.05 x fixed on either target, and no
    record with more exclusions (false fault events: every sensor is healthy) than shipped.
 2. Faults, none caught later or worse than shipped by > 2 %: ``faults`` (adaptive RMSE, each
-   target); ``bench_deploy_faults.py`` (every printed figure); ``drift``: the bed's exclusion hour
-   (either sign) no later than shipped, the motor drift's first exclusion no later than shipped
-   on any campaign and its ratios no worse than shipped by > 2 %.
+   target); ``bench_deploy_faults.py`` (every printed figure); ``drift``: the bed out at
+   22.5 h (either sign; shipped: out since its false exclusion at 16.09 h), the motor drift's
+   first exclusion no later than shipped on any campaign and its ratios no worse than shipped by
+   > 2 %.
 3. ``bench_monitor_healthy.py``: no healthy figure worse than shipped (events, exclusions,
    adaptive ΣRMSE², worst ratio), on the record x model pairs that run in the time.
 4. ``tests/shell/test_monitor*.py`` and ``tests/apps/test_monitor*.py`` pass (xfails stay xfail).
@@ -85,8 +87,9 @@ def healthy(sim: str = SIM, root: str = ROOT, seeds: str = "") -> None:
     drift74_healthy(sim, root, seeds or ",".join(map(str, (*SEEDS, *FRESH))))
 
 
-def _bed(rate: float) -> float | None:
-    """Hours to the first ``T_base`` exclusion of seed 7432 with ``rate`` K/h on it from 20 h."""
+def _bed(rate: float) -> tuple[list[float], bool]:
+    """Seed 7432 with ``rate`` K/h on ``T_base`` from 20 h, the monitor alone: the hours of its
+    exclusions up to 26 h, and whether it is out at 22.5 h (test_monitor_drift74's bar)."""
     from vgm73 import Vgm73
 
     from thermocomp.apps.deploy.surveillance import SensorMonitor
@@ -100,13 +103,16 @@ def _bed(rate: float) -> float | None:
     names = [c for c in train.columns if c.startswith("T_")]
     mon = SensorMonitor.from_training(None, names, {"rec": train[names].to_numpy(float)[
         :int(0.9 * len(train))]}, **MONITOR)
-    X = service[names].to_numpy(float)
+    X = service[names].to_numpy(float).copy()
     t = 15.0 * np.arange(len(X))
     X[:, names.index("T_base")] += rate * np.clip(t - 20 * 3600.0, 0, None) / 3600.0
+    out, at = [], False
     for x, time in zip(X[t < 26 * 3600], t):
-        if any(e["sensor"] == "T_base" and e["to"] == "excluded" for e in mon.update(x, time)[1]):
-            return time / 3600
-    return None
+        out += [time / 3600 for e in mon.update(x, time)[1]
+                if e["sensor"] == "T_base" and e["to"] == "excluded"]
+        if time == 22.5 * 3600:
+            at = "T_base" in mon.excluded
+    return out, at
 
 
 def _motor(default: str) -> None:
@@ -149,9 +155,10 @@ def drift(default: str = DEFAULT) -> None:
     """The bed's drift on the grinder (either way), then the motor drift of test_monitor."""
     start = cpu_seconds()
     for rate in (1.0, -1.0):
-        got = _bed(rate)
+        hours, out = _bed(rate)
         print(f"T_base {rate:+.0f} K/h from 20 h: excluded at "
-              + (f"{got:.2f} h" if got is not None else "- (not by 26 h)"), flush=True)
+              + (" ".join(f"{h:.2f}" for h in hours) or "-") + f" h; out at 22.5 h: {out}",
+              flush=True)
     _motor(default)
     print(f"CPU s (user + sys): {cpu_seconds() - start:.1f}")
 
