@@ -43,10 +43,32 @@ culprit rule (``new_state`` on) out of its warning band but within its alarm ban
 is not its own since the memory (``EXCURSION_TAU_S``; its reading did not move toward its error's
 side, or its error did not outgrow ``EXCURSION_GROWTH`` x the memory's) is held (it warns), unless
 another judged sensor's excursion IS its own (moved toward its error's side and grown past
-``EXCURSION_GROWTH`` x), its error at least ``READMIT`` (0.5) of its warning band, and with it out
-every other judged sensor is within band (``_resolves``): that sensor is excluded for drift
-instead (the largest self-prediction error first; the new-state veto as for any culprit; its
+``EXCURSION_GROWTH`` x; v1, see below), its error at least ``READMIT`` (0.5) of its warning
+band, and with it out every other judged sensor is within band (``_resolves``): that sensor is
+excluded for drift instead (the largest self-prediction error first; the new-state veto as for any
+culprit; its
 blind partners as before).  Past the alarm band, and where the memory is unknown, as shipped.
+
+Scored, rule v1 above (2026-12-02, commit bbda568c): REFUSED on bar 2
+------------------------------------------------------------------------
+``bench_monitor_healthy.py`` yearround s5301 mlr, the 1 K/h drift of ``T_bearing_f2``: adaptive
+ΣRMSE² 29.881 -> 42.152 (fixed 963.6; first flag as shipped, 30-35 min; one warning and two guard
+events more).  On K06 the drifting sensor itself, out of its warning band at 3.17 h (+0.46 °C),
+was held as "left by the field" for 25 min until its error passed the alarm band (+0.93 °C,
+3.58 h): its reading did not move toward its error's side, the bearing cooling about as fast as
+it drifted.  (Before this: the motor drift and the bed as in ``drift`` below for v2, identical
+for v1; ``bench_deploy_faults.py`` every line as shipped; healthy grinder seeds 7366-7385 adaptive
+= fixed to the digit, no exclusion.)
+
+Rule v2 (written and committed after v1's scoring, before v2's)
+---------------------------------------------------------------
+v1 with the reading's clause dropped, both where a culprit is held and where another sensor's
+excursion is its own: a culprit out of its warning band but within its alarm band is held (it
+warns) while its error hovers (no larger on its side than ``EXCURSION_GROWTH`` x the memory's),
+unless another judged sensor's error outgrew ``EXCURSION_GROWTH`` x the memory's, is at least
+``READMIT`` of its warning band and, with it out, every other judged sensor is within band: that
+one is excluded instead.  A drift's error keeps growing whether the field warms or cools under
+it.  The bar below, unchanged, for v2.
 
 Bar (written before scoring; the rule is kept only if every point holds, else src reverted)
 -------------------------------------------------------------------------------------------

@@ -74,18 +74,17 @@ class Excursion:
 
     def _own_excursions(self, err: np.ndarray) -> np.ndarray:
         """Per sensor, whether its excursion since ``EXCURSION_TAU_S`` ago (the memory) is its
-        own: its reading moved toward its error's side and its error on that side outgrew
-        ``EXCURSION_GROWTH`` x the memory's.  A drift does both (it moves the faulty reading
-        itself, and its error keeps growing); a healthy sensor the field left does not.  All
-        False where the memory is not known."""
+        own: its error on its side outgrew ``EXCURSION_GROWTH`` x the memory's.  A drift's keeps
+        growing, whether the field warms or cools under it; a healthy sensor the field left
+        hovers.  (Its reading moving toward its error's side is no test: a drift of 1 K/h on a
+        bearing cooling as fast reads still, and was held 25 min.)  All False where the memory is
+        not known."""
         if not self._slow_ok or not np.isfinite(self._slow_t):
             return np.zeros(len(self.names), dtype=bool)
-        rows = self._hist[self._recent[self._pos, :min(self._count, self.confirm)]]
         side = np.sign(np.nan_to_num(err))
         with np.errstate(invalid="ignore"):      # (an excluded or unjudged sensor: NaN, False)
-            moved = side * (np.nanmean(rows, axis=0) - self._slow)
             past = (self._slow - self._M @ self._slow[self._active]) * self._scale
-            return (moved > 0) & (side * err > EXCURSION_GROWTH * np.maximum(side * past, 0.0))
+            return side * err > EXCURSION_GROWTH * np.maximum(side * past, 0.0)
 
     def _left_by_field(self, j: int, level: np.ndarray, err: np.ndarray) -> bool:
         """Whether ``j``, out of its warning band but within its alarm band, was left by the
