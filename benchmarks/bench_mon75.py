@@ -112,16 +112,11 @@ def healthy(sim: str = SIM, root: str = ROOT, seeds: str = "") -> None:
 def _bed(rate: float) -> tuple[list[float], bool]:
     """Seed 7432 with ``rate`` K/h on ``T_base`` from 20 h, the monitor alone: the hours of its
     exclusions up to 26 h, and whether it is out at 22.5 h (test_monitor_drift74's bar)."""
-    from vgm73 import Vgm73
+    from vgm73 import lab_record
 
     from thermocomp.apps.deploy.surveillance import SensorMonitor
 
-    def record(seed):
-        ds, _ = Vgm73(seed=seed, temp_noise_c=0.03, temp_quantum_c=0.01, error_noise_um=0.2,
-                      error_quantum_um=0.1).generate()
-        return ds.campaigns["rec"]
-
-    train, service = record(7356), record(7432)
+    train, service = lab_record(7356), lab_record(7432)
     names = [c for c in train.columns if c.startswith("T_")]
     mon = SensorMonitor.from_training(None, names, {"rec": train[names].to_numpy(float)[
         :int(0.9 * len(train))]}, **MONITOR)

@@ -9,9 +9,9 @@ it was that long ago (the error hovers, or grows with the field) shows a regime 
 held; one whose error outgrows its rise (``EXCURSION_GROWTH``) shows a fault: a drift, a leak, a
 sensor frozen while the field moves.  A lathe's steady 5000 rpm put ``T_Tool_holder_1`` just
 past its band within 25 min and held it there for 24 h (mon73).  A culprit between its warning
-and alarm bands whose own reading did not lead its error, or whose error hovers, was left by the
-field (drift74): a grinder's healthy bed, predicted from a column that a spindle hotter than
-training warmed, read -1.2 °C against its 1.23 °C band for 11 h."""
+and alarm bands whose error hovers was left by the field (mon75): a grinder's healthy bed,
+predicted from a column that a spindle hotter than training warmed, read -1.2 °C against its
+1.23 °C band for 11 h."""
 
 from __future__ import annotations
 
@@ -97,9 +97,8 @@ class Excursion:
         """The sensor whose drift left ``j`` (:meth:`_left_by_field`), if one: judged, its
         excursion its own, its error beyond ``READMIT`` of its warning band, and with it out
         every other judged sensor, ``j`` included, within band (:meth:`_resolves`); of several,
-        the largest self-prediction error ``z`` first.  A 1 K/h drift of a spindle's motor
-        sensor left its coupled partner (T_motor1 -1.26 x its band, T_motor2 0.85-1.09 x its own,
-        grown 2.9-5.0 x): holding the partner had delayed the motor's exclusion 1-2 samples."""
+        the largest self-prediction error ``z`` first: holding ``j`` must not hold a drift
+        that left it (mon75)."""
         own = self._own_excursions(err) & self._judged
         own &= np.abs(np.nan_to_num(err)) >= READMIT * self.warning_c
         own[j] = False
