@@ -32,7 +32,7 @@ Trace (2026-12-02, before any scoring)
   sensors that moved toward their error's side, grew past 1.5 x and whose exclusion would put
   ``T_Bett`` back in band are at most 0.18 x their band (7432's ``T_hall``, 16.09 h); ``T_Ständer``
   at most 0.49 x, never grown past 1.5 x.
-* Why the false ``T_Bett`` exclusion helped 7384 / 7429 / 7432: see "Trace of the benefit" below
+* Why the false ``T_Bett`` exclusion helped 7384 / 7429 / 7432: "Trace of the benefit" below
   (measured after the rule's commit, before scoring; it changes no rule).
 
 Rule (one, with mon74's two; written and committed before any scoring)
@@ -82,6 +82,52 @@ Bar (written before scoring; the rule is kept only if every point holds, else sr
 3. ``bench_monitor_healthy.py``: no healthy figure worse than shipped (events, exclusions,
    adaptive ΣRMSE², worst ratio), on the record x model pairs that run in the time.
 4. ``tests/shell/test_monitor*.py`` and ``tests/apps/test_monitor*.py`` pass (xfails stay xfail).
+
+Trace of the benefit (the fixed model, batch, fed ``T_Bett`` as read or rebuilt from the other
+four by the monitor's POD, over the shipped exclusion windows; a scratch trace)
+----------------------------------------------------------------------------------------------
+The model (``auto`` on seed 7356) answers +10.1 µm/°C on the bed and -10.7 on the column for
+E_dZ (a difference of two sensors that rose together in training; the spindle -8.8, the air
++3.3, the oil +2.0).  In the windows the column ran past its training maximum (23.97 °C: 25.0 on
+7429 and 7432, 28.0 on 7384, 26.2 on 7375) with the bed not following, and the model
+under-predicts E_dZ there (mean error +7.8 / +13.8 / +8.3 / +4.2 µm).  The bed rebuilt from the
+column reads 0.97 / 0.98 / 1.39 / 0.95 °C warmer than measured, which adds about 10 µm: window
+RMSE 9.14 -> 4.07 (7429), 14.18 -> 4.80 (7432), 12.47 -> 8.13 (7384), but 6.55 -> 7.09 on 7375
+(it overshoots); E_dX a little worse on all four (2.57 -> 2.66 on 7429).  So the benefit is
+the rebuilt (wrong) bed cancelling the model's error off its training pattern, by chance of
+sign and size, not what the reading is: the simulator's bed is healthy.  It is not mon74's
+mechanism as priced there (a sensor past its range, the model's extrapolation against a
+fallback on training rows): here no sensor is past range + margin, and on training the field
+predicts the bed within band, so "read" and "rebuilt" are the same rows -- nothing to price.
+Holding the column at its training maximum does not reproduce it (E_dZ window RMSE 9.10,
+5.87, 20.34, 13.32).  A rule keeping it would be a projection of the model's inputs onto the
+training pattern (the envelope's clamp; the grinder's envelope has no pattern), its own rule.
+
+Scored, rule v2 (2026-12-02, src of commit 303090d3; shipped = this tree before, 960d5025)
+---------------------------------------------------------------------------------------
+1. ``healthy``, 40 seeds: no exclusion on any (shipped: 50 on 27 records, 6 of them the false
+   ``T_Bett`` drift: 7375, 7384, 7429, 7432, 7528, 7529); adaptive = fixed to the digit on 36;
+   E_dX 1.028x on 7377 and 7527, 1.019x 7529, 1.010x 7431 (the guard, as mon74); E_dZ 1.000x on
+   all (shipped: worst 20.18x, 7430 E_dX; E_dZ up to 7.09x, 7432).  Passes.
+2. ``faults``: nan40 22.121 / 0.732, dead 161.074 / 1.775, stuck 160.821 / 1.741 (as shipped);
+   ``bench_deploy_faults.py``: every line as shipped (diff empty but CPU); ``drift``: the bed
+   out at 22.27 h (+1 K/h) and 21.40 h (-1 K/h), the motor drift out 4-6 samples after onset on
+   every campaign with the ratios of shipped to the digit (worst 1.410).  But
+   ``bench_monitor_healthy.py`` large_mill s5303 (bar 2's "caught later"): the 1 K/h drift of
+   ``T_col_10`` first flagged 3300 -> 3870 s (mlr) and 1290 -> 1500 s (lagbank), stuck mlr
+   870 -> 1080 s (lagbank 1020 -> 840), though adaptive ΣRMSE² better (drift mlr 332.3 -> 50.2,
+   its healthy ``T_col_03`` excluded at 12.58 h on the way).  FAILS.
+3. ``bench_monitor_healthy.py`` (4 of 11 records run, the rest not: time): yearround s5301 and
+   column no Q3 s5305 results.json identical to shipped (v1 had moved s5301's drift); large_mill
+   s5303: the healthy ``T_col_05`` (+0.45 °C at its band, excluded once shipped) held and warning:
+   mlr events 2 -> 10, ΣRMSE² 9.543 -> 10.099; lagbank 2 -> 10, 43.096 -> 41.135.  FAILS.
+4. ``tests/shell/test_monitor*.py``, ``tests/apps/test_monitor*.py`` (+ the mon74 tests,
+   test_benchmarks_cli, test_imports): 326 passed, 3 xfailed.  Passes.
+
+REFUSED (bars 2 and 3): src reverted to 960d5025; the change (mon74's rules, this hold, docs,
+tests: test_monitor_drift74's 3, fallback71's and guard56's, all 5 failing on 960d5025) is
+``benchmarks/mon75_rule.patch``.  CPU (user + sys): ``healthy`` 328.2 s (40 records, a loaded
+machine; shipped 270.5), ``faults`` 8.0, ``drift`` 5.1 (shipped 3.2), the tests 75.2 + 2.7.
 """
 
 from __future__ import annotations

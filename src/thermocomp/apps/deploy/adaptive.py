@@ -26,7 +26,7 @@ import pandas as pd
 from ...core.context import TIME, step_gain
 from ...core.io.own_headers import as_named
 from ...core.timerule import SampleClock
-from .fallback import range_prices, sensor_fallbacks
+from .fallback import sensor_fallbacks
 from .guard import CorrectionGuard
 from .pod import ThermalPOD
 from .streaming import OutOfEnvelopeError, StreamingCompensator, step_block
@@ -66,9 +66,6 @@ class AdaptiveCompensator:
     adapt_ = None
     # {sensor: the family fitted without it} (fallback.py): its correction while the sensor is out
     fallbacks_: dict = {}
-    # {sensor: {"lo"|"hi": [fallback, model] RMS µm | None}} (fallback.range_prices): which side
-    # of its range the monitor reads as a regime, not a fault (mon74)
-    range_prices_: dict = {}
 
     def __init__(self, streaming: StreamingCompensator, monitor: SensorMonitor | None = None,
                  guard: CorrectionGuard | None = None, period_s: float = 1.0):
@@ -115,9 +112,6 @@ class AdaptiveCompensator:
         out = cls(streaming, mon, g, g.period_s)
         if mon is not None:
             out.fallbacks_ = sensor_fallbacks(streaming, mon, campaigns, fallbacks)
-            out.range_prices_ = range_prices(streaming, out.fallbacks_, campaigns,
-                                             mon.range_margin_c)
-            mon.price_range(out.range_prices_)
             out.reset()
         return out
 
@@ -245,7 +239,7 @@ class AdaptiveCompensator:
                     pass
             if stepped and out in falls:
                 y = falls[out]
-        self._output(y, dt, t, self._allowance(stepped, read), events)
+        self._output(y, dt, t, self._allowance(stepped), events)
         return self._y, clamped
 
     def _fallen_back(self, read: np.ndarray) -> str | None:
@@ -320,15 +314,12 @@ class AdaptiveCompensator:
         ts, dts = np.empty(n), np.empty(n)
         novel = np.zeros(n, dtype=bool)
         fallen = np.full(n, None, dtype=object)     # the fallback each row reads (none: the model)
-        vouch = [None] * n                          # the inputs the monitor vouches for, per row
         events: dict[int, list] = {}
         done = np.ones(n, dtype=bool)
         i = 0
         while i < n:
             m = self._inputs_block(X, time, i, xs, ts, dts, novel)
             if m:
-                block = self._vouched(X[i:i + m] if self._mon_all else X[i:i + m, self._mon])
-                vouch[i:i + m] = [None] * m if block is None else list(block)
                 i += m
                 continue
             events[i] = row_events = []
@@ -336,9 +327,7 @@ class AdaptiveCompensator:
                 ts[i], dts[i] = self._check_time(float(time[i]), row_events)
                 xs[i] = self._inputs(xs[i], ts[i], row_events, dts[i])
                 novel[i] = self.monitor is not None and self.monitor.new_state_
-                read = X[i] if self._mon_all else X[i, self._mon]
-                fallen[i] = self._fallen_back(read)
-                vouch[i] = self._vouched(read)
+                fallen[i] = self._fallen_back(X[i] if self._mon_all else X[i, self._mon])
             except ValueError as exc:
                 if on_refused is None:
                     raise
@@ -361,7 +350,7 @@ class AdaptiveCompensator:
         out = np.full((n, len(self.targets_)), np.nan)
         clamped = np.zeros(n, dtype=np.int64)
         clamped[rows] = clamps
-        self._guard_rows(rows, y, dx, dts, ts, novel, refused, events, out, vouch)
+        self._guard_rows(rows, y, dx, dts, ts, novel, refused, events, out)
         self.last_events_ = events.get(n - 1, []) if n else []
         return out, clamped
 
@@ -413,17 +402,15 @@ class AdaptiveCompensator:
             self._held = block[-1, self._other].copy()
         return m
 
-    def _guard_rows(self, rows, y, dx, dts, ts, novel, refused, events, out, vouch) -> None:
+    def _guard_rows(self, rows, y, dx, dts, ts, novel, refused, events, out) -> None:
         """The guard over the plain stream's ``y`` of ``rows`` (``out`` filled in, ``events``
-        added to): in one go where its fast path takes them, else row by row as :meth:`_step`
-        (``vouch``: per row, the inputs the monitor vouches for)."""
+        added to): in one go where its fast path takes them, else row by row as :meth:`_step`."""
         guard = self.guard
         # rows the guard may take in one go: stepped, no allowance (the inputs in their range)
         plain = ~refused[rows]
         env = self.envelope
         if (guard is not None and guard.in_gain is not None and self.policy == "clamp"
-                and env is not None and (env.basis is not None or self.monitor is not None)):
-            # a bound that follows them (on the pattern, or the inputs the monitor vouches for)
+                and env is not None and env.basis is not None):   # a bound that follows them
             with np.errstate(invalid="ignore"):
                 beyond = np.maximum(dx - guard.in_hi, guard.in_lo - dx).max(axis=1) > 0.0
             plain &= ~beyond
@@ -442,7 +429,7 @@ class AdaptiveCompensator:
             i = rows[k]
             row_events = events.setdefault(i, [])
             allowance = None if refused[i] or guard is None else \
-                stream_allowance(guard, self.streaming, dx[k], vouch[i])
+                stream_allowance(guard, self.streaming, dx[k])
             if guard is not None:
                 y_i, ev = guard.step(y[k], dts[i], ts[i], novel[i], allowance)
                 row_events += ev
@@ -454,22 +441,8 @@ class AdaptiveCompensator:
             self.n_samples_ += 1
             k += 1
 
-    def _allowance(self, stepped: bool, read: np.ndarray) -> np.ndarray | None:
-        return stream_allowance(self.guard, self.streaming, None, self._vouched(read)) \
-            if stepped else None
-
-    def _vouched(self, read: np.ndarray) -> np.ndarray | None:
-        """The model's inputs (envelope frame; a row or rows) the monitor vouches for beyond
-        their training range (:meth:`~.surveillance.monitor.SensorMonitor.vouched`) at the
-        monitored readings ``read``; None without a monitor or an envelope."""
-        env = self.envelope
-        if self.monitor is None or env is None:
-            return None
-        read = np.asarray(read, float)
-        out = np.zeros((*read.shape[:-1], len(env.lo)), dtype=bool)
-        mine = self._mon < len(env.lo)
-        out[..., self._mon[mine]] = self.monitor.vouched(read)[..., mine]
-        return out
+    def _allowance(self, stepped: bool) -> np.ndarray | None:
+        return stream_allowance(self.guard, self.streaming) if stepped else None
 
     def _check_time(self, t: float, events: list) -> tuple[float, float]:
         # the time rule of every deployed form (timerule.py); a bad time is judged against the
@@ -534,8 +507,7 @@ def _held_event(t: float, exc: Exception) -> dict:
 
 
 def stream_allowance(guard: CorrectionGuard, streaming: StreamingCompensator,
-                     x: np.ndarray | None = None, vouched: np.ndarray | None = None
-                     ) -> np.ndarray | None:
+                     x: np.ndarray | None = None) -> np.ndarray | None:
     """How far ``guard``'s bound widens for the inputs ``streaming``'s model read at its last
     sample (or ``x``, a row's of a block; :meth:`~.guard.CorrectionGuard.allowance`): with the
     envelope's clamp, which carries the training pattern (so does the code); ``None`` before a
@@ -543,7 +515,7 @@ def stream_allowance(guard: CorrectionGuard, streaming: StreamingCompensator,
     x = getattr(streaming, "last_x_", None) if x is None else x
     if x is None or getattr(streaming, "policy", None) != "clamp":
         return None                           # (the guard says None without a following bound)
-    return guard.allowance(x, streaming.envelope, vouched)
+    return guard.allowance(x, streaming.envelope)
 
 
 def input_gains(streaming: StreamingCompensator) -> np.ndarray:

@@ -13,10 +13,6 @@ reads only: where the others predict a sensor its reconstruction did better than
 is refitted with the hyper-parameters it chose, not the candidates' validation again
 (``benchmarks/bench_autofb72.py``).  A healthy stream never reads a fallback: its corrections are
 the model's, to the bit.
-
-A fallback is priced against reading its sensor on past its range (:func:`range_prices`, mon74):
-on a grinder whose healthy spindle ran hotter than training, the range exclusion put the fallback
-(training RMSE 79.3 µm against the model's 3.85) in charge: 26-173 µm against the fixed 7.8-34.5.
 """
 
 from __future__ import annotations
@@ -70,56 +66,3 @@ def sensor_fallbacks(streaming: StreamingCompensator, monitor,
             if fallback is not None:
                 out[sensor] = fallback
     return out
-
-
-def range_prices(streaming: StreamingCompensator, fallbacks: Mapping[str, StreamingCompensator],
-                 campaigns: Mapping[str, pd.DataFrame], margin_c: float
-                 ) -> dict[str, dict[str, list[float] | None]]:
-    """``{sensor: {"lo": [fallback, model] | None, "hi": ...}}``: per fallback and side of its
-    sensor's training range, the RMS (µm, over targets and rows) of the model refitted as chosen
-    on each training campaign up to the sensor's first reading beyond that edge less
-    ``margin_c``, on the rows from there on (it extrapolates by the margin, as a model that reads
-    the sensor on past its range + margin does), and of the fallback (in sample) on the same
-    rows.  None where the refit or the scored rows hold less than a quarter of the training rows,
-    or the refit fails."""
-    return {sensor: {side: _price(streaming, fallback, campaigns, sensor, side, margin_c)
-                     for side in ("lo", "hi")}
-            for sensor, fallback in fallbacks.items()}
-
-
-def _price(streaming: StreamingCompensator, fallback: StreamingCompensator,
-           campaigns: Mapping[str, pd.DataFrame], sensor: str, side: str, margin_c: float
-           ) -> list[float] | None:
-    comp = streaming.compensator
-    values = {c: df[sensor].to_numpy(float) for c, df in campaigns.items()}
-    if side == "hi":
-        edge = max(v.max() for v in values.values()) - margin_c
-        beyond = {c: v > edge for c, v in values.items()}
-    else:
-        edge = min(v.min() for v in values.values()) + margin_c
-        beyond = {c: v < edge for c, v in values.items()}
-    cut = {c: int(np.argmax(b)) if b.any() else len(b) for c, b in beyond.items()}
-    total = sum(len(v) for v in values.values())
-    before = {c: campaigns[c].iloc[:k] for c, k in cut.items() if k > 1}
-    if 4 * sum(map(len, before.values())) < total or 4 * (total - sum(cut.values())) < total:
-        return None
-    template = refit_as_chosen(comp)
-    if template is None:
-        return None
-    try:
-        short = template.set_params(selection={t: list(comp.selected_[t])
-                                               for t in comp.targets_}).fit(before)
-    except (ValueError, np.linalg.LinAlgError):
-        return None
-    targets = streaming.targets_
-    extrapolated = short.predict(campaigns)
-    measured = comp.measured(campaigns, predicted=extrapolated)
-    fallen = fallback.compensator.predict(campaigns)
-    squares, n = np.zeros(2), 0
-    for c, k in cut.items():
-        y = measured[c][targets].to_numpy(float)[k:]
-        ok = np.isfinite(y)
-        for i, pred in enumerate((fallen, extrapolated)):
-            squares[i] += np.sum((y - pred[c][targets].to_numpy(float)[k:])[ok] ** 2)
-        n += int(ok.sum())
-    return np.sqrt(squares / n).tolist() if n else None

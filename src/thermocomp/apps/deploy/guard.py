@@ -13,18 +13,16 @@ While the sensor monitor declares a new thermal state (a source training never s
 is the training range widened by ``new_state_margin`` instead (``None``: the same bound).
 
 The bound follows the inputs on the training pattern (:meth:`CorrectionGuard.allowance`): at a
-sample whose inputs, as the model reads them, lie beyond their training range while moving together
-as in training (:meth:`~.streaming.Envelope.leaves_pattern` false: a hotter machine, which the
-stream passes as measured), both ends move out by ``sum_j |gain_tj| * d_j``, ``d_j`` input ``j``'s
-distance beyond its training range and ``gain`` the model's step gain at the envelope's horizon
-(the clamp's). A sample off the pattern (one sensor leaving the others: a fault the monitor missed)
-keeps the bound as trained, but for the inputs a sensor monitor vouches for (``vouched``: a regime
-it judged healthy, mon74): on a grinder whose healthy spindle, which no other sensor predicts, ran
-hotter than training, the bound had held E_dX 1.29x the fixed model's. On the ``long_record``
-overspeeds (benchmarks/bench_guard56.py) the fixed bound had cut the right correction of a real
-state (true error 115.9 µm, bound 90.3): the adaptive compensator was 1.2-6.8 x the plain stream's
-Σ² vs truth; now 0.74-1.06 x (3.7 x for long4253's lag bank: the monitor's hold of a hot sensor),
-and no injected fault of benchmarks/bench_deploy_faults.py moves.
+sample whose inputs, as the model reads them, lie beyond their training range while moving
+together as in training (:meth:`~.streaming.Envelope.leaves_pattern` false: a hotter machine,
+which the stream passes as measured), both ends move out by ``sum_j |gain_tj| * d_j``, ``d_j``
+input ``j``'s distance beyond its training range and ``gain`` the model's step gain at the
+envelope's horizon (the clamp's).  A sample off the pattern (one sensor leaving the others: a
+fault the monitor missed) keeps the bound as trained.  On the ``long_record`` overspeeds
+(benchmarks/bench_guard56.py) the fixed bound had cut the right correction of a real state (true
+error 115.9 µm, bound 90.3): the adaptive compensator was 1.2-6.8 x the plain stream's Σ² vs
+truth; now 0.74-1.06 x (3.7 x for long4253's lag bank: the monitor's hold of a hot sensor), and
+no injected fault of benchmarks/bench_deploy_faults.py moves.
 """
 
 from __future__ import annotations
@@ -94,16 +92,14 @@ class CorrectionGuard:
         self.in_lo, self.in_hi = np.asarray(lo, float), np.asarray(hi, float)
         return self
 
-    def allowance(self, x: np.ndarray, envelope, vouched: np.ndarray | None = None
-                  ) -> np.ndarray | None:
+    def allowance(self, x: np.ndarray, envelope) -> np.ndarray | None:
         """How far the bound widens (µm per target) for the inputs ``x`` the model reads
         (referenced): ``|gain| @ d``, ``d`` their distance beyond the training range, when
-        ``x`` is on the envelope's training pattern, else over the ``vouched`` inputs only;
-        ``None`` within the range, off the pattern with none vouched for, without a pattern or a
-        following bound."""
-        if self.in_gain is None or envelope is None or (envelope.basis is None and vouched is None):
-            return None     # (no pattern: every sample is off it)
-        return widening(x, self.in_lo, self.in_hi, self.in_gain, envelope, vouched)
+        ``x`` is on the envelope's training pattern; ``None`` within the range, off the pattern,
+        without a pattern or a following bound."""
+        if self.in_gain is None or envelope is None or envelope.basis is None:
+            return None
+        return widening(x, self.in_lo, self.in_hi, self.in_gain, envelope)
 
     def reset(self) -> None:
         self._prev = None
@@ -207,22 +203,14 @@ def guard_changes(deployed) -> np.ndarray | None:
 
 
 def widening(x: np.ndarray, lo: np.ndarray, hi: np.ndarray, gain: np.ndarray,
-             envelope, vouched: np.ndarray | None = None) -> np.ndarray | None:
+             envelope) -> np.ndarray | None:
     """``gain @ d``, ``d`` the distance of the inputs ``x`` beyond their training range ``[lo,
-    hi]``, when ``x`` is on ``envelope``'s training pattern, else of the ``vouched`` inputs only
-    (a sensor monitor's judgement; none without one); None within the range or off the pattern
-    with none vouched for beyond it.  The one rule of the guard and of the exported code's
-    Simulator (:mod:`.export.output`)."""
+    hi]``, when ``x`` is on ``envelope``'s training pattern; None within the range or off the
+    pattern.  The one rule of the guard and of the exported code's Simulator (:mod:`.export.output`)."""
     d = x - hi
     np.maximum(d, lo - x, out=d)
-    if not d.max() > 0.0:      # (the usual case: in range)
+    if not d.max() > 0.0 or envelope.leaves_pattern(x):      # (the usual case: in range)
         return None
-    if envelope.leaves_pattern(x):
-        if vouched is None:
-            return None
-        d = np.where(vouched, d, 0.0)
-        if not d.max() > 0.0:
-            return None
     return gain @ np.maximum(d, 0.0, out=d)
 
 

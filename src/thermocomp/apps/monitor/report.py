@@ -179,12 +179,6 @@ def monitor_report(adaptive: AdaptiveCompensator, fixed, comp, streamed: dict, t
               "bands": {"warning_c": mon.warning_c.tolist(), "alarm_c": mon.alarm_c.tolist()},
               "alarms": alarm_rate(run["events"], run["hours"]),
               "campaigns": list(streamed)}
-    if adaptive.range_prices_:      # mon74: which side of a range is read as a regime
-        report["range_regimes"] = {
-            sensor: {side: None if p is None else {"fallback_um": p[0], "model_um": p[1],
-                                                   "regime": p[0] > p[1]}
-                     for side, p in sides.items()}
-            for sensor, sides in adaptive.range_prices_.items()}
     if adapt is not None:
         for t, figures in adapt_figures(adapt, run["res_frozen"], adaptive.targets_).items():
             report["targets"][t]["adapt"] = figures

@@ -8,16 +8,13 @@ linear in the readings).  A sensor out of band whose error is a share of its ris
 it was that long ago (the error hovers, or grows with the field) shows a regime training never
 held; one whose error outgrows its rise (``EXCURSION_GROWTH``) shows a fault: a drift, a leak, a
 sensor frozen while the field moves.  A lathe's steady 5000 rpm put ``T_Tool_holder_1`` just
-past its band within 25 min and held it there for 24 h (mon73).  A culprit between its warning
-and alarm bands whose error hovers was left by the field (mon75): a grinder's healthy bed,
-predicted from a column that a spindle hotter than training warmed, read -1.2 °C against its
-1.23 °C band for 11 h."""
+past its band within 25 min and held it there for 24 h (mon73)."""
 
 from __future__ import annotations
 
 import numpy as np
 
-from .states import EXCURSION_GROWTH, EXCURSION_TAU_S, READMIT, WARNING
+from .states import EXCURSION_GROWTH, EXCURSION_TAU_S, WARNING
 
 
 class Excursion:
@@ -71,38 +68,3 @@ class Excursion:
         now = np.abs(err[out]) * np.abs(self._slow[out])
         then = np.maximum(past[out] * np.sign(err[out]), 0.0) * rise[out]
         return bool(np.all(now <= EXCURSION_GROWTH * then))
-
-    def _own_excursions(self, err: np.ndarray) -> np.ndarray:
-        """Per sensor, whether its excursion since ``EXCURSION_TAU_S`` ago (the memory) is its
-        own: its error on its side outgrew ``EXCURSION_GROWTH`` x the memory's.  A drift's keeps
-        growing, whether the field warms or cools under it; a healthy sensor the field left
-        hovers.  (Its reading moving toward its error's side is no test: a drift of 1 K/h on a
-        bearing cooling as fast reads still, and was held 25 min.)  All False where the memory is
-        not known."""
-        if not self._slow_ok or not np.isfinite(self._slow_t):
-            return np.zeros(len(self.names), dtype=bool)
-        side = np.sign(np.nan_to_num(err))
-        with np.errstate(invalid="ignore"):      # (an excluded or unjudged sensor: NaN, False)
-            past = (self._slow - self._M @ self._slow[self._active]) * self._scale
-            return side * err > EXCURSION_GROWTH * np.maximum(side * past, 0.0)
-
-    def _left_by_field(self, j: int, level: np.ndarray, err: np.ndarray) -> bool:
-        """Whether ``j``, out of its warning band but within its alarm band, was left by the
-        field: its excursion is not its own (:meth:`_own_excursions`).  False where the memory
-        is not known."""
-        return (level[j] == WARNING and self._slow_ok and bool(np.isfinite(self._slow_t))
-                and not self._own_excursions(err)[j])
-
-    def _drifting_instead(self, j: int, z: np.ndarray, err: np.ndarray) -> int | None:
-        """The sensor whose drift left ``j`` (:meth:`_left_by_field`), if one: judged, its
-        excursion its own, its error beyond ``READMIT`` of its warning band, and with it out
-        every other judged sensor, ``j`` included, within band (:meth:`_resolves`); of several,
-        the largest self-prediction error ``z`` first: holding ``j`` must not hold a drift
-        that left it (mon75)."""
-        own = self._own_excursions(err) & self._judged
-        own &= np.abs(np.nan_to_num(err)) >= READMIT * self.warning_c
-        own[j] = False
-        for k in np.argsort(-z):
-            if own[k] and self._resolves(int(k)):
-                return int(k)
-        return None

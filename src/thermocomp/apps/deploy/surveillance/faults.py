@@ -33,23 +33,6 @@ class InstantFaults:
         kept[cand] = beyond & (np.abs(x[cand] - p) < 0.5 * np.abs(x[cand] - edge))
         return kept
 
-    def _regime(self, x: np.ndarray, d: np.ndarray, rng: np.ndarray) -> np.ndarray:
-        """Of the sensors out of range (``rng``), those read as a regime (mon74): their side of
-        the range priced one (:meth:`~.monitor.SensorMonitor.price_range`: the fallback costs
-        more than the model reading on), active, and this step from the previous measured
-        reading within the jump limit.  A jump out of range (spike, open circuit, unit change)
-        is excluded as before."""
-        if self.regime_hi_ is None:
-            return np.zeros(len(x), dtype=bool)
-        with np.errstate(invalid="ignore"):       # no previous reading: NaN, not calm
-            calm = np.abs(d - self._prev) <= self._jump_lim * self._gap
-        return rng & self._priced(x) & self._active & calm
-
-    def _priced(self, x: np.ndarray) -> np.ndarray:
-        """The sensors (of the readings ``x``, a row or rows) whose side of the range they are
-        on is priced a regime."""
-        return np.where(x > self.hi_c, self.regime_hi_, self.regime_lo_)
-
     def _reference_glitch(self, d, step, big, pos, time, events) -> tuple[np.ndarray, np.ndarray]:
         """A jump right after the reference sample: the reference is the glitch (or the sensor
         took an offset at once: the same thing to a model of changes since the start), so the

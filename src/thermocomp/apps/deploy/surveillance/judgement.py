@@ -45,13 +45,6 @@ class Judgement:
             # grows: one that reached its offset and hovers is a regime (module excursion.py)
             if self.new_state and level[j] < WARNING and self._excursion_hovers(level, err):
                 break
-            # out of band, its excursion not its own: the field left it (excursion.py), and it
-            # warns, unless the field was left by another's drift (that one goes out instead)
-            if self.new_state and self._left_by_field(j, level, err):
-                k = self._drifting_instead(j, z, err)
-                if k is None or self._drift_vetoed(k, level, err, time, events, True):
-                    break
-                j = k
             self._exclude(j, f"drift: self-prediction error {err[j]:+.2g} °C over the last "
                              f"{self.confirm} samples", time, events, by_field=True)
             self._since[j] = self._count

@@ -59,8 +59,6 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
     """
 
     new_state, new_state_others = False, 2   # a monitor pickled before them judged as before
-    # per sensor, its side of the range priced a regime (price_range; None: none, older pickles)
-    regime_lo_ = regime_hi_ = None
 
     def __setstate__(self, state: dict) -> None:
         self.__dict__.update(state)
@@ -243,25 +241,6 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
             H = np.where(np.isfinite(self._hist), self._hist, 0.0)
             pred = H[:, active] @ M.T if M is not None else np.full_like(H, np.nan)
             self._err = (self._hist - pred) * self._scale
-
-    def price_range(self, prices: Mapping[str, Mapping[str, Sequence[float] | None]]) -> None:
-        """A side of a sensor's range is a regime (:meth:`_regime`) where its price
-        (``{sensor: {"lo"|"hi": [fallback, model] RMS µm | None}}``,
-        :func:`~thermocomp.apps.deploy.fallback.range_prices`) has the fallback dearer than the
-        model reading on."""
-        sides = {side: np.array([bool(p is not None and p[0] > p[1]) for p in
-                                 (prices.get(n, {}).get(side) for n in self.names)])
-                 for side in ("lo", "hi")}
-        self.regime_lo_, self.regime_hi_ = sides["lo"], sides["hi"]
-
-    def vouched(self, x: np.ndarray) -> np.ndarray:
-        """The sensors whose readings ``x`` (a row or rows) the correction guard may follow
-        beyond their training range (mon74): active and ok, and judged (the others predict them
-        within band) or on a side of their range priced a regime."""
-        ok = self._active & (self._state == OK)
-        if self.regime_hi_ is None:
-            return ok & self._judged
-        return ok & (self._judged | self._priced(x))
 
     @property
     def new_state_(self) -> bool:
@@ -475,7 +454,7 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
             self._ref = np.where(np.isfinite(x) & ~rng, x, np.nan)
         d = x - self._ref
         if rng.any() and self._count:
-            rng = rng & ~self._hotter(x, d, rng) & ~self._regime(x, d, rng)
+            rng = rng & ~self._hotter(x, d, rng)
         all_finite = bool(np.isfinite(d.sum()))
         finite = np.isfinite(d) if not all_finite else self._true
         pos = self._pos
