@@ -96,3 +96,10 @@ class Vgm73(DeclaredScenario):
                              duration_s=duration, rng=r, ambient=hall, programme=None,
                              states={N: n, TAB: tab}, written=(N, TAB), sample_period_s=period,
                              error_period_s=None, cooldown_s=86400.0, notes="one record")]
+
+
+def lab_record(seed: int):
+    """Seed ``seed``'s record as the lab exports carry it (their noise and quantisation)."""
+    ds, _ = Vgm73(seed=seed, temp_noise_c=0.03, temp_quantum_c=0.01, error_noise_um=0.2,
+                  error_quantum_um=0.1).generate()
+    return ds.campaigns["rec"]
