@@ -77,7 +77,7 @@ def priced(root: str, seed: str, cell: str) -> None:
     model = root_p / f"mx{seed}" / cell / "model.pkl"
     deployed = plain(deployable_model(cfg, ds, train, str(model), "replay.model")[0])
     print(f"{seed} {cell}: tol {deployed.envelope.tol:.4g}, priced x{deployed.envelope.tol_factor:g}")
-    for line in deployed.envelope.priced_:
+    for line in deployed.envelope.priced:
         print(" ", line)
 
 
