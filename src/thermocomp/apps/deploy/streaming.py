@@ -143,10 +143,6 @@ class Envelope:
     scale: np.ndarray | None = None
     basis: np.ndarray | None = None
     tol: float = float("inf")
-    # the factor ``tol`` was priced by on held-out training blocks, and their figures (clamp75:
-    # :mod:`.priced`; 1 and none: the gate as trained, older pickles)
-    tol_factor: float = 1.0
-    priced: tuple = ()
 
     @classmethod
     def from_data(cls, X: pd.DataFrame, margin: float = 0.1,
@@ -368,11 +364,10 @@ class StreamingCompensator:
     @classmethod
     def from_training(cls, compensator: Compensator, campaigns: Mapping[str, pd.DataFrame],
                       margin: float = 0.1, policy: str = "clamp",
-                      pattern: bool = True, priced: bool = False) -> "StreamingCompensator":
+                      pattern: bool = True) -> "StreamingCompensator":
         """Envelope from the training campaigns, in the frame the model sees (its horizon: the
         longest campaign's ``time`` span; ``pattern``: the clamp acts only off the training
-        pattern, :class:`Envelope`; ``priced``: its tolerance priced on held-out training blocks
-        under the clamp, :func:`~.priced.priced_envelope`).
+        pattern, :class:`Envelope`).
 
         Ambient sensors that are not declared inputs are added to the input
         columns when a model needs the initial ambient temperature (ATI).
@@ -386,11 +381,7 @@ class StreamingCompensator:
                  (df[TIME].to_numpy(float) for df in campaigns.values() if TIME in df.columns)
                  if np.isfinite(t).any()]
         horizon = max(spans) if spans else float("inf")
-        envelope = Envelope.from_data(m.X, margin, horizon, pattern)
-        if priced and pattern and policy == "clamp":
-            from .priced import priced_envelope
-            envelope = priced_envelope(compensator, campaigns, envelope, margin)
-        return cls(compensator, envelope, policy, ambient)
+        return cls(compensator, Envelope.from_data(m.X, margin, horizon, pattern), policy, ambient)
 
     # -- state ------------------------------------------------------------------------------
 

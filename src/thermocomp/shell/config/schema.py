@@ -175,7 +175,6 @@ class Monitor:
 class Envelope:
     margin: float = key(NON_NEGATIVE)
     pattern: bool = key(BOOLEAN)
-    priced: bool = key(BOOLEAN)
 
 
 @dataclass

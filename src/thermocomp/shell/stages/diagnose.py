@@ -100,8 +100,7 @@ def _stream(cfg: DictConfig, comp, train: dict, ds=None):
 
     env = cfg.promote.envelope
     streaming = StreamingCompensator.from_training(comp, train, float(env.margin),
-                                                   str(env.policy), bool(env.get("pattern", True)),
-                                                   bool(env.get("priced", True)))
+                                                   str(env.policy), bool(env.get("pattern", True)))
     deployed = deployable(cfg, streaming, train, ds)
 
     def replayed(campaign, lead_in=None):
