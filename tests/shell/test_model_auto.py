@@ -127,6 +127,23 @@ def test_an_ati_candidate_applies_only_where_the_train_campaigns_span_ambient_le
     seasons = _with_ambient(data, tmp_path / "seasons", lambda i: 12.0 + 2.0 * i)
     for m in _run(seasons, tmp_path / "seasons_out", *ati)["targets"].values():
         assert "ati" in m["auto"]["candidates"] and not m["auto"]["skipped"]
+        assert m["auto"]["validated_as"] == {}      # its folds fit at 3+ levels: its own model
+
+
+def test_an_ati_candidate_whose_folds_fit_mlr_is_said_to_tie_it(two_targets, tmp_path, capsys):
+    """The train campaigns span 3 ambient levels, the fit campaigns of each forward fold 2 (the
+    third is the last train campaign's, hbm75 seed 7601's case): every fold's ATI model is one
+    MLR, validated as MLR row for row and weighed nothing; said, the choice unchanged."""
+    data, _, _ = two_targets
+    levels = (20.0, 20.0, 20.6, 20.6, 20.6, 22.0, 21.0, 21.0)     # six train, two test
+    tied = _with_ambient(data, tmp_path / "tied", lambda i: levels[i])
+    capsys.readouterr()
+    metrics = _run(tied, tmp_path / "tied_out", "model=auto", "model.candidates=[mlr,ati]")
+    for m in metrics["targets"].values():
+        a = m["auto"]
+        assert a["candidates"]["ati"] == a["candidates"]["mlr"] and a["weights"] == {"mlr": 1.0}
+        assert "at most 2 ambient level(s), the train split 3" in a["validated_as"]["ati"]
+    assert "ati validated as mlr, row for row" in capsys.readouterr().out
 
 
 @pytest.mark.parametrize("overrides, says", [

@@ -183,6 +183,7 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
             raise ParameterError("model.candidates is empty: name at least one model family")
         X, y = np.asarray(X, dtype=float), np.asarray(y, dtype=float)
         groups = groups_of(context)
+        self.validated_as_ = {}
         if self.given_scores is not None:      # the val split's, computed by the stage
             self.scheme_ = "val split"
             return self._keep_best(X, y, context, dict(self.given_scores), "the val split")
@@ -206,6 +207,7 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
                 _said(name, self.fit_seconds_.get(name, 0.0), self.validation_.get(name), why)
             if why is not None:
                 self.skipped_[name] = why
+        self.validated_as_ = _validated_as(self.oof_, context, groups, folds)
         held = np.any([score for *_, score in folds], axis=0)
         last = persistence(y, groups)
         self.validation_[PERSISTENCE] = rmse(y[held] - last[held])
@@ -433,6 +435,7 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
                 "chosen": self.family_, "weights": {n: round(w, 4) for n, w in self.weights_.items()},
                 "combine": self.combine_, "reason": self.reason_, "scheme": self.scheme_,
                 "skipped": dict(self.skipped_),
+                "validated_as": dict(getattr(self, "validated_as_", {})),
                 "validation_s": {n: round(s, 3) for n, s in self.fit_seconds_.items()}}
 
 
@@ -476,14 +479,45 @@ def _not_applicable(name: str, context, groups) -> str | None:
     a0 = np.asarray(context[AMBIENT_C0], float) if context is not None and AMBIENT_C0 in context else None
     if a0 is None or not np.isfinite(a0).any():
         return "no campaign ambient (a T_amb sensor) to choose an interval by"
-    first = np.unique(groups, return_index=True)[1] if groups is not None else [0]
-    from .ati import MIN_AMBIENTS, ambient_levels  # here: ati's sklearn.cluster (OpenMP) kept off start-up
+    from .ati import MIN_AMBIENTS  # here: ati's sklearn.cluster (OpenMP) kept off start-up
 
-    levels = ambient_levels(a0[first])   # distinct initial ambients, counted as ATI counts them
+    levels = _ambient_levels(a0, groups)
     if levels < MIN_AMBIENTS:
         return (f"the train campaigns span {levels} ambient level(s), fewer than "
                 f"{MIN_AMBIENTS}")
     return None
+
+
+def _ambient_levels(a0: np.ndarray, groups, rows=None) -> int:
+    """The distinct initial ambients of the campaigns of ``rows`` (all: None), counted as ATI
+    counts them (:func:`~thermocomp.core.models.ati.ambient_levels`)."""
+    from .ati import ambient_levels
+
+    rows = np.arange(len(a0)) if rows is None else np.flatnonzero(rows)
+    first = rows[np.unique(groups[rows], return_index=True)[1]] if groups is not None else rows[:1]
+    return ambient_levels(a0[first])
+
+
+def _validated_as(oof: dict, context, groups, folds) -> dict:
+    """ATI candidate -> why its out-of-fold predictions are its base family's, row for row.
+
+    Where no fold's fit campaigns span the ambient levels ATI's intervals and interaction need,
+    every fold's ATI model is one model of its family, and so is what the votes score: a tie
+    with that family (a tie's votes go to the first), while the fit on every train campaign,
+    which spans them, may take the interaction that no fold scored (hbm75 seed 7601: each fold
+    2 levels, the train split 3; ``benchmarks/bench_autoati75.py``).  Said, not changed."""
+    out = {}
+    for name, predicted in oof.items():
+        base = candidate_family(name) if name.startswith(ATI) else None
+        if base is None or base not in oof or not np.array_equal(predicted, oof[base]):
+            continue
+        a0 = np.asarray(context[AMBIENT_C0], float)
+        most = max(_ambient_levels(a0, groups, fit) for fit, *_ in folds)
+        out[name] = (f"validated as {base}, row for row: every fold's ATI model was one {base} "
+                     f"model (the folds' fit campaigns span at most {most} ambient level(s), the "
+                     f"train split {_ambient_levels(a0, groups)}); what the fit on every train campaign "
+                     "may add, no fold scored")
+    return out
 
 
 def _same_as(name: str, est, runs: dict, context, n: int) -> str | None:

@@ -298,6 +298,8 @@ def auto_table(metrics: dict) -> list[str]:
               for t, a in rows.items() if len(a.get("weights", {})) > 1]
     skipped = {n: w for a in rows.values() for n, w in a.get("skipped", {}).items()}
     lines += [f"  skipped {n}: {w}" for n, w in skipped.items()]
+    tied = {n: w for a in rows.values() for n, w in a.get("validated_as", {}).items()}
+    lines += [f"  {n} {w}" for n, w in tied.items()]
     return lines
 
 
