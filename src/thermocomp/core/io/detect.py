@@ -315,7 +315,11 @@ def proposed_roles(header: list[str], first: dict, opts, stated: bool = False) -
 
 def stated_units(sample: Path, opts) -> bool:
     """The units under ``sample``'s header are a unit row's, each a unit whatever it spells
-    (a Campbell Scientific TOA5 table's line 3)."""
+    (a Campbell Scientific TOA5 table's line 3).  A file read through a converted copy (a
+    workbook, Excel's UTF-16 'Unicode Text', a TDMS log) has none: its head is not lines of text
+    (head_lines refused a UTF-16 export that the reader converts); a TOB1 table's is."""
+    if is_converted(sample) and not is_tob1(sample):
+        return False
     return campbell.has_unit_row(head_lines(sample, opts.encoding))
 
 
