@@ -509,7 +509,7 @@ def _validated_as(oof: dict, context, groups, folds) -> dict:
     out = {}
     for name, predicted in oof.items():
         base = candidate_family(name) if name.startswith(ATI) else None
-        if base is None or base not in oof or not np.array_equal(predicted, oof[base]):
+        if base is None or base not in oof or not np.array_equal(predicted, oof[base], equal_nan=True):
             continue
         a0 = np.asarray(context[AMBIENT_C0], float)
         most = max(_ambient_levels(a0, groups, fit) for fit, *_ in folds)
