@@ -95,6 +95,7 @@ def said_misread(cfg: DictConfig, ds) -> None:
     scored as a thermal error of 0.8 m), a temperature naming the day of the week
     (:func:`~thermocomp.core.io.detect.weekday_headers`; stranger75's ``Weekday``, 1-7)."""
     from ..core.io.detect import TRAVEL_UM, travel_headers, weekday_headers
+    from ..core.io.roles import header_pattern
 
     names = ds.meta.get("column_map") or {}
     if not names:
@@ -103,17 +104,12 @@ def said_misread(cfg: DictConfig, ds) -> None:
     for header, span in travel_headers(ds, names, opts.roles, opts).items():
         logger.warning(f"{header!r} ({names[header]}), an error by its unit, spans {span:.4g} mm "
                        f"over the record, more than a thermal error does ({TRAVEL_UM / 1000:g} "
-                       f"mm): an axis position? data.roles.state=[{_base(header)!r}] (thermocomp "
-                       "init proposes it)")
+                       f"mm): an axis position? data.roles.state=[{header_pattern(header)!r}] "
+                       "(thermocomp init proposes it)")
     for header in weekday_headers(ds, names, opts):
         logger.warning(f"{header!r} ({names[header]}) names the day of the week (whole numbers "
                        f"0-7): a calendar number read as a temperature; data.roles.ignore="
-                       f"[{_base(header)!r}] leaves it out (thermocomp init does)")
-
-
-def _base(header: str) -> str:
-    """``header`` without its unit (``Z ram [mm]``: ``Z ram``), as a role pattern names it."""
-    return header.split(" [")[0].split(" (")[0]
+                       f"[{header_pattern(header)!r}] leaves it out (thermocomp init does)")
 
 
 def calibration_of(ds: io.Dataset):

@@ -42,6 +42,7 @@ from .roles import (
     LOGGER,
     RUN,
     date_and_time_of_day,
+    header_pattern,
     left_out,
     logger_columns,
     matching_roles,
@@ -329,7 +330,7 @@ def foreign_said(header: list[str], roles: dict, opts, stated: bool) -> list[str
     for h in header:
         base, unit = _unit_of(h, opts)
         if base and foreign_unit(unit, stated) and matching_roles(h, {"ignore": roles["ignore"]}):
-            pattern = _GLOB.sub(r"[\1]", base)
+            pattern = header_pattern(h)
             out.append(f"{h!r}: unit {unit!r} is no temperature's, displacement's nor machine "
                        "state's (°C, µm, W, rpm ...): not a sensor of the model, proposed "
                        f"data.roles.ignore (data.roles.state=[{pattern}] if it is a machine state)")
@@ -381,6 +382,12 @@ def _a_place(word: str) -> bool:
     return bool(rest) and not rest.startswith((*NOT_THE_HALLS, *PART_WORDS, *NOT_THE_AIRS))
 
 
+def _over_campaigns(ds, name: str) -> np.ndarray:
+    """The measured values of the column ``name`` over every campaign of ``ds``."""
+    values = pd.concat([df[name] for df in ds.campaigns.values() if name in df]).dropna()
+    return values.to_numpy(float)
+
+
 def flag_headers(ds, names: dict) -> list[str]:
     """The headers (``names``: header -> contract name) proposed as a temperature whose column
     holds two values one apart and nothing else over the whole of ``ds`` (0 / 1, or -1 / 0 once
@@ -391,8 +398,7 @@ def flag_headers(ds, names: dict) -> list[str]:
     for header, name in names.items():
         if not str(name).startswith("T_"):
             continue
-        values = pd.concat([df[name] for df in ds.campaigns.values() if name in df]).dropna()
-        seen = np.unique(np.round(values.to_numpy(float), 9))
+        seen = np.unique(np.round(_over_campaigns(ds, name), 9))
         if seen.size == 2 and seen[1] - seen[0] == 1.0:
             flags.append(header)
     return flags
@@ -413,17 +419,15 @@ def weekday_headers(ds, names: dict, opts) -> list[str]:
     for header, name in names.items():
         if not str(name).startswith("T_") or not _WEEKDAY.fullmatch(_unit_of(header, opts)[0].strip()):
             continue
-        values = pd.concat([df[name] for df in ds.campaigns.values() if name in df]).dropna()
-        v = values.to_numpy(float)
+        v = _over_campaigns(ds, name)
         if v.size and np.all(v == np.round(v)) and v.min() >= 0 and v.max() <= 7:
             days.append(header)
     return days
 
 
-def ignored(roles: dict, headers: list[str], opts) -> dict:
+def ignored(roles: dict, headers: list[str]) -> dict:
     """``roles`` with each of ``headers`` left out (``data.roles.ignore``)."""
-    patterns = [_GLOB.sub(r"[\1]", _unit_of(h, opts)[0]) for h in headers]
-    return {**roles, "ignore": [*roles["ignore"], *patterns]}
+    return {**roles, "ignore": [*roles["ignore"], *map(header_pattern, headers)]}
 
 
 def flags_as_states(roles: dict, headers: list[str], opts) -> dict:
@@ -459,8 +463,8 @@ def travel_headers(ds, names: dict, given_roles: dict, opts) -> dict:
     ``E_Z_ram``)."""
     out = {}
     for header, name in length_errors(names, given_roles, opts).items():
-        values = pd.concat([df[name] for df in ds.campaigns.values() if name in df]).dropna()
-        span = float(values.max() - values.min()) if len(values) else 0.0
+        values = _over_campaigns(ds, name)
+        span = float(values.max() - values.min()) if values.size else 0.0
         if span > TRAVEL_UM:
             out[header] = span / 1000.0
     return out

@@ -66,11 +66,6 @@ def numbers_given(marks: Iterable) -> str:
     return ", ".join(repr(str(m)) for m in marks if value_of(str(m)) is not None)
 
 
-def is_infinite(cell) -> bool:
-    """``cell`` (text as written, quotes round it dropped) spells an infinity."""
-    return bool(INFINITE.fullmatch(str(cell).strip().strip('"').strip()))
-
-
 def hits(column, marks: Iterable) -> np.ndarray:
     """Where the numbers of ``column`` (an array of floats) are missing by their value: a mark's,
     or infinite (a logger's overflow, never a reading)."""

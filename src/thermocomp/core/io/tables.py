@@ -280,14 +280,16 @@ def _unmarked(columns: dict, types: dict, opts: ReadOptions, path: Path, lines: 
         if not where.any():
             continue
         out[name] = pa.chunked_array([pa.array(values, pa.float64(), mask=where | np.isnan(values))])
-        infinite = np.flatnonzero(np.isinf(values))
-        if infinite.size:
+        infinite = np.isinf(values)
+        if infinite.any():
             own = f" (its header in the file: {header[name]!r})" if header.get(name, name) != name \
                 else ""
-            shown = [lines.at(int(r) + 1) for r in infinite[:marks.SHOWN_ROWS]]
-            logger.warning(f"{path}: {marks.infinite_said(name, shown, infinite.size)}{own}")
-        if role(name) != "T" and (where & ~np.isinf(values)).any():
-            logger.warning(f"{path}: column {name!r}: {int((where & ~np.isinf(values)).sum())} "
+            rows = np.flatnonzero(infinite)
+            shown = [lines.at(int(r) + 1) for r in rows[:marks.SHOWN_ROWS]]
+            logger.warning(f"{path}: {marks.infinite_said(name, shown, rows.size)}{own}")
+        marked = where & ~infinite         # a mark's cells (an infinity is said above)
+        if role(name) != "T" and marked.any():
+            logger.warning(f"{path}: column {name!r}: {int(marked.sum())} "
                            "cell(s) equal to a number of data.missing_values "
                            f"({marks.numbers_given(opts.missing_values)}) read as missing")
     return out

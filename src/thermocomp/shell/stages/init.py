@@ -403,7 +403,7 @@ def _init(cfg: DictConfig) -> dict:
         roles = flags_as_states({**roles, "error": [p for p in roles["error"]
                                                     if p not in undecided]},
                                 [*flags, *travels], opts)
-        roles = ignored(roles, days, opts)
+        roles = ignored(roles, days)
         plan = naming(header, roles, opts.columns, cells_of_first, opts.decimal,
                       sample, opts.units)
         config = data_config(src, given, opts, roles, defaults, manifest)
