@@ -481,6 +481,13 @@ def length_errors(names: dict, given_roles: dict, opts) -> dict:
             and role_by_unit(*_unit_of(header, opts)) in ("error", AMBIGUOUS)}
 
 
+def beyond(ds, names: dict, limit: float | None) -> bool:
+    """A column of ``names`` (header -> contract name) holds a value beyond ``limit``."""
+    return limit is not None and any(
+        float(np.nanmax(np.abs(df[n].to_numpy(float)), initial=0.0)) > limit
+        for df in ds.campaigns.values() for n in names.values() if n in df)
+
+
 def _named(header: str, roles: dict, opts) -> bool:
     """``header`` is named by the user (a ``data.roles`` pattern, ``data.columns``, the time or
     the campaign): nothing is proposed for it."""

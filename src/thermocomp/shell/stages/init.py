@@ -25,6 +25,7 @@ from ...core.io.derived import probe_pairs, proposal
 from ...core.io.detect import (
     TRAVEL_UM,
     axis_lengths,
+    beyond,
     check_an_error_is_named,
     data_config,
     detection_lines,
@@ -271,13 +272,6 @@ def config_name(name: str) -> str:
     except Exception:           # (any name its grammar does not take as a plain word)
         read = None
     return safe if read == safe else f"data_{safe}"
-
-
-def beyond(ds, names: dict, limit: float | None) -> bool:
-    """A column of ``names`` (header -> contract name) holds a value beyond ``limit``."""
-    return limit is not None and any(
-        float(np.nanmax(np.abs(df[n].to_numpy(float)), initial=0.0)) > limit
-        for df in ds.campaigns.values() for n in names.values() if n in df)
 
 
 def init(cfg: DictConfig) -> dict:
