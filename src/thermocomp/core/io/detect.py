@@ -60,7 +60,7 @@ from .timestamps import (
     looks_like_timestamp,
     maybe_elapsed,
 )
-from .tob1 import first_line, is_tob1
+from .tob1 import described, is_tob
 from .units import AMBIGUOUS, UNITS, ambiguity, foreign_unit, is_flag, role_by_unit
 from .utf16 import is_utf16, utf8_options, utf16_as_utf8
 from .values import EPOCH_MS
@@ -170,7 +170,7 @@ def head(sample: Path, opts) -> tuple[object, list[str], list[str], str]:
     if is_lab_file(sample):         # a TDMS log, a MATLAB file: the CSV its channels are written to
         kind = ("a MATLAB file" + (" saved -v7.3" if is_v73(sample) else "") if is_mat(sample)
                 else "a LabVIEW Measurement File" if is_lvm(sample)
-                else campbell.said(first_line(sample)) if is_tob1(sample)
+                else described(sample) if is_tob(sample)
                 else "a TDMS log") + " (its channels as columns)"
         encoding = opts.encoding                 # (the file's: the temporary CSV is UTF-8)
         with lab_as_csv(sample, encoding=encoding) as text:
@@ -318,8 +318,9 @@ def stated_units(sample: Path, opts) -> bool:
     """The units under ``sample``'s header are a unit row's, each a unit whatever it spells
     (a Campbell Scientific TOA5 table's line 3).  A file read through a converted copy (a
     workbook, Excel's UTF-16 'Unicode Text', a TDMS log) has none: its head is not lines of text
-    (head_lines refused a UTF-16 export that the reader converts); a TOB1 table's is."""
-    if is_converted(sample) and not is_tob1(sample):
+    (head_lines refused a UTF-16 export that the reader converts); a TOB1 / TOB2 / TOB3 table's
+    is."""
+    if is_converted(sample) and not is_tob(sample):
         return False
     return campbell.has_unit_row(head_lines(sample, opts.encoding))
 
