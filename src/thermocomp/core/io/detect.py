@@ -61,7 +61,7 @@ from .timestamps import (
     maybe_elapsed,
 )
 from .tob1 import described, is_tob
-from .units import AMBIGUOUS, UNITS, ambiguity, foreign_unit, is_flag, role_by_unit
+from .units import AMBIGUOUS, UNITS, ambiguity, foreign_unit, is_flag, is_humidity, role_by_unit
 from .utf16 import is_utf16, utf8_options, utf16_as_utf8
 from .values import EPOCH_MS
 from .workbook import HEAD_ROWS, csv_options, is_workbook, sheet_as_csv
@@ -295,7 +295,9 @@ def proposed_roles(header: list[str], first: dict, opts, stated: bool = False) -
                for t in taken):               # (the user's header of the same name: theirs)
             continue
         kind = role_by_unit(base, unit)
-        if kind in ("error", "state"):
+        if is_humidity(base, unit):           # (lab76: '%' proposed it a state)
+            roles["ignore"].append(pattern)
+        elif kind in ("error", "state"):
             roles[kind].append(pattern)
         elif kind == AMBIGUOUS:
             continue
@@ -326,12 +328,20 @@ def stated_units(sample: Path, opts) -> bool:
 
 
 def foreign_said(header: list[str], roles: dict, opts, stated: bool) -> list[str]:
-    """What ``init`` says of the headers ``roles`` leave out for their unit (:func:`proposed_roles`)."""
+    """What ``init`` says of the headers ``roles`` leave out for their unit (:func:`proposed_roles`;
+    lab76: a relative humidity for its name and unit)."""
     out = []
     for h in header:
         base, unit = _unit_of(h, opts)
-        if base and foreign_unit(unit, stated) and matching_roles(h, {"ignore": roles["ignore"]}):
-            pattern = header_pattern(h)
+        if not base or not matching_roles(h, {"ignore": roles["ignore"]}):
+            continue
+        pattern = header_pattern(h)
+        if is_humidity(base, unit):
+            out.append(f"{h!r}: a relative humidity (its name, unit '%'), no temperature nor "
+                       "machine state: it drives no thermal error, and what it says of the "
+                       "machine the air's temperature says; proposed data.roles.ignore "
+                       f"(data.roles.state=[{pattern}] reads it as a machine state)")
+        elif foreign_unit(unit, stated):
             out.append(f"{h!r}: unit {unit!r} is no temperature's, displacement's nor machine "
                        "state's (°C, µm, W, rpm ...): not a sensor of the model, proposed "
                        f"data.roles.ignore (data.roles.state=[{pattern}] if it is a machine state)")

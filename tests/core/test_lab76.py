@@ -141,3 +141,70 @@ def test_init_names_a_tob3_table_and_run_reads_its_config(tmp_path):
                      "data=card", "model=mlr", "eval.validation=false", "track=false",
                      "plots=none", f"out={tmp_path / 'run'}").stdout
     assert "E_dZ_Avg" in ran
+
+
+def test_init_converts_a_lab_file_once_and_says_an_infinity_once(tmp_path, monkeypatch):
+    """A TOB1 table: converted once for init's looks and its read (before: five times, for the
+    period, the head, the cells, the runs and the read).  A TOA5 file's ``INF``: said once, by
+    the read with its rows (before: init's line too, ``'INF' in 2 cell(s) of ...``)."""
+    import contextlib
+
+    from test_lab75 import HALLE
+    from test_tob1_75 import tob1
+    from thermocomp.core.io import plain
+
+    converted = []
+    convert = plain.records_as_csv
+
+    @contextlib.contextmanager
+    def counted(records, path):
+        converted.append(path)
+        with convert(records, path) as text:
+            yield text
+
+    monkeypatch.setattr(plain, "records_as_csv", counted)
+    thermocomp("init", str(tob1(tmp_path / "therm.dat")), f"out={tmp_path / 'tob1'}")
+    assert len(converted) == 1, converted
+    done = thermocomp("init", str(HALLE), f"out={tmp_path / 'toa5'}")
+    said = [line for line in (done.stdout + done.stderr).splitlines() if "T_spindle_Avg" in line
+            and "infinite reading" in line]
+    assert len(said) == 1 and "line 9 (data row 5), line 10 (data row 6)" in said[0], said
+
+
+def test_a_relative_humidity_is_proposed_ignored_a_load_in_percent_a_state():
+    """``%`` under a humidity's name (RH, rel. hum., Luftfeuchte, humidity): no thermal input,
+    proposed ``ignore`` and said with the key that reads it as a state; a spindle's load in
+    ``%`` stays a state.  Before: every ``%`` column proposed a state."""
+    from thermocomp.core.io.detect import foreign_said, proposed_roles
+    from thermocomp.core.io.options import ReadOptions
+
+    header = ["time", "T1 [°C]", "E_X [µm]", "RH_hall [%]", "rel. hum. [%]", "Luftfeuchte [%]",
+              "Humidity [%]", "Spindle load [%]"]
+    first = dict.fromkeys(header, "1.5")
+    opts = ReadOptions.from_cfg({})
+    roles = proposed_roles(header, first, opts)
+    assert roles["ignore"] == ["RH_hall", "rel. hum.", "Luftfeuchte", "Humidity"]
+    assert roles["state"] == ["Spindle load"]
+    said = foreign_said(header, roles, opts, stated=False)
+    assert said[0] == ("'RH_hall [%]': a relative humidity (its name, unit '%'), no temperature "
+                       "nor machine state: it drives no thermal error, and what it says of the "
+                       "machine the air's temperature says; proposed data.roles.ignore "
+                       "(data.roles.state=[RH_hall] reads it as a machine state)")
+
+
+def test_a_tob1_tables_int4_and_uint2_are_big_endian(tmp_path):
+    """``INT4`` / ``UINT2`` as csiio-py and camp2ascii read them, big-endian (before: read
+    little-endian, -3 µm as -33554433 µm)."""
+    head = ['"TOB1","MZ_Halle3","CR1000X","12345","CR1000X.Std.05.02","CPU:t.CR1X","26142","Fast"',
+            '"SECONDS","NANOSECONDS","T_Avg","dX_Avg","N_Avg"', '"","","Deg C","um","rpm"',
+            '"","","Avg","Avg","Avg"', '"ULONG","ULONG","IEEE4","INT4","UINT2"']
+    seconds = int((START - dt.datetime(1990, 1, 1)).total_seconds())
+    body = b"".join(struct.pack("<IIf", seconds + 60 * i, 0, 20 + i) + struct.pack(">iH", i - 3,
+                                                                                   1000 * i)
+                    for i in range(6))
+    path = tmp_path / "fast.dat"
+    path.write_bytes(("\r\n".join(head) + "\r\n").encode() + body)
+    ds, _ = read_dataset(path, ROLES)
+    df = ds.campaigns[ds.ids()[0]]
+    assert df["E_dX_Avg"].tolist() == [-3.0, -2.0, -1.0, 0.0, 1.0, 2.0]
+    assert df["S_N_Avg"].tolist() == [0.0, 1000.0, 2000.0, 3000.0, 4000.0, 5000.0]
