@@ -275,7 +275,8 @@ def proposed_roles(header: list[str], first: dict, opts, stated: bool = False) -
     time of day]``.  A length named by its axis alone (``X [mm]``) is proposed nothing: the
     reading lists it.  A unit of no sensor of the model (``W/m^2``, ``m/s``: :func:`.units.
     foreign_unit`, ``stated``: the file's unit row says the units) is proposed ``ignore``
-    (lab75: the reader read it as a temperature and refused it)."""
+    (lab75: the reader read it as a temperature and refused it), and so is a relative humidity in
+    ``%`` (lab76: :func:`.units.is_humidity`; no thermal input, proposed a state before)."""
     roles = {k: list(opts.roles.get(k, [])) for k in ROLE_PATTERNS}
     roles["time"] = opts.roles.get("time", "auto")
     if opts.roles.get(RUN_ROLE):
