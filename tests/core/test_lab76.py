@@ -137,6 +137,8 @@ def test_init_names_a_tob3_table_and_run_reads_its_config(tmp_path):
             "(CR1000X, serial 12345, program 'CPU:thermo_mz.CR1X') (its channels as columns)"
             ) in said, said
     assert "dZ_Avg [mm]            error        E_dZ_Avg" in said
+    # (a binary table is no Windows export: no data.encoding written)
+    assert "encoding" not in (tmp_path / "init" / "conf" / "data" / "card.yaml").read_text()
     ran = thermocomp("run", f"hydra.searchpath=[file://{tmp_path / 'init' / 'conf'}]",
                      "data=card", "model=mlr", "eval.validation=false", "track=false",
                      "plots=none", f"out={tmp_path / 'run'}").stdout

@@ -148,8 +148,10 @@ def encoding(src: Path, opts, manifest: pd.DataFrame | None) -> str:
     files = [sample_file(src, manifest)]
     if (src / MANIFEST).is_file():
         files.append(src / MANIFEST)
-    found = [detect(f) for f in files                # (UTF-16: its mark; an .lvm is text)
-             if (is_text(f) or is_lvm(f)) and not is_utf16(f)]
+    # (UTF-16: its mark; an .lvm is text; a Campbell binary table's .dat is none: lab76, its
+    # bytes were taken for a Windows export's, data.encoding: cp1252 written for nothing)
+    found = [detect(f) for f in files
+             if (is_text(f) or is_lvm(f)) and not is_utf16(f) and not is_tob(f)]
     return WINDOWS if WINDOWS in found else UTF8
 
 
