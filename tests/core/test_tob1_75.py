@@ -82,7 +82,9 @@ def test_init_then_run_read_a_tob1_file(tmp_path):
     assert ("therm.dat: a Campbell Scientific TOB1 table 'Therm10min' of station 'MZ_Halle3' "
             "(CR1000X, serial 12345, program 'CPU:thermo_mz.CR1X')") in said, said
     assert "dX_Avg [um]            error        E_dX_Avg" in said
-    assert "max_gap_samples: 1" in (tmp_path / "init" / "conf" / "data" / "therm.yaml").read_text()
+    written = (tmp_path / "init" / "conf" / "data" / "therm.yaml").read_text()
+    assert "max_gap_samples: 1" in written
+    assert "encoding" not in written          # (lab76: it wrote cp1252, a binary file's bytes)
     ran = thermocomp("run", f"hydra.searchpath=[file://{tmp_path / 'init' / 'conf'}]",
                      "data=therm", "model=mlr", "eval.validation=false", "track=false",
                      "plots=none", f"out={tmp_path / 'run'}").stdout

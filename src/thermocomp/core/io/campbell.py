@@ -20,7 +20,8 @@ from .csvline import EMPTY, split_line
 
 # the format a file's first field names -> whether a units row (and a processing row) follow
 # the names
-FORMATS = {"TOA5": True, "TOACI1": False, "TOB1": True}   # (TOB1: its rows binary, :mod:`.tob1`)
+# (TOB1: its rows binary, :mod:`.tob1`; TOB2 / TOB3: binary frames, :mod:`.tob3`)
+FORMATS = {"TOA5": True, "TOACI1": False, "TOB1": True, "TOB2": True, "TOB3": True}
 TIME_HEADERS = ("timestamp", "tmstamp")
 COUNTERS = ("record", "recnbr")         # the logger's record number beside its timestamp
 _NO_UNIT = {"TS", "RN"}                 # the units row's marks of the timestamp and the counter
@@ -28,7 +29,10 @@ _SPELLED = {"volts": "V", "millivolts": "mV"}    # CRBasic's manual spells a log
 # the environment line's fields after the format's, by format
 _FIELDS = {**dict.fromkeys(("TOA5", "TOB1"), ("station", "logger", "serial", "os", "program",
                                                 "signature", "table")),
-           "TOACI1": ("station", "table")}
+           "TOACI1": ("station", "table"),
+           # (TOB2 / TOB3: the table is named on line 2, the file's creation time here)
+           **dict.fromkeys(("TOB2", "TOB3"), ("station", "logger", "serial", "os", "program",
+                                               "signature", "created"))}
 
 
 def environment(line: str | None) -> dict[str, str] | None:
@@ -54,12 +58,15 @@ def units(row: list[str]) -> list[str]:
             for cell in row]
 
 
-def said(line: str | None) -> str:
+def said(line: str | None, table: str | None = None) -> str:
     """How ``init`` names the file: ``a Campbell Scientific TOA5 table 'Therm10min' of station
-    'MZ_Halle3' (CR1000X, serial 12345, program 'CPU:thermo.CR1X')``; '' for any other file."""
+    'MZ_Halle3' (CR1000X, serial 12345, program 'CPU:thermo.CR1X')``; '' for any other file
+    (``table``: its name where another line gives it, a TOB3 file's line 2)."""
     found = environment(line)
     if found is None:
         return ""
+    if table is not None:
+        found["table"] = table
     logger = ", ".join(f"program {found[k]!r}" if k == "program" else
                        f"serial {found[k]}" if k == "serial" else found[k]
                        for k in ("logger", "serial", "program") if found.get(k, "").strip())

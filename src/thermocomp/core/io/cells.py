@@ -300,13 +300,9 @@ def _marks(numbers: list[_Column], decimal: str, found: Cells, given: list) -> N
     nines_said: dict = {}         # a -9999 in a file that is no AmeriFlux table: header -> cells
     for c in numbers:
         numeric = c.plain | (c.grouped[thousands] if thousands in c.grouped else False)
-        # an infinite reading (a Campbell logger's INF, lab75): missing as read, no mark to list
+        # an infinite reading (a Campbell logger's INF, lab75): missing as read, no mark to list;
+        # not said here (lab76): the read says each column's with its rows
         infinite = _matches(c.text, _INFINITE)
-        if infinite.any():
-            spelled = sorted(set(pc.filter(c.text, pa.array(infinite)).to_pylist()))
-            found.said.append(f"{', '.join(map(repr, spelled))} in {int(infinite.sum())} cell(s) "
-                              f"of {c.header!r}: an infinite reading (a logger's overflow or an "
-                              "open input), read as missing (no key: the reader names its rows)")
         other = ~numeric & ~c.missing & ~infinite
         # a NaN written out (a Campbell logger's NAN, lab74): missing as read, its runs a mark's
         written = c.missing & _matches(c.text, ".")

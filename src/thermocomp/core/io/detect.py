@@ -60,8 +60,8 @@ from .timestamps import (
     looks_like_timestamp,
     maybe_elapsed,
 )
-from .tob1 import first_line, is_tob1
-from .units import AMBIGUOUS, UNITS, ambiguity, foreign_unit, is_flag, role_by_unit
+from .tob1 import described, is_tob
+from .units import AMBIGUOUS, UNITS, ambiguity, foreign_unit, is_flag, is_humidity, role_by_unit
 from .utf16 import is_utf16, utf8_options, utf16_as_utf8
 from .values import EPOCH_MS
 from .workbook import HEAD_ROWS, csv_options, is_workbook, sheet_as_csv
@@ -148,8 +148,10 @@ def encoding(src: Path, opts, manifest: pd.DataFrame | None) -> str:
     files = [sample_file(src, manifest)]
     if (src / MANIFEST).is_file():
         files.append(src / MANIFEST)
-    found = [detect(f) for f in files                # (UTF-16: its mark; an .lvm is text)
-             if (is_text(f) or is_lvm(f)) and not is_utf16(f)]
+    # (UTF-16: its mark; an .lvm is text; a Campbell binary table's .dat is none: lab76, its
+    # bytes were taken for a Windows export's, data.encoding: cp1252 written for nothing)
+    found = [detect(f) for f in files
+             if (is_text(f) or is_lvm(f)) and not is_utf16(f) and not is_tob(f)]
     return WINDOWS if WINDOWS in found else UTF8
 
 
@@ -170,7 +172,7 @@ def head(sample: Path, opts) -> tuple[object, list[str], list[str], str]:
     if is_lab_file(sample):         # a TDMS log, a MATLAB file: the CSV its channels are written to
         kind = ("a MATLAB file" + (" saved -v7.3" if is_v73(sample) else "") if is_mat(sample)
                 else "a LabVIEW Measurement File" if is_lvm(sample)
-                else campbell.said(first_line(sample)) if is_tob1(sample)
+                else described(sample) if is_tob(sample)
                 else "a TDMS log") + " (its channels as columns)"
         encoding = opts.encoding                 # (the file's: the temporary CSV is UTF-8)
         with lab_as_csv(sample, encoding=encoding) as text:
@@ -275,7 +277,8 @@ def proposed_roles(header: list[str], first: dict, opts, stated: bool = False) -
     time of day]``.  A length named by its axis alone (``X [mm]``) is proposed nothing: the
     reading lists it.  A unit of no sensor of the model (``W/m^2``, ``m/s``: :func:`.units.
     foreign_unit`, ``stated``: the file's unit row says the units) is proposed ``ignore``
-    (lab75: the reader read it as a temperature and refused it)."""
+    (lab75: the reader read it as a temperature and refused it), and so is a relative humidity in
+    ``%`` (lab76: :func:`.units.is_humidity`; no thermal input, proposed a state before)."""
     roles = {k: list(opts.roles.get(k, [])) for k in ROLE_PATTERNS}
     roles["time"] = opts.roles.get("time", "auto")
     if opts.roles.get(RUN_ROLE):
@@ -295,7 +298,9 @@ def proposed_roles(header: list[str], first: dict, opts, stated: bool = False) -
                for t in taken):               # (the user's header of the same name: theirs)
             continue
         kind = role_by_unit(base, unit)
-        if kind in ("error", "state"):
+        if is_humidity(base, unit):           # (lab76: '%' proposed it a state)
+            roles["ignore"].append(pattern)
+        elif kind in ("error", "state"):
             roles[kind].append(pattern)
         elif kind == AMBIGUOUS:
             continue
@@ -318,19 +323,28 @@ def stated_units(sample: Path, opts) -> bool:
     """The units under ``sample``'s header are a unit row's, each a unit whatever it spells
     (a Campbell Scientific TOA5 table's line 3).  A file read through a converted copy (a
     workbook, Excel's UTF-16 'Unicode Text', a TDMS log) has none: its head is not lines of text
-    (head_lines refused a UTF-16 export that the reader converts); a TOB1 table's is."""
-    if is_converted(sample) and not is_tob1(sample):
+    (head_lines refused a UTF-16 export that the reader converts); a TOB1 / TOB2 / TOB3 table's
+    is."""
+    if is_converted(sample) and not is_tob(sample):
         return False
     return campbell.has_unit_row(head_lines(sample, opts.encoding))
 
 
 def foreign_said(header: list[str], roles: dict, opts, stated: bool) -> list[str]:
-    """What ``init`` says of the headers ``roles`` leave out for their unit (:func:`proposed_roles`)."""
+    """What ``init`` says of the headers ``roles`` leave out for their unit (:func:`proposed_roles`;
+    lab76: a relative humidity for its name and unit)."""
     out = []
     for h in header:
         base, unit = _unit_of(h, opts)
-        if base and foreign_unit(unit, stated) and matching_roles(h, {"ignore": roles["ignore"]}):
-            pattern = header_pattern(h)
+        if not base or not matching_roles(h, {"ignore": roles["ignore"]}):
+            continue
+        pattern = header_pattern(h)
+        if is_humidity(base, unit):
+            out.append(f"{h!r}: a relative humidity (its name, unit '%'), no temperature nor "
+                       "machine state: it drives no thermal error, and what it says of the "
+                       "machine the air's temperature says; proposed data.roles.ignore "
+                       f"(data.roles.state=[{pattern}] reads it as a machine state)")
+        elif foreign_unit(unit, stated):
             out.append(f"{h!r}: unit {unit!r} is no temperature's, displacement's nor machine "
                        "state's (°C, µm, W, rpm ...): not a sensor of the model, proposed "
                        f"data.roles.ignore (data.roles.state=[{pattern}] if it is a machine state)")

@@ -20,15 +20,17 @@ from .labfile import records_as_csv
 from .lvm import is_lvm, lvm_records
 from .matfile import is_mat, mat_records
 from .tdms import is_tdms, tdms_records
-from .tob1 import is_tob1, tob1_records
+from .tob1 import is_tob
+from .tob3 import tob_records
 from .utf16 import is_utf16, utf8_options, utf16_as_utf8
 from .workbook import csv_options, is_workbook, run_sheets, sheet_as_csv
 
 
 def is_lab_file(path) -> bool:
     """``path`` is a lab's record of channels: a TDMS log, a MATLAB file, (stranger69) a
-    LabVIEW Measurement File or (lab75) a Campbell Scientific TOB1 table (:mod:`.labfile`)."""
-    return is_tdms(path) or is_mat(path) or is_lvm(path) or is_tob1(path)
+    LabVIEW Measurement File or (lab75) a Campbell Scientific TOB1 table (lab76: TOB2, TOB3;
+    :mod:`.labfile`)."""
+    return is_tdms(path) or is_mat(path) or is_lvm(path) or is_tob(path)
 
 
 def is_converted(path, opts=None) -> bool:
@@ -38,14 +40,38 @@ def is_converted(path, opts=None) -> bool:
         is_lab_file(path)) or (opts is not None and long_layout(path, opts) is not None)
 
 
+_HELD: dict[Path, Path] = {}     # a lab file -> its conversion, held open by `converted_once`
+
+
+@contextmanager
+def converted_once(path: Path | None, encoding: str = UTF8) -> Iterator[None]:
+    """Within the block, every look at the lab file ``path`` reads one conversion of it (lab76:
+    ``init`` converted a TOB1 table or a TDMS log for its head, its cells, its runs and its read,
+    a binary file parsed and written four times more, its warnings said again); any other
+    ``path`` (None: none) as it is."""
+    if path is None or not is_lab_file(path) or Path(path) in _HELD:
+        yield
+        return
+    with lab_as_csv(path, encoding=encoding) as text:
+        _HELD[Path(path)] = text
+        try:
+            yield
+        finally:
+            del _HELD[Path(path)]
+
+
 @contextmanager
 def lab_as_csv(path: Path, one_run: bool = False, encoding: str = UTF8) -> Iterator[Path]:
     """A TDMS log, a MATLAB file or a LabVIEW Measurement File (a text: read in ``encoding``,
-    ``data.encoding``) as the temporary CSV file its channels are written to;
-    ``one_run``: a folder's file, refused where it holds several runs (its runs would be read
-    as one campaign, the days between them a pause nothing said)."""
+    ``data.encoding``) as the temporary CSV file its channels are written to (held by
+    :func:`converted_once`: that one); ``one_run``: a folder's file, refused where it holds
+    several runs (its runs would be read as one campaign, the days between them a pause nothing
+    said)."""
+    if not one_run and Path(path) in _HELD:
+        yield _HELD[Path(path)]
+        return
     records = (tdms_records(path) if is_tdms(path) else lvm_records(path, encoding) if is_lvm(path)
-               else tob1_records(path) if is_tob1(path) else mat_records(path))
+               else tob_records(path) if is_tob(path) else mat_records(path))
     if one_run and len(records) > 1:
         labels = ", ".join(repr(r.label) for r in records[:4]) + (", ..." if len(records) > 4 else "")
         raise ContractError(f"{len(records)} runs in one file ({labels}): a folder's file is one "

@@ -6,7 +6,9 @@ Five ASCII lines as TOA5's, each ending CRLF: the environment (``"TOB1","<statio
 field names, their units, their processing, and the data type of each field (``"ULONG",
 "IEEE4","FP2"``); then the records, one after the other with no separator, each field in its
 type's bytes: ``ULONG`` / ``LONG`` 4 bytes, ``IEEE4`` / ``IEEE8`` a float, ``USHORT`` /
-``SHORT`` 2, ``SecNano`` 8 (seconds, then nanoseconds), little-endian; ``FP2`` Campbell's
+``SHORT`` 2, ``SecNano`` 8 (seconds, then nanoseconds), little-endian; ``UINT2`` / ``INT2`` /
+``UINT4`` / ``INT4`` and ``IEEE4B`` / ``IEEE8B`` big-endian (lab76: as csiio-py 0.4.0 and
+camp2ascii 1.1.1 read them; stop 75 read the first four little-endian); ``FP2`` Campbell's
 2-byte final storage format, big-endian: a sign bit, a 2-bit decimal exponent, a 13-bit
 mantissa (``-1^s * m / 10^e``), its largest mantissa at exponent 0 an infinity (``0x1FFF``,
 ``0x9FFF``: the logger's ``INF``, read as missing as in a TOA5 file, :mod:`.marks`) and
@@ -14,6 +16,7 @@ mantissa (``-1^s * m / 10^e``), its largest mantissa at exponent 0 an infinity (
 hand).  ``SECONDS`` + ``NANOSECONDS`` (or a ``SecNano`` field) since 1990-01-01 are the time,
 on the logger's clock; ``RECORD`` (the logger's counter) is left out.  A type not listed, or
 bytes that make no whole record at the end, are refused naming the file, the field or the row.
+TOB2 / TOB3, the same header over frames, are read by :mod:`.tob3` with these types.
 """
 
 from __future__ import annotations
@@ -23,6 +26,7 @@ from pathlib import Path
 
 import numpy as np
 
+from . import campbell
 from .campbell import COUNTERS
 from .campbell import units as campbell_units
 from .contract import ContractError
@@ -30,54 +34,85 @@ from .csvline import split_line
 from .labfile import Channel, Record, with_unit
 
 HEADER_LINES = 5
+FORMAT = re.compile(rb'\s*"?(TOB[123])"?,')     # a Campbell binary table's first field
 EPOCH = np.datetime64("1990-01-01T00:00:00", "ns")     # Campbell's loggers count from it
 TIME_FIELDS = ("seconds", "nanoseconds")
 # a data type -> its numpy type as the record holds it
-_TYPES = {"ULONG": "<u4", "UINT4": "<u4", "LONG": "<i4", "INT4": "<i4", "IEEE4": "<f4",
-          "IEEE4L": "<f4", "IEEE8": "<f8", "IEEE8L": "<f8", "USHORT": "<u2", "UINT2": "<u2",
-          "SHORT": "<i2", "INT2": "<i2", "FP2": ">u2", "SECNANO": ("<u4", (2,))}
+# (UINT2 / INT2 / UINT4 / INT4 big-endian: csiio-py's and camp2ascii's reading, lab76)
+_TYPES = {"ULONG": "<u4", "UINT4": ">u4", "LONG": "<i4", "INT4": ">i4", "IEEE4": "<f4",
+          "IEEE4L": "<f4", "IEEE4B": ">f4", "IEEE8": "<f8", "IEEE8L": "<f8", "IEEE8B": ">f8",
+          "USHORT": "<u2", "UINT2": ">u2", "SHORT": "<i2", "INT2": ">i2", "FP2": ">u2",
+          "SECNANO": ("<u4", (2,))}
 _INFINITE = {0x1FFF: np.inf, 0x9FFF: -np.inf, 0x9FFE: np.nan}     # FP2's own words
 
 
-def is_tob1(path) -> bool:
-    """``path`` is a TOB1 file (its first field ``"TOB1"``)."""
+def tob_format(path) -> str | None:
+    """``'TOB1'``, ``'TOB2'`` or ``'TOB3'``: the Campbell binary table ``path`` is (its first
+    field); None for any other file."""
     try:
         with open(path, "rb") as f:
-            return re.match(rb'\s*"?TOB1"?,', f.read(8)) is not None
+            found = FORMAT.match(f.read(8))
     except OSError:
-        return False
+        return None
+    return found and found.group(1).decode()
 
 
-def first_line(path) -> str:
-    """The environment line of a TOB1 file (its text: :func:`.campbell.said` names the table)."""
+def is_tob(path) -> bool:
+    """``path`` is a Campbell binary table: TOB1, TOB2 or TOB3."""
+    return tob_format(path) is not None
+
+
+def described(path) -> str:
+    """How ``init`` names a binary table (:func:`.campbell.said`): a TOB2 / TOB3 file's table
+    is named on its line 2, a TOB1's on its line 1."""
     with open(path, "rb") as f:
-        return f.readline().decode("latin-1").rstrip("\r\n")
+        first, second = (f.readline().decode("latin-1").rstrip("\r\n") for _ in range(2))
+    return campbell.said(first, table=None if tob_format(path) == "TOB1"
+                         else split_line(second, ",")[0])
+
+
+def header_lines(data: bytes, path: Path, count: int) -> tuple[list[list[str]], int]:
+    """The first ``count`` ASCII lines of a binary table, split, and the byte its body starts at."""
+    lines, start = [], 0
+    for _ in range(count):
+        end = data.find(b"\n", start)
+        if end < 0:
+            raise ContractError(f"a {tob_format(path)} file has {count} header lines; this one "
+                                f"ends in line {len(lines) + 1}", file=path)
+        lines.append(split_line(data[start:end].decode("latin-1").rstrip("\r"), ","))
+        start = end + 1
+    return lines, start
+
+
+def record_type(path: Path, names: list[str], units: list[str], types: list[str]) -> np.dtype:
+    """One record's numpy type from the data types line (the header's last), fields ``f0`` ..."""
+    line = HEADER_LINES if tob_format(path) == "TOB1" else HEADER_LINES + 1
+    if not len(names) == len(units) == len(types):
+        raise ContractError(f"header lines {line - 3}-{line} differ in width ({len(names)} "
+                            f"names, {len(types)} data types)", file=path)
+    fields = []
+    for name, kind in zip(names, types):
+        found = _TYPES.get(kind.strip().upper())
+        if found is None:
+            raise ContractError(f"data type {kind!r} (line {line}) is not read (read: "
+                                f"{', '.join(sorted(_TYPES))})", file=path, column=name)
+        fields.append(found)
+    return np.dtype([(f"f{i}", *t) if isinstance(t, tuple) else (f"f{i}", t)
+                     for i, t in enumerate(fields)])
+
+
+def channel_values(table, i: int, kind: str) -> np.ndarray:
+    """Field ``i`` of the records ``table`` as numbers (FP2 decoded, its INF an infinity)."""
+    values = table[f"f{i}"]
+    return _fp2(values) if kind.strip().upper() == "FP2" else values.astype(float)
 
 
 def tob1_records(path: Path) -> list[Record]:
     """The one record of the TOB1 file ``path``: its channels, timed by the logger's clock."""
     data = Path(path).read_bytes()
-    lines, start = [], 0
-    for _ in range(HEADER_LINES):
-        end = data.find(b"\n", start)
-        if end < 0:
-            raise ContractError(f"a TOB1 file has {HEADER_LINES} header lines; this one ends in "
-                                f"line {len(lines) + 1}", file=path)
-        lines.append(split_line(data[start:end].decode("latin-1").rstrip("\r"), ","))
-        start = end + 1
+    lines, start = header_lines(data, path, HEADER_LINES)
     names, units, _, types = lines[1:]
-    if not len(names) == len(units) == len(types):
-        raise ContractError(f"TOB1 header lines 2-5 differ in width ({len(names)} names, "
-                            f"{len(types)} data types)", file=path)
-    fields = []
-    for name, kind in zip(names, types):
-        found = _TYPES.get(kind.strip().upper())
-        if found is None:
-            raise ContractError(f"data type {kind!r} (line 5) is not read (read: "
-                                f"{', '.join(sorted(_TYPES))})", file=path, column=name)
-        fields.append((name, found))
-    record = np.dtype([(f"f{i}", *t) if isinstance(t, tuple) else (f"f{i}", t)
-                       for i, (_, t) in enumerate(fields)])
+    record = record_type(path, names, units, types)
     body = data[start:]
     rows, left = divmod(len(body), record.itemsize)
     if left:
@@ -105,9 +140,7 @@ def _record(path: Path, names: list[str], units: list[str], types: list[str], ta
     for i, (name, unit, kind) in enumerate(zip(names, units, types)):
         if i in clock or name.strip().lower() in COUNTERS:     # (RECORD: the logger's counter)
             continue
-        values = table[f"f{i}"]
-        values = _fp2(values) if kind.strip().upper() == "FP2" else values.astype(float)
-        channels.append(Channel(with_unit(name.strip(), unit), values, time,
+        channels.append(Channel(with_unit(name.strip(), unit), channel_values(table, i, kind), time,
                                 f"field {i + 1} {name.strip()!r} ({kind.strip()})"))
     return Record(Path(path).stem, channels, utc=False)
 

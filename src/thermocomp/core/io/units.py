@@ -63,6 +63,10 @@ _TEMPERATURE_WORD = re.compile(r"t\d*|temp.*|.*temperat.*")
 # so a state whatever its unit; 'set point' / 'set-point' joined, a German 'Soll...' word
 _SET_POINT = re.compile(r"setpoints?|soll.*|consigna|consigne|sollwert")
 
+# a name that says "the air's relative humidity" (lab76): with '%' no machine state, and no
+# thermal input of a compensation model (what it says of the machine the air's temperature says)
+_HUMIDITY_WORD = re.compile(r"rh|rf|hum|.*humid.*|.*feucht.*|humedad|umidit.*")
+
 AMBIGUOUS = "error or state"
 _WORDS = re.compile(r"[\s_.\-]+")
 # a name that says "measured displacement": dX, ΔZ, delta, error, Fehler, Abweichung ... (it
@@ -100,6 +104,13 @@ def foreign_unit(unit: str | None, stated: bool = False) -> bool:
     if not unit or is_known_unit(unit):
         return False
     return stated or bool(_UNIT_FORM.fullmatch(unit.strip().lower()))
+
+
+def is_humidity(base: str, unit: str | None) -> bool:
+    """``base`` in ``unit`` is a relative humidity: ``%`` under a name that says so (``RH``,
+    ``rel. hum.``, ``Luftfeuchte``, ``humidity``); a spindle's load in ``%`` is a state."""
+    return (unit or "").strip() == "%" and any(
+        _HUMIDITY_WORD.fullmatch(w) for w in _WORDS.split(base.lower()) if w)
 
 
 def is_flag(cell) -> bool:

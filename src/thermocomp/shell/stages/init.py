@@ -8,6 +8,7 @@ run next.  The data are read with it first: a config that would not read them is
 from __future__ import annotations
 
 import fnmatch
+from contextlib import ExitStack
 from dataclasses import replace
 
 import numpy as np
@@ -59,7 +60,7 @@ from ...core.io.manifest import is_text
 from ...core.io.options import RUN_ROLE
 from ...core.io.pairhead import error_files, pair_time, paired_head, paired_lines
 from ...core.io.period_line import stated_period
-from ...core.io.plain import is_converted, is_lab_file, lab_as_csv
+from ...core.io.plain import converted_once, is_converted, is_lab_file, lab_as_csv
 from ...core.io.rates import PAUSE_PERIODS, pauses
 from ...core.io.record import safe_id
 from ...core.io.roles import excel_days_header, naming, split_unit
@@ -281,12 +282,13 @@ def init(cfg: DictConfig) -> dict:
     from ...apps.volumetric.calibration import layout_refusal
 
     try:
-        return _init(cfg)
+        with ExitStack() as held:
+            return _init(cfg, held)
     except ContractError as exc:     # (it said "no 'time' column", which no setting mends)
         raise layout_refusal(exc, resolve(cfg.data.path)) or exc from None
 
 
-def _init(cfg: DictConfig) -> dict:
+def _init(cfg: DictConfig, held: ExitStack) -> dict:
     check_config(cfg)         # out never holds data.path: the lab's record is never written beside
     src = resolve(cfg.data.path)
     given = data_options(cfg)
@@ -300,6 +302,8 @@ def _init(cfg: DictConfig) -> dict:
         manifest = None
     given["encoding"] = encoding(src, asked, manifest)      # a Windows export's
     sample = sample_file(src, manifest)
+    # a lab's binary file (a TOB1 table, a TDMS log) converted once for every look and the read
+    held.enter_context(converted_once(src if manifest is None else None, given["encoding"]))
     long = long_period(sample, given)        # a historian's long file: the grid it is held onto
     opts, header, first, layout = head(sample, io.ReadOptions.from_cfg(given))
     pair = paired_head(sample, manifest.index[0], manifest, io.ReadOptions.from_cfg(given),
