@@ -22,9 +22,8 @@ from __future__ import annotations
 from collections.abc import Callable, Mapping
 
 import numpy as np
-from sklearn.base import clone
 
-from ...core.compensator import Compensator, with_chosen_hyperparameters
+from ...core.compensator import Compensator
 from ...core.continuation import lead_ins
 from ...core.guarded import summed_frames
 from ...core.io.contract import Dataset
@@ -62,38 +61,3 @@ def deployed_scores(comp: Compensator, ds: Dataset, ids, measured: Mapping, stre
         r = {c: y[c] - predicted[c][t].to_numpy() for c in ids}
         out[t] = {"test": split_scores(y, r, dt, statistic, points, with_before_after=True)}
     return out, predicted, clamped, guarded
-
-
-def deployed_cv(fitted: Compensator, problem, frames: Mapping, labels: Mapping,
-                stream_of: Callable) -> dict[str, float] | None:
-    """``{target: RMSE}`` of ``fitted``'s configuration deployed in every fold of the search's
-    CV (diag76): the fold's model fitted on its train rows at the hyper-parameters ``fitted``
-    chose, deployed through ``stream_of`` (the envelope, and the monitor and guard, fitted on
-    that part) and its held-out rows streamed from their campaign's start (forward: through
-    the record up to the block, as the CV runs it), pooled over the rows the CV scores.
-    ``frames`` are the train campaigns the CV's rows were stacked from, in order; ``labels``
-    its ``{target: stacked label}``.  None where a fold's train part is no campaign's start
-    (time blocks of one campaign held out in its middle): no stream starts there."""
-    template = with_chosen_hyperparameters(fitted, fitted)
-    bounds = np.cumsum([0] + [len(f) for f in frames.values()])
-    spans = dict(zip(frames, zip(bounds[:-1], bounds[1:])))
-    predicted = {t: np.full(len(problem.y), np.nan) for t in fitted.targets_}
-    for k in problem.fold_ids:
-        train, test = problem.train_rows(k), problem.test_rows(k)
-        part = {}
-        for c, (a, b) in spans.items():
-            n = int(train[a:b].sum())
-            if n and not train[a:a + n].all():
-                return None
-            if n > 1:
-                part[c] = frames[c].iloc[:n]
-        replay = stream_of(clone(template).fit(part), part)
-        for c, (a, b) in spans.items():
-            rows = np.flatnonzero(test[a:b])
-            if rows.size:
-                out = replay(frames[c].iloc[:rows[-1] + 1])
-                for t in predicted:
-                    predicted[t][a + rows] = out[t].to_numpy(float)[rows]
-    scored = problem.validated
-    return {t: float(np.sqrt(np.nanmean((labels[t][scored] - p[scored]) ** 2)))
-            for t, p in predicted.items()}

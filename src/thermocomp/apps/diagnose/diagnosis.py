@@ -10,7 +10,6 @@ import numpy as np
 from sklearn.base import clone
 from threadpoolctl import threadpool_limits
 
-from ...base.errors import ThermocompError
 from ...base.jsonsafe import json_safe
 from ...base.log import logger
 from ...core.compensator import Compensator, with_chosen_hyperparameters
@@ -28,7 +27,7 @@ from ...core.timerule import median_step
 from .augmented import AugmentedRegressor
 from .candidates import CONTROL, random_walk
 from .cv import Problem, smallest_p, units_needed
-from .deployed import deployed_cv, deployed_scores
+from .deployed import deployed_scores
 from .features import Effect
 from .search import Search, SearchOptions, SearchResult, sensor_health
 from .sensors import self_prediction
@@ -95,8 +94,6 @@ class Diagnosis:
     clamped: dict = field(default_factory=dict)        # "before"/"after" -> test rows clamped
     # "before"/"after" -> {target: test rows whose correction the guard changed}
     guarded: dict = field(default_factory=dict)
-    # the search's CV with each fold's model deployed, before / after (diag76; None: not run)
-    deployed_cv: dict | None = None
 
     @property
     def primary(self) -> str:
@@ -116,9 +113,7 @@ class Diagnosis:
         # use): it is reported apart, under `control`
         rejected = [ev for ev in (last.evaluated if last else []) if not ev.accepted and not ev.control]
         effects = [ev.entry() | {"step": i + 1} for i, ev in enumerate(s.accepted)]
-        effects += [ev.entry() | {"withdrawn": "the model deployed in the CV's folds worse"}
-                    for ev in s.withdrawn]
-        effects += [ev.entry() for ev in rejected if all(ev is not w for w in s.withdrawn)]
+        effects += [ev.entry() for ev in rejected]
         control = last.control.entry() if last and last.control else None
         te_b, te_a = TargetResult(d.before).test, TargetResult(d.after).test
         return json_safe({
@@ -136,7 +131,6 @@ class Diagnosis:
             "steps": [{"step": 0, "effect": None, "cv_rmse": d.original_cv_rmse}]
                      + [dict(step=i + 1, **st) for i, st in enumerate(s.steps)],
             "excluded_inputs": list(self.excluded),
-            "deployed_cv": self.deployed_cv,
             "control": control,
             "control_ever_clears_bar": any(r.control is not None and r.control.clears_bar
                                            for r in s.rounds),
@@ -403,16 +397,7 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
     effects = {t: r.effects for t, r in found.items()}
     alphas = {t: r.alpha for t, r in found.items()}
     build = make_compensator or (lambda eff, exc, inputs, al: augment(compensator, eff, exc, inputs, al))
-
-    def refit(effects, excluded):
-        return fit_joined(build(effects, excluded, list(before.inputs_), alphas), ds, train_ids)
-    after = refit(effects, excluded)
-    checked = None
-    if stream_of is not None and mode == "simulation" and (excluded or any(effects.values())) \
-            and getattr(before, "denoiser_", None) is None:
-        after, excluded, checked = deployed_check(
-            before, after, found, excluded, refit, (problem, train, labels, stream_of), options)
-        effects = {t: r.effects for t, r in found.items()}
+    after = fit_joined(build(effects, excluded, list(before.inputs_), alphas), ds, train_ids)
     after_scores, after_pred = test_scores(after, ds, test_ids, mode, e_p95_statistic, e_p95_points)
     out = {t: TargetDiagnosis(t, r, original[t].rmse, r.final.rmse, before_scores[t], after_scores[t])
            for t, r in found.items()}
@@ -442,7 +427,7 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
     return Diagnosis(model_name or type(compensator.estimator).__name__, ds.name, mode, out,
                      excluded, before, after, {"before": before_pred, "after": after_pred},
                      options, cv, time.perf_counter() - t0, test_sensors, ati, scored, clamped,
-                     guarded, checked)
+                     guarded)
 
 
 def _deployed(out: dict, models: dict, ds, train_ids, test_ids, mode, stream_of, statistic,
@@ -473,50 +458,3 @@ def _deployed(out: dict, models: dict, ds, train_ids, test_ids, mode, stream_of,
                     "training envelope (promote.envelope); before/after are its figures, run's "
                     "batch ones are after.test_rmse_as_run")
     return "deployed", clamped, guarded
-
-
-def deployed_check(before, after, found: dict, excluded: list, refit: Callable, cv_of: tuple,
-                   options: SearchOptions) -> tuple[Compensator, list, dict]:
-    """The diagnosed model kept only where it is no worse *as deployed* (diag76; the rule and its
-    bar: ``benchmarks/bench_diag76.py``).  The search weighs models as ``run`` scores them; the
-    machine gets them through the stream, whose envelope is refitted on the inputs the model
-    keeps (a healthy sensor removed on tcm74 7442: as run 1.010 -> 0.998 µm, deployed 1.720 ->
-    2.194, the envelope of 21 inputs clamping 109 -> 260 test rows).  So the CV is run once
-    more with every fold's model deployed (:func:`.deployed.deployed_cv`), before and after;
-    tolerance ``min_gain_pct`` (the removals' own non-inferiority margin): a target worse by
-    more with sensors excluded -> the exclusions withdrawn (the effects kept, refitted on every
-    input); a target still worse -> its effects withdrawn.  ``(after, excluded, figures)``."""
-    problem, frames, labels, stream_of = cv_of
-    try:
-        def deployed(comp):
-            return deployed_cv(comp, problem, frames, labels, stream_of)
-        base = deployed(before)
-        if base is None:
-            return after, excluded, {"applied": False, "why": "no fold's train part starts a campaign"}
-        figures = {"before": base, "after": deployed(after)}
-    except (ValueError, ThermocompError) as exc:   # not streamed: the figures stay run's
-        logger.warning(f"diagnose: the deployed CV check did not run: {exc}")
-        return after, excluded, {"applied": False, "why": str(exc)}
-    tol = 1.0 + options.min_gain_pct / 100.0
-
-    def worse(got):
-        return [t for t in got if got[t] > tol * base[t]]
-    figures["withdrawn"] = []
-    if excluded and worse(figures["after"]):
-        figures["withdrawn"] += [f"excluded {c}" for c in excluded]
-        for r in found.values():
-            r.withdraw(removals=True)
-        excluded = []
-        after = refit({t: r.effects for t, r in found.items()}, excluded)
-        figures["after"] = deployed(after)
-    drop = [t for t in worse(figures["after"]) if t in found and found[t].effects]
-    if drop:
-        figures["withdrawn"] += [f"{t} effects" for t in drop]
-        for t in drop:
-            found[t].withdraw(removals=False)
-        after = refit({t: r.effects for t, r in found.items()}, excluded)
-        figures["after"] = deployed(after)
-    if figures["withdrawn"]:
-        logger.warning(f"diagnose: withdrawn as worse deployed (the CV's folds streamed, tolerance "
-                       f"{options.min_gain_pct:g} %): {', '.join(figures['withdrawn'])}")
-    return after, excluded, {"applied": True, "tolerance_pct": options.min_gain_pct} | figures

@@ -179,16 +179,6 @@ class SearchResult:
     rounds: list             # list of Round
     self_prediction: pd.DataFrame   # before any sensor was excluded (the evidence)
     steps: list              # cv_rmse after each accepted effect
-    # cleared the bar, then withdrawn: the model deployed in the CV's folds was worse (diag76)
-    withdrawn: list = field(default_factory=list)
-
-    def withdraw(self, removals: bool) -> None:
-        """Move the accepted sensor removals (``removals``) or effects to ``withdrawn``."""
-        out = [ev for ev in self.accepted if (ev.effect.transform == "remove") == removals]
-        for ev in out:
-            ev.accepted = False
-        self.accepted = [ev for ev in self.accepted if (ev.effect.transform == "remove") != removals]
-        self.withdrawn += out
 
     @property
     def alpha(self) -> float | None:
