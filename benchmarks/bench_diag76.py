@@ -4,6 +4,7 @@
 Usage (from the repository root, ``PYTHONPATH=<tree>/src``: the code measured is that tree's)::
 
     python benchmarks/bench_diag76.py removal ROOT SEED    # tcm74's record: the deployed CV check
+    python benchmarks/bench_diag76.py fresh ROOT           # 7681-7695 as deployed -> ROOT/fresh.jsonl
 
 ``removal``: bench_diag75's ``removal`` (bench_stranger74's ``write ROOT SEED 24 60`` record,
 tcm74, 22 sensors, one record cut 70/30, ``thermocomp diagnose`` at the defaults), then the
@@ -66,6 +67,31 @@ every target, so no tolerance >= 0 withdraws the removal.
    such a rule run there.)
 
 **REFUSED**; src reverted, the rule in ``benchmarks/diag76_rule.patch``.
+
+The rule ``inrange`` (v2, written before scoring, after ``deployedcv`` was refused)
+----------------------------------------------------------------------------------
+What ``deployedcv`` showed: the train part's held-out blocks cannot see where the test goes, so
+a deployed CV does not price the envelope a removal refits.  What the removal's own evidence
+does show: on 7442 its CV gain is made only on rows some fold extrapolates to (+3.0 ... +3.8 %
+over all rows, -1.20 / -0.62 / -0.10 % where no fold extrapolates: the stop-75 ``removal``
+print).  Those are the rows a deployed stream does not predict as run -- it clamps inputs that
+leave the training envelope -- and docs/diagnose.md already says "a sensor is not removed on a
+CV that only the runs beyond the training range improve", while the code asks of a removal only
+non-inferiority there (> -5 %).  The rule: a ``sensor_fault`` removal clears only if, besides
+the jump ratio and the non-inferiority on every target, its CV RMSE gain where no fold
+extrapolates (``cv_rmse_gain_pct_in_range``) is positive (> 0) on at least one target.
+
+The bar (the same as ``deployedcv``'s; adopt only if all hold, else REFUSED):
+
+1. tcm74 7442 (``removal``): ``T_Hydraulik`` kept, or no target worse as deployed.
+2. bench_diag75 ``fresh``: planted 7573-7584 found 11 of 12, clean 7561-7572 accepting 0 of 12.
+3. bench_diagnose_faults58 (its 20 default cases and 16 one-unit ``KIND1`` cases): every planted
+   fault shipped excludes still excluded (shipped 10 of 16 and 5 of 16); no healthy sensor
+   removed that shipped keeps.
+4. ``fresh ROOT`` (below): seeds 7681-7688 clean, 7689-7695 planted (bench_diag75's few-campaign
+   VMC, every target, ``max_effects=2``), scored as deployed (the stage's own stream: default
+   config): no target's test RMSE as deployed > 2 % worse than before diagnose.
+5. CPU of ``thermocomp diagnose`` on tcm74 7442 not above 1.5x shipped.
 """
 
 from __future__ import annotations
@@ -75,7 +101,7 @@ import sys
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
-sys.path[:0] = [str(HERE)]
+sys.path[:0] = [str(HERE), str(HERE.parent / "tests" / "apps")]
 from _cli import made_folder, run_commands  # noqa: E402
 
 
@@ -90,8 +116,45 @@ def removal(root: str, seed: str) -> None:
     print(f"  diagnosis seconds: {d['seconds']:.2f}")
 
 
+FRESH_CLEAN = list(range(7681, 7689))
+FRESH_PLANTED = list(range(7689, 7696))
+
+
+def _deployed_stream(ds):
+    """``stream_of`` as the ``diagnose`` stage builds it, on the default config."""
+    from thermocomp.shell.config.overrides import compose
+    from thermocomp.shell.stages.diagnose import _stream
+
+    cfg = compose([])
+    return lambda comp, train: _stream(cfg, comp, train, ds)
+
+
+def fresh(root: str) -> None:
+    """The fresh draws diagnosed (every target, max_effects=2), test figures as deployed."""
+    from test_diagnose_few import few
+    from thermocomp.apps.diagnose import SearchOptions, diagnose
+    from thermocomp.core.compensator import Compensator
+    from thermocomp.core.models import MLR
+
+    folder = made_folder(root)
+    cases = [("clean", s) for s in FRESH_CLEAN] + [("planted", s) for s in FRESH_PLANTED]
+    with open(folder / "fresh.jsonl", "w") as out:
+        for kind, seed in cases:
+            ds, _ = few("axis_position" if kind == "planted" else None, seed)
+            d = diagnose(ds, Compensator(MLR()), options=SearchOptions(max_effects=2),
+                         stream_of=_deployed_stream(ds))
+            js = {t: d.to_json(t) for t in d.targets}
+            row = {"case": f"{kind}:{seed}", "scored": d.scored, "excluded": d.excluded, "targets": {
+                t: {"before": js[t]["before"]["test_rmse"], "after": js[t]["after"]["test_rmse"],
+                    "accepted": [e.effect.title for e in x.accepted]} for t, x in d.targets.items()}}
+            print(json.dumps(row), file=out, flush=True)
+            worst = max(v["after"] / v["before"] for v in row["targets"].values())
+            print(f"  {row['case']}: excluded {d.excluded}; worst after/before {worst:.3f}; "
+                  f"{ {t: v['accepted'] for t, v in row['targets'].items()} }", flush=True)
+
+
 def main(argv: list[str]) -> int:
-    return run_commands(__doc__, {"removal": removal}, argv, cpu=sys.stderr)
+    return run_commands(__doc__, {"removal": removal, "fresh": fresh}, argv, cpu=sys.stderr)
 
 
 if __name__ == "__main__":
