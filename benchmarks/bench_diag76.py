@@ -122,6 +122,7 @@ FRESH_PLANTED = list(range(7689, 7696))
 
 def _deployed_stream(ds):
     """``stream_of`` as the ``diagnose`` stage builds it, on the default config."""
+    import thermocomp.shell.cli  # noqa: F401  (the config's resolvers, ${sim_dataset:})
     from thermocomp.shell.config.overrides import compose
     from thermocomp.shell.stages.diagnose import _stream
 
