@@ -121,13 +121,13 @@ FRESH_PLANTED = list(range(7689, 7696))
 
 
 def _deployed_stream(ds):
-    """``stream_of`` as the ``diagnose`` stage builds it, on the default config."""
+    """The test figures as deployed, as the ``diagnose`` stage scores them, on the default
+    config (the tree of the rules, b191d9b8, had ``stream_of`` and the stage's ``_stream``)."""
     import thermocomp.shell.cli  # noqa: F401  (the config's resolvers, ${sim_dataset:})
     from thermocomp.shell.config.overrides import compose
-    from thermocomp.shell.stages.diagnose import _stream
+    from thermocomp.shell.stages.diagnose import _deployed_of
 
-    cfg = compose([])
-    return lambda comp, train: _stream(cfg, comp, train, ds)
+    return _deployed_of(compose([]), ds)
 
 
 def fresh(root: str) -> None:
@@ -143,7 +143,7 @@ def fresh(root: str) -> None:
         for kind, seed in cases:
             ds, _ = few("axis_position" if kind == "planted" else None, seed)
             d = diagnose(ds, Compensator(MLR()), options=SearchOptions(max_effects=2),
-                         stream_of=_deployed_stream(ds))
+                         deployed_of=_deployed_stream(ds))
             js = {t: d.to_json(t) for t in d.targets}
             row = {"case": f"{kind}:{seed}", "scored": d.scored, "excluded": d.excluded, "targets": {
                 t: {"before": js[t]["before"]["test_rmse"], "after": js[t]["after"]["test_rmse"],
