@@ -92,6 +92,33 @@ The bar (the same as ``deployedcv``'s; adopt only if all hold, else REFUSED):
    VMC, every target, ``max_effects=2``), scored as deployed (the stage's own stream: default
    config): no target's test RMSE as deployed > 2 % worse than before diagnose.
 5. CPU of ``thermocomp diagnose`` on tcm74 7442 not above 1.5x shipped.
+
+Scored v2 (2026-12-02; shipped = 0ae8e272, the rule = b191d9b8; bench_diagnose_faults58 on one
+``write`` root; this bench's ``fresh`` on both trees)
+------------------------------------------------------------------------------------------
+1. Holds as written: ``T_Hydraulik`` kept (in range -1.20 / -0.62 / -0.10 %; the next nominee
+   ``T_Linearmotor_X``, jump 3.28, refused by the non-inferiority as shipped).  But kept, E_dY
+   takes the inputs' 900 s lag and E_dZ ``S_Drehzahl`` raw (as diag75's patch found): deployed
+   E_dX / E_dY / E_dZ 1.428 / 0.389 / 1.720 -> 1.428 / 0.684 / 1.400 µm (as run 0.865 / 0.242 /
+   1.010 -> 0.865 / 0.463 / 0.628): E_dY +76 % as deployed and as run, an effect's doing.
+2. Holds: bench_diag75 ``fresh`` rows identical to shipped (clean 7561-7572 accepting 0 of 12,
+   planted 7573-7584 accepting 11 of 12).
+3. **Fails.**  Planted faults excluded 10 -> 7 of 16 (lost: climate_room offset, twin_lathe
+   offset and contact: their removals gain nowhere in range on any target); in one unit 5 -> 5
+   of 16; healthy sensors removed 10 -> 5 (default cases) and 8 -> 7 (one unit).  Test RMSE
+   (batch, as that bench scores) > 2 % worse: default cases none either way; one unit 3 -> 4
+   (twin_lathe drift1 E_Z2 0.584 -> 0.617 added).
+4. Holds: 7681-7688 clean, 7689-7695 planted, every target, scored as deployed: rows identical
+   to shipped, nothing excluded, no target worse (worst after / before 1.000); accepting: the
+   planted 7690, 7691, 7695 (E_Y's position product), none clean.  27 s CPU per tree.
+5. Holds: ``thermocomp diagnose`` on 7442, CPU user + sys, two runs: shipped 5.87 / 6.13 s, the
+   rule 7.18 / 6.03 s (the kept sensor's search costs a little more).
+
+**REFUSED** (bar 3); src reverted, the rule in ``benchmarks/diag76_inrange_rule.patch``.  Both
+rules measured one thing: what a removal's train-side evidence can say about the test as
+deployed.  The deployed CV cannot see where the test goes; the in-range gain keeps 7442's
+healthy sensor but also three real faults whose removal gains only where the fault took the
+sensor beyond range (which is what a fault does).  No rule is kept.
 """
 
 from __future__ import annotations
