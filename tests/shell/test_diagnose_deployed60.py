@@ -91,3 +91,23 @@ def test_after_is_what_promote_deploys_the_adaptive_compensator_by_default(excur
     assert replayed["adaptive"] and replayed["events"]        # the monitor acted on the test
     assert after == pytest.approx(replayed["targets"]["E_Y"]["rmse"], rel=1e-9)
     assert abs(after - deployed_rmse(rerun / "model.pkl", excursion, "E_Y")) > 1e-6 * after
+
+
+def test_before_is_promotes_figure_of_a_model_that_learns_from_references(excursion, tmp_path):
+    # diag76: diagnose streamed the model as promote registers it but scored it frozen, where
+    # promote and replay adapt it to the reference measurements (adapt.method): one
+    # computation now, promote's own (stream_scores)
+    learns = ["adapt.method=bias", "adapt.every_s=600"]
+    out = tmp_path / "diag"
+    thermocomp("diagnose", f"data.path={excursion}", f"out={out}", "track=false", "plots=none",
+               "diagnose.targets=[E_Y]", "diagnose.max_effects=1", *learns)
+    before = json.loads((out / "diagnosis.json").read_text())["before"]["test_rmse"]
+    run = tmp_path / "run"
+    thermocomp("run", f"data.path={excursion}", f"out={run}", "track=false", *LIGHT)
+    replayed = {}
+    for name, args in (("learns", learns), ("frozen", [])):
+        thermocomp("replay", f"data.path={excursion}", f"replay.model={run / 'model.pkl'}",
+                   f"out={tmp_path / name}", "track=false", *args)
+        replayed[name] = json.loads((tmp_path / name / "replay.json").read_text())["targets"]["E_Y"]["rmse"]
+    assert abs(replayed["learns"] - replayed["frozen"]) > 1e-6 * replayed["frozen"]
+    assert before == pytest.approx(replayed["learns"], rel=1e-9)

@@ -19,45 +19,24 @@ and, per target, the rows guarded.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
-
-import numpy as np
+from collections.abc import Callable
 
 from ...core.compensator import Compensator
-from ...core.continuation import lead_ins
-from ...core.guarded import summed_frames
-from ...core.io.contract import Dataset
-from ...core.metrics import split_scores
-from ...core.scoring.evaluation import sample_period
-
-CLAMPED = "n_clamped"       # the replayed frame's count of inputs clamped in the row
 
 
-def deployed_scores(comp: Compensator, ds: Dataset, ids, measured: Mapping, stream_of: Callable,
-                    train: Mapping, statistic: str, points) -> tuple[dict, dict, int, dict]:
-    """``({target: {"test": ...}}, {campaign: predicted}, rows clamped, {target: rows guarded})``
-    of ``comp`` deployed (rows guarded: whose correction the guard bounded, rate-limited or held;
-    ``{}`` for the plain stream).
+def deployed_scores(comp: Compensator, ids, scored_of: Callable, train) -> tuple[dict, int, dict]:
+    """``({target: {"test": ...}}, rows clamped, {target: rows guarded})`` of ``comp`` deployed
+    (rows guarded: whose correction the guard bounded, rate-limited or held; ``{}`` for the
+    plain stream).
 
-    ``stream_of(comp, train)`` gives ``replay(campaign, lead_in)``: the campaign streamed from
-    its start through what ``promote`` registers (the plain stream, its envelope fitted on
-    ``train``, and with ``monitor.adaptive`` the adaptive compensator around it), warmed on
-    ``lead_in``; a frame of the targets' predictions and
-    ``n_clamped``.  (A callable, not the stream: the deploy app imports this one.)  Each
-    campaign of ``ids`` is warmed on the campaigns it continues as ``promote`` warms it, and
-    scored against ``measured`` (``{campaign: frame}``, the batch scoring's, so that only the
-    prediction differs)."""
-    ids = list(ids)
-    replay = stream_of(comp, train)
-    leads = lead_ins(comp, ds, ids)
-    predicted = {c: replay(ds.campaigns[c], leads.get(c)) for c in ids}
-    clamped = int(sum(int(np.count_nonzero(p[CLAMPED].to_numpy())) for p in predicted.values()
-                      if CLAMPED in p))
-    guarded = summed_frames(predicted.values(), comp.targets_) or {}
-    dt = sample_period(ds, ids)
-    out = {}
-    for t in comp.targets_:
-        y = {c: measured[c][t].to_numpy() for c in ids}
-        r = {c: y[c] - predicted[c][t].to_numpy() for c in ids}
-        out[t] = {"test": split_scores(y, r, dt, statistic, points, with_before_after=True)}
-    return out, predicted, clamped, guarded
+    ``scored_of(comp, train, ids)`` is promote's own computation of its "as deployed" test
+    figures (:func:`~thermocomp.apps.deploy.streaming.stream_scores` of what it registers:
+    the plain stream, its envelope fitted on ``train``, with ``monitor.adaptive`` the adaptive
+    compensator around it, with ``adapt.method`` learning from the references as ``replay``
+    does; each campaign warmed on the campaigns it continues): its ``{target: {"test",
+    "clamped_samples", "guarded_samples"}}``.  (A callable: the deploy app imports this one.)"""
+    scores = scored_of(comp, train, list(ids))
+    first = next(iter(scores.values()))
+    guarded = ({} if first["guarded_samples"] is None
+               else {t: s["guarded_samples"] for t, s in scores.items()})
+    return {t: {"test": s["test"]} for t, s in scores.items()}, first["clamped_samples"], guarded

@@ -209,7 +209,7 @@ def diagnose(ds: Dataset, compensator: Compensator, targets=None, mode: str = "s
              make_compensator: Callable[[dict, list, list], Compensator] | None = None,
              e_p95_statistic: str = "range", e_p95_points: int | None = 200,
              model_name: str = "", ati: str = "none",
-             stream_of: Callable[[Compensator, dict], object] | None = None) -> Diagnosis:
+             deployed_of: Callable[[Compensator, dict, list], dict] | None = None) -> Diagnosis:
     """Find what ``compensator`` misses on the train split, fix it, report before/after on test.
 
     Parameters
@@ -233,12 +233,12 @@ def diagnose(ds: Dataset, compensator: Compensator, targets=None, mode: str = "s
     model_name, ati : str, optional
         What ``diagnosis.json`` names the model (``mlr``) and the ATI wrapper around it
         (``cmeans``; ``none``).
-    stream_of : callable, optional
-        ``(fitted compensator, train campaigns) -> replay(campaign, lead_in)``: the campaign
-        streamed as ``promote`` deploys the model.  Given (and ``mode='simulation'``),
-        "before" and "after" are the test figures of the models so deployed, replayed with
-        their training envelope (:func:`.deployed.deployed_scores`), the batch ones kept as
-        ``*_as_run``; a model that cannot be streamed keeps its batch figures (said).
+    deployed_of : callable, optional
+        ``(fitted compensator, train campaigns, test ids) -> figures``: ``promote``'s own "as
+        deployed" test figures of the model (:func:`.deployed.deployed_scores`).  Given (and
+        ``mode='simulation'``), "before" and "after" are the test figures of the models so
+        deployed, the batch ones kept as ``*_as_run``; a model that cannot be streamed keeps
+        its batch figures (said).
 
     Returns
     -------
@@ -249,7 +249,7 @@ def diagnose(ds: Dataset, compensator: Compensator, targets=None, mode: str = "s
     with threadpool_limits(limits=1, user_api="blas"):
         return _diagnose(ds, compensator, targets, mode, options or SearchOptions(),
                          make_compensator, e_p95_statistic, e_p95_points, model_name, ati,
-                         stream_of)
+                         deployed_of)
 
 
 def test_sensor_warnings(search: Search, excluded, later, options: SearchOptions) -> list[dict]:
@@ -319,7 +319,7 @@ def _reach(design) -> float:
 
 
 def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_statistic,
-              e_p95_points, model_name, ati, stream_of=None) -> Diagnosis:
+              e_p95_points, model_name, ati, deployed_of=None) -> Diagnosis:
     t0 = time.perf_counter()
     train_ids, test_ids = require_split(ds, "train"), require_split(ds, "test")
     # fitted as run fits it (train files that continue one another joined): "before" is the
@@ -401,9 +401,8 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
     after_scores, after_pred = test_scores(after, ds, test_ids, mode, e_p95_statistic, e_p95_points)
     out = {t: TargetDiagnosis(t, r, original[t].rmse, r.final.rmse, before_scores[t], after_scores[t])
            for t, r in found.items()}
-    scored, clamped, guarded = _deployed(out, {"before": (before, before_pred), "after": (after, after_pred)},
-                                ds, train_ids, test_ids, mode, stream_of,
-                                e_p95_statistic, e_p95_points)
+    scored, clamped, guarded = _deployed(out, {"before": before, "after": after}, ds, train_ids,
+                                         test_ids, mode, deployed_of)
     if scheme == "forward":
         cv = {"scheme": "forward", "units": problem.n_units, "unit": "validation block",
               "folds": problem.n_units, "gap_samples": gap,
@@ -430,22 +429,21 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
                      guarded)
 
 
-def _deployed(out: dict, models: dict, ds, train_ids, test_ids, mode, stream_of, statistic,
-              points) -> tuple[str, dict, dict]:
-    """Put the deployed test figures of ``models`` (``{"before"|"after": (fitted, predictions)}``)
+def _deployed(out: dict, models: dict, ds, train_ids, test_ids, mode, deployed_of
+              ) -> tuple[str, dict, dict]:
+    """Put the deployed test figures of ``models`` (``{"before"|"after": fitted}``)
     in ``out``'s TargetDiagnosis, the batch ones kept as ``*_as_run``; ``(scored, clamped,
     guarded)``."""
-    if stream_of is None:
+    if deployed_of is None:
         return "batch", {}, {}
     if mode != "simulation":     # the stream runs in simulation: one_step's figures stay batch
         return f"batch (eval.mode={mode})", {}, {}
     train = {c: ds.campaigns[c] for c in train_ids}
     scores, clamped, guarded = {}, {}, {}
     try:
-        for which, (comp, pred) in models.items():
-            measured = {c: m for c, (m, _) in pred.items()}
-            scores[which], _, clamped[which], guarded[which] = deployed_scores(
-                comp, ds, test_ids, measured, stream_of, train, statistic, points)
+        for which, comp in models.items():
+            scores[which], clamped[which], guarded[which] = deployed_scores(
+                comp, test_ids, deployed_of, train)
     except ValueError as exc:    # a model without the streaming protocol: its batch figures
         logger.warning(f"diagnose: the test figures are run's (batch), not the deployed "
                        f"stream's: {exc}")

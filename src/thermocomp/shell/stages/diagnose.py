@@ -22,7 +22,7 @@ from ...base.errors import ConfigError
 from ...base.log import logger, say
 from ...base.params import check_values, subset
 from ...base.paths import resolve
-from ..builders import build_compensator, deployable
+from ..builders import build_compensator, deploy_stream, deployable
 from ..config import rules
 from ..config.candidates import is_auto
 from ..config.checks import check_config
@@ -89,26 +89,28 @@ def _write(cfg: DictConfig, ds, result, written: dict, out: Path) -> tuple[Path,
     return folder, rerun, main
 
 
-def _stream(cfg: DictConfig, comp, train: dict, ds=None):
-    """``replay(campaign, lead_in)`` through what ``promote`` registers of ``comp``: the plain
-    stream (``promote.envelope``) and, with ``monitor.adaptive`` (default), the adaptive
-    compensator around it (its sensor monitor and correction guard), so that "before" and
-    "after" are the deployed figures (matrix61: the plain stream alone scored a column whose
-    test met a source training never saw 5.46 µm after, promote's "as deployed" 6.20); a
-    model that cannot stream raises ValueError."""
-    from ...apps.deploy.streaming import StreamingCompensator, replay  # loaded only here
+def _deployed_of(cfg: DictConfig, ds):
+    """``(fitted, train, test ids) -> figures``: the test figures ``promote`` gives a model "as
+    deployed", by promote's own steps (:func:`~thermocomp.apps.deploy.promotion.deploy`): the
+    plain stream (``promote.envelope``, :func:`~..builders.deploy_stream`), what it registers
+    around it (:func:`~..builders.deployable`: with ``monitor.adaptive``, default, the adaptive
+    compensator, its sensor monitor and correction guard) and ``stream_scores`` of the test
+    campaigns, each warmed on the campaigns it continues, adapted as ``adapt.*`` says (matrix61:
+    the plain stream alone scored a column whose test met a source training never saw 5.46 µm
+    after, promote's "as deployed" 6.20; diag76: ``adapt.method`` was left out); a model that
+    cannot stream raises ValueError (a ConfigError)."""
+    from ...apps.deploy.adapt import from_config as adapt_from_config
+    from ...apps.deploy.streaming import stream_scores  # loaded only here
+    from ...core.continuation import lead_ins
+    from ...core.scoring.evaluation import sample_period
 
-    env = cfg.promote.envelope
-    streaming = StreamingCompensator.from_training(comp, train, float(env.margin),
-                                                   str(env.policy), bool(env.get("pattern", True)))
-    deployed = deployable(cfg, streaming, train, ds)
-
-    def replayed(campaign, lead_in=None):
-        try:
-            return replay(deployed, campaign, lead_in=lead_in)
-        finally:
-            deployed.reset()
-    return replayed
+    def scored(comp, train: dict, ids: list):
+        deployed = deployable(cfg, deploy_stream(cfg, comp, train), train, ds)
+        test = {c: ds.campaigns[c] for c in ids}
+        return stream_scores(deployed, test, sample_period(ds, ids), cfg.eval.e_p95.statistic,
+                             cfg.eval.e_p95.max_points, lead_ins(comp, ds, ids),
+                             adapt=adapt_from_config(cfg.get("adapt"), len(deployed.targets_)))
+    return scored
 
 
 def diagnose(cfg: DictConfig) -> dict:
@@ -151,7 +153,7 @@ def diagnose(cfg: DictConfig) -> dict:
                                str(cfg.eval.e_p95.statistic), cfg.eval.e_p95.get("max_points", 200),
                                model_name=str(cfg.model.name),
                                ati="none" if ati is None else str(cfg.ati.name),
-                               stream_of=lambda comp, train: _stream(cfg, comp, train, ds))
+                               deployed_of=_deployed_of(cfg, ds))
         folder, rerun, main = _write(cfg, ds, result, written, resolve(cfg.out))
         metrics, tags = outputs.tracked(result)
         tracker.log_metrics(metrics)
