@@ -66,7 +66,7 @@ def exported_files(deployed, fmt: str, provenance: dict | None = None) -> dict[s
     """``{file name: text}`` of format ``fmt`` for the ``deployed`` stream or adaptive
     compensator (its plain stream, correction guard and reference update)."""
     _check_format(fmt)
-    ss = state_space(deployed, provenance)
+    ss = state_space(deployed, provenance, monitor=fmt == "c")
     files = {"compensator.json": json.dumps(ss.to_dict(), indent=1) + "\n"}
     if fmt == "c":
         from . import c
