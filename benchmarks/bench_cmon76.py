@@ -62,16 +62,16 @@ def _rmse(errors: list, corrections: list) -> np.ndarray:
 
 
 def record(root: Path, seed: int, kind: str) -> str:
+    from hydra import compose, initialize_config_dir
+
     from thermocomp.apps.deploy.export import c, exported_files, state_space
     from thermocomp.apps.deploy.export.driver import DRIVER
     from thermocomp.apps.deploy.export.pack import conformance_pack, corrections
     from thermocomp.apps.deploy.report import stream_rows
     from thermocomp.apps.deploy.streaming import replay
+    from thermocomp.base.paths import conf_dir
     from thermocomp.shell.builders import build_compensator, deploy_stream, deployable
     from thermocomp.shell.cli import main
-    from hydra import compose, initialize_config_dir
-
-    from thermocomp.base.paths import conf_dir
     from thermocomp.shell.source import read_streamed
 
     data = root / f"{kind}-{seed}"

@@ -20,8 +20,8 @@ from .recurrent import net_arrays, net_inputs
 from .statespace import StateSpace
 from .text import banner, correction_names
 from .watch_c import FUNCTIONS as MONITOR_FUNCTIONS
-from .watch_c import constants as monitor_constants
 from .watch_c import header_part as monitor_header
+from .watch_c import monitor_arrays
 from .watch_c import state_part as monitor_state
 
 ADAPT_CODES = {"none": 0, "bias": 1, "rls": 2}
@@ -337,7 +337,7 @@ def source(ss: StateSpace) -> str:
         *_lstm_constants(ss),
         *_pattern_constants(ss),
         f"static const int CLAMP = {int(ss.clamp)};",
-        *_output_constants(ss), *monitor_constants(ss)])
+        *_output_constants(ss), *_declared(monitor_arrays(ss))])
     return f"""{banner(ss, "/*", " *", " */")}
 #include <math.h>
 #include "compensator.h"
@@ -767,7 +767,7 @@ def _declared(arrays) -> list[str]:
     """A model's constants (:func:`.forest.forest_arrays`, :func:`.recurrent.net_arrays`) in C."""
     return [_array(name, values, shape) if kind == "real" else
             _ints(name, values) if len(shape) == 1 else _array(name, values, shape, "int")
-            for name, values, shape, kind in arrays]
+            for name, values, shape, kind in arrays]   # (a scalar: shape ())
 
 
 def _forest_constants(ss: StateSpace) -> list[str]:

@@ -17,7 +17,8 @@ The served adaptive compensator judges every ``T_`` input before the model reads
   warning band (``READMIT``).
 
 What else the served monitor does it flags, ``NOT_IN_CODE`` with the rule (:data:`REASONS`),
-and goes on as if nothing fired: an out-of-range reading, several sensors jumping at once (a
+and goes on by its own rules: an out-of-range reading (its sample passes the monitor by, the
+state as it was, so that the reading's return is no jump), several sensors jumping at once (a
 common step), a jump at the reference's next sample, a stepped self-prediction error, a drift
 beyond the band (exclusion by judgement, a new thermal state), a second sensor out, and a
 sensor no other predicts out (the model fitted without it).  A missing reading is refused by
@@ -175,8 +176,10 @@ class CodeMonitor:
     def _step(self, u, first, dt, a):
         x = u[self.idx]
         rng = (x < a["lo_lim"]) | (x > a["hi_lim"])
-        if rng.any():
+        if rng.any():       # not in the code: the sample passes the monitor by, its state as it was
             self._flag(NOT_IN_CODE, int(np.argmax(rng)), RANGE)
+            if not first:   # (so that the reading's return is no jump)
+                return self._rebuilt(u, x - self.ref)
         if first:
             self.ref, self.base = x.copy(), x.copy()
         d = x - self.ref
@@ -250,11 +253,17 @@ class CodeMonitor:
         _, active, _, judged, _ = self._set()
         self.prev_other = np.where(judged, d - e, np.nan)
         self.prev, self.prev_e = d, e
-        clean = np.where(active, d, pred)
+        return self._rebuilt(u, d, pred)
+
+    def _rebuilt(self, u, d, pred=None):
+        """``u`` with the monitored inputs as the model reads them: the reading, the sensor out
+        rebuilt from the others (``pred``: their predictions)."""
+        if pred is None:
+            pred = self._errors(d)[0]
+        v = u.copy()
+        v[self.idx] = self.base + np.where(np.arange(self.n) == self.out, pred, d)
         if self.out >= 0:
             self.flags |= OUT
-        v = u.copy()
-        v[self.idx] = self.base + clean
         return v
 
     def _passes(self, j: int) -> bool:

@@ -6,18 +6,11 @@ from __future__ import annotations
 from .watch import BAND, EXCLUDED, NOT_IN_CODE, OUT, READMITTED, REASONS, RULES
 
 
-def _render(ss):
-    from .c import _array, _ints, c_string, number
-
-    return _array, _ints, c_string, number
-
-
 def header_part(ss) -> str:
     """The defines, the reasons and the monitored inputs (``compensator.h``, before the state)."""
-    _, _, c_string, _ = _render(ss)
     m = ss.monitor
     n = len(m.get("inputs", []))
-    reasons = ", ".join(c_string(r) for r in REASONS)
+    reasons = ", ".join(f'"{r}"' for r in REASONS)        # (plain ASCII, no quote in them)
     rules = "\n".join(f"#define TC_MON_{name} {k}" for k, name in enumerate(RULES) if k)
     return f"""#define TC_MONITOR {int(bool(m))}   /* the sensor monitor in the code (docs/monitoring.md) */
 #define TC_N_MONITORED {n}
@@ -52,29 +45,21 @@ def state_part(ss) -> str:
     return STATE.replace("NM", str(max(len(ss.monitor.get("inputs", [])), 1)))
 
 
-def constants(ss) -> list[str]:
-    """The monitor's arrays (zeros of size 1 where there is none)."""
-    _array, _ints, _, number = _render(ss)
+def monitor_arrays(ss) -> list[tuple[str, object, tuple, str]]:
+    """The monitor's constants as :func:`.c._declared` takes them (zeros where there is none)."""
     m = ss.monitor
     n = len(m.get("inputs", []))
-    z = [0.0] * n
-
-    def vec(key):
-        return _array(f"MON_{key.upper()}", m.get(key, z), (n,))
-
-    return [_array("MON_M", m.get("M", []), (n + 1, n, n)),
-            _array("MON_LEV", m.get("lev", []), (n + 1, n)),
-            *(vec(k) for k in ("warning", "alarm", "jump_lim", "lo_lim", "hi_lim", "seen_run",
-                               "blind_run")),
-            _ints("MON_PREDICTABLE", m.get("predictable", [])),
-            _ints("MON_PORTED", m.get("ported_out", [])),
-            f"static const double MON_MAX_LEV = {number(m.get('max_leverage', 1.0))};",
-            f"static const int MON_MIN_ACTIVE = {int(m.get('min_active', 0))};",
-            f"static const int MON_CONFIRM = {int(m.get('confirm', 1))};",
-            f"static const int MON_EXCLUDE_LEVEL = {int(m.get('exclude_level', 1))};",
-            f"static const double MON_PERIOD = {number(m.get('period', 1.0))};",
-            f"static const double MON_GAP_PERIODS = {number(m.get('gap_periods', 1.5))};",
-            f"static const double MON_READMIT = {number(m.get('readmit', 0.5))};"]
+    vectors = ("warning", "alarm", "jump_lim", "lo_lim", "hi_lim", "seen_run", "blind_run")
+    scalars = (("MON_MAX_LEV", "max_leverage", 1.0, "real"), ("MON_MIN_ACTIVE", "min_active", 0, "int"),
+               ("MON_CONFIRM", "confirm", 1, "int"), ("MON_EXCLUDE_LEVEL", "exclude_level", 1, "int"),
+               ("MON_PERIOD", "period", 1.0, "real"), ("MON_GAP_PERIODS", "gap_periods", 1.5, "real"),
+               ("MON_READMIT", "readmit", 0.5, "real"))
+    return [("MON_M", m.get("M", []), (n + 1, n, n), "real"),
+            ("MON_LEV", m.get("lev", []), (n + 1, n), "real"),
+            *((f"MON_{k.upper()}", m.get(k, [0.0] * n), (n,), "real") for k in vectors),
+            ("MON_PREDICTABLE", m.get("predictable", []), (n,), "int"),
+            ("MON_PORTED", m.get("ported_out", []), (n,), "int"),
+            *((name, m.get(key, default), (), kind) for name, key, default, kind in scalars)]
 
 
 FUNCTIONS = r"""
@@ -165,6 +150,13 @@ static int mon_passes(const tc_state *s, int k) {
     return worst < MON_READMIT * MON_WARNING[k];
 }
 
+/* the monitored inputs of u as the model reads them: the reading, the sensor out rebuilt */
+static void mon_rebuilt(tc_state *s, double u[], const double d[], const double pred[]) {
+    int k;
+    for (k = 0; k < NM; k++) u[TC_MONITORED[k]] = s->mon_base[k] + (k == s->mon_out ? pred[k] : d[k]);
+    if (s->mon_out >= 0) s->mon_flags |= TC_MON_OUT;
+}
+
 /* one sample of the monitored inputs of u, replaced by what the model reads (the reading, or
    its POD reconstruction while it is out), as the served monitor (watch.py's slice) */
 static void monitor_step(tc_state *s, double u[], double dt) {
@@ -190,6 +182,12 @@ static void monitor_step(tc_state *s, double u[], double dt) {
         if (rng[k]) mon_flag(s, TC_MON_NOT_IN_CODE, k, TC_MON_RANGE);
         if (s->first) s->mon_ref[k] = s->mon_base[k] = x[k];
         d[k] = x[k] - s->mon_ref[k];
+    }
+    if (s->mon_flags && !s->first) {   /* a reading beyond its range (not in the code): the
+                                          sample passes the monitor by, so its return is no jump */
+        mon_errors(s, d, pred, e);
+        mon_rebuilt(s, u, d, pred);
+        return;
     }
     pos = s->mon_pos;
     for (k = 0; k < NM; k++) s->mon_hist[pos][k] = d[k];
@@ -272,9 +270,8 @@ static void monitor_step(tc_state *s, double u[], double dt) {
         s->mon_prev_other[k] = jd[k] ? d[k] - e[k] : NAN;
         s->mon_prev[k] = d[k];
         s->mon_prev_e[k] = e[k];
-        u[TC_MONITORED[k]] = s->mon_base[k] + (a[k] ? d[k] : pred[k]);
     }
-    if (s->mon_out >= 0) s->mon_flags |= TC_MON_OUT;
+    mon_rebuilt(s, u, d, pred);
 }
 #undef NM
 #undef MW
