@@ -126,5 +126,10 @@ def faults(root: str = "/tmp/cmon76-bench", seeds: str = SEEDS) -> None:
             print(record(folder, seed, kind), flush=True)
 
 
+def main(argv: list[str] | None = None) -> int:
+    return run_commands(__doc__, {"faults": faults}, sys.argv[1:] if argv is None else argv,
+                        cpu=sys.stderr)
+
+
 if __name__ == "__main__":
-    sys.exit(run_commands(__doc__, {"faults": faults}, sys.argv[1:], cpu=sys.stderr))
+    sys.exit(main())
