@@ -5,8 +5,9 @@ does not hold is flagged and named, and the conformance pack cuts a campaign the
 On test_export's three-sensor record (MLR, deployed adaptive): a +3 °C jump of ``T_b`` half-way
 through a test campaign is excluded, rebuilt and re-admitted by the served monitor, and the
 compiled code (gcc -Wall -Wextra -Werror) gives the served corrections on every row (the pack, not
-cut, passes; before, it was cut at the jump).  A +8 °C step is beyond the training range, a rule
-the code flags and does not hold: the pack cuts there and says which."""
+cut, passes; before, it was cut at the jump), and so on a jump and a freeze the pack plants.  A
++8 °C step is beyond the training range, a rule the code flags and does not hold: the pack cuts
+there and says which."""
 
 from __future__ import annotations
 
@@ -60,13 +61,19 @@ def test_a_jump_is_excluded_rebuilt_and_readmitted_by_the_code_as_served(served,
     assert moves == [("excluded", "jump"), ("ok", "re-admitted")]
     ss = state_space(deployed, monitor=True)
     files, summary = conformance_pack(deployed, ss, {"K05": healthy, "K06": faulty})
-    assert [(e["rows"], e["cut"]) for e in summary["campaigns"]] == [(40, None), (40, None)]
+    # (and a jump and a freeze planted on K05's first monitored sensor: every pack checks them)
+    assert [(e["campaign"], e["rows"], e["cut"]) for e in summary["campaigns"]] == [
+        ("K05", 40, None), ("K06", 40, None), ("K05.jump.T_a", 40, None),
+        ("K05.freeze.T_a", 40, None)]
+    assert summary["campaigns"][2]["planted"].startswith("T_a +3.097 degC from row 21")
     _written(tmp_path, {**exported_files(deployed, "c"), **files})
     script = subprocess.run(["sh", "check/check.sh"], cwd=tmp_path, capture_output=True, text=True)
     assert script.returncode == 0, script.stderr
     said = script.stderr
     assert "line 22: monitor: T_b: jump: re-referenced and excluded" in said
     assert "line 32: monitor: T_b: re-admitted" in said
+    assert "line 22: monitor: T_a: jump: re-referenced and excluded" in said      # the planted one
+    assert "check: 4 campaign(s) within tolerance" in script.stdout
     # the monitor is what the code does: the plain arithmetic parts from the served corrections
     served_c = corrections(ss, done.y)
     plain = corrections(ss, stream_rows(deployed.streaming, faulty, "K06").y)

@@ -22,6 +22,11 @@ long export, a workbook) reaches the code as the CSV ``stream.c`` takes.
   and the campaign is cut before the first row where the two part (the served monitor did what
   the code's does not; the rule the code flagged there named): no build can reproduce that row.
 
+Of an export whose code holds the sensor monitor (the C's, :mod:`.watch`), two copies of the
+first campaign with a fault planted follow (:func:`~.watch.planted`: a jump and a freeze of a
+monitored sensor from its middle row on, ``planted`` in their entries), the served model's
+monitor acting on them: every pack checks the code's monitor, cut where it parts.
+
 Of a model that reads no ambient sensor and picks its laws by a campaign's initial ambient
 (``ambient_given``: the manifest's ``ambient_c``), each campaign's value is in check.json's entry
 and in an ``ambient_c`` column of its rows.csv, which ``stream.c`` reads at a campaign's first row.
@@ -46,7 +51,7 @@ from ..naming import correction_column
 from ..report import stream_rows
 from .output import not_in_code
 from .statespace import Simulator, StateSpace
-from .watch import NOT_IN_CODE, REASONS
+from .watch import NOT_IN_CODE, REASONS, planted
 
 CHECK = "check"
 # |C - expected| <= TOLERANCE_UM + TOLERANCE_RELATIVE * |expected| (um).  float64 arithmetic in
@@ -152,7 +157,11 @@ def conformance_pack(deployed, ss: StateSpace, campaigns: Mapping[str, pd.DataFr
     """``({path under out: text}, check.json's dict)`` of the pack for ``campaigns`` streamed
     through ``deployed`` (module doc); ``ss``: its exported system; ``files``: each campaign's
     file, for a refusal's message; ``script``: ``check/check.sh`` too (the C's ``stream``)."""
-    lead_ins = lead_ins or {}
+    lead_ins = dict(lead_ins or {})
+    faults = planted(ss, campaigns)     # (the code's monitor checked on planted faults, cmon76)
+    for cid, (_, _, source) in faults.items():
+        lead_ins[cid] = lead_ins.get(source)
+    campaigns = {**campaigns, **{c: f[0] for c, f in faults.items() if c not in campaigns}}
     folders = folder_names(campaigns)
     outputs = [correction_column(t) for t in ss.targets]
     monitor = bool(not_in_code(deployed))
@@ -171,6 +180,8 @@ def conformance_pack(deployed, ss: StateSpace, campaigns: Mapping[str, pd.DataFr
                    "code refuses (stream.c stops; the served model holds it)"}
             frame = frame.iloc[:refused[0]]
         entry = {"campaign": str(cid), "folder": f"{CHECK}/{folders[cid]}", "lead_in_rows": lead}
+        if cid in faults:
+            entry["planted"] = faults[cid][1]
         if ss.ambient_given:
             entry[AMBIENT_C] = a0
         if not len(frame):

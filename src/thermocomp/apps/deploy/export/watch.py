@@ -92,6 +92,35 @@ def monitor_fields(deployed, inputs: list) -> dict:
         "period": float(deployed.period_s), "gap_periods": GAP_PERIODS, "readmit": READMIT}}
 
 
+def planted(ss, campaigns) -> dict[str, tuple]:
+    """``{id: (campaign, what, the campaign it copies)}``: the first campaign of 8 rows or more
+    with a fault planted on the first monitored sensor whose exclusion the code holds, from its
+    middle row on: a jump of twice its step limit (where the reading stays within its range)
+    and a freeze (its reading held), so that the conformance pack checks the code's monitor on
+    every record (its expected corrections the served model's, its monitor acting; cut where it
+    does what the code's does not).  None without a monitor in the code."""
+    m = ss.monitor
+    ported = [k for k, p in enumerate(m.get("ported_out", [])) if p]
+    first = next((c for c, df in campaigns.items() if len(df) >= 8), None)
+    if not ported or first is None:
+        return {}
+    k = ported[0]
+    sensor, frame = ss.inputs[m["inputs"][k]], campaigns[first]
+    half = len(frame) // 2
+    out = {}
+    jump = 2.0 * float(m["jump_lim"][k])
+    if np.isfinite(jump) and (frame[sensor].iloc[half:] + jump <= m["hi_lim"][k]).all():
+        df = frame.copy()
+        df.loc[df.index[half:], sensor] += jump
+        out[f"{first}.jump.{sensor}"] = (df, f"{sensor} {jump:+.4g} degC from row {half + 1} "
+                                             "(a jump: twice its step limit)", first)
+    df = frame.copy()
+    df.loc[df.index[half:], sensor] = frame[sensor].iloc[half]
+    out[f"{first}.freeze.{sensor}"] = (df, f"{sensor} held at its reading of row {half + 1} "
+                                           "from there (a freeze)", first)
+    return out
+
+
 class CodeMonitor:
     """The code's monitor in numpy (module doc): :meth:`step` gives the inputs the model reads."""
 
