@@ -64,8 +64,8 @@ def _with_dropouts(tests, column):
     return bad
 
 
-def _c(deployed, folder, tests, columns) -> tuple[np.ndarray, np.ndarray]:
-    for name, text in exported_files(deployed, "c").items():
+def _c(deployed, folder, tests, columns, monitor=True) -> tuple[np.ndarray, np.ndarray]:
+    for name, text in exported_files(deployed, "c", monitor=monitor).items():
         (folder / name).write_text(text)
     (folder / "harness.c").write_text(HARNESS)
     subprocess.run(["gcc", "-std=c99", "-O2", "compensator.c", "harness.c", "-lm", "-o", "harness"],

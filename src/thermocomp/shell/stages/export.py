@@ -262,7 +262,7 @@ def export(cfg: DictConfig) -> dict:
     source, fmt = str(source), str(cfg.export.format)
     deployed, provenance, ds = _deployed(cfg, source, fmt)
     stream = plain(deployed)
-    left = not_in_code(deployed)
+    left = not_in_code(deployed, fmt)
     # (small72) stream.c computes a derived target's reference from its error columns as the
     # reader does (TC_DERIVED_REFERENCE): they are read under their lab's headers too
     derive = dict(getattr(deployed, "derived_", {}) or {})

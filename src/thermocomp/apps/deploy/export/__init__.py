@@ -62,11 +62,13 @@ def check_exportable(compensator, fmt: str) -> None:
     state_space(stream, known_ambient=False)
 
 
-def exported_files(deployed, fmt: str, provenance: dict | None = None) -> dict[str, str]:
+def exported_files(deployed, fmt: str, provenance: dict | None = None,
+                   monitor: bool = True) -> dict[str, str]:
     """``{file name: text}`` of format ``fmt`` for the ``deployed`` stream or adaptive
-    compensator (its plain stream, correction guard and reference update)."""
+    compensator (its plain stream, correction guard and reference update; the C, unless not
+    ``monitor``, its sensor monitor's slice: :mod:`.watch`)."""
     _check_format(fmt)
-    ss = state_space(deployed, provenance)
+    ss = state_space(deployed, provenance, monitor=monitor and fmt == "c")
     files = {"compensator.json": json.dumps(ss.to_dict(), indent=1) + "\n"}
     if fmt == "c":
         from . import c

@@ -19,6 +19,10 @@ from .laws import UNBOUNDED
 from .recurrent import net_arrays, net_inputs
 from .statespace import StateSpace
 from .text import banner, correction_names
+from .watch_c import FUNCTIONS as MONITOR_FUNCTIONS
+from .watch_c import header_part as monitor_header
+from .watch_c import monitor_arrays
+from .watch_c import state_part as monitor_state
 
 ADAPT_CODES = {"none": 0, "bias": 1, "rls": 2}
 
@@ -201,7 +205,7 @@ def header(ss: StateSpace) -> str:
 #define TC_GUARD {int(ss.guard)}   /* correction bound and rate limit */
 #define TC_GUARD_INPUTS {int(ss.guard and ss.guard_inputs)}   /* the bound follows the inputs (pattern) */
 #define TC_ADAPT {ADAPT_CODES[ss.adapt]}   /* learned from reference measurements: 1 bias, 2 gain and bias */
-
+{monitor_header(ss)}
 /* Everything the compensator remembers between samples; the caller owns it.  Plain data, no
    pointers: its bytes saved after a tc_step and copied back by a new process of the same build
    resume the campaign there (a restart that calls tc_init mid-campaign starts a campaign at
@@ -249,7 +253,7 @@ typedef struct {{
     double cov[TC_N_OUTPUTS][2][2];             /* covariance of (gain, bias) (TC_ADAPT 2) */
     double c[TC_N_OUTPUTS];                     /* the last corrections given (0 at a campaign's start) */
     int refused;                                /* 1: the last sample was refused (an input not finite) */
-}} tc_state;
+{monitor_state(ss)}}} tc_state;
 
 static const char *const TC_INPUT_NAMES[TC_N_INPUTS] = {{{names}}};
 /* 1: a signal a diagnosed effect reads, whose missing value (NAN) tc_step holds */
@@ -333,7 +337,7 @@ def source(ss: StateSpace) -> str:
         *_lstm_constants(ss),
         *_pattern_constants(ss),
         f"static const int CLAMP = {int(ss.clamp)};",
-        *_output_constants(ss)])
+        *_output_constants(ss), *_declared(monitor_arrays(ss))])
     return f"""{banner(ss, "/*", " *", " */")}
 #include <math.h>
 #include "compensator.h"
@@ -465,7 +469,7 @@ static void lstms(tc_state *s, const double x[2][TC_WIDTH], double y[]) {{
 /* a raw value a sensor reads: within its input's limit (NAN, an infinity and a temperature's
    overload mark are not: missing, as the Simulator's StateSpace.measured) */
 static int measured(const double u[TC_N_INPUTS], int j) {{ return fabs(u[j]) <= TC_INPUT_LIMIT[j]; }}
-
+{MONITOR_FUNCTIONS}
 /* the correction of output i from the model's y: the guard (within the rate limit of the
    previous output over a step or one training period, whichever is longer, then the bound
    widened by allow), then the reference update's gain and bias */
@@ -486,6 +490,7 @@ static double corrected(tc_state *s, int i, double y, double dt, double allow) {
 
 int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N_OUTPUTS]) {{
     double uu[TC_N_INPUTS];                 /* u, a held signal's missing value filled */
+    double um[TC_N_INPUTS];                 /* u, the monitored inputs as the model reads them */
     double v[TC_N_INPUTS], x[2][TC_WIDTH], xl[2][{max(k, 1)}], ych[2];
     double ysum[2][TC_N_OUTPUTS], excess[TC_N_OUTPUTS];
     double allow[TC_N_OUTPUTS], yout[TC_N_OUTPUTS];
@@ -502,7 +507,13 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
         for (i = 0; i < TC_N_OUTPUTS; i++) c[i] = s->c[i];
         return -1;
     }}
-{C_TIME_RULE}    /* a missing signal of derived inputs only (TC_INPUT_HELD) is held at the campaign's
+{C_TIME_RULE}    /* the sensor monitor (TC_MONITOR): the monitored inputs as the model reads them */
+    if (TC_MONITOR) {{
+        for (j = 0; j < TC_N_INPUTS; j++) um[j] = u[j];
+        monitor_step(s, um, dt);
+        u = um;
+    }}
+    /* a missing signal of derived inputs only (TC_INPUT_HELD) is held at the campaign's
        last value, 0 before any (its derived inputs 0), as the diagnosed model holds it */
     for (j = 0; j < TC_N_INPUTS; j++) {{
         if (s->first) s->seen[j] = 0;
@@ -756,7 +767,7 @@ def _declared(arrays) -> list[str]:
     """A model's constants (:func:`.forest.forest_arrays`, :func:`.recurrent.net_arrays`) in C."""
     return [_array(name, values, shape) if kind == "real" else
             _ints(name, values) if len(shape) == 1 else _array(name, values, shape, "int")
-            for name, values, shape, kind in arrays]
+            for name, values, shape, kind in arrays]   # (a scalar: shape ())
 
 
 def _forest_constants(ss: StateSpace) -> list[str]:

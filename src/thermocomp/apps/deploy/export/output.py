@@ -88,11 +88,20 @@ def adapt_fields(deployed) -> dict:
             "adapt_max_gain_change": a.max_gain_change, "adapt_var_cap": float(np.trace(a._prior))}
 
 
-def not_in_code(deployed) -> list[str]:
-    """What the served model does that the exported code does not."""
-    if isinstance(deployed, AdaptiveCompensator) and deployed.monitor is not None:
-        return ["sensor monitor (exclusion, reconstruction of a sensor from the others)"]
-    return []
+def not_in_code(deployed, fmt: str | None = None) -> list[str]:
+    """What the served model does that the exported code (of format ``fmt``) does not: its
+    sensor monitor, of which the C holds a slice (:mod:`.watch`, cmon76)."""
+    if not (isinstance(deployed, AdaptiveCompensator) and deployed.monitor is not None):
+        return []
+    if fmt == "c" and deployed.monitor.adaptive:
+        return ["sensor monitor rules (the C holds the jump, the freeze, one sensor out "
+                "reconstructed from the others and its re-admission): a missing reading (the code "
+                "refuses the row), a reading beyond its training range, several sensors jumping "
+                "at once, a jump at the sample after the reference, a stepped self-prediction "
+                "error, a drift beyond the band (its exclusion, its blind partners, a new thermal "
+                "state), a second sensor out, a sensor no other predicts out (the model fitted "
+                "without it)"]
+    return ["sensor monitor (exclusion, reconstruction of a sensor from the others)"]
 
 
 class Output:

@@ -17,9 +17,15 @@ long export, a workbook) reaches the code as the CSV ``stream.c`` takes.
 * A campaign is cut before its first row with an input the code refuses (a missing value of a
   declared input: ``stream.c`` stops there), as ``replay``'s plain stream stops.
 * Where the served model does what the code does not (its sensor monitor: :func:`~.output.
-  not_in_code`), the corrections are checked against the exported arithmetic in numpy
-  (:class:`~.statespace.Simulator`) and the campaign is cut before the first row where the two
-  part (the monitor acted): no build can reproduce that row.
+  not_in_code`; the C holds a slice of it, :mod:`.watch`), the corrections are checked against
+  the exported arithmetic in numpy (:class:`~.statespace.Simulator`, the code's monitor in it)
+  and the campaign is cut before the first row where the two part (the served monitor did what
+  the code's does not; the rule the code flagged there named): no build can reproduce that row.
+
+Of an export whose code holds the sensor monitor (the C's, :mod:`.watch`), two copies of the
+first campaign with a fault planted follow (:func:`~.watch.planted`: a jump and a freeze of a
+monitored sensor from its middle row on, ``planted`` in their entries), the served model's
+monitor acting on them: every pack checks the code's monitor, cut where it parts.
 
 Of a model that reads no ambient sensor and picks its laws by a campaign's initial ambient
 (``ambient_given``: the manifest's ``ambient_c``), each campaign's value is in check.json's entry
@@ -45,6 +51,7 @@ from ..naming import correction_column
 from ..report import stream_rows
 from .output import not_in_code
 from .statespace import Simulator, StateSpace
+from .watch import NOT_IN_CODE, REASONS, planted
 
 CHECK = "check"
 # |C - expected| <= TOLERANCE_UM + TOLERANCE_RELATIVE * |expected| (um).  float64 arithmetic in
@@ -128,15 +135,18 @@ def beyond(got: np.ndarray, want: np.ndarray) -> np.ndarray:
     return ~(np.abs(got - want) <= TOLERANCE_UM + TOLERANCE_RELATIVE * np.abs(want))
 
 
-def _parted(ss: StateSpace, frame: pd.DataFrame, want: np.ndarray) -> int | None:
-    """The first row where the exported arithmetic (:class:`Simulator`) parts from ``want``."""
+def _parted(ss: StateSpace, frame: pd.DataFrame, want: np.ndarray) -> tuple[int, str] | None:
+    """``(row, note)``: the first row where the exported arithmetic (:class:`Simulator`) parts
+    from ``want``, and the rule not in the code its monitor flagged there (``""``: none)."""
     sim = Simulator(ss)
     sim.reset(manifest_ambient(frame))
     U = frame[ss.inputs].to_numpy(float)
     t = frame["time"].to_numpy(float) if "time" in frame.columns else np.full(len(frame), np.nan)
     for i in range(len(frame)):
         if beyond(sim.step(U[i], t[i]), want[i]).any():
-            return i
+            w = sim.watch
+            flagged = w is not None and w.flags & NOT_IN_CODE
+            return i, REASONS[w.rule].split(": ", 1)[1] if flagged else ""
     return None
 
 
@@ -147,7 +157,11 @@ def conformance_pack(deployed, ss: StateSpace, campaigns: Mapping[str, pd.DataFr
     """``({path under out: text}, check.json's dict)`` of the pack for ``campaigns`` streamed
     through ``deployed`` (module doc); ``ss``: its exported system; ``files``: each campaign's
     file, for a refusal's message; ``script``: ``check/check.sh`` too (the C's ``stream``)."""
-    lead_ins = lead_ins or {}
+    lead_ins = dict(lead_ins or {})
+    faults = planted(ss, campaigns)     # (the code's monitor checked on planted faults, cmon76)
+    for cid, (_, _, source) in faults.items():
+        lead_ins[cid] = lead_ins.get(source)
+    campaigns = {**campaigns, **{c: f[0] for c, f in faults.items() if c not in campaigns}}
     folders = folder_names(campaigns)
     outputs = [correction_column(t) for t in ss.targets]
     monitor = bool(not_in_code(deployed))
@@ -166,6 +180,8 @@ def conformance_pack(deployed, ss: StateSpace, campaigns: Mapping[str, pd.DataFr
                    "code refuses (stream.c stops; the served model holds it)"}
             frame = frame.iloc[:refused[0]]
         entry = {"campaign": str(cid), "folder": f"{CHECK}/{folders[cid]}", "lead_in_rows": lead}
+        if cid in faults:
+            entry["planted"] = faults[cid][1]
         if ss.ambient_given:
             entry[AMBIENT_C] = a0
         if not len(frame):
@@ -174,9 +190,10 @@ def conformance_pack(deployed, ss: StateSpace, campaigns: Mapping[str, pd.DataFr
         y = stream_rows(deployed, frame, str(cid), (files or {}).get(cid)).y
         want = corrections(ss, y)
         if monitor and (parted := _parted(ss, frame, want)) is not None:
-            cut = {"row": parted + 1, "why": "the served model's sensor monitor acted there, "
-                   "which is not in the code"}
-            frame, want = frame.iloc[:parted], want[:parted]
+            (row, note) = parted
+            cut = {"row": row + 1, "why": "the served model's sensor monitor acted there, "
+                   "which is not in the code" + (f" ({note})" if note else "")}
+            frame, want = frame.iloc[:row], want[:row]
         entry.update(rows=len(frame), cut=cut)
         listed.append(entry)
         if len(frame):

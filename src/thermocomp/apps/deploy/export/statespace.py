@@ -93,6 +93,7 @@ from .forest import ForestArrays, Forests, Switches
 from .laws import AMBIENT_CENTRE_C, LINEAR_FAMILIES, PLAIN, UNBOUNDED, Powers, target_laws, with_gains
 from .output import Output, adapt_fields, guard_fields, time_fields
 from .recurrent import Cells, NetArrays, Nets, is_lstm
+from .watch import CodeMonitor, MonitorArrays, monitor_fields
 
 FORMATS = ("json", "c", "st", "onnx")
 
@@ -218,7 +219,7 @@ class _System:
 
 
 @dataclass
-class StateSpace(NetArrays, ForestArrays, _System):
+class StateSpace(MonitorArrays, NetArrays, ForestArrays, _System):
     """Arrays of the exported system (module doc); lists, so that it is its own JSON.  After the
     linear system's (:class:`_System`), an arx_rf model's forests on a machine state's
     switching (:class:`~.forest.ForestArrays`, exportrest62) and an lstm model's networks
@@ -267,11 +268,13 @@ class StateSpace(NetArrays, ForestArrays, _System):
                 + 2 * len(self.lstm_target) * self.lstm_layers * self.lstm_hidden)   # an lstm's h, c
 
 
-def state_space(deployed, provenance: dict | None = None, known_ambient: bool = True) -> StateSpace:
+def state_space(deployed, provenance: dict | None = None, known_ambient: bool = True,
+                monitor: bool = False) -> StateSpace:
     """The :class:`StateSpace` of a deployed stream or adaptive compensator (module doc; of the
     latter its plain stream, guard and reference update); :class:`NotExportable` names what
     keeps it from being one.  ``known_ambient``: false for a stream made without its training
-    data (which ambient sensors an ATI model reads is not known yet: not refused for it)."""
+    data (which ambient sensors an ATI model reads is not known yet: not refused for it).
+    ``monitor``: with the adaptive compensator's sensor monitor (:mod:`.watch`, the C's)."""
     stream = deployed.streaming if isinstance(deployed, AdaptiveCompensator) else deployed
     comp = stream.compensator
     declared = list(comp.inputs_)
@@ -395,6 +398,7 @@ def state_space(deployed, provenance: dict | None = None, known_ambient: bool = 
         grid_period=grid,
         **guard_fields(deployed, len(states), clamp and env.basis is not None),
         **adapt_fields(deployed),
+        **(monitor_fields(deployed, inputs) if monitor else {}),
         provenance={**(provenance or {}), **({"laws": chosen} if chosen else {})})
 
 
@@ -555,6 +559,7 @@ class Simulator:
         self.clock = SampleClock(ss.time_period, judge=ss.substitute_time)
         self.switches = Switches(ss) if ss.forest_target else None
         self.cells = Cells(ss) if ss.lstm_target else None
+        self.watch = CodeMonitor(ss.monitor) if ss.monitor else None   # the code's sensor monitor
         self.reset()
 
     def reset(self, ambient_c: float = float("nan")) -> None:
@@ -592,6 +597,8 @@ class Simulator:
         self.last = np.where(measured, u, self.last)
         u = np.where(measured, u, np.where(self.seen, self.last, 0.0))     # a held signal
         now, dt, _ = self.clock.step(float(time))
+        if self.watch is not None:      # the monitored inputs as the model reads them
+            u = self.watch.step(u, self.first, dt)
         if self.first:
             self.buf = np.tile(u, (len(self.fir), 1))
         else:

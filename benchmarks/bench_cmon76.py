@@ -1,0 +1,138 @@
+"""The sensor monitor in the exported C (cmon76, issue 34): a faulted record's corrections from the
+compiled code with its monitor, without it, and the served adaptive model's.
+
+    PYTHONPATH=$PWD/src .venv/bin/python benchmarks/bench_cmon76.py faults [ROOT] [SEEDS]
+
+For each seed (default 7696-7700) and fault kind (``freeze``, ``jump``: the simulator's
+``sensor_faults`` effect on ``T_motor2``, every test campaign, the default ``yearround_spindle``),
+``thermocomp simulate`` into ``ROOT`` (default ``/tmp/cmon76-bench``), MLR fitted on the train
+split and deployed adaptive as ``replay`` deploys it, exported as C (``gcc -O2``) once with the
+monitor (``export.format=c``) and once without it (the code before cmon76), each test campaign
+streamed through both builds.  Prints per record the test RMSE (µm, pooled over the test
+campaigns) per target: fixed (the plain stream), the served adaptive model, the C without and
+with its monitor, the largest |C with monitor - served| over every row, and the conformance
+pack's rows kept of all (the cut: the first row where the code's monitor parts from the
+served one; the faults the pack plants on the first test campaign, listed apart).
+
+This changes no rule of auto / diagnose / monitor (the served monitor is as shipped): the code
+is measured against it, so no bar is written; the figures are in docs/to-the-machine.md.
+"""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from _cli import made_folder, run_commands  # noqa: E402
+
+SEEDS = "7696-7700"
+KINDS = ("freeze", "jump")
+
+
+def _seeds(text: str) -> list[int]:
+    lo, _, hi = text.partition("-")
+    return list(range(int(lo), int(hi or lo) + 1))
+
+
+def _built(folder: Path, files: dict) -> Path:
+    folder.mkdir(parents=True, exist_ok=True)
+    for name, text in files.items():
+        (folder / name).write_text(text)
+    subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", "compensator.c",
+                    "stream.c", "-lm", "-o", "stream"], cwd=folder, check=True, capture_output=True)
+    return folder / "stream"
+
+
+def _streamed(binary: Path, frame: pd.DataFrame) -> np.ndarray:
+    text = frame.to_csv(index=False, float_format="%.17g")
+    run = subprocess.run([str(binary)], input=text, text=True, capture_output=True, check=True)
+    return pd.read_csv(pd.io.common.StringIO(run.stdout)).to_numpy(float)
+
+
+def _rmse(errors: list, corrections: list) -> np.ndarray:
+    r = np.vstack([e + c for e, c in zip(errors, corrections)])
+    return np.sqrt(np.mean(r ** 2, axis=0))
+
+
+def record(root: Path, seed: int, kind: str) -> str:
+    from hydra import compose, initialize_config_dir
+
+    from thermocomp.apps.deploy.export import c, exported_files, state_space
+    from thermocomp.apps.deploy.export.driver import DRIVER
+    from thermocomp.apps.deploy.export.pack import conformance_pack, corrections
+    from thermocomp.apps.deploy.report import stream_rows
+    from thermocomp.apps.deploy.streaming import replay
+    from thermocomp.base.paths import conf_dir
+    from thermocomp.shell.builders import build_compensator, deploy_stream, deployable
+    from thermocomp.shell.cli import main
+    from thermocomp.shell.source import read_streamed
+
+    data = root / f"{kind}-{seed}"
+    fault = ("sim.generator.effects=[sensor_faults]",
+             f"sim.generator.effect_params.sensor_faults.kind={kind}",
+             "sim.generator.effect_params.sensor_faults.column=T_motor2")
+    if not (data / "campaigns.csv").is_file():
+        assert main(["-q", "simulate", *fault, f"seed={seed}", f"data.path={data}",
+                     "track=false"]) == 0
+    with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3"):
+        cfg = compose(config_name="config",
+                      overrides=[f"data.path={data}", "track=false", "model=mlr"])
+    ds, train_ids, test_ids, _ = read_streamed(cfg)
+    train = {k: ds.campaigns[k] for k in train_ids}
+    deployed = deployable(cfg, deploy_stream(cfg, build_compensator(cfg, ds=ds).fit(train), train),
+                          train, ds)
+    tests = {k: ds.campaigns[k].reset_index(drop=True) for k in test_ids}
+    targets = deployed.targets_
+    ss = state_space(deployed, monitor=True)
+    plain_ss = state_space(deployed)
+    with tempfile.TemporaryDirectory(prefix="cmon76-") as tmp:
+        with_mon = _built(Path(tmp) / "with", exported_files(deployed, "c"))
+        without = _built(Path(tmp) / "without", {"compensator.h": c.header(plain_ss),
+                                                 "compensator.c": c.source(plain_ss),
+                                                 "stream.c": DRIVER})
+        cols = ["time", *ss.inputs]
+        errors, fixed, served, code0, code1 = [], [], [], [], []
+        for k, df in tests.items():
+            errors.append(df[targets].to_numpy(float))
+            fixed.append(-replay(deployed.streaming, df)[targets].to_numpy(float))
+            served.append(corrections(ss, stream_rows(deployed, df, k).y))
+            code0.append(_streamed(without, df[cols]))
+            code1.append(_streamed(with_mon, df[cols]))
+    _, summary = conformance_pack(deployed, ss, tests)
+    listed = [e for e in summary["campaigns"] if "planted" not in e]
+    kept = sum(e["rows"] for e in listed)
+    total = sum(len(df) for df in tests.values())
+    cuts = [f"{e['campaign']}@{e['cut']['row']}" for e in listed if e["cut"]]
+    plants = [f"{e['campaign']} {e['rows']} rows, cut {e['cut']['row'] if e['cut'] else 'none'}"
+              for e in summary["campaigns"] if "planted" in e]
+    worst = max(float(np.max(np.abs(a - b))) for a, b in zip(code1, served))
+    lines = [f"{kind} s{seed}: pack rows {kept}/{total}, cuts {', '.join(cuts) or 'none'}; "
+             f"max|C monitor - served| {worst:.2e} um; planted: {'; '.join(plants)}"]
+    for i, t in enumerate(targets):
+        f, s, c0, c1 = (_rmse(errors, x)[i] for x in (fixed, served, code0, code1))
+        lines.append(f"  {t}: fixed {f:.3f}  served adaptive {s:.3f}  C without monitor {c0:.3f}"
+                     f"  C with monitor {c1:.3f}")
+    return "\n".join(lines)
+
+
+def faults(root: str = "/tmp/cmon76-bench", seeds: str = SEEDS) -> None:
+    folder = made_folder(root)
+    for seed in _seeds(seeds):
+        for kind in KINDS:
+            print(record(folder, seed, kind), flush=True)
+
+
+def main(argv: list[str] | None = None) -> int:
+    return run_commands(__doc__, {"faults": faults}, sys.argv[1:] if argv is None else argv,
+                        cpu=sys.stderr)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,308 @@
+"""The sensor monitor in the code (cmon76): the part of the served
+:class:`~..surveillance.SensorMonitor` the C holds, as arrays and in numpy (pure core).
+
+The served adaptive compensator judges every ``T_`` input before the model reads it
+(docs/monitoring.md).  The code holds this slice of it, the same arithmetic:
+
+* each sensor predicted from the other active ones by the POD (``M`` per active set: every
+  sensor in, or one sensor ``j`` out, column ``j`` zero; ``lev`` its leverages), the error
+  ``(d - M d) / (1 - h)`` of the referenced readings ``d`` kept over ``window`` samples, a band
+  left when the last ``confirm`` are beyond it;
+* a **jump** of one sensor (a one-sample step beyond ``jump_lim``, times the periods a gap in
+  time spans): re-referenced by its step less its change as the others predict it, excluded;
+* a **freeze** (its reading constant for ``seen_run`` samples while the others' prediction of
+  it moved by its warning band; one no other predicts: longer than ``blind_run``): excluded;
+* while a sensor is out the model reads its POD reconstruction from the others, and it is
+  re-admitted after a whole window calm whose leave-one-out errors stay within half its
+  warning band (``READMIT``).
+
+What else the served monitor does it flags, ``NOT_IN_CODE`` with the rule (:data:`REASONS`),
+and goes on by its own rules: an out-of-range reading (its sample passes the monitor by, the
+state as it was, so that the reading's return is no jump), several sensors jumping at once (a
+common step), a jump at the reference's next sample, a stepped self-prediction error, a drift
+beyond the band (exclusion by judgement, a new thermal state), a second sensor out, and a
+sensor no other predicts out (the model fitted without it).  A missing reading is refused by
+the code as before.  From such a row on the code may part from the served model; the
+conformance pack cuts there (:func:`~.pack.conformance_pack`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..adaptive import GAP_PERIODS, AdaptiveCompensator
+from ..surveillance.states import READMIT
+
+# what the code's monitor reports per sample (bits of tc_state.mon_flags)
+EXCLUDED, READMITTED, OUT, BAND, NOT_IN_CODE = 1, 2, 4, 8, 16
+# the reason of a flagged event (tc_state.mon_rule): what the code did, then what it does not do
+REASONS = ("", "jump: re-referenced and excluded", "freeze: excluded",
+           "re-admitted: within half its warning band for a window",
+           "not in the code: a reading beyond its training range",
+           "not in the code: several sensors jumping in one sample",
+           "not in the code: a jump at the sample after the reference",
+           "not in the code: a self-prediction error stepped past the alarm band",
+           "not in the code: a drift beyond the band (exclusion by judgement, new thermal state)",
+           "not in the code: a second sensor out",
+           "not in the code: a sensor no other predicts out (or too few left to rebuild it)")
+RULES = ("", "JUMP", "FREEZE", "BACK", "RANGE", "COMMON", "GLITCH", "STEPPED", "DRIFT", "SECOND",
+         "BLIND")      # their names in the C (TC_MON_JUMP ...), one per reason
+JUMP, FREEZE, BACK, RANGE, COMMON, GLITCH, STEPPED, DRIFT, SECOND, BLIND = range(1, len(RULES))
+
+
+@dataclass
+class MonitorArrays:
+    """:class:`~.statespace.StateSpace`'s monitor (:func:`monitor_fields`; empty: none in the
+    code, the C's only: the ST does not hold it)."""
+
+    monitor: dict = field(default_factory=dict)
+
+
+def monitor_fields(deployed, inputs: list) -> dict:
+    """``{"monitor": arrays}`` of an adaptive compensator's sensor monitor (:data:`REASONS`'s
+    slice; none where it has no adaptive monitor, or a monitored sensor is no input)."""
+    mon = getattr(deployed, "monitor", None)
+    if not isinstance(deployed, AdaptiveCompensator) or mon is None or not mon.adaptive:
+        return {}
+    if any(c not in inputs for c in mon.names):
+        return {}
+    n = len(mon.names)
+    sets = [np.ones(n, bool)] + [np.arange(n) != j for j in range(n)]
+    M, lev = [], []
+    for active in sets:
+        m, h = mon._operator(active)
+        full = np.zeros((n, n))
+        full[:, active] = m
+        M.append(full.tolist())
+        lev.append(h.tolist())
+    falls = set(getattr(deployed, "fallbacks_", {}) or {})
+    ported = [int(bool(mon._predictable[j]) and mon.names[j] not in falls
+                  and n - 1 >= mon.min_active_) for j in range(n)]
+    return {"monitor": {
+        "inputs": [inputs.index(c) for c in mon.names], "M": M, "lev": lev,
+        "max_leverage": float(mon.pod.max_leverage), "min_active": int(mon.min_active_),
+        "warning": mon.warning_c.tolist(), "alarm": mon.alarm_c.tolist(),
+        "window": mon.window, "confirm": mon.confirm,
+        "exclude_level": int(mon.exclude_level), "jump_lim": mon._jump_lim.tolist(),
+        "lo_lim": mon._lo_lim.tolist(), "hi_lim": mon._hi_lim.tolist(),
+        "seen_run": mon._seen_run.tolist(), "blind_run": mon._blind_run.tolist(),
+        "predictable": [int(p) for p in mon._predictable], "ported_out": ported,
+        "period": float(deployed.period_s), "gap_periods": GAP_PERIODS, "readmit": READMIT}}
+
+
+def planted(ss, campaigns) -> dict[str, tuple]:
+    """``{id: (campaign, what, the campaign it copies)}``: the first campaign of 8 rows or more
+    with a fault planted on the first monitored sensor whose exclusion the code holds, from its
+    middle row on: a jump of twice its step limit (where the reading stays within its range)
+    and a freeze (its reading held), so that the conformance pack checks the code's monitor on
+    every record (its expected corrections the served model's, its monitor acting; cut where it
+    does what the code's does not).  None without a monitor in the code."""
+    m = ss.monitor
+    ported = [k for k, p in enumerate(m.get("ported_out", [])) if p]
+    first = next((c for c, df in campaigns.items() if len(df) >= 8), None)
+    if not ported or first is None:
+        return {}
+    k = ported[0]
+    sensor, frame = ss.inputs[m["inputs"][k]], campaigns[first]
+    half = len(frame) // 2
+    out = {}
+    jump = 2.0 * float(m["jump_lim"][k])
+    if np.isfinite(jump) and (frame[sensor].iloc[half:] + jump <= m["hi_lim"][k]).all():
+        df = frame.copy()
+        df.loc[df.index[half:], sensor] += jump
+        out[f"{first}.jump.{sensor}"] = (df, f"{sensor} {jump:+.4g} degC from row {half + 1} "
+                                             "(a jump: twice its step limit)", first)
+    df = frame.copy()
+    df.loc[df.index[half:], sensor] = frame[sensor].iloc[half]
+    out[f"{first}.freeze.{sensor}"] = (df, f"{sensor} held at its reading of row {half + 1} "
+                                           "from there (a freeze)", first)
+    return out
+
+
+class CodeMonitor:
+    """The code's monitor in numpy (module doc): :meth:`step` gives the inputs the model reads."""
+
+    def __init__(self, arrays: dict):
+        a = {k: np.asarray(v, float) for k, v in arrays.items()}
+        self.idx = np.asarray(arrays["inputs"], int)
+        self.M, self.lev = a["M"], a["lev"]
+        self.n, self.window, self.confirm = len(self.idx), int(arrays["window"]), int(arrays["confirm"])
+        self.a = a
+        self.max_lev = float(arrays["max_leverage"])
+        self.ported = np.asarray(arrays["ported_out"], bool)
+        self.predictable = np.asarray(arrays["predictable"], bool)
+
+    def reset(self) -> None:
+        n, w = self.n, self.window
+        self.ref = self.base = None
+        self.out = -1
+        self.hist, self.err = np.full((w, n), np.nan), np.full((w, n), np.nan)
+        self.pos = self.count = 0
+        self.prev, self.prev_e, self.prev_other = (np.full(n, np.nan) for _ in range(3))
+        self.run, self.calm = np.zeros(n, int), np.zeros(n, int)
+        self.run_pred = np.full(n, np.nan)
+        self.flags, self.sensor, self.rule = 0, -1, 0
+
+    # the active set's operator, leverages, which sensors are judged and the errors' scale
+    def _set(self):
+        s = self.out + 1
+        lev = self.lev[s]
+        active = np.ones(self.n, bool)
+        if self.out >= 0:
+            active[self.out] = False
+        observable = lev < self.max_lev
+        judged = active & observable
+        scale = np.where(judged, 1.0 / np.maximum(1 - lev, 1e-12), 1.0)
+        scale[active & ~observable] = np.nan
+        return self.M[s], active, observable, judged, scale
+
+    def _errors(self, d):
+        M, _, _, _, scale = self._set()
+        pred = M @ d
+        return pred, (d - pred) * scale
+
+    def _recompute(self) -> None:
+        """The window's errors under the new operator (an exclusion, a re-admission)."""
+        M, _, _, _, scale = self._set()
+        H = np.where(np.isfinite(self.hist), self.hist, 0.0)
+        self.err = (self.hist - H @ M.T) * scale
+
+    def _level(self) -> np.ndarray:
+        k = min(self.count, self.confirm)
+        if k < self.confirm:
+            return np.zeros(self.n, int)
+        rows = (self.pos - 1 - np.arange(k)) % self.window
+        a = np.abs(self.err[rows]).min(axis=0)
+        with np.errstate(invalid="ignore"):
+            return (a >= self.a["warning"]).astype(int) + (a >= self.a["alarm"])
+
+    def _flag(self, bit: int, sensor: int, rule: int) -> None:
+        self.flags |= bit
+        if not self.rule:            # the sample's first event names its sensor and rule
+            self.sensor, self.rule = sensor, rule
+
+    def _exclude(self, j: int, rule: int) -> bool:
+        """``j`` out where the code holds it (one sensor out, others predict it); else flagged."""
+        if self.out >= 0 or not self.ported[j]:
+            self._flag(NOT_IN_CODE, j, SECOND if self.out >= 0 else BLIND)
+            return False
+        self.out = j
+        self.calm[j] = 0
+        self._recompute()
+        self._flag(EXCLUDED, j, rule)
+        return True
+
+    def step(self, u: np.ndarray, first: bool, dt: float) -> np.ndarray:
+        """The inputs ``u`` (order of the code's) with the monitored ones as the model reads them."""
+        if first:
+            self.reset()
+        self.flags, self.sensor, self.rule = 0, -1, 0
+        with np.errstate(invalid="ignore"):
+            return self._step(np.asarray(u, float), first, dt, self.a)
+
+    def _step(self, u, first, dt, a):
+        x = u[self.idx]
+        rng = (x < a["lo_lim"]) | (x > a["hi_lim"])
+        if rng.any():       # not in the code: the sample passes the monitor by, its state as it was
+            self._flag(NOT_IN_CODE, int(np.argmax(rng)), RANGE)
+            if not first:   # (so that the reading's return is no jump)
+                return self._rebuilt(u, x - self.ref)
+        if first:
+            self.ref, self.base = x.copy(), x.copy()
+        d = x - self.ref
+        pos = self.pos
+        self.hist[pos] = d
+        self.pos, self.count = (pos + 1) % self.window, self.count + 1
+        gap = max(1.0, dt / a["period"]) if (not first and dt > a["gap_periods"] * a["period"]) else 1.0
+        step = d - self.prev
+        big = (np.abs(step) > a["jump_lim"] * gap) & ~rng
+        same = step == 0
+        jumped = -1
+        if big.sum() > 1:
+            self._flag(NOT_IN_CODE, int(np.argmax(big)), COMMON)
+        elif big.any() and self.count == 2:
+            self._flag(NOT_IN_CODE, int(np.argmax(big)), GLITCH)
+        elif big.any():
+            j = int(np.argmax(big))
+            _, active, _, judged, _ = self._set()
+            if active[j] and (self.out >= 0 or not self.ported[j]):
+                self._exclude(j, JUMP)       # flagged: not in the code; the sensor stays as read
+            else:
+                _, e = self._errors(d)
+                other = d[j] - e[j] if judged[j] else np.nan
+                expected = other - self.prev_other[j]
+                offset = step[j] - (expected if np.isfinite(expected) else 0.0)
+                self.ref[j] += offset
+                d[j] -= offset
+                jumped = j
+                if active[j]:
+                    self._exclude(j, JUMP)
+            self.hist[pos] = d
+        self.run = np.where(same, self.run + 1, 0)
+        self.calm += 1
+        if jumped >= 0:
+            self.calm[jumped] = 0
+        pred, e = self._errors(d)
+        self.err[pos] = e
+        # freeze: constant while the field (its prediction from the others) moves
+        _, active, observable, judged, _ = self._set()
+        other = d - np.where(np.isfinite(e), e, d - pred)
+        start = same & (self.run == 1)
+        self.run_pred[start] = other[start]
+        moved = np.abs(other - self.run_pred)
+        frozen = same & ((observable & (moved >= a["warning"]) & (self.run >= a["seen_run"]))
+                         | (~observable & (self.run > a["blind_run"])))
+        instant = np.zeros(self.n, bool)
+        if jumped >= 0:
+            instant[jumped] = True
+        for j in np.flatnonzero(frozen & ~instant):
+            instant[j] = True
+            if active[j]:
+                self._exclude(int(j), FREEZE)
+        # a stepped self-prediction error (the served monitor excludes its culprit)
+        _, active, _, judged, _ = self._set()
+        stepped = judged & (np.abs(e) >= a["alarm"]) & (np.abs(e - self.prev_e) >= a["alarm"])
+        if stepped.any():
+            self._flag(NOT_IN_CODE, int(np.argmax(stepped)), STEPPED)
+        level = self._level()
+        if level[judged].any():
+            self.flags |= BAND
+        field = a["exclude_level"]     # (the alarm band only after a drift exclusion: not here)
+        if (judged & (level >= field)).any() and active.sum() > a["min_active"]:
+            self._flag(NOT_IN_CODE, int(np.argmax(judged & (level >= field))), DRIFT)
+        j = self.out
+        if j >= 0 and self.count >= self.window and self.run[j] == 0 and not instant[j] \
+                and self.calm[j] >= self.window and self._passes(j):
+            self.out = -1
+            self._recompute()
+            self._flag(READMITTED, j, BACK)
+        pred, e = self._errors(d)
+        _, active, _, judged, _ = self._set()
+        self.prev_other = np.where(judged, d - e, np.nan)
+        self.prev, self.prev_e = d, e
+        return self._rebuilt(u, d, pred)
+
+    def _rebuilt(self, u, d, pred=None):
+        """``u`` with the monitored inputs as the model reads them: the reading, the sensor out
+        rebuilt from the others (``pred``: their predictions)."""
+        if pred is None:
+            pred = self._errors(d)[0]
+        v = u.copy()
+        v[self.idx] = self.base + np.where(np.arange(self.n) == self.out, pred, d)
+        if self.out >= 0:
+            self.flags |= OUT
+        return v
+
+    def _passes(self, j: int) -> bool:
+        """Re-admission of ``j``: its leave-one-out error with every sensor in, over the whole
+        window, within ``READMIT`` of its warning band (one no other predicts: never here)."""
+        M, lev = self.M[0], self.lev[0]
+        if self.n < self.a["min_active"]:
+            return False
+        if lev[j] >= self.max_lev:
+            return not self.predictable[j]
+        H = np.where(np.isfinite(self.hist), self.hist, 0.0)
+        worst = np.abs((H[:, j] - H @ M[j]) / (1 - lev[j])).max()
+        return bool(worst < self.a["readmit"] * self.a["warning"][j])

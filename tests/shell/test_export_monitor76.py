@@ -1,0 +1,102 @@
+"""The sensor monitor in the exported C (cmon76): the jump, the freeze, one sensor out rebuilt from
+the others and its re-admission, as the served adaptive model's monitor does them; what the code
+does not hold is flagged and named, and the conformance pack cuts a campaign there.
+
+On test_export's three-sensor record (MLR, deployed adaptive): a +3 °C jump of ``T_b`` half-way
+through a test campaign is excluded, rebuilt and re-admitted by the served monitor, and the
+compiled code (gcc -Wall -Wextra -Werror) gives the served corrections on every row (the pack, not
+cut, passes; before, it was cut at the jump), and so on a jump and a freeze the pack plants.  A
++8 °C step is beyond the training range, a rule the code flags and does not hold: the pack cuts
+there and says which."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+
+import numpy as np
+import pytest
+
+from test_export import _compose, _make_dataset, needs_cc
+from thermocomp.apps.deploy.export import exported_files, not_in_code, state_space
+from thermocomp.apps.deploy.export.pack import conformance_pack, corrections
+from thermocomp.apps.deploy.report import stream_rows
+from thermocomp.shell.builders import build_compensator, deploy_stream, deployable
+from thermocomp.shell.source import read_streamed
+
+
+@pytest.fixture(scope="module")
+def served(tmp_path_factory):
+    """``(adaptive MLR as replay deploys it, healthy test campaign, the other test campaign)``."""
+    data = _make_dataset(tmp_path_factory.mktemp("cmon76") / "data")
+    cfg = _compose(f"data.path={data}", "track=false", "monitor.adaptive=true", "model=mlr")
+    ds, train_ids, test_ids, _ = read_streamed(cfg)
+    train = {c: ds.campaigns[c] for c in train_ids}
+    deployed = deployable(cfg, deploy_stream(cfg, build_compensator(cfg, ds=ds).fit(train), train),
+                          train, ds)
+    healthy, other = (ds.campaigns[c].reset_index(drop=True) for c in test_ids)
+    return deployed, healthy, other
+
+
+def _stepped(frame, by_c):
+    out = frame.copy()
+    out.loc[len(out) // 2:, "T_b"] += by_c
+    return out
+
+
+def _written(folder, files):
+    for name, text in files.items():
+        (folder / name).parent.mkdir(parents=True, exist_ok=True)
+        (folder / name).write_text(text)
+    subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", "compensator.c",
+                    "stream.c", "-lm", "-o", "stream"], cwd=folder, check=True, capture_output=True)
+
+
+@needs_cc
+def test_a_jump_is_excluded_rebuilt_and_readmitted_by_the_code_as_served(served, tmp_path):
+    deployed, healthy, other = served
+    faulty = _stepped(other, 3.0)
+    done = stream_rows(deployed, faulty, "K06")
+    moves = [(e["to"], e["reason"].split(":")[0]) for e in done.events if e.get("sensor") == "T_b"]
+    assert moves == [("excluded", "jump"), ("ok", "re-admitted")]
+    ss = state_space(deployed, monitor=True)
+    files, summary = conformance_pack(deployed, ss, {"K05": healthy, "K06": faulty})
+    # (and a jump and a freeze planted on K05's first monitored sensor: every pack checks them)
+    assert [(e["campaign"], e["rows"], e["cut"]) for e in summary["campaigns"]] == [
+        ("K05", 40, None), ("K06", 40, None), ("K05.jump.T_a", 40, None),
+        ("K05.freeze.T_a", 40, None)]
+    assert summary["campaigns"][2]["planted"].startswith("T_a +3.097 degC from row 21")
+    _written(tmp_path, {**exported_files(deployed, "c"), **files})
+    script = subprocess.run(["sh", "check/check.sh"], cwd=tmp_path, capture_output=True, text=True)
+    assert script.returncode == 0, script.stderr
+    said = script.stderr
+    assert "line 22: monitor: T_b: jump: re-referenced and excluded" in said
+    assert "line 32: monitor: T_b: re-admitted" in said
+    assert "line 22: monitor: T_a: jump: re-referenced and excluded" in said      # the planted one
+    assert "check: 4 campaign(s) within tolerance" in script.stdout
+    # the monitor is what the code does: the plain arithmetic parts from the served corrections
+    served_c = corrections(ss, done.y)
+    plain = corrections(ss, stream_rows(deployed.streaming, faulty, "K06").y)
+    assert np.max(np.abs(plain - served_c)) > 0.5
+
+
+def test_a_rule_the_code_does_not_hold_is_named_and_the_pack_cut_there(served):
+    deployed, healthy, other = served
+    faulty = _stepped(other, 8.0)        # beyond the training range +- 10 degC
+    event = next(e for e in stream_rows(deployed, faulty, "K06").events if e.get("sensor") == "T_b")
+    assert event["reason"].startswith("out of range")
+    ss = state_space(deployed, monitor=True)
+    _, summary = conformance_pack(deployed, ss, {"K06": faulty})
+    assert summary["campaigns"][0]["cut"] == {
+        "row": 21, "why": "the served model's sensor monitor acted there, which is not in the "
+                          "code (a reading beyond its training range)"}
+    left = not_in_code(deployed, "c")
+    assert len(left) == 1 and "a reading beyond its training range" in left[0]
+    assert not_in_code(deployed, "st") == not_in_code(deployed)       # the ST holds none of it
+
+
+def test_the_structured_text_and_json_carry_no_monitor(served):
+    deployed = served[0]
+    assert json.loads(exported_files(deployed, "c")["compensator.json"])["monitor"]["inputs"]
+    for fmt in ("st", "json"):
+        assert json.loads(exported_files(deployed, fmt)["compensator.json"])["monitor"] == {}
