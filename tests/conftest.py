@@ -47,6 +47,12 @@ UNTRACKED = ("track=false",)
 LIGHT = ("plots=none", "eval.mutual_prediction=false", "eval.ati_baselines=false",
          "eval.iso10791_a3=false")
 FAST = (*UNTRACKED, *LIGHT, "eval.validation=false")
+# diagnose's before/after figures streamed through the plain deployed stream, not the adaptive
+# compensator around it (its sensor monitor and guard step every test sample: ~60 % of a
+# diagnosis's CPU on test_diagnose_pde66's record): for a diagnose call none of whose assertions
+# is about the adaptive stream (test_diagnose_deployed60 and test_deployed_guarded are).  On a
+# healthy record, where neither acts, the figures are the same to the last digit.
+PLAIN_DIAGNOSE = ("monitor.adaptive=false",)
 
 
 def thermocomp(*args: str, cwd=None, env=None, check=True,
