@@ -19,6 +19,7 @@ from .jsonlines import is_json_lines, json_lines_as_csv
 from .labfile import records_as_csv
 from .lvm import is_lvm, lvm_records
 from .matfile import is_mat, mat_records
+from .scope import is_scope, scope_records
 from .tdms import is_tdms, tdms_records
 from .tob1 import is_tob1, tob1_records
 from .utf16 import is_utf16, utf8_options, utf16_as_utf8
@@ -27,8 +28,9 @@ from .workbook import csv_options, is_workbook, run_sheets, sheet_as_csv
 
 def is_lab_file(path) -> bool:
     """``path`` is a lab's record of channels: a TDMS log, a MATLAB file, (stranger69) a
-    LabVIEW Measurement File or (lab75) a Campbell Scientific TOB1 table (:mod:`.labfile`)."""
-    return is_tdms(path) or is_mat(path) or is_lvm(path) or is_tob1(path)
+    LabVIEW Measurement File, (lab75) a Campbell Scientific TOB1 table or (stranger76) a TwinCAT
+    Scope CSV export (:mod:`.labfile`)."""
+    return is_tdms(path) or is_mat(path) or is_lvm(path) or is_tob1(path) or is_scope(path)
 
 
 def is_converted(path, opts=None) -> bool:
@@ -45,7 +47,7 @@ def lab_as_csv(path: Path, one_run: bool = False, encoding: str = UTF8) -> Itera
     ``one_run``: a folder's file, refused where it holds several runs (its runs would be read
     as one campaign, the days between them a pause nothing said)."""
     records = (tdms_records(path) if is_tdms(path) else lvm_records(path, encoding) if is_lvm(path)
-               else tob1_records(path) if is_tob1(path) else mat_records(path))
+               else scope_records(path, encoding) if is_scope(path) else tob1_records(path) if is_tob1(path) else mat_records(path))
     if one_run and len(records) > 1:
         labels = ", ".join(repr(r.label) for r in records[:4]) + (", ..." if len(records) > 4 else "")
         raise ContractError(f"{len(records)} runs in one file ({labels}): a folder's file is one "
