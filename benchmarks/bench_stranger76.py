@@ -24,12 +24,34 @@ rows then empty down to the temperatures' 5760. The states (spindle rpm, gantry 
 head on) are channels too. Quirk: in run 4 the sensor on the beam's middle was replaced, its
 channel ``Temp Traverse Mitte (neu)`` (symbol ``fbTemp[18]``: the new one 0.3 K off).
 
-``faults``: ``ROOT/fault_<kind>_<SEED>.csv``, the last run's export with one fault each:
+``faults``: ``ROOT/fault_<kind>_<SEED>/``, the six exports, the last run's with one fault each
+(a Scope export is written when the recording stops: a file, not a stream; ``monitor`` reads
+the folder with init's config, ``data.path=`` it):
 ``frozen`` (Temp Spindel vorn held from row 2000), ``jump`` (+2 K on Temp Ständer R mitte
 from row 2500), ``drift`` (Temp Kühlmittel +1 K/h from row 1500), ``dropout`` (60 empty
 cells of Temp Ram oben from row 3000).
 
 ``matrix``: bench_stranger75's (run -> replay per family on the data config init wrote).
+
+Measured 2026-12-02, seed 7671 (``write`` 5.6 s CPU). Before stranger76 ``thermocomp init
+ROOT/gantry7671`` refused the exports ("no column reads as a measured error ... the numeric
+columns: none", every preamble key a "mark for a value not measured"). With
+core/io/scope.py, ``init`` alone (no key given), then ``matrix`` on its config (236 + 25 s CPU):
+test RMSE dX / dY / dZ (µm; 10.43 / 16.43 / 106.88 before, the tracker's mm read as µm) mlr
+0.338 / 0.295 / 0.512, pcr 0.612 / 1.837 / 4.464, arx 0.497 / 0.720 / 0.684, lagbank 0.293 /
+0.655 / 0.524, hammerstein 0.293 / 0.655 / 0.524 (its CV took no power of the states: the lag
+bank), lstm 0.362 / 0.297 / 0.591, auto 0.335 / 0.366 / 0.471 (mlr / hammerstein / mlr heaviest),
+mlr ``ati=cmeans`` 0.461 / 0.418 / 1.043; replay = run in every cell (3 digits).
+
+ATI on a tracker measured every 5 min (rule and bar, written before scoring the fix): the
+elbow's fast MLR folds (``_HeldOutFits``, QR per campaign) took the unmeasured rows' NaN into
+their least squares, so every count's held-out Rsd was NaN ("no number of intervals could be
+cross-validated; one model") and the one model with its ambient interaction was kept unseen.
+Fix: the fast folds fit and score a campaign's measured rows only, as the slow path does
+(``_fit_base`` through the base model's ``measured_rows``). Bar: on a sparse target the fast
+elbow's SM / SD equal the slow path's (a test); the elbow is scored (no NaN) on seed 7671;
+``ati=cmeans``'s test RMSE after is reported whatever it is (a fix of a fold, not a rule: no
+improvement is claimed before it is measured).
 """
 from __future__ import annotations
 
@@ -145,7 +167,7 @@ def write(root: str, seed: str) -> None:
 
 
 def faults(root: str, seed: str) -> None:
-    """``ROOT/fault_<kind>_<SEED>.csv``: the last run's export, one fault each (docstring)."""
+    """``ROOT/fault_<kind>_<SEED>/``: the exports, the last run's with one fault (docstring)."""
     import pandas as pd
     from gantry76 import Gantry76, run_starts, sensors
 
@@ -167,7 +189,13 @@ def faults(root: str, seed: str) -> None:
         chans = channels(frame, len(run_starts()))
         for c in chans:
             c["samples"] = [(t, "" if v == "nan" else v) for t, v in c["samples"]]
-        out = Path(root) / f"fault_{kind}_{seed}.csv"
+        folder = Path(root) / f"fault_{kind}_{seed}"
+        folder.mkdir(parents=True, exist_ok=True)
+        for earlier in run_starts()[:-1]:
+            link = folder / f"Scope_Portal_{earlier:%Y%m%d}.csv"
+            if not link.exists():
+                link.symlink_to(Path(root).resolve() / f"gantry{seed}" / link.name)
+        out = folder / f"Scope_Portal_{start:%Y%m%d}.csv"
         out.write_bytes(scope_text(chans, start.astimezone(UTC), "Thermo_Portal").encode("cp1252"))
         print(f"wrote {out}")
 
