@@ -19,10 +19,11 @@ Ständer L unten``, ``Tracker dX``), ``SymbolComment``, ``Data-Type``, ``SampleT
 ``IndexOffset``, ``SymbolName`` (``MAIN.fbTemp[7].fValue``), ``NetID``, ``Port``, ``Offset``,
 ``ScaleFactor``, ``BitMask``, ``Unit`` (``°C``, the tracker's ``mm``), each channel three
 columns wide (its ``Time`` in ms since StartTime, its value, an empty one between channels), a
-blank line, a row ``Time;Value;`` per channel, then the samples: every channel its own ``Time;Value`` pair, the tracker's 192
-rows then empty down to the temperatures' 5760. The states (spindle rpm, gantry X mm, fork
-head on) are channels too. Quirk: in run 4 the sensor on the beam's middle was replaced, its
-channel ``Temp Traverse Mitte (neu)`` (symbol ``fbTemp[18]``: the new one 0.3 K off).
+blank line, a row ``Time;Value;`` per channel, then the samples: every channel its own
+``Time;Value`` pair, the tracker's 192 rows then empty down to the temperatures' 5760. The
+states (spindle rpm, gantry X mm, fork head on) are channels too. Quirk: from run 4 on the
+sensor on the beam's middle is a new one (0.3 K off), its channel ``Temp Traverse Mitte (neu)``,
+symbol ``fbTemp[27]``.
 
 ``faults``: ``ROOT/fault_<kind>_<SEED>/``, the six exports, the last run's with one fault each
 (a Scope export is written when the recording stops: a file, not a stream; ``monitor`` reads

@@ -55,9 +55,9 @@ def sensors() -> list[TemperatureSensor]:
     s = TemperatureSensor
     return [
         s("T_air_floor", {AMBIENT: 1.0}, 0.0, 90.0), s("T_air_roof", {AMBIENT: 1.0}, 1.6, 200.0),
-        s("T_bed1_front", {"bed1": 1.0}, 0.0, 800.0), s("T_bed1_rear", {"bed1": 0.85, AMBIENT: 0.15}, 0.0, 900.0),
-        s("T_bed2_front", {"bed2": 1.0}, 0.0, 800.0), s("T_bed2_rear", {"bed2": 0.85, AMBIENT: 0.15}, 0.0, 900.0),
-        s("T_bed3_front", {"bed3": 1.0}, 0.0, 800.0), s("T_bed3_rear", {"bed3": 0.85, AMBIENT: 0.15}, 0.0, 900.0),
+        *[s(f"T_{seg}_{side}", {seg: 1.0} if side == "front" else {seg: 0.85, AMBIENT: 0.15},
+            0.0, 800.0 if side == "front" else 900.0)
+          for seg in ("bed1", "bed2", "bed3") for side in ("front", "rear")],
         s("T_xmotor_l", {"xdrive": 0.9, "uprl": 0.1}, 0.0, 60.0),
         s("T_xmotor_r", {"xdrive": 0.9, "uprr": 0.1}, 0.2, 60.0),
         s("T_upl_low", {"uprl": 0.8, "xdrive": 0.2}, 0.0, 400.0), s("T_upl_mid", {"uprl": 1.0}, 0.0, 500.0),
@@ -67,8 +67,10 @@ def sensors() -> list[TemperatureSensor]:
         s("T_beam_left", {"beam": 0.8, "uprl": 0.2}, 0.0, 600.0), s("T_beam_mid", {"beam": 1.0}, 0.0, 700.0),
         s("T_beam_right", {"beam": 0.8, "uprr": 0.2}, 0.0, 600.0),
         s("T_carriage", {"carriage": 0.9, "beam": 0.1}, 0.0, 300.0),
-        s("T_ram_top", {"ram": 0.7, "carriage": 0.3}, 0.0, 250.0), s("T_ram_low", {"ram": 0.8, "spindle": 0.2}, 0.0, 200.0),
-        s("T_spindle_front", {"spindle": 1.0}, 0.0, 60.0), s("T_spindle_rear", {"spindle": 0.7, "ram": 0.3}, 0.0, 90.0),
+        s("T_ram_top", {"ram": 0.7, "carriage": 0.3}, 0.0, 250.0),
+        s("T_ram_low", {"ram": 0.8, "spindle": 0.2}, 0.0, 200.0),
+        s("T_spindle_front", {"spindle": 1.0}, 0.0, 60.0),
+        s("T_spindle_rear", {"spindle": 0.7, "ram": 0.3}, 0.0, 90.0),
         s("T_head", {"head": 1.0}, 0.0, 80.0), s("T_coolant", {"coolant": 1.0}, 0.0, 150.0),
     ]
 

@@ -47,7 +47,8 @@ def lab_as_csv(path: Path, one_run: bool = False, encoding: str = UTF8) -> Itera
     ``one_run``: a folder's file, refused where it holds several runs (its runs would be read
     as one campaign, the days between them a pause nothing said)."""
     records = (tdms_records(path) if is_tdms(path) else lvm_records(path, encoding) if is_lvm(path)
-               else scope_records(path, encoding) if is_scope(path) else tob1_records(path) if is_tob1(path) else mat_records(path))
+               else scope_records(path, encoding) if is_scope(path)
+               else tob1_records(path) if is_tob1(path) else mat_records(path))
     if one_run and len(records) > 1:
         labels = ", ".join(repr(r.label) for r in records[:4]) + (", ..." if len(records) > 4 else "")
         raise ContractError(f"{len(records)} runs in one file ({labels}): a folder's file is one "
