@@ -8,11 +8,13 @@ test_stranger68's linear runs)."""
 from __future__ import annotations
 
 import datetime as dt
+import io
 import json
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
+import pytest
 
 from conftest import FAST, refused
 from test_stranger68 import ROWS, linear_run
@@ -106,3 +108,20 @@ def test_a_cell_that_is_no_number_is_refused_naming_file_channel_and_line(tmp_pa
             f"file {path}, column 'Temp Ständer', line 21: cell 'Overflow' is no number "
             "(decimal ',')")
     assert not (tmp_path / "out").exists()
+
+
+def test_the_export_piped_into_monitor_streams_as_the_file_is_read(tmp_path, monkeypatch, capsys):
+    """The test run's export as written on stdin (it ended in a traceback, 'The truth value of
+    a Series is ambiguous', reading the preamble as a header)."""
+    folder = _folder(tmp_path / "runs")
+    monitor = ["monitor", f"data.path={folder}", "data.roles.error=[Tracker*]",
+               "data.encoding=cp1252", "data.test_fraction=0.34", *FAST]
+    assert main([*monitor, f"out={tmp_path / 'file'}"]) == 0
+    text = (folder / "Scope_Portal_3.csv").read_bytes().decode("cp1252")
+    monkeypatch.setattr("sys.stdin", io.StringIO(text))
+    assert main([*monitor, "monitor.input=-", f"out={tmp_path / 'piped'}"]) == 0
+    from_file, piped = (json.loads((tmp_path / name / "monitor.json").read_text())["targets"]
+                        for name in ("file", "piped"))
+    for target in ("E_Tracker_dX", "E_Tracker_dZ"):
+        assert piped[target]["rmse_fixed"] == pytest.approx(from_file[target]["rmse_fixed"],
+                                                            rel=1e-9)

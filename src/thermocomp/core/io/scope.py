@@ -27,7 +27,7 @@ import numpy as np
 
 from .contract import ContractError
 from .encoding import UTF8, check_text, text_codec
-from .labfile import Channel, Record, on_one_grid, with_unit
+from .labfile import Channel, Record, on_one_grid, records_as_csv, with_unit
 
 SAMPLE_KEY = "SampleTime[ms]"
 _FIRST = re.compile(r"^\ufeff?(Name|ScopeName)([;\t,])")
@@ -68,6 +68,26 @@ def scope_records(path: Path, encoding: str = UTF8) -> list[Record]:
     except UnicodeDecodeError:
         raise ContractError(f"file is not {encoding} text (a Windows export: data.encoding=cp1252)",
                             file=path) from None
+    return [_record(lines, path.stem, path)]
+
+
+def is_scope_text(text: str) -> bool:
+    """``text`` (a stream's) is a Scope export, as :func:`is_scope` tells a file."""
+    found = _FIRST.match(text[:200])
+    return found is not None and any(line.startswith(SAMPLE_KEY + found.group(2))
+                                     for line in text[:1 << 16].splitlines()[:60])
+
+
+def scope_as_csv(text: str, source: str) -> str:
+    """A Scope export streamed (``monitor.input=-``) as the CSV text its channels are read as
+    from a file (:mod:`.labfile`: a ``time`` of UTC timestamps, each channel a column)."""
+    path = Path(source)
+    with records_as_csv([_record(text.splitlines(), path.stem, path)], path) as table:
+        return table.read_text(encoding=UTF8)
+
+
+def _record(lines: list[str], label: str, path: Path) -> Record:
+    """The export's channels, each on its own time (laid onto one grid where they fit one)."""
     sep = _FIRST.match(lines[0]).group(2)
     k, preamble = _keys(lines, 0, sep)
     start, utc = _start(preamble, path)
@@ -95,7 +115,7 @@ def scope_records(path: Path, encoding: str = UTF8) -> list[Record]:
                                 f"channel {name!r} (column {j + 1})"))
     if not channels:
         raise ContractError("no channel under the 'Name' row", file=path, line=first_prop + 1)
-    return [Record(path.stem, on_one_grid(channels), utc=utc)]
+    return Record(label, on_one_grid(channels), utc=utc)
 
 
 def _keys(lines: list[str], k: int, sep: str, whole: bool = False) -> tuple[int, dict]:
