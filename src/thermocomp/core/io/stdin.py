@@ -8,10 +8,10 @@ each (:func:`stream_campaigns`)."""
 from __future__ import annotations
 
 import csv
-from dataclasses import replace
 import fnmatch
 import re
 from collections.abc import Mapping
+from dataclasses import replace
 from io import StringIO
 
 import numpy as np
