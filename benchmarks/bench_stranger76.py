@@ -44,6 +44,13 @@ test RMSE dX / dY / dZ (µm; 10.43 / 16.43 / 106.88 before, the tracker's mm rea
 bank), lstm 0.362 / 0.297 / 0.591, auto 0.335 / 0.366 / 0.471 (mlr / hammerstein / mlr heaviest),
 mlr ``ati=cmeans`` 0.461 / 0.418 / 1.043; replay = run in every cell (3 digits).
 
+After the fix (measured 2026-12-02, seed 7671): the elbow scored every count (2 / 1 / 2
+intervals chosen), ``ati=cmeans`` 0.461 / 0.418 / 1.043 -> 0.377 / 0.418 / 0.962 µm (still worse
+than MLR: the elbow compares counts of intervals with the interaction, not ATI with MLR).
+Fresh draws 7672 / 7673, ``init`` with no key, MLR 0.533 / 1.089 / 0.592 and 0.502 / 0.284 /
+0.642 µm; ``monitor`` on their test runs: no event. The rest (faults, C, promote, diagnose):
+docs/own-data.md, "A gantry mill's TwinCAT Scope exports".
+
 ATI on a tracker measured every 5 min (rule and bar, written before scoring the fix): the
 elbow's fast MLR folds (``_HeldOutFits``, QR per campaign) took the unmeasured rows' NaN into
 their least squares, so every count's held-out Rsd was NaN ("no number of intervals could be
