@@ -46,7 +46,8 @@ mlr ``ati=cmeans`` 0.461 / 0.418 / 1.043; replay = run in every cell (3 digits).
 
 After the fix (measured 2026-12-02, seed 7671): the elbow scored every count (2 / 1 / 2
 intervals chosen), ``ati=cmeans`` 0.461 / 0.418 / 1.043 -> 0.377 / 0.418 / 0.962 µm (still worse
-than MLR: the elbow compares counts of intervals with the interaction, not ATI with MLR).
+than MLR: the elbow compares counts of intervals with the interaction, not ATI with MLR);
+``auto`` the same to the digit (0.3346 / 0.3659 / 0.4705, its ati candidate's weight on dY 0.17).
 Fresh draws 7672 / 7673, ``init`` with no key, MLR 0.533 / 1.089 / 0.592 and 0.502 / 0.284 /
 0.642 µm; ``monitor`` on their test runs: no event. The rest (faults, C, promote, diagnose):
 docs/own-data.md, "A gantry mill's TwinCAT Scope exports".
