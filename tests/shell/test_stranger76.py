@@ -10,6 +10,7 @@ from __future__ import annotations
 import datetime as dt
 import io
 import json
+import subprocess
 from pathlib import Path
 
 import numpy as np
@@ -17,6 +18,7 @@ import pandas as pd
 import pytest
 
 from conftest import FAST, refused
+from test_export import checked_pack, needs_cc
 from test_stranger68 import ROWS, linear_run
 from thermocomp.core.io import read_dataset
 from thermocomp.shell.cli import main
@@ -125,3 +127,20 @@ def test_the_export_piped_into_monitor_streams_as_the_file_is_read(tmp_path, mon
     for target in ("E_Tracker_dX", "E_Tracker_dZ"):
         assert piped[target]["rmse_fixed"] == pytest.approx(from_file[target]["rmse_fixed"],
                                                             rel=1e-9)
+
+
+@needs_cc
+def test_the_compiled_stream_refuses_a_scope_export_before_any_correction(tmp_path):
+    """Before: it took the row of channel names for its header, read the property rows under
+    it as samples, printed a correction of 'VariableSize;8;...' and stopped at 'True'."""
+    folder = _folder(tmp_path / "runs")
+    common = [f"data.path={folder}", "data.roles.error=[Tracker*]", "data.encoding=cp1252",
+              "data.test_fraction=0.34"]
+    assert main(["run", *common, *FAST, "model=mlr", f"out={tmp_path / 'run'}"]) == 0
+    assert main(["export", *common, "track=false", "export.format=c",
+                 f"export.model={tmp_path / 'run' / 'model.pkl'}", f"out={tmp_path / 'code'}"]) == 0
+    checked_pack(tmp_path / "code")
+    done = subprocess.run([str(tmp_path / "code" / "stream")], capture_output=True,
+                          input=(folder / "Scope_Portal_3.csv").read_bytes())
+    assert done.returncode == 2 and done.stdout == b""
+    assert b"stream: line 5 is a TwinCAT Scope export's row of channel names" in done.stderr
