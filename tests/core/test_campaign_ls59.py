@@ -85,8 +85,9 @@ def climate_runs(seed: int = 3):
     return df[["T_1", "T_2", "T_3", "T_4"]].to_numpy(), df["E_X"].to_numpy(), df[[CAMPAIGN, AMBIENT_C0]]
 
 
-def elbow(monkeypatch, fast: bool, **params):
-    """The elbow's figures with the fast path on or off, and the base fits made on rows."""
+def elbow(monkeypatch, fast: bool, sparse: bool = False, **params):
+    """The elbow's figures with the fast path on or off, and the base fits made on rows
+    (``sparse``: the target measured on every fifth row only, NaN between)."""
     monkeypatch.setattr(ATIRegressor, "_fast_elbow", fast)
     on_rows = []
     fit_base = ATIRegressor._fit_base
@@ -97,6 +98,8 @@ def elbow(monkeypatch, fast: bool, **params):
 
     monkeypatch.setattr(ATIRegressor, "_fit_base", counted)
     X, y, context = climate_runs()
+    if sparse:
+        y = np.where(np.arange(y.size) % 5 == 0, y, np.nan)
     ati = ATIRegressor(MLR(), candidates=(1, 2, 3, 4), **params).fit(X, y, context=context)
     return ati, len(on_rows)
 
@@ -116,3 +119,15 @@ def test_the_elbow_from_campaign_factors_scores_as_with_every_fold_on_its_rows(m
                                [plain.elbow_["single_model"]["sm"], plain.elbow_["single_model"]["sd"]],
                                rtol=1e-9)
     np.testing.assert_array_equal(fast.boundaries_, plain.boundaries_)
+
+
+def test_the_elbow_on_a_target_measured_now_and_then_scores_its_measured_rows(monkeypatch):
+    """stranger76: a laser tracker every 5 min beside temperatures every 10 s, the target NaN
+    between; the fast folds took the NaN into their least squares, every count scored NaN ("no
+    number of intervals could be cross-validated; one model")."""
+    fast, _ = elbow(monkeypatch, True, sparse=True, ambient_interaction=True)
+    plain, _ = elbow(monkeypatch, False, sparse=True, ambient_interaction=True)
+    assert fast.elbow_["reason"] is None and np.isfinite(fast.elbow_["sm"]).all()
+    assert fast.elbow_["chosen"] == plain.elbow_["chosen"]
+    for key in ("sm", "sd"):
+        np.testing.assert_allclose(fast.elbow_[key], plain.elbow_[key], rtol=1e-9)

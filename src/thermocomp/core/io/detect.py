@@ -52,6 +52,7 @@ from .roles import (
     voltage_hint,
 )
 from .runs import looks_like_run_labels, says_run
+from .scope import is_scope, scope_layout
 from .separators import reads_as_number
 from .sniff import head_lines, resolved
 from .tables import parquet, peek_csv, without_pandas_index
@@ -148,10 +149,10 @@ def encoding(src: Path, opts, manifest: pd.DataFrame | None) -> str:
     files = [sample_file(src, manifest)]
     if (src / MANIFEST).is_file():
         files.append(src / MANIFEST)
-    # (UTF-16: its mark; an .lvm is text; a Campbell binary table's .dat is none: lab76, its
-    # bytes were taken for a Windows export's, data.encoding: cp1252 written for nothing)
+    # (UTF-16: its mark; an .lvm and a Scope export are text; a Campbell binary table's .dat is
+    # none: lab76, its bytes were taken for a Windows export's, data.encoding: cp1252 written)
     found = [detect(f) for f in files
-             if (is_text(f) or is_lvm(f)) and not is_utf16(f) and not is_tob(f)]
+             if (is_text(f) or is_lvm(f) or is_scope(f)) and not is_utf16(f) and not is_tob(f)]
     return WINDOWS if WINDOWS in found else UTF8
 
 
@@ -172,6 +173,7 @@ def head(sample: Path, opts) -> tuple[object, list[str], list[str], str]:
     if is_lab_file(sample):         # a TDMS log, a MATLAB file: the CSV its channels are written to
         kind = ("a MATLAB file" + (" saved -v7.3" if is_v73(sample) else "") if is_mat(sample)
                 else "a LabVIEW Measurement File" if is_lvm(sample)
+                else "a TwinCAT Scope export" if is_scope(sample)
                 else described(sample) if is_tob(sample)
                 else "a TDMS log") + " (its channels as columns)"
         encoding = opts.encoding                 # (the file's: the temporary CSV is UTF-8)
@@ -180,7 +182,8 @@ def head(sample: Path, opts) -> tuple[object, list[str], list[str], str]:
             layout = layout.replace("a historian's long file (", "channels at their own rates, "
                                     "written long (", 1)
             # (stranger69: the temporary CSV's ',' and '.' were said as the file's)
-            own = lvm_layout(sample, encoding) if is_lvm(sample) else ""
+            own = (lvm_layout(sample, encoding) if is_lvm(sample)
+                   else scope_layout(sample, encoding) if is_scope(sample) else "")
             layout = re.sub(r"delimiter '[^']*', decimal '[^']*'", own, layout, count=1)
             return opts, header, first, layout.replace(
                 f"{text.name}: ", f"{sample.name}: {kind}" + (", " if own else ""), 1)

@@ -19,6 +19,7 @@ from .jsonlines import is_json_lines, json_lines_as_csv
 from .labfile import records_as_csv
 from .lvm import is_lvm, lvm_records
 from .matfile import is_mat, mat_records
+from .scope import is_scope, scope_records
 from .tdms import is_tdms, tdms_records
 from .tob1 import is_tob
 from .tob3 import tob_records
@@ -28,9 +29,9 @@ from .workbook import csv_options, is_workbook, run_sheets, sheet_as_csv
 
 def is_lab_file(path) -> bool:
     """``path`` is a lab's record of channels: a TDMS log, a MATLAB file, (stranger69) a
-    LabVIEW Measurement File or (lab75) a Campbell Scientific TOB1 table (lab76: TOB2, TOB3;
-    :mod:`.labfile`)."""
-    return is_tdms(path) or is_mat(path) or is_lvm(path) or is_tob(path)
+    LabVIEW Measurement File, (lab75) a Campbell Scientific TOB1 table (lab76: TOB2, TOB3) or
+    (stranger76) a TwinCAT Scope CSV export (:mod:`.labfile`)."""
+    return is_tdms(path) or is_mat(path) or is_lvm(path) or is_tob(path) or is_scope(path)
 
 
 def is_converted(path, opts=None) -> bool:
@@ -71,6 +72,7 @@ def lab_as_csv(path: Path, one_run: bool = False, encoding: str = UTF8) -> Itera
         yield _HELD[Path(path)]
         return
     records = (tdms_records(path) if is_tdms(path) else lvm_records(path, encoding) if is_lvm(path)
+               else scope_records(path, encoding) if is_scope(path)
                else tob_records(path) if is_tob(path) else mat_records(path))
     if one_run and len(records) > 1:
         labels = ", ".join(repr(r.label) for r in records[:4]) + (", ..." if len(records) > 4 else "")

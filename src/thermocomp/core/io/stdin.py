@@ -11,6 +11,7 @@ import csv
 import fnmatch
 import re
 from collections.abc import Mapping
+from dataclasses import replace
 from io import StringIO
 
 import numpy as np
@@ -44,6 +45,7 @@ from .options import RUN_ROLE
 from .own_headers import as_named
 from .roles import RUN, active, left_out, naming, split_unit
 from .runs import run_blocks, run_values
+from .scope import is_scope_text, scope_as_csv
 from .separators import UNICODE_MINUS, grouped
 from .slashed import stream_format
 from .sniff import SNIFF_LINES, detected
@@ -118,6 +120,9 @@ def _read_runs(text: str, columns: list[str], opts, recorded: str | None = None,
     :data:`TIME_ORIGIN` (None: its time is no timestamp): the runs are found once, where their
     ids are checked, and both the times and the campaigns are cut by them."""
     text = text.lstrip("\ufeff").replace(UNICODE_MINUS, "-")
+    if is_scope_text(text):         # a TwinCAT Scope export piped in as written (stranger76)
+        text = scope_as_csv(text, SOURCE)
+        opts = replace(opts, delimiter=",", decimal=".", thousands=None)
     opts = detected(text.splitlines()[:SNIFF_LINES], opts, SOURCE)   # data.delimiter=auto ...
     text = _table(text, opts.delimiter)
     header = split_line(text.split("\n", 1)[0], opts.delimiter, SPLIT)

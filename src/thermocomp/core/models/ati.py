@@ -535,7 +535,12 @@ class _HeldOutFits:
         self.fast = ati._fast_elbow and type(base) is MLR and context is not None \
             and AMBIENT_C0 in context
         if self.fast:
-            self.rows = [np.flatnonzero(codes == i) for i in range(len(ids))]
+            # a campaign's measured rows only: a target measured now and then (a tracker every
+            # 5 min) is NaN between, and a NaN in the least squares made every fold NaN
+            # (stranger76: "no number of intervals could be cross-validated"), as _fit_base
+            # leaves them out through the base model's measured_rows
+            measured = np.isfinite(np.asarray(y, float))
+            self.rows = [np.flatnonzero((codes == i) & measured) for i in range(len(ids))]
             self.a0_rows = np.asarray(context[AMBIENT_C0], float)
             self.levels = [np.unique(self.a0_rows[r]) for r in self.rows]
             self.fit_intercept = base.fit_intercept

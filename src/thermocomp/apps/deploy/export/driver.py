@@ -928,6 +928,16 @@ int main(int argc, char **argv) {
     if (commented && ncols > 0 && cells[0][0] == '#' && *uncommented(cells[0]))
         cells[0] = uncommented(cells[0]), hashed = 1;
     for (j = 0; j < ncols; j++) raw[j] = cells[j];
+    for (j = 0, k = 0; j < ncols; j++) k += strcmp(cells[j], "Name") == 0;
+    if (k > 1) {
+        /* (stranger76) a TwinCAT Scope export's row of channel names (`Name;T1;;Name;T2;`): its
+           property rows under it would be read as samples, a correction printed of them */
+        fprintf(stderr, "stream: line %ld is a TwinCAT Scope export's row of channel names "
+                "(Name;<channel>;;Name;...): the export is not read here; stream the check "
+                "pack's rows.csv, or the samples as one CSV table (a header line naming the "
+                "columns, then one row per sample)\n", row);
+        return 2;
+    }
     for (j = 0; j < ncols; j++) cells[j] = (char *)named(cells[j], j);
     /* (streamraw65) a unit row under the header (`;;degC;W;-;um`: every cell it fills no number,
        an input's among them), as the reader reads it: left out, each header joined to its unit

@@ -1,0 +1,204 @@
+"""A Beckhoff TwinCAT Scope CSV export (stranger76) read as its channels (:mod:`.labfile`), as a
+LabVIEW Measurement File is: each channel with its unit and its own time.
+
+The file: a preamble of ``key<sep>value`` lines (``Name``, ``File``, ``StartTime`` -- Windows
+FILETIME, 100 ns ticks since 1601 UTC, then the local date --, ``EndTime`` ...), a blank line,
+then one row per channel property, each channel a few columns wide, its cells under the
+property's key (``Name``, ``SymbolComment``, ``Data-Type``, ``SampleTime[ms]``, ``SymbolName``,
+``Unit`` ...), a blank line, optionally a ``Time<sep>Value`` row, then the samples: every
+channel its own time (ms since ``StartTime``) and value columns, a slow channel's cells empty
+below its last sample. A German Windows writes ``;`` and decimal commas.
+
+A channel is named by its ``Name`` and ``Unit`` (``Temp Bett 1 vorn [°C]``, read by the CSV
+header rules); the Scope's other properties (``SymbolName`` ...) are left out. Its time is
+``StartTime`` plus its time column, in ms where its steps are its ``SampleTime[ms]`` (else
+seconds, the step times 1000). Channels sampled on the fastest channel's grid at a lower rate
+(a laser tracker every 5 min beside temperatures every 10 s) are laid onto that grid, their
+cells between samples empty (:func:`.labfile.on_one_grid`): a target so measured is read as
+measured now and then (``data.sparse_targets``), never held."""
+
+from __future__ import annotations
+
+import re
+from datetime import datetime, timedelta
+from pathlib import Path
+
+import numpy as np
+
+from .contract import ContractError
+from .encoding import UTF8, check_text, text_codec
+from .labfile import Channel, Record, on_one_grid, records_as_csv, with_unit
+
+SAMPLE_KEY = "SampleTime[ms]"
+_FIRST = re.compile(r"^\ufeff?(Name|ScopeName)([;\t,])")
+_TICKS_TO_1970 = 116444736000000000          # FILETIME of 1970-01-01 UTC
+
+
+def is_scope(path) -> bool:
+    """``path`` is a text file whose first line is a Scope export's ``Name`` and whose head
+    holds the channels' ``SampleTime[ms]`` row."""
+    if Path(path).suffix.lower() not in (".csv", ".txt"):
+        return False
+    try:
+        with open(path, "rb") as f:
+            head = f.read(1 << 16).decode("latin-1")
+    except OSError:
+        return False
+    if not _FIRST.match(head):
+        return False
+    sep = _FIRST.match(head).group(2)
+    return any(line.startswith(SAMPLE_KEY + sep) for line in head.splitlines()[:60])
+
+
+def scope_layout(path: Path, encoding: str = UTF8) -> str:
+    """What ``thermocomp init`` says of the file's own text."""
+    with open(path, "rb") as f:
+        head = f.read(1 << 16).decode("latin-1")
+    sep = _FIRST.match(head).group(2)
+    charset = "" if encoding == UTF8 else f"encoding {encoding} (not UTF-8), "
+    return f"{charset}delimiter {sep!r}, decimal {_decimal(head.splitlines(), sep)!r}"
+
+
+def scope_records(path: Path, encoding: str = UTF8) -> list[Record]:
+    """The one run of the Scope export ``path``."""
+    raw = path.read_bytes()
+    check_text(raw[:1 << 16], encoding, path)
+    try:
+        lines = raw.decode(text_codec(encoding)).splitlines()
+    except UnicodeDecodeError:
+        raise ContractError(f"file is not {encoding} text (a Windows export: data.encoding=cp1252)",
+                            file=path) from None
+    return [_record(lines, path.stem, path)]
+
+
+def is_scope_text(text: str) -> bool:
+    """``text`` (a stream's) is a Scope export, as :func:`is_scope` tells a file."""
+    found = _FIRST.match(text[:200])
+    return found is not None and any(line.startswith(SAMPLE_KEY + found.group(2))
+                                     for line in text[:1 << 16].splitlines()[:60])
+
+
+def scope_as_csv(text: str, source: str) -> str:
+    """A Scope export streamed (``monitor.input=-``) as the CSV text its channels are read as
+    from a file (:mod:`.labfile`: a ``time`` of UTC timestamps, each channel a column)."""
+    path = Path(source)
+    with records_as_csv([_record(text.splitlines(), path.stem, path)], path) as table:
+        return table.read_text(encoding=UTF8)
+
+
+def _record(lines: list[str], label: str, path: Path) -> Record:
+    """The export's channels, each on its own time (laid onto one grid where they fit one)."""
+    sep = _FIRST.match(lines[0]).group(2)
+    k, preamble = _keys(lines, 0, sep)
+    start, utc = _start(preamble, path)
+    k = _blank(lines, k)
+    first_prop = k
+    k, props = _keys(lines, k, sep, whole=True)
+    names = props.get("Name")
+    if names is None:
+        raise ContractError("the channels' 'Name' row is missing after the preamble", file=path,
+                            line=first_prop + 1)
+    cols = [j for j, cell in enumerate(names) if cell == "Name" and j + 1 < len(names)]
+    k = _blank(lines, k)
+    if k < len(lines) and lines[k].split(sep)[0].strip().lower() == "time":
+        k += 1                                      # the Time;Value row over each channel
+    decimal = _decimal(lines[k:k + 50], sep)
+    rows = [(i + 1, line.split(sep)) for i, line in enumerate(lines[k:], start=k) if line.strip()]
+    channels = []
+    for j in cols:
+        name = names[j + 1].strip()
+        times, values = _column(rows, j, decimal, path, name)
+        step = _said(props, SAMPLE_KEY, j)
+        seconds = times / 1000.0 if _in_ms(times, step) else times
+        stamp = start + (seconds * 1e6).round().astype("timedelta64[us]")
+        channels.append(Channel(with_unit(name, _said(props, "Unit", j)), values, stamp,
+                                f"channel {name!r} (column {j + 1})"))
+    if not channels:
+        raise ContractError("no channel under the 'Name' row", file=path, line=first_prop + 1)
+    return Record(label, on_one_grid(channels), utc=utc)
+
+
+def _keys(lines: list[str], k: int, sep: str, whole: bool = False) -> tuple[int, dict]:
+    """The ``key<sep>...`` lines from ``k`` to a blank line: ``(the blank line, {key: cells})``
+    (``whole``: every cell of the line, a channel's keys repeated across it)."""
+    keys = {}
+    while k < len(lines) and lines[k].strip():
+        cells = [c.strip() for c in lines[k].lstrip("\ufeff").split(sep)]
+        keys.setdefault(cells[0], cells if whole else cells[1:])
+        k += 1
+    return k, keys
+
+
+def _blank(lines: list[str], k: int) -> int:
+    while k < len(lines) and not lines[k].strip():
+        k += 1
+    return k
+
+
+def _said(props: dict, key: str, j: int) -> str | None:
+    cells = props.get(key) or []
+    return cells[j + 1] if j + 1 < len(cells) and cells[j] == key else None
+
+
+def _start(preamble: dict, path: Path) -> tuple[np.datetime64, bool]:
+    """``(StartTime, in UTC)``: its FILETIME ticks (UTC), else the local date after them (on a
+    clock the file does not say)."""
+    cells = preamble.get("StartTime") or []
+    if cells and cells[0].isdigit():
+        micro = (int(cells[0]) - _TICKS_TO_1970) // 10
+        return np.datetime64(datetime(1970, 1, 1) + timedelta(microseconds=micro), "us"), True
+    for cell in cells:
+        for form in ("%d.%m.%Y %H:%M:%S,%f", "%d.%m.%Y %H:%M:%S", "%Y-%m-%d %H:%M:%S.%f",
+                     "%Y-%m-%d %H:%M:%S"):
+            try:
+                return np.datetime64(datetime.strptime(cell, form), "us"), False
+            except ValueError:
+                continue
+    raise ContractError(f"the preamble's StartTime {cells[:2]!r} is no Windows FILETIME nor date: "
+                        "the channels' time counts from it", file=path)
+
+
+def _decimal(lines: list[str], sep: str) -> str:
+    """``,`` where a number cell is written with a comma (a German Windows), else ``.``."""
+    for line in lines:
+        if any(re.fullmatch(r"-?\d+,\d+", c.strip()) for c in line.split(sep)):
+            return ","
+    return "."
+
+
+def _column(rows: list, j: int, decimal: str, path: Path, name: str) -> tuple[np.ndarray, np.ndarray]:
+    """Channel ``name``'s time and value columns ``j``, ``j + 1`` down to its last sample (an
+    empty value under a time: missing)."""
+    times, values = [], []
+    for line, cells in rows:
+        t = cells[j].strip() if j < len(cells) else ""
+        if not t:
+            continue
+        v = cells[j + 1].strip() if j + 1 < len(cells) else ""
+        try:
+            times.append(float(t.replace(decimal, ".")))
+            values.append(float(v.replace(decimal, ".")) if v else np.nan)
+        except ValueError:
+            bad = v if _number(t, decimal) else t
+            raise ContractError(f"cell {bad!r} is no number (decimal {decimal!r})", file=path,
+                                column=name, line=line) from None
+    return np.asarray(times), np.asarray(values)
+
+
+def _number(cell: str, decimal: str) -> bool:
+    try:
+        float(cell.replace(decimal, "."))
+        return True
+    except ValueError:
+        return False
+
+
+def _in_ms(times: np.ndarray, step: str | None) -> bool:
+    """The time column is in ms (the Scope's) unless its step is the SampleTime[ms] / 1000."""
+    if times.size < 2 or not step:
+        return True
+    try:
+        said = float(step.replace(",", "."))
+    except ValueError:
+        return True
+    return not np.isclose(np.median(np.diff(times)) * 1000.0, said)
