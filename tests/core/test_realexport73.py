@@ -5,6 +5,7 @@ table (``yyyymmddHHMM`` timestamps) and LabVIEW 2026's own ``.lvm`` files, excer
 from __future__ import annotations
 
 import datetime as dt
+import json
 import shutil
 import subprocess
 from pathlib import Path
@@ -59,7 +60,9 @@ def test_the_exported_c_reads_the_tables_timestamps_as_the_model_did(tmp_path):
         streamed = subprocess.run([str(code / "stream")], stdin=rows, capture_output=True,
                                   text=True, check=True).stdout
     got = pd.read_csv(__import__("io").StringIO(streamed))["C_T_1_9_1"].to_numpy()
-    expected = pd.concat(pd.read_csv(p) for p in sorted((code / "check").glob("*/expected.csv")))
+    expected = pd.concat(pd.read_csv(code / c["folder"] / "expected.csv")
+                         for c in json.loads((code / "check" / "check.json").read_text())["campaigns"]
+                         if "planted" not in c)     # (not the copies the C's monitor is checked on)
     assert len(got) == 16
     assert np.abs(got - expected.iloc[:, -1].to_numpy()).max() < 1e-9
 

@@ -67,6 +67,14 @@ def checked_pack(out: Path) -> str:
     return script.stderr
 
 
+def own_expected(out: Path) -> list[Path]:
+    """``out``'s pack's ``expected.csv`` of the record's own campaigns, in ``check.json``'s order:
+    not the copies the pack plants a jump and a freeze on for the code's sensor monitor (cmon76),
+    whose folders a glob may list first."""
+    check = json.loads((out / "check" / "check.json").read_text())
+    return [out / c["folder"] / "expected.csv" for c in check["campaigns"] if "planted" not in c]
+
+
 def _compose(*overrides):
     with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3"):
         return compose(config_name="config", overrides=list(overrides))

@@ -23,7 +23,7 @@ import pandas as pd
 import pytest
 
 from conftest import FAST
-from test_export import StructuredText, _compiled, _streamed, checked_pack, needs_cc
+from test_export import StructuredText, _compiled, _streamed, checked_pack, needs_cc, own_expected
 from test_export_first_time import AGREE_UM, _corrections, _deployed
 from test_export_guard import _rows, _simulated, _st
 from thermocomp.apps.deploy.export import exported_files, state_space
@@ -106,7 +106,7 @@ def test_the_compiled_stream_fed_day_files_from_0_gives_its_pack(tmp_path):
                  f"export.model={tmp_path / 'run' / 'model.pkl'}", f"out={tmp_path / 'code'}"]) == 0
     code = tmp_path / "code"
     checked_pack(code)
-    want = pd.read_csv(next((code / "check").glob("*/expected.csv"))).to_numpy(float)
+    want = pd.read_csv(own_expected(code)[0]).to_numpy(float)
     assert want.shape[0] == sum(LENGTHS)              # the pack: the record joined
 
     got, said = [], []

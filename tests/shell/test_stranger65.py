@@ -23,7 +23,7 @@ import pandas as pd
 import pytest
 
 from conftest import FAST
-from test_export import checked_pack, needs_cc
+from test_export import checked_pack, needs_cc, own_expected
 from thermocomp.shell.cli import main
 
 BENCHMARKS = Path(__file__).resolve().parents[2] / "benchmarks"
@@ -166,7 +166,7 @@ def _compiled_stream_equals_its_pack(tmp_path, path, common: list, fed: bytes | 
                           input=path.read_bytes() if fed is None else fed, capture_output=True)
     assert done.returncode == 0, done.stderr
     got = pd.read_csv(io.BytesIO(done.stdout)).to_numpy(float)
-    want = pd.read_csv(next((tmp_path / "code" / "check").glob("*/expected.csv"))).to_numpy(float)
+    want = pd.read_csv(own_expected(tmp_path / "code")[0]).to_numpy(float)
     assert len(got) == (len(want) if rows is None else rows)
     assert np.abs(got[first:][:len(want)] - want).max() < 1e-9
 

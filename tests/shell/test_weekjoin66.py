@@ -20,7 +20,7 @@ import numpy as np
 import pandas as pd
 
 from conftest import FAST
-from test_export import checked_pack, needs_cc
+from test_export import checked_pack, needs_cc, own_expected
 from thermocomp.shell.cli import main
 
 ROWS = 240        # rows per file, one a minute
@@ -85,7 +85,7 @@ def test_the_compiled_stream_fed_the_files_gives_its_pack_at_the_joins(tmp_path)
                  f"export.model={tmp_path / 'run' / 'model.pkl'}", f"out={tmp_path / 'code'}"]) == 0
     code = tmp_path / "code"
     checked_pack(code)
-    want = pd.read_csv(next((code / "check").glob("*/expected.csv"))).to_numpy(float)
+    want = pd.read_csv(own_expected(code)[0]).to_numpy(float)
     assert want.shape[0] == 3 * ROWS                    # the pack: the record joined
 
     # one process per file, --state carrying the campaign from one to the next
