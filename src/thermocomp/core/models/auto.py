@@ -19,13 +19,12 @@ from sklearn.utils.validation import check_is_fitted
 from ...base.errors import ConfigError, ParameterError
 from ...base.log import logger
 from ...base.params import check_estimator, choice, integer, number
-from ..context import AMBIENT_C0, SideInputs, context_columns, groups_of, step_gain, stream_steps
+from ..context import AMBIENT_C0, SideInputs, context_columns, groups_of, step_gain, stream_steps, subset
 from ..gains import gain_terms
 from ..metrics import PERSISTENCE, rmse
 from ..model_selection import BlockedForward, LeaveBlockOut, LeaveCampaignsOut
 from ..model_selection.extrapolation import within_range
-from .auto_levels import fold_predictions, level_folds, level_share
-from .blend import MIN_WEIGHT, Blend, mean_fold_ratio, vote_weights
+from .blend import Blend, mean_fold_ratio, vote_weights
 from .one_step import persistence
 
 ATI = "ati"              # a candidate name: the ATI wrapper (conf/ati/cmeans.yaml) of a family
@@ -184,7 +183,7 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
             raise ParameterError("model.candidates is empty: name at least one model family")
         X, y = np.asarray(X, dtype=float), np.asarray(y, dtype=float)
         groups = groups_of(context)
-        self.validated_as_, self.level_validation_ = {}, {}
+        self.validated_as_ = {}
         if self.given_scores is not None:      # the val split's, computed by the stage
             self.scheme_ = "val split"
             return self._keep_best(X, y, context, dict(self.given_scores), "the val split")
@@ -241,8 +240,7 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         rows = self._voting_rows()
         w = vote_weights(preds[rows], self.oof_y_[rows], self.oof_fold_[rows], self.oof_[BASELINE][rows],
                          base_column=base, min_folds=int(self.n_folds))
-        weights = self._split_tied(X, y, context, {n: float(v) for n, v in zip(members, w) if v > 0})
-        w = np.array([weights.get(n, 0.0) for n in members])   # a tied ATI predicted as its family
+        weights = {n: float(v) for n, v in zip(members, w) if v > 0}
         blended = rmse(self.oof_y_ - preds @ w)
         mix = ", ".join(f"{n} {v:.2f}" for n, v in sorted(weights.items(), key=lambda kv: -kv[1]))
         doubt = "" if base is None else ", each kept as far as its resamples beat MLR, the rest MLR's"
@@ -254,36 +252,10 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         self.weights_, self.combine_ = weights, "vote"
         self.family_ = max(weights, key=weights.get)
         self.chosen_ = self.family_ if len(weights) == 1 else weights
-        levels = "".join(f"; {n} scored against {candidate_family(n)} on {v['folds']} level folds "
-                         f"(RMSE {v['rmse']['ati']:.4g} against {v['rmse']['family']:.4g}), its share "
-                         f"{v['share']:.2f} of {candidate_family(n)}'s weight"
-                         for n, v in self.level_validation_.items() if "rmse" in v)
-        self.reason_ = (f"{lead} ({how}){levels}; MLR {self.validation_[BASELINE]:.4g}, "
+        self.reason_ = (f"{lead} ({how}); MLR {self.validation_[BASELINE]:.4g}, "
                         f"persistence {self.validation_[PERSISTENCE]:.4g}")
         self._none_unless_better(blended, preds @ w)
         return self._refit(X, y, context)
-
-    def _split_tied(self, X, y, context, weights: dict) -> dict:
-        """``weights`` with the weight of the family of each ATI candidate tied with it on these
-        folds (``validated_as_``; both candidates) split by the level folds
-        (:mod:`.auto_levels`): ATI's share of the pair to ATI (``level_validation_``)."""
-        groups = groups_of(context)
-        for name in self.validated_as_:
-            family = candidate_family(name)
-            if name not in self.candidates or family not in self.candidates or groups is None:
-                continue
-            a0 = np.asarray(context[AMBIENT_C0], float)
-            folds = level_folds(groups, y, lambda rows: _ambient_levels(a0, groups, rows))
-            said = level_share(self.candidates[name], self.candidates[family], X, y, context, folds,
-                               int(self.n_folds))
-            self.level_validation_[name] = said
-            moved = said["share"] * weights.get(family, 0.0)
-            if moved >= MIN_WEIGHT:
-                weights[name] = moved
-                weights[family] -= moved
-                if weights[family] < MIN_WEIGHT:
-                    weights[name] += weights.pop(family)
-        return weights
 
     def _none_unless_better(self, kept: float, predicted: np.ndarray | None = None) -> None:
         """``uncompensated='zero'``: where the kept model's pooled validation RMSE ``kept`` is not
@@ -416,9 +388,11 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         residual, predicted, t0 = [], [], time.perf_counter()
         for fit, pred, score in folds:
             try:
-                predicted.append(fold_predictions(est, X, y, context, fit, pred, score))
+                model = clone(est).fit(X[fit], y[fit], context=subset(context, fit))
+                yhat = np.asarray(model.predict(X[pred], context=subset(context, pred)), float)
             except (ValueError, ArithmeticError, np.linalg.LinAlgError) as exc:
                 return f"cannot fit: {' '.join(str(exc).split())}"
+            predicted.append(yhat[score[pred]])
             residual.append(y[score] - predicted[-1])
             spent = time.perf_counter() - t0
             over = self.max_seconds is not None and spent > float(self.max_seconds)
@@ -462,7 +436,6 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
                 "combine": self.combine_, "reason": self.reason_, "scheme": self.scheme_,
                 "skipped": dict(self.skipped_),
                 "validated_as": dict(getattr(self, "validated_as_", {})),
-                "level_validation": dict(getattr(self, "level_validation_", {})),
                 "validation_s": {n: round(s, 3) for n, s in self.fit_seconds_.items()}}
 
 
