@@ -61,6 +61,29 @@ REFUSED):
    ``max_effects=2``): no target's test RMSE as deployed > 2 % worse after diagnose.
 
 Bar 1 is scored first; a rule failing it is refused without the others (diag76's order).
+
+Scored (2026-12-03, 2 shared cores; shipped = 257d817c's src, the rule = ``diag77_rule.patch``)
+------------------------------------------------------------------------------------------------
+A correction to Found 1 first: its in-range shares were measured on every sensor; ``jump``
+prints them over each sensor's predictors, for ``T_Hydraulik`` 0.00 0.10 0.40 0.95 0.45 0.23
+0.76 0.98, and its own ratio before the second pass (suspects apart) 3.30; the worst in range
+(0.263) and the ratio 1.55 are as said.
+
+1. **Fails.**  The rule does what it was written for: nothing is removed on 7442 (ratios
+   ``T_Linearmotor_X`` 2.68, ``T_Ständer_unten`` 2.59, ``T_Hydraulik`` 1.55).  But with every
+   sensor kept ``E_dY`` accepts the inputs' 900 s low-pass (CV gain +30.8 %, +22.3 % in range,
+   p 0.0015) and ``E_dZ`` ``S_Drehzahl`` raw: test RMSE as deployed (µm) E_dX / E_dY / E_dZ
+   1.428 / 0.389 / 1.720 -> 1.428 / 0.684 / 1.400 (as run 0.865 / 0.242 / 1.010 -> 0.865 /
+   0.463 / 0.628): E_dY +76 %, as diag75's and diag76's in-range rules found.  The E_dY loss is
+   the effect's, as run too, on a test whose rows are 381 of 432 out of bounds.
+2-4. Not scored: the rule fails 1.
+
+**REFUSED**; src reverted, the rule in ``benchmarks/diag77_rule.patch``.  What is left open: on
+7442 the test part leaves the training range on 88 % of its rows, so both the removal's and the
+lag's test verdicts are extrapolation; and as deployed, which rows are clamped is decided by
+test residuals that straddle the gate's ``tol`` at a rank chosen on the energy's edge (Found 2):
+a gate whose decision does not flip with the rank, with the exported C and Structured Text kept
+equal, is the next lead; not attempted at this stop.
 """
 
 from __future__ import annotations
