@@ -78,6 +78,13 @@ prints them over each sensor's predictors, for ``T_Hydraulik`` 0.00 0.10 0.40 0.
    the effect's, as run too, on a test whose rows are 381 of 432 out of bounds.
 2-4. Not scored: the rule fails 1.
 
+Shipped on this stop's fresh draws (``fresh``, f716d186's src = main's; a measurement of the
+acceptance, no rule in it; 39.4 s CPU): nothing excluded, no target worse as deployed (worst
+after / before 1.000); clean 7706-7715 accepting 0 of 10; planted 7716-7725: E_Y's position
+product accepted on 6 of 10 (7716, 7717, 7718, 7720, 7721, 7722; E_Y 6.121 -> 2.422 ... 3.368 ->
+1.462 µm), besides on 7716 an E_X lag and an E_Z ambient interval and on 7718 an E_X lag (each
+target better).
+
 **REFUSED**; src reverted, the rule in ``benchmarks/diag77_rule.patch``.  What is left open: on
 7442 the test part leaves the training range on 88 % of its rows, so both the removal's and the
 lag's test verdicts are extrapolation; and as deployed, which rows are clamped is decided by
