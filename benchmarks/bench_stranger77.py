@@ -60,8 +60,8 @@ def channels(seed: int) -> tuple[np.ndarray, dict[str, tuple[np.ndarray, str]]]:
 
 def write_file(path: Path, epoch: np.ndarray, chans: dict, fault=None) -> None:
     """The logger's HDF5 file; ``fault(name, day, values)`` alters a day's channel."""
-    import h5py
     import grinder77 as g
+    import h5py
     path.parent.mkdir(parents=True, exist_ok=True)
     with h5py.File(path, "w") as f:
         f.attrs["machine"], f.attrs["logger"] = "SG 630 surface grinder", "h5logger 2.3 (python)"
