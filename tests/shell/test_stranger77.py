@@ -94,3 +94,20 @@ def test_a_dataset_of_two_dimensions_is_refused_naming_file_and_dataset(tmp_path
             f"file {path}: dataset '/20270302/strain' has shape ({ROWS}, 3): a channel is "
             "one-dimensional")
     assert not (tmp_path / "out").exists()
+
+
+def test_the_file_piped_into_monitor_is_refused_as_a_binary_file(tmp_path, monkeypatch, capsys):
+    """(Before: "byte 0x89 is not utf-8 text (set data.encoding to the stream's character
+    set, e.g. cp1252)", a wrong way out: no encoding reads an HDF5 file.)"""
+    import io as _io
+    path = _logger(tmp_path / "SG630.h5", days=2)
+    rows = pd.concat([pd.DataFrame(linear_run(7746, day), columns=NAMES).assign(
+        run=f"day{day}", time=60.0 * np.arange(ROWS)) for day in (1, 2)])
+    rows.to_csv(table := tmp_path / "SG630.csv", index=False)      # (the record as CSV rows)
+    monkeypatch.setattr("sys.stdin", _io.TextIOWrapper(_io.BytesIO(path.read_bytes())))
+    said = refused(["monitor", f"data.path={table}", "data.roles.error=[probe*]",
+                    "data.roles.campaign=run", "data.test_fraction=0.5", *FAST,
+                    "monitor.input=-", f"out={tmp_path / 'out'}"], capsys,
+                   "stdin holds an HDF5 file (its signature), no rows of text: give the file as "
+                   "data.path=<file>")
+    assert "cp1252" not in said
