@@ -154,6 +154,8 @@ SHARED = {"": "(the channels every run holds)"}     # lab_as_csv's ``columns`` f
 def shared(records: list[Record]) -> list[Record]:
     """``records`` with the channels every one holds (all, where they hold the same)."""
     every = set.intersection(*({c.header for c in r.channels} for r in records))
+    if all(len(r.channels) == len(every) for r in records):
+        return records
     return [Record(r.label, [c for c in r.channels if c.header in every], r.time_header, r.utc)
             for r in records]
 
