@@ -25,6 +25,19 @@ from row 700), ``drift`` (coolant tank +1 K/h from row 500), ``dropout`` (30 NaN
 from row 800).
 
 ``matrix``: bench_stranger75's (run -> replay per family on the data config init wrote).
+
+Measured 2026-12-03, seed 7746 (``write`` 1.5 s). Before stranger77 ``thermocomp init
+ROOT/grinder7746/SG630_2027-03.h5`` refused the file ("a record's file is .csv, ... .lvm, not
+.h5"); with core/io/hdf5.py, "run '20270309' holds other channels than run '20270301'" (the
+replaced sensor); with the runs written as one table, ``init`` alone (no key) proposed the
+``data.columns`` entry joining the two channels (and, before its gap look read the shared
+channels, ``data.max_edge_samples=11515``). ``matrix`` on its config (236 + 16 s CPU): test
+RMSE dY / dZ (µm; 32.06 / 13.67 before) mlr 1.882 / 1.063, pcr 2.844 / 2.591, arx 1.979 /
+0.980, lagbank 1.971 / 0.951, hammerstein 0.515 / 0.951, lstm 1.850 / 1.063, auto 1.184 / 0.959
+(hammerstein / arx chosen), mlr ``ati=cmeans`` as mlr (one campaign of continued days, one
+ambient level: one model); replay = run in every cell. Fresh draws 7747 / 7748 (``init`` with
+no key; MLR 2.048 / 0.824, 0.889 / 0.810 µm): ``monitor`` no event. Faults, C, promote,
+diagnose: docs/own-data.md, "A surface grinder's HDF5 logger file".
 """
 from __future__ import annotations
 

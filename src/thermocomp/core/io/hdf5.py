@@ -27,7 +27,7 @@ from ...base.extras import require
 from .contract import ContractError
 from .labfile import Channel, Record, with_unit
 from .roles import named_as_time
-from .tdms import _joined, _runs, _span
+from .tdms import groups_are_runs, joined_groups, time_span
 
 HDF5_SUFFIXES = (".h5", ".hdf5", ".hdf", ".he5")
 _SINCE = re.compile(r"\s*(\w+)\s+since\s+(.+?)\s*$", re.IGNORECASE)
@@ -59,9 +59,9 @@ def hdf5_records(path: Path) -> list[Record]:
     if not groups:
         raise ContractError("no dataset of numbers in the HDF5 file (a channel: a "
                             "one-dimensional dataset)", file=path)
-    if len(groups) > 1 and (_dated_apart(groups) or _runs(groups)):
+    if len(groups) > 1 and (_dated_apart(groups) or groups_are_runs(groups)):
         return groups
-    return [_joined(groups)]
+    return [joined_groups(groups)]
 
 
 def _group(group, path: Path, h5py) -> Record:
@@ -131,7 +131,7 @@ def _time(clock, path: Path) -> np.ndarray:
 def _dated_apart(groups: list[Record]) -> bool:
     """Every group timed by instants and none overlapping another: a day's (or a run's) group
     each, whatever channels each holds (a sensor replaced: its new name from one day on)."""
-    spans = [_span(g) for g in groups]
+    spans = [time_span(g) for g in groups]
     if any(s is None for s in spans):
         return False
     spans.sort()
