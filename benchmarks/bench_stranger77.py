@@ -26,7 +26,7 @@ from row 800).
 
 ``matrix``: bench_stranger75's (run -> replay per family on the data config init wrote).
 
-Measured 2026-12-03, seed 7746 (``write`` 1.5 s). Before stranger77 ``thermocomp init
+Measured 2026-12-03, seed 7746 (``write`` 0.5 s CPU). Before stranger77 ``thermocomp init
 ROOT/grinder7746/SG630_2027-03.h5`` refused the file ("a record's file is .csv, ... .lvm, not
 .h5"); with core/io/hdf5.py, "run '20270309' holds other channels than run '20270301'" (the
 replaced sensor); with the runs written as one table, ``init`` alone (no key) proposed the
