@@ -84,7 +84,7 @@ def lab_as_csv(path: Path, one_run: bool = False, encoding: str = UTF8,
     sensor's channel is empty in the runs before it, none of a run's gaps)."""
     if not one_run and Path(path) in _HELD:
         text, records = _HELD[Path(path)]
-        joined = replaced_joined(records, columns) if columns != SHARED else shared(records)
+        joined = replaced_joined(records, columns) if columns is not SHARED else shared(records)
         if joined is records:
             yield text
         else:
@@ -98,7 +98,7 @@ def lab_as_csv(path: Path, one_run: bool = False, encoding: str = UTF8,
                             "campaign; give this file as data.path (each run a campaign, "
                             "data.roles.campaign=run as thermocomp init proposes), or save one "
                             "run per file", file=path)
-    records = replaced_joined(records, columns) if columns != SHARED else shared(records)
+    records = replaced_joined(records, columns) if columns is not SHARED else shared(records)
     with records_as_csv(records, path) as text:
         yield text
 
