@@ -22,7 +22,7 @@ MODULES = {
     "psycopg2": ("team", "a PostgreSQL tracking store"),
     "openpyxl": ("excel", "an Excel workbook (data.path=<file>.xlsx)"),
     "nptdms": ("tdms", "a National Instruments TDMS file (data.path=<file>.tdms)"),
-    "h5py": ("matlab", "a MATLAB -v7.3 file (data.path=<file>.mat)"),
+    "h5py": ("matlab", "a MATLAB -v7.3 file or an HDF5 file (data.path=<file>.mat | .h5)"),
 }
 # Hydra configs that a plugin of an extra registers (conf/ extends them)
 CONFIGS = {"hydra/launcher/submitit_slurm": "hydra_plugins.hydra_submitit_launcher",

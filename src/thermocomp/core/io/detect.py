@@ -26,6 +26,7 @@ from . import campbell
 from .contract import MANIFEST, TIME, ContractError, role
 from .encoding import UTF8, WINDOWS, detect
 from .fixedwidth import is_fixed_width
+from .hdf5 import is_hdf5
 from .historian import held_wide, long_as_wide, wide_options
 from .historian_layout import long_layout
 from .jsonlines import is_json_lines
@@ -174,6 +175,7 @@ def head(sample: Path, opts) -> tuple[object, list[str], list[str], str]:
         kind = ("a MATLAB file" + (" saved -v7.3" if is_v73(sample) else "") if is_mat(sample)
                 else "a LabVIEW Measurement File" if is_lvm(sample)
                 else "a TwinCAT Scope export" if is_scope(sample)
+                else "an HDF5 file" if is_hdf5(sample)
                 else described(sample) if is_tob(sample)
                 else "a TDMS log") + " (its channels as columns)"
         encoding = opts.encoding                 # (the file's: the temporary CSV is UTF-8)

@@ -22,6 +22,7 @@ variable) and the data row instead.
 from __future__ import annotations
 
 import csv
+import re
 import tempfile
 from collections.abc import Iterator
 from contextlib import contextmanager
@@ -33,9 +34,11 @@ import numpy as np
 from .contract import ContractError
 from .converted import named_as
 from .encoding import UTF8
+from .roles import split_unit
 
 RUN_HEADER = "run"          # the column naming each run of a file holding several
 TIME_HEADER = "time"        # the time a file gives as timestamps (UTC) or seconds
+_SAFE = re.compile(r"[^\w.\-]+")     # a header's letters a contract name keeps (.roles)
 
 
 @dataclass
@@ -117,6 +120,8 @@ def _check(records: list[Record], path: Path) -> bool:
         said = ", ".join(f"{r.label!r} {_time_kind(r)}" for r in records[:6])
         raise ContractError(f"the runs of one file are timed alike or not at all ({said}): give "
                             "each run the same time (timestamps, or seconds)", file=path)
+    if _replaced(records):
+        return True
     for record in records[1:]:
         other = [c.header for c in record.channels]
         if set(other) != set(headers):
@@ -126,6 +131,60 @@ def _check(records: list[Record], path: Path) -> bool:
                                 "of one file are read as one table; one file per run",
                                 file=path)
     return True
+
+
+def _replaced(records: list[Record]) -> bool:
+    """Runs holding as many channels each, a channel's runs one stretch of them (a sensor
+    replaced from one run on under a new name, stranger77: a logger's HDF5 file a group a day):
+    written as one table, a channel's cells empty in the runs without it (``init`` proposes the
+    ``data.columns`` entry reading the new name as the old, :func:`.frame.renamed_sensors`)."""
+    held = [{c.header for c in r.channels} for r in records]
+    if len({len(h) for h in held}) > 1 or len({frozenset(h) for h in held}) == 1:
+        return False
+    for header in set().union(*held):
+        runs = [k for k, h in enumerate(held) if header in h]
+        if runs[-1] - runs[0] + 1 != len(runs):
+            return False
+    return True
+
+
+SHARED = {"": "(the channels every run holds)"}     # lab_as_csv's ``columns`` for :func:`shared`
+
+
+def shared(records: list[Record]) -> list[Record]:
+    """``records`` with the channels every one holds (all, where they hold the same)."""
+    every = set.intersection(*({c.header for c in r.channels} for r in records))
+    if all(len(r.channels) == len(every) for r in records):
+        return records
+    return [Record(r.label, [c for c in r.channels if c.header in every], r.time_header, r.utc)
+            for r in records]
+
+
+def replaced_joined(records: list[Record], columns: dict | None) -> list[Record]:
+    """``records`` with each channel of a replaced sensor (:func:`_replaced`) that
+    ``data.columns`` maps (its header, or its name without the unit) onto the name the old
+    channel reads as (``T_`` / ``E_`` / ``S_`` and its name) written under the new channel's
+    header: one column, the old values in the runs before, the new after (``init`` proposes the
+    entry); ``records`` themselves where none is."""
+    if not columns or len(records) < 2 or not _replaced(records):
+        return records
+    held = [{c.header for c in r.channels} for r in records]
+    every = set.intersection(*held)
+    moved: dict[str, str] = {}                  # old header -> new header
+    for new in set().union(*held) - every:
+        name = columns.get(new, columns.get(split_unit(new)[0]))
+        if not name:
+            continue
+        runs = {k for k, h in enumerate(held) if new in h}
+        for old in set().union(*held) - every - {new} - set(moved):
+            apart = not runs & {k for k, h in enumerate(held) if old in h}
+            if apart and old not in columns and _SAFE.sub("_", split_unit(old)[0]).strip("_") == (
+                    str(name)[2:]):
+                moved[old] = new
+    if not moved:
+        return records
+    return [Record(r.label, [Channel(moved.get(c.header, c.header), c.values, c.time, c.where)
+                             for c in r.channels], r.time_header, r.utc) for r in records]
 
 
 def _time_kind(record: Record) -> str:
@@ -150,7 +209,8 @@ def _cell(v) -> str:
 def write_wide(records: list[Record], out: Path) -> dict[str, str]:
     """The records as one CSV table (a ``run`` column where several); ``{header: where}``."""
     first = records[0]
-    headers = [c.header for c in first.channels]
+    # (a channel replaced from a run on: after the others, in the order the runs hold them)
+    headers = list(dict.fromkeys(c.header for r in records for c in r.channels))
     time = first.channels[0].time
     dated = time is not None and np.issubdtype(time.dtype, np.datetime64)
     # a time channel's own header (its unit); else ours: timestamps, or seconds
@@ -167,8 +227,8 @@ def write_wide(records: list[Record], out: Path) -> dict[str, str]:
             times = _time_cells(record.channels[0].time, n, record.utc)
             for i in range(n):
                 writer.writerow(([record.label] if runs else []) + ([times[i]] if times else [])
-                                + [_cell(by[h][i]) for h in headers])
-    return {c.header: c.where for c in first.channels}
+                                + [_cell(by[h][i]) if h in by else "" for h in headers])
+    return {c.header: c.where for r in reversed(records) for c in r.channels}
 
 
 def write_long(record: Record, out: Path) -> dict[str, str]:

@@ -13,6 +13,7 @@ import pandas as pd
 
 from .contract import AMBIENT_C, MANIFEST, MANIFEST_REQUIRED, SPLITS, ContractError
 from .encoding import UTF8, check_text, fields, text_codec, undecodable
+from .hdf5 import HDF5_SUFFIXES
 from .instants import on_clock, start_instants, start_stamp
 from .jsonlines import JSON_LINES_SUFFIXES
 from .loggers import ERROR_FILE, logger_pairs, paired_id
@@ -25,7 +26,7 @@ from .workbook import WORKBOOK_SUFFIXES
 
 # a folder's runs without a manifest (a workbook is read as its CSV export, :mod:`.workbook`; a
 # TDMS log, a MATLAB file or a LabVIEW Measurement File as its channels', :mod:`.labfile`)
-LAB_SUFFIXES = (*TDMS_SUFFIXES, *MAT_SUFFIXES, *LVM_SUFFIXES)
+LAB_SUFFIXES = (*TDMS_SUFFIXES, *MAT_SUFFIXES, *LVM_SUFFIXES, *HDF5_SUFFIXES)
 CAMPAIGN_SUFFIXES = (".csv", ".parquet", *WORKBOOK_SUFFIXES, *JSON_LINES_SUFFIXES, *LAB_SUFFIXES)
 RECORD_SUFFIXES = (*TEXT_SUFFIXES, ".parquet", *WORKBOOK_SUFFIXES, *LAB_SUFFIXES)
 EXCEL_OWNER = "~$"     # the lock file Excel leaves beside a workbook it has open

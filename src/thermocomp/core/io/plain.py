@@ -13,10 +13,11 @@ from pathlib import Path
 from .contract import ContractError
 from .encoding import UTF8
 from .fixedwidth import fixed_as_csv, is_fixed_width
+from .hdf5 import hdf5_records, is_hdf5
 from .historian import long_as_wide, wide_options
 from .historian_layout import long_layout
 from .jsonlines import is_json_lines, json_lines_as_csv
-from .labfile import records_as_csv
+from .labfile import SHARED, records_as_csv, replaced_joined, shared
 from .lvm import is_lvm, lvm_records
 from .matfile import is_mat, mat_records
 from .scope import is_scope, scope_records
@@ -30,8 +31,9 @@ from .workbook import csv_options, is_workbook, run_sheets, sheet_as_csv
 def is_lab_file(path) -> bool:
     """``path`` is a lab's record of channels: a TDMS log, a MATLAB file, (stranger69) a
     LabVIEW Measurement File, (lab75) a Campbell Scientific TOB1 table (lab76: TOB2, TOB3) or
-    (stranger76) a TwinCAT Scope CSV export (:mod:`.labfile`)."""
-    return is_tdms(path) or is_mat(path) or is_lvm(path) or is_tob(path) or is_scope(path)
+    (stranger76) a TwinCAT Scope CSV export or (stranger77) an HDF5 file (:mod:`.labfile`)."""
+    return (is_tdms(path) or is_mat(path) or is_lvm(path) or is_tob(path) or is_scope(path)
+            or is_hdf5(path))
 
 
 def is_converted(path, opts=None) -> bool:
@@ -41,7 +43,7 @@ def is_converted(path, opts=None) -> bool:
         is_lab_file(path)) or (opts is not None and long_layout(path, opts) is not None)
 
 
-_HELD: dict[Path, Path] = {}     # a lab file -> its conversion, held open by `converted_once`
+_HELD: dict[Path, tuple] = {}    # a lab file -> (its conversion, its records), `converted_once`'s
 
 
 @contextmanager
@@ -53,33 +55,50 @@ def converted_once(path: Path | None, encoding: str = UTF8) -> Iterator[None]:
     if path is None or not is_lab_file(path) or Path(path) in _HELD:
         yield
         return
-    with lab_as_csv(path, encoding=encoding) as text:
-        _HELD[Path(path)] = text
+    records = _records(path, encoding)
+    with records_as_csv(records, path) as text:
+        _HELD[Path(path)] = text, records
         try:
             yield
         finally:
             del _HELD[Path(path)]
 
 
+def _records(path: Path, encoding: str) -> list:
+    return (tdms_records(path) if is_tdms(path) else lvm_records(path, encoding) if is_lvm(path)
+            else scope_records(path, encoding) if is_scope(path)
+            else hdf5_records(path) if is_hdf5(path)
+            else tob_records(path) if is_tob(path) else mat_records(path))
+
+
 @contextmanager
-def lab_as_csv(path: Path, one_run: bool = False, encoding: str = UTF8) -> Iterator[Path]:
+def lab_as_csv(path: Path, one_run: bool = False, encoding: str = UTF8,
+               columns: dict | None = None) -> Iterator[Path]:
     """A TDMS log, a MATLAB file or a LabVIEW Measurement File (a text: read in ``encoding``,
     ``data.encoding``) as the temporary CSV file its channels are written to (held by
     :func:`converted_once`: that one); ``one_run``: a folder's file, refused where it holds
     several runs (its runs would be read as one campaign, the days between them a pause nothing
-    said)."""
+    said); ``columns`` (``data.columns``): a sensor replaced from a run on, its new channel
+    mapped onto the old one's name, written as one column (:func:`.labfile.replaced_joined`);
+    :data:`SHARED`: the channels every run holds alone (a look at the cells' gaps: a replaced
+    sensor's channel is empty in the runs before it, none of a run's gaps)."""
     if not one_run and Path(path) in _HELD:
-        yield _HELD[Path(path)]
+        text, records = _HELD[Path(path)]
+        joined = replaced_joined(records, columns) if columns is not SHARED else shared(records)
+        if joined is records:
+            yield text
+        else:
+            with records_as_csv(joined, path) as text:
+                yield text
         return
-    records = (tdms_records(path) if is_tdms(path) else lvm_records(path, encoding) if is_lvm(path)
-               else scope_records(path, encoding) if is_scope(path)
-               else tob_records(path) if is_tob(path) else mat_records(path))
+    records = _records(path, encoding)
     if one_run and len(records) > 1:
         labels = ", ".join(repr(r.label) for r in records[:4]) + (", ..." if len(records) > 4 else "")
         raise ContractError(f"{len(records)} runs in one file ({labels}): a folder's file is one "
                             "campaign; give this file as data.path (each run a campaign, "
                             "data.roles.campaign=run as thermocomp init proposes), or save one "
                             "run per file", file=path)
+    records = replaced_joined(records, columns) if columns is not SHARED else shared(records)
     with records_as_csv(records, path) as text:
         yield text
 
@@ -106,7 +125,7 @@ def as_read(path: Path, opts, rows: int | None = None, one_run: bool = False
         with json_lines_as_csv(path, rows=rows) as text:
             yield text, utf8_options(opts)
     elif is_lab_file(path):         # a DAQ's TDMS, a MATLAB file: its channels (long: a grid)
-        with lab_as_csv(path, one_run, opts.encoding) as text, \
+        with lab_as_csv(path, one_run, opts.encoding, opts.columns) as text, \
                 as_read(text, csv_options(opts), rows) as read:
             yield read
     elif is_fixed_width(path):      # an old program's report: its columns told by the numbers

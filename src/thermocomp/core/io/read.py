@@ -102,7 +102,7 @@ from .manifest import (
 )
 from .options import ROLE_ORDER, RUN_ROLE, ReadOptions
 from .own_headers import with_own_header
-from .plain import as_read
+from .plain import as_read, is_lab_file
 from .record import check_record_file, cut, hold_out, record_id, shares
 from .roles import RUN, split_unit
 from .runs import (
@@ -766,6 +766,9 @@ def _run_parts(path: Path, opts: ReadOptions) -> tuple[pd.DataFrame, dict]:
         parts = {}
         for cid, start, end in blocks:
             part = {name: column.slice(start, end - start) for name, column in columns.items()}
+            if is_lab_file(path):   # a channel of other runs (a sensor replaced): not this one's
+                part = {name: c for name, c in part.items()
+                        if name in (TIME, CLOCK) or c.null_count < len(c)}
             table, report = _derived(*_assembled(part, renamed, rescaled, source, source_opts,
                                                  lines, start), opts, path)
             parts[cid] = table, {

@@ -78,6 +78,12 @@ CLOCK_SETS, LAST_READ = "clock_sets", "last_read"
 _UNNAMED = re.compile(r"Unnamed: \d+")      # pandas' name for a column without a header
 
 
+# a lab's binary files by their first bytes: read from a path (data.path), never a stream
+_BINARY = {b"\x89HDF\r\n\x1a\n": "an HDF5 file", b"TDSm": "a TDMS log",
+           b"PK\x03\x04": "a zip file (an Excel workbook?)", b"PAR1": "a Parquet file",
+           b"MATLAB 5.0 MAT-file": "a MATLAB file"}
+
+
 def stdin_text(stream, encoding: str = UTF8) -> str:
     """What ``stream`` (``sys.stdin``) holds, decoded with ``data.encoding`` (a Windows
     logger's rows: cp1252) rather than the locale's, or as UTF-16 where it begins with its
@@ -86,6 +92,11 @@ def stdin_text(stream, encoding: str = UTF8) -> str:
     if raw is None:                   # already text (a caller's StringIO)
         return stream.read()
     data = raw.read()
+    kind = next((k for mark, k in _BINARY.items() if data.startswith(mark)), None)
+    if kind is not None:              # (stranger77: was "byte 0x89 is not utf-8 text ... cp1252")
+        raise ContractError(f"stdin holds {kind} (its signature), no rows of text: give the file "
+                            "as data.path=<file> (a stream is CSV rows, as they are written)",
+                            file=SOURCE)
     if has_utf16_mark(data[:4]):           # Excel's 'Unicode Text'
         encoding = "utf-16"
     else:

@@ -48,9 +48,9 @@ def tdms_records(path: Path) -> list[Record]:
     groups = [g for g in groups if g.channels]
     if not groups:
         raise ContractError("no channel with values in the TDMS file", file=path)
-    if len(groups) > 1 and _runs(groups):
+    if len(groups) > 1 and groups_are_runs(groups):
         return groups
-    return [_joined(groups)]
+    return [joined_groups(groups)]
 
 
 def _group(group, path: Path) -> Record:
@@ -95,20 +95,20 @@ def _waveform(channel) -> np.ndarray | None:
     return np.datetime64(start, "us") + (seconds * 1e6).round().astype("timedelta64[us]")
 
 
-def _span(record: Record) -> tuple | None:
+def time_span(record: Record) -> tuple | None:
     times = [c.time for c in record.channels if c.time is not None]
     if not times or any(not np.issubdtype(t.dtype, np.datetime64) for t in times):
         return None
     return min(t[0] for t in times), max(t[-1] for t in times)
 
 
-def _runs(groups: list[Record]) -> bool:
+def groups_are_runs(groups: list[Record]) -> bool:
     """Groups are runs where each holds the same channels and, timed by dates, none overlaps
     another (a DAQ's modules log over the same hours)."""
     names = {tuple(sorted(c.header for c in g.channels)) for g in groups}
     if len(names) > 1:
         return False
-    spans = [_span(g) for g in groups]
+    spans = [time_span(g) for g in groups]
     if any(s is None for s in spans):
         return all(s is None for s in spans) and all(c.time is None or not np.issubdtype(
             c.time.dtype, np.datetime64) for g in groups for c in g.channels)
@@ -116,7 +116,7 @@ def _runs(groups: list[Record]) -> bool:
     return all(a[1] < b[0] for a, b in zip(spans, spans[1:]))
 
 
-def _joined(groups: list[Record]) -> Record:
+def joined_groups(groups: list[Record]) -> Record:
     """The groups' channels as one record; a name two groups share as ``<group>/<name>``."""
     counts: dict[str, int] = {}
     for g in groups:

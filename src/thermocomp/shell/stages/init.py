@@ -56,6 +56,7 @@ from ...core.io.historian import (
     tag_samples,
 )
 from ...core.io.historian_layout import long_layout
+from ...core.io.labfile import SHARED
 from ...core.io.manifest import is_text
 from ...core.io.options import RUN_ROLE
 from ...core.io.pairhead import error_files, pair_time, paired_head, paired_lines
@@ -109,7 +110,8 @@ def number_cells(src, manifest, sample, given: dict, opts):
     files = [src] if manifest is None else [src / str(f) for f in manifest["file"]]
     files = [f for f in files if is_text(f) and not is_converted(f, opts)]
     if manifest is None and is_lab_file(src):    # (lab75: a TOB1 table's, a TDMS log's gaps)
-        with lab_as_csv(src, encoding=opts.encoding) as text:
+        # (stranger77: a sensor replaced from a run on: its channel's empty runs are no edge)
+        with lab_as_csv(src, encoding=opts.encoding, columns=SHARED) as text:
             return opts, scanned([text], ",", ".", UTF8, None, [], peek_csv, decimal_given=True)
     if not files or not is_text(sample):
         return opts, None
