@@ -129,17 +129,20 @@ _TEMPLATE: dict[str, Path] = {}
 def mlflow_store(root) -> str:
     """URI of a fresh, empty SQLite MLflow store at ``root/mlruns/mlflow.db``.
 
-    Creating the schema runs every Alembic migration (seconds); it is done once
-    per test session and the empty database file is copied.
+    A copy of one store per test process, made as a command makes a new store
+    (:func:`thermocomp.shell.store.create_store`: MLflow's schema copied from the migrated
+    template kept per MLflow version and user, its Default experiment added).  Migrating a
+    store of its own, as each worker did, cost 1.7-2 s of CPU; the template is made once for
+    every process of the suite (the first tracked command makes it, under a file lock).
     """
     if "db" not in _TEMPLATE:
-        from mlflow.store.tracking.sqlalchemy_store import SqlAlchemyStore
+        from thermocomp.shell.store import create_store
 
-        shm = Path("/dev/shm")                          # no fsync cost for the migrations
+        shm = Path("/dev/shm")                          # no fsync cost
         tmp = Path(tempfile.mkdtemp(prefix="thermocomp-mlflow-template-",
                                     dir=shm if shm.is_dir() else None))
         atexit.register(shutil.rmtree, tmp, True)
-        SqlAlchemyStore(f"sqlite:///{tmp / 'mlflow.db'}", (tmp / "art").as_uri()).engine.dispose()
+        create_store(tmp / "mlflow.db")
         _TEMPLATE["db"] = tmp / "mlflow.db"
     dest = Path(root) / "mlruns" / "mlflow.db"
     dest.parent.mkdir(parents=True, exist_ok=True)
