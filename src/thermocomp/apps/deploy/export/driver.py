@@ -931,11 +931,15 @@ int main(int argc, char **argv) {
     for (j = 0, k = 0; j < ncols; j++) k += strcmp(cells[j], "Name") == 0;
     if (k > 1) {
         /* (stranger76) a TwinCAT Scope export's row of channel names (`Name;T1;;Name;T2;`): its
-           property rows under it would be read as samples, a correction printed of them */
+           property rows under it would be read as samples, a correction printed of them.
+           (lab77) Refused, not read: its channels' times are merged over the whole file and a
+           temperature's cell at another clock's time interpolated from the sample after it,
+           which a stream of rows cannot; the command that writes the table the served model
+           reads it as is named */
         fprintf(stderr, "stream: line %ld is a TwinCAT Scope export's row of channel names "
-                "(Name;<channel>;;Name;...): the export is not read here; stream the check "
-                "pack's rows.csv, or the samples as one CSV table (a header line naming the "
-                "columns, then one row per sample)\n", row);
+                "(Name;<channel>;;Name;...): the export is not read here; convert it to the "
+                "table the served model reads it as, `python -m thermocomp.shell.scope_rows "
+                "EXPORT.csv > rows.csv` (thermocomp's venv), and stream rows.csv\n", row);
         return 2;
     }
     for (j = 0; j < ncols; j++) cells[j] = (char *)named(cells[j], j);
