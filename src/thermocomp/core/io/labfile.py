@@ -141,7 +141,9 @@ def _time_cells(time: np.ndarray | None, n: int, utc: bool) -> list[str] | None:
 
 
 def _cell(v) -> str:
-    return "" if not np.isfinite(v) else repr(float(v))
+    # (lab77) an infinity (a Campbell FP2 INF, a logger's overflow) written as one, so the CSV
+    # reader names it as a TOA5 file's INF is (its column and rows), not an unnamed gap
+    return "" if np.isnan(v) else repr(float(v)) if np.isfinite(v) else ("inf" if v > 0 else "-inf")
 
 
 def write_wide(records: list[Record], out: Path) -> dict[str, str]:
