@@ -17,6 +17,7 @@ import pytest
 from conftest import FAST
 from test_export import needs_cc
 from thermocomp.core.io import ContractError, read_dataset
+from thermocomp.core.io.timestamps import dst_zones
 from thermocomp.shell.cli import main
 
 ROWS = 60
@@ -36,17 +37,21 @@ def local_log(path: Path, start_utc: str, zone: str, set_back_s: float = 0.0) ->
 
 
 @pytest.mark.parametrize(("start", "zone", "says"), [
-    ("2026-10-24 20:00", "Europe/Berlin", "daylight saving time ending on 2026-10-25 as in "
-     "Europe/Berlin: set data.timezone=Europe/Berlin, or any of the"),
-    # (every US zone goes back at 01:59 local: New York named, the others alike)
-    ("2026-11-01 02:00", "America/Chicago", "daylight saving time ending on 2026-11-01 as in "
-     "America/New_York: set data.timezone=America/New_York, or any of the"),
+    ("2026-10-24 20:00", "Europe/Berlin", "daylight saving time ending on 2026-10-25 in "),
+    # (every US zone goes back at 01:59 local: New York named first, Chicago among them)
+    ("2026-11-01 02:00", "America/Chicago", "daylight saving time ending on 2026-11-01 in "),
 ])
 def test_a_clock_set_back_at_a_dst_date_is_refused_naming_the_zone(tmp_path, start, zone, says):
     with pytest.raises(ContractError, match="the clock set back by an hour") as found:
         read_dataset(local_log(tmp_path / "log.csv", start, zone), {})
-    assert says in str(found.value)
-    assert "Europe/" not in str(found.value) or zone.startswith("Europe/")
+    said = str(found.value)
+    assert says in said and ": set data.timezone to the one it was written in (e.g. " in said
+    first = "Europe/Berlin" if zone == "Europe/Berlin" else "America/New_York"
+    assert f"zones ({first}, " in said and f"(e.g. data.timezone={first})" in said
+    assert ("Europe/" in said) == zone.startswith("Europe/")
+    # (row 30 at 02:50 local, row 31 at 02:00: 29 and 24 periods after the first)
+    assert zone in dst_zones(pd.read_csv(tmp_path / "log.csv")["time"][0], 29 * 600.0,
+                             24 * 600.0)
 
 
 def test_a_clock_set_back_on_no_dst_date_names_no_zone(tmp_path):
@@ -63,8 +68,8 @@ def test_a_clock_jumping_forward_at_a_dst_date_is_said_naming_the_zone(tmp_path,
     ds, _ = read_dataset(path, {})
     assert len(ds.campaigns["log"]) == ROWS
     assert ("line 32 (data row 31): the clock jumps an hour forward, read as an hour without "
-            "samples, daylight saving time beginning on 2026-03-29 as in Europe/Berlin: set "
-            "data.timezone=Europe/Berlin") in caplog.text
+            "samples, daylight saving time beginning on 2026-03-29 in ") in caplog.text
+    assert "(e.g. data.timezone=Europe/Berlin)" in caplog.text
     ds, _ = read_dataset(path, {"timezone": "Europe/Berlin"})      # (what it says reads it)
     np.testing.assert_allclose(np.diff(ds.campaigns["log"]["time"]), 600.0)
 

@@ -337,10 +337,10 @@ def dst_said(origin: str | None, before: float, after: float, change: str) -> st
     pick = next((z for z in _USUAL if z in zones), zones[0])
     region = pick.split("/")[0]          # (its neighbours first: Europe/Paris, not Africa/Ceuta)
     others = sorted((z for z in zones if z != pick), key=lambda z: (z.split("/")[0] != region, z))
-    alike = (f", or any of the {len(others)} other zones changing alike: "
-             f"{', '.join(others[:3])}{', ...' * (len(others) > 3)}" if others else "")
-    return (f", daylight saving time {change} on {at} as in {pick}: set "
-            f"data.timezone={pick}{alike}")
+    named = ", ".join([pick, *others[:3]]) + (", ..." if len(others) > 3 else "")
+    return (f", daylight saving time {change} on {at} in {len(zones)} zone"
+            f"{'s' * (len(zones) > 1)} ({named}): set data.timezone to the one it was written in "
+            f"(e.g. data.timezone={pick})")
 
 
 # (the zone named first where several change their clocks alike: those of the labs met so far)
