@@ -179,14 +179,28 @@ def _start(preamble: dict, path: Path, local: bool = False) -> tuple[np.datetime
                         "the channels' time counts from it", file=path)
 
 
-def _date(cell: str) -> np.datetime64 | None:
-    """A Scope View date-time (German ``15.02.2027 06:00:00,000``, or ISO), None if none."""
-    for form in _DATES:
+def _date(cell: str, first: str | None = None) -> np.datetime64 | None:
+    """A Scope View date-time (German ``15.02.2027 06:00:00,000``, or ISO), None if none
+    (``first``: the format tried first, the one the column's first cell was read by)."""
+    for form in (first, *_DATES) if first else _DATES:
         try:
             return np.datetime64(datetime.strptime(cell.strip(), form), "us")
         except ValueError:
             continue
     return None
+
+
+def _form(cell: str) -> str | None:
+    """The format of :data:`_DATES` that reads ``cell``."""
+    return next((f for f in _DATES if _fits(cell, f)), None)
+
+
+def _fits(cell: str, form: str) -> bool:
+    try:
+        datetime.strptime(cell.strip(), form)
+        return True
+    except ValueError:
+        return False
 
 
 def _decimal(lines: list[str], sep: str) -> str:
@@ -210,10 +224,11 @@ def _column(rows: list, j: int, decimal: str, path: Path,
             continue
         v = cells[j + 1].strip() if j + 1 < len(cells) else ""
         if dated is None:
-            dated = _number(t, decimal) is None and _date(t) is not None
+            form = _form(t) if _number(t, decimal) is None else None
+            dated = form is not None
         if bools is None and v:
             bools = v.lower() in _BOOL
-        stamp = _date(t) if dated else _number(t, decimal)
+        stamp = _date(t, form) if dated else _number(t, decimal)
         value = np.nan if not v else _BOOL.get(v.lower()) if bools else _number(v, decimal)
         if stamp is None or value is None:
             bad, what = (t, "no date-time" if dated else "no time") if stamp is None else (
