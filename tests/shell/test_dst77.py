@@ -7,6 +7,7 @@ for an hour set back in July.  The exported stream.c says the step back as the r
 
 from __future__ import annotations
 
+import io
 import subprocess
 from pathlib import Path
 
@@ -92,3 +93,17 @@ def test_the_compiled_stream_says_a_clock_set_back_as_the_reader_does(tmp_path):
     assert len(said) == 1 and ("is not after the last read (17400 s): the clock set back by an "
                                "hour, daylight saving time ending? this stream reads no "
                                "data.timezone") in said[0], done.stderr
+
+
+def test_a_stream_on_stdin_says_a_clock_set_back_as_the_reader_does(tmp_path, monkeypatch,
+                                                                     capsys):
+    """``monitor.input=-`` (the served path's reader): before, nothing said; the time rule
+    went on over the repeated hour."""
+    train = local_log(tmp_path / "train.csv", "2026-03-10 20:00", "Europe/Berlin")
+    autumn = local_log(tmp_path / "autumn.csv", "2026-10-24 20:00", "Europe/Berlin")
+    monkeypatch.setattr("sys.stdin", io.StringIO(autumn.read_text()))
+    assert main(["monitor", f"data.path={train}", "data.test_fraction=0.3", *FAST,
+                 "monitor.input=-", f"out={tmp_path / 'piped'}"]) == 0
+    assert ("<stdin>, column 'time', data row 31: the clock set back by an hour, daylight saving "
+            "time ending on 2026-10-25 in ") in (said := capsys.readouterr().err), said
+    assert "(e.g. data.timezone=Europe/Berlin)" in said
