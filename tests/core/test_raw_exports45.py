@@ -231,7 +231,7 @@ def test_a_local_clock_set_back_an_hour_is_refused_naming_data_timezone_which_re
     path = _local_clock(tmp_path / "autumn.csv", "2026-10-24T23:30:00")   # 01:30 CEST
     out = tmp_path / "init"
     refused(["init", str(path), f"out={out}"], capsys, str(path), "column 'time'",
-            "daylight saving time ending?", "data.timezone=")
+            "daylight saving time ending on 2026-10-25 in ", "(e.g. data.timezone=Europe/Berlin)")
     assert not out.exists()
     ds, report = read_dataset(path, {"roles": {"error": ["dX"]}, "timezone": "Europe/Berlin"})
     np.testing.assert_allclose(ds.campaigns["autumn"]["time"], _record()[0] * 4)

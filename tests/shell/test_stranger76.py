@@ -11,6 +11,7 @@ import datetime as dt
 import io
 import json
 import subprocess
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -18,7 +19,7 @@ import pandas as pd
 import pytest
 
 from conftest import FAST, refused
-from test_export import checked_pack, needs_cc
+from test_export import checked_pack, needs_cc, own_expected
 from test_stranger68 import ROWS, linear_run
 from thermocomp.core.io import read_dataset
 from thermocomp.shell.cli import main
@@ -130,9 +131,11 @@ def test_the_export_piped_into_monitor_streams_as_the_file_is_read(tmp_path, mon
 
 
 @needs_cc
-def test_the_compiled_stream_refuses_a_scope_export_before_any_correction(tmp_path):
-    """Before: it took the row of channel names for its header, read the property rows under
-    it as samples, printed a correction of 'VariableSize;8;...' and stopped at 'True'."""
+def test_the_compiled_stream_refuses_a_scope_export_naming_the_command_that_converts_it(tmp_path):
+    """Before stranger76: it took the row of channel names for its header, read the property
+    rows under it as samples, printed a correction of 'VariableSize;8;...' and stopped at
+    'True'.  Before lab77: refused, told to stream 'the samples as one CSV table' with no way
+    to write one; the command it names now writes it, streamed as the pack's rows are."""
     folder = _folder(tmp_path / "runs")
     common = [f"data.path={folder}", "data.roles.error=[Tracker*]", "data.encoding=cp1252",
               "data.test_fraction=0.34"]
@@ -143,4 +146,27 @@ def test_the_compiled_stream_refuses_a_scope_export_before_any_correction(tmp_pa
     done = subprocess.run([str(tmp_path / "code" / "stream")], capture_output=True,
                           input=(folder / "Scope_Portal_3.csv").read_bytes())
     assert done.returncode == 2 and done.stdout == b""
-    assert b"stream: line 5 is a TwinCAT Scope export's row of channel names" in done.stderr
+    assert (b"stream: line 5 is a TwinCAT Scope export's row of channel names (Name;<channel>;;"
+            b"Name;...): the export is not read here; convert it to the table the served model "
+            b"reads it as, `python -m thermocomp.shell.scope_rows EXPORT.csv > rows.csv`"
+            ) in done.stderr
+    convert = [sys.executable, "-m", "thermocomp.shell.scope_rows"]
+    rows = subprocess.run([*convert, str(folder / "Scope_Portal_3.csv")], capture_output=True,
+                          check=True).stdout
+    streamed = subprocess.run([str(tmp_path / "code" / "stream")], capture_output=True,
+                              input=rows, check=True).stdout
+    got = pd.read_csv(io.BytesIO(streamed))
+    want = pd.read_csv(own_expected(tmp_path / "code")[0])
+    assert list(got.columns) == list(want.columns) and len(got) == len(want)
+    np.testing.assert_allclose(got.to_numpy(float), want.to_numpy(float), rtol=0, atol=1e-9)
+    # a broken export: refused naming file, channel and line, nothing written
+    path = folder / "Scope_Portal_2.csv"
+    lines = path.read_bytes().split(b"\r\n")
+    cells = lines[20].split(b";")
+    cells[4] = b"Overflow"
+    lines[20] = b";".join(cells)
+    path.write_bytes(b"\r\n".join(lines))
+    broken = subprocess.run([*convert, str(path)], capture_output=True, text=True)
+    assert broken.returncode == 2 and broken.stdout == ""
+    assert (f"file {path}, column 'Temp Ständer', line 21: cell 'Overflow' is no number "
+            "(decimal ',')") in broken.stderr

@@ -70,22 +70,19 @@ def with_unit(name: str, unit: str | None) -> str:
     return f"{name} [{unit}]" if unit and f"[{unit}]" not in name else name
 
 
-def on_one_grid(channels: list[Channel]) -> list[Channel]:
-    """``channels`` each on the time of the one sampled fastest, where every other's times are
-    among its (a slower channel sampled on the same clock: its cells between samples left
-    empty, never held; stranger76's Scope export, a tracker every 5 min beside temperatures
-    every 10 s); else as they are (the historian's grid, ``data.resample_s``)."""
+def on_union_grid(channels: list[Channel]) -> list[Channel]:
+    """``channels``, each timed on its own clock (a TwinCAT Scope export's ``Time;Value`` pairs:
+    another task's cycle, another target's clock), on the union of their times, each channel's
+    cells at the others' times left empty, never held (lab77): channels of one clock share their
+    rows, a slower one's cells between its samples empty (stranger76: a tracker every 5 min
+    beside temperatures every 10 s)."""
     if not channels or any(c.time is None for c in channels):
         return channels
-    grid = max(channels, key=lambda c: c.time.size).time
-    at = [np.searchsorted(grid, c.time) for c in channels]
-    if any((k >= grid.size).any() or not np.array_equal(grid[np.minimum(k, grid.size - 1)], c.time)
-           for k, c in zip(at, channels)):
-        return channels
+    grid = np.unique(np.concatenate([c.time for c in channels]))
     laid = []
-    for k, c in zip(at, channels):
+    for c in channels:
         values = np.full(grid.size, np.nan)
-        values[k] = c.values
+        values[np.searchsorted(grid, c.time)] = c.values
         laid.append(Channel(c.header, values, grid, c.where))
     return laid
 
@@ -203,7 +200,9 @@ def _time_cells(time: np.ndarray | None, n: int, utc: bool) -> list[str] | None:
 
 
 def _cell(v) -> str:
-    return "" if not np.isfinite(v) else repr(float(v))
+    # (lab77) an infinity (a Campbell FP2 INF, a logger's overflow) written as one, so the CSV
+    # reader names it as a TOA5 file's INF is (its column and rows), not an unnamed gap
+    return "" if np.isnan(v) else repr(float(v)) if np.isfinite(v) else ("inf" if v > 0 else "-inf")
 
 
 def write_wide(records: list[Record], out: Path) -> dict[str, str]:

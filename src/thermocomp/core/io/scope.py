@@ -12,10 +12,14 @@ below its last sample. A German Windows writes ``;`` and decimal commas.
 A channel is named by its ``Name`` and ``Unit`` (``Temp Bett 1 vorn [°C]``, read by the CSV
 header rules); the Scope's other properties (``SymbolName`` ...) are left out. Its time is
 ``StartTime`` plus its time column, in ms where its steps are its ``SampleTime[ms]`` (else
-seconds, the step times 1000). Channels sampled on the fastest channel's grid at a lower rate
-(a laser tracker every 5 min beside temperatures every 10 s) are laid onto that grid, their
-cells between samples empty (:func:`.labfile.on_one_grid`): a target so measured is read as
-measured now and then (``data.sparse_targets``), never held."""
+seconds, the step times 1000); or (lab77: Scope View's absolute time format) a date-time per
+row, on the PC's clock (a clock the file does not say: ``data.timezone``), the channels timed
+from ``StartTime`` then counted from its local date.  The channels are laid on the union of
+their times (:func:`.labfile.on_union_grid`), a channel's cells at the others' times empty,
+never held: a slower channel on the same clock (a laser tracker every 5 min beside temperatures
+every 10 s) is read as measured now and then (``data.sparse_targets``); channels on different
+clocks (another task's cycle, another target) share no row.  A ``BOOL`` channel's
+``True`` / ``False`` is 1 / 0, a state (its unit ``-``)."""
 
 from __future__ import annotations
 
@@ -25,13 +29,20 @@ from pathlib import Path
 
 import numpy as np
 
+from ...base.log import logger
 from .contract import ContractError
 from .encoding import UTF8, check_text, text_codec
-from .labfile import Channel, Record, on_one_grid, records_as_csv, with_unit
+from .labfile import Channel, Record, on_union_grid, records_as_csv, with_unit
 
 SAMPLE_KEY = "SampleTime[ms]"
 _FIRST = re.compile(r"^\ufeff?(Name|ScopeName)([;\t,])")
 _TICKS_TO_1970 = 116444736000000000          # FILETIME of 1970-01-01 UTC
+_DATES = ("%d.%m.%Y %H:%M:%S,%f", "%d.%m.%Y %H:%M:%S.%f", "%d.%m.%Y %H:%M:%S",
+          "%Y-%m-%d %H:%M:%S.%f", "%Y-%m-%dT%H:%M:%S.%f", "%Y-%m-%d %H:%M:%S,%f",
+          "%Y-%m-%d %H:%M:%S", "%Y-%m-%dT%H:%M:%S",
+          "%m/%d/%Y %I:%M:%S.%f %p", "%m/%d/%Y %I:%M:%S %p", "%m/%d/%Y %H:%M:%S.%f",
+          "%m/%d/%Y %H:%M:%S")
+_BOOL = {"true": 1.0, "false": 0.0}            # a BOOL channel's values
 
 
 def is_scope(path) -> bool:
@@ -104,18 +115,29 @@ def _record(lines: list[str], label: str, path: Path) -> Record:
         k += 1                                      # the Time;Value row over each channel
     decimal = _decimal(lines[k:k + 50], sep)
     rows = [(i + 1, line.split(sep)) for i, line in enumerate(lines[k:], start=k) if line.strip()]
-    channels = []
-    for j in cols:
-        name = names[j + 1].strip()
-        times, values = _column(rows, j, decimal, path, name)
-        step = _said(props, SAMPLE_KEY, j)
-        seconds = times / 1000.0 if _in_ms(times, step) else times
-        stamp = start + (seconds * 1e6).round().astype("timedelta64[us]")
-        channels.append(Channel(with_unit(name, _said(props, "Unit", j)), values, stamp,
-                                f"channel {name!r} (column {j + 1})"))
-    if not channels:
+    read = [(j, names[j + 1].strip(), *_column(rows, j, decimal, path, names[j + 1].strip()))
+            for j in cols]
+    if not read:
         raise ContractError("no channel under the 'Name' row", file=path, line=first_prop + 1)
-    return Record(label, on_one_grid(channels), utc=utc)
+    if utc and any(np.issubdtype(t.dtype, np.datetime64) for *_, t, _, _ in read):
+        # "Time format: absolute": the PC's date-times, on a clock the file does not say; the
+        # channels timed from StartTime counted from its local date alike
+        start, utc = _start(preamble, path, local=True)
+    channels = []
+    for j, name, times, values, bool_ in read:
+        if np.issubdtype(times.dtype, np.datetime64):
+            stamp = times
+        else:
+            seconds = times / 1000.0 if _in_ms(times, _said(props, SAMPLE_KEY, j)) else times
+            stamp = start + (seconds * 1e6).round().astype("timedelta64[us]")
+        unit = _said(props, "Unit", j)
+        if bool_:
+            logger.info(f"{path}: channel {name!r} is a BOOL (True / False): read as 0 / 1, "
+                        "a state")
+            unit = unit or "-"
+        channels.append(Channel(with_unit(name, unit), values, stamp,
+                                f"channel {name!r} (column {j + 1})"))
+    return Record(label, on_union_grid(channels), utc=utc)
 
 
 def _keys(lines: list[str], k: int, sep: str, whole: bool = False) -> tuple[int, dict]:
@@ -140,22 +162,45 @@ def _said(props: dict, key: str, j: int) -> str | None:
     return cells[j + 1] if j + 1 < len(cells) and cells[j] == key else None
 
 
-def _start(preamble: dict, path: Path) -> tuple[np.datetime64, bool]:
-    """``(StartTime, in UTC)``: its FILETIME ticks (UTC), else the local date after them (on a
-    clock the file does not say)."""
+def _start(preamble: dict, path: Path, local: bool = False) -> tuple[np.datetime64, bool]:
+    """``(StartTime, in UTC)``: its FILETIME ticks (UTC), else (or ``local``: where the file
+    gives it) the local date after them (on a clock the file does not say)."""
     cells = preamble.get("StartTime") or []
+    for cell in cells[1:] if local and cells and cells[0].isdigit() else []:
+        if (found := _date(cell)) is not None:
+            return found, False
     if cells and cells[0].isdigit():
         micro = (int(cells[0]) - _TICKS_TO_1970) // 10
-        return np.datetime64(datetime(1970, 1, 1) + timedelta(microseconds=micro), "us"), True
+        return np.datetime64(datetime(1970, 1, 1) + timedelta(microseconds=micro), "us"), not local
     for cell in cells:
-        for form in ("%d.%m.%Y %H:%M:%S,%f", "%d.%m.%Y %H:%M:%S", "%Y-%m-%d %H:%M:%S.%f",
-                     "%Y-%m-%d %H:%M:%S"):
-            try:
-                return np.datetime64(datetime.strptime(cell, form), "us"), False
-            except ValueError:
-                continue
+        if (found := _date(cell)) is not None:
+            return found, False
     raise ContractError(f"the preamble's StartTime {cells[:2]!r} is no Windows FILETIME nor date: "
                         "the channels' time counts from it", file=path)
+
+
+def _date(cell: str, first: str | None = None) -> np.datetime64 | None:
+    """A Scope View date-time (German ``15.02.2027 06:00:00,000``, or ISO), None if none
+    (``first``: the format tried first, the one the column's first cell was read by)."""
+    for form in (first, *_DATES) if first else _DATES:
+        try:
+            return np.datetime64(datetime.strptime(cell.strip(), form), "us")
+        except ValueError:
+            continue
+    return None
+
+
+def _form(cell: str) -> str | None:
+    """The format of :data:`_DATES` that reads ``cell``."""
+    return next((f for f in _DATES if _fits(cell, f)), None)
+
+
+def _fits(cell: str, form: str) -> bool:
+    try:
+        datetime.strptime(cell.strip(), form)
+        return True
+    except ValueError:
+        return False
 
 
 def _decimal(lines: list[str], sep: str) -> str:
@@ -166,31 +211,43 @@ def _decimal(lines: list[str], sep: str) -> str:
     return "."
 
 
-def _column(rows: list, j: int, decimal: str, path: Path, name: str) -> tuple[np.ndarray, np.ndarray]:
+def _column(rows: list, j: int, decimal: str, path: Path,
+            name: str) -> tuple[np.ndarray, np.ndarray, bool]:
     """Channel ``name``'s time and value columns ``j``, ``j + 1`` down to its last sample (an
-    empty value under a time: missing)."""
-    times, values = [], []
+    empty value under a time: missing) and whether it is a BOOL: its times as numbers (ms or s
+    since StartTime) or, where the first is a date-time (an absolute time format), datetime64;
+    its values numbers, or ``True`` / ``False`` read as 1 / 0."""
+    times, values, dated, bools = [], [], None, None
     for line, cells in rows:
         t = cells[j].strip() if j < len(cells) else ""
         if not t:
             continue
         v = cells[j + 1].strip() if j + 1 < len(cells) else ""
-        try:
-            times.append(float(t.replace(decimal, ".")))
-            values.append(float(v.replace(decimal, ".")) if v else np.nan)
-        except ValueError:
-            bad = v if _number(t, decimal) else t
-            raise ContractError(f"cell {bad!r} is no number (decimal {decimal!r})", file=path,
-                                column=name, line=line) from None
-    return np.asarray(times), np.asarray(values)
+        if dated is None:
+            form = _form(t) if _number(t, decimal) is None else None
+            dated = form is not None
+        if bools is None and v:
+            bools = v.lower() in _BOOL
+        stamp = _date(t, form) if dated else _number(t, decimal)
+        value = np.nan if not v else _BOOL.get(v.lower()) if bools else _number(v, decimal)
+        if stamp is None or value is None:
+            bad, what = (t, "no date-time" if dated else "no time") if stamp is None else (
+                v, "no True / False (a BOOL channel)" if bools else
+                f"no number (decimal {decimal!r})")
+            raise ContractError(f"cell {bad!r} is {what}", file=path, column=name,
+                                line=line) from None
+        times.append(stamp)
+        values.append(value)
+    if dated:
+        return np.asarray(times, dtype="datetime64[us]"), np.asarray(values, float), bool(bools)
+    return np.asarray(times, float), np.asarray(values, float), bool(bools)
 
 
-def _number(cell: str, decimal: str) -> bool:
+def _number(cell: str, decimal: str) -> float | None:
     try:
-        float(cell.replace(decimal, "."))
-        return True
+        return float(cell.replace(decimal, "."))
     except ValueError:
-        return False
+        return None
 
 
 def _in_ms(times: np.ndarray, step: str | None) -> bool:

@@ -53,8 +53,10 @@ from .tables import MISSING_TOKENS, NO_TIME_COLUMN, first_cast_failure, shortene
 from .timestamps import (
     CLOCK,
     ELAPSED,
+    HOUR_S,
     compact_format,
     described,
+    dst_said,
     elapsed_seconds,
     on_local_clock,
     parsed,
@@ -490,4 +492,20 @@ def stream_stamps(time: pd.Series, time_format: str = "auto", zone: str | None =
     ns = pc.fill_null(stamps, 0).to_numpy(zero_copy_only=False).copy()
     if zone is not None and target.tz is None:
         ns[valid] = on_local_clock(ns[valid], zone, SOURCE)
+    elif target.tz is None:
+        said_if_set_back(ns[valid], np.flatnonzero(valid))
     return ns, valid
+
+
+def said_if_set_back(ns: np.ndarray, rows: np.ndarray) -> None:
+    """Say a stream's timestamps without an offset (``ns``, of the data rows ``rows``) set back
+    by up to an hour, in the file reader's words (lab77: daylight saving time ending, the zones
+    whose clocks went back then named; the stream goes on by the time rule, as stream.c does)."""
+    back = np.flatnonzero((np.diff(ns) < 0) & (np.diff(ns) >= -HOUR_S * 1e9))
+    if not back.size:
+        return
+    k = int(back[0])
+    origin = str(np.datetime64(int(ns[0]), "ns"))
+    logger.warning(f"{SOURCE}, column {TIME!r}, data row {int(rows[k + 1]) + 1}: the clock set back "
+                   "by an hour" + dst_said(origin, (ns[k] - ns[0]) / 1e9, (ns[k + 1] - ns[0]) / 1e9,
+                                           "ending"))

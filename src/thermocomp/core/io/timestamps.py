@@ -10,7 +10,7 @@ guess, and the date is read so (:func:`slashed_format`); so is a Keysight DAQ's 
 from __future__ import annotations
 
 import re
-from datetime import datetime
+from datetime import datetime, timedelta, timezone
 from pathlib import Path
 
 import numpy as np
@@ -307,17 +307,81 @@ def on_local_clock(ns: np.ndarray, zone: str, file, column: str = TIME) -> np.nd
     raise ContractError(f"time {index[row]} is {what}", file=file, column=column, row=row + 1)
 
 
-def clock_set_back(before: float, after: float, period: float | None = None) -> str:
+def clock_set_back(before: float, after: float, period: float | None = None,
+                   origin: str | None = None) -> str:
     """What to say of a local clock going back by an hour less a sample period (daylight saving
     time ends: 02:59 is followed by 02:00), within a period either way (``period`` None: by up to
-    an hour); a clock resynchronised by minutes is no daylight saving time."""
+    an hour); a clock resynchronised by minutes is no daylight saving time.  ``origin`` (the
+    first timestamp, ``before`` / ``after`` seconds since it): the zones whose clocks went back
+    then named (lab77)."""
     back = before - after
     near = (abs(back + period - HOUR_S) <= period if period and period < HOUR_S
             else 0 < back <= HOUR_S)
     if not near:
         return ""
-    return (": the clock set back by an hour, daylight saving time ending? set data.timezone "
-            "to the zone it was written in (e.g. data.timezone=Europe/Berlin)")
+    return ": the clock set back by an hour" + dst_said(origin, before, after, "ending")
+
+
+def dst_said(origin: str | None, before: float, after: float, change: str) -> str:
+    """``, daylight saving time ending? set data.timezone ...``: the zone to set, named where
+    ``origin`` + ``before`` / ``after`` (local times) are a daylight saving change of some
+    zone's clock (``change``: ``'ending'``, the clock back; ``'beginning'``, forward)."""
+    zones = dst_zones(origin, before, after) if origin is not None else []
+    if not zones and origin is not None:
+        return (f", at no zone's daylight saving time {change} (a clock set by hand or by a time "
+                "server? data.timezone does not read it)")
+    if not zones:
+        return (f", daylight saving time {change}? set data.timezone to the zone it was written "
+                "in (e.g. data.timezone=Europe/Berlin)")
+    at = (pd.Timestamp(origin) + pd.Timedelta(seconds=float(after))).strftime("%Y-%m-%d")
+    pick = next((z for z in _USUAL if z in zones), zones[0])
+    region = pick.split("/")[0]          # (its neighbours first: Europe/Paris, not Africa/Ceuta)
+    others = sorted((z for z in zones if z != pick), key=lambda z: (z.split("/")[0] != region, z))
+    named = ", ".join([pick, *others[:3]]) + (", ..." if len(others) > 3 else "")
+    return (f", daylight saving time {change} on {at} in {len(zones)} zone"
+            f"{'s' * (len(zones) > 1)} ({named}): set data.timezone to the one it was written in "
+            f"(e.g. data.timezone={pick})")
+
+
+# (the zone named first where several change their clocks alike: those of the labs met so far)
+_USUAL = ("Europe/Berlin", "Europe/London", "Europe/Helsinki", "America/New_York",
+          "America/Chicago", "America/Denver", "America/Los_Angeles", "Australia/Sydney")
+
+
+def dst_zones(origin: str, before: float, after: float) -> list[str]:
+    """The zones (IANA, sorted) whose local clock shows ``origin`` + ``before`` s and then, an
+    hour later or earlier on the wall, ``origin`` + ``after`` s across a daylight saving change:
+    their UTC offset one hour larger before the step back (one hour smaller before a step
+    forward), the step within an hour of the change's instant.  Empty where none (a clock set by
+    hand, a logger paused)."""
+    import zoneinfo
+
+    first = pd.Timestamp(origin).tz_localize(None).to_pydatetime()
+    wall_before = first + timedelta(seconds=float(before))
+    wall_after = first + timedelta(seconds=float(after))
+    forward = after > before
+    found = []
+    for name in sorted(zoneinfo.available_timezones()):
+        if name.startswith(("Etc/", "SystemV/")) or "/" not in name:
+            continue
+        zone = zoneinfo.ZoneInfo(name)
+        # before the step: the earlier reading of a repeated hour (fold 0); after: the later
+        was = wall_before.replace(tzinfo=zone, fold=0)
+        now = wall_after.replace(tzinfo=zone, fold=1)
+        shift = (was.utcoffset() - now.utcoffset()).total_seconds()
+        if shift != (-HOUR_S if forward else HOUR_S) or not (_shown_by(was) and _shown_by(now)):
+            continue
+        # the two readings within a period or so of each other in UTC: the change between them
+        gap = (now.astimezone(timezone.utc) - was.astimezone(timezone.utc)).total_seconds()
+        if 0 < gap <= HOUR_S:
+            found.append(name)
+    return found
+
+
+def _shown_by(wall: datetime) -> bool:
+    """The zone's clock shows ``wall`` (not in the hour it skips)."""
+    back = wall.astimezone(timezone.utc).astimezone(wall.tzinfo)
+    return back.replace(tzinfo=None, fold=0) == wall.replace(tzinfo=None, fold=0)
 
 
 def skips_an_hour(steps: np.ndarray, period: float) -> np.ndarray:
@@ -326,16 +390,18 @@ def skips_an_hour(steps: np.ndarray, period: float) -> np.ndarray:
     return np.abs(steps - HOUR_S - period) <= period / 2
 
 
-def said_if_clock_skips(seconds: np.ndarray, file, header: str = TIME, at=position) -> None:
+def said_if_clock_skips(seconds: np.ndarray, file, header: str = TIME, at=position,
+                        origin: str | None = None) -> None:
     """Say (not refuse: a logger may pause an hour) timestamps without an offset that jump one
     hour plus a sample period forward once: daylight saving time beginning, read as an hour
-    without samples unless ``data.timezone`` says the zone (``at``: names a data row)."""
+    without samples unless ``data.timezone`` says the zone (``at``: names a data row;
+    ``origin``: the first timestamp, the zones whose clocks went forward then named)."""
     period = median_step(seconds)
     if period is None or period >= HOUR_S:
         return
     jumps = np.flatnonzero(skips_an_hour(np.diff(seconds), period))
     if jumps.size:
-        logger.warning(f"{file}, column {header!r}, {at(int(jumps[0]) + 2)}: the clock jumps an hour "
-                       "forward (daylight saving time beginning?): read as an hour without "
-                       "samples; set data.timezone to the zone it was written in (e.g. "
-                       "data.timezone=Europe/Berlin)")
+        k = int(jumps[0])
+        logger.warning(f"{file}, column {header!r}, {at(k + 2)}: the clock jumps an hour forward, "
+                       "read as an hour without samples"
+                       + dst_said(origin, seconds[k], seconds[k + 1], "beginning"))

@@ -23,7 +23,9 @@ empty frame, 14 a minor frame, 16-31 the validation stamp).
 - Each record's time is its frame's (or minor frame's) time + its index x the interval.
 - A file mark ends a run: the frames after it are the next run (each a campaign, as a TDMS
   log's groups; ``init`` proposes ``data.roles.campaign=run``), as CardConvert can start a new
-  file there.  The remove mark starts none: the table goes on.
+  file there.  So does a remove mark (lab77: the card taken out, logging to it stopped until
+  one was put in; before, the table went on over the pause): CardConvert's *Use RemoveMarks*
+  starts a new file there too; said.  A minor frame's mark ends its last part.
 - A ring: a table kept in ring mode on a full card goes on at the card's start, so in file order
   the newest frames come first.  They are put in the logger's order, by their first record
   number (TOB2: their time), said: each frame states both, so the order is read, not guessed
@@ -95,7 +97,9 @@ def frame_records(path: Path) -> list[Record]:
             stale.append(i + 1)
         elif not word & EMPTY:
             parts = _minor(path, frame, i + 1, word, head, stamp) if word & MINOR else [frame]
-            pieces += [(i + 1, p, bool(word & FILE_MARK)) for p in parts]
+            # (lab77) a mark ends the frame's last part, not each minor frame of it
+            pieces += [(i + 1, p, _mark(word) if k == len(parts) - 1 else "")
+                       for k, p in enumerate(parts)]
     if stale:
         logger.warning(f"{path}: {len(stale)} of {frames} frames ({_frames(stale)}) carry another "
                        f"validation stamp than the file's {stamp} (frames of an earlier table "
@@ -172,16 +176,27 @@ def _in_order(path: Path, kind: str, pieces: list, record: np.dtype, head: int, 
     return [(number, first, rows, mark) for _, number, first, rows, mark in out]
 
 
+def _mark(word: int) -> str:
+    """The mark a frame's footer ``word`` sets: ``'file'``, ``'remove'`` or ``''``."""
+    return "file" if word & FILE_MARK else "remove" if word & REMOVE_MARK else ""
+
+
 def _runs(path: Path, names, units, types, pieces: list, record: np.dtype, head: int,
           interval: int) -> list[Record]:
-    """The frames' records as runs, a file mark closing each."""
-    runs, current = [], []
+    """The frames' records as runs, a file mark or a remove mark closing each."""
+    runs, current, removed = [], [], []
     for piece in pieces:
         current.append(piece)
         if piece[3]:
             runs.append(current)
             current = []
+            if piece[3] == "remove":
+                removed.append(piece[0])
     runs = [r for r in [*runs, current] if any(len(p[2]) for p in r)]
+    if removed and len(runs) > 1:
+        logger.warning(f"{path}: a remove mark (the card taken out, logging to it stopped) in frame "
+                    f"{_frames(removed)}: the records after it are the next run, as after a file "
+                    "mark (CardConvert's 'Use RemoveMarks' starts a new file there)")
     if not runs:
         raise ContractError("no frame of the file's validation stamp holds a record", file=path)
     out = []

@@ -61,7 +61,7 @@ def _set_time_seconds(columns: dict, rows: int, path: Path, opts: ReadOptions,
         _check_increasing(seconds, path, local, info.get("time_origin"),
                           opts.max_duration_days)
         if local:
-            said_if_clock_skips(seconds, path, at=at(lines))
+            said_if_clock_skips(seconds, path, at=at(lines), origin=info.get("time_origin"))
         if opts.resample_s is None:        # (on one grid, as the warning says to put it)
             if not said_if_rate_changes(seconds, path, at=at(lines)):   # (its slower steps)
                 said_if_rows_missing(seconds, path, at=at(lines))
@@ -112,7 +112,7 @@ def _check_increasing(seconds: np.ndarray, path: Path, local: bool = False,
         what = (f"duplicate time {_shown(after, origin)} (same as row {i + 1}): two samples at "
                 "one time; delete the row written twice, or give it its own time")
     else:
-        dst = clock_set_back(before, after, median_step(seconds)) if local else ""
+        dst = clock_set_back(before, after, median_step(seconds), origin) if local else ""
         # rows a lab exported or pasted out of order: sorting them gives one time per sample
         unsorted = "" if dst or np.unique(seconds).size < seconds.size else (
             _clock_reset(seconds, after - before, max_days)

@@ -65,6 +65,7 @@ from ...core.io.plain import converted_once, is_converted, is_lab_file, lab_as_c
 from ...core.io.rates import PAUSE_PERIODS, pauses
 from ...core.io.record import safe_id
 from ...core.io.roles import excel_days_header, naming, split_unit
+from ...core.io.scope import is_scope
 from ...core.io.slashed import record_order
 from ...core.io.sniff import resolved
 from ...core.io.starts import stated_start
@@ -108,11 +109,17 @@ def number_cells(src, manifest, sample, given: dict, opts):
     each said with why, a doubt said, not written; ``found`` (None: no text file) for the gaps
     their marks leave, which :func:`mark_gaps` reads once the error columns are named."""
     files = [src] if manifest is None else [src / str(f) for f in manifest["file"]]
+    # (lab75: a TOB1 table's, a TDMS log's gaps; lab77: a folder's, a Scope export's channels on
+    # other clocks leaving cells at each other's times)
+    labs = [f for f in files if is_lab_file(f)]
+    if labs and (manifest is None or is_scope(labs[0])):
+        with ExitStack() as stack:
+            code = given.get("encoding") or opts.encoding
+            # (stranger77: a sensor replaced from a run on: its channel's empty runs are no edge)
+            shared = SHARED if manifest is None else None
+            texts = [stack.enter_context(lab_as_csv(f, encoding=code, columns=shared)) for f in labs]
+            return opts, scanned(texts, ",", ".", UTF8, None, [], peek_csv, decimal_given=True)
     files = [f for f in files if is_text(f) and not is_converted(f, opts)]
-    if manifest is None and is_lab_file(src):    # (lab75: a TOB1 table's, a TDMS log's gaps)
-        # (stranger77: a sensor replaced from a run on: its channel's empty runs are no edge)
-        with lab_as_csv(src, encoding=opts.encoding, columns=SHARED) as text:
-            return opts, scanned([text], ",", ".", UTF8, None, [], peek_csv, decimal_given=True)
     if not files or not is_text(sample):
         return opts, None
     asked = io.ReadOptions.from_cfg(given)

@@ -931,11 +931,15 @@ int main(int argc, char **argv) {
     for (j = 0, k = 0; j < ncols; j++) k += strcmp(cells[j], "Name") == 0;
     if (k > 1) {
         /* (stranger76) a TwinCAT Scope export's row of channel names (`Name;T1;;Name;T2;`): its
-           property rows under it would be read as samples, a correction printed of them */
+           property rows under it would be read as samples, a correction printed of them.
+           (lab77) Refused, not read: its channels' times are merged over the whole file and a
+           temperature's cell at another clock's time interpolated from the sample after it,
+           which a stream of rows cannot; the command that writes the table the served model
+           reads it as is named */
         fprintf(stderr, "stream: line %ld is a TwinCAT Scope export's row of channel names "
-                "(Name;<channel>;;Name;...): the export is not read here; stream the check "
-                "pack's rows.csv, or the samples as one CSV table (a header line naming the "
-                "columns, then one row per sample)\n", row);
+                "(Name;<channel>;;Name;...): the export is not read here; convert it to the "
+                "table the served model reads it as, `python -m thermocomp.shell.scope_rows "
+                "EXPORT.csv > rows.csv` (thermocomp's venv), and stream rows.csv\n", row);
         return 2;
     }
     for (j = 0; j < ncols; j++) cells[j] = (char *)named(cells[j], j);
@@ -1149,11 +1153,18 @@ int main(int argc, char **argv) {
         if (TC_SUBSTITUTE_TIME && isfinite(t) && !s.first && isfinite(s.t_read) && t <= s.t_read
             && !isfinite(s.t_back) && said_back++ < 5)
             /* (restart66) the time rule (timerule.py): said where it sets in */
+            /* (lab77) a date and time without an offset set back by up to an hour: said as the
+               reader says it (its 'the clock set back by an hour, daylight saving time
+               ending?'), with what this program reads instead of data.timezone */
             fprintf(stderr, "stream: line %ld: the time (%.10g s) is not after the last read (%.10g "
-                    "s): taken one period after the previous row; where the next time is after "
+                    "s)%s: taken one period after the previous row; where the next time is after "
                     "this one (a clock started again: a file of the record whose time starts at 0 "
                     "again), the stream counts on with it, as run joins a file that continues "
                     "another; a new campaign starts at a blank line%s\n", row, t, s.t_read,
+                    clock_.kind == LOCAL_TIME && s.t_read - t <= 3600.0 ? ": the clock set back "
+                    "by an hour, daylight saving time ending? this stream reads no data.timezone "
+                    "(a logger's own clock, as the served model): give the times with their "
+                    "offset (2026-10-25T02:00:00+01:00) or in UTC" : "",
                     said_back == 5 ? " (no more said)" : "");
         if (TC_AMBIENT_GIVEN && s.first) {     /* the campaign's ambient, at its first row */
             double a0 = ambient_col >= 0 ? value(cells[ambient_col], &ignored) : NAN;

@@ -1,0 +1,131 @@
+"""A TwinCAT Scope export as Scope View's other options write it (lab77): the absolute time
+format (a date-time per row, the PC's clock), channels on different clocks (each ``Time;Value``
+pair its own sample times: the temperatures every 10 s, a tracker every 60 s 3.7 s after them,
+another target's clock) and a ``BOOL`` channel written ``True`` / ``False``.  Before: refused at
+the first date-time ("cell '08.02.2027 06:00:00,000' is no number"); with ms times the two
+clocks went to the historian's grid (refused without ``data.resample_s``, then held)."""
+
+from __future__ import annotations
+
+import datetime as dt
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+import yaml
+
+from conftest import FAST, refused
+from thermocomp.core.io import read_dataset
+from thermocomp.shell.cli import main
+
+ROWS, PERIOD, EVERY, OFFSET = 60, 10.0, 6, 3.7        # the tracker: every 60 s, 3.7 s late
+START = dt.datetime(2027, 2, 8, 6)
+
+
+def truth(s: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Two temperatures (°C) and the error (µm) at times ``s``: the error linear in them."""
+    t1 = 20 + 0.002 * s + np.sin(s / 900.0)
+    t2 = 21 + 0.001 * s
+    return t1, t2, 3.0 * (t1 - 20) + 2.0 * (t2 - 21)
+
+
+def scope(path: Path, start: dt.datetime, absolute: bool = True) -> Path:
+    """One run as a German Scope View exports it: ``;``, decimal commas, cp1252."""
+    def num(v: float, digits: int = 4) -> str:
+        return f"{v:.{digits}f}".replace(".", ",")
+
+    def when(s: float) -> str:
+        return ((start + dt.timedelta(seconds=float(s))).strftime("%d.%m.%Y %H:%M:%S,%f")[:-3]
+                if absolute else num(s * 1000, 1))
+
+    fast = np.arange(ROWS) * PERIOD
+    slow = np.arange(0, ROWS * PERIOD, EVERY * PERIOD) + OFFSET
+    t1, t2, _ = truth(fast)
+    on = (np.arange(ROWS) // 20) % 2 == 0
+    chans = [("Temp Bett", "°C", "REAL64", [(when(s), num(v)) for s, v in zip(fast, t1)]),
+             ("Temp Ständer", "°C", "REAL64", [(when(s), num(v)) for s, v in zip(fast, t2)]),
+             ("Tracker dX", "mm", "REAL64",
+              [(when(s), num(v / 1000, 7)) for s, v in zip(slow, truth(slow)[2])]),
+             ("Spindel an", "", "BOOL", [(when(s), str(bool(v))) for s, v in zip(fast, on)])]
+    filetime = int((start - dt.timedelta(hours=1) - dt.datetime(1601, 1, 1)).total_seconds() * 1e7)
+    lines = ["Name;Portal;", f"StartTime;{filetime};{start:%d.%m.%Y %H:%M:%S},000", ""]
+    props = [("Name", 0), ("Data-Type", 2), ("SampleTime[ms]", None), ("Unit", 1)]
+    for key, k in props:
+        cells = [c[k] if k is not None else ("60000" if c[0] == "Tracker dX" else "10000")
+                 for c in chans]
+        lines.append(";".join(f"{key};{v};" for v in cells))
+    lines += ["", ";".join("Time;Value;" for _ in chans)]
+    for r in range(ROWS):
+        lines.append(";".join(f"{c[3][r][0]};{c[3][r][1]};" if r < len(c[3]) else ";;"
+                              for c in chans))
+    path.write_bytes("\r\n".join(lines).encode("cp1252") + b"\r\n")
+    return path
+
+
+def folder(root: Path, absolute: bool = True) -> Path:
+    root.mkdir()
+    for run in (1, 2, 3):
+        scope(root / f"Scope_{run}.csv", START + dt.timedelta(days=7 * run), absolute)
+    return root
+
+
+OPTIONS = {"roles": {"error": ["Tracker*"]}, "encoding": "cp1252", "test_fraction": 0.34,
+           "max_gap_samples": 1}
+
+
+@pytest.mark.parametrize("absolute", [True, False])
+def test_channels_on_two_clocks_are_read_on_the_union_of_their_times(tmp_path, absolute):
+    ds, _ = read_dataset(folder(tmp_path / "runs", absolute), OPTIONS)
+    frame = ds.campaigns["Scope_2"]
+    assert list(frame.columns) == ["time", "T_Temp_Bett", "T_Temp_Ständer", "E_Tracker_dX",
+                                   "S_Spindel_an"]
+    fast = np.arange(ROWS) * PERIOD
+    slow = np.arange(0, ROWS * PERIOD, EVERY * PERIOD) + OFFSET
+    np.testing.assert_allclose(frame["time"], np.union1d(fast, slow), atol=1e-6)
+    # the tracker on its own rows, at its own times, empty at the temperatures' (never held)
+    measured = frame["E_Tracker_dX"].notna().to_numpy()
+    np.testing.assert_allclose(frame["time"][measured], slow, atol=1e-6)
+    np.testing.assert_allclose(frame["E_Tracker_dX"][measured], truth(slow)[2], atol=1e-3)
+    # a temperature at the tracker's times: interpolated in time over its one-row gap
+    np.testing.assert_allclose(frame["T_Temp_Bett"], truth(frame["time"].to_numpy())[0],
+                               atol=2e-3)
+    # the BOOL's True / False: 1 / 0, a state
+    on = frame.loc[np.isin(frame["time"], fast), "S_Spindel_an"].to_numpy()
+    np.testing.assert_array_equal(on, ((np.arange(ROWS) // 20) % 2 == 0).astype(float))
+    start = ds.manifest["start"].iloc[1]
+    if absolute:       # the PC's date-times: a clock the file does not say (no UTC)
+        assert start == pd.Timestamp(START + dt.timedelta(days=14))
+    else:              # StartTime's FILETIME ticks are UTC (written an hour before the local)
+        assert start == pd.Timestamp(START + dt.timedelta(days=14, hours=-1), tz="UTC")
+
+
+def test_init_proposes_the_bool_as_a_state_and_the_gap_the_clocks_leave(tmp_path, capsys):
+    runs = folder(tmp_path / "runs")
+    assert main(["init", str(runs), f"out={tmp_path / 'init'}"]) == 0
+    said = capsys.readouterr().out
+    assert any(line.split() == ["Spindel", "an", "[-]", "state", "S_Spindel_an"]
+               for line in said.splitlines()), said
+    assert "data.max_gap_samples=1 interpolates such runs linearly" in said
+    written = yaml.safe_load((tmp_path / "init" / "conf" / "data" / "runs.yaml").read_text())
+    assert written["max_gap_samples"] == 1 and written["roles"]["state"] == ["Spindel an"]
+
+
+@pytest.mark.parametrize(("at", "cell", "says"), [
+    (10, "Maybe", "column 'Spindel an', line 12: cell 'Maybe' is no True / False (a BOOL "
+                  "channel)"),
+    (0, "15.02.2027 6h00", "column 'Temp Bett', line 12: cell '15.02.2027 6h00' is no date-time"),
+])
+def test_a_broken_bool_or_date_time_is_refused_naming_file_channel_and_line(tmp_path, capsys,
+                                                                               at, cell, says):
+    runs = folder(tmp_path / "runs")
+    path = runs / "Scope_2.csv"
+    lines = path.read_bytes().decode("cp1252").split("\r\n")
+    cells = lines[11].split(";")
+    cells[at] = cell
+    lines[11] = ";".join(cells)
+    path.write_bytes("\r\n".join(lines).encode("cp1252"))
+    refused(["run", f"data.path={runs}", "data.roles.error=[Tracker*]", "data.encoding=cp1252",
+             "data.test_fraction=0.34", "data.max_gap_samples=1", *FAST,
+             f"out={tmp_path / 'out'}"], capsys, f"file {path}, {says}")
+    assert not (tmp_path / "out").exists()
