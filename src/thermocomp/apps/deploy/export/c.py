@@ -501,15 +501,16 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
        otherwise stay in the lags, the AR feedback and the guard to the campaign's end; so does
        a campaign's first sample without its given ambient (TC_AMBIENT_GIVEN) */
     s->refused = TC_AMBIENT_GIVEN && !TC_AMBIENT_OPTIONAL && s->first && !isfinite(s->ambient_c);
-    for (j = 0; j < TC_N_INPUTS; j++)
-        if (!TC_INPUT_HELD[j] && !measured(u, j)) s->refused = 1;
+    for (j = 0; j < TC_N_INPUTS; j++)   /* (a monitored one: the monitor's, cdrop77) */
+        if (!TC_INPUT_HELD[j] && !measured(u, j) && !(TC_MONITOR && mon_watched(j))) s->refused = 1;
+    if (TC_MONITOR && !s->refused && mon_refuses(s, u)) s->refused = 1;
     if (s->refused) {{
         for (i = 0; i < TC_N_OUTPUTS; i++) c[i] = s->c[i];
         return -1;
     }}
 {C_TIME_RULE}    /* the sensor monitor (TC_MONITOR): the monitored inputs as the model reads them */
-    if (TC_MONITOR) {{
-        for (j = 0; j < TC_N_INPUTS; j++) um[j] = u[j];
+    if (TC_MONITOR) {{   /* (a monitored reading not measured: missing, NAN) */
+        for (j = 0; j < TC_N_INPUTS; j++) um[j] = (measured(u, j) || !mon_watched(j)) ? u[j] : NAN;
         monitor_step(s, um, dt);
         u = um;
     }}
