@@ -12,7 +12,8 @@ split and deployed adaptive as ``replay`` deploys it, exported as C with its mon
 the served model (``stream_rows``).  Prints per record and target the test RMSE (µm, pooled over
 the test campaigns) of the served adaptive model and of the C, the largest |C - served| over
 every row, the rows where the code's monitor flagged a rule it does not hold (from there the two
-may part), the conformance pack's rows kept of all and whether ``check/check.sh`` passes.
+may part), the conformance pack's rows kept of all and whether ``check/check.sh`` passes, and
+how often ``stream`` said ``T_motor2`` excluded for a dropout and re-admitted.
 Before cdrop77 the C refused the first missing row (``stream`` exit 2): printed as the row count
 ``stream`` reached without its monitor's dropout rule (the plain C, ``exported_files(monitor=
 False)``, which refuses as the C did).
@@ -113,6 +114,7 @@ def record(root: Path, seed: int, length: str, model: str) -> str:
     cols = ["time", *ss.inputs]
     files, summary = conformance_pack(deployed, ss, tests)
     errors, served, code, worst, flagged, failed, before = [], [], [], 0.0, [], [], []
+    said = {"dropout": 0, "re-admitted": 0}
     with tempfile.TemporaryDirectory(prefix="cdrop77-") as tmp:
         binary = _built(Path(tmp) / "with", {**exported_files(deployed, "c"), **files})
         plain = _built(Path(tmp) / "plain", exported_files(deployed, "c", monitor=False))
@@ -120,10 +122,12 @@ def record(root: Path, seed: int, length: str, model: str) -> str:
                                capture_output=True, text=True)
         for k, df in tests.items():
             want = corrections(ss, stream_rows(deployed, df, k).y)
-            got, status, said = _streamed(binary, df[cols])
+            got, status, stderr = _streamed(binary, df[cols])
             if status or len(got) != len(df):
-                failed.append(f"{k}: exit {status}, {len(got)}/{len(df)} rows: {said.strip()[-200:]}")
+                failed.append(f"{k}: exit {status}, {len(got)}/{len(df)} rows: {stderr[-200:]}")
                 continue
+            for what in said:        # the monitor's events stream.c says
+                said[what] += sum(f"{SENSOR}: {what}" in line for line in stderr.splitlines())
             # the first row where the code's monitor flags a rule it does not hold
             sim = Simulator(ss)
             sim.reset()
@@ -150,7 +154,8 @@ def record(root: Path, seed: int, length: str, model: str) -> str:
     lines = [f"{model} {length} s{seed}: {'PASS' if ok else 'FAIL'}  max|C - served| {worst:.2e} um"
              f" (before a flag); flags {', '.join(flagged) or 'none'}; pack rows {kept}/{total}, "
              f"check.sh exit {check.returncode}; planted {', '.join(plants)}; the plain C "
-             f"streamed {sum(before)}/{total} rows"]
+             f"streamed {sum(before)}/{total} rows; stream said {SENSOR} excluded for a dropout "
+             f"{said['dropout']}x, re-admitted {said['re-admitted']}x"]
     lines += [f"  FAILED {f}" for f in failed]
     if served:
         for i, t in enumerate(targets):

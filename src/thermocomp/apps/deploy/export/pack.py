@@ -154,7 +154,7 @@ def _parted(ss: StateSpace, frame: pd.DataFrame, want: np.ndarray) -> dict | Non
         if sim.refused or beyond(c, want[i]).any():
             w = sim.watch
             flagged = w is not None and w.flags & NOT_IN_CODE
-            note = REASONS[w.rule].split(": ", 1)[1] if flagged else ""
+            note = REASONS[w.missed].split(": ", 1)[1] if flagged else ""
             if sim.refused and flagged:
                 return {"row": i + 1, "why": f"{ss.inputs[w.idx[w.sensor]]} has no value there, "
                         f"which the code refuses ({note}; "

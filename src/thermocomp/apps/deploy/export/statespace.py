@@ -592,8 +592,9 @@ class Simulator:
         # A0 not given where the code has no input for it: no campaign starts (the stream's refusal)
         self.refused = not measured[~held & ~watched].all() or (
             self.first and ss.ambient_given and not ss.ambient_optional
-            and not np.isfinite(self.ambient_c)) or (
-            self.watch is not None and bool(self.watch.refuses(u, self.first)))
+            and not np.isfinite(self.ambient_c))
+        if self.watch is not None:     # (its flags say why it refuses, or none)
+            self.refused = bool(self.watch.refuses(u, self.first)) or self.refused
         if self.refused:
             return self.c.copy()
         if self.first:

@@ -153,6 +153,7 @@ class CodeMonitor:
         self.max_lev = float(arrays["max_leverage"])
         self.ported = np.asarray(arrays["ported_out"], bool)
         self.predictable = np.asarray(arrays["predictable"], bool)
+        self.reset()
 
     def reset(self) -> None:
         n, w = self.n, self.window
@@ -167,7 +168,7 @@ class CodeMonitor:
         # time), jumps re-referenced since it was last in, out for a dropout (cdrop77)
         self.gap, self.jumps = np.ones(n), np.zeros(n, int)
         self.dropped = np.zeros(n, bool)
-        self.flags, self.sensor, self.rule = 0, -1, 0
+        self.flags, self.sensor, self.rule, self.missed = 0, -1, 0, 0
 
     # the active set's operator, leverages, which sensors are judged and the errors' scale
     def _set(self):
@@ -206,6 +207,8 @@ class CodeMonitor:
         self.flags |= bit
         if not self.rule:            # the sample's first event names its sensor and rule
             self.sensor, self.rule = sensor, rule
+        if bit == NOT_IN_CODE and not self.missed:     # (and its first rule not in the code)
+            self.missed = rule
 
     def _exclude(self, j: int, rule: int) -> bool:
         """``j`` out where the code holds it (one sensor out, others predict it); else flagged."""
@@ -223,7 +226,7 @@ class CodeMonitor:
         missing reading NaN) for a monitored reading it cannot rebuild (0: it takes the sample):
         at a campaign's first sample, with another sensor out or missing (or out of range), of a
         sensor it does not hold out.  The reason is flagged; nothing else changes."""
-        self.flags, self.sensor, self.rule = 0, -1, 0
+        self.flags, self.sensor, self.rule, self.missed = 0, -1, 0, 0
         x = np.asarray(u, float)[self.idx]
         missing = ~np.isfinite(x)
         if not missing.any():
@@ -250,7 +253,7 @@ class CodeMonitor:
         :meth:`refuses` takes) with the monitored ones as the model reads them."""
         if first:
             self.reset()
-        self.flags, self.sensor, self.rule = 0, -1, 0
+        self.flags, self.sensor, self.rule, self.missed = 0, -1, 0, 0
         with np.errstate(invalid="ignore"):
             return self._step(np.asarray(u, float), first, dt, self.a)
 
