@@ -283,9 +283,11 @@ void tc_set_ambient(tc_state *s, double ambient_c);
 /* One sample: raw inputs u (order TC_INPUT_NAMES), its time in s (NAN: one period after the
    previous one) -> corrections c (um, order TC_OUTPUT_NAMES).  Returns the number of inputs
    clamped to the training envelope, or -1 when an input is not measured (not finite, a sensor
-   dropout, or beyond its TC_INPUT_LIMIT, an overload mark; a held one is held): the sample is
-   refused, nothing remembered changes and c holds the last corrections given (0 before a
-   campaign's first sample), as the plain stream refuses such a row. */
+   dropout, or beyond its TC_INPUT_LIMIT, an overload mark; a held one is held; with TC_MONITOR
+   a monitored one is the sensor monitor's, rebuilt from the others, and refused only where it
+   cannot be, mon_rule saying why): the sample is refused, nothing remembered changes and c
+   holds the last corrections given (0 before a campaign's first sample), as the plain stream
+   refuses such a row. */
 int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N_OUTPUTS]);
 
 /* A reference measurement of the error (um, order TC_ERROR_NAMES; NAN: not measured) at the
