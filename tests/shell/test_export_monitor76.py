@@ -61,10 +61,11 @@ def test_a_jump_is_excluded_rebuilt_and_readmitted_by_the_code_as_served(served,
     assert moves == [("excluded", "jump"), ("ok", "re-admitted")]
     ss = state_space(deployed, monitor=True)
     files, summary = conformance_pack(deployed, ss, {"K05": healthy, "K06": faulty})
-    # (and a jump and a freeze planted on K05's first monitored sensor: every pack checks them)
+    # (and a jump, a freeze and (cdrop77) a dropout planted on K05's first monitored sensor:
+    # every pack checks them)
     assert [(e["campaign"], e["rows"], e["cut"]) for e in summary["campaigns"]] == [
         ("K05", 40, None), ("K06", 40, None), ("K05.jump.T_a", 40, None),
-        ("K05.freeze.T_a", 40, None)]
+        ("K05.freeze.T_a", 40, None), ("K05.dropout.T_a", 40, None)]
     assert summary["campaigns"][2]["planted"].startswith("T_a +3.097 degC from row 21")
     _written(tmp_path, {**exported_files(deployed, "c"), **files})
     script = subprocess.run(["sh", "check/check.sh"], cwd=tmp_path, capture_output=True, text=True)
@@ -73,7 +74,7 @@ def test_a_jump_is_excluded_rebuilt_and_readmitted_by_the_code_as_served(served,
     assert "line 22: monitor: T_b: jump: re-referenced and excluded" in said
     assert "line 32: monitor: T_b: re-admitted" in said
     assert "line 22: monitor: T_a: jump: re-referenced and excluded" in said      # the planted one
-    assert "check: 4 campaign(s) within tolerance" in script.stdout
+    assert "check: 5 campaign(s) within tolerance" in script.stdout
     # the monitor is what the code does: the plain arithmetic parts from the served corrections
     served_c = corrections(ss, done.y)
     plain = corrections(ss, stream_rows(deployed.streaming, faulty, "K06").y)

@@ -52,8 +52,10 @@ def built_stream(tmp_path, common: list[str]) -> None:
 
 @needs_cc
 def test_the_exported_stream_reads_the_mark_as_an_empty_cell(tmp_path):
-    """``stream.c`` fed ``-9999.000`` in an input says what it says of an empty cell there (a
-    missing input the plain stream refuses, exit 2); its rows before are the check pack's."""
+    """``stream.c`` fed ``-9999.000`` in an input says and does what it does for an empty cell
+    there: (cdrop77) a monitored sensor's missing reading, which the code's sensor monitor
+    excludes and rebuilds from the others, said on stderr, every row's corrections printed
+    (before cdrop77: refused, exit 2, as the plain stream refuses a missing input)."""
     built_stream(tmp_path, [f"data.path={nines(tmp_path / 'flux.dat')}", *COMMON])
     lines = FLUX.read_text().splitlines()
     column = lines[0].split(",").index('"T_1_5_1"')
@@ -66,7 +68,8 @@ def test_the_exported_stream_reads_the_mark_as_an_empty_cell(tmp_path):
                               capture_output=True)
 
     marked, empty = fed("-9999.000"), fed("")
-    assert marked.returncode == empty.returncode == 2
+    assert marked.returncode == empty.returncode == 0
     assert marked.stderr == empty.stderr
-    assert b"line 5: input T_1_5_1 has no finite value" in marked.stderr
-    assert marked.stdout == empty.stdout and len(marked.stdout.splitlines()) == 4
+    assert b"line 5: monitor: T_1_5_1: dropout: no finite value, excluded" in marked.stderr
+    assert marked.stdout == empty.stdout
+    assert len(marked.stdout.splitlines()) == len(lines)     # (the header, then every row)

@@ -283,9 +283,11 @@ void tc_set_ambient(tc_state *s, double ambient_c);
 /* One sample: raw inputs u (order TC_INPUT_NAMES), its time in s (NAN: one period after the
    previous one) -> corrections c (um, order TC_OUTPUT_NAMES).  Returns the number of inputs
    clamped to the training envelope, or -1 when an input is not measured (not finite, a sensor
-   dropout, or beyond its TC_INPUT_LIMIT, an overload mark; a held one is held): the sample is
-   refused, nothing remembered changes and c holds the last corrections given (0 before a
-   campaign's first sample), as the plain stream refuses such a row. */
+   dropout, or beyond its TC_INPUT_LIMIT, an overload mark; a held one is held; with TC_MONITOR
+   a monitored one is the sensor monitor's, rebuilt from the others, and refused only where it
+   cannot be, mon_rule saying why): the sample is refused, nothing remembered changes and c
+   holds the last corrections given (0 before a campaign's first sample), as the plain stream
+   refuses such a row. */
 int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N_OUTPUTS]);
 
 /* A reference measurement of the error (um, order TC_ERROR_NAMES; NAN: not measured) at the
@@ -501,15 +503,16 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
        otherwise stay in the lags, the AR feedback and the guard to the campaign's end; so does
        a campaign's first sample without its given ambient (TC_AMBIENT_GIVEN) */
     s->refused = TC_AMBIENT_GIVEN && !TC_AMBIENT_OPTIONAL && s->first && !isfinite(s->ambient_c);
-    for (j = 0; j < TC_N_INPUTS; j++)
-        if (!TC_INPUT_HELD[j] && !measured(u, j)) s->refused = 1;
+    for (j = 0; j < TC_N_INPUTS; j++)   /* (a monitored one: the monitor's, cdrop77) */
+        if (!TC_INPUT_HELD[j] && !measured(u, j) && !(TC_MONITOR && mon_watched(j))) s->refused = 1;
+    if (TC_MONITOR && !s->refused && mon_refuses(s, u)) s->refused = 1;
     if (s->refused) {{
         for (i = 0; i < TC_N_OUTPUTS; i++) c[i] = s->c[i];
         return -1;
     }}
 {C_TIME_RULE}    /* the sensor monitor (TC_MONITOR): the monitored inputs as the model reads them */
-    if (TC_MONITOR) {{
-        for (j = 0; j < TC_N_INPUTS; j++) um[j] = u[j];
+    if (TC_MONITOR) {{   /* (a monitored reading not measured: missing, NAN) */
+        for (j = 0; j < TC_N_INPUTS; j++) um[j] = (measured(u, j) || !mon_watched(j)) ? u[j] : NAN;
         monitor_step(s, um, dt);
         u = um;
     }}

@@ -45,6 +45,10 @@ DRIVER = r"""/* stream.c: CSV rows of raw inputs on stdin -> corrections C_<axis
  * data.missing_values (TC_MISSING: `---`; TC_MISSING_VALUE: -9999 however written) or an
  * infinite reading (`INF`, `-INF`, `Infinity`) is a missing value, as an empty cell is, and a cell
  * of an input that is no number nor a mark is refused with its row, as the reader refuses it.
+ * A missing value of an input is refused (exit 2, naming the line and the input), but (cdrop77)
+ * with TC_MONITOR one of a monitored sensor (TC_MONITORED) its monitor rebuilds, said on stderr
+ * (`line 22: monitor: T_b: dropout: no finite value, excluded`); where it cannot (a campaign's
+ * first row, another sensor out or missing, one it does not hold out) the row is refused.
  * UTF-16 text with its byte-order mark, little- or big-endian (catman AP's or Excel's Unicode
  * export) is read as its UTF-8 text (transcoded here; data.encoding does not apply to it), as
  * the model's reader reads it; two bytes that are no UTF-16 character (a lone surrogate, an odd
@@ -724,6 +728,14 @@ static void said_monitor(const tc_state *s, long row) {
     flagged = now;
 }
 
+/* (cdrop77) 1: input i is one the sensor monitor judges, its missing reading tc_step's */
+static int monitored(int i) {
+    int k;
+    for (k = 0; k < TC_N_MONITORED; k++)
+        if (TC_MONITORED[k] == i) return 1;
+    return 0;
+}
+
 static int check_row(long row, const double *c) {
     static char text[MAX_LINE];
     char *cells[MAX_COLS];
@@ -1126,7 +1138,8 @@ int main(int argc, char **argv) {
                         "value not measured)\n", row, TC_INPUT_NAMES[i], u[i], TC_INPUT_LIMIT[i]);
                 return 2;
             }
-            if (!isfinite(u[i]) && !TC_INPUT_HELD[i]) {    /* (a held signal: tc_step holds it) */
+            if (!isfinite(u[i]) && !TC_INPUT_HELD[i] && !monitored(i)) {
+                /* (a held signal: tc_step holds it; a monitored sensor's: its monitor, cdrop77) */
                 fprintf(stderr, "stream: line %ld: input %s has no finite value%s\n", row,
                         TC_INPUT_NAMES[i], is_mark(cells[where[i]]) ? " (a data.missing_values "
                         "mark: a missing value, which the plain stream refuses as replay's does)"
@@ -1176,7 +1189,14 @@ int main(int argc, char **argv) {
             }
             tc_set_ambient(&s, a0);
         }
-        tc_step(&s, u, t, c);
+        if (tc_step(&s, u, t, c) < 0 && TC_MONITOR && s.mon_rule) {
+            /* (cdrop77) a monitored sensor's missing reading its monitor cannot rebuild here */
+            fprintf(stderr, "stream: line %ld: input %s has no finite value, which the code's "
+                    "sensor monitor does not rebuild here (%s): the row is refused (the served "
+                    "model rebuilds it)\n", row, TC_INPUT_NAMES[TC_MONITORED[s.mon_sensor]],
+                    TC_MONITOR_REASONS[s.mon_rule]);
+            return 2;
+        }
         if (TC_MONITOR) said_monitor(&s, row);
         for (i = 0; i < TC_N_OUTPUTS; i++) printf("%s%.17g", i ? "," : "", c[i]);
         printf("\n");

@@ -15,7 +15,8 @@ long export, a workbook) reaches the code as the CSV ``stream.c`` takes.
 * A campaign that continues others (``data.reference=none``) starts with their rows: the stream
   the served model is warmed on, which the code must be fed too.
 * A campaign is cut before its first row with an input the code refuses (a missing value of a
-  declared input: ``stream.c`` stops there), as ``replay``'s plain stream stops.
+  declared input: ``stream.c`` stops there), as ``replay``'s plain stream stops; of a monitored
+  input (the C's monitor, cdrop77) only where the code's monitor cannot rebuild it.
 * Where the served model does what the code does not (its sensor monitor: :func:`~.output.
   not_in_code`; the C holds a slice of it, :mod:`.watch`), the corrections are checked against
   the exported arithmetic in numpy (:class:`~.statespace.Simulator`, the code's monitor in it)
@@ -23,9 +24,9 @@ long export, a workbook) reaches the code as the CSV ``stream.c`` takes.
   the code's does not; the rule the code flagged there named): no build can reproduce that row.
 
 Of an export whose code holds the sensor monitor (the C's, :mod:`.watch`), two copies of the
-first campaign with a fault planted follow (:func:`~.watch.planted`: a jump and a freeze of a
-monitored sensor from its middle row on, ``planted`` in their entries), the served model's
-monitor acting on them: every pack checks the code's monitor, cut where it parts.
+first campaign with a fault planted follow (:func:`~.watch.planted`: a jump, a freeze and a
+dropout of a monitored sensor from its middle row on, ``planted`` in their entries), the served
+model's monitor acting on them: every pack checks the code's monitor, cut where it parts.
 
 Of a model that reads no ambient sensor and picks its laws by a campaign's initial ambient
 (``ambient_given``: the manifest's ``ambient_c``), each campaign's value is in check.json's entry
@@ -112,8 +113,13 @@ def _fed(campaign: pd.DataFrame, lead_in: pd.DataFrame | None) -> pd.DataFrame:
 
 
 def _refused_row(frame: pd.DataFrame, ss: StateSpace) -> tuple[int, str] | None:
-    """``(row, input)`` of the first row with an input the code refuses (not measured, not held)."""
+    """``(row, input)`` of the first row with an input the code refuses (not measured, not held,
+    not monitored: the code's monitor takes a missing reading where it can rebuild it, cdrop77,
+    and :func:`_parted` cuts where it cannot)."""
     held = np.asarray(ss.held or [0] * len(ss.inputs), bool)
+    if ss.monitor:
+        held = held.copy()
+        held[np.asarray(ss.monitor["inputs"], int)] = True
     checked = [c for c, h in zip(ss.inputs, held) if not h]
     bad = ~ss.measured(frame[ss.inputs].to_numpy(float))[:, ~held]
     if not bad.any():
@@ -135,18 +141,26 @@ def beyond(got: np.ndarray, want: np.ndarray) -> np.ndarray:
     return ~(np.abs(got - want) <= TOLERANCE_UM + TOLERANCE_RELATIVE * np.abs(want))
 
 
-def _parted(ss: StateSpace, frame: pd.DataFrame, want: np.ndarray) -> tuple[int, str] | None:
-    """``(row, note)``: the first row where the exported arithmetic (:class:`Simulator`) parts
-    from ``want``, and the rule not in the code its monitor flagged there (``""``: none)."""
+def _parted(ss: StateSpace, frame: pd.DataFrame, want: np.ndarray) -> dict | None:
+    """The cut (``row``, ``why``) before the first row where the exported arithmetic
+    (:class:`Simulator`) parts from ``want`` or refuses the row (a missing reading its monitor
+    cannot rebuild), naming the rule not in the code its monitor flagged there."""
     sim = Simulator(ss)
     sim.reset(manifest_ambient(frame))
     U = frame[ss.inputs].to_numpy(float)
     t = frame["time"].to_numpy(float) if "time" in frame.columns else np.full(len(frame), np.nan)
     for i in range(len(frame)):
-        if beyond(sim.step(U[i], t[i]), want[i]).any():
+        c = sim.step(U[i], t[i])
+        if sim.refused or beyond(c, want[i]).any():
             w = sim.watch
             flagged = w is not None and w.flags & NOT_IN_CODE
-            return i, REASONS[w.rule].split(": ", 1)[1] if flagged else ""
+            note = REASONS[w.missed].split(": ", 1)[1] if flagged else ""
+            if sim.refused and flagged:
+                return {"row": i + 1, "why": f"{ss.inputs[w.idx[w.sensor]]} has no value there, "
+                        f"which the code refuses ({note}; "
+                        "stream.c stops; the served model rebuilds it)"}
+            return {"row": i + 1, "why": "the served model's sensor monitor acted there, which is "
+                    "not in the code" + (f" ({note})" if note else "")}
     return None
 
 
@@ -190,10 +204,8 @@ def conformance_pack(deployed, ss: StateSpace, campaigns: Mapping[str, pd.DataFr
         y = stream_rows(deployed, frame, str(cid), (files or {}).get(cid)).y
         want = corrections(ss, y)
         if monitor and (parted := _parted(ss, frame, want)) is not None:
-            (row, note) = parted
-            cut = {"row": row + 1, "why": "the served model's sensor monitor acted there, "
-                   "which is not in the code" + (f" ({note})" if note else "")}
-            frame, want = frame.iloc[:row], want[:row]
+            cut = parted
+            frame, want = frame.iloc[:cut["row"] - 1], want[:cut["row"] - 1]
         entry.update(rows=len(frame), cut=cut)
         listed.append(entry)
         if len(frame):

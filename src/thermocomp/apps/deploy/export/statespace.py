@@ -585,20 +585,27 @@ class Simulator:
         ss = self.ss
         held = np.asarray(ss.held or [0] * len(u), bool)
         measured = ss.measured(u)
+        watched = np.zeros(len(u), bool)
+        if self.watch is not None:       # a monitored reading missing: the monitor's (cdrop77)
+            watched[self.watch.idx] = True
+            u = np.where(watched & ~measured, np.nan, u)
         # A0 not given where the code has no input for it: no campaign starts (the stream's refusal)
-        self.refused = not measured[~held].all() or (
+        self.refused = not measured[~held & ~watched].all() or (
             self.first and ss.ambient_given and not ss.ambient_optional
             and not np.isfinite(self.ambient_c))
+        if self.watch is not None:     # (its flags say why it refuses, or none)
+            self.refused = bool(self.watch.refuses(u, self.first)) or self.refused
         if self.refused:
             return self.c.copy()
         if self.first:
             self.clock.reset()
             self.seen, self.last = np.zeros(len(u), bool), np.zeros(len(u))
-        self.last = np.where(measured, u, self.last)
-        u = np.where(measured, u, np.where(self.seen, self.last, 0.0))     # a held signal
         now, dt, _ = self.clock.step(float(time))
         if self.watch is not None:      # the monitored inputs as the model reads them
             u = self.watch.step(u, self.first, dt)
+            measured = ss.measured(u)
+        self.last = np.where(measured, u, self.last)
+        u = np.where(measured, u, np.where(self.seen, self.last, 0.0))     # a held signal
         if self.first:
             self.buf = np.tile(u, (len(self.fir), 1))
         else:

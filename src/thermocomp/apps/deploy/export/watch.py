@@ -12,18 +12,23 @@ The served adaptive compensator judges every ``T_`` input before the model reads
   time spans): re-referenced by its step less its change as the others predict it, excluded;
 * a **freeze** (its reading constant for ``seen_run`` samples while the others' prediction of
   it moved by its warning band; one no other predicts: longer than ``blind_run``): excluded;
+* a **dropout** (cdrop77: a missing reading, NaN, an infinity or a value beyond its input's
+  limit, after a campaign's first sample): excluded at that sample, its last reading kept as the
+  one its return is stepped from (a jump limit times the samples it spans);
 * while a sensor is out the model reads its POD reconstruction from the others, and it is
   re-admitted after a whole window calm whose leave-one-out errors stay within half its
-  warning band (``READMIT``).
+  warning band (``READMIT``; one out for a dropout alone, within its whole band, as served).
 
 What else the served monitor does it flags, ``NOT_IN_CODE`` with the rule (:data:`REASONS`),
 and goes on by its own rules: an out-of-range reading (its sample passes the monitor by, the
 state as it was, so that the reading's return is no jump), several sensors jumping at once (a
 common step), a jump at the reference's next sample, a stepped self-prediction error, a drift
 beyond the band (exclusion by judgement, a new thermal state), a second sensor out, and a
-sensor no other predicts out (the model fitted without it).  A missing reading is refused by
-the code as before.  From such a row on the code may part from the served model; the
-conformance pack cuts there (:func:`~.pack.conformance_pack`).
+sensor no other predicts out (the model fitted without it).  A missing reading the code cannot
+rebuild (at a campaign's first sample, with another sensor out or missing, of a sensor it does
+not hold out) is refused as before (:meth:`CodeMonitor.refuses`: the sample is not read).  From
+such a row on the code may part from the served model; the conformance pack cuts there
+(:func:`~.pack.conformance_pack`).
 """
 
 from __future__ import annotations
@@ -39,17 +44,25 @@ from ..surveillance.states import READMIT
 EXCLUDED, READMITTED, OUT, BAND, NOT_IN_CODE = 1, 2, 4, 8, 16
 # the reason of a flagged event (tc_state.mon_rule): what the code did, then what it does not do
 REASONS = ("", "jump: re-referenced and excluded", "freeze: excluded",
-           "re-admitted: within half its warning band for a window",
+           "re-admitted: within half its warning band for a window (its whole band after a "
+           "dropout)",
            "not in the code: a reading beyond its training range",
            "not in the code: several sensors jumping in one sample",
            "not in the code: a jump at the sample after the reference",
            "not in the code: a self-prediction error stepped past the alarm band",
            "not in the code: a drift beyond the band (exclusion by judgement, new thermal state)",
            "not in the code: a second sensor out",
-           "not in the code: a sensor no other predicts out (or too few left to rebuild it)")
+           "not in the code: a sensor no other predicts out (or too few left to rebuild it)",
+           "dropout: no finite value, excluded",
+           "not in the code: a missing reading at a campaign's first sample",
+           "not in the code: a missing reading with another sensor out or missing",
+           "not in the code: a missing reading of a sensor the code does not hold out",
+           "not in the code: a missing reading of a sensor out for a freeze (its re-admission band)")
 RULES = ("", "JUMP", "FREEZE", "BACK", "RANGE", "COMMON", "GLITCH", "STEPPED", "DRIFT", "SECOND",
-         "BLIND")      # their names in the C (TC_MON_JUMP ...), one per reason
-JUMP, FREEZE, BACK, RANGE, COMMON, GLITCH, STEPPED, DRIFT, SECOND, BLIND = range(1, len(RULES))
+         "BLIND", "DROPOUT", "MISSING_FIRST", "MISSING_SECOND", "MISSING_BLIND",
+         "MISSING_FROZEN")      # their names in the C (TC_MON_JUMP ...), one per reason
+(JUMP, FREEZE, BACK, RANGE, COMMON, GLITCH, STEPPED, DRIFT, SECOND, BLIND, DROPOUT, MISSING_FIRST,
+ MISSING_SECOND, MISSING_BLIND, MISSING_FROZEN) = range(1, len(RULES))
 
 
 @dataclass
@@ -95,8 +108,9 @@ def monitor_fields(deployed, inputs: list) -> dict:
 def planted(ss, campaigns) -> dict[str, tuple]:
     """``{id: (campaign, what, the campaign it copies)}``: the first campaign of 8 rows or more
     with a fault planted on the first monitored sensor whose exclusion the code holds, from its
-    middle row on: a jump of twice its step limit (where the reading stays within its range)
-    and a freeze (its reading held), so that the conformance pack checks the code's monitor on
+    middle row on: a jump of twice its step limit (where the reading stays within its range),
+    a freeze (its reading held) and a dropout (no reading for a quarter of the rows after the
+    middle, then read again: cdrop77), so that the conformance pack checks the code's monitor on
     every record (its expected corrections the served model's, its monitor acting; cut where it
     does what the code's does not).  None without a monitor in the code."""
     m = ss.monitor
@@ -118,6 +132,12 @@ def planted(ss, campaigns) -> dict[str, tuple]:
     df.loc[df.index[half:], sensor] = frame[sensor].iloc[half]
     out[f"{first}.freeze.{sensor}"] = (df, f"{sensor} held at its reading of row {half + 1} "
                                            "from there (a freeze)", first)
+    # (cdrop77) a broken wire: no reading for a quarter of the rows after the middle, then back
+    lost = max(1, (len(frame) - half) // 4)
+    df = frame.copy()
+    df.loc[df.index[half:half + lost], sensor] = np.nan
+    out[f"{first}.dropout.{sensor}"] = (df, f"{sensor} missing (an empty cell) in rows {half + 1}-"
+                                            f"{half + lost} (a dropout), read again after", first)
     return out
 
 
@@ -133,6 +153,7 @@ class CodeMonitor:
         self.max_lev = float(arrays["max_leverage"])
         self.ported = np.asarray(arrays["ported_out"], bool)
         self.predictable = np.asarray(arrays["predictable"], bool)
+        self.reset()
 
     def reset(self) -> None:
         n, w = self.n, self.window
@@ -143,7 +164,11 @@ class CodeMonitor:
         self.prev, self.prev_e, self.prev_other = (np.full(n, np.nan) for _ in range(3))
         self.run, self.calm = np.zeros(n, int), np.zeros(n, int)
         self.run_pred = np.full(n, np.nan)
-        self.flags, self.sensor, self.rule = 0, -1, 0
+        # samples the next step spans (1 + its missing ones since its last reading, or a gap in
+        # time), jumps re-referenced since it was last in, out for a dropout (cdrop77)
+        self.gap, self.jumps = np.ones(n), np.zeros(n, int)
+        self.dropped = np.zeros(n, bool)
+        self.flags, self.sensor, self.rule, self.missed = 0, -1, 0, 0
 
     # the active set's operator, leverages, which sensors are judged and the errors' scale
     def _set(self):
@@ -160,7 +185,7 @@ class CodeMonitor:
 
     def _errors(self, d):
         M, _, _, _, scale = self._set()
-        pred = M @ d
+        pred = M @ np.where(np.isfinite(d), d, 0.0)      # (a missing reading is out: column 0)
         return pred, (d - pred) * scale
 
     def _recompute(self) -> None:
@@ -182,6 +207,8 @@ class CodeMonitor:
         self.flags |= bit
         if not self.rule:            # the sample's first event names its sensor and rule
             self.sensor, self.rule = sensor, rule
+        if bit == NOT_IN_CODE and not self.missed:     # (and its first rule not in the code)
+            self.missed = rule
 
     def _exclude(self, j: int, rule: int) -> bool:
         """``j`` out where the code holds it (one sensor out, others predict it); else flagged."""
@@ -194,16 +221,45 @@ class CodeMonitor:
         self._flag(EXCLUDED, j, rule)
         return True
 
+    def refuses(self, u: np.ndarray, first: bool) -> int:
+        """The rule by which the code refuses the sample ``u`` (inputs in the code's order, a
+        missing reading NaN) for a monitored reading it cannot rebuild (0: it takes the sample):
+        at a campaign's first sample, with another sensor out or missing (or out of range), of a
+        sensor it does not hold out.  The reason is flagged; nothing else changes."""
+        self.flags, self.sensor, self.rule, self.missed = 0, -1, 0, 0
+        x = np.asarray(u, float)[self.idx]
+        missing = ~np.isfinite(x)
+        if not missing.any():
+            return 0
+        new = missing.copy()
+        if not first and self.out >= 0:
+            new[self.out] = False            # the sensor out, missing again: rebuilt as it was
+        j = int(np.argmax(new if new.any() else missing))
+        with np.errstate(invalid="ignore"):
+            rng = (x < self.a["lo_lim"]) | (x > self.a["hi_lim"])
+        if first:
+            rule = MISSING_FIRST
+        elif new.sum() > 1 or (new.any() and (self.out >= 0 or rng.any())):
+            rule = MISSING_SECOND
+        elif new.any() and not self.ported[j]:
+            rule = MISSING_BLIND
+        else:
+            return 0
+        self._flag(NOT_IN_CODE, j, rule)
+        return rule
+
     def step(self, u: np.ndarray, first: bool, dt: float) -> np.ndarray:
-        """The inputs ``u`` (order of the code's) with the monitored ones as the model reads them."""
+        """The inputs ``u`` (order of the code's; a missing monitored reading NaN, one that
+        :meth:`refuses` takes) with the monitored ones as the model reads them."""
         if first:
             self.reset()
-        self.flags, self.sensor, self.rule = 0, -1, 0
+        self.flags, self.sensor, self.rule, self.missed = 0, -1, 0, 0
         with np.errstate(invalid="ignore"):
             return self._step(np.asarray(u, float), first, dt, self.a)
 
     def _step(self, u, first, dt, a):
         x = u[self.idx]
+        missing = ~np.isfinite(x)
         rng = (x < a["lo_lim"]) | (x > a["hi_lim"])
         if rng.any():       # not in the code: the sample passes the monitor by, its state as it was
             self._flag(NOT_IN_CODE, int(np.argmax(rng)), RANGE)
@@ -215,11 +271,23 @@ class CodeMonitor:
         pos = self.pos
         self.hist[pos] = d
         self.pos, self.count = (pos + 1) % self.window, self.count + 1
-        gap = max(1.0, dt / a["period"]) if (not first and dt > a["gap_periods"] * a["period"]) else 1.0
+        # a gap in time: each step judged as that many one-sample steps, and a sensor's own
+        # missing samples since its last reading too (the served monitor's gap per sensor)
+        gap = np.maximum(self.gap, max(1.0, dt / a["period"])) if (
+            not first and dt > a["gap_periods"] * a["period"]) else self.gap
         step = d - self.prev
         big = (np.abs(step) > a["jump_lim"] * gap) & ~rng
         same = step == 0
         jumped = -1
+        instant = missing.copy()
+        if missing.any():   # (refuses() let one through: a new one, or the sensor out again)
+            j = int(np.argmax(missing))
+            if j != self.out:
+                self._exclude(j, DROPOUT)
+            elif not self.dropped[j] and not self.jumps[j]:
+                # out for a freeze: the served monitor marks it dropped or not by the path it
+                # takes (its band on re-admission), which the code does not follow
+                self._flag(NOT_IN_CODE, j, MISSING_FROZEN)
         if big.sum() > 1:
             self._flag(NOT_IN_CODE, int(np.argmax(big)), COMMON)
         elif big.any() and self.count == 2:
@@ -237,13 +305,15 @@ class CodeMonitor:
                 self.ref[j] += offset
                 d[j] -= offset
                 jumped = j
+                self.jumps[j] += 1
                 if active[j]:
                     self._exclude(j, JUMP)
             self.hist[pos] = d
         self.run = np.where(same, self.run + 1, 0)
         self.calm += 1
         if jumped >= 0:
-            self.calm[jumped] = 0
+            instant[jumped] = True
+        self.calm[instant] = 0
         pred, e = self._errors(d)
         self.err[pos] = e
         # freeze: constant while the field (its prediction from the others) moves
@@ -254,9 +324,6 @@ class CodeMonitor:
         moved = np.abs(other - self.run_pred)
         frozen = same & ((observable & (moved >= a["warning"]) & (self.run >= a["seen_run"]))
                          | (~observable & (self.run > a["blind_run"])))
-        instant = np.zeros(self.n, bool)
-        if jumped >= 0:
-            instant[jumped] = True
         for j in np.flatnonzero(frozen & ~instant):
             instant[j] = True
             if active[j]:
@@ -274,14 +341,18 @@ class CodeMonitor:
             self._flag(NOT_IN_CODE, int(np.argmax(judged & (level >= field))), DRIFT)
         j = self.out
         if j >= 0 and self.count >= self.window and self.run[j] == 0 and not instant[j] \
-                and self.calm[j] >= self.window and self._passes(j):
+                and not missing[j] and self.calm[j] >= self.window and self._passes(j):
             self.out = -1
+            self.jumps[j] = 0
             self._recompute()
             self._flag(READMITTED, j, BACK)
         pred, e = self._errors(d)
         _, active, _, judged, _ = self._set()
         self.prev_other = np.where(judged, d - e, np.nan)
-        self.prev, self.prev_e = d, e
+        self.prev = np.where(missing, self.prev, d)     # a return is stepped from the last reading
+        self.gap = np.where(missing, gap + 1, 1.0)
+        self.prev_e = e
+        self.dropped[instant] = missing[instant]       # (the last detector to fire on it)
         return self._rebuilt(u, d, pred)
 
     def _rebuilt(self, u, d, pred=None):
@@ -297,7 +368,9 @@ class CodeMonitor:
 
     def _passes(self, j: int) -> bool:
         """Re-admission of ``j``: its leave-one-out error with every sensor in, over the whole
-        window, within ``READMIT`` of its warning band (one no other predicts: never here)."""
+        window, within ``READMIT`` of its warning band (one no other predicts: never here); one
+        out for a dropout alone (no jump since), within its whole band, as served: it had passed
+        its judgement until its reading went missing."""
         M, lev = self.M[0], self.lev[0]
         if self.n < self.a["min_active"]:
             return False
@@ -305,4 +378,5 @@ class CodeMonitor:
             return not self.predictable[j]
         H = np.where(np.isfinite(self.hist), self.hist, 0.0)
         worst = np.abs((H[:, j] - H @ M[j]) / (1 - lev[j])).max()
-        return bool(worst < self.a["readmit"] * self.a["warning"][j])
+        band = 1.0 if self.dropped[j] and not self.jumps[j] else self.a["readmit"]
+        return bool(worst < band * self.a["warning"][j])

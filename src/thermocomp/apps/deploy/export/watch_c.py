@@ -36,6 +36,10 @@ STATE = """    /* the sensor monitor (TC_MONITOR): referenced readings d = u - m
     double mon_ref[NM], mon_base[NM], mon_prev[NM], mon_prev_e[NM], mon_prev_other[NM];
     double mon_hist[TC_MON_WINDOW][NM], mon_err[TC_MON_WINDOW][NM], mon_run_pred[NM];
     int mon_run[NM], mon_calm[NM], mon_pos, mon_count;
+    /* (cdrop77) samples the next step spans (1 + its missing ones, or a gap in time), jumps
+       re-referenced since it was last in, out for a dropout (its re-admission band) */
+    double mon_gap[NM];
+    int mon_jumps[NM], mon_dropped[NM];
     int mon_out;                                /* the sensor out (-1: none) */
     int mon_flags, mon_sensor, mon_rule;        /* the last sample's (TC_MON_*) */
 """
@@ -134,9 +138,10 @@ static void mon_exclude(tc_state *s, int k, int rule) {
 }
 
 /* re-admission: sensor k's leave-one-out error with every sensor in, over the whole window,
-   within MON_READMIT of its warning band */
+   within MON_READMIT of its warning band (one out for a dropout alone: its whole band) */
 static int mon_passes(const tc_state *s, int k) {
     double worst = 0.0, lev = MON_LEV[0][k];
+    double band = (s->mon_dropped[k] && !s->mon_jumps[k]) ? 1.0 : MON_READMIT;
     int w, m;
     if (NM < MON_MIN_ACTIVE) return 0;
     if (lev >= MON_MAX_LEV) return !MON_PREDICTABLE[k];
@@ -147,7 +152,40 @@ static int mon_passes(const tc_state *s, int k) {
         v = fabs(((isfinite(s->mon_hist[w][k]) ? s->mon_hist[w][k] : 0.0) - p) / (1.0 - lev));
         if (v > worst) worst = v;
     }
-    return worst < MON_READMIT * MON_WARNING[k];
+    return worst < band * MON_WARNING[k];
+}
+
+/* 1: input j is a monitored one (its missing reading the monitor's) */
+static int mon_watched(int j) {
+    int k;
+    for (k = 0; k < TC_N_MONITORED; k++)
+        if (TC_MONITORED[k] == j) return 1;
+    return 0;
+}
+
+/* (cdrop77) the rule by which the sample u is refused for a missing monitored reading the code
+   cannot rebuild (0: taken): at a campaign's first sample, with another sensor out or missing
+   (or out of range), of a sensor the code does not hold out; flagged in mon_flags / mon_rule */
+static int mon_refuses(tc_state *s, const double u[]) {
+    int k, j = -1, nnew = 0, miss = -1, rng = 0, rule = 0;
+    s->mon_flags = s->mon_rule = 0;
+    s->mon_sensor = -1;
+    for (k = 0; k < TC_N_MONITORED; k++) {
+        double x = u[TC_MONITORED[k]];
+        if (!measured(u, TC_MONITORED[k])) {
+            if (miss < 0) miss = k;
+            if (s->first || k != s->mon_out) {
+                if (j < 0) j = k;
+                nnew++;
+            }
+        } else if (x < MON_LO_LIM[k] || x > MON_HI_LIM[k]) rng = 1;
+    }
+    if (miss < 0) return 0;
+    if (s->first) rule = TC_MON_MISSING_FIRST;
+    else if (nnew > 1 || (nnew && (s->mon_out >= 0 || rng))) rule = TC_MON_MISSING_SECOND;
+    else if (nnew && !MON_PORTED[j]) rule = TC_MON_MISSING_BLIND;
+    if (rule) mon_flag(s, TC_MON_NOT_IN_CODE, j >= 0 ? j : miss, rule);
+    return rule;
 }
 
 /* the monitored inputs of u as the model reads them: the reading, the sensor out rebuilt */
@@ -160,24 +198,27 @@ static void mon_rebuilt(tc_state *s, double u[], const double d[], const double 
 /* one sample of the monitored inputs of u, replaced by what the model reads (the reading, or
    its POD reconstruction while it is out), as the served monitor (watch.py's slice) */
 static void monitor_step(tc_state *s, double u[], double dt) {
-    double x[NM], d[NM], step[NM], pred[NM], e[NM], other[NM], gap = 1.0;
-    int a[NM], o[NM], jd[NM], big[NM], same[NM], instant[NM], rng[NM];
+    double x[NM], d[NM], step[NM], pred[NM], e[NM], other[NM], gap[NM], span = 1.0;
+    int a[NM], o[NM], jd[NM], big[NM], same[NM], instant[NM], rng[NM], missing[NM];
     double scale[NM];
-    int k, pos, nbig = 0, jumped = -1, field = 0, nactive = 0;
+    int k, pos, nbig = 0, jumped = -1, field = 0, nactive = 0, lost = -1;
     if (s->first) {
         s->mon_out = -1;
         s->mon_pos = s->mon_count = 0;
         for (k = 0; k < NM; k++) {
             int w;
             s->mon_prev[k] = s->mon_prev_e[k] = s->mon_prev_other[k] = s->mon_run_pred[k] = NAN;
-            s->mon_run[k] = s->mon_calm[k] = 0;
+            s->mon_run[k] = s->mon_calm[k] = s->mon_jumps[k] = s->mon_dropped[k] = 0;
+            s->mon_gap[k] = 1.0;
             for (w = 0; w < MW; w++) s->mon_hist[w][k] = s->mon_err[w][k] = NAN;
         }
     }
     s->mon_flags = s->mon_rule = 0;
     s->mon_sensor = -1;
     for (k = 0; k < NM; k++) {
-        x[k] = u[TC_MONITORED[k]];
+        x[k] = u[TC_MONITORED[k]];   /* (NAN: missing, one mon_refuses let through) */
+        missing[k] = !isfinite(x[k]);
+        if (missing[k] && lost < 0) lost = k;
         rng[k] = x[k] < MON_LO_LIM[k] || x[k] > MON_HI_LIM[k];
         if (rng[k]) mon_flag(s, TC_MON_NOT_IN_CODE, k, TC_MON_RANGE);
         if (s->first) s->mon_ref[k] = s->mon_base[k] = x[k];
@@ -193,14 +234,24 @@ static void monitor_step(tc_state *s, double u[], double dt) {
     for (k = 0; k < NM; k++) s->mon_hist[pos][k] = d[k];
     s->mon_pos = (pos + 1) % MW;
     s->mon_count++;
-    /* a gap in time: the step judged as that many one-sample steps */
-    if (!s->first && dt > MON_GAP_PERIODS * MON_PERIOD) gap = dt / MON_PERIOD > 1.0 ? dt / MON_PERIOD : 1.0;
+    /* a gap in time: the step judged as that many one-sample steps, and a sensor's own
+       missing samples since its last reading too */
+    if (!s->first && dt > MON_GAP_PERIODS * MON_PERIOD) span = dt / MON_PERIOD > 1.0 ? dt / MON_PERIOD : 1.0;
     for (k = 0; k < NM; k++) {
+        gap[k] = (span > s->mon_gap[k]) ? span : s->mon_gap[k];
         step[k] = d[k] - s->mon_prev[k];
-        big[k] = fabs(step[k]) > MON_JUMP_LIM[k] * gap && !rng[k];
+        big[k] = fabs(step[k]) > MON_JUMP_LIM[k] * gap[k] && !rng[k];
         same[k] = step[k] == 0.0;
-        instant[k] = 0;
+        instant[k] = missing[k];
         nbig += big[k];
+    }
+    /* (cdrop77) a missing reading: excluded, rebuilt from the others (the sensor out, missing
+       again: rebuilt as it was; out for a freeze, flagged: its re-admission band is the served
+       monitor's path, not held here) */
+    if (lost >= 0) {
+        if (lost != s->mon_out) mon_exclude(s, lost, TC_MON_DROPOUT);
+        else if (!s->mon_dropped[lost] && !s->mon_jumps[lost])
+            mon_flag(s, TC_MON_NOT_IN_CODE, lost, TC_MON_MISSING_FROZEN);
     }
     for (k = 0; k < NM && nbig; k++) {
         if (!big[k]) continue;
@@ -217,17 +268,18 @@ static void monitor_step(tc_state *s, double u[], double dt) {
                 s->mon_ref[k] += offset;
                 d[k] -= offset;
                 jumped = k;
+                s->mon_jumps[k]++;
                 if (a[k]) mon_exclude(s, k, TC_MON_JUMP);
             }
             s->mon_hist[pos][k] = d[k];
         }
         break;
     }
+    if (jumped >= 0) instant[jumped] = 1;
     for (k = 0; k < NM; k++) {
         s->mon_run[k] = same[k] ? s->mon_run[k] + 1 : 0;
-        s->mon_calm[k]++;
+        s->mon_calm[k] = instant[k] ? 0 : s->mon_calm[k] + 1;
     }
-    if (jumped >= 0) s->mon_calm[jumped] = 0, instant[jumped] = 1;
     mon_errors(s, d, pred, e);
     for (k = 0; k < NM; k++) s->mon_err[pos][k] = e[k];
     /* freeze: constant while the field (its prediction from the others) moved by the band */
@@ -258,9 +310,10 @@ static void monitor_step(tc_state *s, double u[], double dt) {
     }
     if (field && nactive > MON_MIN_ACTIVE) mon_flag(s, TC_MON_NOT_IN_CODE, field - 1, TC_MON_DRIFT);
     k = s->mon_out;
-    if (k >= 0 && s->mon_count >= MW && s->mon_run[k] == 0 && !instant[k]
+    if (k >= 0 && s->mon_count >= MW && s->mon_run[k] == 0 && !instant[k] && !missing[k]
         && s->mon_calm[k] >= MW && mon_passes(s, k)) {
         s->mon_out = -1;
+        s->mon_jumps[k] = 0;
         mon_recompute(s);
         mon_flag(s, TC_MON_READMITTED, k, TC_MON_BACK);
     }
@@ -268,8 +321,10 @@ static void monitor_step(tc_state *s, double u[], double dt) {
     mon_set(s, a, o, jd, scale);
     for (k = 0; k < NM; k++) {
         s->mon_prev_other[k] = jd[k] ? d[k] - e[k] : NAN;
-        s->mon_prev[k] = d[k];
+        if (!missing[k]) s->mon_prev[k] = d[k];   /* a return is stepped from the last reading */
+        s->mon_gap[k] = missing[k] ? gap[k] + 1.0 : 1.0;
         s->mon_prev_e[k] = e[k];
+        if (instant[k]) s->mon_dropped[k] = missing[k];   /* the last detector to fire on it */
     }
     mon_rebuilt(s, u, d, pred);
 }
