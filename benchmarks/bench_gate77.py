@@ -116,7 +116,7 @@ def _setting_cfg(base: list[str], setting: str):
     import thermocomp.apps.deploy.streaming as streaming
     from thermocomp.shell.config.overrides import compose
 
-    streaming.PATTERN_ENERGY = float(setting[1:]) if setting.startswith("e") else 0.999
+    streaming.PATTERN_ENERGY = float(setting[1:]) if setting[1:2].isdigit() else 0.999
     extra = {"pattern_off": ["promote.envelope.pattern=false"],
              "envelope_off": ["promote.envelope.policy=off"]}.get(setting, [])
     return compose([*base, *extra])
