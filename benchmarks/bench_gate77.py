@@ -4,6 +4,7 @@ Usage (from the repository root, ``PYTHONPATH=<tree>/src``: the code measured is
 
     python benchmarks/bench_gate77.py price ROOT RECORD FAMILY   # one record -> ROOT/price.jsonl
     python benchmarks/bench_gate77.py faults ROOT RECORD FAMILY  # sensor faults in its test part
+    python benchmarks/bench_gate77.py candidate ROOT RECORD FAMILY  # a rank-robust tol, explored
     python benchmarks/bench_gate77.py table ROOT                 # the rows written, summarised
 
 RECORD is ``tcm74:SEED`` (bench_stranger74's ``write ROOT SEED 24 60``: 22 sensors, one record
@@ -227,6 +228,56 @@ def faults(root: str, name: str, family: str) -> None:
                       + f"; clamped {row['clamped']}", flush=True)
 
 
+def _heldout_of(shipped):
+    """Candidate ``heldout``: ``shipped`` (the tree's ``_pattern``) with ``tol`` the largest
+    residual of a training row off the subspace (same rank) fitted on the other four of five
+    contiguous blocks of the training rows: a row's own fit no longer sets the edge it is
+    judged by."""
+    return lambda X, scale: _heldout_pattern(shipped, X, scale)
+
+
+def _heldout_pattern(shipped, X: np.ndarray, scale: np.ndarray, blocks: int = 5) -> dict:
+    shape = shipped(X, scale)
+    if not shape:
+        return shape
+    rank = shape["basis"].shape[1]
+    worst = 0.0
+    for rows in np.array_split(np.arange(len(X)), blocks):
+        rest = np.setdiff1d(np.arange(len(X)), rows)
+        mean = X[rest].mean(axis=0)
+        _, _, Vt = np.linalg.svd((X[rest] - mean) / scale, full_matrices=False)
+        B = Vt[:rank].T
+        Z = (X[rows] - mean) / scale
+        worst = max(worst, float(np.linalg.norm(Z - Z @ B @ B.T, axis=1).max()))
+    return {**shape, "tol": max(shape["tol"], worst)}
+
+
+def candidate(root: str, name: str, family: str) -> None:
+    """Candidate ``heldout`` (``_heldout_pattern``) against the shipped gate at every energy
+    -> ROOT/candidate.jsonl."""
+    import thermocomp.apps.deploy.streaming as streaming
+    from thermocomp.shell.stages.diagnose import _deployed_of
+
+    folder = made_folder(root)
+    base, cfg, ds, comp, train, test_ids = _fitted(folder, name, family)
+    row = {"record": name, "family": family, "targets": {}, "clamped": {}}
+    shipped = streaming._pattern
+    for design, pattern in (("shipped", shipped), ("heldout", _heldout_of(shipped))):
+        streaming._pattern = pattern
+        for e in ENERGIES:
+            key = f"{design}@{e}"
+            scores = _deployed_of(_setting_cfg(base, f"e{e}"), ds)(comp, train, test_ids)
+            for t, s in scores.items():
+                row["targets"].setdefault(t, {})[key] = s["test"]["rmse"]
+            row["clamped"][key] = next(iter(scores.values()))["clamped_samples"]
+    streaming._pattern = shipped
+    with open(folder / "candidate.jsonl", "a") as out:
+        print(json.dumps(row), file=out)
+    print(f"  {name} {family}: clamped {row['clamped']}")
+    for t, v in row["targets"].items():
+        print(f"    {t}: " + ", ".join(f"{k} {x:.4g}" for k, x in v.items()))
+
+
 def table(root: str) -> None:
     """The rows of ROOT/price.jsonl (and faults.jsonl) summarised."""
     folder = Path(root)
@@ -260,7 +311,8 @@ def table(root: str) -> None:
 
 
 def main(argv: list[str]) -> int:
-    return run_commands(__doc__, {"price": price, "faults": faults, "table": table}, argv, cpu=sys.stderr)
+    return run_commands(__doc__, {"price": price, "faults": faults, "candidate": candidate, "table": table},
+                        argv, cpu=sys.stderr)
 
 
 if __name__ == "__main__":
