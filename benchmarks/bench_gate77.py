@@ -63,7 +63,7 @@ SHIPPED = "e0.999"
 SETTINGS = (*(f"e{e}" for e in ENERGIES), "pattern_off", "envelope_off")
 SUMMER = {f"K{k:02d}": "test" for k in range(10, 17)}          # bench_envelope_policy's split
 OTHERS = {k: "train" for k in ("K03", "K06", "K09", "K18", "K21", "K24")}
-YEAR_SPLIT = "data.split_overrides={" + ",".join(f"{k}:{v}" for k, v in {**OTHERS, **SUMMER}.items()) + "}"
+YEAR_SPLIT = "++data.split_overrides={" + ",".join(f"{k}:{v}" for k, v in {**OTHERS, **SUMMER}.items()) + "}"
 FL = ["data=fl_thermal"]
 
 
@@ -105,7 +105,7 @@ def record(folder: Path, name: str) -> list[str]:
 
             from thermocomp.apps.sim.scenario import write_scenario
             write_scenario(Gantry76(seed=int(seed)), out)
-        return [f"data.path={out}", "data.split_overrides={run5:test,run6:test}"]
+        return [f"data.path={out}", "++data.split_overrides={run5:test,run6:test}"]
     if name == "fl90":
         return list(FL)
     if name == "fl602020":
