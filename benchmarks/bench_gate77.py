@@ -292,6 +292,9 @@ def table(root: str) -> None:
         better = sum(v[s] < 0.98 * v["envelope_off"] for *_, v, _ in cells)
         gm = float(np.exp(np.mean([np.log(v[s] / v["envelope_off"]) for *_, v, _ in cells])))
         print(f"  {s:13} {worse_off:3} | {worse_run:3} | {better:3} | {gm:.4f}")
+    spread = [(rec, fam, t) for rec, fam, t, v, _ in cells
+              if max(v[f"e{e}"] for e in ENERGIES) > 1.02 * min(v[f"e{e}"] for e in ENERGIES)]
+    print(f"targets whose RMSE moves > 2 % over the four energies: {len(spread)} of {len(cells)}: {spread}")
     print("per record (shipped / pattern off / envelope off / as run; clamped rows shipped, pattern off):")
     for rec, fam, t, v, r in cells:
         g = r["gate"]
