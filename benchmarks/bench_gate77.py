@@ -39,13 +39,14 @@ The records and seeds (written before any measurement, 2026-12-03; fresh 7761-77
 
 * step 1 (this measurement): ``tcm74:7761`` .. ``tcm74:7764``, ``cms:7765``, ``cms:7766``,
   ``mill:7767``, ``year:7768``, ``gantry:7769``, ``fl90``, ``fl602020``; families ``mlr`` (every
-  record) and ``lagbank`` where its CPU fits (tcm74, cms, fl90);
+  record) and ``lagbank`` where its CPU fits (tcm74, cms, fl90; tcm74 7763, 7764 and cms 7766
+  added once the first rows were in, the same seeds);
 * kept for a rule's scoring (step 2), not run in step 1: 7770-7775.
 
 Measured 2026-12-03 (2 shared cores; ``price`` 7-43 s CPU a row, ``table`` over ROOT): the
 figures are in docs/measured/to-the-machine.md, "The pattern gate's price across records".  In
-short: the shipped gate > 2 % worse than the envelope off on 18 of 60 targets, > 2 % better on
-17; every excursion clamped worse still (23); the rank moves 13 targets by > 2 % over
+short: the shipped gate > 2 % worse than the envelope off on 21 of 72 targets, > 2 % better on
+23; every excursion clamped worse still (26); the rank moves 15 targets by > 2 % over
 99.5-99.99 % (tcm74 7761, 7763, 7764, the gantry).  ``candidate`` (explored on step-1 records
 only, no bar written): tcm74 and the gantry nearer the envelope off, still rank-dependent on
 7761, and bench_deploy_faults' plain mlr on a real +5 K air step 6.46 -> 6.84 µm (run with
