@@ -1,6 +1,6 @@
 """A frozen sensor's healthy coupled neighbour excluded with it (mon77): the rule, its bar, the score.
 
-    PYTHONPATH=<tree>/src .venv/bin/python benchmarks/bench_mon77.py gantry ROOT LABEL [SEEDS]
+    PYTHONPATH=<tree>/src .venv/bin/python benchmarks/bench_mon77.py gantry ROOT LABEL [SEEDS [KINDS]]
     PYTHONPATH=<tree>/src .venv/bin/python benchmarks/bench_mon77.py spindle ROOT LABEL [SEEDS]
     PYTHONPATH=<tree>/src .venv/bin/python benchmarks/bench_mon77.py healthy ROOT LABEL [SEEDS]
     PYTHONPATH=<tree>/src .venv/bin/python benchmarks/bench_mon77.py table ROOT SHIPPED RULE
@@ -163,8 +163,9 @@ def _gantry_data(data: Path, seed: int) -> None:
         (folder / f"Scope_Portal_{start:%Y%m%d}.csv").write_bytes(text.encode("cp1252"))
 
 
-def gantry(root: str, label: str, seeds: str = GANTRY_SEEDS) -> None:
-    """The gantry mill's healthy and faulted test runs (docstring)."""
+def gantry(root: str, label: str, seeds: str = GANTRY_SEEDS, kinds: str = ",".join(KINDS)) -> None:
+    """The gantry mill's healthy and faulted test runs (docstring; ``kinds``: of ``KINDS``,
+    comma-separated)."""
     root_ = Path(root)
     data = root_ / "data"
     data.mkdir(parents=True, exist_ok=True)
@@ -177,7 +178,7 @@ def gantry(root: str, label: str, seeds: str = GANTRY_SEEDS) -> None:
     given = (f"hydra.searchpath=[file://{conf}/conf]", f"data={name}")
     sensor = "T_" + GANTRY_SENSOR.replace(" ", "_")
     for seed in _seeds(seeds):
-        for kind in KINDS:
+        for kind in kinds.split(","):
             folder = data / (f"gantry{seed}" if kind == "healthy" else f"gantry{seed}_{kind}")
             monitored(root_, label, f"gantry{seed}", kind, None if kind == "healthy" else sensor,
                       *given, f"data.path={folder}")
