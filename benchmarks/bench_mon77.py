@@ -72,6 +72,20 @@ The bar (written before scoring; REFUSED if any part fails)
    record a healthy sensor excluded in more campaigns than shipped; the faulty sensor's first
    exclusion no later than shipped's on any campaign; per record ΣRMSE² adaptive <= shipped's
    × 1.01.
+
+Measured 2026-12-03 (shipped = 3250ff79, its ``src`` from ``git archive``; MLR): REFUSED.
+Part 1 passed: gantry 7671 frozen, ``vorn`` alone out at 5.689 h (shipped: ``hinten`` 5.689,
+``vorn`` 5.692), E_dX / dY / dZ 0.342 / 0.311 / 1.963 -> 0.338 / 0.302 / 0.555 µm.  Part 2
+failed: ``bench_deploy_faults.py`` printed the same; ``bench_cmon76.py`` freeze s7698 served
+E_Y / E_Z 1.494 / 5.619 -> 1.474 / 5.574, freeze s7699 E_X / E_Y / E_Z 0.661 / 1.537 / 6.199 ->
+0.669 / 1.478 / 6.302 (E_Z +1.7 %, ΣRMSE² +2.7 %), every other figure the same (faults71 and
+fault70 not run).  Part 3 passed where run: the 12 gantry and 10 yearround healthy runs the same
+(fl_thermal and swiss_lathe_door not run; gantry 7673 not run).  Part 4 failed: right alone 65
+-> 69 campaigns (gantry 7671, 7731, 7735; yearround 7733 K03), no healthy sensor more often, no
+detection later, but yearround 7733 freeze ΣRMSE² 27.20 -> 27.73 µm² (+1.9 %).  The rule fired
+on one of 120 yearround faulted campaigns: there the frozen ``T_motor2`` is mostly still within
+its band when ``T_motor1``'s mirrored error leaves it (not covered by the rule as written).
+docs/measured/monitoring.md has the table.
 """
 
 from __future__ import annotations
