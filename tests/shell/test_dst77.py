@@ -107,3 +107,39 @@ def test_a_stream_on_stdin_says_a_clock_set_back_as_the_reader_does(tmp_path, mo
     assert ("<stdin>, column 'time', data row 31: the clock set back by an hour, daylight saving "
             "time ending on 2026-10-25 in ") in (said := capsys.readouterr().err), said
     assert "(e.g. data.timezone=Europe/Berlin)" in said
+
+
+def test_a_served_block_set_back_says_what_its_client_can_do(tmp_path, caplog, capsys):
+    """tidy77: a served block's clock set back said the reader's 'set data.timezone=...', which
+    a served model does not read (its blocks are read on no zone), and named '<stdin>'.  It says
+    the block's row and to send the time with its offset; the block sent so is read without a
+    word."""
+    import copy
+
+    from test_export import _compose
+    from thermocomp.apps.deploy.pyfunc import CompensatorModel
+    from thermocomp.shell.builders import deployable_model
+    from thermocomp.shell.source import read_streamed
+
+    train = local_log(tmp_path / "train.csv", "2026-03-10 20:00", "Europe/Berlin")
+    cfg = _compose(f"data.path={train}", "model=mlr", "track=false", "monitor.adaptive=false")
+    ds, ids, _, _ = read_streamed(cfg, test=False)
+    deployed = deployable_model(cfg, ds, ids, None, "serve.model")[0]
+    block = pd.read_csv(local_log(tmp_path / "autumn.csv", "2026-10-24 20:00", "Europe/Berlin"))
+    offset = block.assign(time=pd.DatetimeIndex(block["time"]).tz_localize(
+        "Europe/Berlin", ambiguous="infer").strftime("%Y-%m-%dT%H:%M:%S%z"))
+
+    def said(frame: pd.DataFrame) -> str:
+        capsys.readouterr()
+        caplog.clear()
+        with caplog.at_level("WARNING"):
+            CompensatorModel(copy.deepcopy(deployed)).predict(None, frame, {"reset": True})
+        return caplog.text + capsys.readouterr().err
+
+    text = said(block)
+    assert ("column 'time', data row 31 of the block: the clock set back by an hour, daylight "
+            "saving time ending on 2026-10-25 in ") in text, text
+    assert ("a served model reads no data.timezone: send the time with its UTC offset or in UTC "
+            "(Z) (e.g. 2026-10-25T02:00:00+01:00, Europe/Berlin's clock after the change)") in text
+    assert "<stdin>" not in text and "set data.timezone" not in text
+    assert "clock set back" not in said(offset)

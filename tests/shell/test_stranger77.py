@@ -111,3 +111,37 @@ def test_the_file_piped_into_monitor_is_refused_as_a_binary_file(tmp_path, monke
                    "stdin holds an HDF5 file (its signature), no rows of text: give the file as "
                    "data.path=<file>")
     assert "cp1252" not in said
+
+
+def _with_wheelhead(path: Path, wheelhead: bool = True) -> Path:
+    """Two days of :func:`_logger`'s file, the second idle: ``wheelhead Z`` (mm) travelling 360
+    mm on the first, held on the second; the probe dX dead on the second (a constant)."""
+    _logger(path, days=2)
+    with h5py.File(path, "a") as f:
+        for day, group in enumerate(sorted(f), start=1):
+            if wheelhead:
+                z = np.linspace(0.0, 360.0, ROWS) if day == 1 else np.full(ROWS, 120.0)
+                f[group].create_dataset("wheelhead Z", data=z.astype(np.float32)).attrs[
+                    "units"] = "mm"
+            if day == 2:
+                f[group]["probe dX"][...] = np.float32(1.5)
+    return path
+
+
+def test_init_says_no_constant_error_of_a_travel_it_proposes_as_a_state(tmp_path, capsys):
+    """tidy77: init's first look reads a length by its unit as an error, for its span: the
+    wheelhead Z, held on an idle day, was said 'E_wheelhead_Z constant over the whole campaign
+    (a dead channel?)' before init proposed it as a state.  Said only of the roles proposed
+    (the dead probe, in either file), and by the reader as it was."""
+    path = _with_wheelhead(tmp_path / "SG630.h5")
+    assert main(["init", str(path), f"out={tmp_path / 'init'}"]) == 0
+    out, err = capsys.readouterr()
+    assert "'wheelhead Z [mm]' spans 360 mm" in out and "proposed as a state" in out
+    dead = "column 'E_probe_dX': constant over the whole campaign (a dead channel?)"
+    assert "E_wheelhead_Z" not in err and err.count(dead) == 1, err
+    plain = _with_wheelhead(tmp_path / "SG631.h5", wheelhead=False)      # (one look)
+    assert main(["init", str(plain), f"out={tmp_path / 'init2'}"]) == 0
+    assert capsys.readouterr().err.count(dead) == 1
+    read_dataset(path, {"roles": {"error": ["probe*", "wheelhead*"], "campaign": "run"},
+                        "max_abs_error": None})
+    assert "column 'E_wheelhead_Z': constant over the whole campaign" in capsys.readouterr().err

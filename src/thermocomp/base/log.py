@@ -197,6 +197,33 @@ def said_once():
         logger.removeFilter(once)
 
 
+@contextmanager
+def held_back():
+    """Within the block the notes and warnings logged are held, not said: the list yielded, for
+    :func:`said_after` to say or to drop (``init``'s first look reads the record with roles it
+    may change: stranger77's wheelhead Z, read as an error for its span, said 'constant over
+    the whole campaign' before init proposed it as a state).  Held before every other filter
+    (a converted file's name, :func:`said_once`), so that a record dropped is not marked said
+    and one said later passes them all."""
+    held: list[logging.LogRecord] = []
+
+    def hold(record: logging.LogRecord) -> bool:
+        held.append(record)
+        return False
+
+    logger.filters.insert(0, hold)
+    try:
+        yield held
+    finally:
+        logger.removeFilter(hold)
+
+
+def said_after(held: list[logging.LogRecord]) -> None:
+    """Say the records :func:`held_back` held, in their order."""
+    for record in held:
+        logger.handle(record)
+
+
 def say(msg: str) -> None:
     """Progress at INFO level through the ``thermocomp`` logger (stderr and the run's log file),
     so stdout stays the result table."""

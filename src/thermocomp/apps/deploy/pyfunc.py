@@ -256,7 +256,7 @@ def _on_campaign_clock(frame: pd.DataFrame, state: list, slashed: str | None = N
     record's order ``slashed`` (code71: a block's first row alone decided); seconds as they are."""
     try:
         stamps = stream_stamps(frame[TIME], stream_format(frame[TIME], slashed, "the request")
-                               or "auto")
+                               or "auto", served=True)
     except ContractError as exc:     # a time that is no time: its row of the block, not of stdin
         where = f"column {exc.column!r}, data row {exc.row} of the block: " if exc.row else ""
         raise MlflowException(where + exc.reason, error_code=INVALID_PARAMETER_VALUE) from exc

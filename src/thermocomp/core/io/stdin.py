@@ -458,12 +458,14 @@ def since(ns: np.ndarray, valid: np.ndarray, origin: int) -> np.ndarray:
     return np.where(valid, (ns - origin) / 1e9, np.nan)
 
 
-def stream_stamps(time: pd.Series, time_format: str = "auto", zone: str | None = None):
+def stream_stamps(time: pd.Series, time_format: str = "auto", zone: str | None = None,
+                  served: bool = False):
     """A stream's timestamps as ``(int64 nanoseconds since the epoch, valid)``, read as a
     campaign file's are (:func:`.timestamps.parsed`: ISO 8601 with or without its offset, a
     decimal comma, a day-first ``07.01.2023 08:45:00``, ``data.time``'s format; ``zone``:
     ``data.timezone``, the local clock of timestamps without an offset); the elapsed
-    ``h:mm:ss`` as seconds (a Series); None where the time is seconds (or none is read)."""
+    ``h:mm:ss`` as seconds (a Series); None where the time is seconds (or none is read).
+    ``served``: a served model's block (no ``data.timezone`` read), said so in a clock set back."""
     read = time.dropna()
     if read.empty:                 # no time at all: every row's for the guard to substitute
         return None
@@ -493,19 +495,22 @@ def stream_stamps(time: pd.Series, time_format: str = "auto", zone: str | None =
     if zone is not None and target.tz is None:
         ns[valid] = on_local_clock(ns[valid], zone, SOURCE)
     elif target.tz is None:
-        said_if_set_back(ns[valid], np.flatnonzero(valid))
+        said_if_set_back(ns[valid], np.flatnonzero(valid), served)
     return ns, valid
 
 
-def said_if_set_back(ns: np.ndarray, rows: np.ndarray) -> None:
+def said_if_set_back(ns: np.ndarray, rows: np.ndarray, served: bool = False) -> None:
     """Say a stream's timestamps without an offset (``ns``, of the data rows ``rows``) set back
     by up to an hour, in the file reader's words (lab77: daylight saving time ending, the zones
-    whose clocks went back then named; the stream goes on by the time rule, as stream.c does)."""
+    whose clocks went back then named; the stream goes on by the time rule, as stream.c does);
+    ``served``: with what a served model's client can do instead of data.timezone (tidy77)."""
     back = np.flatnonzero((np.diff(ns) < 0) & (np.diff(ns) >= -HOUR_S * 1e9))
     if not back.size:
         return
     k = int(back[0])
     origin = str(np.datetime64(int(ns[0]), "ns"))
-    logger.warning(f"{SOURCE}, column {TIME!r}, data row {int(rows[k + 1]) + 1}: the clock set back "
-                   "by an hour" + dst_said(origin, (ns[k] - ns[0]) / 1e9, (ns[k + 1] - ns[0]) / 1e9,
-                                           "ending"))
+    row = int(rows[k + 1]) + 1          # (a served block's rows are the request's, not stdin's)
+    where = f"column {TIME!r}, data row {row} of the block" if served else (
+        f"{SOURCE}, column {TIME!r}, data row {row}")
+    said = dst_said(origin, (ns[k] - ns[0]) / 1e9, (ns[k + 1] - ns[0]) / 1e9, "ending", served)
+    logger.warning(f"{where}: the clock set back by an hour{said}")

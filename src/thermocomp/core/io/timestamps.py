@@ -322,11 +322,16 @@ def clock_set_back(before: float, after: float, period: float | None = None,
     return ": the clock set back by an hour" + dst_said(origin, before, after, "ending")
 
 
-def dst_said(origin: str | None, before: float, after: float, change: str) -> str:
+def dst_said(origin: str | None, before: float, after: float, change: str,
+             served: bool = False) -> str:
     """``, daylight saving time ending? set data.timezone ...``: the zone to set, named where
     ``origin`` + ``before`` / ``after`` (local times) are a daylight saving change of some
-    zone's clock (``change``: ``'ending'``, the clock back; ``'beginning'``, forward)."""
+    zone's clock (``change``: ``'ending'``, the clock back; ``'beginning'``, forward).
+    ``served``: a block of the served model, which reads no ``data.timezone`` (tidy77: the
+    reader's 'set data.timezone' could not be done there): the time to send with its offset."""
     zones = dst_zones(origin, before, after) if origin is not None else []
+    if served:
+        return _served_said(origin, after, change, zones)
     if not zones and origin is not None:
         return (f", at no zone's daylight saving time {change} (a clock set by hand or by a time "
                 "server? data.timezone does not read it)")
@@ -335,12 +340,36 @@ def dst_said(origin: str | None, before: float, after: float, change: str) -> st
                 "in (e.g. data.timezone=Europe/Berlin)")
     at = (pd.Timestamp(origin) + pd.Timedelta(seconds=float(after))).strftime("%Y-%m-%d")
     pick = next((z for z in _USUAL if z in zones), zones[0])
-    region = pick.split("/")[0]          # (its neighbours first: Europe/Paris, not Africa/Ceuta)
-    others = sorted((z for z in zones if z != pick), key=lambda z: (z.split("/")[0] != region, z))
-    named = ", ".join([pick, *others[:3]]) + (", ..." if len(others) > 3 else "")
     return (f", daylight saving time {change} on {at} in {len(zones)} zone"
-            f"{'s' * (len(zones) > 1)} ({named}): set data.timezone to the one it was written in "
-            f"(e.g. data.timezone={pick})")
+            f"{'s' * (len(zones) > 1)} ({_named(pick, zones)}): set data.timezone to the one it "
+            f"was written in (e.g. data.timezone={pick})")
+
+
+def _served_said(origin: str | None, after: float, change: str, zones: list[str]) -> str:
+    """:func:`dst_said`'s words for the served model: no zone it could be told (its data config
+    is not read per block), so the way out is the client's: the time in UTC or with its offset
+    (that of the zone named first, after the change, as the example)."""
+    from zoneinfo import ZoneInfo
+
+    fix = ("a served model reads no data.timezone: send the time with its UTC offset or in UTC "
+           "(Z)")
+    if not zones:
+        return (f", at no zone's daylight saving time {change} (a clock set by hand or by a time "
+                f"server?); {fix}")
+    pick = next((z for z in _USUAL if z in zones), zones[0])
+    wall = pd.Timestamp(origin).tz_localize(None).to_pydatetime() + timedelta(seconds=float(after))
+    shown = wall.replace(tzinfo=ZoneInfo(pick), fold=1).isoformat(timespec="seconds")
+    return (f", daylight saving time {change} on {wall:%Y-%m-%d} in {len(zones)} zone"
+            f"{'s' * (len(zones) > 1)} ({_named(pick, zones)}); {fix} (e.g. {shown}, {pick}'s "
+            "clock after the change)")
+
+
+def _named(pick: str, zones: list[str]) -> str:
+    """``pick`` and up to three more of ``zones``, its region's first (Europe/Paris, not
+    Africa/Ceuta)."""
+    region = pick.split("/")[0]
+    others = sorted((z for z in zones if z != pick), key=lambda z: (z.split("/")[0] != region, z))
+    return ", ".join([pick, *others[:3]]) + (", ..." if len(others) > 3 else "")
 
 
 # (the zone named first where several change their clocks alike: those of the labs met so far)

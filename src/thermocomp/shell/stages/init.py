@@ -18,6 +18,7 @@ from omegaconf import DictConfig, OmegaConf
 
 from ...base.errors import ContractError
 from ...base.files import atomic_write_text
+from ...base.log import held_back, said_after
 from ...base.paths import conf_dir, resolve
 from ...core import io
 from ...core.io.cells import scanned
@@ -397,7 +398,9 @@ def _init(cfg: DictConfig, held: ExitStack) -> dict:
     # is not held to data.max_abs_error (stranger75: a boring mill's `Y head (mm)`, 150-1850
     # mm, was refused as an error of 1.85e6 µm before it could be proposed as a state)
     spans = length_errors(plan.names, asked.roles, opts)
-    ds = open_source(cfg, detected={**config, "max_abs_error": None} if spans else config)
+    with held_back() as first_look:   # said once the roles stand (a span read as an error)
+        ds = open_source(cfg, detected={**config, "max_abs_error": None} if spans else config)
+    looked_again = False
     days = weekday_headers(ds, plan.names, opts)  # a logger's day of the week: left out
     # 0 / 1 under a header that did not say a flag (a weekday over two days is no flag)
     flags = [h for h in flag_headers(ds, plan.names) if h not in days]
@@ -414,7 +417,9 @@ def _init(cfg: DictConfig, held: ExitStack) -> dict:
         plan = naming(header, roles, opts.columns, cells_of_first, opts.decimal,
                       sample, opts.units)
         config = data_config(src, given, opts, roles, defaults, manifest)
-        ds = open_source(cfg, detected=config)
+        ds, looked_again = open_source(cfg, detected=config), True   # says what holds of these
+    if not looked_again:
+        said_after(first_look)
     if flags:
         print(f"{', '.join(map(repr, flags))}: only two values one apart (0 / 1) over the "
               "record: an on/off flag, proposed as a state (data.roles.state)")
