@@ -65,9 +65,12 @@ def thermocomp(*args: str) -> None:
 def summary(report: dict) -> dict:
     """The range exclusions (reading, training range, beyond it by), the rate-limited
     corrections and per target (fixed, adaptive) RMSE."""
-    ranges, limited = [], []
+    ranges, limited, others = [], [], []
     for e in report["events"]:
         m = RANGE.search(e.get("reason") or "")
+        if e["to"] == "excluded" and not m:
+            others.append({"campaign": e["campaign"], "h": round(e["time"] / 3600, 3),
+                           "sensor": e["sensor"], "reason": e["reason"][:110]})
         if m and e["to"] == "excluded":
             v, lo, hi = (float(m[k]) for k in ("v", "lo", "hi"))
             ranges.append({"campaign": e["campaign"], "h": round(e["time"] / 3600, 3),
@@ -79,7 +82,7 @@ def summary(report: dict) -> dict:
                             "target": e.get("target"), "gave": float(g["v"])})
     excluded = {s: c["state_counts"]["excluded"] for s, c in report["sensors"].items()
                 if c["state_counts"]["excluded"]}
-    return {"ranges": ranges, "limited": limited, "excluded_samples": excluded,
+    return {"ranges": ranges, "others": others, "limited": limited, "excluded_samples": excluded,
             "rmse": {t: (r["rmse_fixed"], r["rmse_adaptive"]) for t, r in report["targets"].items()}}
 
 
@@ -135,10 +138,30 @@ def tcm(root: str, label: str, seeds: str = SEEDS) -> None:
                   f"data=fs{seed}")
 
 
+def _hotter(data: Path, record: str) -> str:
+    """A gantry record's sensors furthest beyond their training maximum (test run vs runs 1-5)."""
+    import pandas as pd
+
+    raw = data / f"raw{record.removeprefix('gantry')}"
+    if not record.startswith("gantry") or not raw.exists():
+        return ""
+    runs = sorted(raw.glob("run*.csv"), key=lambda p: int(p.stem[3:]))
+    train = pd.concat([pd.read_csv(p) for p in runs[:-1]])
+    test = pd.read_csv(runs[-1])
+    cols = [c for c in test.columns if c.startswith("T_")]
+    over = (test[cols].max() - train[cols].max()).sort_values(ascending=False)
+    hot = test.S_n_rpm.eq(test.S_n_rpm.max()).mean() * 16.0
+    return ("    beyond training max (°C): " + ", ".join(f"{c[2:]} {v:+.1f}" for c, v in over[:4].items())
+            + f"; {(over > 0).sum()} of {len(cols)} sensors above; {hot:.1f} h at top speed")
+
+
 def table(root: str, label: str) -> None:
     """Per record and target fixed vs adaptive; the range exclusions; the count (docstring)."""
-    rows = [json.loads(line) for line in (Path(root) / f"{label}.jsonl").read_text().splitlines()
-            if line.strip()]
+    records = [json.loads(line)["record"] for line in
+               (Path(root) / f"{label}.jsonl").read_text().splitlines() if line.strip()]
+    # re-read each record's monitor.json: the summary may have grown since the line was written
+    rows = [{"record": rec, **summary(json.loads((Path(root) / label / rec / "monitor.json")
+                                                 .read_text()))} for rec in records]
     worse, with_range = 0, 0
     for r in rows:
         bad = [t for t, (f, a) in r["rmse"].items() if a > 1.02 * f]
@@ -146,9 +169,13 @@ def table(root: str, label: str) -> None:
         with_range += bool(r["ranges"])
         cells = "  ".join(f"{t.removeprefix('E_')} {f:.3g}/{a:.3g}" for t, (f, a) in r["rmse"].items())
         print(f"{r['record']:12s} {cells}  worse>2%: {','.join(bad) or '-'}")
+        if hot := _hotter(Path(root) / "data", r["record"]):
+            print(hot)
         for x in r["ranges"]:
             print(f"    {x['campaign']} {x['h']:6.2f} h {x['sensor']}: {x['value']} °C, training "
                   f"[{x['range'][0]}, {x['range'][1]}], beyond by {x['beyond']:+.2f} °C")
+        for x in r["others"]:
+            print(f"    {x['campaign']} {x['h']:6.2f} h {x['sensor']}: {x['reason']}")
         if r["limited"]:
             gave = max(abs(x["gave"]) for x in r["limited"])
             print(f"    rate-limited {len(r['limited'])}x, largest |model gave| {gave:.1f} µm")
