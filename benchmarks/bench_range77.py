@@ -45,9 +45,10 @@ exceed their training maximum, ``Spindel vorn`` / ``hinten`` +13.9, ``Ram unten`
 again at 12.95 h (+10.1 / +11.1 / +10.3).  A coupled group leaving together in a new thermal
 state, not a fault.  The POD then rebuilds the three from the 23 sensors left, none of which sees
 the spindle's heat: the served E_dZ model gives -96.06 µm against a truth of -231 µm at 9.33 h
-(the fixed model, fed the real readings: RMSE 1.40 µm over the run), rate-limited; re-admitted at 10.66 / 10.75 h and 13.62 /
-13.74 h, the correction climbs back through the rate limiter (cut 12 times, up to -201 µm, to
-14.28 h).  E_dZ fixed 1.397, adaptive 35.59 µm; E_dX / dY unharmed (0.281 / 0.279, 0.454 / 0.426).
+(the fixed model, fed the real readings: RMSE 1.40 µm over the run), rate-limited; re-admitted
+at 10.66 / 10.75 h and 13.62 / 13.74 h, the correction climbs back through the rate limiter
+(cut 12 times, up to -201 µm, to 14.28 h).  E_dZ fixed 1.397, adaptive 35.59 µm; E_dX / dY
+unharmed (0.281 / 0.279, 0.454 / 0.426).
 So it is rare (1 of 16 gantry draws seen, 0 of 30 others) but costly when it happens.
 
 Proposed for the next stop (words only; no rule scored here).  A sensor past its range +
