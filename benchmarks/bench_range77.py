@@ -42,7 +42,9 @@ exceed their training maximum, ``Spindel vorn`` / ``hinten`` +13.9, ``Ram unten`
 ``Ram unten`` predicts it beyond; at 9.33 h ``Ram unten`` reaches its own limit (35.2 °C against
 25.2 + 10): no within-range sensor predicts the three, and all three leave at the same sample
 (``Spindel vorn`` 54.1 °C, +13.5 beyond its training max; ``hinten`` +13.1; ``Ram unten`` +10.0),
-again at 12.95 h (+10.1 / +11.1 / +10.3).  A coupled group leaving together in a new thermal
+again at 12.95 h (+10.1 / +11.1 / +10.3).  (Read from the timing and from ``InstantFaults._hotter``
+in ``surveillance/faults.py``, whose prediction reads only sensors within range; the prediction
+itself was not traced sample by sample.)  A coupled group leaving together in a new thermal
 state, not a fault.  The POD then rebuilds the three from the 23 sensors left, none of which sees
 the spindle's heat: the served E_dZ model gives -96.06 µm against a truth of -231 µm at 9.33 h
 (the fixed model, fed the real readings: RMSE 1.40 µm over the run), rate-limited; re-admitted
@@ -58,6 +60,9 @@ training edge) is judged by the POD from *all* active sensors, the group include
 where every member's reading is within its warning band of that prediction and every member is
 beyond the same edge (a coupled new thermal state; the correction guard's bound still clips the
 model).  A lone member out of band (a spike, a unit change, a stuck-high sensor) still goes.
+``_hotter`` reads only sensors within range so that one faulty reading out of range does not
+move another's prediction: the group test must keep that (every member within band of the fit
+on all, a fault's own residual then large), which part 4 of the bar checks.
 Bar (to be written in the next bench before scoring, on fresh seeds): (1) gantry 7727 healthy
 E_dZ adaptive <= fixed x 1.02, no exclusion; (2) no healthy record of ``gantry`` / ``swiss`` /
 ``tcm`` here, ``bench_monitor_healthy.py`` or ``bench_mon77.py healthy`` gets an exclusion shipped
