@@ -34,24 +34,27 @@ training maximum; up to ``Spindel vorn`` +12.8 / ``hinten`` +10.5 °C on 7784, +
 7789, beyond the ±10 °C margin) and none went out: the spindle pair stays in while ``Ram unten``
 (within range, +6.2 / +5.9 °C) predicts it beyond the same edge (the stop-56 rule).
 
-Why on 7727 (``repro`` label, ``gantry ROOT repro 7727``: the same figures as mon77; the data
-config init writes is the same for 7671 and 7776): the test run is the warmest hall (air mean
-20.5 °C, runs 1-5 8.5-18.4) and 8.0 h at 20000 rpm (training runs 0-4.5 h); all 26 sensors
-exceed their training maximum, ``Spindel vorn`` / ``hinten`` +13.9, ``Ram unten`` +11.3,
-``Gabelkopf`` +8.0 °C.  The spindle pair is past max + 10 °C from 8.22 / 8.19 h but kept in, as
-``Ram unten`` predicts it beyond; at 9.33 h ``Ram unten`` reaches its own limit (35.2 °C against
-25.2 + 10): no within-range sensor predicts the three, and all three leave at the same sample
-(``Spindel vorn`` 54.1 °C, +13.5 beyond its training max; ``hinten`` +13.1; ``Ram unten`` +10.0),
-again at 12.95 h (+10.1 / +11.1 / +10.3).  (Read from the timing and from ``InstantFaults._hotter``
-in ``surveillance/faults.py``, whose prediction reads only sensors within range; the prediction
-itself was not traced sample by sample.)  A coupled group leaving together in a new thermal
-state, not a fault.  The POD then rebuilds the three from the 23 sensors left, none of which sees
-the spindle's heat: the served E_dZ model gives -96.06 µm against a truth of -231 µm at 9.33 h
-(the fixed model, fed the real readings: RMSE 1.40 µm over the run), rate-limited; re-admitted
-at 10.66 / 10.75 h and 13.62 / 13.74 h, the correction climbs back through the rate limiter
-(cut 12 times, up to -201 µm, to 14.28 h).  E_dZ fixed 1.397, adaptive 35.59 µm; E_dX / dY
-unharmed (0.281 / 0.279, 0.454 / 0.426).
-So it is rare (1 of 16 gantry draws seen, 0 of 30 others) but costly when it happens.
+Why on 7727 (``repro`` label, ``gantry ROOT repro 7727``: the same figures as mon77; the data config
+init writes is the same for 7671 and 7776): the test run is the warmest hall (air mean 20.5 °C, runs
+1-5 8.5-18.4) and 8.0 h at 20000 rpm (training runs 0-4.5 h); all 26 sensors exceed their training
+maximum, ``Spindel vorn`` / ``hinten`` +13.9, ``Ram unten`` +11.3, ``Gabelkopf`` +8.0 °C.  The
+spindle pair is past max + 10 °C from 8.22 / 8.19 h but kept in, as ``Ram unten`` predicts it
+beyond; at 9.33 h ``Ram unten`` reaches its own limit (35.2 °C against 25.2 + 10): no within-range
+sensor predicts the three, and all three leave at the same sample (``Spindel vorn`` 54.1 °C, +13.5
+beyond its training max; ``hinten`` +13.1; ``Ram unten`` +10.0), again at 12.95 h (+10.1 / +11.1 /
++10.3).  Traced (``InstantFaults._hotter`` wrapped, its within-range prediction logged;
+/tmp/range77/trace.py, not kept): just before, ``vorn`` reads 50.62 against a prediction of 51.02 °C
+and ``hinten`` 43.93 against 44.29 (both kept, ``Ram unten`` among the predictors); at 9.33 h, ``Ram
+unten`` out of range, the sensors left within range predict ``vorn`` 20.12 (reading 54.10),
+``hinten`` 23.41 (46.99) and ``Ram unten`` 28.68 (35.20, beyond its edge 25.19 but farther from the
+reading than half its distance from the edge): none kept.  Each member is predicted without the
+others, as all are out of range.  A coupled group leaving together in a new thermal state, not a
+fault.  The POD then rebuilds the three from the 23 sensors left, none of which sees the spindle's
+heat: the served E_dZ model gives -96.06 µm against a truth of -231 µm at 9.33 h (the fixed model,
+fed the real readings: RMSE 1.40 µm over the run), rate-limited; re-admitted at 10.66 / 10.75 h and
+13.62 / 13.74 h, the correction climbs back through the rate limiter (cut 12 times, up to -201 µm,
+to 14.28 h).  E_dZ fixed 1.397, adaptive 35.59 µm; E_dX / dY unharmed (0.281 / 0.279, 0.454 /
+0.426).  So it is rare (1 of 16 gantry draws seen, 0 of 30 others) but costly when it happens.
 
 Proposed for the next stop (words only; no rule scored here).  A sensor past its range +
 ``range_margin_c`` stays in when it leaves together with the sensors that predict it: at the
