@@ -32,7 +32,8 @@ E_X 1.34 -> 1.39; 7790 E_X 1.29 -> 1.61, E_Y 1.08 -> 1.28), tcm74 0 of 15 -- eve
 partners).  Every gantry test run is hotter than training (22-26 of 26 sensors above their
 training maximum; up to ``Spindel vorn`` +12.8 / ``hinten`` +10.5 °C on 7784, +11.0 / +9.1 on
 7789, beyond the ±10 °C margin) and none went out: the spindle pair stays in while ``Ram unten``
-(within range, +6.2 / +5.9 °C) predicts it beyond the same edge (the stop-56 rule).
+(within range, +6.2 / +5.9 °C) predicts it beyond the same edge (the stop-56 rule; traced as
+below: ``Spindel vorn`` past its limit on 357 / 146 samples, kept on every one).
 
 Why on 7727 (``repro`` label, ``gantry ROOT repro 7727``: the same figures as mon77; the data config
 init writes is the same for 7671 and 7776): the test run is the warmest hall (air mean 20.5 °C, runs
