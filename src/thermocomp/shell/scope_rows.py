@@ -21,7 +21,7 @@ def main(argv: list[str] | None = None) -> int:
     a broken export refused naming file, channel and line, exit 2, nothing written."""
     args = sys.argv[1:] if argv is None else argv
     if len(args) != 1:
-        print("usage: python -m thermocomp.shell.scope_rows EXPORT.csv > rows.csv", file=sys.stderr)
+        print("thermocomp: error: usage: python -m thermocomp.shell.scope_rows EXPORT.csv", file=sys.stderr)
         return 2
     path = Path(args[0])
     try:
