@@ -4,7 +4,7 @@ power78; issue 34).
 Usage (from the repository root, ``PYTHONPATH=<tree>/src``: the code measured is that tree's)::
 
     python benchmarks/bench_power78.py trace SEED           # a planted draw: E_Y's rounds, oracles
-    python benchmarks/bench_power78.py curve ROOT SCALE     # planted 7866-7875, gain x SCALE
+    python benchmarks/bench_power78.py curve ROOT SCALE [alone]   # planted 7866-7875, gain x SCALE
     python benchmarks/bench_power78.py fresh ROOT           # the bar's fresh draws -> ROOT/fresh.jsonl
 
 ``trace``: bench_diag77 ``fresh``'s planted case ``SEED`` (test_diagnose_few's year-round VMC, 12
@@ -82,6 +82,23 @@ REFUSED).  ``fresh ROOT`` with the rule and with the shipped src (``git archive`
    > 2 % above the shipped row's after; tests/apps/test_diagnose*.py pass.
 
 Items 1-3 are scored first (fresh seeds); 4 after.
+
+Scored (2026-12-03, 2 shared cores; shipped = a ``git archive`` of d0edc1af's src, the rule =
+6cb47c5b's src = it + ``power78_rule.patch``; ``fresh`` 49.6 / 49.9 s CPU)
+------------------------------------------------------------------------------------------
+1. **Fails.**  Planted 7866-7875: E_Y's position effect accepted on 5 of 10 with the rule and on
+   5 of 10 shipped, the same draws (7867 7870 7871 7873 7875; E_Y as deployed 4.602 -> 1.621,
+   4.281 -> 2.708, 3.483 -> 1.672, 4.002 -> 2.520, 4.455 -> 2.972 µm).
+2. Held: clean 7876-7885 accept nothing on any target, both.
+3. Held: nothing excluded, no target worse as deployed (worst after / before 1.000), the control
+   never accepted.  One row differs: 7870's E_Y also takes a 900 s lag of ``T_motor2`` from the
+   initial state as its second effect, 2.708 -> 2.591 µm (shipped after -> the rule's).
+4. Not scored (1 fails).  On the found misses (not scoring seeds) the rule takes 7723 (E_Y 4.615
+   -> 1.582 µm as deployed) and not 7725: without the saturating candidates its product is still
+   at 3/256, held by the lags of ``T_motor1`` / ``T_motor2`` (3-4 regressors, testable), which
+   flipped past their two contradicting campaigns out-t it; 7719 and 7724 as shipped.
+
+**REFUSED**; src reverted, the rule in ``benchmarks/power78_rule.patch``.
 """
 
 from __future__ import annotations
@@ -215,15 +232,16 @@ def trace(seed: str) -> None:
           f"campaigns' shares {_shares(current.unit_mse, ideal.unit_mse)}", flush=True)
 
 
-def curve(root: str, scale: str) -> None:
-    """Planted 7866-7875 with the gain x ``scale``: accepted, best candidate's p, test RMSE."""
+def curve(root: str, scale: str, which: str = "all") -> None:
+    """Planted 7866-7875 with the gain x ``scale``: accepted, best candidate's p, test RMSE
+    (``which`` ``alone``: E_Y diagnosed alone, on its own residual's test blocks)."""
     import json
 
     folder = made_folder(root)
-    with open(folder / f"curve{scale}.jsonl", "w") as out:
+    with open(folder / f"curve{scale}{which}.jsonl", "w") as out:
         for seed in CURVE:
             ds, _, terms = _few(seed, float(scale))
-            d, seen = _diagnose(ds)
+            d, seen = _diagnose(ds, ["E_Y"] if which == "alone" else None)
             j = d.to_json("E_Y")
             evals, current, problem = seen[0]
             best = max((ev for ev in evals if not ev.control), key=lambda e: e.gain)
@@ -237,8 +255,8 @@ def curve(root: str, scale: str) -> None:
                    "p_family": best.p_family, "p_margin": best.p_margin,
                    "before": j["before"]["test_rmse"], "after": j["after"]["test_rmse"]}
             print(json.dumps(row), file=out, flush=True)
-            print(f"  {seed} x{scale}: term RMS {row['term_rms']:.2f} µm, {row['blocks']} blocks; best "
-                  f"{best.effect.title[:40]} g {best.gain_pct:.1f} alone {row['p_alone']:.4f} fw "
+            print(f"  {seed} x{scale} {which}: term RMS {row['term_rms']:.2f} µm, {row['blocks']} blocks; "
+                  f"best {best.effect.title[:40]} g {best.gain_pct:.1f} alone {row['p_alone']:.4f} fw "
                   f"{best.p_family:.4f} margin {best.p_margin:.4f}; accepted {acc}; E_Y "
                   f"{row['before']:.3f} -> {row['after']:.3f}", flush=True)
 

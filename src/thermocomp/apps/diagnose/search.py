@@ -379,19 +379,11 @@ class Search:
         if not family:
             return
         D = np.array([current.block_mse - ev.result.block_mse for ev in family])
-        ranked = self.problem.n_blocks_tested > self.problem.n_units
-        if ranked:
+        if self.problem.n_blocks_tested > self.problem.n_units:
             D = np.sign(D) * rankdata(np.abs(D), axis=1)
         else:   # one block per unit (or per run of forward units): its gain as a share of its MSE
             D = np.clip(D / np.maximum(current.block_mse, 1e-300), -1.0, 1.0)
         p = sign_flip_maxt(D, seed=self.options.seed)
-        # power78: a candidate :meth:`_clears` refuses whatever its p (one block per unit and
-        # its regressors saturate the campaigns a fold trains on) is no hypothesis the round can
-        # reject, so it is left out of the max-T family of the others (decided by its regressor
-        # count, never by its gains; its own p stays the whole family's)
-        testable = np.array([ranked or not self.saturates(ev.n_features) for ev in family])
-        if 0 < testable.sum() < len(family):
-            p[testable] = sign_flip_maxt(D[testable], seed=self.options.seed)
         for ev, pf in zip(family, p):
             ev.p_family = float(pf)
             ev.clears_bar = self._clears(ev.gain_pct, pf, ev.gain_pct_in_range, ev.p_margin,
