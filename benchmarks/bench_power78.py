@@ -99,6 +99,36 @@ Scored (2026-12-03, 2 shared cores; shipped = a ``git archive`` of d0edc1af's sr
    flipped past their two contradicting campaigns out-t it; 7719 and 7724 as shipped.
 
 **REFUSED**; src reverted, the rule in ``benchmarks/power78_rule.patch``.
+
+The power curve (2026-12-03, main's src = d0edc1af's; ``curve ROOT SCALE [alone]``, 14.6-19.9 s CPU each)
+------------------------------------------------------------------------------------------------------
+Planted 7866-7875 (after scoring, so no longer fresh), the planted gain x 0.5 / 1 / 2 (50 µm/(K m)
+shipped; the term's RMS over the 8 train campaigns 1.2-2.4 / 2.5-4.9 / 4.9-9.8 µm against a clean
+draw's E_Y test RMSE of 0.5-0.7 µm); found: an ``interaction`` on ``S_pos_Y`` accepted for E_Y.
+"every target" is ``fresh``'s diagnosis (shared test blocks: the slowest target's length); "E_Y
+alone" is ``diagnose.targets=[E_Y]`` (E_Y's own residual sets the blocks)::
+
+  gain        every target: found  its test blocks      E_Y alone: found  its test blocks
+  x 0.5        1 of 10 (7867)      8 (7868: 9)          7 of 10           8-79
+  x 1          5 of 10             8 (7868: 9)          8 of 10           9-96
+  x 2          7 of 10             8 (7868: 9)          9 of 10           9-110
+
+Missed with every target: x1 7866 7868 7869 7872 7874, x2 7866 7868 7872; with E_Y alone: x1
+7867 (its own blocks 9) and 7872, x2 7867.  No row's E_Y test RMSE (as run) > 2 % worse.  On
+bench_diag77's planted draws the same holds: E_Y alone finds 7719 7724 7725 (own blocks 76 / 74
+/ 22; E_Y 2.249 -> 2.148, 4.557 -> 2.445, 4.928 -> 0.943 µm as run), not 7723 (14 blocks, the
+bank's family-wise p .017).  Why the shared blocks are the campaigns on planted draws: the
+decorrelation lengths of E_X / E_Y / E_Z's starting residuals are 89 / 8 / 69 samples on 7719,
+75 / 32 / 74 on 7723, 82 / 8 / 96 on 7724, 50 / 23 / 69 on 7725 (the longest sets the blocks:
+one per campaign), against 43 / 20 / 45 on the found 7716 (10 blocks); clean 7706: 91 / 78 /
+89.  **So the misses are the design's power, not the ranking**: the position product is ranked
+first or second by CV gain on every miss, and on 8 campaign blocks (min p 1/256) one campaign
+against it puts it above alpha before any family; doubling the effect takes the every-target
+rate from 5 to 7 of 10 only, since the product reads the tilt through a proxy and the campaigns
+where the term is small go against it at any amplitude (7866, 7872: the two smallest terms, found
+at no scale with every target).  Each target on its own blocks, the lever that would move it,
+was measured and refused at diagblocks59 (``bench_diagnose_targets59.py``) and is not proposed
+here.
 """
 
 from __future__ import annotations
