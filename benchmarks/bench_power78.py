@@ -123,8 +123,10 @@ decorrelation lengths of E_X / E_Y / E_Z's starting residuals are 89 / 8 / 69 sa
 one per campaign), against 43 / 20 / 45 on the found 7716 (10 blocks); clean 7706: 91 / 78 /
 89.  **So the misses are the design's power, not the ranking**: the position product is ranked
 first or second by CV gain on every miss, and on 8 campaign blocks (min p 1/256) one campaign
-against it puts it above alpha before any family; doubling the effect takes the every-target
-rate from 5 to 7 of 10 only, since the product reads the tilt through a proxy and the campaigns
+against it puts it above alpha before any family (and with every campaign for it the step-down
+max-T can hold it at 3/256: 7723, 7725, 7869); doubling the effect takes the every-target
+rate from 5 to 7 of 10 only, since the product reads the tilt through a proxy (no sensor of the
+twin reads the column nodes the tilt is made of) and the campaigns
 where the term is small go against it at any amplitude (7866, 7872: the two smallest terms, found
 at no scale with every target).  Each target on its own blocks, the lever that would move it,
 was measured and refused at diagblocks59 (``bench_diagnose_targets59.py``) and is not proposed
