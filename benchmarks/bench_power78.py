@@ -98,7 +98,8 @@ Scored (2026-12-03, 2 shared cores; shipped = a ``git archive`` of d0edc1af's sr
    at 3/256, held by the lags of ``T_motor1`` / ``T_motor2`` (3-4 regressors, testable), which
    flipped past their two contradicting campaigns out-t it; 7719 and 7724 as shipped.
 
-**REFUSED**; src reverted, the rule in ``benchmarks/power78_rule.patch``.
+**REFUSED**; src reverted, the rule in ``benchmarks/power78_rule.patch`` (with its test,
+``tests/apps/test_diagnose_power78.py``: fails on main, family-wise p 3/256; passes with the patch).
 
 The power curve (2026-12-03, main's src = d0edc1af's; ``curve ROOT SCALE [alone]``, 14.6-19.9 s CPU each)
 ------------------------------------------------------------------------------------------------------
