@@ -27,7 +27,7 @@ and ``hot_tol`` (the rule's ``tol``, training rows only):
   of training's largest: not further along it, a few bed / hall sensors past their bounds with a
   residual 2-4x training's largest.  ``tol`` is the largest residual of a training row off a
   subspace fitted on that row too; the training rows at the hot end, held out of the fit, lie
-  1.3-4.9x further off it (hot_tol / tol 0.200/0.074, 0.261/0.092, 0.375/0.077, 0.127/0.077).
+  1.6-4.9x further off it (hot_tol / tol 0.200/0.074, 0.261/0.092, 0.375/0.077, 0.127/0.077).
 * cms 7765 / 7766 (an unseen heat source): residual / tol 13.4 / 11.8; hot_tol / tol 1.19 / 1.00.
 * gantry 7769 0.69 (21 rows clamped; hot_tol / tol 1.19); mill 7767 0.64 (1 row; 1.81);
   yearround 7768 no row out; bench_deploy_faults' yearround 5353 (mlr): hot_tol / tol 1.04.
@@ -61,6 +61,28 @@ REFUSED):
    run): (a) and (b) of bar 1 over their targets (b: at most 5 % of the targets).
 
 Bars 2 and 1 first (cheapest that can fail); a rule failing one is refused without the rest.
+
+Scored (2026-12-03, 2 shared cores; shipped = main d0edc1af's src, the rule = ``clamp78_rule.patch``):
+REFUSED (bar 1b)
+------------------------------------------------------------------------------------------------
+2. Passes.  ``airstep`` (9.8 s CPU) against bench_deploy_faults on the same fits: real +5 K, mlr
+   10.29 / 6.46 µm (adaptive / plain) as shipped; every line the same but the ramped step (mlr
+   6.21 / 6.76 -> 6.03 / 6.82, arx 8.37 / 5.69 -> 8.24 / 5.48, lagbank 3.93 / 10.17 -> 3.97 / 10.19).
+1. **Fails (b).**  ``price`` on the 14 pairs where shipped clamps a test row (7-27 s CPU a pair;
+   fl90 mlr / lagbank, fl602020, yearround 7768 clamp none: equal, none > 2 % worse than off):
+   (a) > 2 % worse than the envelope off: shipped 21, rule 14 of 72 (tcm74 13 -> 7, cms 7 -> 7,
+   gantry 1 -> 0): passes; (b) > 2 % worse than shipped: 4 (the bar: at most 3), better 12.  The
+   four are tcm74 targets the shipped clamp had helped (shipped better than the envelope off):
+   7761 mlr E_dY 0.644 -> 0.722 µm (off 0.776), 7764 mlr E_dY 0.941 -> 0.995 (off 1.016), 7762
+   lagbank E_dY 1.136 -> 1.177 (off 1.554), 7764 lagbank E_dZ 0.648 -> 0.668 (off 0.677).  Clamped
+   test rows shipped -> rule: tcm74 358 -> 80, 334 -> 285, 121 -> 0, 198 -> 16; cms 446 -> 445,
+   496 -> 496; gantry 21 -> 0; mill 1 -> 0.
+3. (run beside 2, before 1 was in) Passes: cms 7765 mlr, ``T_amb`` stuck, Σ² 1570.5 µm² shipped
+   and rule (envelope off 7435.9; clamped 499 -> 483 rows).
+4. (run beside 1 before its verdict, then stopped) tcm74 7826-7831 and cms 7832-7837, mlr: (a)
+   shipped 25, rule 18 of 54 (tcm74 15 -> 8, cms 10 -> 10); (b) 0 worse, 14 better (all tcm74:
+   7830 E_dX 3.168 -> 0.543, off 0.549; 7831 E_dZ 2.016 -> 0.704, off 0.688).  Not run: gantry
+   7838-7841, the lagbank draws; 7842-7845 unused.
 """
 
 from __future__ import annotations
