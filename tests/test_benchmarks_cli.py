@@ -25,7 +25,7 @@ COMMAND_BENCHES = (
     "bench_auto_hmc59", "bench_auto_hmc60", "bench_auto_vtl60", "bench_autoati75", "bench_autocheck65",
     "bench_autofb72", "bench_autoloss68", "bench_automore69", "bench_autorep65", "bench_autorule69",
     "bench_between73", "bench_between74", "bench_blocks68", "bench_cadence72", "bench_cadence74",
-    "bench_catman70", "bench_cdrop77", "bench_clamp74", "bench_clamp75", "bench_clean69",
+    "bench_catman70", "bench_cdrop77", "bench_clamp74", "bench_clamp75", "bench_clamp78", "bench_clean69",
     "bench_clockset71", "bench_cmon76", "bench_connect72", "bench_cvpick69", "bench_deploy73",
     "bench_derive71", "bench_diag70", "bench_diag73", "bench_diag74", "bench_diag75", "bench_diag76",
     "bench_diag77", "bench_diagfault65", "bench_diagfault72", "bench_diagpower67", "bench_diagref65",
