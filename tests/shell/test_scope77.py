@@ -129,3 +129,24 @@ def test_a_broken_bool_or_date_time_is_refused_naming_file_channel_and_line(tmp_
              "data.test_fraction=0.34", "data.max_gap_samples=1", *FAST,
              f"out={tmp_path / 'out'}"], capsys, f"file {path}, {says}")
     assert not (tmp_path / "out").exists()
+
+
+@pytest.mark.parametrize("titled", [True, False])
+def test_an_export_without_its_header_blocks_is_refused_naming_file_line_and_columns(
+        tmp_path, capsys, titled):
+    """(lab78) Scope View's *Include header* off: no preamble, no property rows, with or
+    without the ``Time;Value`` row.  Before: refused as a CSV of unnamed columns ("'Value' has
+    no role, columns 2 and 5 have the same header 'Value' ...", or its first samples taken for
+    headers, "'20,0000' has no role").  Now: said what it is, by ``init``, ``run`` and ``rows``
+    alike, exit 2, nothing written."""
+    lines = scope(tmp_path / "whole.csv", START).read_bytes().decode("cp1252").split("\r\n")
+    at = next(i for i, line in enumerate(lines) if line.startswith("Time;Value")) + (not titled)
+    path = tmp_path / "Scope_9.csv"
+    path.write_bytes("\r\n".join(lines[at:]).encode("cp1252"))
+    what = "'Time;Value' over each channel" if titled else "samples, a time and a value a channel"
+    says = (f"file {path}, line 1: a TwinCAT Scope export without its header blocks (Scope "
+            f"View's 'Include header' off): {what}, 4 channel(s) in columns 1-2, 4-5, 7-8, "
+            "10-11, none named")
+    refused(["rows", str(path), "data.encoding=cp1252"], capsys, says)
+    refused(["init", str(path), f"out={tmp_path / 'init'}"], capsys, says)
+    assert not (tmp_path / "init").exists()
