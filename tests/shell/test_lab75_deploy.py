@@ -94,3 +94,15 @@ def test_thermocomp_rows_writes_the_toa5_file_as_the_stream_reads_it(halle_code,
     want = pd.read_csv(own_expected(halle_code)[0])
     assert list(got.columns) == list(want.columns) and len(got) == len(want) == 24
     np.testing.assert_allclose(got.to_numpy(float), want.to_numpy(float), rtol=0, atol=1e-9)
+    # the same rows as one served block, from a reset: the same corrections
+    from thermocomp.apps.deploy.pyfunc import CompensatorModel
+    from thermocomp.shell.builders import deployable_model
+    from thermocomp.shell.source import read_streamed
+
+    cfg = _compose(f"data.path={HALLE}", *COMMON[1:], "track=false")
+    ds, train, _, _ = read_streamed(cfg, test=False)
+    deployed = deployable_model(cfg, ds, train, None, "serve.model")[0]
+    served = CompensatorModel(deployed).predict(None, pd.read_csv(io.StringIO(rows)),
+                                                {"reset": True})
+    np.testing.assert_allclose(served[list(want.columns)].to_numpy(float), want.to_numpy(float),
+                               rtol=0, atol=1e-9)

@@ -8,6 +8,7 @@ clocks went to the historian's grid (refused without ``data.resample_s``, then h
 from __future__ import annotations
 
 import datetime as dt
+import io
 from pathlib import Path
 
 import numpy as np
@@ -150,3 +151,28 @@ def test_an_export_without_its_header_blocks_is_refused_naming_file_line_and_col
     refused(["rows", str(path), "data.encoding=cp1252"], capsys, says)
     refused(["init", str(path), f"out={tmp_path / 'init'}"], capsys, says)
     assert not (tmp_path / "init").exists()
+
+
+def test_rows_writes_each_campaign_a_block_with_the_errors_on_request(tmp_path, capsys):
+    """(lab78) ``thermocomp rows`` of a folder: every campaign its block (a blank line between:
+    where ``stream.c`` starts a campaign), its cells the dataset's as read (``rows.errors``: the
+    tracker's too, empty between its samples); ``rows.campaigns`` picks, one unknown refused."""
+    runs = folder(tmp_path / "runs")
+    given = ["data.roles.error=[Tracker*]", "data.encoding=cp1252", "data.max_gap_samples=1"]
+    ds, _ = read_dataset(runs, {k: v for k, v in OPTIONS.items() if k != "test_fraction"})
+    assert main(["rows", str(runs), *given, "rows.errors=true"]) == 0
+    blocks = capsys.readouterr().out.split("\n\n")
+    assert len(blocks) == 3
+    header = blocks[0].splitlines()[0]
+    assert header == "time,T_Temp_Bett,T_Temp_Ständer,E_Tracker_dX,S_Spindel_an"
+    for cid, block in zip(["Scope_1", "Scope_2", "Scope_3"], blocks):
+        got = pd.read_csv(io.StringIO(block if block.startswith("time") else f"{header}\n{block}"))
+        pd.testing.assert_frame_equal(got, ds.campaigns[cid][got.columns].reset_index(drop=True),
+                                      check_exact=True, check_dtype=False)
+    assert main(["rows", str(runs), *given, "rows.campaigns=[Scope_2]"]) == 0
+    only = capsys.readouterr().out
+    assert "\n\n" not in only and only.splitlines()[0] == "time,T_Temp_Bett,T_Temp_Ständer,S_Spindel_an"
+    assert len(only.splitlines()) == len(ds.campaigns["Scope_2"]) + 1
+    refused(["rows", str(runs), *given, "rows.campaigns=[Scope_4]"], capsys,
+            "rows.campaigns names 'Scope_4', no campaign of data.path (it has 'Scope_1', "
+            "'Scope_2', 'Scope_3')")
