@@ -7,15 +7,19 @@ compensator as a reading; the model of ``tests/data/lab75/halle_toa5.dat`` could
 from __future__ import annotations
 
 import copy
+import io
 import subprocess
 
 import numpy as np
+import pandas as pd
+import pytest
 
-from test_export import _compose, needs_cc
+from test_export import _compose, needs_cc, own_expected
 from test_lab75 import HALLE
 from test_nines_deploy74 import built_stream
 from thermocomp.core.io.options import ReadOptions
 from thermocomp.core.io.stdin import read_stream
+from thermocomp.shell.cli import main
 
 COMMON = [f"data.path={HALLE}", "data.roles.error=[d*]", "data.roles.ignore=[SW_in_Avg,WS_ms]",
           "data.max_gap_samples=2", "data.test_fraction=0.25"]
@@ -44,18 +48,25 @@ def test_the_served_model_reads_an_infinity_as_a_missing_value():
     assert np.isfinite(served.filter(like="C_").to_numpy()).all()
 
 
+@pytest.fixture(scope="module")
+def halle_code(tmp_path_factory):
+    """The folder ``code/`` of the model of the TOA5 file, exported as C (its pack) and built."""
+    root = tmp_path_factory.mktemp("halle")
+    built_stream(root, COMMON)
+    return root / "code"
+
+
 @needs_cc
-def test_the_exported_stream_reads_an_infinity_as_an_empty_cell(tmp_path):
+def test_the_exported_stream_reads_an_infinity_as_an_empty_cell(halle_code):
     """``stream.c`` fed the raw TOA5 file: its rows until the first ``INF`` (line 9), then what
     it says of an empty cell there (a missing input the plain stream refuses, exit 2)."""
-    built_stream(tmp_path, COMMON)
     lines = HALLE.read_text().splitlines()
 
     def fed(cell: str) -> subprocess.CompletedProcess:
         cells = lines[8].split(",")
         cells[2] = cell
         text = "\n".join([*lines[:8], ",".join(cells), *lines[9:]]) + "\n"
-        return subprocess.run([str(tmp_path / "code" / "stream")], input=text.encode(),
+        return subprocess.run([str(halle_code / "stream")], input=text.encode(),
                               capture_output=True)
 
     empty = fed("")
@@ -64,3 +75,34 @@ def test_the_exported_stream_reads_an_infinity_as_an_empty_cell(tmp_path):
         got = fed(cell)
         assert (got.returncode, got.stdout, got.stderr) == (2, empty.stdout, empty.stderr), cell
     assert len(empty.stdout.splitlines()) == 5        # the header and rows 1-4
+
+
+@needs_cc
+def test_thermocomp_rows_writes_the_toa5_file_as_the_stream_reads_it(halle_code, capsys):
+    """(lab78) ``thermocomp rows`` with the model's data config: the file's rows under the
+    model's names, its infinities read (and the train part's filled) as the reader does, the
+    test part after the train part it continues in one block (the state carried over); streamed
+    through the compiled code, the pack's corrections (before: no such command, and the raw
+    file's infinities stopped the stream at line 9)."""
+    assert main(["rows", str(HALLE), *COMMON[1:]]) == 0
+    rows = capsys.readouterr().out
+    assert rows.splitlines()[0].startswith("time,T_spindle_Avg,T_column_Avg,T_air_Avg,")
+    assert "\n\n" not in rows and "E_" not in rows.splitlines()[0]
+    streamed = subprocess.run([str(halle_code / "stream")], capture_output=True,
+                              input=rows.encode(), check=True).stdout
+    got = pd.read_csv(io.BytesIO(streamed))
+    want = pd.read_csv(own_expected(halle_code)[0])
+    assert list(got.columns) == list(want.columns) and len(got) == len(want) == 24
+    np.testing.assert_allclose(got.to_numpy(float), want.to_numpy(float), rtol=0, atol=1e-9)
+    # the same rows as one served block, from a reset: the same corrections
+    from thermocomp.apps.deploy.pyfunc import CompensatorModel
+    from thermocomp.shell.builders import deployable_model
+    from thermocomp.shell.source import read_streamed
+
+    cfg = _compose(f"data.path={HALLE}", *COMMON[1:], "track=false")
+    ds, train, _, _ = read_streamed(cfg, test=False)
+    deployed = deployable_model(cfg, ds, train, None, "serve.model")[0]
+    served = CompensatorModel(deployed).predict(None, pd.read_csv(io.StringIO(rows)),
+                                                {"reset": True})
+    np.testing.assert_allclose(served[list(want.columns)].to_numpy(float), want.to_numpy(float),
+                               rtol=0, atol=1e-9)

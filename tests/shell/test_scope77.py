@@ -8,6 +8,7 @@ clocks went to the historian's grid (refused without ``data.resample_s``, then h
 from __future__ import annotations
 
 import datetime as dt
+import io
 from pathlib import Path
 
 import numpy as np
@@ -129,3 +130,49 @@ def test_a_broken_bool_or_date_time_is_refused_naming_file_channel_and_line(tmp_
              "data.test_fraction=0.34", "data.max_gap_samples=1", *FAST,
              f"out={tmp_path / 'out'}"], capsys, f"file {path}, {says}")
     assert not (tmp_path / "out").exists()
+
+
+@pytest.mark.parametrize("titled", [True, False])
+def test_an_export_without_its_header_blocks_is_refused_naming_file_line_and_columns(
+        tmp_path, capsys, titled):
+    """(lab78) Scope View's *Include header* off: no preamble, no property rows, with or
+    without the ``Time;Value`` row.  Before: refused as a CSV of unnamed columns ("'Value' has
+    no role, columns 2 and 5 have the same header 'Value' ...", or its first samples taken for
+    headers, "'20,0000' has no role").  Now: said what it is, by ``init``, ``run`` and ``rows``
+    alike, exit 2, nothing written."""
+    lines = scope(tmp_path / "whole.csv", START).read_bytes().decode("cp1252").split("\r\n")
+    at = next(i for i, line in enumerate(lines) if line.startswith("Time;Value")) + (not titled)
+    path = tmp_path / "Scope_9.csv"
+    path.write_bytes("\r\n".join(lines[at:]).encode("cp1252"))
+    what = "'Time;Value' over each channel" if titled else "samples, a time and a value a channel"
+    says = (f"file {path}, line 1: a TwinCAT Scope export without its header blocks (Scope "
+            f"View's 'Include header' off): {what}, 4 channel(s) in columns 1-2, 4-5, 7-8, "
+            "10-11, none named")
+    refused(["rows", str(path), "data.encoding=cp1252"], capsys, says)
+    refused(["init", str(path), f"out={tmp_path / 'init'}"], capsys, says)
+    assert not (tmp_path / "init").exists()
+
+
+def test_rows_writes_each_campaign_a_block_with_the_errors_on_request(tmp_path, capsys):
+    """(lab78) ``thermocomp rows`` of a folder: every campaign its block (a blank line between:
+    where ``stream.c`` starts a campaign), its cells the dataset's as read (``rows.errors``: the
+    tracker's too, empty between its samples); ``rows.campaigns`` picks, one unknown refused."""
+    runs = folder(tmp_path / "runs")
+    given = ["data.roles.error=[Tracker*]", "data.encoding=cp1252", "data.max_gap_samples=1"]
+    ds, _ = read_dataset(runs, {k: v for k, v in OPTIONS.items() if k != "test_fraction"})
+    assert main(["rows", str(runs), *given, "rows.errors=true"]) == 0
+    blocks = capsys.readouterr().out.split("\n\n")
+    assert len(blocks) == 3
+    header = blocks[0].splitlines()[0]
+    assert header == "time,T_Temp_Bett,T_Temp_Ständer,E_Tracker_dX,S_Spindel_an"
+    for cid, block in zip(["Scope_1", "Scope_2", "Scope_3"], blocks):
+        got = pd.read_csv(io.StringIO(block if block.startswith("time") else f"{header}\n{block}"))
+        pd.testing.assert_frame_equal(got, ds.campaigns[cid][got.columns].reset_index(drop=True),
+                                      check_exact=True, check_dtype=False)
+    assert main(["rows", str(runs), *given, "rows.campaigns=[Scope_2]"]) == 0
+    only = capsys.readouterr().out
+    assert "\n\n" not in only and only.splitlines()[0] == "time,T_Temp_Bett,T_Temp_Ständer,S_Spindel_an"
+    assert len(only.splitlines()) == len(ds.campaigns["Scope_2"]) + 1
+    refused(["rows", str(runs), *given, "rows.campaigns=[Scope_4]"], capsys,
+            "rows.campaigns names 'Scope_4', no campaign of data.path (it has 'Scope_1', "
+            "'Scope_2', 'Scope_3')")

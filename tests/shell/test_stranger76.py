@@ -11,7 +11,6 @@ import datetime as dt
 import io
 import json
 import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -131,14 +130,18 @@ def test_the_export_piped_into_monitor_streams_as_the_file_is_read(tmp_path, mon
 
 
 @needs_cc
-def test_the_compiled_stream_refuses_a_scope_export_naming_the_command_that_converts_it(tmp_path):
+def test_the_compiled_stream_refuses_a_scope_export_naming_the_command_that_converts_it(
+        tmp_path, capsys):
     """Before stranger76: it took the row of channel names for its header, read the property
     rows under it as samples, printed a correction of 'VariableSize;8;...' and stopped at
     'True'.  Before lab77: refused, told to stream 'the samples as one CSV table' with no way
-    to write one; the command it names now writes it, streamed as the pack's rows are."""
+    to write one; lab77 named a module (``python -m thermocomp.shell.scope_rows``), which wrote
+    the lab's headers.  lab78: it names ``thermocomp rows``, which reads the export with the
+    model's data config and writes its rows under the model's names, streamed as the pack's
+    rows are; the export as a new run's file (no split), its corrections the pack's."""
     folder = _folder(tmp_path / "runs")
-    common = [f"data.path={folder}", "data.roles.error=[Tracker*]", "data.encoding=cp1252",
-              "data.test_fraction=0.34"]
+    config = ["data.roles.error=[Tracker*]", "data.encoding=cp1252"]
+    common = [f"data.path={folder}", *config, "data.test_fraction=0.34"]
     assert main(["run", *common, *FAST, "model=mlr", f"out={tmp_path / 'run'}"]) == 0
     assert main(["export", *common, "track=false", "export.format=c",
                  f"export.model={tmp_path / 'run' / 'model.pkl'}", f"out={tmp_path / 'code'}"]) == 0
@@ -147,26 +150,28 @@ def test_the_compiled_stream_refuses_a_scope_export_naming_the_command_that_conv
                           input=(folder / "Scope_Portal_3.csv").read_bytes())
     assert done.returncode == 2 and done.stdout == b""
     assert (b"stream: line 5 is a TwinCAT Scope export's row of channel names (Name;<channel>;;"
-            b"Name;...): the export is not read here; convert it to the table the served model "
-            b"reads it as, `python -m thermocomp.shell.scope_rows EXPORT.csv > rows.csv`"
-            ) in done.stderr
-    convert = [sys.executable, "-m", "thermocomp.shell.scope_rows"]
-    rows = subprocess.run([*convert, str(folder / "Scope_Portal_3.csv")], capture_output=True,
-                          check=True).stdout
+            b"Name;...): the export is not read here; convert it to the rows the served model "
+            b"reads it as: `thermocomp rows FILE [its data config: data=<name> that thermocomp "
+            b"init wrote, data.*] > rows.csv`") in done.stderr
+    capsys.readouterr()
+    assert main(["rows", str(folder / "Scope_Portal_3.csv"), *config]) == 0
+    rows = capsys.readouterr().out
+    assert rows.splitlines()[0] == "time,T_Temp_Luft,T_Temp_Ständer,T_Temp_Spindel"
     streamed = subprocess.run([str(tmp_path / "code" / "stream")], capture_output=True,
-                              input=rows, check=True).stdout
+                              input=rows.encode(), check=True).stdout
     got = pd.read_csv(io.BytesIO(streamed))
     want = pd.read_csv(own_expected(tmp_path / "code")[0])
     assert list(got.columns) == list(want.columns) and len(got) == len(want)
     np.testing.assert_allclose(got.to_numpy(float), want.to_numpy(float), rtol=0, atol=1e-9)
-    # a broken export: refused naming file, channel and line, nothing written
+    # a broken export: refused naming file, channel and line, nothing on stdout
     path = folder / "Scope_Portal_2.csv"
     lines = path.read_bytes().split(b"\r\n")
     cells = lines[20].split(b";")
     cells[4] = b"Overflow"
     lines[20] = b";".join(cells)
     path.write_bytes(b"\r\n".join(lines))
-    broken = subprocess.run([*convert, str(path)], capture_output=True, text=True)
-    assert broken.returncode == 2 and broken.stdout == ""
+    assert main(["rows", str(path), *config]) == 2
+    broken = capsys.readouterr()
+    assert broken.out == ""
     assert (f"file {path}, column 'Temp Ständer', line 21: cell 'Overflow' is no number "
-            "(decimal ',')") in broken.stderr
+            "(decimal ',')") in broken.err

@@ -27,12 +27,13 @@ START = dt.datetime(2027, 3, 1, 5, tzinfo=dt.timezone.utc)
 NEW_FROM = 3                        # the spindle's sensor replaced from the third day on
 
 
-def _logger(path: Path, days: int = 4) -> Path:
-    """``days`` groups ``yyyymmdd``, each a run of ``linear_run`` at 60 s."""
-    with h5py.File(path, "w") as f:
+def _logger(path: Path, days: int = 4, track_order: bool = False) -> Path:
+    """``days`` groups ``yyyymmdd``, each a run of ``linear_run`` at 60 s (``track_order``: the
+    file tracks the order its datasets were created in)."""
+    with h5py.File(path, "w", track_order=track_order) as f:
         for day in range(1, days + 1):
             start = START + dt.timedelta(days=day - 1)
-            group = f.create_group(f"{start:%Y%m%d}")
+            group = f.create_group(f"{start:%Y%m%d}", track_order=track_order)
             time = group.create_dataset("time", data=start.timestamp() + 60.0 * np.arange(ROWS))
             time.attrs["units"] = "seconds since 1970-01-01 00:00:00"
             values = linear_run(7746, day)
@@ -59,6 +60,27 @@ def test_a_group_a_day_reads_as_runs_timed_in_utc_each_channel_in_its_units(tmp_
     assert sorted(frame.columns) == sorted(["time", *names])
     np.testing.assert_array_equal(frame["time"], np.arange(ROWS) * 60.0)
     np.testing.assert_allclose(frame[names], linear_run(7746, 2), rtol=1e-6, atol=1e-5)
+
+
+@pytest.mark.parametrize("tracked", [True, False])
+def test_a_groups_channels_are_in_their_creation_order_where_tracked_else_said(tmp_path, caplog,
+                                                                             tracked):
+    """(lab78) A logger's column order is its datasets' creation order where the file tracks
+    it; where it does not, HDF5 lists them by name, and that is said (it was not)."""
+    path = _logger(tmp_path / "SG630.h5", days=2, track_order=tracked)
+    with caplog.at_level("INFO", logger="thermocomp"):
+        ds, _ = read_dataset(path, {"roles": {"error": ["probe*"], "campaign": "run"},
+                                    "test_fraction": 0.5})
+    said = [r.getMessage() for r in caplog.records if "track_order" in r.getMessage()]
+    columns = list(ds.campaigns["run_20270302"].columns)
+    created = ["time", "T_hall_air", "T_column", "T_spindle", "E_probe_dX", "E_probe_dZ"]
+    if tracked:
+        assert columns == created and said == []
+    else:
+        assert columns != created
+        assert ("SG630.h5: group '/20270302' does not track the order its datasets were created "
+                "in (h5py's track_order): its channels are read in the order HDF5 lists them, "
+                "by name") in said
 
 
 def test_init_maps_the_replaced_sensor_and_its_config_runs(tmp_path, capsys):

@@ -169,6 +169,8 @@ def _log_folder(stage: str, cfg):
         if stage == "compare" and cfg.get("compare") is not None:
             out = cfg.compare.get("out")     # null: beside the sweep (set once it is known)
             return resolve(out) if out is not None else None
+        if stage == "rows":      # it writes on stdout only: no log file left in `out`
+            return None
         return resolve(cfg.out) if cfg.get("out") else None
     return folder
 
@@ -317,7 +319,7 @@ def _multirun() -> bool:
 
 
 def _positional_path(args: list[str]) -> list[str]:
-    """``thermocomp init <path>``: the path (relative to the current folder, as a shell user
+    """``thermocomp init <path>`` (``rows <path>``): the path (relative to the current folder, as a shell user
     names a file) as ``data.path``."""
     out = []
     for arg in args:
@@ -378,7 +380,7 @@ def _command(argv: list[str]) -> int:
             return _print_keys(stage, topic[1] if len(topic) > 1 else None)
         print(stage_help(stage))
         return 0
-    if stage == "init":
+    if stage in ("init", "rows"):
         args = _positional_path(args)
     try:
         args = [rooted_override(a) for a in lenient(args)]

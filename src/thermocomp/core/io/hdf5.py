@@ -10,6 +10,10 @@ instants where its ``units`` say so in CF's words (``seconds since 1970-01-01 00
 without a zone UTC, as CF says).  Text datasets (an operator's note) are left out; a dataset of
 more dimensions, or of another length than its group's time, is refused naming it.
 
+A group's channels are in the order they were created where the file tracks it (h5py's
+``track_order``, HDF5's ``H5P_CRT_ORDER_TRACKED``: a logger's column order); else HDF5 lists them
+by name, and that is said (lab78: the order was the name's, silently).
+
 Groups (stranger77): a logger writing a group a day (or a run) into one file writes groups one
 after the other in time; so groups timed by instants, none overlapping another, are runs (each
 a campaign, by the ``run`` column :mod:`.labfile` writes); other groups the channel groups of
@@ -24,6 +28,7 @@ from pathlib import Path
 import numpy as np
 
 from ...base.extras import require
+from ...base.log import logger
 from .contract import ContractError
 from .labfile import Channel, Record, with_unit
 from .roles import named_as_time
@@ -65,8 +70,9 @@ def hdf5_records(path: Path) -> list[Record]:
 
 
 def _group(group, path: Path, h5py) -> Record:
-    """A group's datasets, each a channel timed by its group's time dataset (if any)."""
-    sets = [d for d in group.values() if isinstance(d, h5py.Dataset)]
+    """A group's datasets, each a channel timed by its group's time dataset (if any), in the
+    order they were created where the file tracks it, else by name (said)."""
+    sets = _ordered(group, path, h5py)
     clock = next((d for d in sets if named_as_time(_leaf(d)) or _since(d) is not None), None)
     time = None if clock is None else _time(clock, path)
     label = _leaf(group) or "/"
@@ -84,6 +90,20 @@ def _group(group, path: Path, h5py) -> Record:
                                 f"{clock.name!r} {time.size}: one length a group", file=path)
         out.append(Channel(with_unit(_leaf(d), _unit(d)), values, time, where))
     return Record(label, out, "time" if clock is None or _since(clock) else _leaf(clock))
+
+
+def _ordered(group, path: Path, h5py) -> list:
+    """``group``'s datasets by their creation order where the file tracks it (a link's
+    ``corder``), else in HDF5's name order, said where more than one is read as a channel."""
+    node = group["/"] if isinstance(group, h5py.File) else group     # (a File: its root group)
+    sets = [d for d in node.values() if isinstance(d, h5py.Dataset)]
+    if node.id.get_create_plist().get_link_creation_order() & h5py.h5p.CRT_ORDER_TRACKED:
+        return sorted(sets, key=lambda d: node.id.links.get_info(_leaf(d).encode()).corder)
+    if sum(d.dtype.kind in "biuf" and not named_as_time(_leaf(d)) for d in sets) > 1:
+        logger.info(f"{Path(path).name}: group {node.name!r} does not track the order its "
+                    "datasets were created in (h5py's track_order): its channels are read in "
+                    "the order HDF5 lists them, by name")
+    return sets
 
 
 def _leaf(node) -> str:

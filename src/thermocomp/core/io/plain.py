@@ -20,7 +20,7 @@ from .jsonlines import is_json_lines, json_lines_as_csv
 from .labfile import SHARED, records_as_csv, replaced_joined, shared
 from .lvm import is_lvm, lvm_records
 from .matfile import is_mat, mat_records
-from .scope import is_scope, scope_records
+from .scope import headerless, is_scope, refuse_headerless, scope_records
 from .tdms import is_tdms, tdms_records
 from .tob1 import is_tob
 from .tob3 import tob_records
@@ -33,7 +33,7 @@ def is_lab_file(path) -> bool:
     LabVIEW Measurement File, (lab75) a Campbell Scientific TOB1 table (lab76: TOB2, TOB3) or
     (stranger76) a TwinCAT Scope CSV export or (stranger77) an HDF5 file (:mod:`.labfile`)."""
     return (is_tdms(path) or is_mat(path) or is_lvm(path) or is_tob(path) or is_scope(path)
-            or is_hdf5(path))
+            or is_hdf5(path) or headerless(path))
 
 
 def is_converted(path, opts=None) -> bool:
@@ -67,6 +67,7 @@ def converted_once(path: Path | None, encoding: str = UTF8) -> Iterator[None]:
 def _records(path: Path, encoding: str) -> list:
     return (tdms_records(path) if is_tdms(path) else lvm_records(path, encoding) if is_lvm(path)
             else scope_records(path, encoding) if is_scope(path)
+            else refuse_headerless(path) if headerless(path)
             else hdf5_records(path) if is_hdf5(path)
             else tob_records(path) if is_tob(path) else mat_records(path))
 

@@ -61,6 +61,58 @@ def is_scope(path) -> bool:
     return any(line.startswith(SAMPLE_KEY + sep) for line in head.splitlines()[:60])
 
 
+_PAIRS = re.compile(r"^\ufeff?Time([;\t,])Value\1")
+
+
+def headerless(path) -> bool:
+    """``path`` is a Scope export written without its header blocks (Scope View's *Include
+    header* off): its first line ``Time<sep>Value<sep>`` over each channel, or (no row of them)
+    samples in triples of a time, a value and an empty cell, two channels or more."""
+    if Path(path).suffix.lower() not in (".csv", ".txt"):
+        return False
+    try:
+        with open(path, "rb") as f:
+            head = f.read(1 << 12).decode("latin-1").lstrip("\ufeff").splitlines()[:2]
+    except OSError:
+        return False
+    if not head:
+        return False
+    if _PAIRS.match(head[0]):     # (two channels or more: a lab's 'Time;Value' table is one)
+        cells = [c.strip() for c in head[0].split(_PAIRS.match(head[0]).group(1))]
+        return sum(p == ("Time", "Value") for p in zip(cells, cells[1:])) > 1
+    return len(head) == 2 and any(_triples(line, sep) for line in head[:1] for sep in ";\t") \
+        and any(_triples(head[1], sep) for sep in ";\t")
+
+
+def _triples(line: str, sep: str) -> bool:
+    """``line``: cells in triples (a time: a date-time or a number; a value; an empty cell)."""
+    cells = line.rstrip("\r\n").split(sep)
+    if len(cells) < 6 or len(cells) % 3 or any(c.strip() for c in cells[2::3]):
+        return False
+    return all(_number(t, ",") is not None or _number(t, ".") is not None or _form(t)
+               for t in cells[0::3] if t.strip()) and any(t.strip() for t in cells[0::3])
+
+
+def refuse_headerless(path: Path) -> None:
+    """Refuse the Scope export ``path`` written without its header blocks (:func:`headerless`),
+    naming its first line and its channels' columns: no channel has a name to read it by (which
+    sensor is which?), and its times count from a ``StartTime`` it does not hold."""
+    with open(path, "rb") as f:
+        first = f.read(1 << 12).decode("latin-1").lstrip("\ufeff").splitlines()[0]
+    sep = next(s for s in ";\t," if s in first)
+    cells = first.split(sep)
+    pairs = [j for j in range(len(cells) - 1) if (cells[j].strip(), cells[j + 1].strip()) ==
+             ("Time", "Value")] or [j for j in range(0, len(cells) - 1, 3)]
+    said = ", ".join(f"{j + 1}-{j + 2}" for j in pairs[:6]) + (", ..." if len(pairs) > 6 else "")
+    what = ("'Time" + sep + "Value' over each channel" if _PAIRS.match(first)
+            else "samples, a time and a value a channel")
+    raise ContractError(f"a TwinCAT Scope export without its header blocks (Scope View's "
+                        f"'Include header' off): {what}, {len(pairs)} channel(s) in columns "
+                        f"{said}, none named (no 'Name' row: which sensor is which?) and no "
+                        "StartTime its times count from; export it again with the header "
+                        "included", file=path, line=1)
+
+
 def scope_layout(path: Path, encoding: str = UTF8) -> str:
     """What ``thermocomp init`` says of the file's own text."""
     with open(path, "rb") as f:

@@ -52,6 +52,15 @@ COMMANDS = {
         "<file-or-folder> (data.path)", "<out>/conf/data/<name>.yaml; the `run` command to use",
         "thermocomp init lab.csv [data.roles.error=['ch*']] [data.sample_period_s=15] "
         "[data.test_fraction=0.1] [out=<dir>]", MODELLING),
+    "rows": Command(
+        "rows:rows",
+        "thermocomp rows <file-or-folder>: its rows as stream.c and a served block read them",
+        "a lab's file or folder, read with the data config, as the rows the exported code's "
+        "stream.c and a served block read (contract names)",
+        "<file-or-folder> (data.path) with the data config (data=<name> of init, data.*)",
+        "the rows on stdout (CSV: time, T_/S_ columns, a blank line between campaigns)",
+        "thermocomp rows EXPORT.csv 'hydra.searchpath=[file://<out>/conf]' data=<name> "
+        "[rows.campaigns=[<id>]] [rows.errors=true] > rows.csv", ("data", "sim", "rows")),
     "ingest": Command(
         "ingest:ingest",
         "validate data.path, write Parquet + report to data.interim",

@@ -199,6 +199,12 @@ class Export:
 
 
 @dataclass
+class Rows:         # `thermocomp rows` (extension, lab78)
+    campaigns: Optional[list] = key(optional(texts("campaign ids", unique=True)))
+    errors: bool = key(BOOLEAN)
+
+
+@dataclass
 class Adapt:
     method: str = key(choice("none", "rls", "bias"))
     every_s: float = key(POSITIVE)
@@ -377,6 +383,7 @@ class Root:
     serve: Serve = group(Serve, reports=True)
     monitor: Monitor = group(Monitor)
     export: Export = group(Export)
+    rows: Rows = group(Rows)
     adapt: Adapt = group(Adapt)
     twin: Twin = group(Twin)
     connect: Connect = group(Connect)

@@ -79,6 +79,10 @@ DRIVER = r"""/* stream.c: CSV rows of raw inputs on stdin -> corrections C_<axis
 #define MAX_PROPERTY_ROWS 6   /* rows describing the channels under the header, likewise */
 #define MAX_COLS 1024
 #define MAX_CELL 256
+/* (lab78) what converts a lab's file the stream does not read (a Scope export, a TDMS log, JSON
+   Lines, ...) into its rows, under the names the model reads: the data config it was fitted with */
+#define ROWS_COMMAND "`thermocomp rows FILE [its data config: data=<name> that thermocomp init " \
+    "wrote, data.*] > rows.csv` (thermocomp's venv), then stream rows.csv"
 #define CHECK_UM 1e-9          /* --check: |c - expected| <= CHECK_UM + CHECK_RELATIVE * |expected| */
 #define CHECK_RELATIVE 1e-9    /* (float64 in another order: check/check.json says why) */
 
@@ -893,14 +897,14 @@ int main(int argc, char **argv) {
                                           && strstr(line, "MAT-file") != NULL)) {
         /* a lab's binary log fed as it is: its bytes are no header to name a column of */
         fprintf(stderr, "stream: %s is binary, not read here; convert it to CSV first, as the "
-                "export's check/<campaign>/rows.csv are (a header line naming the columns, then "
-                "one row per sample)\n", line[0] == 'T' ? "a National Instruments TDMS log"
-                : "a MATLAB .mat file");
+                "export's check/<campaign>/rows.csv are: " ROWS_COMMAND "\n",
+                line[0] == 'T' ? "a National Instruments TDMS log" : "a MATLAB .mat file");
         return 2;
     }
     if (line[strspn(line, " \t")] == '{') {
         fprintf(stderr, "stream: line 1 is a JSON object: JSON Lines is not read here; convert "
-                "the file to CSV (a header line naming the columns, then one row per sample)\n");
+                "the file to CSV (a header line naming the columns, then one row per sample): "
+                ROWS_COMMAND "\n");
         return 2;
     }
     if (!names_every_input(line)) {
@@ -950,8 +954,7 @@ int main(int argc, char **argv) {
            reads it as is named */
         fprintf(stderr, "stream: line %ld is a TwinCAT Scope export's row of channel names "
                 "(Name;<channel>;;Name;...): the export is not read here; convert it to the "
-                "table the served model reads it as, `python -m thermocomp.shell.scope_rows "
-                "EXPORT.csv > rows.csv` (thermocomp's venv), and stream rows.csv\n", row);
+                "rows the served model reads it as: " ROWS_COMMAND "\n", row);
         return 2;
     }
     for (j = 0; j < ncols; j++) cells[j] = (char *)named(cells[j], j);
@@ -1010,8 +1013,9 @@ int main(int argc, char **argv) {
             const char *lab = lab_header(TC_INPUT_NAMES[i]);
             fprintf(stderr, "stream: the header (line %ld: CSV naming the inputs as TC_INPUT_NAMES "
                     "in compensator.h does, in degC%s; a file in fixed-width columns, JSON "
-                    "Lines or a historian's or InfluxDB export: converted first, to CSV, as the "
-                    "export's check/<campaign>/rows.csv are) lacks input column %s%s%s%s\n", top,
+                    "Lines, a historian's or InfluxDB export, a TwinCAT Scope export: converted "
+                    "first, to CSV, as the export's check/<campaign>/rows.csv are, by thermocomp "
+                    "rows) lacks input column %s%s%s%s\n", top,
                     TC_LAB_NAMES[0][0][0] ? ", or by a lab's header TC_LAB_NAMES lists, in its "
                     "unit" : "", TC_INPUT_NAMES[i], lab[0] ? " (the lab's header '" : "", lab,
                     lab[0] ? "')" : "");

@@ -95,14 +95,14 @@ def folder_names(campaigns) -> dict[str, str]:
     return out
 
 
-def _csv(frame: pd.DataFrame) -> str:
+def csv_text(frame: pd.DataFrame) -> str:
     """CSV as ``stream.c`` reads it: ``,``, ``.``, a number to the last bit (17 digits), NaN empty."""
     buf = io.StringIO()
     frame.to_csv(buf, index=False, float_format="%.17g", na_rep="", lineterminator="\n")
     return buf.getvalue()
 
 
-def _fed(campaign: pd.DataFrame, lead_in: pd.DataFrame | None) -> pd.DataFrame:
+def fed(campaign: pd.DataFrame, lead_in: pd.DataFrame | None) -> pd.DataFrame:
     """The rows the code is fed for ``campaign``: its ``lead_in``'s first (the campaigns it
     continues; its manifest ambient the chain's first's, as ``run`` joins them)."""
     if lead_in is None or not len(lead_in):
@@ -181,7 +181,7 @@ def conformance_pack(deployed, ss: StateSpace, campaigns: Mapping[str, pd.DataFr
     monitor = bool(not_in_code(deployed))
     out, listed = {}, []
     for cid, campaign in campaigns.items():
-        frame = _fed(campaign, lead_ins.get(cid))
+        frame = fed(campaign, lead_ins.get(cid))
         lead = len(frame) - len(campaign)
         columns = (["time"] if "time" in frame.columns else []) + list(ss.inputs)
         if ss.ambient_given:     # the campaign's A0 on each of its rows (stream.c: its first)
@@ -209,8 +209,8 @@ def conformance_pack(deployed, ss: StateSpace, campaigns: Mapping[str, pd.DataFr
         entry.update(rows=len(frame), cut=cut)
         listed.append(entry)
         if len(frame):
-            out[f"{entry['folder']}/rows.csv"] = _csv(frame[columns])
-            out[f"{entry['folder']}/expected.csv"] = _csv(pd.DataFrame(want, columns=outputs))
+            out[f"{entry['folder']}/rows.csv"] = csv_text(frame[columns])
+            out[f"{entry['folder']}/expected.csv"] = csv_text(pd.DataFrame(want, columns=outputs))
     written = [e for e in listed if e["rows"]]
     summary = {"campaigns": listed, "inputs": ["time", *ss.inputs, *[AMBIENT_C] * ss.ambient_given],
                "outputs": outputs,
