@@ -27,6 +27,7 @@ from .contract import MANIFEST, TIME, ContractError, role
 from .encoding import UTF8, WINDOWS, detect
 from .fixedwidth import is_fixed_width
 from .hdf5 import is_hdf5
+from .tdm import is_tdm
 from .historian import held_wide, long_as_wide, wide_options
 from .historian_layout import long_layout
 from .jsonlines import is_json_lines
@@ -176,6 +177,7 @@ def head(sample: Path, opts) -> tuple[object, list[str], list[str], str]:
                 else "a LabVIEW Measurement File" if is_lvm(sample)
                 else "a TwinCAT Scope export" if is_scope(sample)
                 else "an HDF5 file" if is_hdf5(sample)
+                else "a DIAdem TDM/TDX pair" if is_tdm(sample)
                 else described(sample) if is_tob(sample)
                 else "a TDMS log") + " (its channels as columns)"
         encoding = opts.encoding                 # (the file's: the temporary CSV is UTF-8)
