@@ -36,8 +36,8 @@ H_AIR = np.array([60.0, 30.0, 15.0, 6.0, 25.0, 25.0, 22.0, 6.0, 5.0, 90.0])     
 LINKS = (("base", "foundation", 80.0), ("base", "col_left", 20.0), ("base", "col_right", 20.0),
          ("col_left", "rail", 8.0), ("col_right", "rail", 8.0), ("rail", "saddle", 10.0),
          ("saddle", "ram", 12.0), ("gearbox", "base", 12.0), ("gearbox", "table", 6.0),
-         ("oil", "base", 10.0),
-         ("gearbox", "col_left", 5.0), ("oil", "col_right", 4.0))   # (the gearbox on the left, the unit right)
+         ("oil", "base", 10.0), ("gearbox", "col_left", 5.0), ("oil", "col_right", 4.0))
+# (the gearbox stands by the left column, the hydraulic unit by the right one)
 FILM = (("oil", "table", 120.0),)           # the hydrostatic film while the pump runs
 COOLER_W, COOL_ON, COOL_OFF = 6000.0, 23.0, 21.5
 SPEED_M_MIN = (120.0, 180.0, 250.0)         # cutting speeds: the table's rpm from the radius

@@ -27,7 +27,6 @@ from .contract import MANIFEST, TIME, ContractError, role
 from .encoding import UTF8, WINDOWS, detect
 from .fixedwidth import is_fixed_width
 from .hdf5 import is_hdf5
-from .tdm import is_tdm
 from .historian import held_wide, long_as_wide, wide_options
 from .historian_layout import long_layout
 from .jsonlines import is_json_lines
@@ -58,6 +57,7 @@ from .scope import is_scope, scope_layout
 from .separators import reads_as_number
 from .sniff import head_lines, resolved
 from .tables import parquet, peek_csv, without_pandas_index
+from .tdm import is_tdm
 from .timestamps import (
     CLOCK,
     looks_like_timestamp,

@@ -66,7 +66,6 @@ from ...core.io.plain import converted_once, is_converted, is_lab_file, lab_as_c
 from ...core.io.rates import PAUSE_PERIODS, pauses
 from ...core.io.record import safe_id
 from ...core.io.roles import excel_days_header, naming, split_unit
-from ...core.io.scope import is_scope
 from ...core.io.slashed import record_order
 from ...core.io.sniff import resolved
 from ...core.io.starts import stated_start
