@@ -126,11 +126,34 @@ def test_the_header_piped_into_monitor_is_refused_as_a_tdm_header(tmp_path, monk
     """(Before: "stdin is not a CSV table with a header, data.delimiter=','", a wrong way out:
     no delimiter reads XML.)"""
     import io as _io
-    for day in (1, 2):
-        path = _pair(tmp_path / "vtl", day)
+
+    import pandas as pd
+    path = _pair(tmp_path / "vtl", 1)
+    rows = pd.concat([pd.DataFrame(linear_run(7846, day), columns=NAMES).assign(
+        run=f"day{day}", time=60.0 * np.arange(ROWS)) for day in (1, 2)])
+    rows.to_csv(table := tmp_path / "KV.csv", index=False)      # (the record as CSV rows)
     monkeypatch.setattr("sys.stdin", _io.TextIOWrapper(_io.BytesIO(path.read_bytes())))
-    said = refused(["monitor", f"data.path={tmp_path / 'vtl'}", "data.roles.error=[Laser*]",
-                    "data.test_fraction=0.5", *FAST, "monitor.input=-", f"out={tmp_path / 'out'}"],
+    said = refused(["monitor", f"data.path={table}", "data.roles.error=[Laser*]",
+                    "data.roles.campaign=run", "data.test_fraction=0.5", *FAST,
+                    "monitor.input=-", f"out={tmp_path / 'out'}"],
                    capsys, "stdin holds a DIAdem TDM header, the XML of a TDM/TDX pair (its "
                    "signature), no rows of text: give the file as data.path=<file>")
     assert "delimiter" not in said
+
+
+def test_init_proposes_the_gap_of_a_folder_of_hdf5_files_too(tmp_path, capsys):
+    """The gap look is the folder's lab files', whatever their kind (before: an HDF5 file a day
+    with 6 NaN, "gap of 6 missing values ... longer than data.max_gap_samples=0", exit 2)."""
+    h5py = pytest.importorskip("h5py")
+    (tmp_path / "h5").mkdir()
+    for day in (1, 2):
+        with h5py.File(tmp_path / "h5" / f"day{day}.h5", "w") as f:
+            start = (START + dt.timedelta(days=day - 1)).replace(tzinfo=dt.timezone.utc)
+            f.create_dataset("time", data=start.timestamp() + 60.0 * np.arange(ROWS)).attrs[
+                "units"] = "seconds since 1970-01-01 00:00:00"
+            values = linear_run(7846, day)
+            values[40:46, 1] = np.nan if day == 2 else values[40:46, 1]
+            for j, (name, unit) in enumerate(zip(NAMES, ["degC", "degC", "degC", "um", "um"])):
+                f.create_dataset(name, data=values[:, j]).attrs["units"] = unit
+    assert main(["init", str(tmp_path / "h5"), f"out={tmp_path / 'init'}"]) == 0
+    assert "data.max_gap_samples=6" in capsys.readouterr().out
