@@ -13,6 +13,7 @@ from pathlib import Path
 from xml.sax.saxutils import escape
 
 import numpy as np
+import pandas as pd
 import pytest
 
 from conftest import FAST, refused
@@ -79,7 +80,11 @@ def test_a_folder_of_pairs_reads_as_campaigns_timed_by_their_dt_date_channel(tmp
     assert sorted(frame.columns) == sorted(["time", *names])
     np.testing.assert_array_equal(frame["time"], np.arange(ROWS) * 60.0)
     np.testing.assert_allclose(frame[names], linear_run(7846, 2), rtol=1e-5, atol=1e-3)
-    assert str(ds.manifest["start"].iloc[1])[:16] == "2027-04-06 06:00"
+    assert str(ds.manifest["start"].iloc[1]) == "2027-04-06 06:00:00"      # (no zone said)
+    # the dates are the PC's clock: data.timezone says its zone (they were read as UTC, unsaid)
+    ds, _ = read_dataset(tmp_path / "vtl", {"roles": {"error": ["Laser*"]}, "test_fraction": 0.5,
+                                            "timezone": "Europe/Berlin"})
+    assert ds.manifest["start"].iloc[1] == pd.Timestamp("2027-04-06 04:00", tz="UTC")
 
 
 def test_init_proposes_the_gap_of_a_folder_of_lab_files_and_its_config_runs(tmp_path, capsys):
@@ -127,7 +132,6 @@ def test_the_header_piped_into_monitor_is_refused_as_a_tdm_header(tmp_path, monk
     no delimiter reads XML.)"""
     import io as _io
 
-    import pandas as pd
     path = _pair(tmp_path / "vtl", 1)
     rows = pd.concat([pd.DataFrame(linear_run(7846, day), columns=NAMES).assign(
         run=f"day{day}", time=60.0 * np.arange(ROWS)) for day in (1, 2)])
