@@ -27,6 +27,19 @@ row 700), ``drift`` (Getriebe +1 K/h from row 500), ``dropout`` (30 NaN of Suppo
 800).
 
 ``matrix``: bench_stranger75's (run -> replay per family on the data config init wrote).
+
+Measured 2026-12-03, seed 7846 (``write`` 0.5 s CPU). Before stranger78 ``thermocomp init
+ROOT/vtl7846`` refused the folder ("manifest not found ...; its files, .tdx (12), .tdm (12), are
+no kind read as a run"); with core/io/tdm.py, init's own read refused the NaN ("gap of 8
+missing values ... longer than data.max_gap_samples=0": its gap look read no lab file of a
+folder but a Scope export); with it, ``init`` alone (no key) wrote the roles, the renamed sensor's
+``data.columns`` entry and ``max_gap_samples: 8``. ``matrix`` on its config: test RMSE dX / dZ
+(µm; 45.07 / 105.12 before) mlr 16.193 / 0.975, pcr 19.112 / 8.643, arx 16.863 / 1.183, lagbank
+18.095 / 1.993, hammerstein 4.026 / 1.052, lstm 16.227 / 0.866, auto 4.026 / 0.972 (hammerstein /
+mlr + lstm chosen), mlr ``ati=cmeans`` as mlr; replay = run in every cell. Fresh draws 7847 /
+7848 (``init`` with no key; MLR 16.719 / 0.959, 12.051 / 1.294 µm): ``monitor`` no event.
+Faults, C, promote, diagnose: docs/own-data.md, "A vertical turning lathe's DIAdem TDM/TDX
+pairs".
 """
 from __future__ import annotations
 
