@@ -26,9 +26,10 @@ START = dt.datetime(2027, 4, 5, 6)
 DIADEM_EPOCH = 62167219200.0        # s from 0000-01-01 to 1970-01-01
 
 
-def _pair(folder: Path, day: int, nan_rows: int = 0) -> Path:
-    """``KV_<day>.tdm`` + ``.tdx``: ``Zeit`` (DT_DATE, float64), the channels float32 but the
-    probe dZ stored raw (int32 in 0.001 µm, ``raw_linear``); ``nan_rows`` NaN in Ständer."""
+def _pair(folder: Path, day: int, nan_rows: int = 0, implicit: bool = False) -> Path:
+    """``KV_<day>.tdm`` + ``.tdx``: ``Zeit`` (DT_DATE, float64; ``implicit``: its start and step
+    inline, ``implicit_linear``), the channels float32 but the probe dZ stored raw (int32 in
+    0.001 µm, ``raw_linear``); ``nan_rows`` NaN in Ständer."""
     folder.mkdir(parents=True, exist_ok=True)
     start = (START + dt.timedelta(days=day - 1) - dt.datetime(1970, 1, 1)).total_seconds()
     values = linear_run(7846, day)
@@ -44,12 +45,16 @@ def _pair(folder: Path, day: int, nan_rows: int = 0) -> Path:
             blocks.append(f'<block byteOffset="{offset}" id="inc{k}" length="{ROWS}" valueType="{vtype}"/>')
             offset += np.dtype(kind).itemsize * ROWS
             seqs.append(f'<double_sequence id="s{k}"><values external="inc{k}"/></double_sequence>')
-            raw = kind == "<i4"
+            raw, how = kind == "<i4", "raw_linear" if kind == "<i4" else "explicit"
+            if implicit and k == 0:
+                seqs[-1] = (f'<double_sequence id="s0"><values><A>{float(v[0])!r}</A><A>60</A>'
+                            '</values></double_sequence>')
+                how = "implicit_linear"
             body.append(f'<tdm_channel id="c{k}"><name>{escape(name)}</name><unit_string>{unit}'
                         f'</unit_string><datatype>{dtype}</datatype><local_columns>'
                         f'#xpointer(id("l{k}"))</local_columns></tdm_channel>'
-                        f'<localcolumn id="l{k}"><sequence_representation>'
-                        f'{"raw_linear" if raw else "explicit"}</sequence_representation>'
+                        f'<localcolumn id="l{k}"><submatrix>#xpointer(id("m"))</submatrix>'
+                        f'<sequence_representation>{how}</sequence_representation>'
                         + ('<generation_parameters>0 0.001</generation_parameters>' if raw else "")
                         + f'<values>#xpointer(id("s{k}"))</values></localcolumn>')
     body.append('<tdm_channel id="n"><name>Bediener</name><datatype>DT_STRING</datatype>'
@@ -62,16 +67,17 @@ def _pair(folder: Path, day: int, nan_rows: int = 0) -> Path:
         f'USI/1_0" version="1.0"><usi:include><file byteOrder="littleEndian" url="KV_{day}.tdx">'
         + "".join(blocks) + '</file></usi:include><usi:data>' + "".join(seqs)
         + f'<tdm_channelgroup id="g"><name>Messung</name><channels>#xpointer({ids})</channels>'
-        '</tdm_channelgroup>' + "".join(body) + "</usi:data></usi:tdm>", encoding="utf-8")
+        f'</tdm_channelgroup><submatrix id="m"><number_of_rows>{ROWS}</number_of_rows></submatrix>'
+        + "".join(body) + "</usi:data></usi:tdm>", encoding="utf-8")
     return folder / f"KV_{day}.tdm"
 
 
 def test_a_folder_of_pairs_reads_as_campaigns_timed_by_their_dt_date_channel(tmp_path):
     """(Before: "manifest not found ...; its files, .tdm (2), .tdx (2), are no kind read as a
-    run".)  Each pair a campaign, its time DIAdem's dates (the lab PC's clock), the float32,
-    float64 and raw int32 blocks as numbers, the text channel left out."""
+    run".)  Each pair a campaign, its time DIAdem's dates (the lab PC's clock; the second's
+    implicit), the float32, float64 and raw int32 blocks as numbers, the text channel left out."""
     for day in (1, 2):
-        _pair(tmp_path / "vtl", day)
+        _pair(tmp_path / "vtl", day, implicit=day == 2)
     ds, _ = read_dataset(tmp_path / "vtl", {"roles": {"error": ["Laser*"]}, "test_fraction": 0.5})
     assert list(ds.campaigns) == ["KV_1", "KV_2"]
     frame = ds.campaigns["KV_2"]
