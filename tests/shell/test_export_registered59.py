@@ -18,7 +18,9 @@ from thermocomp.base.files import folder_digest
 from thermocomp.shell.cli import main
 
 
-def test_the_champions_code_names_the_dataset_it_was_promoted_on(tmp_path):
+def test_the_champions_code_names_the_dataset_it_was_promoted_on(tmp_path, capsys):
+    """(stranger78) ... and says it comes without a conformance pack, and how to get one (the
+    champion's C had no ``check/``, unsaid)."""
     data = lab_file(tmp_path / "messung.csv", rows=120)
     uri = mlflow_store(tmp_path)
     common = [f"data.path={data}", *ROLES, f"tracking_uri={uri}"]
@@ -28,6 +30,9 @@ def test_the_champions_code_names_the_dataset_it_was_promoted_on(tmp_path):
     out = tmp_path / "code"
     assert main(["export", "export.model=models:/thermocomp-compensator@champion",
                  "export.format=json", f"tracking_uri={uri}", f"out={out}"]) == 0
+    assert ("no conformance pack (check/): a registered model is exported without reading data; "
+            "export.check=true writes the pack") in capsys.readouterr().err
+    assert not (out / "check").exists()
     provenance = json.loads((out / "compensator.json").read_text())["provenance"]
     assert provenance["dataset_hash"] == folder_digest(data)
     assert provenance["run_id"] == json.loads((tmp_path / "promote" / "promote.json").read_text())["run_id"]

@@ -57,6 +57,7 @@ from .scope import is_scope, scope_layout
 from .separators import reads_as_number
 from .sniff import head_lines, resolved
 from .tables import parquet, peek_csv, without_pandas_index
+from .tdm import is_tdm
 from .timestamps import (
     CLOCK,
     looks_like_timestamp,
@@ -176,6 +177,7 @@ def head(sample: Path, opts) -> tuple[object, list[str], list[str], str]:
                 else "a LabVIEW Measurement File" if is_lvm(sample)
                 else "a TwinCAT Scope export" if is_scope(sample)
                 else "an HDF5 file" if is_hdf5(sample)
+                else "a DIAdem TDM/TDX pair" if is_tdm(sample)
                 else described(sample) if is_tob(sample)
                 else "a TDMS log") + " (its channels as columns)"
         encoding = opts.encoding                 # (the file's: the temporary CSV is UTF-8)

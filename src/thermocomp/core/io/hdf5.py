@@ -64,7 +64,7 @@ def hdf5_records(path: Path) -> list[Record]:
     if not groups:
         raise ContractError("no dataset of numbers in the HDF5 file (a channel: a "
                             "one-dimensional dataset)", file=path)
-    if len(groups) > 1 and (_dated_apart(groups) or groups_are_runs(groups)):
+    if len(groups) > 1 and (dated_apart(groups) or groups_are_runs(groups)):
         return groups
     return [joined_groups(groups)]
 
@@ -148,7 +148,7 @@ def _time(clock, path: Path) -> np.ndarray:
     return start + np.round(values * since[0] * 1e6).astype("timedelta64[us]")
 
 
-def _dated_apart(groups: list[Record]) -> bool:
+def dated_apart(groups: list[Record]) -> bool:
     """Every group timed by instants and none overlapping another: a day's (or a run's) group
     each, whatever channels each holds (a sensor replaced: its new name from one day on)."""
     spans = [time_span(g) for g in groups]

@@ -47,6 +47,9 @@ def _counts(n: int, opts) -> dict[str, int]:
 def check_record_file(path: Path) -> None:
     """A one-file record is delimited text, Parquet or an Excel workbook, told by its suffix
     (an Excel workbook was read as Parquet and crashed in the reader)."""
+    if path.suffix.lower() == ".tdx":       # (stranger78: the pair's values, given for the pair)
+        raise ContractError(f"a DIAdem TDX file holds the values its TDM header describes: give "
+                            f"the header, {path.with_suffix('.tdm').name} (beside it)", file=path)
     if path.suffix.lower() not in RECORD_SUFFIXES:
         kind = not_read(path)
         raise ContractError(kind or f"a record's file is {', '.join(RECORD_SUFFIXES)}, not "

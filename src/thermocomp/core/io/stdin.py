@@ -86,6 +86,11 @@ _BINARY = {b"\x89HDF\r\n\x1a\n": "an HDF5 file", b"TDSm": "a TDMS log",
            b"MATLAB 5.0 MAT-file": "a MATLAB file"}
 
 
+def _is_tdm(head: bytes) -> bool:
+    """The head of NI's USI XML (a TDM header), the element ``usi:tdm`` in its first lines."""
+    return head.lstrip(b"\xef\xbb\xbf \t\r\n").startswith(b"<?xml") and b":tdm" in head
+
+
 def stdin_text(stream, encoding: str = UTF8) -> str:
     """What ``stream`` (``sys.stdin``) holds, decoded with ``data.encoding`` (a Windows
     logger's rows: cp1252) rather than the locale's, or as UTF-16 where it begins with its
@@ -95,6 +100,8 @@ def stdin_text(stream, encoding: str = UTF8) -> str:
         return stream.read()
     data = raw.read()
     kind = next((k for mark, k in _BINARY.items() if data.startswith(mark)), None)
+    if kind is None and _is_tdm(data[:2048]):  # (stranger78: was "not a CSV table ... ','")
+        kind = "a DIAdem TDM header, the XML of a TDM/TDX pair"
     if kind is not None:              # (stranger77: was "byte 0x89 is not utf-8 text ... cp1252")
         raise ContractError(f"stdin holds {kind} (its signature), no rows of text: give the file "
                             "as data.path=<file> (a stream is CSV rows, as they are written)",

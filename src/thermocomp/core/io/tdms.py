@@ -130,4 +130,7 @@ def joined_groups(groups: list[Record]) -> Record:
     label = groups[0].label if len(groups) == 1 else "the groups " + ", ".join(
         repr(g.label) for g in groups)
     time_headers = {g.time_header for g in groups}
-    return Record(label, channels, time_headers.pop() if len(time_headers) == 1 else "time")
+    # (stranger78: a DIAdem group's dates, on the PC's clock, were joined as UTC: data.timezone
+    # left unread)
+    return Record(label, channels, time_headers.pop() if len(time_headers) == 1 else "time",
+                  utc=all(g.utc for g in groups))

@@ -332,4 +332,7 @@ def export(cfg: DictConfig) -> dict:
                                                   if fmt == "c" else ""))
     elif (out / PACK / "check.json").is_file():
         say(f"{out / PACK} is an earlier export's pack, not this code's (export.check=false)")
+    elif cfg.export.get("check") is None:      # (stranger78: a champion's code came without one, unsaid)
+        say("no conformance pack (check/): a registered model is exported without reading data; "
+            "export.check=true writes the pack of data.path's test split")
     return written

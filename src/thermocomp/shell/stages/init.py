@@ -66,7 +66,6 @@ from ...core.io.plain import converted_once, is_converted, is_lab_file, lab_as_c
 from ...core.io.rates import PAUSE_PERIODS, pauses
 from ...core.io.record import safe_id
 from ...core.io.roles import excel_days_header, naming, split_unit
-from ...core.io.scope import is_scope
 from ...core.io.slashed import record_order
 from ...core.io.sniff import resolved
 from ...core.io.starts import stated_start
@@ -111,9 +110,10 @@ def number_cells(src, manifest, sample, given: dict, opts):
     their marks leave, which :func:`mark_gaps` reads once the error columns are named."""
     files = [src] if manifest is None else [src / str(f) for f in manifest["file"]]
     # (lab75: a TOB1 table's, a TDMS log's gaps; lab77: a folder's, a Scope export's channels on
-    # other clocks leaving cells at each other's times)
+    # other clocks leaving cells at each other's times; stranger78: a folder of any lab files',
+    # a DIAdem pair a day with a loose plug's NaN, refused at the read with no key proposed)
     labs = [f for f in files if is_lab_file(f)]
-    if labs and (manifest is None or is_scope(labs[0])):
+    if labs:
         with ExitStack() as stack:
             code = given.get("encoding") or opts.encoding
             # (stranger77: a sensor replaced from a run on: its channel's empty runs are no edge)

@@ -1,0 +1,183 @@
+"""A DIAdem TDM/TDX pair (``.tdm``: NI's USI XML header, ``.tdx`` beside it: the values) read
+as its CSV export (:mod:`.labfile`), by the standard library: the header is XML
+(:mod:`xml.etree.ElementTree`), the values the TDX's blocks (numpy), as NI documents the format
+("TDM/TDMS file format", the USI schema).  The TDMS format (one binary file) is :mod:`.tdms`.
+
+Read: the header's ``usi:include`` (the TDX file, its ``byteOrder``, a ``block`` per channel:
+``byteOffset``, ``length``, ``valueType``) and ``usi:data``: each ``tdm_channelgroup`` a group
+of channels, each ``tdm_channel`` its ``name``, ``unit_string`` and ``datatype``, its values by
+its ``localcolumn`` (``explicit``: a sequence, in the TDX or inline; ``implicit_linear``: start
+and increment; ``raw_linear``: raw values times a factor plus an offset).  A ``DT_DATE``
+channel is its group's time: DIAdem's seconds since 0000-01-01, on the clock of the PC that
+wrote it (no zone: ``data.timezone`` says it where the clock is not UTC); a channel named as a
+time (``Time [s]``) is seconds.  Text channels (``DT_STRING``: an operator's note) are left
+out.  Groups are runs where they follow one another in time (:mod:`.hdf5`'s rule), else the
+channel groups of one record.
+"""
+
+from __future__ import annotations
+
+import re
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import numpy as np
+
+from .contract import ContractError
+from .hdf5 import dated_apart
+from .labfile import Channel, Record, with_unit
+from .roles import named_as_time
+from .tdms import groups_are_runs, joined_groups
+
+TDM_SUFFIXES = (".tdm",)
+DIADEM_EPOCH_S = 62167219200        # s from DIAdem's 0000-01-01 00:00 to 1970-01-01 00:00
+_TYPES = {"eInt8Usi": "i1", "eInt16Usi": "i2", "eInt32Usi": "i4", "eInt64Usi": "i8",
+          "eUInt8Usi": "u1", "eUInt16Usi": "u2", "eUInt32Usi": "u4", "eUInt64Usi": "u8",
+          "eFloat32Usi": "f4", "eFloat64Usi": "f8"}
+_IDS = re.compile(r'id\("([^"]+)"\)')
+
+
+def is_tdm(path) -> bool:
+    return Path(path).suffix.lower() in TDM_SUFFIXES
+
+
+def tdm_records(path: Path) -> list[Record]:
+    """The runs of the TDM file ``path`` (one, or one per channel group where they are runs)."""
+    try:
+        root = ET.parse(path).getroot()
+    except (ET.ParseError, UnicodeDecodeError) as exc:
+        raise ContractError(f"not a TDM header that is read (its XML: {exc})", file=path) from None
+    data = _child(root, "data")
+    if data is None:
+        raise ContractError("no usi:data element: not a DIAdem TDM header", file=path)
+    by_id = {e.get("id"): e for e in data if e.get("id")}
+    blocks = _blocks(root, path)
+    groups = [_group(g, by_id, blocks, path) for g in data if _tag(g) == "tdm_channelgroup"]
+    groups = [g for g in groups if g.channels]
+    if not groups:
+        raise ContractError("no channel of numbers in the TDM file", file=path)
+    if len(groups) > 1 and (dated_apart(groups) or groups_are_runs(groups)):
+        return groups
+    return [joined_groups(groups)]
+
+
+def _tag(e) -> str:
+    return e.tag.rsplit("}", 1)[-1]
+
+
+def _child(e, name: str):
+    return next((c for c in e if _tag(c) == name), None)
+
+
+def _text(e, name: str) -> str:
+    c = _child(e, name)
+    return (c.text or "").strip() if c is not None else ""
+
+
+def _blocks(root, path: Path) -> dict[str, tuple[Path, str, int, int, str]]:
+    """``id -> (TDX file, byte order, byte offset, length, numpy type)`` of ``usi:include``."""
+    out = {}
+    include = _child(root, "include")
+    for f in ([] if include is None else [c for c in include if _tag(c) == "file"]):
+        order = "<" if f.get("byteOrder", "littleEndian") == "littleEndian" else ">"
+        tdx = path.parent / (f.get("url") or "")
+        for b in f:
+            vtype = b.get("valueType", "")
+            if vtype not in _TYPES:
+                raise ContractError(f"block {b.get('id')!r} of {tdx.name}: value type {vtype!r} "
+                                    f"is not read (numbers: {', '.join(_TYPES)})", file=path)
+            if b.get("blockSize") or b.get("blockOffset"):
+                raise ContractError(f"block {b.get('id')!r} of {tdx.name} is interleaved "
+                                    "(blockOffset / blockSize): save the channels' values one "
+                                    "block each", file=path)
+            out[b.get("id")] = (tdx, order, int(b.get("byteOffset", 0)), int(b.get("length", 0)),
+                                _TYPES[vtype])
+    return out
+
+
+def _refs(text: str) -> list[str]:
+    return _IDS.findall(text or "")
+
+
+def _group(group, by_id: dict, blocks: dict, path: Path) -> Record:
+    label = _text(group, "name") or group.get("id")
+    named = []
+    for cid in _refs(_text(group, "channels")):
+        chan = by_id.get(cid)
+        if chan is None or _text(chan, "datatype") == "DT_STRING":
+            continue                            # (text: a note, left out)
+        name = _text(chan, "name") or cid
+        where = f"group {label!r}, channel {name!r}"
+        values = _values(chan, by_id, blocks, path, where)
+        if values is not None:
+            named.append((name, _text(chan, "unit_string"), _text(chan, "datatype"), values, where))
+    clock = next((c for c in named if c[2] == "DT_DATE"), None) or next(
+        (c for c in named if named_as_time(c[0])), None)
+    time = None
+    if clock is not None:
+        time = clock[3]
+        if clock[2] == "DT_DATE":
+            time = (np.round((time - DIADEM_EPOCH_S) * 1e6).astype("int64")
+                    .astype("datetime64[us]"))
+    out = []
+    for name, unit, _, values, where in named:
+        if clock is not None and name == clock[0]:
+            continue
+        if time is not None and values.size != time.size:
+            raise ContractError(f"{where} has {values.size} values, its group's time "
+                                f"{clock[0]!r} {time.size}: one length a group", file=path)
+        out.append(Channel(with_unit(name, unit), values, time, where))
+    dated = clock is not None and clock[2] == "DT_DATE"
+    return Record(label, out, "time" if clock is None or dated else clock[0], utc=False)
+
+
+def _values(chan, by_id: dict, blocks: dict, path: Path, where: str) -> np.ndarray | None:
+    """A channel's values (float) by its first local column; None where it has none."""
+    col = next((by_id.get(i) for i in _refs(_text(chan, "local_columns"))), None)
+    if col is None:
+        return None
+    seq = next((by_id.get(i) for i in _refs(_text(col, "values"))), None)
+    if seq is None:
+        raise ContractError(f"{where}: its local column points to no values", file=path)
+    values = _sequence(seq, blocks, path, where)
+    how = _text(col, "sequence_representation") or "explicit"
+    if how == "explicit":
+        return values
+    if how == "implicit_linear" and values.size == 2:
+        rows = _rows(col, by_id)
+        return values[0] + values[1] * np.arange(rows if rows is not None else 0)
+    if how == "raw_linear":
+        params = [float(v) for v in _text(col, "generation_parameters").split()] or [0.0, 1.0]
+        return params[0] + params[1] * values
+    raise ContractError(f"{where}: sequence_representation {how!r} is not read (explicit, "
+                        "implicit_linear, raw_linear)", file=path)
+
+
+def _rows(col, by_id: dict) -> int | None:
+    sub = next((by_id.get(i) for i in _refs(_text(col, "submatrix"))), None)
+    text = _text(sub, "number_of_rows") if sub is not None else ""
+    return int(text) if text.isdigit() else None
+
+
+def _sequence(seq, blocks: dict, path: Path, where: str) -> np.ndarray:
+    """A ``*_sequence``'s values: its TDX block (``<values external="inc0"/>``) or inline."""
+    vals = _child(seq, "values")
+    if vals is None:
+        raise ContractError(f"{where}: its sequence {seq.get('id')!r} holds no values", file=path)
+    ref = vals.get("external")
+    if ref is None:
+        try:
+            return np.array([float(v.text) for v in vals], dtype=float)
+        except (TypeError, ValueError):
+            raise ContractError(f"{where}: an inline value is not a number", file=path) from None
+    if ref not in blocks:
+        raise ContractError(f"{where}: its block {ref!r} is not in usi:include", file=path)
+    tdx, order, offset, length, kind = blocks[ref]
+    if not tdx.is_file():
+        raise ContractError(f"its values' file {tdx.name} is not beside it: keep the .tdx with "
+                            "the .tdm", file=path)
+    dtype = np.dtype(order + kind)
+    if offset + length * dtype.itemsize > tdx.stat().st_size:
+        raise ContractError(f"{where}: block {ref!r} ({length} values from byte {offset}) ends "
+                            f"past the end of {tdx.name} ({tdx.stat().st_size} bytes)", file=path)
+    return np.fromfile(tdx, dtype=dtype, count=length, offset=offset).astype(float)
