@@ -43,19 +43,23 @@ run: $(CORE)
 	$(BIN)/thermocomp simulate
 	$(BIN)/thermocomp run
 
-# 2 workers (pytest-xdist), a module's tests on one: its fixtures built once (tests/conftest.py:
-# the long ones first).  One BLAS/OpenMP thread per process: two workers each running a BLAS pool
-# of one thread per core oversubscribe the cores and spin (test_calibrate + test_volumetric_run on
-# 2 workers: 153 -> 119 s user CPU, 223 -> 101 s wall on a machine with other load).
+# 3 workers (pytest-xdist) on CI's 2 cores, a module's tests on one: its fixtures built once
+# (tests/conftest.py: the long ones first).  A third worker takes the CPU the other two leave while
+# they wait (servers starting, OPC UA and twin clocks, signals, sockets: ~6 % of the cores in the
+# last idle 2-worker run measured, 14:18 wall and 1557 s CPU with the install).  One BLAS/OpenMP
+# thread per process: workers each running a BLAS pool of one thread per core oversubscribe the cores and
+# spin (test_calibrate + test_volumetric_run on 2 workers: 153 -> 119 s user CPU, 223 -> 101 s
+# wall on a machine with other load).
+TEST_WORKERS := 3
 TEST_THREADS := OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MKL_NUM_THREADS=1
 
 # `make test` (CI's) leaves out the tests marked `full`: end-to-end runs of what cheaper tests
 # in it already cover (each names them); `make test-all` runs every test.
 test: $(STAMP)
-	$(TEST_THREADS) $(BIN)/python -m pytest -q -n 2 --dist loadfile -m "not full"
+	$(TEST_THREADS) $(BIN)/python -m pytest -q -n $(TEST_WORKERS) --dist loadfile -m "not full"
 
 test-all: $(STAMP)
-	$(TEST_THREADS) $(BIN)/python -m pytest -q -n 2 --dist loadfile
+	$(TEST_THREADS) $(BIN)/python -m pytest -q -n $(TEST_WORKERS) --dist loadfile
 
 docs: $(STAMP)
 	$(BIN)/mkdocs build --strict   # the docs site -> site/ (`$(BIN)/mkdocs serve` to browse)

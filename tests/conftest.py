@@ -350,7 +350,7 @@ def pytest_configure(config):
         config.pluginmanager.register(durations.Recorder(_unit), "store-durations")
 
 
-# -- how `make test`'s two xdist workers (`--dist loadfile`) share the tests --------------------
+# -- how `make test`'s xdist workers (`--dist loadfile`) share the tests --------------------
 # A module's tests go to one worker (its module fixtures are built once), except these: long
 # tests that share nothing costly, each a unit of its own (the README test, one per page).
 # Longest first, by measured seconds (tests/durations.py; `pytest --store-durations` updates them).

@@ -1,4 +1,4 @@
-"""How long each unit of `make test`'s scheduling took, so that its two xdist workers start the
+"""How long each unit of `make test`'s scheduling took, so that its xdist workers start the
 longest first (tests/conftest.py): a unit that starts late must be short, or one worker idles
 while the other finishes it.
 
