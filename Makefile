@@ -46,7 +46,8 @@ run: $(CORE)
 # 3 workers (pytest-xdist) on CI's 2 cores, a module's tests on one: its fixtures built once
 # (tests/conftest.py: the long ones first).  A third worker takes the CPU the other two leave while
 # they wait (servers starting, OPC UA and twin clocks, signals, sockets: ~6 % of the cores in the
-# last idle 2-worker run measured, 14:18 wall and 1557 s CPU with the install).  One BLAS/OpenMP
+# last idle 2-worker run measured, 14:18 wall and 1557 s CPU with the install; 3 workers on an idle
+# fresh clone: 13:32 wall, pytest 12:27, 1477 s CPU).  One BLAS/OpenMP
 # thread per process: workers each running a BLAS pool of one thread per core oversubscribe the cores and
 # spin (test_calibrate + test_volumetric_run on 2 workers: 153 -> 119 s user CPU, 223 -> 101 s
 # wall on a machine with other load).
