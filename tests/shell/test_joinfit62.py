@@ -126,3 +126,19 @@ def test_the_val_splits_persistence_starts_from_the_file_it_continues(tmp_path):
     val = y[1500:]
     expected = np.sqrt(np.mean((val - y[1499:-1]) ** 2))
     assert got == pytest.approx(expected, rel=1e-12)
+
+
+def test_the_join_is_said_once_a_stage_run_however_often_it_is_fitted(tmp_path, capsys):
+    """``monitor`` fits the train campaigns twice (fixed and adaptive): stranger78's lathe said
+    the join twice.  Within a stage run (:func:`log.said_once`) the same note is said once;
+    outside one, at every fit."""
+    from thermocomp.base import log
+
+    cfg = _cfg(_folder(tmp_path / "data", CUT))
+    ds = open_source(cfg)
+    log.configure("INFO")
+    with log.said_once():
+        for _ in range(2):
+            fit_joined(build_compensator(cfg, ds=ds), ds, ds.ids("train"))
+    fit_joined(build_compensator(cfg, ds=ds), ds, ds.ids("train"))
+    assert capsys.readouterr().err.count("fitted as one") == 2

@@ -158,11 +158,13 @@ _ONCE_PER_RUN: list[str] = []     # the folders of modules whose notes are said 
 
 
 def once_per_run(package: Path) -> None:
-    """Register the modules of the folder ``package``: a note or warning one of them logs is said
-    once per stage run (:func:`said_once`), however often the stage reads what it is about."""
-    folder = os.path.abspath(package) + os.sep
-    if folder not in _ONCE_PER_RUN:
-        _ONCE_PER_RUN.append(folder)
+    """Register the modules of the folder ``package`` (or the one module file ``package``): a note
+    or warning one of them logs is said once per stage run (:func:`said_once`), however often the
+    stage reads or fits what it is about."""
+    where = os.path.abspath(package)
+    where = where + os.sep if os.path.isdir(where) else where
+    if where not in _ONCE_PER_RUN:
+        _ONCE_PER_RUN.append(where)
 
 
 class _Once(logging.Filter):
