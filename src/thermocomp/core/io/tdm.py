@@ -8,10 +8,15 @@ Read: the header's ``usi:include`` (the TDX file, its ``byteOrder``, a ``block``
 of channels, each ``tdm_channel`` its ``name``, ``unit_string`` and ``datatype``, its values by
 its ``localcolumn`` (``explicit``: a sequence, in the TDX or inline; ``implicit_linear``: start
 and increment; ``raw_linear``: raw values times a factor plus an offset).  A ``DT_DATE``
-channel is its group's time: DIAdem's seconds since 0000-01-01, on the clock of the PC that
-wrote it (no zone: ``data.timezone`` says it where the clock is not UTC); a channel named as a
-time (``Time [s]``) is seconds.  Text channels (``DT_STRING``: an operator's note) are left
-out.  Groups are runs where they follow one another in time (:mod:`.hdf5`'s rule), else the
+channel is its group's time: DIAdem's seconds since 0000-01-01 (float64), on the clock of the PC
+that wrote it (no zone: ``data.timezone`` says it where the clock is not UTC), or a LabVIEW
+timestamp (``eTimeUsi``, 16 bytes: an unsigned 2^-64 s fraction, then signed seconds since
+1904-01-01 UTC; as tdm_loader 1.2.7 (MIT) reads it, its source read, not copied), which is UTC;
+a channel named as a time (``Time [s]``) is seconds.  A local column's ``flags`` block (one
+byte a value, 0: not valid, as tdm_loader reads it) makes its invalid values missing, not the
+numbers stored under them.  Text channels (``DT_STRING``: an operator's note) are left out.
+Interleaved blocks (``blockOffset`` / ``blockSize``) are refused: no reference at hand reads
+them.  Groups are runs where they follow one another in time (:mod:`.hdf5`'s rule), else the
 channel groups of one record.
 """
 
@@ -31,6 +36,8 @@ from .tdms import groups_are_runs, joined_groups
 
 TDM_SUFFIXES = (".tdm",)
 DIADEM_EPOCH_S = 62167219200        # s from DIAdem's 0000-01-01 00:00 to 1970-01-01 00:00
+LABVIEW_EPOCH_S = 2082844800        # s from LabVIEW's 1904-01-01 00:00 UTC to 1970-01-01 00:00
+TIME_USI = "eTimeUsi"               # a LabVIEW timestamp: u8 fraction of 2^-64 s, i8 seconds
 _TYPES = {"eInt8Usi": "i1", "eInt16Usi": "i2", "eInt32Usi": "i4", "eInt64Usi": "i8",
           "eUInt8Usi": "u1", "eUInt16Usi": "u2", "eUInt32Usi": "u4", "eUInt64Usi": "u8",
           "eFloat32Usi": "f4", "eFloat64Usi": "f8"}
@@ -83,15 +90,16 @@ def _blocks(root, path: Path) -> dict[str, tuple[Path, str, int, int, str]]:
         tdx = path.parent / (f.get("url") or "")
         for b in f:
             vtype = b.get("valueType", "")
-            if vtype not in _TYPES:
+            if vtype not in _TYPES and vtype != TIME_USI:
                 raise ContractError(f"block {b.get('id')!r} of {tdx.name}: value type {vtype!r} "
-                                    f"is not read (numbers: {', '.join(_TYPES)})", file=path)
+                                    f"is not read (numbers: {', '.join(_TYPES)}, {TIME_USI})",
+                                    file=path)
             if b.get("blockSize") or b.get("blockOffset"):
                 raise ContractError(f"block {b.get('id')!r} of {tdx.name} is interleaved "
                                     "(blockOffset / blockSize): save the channels' values one "
                                     "block each", file=path)
             out[b.get("id")] = (tdx, order, int(b.get("byteOffset", 0)), int(b.get("length", 0)),
-                                _TYPES[vtype])
+                                _TYPES.get(vtype, TIME_USI))
     return out
 
 
@@ -108,17 +116,18 @@ def _group(group, by_id: dict, blocks: dict, path: Path) -> Record:
             continue                            # (text: a note, left out)
         name = _text(chan, "name") or cid
         where = f"group {label!r}, channel {name!r}"
-        values = _values(chan, by_id, blocks, path, where)
+        values, stamped = _values(chan, by_id, blocks, path, where)
         if values is not None:
-            named.append((name, _text(chan, "unit_string"), _text(chan, "datatype"), values, where))
-    clock = next((c for c in named if c[2] == "DT_DATE"), None) or next(
+            kind = TIME_USI if stamped else _text(chan, "datatype")
+            named.append((name, _text(chan, "unit_string"), kind, values, where))
+    clock = next((c for c in named if c[2] in ("DT_DATE", TIME_USI)), None) or next(
         (c for c in named if named_as_time(c[0])), None)
     time = None
     if clock is not None:
         time = clock[3]
-        if clock[2] == "DT_DATE":
-            time = (np.round((time - DIADEM_EPOCH_S) * 1e6).astype("int64")
-                    .astype("datetime64[us]"))
+        if clock[2] in ("DT_DATE", TIME_USI):     # (a LabVIEW timestamp: since 1970 already)
+            since_1970 = time - DIADEM_EPOCH_S if clock[2] == "DT_DATE" else time
+            time = np.round(since_1970 * 1e6).astype("int64").astype("datetime64[us]")
     out = []
     for name, unit, _, values, where in named:
         if clock is not None and name == clock[0]:
@@ -127,20 +136,35 @@ def _group(group, by_id: dict, blocks: dict, path: Path) -> Record:
             raise ContractError(f"{where} has {values.size} values, its group's time "
                                 f"{clock[0]!r} {time.size}: one length a group", file=path)
         out.append(Channel(with_unit(name, unit), values, time, where))
-    dated = clock is not None and clock[2] == "DT_DATE"
-    return Record(label, out, "time" if clock is None or dated else clock[0], utc=False)
+    dated = clock is not None and clock[2] in ("DT_DATE", TIME_USI)
+    return Record(label, out, "time" if clock is None or dated else clock[0],
+                  utc=clock is not None and clock[2] == TIME_USI)
 
 
-def _values(chan, by_id: dict, blocks: dict, path: Path, where: str) -> np.ndarray | None:
-    """A channel's values (float) by its first local column; None where it has none."""
+def _values(chan, by_id: dict, blocks: dict, path: Path, where: str
+            ) -> tuple[np.ndarray | None, bool]:
+    """A channel's values (float) by its first local column, None where it has none; and
+    whether they are LabVIEW timestamps (then seconds since 1970, UTC)."""
     col = next((by_id.get(i) for i in _refs(_text(chan, "local_columns"))), None)
     if col is None:
-        return None
+        return None, False
     seq = next((by_id.get(i) for i in _refs(_text(col, "values"))), None)
     if seq is None:
         raise ContractError(f"{where}: its local column points to no values", file=path)
+    held = _child(seq, "values")
+    external = held.get("external") if held is not None else None
+    stamped = external in blocks and blocks[external][4] == TIME_USI
+    return _represented(col, seq, by_id, blocks, path, where), stamped
+
+
+def _represented(col, seq, by_id: dict, blocks: dict, path: Path, where: str) -> np.ndarray:
+    """A local column's values as its ``sequence_representation`` makes them of ``seq``'s."""
     values = _sequence(seq, blocks, path, where)
     how = _text(col, "sequence_representation") or "explicit"
+    if how in ("explicit", "raw_linear"):
+        valid = _flags(col, by_id, blocks, path, where, values.size)
+        if valid is not None:
+            values = np.where(valid, values, np.nan)
     if how == "explicit":
         return values
     if how == "implicit_linear" and values.size == 2:
@@ -176,8 +200,30 @@ def _sequence(seq, blocks: dict, path: Path, where: str) -> np.ndarray:
     if not tdx.is_file():
         raise ContractError(f"its values' file {tdx.name} is not beside it: keep the .tdx with "
                             "the .tdm", file=path)
-    dtype = np.dtype(order + kind)
+    dtype = np.dtype([("fraction", order + "u8"), ("seconds", order + "i8")]
+                     if kind == TIME_USI else order + kind)
     if offset + length * dtype.itemsize > tdx.stat().st_size:
         raise ContractError(f"{where}: block {ref!r} ({length} values from byte {offset}) ends "
                             f"past the end of {tdx.name} ({tdx.stat().st_size} bytes)", file=path)
-    return np.fromfile(tdx, dtype=dtype, count=length, offset=offset).astype(float)
+    raw = np.fromfile(tdx, dtype=dtype, count=length, offset=offset)
+    if kind == TIME_USI:                        # seconds since 1970 (UTC)
+        return (raw["seconds"] - LABVIEW_EPOCH_S) + raw["fraction"] * 2.0 ** -64
+    return raw.astype(float)
+
+
+def _flags(col, by_id: dict, blocks: dict, path: Path, where: str, n: int) -> np.ndarray | None:
+    """Which of a local column's ``n`` values are valid by its ``flags`` (a block of one flag a
+    value, external or through a sequence; 0: not valid); None without flags."""
+    flags = _child(col, "flags")
+    if flags is None:
+        return None
+    if flags.get("external") is not None:
+        flags = ET.fromstring(f'<s><values external="{flags.get("external")}"/></s>')
+    else:
+        flags = next((by_id.get(i) for i in _refs(flags.text)), None)
+        if flags is None:
+            return None
+    valid = _sequence(flags, blocks, path, f"{where}'s flags") != 0
+    if valid.size != n:
+        raise ContractError(f"{where}: {valid.size} flags for {n} values", file=path)
+    return valid

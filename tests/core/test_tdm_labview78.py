@@ -1,0 +1,87 @@
+"""A TDM/TDX pair written by LabVIEW's storage VIs rather than DIAdem: its time a LabVIEW
+timestamp (``eTimeUsi``: a 2^-64 s fraction, then seconds since 1904-01-01 UTC) and a local
+column's ``flags`` block marking values not valid (0), the numbers stored under them zeros.
+Before: the timestamp block refused ("value type 'eTimeUsi' is not read"), and flags were not
+read: a flagged value entered the record as the 0 °C stored under it."""
+
+from __future__ import annotations
+
+import datetime as dt
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from thermocomp.core.io import read_dataset
+from thermocomp.core.io.contract import ContractError
+
+ROWS = 90
+START = dt.datetime(2027, 4, 5, 6, 0, 0, 250000, tzinfo=dt.timezone.utc)   # a quarter second in
+LABVIEW_1970 = 2082844800        # s from 1904-01-01 to 1970-01-01 (LabVIEW's epoch)
+
+
+def _channels(day: int):
+    t = np.arange(ROWS)
+    return {"Halle": 20 + 0.01 * t + day, "Spindel": 25 + 0.03 * t, "dX": 0.5 * t + 0.1 * day}
+
+
+def _labview_pair(folder, day: int, invalid=slice(0, 0)):
+    """``run<day>.tdm`` + ``.tdx``: ``Time`` as eTimeUsi stamps, 60 s apart; the channels float64;
+    ``Spindel``'s ``invalid`` rows stored as 0 and flagged 0 in a byte block."""
+    folder.mkdir(parents=True, exist_ok=True)
+    start = START + dt.timedelta(days=day - 1)
+    whole, part = divmod(start.timestamp() + 60.0 * np.arange(ROWS), 1.0)
+    stamps = np.zeros(ROWS, dtype=[("fraction", "<u8"), ("seconds", "<i8")])
+    stamps["seconds"] = whole.astype("int64") + LABVIEW_1970
+    stamps["fraction"] = np.round(part * 2.0 ** 64).astype("uint64")
+    values = _channels(day)
+    values["Spindel"][invalid] = 0.0
+    flags = np.ones(ROWS, "u1")
+    flags[invalid] = 0
+    arrays = [("Time", "s", "DT_DATE", stamps, "eTimeUsi")] + [
+        (n, "°C" if n != "dX" else "µm", "DT_DOUBLE", v, "eFloat64Usi") for n, v in values.items()]
+    blocks, body, offset = [], [], 0
+    with open(folder / f"run{day}.tdx", "wb") as f:
+        for k, (_, _, _, v, vtype) in enumerate([*arrays, ("", "", "", flags, "eUInt8Usi")]):
+            f.write(v.tobytes())
+            blocks.append(f'<block byteOffset="{offset}" id="inc{k}" length="{ROWS}" '
+                          f'valueType="{vtype}"/>')
+            offset += v.nbytes
+    for k, (name, unit, dtype, _, _) in enumerate(arrays):
+        flagged = '<flags external="inc4"/>' if name == "Spindel" else ""
+        body.append(f'<tdm_channel id="c{k}"><name>{name}</name><unit_string>{unit}</unit_string>'
+                    f'<datatype>{dtype}</datatype><local_columns>#xpointer(id("l{k}"))'
+                    f'</local_columns></tdm_channel><localcolumn id="l{k}"><global_flag>15'
+                    f'</global_flag>{flagged}<sequence_representation>explicit'
+                    f'</sequence_representation><values>#xpointer(id("s{k}"))</values></localcolumn>'
+                    f'<double_sequence id="s{k}"><values external="inc{k}"/></double_sequence>')
+    ids = " ".join(f'id("c{k}")' for k in range(len(arrays)))
+    (folder / f"run{day}.tdm").write_text(
+        '<?xml version="1.0" encoding="UTF-8"?><usi:tdm xmlns:usi="http://www.ni.com/Schemas/'
+        f'USI/1_0" version="1.0"><usi:include><file byteOrder="littleEndian" url="run{day}.tdx">'
+        + "".join(blocks) + f'</file></usi:include><usi:data><tdm_channelgroup id="g"><name>Log'
+        f'</name><channels>#xpointer({ids})</channels></tdm_channelgroup>' + "".join(body)
+        + "</usi:data></usi:tdm>", encoding="utf-8")
+    return folder / f"run{day}.tdm"
+
+
+def test_labview_timestamps_are_utc_to_the_fraction_of_a_second(tmp_path):
+    for day in (1, 2):
+        _labview_pair(tmp_path / "lv", day)
+    ds, _ = read_dataset(tmp_path / "lv", {"roles": {"error": ["dX"]}, "test_fraction": 0.5})
+    assert list(ds.campaigns) == ["run1", "run2"]
+    # (no data.timezone: a LabVIEW stamp is UTC, to the quarter second it was written at)
+    assert ds.manifest["start"].iloc[1] == pd.Timestamp(START + dt.timedelta(days=1))
+    np.testing.assert_allclose(ds.campaigns["run2"]["time"], 60.0 * np.arange(ROWS), atol=1e-5)
+    np.testing.assert_allclose(ds.campaigns["run2"]["T_Spindel"], _channels(2)["Spindel"])
+
+
+def test_flagged_values_are_missing_not_the_zeros_stored_under_them(tmp_path):
+    _labview_pair(tmp_path / "lv", 1, invalid=slice(40, 44))
+    _labview_pair(tmp_path / "lv", 2)
+    with pytest.raises(ContractError, match="gap of 4 missing values"):
+        read_dataset(tmp_path / "lv", {"roles": {"error": ["dX"]}, "test_fraction": 0.5})
+    ds, _ = read_dataset(tmp_path / "lv", {"roles": {"error": ["dX"]}, "test_fraction": 0.5,
+                                           "max_gap_samples": 4})
+    # the gap bridged from its neighbours: the spindle's ramp, not 0 °C
+    np.testing.assert_allclose(ds.campaigns["run1"]["T_Spindel"], _channels(1)["Spindel"])
