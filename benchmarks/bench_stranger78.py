@@ -55,7 +55,7 @@ from _cli import run_commands  # noqa: E402
 from bench_stranger75 import matrix  # noqa: E402
 
 STEM = "KV2500"
-DIADEM_EPOCH = 62167219200.0          # s from 0000-01-01 to 1970-01-01 (DIAdem's dates)
+DIADEM_EPOCH = 62167132800.0          # s from DIAdem's 0000-01-01 to 1970-01-01 (tdm.DIADEM_EPOCH_S)
 STATES = (("Tisch Drehzahl", "rpm", "rpm"), ("Radius X", "radius", "mm"),
           ("Stößel Auszug", "ram", "mm"))
 PROBES = (("Laser dX", "E_dX"), ("Laser dZ", "E_dZ"))

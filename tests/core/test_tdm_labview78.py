@@ -85,3 +85,20 @@ def test_flagged_values_are_missing_not_the_zeros_stored_under_them(tmp_path):
                                            "max_gap_samples": 4})
     # the gap bridged from its neighbours: the spindle's ramp, not 0 °C
     np.testing.assert_allclose(ds.campaigns["run1"]["T_Spindel"], _channels(1)["Spindel"])
+
+
+def test_a_channel_shorter_than_its_groups_time_ends_in_empty_rows(tmp_path, caplog):
+    """DIAdem's channels of one group may end apart (tdm_loader's DIAdem test file: forces of
+    11314 values beside a time of 11316); before: refused, "one length a group"."""
+    path = _labview_pair(tmp_path / "lv", 1)
+    _labview_pair(tmp_path / "lv", 2)
+    header = path.read_text(encoding="utf-8")
+    path.write_text(header.replace(f'id="inc1" length="{ROWS}"', f'id="inc1" length="{ROWS - 2}"'),
+                    encoding="utf-8")
+    from thermocomp.core.io.tdm import tdm_records
+
+    (record,) = tdm_records(path)
+    hall = next(c for c in record.channels if c.header.startswith("Halle"))
+    assert hall.values.size == ROWS and np.isnan(hall.values[-2:]).all()
+    np.testing.assert_array_equal(hall.values[:-2], _channels(1)["Halle"][:-2])
+    assert "'Halle' 88" in caplog.text and "their last rows empty" in caplog.text

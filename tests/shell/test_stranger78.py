@@ -23,7 +23,7 @@ from thermocomp.shell.cli import main
 NAMES = ["Halle", "Ständer", "Stößel", "Laser dX", "Laser dZ"]
 UNITS = ["°C", "°C", "°C", "µm", "µm"]
 START = dt.datetime(2027, 4, 5, 6)
-DIADEM_EPOCH = 62167219200.0        # s from 0000-01-01 to 1970-01-01
+DIADEM_EPOCH = 62167132800.0        # s from DIAdem's 0000-01-01 to 1970-01-01 (tdm.DIADEM_EPOCH_S)
 
 
 def _pair(folder: Path, day: int, nan_rows: int = 0, implicit: bool = False) -> Path:

@@ -24,10 +24,12 @@ from __future__ import annotations
 
 import re
 import xml.etree.ElementTree as ET
+import zipfile
 from pathlib import Path
 
 import numpy as np
 
+from ...base.log import logger
 from .contract import ContractError
 from .hdf5 import dated_apart
 from .labfile import Channel, Record, with_unit
@@ -35,7 +37,12 @@ from .roles import named_as_time
 from .tdms import groups_are_runs, joined_groups
 
 TDM_SUFFIXES = (".tdm",)
-DIADEM_EPOCH_S = 62167219200        # s from DIAdem's 0000-01-01 00:00 to 1970-01-01 00:00
+# s from DIAdem's 0000-01-01 00:00 to 1970-01-01 00:00: a year 0 of 365 days (not the proleptic
+# Gregorian 366, 62167219200, which read every date a day early).  Measured on two files NI's
+# software wrote (tdm_loader 1.2.7's test files): a LabVIEW file's DT_DATE minimum less its own
+# first eTimeUsi stamp, 62167132800.00 s; a DIAdem file's absolute time read by it as
+# 2021-02-26 07:55:01, the time its name gives
+DIADEM_EPOCH_S = 62167132800
 LABVIEW_EPOCH_S = 2082844800        # s from LabVIEW's 1904-01-01 00:00 UTC to 1970-01-01 00:00
 TIME_USI = "eTimeUsi"               # a LabVIEW timestamp: u8 fraction of 2^-64 s, i8 seconds
 _TYPES = {"eInt8Usi": "i1", "eInt16Usi": "i2", "eInt32Usi": "i4", "eInt64Usi": "i8",
@@ -51,8 +58,8 @@ def is_tdm(path) -> bool:
 def tdm_records(path: Path) -> list[Record]:
     """The runs of the TDM file ``path`` (one, or one per channel group where they are runs)."""
     try:
-        root = ET.parse(path).getroot()
-    except (ET.ParseError, UnicodeDecodeError) as exc:
+        root = _header(path)
+    except (ET.ParseError, UnicodeDecodeError, zipfile.BadZipFile) as exc:
         raise ContractError(f"not a TDM header that is read (its XML: {exc})", file=path) from None
     data = _child(root, "data")
     if data is None:
@@ -66,6 +73,18 @@ def tdm_records(path: Path) -> list[Record]:
     if len(groups) > 1 and (dated_apart(groups) or groups_are_runs(groups)):
         return groups
     return [joined_groups(groups)]
+
+
+def _header(path: Path):
+    """The header's XML root: the file's, or a zipped header's first member (some writers zip the
+    header; tdm_loader's test file ``2021-02-26_07-55-01.tdm`` is one)."""
+    if not zipfile.is_zipfile(path):
+        return ET.parse(path).getroot()
+    with zipfile.ZipFile(path) as zipped:
+        names = zipped.namelist()
+        if not names:
+            raise zipfile.BadZipFile("a zip archive with no member")
+        return ET.fromstring(zipped.read(names[0]))
 
 
 def _tag(e) -> str:
@@ -118,7 +137,8 @@ def _group(group, by_id: dict, blocks: dict, path: Path) -> Record:
         where = f"group {label!r}, channel {name!r}"
         values, stamped = _values(chan, by_id, blocks, path, where)
         if values is not None:
-            kind = TIME_USI if stamped else _text(chan, "datatype")
+            kind = TIME_USI if stamped else "DT_DATE" if _shown_as_time(chan) else _text(
+                chan, "datatype")
             named.append((name, _text(chan, "unit_string"), kind, values, where))
     clock = next((c for c in named if c[2] in ("DT_DATE", TIME_USI)), None) or next(
         (c for c in named if named_as_time(c[0])), None)
@@ -128,17 +148,32 @@ def _group(group, by_id: dict, blocks: dict, path: Path) -> Record:
         if clock[2] in ("DT_DATE", TIME_USI):     # (a LabVIEW timestamp: since 1970 already)
             since_1970 = time - DIADEM_EPOCH_S if clock[2] == "DT_DATE" else time
             time = np.round(since_1970 * 1e6).astype("int64").astype("datetime64[us]")
-    out = []
+    out, short = [], []
     for name, unit, _, values, where in named:
         if clock is not None and name == clock[0]:
             continue
-        if time is not None and values.size != time.size:
+        if time is not None and values.size > time.size:
             raise ContractError(f"{where} has {values.size} values, its group's time "
-                                f"{clock[0]!r} {time.size}: one length a group", file=path)
+                                f"{clock[0]!r} {time.size}: more values than times", file=path)
+        if time is not None and values.size < time.size:   # (DIAdem's channels end apart)
+            short.append(f"{name!r} {values.size}")
+            values = np.concatenate([values, np.full(time.size - values.size, np.nan)])
         out.append(Channel(with_unit(name, unit), values, time, where))
+    if short:
+        logger.warning(f"{path.name}: group {label!r}: channel(s) shorter than its time "
+                       f"{clock[0]!r} ({time.size} rows), their last rows empty: "
+                       + ", ".join(short[:4]) + (" ..." if len(short) > 4 else ""))
     dated = clock is not None and clock[2] in ("DT_DATE", TIME_USI)
     return Record(label, out, "time" if clock is None or dated else clock[0],
                   utc=clock is not None and clock[2] == TIME_USI)
+
+
+def _shown_as_time(chan) -> bool:
+    """A channel of doubles DIAdem shows as dates (its ``displaytype`` attribute ``Time``): the
+    absolute time of tdm_loader's DIAdem test file, ``Zeit_[200Hz]-abs``, is one (DT_DOUBLE)."""
+    attributes = _child(chan, "instance_attributes")
+    return attributes is not None and any(
+        a.get("name") == "displaytype" and _text(a, "s") == "Time" for a in attributes)
 
 
 def _values(chan, by_id: dict, blocks: dict, path: Path, where: str
