@@ -102,3 +102,42 @@ def test_a_channel_shorter_than_its_groups_time_ends_in_empty_rows(tmp_path, cap
     assert hall.values.size == ROWS and np.isnan(hall.values[-2:]).all()
     np.testing.assert_array_equal(hall.values[:-2], _channels(1)["Halle"][:-2])
     assert "'Halle' 88" in caplog.text and "their last rows empty" in caplog.text
+
+
+def _inline_header(path, groups: dict) -> None:
+    """A TDM header with every value inline (no TDX): ``groups`` name -> [(channel, datatype,
+    values)]."""
+    body, refs, k = [], [], 0
+    for gid, (group, channels) in enumerate(groups.items()):
+        ids = []
+        for name, dtype, values in channels:
+            cells = "".join(f"<A>{float(v)!r}</A>" for v in values)
+            body.append(f'<tdm_channel id="c{k}"><name>{name}</name><datatype>{dtype}</datatype>'
+                        f'<local_columns>#xpointer(id("l{k}"))</local_columns></tdm_channel>'
+                        f'<localcolumn id="l{k}"><values>#xpointer(id("s{k}"))</values>'
+                        f'</localcolumn><double_sequence id="s{k}"><values>{cells}</values>'
+                        "</double_sequence>")
+            ids.append(f'id("c{k}")')
+            k += 1
+        refs.append(f'<tdm_channelgroup id="g{gid}"><name>{group}</name><channels>'
+                    f'#xpointer({" ".join(ids)})</channels></tdm_channelgroup>')
+    path.write_text('<?xml version="1.0" encoding="UTF-8"?><usi:tdm xmlns:usi="http://www.ni.com/'
+                    'Schemas/USI/1_0" version="1.0"><usi:data>' + "".join(refs + body)
+                    + "</usi:data></usi:tdm>", encoding="utf-8")
+
+
+def test_an_evaluation_group_without_time_reads_on_the_raw_groups_rows(tmp_path, caplog):
+    """DIAdem's evaluation group (tdm_loader's DIAdem file: ``Auswertung``, no time, beside the
+    raw group and its dates); before: "no grid reads them together"."""
+    from thermocomp.core.io.tdm import DIADEM_EPOCH_S, tdm_records
+
+    dates = DIADEM_EPOCH_S + 1.8e9 + 60.0 * np.arange(6)
+    _inline_header(path := tmp_path / "eval.tdm", {
+        "Rohwerte": [("Zeit", "DT_DATE", dates), ("T1", "DT_DOUBLE", np.arange(6.0))],
+        "Auswertung": [("T1_Offset", "DT_DOUBLE", np.arange(5.0) - 0.5)]})
+    (record,) = tdm_records(path)
+    offset = next(c for c in record.channels if c.header == "T1_Offset")
+    np.testing.assert_array_equal(offset.time, record.channels[0].time)
+    np.testing.assert_array_equal(offset.values[:5], np.arange(5.0) - 0.5)
+    assert np.isnan(offset.values[5])
+    assert "group 'Auswertung' has no time of its own: read on group 'Rohwerte''s" in caplog.text

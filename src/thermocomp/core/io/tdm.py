@@ -72,7 +72,30 @@ def tdm_records(path: Path) -> list[Record]:
         raise ContractError("no channel of numbers in the TDM file", file=path)
     if len(groups) > 1 and (dated_apart(groups) or groups_are_runs(groups)):
         return groups
-    return [joined_groups(groups)]
+    return [joined_groups(_on_the_timed_rows(groups, path))]
+
+
+def _on_the_timed_rows(groups: list[Record], path: Path) -> list[Record]:
+    """Groups without a time of their own read on the rows of the one group with a time, where
+    none of their channels is longer: DIAdem's evaluation group beside its raw data
+    (tdm_loader's DIAdem test file: ``Auswertung``, the raw channels less their offsets, no time,
+    beside ``Rohwerte_[200Hz]`` and its dates; joined as they were, "no grid reads them
+    together").  Said; any other mix is left to the join's rules."""
+    timed = [g for g in groups if g.channels[0].time is not None]
+    if len(timed) != 1:
+        return groups
+    time = timed[0].channels[0].time
+    out = []
+    for g in groups:
+        if g.channels[0].time is not None or any(c.values.size > time.size for c in g.channels):
+            out.append(g)
+            continue
+        logger.warning(f"{path.name}: group {g.label!r} has no time of its own: read on group "
+                       f"{timed[0].label!r}'s, row by row")
+        out.append(Record(g.label, [Channel(c.header, np.concatenate(
+            [c.values, np.full(time.size - c.values.size, np.nan)]), time, c.where)
+            for c in g.channels], timed[0].time_header, timed[0].utc))
+    return out
 
 
 def _header(path: Path):
