@@ -1,0 +1,187 @@
+"""A reading beyond its range and a common step in the exported C (cmon80, issue 34): a faulted
+record's corrections from the compiled code with its sensor monitor, without it, and the served
+adaptive model's.
+
+    PYTHONPATH=$PWD/src .venv/bin/python benchmarks/bench_cmon80.py faults [ROOT] [SEEDS]
+
+For each seed (default 7996-8010, not used before) ``thermocomp simulate`` (the default
+``yearround_spindle``, healthy) into ``ROOT`` (default ``/tmp/cmon80-bench``), MLR fitted on the
+train split and deployed adaptive as ``replay`` deploys it, exported as C (``gcc -std=c99 -Wall
+-Wextra -Werror -O2``) once with the monitor (``export.format=c``) and once without it.  Two
+faults planted on every test campaign from its middle row (the train split untouched, one fit
+per seed):
+
+* ``range``: ``T_motor2`` reads ``+RANGE_C`` °C for ``RANGE_ROWS`` samples (a loose contact, an
+  overload the logger does not mark), then healthy again;
+* ``common``: every monitored ``T_`` sensor ``+STEP_C`` °C from there to the end (a logger's
+  reference changed).
+
+Prints per record the test RMSE (µm, pooled over the test campaigns) per target: fixed (the
+plain stream), the served adaptive model, the C without and with its monitor, the largest |C
+with monitor - served| over every row, the first row where the code's monitor flagged a rule it
+does not hold (per campaign), the rows beyond the range limit (range) and the conformance pack's
+rows kept of all, with the copies it plants on the first test campaign listed apart.
+
+This changes no rule of auto / diagnose / monitor (the served monitor is as shipped): the code
+is measured against it, so no bar is written.
+
+Measured (2 cores shared, 15 seeds, 30 records; 105.6 s user + 4.4 s sys of CPU), E_Z test RMSE
+in µm pooled over the test campaigns (the other targets alike), max |C with monitor - served|
+over every row of every test campaign:
+
+TABLE
+"""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from _cli import made_folder, run_commands  # noqa: E402
+
+SEEDS = "7996-8010"
+KINDS = ("range", "common")
+SENSOR = "T_motor2"
+RANGE_C, RANGE_ROWS = 40.0, 6          # +40 degC for 6 samples (30 min of 300 s)
+STEP_C = 3.0
+
+
+def _seeds(text: str) -> list[int]:
+    lo, _, hi = text.partition("-")
+    return list(range(int(lo), int(hi or lo) + 1))
+
+
+def _built(folder: Path, files: dict) -> Path:
+    folder.mkdir(parents=True, exist_ok=True)
+    for name, text in files.items():
+        (folder / name).parent.mkdir(parents=True, exist_ok=True)
+        (folder / name).write_text(text)
+    subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", "compensator.c",
+                    "stream.c", "-lm", "-o", "stream"], cwd=folder, check=True, capture_output=True)
+    return folder / "stream"
+
+
+def _streamed(binary: Path, frame: pd.DataFrame) -> np.ndarray:
+    text = frame.to_csv(index=False, float_format="%.17g")
+    run = subprocess.run([str(binary)], input=text, text=True, capture_output=True, check=True)
+    return pd.read_csv(pd.io.common.StringIO(run.stdout)).to_numpy(float)
+
+
+def _rmse(errors: list, corrections: list) -> np.ndarray:
+    r = np.vstack([e + c for e, c in zip(errors, corrections)])
+    return np.sqrt(np.mean(r ** 2, axis=0))
+
+
+def _planted(frame: pd.DataFrame, kind: str, monitored: list) -> pd.DataFrame:
+    out = frame.copy()
+    half = len(out) // 2
+    if kind == "range":
+        out.loc[half:half + RANGE_ROWS - 1, SENSOR] += RANGE_C
+    else:
+        out.loc[half:, monitored] += STEP_C
+    return out
+
+
+def _first_flag(ss, frame: pd.DataFrame) -> int | None:
+    """The row (1-based) where the code's monitor first flags a rule it does not hold."""
+    from thermocomp.apps.deploy.export import Simulator
+    from thermocomp.apps.deploy.export.watch import NOT_IN_CODE
+
+    sim = Simulator(ss)
+    sim.reset()
+    for i, (u, t) in enumerate(zip(frame[ss.inputs].to_numpy(float), frame["time"])):
+        sim.step(u, t)
+        if sim.watch.flags & NOT_IN_CODE or sim.refused:
+            return i + 1
+    return None
+
+
+def record(root: Path, seed: int) -> list[str]:
+    from hydra import compose, initialize_config_dir
+
+    from thermocomp.apps.deploy.export import c, exported_files, state_space
+    from thermocomp.apps.deploy.export.driver import DRIVER
+    from thermocomp.apps.deploy.export.pack import conformance_pack, corrections
+    from thermocomp.apps.deploy.report import stream_rows
+    from thermocomp.apps.deploy.streaming import replay
+    from thermocomp.base.paths import conf_dir
+    from thermocomp.shell.builders import build_compensator, deploy_stream, deployable
+    from thermocomp.shell.cli import main
+    from thermocomp.shell.source import read_streamed
+
+    data = root / f"healthy-{seed}"
+    if not (data / "campaigns.csv").is_file():
+        assert main(["-q", "simulate", f"seed={seed}", f"data.path={data}", "track=false"]) == 0
+    with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3"):
+        cfg = compose(config_name="config",
+                      overrides=[f"data.path={data}", "track=false", "model=mlr"])
+    ds, train_ids, test_ids, _ = read_streamed(cfg)
+    train = {k: ds.campaigns[k] for k in train_ids}
+    deployed = deployable(cfg, deploy_stream(cfg, build_compensator(cfg, ds=ds).fit(train), train),
+                          train, ds)
+    targets = deployed.targets_
+    monitored = list(deployed.monitor.names)
+    ss = state_space(deployed, monitor=True)
+    plain_ss = state_space(deployed)
+    k = monitored.index(SENSOR)
+    limit = ss.monitor["hi_lim"][k]
+    out = []
+    with tempfile.TemporaryDirectory(prefix="cmon80-") as tmp:
+        with_mon = _built(Path(tmp) / "with", exported_files(deployed, "c"))
+        without = _built(Path(tmp) / "without", {"compensator.h": c.header(plain_ss),
+                                                 "compensator.c": c.source(plain_ss),
+                                                 "stream.c": DRIVER})
+        cols = ["time", *ss.inputs]
+        for kind in KINDS:
+            tests = {t: _planted(ds.campaigns[t].reset_index(drop=True), kind, monitored)
+                     for t in test_ids}
+            errors, fixed, served, code0, code1, flags = [], [], [], [], [], []
+            for t, df in tests.items():
+                errors.append(df[targets].to_numpy(float))
+                fixed.append(-replay(deployed.streaming, df)[targets].to_numpy(float))
+                served.append(corrections(ss, stream_rows(deployed, df, t).y))
+                code0.append(_streamed(without, df[cols]))
+                code1.append(_streamed(with_mon, df[cols]))
+                if (row := _first_flag(ss, df)) is not None:
+                    flags.append(f"{t}@{row}")
+            _, summary = conformance_pack(deployed, ss, tests)
+            listed = [e for e in summary["campaigns"] if "planted" not in e]
+            kept = sum(e["rows"] for e in listed)
+            total = sum(len(df) for df in tests.values())
+            plants = [f"{e['campaign'].split('.', 1)[1]} {e['rows']}"
+                      f"{'' if e['cut'] is None else ' cut'}"
+                      for e in summary["campaigns"] if "planted" in e]
+            worst = max(float(np.max(np.abs(a - b))) for a, b in zip(code1, served))
+            beyond = sum(int((df[SENSOR] > limit).sum()) for df in tests.values())
+            out.append(f"{kind} s{seed}: pack rows {kept}/{total}; max|C monitor - served| "
+                       f"{worst:.2e} um; flags {', '.join(flags) or 'none'}"
+                       + (f"; {beyond} rows beyond {SENSOR}'s limit {limit:.2f}"
+                          if kind == "range" else "")
+                       + f"; planted: {', '.join(plants)}")
+            for i, t in enumerate(targets):
+                f, s, c0, c1 = (_rmse(errors, x)[i] for x in (fixed, served, code0, code1))
+                out.append(f"  {t}: fixed {f:.3f}  served adaptive {s:.3f}  C without monitor "
+                           f"{c0:.3f}  C with monitor {c1:.3f}")
+    return out
+
+
+def faults(root: str = "/tmp/cmon80-bench", seeds: str = SEEDS) -> None:
+    folder = made_folder(root)
+    for seed in _seeds(seeds):
+        print("\n".join(record(folder, seed)), flush=True)
+
+
+def main(argv: list[str] | None = None) -> int:
+    return run_commands(__doc__, {"faults": faults}, sys.argv[1:] if argv is None else argv,
+                        cpu=sys.stderr)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
