@@ -31,7 +31,7 @@ RMSE in µm pooled over the 6-8 test campaigns of each record (543-638 rows); "b
 same bench on the sources of main at 928bc89a (the C that flagged both rules), its pack's rows
 in brackets:
 
-| record | fixed | served adaptive | C without monitor | C with monitor (before cmon80) | C with monitor | pack rows kept (before) |
+| record | fixed | served adaptive | C no monitor | C before cmon80 | C with monitor | pack rows (before) |
 |---|---|---|---|---|---|---|
 | range s7996 | 14.927 | 5.662 | 11.655 | 10.334 | 5.662 | 616 / 616 (365) |
 | range s7997 | 8.667 | 4.801 | 8.536 | 8.536 | 4.801 | 572 / 572 (284) |
@@ -71,8 +71,9 @@ pack keeps every row (before: 4798 and 4425 of 8895).  Its copies planted on the
 campaign (a jump, a freeze, a dropout, a range reading of ``T_bearing_f1`` and the common step)
 are cut where the record's own range fault on ``T_motor2`` comes while the planted sensor is out
 (a second sensor out: not in the code), all but the common step, which passes whole; on a
-common-step record every copy passes whole but the freeze on 4 of 15 (its cut not traced here).  On s8000's common step the served
-monitor is worse than the fixed model (4.793 against 4.109 µm): the C follows it, as it should.
+common-step record every copy passes whole but the freeze on 4 of 15 (its cut not traced here).
+On s8000's common step the served monitor is worse than the fixed model (4.793 against 4.109
+µm): the C follows it, as it should.
 """
 
 from __future__ import annotations
