@@ -4,7 +4,9 @@ return stepped from its last reading, re-admitted) and re-references the second 
 that took it, kept in), as the served adaptive model's monitor does.
 
 On test_export's three-sensor record (MLR, deployed adaptive): ``T_b`` +30 °C for three rows and
-+8 °C to the end, and all three sensors +2 °C from the middle row.  Before, the C flagged both
++8 °C to the end, all three sensors +2 °C from the middle row, and ``T_b`` at 36 °C (beyond its
+range) while a warmer ``T_a`` predicts it beyond the same edge (a machine hotter than training:
+read, a jump).  Before, the C flagged both
 (``TC_MON_NOT_IN_CODE``) and parted from the served corrections from row 21 (by 1.16 and 4.23 µm);
 now the compiled code (gcc -Wall -Wextra -Werror) gives them on every row, and the pack, not cut,
 passes with the range reading and the common step it plants."""
@@ -49,6 +51,9 @@ def _faulty(frame, kind):
         out.loc[HALF:, "T_b"] += 8.0
     elif kind == "common":          # a logger's reference: every sensor +2 degC at once
         out.loc[HALF:, ["T_a", "T_b", "T_amb"]] += 2.0
+    elif kind == "hotter":          # T_a warms (within its range) and T_b reads 36 degC, beyond
+        out["T_a"] += np.clip(np.arange(len(out)) - 10, 0, 9) * 0.33      # its range, where T_a
+        out.loc[HALF + 1:, "T_b"] = 36.0                                   # predicts it: a jump
     elif kind == "second":          # T_b beyond its range while T_a is out (a dropout)
         out.loc[HALF - 2:HALF - 1, "T_a"] = np.nan
         out.loc[HALF - 1, "T_b"] += 30.0
@@ -74,20 +79,23 @@ def _streamed(binary, frame, inputs):
 def test_a_reading_beyond_its_range_and_a_common_step_are_what_the_code_does_as_served(served,
                                                                                        tmp_path):
     deployed, ss, campaign = served
-    faults = {k: _faulty(campaign, k) for k in ("spike", "beyond", "common")}
+    faults = {k: _faulty(campaign, k) for k in ("spike", "beyond", "common", "hotter")}
     moves = {k: [(e["sensor"], e["to"], e["reason"].split(":")[0])
                  for e in stream_rows(deployed, f, "K06").events if e.get("sensor")]
              for k, f in faults.items()}
     assert moves["spike"] == [("T_b", "excluded", "out of range"), ("T_b", "ok", "re-admitted")]
     assert moves["beyond"] == [("T_b", "excluded", "out of range")]      # out to the end
     assert moves["common"] == [(s, "re-referenced", "common step") for s in ("T_a", "T_b", "T_amb")]
+    # a machine hotter than training: read, a jump (the others predict it beyond the same edge);
+    # out, its readings beyond the range are missing ones
+    assert moves["hotter"] == [("T_b", "excluded", "jump")]
     files, summary = conformance_pack(deployed, ss, faults)
     # kept whole (before: cut at row 21, 'a reading beyond its training range' / 'several sensors
     # jumping in one sample'); the copies planted on the first campaign are cut where its own
     # spike on T_b comes while the planted sensor is out (a second sensor out), or (the common
     # step) with it: two sensors jumping beside one beyond its range are no common step
     assert [(e["campaign"], e["rows"], e["cut"] is None) for e in summary["campaigns"]] == [
-        ("spike", 40, True), ("beyond", 40, True), ("common", 40, True),
+        ("spike", 40, True), ("beyond", 40, True), ("common", 40, True), ("hotter", 40, True),
         ("spike.jump.T_a", 20, False), ("spike.freeze.T_a", 31, False),
         ("spike.dropout.T_a", 20, False), ("spike.range.T_a", 20, False),
         ("spike.common.step", 20, False)]
@@ -98,6 +106,9 @@ def test_a_reading_beyond_its_range_and_a_common_step_are_what_the_code_does_as_
         assert got.shape == want.shape and np.max(np.abs(got - want)) < 1e-9, k   # every row
         if k == "common":
             assert "line 22: monitor: T_a: common step: re-referenced, kept in" in said
+        elif k == "hotter":
+            assert "line 23: monitor: T_b: jump: re-referenced and excluded" in said
+            assert "out of range" not in said
         else:
             assert "line 22: monitor: T_b: out of range: read as missing, excluded" in said
         assert "not in the code" not in said
