@@ -54,10 +54,11 @@ def test_a_missing_reading_is_excluded_rebuilt_and_readmitted_by_the_code_as_ser
     assert moves == [("excluded", "dropout"), ("ok", "re-admitted")]
     files, summary = conformance_pack(deployed, ss, {"K06": faulty})
     # kept whole (before: cut at row 21, 'T_b has no value there, which the code refuses'), and
-    # a dropout planted on the first monitored sensor beside the jump and the freeze
+    # a dropout planted on the first monitored sensor beside the jump and the freeze (and, cmon80,
+    # a reading beyond its range and a common step)
     assert [(e["campaign"], e["rows"], e["cut"]) for e in summary["campaigns"]] == [
         ("K06", 40, None), ("K06.jump.T_a", 40, None), ("K06.freeze.T_a", 40, None),
-        ("K06.dropout.T_a", 40, None)]
+        ("K06.dropout.T_a", 40, None), ("K06.range.T_a", 40, None), ("K06.common.step", 40, None)]
     assert summary["campaigns"][3]["planted"] == ("T_a missing (an empty cell) in rows 21-25 (a "
                                                   "dropout), read again after")
     for name, text in {**exported_files(deployed, "c"), **files}.items():
@@ -67,7 +68,7 @@ def test_a_missing_reading_is_excluded_rebuilt_and_readmitted_by_the_code_as_ser
                     "stream.c", "-lm", "-o", "stream"], cwd=tmp_path, check=True, capture_output=True)
     script = subprocess.run(["sh", "check/check.sh"], cwd=tmp_path, capture_output=True, text=True)
     assert script.returncode == 0, script.stderr
-    assert "check: 4 campaign(s) within tolerance" in script.stdout
+    assert "check: 6 campaign(s) within tolerance" in script.stdout
     # said on stderr at the served monitor's rows (a CSV line: the row + 2)
     line = {e["to"]: int(np.flatnonzero(faulty["time"] == e["time"])[0]) + 2
             for e in done.events if e.get("sensor") == "T_b"}

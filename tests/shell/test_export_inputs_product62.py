@@ -175,5 +175,6 @@ def test_the_export_commands_check_pack_passes_for_it(data, tmp_path):
                  "export.format=c", f"out={out}", "track=false"]) == 0
     banner = (out / "compensator.c").read_text().split("*/")[0]
     assert "interaction:S_y_pos product(model inputs' rises) (absolute)" in banner
-    # (the test campaigns, and the jump and the freeze the pack plants: cmon76; a dropout: cdrop77)
-    assert checked_pack(out).count("stream: check passed: 50 rows") == 5
+    # (the test campaigns, and the jump and the freeze the pack plants: cmon76; a dropout: cdrop77;
+    # a reading beyond its range and a common step: cmon80)
+    assert checked_pack(out).count("stream: check passed: 50 rows") == 7

@@ -5,9 +5,9 @@ does not hold is flagged and named, and the conformance pack cuts a campaign the
 On test_export's three-sensor record (MLR, deployed adaptive): a +3 °C jump of ``T_b`` half-way
 through a test campaign is excluded, rebuilt and re-admitted by the served monitor, and the
 compiled code (gcc -Wall -Wextra -Werror) gives the served corrections on every row (the pack, not
-cut, passes; before, it was cut at the jump), and so on a jump and a freeze the pack plants.  A
-+8 °C step is beyond the training range, a rule the code flags and does not hold: the pack cuts
-there and says which."""
+cut, passes; before, it was cut at the jump), and so on a jump and a freeze the pack plants.  Two
+sensors stepping +2 °C in one sample (too few for a common step: cmon80) is a rule the code flags
+and does not hold: the pack cuts there and says which."""
 
 from __future__ import annotations
 
@@ -61,11 +61,12 @@ def test_a_jump_is_excluded_rebuilt_and_readmitted_by_the_code_as_served(served,
     assert moves == [("excluded", "jump"), ("ok", "re-admitted")]
     ss = state_space(deployed, monitor=True)
     files, summary = conformance_pack(deployed, ss, {"K05": healthy, "K06": faulty})
-    # (and a jump, a freeze and (cdrop77) a dropout planted on K05's first monitored sensor:
-    # every pack checks them)
+    # (and a jump, a freeze, (cdrop77) a dropout, (cmon80) a reading beyond its range planted on
+    # K05's first monitored sensor and a common step: every pack checks them)
     assert [(e["campaign"], e["rows"], e["cut"]) for e in summary["campaigns"]] == [
         ("K05", 40, None), ("K06", 40, None), ("K05.jump.T_a", 40, None),
-        ("K05.freeze.T_a", 40, None), ("K05.dropout.T_a", 40, None)]
+        ("K05.freeze.T_a", 40, None), ("K05.dropout.T_a", 40, None),
+        ("K05.range.T_a", 40, None), ("K05.common.step", 40, None)]
     assert summary["campaigns"][2]["planted"].startswith("T_a +3.097 degC from row 21")
     _written(tmp_path, {**exported_files(deployed, "c"), **files})
     script = subprocess.run(["sh", "check/check.sh"], cwd=tmp_path, capture_output=True, text=True)
@@ -74,7 +75,7 @@ def test_a_jump_is_excluded_rebuilt_and_readmitted_by_the_code_as_served(served,
     assert "line 22: monitor: T_b: jump: re-referenced and excluded" in said
     assert "line 32: monitor: T_b: re-admitted" in said
     assert "line 22: monitor: T_a: jump: re-referenced and excluded" in said      # the planted one
-    assert "check: 5 campaign(s) within tolerance" in script.stdout
+    assert "check: 7 campaign(s) within tolerance" in script.stdout
     # the monitor is what the code does: the plain arithmetic parts from the served corrections
     served_c = corrections(ss, done.y)
     plain = corrections(ss, stream_rows(deployed.streaming, faulty, "K06").y)
@@ -83,16 +84,17 @@ def test_a_jump_is_excluded_rebuilt_and_readmitted_by_the_code_as_served(served,
 
 def test_a_rule_the_code_does_not_hold_is_named_and_the_pack_cut_there(served):
     deployed, healthy, other = served
-    faulty = _stepped(other, 8.0)        # beyond the training range +- 10 degC
+    faulty = other.copy()       # two sensors +2 degC in one sample: several jumps, no common step
+    faulty.loc[len(faulty) // 2:, ["T_a", "T_b"]] += 2.0
     event = next(e for e in stream_rows(deployed, faulty, "K06").events if e.get("sensor") == "T_b")
-    assert event["reason"].startswith("out of range")
+    assert event["reason"].startswith("jump")
     ss = state_space(deployed, monitor=True)
     _, summary = conformance_pack(deployed, ss, {"K06": faulty})
     assert summary["campaigns"][0]["cut"] == {
         "row": 21, "why": "the served model's sensor monitor acted there, which is not in the "
-                          "code (a reading beyond its training range)"}
+                          "code (several sensors jumping in one sample (no common step))"}
     left = not_in_code(deployed, "c")
-    assert len(left) == 1 and "a reading beyond its training range" in left[0]
+    assert len(left) == 1 and "several sensors jumping at once that are no common step" in left[0]
     assert not_in_code(deployed, "st") == not_in_code(deployed)       # the ST holds none of it
 
 

@@ -718,13 +718,14 @@ static int check_open(void) {
 
 /* The corrections c of input line `row` against FILE's next row: 0 within the tolerance, 1 (not)
    or 2 (FILE unreadable there) after saying where. */
-/* (cmon76) the sensor monitor's events on stderr: each exclusion and re-admission, and where a
-   rule of the served monitor that is not in the code sets in (from there the code may part
-   from the served model); 100 lines at most */
+/* (cmon76) the sensor monitor's events on stderr: each exclusion and re-admission, a common
+   step re-referenced (cmon80), and where a rule of the served monitor that is not in the code
+   sets in (from there the code may part from the served model); 100 lines at most */
 static void said_monitor(const tc_state *s, long row) {
     static int said = 0, flagged = 0;
     int now = (s->mon_flags & TC_MON_NOT_IN_CODE) != 0;
-    if (s->mon_rule && (s->mon_flags & (TC_MON_EXCLUDED | TC_MON_READMITTED) || (now && !flagged))
+    if (s->mon_rule && (s->mon_flags & (TC_MON_EXCLUDED | TC_MON_READMITTED | TC_MON_REREFERENCED)
+                        || (now && !flagged))
         && said++ < 100)
         fprintf(stderr, "stream: line %ld: monitor: %s: %s%s\n", row,
                 TC_INPUT_NAMES[TC_MONITORED[s->mon_sensor]], TC_MONITOR_REASONS[s->mon_rule],

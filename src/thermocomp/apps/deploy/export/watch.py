@@ -15,14 +15,25 @@ The served adaptive compensator judges every ``T_`` input before the model reads
 * a **dropout** (cdrop77: a missing reading, NaN, an infinity or a value beyond its input's
   limit, after a campaign's first sample): excluded at that sample, its last reading kept as the
   one its return is stepped from (a jump limit times the samples it spans);
+* (cmon80) a reading **beyond its range** (``lo_lim`` / ``hi_lim``) after a campaign's first
+  sample, of one sensor while no other is out (or of the sensor out): read as missing, the
+  sensor excluded as for a dropout (its re-admission band half its warning band, as served),
+  its return stepped from its last reading; unless the others predict it beyond the same
+  training edge (``lo_c`` / ``hi_c``) by more than its warning band and it reads nearer that
+  prediction than half its distance from the edge (a machine hotter than training: read);
+* (cmon80) a **common step**: at least ``common_min`` active sensors jumping in one sample
+  (the median of their steps the common one), every active sensor whose step is within a
+  factor ``common_spread`` of it re-referenced by its own step and kept in, where they are
+  more than half the active ones read; a jump off it judged as before;
 * while a sensor is out the model reads its POD reconstruction from the others, and it is
   re-admitted after a whole window calm whose leave-one-out errors stay within half its
   warning band (``READMIT``; one out for a dropout alone, within its whole band, as served).
 
 What else the served monitor does it flags, ``NOT_IN_CODE`` with the rule (:data:`REASONS`),
-and goes on by its own rules: an out-of-range reading (its sample passes the monitor by, the
-state as it was, so that the reading's return is no jump), several sensors jumping at once (a
-common step), a jump at the reference's next sample, a stepped self-prediction error, a drift
+and goes on by its own rules: a reading beyond its range at a campaign's first sample, of
+several sensors at once or with another sensor out (its sample passes the monitor by, the state
+as it was, so that the reading's return is no jump), several sensors jumping at once that are
+no common step, a jump at the reference's next sample, a stepped self-prediction error, a drift
 beyond the band (exclusion by judgement, a new thermal state), a second sensor out, and a
 sensor no other predicts out (the model fitted without it).  A missing reading the code cannot
 rebuild (at a campaign's first sample, with another sensor out or missing, of a sensor it does
@@ -38,16 +49,18 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..adaptive import GAP_PERIODS, AdaptiveCompensator
-from ..surveillance.states import READMIT
+from ..surveillance.states import COMMON_MIN, COMMON_SPREAD, READMIT
 
-# what the code's monitor reports per sample (bits of tc_state.mon_flags)
-EXCLUDED, READMITTED, OUT, BAND, NOT_IN_CODE = 1, 2, 4, 8, 16
+# what the code's monitor reports per sample (bits of tc_state.mon_flags; REREFERENCED: a common
+# step, cmon80)
+EXCLUDED, READMITTED, OUT, BAND, NOT_IN_CODE, REREFERENCED = 1, 2, 4, 8, 16, 32
 # the reason of a flagged event (tc_state.mon_rule): what the code did, then what it does not do
 REASONS = ("", "jump: re-referenced and excluded", "freeze: excluded",
            "re-admitted: within half its warning band for a window (its whole band after a "
            "dropout)",
-           "not in the code: a reading beyond its training range",
-           "not in the code: several sensors jumping in one sample",
+           "not in the code: a reading beyond its training range at a campaign's first sample, "
+           "of several sensors at once or with another sensor out",
+           "not in the code: several sensors jumping in one sample (no common step)",
            "not in the code: a jump at the sample after the reference",
            "not in the code: a self-prediction error stepped past the alarm band",
            "not in the code: a drift beyond the band (exclusion by judgement, new thermal state)",
@@ -57,12 +70,14 @@ REASONS = ("", "jump: re-referenced and excluded", "freeze: excluded",
            "not in the code: a missing reading at a campaign's first sample",
            "not in the code: a missing reading with another sensor out or missing",
            "not in the code: a missing reading of a sensor the code does not hold out",
-           "not in the code: a missing reading of a sensor out for a freeze (its re-admission band)")
+           "not in the code: a missing reading of a sensor out for a freeze (its re-admission band)",
+           "out of range: read as missing, excluded",
+           "common step: re-referenced, kept in")
 RULES = ("", "JUMP", "FREEZE", "BACK", "RANGE", "COMMON", "GLITCH", "STEPPED", "DRIFT", "SECOND",
          "BLIND", "DROPOUT", "MISSING_FIRST", "MISSING_SECOND", "MISSING_BLIND",
-         "MISSING_FROZEN")      # their names in the C (TC_MON_JUMP ...), one per reason
+         "MISSING_FROZEN", "OFF_RANGE", "COMMON_STEP")   # their names in the C (TC_MON_JUMP ...)
 (JUMP, FREEZE, BACK, RANGE, COMMON, GLITCH, STEPPED, DRIFT, SECOND, BLIND, DROPOUT, MISSING_FIRST,
- MISSING_SECOND, MISSING_BLIND, MISSING_FROZEN) = range(1, len(RULES))
+ MISSING_SECOND, MISSING_BLIND, MISSING_FROZEN, OFF_RANGE, COMMON_STEP) = range(1, len(RULES))
 
 
 @dataclass
@@ -100,6 +115,8 @@ def monitor_fields(deployed, inputs: list) -> dict:
         "window": mon.window, "confirm": mon.confirm,
         "exclude_level": int(mon.exclude_level), "jump_lim": mon._jump_lim.tolist(),
         "lo_lim": mon._lo_lim.tolist(), "hi_lim": mon._hi_lim.tolist(),
+        "lo_c": mon.lo_c.tolist(), "hi_c": mon.hi_c.tolist(),
+        "common_min": COMMON_MIN, "common_spread": COMMON_SPREAD,
         "seen_run": mon._seen_run.tolist(), "blind_run": mon._blind_run.tolist(),
         "predictable": [int(p) for p in mon._predictable], "ported_out": ported,
         "period": float(deployed.period_s), "gap_periods": GAP_PERIODS, "readmit": READMIT}}
@@ -109,8 +126,10 @@ def planted(ss, campaigns) -> dict[str, tuple]:
     """``{id: (campaign, what, the campaign it copies)}``: the first campaign of 8 rows or more
     with a fault planted on the first monitored sensor whose exclusion the code holds, from its
     middle row on: a jump of twice its step limit (where the reading stays within its range),
-    a freeze (its reading held) and a dropout (no reading for a quarter of the rows after the
-    middle, then read again: cdrop77), so that the conformance pack checks the code's monitor on
+    a freeze (its reading held), a dropout (no reading for a quarter of the rows after the
+    middle, then read again: cdrop77), a reading beyond its range for as many rows and a common
+    step of every monitored sensor (twice the largest step limit, where the readings within
+    their range stay so: cmon80), so that the conformance pack checks the code's monitor on
     every record (its expected corrections the served model's, its monitor acting; cut where it
     does what the code's does not).  None without a monitor in the code."""
     m = ss.monitor
@@ -138,6 +157,29 @@ def planted(ss, campaigns) -> dict[str, tuple]:
     df.loc[df.index[half:half + lost], sensor] = np.nan
     out[f"{first}.dropout.{sensor}"] = (df, f"{sensor} missing (an empty cell) in rows {half + 1}-"
                                             f"{half + lost} (a dropout), read again after", first)
+    # (cmon80) a reading beyond its range (its limit's margin again beyond it) for as many rows,
+    # then back; and a common step of every monitored sensor (twice the largest step limit)
+    far = float(m["hi_lim"][k]) + (float(m["hi_lim"][k]) - float(m.get("hi_c", m["hi_lim"])[k]) or 10.0)
+    if np.isfinite(far) and abs(far) <= ss.limits[m["inputs"][k]]:
+        df = frame.copy()
+        df.loc[df.index[half:half + lost], sensor] = far
+        out[f"{first}.range.{sensor}"] = (df, f"{sensor} reads {far:.4g} degC (beyond its range) in "
+                                              f"rows {half + 1}-{half + lost}, read again after",
+                                          first)
+    names = [ss.inputs[i] for i in m["inputs"]]
+    lims = np.asarray(m["jump_lim"], float)
+    step = 2.0 * float(lims.max()) if len(names) >= m.get("common_min", np.inf) else np.nan
+    after = frame[names].iloc[half:].to_numpy(float)
+    lo, hi = np.asarray(m["lo_lim"], float), np.asarray(m["hi_lim"], float)
+    inside = (after >= lo) & (after <= hi)       # (a reading beyond already, or none: as it is)
+    for by in (step, -step):
+        if np.isfinite(by) and (((after + by >= lo) & (after + by <= hi)) | ~inside).all():
+            df = frame.copy()
+            df.loc[df.index[half:], names] += by
+            out[f"{first}.common.step"] = (df, f"every monitored sensor {by:+.4g} degC from row "
+                                               f"{half + 1} (a common step: a logger's reference)",
+                                           first)
+            break
     return out
 
 
@@ -146,6 +188,11 @@ class CodeMonitor:
 
     def __init__(self, arrays: dict):
         a = {k: np.asarray(v, float) for k, v in arrays.items()}
+        n = len(arrays["inputs"])
+        for k in ("lo_c", "hi_c"):        # (an export before cmon80: never a hotter machine)
+            a.setdefault(k, np.full(n, np.nan))
+        a.setdefault("common_min", np.float64(np.inf))     # (nor a common step)
+        a.setdefault("common_spread", np.float64(COMMON_SPREAD))
         self.idx = np.asarray(arrays["inputs"], int)
         self.M, self.lev = a["M"], a["lev"]
         self.n, self.window, self.confirm = len(self.idx), int(arrays["window"]), int(arrays["confirm"])
@@ -261,13 +308,16 @@ class CodeMonitor:
         x = u[self.idx]
         missing = ~np.isfinite(x)
         rng = (x < a["lo_lim"]) | (x > a["hi_lim"])
-        if rng.any():       # not in the code: the sample passes the monitor by, its state as it was
-            self._flag(NOT_IN_CODE, int(np.argmax(rng)), RANGE)
-            if not first:   # (so that the reading's return is no jump)
-                return self._rebuilt(u, x - self.ref)
         if first:
+            if rng.any():   # not in the code: the served monitor references it late
+                self._flag(NOT_IN_CODE, int(np.argmax(rng)), RANGE)
             self.ref, self.base = x.copy(), x.copy()
         d = x - self.ref
+        if rng.any() and not first:
+            rng = self._beyond(x, d, rng)
+            if rng is None:  # not in the code: the sample passes the monitor by, its state as it
+                return self._rebuilt(u, x - self.ref)   # was (so that the return is no jump)
+        gone = missing | rng        # read as missing (cmon80: beyond its range too)
         pos = self.pos
         self.hist[pos] = d
         self.pos, self.count = (pos + 1) % self.window, self.count + 1
@@ -279,7 +329,9 @@ class CodeMonitor:
         big = (np.abs(step) > a["jump_lim"] * gap) & ~rng
         same = step == 0
         jumped = -1
-        instant = missing.copy()
+        instant = missing | rng
+        if big.sum() >= a["common_min"]:
+            big = self._common_step(d, step, big, pos)
         if missing.any():   # (refuses() let one through: a new one, or the sensor out again)
             j = int(np.argmax(missing))
             if j != self.out:
@@ -288,6 +340,8 @@ class CodeMonitor:
                 # out for a freeze: the served monitor marks it dropped or not by the path it
                 # takes (its band on re-admission), which the code does not follow
                 self._flag(NOT_IN_CODE, j, MISSING_FROZEN)
+        if rng.any() and (j := int(np.argmax(rng))) != self.out:
+            self._exclude(j, OFF_RANGE)       # (cmon80: read as missing, as a dropout)
         if big.sum() > 1:
             self._flag(NOT_IN_CODE, int(np.argmax(big)), COMMON)
         elif big.any() and self.count == 2:
@@ -308,6 +362,9 @@ class CodeMonitor:
                 self.jumps[j] += 1
                 if active[j]:
                     self._exclude(j, JUMP)
+            self.hist[pos] = d
+        if rng.any():       # read as missing from here (neither a step's last reading nor in the
+            d[rng] = np.nan     # window that decides re-admission), as served
             self.hist[pos] = d
         self.run = np.where(same, self.run + 1, 0)
         self.calm += 1
@@ -341,7 +398,7 @@ class CodeMonitor:
             self._flag(NOT_IN_CODE, int(np.argmax(judged & (level >= field))), DRIFT)
         j = self.out
         if j >= 0 and self.count >= self.window and self.run[j] == 0 and not instant[j] \
-                and not missing[j] and self.calm[j] >= self.window and self._passes(j):
+                and not gone[j] and self.calm[j] >= self.window and self._passes(j):
             self.out = -1
             self.jumps[j] = 0
             self._recompute()
@@ -349,11 +406,55 @@ class CodeMonitor:
         pred, e = self._errors(d)
         _, active, _, judged, _ = self._set()
         self.prev_other = np.where(judged, d - e, np.nan)
-        self.prev = np.where(missing, self.prev, d)     # a return is stepped from the last reading
-        self.gap = np.where(missing, gap + 1, 1.0)
+        self.prev = np.where(gone, self.prev, d)     # a return is stepped from the last reading
+        self.gap = np.where(gone, gap + 1, 1.0)
         self.prev_e = e
         self.dropped[instant] = missing[instant]       # (the last detector to fire on it)
         return self._rebuilt(u, d, pred)
+
+    def _beyond(self, x, d, rng):
+        """(cmon80) The readings beyond their range that are read as missing (``rng`` less a
+        machine hotter than training, as the served monitor's ``_hotter``), or None where the
+        code does not hold it (flagged): several at once, one with another sensor out, one of
+        a sensor it does not hold out."""
+        j, a = int(np.argmax(rng)), self.a
+        if rng.sum() > 1 or (self.out >= 0 and j != self.out):
+            self._flag(NOT_IN_CODE, j, RANGE)
+            return None
+        if j == self.out:                # out already: read as missing
+            return rng
+        if self.n - 1 >= a["min_active"]:     # predicted from the others, all within range
+            p = (x - d)[j] + self.M[j + 1][j] @ np.where(np.arange(self.n) == j, 0.0, d)
+            up = x[j] > a["hi_c"][j]
+            edge = a["hi_c"][j] if up else a["lo_c"][j]
+            beyond = (p - edge if up else edge - p) > a["warning"][j]
+            if beyond and abs(x[j] - p) < 0.5 * abs(x[j] - edge):
+                return np.zeros_like(rng)     # a machine hotter than training: read
+        if not self.ported[j]:
+            self._flag(NOT_IN_CODE, j, BLIND)
+            return None
+        return rng
+
+    def _common_step(self, d, step, big, pos):
+        """(cmon80) A common step (module doc): each active sensor that took it re-referenced
+        by its own step (``d``, ``step``, the window's row ``pos`` changed in place); the jumps
+        left after it."""
+        a = self.a
+        if big.sum() < a["common_min"]:
+            return big
+        active = np.arange(self.n) != self.out
+        common = float(np.median(step[big]))
+        ratio = step / common if common else np.zeros_like(step)
+        took = active & (ratio >= 1 / a["common_spread"]) & (ratio <= a["common_spread"])
+        if (took & big).sum() < a["common_min"] or 2 * took.sum() <= (active & np.isfinite(d)).sum():
+            return big
+        for j in np.flatnonzero(took):
+            self.ref[j] += step[j]
+            d[j] -= step[j]
+            self.hist[pos, j] = d[j]
+        self._flag(REREFERENCED, int(np.argmax(took)), COMMON_STEP)
+        step[took] = 0.0
+        return big & ~took
 
     def _rebuilt(self, u, d, pred=None):
         """``u`` with the monitored inputs as the model reads them: the reading, the sensor out

@@ -3,7 +3,7 @@
 
 from __future__ import annotations
 
-from .watch import BAND, EXCLUDED, NOT_IN_CODE, OUT, READMITTED, REASONS, RULES
+from .watch import BAND, EXCLUDED, NOT_IN_CODE, OUT, READMITTED, REASONS, REREFERENCED, RULES
 
 
 def header_part(ss) -> str:
@@ -16,13 +16,15 @@ def header_part(ss) -> str:
 #define TC_N_MONITORED {n}
 #define TC_MON_WINDOW {max(int(m.get("window", 1)), 1)}
 /* tc_state.mon_flags, per sample: a sensor excluded, re-admitted, one out (the model reads its
-   reconstruction), a judged sensor beyond its warning band, and a rule of the served monitor that
-   is not in the code fired (from here the code may part from the served model) */
+   reconstruction), a judged sensor beyond its warning band, a rule of the served monitor that
+   is not in the code fired (from here the code may part from the served model), and sensors
+   re-referenced by a common step (cmon80) */
 #define TC_MON_EXCLUDED {EXCLUDED}
 #define TC_MON_READMITTED {READMITTED}
 #define TC_MON_OUT {OUT}
 #define TC_MON_BAND {BAND}
 #define TC_MON_NOT_IN_CODE {NOT_IN_CODE}
+#define TC_MON_REREFERENCED {REREFERENCED}
 /* tc_state.mon_rule indexes these (0: none); tc_state.mon_sensor the monitored sensor k, the
    input TC_MONITORED[k] */
 {rules}
@@ -53,11 +55,13 @@ def monitor_arrays(ss) -> list[tuple[str, object, tuple, str]]:
     """The monitor's constants as :func:`.c._declared` takes them (zeros where there is none)."""
     m = ss.monitor
     n = len(m.get("inputs", []))
-    vectors = ("warning", "alarm", "jump_lim", "lo_lim", "hi_lim", "seen_run", "blind_run")
+    vectors = ("warning", "alarm", "jump_lim", "lo_lim", "hi_lim", "lo_c", "hi_c", "seen_run",
+               "blind_run")
     scalars = (("MON_MAX_LEV", "max_leverage", 1.0, "real"), ("MON_MIN_ACTIVE", "min_active", 0, "int"),
                ("MON_CONFIRM", "confirm", 1, "int"), ("MON_EXCLUDE_LEVEL", "exclude_level", 1, "int"),
                ("MON_PERIOD", "period", 1.0, "real"), ("MON_GAP_PERIODS", "gap_periods", 1.5, "real"),
-               ("MON_READMIT", "readmit", 0.5, "real"))
+               ("MON_READMIT", "readmit", 0.5, "real"), ("MON_COMMON_MIN", "common_min", 3, "int"),
+               ("MON_COMMON_SPREAD", "common_spread", 2.0, "real"))
     return [("MON_M", m.get("M", []), (n + 1, n, n), "real"),
             ("MON_LEV", m.get("lev", []), (n + 1, n), "real"),
             *((f"MON_{k.upper()}", m.get(k, [0.0] * n), (n,), "real") for k in vectors),
@@ -195,13 +199,77 @@ static void mon_rebuilt(tc_state *s, double u[], const double d[], const double 
     if (s->mon_out >= 0) s->mon_flags |= TC_MON_OUT;
 }
 
+/* (cmon80) a reading beyond its range (rng: which, nrng of them) after a campaign's first
+   sample: 1 read as missing, 0 read (the others predict it beyond the same training edge by
+   more than its warning band and it reads nearer that than half its distance from the edge: a
+   machine hotter than training), -1 not in the code (flagged): several at once, one with
+   another sensor out, one of a sensor the code does not hold out */
+static int mon_beyond(tc_state *s, const double x[], const double d[], int j, int nrng) {
+    int m;
+    if (nrng > 1 || (s->mon_out >= 0 && j != s->mon_out)) {
+        mon_flag(s, TC_MON_NOT_IN_CODE, j, TC_MON_RANGE);
+        return -1;
+    }
+    if (j == s->mon_out) return 1;   /* out already: read as missing */
+    if (NM - 1 >= MON_MIN_ACTIVE) {   /* predicted from the others, all within range */
+        double p = 0.0, edge;
+        int up = x[j] > MON_HI_C[j], beyond;
+        for (m = 0; m < NM; m++) p += MON_M[j + 1][j][m] * (m == j ? 0.0 : d[m]);
+        p += x[j] - d[j];
+        edge = up ? MON_HI_C[j] : MON_LO_C[j];
+        beyond = (up ? p - edge : edge - p) > MON_WARNING[j];
+        if (beyond && fabs(x[j] - p) < 0.5 * fabs(x[j] - edge)) return 0;
+    }
+    if (!MON_PORTED[j]) {
+        mon_flag(s, TC_MON_NOT_IN_CODE, j, TC_MON_BLIND);
+        return -1;
+    }
+    return 1;
+}
+
+/* (cmon80) a common step: at least MON_COMMON_MIN sensors jumping in one sample (big), the
+   median of their steps the common one; every active sensor within a factor MON_COMMON_SPREAD
+   of it re-referenced by its own step and kept in, where they are more than half the active
+   ones read.  The jumps left after it: big changed */
+static void mon_common_step(tc_state *s, double d[], double step[], int big[], int pos) {
+    double v[NM], common, r;
+    int took[NM], k, i, n = 0, ntook = 0, njump = 0, nread = 0;
+    for (k = 0; k < NM; k++)
+        if (big[k]) {   /* (their steps sorted) */
+            for (i = n; i > 0 && v[i - 1] > step[k]; i--) v[i] = v[i - 1];
+            v[i] = step[k];
+            n++;
+        }
+    if (n < MON_COMMON_MIN) return;
+    common = n % 2 ? v[n / 2] : (v[n / 2 - 1] + v[n / 2]) / 2.0;
+    for (k = 0; k < NM; k++) {
+        r = common != 0.0 ? step[k] / common : 0.0;
+        took[k] = k != s->mon_out && r >= 1.0 / MON_COMMON_SPREAD && r <= MON_COMMON_SPREAD;
+        ntook += took[k];
+        njump += took[k] && big[k];
+        nread += k != s->mon_out && isfinite(d[k]);
+    }
+    if (njump < MON_COMMON_MIN || 2 * ntook <= nread) return;
+    for (k = 0; k < NM; k++) {
+        if (!took[k]) continue;
+        s->mon_ref[k] += step[k];
+        d[k] -= step[k];
+        s->mon_hist[pos][k] = d[k];
+    }
+    for (k = 0; k < NM; k++) if (took[k]) break;
+    mon_flag(s, TC_MON_REREFERENCED, k, TC_MON_COMMON_STEP);
+    for (k = 0; k < NM; k++)
+        if (took[k]) step[k] = 0.0, big[k] = 0;
+}
+
 /* one sample of the monitored inputs of u, replaced by what the model reads (the reading, or
    its POD reconstruction while it is out), as the served monitor (watch.py's slice) */
 static void monitor_step(tc_state *s, double u[], double dt) {
     double x[NM], d[NM], step[NM], pred[NM], e[NM], other[NM], gap[NM], span = 1.0;
     int a[NM], o[NM], jd[NM], big[NM], same[NM], instant[NM], rng[NM], missing[NM];
     double scale[NM];
-    int k, pos, nbig = 0, jumped = -1, field = 0, nactive = 0, lost = -1;
+    int k, pos, nbig = 0, jumped = -1, field = 0, nactive = 0, lost = -1, far = -1, nrng = 0;
+    int gone[NM];
     if (s->first) {
         s->mon_out = -1;
         s->mon_pos = s->mon_count = 0;
@@ -220,16 +288,24 @@ static void monitor_step(tc_state *s, double u[], double dt) {
         missing[k] = !isfinite(x[k]);
         if (missing[k] && lost < 0) lost = k;
         rng[k] = x[k] < MON_LO_LIM[k] || x[k] > MON_HI_LIM[k];
-        if (rng[k]) mon_flag(s, TC_MON_NOT_IN_CODE, k, TC_MON_RANGE);
+        if (rng[k] && far < 0) far = k;
+        nrng += rng[k];
+        if (rng[k] && s->first)   /* (not in the code: the served monitor references it late) */
+            mon_flag(s, TC_MON_NOT_IN_CODE, k, TC_MON_RANGE);
         if (s->first) s->mon_ref[k] = s->mon_base[k] = x[k];
         d[k] = x[k] - s->mon_ref[k];
     }
-    if (s->mon_flags && !s->first) {   /* a reading beyond its range (not in the code): the
-                                          sample passes the monitor by, so its return is no jump */
-        mon_errors(s, d, pred, e);
-        mon_rebuilt(s, u, d, pred);
-        return;
+    if (nrng && !s->first) {   /* (cmon80) beyond its range: read as missing, or as read */
+        int r = mon_beyond(s, x, d, far, nrng);
+        if (r < 0) {   /* not in the code: the sample passes the monitor by, its state as it
+                          was, so that the reading's return is no jump */
+            mon_errors(s, d, pred, e);
+            mon_rebuilt(s, u, d, pred);
+            return;
+        }
+        if (!r) rng[far] = 0, far = -1;
     }
+    for (k = 0; k < NM; k++) gone[k] = missing[k] || rng[k];   /* read as missing */
     pos = s->mon_pos;
     for (k = 0; k < NM; k++) s->mon_hist[pos][k] = d[k];
     s->mon_pos = (pos + 1) % MW;
@@ -242,8 +318,12 @@ static void monitor_step(tc_state *s, double u[], double dt) {
         step[k] = d[k] - s->mon_prev[k];
         big[k] = fabs(step[k]) > MON_JUMP_LIM[k] * gap[k] && !rng[k];
         same[k] = step[k] == 0.0;
-        instant[k] = missing[k];
+        instant[k] = gone[k];
         nbig += big[k];
+    }
+    if (nbig >= MON_COMMON_MIN) {   /* (cmon80) a common step re-referenced */
+        mon_common_step(s, d, step, big, pos);
+        for (nbig = 0, k = 0; k < NM; k++) nbig += big[k];
     }
     /* (cdrop77) a missing reading: excluded, rebuilt from the others (the sensor out, missing
        again: rebuilt as it was; out for a freeze, flagged: its re-admission band is the served
@@ -253,6 +333,7 @@ static void monitor_step(tc_state *s, double u[], double dt) {
         else if (!s->mon_dropped[lost] && !s->mon_jumps[lost])
             mon_flag(s, TC_MON_NOT_IN_CODE, lost, TC_MON_MISSING_FROZEN);
     }
+    if (far >= 0 && far != s->mon_out) mon_exclude(s, far, TC_MON_OFF_RANGE);   /* (cmon80) */
     for (k = 0; k < NM && nbig; k++) {
         if (!big[k]) continue;
         if (nbig > 1) mon_flag(s, TC_MON_NOT_IN_CODE, k, TC_MON_COMMON);
@@ -274,6 +355,11 @@ static void monitor_step(tc_state *s, double u[], double dt) {
             s->mon_hist[pos][k] = d[k];
         }
         break;
+    }
+    if (far >= 0) {   /* read as missing from here (neither a step's last reading nor in the
+                         window that decides re-admission), as served */
+        d[far] = NAN;
+        s->mon_hist[pos][far] = NAN;
     }
     if (jumped >= 0) instant[jumped] = 1;
     for (k = 0; k < NM; k++) {
@@ -310,7 +396,7 @@ static void monitor_step(tc_state *s, double u[], double dt) {
     }
     if (field && nactive > MON_MIN_ACTIVE) mon_flag(s, TC_MON_NOT_IN_CODE, field - 1, TC_MON_DRIFT);
     k = s->mon_out;
-    if (k >= 0 && s->mon_count >= MW && s->mon_run[k] == 0 && !instant[k] && !missing[k]
+    if (k >= 0 && s->mon_count >= MW && s->mon_run[k] == 0 && !instant[k] && !gone[k]
         && s->mon_calm[k] >= MW && mon_passes(s, k)) {
         s->mon_out = -1;
         s->mon_jumps[k] = 0;
@@ -321,8 +407,8 @@ static void monitor_step(tc_state *s, double u[], double dt) {
     mon_set(s, a, o, jd, scale);
     for (k = 0; k < NM; k++) {
         s->mon_prev_other[k] = jd[k] ? d[k] - e[k] : NAN;
-        if (!missing[k]) s->mon_prev[k] = d[k];   /* a return is stepped from the last reading */
-        s->mon_gap[k] = missing[k] ? gap[k] + 1.0 : 1.0;
+        if (!gone[k]) s->mon_prev[k] = d[k];   /* a return is stepped from the last reading */
+        s->mon_gap[k] = gone[k] ? gap[k] + 1.0 : 1.0;
         s->mon_prev_e[k] = e[k];
         if (instant[k]) s->mon_dropped[k] = missing[k];   /* the last detector to fire on it */
     }
