@@ -84,23 +84,32 @@ class Cells:
             marks.setdefault(mark, {}).update(columns)
         return Cells(thousands, marks, said, [*self.runs, *other.runs])
 
-    def longest(self, errors, sparse_targets: str = "auto") -> tuple[int, int, list, dict]:
+    def longest(self, errors, sparse_targets: str = "auto",
+                grid: dict | None = None) -> tuple[int, int, list, dict]:
         """``(longest run of missing cells inside a file, at a file's start or end, lines said,
         {"gap" / "edge": the header of the column holding it})``
         over the marked columns but an error column (a header in ``errors``) read as measured
         now and then (``data.sparse_targets``, :mod:`.sparse`): its empty cells, a mark's too,
         are a probe cycle's rows between readings, kept empty, never interpolated, so no gap
         (its run between two readings set data.max_gap_samples to the probe's spacing, and every
-        column's gap was then interpolated up to it: leftovers66)."""
+        column's gap was then interpolated up to it: leftovers66).  ``grid``: header -> the grid
+        rows one of its samples is held over (its interval / data.resample_s), where the
+        channels are held onto a grid: a run counted in grid rows, the rows the read checks
+        (stranger80: a TDMS log's 6 missing samples at 30 s, proposed as 6, were 18 rows of its
+        10 s grid, and init's own read refused its own proposal); a run of a long file's value
+        column, its tag not known to the scan, as the slowest tag's (the safe side)."""
         gap = edge = 0
         where: dict = {}
         cycles: dict = {}                    # header -> the probe's spacing in each file
         for r in self.runs:
             cycle = intermittent(r.missing, r.rows, sparse_targets) if r.header in errors else None
             if cycle is None:
-                where.update({"gap": r.header} if r.gap > gap else {})
-                where.update({"edge": r.header} if r.edge > edge else {})
-                gap, edge = max(gap, r.gap), max(edge, r.edge)
+                # (a long file's value column: its runs' tag unknown here, the slowest tag's)
+                each = grid.get(r.header, max(grid.values(), default=1.0)) if grid else 1.0
+                r_gap, r_edge = (int(np.ceil(n * each - 1e-9)) for n in (r.gap, r.edge))
+                where.update({"gap": r.header} if r_gap > gap else {})
+                where.update({"edge": r.header} if r_edge > edge else {})
+                gap, edge = max(gap, r_gap), max(edge, r_edge)
             elif r.gap or r.edge:
                 cycles.setdefault(r.header, []).append(cycle["every"])
         said = []

@@ -155,15 +155,17 @@ GAP_SAID = {"max_gap_samples": "the longest run of missing cells (empty or a mar
                                 "those rows"}
 
 
-def mark_gaps(src, found, errors: set, given: dict, opts):
+def mark_gaps(src, found, errors: set, given: dict, opts, grid: dict | None = None):
     """``(opts, said)``: ``opts`` (and ``given``) with the ``data.max_gap_samples`` /
     ``max_edge_samples`` that read the longest runs of missing cells (empty, or a mark's), and
     the lines saying each (``{span}`` left for the sample period, known once read: :func:
     `gaps_said`); an error column (a header in ``errors``) read as a probe cycle sets neither
-    (its empty cells are kept: :meth:`.io.cells.Cells.longest`)."""
+    (its empty cells are kept: :meth:`.io.cells.Cells.longest`); ``grid``: header -> grid
+    rows a sample of it is held over, where the channels are held onto a grid (the runs then
+    counted in the grid's rows, as the read checks them)."""
     if found is None:
         return opts, []
-    gap, edge, said, where = found.longest(errors, opts.sparse_targets)
+    gap, edge, said, where = found.longest(errors, opts.sparse_targets, grid)
     for line in said:
         print(f"{src.name}: {line}")
     pending = []
@@ -379,17 +381,24 @@ def _init(cfg: DictConfig, held: ExitStack) -> dict:
                   opts.units)
     errors = [h for h, n in plan.names.items() if str(n).startswith("E_")]
     opts = stated_period_given(sample, plan, given, opts)    # `Abtastrate 15 s` above the table
-    opts, gaps = mark_gaps(src, cells, set(errors), given, opts)   # a probe's left out
+    grid = None
     if long is not None:                     # the period: the fastest error tag's, said
-        period, tag = proposed_period(long, errors)
+        # a length in mm last: more likely an axis' position than a probe, known once read
+        # (stranger80: the period was said to be "the fastest error tag 'W Pinole [mm]'", the
+        # quill's travel proposed a state a few lines on)
+        period, tag = proposed_period(long, sorted(errors, key=lambda h: split_unit(h)[1]
+                                                   in ("mm", "cm", "m")))
         given["resample_s"] = period
         opts = replace(opts, resample_s=period)
+        grid = {t: v / period for t, v in long.items() if np.isfinite(v) and v > period}
         kind = ("its channels logged at their own rates" if is_lab_file(sample) else
                 "a historian's long file, each tag logged at its own times")
         print(f"{sample.name}: {kind}: held "
               f"onto a grid of data.resample_s={period:g} s, the median interval of the fastest "
               f"error tag {tag!r} (written into the config: check it; the tags': "
               f"{intervals_said(long)})")
+    # a gap counted in the grid's rows where the channels are held onto one (stranger80)
+    opts, gaps = mark_gaps(src, cells, set(errors), given, opts, grid)   # a probe's left out
     defaults = OmegaConf.to_container(OmegaConf.load(conf_dir() / "data" / "default.yaml"))
     if pair is not None and not pair.same_separators:   # each logger's file its own: detected
         opts = replace(opts, delimiter="auto", decimal="auto")

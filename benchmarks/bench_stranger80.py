@@ -1,0 +1,151 @@
+"""A stranger's pass on a jig borer and its LabVIEW TDMS files (stranger80).
+
+    PYTHONPATH=$PWD/src .venv/bin/python benchmarks/bench_stranger80.py write ROOT SEED
+    PYTHONPATH=$PWD/src .venv/bin/python benchmarks/bench_stranger80.py faults ROOT SEED
+    PYTHONPATH=$PWD/src .venv/bin/python benchmarks/bench_stranger80.py matrix ROOT SEED CONF
+
+The machine is ``benchmarks/jig80.py`` (a single-column jig borer, its own lumped network and
+kinematics: a bed on a foundation, a saddle (Y) and a cross table (X) on ball screws heated by
+their nuts, an NC rotary table with its torque motor, a column (front and rear walls), the
+headstock, a motor spindle in a quill extending down (W), a hydraulic unit; a climate room
+conditioned on working days only; 20 sensors, the probes dX / dY / dZ; 13 runs of 10 h on 13 of
+21 days from Monday 2027-03-15, across the change to summer time on Sun 28 Mar; seeds
+8011-8030 only).
+
+``write``: the runs as the lab's LabVIEW program logs them (DAQmx's TDMS logging, two tasks),
+one file a run ``ROOT/jig<SEED>/KBM_<yyyy-mm-dd>_Lauf<NN>.tdms``, two groups: ``Temperaturen``
+(the thermocouple module's task: 20 channels at 30 s, ``unit_string`` ``Deg C`` as DAQmx
+writes it, a few names with their unit in brackets) and ``Wege+CNC`` (the probes' and the
+PLC's task, started 20 s later: ``dX``, ``dY``, ``dZ`` in ``um``, ``X-Pos [mm]``, ``Y-Pos [mm]``,
+``W Pinole [mm]``, ``Drehzahl [1/min]`` and ``Status``, the PLC's uint16 bit field: 1 machine
+on, 2 spindle turning, 4 table indexing, 128 probe ready; at 10 s). No time channel: each
+channel's waveform properties (``wf_start_time`` UTC, ``wf_increment``). Quirks: 6 NaN of
+``Bett rechts`` in run 4 (an open thermocouple), the program restarted in run 9 (the Monday
+after the change: two files ``Lauf09a`` / ``Lauf09b``, 12 min apart).
+
+``faults``: ``ROOT/fault_<kind>_<SEED>/``, the files, the last run with one fault: ``frozen``
+(``Pinole`` held from row 600 of its 30 s rows), ``jump`` (+2 K on ``Ständer hinten oben`` from
+row 700), ``drift`` (``Hydraulik Tank`` +1 K/h from row 500), ``dropout`` (30 NaN of
+``Mutter X`` from row 800).
+
+``matrix``: bench_stranger75's (run -> replay per family on the data config init wrote).
+"""
+from __future__ import annotations
+
+import sys
+from datetime import timedelta
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from _cli import run_commands  # noqa: E402
+from bench_stranger75 import matrix  # noqa: E402
+
+TEMP_EVERY, PROBE_LATE = 3, 2            # 30 s of the network's 10 s; the probes' task 20 s late
+IN_BRACKETS = ("Pinole", "Mutter X", "Mutter Y", "Torquemotor B")   # '<name> [°C]', no unit_string
+NAN_RUN, NAN_CHANNEL, NAN_ROW = 4, "Bett rechts", 200
+SPLIT_RUN, SPLIT_ROW, SPLIT_GAP = 9, 240, 72      # (probe rows of 10 s: 40 min in, 12 min gap)
+
+
+def channels(seed: int):
+    """The record: ``(jig80 result, [(run label, local start, rows)])``."""
+    import jig80 as j
+    r = j.simulate(int(seed))
+    runs = []
+    for n, (start, rows) in enumerate(j.run_windows(), start=1):
+        idx = np.arange(rows.start, rows.stop)
+        if n == SPLIT_RUN:
+            runs.append((f"Lauf{n:02d}a", start, idx[:SPLIT_ROW]))
+            later = idx[SPLIT_ROW + SPLIT_GAP:]
+            runs.append((f"Lauf{n:02d}b", start + timedelta(seconds=(SPLIT_ROW + SPLIT_GAP) * j.STEP_S),
+                         later))
+        else:
+            runs.append((f"Lauf{n:02d}", start, idx))
+    return r, runs
+
+
+def _status(r, idx) -> np.ndarray:
+    return (1 * (r["on"][idx] > 0) + 2 * (r["rpm"][idx] > 0) + 4 * (r["index"][idx] > 0)
+            + 128).astype(np.uint16)
+
+
+def write_file(path: Path, r, label: str, start, idx, fault=None) -> None:
+    """One run's TDMS file; ``fault(name, values)`` alters a temperature channel."""
+    import jig80 as j
+    from nptdms import ChannelObject, GroupObject, RootObject, TdmsWriter
+
+    utc = np.datetime64(j.utc_of_local(start).replace(tzinfo=None), "us")
+    t_idx = idx[::TEMP_EVERY]
+    p_idx = idx[PROBE_LATE:]
+    objs = [RootObject(properties={"name": path.stem, "Maschine": "KBM 6 Koordinatenbohrwerk",
+                                   "Bediener": "S. Wagner"}),
+            GroupObject("Temperaturen"), GroupObject("Wege+CNC")]
+    for k, (name, _, _) in enumerate(j.SENSORS):
+        values = r["sensors"][t_idx, k].astype(float)
+        if fault is not None:
+            values = fault(name, values)
+        if name == NAN_CHANNEL and label == f"Lauf{NAN_RUN:02d}":
+            values[NAN_ROW:NAN_ROW + 6] = np.nan
+        props = {"wf_start_time": utc, "wf_increment": TEMP_EVERY * j.STEP_S,
+                 "wf_samples": values.size, "NI_ChannelName": name}
+        if name in IN_BRACKETS:
+            name = f"{name} [°C]"
+        else:
+            props["unit_string"] = "Deg C"
+        objs.append(ChannelObject("Temperaturen", name, values.astype(np.float64), properties=props))
+    late = utc + np.timedelta64(int(PROBE_LATE * j.STEP_S), "s")
+    probe = {"wf_start_time": late, "wf_increment": j.STEP_S, "wf_samples": p_idx.size}
+    for axis in ("X", "Y", "Z"):
+        objs.append(ChannelObject("Wege+CNC", f"d{axis}", np.round(r[f"E_d{axis}"][p_idx], 3),
+                                  properties={**probe, "unit_string": "um"}))
+    for name, key in (("X-Pos [mm]", "x"), ("Y-Pos [mm]", "y"), ("W Pinole [mm]", "w"),
+                      ("Drehzahl [1/min]", "rpm")):
+        objs.append(ChannelObject("Wege+CNC", name, r[key][p_idx].astype(np.float64),
+                                  properties=dict(probe)))
+    objs.append(ChannelObject("Wege+CNC", "Status", _status(r, p_idx), properties=dict(probe)))
+    path.parent.mkdir(parents=True, exist_ok=True)
+    with TdmsWriter(path) as w:
+        w.write_segment(objs)
+
+
+def _write_all(folder: Path, r, runs, fault=None) -> None:
+    for n, (label, start, idx) in enumerate(runs):
+        last = n == len(runs) - 1
+        write_file(folder / f"KBM_{start:%Y-%m-%d}_{label}.tdms", r, label, start, idx,
+                   fault if last else None)
+
+
+def write(root: str, seed: str) -> None:
+    """The lab's files of seed ``seed``: ``ROOT/jig<SEED>/``."""
+    r, runs = channels(int(seed))
+    folder = Path(root) / f"jig{seed}"
+    _write_all(folder, r, runs)
+    print(f"wrote {folder} ({len(runs)} files, {sum(i.size for _, _, i in runs)} probe rows)")
+
+
+def faults(root: str, seed: str) -> None:
+    """``ROOT/fault_<kind>_<SEED>/``: the files, the last run with one fault (docstring)."""
+    r, runs = channels(int(seed))
+    rows = np.arange(runs[-1][2][::TEMP_EVERY].size)
+    hours = np.clip(rows - 500, 0, None) * TEMP_EVERY * 10.0 / 3600.0
+    cases = {"frozen": ("Pinole", lambda x: np.where(rows < 600, x, x[600])),
+             "jump": ("Ständer hinten oben", lambda x: x + 2.0 * (rows >= 700)),
+             "drift": ("Hydraulik Tank", lambda x: x + hours),
+             "dropout": ("Mutter X", lambda x: np.where((rows >= 800) & (rows < 830), np.nan, x))}
+    for kind, (label, change) in cases.items():
+        def fault(name, x, label=label, change=change):
+            return change(x) if name == label else x
+        folder = Path(root) / f"fault_{kind}_{seed}"
+        _write_all(folder, r, runs, fault)
+        print(f"wrote {folder}")
+
+
+def main(argv: list[str]) -> int:
+    return run_commands(__doc__, {"write": write, "faults": faults, "matrix": matrix}, argv,
+                        cpu=sys.stderr)
+
+
+if __name__ == "__main__":
+    raise SystemExit(main(sys.argv[1:]))
