@@ -13,7 +13,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from test_stranger68 import ROWS, linear_run
+from test_stranger68 import linear_run
 from thermocomp.core.io import read_dataset
 from thermocomp.shell.cli import main
 
