@@ -29,6 +29,24 @@ row 700), ``drift`` (``Hydraulik Tank`` +1 K/h from row 500), ``dropout`` (30 Na
 ``Mutter X`` from row 800).
 
 ``matrix``: bench_stranger75's (run -> replay per family on the data config init wrote).
+
+Measured 2026-12-03, seed 8011 (``write`` 2.3 s CPU; ``init`` 20 s wall). Before stranger80
+``thermocomp init ROOT/jig8011`` refused its own proposal: it counted the open thermocouple's 6
+NaN in the channel's own 30 s samples (``data.max_gap_samples=6``) and its read, on the 10 s
+grid the two tasks are held onto, found "gap of 18 missing values (grid rows 599-616) is longer
+than data.max_gap_samples=6" (exit 2); now the gap is counted in the grid's rows (18), and the
+grid's period is said to be a probe's ("the fastest error tag 'dX [um]'"; it named the quill's
+travel ``W Pinole [mm]``, proposed a state three lines on).  ``init`` alone (no key) then
+wrote the probes as errors, ``X-Pos``, ``Y-Pos``, ``W Pinole``, ``Drehzahl`` and ``Status`` as
+states (``Status`` by its name: the PLC's bit field read as a number, 129-135), the two room
+sensors as the ambient, ``resample_s: 10.0``, ``max_gap_samples: 18``, the last run held out
+(14 campaigns: run 9's two files two campaigns; the times UTC from ``wf_start_time``, the
+change to summer time nowhere to be seen).  ``matrix`` on its config: test RMSE dX / dY / dZ
+(µm; 15.07 / 8.90 / 17.68 before, the last run, Fri 2 Apr) mlr 8.418 / 3.343 / 4.071, pcr
+4.238 / 4.000 / 2.754, arx 5.972 / 4.229 / 3.816, lagbank 4.235 / 4.658 / 2.791, hammerstein
+8.835 / 4.043 / 1.353, lstm 7.659 / 5.206 / 4.071, auto 8.835 / 4.043 / 3.650 (its validation
+chose hammerstein on dX and dY, mlr 0.884 + hammerstein 0.116 on dZ), mlr ``ati=cmeans`` as mlr;
+replay = run in every cell (test RMSE equal to 1.8e-15 µm, stream - batch <= 6.4e-14 µm).
 """
 from __future__ import annotations
 
