@@ -80,3 +80,21 @@ def test_init_names_a_probe_as_the_fastest_error_tag_not_an_axis_travel(tmp_path
     said = capsys.readouterr().out
     assert "the fastest error tag 'dX [um]'" in said, said
     assert "'W Pinole [mm]' spans 250 mm" in said and "proposed as a state" in said, said
+
+
+def test_a_gap_refused_names_the_channels_own_sample_not_a_row_of_an_unseen_long_file(tmp_path, capsys):
+    """The refusal named "data row 161 ... of the long file" (the temporary file the channels
+    at their own rates are written to, never the lab's): now the channel's own sample, the one
+    that began the gap (row 40 of the 30 s channel: its 41st sample)."""
+    from conftest import FAST, refused
+
+    for run in (1, 2, 3):
+        _run(tmp_path / "kbm", run, nan_rows=6 * (run == 2))
+    path = tmp_path / "kbm" / "KBM_2.tdms"
+    said = refused(["run", f"data.path={tmp_path / 'kbm'}", "data.roles.error=[dX,dZ]",
+                    "data.roles.state=[W Pinole]", "data.resample_s=10", "data.max_gap_samples=6",
+                    "data.test_fraction=0.34", *FAST, f"out={tmp_path / 'out'}"], capsys,
+                   f"file {path}, column 'Ständer [Deg C]': gap of 18 missing values",
+                   "the tag's sample there is its sample 41)",
+                   "(group 'Temperaturen', channel 'Ständer')")
+    assert "long file" not in said and "data row" not in said
