@@ -58,6 +58,21 @@ rise; test RMSE dX / dY / dZ 8.42 / 3.34 / 4.07 -> 6.76 / 0.83 / 0.92 µm (CV 8.
 CV gain 2.5 %, p 0.26: the fault bar's known case, stranger74's ``T_Hydraulik``, diag75 / diag76
 refused rules; a tank heated by the machine being on, which its neighbours do not follow on the
 days the shop used the machine unlogged).
+
+``monitor`` (MLR, ``plots=none``; 12-15 s CPU each) on the healthy last run: no event (RMSE as
+run's); on fresh draws 8012 / 8013, each read by ``init`` with no key (the same config, 18 grid
+rows, dX's period): no event (fixed = adaptive 7.48 / 4.00 / 3.96 and 5.26 / 2.80 / 3.55 µm).
+Faults in the last run (``faults``, MLR; fixed / adaptive RMSE dX / dY / dZ): ``Pinole`` frozen
+at 5.0 h, excluded at 5.04 h (freeze, 18 samples against 8 in training; 9.22 / 7.65, 11.65 /
+3.70, 4.72 / 3.41); +2 K on ``Ständer hinten oben`` at 5.83 h, excluded at once and re-admitted
+re-referenced 2 min on (10.98 / 8.52, 4.53 / 3.35, 3.14 / 4.02: the adaptive dZ worse than the
+fixed, which the clamp of 1500 rows to the envelope kept near the healthy run's); 30 NaN of
+``Mutter X`` at 6.67 h, excluded at once (dropout), re-admitted at 6.94 h as its readings came
+back (8.41 / 8.38 ...: the nut no other sensor predicts, "within +-15.1 °C"); ``Hydraulik Tank``
+drifting 1 K/h from 4.17 h: excluded at 7.71 h by its leak onto ``Bett rechts`` (3.5 K off),
+then re-admitted and excluded twice more within 12 min ("within +-0.836 °C"), excluded from
+7.91 h to the end (16.35 / 12.43, 6.33 / 4.10, 6.67 / 5.27: the adaptive better, both worse than
+healthy: 3.5 K of drift before the first exclusion).
 """
 from __future__ import annotations
 
