@@ -58,6 +58,8 @@ def test_init_proposes_a_slow_channels_gap_in_the_rows_of_the_grid_it_holds_it_o
     assert main(["init", str(tmp_path / "kbm"), f"out={tmp_path / 'init'}"]) == 0
     said = capsys.readouterr().out
     assert "data.resample_s=10 s" in said and "data.max_gap_samples=18" in said, said
+    # (the run named as the look saw it: "180 s of 'value'", a column the lab never wrote)
+    assert "is 18 samples, 180 s of one of its channels (grid rows)" in said, said
     conf = (tmp_path / "init" / "conf" / "data" / "kbm.yaml").read_text()
     assert "max_gap_samples: 18" in conf and "resample_s: 10.0" in conf, conf
     # the read with it: the 18 grid rows interpolated (one fewer refused, as the read counts)

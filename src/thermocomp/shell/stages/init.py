@@ -147,11 +147,11 @@ def number_cells(src, manifest, sample, given: dict, opts):
 
 
 GAP_SAID = {"max_gap_samples": "the longest run of missing cells (empty or a mark) inside a "
-                               "file is {n} sample{s}, {span} of {header!r}: "
+                               "file is {n} sample{s}, {span} of {header}: "
                                "data.max_gap_samples={n} interpolates such runs linearly (each "
                                "repair counted in the ingest report)",
             "max_edge_samples": "a run of missing cells at a file's start or end, {n} sample{s} "
-                                "at most, {span} of {header!r}: data.max_edge_samples={n} drops "
+                                "at most, {span} of {header}: data.max_edge_samples={n} drops "
                                 "those rows"}
 
 
@@ -182,6 +182,7 @@ def gaps_said(src, pending: list, period: float) -> None:
     record's sample period, s)."""
     for key, n, header in pending:
         span = f"{n * period / 3600:.3g} h" if n * period >= 3600 else f"{n * period:.4g} s"
+        header = repr(header) if header is not None else "one of its channels (grid rows)"
         print(f"{src.name}: " + GAP_SAID[key].format(n=n, s="s" * (n > 1), header=header,
                                                      span=span if period == period else "?"))
 
@@ -399,6 +400,8 @@ def _init(cfg: DictConfig, held: ExitStack) -> dict:
               f"{intervals_said(long)})")
     # a gap counted in the grid's rows where the channels are held onto one (stranger80)
     opts, gaps = mark_gaps(src, cells, set(errors), given, opts, grid)   # a probe's left out
+    if grid is not None:     # (a long text's 'value' column: no header of the lab's, stranger80)
+        gaps = [(k, n, h if h in plan.names else None) for k, n, h in gaps]
     defaults = OmegaConf.to_container(OmegaConf.load(conf_dir() / "data" / "default.yaml"))
     if pair is not None and not pair.same_separators:   # each logger's file its own: detected
         opts = replace(opts, delimiter="auto", decimal="auto")
