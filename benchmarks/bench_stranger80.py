@@ -73,6 +73,17 @@ drifting 1 K/h from 4.17 h: excluded at 7.71 h by its leak onto ``Bett rechts`` 
 then re-admitted and excluded twice more within 12 min ("within +-0.836 °C"), excluded from
 7.91 h to the end (16.35 / 12.43, 6.33 / 4.10, 6.67 / 5.27: the adaptive better, both worse than
 healthy: 3.5 K of drift before the first exclusion).
+
+``promote``: a tracked sweep ``run -m model=mlr,hammerstein,lagbank`` on init's config (48 + 3 s
+CPU; validation RMSE 6.01 / 3.94 / 5.95, test 5.28 / 4.74 / 3.89, means over the three axes),
+then ``thermocomp promote`` (37 + 3 s): hammerstein @champion by its validation, stream
+deviation 7.1e-14 µm.  ``export export.model=models:/thermocomp-compensator@champion
+export.format=c export.check=true`` (28 + 1 s): compiled with ``gcc -std=c99 -O2 -Wall -Wextra
+-Werror``, its pack (the test run and its dropout / freeze / jump variants of ``T_Fundament``,
+14,392 rows) passed (largest difference 1.98e-12 µm); ``thermocomp rows`` of the TDMS folder
+(the test run, 10 + 1 s) streamed through ``./stream``: the pack's corrections to 1.96e-12 µm,
+and its test RMSE (error referenced at the run's first sample, plus the correction) replay's
+to 4.5e-13 / 4.8e-14 / 6.9e-14 µm (8.835 / 4.043 / 1.353).
 """
 from __future__ import annotations
 
