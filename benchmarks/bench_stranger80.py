@@ -68,9 +68,12 @@ at 5.0 h, excluded at 5.04 h (freeze, 18 samples against 8 in training; 9.22 / 7
 re-referenced 2 min on (10.98 / 8.52, 4.53 / 3.35, 3.14 / 4.02: the adaptive dZ worse than the
 fixed, which the clamp of 1500 rows to the envelope kept near the healthy run's); 30 NaN of
 ``Mutter X`` at 6.67 h, excluded at once (dropout), re-admitted at 6.94 h as its readings came
-back (8.41 / 8.38 ...: the nut no other sensor predicts, "within +-15.1 °C"); ``Hydraulik Tank``
-drifting 1 K/h from 4.17 h: excluded at 7.71 h by its leak onto ``Bett rechts`` (3.5 K off),
-then re-admitted and excluded twice more within 12 min ("within +-0.836 °C"), excluded from
+back (8.41 / 8.38 ...; the nut no other sensor predicts: its reason said "within +-15.1 °C", a
+band nothing compared, and says "no detector fired for 10 samples (no other sensor predicts it:
+no band judges its reading)" now); ``Hydraulik Tank`` drifting 1 K/h from 4.17 h: excluded at
+7.71 h by its leak onto ``Bett rechts`` (3.5 K off), then re-admitted ("the others within their
+warning bands with it in for 11 samples"; it said "within +-0.836 °C") and excluded twice more
+within 12 min, excluded from
 7.91 h to the end (16.35 / 12.43, 6.33 / 4.10, 6.67 / 5.27: the adaptive better, both worse than
 healthy: 3.5 K of drift before the first exclusion).
 
