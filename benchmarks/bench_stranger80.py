@@ -47,6 +47,9 @@ change to summer time nowhere to be seen).  ``matrix`` on its config: test RMSE 
 8.835 / 4.043 / 1.353, lstm 7.659 / 5.206 / 4.071, auto 8.835 / 4.043 / 3.650 (its validation
 chose hammerstein on dX and dY, mlr 0.884 + hammerstein 0.116 on dZ), mlr ``ati=cmeans`` as mlr;
 replay = run in every cell (test RMSE equal to 1.8e-15 µm, stream - batch <= 6.4e-14 µm).
+Wall per ``run`` / its ``replay`` (s, 2 cores shared with two other jobs; one thread each, so
+about its CPU): mlr 10 / 12, pcr 10 / 12, arx 10 / 18, lagbank 14 / 18, hammerstein 26 / 37,
+lstm 49 / 46, auto 38 / 22, mlr ``ati=cmeans`` 10 / 11 (the matrix 6.2 min).
 
 ``diagnose`` (MLR, defaults, ``plots=none``; 49 + 11 s CPU, 85 s wall): the planted position
 effects found, each on its axis: dX ``S_X-Pos`` x ``T_Mutter_X``'s rise, dY ``S_Y-Pos`` x
