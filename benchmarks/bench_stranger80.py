@@ -60,7 +60,9 @@ rise; test RMSE dX / dY / dZ 8.42 / 3.34 / 4.07 -> 6.76 / 0.83 / 0.92 µm (CV 8.
 ``T_Hydraulik_Tank`` excluded as a sensor fault (self-prediction jump 3.21 >= 3, its removal's
 CV gain 2.5 %, p 0.26: the fault bar's known case, stranger74's ``T_Hydraulik``, diag75 / diag76
 refused rules; a tank heated by the machine being on, which its neighbours do not follow on the
-days the shop used the machine unlogged).
+days the shop used the machine unlogged).  It costs nothing here: without the sensor_fault family
+(``diagnose.families=[...]`` less it; 40 + 10 s CPU) the same three effects, test 6.77 / 0.85 /
+1.00 µm.
 
 ``monitor`` (MLR, ``plots=none``; 12-15 s CPU each) on the healthy last run: no event (RMSE as
 run's); on fresh draws 8012 / 8013, each read by ``init`` with no key (the same config, 18 grid
