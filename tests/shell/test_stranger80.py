@@ -22,10 +22,11 @@ nptdms = pytest.importorskip("nptdms")
 START = dt.datetime(2027, 3, 15, 6)           # UTC (07:00 CET)
 
 
-def _run(folder: Path, run: int, nan_rows: int = 0) -> Path:
+def _run(folder: Path, run: int, nan_rows: int = 0, fast_nan: int = 0) -> Path:
     """``KBM_<run>.tdms``: ``Temperaturen`` (three channels at 30 s, ``nan_rows`` NaN in
     ``Ständer``), ``Wege+CNC`` (dX, dZ in um and the quill's travel in mm, at 10 s from 20 s
-    on: the 30 s rows' values held three times, the linear map of the held temperatures)."""
+    on: the 30 s rows' values held three times, the linear map of the held temperatures;
+    ``fast_nan`` NaN in the travel)."""
     from nptdms import ChannelObject, GroupObject, RootObject, TdmsWriter
 
     folder.mkdir(parents=True, exist_ok=True)
@@ -42,6 +43,7 @@ def _run(folder: Path, run: int, nan_rows: int = 0) -> Path:
     objs += [ChannelObject("Wege+CNC", name, fast[:, k], properties={**late, "unit_string": "um"})
              for name, k in (("dX", 3), ("dZ", 4))]
     travel = np.where((np.arange(fast.shape[0]) // 90) % 2, 250.0, 0.0)
+    travel[100:100 + fast_nan] = np.nan
     objs.append(ChannelObject("Wege+CNC", "W Pinole [mm]", travel, properties=late))
     path = folder / f"KBM_{run}.tdms"
     with TdmsWriter(path) as w:
@@ -58,8 +60,8 @@ def test_init_proposes_a_slow_channels_gap_in_the_rows_of_the_grid_it_holds_it_o
     assert main(["init", str(tmp_path / "kbm"), f"out={tmp_path / 'init'}"]) == 0
     said = capsys.readouterr().out
     assert "data.resample_s=10 s" in said and "data.max_gap_samples=18" in said, said
-    # (the run named as the look saw it: "180 s of 'value'", a column the lab never wrote)
-    assert "is 18 samples, 180 s of one of its channels (grid rows)" in said, said
+    # (the run named by its channel: "180 s of 'value'", a column the lab never wrote)
+    assert "is 18 samples, 180 s of 'Ständer [Deg C]'" in said, said
     conf = (tmp_path / "init" / "conf" / "data" / "kbm.yaml").read_text()
     assert "max_gap_samples: 18" in conf and "resample_s: 10.0" in conf, conf
     # the read with it: the 18 grid rows interpolated (one fewer refused, as the read counts)
@@ -100,3 +102,17 @@ def test_a_gap_refused_names_the_channels_own_sample_not_a_row_of_an_unseen_long
                    "the tag's sample there is its sample 41)",
                    "(group 'Temperaturen', channel 'Ständer')")
     assert "long file" not in said and "data row" not in said
+
+
+def test_a_fast_channels_gap_is_proposed_as_its_own_rows_not_the_slowest_channels(tmp_path, capsys):
+    """The look read the channels written long as one column: its runs' channel unknown, a gap
+    of the 10 s quill travel would have been taken as the 30 s channels' (3x the rows); each
+    channel's run is its own now: 7 NaN of the 10 s channel are 7 grid rows, and the slow
+    channels' 2 NaN 6."""
+    for run in (1, 2, 3):
+        _run(tmp_path / "kbm", run, nan_rows=2 * (run == 3), fast_nan=7 * (run == 2))
+    assert main(["init", str(tmp_path / "kbm"), f"out={tmp_path / 'init'}"]) == 0
+    said = capsys.readouterr().out
+    assert "is 7 samples, 70 s of 'W Pinole [mm]': data.max_gap_samples=7" in said, said
+    conf = (tmp_path / "init" / "conf" / "data" / "kbm.yaml").read_text()
+    assert "max_gap_samples: 7\n" in conf, conf

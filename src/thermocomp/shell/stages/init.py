@@ -391,7 +391,7 @@ def _init(cfg: DictConfig, held: ExitStack) -> dict:
                                                    in ("mm", "cm", "m")))
         given["resample_s"] = period
         opts = replace(opts, resample_s=period)
-        grid = {t: v / period for t, v in long.items() if np.isfinite(v) and v > period}
+        grid = {t: max(v / period, 1.0) for t, v in long.items() if np.isfinite(v)}
         kind = ("its channels logged at their own rates" if is_lab_file(sample) else
                 "a historian's long file, each tag logged at its own times")
         print(f"{sample.name}: {kind}: held "
