@@ -34,7 +34,8 @@ Measured 2026-12-03, seed 8011 (``write`` 2.3 s CPU; ``init`` 20 s wall). Before
 ``thermocomp init ROOT/jig8011`` refused its own proposal: it counted the open thermocouple's 6
 NaN in the channel's own 30 s samples (``data.max_gap_samples=6``) and its read, on the 10 s
 grid the two tasks are held onto, found "gap of 18 missing values (grid rows 599-616) is longer
-than data.max_gap_samples=6" (exit 2); now the gap is counted in the grid's rows (18), and the
+than data.max_gap_samples=6" (exit 2); now the gap is counted in the grid's rows (18), each
+channel's on its own and named (it was "of 'value'", the long text's column), and the
 grid's period is said to be a probe's ("the fastest error tag 'dX [um]'"; it named the quill's
 travel ``W Pinole [mm]``, proposed a state three lines on).  ``init`` alone (no key) then
 wrote the probes as errors, ``X-Pos``, ``Y-Pos``, ``W Pinole``, ``Drehzahl`` and ``Status`` as
