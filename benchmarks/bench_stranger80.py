@@ -79,8 +79,8 @@ band nothing compared, and says "no detector fired for 10 samples (no other sens
 no band judges its reading)" now); ``Hydraulik Tank`` drifting 1 K/h from 4.17 h: excluded at
 7.71 h by its leak onto ``Bett rechts`` (3.5 K off), then re-admitted ("the others within their
 warning bands with it in for 11 samples"; it said "within +-0.836 °C") and excluded twice more
-within 12 min, excluded from 7.91 h to the end (16.35 / 12.43, 6.33 / 4.10, 6.67 / 5.27: the adaptive better, both worse than
-healthy: 3.5 K of drift before the first exclusion).
+within 12 min, excluded from 7.91 h to the end (16.35 / 12.43, 6.33 / 4.10, 6.67 / 5.27: the
+adaptive better, both worse than healthy: 3.5 K of drift before the first exclusion).
 
 ``promote``: a tracked sweep ``run -m model=mlr,hammerstein,lagbank`` on init's config (48 + 3 s
 CPU; validation RMSE 6.01 / 3.94 / 5.95, test 5.28 / 4.74 / 3.89, means over the three axes),
