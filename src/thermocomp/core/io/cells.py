@@ -84,23 +84,34 @@ class Cells:
             marks.setdefault(mark, {}).update(columns)
         return Cells(thousands, marks, said, [*self.runs, *other.runs])
 
-    def longest(self, errors, sparse_targets: str = "auto") -> tuple[int, int, list, dict]:
+    def longest(self, errors, sparse_targets: str = "auto",
+                grid: dict | None = None) -> tuple[int, int, list, dict]:
         """``(longest run of missing cells inside a file, at a file's start or end, lines said,
         {"gap" / "edge": the header of the column holding it})``
         over the marked columns but an error column (a header in ``errors``) read as measured
         now and then (``data.sparse_targets``, :mod:`.sparse`): its empty cells, a mark's too,
         are a probe cycle's rows between readings, kept empty, never interpolated, so no gap
         (its run between two readings set data.max_gap_samples to the probe's spacing, and every
-        column's gap was then interpolated up to it: leftovers66)."""
+        column's gap was then interpolated up to it: leftovers66).  ``grid``: header -> the grid
+        rows one of its samples is held over (its interval / data.resample_s), where the
+        channels are held onto a grid: a run counted in grid rows, the rows the read checks
+        (stranger80: a TDMS log's 6 missing samples at 30 s, proposed as 6, were 18 rows of its
+        10 s grid, and init's own read refused its own proposal); a run of a historian's long
+        file's value column, its tag not known to the scan, as the slowest tag's (the safe
+        side)."""
         gap = edge = 0
         where: dict = {}
         cycles: dict = {}                    # header -> the probe's spacing in each file
         for r in self.runs:
             cycle = intermittent(r.missing, r.rows, sparse_targets) if r.header in errors else None
             if cycle is None:
-                where.update({"gap": r.header} if r.gap > gap else {})
-                where.update({"edge": r.header} if r.edge > edge else {})
-                gap, edge = max(gap, r.gap), max(edge, r.edge)
+                # (a historian's long file's value column: its runs' tag unknown here, the
+                # slowest tag's; a lab file's channels are scanned each on its own)
+                each = grid.get(r.header, max(grid.values(), default=1.0)) if grid else 1.0
+                r_gap, r_edge = (int(np.ceil(n * each - 1e-9)) for n in (r.gap, r.edge))
+                where.update({"gap": r.header} if r_gap > gap else {})
+                where.update({"edge": r.header} if r_edge > edge else {})
+                gap, edge = max(gap, r_gap), max(edge, r_edge)
             elif r.gap or r.edge:
                 cycles.setdefault(r.header, []).append(cycle["every"])
         said = []
@@ -171,6 +182,7 @@ class _Column:
     grouped: dict                # mark -> grouped by three with it
     ameriflux: bool = False      # the file is an AmeriFlux table (its TIMESTAMP_START)
     blank: np.ndarray | bool = False    # the file's rows empty in every column (left out)
+    tags: np.ndarray | None = None      # a lab file's channels written long: each row's channel
 
     def first(self, mask: np.ndarray) -> str:
         return str(self.text[int(np.argmax(mask))].as_py())
@@ -213,11 +225,16 @@ def scanned(files: list[Path], delimiter: str, decimal: str, encoding: str,
             continue
         ameriflux = any(h.strip().lower() == AMERIFLUX_TIME for h in header)
         blank = np.logical_and.reduce([_empty(_texts(column)) for column in table.columns])
+        # a lab file's channels at their own rates, written long (labfile.write_long): each
+        # run of missing values is its channel's (stranger80: one 'value' column's runs)
+        tags = (_texts(table.columns[1]).to_numpy(zero_copy_only=False)
+                if [h.strip() for h in header[1:]] == ["channel", "value"] else None)
         for h, column in zip(header, table.columns):
             if h.strip() and not named_as_time(h):
                 found = _column(h, path, _texts(column), decimal)
                 if found is not None:
-                    numbers.append(replace(found, ameriflux=ameriflux, blank=blank))
+                    numbers.append(replace(found, ameriflux=ameriflux, blank=blank,
+                                           tags=tags if h.strip() == "value" else None))
     found = Cells(thousands=thousands)
     if thousands is None:
         found.thousands = _thousands(numbers, decimal, found.said)
@@ -270,6 +287,18 @@ def _thousands(numbers: list[_Column], decimal: str, said: list) -> str | None:
                     f"groups digits by three ({shown}), and {evidence}: data.thousands={mark!r}")
         return mark
     return None
+
+
+def _runs(header: str, missing: np.ndarray) -> _Runs:
+    """The longest run of ``missing`` inside and at an end of one column's (a channel's) cells."""
+    edges = np.flatnonzero(np.diff(np.concatenate([[0], missing.astype(np.int8), [0]])))
+    gap = edge = 0
+    for a, b in zip(edges[::2], edges[1::2]):
+        if a == 0 or b == len(missing):
+            edge = max(edge, int(b - a))
+        else:
+            gap = max(gap, int(b - a))
+    return _Runs(header, gap, edge, np.flatnonzero(missing), len(missing))
 
 
 def _shown(column: _Column, pattern: str) -> str:
@@ -326,14 +355,14 @@ def _marks(numbers: list[_Column], decimal: str, found: Cells, given: list) -> N
         missing = (c.missing | marked)[~c.blank]
         if not missing.any():
             continue
-        edges = np.flatnonzero(np.diff(np.concatenate([[0], missing.astype(np.int8), [0]])))
-        gap = edge = 0
-        for a, b in zip(edges[::2], edges[1::2]):
-            if a == 0 or b == len(missing):
-                edge = max(edge, int(b - a))
-            else:
-                gap = max(gap, int(b - a))
-        found.runs.append(_Runs(c.header, gap, edge, np.flatnonzero(missing), len(missing)))
+        if c.tags is None:
+            found.runs.append(_runs(c.header, missing))
+            continue
+        tags = c.tags[~c.blank]
+        cuts = np.concatenate([[0], np.flatnonzero(tags[1:] != tags[:-1]) + 1, [tags.size]])
+        for a, b in zip(cuts[:-1], cuts[1:]):
+            if missing[a:b].any():
+                found.runs.append(_runs(str(tags[a]), missing[a:b]))
     for mark, where in found.marks.items():
         if mark in given:
             continue

@@ -124,11 +124,14 @@ def tag_samples(path: Path, opts, layout: Layout) -> tuple[pd.DataFrame, dict, o
 
 def proposed_period(intervals: dict, tags) -> tuple[float, str]:
     """The grid period ``init`` proposes, and the tag it is taken from: the shortest median
-    interval of ``tags`` (the error tags; none: every tag), to two digits (a collector's latency
-    and a deadband's skipped scans put it at 10.01 s for a 10 s scan).  On the error's own rate
-    each of its samples lands on a grid row of its own: a shorter period only repeats held
-    values (more rows, a lag in samples spanning less time), a longer one drops error samples."""
-    timed = {t: v for t, v in intervals.items() if t in set(tags) and np.isfinite(v) and v > 0}
+    interval of ``tags`` (the error tags, a tie the first's; none: every tag), to two digits (a
+    collector's latency and a deadband's skipped scans put it at 10.01 s for a 10 s scan).  On
+    the error's own rate each of its samples lands on a grid row of its own: a shorter period
+    only repeats held values (more rows, a lag in samples spanning less time), a longer one
+    drops error samples."""
+    # (in the order of ``tags``: a tie goes to the first named)
+    timed = {t: intervals[t] for t in tags if t in intervals and np.isfinite(intervals[t])
+             and intervals[t] > 0}
     timed = timed or {t: v for t, v in intervals.items() if np.isfinite(v) and v > 0}
     if not timed:
         raise ContractError("no tag has two samples: no period to hold the tags onto")

@@ -230,9 +230,10 @@ def write_wide(records: list[Record], out: Path) -> dict[str, str]:
     return {c.header: c.where for r in reversed(records) for c in r.channels}
 
 
-def write_long(record: Record, out: Path) -> dict[str, str]:
+def write_long(record: Record, out: Path, starts: dict | None = None) -> dict[str, str]:
     """One record's channels, each on its own time, as a long CSV file (``time``, ``channel``,
-    ``value``: the historian's path holds them onto one grid); ``{header: where}``."""
+    ``value``: the historian's path holds them onto one grid); ``{header: where}``; ``starts``
+    (where given) gets each channel's first data row of the long file."""
     absolute = {np.issubdtype(c.time.dtype, np.datetime64) for c in record.channels}
     if len(absolute) > 1:
         raise ContractError(f"{record.label}: some channels timed by a date, others by seconds "
@@ -240,7 +241,11 @@ def write_long(record: Record, out: Path) -> dict[str, str]:
     with open(out, "w", encoding=UTF8, newline="") as f:
         writer = csv.writer(f, lineterminator="\n")
         writer.writerow([TIME_HEADER if absolute == {True} else "time [s]", "channel", "value"])
+        row = 0
         for c in record.channels:
+            if starts is not None:
+                starts[c.header] = row + 1
+            row += c.values.size
             for stamp, v in zip(_time_cells(c.time, c.values.size, record.utc), c.values):
                 writer.writerow([stamp, c.header, _cell(v)])
     return {c.header: c.where for c in record.channels}
@@ -253,19 +258,34 @@ def records_as_csv(records: list[Record], path: Path) -> Iterator[Path]:
     wide = _check(records, path)
     with tempfile.TemporaryDirectory(prefix="thermocomp-lab-") as tmp:
         out = Path(tmp) / (path.stem + ".csv")
-        where = write_wide(records, out) if wide else write_long(records[0], out)
-        with named_as(out, str(path), lambda exc: _located(exc, out, path, where), "row",
+        starts: dict = {}
+        where = write_wide(records, out) if wide else write_long(records[0], out, starts)
+        with named_as(out, str(path), lambda exc: _located(exc, out, path, where, starts), "row",
                       line_of=lambda n: n - 1):
             yield out
 
 
-def _located(exc: ContractError, temp: Path, path: Path, where: dict[str, str]) -> ContractError:
+def _located(exc: ContractError, temp: Path, path: Path, where: dict[str, str],
+             starts: dict | None = None) -> ContractError:
     """``exc`` about the temporary file as about the lab's file: its data row, the channel's
-    group or variable said."""
+    group or variable said; a row of the long file a record of channels at their own rates is
+    written to (``starts``: each channel's first) as the channel's own sample (stranger80: a
+    TDMS log's open thermocouple was "data row 5001 ... of the long file", a file the lab
+    never saw)."""
     if exc.file is None or str(temp) not in str(exc.file) and str(temp) not in exc.reason:
         return exc
     reason = exc.reason.replace(str(temp), str(path))
-    place = where.get(exc.column) or next((w for h, w in where.items() if repr(h) in reason), None)
+    header = exc.column if exc.column in where else next(
+        (h for h in where if repr(h) in reason), None)
+    place = where.get(header) if header is not None else None
+    row = exc.row
+    if starts and header in starts and row is not None and row >= starts[header]:
+        sample, said = row - starts[header] + 1, f"data row {row} of the long file"
+        if said in reason:
+            reason = reason.replace(said, f"its sample {sample}")
+        else:
+            place = f"{place}, its sample {sample}" if place else f"its sample {sample}"
+        row = None
     if place:
         reason += f" ({place})"
-    return ContractError(reason, file=path, column=exc.column, row=exc.row)
+    return ContractError(reason, file=path, column=exc.column, row=row)

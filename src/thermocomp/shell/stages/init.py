@@ -147,23 +147,25 @@ def number_cells(src, manifest, sample, given: dict, opts):
 
 
 GAP_SAID = {"max_gap_samples": "the longest run of missing cells (empty or a mark) inside a "
-                               "file is {n} sample{s}, {span} of {header!r}: "
+                               "file is {n} sample{s}, {span} of {header}: "
                                "data.max_gap_samples={n} interpolates such runs linearly (each "
                                "repair counted in the ingest report)",
             "max_edge_samples": "a run of missing cells at a file's start or end, {n} sample{s} "
-                                "at most, {span} of {header!r}: data.max_edge_samples={n} drops "
+                                "at most, {span} of {header}: data.max_edge_samples={n} drops "
                                 "those rows"}
 
 
-def mark_gaps(src, found, errors: set, given: dict, opts):
+def mark_gaps(src, found, errors: set, given: dict, opts, grid: dict | None = None):
     """``(opts, said)``: ``opts`` (and ``given``) with the ``data.max_gap_samples`` /
     ``max_edge_samples`` that read the longest runs of missing cells (empty, or a mark's), and
     the lines saying each (``{span}`` left for the sample period, known once read: :func:
     `gaps_said`); an error column (a header in ``errors``) read as a probe cycle sets neither
-    (its empty cells are kept: :meth:`.io.cells.Cells.longest`)."""
+    (its empty cells are kept: :meth:`.io.cells.Cells.longest`); ``grid``: header -> grid
+    rows a sample of it is held over, where the channels are held onto a grid (the runs then
+    counted in the grid's rows, as the read checks them)."""
     if found is None:
         return opts, []
-    gap, edge, said, where = found.longest(errors, opts.sparse_targets)
+    gap, edge, said, where = found.longest(errors, opts.sparse_targets, grid)
     for line in said:
         print(f"{src.name}: {line}")
     pending = []
@@ -180,6 +182,7 @@ def gaps_said(src, pending: list, period: float) -> None:
     record's sample period, s)."""
     for key, n, header in pending:
         span = f"{n * period / 3600:.3g} h" if n * period >= 3600 else f"{n * period:.4g} s"
+        header = repr(header) if header is not None else "one of its channels (grid rows)"
         print(f"{src.name}: " + GAP_SAID[key].format(n=n, s="s" * (n > 1), header=header,
                                                      span=span if period == period else "?"))
 
@@ -379,17 +382,26 @@ def _init(cfg: DictConfig, held: ExitStack) -> dict:
                   opts.units)
     errors = [h for h, n in plan.names.items() if str(n).startswith("E_")]
     opts = stated_period_given(sample, plan, given, opts)    # `Abtastrate 15 s` above the table
-    opts, gaps = mark_gaps(src, cells, set(errors), given, opts)   # a probe's left out
+    grid = None
     if long is not None:                     # the period: the fastest error tag's, said
-        period, tag = proposed_period(long, errors)
+        # a length in mm last: more likely an axis' position than a probe, known once read
+        # (stranger80: the period was said to be "the fastest error tag 'W Pinole [mm]'", the
+        # quill's travel proposed a state a few lines on)
+        period, tag = proposed_period(long, sorted(errors, key=lambda h: split_unit(h)[1]
+                                                   in ("mm", "cm", "m")))
         given["resample_s"] = period
         opts = replace(opts, resample_s=period)
+        grid = {t: max(v / period, 1.0) for t, v in long.items() if np.isfinite(v)}
         kind = ("its channels logged at their own rates" if is_lab_file(sample) else
                 "a historian's long file, each tag logged at its own times")
         print(f"{sample.name}: {kind}: held "
               f"onto a grid of data.resample_s={period:g} s, the median interval of the fastest "
               f"error tag {tag!r} (written into the config: check it; the tags': "
               f"{intervals_said(long)})")
+    # a gap counted in the grid's rows where the channels are held onto one (stranger80)
+    opts, gaps = mark_gaps(src, cells, set(errors), given, opts, grid)   # a probe's left out
+    if grid is not None:     # (a long text's 'value' column: no header of the lab's, stranger80)
+        gaps = [(k, n, h if h in plan.names else None) for k, n, h in gaps]
     defaults = OmegaConf.to_container(OmegaConf.load(conf_dir() / "data" / "default.yaml"))
     if pair is not None and not pair.same_separators:   # each logger's file its own: detected
         opts = replace(opts, delimiter="auto", decimal="auto")

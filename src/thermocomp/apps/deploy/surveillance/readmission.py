@@ -18,7 +18,7 @@ class Readmission:
         due[list(instant)] = False
         back = self._returning(due) if due.any() else due
         for j in np.flatnonzero(back):
-            why = f"re-admitted: within ±{self._readmit_c()[j]:.3g} °C for {self._calm[j]} samples"
+            why = self._why_back(j)
             shift = self._ref[j] - self._ref0[j]
             if not self._predictable[j] and (self._jumps[j] > 1 or (
                     self._jumps[j] and abs(d[j] + shift - self._last_good[j])
@@ -40,6 +40,20 @@ class Readmission:
             self._explains[j] = False
             self._set_operator()
         return bool(back.any())
+
+    def _why_back(self, j: int) -> str:
+        """The re-admission's reason, as it was judged: a sensor no other predicts is judged by
+        no band (calm, or the others' bands where it was out for explaining their errors:
+        :meth:`_pass_once_back`), and its reason said "within ±10.4 °C" (stranger80: a screw
+        nut's thermocouple after a dropout, its warning band a figure nothing compared)."""
+        calm = self._calm[j]
+        if self._predictable[j]:
+            return f"re-admitted: within ±{self._readmit_c()[j]:.3g} °C for {calm} samples"
+        if self._explains[j]:
+            return (f"re-admitted: the others within their warning bands with it in for {calm} "
+                    "samples (no other sensor predicts it)")
+        return (f"re-admitted: no detector fired for {calm} samples (no other sensor predicts "
+                "it: no band judges its reading)")
 
     def _returning(self, due: np.ndarray) -> np.ndarray:
         """Which of the ``due`` sensors come back: those that pass their own judgement in the
