@@ -176,16 +176,15 @@ def bar(old: Path, new: Path) -> None:
               f"{'holds' if ok_b else 'FAILS'}",
               f"1c auto worse than MLR on the new campaigns {lost_o} -> {lost_n}, mean auto/MLR "
               f"{mean_o:.4f} -> {mean_n:.4f}: {'holds' if ok_c else 'FAILS'}",
-              "worse than MLR on the own test: old " + ", ".join(r for r in names if o[r]["to_mlr"][0] > 1)
-              + "; new " + ", ".join(r for r in names if n[r]["to_mlr"][0] > 1),
-              "worse than MLR on the new campaigns: old " + ", ".join(r for r in names if o[r]["to_mlr"][1] > 1)
-              + "; new " + ", ".join(r for r in names if n[r]["to_mlr"][1] > 1)]
+              *(f"worse than MLR on the {where}: old " + ", ".join(r for r in names if o[r]["to_mlr"][k] > 1)
+                + "; new " + ", ".join(r for r in names if n[r]["to_mlr"][k] > 1)
+                for k, where in ((0, "own test"), (1, "new campaigns")))]
     ok_2, ok_3 = True, True
     if (old / "fl.jsonl").exists() and (new / "fl.jsonl").exists():
         fo, fn = _fl(old), _fl(new)
         figures = {}
         for tag, f in (("old", fo), ("new", fn)):
-            auto, mlr = np.mean(list(f["auto9010"]["rmse"].values())), np.mean(list(f["mlr9010"]["rmse"].values()))
+            auto, mlr = (np.mean(list(f[k]["rmse"].values())) for k in ("auto9010", "mlr9010"))
             mae = [f["auto602020"]["mae"][t] for t in sorted(f["auto602020"]["mae"])]
             beats = sum(m < a for m, a in zip(mae, AUTHORS))
             cpu = min(f["auto9010"]["cpu_s"], f.get("auto9010b", f["auto9010"])["cpu_s"])
