@@ -7,6 +7,7 @@ Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is
     python benchmarks/bench_automore69.py rows ROOT WORK               # per tree -> WORK/automore.jsonl
     python benchmarks/bench_auto80.py fl WORK                          # per tree -> WORK/fl.jsonl
     python benchmarks/bench_auto80.py bar OLD NEW                      # the verdict (OLD: shipped)
+    python benchmarks/bench_auto80.py cpu OLD_SRC NEW_SRC OUT N         # bar 3 again, interleaved
 
 ``rows`` is bench_automore69's instrument (its 22 records, each fitted once on its own train
 campaigns, scored on its own test and on 12-28 new campaigns of the same machine; its docstring
@@ -57,6 +58,7 @@ The bar (written before scoring; fails -> the src reverted, the rule kept as
 
 from __future__ import annotations
 
+import contextlib
 import json
 import os
 import subprocess
@@ -105,6 +107,39 @@ def fl(work: Path) -> None:
         with (work / "fl.jsonl").open("a") as f:
             f.write(json.dumps(row) + "\n")
         print(json.dumps({k: row[k] for k in ("run", "cpu_s", "rmse")}), flush=True)
+
+
+def cpu(old_src: str, new_src: str, out: Path, n: int) -> None:
+    """``run data=fl_thermal model=auto`` (90/10) ``n`` times per tree, the trees alternating (the
+    same neighbours' load for both): each run's CPU -> OUT/cpu.jsonl, the lower of each tree's."""
+    seen: dict[str, list[float]] = {"old": [], "new": []}
+    for k in range(n):
+        for tag, src in (("old", old_src), ("new", new_src)):
+            with _on_path(src):
+                targets, took = _run(out / f"{tag}{k}", [*FL, "model=auto"])
+            seen[tag].append(round(took, 2))
+            with (out / "cpu.jsonl").open("a") as f:
+                f.write(json.dumps({"tree": tag, "src": src, "cpu_s": round(took, 2), "load": os.getloadavg(),
+                                    "rmse": targets and {t: v["test"]["rmse"] for t, v in targets.items()}})
+                        + "\n")
+    lo = {t: min(v) for t, v in seen.items()}
+    verdict = "holds" if lo["new"] <= CPU_RATIO * lo["old"] else "FAILS"
+    print(f"auto 90/10 CPU s: old {seen['old']}, new {seen['new']}; lower {lo['old']} -> {lo['new']} "
+          f"(x{lo['new'] / lo['old']:.2f}; bar 3 {verdict})")
+
+
+@contextlib.contextmanager
+def _on_path(src: str):
+    """``PYTHONPATH`` set to ``src`` for the children run inside."""
+    was = os.environ.get("PYTHONPATH")
+    os.environ["PYTHONPATH"] = str(Path(src).resolve())
+    try:
+        yield
+    finally:
+        if was is None:
+            os.environ.pop("PYTHONPATH", None)
+        else:
+            os.environ["PYTHONPATH"] = was
 
 
 def _fl(work: Path) -> dict:
@@ -215,6 +250,7 @@ def main(argv: list[str]) -> int:
     return run_commands(__doc__, {
         "fl": lambda work: fl(made_folder(work)),
         "bar": lambda old, new: bar(Path(old).resolve(), Path(new).resolve()),
+        "cpu": lambda old_src, new_src, out, n: cpu(old_src, new_src, made_folder(out), int(n)),
     }, argv, cpu=sys.stderr)
 
 
