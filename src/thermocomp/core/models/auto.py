@@ -80,8 +80,8 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
     standard error se with r + se >= 1 (k >= 2 folds; the one-SE rule of CV model choice).  On
     the 22 records of ``benchmarks/bench_automore69.py`` it fired on 23 targets of 9 records; auto
     worse than MLR on the new campaigns went 10 -> 8, better 12 -> 13, no record worse than before
-    by more than 1.5 % (col5791 1.330 -> 1.258 x MLR); ``fl_thermal`` unchanged (90/10 2.481 µm,
-    MLR 4.060; ``benchmarks/bench_auto80.py``).
+    by more than 1.5 % (iso_b), col5791 1.330 -> 1.258 x MLR; ``fl_thermal`` unchanged (90/10
+    2.481 µm, MLR 4.060; ``benchmarks/bench_auto80.py``).
 
     Parameters
     ----------
