@@ -117,9 +117,11 @@ def test_auto_that_kept_one_family_exports_as_that_family(data, tmp_path, family
 
 @needs_cc
 def test_auto_that_kept_a_blend_exports_the_weighted_sum_of_its_members(data, tmp_path):
-    """The folds' votes keep a blend of MLR and the lag bank for at least one target here."""
+    """The folds' votes keep a blend of MLR and the lag bank for at least one target here (as
+    voted, ``fallback=none``: with the one-SE fallback no target keeps a blend here)."""
     stream, tests, _ = _deployed(data, "machine", "model.candidates=[mlr,lagbank]",
-                                 "model.candidate_params={lagbank:{n_taus:3}}")
+                                 "model.candidate_params={lagbank:{n_taus:3}}",
+                                 "model.estimator.fallback=none")
     blends = {t: est.estimator_ for t, est, _ in stream._plan if isinstance(est.estimator_, Blend)}
     assert blends and all(len(b.estimators_) == 2 for b in blends.values())
     ss = state_space(stream)

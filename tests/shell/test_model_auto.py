@@ -426,6 +426,48 @@ def test_a_candidate_keeps_votes_only_as_far_as_the_folds_are_sure_it_beats_mlr(
     assert AutoRegressor(candidates).fit(X, y, context=context).weights_ == {"close": 1.0}
 
 
+def test_a_blend_the_folds_are_not_surely_in_favour_of_falls_back_to_mlr_one_se():
+    from thermocomp.core.models.auto import AutoRegressor
+    from thermocomp.core.models.blend import fold_ratios
+
+    candidates = {"mlr": _OneSensor(0), "close": _AsRead(1)}
+    # one faulty campaign (fold 1 of five): the close sensor wins four folds, fails that one; the
+    # resamples without it keep it a share (0.12), and the blend then loses fold 1 by 1.8x MLR's
+    X, y, context = _faulty_sensor(20, faulty=(13,), seed=1)
+    old = AutoRegressor(candidates, fallback="none").fit(X, y, context=context)
+    assert old.weights_["close"] > 0.05 and "one-SE" not in old.reason_
+    blend = sum(w * old.oof_[n] for n, w in old.weights_.items())
+    r = fold_ratios((old.oof_y_ - blend) ** 2, (old.oof_y_ - old.oof_["mlr"]) ** 2, old.oof_fold_)
+    assert r.size == 5 and min(r) < 0.8 < 1.5 < max(r)             # wins some folds, loses one
+    assert r.mean() + r.std(ddof=1) / np.sqrt(r.size) >= 1.0
+    auto = AutoRegressor(candidates).fit(X, y, context=context)    # fallback='one_se', the default
+    assert auto.weights_ == {"mlr": 1.0} and auto.family_ == auto.chosen_ == "mlr"
+    assert "one-SE rule" in auto.reason_ and "MLR kept" in auto.report()["reason"]
+    X_new, y_new, context_new = _faulty_sensor(10, faulty=(3, 7), seed=2)    # faults come again
+    err = {n: np.sqrt(np.mean((y_new - m.predict(X_new, context=context_new)) ** 2))
+           for n, m in (("old", old), ("auto", auto))}
+    assert err["auto"] < err["old"]
+
+
+def test_a_candidate_better_in_every_fold_keeps_its_blend_and_fallback_none_keeps_the_votes():
+    from thermocomp.core.models.auto import AutoRegressor
+    from thermocomp.core.models.blend import vote_weights
+
+    candidates = {"mlr": _OneSensor(0), "close": _AsRead(1)}
+    X, y, context = _faulty_sensor(20, faulty=(), seed=1)           # ~0.03 x MLR in every fold
+    auto = AutoRegressor(candidates).fit(X, y, context=context)
+    assert auto.weights_ == {"close": 1.0} and "one-SE" not in auto.reason_
+    # fallback='none': the votes' weights as they are, the same as a model pickled before the key
+    X, y, context = _faulty_sensor(20, faulty=(13,), seed=1)
+    old = AutoRegressor(candidates, fallback="none").fit(X, y, context=context)
+    w = vote_weights(np.column_stack([old.oof_["mlr"], old.oof_["close"]]), old.oof_y_, old.oof_fold_,
+                     old.oof_["mlr"], base_column=0, min_folds=5)
+    assert old.weights_ == {n: float(v) for n, v in zip(("mlr", "close"), w) if v > 0}
+    pickled = AutoRegressor(candidates)
+    del pickled.__dict__["fallback"]                                # unpickled from before the key
+    assert pickled.fit(X, y, context=context).weights_ == old.weights_
+
+
 def _one_fold(noise_sd: float, seed: int, n: int = 600):
     """One validation fold of ``n`` rows: MLR's and a candidate's predictions, each off by its
     own slowly drifting error (AR(1), 0.95: it takes ~30 rows to decorrelate), the candidate's

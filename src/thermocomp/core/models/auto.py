@@ -24,7 +24,7 @@ from ..gains import gain_terms
 from ..metrics import PERSISTENCE, rmse
 from ..model_selection import BlockedForward, LeaveBlockOut, LeaveCampaignsOut
 from ..model_selection.extrapolation import within_range
-from .blend import Blend, mean_fold_ratio, vote_weights
+from .blend import Blend, fold_ratios, mean_fold_ratio, vote_weights
 from .one_step import persistence
 
 ATI = "ati"              # a candidate name: the ATI wrapper (conf/ati/cmeans.yaml) of a family
@@ -75,6 +75,14 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
     to 0.4 on the simulated records and the spindle record.  A val split gives
     one score per candidate, no folds: there the best is kept either way.
 
+    ``fallback='one_se'`` (extension, auto80) then keeps MLR alone where the folds are not surely
+    in favour of the blend: its summed squared error over MLR's per fold has a mean r and a
+    standard error se with r + se >= 1 (k >= 2 folds; the one-SE rule of CV model choice).  On
+    the 22 records of ``benchmarks/bench_automore69.py`` it fired on 23 targets of 9 records; auto
+    worse than MLR on the new campaigns went 10 -> 8, better 12 -> 13, no record worse than before
+    by more than 1.5 % (iso_b), col5791 1.330 -> 1.258 x MLR; ``fl_thermal`` unchanged (90/10
+    2.481 µm, MLR 4.060; ``benchmarks/bench_auto80.py``).
+
     Parameters
     ----------
     candidates : dict name -> estimator
@@ -111,6 +119,12 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         ``oof_fold_``, ``oof_folds_``, ``oof_in_range_``, ``oof_campaign_``: the campaign code of
         each row where the folds hold out campaigns, else None; 1.4 MB on ``fl_thermal``).  The fitted
         model holds them either way: the run's validation scores the choice from them (:meth:`out_of_fold`).
+    fallback : {'one_se', 'none'}, default 'one_se'
+        ``combine='vote'`` (extension): keep MLR alone where the blend's per-fold squared error
+        over MLR's (:func:`~thermocomp.core.models.blend.fold_ratios`, k >= 2 folds among the
+        voting rows, MLR a candidate) has mean + standard error >= 1, the reason saying so;
+        ``'none'``: the blend the votes give (a model pickled before the key refits so).  The
+        zero rule (``uncompensated``) then judges what is kept.
     min_gain_pct : float, default 1.0
         ``combine='best'``: MLR, when a candidate, is kept unless the best candidate's validation
         RMSE is lower
@@ -150,17 +164,19 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
                    "gap_blocks": number(0.0, 10.0), "one_record": choice("forward", "blocks", "late_blocks"),
                    "min_gain_pct": number(0.0, 100.0),
                    "combine": choice("vote", "best"), "keep_oof": choice(True, False),
-                   "uncompensated": choice("zero", "keep"),
+                   "uncompensated": choice("zero", "keep"), "fallback": choice("one_se", "none"),
                    "validation_rows": choice("all", "in_range")}
 
     uncompensated = "keep"   # a model pickled before the key: refitted as it was fitted
+    fallback = "none"        # likewise
 
     def __init__(self, candidates=None, scheme: str = "auto", n_folds: int = 5,
                  min_train_fraction: float = 0.5, gap_blocks: float = 0.5,
                  max_seconds: float | None = None, min_gain_pct: float = 1.0, chosen=None,
                  val_scores=None, given_scores=None, combine: str = "vote", keep_oof: bool = False,
                  one_record: str = "forward", validation_rows: str = "all",
-                 uncompensated: str = "zero"):
+                 uncompensated: str = "zero", fallback: str = "one_se"):
+        self.fallback = fallback
         self.uncompensated = uncompensated
         self.validation_rows = validation_rows
         self.one_record = one_record
@@ -254,8 +270,33 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         self.chosen_ = self.family_ if len(weights) == 1 else weights
         self.reason_ = (f"{lead} ({how}); MLR {self.validation_[BASELINE]:.4g}, "
                         f"persistence {self.validation_[PERSISTENCE]:.4g}")
-        self._none_unless_better(blended, preds @ w)
+        predicted = preds @ w
+        if self._one_se(predicted, rows, base):
+            blended, predicted = self.validation_[BASELINE], self.oof_[BASELINE]
+        self._none_unless_better(blended, predicted)
         return self._refit(X, y, context)
+
+    def _one_se(self, predicted: np.ndarray, rows: np.ndarray, base: int | None) -> bool:
+        """``fallback='one_se'``: keep MLR alone where the folds are not surely in favour of the
+        blend (``predicted``, its out-of-fold prediction): with MLR among the candidates, a blend
+        that is not MLR alone and k >= 2 folds among the voting ``rows``, the blend's summed squared
+        error over MLR's per fold (:func:`~thermocomp.core.models.blend.fold_ratios`) has a mean
+        r and a standard error se = std(ddof=1) / sqrt(k); r + se >= 1 keeps MLR (the one-SE rule
+        of CV model choice: the simpler model unless the other is better by more than one SE).
+        True where it kept MLR."""
+        if self.fallback != "one_se" or base is None or self.weights_ == {BASELINE: 1.0}:
+            return False
+        r = fold_ratios((self.oof_y_[rows] - predicted[rows]) ** 2,
+                        (self.oof_y_[rows] - self.oof_[BASELINE][rows]) ** 2, self.oof_fold_[rows])
+        if r.size < 2:
+            return False
+        mean, se = float(np.mean(r)), float(np.std(r, ddof=1) / np.sqrt(r.size))
+        if not mean + se >= 1.0:
+            return False
+        self.reason_ += (f"; one-SE rule: the blend's mean fold MSE over MLR's {mean:.4g} ± "
+                         f"{se:.4g} ({r.size} folds) is not surely below 1: MLR kept")
+        self.weights_, self.family_, self.chosen_ = {BASELINE: 1.0}, BASELINE, BASELINE
+        return True
 
     def _none_unless_better(self, kept: float, predicted: np.ndarray | None = None) -> None:
         """``uncompensated='zero'``: where the kept model's pooled validation RMSE ``kept`` is not

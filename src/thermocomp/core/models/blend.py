@@ -155,11 +155,18 @@ def vote_weights(predictions: np.ndarray, y: np.ndarray, fold: np.ndarray, base:
     return w / w.sum()
 
 
+def fold_ratios(squared: np.ndarray, base: np.ndarray, fold: np.ndarray) -> np.ndarray:
+    """Per fold (in the order of their labels in ``fold``), one model's summed squared errors
+    (``squared``, per row) over MLR's (``base``) there: the votes' measure of each fold."""
+    unit = np.unique(fold, return_inverse=True)[1]
+    return np.bincount(unit, squared) / np.maximum(np.bincount(unit, base), 1e-300)
+
+
 def mean_fold_ratio(squared: np.ndarray, base: np.ndarray, fold: np.ndarray) -> float:
     """The votes' measure of one model without resampling: the mean over the folds of its summed
-    squared errors (``squared``, per row) over MLR's (``base``) there, so every fold counts alike."""
-    unit = np.unique(fold, return_inverse=True)[1]
-    return float(np.mean(np.bincount(unit, squared) / np.maximum(np.bincount(unit, base), 1e-300)))
+    squared errors (``squared``, per row) over MLR's (``base``) there, so every fold counts alike
+    (:func:`fold_ratios`, averaged)."""
+    return float(np.mean(fold_ratios(squared, base, fold)))
 
 
 def _nested_resamples(squared, y, fold, base, n_resamples, blocks: bool) -> np.ndarray:
