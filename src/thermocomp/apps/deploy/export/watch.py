@@ -438,10 +438,8 @@ class CodeMonitor:
     def _common_step(self, d, step, big, pos):
         """(cmon80) A common step (module doc): each active sensor that took it re-referenced
         by its own step (``d``, ``step``, the window's row ``pos`` changed in place); the jumps
-        left after it."""
+        left after it; called with at least ``common_min`` of them."""
         a = self.a
-        if big.sum() < a["common_min"]:
-            return big
         active = np.arange(self.n) != self.out
         common = float(np.median(step[big]))
         ratio = step / common if common else np.zeros_like(step)

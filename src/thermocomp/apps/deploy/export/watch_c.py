@@ -230,7 +230,8 @@ static int mon_beyond(tc_state *s, const double x[], const double d[], int j, in
 /* (cmon80) a common step: at least MON_COMMON_MIN sensors jumping in one sample (big), the
    median of their steps the common one; every active sensor within a factor MON_COMMON_SPREAD
    of it re-referenced by its own step and kept in, where they are more than half the active
-   ones read.  The jumps left after it: big changed */
+   ones read (called with at least MON_COMMON_MIN of them).  The jumps left after it: big
+   changed */
 static void mon_common_step(tc_state *s, double d[], double step[], int big[], int pos) {
     double v[NM], common, r;
     int took[NM], k, i, n = 0, ntook = 0, njump = 0, nread = 0;
@@ -240,7 +241,6 @@ static void mon_common_step(tc_state *s, double d[], double step[], int big[], i
             v[i] = step[k];
             n++;
         }
-    if (n < MON_COMMON_MIN) return;
     common = n % 2 ? v[n / 2] : (v[n / 2 - 1] + v[n / 2]) / 2.0;
     for (k = 0; k < NM; k++) {
         r = common != 0.0 ? step[k] / common : 0.0;
