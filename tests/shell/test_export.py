@@ -57,11 +57,35 @@ EVERY_EXCURSION = "promote.envelope.pattern=false"
 needs_cc = pytest.mark.skipif(shutil.which("gcc") is None, reason="no C compiler")
 
 
+def built_stream(folder: Path, files: dict | None = None) -> Path:
+    """``files`` (name -> text) written into ``folder`` and its C compiled as a control's build
+    would (warnings as errors): the ``stream`` program."""
+    for name, text in (files or {}).items():
+        (folder / name).parent.mkdir(parents=True, exist_ok=True)
+        (folder / name).write_text(text)
+    subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", "compensator.c",
+                    "stream.c", "-lm", "-o", "stream"], cwd=folder, check=True, capture_output=True)
+    return folder / "stream"
+
+
+def adaptive_mlr(folder: Path) -> tuple:
+    """``(adaptive MLR as replay deploys it, the dataset, its test campaign ids)``, on this
+    module's record written into ``folder`` (the exported monitor's tests: cmon76, cdrop77, cmon80)."""
+    from thermocomp.shell.builders import deployable
+
+    cfg = _compose(f"data.path={_make_dataset(folder)}", "track=false", "monitor.adaptive=true",
+                   "model=mlr")
+    ds, train_ids, test_ids, _ = read_streamed(cfg)
+    train = {c: ds.campaigns[c] for c in train_ids}
+    deployed = deployable(cfg, deploy_stream(cfg, build_compensator(cfg, ds=ds).fit(train), train),
+                          train, ds)
+    return deployed, ds, test_ids
+
+
 def checked_pack(out: Path) -> str:
     """``out``'s C compiled as a control's build would (warnings as errors) and its check pack
     (``check/check.sh``) run: the pack's messages, after asserting it passed."""
-    subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", "compensator.c",
-                    "stream.c", "-lm", "-o", "stream"], cwd=out, check=True, capture_output=True)
+    built_stream(out)
     script = subprocess.run(["sh", "check/check.sh"], cwd=out, capture_output=True, text=True)
     assert script.returncode == 0, script.stderr
     return script.stderr

@@ -15,12 +15,10 @@ import subprocess
 import numpy as np
 import pytest
 
-from test_export import _compose, _make_dataset, needs_cc
+from test_export import adaptive_mlr, built_stream, needs_cc
 from thermocomp.apps.deploy.export import Simulator, exported_files, not_in_code, state_space
 from thermocomp.apps.deploy.export.pack import conformance_pack, corrections
 from thermocomp.apps.deploy.report import stream_rows
-from thermocomp.shell.builders import build_compensator, deploy_stream, deployable
-from thermocomp.shell.source import read_streamed
 
 LOST = list(range(4, 8))        # rows of T_b left empty (lines 6-9 of the CSV)
 
@@ -28,12 +26,7 @@ LOST = list(range(4, 8))        # rows of T_b left empty (lines 6-9 of the CSV)
 @pytest.fixture(scope="module")
 def served(tmp_path_factory):
     """``(adaptive MLR as replay deploys it, its system with the monitor, a test campaign)``."""
-    data = _make_dataset(tmp_path_factory.mktemp("cdrop77") / "data")
-    cfg = _compose(f"data.path={data}", "track=false", "monitor.adaptive=true", "model=mlr")
-    ds, train_ids, test_ids, _ = read_streamed(cfg)
-    train = {c: ds.campaigns[c] for c in train_ids}
-    deployed = deployable(cfg, deploy_stream(cfg, build_compensator(cfg, ds=ds).fit(train), train),
-                          train, ds)
+    deployed, ds, test_ids = adaptive_mlr(tmp_path_factory.mktemp("cdrop77") / "data")
     return deployed, state_space(deployed, monitor=True), ds.campaigns[test_ids[1]].reset_index(
         drop=True)
 
@@ -61,11 +54,7 @@ def test_a_missing_reading_is_excluded_rebuilt_and_readmitted_by_the_code_as_ser
         ("K06.dropout.T_a", 40, None), ("K06.range.T_a", 40, None), ("K06.common.step", 40, None)]
     assert summary["campaigns"][3]["planted"] == ("T_a missing (an empty cell) in rows 21-25 (a "
                                                   "dropout), read again after")
-    for name, text in {**exported_files(deployed, "c"), **files}.items():
-        (tmp_path / name).parent.mkdir(parents=True, exist_ok=True)
-        (tmp_path / name).write_text(text)
-    subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", "compensator.c",
-                    "stream.c", "-lm", "-o", "stream"], cwd=tmp_path, check=True, capture_output=True)
+    built_stream(tmp_path, {**exported_files(deployed, "c"), **files})
     script = subprocess.run(["sh", "check/check.sh"], cwd=tmp_path, capture_output=True, text=True)
     assert script.returncode == 0, script.stderr
     assert "check: 6 campaign(s) within tolerance" in script.stdout

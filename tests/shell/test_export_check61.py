@@ -17,7 +17,7 @@ import pandas as pd
 import pytest
 
 from conftest import FAST, refused
-from test_export import StructuredText, _compose, _make_dataset, _trained, needs_cc
+from test_export import StructuredText, _compose, _make_dataset, _trained, built_stream, needs_cc
 from test_run_column52 import _long, _runs
 from test_stream_units60 import _in_lab_units, dated_runs
 from thermocomp.apps.deploy.streaming import replay
@@ -32,12 +32,6 @@ PLAIN = ("monitor.adaptive=false", "track=false")
 @pytest.fixture(scope="module")
 def dataset(tmp_path_factory):
     return _make_dataset(tmp_path_factory.mktemp("check61") / "data")
-
-
-def _built(folder):
-    subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", "compensator.c",
-                    "stream.c", "-lm", "-o", "stream"], cwd=folder, check=True, capture_output=True)
-    return folder / "stream"
 
 
 def _checked(binary, campaign_folder) -> subprocess.CompletedProcess:
@@ -80,13 +74,13 @@ def test_the_pack_is_replay_and_the_compiled_check_passes_and_names_a_changed_co
         want = -replay(stream, ds.campaigns[c])[stream.targets_].to_numpy(float)
         assert list(expected.columns) == ["C_X", "C_Z"] and len(expected) == len(rows) == 40
         assert np.abs(expected.to_numpy(float) - want).max() <= 1e-12
-    binary = _built(out)
+    binary = built_stream(out)
     script = subprocess.run(["sh", "check/check.sh"], cwd=out, capture_output=True, text=True)
     assert script.returncode == 0, script.stderr
     assert script.stderr.count("stream: check passed: 40 rows") == 2
     # one coefficient moved by a millionth: the first row beyond the tolerance is named
     (out / "compensator.c").write_text(_changed_coefficient((out / "compensator.c").read_text()))
-    binary = _built(out)
+    binary = built_stream(out)
     failed = _checked(binary, out / "check" / "K05")
     assert failed.returncode == 1, failed.stderr
     got = pd.read_csv(io.BytesIO(failed.stdout)).to_numpy(float)
@@ -155,7 +149,7 @@ def test_a_json_lines_record_in_lab_units_reaches_the_code_through_the_pack(tmp_
     assert np.allclose(rows["time"], lab["Zeit [min]"] * 60, rtol=0, atol=1e-9)
     assert np.allclose(rows["T_T0"], (lab["T0 [°F]"] - 32) * 5 / 9, rtol=0, atol=1e-9)
     assert np.allclose(rows["T_T1"], lab["T1 [K]"] - 273.15, rtol=0, atol=1e-9)
-    binary = _built(out)
+    binary = built_stream(out)
     for campaign in ("Lauf_3", "Lauf_4"):
         run = _checked(binary, out / "check" / campaign)
         assert run.returncode == 0, run.stderr

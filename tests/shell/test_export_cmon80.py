@@ -19,13 +19,11 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from test_export import _compose, _make_dataset, needs_cc
+from test_export import adaptive_mlr, built_stream, needs_cc
 from thermocomp.apps.deploy.export import exported_files, not_in_code, state_space
 from thermocomp.apps.deploy.export.pack import conformance_pack, corrections
 from thermocomp.apps.deploy.export.watch import CodeMonitor
 from thermocomp.apps.deploy.report import stream_rows
-from thermocomp.shell.builders import build_compensator, deploy_stream, deployable
-from thermocomp.shell.source import read_streamed
 
 HALF = 20
 
@@ -33,12 +31,7 @@ HALF = 20
 @pytest.fixture(scope="module")
 def served(tmp_path_factory):
     """``(adaptive MLR as replay deploys it, its system with the monitor, a test campaign)``."""
-    data = _make_dataset(tmp_path_factory.mktemp("cmon80") / "data")
-    cfg = _compose(f"data.path={data}", "track=false", "monitor.adaptive=true", "model=mlr")
-    ds, train_ids, test_ids, _ = read_streamed(cfg)
-    train = {c: ds.campaigns[c] for c in train_ids}
-    deployed = deployable(cfg, deploy_stream(cfg, build_compensator(cfg, ds=ds).fit(train), train),
-                          train, ds)
+    deployed, ds, test_ids = adaptive_mlr(tmp_path_factory.mktemp("cmon80") / "data")
     return deployed, state_space(deployed, monitor=True), ds.campaigns[test_ids[1]].reset_index(
         drop=True)
 
@@ -58,15 +51,6 @@ def _faulty(frame, kind):
         out.loc[HALF - 2:HALF - 1, "T_a"] = np.nan
         out.loc[HALF - 1, "T_b"] += 30.0
     return out
-
-
-def _built(folder, files):
-    for name, text in files.items():
-        (folder / name).parent.mkdir(parents=True, exist_ok=True)
-        (folder / name).write_text(text)
-    subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", "compensator.c",
-                    "stream.c", "-lm", "-o", "stream"], cwd=folder, check=True, capture_output=True)
-    return folder / "stream"
 
 
 def _streamed(binary, frame, inputs):
@@ -99,7 +83,7 @@ def test_a_reading_beyond_its_range_and_a_common_step_are_what_the_code_does_as_
         ("spike.jump.T_a", 20, False), ("spike.freeze.T_a", 31, False),
         ("spike.dropout.T_a", 20, False), ("spike.range.T_a", 20, False),
         ("spike.common.step", 20, False)]
-    stream = _built(tmp_path, {**exported_files(deployed, "c"), **files})
+    stream = built_stream(tmp_path, {**exported_files(deployed, "c"), **files})
     for k, f in faults.items():
         want = corrections(ss, stream_rows(deployed, f, "K06").y)
         got, said = _streamed(stream, f, ss.inputs)
@@ -133,7 +117,7 @@ def test_the_pack_plants_a_reading_beyond_its_range_and_a_common_step(served, tm
                                                   "rows 21-25")
     assert planted["K06.common.step"][:2] == (40, None)
     assert planted["K06.common.step"][2].startswith("every monitored sensor +3.097 degC from row 21")
-    _built(tmp_path, {**exported_files(deployed, "c"), **files})
+    built_stream(tmp_path, {**exported_files(deployed, "c"), **files})
     script = subprocess.run(["sh", "check/check.sh"], cwd=tmp_path, capture_output=True, text=True)
     assert script.returncode == 0, script.stderr
     assert "check: 6 campaign(s) within tolerance" in script.stdout

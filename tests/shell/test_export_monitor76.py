@@ -17,23 +17,16 @@ import subprocess
 import numpy as np
 import pytest
 
-from test_export import _compose, _make_dataset, needs_cc
+from test_export import adaptive_mlr, built_stream, needs_cc
 from thermocomp.apps.deploy.export import exported_files, not_in_code, state_space
 from thermocomp.apps.deploy.export.pack import conformance_pack, corrections
 from thermocomp.apps.deploy.report import stream_rows
-from thermocomp.shell.builders import build_compensator, deploy_stream, deployable
-from thermocomp.shell.source import read_streamed
 
 
 @pytest.fixture(scope="module")
 def served(tmp_path_factory):
     """``(adaptive MLR as replay deploys it, healthy test campaign, the other test campaign)``."""
-    data = _make_dataset(tmp_path_factory.mktemp("cmon76") / "data")
-    cfg = _compose(f"data.path={data}", "track=false", "monitor.adaptive=true", "model=mlr")
-    ds, train_ids, test_ids, _ = read_streamed(cfg)
-    train = {c: ds.campaigns[c] for c in train_ids}
-    deployed = deployable(cfg, deploy_stream(cfg, build_compensator(cfg, ds=ds).fit(train), train),
-                          train, ds)
+    deployed, ds, test_ids = adaptive_mlr(tmp_path_factory.mktemp("cmon76") / "data")
     healthy, other = (ds.campaigns[c].reset_index(drop=True) for c in test_ids)
     return deployed, healthy, other
 
@@ -42,14 +35,6 @@ def _stepped(frame, by_c):
     out = frame.copy()
     out.loc[len(out) // 2:, "T_b"] += by_c
     return out
-
-
-def _written(folder, files):
-    for name, text in files.items():
-        (folder / name).parent.mkdir(parents=True, exist_ok=True)
-        (folder / name).write_text(text)
-    subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", "compensator.c",
-                    "stream.c", "-lm", "-o", "stream"], cwd=folder, check=True, capture_output=True)
 
 
 @needs_cc
@@ -68,7 +53,7 @@ def test_a_jump_is_excluded_rebuilt_and_readmitted_by_the_code_as_served(served,
         ("K05.freeze.T_a", 40, None), ("K05.dropout.T_a", 40, None),
         ("K05.range.T_a", 40, None), ("K05.common.step", 40, None)]
     assert summary["campaigns"][2]["planted"].startswith("T_a +3.097 degC from row 21")
-    _written(tmp_path, {**exported_files(deployed, "c"), **files})
+    built_stream(tmp_path, {**exported_files(deployed, "c"), **files})
     script = subprocess.run(["sh", "check/check.sh"], cwd=tmp_path, capture_output=True, text=True)
     assert script.returncode == 0, script.stderr
     said = script.stderr
