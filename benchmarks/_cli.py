@@ -39,6 +39,15 @@ def _fits(command: Callable, words: list[str]) -> bool:
     return True
 
 
+def seed_list(word: str) -> list[int]:
+    """The seeds ``word`` names: ``7996-8010``, ``7701,7705`` or both (``7701-7703,7710``)."""
+    out = []
+    for part in word.split(","):
+        lo, _, hi = part.partition("-")
+        out += list(range(int(lo), int(hi or lo) + 1))
+    return out
+
+
 def made_folder(word: str) -> Path:
     """The folder ``word`` names, resolved, made where it is missing (a command that writes there)."""
     folder = Path(word).resolve()

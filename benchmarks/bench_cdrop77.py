@@ -39,27 +39,13 @@ import pandas as pd
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from _cli import made_folder, run_commands  # noqa: E402
+from _ccode import built, rmse  # noqa: E402
+from _cli import made_folder, run_commands, seed_list  # noqa: E402
 
 SEEDS = "7736-7745"
 LENGTHS = {"10min": 2, "2h": 24}         # samples of 300 s
 MODELS = ("mlr", "lagbank")
 SENSOR = "T_motor2"
-
-
-def _seeds(text: str) -> list[int]:
-    lo, _, hi = text.partition("-")
-    return list(range(int(lo), int(hi or lo) + 1))
-
-
-def _built(folder: Path, files: dict) -> Path:
-    folder.mkdir(parents=True, exist_ok=True)
-    for name, text in files.items():
-        (folder / name).parent.mkdir(parents=True, exist_ok=True)
-        (folder / name).write_text(text)
-    subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", "compensator.c",
-                    "stream.c", "-lm", "-o", "stream"], cwd=folder, check=True, capture_output=True)
-    return folder / "stream"
 
 
 def _streamed(binary: Path, frame: pd.DataFrame) -> tuple[np.ndarray, int, str]:
@@ -68,11 +54,6 @@ def _streamed(binary: Path, frame: pd.DataFrame) -> tuple[np.ndarray, int, str]:
     run = subprocess.run([str(binary)], input=text, text=True, capture_output=True)
     rows = [line.split(",") for line in run.stdout.splitlines()[1:]]
     return np.array(rows, dtype=float).reshape(len(rows), -1), run.returncode, run.stderr
-
-
-def _rmse(errors: list, corrections: list) -> np.ndarray:
-    r = np.vstack([e + c for e, c in zip(errors, corrections)])
-    return np.sqrt(np.mean(r ** 2, axis=0))
 
 
 def _dataset(root: Path, seed: int, length: str) -> Path:
@@ -116,8 +97,8 @@ def record(root: Path, seed: int, length: str, model: str) -> str:
     errors, served, code, worst, flagged, failed, before = [], [], [], 0.0, [], [], []
     said = {"dropout": 0, "re-admitted": 0}
     with tempfile.TemporaryDirectory(prefix="cdrop77-") as tmp:
-        binary = _built(Path(tmp) / "with", {**exported_files(deployed, "c"), **files})
-        plain = _built(Path(tmp) / "plain", exported_files(deployed, "c", monitor=False))
+        binary = built(Path(tmp) / "with", {**exported_files(deployed, "c"), **files})
+        plain = built(Path(tmp) / "plain", exported_files(deployed, "c", monitor=False))
         check = subprocess.run(["sh", "check/check.sh"], cwd=Path(tmp) / "with",
                                capture_output=True, text=True)
         for k, df in tests.items():
@@ -159,14 +140,14 @@ def record(root: Path, seed: int, length: str, model: str) -> str:
     lines += [f"  FAILED {f}" for f in failed]
     if served:
         for i, t in enumerate(targets):
-            s, c = (_rmse(errors, x)[i] for x in (served, code))
+            s, c = (rmse(errors, x)[i] for x in (served, code))
             lines.append(f"  {t}: served adaptive {s:.4f}  C with monitor {c:.4f}")
     return "\n".join(lines)
 
 
 def dropouts(root: str = "/tmp/cdrop77-bench", seeds: str = SEEDS) -> None:
     folder = made_folder(root)
-    for seed in _seeds(seeds):
+    for seed in seed_list(seeds):
         for length in LENGTHS:
             for model in MODELS:
                 print(record(folder, seed, length, model), flush=True)

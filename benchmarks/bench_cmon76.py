@@ -20,45 +20,19 @@ is measured against it, so no bar is written; the figures are in docs/to-the-mac
 
 from __future__ import annotations
 
-import subprocess
 import sys
 import tempfile
 from pathlib import Path
 
 import numpy as np
-import pandas as pd
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from _cli import made_folder, run_commands  # noqa: E402
+from _ccode import built, rmse, streamed  # noqa: E402
+from _cli import made_folder, run_commands, seed_list  # noqa: E402
 
 SEEDS = "7696-7700"
 KINDS = ("freeze", "jump")
-
-
-def _seeds(text: str) -> list[int]:
-    lo, _, hi = text.partition("-")
-    return list(range(int(lo), int(hi or lo) + 1))
-
-
-def _built(folder: Path, files: dict) -> Path:
-    folder.mkdir(parents=True, exist_ok=True)
-    for name, text in files.items():
-        (folder / name).write_text(text)
-    subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", "compensator.c",
-                    "stream.c", "-lm", "-o", "stream"], cwd=folder, check=True, capture_output=True)
-    return folder / "stream"
-
-
-def _streamed(binary: Path, frame: pd.DataFrame) -> np.ndarray:
-    text = frame.to_csv(index=False, float_format="%.17g")
-    run = subprocess.run([str(binary)], input=text, text=True, capture_output=True, check=True)
-    return pd.read_csv(pd.io.common.StringIO(run.stdout)).to_numpy(float)
-
-
-def _rmse(errors: list, corrections: list) -> np.ndarray:
-    r = np.vstack([e + c for e, c in zip(errors, corrections)])
-    return np.sqrt(np.mean(r ** 2, axis=0))
 
 
 def record(root: Path, seed: int, kind: str) -> str:
@@ -93,8 +67,8 @@ def record(root: Path, seed: int, kind: str) -> str:
     ss = state_space(deployed, monitor=True)
     plain_ss = state_space(deployed)
     with tempfile.TemporaryDirectory(prefix="cmon76-") as tmp:
-        with_mon = _built(Path(tmp) / "with", exported_files(deployed, "c"))
-        without = _built(Path(tmp) / "without", {"compensator.h": c.header(plain_ss),
+        with_mon = built(Path(tmp) / "with", exported_files(deployed, "c"))
+        without = built(Path(tmp) / "without", {"compensator.h": c.header(plain_ss),
                                                  "compensator.c": c.source(plain_ss),
                                                  "stream.c": DRIVER})
         cols = ["time", *ss.inputs]
@@ -103,8 +77,8 @@ def record(root: Path, seed: int, kind: str) -> str:
             errors.append(df[targets].to_numpy(float))
             fixed.append(-replay(deployed.streaming, df)[targets].to_numpy(float))
             served.append(corrections(ss, stream_rows(deployed, df, k).y))
-            code0.append(_streamed(without, df[cols]))
-            code1.append(_streamed(with_mon, df[cols]))
+            code0.append(streamed(without, df[cols]))
+            code1.append(streamed(with_mon, df[cols]))
     _, summary = conformance_pack(deployed, ss, tests)
     listed = [e for e in summary["campaigns"] if "planted" not in e]
     kept = sum(e["rows"] for e in listed)
@@ -116,7 +90,7 @@ def record(root: Path, seed: int, kind: str) -> str:
     lines = [f"{kind} s{seed}: pack rows {kept}/{total}, cuts {', '.join(cuts) or 'none'}; "
              f"max|C monitor - served| {worst:.2e} um; planted: {'; '.join(plants)}"]
     for i, t in enumerate(targets):
-        f, s, c0, c1 = (_rmse(errors, x)[i] for x in (fixed, served, code0, code1))
+        f, s, c0, c1 = (rmse(errors, x)[i] for x in (fixed, served, code0, code1))
         lines.append(f"  {t}: fixed {f:.3f}  served adaptive {s:.3f}  C without monitor {c0:.3f}"
                      f"  C with monitor {c1:.3f}")
     return "\n".join(lines)
@@ -124,7 +98,7 @@ def record(root: Path, seed: int, kind: str) -> str:
 
 def faults(root: str = "/tmp/cmon76-bench", seeds: str = SEEDS) -> None:
     folder = made_folder(root)
-    for seed in _seeds(seeds):
+    for seed in seed_list(seeds):
         for kind in KINDS:
             print(record(folder, seed, kind), flush=True)
 

@@ -83,7 +83,6 @@ E_Z served adaptive = C with monitor 3.64-7.78 µm against 5.97-20.84 for the C 
 
 from __future__ import annotations
 
-import subprocess
 import sys
 import tempfile
 from pathlib import Path
@@ -93,39 +92,14 @@ import pandas as pd
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from _cli import made_folder, run_commands  # noqa: E402
+from _ccode import built, rmse, streamed  # noqa: E402
+from _cli import made_folder, run_commands, seed_list  # noqa: E402
 
 SEEDS = "7996-8010"
 KINDS = ("range", "common")
 SENSOR = "T_motor2"
 RANGE_C, RANGE_ROWS = 40.0, 6          # +40 degC for 6 samples (30 min of 300 s)
 STEP_C = 3.0
-
-
-def _seeds(text: str) -> list[int]:
-    lo, _, hi = text.partition("-")
-    return list(range(int(lo), int(hi or lo) + 1))
-
-
-def _built(folder: Path, files: dict) -> Path:
-    folder.mkdir(parents=True, exist_ok=True)
-    for name, text in files.items():
-        (folder / name).parent.mkdir(parents=True, exist_ok=True)
-        (folder / name).write_text(text)
-    subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", "compensator.c",
-                    "stream.c", "-lm", "-o", "stream"], cwd=folder, check=True, capture_output=True)
-    return folder / "stream"
-
-
-def _streamed(binary: Path, frame: pd.DataFrame) -> np.ndarray:
-    text = frame.to_csv(index=False, float_format="%.17g")
-    run = subprocess.run([str(binary)], input=text, text=True, capture_output=True, check=True)
-    return pd.read_csv(pd.io.common.StringIO(run.stdout)).to_numpy(float)
-
-
-def _rmse(errors: list, corrections: list) -> np.ndarray:
-    r = np.vstack([e + c for e, c in zip(errors, corrections)])
-    return np.sqrt(np.mean(r ** 2, axis=0))
 
 
 def _planted(frame: pd.DataFrame, kind: str, monitored: list) -> pd.DataFrame:
@@ -183,8 +157,8 @@ def record(root: Path, seed: int, model: str = "mlr") -> list[str]:
     limit = ss.monitor["hi_lim"][k]
     out = []
     with tempfile.TemporaryDirectory(prefix="cmon80-") as tmp:
-        with_mon = _built(Path(tmp) / "with", exported_files(deployed, "c"))
-        without = _built(Path(tmp) / "without", {"compensator.h": c.header(plain_ss),
+        with_mon = built(Path(tmp) / "with", exported_files(deployed, "c"))
+        without = built(Path(tmp) / "without", {"compensator.h": c.header(plain_ss),
                                                  "compensator.c": c.source(plain_ss),
                                                  "stream.c": DRIVER})
         cols = ["time", *ss.inputs]
@@ -196,8 +170,8 @@ def record(root: Path, seed: int, model: str = "mlr") -> list[str]:
                 errors.append(df[targets].to_numpy(float))
                 fixed.append(-replay(deployed.streaming, df)[targets].to_numpy(float))
                 served.append(corrections(ss, stream_rows(deployed, df, t).y))
-                code0.append(_streamed(without, df[cols]))
-                code1.append(_streamed(with_mon, df[cols]))
+                code0.append(streamed(without, df[cols]))
+                code1.append(streamed(with_mon, df[cols]))
                 if (row := _first_flag(ss, df)) is not None:
                     flags.append(f"{t}@{row}")
             _, summary = conformance_pack(deployed, ss, tests)
@@ -215,7 +189,7 @@ def record(root: Path, seed: int, model: str = "mlr") -> list[str]:
                           if kind == "range" else "")
                        + f"; planted: {', '.join(plants)}")
             for i, t in enumerate(targets):
-                f, s, c0, c1 = (_rmse(errors, x)[i] for x in (fixed, served, code0, code1))
+                f, s, c0, c1 = (rmse(errors, x)[i] for x in (fixed, served, code0, code1))
                 out.append(f"  {t}: fixed {f:.3f}  served adaptive {s:.3f}  C without monitor "
                            f"{c0:.3f}  C with monitor {c1:.3f}")
     return out
@@ -223,7 +197,7 @@ def record(root: Path, seed: int, model: str = "mlr") -> list[str]:
 
 def faults(root: str = "/tmp/cmon80-bench", seeds: str = SEEDS, model: str = "mlr") -> None:
     folder = made_folder(root)
-    for seed in _seeds(seeds):
+    for seed in seed_list(seeds):
         print("\n".join(record(folder, seed, model)), flush=True)
 
 

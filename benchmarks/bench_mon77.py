@@ -101,21 +101,13 @@ import pandas as pd
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from _cli import run_commands  # noqa: E402
+from _cli import run_commands, seed_list  # noqa: E402
 
 REPO = Path(__file__).resolve().parents[1]
 QUIET = ("track=false", "plots=none")
 SPINDLE_SEEDS = "7726-7735"
 GANTRY_SEEDS = "7671-7673,7726-7735"
 KINDS = ("healthy", "freeze", "drift", "jump")
-
-
-def _seeds(text: str) -> list[int]:
-    out = []
-    for part in text.split(","):
-        lo, _, hi = part.partition("-")
-        out += list(range(int(lo), int(hi or lo) + 1))
-    return out
 
 
 def thermocomp(*args: str) -> None:
@@ -184,14 +176,14 @@ def gantry(root: str, label: str, seeds: str = GANTRY_SEEDS, kinds: str = ",".jo
     data = root_ / "data"
     data.mkdir(parents=True, exist_ok=True)
     conf = data / "init"
-    for seed in _seeds(seeds):
+    for seed in seed_list(seeds):
         _gantry_data(data, seed)
         if not (conf / "conf").exists():
             thermocomp("init", str(data / f"gantry{seed}"), f"out={conf}")
     name = next((conf / "conf" / "data").glob("*.yaml")).stem
     given = (f"hydra.searchpath=[file://{conf}/conf]", f"data={name}")
     sensor = "T_" + GANTRY_SENSOR.replace(" ", "_")
-    for seed in _seeds(seeds):
+    for seed in seed_list(seeds):
         for kind in kinds.split(","):
             folder = data / (f"gantry{seed}" if kind == "healthy" else f"gantry{seed}_{kind}")
             monitored(root_, label, f"gantry{seed}", kind, None if kind == "healthy" else sensor,
@@ -208,7 +200,7 @@ FAULT = {"freeze": (), "drift": ("sim.generator.effect_params.sensor_faults.rate
 def spindle(root: str, label: str, seeds: str = SPINDLE_SEEDS) -> None:
     """``yearround_spindle``, healthy and ``T_motor2`` faulted (docstring)."""
     root_ = Path(root)
-    for seed in _seeds(seeds):
+    for seed in seed_list(seeds):
         for kind in KINDS:
             path = root_ / "data" / f"spindle{seed}_{kind}"
             if not (path / "campaigns.csv").exists():
@@ -225,7 +217,7 @@ def healthy(root: str, label: str, seeds: str = SPINDLE_SEEDS) -> None:
     """``fl_thermal`` and ``swiss_lathe_door`` seeds ``seeds``, healthy (docstring)."""
     root_ = Path(root)
     monitored(root_, label, "fl_thermal", "healthy", None, "data=fl_thermal")
-    for seed in _seeds(seeds):
+    for seed in seed_list(seeds):
         path = root_ / "data" / f"swiss{seed}"
         if not (path / "campaigns.csv").exists():
             thermocomp("simulate", "sim=swiss_lathe_door", f"seed={seed}",

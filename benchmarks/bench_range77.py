@@ -91,7 +91,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from _cli import run_commands  # noqa: E402
+from _cli import run_commands, seed_list  # noqa: E402
 
 REPO = Path(__file__).resolve().parents[1]
 QUIET = ("track=false", "plots=none")
@@ -99,14 +99,6 @@ SEEDS = "7776-7790"
 RANGE = re.compile(r"out of range: (?P<v>-?[\d.]+) °C outside the training range "
                    r"\[(?P<lo>-?[\d.]+), (?P<hi>-?[\d.]+)\]")
 GAVE = re.compile(r"model gave (?P<v>-?[\d.]+) µm")
-
-
-def _seeds(text: str) -> list[int]:
-    out = []
-    for part in text.split(","):
-        lo, _, hi = part.partition("-")
-        out += list(range(int(lo), int(hi or lo) + 1))
-    return out
 
 
 def thermocomp(*args: str) -> None:
@@ -158,7 +150,7 @@ def gantry(root: str, label: str, seeds: str = SEEDS) -> None:
     data = root_ / "data"
     data.mkdir(parents=True, exist_ok=True)
     conf = data / "init"
-    for seed in _seeds(seeds):
+    for seed in seed_list(seeds):
         if not (data / f"gantry{seed}").exists():
             s76.write(str(data), str(seed))
         if not (conf / "conf").exists():
@@ -171,7 +163,7 @@ def gantry(root: str, label: str, seeds: str = SEEDS) -> None:
 def swiss(root: str, label: str, seeds: str = SEEDS) -> None:
     """``swiss_lathe_door`` (40 h calibration), healthy (docstring)."""
     root_ = Path(root)
-    for seed in _seeds(seeds):
+    for seed in seed_list(seeds):
         path = root_ / "data" / f"swiss{seed}"
         if not (path / "campaigns.csv").exists():
             thermocomp("simulate", "sim=swiss_lathe_door", f"seed={seed}",
@@ -185,7 +177,7 @@ def tcm(root: str, label: str, seeds: str = SEEDS) -> None:
 
     root_ = Path(root)
     data = root_ / "data" / "tcm74"           # its raw<SEED> apart from the gantry's
-    for seed in _seeds(seeds):
+    for seed in seed_list(seeds):
         if not (data / f"fs{seed}.txt").exists():
             s74.write(str(data), str(seed))
         monitored(root_, label, f"tcm{seed}", f"hydra.searchpath=[file://{data}/conf]",
