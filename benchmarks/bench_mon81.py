@@ -71,6 +71,47 @@ The bar (written before scoring; REFUSED if any part fails)
    <= shipped's x 1.02.
 4. ``tests/apps`` monitor tests and ``tests/shell/test_export*.py`` pass (the exported monitor
    untouched).
+
+Scored (2026-12-04; shipped = 9e060125's ``src`` from ``git archive``, the rule = 49b52b70; MLR;
+ROOT /tmp/m81/b; 55 records a tree, the two trees run side by side): **REFUSED** (part 2).
+Exclusions x / re-admissions x of the faulty sensor in the test campaign, adaptive RMSE (µm)
+shipped -> rule (fixed in brackets):
+
+* Part 1, drift, passed.  jig 8011 ``Hydraulik Tank`` 3x / 2x -> 1x / 0x (out at 7.706 h both),
+  dX / dY / dZ 12.434 / 4.095 / 5.271 -> 12.353 / 4.041 / 5.251 (16.349 / 6.330 / 6.665); fresh
+  jig 8091 3x / 2x -> 1x / 0x, 15.407 / 7.857 / 4.640 -> 15.383 / 7.825 / 4.599; jig 8092 2x / 1x
+  -> 1x / 0x, 5.409 / 4.263 / 3.487 -> 5.410 / 4.255 / 3.488; jig 8093 1x / 0x both, equal.  vtl
+  7846 ``Getriebe`` (out of range at 20.85 h) re-admitted -> kept out, dX / dZ 18.900 / 1.626 ->
+  17.971 / 1.498 (17.093 / 1.514; the healthy ``Support``'s false exclusion at 15.6 h as before);
+  fresh vtl 8094 the same, 13.949 / 1.134 -> 13.311 / 1.058 (14.796 / 1.219); vtl 8095 / 8096:
+  the drift never seen by either (no event); spindle 8097 / 8098 (``T_motor2``, a pair the others
+  predict): equal.
+* Part 3, repair, passed: every dropout (jig ``Mutter X``, vtl ``Support``) and jump (jig
+  ``Ständer hinten oben``, vtl ``Ständer links oben``, spindle ``T_motor2`` in its 4 campaigns)
+  re-admitted as shipped, the frozen ones kept out as shipped; every RMSE equal.
+* Part 2, healthy, FAILED on range77's gantry 7781: its healthy ``Gabelkopf`` (no other sensor
+  predicts it), out as "explaining" ``Schlitten``'s +0.66 °C at 8.847 h in a field hotter than
+  training, was back 4 times (4x / 4x) and is now held 4.4 h (1x / 1x, back at 13.26 h) at its
+  last reading, 9.75 °C referenced while it reads 14.4: E_dY 3.675 -> 4.271, E_dZ 5.614 -> 6.514
+  (0.291 / 0.588 fixed), E_dX 0.355 -> 0.361.  Its leak onto ``Schlitten`` (traced: the rule's
+  leak logged at each re-admission check, /tmp/m81/trace2.py, not kept) hovered at 0.50-0.73 of
+  the band for 4.4 h, the tank's was 0.62-0.93 in its first half hour out and grew to 1.6: a
+  level does not tell a healthy sensor in a new field from an early drift.  The rest of part 2
+  passed: no event and equal RMSE on every fresh healthy record (jig 8011, 8091-8093, vtl 7846,
+  8094-8096, spindle 8097-8098, gantry 8099-8100, swiss 8101-8102); swiss 7778 / 7790 equal.
+* Part 4 passed with the rule: tests/apps monitor tests (70 passed, mon81's 3 among them; 1
+  xfail) and the shell monitor / export tests (``test_monitor*.py``, ``test_export_monitor76``,
+  ``cmon80``, ``cdrop77``, ``dropout53``, ``test_stranger78``, ``test_adapt``, ``test_alarms``: 148
+  passed, 3 xfail).
+
+The src change is reverted; the rule is ``benchmarks/mon81_rule.patch``, the gap
+``tests/apps/test_monitor_leak81.py``'s strict xfail.  Left (proposed, not scored): the leak's
+*growth*, not its level -- a drift grows its leak (the tank 0.7 -> 1.6 in 1.5 h) where a healthy
+sensor in a new field hovers (``Gabelkopf`` 0.5-0.7 for 4.4 h); the excursion rule's test
+(:mod:`.excursion`, ``EXCURSION_GROWTH`` over ``EXCURSION_TAU_S``) on the leak would keep the
+tank out and let ``Gabelkopf`` flap back as shipped; its bar needs 7781 as a found case and fresh
+seeds.  vtl 8095 / 8096's undetected ``Getriebe`` drift and vtl 7846's false ``Support``
+exclusion are untouched.
 """
 from __future__ import annotations
 
@@ -258,7 +299,7 @@ def table(root: str, shipped: str, rule: str) -> None:
         rm = "  ".join(f"{t} {ra['rmse'][t][0]:.3f}/{ra['rmse'][t][1]:.3f}->{rb['rmse'][t][1]:.3f}"
                        for t in ra["rmse"])
         print(f"{record:12s} {kind:8s} {rm}\n    shipped: {_cells(ra)}\n    rule:    {_cells(rb)}")
-    print("BAR (parts 1-3):", "PASSED" if not fails else "FAILED\n  " + "\n  ".join(fails))
+    print("BAR (parts 1-3):", "PASSED" if not fails else "FAILED\n  " + "\n  ".join(fails), flush=True)
 
 
 def main(argv: list[str] | None = None) -> int:

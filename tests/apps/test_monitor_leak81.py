@@ -1,10 +1,12 @@
-"""A sensor no other predicts is re-admitted only once its leak onto the others is within their
-re-admission band (mon81): a jig borer's hydraulic tank drifting 1 K/h came back by the band it
-had left by (0.99 of ``Bett rechts``'s) and went out again 40 s later, three times; a lathe's
-gearbox, out of range, came back inside the range's margin 14.8 K off ("no detector fired").
-Here: a nut heated by its own axis, which the others follow a little (its weight in their
-field), drifts out of range and comes back within the margin still 8 K off (stays out) or on its
-true reading (re-admitted)."""
+"""A sensor no other predicts, excluded, comes back on calm alone (mon81): a jig borer's hydraulic
+tank drifting 1 K/h came back by the band it had left by (0.99 of ``Bett rechts``'s) and went out
+again 40 s later, three times; a lathe's gearbox, out of range, came back inside the range's
+margin 14.8 K off ("no detector fired").  Here: a nut heated by its own axis, which the others
+follow a little (its weight in their field), drifts out of range and comes back within the
+margin still 8 K off, or on its true reading.  The rule that kept the first out (its leak onto
+the others within half their band, ``benchmarks/mon81_rule.patch``) failed its bar
+(``benchmarks/bench_mon81.py``: a healthy gantry's ``Gabelkopf``, held stale 4.6 K off): the
+strict xfail holds the gap."""
 
 from __future__ import annotations
 
@@ -40,35 +42,18 @@ def _nut_events(off: float) -> tuple[SensorMonitor, list[dict]]:
     return mon, [e for e in events if e["sensor"] == "T_nut"]
 
 
-@pytest.fixture(scope="module")
-def still_off():
-    return _nut_events(8.0)
-
-
-def test_the_nut_is_one_no_other_predicts_and_goes_out_of_range(still_off):
-    mon, events = still_off
+def test_back_on_its_true_reading_the_nut_is_re_admitted():
+    mon, events = _nut_events(0.0)
     assert not mon._predictable[6] and mon._predictable[:6].all()
-    assert events[0]["to"] == "excluded" and events[0]["reason"].startswith("out of range"), events
+    assert [e["to"] for e in events] == ["excluded", "ok"], events
+    assert events[0]["reason"].startswith("out of range"), events
+    assert not mon.excluded
 
 
-def test_back_within_the_margin_but_off_the_others_field_it_stays_out(still_off):
-    mon, events = still_off
-    # its reading is back inside the range's margin and no detector fires: shipped re-admitted it
+@pytest.mark.xfail(strict=True, reason="known gap (mon81, rule refused): a sensor no other "
+                   "predicts is re-admitted once no detector fires, whatever its reading does to "
+                   "the others' field")
+def test_back_within_the_margin_but_8_k_off_the_others_field_it_stays_out():
+    mon, events = _nut_events(8.0)
     assert [e["to"] for e in events] == ["excluded"], events
     assert "T_nut" in mon.excluded
-    # what keeps it out: its reading moves the others' self-prediction errors by more than half
-    # their warning band (with it in the fit against without it)
-    trial = np.ones(len(NAMES), dtype=bool)
-    M, lev = mon._operator(trial)
-    H = np.where(np.isfinite(mon._hist), mon._hist, 0.0)
-    assert mon._leak(6, trial, H, M, lev) >= 0.5
-
-
-def test_back_on_its_true_reading_it_is_re_admitted_and_says_its_leak():
-    mon, events = _nut_events(0.0)
-    assert [e["to"] for e in events] == ["excluded", "ok"], events
-    reason = events[1]["reason"]
-    assert reason.startswith("re-admitted: no detector fired for 10 samples, its leak onto them "
-                             "within "), reason
-    assert float(reason.split("within ")[1].split(" ")[0]) < 0.5
-    assert not mon.excluded
