@@ -1,0 +1,59 @@
+"""A sensor no other predicts, excluded, comes back on calm alone (mon81): a jig borer's hydraulic
+tank drifting 1 K/h came back by the band it had left by (0.99 of ``Bett rechts``'s) and went out
+again 40 s later, three times; a lathe's gearbox, out of range, came back inside the range's
+margin 14.8 K off ("no detector fired").  Here: a nut heated by its own axis, which the others
+follow a little (its weight in their field), drifts out of range and comes back within the
+margin still 8 K off, or on its true reading.  The rule that kept the first out (its leak onto
+the others within half their band, ``benchmarks/mon81_rule.patch``) failed its bar
+(``benchmarks/bench_mon81.py``: a healthy gantry's ``Gabelkopf``, held stale 4.6 K off): the
+strict xfail holds the gap."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from thermocomp.apps.deploy.surveillance import SensorMonitor
+
+NAMES = [f"T_{k}" for k in range(6)] + ["T_nut"]
+
+
+def _field(m: int, seed: int) -> np.ndarray:
+    rng = np.random.default_rng(seed)
+    t = np.arange(m)
+    warm = 3 * (1 - np.exp(-t / 80)) + 0.5 * np.sin(t / 37)
+    gradient = 1.5 * np.sin(t / 53 + seed)
+    nut = 2.5 * np.clip(np.sin(t / (23 + 5 * seed) + 2 * seed), 0, None)   # the axis' own heat
+    near = 2.0 * nut[:, None] * np.linspace(1, 0, 6)          # the others near it follow it
+    x = np.c_[warm[:, None] + gradient[:, None] * np.linspace(-0.5, 0.5, 6) + near, nut]
+    return 20 + np.round(x + rng.normal(scale=0.02, size=x.shape), 2)
+
+
+def _nut_events(off: float) -> tuple[SensorMonitor, list[dict]]:
+    """The nut drifting 0.1 K a sample from sample 150 to +13 K (out of range), then ``off`` K
+    off its true reading from sample 300."""
+    mon = SensorMonitor.from_training(None, NAMES, {f"c{s}": _field(400, s) for s in range(3)})
+    record = _field(400, 5)
+    record[150:, 6] += np.minimum(0.1 * np.arange(250), 13.0)
+    record[300:, 6] -= 13.0 - off
+    events = []
+    for i, row in enumerate(record):
+        events += mon.update(row, float(i))[1]
+    return mon, [e for e in events if e["sensor"] == "T_nut"]
+
+
+def test_back_on_its_true_reading_the_nut_is_re_admitted():
+    mon, events = _nut_events(0.0)
+    assert not mon._predictable[6] and mon._predictable[:6].all()
+    assert [e["to"] for e in events] == ["excluded", "ok"], events
+    assert events[0]["reason"].startswith("out of range"), events
+    assert not mon.excluded
+
+
+@pytest.mark.xfail(strict=True, reason="known gap (mon81, rule refused): a sensor no other "
+                   "predicts is re-admitted once no detector fires, whatever its reading does to "
+                   "the others' field")
+def test_back_within_the_margin_but_8_k_off_the_others_field_it_stays_out():
+    mon, events = _nut_events(8.0)
+    assert [e["to"] for e in events] == ["excluded"], events
+    assert "T_nut" in mon.excluded
