@@ -54,6 +54,34 @@ against shared, own's E_Y is worse on 7870 (2.708 -> 2.978, +10.0 %: the shared 
 residual gives 9 blocks, so ranks, not shares, and the family holds it at .0117).  The lever
 still moves the power at today's code; what stop 59 refused it for (a fast target's own blocks
 change the margin and the deployed penalty) lies on other machines, re-run with ``machines``.
+
+The rule ``own`` (written and committed before scoring)
+-------------------------------------------------------
+In ``diagnosis._design`` each target's problem is cut into test blocks as long as its own starting
+CV residual takes to decorrelate (:func:`~thermocomp.core.model_selection.blocks.decorrelation_length`,
+unchanged), not the longest over the diagnosed targets.  Decided by the train residuals only
+(never a candidate's statistic, never the test split).  The family-wise error stays controlled as
+it always was: per target and per round (step-down max-T over that target's candidates); the
+gains a block carries are that target's residuals only, so another target's slower memory says
+nothing about whether this one's neighbouring blocks are near-independent.  Sensor health stays
+joint (its bar reads no test block).  Scored with :func:`variant` (the shipped ``_design`` with
+each problem given its own length; ``shared`` = the shipped code, the same tree, runs alternated).
+
+The bar (adopt only if all hold; else nothing in src, this bench and ``diag81b_rule.patch`` kept,
+REFUSED).  ``fresh ROOT own`` against ``fresh ROOT shared``:
+
+1. Planted fresh 8061-8070: E_Y's position effect (an accepted ``interaction`` on ``S_pos_Y``)
+   accepted on more draws with ``own`` than with ``shared``.
+2. Clean fresh 8071-8080: nothing accepted on any target with ``own``.
+3. All 20 with ``own``: no target's test RMSE as deployed > 2 % worse after diagnose than
+   before; nothing excluded where ``shared`` excludes nothing; the control never clears the bar.
+4. Stop 59's refusals (``machines``: ``machine:vendor5``, ``machine:gantry``, records of
+   ``bench_diagnose_targets59.py write``): no target's test RMSE after > 2 % worse than before,
+   nor > 2 % above ``shared``'s after.
+5. If time allows (said if not run): bench_diag77 ``fresh``'s checks and bench_remeasure62
+   ``diagnose`` as power78's bar item 4.
+
+Items 1-3 are scored first (fresh seeds), then 4, then 5.
 """
 
 from __future__ import annotations
