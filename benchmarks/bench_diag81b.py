@@ -82,6 +82,61 @@ REFUSED).  ``fresh ROOT own`` against ``fresh ROOT shared``:
    ``diagnose`` as power78's bar item 4.
 
 Items 1-3 are scored first (fresh seeds), then 4, then 5.
+
+Scored (2026-12-04, 2 shared cores; main 9e060125's src, ``shared`` and ``own`` run side by side;
+``fresh`` 24.4 / 25.7 s CPU, ``machines`` 7.4 / 35.0 s)
+-------------------------------------------------------------------------------------------
+Test RMSE as deployed (µm), E_Y before -> after; blocks E_X / E_Y / E_Z; ``*``: an effect
+accepted; found: an ``interaction`` on ``S_pos_Y`` for E_Y::
+
+  case          shared: blocks  E_Y after       own: blocks   E_Y after   also (own)
+  planted:8061  8/8/8           4.991 -> 4.991  8/28/8        1.443 *     + 1 h lag T_bearing_r
+  planted:8062  8/8/8           5.493 -> 5.493  9/62/8        1.939 *     + 2 h lag T_motor2
+  planted:8063  8/8/8           6.632 -> 3.267* 10/18/8       3.267 *
+  planted:8064  8/8/8           4.001 -> 4.001  8/36/8        4.001       (missed in both)
+  planted:8065  8/8/8           5.859 -> 5.859  8/69/8        1.914 *     + 30 min lag T_box2
+  planted:8066  8/8/8           5.236 -> 2.912* 8/32/11       2.462 *     E_Z 6.485 -> 1.044 *
+  planted:8067  8/8/8           3.390 -> 1.769* 8/37/8        1.308 *
+  planted:8068  8/8/8           4.382 -> 2.202* 8/15/8        2.289 *     control clears (E_Y)
+  planted:8069  8/8/8           4.234 -> 1.759* 8/40/8        1.846 *     E_X 0.859 -> 0.770 * both
+  planted:8070  8/8/8           5.532 -> 3.483* 8/70/8        1.443 *
+  clean:8071-8080  shared 8/8/8 on all; own the same but 8071 (E_Z 138) and 8074 (E_X 268,
+                E_Z 10); nothing accepted in either but:
+  clean:8075    E_Y 0.656 -> 0.701 * (a 1 h lag of T_box1 from the initial state, +6.8 %) in BOTH
+
+1. **Held.**  Found 6 of 10 shared -> 9 of 10 own (8064 missed by both).  Where both found,
+   own's E_Y after is lower on 8066 8067 8070, equal on 8063, higher on 8068 (+4.0 %) and 8069
+   (+4.9 %) than shared's (48-56 % below before either way).
+2. **Fails** -- but not by the rule: clean:8075's E_Y takes a 1 h lag of ``T_box1`` from the
+   initial state with ``own`` and shipped alike (its own residual gives the same 8 blocks, one
+   per campaign: the rule cannot change it).  The other 9 clean draws accept nothing, both.
+3. **Fails.**  8075's E_Y +6.8 % as deployed (both, as above); and with ``own`` the control
+   clears the bar on planted:8068's E_Y in round 2 (after the product: 15 ranked blocks, random
+   walk CV gain 33.3 %, p 0.0002, margin p 0.0004; the control is not asked the within-campaign
+   gains the family is, so on ranked blocks a slow random walk can fit what the campaigns'
+   offsets leave) -- shared's 8 shares do not let it clear.  Nothing excluded in either; no other
+   target > 2 % worse after than before.
+4. **Fails on the gantry, holds on vendor5** (the records of ``bench_diagnose_targets59.py
+   write``): vendor5 identical in both (E_X 18 own blocks against 9, nothing accepted, 0.4916;
+   E_Z its ambient law, 1.3851 -> 0.7361): stop 59's vendor5 reason no longer holds (the shipped
+   code no longer takes that lag on 9 blocks either).  gantry E_Z_error: the 4 h lag accepted in
+   both, 0.3839 -> 0.3203 shared, -> 0.3425 own (5040 one-sample blocks: +6.9 % against shared,
+   stop 59's figure to the digit: the deployed one-SE penalty's standard error over the test
+   blocks, ``Search._deployed``, still reads the blocks); the control clears on E_Z_error in both.
+   E_X_error identical (27.3341 -> 0.3972).
+5. Not run (2-4 fail).
+
+The scored arithmetic is ``diag81b_rule.patch``'s (``_design`` per-target lengths; the patched
+src, ``curve ROOT shared`` on it, gives own's curve table above line for line).  It leaves
+``diagnosis.json``'s ``cv`` figures as the first target's; a kept rule would need per-target
+``cv.designs`` and the printed lines (as stop 59's withdrawn implementation had).
+
+**REFUSED** (items 2-4; 2 and 3's clean:8075 is the shipped code's own failure, reported apart).
+Nothing in src.  What would move it: the control asked the same within-campaign gains as the
+family on ranked blocks (8068), and the deployed penalty's standard error taken over the CV
+units rather than the test blocks (the gantry) -- each its own rule to measure first; clean:8075
+(a lag from the initial state on one block per campaign, +6.8 % deployed) is a shipped miss of
+issue 34's "accepts nothing on clean data".
 """
 
 from __future__ import annotations
