@@ -55,6 +55,7 @@ from .roles import (
 from .runs import looks_like_run_labels, says_run
 from .scope import is_scope, scope_layout
 from .separators import reads_as_number
+from .sinumerik import is_trace
 from .sniff import head_lines, resolved
 from .tables import parquet, peek_csv, without_pandas_index
 from .tdm import is_tdm
@@ -178,6 +179,7 @@ def head(sample: Path, opts) -> tuple[object, list[str], list[str], str]:
                 else "a TwinCAT Scope export" if is_scope(sample)
                 else "an HDF5 file" if is_hdf5(sample)
                 else "a DIAdem TDM/TDX pair" if is_tdm(sample)
+                else "a SINUMERIK trace" if is_trace(sample)
                 else described(sample) if is_tob(sample)
                 else "a TDMS log") + " (its channels as columns)"
         encoding = opts.encoding                 # (the file's: the temporary CSV is UTF-8)

@@ -1,0 +1,112 @@
+"""A SINUMERIK trace (``.xml``: the trace SINUMERIK Operate saves, its signals sampled by the NC)
+read as its CSV export (:mod:`.labfile`), by the standard library (:mod:`xml.etree.ElementTree`,
+its rows parsed as they stream).
+
+Read: ``traceCaptureFile`` / ``traceData``, each ``dataFrame`` a trace: its ``frameHeader``'s
+``dataSignal`` s (``id``, ``name``: the NC / PLC variable traced, ``unit`` where given) and its
+``rec`` rows, ``time`` (s since the trace's start) and ``f<id>`` the signal's value; a value
+the NC did not deliver (no ``f<id>`` attribute in a row) is missing.  The frame's
+``startTime`` (the NC's clock, no zone: ``data.timezone`` says it where the clock is not UTC)
+makes the times instants; without one they are seconds.  A signal is named by the variable's
+last part where that is unique (``T_BETT_L`` for ``/NC/_N_NC_GD9_ACX/T_BETT_L``; an axis'
+``aaIm[u1,1]`` as ``aaIm_u1_1``: its brackets hold an index, no unit).  Frames are runs where
+they follow one another in time (:mod:`.hdf5`'s rule), else one record's.
+"""
+
+from __future__ import annotations
+
+import re
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import numpy as np
+
+from .contract import ContractError
+from .labfile import Channel, Record, with_unit
+
+TRACE_SUFFIXES = (".xml",)
+_ROOT = b"<traceCaptureFile"
+_INDEX = re.compile(r"\[([^\]]*)\]")
+
+
+def is_trace(path) -> bool:
+    """An ``.xml`` file whose root is a SINUMERIK trace's (its first 4 kB say it)."""
+    path = Path(path)
+    if path.suffix.lower() not in TRACE_SUFFIXES or not path.is_file():
+        return False
+    with path.open("rb") as f:
+        return _ROOT in f.read(4096)
+
+
+def _short(names: list[str]) -> list[str]:
+    """Each variable's last part (its index's brackets as ``_``) where unique, else its path."""
+    def plain(name: str) -> str:
+        return _INDEX.sub(lambda m: "_" + re.sub(r"\W+", "_", m.group(1)).strip("_"), name).strip("_")
+    last = [plain(n.rstrip("/").rsplit("/", 1)[-1]) for n in names]
+    return [s if last.count(s) == 1 else plain(n.strip("/").replace("/", "_"))
+            for s, n in zip(last, names)]
+
+
+def trace_records(path: Path) -> list[Record]:
+    """The traces (``dataFrame`` s) of the SINUMERIK trace ``path``, each a record."""
+    records, signals, rows, frame = [], [], [], None
+    try:
+        for event, el in ET.iterparse(path, events=("start", "end")):
+            tag = el.tag.rsplit("}", 1)[-1]
+            if event == "start" and tag == "dataFrame":
+                frame, signals, rows = el.attrib.copy(), [], []
+            elif event == "end" and tag == "dataSignal":
+                signals.append((el.get("id"), el.get("name") or f"signal {el.get('id')}",
+                                el.get("unit")))
+            elif event == "end" and tag == "rec":
+                rows.append(el.attrib.copy())
+                el.clear()
+            elif event == "end" and tag == "dataFrame":
+                records.append(_record(frame, signals, rows, len(records), path))
+                el.clear()
+    except ET.ParseError as exc:
+        raise ContractError(f"not a SINUMERIK trace that is read (its XML: {exc})",
+                            file=path) from None
+    if not records:
+        raise ContractError("no dataFrame in the SINUMERIK trace: no signal read", file=path)
+    return records
+
+
+def _number(text: str | None, path: Path, where: str) -> float:
+    if text is None:
+        return np.nan
+    try:
+        return float(text)
+    except ValueError:
+        raise ContractError(f"{where}: {text!r} is no number", file=path) from None
+
+
+def _record(frame: dict, signals: list, rows: list[dict], n: int, path: Path) -> Record:
+    label = frame.get("name") or f"frame {n + 1}"
+    if not signals:
+        raise ContractError(f"dataFrame {label!r}: no dataSignal in its frameHeader", file=path)
+    if not rows:
+        raise ContractError(f"dataFrame {label!r}: no rec row", file=path)
+    seconds = np.array([_number(r.get("time"), path, f"dataFrame {label!r}, rec {k + 1}, time")
+                        for k, r in enumerate(rows)])
+    if np.isnan(seconds).any():
+        k = int(np.flatnonzero(np.isnan(seconds))[0])
+        raise ContractError(f"dataFrame {label!r}, rec {k + 1}: no time", file=path)
+    start = frame.get("startTime")
+    if start:
+        try:
+            t0 = np.datetime64(start.replace(" ", "T"), "us")
+        except ValueError:
+            raise ContractError(f"dataFrame {label!r}: startTime {start!r} is no ISO 8601 time",
+                                file=path) from None
+        time = t0 + np.round(seconds * 1e6).astype("int64").astype("timedelta64[us]")
+    else:
+        time = seconds
+    channels = []
+    for (sid, name, unit), short in zip(signals, _short([s[1] for s in signals])):
+        key = f"f{sid}"
+        where = f"dataFrame {label!r}, signal {name!r} ({key})"
+        values = np.array([_number(r.get(key), path, f"{where}, rec {k + 1}")
+                           for k, r in enumerate(rows)])
+        channels.append(Channel(with_unit(short, unit), values, time, where))
+    return Record(label, channels, utc=False)

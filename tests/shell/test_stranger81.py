@@ -1,0 +1,79 @@
+"""A wire EDM's SINUMERIK trace saved as XML, a file a run (stranger81): the ``frameHeader``'s
+``dataSignal`` s (the NC / PLC variables traced: the lab's user data ``/NC/_N_NC_GD9_ACX/T_...``,
+an axis' ``aaIm[u1,1]``), ``rec`` rows of ``time`` and ``f<id>`` values, a value the NC did not
+deliver left out of its row (``benchmarks/bench_stranger81.py`` writes the lab's full record;
+these are a few rows of test_stranger68's linear runs)."""
+
+from __future__ import annotations
+
+import datetime as dt
+from pathlib import Path
+
+import numpy as np
+
+from conftest import FAST, refused
+from test_stranger68 import ROWS, linear_run
+from thermocomp.core.io import read_dataset
+from thermocomp.shell.cli import main
+
+GUD = "/NC/_N_NC_GD9_ACX/"
+SIGNALS = [(GUD + "T_HALLE", "°C"), (GUD + "T_STAENDER", "°C"), (GUD + "T_OBERARM", "°C"),
+           (GUD + "DX_DRAHT", "um"), (GUD + "DY_DRAHT", "um"), ("/Channel/MachineAxis/aaIm[u1,3]", "mm")]
+START = dt.datetime(2027, 5, 10, 7)
+
+
+def _trace(folder: Path, run: int, missing: int = 0) -> Path:
+    """``KT_<run>.xml``: linear_run's rows every 60 s and Z at 0 / 100 mm; ``missing`` rows
+    from row 40 without T_STAENDER's attribute."""
+    folder.mkdir(parents=True, exist_ok=True)
+    values = np.column_stack([linear_run(8111, run), np.where(np.arange(ROWS) % 40 < 20, 0, 100)])
+    start = START + dt.timedelta(days=run - 1)
+    head = "".join(f'<dataSignal id="{i}" name="{n}" type="DOUBLE" unit="{u}"/>'
+                   for i, (n, u) in enumerate(SIGNALS, start=1))
+    recs = "".join(
+        f'<rec time="{60.0 * k:.3f}" ' + " ".join(
+            f'f{i}="{v:.5f}"' for i, v in enumerate(row, start=1)
+            if not (i == 2 and 40 <= k < 40 + missing)) + "/>\n"
+        for k, row in enumerate(values))
+    path = folder / f"KT_{run}.xml"
+    path.write_text('<?xml version="1.0" encoding="UTF-8"?>\n<traceCaptureFile version="1.0">'
+                    '<traceCaptureSetup name="Thermik"/><traceData>'
+                    f'<dataFrame name="Trace 1" startTime="{start:%Y-%m-%dT%H:%M:%S}.000">'
+                    f'<frameHeader>{head}</frameHeader>\n{recs}</dataFrame></traceData>'
+                    '</traceCaptureFile>\n', encoding="utf-8")
+    return path
+
+
+def test_a_folder_of_traces_reads_as_campaigns_timed_by_their_start(tmp_path):
+    """(Before: "manifest not found ...; its files, .xml (2), are no kind read as a run".)  Each
+    trace a campaign, its signals by their variable's last part (the axis' index no unit), its
+    rows timed from the frame's startTime (the NC's clock: no zone said)."""
+    for run in (1, 2):
+        _trace(tmp_path / "edm", run)
+    ds, _ = read_dataset(tmp_path / "edm", {"roles": {"error": ["D?_DRAHT"], "state": ["aaIm*"]},
+                                            "test_fraction": 0.5})
+    assert list(ds.campaigns) == ["KT_1", "KT_2"]
+    frame = ds.campaigns["KT_2"]
+    names = ["T_HALLE", "T_STAENDER", "T_OBERARM", "E_DX_DRAHT", "E_DY_DRAHT"]
+    assert sorted(frame.columns) == sorted(["time", *names, "S_aaIm_u1_3"])
+    np.testing.assert_array_equal(frame["time"], np.arange(ROWS) * 60.0)
+    np.testing.assert_allclose(frame[names], linear_run(8111, 2), atol=1e-5)
+    assert str(ds.manifest["start"].iloc[1]) == "2027-05-11 07:00:00"
+
+
+def test_init_proposes_a_trace_folders_roles_and_gap(tmp_path, capsys):
+    """A value the NC did not deliver (no attribute in 6 rows) is a gap init proposes."""
+    for run in (1, 2, 3):
+        _trace(tmp_path / "edm", run, missing=6 * (run == 2))
+    assert main(["init", str(tmp_path / "edm"), f"out={tmp_path / 'init'}"]) == 0
+    said = capsys.readouterr().out
+    assert "a SINUMERIK trace" in said and "data.max_gap_samples=6" in said, said
+    conf = (tmp_path / "init" / "conf" / "data" / "edm.yaml").read_text()
+    assert "error:\n  - DX_DRAHT\n  - DY_DRAHT" in conf and "- aaIm_u1_3" in conf, conf
+
+
+def test_a_trace_cut_short_is_refused_naming_the_file(tmp_path, capsys):
+    path = _trace(tmp_path, 1)
+    path.write_text(path.read_text()[:2000], encoding="utf-8")
+    refused(["run", f"data.path={path}", "data.roles.error=[D?_DRAHT]", *FAST,
+             f"out={tmp_path / 'out'}"], capsys, f"file {path}: not a SINUMERIK trace that is read")
