@@ -77,3 +77,20 @@ def test_a_trace_cut_short_is_refused_naming_the_file(tmp_path, capsys):
     path.write_text(path.read_text()[:2000], encoding="utf-8")
     refused(["run", f"data.path={path}", "data.roles.error=[D?_DRAHT]", *FAST,
              f"out={tmp_path / 'out'}"], capsys, f"file {path}: not a SINUMERIK trace that is read")
+
+
+def test_a_plc_variable_named_t_halle_is_proposed_the_ambient(tmp_path, capsys):
+    """The lab's PLC names its variables ``T_<place>``: ``T_HALLE`` (the hall's air) read as a
+    contract name, a machine temperature (before: ``ambient: []``, the air modelled as a part)."""
+    _trace(tmp_path / "edm", 1)
+    _trace(tmp_path / "edm", 2)
+    assert main(["init", str(tmp_path / "edm"), f"out={tmp_path / 'init'}"]) == 0
+    said = capsys.readouterr().out
+    assert "ambient: 'T_HALLE [°C]' (its name" in said, said
+    conf = (tmp_path / "init" / "conf" / "data" / "edm.yaml").read_text()
+    assert "ambient:\n  - T_HALLE\n" in conf, conf
+    ds, _ = read_dataset(tmp_path / "edm", {"roles": {"error": ["D?_DRAHT"], "ambient": ["T_HALLE"]},
+                                            "test_fraction": 0.5})
+    assert "T_amb" in ds.campaigns["KT_1"] and "T_HALLE" not in ds.campaigns["KT_1"]
+    # (a temperature whose name says no air stays one)
+    assert "T_STAENDER" in ds.campaigns["KT_1"]
