@@ -94,3 +94,18 @@ def test_a_plc_variable_named_t_halle_is_proposed_the_ambient(tmp_path, capsys):
     assert "T_amb" in ds.campaigns["KT_1"] and "T_HALLE" not in ds.campaigns["KT_1"]
     # (a temperature whose name says no air stays one)
     assert "T_STAENDER" in ds.campaigns["KT_1"]
+
+
+def test_an_xml_beside_the_traces_that_is_none_is_no_run_and_refused_alone(tmp_path, capsys):
+    """A trace's settings saved beside the traces (root ``traceSetup``): init crashed in pyarrow
+    ("Parquet magic bytes not found in footer", a traceback) reading it as a run."""
+    for run in (1, 2):
+        _trace(tmp_path / "edm", run)
+    setup = tmp_path / "edm" / "Thermik_setup.xml"
+    setup.write_text('<?xml version="1.0"?><traceSetup><signal name="T"/></traceSetup>')
+    assert main(["init", str(tmp_path / "edm"), f"out={tmp_path / 'init'}"]) == 0
+    said = capsys.readouterr().out
+    assert "campaign KT_1: train" in said and "Thermik_setup" not in said, said
+    refused(["init", str(setup), f"out={tmp_path / 'init2'}"], capsys,
+            f"file {setup}: an .xml file is read as a SINUMERIK trace (root <traceCaptureFile>); "
+            "its root element is <traceSetup>")

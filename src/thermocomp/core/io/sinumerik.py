@@ -38,6 +38,21 @@ def is_trace(path) -> bool:
         return _ROOT in f.read(4096)
 
 
+def not_a_trace(path) -> str | None:
+    """Why the ``.xml`` file ``path`` is read as no run (its root is no trace's: a trace's
+    settings, a report beside the traces), None for a trace or another suffix."""
+    path = Path(path)
+    if path.suffix.lower() not in TRACE_SUFFIXES or is_trace(path):
+        return None
+    try:
+        root = next(ET.iterparse(path, events=("start",)))[1].tag.rsplit("}", 1)[-1]
+        said = f"its root element is <{root}>"
+    except (ET.ParseError, StopIteration, OSError) as exc:
+        said = f"its XML does not parse: {exc}"
+    return (f"an .xml file is read as a SINUMERIK trace (root <traceCaptureFile>); {said}: "
+            "give a trace saved by SINUMERIK Operate, or the lab's channels as CSV")
+
+
 def _short(names: list[str]) -> list[str]:
     """Each variable's last part (its index's brackets as ``_``) where unique, else its path."""
     def plain(name: str) -> str:
