@@ -109,3 +109,18 @@ def test_an_xml_beside_the_traces_that_is_none_is_no_run_and_refused_alone(tmp_p
     refused(["init", str(setup), f"out={tmp_path / 'init2'}"], capsys,
             f"file {setup}: an .xml file is read as a SINUMERIK trace (root <traceCaptureFile>); "
             "its root element is <traceSetup>")
+
+
+def test_a_trace_piped_into_monitor_is_refused_as_a_trace(tmp_path, monkeypatch, capsys):
+    """(Before: "1 column(s) not read: '<?xml version=...' is not numeric", its XML read as a
+    CSV table of one column.)"""
+    import io as _io
+
+    for run in (1, 2):
+        path = _trace(tmp_path / "edm", run)
+    monkeypatch.setattr("sys.stdin", _io.TextIOWrapper(_io.BytesIO(path.read_bytes())))
+    said = refused(["monitor", f"data.path={tmp_path / 'edm'}", "data.roles.error=[D?_DRAHT]",
+                    "data.test_fraction=0.5", *FAST, "monitor.input=-", f"out={tmp_path / 'out'}"],
+                   capsys, "stdin holds a SINUMERIK trace's XML (its signature), no rows of text: "
+                   "give the file as data.path=<file>")
+    assert "numeric" not in said

@@ -25,7 +25,7 @@ from .contract import ContractError
 from .labfile import Channel, Record, with_unit
 
 TRACE_SUFFIXES = (".xml",)
-_ROOT = b"<traceCaptureFile"
+TRACE_ROOT = b"<traceCaptureFile"
 _INDEX = re.compile(r"\[([^\]]*)\]")
 
 
@@ -35,7 +35,7 @@ def is_trace(path) -> bool:
     if path.suffix.lower() not in TRACE_SUFFIXES or not path.is_file():
         return False
     with path.open("rb") as f:
-        return _ROOT in f.read(4096)
+        return TRACE_ROOT in f.read(4096)
 
 
 def not_a_trace(path) -> str | None:
