@@ -101,7 +101,9 @@ contract's ``T_amb``, whose words say the air); the trace's settings ``Thermik_s
 beside the traces crashed ``init`` (pyarrow's "Parquet magic bytes not found" traceback) -> no
 run in a folder, refused alone naming its root element; a trace piped into ``monitor
 monitor.input=-`` "1 column(s) not read: '<?xml ...' is not numeric" -> "stdin holds a
-SINUMERIK trace's XML (its signature) ...: give the file as data.path=<file>".
+SINUMERIK trace's XML (its signature) ...: give the file as data.path=<file>"; a session's
+two traces in one file (slow temperatures, fast errors) "run 'Trace 2' holds other channels than
+run 'Trace 1' ...: one file per run" -> one record's channels, ``data.resample_s`` proposed.
 Left: the fault bar's exclusion of two healthy sensors (dX 8 % worse after diagnose); the
 range detector's 10 K margin for a sensor no other predicts (a chiller's reservoir held within
 0.3 K drifted 10 K before it was excluded; range73 refused, range77 measured) and its

@@ -7,6 +7,7 @@ these are a few rows of test_stranger68's linear runs)."""
 from __future__ import annotations
 
 import datetime as dt
+import re
 from pathlib import Path
 
 import numpy as np
@@ -18,7 +19,8 @@ from thermocomp.shell.cli import main
 
 GUD = "/NC/_N_NC_GD9_ACX/"
 SIGNALS = [(GUD + "T_HALLE", "°C"), (GUD + "T_STAENDER", "°C"), (GUD + "T_OBERARM", "°C"),
-           (GUD + "DX_DRAHT", "um"), (GUD + "DY_DRAHT", "um"), ("/Channel/MachineAxis/aaIm[u1,3]", "mm")]
+           (GUD + "DX_DRAHT", "um"), (GUD + "DY_DRAHT", "um"),
+           ("/Channel/MachineAxis/aaIm[u1,3]", "mm")]
 START = dt.datetime(2027, 5, 10, 7)
 
 
@@ -124,3 +126,26 @@ def test_a_trace_piped_into_monitor_is_refused_as_a_trace(tmp_path, monkeypatch,
                    capsys, "stdin holds a SINUMERIK trace's XML (its signature), no rows of text: "
                    "give the file as data.path=<file>")
     assert "numeric" not in said
+
+
+def test_two_traces_of_one_session_are_one_records_channels_at_their_rates(tmp_path, capsys):
+    """A session's two traces in one file, the temperatures every 60 s and the wire's errors
+    every 20 s from the same start: one record (its channels on a grid, as a TDMS log's two
+    tasks), not two runs refused as "runs whose channels differ"."""
+    slow, fast = _trace(tmp_path / "a", 1), _trace(tmp_path / "b", 1)
+    text_slow, text_fast = slow.read_text(), fast.read_text()
+    head, body = text_slow.split("<traceData>")
+    frames = body.split("</traceData>")[0]
+    fast_frame = text_fast.split("<traceData>")[1].split("</traceData>")[0]
+    fast_frame = fast_frame.replace('name="Trace 1"', 'name="Trace 2"').replace(
+        'time="', 'time="x').replace("/NC/_N_NC_GD9_ACX/T_", "/NC/_N_NC_GD9_ACX/U_")
+    fast_frame = re.sub(r'time="x([\d.]+)"', lambda m: f'time="{float(m[1]) / 3:.3f}"', fast_frame)
+    slow_frame = re.sub(r'<dataSignal id="[45]"[^>]*/>', "", frames)
+    one = tmp_path / "KT_1.xml"
+    one.write_text(head + "<traceData>" + slow_frame + fast_frame + "</traceData></traceCaptureFile>\n",
+                   encoding="utf-8")
+    assert main(["init", str(one), f"out={tmp_path / 'init'}"]) == 0
+    said = capsys.readouterr().out
+    assert "data.resample_s=20" in said, said
+    conf = (tmp_path / "init" / "conf" / "data" / "KT_1.yaml").read_text()
+    assert "resample_s: 20.0" in conf and "- DX_DRAHT" in conf, conf

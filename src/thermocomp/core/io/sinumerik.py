@@ -10,7 +10,8 @@ the NC did not deliver (no ``f<id>`` attribute in a row) is missing.  The frame'
 makes the times instants; without one they are seconds.  A signal is named by the variable's
 last part where that is unique (``T_BETT_L`` for ``/NC/_N_NC_GD9_ACX/T_BETT_L``; an axis'
 ``aaIm[u1,1]`` as ``aaIm_u1_1``: its brackets hold an index, no unit).  Frames are runs where
-they follow one another in time (:mod:`.hdf5`'s rule), else one record's.
+they follow one another in time or hold the same signals (:mod:`.hdf5`'s rule), else one
+record's traces (a session's slow temperatures beside its fast axes: held onto one grid).
 """
 
 from __future__ import annotations
@@ -22,7 +23,9 @@ from pathlib import Path
 import numpy as np
 
 from .contract import ContractError
+from .hdf5 import dated_apart
 from .labfile import Channel, Record, with_unit
+from .tdms import groups_are_runs, joined_groups
 
 TRACE_SUFFIXES = (".xml",)
 TRACE_ROOT = b"<traceCaptureFile"
@@ -84,6 +87,8 @@ def trace_records(path: Path) -> list[Record]:
                             file=path) from None
     if not records:
         raise ContractError("no dataFrame in the SINUMERIK trace: no signal read", file=path)
+    if len(records) > 1 and not (dated_apart(records) or groups_are_runs(records)):
+        return [joined_groups(records)]     # (one session's traces: slow and fast signals)
     return records
 
 
