@@ -104,6 +104,10 @@ monitor.input=-`` "1 column(s) not read: '<?xml ...' is not numeric" -> "stdin h
 SINUMERIK trace's XML (its signature) ...: give the file as data.path=<file>"; a session's
 two traces in one file (slow temperatures, fast errors) "run 'Trace 2' holds other channels than
 run 'Trace 1' ...: one file per run" -> one record's channels, ``data.resample_s`` proposed.
+A ``startTime`` ``27-05-10T07:00`` (numpy read the year 27) refused as "column 'time', data row
+1: value '0027-05-10...' is not an ISO 8601 timestamp", a column and value the file does not
+hold -> "dataFrame 'Trace 1': startTime '27-05-10T07:00:00.000' is no ISO 8601 time"; a
+``startTime`` with its offset (``+02:00``) -> that instant in UTC.
 Left: the fault bar's exclusion of two healthy sensors (dX 8 % worse after diagnose); the
 range detector's 10 K margin for a sensor no other predicts (a chiller's reservoir held within
 0.3 K drifted 10 K before it was excluded; range73 refused, range77 measured) and its

@@ -11,6 +11,8 @@ import re
 from pathlib import Path
 
 import numpy as np
+import pandas as pd
+import pytest
 
 from conftest import FAST, refused
 from test_stranger68 import ROWS, linear_run
@@ -149,3 +151,26 @@ def test_two_traces_of_one_session_are_one_records_channels_at_their_rates(tmp_p
     assert "data.resample_s=20" in said, said
     conf = (tmp_path / "init" / "conf" / "data" / "KT_1.yaml").read_text()
     assert "resample_s: 20.0" in conf and "- DX_DRAHT" in conf, conf
+
+
+@pytest.mark.parametrize("damage, says", [
+    (('f2="', 'f2="n/a'), "dataFrame 'Trace 1', signal '/NC/_N_NC_GD9_ACX/T_STAENDER' (f2), rec 1: "
+                          "'n/a"),
+    (('<rec time="60.000"', '<rec'), "dataFrame 'Trace 1', rec 2: no time"),
+    (('startTime="2027', 'startTime="27'), "dataFrame 'Trace 1': startTime '27-05-10T07:00:00.000' "
+                                          "is no ISO 8601 time")])
+def test_a_damaged_trace_is_refused_naming_frame_signal_and_row(tmp_path, capsys, damage, says):
+    path = _trace(tmp_path, 1)
+    path.write_text(path.read_text().replace(*damage, 1), encoding="utf-8")
+    refused(["run", f"data.path={path}", "data.roles.error=[D?_DRAHT]", *FAST,
+             f"out={tmp_path / 'out'}"], capsys, f"file {path}: {says}")
+
+
+def test_a_start_time_with_its_offset_is_read_as_that_instant(tmp_path):
+    """A ``startTime`` written with its offset is that instant (UTC), not the NC's clock."""
+    for run in (1, 2):
+        path = _trace(tmp_path / "edm", run)
+        path.write_text(path.read_text().replace('.000">', '.000+02:00">', 1), encoding="utf-8")
+    ds, _ = read_dataset(tmp_path / "edm", {"roles": {"error": ["D?_DRAHT"]}, "test_fraction": 0.5,
+                                            "timezone": "America/New_York"})
+    assert ds.manifest["start"].iloc[1] == pd.Timestamp("2027-05-11 05:00", tz="UTC")

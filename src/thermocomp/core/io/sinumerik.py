@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import re
 import xml.etree.ElementTree as ET
+from datetime import datetime, timezone
 from pathlib import Path
 
 import numpy as np
@@ -112,13 +113,9 @@ def _record(frame: dict, signals: list, rows: list[dict], n: int, path: Path) ->
     if np.isnan(seconds).any():
         k = int(np.flatnonzero(np.isnan(seconds))[0])
         raise ContractError(f"dataFrame {label!r}, rec {k + 1}: no time", file=path)
-    start = frame.get("startTime")
+    start, utc = frame.get("startTime"), False
     if start:
-        try:
-            t0 = np.datetime64(start.replace(" ", "T"), "us")
-        except ValueError:
-            raise ContractError(f"dataFrame {label!r}: startTime {start!r} is no ISO 8601 time",
-                                file=path) from None
+        t0, utc = _instant(start, label, path)
         time = t0 + np.round(seconds * 1e6).astype("int64").astype("timedelta64[us]")
     else:
         time = seconds
@@ -129,4 +126,19 @@ def _record(frame: dict, signals: list, rows: list[dict], n: int, path: Path) ->
         values = np.array([_number(r.get(key), path, f"{where}, rec {k + 1}")
                            for k, r in enumerate(rows)])
         channels.append(Channel(with_unit(short, unit), values, time, where))
-    return Record(label, channels, utc=False)
+    return Record(label, channels, utc=utc)
+
+
+def _instant(start: str, label: str, path: Path) -> tuple[np.datetime64, bool]:
+    """``startTime`` as an instant and whether it is UTC (an offset written: converted), a
+    date of four-digit years only (numpy read ``27-05-10`` as the year 27)."""
+    try:
+        if not re.match(r"\d{4}-\d{2}-\d{2}", start.strip()):
+            raise ValueError
+        t = datetime.fromisoformat(start.strip())
+    except ValueError:
+        raise ContractError(f"dataFrame {label!r}: startTime {start!r} is no ISO 8601 time",
+                            file=path) from None
+    if t.tzinfo is None:
+        return np.datetime64(t, "us"), False
+    return np.datetime64(t.astimezone(timezone.utc).replace(tzinfo=None), "us"), True
