@@ -65,7 +65,10 @@ RMSE dX / dY 2.07 / 2.40 -> 2.24 / 1.74 µm (dX 8 % WORSE: issue 34's "never mor
 worse" broken by the fault bar, stranger74 / stranger80's known case, diag75 / diag76 refused
 rules).  Without the sensor_fault family (``diagnose.families=[signal,dynamics,ambient_interval,
 interaction,nonlinear]``; 48.6 + 8.6 s CPU): dX none accepted (2.07 -> 2.07), dY the same
-interaction (2.40 -> 1.85; CV 2.34 -> 1.74).
+interaction (2.40 -> 1.85; CV 2.34 -> 1.74).  Which removal costs dX (``run model=mlr`` with
+``data.roles.ignore``, 17 s CPU each; test dX / dY µm): ``[T_VORRAT]`` 2.05 / 2.37 (no harm),
+``[T_UNTERARM]`` 2.23 / 2.16, both 2.24 / 2.17: the cascade's second removal is the harm (a rule
+to weigh: a sensor's jump judged with every declared sensor in; not scored here).
 
 ``monitor`` (``monitor.model`` the matrix's mlr, ``plots=none``; 14-17 s CPU each) on the healthy
 last run: no event (fixed = adaptive = run's 2.065 / 2.404); on fresh draws 8112 / 8113 (``data.path``
