@@ -35,7 +35,25 @@ kept, REFUSED):
 3. The diagnose tests of sensor faults (tests/shell/test_sensor_faults.py and those grepping
    ``sensor_fault``) pass unchanged.
 
-Scored: (not yet)
+Scored (2026-12-04, 2 cores shared by four jobs; shipped = a ``git archive`` of ad19e9f3, the
+rule = the commit adding this docstring's verdict)
+---------------------------------------------------------------------------------------------
+1. **Holds.**  ``edm ROOT 8111`` (rule; 90.7 + 9.5 s CPU with init): excluded ``T_VORRAT`` only
+   (first-table jump 3.81); test RMSE dX / dY 2.065 / 2.404 -> 2.045 / 1.831 µm (shipped, in
+   bench_stranger81: ``T_VORRAT`` and ``T_UNTERARM``, 2.07 / 2.40 -> 2.24 / 1.74: dX 8 % worse).
+2. **Holds.**  ``bench_diagnose_faults58 --root ROOT`` (its write 3.7 s; shipped 48.4 + 4.4 s
+   CPU, rule 51.5 + 6.8 s): 20 rows, ``found`` identical in all (climate room 4 / 4, swiss lathe
+   2 / 4, year-round 0 / 4, twin lathe 4 / 4, as its docstring); 19 rows identical to the digit;
+   ``twin_lathe:offset`` removes one healthy sensor fewer (``T_Chuck_hydraulics`` only; shipped
+   also ``T_Bed_left_rear``), test RMSE E_Z1 / E_Z2 0.386 / 0.382 -> 0.3203 / 0.3263 µm
+   (shipped 0.3193 / 0.3245: +0.3 % / +0.6 %, both still better than before diagnose).
+3. **Holds.**  tests/shell/test_sensor_faults.py, test_diagnose.py,
+   tests/apps/test_diagnose_scenarios.py (93 passed), test_io_missing, test_export_diaglstm63,
+   test_hostile_units, test_monitor_cli, tests/apps/test_sim_effects.py (126 passed); the rule's
+   own test (test_diagnose.py, the jump ratios set, the CV real) fails on shipped (``['T_c',
+   'T_d']``).
+
+Verdict: **KEPT**.
 """
 from __future__ import annotations
 
