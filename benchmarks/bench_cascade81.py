@@ -49,7 +49,10 @@ rule = the commit adding this docstring's verdict)
    (shipped 0.3193 / 0.3245: +0.3 % / +0.6 %, both still better than before diagnose).
 3. **Holds.**  tests/shell/test_sensor_faults.py, test_diagnose.py,
    tests/apps/test_diagnose_scenarios.py (93 passed), test_io_missing, test_export_diaglstm63,
-   test_hostile_units, test_monitor_cli, tests/apps/test_sim_effects.py (126 passed); the rule's
+   test_hostile_units, test_monitor_cli, tests/apps/test_sim_effects.py (126 passed), and after
+   the commit the other diagnose / diagnosed-export test files (test_moved_decisions,
+   test_deployed_as_scored44, test_diagnose_few, test_guard_follows_inputs56: 79 passed;
+   test_export_diaglstm64, test_diagnose_pde66, test_issue34_rest and 13 more: 79 passed); the rule's
    own test (test_diagnose.py, the jump ratios set, the CV real) fails on shipped (``['T_c',
    'T_d']``).
 
