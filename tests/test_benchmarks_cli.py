@@ -25,10 +25,10 @@ COMMAND_BENCHES = (
     "bench_auto_ati58", "bench_auto_hmc59", "bench_auto_hmc60", "bench_auto_vtl60", "bench_autoati75",
     "bench_autocheck65", "bench_autofb72", "bench_autoloss68", "bench_automore69", "bench_autorep65",
     "bench_autorule69", "bench_between73", "bench_between74", "bench_blocks68", "bench_cadence72",
-    "bench_cadence74", "bench_catman70", "bench_cdrop77", "bench_clamp74", "bench_clamp75", "bench_clamp78",
-    "bench_clean69", "bench_clockset71", "bench_cmon76", "bench_cmon80", "bench_connect72",
-    "bench_cvpick69", "bench_deploy73", "bench_derive71", "bench_diag70", "bench_diag73", "bench_diag74",
-    "bench_diag75", "bench_diag76", "bench_diag77", "bench_diag81b", "bench_diagfault65",
+    "bench_cadence74", "bench_cascade81", "bench_catman70", "bench_cdrop77", "bench_clamp74",
+    "bench_clamp75", "bench_clamp78", "bench_clean69", "bench_clockset71", "bench_cmon76", "bench_cmon80",
+    "bench_connect72", "bench_cvpick69", "bench_deploy73", "bench_derive71", "bench_diag70", "bench_diag73",
+    "bench_diag74", "bench_diag75", "bench_diag76", "bench_diag77", "bench_diag81b", "bench_diagfault65",
     "bench_diagfault72", "bench_diagpower67", "bench_diagref65", "bench_drift74", "bench_fault70",
     "bench_faults71", "bench_fresh69", "bench_gate71", "bench_gate77", "bench_initlag67", "bench_iso67",
     "bench_jig68", "bench_keysight70", "bench_lagwithin68", "bench_margin67", "bench_mon71", "bench_mon72",
@@ -38,8 +38,8 @@ COMMAND_BENCHES = (
     "bench_rigdiag70", "bench_speedsq68", "bench_stable67", "bench_stranger63", "bench_stranger64",
     "bench_stranger65", "bench_stranger66", "bench_stranger68", "bench_stranger69", "bench_stranger74",
     "bench_stranger75", "bench_stranger76", "bench_stranger77", "bench_stranger78", "bench_stranger80",
-    "bench_sub71", "bench_sweepdvc63", "bench_twolog70", "bench_volfleet63", "bench_volstranger66",
-    "bench_within67", "bench_zerocheck67", "bench_zerofew67", "bench_zerofold68",
+    "bench_stranger81", "bench_sub71", "bench_sweepdvc63", "bench_twolog70", "bench_volfleet63",
+    "bench_volstranger66", "bench_within67", "bench_zerocheck67", "bench_zerofew67", "bench_zerofold68",
 )
 
 # Run in the child: per bench, main([])'s status and what it printed, and, for every usage line of

@@ -589,3 +589,31 @@ def test_forward_blocks_too_few_for_alpha_name_the_campaigns_scheme(caplog):
         diagnose(ds, Compensator(MLR()), options=SearchOptions(max_effects=1, alpha=1e-6))
     assert "cannot reach alpha=1e-06" in caplog.text and "diagnose.cv=campaigns" not in caplog.text
     assert "raise diagnose.alpha (the campaigns' 40 time blocks cannot reach it either" in caplog.text
+
+
+def test_a_jump_that_clears_only_once_another_sensor_is_out_is_no_fault(monkeypatch):
+    """(cascade81) A wire EDM's lower arm in the water (jump 1.90 with every sensor in) cleared
+    the fault ratio (3.58) once its reservoir's sensor, its predictor, was excluded, and was
+    excluded too (test dX 8 % worse).  The ratios are set here, the CV is real: ``T_c`` (a mix
+    of ``T_a`` and ``T_b``, harmless to remove) jumps in the first table, its copy ``T_d`` only
+    in the table recomputed without it."""
+    import thermocomp.apps.diagnose.search as search
+
+    ds = _dataset()
+    rng = np.random.default_rng(81)
+    for frame in ds.campaigns.values():
+        frame["T_d"] = frame["T_c"] + 0.02 * rng.standard_normal(len(frame))
+    real = search.self_prediction
+
+    def told(problem, sensors, tolerance=3.0):
+        table = real(problem, sensors, tolerance=tolerance).copy()
+        table["jump_ratio"] = 1.0
+        if "T_c" in table.index:
+            table.loc["T_c", "jump_ratio"] = 3.8
+        if "T_d" in table.index:
+            table.loc["T_d", "jump_ratio"] = 1.9 if "T_c" in table.index else 3.6
+        return table.sort_values("jump_ratio", ascending=False)
+
+    monkeypatch.setattr(search, "self_prediction", told)
+    d = diagnose(ds, Compensator(MLR()), options=SearchOptions(max_effects=1))
+    assert d.to_json("E_Z")["excluded_inputs"] == ["T_c"]

@@ -585,8 +585,9 @@ def sensor_health(searches: dict, options: SearchOptions | None = None, start: d
     Self-prediction on the train campaigns (:mod:`.sensors`) nominates the sensor with the largest
     jump ratio at or above ``fault_ratio``; it is excluded when no target's
     model gets worse without it by ``min_gain_pct`` % or more (CV RMSE), and
-    the table is recomputed without it; a nominee that fails is kept and the
-    next one is tried.  Returns the excluded sensors in order, per target the
+    the table is recomputed without it (a nominee clears there and in the first table, every
+    sensor in: cascade81); a nominee that fails is kept and the next one is tried.  Returns
+    the excluded sensors in order, per target the
     evaluations (accepted ones first) and the health :class:`Round`, the CV
     result of each target's model with them excluded, and the first
     self-prediction table (the evidence).  ``start``: each target's CV result of the model as
@@ -603,7 +604,10 @@ def sensor_health(searches: dict, options: SearchOptions | None = None, start: d
     while "sensor_fault" in options.candidates.families:
         table = self_prediction(first.problem, first.inputs(excluded), tolerance=tol)
         first_table = table if first_table is None else first_table
-        nominees = [c for c, row in table.iterrows() if row["jump_ratio"] >= tol and c not in rejected]
+        # (cascade81: a jump that clears only once another sensor is out is its predictor's
+        # loss, not a fault of its own: a lower arm in the water, its reservoir's sensor gone)
+        nominees = [c for c, row in table.iterrows() if row["jump_ratio"] >= tol and c not in rejected
+                    and first_table.loc[c, "jump_ratio"] >= tol]
         if not nominees or len(first.inputs(excluded)) <= 2:
             break
         sensor = nominees[0]

@@ -23,7 +23,7 @@ import pandas as pd
 from ..metrics import angular
 from ..timerule import median_step
 from . import campbell
-from .contract import MANIFEST, TIME, ContractError, role
+from .contract import MANIFEST, TIME, ContractError, is_ambient, role
 from .encoding import UTF8, WINDOWS, detect
 from .fixedwidth import is_fixed_width
 from .hdf5 import is_hdf5
@@ -55,6 +55,7 @@ from .roles import (
 from .runs import looks_like_run_labels, says_run
 from .scope import is_scope, scope_layout
 from .separators import reads_as_number
+from .sinumerik import is_trace
 from .sniff import head_lines, resolved
 from .tables import parquet, peek_csv, without_pandas_index
 from .tdm import is_tdm
@@ -178,6 +179,7 @@ def head(sample: Path, opts) -> tuple[object, list[str], list[str], str]:
                 else "a TwinCAT Scope export" if is_scope(sample)
                 else "an HDF5 file" if is_hdf5(sample)
                 else "a DIAdem TDM/TDX pair" if is_tdm(sample)
+                else "a SINUMERIK trace" if is_trace(sample)
                 else described(sample) if is_tob(sample)
                 else "a TDMS log") + " (its channels as columns)"
         encoding = opts.encoding                 # (the file's: the temporary CSV is UTF-8)
@@ -313,7 +315,7 @@ def proposed_roles(header: list[str], first: dict, opts, stated: bool = False) -
             continue
         elif foreign_unit(unit, stated):
             roles["ignore"].append(pattern)
-        elif not air_given and role(base) is None and AMBIENT_WORDS & air_words(base) and (
+        elif not air_given and _may_be_air(base) and AMBIENT_WORDS & air_words(base) and (
                 not unit or unit.replace(" ", "").lower() in UNITS["T"]):
             roles["ambient"].append(pattern)
         elif is_flag(first.get(h)):          # 'true' / 'false': an on/off flag, a state
@@ -379,6 +381,13 @@ def without_own_names(header: list[str], first: dict, roles: dict, opts) -> tupl
     if not same:
         return roles, []
     return short, [h for h in header if split_unit(h)[0] in own["error"] + own["state"]]
+
+
+def _may_be_air(base: str) -> bool:
+    """A header that may be proposed the ambient: no contract name, or a ``T_`` one that is not
+    the contract's ambient already (stranger81: a PLC's variable ``T_HALLE``, the hall's air, was
+    kept a machine temperature by its contract-like prefix)."""
+    return role(base) is None or (role(base) == "T" and not is_ambient(base))
 
 
 def air_words(name: str) -> set[str]:

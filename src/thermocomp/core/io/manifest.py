@@ -20,6 +20,7 @@ from .loggers import ERROR_FILE, logger_pairs, paired_id
 from .lvm import LVM_SUFFIXES
 from .matfile import MAT_SUFFIXES
 from .options import _OTHER_DELIMITERS, AUTO, ReadOptions, _first_line
+from .sinumerik import TRACE_SUFFIXES, not_a_trace
 from .suffixes import TEXT_SUFFIXES, is_text
 from .tdm import TDM_SUFFIXES
 from .tdms import TDMS_SUFFIXES
@@ -27,7 +28,8 @@ from .workbook import WORKBOOK_SUFFIXES
 
 # a folder's runs without a manifest (a workbook is read as its CSV export, :mod:`.workbook`; a
 # TDMS log, a MATLAB file or a LabVIEW Measurement File as its channels', :mod:`.labfile`)
-LAB_SUFFIXES = (*TDMS_SUFFIXES, *MAT_SUFFIXES, *LVM_SUFFIXES, *HDF5_SUFFIXES, *TDM_SUFFIXES)
+LAB_SUFFIXES = (*TDMS_SUFFIXES, *MAT_SUFFIXES, *LVM_SUFFIXES, *HDF5_SUFFIXES, *TDM_SUFFIXES,
+                *TRACE_SUFFIXES)
 CAMPAIGN_SUFFIXES = (".csv", ".parquet", *WORKBOOK_SUFFIXES, *JSON_LINES_SUFFIXES, *LAB_SUFFIXES)
 RECORD_SUFFIXES = (*TEXT_SUFFIXES, ".parquet", *WORKBOOK_SUFFIXES, *LAB_SUFFIXES)
 EXCEL_OWNER = "~$"     # the lock file Excel leaves beside a workbook it has open
@@ -98,7 +100,8 @@ def campaign_files(folder: Path) -> list[Path]:
     if not folder.is_dir():
         return []
     files = [p for p in folder.iterdir() if p.is_file() and not p.name.startswith((".", EXCEL_OWNER))]
-    runs = [p for p in files if p.suffix.lower() in CAMPAIGN_SUFFIXES]
+    # (stranger81: an .xml beside the traces that is none, a trace's settings, crashed init)
+    runs = [p for p in files if p.suffix.lower() in CAMPAIGN_SUFFIXES and not not_a_trace(p)]
     # a folder of text exports alone (a logger's .dat, Excel's 'Unicode Text' .txt): those are
     # its runs; beside CSV, Parquet or workbooks a .txt is a note, not a run
     return sorted(runs or [p for p in files if p.suffix.lower() in TEXT_SUFFIXES], key=natural)

@@ -21,6 +21,7 @@ from .labfile import SHARED, records_as_csv, replaced_joined, shared
 from .lvm import is_lvm, lvm_records
 from .matfile import is_mat, mat_records
 from .scope import headerless, is_scope, refuse_headerless, scope_records
+from .sinumerik import is_trace, trace_records
 from .tdm import is_tdm, tdm_records
 from .tdms import is_tdms, tdms_records
 from .tob1 import is_tob
@@ -33,9 +34,9 @@ def is_lab_file(path) -> bool:
     """``path`` is a lab's record of channels: a TDMS log, a MATLAB file, (stranger69) a
     LabVIEW Measurement File, (lab75) a Campbell Scientific TOB1 table (lab76: TOB2, TOB3) or
     (stranger76) a TwinCAT Scope CSV export, (stranger77) an HDF5 file or (stranger78) a DIAdem
-    TDM/TDX pair (:mod:`.labfile`)."""
+    TDM/TDX pair or (stranger81) a SINUMERIK trace's XML (:mod:`.labfile`)."""
     return (is_tdms(path) or is_mat(path) or is_lvm(path) or is_tob(path) or is_scope(path)
-            or is_hdf5(path) or is_tdm(path) or headerless(path))
+            or is_hdf5(path) or is_tdm(path) or is_trace(path) or headerless(path))
 
 
 def is_converted(path, opts=None) -> bool:
@@ -72,6 +73,7 @@ def _records(path: Path, encoding: str) -> list:
             else refuse_headerless(path) if headerless(path)
             else hdf5_records(path) if is_hdf5(path)
             else tdm_records(path) if is_tdm(path)
+            else trace_records(path) if is_trace(path)
             else tob_records(path) if is_tob(path) else mat_records(path))
 
 

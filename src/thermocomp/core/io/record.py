@@ -21,6 +21,7 @@ from ...base.log import logger
 from .contract import MANIFEST, ContractError
 from .manifest import RECORD_SUFFIXES
 from .rates import PAUSE_PERIODS, pauses
+from .sinumerik import not_a_trace
 from .sparse import probe_cycle
 from .workbook import not_read
 
@@ -50,6 +51,8 @@ def check_record_file(path: Path) -> None:
     if path.suffix.lower() == ".tdx":       # (stranger78: the pair's values, given for the pair)
         raise ContractError(f"a DIAdem TDX file holds the values its TDM header describes: give "
                             f"the header, {path.with_suffix('.tdm').name} (beside it)", file=path)
+    if (why := not_a_trace(path)) is not None:    # (stranger81: a traceback of pyarrow's)
+        raise ContractError(why, file=path)
     if path.suffix.lower() not in RECORD_SUFFIXES:
         kind = not_read(path)
         raise ContractError(kind or f"a record's file is {', '.join(RECORD_SUFFIXES)}, not "

@@ -47,6 +47,7 @@ from .roles import RUN, active, left_out, naming, split_unit
 from .runs import run_blocks, run_values
 from .scope import is_scope_text, scope_as_csv
 from .separators import UNICODE_MINUS, grouped
+from .sinumerik import TRACE_ROOT
 from .slashed import stream_format
 from .sniff import SNIFF_LINES, detected
 from .tables import MISSING_TOKENS, NO_TIME_COLUMN, first_cast_failure, shortened
@@ -91,6 +92,11 @@ def _is_tdm(head: bytes) -> bool:
     return head.lstrip(b"\xef\xbb\xbf \t\r\n").startswith(b"<?xml") and b":tdm" in head
 
 
+def _is_trace(head: bytes) -> bool:
+    """The head of a SINUMERIK trace's XML (:mod:`.sinumerik`): its root ``traceCaptureFile``."""
+    return head.lstrip(b"\xef\xbb\xbf \t\r\n").startswith(b"<?xml") and TRACE_ROOT in head
+
+
 def stdin_text(stream, encoding: str = UTF8) -> str:
     """What ``stream`` (``sys.stdin``) holds, decoded with ``data.encoding`` (a Windows
     logger's rows: cp1252) rather than the locale's, or as UTF-16 where it begins with its
@@ -102,6 +108,8 @@ def stdin_text(stream, encoding: str = UTF8) -> str:
     kind = next((k for mark, k in _BINARY.items() if data.startswith(mark)), None)
     if kind is None and _is_tdm(data[:2048]):  # (stranger78: was "not a CSV table ... ','")
         kind = "a DIAdem TDM header, the XML of a TDM/TDX pair"
+    if kind is None and _is_trace(data[:4096]):  # (stranger81: "'<?xml ...' is not numeric")
+        kind = "a SINUMERIK trace's XML"
     if kind is not None:              # (stranger77: was "byte 0x89 is not utf-8 text ... cp1252")
         raise ContractError(f"stdin holds {kind} (its signature), no rows of text: give the file "
                             "as data.path=<file> (a stream is CSV rows, as they are written)",
