@@ -7,6 +7,7 @@ Usage (from the repository root; ``PYTHONPATH=<tree>/src``)::
     python benchmarks/bench_auto81b.py trace WORK RECORD ...    # per target: folds against tests
     python benchmarks/bench_auto81b.py levers WORK              # fold statistics against the tests
     python benchmarks/bench_auto81b.py envelope ROOT WORK RECORD ...  # inside / outside the train range
+    python benchmarks/bench_auto81b.py switch ROOT WORK [MARGIN]  # the envelope switch's screen
 
 ``trace``: per record and target, the kept weights; auto / MLR on the own test and on the new
 campaigns (pooled RMSE over the campaigns, bench_automore69's rows); the kept blend's fold ratios
@@ -95,6 +96,48 @@ authors' on >= 4 of 5 and the mean) and fresh draws (seeds 8031-8060, never look
 its bar with the src change and the C export.  What was seen before the screen, said plainly:
 the inside / outside split of the 8 losing records above (the screen's gains there are no
 news); what it has not seen is the 14 other records, where items 2 and 3 can fail.
+
+Screened (2026-12-04, ``switch /tmp/auto80/root WORK``, WORK = /tmp/auto80/new's rows, pred and
+draws; 16 s CPU; the shipped figures equal bench_automore69 ``table``'s, e.g. col5791 1.258,
+lab5401 1.070, hmc 1.005): **FAILED, the switch REFUSED** (no src was written: no patch)
+-------------------------------------------------------------------------------------------------
+Share of own-test / new samples outside the widened range: the column records 38-46 % / 42-45 %,
+mill1514 100 / 99 %, lab5401 100 / 100 %, twin_lathe 21 / 11 %, iso_b 13 / 15 %, iso_a 0 / 9 %,
+grind_a 0 / 9 %, swiss303 / tsc_a2 / grind_b / mtc_b 0 / 0.6-1.5 %, the rest 0.  Shipped ->
+switched, auto / MLR on the new campaigns: col5791 1.258 -> 0.998, col1403 1.311 -> 1.100,
+col1514 1.019 -> 1.006, col6512 1.004 -> 1.000, lab5401 1.070 -> 1.000, iso_a 1.083 -> 1.059,
+iso_b 0.862 -> 0.852; col6511 0.996 -> 1.001, swiss303 0.569 -> 0.584 (+2.7 %), tsc_a2 0.376 ->
+0.407 (+8.3 %), grind_a 0.936 -> 0.944; the others within 0.1 %.
+
+1. holds: worse than MLR on the new campaigns 8 -> 7 (col5791 and lab5401 out, col6511 in at
+   1.001; col1403, col1514, col6512, hmc, iso_a, mtc_b stay).
+2. FAILS: tsc_a2 8.3 % worse than shipped on the new campaigns, from 1.1 % of its new rows:
+   E_dZ1 (hammerstein 0.71) 0.096 -> 0.146 x MLR; on its rows outside the range the blend is
+   0.057 x MLR.
+3. holds: better than MLR on the own test 12 -> 13, on the new campaigns 13 -> 13.  Mean auto /
+   MLR on the new campaigns 0.8791 -> 0.8550.
+
+Why: past the train range the blend is not worse than MLR as a rule.  On the rows outside it
+(per target with a blend): the column's lag-bank / hammerstein / arx blends lose (col5791 E_Z_mid
+3.086 x MLR, col1403 E_Y 2.193, E_Y_mid 2.236, col1514 E_Z_mid 1.634, col6511 E_X 1.163), iso's
+ati / hammerstein too (iso_a E_Y1 1.759, E_Tilt_B 1.922, iso_b E_X1 1.819, E_Z 1.116); but the
+hammerstein / lag-bank blends win there on tsc_a2 (E_dZ1 0.057, E_dZ2 0.455), swiss303 (0.420 /
+0.459), mtc_b (E_dX 0.566, E_dZ 0.543), grind_b E_X (0.858), and col1403 E_Z_mid (arx 0.39)
+0.867, col1514 E_Y_mid 0.943.  The column's excursions are large (+4 to +6 K past the train
+maximum, a source the train campaigns never had); tsc_a2's / swiss303's are small and the
+dynamic model holds.  Post hoc, NOT a verdict (seen after the screen, so tuned on these 22): a
+margin of 0.5 w leaves tsc_a2 and swiss303 untouched (0 % outside) and fails item 1 (8 -> 8:
+col5791 1.007, col6511 1.002) and item 3 (new 13 -> 12).
+
+What remains: the losses left are of two kinds.  (a) The column and iso: the test campaigns go
+past the train range (a source the train never had); only an online guard can see it, and it
+must judge how far and for which family (the blend can extrapolate well: tsc_a2), so a guard
+needs its own fresh machines to be tuned and proven (seeds not looked at), with the switch in
+predict and in the C export.  (b) mtc_b, hmc, iso_a inside the range and col1403's lag bank
+after the excursion: the folds agree and are wrong (a drift in time: mtc_b 0.66 in the first
+half of the new campaigns, 1.50 in the second); no fold statistic reads it (``levers``); a fold
+design that holds out the last train campaigns in time (forward validation) is the lever left
+untried here.
 """
 
 from __future__ import annotations
@@ -184,6 +227,109 @@ def levers(work: Path) -> None:
               f"{sum(s[4] > 1 for s in multi if not fires(s[2]))}")
 
 
+MARGIN = 0.1          # the switch's widening of the train range, a share of its width
+
+
+def _outside(root: Path, work: Path, name: str, margin: float) -> tuple[np.ndarray, np.ndarray, list]:
+    """``(outside, own, inputs)`` over WORK/pred's rows of ``name`` (own test then new campaigns):
+    where any declared input leaves the train campaigns' range widened by ``margin`` of its width,
+    and which rows are the own test's."""
+    import bench_auto_rank as rank
+    import bench_automore69 as automore
+    from bench_moretest68 import with_new
+
+    from thermocomp.core.frame import resolve_columns
+
+    overrides = [o.format(root=root) for o in automore.OVERRIDES[name]]
+    sys.argv[2:] = overrides
+    cfg, ds, train = rank.setup(overrides)
+    full = with_new(ds, automore.draws(automore.OF[name], work, cfg))
+    row = _rows(work)[name]
+    ids = row["own"] + row["new"]
+    first = next(iter(train.values()))
+    inputs = resolve_columns(list(first.columns), cfg.data.inputs, cfg.data.targets)[0]
+    x = np.concatenate([t[inputs].to_numpy(float) for t in train.values()])
+    lo, hi = np.nanmin(x, 0), np.nanmax(x, 0)
+    lo, hi = lo - margin * (hi - lo), hi + margin * (hi - lo)
+    z = np.concatenate([full.campaigns[c][inputs].to_numpy(float) for c in ids])
+    own = np.concatenate([[c in row["own"]] * len(full.campaigns[c]) for c in ids])
+    return ((z < lo) | (z > hi)).any(1), own, inputs
+
+
+def _scored(row: dict, target: str, a) -> np.ndarray:
+    """The target as scored: WORK/pred's ``y`` is the column as read, the scores take it against
+    the record's reference (``first_sample``: a constant c per campaign).  c is the root of
+    sum((y - c)^2) = the stored SSE of no correction that gives auto's stored SSE."""
+    y = a["y"].astype(float).copy()
+    ids = row["own"] + row["new"]
+    for k, c in enumerate(ids):
+        at = a["campaign"] == k
+        keep = at & np.isfinite(y) & np.isfinite(a["pred_auto"])
+        n, sse, none = row["squares"]["auto"][target][c]
+        yk, pk = y[keep], a["pred_auto"][keep]
+        b, q = yk.sum(), (yk ** 2).sum() - none
+        disc = max(b * b - n * q, 0.0)
+        roots = ((b - np.sqrt(disc)) / n, (b + np.sqrt(disc)) / n) if n else (0.0,)
+        best = min(roots, key=lambda r: abs(np.sum((yk - r - pk) ** 2) - sse))
+        y[at] -= best
+    return y
+
+
+def switch(root: Path, work: Path, margin: float = MARGIN) -> None:
+    """The screen: per record, auto / MLR (record figure) shipped and switched, own and new."""
+    rows = _rows(work)
+    print(f"margin {margin} of the train range's width")
+    lines = ["record        out own  new   | auto/MLR own: shipped  switched | new: shipped  switched  "
+             "switched/shipped new"]
+    got = {}
+    for name, row in rows.items():
+        out, own, _ = _outside(root, work, name, margin)
+        fig = {k: [] for k in ("a_own", "s_own", "m_own", "a_new", "s_new", "m_new")}
+        for t in row["weights"]:
+            a = np.load(work / "pred" / f"{name}.{t}.npz")
+            assert a["y"].size == out.size, (name, t)
+            y, pa, pm = _scored(row, t, a), a["pred_auto"], a["pred_mlr"]
+            ok = np.isfinite(y) & np.isfinite(pa) & np.isfinite(pm)
+            ps = np.where(out, pm, pa)
+            for where, pick in (("own", own & ok), ("new", ~own & ok)):
+                for k, p in (("a", pa), ("s", ps), ("m", pm)):
+                    fig[f"{k}_{where}"].append(np.sqrt(np.mean((y[pick] - p[pick]) ** 2)))
+            w = row["weights"][t]
+            there = out & ~own & ok
+            if w != {"mlr": 1.0} and sum(w.values()) and there.sum() >= 10:
+                e = np.sqrt(np.mean((y - pa)[there] ** 2) / np.mean((y - pm)[there] ** 2))
+                top = max(w, key=w.get)
+                was, now = (fig[f"{k}_new"][-1] / fig["m_new"][-1] for k in ("a", "s"))
+                print(f"  {name} {t} ({top} {w[top]:.2f}): new auto / MLR {was:.3f} -> {now:.3f}; "
+                      f"outside ({there.sum() / (~own & ok).sum():.0%} of new rows) auto / MLR {e:.3f}")
+        f = {k: float(np.mean(v)) for k, v in fig.items()}
+        got[name] = f
+        lines.append(f"{name:12s} {out[own].mean():5.1%} {out[~own].mean():5.1%} |   "
+                     f"{f['a_own'] / f['m_own']:6.3f}  {f['s_own'] / f['m_own']:6.3f}       |  "
+                     f"{f['a_new'] / f['m_new']:6.3f}  {f['s_new'] / f['m_new']:6.3f}   "
+                     f"{f['s_new'] / f['a_new']:6.3f}"
+                     + ("  > 5 %" if f["s_new"] > 1.05 * f["a_new"] else ""))
+    n = len(got)
+    worse_a = [r for r, f in got.items() if f["a_new"] > f["m_new"]]
+    worse_s = [r for r, f in got.items() if f["s_new"] > f["m_new"]]
+    over = [r for r, f in got.items() if f["s_new"] > 1.05 * f["a_new"]]
+    better = {k: (sum(f[f"a_{k}"] < f[f"m_{k}"] for f in got.values()),
+                  sum(f[f"s_{k}"] < f[f"m_{k}"] for f in got.values())) for k in ("own", "new")}
+    ok1, ok2 = len(worse_s) < len(worse_a), not over
+    ok3 = all(b[1] >= b[0] for b in better.values())
+    lines += ["", f"{n} records.  1 worse than MLR on the new campaigns {len(worse_a)} -> {len(worse_s)} "
+              f"(shipped {', '.join(worse_a)}; switched {', '.join(worse_s)}): {'holds' if ok1 else 'FAILS'}",
+              f"2 worse than shipped auto on the new campaigns by > 5 %: {over or 'none'}: "
+              f"{'holds' if ok2 else 'FAILS'}",
+              f"3 better than MLR own {better['own'][0]} -> {better['own'][1]}, new {better['new'][0]} -> "
+              f"{better['new'][1]}: {'holds' if ok3 else 'FAILS'}",
+              f"mean auto / MLR new {np.mean([f['a_new'] / f['m_new'] for f in got.values()]):.4f} -> "
+              f"{np.mean([f['s_new'] / f['m_new'] for f in got.values()]):.4f}",
+              "SCREEN: " + ("PASSED (not kept: fl_thermal and fresh draws remain)" if ok1 and ok2 and ok3
+                            else "FAILED: the switch is refused")]
+    print(remeasure._wrapped(lines, 150))
+
+
 def envelope(root: Path, work: Path, records: list[str]) -> None:
     """Per record: the share of own-test / new samples with an input outside the train campaigns'
     range, and per target auto / MLR on the samples inside and outside it (WORK/pred's arrays)."""
@@ -232,6 +378,7 @@ def main(argv: list[str]) -> int:
         "trace": lambda work, *records: trace(Path(work), list(records)),
         "levers": lambda work: levers(Path(work)),
         "envelope": lambda root, work, *records: envelope(Path(root), Path(work), list(records)),
+        "switch": lambda root, work, margin=MARGIN: switch(Path(root), Path(work), float(margin)),
     }, argv, cpu=sys.stderr)
 
 
