@@ -135,9 +135,12 @@ must judge how far and for which family (the blend can extrapolate well: tsc_a2)
 needs its own fresh machines to be tuned and proven (seeds not looked at), with the switch in
 predict and in the C export.  (b) mtc_b, hmc, iso_a inside the range and col1403's lag bank
 after the excursion: the folds agree and are wrong (a drift in time: mtc_b 0.66 in the first
-half of the new campaigns, 1.50 in the second); no fold statistic reads it (``levers``); a fold
-design that holds out the last train campaigns in time (forward validation) is the lever left
-untried here.
+half of the new campaigns, 1.50 in the second); no fold statistic reads it (``levers``).  The
+folds already hold out the later train campaigns (``blocked forward``, auto.py's
+CAMPAIGN_FOLDS; level folds per campaign were refused at auto76), so the drift lies past the
+train period itself: mtc_b's new campaigns are three weeks on.  Nothing in these train data
+reads it; a refit cadence or an online check of the correction against measurements is the
+answer there, not a choice among families.
 """
 
 from __future__ import annotations
