@@ -19,7 +19,8 @@ one-SE rule; the median; the largest; the log ratios' mean + SE, a paired test a
 against the blend / MLR on the own test and on the new campaigns, and the count of targets each
 statistic would send to MLR that MLR wins / loses on the new campaigns.  Nothing here fits or
 chooses: it reads the stored arrays of a ``rows`` run (bench_auto80's shipped rows,
-/tmp/auto80/new, are main 9e060125's auto: the fallback code is unchanged since).
+/tmp/auto80/new, are main 9e060125's auto: checked 2026-12-04 by ``rows`` again on this tree
+for iso_a and tsc_a2, the same weights and every stored squared error equal to the digit).
 ``envelope``: per record (``rank.setup`` of its overrides, WORK/draws' cached new campaigns), the
 share of own-test / new samples where any declared input lies outside [min, max] of the train
 campaigns, the three inputs that leave it furthest (above max / below min), and per target auto /
