@@ -58,7 +58,7 @@ test across folds) reaches 1: each would send 0 targets to MLR.  The worst fold 
 old rows, 75 blends) one-SE and the paired log test each send the same 23 (MLR better on 14,
 worse on 9), the worst fold 38 (20 / 18).  So no statistic of these folds separates what is
 left: the rules bench_auto73 / 76 / autoloss68 / autorule69 / auto80 tried live on them.
-(3) The column's test cycle leaves the train range (``envelope``): 50-57 % of its own-test and
+(3) The column's test cycle leaves the train range (``envelope``): 45-57 % of its own-test and
 new samples have an input above the train maximum (T_right4 +6.2 K, T_right3 +5.8 K, T_front4
 +4.5 K: the unseen source Q3 and the shifted ambient).  Inside the range the blend holds or
 wins, outside it loses: col5791 E_Z_mid 0.733 inside, 3.083 outside; E_X_mid 0.990 / 1.049;
