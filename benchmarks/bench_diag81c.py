@@ -65,6 +65,9 @@ Round 2 (CV 0.475) clears nothing.  Where the 50.5 % comes from (``parts``):
   0.482): the pooled fit lets 8 offset draws pull the coefficients (T_nose 5.91 against the law's
   7.93, T_bearing_r 0.24 against -1.68, T_motor1 0.87 against 2.97; within campaigns 7.36,
   -1.13, 2.81 -- a throwaway fit, same numbers as ``base``), and a held-out campaign pays it.
+  A reading that fits every figure here, not measured: the block's ~20 points beyond the absorber
+  predict the *bias* of a pooled fit, ``x'(t) (coef - b)``, whose size per campaign follows how
+  far the campaign starts from equilibrium -- not the probe's noise itself.
 
 Why it hurts on test (as run; as deployed 0.656 -> 0.701, +6.8 %): one campaign.  Per test
 campaign, E_Y RMSE / mean / within-campaign SD::
