@@ -110,7 +110,14 @@ campaign.  What would address it is the base, not the bar: fitting the MLR withi
 per-campaign offset while fitting, none predicted; ``base``: 8075's E_Y test 0.656 -> 0.556, CV
 0.961 -> 0.624, one draw, a what-if) and then diagnose's search from that base, re-running
 bench_diag81b ``fresh`` and this trace -- its own rule (it changes every MLR model ``run``
-fits), to write and measure first.
+fits), to write and measure first.  A first look, not a bar (``base`` on diag81b's clean
+8071-8080, found draws, 1.7 s CPU each), E_Y test RMSE pooled -> within the campaigns::
+
+  8071 0.551 -> 0.594   8072 0.667 -> 0.557   8073 0.800 -> 0.486   8074 0.611 -> 0.557
+  8075 0.656 -> 0.556   8076 0.640 -> 0.620   8077 0.603 -> 0.598   8078 0.744 -> 0.544
+  8079 0.462 -> 0.530   8080 0.644 -> 0.514   (mean 0.638 -> 0.556; worse on 8071 +7.8 %, 8079 +14.7 %)
+
+so it is no free fix either: 8 of 10 better, two clearly worse.
 """
 
 from __future__ import annotations
