@@ -68,9 +68,6 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
         if "_slow" not in state:       # pickled before mon73: no memory of the field, no hover
             self._slow_reset()
             self._slow_ok = False
-        if "_leak0" not in state:      # pickled before mon81g: no leak seen yet
-            self._leak0 = np.full(len(self.names), np.nan)
-            self._leak_at = np.zeros(len(self.names), dtype=np.int64)
 
     def __init__(self, pod: ThermalPOD, names: Sequence[str], *, warning_c=0.4, alarm_c=0.8,
                  window: int = 10, confirm: int = 2, adaptive: bool = True,
@@ -178,7 +175,7 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
               "_prev_e", "_run", "_run_pred", "_clean", "_quiet", "_calm", "_prev_other",
               "_last_good", "_by_field", "_jumps", "_ref0", "_dropped", "_gap", "_gapped", "_dwell",
               "_outs", "_explains", "_novel", "_calm_field", "_since", "_slow", "_slow_t",
-              "_slow_ok", "_leak0", "_leak_at")
+              "_slow_ok")
 
     def reset(self) -> None:
         """New campaign: the next sample is the reference; every sensor active and ok."""
@@ -215,8 +212,6 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
         self._novel = False          # a new thermal state is declared (module doc)
         self._calm_field = 0         # samples since a judged sensor was last out of band
         self._since = np.full(n, -1, dtype=np.int64)   # sample count at its drift exclusion
-        self._leak0 = np.full(n, np.nan)   # its leak at its first re-admission check (readmission.py)
-        self._leak_at = np.zeros(n, dtype=np.int64)   # ... and the sample count then
         self._slow_reset()
         self._set_operator()
 
@@ -585,7 +580,6 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
             reason += "; held at its last good reading: no other sensor predicts it"
         self._active[j] = False
         self._calm[j] = 0            # back in only after a whole window inside the band
-        self._leak0[j] = np.nan
         if by_field:      # out by its error again since its first return: it waits longer
             self._dwell[j] = self.window * 2 ** min(self._outs[j], MAX_BACKOFF)
             self._outs[j] += 1

@@ -49,14 +49,6 @@ class Readmission:
         calm = self._calm[j]
         if self._predictable[j]:
             return f"re-admitted: within ±{self._readmit_c()[j]:.3g} °C for {calm} samples"
-        leak = getattr(self, "_leaks", {}).get(int(j))
-        if leak is not None:
-            first = ("the others within their warning bands with it in" if self._explains[j]
-                     else "no detector fired")
-            grown = ("" if leak < READMIT else
-                     f", not grown since its first check ({self._leak0[j]:.2g}), a window before")
-            return (f"re-admitted: {first} for {calm} samples, its leak onto them "
-                    f"{leak:.2g} of their bands{grown} (no other sensor predicts it)")
         if self._explains[j]:
             return (f"re-admitted: the others within their warning bands with it in for {calm} "
                     "samples (no other sensor predicts it)")
@@ -82,11 +74,8 @@ class Readmission:
         its judgement until its reading went missing, the band that kept it in (the half band kept a
         healthy lathe sensor whose error sits at 0.9 of its band out for an hour after one empty
         logger row: adaptive 1.14x fixed)."""
-        return np.where(self._lost(), 1.0, READMIT) * self.warning_c
-
-    def _lost(self) -> np.ndarray:
-        """The sensors out only for a dropout (their last detector a missing reading)."""
-        return self._dropped & ~self._by_field & (self._jumps == 0)
+        lost = self._dropped & ~self._by_field & (self._jumps == 0)
+        return np.where(lost, 1.0, READMIT) * self.warning_c
 
     def _pass_once_back(self, trial: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """``(passes, worst error)`` of the sensors of the set ``trial``: their leave-one-out
@@ -109,41 +98,4 @@ class Readmission:
         if explains.any():
             judged = trial & ~blind
             ok[explains] = bool((worst[judged] < self.warning_c[judged]).all())
-        # one no other predicts, out for anything but a dropout: back only once its leak onto
-        # the others is within their re-admission band (the Hydraulik Tank drifting 1 K/h came
-        # back at 0.99 of Bett rechts's band, the band it had left by, and went out 40 s later)
-        self._leaks = {}
-        for u in np.flatnonzero(ok & ~self._active & ~self._predictable & ~self._lost()):
-            leak = self._leak(u, trial, H, M, lev)
-            if leak is not None:
-                self._leaks[int(u)] = leak
-                if np.isnan(self._leak0[u]):
-                    self._leak0[u], self._leak_at[u] = leak, self._count
-                # one out for explaining the others: above half their band, still back once its
-                # leak has not grown over a whole window since its first check (a drift's leak
-                # grows: the tank 0.6 -> 1.6; a healthy sensor in a field hotter than training
-                # hovers: the gantry's Gabelkopf 0.5-0.7 for 4.4 h).  Not one out of range: a
-                # reading come back off by an offset hovers as well (vtl78's Getriebe, 14.8 K)
-                ok[u] = leak < READMIT or bool(
-                    self._explains[u] and self._count - self._leak_at[u] >= self.window
-                    and leak <= self._leak0[u])
         return ok, worst
-
-    def _leak(self, u: int, trial: np.ndarray, H: np.ndarray, M: np.ndarray,
-              lev: np.ndarray) -> float | None:
-        """What the reading of ``u`` does to the others: of every sensor judged in ``trial``
-        with ``u`` and without it, the largest change of its leave-one-out error over the
-        window, as a share of its warning band (``None``: too few sensors without ``u``).  Zero
-        for a reading the others' field agrees with; a drift times its weight otherwise."""
-        rest = trial.copy()
-        rest[u] = False
-        if rest.sum() < self.min_active_:
-            return None
-        M2, lev2 = self._operator(rest)
-        both = rest & (lev < self.pod.max_leverage) & (lev2 < self.pod.max_leverage)
-        if not both.any():
-            return None
-        with np.errstate(divide="ignore", invalid="ignore"):
-            e_in = (H[:, both] - H[:, trial] @ M[both].T) / (1 - lev[both])
-            e_out = (H[:, both] - H[:, rest] @ M2[both].T) / (1 - lev2[both])
-        return float((np.abs(e_in - e_out) / self.warning_c[both]).max())
