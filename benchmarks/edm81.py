@@ -25,6 +25,7 @@ from __future__ import annotations
 from datetime import datetime, timedelta
 
 import numpy as np
+from _lumped import laplacian
 
 ALPHA = 11.5e-6                        # cast iron / steel, 1/K
 STEP_S = 10.0                          # the network's step and the trace's period
@@ -63,18 +64,6 @@ SENSORS = (("T_HALLE", "air", 90.0), ("T_BODEN", "floor", 300.0),
 
 def _index(name: str) -> int:
     return NODES.index(name)
-
-
-def _matrix() -> np.ndarray:
-    """Conductances (W/K) of the links as a Laplacian plus the air's."""
-    g = np.diag(H_AIR.copy())
-    for a, b, w in LINKS:
-        i, j = _index(a), _index(b)
-        g[i, i] += w
-        g[j, j] += w
-        g[i, j] -= w
-        g[j, i] -= w
-    return g
 
 
 def shop_air(t_s: np.ndarray, rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray]:
@@ -140,7 +129,7 @@ def simulate(seed: int) -> dict[str, np.ndarray]:
     t = np.arange(-SPIN_UP_DAYS * 86400.0, DAYS * 86400.0, STEP_S)
     air, floor = shop_air(t, rng)
     st = programme(t, rng)
-    inv = np.linalg.inv(np.diag(C / STEP_S) + _matrix())
+    inv = np.linalg.inv(np.diag(C / STEP_S) + laplacian(NODES, LINKS, H_AIR))
     low = np.array([n in ("foundation", "base", "reservoir") for n in NODES])
     temp = np.full(len(NODES), air[0])
     temps = np.empty((t.size, len(NODES)))

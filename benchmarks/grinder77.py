@@ -20,6 +20,7 @@ from __future__ import annotations
 from datetime import datetime, timedelta, timezone
 
 import numpy as np
+from _lumped import laplacian
 
 ALPHA = 11.0e-6                     # cast iron, 1/K
 PERIOD_S = 60.0
@@ -51,18 +52,6 @@ SENSORS = (("hall air north", "air", 120.0), ("hall air south", "air", 300.0),
 
 def _index(name: str) -> int:
     return NODES.index(name)
-
-
-def _matrix(extra) -> np.ndarray:
-    """Conductances (W/K) of the links and of ``extra`` as a Laplacian plus the air's."""
-    g = np.diag(H_AIR.copy())
-    for a, b, w in (*LINKS, *extra):
-        i, j = _index(a), _index(b)
-        g[i, i] += w
-        g[j, j] += w
-        g[i, j] -= w
-        g[j, i] -= w
-    return g
 
 
 def hall_air(t_s: np.ndarray, rng: np.random.Generator) -> np.ndarray:
@@ -126,7 +115,7 @@ def simulate(seed: int) -> dict[str, np.ndarray]:
     mats = {}
     for oil in (0, 1):
         for cool in (0, 1):
-            g = _matrix((OIL_ON if oil else ()) + (COOLANT_ON if cool else ()))
+            g = laplacian(NODES, (*LINKS, *(OIL_ON if oil else ()), *(COOLANT_ON if cool else ())), H_AIR)
             mats[oil, cool] = np.linalg.inv(np.diag(C / PERIOD_S) + g)
     temp = np.full(len(NODES), air[0])
     temps = np.empty((t.size, len(NODES)))

@@ -27,6 +27,7 @@ from __future__ import annotations
 from datetime import datetime, timedelta, timezone
 
 import numpy as np
+from _lumped import laplacian
 
 ALPHA = 11.5e-6                        # cast iron / steel, 1/K
 STEP_S = 10.0                          # the network's step and the probes' period
@@ -70,18 +71,6 @@ SENSORS = (("Raumluft oben", "air", 90.0), ("Raumluft Boden", "floor", 300.0),
 
 def _index(name: str) -> int:
     return NODES.index(name)
-
-
-def _matrix() -> np.ndarray:
-    """Conductances (W/K) of the links as a Laplacian plus the air's."""
-    g = np.diag(H_AIR.copy())
-    for a, b, w in LINKS:
-        i, j = _index(a), _index(b)
-        g[i, i] += w
-        g[j, j] += w
-        g[i, j] -= w
-        g[j, i] -= w
-    return g
 
 
 def local_hours(t_s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -158,7 +147,7 @@ def simulate(seed: int) -> dict[str, np.ndarray]:
     t = np.arange(-SPIN_UP_DAYS * 86400.0, DAYS * 86400.0, STEP_S)
     air, floor = room_air(t, rng)
     st = programme(t, rng)
-    inv = np.linalg.inv(np.diag(C / STEP_S) + _matrix())
+    inv = np.linalg.inv(np.diag(C / STEP_S) + laplacian(NODES, LINKS, H_AIR))
     h_air = H_AIR.copy()
     low = np.array([n in ("foundation", "bed", "hyd") for n in NODES])
     temp = np.full(len(NODES), air[0])

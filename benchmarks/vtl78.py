@@ -24,6 +24,7 @@ from __future__ import annotations
 from datetime import datetime, timedelta
 
 import numpy as np
+from _lumped import laplacian
 
 ALPHA = 11.0e-6                     # cast iron / steel, 1/K
 PERIOD_S = 60.0
@@ -60,18 +61,6 @@ SENSORS = (("Halle oben", "air", 120.0), ("Halle unten", "air", 400.0),
 
 def _index(name: str) -> int:
     return NODES.index(name)
-
-
-def _matrix(extra) -> np.ndarray:
-    """Conductances (W/K) of the links and of ``extra`` as a Laplacian plus the air's."""
-    g = np.diag(H_AIR.copy())
-    for a, b, w in (*LINKS, *extra):
-        i, j = _index(a), _index(b)
-        g[i, i] += w
-        g[j, j] += w
-        g[i, j] -= w
-        g[j, i] -= w
-    return g
 
 
 def hall_air(t_s: np.ndarray, rng: np.random.Generator) -> np.ndarray:
@@ -130,7 +119,8 @@ def simulate(seed: int) -> dict[str, np.ndarray]:
     t = np.arange(-SPIN_UP_DAYS * 86400.0, DAYS * 86400.0, PERIOD_S)
     air = hall_air(t, rng)
     st = programme(t, rng)
-    mats = {on: np.linalg.inv(np.diag(C / PERIOD_S) + _matrix(FILM if on else ())) for on in (0, 1)}
+    mats = {on: np.linalg.inv(np.diag(C / PERIOD_S)
+                              + laplacian(NODES, (*LINKS, *(FILM if on else ())), H_AIR)) for on in (0, 1)}
     temp = np.full(len(NODES), air[0])
     temps = np.empty((t.size, len(NODES)))
     cooling = False
