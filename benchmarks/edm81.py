@@ -25,7 +25,7 @@ from __future__ import annotations
 from datetime import datetime, timedelta
 
 import numpy as np
-from _lumped import laplacian
+from _lumped import lagged_readings, laplacian
 
 ALPHA = 11.5e-6                        # cast iron / steel, 1/K
 STEP_S = 10.0                          # the network's step and the trace's period
@@ -157,21 +157,9 @@ def simulate(seed: int) -> dict[str, np.ndarray]:
     t, air, floor, temps, chiller = t[keep], air[keep], floor[keep], temps[keep], chiller[keep]
     st = {k: v[keep] for k, v in st.items()}
     return {"t": t, "air": air, "floor": floor, "T": temps, "chiller": chiller, **st,
-            "sensors": _sensors(temps, air, floor, rng), **_errors(temps, st, rng)}
-
-
-def _sensors(temps, air, floor, rng) -> np.ndarray:
-    from scipy.signal import lfilter
-    out = np.empty((temps.shape[0], len(SENSORS)))
-    for j, (_, where, lag) in enumerate(SENSORS):
-        if isinstance(where, str):
-            truth = air if where == "air" else floor
-        else:
-            truth = sum(wt * temps[:, _index(n)] for n, wt in where.items())
-        a = 1.0 - np.exp(-STEP_S / lag)
-        read, _ = lfilter([a], [1.0, a - 1.0], truth, zi=[(1.0 - a) * truth[0]])
-        out[:, j] = np.round(read + 0.015 * rng.standard_normal(truth.size), 2)
-    return out
+            "sensors": lagged_readings(temps, {"air": air, "floor": floor}, SENSORS, NODES, STEP_S,
+                                       0.015, 2, rng),
+            **_errors(temps, st, rng)}
 
 
 def _errors(temps: np.ndarray, st: dict, rng: np.random.Generator) -> dict[str, np.ndarray]:
