@@ -234,10 +234,10 @@ def levers(work: Path) -> None:
 MARGIN = 0.1          # the switch's widening of the train range, a share of its width
 
 
-def _outside(root: Path, work: Path, name: str, margin: float) -> tuple[np.ndarray, np.ndarray, list]:
-    """``(outside, own, inputs)`` over WORK/pred's rows of ``name`` (own test then new campaigns):
-    where any declared input leaves the train campaigns' range widened by ``margin`` of its width,
-    and which rows are the own test's."""
+def _span(root: Path, work: Path, name: str) -> tuple[list, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """``(inputs, lo, hi, z, own)`` for ``name``: its declared inputs, their train campaigns'
+    range, their values over WORK/pred's rows (own test then new campaigns) and which rows are
+    the own test's."""
     import bench_auto_rank as rank
     import bench_automore69 as automore
     from bench_moretest68 import with_new
@@ -253,10 +253,17 @@ def _outside(root: Path, work: Path, name: str, margin: float) -> tuple[np.ndarr
     first = next(iter(train.values()))
     inputs = resolve_columns(list(first.columns), cfg.data.inputs, cfg.data.targets)[0]
     x = np.concatenate([t[inputs].to_numpy(float) for t in train.values()])
-    lo, hi = np.nanmin(x, 0), np.nanmax(x, 0)
-    lo, hi = lo - margin * (hi - lo), hi + margin * (hi - lo)
     z = np.concatenate([full.campaigns[c][inputs].to_numpy(float) for c in ids])
     own = np.concatenate([[c in row["own"]] * len(full.campaigns[c]) for c in ids])
+    return inputs, np.nanmin(x, 0), np.nanmax(x, 0), z, own
+
+
+def _outside(root: Path, work: Path, name: str, margin: float) -> tuple[np.ndarray, np.ndarray, list]:
+    """``(outside, own, inputs)`` over WORK/pred's rows of ``name`` (own test then new campaigns):
+    where any declared input leaves the train campaigns' range widened by ``margin`` of its width,
+    and which rows are the own test's."""
+    inputs, lo, hi, z, own = _span(root, work, name)
+    lo, hi = lo - margin * (hi - lo), hi + margin * (hi - lo)
     return ((z < lo) | (z > hi)).any(1), own, inputs
 
 
@@ -337,26 +344,10 @@ def switch(root: Path, work: Path, margin: float = MARGIN) -> None:
 def envelope(root: Path, work: Path, records: list[str]) -> None:
     """Per record: the share of own-test / new samples with an input outside the train campaigns'
     range, and per target auto / MLR on the samples inside and outside it (WORK/pred's arrays)."""
-    import bench_auto_rank as rank
-    import bench_automore69 as automore
-    from bench_moretest68 import with_new
-
-    from thermocomp.core.frame import resolve_columns
-
     for name in records:
-        overrides = [o.format(root=root) for o in automore.OVERRIDES[name]]
-        sys.argv[2:] = overrides
-        cfg, ds, train = rank.setup(overrides)
-        full = with_new(ds, automore.draws(automore.OF[name], work, cfg))
-        row = _rows(work)[name]
-        ids = row["own"] + row["new"]
-        first = next(iter(train.values()))
-        inputs = resolve_columns(list(first.columns), cfg.data.inputs, cfg.data.targets)[0]
-        x = np.concatenate([t[inputs].to_numpy(float) for t in train.values()])
-        lo, hi = np.nanmin(x, 0), np.nanmax(x, 0)
-        z = np.concatenate([full.campaigns[c][inputs].to_numpy(float) for c in ids])
+        inputs, lo, hi, z, own = _span(root, work, name)
         out = ((z < lo) | (z > hi)).any(1)
-        own = np.concatenate([[c in row["own"]] * len(full.campaigns[c]) for c in ids])
+        row = _rows(work)[name]
         wide = [(inputs[j], float(np.nanmax(z[:, j]) - hi[j]), float(lo[j] - np.nanmin(z[:, j])))
                 for j in range(len(inputs))]
         wide = sorted(wide, key=lambda w: -max(w[1], w[2]))[:3]
