@@ -116,8 +116,6 @@ exclusion are untouched.
 from __future__ import annotations
 
 import json
-import os
-import subprocess
 import sys
 from pathlib import Path
 
@@ -126,8 +124,8 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from _cli import run_commands, seed_list  # noqa: E402
+from bench_mon77 import _lines, thermocomp  # noqa: E402
 
-REPO = Path(__file__).resolve().parents[1]
 BENCH = Path(__file__).resolve().parent
 QUIET = ("track=false", "plots=none", "model=mlr")
 KINDS = "healthy,frozen,jump,drift,dropout"
@@ -140,13 +138,6 @@ SPINDLE_SIM = ("sim=yearround_spindle", "sim.generator.n_campaigns=12")
 SPINDLE_FAULT = {"freeze": (), "drift": ("sim.generator.effect_params.sensor_faults.rate_K_per_h=1.0",),
                  "jump": ("sim.generator.effect_params.sensor_faults.magnitude_c=3.0",)}
 TOL = 1.02
-
-
-def thermocomp(*args: str) -> None:
-    run = subprocess.run([sys.executable, "-m", "thermocomp", "-q", *args], cwd=REPO,
-                         capture_output=True, text=True, env=os.environ.copy())
-    if run.returncode:
-        raise RuntimeError(f"thermocomp {' '.join(args)}: {run.stderr[-2000:]}")
 
 
 def summary(report: dict) -> dict:
@@ -252,11 +243,6 @@ def swiss(root: str, label: str, seeds: str = "7778,7790,8101-8102") -> None:
 
 
 # -- the verdict ----------------------------------------------------------------------------------
-def _lines(path: Path) -> dict:
-    rows = [json.loads(line) for line in path.read_text().splitlines() if line.strip()]
-    return {(r["record"], r["kind"]): r for r in rows}
-
-
 RANGE77 = {"gantry7781", "swiss7778", "swiss7790"}
 
 

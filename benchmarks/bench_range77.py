@@ -81,9 +81,7 @@ before.  Fresh seeds: 15 new gantry draws, 7727 only as the found case.
 from __future__ import annotations
 
 import json
-import os
 import re
-import subprocess
 import sys
 from pathlib import Path
 
@@ -92,20 +90,13 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from _cli import run_commands, seed_list  # noqa: E402
+from bench_mon77 import thermocomp  # noqa: E402
 
-REPO = Path(__file__).resolve().parents[1]
 QUIET = ("track=false", "plots=none")
 SEEDS = "7776-7790"
 RANGE = re.compile(r"out of range: (?P<v>-?[\d.]+) °C outside the training range "
                    r"\[(?P<lo>-?[\d.]+), (?P<hi>-?[\d.]+)\]")
 GAVE = re.compile(r"model gave (?P<v>-?[\d.]+) µm")
-
-
-def thermocomp(*args: str) -> None:
-    run = subprocess.run([sys.executable, "-m", "thermocomp", "-q", *args], cwd=REPO,
-                         capture_output=True, text=True, env=os.environ.copy())
-    if run.returncode:
-        raise RuntimeError(f"thermocomp {' '.join(args)}: {run.stderr[-2000:]}")
 
 
 def summary(report: dict) -> dict:
