@@ -14,27 +14,15 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from test_monitor_readmit80 import NAMES, nut_field
 from thermocomp.apps.deploy.surveillance import SensorMonitor
-
-NAMES = [f"T_{k}" for k in range(6)] + ["T_nut"]
-
-
-def _field(m: int, seed: int) -> np.ndarray:
-    rng = np.random.default_rng(seed)
-    t = np.arange(m)
-    warm = 3 * (1 - np.exp(-t / 80)) + 0.5 * np.sin(t / 37)
-    gradient = 1.5 * np.sin(t / 53 + seed)
-    nut = 2.5 * np.clip(np.sin(t / (23 + 5 * seed) + 2 * seed), 0, None)   # the axis' own heat
-    near = 2.0 * nut[:, None] * np.linspace(1, 0, 6)          # the others near it follow it
-    x = np.c_[warm[:, None] + gradient[:, None] * np.linspace(-0.5, 0.5, 6) + near, nut]
-    return 20 + np.round(x + rng.normal(scale=0.02, size=x.shape), 2)
 
 
 def _nut_events(off: float) -> tuple[SensorMonitor, list[dict]]:
     """The nut drifting 0.1 K a sample from sample 150 to +13 K (out of range), then ``off`` K
     off its true reading from sample 300."""
-    mon = SensorMonitor.from_training(None, NAMES, {f"c{s}": _field(400, s) for s in range(3)})
-    record = _field(400, 5)
+    mon = SensorMonitor.from_training(None, NAMES, {f"c{s}": nut_field(400, s, follow=2.0) for s in range(3)})
+    record = nut_field(400, 5, follow=2.0)
     record[150:, 6] += np.minimum(0.1 * np.arange(250), 13.0)
     record[300:, 6] -= 13.0 - off
     events = []

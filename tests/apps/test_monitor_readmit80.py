@@ -13,19 +13,23 @@ from thermocomp.apps.deploy.surveillance import SensorMonitor
 NAMES = [f"T_{k}" for k in range(6)] + ["T_nut"]
 
 
-def _field(m: int, seed: int) -> np.ndarray:
+def nut_field(m: int, seed: int, follow: float = 0.0) -> np.ndarray:
+    """Six sensors of a warming machine and a nut heated by its own axis (the last column);
+    ``follow``: how much of the nut's heat the others near it take up (0: none, no other predicts
+    the nut), falling off from the first to the sixth."""
     rng = np.random.default_rng(seed)
     t = np.arange(m)
     warm = 3 * (1 - np.exp(-t / 80)) + 0.5 * np.sin(t / 37)
     gradient = 1.5 * np.sin(t / 53 + seed)
     nut = 2.5 * np.clip(np.sin(t / (23 + 5 * seed) + 2 * seed), 0, None)   # the axis' own heat
-    x = np.c_[warm[:, None] + gradient[:, None] * np.linspace(-0.5, 0.5, 6), nut]
+    near = follow * nut[:, None] * np.linspace(1, 0, 6)
+    x = np.c_[warm[:, None] + gradient[:, None] * np.linspace(-0.5, 0.5, 6) + near, nut]
     return 20 + np.round(x + rng.normal(scale=0.02, size=x.shape), 2)
 
 
 def _back(sensor: int) -> tuple[SensorMonitor, list[dict]]:
-    mon = SensorMonitor.from_training(None, NAMES, {"a": _field(400, 0), "b": _field(400, 1)})
-    record = _field(300, 5)
+    mon = SensorMonitor.from_training(None, NAMES, {"a": nut_field(400, 0), "b": nut_field(400, 1)})
+    record = nut_field(300, 5)
     record[150:170, sensor] = np.nan
     events = []
     for i, row in enumerate(record):
