@@ -33,3 +33,34 @@ def rmse(errors: list, corrections: list) -> np.ndarray:
     """Per target, the RMS of the errors after their corrections, pooled over the campaigns."""
     r = np.vstack([e + c for e, c in zip(errors, corrections)])
     return np.sqrt(np.mean(r ** 2, axis=0))
+
+
+def deployed_on(data: Path, model: str) -> tuple:
+    """``data``'s record read as ``run`` reads it and ``model=<model>`` fitted on its train
+    campaigns, deployed as ``promote`` deploys it (the stream warmed on the train record):
+    ``(deployed, ds, test_ids)``."""
+    from hydra import compose, initialize_config_dir
+
+    from thermocomp.base.paths import conf_dir
+    from thermocomp.shell.builders import build_compensator, deploy_stream, deployable
+    from thermocomp.shell.source import read_streamed
+
+    with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3"):
+        cfg = compose(config_name="config",
+                      overrides=[f"data.path={data}", "track=false", f"model={model}"])
+    ds, train_ids, test_ids, _ = read_streamed(cfg)
+    train = {k: ds.campaigns[k] for k in train_ids}
+    deployed = deployable(cfg, deploy_stream(cfg, build_compensator(cfg, ds=ds).fit(train), train),
+                          train, ds)
+    return deployed, ds, test_ids
+
+
+def built_without_monitor(folder: Path, deployed) -> Path:
+    """The exported C of ``deployed`` without its sensor monitor (the plain state space, the same
+    driver), compiled: the ``stream`` program."""
+    from thermocomp.apps.deploy.export import c, state_space
+    from thermocomp.apps.deploy.export.driver import DRIVER
+
+    plain = state_space(deployed)
+    return built(folder, {"compensator.h": c.header(plain), "compensator.c": c.source(plain),
+                          "stream.c": DRIVER})

@@ -39,7 +39,7 @@ import pandas as pd
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from _ccode import built, rmse  # noqa: E402
+from _ccode import built, deployed_on, rmse  # noqa: E402
 from _cli import made_folder, run_commands, seed_list  # noqa: E402
 
 SEEDS = "7736-7745"
@@ -71,24 +71,13 @@ def _dataset(root: Path, seed: int, length: str) -> Path:
 
 
 def record(root: Path, seed: int, length: str, model: str) -> str:
-    from hydra import compose, initialize_config_dir
-
     from thermocomp.apps.deploy.export import Simulator, exported_files, state_space
     from thermocomp.apps.deploy.export.pack import conformance_pack, corrections
     from thermocomp.apps.deploy.export.watch import NOT_IN_CODE
     from thermocomp.apps.deploy.report import stream_rows
-    from thermocomp.base.paths import conf_dir
-    from thermocomp.shell.builders import build_compensator, deploy_stream, deployable
-    from thermocomp.shell.source import read_streamed
 
     data = _dataset(root, seed, length)
-    with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3"):
-        cfg = compose(config_name="config",
-                      overrides=[f"data.path={data}", "track=false", f"model={model}"])
-    ds, train_ids, test_ids, _ = read_streamed(cfg)
-    train = {k: ds.campaigns[k] for k in train_ids}
-    deployed = deployable(cfg, deploy_stream(cfg, build_compensator(cfg, ds=ds).fit(train), train),
-                          train, ds)
+    deployed, ds, test_ids = deployed_on(data, model)
     tests = {k: ds.campaigns[k].reset_index(drop=True) for k in test_ids}
     targets = deployed.targets_
     ss = state_space(deployed, monitor=True)

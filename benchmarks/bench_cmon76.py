@@ -28,7 +28,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from _ccode import built, rmse, streamed  # noqa: E402
+from _ccode import built, built_without_monitor, deployed_on, rmse, streamed  # noqa: E402
 from _cli import made_folder, run_commands, seed_list  # noqa: E402
 
 SEEDS = "7696-7700"
@@ -36,17 +36,11 @@ KINDS = ("freeze", "jump")
 
 
 def record(root: Path, seed: int, kind: str) -> str:
-    from hydra import compose, initialize_config_dir
-
-    from thermocomp.apps.deploy.export import c, exported_files, state_space
-    from thermocomp.apps.deploy.export.driver import DRIVER
+    from thermocomp.apps.deploy.export import exported_files, state_space
     from thermocomp.apps.deploy.export.pack import conformance_pack, corrections
     from thermocomp.apps.deploy.report import stream_rows
     from thermocomp.apps.deploy.streaming import replay
-    from thermocomp.base.paths import conf_dir
-    from thermocomp.shell.builders import build_compensator, deploy_stream, deployable
     from thermocomp.shell.cli import main
-    from thermocomp.shell.source import read_streamed
 
     data = root / f"{kind}-{seed}"
     fault = ("sim.generator.effects=[sensor_faults]",
@@ -55,22 +49,13 @@ def record(root: Path, seed: int, kind: str) -> str:
     if not (data / "campaigns.csv").is_file():
         assert main(["-q", "simulate", *fault, f"seed={seed}", f"data.path={data}",
                      "track=false"]) == 0
-    with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3"):
-        cfg = compose(config_name="config",
-                      overrides=[f"data.path={data}", "track=false", "model=mlr"])
-    ds, train_ids, test_ids, _ = read_streamed(cfg)
-    train = {k: ds.campaigns[k] for k in train_ids}
-    deployed = deployable(cfg, deploy_stream(cfg, build_compensator(cfg, ds=ds).fit(train), train),
-                          train, ds)
+    deployed, ds, test_ids = deployed_on(data, "mlr")
     tests = {k: ds.campaigns[k].reset_index(drop=True) for k in test_ids}
     targets = deployed.targets_
     ss = state_space(deployed, monitor=True)
-    plain_ss = state_space(deployed)
     with tempfile.TemporaryDirectory(prefix="cmon76-") as tmp:
         with_mon = built(Path(tmp) / "with", exported_files(deployed, "c"))
-        without = built(Path(tmp) / "without", {"compensator.h": c.header(plain_ss),
-                                                 "compensator.c": c.source(plain_ss),
-                                                 "stream.c": DRIVER})
+        without = built_without_monitor(Path(tmp) / "without", deployed)
         cols = ["time", *ss.inputs]
         errors, fixed, served, code0, code1 = [], [], [], [], []
         for k, df in tests.items():

@@ -92,7 +92,7 @@ import pandas as pd
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from _ccode import built, rmse, streamed  # noqa: E402
+from _ccode import built, built_without_monitor, deployed_on, rmse, streamed  # noqa: E402
 from _cli import made_folder, run_commands, seed_list  # noqa: E402
 
 SEEDS = "7996-8010"
@@ -127,40 +127,25 @@ def _first_flag(ss, frame: pd.DataFrame) -> int | None:
 
 
 def record(root: Path, seed: int, model: str = "mlr") -> list[str]:
-    from hydra import compose, initialize_config_dir
-
-    from thermocomp.apps.deploy.export import c, exported_files, state_space
-    from thermocomp.apps.deploy.export.driver import DRIVER
+    from thermocomp.apps.deploy.export import exported_files, state_space
     from thermocomp.apps.deploy.export.pack import conformance_pack, corrections
     from thermocomp.apps.deploy.report import stream_rows
     from thermocomp.apps.deploy.streaming import replay
-    from thermocomp.base.paths import conf_dir
-    from thermocomp.shell.builders import build_compensator, deploy_stream, deployable
     from thermocomp.shell.cli import main
-    from thermocomp.shell.source import read_streamed
 
     data = root / f"healthy-{seed}"
     if not (data / "campaigns.csv").is_file():
         assert main(["-q", "simulate", f"seed={seed}", f"data.path={data}", "track=false"]) == 0
-    with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3"):
-        cfg = compose(config_name="config",
-                      overrides=[f"data.path={data}", "track=false", f"model={model}"])
-    ds, train_ids, test_ids, _ = read_streamed(cfg)
-    train = {k: ds.campaigns[k] for k in train_ids}
-    deployed = deployable(cfg, deploy_stream(cfg, build_compensator(cfg, ds=ds).fit(train), train),
-                          train, ds)
+    deployed, ds, test_ids = deployed_on(data, model)
     targets = deployed.targets_
     monitored = list(deployed.monitor.names)
     ss = state_space(deployed, monitor=True)
-    plain_ss = state_space(deployed)
     k = monitored.index(SENSOR)
     limit = ss.monitor["hi_lim"][k]
     out = []
     with tempfile.TemporaryDirectory(prefix="cmon80-") as tmp:
         with_mon = built(Path(tmp) / "with", exported_files(deployed, "c"))
-        without = built(Path(tmp) / "without", {"compensator.h": c.header(plain_ss),
-                                                 "compensator.c": c.source(plain_ss),
-                                                 "stream.c": DRIVER})
+        without = built_without_monitor(Path(tmp) / "without", deployed)
         cols = ["time", *ss.inputs]
         for kind in KINDS:
             tests = {t: _planted(ds.campaigns[t].reset_index(drop=True), kind, monitored)
