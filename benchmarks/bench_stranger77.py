@@ -49,6 +49,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from _cli import run_commands  # noqa: E402
+from _faults import four_faults  # noqa: E402
 from bench_stranger75 import matrix  # noqa: E402
 
 FILE = "SG630_2027-03.h5"
@@ -112,12 +113,9 @@ def faults(root: str, seed: str) -> None:
     """``ROOT/fault_<kind>_<SEED>/``: the file, its last day with one fault (docstring)."""
     import grinder77 as g
     epoch, chans = channels(int(seed))
-    hours = np.clip(np.arange(ROWS_A_DAY) - 500, 0, None) * 60.0 / 3600.0
-    cases = {"frozen": ("spindle front bearing", lambda v: np.where(np.arange(v.size) < 600, v, v[600])),
-             "jump": ("column rear top", lambda v: v + 2.0 * (np.arange(v.size) >= 700)),
-             "drift": ("coolant tank", lambda v: v + hours),
-             "dropout": ("wheelhead", lambda v: np.where((np.arange(v.size) >= 800)
-                                                         & (np.arange(v.size) < 830), np.nan, v))}
+    cases = four_faults(ROWS_A_DAY, 60.0, frozen=("spindle front bearing", 600),
+                        jump=("column rear top", 700), drift=("coolant tank", 500),
+                        dropout=("wheelhead", 800, 830))
     for kind, (label, change) in cases.items():
         def fault(name, day, v, label=label, change=change):
             return change(v) if name == label and day == g.DAYS else v

@@ -52,6 +52,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from _cli import run_commands  # noqa: E402
+from _faults import four_faults  # noqa: E402
 from bench_stranger75 import matrix  # noqa: E402
 
 STEM = "KV2500"
@@ -174,12 +175,9 @@ def faults(root: str, seed: str) -> None:
     """``ROOT/fault_<kind>_<SEED>/``: the pairs, the last day with one fault (docstring)."""
     import vtl78 as v
     local, chans = channels(int(seed))
-    hours = np.clip(np.arange(ROWS_A_DAY) - 500, 0, None) * 60.0 / 3600.0
-    rows = np.arange(ROWS_A_DAY)
-    cases = {"frozen": ("Hydrostatik Vorlauf", lambda x: np.where(rows < 600, x, x[600])),
-             "jump": ("Ständer links oben", lambda x: x + 2.0 * (rows >= 700)),
-             "drift": ("Getriebe", lambda x: x + hours),
-             "dropout": ("Support", lambda x: np.where((rows >= 800) & (rows < 830), np.nan, x))}
+    cases = four_faults(ROWS_A_DAY, 60.0, frozen=("Hydrostatik Vorlauf", 600),
+                        jump=("Ständer links oben", 700), drift=("Getriebe", 500),
+                        dropout=("Support", 800, 830))
     for kind, (label, change) in cases.items():
         def fault(name, day, x, label=label, change=change):
             return change(x) if name == label and day == v.DAYS else x

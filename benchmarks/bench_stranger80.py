@@ -114,6 +114,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from _cli import run_commands  # noqa: E402
+from _faults import four_faults  # noqa: E402
 from bench_stranger75 import matrix  # noqa: E402
 
 TEMP_EVERY, PROBE_LATE = 3, 2            # 30 s of the network's 10 s; the probes' task 20 s late
@@ -201,12 +202,9 @@ def write(root: str, seed: str) -> None:
 def faults(root: str, seed: str) -> None:
     """``ROOT/fault_<kind>_<SEED>/``: the files, the last run with one fault (docstring)."""
     r, runs = channels(int(seed))
-    rows = np.arange(runs[-1][2][::TEMP_EVERY].size)
-    hours = np.clip(rows - 500, 0, None) * TEMP_EVERY * 10.0 / 3600.0
-    cases = {"frozen": ("Pinole", lambda x: np.where(rows < 600, x, x[600])),
-             "jump": ("Ständer hinten oben", lambda x: x + 2.0 * (rows >= 700)),
-             "drift": ("Hydraulik Tank", lambda x: x + hours),
-             "dropout": ("Mutter X", lambda x: np.where((rows >= 800) & (rows < 830), np.nan, x))}
+    cases = four_faults(runs[-1][2][::TEMP_EVERY].size, TEMP_EVERY * 10.0, frozen=("Pinole", 600),
+                        jump=("Ständer hinten oben", 700), drift=("Hydraulik Tank", 500),
+                        dropout=("Mutter X", 800, 830))
     for kind, (label, change) in cases.items():
         def fault(name, x, label=label, change=change):
             return change(x) if name == label else x

@@ -136,6 +136,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from _cli import run_commands  # noqa: E402
+from _faults import four_faults  # noqa: E402
 from bench_stranger75 import matrix  # noqa: E402
 
 GUD = "/NC/_N_NC_GD9_ACX/"                 # the lab's global user data the PLC writes
@@ -230,12 +231,8 @@ def write(root: str, seed: str) -> None:
 def faults(root: str, seed: str) -> None:
     """``ROOT/fault_<kind>_<SEED>/``: the files, the last run with one fault (docstring)."""
     r, runs = channels(int(seed))
-    rows = np.arange(runs[-1][2].size)
-    hours = np.clip(rows - 3000, 0, None) * 10.0 / 3600.0
-    cases = {"frozen": ("T_OBERARM", lambda x: np.where(rows < 3600, x, x[3600])),
-             "jump": ("T_STAENDER_H", lambda x: x + 2.0 * (rows >= 4000)),
-             "drift": ("T_VORRAT", lambda x: x + hours),
-             "dropout": ("T_MUTTER_X", lambda x: np.where((rows >= 4500) & (rows < 4590), np.nan, x))}
+    cases = four_faults(runs[-1][2].size, 10.0, frozen=("T_OBERARM", 3600), jump=("T_STAENDER_H", 4000),
+                        drift=("T_VORRAT", 3000), dropout=("T_MUTTER_X", 4500, 4590))
     for kind, (label, change) in cases.items():
         def fault(name, x, label=label, change=change):
             return change(x) if name == label else x
