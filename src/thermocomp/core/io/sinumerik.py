@@ -93,13 +93,16 @@ def trace_records(path: Path) -> list[Record]:
     return records
 
 
-def _number(text: str | None, path: Path, where: str) -> float:
-    if text is None:
-        return np.nan
-    try:
-        return float(text)
-    except ValueError:
-        raise ContractError(f"{where}: {text!r} is no number", file=path) from None
+def _numbers(texts: list, path: Path, where) -> np.ndarray:
+    """``texts`` as numbers (None: missing); a text that is none refused naming ``where(k)``, the
+    k-th row's place (said only then: a trace holds rows x signals values)."""
+    out = np.empty(len(texts))
+    for k, text in enumerate(texts):
+        try:
+            out[k] = np.nan if text is None else float(text)
+        except ValueError:
+            raise ContractError(f"{where(k)}: {text!r} is no number", file=path) from None
+    return out
 
 
 def _record(frame: dict, signals: list, rows: list[dict], n: int, path: Path) -> Record:
@@ -108,8 +111,8 @@ def _record(frame: dict, signals: list, rows: list[dict], n: int, path: Path) ->
         raise ContractError(f"dataFrame {label!r}: no dataSignal in its frameHeader", file=path)
     if not rows:
         raise ContractError(f"dataFrame {label!r}: no rec row", file=path)
-    seconds = np.array([_number(r.get("time"), path, f"dataFrame {label!r}, rec {k + 1}, time")
-                        for k, r in enumerate(rows)])
+    seconds = _numbers([r.get("time") for r in rows], path,
+                       lambda k: f"dataFrame {label!r}, rec {k + 1}, time")
     if np.isnan(seconds).any():
         k = int(np.flatnonzero(np.isnan(seconds))[0])
         raise ContractError(f"dataFrame {label!r}, rec {k + 1}: no time", file=path)
@@ -123,8 +126,7 @@ def _record(frame: dict, signals: list, rows: list[dict], n: int, path: Path) ->
     for (sid, name, unit), short in zip(signals, _short([s[1] for s in signals])):
         key = f"f{sid}"
         where = f"dataFrame {label!r}, signal {name!r} ({key})"
-        values = np.array([_number(r.get(key), path, f"{where}, rec {k + 1}")
-                           for k, r in enumerate(rows)])
+        values = _numbers([r.get(key) for r in rows], path, lambda k, where=where: f"{where}, rec {k + 1}")
         channels.append(Channel(with_unit(short, unit), values, time, where))
     return Record(label, channels, utc=utc)
 
