@@ -374,16 +374,7 @@ class Search:
         of 11 % CV gain whose mean gain was not above zero passed at 0.0007, and at 0.0015 by
         ranks, raising it 17 %: hence the lower bound of :meth:`_clears`).  Ranks of 8 are too
         coarse for the family-wise test: with one block per unit the shares stay (8 campaigns'
-        lag and ambient law at 0.004 and 0.008).
-
-        The control is the null candidate: it keeps its own p (a family of one) and is asked
-        every other check a candidate is (:meth:`_within_checks`), so that it clears means
-        what accepts a candidate accepts noise (diag82: on ranked per-target blocks a random
-        walk gained 33 % in CV at p 0.0002 on a planted draw, 6.2 % within the campaigns and
-        1.6 % without the best one: a candidate would have been refused)."""
-        for ev in evals:
-            if ev.control:
-                self._within_checks(ev, current)
+        lag and ambient law at 0.004 and 0.008)."""
         family = [ev for ev in evals if not ev.control and ev.effect.transform != "remove"]
         if not family:
             return
@@ -397,17 +388,13 @@ class Search:
             ev.p_family = float(pf)
             ev.clears_bar = self._clears(ev.gain_pct, pf, ev.gain_pct_in_range, ev.p_margin,
                                          ev.n_features)
-            self._within_checks(ev, current)
-
-    def _within_checks(self, ev: Evaluation, current: CVResult) -> None:
-        """``ev`` clears only if it gains within the campaigns too (:meth:`_within_gain`)."""
-        # every kind in the campaigns scheme (within67); forward, a lag (lagwithin68)
-        if self.problem.scheme == "campaigns" or ev.effect.kind == "dynamics":
-            ev.gain_pct_within = self._within_gain(current, ev.result, campaigns=True)
-            ev.clears_bar = ev.clears_bar and ev.gain_pct_within >= self.options.min_gain_pct
-        if self.problem.scheme == "campaigns":    # and not from one campaign (clean69)
-            ev.gain_pct_within_rest = self._within_gain(current, ev.result, less_best=True)
-            ev.clears_bar = ev.clears_bar and ev.gain_pct_within_rest >= self.options.min_gain_pct
+            # every kind in the campaigns scheme (within67); forward, a lag (lagwithin68)
+            if self.problem.scheme == "campaigns" or ev.effect.kind == "dynamics":
+                ev.gain_pct_within = self._within_gain(current, ev.result, campaigns=True)
+                ev.clears_bar = ev.clears_bar and ev.gain_pct_within >= self.options.min_gain_pct
+            if self.problem.scheme == "campaigns":    # and not from one campaign (clean69)
+                ev.gain_pct_within_rest = self._within_gain(current, ev.result, less_best=True)
+                ev.clears_bar = ev.clears_bar and ev.gain_pct_within_rest >= self.options.min_gain_pct
 
     def _within_gain(self, current: CVResult, result: CVResult, campaigns: bool = False,
                      less_best: bool = False) -> float:
