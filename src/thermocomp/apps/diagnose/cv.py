@@ -58,19 +58,6 @@ from .shrink import ALPHAS, PartialRidgePath, least_error, one_standard_error
 FEATURE_CACHE_BYTES = 1e9
 
 
-@dataclass(frozen=True)
-class OffsetsStandIn:
-    r"""What an initial-state candidate ``effect`` can gain from the campaigns' offsets alone
-    (diag82b): its lag with one transient :math:`1(\mathrm{campaign} = c)(1 - e^{-t/\tau})` per
-    campaign ``c`` a fold trains on in place of the initial distances -- it fits the training
-    campaigns' offsets, sparing the inputs' coefficients their pull, and predicts none for a
-    held-out campaign (:meth:`~.search.Search._beats_offsets`)."""
-
-    effect: Effect
-    transform: str = "offsets_stand_in"
-    learns: bool = True
-
-
 @dataclass
 class Problem:
     """The train rows of one target, stacked, with their CV structure.
@@ -296,8 +283,6 @@ class CrossValidator:
         An effect that ``learns`` (initial directions) learns from the training
         rows of ``fold`` (all rows for None), as the fitted model would.
         """
-        if isinstance(effect, OffsetsStandIn):
-            return self._stand_in(effect, names, fold)
         fold = fold if effect.learns else None
         key = (effect, tuple(names) if effect.uses_inputs else None, fold)
         if key not in self._features:
@@ -316,20 +301,6 @@ class CrossValidator:
             else:
                 X = self.inputs_matrix(names) if effect.uses_inputs else np.empty((len(p.y), 0))
                 self._features[key] = effect_features(effect, X, p.context, p.campaigns, p.reference)
-        return self._features[key]
-
-    def _stand_in(self, stand_in: OffsetsStandIn, names: list[str], fold: int | None) -> np.ndarray:
-        """:class:`OffsetsStandIn`'s features: the lag and one transient per campaign of ``fold``'s
-        training rows (all campaigns for None); a held-out campaign's rows are 0 in each."""
-        key = (stand_in, tuple(names), fold)
-        if key not in self._features:
-            p, e = self.problem, stand_in.effect
-            camp = np.asarray(p.campaigns, dtype=object)
-            trained = np.array(list(dict.fromkeys(camp[p.train_rows(fold)])), dtype=object)
-            start = transient((camp[:, None] == trained[None, :]).astype(float), None,
-                              p.context["time"].to_numpy(float), p.campaigns, e.tau_s)
-            lag = self.features(replace(e, initial_state=None, initial_directions=None), names)
-            self._features[key] = np.hstack([lag, start])
         return self._features[key]
 
     def _offsets(self, columns: tuple) -> np.ndarray:

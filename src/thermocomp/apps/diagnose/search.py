@@ -68,7 +68,7 @@ from scipy.stats import t as student_t
 
 from ...core.metrics import reduction_pct
 from .candidates import CONTROL, CandidateOptions, candidates
-from .cv import CrossValidator, CVResult, OffsetsStandIn, Problem, sign_flip_maxt, sign_flip_pvalues
+from .cv import CrossValidator, CVResult, Problem, sign_flip_maxt, sign_flip_pvalues
 from .features import Effect
 from .sensors import self_prediction
 
@@ -114,8 +114,6 @@ class Evaluation:
     p_margin: float = float("nan")            # p of a gain of min_gain_pct at least (the margin)
     gain_pct_within: float | None = None       # within the held-out campaigns (campaigns CV)
     gain_pct_within_rest: float | None = None  # the same without the campaign gaining most there
-    gain_pct_within_offsets: float | None = None       # within, over its offsets stand-in (diag82b)
-    gain_pct_within_offsets_rest: float | None = None  # the same without the campaign gaining most
 
     def entry(self) -> dict:
         """The ``effects`` entry of ``diagnosis.json`` (CLI.md keys first)."""
@@ -142,9 +140,6 @@ class Evaluation:
             out["evidence"]["cv_rmse_gain_pct_within"] = self.gain_pct_within
         if self.gain_pct_within_rest is not None:
             out["evidence"]["cv_rmse_gain_pct_within_rest"] = self.gain_pct_within_rest
-        if self.gain_pct_within_offsets is not None:
-            out["evidence"]["cv_rmse_gain_pct_within_offsets"] = self.gain_pct_within_offsets
-            out["evidence"]["cv_rmse_gain_pct_within_offsets_rest"] = self.gain_pct_within_offsets_rest
         out["effect"] = e.to_dict()
         return out
 
@@ -400,26 +395,6 @@ class Search:
             if self.problem.scheme == "campaigns":    # and not from one campaign (clean69)
                 ev.gain_pct_within_rest = self._within_gain(current, ev.result, less_best=True)
                 ev.clears_bar = ev.clears_bar and ev.gain_pct_within_rest >= self.options.min_gain_pct
-            if self.problem.scheme == "campaigns" and ev.effect.initial_state and ev.clears_bar:
-                self._beats_offsets(ev)
-
-    def _beats_offsets(self, ev: Evaluation) -> None:
-        """An initial-state candidate must gain ``min_gain_pct`` within the held-out campaigns, pooled
-        and less the campaign gaining most, over its :class:`~.cv.OffsetsStandIn` too (diag82b):
-        the within gains of :meth:`_family_bar` are over the current model, and the transient,
-        near a constant per campaign, repairs the pooled fit's coefficients where the campaigns
-        carry offsets (the first probe sample's noise with ``reference=first_sample``) -- which
-        one free offset per training campaign does as well.  On clean fresh draw 8075 (8 train
-        campaigns, an exact law for the base) a 1 h lag of ``T_box1`` from the initial state gained
-        50.5 % in CV, 14.3 % within (9.6 % less the best campaign), and raised E_Y's test error
-        6.8 % as deployed; its stand-in gained 30.9 %, 13.6 % within, so 0.7 % over it.  A real
-        unmeasured mass (``lag_node``) keeps 15-45 % over it: the transient has a shape within the
-        campaign and predicts the held-out one's (``benchmarks/bench_diag82b.py``)."""
-        stand_in = self.cv.run(self.inputs(), self.effects + [OffsetsStandIn(ev.effect)])
-        ev.gain_pct_within_offsets = self._within_gain(stand_in, ev.result, campaigns=True)
-        ev.gain_pct_within_offsets_rest = self._within_gain(stand_in, ev.result, less_best=True)
-        ev.clears_bar = min(ev.gain_pct_within_offsets,
-                            ev.gain_pct_within_offsets_rest) >= self.options.min_gain_pct
 
     def _within_gain(self, current: CVResult, result: CVResult, campaigns: bool = False,
                      less_best: bool = False) -> float:
