@@ -26,7 +26,6 @@ from ..model_selection import BlockedForward, LeaveBlockOut, LeaveCampaignsOut
 from ..model_selection.extrapolation import within_range
 from .blend import Blend, fold_ratios, mean_fold_ratio, vote_weights
 from .one_step import persistence
-from .range_guard import RangeGuard, box, outside
 
 ATI = "ati"              # a candidate name: the ATI wrapper (conf/ati/cmeans.yaml) of a family
 BASELINE = "mlr"         # always validated beside the candidates, with persistence
@@ -40,9 +39,6 @@ FORWARD_ONE = "forward-chaining (one record)"
 MIN_IN_RANGE_ROWS = 20   # validation_rows='in_range': a fold with fewer in-range rows is scored whole
 BLOCKS_ONE = {"blocks": "leave-block-out (one record)", "late_blocks": "leave-late-block-out (one record)"}
 CAMPAIGN_FOLDS = ("blocked forward", "leave-campaigns-out")   # folds holding out whole campaigns
-# range_guard='folds': a fold counts with at least this many out-of-fold rows outside its fit box,
-# and the guard needs this many such folds (fewer: no evidence either way, no guard)
-GUARD_MIN_ROWS, GUARD_MIN_FOLDS = 20, 2
 
 
 class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
@@ -129,17 +125,6 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         voting rows, MLR a candidate) has mean + standard error >= 1, the reason saying so;
         ``'none'``: the blend the votes give (a model pickled before the key refits so).  The
         zero rule (``uncompensated``) then judges what is kept.
-    range_guard : {'folds', 'off'}, default 'folds'
-        (extension, auto82) Where the kept model is not MLR alone nor a zero correction: on each
-        validation fold, the out-of-fold rows with an input outside the fold's fit rows' per-input
-        [min, max] widened by 10 % of its width (:func:`~thermocomp.core.models.range_guard.box`,
-        the box a CNC checks per sample; the leverage of ``within_range`` flags rows a linear law
-        holds on too); a fold with >= 20 such rows has r_f = the kept model's summed squared error
-        there over MLR's.  With >= 2 such folds and mean r_f > 1 (MLR extrapolates better) the
-        guard is on: the model kept is a :class:`~thermocomp.core.models.range_guard.RangeGuard`,
-        MLR's correction (fitted on the same rows) wherever an input leaves the train rows' box
-        widened so, the kept model's elsewhere (``guard_``: the figures, said in the reason);
-        ``'off'``: never (a model pickled before the key loads so).
     min_gain_pct : float, default 1.0
         ``combine='best'``: MLR, when a candidate, is kept unless the best candidate's validation
         RMSE is lower
@@ -180,19 +165,17 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
                    "min_gain_pct": number(0.0, 100.0),
                    "combine": choice("vote", "best"), "keep_oof": choice(True, False),
                    "uncompensated": choice("zero", "keep"), "fallback": choice("one_se", "none"),
-                   "validation_rows": choice("all", "in_range"), "range_guard": choice("folds", "off")}
+                   "validation_rows": choice("all", "in_range")}
 
     uncompensated = "keep"   # a model pickled before the key: refitted as it was fitted
     fallback = "none"        # likewise
-    range_guard = "off"      # likewise
 
     def __init__(self, candidates=None, scheme: str = "auto", n_folds: int = 5,
                  min_train_fraction: float = 0.5, gap_blocks: float = 0.5,
                  max_seconds: float | None = None, min_gain_pct: float = 1.0, chosen=None,
                  val_scores=None, given_scores=None, combine: str = "vote", keep_oof: bool = False,
                  one_record: str = "forward", validation_rows: str = "all",
-                 uncompensated: str = "zero", fallback: str = "one_se", range_guard: str = "folds"):
-        self.range_guard = range_guard
+                 uncompensated: str = "zero", fallback: str = "one_se"):
         self.fallback = fallback
         self.uncompensated = uncompensated
         self.validation_rows = validation_rows
@@ -216,7 +199,7 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
             raise ParameterError("model.candidates is empty: name at least one model family")
         X, y = np.asarray(X, dtype=float), np.asarray(y, dtype=float)
         groups = groups_of(context)
-        self.validated_as_, self.oof_outside_ = {}, None
+        self.validated_as_ = {}
         if self.given_scores is not None:      # the val split's, computed by the stage
             self.scheme_ = "val split"
             return self._keep_best(X, y, context, dict(self.given_scores), "the val split")
@@ -253,7 +236,6 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         if self.scheme_ in CAMPAIGN_FOLDS:
             codes = np.unique(np.asarray(groups, dtype=object).astype(str), return_inverse=True)[1]
             self.oof_campaign_ = np.concatenate([codes[score] for *_, score in folds])
-        self.oof_outside_ = np.concatenate([outside(X[score], *box(X[fit])) for fit, _, score in folds])
         self.oof_in_range_ = None   # an SVD per fold: where it chooses the rows, or is kept
         if self.validation_rows == "in_range" or self.keep_oof:
             self.oof_in_range_ = np.concatenate([within_range(X, fit, score)[score]
@@ -356,40 +338,8 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
 
     def _refit(self, X, y, context):
         self.estimator_ = self._estimator(self.chosen_).fit(X, y, context=context)
-        self.guard_ = self._guarded()
-        if self.guard_ is not None and self.guard_["on"]:
-            base = self._estimator(BASELINE) if BASELINE in self.candidates else _mlr()
-            self.estimator_ = RangeGuard(self.estimator_, base.fit(X, y, context=context), *box(X))
         self.context_columns_ = context_columns(self.estimator_)
         return self
-
-    def _guarded(self) -> dict | None:
-        """``range_guard='folds'``: whether the folds say MLR extrapolates better than the kept
-        model (``{'on', 'folds', 'ratios', 'rows'}``), None where it does not apply (off, a val
-        split, MLR alone or a zero kept, no MLR validated).  Said in the reason."""
-        w = self.weights_
-        if (self.range_guard != "folds" or getattr(self, "oof_outside_", None) is None
-                or BASELINE not in self.oof_ or w == {BASELINE: 1.0} or not sum(w.values())
-                or any(n not in self.oof_ for n in w)):
-            return None
-        kept = sum(v * self.oof_[n] for n, v in w.items())
-        e_kept, e_mlr = (self.oof_y_ - kept) ** 2, (self.oof_y_ - self.oof_[BASELINE]) ** 2
-        ratios, rows = [], []
-        for f in np.unique(self.oof_fold_):
-            at = (self.oof_fold_ == f) & self.oof_outside_ & np.isfinite(e_kept) & np.isfinite(e_mlr)
-            if at.sum() >= GUARD_MIN_ROWS:
-                ratios.append(float(e_kept[at].sum() / max(e_mlr[at].sum(), 1e-300)))
-                rows.append(int(at.sum()))
-        on = len(ratios) >= GUARD_MIN_FOLDS and float(np.mean(ratios)) > 1.0
-        if len(ratios) < GUARD_MIN_FOLDS:
-            said = (f"range guard off: {len(ratios)} fold(s) with >= {GUARD_MIN_ROWS} out-of-fold rows "
-                    f"outside the fold's train range, fewer than {GUARD_MIN_FOLDS}")
-        else:
-            said = (f"range guard {'on' if on else 'off'}: where the folds extrapolate ({sum(rows)} rows of "
-                    f"{len(ratios)} folds) the kept model's MSE over MLR's is {np.mean(ratios):.4g} on "
-                    f"the mean{': MLR where an input leaves the train range (+10 %)' if on else ''}")
-        self.reason_ += "; " + said
-        return {"on": bool(on), "folds": len(ratios), "ratios": [round(r, 4) for r in ratios], "rows": rows}
 
     def _estimator(self, chosen):
         """The unfitted candidate named by ``chosen``, or the blend its weights make."""
@@ -454,8 +404,6 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         if not hasattr(self, "oof_folds_") or any(n not in self.oof_ for n in self.weights_):
             return None
         predicted = sum(w * self.oof_[n] for n, w in self.weights_.items())
-        if (getattr(self, "guard_", None) or {}).get("on"):     # as the guard predicts, fold by fold
-            predicted = np.where(self.oof_outside_, self.oof_[BASELINE], predicted)
         return (*self.oof_folds_, self.oof_y_, predicted)
 
     def __getstate__(self):
@@ -528,7 +476,6 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
                 "chosen": self.family_, "weights": {n: round(w, 4) for n, w in self.weights_.items()},
                 "combine": self.combine_, "reason": self.reason_, "scheme": self.scheme_,
                 "skipped": dict(self.skipped_),
-                "range_guard": getattr(self, "guard_", None),
                 "validated_as": dict(getattr(self, "validated_as_", {})),
                 "validation_s": {n: round(s, 3) for n, s in self.fit_seconds_.items()}}
 
@@ -536,12 +483,6 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
 # a candidate whose folds took this long is said at INFO (else DEBUG): on a year at 1 min the
 # candidates' validation ran 13 minutes without a line (scale58)
 SAY_AFTER_S = 10.0
-
-
-def _mlr():
-    from .linear import MLR
-
-    return MLR()
 
 
 def _said(name: str, seconds: float, score: float | None, why: str | None) -> None:

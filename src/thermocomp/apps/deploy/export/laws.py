@@ -109,10 +109,7 @@ def target_laws(target: str, est, cols: np.ndarray, inputs: list, powers: dict,
     member, an ATI interval's model) is its ARX's laws, its forest appended to ``beside``
     (:class:`Beside`, :mod:`.forest`); an ``lstm`` its skip path's law, its network likewise
     (:mod:`.recurrent`)."""
-    try:
-        parts, own = members(est), []
-    except NotExportable as exc:
-        raise NotExportable(f"{target}: {exc}") from None
+    parts, own = members(est), []
     for name, w, member in parts:
         try:
             for lo, hi, base, interacts, derived in _intervals(member):

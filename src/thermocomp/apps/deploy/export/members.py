@@ -13,8 +13,6 @@ import sys
 from ....core.models.ati import ATIRegressor
 from ....core.models.auto import AutoRegressor
 from ....core.models.blend import Blend
-from ....core.models.range_guard import RangeGuard
-from .errors import NotExportable
 
 
 def one_model(est):
@@ -45,11 +43,6 @@ def members(est) -> list[tuple[str | None, float, object]]:
     if not isinstance(est, (AutoRegressor, Blend)):
         return [(None, 1.0, est)]
     kept = est.estimator_ if isinstance(est, AutoRegressor) else est
-    if isinstance(kept, RangeGuard):
-        raise NotExportable(f"model=auto kept {est.family_} guarded by its train range (MLR's correction "
-                            "where an input leaves it: model.estimator.range_guard, the reason in "
-                            "metrics.json targets.<t>.auto): the code has no such switch; fit with "
-                            "model.estimator.range_guard=off to export")
     if isinstance(kept, Blend):
         return [(name, float(w), one_model(e))
                 for (name, e), w in zip(kept.estimators_.items(), kept.weights_)]
