@@ -65,7 +65,62 @@ runs alternated / side by side on the same draws:
    2 % of shipped's after.
 6. tests/apps/test_diagnose_*.py and tests/shell/test_diagnose*.py pass with the rule.
 
-Not scored yet.
+Scored (2026-12-04, 2 shared cores; shipped = main's src, 7b8e171a's, ``PYTHONPATH=/work/main/src``;
+rule = this tree at 22a75823; the two ``fresh`` runs side by side on the same draws, then the two
+``bench_diagnose_faults58.py`` runs side by side on one ``write`` root; ``compare ROOT shipped rule``;
+diagnose CPU summed over the 20 draws 18.7 s shipped, 22.6 s rule)
+------------------------------------------------------------------------------------------------
+Test RMSE as deployed (µm); blocks of the target shipped / rule; every other target of the 20
+draws identical in both (clean: nothing accepted anywhere, blocks 8/8/8 shipped; the rule's own
+blocks 8 to 569)::
+
+  draw / target         before  shipped                          rule
+  planted:8243 E_X (8)  0.707   0.693 T_bearing_f3 900 s +init   0.707 nothing (stand-in refuses)
+  planted:8243 E_Y (68) 5.506   5.506 nothing                    2.315 S_pos_Y x (T_box1 over T_amb)
+  planted:8244 E_X (8)  0.865   0.801 T_bearing_f1 900 s +init   0.865 nothing (+8.0 % vs shipped;
+                                                                 over its stand-in 2.1-3.2 % within,
+                                                                 -3.3 to -4.6 % less the best)
+  planted:8244 E_Y (19) 2.474   2.474 nothing                    1.568 S_pos_Y x T_nose
+  planted:8246 E_Y (80) 2.622   2.622 nothing                    1.516 S_pos_Y x (T_box1 over T_amb)
+  planted:8247 E_Y (63) 5.692   3.384 the planted product        2.908 the same + S_spindle_rpm 900 s
+
+1. **Holds.**  Found 7 of 10 shipped -> 10 of 10 rule (+3; 8243, 8244, 8246 gained); where both
+   found, the rule's after equal (6) or lower (8247, -14.1 %).
+2. **Holds.**  Clean 8251-8260: nothing accepted on any target, either tree.
+3. **Holds.**  The control clears on no target of the 20 draws, either tree.
+4. **Holds.**  > 2 % worse after than before: planted:8242 E_Y 2.317 -> 2.390 (+3.1 %) only, in
+   both trees with the same after (the planted product, shipped's own).
+5. **Fails.**  bench_diagnose_faults58's 20 rows: 16 identical; faults found 10 of 16 in both;
+   climate_room (39 train campaigns) loses shipped's initial-state lags to the offsets stand-in:
+   drift E_Z 0.3262 -> 0.3862 (+18.4 %), contact E_Z 0.3262 -> 0.3862 (+18.4 %), stuck E_X
+   0.5146 -> 0.6016 (+16.9 %), stuck E_Z 0.4779 -> 0.5312 (+11.2 %) (after, shipped -> rule);
+   twin_lathe:drift E_Z1_error 0.386 -> 0.320 (-17.1 %, the 4 h lag on its own blocks, as diag82).
+6. **Fails.**  127 of 128 tests (tests/apps/test_diagnose_*.py, tests/shell/test_diagnose*.py,
+   with the two rule tests; 68.6 s CPU) pass; test_diagnose_scenarios[lag_node] fails: its E_X
+   already has 31 ranked blocks shipped (16 train campaigns), where change 3 now refuses the
+   13-regressor lag of the model inputs from the initial state as saturating (CV gain 62.8 %,
+   family-wise p < 1e-4); the single-sensor lags that clear (T_box1 4 h +init, 53-57 %) are not
+   chosen (``choose``: none when all are clearly worse than one that did not clear): nothing.
+   The test fails the same with the src less the stand-in: change 3's, not diag82b's.
+
+Measured after scoring (not the bar, these draws are spent): the rule less the stand-in
+(changes 1 and 3, ``_beats_offsets`` not called): fresh found 10 of 10, clean nothing, control
+nowhere, planted:8243 / 8244 E_X keep shipped's lags (0.693 / 0.801), planted:8246 E_Y 1.869
+(a 1 h T_motor2 lag from the initial state taken second: the stand-in had stopped it, 1.516),
+> 2 % worse only 8242 E_Y (shipped's); faults58 19 of 20 rows identical to shipped, twin_lathe
+-17.1 % as above.  So item 5's loss is the stand-in's (as grinder 5687 for diag82b) and item 6's
+is change 3's.  Planted 8159's E_X (the found case): taken with the rule; its lag passed the
+stand-in, so the variant less it cannot refuse it either (not run).
+
+**REFUSED** (items 5 and 6).  src reverted to 7b8e171a; the rule's src diff and its two tests
+(diag82's test_diagnose_blocks82.py, diag82b's test_diagnose_offsets82.py, both failing on main)
+in ``diag82d_rule.patch``.  What the numbers say: per-target blocks with the checks of a
+one-block design found the planted effect on 10 of 10 fresh draws (shipped 7) with nothing on
+clean and the control quiet; the offsets stand-in loses real initial-state gains (climate_room,
+8244) and does not stop 8159's; change 3 is too broad -- on a design that is ranked already when
+shipped (the lag_node scenario) it refuses what shipped accepts.  Next: ask a target on its own
+blocks what the *shared* design would have asked (saturation, the "over" form where the shared
+design has one block per unit), without the stand-in; needs fresh seeds (8241-8260 are spent).
 """
 
 from __future__ import annotations

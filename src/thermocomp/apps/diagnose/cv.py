@@ -58,19 +58,6 @@ from .shrink import ALPHAS, PartialRidgePath, least_error, one_standard_error
 FEATURE_CACHE_BYTES = 1e9
 
 
-@dataclass(frozen=True)
-class OffsetsStandIn:
-    r"""What an initial-state candidate ``effect`` can gain from the campaigns' offsets alone
-    (diag82b): its lag with one transient :math:`1(\mathrm{campaign} = c)(1 - e^{-t/\tau})` per
-    campaign ``c`` a fold trains on in place of the initial distances -- it fits the training
-    campaigns' offsets, sparing the inputs' coefficients their pull, and predicts none for a
-    held-out campaign (:meth:`~.search.Search._beats_offsets`)."""
-
-    effect: Effect
-    transform: str = "offsets_stand_in"
-    learns: bool = True
-
-
 @dataclass
 class Problem:
     """The train rows of one target, stacked, with their CV structure.
@@ -132,29 +119,20 @@ class Problem:
         self.held_out = self.unit_index >= 0     # the scored units' rows, measured or not
         self.block_index = np.where(self.validated, self.unit_index, -1)   # the test's units
         self.block_samples = None                                           # (below)
-        self.penalty_index = self.block_index      # the deployed penalty's standard error's
 
     @property
     def sparse(self) -> bool:
         """True when the error is not measured at every row (a probe cycle)."""
         return not bool(self.measured.all())
 
-    def set_test_blocks(self, length: int, penalty_length: int | None = None) -> None:
+    def set_test_blocks(self, length: int) -> None:
         """Test the gains on time blocks of ``length`` samples within the units: as long as the
         model's CV residual takes to decorrelate (:mod:`~thermocomp.core.model_selection.blocks`).
         With an error measured now and then, ``length`` counts measured samples (the residual's
-        decorrelation is measured on the measured series at its own spacing).
-        ``penalty_length`` (default ``length``): the blocks over which the deployed penalty's
-        one-standard-error rule takes its standard error (:meth:`CrossValidator.run`)."""
+        decorrelation is measured on the measured series at its own spacing)."""
         self.block_samples = int(length)
-        self.block_index = self._cut(self.block_samples)
-        self.penalty_index = (self.block_index if penalty_length is None
-                              or int(penalty_length) == self.block_samples
-                              else self._cut(int(penalty_length)))
-
-    def _cut(self, length: int) -> np.ndarray:
-        return cut_blocks(self.unit_index, self.campaigns, length, timeline=self.forward,
-                          scored=self.measured)
+        self.block_index = cut_blocks(self.unit_index, self.campaigns, self.block_samples,
+                                      timeline=self.forward, scored=self.measured)
 
     @property
     def n_blocks_tested(self) -> int:
@@ -305,8 +283,6 @@ class CrossValidator:
         An effect that ``learns`` (initial directions) learns from the training
         rows of ``fold`` (all rows for None), as the fitted model would.
         """
-        if isinstance(effect, OffsetsStandIn):
-            return self._stand_in(effect, names, fold)
         fold = fold if effect.learns else None
         key = (effect, tuple(names) if effect.uses_inputs else None, fold)
         if key not in self._features:
@@ -325,20 +301,6 @@ class CrossValidator:
             else:
                 X = self.inputs_matrix(names) if effect.uses_inputs else np.empty((len(p.y), 0))
                 self._features[key] = effect_features(effect, X, p.context, p.campaigns, p.reference)
-        return self._features[key]
-
-    def _stand_in(self, stand_in: OffsetsStandIn, names: list[str], fold: int | None) -> np.ndarray:
-        """:class:`OffsetsStandIn`'s features: the lag and one transient per campaign of ``fold``'s
-        training rows (all campaigns for None); a held-out campaign's rows are 0 in each."""
-        key = (stand_in, tuple(names), fold)
-        if key not in self._features:
-            p, e = self.problem, stand_in.effect
-            camp = np.asarray(p.campaigns, dtype=object)
-            trained = np.array(list(dict.fromkeys(camp[p.train_rows(fold)])), dtype=object)
-            start = transient((camp[:, None] == trained[None, :]).astype(float), None,
-                              p.context["time"].to_numpy(float), p.campaigns, e.tau_s)
-            lag = self.features(replace(e, initial_state=None, initial_directions=None), names)
-            self._features[key] = np.hstack([lag, start])
         return self._features[key]
 
     def _offsets(self, columns: tuple) -> np.ndarray:
@@ -442,13 +404,11 @@ class CrossValidator:
         return CampaignLeastSquares(Z, p.y, rows, fit_intercept=True), members
 
     def _block_mse(self, err: np.ndarray) -> np.ndarray:
-        """Each penalty block's mean of ``err`` (rows x columns): blocks x columns (the one-SE
-        rule's; :meth:`Problem.set_test_blocks`)."""
+        """Each test block's mean of ``err`` (rows x columns): blocks x columns."""
         p, ok = self.problem, self.problem.validated
-        index = p.penalty_index[ok]
-        n = int(index.max()) + 1 if index.size else 0
-        counts = np.maximum(np.bincount(index, minlength=n), 1)
-        return np.stack([np.bincount(index, weights=e, minlength=n) / counts
+        n = p.n_blocks_tested
+        counts = np.maximum(np.bincount(p.block_index[ok], minlength=n), 1)
+        return np.stack([np.bincount(p.block_index[ok], weights=e, minlength=n) / counts
                          for e in err[ok].T], axis=1)
 
     def _result(self, pred: np.ndarray, alpha: float | None = None) -> CVResult:

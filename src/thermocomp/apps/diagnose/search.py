@@ -33,9 +33,9 @@ once, at the end, to report before and after):
    :math:`p` family-wise over the round's candidates: :func:`~.cv.sign_flip_maxt`,
    see :meth:`Search._family_bar`), that gain on the rows where no fold extrapolates, whose
    gain (with test blocks finer than the units) reaches ``min_gain_pct`` at ``alpha`` too,
-   block by block (:func:`margin_pvalue`, :meth:`Search._clears`), whose regressors cannot
-   take one value per campaign a fold trains on (:meth:`Search.saturates`; on any design),
-   and beat the control, the
+   block by block (:func:`margin_pvalue`, :meth:`Search._clears`), whose regressors (with
+   one test block per campaign) cannot take one value per campaign a fold trains on
+   (:meth:`Search.saturates`), and beat the control, the
    simplest one within one standard error of the largest gain of every refitted candidate,
    cleared or not (fewest extra regressors; ties: the largest 95 % lower confidence bound of
    the gain, :func:`gain_lower_bound`; none when all are clearly worse than one that did not
@@ -68,7 +68,7 @@ from scipy.stats import t as student_t
 
 from ...core.metrics import reduction_pct
 from .candidates import CONTROL, CandidateOptions, candidates
-from .cv import CrossValidator, CVResult, OffsetsStandIn, Problem, sign_flip_maxt, sign_flip_pvalues
+from .cv import CrossValidator, CVResult, Problem, sign_flip_maxt, sign_flip_pvalues
 from .features import Effect
 from .sensors import self_prediction
 
@@ -114,8 +114,6 @@ class Evaluation:
     p_margin: float = float("nan")            # p of a gain of min_gain_pct at least (the margin)
     gain_pct_within: float | None = None       # within the held-out campaigns (campaigns CV)
     gain_pct_within_rest: float | None = None  # the same without the campaign gaining most there
-    gain_pct_within_offsets: float | None = None       # within, over its offsets stand-in (diag82b)
-    gain_pct_within_offsets_rest: float | None = None  # the same without the campaign gaining most
 
     def entry(self) -> dict:
         """The ``effects`` entry of ``diagnosis.json`` (CLI.md keys first)."""
@@ -142,9 +140,6 @@ class Evaluation:
             out["evidence"]["cv_rmse_gain_pct_within"] = self.gain_pct_within
         if self.gain_pct_within_rest is not None:
             out["evidence"]["cv_rmse_gain_pct_within_rest"] = self.gain_pct_within_rest
-        if self.gain_pct_within_offsets is not None:
-            out["evidence"]["cv_rmse_gain_pct_within_offsets"] = self.gain_pct_within_offsets
-            out["evidence"]["cv_rmse_gain_pct_within_offsets_rest"] = self.gain_pct_within_offsets_rest
         out["effect"] = e.to_dict()
         return out
 
@@ -379,16 +374,7 @@ class Search:
         of 11 % CV gain whose mean gain was not above zero passed at 0.0007, and at 0.0015 by
         ranks, raising it 17 %: hence the lower bound of :meth:`_clears`).  Ranks of 8 are too
         coarse for the family-wise test: with one block per unit the shares stay (8 campaigns'
-        lag and ambient law at 0.004 and 0.008).
-
-        The control is the null candidate: it keeps its own p (a family of one) and is asked
-        every other check a candidate is (:meth:`_within_checks`), so that it clears means
-        what accepts a candidate accepts noise (diag82: on ranked per-target blocks a random
-        walk gained 33 % in CV at p 0.0002 on a planted draw, 6.2 % within the campaigns and
-        1.6 % without the best one: a candidate would have been refused)."""
-        for ev in evals:
-            if ev.control:
-                self._within_checks(ev, current)
+        lag and ambient law at 0.004 and 0.008)."""
         family = [ev for ev in evals if not ev.control and ev.effect.transform != "remove"]
         if not family:
             return
@@ -402,37 +388,13 @@ class Search:
             ev.p_family = float(pf)
             ev.clears_bar = self._clears(ev.gain_pct, pf, ev.gain_pct_in_range, ev.p_margin,
                                          ev.n_features)
-            self._within_checks(ev, current)
-
-    def _within_checks(self, ev: Evaluation, current: CVResult) -> None:
-        """``ev`` clears only if it gains within the campaigns too (:meth:`_within_gain`)."""
-        # every kind in the campaigns scheme (within67); forward, a lag (lagwithin68)
-        if self.problem.scheme == "campaigns" or ev.effect.kind == "dynamics":
-            ev.gain_pct_within = self._within_gain(current, ev.result, campaigns=True)
-            ev.clears_bar = ev.clears_bar and ev.gain_pct_within >= self.options.min_gain_pct
-        if self.problem.scheme == "campaigns":    # and not from one campaign (clean69)
-            ev.gain_pct_within_rest = self._within_gain(current, ev.result, less_best=True)
-            ev.clears_bar = ev.clears_bar and ev.gain_pct_within_rest >= self.options.min_gain_pct
-        if self.problem.scheme == "campaigns" and ev.effect.initial_state and ev.clears_bar:
-            self._beats_offsets(ev)
-
-    def _beats_offsets(self, ev: Evaluation) -> None:
-        """An initial-state candidate must gain ``min_gain_pct`` within the held-out campaigns, pooled
-        and less the campaign gaining most, over its :class:`~.cv.OffsetsStandIn` too (diag82b):
-        the within gains of :meth:`_family_bar` are over the current model, and the transient,
-        near a constant per campaign, repairs the pooled fit's coefficients where the campaigns
-        carry offsets (the first probe sample's noise with ``reference=first_sample``) -- which
-        one free offset per training campaign does as well.  On clean fresh draw 8075 (8 train
-        campaigns, an exact law for the base) a 1 h lag of ``T_box1`` from the initial state gained
-        50.5 % in CV, 14.3 % within (9.6 % less the best campaign), and raised E_Y's test error
-        6.8 % as deployed; its stand-in gained 30.9 %, 13.6 % within, so 0.7 % over it.  A real
-        unmeasured mass (``lag_node``) keeps 15-45 % over it: the transient has a shape within the
-        campaign and predicts the held-out one's (``benchmarks/bench_diag82b.py``)."""
-        stand_in = self.cv.run(self.inputs(), self.effects + [OffsetsStandIn(ev.effect)])
-        ev.gain_pct_within_offsets = self._within_gain(stand_in, ev.result, campaigns=True)
-        ev.gain_pct_within_offsets_rest = self._within_gain(stand_in, ev.result, less_best=True)
-        ev.clears_bar = min(ev.gain_pct_within_offsets,
-                            ev.gain_pct_within_offsets_rest) >= self.options.min_gain_pct
+            # every kind in the campaigns scheme (within67); forward, a lag (lagwithin68)
+            if self.problem.scheme == "campaigns" or ev.effect.kind == "dynamics":
+                ev.gain_pct_within = self._within_gain(current, ev.result, campaigns=True)
+                ev.clears_bar = ev.clears_bar and ev.gain_pct_within >= self.options.min_gain_pct
+            if self.problem.scheme == "campaigns":    # and not from one campaign (clean69)
+                ev.gain_pct_within_rest = self._within_gain(current, ev.result, less_best=True)
+                ev.clears_bar = ev.clears_bar and ev.gain_pct_within_rest >= self.options.min_gain_pct
 
     def _within_gain(self, current: CVResult, result: CVResult, campaigns: bool = False,
                      less_best: bool = False) -> float:
@@ -502,16 +464,14 @@ class Search:
         ranked = self.problem.n_blocks_tested > self.problem.n_units
         return bool(gain_pct >= self.options.min_gain_pct and p <= self.options.alpha
                     and in_range_pct > 0.0 and (p_margin <= self.options.alpha or not ranked)
-                    and not self.saturates(n_features))
+                    and (ranked or not self.saturates(n_features)))
 
     def saturates(self, n_features: int) -> bool:
         """True when ``n_features`` extra regressors and the intercept can take one value per
-        campaign a fold trains on.  :meth:`_clears` asks it on every design (it asked it with
-        one test block per campaign only until diag82d: a target's own finer blocks then let a
-        saturating product bank through, test_diagnose_pde66); such a candidate can match the
-        campaigns' own offsets -- the error's zero point, the probe noise of the first sample
-        with ``reference=first_sample`` -- alike in every fold, and its held-out gains test a
-        chance alignment of a few numbers, not an effect.
+        campaign a fold trains on.  With one test block per campaign (:meth:`_clears` asks it
+        then) such a candidate can match the campaigns' own offsets -- the error's zero point,
+        the probe noise of the first sample with ``reference=first_sample`` -- alike in every
+        fold, and its held-out gains test a chance alignment of a few numbers, not an effect.
         On clean data with 8 train campaigns (seed 4004, 56 % of the CV error in the campaigns'
         means) a lag of the 10 inputs from the initial thermal state (12 regressors) gained
         25-67 % in each held-out campaign (p 1/256; at the campaign level stronger than the
@@ -526,16 +486,15 @@ class Search:
 
     def _bank_untestable(self, n_inputs: int) -> bool:
         """True when a state times the rises of all ``n_inputs`` inputs (``inputs_product``) cannot
-        clear: the bank saturates (:meth:`saturates`; on any design since diag82d -- on finer
-        blocks the bank was taken instead, planted 8155 / 8157 +19 / +30 % against the
-        form's after, ``benchmarks/bench_diag82.py``).  Only then
+        clear: one test block per CV unit and the bank saturates (:meth:`saturates`).  Only then
         does a state times one temperature's rise over the air's (``Effect.over``) stand in for
         it (planted72): a tilt is a structure's gradient to the air, which the bank reads (the
         year-round VMC's column tilt: R^2 .96-.98) and one sensor's rise does not (.82-.85), the
         rise over the air's in one regressor nearly (.94-.96).  Offered beside a bank that can be
         tested it was taken as the simpler within one standard error and read the tilt less well
         (fresh 7298 / 7300: test +10.0 / +5.2 %; ``benchmarks/bench_planted72.py``)."""
-        return self.saturates(n_inputs)
+        p = self.problem
+        return p.n_blocks_tested <= p.n_units and self.saturates(n_inputs)
 
     def _shortlist(self, scored: list[tuple[Effect, float]]) -> list[tuple[Effect, float]]:
         opts = self.options
