@@ -29,7 +29,7 @@ COMMAND_BENCHES = (
     "bench_cdrop77", "bench_clamp74", "bench_clamp75", "bench_clamp78", "bench_clean69", "bench_clockset71",
     "bench_cmon76", "bench_cmon80", "bench_connect72", "bench_cvpick69", "bench_deploy73", "bench_derive71",
     "bench_diag70", "bench_diag73", "bench_diag74", "bench_diag75", "bench_diag76", "bench_diag77",
-    "bench_diag81b", "bench_diag81c", "bench_diag82", "bench_diag82b", "bench_diagfault65",
+    "bench_diag81b", "bench_diag81c", "bench_diag82", "bench_diag82b", "bench_diag82d", "bench_diagfault65",
     "bench_diagfault72", "bench_diagpower67", "bench_diagref65", "bench_drift74", "bench_fault70",
     "bench_faults71", "bench_fresh69", "bench_gate71", "bench_gate77", "bench_initlag67", "bench_iso67",
     "bench_jig68", "bench_keysight70", "bench_lagwithin68", "bench_margin67", "bench_mon71", "bench_mon72",
