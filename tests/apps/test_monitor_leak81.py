@@ -12,7 +12,6 @@ field, the tank's noise beat its growth over a window): the strict xfail holds t
 from __future__ import annotations
 
 import numpy as np
-import pytest
 
 from test_monitor_readmit80 import NAMES, nut_field
 from thermocomp.apps.deploy.surveillance import SensorMonitor
@@ -39,9 +38,6 @@ def test_back_on_its_true_reading_the_nut_is_re_admitted():
     assert not mon.excluded
 
 
-@pytest.mark.xfail(strict=True, reason="known gap (mon81, rule refused): a sensor no other "
-                   "predicts is re-admitted once no detector fires, whatever its reading does to "
-                   "the others' field")
 def test_back_within_the_margin_but_8_k_off_the_others_field_it_stays_out():
     mon, events = _nut_events(8.0)
     assert [e["to"] for e in events] == ["excluded"], events
