@@ -29,8 +29,8 @@ field *cooled* (RMS rise 7.5 -> 5.5 K), then hovered at 0.6-0.7 while the field 
 at shipped's four re-admissions (8.87, 9.12, 9.76, 12.32 h) the share was 1.00 / 1.24 / 0.96 /
 0.75 of the memory's.  So the lever's found cases do not sit where the notes put them: the tank
 is, near its exclusion, a leak grown in proportion to the field's warming, and the healthy
-sensor's leak grew as the field cooled.  The rule is scored as proposed all the same (the bar
-was set before the trace; the rule is not bent to it).
+sensor's leak grew as the field cooled.  The rule is the lever as the notes propose it (not bent
+to the trace; the bar was set with the trace in hand, before scoring).
 
 The rule (written and committed before it was scored)
 -----------------------------------------------------
@@ -65,6 +65,42 @@ The bar (written before scoring; REFUSED if any part fails)
 3. Drift stays out once out: jig 8011's ``Hydraulik Tank`` and the drifting sensor on every
    fresh drift record (>= 4) where it is excluded: excluded once per campaign (no flap).
 4. ``tests/apps`` monitor tests pass (the leak81 strict xfail turned into a test).
+
+Scored (2026-12-04; shipped = 7b8e171a's ``src``, the rule = 45651fa6's, each from ``git archive``;
+MLR; ROOT /tmp/m82, mon81's data copied from /tmp/m81g/data; 69 records a tree, the two trees
+run side by side; shipped's 25 lines that mon81 also ran equal to its ``shipped.jsonl``):
+**REFUSED** (part 3).  Exclusions x / re-admissions x of the sensor, adaptive RMSE (µm) shipped ->
+rule (fixed in brackets).  Three records moved, all by the level test on a sensor out of range:
+
+* vtl 7846 ``drift``: ``Getriebe`` (out of range at 20.85 h) 1x / 1x -> 1x / 0x, dX / dZ 18.900 /
+  1.626 -> 17.971 / 1.498 (17.093 / 1.514); vtl 8094 1x / 1x -> 1x / 0x, 13.949 / 1.134 -> 13.311
+  / 1.058 (14.796 / 1.219); fresh vtl 8196 2x / 1x -> 1x / 0x, 22.149 / 1.452 -> 22.158 / 1.450
+  (19.590 / 1.625).  mon81's level rule did the same on the first two.
+* Part 3 FAILED: the drift's growth branch changed nothing.  jig 8011 ``Hydraulik Tank`` 3x / 2x
+  in both trees (12.434 / 4.095 / 5.271 both), and the fresh drifts flap as shipped: jig 8191
+  3x / 2x, 8193 2x / 1x, 8194 3x / 2x (8192 1x / 0x, vtl 8195 never excluded); RMSE equal.  The
+  rule's own figures at the tank's two re-admissions (traced on the rule's ``_leak_passes``,
+  /tmp/m82/trace3.py, not kept): the leak 0.73 / 0.75 of the band (so the level test fails), its
+  share of the field's rise 1.136 / 1.097 of the memory's (within 1.5: back); at ``Gabelkopf``'s
+  four (8.87, 9.12, 9.76, 12.32 h): 1.11 / 1.22 / 0.94 / 0.92.  No growth factor separates them:
+  one below 1.097 that keeps the tank out holds ``Gabelkopf`` at 8.87 and 9.12 h (the stale hold
+  mon81 and mon81g paid for).
+* Part 1 passed: every one of the 25 healthy records (jig 8011, 8091-8093, fresh 8191-8194; vtl
+  7846, 8094-8096, fresh 8195-8196; spindle 8097-8098; gantry 7781, 8099-8100, fresh 8197-8198;
+  swiss 7778, 7790, 8101-8102) the same events and RMSE as shipped; gantry 7781's ``Gabelkopf``
+  4x / 4x as shipped, E_dY 3.675 / E_dZ 5.614 both (0.291 / 0.588 fixed).
+* Part 2 passed: every fault excluded when shipped excludes it, every dropout / jump re-admitted
+  as shipped, frozen ones kept out as shipped, RMSE equal except the three above.
+* Part 4 (the rule's ``src``, the 10 ``tests/apps/test_monitor*`` / ``readmit`` files): 28 passed,
+  1 xfail (mon77's frozen pair), and leak81's nut test passes (it was turned into a test).
+
+The src change is reverted; the rule is ``benchmarks/mon82_rule.patch``; leak81's strict xfail
+stays.  Left (not scored): the level test for a sensor out of range alone (the three vtl records
+above, and leak81's nut) is a rule of its own, with its own bar; the tank's drift, seen from its
+start (4.2 h), grew its leak with a warming field for two hours, so a test that tells it from a
+healthy sensor needs a longer memory than ``EXCURSION_TAU_S`` (the leak against hours, not 30
+min) or another evidence than the leak; 3 of 4 fresh jig drifts flap (8191, 8193, 8194): the
+case is common on this machine.
 """
 from __future__ import annotations
 

@@ -1,17 +1,10 @@
-"""Re-admission of an excluded sensor in :class:`~.monitor.SensorMonitor` (hysteresis, judged together).
-
-A sensor no other predicts is judged by no band of its own; what its reading does to the others'
-field is its *leak*: of every sensor judged with it and without it, the change of its
-leave-one-out error, as a share of its warning band.  Back only where its leak is within half
-their band, or, out for explaining their errors, where the leak hovers against the field's rise
-(no larger a share of it than the slow memory's leak of its rise, within ``EXCURSION_GROWTH``, as
-:mod:`.excursion` judges an excursion): a drift's leak grows where the field does not (mon82)."""
+"""Re-admission of an excluded sensor in :class:`~.monitor.SensorMonitor` (hysteresis, judged together)."""
 
 from __future__ import annotations
 
 import numpy as np
 
-from .states import EXCURSION_GROWTH, OK, READMIT
+from .states import OK, READMIT
 
 
 class Readmission:
@@ -81,11 +74,8 @@ class Readmission:
         its judgement until its reading went missing, the band that kept it in (the half band kept a
         healthy lathe sensor whose error sits at 0.9 of its band out for an hour after one empty
         logger row: adaptive 1.14x fixed)."""
-        return np.where(self._lost(), 1.0, READMIT) * self.warning_c
-
-    def _lost(self) -> np.ndarray:
-        """The sensors out only for a dropout (their last detector a missing reading)."""
-        return self._dropped & ~self._by_field & (self._jumps == 0)
+        lost = self._dropped & ~self._by_field & (self._jumps == 0)
+        return np.where(lost, 1.0, READMIT) * self.warning_c
 
     def _pass_once_back(self, trial: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """``(passes, worst error)`` of the sensors of the set ``trial``: their leave-one-out
@@ -108,41 +98,4 @@ class Readmission:
         if explains.any():
             judged = trial & ~blind
             ok[explains] = bool((worst[judged] < self.warning_c[judged]).all())
-        # one no other predicts, out for anything but a dropout: its leak onto the others judged
-        # too (the Hydraulik Tank drifting 1 K/h came back by the band it had left by and went
-        # out again 40 s later; a gearbox out of range came back 14.8 K off on calm alone)
-        for u in np.flatnonzero(ok & ~self._active & ~self._predictable & ~self._lost()):
-            ok[u] = self._leak_passes(u, trial, H, M, lev)
         return ok, worst
-
-    def _leak_passes(self, u: int, trial: np.ndarray, H: np.ndarray, M: np.ndarray,
-                     lev: np.ndarray) -> bool:
-        """Whether the leak of ``u`` onto the sensors judged in ``trial`` with it and without it
-        lets it back (module doc): within ``READMIT`` of their bands over the window, or, out for
-        explaining them, its window's mean share of the field's rise (the others' RMS referenced
-        reading) within ``EXCURSION_GROWTH`` of the slow memory's, for every judged sensor.  True
-        where too few sensors are left without ``u`` to judge (the test it passed stands)."""
-        rest = trial.copy()
-        rest[u] = False
-        if rest.sum() < self.min_active_:
-            return True
-        M2, lev2 = self._operator(rest)
-        both = rest & (lev < self.pod.max_leverage) & (lev2 < self.pod.max_leverage)
-        if not both.any():
-            return True
-
-        def leak(X: np.ndarray) -> np.ndarray:
-            with np.errstate(divide="ignore", invalid="ignore"):
-                e_in = (X[:, both] - X[:, trial] @ M[both].T) / (1 - lev[both])
-                e_out = (X[:, both] - X[:, rest] @ M2[both].T) / (1 - lev2[both])
-            return np.abs(e_in - e_out) / self.warning_c[both]
-
-        now = leak(H)
-        if now.max() < READMIT:
-            return True
-        if not (self._explains[u] and self._slow_ok and np.isfinite(self._slow_t)):
-            return False     # out of range or for a jump: an offset hovers too (vtl78's 14.8 K)
-        then = leak(self._slow[None])[0]
-        rise_now = np.sqrt(np.mean(H[:, rest] ** 2))
-        rise_then = np.sqrt(np.mean(self._slow[rest] ** 2))
-        return bool(np.all(now.mean(axis=0) * rise_then <= EXCURSION_GROWTH * then * rise_now))
