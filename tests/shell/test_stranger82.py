@@ -10,7 +10,9 @@ import datetime as dt
 from pathlib import Path
 
 import numpy as np
+import pytest
 
+from conftest import FAST
 from test_stranger68 import ROWS, linear_run
 from thermocomp.core.io import read_dataset
 from thermocomp.shell.cli import main
@@ -78,3 +80,23 @@ def test_init_proposes_a_gl840_folders_roles_and_gap(tmp_path, capsys):
     assert "a Graphtec logger's CSV" in said and "data.max_gap_samples=4" in said, said
     conf = (tmp_path / "init" / "conf" / "data" / "lathe.yaml").read_text()
     assert "error:\n  - DX_DORN\n  - DZ_DORN" in conf and "- Z_ISTWERT" in conf, conf
+
+
+def test_a_gl840_file_piped_into_monitor_streams_as_the_file_does(tmp_path, monkeypatch, capsys):
+    """(Before: "stdin is not a CSV table with a header, data.delimiter=',' (Error tokenizing
+    data ...)": the logger's header block read as the table.)  The test run piped in as the
+    logger wrote it streams to the RMSE its file streams to."""
+    import io as _io
+    import json
+
+    for run in (1, 2):
+        path = gl840(tmp_path / "lathe", run)
+    common = ["monitor", f"data.path={tmp_path / 'lathe'}", "data.roles.error=[D?_DORN]",
+              "data.roles.state=[Z_*]", "data.test_fraction=0.5", *FAST]
+    assert main([*common, f"out={tmp_path / 'file'}"]) == 0
+    monkeypatch.setattr("sys.stdin", _io.TextIOWrapper(_io.BytesIO(path.read_bytes())))
+    assert main([*common, "monitor.input=-", f"out={tmp_path / 'pipe'}"]) == 0, capsys.readouterr().err
+    said = [json.loads((tmp_path / k / "monitor.json").read_text())["targets"] for k in ("file", "pipe")]
+    for target in ("E_DX_DORN", "E_DZ_DORN"):
+        assert said[1][target]["n_samples"] == ROWS
+        assert said[1][target]["rmse_fixed"] == pytest.approx(said[0][target]["rmse_fixed"], rel=1e-12)

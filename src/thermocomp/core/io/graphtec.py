@@ -25,7 +25,7 @@ import numpy as np
 from ...base.log import logger
 from .contract import ContractError
 from .encoding import UTF8, check_text, text_codec
-from .labfile import Channel, Record, with_unit
+from .labfile import Channel, Record, records_as_csv, with_unit
 
 _FIRST = re.compile(r'^\ufeff?"?Model"?\s*,\s*"?GL\d')
 _MISSING = re.compile(r"BURNOUT|\+{3,}|-{3,}", re.IGNORECASE)   # a broken TC, out of range
@@ -54,6 +54,24 @@ def graphtec_records(path: Path, encoding: str = UTF8) -> list[Record]:
     except UnicodeDecodeError:
         raise ContractError(f"file is not {encoding} text (a Windows export: data.encoding=cp1252)",
                             file=path) from None
+    return [_record(lines, path.stem, path)]
+
+
+def is_graphtec_text(text: str) -> bool:
+    """``text`` (a stream's) is a Graphtec CSV, as :func:`is_graphtec` tells a file."""
+    return bool(_FIRST.match(text[:256]))
+
+
+def graphtec_as_csv(text: str, source: str) -> str:
+    """A Graphtec CSV streamed (``monitor.input=-``) as the CSV text its channels are read as
+    from a file (:mod:`.labfile`: a ``time`` of timestamps, each channel a column)."""
+    path = Path(source)
+    with records_as_csv([_record(text.splitlines(), path.stem, path)], path) as table:
+        return table.read_text(encoding=UTF8)
+
+
+def _record(lines: list[str], label: str, path: Path) -> Record:
+    """The file's channels (``lines``: its text), one record."""
     rows = list(csv.reader(lines))
     names = _signal_names(rows)
     data = _line_of(rows, "Data")
@@ -81,7 +99,7 @@ def graphtec_records(path: Path, encoding: str = UTF8) -> list[Record]:
     if not channels:
         raise ContractError("no channel column (CH1 ...) in the Data block", file=path,
                             line=data + 2)
-    return [Record(path.stem, channels, utc=False)]
+    return Record(label, channels, utc=False)
 
 
 def _line_of(rows: list[list[str]], key: str) -> int | None:
