@@ -10,6 +10,7 @@ import datetime as dt
 from pathlib import Path
 
 import numpy as np
+import pandas as pd
 import pytest
 
 from conftest import FAST
@@ -100,3 +101,16 @@ def test_a_gl840_file_piped_into_monitor_streams_as_the_file_does(tmp_path, monk
     for target in ("E_DX_DORN", "E_DZ_DORN"):
         assert said[1][target]["n_samples"] == ROWS
         assert said[1][target]["rmse_fixed"] == pytest.approx(said[0][target]["rmse_fixed"], rel=1e-12)
+
+
+def test_two_channels_given_one_signal_name_are_both_read(tmp_path):
+    """(Before: one column was written for both, the second channel's values lost without a word:
+    the lab file's channels laid into a table keyed by their header.)  The second is read as a
+    CSV header written twice is, ``T_BETT#2``."""
+    path = gl840(tmp_path / "lathe", 1)
+    path.write_text(path.read_text().replace('"CH3","T_BETT"', '"CH3","T_SPINDEL"'))
+    ds, _ = read_dataset(path, {"roles": {"error": ["D?_DORN"], "state": ["Z_*"]}})
+    frame = pd.concat(ds.campaigns.values())
+    assert {"T_SPINDEL", "T_SPINDEL_2"} <= set(frame.columns)
+    expected = linear_run(8211, 1)
+    np.testing.assert_allclose(frame[["T_SPINDEL", "T_SPINDEL_2"]], expected[:, 1:3], atol=1e-5)
