@@ -85,7 +85,8 @@ warnings on and off (2.839 / 3.171, 5.382 / 4.715: dX 12 % worse for the adaptiv
 standardised residual (0.389 against the judged's 0.382) and with it out of the fit every band
 clears, but the turret is then predicted by no sensor (the coolant its only partner), and a
 candidate that leaves an out-of-band sensor unjudged is refused: a coupled pair, which
-self-prediction cannot tell apart.  Left: a rule for such a pair (both out?), with a bar.
+self-prediction cannot tell apart.  The rule "both out, back together" (``bench_mon82``)
+REFUSED by its bar: it helps where the coolant drifts, harms where the turret does (8214 dX +32 %).
 
 ``promote``: a tracked sweep ``run -m model=mlr,hammerstein,auto`` (30.3 + 3.5 s CPU), then
 ``thermocomp promote`` (21.6 + 1.6 s): auto @champion by its validation (1.796 against

@@ -34,7 +34,7 @@ COMMAND_BENCHES = (
     "bench_fresh69", "bench_gate71", "bench_gate77", "bench_initlag67", "bench_iso67", "bench_jig68",
     "bench_keysight70", "bench_lagwithin68", "bench_margin67", "bench_mon71", "bench_mon72",
     "bench_mon73", "bench_mon74", "bench_mon75", "bench_mon77", "bench_mon81", "bench_mon81g",
-    "bench_moretest68", "bench_nested63", "bench_pair70", "bench_pde66", "bench_pen0b69",
+    "bench_mon82", "bench_moretest68", "bench_nested63", "bench_pair70", "bench_pde66", "bench_pen0b69",
     "bench_planted69", "bench_planted72", "bench_power78", "bench_range73", "bench_range77",
     "bench_rate71", "bench_remeasure62", "bench_rigdiag70", "bench_speedsq68", "bench_stable67",
     "bench_stranger63", "bench_stranger64", "bench_stranger65", "bench_stranger66", "bench_stranger68",
