@@ -13,7 +13,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from conftest import FAST
+from conftest import FAST, refused
 from test_stranger68 import ROWS, linear_run
 from thermocomp.core.io import read_dataset
 from thermocomp.shell.cli import main
@@ -114,3 +114,16 @@ def test_two_channels_given_one_signal_name_are_both_read(tmp_path):
     assert {"T_SPINDEL", "T_SPINDEL_2"} <= set(frame.columns)
     expected = linear_run(8211, 1)
     np.testing.assert_allclose(frame[["T_SPINDEL", "T_SPINDEL_2"]], expected[:, 1:3], atol=1e-5)
+
+
+def test_a_graphtec_binary_record_is_refused_saying_its_csv_is_read(tmp_path, capsys):
+    """(Before: "its files, .gbd (2), are no kind read as a run (...)" alone: that the logger's
+    CSV of the same runs is read, not said.)  A folder of them, and one given alone."""
+    folder = tmp_path / "gl"
+    folder.mkdir()
+    for run in (1, 2):
+        (folder / f"27060{run}-070000.GBD").write_bytes(bytes(range(256)) * 4)
+    for path in (folder, folder / "270601-070000.GBD"):
+        said = refused(["init", str(path), f"out={tmp_path / 'init'}"], capsys,
+                       "a Graphtec logger's binary record: save its runs as CSV, which is read")
+        assert str(path) in said
