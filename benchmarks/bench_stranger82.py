@@ -105,8 +105,10 @@ file piped into ``monitor monitor.input=-`` "stdin is not a CSV table with a hea
 data.delimiter=',' (Error tokenizing data ...)" -> streamed as its file (2.514 / 4.784, the
 file's); two channels given one signal name: one column written, the second's values lost
 without a word (in any lab file read as channels, core/io/labfile.py) -> both read, the second
-``BETT_L#2`` as a CSV header written twice is.  Not defects: a cut file refused naming its line
-and channel ("'+' is no number"), a folder's ``.GBD`` originals beside the CSVs not read.
+``BETT_L#2`` as a CSV header written twice is; the logger's binary ``.GBD`` files alone (a
+folder, or one given) "no kind read as a run (...)" -> refused saying its CSV is read.  Not
+defects: a cut file refused naming its line and channel ("'+' is no number"), a folder's
+``.GBD`` originals beside the CSVs left out (the CSVs read).
 Left: auto off the best family on 8211 by its validation's blend; the planted X x screw effect
 on dX under diagnose's bar; the coolant's drift blamed on the turret (above); the frozen
 headstock unseen (harmless here).
