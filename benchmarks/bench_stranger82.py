@@ -99,16 +99,18 @@ export.check=true`` (28.9 + 1.1 s CPU): compiled with ``gcc -std=c99 -O2 -Wall -
 (error referenced at the run's first sample, plus the correction) 1.0807381 / 3.2830222 µm =
 replay's to 4e-16; run's batch figure 1.0810896 / 3.2826341 (the 40 clamped rows).
 
-Mended (each with a test in tests/shell/test_stranger82.py that fails on main), before -> now:
-a folder of GL840 files refused ("the numeric columns: none") -> read (graphtec.py); a GL840
-file piped into ``monitor monitor.input=-`` "stdin is not a CSV table with a header,
-data.delimiter=',' (Error tokenizing data ...)" -> streamed as its file (2.514 / 4.784, the
-file's); two channels given one signal name: one column written, the second's values lost
-without a word (in any lab file read as channels, core/io/labfile.py) -> both read, the second
-``BETT_L#2`` as a CSV header written twice is; the logger's binary ``.GBD`` files alone (a
-folder, or one given) "no kind read as a run (...)" -> refused saying its CSV is read.  Not
-defects: a cut file refused naming its line and channel ("'+' is no number"), a folder's
-``.GBD`` originals beside the CSVs left out (the CSVs read).
+Mended (each with a test in tests/shell/test_stranger82.py that fails on main), before -> now: a
+folder of GL840 files refused ("the numeric columns: none") -> read (graphtec.py); a GL840 file
+piped into ``monitor monitor.input=-`` "stdin is not a CSV table with a header, data.delimiter=','
+(Error tokenizing data ...)" -> streamed as its file (2.514 / 4.784, the file's); two channels given
+one signal name: one column written, the second's values lost without a word (in any lab file read
+as channels, core/io/labfile.py) -> both read, the second ``BETT_L#2`` as a CSV header written twice
+is; the logger's binary ``.GBD`` files alone (a folder, or one given) "no kind read as a run (...)"
+-> refused saying its CSV is read; a GL840 file fed to the exported ``./stream`` as the README's
+route feeds a campaign file: "the header (line 9 ...) lacks input column T_amb_LUFT_OBEN (the lab's
+header 'LUFT_OBEN [degC]')", a channel the file holds -> refused at line 1 as a Graphtec file,
+``thermocomp rows`` named. Not defects: a cut file refused naming its line and channel ("'+' is no
+number"), a folder's ``.GBD`` originals beside the CSVs left out (the CSVs read).
 Left: auto off the best family on 8211 by its validation's blend; the planted X x screw effect
 on dX under diagnose's bar; the coolant's drift blamed on the turret (above); the frozen
 headstock unseen (harmless here).

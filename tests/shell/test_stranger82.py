@@ -7,6 +7,7 @@ a few rows of test_stranger68's linear runs)."""
 from __future__ import annotations
 
 import datetime as dt
+import subprocess
 from pathlib import Path
 
 import numpy as np
@@ -14,6 +15,7 @@ import pandas as pd
 import pytest
 
 from conftest import FAST, refused
+from test_export import checked_pack, needs_cc
 from test_stranger68 import ROWS, linear_run
 from thermocomp.core.io import read_dataset
 from thermocomp.shell.cli import main
@@ -127,3 +129,31 @@ def test_a_graphtec_binary_record_is_refused_saying_its_csv_is_read(tmp_path, ca
         said = refused(["init", str(path), f"out={tmp_path / 'init'}"], capsys,
                        "a Graphtec logger's binary record: save its runs as CSV, which is read")
         assert str(path) in said
+
+
+@needs_cc
+def test_the_compiled_stream_refuses_a_gl840_file_naming_the_command_that_converts_it(
+        tmp_path, capsys):
+    """(Before: "the header (line 7 ...) lacks input column T_SPINDEL (the lab's header ...)", an
+    Amp settings row taken for the header, while the file holds the channel.)  Refused at its first line, the
+    command named; the rows it writes stream."""
+    for run in (1, 2):
+        path = gl840(tmp_path / "lathe", run)
+    common = [f"data.path={tmp_path / 'lathe'}", "data.roles.error=[D?_DORN]",
+              "data.roles.state=[Z_*]", "data.test_fraction=0.5"]
+    assert main(["run", *common, *FAST, "model=mlr", f"out={tmp_path / 'run'}"]) == 0
+    assert main(["export", *common, "track=false", "export.format=c",
+                 f"export.model={tmp_path / 'run' / 'model.pkl'}", f"out={tmp_path / 'code'}"]) == 0
+    checked_pack(tmp_path / "code")
+    stream = str(tmp_path / "code" / "stream")
+    done = subprocess.run([stream], capture_output=True, input=path.read_bytes())
+    assert done.returncode == 2 and done.stdout == b""
+    assert (b"stream: line 1 is a Graphtec logger's header block (\"Model\",\"GL...\"): its channels "
+            b"are named in its Amp settings, its columns CH1 ...; convert it to the rows the served "
+            b"model reads it as: `thermocomp rows FILE") in done.stderr, done.stderr
+    capsys.readouterr()
+    assert main(["rows", str(path), *common[1:3]]) == 0
+    rows = capsys.readouterr().out
+    streamed = subprocess.run([stream], capture_output=True, input=rows.encode())
+    assert streamed.returncode == 0, streamed.stderr
+    assert len(streamed.stdout.decode().splitlines()) == ROWS + 1
