@@ -98,6 +98,9 @@ export.check=true`` (28.9 + 1.1 s CPU): compiled with ``gcc -std=c99 -O2 -Wall -
 (the test run, ``rows.errors=true``; 4.2 + 0.2 s CPU) streamed through ``./stream``: test RMSE
 (error referenced at the run's first sample, plus the correction) 1.0807381 / 3.2830222 µm =
 replay's to 4e-16; run's batch figure 1.0810896 / 3.2826341 (the 40 clamped rows).
+Over OPC UA (the README's route, the matrix's mlr): ``twin`` of the test run at 60 samples a second
+and ``connect`` to it: RMS 2.674 / 13.302 -> 2.515 / 4.771 µm (replay 2.514 / 4.784), 738 samples
+stale (``connect`` read 1197 samples and missed 602: on two loaded cores, behind the twin's pace).
 
 Mended (each with a test in tests/shell/test_stranger82.py that fails on main), before -> now: a
 folder of GL840 files refused ("the numeric columns: none") -> read (graphtec.py); a GL840 file
