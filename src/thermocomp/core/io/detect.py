@@ -26,6 +26,7 @@ from . import campbell
 from .contract import MANIFEST, TIME, ContractError, is_ambient, role
 from .encoding import UTF8, WINDOWS, detect
 from .fixedwidth import is_fixed_width
+from .graphtec import is_graphtec
 from .hdf5 import is_hdf5
 from .historian import held_wide, long_as_wide, wide_options
 from .historian_layout import long_layout
@@ -155,7 +156,8 @@ def encoding(src: Path, opts, manifest: pd.DataFrame | None) -> str:
     # (UTF-16: its mark; an .lvm and a Scope export are text; a Campbell binary table's .dat is
     # none: lab76, its bytes were taken for a Windows export's, data.encoding: cp1252 written)
     found = [detect(f) for f in files
-             if (is_text(f) or is_lvm(f) or is_scope(f)) and not is_utf16(f) and not is_tob(f)]
+             if (is_text(f) or is_lvm(f) or is_scope(f) or is_graphtec(f))
+             and not is_utf16(f) and not is_tob(f)]
     return WINDOWS if WINDOWS in found else UTF8
 
 
@@ -177,6 +179,7 @@ def head(sample: Path, opts) -> tuple[object, list[str], list[str], str]:
         kind = ("a MATLAB file" + (" saved -v7.3" if is_v73(sample) else "") if is_mat(sample)
                 else "a LabVIEW Measurement File" if is_lvm(sample)
                 else "a TwinCAT Scope export" if is_scope(sample)
+                else "a Graphtec logger's CSV (its Amp settings' signal names)" if is_graphtec(sample)
                 else "an HDF5 file" if is_hdf5(sample)
                 else "a DIAdem TDM/TDX pair" if is_tdm(sample)
                 else "a SINUMERIK trace" if is_trace(sample)

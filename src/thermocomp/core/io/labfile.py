@@ -35,6 +35,7 @@ from .contract import ContractError
 from .converted import named_as
 from .encoding import UTF8
 from .roles import split_unit
+from .twins import occurrences
 
 RUN_HEADER = "run"          # the column naming each run of a file holding several
 TIME_HEADER = "time"        # the time a file gives as timestamps (UTC) or seconds
@@ -255,6 +256,7 @@ def write_long(record: Record, out: Path, starts: dict | None = None) -> dict[st
 def records_as_csv(records: list[Record], path: Path) -> Iterator[Path]:
     """``records`` (the lab's file ``path``) as a temporary CSV file, removed after; a
     :class:`ContractError` about it names ``path``, the channel's place and the data row."""
+    records = [_twinned(r) for r in records]
     wide = _check(records, path)
     with tempfile.TemporaryDirectory(prefix="thermocomp-lab-") as tmp:
         out = Path(tmp) / (path.stem + ".csv")
@@ -263,6 +265,18 @@ def records_as_csv(records: list[Record], path: Path) -> Iterator[Path]:
         with named_as(out, str(path), lambda exc: _located(exc, out, path, where, starts), "row",
                       line_of=lambda n: n - 1):
             yield out
+
+
+def _twinned(record: Record) -> Record:
+    """``record`` with a name two of its channels share read as a CSV header written twice is
+    (:mod:`.twins`: the second ``BETT_L#2 [degC]``): stranger82, a logger's two channels given
+    one signal name were written as one column, the second's values lost without a word."""
+    names, twins = occurrences([c.header for c in record.channels])
+    if not twins:
+        return record
+    return Record(record.label, [Channel(n, c.values, c.time, c.where)
+                                 for n, c in zip(names, record.channels)],
+                  record.time_header, record.utc)
 
 
 def _located(exc: ContractError, temp: Path, path: Path, where: dict[str, str],

@@ -149,8 +149,15 @@ def _other_files(folder: Path) -> str:
     if not kinds:
         return ""
     said = ", ".join(f"{k} ({n})" for k, n in kinds.most_common(5))
+    known = "".join(f"; {k}: {BINARY_KINDS[k]}" for k in kinds if k in BINARY_KINDS)
     return (f"; its files, {said}, are no kind read as a run ("
-            f"{', '.join(sorted(set(RECORD_SUFFIXES)))})")
+            f"{', '.join(sorted(set(RECORD_SUFFIXES)))}){known}")
+
+
+# a logger's own binary record, its CSV export the run file (stranger82: a folder of a GL840's
+# .gbd files was "no kind read as a run" alone, the way to a file read not said)
+BINARY_KINDS = {".gbd": "a Graphtec logger's binary record: save its runs as CSV, which is read "
+                        "(the logger writes CSV to its card, its PC software converts a .gbd)"}
 
 
 def _load_manifest(path: Path, delimiter: str = ",", optional: tuple = (),

@@ -13,6 +13,7 @@ from pathlib import Path
 from .contract import ContractError
 from .encoding import UTF8
 from .fixedwidth import fixed_as_csv, is_fixed_width
+from .graphtec import graphtec_records, is_graphtec
 from .hdf5 import hdf5_records, is_hdf5
 from .historian import long_as_wide, wide_options
 from .historian_layout import long_layout
@@ -34,9 +35,11 @@ def is_lab_file(path) -> bool:
     """``path`` is a lab's record of channels: a TDMS log, a MATLAB file, (stranger69) a
     LabVIEW Measurement File, (lab75) a Campbell Scientific TOB1 table (lab76: TOB2, TOB3) or
     (stranger76) a TwinCAT Scope CSV export, (stranger77) an HDF5 file or (stranger78) a DIAdem
-    TDM/TDX pair or (stranger81) a SINUMERIK trace's XML (:mod:`.labfile`)."""
+    TDM/TDX pair or (stranger81) a SINUMERIK trace's XML or (stranger82) a Graphtec logger's CSV
+    (:mod:`.labfile`)."""
     return (is_tdms(path) or is_mat(path) or is_lvm(path) or is_tob(path) or is_scope(path)
-            or is_hdf5(path) or is_tdm(path) or is_trace(path) or headerless(path))
+            or is_hdf5(path) or is_tdm(path) or is_trace(path) or headerless(path)
+            or is_graphtec(path))
 
 
 def is_converted(path, opts=None) -> bool:
@@ -70,6 +73,7 @@ def converted_once(path: Path | None, encoding: str = UTF8) -> Iterator[None]:
 def _records(path: Path, encoding: str) -> list:
     return (tdms_records(path) if is_tdms(path) else lvm_records(path, encoding) if is_lvm(path)
             else scope_records(path, encoding) if is_scope(path)
+            else graphtec_records(path, encoding) if is_graphtec(path)
             else refuse_headerless(path) if headerless(path)
             else hdf5_records(path) if is_hdf5(path)
             else tdm_records(path) if is_tdm(path)

@@ -19,7 +19,7 @@ import pyarrow as pa
 
 from ...base.log import logger
 from .contract import MANIFEST, ContractError
-from .manifest import RECORD_SUFFIXES
+from .manifest import BINARY_KINDS, RECORD_SUFFIXES
 from .rates import PAUSE_PERIODS, pauses
 from .sinumerik import not_a_trace
 from .sparse import probe_cycle
@@ -55,8 +55,10 @@ def check_record_file(path: Path) -> None:
         raise ContractError(why, file=path)
     if path.suffix.lower() not in RECORD_SUFFIXES:
         kind = not_read(path)
+        known = BINARY_KINDS.get(path.suffix.lower())
         raise ContractError(kind or f"a record's file is {', '.join(RECORD_SUFFIXES)}, not "
-                            f"{path.suffix or 'a file without a suffix'}", file=path)
+                            f"{path.suffix or 'a file without a suffix'}"
+                            + (f"; {path.suffix}: {known}" if known else ""), file=path)
 
 
 def record_id(path: Path) -> str:

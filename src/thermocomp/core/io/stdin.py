@@ -32,6 +32,7 @@ from .csvline import EMPTY, SPLIT, split_line
 from .derived import on_frame
 from .encoding import UTF8, check_text, text_codec
 from .footer import TAIL_BYTES, footer_of
+from .graphtec import graphtec_as_csv, is_graphtec_text
 from .layout import (
     MAX_PROPERTY_ROWS,
     header_line,
@@ -150,6 +151,9 @@ def _read_runs(text: str, columns: list[str], opts, recorded: str | None = None,
     text = text.lstrip("\ufeff").replace(UNICODE_MINUS, "-")
     if is_scope_text(text):         # a TwinCAT Scope export piped in as written (stranger76)
         text = scope_as_csv(text, SOURCE)
+        opts = replace(opts, delimiter=",", decimal=".", thousands=None)
+    elif is_graphtec_text(text):    # a Graphtec logger's CSV piped in as written (stranger82)
+        text = graphtec_as_csv(text, SOURCE)
         opts = replace(opts, delimiter=",", decimal=".", thousands=None)
     opts = detected(text.splitlines()[:SNIFF_LINES], opts, SOURCE)   # data.delimiter=auto ...
     text = _table(text, opts.delimiter)

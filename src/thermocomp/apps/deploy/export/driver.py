@@ -908,6 +908,15 @@ int main(int argc, char **argv) {
                 ROWS_COMMAND "\n");
         return 2;
     }
+    if (strncmp(line, "\"Model\",\"GL", 11) == 0 || strncmp(line, "Model,GL", 8) == 0) {
+        /* (stranger82) a Graphtec logger's CSV: its channels named in its Amp settings block,
+           its columns CH1 ...: no line of it names the inputs (it was "the header (line 9 ...)
+           lacks input column ...", an Amp settings row taken for the header) */
+        fprintf(stderr, "stream: line 1 is a Graphtec logger's header block (\"Model\",\"GL...\"): "
+                "its channels are named in its Amp settings, its columns CH1 ...; convert it to "
+                "the rows the served model reads it as: " ROWS_COMMAND "\n");
+        return 2;
+    }
     if (!names_every_input(line)) {
         /* a logger's preamble (stranger64: `Machine;PM-12`, `Operator: ...` above the header):
            the first of the next MAX_PREAMBLE lines naming every input is the header */
