@@ -96,16 +96,17 @@ def not_in_code(deployed, fmt: str | None = None) -> list[str]:
     if fmt == "c" and deployed.monitor.adaptive:
         return ["sensor monitor rules (the C holds the jump, the freeze, a missing reading, "
                 "a reading beyond its training range, a common step, one sensor out "
-                "reconstructed from the others and its re-admission): a missing "
+                "reconstructed from the others and its re-admission, a drift exclusion while no "
+                "sensor is out, of one sensor or of it and its blind partner): a missing "
                 "reading at a campaign's first sample, with another sensor out or missing, or of a "
                 "sensor the code does not hold out (the code refuses the row), a missing reading of "
                 "a sensor out for a freeze (its re-admission band), a reading beyond its training "
                 "range at a campaign's first sample, of several sensors at once or with another "
                 "sensor out, several sensors jumping at once that are no common step, "
                 "a jump at the sample after the reference, a stepped self-prediction "
-                "error, a drift beyond the band (its exclusion, its blind partners, a new thermal "
-                "state), a second sensor out, a sensor no other predicts out (the model fitted "
-                "without it)"]
+                "error, a drift beyond the band with a sensor out, of a sensor no other predicts, "
+                "of more than one blind partner, or a new thermal state, a second sensor out, a "
+                "sensor no other predicts out (the model fitted without it)"]
     return ["sensor monitor (exclusion, reconstruction of a sensor from the others)"]
 
 

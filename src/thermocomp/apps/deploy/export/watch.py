@@ -25,16 +25,29 @@ The served adaptive compensator judges every ``T_`` input before the model reads
   (the median of their steps the common one), every active sensor whose step is within a
   factor ``common_spread`` of it re-referenced by its own step and kept in, where they are
   more than half the active ones read; a jump off it judged as before;
+* (cmon82) a **drift**: every sensor in, a judged one beyond its band over the last
+  ``confirm`` samples (no sensor no other predicts explaining them, the served
+  ``_explaining``): the culprit (the largest ``|E|(1 - h)``, or the lone fault that explains the
+  bands, the served ``_lone_fault``) excluded where with it out every other judged sensor is
+  within its warning band, fewer than ``new_state_others`` others are out of it, and (a culprit
+  within its own band) the excursion does not hover against the field's memory
+  (``tau``, ``growth``: the served ``_excursion_hovers``); else nothing, as served (a veto).
+  Its blind partner (``pairs``: the one judged sensor no other predicts once it is out, an
+  operator per pair) goes out with it under the same veto.  Each waits ``window`` times 2 to
+  the drift exclusions it had (``max_backoff`` at most) to return;
 * while a sensor is out the model reads its POD reconstruction from the others, and it is
-  re-admitted after a whole window calm whose leave-one-out errors stay within half its
-  warning band (``READMIT``; one out for a dropout alone, within its whole band, as served).
+  re-admitted after a calm wait (a window; doubled per drift exclusion) whose leave-one-out
+  errors stay within half its warning band (``READMIT``; one out for a dropout alone, within its
+  whole band, as served), the sensors due back judged together as served.
 
 What else the served monitor does it flags, ``NOT_IN_CODE`` with the rule (:data:`REASONS`),
 and goes on by its own rules: a reading beyond its range at a campaign's first sample, of
 several sensors at once or with another sensor out (its sample passes the monitor by, the state
 as it was, so that the reading's return is no jump), several sensors jumping at once that are
 no common step, a jump at the reference's next sample, a stepped self-prediction error, a drift
-beyond the band (exclusion by judgement, a new thermal state), a second sensor out, and a
+beyond the band with a sensor out already, of a sensor no other predicts, of more than one blind
+partner, a new thermal state (no exclusion explains the bands, or the field follows the
+exclusion within a window), a second culprit beyond the alarm band, a second sensor out, and a
 sensor no other predicts out (the model fitted without it).  A missing reading the code cannot
 rebuild (at a campaign's first sample, with another sensor out or missing, of a sensor it does
 not hold out) is refused as before (:meth:`CodeMonitor.refuses`: the sample is not read).  From
@@ -49,7 +62,16 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..adaptive import GAP_PERIODS, AdaptiveCompensator
-from ..surveillance.states import COMMON_MIN, COMMON_SPREAD, READMIT
+from ..surveillance.states import (
+    ALARM,
+    COMMON_MIN,
+    COMMON_SPREAD,
+    EXCURSION_GROWTH,
+    EXCURSION_TAU_S,
+    MAX_BACKOFF,
+    READMIT,
+    WARNING,
+)
 
 # what the code's monitor reports per sample (bits of tc_state.mon_flags; REREFERENCED: a common
 # step, cmon80)
@@ -63,7 +85,8 @@ REASONS = ("", "jump: re-referenced and excluded", "freeze: excluded",
            "not in the code: several sensors jumping in one sample (no common step)",
            "not in the code: a jump at the sample after the reference",
            "not in the code: a self-prediction error stepped past the alarm band",
-           "not in the code: a drift beyond the band (exclusion by judgement, new thermal state)",
+           "not in the code: a drift beyond the band (with a sensor out, of one no other "
+           "predicts, a new thermal state, a second culprit)",
            "not in the code: a second sensor out",
            "not in the code: a sensor no other predicts out (or too few left to rebuild it)",
            "dropout: no finite value, excluded",
@@ -72,12 +95,14 @@ REASONS = ("", "jump: re-referenced and excluded", "freeze: excluded",
            "not in the code: a missing reading of a sensor the code does not hold out",
            "not in the code: a missing reading of a sensor out for a freeze (its re-admission band)",
            "out of range: read as missing, excluded",
-           "common step: re-referenced, kept in")
+           "common step: re-referenced, kept in",
+           "drift: its self-prediction error explains the others' bands, excluded")
 RULES = ("", "JUMP", "FREEZE", "BACK", "RANGE", "COMMON", "GLITCH", "STEPPED", "DRIFT", "SECOND",
          "BLIND", "DROPOUT", "MISSING_FIRST", "MISSING_SECOND", "MISSING_BLIND",
-         "MISSING_FROZEN", "OFF_RANGE", "COMMON_STEP")   # their names in the C (TC_MON_JUMP ...)
+         "MISSING_FROZEN", "OFF_RANGE", "COMMON_STEP", "DRIFT_OUT")   # their names in the C (TC_MON_JUMP ...)
 (JUMP, FREEZE, BACK, RANGE, COMMON, GLITCH, STEPPED, DRIFT, SECOND, BLIND, DROPOUT, MISSING_FIRST,
- MISSING_SECOND, MISSING_BLIND, MISSING_FROZEN, OFF_RANGE, COMMON_STEP) = range(1, len(RULES))
+ MISSING_SECOND, MISSING_BLIND, MISSING_FROZEN, OFF_RANGE, COMMON_STEP, DRIFT_OUT) = range(
+    1, len(RULES))
 
 
 @dataclass
@@ -97,7 +122,9 @@ def monitor_fields(deployed, inputs: list) -> dict:
     if any(c not in inputs for c in mon.names):
         return {}
     n = len(mon.names)
+    pairs = _pairs(mon)
     sets = [np.ones(n, bool)] + [np.arange(n) != j for j in range(n)]
+    sets += [~np.isin(np.arange(n), pair) for pair in pairs]
     M, lev = [], []
     for active in sets:
         m, h = mon._operator(active)
@@ -119,7 +146,24 @@ def monitor_fields(deployed, inputs: list) -> dict:
         "common_min": COMMON_MIN, "common_spread": COMMON_SPREAD,
         "seen_run": mon._seen_run.tolist(), "blind_run": mon._blind_run.tolist(),
         "predictable": [int(p) for p in mon._predictable], "ported_out": ported,
-        "period": float(deployed.period_s), "gap_periods": GAP_PERIODS, "readmit": READMIT}}
+        "period": float(deployed.period_s), "gap_periods": GAP_PERIODS, "readmit": READMIT,
+        "drift": 1, "pairs": [list(p) for p in pairs], "new_state": int(mon.new_state),
+        "new_state_others": int(mon.new_state_others), "max_backoff": MAX_BACKOFF,
+        "tau": EXCURSION_TAU_S, "growth": EXCURSION_GROWTH}}
+
+
+def _pairs(mon) -> list[tuple[int, int]]:
+    """(cmon82) The sets of two the code holds out: a sensor and the one judged sensor that no
+    other predicts once it is out (its blind partner, a drift exclusion takes it out too)."""
+    n = len(mon.names)
+    every = mon._operator(np.ones(n, bool))[1] < mon.pod.max_leverage
+    out = []
+    for j in range(n):
+        blind = every & (mon._operator(np.arange(n) != j)[1] >= mon.pod.max_leverage)
+        blind[j] = False
+        if blind.sum() == 1 and tuple(sorted((j, int(np.argmax(blind))))) not in out:
+            out.append(tuple(sorted((j, int(np.argmax(blind))))))
+    return out
 
 
 def planted(ss, campaigns) -> dict[str, tuple]:
@@ -193,6 +237,11 @@ class CodeMonitor:
             a.setdefault(k, np.full(n, np.nan))
         a.setdefault("common_min", np.float64(np.inf))     # (nor a common step)
         a.setdefault("common_spread", np.float64(COMMON_SPREAD))
+        for k, v in (("drift", 0), ("new_state", 1), ("new_state_others", 2),
+                     ("max_backoff", MAX_BACKOFF), ("tau", EXCURSION_TAU_S),
+                     ("growth", EXCURSION_GROWTH)):        # (an export before cmon82: flagged)
+            a.setdefault(k, np.float64(v))
+        self.pairs = [tuple(int(i) for i in p) for p in arrays.get("pairs", [])]
         self.idx = np.asarray(arrays["inputs"], int)
         self.M, self.lev = a["M"], a["lev"]
         self.n, self.window, self.confirm = len(self.idx), int(arrays["window"]), int(arrays["confirm"])
@@ -205,7 +254,7 @@ class CodeMonitor:
     def reset(self) -> None:
         n, w = self.n, self.window
         self.ref = self.base = None
-        self.out = -1
+        self.out, self.out2, self.op = -1, -1, 0     # (cmon82: out2 its blind partner, op the set's)
         self.hist, self.err = np.full((w, n), np.nan), np.full((w, n), np.nan)
         self.pos = self.count = 0
         self.prev, self.prev_e, self.prev_other = (np.full(n, np.nan) for _ in range(3))
@@ -215,15 +264,32 @@ class CodeMonitor:
         # time), jumps re-referenced since it was last in, out for a dropout (cdrop77)
         self.gap, self.jumps = np.ones(n), np.zeros(n, int)
         self.dropped = np.zeros(n, bool)
+        # (cmon82) out by a drift exclusion, its exclusions so, the calm samples it needs to
+        # return (doubled at each), the sample count at its exclusion (-1: none)
+        self.by_field, self.outs = np.zeros(n, bool), np.zeros(n, int)
+        self.dwell, self.since = np.full(n, w), np.full(n, -1)
+        # the field's memory of the served monitor's excursion rule (mon73): its age unknown
+        # before a campaign's second sample
+        self.slow, self.slow_known = np.zeros(n), False
         self.flags, self.sensor, self.rule, self.missed = 0, -1, 0, 0
 
     # the active set's operator, leverages, which sensors are judged and the errors' scale
-    def _set(self):
-        s = self.out + 1
-        lev = self.lev[s]
+    def _op_of(self, out: np.ndarray) -> int | None:
+        """The index of the operator with the sensors ``out`` out (None: not in the code)."""
+        k = tuple(int(i) for i in np.flatnonzero(out))
+        if len(k) < 2:
+            return k[0] + 1 if k else 0
+        return self.n + 1 + self.pairs.index(k) if k in self.pairs else None
+
+    def _active(self) -> np.ndarray:
         active = np.ones(self.n, bool)
-        if self.out >= 0:
-            active[self.out] = False
+        active[[k for k in (self.out, self.out2) if k >= 0]] = False
+        return active
+
+    def _set(self):
+        s = self.op
+        lev = self.lev[s]
+        active = self._active()
         observable = lev < self.max_lev
         judged = active & observable
         scale = np.where(judged, 1.0 / np.maximum(1 - lev, 1e-12), 1.0)
@@ -237,18 +303,27 @@ class CodeMonitor:
 
     def _recompute(self) -> None:
         """The window's errors under the new operator (an exclusion, a re-admission)."""
+        self.op = self._op_of(~self._active())
         M, _, _, _, scale = self._set()
         H = np.where(np.isfinite(self.hist), self.hist, 0.0)
         self.err = (self.hist - H @ M.T) * scale
 
     def _level(self) -> np.ndarray:
-        k = min(self.count, self.confirm)
-        if k < self.confirm:
-            return np.zeros(self.n, int)
-        rows = (self.pos - 1 - np.arange(k)) % self.window
+        return self._judge()[0]
+
+    def _rows(self) -> np.ndarray:
+        """The window's rows of the last ``confirm`` samples, the last first."""
+        return (self.pos - 1 - np.arange(min(self.count, self.confirm))) % self.window
+
+    def _judge(self) -> tuple[np.ndarray, np.ndarray]:
+        """``(level, error)``: the band the last ``confirm`` errors all exceed, their mean."""
+        rows = self._rows()
+        err = self.err[rows].sum(axis=0) / max(len(rows), 1)
+        if len(rows) < self.confirm:
+            return np.zeros(self.n, int), err
         a = np.abs(self.err[rows]).min(axis=0)
         with np.errstate(invalid="ignore"):
-            return (a >= self.a["warning"]).astype(int) + (a >= self.a["alarm"])
+            return (a >= self.a["warning"]).astype(int) + (a >= self.a["alarm"]), err
 
     def _flag(self, bit: int, sensor: int, rule: int) -> None:
         self.flags |= bit
@@ -393,16 +468,14 @@ class CodeMonitor:
         level = self._level()
         if level[judged].any():
             self.flags |= BAND
-        field = a["exclude_level"]     # (the alarm band only after a drift exclusion: not here)
-        if (judged & (level >= field)).any() and active.sum() > a["min_active"]:
-            self._flag(NOT_IN_CODE, int(np.argmax(judged & (level >= field))), DRIFT)
-        j = self.out
-        if j >= 0 and self.count >= self.window and self.run[j] == 0 and not instant[j] \
-                and not gone[j] and self.calm[j] >= self.window and self._passes(j):
-            self.out = -1
-            self.jumps[j] = 0
-            self._recompute()
-            self._flag(READMITTED, j, BACK)
+        self._judgement()
+        due = ~self._active() & ~gone & (self.run == 0) & ~instant & (self.calm >= self.dwell)
+        if due.any() and self.count >= self.window:
+            for j in np.flatnonzero(self._returning(due)):
+                self.jumps[j], self.by_field[j] = 0, False
+                self.out, self.out2 = (self.out2, -1) if j == self.out else (self.out, -1)
+                self._recompute()
+                self._flag(READMITTED, int(j), BACK)
         pred, e = self._errors(d)
         _, active, _, judged, _ = self._set()
         self.prev_other = np.where(judged, d - e, np.nan)
@@ -410,6 +483,7 @@ class CodeMonitor:
         self.gap = np.where(gone, gap + 1, 1.0)
         self.prev_e = e
         self.dropped[instant] = missing[instant]       # (the last detector to fire on it)
+        self._fold(self.hist[pos], first, dt)
         return self._rebuilt(u, d, pred)
 
     def _beyond(self, x, d, rng):
@@ -440,7 +514,7 @@ class CodeMonitor:
         by its own step (``d``, ``step``, the window's row ``pos`` changed in place); the jumps
         left after it; called with at least ``common_min`` of them."""
         a = self.a
-        active = np.arange(self.n) != self.out
+        active = self._active()
         common = float(np.median(step[big]))
         ratio = step / common if common else np.zeros_like(step)
         took = active & (ratio >= 1 / a["common_spread"]) & (ratio <= a["common_spread"])
@@ -460,22 +534,216 @@ class CodeMonitor:
         if pred is None:
             pred = self._errors(d)[0]
         v = u.copy()
-        v[self.idx] = self.base + np.where(np.arange(self.n) == self.out, pred, d)
+        v[self.idx] = self.base + np.where(self._active(), d, pred)
         if self.out >= 0:
             self.flags |= OUT
         return v
 
-    def _passes(self, j: int) -> bool:
-        """Re-admission of ``j``: its leave-one-out error with every sensor in, over the whole
-        window, within ``READMIT`` of its warning band (one no other predicts: never here); one
-        out for a dropout alone (no jump since), within its whole band, as served: it had passed
-        its judgement until its reading went missing."""
-        M, lev = self.M[0], self.lev[0]
-        if self.n < self.a["min_active"]:
-            return False
-        if lev[j] >= self.max_lev:
-            return not self.predictable[j]
+    def _returning(self, due: np.ndarray) -> np.ndarray:
+        """Which of the ``due`` sensors come back, judged together as served: those that pass in
+        the set of the active ones and every due one, the worst failing one left out until the
+        rest pass."""
+        trial = self._active() | due
+        while True:
+            ok, worst = self._pass_once_back(trial)
+            failing = due & trial & ~ok
+            if not failing.any():
+                return due & trial
+            trial[int(np.argmax(np.where(failing, worst, -1.0)))] = False
+
+    def _pass_once_back(self, trial: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """``(passes, worst error)`` of the sensors of ``trial``: their leave-one-out error in it
+        over the whole window within ``READMIT`` of the warning band (its whole band for one out
+        for a dropout alone: it had passed its judgement until its reading went missing); one
+        the others in ``trial`` cannot predict passes where no other predicts it at all."""
+        n = self.n
+        if trial.sum() < self.a["min_active"]:
+            return np.zeros(n, bool), np.full(n, np.inf)
+        s = self._op_of(~trial)
+        M, lev = self.M[s], self.lev[s]
+        blind = lev >= self.max_lev
         H = np.where(np.isfinite(self.hist), self.hist, 0.0)
-        worst = np.abs((H[:, j] - H @ M[j]) / (1 - lev[j])).max()
-        band = 1.0 if self.dropped[j] and not self.jumps[j] else self.a["readmit"]
-        return bool(worst < band * self.a["warning"][j])
+        with np.errstate(divide="ignore", invalid="ignore"):
+            worst = np.abs((H - H @ M.T) / (1 - lev)).max(axis=0)
+        worst[blind] = np.inf
+        lost = self.dropped & ~self.by_field & (self.jumps == 0)
+        band = np.where(lost, 1.0, self.a["readmit"]) * self.a["warning"]
+        return np.where(blind, ~self.predictable, worst < band) & trial, worst
+
+    # -- (cmon82) the exclusion by judgement (module doc) --------------------------------------
+    def _judgement(self) -> None:
+        """The served monitor's drift exclusion where the code holds it, else flagged."""
+        a = self.a
+        level, err = self._judge()
+        _, active, _, judged, _ = self._set()
+        field = ALARM if (self.by_field & ~active).any() else a["exclude_level"]
+        if (judged & (level >= field)).any() and active.sum() > a["min_active"]:
+            if not a["drift"] or self.out >= 0:
+                self._flag(NOT_IN_CODE, int(np.argmax(judged & (level >= field))), DRIFT)
+            else:
+                self._drift(level, err, field)
+        if not a["new_state"]:
+            return
+        # the field followed a drift exclusion within a window (served: re-admitted, a new state)
+        level, _ = self._judge()
+        _, active, _, judged, _ = self._set()
+        self.since[active | (self.count - self.since > self.window)] = -1
+        if (self.since >= 0).any() and (judged & (level >= WARNING)).sum() >= a["new_state_others"]:
+            self._flag(NOT_IN_CODE, int(np.argmax(self.since >= 0)), DRIFT)
+
+    def _drift(self, level, err, field) -> None:
+        """Every sensor in, one beyond the band: the culprit (the largest ``|E|(1 - h)``) out
+        where with it out the others are within their warning bands and fewer than
+        ``new_state_others`` others are out of it (else nothing: the served monitor's veto), its
+        blind partner with it; flagged where the served monitor does what the code does not."""
+        a = self.a
+        _, active, observable, judged, _ = self._set()
+        if (u := self._explaining(level, field)) is not None:
+            self._flag(NOT_IN_CODE, u, DRIFT)
+            return
+        z = np.where(judged, np.abs(np.nan_to_num(err)) * np.sqrt(np.abs(1 - self.lev[self.op])) ** 2,
+                     -1.0)
+        j = int(np.argmax(z))
+        if a["new_state"]:
+            j, resolves = self._lone_fault(j, z, level, err, judged)
+            if not resolves:              # a new thermal state (served: declared): not here
+                self._flag(NOT_IN_CODE, j, DRIFT)
+                return
+            if self._others(j, level, judged) >= a["new_state_others"]:
+                return
+            if level[j] < WARNING and self._hovers(level, err):
+                return          # a regime, not a fault (served: nothing excluded)
+        if not self._exclude(j, DRIFT_OUT):
+            return
+        self._by_drift(j)
+        _, active, observable, _, _ = self._set()
+        blind = np.flatnonzero(active & ~observable & (z >= 0.7 * z[j]))
+        for i in blind:
+            if active.sum() <= a["min_active"]:
+                continue
+            if len(blind) > 1 or self._op_of(~active | (np.arange(self.n) == i)) is None \
+                    or not self.ported[i]:
+                self._flag(NOT_IN_CODE, int(i), DRIFT)
+                return
+            if a["new_state"]:
+                lv, _ = self._judge()
+                _, _, _, jd, _ = self._set()
+                if not self._resolves(int(i)):
+                    self._flag(NOT_IN_CODE, int(i), DRIFT)
+                    return
+                if self._others(int(i), lv, jd) >= a["new_state_others"]:
+                    return
+            self.out2 = int(i)
+            self.calm[i] = 0
+            self._recompute()
+            self._by_drift(int(i))
+            self._flag(EXCLUDED, int(i), DRIFT_OUT)
+        level, _ = self._judge()        # served: judged again, a second culprit beyond the alarm
+        _, active, _, judged, _ = self._set()
+        if (judged & (level >= ALARM)).any() and active.sum() > a["min_active"]:
+            self._flag(NOT_IN_CODE, int(np.argmax(judged & (level >= ALARM))), DRIFT)
+
+    def _lone_fault(self, j, z, level, err, judged) -> tuple[int, bool]:
+        """The served monitor's ``_lone_fault``: ``(sensor, whether with it out the others are
+        within band)``, every sensor in."""
+        out = judged & (level >= WARNING)
+        if self._resolves(j, out if level[j] < WARNING else None):
+            return j, True
+        hides = bool(level[j] < WARNING) and self._resolves(j)
+        size = np.abs(np.where(judged, np.nan_to_num(err), 0.0))
+        std = np.sqrt(np.abs(1 - self.lev[self.op]))
+        likelier = np.argmax(size * std) if hides else None
+        for k in np.argsort(-z):
+            if (k != j and z[k] >= 0 and level[k] >= WARNING and (likelier is None or likelier == k)
+                    and self._resolves(int(k), out,
+                                       float(np.max(np.delete(size, k), initial=0.0)))):
+                return int(k), True
+        return j, hides
+
+    def _fold(self, d, first, dt) -> None:
+        """The served monitor's memory of the field (``EXCURSION_TAU_S``), the sample ``d``."""
+        if first or not np.isfinite(dt):
+            self.slow_known = bool(first)
+            return
+        keep = np.exp(-max(dt, 0.0) / self.a["tau"])
+        self.slow = np.where(np.isfinite(d), keep * self.slow + (1 - keep) * d, self.slow)
+
+    def _hovers(self, level, err) -> bool:
+        """The served monitor's ``_excursion_hovers``: every judged sensor out of band has an
+        error no larger a share of its rise than the memory's (a regime, not a fault)."""
+        M, _, _, judged, scale = self._set()
+        out = np.flatnonzero(judged & (level >= WARNING))
+        if not self.slow_known or self.count < 2 or not len(out):
+            return False
+        past = (self.slow - M @ self.slow) * scale
+        rise = np.abs(self.hist[self._rows()].mean(axis=0))
+        now = np.abs(err[out]) * np.abs(self.slow[out])
+        then = np.maximum(past[out] * np.sign(err[out]), 0.0) * rise[out]
+        return bool(np.all(now <= self.a["growth"] * then))
+
+    @staticmethod
+    def _others(j, level, judged) -> int:
+        others = judged & (level >= WARNING)
+        others[j] = False
+        return int(others.sum())
+
+    def _by_drift(self, j: int) -> None:
+        """``j`` out by a drift exclusion: its return waits longer each time (served)."""
+        self.by_field[j] = True
+        self.dwell[j] = self.window * 2 ** min(self.outs[j], int(self.a["max_backoff"]))
+        self.outs[j] += 1
+        self.since[j] = self.count
+
+    def _X(self) -> np.ndarray:
+        rows = self.hist[self._rows()]
+        return np.where(np.isfinite(rows), rows, 0.0)
+
+    def _resolves(self, j: int, seen=None, alone=None) -> bool:
+        """With ``j`` out too, every other judged sensor's leave-one-out error over the last
+        ``confirm`` samples (their mean) within its warning band (True: too few left to judge;
+        ``seen``: and each of them still judged; ``alone``: and ``j`` off the others' field by
+        that much at least), as served."""
+        trial = self._active()
+        trial[j] = False
+        if trial.sum() < self.a["min_active"]:
+            return True
+        s = self._op_of(~trial)
+        if s is None:
+            return False
+        M, lev = self.M[s], self.lev[s]
+        jd = trial & (lev < self.max_lev)
+        if seen is not None and (seen & trial & ~jd).any():
+            return False
+        X = self._X()
+        E = ((X[:, jd] - X @ M[jd].T) / (1 - lev[jd])).mean(axis=0)
+        if not (np.abs(E) < self.a["warning"][jd]).all():
+            return False
+        return alone is None or bool(abs((X[:, j] - X @ M[j]).mean()) >= alone)
+
+    def _explaining(self, level, field) -> int | None:
+        """The served monitor's ``_explaining`` (every sensor in): a sensor no other predicts
+        whose reading explains the judged sensors beyond the band (None: none does)."""
+        _, active, observable, judged, _ = self._set()
+        M, lev = self.M[self.op], self.lev[self.op]
+        out = judged & (level >= field)
+        band = self.a["warning"] if field == WARNING else self.a["alarm"]
+        X = self._X()
+        r = (X - X @ M.T).mean(axis=0)
+        z = np.where(active, np.abs(r) / np.sqrt(np.maximum(1 - lev, 1e-12)), -1.0)
+        best, best_z = None, float(np.max(np.where(judged, z, -1.0)))
+        for u in np.flatnonzero(active & ~observable & (z > best_z)):
+            trial = active.copy()
+            trial[u] = False
+            if trial.sum() < self.a["min_active"]:
+                continue
+            s = self._op_of(~trial)
+            Mu, lu = self.M[s], self.lev[s]
+            jd = trial & (lu < self.max_lev)
+            if (out & ~jd).any():
+                continue
+            E = (X[:, jd] - X @ Mu[jd].T) / (1 - lu[jd])
+            if (np.abs(E).min(axis=0) >= band[jd]).any():
+                continue
+            if z[u] > best_z:
+                best, best_z = int(u), float(z[u])
+        return best

@@ -43,6 +43,12 @@ STATE = """    /* the sensor monitor (TC_MONITOR): referenced readings d = u - m
     double mon_gap[NM];
     int mon_jumps[NM], mon_dropped[NM];
     int mon_out;                                /* the sensor out (-1: none) */
+    /* (cmon82) its blind partner out with it (-1: none), the active set's operator (MON_M's
+       index), out by a drift exclusion, its exclusions so, the calm samples it needs to return,
+       the sample count at its drift exclusion (-1: none) */
+    int mon_out2, mon_op, mon_by_field[NM], mon_outs[NM], mon_dwell[NM], mon_since[NM];
+    double mon_slow[NM];     /* the field's memory (the served excursion rule, MON_TAU s) */
+    int mon_slow_known;      /* 0: its age unknown (a sample without its time) */
     int mon_flags, mon_sensor, mon_rule;        /* the last sample's (TC_MON_*) */
 """
 
@@ -55,15 +61,23 @@ def monitor_arrays(ss) -> list[tuple[str, object, tuple, str]]:
     """The monitor's constants as :func:`.c._declared` takes them (zeros where there is none)."""
     m = ss.monitor
     n = len(m.get("inputs", []))
+    pairs = m.get("pairs", [])
     vectors = ("warning", "alarm", "jump_lim", "lo_lim", "hi_lim", "lo_c", "hi_c", "seen_run",
                "blind_run")
     scalars = (("MON_MAX_LEV", "max_leverage", 1.0, "real"), ("MON_MIN_ACTIVE", "min_active", 0, "int"),
                ("MON_CONFIRM", "confirm", 1, "int"), ("MON_EXCLUDE_LEVEL", "exclude_level", 1, "int"),
                ("MON_PERIOD", "period", 1.0, "real"), ("MON_GAP_PERIODS", "gap_periods", 1.5, "real"),
                ("MON_READMIT", "readmit", 0.5, "real"), ("MON_COMMON_MIN", "common_min", 3, "int"),
-               ("MON_COMMON_SPREAD", "common_spread", 2.0, "real"))
-    return [("MON_M", m.get("M", []), (n + 1, n, n), "real"),
-            ("MON_LEV", m.get("lev", []), (n + 1, n), "real"),
+               ("MON_COMMON_SPREAD", "common_spread", 2.0, "real"), ("MON_DRIFT", "drift", 0, "int"),
+               ("MON_NEW_STATE", "new_state", 1, "int"),
+               ("MON_NEW_STATE_OTHERS", "new_state_others", 2, "int"),
+               ("MON_MAX_BACKOFF", "max_backoff", 10, "int"), ("MON_TAU", "tau", 1800.0, "real"),
+               ("MON_GROWTH", "growth", 1.5, "real"))
+    return [("MON_M", m.get("M", []), (n + 1 + len(pairs), n, n), "real"),
+            ("MON_LEV", m.get("lev", []), (n + 1 + len(pairs), n), "real"),
+            ("MON_PAIR_A", [p[0] for p in pairs], (len(pairs),), "int"),
+            ("MON_PAIR_B", [p[1] for p in pairs], (len(pairs),), "int"),
+            ("MON_N_PAIRS", len(pairs), (), "int"),
             *((f"MON_{k.upper()}", m.get(k, [0.0] * n), (n,), "real") for k in vectors),
             ("MON_PREDICTABLE", m.get("predictable", []), (n,), "int"),
             ("MON_PORTED", m.get("ported_out", []), (n,), "int"),
@@ -79,8 +93,8 @@ FUNCTIONS = r"""
 static void mon_set(const tc_state *s, int active[], int observable[], int judged[], double scale[]) {
     int k;
     for (k = 0; k < NM; k++) {
-        double lev = MON_LEV[s->mon_out + 1][k];
-        active[k] = k != s->mon_out;
+        double lev = MON_LEV[s->mon_op][k];
+        active[k] = k != s->mon_out && k != s->mon_out2;
         observable[k] = lev < MON_MAX_LEV;
         judged[k] = active[k] && observable[k];
         scale[k] = judged[k] ? 1.0 / (1.0 - lev > 1e-12 ? 1.0 - lev : 1e-12) : (active[k] ? NAN : 1.0);
@@ -94,15 +108,32 @@ static void mon_errors(const tc_state *s, const double d[], double pred[], doubl
     mon_set(s, a, o, jd, scale);
     for (k = 0; k < NM; k++) {
         pred[k] = 0.0;
-        for (m = 0; m < NM; m++) pred[k] += MON_M[s->mon_out + 1][k][m] * (isfinite(d[m]) ? d[m] : 0.0);
+        for (m = 0; m < NM; m++) pred[k] += MON_M[s->mon_op][k][m] * (isfinite(d[m]) ? d[m] : 0.0);
         e[k] = (d[k] - pred[k]) * scale[k];
     }
+}
+
+/* (cmon82) the index of the operator with the sensors out[] out (-1: not in the code): every
+   sensor in, one out, or a pair the code holds (a sensor and its blind partner) */
+static int mon_op_of(const int out[]) {
+    int k, a = -1, b = -1, n = 0, p;
+    for (k = 0; k < NM; k++)
+        if (out[k]) {
+            if (n == 0) a = k; else b = k;
+            n++;
+        }
+    if (n < 2) return a + 1;
+    for (p = 0; n == 2 && p < MON_N_PAIRS; p++)
+        if (MON_PAIR_A[p] == a && MON_PAIR_B[p] == b) return NM + 1 + p;
+    return -1;
 }
 
 /* the window's errors redone under a new operator (an exclusion, a re-admission) */
 static void mon_recompute(tc_state *s) {
     double pred[NM];
-    int w;
+    int w, out[NM];
+    for (w = 0; w < NM; w++) out[w] = w == s->mon_out || w == s->mon_out2;
+    s->mon_op = mon_op_of(out);
     for (w = 0; w < MW; w++) {
         double e[NM];
         int k;
@@ -124,6 +155,14 @@ static int mon_level(const tc_state *s, int k) {
     return (a >= MON_WARNING[k]) + (a >= MON_ALARM[k]);
 }
 
+/* (cmon82) the mean of the last MON_CONFIRM errors of sensor k */
+static double mon_mean_err(const tc_state *s, int k) {
+    double e = 0.0;
+    int r, n = s->mon_count < MON_CONFIRM ? s->mon_count : MON_CONFIRM;
+    for (r = 0; r < n; r++) e += s->mon_err[((s->mon_pos - 1 - r) % MW + MW) % MW][k];
+    return n ? e / n : 0.0;
+}
+
 static void mon_flag(tc_state *s, int bit, int k, int rule) {
     s->mon_flags |= bit;
     if (!s->mon_rule) s->mon_sensor = k, s->mon_rule = rule;   /* the sample's first event */
@@ -141,22 +180,49 @@ static void mon_exclude(tc_state *s, int k, int rule) {
     mon_flag(s, TC_MON_EXCLUDED, k, rule);
 }
 
-/* re-admission: sensor k's leave-one-out error with every sensor in, over the whole window,
-   within MON_READMIT of its warning band (one out for a dropout alone: its whole band) */
-static int mon_passes(const tc_state *s, int k) {
-    double worst = 0.0, lev = MON_LEV[0][k];
-    double band = (s->mon_dropped[k] && !s->mon_jumps[k]) ? 1.0 : MON_READMIT;
-    int w, m;
-    if (NM < MON_MIN_ACTIVE) return 0;
-    if (lev >= MON_MAX_LEV) return !MON_PREDICTABLE[k];
-    for (w = 0; w < MW; w++) {
-        double p = 0.0, v;
-        for (m = 0; m < NM; m++)
-            p += MON_M[0][k][m] * (isfinite(s->mon_hist[w][m]) ? s->mon_hist[w][m] : 0.0);
-        v = fabs(((isfinite(s->mon_hist[w][k]) ? s->mon_hist[w][k] : 0.0) - p) / (1.0 - lev));
-        if (v > worst) worst = v;
+/* re-admission (cmon82: judged together, as served): ok[k] whether sensor k of the set trial
+   passes, its leave-one-out error in it over the whole window within MON_READMIT of its warning
+   band (one out for a dropout alone: its whole band; one the others in trial cannot predict:
+   where no other predicts it at all), worst[k] that error */
+static void mon_pass_once_back(const tc_state *s, const int trial[], int ok[], double worst[]) {
+    int k, w, m, n = 0, out[NM], op;
+    for (k = 0; k < NM; k++) n += trial[k], out[k] = !trial[k], ok[k] = 0, worst[k] = HUGE_VAL;
+    if (n < MON_MIN_ACTIVE || (op = mon_op_of(out)) < 0) return;
+    for (k = 0; k < NM; k++) {
+        double lev = MON_LEV[op][k], band;
+        if (!trial[k]) continue;
+        if (lev >= MON_MAX_LEV) {
+            ok[k] = !MON_PREDICTABLE[k];
+            continue;
+        }
+        band = (s->mon_dropped[k] && !s->mon_by_field[k] && !s->mon_jumps[k]) ? 1.0 : MON_READMIT;
+        worst[k] = 0.0;
+        for (w = 0; w < MW; w++) {
+            double p = 0.0, v;
+            for (m = 0; m < NM; m++)
+                p += MON_M[op][k][m] * (isfinite(s->mon_hist[w][m]) ? s->mon_hist[w][m] : 0.0);
+            v = fabs(((isfinite(s->mon_hist[w][k]) ? s->mon_hist[w][k] : 0.0) - p) / (1.0 - lev));
+            if (v > worst[k]) worst[k] = v;
+        }
+        ok[k] = worst[k] < band * MON_WARNING[k];
     }
-    return worst < band * MON_WARNING[k];
+}
+
+/* which of the due sensors come back (back[]): those that pass in the set of the active ones
+   and every due one, the worst failing one left out until the rest pass */
+static void mon_returning(const tc_state *s, const int due[], int back[]) {
+    int trial[NM], ok[NM], k;
+    double worst[NM];
+    for (k = 0; k < NM; k++) trial[k] = (k != s->mon_out && k != s->mon_out2) || due[k];
+    for (;;) {
+        int bad = -1;
+        mon_pass_once_back(s, trial, ok, worst);
+        for (k = 0; k < NM; k++)
+            if (due[k] && trial[k] && !ok[k] && (bad < 0 || worst[k] > worst[bad])) bad = k;
+        if (bad < 0) break;
+        trial[bad] = 0;
+    }
+    for (k = 0; k < NM; k++) back[k] = due[k] && trial[k];
 }
 
 /* 1: input j is a monitored one (its missing reading the monitor's) */
@@ -195,7 +261,8 @@ static int mon_refuses(tc_state *s, const double u[]) {
 /* the monitored inputs of u as the model reads them: the reading, the sensor out rebuilt */
 static void mon_rebuilt(tc_state *s, double u[], const double d[], const double pred[]) {
     int k;
-    for (k = 0; k < NM; k++) u[TC_MONITORED[k]] = s->mon_base[k] + (k == s->mon_out ? pred[k] : d[k]);
+    for (k = 0; k < NM; k++)
+        u[TC_MONITORED[k]] = s->mon_base[k] + (k == s->mon_out || k == s->mon_out2 ? pred[k] : d[k]);
     if (s->mon_out >= 0) s->mon_flags |= TC_MON_OUT;
 }
 
@@ -244,10 +311,11 @@ static void mon_common_step(tc_state *s, double d[], double step[], int big[], i
     common = n % 2 ? v[n / 2] : (v[n / 2 - 1] + v[n / 2]) / 2.0;
     for (k = 0; k < NM; k++) {
         r = common != 0.0 ? step[k] / common : 0.0;
-        took[k] = k != s->mon_out && r >= 1.0 / MON_COMMON_SPREAD && r <= MON_COMMON_SPREAD;
+        took[k] = k != s->mon_out && k != s->mon_out2 && r >= 1.0 / MON_COMMON_SPREAD
+                  && r <= MON_COMMON_SPREAD;
         ntook += took[k];
         njump += took[k] && big[k];
-        nread += k != s->mon_out && isfinite(d[k]);
+        nread += k != s->mon_out && k != s->mon_out2 && isfinite(d[k]);
     }
     if (njump < MON_COMMON_MIN || 2 * ntook <= nread) return;
     for (k = 0; k < NM; k++) {
@@ -262,22 +330,279 @@ static void mon_common_step(tc_state *s, double d[], double step[], int big[], i
         if (took[k]) step[k] = 0.0, big[k] = 0;
 }
 
+/* (cmon82) the exclusion by judgement: the last MON_CONFIRM rows of the window, NAN as 0 */
+static int mon_rows(const tc_state *s, double X[][NM]) {
+    int r, k, n = s->mon_count < MON_CONFIRM ? s->mon_count : MON_CONFIRM;
+    for (r = 0; r < n; r++)
+        for (k = 0; k < NM; k++) {
+            double v = s->mon_hist[((s->mon_pos - 1 - r) % MW + MW) % MW][k];
+            X[r][k] = isfinite(v) ? v : 0.0;
+        }
+    return n;
+}
+
+/* sensor k's leave-one-out error under the operator op in row x */
+static double mon_loo(int op, int k, const double x[]) {
+    double p = 0.0;
+    int m;
+    for (m = 0; m < NM; m++) p += MON_M[op][k][m] * x[m];
+    return (x[k] - p) / (1.0 - MON_LEV[op][k]);
+}
+
+/* with j out too, every other judged sensor's leave-one-out error over the last MON_CONFIRM
+   samples (their mean) within its warning band (1: too few left to judge; 0: a set the code
+   does not hold) */
+static int mon_resolves(const tc_state *s, int j, const int seen[], double alone) {
+    double X[MW][NM], off = 0.0;
+    int out[NM], k, r, m, n = 0, op, rows = mon_rows(s, X);
+    for (k = 0; k < NM; k++) out[k] = k == j || k == s->mon_out || k == s->mon_out2, n += !out[k];
+    if (n < MON_MIN_ACTIVE) return 1;
+    if ((op = mon_op_of(out)) < 0) return 0;
+    for (k = 0; k < NM; k++)   /* (seen: each of them still judged) */
+        if (seen && seen[k] && !out[k] && MON_LEV[op][k] >= MON_MAX_LEV) return 0;
+    for (k = 0; k < NM; k++) {
+        double e = 0.0;
+        if (out[k] || MON_LEV[op][k] >= MON_MAX_LEV) continue;
+        for (r = 0; r < rows; r++) e += mon_loo(op, k, X[r]);
+        if (!(fabs(e / rows) < MON_WARNING[k])) return 0;
+    }
+    if (alone < 0.0) return 1;
+    for (r = 0; r < rows; r++) {   /* (alone: j off the others' field by that much at least) */
+        double p = 0.0;
+        for (m = 0; m < NM; m++) p += MON_M[op][j][m] * X[r][m];
+        off += X[r][j] - p;
+    }
+    return fabs(off / rows) >= alone;
+}
+
+/* the served monitor's _lone_fault, every sensor in: the sensor (j: the largest |E|(1 - h), z
+   its ranks) whose exclusion explains the bands, *resolves whether it does */
+static int mon_lone_fault(const tc_state *s, int j, const double z[], const int level[],
+                          const int jd[], int *resolves) {
+    double size[NM];
+    int out[NM], k, i, hides, likelier = -1, done[NM];
+    for (k = 0; k < NM; k++) {
+        double e = mon_mean_err(s, k);
+        out[k] = jd[k] && level[k] >= 1;
+        size[k] = jd[k] ? fabs(isnan(e) ? 0.0 : e) : 0.0;
+        done[k] = 0;
+    }
+    if (mon_resolves(s, j, level[j] < 1 ? out : 0, -1.0)) return *resolves = 1, j;
+    hides = level[j] < 1 && mon_resolves(s, j, 0, -1.0);
+    if (hides)   /* the likelier single fault: the largest standardised residual */
+        for (k = 0; k < NM; k++) {
+            double w = size[k] * sqrt(fabs(1.0 - MON_LEV[s->mon_op][k]));
+            if (likelier < 0 || w > size[likelier] * sqrt(fabs(1.0 - MON_LEV[s->mon_op][likelier])))
+                likelier = k;
+        }
+    for (i = 0; i < NM; i++) {   /* the others, the largest z first */
+        double alone = 0.0;
+        k = -1;
+        for (int m = 0; m < NM; m++)
+            if (!done[m] && (k < 0 || z[m] > z[k])) k = m;
+        done[k] = 1;
+        if (k == j || z[k] < 0 || level[k] < 1 || (likelier >= 0 && likelier != k)) continue;
+        for (int m = 0; m < NM; m++)
+            if (m != k && size[m] > alone) alone = size[m];
+        if (mon_resolves(s, k, out, alone)) return *resolves = 1, k;
+    }
+    return *resolves = hides, j;
+}
+
+/* the served monitor's _excursion_hovers: every judged sensor out of band has an error no larger
+   a share of its rise than the field's memory had (a regime, not a fault) */
+static int mon_hovers(const tc_state *s, const int level[]) {
+    double scale[NM], X[MW][NM];
+    int a[NM], o[NM], jd[NM], k, m, r, n = 0, rows;
+    if (!s->mon_slow_known || s->mon_count < 2) return 0;
+    mon_set(s, a, o, jd, scale);
+    rows = s->mon_count < MON_CONFIRM ? s->mon_count : MON_CONFIRM;
+    for (r = 0; r < rows; r++)
+        for (k = 0; k < NM; k++) X[r][k] = s->mon_hist[((s->mon_pos - 1 - r) % MW + MW) % MW][k];
+    for (k = 0; k < NM; k++) {
+        double past = 0.0, rise = 0.0, e = mon_mean_err(s, k), sgn, then;
+        if (!jd[k] || level[k] < 1) continue;
+        n++;
+        for (m = 0; m < NM; m++) past += MON_M[s->mon_op][k][m] * s->mon_slow[m];
+        past = (s->mon_slow[k] - past) * scale[k];
+        for (r = 0; r < rows; r++) rise += X[r][k];
+        rise = fabs(rise / rows);
+        sgn = e > 0 ? 1.0 : (e < 0 ? -1.0 : (isnan(e) ? NAN : 0.0));
+        then = past * sgn > 0.0 ? past * sgn * rise : 0.0 * rise;
+        if (!(fabs(e) * fabs(s->mon_slow[k]) <= MON_GROWTH * then)) return 0;
+    }
+    return n > 0;
+}
+
+/* the served monitor's _explaining (every sensor in): a sensor no other predicts whose reading
+   explains the judged sensors beyond the band (level >= field), -1: none does */
+static int mon_explaining(const tc_state *s, const int level[], int field) {
+    double X[MW][NM], scale[NM], z[NM], best_z = -1.0;
+    int a[NM], o[NM], jd[NM], cand[NM], k, u, r, m, best = -1, rows = mon_rows(s, X);
+    mon_set(s, a, o, jd, scale);
+    for (k = 0; k < NM; k++) {
+        double e = 0.0, h = 1.0 - MON_LEV[s->mon_op][k];
+        z[k] = -1.0;
+        if (!a[k]) continue;
+        for (r = 0; r < rows; r++) {
+            double p = 0.0;
+            for (m = 0; m < NM; m++) p += MON_M[s->mon_op][k][m] * X[r][m];
+            e += X[r][k] - p;
+        }
+        z[k] = fabs(e / rows) / sqrt(h > 1e-12 ? h : 1e-12);
+        if (jd[k] && z[k] > best_z) best_z = z[k];
+    }
+    for (k = 0; k < NM; k++) cand[k] = a[k] && !o[k] && z[k] > best_z;
+    for (u = 0; u < NM; u++) {
+        int n = 0, op = u + 1, fails = 0;
+        if (!cand[u]) continue;
+        for (k = 0; k < NM; k++) n += a[k] && k != u;
+        if (n < MON_MIN_ACTIVE) continue;
+        for (k = 0; k < NM && !fails; k++) {
+            double least = HUGE_VAL;
+            int judged = a[k] && k != u && MON_LEV[op][k] < MON_MAX_LEV;
+            if (jd[k] && level[k] >= field && !judged) fails = 1;
+            if (!judged) continue;
+            for (r = 0; r < rows; r++) {
+                double v = fabs(mon_loo(op, k, X[r]));
+                if (v < least) least = v;
+            }
+            if (least >= (field == 1 ? MON_WARNING[k] : MON_ALARM[k])) fails = 1;
+        }
+        if (!fails && z[u] > best_z) best = u, best_z = z[u];
+    }
+    return best;
+}
+
+/* level[] and the judged sensors (jd[]) of the active set, how many are active */
+static int mon_levels(const tc_state *s, int level[], int jd[]) {
+    int a[NM], o[NM], k, n = 0;
+    double scale[NM];
+    mon_set(s, a, o, jd, scale);
+    for (k = 0; k < NM; k++) level[k] = jd[k] ? mon_level(s, k) : 0, n += a[k];
+    return n;
+}
+
+/* judged sensors but j at least at the warning band */
+static int mon_others(const int level[], const int jd[], int j) {
+    int k, n = 0;
+    for (k = 0; k < NM; k++) n += k != j && jd[k] && level[k] >= 1;
+    return n;
+}
+
+/* j out by a drift exclusion: its return waits longer each time (served) */
+static void mon_by_drift(tc_state *s, int j) {
+    s->mon_by_field[j] = 1;
+    s->mon_dwell[j] = MW * (1 << (s->mon_outs[j] < MON_MAX_BACKOFF ? s->mon_outs[j] : MON_MAX_BACKOFF));
+    s->mon_outs[j]++;
+    s->mon_since[j] = s->mon_count;
+}
+
+/* every sensor in, one beyond the band (level >= field): the culprit (the largest |E|(1 - h))
+   out where with it out the others are within their warning bands and fewer than
+   MON_NEW_STATE_OTHERS others are out of it (else nothing: the served monitor's veto), its blind
+   partner with it; flagged where the served monitor does what the code does not */
+static void mon_drift(tc_state *s, const int level[], int field) {
+    double scale[NM], z[NM];
+    int a[NM], o[NM], jd[NM], lv[NM], k, j = 0, u, nblind = 0, partner = -1;
+    if ((u = mon_explaining(s, level, field)) >= 0) {
+        mon_flag(s, TC_MON_NOT_IN_CODE, u, TC_MON_DRIFT);
+        return;
+    }
+    mon_set(s, a, o, jd, scale);
+    for (k = 0; k < NM; k++) {
+        double e = mon_mean_err(s, k), sd = sqrt(fabs(1.0 - MON_LEV[s->mon_op][k]));
+        z[k] = jd[k] ? fabs(isnan(e) ? 0.0 : e) * (sd * sd) : -1.0;
+        if (z[k] > z[j]) j = k;
+    }
+    if (MON_NEW_STATE) {
+        int resolves;
+        j = mon_lone_fault(s, j, z, level, jd, &resolves);
+        if (!resolves) {   /* a new thermal state (served: declared): not in the code */
+            mon_flag(s, TC_MON_NOT_IN_CODE, j, TC_MON_DRIFT);
+            return;
+        }
+        if (mon_others(level, jd, j) >= MON_NEW_STATE_OTHERS) return;
+        if (level[j] < 1 && mon_hovers(s, level)) return;   /* a regime, not a fault */
+    }
+    mon_exclude(s, j, TC_MON_DRIFT_OUT);
+    if (s->mon_out != j) return;   /* (flagged) */
+    mon_by_drift(s, j);
+    mon_set(s, a, o, jd, scale);
+    for (k = 0; k < NM; k++)
+        if (a[k] && !o[k] && z[k] >= 0.7 * z[j]) nblind++, partner = partner < 0 ? k : partner;
+    if (nblind && mon_levels(s, lv, jd) > MON_MIN_ACTIVE) {
+        int out[NM];
+        for (k = 0; k < NM; k++) out[k] = !a[k] || k == partner;
+        if (nblind > 1 || mon_op_of(out) < 0 || !MON_PORTED[partner]
+            || (MON_NEW_STATE && !mon_resolves(s, partner, 0, -1.0))) {
+            mon_flag(s, TC_MON_NOT_IN_CODE, partner, TC_MON_DRIFT);
+            return;
+        }
+        if (MON_NEW_STATE && mon_others(lv, jd, partner) >= MON_NEW_STATE_OTHERS) return;
+        s->mon_out2 = partner;
+        s->mon_calm[partner] = 0;
+        mon_recompute(s);
+        mon_by_drift(s, partner);
+        mon_flag(s, TC_MON_EXCLUDED, partner, TC_MON_DRIFT_OUT);
+    }
+    if (mon_levels(s, lv, jd) > MON_MIN_ACTIVE)   /* served: judged again, a second culprit */
+        for (k = 0; k < NM; k++)
+            if (jd[k] && lv[k] >= 2) {
+                mon_flag(s, TC_MON_NOT_IN_CODE, k, TC_MON_DRIFT);
+                break;
+            }
+}
+
+/* the served monitor's exclusion by judgement where the code holds it (mon_drift), else
+   flagged; and a field that followed a drift exclusion within a window (served: re-admitted, a
+   new thermal state) flagged */
+static void mon_judgement(tc_state *s) {
+    int level[NM], jd[NM], k, n, field = 0, leaving = 0;
+    for (k = 0; k < NM; k++) field |= k == s->mon_out && s->mon_by_field[k];
+    field = field ? 2 : MON_EXCLUDE_LEVEL;
+    n = mon_levels(s, level, jd);
+    for (k = 0; k < NM; k++)
+        if (jd[k] && level[k] >= field && n > MON_MIN_ACTIVE) {
+            if (!MON_DRIFT || s->mon_out >= 0) mon_flag(s, TC_MON_NOT_IN_CODE, k, TC_MON_DRIFT);
+            else mon_drift(s, level, field);
+            break;
+        }
+    if (!MON_NEW_STATE) return;
+    mon_levels(s, level, jd);
+    for (k = 0; k < NM; k++) {
+        leaving += jd[k] && level[k] >= 1;
+        if ((k != s->mon_out && k != s->mon_out2) || s->mon_count - s->mon_since[k] > MW)
+            s->mon_since[k] = -1;
+    }
+    for (k = 0; k < NM; k++)
+        if (s->mon_since[k] >= 0 && leaving >= MON_NEW_STATE_OTHERS) {
+            mon_flag(s, TC_MON_NOT_IN_CODE, k, TC_MON_DRIFT);
+            break;
+        }
+}
+
 /* one sample of the monitored inputs of u, replaced by what the model reads (the reading, or
    its POD reconstruction while it is out), as the served monitor (watch.py's slice) */
 static void monitor_step(tc_state *s, double u[], double dt) {
     double x[NM], d[NM], step[NM], pred[NM], e[NM], other[NM], gap[NM], span = 1.0;
     int a[NM], o[NM], jd[NM], big[NM], same[NM], instant[NM], rng[NM], missing[NM];
     double scale[NM];
-    int k, pos, nbig = 0, jumped = -1, field = 0, nactive = 0, lost = -1, far = -1, nrng = 0;
+    int k, pos, nbig = 0, jumped = -1, lost = -1, far = -1, nrng = 0;
     int gone[NM];
     if (s->first) {
-        s->mon_out = -1;
+        s->mon_out = s->mon_out2 = -1;
+        s->mon_op = 0;
         s->mon_pos = s->mon_count = 0;
         for (k = 0; k < NM; k++) {
             int w;
             s->mon_prev[k] = s->mon_prev_e[k] = s->mon_prev_other[k] = s->mon_run_pred[k] = NAN;
             s->mon_run[k] = s->mon_calm[k] = s->mon_jumps[k] = s->mon_dropped[k] = 0;
             s->mon_gap[k] = 1.0;
+            s->mon_by_field[k] = s->mon_outs[k] = 0;
+            s->mon_dwell[k] = MW;
+            s->mon_since[k] = -1;
+            s->mon_slow[k] = 0.0;
             for (w = 0; w < MW; w++) s->mon_hist[w][k] = s->mon_err[w][k] = NAN;
         }
     }
@@ -382,26 +707,28 @@ static void monitor_step(tc_state *s, double u[], double dt) {
         instant[k] = 1;
         if (a[k]) mon_exclude(s, k, TC_MON_FREEZE);
     }
-    /* rules not in the code: a stepped error, a drift beyond the band (their exclusion) */
+    /* a rule not in the code: a stepped error (its exclusion) */
     mon_set(s, a, o, jd, scale);
-    for (k = 0; k < NM; k++) {
-        nactive += a[k];
+    for (k = 0; k < NM; k++)
         if (jd[k] && fabs(e[k]) >= MON_ALARM[k] && fabs(e[k] - s->mon_prev_e[k]) >= MON_ALARM[k])
             mon_flag(s, TC_MON_NOT_IN_CODE, k, TC_MON_STEPPED);
-    }
-    for (k = 0; k < NM; k++) {
-        int level = jd[k] ? mon_level(s, k) : 0;
-        if (level) s->mon_flags |= TC_MON_BAND;
-        if (level >= MON_EXCLUDE_LEVEL && !field) field = k + 1;
-    }
-    if (field && nactive > MON_MIN_ACTIVE) mon_flag(s, TC_MON_NOT_IN_CODE, field - 1, TC_MON_DRIFT);
-    k = s->mon_out;
-    if (k >= 0 && s->mon_count >= MW && s->mon_run[k] == 0 && !instant[k] && !gone[k]
-        && s->mon_calm[k] >= MW && mon_passes(s, k)) {
-        s->mon_out = -1;
-        s->mon_jumps[k] = 0;
-        mon_recompute(s);
-        mon_flag(s, TC_MON_READMITTED, k, TC_MON_BACK);
+    for (k = 0; k < NM; k++)
+        if (jd[k] && mon_level(s, k)) s->mon_flags |= TC_MON_BAND;
+    mon_judgement(s);   /* (cmon82) a drift exclusion */
+    if (s->mon_out >= 0 && s->mon_count >= MW) {   /* re-admission, the due sensors together */
+        int due[NM], back[NM];
+        for (k = 0; k < NM; k++)
+            due[k] = (k == s->mon_out || k == s->mon_out2) && s->mon_run[k] == 0 && !instant[k]
+                     && !gone[k] && s->mon_calm[k] >= s->mon_dwell[k];
+        mon_returning(s, due, back);
+        for (k = 0; k < NM; k++) {
+            if (!back[k]) continue;
+            s->mon_jumps[k] = s->mon_by_field[k] = 0;
+            if (k == s->mon_out) s->mon_out = s->mon_out2;
+            s->mon_out2 = -1;
+            mon_recompute(s);
+            mon_flag(s, TC_MON_READMITTED, k, TC_MON_BACK);
+        }
     }
     mon_errors(s, d, pred, e);
     mon_set(s, a, o, jd, scale);
@@ -411,6 +738,14 @@ static void monitor_step(tc_state *s, double u[], double dt) {
         s->mon_gap[k] = gone[k] ? gap[k] + 1.0 : 1.0;
         s->mon_prev_e[k] = e[k];
         if (instant[k]) s->mon_dropped[k] = missing[k];   /* the last detector to fire on it */
+    }
+    /* the field's memory (served: the sample folded in by its time since the last) */
+    if (s->first || !isfinite(dt)) s->mon_slow_known = s->first;
+    else {
+        double keep = exp(-(dt > 0.0 ? dt : 0.0) / MON_TAU);
+        for (k = 0; k < NM; k++)
+            if (isfinite(s->mon_hist[pos][k]))
+                s->mon_slow[k] = keep * s->mon_slow[k] + (1.0 - keep) * s->mon_hist[pos][k];
     }
     mon_rebuilt(s, u, d, pred);
 }
