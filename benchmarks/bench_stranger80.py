@@ -106,7 +106,6 @@ tag's grid rows (the safe side); the exported C's monitor says its own re-admiss
 from __future__ import annotations
 
 import sys
-from datetime import timedelta
 from pathlib import Path
 
 import numpy as np
@@ -115,6 +114,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from _cli import run_commands  # noqa: E402
 from _faults import four_faults  # noqa: E402
+from _runs import restarted_runs  # noqa: E402
 from bench_stranger75 import matrix  # noqa: E402
 
 TEMP_EVERY, PROBE_LATE = 3, 2            # 30 s of the network's 10 s; the probes' task 20 s late
@@ -127,17 +127,7 @@ def channels(seed: int):
     """The record: ``(jig80 result, [(run label, local start, rows)])``."""
     import jig80 as j
     r = j.simulate(int(seed))
-    runs = []
-    for n, (start, rows) in enumerate(j.run_windows(), start=1):
-        idx = np.arange(rows.start, rows.stop)
-        if n == SPLIT_RUN:
-            runs.append((f"Lauf{n:02d}a", start, idx[:SPLIT_ROW]))
-            later = idx[SPLIT_ROW + SPLIT_GAP:]
-            runs.append((f"Lauf{n:02d}b", start + timedelta(seconds=(SPLIT_ROW + SPLIT_GAP) * j.STEP_S),
-                         later))
-        else:
-            runs.append((f"Lauf{n:02d}", start, idx))
-    return r, runs
+    return r, restarted_runs(j.run_windows(), j.STEP_S, SPLIT_RUN, SPLIT_ROW, SPLIT_GAP, "Lauf")
 
 
 def _status(r, idx) -> np.ndarray:

@@ -127,7 +127,6 @@ change).
 from __future__ import annotations
 
 import sys
-from datetime import timedelta
 from pathlib import Path
 from xml.sax.saxutils import quoteattr
 
@@ -137,6 +136,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from _cli import run_commands  # noqa: E402
 from _faults import four_faults  # noqa: E402
+from _runs import restarted_runs  # noqa: E402
 from bench_stranger75 import matrix  # noqa: E402
 
 GUD = "/NC/_N_NC_GD9_ACX/"                 # the lab's global user data the PLC writes
@@ -160,16 +160,7 @@ def channels(seed: int):
     """The record: ``(edm81 result, [(run label, local start, rows)])``."""
     import edm81 as e
     r = e.simulate(int(seed))
-    runs = []
-    for n, (start, rows) in enumerate(e.run_windows(), start=1):
-        idx = np.arange(rows.start, rows.stop)
-        if n == SPLIT_RUN:
-            runs.append((f"{n:02d}a", start, idx[:SPLIT_ROW]))
-            runs.append((f"{n:02d}b", start + timedelta(seconds=(SPLIT_ROW + SPLIT_GAP) * e.STEP_S),
-                         idx[SPLIT_ROW + SPLIT_GAP:]))
-        else:
-            runs.append((f"{n:02d}", start, idx))
-    return r, runs
+    return r, restarted_runs(e.run_windows(), e.STEP_S, SPLIT_RUN, SPLIT_ROW, SPLIT_GAP)
 
 
 def _column(r, key, idx):

@@ -130,6 +130,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from _cli import run_commands  # noqa: E402
 from _faults import four_faults  # noqa: E402
+from _runs import restarted_runs  # noqa: E402
 from bench_stranger75 import matrix  # noqa: E402
 
 LOOSE_RUN, LOOSE_SIGNAL, LOOSE_ROW = 5, "LAGER_H", 700
@@ -149,16 +150,7 @@ def runs(seed: int):
     """The record: ``(lathe82 result, [(run label, local start, rows)])``."""
     import lathe82 as m
     r = m.simulate(int(seed))
-    out = []
-    for n, (start, rows) in enumerate(m.run_windows(), start=1):
-        idx = np.arange(rows.start, rows.stop)
-        if n == SPLIT_RUN:
-            out.append((f"{n:02d}a", start, idx[:SPLIT_ROW]))
-            out.append((f"{n:02d}b", start + timedelta(seconds=(SPLIT_ROW + SPLIT_GAP) * m.STEP_S),
-                        idx[SPLIT_ROW + SPLIT_GAP:]))
-        else:
-            out.append((f"{n:02d}", start, idx))
-    return r, out
+    return r, restarted_runs(m.run_windows(), m.STEP_S, SPLIT_RUN, SPLIT_ROW, SPLIT_GAP)
 
 
 def _column(r, key, idx):
