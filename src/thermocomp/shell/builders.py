@@ -21,22 +21,13 @@ from .store import is_registered_model
 
 
 def auto_scheme(cfg: DictConfig, ds) -> dict:
-    """``{"scheme": ..., "unseen_campaigns": ...}``: validate as the test split of ``ds`` is held
-    out, unless ``model.estimator.scheme`` names one; ``unseen_campaigns='folds'`` where a test
-    campaign continues a train one (the folds of one record then hold out what the test holds
-    out: :class:`~thermocomp.core.models.auto.AutoRegressor`).  ``{}`` without a dataset."""
-    if ds is None:
+    """``{"scheme": ...}``: validate as the test split of ``ds`` is held out, unless
+    ``model.estimator.scheme`` names one (``{}`` without a dataset)."""
+    if ds is None or cfg.model.estimator.get("scheme", "auto") != "auto":
         return {}
-    from ..core.continuation import predecessors
     from ..core.scoring.evaluation import holdout_scheme
 
-    out = {}
-    if cfg.model.estimator.get("scheme", "auto") == "auto":
-        out["scheme"] = holdout_scheme(ds)
-    train, test = set(ds.ids("train")), set(ds.ids("test"))
-    if any(c in test and p in train for c, p in predecessors(ds).items()):
-        out["unseen_campaigns"] = "folds"
-    return out
+    return {"scheme": holdout_scheme(ds)}
 
 
 def build_compensator(cfg: DictConfig, ati: bool = True, ds=None) -> Compensator:

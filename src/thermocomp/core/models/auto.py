@@ -39,7 +39,6 @@ FORWARD_ONE = "forward-chaining (one record)"
 MIN_IN_RANGE_ROWS = 20   # validation_rows='in_range': a fold with fewer in-range rows is scored whole
 BLOCKS_ONE = {"blocks": "leave-block-out (one record)", "late_blocks": "leave-late-block-out (one record)"}
 CAMPAIGN_FOLDS = ("blocked forward", "leave-campaigns-out")   # folds holding out whole campaigns
-ONE_RECORD = (FORWARD_ONE, *BLOCKS_ONE.values())                 # folds that are blocks of one record
 
 
 class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
@@ -126,16 +125,6 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         voting rows, MLR a candidate) has mean + standard error >= 1, the reason saying so;
         ``'none'``: the blend the votes give (a model pickled before the key refits so).  The
         zero rule (``uncompensated``) then judges what is kept.
-    unseen_campaigns : {'mlr', 'folds'}, default 'folds' (the config's: 'mlr')
-        Where the folds are blocks of one train record (one campaign, or runs that continue one
-        another) and the test campaigns are new (none continues it): ``'mlr'`` (extension) keeps
-        MLR, a candidate, whatever the folds say, the reason saying why: no fold holds out a new
-        campaign's conditions (its start state, weather, programme), so the folds' evidence for
-        another family is not evidence for the test; the zero rule then judges MLR.  ``'folds'``:
-        the folds choose, as with several train records.  ``conf/model/auto.yaml`` sets ``'mlr'``
-        and the stages ``'folds'`` where a test campaign continues the train record
-        (``fl_thermal``'s cuts: the folds then hold out what the test holds out;
-        ``benchmarks/bench_auto82b.py``); a model pickled before the key refits with ``'folds'``.
     min_gain_pct : float, default 1.0
         ``combine='best'``: MLR, when a candidate, is kept unless the best candidate's validation
         RMSE is lower
@@ -176,7 +165,7 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
                    "min_gain_pct": number(0.0, 100.0),
                    "combine": choice("vote", "best"), "keep_oof": choice(True, False),
                    "uncompensated": choice("zero", "keep"), "fallback": choice("one_se", "none"),
-                   "validation_rows": choice("all", "in_range"), "unseen_campaigns": choice("mlr", "folds")}
+                   "validation_rows": choice("all", "in_range")}
 
     uncompensated = "keep"   # a model pickled before the key: refitted as it was fitted
     fallback = "none"        # likewise
@@ -186,8 +175,7 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
                  max_seconds: float | None = None, min_gain_pct: float = 1.0, chosen=None,
                  val_scores=None, given_scores=None, combine: str = "vote", keep_oof: bool = False,
                  one_record: str = "forward", validation_rows: str = "all",
-                 uncompensated: str = "zero", fallback: str = "one_se", unseen_campaigns: str = "folds"):
-        self.unseen_campaigns = unseen_campaigns
+                 uncompensated: str = "zero", fallback: str = "one_se"):
         self.fallback = fallback
         self.uncompensated = uncompensated
         self.validation_rows = validation_rows
@@ -253,8 +241,6 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
             self.oof_in_range_ = np.concatenate([within_range(X, fit, score)[score]
                                                  for fit, _, score in folds])
         members = [n for n in self.candidates if n in self.oof_]
-        if self.unseen_campaigns == "mlr" and self.scheme_ in ONE_RECORD and BASELINE in members:
-            return self._mlr_for_new_campaigns(X, y, context, how)
         if self.combine == "vote" and len(members) > 1 and BASELINE in self.oof_:
             return self._blend(X, y, context, members, how)
         return self._keep_best(X, y, context, None, how)
@@ -288,22 +274,6 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         if self._one_se(predicted, rows, base):
             blended, predicted = self.validation_[BASELINE], self.oof_[BASELINE]
         self._none_unless_better(blended, predicted)
-        return self._refit(X, y, context)
-
-    def _mlr_for_new_campaigns(self, X, y, context, how: str):
-        """``unseen_campaigns='mlr'`` on one train record: MLR kept, the folds' best said, the
-        zero rule on MLR's out-of-fold prediction."""
-        ranked = sorted((v, n) for n, v in self.validation_.items() if n in self.candidates)
-        self.weights_, self.combine_ = {BASELINE: 1.0}, self.combine
-        self.family_ = self.chosen_ = BASELINE
-        self.reason_ = (f"MLR kept: the folds ({how}) are blocks of the one train record and the "
-                        f"test campaigns do not continue it, so no fold holds out a new campaign's "
-                        f"conditions and their evidence for another family is not evidence for "
-                        f"the test (model.estimator.unseen_campaigns=folds lets them choose); "
-                        f"lowest validation {ranked[0][1]} {ranked[0][0]:.4g}, MLR "
-                        f"{self.validation_[BASELINE]:.4g}, persistence "
-                        f"{self.validation_[PERSISTENCE]:.4g}")
-        self._none_unless_better(self.validation_[BASELINE], self.oof_[BASELINE])
         return self._refit(X, y, context)
 
     def _one_se(self, predicted: np.ndarray, rows: np.ndarray, base: int | None) -> bool:
