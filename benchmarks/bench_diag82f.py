@@ -46,6 +46,37 @@ the two ``fresh`` runs alternated / side by side on the same draws:
 5. ``bench_diagnose_faults58.py``'s 20 rows: no target's test RMSE after with the rule more than
    2 % above shipped's after.
 6. tests/apps/test_diagnose_*.py and tests/shell/test_diagnose_*.py pass with the rule.
+
+Scored (2026-12-04, 2 shared cores; shipped = main's src, 65fa0069's, ``PYTHONPATH=/work/main/src``;
+rule = this tree at 69e33fb5; the two ``fresh`` runs side by side on the same draws, then the two
+``bench_diagnose_faults58.py`` runs side by side on one ``write`` root; ``compare ROOT shipped rule``;
+diagnose CPU summed over the 20 draws 18.0 s shipped, 19.2 s rule)
+------------------------------------------------------------------------------------------------
+Test RMSE as deployed (µm); starting blocks of the target shipped / rule; every other target of
+the 20 draws identical in both (clean: nothing accepted anywhere, either tree)::
+
+  draw / target           before  shipped          rule
+  planted:8352 E_Y (8/18)  5.889  5.889 nothing    1.370 S_pos_Y x (T_box1 over T_amb)
+  planted:8360 E_Y (8/77)  4.574  4.574 nothing    1.753 the same
+
+1. **Holds.**  Found 6 of 10 shipped (8351, 8353, 8354, 8357, 8358, 8359) -> 8 of 10 rule (+2:
+   8352, 8360; 8355, 8356 missed by both); where both found, the same effect and after.
+2. **Holds.**  Clean 8361-8370: nothing accepted on any target, either tree.
+3. **Holds.**  The control is accepted nowhere; it clears the bar on 2 (draw, target) pairs
+   shipped (planted:8358 E_Y, clean:8362 E_X: each on its 8 campaign blocks, nothing accepted
+   on the clean one) -> 0 with the rule.
+4. **Holds.**  > 2 % worse after than before: planted:8359 E_Y (+5.7 %, the planted product,
+   also > 5 %) only, in both trees with the same after.
+5. **Holds.**  bench_diagnose_faults58's 20 rows: 19 identical (43 of 45 targets), faults found
+   10 of 16 in both; twin_lathe:drift E_Z1_error 0.386 -> 0.320 (-17.1 %, the inputs' 4 h lag,
+   as diag82 / 82d / 82e) and E_Z2_error 1.123 -> 0.331 (-70.5 %, the inputs' 900 s and 1 h
+   lags) after, shipped -> rule: gains, none worse.
+6. **Holds.**  88 of 88 (tests/apps/test_diagnose_*.py, tests/shell/test_diagnose_*.py, with
+   test_diagnose_blocks82.py's two re-cut tests; 60 s CPU) pass.
+
+**KEPT.**  Checked on spent draws before the bar (not the bar): planted 8282 E_Y (diag82e's
+failure) round 2 re-cut 38 x 13 -> 8 x 92 samples, the control 28.2 % at p 0.0156, not clearing,
+the after unchanged (1.503); test_diagnose_blocks82's 8061 E_Y: 28 blocks of 18, then 9 of 45.
 """
 
 from __future__ import annotations

@@ -1,6 +1,6 @@
-"""Issue 34 (diag82): each target tested on its own blocks, the control held to every check a
-candidate must pass, the deployed penalty's standard error on the shared design
-(benchmarks/bench_diag82.py).
+"""Issue 34 (diag82): each target tested on its own blocks, re-cut each round on that round's
+residual (diag82f), the control held to every check a candidate must pass, the deployed penalty's
+standard error on the shared design (benchmarks/bench_diag82.py, bench_diag82f.py).
 """
 
 from __future__ import annotations
@@ -12,6 +12,7 @@ from types import SimpleNamespace
 import numpy as np
 
 from test_diagnose_few import few
+from test_diagnose_positions61 import train_problem
 from test_diagnose_within67 import _evaluation, _result, _search
 from test_diagnose_withinrest69 import _residuals
 from thermocomp.apps.diagnose import SearchOptions, diagnose
@@ -19,6 +20,7 @@ from thermocomp.apps.diagnose.candidates import CONTROL
 from thermocomp.apps.diagnose.cv import CrossValidator, smallest_p
 from thermocomp.apps.diagnose.features import Effect
 from thermocomp.core.compensator import Compensator
+from thermocomp.core.model_selection.blocks import cut_blocks, decorrelation_length
 from thermocomp.core.models import MLR
 
 
@@ -69,3 +71,28 @@ def test_a_planted_position_effect_is_found_on_its_targets_own_blocks():
     for t, v in designs.items():
         assert d.targets[t].search.start.block_mse.size == v["test_blocks"]
     assert not any(d.to_json(t)["control_ever_clears_bar"] for t in d.targets)
+
+
+def test_a_round_recuts_the_test_blocks_on_its_own_residual_not_the_penalty_blocks():
+    # blocks cut on a white residual are too fine for a slow one (a random walk left after an
+    # effect is taken): re-cut on it, as long as it takes to decorrelate (planted 8282, diag82e)
+    p = train_problem()
+    rng = np.random.default_rng(8351)
+    white, slow = rng.normal(size=len(p.y)), rng.normal(size=len(p.y)).cumsum()
+    p.set_test_blocks(decorrelation_length(white, p.campaigns, p.validated, p.held_out))
+    fine, length, penalty = p.n_blocks_tested, p.block_samples, p.penalty_index.copy()
+    assert p.recut_test_blocks(slow)
+    assert p.block_samples == decorrelation_length(slow, p.campaigns, p.validated, p.held_out) > length
+    assert p.n_blocks_tested < fine
+    np.testing.assert_array_equal(p.block_index, cut_blocks(p.unit_index, p.campaigns, p.block_samples,
+                                                            scored=p.measured))
+    np.testing.assert_array_equal(p.penalty_index, penalty)      # the deployed penalty's: kept
+    assert not p.recut_test_blocks(slow)
+
+
+def test_each_round_reports_its_blocks_the_first_on_the_starting_design():
+    d = _every_target(8061)
+    j = d.to_json("E_Y")
+    searched = [r for r in j["rounds"] if r["step"] >= 1]
+    assert searched and all(r["test_blocks"] >= 1 and r["block_samples"] >= 1 for r in searched)
+    assert searched[0]["test_blocks"] == j["cv"]["designs"]["E_Y"]["test_blocks"]
