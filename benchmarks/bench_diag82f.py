@@ -72,7 +72,11 @@ the 20 draws identical in both (clean: nothing accepted anywhere, either tree)::
    as diag82 / 82d / 82e) and E_Z2_error 1.123 -> 0.331 (-70.5 %, the inputs' 900 s and 1 h
    lags) after, shipped -> rule: gains, none worse.
 6. **Holds.**  88 of 88 (tests/apps/test_diagnose_*.py, tests/shell/test_diagnose_*.py, with
-   test_diagnose_blocks82.py's two re-cut tests; 60 s CPU) pass.
+   test_diagnose_blocks82.py's two re-cut tests; 60 s CPU) pass; so do 126 tests of 13 other
+   files that run diagnose (shell/test_diagnose.py, test_diagnose57, test_iso67,
+   test_deploy_diagnosed, test_export_diagnosed59, test_report_html, apps/test_clamp_gain61,
+   test_stranger66, test_export_rest60, test_export_inputs_product62, test_joinfit62,
+   test_deployed_guarded, apps/test_moved_decisions).
 
 **KEPT.**  Checked on spent draws before the bar (not the bar): planted 8282 E_Y (diag82e's
 failure) round 2 re-cut 38 x 13 -> 8 x 92 samples, the control 28.2 % at p 0.0156, not clearing,
