@@ -29,7 +29,8 @@ def _search() -> Search:
     s = object.__new__(Search)
     s.problem = SimpleNamespace(validated=np.ones(blocks.size, bool), unit_index=blocks,
                                 n_units=BLOCKS, n_blocks_tested=BLOCKS, scheme="forward",
-                                forward=True, campaigns=campaigns, units_trained=None)
+                                forward=True, campaigns=campaigns, units_trained=None,
+                                shared_ranked=False)
     s.options = SearchOptions()
     return s
 

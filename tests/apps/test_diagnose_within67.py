@@ -25,7 +25,7 @@ def _search(scheme: str) -> Search:
     s = object.__new__(Search)
     s.problem = SimpleNamespace(validated=np.ones(units.size, bool), unit_index=units,
                                 n_units=N_UNITS, n_blocks_tested=N_UNITS, scheme=scheme,
-                                units_trained=N_UNITS - 1)
+                                units_trained=N_UNITS - 1, shared_ranked=False)
     s.options = SearchOptions()
     return s
 

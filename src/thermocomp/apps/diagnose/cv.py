@@ -43,7 +43,7 @@ from sklearn.base import clone
 
 from ...core.context import CAMPAIGN, Y_MEASURED, for_target
 from ...core.model_selection import ForwardChaining, LeaveCampaignsOut
-from ...core.model_selection.blocks import cut_blocks
+from ...core.model_selection.blocks import cut_blocks, decorrelation_length
 from ...core.model_selection.extrapolation import within_range
 from ...core.models._campaign_ls import CampaignLeastSquares
 from ...core.models._memo import BoundedCache
@@ -119,20 +119,55 @@ class Problem:
         self.held_out = self.unit_index >= 0     # the scored units' rows, measured or not
         self.block_index = np.where(self.validated, self.unit_index, -1)   # the test's units
         self.block_samples = None                                           # (below)
+        self.penalty_index = self.block_index      # the deployed penalty's standard error's
 
     @property
     def sparse(self) -> bool:
         """True when the error is not measured at every row (a probe cycle)."""
         return not bool(self.measured.all())
 
-    def set_test_blocks(self, length: int) -> None:
+    def set_test_blocks(self, length: int, penalty_length: int | None = None) -> None:
         """Test the gains on time blocks of ``length`` samples within the units: as long as the
         model's CV residual takes to decorrelate (:mod:`~thermocomp.core.model_selection.blocks`).
         With an error measured now and then, ``length`` counts measured samples (the residual's
-        decorrelation is measured on the measured series at its own spacing)."""
+        decorrelation is measured on the measured series at its own spacing).
+        ``penalty_length`` (default ``length``): the blocks over which the deployed penalty's
+        one-standard-error rule takes its standard error (:meth:`CrossValidator.run`)."""
         self.block_samples = int(length)
-        self.block_index = cut_blocks(self.unit_index, self.campaigns, self.block_samples,
-                                      timeline=self.forward, scored=self.measured)
+        self.block_index = self._cut(self.block_samples)
+        self.penalty_index = (self.block_index if penalty_length is None
+                              or int(penalty_length) == self.block_samples
+                              else self._cut(int(penalty_length)))
+
+    def recut_test_blocks(self, residual: np.ndarray) -> bool:
+        """Re-cut the test blocks (not the penalty's) as long as ``residual`` takes to
+        decorrelate, as :meth:`set_test_blocks` was on the starting one; True when they changed.
+        A search re-cuts them each round on its current residual: once an effect is taken the
+        rest may stay correlated longer, and blocks cut on the starting residual then test
+        dependent gains (planted 8282's E_Y: 13 samples cut, 24 after the position effect, a
+        random walk cleared every check; bench_diag82e / bench_diag82f)."""
+        if self.block_samples is None:
+            return False
+        length = decorrelation_length(residual, self.campaigns, self.validated, self.held_out)
+        if length == self.block_samples:
+            return False
+        self.block_samples = int(length)
+        self.block_index = self._cut(self.block_samples)
+        return True
+
+    def _cut(self, length: int) -> np.ndarray:
+        return cut_blocks(self.unit_index, self.campaigns, length, timeline=self.forward,
+                          scored=self.measured)
+
+    @property
+    def shared_ranked(self) -> bool:
+        """True when the shared design -- every target on the slowest target's blocks, the
+        penalty's (:meth:`set_test_blocks`), what one design for the whole diagnosis cut until
+        diag82 -- has blocks finer than the units.  The checks a design with one block per unit
+        asks (:meth:`~.search.Search.saturates`, the "over the air" form) follow it, not the
+        target's own blocks (diag82e)."""
+        ok = self.validated
+        return bool(ok.any() and int(self.penalty_index[ok].max()) + 1 > self.n_units)
 
     @property
     def n_blocks_tested(self) -> int:
@@ -404,11 +439,13 @@ class CrossValidator:
         return CampaignLeastSquares(Z, p.y, rows, fit_intercept=True), members
 
     def _block_mse(self, err: np.ndarray) -> np.ndarray:
-        """Each test block's mean of ``err`` (rows x columns): blocks x columns."""
+        """Each penalty block's mean of ``err`` (rows x columns): blocks x columns (the one-SE
+        rule's; :meth:`Problem.set_test_blocks`)."""
         p, ok = self.problem, self.problem.validated
-        n = p.n_blocks_tested
-        counts = np.maximum(np.bincount(p.block_index[ok], minlength=n), 1)
-        return np.stack([np.bincount(p.block_index[ok], weights=e, minlength=n) / counts
+        index = p.penalty_index[ok]
+        n = int(index.max()) + 1 if index.size else 0
+        counts = np.maximum(np.bincount(index, minlength=n), 1)
+        return np.stack([np.bincount(index, weights=e, minlength=n) / counts
                          for e in err[ok].T], axis=1)
 
     def _result(self, pred: np.ndarray, alpha: float | None = None) -> CVResult:

@@ -284,9 +284,9 @@ def _gap(context, groups, options: SearchOptions) -> int:
 
 
 def _design(scheme, m, labels, context, before, compensator, targets, mode, options):
-    """``(searches, start results, gap)`` of ``scheme`` with the test's blocks set: as long as
-    the slowest target's residual takes to decorrelate, one design (and one smallest p) for the
-    whole diagnosis."""
+    """``(searches, start results, gap)`` of ``scheme`` with the test's blocks set: each target's
+    as long as its own residual takes to decorrelate; the deployed penalty's standard error over
+    the slowest target's (one length for every target, as before diag82)."""
     units = unit_labels(m.groups, options.n_blocks) if scheme == "campaigns" else m.groups
     gap = _gap(m.context, m.groups, options) if scheme == "forward" else 0
     # every fold fits at the choices the deployed base made on all train rows (diag74), so a
@@ -300,17 +300,23 @@ def _design(scheme, m, labels, context, before, compensator, targets, mode, opti
     start = {t: s.cv.run(s.inputs([]), []) for t, s in searches.items()}
     # (an error measured on 1 row in N: its measured series at its own spacing, the length in
     # measured samples; each test block then holds that many measurements)
-    length = max(decorrelation_length(r.residual, m.groups, searches[t].problem.validated,
+    # each target on blocks as long as its own residual takes to decorrelate (diag81b): the
+    # family-wise test is per target and round, and a block's gain is that target's residuals
+    length = {t: decorrelation_length(r.residual, m.groups, searches[t].problem.validated,
                                       searches[t].problem.held_out)
-                 for t, r in start.items())
+              for t, r in start.items()}
+    # the deployed penalty's one-SE rule reads squared errors, whose blocks stay dependent where
+    # a fast residual is not (the gantry's E_Z_error: 5040 one-sample blocks shrank its standard
+    # error 3x and the penalty, test +6.9 %; benchmarks/bench_diag82.py): the longest length
     for t, s in searches.items():
-        s.problem.set_test_blocks(length)
+        s.problem.set_test_blocks(length[t], max(length.values()))
         start[t] = s.cv._result(start[t].prediction, start[t].alpha)   # scored on the blocks
     return searches, start, gap
 
 
 def _blocks(design) -> int:
-    return next(iter(design[0].values())).problem.n_blocks_tested
+    """The fewest test blocks over the targets (the slowest target's: the design's reach)."""
+    return min(s.problem.n_blocks_tested for s in design[0].values())
 
 
 def _reach(design) -> float:
@@ -373,7 +379,8 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
             scheme, design, why = "forward", forward, few
             logger.info(f"diagnose: {why}: forward chaining over them, {options.n_blocks} blocks")
     searches, start, gap = design or designed(scheme)
-    problem = next(iter(searches.values())).problem
+    # the design's reach: the target of fewest test blocks (each target has its own, diag82)
+    problem = min((s.problem for s in searches.values()), key=lambda p: p.n_blocks_tested)
     reach = smallest_p(problem.n_blocks_tested)
     if reach > options.alpha:
         # (stranger69: a grinder's 7 runs, 5 and 3 forward blocks; over the campaigns, blocks
@@ -391,6 +398,10 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
                        f"alpha={options.alpha:g} (min p {reach:.2g}; it needs {need} blocks), so no "
                        f"effect can be accepted; {advice}")
     # sensor health on the train campaigns only: the search never sees the test split
+    # each target's starting design (its rounds re-cut their blocks on their residual, diag82f)
+    designs = {t: {"test_blocks": s.problem.n_blocks_tested, "block_samples": s.problem.block_samples,
+                   "min_p": smallest_p(s.problem.n_blocks_tested)} for t, s in searches.items()}
+    start_blocks = (problem.n_blocks_tested, problem.block_samples)
     excluded, faults, health, original, table = sensor_health(searches, options=options, start=start)
     test_sensors = test_sensor_warnings(next(iter(searches.values())), excluded, later, options)
     found = {t: s.run(original[t], faults[t], health[t], table) for t, s in searches.items()}
@@ -413,8 +424,10 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
               "folds": LeaveCampaignsOut(options.n_folds).get_n_splits(groups=problem.units)}
     if why:
         cv["why"] = why
-    cv |= {"test_blocks": problem.n_blocks_tested, "block_samples": problem.block_samples,
-           "min_p": reach,
+    cv |= {"test_blocks": start_blocks[0], "block_samples": start_blocks[1], "min_p": reach,
+           # each target's own starting test blocks (their residuals' memory, diag82; each
+           # round's own in its ``rounds``); the above: fewest
+           "designs": designs,
            "in_range_share": float(problem.in_range[problem.validated].mean()),
            "mode": "simulation",   # the search scores what the machine runs, whatever ``mode`` is
            "shrink_alpha": {t: r.alpha for t, r in found.items()},

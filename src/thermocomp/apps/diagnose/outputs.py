@@ -196,4 +196,9 @@ def summary_table(result, named: str = "") -> str:
     lines.append(f"acceptance test: {cv['test_blocks']} time blocks of ~{cv['block_samples']} {samples} "
                  f"in {cv['units']} CV units; smallest reachable p {cv['min_p']:.2g} "
                  f"(alpha {result.options.alpha:g})")
+    designs = cv.get("designs") or {}
+    if len({(d["test_blocks"], d["block_samples"]) for d in designs.values()}) > 1:
+        lines.append("  each target on its own blocks: " + ", ".join(
+            f"{t} {d['test_blocks']} of ~{d['block_samples']} (min p {d['min_p']:.2g})"
+            for t, d in designs.items()))
     return "\n".join(lines)
