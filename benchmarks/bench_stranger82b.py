@@ -1,0 +1,168 @@
+"""A stranger's pass on a 5-axis trunnion machining centre and its Yokogawa GX20 ASCII export
+(stranger82b).
+
+    PYTHONPATH=$PWD/src .venv/bin/python benchmarks/bench_stranger82b.py write ROOT SEED
+    PYTHONPATH=$PWD/src .venv/bin/python benchmarks/bench_stranger82b.py faults ROOT SEED
+    PYTHONPATH=$PWD/src .venv/bin/python benchmarks/bench_stranger82b.py matrix ROOT SEED CONF
+
+The machine is ``benchmarks/trunnion82b.py`` (a vertical 5-axis machining centre, its own lumped
+network and kinematics: an A trunnion and a C rotary table on torque motors, a motor spindle
+cooled by a chiller, X / Y / Z ball screws heated by their nuts, a hall without air conditioning;
+12 day runs of 10 h from 06:00 on 12 of 19 days from Monday 2027-09-06, the shop using the
+machine unlogged on other weekdays; 16 thermocouples; the TCP's dX / dY / dZ measured by the
+NC's probing cycle on a sphere every 15 min (45 samples), nothing in between; planted position
+effects X x the X screw's rise (dX), sin A / cos A x the trunnion's rise (dY / dZ), cos C /
+sin C x the table's rise (dX / dY); seeds 8341-8345 only).
+
+``write``: the runs as the lab's Yokogawa SMARTDAC+ GX20 records them and its Universal Viewer
+converts a display-data file to ASCII (``.csv``): a file a run ``ROOT/trunnion<SEED>/
+GX20_<yyMMdd>_<HHmmss>.csv``: a header block of ``"key","value"`` rows (``"Universal Viewer"``,
+``"Model","GX20"``, ``"Serial No."``, ``"File Name"``, ``"Batch Name"``, ``"Start Time"``,
+``"Sampling Interval","20s"``), then the channel table: ``"Channel"`` (``0001`` .. the
+measurement channels, ``C001`` .. the communication channels the NC writes by Modbus),
+``"Tag"`` (the lab's names: written here only), ``"Tag Comment"``, ``"Unit"`` (``C``, ``mm``,
+``deg``, ``um``), then the data's column row ``"Date Time","0001",...`` and a row a sample
+(``2027/09/06 06:00:20.0``, values ``21.3``, a broken thermocouple ``Burnout``, an input out of
+range ``+Over`` / ``-Over``).  Channels: 0001 - 0016 the thermocouples, C001 - C004 the NC's
+X / Y (mm) and A / C (deg), C005 - C007 the probing cycle's dX / dY / dZ (µm), written by the NC
+at each cycle and left blank in the export between cycles (the lab's setting: an unrefreshed
+communication channel blank, an assumption of this bench).  Quirks: ``MOTOR``'s plug loose for 4
+samples in run 5 (``Burnout``), the recorder stopped and restarted in run 9 (two files, 10 min
+apart).  The structure is the GX/GP ASCII conversion as Yokogawa's Universal Viewer manual and
+users' posts describe it; no file a GX20 or the viewer wrote was at hand to check it.
+
+``faults``: ``ROOT/fault_<kind>_<SEED>/``, the files, the last run with one fault: ``frozen``
+(``PINOLE`` held from row 900), ``jump`` (+2 K on ``STAENDER_H`` from row 1000), ``drift``
+(``KUEHLUNG`` +1 K/h from row 700), ``dropout`` (90 ``Burnout`` of ``MUTTER_X`` from row 1200).
+
+``matrix``: bench_stranger75's (run -> replay per family on the data config init wrote).
+
+Not yet measured.
+"""
+from __future__ import annotations
+
+import sys
+from datetime import timedelta
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from _cli import run_commands  # noqa: E402
+from _faults import four_faults  # noqa: E402
+from bench_stranger75 import matrix  # noqa: E402
+
+LOOSE_RUN, LOOSE_SIGNAL, LOOSE_ROW = 5, "MOTOR", 700
+SPLIT_RUN, SPLIT_ROW, SPLIT_GAP = 9, 1000, 30
+PROBED = ("DX_TCP", "DY_TCP", "DZ_TCP")
+
+
+def channels() -> list[tuple[str, str, str, str]]:
+    """``(channel, tag, unit, the simulation's key or sensor)`` in channel order."""
+    import trunnion82b as m
+    out = [(f"{i:04d}", name, "C", name) for i, (name, _, _) in enumerate(m.SENSORS, start=1)]
+    out += [("C001", "X_POS", "mm", "x"), ("C002", "Y_POS", "mm", "y"),
+            ("C003", "A_POS", "deg", "a"), ("C004", "C_POS", "deg", "c")]
+    return out + [(f"C{5 + i:03d}", tag, "um", f"E_d{ax}")
+                  for i, (tag, ax) in enumerate(zip(PROBED, "XYZ"))]
+
+
+def runs(seed: int):
+    """The record: ``(trunnion82b result, [(run label, local start, rows)])``."""
+    import trunnion82b as m
+    r = m.simulate(int(seed))
+    out = []
+    for n, (start, rows) in enumerate(m.run_windows(), start=1):
+        idx = np.arange(rows.start, rows.stop)
+        if n == SPLIT_RUN:
+            out.append((f"{n:02d}a", start, idx[:SPLIT_ROW]))
+            out.append((f"{n:02d}b", start + timedelta(seconds=(SPLIT_ROW + SPLIT_GAP) * m.STEP_S),
+                        idx[SPLIT_ROW + SPLIT_GAP:]))
+        else:
+            out.append((f"{n:02d}", start, idx))
+    return r, out
+
+
+def _column(r, key, idx):
+    import trunnion82b as m
+    names = [s[0] for s in m.SENSORS]
+    v = r["sensors"][idx, names.index(key)] if key in names else r[key][idx].copy()
+    if key.startswith("E_"):           # measured at the probing cycles only (every 15 min of the day)
+        v = np.where(idx % m.PROBE_EVERY == 0, v, np.nan)
+    return v
+
+
+def _value(v: float, unit: str) -> str:
+    if np.isnan(v):
+        return "Burnout" if unit == "C" else ""
+    return f"{v:.1f}" if unit in ("C", "mm", "deg") else f"{v:.2f}"
+
+
+def write_file(path: Path, r, label: str, start, idx, fault=None) -> None:
+    """One run's ASCII export (module docstring); ``fault(name, values)`` alters a temperature."""
+    import trunnion82b as m
+    chans = channels()
+    cols = []
+    for _, tag, _, key in chans:
+        v = np.asarray(_column(r, key, idx), dtype=float)
+        if label == f"{LOOSE_RUN:02d}" and tag == LOOSE_SIGNAL:
+            v = v.copy()
+            v[LOOSE_ROW:LOOSE_ROW + 4] = np.nan
+        cols.append(fault(key, v) if fault is not None else v)
+    q = '"{}"'.format
+    row = lambda key, cells: ",".join([q(key), *(q(c) for c in cells)])  # noqa: E731
+    lines = [row("Universal Viewer", ["R4.04.01"]), row("Model", ["GX20"]),
+             row("Serial No.", ["S5T800123"]), row("File Name", [f"{path.stem}.GDS"]),
+             row("Data Type", ["Display Data"]), row("File Message", [""]),
+             row("Batch Name", [f"WAERMEGANG DMU LAUF {label}"]),
+             row("Start Time", [f"{start:%Y/%m/%d %H:%M:%S}"]),
+             row("Sampling Interval", [f"{m.STEP_S:.0f}s"]), "",
+             row("Channel", [c for c, _, _, _ in chans]), row("Tag", [t for _, t, _, _ in chans]),
+             row("Tag Comment", ["" for _ in chans]), row("Unit", [u for _, _, u, _ in chans]), "",
+             row("Date Time", [c for c, _, _, _ in chans])]
+    for k in range(idx.size):
+        when = start + timedelta(seconds=k * m.STEP_S)
+        cells = [f"{when:%Y/%m/%d %H:%M:%S}.0"]
+        cells += [_value(c[k], u) for c, (_, _, u, _) in zip(cols, chans)]
+        lines.append(",".join(cells))
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text("\r\n".join(lines) + "\r\n", encoding="ascii")
+
+
+def _write_all(folder: Path, r, runs_, fault=None) -> None:
+    for n, (label, start, idx) in enumerate(runs_):
+        write_file(folder / f"GX20_{start:%y%m%d_%H%M%S}.csv", r, label, start, idx,
+                   fault if n == len(runs_) - 1 else None)
+
+
+def write(root: str, seed: str) -> None:
+    """The lab's files of seed ``seed``: ``ROOT/trunnion<SEED>/``."""
+    r, runs_ = runs(int(seed))
+    folder = Path(root) / f"trunnion{seed}"
+    _write_all(folder, r, runs_)
+    print(f"wrote {folder} ({len(runs_)} files, {sum(i.size for _, _, i in runs_)} rows)")
+
+
+def faults(root: str, seed: str) -> None:
+    """``ROOT/fault_<kind>_<SEED>/``: the files, the last run with one fault (docstring)."""
+    import trunnion82b as m
+    r, runs_ = runs(int(seed))
+    cases = four_faults(runs_[-1][2].size, m.STEP_S, frozen=("PINOLE", 900),
+                        jump=("STAENDER_H", 1000), drift=("KUEHLUNG", 700),
+                        dropout=("MUTTER_X", 1200, 1290))
+    for kind, (label, change) in cases.items():
+        def fault(name, x, label=label, change=change):
+            return change(x) if name == label else x
+        folder = Path(root) / f"fault_{kind}_{seed}"
+        _write_all(folder, r, runs_, fault)
+        print(f"wrote {folder}")
+
+
+def main(argv: list[str]) -> int:
+    return run_commands(__doc__, {"write": write, "faults": faults, "matrix": matrix}, argv,
+                        cpu=sys.stderr)
+
+
+if __name__ == "__main__":
+    raise SystemExit(main(sys.argv[1:]))
