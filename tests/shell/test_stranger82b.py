@@ -8,12 +8,14 @@ are a few rows of test_stranger68's linear runs)."""
 from __future__ import annotations
 
 import datetime as dt
+import subprocess
 from pathlib import Path
 
 import numpy as np
 import pytest
 
 from conftest import FAST
+from test_export import checked_pack, needs_cc
 from test_stranger68 import ROWS, linear_run
 from thermocomp.core.io import read_dataset
 from thermocomp.shell.cli import main
@@ -99,3 +101,31 @@ def test_a_gx20_export_piped_into_monitor_streams_as_the_file_does(tmp_path, mon
     said = [json.loads((tmp_path / k / "monitor.json").read_text())["targets"] for k in ("file", "pipe")]
     for target in ("E_DX_TCP", "E_DZ_TCP"):
         assert said[1][target]["rmse_fixed"] == pytest.approx(said[0][target]["rmse_fixed"], rel=1e-12)
+
+
+@needs_cc
+def test_the_compiled_stream_refuses_a_gx20_export_naming_the_command_that_converts_it(
+        tmp_path, capsys):
+    """(Before, on the bench's file: exit 2 on "line 13: input T_amb has no finite value ..."
+    after a header line on stdout: the Tag row taken for the header, the Tag Comment row for a
+    sample.)  Refused at its first line, nothing written, the command named; the rows it writes
+    stream."""
+    for run in (1, 2):
+        path = gx20(tmp_path / "dmu", run)
+    common = [f"data.path={tmp_path / 'dmu'}", "data.roles.error=[D?_TCP]",
+              "data.roles.state=[A_*]", "data.test_fraction=0.5"]
+    assert main(["run", *common, *FAST, "model=mlr", f"out={tmp_path / 'run'}"]) == 0
+    assert main(["export", *common, "track=false", "export.format=c",
+                 f"export.model={tmp_path / 'run' / 'model.pkl'}", f"out={tmp_path / 'code'}"]) == 0
+    checked_pack(tmp_path / "code")
+    stream = str(tmp_path / "code" / "stream")
+    done = subprocess.run([stream], capture_output=True, input=path.read_bytes())
+    assert done.returncode == 2 and done.stdout == b""
+    assert (b"stream: line 1 is a Yokogawa viewer's header block (\"Universal Viewer\"): its "
+            b"channels are named in its Tag row, its columns by channel number; convert it to the "
+            b"rows the served model reads it as: `thermocomp rows FILE") in done.stderr, done.stderr
+    capsys.readouterr()
+    assert main(["rows", str(path), *common[1:3]]) == 0
+    streamed = subprocess.run([stream], capture_output=True, input=capsys.readouterr().out.encode())
+    assert streamed.returncode == 0, streamed.stderr
+    assert len(streamed.stdout.decode().splitlines()) == ROWS + 1
