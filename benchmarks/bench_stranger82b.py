@@ -80,6 +80,14 @@ coolant, chiller-held) drifting 1 K/h from 3.89 h: NO event (dZ 1.449 -> 2.284 b
 sensor predicts T_KUEHLUNG", monitor said of the healthy run: no band bounds its drift, and its
 28.3 °C at the end is 4.3 K above the training runs' 24.0 °C, inside ``monitor.range_margin_c``
 (10 °C).
+The fresh draw 8342 (healthy, ``data.path`` only, 8341's mlr; 5.2 + 0.4 s CPU): NOT quiet: at
+9.04 h of its last run ``RUNDTISCH`` (the C table) excluded ("drift: self-prediction error
+-0.59 °C over the last 2 samples") and with it ``WIEGE`` (the trunnion: "no other sensor
+predicts it once T_RUNDTISCH is out"), 2 exclusions, a rate-limited dX correction (fixed /
+adaptive 5.860 / 5.763, 4.843 / 4.888, 1.213 / 1.209: no harm); 8342 with its own mlr (``run``
+on its config): the same two exclusions at 9.04 h and 23 rate-limit events on dZ, dY 1.903 ->
+2.299 adaptive (+20.8 %), dX 5.116 -> 5.222, dZ 2.662 -> 2.568: stranger82's coupled pair (the
+table and the trunnion, each the other's only predictor) on a healthy record.
 
 ``promote``: a tracked sweep ``run -m model=mlr,hammerstein,auto`` (49.7 + 3.4 s CPU), then
 ``thermocomp promote`` (10.9 + 0.7 s): auto @champion by its validation (2.85 against
@@ -101,9 +109,10 @@ Yokogawa export, nothing written, ``thermocomp rows`` named; its rows streamed =
 13.479 / 6.699 / 1.449 µm, RMSE over the 40 probed rows, the error referenced at its first
 probe).  Not defects: a cut file (its last row short) read with that row's missing cells as an
 edge, ``init`` proposing ``data.max_edge_samples=1`` that drops it.
-Left: no family compensates dX / dY below none but hammerstein / pcr (position-dependent pivot and
-table terms); auto equal to mlr on dZ; the coolant's drift unseen (a sensor no other predicts);
-the pivot's planted A effects under diagnose's bar.
+Left: on 8341 no family compensates dX / dY below none but hammerstein / pcr (dX) (the pivot's
+and table's terms depend on A / C); auto equal to mlr on dZ; the coolant's drift unseen (a sensor
+no other predicts); the healthy table / trunnion pair excluded on 8342 (dY +20.8 % adaptive with
+its own mlr); the pivot's planted A effects under diagnose's bar.
 """
 from __future__ import annotations
 
