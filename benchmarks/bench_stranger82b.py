@@ -87,7 +87,9 @@ predicts it once T_RUNDTISCH is out"), 2 exclusions, a rate-limited dX correctio
 adaptive 5.860 / 5.763, 4.843 / 4.888, 1.213 / 1.209: no harm); 8342 with its own mlr (``run``
 on its config): the same two exclusions at 9.04 h and 23 rate-limit events on dZ, dY 1.903 ->
 2.299 adaptive (+20.8 %), dX 5.116 -> 5.222, dZ 2.662 -> 2.568: stranger82's coupled pair (the
-table and the trunnion, each the other's only predictor) on a healthy record.
+table and the trunnion, each the other's only predictor) on a healthy record: in the 5 min
+before it no temperature of the two moved by more than the logger's 0.1 K step (``WIEGE``
+flickering 21.6 / 21.7 °C, ``RUNDTISCH`` 22.2), A and C still (50 / 270 deg).
 
 ``promote``: a tracked sweep ``run -m model=mlr,hammerstein,auto`` (49.7 + 3.4 s CPU), then
 ``thermocomp promote`` (10.9 + 0.7 s): auto @champion by its validation (2.85 against

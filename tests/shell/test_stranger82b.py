@@ -12,6 +12,7 @@ import subprocess
 from pathlib import Path
 
 import numpy as np
+import pandas as pd
 import pytest
 
 from conftest import FAST
@@ -129,3 +130,25 @@ def test_the_compiled_stream_refuses_a_gx20_export_naming_the_command_that_conve
     streamed = subprocess.run([stream], capture_output=True, input=capsys.readouterr().out.encode())
     assert streamed.returncode == 0, streamed.stderr
     assert len(streamed.stdout.decode().splitlines()) == ROWS + 1
+
+
+def test_a_date_and_a_time_column_and_over_marks_read_as_the_viewer_writes_them(tmp_path):
+    """The viewer's other layout (``"Date","Time"``, two columns) is the same times; ``+Over`` /
+    ``-Over`` (out of range) are missing cells as ``Burnout`` is."""
+    lines = gx20(tmp_path / "a", 1).read_text().splitlines()
+    top = next(k for k, line in enumerate(lines) if line.startswith('"Date Time"'))
+    lines[top] = lines[top].replace('"Date Time",', '"Date","Time",')
+    for k in range(ROWS):
+        cells = lines[top + 1 + k].replace(" ", ",", 1).split(",")
+        if k in (40, 41):
+            cells[3] = "+Over" if k == 40 else "-Over"      # SPINDEL (after the date and the time)
+        lines[top + 1 + k] = ",".join(cells)
+    path = tmp_path / "b" / "GX20_270906_060000.csv"
+    path.parent.mkdir()
+    path.write_text("\r\n".join(lines) + "\r\n")
+    ds, _ = read_dataset(path, CONF)
+    frame = pd.concat(ds.campaigns.values())          # (the one file cut into train and test)
+    np.testing.assert_array_equal(frame["time"], np.arange(ROWS) * 60.0)
+    expected = linear_run(8342, 1)
+    kept = np.r_[0:40, 42:ROWS]
+    np.testing.assert_allclose(frame["T_SPINDEL"].to_numpy()[kept], expected[kept, 1], atol=1e-5)
