@@ -109,8 +109,13 @@ folder of GX20 ASCII exports refused ("the numeric columns: 'C', 'C#2' ...") -> 
 (its ``Tag`` row taken for the header, ``Tag Comment`` for a sample) -> refused at line 1 as a
 Yokogawa export, nothing written, ``thermocomp rows`` named; its rows streamed = replay (mlr
 13.479 / 6.699 / 1.449 µm, RMSE over the 40 probed rows, the error referenced at its first
-probe).  Not defects: a cut file (its last row short) read with that row's missing cells as an
-edge, ``init`` proposing ``data.max_edge_samples=1`` that drops it.
+probe); the export a European PC's viewer writes (``;``, decimal commas; 8341's first three
+files rewritten so) refused as the comma one was before ("'C', 'C#2' ...") -> read as the comma
+export (the separator the first line's; init's roles the same as of those files written
+``°C`` in cp1252, but its ``encoding``).  Not defects: a cut file (its last row short) read
+with that row's missing cells as an edge, ``init`` proposing ``data.max_edge_samples=1`` that
+drops it; a cp1252 export's ``°C`` (init wrote ``encoding: cp1252``); channels without a tag
+named by their number (``T_0001`` ...).
 Left: on 8341 no family compensates dX / dY below none but hammerstein / pcr (dX) (the pivot's
 and table's terms depend on A / C); auto equal to mlr on dZ; the coolant's drift unseen (a sensor
 no other predicts); the healthy table / trunnion pair excluded on 8342 (dY +20.8 % adaptive with

@@ -125,6 +125,8 @@ def test_the_compiled_stream_refuses_a_gx20_export_naming_the_command_that_conve
     assert (b"stream: line 1 is a Yokogawa viewer's header block (\"Universal Viewer\"): its "
             b"channels are named in its Tag row, its columns by channel number; convert it to the "
             b"rows the served model reads it as: `thermocomp rows FILE") in done.stderr, done.stderr
+    semicolon = path.read_bytes().replace(b'","', b'";"')
+    assert subprocess.run([stream], capture_output=True, input=semicolon).stderr == done.stderr
     capsys.readouterr()
     assert main(["rows", str(path), *common[1:3]]) == 0
     streamed = subprocess.run([stream], capture_output=True, input=capsys.readouterr().out.encode())
@@ -152,3 +154,20 @@ def test_a_date_and_a_time_column_and_over_marks_read_as_the_viewer_writes_them(
     expected = linear_run(8342, 1)
     kept = np.r_[0:40, 42:ROWS]
     np.testing.assert_allclose(frame["T_SPINDEL"].to_numpy()[kept], expected[kept, 1], atol=1e-5)
+
+
+def test_a_semicolon_export_with_decimal_commas_reads_as_the_comma_one(tmp_path):
+    """(Before, by the reader of the comma export: "4 column(s) not read: 'Unit' is not numeric
+    ...", a European PC's export, ``;`` and ``21,3``, its first line not taken for the viewer's.)
+    The same frame as the comma export's."""
+    one = gx20(tmp_path / "a", 1)
+    lines = [line if line.startswith('"') or not line else
+             ";".join(c.replace(".", ",") if k else c for k, c in enumerate(line.split(",")))
+             for line in one.read_text().splitlines()]
+    lines = [line.replace('","', '";"') for line in lines]
+    two = tmp_path / "b" / one.name
+    two.parent.mkdir()
+    two.write_text("\r\n".join(lines) + "\r\n")
+    frames = [pd.concat(read_dataset(p, CONF)[0].campaigns.values()) for p in (one, two)]
+    assert frames[1].shape == frames[0].shape
+    pd.testing.assert_frame_equal(frames[1], frames[0])

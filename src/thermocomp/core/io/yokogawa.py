@@ -11,7 +11,8 @@ a sample (``2027/09/06 06:00:20.0``: the recorder's clock, no zone).  ``Burnout`
 thermocouple) and ``+Over`` / ``-Over`` (out of range) are missing values, said once a channel;
 an empty cell is a value not recorded (a communication channel between the writes of a probing
 cycle: read as missing, never held).  A channel is named by its tag where it has one, else by
-its channel number.
+its channel number.  The separator is the first line's (``,``; a PC whose list separator is
+``;`` writes ``;`` and decimal commas, ``21,3``; or a tab).
 """
 
 from __future__ import annotations
@@ -28,7 +29,7 @@ from .contract import ContractError
 from .encoding import UTF8, check_text, text_codec
 from .labfile import Channel, Record, records_as_csv, with_unit
 
-_FIRST = re.compile(r'^\ufeff?"?(Universal Viewer|DAQSTANDARD Viewer|DXAdvanced)"?\s*,', re.I)
+_FIRST = re.compile(r'^\ufeff?"?(Universal Viewer|DAQSTANDARD Viewer|DXAdvanced)"?\s*([,;\t])', re.I)
 _MISSING = re.compile(r"[+-]?(Burnout|Over|Error|Skip)", re.IGNORECASE)
 _TIMES = ("%Y/%m/%d %H:%M:%S.%f", "%Y/%m/%d %H:%M:%S", "%Y-%m-%d %H:%M:%S.%f",
           "%Y-%m-%d %H:%M:%S")
@@ -73,7 +74,9 @@ def yokogawa_as_csv(text: str, source: str) -> str:
 
 
 def _record(lines: list[str], label: str, path: Path) -> Record:
-    rows = list(csv.reader(lines))
+    said = _FIRST.match(lines[0]) if lines else None
+    sep = said.group(2) if said else ","
+    rows = list(csv.reader(lines, delimiter=sep))
     keyed = {r[0].strip().lower(): r for r in rows if r and r[0].strip()}
     top = next((k for k, r in enumerate(rows) if r and r[0].strip().lower() in ("date time", "date")
                 and len(r) > 1), None)
@@ -96,7 +99,7 @@ def _record(lines: list[str], label: str, path: Path) -> Record:
             continue
         unit = units.get(head, "")
         name = tags.get(head) or head
-        values = _values(body, j, f"channel {head!r} ({name})", path)
+        values = _values(body, j, f"channel {head!r} ({name})", path, sep == ";")
         channels.append(Channel(with_unit(name, _UNITS.get(unit.lower(), unit)), values, time,
                                 f"channel {head!r}"))
     if not channels:
@@ -120,7 +123,7 @@ def _times(body, split: bool, path: Path) -> np.ndarray:
     return out
 
 
-def _values(body, j: int, what: str, path: Path) -> np.ndarray:
+def _values(body, j: int, what: str, path: Path, comma: bool) -> np.ndarray:
     out = np.empty(len(body))
     marks = 0
     for i, (line, r) in enumerate(body):
@@ -130,7 +133,7 @@ def _values(body, j: int, what: str, path: Path) -> np.ndarray:
             marks += bool(text)
             continue
         try:
-            out[i] = float(text)
+            out[i] = float(text.replace(",", ".") if comma else text)
         except ValueError:
             raise ContractError(f"{what}: {text!r} is no number", file=path, line=line) from None
     if marks:
