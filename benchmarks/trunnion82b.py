@@ -119,7 +119,6 @@ def simulate(seed: int) -> dict[str, np.ndarray]:
     q = np.zeros((t.size, len(NODES)))
     q[:, _i("spindle")] = 90.0 * s ** 1.5
     q[:, _i("motor")] = 40.0 * st["on"] + 250.0 * s
-    q[:, _i("coolant")] = -0.0
     q[:, _i("xscrew")] = 18.0 * st["xmove"]
     q[:, _i("yscrew")] = 18.0 * st["ymove"]
     q[:, _i("zscrew")] = 14.0 * st["zmove"]
