@@ -70,6 +70,7 @@ from .units import AMBIGUOUS, UNITS, ambiguity, foreign_unit, is_flag, is_humidi
 from .utf16 import is_utf16, utf8_options, utf16_as_utf8
 from .values import EPOCH_MS
 from .workbook import HEAD_ROWS, csv_options, is_workbook, sheet_as_csv
+from .yokogawa import is_yokogawa
 
 HELD_OUT = 0.1    # the test share init writes for a record or runs without test campaigns
 
@@ -156,7 +157,7 @@ def encoding(src: Path, opts, manifest: pd.DataFrame | None) -> str:
     # (UTF-16: its mark; an .lvm and a Scope export are text; a Campbell binary table's .dat is
     # none: lab76, its bytes were taken for a Windows export's, data.encoding: cp1252 written)
     found = [detect(f) for f in files
-             if (is_text(f) or is_lvm(f) or is_scope(f) or is_graphtec(f))
+             if (is_text(f) or is_lvm(f) or is_scope(f) or is_graphtec(f) or is_yokogawa(f))
              and not is_utf16(f) and not is_tob(f)]
     return WINDOWS if WINDOWS in found else UTF8
 
@@ -180,6 +181,7 @@ def head(sample: Path, opts) -> tuple[object, list[str], list[str], str]:
                 else "a LabVIEW Measurement File" if is_lvm(sample)
                 else "a TwinCAT Scope export" if is_scope(sample)
                 else "a Graphtec logger's CSV (its Amp settings' signal names)" if is_graphtec(sample)
+                else "a Yokogawa viewer's ASCII export (its tags)" if is_yokogawa(sample)
                 else "an HDF5 file" if is_hdf5(sample)
                 else "a DIAdem TDM/TDX pair" if is_tdm(sample)
                 else "a SINUMERIK trace" if is_trace(sample)

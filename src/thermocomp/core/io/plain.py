@@ -29,6 +29,7 @@ from .tob1 import is_tob
 from .tob3 import tob_records
 from .utf16 import is_utf16, utf8_options, utf16_as_utf8
 from .workbook import csv_options, is_workbook, run_sheets, sheet_as_csv
+from .yokogawa import is_yokogawa, yokogawa_records
 
 
 def is_lab_file(path) -> bool:
@@ -36,10 +37,10 @@ def is_lab_file(path) -> bool:
     LabVIEW Measurement File, (lab75) a Campbell Scientific TOB1 table (lab76: TOB2, TOB3) or
     (stranger76) a TwinCAT Scope CSV export, (stranger77) an HDF5 file or (stranger78) a DIAdem
     TDM/TDX pair or (stranger81) a SINUMERIK trace's XML or (stranger82) a Graphtec logger's CSV
-    (:mod:`.labfile`)."""
+    or (stranger82b) a Yokogawa recorder's ASCII conversion (:mod:`.labfile`)."""
     return (is_tdms(path) or is_mat(path) or is_lvm(path) or is_tob(path) or is_scope(path)
             or is_hdf5(path) or is_tdm(path) or is_trace(path) or headerless(path)
-            or is_graphtec(path))
+            or is_graphtec(path) or is_yokogawa(path))
 
 
 def is_converted(path, opts=None) -> bool:
@@ -74,6 +75,7 @@ def _records(path: Path, encoding: str) -> list:
     return (tdms_records(path) if is_tdms(path) else lvm_records(path, encoding) if is_lvm(path)
             else scope_records(path, encoding) if is_scope(path)
             else graphtec_records(path, encoding) if is_graphtec(path)
+            else yokogawa_records(path, encoding) if is_yokogawa(path)
             else refuse_headerless(path) if headerless(path)
             else hdf5_records(path) if is_hdf5(path)
             else tdm_records(path) if is_tdm(path)

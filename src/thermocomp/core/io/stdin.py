@@ -68,6 +68,7 @@ from .timestamps import (
 from .twins import occurrences, same_cells
 from .twins import said as said_twice
 from .utf16 import has_utf16_mark
+from .yokogawa import is_yokogawa_text, yokogawa_as_csv
 
 SOURCE = "<stdin>"
 STDIN = "stdin"                 # the campaign id of a stream without a run column
@@ -154,6 +155,9 @@ def _read_runs(text: str, columns: list[str], opts, recorded: str | None = None,
         opts = replace(opts, delimiter=",", decimal=".", thousands=None)
     elif is_graphtec_text(text):    # a Graphtec logger's CSV piped in as written (stranger82)
         text = graphtec_as_csv(text, SOURCE)
+        opts = replace(opts, delimiter=",", decimal=".", thousands=None)
+    elif is_yokogawa_text(text):    # a Yokogawa viewer's ASCII export piped in (stranger82b)
+        text = yokogawa_as_csv(text, SOURCE)
         opts = replace(opts, delimiter=",", decimal=".", thousands=None)
     opts = detected(text.splitlines()[:SNIFF_LINES], opts, SOURCE)   # data.delimiter=auto ...
     text = _table(text, opts.delimiter)

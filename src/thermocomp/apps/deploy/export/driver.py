@@ -917,6 +917,14 @@ int main(int argc, char **argv) {
                 "the rows the served model reads it as: " ROWS_COMMAND "\n");
         return 2;
     }
+    if (strncmp(line, "\"Universal Viewer\"", 18) == 0 || strncmp(line, "Universal Viewer", 16) == 0) {
+        /* (stranger82b) a Yokogawa viewer's ASCII export: its Tag row was taken for the header
+           and its Tag Comment row refused as a row missing every input, a header written */
+        fprintf(stderr, "stream: line 1 is a Yokogawa viewer's header block (\"Universal Viewer\"): "
+                "its channels are named in its Tag row, its columns by channel number; convert it "
+                "to the rows the served model reads it as: " ROWS_COMMAND "\n");
+        return 2;
+    }
     if (!names_every_input(line)) {
         /* a logger's preamble (stranger64: `Machine;PM-12`, `Operator: ...` above the header):
            the first of the next MAX_PREAMBLE lines naming every input is the header */
