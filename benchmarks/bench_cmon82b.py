@@ -35,6 +35,59 @@ Traced (cmon82b, the served monitor at 7fa763cc, surveillance/judgement.py):
 * the guard (``adaptive._output``): while declared, the correction is bounded by ``lo_new`` /
   ``hi_new`` (the training range widened by ``new_state_margin``, the same as ``lo`` / ``hi``
   when it is unset), the state read after the sample's monitor step.
+
+So the slice the code now holds (watch.py, watch_c.py): the state's two entries, the veto of
+every drift exclusion while it lasts, the re-admission of the followed sensor, the calm count and
+its end, and ``guard_lo_new`` / ``guard_hi_new`` in compensator.json and the C (where
+``new_state_margin`` makes them differ; the default leaves them equal, so not on these records).
+
+Scored (2026-12-04, sources of 3a2d6e55; "before": the same bench on main at 7fa763cc).  CPU of
+the bench process (gcc and ``stream`` not counted): 93.4 s for the 11 records, the simulations
+cached (before: 101.2 s with the 10 fresh simulations).  The served monitor (unchanged: its
+events and RMSE the same digits in both runs) declares a new thermal state on all 22 records
+(its end at row 1186-1276 of 1441), at the row where it re-admits a drift-excluded sensor
+as the field followed it on 13 of them.  E_Y test RMSE in µm (one test cycle of 1441 rows), the
+largest |C - served| over every row and target, the pack's rows kept:
+
+| record | fixed | served adaptive | C before | C now | max abs(C - served), µm | pack rows |
+|---|---|---|---|---|---|---|
+| healthy s8371 | 24.608 | 24.635 | 24.608 | 24.608 | 24 -> 24 | 733 -> 733 |
+| drift s8371 | 150.136 | 79.329 | 79.322 | 79.322 | 24 -> 24 | 733 -> 733 |
+| healthy s8372 | 11.384 | 11.383 | 11.342 | 11.383 | 3.5 -> 1.7e-13 | 739 -> 1441 |
+| drift s8372 | 92.083 | 66.504 | 130.236 | 66.504 | 3.6e+02 -> 3.4e-13 | 733 -> 1441 |
+| healthy s8373 | 11.668 | 11.668 | 11.668 | 11.668 | 2e-13 -> 2e-13 | 1441 -> 1441 |
+| drift s8373 | 138.025 | 92.772 | 30.649 | 92.772 | 2.9e+02 -> 3.4e-13 | 736 -> 1441 |
+| healthy s8374 | 18.055 | 18.058 | 16.993 | 18.058 | 9.8 -> 3.1e-13 | 734 -> 1441 |
+| drift s8374 | 109.594 | 69.407 | 64.590 | 64.590 | 82 -> 82 | 1075 -> 1075 |
+| healthy s8375 | 18.013 | 17.890 | 17.890 | 18.013 | 20 -> 23 | 1179 -> 1232 |
+| drift s8375 | 74.323 | 57.705 | 71.419 | 57.705 | 1.8e+02 -> 4.8e-13 | 736 -> 1441 |
+| healthy s8376 | 17.223 | 17.240 | 17.223 | 17.223 | 3.5 -> 3.5 | 1256 -> 1256 |
+| drift s8376 | 135.112 | 96.400 | 96.399 | 96.399 | 2 -> 2 | 1256 -> 1256 |
+| healthy s8377 | 19.935 | 19.879 | 67.240 | 19.879 | 1.8e+02 -> 2.3e-13 | 732 -> 1441 |
+| drift s8377 | 113.449 | 73.290 | 73.290 | 73.290 | 3.4e-13 -> 3.4e-13 | 1441 -> 1441 |
+| healthy s8378 | 16.086 | 16.087 | 14.707 | 16.087 | 18 -> 2.3e-13 | 733 -> 1441 |
+| drift s8378 | 122.106 | 68.509 | 102.626 | 68.676 | 2.6e+02 -> 27 | 733 -> 1149 |
+| healthy s8379 | 9.001 | 9.001 | 9.003 | 9.001 | 9.8 -> 2.3e-13 | 1168 -> 1441 |
+| drift s8379 | 148.087 | 67.602 | 67.602 | 67.602 | 2.6e-13 -> 2.6e-13 | 1441 -> 1441 |
+| healthy s8380 | 22.864 | 22.860 | 15.066 | 22.860 | 70 -> 2.8e-13 | 732 -> 1441 |
+| drift s8380 | 108.024 | 67.073 | 106.317 | 67.073 | 2.8e+02 -> 4e-13 | 733 -> 1441 |
+
+On the 20 fresh records the C equals the served corrections on every row of 15 (largest
+difference 4.8e-13 µm; before: 3 of 20) and the pack keeps 26167 of 28820 rows (before: 19064;
+healthy 9447 -> 13308, drift 9617 -> 12859 of 14410 each).  The C before, cut at the
+re-admission, was up to 3.6e+02 µm off the served corrections after it, its E_Y RMSE from
+0.33x to 3.4x the served one's.  What is left flagged is no new-state rule: on s8371 (both
+kinds), s8375 healthy (row 1233) and s8376 (both, row 1257) the served monitor excludes a
+sensor no other predicts as explaining the others' errors (``_explaining``: ``T_front3``,
+``T_amb``; held at its last reading, not in the code), on s8374 and s8378 drift a reading beyond
+its range and another sensor's jump in one sample (a second sensor out).  On s8375 healthy the
+pack now keeps 53 more rows and the C reaches that row with the served state (20 -> 23 µm after
+it: it parts there instead of at row 735).
+
+The found case, s8275 (cmon82's, ``T_right4`` excluded at row 732 and re-admitted at 733-734):
+healthy E_Y 15.259 / 15.249 / 14.129 -> 15.249, max |C - served| 27 -> 2.6e-13 µm, pack 733 ->
+1441 of 1441; drift 88.357 / 72.599 / 71.701 -> 72.599, 27 -> 4.5e-13 µm, 732 -> 1441.  No bar:
+the served monitor is unchanged; the code is measured against it.
 """
 
 from __future__ import annotations
