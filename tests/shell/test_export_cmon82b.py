@@ -93,12 +93,14 @@ def test_a_new_thermal_state_is_what_the_code_does_as_served(served, tmp_path):
 
 @needs_cc
 def test_the_guard_bound_of_a_new_thermal_state_is_in_the_code(served, tmp_path):
-    """A new-state bound narrower than the trained one (``monitor.new_state_margin`` below the
-    guard's margin) bounds the served corrections from the declaration on; the C does the same."""
+    """The bound ``monitor.guard.new_state_margin=0`` gives (the training error range, the guard's
+    default margin 0.2 taken off) bounds the served corrections from the declaration on; the C
+    does the same."""
     deployed, _, frame, _ = served
     narrow = copy.deepcopy(deployed)
     g = narrow.guard
-    g.lo_new, g.hi_new = g.lo + 0.3 * (g.hi - g.lo), g.hi - 0.3 * (g.hi - g.lo)
+    inward = 0.2 * (g.hi - g.lo) / 1.4          # lo - 0.2 w, hi + 0.2 w: w = (hi - lo) / 1.4
+    g.lo_new, g.hi_new = g.lo + inward, g.hi - inward
     ss = state_space(narrow, monitor=True)
     want = corrections(ss, stream_rows(narrow, frame, "K06").y)
     wide = corrections(ss, stream_rows(deployed, frame, "K06").y)
