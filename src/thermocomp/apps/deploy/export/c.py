@@ -483,8 +483,11 @@ static double corrected(tc_state *s, int i, double y, double dt, double allow) {
             if (d > lim) y = s->out[i] + lim;
             else if (d < -lim) y = s->out[i] - lim;
         }}
-        if (y < GUARD_LO[i] - allow) y = GUARD_LO[i] - allow;
-        else if (y > GUARD_HI[i] + allow) y = GUARD_HI[i] + allow;
+        /* (cmon82b) a new thermal state declared by the monitor: its bound */
+        double lo = TC_MONITOR && s->mon_novel ? GUARD_LO_NEW[i] : GUARD_LO[i];
+        double hi = TC_MONITOR && s->mon_novel ? GUARD_HI_NEW[i] : GUARD_HI[i];
+        if (y < lo - allow) y = lo - allow;
+        else if (y > hi + allow) y = hi + allow;
     }}
     s->out[i] = y;
     return s->c[i] = TC_ADAPT ? -(s->gain[i] * y + s->bias[i]) : -y;
@@ -797,6 +800,8 @@ def _output_constants(ss: StateSpace) -> list[str]:
             _array("GUARD_LO", ss.guard_lo or [0.0] * m, (m,)),
             _array("GUARD_HI", ss.guard_hi or [0.0] * m, (m,)), _array("GUARD_RATE", rate, (m,)),
             f"static const double GUARD_PERIOD = {number(ss.guard_period)};",
+            _array("GUARD_LO_NEW", ss.guard_lo_new or ss.guard_lo or [0.0] * m, (m,)),
+            _array("GUARD_HI_NEW", ss.guard_hi_new or ss.guard_hi or [0.0] * m, (m,)),
             _array("GUARD_GAIN", ss.guard_gain or [[0.0] * n] * m, (m, n)),
             _array("GUARD_IN_LO", ss.guard_in_lo or [0.0] * n, (n,)),
             _array("GUARD_IN_HI", ss.guard_in_hi or [0.0] * n, (n,)),

@@ -15,6 +15,8 @@ the reference update (pure core).
   With ``guard_inputs`` (the clamp's training pattern in the code) the bound widens on each side
   by ``guard_gain . d`` at a sample on the pattern whose referenced inputs lie beyond their
   training range ``[guard_in_lo, guard_in_hi]`` by ``d`` (the guard's own rule, guard.py).
+  (cmon82b) While the code's monitor declares a new thermal state, the bound is
+  ``[guard_lo_new, guard_hi_new]`` (exported where ``monitor.new_state_margin`` makes it differ).
 * **adapt** (``adapt.method=bias|rls``, :class:`~..adapt.ReferenceAdapter`): the correction is
   ``-(gain * y + bias)``; a reference measurement ``e`` of a target, taken where the guarded
   output was ``y``, updates ``bias`` and its variance (``bias``), or ``(gain, bias)`` and their
@@ -54,6 +56,9 @@ def guard_fields(deployed, n_states: int = 0, pattern: bool = False) -> dict:
     rate = [None if math.isinf(r) else float(r) for r in g.max_rate_per_s]
     out = {"guard": True, "guard_lo": g.lo.tolist(), "guard_hi": g.hi.tolist(),
            "guard_rate": rate, "guard_period": float(g.period_s)}
+    if g.lo_new is not None and not (np.array_equal(g.lo_new, g.lo) and np.array_equal(g.hi_new, g.hi)):
+        # (cmon82b) the bound in a new thermal state, where it differs (monitor.new_state_margin)
+        out.update(guard_lo_new=g.lo_new.tolist(), guard_hi_new=g.hi_new.tolist())
     if pattern and g.in_gain is not None:
         pad = [UNBOUNDED] * n_states
         out.update(guard_inputs=True,
@@ -97,7 +102,8 @@ def not_in_code(deployed, fmt: str | None = None) -> list[str]:
         return ["sensor monitor rules (the C holds the jump, the freeze, a missing reading, "
                 "a reading beyond its training range, a common step, one sensor out "
                 "reconstructed from the others and its re-admission, a drift exclusion while no "
-                "sensor is out, of one sensor or of it and its blind partner): a missing "
+                "sensor is out, of one sensor or of it and its blind partner, a new thermal "
+                "state): a missing "
                 "reading at a campaign's first sample, with another sensor out or missing, or of a "
                 "sensor the code does not hold out (the code refuses the row), a missing reading of "
                 "a sensor out for a freeze (its re-admission band), a reading beyond its training "
@@ -105,7 +111,7 @@ def not_in_code(deployed, fmt: str | None = None) -> list[str]:
                 "sensor out, several sensors jumping at once that are no common step, "
                 "a jump at the sample after the reference, a stepped self-prediction "
                 "error, a drift beyond the band with a sensor out, of a sensor no other predicts, "
-                "of more than one blind partner, or a new thermal state, a second sensor out, a "
+                "of more than one blind partner, a second sensor out, a "
                 "sensor no other predicts out (the model fitted without it)"]
     return ["sensor monitor (exclusion, reconstruction of a sensor from the others)"]
 
@@ -120,6 +126,8 @@ class Output:
         if ss.guard:
             self.lo, self.hi = np.asarray(ss.guard_lo, float), np.asarray(ss.guard_hi, float)
             self.rate = np.array([np.inf if r is None else r for r in ss.guard_rate], float)
+            self.lo_new, self.hi_new = (np.asarray(v if v is not None else w, float) for v, w in (
+                (ss.guard_lo_new, ss.guard_lo), (ss.guard_hi_new, ss.guard_hi)))
         if ss.guard and ss.guard_inputs:
             self.in_gain = np.asarray(ss.guard_gain, float).reshape(m, -1)
             self.in_lo, self.in_hi = np.asarray(ss.guard_in_lo, float), np.asarray(ss.guard_in_hi, float)
@@ -137,16 +145,18 @@ class Output:
         return widening(x, self.in_lo, self.in_hi, self.in_gain, envelope)
 
     def step(self, y: np.ndarray, first: bool, dt: float,
-             allowance: np.ndarray | None = None) -> np.ndarray:
+             allowance: np.ndarray | None = None, novel: bool = False) -> np.ndarray:
         """Correction (µm) of the model's predicted error ``y``; ``dt``: s since the previous
-        sample (NaN: ``guard_period``); ``allowance``: the bound widened by it (:meth:`allowance`)."""
+        sample (NaN: ``guard_period``); ``allowance``: the bound widened by it (:meth:`allowance`);
+        ``novel``: a new thermal state declared (the bound ``guard_lo_new``, ``guard_hi_new``)."""
         if self.ss.guard:
             if not first:
                 lim = self.rate * rate_span(dt, self.ss.guard_period)
                 d = y - self.y
                 y = np.where(d > lim, self.y + lim, np.where(d < -lim, self.y - lim, y))
-            lo, hi = (self.lo, self.hi) if allowance is None else (self.lo - allowance,
-                                                                    self.hi + allowance)
+            lo, hi = (self.lo_new, self.hi_new) if novel else (self.lo, self.hi)
+            if allowance is not None:
+                lo, hi = lo - allowance, hi + allowance
             y = np.minimum(np.maximum(y, lo), hi)
         self.y = y
         return -(self.gain * y + self.bias) if self.ss.adapt != "none" else -y

@@ -183,6 +183,8 @@ class _System:
     guard_hi: list | None = None
     guard_rate: list | None = None   # (n_targets,) µm/s; null: no rate limit
     guard_period: float = 0.0        # s: the shortest ``dt`` of the rate limit (training's period)
+    guard_lo_new: list | None = None  # (cmon82b) the bound in a new thermal state (None: lo, hi)
+    guard_hi_new: list | None = None
     # the bound following the inputs on the training pattern (pattern only; :mod:`.output`)
     guard_inputs: bool = False
     guard_gain: list | None = None   # (n_targets, n_inputs) |step gain| (a state's: 0)
@@ -619,7 +621,8 @@ class Simulator:
                 model = copy.deepcopy(self, {id(ss): ss, id(self.output): self.output,
                                              id(self.clock): self.clock})
         y, allow = model._model(u, v, measured, now, lag_dt, time)
-        self.c = self.output.step(y, first, dt, allow)
+        self.c = self.output.step(y, first, dt, allow,
+                                  self.watch is not None and self.watch.novel)
         return self.c.copy()
 
     def _model(self, u, v, measured, now: float, lag_dt: float, time: float

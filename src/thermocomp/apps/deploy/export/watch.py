@@ -38,7 +38,14 @@ The served adaptive compensator judges every ``T_`` input before the model reads
 * while a sensor is out the model reads its POD reconstruction from the others, and it is
   re-admitted after a calm wait (a window; doubled per drift exclusion) whose leave-one-out
   errors stay within half its warning band (``READMIT``; one out for a dropout alone, within its
-  whole band, as served), the sensors due back judged together as served.
+  whole band, as served), the sensors due back judged together as served;
+* (cmon82b) a **new thermal state** (``novel``), the served ``_declare``: where with the culprit
+  (or its blind partner) out the others stay out of their warning band, or where within a
+  window of a drift exclusion ``new_state_others`` other judged sensors leave it (the field
+  followed: the sensor re-admitted at once, ``FOLLOWED``, its wait back to a window).  While it
+  lasts no drift exclusion (the fault signatures still exclude), ``NOVEL`` in the flags and the
+  guard's bound ``guard_lo_new`` / ``guard_hi_new`` (:mod:`.output`); it ends after a window of
+  samples with every judged sensor within its band.  An export before it (no ``novel``) flags it.
 
 What else the served monitor does it flags, ``NOT_IN_CODE`` with the rule (:data:`REASONS`),
 and goes on by its own rules: a reading beyond its range at a campaign's first sample, of
@@ -46,8 +53,7 @@ several sensors at once or with another sensor out (its sample passes the monito
 as it was, so that the reading's return is no jump), several sensors jumping at once that are
 no common step, a jump at the reference's next sample, a stepped self-prediction error, a drift
 beyond the band with a sensor out already, of a sensor no other predicts, of more than one blind
-partner, a new thermal state (no exclusion explains the bands, or the field follows the
-exclusion within a window), a second culprit beyond the alarm band, a second sensor out, and a
+partner, a second culprit beyond the alarm band, a second sensor out, and a
 sensor no other predicts out (the model fitted without it).  A missing reading the code cannot
 rebuild (at a campaign's first sample, with another sensor out or missing, of a sensor it does
 not hold out) is refused as before (:meth:`CodeMonitor.refuses`: the sample is not read).  From
@@ -74,8 +80,8 @@ from ..surveillance.states import (
 )
 
 # what the code's monitor reports per sample (bits of tc_state.mon_flags; REREFERENCED: a common
-# step, cmon80)
-EXCLUDED, READMITTED, OUT, BAND, NOT_IN_CODE, REREFERENCED = 1, 2, 4, 8, 16, 32
+# step, cmon80; NOVEL: a new thermal state declared, cmon82b)
+EXCLUDED, READMITTED, OUT, BAND, NOT_IN_CODE, REREFERENCED, NOVEL = 1, 2, 4, 8, 16, 32, 64
 # the reason of a flagged event (tc_state.mon_rule): what the code did, then what it does not do
 REASONS = ("", "jump: re-referenced and excluded", "freeze: excluded",
            "re-admitted: within half its warning band for a window (its whole band after a "
@@ -96,12 +102,14 @@ REASONS = ("", "jump: re-referenced and excluded", "freeze: excluded",
            "not in the code: a missing reading of a sensor out for a freeze (its re-admission band)",
            "out of range: read as missing, excluded",
            "common step: re-referenced, kept in",
-           "drift: its self-prediction error explains the others' bands, excluded")
+           "drift: its self-prediction error explains the others' bands, excluded",
+           "re-admitted: the field followed its exclusion (a new thermal state)")
 RULES = ("", "JUMP", "FREEZE", "BACK", "RANGE", "COMMON", "GLITCH", "STEPPED", "DRIFT", "SECOND",
          "BLIND", "DROPOUT", "MISSING_FIRST", "MISSING_SECOND", "MISSING_BLIND",
-         "MISSING_FROZEN", "OFF_RANGE", "COMMON_STEP", "DRIFT_OUT")   # their names in the C (TC_MON_JUMP ...)
+         "MISSING_FROZEN", "OFF_RANGE", "COMMON_STEP", "DRIFT_OUT",
+         "FOLLOWED")   # their names in the C (TC_MON_JUMP ...)
 (JUMP, FREEZE, BACK, RANGE, COMMON, GLITCH, STEPPED, DRIFT, SECOND, BLIND, DROPOUT, MISSING_FIRST,
- MISSING_SECOND, MISSING_BLIND, MISSING_FROZEN, OFF_RANGE, COMMON_STEP, DRIFT_OUT) = range(
+ MISSING_SECOND, MISSING_BLIND, MISSING_FROZEN, OFF_RANGE, COMMON_STEP, DRIFT_OUT, FOLLOWED) = range(
     1, len(RULES))
 
 
@@ -149,7 +157,7 @@ def monitor_fields(deployed, inputs: list) -> dict:
         "period": float(deployed.period_s), "gap_periods": GAP_PERIODS, "readmit": READMIT,
         "drift": 1, "pairs": [list(p) for p in pairs], "new_state": int(mon.new_state),
         "new_state_others": int(mon.new_state_others), "max_backoff": MAX_BACKOFF,
-        "tau": EXCURSION_TAU_S, "growth": EXCURSION_GROWTH}}
+        "tau": EXCURSION_TAU_S, "growth": EXCURSION_GROWTH, "novel": 1}}
 
 
 def _pairs(mon) -> list[tuple[int, int]]:
@@ -239,7 +247,8 @@ class CodeMonitor:
         a.setdefault("common_spread", np.float64(COMMON_SPREAD))
         for k, v in (("drift", 0), ("new_state", 1), ("new_state_others", 2),
                      ("max_backoff", MAX_BACKOFF), ("tau", EXCURSION_TAU_S),
-                     ("growth", EXCURSION_GROWTH)):        # (an export before cmon82: flagged)
+                     ("growth", EXCURSION_GROWTH),        # (an export before cmon82: flagged)
+                     ("novel", 0)):       # (before cmon82b: a new thermal state flagged)
             a.setdefault(k, np.float64(v))
         self.pairs = [tuple(int(i) for i in p) for p in arrays.get("pairs", [])]
         self.idx = np.asarray(arrays["inputs"], int)
@@ -271,6 +280,9 @@ class CodeMonitor:
         # the field's memory of the served monitor's excursion rule (mon73): its age unknown
         # before a campaign's second sample
         self.slow, self.slow_known = np.zeros(n), False
+        # (cmon82b) a new thermal state declared, the samples since a judged sensor was last out
+        # of its warning band (the state ends after a window of them)
+        self.novel, self.calm_field = False, 0
         self.flags, self.sensor, self.rule, self.missed = 0, -1, 0, 0
 
     # the active set's operator, leverages, which sensors are judged and the errors' scale
@@ -537,6 +549,8 @@ class CodeMonitor:
         v[self.idx] = self.base + np.where(self._active(), d, pred)
         if self.out >= 0:
             self.flags |= OUT
+        if self.novel:
+            self.flags |= NOVEL
         return v
 
     def _returning(self, due: np.ndarray) -> np.ndarray:
@@ -577,19 +591,49 @@ class CodeMonitor:
         level, err = self._judge()
         _, active, _, judged, _ = self._set()
         field = ALARM if (self.by_field & ~active).any() else a["exclude_level"]
-        if (judged & (level >= field)).any() and active.sum() > a["min_active"]:
+        # (cmon82b) in a new thermal state no drift exclusion at all (served: every one vetoed)
+        if (judged & (level >= field)).any() and active.sum() > a["min_active"] and not (
+                a["new_state"] and self.novel):
             if not a["drift"] or self.out >= 0:
                 self._flag(NOT_IN_CODE, int(np.argmax(judged & (level >= field))), DRIFT)
             else:
                 self._drift(level, err, field)
         if not a["new_state"]:
             return
-        # the field followed a drift exclusion within a window (served: re-admitted, a new state)
+        self._follow_field()
+
+    def _follow_field(self) -> None:
+        """(cmon82b) The served ``_follow_field``: a drift-excluded sensor whose exclusion the
+        field followed (``new_state_others`` other judged sensors out of band within a window
+        of it) comes back at once, a new thermal state declared; the state ends after a window
+        with every judged sensor within band (flagged by an export before cmon82b)."""
+        a = self.a
         level, _ = self._judge()
         _, active, _, judged, _ = self._set()
         self.since[active | (self.count - self.since > self.window)] = -1
-        if (self.since >= 0).any() and (judged & (level >= WARNING)).sum() >= a["new_state_others"]:
-            self._flag(NOT_IN_CODE, int(np.argmax(self.since >= 0)), DRIFT)
+        out = int((judged & (level >= WARNING)).sum())
+        for j in np.flatnonzero(self.since >= 0):
+            if out < a["new_state_others"]:
+                continue
+            if not a["novel"]:
+                self._flag(NOT_IN_CODE, int(j), DRIFT)
+                return
+            self.since[j] = -1
+            self.by_field[j], self.dwell[j] = False, self.window
+            self.out, self.out2 = (self.out2, -1) if j == self.out else (self.out, -1)
+            self._recompute()
+            self._flag(READMITTED, int(j), FOLLOWED)
+            self._declare()
+            level, _ = self._judge()
+            _, _, _, judged, _ = self._set()
+            out = int((judged & (level >= WARNING)).sum())
+        self.calm_field = 0 if out else self.calm_field + 1
+        if self.novel and self.calm_field >= self.window:
+            self.novel = False
+
+    def _declare(self) -> None:
+        """A new thermal state (the served ``_declare``): no drift exclusion until it ends."""
+        self.novel, self.calm_field = True, 0
 
     def _drift(self, level, err, field) -> None:
         """Every sensor in, one beyond the band: the culprit (the largest ``|E|(1 - h)``) out
@@ -606,8 +650,11 @@ class CodeMonitor:
         j = int(np.argmax(z))
         if a["new_state"]:
             j, resolves = self._lone_fault(j, z, level, err, judged)
-            if not resolves:              # a new thermal state (served: declared): not here
-                self._flag(NOT_IN_CODE, j, DRIFT)
+            if not resolves:              # a new thermal state (served: declared)
+                if not a["novel"]:
+                    self._flag(NOT_IN_CODE, j, DRIFT)
+                else:
+                    self._declare()
                 return
             if self._others(j, level, judged) >= a["new_state_others"]:
                 return
@@ -628,8 +675,11 @@ class CodeMonitor:
             if a["new_state"]:
                 lv, _ = self._judge()
                 _, _, _, jd, _ = self._set()
-                if not self._resolves(int(i)):
-                    self._flag(NOT_IN_CODE, int(i), DRIFT)
+                if not self._resolves(int(i)):    # a new thermal state (served: declared)
+                    if not a["novel"]:
+                        self._flag(NOT_IN_CODE, int(i), DRIFT)
+                    else:
+                        self._declare()
                     return
                 if self._others(int(i), lv, jd) >= a["new_state_others"]:
                     return

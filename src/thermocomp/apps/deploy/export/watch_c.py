@@ -3,7 +3,7 @@
 
 from __future__ import annotations
 
-from .watch import BAND, EXCLUDED, NOT_IN_CODE, OUT, READMITTED, REASONS, REREFERENCED, RULES
+from .watch import BAND, EXCLUDED, NOT_IN_CODE, NOVEL, OUT, READMITTED, REASONS, REREFERENCED, RULES
 
 
 def header_part(ss) -> str:
@@ -17,14 +17,16 @@ def header_part(ss) -> str:
 #define TC_MON_WINDOW {max(int(m.get("window", 1)), 1)}
 /* tc_state.mon_flags, per sample: a sensor excluded, re-admitted, one out (the model reads its
    reconstruction), a judged sensor beyond its warning band, a rule of the served monitor that
-   is not in the code fired (from here the code may part from the served model), and sensors
-   re-referenced by a common step (cmon80) */
+   is not in the code fired (from here the code may part from the served model), sensors
+   re-referenced by a common step (cmon80), and a new thermal state declared (cmon82b: no drift
+   exclusion while it lasts, the guard's bound GUARD_LO_NEW / GUARD_HI_NEW) */
 #define TC_MON_EXCLUDED {EXCLUDED}
 #define TC_MON_READMITTED {READMITTED}
 #define TC_MON_OUT {OUT}
 #define TC_MON_BAND {BAND}
 #define TC_MON_NOT_IN_CODE {NOT_IN_CODE}
 #define TC_MON_REREFERENCED {REREFERENCED}
+#define TC_MON_NEW_STATE {NOVEL}
 /* tc_state.mon_rule indexes these (0: none); tc_state.mon_sensor the monitored sensor k, the
    input TC_MONITORED[k] */
 {rules}
@@ -49,6 +51,9 @@ STATE = """    /* the sensor monitor (TC_MONITOR): referenced readings d = u - m
     int mon_out2, mon_op, mon_by_field[NM], mon_outs[NM], mon_dwell[NM], mon_since[NM];
     double mon_slow[NM];     /* the field's memory (the served excursion rule, MON_TAU s) */
     int mon_slow_known;      /* 0: its age unknown (a sample without its time) */
+    /* (cmon82b) a new thermal state declared, the samples since a judged sensor was last out of
+       its warning band (it ends after a window of them) */
+    int mon_novel, mon_calm_field;
     int mon_flags, mon_sensor, mon_rule;        /* the last sample's (TC_MON_*) */
 """
 
@@ -72,7 +77,7 @@ def monitor_arrays(ss) -> list[tuple[str, object, tuple, str]]:
                ("MON_NEW_STATE", "new_state", 1, "int"),
                ("MON_NEW_STATE_OTHERS", "new_state_others", 2, "int"),
                ("MON_MAX_BACKOFF", "max_backoff", 10, "int"), ("MON_TAU", "tau", 1800.0, "real"),
-               ("MON_GROWTH", "growth", 1.5, "real"))
+               ("MON_GROWTH", "growth", 1.5, "real"), ("MON_NOVEL", "novel", 0, "int"))
     return [("MON_M", m.get("M", []), (n + 1 + len(pairs), n, n), "real"),
             ("MON_LEV", m.get("lev", []), (n + 1 + len(pairs), n), "real"),
             ("MON_PAIR_A", [p[0] for p in pairs], (len(pairs),), "int"),
@@ -264,6 +269,7 @@ static void mon_rebuilt(tc_state *s, double u[], const double d[], const double 
     for (k = 0; k < NM; k++)
         u[TC_MONITORED[k]] = s->mon_base[k] + (k == s->mon_out || k == s->mon_out2 ? pred[k] : d[k]);
     if (s->mon_out >= 0) s->mon_flags |= TC_MON_OUT;
+    if (s->mon_novel) s->mon_flags |= TC_MON_NEW_STATE;
 }
 
 /* (cmon80) a reading beyond its range (rng: which, nrng of them) after a campaign's first
@@ -518,8 +524,9 @@ static void mon_drift(tc_state *s, const int level[], int field) {
     if (MON_NEW_STATE) {
         int resolves;
         j = mon_lone_fault(s, j, z, level, jd, &resolves);
-        if (!resolves) {   /* a new thermal state (served: declared): not in the code */
-            mon_flag(s, TC_MON_NOT_IN_CODE, j, TC_MON_DRIFT);
+        if (!resolves) {   /* a new thermal state (served: declared) */
+            if (MON_NOVEL) s->mon_novel = 1, s->mon_calm_field = 0;
+            else mon_flag(s, TC_MON_NOT_IN_CODE, j, TC_MON_DRIFT);
             return;
         }
         if (mon_others(level, jd, j) >= MON_NEW_STATE_OTHERS) return;
@@ -534,9 +541,13 @@ static void mon_drift(tc_state *s, const int level[], int field) {
     if (nblind && mon_levels(s, lv, jd) > MON_MIN_ACTIVE) {
         int out[NM];
         for (k = 0; k < NM; k++) out[k] = !a[k] || k == partner;
-        if (nblind > 1 || mon_op_of(out) < 0 || !MON_PORTED[partner]
-            || (MON_NEW_STATE && !mon_resolves(s, partner, 0, -1.0))) {
+        if (nblind > 1 || mon_op_of(out) < 0 || !MON_PORTED[partner]) {
             mon_flag(s, TC_MON_NOT_IN_CODE, partner, TC_MON_DRIFT);
+            return;
+        }
+        if (MON_NEW_STATE && !mon_resolves(s, partner, 0, -1.0)) {   /* served: declared */
+            if (MON_NOVEL) s->mon_novel = 1, s->mon_calm_field = 0;
+            else mon_flag(s, TC_MON_NOT_IN_CODE, partner, TC_MON_DRIFT);
             return;
         }
         if (MON_NEW_STATE && mon_others(lv, jd, partner) >= MON_NEW_STATE_OTHERS) return;
@@ -555,14 +566,16 @@ static void mon_drift(tc_state *s, const int level[], int field) {
 }
 
 /* the served monitor's exclusion by judgement where the code holds it (mon_drift), else
-   flagged; and a field that followed a drift exclusion within a window (served: re-admitted, a
-   new thermal state) flagged */
+   flagged, none in a new thermal state (cmon82b); and a field that followed a drift exclusion
+   within a window: the sensor re-admitted, a new thermal state declared (served _follow_field;
+   an export before cmon82b flags it), which ends after a window with every judged sensor within
+   its warning band */
 static void mon_judgement(tc_state *s) {
     int level[NM], jd[NM], k, n, field = 0, leaving = 0;
     for (k = 0; k < NM; k++) field |= k == s->mon_out && s->mon_by_field[k];
     field = field ? 2 : MON_EXCLUDE_LEVEL;
     n = mon_levels(s, level, jd);
-    for (k = 0; k < NM; k++)
+    for (k = 0; k < NM && !(MON_NEW_STATE && s->mon_novel); k++)
         if (jd[k] && level[k] >= field && n > MON_MIN_ACTIVE) {
             if (!MON_DRIFT || s->mon_out >= 0) mon_flag(s, TC_MON_NOT_IN_CODE, k, TC_MON_DRIFT);
             else mon_drift(s, level, field);
@@ -575,11 +588,25 @@ static void mon_judgement(tc_state *s) {
         if ((k != s->mon_out && k != s->mon_out2) || s->mon_count - s->mon_since[k] > MW)
             s->mon_since[k] = -1;
     }
-    for (k = 0; k < NM; k++)
-        if (s->mon_since[k] >= 0 && leaving >= MON_NEW_STATE_OTHERS) {
+    for (k = 0; k < NM; k++) {
+        if (s->mon_since[k] < 0 || leaving < MON_NEW_STATE_OTHERS) continue;
+        if (!MON_NOVEL) {
             mon_flag(s, TC_MON_NOT_IN_CODE, k, TC_MON_DRIFT);
-            break;
+            return;
         }
+        s->mon_since[k] = -1;
+        s->mon_by_field[k] = 0;
+        s->mon_dwell[k] = MW;
+        if (k == s->mon_out) s->mon_out = s->mon_out2;
+        s->mon_out2 = -1;
+        mon_recompute(s);
+        mon_flag(s, TC_MON_READMITTED, k, TC_MON_FOLLOWED);
+        s->mon_novel = 1, s->mon_calm_field = 0;
+        mon_levels(s, level, jd);
+        for (leaving = 0, n = 0; n < NM; n++) leaving += jd[n] && level[n] >= 1;
+    }
+    s->mon_calm_field = leaving ? 0 : s->mon_calm_field + 1;
+    if (s->mon_novel && s->mon_calm_field >= MW) s->mon_novel = 0;
 }
 
 /* one sample of the monitored inputs of u, replaced by what the model reads (the reading, or
@@ -603,6 +630,7 @@ static void monitor_step(tc_state *s, double u[], double dt) {
             s->mon_dwell[k] = MW;
             s->mon_since[k] = -1;
             s->mon_slow[k] = 0.0;
+            s->mon_novel = s->mon_calm_field = 0;
             for (w = 0; w < MW; w++) s->mon_hist[w][k] = s->mon_err[w][k] = NAN;
         }
     }
