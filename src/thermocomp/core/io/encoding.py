@@ -162,3 +162,27 @@ def _remedy(line: bytes, encoding: str) -> str:
         except UnicodeDecodeError:
             pass
     return " (set data.encoding to the file's character set, or save the file as UTF-8)"
+
+
+def text_lines(path: Path, encoding: str = UTF8) -> list[str]:
+    """The lines of the text file ``path`` (a logger's export read whole: its header block and
+    table; :func:`check_text` first), refused naming ``data.encoding`` where it does not decode."""
+    raw = path.read_bytes()
+    check_text(raw[:1 << 16], encoding, path)
+    try:
+        return raw.decode(text_codec(encoding)).splitlines()
+    except UnicodeDecodeError:
+        raise ContractError(f"file is not {encoding} text (a Windows export: data.encoding=cp1252)",
+                            file=path) from None
+
+
+def text_head(path, size: int = 256, suffixes: tuple[str, ...] = (".csv", ".txt")) -> str | None:
+    """The first ``size`` bytes of ``path`` as Latin-1 text where it is a file with one of
+    ``suffixes``, else None: what a logger's export is told apart by (its first line)."""
+    if Path(path).suffix.lower() not in suffixes:
+        return None
+    try:
+        with open(path, "rb") as f:
+            return f.read(size).decode("latin-1")
+    except OSError:
+        return None

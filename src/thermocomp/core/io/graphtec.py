@@ -24,7 +24,7 @@ import numpy as np
 
 from ...base.log import logger
 from .contract import ContractError
-from .encoding import UTF8, check_text, text_codec
+from .encoding import UTF8, text_head, text_lines
 from .labfile import Channel, Record, records_as_csv, with_unit
 
 _FIRST = re.compile(r'^\ufeff?"?Model"?\s*,\s*"?GL\d')
@@ -35,26 +35,13 @@ _TIMES = ("%Y/%m/%d %H:%M:%S", "%Y-%m-%d %H:%M:%S", "%y/%m/%d %H:%M:%S", "%y-%m-
 
 def is_graphtec(path) -> bool:
     """``path`` is a text file whose first line is a Graphtec logger's ``"Model","GL..."``."""
-    if Path(path).suffix.lower() not in (".csv", ".txt"):
-        return False
-    try:
-        with open(path, "rb") as f:
-            first = f.read(256).decode("latin-1")
-    except OSError:
-        return False
-    return bool(_FIRST.match(first))
+    head = text_head(path)
+    return head is not None and bool(_FIRST.match(head))
 
 
 def graphtec_records(path: Path, encoding: str = UTF8) -> list[Record]:
     """The one run of the Graphtec CSV ``path``."""
-    raw = path.read_bytes()
-    check_text(raw[:1 << 16], encoding, path)
-    try:
-        lines = raw.decode(text_codec(encoding)).splitlines()
-    except UnicodeDecodeError:
-        raise ContractError(f"file is not {encoding} text (a Windows export: data.encoding=cp1252)",
-                            file=path) from None
-    return [_record(lines, path.stem, path)]
+    return [_record(text_lines(path, encoding), path.stem, path)]
 
 
 def is_graphtec_text(text: str) -> bool:

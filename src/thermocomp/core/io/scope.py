@@ -31,7 +31,7 @@ import numpy as np
 
 from ...base.log import logger
 from .contract import ContractError
-from .encoding import UTF8, check_text, text_codec
+from .encoding import UTF8, text_head, text_lines
 from .labfile import Channel, Record, on_union_grid, records_as_csv, with_unit
 
 SAMPLE_KEY = "SampleTime[ms]"
@@ -48,14 +48,8 @@ _BOOL = {"true": 1.0, "false": 0.0}            # a BOOL channel's values
 def is_scope(path) -> bool:
     """``path`` is a text file whose first line is a Scope export's ``Name`` and whose head
     holds the channels' ``SampleTime[ms]`` row."""
-    if Path(path).suffix.lower() not in (".csv", ".txt"):
-        return False
-    try:
-        with open(path, "rb") as f:
-            head = f.read(1 << 16).decode("latin-1")
-    except OSError:
-        return False
-    if not _FIRST.match(head):
+    head = text_head(path, 1 << 16)
+    if head is None or not _FIRST.match(head):
         return False
     sep = _FIRST.match(head).group(2)
     return any(line.startswith(SAMPLE_KEY + sep) for line in head.splitlines()[:60])
@@ -124,14 +118,7 @@ def scope_layout(path: Path, encoding: str = UTF8) -> str:
 
 def scope_records(path: Path, encoding: str = UTF8) -> list[Record]:
     """The one run of the Scope export ``path``."""
-    raw = path.read_bytes()
-    check_text(raw[:1 << 16], encoding, path)
-    try:
-        lines = raw.decode(text_codec(encoding)).splitlines()
-    except UnicodeDecodeError:
-        raise ContractError(f"file is not {encoding} text (a Windows export: data.encoding=cp1252)",
-                            file=path) from None
-    return [_record(lines, path.stem, path)]
+    return [_record(text_lines(path, encoding), path.stem, path)]
 
 
 def is_scope_text(text: str) -> bool:

@@ -26,7 +26,7 @@ import numpy as np
 
 from ...base.log import logger
 from .contract import ContractError
-from .encoding import UTF8, check_text, text_codec
+from .encoding import UTF8, text_head, text_lines
 from .labfile import Channel, Record, records_as_csv, with_unit
 
 _FIRST = re.compile(r'^\ufeff?"?(Universal Viewer|DAQSTANDARD Viewer|DXAdvanced)"?\s*([,;\t])', re.I)
@@ -38,14 +38,8 @@ _UNITS = {"c": "degC", "°c": "degC", "degc": "degC", "f": "degF", "°f": "degF"
 
 def is_yokogawa(path) -> bool:
     """``path`` is a text file whose first line names Yokogawa's viewer (``"Universal Viewer"``)."""
-    if Path(path).suffix.lower() not in (".csv", ".txt"):
-        return False
-    try:
-        with open(path, "rb") as f:
-            first = f.read(256).decode("latin-1")
-    except OSError:
-        return False
-    return bool(_FIRST.match(first))
+    head = text_head(path)
+    return head is not None and bool(_FIRST.match(head))
 
 
 def is_yokogawa_text(text: str) -> bool:
@@ -55,14 +49,7 @@ def is_yokogawa_text(text: str) -> bool:
 
 def yokogawa_records(path: Path, encoding: str = UTF8) -> list[Record]:
     """The one run of the export ``path``."""
-    raw = path.read_bytes()
-    check_text(raw[:1 << 16], encoding, path)
-    try:
-        lines = raw.decode(text_codec(encoding)).splitlines()
-    except UnicodeDecodeError:
-        raise ContractError(f"file is not {encoding} text (a Windows export: data.encoding=cp1252)",
-                            file=path) from None
-    return [_record(lines, path.stem, path)]
+    return [_record(text_lines(path, encoding), path.stem, path)]
 
 
 def yokogawa_as_csv(text: str, source: str) -> str:
