@@ -60,6 +60,9 @@ class Readmission:
         if self._explains[j]:
             return (f"re-admitted: the others within their warning bands with it in for {calm} "
                     "samples (no other sensor predicts it)")
+        if self._ranged[j]:
+            return (f"re-admitted: no detector fired for {calm} samples and its leak onto the "
+                    f"others within {READMIT:g} of their warning bands (no other sensor predicts it)")
         return (f"re-admitted: no detector fired for {calm} samples (no other sensor predicts "
                 "it: no band judges its reading)")
 
