@@ -68,6 +68,9 @@ re-admissions x of the sensor, adaptive RMSE (µm) shipped -> rule (fixed in bra
   -> 22.158 / 1.450 (19.590 / 1.625; dX +0.04 %).  The other 66 the same as shipped, the 25
   healthy among them (gantry 7781 ``Gabelkopf`` 4x / 4x, E_dY 3.675 both); all 69 lines equal to
   mon82's rule's (its level branch is this rule on these records).
+* f4662af3 changed only the re-admission's reason (it names the leak test): its ``src`` re-run on
+  the four records where the rule is asked (vtl 7846, 8094, 8196, 8321 ``drift``) gave lines
+  equal to c1d9a2f5's.
 * Part 4: ``tests/apps/test_monitor*`` and ``tests/shell/test_monitor_lab57.py``: 44 passed, 1
   xfail (mon77's frozen pair); leak81's strict xfail passed and is now a test, with one more
   (out of range twice: back on its true reading, then out for good 8 K off); both fail on
