@@ -46,7 +46,9 @@ leaked onto the judged ones is excluded when it explains them
 (:meth:`SensorMonitor._explaining`); an excluded sensor whose reading returns
 within the warning band for a whole window is re-admitted, the sensors due back
 at once judged together (:meth:`SensorMonitor._returning`: after a total dropout
-none could pass alone).  While too few sensors are in to rebuild the field, a
+none could pass alone).  A sensor no other predicts, out of range, comes back
+only where its leak onto the others is within ``READMIT`` of their bands
+(:meth:`SensorMonitor._leak_passes`).  While too few sensors are in to rebuild the field, a
 sensor out only for a dropout gives its reading as it waits.  Every change of
 state is an event ``{"time", "sensor", "from", "to", "reason"}``.
 

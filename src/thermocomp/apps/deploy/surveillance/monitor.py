@@ -175,7 +175,7 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
               "_prev_e", "_run", "_run_pred", "_clean", "_quiet", "_calm", "_prev_other",
               "_last_good", "_by_field", "_jumps", "_ref0", "_dropped", "_gap", "_gapped", "_dwell",
               "_outs", "_explains", "_novel", "_calm_field", "_since", "_slow", "_slow_t",
-              "_slow_ok")
+              "_slow_ok", "_ranged")
 
     def reset(self) -> None:
         """New campaign: the next sample is the reference; every sensor active and ok."""
@@ -200,6 +200,7 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
         self._by_field = np.zeros(n, dtype=bool)     # excluded by its self-prediction error
         self._explains = np.zeros(n, dtype=bool)     # excluded as explaining the others' errors
         self._dropped = np.zeros(n, dtype=bool)      # its last detector to fire was a dropout
+        self._ranged = np.zeros(n, dtype=bool)       # ... was out of range (readmission.py)
         # samples the next step spans (1 + missing ones since the last reading): the jump limit
         # is per sample (a warm-up across 6 missing rows read as a 4 °C jump, re-referenced away)
         self._gap = np.ones(n)
@@ -508,6 +509,7 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
         self._prev_e = e
         for j in instant:
             self._dropped[j] = not np.isfinite(x[j])
+            self._ranged[j] = bool(rng[j])
         good = self._active & finite
         self._last_good = np.where(good, d, self._last_good)
         if not self._rebuilds:

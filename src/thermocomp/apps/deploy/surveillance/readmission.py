@@ -1,4 +1,11 @@
-"""Re-admission of an excluded sensor in :class:`~.monitor.SensorMonitor` (hysteresis, judged together)."""
+"""Re-admission of an excluded sensor in :class:`~.monitor.SensorMonitor` (hysteresis, judged together).
+
+A sensor no other predicts is judged by no band of its own.  Out because its reading left the
+training range, it is back only where its *leak* is within ``READMIT`` of the others' bands: of
+every sensor judged with it and without it, the change of its leave-one-out error, as a share of
+its warning band (a gearbox back inside the range's margin 14.8 K off had come back on calm
+alone).  Out for anything else it is judged as before (mon81's and mon82's leak rules for every
+such sensor held a healthy gantry's ``Gabelkopf`` stale, or let a drifting tank flap: mon82b)."""
 
 from __future__ import annotations
 
@@ -38,6 +45,7 @@ class Readmission:
             self._active[j] = True
             self._by_field[j] = False
             self._explains[j] = False
+            self._ranged[j] = False
             self._set_operator()
         return bool(back.any())
 
@@ -52,6 +60,9 @@ class Readmission:
         if self._explains[j]:
             return (f"re-admitted: the others within their warning bands with it in for {calm} "
                     "samples (no other sensor predicts it)")
+        if self._ranged[j]:
+            return (f"re-admitted: no detector fired for {calm} samples and its leak onto the "
+                    f"others within {READMIT:g} of their warning bands (no other sensor predicts it)")
         return (f"re-admitted: no detector fired for {calm} samples (no other sensor predicts "
                 "it: no band judges its reading)")
 
@@ -98,4 +109,25 @@ class Readmission:
         if explains.any():
             judged = trial & ~blind
             ok[explains] = bool((worst[judged] < self.warning_c[judged]).all())
+        # one no other predicts, out of range: calm is no evidence its reading is true again
+        for u in np.flatnonzero(ok & ~self._active & ~self._predictable & self._ranged):
+            ok[u] = self._leak_passes(u, trial, H, M, lev)
         return ok, worst
+
+    def _leak_passes(self, u: int, trial: np.ndarray, H: np.ndarray, M: np.ndarray,
+                     lev: np.ndarray) -> bool:
+        """Whether the leak of ``u`` onto the sensors judged in ``trial`` with it and without it
+        (module doc) is within ``READMIT`` of their bands on every sample of the window ``H``.
+        True where too few sensors are left without ``u`` to judge (the test it passed stands)."""
+        rest = trial.copy()
+        rest[u] = False
+        if rest.sum() < self.min_active_:
+            return True
+        M2, lev2 = self._operator(rest)
+        both = rest & (lev < self.pod.max_leverage) & (lev2 < self.pod.max_leverage)
+        if not both.any():
+            return True
+        with np.errstate(divide="ignore", invalid="ignore"):
+            e_in = (H[:, both] - H[:, trial] @ M[both].T) / (1 - lev[both])
+            e_out = (H[:, both] - H[:, rest] @ M2[both].T) / (1 - lev2[both])
+        return bool((np.abs(e_in - e_out) / self.warning_c[both]).max() < READMIT)
