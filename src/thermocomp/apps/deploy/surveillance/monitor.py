@@ -155,20 +155,16 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
         warn = np.asarray(options.get("warning_c", 0.4), float)
         alarm = np.asarray(options.get("alarm_c", 0.8), float)
         factor = float(options.pop("spread_factor", SPREAD_FACTOR))
-        # plus what the loggers' resolution alone moves each error by, a bound added once (mon82c:
-        # a healthy T_RUNDTISCH out at -0.59 °C against 0.576, its error -0.35 / -0.59 as its
-        # partner T_WIEGE flickered 21.6 / 21.7 °C: 0.218 °C of its error a 0.1 K step)
-        quant = _quantisation(pod, steps)
         if learned_bands:
             # bands from the training spread: 4× it, never below the configured bands' half
-            warn = np.maximum(4 * spread + quant, 0.5 * warn)
+            warn = np.maximum(4 * spread, 0.5 * warn)
             alarm = 2 * warn
         else:
             # never within `spread_factor` × the spread: a sensor the others predict loosely in
             # training does so on a healthy campaign of another season too (fl T_9: 0.24 °C in
             # training, past the 0.4 °C band on the test campaign, and the culprit pick then
             # excluded T_13 21 times); the others keep the configured bands
-            floor = factor * spread + quant
+            floor = factor * spread
             warn, alarm = np.maximum(warn, floor), np.maximum(alarm, 2 * floor)
         options = {**options, "warning_c": warn, "alarm_c": alarm}
         return cls(pod, names, max_step_c=steps.max(0), longest_run=runs, lo_c=lo, hi_c=hi,
@@ -611,18 +607,3 @@ def _longest_runs(a: np.ndarray) -> np.ndarray:
         run = np.where(row, run + 1, 0)
         best = np.maximum(best, run)
     return best
-
-
-def _quantisation(pod: ThermalPOD, steps: np.ndarray) -> np.ndarray:
-    """Largest shift of each sensor's self-prediction error (every sensor in) that rounding its
-    readings to their resolution makes: ``(q / 2) · |(I - M) / (1 - h)|`` summed over the
-    readings, ``q`` a sensor's smallest non-zero step in training (``steps``: the absolute
-    one-sample changes; a logger's 0.1 K, about none for a continuous reading); 0 where no other
-    sensor predicts it (not judged)."""
-    n = pod.n_features_in_
-    M, h = pod.operator(np.ones(n, dtype=bool))
-    q = np.array([np.min(s[s > 0], initial=np.inf) for s in steps.T])
-    q[~np.isfinite(q)] = 0.0             # a sensor that never moved in training
-    judged = h < pod.max_leverage
-    S = (np.eye(n) - M) / np.maximum(1 - h, 1e-12)[:, None]
-    return np.where(judged, 0.5 * np.abs(S) @ q, 0.0)
