@@ -20,6 +20,8 @@ and the top candidate (CV gain, family-wise p), the two labels one line each.
 The two trees (the diagnose package is all diag82f changed: ``git diff 10a06ad4^1 10a06ad4``
 touches ``src/thermocomp/apps/diagnose`` only): old = 481c34c6's src with ``apps/diagnose`` from
 7b8e171a (its readers: 7b8e171a reads neither the GL840 nor the GX20 files), new = 481c34c6.
+Checked: 7b8e171a's own src and conf (``git archive 7b8e171a src conf``) on edm8111, jig8011 and
+vtl7846 (the records its readers take) gave the old tree's table to the digit.
 What counts as broken (the brief, before anything was run): a target > 2 % worse as deployed
 after diagnose than before where old's is not, the control accepted, or a crash.
 
