@@ -35,10 +35,10 @@ def rmse(errors: list, corrections: list) -> np.ndarray:
     return np.sqrt(np.mean(r ** 2, axis=0))
 
 
-def deployed_on(data: Path, model: str) -> tuple:
+def deployed_on(data: Path, model: str, overrides: tuple = ()) -> tuple:
     """``data``'s record read as ``run`` reads it and ``model=<model>`` fitted on its train
     campaigns, deployed as ``promote`` deploys it (the stream warmed on the train record):
-    ``(deployed, ds, test_ids)``."""
+    ``(deployed, ds, test_ids)``; ``overrides``: more of the config's (``key=value``)."""
     from hydra import compose, initialize_config_dir
 
     from thermocomp.base.paths import conf_dir
@@ -47,7 +47,8 @@ def deployed_on(data: Path, model: str) -> tuple:
 
     with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3"):
         cfg = compose(config_name="config",
-                      overrides=[f"data.path={data}", "track=false", f"model={model}"])
+                      overrides=[f"data.path={data}", "track=false", f"model={model}",
+                                 *overrides])
     ds, train_ids, test_ids, _ = read_streamed(cfg)
     train = {k: ds.campaigns[k] for k in train_ids}
     deployed = deployable(cfg, deploy_stream(cfg, build_compensator(cfg, ds=ds).fit(train), train),

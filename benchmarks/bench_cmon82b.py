@@ -123,7 +123,7 @@ def _states(events: list, times: np.ndarray) -> str:
 
 
 def record(root: Path, seed: int, model: str = "mlr", kinds: tuple = ("healthy", "drift"),
-           sim: str = SIM) -> list[str]:
+           sim: str = SIM, overrides: tuple = ()) -> list[str]:
     from thermocomp.apps.deploy.export import exported_files, state_space
     from thermocomp.apps.deploy.export.pack import conformance_pack, corrections
     from thermocomp.apps.deploy.report import stream_rows
@@ -134,7 +134,7 @@ def record(root: Path, seed: int, model: str = "mlr", kinds: tuple = ("healthy",
     if not (data / "campaigns.csv").is_file():
         assert main(["-q", "simulate", f"seed={seed}", f"data.path={data}", "track=false",
                      f"sim={sim}"]) == 0
-    deployed, ds, test_ids = deployed_on(data, model)
+    deployed, ds, test_ids = deployed_on(data, model, overrides)
     targets = deployed.targets_
     ss = state_space(deployed, monitor=True)
     sensor = _sensor(ss)

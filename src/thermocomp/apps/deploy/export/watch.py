@@ -46,15 +46,23 @@ The served adaptive compensator judges every ``T_`` input before the model reads
   lasts no drift exclusion (the fault signatures still exclude), ``NOVEL`` in the flags and the
   guard's bound ``guard_lo_new`` / ``guard_hi_new`` (:mod:`.output`); it ends after a window of
   samples with every judged sensor within its band.  An export before it (no ``novel``) flags it.
+* (cmon82c) a sensor no other predicts, every sensor in, **excluded as explaining** the judged
+  sensors beyond the band (the served ``_explaining``): a drift exclusion (its wait doubled) that
+  the model reads held at its last reading while in (``last``), re-admitted where every judged
+  sensor of the set with it in is within its warning band over the window (``explains``), or at
+  once where the field follows it; judged again after it, one beyond the alarm band flagged.  Where
+  it has a fallback model (``fallback``: the served correction the model fitted without it) the
+  campaign is flagged ``FALLBACK`` from the exclusion on; a jump of it or a reading beyond its
+  range while it is out flagged ``BLIND``.  An export before it (no ``blind_out``) flags it.
 
 What else the served monitor does it flags, ``NOT_IN_CODE`` with the rule (:data:`REASONS`),
 and goes on by its own rules: a reading beyond its range at a campaign's first sample, of
 several sensors at once or with another sensor out (its sample passes the monitor by, the state
 as it was, so that the reading's return is no jump), several sensors jumping at once that are
 no common step, a jump at the reference's next sample, a stepped self-prediction error, a drift
-beyond the band with a sensor out already, of a sensor no other predicts, of more than one blind
-partner, a second culprit beyond the alarm band, a second sensor out, and a
-sensor no other predicts out (the model fitted without it).  A missing reading the code cannot
+beyond the band with a sensor out already, of more than one blind partner, a second culprit
+beyond the alarm band, a second sensor out, and a sensor no other predicts out for any other
+rule, or with the model fitted without it.  A missing reading the code cannot
 rebuild (at a campaign's first sample, with another sensor out or missing, of a sensor it does
 not hold out) is refused as before (:meth:`CodeMonitor.refuses`: the sample is not read).  From
 such a row on the code may part from the served model; the conformance pack cuts there
@@ -103,14 +111,18 @@ REASONS = ("", "jump: re-referenced and excluded", "freeze: excluded",
            "out of range: read as missing, excluded",
            "common step: re-referenced, kept in",
            "drift: its self-prediction error explains the others' bands, excluded",
-           "re-admitted: the field followed its exclusion (a new thermal state)")
+           "re-admitted: the field followed its exclusion (a new thermal state)",
+           "drift: no other sensor predicts it and its reading explains the others' bands, "
+           "excluded, held at its last reading",
+           "not in the code: the correction of the model fitted without a sensor no other "
+           "predicts, from its exclusion on (monitor.fallbacks)")
 RULES = ("", "JUMP", "FREEZE", "BACK", "RANGE", "COMMON", "GLITCH", "STEPPED", "DRIFT", "SECOND",
          "BLIND", "DROPOUT", "MISSING_FIRST", "MISSING_SECOND", "MISSING_BLIND",
          "MISSING_FROZEN", "OFF_RANGE", "COMMON_STEP", "DRIFT_OUT",
-         "FOLLOWED")   # their names in the C (TC_MON_JUMP ...)
+         "FOLLOWED", "BLIND_OUT", "FALLBACK")   # their names in the C (TC_MON_JUMP ...)
 (JUMP, FREEZE, BACK, RANGE, COMMON, GLITCH, STEPPED, DRIFT, SECOND, BLIND, DROPOUT, MISSING_FIRST,
- MISSING_SECOND, MISSING_BLIND, MISSING_FROZEN, OFF_RANGE, COMMON_STEP, DRIFT_OUT, FOLLOWED) = range(
-    1, len(RULES))
+ MISSING_SECOND, MISSING_BLIND, MISSING_FROZEN, OFF_RANGE, COMMON_STEP, DRIFT_OUT, FOLLOWED,
+ BLIND_OUT, FALLBACK) = range(1, len(RULES))
 
 
 @dataclass
@@ -157,7 +169,8 @@ def monitor_fields(deployed, inputs: list) -> dict:
         "period": float(deployed.period_s), "gap_periods": GAP_PERIODS, "readmit": READMIT,
         "drift": 1, "pairs": [list(p) for p in pairs], "new_state": int(mon.new_state),
         "new_state_others": int(mon.new_state_others), "max_backoff": MAX_BACKOFF,
-        "tau": EXCURSION_TAU_S, "growth": EXCURSION_GROWTH, "novel": 1}}
+        "tau": EXCURSION_TAU_S, "growth": EXCURSION_GROWTH, "novel": 1, "blind_out": 1,
+        "fallback": [int(c in falls) for c in mon.names]}}
 
 
 def _pairs(mon) -> list[tuple[int, int]]:
@@ -248,7 +261,8 @@ class CodeMonitor:
         for k, v in (("drift", 0), ("new_state", 1), ("new_state_others", 2),
                      ("max_backoff", MAX_BACKOFF), ("tau", EXCURSION_TAU_S),
                      ("growth", EXCURSION_GROWTH),        # (an export before cmon82: flagged)
-                     ("novel", 0)):       # (before cmon82b: a new thermal state flagged)
+                     ("novel", 0),        # (before cmon82b: a new thermal state flagged)
+                     ("blind_out", 0)):   # (before cmon82c: a sensor no other predicts, flagged)
             a.setdefault(k, np.float64(v))
         self.pairs = [tuple(int(i) for i in p) for p in arrays.get("pairs", [])]
         self.idx = np.asarray(arrays["inputs"], int)
@@ -258,6 +272,7 @@ class CodeMonitor:
         self.max_lev = float(arrays["max_leverage"])
         self.ported = np.asarray(arrays["ported_out"], bool)
         self.predictable = np.asarray(arrays["predictable"], bool)
+        self.fallback = np.asarray(arrays.get("fallback", [0] * n), bool)
         self.reset()
 
     def reset(self) -> None:
@@ -283,6 +298,10 @@ class CodeMonitor:
         # (cmon82b) a new thermal state declared, the samples since a judged sensor was last out
         # of its warning band (the state ends after a window of them)
         self.novel, self.calm_field = False, 0
+        # (cmon82c) out for explaining the others' errors (no other predicts it), and each
+        # sensor's last reading while it was in (what the model reads of one no other predicts)
+        self.explains, self.last = np.zeros(n, bool), np.zeros(n)
+        self.fell = False      # one with a fallback model went out: flagged to the campaign's end
         self.flags, self.sensor, self.rule, self.missed = 0, -1, 0, 0
 
     # the active set's operator, leverages, which sensors are judged and the errors' scale
@@ -439,6 +458,9 @@ class CodeMonitor:
             if active[j] and (self.out >= 0 or not self.ported[j]):
                 self._exclude(j, JUMP)       # flagged: not in the code; the sensor stays as read
             else:
+                if not active[j] and not self.predictable[j]:
+                    # (cmon82c) the served return may undo it (readmission.py): not in the code
+                    self._flag(NOT_IN_CODE, j, BLIND)
                 _, e = self._errors(d)
                 other = d[j] - e[j] if judged[j] else np.nan
                 expected = other - self.prev_other[j]
@@ -484,7 +506,7 @@ class CodeMonitor:
         due = ~self._active() & ~gone & (self.run == 0) & ~instant & (self.calm >= self.dwell)
         if due.any() and self.count >= self.window:
             for j in np.flatnonzero(self._returning(due)):
-                self.jumps[j], self.by_field[j] = 0, False
+                self.jumps[j], self.by_field[j], self.explains[j] = 0, False, False
                 self.out, self.out2 = (self.out2, -1) if j == self.out else (self.out, -1)
                 self._recompute()
                 self._flag(READMITTED, int(j), BACK)
@@ -495,6 +517,7 @@ class CodeMonitor:
         self.gap = np.where(gone, gap + 1, 1.0)
         self.prev_e = e
         self.dropped[instant] = missing[instant]       # (the last detector to fire on it)
+        self.last = np.where(active & np.isfinite(d), d, self.last)
         self._fold(self.hist[pos], first, dt)
         return self._rebuilt(u, d, pred)
 
@@ -506,6 +529,9 @@ class CodeMonitor:
         j, a = int(np.argmax(rng)), self.a
         if rng.sum() > 1 or (self.out >= 0 and j != self.out):
             self._flag(NOT_IN_CODE, j, RANGE)
+            return None
+        if j == self.out and not self.predictable[j]:    # (served: its leak judges its return)
+            self._flag(NOT_IN_CODE, j, BLIND)
             return None
         if j == self.out:                # out already: read as missing
             return rng
@@ -545,12 +571,15 @@ class CodeMonitor:
         rebuilt from the others (``pred``: their predictions)."""
         if pred is None:
             pred = self._errors(d)[0]
-        v = u.copy()
-        v[self.idx] = self.base + np.where(self._active(), d, pred)
+        v = u.copy()      # (one no other predicts: held at its last reading, cmon82c)
+        v[self.idx] = self.base + np.where(self._active(), d,
+                                           np.where(self.predictable, pred, self.last))
         if self.out >= 0:
             self.flags |= OUT
         if self.novel:
             self.flags |= NOVEL
+        if self.fell:       # the served correction is the fallback's (and its switch back)
+            self._flag(NOT_IN_CODE, int(np.argmax(self.fallback)), FALLBACK)
         return v
 
     def _returning(self, due: np.ndarray) -> np.ndarray:
@@ -582,7 +611,14 @@ class CodeMonitor:
         worst[blind] = np.inf
         lost = self.dropped & ~self.by_field & (self.jumps == 0)
         band = np.where(lost, 1.0, self.a["readmit"]) * self.a["warning"]
-        return np.where(blind, ~self.predictable, worst < band) & trial, worst
+        ok = np.where(blind, ~self.predictable, worst < band) & trial
+        # (cmon82c) one out for explaining the others' errors: back where they all pass their
+        # warning band with it in, as served
+        explains = trial & blind & self.explains
+        if explains.any():
+            judged = trial & ~blind
+            ok[explains] = bool((worst[judged] < self.a["warning"][judged]).all())
+        return ok, worst
 
     # -- (cmon82) the exclusion by judgement (module doc) --------------------------------------
     def _judgement(self) -> None:
@@ -619,7 +655,7 @@ class CodeMonitor:
                 self._flag(NOT_IN_CODE, int(j), DRIFT)
                 return
             self.since[j] = -1
-            self.by_field[j], self.dwell[j] = False, self.window
+            self.by_field[j], self.dwell[j], self.explains[j] = False, self.window, False
             self.out, self.out2 = (self.out2, -1) if j == self.out else (self.out, -1)
             self._recompute()
             self._flag(READMITTED, int(j), FOLLOWED)
@@ -643,7 +679,10 @@ class CodeMonitor:
         a = self.a
         _, active, observable, judged, _ = self._set()
         if (u := self._explaining(level, field)) is not None:
-            self._flag(NOT_IN_CODE, u, DRIFT)
+            if a["blind_out"]:
+                self._blind_out(u)
+            else:
+                self._flag(NOT_IN_CODE, u, DRIFT)
             return
         z = np.where(judged, np.abs(np.nan_to_num(err)) * np.sqrt(np.abs(1 - self.lev[self.op])) ** 2,
                      -1.0)
@@ -691,6 +730,21 @@ class CodeMonitor:
         level, _ = self._judge()        # served: judged again, a second culprit beyond the alarm
         _, active, _, judged, _ = self._set()
         if (judged & (level >= ALARM)).any() and active.sum() > a["min_active"]:
+            self._flag(NOT_IN_CODE, int(np.argmax(judged & (level >= ALARM))), DRIFT)
+
+    def _blind_out(self, u: int) -> None:
+        """(cmon82c) ``u`` (no other predicts it) out for explaining the others' errors, as
+        served: a drift exclusion held at its last reading; judged again, a sensor still beyond
+        the alarm band is flagged (the served monitor goes on with one out)."""
+        self.out, self.calm[u] = u, 0
+        self._recompute()
+        self._by_drift(u)
+        self.explains[u] = True
+        self._flag(EXCLUDED, u, BLIND_OUT)
+        self.fell = self.fell or bool(self.fallback[u])
+        level, _ = self._judge()
+        _, active, _, judged, _ = self._set()
+        if (judged & (level >= ALARM)).any() and active.sum() > self.a["min_active"]:
             self._flag(NOT_IN_CODE, int(np.argmax(judged & (level >= ALARM))), DRIFT)
 
     def _lone_fault(self, j, z, level, err, judged) -> tuple[int, bool]:

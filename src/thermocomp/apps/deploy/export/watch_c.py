@@ -54,6 +54,10 @@ STATE = """    /* the sensor monitor (TC_MONITOR): referenced readings d = u - m
     /* (cmon82b) a new thermal state declared, the samples since a judged sensor was last out of
        its warning band (it ends after a window of them) */
     int mon_novel, mon_calm_field;
+    /* (cmon82c) out for explaining the others' errors (no other predicts it), and each sensor's
+       last reading while it was in (what the model reads of one no other predicts, out) */
+    int mon_explains[NM], mon_fell;   /* (mon_fell: one with a fallback model went out) */
+    double mon_last[NM];
     int mon_flags, mon_sensor, mon_rule;        /* the last sample's (TC_MON_*) */
 """
 
@@ -77,7 +81,8 @@ def monitor_arrays(ss) -> list[tuple[str, object, tuple, str]]:
                ("MON_NEW_STATE", "new_state", 1, "int"),
                ("MON_NEW_STATE_OTHERS", "new_state_others", 2, "int"),
                ("MON_MAX_BACKOFF", "max_backoff", 10, "int"), ("MON_TAU", "tau", 1800.0, "real"),
-               ("MON_GROWTH", "growth", 1.5, "real"), ("MON_NOVEL", "novel", 0, "int"))
+               ("MON_GROWTH", "growth", 1.5, "real"), ("MON_NOVEL", "novel", 0, "int"),
+               ("MON_BLIND_OUT", "blind_out", 0, "int"))
     return [("MON_M", m.get("M", []), (n + 1 + len(pairs), n, n), "real"),
             ("MON_LEV", m.get("lev", []), (n + 1 + len(pairs), n), "real"),
             ("MON_PAIR_A", [p[0] for p in pairs], (len(pairs),), "int"),
@@ -86,6 +91,7 @@ def monitor_arrays(ss) -> list[tuple[str, object, tuple, str]]:
             *((f"MON_{k.upper()}", m.get(k, [0.0] * n), (n,), "real") for k in vectors),
             ("MON_PREDICTABLE", m.get("predictable", []), (n,), "int"),
             ("MON_PORTED", m.get("ported_out", []), (n,), "int"),
+            ("MON_FALLBACK", m.get("fallback", [0] * n), (n,), "int"),
             *((name, m.get(key, default), (), kind) for name, key, default, kind in scalars)]
 
 
@@ -211,6 +217,14 @@ static void mon_pass_once_back(const tc_state *s, const int trial[], int ok[], d
         }
         ok[k] = worst[k] < band * MON_WARNING[k];
     }
+    /* (cmon82c) one out for explaining the others' errors: back where they all pass their
+       warning band with it in, as served */
+    for (k = 0; k < NM; k++)
+        if (trial[k] && MON_LEV[op][k] >= MON_MAX_LEV && s->mon_explains[k]) {
+            ok[k] = 1;
+            for (m = 0; m < NM; m++)
+                if (trial[m] && MON_LEV[op][m] < MON_MAX_LEV && !(worst[m] < MON_WARNING[m])) ok[k] = 0;
+        }
 }
 
 /* which of the due sensors come back (back[]): those that pass in the set of the active ones
@@ -267,9 +281,15 @@ static int mon_refuses(tc_state *s, const double u[]) {
 static void mon_rebuilt(tc_state *s, double u[], const double d[], const double pred[]) {
     int k;
     for (k = 0; k < NM; k++)
-        u[TC_MONITORED[k]] = s->mon_base[k] + (k == s->mon_out || k == s->mon_out2 ? pred[k] : d[k]);
+        u[TC_MONITORED[k]] = s->mon_base[k] + (k == s->mon_out || k == s->mon_out2
+                                               ? (MON_PREDICTABLE[k] ? pred[k] : s->mon_last[k]) : d[k]);
     if (s->mon_out >= 0) s->mon_flags |= TC_MON_OUT;
     if (s->mon_novel) s->mon_flags |= TC_MON_NEW_STATE;
+    for (k = 0; k < NM && s->mon_fell; k++)   /* the served correction is the fallback's */
+        if (MON_FALLBACK[k]) {
+            mon_flag(s, TC_MON_NOT_IN_CODE, k, TC_MON_FALLBACK);
+            break;
+        }
 }
 
 /* (cmon80) a reading beyond its range (rng: which, nrng of them) after a campaign's first
@@ -281,6 +301,10 @@ static int mon_beyond(tc_state *s, const double x[], const double d[], int j, in
     int m;
     if (nrng > 1 || (s->mon_out >= 0 && j != s->mon_out)) {
         mon_flag(s, TC_MON_NOT_IN_CODE, j, TC_MON_RANGE);
+        return -1;
+    }
+    if (j == s->mon_out && !MON_PREDICTABLE[j]) {   /* (served: its leak judges its return) */
+        mon_flag(s, TC_MON_NOT_IN_CODE, j, TC_MON_BLIND);
         return -1;
     }
     if (j == s->mon_out) return 1;   /* out already: read as missing */
@@ -512,7 +536,25 @@ static void mon_drift(tc_state *s, const int level[], int field) {
     double scale[NM], z[NM];
     int a[NM], o[NM], jd[NM], lv[NM], k, j = 0, u, nblind = 0, partner = -1;
     if ((u = mon_explaining(s, level, field)) >= 0) {
-        mon_flag(s, TC_MON_NOT_IN_CODE, u, TC_MON_DRIFT);
+        if (!MON_BLIND_OUT) {
+            mon_flag(s, TC_MON_NOT_IN_CODE, u, TC_MON_DRIFT);
+            return;
+        }
+        /* (cmon82c) out, held at its last reading; judged again, one beyond the alarm band
+           flagged (the served monitor goes on with one out) */
+        s->mon_out = u;
+        s->mon_calm[u] = 0;
+        mon_recompute(s);
+        mon_by_drift(s, u);
+        s->mon_explains[u] = 1;
+        mon_flag(s, TC_MON_EXCLUDED, u, TC_MON_BLIND_OUT);
+        if (MON_FALLBACK[u]) s->mon_fell = 1;
+        if (mon_levels(s, lv, jd) > MON_MIN_ACTIVE)
+            for (k = 0; k < NM; k++)
+                if (jd[k] && lv[k] >= 2) {
+                    mon_flag(s, TC_MON_NOT_IN_CODE, k, TC_MON_DRIFT);
+                    break;
+                }
         return;
     }
     mon_set(s, a, o, jd, scale);
@@ -595,7 +637,7 @@ static void mon_judgement(tc_state *s) {
             return;
         }
         s->mon_since[k] = -1;
-        s->mon_by_field[k] = 0;
+        s->mon_by_field[k] = s->mon_explains[k] = 0;
         s->mon_dwell[k] = MW;
         if (k == s->mon_out) s->mon_out = s->mon_out2;
         s->mon_out2 = -1;
@@ -630,7 +672,9 @@ static void monitor_step(tc_state *s, double u[], double dt) {
             s->mon_dwell[k] = MW;
             s->mon_since[k] = -1;
             s->mon_slow[k] = 0.0;
-            s->mon_novel = s->mon_calm_field = 0;
+            s->mon_novel = s->mon_calm_field = s->mon_fell = 0;
+            s->mon_explains[k] = 0;
+            s->mon_last[k] = 0.0;
             for (w = 0; w < MW; w++) s->mon_hist[w][k] = s->mon_err[w][k] = NAN;
         }
     }
@@ -696,6 +740,8 @@ static void monitor_step(tc_state *s, double u[], double dt) {
             if (a[k] && (s->mon_out >= 0 || !MON_PORTED[k])) mon_exclude(s, k, TC_MON_JUMP);   /* flagged */
             else {   /* re-referenced by its step less its change as the others predict it */
                 double expected, offset;
+                if (!a[k] && !MON_PREDICTABLE[k])   /* (cmon82c) the served return may undo it */
+                    mon_flag(s, TC_MON_NOT_IN_CODE, k, TC_MON_BLIND);
                 mon_errors(s, d, pred, e);
                 expected = (jd[k] ? d[k] - e[k] : NAN) - s->mon_prev_other[k];
                 offset = step[k] - (isfinite(expected) ? expected : 0.0);
@@ -751,7 +797,7 @@ static void monitor_step(tc_state *s, double u[], double dt) {
         mon_returning(s, due, back);
         for (k = 0; k < NM; k++) {
             if (!back[k]) continue;
-            s->mon_jumps[k] = s->mon_by_field[k] = 0;
+            s->mon_jumps[k] = s->mon_by_field[k] = s->mon_explains[k] = 0;
             if (k == s->mon_out) s->mon_out = s->mon_out2;
             s->mon_out2 = -1;
             mon_recompute(s);
@@ -766,6 +812,7 @@ static void monitor_step(tc_state *s, double u[], double dt) {
         s->mon_gap[k] = gone[k] ? gap[k] + 1.0 : 1.0;
         s->mon_prev_e[k] = e[k];
         if (instant[k]) s->mon_dropped[k] = missing[k];   /* the last detector to fire on it */
+        if (a[k] && isfinite(d[k])) s->mon_last[k] = d[k];
     }
     /* the field's memory (served: the sample folded in by its time since the last) */
     if (s->first || !isfinite(dt)) s->mon_slow_known = s->first;
