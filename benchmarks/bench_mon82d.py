@@ -13,6 +13,8 @@ shipped, the branch the rule) on fresh seeds: ``trunnion`` (stranger82b's trunni
 (stranger80's jig borer, 8445-8446); kinds ``healthy,frozen,jump,drift,dropout``; ``table``:
 bench_mon81's side by side.
 
+Verdict: REFUSED (parts 3 and 4 failed; parts 1-2 held; below).
+
 The rule (written before scoring): mon82c's rounding bound,
 ``(q / 2) · sum_k |(I - M)_jk / (1 - h_j)|`` (``q_k`` sensor ``k``'s smallest non-zero step in
 training, every sensor in; 0 for a sensor not judged), is added to both bands only where they
@@ -35,7 +37,59 @@ The bar (written before scoring; fresh seeds 8441-8446, none tuned on; REFUSED i
    ``test_monitor_healthy53``'s strict xfail turning to pass is allowed (its healthy column quiet
    is the wanted behaviour) and then becomes a plain test.
 
-Scored: not yet (below when done).
+Scored (2026-12-04, shipped = ``/work/main/src`` at 61791dda, rule = 69ca16a0; the commands
+as in the usage, each record shipped then rule; only the bar's kinds: healthy on every seed,
+the faults on 8441 / 8443 / 8445).  Adaptive RMSE (µm) per target, shipped -> rule, and the
+exclusions (count, first in h):
+
+| record | kind | shipped exclusions | rule exclusions | adaptive RMSE shipped -> rule |
+|---|---|---|---|---|
+| trunnion 8342 (found) | healthy | RUNDTISCH, WIEGE 9.044 | none | 5.222 / 2.299 / 2.568 -> fixed |
+| trunnion 8441 | healthy | none | none | 5.721 / 5.946 / 3.369 equal |
+| trunnion 8442 | healthy | none | none | 9.282 / 3.409 / 1.212 equal |
+| lathe 8443 | healthy | none | none | 1.547 / 4.169 equal |
+| lathe 8444 | healthy | none | none | 2.221 / 6.291 equal |
+| jig 8445 | healthy | none | none | 4.381 / 4.271 / 1.936 equal |
+| jig 8446 | healthy | none | none | 2.461 / 1.193 / 1.449 equal |
+| trunnion 8441 | frozen PINOLE | 6.667 | 6.667 | equal |
+| trunnion 8441 | jump STAENDER_H | 5.556 | 5.556 | equal |
+| trunnion 8441 | drift KUEHLUNG | none (no other predicts it) | none | equal |
+| trunnion 8441 | dropout MUTTER_X | 6.667 | 6.667 | equal |
+| lathe 8443 | frozen SPINDELKASTEN | none | none | equal |
+| lathe 8443 | jump BETT_R | 5.556 | 5.556 | equal |
+| lathe 8443 | drift KUEHLMITTEL | REVOLVER 5.5 | REVOLVER 6.05 | 1.679 / 3.989 -> 1.688 / 3.893 |
+| lathe 8443 | dropout MUTTER_Z | 6.667 | 6.667 | equal |
+| jig 8445 | frozen Pinole | 5.042 | 5.042 | equal |
+| jig 8445 | jump Ständer_hinten_oben | 5.828 | 5.828 | equal |
+| jig 8445 | drift Hydraulik_Tank | 7.797, 3x | 7.931, 2x | 3.927 / 4.714 / 2.327 -> 3.921 / 4.726 / 2.343 |
+| jig 8445 | dropout Mutter_X | 6.661 | 6.661 | equal |
+
+Part 1 held (no exclusion on any fresh healthy draw either way, RMSE equal to the printed
+digit).  Part 2 held: 8342 quiet, adaptive = fixed (dX 5.222 -> 5.116, dY 2.299 -> 1.903,
+dZ 2.568 -> 2.662, the exclusion's dZ gain chance, as in mon82c).  Part 3 FAILED: jig 8445's
+drifting hydraulic tank (a sensor no other predicts: its drift judged through the others'
+errors, now against the wider band) out 8 min later, 7.797 -> 7.931 h (it flaps less,
+3 -> 2 exclusions; dY +0.25 %, dZ +0.7 %: within the 1 %, but the bar said no later).  Lathe
+8443's coolant drift again takes the healthy turret out, 33 min later with the rule (+0.5 % dX, -2.4 % dZ).
+
+Part 4 FAILED (the monitor test files with the rule: 1 failed, 140 passed, 4 xfailed; 153 s
+wall): ``tests/shell/test_monitor.py``'s
+``test_column_monitor_alarms_only_once_the_new_source_is_on_nearest_sensor_first``.  The
+column simulation rounds to 0.01 K, so the bound is 0.011-0.032 °C per sensor (``T_right3``
+0.015).  Shipped: ``T_right3`` (nearest to the new source Q3) excluded for drift at 73000 s
+(+0.43 °C against 0.4), then a new thermal state; rule: the +0.43 does not clear 0.415 on
+both samples, a sample later with ``T_right3`` out the others stay out of band (a new thermal
+state at 73100 s, no exclusion), and the first alarm is ``T_left1``'s at 73700 s, not a nearest
+sensor.  ``test_monitor_regime73`` passed (its warning kept: the band that warns is shipped's);
+``test_monitor_healthy53``'s strict xfail stayed an xfail (its healthy column's exclusion, of
+``T_right3`` at -0.17 °C for ``T_left1``'s 0.41, is not a rounding case).  The src change is
+reverted; the rule is ``benchmarks/mon82d_rule.patch``.
+
+Left: 8342's table / trunnion pair is still excluded on main.  A bound applied everywhere
+delays every drift exclusion by up to its size, also a real fault's (the tank, the column's
+source); a narrower rule would widen the band only for the quantisation's flicker (the last
+``confirm`` errors' spread within the bound, the offset itself within training's?), not
+scored.  The exported watch (``export/watch.py``, its C) would need the bound too.
 """
 from __future__ import annotations
 

@@ -16,8 +16,7 @@ class Judgement:
         """Judgement over the last ``confirm`` samples, worst first, redone after every
         exclusion; ``(level, error)`` of :meth:`_judge` after it."""
         level, err = self._judge()
-        while (self.adaptive and (self._judged & (self._judge(exclude=True)[0]
-                                                  >= self._field_level())).any()
+        while (self.adaptive and (self._judged & (level >= self._field_level())).any()
                and self._active.sum() > self.min_active_):
             # a drift exclusion too: none in a new thermal state, and its field may follow it
             u = None if self.new_state and self._novel else self._explaining(level)

@@ -56,9 +56,6 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
     new_state_others : int
         Other judged sensors out of their warning band, soon after a drift exclusion, that
         re-admit it and call a new thermal state.
-    exclude_margin_c : array, optional
-        Added to both bands where they exclude for drift (not where they warn): the shift of
-        each sensor's self-prediction error the readings' rounding alone can make.
     """
 
     new_state, new_state_others = False, 2   # a monitor pickled before them judged as before
@@ -77,7 +74,7 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
                  exclude_at: str = "warning", max_step_c=None, longest_run=None,
                  lo_c=None, hi_c=None, first_c=None, jump_factor: float = 3.0,
                  freeze_factor: float = 2.0, range_margin_c: float = 10.0,
-                 new_state: bool = True, new_state_others: int = 2, exclude_margin_c=None):
+                 new_state: bool = True, new_state_others: int = 2):
         n = len(names)
         if pod.n_features_in_ != n:
             raise ValueError(f"POD has {pod.n_features_in_} sensors, names {n}")
@@ -95,8 +92,6 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
             raise ValueError(f"exclude_at must be warning or alarm, got {exclude_at!r}")
         self.exclude_at = exclude_at
         self.exclude_level = WARNING if exclude_at == "warning" else ALARM
-        margin = np.zeros(n) if exclude_margin_c is None else np.asarray(exclude_margin_c, float)
-        self.exclude_margin_c = np.broadcast_to(margin, (n,)).copy()
 
         def arr(v, default):
             return np.full(n, default, float) if v is None else np.asarray(v, float).copy()
@@ -160,11 +155,6 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
         warn = np.asarray(options.get("warning_c", 0.4), float)
         alarm = np.asarray(options.get("alarm_c", 0.8), float)
         factor = float(options.pop("spread_factor", SPREAD_FACTOR))
-        # a drift exclusion asks the readings' rounding's bound on each error too (mon82d: a
-        # healthy T_RUNDTISCH out at -0.59 °C against 0.576, its error -0.35 / -0.59 as its
-        # partner T_WIEGE flickered 21.6 / 21.7 °C: 0.218 °C of its error a 0.1 K step); the
-        # warning band stays as learned (an offset within that bound is still said)
-        options.setdefault("exclude_margin_c", _quantisation(pod, steps))
         if learned_bands:
             # bands from the training spread: 4× it, never below the configured bands' half
             warn = np.maximum(4 * spread, 0.5 * warn)
@@ -289,18 +279,15 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
         pred = self._M @ (d if self._all_active else np.where(self._active, d, 0.0)[self._active])
         return pred, (d - pred) * self._scale
 
-    def _judge(self, exclude: bool = False) -> tuple[np.ndarray, np.ndarray]:
+    def _judge(self) -> tuple[np.ndarray, np.ndarray]:
         """``(level, error)`` per sensor: the band (0 ok, 1 warning, 2 alarm) that the last
-        ``confirm`` errors all exceed, and their mean (``exclude``: the bands widened by
-        ``exclude_margin_c``, those a drift exclusion asks)."""
+        ``confirm`` errors all exceed, and their mean."""
         k = min(self._count, self.confirm)
         last = self._err[self._recent[self._pos, :k]]
         err = last.sum(axis=0) / k
         if k < self.confirm:
             return np.zeros(len(err), dtype=np.int8), err
         a = np.abs(last).min(axis=0)          # NaN (unobservable) compares False
-        if exclude:
-            a = a - self.exclude_margin_c
         return (a >= self.warning_c).view(np.int8) + (a >= self.alarm_c), err
 
     def skipped(self, periods: float) -> None:
@@ -622,18 +609,3 @@ def _longest_runs(a: np.ndarray) -> np.ndarray:
         run = np.where(row, run + 1, 0)
         best = np.maximum(best, run)
     return best
-
-
-def _quantisation(pod: ThermalPOD, steps: np.ndarray) -> np.ndarray:
-    """Largest shift of each sensor's self-prediction error (every sensor in) that rounding its
-    readings to their resolution makes: ``(q / 2) · |(I - M) / (1 - h)|`` summed over the
-    readings, ``q`` a sensor's smallest non-zero step in training (``steps``: the absolute
-    one-sample changes; a logger's 0.1 K, about none for a continuous reading); 0 where no other
-    sensor predicts it (not judged)."""
-    n = pod.n_features_in_
-    M, h = pod.operator(np.ones(n, dtype=bool))
-    q = np.array([np.min(s[s > 0], initial=np.inf) for s in steps.T])
-    q[~np.isfinite(q)] = 0.0             # a sensor that never moved in training
-    judged = h < pod.max_leverage
-    S = (np.eye(n) - M) / np.maximum(1 - h, 1e-12)[:, None]
-    return np.where(judged, 0.5 * np.abs(S) @ q, 0.0)
