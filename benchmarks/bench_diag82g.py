@@ -41,8 +41,40 @@ Main = baad6dd3's src (diag82f's; ``PYTHONPATH=/work/main/src``), rule = this tr
    2 % above main's after.
 6. tests/apps/test_diagnose_*.py and tests/shell/test_diagnose*.py pass with the rule.
 
-Checked before the bar (found cases, not the bar): vtl7846 (bench_verify82 ``diagnose`` /
-``table``) regains dX / dZ's effects; planted 8282 E_Y's control still does not clear.
+Checked before the bar (found cases, spent seeds, not the bar): vtl7846 (bench_verify82
+``diagnose`` / ``table``, one data config, main then rule) regains dX / dZ's effects; planted
+8282 E_Y's control still does not clear.  Measured (2026-12-04)::
+
+  vtl7846 / target   before  main after  rule after  rounds' blocks main -> rule
+  E_Laser_dX         16.193   1.065       0.342      35, 9, 11 -> 35, 15, 15 (x 225 / 519)
+  E_Laser_dZ          0.975   0.366       0.324      15, 15, 14 -> 15, 15, 15
+
+dX takes the ram's extension x ``T_Stößel_unten`` rise again (family p 0.0146 -> 0.00159), dZ the
+table speed's 1800 s lag: old's (7b8e171a's) afters to the digit (bench_verify82).  Planted 8282
+E_Y with the rule: 38 starting blocks, E_Y 5.592 -> 1.503 (diag82f's), the control clearing the
+bar on no target.
+
+Scored (2026-12-04, 2 cores shared by five helpers; main = baad6dd3's src, rule = this tree at
+5220f162; the two ``fresh`` runs side by side on the same draws, then the two
+``bench_diagnose_faults58.py`` runs side by side on one ``write`` root (written by the rule's
+tree); ``compare ROOT main rule``; diagnose CPU summed over the 20 draws 17.5 s main, 16.8 s rule)
+------------------------------------------------------------------------------------------------
+On the 20 fresh draws every target's starting blocks, accepted effects, before and after are the
+same in both trees (the few VMC's shared design is 8 blocks, one per campaign: the bound never
+binds there); on faults58 all 20 rows are identical.
+
+1. **Holds.**  Found 8 of 10 main (8451-8453, 8455-8459) -> 8 of 10 rule, the same draws.
+2. **Holds.**  Clean 8461-8470: nothing accepted on any target, either tree.
+3. **Holds.**  The control is accepted nowhere and clears the bar on no (draw, target), either tree.
+4. **Holds.**  No target's after differs (worst +0.0 % over main's).  Said plainly, both trees:
+   planted:8457 E_X 0.606 -> 0.924 (+52.5 % worse than before; the ``T_amb`` 7200 s lag from the
+   initial state accepted) -- issue 34's "never more than 2 % worse" is broken there by main too.
+5. **Holds.**  faults58: 20 of 20 rows identical (45 targets, worst +0.0 %), found 10 of 16 both.
+6. **Holds.**  128 of 128 (tests/apps/test_diagnose_*.py, tests/shell/test_diagnose*.py, with
+   test_diagnose_blocks82's new bound test, which fails on main; 52 s user CPU).
+
+**KEPT.**  What the rule changes is measured only on the found case (vtl7846, spent): the bar's
+fresh draws show it harmless, not that it helps elsewhere.
 """
 
 from __future__ import annotations
