@@ -73,6 +73,12 @@ binds there); on faults58 all 20 rows are identical.
 6. **Holds.**  128 of 128 (tests/apps/test_diagnose_*.py, tests/shell/test_diagnose*.py, with
    test_diagnose_blocks82's new bound test, which fails on main; 52 s user CPU).
 
+Also checked after the bar (spent seed, bench_verify82's jig80 8011, main then rule): the bound
+binds on every target's later rounds (dX round 3 13 x 2872 -> 13 x 2373, dY 13 x 3359 / 2860 ->
+2373, dZ 13 x 2759 -> 2373: the same 13 blocks, one per campaign, cut at the shared length);
+accepted effects and afters the same to the digit (dX 6.760, dY 0.827, dZ 0.916), the control
+clearing the bar on no target in either tree.
+
 **KEPT.**  What the rule changes is measured only on the found case (vtl7846, spent): the bar's
 fresh draws show it harmless, not that it helps elsewhere.
 """
