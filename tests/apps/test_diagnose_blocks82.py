@@ -79,7 +79,8 @@ def test_a_round_recuts_the_test_blocks_on_its_own_residual_not_the_penalty_bloc
     p = train_problem()
     rng = np.random.default_rng(8351)
     white, slow = rng.normal(size=len(p.y)), rng.normal(size=len(p.y)).cumsum()
-    p.set_test_blocks(decorrelation_length(white, p.campaigns, p.validated, p.held_out))
+    # the shared design one block per campaign (8282's): never finer than the re-cut
+    p.set_test_blocks(decorrelation_length(white, p.campaigns, p.validated, p.held_out), len(p.y))
     fine, length, penalty = p.n_blocks_tested, p.block_samples, p.penalty_index.copy()
     assert p.recut_test_blocks(slow)
     assert p.block_samples == decorrelation_length(slow, p.campaigns, p.validated, p.held_out) > length
@@ -88,6 +89,23 @@ def test_a_round_recuts_the_test_blocks_on_its_own_residual_not_the_penalty_bloc
                                                             scored=p.measured))
     np.testing.assert_array_equal(p.penalty_index, penalty)      # the deployed penalty's: kept
     assert not p.recut_test_blocks(slow)
+
+
+def test_a_round_recut_is_never_coarser_than_the_shared_design():
+    # the shared (shipped) design's blocks bound a re-cut: vtl78's dX re-cut to 9 blocks of the
+    # shared 15 lost the ram's effect (bench_verify82, bench_diag82g)
+    p = train_problem()
+    rng = np.random.default_rng(8452)
+    white, slow = rng.normal(size=len(p.y)), rng.normal(size=len(p.y)).cumsum()
+    short = decorrelation_length(white, p.campaigns, p.validated, p.held_out)
+    long_ = decorrelation_length(slow, p.campaigns, p.validated, p.held_out)
+    shared = (short + long_) // 2
+    assert short < shared < long_
+    p.set_test_blocks(short, shared)
+    assert p.recut_test_blocks(slow)
+    assert p.block_samples == shared
+    np.testing.assert_array_equal(p.block_index, p.penalty_index)
+    assert p.n_blocks_tested == int(p.penalty_index[p.validated].max()) + 1
 
 
 def test_each_round_reports_its_blocks_the_first_on_the_starting_design():

@@ -134,6 +134,7 @@ class Problem:
         ``penalty_length`` (default ``length``): the blocks over which the deployed penalty's
         one-standard-error rule takes its standard error (:meth:`CrossValidator.run`)."""
         self.block_samples = int(length)
+        self.penalty_samples = self.block_samples if penalty_length is None else int(penalty_length)
         self.block_index = self._cut(self.block_samples)
         self.penalty_index = (self.block_index if penalty_length is None
                               or int(penalty_length) == self.block_samples
@@ -145,10 +146,13 @@ class Problem:
         A search re-cuts them each round on its current residual: once an effect is taken the
         rest may stay correlated longer, and blocks cut on the starting residual then test
         dependent gains (planted 8282's E_Y: 13 samples cut, 24 after the position effect, a
-        random walk cleared every check; bench_diag82e / bench_diag82f)."""
+        random walk cleared every check; bench_diag82e / bench_diag82f).  Never longer than the
+        shared design's (the penalty's) blocks: no round tests on fewer blocks than the shipped
+        design did (vtl78's dX re-cut to 9 blocks of its 15 lost the ram's effect; diag82g)."""
         if self.block_samples is None:
             return False
-        length = decorrelation_length(residual, self.campaigns, self.validated, self.held_out)
+        length = min(decorrelation_length(residual, self.campaigns, self.validated, self.held_out),
+                     self.penalty_samples)
         if length == self.block_samples:
             return False
         self.block_samples = int(length)
