@@ -22,10 +22,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ...base.log import logger
 from .contract import ContractError
 from .encoding import UTF8, text_head, text_lines
-from .labfile import Channel, Record, records_as_csv, with_unit
+from .labfile import Channel, Record, marked_values, records_as_csv, with_unit
 
 _FIRST = re.compile(r'^\ufeff?"?Model"?\s*,\s*"?GL\d')
 _MISSING = re.compile(r"BURNOUT|\+{3,}|-{3,}", re.IGNORECASE)   # a broken TC, out of range
@@ -81,7 +80,7 @@ def _record(lines: list[str], label: str, path: Path) -> Record:
             continue
         name = names.get(head) or head
         unit = units[j] if j < len(units) else ""
-        values = _values(body, j, f"channel {head!r} ({name})", path)
+        values = marked_values(body, j, f"channel {head!r} ({name})", path, _MISSING, "BURNOUT")
         channels.append(Channel(with_unit(name, unit), values, time, f"channel {head!r}"))
     if not channels:
         raise ContractError("no channel column (CH1 ...) in the Data block", file=path,
@@ -129,22 +128,4 @@ def _times(body, j: int, ms: int | None, path: Path) -> np.ndarray:
                 raise ContractError(f"column 'ms': {r[ms]!r} is no number", file=path,
                                     line=line) from None
         out[i] = t
-    return out
-
-
-def _values(body, j: int, what: str, path: Path) -> np.ndarray:
-    out = np.empty(len(body))
-    marks = 0
-    for i, (line, r) in enumerate(body):
-        text = r[j].strip() if j < len(r) else ""
-        if not text or _MISSING.fullmatch(text):
-            out[i] = np.nan
-            marks += bool(text)
-            continue
-        try:
-            out[i] = float(text)
-        except ValueError:
-            raise ContractError(f"{what}: {text!r} is no number", file=path, line=line) from None
-    if marks:
-        logger.info(f"{path}: {what}: {marks} value(s) BURNOUT or out of range, read as missing")
     return out

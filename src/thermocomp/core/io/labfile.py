@@ -31,6 +31,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ...base.log import logger
 from .contract import ContractError
 from .converted import named_as
 from .encoding import UTF8
@@ -303,3 +304,26 @@ def _located(exc: ContractError, temp: Path, path: Path, where: dict[str, str],
     if place:
         reason += f" ({place})"
     return ContractError(reason, file=path, column=exc.column, row=row)
+
+
+def marked_values(body, j: int, what: str, path: Path, missing: re.Pattern, marks_are: str,
+                  comma: bool = False) -> np.ndarray:
+    """Column ``j`` of a logger export's table rows ``body`` (``(line, cells)``) as numbers: a blank
+    cell or one the logger marks (``missing``: a broken thermocouple, out of range; said once as
+    ``marks_are``) missing, a decimal comma read where ``comma``; any other text refused naming
+    ``what`` and its line."""
+    out = np.empty(len(body))
+    marks = 0
+    for i, (line, r) in enumerate(body):
+        text = r[j].strip() if j < len(r) else ""
+        if not text or missing.fullmatch(text):
+            out[i] = np.nan
+            marks += bool(text)
+            continue
+        try:
+            out[i] = float(text.replace(",", ".") if comma else text)
+        except ValueError:
+            raise ContractError(f"{what}: {text!r} is no number", file=path, line=line) from None
+    if marks:
+        logger.info(f"{path}: {what}: {marks} value(s) {marks_are} or out of range, read as missing")
+    return out

@@ -24,10 +24,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ...base.log import logger
 from .contract import ContractError
 from .encoding import UTF8, text_head, text_lines
-from .labfile import Channel, Record, records_as_csv, with_unit
+from .labfile import Channel, Record, marked_values, records_as_csv, with_unit
 
 _FIRST = re.compile(r'^\ufeff?"?(Universal Viewer|DAQSTANDARD Viewer|DXAdvanced)"?\s*([,;\t])', re.I)
 _MISSING = re.compile(r"[+-]?(Burnout|Over|Error|Skip)", re.IGNORECASE)
@@ -86,7 +85,8 @@ def _record(lines: list[str], label: str, path: Path) -> Record:
             continue
         unit = units.get(head, "")
         name = tags.get(head) or head
-        values = _values(body, j, f"channel {head!r} ({name})", path, sep == ";")
+        values = marked_values(body, j, f"channel {head!r} ({name})", path, _MISSING, "Burnout",
+                               sep == ";")
         channels.append(Channel(with_unit(name, _UNITS.get(unit.lower(), unit)), values, time,
                                 f"channel {head!r}"))
     if not channels:
@@ -107,22 +107,4 @@ def _times(body, split: bool, path: Path) -> np.ndarray:
         else:
             raise ContractError(f"column 'Date Time': {text!r} is no date-time of the recorder's "
                                 "(yyyy/mm/dd hh:mm:ss.f)", file=path, line=line)
-    return out
-
-
-def _values(body, j: int, what: str, path: Path, comma: bool) -> np.ndarray:
-    out = np.empty(len(body))
-    marks = 0
-    for i, (line, r) in enumerate(body):
-        text = r[j].strip() if j < len(r) else ""
-        if not text or _MISSING.fullmatch(text):
-            out[i] = np.nan
-            marks += bool(text)
-            continue
-        try:
-            out[i] = float(text.replace(",", ".") if comma else text)
-        except ValueError:
-            raise ContractError(f"{what}: {text!r} is no number", file=path, line=line) from None
-    if marks:
-        logger.info(f"{path}: {what}: {marks} value(s) Burnout or out of range, read as missing")
     return out
