@@ -24,7 +24,7 @@ import numpy as np
 
 from .contract import ContractError
 from .encoding import UTF8, text_head, text_lines
-from .labfile import Channel, Record, marked_values, records_as_csv, with_unit
+from .labfile import Channel, Record, marked_values, text_as_csv, with_unit
 
 _FIRST = re.compile(r'^\ufeff?"?Model"?\s*,\s*"?GL\d')
 _MISSING = re.compile(r"BURNOUT|\+{3,}|-{3,}", re.IGNORECASE)   # a broken TC, out of range
@@ -50,10 +50,8 @@ def is_graphtec_text(text: str) -> bool:
 
 def graphtec_as_csv(text: str, source: str) -> str:
     """A Graphtec CSV streamed (``monitor.input=-``) as the CSV text its channels are read as
-    from a file (:mod:`.labfile`: a ``time`` of timestamps, each channel a column)."""
-    path = Path(source)
-    with records_as_csv([_record(text.splitlines(), path.stem, path)], path) as table:
-        return table.read_text(encoding=UTF8)
+    from a file (:func:`.labfile.text_as_csv`)."""
+    return text_as_csv(_record, text, source)
 
 
 def _record(lines: list[str], label: str, path: Path) -> Record:

@@ -268,6 +268,15 @@ def records_as_csv(records: list[Record], path: Path) -> Iterator[Path]:
             yield out
 
 
+def text_as_csv(record_of, text: str, source: str) -> str:
+    """A logger's text export streamed (``monitor.input=-``) as the CSV text its channels are
+    read as from a file: ``record_of(lines, label, path)`` its one record (a ``time`` of
+    timestamps, each channel a column)."""
+    path = Path(source)
+    with records_as_csv([record_of(text.splitlines(), path.stem, path)], path) as table:
+        return table.read_text(encoding=UTF8)
+
+
 def _twinned(record: Record) -> Record:
     """``record`` with a name two of its channels share read as a CSV header written twice is
     (:mod:`.twins`: the second ``BETT_L#2 [degC]``): stranger82, a logger's two channels given

@@ -32,7 +32,7 @@ import numpy as np
 from ...base.log import logger
 from .contract import ContractError
 from .encoding import UTF8, text_head, text_lines
-from .labfile import Channel, Record, on_union_grid, records_as_csv, with_unit
+from .labfile import Channel, Record, on_union_grid, text_as_csv, with_unit
 
 SAMPLE_KEY = "SampleTime[ms]"
 _FIRST = re.compile(r"^\ufeff?(Name|ScopeName)([;\t,])")
@@ -131,9 +131,7 @@ def is_scope_text(text: str) -> bool:
 def scope_as_csv(text: str, source: str) -> str:
     """A Scope export streamed (``monitor.input=-``) as the CSV text its channels are read as
     from a file (:mod:`.labfile`: a ``time`` of UTC timestamps, each channel a column)."""
-    path = Path(source)
-    with records_as_csv([_record(text.splitlines(), path.stem, path)], path) as table:
-        return table.read_text(encoding=UTF8)
+    return text_as_csv(_record, text, source)
 
 
 def _record(lines: list[str], label: str, path: Path) -> Record:

@@ -94,6 +94,13 @@ def _is_tdm(head: bytes) -> bool:
     return head.lstrip(b"\xef\xbb\xbf \t\r\n").startswith(b"<?xml") and b":tdm" in head
 
 
+# a logger's text export piped in as written, told apart by its head, read as its channels:
+# a TwinCAT Scope export (stranger76), a Graphtec logger's CSV (stranger82), a Yokogawa
+# viewer's ASCII conversion (stranger82b)
+_TEXT_EXPORTS = ((is_scope_text, scope_as_csv), (is_graphtec_text, graphtec_as_csv),
+                 (is_yokogawa_text, yokogawa_as_csv))
+
+
 def _is_trace(head: bytes) -> bool:
     """The head of a SINUMERIK trace's XML (:mod:`.sinumerik`): its root ``traceCaptureFile``."""
     return head.lstrip(b"\xef\xbb\xbf \t\r\n").startswith(b"<?xml") and TRACE_ROOT in head
@@ -150,14 +157,9 @@ def _read_runs(text: str, columns: list[str], opts, recorded: str | None = None,
     :data:`TIME_ORIGIN` (None: its time is no timestamp): the runs are found once, where their
     ids are checked, and both the times and the campaigns are cut by them."""
     text = text.lstrip("\ufeff").replace(UNICODE_MINUS, "-")
-    if is_scope_text(text):         # a TwinCAT Scope export piped in as written (stranger76)
-        text = scope_as_csv(text, SOURCE)
-        opts = replace(opts, delimiter=",", decimal=".", thousands=None)
-    elif is_graphtec_text(text):    # a Graphtec logger's CSV piped in as written (stranger82)
-        text = graphtec_as_csv(text, SOURCE)
-        opts = replace(opts, delimiter=",", decimal=".", thousands=None)
-    elif is_yokogawa_text(text):    # a Yokogawa viewer's ASCII export piped in (stranger82b)
-        text = yokogawa_as_csv(text, SOURCE)
+    as_csv = next((convert for is_export, convert in _TEXT_EXPORTS if is_export(text)), None)
+    if as_csv is not None:          # a logger's export piped in as written, its rows as CSV
+        text = as_csv(text, SOURCE)
         opts = replace(opts, delimiter=",", decimal=".", thousands=None)
     opts = detected(text.splitlines()[:SNIFF_LINES], opts, SOURCE)   # data.delimiter=auto ...
     text = _table(text, opts.delimiter)

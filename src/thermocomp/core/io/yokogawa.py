@@ -26,7 +26,7 @@ import numpy as np
 
 from .contract import ContractError
 from .encoding import UTF8, text_head, text_lines
-from .labfile import Channel, Record, marked_values, records_as_csv, with_unit
+from .labfile import Channel, Record, marked_values, text_as_csv, with_unit
 
 _FIRST = re.compile(r'^\ufeff?"?(Universal Viewer|DAQSTANDARD Viewer|DXAdvanced)"?\s*([,;\t])', re.I)
 _MISSING = re.compile(r"[+-]?(Burnout|Over|Error|Skip)", re.IGNORECASE)
@@ -54,9 +54,7 @@ def yokogawa_records(path: Path, encoding: str = UTF8) -> list[Record]:
 def yokogawa_as_csv(text: str, source: str) -> str:
     """An export streamed (``monitor.input=-``) as the CSV text its channels are read as from a
     file (:mod:`.labfile`)."""
-    path = Path(source)
-    with records_as_csv([_record(text.splitlines(), path.stem, path)], path) as table:
-        return table.read_text(encoding=UTF8)
+    return text_as_csv(_record, text, source)
 
 
 def _record(lines: list[str], label: str, path: Path) -> Record:
