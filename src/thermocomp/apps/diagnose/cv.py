@@ -136,9 +136,8 @@ class Problem:
         self.block_samples = int(length)
         self.penalty_samples = self.block_samples if penalty_length is None else int(penalty_length)
         self.block_index = self._cut(self.block_samples)
-        self.penalty_index = (self.block_index if penalty_length is None
-                              or int(penalty_length) == self.block_samples
-                              else self._cut(int(penalty_length)))
+        self.penalty_index = (self.block_index if self.penalty_samples == self.block_samples
+                              else self._cut(self.penalty_samples))
 
     def recut_test_blocks(self, residual: np.ndarray) -> bool:
         """Re-cut the test blocks (not the penalty's) as long as ``residual`` takes to
