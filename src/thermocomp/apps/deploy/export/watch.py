@@ -506,10 +506,8 @@ class CodeMonitor:
         due = ~self._active() & ~gone & (self.run == 0) & ~instant & (self.calm >= self.dwell)
         if due.any() and self.count >= self.window:
             for j in np.flatnonzero(self._returning(due)):
-                self.jumps[j], self.by_field[j], self.explains[j] = 0, False, False
-                self.out, self.out2 = (self.out2, -1) if j == self.out else (self.out, -1)
-                self._recompute()
-                self._flag(READMITTED, int(j), BACK)
+                self.jumps[j] = 0
+                self._readmit(int(j), BACK)
         pred, e = self._errors(d)
         _, active, _, judged, _ = self._set()
         self.prev_other = np.where(judged, d - e, np.nan)
@@ -654,11 +652,8 @@ class CodeMonitor:
             if not a["novel"]:
                 self._flag(NOT_IN_CODE, int(j), DRIFT)
                 return
-            self.since[j] = -1
-            self.by_field[j], self.dwell[j], self.explains[j] = False, self.window, False
-            self.out, self.out2 = (self.out2, -1) if j == self.out else (self.out, -1)
-            self._recompute()
-            self._flag(READMITTED, int(j), FOLLOWED)
+            self.since[j], self.dwell[j] = -1, self.window
+            self._readmit(int(j), FOLLOWED)
             self._declare()
             level, _ = self._judge()
             _, _, _, judged, _ = self._set()
@@ -666,6 +661,13 @@ class CodeMonitor:
         self.calm_field = 0 if out else self.calm_field + 1
         if self.novel and self.calm_field >= self.window:
             self.novel = False
+
+    def _readmit(self, j: int, rule: int) -> None:
+        """``j`` back in (``rule``: why), its partner's place kept, the window re-judged."""
+        self.by_field[j], self.explains[j] = False, False
+        self.out, self.out2 = (self.out2, -1) if j == self.out else (self.out, -1)
+        self._recompute()
+        self._flag(READMITTED, j, rule)
 
     def _declare(self) -> None:
         """A new thermal state (the served ``_declare``): no drift exclusion until it ends."""
@@ -727,10 +729,7 @@ class CodeMonitor:
             self._recompute()
             self._by_drift(int(i))
             self._flag(EXCLUDED, int(i), DRIFT_OUT)
-        level, _ = self._judge()        # served: judged again, a second culprit beyond the alarm
-        _, active, _, judged, _ = self._set()
-        if (judged & (level >= ALARM)).any() and active.sum() > a["min_active"]:
-            self._flag(NOT_IN_CODE, int(np.argmax(judged & (level >= ALARM))), DRIFT)
+        self._second_culprit()
 
     def _blind_out(self, u: int) -> None:
         """(cmon82c) ``u`` (no other predicts it) out for explaining the others' errors, as
@@ -742,6 +741,11 @@ class CodeMonitor:
         self.explains[u] = True
         self._flag(EXCLUDED, u, BLIND_OUT)
         self.fell = self.fell or bool(self.fallback[u])
+        self._second_culprit()
+
+    def _second_culprit(self) -> None:
+        """After an exclusion the served monitor judges again and goes on with one out: a sensor
+        still beyond the alarm band is flagged (a second culprit, not in the code)."""
         level, _ = self._judge()
         _, active, _, judged, _ = self._set()
         if (judged & (level >= ALARM)).any() and active.sum() > self.a["min_active"]:
