@@ -3,6 +3,7 @@ each bench names its sensors and rows, the faults themselves are written once.""
 
 from __future__ import annotations
 
+from pathlib import Path
 from typing import Callable
 
 import numpy as np
@@ -21,3 +22,14 @@ def four_faults(n: int, period_s: float, frozen: tuple[str, int], jump: tuple[st
             "jump": (j_label, lambda x: x + 2.0 * (rows >= j_row)),
             "drift": (d_label, lambda x: x + hours),
             "dropout": (o_label, lambda x: np.where((rows >= o_from) & (rows < o_to), np.nan, x))}
+
+
+def fault_folders(root, seed, cases: dict, write_all: Callable) -> None:
+    """Each case of ``cases`` (:func:`four_faults`) written by ``write_all(folder, fault)`` into
+    ``ROOT/fault_<kind>_<SEED>/``: ``fault(name, values)`` alters the named sensor's values."""
+    for kind, (label, change) in cases.items():
+        def fault(name, x, label=label, change=change):
+            return change(x) if name == label else x
+        folder = Path(root) / f"fault_{kind}_{seed}"
+        write_all(folder, fault)
+        print(f"wrote {folder}")

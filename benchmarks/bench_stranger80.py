@@ -113,7 +113,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from _cli import run_commands  # noqa: E402
-from _faults import four_faults  # noqa: E402
+from _faults import fault_folders, four_faults  # noqa: E402
 from _runs import restarted_runs  # noqa: E402
 from bench_stranger75 import matrix  # noqa: E402
 
@@ -195,12 +195,7 @@ def faults(root: str, seed: str) -> None:
     cases = four_faults(runs[-1][2][::TEMP_EVERY].size, TEMP_EVERY * 10.0, frozen=("Pinole", 600),
                         jump=("Ständer hinten oben", 700), drift=("Hydraulik Tank", 500),
                         dropout=("Mutter X", 800, 830))
-    for kind, (label, change) in cases.items():
-        def fault(name, x, label=label, change=change):
-            return change(x) if name == label else x
-        folder = Path(root) / f"fault_{kind}_{seed}"
-        _write_all(folder, r, runs, fault)
-        print(f"wrote {folder}")
+    fault_folders(root, seed, cases, lambda folder, fault: _write_all(folder, r, runs, fault))
 
 
 def main(argv: list[str]) -> int:

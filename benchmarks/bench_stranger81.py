@@ -135,7 +135,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from _cli import run_commands  # noqa: E402
-from _faults import four_faults  # noqa: E402
+from _faults import fault_folders, four_faults  # noqa: E402
 from _runs import restarted_runs  # noqa: E402
 from bench_stranger75 import matrix  # noqa: E402
 
@@ -224,12 +224,7 @@ def faults(root: str, seed: str) -> None:
     r, runs = channels(int(seed))
     cases = four_faults(runs[-1][2].size, 10.0, frozen=("T_OBERARM", 3600), jump=("T_STAENDER_H", 4000),
                         drift=("T_VORRAT", 3000), dropout=("T_MUTTER_X", 4500, 4590))
-    for kind, (label, change) in cases.items():
-        def fault(name, x, label=label, change=change):
-            return change(x) if name == label else x
-        folder = Path(root) / f"fault_{kind}_{seed}"
-        _write_all(folder, r, runs, fault)
-        print(f"wrote {folder}")
+    fault_folders(root, seed, cases, lambda folder, fault: _write_all(folder, r, runs, fault))
 
 
 def main(argv: list[str]) -> int:

@@ -129,7 +129,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from _cli import run_commands  # noqa: E402
-from _faults import four_faults  # noqa: E402
+from _faults import fault_folders, four_faults  # noqa: E402
 from _runs import restarted_runs  # noqa: E402
 from bench_stranger75 import matrix  # noqa: E402
 
@@ -221,12 +221,7 @@ def faults(root: str, seed: str) -> None:
     cases = four_faults(runs_[-1][2].size, m.STEP_S, frozen=("SPINDELKASTEN", 900),
                         jump=("BETT_R", 1000), drift=("KUEHLMITTEL", 700),
                         dropout=("MUTTER_Z", 1200, 1290))
-    for kind, (label, change) in cases.items():
-        def fault(name, x, label=label, change=change):
-            return change(x) if name == label else x
-        folder = Path(root) / f"fault_{kind}_{seed}"
-        _write_all(folder, r, runs_, fault)
-        print(f"wrote {folder}")
+    fault_folders(root, seed, cases, lambda folder, fault: _write_all(folder, r, runs_, fault))
 
 
 def main(argv: list[str]) -> int:

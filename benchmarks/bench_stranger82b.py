@@ -132,7 +132,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from _cli import run_commands  # noqa: E402
-from _faults import four_faults  # noqa: E402
+from _faults import fault_folders, four_faults  # noqa: E402
 from bench_stranger75 import matrix  # noqa: E402
 
 LOOSE_RUN, LOOSE_SIGNAL, LOOSE_ROW = 5, "MOTOR", 700
@@ -233,12 +233,7 @@ def faults(root: str, seed: str) -> None:
     cases = four_faults(runs_[-1][2].size, m.STEP_S, frozen=("PINOLE", 900),
                         jump=("STAENDER_H", 1000), drift=("KUEHLUNG", 700),
                         dropout=("MUTTER_X", 1200, 1290))
-    for kind, (label, change) in cases.items():
-        def fault(name, x, label=label, change=change):
-            return change(x) if name == label else x
-        folder = Path(root) / f"fault_{kind}_{seed}"
-        _write_all(folder, r, runs_, fault)
-        print(f"wrote {folder}")
+    fault_folders(root, seed, cases, lambda folder, fault: _write_all(folder, r, runs_, fault))
 
 
 def main(argv: list[str]) -> int:
