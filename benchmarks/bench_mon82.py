@@ -170,11 +170,16 @@ def _fails(key: tuple, ra: dict, rb: dict) -> list[str]:
 
 def table(root: str, shipped: str, rule: str) -> None:
     """Both labels' records side by side and the bar's verdict (docstring, parts 1-3)."""
+    side_by_side(root, shipped, rule, _fails)
+
+
+def side_by_side(root: str, shipped: str, rule: str, fails_of) -> None:
+    """:func:`table` with a bar's own ``fails_of(key, shipped row, rule row)`` (mon82b's too)."""
     a, b = _rows(root, shipped), _rows(root, rule)
     fails: list[str] = []
     for key in sorted(set(a) & set(b)):
         ra, rb = a[key], b[key]
-        fails += _fails(key, ra, rb)
+        fails += fails_of(key, ra, rb)
         cells = "  ".join(f"{t} {ra['rmse'][t][0]:.3f}/{ra['rmse'][t][1]:.3f}->{rb['rmse'][t][1]:.3f}"
                           for t in ra["rmse"])
         moved = "" if m81._cells(ra) == m81._cells(rb) and ra["rmse"] == rb["rmse"] else "  MOVED"

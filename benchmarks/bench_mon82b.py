@@ -135,18 +135,7 @@ def _fails(key: tuple, ra: dict, rb: dict) -> list[str]:
 
 def table(root: str, shipped: str, rule: str) -> None:
     """Both labels' records side by side and the bar's verdict (docstring, parts 1-3)."""
-    a, b = m82._rows(root, shipped), m82._rows(root, rule)
-    fails: list[str] = []
-    for key in sorted(set(a) & set(b)):
-        ra, rb = a[key], b[key]
-        fails += _fails(key, ra, rb)
-        cells = "  ".join(f"{t} {ra['rmse'][t][0]:.3f}/{ra['rmse'][t][1]:.3f}->{rb['rmse'][t][1]:.3f}"
-                          for t in ra["rmse"])
-        moved = "" if m81._cells(ra) == m81._cells(rb) and ra["rmse"] == rb["rmse"] else "  MOVED"
-        print(f"{key[0]:12s} {key[1]:8s} {cells}{moved}\n    shipped: {m81._cells(ra)}\n"
-              f"    rule:    {m81._cells(rb)}")
-    print(f"{len(set(a) & set(b))} records in both; missing: {sorted(set(a) ^ set(b))}")
-    print("BAR (parts 1-3):", "PASSED" if not fails else "FAILED\n  " + "\n  ".join(fails), flush=True)
+    m82.side_by_side(root, shipped, rule, _fails)
 
 
 def main(argv: list[str] | None = None) -> int:
