@@ -23,3 +23,16 @@ def restarted_runs(windows, step_s: float, split_run: int, split_row: int, split
         else:
             out.append((f"{prefix}{n:02d}", start, idx))
     return out
+
+
+def day_runs(first_day, run_days, run_hours: tuple[float, float], step_s: float) -> list:
+    """``[(local start, rows)]``: a run on each of ``run_days`` (days after ``first_day``) from
+    ``run_hours[0]`` to ``run_hours[1]`` o'clock, its slice of a simulation sampled every
+    ``step_s`` seconds from ``first_day``'s midnight (the stranger machines' shifts)."""
+    out = []
+    for d in run_days:
+        start = first_day + timedelta(days=d, hours=run_hours[0])
+        k0 = int((d * 24 + run_hours[0]) * 3600.0 / step_s)
+        k1 = int((d * 24 + run_hours[1]) * 3600.0 / step_s)
+        out.append((start, slice(k0, k1)))
+    return out

@@ -20,10 +20,11 @@ third position effect); the spindle grows from its rear bearing (dZ); the turret
 """
 from __future__ import annotations
 
-from datetime import datetime, timedelta
+from datetime import datetime
 
 import numpy as np
 from _lumped import lagged_readings, laplacian
+from _runs import day_runs
 
 ALPHA = 11.5e-6                        # cast iron / steel, 1/K
 STEP_S = 20.0                          # the network's step and the logger's interval
@@ -169,10 +170,4 @@ def _errors(temps: np.ndarray, st: dict, rng: np.random.Generator) -> dict[str, 
 
 def run_windows() -> list[tuple[datetime, slice]]:
     """Per run: its local start and the slice of ``simulate``'s rows it holds."""
-    out = []
-    for d in RUN_DAYS:
-        start = FIRST_DAY + timedelta(days=d, hours=RUN_HOURS[0])
-        k0 = int((d * 24 + RUN_HOURS[0]) * 3600.0 / STEP_S)
-        k1 = int((d * 24 + RUN_HOURS[1]) * 3600.0 / STEP_S)
-        out.append((start, slice(k0, k1)))
-    return out
+    return day_runs(FIRST_DAY, RUN_DAYS, RUN_HOURS, STEP_S)

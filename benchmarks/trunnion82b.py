@@ -20,10 +20,11 @@ sphere radially (dX: cos C, dY: sin C x the table's rise).
 """
 from __future__ import annotations
 
-from datetime import datetime, timedelta
+from datetime import datetime
 
 import numpy as np
 from _lumped import lagged_readings, laplacian
+from _runs import day_runs
 
 ALPHA = 11.5e-6
 STEP_S = 20.0
@@ -160,9 +161,4 @@ def _errors(temps: np.ndarray, st: dict, rng: np.random.Generator) -> dict[str, 
 
 def run_windows() -> list[tuple[datetime, slice]]:
     """Per run: its local start and its slice of ``simulate``'s rows."""
-    out = []
-    for d in RUN_DAYS:
-        k0 = int((d * 24 + RUN_HOURS[0]) * 3600.0 / STEP_S)
-        k1 = int((d * 24 + RUN_HOURS[1]) * 3600.0 / STEP_S)
-        out.append((FIRST_DAY + timedelta(days=d, hours=RUN_HOURS[0]), slice(k0, k1)))
-    return out
+    return day_runs(FIRST_DAY, RUN_DAYS, RUN_HOURS, STEP_S)
