@@ -1,0 +1,144 @@
+"""diagnose's reach gate per target: a target of few test blocks no longer decides the design of
+the others (stop 83, diag83; issue 34: "diagnose accepts a planted position effect with 8 train
+campaigns, accepts nothing on clean data, and never leaves a record's test error more than 2 %
+worse").
+
+Usage (from the repository root, ``PYTHONPATH=<tree>/src``: the code measured is that tree's)::
+
+    python benchmarks/bench_diag83.py fl ROOT LABEL         # fl_thermal 90/10 -> ROOT/fl-LABEL
+    python benchmarks/bench_diag83.py fresh ROOT LABEL      # the bar's draws -> ROOT/fresh-LABEL.jsonl
+    python benchmarks/bench_diag83.py compare ROOT A B      # two labels' rows: the bar's counts
+
+``fl``: ``thermocomp diagnose data=fl_thermal model=mlr`` (the shipped file cut 90/10, defaults,
+``plots=none``, ``track=false``), each target's scheme, starting test blocks, test RMSE as
+deployed before -> after and accepted effects.  ``fresh``: the year-round VMC of
+test_diagnose_few (``few``) with 10 campaigns, 7 train: fewer than ``units_needed(0.01) = 8``,
+so ``cv=auto`` weighs forward chaining against the campaigns (the few-campaign kind); every
+target, ``max_effects=2``, MLR, test figures as deployed; planted (``axis_position`` on Y)
+8471-8480, clean 8481-8490.  ``compare``: bench_diag82d's counts (planted found, clean
+accepting, control, > 2 % worse than before), then the (draw, target) pairs that differ.
+
+Traced before the rule (the state at b79207b5)
+----------------------------------------------
+What is global in ``_diagnose`` (each target's search already tests on its own blocks, diag82):
+
+1. The design choice, only where ``cv=auto`` and the train campaigns are 2 .. ``need - 1``
+   (``need = units_needed(alpha)``, 8 at 0.01): forward chaining, unless the target of fewest
+   forward test blocks (``_blocks``) cannot reach alpha while the campaigns' design's target of
+   fewest blocks can; then every target goes to the campaigns.
+2. The warning "... in N test blocks: the sign-flip test cannot reach alpha ... so no effect can
+   be accepted", N the fewest over the targets, and ``cv.min_p`` / ``cv.test_blocks``.
+
+fl_thermal (one train campaign, forward by ``cv_scheme``: item 1 is never reached): 16 CV units;
+E_ch1 12 / E_ch2 12 / E_ch3 6 / E_ch4 7 / E_ch5 19 starting test blocks (min p 0.00024 /
+0.00024 / 0.016 / 0.0078 / 5e-05).  The warning said "16 CV units (forward) in 6 test blocks ...
+no effect can be accepted" (E_ch3's), but no target is kept from accepting by it: each search
+runs on its own blocks; E_ch1's lag of the inputs (3600 s) clears the bar (45.9 %, family p
+0.0039) and is not chosen (the round's best CV, the spindle speed x rises, 56.9 % at family p
+0.054, is more than one standard error better); nothing accepted on any target, test RMSE
+4.61 / 3.96 / 4.35 / 4.33 / 3.05 µm before = after.  So on fl_thermal only the warning is
+wrong: it says of every target what holds of E_ch3 alone (E_ch4's 7 blocks reach 0.0078).
+
+The few VMC, 7 train campaigns (trace seed 8451, diag82g's, spent): forward's fewest blocks 4
+(min p 0.062) > alpha, the campaigns' 7 (0.0078): every target on the campaigns (E_X 7, E_Y 57,
+E_Z 7 blocks), E_Y 2.898 -> 1.089 (S_pos_Y x T_box1 over T_amb), E_X / E_Z nothing.  Here item 1
+moves E_Y off forward chaining, whose own blocks it never asked.  With 6 train campaigns (9
+campaigns) forward's fewest already reach alpha (E_Z 8 blocks): nothing is switched.
+"""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from functools import lru_cache
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+sys.path[:0] = [str(HERE), str(HERE.parent / "tests" / "apps")]
+from _cli import made_folder, run_commands  # noqa: E402
+
+FRESH_PLANTED = list(range(8471, 8481))
+FRESH_CLEAN = list(range(8481, 8491))
+N_CAMPAIGNS = 10          # 7 train: one fewer than units_needed(0.01)
+
+
+@lru_cache(maxsize=None)
+def few(effect: str | None, seed: int, n_campaigns: int = N_CAMPAIGNS):
+    """test_diagnose_few's machine with ``n_campaigns`` campaigns (``effect`` on Y; None: clean)."""
+    from hydra import compose, initialize_config_dir
+    from hydra.utils import instantiate
+
+    from thermocomp.base.paths import conf_dir
+    overrides = [f"seed={seed}", f"sim.generator.n_campaigns={n_campaigns}",
+                 f"++sim.generator.effects=[{effect}]" if effect else "++sim.generator.clean=true"]
+    if effect == "axis_position":
+        overrides.append("sim.generator.effect_params.axis_position.axis=Y")
+    with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3"):
+        cfg = compose(config_name="config", overrides=overrides)
+    return instantiate(cfg.sim.generator).generate()
+
+
+def _design(cv: dict, target: str) -> str:
+    d = cv["designs"][target]
+    return f"{d.get('scheme', cv['scheme'])} {d['test_blocks']} x {d['block_samples']}"
+
+
+def fl(root: str, label: str) -> None:
+    """fl_thermal 90/10 diagnosed through the CLI; each target's line."""
+    out = made_folder(root) / f"fl-{label}"
+    subprocess.run([sys.executable, "-m", "thermocomp.shell.cli", "diagnose", "data=fl_thermal",
+                    "model=mlr", f"out={out}", "plots=none", "track=false"], check=True)
+    for f in sorted((out / "diagnosis").glob("diagnosis_*.json")):
+        j = json.loads(f.read_text())
+        t = j["target"]
+        taken = [f"{e['kind']}:{e['column']}" for e in j["effects"] if e["accepted"]]
+        print(f"  {t} {label}: {_design(j['cv'], t)}; {j['before']['test_rmse']:.3f} -> "
+              f"{j['after']['test_rmse']:.3f} {taken}"
+              f"; control clears {j['control_ever_clears_bar']}", flush=True)
+
+
+def fresh(root: str, label: str) -> None:
+    """The fresh draws diagnosed (every target, ``max_effects=2``), test figures as deployed."""
+    import bench_diag76
+    from bench_diag82d import _found
+    from cpu import cpu_seconds
+
+    from thermocomp.apps.diagnose import SearchOptions, diagnose
+    from thermocomp.core.compensator import Compensator
+    from thermocomp.core.models import MLR
+    cases = [("planted", s) for s in FRESH_PLANTED] + [("clean", s) for s in FRESH_CLEAN]
+    with open(made_folder(root) / f"fresh-{label}.jsonl", "w") as out:
+        for kind, seed in cases:
+            ds, _ = few("axis_position" if kind == "planted" else None, seed)
+            t0 = cpu_seconds()
+            d = diagnose(ds, Compensator(MLR()), options=SearchOptions(max_effects=2),
+                         deployed_of=bench_diag76._deployed_stream(ds))
+            js = {t: d.to_json(t) for t in d.targets}
+            row = {"case": f"{kind}:{seed}", "label": label, "excluded": d.excluded,
+                   "train": len(ds.ids("train")), "cpu_s": round(cpu_seconds() - t0, 1),
+                   "blocks": {t: _design(j["cv"], t) for t, j in js.items()},
+                   "control": {t: j["control_ever_clears_bar"] for t, j in js.items()},
+                   "targets": {t: {"before": js[t]["before"]["test_rmse"],
+                                   "after": js[t]["after"]["test_rmse"],
+                                   "accepted": [e.effect.title for e in x.accepted]}
+                               for t, x in d.targets.items()}}
+            row["found"] = _found(row["targets"]["E_Y"]["accepted"])
+            print(json.dumps(row), file=out, flush=True)
+            print(f"  {row['case']} {label}: {row['blocks']}; found {row['found']}; "
+                  + "; ".join(f"{t} {v['before']:.3f} -> {v['after']:.3f} {v['accepted']}"
+                              for t, v in row["targets"].items()), flush=True)
+
+
+def compare(root: str, a: str, b: str) -> None:
+    """bench_diag82d's counts of labels ``a`` and ``b`` (same draws), then where they differ."""
+    import bench_diag82d
+    bench_diag82d.compare(root, a, b)
+
+
+def main(argv: list[str]) -> int:
+    return run_commands(__doc__, {"fl": fl, "fresh": fresh, "compare": compare}, argv, cpu=sys.stderr)
+
+
+if __name__ == "__main__":
+    raise SystemExit(main(sys.argv[1:]))
