@@ -44,6 +44,41 @@ The few VMC, 7 train campaigns (trace seed 8451, diag82g's, spent): forward's fe
 E_Z 7 blocks), E_Y 2.898 -> 1.089 (S_pos_Y x T_box1 over T_amb), E_X / E_Z nothing.  Here item 1
 moves E_Y off forward chaining, whose own blocks it never asked.  With 6 train campaigns (9
 campaigns) forward's fewest already reach alpha (E_Z 8 blocks): nothing is switched.
+
+The rule (written and committed before scoring)
+-----------------------------------------------
+Each target's design by its own reach, one mechanism for all: where ``cv=auto`` switches to
+forward chaining for too few campaigns, a target stays on forward chaining unless ITS OWN
+forward test blocks cannot reach alpha while ITS OWN time blocks within the campaigns can; then
+that target alone keeps the campaigns (cvpick69's rule, per target).  Both designs are still
+cut for every target as before (``_design``: each target's blocks on its own starting residual,
+the penalty's over the design's longest); only which one a target's search runs on is its own.
+Decided by block counts only (the start model's residual memory), never a candidate's statistic,
+never the test split.  The warning names the targets whose own blocks cannot reach alpha ("so no
+effect can be accepted for it / them") and those that can; ``diagnosis.json``'s
+``cv.designs[target]`` holds each target's ``scheme``, ``units``, ``unit``, ``folds``
+(``gap_samples``, ``min_train_fraction``), ``why``; ``diagnosis_<target>.json``'s ``cv`` says its
+target's scheme (``test_blocks`` / ``min_p`` stay the target of fewest blocks', as documented).
+Checked before the bar (spent seed 8451, diag82g's, 10 campaigns): E_X / E_Y forward (40 / 30
+blocks), E_Z the campaigns (forward 4, min p 0.062; campaigns 7, 0.0078); E_Y 2.898 -> 0.888
+(S_pos_Y x rises, S_spindle_rpm x rises; on the campaigns 1.089), E_X / E_Z nothing as before.
+
+The bar (all must hold, else REFUSED: src reverted, this bench and ``diag83_rule.patch`` kept).
+Main = b79207b5's src (``PYTHONPATH=/work/main/src``), rule = this tree, same draws and command:
+
+1. fl_thermal (``fl``): no target's test RMSE as deployed after diagnose more than 2 % above
+   main's after (and none more than 2 % above its own before); accepted per target said.
+2. Planted 8471-8480: found (an ``interaction`` on ``S_pos_Y`` accepted for E_Y) with the rule on
+   at least main's count.
+3. Clean 8481-8490: nothing accepted on any target with the rule.
+4. The control is never accepted with the rule, and clears the bar on no more (draw, target)
+   pairs of the 20 draws than with main.
+5. On the 20 draws no target's test RMSE after with the rule more than 2 % above main's after,
+   and no (draw, target) more than 2 % above its own before with the rule where main's is not.
+6. ``bench_diagnose_faults58.py``'s 20 rows: no target's after with the rule more than 2 % above
+   main's (no row there has 2-7 train campaigns: only the warning can change).
+7. tests/apps/test_diagnose*.py, tests/shell/test_diagnose*.py and the other test files that
+   call ``diagnose`` pass with the rule.
 """
 
 from __future__ import annotations
