@@ -79,6 +79,62 @@ Main = b79207b5's src (``PYTHONPATH=/work/main/src``), rule = this tree, same dr
    main's (no row there has 2-7 train campaigns: only the warning can change).
 7. tests/apps/test_diagnose*.py, tests/shell/test_diagnose*.py and the other test files that
    call ``diagnose`` pass with the rule.
+
+Scored (2026-12-04, 2 cores shared by six helpers; main = b79207b5's src, rule = this tree at
+c472baef; ``fresh`` main then rule on the same draws, ``fl`` main then rule, then
+``bench_diagnose_faults58.py`` main then rule on one ``write`` root; diagnose CPU summed over the
+20 draws 14.7 s main, 18.4 s rule)
+------------------------------------------------------------------------------------------------
+The rule moves 23 of the 60 (draw, target) pairs from the campaigns (main: every target on them
+where the slowest target's forward blocks cannot reach alpha) to forward chaining, often on
+blocks of 1-3 samples (clean:8486 E_X 7 x 73 -> 256 x 1, clean:8482 E_Y 7 x 84 -> 240 x 1).
+
+1. **Holds.**  fl_thermal: one train campaign, forward for every target by ``cv_scheme`` in both
+   trees; the same blocks (E_ch1..5 12 / 12 / 6 / 7 / 19), nothing accepted in either, test RMSE
+   as deployed 4.606 / 3.956 / 4.351 / 4.333 / 3.054 µm before = after, both trees (only the
+   warning's wording differs: "E_ch3 (6 test blocks in 16 CV units, forward; min p 0.016) ...
+   so no effect can be accepted for it; E_ch1, E_ch2, E_ch4, E_ch5 can").
+2. **Holds.**  Planted 8471-8480 found 8 of 10 main -> 8 of 10 rule (the same draws, all but 8471
+   and 8476).
+3. **FAILS.**  Clean 8481-8490: main accepts nothing; the rule accepts on 3 draws, each on a
+   target it moved to forward chaining: clean:8486 E_X S_spindle_rpm 14400 s lag (0.521 -> 0.500
+   µm; forward 256 x 1), clean:8489 E_Y S_spindle_rpm x rises (0.633 -> 0.563; 80 x 3),
+   clean:8490 E_Y ambient interval (0.463 -> 0.432; 20 x 12).  (Their test RMSE falls: effects
+   the "clean" generator holds and the campaigns' 7 blocks cannot show; still not "nothing".)
+4. **FAILS.**  The control, accepted nowhere in either tree, clears the bar on 1 pair with main
+   (clean:8485 E_Y, forward in both) and 3 with the rule: + planted:8473 E_Y (campaigns 16 x 28
+   -> forward 15 x 17) and planted:8478 E_X (24 x 19 -> forward 8 x 29).
+5. **FAILS.**  After with the rule above main's after by more than 2 %: planted:8473 E_Y 2.115 ->
+   2.366 µm (+11.9 %), 8475 E_Y 2.378 -> 2.556 (+7.5 %), 8479 E_Y 1.783 -> 1.824 (+2.3 %), 8480
+   E_Y 1.065 -> 1.093 (+2.7 %): on forward blocks E_Y takes the position x the model inputs'
+   rises where on the campaigns it took the position x T_box1 (or T_box2) over T_amb.  Better:
+   8477 E_Y -1.8 %, 8478 E_Y -4.2 %, 8479 E_X 0.597 -> 0.551 (-7.7 %: the rule does not take main's
+   T_nose lag, +8.4 % over before).  More than 2 % worse than before: main 1 (planted:8479 E_X), rule
+   none.
+6. **Holds.**  faults58: 20 of 20 rows identical (45 targets, worst +0.0 %), found 10 of 16 both
+   (no row has 2-7 train campaigns; CPU user + sys 190.9 s main, 155.2 s rule).
+7. **FAILS (a wording).**  439 of 440 (tests/apps/test_diagnose*.py, tests/shell/test_diagnose*.py
+   with the new tests/apps/test_diagnose_reach83.py, test_docs, test_imports,
+   test_benchmarks_cli; 61 s user CPU): test_forward_blocks_too_few_for_alpha_name_the_campaigns
+   _scheme asserts the old advice's wording ("the campaigns' 40 time blocks"), the new names the
+   target ("the campaigns' E_Z 40 time blocks"); a wording fix, not run again.  The other
+   files that call ``diagnose`` (test_iso67, test_replay, test_deploy_diagnosed, ...) were not
+   run: the bar had failed.
+
+**REFUSED** (items 3, 4, 5; 7 by a wording).  src reverted to b79207b5 (docs too); the rule's src, docs and its
+test (tests/apps/test_diagnose_reach83.py, which fails on main: E_W moved to the campaigns by
+E_Z, and the warning naming no target) in ``diag83_rule.patch``.  What the numbers say: main's
+global gate is a safeguard, not only a misleading message.  On the few VMC a target whose own
+forward blocks reach alpha gets forward designs of 1-30-sample blocks within 7 campaigns'
+time line, and there the test passes what the campaigns' 7 blocks (one per campaign) would not:
+the control clears twice more, clean draws accept.  The slowest target's long memory says the
+campaigns' time line is one of long-memory drifts, which the short-memory target's own
+decorrelation length misses (its blocks are cut on its starting residual only).  On fl_thermal
+(one campaign) nothing is global but the warning: no target is kept from accepting (E_ch1's
+3600 s lag clears the bar at family p 0.0039 and is not chosen: the round's best CV, spindle
+speed x rises at family p 0.054, is more than one standard error better).  What remains: the
+warning alone could name the targets (a wording change, no design change) -- not done here, as
+the brief tied it to the rule.
 """
 
 from __future__ import annotations

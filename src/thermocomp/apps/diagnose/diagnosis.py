@@ -52,10 +52,6 @@ def augment(template: Compensator, effects: Mapping[str, list], excluded=(),
     return clone(template).set_params(estimator=est, inputs=kept)
 
 
-# ``cv``'s keys that describe a target's scheme (its own in ``cv.designs``, diag83)
-SCHEME_KEYS = ("scheme", "units", "unit", "folds", "gap_samples", "min_train_fraction", "why")
-
-
 @dataclass
 class TargetDiagnosis:
     """Everything found for one target."""
@@ -120,11 +116,6 @@ class Diagnosis:
         effects += [ev.entry() for ev in rejected]
         control = last.control.entry() if last and last.control else None
         te_b, te_a = TargetResult(d.before).test, TargetResult(d.after).test
-        # the target's own design (diag83: each target's scheme by its own reach); the test
-        # blocks and min p of the target of fewest, each target's in ``designs``
-        own = self.cv.get("designs", {}).get(t, {})
-        cv = {k: v for k, v in own.items() if k in SCHEME_KEYS} | {
-            k: v for k, v in self.cv.items() if k not in SCHEME_KEYS} if own else self.cv
         return json_safe({
             "target": t,
             "model": self.model,
@@ -150,7 +141,7 @@ class Diagnosis:
                             "extrapolates and, with ranks, a positive 95 % lower bound of the gain",
                     "min_p": self.cv["min_p"],
                     "max_effects": self.options.max_effects},
-            "cv": cv,
+            "cv": self.cv,
             "test_e_p95": {"statistic": te_b.e_p95["statistic"],
                            "window_s": te_b.e_p95["window_s"],
                            "measured": te_b.e_p95["before"],
@@ -158,7 +149,7 @@ class Diagnosis:
                            "after": te_a.e_p95["after"]},
             "self_prediction": [
                 {"sensor": name, "cv_rmse_c": float(r["cv_rmse"]), "worst_unit": r["worst_unit"],
-                 "worst_unit_split": "test" if r["worst_unit"] in cv["test_campaigns"] else "train",
+                 "worst_unit_split": "test" if r["worst_unit"] in self.cv["test_campaigns"] else "train",
                  "worst_unit_rmse_c": float(r["worst_unit_rmse"]),
                  "cross_ratio": float(r["cross_ratio"]), "own_ratio": float(r["own_ratio"]),
                  "jump_ratio": float(r["jump_ratio"])}
@@ -323,57 +314,14 @@ def _design(scheme, m, labels, context, before, compensator, targets, mode, opti
     return searches, start, gap
 
 
-def _reach(problem: Problem) -> float:
-    """The smallest p a target's test can give on ``problem``'s blocks (its own block count)."""
-    return smallest_p(problem.n_blocks_tested)
+def _blocks(design) -> int:
+    """The fewest test blocks over the targets (the slowest target's: the design's reach)."""
+    return min(s.problem.n_blocks_tested for s in design[0].values())
 
 
-def _schemes(targets, forward, kept, alpha: float) -> dict[str, str]:
-    """Each target's scheme where too few campaigns switch ``cv=auto`` to forward chaining: that,
-    unless the target's own forward test blocks cannot reach ``alpha`` while its own time blocks
-    within the campaigns (``kept``) can (cvpick69 per target, diag83: the block counts decide,
-    never a candidate's statistic; a target of few blocks no longer moves the others)."""
-    return {t: "campaigns" if kept is not None and _reach(forward[0][t].problem) > alpha
-            and _reach(kept[0][t].problem) <= alpha else "forward" for t in targets}
-
-
-def _cv_keys(problem: Problem, gap: int, options: SearchOptions, n_train: int) -> dict:
-    """``cv``'s description of a target's design (``scheme``, ``units``, ...)."""
-    if problem.forward:
-        return {"scheme": "forward", "units": problem.n_units, "unit": "validation block",
-                "folds": problem.n_units, "gap_samples": gap,
-                "min_train_fraction": options.min_train_fraction}
-    return {"scheme": "campaigns", "units": problem.n_units,
-            "unit": "campaign" if n_train > 1 else "time block",
-            "folds": LeaveCampaignsOut(options.n_folds).get_n_splits(groups=problem.units)}
-
-
-def _unreached(searches: dict, alpha: float, need: int, kept) -> None:
-    """Warn, naming them, of the targets whose own test blocks cannot reach ``alpha`` (no effect
-    can be accepted for them) and of those that can."""
-    low = {t: s.problem for t, s in searches.items() if _reach(s.problem) > alpha}
-    if not low:
-        return
-    can = [t for t in searches if t not in low]
-    forward = [t for t, p in low.items() if p.forward]
-    # (stranger69: a grinder's 7 runs, 5 and 3 forward blocks; over the campaigns, blocks
-    # within them, the planted effect was accepted at 0.01 on both records)
-    advice = ("the record is short for its residual's memory (test blocks are as long as it "
-              "takes to decorrelate); try diagnose.cv=campaigns (time blocks within the "
-              "train campaigns as the test's units), or raise diagnose.alpha"
-              if forward and kept is None
-              else "raise diagnose.alpha (the campaigns' " + ", ".join(
-                  f"{t} {kept[0][t].problem.n_blocks_tested} time blocks" for t in forward)
-              + f" cannot reach it either: min p {max(_reach(kept[0][t].problem) for t in forward):.2g})"
-              if forward
-              else "raise diagnose.n_blocks or diagnose.alpha")
-    said = ", ".join(f"{t} ({p.n_blocks_tested} test blocks in {p.n_units} CV units, {p.scheme}; "
-                     f"min p {_reach(p):.2g})" for t, p in low.items())
-    logger.warning(f"diagnose: {said}: the sign-flip test cannot reach alpha={alpha:g} (it needs "
-                   f"{need} blocks), so no effect can be accepted for "
-                   f"{'it' if len(low) == 1 else 'them'}"
-                   + (f"; {', '.join(can)} can (each target is tested on its own blocks)" if can else "")
-                   + f"; {advice}")
+def _reach(design) -> float:
+    """The smallest p ``design``'s test can give."""
+    return smallest_p(_blocks(design))
 
 
 def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_statistic,
@@ -405,54 +353,55 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
     later = stack(test, before.inputs_, [], before.reference)   # (the test targets stay out)
     context = m.context.copy()
     context[CONTROL] = random_walk(m.groups, options.seed)
-    scheme = cv_scheme(m.groups, options.cv)
-    schemes, why, kept, built = dict.fromkeys(targets, scheme), {}, None, {}
+    scheme, why, design, kept = cv_scheme(m.groups, options.cv), None, None, None
     need = units_needed(options.alpha)
     labels = _in_frame(before, m)
 
     def designed(name):
-        if name not in built:
-            built[name] = _design(name, m, labels, context, before, compensator, targets, mode,
-                                  options)
-        return built[name]
+        return _design(name, m, labels, context, before, compensator, targets, mode, options)
     if options.cv == "auto" and scheme == "campaigns" and len(train) < need:
         # too few campaigns for the test to ever pass: validation blocks of the campaigns taken
-        # as one time line instead, as for one long record -- for each target whose own forward
-        # blocks reach alpha; one whose do not keeps the campaigns where its time blocks within
-        # them can (cvpick69, per target since diag83)
+        # as one time line instead, as for one long record -- unless that design cannot reach
+        # alpha either while the test's time blocks within the campaigns can (cvpick69: the
+        # block counts decide, never a candidate's statistic)
         few = (f"{len(train)} train campaigns are too few for the sign-flip test to reach "
                f"alpha={options.alpha:g} (it needs {need})")
         forward = designed("forward")
-        if any(_reach(s.problem) > options.alpha for s in forward[0].values()):
-            kept = designed("campaigns")
-        schemes = _schemes(targets, forward, kept, options.alpha)
-        for t, name in schemes.items():
-            f, c = forward[0][t].problem, kept[0][t].problem if kept else None
-            why[t] = (f"forward chaining's {f.n_blocks_tested} test blocks cannot reach "
-                      f"alpha={options.alpha:g} (min p {_reach(f):.2g}) while {c.n_blocks_tested} "
-                      f"time blocks within the {len(train)} train campaigns can (min p "
-                      f"{_reach(c):.2g}): the campaigns kept (held out whole, {few})"
-                      if name == "campaigns" else few)
-        on = [t for t in targets if schemes[t] == "forward"]
-        if on:
-            logger.info(f"diagnose: {few}: forward chaining over them, {options.n_blocks} blocks"
-                        + ("" if len(on) == len(targets) else f" ({', '.join(on)})"))
-        for t in targets:
-            if schemes[t] == "campaigns":
-                logger.info(f"diagnose: {t}: {why[t]}")
-    searches = {t: designed(schemes[t])[0][t] for t in targets}
-    start = {t: designed(schemes[t])[1][t] for t in targets}
-    gap = built["forward"][2] if "forward" in built else 0
-    _unreached(searches, options.alpha, need, kept)
+        kept = designed("campaigns") if _reach(forward) > options.alpha else None
+        if kept is not None and _reach(kept) <= options.alpha:
+            design = kept
+            why = (f"forward chaining's {_blocks(forward)} test blocks cannot reach "
+                   f"alpha={options.alpha:g} (min p {_reach(forward):.2g}) while {_blocks(kept)} "
+                   f"time blocks within the {len(train)} train campaigns can (min p "
+                   f"{_reach(kept):.2g}): the campaigns kept (held out whole, {few})")
+            logger.info(f"diagnose: {why}")
+        else:
+            scheme, design, why = "forward", forward, few
+            logger.info(f"diagnose: {why}: forward chaining over them, {options.n_blocks} blocks")
+    searches, start, gap = design or designed(scheme)
+    # the design's reach: the target of fewest test blocks (each target has its own, diag82)
+    problem = min((s.problem for s in searches.values()), key=lambda p: p.n_blocks_tested)
+    reach = smallest_p(problem.n_blocks_tested)
+    if reach > options.alpha:
+        # (stranger69: a grinder's 7 runs, 5 and 3 forward blocks; over the campaigns, blocks
+        # within them, the planted effect was accepted at 0.01 on both records)
+        advice = ("the record is short for its residual's memory (test blocks are as long as it "
+                  "takes to decorrelate); try diagnose.cv=campaigns (time blocks within the "
+                  "train campaigns as the test's units), or raise diagnose.alpha"
+                  if scheme == "forward" and kept is None
+                  else f"raise diagnose.alpha (the campaigns' {_blocks(kept)} time blocks cannot "
+                       f"reach it either: min p {_reach(kept):.2g})"
+                  if scheme == "forward"
+                  else "raise diagnose.n_blocks or diagnose.alpha")
+        logger.warning(f"diagnose: {problem.n_units} CV units ({scheme}) in "
+                       f"{problem.n_blocks_tested} test blocks: the sign-flip test cannot reach "
+                       f"alpha={options.alpha:g} (min p {reach:.2g}; it needs {need} blocks), so no "
+                       f"effect can be accepted; {advice}")
     # sensor health on the train campaigns only: the search never sees the test split
-    # each target's starting design, its scheme its own (diag83; its rounds re-cut their blocks
-    # on their residual, diag82f); the target of fewest blocks heads ``cv``
-    designs = {t: _cv_keys(s.problem, gap, options, len(train))
-               | {"test_blocks": s.problem.n_blocks_tested, "block_samples": s.problem.block_samples,
-                  "min_p": _reach(s.problem)} | ({"why": why[t]} if t in why else {})
-               for t, s in searches.items()}
-    fewest = min(searches, key=lambda t: searches[t].problem.n_blocks_tested)
-    problem = searches[fewest].problem
+    # each target's starting design (its rounds re-cut their blocks on their residual, diag82f)
+    designs = {t: {"test_blocks": s.problem.n_blocks_tested, "block_samples": s.problem.block_samples,
+                   "min_p": smallest_p(s.problem.n_blocks_tested)} for t, s in searches.items()}
+    start_blocks = (problem.n_blocks_tested, problem.block_samples)
     excluded, faults, health, original, table = sensor_health(searches, options=options, start=start)
     test_sensors = test_sensor_warnings(next(iter(searches.values())), excluded, later, options)
     found = {t: s.run(original[t], faults[t], health[t], table) for t, s in searches.items()}
@@ -465,9 +414,17 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
            for t, r in found.items()}
     scored, clamped, guarded = _deployed(out, {"before": before, "after": after}, ds, train_ids,
                                          test_ids, mode, deployed_of)
-    cv = {k: v for k, v in designs[fewest].items() if k not in ("test_blocks", "block_samples", "min_p")}
-    cv |= {"test_blocks": problem.n_blocks_tested, "block_samples": problem.block_samples,
-           "min_p": _reach(problem),
+    if scheme == "forward":
+        cv = {"scheme": "forward", "units": problem.n_units, "unit": "validation block",
+              "folds": problem.n_units, "gap_samples": gap,
+              "min_train_fraction": options.min_train_fraction}
+    else:
+        cv = {"scheme": "campaigns", "units": problem.n_units,
+              "unit": "campaign" if len(train) > 1 else "time block",
+              "folds": LeaveCampaignsOut(options.n_folds).get_n_splits(groups=problem.units)}
+    if why:
+        cv["why"] = why
+    cv |= {"test_blocks": start_blocks[0], "block_samples": start_blocks[1], "min_p": reach,
            # each target's own starting test blocks (their residuals' memory, diag82; each
            # round's own in its ``rounds``); the above: fewest
            "designs": designs,

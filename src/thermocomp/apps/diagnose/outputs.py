@@ -197,11 +197,8 @@ def summary_table(result, named: str = "") -> str:
                  f"in {cv['units']} CV units; smallest reachable p {cv['min_p']:.2g} "
                  f"(alpha {result.options.alpha:g})")
     designs = cv.get("designs") or {}
-    # (diag83) where the targets' schemes differ, each line names its own
-    mixed = len({d.get("scheme") for d in designs.values()}) > 1
     if len({(d["test_blocks"], d["block_samples"]) for d in designs.values()}) > 1:
         lines.append("  each target on its own blocks: " + ", ".join(
-            f"{t} {d['test_blocks']} of ~{d['block_samples']}"
-            + (f" in {d['units']} {d['scheme']} units" if mixed else "")
-            + f" (min p {d['min_p']:.2g})" for t, d in designs.items()))
+            f"{t} {d['test_blocks']} of ~{d['block_samples']} (min p {d['min_p']:.2g})"
+            for t, d in designs.items()))
     return "\n".join(lines)
