@@ -121,20 +121,20 @@ blocks of 1-3 samples (clean:8486 E_X 7 x 73 -> 256 x 1, clean:8482 E_Y 7 x 84 -
    files that call ``diagnose`` (test_iso67, test_replay, test_deploy_diagnosed, ...) were not
    run: the bar had failed.
 
-**REFUSED** (items 3, 4, 5; 7 by a wording).  src reverted to b79207b5 (docs too); the rule's src, docs and its
-test (tests/apps/test_diagnose_reach83.py, which fails on main: E_W moved to the campaigns by
-E_Z, and the warning naming no target) in ``diag83_rule.patch``.  What the numbers say: main's
-global gate is a safeguard, not only a misleading message.  On the few VMC a target whose own
-forward blocks reach alpha gets forward designs of 1-30-sample blocks within 7 campaigns'
-time line, and there the test passes what the campaigns' 7 blocks (one per campaign) would not:
-the control clears twice more, clean draws accept.  The slowest target's long memory says the
-campaigns' time line is one of long-memory drifts, which the short-memory target's own
-decorrelation length misses (its blocks are cut on its starting residual only).  On fl_thermal
-(one campaign) nothing is global but the warning: no target is kept from accepting (E_ch1's
-3600 s lag clears the bar at family p 0.0039 and is not chosen: the round's best CV, spindle
-speed x rises at family p 0.054, is more than one standard error better).  What remains: the
-warning alone could name the targets (a wording change, no design change) -- not done here, as
-the brief tied it to the rule.
+**REFUSED** (items 3, 4, 5; 7 by a wording).  src reverted to b79207b5 (docs too); the rule's
+src, docs and its test (tests/apps/test_diagnose_reach83.py, which fails on main: E_W moved to
+the campaigns by E_Z, and the warning naming no target) in ``diag83_rule.patch``.  What the
+numbers say: main's global gate is a safeguard, not only a misleading message.  On the few VMC a
+target whose own forward blocks reach alpha gets forward designs of 1-30-sample blocks within 7
+campaigns' time line, and there the test passes what the campaigns' 7 blocks (one per campaign)
+would not: the control clears twice more, clean draws accept.  Why, a guess not measured here:
+the campaign-to-campaign drifts the slowest target's residual shows are in the others' too, and
+their blocks, cut on their own starting residual, miss them.  On fl_thermal
+(one campaign) nothing is global but the warning: no target is kept from accepting (E_ch1's 3600
+s lag clears the bar at family p 0.0039 and is not chosen: the round's best CV, spindle speed x
+rises at family p 0.054, is more than one standard error better).  What remains: the warning
+alone could name the targets (a wording change, no design change) -- not done here, as the brief
+tied it to the rule.
 """
 
 from __future__ import annotations
