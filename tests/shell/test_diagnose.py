@@ -617,3 +617,24 @@ def test_a_jump_that_clears_only_once_another_sensor_is_out_is_no_fault(monkeypa
     monkeypatch.setattr(search, "self_prediction", told)
     d = diagnose(ds, Compensator(MLR()), options=SearchOptions(max_effects=1))
     assert d.to_json("E_Z")["excluded_inputs"] == ["T_c"]
+
+
+def test_the_reach_warning_names_the_targets_it_holds_for(caplog):
+    """Each target is tested on its own blocks (diag82f): where one target's blocks cannot reach
+    alpha and another's can, the warning names the one it holds for, not "no effect" at large
+    (fl_thermal: E_ch3's 6 blocks could not reach 0.01, E_ch1 / E_ch2 / E_ch5's 12-19 could)."""
+    ds = _dataset(door_gain=4.0, n_campaigns=6, test_every=6)
+    for k, frame in enumerate(ds.campaigns.values()):       # a second target of long memory
+        rng = np.random.default_rng(100 + k)
+        frame["E_Y"] = 0.5 * frame["E_Z"] + np.cumsum(rng.standard_normal(len(frame)))
+    compensator = Compensator(MLR())
+    first = diagnose(ds, compensator, options=SearchOptions(max_effects=1, cv="campaigns"))
+    designs = first.to_json("E_Z")["cv"]["designs"]         # each target's own starting design
+    blocks = {t: designs[t]["test_blocks"] for t in ("E_Y", "E_Z")}
+    assert blocks["E_Y"] < blocks["E_Z"]                     # the random walk decorrelates slowly
+    # an alpha the slower target cannot reach and the faster can: 2^-n between their counts
+    alpha = 2.0 ** -(blocks["E_Y"] + 0.5)
+    with caplog.at_level("WARNING", logger="thermocomp"):
+        diagnose(ds, compensator, options=SearchOptions(max_effects=1, cv="campaigns", alpha=alpha))
+    assert f"so no effect can be accepted on E_Y (the others, E_Z {blocks['E_Z']} test blocks" \
+        in caplog.text

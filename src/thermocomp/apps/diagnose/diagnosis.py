@@ -393,10 +393,18 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
                        f"reach it either: min p {_reach(kept):.2g})"
                   if scheme == "forward"
                   else "raise diagnose.n_blocks or diagnose.alpha")
+        # each target is tested on its own blocks: the warning says which of them it holds for
+        # (fl_thermal: E_ch3's 6 blocks cannot reach 0.01, E_ch1 / E_ch2 / E_ch5's 12-19 can)
+        blocks = {t: s.problem.n_blocks_tested for t, s in searches.items()}
+        short = [t for t, n in blocks.items() if smallest_p(n) > options.alpha]
+        can = [t for t in blocks if t not in short]
+        where = ("so no effect can be accepted" if not can else
+                 f"so no effect can be accepted on {', '.join(short)} (the others, "
+                 f"{', '.join(f'{t} {blocks[t]}' for t in can)} test blocks, can reach it)")
         logger.warning(f"diagnose: {problem.n_units} CV units ({scheme}) in "
                        f"{problem.n_blocks_tested} test blocks: the sign-flip test cannot reach "
-                       f"alpha={options.alpha:g} (min p {reach:.2g}; it needs {need} blocks), so no "
-                       f"effect can be accepted; {advice}")
+                       f"alpha={options.alpha:g} (min p {reach:.2g}; it needs {need} blocks), "
+                       f"{where}; {advice}")
     # sensor health on the train campaigns only: the search never sees the test split
     # each target's starting design (its rounds re-cut their blocks on their residual, diag82f)
     designs = {t: {"test_blocks": s.problem.n_blocks_tested, "block_samples": s.problem.block_samples,
