@@ -1,0 +1,161 @@
+"""A drifting coolant whose only partner is the healthy turret (mon83b): each reading's own history.
+
+    PYTHONPATH=$PWD/src .venv/bin/python benchmarks/bench_mon83b.py write ROOT SEEDS
+    PYTHONPATH=$PWD/src .venv/bin/python benchmarks/bench_mon83b.py trace ROOT SEED
+    PYTHONPATH=$PWD/src .venv/bin/python benchmarks/bench_mon83b.py score ROOT SEEDS SRC [SRC ...]
+    PYTHONPATH=$PWD/src .venv/bin/python benchmarks/bench_mon83b.py verdict ROOT SEEDS
+
+``write``: bench_pair82's lathe (stranger82's ``lathe82``, its GL840 files) per seed under
+``ROOT/m<SEED>/``: the record, its last run with one fault (``coolant``: ``KUEHLMITTEL`` +1 K/h
+from row 700, 3.9 h in; ``turret``: ``REVOLVER`` the same; ``jump``: ``BETT_R`` +2 K), ``init``
+and ``run model=mlr``.  ``trace``: each of the pair's readings against its own training history
+(below), every 15 min of the last run of the healthy record and of each drift.  ``score``:
+``thermocomp monitor`` of that mlr on the healthy record and each case, once per source tree
+``SRC`` (its ``src``), the trees alternated per case; a line per run in ``ROOT/score.jsonl``.
+``verdict``: tree 0 (main) against tree 1 (the rule) on ``SEEDS``, the bar's lathe parts.
+
+Traced (main at b79207b5, seed 8211, stranger82's case; ``score`` gives stranger82's figures):
+``coolant``: the healthy turret out at 5.37 h ("self-prediction error -0.4 °C"), the coolant
+never, adaptive dX 2.839 (fixed) -> 3.171, dZ 5.382 -> 4.715 µm; ``turret``: the turret out at
+4.24 h (+0.49 °C), dX 2.616 -> 2.519, dZ 5.717 -> 4.760; ``healthy``: no event; ``jump``:
+``BETT_R`` out at 5.56 h.  Self-prediction sees the pair as one error, the turret's: the coolant
+is predicted by no other sensor (its leverage above the POD's limit), the turret only through
+the coolant.  What differs is each reading's own history against its own training history.
+The heat behind each bounds how fast it can move: the coolant tank (1.2 MJ/K) takes up to 180 W
+x (0.3 + krpm) with the pump on, the turret (0.8 MJ/K) 40 W x krpm; a +1 K/h drift is inside the
+coolant's rates and beyond the turret's.  ``trace`` measures it as the monitor's memory does
+(``excursion.py``: the reading minus its exponential memory of ``EXCURSION_TAU_S`` = 30 min, the
+rise it made over about that time), as a share of the largest such rise in the same direction
+over the training runs (every run but the last here; the monitor's own is its train split).
+On 8211 (shares REVOLVER / KUEHLMITTEL): healthy last run 0.01-0.55 / 0.01-0.79 all day;
+``coolant`` at the turret's exclusion (5.25-5.5 h) 0.21-0.33 / 0.84-0.91 (the coolant's share
+grows from 0.5 at 3.75 h to 1.02 at 6.25 h); ``turret`` at its exclusion (4.25 h) 1.10 / 0.54,
+1.1-1.9 / 0.01-0.79 after.  The drifting reading is the one moving nearer or past the fastest its
+own training saw; the healthy partner sits inside its own.
+"""
+from __future__ import annotations
+
+import json
+import sys
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+import bench_pair82 as p82  # noqa: E402
+from _cli import run_commands, seed_list  # noqa: E402
+
+PAIR = ("REVOLVER", "KUEHLMITTEL")
+CASES = ("healthy", "coolant", "turret")
+FAULTED = {"coolant": "T_KUEHLMITTEL", "turret": "T_REVOLVER"}
+
+
+def write(root: str, seeds: str) -> None:
+    """bench_pair82's record, its fault cases, init and mlr per seed (module docstring)."""
+    for seed in seed_list(seeds):
+        p82.write(root, str(seed))
+
+
+def _rises(x: np.ndarray, step_s: float) -> np.ndarray:
+    """Each sample's reading minus the exponential memory of the referenced readings before it
+    (``EXCURSION_TAU_S``), as :mod:`~thermocomp.apps.deploy.surveillance.excursion` keeps it."""
+    from thermocomp.apps.deploy.surveillance.states import EXCURSION_TAU_S
+    keep = np.exp(-step_s / EXCURSION_TAU_S)
+    d = x - x[0]
+    slow, out = np.zeros(x.shape[1]), np.empty_like(d)
+    for k in range(len(d)):
+        if k:
+            slow = keep * slow + (1 - keep) * d[k]
+        out[k] = d[k] - slow
+    return out
+
+
+def trace(root: str, seed: str) -> None:
+    """The pair's rises as shares of their training's largest (module docstring)."""
+    import lathe82 as m
+    from bench_stranger82 import runs
+    r, runs_ = runs(int(seed))
+    names = [s[0] for s in m.SENSORS]
+    cols = [names.index(p) for p in PAIR]
+    X = r["sensors"][:, cols]
+    train = np.vstack([_rises(X[idx], m.STEP_S) for _, _, idx in runs_[:-1]])
+    hi, lo = np.nanmax(train, axis=0), np.nanmin(train, axis=0)
+    last = runs_[-1][2]
+    print(f"{seed}: training's largest rise {PAIR[0]} {hi[0]:+.2f} / {lo[0]:+.2f}, "
+          f"{PAIR[1]} {hi[1]:+.2f} / {lo[1]:+.2f} K")
+    for case in CASES:
+        x = np.round(X[last], 1)          # the logger's 0.1 K
+        if case != "healthy":
+            k = 0 if case == "turret" else 1
+            x[:, k] = np.round(p82._fault("drift", 700, len(last))(X[last, k]), 1)
+        g = _rises(x, m.STEP_S)
+        share = np.where(g > 0, g / hi, g / lo)
+        print(f"  {case}: " + ", ".join(f"{i * m.STEP_S / 3600:.2f} h {share[i, 0]:.2f} / "
+                                         f"{share[i, 1]:.2f}" for i in range(0, len(g), 45)))
+
+
+def score(root: str, seeds: str, *srcs: str) -> None:
+    """``monitor`` per case, once per source tree, alternated (module docstring)."""
+    out = Path(root).resolve() / "score.jsonl"
+    for seed in seed_list(seeds):
+        base = Path(root).resolve() / f"m{seed}"
+        common = [f"hydra.searchpath=[file://{base / 'init' / 'conf'}]", "data=lathe",
+                  "track=false", "plots=none", f"monitor.model={base / 'mlr' / 'model.pkl'}"]
+        for case in CASES:
+            path = [] if case == "healthy" else [f"data.path={base / case}"]
+            for k, src in enumerate(srcs):
+                folder = base / f"mon83b_{case}_{k}"
+                done = p82._cli(["monitor", *common, *path, f"out={folder}"], src)
+                if done.returncode:
+                    print(f"{seed} {case} tree {k}: exit {done.returncode}: {done.stderr[-400:]}")
+                    continue
+                said = json.loads((folder / "monitor.json").read_text())
+                outs = [[e["sensor"], round(e["time"] / 3600, 3)] for e in said["events"]
+                        if e["to"] == "excluded"]
+                line = {"seed": seed, "case": case, "tree": k, "events": len(said["events"]),
+                        "excluded": outs,
+                        "rmse": {t: [v["rmse_fixed"], v["rmse_adaptive"]]
+                                 for t, v in said["targets"].items()}}
+                with out.open("a") as f:
+                    f.write(json.dumps(line) + "\n")
+                rmse = "; ".join(f"{t} {a:.3f} / {b:.3f}" for t, (a, b) in line["rmse"].items())
+                print(f"{seed} {case} tree {k}: events {line['events']}, excluded "
+                      f"{outs[:4]}; (fixed / adaptive) {rmse}", flush=True)
+
+
+def verdict(root: str, seeds: str) -> None:
+    """Tree 0 (main) against tree 1 (the rule): the bar's lathe parts (module docstring)."""
+    lines = [json.loads(s) for s in (Path(root) / "score.jsonl").read_text().splitlines()]
+    got = {(d["seed"], d["case"], d["tree"]): d for d in lines}     # the last run of each
+    fails, picked = [], [0, 0]
+    for seed in seed_list(seeds):
+        for case in CASES:
+            a, b = got.get((seed, case, 0)), got.get((seed, case, 1))
+            if a is None or b is None:
+                fails.append(f"{seed} {case}: not scored in both trees")
+                continue
+            for t, (_, ad) in a["rmse"].items():
+                if b["rmse"][t][1] > 1.02 * ad + 1e-12:
+                    fails.append(f"{seed} {case} {t}: adaptive {ad:.3f} -> {b['rmse'][t][1]:.3f}")
+            if case == "healthy" and b["events"]:
+                fails.append(f"{seed} healthy: {b['events']} events with the rule")
+            for k, d in enumerate((a, b)):
+                first = d["excluded"][0][0] if d["excluded"] else None
+                picked[k] += case in FAULTED and first == FAULTED[case]
+            print(f"{seed} {case}: excluded {a['excluded'][:3]} -> {b['excluded'][:3]}; "
+                  + "; ".join(f"{t} {a['rmse'][t][1]:.3f} -> {b['rmse'][t][1]:.3f}"
+                              for t in a["rmse"]))
+    if picked[1] <= picked[0]:
+        fails.append(f"the drifting sensor first out on {picked[1]} cases, main {picked[0]}")
+    print(f"drifting one first out: main {picked[0]}, rule {picked[1]}")
+    print("\n".join(fails) if fails else "lathe parts of the bar: held")
+
+
+def main(argv: list[str]) -> int:
+    return run_commands(__doc__, {"write": write, "trace": trace, "score": score,
+                                  "verdict": verdict}, argv, cpu=sys.stderr)
+
+
+if __name__ == "__main__":
+    raise SystemExit(main(sys.argv[1:]))
