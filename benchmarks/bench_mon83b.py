@@ -32,6 +32,34 @@ On 8211 (shares REVOLVER / KUEHLMITTEL): healthy last run 0.01-0.55 / 0.01-0.79 
 grows from 0.5 at 3.75 h to 1.02 at 6.25 h); ``turret`` at its exclusion (4.25 h) 1.10 / 0.54,
 1.1-1.9 / 0.01-0.79 after.  The drifting reading is the one moving nearer or past the fastest its
 own training saw; the healthy partner sits inside its own.
+
+The rule (``surveillance/judgement.py`` ``_told_apart``, ``excursion.py``; written before
+scoring).  ``from_training`` (given the campaigns' times, as the adaptive compensator now gives
+them) keeps each sensor's largest rise and fall against the memory over the training campaigns
+(``rise_hi_c`` / ``rise_lo_c``: the mean of the last ``confirm`` readings minus the memory before
+the last, as judged).  Where the culprit rule is about to exclude ``j`` and a sensor ``u`` no
+other predicts is ``j``'s only predictor (without ``u`` ``j`` is not judged) and, with ``u`` out,
+every other judged sensor is within the band, the two are a pair self-prediction cannot tell
+apart; ``u`` goes out instead of ``j`` where its rise now is the larger share of its own largest
+in training (``share = rise / rise_hi_c``, a fall ``/ rise_lo_c``), as one out for explaining
+(back only once the judged sensors stay within band with it in).  Else nothing changes; a monitor
+pickled before it (no ``rise_hi_c``) or a sample without its time: as before.  A comparison of
+the pair's two histories, no threshold.  The C (``export/watch.py``, ``watch_c.py``) follows.
+On 8211 (traced, not fresh): ``coolant`` the coolant out at 5.37 h, not the turret: dX 3.171 ->
+2.483, dZ 4.715 -> 4.737 µm; ``healthy``, ``turret``, ``jump`` unchanged.
+
+The bar (written before scoring; fresh seeds, none tuned on).  REFUSED if any part fails:
+1. Lathe 8526-8535, ``healthy`` / ``coolant`` / ``turret`` (``score ROOT SEEDS MAIN RULE`` then
+   ``verdict``; main = b79207b5's ``src``): no target's adaptive RMSE more than 2 % above main's
+   on any case; no event on a healthy last run with the rule; the drifting sensor the first one
+   excluded on more of the 20 fault cases than on main.
+2. Controls, trunnion 8536-8538 and jig 8539-8540 (``bench_mon82c.py trunnion|jig ROOT LABEL
+   SEEDS healthy,drift`` with each tree on ``PYTHONPATH``, then its ``table``): no adaptive RMSE
+   more than 2 % worse, no event on a healthy record where main has none, no sensor excluded
+   more often.
+3. ``tests/shell/test_monitor*.py``, ``tests/shell/test_export*.py``, ``tests/apps/test_monitor*.py``
+   pass; the C follows the judgement (the code's monitor excludes the coolant on 8211's case as
+   served) or the export flags it.
 """
 from __future__ import annotations
 
