@@ -93,11 +93,8 @@ class AdaptiveCompensator:
         mon = None
         if len(names) >= 3:
             raw = {c: df[names].to_numpy(float) for c, df in campaigns.items()}
-            times = ({c: df[TIME].to_numpy(float) for c, df in campaigns.items()}
-                     if all(TIME in df.columns for df in campaigns.values()) else None)
             mon = SensorMonitor.from_training(ThermalPOD(**pod) if pod else None, names, raw,
-                                              learned_bands=learned_bands, times=times,
-                                              **(monitor or {}))
+                                              learned_bands=learned_bands, **(monitor or {}))
         predicted = comp.predict(campaigns, mode="simulation")
         measured = comp.measured(campaigns, predicted=predicted)
         times = [df[TIME].to_numpy(float) if TIME in df.columns else np.arange(len(df), dtype=float)

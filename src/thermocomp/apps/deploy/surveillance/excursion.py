@@ -54,17 +54,6 @@ class Excursion:
         self._slow = np.exp(-(t[-1] - before[0]) / EXCURSION_TAU_S) * self._slow + weight @ D
         self._slow_t = float(t[-1])
 
-    def _rise_shares(self, rows: np.ndarray) -> np.ndarray | None:
-        """Each sensor's rise now (the mean of ``rows``, the last readings, minus the memory) as a
-        share of the largest rise its readings made that way in training (``rise_lo_c`` /
-        ``rise_hi_c``, :func:`memory_rises`): how fast it moves against how fast it ever did.
-        None where either is unknown (a monitor pickled before it, a sample without its time)."""
-        if self.rise_hi_c is None or not self._slow_ok or not np.isfinite(self._slow_t):
-            return None
-        rise = rows.mean(axis=0) - self._slow
-        with np.errstate(divide="ignore", invalid="ignore"):
-            return np.where(rise > 0, rise / self.rise_hi_c, rise / self.rise_lo_c)
-
     def _excursion_hovers(self, level: np.ndarray, err: np.ndarray) -> bool:
         """Whether every judged sensor out of band has an error that is no larger a share of its
         rise than ``EXCURSION_TAU_S`` ago (the memory's error against its rise then), within
@@ -79,15 +68,3 @@ class Excursion:
         now = np.abs(err[out]) * np.abs(self._slow[out])
         then = np.maximum(past[out] * np.sign(err[out]), 0.0) * rise[out]
         return bool(np.all(now <= EXCURSION_GROWTH * then))
-
-
-def memory_rises(D: np.ndarray, t: np.ndarray, confirm: int) -> np.ndarray:
-    """The rises :meth:`Excursion._rise_shares` measures, on every sample of one training campaign
-    (referenced readings ``D`` taken at ``t``): the mean of the last ``confirm`` readings minus the
-    memory as it was before the last one was folded in."""
-    slow, out = np.zeros(D.shape[1]), np.zeros_like(D)
-    for k in range(1, len(D)):
-        out[k] = D[max(k - confirm + 1, 0):k + 1].mean(axis=0) - slow
-        keep = np.exp(-max(t[k] - t[k - 1], 0.0) / EXCURSION_TAU_S)
-        slow = keep * slow + (1 - keep) * D[k]
-    return out

@@ -45,18 +45,6 @@ class Judgement:
             # grows: one that reached its offset and hovers is a regime (module excursion.py)
             if self.new_state and level[j] < WARNING and self._excursion_hovers(level, err):
                 break
-            told = self._told_apart(j, level)
-            if told is not None:
-                u, share = told
-                self._exclude(u, f"drift: its reading and {self.names[j]}'s explain "
-                                 f"{self.names[j]}'s self-prediction error {err[j]:+.2g} °C alike "
-                                 f"(no other sensor predicts {self.names[j]} without it); its rise "
-                                 f"{share[u]:.2g} of its largest in training, "
-                                 f"{self.names[j]}'s {share[j]:.2g}", time, events, by_field=True)
-                self._explains[u] = True
-                self._since[u] = self._count
-                level, err = self._judge()
-                continue
             self._exclude(j, f"drift: self-prediction error {err[j]:+.2g} °C over the last "
                              f"{self.confirm} samples", time, events, by_field=True)
             self._since[j] = self._count
@@ -257,37 +245,6 @@ class Judgement:
             if z[u] > best_z:
                 best, best_z = int(u), float(z[u])
         return best
-
-    def _told_apart(self, j: int, level: np.ndarray) -> tuple[int, np.ndarray] | None:
-        """``(u, each sensor's rise share)``: of a coupled pair, the culprit ``j`` and a sensor
-        ``u`` no other predicts that is ``j``'s only predictor (without it ``j`` is not judged),
-        whose exclusion leaves every other judged sensor within the band, the one whose own reading
-        moves faster against how fast it ever moved in training (:meth:`_rise_shares`); ``None``
-        where that is ``j`` or no such ``u`` is.  Self-prediction sees such a pair as one error, the
-        judged one's (a lathe's drifting coolant took out the healthy turret it alone predicts,
-        mon83b); what tells them apart is the heat behind each, which bounds how fast it moves."""
-        rows = self._hist[self._recent[self._pos, :min(self._count, self.confirm)]]
-        share = self._rise_shares(rows)
-        if share is None:
-            return None
-        band = self.warning_c if self._field_level() == WARNING else self.alarm_c
-        X = np.where(np.isfinite(rows), rows, 0.0)
-        best = None
-        for u in np.flatnonzero(self._active & ~self._observable & (share > share[j])):
-            trial = self._active.copy()
-            trial[u] = False
-            if trial.sum() < self.min_active_:
-                continue
-            M, lev = self._operator(trial)
-            judged = trial & (lev < self.pod.max_leverage)
-            if judged[j]:
-                continue
-            E = (X[:, judged] - X[:, trial] @ M[judged].T) / (1 - lev[judged])
-            if (np.abs(E).min(axis=0) >= band[judged]).any():
-                continue
-            if best is None or share[u] > share[best]:
-                best = int(u)
-        return None if best is None else (best, share)
 
     def _field_level(self) -> int:
         """Band whose crossing excludes a sensor by its self-prediction error: ``exclude_at``

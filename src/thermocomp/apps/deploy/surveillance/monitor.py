@@ -12,7 +12,7 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 
 from ..pod import ThermalPOD, windowed_mean
-from .excursion import Excursion, memory_rises
+from .excursion import Excursion
 from .faults import InstantFaults
 from .judgement import Judgement
 from .readmission import Readmission
@@ -59,9 +59,6 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
     """
 
     new_state, new_state_others = False, 2   # a monitor pickled before them judged as before
-    # each sensor's largest fall / rise against the memory in training (from_training's
-    # ``times``; None: unknown, a coupled pair is not told apart by them: judgement.py)
-    rise_lo_c = rise_hi_c = None
 
     def __setstate__(self, state: dict) -> None:
         self.__dict__.update(state)
@@ -130,10 +127,9 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
     @classmethod
     def from_training(cls, pod: ThermalPOD | None, names: Sequence[str],
                       campaigns: Mapping[str, np.ndarray], learned_bands: bool = False,
-                      times: Mapping[str, np.ndarray] | None = None, **options) -> "SensorMonitor":
+                      **options) -> "SensorMonitor":
         """Fit the POD (when not fitted; ``None``: the default one) and the detectors' limits on
-        training campaigns (absolute readings, (n_samples, n_sensors) per campaign, complete);
-        ``times``: their samples' times (s), for the largest rises against the memory."""
+        training campaigns (absolute readings, (n_samples, n_sensors) per campaign, complete)."""
         arrays = [np.asarray(a, float) for a in campaigns.values()]
         for cid, a in zip(campaigns, arrays):
             if not np.isfinite(a).all():
@@ -171,13 +167,8 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
             floor = factor * spread
             warn, alarm = np.maximum(warn, floor), np.maximum(alarm, 2 * floor)
         options = {**options, "warning_c": warn, "alarm_c": alarm}
-        mon = cls(pod, names, max_step_c=steps.max(0), longest_run=runs, lo_c=lo, hi_c=hi,
-                  first_c=first, **options)
-        if times is not None:
-            rises = np.vstack([memory_rises(a - a[0], np.asarray(times[c], float), mon.confirm)
-                               for c, a in zip(campaigns, arrays)])
-            mon.rise_lo_c, mon.rise_hi_c = rises.min(axis=0), rises.max(axis=0)
-        return mon
+        return cls(pod, names, max_step_c=steps.max(0), longest_run=runs, lo_c=lo, hi_c=hi,
+                   first_c=first, **options)
 
     # -- state ------------------------------------------------------------------------------
     _STATE = ("_ref", "_active", "_state", "_hist", "_err", "_pos", "_count", "_prev",
