@@ -1,0 +1,79 @@
+"""A bridge mill's runs, each two files (stranger83): the temperatures as BenchLink Data Logger
+exports a Keysight 34970A's scans (a header block, ``Scan,Time,101 <AIR> (C),Alarm 101,...``,
+``9/13/2027 6:00:00:013``, readings ``+2.13450000E+01``, an open thermocouple
+``+9.90000000E+37``), the errors as the NC's probing macro logs them (``DATE,TIME,...,dX
+[mm],dZ [mm]``, a row a cycle) (``benchmarks/bench_stranger83.py`` writes the lab's full record;
+these are a few rows of test_stranger68's linear runs)."""
+
+from __future__ import annotations
+
+import datetime as dt
+from pathlib import Path
+
+import numpy as np
+import yaml
+
+from test_stranger68 import ROWS, linear_run
+from thermocomp.core.io import read_dataset
+from thermocomp.shell.cli import main
+
+CHANNELS = ("AIR", "SPINDLE", "BED")
+START = dt.datetime(2027, 9, 13, 6)
+PROBE = 10          # a probing cycle every PROBE scans
+
+
+def _stamp(at: dt.datetime) -> str:
+    return f"{at.month}/{at.day}/{at.year} {at.hour}:{at:%M:%S}"
+
+
+def benchlink(folder: Path, run: int, open_scans: int = 0) -> None:
+    """``MCR_L<run>_daq.csv`` (linear_run's temperatures every 60 s; ``open_scans`` scans of
+    ``SPINDLE`` from scan 41 read ``+9.90000000E+37``) and ``MCR_L<run>_probe.csv`` (its errors,
+    in mm, every PROBE scans, 20 s after the scan)."""
+    folder.mkdir(parents=True, exist_ok=True)
+    values = linear_run(8556, run)
+    start = START + dt.timedelta(days=run - 1)
+    names = ["Scan", "Time"]
+    for ch, name in enumerate(CHANNELS, start=101):
+        names += [f"{ch} <{name}> (C)", f"Alarm {ch}"]
+    lines = [f"Name,MCR run {run}", "Owner,Lab", f"Acquisition Date,{_stamp(start)}",
+             "Instrument,34970A (Serial Number: MY44054321) at GPIB0::9::INSTR",
+             f"Total Sweeps,{ROWS}", f"Total Channels,{len(CHANNELS)}", "", ",".join(names) + ","]
+    for k, v in enumerate(values):
+        at = start + dt.timedelta(seconds=60 * k, milliseconds=k % 7)
+        cells = [str(k + 1), f"{_stamp(at)}:{at.microsecond // 1000:03d}"]
+        for j in range(len(CHANNELS)):
+            broken = j == 1 and 40 <= k < 40 + open_scans
+            cells += [f"{9.9e37 if broken else v[j]:+.8E}", "0"]
+        lines.append(",".join(cells) + ",")
+    (folder / f"MCR_L{run:02d}_daq.csv").write_bytes(("\r\n".join(lines) + "\r\n").encode())
+    probe = ["PROBE LOG", "DATE,TIME,Y [mm],dX [mm],dZ [mm]"]
+    for k in range(0, ROWS, PROBE):
+        at = start + dt.timedelta(seconds=60 * k + 20)
+        probe.append(f"{at:%m/%d/%Y},{at:%H:%M:%S},{300.0 * (k // PROBE % 3):.3f},"
+                     f"{values[k, 3] / 1e3:.6f},{values[k, 4] / 1e3:.6f}")
+    (folder / f"MCR_L{run:02d}_probe.csv").write_bytes(("\r\n".join(probe) + "\r\n").encode())
+
+
+def _init(tmp_path: Path, folder: Path, *keys: str) -> dict:
+    assert main(["init", str(folder), f"out={tmp_path / 'init'}", *keys]) == 0
+    return yaml.safe_load((tmp_path / "init" / "conf" / "data" / f"{folder.name}.yaml").read_text())
+
+
+def test_init_reads_a_probe_logs_date_and_time_columns_as_its_time(tmp_path, capsys):
+    """(Before: init proposed the probe log's ``DATE`` left out, then its own read refused
+    ``TIME`` alone, "value '06:00:20' is not a time in data.time's format".)  The two columns
+    are the error file's time: the runs join on it, every probe row kept."""
+    for run in (1, 2, 3):
+        benchlink(tmp_path / "mcr", run)
+    conf = _init(tmp_path, tmp_path / "mcr")
+    assert "DATE" not in conf["roles"].get("ignore", []), conf
+    assert conf["roles"]["error"] == ["dX", "dZ"] and conf["roles"]["state"] == ["Y"], conf
+    ds, _ = read_dataset(tmp_path / "mcr", {k: v for k, v in conf.items() if k != "defaults"})
+    frame = ds.campaigns["MCR_L02"]
+    assert len(frame) == ROWS // PROBE
+    np.testing.assert_allclose(frame["time"], np.arange(ROWS // PROBE) * 60.0 * PROBE)
+    expected = linear_run(8556, 2)[::PROBE]
+    np.testing.assert_allclose(frame["E_dX"], expected[:, 3], atol=1e-3)
+    np.testing.assert_allclose(frame["T_102_SPINDLE"], expected[:, 1], atol=0.02)
+
