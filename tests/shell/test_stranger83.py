@@ -77,3 +77,17 @@ def test_init_reads_a_probe_logs_date_and_time_columns_as_its_time(tmp_path, cap
     np.testing.assert_allclose(frame["E_dX"], expected[:, 3], atol=1e-3)
     np.testing.assert_allclose(frame["T_102_SPINDLE"], expected[:, 1], atol=0.02)
 
+
+def test_init_reads_a_keysight_overload_as_a_missing_value_and_its_run_as_a_gap(tmp_path, capsys):
+    """(Before: init wrote no key for an open thermocouple's ``+9.90000000E+37``, its read
+    refused it as 9.9e+37 °C; given in ``data.missing_values``, its 3 scans were refused as a gap
+    longer than ``data.max_gap_samples=0``.)"""
+    for run in (1, 2, 3):
+        benchlink(tmp_path / "mcr", run, open_scans=3 * (run == 2))
+    conf = _init(tmp_path, tmp_path / "mcr")
+    assert "a Keysight DAQ's overload" in capsys.readouterr().out
+    assert conf["missing_values"] == ["+9.90000000E+37"] and conf["max_gap_samples"] == 3, conf
+    given = _init(tmp_path, tmp_path / "mcr", "data.missing_values=['9.9E+37']")
+    assert given["missing_values"] == ["9.9E+37"] and given["max_gap_samples"] == 3, given
+    ds, _ = read_dataset(tmp_path / "mcr", {k: v for k, v in conf.items() if k != "defaults"})
+    assert np.abs(ds.campaigns["MCR_L02"]["T_102_SPINDLE"]).max() < 100
