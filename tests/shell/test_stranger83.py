@@ -22,30 +22,32 @@ START = dt.datetime(2027, 9, 13, 6)
 PROBE = 10          # a probing cycle every PROBE scans
 
 
-def _stamp(at: dt.datetime) -> str:
-    return f"{at.month}/{at.day}/{at.year} {at.hour}:{at:%M:%S}"
+def _stamp(at: dt.datetime, german: bool = False) -> str:
+    return f"{at:%d.%m.%Y %H:%M:%S}" if german else f"{at.month}/{at.day}/{at.year} {at.hour}:{at:%M:%S}"
 
 
-def benchlink(folder: Path, run: int, open_scans: int = 0) -> None:
+def benchlink(folder: Path, run: int, open_scans: int = 0, german: bool = False) -> None:
     """``MCR_L<run>_daq.csv`` (linear_run's temperatures every 60 s; ``open_scans`` scans of
     ``SPINDLE`` from scan 41 read ``+9.90000000E+37``) and ``MCR_L<run>_probe.csv`` (its errors,
-    in mm, every PROBE scans, 20 s after the scan)."""
+    in mm, every PROBE scans, 20 s after the scan); ``german``: the DAQ file as a German PC
+    exports it (``;``, decimal commas, ``13.09.2027 06:00:00:000``), the probe log as before."""
     folder.mkdir(parents=True, exist_ok=True)
     values = linear_run(8556, run)
     start = START + dt.timedelta(days=run - 1)
     names = ["Scan", "Time"]
     for ch, name in enumerate(CHANNELS, start=101):
         names += [f"{ch} <{name}> (C)", f"Alarm {ch}"]
-    lines = [f"Name,MCR run {run}", "Owner,Lab", f"Acquisition Date,{_stamp(start)}",
-             "Instrument,34970A (Serial Number: MY44054321) at GPIB0::9::INSTR",
-             f"Total Sweeps,{ROWS}", f"Total Channels,{len(CHANNELS)}", "", ",".join(names) + ","]
+    sep = ";" if german else ","
+    lines = [f"Name{sep}MCR run {run}", f"Owner{sep}Lab", f"Acquisition Date{sep}{_stamp(start, german)}",
+             f"Instrument{sep}34970A (Serial Number: MY44054321) at GPIB0::9::INSTR",
+             f"Total Sweeps{sep}{ROWS}", f"Total Channels{sep}{len(CHANNELS)}", "", sep.join(names) + sep]
     for k, v in enumerate(values):
         at = start + dt.timedelta(seconds=60 * k, milliseconds=k % 7)
-        cells = [str(k + 1), f"{_stamp(at)}:{at.microsecond // 1000:03d}"]
+        cells = [str(k + 1), f"{_stamp(at, german)}:{at.microsecond // 1000:03d}"]
         for j in range(len(CHANNELS)):
             broken = j == 1 and 40 <= k < 40 + open_scans
-            cells += [f"{9.9e37 if broken else v[j]:+.8E}", "0"]
-        lines.append(",".join(cells) + ",")
+            cells += [f"{9.9e37 if broken else v[j]:+.8E}".replace(".", "," if german else "."), "0"]
+        lines.append(sep.join(cells) + sep)
     (folder / f"MCR_L{run:02d}_daq.csv").write_bytes(("\r\n".join(lines) + "\r\n").encode())
     probe = ["PROBE LOG", "DATE,TIME,Y [mm],dX [mm],dZ [mm]"]
     for k in range(0, ROWS, PROBE):
@@ -91,3 +93,18 @@ def test_init_reads_a_keysight_overload_as_a_missing_value_and_its_run_as_a_gap(
     assert given["missing_values"] == ["9.9E+37"] and given["max_gap_samples"] == 3, given
     ds, _ = read_dataset(tmp_path / "mcr", {k: v for k, v in conf.items() if k != "defaults"})
     assert np.abs(ds.campaigns["MCR_L02"]["T_102_SPINDLE"]).max() < 100
+
+
+def test_init_reads_a_german_daq_export_beside_a_probe_log_with_decimal_points(tmp_path):
+    """(Before: a DAQ970A's export on a German PC, ``;`` and ``+2,04390000E+01``, beside the NC's
+    probe log in ``,`` and points, was refused by init, "11 column(s) not read: '102 <SPINDLE>
+    (C)' is not numeric ('+2,04390000E+01')": its second look at the roles, once the probe's
+    ``Y [mm]`` was proposed a state, read the first row with ``decimal: auto``.)"""
+    for run in (1, 2, 3):
+        benchlink(tmp_path / "mcr", run, german=True)
+    conf = _init(tmp_path, tmp_path / "mcr")
+    assert (conf["delimiter"], conf["decimal"]) == ("auto", "auto"), conf
+    ds, _ = read_dataset(tmp_path / "mcr", {k: v for k, v in conf.items() if k != "defaults"})
+    expected = linear_run(8556, 3)[::PROBE]
+    np.testing.assert_allclose(ds.campaigns["MCR_L03"]["T_102_SPINDLE"], expected[:, 1], atol=0.02)
+    np.testing.assert_allclose(ds.campaigns["MCR_L03"]["E_dZ"], expected[:, 4], atol=1e-3)

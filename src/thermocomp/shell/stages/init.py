@@ -403,6 +403,7 @@ def _init(cfg: DictConfig, held: ExitStack) -> dict:
     if grid is not None:     # (a long text's 'value' column: no header of the lab's, stranger80)
         gaps = [(k, n, h if h in plan.names else None) for k, n, h in gaps]
     defaults = OmegaConf.to_container(OmegaConf.load(conf_dir() / "data" / "default.yaml"))
+    decimal = opts.decimal             # the first row's (an error file's cells read so: pairhead)
     if pair is not None and not pair.same_separators:   # each logger's file its own: detected
         opts = replace(opts, delimiter="auto", decimal="auto")
     config = data_config(src, given, opts, roles, defaults, manifest)
@@ -426,8 +427,9 @@ def _init(cfg: DictConfig, held: ExitStack) -> dict:
                                                     if p not in undecided]},
                                 [*flags, *travels], opts)
         roles = ignored(roles, days)
-        plan = naming(header, roles, opts.columns, cells_of_first, opts.decimal,
-                      sample, opts.units)
+        # (stranger83: 'auto' where two loggers' decimal marks differ: a DAQ970A's
+        # '+2,04390000E+01' on a German PC was refused as not numeric)
+        plan = naming(header, roles, opts.columns, cells_of_first, decimal, sample, opts.units)
         config = data_config(src, given, opts, roles, defaults, manifest)
         ds, looked_again = open_source(cfg, detected=config), True   # says what holds of these
     if not looked_again:
