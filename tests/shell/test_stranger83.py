@@ -87,7 +87,10 @@ def test_init_reads_a_keysight_overload_as_a_missing_value_and_its_run_as_a_gap(
     for run in (1, 2, 3):
         benchlink(tmp_path / "mcr", run, open_scans=3 * (run == 2))
     conf = _init(tmp_path, tmp_path / "mcr")
-    assert "a Keysight DAQ's overload" in capsys.readouterr().out
+    said = capsys.readouterr().out
+    assert "a Keysight DAQ's overload" in said
+    # the run's span in the DAQ's scans (60 s), not the probe's joined rows (before: 1800 s)
+    assert "3 samples, 180 s of '102 <SPINDLE> (C)'" in said, said
     assert conf["missing_values"] == ["+9.90000000E+37"] and conf["max_gap_samples"] == 3, conf
     given = _init(tmp_path, tmp_path / "mcr", "data.missing_values=['9.9E+37']")
     assert given["missing_values"] == ["9.9E+37"] and given["max_gap_samples"] == 3, given
