@@ -108,7 +108,11 @@ family p 0.17 > 0.01); but dZ's CV units were single samples ("E_dZ 440 of ~1 (m
 dX / dY's 11 blocks of ~39.  8557: ``S_Y`` accepted on dY (5.22 -> 2.83) and dZ (5.69 -> 0.71),
 dX nothing (0.48).  The planted Y x the crossrail's rise on dY (its rise from 20 °C, not from
 the run's start) not found as a product on either (the rail 0.14 +- 0.52 K from 20 °C over the
-runs: Y x it changes sign).
+runs: Y x it changes sign).  With 8 train campaigns (runs 1-8 and the test run 12 copied into a
+folder, ``data.path`` only; 2.3 + 1.0 and 2.9 + 0.6 s CPU; 8 CV units, smallest p 0.0039):
+8556 dZ ``S_Y`` accepted, 7.35 -> 2.59, dX / dY nothing (0.53, 10.91); 8557 ``S_Y`` on dY (4.65
+-> 1.70) and dZ (with the bed's lag from the initial state: 5.70 -> 3.20), dX nothing (0.37):
+the planted position effect found on both, no target worse.
 
 ``monitor`` (8556's mlr, ``plots=none``; 1.7-2.1 s CPU each) on the healthy last run: 0 events
 (fixed = adaptive = 0.465 / 9.503 / 7.269).  Faults in the last run (fixed / adaptive dX, dY,
