@@ -111,3 +111,26 @@ def test_init_reads_a_german_daq_export_beside_a_probe_log_with_decimal_points(t
     expected = linear_run(8556, 3)[::PROBE]
     np.testing.assert_allclose(ds.campaigns["MCR_L03"]["T_102_SPINDLE"], expected[:, 1], atol=0.02)
     np.testing.assert_allclose(ds.campaigns["MCR_L03"]["E_dZ"], expected[:, 4], atol=1e-3)
+
+
+def test_rows_of_a_runs_daq_file_alone_writes_its_inputs(tmp_path, capsys):
+    """(Before: ``thermocomp rows MCR_L03_daq.csv`` with the folder's data config was refused,
+    "no E_ column: a campaign needs at least one measured error", its errors being in the probe's
+    log: a control's inputs could not be written from the file a DAQ logs.)  Without
+    ``rows.errors`` the file's scans are the rows, every one; with it, still refused."""
+    for run in (1, 2, 3):
+        benchlink(tmp_path / "mcr", run)
+    _init(tmp_path, tmp_path / "mcr")
+    capsys.readouterr()
+    keys = [f"hydra.searchpath=[file://{tmp_path / 'init' / 'conf'}]", "data=mcr"]
+    daq = tmp_path / "mcr" / "MCR_L03_daq.csv"
+    assert main(["rows", str(daq), *keys]) == 0, capsys.readouterr().err
+    lines = capsys.readouterr().out.splitlines()
+    header = lines[0].split(",")
+    assert header[:2] == ["time", "T_amb"] and not any(h.startswith("E_") for h in header)
+    rows = np.array([[float(c) for c in line.split(",")] for line in lines[1:] if line])
+    assert len(rows) == ROWS
+    np.testing.assert_allclose(rows[:, header.index("T_102_SPINDLE")], linear_run(8556, 3)[:, 1],
+                               atol=1e-6)
+    assert main(["rows", str(daq), *keys, "rows.errors=true"]) == 2
+    assert "no E_ column" in capsys.readouterr().err
