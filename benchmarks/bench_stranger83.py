@@ -134,14 +134,23 @@ pack (5 campaigns) passed (largest difference 7.1e-15 µm).  ``thermocomp rows``
 (the error referenced at its first probe, plus the correction) 0.4484642 / 10.014814 / 2.4691596
 µm = run's and replay's 0.448 / 10.015 / 2.469.
 
-Left: ``thermocomp rows MCR_L12_daq.csv`` (the DAQ's file of a new day alone, what a machine's
-logger writes) is refused "no E_ column: a campaign needs at least one measured error", with or
-without ``rows.errors`` (a lone file's partner is not looked for; its folder with
-``rows.campaigns`` streams the joined rows); the model is fitted on the probe's 15 min rows and
-a control would feed it the DAQ's 60 s ones; init's warning that ``MOTOR`` looks like a count
-(22-35 % of its steps 1 K or more: judged on the joined 15 min rows, not the DAQ's scans);
-``SPHERE`` proposed a temperature; dY on 8556 (auto no correction, worse than mlr); the
-diagnose's single-sample CV units on 8556's dZ; the hydraulic oil's drift unseen.
+``thermocomp rows MCR_L12_daq.csv`` (the DAQ's file of a day alone, what a control is fed) was
+refused "no E_ column: a campaign needs at least one measured error", with or without
+``rows.errors``; mended (test in tests/shell/test_stranger83.py): without ``rows.errors`` its 600
+scans (1.2 + 0.2 s CPU).  Through the champion's ``./stream``: exit 2, "lacks input column S_Y
+(the lab's header 'Y [mm]')" (the sphere's Y is in the probe's log: a control feeds its axis);
+through mlr's C (temperatures only): exit 0, at the scan after each probe 0.447 / 11.428 / 7.198
+µm against the joined rows' 0.465 / 9.503 / 7.269 (mlr's dY correction moves by 1.34 µm
+(median), up to 8.0 µm, from one 60 s scan to the next, its first three -1.25, 2.80, 0.25 µm:
+fitted on the probe's 15 min rows of interpolated temperatures, it is scored on smoother inputs
+than a control feeds it).
+
+Left: the model fitted and scored on the probe's 15 min rows, fed the DAQ's 60 s scans by a
+control (above: mlr dY 9.503 scored, 11.428 so fed); init's warning that ``MOTOR`` looks like a
+count (22-35 % of its steps 1 K or more: judged on the joined 15 min rows, not the DAQ's scans);
+``SPHERE`` proposed a temperature; dY on 8556 (auto no correction, worse than mlr); diagnose's
+single-sample CV units on 8556's dZ (11 train campaigns); the hydraulic oil's drift unseen; the
+planted Y x rail rise (from 20 °C) on dY not found as a product.
 """
 from __future__ import annotations
 
