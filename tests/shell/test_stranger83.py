@@ -17,7 +17,7 @@ from test_stranger68 import ROWS, linear_run
 from thermocomp.core.io import read_dataset
 from thermocomp.shell.cli import main
 
-CHANNELS = ("AIR", "SPINDLE", "BED")
+CHANNELS = ("AIR", "SPINDLE", "BED", "MOTOR")   # the motor warming 0.15 K a scan
 START = dt.datetime(2027, 9, 13, 6)
 PROBE = 10          # a probing cycle every PROBE scans
 
@@ -33,6 +33,7 @@ def benchlink(folder: Path, run: int, open_scans: int = 0, german: bool = False)
     exports it (``;``, decimal commas, ``13.09.2027 06:00:00:000``), the probe log as before."""
     folder.mkdir(parents=True, exist_ok=True)
     values = linear_run(8556, run)
+    temps = np.column_stack([values[:, :3], 20 + 0.15 * np.arange(ROWS)])
     start = START + dt.timedelta(days=run - 1)
     names = ["Scan", "Time"]
     for ch, name in enumerate(CHANNELS, start=101):
@@ -46,7 +47,8 @@ def benchlink(folder: Path, run: int, open_scans: int = 0, german: bool = False)
         cells = [str(k + 1), f"{_stamp(at, german)}:{at.microsecond // 1000:03d}"]
         for j in range(len(CHANNELS)):
             broken = j == 1 and 40 <= k < 40 + open_scans
-            cells += [f"{9.9e37 if broken else v[j]:+.8E}".replace(".", "," if german else "."), "0"]
+            reading = 9.9e37 if broken else temps[k, j]
+            cells += [f"{reading:+.8E}".replace(".", "," if german else "."), "0"]
         lines.append(sep.join(cells) + sep)
     (folder / f"MCR_L{run:02d}_daq.csv").write_bytes(("\r\n".join(lines) + "\r\n").encode())
     probe = ["PROBE LOG", "DATE,TIME,Y [mm],dX [mm],dZ [mm]"]
@@ -134,3 +136,21 @@ def test_rows_of_a_runs_daq_file_alone_writes_its_inputs(tmp_path, capsys):
                                atol=1e-6)
     assert main(["rows", str(daq), *keys, "rows.errors=true"]) == 2
     assert "no E_ column" in capsys.readouterr().err
+
+
+def test_init_judges_a_daq_channel_on_its_own_scans_not_the_probes_rows(tmp_path, capsys):
+    """(Before: a motor warming 0.15 K a scan, 1.5 K between two probe rows, was said to be "a
+    number, a count or an index (a state)?": its steps judged on the joined rows.)  A column of
+    the probe's log stepping by 1 (a sphere's number) is still warned."""
+    for run in (1, 2, 3):
+        benchlink(tmp_path / "mcr", run)
+        probe = tmp_path / "mcr" / f"MCR_L{run:02d}_probe.csv"
+        lines = probe.read_text().splitlines()
+        lines[1] = lines[1].replace("DATE,TIME,", "DATE,TIME,SPHERE,")
+        lines[2:] = [line.replace(",", f",{k % 3 + 1},", 2).replace(f",{k % 3 + 1},", ",", 1)
+                     for k, line in enumerate(lines[2:])]
+        probe.write_text("\r\n".join(lines) + "\r\n")
+    _init(tmp_path, tmp_path / "mcr")
+    said = capsys.readouterr().out
+    assert "'104 <MOTOR> (C)' is proposed as a temperature" not in said, said
+    assert "'SPHERE' is proposed as a temperature, but 100% of its steps" in said, said

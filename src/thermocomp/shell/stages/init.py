@@ -185,6 +185,19 @@ def temperature_period(report: dict, headers: list) -> dict:
     return dict.fromkeys(headers, median(periods)) if periods else {}
 
 
+def temperature_scans(src, config: dict, report: dict) -> dict:
+    """``{contract name: [its samples per run]}`` of the temperature files of a record's runs of
+    two loggers, each read alone with ``config`` (its own scans, its gaps kept)."""
+    opts = replace(io.ReadOptions.from_cfg(config), half=True, missing="keep")
+    out: dict = {}
+    for entry in report["campaigns"].values():
+        if entry.get("paired"):
+            table, _ = io.read_campaign(src / entry["paired"]["temperatures"], opts)
+            for name in table.column_names[1:]:
+                out.setdefault(name, []).append(table.column(name).to_numpy(zero_copy_only=False))
+    return out
+
+
 def gaps_said(src, pending: list, period: float, periods: dict | None = None) -> None:
     """Say :func:`mark_gaps`' keys, each run's samples with the time they span (``period``: the
     record's sample period, s; ``periods``: a header's own, where its file's differs)."""
@@ -494,5 +507,7 @@ def _init(cfg: DictConfig, held: ExitStack) -> dict:
     period = median_step([df[TIME].to_numpy(float) for df in ds.campaigns.values()]) or float("nan")
     # (stranger83: a DAQ file's 3 scans of 60 s were said to span 2700 s, the probe's 900 s rows)
     gaps_said(src, gaps, period, temperature_period(report, own_header) if pair else {})
-    print("\n".join(detection_lines(layout, opts, header, plan, ds, report, period, path, name)))
+    scans = temperature_scans(src, config, report) if pair else None
+    print("\n".join(detection_lines(layout, opts, header, plan, ds, report, period, path, name,
+                                     scans)))
     return {"config": str(path), "columns": plan.names}
