@@ -52,28 +52,28 @@ tracked sweep, ``promote``, C ``export`` with its check pack, the test run's ``t
 through ``./stream`` = run; CPU (user + sys) of each command.  No rule is adopted from these
 records: they are a check, not a tuning set.
 
-Measured 2026-12-04, seed 8556 (``us``; ``write`` 0.9 s CPU, 24 files, 7,200 scans, 480 probe
-rows) and the fresh draw 8557 (``de``), on 2 cores shared by six sessions.
-``init`` before stranger83 (at b79207b5) refused both folders at the first try: "file
-.../MCR_L01_probe.csv, column 'time', line 3 (data row 1): value '06:00:41' is not a time in
-data.time's format '%m/%d/%Y %H:%M:%S' (its header in the file: 'TIME')" (the probe log's
-``DATE`` proposed as left out, ``TIME`` alone taken for the time).  Mended (each with a test in
-tests/shell/test_stranger83.py that fails on main): the error file's date and time-of-day
-columns are its time (pairhead.py); an open thermocouple's ``+9.90000000E+37`` written into
-``data.missing_values`` and its 3 scans counted as a gap (cells.py: before, no key, then with the
-key given by hand "gap of 3 missing values (rows 251-253) is longer than
-data.max_gap_samples=0"); a German DAQ970A export (``;``, ``+2,04390000E+01``) beside the probe
+Measured 2026-12-04, seed 8556 (``us``; ``write`` 0.9 s CPU, 24 files, 7,200 scans, 480 probe rows)
+and the fresh draw 8557 (``de``), on 2 cores shared by six sessions. ``init`` before stranger83 (at
+b79207b5) refused both folders at the first try: "file .../MCR_L01_probe.csv, column 'time', line 3
+(data row 1): value '06:00:41' is not a time in data.time's format '%m/%d/%Y %H:%M:%S' (its header
+in the file: 'TIME')" (the probe log's ``DATE`` proposed as left out, ``TIME`` alone taken for the
+time). Mended (each with a test in tests/shell/test_stranger83.py that fails on main): the error
+file's date and time-of-day columns are its time (pairhead.py); an open thermocouple's
+``+9.90000000E+37`` written into ``data.missing_values`` and its 3 scans counted as a gap (cells.py:
+before, no key, then with the key given by hand "gap of 3 missing values (rows 251-253) is longer
+than data.max_gap_samples=0"); a German DAQ970A export (``;``, ``+2,04390000E+01``) beside the probe
 log's points: "11 column(s) not read: '103 <BED> (C)' is not numeric ('+1,97880000E+01')" (the
 roles' second look read with ``decimal: auto``) -> read; the gap said as "3 samples, 180 s" (was
-"2700 s", the probe's 900 s rows).  Now ``init`` with no key writes both configs (2.4 + 0.2 s and
-2.8 + 0.4 s CPU): dX / dY / dZ errors (mm -> µm), ``Y [mm]`` a state (its 2400 mm span), the
-spindle's RPM a state, ``AIR`` / ``AIR_GATE`` ambient, ``missing_values: ['+9.90000000E+37']``
-(8557: ``+9,90000000E+37``), ``max_gap_samples: 3``, 8556 ``time: '%m/%d/%Y %H:%M:%S'`` (8557's
-dotted day-first dates, the ms after a colon, read with no key), the 12 runs as pairs (40 rows
-each, the probe's times, temperatures interpolated onto them), the last held out.  It proposes
-the probe log's ``SPHERE`` (1 / 2 / 3, no unit) a temperature, warning "100% of its steps ...
-are 1 K or more: a number, a count or an index"; the stranger's second try follows it,
-``data.roles.ignore=[SPHERE]``: 2 tries each.
+"2700 s", the probe's 900 s rows); the ``MOTOR`` channel (warming faster than 1 K per 15 min) no
+longer said to be "a number, a count or an index" (judged on the DAQ's own scans). Now ``init`` with
+no key writes both configs (2.4 + 0.3 s and 3.3 + 0.2 s CPU): dX / dY / dZ errors (mm -> µm),
+``Y [mm]`` a state (its 2400 mm span), the spindle's RPM a state, ``AIR`` / ``AIR_GATE`` ambient,
+``missing_values: ['+9.90000000E+37']`` (8557: ``+9,90000000E+37``), ``max_gap_samples: 3``, 8556
+``time: '%m/%d/%Y %H:%M:%S'`` (8557's dotted day-first dates, the ms after a colon, read with no
+key), the 12 runs as pairs (40 rows each, the probe's times, temperatures interpolated onto them),
+the last held out. It proposes the probe log's ``SPHERE`` (1 / 2 / 3, no unit) a temperature,
+warning "100% of its steps ... are 1 K or more: a number, a count or an index"; the stranger's
+second try follows it, ``data.roles.ignore=[SPHERE]``: 2 tries each.
 
 ``matrix`` (test RMSE dX / dY / dZ µm over the 40 probed rows of the last run; uncompensated,
 referenced at the first probe, 8556 0.981 / 10.015 / 11.814, 8557 2.510 / 7.154 / 21.372):
@@ -145,12 +145,11 @@ through mlr's C (temperatures only): exit 0, at the scan after each probe 0.447 
 fitted on the probe's 15 min rows of interpolated temperatures, it is scored on smoother inputs
 than a control feeds it).
 
-Left: the model fitted and scored on the probe's 15 min rows, fed the DAQ's 60 s scans by a
-control (above: mlr dY 9.503 scored, 11.428 so fed); init's warning that ``MOTOR`` looks like a
-count (22-35 % of its steps 1 K or more: judged on the joined 15 min rows, not the DAQ's scans);
-``SPHERE`` proposed a temperature; dY on 8556 (auto no correction, worse than mlr); diagnose's
-single-sample CV units on 8556's dZ (11 train campaigns); the hydraulic oil's drift unseen; the
-planted Y x rail rise (from 20 °C) on dY not found as a product.
+Left: the model fitted and scored on the probe's 15 min rows, fed the DAQ's 60 s scans by a control
+(above: mlr dY 9.503 scored, 11.428 so fed); ``SPHERE`` proposed a temperature (warned); dY on 8556
+(auto no correction, worse than mlr); diagnose's single-sample CV units on 8556's dZ (11 train
+campaigns); the hydraulic oil's drift unseen; the planted Y x rail rise (from 20 °C) on dY not found
+as a product.
 """
 from __future__ import annotations
 
