@@ -3,6 +3,7 @@ DAQ970A (BenchLink Data Logger CSV) and its NC's probe log (stranger83).
 
     PYTHONPATH=$PWD/src .venv/bin/python benchmarks/bench_stranger83.py write ROOT SEED [LOCALE]
     PYTHONPATH=$PWD/src .venv/bin/python benchmarks/bench_stranger83.py faults ROOT SEED
+    PYTHONPATH=$PWD/src .venv/bin/python benchmarks/bench_stranger83.py broken ROOT SEED
     PYTHONPATH=$PWD/src .venv/bin/python benchmarks/bench_stranger83.py matrix ROOT SEED CONF
 
 The machine is ``benchmarks/bridge83.py`` (a double-column machining centre, its own lumped
@@ -43,6 +44,11 @@ NOT checked against a file a real unit wrote.
 ``drift`` (``HYD_OIL`` +1 K/h from row 240), ``dropout`` (90 scans of ``SADDLE`` open,
 ``+9.90000000E+37``, from row 400).
 
+``broken``: ``ROOT/broken_<kind>_<SEED>/``, runs 1-4 (``us``) with one file spoiled: ``cut`` (the
+DAQ file of run 3 cut 150 bytes before its end, inside its last scan, as a logger stopped while
+writing leaves it), ``cell`` (run 2's ``TABLE`` reading on its 192nd scan ``+2.1#0000E+01``),
+``probecut`` (run 4's probe log cut inside its last cycle).
+
 ``matrix``: bench_stranger75's (run -> replay per family on the data config init wrote).
 
 What is measured (written before anything ran): ``init`` as a stranger types it (tries, each
@@ -74,6 +80,14 @@ key), the 12 runs as pairs (40 rows each, the probe's times, temperatures interp
 the last held out. It proposes the probe log's ``SPHERE`` (1 / 2 / 3, no unit) a temperature,
 warning "100% of its steps ... are 1 K or more: a number, a count or an index"; the stranger's
 second try follows it, ``data.roles.ignore=[SPHERE]``: 2 tries each.
+
+``broken`` (8556; ``init`` and ``run model=mlr`` alike, exit 2, 1.6-2.0 s CPU): ``cut`` "file
+.../MCR_L03_daq.csv, line 609 (data row 600): the file's last line holds 13 of its 31 fields: cut
+off while it was written (the logger stopped?); its cells are not read as they are, delete that
+line"; ``cell`` "file .../MCR_L02_daq.csv, column 'T_104_TABLE', line 201 (data row 192): value
+'+2.1#0000E+01' is not a number (its header in the file: '104 <TABLE> (C)')"; ``probecut`` "file
+.../MCR_L04_probe.csv, line 42 (data row 40): the file's last line holds 4 of its 7 fields: cut
+off ...": each names its file, line and row (and column), nothing to mend.
 
 ``matrix`` (test RMSE dX / dY / dZ µm over the 40 probed rows of the last run; uncompensated,
 referenced at the first probe, 8556 0.981 / 10.015 / 11.814, 8557 2.510 / 7.154 / 21.372):
@@ -269,9 +283,31 @@ def faults(root: str, seed: str) -> None:
                   lambda folder, fault: _write_all(folder, r, runs_, "us", fault))
 
 
+def broken(root: str, seed: str) -> None:
+    """``ROOT/broken_<kind>_<SEED>/``: runs 1-4 with one file spoiled (docstring)."""
+    r, runs_ = runs(int(seed))
+    for kind in ("cut", "cell", "probecut"):
+        folder = Path(root) / f"broken_{kind}_{seed}"
+        _write_all(folder, r, runs_[:4])
+        if kind == "cut":
+            path = folder / "MCR_L03_daq.csv"
+            path.write_bytes(path.read_bytes()[:-150])
+        elif kind == "cell":
+            path = folder / "MCR_L02_daq.csv"
+            lines = path.read_bytes().decode().split("\r\n")
+            cells = lines[200].split(",")
+            cells[8] = "+2.1#0000E+01"          # 104 <TABLE>, its 192nd scan
+            lines[200] = ",".join(cells)
+            path.write_bytes("\r\n".join(lines).encode())
+        else:
+            path = folder / "MCR_L04_probe.csv"
+            path.write_bytes(path.read_bytes()[:-25])
+        print(f"wrote {folder}")
+
+
 def main(argv: list[str]) -> int:
-    return run_commands(__doc__, {"write": write, "faults": faults, "matrix": matrix}, argv,
-                        cpu=sys.stderr)
+    return run_commands(__doc__, {"write": write, "faults": faults, "broken": broken,
+                                  "matrix": matrix}, argv, cpu=sys.stderr)
 
 
 if __name__ == "__main__":
