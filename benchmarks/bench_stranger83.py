@@ -129,7 +129,8 @@ folder, ``data.path`` only; 2.3 + 1.0 and 2.9 + 0.6 s CPU; 8 CV units, smallest 
 the planted position effect found on both, no target worse.
 
 ``monitor`` (8556's mlr, ``plots=none``; 1.7-2.1 s CPU each) on the healthy last run: 0 events
-(fixed = adaptive = 0.465 / 9.503 / 7.269).  Faults in the last run (fixed / adaptive dX, dY,
+(fixed = adaptive = 0.465 / 9.503 / 7.269); with auto (4.2 + 0.8 s): 0 events (0.448 / 10.015 /
+2.469).  Faults in the last run (fixed / adaptive dX, dY,
 dZ): ``RAM`` frozen at 5.0 h: excluded at 7.75 h (1.082 / 0.441, 9.296 / 9.481, 7.356 / 7.340);
 ``COL_R`` +2 K at 5.5 h: excluded at 5.50 h (1.117 / 0.472, 16.029 / 9.487, 15.058 / 7.270); 90
 open scans of ``SADDLE`` from 6.67 h: excluded at 6.75 h (0.363 / 0.505, 9.379 / 9.503, 7.139 /
@@ -163,7 +164,9 @@ Left: the model fitted and scored on the probe's 15 min rows, fed the DAQ's 60 s
 (above: mlr dY 9.503 scored, 11.428 so fed); ``SPHERE`` proposed a temperature (warned); dY on 8556
 (auto no correction, worse than mlr); diagnose's single-sample CV units on 8556's dZ (11 train
 campaigns); the hydraulic oil's drift unseen; the planted Y x rail rise (from 20 °C) on dY not found
-as a product.
+as a product; a ``Sweep #`` column in place of ``Scan`` (if BenchVue writes one: not known
+here) is read as a temperature and refused, "column 'T_Sweep', line 210 (data row 201): 201 °C
+is above data.kelvin_threshold_c=200" (channels without a label, ``101 (C)``, are read).
 """
 from __future__ import annotations
 
