@@ -116,7 +116,8 @@ columns' difference, which needs Y).
 
 ``diagnose`` (MLR, defaults, ``plots=none``; 2.8 + 0.8 and 3.0 + 0.4 s CPU): 8556 dZ ``S_Y``
 accepted (the sphere's Y, the crossrail's tilt: the right column 0.62 +- 0.11 K above the left
-over the runs, so Y x their difference is mostly Y): test 7.27 -> 2.57 µm (CV 5.58 -> 1.41), dX
+over the runs, so Y x their difference is mostly Y): test 7.27 -> 2.57 µm (CV 5.58 -> 1.41; its
+printed rerun, ``run experiment=diagnosed``, 0.465 / 9.503 / 2.570, its replay the same), dX
 / dY nothing (0.47, 9.50: never worse; dY's best candidate an ambient step, CV gain 27.8 %,
 family p 0.17 > 0.01); but dZ's CV units were single samples ("E_dZ 440 of ~1 (min p 5e-05)"),
 dX / dY's 11 blocks of ~39.  8557: ``S_Y`` accepted on dY (5.22 -> 2.83) and dZ (5.69 -> 0.71),
