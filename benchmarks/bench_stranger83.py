@@ -60,11 +60,14 @@ records: they are a check, not a tuning set.
 
 Measured 2026-12-04, seed 8556 (``us``; ``write`` 0.9 s CPU, 24 files, 7,200 scans, 480 probe rows)
 and the fresh draw 8557 (``de``), on 2 cores shared by six sessions. ``init`` before stranger83 (at
-b79207b5) refused both folders at the first try: "file .../MCR_L01_probe.csv, column 'time', line 3
-(data row 1): value '06:00:41' is not a time in data.time's format '%m/%d/%Y %H:%M:%S' (its header
-in the file: 'TIME')" (the probe log's ``DATE`` proposed as left out, ``TIME`` alone taken for the
-time). Mended (each with a test in tests/shell/test_stranger83.py that fails on main): the error
-file's date and time-of-day columns are its time (pairhead.py); an open thermocouple's
+b79207b5) refused both folders at the first try: 8556 "file .../MCR_L01_probe.csv, column 'time',
+line 3 (data row 1): value '06:00:41' is not a time in data.time's format '%m/%d/%Y %H:%M:%S' (its
+header in the file: 'TIME')" (the probe log's ``DATE`` proposed as left out, ``TIME`` alone taken
+for the time); 8557 "file .../MCR_L01_probe.csv, column 'TIME': its time 'TIME' ('06:00:41') is
+h:mm:ss, a logger's time since its start, and MCR_L01_daq.csv's 'Time' timestamps ('13.09.2027
+06:00:00:011'): ... export both files with timestamps" (the probe log has them, in two columns).
+Mended (each with a test in tests/shell/test_stranger83.py that fails on main): the error file's
+date and time-of-day columns are its time (pairhead.py); an open thermocouple's
 ``+9.90000000E+37`` written into ``data.missing_values`` and its 3 scans counted as a gap (cells.py:
 before, no key, then with the key given by hand "gap of 3 missing values (rows 251-253) is longer
 than data.max_gap_samples=0"); a German DAQ970A export (``;``, ``+2,04390000E+01``) beside the probe
