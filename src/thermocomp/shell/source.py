@@ -50,14 +50,15 @@ def calibrate_settings(cfg: DictConfig) -> dict:
 
 def open_source(cfg: DictConfig, *, stream: bool = False, ingested: bool = False,
                 volumetric: bool | None = None, campaigns=None, digest: str | None = None,
-                detected: dict | None = None) -> io.Dataset:
+                detected: dict | None = None, needs_errors: bool = True) -> io.Dataset:
     """``data.path`` as a batch (``stream=False``) or a stream sees it, ``data.reference``
     resolved on it; a volumetric folder calibrated into its parameter series (``calibrate.*``
     checked by ``check_config``).  ``volumetric=True``: only a volumetric folder (``calibrate``;
     another is refused naming the missing set-up).  ``ingested=True``: ``data.interim`` as
     ``ingest`` wrote it from this source (the DVC stages after it: :func:`load_ingested`).
     ``campaigns``: only those (a fleet's group; ``digest``: the folder's, digested once).
-    ``detected``: read with this data config instead (``init``: what it detected), as it is."""
+    ``detected``: read with this data config instead (``init``: what it detected), as it is.
+    ``needs_errors``: False, a file without an error column read too (``rows``)."""
     if ingested:
         return load_ingested(cfg)
     root = resolve(cfg.data.path)
@@ -82,7 +83,7 @@ def open_source(cfg: DictConfig, *, stream: bool = False, ingested: bool = False
             ds = open_volumetric(root, data_options(cfg), calibrate_settings(cfg))
     else:
         ds = open_dataset(root, data_options(cfg), stream=stream, campaigns=campaigns,
-                          digest=digest)
+                          digest=digest, needs_errors=needs_errors)
         said_misread(cfg, ds)
     resolve_reference(cfg, ds)
     return ds

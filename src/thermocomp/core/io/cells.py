@@ -23,6 +23,9 @@ out as the reader leaves it out, :mod:`.again`):
 - a mark: a cell's text in a number column that is no number and either holds no digit
   (``---``, ``n/a``, ``#N/A``) or is a formula's error (``Err:502``, ``#DIV/0!``); the text
   the reader reads as missing already (``NaN``, empty) is no mark to list but a missing value;
+  a number cell is one where its value is a Keysight DAQ's overload ``+9.90000000E+37`` (an
+  open thermocouple on a 34970A / DAQ970A; stranger83) or a mark given by value
+  (``data.missing_values``), its runs a gap as a mark's;
 - its gap: the longest run of missing cells in a number column (empty, a mark, a NaN written
   out as a Campbell Scientific logger's ``NAN``: lab74; empty cells alone too: stranger74, a
   row empty in every column left out as the reader leaves it), inside the file
@@ -38,6 +41,7 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
+import pandas as pd
 import pyarrow as pa
 import pyarrow.compute as pc
 import pyarrow.csv as pacsv
@@ -47,7 +51,7 @@ from .contract import ContractError
 from .encoding import arrow_encoding
 from .footer import footer, source
 from .layout import header_line
-from .marks import AMERIFLUX, INFINITE, value_of
+from .marks import AMERIFLUX, INFINITE, value_of, values
 from .roles import named_as_time
 from .separators import GROUP_MARKS, NO_BREAK_SPACES, UNICODE_MINUS, grouped
 from .sniff import head_lines
@@ -58,6 +62,7 @@ NUMBER_SHARE = 0.5       # a number column: at least this share of its non-empty
 AMERIFLUX_TIME = "timestamp_start"      # the header that says an AmeriFlux table
 _NINES = r"^-9999(?:[.,]0*)?$"          # AmeriFlux's -9999, as a program writes it
 _INFINITE = rf"^\s*(?i:{INFINITE.pattern})\s*$"    # INF, -INF, Infinity (lab75: missing as read)
+KEYSIGHT_OVERLOAD = 9.9e37   # a Keysight 34970A / DAQ970A's reading of an overload, an open input
 
 
 @dataclass
@@ -244,6 +249,18 @@ def scanned(files: list[Path], delimiter: str, decimal: str, encoding: str,
     return found
 
 
+def _valued(c: _Column, decimal: str, given: list) -> np.ndarray:
+    """The number cells of ``c`` whose value is a mark's: a Keysight DAQ's overload, or a
+    number ``given`` in ``data.missing_values`` (matched by value, as the reader matches it)."""
+    text = np.asarray(c.text.to_pylist(), dtype=object)[c.plain]
+    found = np.zeros(c.plain.size, dtype=bool)
+    if text.size:
+        read = pd.to_numeric(pd.Series(text, dtype=str).str.replace(decimal, ".", regex=False),
+                             errors="coerce").to_numpy()
+        found[c.plain] = np.isin(read, [KEYSIGHT_OVERLOAD, *values(given)])
+    return found
+
+
 def _thousands(numbers: list[_Column], decimal: str, said: list) -> str | None:
     d = re.escape(decimal)
     # the decimal mark shown as one: with other than three digits after it (21,35)
@@ -344,11 +361,16 @@ def _marks(numbers: list[_Column], decimal: str, found: Cells, given: list) -> N
             nines[:] = False
         if nines.any():
             marks[AMERIFLUX] = int(nines.sum())
+        # (stranger83: an open thermocouple's +9.90000000E+37 on a Keysight DAQ was refused by
+        # the read, and given in data.missing_values its 3 scans refused as a gap)
+        valued = _valued(c, decimal, given)
+        if valued.any() and value_of(c.first(valued)) not in values(given):
+            marks[c.first(valued)] = marks.get(c.first(valued), 0) + int(valued.sum())
         for mark, n in marks.items():
             found.marks.setdefault(mark, {})
             found.marks[mark][c.header] = found.marks[mark].get(c.header, 0) + n
-        marked = written | infinite | nines | pc.is_in(c.text, value_set=pa.array(list(marks), pa.string())
-                                            ).to_numpy(zero_copy_only=False)
+        marked = valued | written | infinite | nines | pc.is_in(
+            c.text, value_set=pa.array(list(marks), pa.string())).to_numpy(zero_copy_only=False)
         # a run of empty cells is a gap as a mark's is (stranger74: an hour of a sensor's
         # cells left empty, refused by the config init wrote); a row empty in every column is
         # none: the reader leaves it out, as a blank line
@@ -372,7 +394,9 @@ def _marks(numbers: list[_Column], decimal: str, found: Cells, given: list) -> N
                           f"{', ...' if len(where) > 4 else ''}: "
                           + ("AmeriFlux's mark, in an AmeriFlux table (its TIMESTAMP_START)"
                              if mark == AMERIFLUX else "no number, a formula's error"
-                             if EXCEL_ERROR.fullmatch(mark) else "no number, no digit")
+                             if EXCEL_ERROR.fullmatch(mark) else "a Keysight DAQ's overload (an "
+                             "open input)" if value_of(mark) == KEYSIGHT_OVERLOAD
+                             else "no number, no digit")
                           + ": a mark for a value not measured, read as missing "
                           "(data.missing_values)")
     if nines_said and not any(value_of(m) == -9999.0 for m in given):

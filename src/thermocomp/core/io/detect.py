@@ -643,9 +643,10 @@ def _periods(ds) -> str:
 
 
 def detection_lines(layout: str, opts, header, plan, ds, report, period_s: float, path: Path,
-                    name: str) -> list[str]:
+                    name: str, scans: dict | None = None) -> list[str]:
     """What ``thermocomp init`` prints: separators, time, sample period, each column's role
-    and contract name, the campaigns, and the command to run next."""
+    and contract name, the campaigns, and the command to run next (``scans``: as
+    :func:`jumpy_temperatures` takes them)."""
     times = [h for h, n in plan.names.items() if n in ("time", CLOCK)]
     # timestamps: the first as read, so that a day read as the month shows
     origin = report["campaigns"][ds.ids()[0]].get("time_origin")
@@ -683,7 +684,7 @@ def detection_lines(layout: str, opts, header, plan, ds, report, period_s: float
     nxt = f"next: thermocomp run 'hydra.searchpath=[file://{path.parent.parent}]' data={name}"
     if groups:
         nxt += f" (or with data.group_by={next(iter(groups))}: one model per value)"
-    return lines + [f"data config written to {path}", *said, *jumpy_temperatures(plan, ds), nxt]
+    return lines + [f"data config written to {path}", *said, *jumpy_temperatures(plan, ds, scans), nxt]
 
 
 # a healthy sensor's steps are hundredths of a kelvin, a motor's warm-up a few tenths a minute:
@@ -691,17 +692,21 @@ def detection_lines(layout: str, opts, header, plan, ds, report, period_s: float
 JUMPY_K, JUMPY_SHARE = 1.0, 0.1
 
 
-def jumpy_temperatures(plan, ds) -> list[str]:
+def jumpy_temperatures(plan, ds, scans: dict | None = None) -> list[str]:
     """A warning for each column proposed as a temperature a tenth of whose steps from a sample
     to the next (:data:`JUMPY_SHARE`) are :data:`JUMPY_K` or more: no mass's temperature moves
     so (a gateway's spindle number 1-6 under ``probe.spindle``, a count, a code, read as °C:
-    silent before)."""
+    silent before).  ``scans``: contract name -> its own file's samples per run, where the
+    record's rows are another file's (two loggers: a DAQ's columns judged on its 60 s scans, not
+    on the probe's 15 min rows they are interpolated onto: stranger83's motor was said to be a
+    count)."""
     out = []
     for header, name in plan.names.items():
         if plan.roles.get(header) != "temperature":
             continue
-        steps = [np.abs(np.diff(df[name].to_numpy(float))) for df in ds.campaigns.values()
-                 if name in df]
+        own = (scans or {}).get(name)
+        steps = [np.abs(np.diff(np.asarray(v, dtype=float))) for v in own] if own else [
+            np.abs(np.diff(df[name].to_numpy(float))) for df in ds.campaigns.values() if name in df]
         steps = np.concatenate(steps) if steps else np.array([])
         finite = steps[np.isfinite(steps)]
         share = float(np.mean(finite >= JUMPY_K)) if finite.size else 0.0

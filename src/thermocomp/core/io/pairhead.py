@@ -16,7 +16,7 @@ import pandas as pd
 from .contract import ContractError
 from .loggers import named_error_file, partner
 from .manifest import campaign_files
-from .roles import named_as_time
+from .roles import date_and_time_of_day, named_as_time
 from .separators import reads_as_number
 from .timestamps import ELAPSED, looks_like_timestamp, maybe_elapsed
 
@@ -53,9 +53,12 @@ def paired_head(sample: Path, cid: str, manifest: pd.DataFrame, opts,
     t_opts, header, first, layout = head(sample, opts)
     e_opts, e_header, e_first, e_layout = head(errors, opts)
     cells = dict(zip(e_header, e_first))
-    error_time = None
+    # (stranger83: an NC's probe log's DATE and TIME: the date was proposed as left out, its
+    # time of day alone then refused as the run's time)
+    clock = date_and_time_of_day(e_header, cells)
+    error_time = (clock[0], " ".join(str(cells[h]) for h in clock)) if clock else None
     for h in e_header:
-        if h in header or named_as_time(h) or looks_like_timestamp(cells.get(h)):
+        if h in header or h in clock or named_as_time(h) or looks_like_timestamp(cells.get(h)):
             if error_time is None and h not in header:
                 error_time = (h, str(cells.get(h) or ""))
             continue       # (its time: the run's rows are put on the temperature file's clock)

@@ -459,7 +459,8 @@ def _to_frame(table: pa.Table) -> pd.DataFrame:
 
 
 def read_dataset(path: str | Path, cfg: Mapping | None = None, *, missing: str = "repair",
-                 campaigns: Sequence[str] | None = None) -> tuple[Dataset, dict]:
+                 campaigns: Sequence[str] | None = None, needs_errors: bool = True
+                 ) -> tuple[Dataset, dict]:
     """Read, validate and repair a dataset folder.
 
     Parameters
@@ -515,6 +516,9 @@ def read_dataset(path: str | Path, cfg: Mapping | None = None, *, missing: str =
         ``missing``, for a stage that must see the data as it was recorded;
         ``'keep_errors'`` does so for the ``E_`` columns only (a volumetric
         dataset's distances not measured) and repairs the others.
+    needs_errors : bool, default True
+        Not a config key: False reads a file without an ``E_`` column too (``thermocomp rows``
+        of the inputs a control is fed: a run's DAQ file whose errors another logger holds).
 
     Returns
     -------
@@ -550,7 +554,7 @@ def read_dataset(path: str | Path, cfg: Mapping | None = None, *, missing: str =
     are interpolated and edges trimmed only up to the configured limits, and
     every repair is counted.
     """
-    opts = replace(ReadOptions.from_cfg(cfg), missing=missing)
+    opts = replace(ReadOptions.from_cfg(cfg), missing=missing, half=not needs_errors)
     root, manifest, tables = _source(Path(path), opts, campaigns)
     frames, entries, columns = {}, {}, {}
     for cid, table, entry in tables:

@@ -24,13 +24,15 @@ from .read import read_campaign, read_dataset, repaired_part
 
 
 def open_dataset(root: str | Path, options: Mapping | None = None, *, stream: bool = False,
-                 campaigns: Sequence[str] | None = None, digest: str | None = None) -> Dataset:
+                 campaigns: Sequence[str] | None = None, digest: str | None = None,
+                 needs_errors: bool = True) -> Dataset:
     """The dataset in ``root`` read with the ``data`` options, for a batch or a ``stream``;
     ``campaigns``: only those (a fleet's group), ``digest``: ``root``'s, when known (a fleet
-    reads its folder a group at a time, digested once)."""
+    reads its folder a group at a time, digested once); ``needs_errors``: False, a file
+    without an error column read too (:func:`.read.read_dataset`)."""
     root = Path(root)
     ds, report = read_dataset(root, options, missing="keep" if stream else "repair",
-                              campaigns=campaigns)
+                              campaigns=campaigns, needs_errors=needs_errors)
     if stream:
         _repair_train(ds, report, options)
         ds.meta["missing"] = {c: report["campaigns"][c]["missing"] for c in ds.ids("test")

@@ -10,6 +10,7 @@ from __future__ import annotations
 import fnmatch
 from contextlib import ExitStack
 from dataclasses import replace
+from statistics import median
 
 import numpy as np
 import pandas as pd
@@ -177,14 +178,35 @@ def mark_gaps(src, found, errors: set, given: dict, opts, grid: dict | None = No
     return opts, pending
 
 
-def gaps_said(src, pending: list, period: float) -> None:
+def temperature_period(report: dict, headers: list) -> dict:
+    """``{header: the temperature logger's period}`` of ``headers`` (the temperature file's)
+    in a record of runs of two loggers: its gaps are counted in that file's samples."""
+    periods = [e["paired"]["periods_s"][0] for e in report["campaigns"].values() if e.get("paired")]
+    return dict.fromkeys(headers, median(periods)) if periods else {}
+
+
+def temperature_scans(src, config: dict, report: dict) -> dict:
+    """``{contract name: [its samples per run]}`` of the temperature files of a record's runs of
+    two loggers, each read alone with ``config`` (its own scans, its gaps kept)."""
+    opts = replace(io.ReadOptions.from_cfg(config), half=True, missing="keep")
+    out: dict = {}
+    for entry in report["campaigns"].values():
+        if entry.get("paired"):
+            table, _ = io.read_campaign(src / entry["paired"]["temperatures"], opts)
+            for name in table.column_names[1:]:
+                out.setdefault(name, []).append(table.column(name).to_numpy(zero_copy_only=False))
+    return out
+
+
+def gaps_said(src, pending: list, period: float, periods: dict | None = None) -> None:
     """Say :func:`mark_gaps`' keys, each run's samples with the time they span (``period``: the
-    record's sample period, s)."""
+    record's sample period, s; ``periods``: a header's own, where its file's differs)."""
     for key, n, header in pending:
-        span = f"{n * period / 3600:.3g} h" if n * period >= 3600 else f"{n * period:.4g} s"
+        each = (periods or {}).get(header, period)
+        span = f"{n * each / 3600:.3g} h" if n * each >= 3600 else f"{n * each:.4g} s"
         header = repr(header) if header is not None else "one of its channels (grid rows)"
         print(f"{src.name}: " + GAP_SAID[key].format(n=n, s="s" * (n > 1), header=header,
-                                                     span=span if period == period else "?"))
+                                                     span=span if each == each else "?"))
 
 
 def stated_period_given(sample, plan, given: dict, opts):
@@ -321,6 +343,7 @@ def _init(cfg: DictConfig, held: ExitStack) -> dict:
     opts, header, first, layout = head(sample, io.ReadOptions.from_cfg(given))
     pair = paired_head(sample, manifest.index[0], manifest, io.ReadOptions.from_cfg(given),
                        head) if manifest is not None else None
+    own_header = header     # (the temperature file's, where a run is two loggers' files)
     if pair is not None:    # a run of two loggers: both files' columns, its rows the errors'
         header, first, layout = pair.header, pair.first, pair.layout
     cells_of_first = dict(zip(header, first))       # the first data row, by header
@@ -403,6 +426,7 @@ def _init(cfg: DictConfig, held: ExitStack) -> dict:
     if grid is not None:     # (a long text's 'value' column: no header of the lab's, stranger80)
         gaps = [(k, n, h if h in plan.names else None) for k, n, h in gaps]
     defaults = OmegaConf.to_container(OmegaConf.load(conf_dir() / "data" / "default.yaml"))
+    decimal = opts.decimal             # the first row's (an error file's cells read so: pairhead)
     if pair is not None and not pair.same_separators:   # each logger's file its own: detected
         opts = replace(opts, delimiter="auto", decimal="auto")
     config = data_config(src, given, opts, roles, defaults, manifest)
@@ -426,8 +450,9 @@ def _init(cfg: DictConfig, held: ExitStack) -> dict:
                                                     if p not in undecided]},
                                 [*flags, *travels], opts)
         roles = ignored(roles, days)
-        plan = naming(header, roles, opts.columns, cells_of_first, opts.decimal,
-                      sample, opts.units)
+        # (stranger83: 'auto' where two loggers' decimal marks differ: a DAQ970A's
+        # '+2,04390000E+01' on a German PC was refused as not numeric)
+        plan = naming(header, roles, opts.columns, cells_of_first, decimal, sample, opts.units)
         config = data_config(src, given, opts, roles, defaults, manifest)
         ds, looked_again = open_source(cfg, detected=config), True   # says what holds of these
     if not looked_again:
@@ -480,6 +505,9 @@ def _init(cfg: DictConfig, held: ExitStack) -> dict:
               "<spacing in m>'}, proposed as a comment in the config")
     atomic_write_text(path, f"# written by `thermocomp init {src}`\n{text}")
     period = median_step([df[TIME].to_numpy(float) for df in ds.campaigns.values()]) or float("nan")
-    gaps_said(src, gaps, period)
-    print("\n".join(detection_lines(layout, opts, header, plan, ds, report, period, path, name)))
+    # (stranger83: a DAQ file's 3 scans of 60 s were said to span 2700 s, the probe's 900 s rows)
+    gaps_said(src, gaps, period, temperature_period(report, own_header) if pair else {})
+    scans = temperature_scans(src, config, report) if pair else None
+    print("\n".join(detection_lines(layout, opts, header, plan, ds, report, period, path, name,
+                                     scans)))
     return {"config": str(path), "columns": plan.names}

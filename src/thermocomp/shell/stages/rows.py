@@ -15,6 +15,7 @@ from omegaconf import DictConfig
 from ...apps.deploy.export.rows import rows_text
 from ...base.errors import ConfigError
 from ...base.log import say
+from ...base.paths import resolve
 from ...core import io
 from ..config.checks import data_options
 from ..source import open_source, resolve_reference
@@ -39,7 +40,10 @@ def rows(cfg: DictConfig) -> dict:
     """Write ``data.path``'s campaigns (``rows.campaigns``) on stdout as ``stream.c`` reads rows;
     ``{"blocks": [{campaigns, rows}, ...]}``."""
     io.ReadOptions.from_cfg(data_options(cfg))       # data.*: before any file is read
-    ds = open_source(cfg, stream=True)               # (as replay and the pack read it)
+    # (as replay and the pack read it); a file's inputs alone without rows.errors (stranger83:
+    # a run's DAQ file, its errors in the probe's log, was refused "no E_ column")
+    lone = resolve(cfg.data.path).is_file() and not cfg.rows.errors
+    ds = open_source(cfg, stream=True, needs_errors=not lone)
     reference = resolve_reference(cfg, ds)
     text, listed = rows_text(ds, chosen(cfg, ds), reference, bool(cfg.rows.errors))
     sys.stdout.write(text)
