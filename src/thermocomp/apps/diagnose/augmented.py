@@ -23,16 +23,7 @@ from ...core.models._campaign_ls import LSTSQ_TOL
 from ...core.models.base import measured_rows
 from ...core.models.linear import MLR
 from ...core.timerule import CLOCK_START, median_step, step_time
-from .features import (
-    AMBIENT_CENTRE_C,
-    Effect,
-    as_effect,
-    design,
-    frames,
-    initial_bounds,
-    initial_offsets,
-    initial_weights,
-)
+from .features import AMBIENT_CENTRE_C, Effect, as_effect, design, frames, initial_weights
 from .shrink import PartialRidgePath
 
 MODEL_NAME = "diagnosed"   # the model diagnose writes (conf/model/diagnosed.yaml, "<family>+diagnosed")
@@ -125,7 +116,7 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
         if context is not None and len(context) != X.shape[0]:
             raise ValueError(f"context has {len(context)} rows, X has {X.shape[0]}")
         return design(X, self.effects_, context, groups_of(context), self.reference,
-                      self.initial_weights_, getattr(self, "initial_bounds_", None))
+                      self.initial_weights_)
 
     def fit(self, X, y, context=None):
         if self.reference not in ("first_sample", "none"):
@@ -143,11 +134,6 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
         self.initial_weights_ = [
             initial_weights(context, e.initial_state, g, e.initial_directions) if e.learns else None
             for e in self.effects_]
-        # the range of the initial states fitted on: a campaign starting beyond it is held to
-        # it, in the stream as in the batch and in the search's CV (diag83b)
-        self.initial_bounds_ = [
-            initial_bounds(initial_offsets(context, e.initial_state, g), w, g) if w is not None else None
-            for e, w in zip(self.effects_, self.initial_weights_)]
         Z = self._design(X, context)
         base = self.estimator if self.estimator is not None else MLR()
         widened = isinstance(base, MLR) and Z.shape[1] > X.shape[1]    # an MLR with effect features
@@ -234,9 +220,6 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
             offsets = np.nan_to_num(raw - ref)
             if self.initial_weights_[i] is not None:
                 offsets = self.initial_weights_[i] @ offsets
-                bounds = getattr(self, "initial_bounds_", None)
-                if bounds is not None and bounds[i] is not None:
-                    offsets = np.clip(offsets, bounds[i][0], bounds[i][1])
             state["first"][key] = offsets
         return state["first"][key] * (1.0 - np.exp(-(t - state["t0"]) / e.tau_s))
 

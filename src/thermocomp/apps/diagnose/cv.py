@@ -49,15 +49,7 @@ from ...core.models._campaign_ls import CampaignLeastSquares
 from ...core.models._memo import BoundedCache
 from ...core.models.linear import MLR
 from ...core.select import AllInputs
-from .features import (
-    Effect,
-    effect_features,
-    in_frame,
-    initial_bounds,
-    initial_offsets,
-    principal_directions,
-    transient,
-)
+from .features import Effect, effect_features, in_frame, initial_offsets, principal_directions, transient
 from .shrink import ALPHAS, PartialRidgePath, least_error, one_standard_error
 
 # Every candidate screened keeps its features (a column or a few per train row): on a year at
@@ -336,14 +328,13 @@ class CrossValidator:
             if effect.initial_state:     # the lag (cached once) + the initial-state transient
                 lag = self.features(replace(effect, initial_state=None, initial_directions=None), names)
                 offsets = self._offsets(effect.initial_state)
-                weights = bounds = None
-                if effect.learns:   # directions and their range: the fold's training campaigns'
+                weights = None
+                if effect.learns:
                     rows = p.train_rows(fold)
                     weights = principal_directions(offsets[rows], p.campaigns[rows],
                                                    effect.initial_directions)
-                    bounds = initial_bounds(offsets[rows], weights, p.campaigns[rows])
                 start = transient(offsets, weights, p.context["time"].to_numpy(float), p.campaigns,
-                                  effect.tau_s, bounds)
+                                  effect.tau_s)
                 self._features[key] = np.hstack([lag, start])
             else:
                 X = self.inputs_matrix(names) if effect.uses_inputs else np.empty((len(p.y), 0))

@@ -352,24 +352,10 @@ def initial_weights(context: pd.DataFrame | None, columns, groups, k: int) -> np
     return principal_directions(initial_offsets(context, columns, groups), groups, k)
 
 
-def initial_bounds(offsets: np.ndarray, weights, groups) -> np.ndarray:
-    """``(2, k)``: the least and largest projection ``offsets @ weights.T`` over the campaigns of
-    these rows -- the initial states a model with ``initial_directions`` was fitted on."""
-    g = np.asarray(groups)
-    starts = np.flatnonzero(np.r_[True, g[1:] != g[:-1]])
-    projected = offsets[starts] @ np.asarray(weights, dtype=float).T
-    return np.vstack([projected.min(axis=0), projected.max(axis=0)])
-
-
-def transient(offsets: np.ndarray, weights, time, groups, tau_s: float, bounds=None) -> np.ndarray:
-    """``offsets (@ weights.T) * (1 - exp(-(t - t_0)/tau))`` per campaign; ``bounds``
-    (:func:`initial_bounds`) holds each projection to the range the model was fitted on
-    (diag83b: a campaign starting beyond the training campaigns' initial states is not
-    extrapolated to)."""
+def transient(offsets: np.ndarray, weights, time, groups, tau_s: float) -> np.ndarray:
+    """``offsets (@ weights.T) * (1 - exp(-(t - t_0)/tau))`` per campaign."""
     if weights is not None:
         offsets = offsets @ np.asarray(weights, dtype=float).T
-        if bounds is not None:
-            offsets = np.clip(offsets, bounds[0], bounds[1])
     time = np.asarray(time, dtype=float)
     decay = np.empty(len(offsets))
     for start, stop in segment_bounds(groups, len(offsets)):
@@ -378,31 +364,29 @@ def transient(offsets: np.ndarray, weights, time, groups, tau_s: float, bounds=N
 
 
 def initial_state(context: pd.DataFrame | None, columns, groups, tau_s: float,
-                  weights=None, bounds=None) -> np.ndarray:
+                  weights=None) -> np.ndarray:
     """The initial disequilibrium's transient ``(c_j(0) - A_0)(1 - exp(-(t - t_0)/tau))``.
 
     One column per sensor, or per row of ``weights`` (projected distances).
     """
     offsets = initial_offsets(context, columns, groups)
-    return transient(offsets, weights, _time(context, len(offsets)), groups, tau_s, bounds)
+    return transient(offsets, weights, _time(context, len(offsets)), groups, tau_s)
 
 
-def _with_start(lag: np.ndarray, effect: Effect, context, groups, weights, bounds=None) -> np.ndarray:
+def _with_start(lag: np.ndarray, effect: Effect, context, groups, weights) -> np.ndarray:
     if not effect.initial_state:
         return lag
     if effect.learns and weights is None:
         weights = initial_weights(context, effect.initial_state, groups, effect.initial_directions)
-    return np.hstack([lag, initial_state(context, effect.initial_state, groups, effect.tau_s, weights,
-                                         bounds)])
+    return np.hstack([lag, initial_state(context, effect.initial_state, groups, effect.tau_s, weights)])
 
 
 def effect_features(effect: Effect, X, context: pd.DataFrame | None = None, groups=None,
-                    reference: str = "first_sample", weights=None, bounds=None) -> np.ndarray:
+                    reference: str = "first_sample", weights=None) -> np.ndarray:
     """Extra regressors of one effect, shape ``(n, q)`` (``q = 0`` for ``remove``).
 
     ``weights``: the learned initial directions (:func:`initial_weights`) of an
-    effect that ``learns``; ``None`` learns them from these rows.  ``bounds``: the range of
-    their projections it was fitted on (:func:`initial_bounds`; None: not held).
+    effect that ``learns``; ``None`` learns them from these rows.
     """
     X = np.asarray(X, dtype=float)
     n = X.shape[0]
@@ -415,7 +399,7 @@ def effect_features(effect: Effect, X, context: pd.DataFrame | None = None, grou
         c = in_frame(_context_column(context, effect.column), g, own)
         if tr == "first_order_lag":
             return _with_start(first_order_lag(c, _time(context, n), g, effect.tau_s)[:, None],
-                               effect, context, g, weights, bounds)
+                               effect, context, g, weights)
         return (c**2 if tr == "square" else c)[:, None]
     if tr == "product":
         a = in_frame(_context_column(context, effect.column), g, own)
@@ -427,7 +411,7 @@ def effect_features(effect: Effect, X, context: pd.DataFrame | None = None, grou
         return in_frame(_context_column(context, effect.column), g, own)[:, None] * rises(X, g)
     if tr == "lowpass_inputs":
         return _with_start(first_order_lag(X, _time(context, n), g, effect.tau_s), effect, context, g,
-                           weights, bounds)
+                           weights)
     a0 = _ambient(context, n)
     if tr == "ambient_linear":
         return X * (a0 - AMBIENT_CENTRE_C)[:, None]
@@ -435,12 +419,10 @@ def effect_features(effect: Effect, X, context: pd.DataFrame | None = None, grou
 
 
 def design(X, effects, context: pd.DataFrame | None = None, groups=None,
-           reference: str = "first_sample", weights=None, bounds=None) -> np.ndarray:
-    """Model inputs ``X`` followed by the features of every effect (``weights[i]`` /
-    ``bounds[i]`` of effect i)."""
+           reference: str = "first_sample", weights=None) -> np.ndarray:
+    """Model inputs ``X`` followed by the features of every effect (``weights[i]`` of effect i)."""
     X = np.asarray(X, dtype=float)
     weights = weights or [None] * len(effects)
-    bounds = bounds or [None] * len(effects)
-    blocks = [X] + [effect_features(as_effect(e), X, context, groups, reference, w, b)
-                    for e, w, b in zip(effects, weights, bounds)]
+    blocks = [X] + [effect_features(as_effect(e), X, context, groups, reference, w)
+                    for e, w in zip(effects, weights)]
     return np.hstack(blocks)
