@@ -157,21 +157,31 @@ def _deployed_stream(ds):
     return _deployed_of(compose([]), ds)
 
 
-def fresh(root: str) -> None:
-    """The fresh draws diagnosed (every target, max_effects=2), test figures as deployed."""
+def diagnose_draw(kind: str, seed: int):
+    """A few-VMC draw (``kind`` ``planted``: the axis-position effect; ``clean``: none) diagnosed
+    as the fresh benches do (MLR, every target, ``max_effects=2``, test figures as deployed):
+    ``(dataset, diagnosis, {target: its json}, diagnose's CPU s)``."""
+    from cpu import cpu_seconds
+
     from test_diagnose_few import few
     from thermocomp.apps.diagnose import SearchOptions, diagnose
     from thermocomp.core.compensator import Compensator
     from thermocomp.core.models import MLR
 
+    ds, _ = few("axis_position" if kind == "planted" else None, seed)
+    t0 = cpu_seconds()
+    d = diagnose(ds, Compensator(MLR()), options=SearchOptions(max_effects=2),
+                 deployed_of=_deployed_stream(ds))
+    return ds, d, {t: d.to_json(t) for t in d.targets}, round(cpu_seconds() - t0, 1)
+
+
+def fresh(root: str) -> None:
+    """The fresh draws diagnosed (every target, max_effects=2), test figures as deployed."""
     folder = made_folder(root)
     cases = [("clean", s) for s in FRESH_CLEAN] + [("planted", s) for s in FRESH_PLANTED]
     with open(folder / "fresh.jsonl", "w") as out:
         for kind, seed in cases:
-            ds, _ = few("axis_position" if kind == "planted" else None, seed)
-            d = diagnose(ds, Compensator(MLR()), options=SearchOptions(max_effects=2),
-                         deployed_of=_deployed_stream(ds))
-            js = {t: d.to_json(t) for t in d.targets}
+            _, d, js, _ = diagnose_draw(kind, seed)
             row = {"case": f"{kind}:{seed}", "scored": d.scored, "excluded": d.excluded, "targets": {
                 t: {"before": js[t]["before"]["test_rmse"], "after": js[t]["after"]["test_rmse"],
                     "accepted": [e.effect.title for e in x.accepted]} for t, x in d.targets.items()}}

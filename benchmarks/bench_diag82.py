@@ -145,7 +145,6 @@ are spent.
 from __future__ import annotations
 
 import json
-import resource
 import sys
 from pathlib import Path
 
@@ -157,11 +156,6 @@ FRESH_PLANTED = list(range(8151, 8161))
 FRESH_CLEAN = list(range(8161, 8171))
 
 
-def _cpu() -> float:
-    r = resource.getrusage(resource.RUSAGE_SELF)
-    return r.ru_utime + r.ru_stime
-
-
 def _found(accepted: list[str]) -> bool:
     """The planted position effect taken: an accepted ``interaction`` on ``S_pos_Y``."""
     return any("S_pos_Y" in a for a in accepted)
@@ -169,24 +163,15 @@ def _found(accepted: list[str]) -> bool:
 
 def fresh(root: str, label: str) -> None:
     """The fresh draws diagnosed (every target, ``max_effects=2``), test figures as deployed."""
-    import bench_diag76
-
-    from test_diagnose_few import few
-    from thermocomp.apps.diagnose import SearchOptions, diagnose
-    from thermocomp.core.compensator import Compensator
-    from thermocomp.core.models import MLR
+    from bench_diag76 import diagnose_draw
 
     folder = made_folder(root)
     cases = [("planted", s) for s in FRESH_PLANTED] + [("clean", s) for s in FRESH_CLEAN]
     with open(folder / f"fresh-{label}.jsonl", "w") as out:
         for kind, seed in cases:
-            ds, _ = few("axis_position" if kind == "planted" else None, seed)
-            t0 = _cpu()
-            d = diagnose(ds, Compensator(MLR()), options=SearchOptions(max_effects=2),
-                         deployed_of=bench_diag76._deployed_stream(ds))
-            js = {t: d.to_json(t) for t in d.targets}
+            _, d, js, cpu_s = diagnose_draw(kind, seed)
             row = {"case": f"{kind}:{seed}", "label": label, "scored": d.scored,
-                   "excluded": d.excluded, "cpu_s": round(_cpu() - t0, 1),
+                   "excluded": d.excluded, "cpu_s": cpu_s,
                    "blocks": {t: x.search.start.block_mse.size for t, x in d.targets.items()},
                    "control": {t: j["control_ever_clears_bar"] for t, j in js.items()},
                    "targets": {t: {"before": js[t]["before"]["test_rmse"],

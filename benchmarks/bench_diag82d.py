@@ -144,24 +144,14 @@ def _found(accepted: list[str]) -> bool:
 
 def fresh(root: str, label: str) -> None:
     """The fresh draws diagnosed (every target, ``max_effects=2``), test figures as deployed."""
-    import bench_diag76
-    from cpu import cpu_seconds
-
-    from test_diagnose_few import few
-    from thermocomp.apps.diagnose import SearchOptions, diagnose
-    from thermocomp.core.compensator import Compensator
-    from thermocomp.core.models import MLR
+    from bench_diag76 import diagnose_draw
 
     cases = [("planted", s) for s in FRESH_PLANTED] + [("clean", s) for s in FRESH_CLEAN]
     with open(made_folder(root) / f"fresh-{label}.jsonl", "w") as out:
         for kind, seed in cases:
-            ds, _ = few("axis_position" if kind == "planted" else None, seed)
-            t0 = cpu_seconds()
-            d = diagnose(ds, Compensator(MLR()), options=SearchOptions(max_effects=2),
-                         deployed_of=bench_diag76._deployed_stream(ds))
-            js = {t: d.to_json(t) for t in d.targets}
+            ds, d, js, cpu_s = diagnose_draw(kind, seed)
             row = {"case": f"{kind}:{seed}", "label": label, "excluded": d.excluded,
-                   "cpu_s": round(cpu_seconds() - t0, 1),
+                   "cpu_s": cpu_s,
                    "blocks": {t: x.search.start.block_mse.size for t, x in d.targets.items()},
                    "control": {t: j["control_ever_clears_bar"] for t, j in js.items()},
                    "targets": {t: {"before": js[t]["before"]["test_rmse"],
