@@ -100,6 +100,20 @@ own sensor went out at the same sample (+0 min each); jig 8515's tank flaps 3x b
 (bench_mon81's table flags it on both).  The export port (numpy mirror + C) passed
 ``test_export_cmon80/82/82b/82c`` and ``test_export_monitor76`` (15 passed); part 4 not run
 further.  The src change (served + export) is reverted; it is ``benchmarks/mon83_rule.patch``.
+
+The second rule (written and committed before scoring; tuned on 8342 and lathe 8513's drift, seen
+above): the first, and (c) the error of the field's memory (the excursion rule's, 30 min, of the
+culprit, every sensor in) beyond its band less its rounding bound already, on the side of its
+error now: an offset that has stood within the logger's last digit of the band, not one a leak
+carries there.  On the two tuning records: 8342's table, memory -0.431 against 0.576 - 0.196 =
+0.380, held (no exclusion, adaptive = fixed); lathe 8513's turret, memory -0.400 against 0.559 -
+0.088 = 0.471, out at 6.394 h as shipped (dX 4.426).  Served (``Judgement._within_rounding``),
+numpy mirror and C alike.
+
+Its bar (written before scoring; fresh seeds 8517-8522, none tuned on; REFUSED if any part fails):
+parts 1-4 as above with trunnion 8517-8518, lathe 8519-8520, jig 8521-8522 healthy and the
+faults on 8517 / 8519 / 8521 (ROOT /tmp/mon83, labels ``shipped2`` / ``rule2``); and 5. on the
+first rule's records (8511-8516, seen; labels ``shipped`` / ``rule2``) the same checks.
 """
 from __future__ import annotations
 
