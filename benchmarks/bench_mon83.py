@@ -138,7 +138,12 @@ records shipped then rule, the fresh first, then the seen): **KEPT**.
    ``tests/apps/test_monitor_rounding83.py`` (5: the bound; a healthy offset the last digit flips
    across the band warned, not excluded, where the judgement before excludes it; a drift from a
    clean field out at the same sample; the code's numpy mirror = served on both, bound or none).
-   Held.
+   And the C on the found case: ``thermocomp run`` (mlr) then ``thermocomp export
+   export.format=c monitor.adaptive=true`` of 8342 (``compensator.json``'s ``monitor.rounding``
+   0.196 on the table, 0.083 the trunnion, 0.061-0.069 the bed and columns, 0 elsewhere),
+   compiled ``cc -Wall -Wextra -Werror``: ``check/check.sh`` passed its 6 campaigns (1800 rows
+   each, none cut, largest |C - served| 2.9e-14 µm), the own test campaign with no monitor
+   message (the table held, as served).  Held.
 5. Seen records (8511-8516) under the second rule: every exclusion and RMSE as shipped, lathe
    8513's turret out at 6.394 h as shipped (dX 4.426); bench_mon81's table flags only what it
    flags on shipped too (jig 8515's tank out 3x both ways) and 8342's change.  Held.
