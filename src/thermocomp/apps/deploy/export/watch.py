@@ -30,8 +30,9 @@ The served adaptive compensator judges every ``T_`` input before the model reads
   ``_explaining``): the culprit (the largest ``|E|(1 - h)``, or the lone fault that explains the
   bands, the served ``_lone_fault``) excluded where with it out every other judged sensor is
   within its warning band, fewer than ``new_state_others`` others are out of it, and (a culprit
-  within its own band, or beyond it by less than its readings' rounding moves its error,
-  ``rounding``: mon83) the excursion does not hover against the field's memory
+  within its own band, or mon83 beyond it by less than its readings' rounding moves its error,
+  ``rounding``, the memory's error within that of the band) the excursion does not hover
+  against the field's memory
   (``tau``, ``growth``: the served ``_excursion_hovers``); else nothing, as served (a veto).
   Its blind partner (``pairs``: the one judged sensor no other predicts once it is out, an
   operator per pair) goes out with it under the same veto.  Each waits ``window`` times 2 to

@@ -43,10 +43,10 @@ class Judgement:
                 break
             # a culprit within its own band is blamed for another's excursion only while that
             # grows: one that reached its offset and hovers is a regime (module excursion.py);
-            # so is one beyond it by no more than its readings' rounding moves its error (mon83:
-            # trunnion 8342's healthy table at -0.59 °C against 0.576, its error -0.35 / -0.58
-            # as its partner's 0.1 K logger flipped, 0.196 its bound, a share of its rise 1.26x
-            # the memory's)
+            # so is one beyond it by less than its readings' rounding moves its error, its memory
+            # within that of the band already (mon83: trunnion 8342's healthy table at -0.59 °C
+            # against 0.576, its error -0.35 / -0.58 as its partner's 0.1 K logger flipped,
+            # 0.196 its bound, its memory -0.431, a share of its rise 1.26x the memory's)
             if (self.new_state and (level[j] < WARNING or self._within_rounding(j))
                     and self._excursion_hovers(level, err)):
                 break
