@@ -30,7 +30,9 @@ The served adaptive compensator judges every ``T_`` input before the model reads
   ``_explaining``): the culprit (the largest ``|E|(1 - h)``, or the lone fault that explains the
   bands, the served ``_lone_fault``) excluded where with it out every other judged sensor is
   within its warning band, fewer than ``new_state_others`` others are out of it, and (a culprit
-  within its own band) the excursion does not hover against the field's memory
+  within its own band, or mon83 beyond it by less than its readings' rounding moves its error,
+  ``rounding``, the memory's error within that of the band) the excursion does not hover
+  against the field's memory
   (``tau``, ``growth``: the served ``_excursion_hovers``); else nothing, as served (a veto).
   Its blind partner (``pairs``: the one judged sensor no other predicts once it is out, an
   operator per pair) goes out with it under the same veto.  Each waits ``window`` times 2 to
@@ -170,7 +172,8 @@ def monitor_fields(deployed, inputs: list) -> dict:
         "drift": 1, "pairs": [list(p) for p in pairs], "new_state": int(mon.new_state),
         "new_state_others": int(mon.new_state_others), "max_backoff": MAX_BACKOFF,
         "tau": EXCURSION_TAU_S, "growth": EXCURSION_GROWTH, "novel": 1, "blind_out": 1,
-        "fallback": [int(c in falls) for c in mon.names]}}
+        "fallback": [int(c in falls) for c in mon.names],
+        "rounding": np.broadcast_to(getattr(mon, "rounding_c", 0.0), (n,)).tolist()}}
 
 
 def _pairs(mon) -> list[tuple[int, int]]:
@@ -264,6 +267,7 @@ class CodeMonitor:
                      ("novel", 0),        # (before cmon82b: a new thermal state flagged)
                      ("blind_out", 0)):   # (before cmon82c: a sensor no other predicts, flagged)
             a.setdefault(k, np.float64(v))
+        a.setdefault("rounding", np.zeros(n))    # (before mon83: no culprit held for rounding)
         self.pairs = [tuple(int(i) for i in p) for p in arrays.get("pairs", [])]
         self.idx = np.asarray(arrays["inputs"], int)
         self.M, self.lev = a["M"], a["lev"]
@@ -699,7 +703,7 @@ class CodeMonitor:
                 return
             if self._others(j, level, judged) >= a["new_state_others"]:
                 return
-            if level[j] < WARNING and self._hovers(level, err):
+            if (level[j] < WARNING or self._within_rounding(j, field)) and self._hovers(level, err):
                 return          # a regime, not a fault (served: nothing excluded)
         if not self._exclude(j, DRIFT_OUT):
             return
@@ -775,6 +779,18 @@ class CodeMonitor:
             return
         keep = np.exp(-max(dt, 0.0) / self.a["tau"])
         self.slow = np.where(np.isfinite(d), keep * self.slow + (1 - keep) * d, self.slow)
+
+    def _within_rounding(self, j: int, field) -> bool:
+        """(mon83) The served ``_within_rounding``: ``j``'s smallest error over the last
+        ``confirm`` samples beyond the band that excludes by less than its rounding bound, the
+        memory's error within that of the band already, on the same side."""
+        band = (self.a["warning"] if field == WARNING else self.a["alarm"])[j]
+        last, bound = self.err[self._rows(), j], self.a["rounding"][j]
+        if not self.slow_known or not np.abs(last).min() < band + bound:
+            return False
+        M, _, _, _, scale = self._set()
+        past = (self.slow[j] - M[j] @ self.slow) * scale[j]
+        return bool(past * np.sign(last.sum()) >= band - bound)
 
     def _hovers(self, level, err) -> bool:
         """The served monitor's ``_excursion_hovers``: every judged sensor out of band has an

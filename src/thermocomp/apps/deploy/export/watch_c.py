@@ -72,7 +72,7 @@ def monitor_arrays(ss) -> list[tuple[str, object, tuple, str]]:
     n = len(m.get("inputs", []))
     pairs = m.get("pairs", [])
     vectors = ("warning", "alarm", "jump_lim", "lo_lim", "hi_lim", "lo_c", "hi_c", "seen_run",
-               "blind_run")
+               "blind_run", "rounding")
     scalars = (("MON_MAX_LEV", "max_leverage", 1.0, "real"), ("MON_MIN_ACTIVE", "min_active", 0, "int"),
                ("MON_CONFIRM", "confirm", 1, "int"), ("MON_EXCLUDE_LEVEL", "exclude_level", 1, "int"),
                ("MON_PERIOD", "period", 1.0, "real"), ("MON_GAP_PERIODS", "gap_periods", 1.5, "real"),
@@ -439,6 +439,25 @@ static int mon_lone_fault(const tc_state *s, int j, const double z[], const int 
     return *resolves = hides, j;
 }
 
+/* (mon83) the served _within_rounding: sensor j's smallest error over the last MON_CONFIRM
+   samples beyond the band that excludes (field) by less than its rounding bound, the memory's
+   error within that of the band already, on the same side */
+static int mon_within_rounding(const tc_state *s, int j, int field) {
+    double least = HUGE_VAL, sum = 0.0, past = 0.0, scale[NM];
+    double band = field == 1 ? MON_WARNING[j] : MON_ALARM[j];
+    int a[NM], o[NM], jd[NM], r, m;
+    for (r = 0; r < MON_CONFIRM; r++) {
+        double e = s->mon_err[((s->mon_pos - 1 - r) % MW + MW) % MW][j];
+        if (fabs(e) < least) least = fabs(e);
+        sum += e;
+    }
+    if (!s->mon_slow_known || !(least < band + MON_ROUNDING[j])) return 0;
+    mon_set(s, a, o, jd, scale);
+    for (m = 0; m < NM; m++) past += MON_M[s->mon_op][j][m] * s->mon_slow[m];
+    past = (s->mon_slow[j] - past) * scale[j];
+    return past * (sum > 0 ? 1.0 : sum < 0 ? -1.0 : 0.0) >= band - MON_ROUNDING[j];
+}
+
 /* the served monitor's _excursion_hovers: every judged sensor out of band has an error no larger
    a share of its rise than the field's memory had (a regime, not a fault) */
 static int mon_hovers(const tc_state *s, const int level[]) {
@@ -572,7 +591,8 @@ static void mon_drift(tc_state *s, const int level[], int field) {
             return;
         }
         if (mon_others(level, jd, j) >= MON_NEW_STATE_OTHERS) return;
-        if (level[j] < 1 && mon_hovers(s, level)) return;   /* a regime, not a fault */
+        if ((level[j] < 1 || mon_within_rounding(s, j, field)) && mon_hovers(s, level))
+            return;   /* a regime, not a fault */
     }
     mon_exclude(s, j, TC_MON_DRIFT_OUT);
     if (s->mon_out != j) return;   /* (flagged) */

@@ -42,8 +42,13 @@ class Judgement:
             if self._drift_vetoed(j, level, err, time, events, resolves):
                 break
             # a culprit within its own band is blamed for another's excursion only while that
-            # grows: one that reached its offset and hovers is a regime (module excursion.py)
-            if self.new_state and level[j] < WARNING and self._excursion_hovers(level, err):
+            # grows: one that reached its offset and hovers is a regime (module excursion.py);
+            # so is one beyond it by less than its readings' rounding moves its error, its memory
+            # within that of the band already (mon83: trunnion 8342's healthy table at -0.59 °C
+            # against 0.576, its error -0.35 / -0.58 as its partner's 0.1 K logger flipped,
+            # 0.196 its bound, its memory -0.431, a share of its rise 1.26x the memory's)
+            if (self.new_state and (level[j] < WARNING or self._within_rounding(j))
+                    and self._excursion_hovers(level, err)):
                 break
             self._exclude(j, f"drift: self-prediction error {err[j]:+.2g} °C over the last "
                              f"{self.confirm} samples", time, events, by_field=True)
@@ -245,6 +250,22 @@ class Judgement:
             if z[u] > best_z:
                 best, best_z = int(u), float(z[u])
         return best
+
+    def _within_rounding(self, j: int) -> bool:
+        """Whether sensor ``j``'s smallest error over the last ``confirm`` samples is beyond the
+        band that excludes by less than ``rounding_c`` (the most the readings' rounding to their
+        resolution moves its error) and the error of the field's memory (module excursion.py)
+        was within that of the band already, on the same side: an offset standing within the
+        logger's last digit of the band, a crossing that digit may make alone.  (Not the memory
+        too, the turret of lathe 8513, healthy, that a drifting coolant's leak carried from
+        -0.42 to -0.58 °C in 20 min, was held 23 min: mon83's first rule.)"""
+        k = min(self._count, self.confirm)
+        last = self._err[self._recent[self._pos, :k], j]
+        band = (self.warning_c if self._field_level() == WARNING else self.alarm_c)[j]
+        if not self._slow_ok or not float(np.abs(last).min()) < band + self.rounding_c[j]:
+            return False
+        past = (self._slow[j] - self._M[j] @ self._slow[self._active]) * self._scale[j]
+        return bool(past * np.sign(last.sum()) >= band - self.rounding_c[j])
 
     def _field_level(self) -> int:
         """Band whose crossing excludes a sensor by its self-prediction error: ``exclude_at``

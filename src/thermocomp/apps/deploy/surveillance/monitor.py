@@ -56,6 +56,10 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
     new_state_others : int
         Other judged sensors out of their warning band, soon after a drift exclusion, that
         re-admit it and call a new thermal state.
+    rounding_c : float or array
+        The most rounding the readings to their resolution moves each sensor's self-prediction
+        error (°C; :meth:`from_training` fits it): a culprit beyond its band by less, whose
+        excursion hovers, is a regime (:meth:`~.judgement.Judgement._within_rounding`).
     """
 
     new_state, new_state_others = False, 2   # a monitor pickled before them judged as before
@@ -68,13 +72,15 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
         if "_slow" not in state:       # pickled before mon73: no memory of the field, no hover
             self._slow_reset()
             self._slow_ok = False
+        if "rounding_c" not in state:  # pickled before mon83: judged as before
+            self.rounding_c = np.zeros(len(self.names))
 
     def __init__(self, pod: ThermalPOD, names: Sequence[str], *, warning_c=0.4, alarm_c=0.8,
                  window: int = 10, confirm: int = 2, adaptive: bool = True,
                  exclude_at: str = "warning", max_step_c=None, longest_run=None,
                  lo_c=None, hi_c=None, first_c=None, jump_factor: float = 3.0,
                  freeze_factor: float = 2.0, range_margin_c: float = 10.0,
-                 new_state: bool = True, new_state_others: int = 2):
+                 new_state: bool = True, new_state_others: int = 2, rounding_c=0.0):
         n = len(names)
         if pod.n_features_in_ != n:
             raise ValueError(f"POD has {pod.n_features_in_} sensors, names {n}")
@@ -92,6 +98,7 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
             raise ValueError(f"exclude_at must be warning or alarm, got {exclude_at!r}")
         self.exclude_at = exclude_at
         self.exclude_level = WARNING if exclude_at == "warning" else ALARM
+        self.rounding_c = np.broadcast_to(np.asarray(rounding_c, float), (n,)).copy()
 
         def arr(v, default):
             return np.full(n, default, float) if v is None else np.asarray(v, float).copy()
@@ -166,7 +173,7 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
             # excluded T_13 21 times); the others keep the configured bands
             floor = factor * spread
             warn, alarm = np.maximum(warn, floor), np.maximum(alarm, 2 * floor)
-        options = {**options, "warning_c": warn, "alarm_c": alarm}
+        options = {"rounding_c": _rounding(pod, steps), **options, "warning_c": warn, "alarm_c": alarm}
         return cls(pod, names, max_step_c=steps.max(0), longest_run=runs, lo_c=lo, hi_c=hi,
                    first_c=first, **options)
 
@@ -609,3 +616,16 @@ def _longest_runs(a: np.ndarray) -> np.ndarray:
         run = np.where(row, run + 1, 0)
         best = np.maximum(best, run)
     return best
+
+
+def _rounding(pod: ThermalPOD, steps: np.ndarray) -> np.ndarray:
+    """The most rounding the readings to their resolution moves each sensor's self-prediction
+    error, every sensor in: ``(q / 2) · sum_k |(I - M)_jk| / (1 - h_j)``, ``q_k`` sensor ``k``'s
+    smallest non-zero one-sample step in training (``steps``; a logger's 0.1 K, about none on a
+    continuous reading); 0 where no other sensor predicts it (mon82c's bound)."""
+    n = pod.n_features_in_
+    M, h = pod.operator(np.ones(n, dtype=bool))
+    q = np.array([np.min(s[s > 0], initial=np.inf) for s in steps.T])
+    q[~np.isfinite(q)] = 0.0             # a sensor that never moved in training
+    S = (np.eye(n) - M) / np.maximum(1 - h, 1e-12)[:, None]
+    return np.where(h < pod.max_leverage, 0.5 * np.abs(S) @ q, 0.0)
