@@ -1,0 +1,90 @@
+"""(cmon83) The served fallback models in the code: the correction fitted without a sensor no
+other predicts (:mod:`thermocomp.apps.deploy.fallback`), served while that sensor is out.
+
+Each fallback is the model's family refitted without the sensor, streamed beside the model from
+the campaign's start on the same inputs; the served correction is its (before the guard) while
+its sensor is out and the monitor rebuilds the field (``AdaptiveCompensator._fallen_back``).  Its
+laws go into the code's system after the model's, ``law_set`` naming whose each is (0 the
+model's, ``s`` the fallback of set ``s``): every law steps on every sample (its history, lags,
+feedback and clamp bound its own), and the output sums the laws of the set being served (the
+monitor's ``fallback_set``: per monitored sensor its set, 0 none in the code).  A fallback the
+system cannot hold beside the model (another denoiser, envelope, powers or derived inputs, a
+cascade of lags, a state times the inputs' rises, an arx_rf forest or an lstm network) is left
+out: its exclusion stays flagged ``FALLBACK`` (:mod:`.watch`).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .errors import NotExportable
+
+# what a fallback's system must share with the model's to step beside it in one system
+SHARED = ("inputs", "targets", "fir", "referenced", "clamp", "lo", "hi", "powers", "derived",
+          "derived_clamped", "derived_over", "initial", "held", "input_limit", "clamp_outright",
+          "pattern", "pattern_mean", "pattern_scale", "pattern_basis", "pattern_tol",
+          "ambient_inputs", "ambient_given", "ambient_optional", "ambient_centre", "period",
+          "grid_period")
+
+
+def with_fallbacks(ss, deployed, system) -> None:
+    """Add to ``ss`` (with a monitor) the laws of each of ``deployed``'s fallbacks it can hold,
+    in the monitor's order, and the monitor's ``fallback_set``; ``system``: a fallback's stream
+    -> its :class:`~.statespace.StateSpace` (as the model's was made)."""
+    names = [ss.inputs[i] for i in ss.monitor["inputs"]]
+    sets = [0] * len(names)
+    falls = getattr(deployed, "fallbacks_", {}) or {}
+    for k, sensor in enumerate(names):
+        if sensor not in falls:
+            continue
+        try:
+            fb = system(falls[sensor])
+        except NotExportable:
+            continue
+        if _holds(ss, fb):
+            sets[k] = max(ss.law_set or [0]) + 1
+            _merge(ss, fb, sets[k])
+    ss.monitor["fallback_set"] = sets
+
+
+def _holds(ss, fb) -> bool:
+    """Whether ``fb``'s laws can step beside ``ss``'s in one system."""
+    lone = not (ss.forest_target or ss.lstm_target or fb.forest_target or fb.lstm_target
+                or ss.clamp_states or fb.clamp_states or fb.lag_of)
+    return lone and all(getattr(ss, k) == getattr(fb, k) for k in SHARED)
+
+
+def _merge(ss, fb, s: int) -> None:
+    """``fb``'s laws appended to ``ss``'s as set ``s``: its lags mapped onto the model's (one
+    of its own appended where none is), its input history to the deeper of the two."""
+    laws, lags, n = len(ss.laws), len(ss.taus), len(ss.inputs)
+    plain = {(tau, j): k for k, (tau, j, of) in enumerate(
+        zip(ss.taus, ss.lag_input, ss.lag_of or [-1] * len(ss.taus))) if of < 0}
+    rest = list(ss.lag_rest) or [0] * len(ss.taus)
+    where = []
+    for k, (tau, j) in enumerate(zip(fb.taus, fb.lag_input)):
+        if (tau, j) not in plain:
+            plain[(tau, j)] = len(ss.taus)
+            ss.taus.append(tau)
+            ss.lag_input.append(j)
+            ss.lag_decay.append(fb.lag_decay[k])
+            rest.append((fb.lag_rest or [0] * len(fb.taus))[k])
+            if ss.lag_of:
+                ss.lag_of.append(-1)
+        where.append(plain[(tau, j)])
+    ss.lag_rest = rest if any(rest) else []
+    g = np.zeros((laws + len(fb.laws), len(ss.taus)))
+    g[:laws, :lags] = np.asarray(ss.g, float).reshape(laws, lags)
+    g[laws:, where] = np.asarray(fb.g, float).reshape(len(fb.laws), len(fb.taus))
+    depth = max(ss.depth, fb.depth)
+    bd = np.zeros((laws + len(fb.laws), depth, n))
+    bd[:laws, :ss.depth] = np.asarray(ss.bd, float).reshape(laws, ss.depth, n)
+    bd[laws:, :fb.depth] = np.asarray(fb.bd, float).reshape(len(fb.laws), fb.depth, n)
+    ss.law_set = (list(ss.law_set) or [0] * laws) + [s] * len(fb.laws)
+    ss.law_target = ss.laws + fb.laws
+    for k in ("intercept", "b0", "ar", "law_lo", "law_hi", "law_ambient"):
+        setattr(ss, k, list(getattr(ss, k)) + list(getattr(fb, k)))
+    if ss.clamp_gain is not None:
+        ss.clamp_gain = list(ss.clamp_gain) + list(fb.clamp_gain)
+    ss.g, ss.bd, ss.depth = g.tolist(), bd.tolist(), depth
+    ss.uses_time = ss.uses_time or fb.uses_time
