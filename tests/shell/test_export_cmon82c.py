@@ -64,11 +64,12 @@ def _machine(root, rows: int = ROWS):
     return root
 
 
-def _deployed(folder, fallbacks: str):
-    """Adaptive MLR on :func:`_machine`'s record as replay deploys it (test_export's
-    ``adaptive_mlr``), ``monitor.fallbacks=<fallbacks>``: ``(deployed, the ramped record)``."""
+def _deployed(folder, fallbacks: str, model: str = "mlr"):
+    """Adaptive MLR (or ``model``) on :func:`_machine`'s record as replay deploys it
+    (test_export's ``adaptive_mlr``), ``monitor.fallbacks=<fallbacks>``: ``(deployed, the ramped
+    record)``."""
     cfg = test_export._compose(f"data.path={folder}", "track=false", "monitor.adaptive=true",
-                               "model=mlr", f"monitor.fallbacks={fallbacks}")
+                               f"model={model}", f"monitor.fallbacks={fallbacks}")
     ds, train_ids, test_ids, _ = read_streamed(cfg)
     train = {c: ds.campaigns[c] for c in train_ids}
     deployed = deployable(cfg, deploy_stream(cfg, build_compensator(cfg, ds=ds).fit(train), train),

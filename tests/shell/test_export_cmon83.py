@@ -16,12 +16,14 @@ import dataclasses
 import subprocess
 
 import numpy as np
+import pandas as pd
 import pytest
 
 from test_export import built_stream, needs_cc
 from test_export_cmon80 import _streamed
 from test_export_cmon82c import _deployed, _machine, _served_moves
 from thermocomp.apps.deploy.export import Simulator, exported_files, state_space
+from thermocomp.apps.deploy.export.fallbacks import _merge
 from thermocomp.apps.deploy.export.pack import conformance_pack, corrections
 from thermocomp.apps.deploy.export.watch import FALLBACK, NOT_IN_CODE
 from thermocomp.apps.deploy.report import stream_rows
@@ -96,3 +98,47 @@ def test_an_export_before_cmon83_flags_the_fallback_from_the_exclusion_on(served
     _, summary = conformance_pack(deployed, old, {"K06": frame})
     cut = summary["campaigns"][0]["cut"]
     assert cut["row"] >= row and "model fitted without" in cut["why"], cut
+
+
+def _swapped_powers(ss):
+    """``ss`` with its two static powers in the other order (its columns and lags alike): the
+    same system."""
+    n = len(ss.inputs)
+    order = [*range(n), n + 1, n, *range(n + 2, len(ss.b0[0]))]
+    lag_input = [{n: n + 1, n + 1: n}.get(j, j) for j in ss.lag_input]
+    return dataclasses.replace(ss, powers=[ss.powers[1], ss.powers[0]], lag_input=lag_input,
+                               b0=[[row[j] for j in order] for row in ss.b0])
+
+
+@pytest.mark.parametrize("into", ["model", "fallback"])
+def test_a_merged_fallback_steps_as_its_own_system(tmp_path, into):
+    """A Hammerstein model's fallback (its lags fewer, its powers in another order) merged into
+    the model's system, served, gives its own system's corrections; and the model's merged into
+    its fallback's (lags of its own appended) its own."""
+    root = _machine(tmp_path / "data")
+    for csv in root.glob("K*.csv"):       # a state of many values (a door's 0 / 1: its powers alike)
+        df = pd.read_csv(csv)
+        df["S_door"] = (np.arange(len(df)) % 10) / 9.0
+        df.to_csv(csv, index=False)
+    deployed, frame = _deployed(root, "unobservable", "hammerstein")
+    model = dataclasses.replace(state_space(deployed), monitor={})
+    fallback = _swapped_powers(state_space(deployed.fallbacks_["T_u"]))
+    base, added = (model, fallback) if into == "model" else (fallback, model)
+    assert len(added.powers) == 2 and added.powers != base.powers
+    merged = dataclasses.replace(base, **{k: list(getattr(base, k)) for k in (
+        "powers", "taus", "lag_input", "lag_decay", "lag_of")})
+    _merge(merged, added, 1)
+    assert (len(merged.taus) > len(base.taus)) == (into == "fallback")
+    served = dataclasses.replace(merged, law_set=[1 - s for s in merged.law_set])
+    rows = frame[model.inputs].to_numpy(float)
+    got, want = (_plain(ss, rows, frame["time"]) for ss in (served, added))
+    assert np.max(np.abs(got - want)) < 1e-9
+    # the base's laws served: its own corrections, the added laws stepping beside
+    assert np.max(np.abs(_plain(merged, rows, frame["time"])
+                         - _plain(base, rows, frame["time"]))) < 1e-9
+
+
+def _plain(ss, rows, times) -> np.ndarray:
+    sim = Simulator(ss)
+    sim.reset()
+    return np.array([sim.step(u, t) for u, t in zip(rows, times)])

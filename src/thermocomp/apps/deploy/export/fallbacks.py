@@ -20,7 +20,7 @@ import numpy as np
 from .errors import NotExportable
 
 # what a fallback's system must share with the model's to step beside it in one system
-SHARED = ("inputs", "targets", "fir", "referenced", "clamp", "lo", "hi", "powers", "derived",
+SHARED = ("inputs", "targets", "fir", "referenced", "clamp", "lo", "hi", "derived",
           "derived_clamped", "derived_over", "initial", "held", "input_limit", "clamp_outright",
           "pattern", "pattern_mean", "pattern_scale", "pattern_basis", "pattern_tol",
           "ambient_inputs", "ambient_given", "ambient_optional", "ambient_centre", "period",
@@ -51,18 +51,33 @@ def _holds(ss, fb) -> bool:
     """Whether ``fb``'s laws can step beside ``ss``'s in one system."""
     lone = not (ss.forest_target or ss.lstm_target or fb.forest_target or fb.lstm_target
                 or ss.clamp_states or fb.clamp_states or fb.lag_of)
-    return lone and all(getattr(ss, k) == getattr(fb, k) for k in SHARED)
+    # other static powers (a Hammerstein model refitted may keep another degree): appended,
+    # where no derived input's column follows them
+    powers = ss.powers == fb.powers or not (ss.derived or ss.initial)
+    return lone and powers and all(getattr(ss, k) == getattr(fb, k) for k in SHARED)
 
 
 def _merge(ss, fb, s: int) -> None:
-    """``fb``'s laws appended to ``ss``'s as set ``s``: its lags mapped onto the model's (one
-    of its own appended where none is), its input history to the deeper of the two."""
+    """``fb``'s laws appended to ``ss``'s as set ``s``: its powers and lags mapped onto the
+    model's (one of its own appended where none is), its input history to the deeper of the
+    two."""
     laws, lags, n = len(ss.laws), len(ss.taus), len(ss.inputs)
+    wide, powers = n + len(ss.powers) + len(ss.derived) + len(ss.initial), len(ss.powers)
+    # fb's columns [x, powers, derived, initial] in the system's (other powers: no derived
+    # column after them, _holds)
+    col = np.arange(n + len(fb.powers) + len(fb.derived) + len(fb.initial))
+    for k, p in enumerate(fb.powers):
+        if p not in ss.powers:
+            ss.powers.append(p)
+        col[n + k] = n + ss.powers.index(p)
+    b0 = np.zeros((laws + len(fb.laws), wide + len(ss.powers) - powers))
+    b0[:laws, :wide] = np.asarray(ss.b0, float).reshape(laws, wide)
+    b0[laws:, col] = np.asarray(fb.b0, float).reshape(len(fb.laws), len(col))
     plain = {(tau, j): k for k, (tau, j, of) in enumerate(
         zip(ss.taus, ss.lag_input, ss.lag_of or [-1] * len(ss.taus))) if of < 0}
     rest = list(ss.lag_rest) or [0] * len(ss.taus)
     where = []
-    for k, (tau, j) in enumerate(zip(fb.taus, fb.lag_input)):
+    for k, (tau, j) in enumerate(zip(fb.taus, (int(col[j]) for j in fb.lag_input))):
         if (tau, j) not in plain:
             plain[(tau, j)] = len(ss.taus)
             ss.taus.append(tau)
@@ -82,9 +97,9 @@ def _merge(ss, fb, s: int) -> None:
     bd[laws:, :fb.depth] = np.asarray(fb.bd, float).reshape(len(fb.laws), fb.depth, n)
     ss.law_set = (list(ss.law_set) or [0] * laws) + [s] * len(fb.laws)
     ss.law_target = ss.laws + fb.laws
-    for k in ("intercept", "b0", "ar", "law_lo", "law_hi", "law_ambient"):
+    for k in ("intercept", "ar", "law_lo", "law_hi", "law_ambient"):
         setattr(ss, k, list(getattr(ss, k)) + list(getattr(fb, k)))
     if ss.clamp_gain is not None:
         ss.clamp_gain = list(ss.clamp_gain) + list(fb.clamp_gain)
-    ss.g, ss.bd, ss.depth = g.tolist(), bd.tolist(), depth
+    ss.b0, ss.g, ss.bd, ss.depth = b0.tolist(), g.tolist(), bd.tolist(), depth
     ss.uses_time = ss.uses_time or fb.uses_time
