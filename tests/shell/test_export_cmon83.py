@@ -110,32 +110,38 @@ def _swapped_powers(ss):
                                b0=[[row[j] for j in order] for row in ss.b0])
 
 
+@pytest.mark.parametrize("model", ["hammerstein", "lstm"])
 @pytest.mark.parametrize("into", ["model", "fallback"])
-def test_a_merged_fallback_steps_as_its_own_system(tmp_path, into):
-    """A Hammerstein model's fallback (its lags fewer, its powers in another order) merged into
-    the model's system, served, gives its own system's corrections; and the model's merged into
-    its fallback's (lags of its own appended) its own."""
+def test_a_merged_fallback_steps_as_its_own_system(tmp_path, model, into):
+    """A model's fallback merged into the model's system, served, gives its own system's
+    corrections, and the model's merged into its fallback's its own: a Hammerstein model's (its
+    lags fewer: the model's appended; its powers in another order), an lstm's (its network of
+    fewer inputs, padded)."""
     root = _machine(tmp_path / "data")
     for csv in root.glob("K*.csv"):       # a state of many values (a door's 0 / 1: its powers alike)
         df = pd.read_csv(csv)
         df["S_door"] = (np.arange(len(df)) % 10) / 9.0
         df.to_csv(csv, index=False)
-    deployed, frame = _deployed(root, "unobservable", "hammerstein")
-    model = dataclasses.replace(state_space(deployed), monitor={})
-    fallback = _swapped_powers(state_space(deployed.fallbacks_["T_u"]))
-    base, added = (model, fallback) if into == "model" else (fallback, model)
-    assert len(added.powers) == 2 and added.powers != base.powers
+    deployed, frame = _deployed(root, "unobservable", model)
+    own = dataclasses.replace(state_space(deployed), monitor={})
+    fallback = state_space(deployed.fallbacks_["T_u"])
+    if model == "hammerstein":
+        fallback = _swapped_powers(fallback)
+        assert len(fallback.powers) == 2 and fallback.powers != own.powers
+    else:
+        assert len(own.lstm_in[0]) > len(fallback.lstm_in[0])
+    base, added = (own, fallback) if into == "model" else (fallback, own)
     merged = dataclasses.replace(base, **{k: list(getattr(base, k)) for k in (
         "powers", "taus", "lag_input", "lag_decay", "lag_of")})
     _merge(merged, added, 1)
-    assert (len(merged.taus) > len(base.taus)) == (into == "fallback")
+    # (the lag bank of a Hammerstein model's fallback: fewer lags, the model's appended to it)
+    assert (len(merged.taus) > len(base.taus)) == (into == "fallback" and model == "hammerstein")
+    assert len(merged.lstm_target) == len(base.lstm_target) + len(added.lstm_target)
     served = dataclasses.replace(merged, law_set=[1 - s for s in merged.law_set])
-    rows = frame[model.inputs].to_numpy(float)
-    got, want = (_plain(ss, rows, frame["time"]) for ss in (served, added))
-    assert np.max(np.abs(got - want)) < 1e-9
+    rows, times = frame[own.inputs].to_numpy(float), frame["time"]
+    assert np.max(np.abs(_plain(served, rows, times) - _plain(added, rows, times))) < 1e-9
     # the base's laws served: its own corrections, the added laws stepping beside
-    assert np.max(np.abs(_plain(merged, rows, frame["time"])
-                         - _plain(base, rows, frame["time"]))) < 1e-9
+    assert np.max(np.abs(_plain(merged, rows, times) - _plain(base, rows, times))) < 1e-9
 
 
 def _plain(ss, rows, times) -> np.ndarray:

@@ -432,7 +432,7 @@ static double sigmoid(double a) {{ return 1.0 / (1.0 + exp(-a)); }}
    standardised; per layer the gates a = W_ih in + b_ih + W_hh h +
    b_hh (torch's rows i, f, g, o), c = f c + i g, h = o tanh(c), in double as the model infers;
    the read-out of the last layer's h times the model's output scale */
-static void lstms(tc_state *s, const double x[2][TC_WIDTH], double y[]) {{
+static void lstms(tc_state *s, const double x[2][TC_WIDTH], double y[], int serving) {{
     double in[{max(ss.lstm_width, 1)}], a[{max(4 * ss.lstm_hidden, 1)}], out;
     int k, l, r, j;
     for (k = 0; k < TC_N_LSTM; k++) {{
@@ -465,7 +465,8 @@ static void lstms(tc_state *s, const double x[2][TC_WIDTH], double y[]) {{
         }}
         out = LSTM_HEAD_BIAS[k];
         for (j = 0; j < TC_LSTM_HIDDEN; j++) out += LSTM_HEAD[k][j] * in[j];   /* the last layer's h */
-        y[LSTM_TARGET[k]] += LSTM_WEIGHT[k] * factor * (LSTM_Y_SCALE[k] * out);
+        if (LAW_SET[LSTM_LAW[k]] == serving)   /* (cmon83: a fallback model's net, while served) */
+            y[LSTM_TARGET[k]] += LSTM_WEIGHT[k] * factor * (LSTM_Y_SCALE[k] * out);
     }}
 }}
 
@@ -705,7 +706,7 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
         }}
     }}
     if (TC_N_FORESTS) forests(s, v, TC_SWITCH_RAW_TIME ? time : now, ysum[0]);
-    if (TC_N_LSTM) lstms(s, (const double (*)[TC_WIDTH])x, ysum[0]);
+    if (TC_N_LSTM) lstms(s, (const double (*)[TC_WIDTH])x, ysum[0], serving);
     for (i = 0; i < TC_N_OUTPUTS; i++) {{
         double bound = 0.0;
         ych[0] = ysum[0][i];

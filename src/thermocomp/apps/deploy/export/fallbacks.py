@@ -7,10 +7,11 @@ its sensor is out and the monitor rebuilds the field (``AdaptiveCompensator._fal
 laws go into the code's system after the model's, ``law_set`` naming whose each is (0 the
 model's, ``s`` the fallback of set ``s``): every law steps on every sample (its history, lags,
 feedback and clamp bound its own), and the output sums the laws of the set being served (the
-monitor's ``fallback_set``: per monitored sensor its set, 0 none in the code).  A fallback the
-system cannot hold beside the model (another denoiser, envelope, powers or derived inputs, a
-cascade of lags, a state times the inputs' rises, an arx_rf forest or an lstm network) is left
-out: its exclusion stays flagged ``FALLBACK`` (:mod:`.watch`).
+monitor's ``fallback_set``: per monitored sensor its set, 0 none in the code); its lstm networks
+(of the model's shape) step beside the model's too, and other static powers are appended.  A
+fallback the system cannot hold beside the model (another denoiser, envelope, inputs or derived
+inputs, a cascade of lags, a state times the inputs' rises, an arx_rf forest, an lstm network of
+another shape) is left out: its exclusion stays flagged ``FALLBACK`` (:mod:`.watch`).
 """
 
 from __future__ import annotations
@@ -49,12 +50,16 @@ def with_fallbacks(ss, deployed, system) -> None:
 
 def _holds(ss, fb) -> bool:
     """Whether ``fb``'s laws can step beside ``ss``'s in one system."""
-    lone = not (ss.forest_target or ss.lstm_target or fb.forest_target or fb.lstm_target
-                or ss.clamp_states or fb.clamp_states or fb.lag_of)
+    lone = not (ss.forest_target or fb.forest_target or ss.clamp_states or fb.clamp_states
+                or fb.lag_of)
     # other static powers (a Hammerstein model refitted may keep another degree): appended,
-    # where no derived input's column follows them
-    powers = ss.powers == fb.powers or not (ss.derived or ss.initial)
-    return lone and powers and all(getattr(ss, k) == getattr(fb, k) for k in SHARED)
+    # where no derived input's column (nor a network's lag) follows them
+    nets = ss.lstm_target or fb.lstm_target
+    powers = ss.powers == fb.powers or not (ss.derived or ss.initial or nets)
+    # networks (an lstm, a model=auto blend's member): the code steps one shape of them
+    shape = not (ss.lstm_target and fb.lstm_target) or (
+        (ss.lstm_hidden, ss.lstm_layers) == (fb.lstm_hidden, fb.lstm_layers))
+    return lone and powers and shape and all(getattr(ss, k) == getattr(fb, k) for k in SHARED)
 
 
 def _merge(ss, fb, s: int) -> None:
@@ -103,3 +108,34 @@ def _merge(ss, fb, s: int) -> None:
         ss.clamp_gain = list(ss.clamp_gain) + list(fb.clamp_gain)
     ss.b0, ss.g, ss.bd, ss.depth = b0.tolist(), g.tolist(), bd.tolist(), depth
     ss.uses_time = ss.uses_time or fb.uses_time
+    if fb.lstm_target:
+        _merge_nets(ss, fb, laws, col, where)
+
+
+def _merge_nets(ss, fb, laws: int, col, where: list) -> None:
+    """``fb``'s networks appended to ``ss``'s, their inputs' sources and laws mapped onto the
+    system's (its lags ``where``), every net's inputs and layer rows padded to the widest."""
+    width = len(col)        # x's columns (the same in both: _holds)
+    sources = [[-1 if q < 0 else int(col[q]) if q < width else width + where[q - width]
+                for q in row] for row in fb.lstm_in]
+    n = max(len(r) for r in [*ss.lstm_in, *sources])
+    W = max(ss.lstm_width, fb.lstm_width)
+
+    def padded(rows, value):
+        return [list(r) + [value] * (n - len(r)) for r in rows]
+
+    def wide(w_ih):
+        w = np.asarray(w_ih, float)
+        return np.pad(w, [(0, 0)] * (w.ndim - 1) + [(0, W - w.shape[-1])]).tolist() if len(w) else []
+
+    ss.lstm_in = padded(ss.lstm_in, -1) + padded(sources, -1)
+    ss.lstm_in_law = padded(ss.lstm_in_law, 0) + padded([[q + laws for q in r]
+                                                         for r in fb.lstm_in_law], 0)
+    ss.lstm_x_mean = padded(ss.lstm_x_mean, 0.0) + padded(fb.lstm_x_mean, 0.0)
+    ss.lstm_x_scale = padded(ss.lstm_x_scale, 1.0) + padded(fb.lstm_x_scale, 1.0)
+    ss.lstm_w_ih = wide(ss.lstm_w_ih) + wide(fb.lstm_w_ih)
+    ss.lstm_law = list(ss.lstm_law) + [q + laws for q in fb.lstm_law]
+    for k in ("lstm_target", "lstm_weight", "lstm_w_hh", "lstm_b_ih", "lstm_b_hh", "lstm_head",
+              "lstm_head_bias", "lstm_y_scale"):
+        setattr(ss, k, list(getattr(ss, k)) + list(getattr(fb, k)))
+    ss.lstm_hidden, ss.lstm_layers, ss.lstm_width = fb.lstm_hidden, fb.lstm_layers, W

@@ -724,6 +724,8 @@ class Simulator:
         """A forest's or network's ``value`` added to its target's ``y`` times its weight and
         its law's factor (empty ``laws``, an older export: 1)."""
         factor = self.factor[np.asarray(laws, int)] if laws else np.ones(len(value))
+        if laws:        # (cmon83) a fallback model's network adds only while it is served
+            factor = np.where(self.law_set[np.asarray(laws, int)] == self.serving, factor, 0.0)
         added = np.where(factor != 0.0, np.asarray(weights) * factor * value, 0.0)
         np.add.at(y, np.asarray(targets, int), added)
 
