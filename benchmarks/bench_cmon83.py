@@ -35,11 +35,13 @@ feedback and clamp bound, the output the served set's (``monitor.fallback_set``)
 
 Scored (2026-12-04, sources of this branch; "before": the same bench on main at b79207b5).  CPU
 of the bench process (gcc and ``stream`` not counted; it steps the served model once more per
-campaign for the fallback's rows): 95.2 s for the 20 records (before 84.1 s), the simulations
-cached.  The served monitor is unchanged: its corrections, events and RMSE the same digits in
-both runs.  Of the 20 records (10 seeds, healthy and drift), 4 have the served correction switch
-to a fallback model; E_Y test RMSE in µm (one test cycle of 1441 rows), the rows where C = served
-(every target within 1e-9 µm), the largest |C - served| from the first switch on, the first flag:
+campaign for the fallback's rows): 84.2 s for the 20 records on the last commit's sources
+(before 84.1 s; a first run, under a heavier load of the shared cores, 95.2 s), the simulations
+cached; the last run printed the same as the first, line for line.  The served monitor is
+unchanged: its corrections, events and RMSE the same digits in both runs.  Of the 20 records
+(10 seeds, healthy and drift), 4 have the served correction switch to a fallback model; E_Y test
+RMSE in µm (one test cycle of 1441 rows), the rows where C = served (every target within 1e-9
+µm), the largest |C - served| from the first switch on, the first flag:
 
 | record | fallback served | fixed | served adaptive | C before | C now |
 |---|---|---|---|---|---|
@@ -59,10 +61,25 @@ The C now equals the served corrections on every row of 3 of the 4 (before none)
 fourth (s8549 drift) to row 1081, where a stepped self-prediction error fires (no rule of this
 slice; the 56 µm are after it).  No ``FALLBACK`` flag is left (before 4).  Over the 20 records:
 C = served on every row of 15 (before 12), on 28287 of 28820 rows (before 28268), the pack keeps
-27141 rows (before 24665); the other 16 records' rows, flags and RMSE as before.  Other families
-on the found records (healthy, ``MODEL``): lagbank, its fallbacks with lags of their own, s8541
-(``T_amb`` 732-737) and s8549 (``T_front3`` 734-736) C = served on every row (largest 1.3e-12
-µm), pack 1441 of 1441 each, 17.6 s; arx on s8541 serves no fallback (C = served, 2e-13 µm).
+27141 rows (before 24665); the other 16 records' rows, flags and RMSE as before.
+
+Other families, ``MODEL``, on the found seeds (healthy; before -> now; the switch as MLR's):
+
+| record | fallback | rows C = served | max abs(C - served) after it, µm | E_Y C (served), µm | pack rows |
+|---|---|---|---|---|---|
+| lagbank s8541 | lags of its own | 1441 | 1.3e-12 | 31.300 (31.300) | 1441 |
+| lagbank s8549 | lags of its own | 1441 | 4.8e-13 | 21.720 (21.720) | 1441 |
+| hammerstein s8541 | another power | 1434 -> 1441 | 24 -> 1.3e-12 | 31.331 -> 31.300 (31.300) | 731 -> 1441 |
+| hammerstein s8549 | its powers | 1436 -> 1441 | 60 -> 3.7e-13 | 26.146 -> 26.086 (26.086) | 733 -> 1441 |
+| auto s8541 | an lstm member | 1435 -> 1441 | 1.3 -> 6.5e-13 | 13.297 -> 13.298 (13.298) | 731 -> 1441 |
+| auto s8549 | an lstm member | 1437 -> 1441 | 39 -> 6.5e-13 | 11.205 -> 11.272 (11.272) | 733 -> 1441 |
+
+(lagbank "before" not run; its fallbacks, like every one, flagged on main.)  CPU: lagbank 17.6 s,
+hammerstein 32.2 s (before 28.1 s), auto 52.6 s (before 55.7 s) for the two records.  arx on
+s8541 serves no fallback (C = served, 2e-13 µm).  The first Hammerstein fallback (s8541) keeps a
+square the model's fit dropped: its power appended to the system's.  Left flagged: a fallback
+with an arx_rf forest, an lstm network of another shape than the model's, other inputs or
+derived inputs, a cascade of lags, or a state times the inputs' rises (none on these records).
 
 Found besides (the served monitor, not the code): s8546 healthy, ``T_left1`` and ``T_left3`` out
 as a drift at row 731 (Q3 setting in) and back only at 1247, the served E_Y 71.260 µm against
