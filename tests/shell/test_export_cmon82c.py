@@ -11,8 +11,7 @@ as explaining it and re-admits it once back.  Without a fallback model (``monito
 none``: the model reads the sensor held) the C flagged the exclusion before
 (``TC_MON_NOT_IN_CODE``) and the pack was cut there; now the compiled code (gcc -Wall -Wextra
 -Werror) gives the served corrections on every row and the pack, not cut, passes.  With one
-(the default: the served correction is then the model fitted without it) the code still flags,
-from the exclusion on, a rule it does not hold."""
+(the default: the served correction is then the model fitted without it): test_export_cmon83."""
 
 from __future__ import annotations
 
@@ -31,7 +30,6 @@ from thermocomp.apps.deploy.export.pack import conformance_pack, corrections
 from thermocomp.apps.deploy.export.watch import (
     BLIND_OUT,
     EXCLUDED,
-    FALLBACK,
     NOT_IN_CODE,
     READMITTED,
 )
@@ -66,11 +64,12 @@ def _machine(root, rows: int = ROWS):
     return root
 
 
-def _deployed(folder, fallbacks: str):
-    """Adaptive MLR on :func:`_machine`'s record as replay deploys it (test_export's
-    ``adaptive_mlr``), ``monitor.fallbacks=<fallbacks>``: ``(deployed, the ramped record)``."""
+def _deployed(folder, fallbacks: str, model: str = "mlr"):
+    """Adaptive MLR (or ``model``) on :func:`_machine`'s record as replay deploys it
+    (test_export's ``adaptive_mlr``), ``monitor.fallbacks=<fallbacks>``: ``(deployed, the ramped
+    record)``."""
     cfg = test_export._compose(f"data.path={folder}", "track=false", "monitor.adaptive=true",
-                               "model=mlr", f"monitor.fallbacks={fallbacks}")
+                               f"model={model}", f"monitor.fallbacks={fallbacks}")
     ds, train_ids, test_ids, _ = read_streamed(cfg)
     train = {c: ds.campaigns[c] for c in train_ids}
     deployed = deployable(cfg, deploy_stream(cfg, build_compensator(cfg, ds=ds).fit(train), train),
@@ -148,23 +147,3 @@ def test_an_export_before_cmon82c_flags_the_exclusion_as_before(served):
         sim.step(u, t)
         flagged.append(bool(sim.watch.flags & NOT_IN_CODE))
     assert flagged.index(True) == row - 1
-
-
-def test_with_a_fallback_model_the_code_flags_from_the_exclusion_on(record):
-    """The default ``monitor.fallbacks``: the served correction while ``T_u`` is out is the model
-    fitted without it, which the code does not hold: flagged from the exclusion to the end, and
-    the pack cut at the first row the corrections part, not before the exclusion."""
-    deployed, frame = _deployed(record, "unobservable")
-    assert "T_u" in deployed.fallbacks_
-    ss = state_space(deployed, monitor=True)
-    row = [r for r, to, _ in _served_moves(deployed, frame) if to == "excluded"][0]
-    sim = Simulator(ss)
-    sim.reset()
-    missed = []
-    for u, t in zip(frame[ss.inputs].to_numpy(float), frame["time"]):
-        sim.step(u, t)
-        missed.append(sim.watch.missed if sim.watch.flags & NOT_IN_CODE else 0)
-    assert missed == [0] * (row - 1) + [FALLBACK] * (len(frame) - row + 1)
-    _, summary = conformance_pack(deployed, ss, {"K06": frame})
-    cut = summary["campaigns"][0]["cut"]
-    assert cut["row"] >= row and "model fitted without" in cut["why"], cut

@@ -177,6 +177,7 @@ def header(ss: StateSpace) -> str:
 #define TC_N_INPUTS {n}
 #define TC_N_OUTPUTS {m}
 #define TC_N_LAWS {len(ss.laws)}   /* linear laws summed into the outputs (LAW_TARGET) */
+#define TC_N_SETS {max(ss.law_set or [0]) + 1}   /* the model's laws, and each fallback model's (LAW_SET) */
 #define TC_N_AMBIENT {len(ss.ambient_inputs)}   /* inputs whose first sample is the ambient (ATI) */
 #define TC_AMBIENT_GIVEN {int(ss.ambient_given)}   /* 1: the ambient is given per campaign (tc_set_ambient) */
 #define TC_AMBIENT_OPTIONAL {int(ss.ambient_optional)}   /* 1: ... a campaign without it still starts */
@@ -238,8 +239,8 @@ typedef struct {{
     double lstm_h[{_lstm_dims(ss)}];   /* an lstm's hidden state per net and layer */
     double lstm_c[{_lstm_dims(ss)}];   /* ... and its cell state (0 at a campaign's start) */
     double factor[TC_N_LAWS];                   /* each law's factor in this campaign (ATI) */
-    double bound[TC_N_OUTPUTS];                 /* limit of what the clamp takes out: the last
-                                                   sample out of the envelope's */
+    double bound[TC_N_SETS][TC_N_OUTPUTS];      /* limit of what the clamp takes out: the last
+                                                   sample out of the envelope's (per law set) */
     double t;                                   /* previous sample time, s */
     double t_grid;                              /* the last sample the model stepped on, s */
     double t_read;                              /* last good time read, s */
@@ -311,7 +312,7 @@ def source(ss: StateSpace) -> str:
         _ints("LAG_INPUT", ss.lag_input), _ints("LAG_REST", ss.lag_rest or [0] * k),
         _ints("LAG_OF", ss.lag_of or [-1] * k),
         _array("INTERCEPT", ss.intercept, (r,)), _array("B0", ss.b0, (r, n + p + q)),
-        _ints("LAW_TARGET", ss.laws),
+        _ints("LAW_TARGET", ss.laws), _ints("LAW_SET", ss.law_set or [0] * r),
         _array("LAW_LO", ss.law_lo or [-UNBOUNDED] * r, (r,)),
         _array("LAW_HI", ss.law_hi or [UNBOUNDED] * r, (r,)),
         _ints("LAW_AMBIENT", ss.law_ambient or [0] * r), _ints("AMBIENT_INPUT", ss.ambient_inputs),
@@ -431,7 +432,7 @@ static double sigmoid(double a) {{ return 1.0 / (1.0 + exp(-a)); }}
    standardised; per layer the gates a = W_ih in + b_ih + W_hh h +
    b_hh (torch's rows i, f, g, o), c = f c + i g, h = o tanh(c), in double as the model infers;
    the read-out of the last layer's h times the model's output scale */
-static void lstms(tc_state *s, const double x[2][TC_WIDTH], double y[]) {{
+static void lstms(tc_state *s, const double x[2][TC_WIDTH], double y[], int serving) {{
     double in[{max(ss.lstm_width, 1)}], a[{max(4 * ss.lstm_hidden, 1)}], out;
     int k, l, r, j;
     for (k = 0; k < TC_N_LSTM; k++) {{
@@ -464,7 +465,8 @@ static void lstms(tc_state *s, const double x[2][TC_WIDTH], double y[]) {{
         }}
         out = LSTM_HEAD_BIAS[k];
         for (j = 0; j < TC_LSTM_HIDDEN; j++) out += LSTM_HEAD[k][j] * in[j];   /* the last layer's h */
-        y[LSTM_TARGET[k]] += LSTM_WEIGHT[k] * factor * (LSTM_Y_SCALE[k] * out);
+        if (LAW_SET[LSTM_LAW[k]] == serving)   /* (cmon83: a fallback model's net, while served) */
+            y[LSTM_TARGET[k]] += LSTM_WEIGHT[k] * factor * (LSTM_Y_SCALE[k] * out);
     }}
 }}
 
@@ -497,10 +499,10 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
     double uu[TC_N_INPUTS];                 /* u, a held signal's missing value filled */
     double um[TC_N_INPUTS];                 /* u, the monitored inputs as the model reads them */
     double v[TC_N_INPUTS], x[2][TC_WIDTH], xl[2][{max(k, 1)}], ych[2];
-    double ysum[2][TC_N_OUTPUTS], excess[TC_N_OUTPUTS];
+    double ysum[2][TC_N_OUTPUTS], excess[TC_N_SETS][TC_N_OUTPUTS];
     double allow[TC_N_OUTPUTS], yout[TC_N_OUTPUTS];
     double dt, now, lag_dt;
-    int i, j, l, h, r, clamped = 0, between = 0;
+    int i, j, l, h, r, clamped = 0, between = 0, serving = 0;
     tc_state committed;
     /* an input not measured refuses the sample before anything is remembered: one NaN would
        otherwise stay in the lags, the AR feedback and the guard to the campaign's end; so does
@@ -518,6 +520,7 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
         for (j = 0; j < TC_N_INPUTS; j++) um[j] = (measured(u, j) || !mon_watched(j)) ? u[j] : NAN;
         monitor_step(s, um, dt);
         u = um;
+        serving = mon_serving(s);   /* (cmon83) the law set served: a fallback model's, or 0 */
     }}
     /* a missing signal of derived inputs only (TC_INPUT_HELD) is held at the campaign's
        last value, 0 before any (its derived inputs 0), as the diagnosed model holds it */
@@ -677,15 +680,19 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
     /* outputs: static part, input history, lags, AR feedback; the response to the excess is
        taken out up to the response to it held for the envelope's horizon; back in range, up to
        the last excess's (the memory of an excess that ends at once is taken out as it decays) */
-    for (i = 0; i < TC_N_OUTPUTS; i++) ysum[0][i] = ysum[1][i] = excess[i] = 0.0;
-    for (r = 0; r < TC_N_LAWS; r++) {{   /* each law (its own feedback), summed into its target */
+    for (i = 0; i < TC_N_OUTPUTS; i++) ysum[0][i] = ysum[1][i] = 0.0;
+    for (h = 0; h < TC_N_SETS; h++)
+        for (i = 0; i < TC_N_OUTPUTS; i++) excess[h][i] = 0.0;
+    /* each law (its own feedback) steps, summed into its target where its set is served
+       (LAW_SET: a fallback model's laws step beside the model's from the campaign's start) */
+    for (r = 0; r < TC_N_LAWS; r++) {{
         double p = 0.0;
         for (j = 0; j < TC_N_INPUTS; j++) {{
             double gain = CLAMP_GAIN[r][j];
             for (l = 0; l < TC_N_STATE_GAIN; l++) gain += s->by_held[l] * STATE_GAIN[r][l][j];
             p += gain * x[1][j];
         }}
-        if (s->factor[r] != 0.0) excess[LAW_TARGET[r]] += s->factor[r] * p;
+        if (s->factor[r] != 0.0) excess[LAW_SET[r]][LAW_TARGET[r]] += s->factor[r] * p;
         for (h = 0; h < 2; h++) {{
             ych[h] = h == 0 ? INTERCEPT[r] : 0.0;
             for (j = 0; j < TC_WIDTH; j++) ych[h] += B0[r][j] * x[h][j];
@@ -694,19 +701,19 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
             for (l = 0; l < TC_N_LAGS; l++) ych[h] += G[r][l] * (s->z[h][l] - xl[h][l]);
             ych[h] += AR[r] * s->y[h][r];
             s->y[h][r] = ych[h];
-            if (s->factor[r] != 0.0) ysum[h][LAW_TARGET[r]] += s->factor[r] * ych[h];
+            if (s->factor[r] != 0.0 && LAW_SET[r] == serving)
+                ysum[h][LAW_TARGET[r]] += s->factor[r] * ych[h];
         }}
     }}
     if (TC_N_FORESTS) forests(s, v, TC_SWITCH_RAW_TIME ? time : now, ysum[0]);
-    if (TC_N_LSTM) lstms(s, (const double (*)[TC_WIDTH])x, ysum[0]);
+    if (TC_N_LSTM) lstms(s, (const double (*)[TC_WIDTH])x, ysum[0], serving);
     for (i = 0; i < TC_N_OUTPUTS; i++) {{
         double bound = 0.0;
         ych[0] = ysum[0][i];
         ych[1] = ysum[1][i];
-        bound = excess[i];
-        if (s->first || clamped) s->bound[i] = fabs(bound);
+        for (h = 0; h < TC_N_SETS && (s->first || clamped); h++) s->bound[h][i] = fabs(excess[h][i]);
         /* outright: no step gain (or none yet: a state's, out at the campaign's first sample) */
-        bound = (CLAMP_OUTRIGHT[i] || s->by_outright[i]) ? HUGE_VAL : s->bound[i];
+        bound = (CLAMP_OUTRIGHT[i] || s->by_outright[i]) ? HUGE_VAL : s->bound[serving][i];
         yout[i] = ych[0] - (ych[1] > bound ? bound : (ych[1] < -bound ? -bound : ych[1]));
     }}
     for (h = 0; h < 2; h++)

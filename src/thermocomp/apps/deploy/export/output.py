@@ -112,7 +112,9 @@ def not_in_code(deployed, fmt: str | None = None) -> list[str]:
                 "a jump at the sample after the reference, a stepped self-prediction "
                 "error, a drift beyond the band with a sensor out, of a sensor no other predicts, "
                 "of more than one blind partner, a second sensor out, a "
-                "sensor no other predicts out (the model fitted without it)"]
+                "sensor no other predicts out for another rule, or with a fallback model (the "
+                "model fitted without it) of a kind the code does not step beside the model "
+                "(an arx_rf forest, an lstm network of another shape)"]
     return ["sensor monitor (exclusion, reconstruction of a sensor from the others)"]
 
 

@@ -89,6 +89,7 @@ from ..adaptive import AdaptiveCompensator
 from ..streaming import Envelope
 from .derived import CLAMPED, DERIVED, INITIAL, OVER
 from .errors import NotExportable
+from .fallbacks import with_fallbacks
 from .forest import ForestArrays, Forests, Switches
 from .laws import AMBIENT_CENTRE_C, LINEAR_FAMILIES, PLAIN, UNBOUNDED, Powers, target_laws, with_gains
 from .output import Output, adapt_fields, guard_fields, time_fields
@@ -203,6 +204,10 @@ class _System:
     # the target each law adds to (a blend's member with its own feedback: a law of its own);
     # empty (an older export): law i is target i's
     law_target: list = field(default_factory=list)
+    # (cmon83) whose law each is: 0 the model's, s a fallback model's (the monitor's
+    # fallback_set: the correction fitted without a sensor, served while it is out); every law
+    # steps, the output sums the served set's (:mod:`.fallbacks`); empty: every law the model's
+    law_set: list = field(default_factory=list)
     # when each law counts (an ATI model's, ati=cmeans): A0, the mean of the ambient inputs at a
     # campaign's first sample, in (law_lo, law_hi]; times A0 - ambient_centre where law_ambient
     law_lo: list = field(default_factory=list)       # (n_laws,) °C; empty: every law always
@@ -361,7 +366,7 @@ def state_space(deployed, provenance: dict | None = None, known_ambient: bool = 
         for s, key in enumerate(states_by):
             state_gain[r, s] = law.gain_by.get(key, 0.0)
     derived = [k for k in sorted(powers, key=powers.get) if k[0] == DERIVED]
-    return StateSpace(
+    ss = StateSpace(
         inputs=inputs, targets=targets, fir=fir.tolist(),
         referenced=[int(r) for r in stream._is_ref] + [0] * len(states), clamp=bool(clamp),
         lo=env.lo.tolist() + [-UNBOUNDED] * len(states) if clamp else None,
@@ -402,6 +407,9 @@ def state_space(deployed, provenance: dict | None = None, known_ambient: bool = 
         **adapt_fields(deployed),
         **(monitor_fields(deployed, inputs) if monitor else {}),
         provenance={**(provenance or {}), **({"laws": chosen} if chosen else {})})
+    if ss.monitor:      # (cmon83) the served fallback models, beside the model's laws
+        with_fallbacks(ss, deployed, lambda fb: state_space(fb, known_ambient=known_ambient))
+    return ss
 
 
 def _law_of(own: list, key: tuple, target: str) -> int:
@@ -553,6 +561,9 @@ class Simulator:
         self.g = np.asarray(ss.g, float).reshape(laws, len(ss.taus))
         self.sum = np.zeros((laws, m))            # law -> the target it adds to
         self.sum[np.arange(laws), ss.laws] = 1.0
+        self.law_set = np.asarray(ss.law_set or [0] * laws, int)     # (cmon83) whose law
+        self.sets = int(self.law_set.max(initial=0)) + 1
+        self.serving = 0           # the set the output sums: the model's, or a fallback's
         self.taus = np.asarray(ss.taus, float)
         self.lag_input = np.asarray(ss.lag_input, int)
         self.lag_rest = np.asarray(ss.lag_rest or [0] * len(ss.taus), bool)
@@ -606,6 +617,7 @@ class Simulator:
         if self.watch is not None:      # the monitored inputs as the model reads them
             u = self.watch.step(u, self.first, dt)
             measured = ss.measured(u)
+            self.serving = self.watch.serving()
         self.last = np.where(measured, u, self.last)
         u = np.where(measured, u, np.where(self.seen, self.last, 0.0))     # a held signal
         if self.first:
@@ -680,7 +692,7 @@ class Simulator:
         if self.first:
             self.hist = np.repeat(xs[:, None, :len(x)], ss.depth, axis=1)
             z, self.y = np.where(self.lag_rest, 0.0, xl), np.zeros((2, len(ss.laws)))
-            self.bound = np.zeros(len(ss.targets))
+            self.bound = np.zeros((self.sets, len(ss.targets)))     # each set's own
         else:
             z = e * self.z + (1.0 - e) * xl
         for k in np.flatnonzero(self.lag_of >= 0):     # a cascade: on its source's new value
@@ -702,9 +714,9 @@ class Simulator:
             self._beside(y[0], ss.lstm_target, ss.lstm_weight, ss.lstm_law, value)
         if excess.any():            # back in range, the bound of the excess's last sample holds
             gain = self.clamp_gain + np.einsum("s,rsi->ri", self.by_held, self.state_gain)
-            self.bound = np.abs(self._summed(gain @ excess))
+            self.bound = np.abs([self._summed(gain @ excess, k) for k in range(self.sets)])
         outright = np.asarray(ss.clamp_outright or [0] * len(y[0]), bool) | self.by_outright
-        bound = np.where(outright, np.inf, self.bound)
+        bound = np.where(outright, np.inf, self.bound[self.serving])
         return y[0] - np.clip(y[1], -bound, bound), self.output.allowance(x, self.envelope)
 
     def _beside(self, y: np.ndarray, targets: list, weights: list, laws: list,
@@ -712,6 +724,8 @@ class Simulator:
         """A forest's or network's ``value`` added to its target's ``y`` times its weight and
         its law's factor (empty ``laws``, an older export: 1)."""
         factor = self.factor[np.asarray(laws, int)] if laws else np.ones(len(value))
+        if laws:        # (cmon83) a fallback model's network adds only while it is served
+            factor = np.where(self.law_set[np.asarray(laws, int)] == self.serving, factor, 0.0)
         added = np.where(factor != 0.0, np.asarray(weights) * factor * value, 0.0)
         np.add.at(y, np.asarray(targets, int), added)
 
@@ -743,7 +757,9 @@ class Simulator:
         taus = np.array([tau for tau, _, _ in self.ss.initial], float)
         return self.start * (1.0 - np.exp(-(now - self.t0) / taus))
 
-    def _summed(self, per_law: np.ndarray) -> np.ndarray:
+    def _summed(self, per_law: np.ndarray, of: int | None = None) -> np.ndarray:
         """Per target: its laws' values (last axis) times their factors, summed (a law out of
-        the campaign's interval adds nothing, whatever its state)."""
-        return np.where(self.factor != 0.0, per_law * self.factor, 0.0) @ self.sum
+        the campaign's interval adds nothing, whatever its state), of the set ``of`` (None: the
+        one served)."""
+        keep = (self.factor != 0.0) & (self.law_set == (self.serving if of is None else of))
+        return np.where(keep, per_law * self.factor, 0.0) @ self.sum

@@ -52,10 +52,16 @@ The served adaptive compensator judges every ``T_`` input before the model reads
   sensors beyond the band (the served ``_explaining``): a drift exclusion (its wait doubled) that
   the model reads held at its last reading while in (``last``), re-admitted where every judged
   sensor of the set with it in is within its warning band over the window (``explains``), or at
-  once where the field follows it; judged again after it, one beyond the alarm band flagged.  Where
-  it has a fallback model (``fallback``: the served correction the model fitted without it) the
-  campaign is flagged ``FALLBACK`` from the exclusion on; a jump of it or a reading beyond its
-  range while it is out flagged ``BLIND``.  An export before it (no ``blind_out``) flags it.
+  once where the field follows it; judged again after it, one beyond the alarm band flagged.  A
+  jump of it or a reading beyond its range while it is out flagged ``BLIND``.  An export before
+  it (no ``blind_out``) flags it.
+* (cmon83) the **fallback model** (``fallback``: the served correction while such a sensor is
+  out is the model fitted without it): its laws step beside the model's (:mod:`.fallbacks`,
+  ``law_set``) and the code serves them while the sensor is out and enough are in to rebuild the
+  field (:meth:`CodeMonitor.serving`, the served ``_fallen_back``; ``fallback_set``), the model's
+  again once it is back.  One the code cannot hold (an arx_rf forest, an lstm network of another
+  shape, other inputs or derived inputs, a cascade of lags, a state times the inputs' rises), or an
+  export before it (no ``fallback_set``), flags the campaign ``FALLBACK`` from the exclusion on.
 
 What else the served monitor does it flags, ``NOT_IN_CODE`` with the rule (:data:`REASONS`),
 and goes on by its own rules: a reading beyond its range at a campaign's first sample, of
@@ -64,7 +70,7 @@ as it was, so that the reading's return is no jump), several sensors jumping at 
 no common step, a jump at the reference's next sample, a stepped self-prediction error, a drift
 beyond the band with a sensor out already, of more than one blind partner, a second culprit
 beyond the alarm band, a second sensor out, and a sensor no other predicts out for any other
-rule, or with the model fitted without it.  A missing reading the code cannot
+rule, or with a fallback model the code does not hold.  A missing reading the code cannot
 rebuild (at a campaign's first sample, with another sensor out or missing, of a sensor it does
 not hold out) is refused as before (:meth:`CodeMonitor.refuses`: the sample is not read).  From
 such a row on the code may part from the served model; the conformance pack cuts there
@@ -117,7 +123,7 @@ REASONS = ("", "jump: re-referenced and excluded", "freeze: excluded",
            "drift: no other sensor predicts it and its reading explains the others' bands, "
            "excluded, held at its last reading",
            "not in the code: the correction of the model fitted without a sensor no other "
-           "predicts, from its exclusion on (monitor.fallbacks)")
+           "predicts (of a kind the code does not hold), from its exclusion on (monitor.fallbacks)")
 RULES = ("", "JUMP", "FREEZE", "BACK", "RANGE", "COMMON", "GLITCH", "STEPPED", "DRIFT", "SECOND",
          "BLIND", "DROPOUT", "MISSING_FIRST", "MISSING_SECOND", "MISSING_BLIND",
          "MISSING_FROZEN", "OFF_RANGE", "COMMON_STEP", "DRIFT_OUT",
@@ -277,6 +283,8 @@ class CodeMonitor:
         self.ported = np.asarray(arrays["ported_out"], bool)
         self.predictable = np.asarray(arrays["predictable"], bool)
         self.fallback = np.asarray(arrays.get("fallback", [0] * n), bool)
+        # (cmon83) the law set of its fallback model in the code (0: none, an export before it)
+        self.fallset = np.asarray(arrays.get("fallback_set", [0] * n), int)
         self.reset()
 
     def reset(self) -> None:
@@ -305,7 +313,7 @@ class CodeMonitor:
         # (cmon82c) out for explaining the others' errors (no other predicts it), and each
         # sensor's last reading while it was in (what the model reads of one no other predicts)
         self.explains, self.last = np.zeros(n, bool), np.zeros(n)
-        self.fell = False      # one with a fallback model went out: flagged to the campaign's end
+        self.fell = False      # one whose fallback model the code lacks went out: flagged to the end
         self.flags, self.sensor, self.rule, self.missed = 0, -1, 0, 0
 
     # the active set's operator, leverages, which sensors are judged and the errors' scale
@@ -744,8 +752,20 @@ class CodeMonitor:
         self._by_drift(u)
         self.explains[u] = True
         self._flag(EXCLUDED, u, BLIND_OUT)
-        self.fell = self.fell or bool(self.fallback[u])
+        self.fell = self.fell or bool(self.fallback[u] and not self.fallset[u])
         self._second_culprit()
+
+    def serving(self) -> int:
+        """(cmon83) The law set the correction sums (:mod:`.fallbacks`): the fallback model's of
+        the first sensor out (the monitor's order) that has one, as served (``_fallen_back``: not
+        while too few are in to rebuild the field; one that has none in the code: 0, flagged
+        ``FALLBACK``); 0: the model's.  (Its other clause, a sensor out for a dropout that reads
+        again, the code never meets: a missing reading of one no other predicts is refused.)"""
+        active = self._active()
+        if active.sum() < self.a["min_active"]:
+            return 0
+        k = next((k for k in range(self.n) if not active[k] and self.fallback[k]), None)
+        return 0 if k is None else int(self.fallset[k])
 
     def _second_culprit(self) -> None:
         """After an exclusion the served monitor judges again and goes on with one out: a sensor

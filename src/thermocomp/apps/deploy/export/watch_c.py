@@ -56,7 +56,7 @@ STATE = """    /* the sensor monitor (TC_MONITOR): referenced readings d = u - m
     int mon_novel, mon_calm_field;
     /* (cmon82c) out for explaining the others' errors (no other predicts it), and each sensor's
        last reading while it was in (what the model reads of one no other predicts, out) */
-    int mon_explains[NM], mon_fell;   /* (mon_fell: one with a fallback model went out) */
+    int mon_explains[NM], mon_fell;   /* (mon_fell: one whose fallback model the code lacks went out) */
     double mon_last[NM];
     int mon_flags, mon_sensor, mon_rule;        /* the last sample's (TC_MON_*) */
 """
@@ -92,6 +92,7 @@ def monitor_arrays(ss) -> list[tuple[str, object, tuple, str]]:
             ("MON_PREDICTABLE", m.get("predictable", []), (n,), "int"),
             ("MON_PORTED", m.get("ported_out", []), (n,), "int"),
             ("MON_FALLBACK", m.get("fallback", [0] * n), (n,), "int"),
+            ("MON_FALLBACK_SET", m.get("fallback_set", [0] * n), (n,), "int"),
             *((name, m.get(key, default), (), kind) for name, key, default, kind in scalars)]
 
 
@@ -290,6 +291,18 @@ static void mon_rebuilt(tc_state *s, double u[], const double d[], const double 
             mon_flag(s, TC_MON_NOT_IN_CODE, k, TC_MON_FALLBACK);
             break;
         }
+}
+
+/* (cmon83) the law set the correction sums (LAW_SET): the fallback model's of the first sensor
+   out that has one, as served (not while too few are in to rebuild the field; one whose model is
+   not in the code: 0, flagged FALLBACK); 0: the model's */
+static int mon_serving(const tc_state *s) {
+    int k, in = 0;
+    for (k = 0; k < NM; k++) in += k != s->mon_out && k != s->mon_out2;
+    if (in < MON_MIN_ACTIVE) return 0;
+    for (k = 0; k < NM; k++)
+        if ((k == s->mon_out || k == s->mon_out2) && MON_FALLBACK[k]) return MON_FALLBACK_SET[k];
+    return 0;
 }
 
 /* (cmon80) a reading beyond its range (rng: which, nrng of them) after a campaign's first
@@ -567,7 +580,7 @@ static void mon_drift(tc_state *s, const int level[], int field) {
         mon_by_drift(s, u);
         s->mon_explains[u] = 1;
         mon_flag(s, TC_MON_EXCLUDED, u, TC_MON_BLIND_OUT);
-        if (MON_FALLBACK[u]) s->mon_fell = 1;
+        if (MON_FALLBACK[u] && !MON_FALLBACK_SET[u]) s->mon_fell = 1;   /* (none in the code) */
         if (mon_levels(s, lv, jd) > MON_MIN_ACTIVE)
             for (k = 0; k < NM; k++)
                 if (jd[k] && lv[k] >= 2) {
