@@ -28,6 +28,7 @@ from ...base.log import logger
 from ..timerule import median_step
 from .contract import TIME, ContractError, role
 from .options import ReadOptions
+from .sparse import intermittent
 
 TOLERANCE_STEPS = 3.0     # data.join.tolerance_s's default, in temperature logger periods
 
@@ -60,16 +61,46 @@ def joined(temps: pa.Table, temp_report: dict, errors: pa.Table, error_report: d
                        error_file.name, temp_file.name, _said(cut, tolerance),
                        "data.join.tolerance_s" if cut["gaps"] else "the run's rows start and "
                        "end where both loggers logged")
-    grid = t_error[keep]
-    after = np.searchsorted(t_temp, grid, side="right") - 1      # a state's sample held
+    at = np.searchsorted(t_temp, t_error[keep], side="right") - 1   # last scan at or before
+    errors_kept = {name: errors.column(name).to_numpy(zero_copy_only=False)[keep]
+                   for name in errors.column_names[1:]}
+    on_scans = _on_scans(at, errors_kept, opts.sparse_targets)
+    rows = np.arange(at[0], at[-1] + 1) if on_scans else at
+    grid = t_temp[rows]
     columns = {TIME: pa.array(grid - grid[0])}
-    for name in temps.column_names[1:]:
-        values = temps.column(name).to_numpy(zero_copy_only=False)
-        columns[name] = pa.array(np.interp(grid, t_temp, values) if role(name) == "T"
-                                 else values[after])
-    for name in errors.column_names[1:]:
-        columns[name] = pa.array(errors.column(name).to_numpy(zero_copy_only=False)[keep])
-    return columns, _report(temp_report, error_report, grid, files, opts, cut, period)
+    for name in temps.column_names[1:]:       # held: what a control has at that instant
+        columns[name] = pa.array(temps.column(name).to_numpy(zero_copy_only=False)[rows])
+    for name, values in errors_kept.items():
+        if not on_scans:
+            columns[name] = pa.array(values)
+        elif role(name) == "E":               # measured on its scan's row, empty between
+            column = np.full(len(rows), np.nan)
+            column[at - at[0]] = values
+            columns[name] = pa.array(column)
+        else:                                 # the error logger's own inputs, held
+            columns[name] = pa.array(values[np.searchsorted(at, rows, side="right") - 1])
+    report = _report(temp_report, error_report, grid, files, opts, cut, period)
+    if on_scans:
+        report["sparse_targets"] = on_scans
+    return columns, report
+
+
+def _on_scans(at: np.ndarray, errors: dict, mode: str) -> dict:
+    """``{error column: its probe cycle}`` (:func:`.sparse.intermittent`) on the scans' rows
+    ``at[0] .. at[-1]`` when each error sample has a scan of its own (``at``: the last scan at
+    or before each) and every error column reads there as measured now and then; else ``{}``
+    (a logger of errors as fast as the scans: its own rows)."""
+    if np.unique(at).size < at.size:
+        return {}
+    rows, out = at[-1] - at[0] + 1, {}
+    for name, values in errors.items():
+        if role(name) == "E":
+            measured = (at - at[0])[np.isfinite(values.astype(float))]
+            cycle = intermittent(np.setdiff1d(np.arange(rows), measured), rows, mode)
+            if cycle is None:
+                return {}
+            out[name] = cycle
+    return out
 
 
 def _shift(temp_report: dict, error_report: dict, files: tuple) -> float:
