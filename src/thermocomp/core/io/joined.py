@@ -5,10 +5,12 @@ then joined by time.
 
 The rows are the ERROR logger's samples: the error is what is scored, so each scored row is an
 error as measured, never one interpolated between two probe readings (nor repeated: held
-errors would weigh a slow probe's reading once per temperature sample).  Temperatures are
-interpolated linearly onto the errors' times (they change over minutes; sample and hold would
-lag them by half a period on average), a state (``S_``: a door, a speed) is held (its last
-sample at or before the time: it has no value between two).  The times are put on one clock:
+errors would weigh a slow probe's reading once per temperature sample).  Every column of
+the temperature file is held: its last sample at or before the error's time, what a control has
+then (rate83: temperatures were interpolated linearly between the samples around it, reading the
+next one up to a period ahead, so the scored rows were not what a control is fed; the deployed
+stream commits its dynamic models' steps once a training period, cadence72, on the samples the
+held rows are).  The times are put on one clock:
 timestamps on both sides as instants, the error logger's moved back by ``data.join.offset_s``
 (how far its clock runs ahead); seconds from each logger's start on both sides are taken as
 started together (said).  Error rows outside the temperature logger's span (one logger started
@@ -26,9 +28,8 @@ import pyarrow as pa
 
 from ...base.log import logger
 from ..timerule import median_step
-from .contract import TIME, ContractError, role
+from .contract import TIME, ContractError
 from .options import ReadOptions
-from .sparse import intermittent
 
 TOLERANCE_STEPS = 3.0     # data.join.tolerance_s's default, in temperature logger periods
 
@@ -61,46 +62,14 @@ def joined(temps: pa.Table, temp_report: dict, errors: pa.Table, error_report: d
                        error_file.name, temp_file.name, _said(cut, tolerance),
                        "data.join.tolerance_s" if cut["gaps"] else "the run's rows start and "
                        "end where both loggers logged")
-    at = np.searchsorted(t_temp, t_error[keep], side="right") - 1   # last scan at or before
-    errors_kept = {name: errors.column(name).to_numpy(zero_copy_only=False)[keep]
-                   for name in errors.column_names[1:]}
-    on_scans = _on_scans(at, errors_kept, opts.sparse_targets)
-    rows = np.arange(at[0], at[-1] + 1) if on_scans else at
-    grid = t_temp[rows]
+    grid = t_error[keep]
+    after = np.searchsorted(t_temp, grid, side="right") - 1      # never a later sample
     columns = {TIME: pa.array(grid - grid[0])}
-    for name in temps.column_names[1:]:       # held: what a control has at that instant
-        columns[name] = pa.array(temps.column(name).to_numpy(zero_copy_only=False)[rows])
-    for name, values in errors_kept.items():
-        if not on_scans:
-            columns[name] = pa.array(values)
-        elif role(name) == "E":               # measured on its scan's row, empty between
-            column = np.full(len(rows), np.nan)
-            column[at - at[0]] = values
-            columns[name] = pa.array(column)
-        else:                                 # the error logger's own inputs, held
-            columns[name] = pa.array(values[np.searchsorted(at, rows, side="right") - 1])
-    report = _report(temp_report, error_report, grid, files, opts, cut, period)
-    if on_scans:
-        report["sparse_targets"] = on_scans
-    return columns, report
-
-
-def _on_scans(at: np.ndarray, errors: dict, mode: str) -> dict:
-    """``{error column: its probe cycle}`` (:func:`.sparse.intermittent`) on the scans' rows
-    ``at[0] .. at[-1]`` when each error sample has a scan of its own (``at``: the last scan at
-    or before each) and every error column reads there as measured now and then; else ``{}``
-    (a logger of errors as fast as the scans: its own rows)."""
-    if np.unique(at).size < at.size:
-        return {}
-    rows, out = at[-1] - at[0] + 1, {}
-    for name, values in errors.items():
-        if role(name) == "E":
-            measured = (at - at[0])[np.isfinite(values.astype(float))]
-            cycle = intermittent(np.setdiff1d(np.arange(rows), measured), rows, mode)
-            if cycle is None:
-                return {}
-            out[name] = cycle
-    return out
+    for name in temps.column_names[1:]:
+        columns[name] = pa.array(temps.column(name).to_numpy(zero_copy_only=False)[after])
+    for name in errors.column_names[1:]:
+        columns[name] = pa.array(errors.column(name).to_numpy(zero_copy_only=False)[keep])
+    return columns, _report(temp_report, error_report, grid, files, opts, cut, period)
 
 
 def _shift(temp_report: dict, error_report: dict, files: tuple) -> float:
