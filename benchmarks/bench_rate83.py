@@ -144,6 +144,46 @@ join's line, "temperatures interpolated onto them" -> "the temperatures' last sa
 before each", reworded), a value changed only where a later sample was read (listed before ->
 after); test_docs, test_imports pass; docs/data-format.md said; a test failing on main.
 Otherwise REFUSED (src reverted, ``benchmarks/rate83b_rule.patch``).
+
+Scored (2026-12-04, rule B; 8582's own init, 8556 / 8581 their configs as before): scored / fed
+the scans, dX / dY / dZ µm (each cell scored = its rows streamed = fed to the printed digit),
+and the largest |scored - fed| over the targets:
+
+=============  ==========================  ==========================  ==========================
+family         8582 (fresh)                8556                        8581
+=============  ==========================  ==========================  ==========================
+mlr            0.343 / 5.975 / 6.271  9e-16  0.414 / 10.918 / 7.125 9e-16  0.364 / 2.605 / 7.109 9e-16
+arx            0.291 / 5.810 / 6.371  6e-17  0.362 / 10.588 / 7.262 9e-16  0.331 / 2.705 / 7.015 9e-16
+lagbank        0.316 / 6.015 / 6.703 5.6e-6  0.401 / 9.827 / 7.226 6.5e-6  0.319 / 2.039 / 7.125 4.7e-6
+hammerstein    0.316 / 6.015 / 2.368 5.6e-6  0.401 / 9.827 / 2.750 5.7e-6  0.319 / 1.444 / 2.406 7.9e-7
+auto           0.689 / 6.055 / 2.368 4.1e-6  0.374 / 10.015 / 2.750 5.7e-6 0.364 / 2.552 / 2.406 7.7e-7
+=============  ==========================  ==========================  ==========================
+
+The static families and arx to 1e-15; the lag bank and those built on it (hammerstein, auto's
+picks) 0.8-6.5e-6 µm apart: a row's TIME is the probe's (41 s after its scan, exactly 900 s
+apart) while the stream fed the scans commits at the scans' times (900 s plus the DAQ's ms
+jitter): exp(-dt/tau) of another dt.  (The measurement on A's tree read on the error rows had
+put the row at its scan's time: 8.9e-16 there.)  Tests: the two-logger files 39 of 41 pass as
+they were; test_twolog70's second (no offset: the probe 7 s after a sample on the DAQ's clock)
+T_Spindle 20.023 -> 20.000 (its sample at te, not 3 s later), its fourth the join's line
+reworded; a new test (a lag bank fed the DAQ's samples alone = the run's batch at the probes)
+fails on main (0.4646 against 0.4621 µm at its second probe).  The bar's 1e-9 missed on three
+families: REFUSED (src reverted, ``benchmarks/rate83b_rule.patch``).
+
+Rule C (rate83c; written before scoring, after B's figures on 8582 / 8556 / 8581).  Rule B, and
+a row's time is the held sample's (the instant of what a control holds at the error's, on the
+clock its models step on), where each error sample has a sample of its own; an error logger
+faster than the temperatures (two errors on one sample: equal times would be a stream's
+missing ones) keeps the errors' times, the temperatures held.
+
+Bar C (before scoring): on the fresh draw 8583 (``us``, never run; its own init) and on 8582 /
+8556 / 8581 (seen), per family (mlr, arx, lagbank, hammerstein, auto) and target |scored - fed
+the scans| <= 1e-9 µm; the two-logger tests (test_twolog70, test_pair70, test_keysight70,
+test_faults71, test_stranger83) pass with no assertion changed where the errors are on a
+temperature sample's instant (twolog70's ``offset_s=7``, pair70's elapsed) but the join's line
+reworded, a value changed only where a later sample was read (listed before -> after);
+test_docs, test_imports pass; docs/data-format.md said; a test failing on main.  Otherwise
+REFUSED (src reverted, ``benchmarks/rate83c_rule.patch``).
 """
 from __future__ import annotations
 
