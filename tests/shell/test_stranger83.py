@@ -76,7 +76,10 @@ def test_init_reads_a_probe_logs_date_and_time_columns_as_its_time(tmp_path, cap
     ds, _ = read_dataset(tmp_path / "mcr", {k: v for k, v in conf.items() if k != "defaults"})
     frame = ds.campaigns["MCR_L02"]
     assert len(frame) == ROWS // PROBE
-    np.testing.assert_allclose(frame["time"], np.arange(ROWS // PROBE) * 60.0 * PROBE)
+    # (rate83) each row at its scan's time, the one at or before the probe's (20 s later; the
+    # scans' ms after a colon kept): was the probe's time
+    scans = np.arange(0, ROWS, PROBE)
+    np.testing.assert_array_equal(frame["time"], scans * 60.0 + (scans % 7) / 1e3)
     expected = linear_run(8556, 2)[::PROBE]
     np.testing.assert_allclose(frame["E_dX"], expected[:, 3], atol=1e-3)
     np.testing.assert_allclose(frame["T_102_SPINDLE"], expected[:, 1], atol=0.02)

@@ -92,7 +92,9 @@ def test_the_clock_offset_moves_the_error_samples_on_the_temperature_clock(tmp_p
     ds, report = read_dataset(folder, CFG)
     frame = ds.campaigns["run02"]
     te = np.arange(0.0, 1200.0 - 60.0 + 1e-9, 60.0)  # its last, 1207 s on the DAQ's clock: cut
-    np.testing.assert_allclose(frame["T_Spindle"], _spindle(te + AHEAD_S, 2), atol=2e-4)
+    # at te + 7 s on the DAQ's clock: its sample at te held (rate83: interpolated towards the
+    # one at te + 10 s, a sample 3 s after the error's time)
+    np.testing.assert_array_equal(frame["T_Spindle"], np.round(_spindle(te, 2), 5))
     assert report["campaigns"]["run02"]["paired"]["cut"] == {"before": 0, "after": 1, "gaps": 0}
 
 
@@ -114,7 +116,7 @@ def test_init_says_what_it_paired_and_run_replay_fit_the_joined_runs(tmp_path, c
     assert main(["init", str(folder), "data.join.offset_s=7", f"out={tmp_path / 'init'}"]) == 0
     said = capsys.readouterr().out
     assert ("run01: two loggers, run01_temp.csv (every 10 s) + run01_disp.csv (every 60 s): one "
-            "run, its rows the errors' times, temperatures interpolated onto them "
+            "run, its rows the errors' times, the temperatures' last sample at or before each "
             "(data.join.offset_s=7); 19 rows, 2 error sample(s) cut (2 before)") in said
     assert ("run01_temp.csv: delimiter ',', decimal '.'; run01_disp.csv: delimiter ';', "
             "decimal ','") in said
@@ -129,6 +131,34 @@ def test_init_says_what_it_paired_and_run_replay_fit_the_joined_runs(tmp_path, c
                  "promote.envelope.policy=off", "track=false", f"out={tmp_path / 'replay'}"]) == 0
     replay = json.loads((tmp_path / "replay" / "replay.json").read_text())["targets"]["E_dX"]
     assert replay["rmse"] == pytest.approx(run["test"]["rmse"], rel=1e-9, abs=1e-12)
+
+
+def test_a_two_logger_run_is_scored_on_what_a_control_is_fed(tmp_path):
+    """(rate83) A control fed the DAQ's samples alone has at each probe's time the correction the
+    run scored there, a lag bank's too (it commits a step once a training period, cadence72).
+    Before: the temperatures were interpolated between the samples around the probe (7 s after
+    one on the DAQ's clock), reading the next, 3 s later: the scored rows were no stream's."""
+    from thermocomp.apps.deploy.streaming import StreamingCompensator, batch_prediction
+    from thermocomp.shell.model_store import load_model
+
+    folder = _folder(tmp_path / "runs")
+    out = tmp_path / "out"
+    assert main(["run", f"data.path={folder}", "data.roles.error=[dX]", "data.roles.state=[Door]",
+                 "data.test_fraction=0.34", "model=lagbank", *FAST, "track=false",
+                 f"out={out}"]) == 0
+    comp = load_model(out / "model.pkl")
+    joined = read_dataset(folder, CFG)[0].campaigns["run03"]
+    scored = batch_prediction(comp, joined)["E_dX"].to_numpy()
+    daq = pd.read_csv(folder / "run03_temp.csv")
+    t = (pd.to_datetime(daq["Time"]) - pd.to_datetime(daq["Time"][0])).dt.total_seconds()
+    scans = pd.DataFrame({"time": t, "T_Spindle": daq["Spindle [°C]"], "T_Bed": daq["Bed [°C]"],
+                          "S_Door": daq["Door [-]"]})
+    streaming = StreamingCompensator(comp, None, "off")
+    streaming.reset()
+    fed = streaming.predict(scans)["E_dX"].to_numpy()
+    probes = np.arange(0.0, 1200.0 - 60.0 + 1e-9, 60.0) + AHEAD_S    # on the DAQ's clock
+    held = np.searchsorted(t.to_numpy(), probes, side="right") - 1
+    np.testing.assert_allclose(fed[held], scored, rtol=0, atol=1e-9)
 
 
 def test_a_manifest_lists_the_temperature_file_and_the_error_file_is_joined(tmp_path):

@@ -105,7 +105,7 @@ class Dataset:
         paired = (self.meta.get("read_report") or {}).get("campaigns", {}).get(cid, {}).get("paired")
         where = str(self.file_path(cid))
         return where if not paired else (f"{where} (its rows: {paired['errors']}'s samples, the "
-                                         "temperatures interpolated onto them)")
+                                         "temperatures' last sample at or before each)")
 
     def ids(self, split: str | None = None) -> list[str]:
         if split is None:

@@ -698,7 +698,7 @@ def jumpy_temperatures(plan, ds, scans: dict | None = None) -> list[str]:
     so (a gateway's spindle number 1-6 under ``probe.spindle``, a count, a code, read as °C:
     silent before).  ``scans``: contract name -> its own file's samples per run, where the
     record's rows are another file's (two loggers: a DAQ's columns judged on its 60 s scans, not
-    on the probe's 15 min rows they are interpolated onto: stranger83's motor was said to be a
+    on the probe's 15 min rows they are held onto: stranger83's motor was said to be a
     count)."""
     out = []
     for header, name in plan.names.items():

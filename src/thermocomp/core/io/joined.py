@@ -4,18 +4,22 @@ file and the error file (:mod:`.loggers` pairs them) each read and checked as a 
 then joined by time.
 
 The rows are the ERROR logger's samples: the error is what is scored, so each scored row is an
-error as measured, never one interpolated between two probe readings (nor repeated: held
-errors would weigh a slow probe's reading once per temperature sample).  Temperatures are
-interpolated linearly onto the errors' times (they change over minutes; sample and hold would
-lag them by half a period on average), a state (``S_``: a door, a speed) is held (its last
-sample at or before the time: it has no value between two).  The times are put on one clock:
-timestamps on both sides as instants, the error logger's moved back by ``data.join.offset_s``
-(how far its clock runs ahead); seconds from each logger's start on both sides are taken as
-started together (said).  Error rows outside the temperature logger's span (one logger started
-late or stopped early), or inside a temperature step longer than ``data.join.tolerance_s``
-(default 3 times the temperature logger's median step: a pause of the DAQ), are cut, said once
-per run.  Refused (exit 2), naming the files: times that do not overlap (fewer than 2 rows in
-common), timestamps on one side and seconds on the other, a column name in both files.
+error as measured, never one interpolated between two probe readings (nor repeated: held errors
+would weigh a slow probe's reading once per temperature sample).  Every column of the
+temperature file is held, its last sample at or before the error's time, what a control has
+then, and the row's time is that sample's, the clock a control's models step on (rate83:
+temperatures were interpolated between the samples around the error, reading the next one up to
+a period ahead, at the error's time: the scored rows were no stream's; fed the samples, the
+deployed stream commits its dynamic models' steps once a training period, cadence72, on the
+samples the rows are).  An error logger faster than the temperatures (two errors on one sample)
+keeps the errors' times.  The times are put on one clock: timestamps on both sides as instants,
+the error logger's moved back by ``data.join.offset_s`` (how far its clock runs ahead); seconds
+from each logger's start on both sides are taken as started together (said).  Error rows outside
+the temperature logger's span (one logger started late or stopped early), or inside a
+temperature step longer than ``data.join.tolerance_s`` (default 3 times the temperature logger's
+median step: a pause of the DAQ), are cut, said once per run.  Refused (exit 2), naming the
+files: times that do not overlap (fewer than 2 rows in common), timestamps on one side and
+seconds on the other, a column name in both files.
 """
 
 from __future__ import annotations
@@ -26,7 +30,7 @@ import pyarrow as pa
 
 from ...base.log import logger
 from ..timerule import median_step
-from .contract import TIME, ContractError, role
+from .contract import TIME, ContractError
 from .options import ReadOptions
 
 TOLERANCE_STEPS = 3.0     # data.join.tolerance_s's default, in temperature logger periods
@@ -60,13 +64,13 @@ def joined(temps: pa.Table, temp_report: dict, errors: pa.Table, error_report: d
                        error_file.name, temp_file.name, _said(cut, tolerance),
                        "data.join.tolerance_s" if cut["gaps"] else "the run's rows start and "
                        "end where both loggers logged")
-    grid = t_error[keep]
-    after = np.searchsorted(t_temp, grid, side="right") - 1      # a state's sample held
+    after = np.searchsorted(t_temp, t_error[keep], side="right") - 1   # never a later sample
+    # a row's time is its sample's, the instant of what a control holds at the error's (its
+    # dynamic models stepped on the samples' clock); an error logger faster: the errors' own
+    grid = t_temp[after] if np.unique(after).size == after.size else t_error[keep]
     columns = {TIME: pa.array(grid - grid[0])}
     for name in temps.column_names[1:]:
-        values = temps.column(name).to_numpy(zero_copy_only=False)
-        columns[name] = pa.array(np.interp(grid, t_temp, values) if role(name) == "T"
-                                 else values[after])
+        columns[name] = pa.array(temps.column(name).to_numpy(zero_copy_only=False)[after])
     for name in errors.column_names[1:]:
         columns[name] = pa.array(errors.column(name).to_numpy(zero_copy_only=False)[keep])
     return columns, _report(temp_report, error_report, grid, files, opts, cut, period)

@@ -105,7 +105,7 @@ def paired_lines(report: dict) -> list[str]:
         cut = {k: n for k, n in pair["cut"].items() if n}
         out.append(f"{cid}: two loggers, {pair['temperatures']} (every {pair['periods_s'][0]:g} s)"
                    f" + {pair['errors']} (every {pair['periods_s'][1]:g} s): one run, its rows "
-                   f"the errors' times, temperatures interpolated onto them (data.join.offset_s="
+                   f"the errors' times, the temperatures' last sample at or before each (data.join.offset_s="
                    f"{pair['offset_s']:g}); {entry['rows']} rows"
                    + (f", {sum(cut.values())} error sample(s) cut ("
                       + ", ".join(f"{n} {k}" for k, n in cut.items()) + ")" if cut else ""))
