@@ -1,0 +1,130 @@
+"""A healthy, slow sensor no other predicts, on a 0.1 K logger, read as a freeze (freeze83).
+
+    PYTHONPATH=$PWD/src .venv/bin/python benchmarks/bench_freeze83.py trace SEEDS [SENSOR]
+
+``trace``: stranger82's ``lathe82`` per seed (bench_pair82 / bench_mon83b ``write`` writes its
+GL840 files; here the simulation itself, its true temperatures): ``SENSOR`` (default ``PINOLE``,
+the quill) rounded to the logger's 0.1 K, its longest constant run over the training runs (every
+run but the last, as bench_mon83b's ``trace``) and over the last run; over each, the sensor's
+true change (unrounded), the spread (max - min) of every other temperature (the "field busy"
+candidate below) and the sensor's pace before the run (samples per 0.1 K of net change over the
+``PACE`` samples before it, the "own rate" candidate).
+
+Found (lead, main 251021fe): lathe82 seed 8534, healthy, ``thermocomp monitor`` of its mlr: "T_PINOLE
+freeze: 21.1 °C for 280 samples (longest constant run in training 139); held at its last good
+reading: no other sensor predicts it" at 12760 s of 270624-070000, re-admitted at 13160 s (the
+reading moved); RMSE unchanged (held = reading).  ``faults.py`` ``_frozen``: a sensor no other
+predicts is frozen once its run exceeds ``_blind_run`` = max(freeze_factor (2) x training's
+longest run, window): 2 x 139 = 278.
+
+Traced (main 251021fe, seed 8534; the CSVs in /tmp/chk8534/lathe agree).  The quill reads 21.0 at
+the start of the last run, 21.1 from about row 150, 21.2 from about row 1170 (of 1800, 20 s):
+0.1 K in 5.6 h while the spindle ran 800-3500 rpm and ``MOTOR`` warmed 21.9 -> 34.0 °C.  The
+tailstock (``REITSTOCK``) reads 21.0-21.1 all day.  The run: rows 359-657 (298 samples, 99 min),
+the quill's true change over it below one digit (``trace`` gives it), ``MOTOR`` 3.9 K,
+``SPINDELKASTEN`` 0.6 K over it.  Training's 139: 270618-070000 rows 1650-1789 at 20.8 °C (its
+last 46 min, 3500 rpm; ``MOTOR`` 1.3 K over it).  The quill's runs over the 13 campaigns: 37-139
+in training, 298 on the last.  Not an idle machine: a quill whose true rate (0.1 K / 1000
+samples) is below a digit per run, the tailstock end of the bed thermally far from the spindle.
+
+``trace 8534,8591-8593`` (2026-12-04; runs counted in readings, the monitor counts equal steps:
+one fewer; "true" is the quill's nodes' mix before the logger, its 200 s lag aside):
+8534 training's longest: run 08, 140 readings from row 1650 at 20.8 °C, true change 0.021 K,
+others' spread ``MOTOR`` 1.3 / ``LAGER_V`` 0.8 / ``LAGER_H`` 0.5 K, pace before 279 samples/0.1 K;
+last run: 299 readings from row 359 at 21.1 °C, true change 0.021 K, others' spread ``MOTOR`` 3.9
+/ ``KUEHLMITTEL`` 2.3 / ``LAGER_V`` 2.0 K, pace before 279 samples/0.1 K (the tailstock holding a
+part 42 % of the last run).  The run is the quill's true value sitting 0.02 K inside one digit,
+not a stuck reading.  The same machine on other seeds: training's longest quill run 175 (8591),
+261 (8592), 336 (8593) readings, each with a true change below 0.02 K; their last runs' longest
+76-87.  Training's longest run (8-12 day runs) is a small sample's maximum: 8534's 139 is the
+low end of what the same machine shows, and 2 x it is no bound on a healthy run.
+
+Candidates, judged on this trace alone (no src change):
+A. "The field busy while it stands still": a blind sensor's run a freeze only when the other
+   sensors moved over it more than over its longest run in training.  On 8534 the others moved
+   more (``MOTOR`` 3.9 against 1.3 K, ``SPINDELKASTEN`` 0.6 against 0.1 K): A still fires.  The
+   quill is blind because nothing moves with it; the field's business says nothing of it.
+B. The run against the sensor's own pace: a freeze only when the run exceeds freeze_factor x the
+   samples per digit the sensor took before it (a stuck sensor stops at the pace it had, a healthy
+   one near standstill was already slow).  ``trace`` prints the pace; a rule needs it in the
+   served monitor, the numpy mirror and the C (``watch.py`` / ``watch_c.py``), not done here.
+   On 8534 the pace before both runs is 279 samples per digit: at factor 2 (558) the last run's
+   299 is quiet.  Where the sensor only flickered before the run (net change 0: 8591) the pace is
+   unbounded and B never fires: it needs a floor (training's longest run, as now), and its
+   detection of a stuck sensor is never earlier than main's (max of the two): the bar's "no
+   later than main" holds only where the pace is the smaller, unmeasured on the frozen cases.
+
+Verdict: trace only, no rule (the short task's time).  No src change; nothing scored.  Seeds
+8591-8593 traced (seen); 8594-8600 left fresh for a rule's bar.  Left: B (or a rule on the true
+change a digit allows: a run is a freeze only once no rate the sensor showed in training keeps
+its change under one digit for that long) in served, mirror and C, scored on 8534, fresh lathe /
+trunnion / jig healthy draws and bench_mon82c's ``frozen`` cases (a blind one included).
+"""
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from _cli import run_commands, seed_list  # noqa: E402
+
+PACE = 278          # samples before a run whose net change gives the sensor's pace (main's blind run)
+
+
+def _longest(x: np.ndarray) -> tuple[int, int]:
+    """Longest run of equal consecutive values of ``x``: ``(first row, samples)``."""
+    best, start, first = 1, 0, 0
+    for k in range(1, len(x) + 1):
+        if k == len(x) or x[k] != x[k - 1]:
+            if k - start > best:
+                best, first = k - start, start
+            start = k
+    return first, best
+
+
+def _describe(X: np.ndarray, j: int, names: list[str], truth: np.ndarray) -> tuple[int, str]:
+    """The longest constant run of column ``j`` of the rounded ``X`` and what moved over it."""
+    first, n = _longest(X[:, j])
+    rows = slice(first, first + n)
+    spread = np.ptp(X[rows], axis=0)
+    busy = sorted(((spread[k], names[k]) for k in range(len(names)) if k != j), reverse=True)[:3]
+    before = X[max(0, first - PACE):first + 1, j]
+    net = abs(before[-1] - before[0]) if len(before) > 1 else 0.0
+    pace = len(before) / max(net / 0.1, 1e-9) if net else np.inf
+    return n, (f"{n} samples from row {first} at {X[first, j]:.1f} °C, true change "
+               f"{np.ptp(truth[rows]):.3f} K; others' spread " + ", ".join(
+                   f"{nm} {s:.1f}" for s, nm in busy) + f" K; pace before {pace:.0f} samples/0.1 K")
+
+
+def trace(seeds: str, sensor: str = "PINOLE") -> None:
+    """The sensor's longest constant runs in training and on the last run (module docstring)."""
+    import lathe82 as m
+    from bench_stranger82 import runs
+    names = [s[0] for s in m.SENSORS]
+    j = names.index(sensor)
+    for seed in seed_list(seeds):
+        r, runs_ = runs(seed)
+        T = r["sensors"]                     # as logged (0.1 K)
+        # the quill's reading before the logger: its nodes' mix (lathe82's SENSORS, lag aside)
+        mix = dict(m.SENSORS[j][1]) if isinstance(m.SENSORS[j][1], dict) else {}
+        true = sum(w * r["T"][:, m.NODES.index(nd)] for nd, w in mix.items()) if mix else T[:, j]
+        train = []
+        for label, _, idx in runs_[:-1]:
+            n, what = _describe(T[idx], j, names, true[idx])
+            train.append((n, label, what))
+        n, label, what = max(train)
+        print(f"{seed} training's longest (run {label}): {what}")
+        label, _, idx = runs_[-1]
+        print(f"{seed} last run ({label}): {_describe(T[idx], j, names, true[idx])[1]}; the "
+              f"tailstock holding a part {r['tail'][idx].mean():.0%} of it", flush=True)
+
+
+def main(argv: list[str]) -> int:
+    return run_commands(__doc__, {"trace": trace}, argv, cpu=sys.stderr)
+
+
+if __name__ == "__main__":
+    raise SystemExit(main(sys.argv[1:]))
