@@ -4,6 +4,12 @@
     PYTHONPATH=<tree>/src .venv/bin/python benchmarks/bench_mon82c.py lathe|trunnion|jig ROOT LABEL \
         SEEDS healthy,frozen
     PYTHONPATH=$PWD/src .venv/bin/python benchmarks/bench_mon82c.py table ROOT MAIN RULE
+    PYTHONPATH=<tree>/src .venv/bin/python benchmarks/bench_freeze83.py quill ROOT LABEL SEEDS ROW
+
+``quill``: lathe82's quill (``PINOLE``, no other sensor predicts it) frozen at row ``ROW`` of
+the last run, in bench_mon82c's ``ROOT`` (its lathe record and init first), a line per record
+in ``ROOT/<LABEL>.jsonl`` as bench_mon82c's (kind ``quill<ROW>``); a diagnosis written after the
+bar (below).
 
 ``trace``: stranger82's ``lathe82`` per seed (bench_pair82 / bench_mon83b ``write`` writes its
 GL840 files; here the simulation itself, its true temperatures): ``SENSOR`` (default ``PINOLE``,
@@ -83,6 +89,40 @@ The bar (written before scoring; fresh seeds never traced: 8594-8600).  REFUSED 
    above main's.
 3. ``tests/apps/test_monitor*.py``, ``tests/shell/test_monitor*.py``,
    ``tests/shell/test_export*.py`` pass (C = served).
+
+Scored 2026-12-04 (ROOT /tmp/f83/score; main = 251021fe's ``src``, rule = 215e5c2a's, each from
+``git archive``; the trees alternated per machine; adaptive RMSE µm main -> rule).
+Verdict: **REFUSED** (part 2: trunnion 8598's frozen quill out 42 min later, two targets worse).
+
+1. 8534: quiet with the rule (no event; main: the quill out at 12760 s, back at 13160 s).  The
+   rule's figure there (the CSV's memory replayed): the quill's lead over its memory when the run
+   began 0.0135 K (0.027 K/h), its change at that pace over the 298-sample run 0.042-0.045 K,
+   below the 0.1 K digit; the pace would have called a freeze after about 665 samples.
+2. Healthy, all 7 (lathe 8594-8596, trunnion 8597-8598, jig 8599-8600): no event in either tree,
+   every RMSE the same.  Frozen: lathe ``T_SPINDELKASTEN`` excluded in neither tree on 8594-8596
+   (the same as bench_mon82c's 8403: the lathe case tests nothing here), RMSE the same; jig
+   ``T_Pinole`` out at 5.042 h in both on 8599 and 8600, RMSE the same; trunnion ``T_PINOLE`` out
+   at 6.667 h in both on 8597; on 8598 main 6.333 h, the rule 7.028 h (+42 min): E_DX_TCP 8.626
+   -> 9.140 (+6.0 %), E_DY_TCP 3.590 -> 3.580, E_DZ_TCP 2.846 -> 2.935 (+3.1 %).  FAILED.
+3. With the rule: ``tests/shell/test_export*.py``, ``tests/apps/test_monitor*.py``,
+   ``tests/shell/test_monitor*.py`` 385 passed, 4 xfailed (none skipped: the C compiled, C =
+   served on the tests' records).
+
+Diagnosed after the verdict (not part of the bar): ``quill ROOT LABEL 8594-8596 900``, lathe82's
+own quill (blind) frozen at row 900 (5 h in): main out at 7.806 / 7.367 / 7.561 h; the rule the
+same on 8594 and 8596 and never on 8595 (dX 3.941 -> 3.989, dZ 7.162 -> 6.941).  A sensor stuck
+while it was slow has no pace to betray it: the rule trades the healthy slow quill's false
+freeze for a later (or missed) true one, and a frozen reading held while the machine then warms
+costs compensation (8598: +6 %).  The pace alone does not tell "slow and healthy" from "stuck
+while slow"; what would is a witness that the sensor should have moved since -- which a sensor
+no other predicts lacks by definition (the field-busy candidate A fails on 8534 itself).
+
+The src change (rule, numpy mirror, C, docs) is ``benchmarks/freeze83_rule.patch``; src is
+main's.  Left: 8534's false freeze stands on main (held = its reading: RMSE unchanged, 20
+samples out).  A next try could bound the run by the sensor's training runs as a distribution
+(8534's 139 is the low end of the same machine's 140-336 over seeds 8534 / 8591-8593) rather
+than 2 x one small-sample maximum, or flag (not exclude) a blind run whose pace is within a
+digit, where holding it costs nothing.
 """
 from __future__ import annotations
 
@@ -146,8 +186,28 @@ def trace(seeds: str, sensor: str = "PINOLE") -> None:
               f"tailstock holding a part {r['tail'][idx].mean():.0%} of it", flush=True)
 
 
+def quill(root: str, label: str, seeds: str, row: str) -> None:
+    """The quill frozen from ``row`` of the last run, monitored (module docstring)."""
+    import bench_mon81 as m81
+    import bench_stranger82 as b
+    data = Path(root).resolve() / "data"
+    conf = data / "init_lathe"
+    given = (f"hydra.searchpath=[file://{conf}/conf]",
+             f"data={next((conf / 'conf' / 'data').glob('*.yaml')).stem}")
+    for seed in seed_list(seeds):
+        folder = data / f"fault_quill{row}_{seed}"
+        if not folder.exists():
+            r, runs_ = b.runs(seed)
+            n = runs_[-1][2].size
+            held = np.arange(n) >= int(row)
+            b._write_all(folder, r, runs_, lambda name, x: np.where(held, x[int(row)], x)
+                         if name == "PINOLE" else x)
+        m81.monitored(Path(root).resolve(), label, f"lathe{seed}", f"quill{row}", "T_PINOLE",
+                      *given, f"data.path={folder}")
+
+
 def main(argv: list[str]) -> int:
-    return run_commands(__doc__, {"trace": trace}, argv, cpu=sys.stderr)
+    return run_commands(__doc__, {"trace": trace, "quill": quill}, argv, cpu=sys.stderr)
 
 
 if __name__ == "__main__":

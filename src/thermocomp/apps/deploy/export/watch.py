@@ -173,8 +173,7 @@ def monitor_fields(deployed, inputs: list) -> dict:
         "new_state_others": int(mon.new_state_others), "max_backoff": MAX_BACKOFF,
         "tau": EXCURSION_TAU_S, "growth": EXCURSION_GROWTH, "novel": 1, "blind_out": 1,
         "fallback": [int(c in falls) for c in mon.names],
-        "rounding": np.broadcast_to(getattr(mon, "rounding_c", 0.0), (n,)).tolist(),
-        "digit": np.broadcast_to(getattr(mon, "digit_c", 0.0), (n,)).tolist()}}
+        "rounding": np.broadcast_to(getattr(mon, "rounding_c", 0.0), (n,)).tolist()}}
 
 
 def _pairs(mon) -> list[tuple[int, int]]:
@@ -269,7 +268,6 @@ class CodeMonitor:
                      ("blind_out", 0)):   # (before cmon82c: a sensor no other predicts, flagged)
             a.setdefault(k, np.float64(v))
         a.setdefault("rounding", np.zeros(n))    # (before mon83: no culprit held for rounding)
-        a.setdefault("digit", np.zeros(n))       # (before freeze83: every long blind run frozen)
         self.pairs = [tuple(int(i) for i in p) for p in arrays.get("pairs", [])]
         self.idx = np.asarray(arrays["inputs"], int)
         self.M, self.lev = a["M"], a["lev"]
@@ -495,7 +493,7 @@ class CodeMonitor:
         self.run_pred[start] = other[start]
         moved = np.abs(other - self.run_pred)
         frozen = same & ((observable & (moved >= a["warning"]) & (self.run >= a["seen_run"]))
-                         | (~observable & (self.run > a["blind_run"]) & self._paced(d, first, dt)))
+                         | (~observable & (self.run > a["blind_run"])))
         for j in np.flatnonzero(frozen & ~instant):
             instant[j] = True
             if active[j]:
@@ -773,16 +771,6 @@ class CodeMonitor:
                                        float(np.max(np.delete(size, k), initial=0.0)))):
                 return int(k), True
         return j, hides
-
-    def _paced(self, d, first, dt) -> np.ndarray:
-        """(freeze83) The served ``_paced``: the pace each constant sensor had when its run
-        began (its lead over the memory then) would have moved it by more than its digit."""
-        if first or not self.slow_known or not np.isfinite(dt):
-            return np.ones(len(d), dtype=bool)
-        tau = self.run * max(dt, 0.0) / self.a["tau"]
-        with np.errstate(over="ignore", invalid="ignore"):
-            change = np.abs(d - self.slow) * np.exp(tau) * tau
-        return ~((change <= self.a["digit"]) & (self.a["digit"] > 0))
 
     def _fold(self, d, first, dt) -> None:
         """The served monitor's memory of the field (``EXCURSION_TAU_S``), the sample ``d``."""

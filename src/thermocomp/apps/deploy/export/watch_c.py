@@ -72,7 +72,7 @@ def monitor_arrays(ss) -> list[tuple[str, object, tuple, str]]:
     n = len(m.get("inputs", []))
     pairs = m.get("pairs", [])
     vectors = ("warning", "alarm", "jump_lim", "lo_lim", "hi_lim", "lo_c", "hi_c", "seen_run",
-               "blind_run", "rounding", "digit")
+               "blind_run", "rounding")
     scalars = (("MON_MAX_LEV", "max_leverage", 1.0, "real"), ("MON_MIN_ACTIVE", "min_active", 0, "int"),
                ("MON_CONFIRM", "confirm", 1, "int"), ("MON_EXCLUDE_LEVEL", "exclude_level", 1, "int"),
                ("MON_PERIOD", "period", 1.0, "real"), ("MON_GAP_PERIODS", "gap_periods", 1.5, "real"),
@@ -167,16 +167,6 @@ static int mon_level(const tc_state *s, int k) {
 }
 
 /* (cmon82) the mean of the last MON_CONFIRM errors of sensor k */
-/* (freeze83) the served _paced: the pace the constant sensor k had when its run began (its lead
-   over the memory then, closed on since by exp(-span / tau)) would have moved it by a digit */
-static int mon_paced(const tc_state *s, int k, double dk, double dt) {
-    double tau, change;
-    if (s->first || !s->mon_slow_known || !isfinite(dt) || !(MON_DIGIT[k] > 0.0)) return 1;
-    tau = s->mon_run[k] * (dt > 0.0 ? dt : 0.0) / MON_TAU;
-    change = fabs(dk - s->mon_slow[k]) * exp(tau) * tau;
-    return !(change <= MON_DIGIT[k]);
-}
-
 static double mon_mean_err(const tc_state *s, int k) {
     double e = 0.0;
     int r, n = s->mon_count < MON_CONFIRM ? s->mon_count : MON_CONFIRM;
@@ -806,8 +796,7 @@ static void monitor_step(tc_state *s, double u[], double dt) {
     for (k = 0; k < NM; k++) {
         int frozen = same[k] && ((o[k] && fabs(other[k] - s->mon_run_pred[k]) >= MON_WARNING[k]
                                   && s->mon_run[k] >= MON_SEEN_RUN[k])
-                                 || (!o[k] && s->mon_run[k] > MON_BLIND_RUN[k]
-                                     && mon_paced(s, k, d[k], dt)));
+                                 || (!o[k] && s->mon_run[k] > MON_BLIND_RUN[k]));
         if (!frozen || instant[k]) continue;
         instant[k] = 1;
         if (a[k]) mon_exclude(s, k, TC_MON_FREEZE);

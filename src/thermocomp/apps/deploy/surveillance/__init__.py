@@ -32,8 +32,7 @@ Detectors, each named in the event's reason:
 * ``freeze`` — the reading does not change, for longer than its longest constant
   run in training (capped at ``window``), while its prediction from the other
   sensors moves by the warning band (for a sensor no other predicts: no change
-  for longer than ``freeze_factor`` × that run, and longer than the pace it had
-  when the run began takes to move it by its resolution: ``_paced``);
+  for longer than ``freeze_factor`` × that run);
 * ``drift`` — the windowed self-prediction error leaves the band gradually.
 
 Adaptive mode (paper 002, 2.3): the worst sensor (largest self-prediction error

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .states import COMMON_MIN, COMMON_SPREAD, EXCURSION_TAU_S, STATES
+from .states import COMMON_MIN, COMMON_SPREAD, STATES
 
 
 class InstantFaults:
@@ -92,7 +92,7 @@ class InstantFaults:
         start = same & (self._run == 1)
         self._run_pred[start] = other[start]
         moved = np.abs(other - self._run_pred)
-        for j in np.flatnonzero(self._frozen(same, self._run, moved, self._paced(d, time))):
+        for j in np.flatnonzero(self._frozen(same, self._run, moved)):
             if j in instant:
                 continue
             why = (f"freeze: {x[j]:.4g} °C for {self._run[j] + 1} samples while the field "
@@ -118,33 +118,11 @@ class InstantFaults:
             j = int(np.argmax(np.where(stepped, np.abs(de) * self._std, -1)))
             self._exclude(j, instant[j], time, events, by_field=True)
 
-    def _frozen(self, same: np.ndarray, run: np.ndarray, moved: np.ndarray,
-                paced=True) -> np.ndarray:
+    def _frozen(self, same: np.ndarray, run: np.ndarray, moved: np.ndarray) -> np.ndarray:
         """The freeze rule (module doc), for :meth:`_fast` and :meth:`_update` alike: ``same``
-        unchanged readings, ``run`` their constant-run lengths, ``moved`` the field's change,
-        ``paced`` :meth:`_paced` (the fast paths leave it True: a long blind run takes the full
-        path, which judges the pace)."""
+        unchanged readings, ``run`` their constant-run lengths, ``moved`` the field's change."""
         return same & ((self._observable & (moved >= self.warning_c) & (run >= self._seen_run))
-                       | (~self._observable & (run > self._blind_run) & paced))
-
-    def _paced(self, d: np.ndarray, time: float) -> np.ndarray:
-        """Whether each sensor, constant for its run, would have moved by more than its digit
-        (``digit_c``) over the run at the pace it had when the run began: a stuck sensor stops
-        at the pace it had, a healthy one stays within a digit only when it was already that
-        slow.  The pace is the reading's lead over its memory (:mod:`.excursion`, ``tau``) when
-        the run began, ``rate = lead / tau``; the memory has since closed on the constant
-        reading by ``exp(-span / tau)``, so ``lead = |d - memory| exp(span / tau)``, ``span`` the
-        run's samples times this sample's interval.  lathe82 8534's healthy quill: 0.021 K of
-        true change over 298 equal samples (99 min), 2 x training's longest run, had been a
-        freeze.  True (as before) where the memory's time is unknown."""
-        ok = self._slow_ok and np.isfinite(self._slow_t) and np.isfinite(time)
-        if not ok:
-            return np.ones(len(d), dtype=bool)
-        tau = self._run * max(float(time) - self._slow_t, 0.0) / EXCURSION_TAU_S
-        with np.errstate(over="ignore", invalid="ignore"):
-            change = np.abs(d - self._slow) * np.exp(tau) * tau
-        # NaN (no memory of it), no digit (a continuous reading): as before
-        return ~((change <= self.digit_c) & (self.digit_c > 0))
+                       | (~self._observable & (run > self._blind_run)))
 
     def _instant(self, x, d, step, finite, rng, big) -> dict[int, str]:
         """Reasons of the instant detectors that fire (dropout, out of range, jump)."""

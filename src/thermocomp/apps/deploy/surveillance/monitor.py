@@ -60,11 +60,6 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
         The most rounding the readings to their resolution moves each sensor's self-prediction
         error (°C; :meth:`from_training` fits it): a culprit beyond its band by less, whose
         excursion hovers, is a regime (:meth:`~.judgement.Judgement._within_rounding`).
-    digit_c : float or array
-        Each sensor's resolution (°C; :meth:`from_training`: its smallest non-zero one-sample
-        step in training, 0 on a continuous reading): a constant run of a sensor no other
-        predicts is a freeze only once the pace it had when the run began would have moved it
-        by more (:meth:`~.faults.InstantFaults._paced`).
     """
 
     new_state, new_state_others = False, 2   # a monitor pickled before them judged as before
@@ -79,16 +74,13 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
             self._slow_ok = False
         if "rounding_c" not in state:  # pickled before mon83: judged as before
             self.rounding_c = np.zeros(len(self.names))
-        if "digit_c" not in state:     # pickled before freeze83: every long blind run a freeze
-            self.digit_c = np.zeros(len(self.names))
 
     def __init__(self, pod: ThermalPOD, names: Sequence[str], *, warning_c=0.4, alarm_c=0.8,
                  window: int = 10, confirm: int = 2, adaptive: bool = True,
                  exclude_at: str = "warning", max_step_c=None, longest_run=None,
                  lo_c=None, hi_c=None, first_c=None, jump_factor: float = 3.0,
                  freeze_factor: float = 2.0, range_margin_c: float = 10.0,
-                 new_state: bool = True, new_state_others: int = 2, rounding_c=0.0,
-                 digit_c=0.0):
+                 new_state: bool = True, new_state_others: int = 2, rounding_c=0.0):
         n = len(names)
         if pod.n_features_in_ != n:
             raise ValueError(f"POD has {pod.n_features_in_} sensors, names {n}")
@@ -107,7 +99,6 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
         self.exclude_at = exclude_at
         self.exclude_level = WARNING if exclude_at == "warning" else ALARM
         self.rounding_c = np.broadcast_to(np.asarray(rounding_c, float), (n,)).copy()
-        self.digit_c = np.broadcast_to(np.asarray(digit_c, float), (n,)).copy()
 
         def arr(v, default):
             return np.full(n, default, float) if v is None else np.asarray(v, float).copy()
@@ -182,8 +173,7 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
             # excluded T_13 21 times); the others keep the configured bands
             floor = factor * spread
             warn, alarm = np.maximum(warn, floor), np.maximum(alarm, 2 * floor)
-        options = {"rounding_c": _rounding(pod, steps), "digit_c": _digits(steps), **options,
-                   "warning_c": warn, "alarm_c": alarm}
+        options = {"rounding_c": _rounding(pod, steps), **options, "warning_c": warn, "alarm_c": alarm}
         return cls(pod, names, max_step_c=steps.max(0), longest_run=runs, lo_c=lo, hi_c=hi,
                    first_c=first, **options)
 
@@ -635,14 +625,7 @@ def _rounding(pod: ThermalPOD, steps: np.ndarray) -> np.ndarray:
     continuous reading); 0 where no other sensor predicts it (mon82c's bound)."""
     n = pod.n_features_in_
     M, h = pod.operator(np.ones(n, dtype=bool))
-    q = _digits(steps)
+    q = np.array([np.min(s[s > 0], initial=np.inf) for s in steps.T])
+    q[~np.isfinite(q)] = 0.0             # a sensor that never moved in training
     S = (np.eye(n) - M) / np.maximum(1 - h, 1e-12)[:, None]
     return np.where(h < pod.max_leverage, 0.5 * np.abs(S) @ q, 0.0)
-
-
-def _digits(steps: np.ndarray) -> np.ndarray:
-    """Each sensor's smallest non-zero one-sample step in ``steps`` (training's), its
-    resolution: a logger's 0.1 K, about none on a continuous reading; 0 where it never moved."""
-    q = np.array([np.min(s[s > 0], initial=np.inf) for s in steps.T])
-    q[~np.isfinite(q)] = 0.0
-    return q
