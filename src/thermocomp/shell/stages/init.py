@@ -21,7 +21,7 @@ from ...base.files import atomic_write_text
 from ...base.log import held_back, said_after
 from ...base.paths import conf_dir, resolve
 from ...core import io
-from ...core.io.cells import scanned
+from ...core.io.cells import Cells, scanned
 from ...core.io.contract import MANIFEST, TIME
 from ...core.io.derived import probe_pairs, proposal
 from ...core.io.detect import (
@@ -52,6 +52,7 @@ from ...core.io.detect import (
 from ...core.io.encoding import UTF8
 from ...core.io.historian import (
     PERIOD_COMMENT,
+    grid_runs,
     intervals_said,
     proposed_period,
     tag_samples,
@@ -173,16 +174,27 @@ def mark_gaps(src, found, errors: set, given: dict, opts, grid: dict | None = No
         if n > getattr(opts, key):
             given[key] = n
             opts = replace(opts, **{key: n})
-            pending.append((key, n, where[key.split("_")[1]]))
+            kind = key.split("_")[1]
+            pending.append((key, n, where[kind], where.get(f"{kind}_at", "")))
     return opts, pending
+
+
+def held_cells(src, manifest, opts) -> Cells | None:
+    """The runs of missing grid rows of a historian's text files, each tag's on its own
+    (:func:`.io.historian.grid_runs`); None: none missing."""
+    files = [src] if manifest is None else [src / str(f) for f in manifest["file"]]
+    runs = [r for f in files if (layout := long_layout(f, opts)) is not None
+            for r in grid_runs(f, opts, layout)]
+    return Cells(runs=runs) if runs else None
 
 
 def gaps_said(src, pending: list, period: float) -> None:
     """Say :func:`mark_gaps`' keys, each run's samples with the time they span (``period``: the
     record's sample period, s)."""
-    for key, n, header in pending:
+    for key, n, header, at in pending:
         span = f"{n * period / 3600:.3g} h" if n * period >= 3600 else f"{n * period:.4g} s"
-        header = repr(header) if header is not None else "one of its channels (grid rows)"
+        header = (repr(header) + (f" ({at})" if at else "") if header is not None
+                  else "one of its channels (grid rows)")
         print(f"{src.name}: " + GAP_SAID[key].format(n=n, s="s" * (n > 1), header=header,
                                                      span=span if period == period else "?"))
 
@@ -398,10 +410,14 @@ def _init(cfg: DictConfig, held: ExitStack) -> dict:
               f"onto a grid of data.resample_s={period:g} s, the median interval of the fastest "
               f"error tag {tag!r} (written into the config: check it; the tags': "
               f"{intervals_said(long)})")
-    # a gap counted in the grid's rows where the channels are held onto one (stranger80)
+    # a gap counted in the grid's rows where the channels are held onto one (stranger80); a
+    # historian's text file on the grid itself, each tag's runs its own (lab83: its cells were
+    # never scanned, and init's own read refused a probe's Bad samples)
+    if long is not None and not is_lab_file(sample):
+        cells, grid = held_cells(src, manifest, opts), None
     opts, gaps = mark_gaps(src, cells, set(errors), given, opts, grid)   # a probe's left out
-    if grid is not None:     # (a long text's 'value' column: no header of the lab's, stranger80)
-        gaps = [(k, n, h if h in plan.names else None) for k, n, h in gaps]
+    if long is not None:     # (a long text's 'value' column: no header of the lab's, stranger80)
+        gaps = [(k, n, h if h in plan.names else None, at) for k, n, h, at in gaps]
     defaults = OmegaConf.to_container(OmegaConf.load(conf_dir() / "data" / "default.yaml"))
     if pair is not None and not pair.same_separators:   # each logger's file its own: detected
         opts = replace(opts, delimiter="auto", decimal="auto")
