@@ -44,8 +44,8 @@ import pyarrow.compute as pc
 from ...base.errors import listed
 from ...base.log import logger
 from . import marks
-from .contract import ContractError
 from .cells import Runs, run_starts
+from .contract import ContractError
 from .converted import named_as
 from .encoding import UTF8
 from .historian_layout import Layout, quality_of
