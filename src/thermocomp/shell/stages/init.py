@@ -21,6 +21,7 @@ from ...base.files import atomic_write_text
 from ...base.log import held_back, said_after
 from ...base.paths import conf_dir, resolve
 from ...core import io
+from ...core.io.bits import proposed as bits_proposed
 from ...core.io.cells import Cells, scanned
 from ...core.io.contract import MANIFEST, TIME
 from ...core.io.derived import probe_pairs, proposal
@@ -475,6 +476,12 @@ def _init(cfg: DictConfig, held: ExitStack) -> dict:
         except ContractError as exc:            # (runs the reader refuses: one record, as before)
             print(f"{src.name}: {appended.split(': runs')[0]}: not read at them ({exc}), one record")
     check_declared(cfg, ds, model=False)        # (a folder's run with a sensor the others lack)
+    for header, name in plan.names.items():     # a PLC's status word: proposed, never decoded
+        said = (None if header in opts.bits or not str(name).startswith("S_") else bits_proposed(
+            header, np.concatenate([df[name].to_numpy(float) for df in ds.campaigns.values()
+                                    if name in df])))
+        if said:
+            print(f"{sample.name}: {said}")
     air = [h for h, why in plan.roles.items() if why == "ambient" and not asked.roles["ambient"]]
     if air:                                     # by its words (the reader's default: a temperature)
         print(f"ambient: {', '.join(map(repr, air))} ({'their names' if len(air) > 1 else 'its name'}"

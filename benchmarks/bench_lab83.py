@@ -1,0 +1,92 @@
+"""A PLC status word read as one number or as its declared bits (lab83, ``data.bits``).
+
+    PYTHONPATH=$PWD/src .venv/bin/python benchmarks/bench_lab83.py write ROOT SEED
+    PYTHONPATH=$PWD/src .venv/bin/python benchmarks/bench_lab83.py matrix ROOT SEED
+
+The record is bench_stranger80's jig borer (``benchmarks/jig80.py``; its TDMS files, 13 runs of
+10 h, the last held out), whose PLC logs ``Status`` (uint16): 1 machine on, 2 spindle turning,
+4 table indexing, 128 probe ready.  ``write``: its files, ``ROOT/jig<SEED>/`` (bench_stranger80's
+``write``; seeds 8571-8580 only).  ``matrix``: ``thermocomp init`` twice on the folder, with no
+key (``Status`` proposed a state, read as one number 129-135) and with the bits declared
+(``data.bits={Status: {0: machine_on, 1: spindle_on, 2: table_indexing, 7: probe_ready}}``, the
+word no input), then ``run model=<f>`` for f in mlr, hammerstein, auto on each config
+(``track=false plots=none``, ``OMP_NUM_THREADS=1``); the test RMSE per target, number -> bits.
+No test run chooses anything: the split is init's (the last run held out), only scored.
+
+No bar: a reader feature (the user declares what the bits say; nothing is decoded undeclared).
+What is measured: whether the models change with the bits declared, and ``init``'s saying.
+
+Measured (2026-12-04, seed 8571; see "Scored" below).
+"""
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from _cli import run_commands  # noqa: E402
+
+FAMILIES = ("mlr", "hammerstein", "auto")
+BITS = {0: "machine_on", 1: "spindle_on", 2: "table_indexing", 7: "probe_ready"}
+
+
+def write(root: str, seed: str) -> None:
+    """bench_stranger80's files of seed ``seed``: ``ROOT/jig<SEED>/``."""
+    from bench_stranger80 import write as stranger_write
+
+    stranger_write(root, seed)
+
+
+def _init(folder: Path, out: Path, keys: list[str]) -> str:
+    cli = [sys.executable, "-m", "thermocomp"]
+    done = subprocess.run([*cli, "init", f"data.path={folder}", f"out={out}", *keys],
+                          capture_output=True, text=True, check=True)
+    return done.stdout
+
+
+def matrix(root: str, seed: str) -> None:
+    """init (number / bits) -> run per family; the test RMSE per target, number -> bits."""
+    root_p = Path(root).resolve()
+    folder = root_p / f"jig{seed}"
+    env = {**os.environ, "OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1"}
+    declared = [f"++data.bits.Status.{b}={n}" for b, n in BITS.items()]
+    scores: dict = {}
+    for kind, keys in (("number", []), ("bits", declared)):
+        out = root_p / f"lab83-{kind}"
+        said = _init(folder, out, keys)
+        print(f"{kind}: init says of Status: "
+              + ("; ".join(ln for ln in said.splitlines() if "status word" in ln) or "nothing"))
+        common = [f"hydra.searchpath=[file://{out / 'conf'}]", f"data=jig{seed}", "track=false",
+                  "plots=none"]
+        for family in FAMILIES:
+            run = out / family
+            done = subprocess.run([sys.executable, "-m", "thermocomp", "run", *common,
+                                   f"model={family}", f"out={run}"], capture_output=True,
+                                  text=True, env=env)
+            if done.returncode:
+                print(f"{kind} {family}: run exit {done.returncode}: {done.stderr[-400:]}")
+                continue
+            targets = json.loads((run / "metrics.json").read_text())["targets"]
+            scores[kind, family] = {t: v["test"]["rmse"] for t, v in targets.items()}
+            inputs = [c for c in json.loads((run / "metrics.json").read_text()).get(
+                "inputs", []) if c.startswith("S_")]
+            print(f"{kind} {family}: " + " / ".join(f"{t} {r:.3f}" for t, r in
+                                                    scores[kind, family].items())
+                  + (f" (states {inputs})" if inputs else ""), flush=True)
+    for family in FAMILIES:
+        if ("number", family) in scores and ("bits", family) in scores:
+            a, b = scores["number", family], scores["bits", family]
+            print(f"{family}: " + "; ".join(f"{t} {a[t]:.3f} -> {b[t]:.3f} ({b[t] / a[t] - 1:+.1%})"
+                                            for t in a if t in b))
+
+
+def main(argv: list[str]) -> int:
+    return run_commands(__doc__, {"write": write, "matrix": matrix}, argv, cpu=sys.stderr)
+
+
+if __name__ == "__main__":
+    raise SystemExit(main(sys.argv[1:]))
