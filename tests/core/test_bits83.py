@@ -60,11 +60,12 @@ def test_a_bad_declaration_is_refused_naming_the_key(tmp_path, bits, says):
 
 
 def test_a_word_not_read_or_a_name_taken_is_refused_naming_file_and_column(tmp_path):
-    _record(tmp_path / "lab.csv")
+    _record(tmp_path / "lab.csv").assign(Tuer=0.0).to_csv(tmp_path / "lab.csv", index=False)
+    cfg = {**CFG, "roles": {**CFG["roles"], "state": ["Status", "Tuer"]}}
     for bits, says in (({"Zustand": {0: "on"}}, "column 'Zustand'"),
-                       ({"Status": {0: "Status"}}, "column 'Status'")):
+                       ({"Status": {0: "Tuer"}}, "the state 'Tuer' (S_Tuer) is a column's")):
         with pytest.raises(ContractError) as exc:
-            read_dataset(tmp_path / "lab.csv", {**CFG, "bits": bits})
+            read_dataset(tmp_path / "lab.csv", {**cfg, "bits": bits})
         assert f"file {tmp_path / 'lab.csv'}" in str(exc.value) and says in str(exc.value)
 
 
@@ -100,3 +101,32 @@ def test_init_proposes_the_key_and_never_decodes_a_word_undeclared(tmp_path):
     assert "a PLC's status word?" not in declared
     config = yaml.safe_load((out / "conf" / "data" / "lab.yaml").read_text())
     assert {int(b): n for b, n in config["bits"]["Status"].items()} == {0: "machine_on"}
+
+
+def test_a_stream_on_stdin_decodes_the_declared_word_as_the_file_reader(tmp_path, monkeypatch):
+    import io
+    import json
+
+    from thermocomp.shell.cli import main
+
+    folder = tmp_path / "runs"
+    folder.mkdir()
+    for k in range(4):
+        _record(folder / f"run{k}.csv")
+        frame = pd.read_csv(folder / f"run{k}.csv")
+        rng = np.random.default_rng(8572 + k)
+        frame["dX [um]"] += rng.normal(0, 0.2, len(frame))
+        frame["Bett [°C]"] = 20 + np.cumsum(rng.normal(0, 0.02, len(frame)))
+        frame["Ständer [°C]"] = 20.5 + np.cumsum(rng.normal(0, 0.02, len(frame)))
+        frame.to_csv(folder / f"run{k}.csv", index=False)
+    monitor = ["monitor", f"data.path={folder}", "data.roles.error=[dX*]",
+               "data.roles.state=[Status]", "data.test_fraction=0.25", "model=hammerstein",
+               *(f"++data.bits.Status.{b}={n}" for b, n in BITS.items()), "track=false",
+               "plots=none"]
+    assert main([*monitor, f"out={tmp_path / 'file'}"]) == 0
+    monkeypatch.setattr("sys.stdin", io.StringIO((folder / "run3.csv").read_text()))
+    assert main([*monitor, "monitor.input=-", f"out={tmp_path / 'piped'}"]) == 0
+    from_file, piped = (json.loads((tmp_path / name / "monitor.json").read_text())["targets"]
+                        for name in ("file", "piped"))
+    assert piped["E_dX"]["rmse_fixed"] == pytest.approx(from_file["E_dX"]["rmse_fixed"],
+                                                        rel=1e-9)

@@ -18,6 +18,7 @@ import re
 from collections.abc import Mapping
 
 import numpy as np
+import pandas as pd
 import pyarrow as pa
 
 from .contract import ContractError
@@ -67,28 +68,49 @@ def decoded(columns: dict, renamed: dict, bits: Mapping, path) -> dict:
     for header, named in bits.items():
         name = renamed.get(header, header if header in columns else None)
         if name is None or name not in columns:
-            raise ContractError(f"{KEY} declares {header!r} a status word, and no column of "
-                                "that header is read (a column data.roles ignores is not; "
-                                "give it a role, e.g. data.roles.state)", file=path, column=header)
-        word = columns[name].to_numpy(zero_copy_only=False).astype(float)
-        bad = np.isfinite(word) & ((word < 0) | (word != np.round(word)) | (word >= 2.0 ** 63))
-        if bad.any():
-            at = int(np.argmax(bad))
-            raise ContractError(f"value {word[at]:g} is no whole number >= 0: no status word "
-                                f"({KEY}.{header})", file=path, column=header, row=at + 1)
-        clash = next((n for n in named.values() if STATE + n in columns or n in renamed), None)
-        if clash is not None:
-            raise ContractError(f"{KEY}.{header}: the state {clash!r} ({STATE}{clash}) is a "
-                                "column's already: name the bit otherwise", file=path,
-                                column=header)
-        del columns[name]
-        del renamed[header]
-        whole = np.where(np.isfinite(word), word, 0).astype(np.uint64)
-        for bit, state in named.items():
-            on = ((whole >> np.uint64(bit)) & np.uint64(1)).astype(float)
-            columns[STATE + state] = pa.chunked_array([pa.array(np.where(np.isfinite(word), on,
-                                                                         np.nan), from_pandas=True)])
+            _not_read(header, path)
+        word = columns.pop(name).to_numpy(zero_copy_only=False).astype(float)
+        renamed.pop(header, None)
+        for state, on in _bits(word, header, named, set(columns) | set(renamed), path).items():
+            columns[state] = pa.chunked_array([pa.array(on, from_pandas=True)])
     return columns
+
+
+def decoded_frame(df, bits: Mapping, headers: Mapping, source):
+    """A stream's frame (contract names; ``headers``: contract -> the row's own header) with
+    each declared word replaced by its bits' states, as a file's are (:func:`decoded`)."""
+    for header, named in bits.items():
+        name = next((n for n, raw in headers.items() if raw == header),
+                    header if header in df.columns else None)
+        if name is None or name not in df.columns:
+            _not_read(header, source)
+        word = pd.to_numeric(df[name], errors="coerce").to_numpy(float)
+        states = _bits(word, header, named, set(df.columns) - {name}, source)
+        df = df.drop(columns=name).assign(**states)
+    return df
+
+
+def _not_read(header: str, path) -> None:
+    raise ContractError(f"{KEY} declares {header!r} a status word, and no column of that header "
+                        "is read (a column data.roles ignores is not; give it a role, e.g. "
+                        "data.roles.state)", file=path, column=header)
+
+
+def _bits(word: np.ndarray, header: str, named: Mapping, taken: set, path) -> dict:
+    """``{S_<name>: 0/1 (NaN where the word is missing)}`` of the word's declared bits."""
+    bad = np.isfinite(word) & ((word < 0) | (word != np.round(word)) | (word >= 2.0 ** 63))
+    if bad.any():
+        at = int(np.argmax(bad))
+        raise ContractError(f"value {word[at]:g} is no whole number >= 0: no status word "
+                            f"({KEY}.{header})", file=path, column=header, row=at + 1)
+    clash = next((n for n in named.values() if STATE + n in taken or n in taken), None)
+    if clash is not None:
+        raise ContractError(f"{KEY}.{header}: the state {clash!r} ({STATE}{clash}) is a "
+                            "column's already: name the bit otherwise", file=path, column=header)
+    whole = np.where(np.isfinite(word), word, 0).astype(np.uint64)
+    return {STATE + state: np.where(np.isfinite(word), ((whole >> np.uint64(bit)) & np.uint64(1))
+                                    .astype(float), np.nan)
+            for bit, state in named.items()}
 
 
 def looks_like_bits(values: np.ndarray) -> list[int] | None:
