@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import json
 import os
+import resource
 import subprocess
 import sys
 from pathlib import Path
@@ -48,6 +49,31 @@ def _init(folder: Path, out: Path, keys: list[str]) -> str:
     return done.stdout
 
 
+def _children_cpu() -> float:
+    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return usage.ru_utime + usage.ru_stime
+
+
+def _states(run: Path) -> list[str]:
+    """The state columns a fitted model reads (hammerstein's, auto's hammerstein)."""
+    import joblib
+
+    found: set = set()
+    for est in joblib.load(run / "model.pkl").estimators_.values():
+        for part in [est, *getattr(est, "candidates_", {}).values()] if hasattr(
+                getattr(est, "candidates_", None), "values") else [est]:
+            found |= {c for c in getattr(part, "state_columns_", None) or [] if c.startswith("S_")}
+    return sorted(found)
+
+
+def _weights(run: Path) -> str:
+    """auto's blend per target (its validation's votes)."""
+    import joblib
+
+    return "; ".join(f"{t} " + ", ".join(f"{f} {w:.2f}" for f, w in est.weights_.items())
+                     for t, est in joblib.load(run / "model.pkl").estimators_.items())
+
+
 def matrix(root: str, seed: str) -> None:
     """init (number / bits) -> run per family; the test RMSE per target, number -> bits."""
     root_p = Path(root).resolve()
@@ -64,6 +90,7 @@ def matrix(root: str, seed: str) -> None:
                   "plots=none"]
         for family in FAMILIES:
             run = out / family
+            before = _children_cpu()
             done = subprocess.run([sys.executable, "-m", "thermocomp", "run", *common,
                                    f"model={family}", f"out={run}"], capture_output=True,
                                   text=True, env=env)
@@ -72,11 +99,10 @@ def matrix(root: str, seed: str) -> None:
                 continue
             targets = json.loads((run / "metrics.json").read_text())["targets"]
             scores[kind, family] = {t: v["test"]["rmse"] for t, v in targets.items()}
-            inputs = [c for c in json.loads((run / "metrics.json").read_text()).get(
-                "inputs", []) if c.startswith("S_")]
-            print(f"{kind} {family}: " + " / ".join(f"{t} {r:.3f}" for t, r in
-                                                    scores[kind, family].items())
-                  + (f" (states {inputs})" if inputs else ""), flush=True)
+            states = _states(run) if family != "auto" else _weights(run)
+            print(f"{kind} {family} ({_children_cpu() - before:.0f} s CPU): "
+                  + " / ".join(f"{t} {r:.3f}" for t, r in scores[kind, family].items())
+                  + (f" ({states})" if states else ""), flush=True)
     for family in FAMILIES:
         if ("number", family) in scores and ("bits", family) in scores:
             a, b = scores["number", family], scores["bits", family]

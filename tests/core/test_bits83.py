@@ -103,26 +103,31 @@ def test_init_proposes_the_key_and_never_decodes_a_word_undeclared(tmp_path):
     assert {int(b): n for b, n in config["bits"]["Status"].items()} == {0: "machine_on"}
 
 
-def test_a_stream_on_stdin_decodes_the_declared_word_as_the_file_reader(tmp_path, monkeypatch):
-    import io
-    import json
-
-    from thermocomp.shell.cli import main
-
+def _folder(tmp_path):
+    """Four runs of three sensors, the status word and dX (the last held out)."""
     folder = tmp_path / "runs"
     folder.mkdir()
     for k in range(4):
-        _record(folder / f"run{k}.csv")
-        frame = pd.read_csv(folder / f"run{k}.csv")
+        frame = _record(folder / f"run{k}.csv")
         rng = np.random.default_rng(8572 + k)
         frame["dX [um]"] += rng.normal(0, 0.2, len(frame))
         frame["Bett [°C]"] = 20 + np.cumsum(rng.normal(0, 0.02, len(frame)))
         frame["Ständer [°C]"] = 20.5 + np.cumsum(rng.normal(0, 0.02, len(frame)))
         frame.to_csv(folder / f"run{k}.csv", index=False)
-    monitor = ["monitor", f"data.path={folder}", "data.roles.error=[dX*]",
-               "data.roles.state=[Status]", "data.test_fraction=0.25", "model=hammerstein",
-               *(f"++data.bits.Status.{b}={n}" for b, n in BITS.items()), "track=false",
-               "plots=none"]
+    return folder, ["data.roles.error=[dX*]", "data.roles.state=[Status]",
+                    "data.test_fraction=0.25", "model=hammerstein", "track=false", "plots=none",
+                    *(f"++data.bits.Status.{b}={n}" for b, n in BITS.items())]
+
+
+def test_a_stream_on_stdin_decodes_the_declared_word_as_the_file_reader(tmp_path, monkeypatch):
+    """Before, a hammerstein monitor on stdin refused 'stdin lacks S_machine_on'."""
+    import io
+    import json
+
+    from thermocomp.shell.cli import main
+
+    folder, keys = _folder(tmp_path)
+    monitor = ["monitor", f"data.path={folder}", *keys]
     assert main([*monitor, f"out={tmp_path / 'file'}"]) == 0
     monkeypatch.setattr("sys.stdin", io.StringIO((folder / "run3.csv").read_text()))
     assert main([*monitor, "monitor.input=-", f"out={tmp_path / 'piped'}"]) == 0
@@ -130,3 +135,19 @@ def test_a_stream_on_stdin_decodes_the_declared_word_as_the_file_reader(tmp_path
                         for name in ("file", "piped"))
     assert piped["E_dX"]["rmse_fixed"] == pytest.approx(from_file["E_dX"]["rmse_fixed"],
                                                         rel=1e-9)
+
+
+def test_export_says_the_code_reads_each_bit_as_its_own_column(tmp_path, capsys):
+    from thermocomp.shell.cli import main
+
+    folder, keys = _folder(tmp_path)
+    out = tmp_path / "out"
+    assert main(["run", f"data.path={folder}", *keys, f"out={out}"]) == 0
+    assert main(["export", f"data.path={folder}", *keys, f"export.model={out / 'model.pkl'}",
+                 "export.format=c", "export.check=false", f"out={tmp_path / 'c'}"]) == 0
+    header = (tmp_path / "c" / "compensator.h").read_text()
+    read = [n for n in BITS.values() if f'"S_{n}"' in header]
+    assert read, header[:2000]
+    said = capsys.readouterr().err
+    assert ", ".join(f"S_{n} (bit {b} of 'Status')" for b, n in BITS.items() if n in read) in said
+    assert "not the word: a controller's rows give each bit so" in said
