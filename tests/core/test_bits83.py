@@ -88,15 +88,21 @@ def test_the_rule_tells_a_word_from_a_count_and_a_temperature():
 
 
 def test_init_proposes_the_key_and_never_decodes_a_word_undeclared(tmp_path):
-    words = sorted(set(_record(tmp_path / "lab.csv")["Status"]))
+    frame = _record(tmp_path / "lab.csv")
+    words = sorted(set(frame["Status"]))
+    # a position at three stops (0 / 100 / 200 mm: sums of three powers of two): no word
+    frame.assign(**{"Pos [mm]": 100.0 * (np.arange(len(frame)) // 80)}).to_csv(
+        tmp_path / "lab.csv", index=False)
     out = tmp_path / "out"
-    said = thermocomp("init", f"data.path={tmp_path / 'lab.csv'}", "data.roles.state=[Status]",
-                      f"out={out}").stdout
+    said = thermocomp("init", f"data.path={tmp_path / 'lab.csv'}",
+                      "data.roles.state=[Status, Pos*]", f"out={out}").stdout
+    assert "'Pos [mm]' holds" not in said
     assert f"'Status' holds {len(words)} whole numbers ({', '.join(map(str, words))})" in said
     assert "data.bits={Status: {0: <name>, 1: <name>, 7: <name>}}" in said
     config = yaml.safe_load((out / "conf" / "data" / "lab.yaml").read_text())
     assert "bits" not in config
-    declared = thermocomp("init", f"data.path={tmp_path / 'lab.csv'}", "data.roles.state=[Status]",
+    declared = thermocomp("init", f"data.path={tmp_path / 'lab.csv'}",
+                          "data.roles.state=[Status, Pos*]",
                           "++data.bits.Status.0=machine_on", f"out={out}").stdout
     assert "a PLC's status word?" not in declared
     config = yaml.safe_load((out / "conf" / "data" / "lab.yaml").read_text())
