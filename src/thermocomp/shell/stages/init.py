@@ -476,12 +476,12 @@ def _init(cfg: DictConfig, held: ExitStack) -> dict:
         except ContractError as exc:            # (runs the reader refuses: one record, as before)
             print(f"{src.name}: {appended.split(': runs')[0]}: not read at them ({exc}), one record")
     check_declared(cfg, ds, model=False)        # (a folder's run with a sensor the others lack)
-    for header, name in plan.names.items():     # a PLC's status word: proposed, never decoded
+    for raw, name in plan.names.items():        # a PLC's status word: proposed, never decoded
         # (a unit says a measurement: a position's 0 / 100 / 200 mm are no bits)
-        said = (None if header in opts.bits or not str(name).startswith("S_")
-                or split_unit(header)[1] is not None else bits_proposed(
-            header, np.concatenate([df[name].to_numpy(float) for df in ds.campaigns.values()
-                                    if name in df])))
+        said = (None if raw in opts.bits or not str(name).startswith("S_")
+                or split_unit(raw)[1] is not None else bits_proposed(
+            raw, np.concatenate([df[name].to_numpy(float) for df in ds.campaigns.values()
+                                 if name in df])))
         if said:
             print(f"{sample.name}: {said}")
     air = [h for h, why in plan.roles.items() if why == "ambient" and not asked.roles["ambient"]]
