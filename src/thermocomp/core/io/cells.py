@@ -72,7 +72,7 @@ class Cells:
     thousands: str | None = None
     marks: dict = field(default_factory=dict)        # mark -> {column header: cells}
     said: list = field(default_factory=list)
-    runs: list = field(default_factory=list)         # a marked column's :class:`_Runs`, per file
+    runs: list = field(default_factory=list)         # a marked column's :class:`Runs`, per file
 
     def merged(self, other: Cells) -> Cells:
         """These cells' findings and ``other``'s (another logger's files, scanned with their
@@ -103,7 +103,8 @@ class Cells:
         (stranger80: a TDMS log's 6 missing samples at 30 s, proposed as 6, were 18 rows of its
         10 s grid, and init's own read refused its own proposal); a run of a historian's long
         file's value column, its tag not known to the scan, as the slowest tag's (the safe
-        side)."""
+        side); a historian's text file is scanned on its grid, each tag's runs its own
+        (:func:`.historian.grid_runs`, lab83)."""
         gap = edge = 0
         where: dict = {}
         cycles: dict = {}                    # header -> the probe's spacing in each file
@@ -114,8 +115,8 @@ class Cells:
                 # slowest tag's; a lab file's channels are scanned each on its own)
                 each = grid.get(r.header, max(grid.values(), default=1.0)) if grid else 1.0
                 r_gap, r_edge = (int(np.ceil(n * each - 1e-9)) for n in (r.gap, r.edge))
-                where.update({"gap": r.header} if r_gap > gap else {})
-                where.update({"edge": r.header} if r_edge > edge else {})
+                where.update({"gap": r.header, "gap_at": r.gap_at} if r_gap > gap else {})
+                where.update({"edge": r.header, "edge_at": r.edge_at} if r_edge > edge else {})
                 gap, edge = max(gap, r_gap), max(edge, r_edge)
             elif r.gap or r.edge:
                 cycles.setdefault(r.header, []).append(cycle["every"])
@@ -130,7 +131,7 @@ class Cells:
 
 
 @dataclass
-class _Runs:
+class Runs:
     """A marked column's longest run of missing cells holding a mark, inside the file (``gap``)
     and at its start or end (``edge``), and its missing cells (empty or a mark) of ``rows``."""
 
@@ -139,6 +140,8 @@ class _Runs:
     edge: int
     missing: np.ndarray
     rows: int
+    gap_at: str = ""             # where each run begins, said (a historian's: the long row)
+    edge_at: str = ""
 
 
 def _table(path: Path, delimiter: str, encoding: str, skip: int, preamble: int,
@@ -306,16 +309,24 @@ def _thousands(numbers: list[_Column], decimal: str, said: list) -> str | None:
     return None
 
 
-def _runs(header: str, missing: np.ndarray) -> _Runs:
+def _runs(header: str, missing: np.ndarray) -> Runs:
     """The longest run of ``missing`` inside and at an end of one column's (a channel's) cells."""
+    gap, edge, _ = run_starts(missing)
+    return Runs(header, gap, edge, np.flatnonzero(missing), len(missing))
+
+
+def run_starts(missing: np.ndarray) -> tuple[int, int, dict]:
+    """The longest run of ``missing`` inside and at an end, and where each begins
+    (``{"gap": index, "edge": index}``, the first of the longest)."""
     edges = np.flatnonzero(np.diff(np.concatenate([[0], missing.astype(np.int8), [0]])))
     gap = edge = 0
+    starts: dict = {}
     for a, b in zip(edges[::2], edges[1::2]):
-        if a == 0 or b == len(missing):
-            edge = max(edge, int(b - a))
-        else:
-            gap = max(gap, int(b - a))
-    return _Runs(header, gap, edge, np.flatnonzero(missing), len(missing))
+        kind = "edge" if a == 0 or b == len(missing) else "gap"
+        if b - a > (edge if kind == "edge" else gap):
+            starts[kind] = int(a)
+            edge, gap = (int(b - a), gap) if kind == "edge" else (edge, int(b - a))
+    return gap, edge, starts
 
 
 def _shown(column: _Column, pattern: str) -> str:

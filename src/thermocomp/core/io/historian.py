@@ -44,6 +44,7 @@ import pyarrow.compute as pc
 from ...base.errors import listed
 from ...base.log import logger
 from . import marks
+from .cells import Runs, run_starts
 from .contract import ContractError
 from .converted import named_as
 from .encoding import UTF8
@@ -395,6 +396,26 @@ def held_wide(path: Path, opts, layout: Layout) -> Wide:
         _CACHE.clear()                        # (one record at a time: its memory only)
         _CACHE[key] = read_long(path, opts, layout)
     return _CACHE[key]
+
+
+def grid_runs(path: Path, opts, layout: Layout) -> list:
+    """Each tag's runs of missing grid rows (after a sample not Good or without a value, to
+    the tag's next one) in the grid the read holds it onto, counted as the read counts them: a
+    tag's run is its own, a 10 s probe's six Bad samples six rows, never a 300 s tag's 30 each
+    (lab83); each run said with the long file's row that began it."""
+    wide = held_wide(path, opts, layout)
+    runs = []
+    for tag in wide.rows.columns:
+        missing = wide.frame[tag].isna().to_numpy()
+        if not missing.any():
+            continue
+        gap, edge, starts = run_starts(missing)
+        said = {k: (f"from {_word(layout)} {wide.rows[tag].iloc[i]} of {path.name}"
+                    if wide.rows[tag].iloc[i] > 0 else f"from {path.name}'s start")
+                for k, i in starts.items()}
+        runs.append(Runs(str(tag), gap, edge, np.flatnonzero(missing), len(missing),
+                          said.get("gap", ""), said.get("edge", "")))
+    return runs
 
 
 def wide_options(opts, layout: Layout):

@@ -12,6 +12,7 @@ import numpy as np
 
 from ...base.params import MAX_COUNT
 from ...base.paths import resolve
+from .bits import parsed as parsed_bits
 from .clocksets import clock_sets
 from .contract import SPLITS, ContractError
 from .derived import parsed as parsed_derive
@@ -78,6 +79,7 @@ class ReadOptions:
     join_tolerance_s: float | None = None
     runs_at_pauses: bool = False  # one file's runs parted where its time pauses (.runs)
     derive: dict = field(default_factory=dict)    # derived error columns (.derived): name -> text
+    bits: dict = field(default_factory=dict)      # status words' bits as states (.bits)
     # (deploy73) the server's clock sets connect told, undone in a log's timestamps (.clocksets)
     clock_sets: tuple = ()
     # internal (no data config key): "keep" leaves missing values NaN; "keep_errors" only the
@@ -137,6 +139,7 @@ class ReadOptions:
             **_join(cfg),
             runs_at_pauses=_flag(cfg, "runs_at_pauses"),
             derive=parsed_derive(cfg.get("derive")),
+            bits=parsed_bits(cfg.get("bits")),
             clock_sets=(() if cfg.get("clock_sets") is None
                         else clock_sets(resolve(str(cfg.get("clock_sets"))))),
         )

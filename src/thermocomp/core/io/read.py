@@ -70,6 +70,7 @@ import pyarrow as pa
 from ...base.files import atomic_dir, folder_digest, write_json
 from ...base.log import logger
 from ..timerule import median_step
+from .bits import decoded
 from .clocksets import unfound
 from .contract import (
     AMBIENT_C,
@@ -305,6 +306,9 @@ def _assembled(columns: dict, renamed: dict, rescaled: dict, path: Path, opts: R
     clock = [raw for raw, name in renamed.items() if name == CLOCK]
     renamed = {raw: name for raw, name in renamed.items() if name != CLOCK}
     try:
+        if opts.bits:                   # (before the checks: a word's gap is its bits')
+            renamed = dict(renamed)
+            decoded(columns, renamed, opts.bits, path)
         report = _checked(columns, path, opts, lines)
     except ContractError as exc:        # a CSV file's row: its line too
         exc = with_own_header(exc, renamed)

@@ -24,6 +24,7 @@ from ...base.log import logger, say
 from ..context import TIME
 from . import marks
 from .again import STRAY, comments_in, kept, lines_in, spans_in, warn
+from .bits import decoded_frame
 from .campbell import has_unit_row
 from .campbell import units as campbell_units
 from .clocksets import undone
@@ -179,6 +180,8 @@ def _read_runs(text: str, columns: list[str], opts, recorded: str | None = None,
                             file=SOURCE) from None
     df = _twins(df, header)
     df, scales, blocks = _named(df, opts)
+    if opts.bits:             # a PLC's status word: its declared bits, as a file's (lab83)
+        df = decoded_frame(df, opts.bits, df.attrs.get(HEADERS, {}), SOURCE)
     absent = [c for c in columns if c not in df.columns]
     if not absent and df.empty:
         raise ContractError("stdin has a header but no data row", file=SOURCE)

@@ -24,7 +24,7 @@ from .commands import MODEL_KEYS, READ_ONLY_BY, groups_of, register, root_name
 # Objects built from `_target_`: `~key` of an argument leaves the constructor's default.
 BUILT = ("model.estimator", "ati.estimator", "denoise.denoiser", "select.selector", "sim.generator")
 # Config nodes that are free-form maps: `key={...}` adds keys there (Hydra wants `++key={...}`).
-FREE_MAPS = ("data.columns", "data.units", "data.split_overrides", "data.derive",
+FREE_MAPS = ("data.columns", "data.units", "data.split_overrides", "data.derive", "data.bits",
              "sim.generator.effect_params",
              "design.studies", "model.candidate_defaults")
 # Another primary config or config folder would escape the check of what Hydra builds.

@@ -326,6 +326,12 @@ def export(cfg: DictConfig) -> dict:
     if fmt == "c":
         say(f"build: cd {out} && cc compensator.c stream.c -lm -o stream && ./stream < rows.csv"
             " (--state FILE: a restarted stream goes on from FILE)")
+        bits = [(f"S_{n}", b, w) for w, named in (cfg.data.get("bits") or {}).items()
+                for b, n in named.items() if f"S_{n}" in stream.columns_]
+        if bits:            # (lab83: stream.c does not decode a PLC's word)
+            say(f"{', '.join(f'{c} (bit {b} of {w!r})' for c, b, w in bits)}: data.bits; "
+                "the code reads each as a column of its own, as `thermocomp rows` writes them, "
+                "not the word: a controller's rows give each bit so")
     if packed:
         written[PACK] = out / PACK
         say(f"{_said(packed[1])}: {out / PACK}" + (f" (after the build, in {out}: sh check/check.sh)"

@@ -22,7 +22,8 @@ from ...base.files import atomic_write_text
 from ...base.log import held_back, said_after
 from ...base.paths import conf_dir, resolve
 from ...core import io
-from ...core.io.cells import scanned
+from ...core.io.bits import proposed as bits_proposed
+from ...core.io.cells import Cells, scanned
 from ...core.io.contract import MANIFEST, TIME
 from ...core.io.derived import probe_pairs, proposal
 from ...core.io.detect import (
@@ -53,6 +54,7 @@ from ...core.io.detect import (
 from ...core.io.encoding import UTF8
 from ...core.io.historian import (
     PERIOD_COMMENT,
+    grid_runs,
     intervals_said,
     proposed_period,
     tag_samples,
@@ -174,7 +176,8 @@ def mark_gaps(src, found, errors: set, given: dict, opts, grid: dict | None = No
         if n > getattr(opts, key):
             given[key] = n
             opts = replace(opts, **{key: n})
-            pending.append((key, n, where[key.split("_")[1]]))
+            kind = key.split("_")[1]
+            pending.append((key, n, where[kind], where.get(f"{kind}_at", "")))
     return opts, pending
 
 
@@ -198,13 +201,23 @@ def temperature_scans(src, config: dict, report: dict) -> dict:
     return out
 
 
+def held_cells(src, manifest, opts) -> Cells | None:
+    """The runs of missing grid rows of a historian's text files, each tag's on its own
+    (:func:`.io.historian.grid_runs`); None: none missing."""
+    files = [src] if manifest is None else [src / str(f) for f in manifest["file"]]
+    runs = [r for f in files if (layout := long_layout(f, opts)) is not None
+            for r in grid_runs(f, opts, layout)]
+    return Cells(runs=runs) if runs else None
+
+
 def gaps_said(src, pending: list, period: float, periods: dict | None = None) -> None:
     """Say :func:`mark_gaps`' keys, each run's samples with the time they span (``period``: the
     record's sample period, s; ``periods``: a header's own, where its file's differs)."""
-    for key, n, header in pending:
+    for key, n, header, at in pending:
         each = (periods or {}).get(header, period)
         span = f"{n * each / 3600:.3g} h" if n * each >= 3600 else f"{n * each:.4g} s"
-        header = repr(header) if header is not None else "one of its channels (grid rows)"
+        header = (repr(header) + (f" ({at})" if at else "") if header is not None
+                  else "one of its channels (grid rows)")
         print(f"{src.name}: " + GAP_SAID[key].format(n=n, s="s" * (n > 1), header=header,
                                                      span=span if each == each else "?"))
 
@@ -421,10 +434,14 @@ def _init(cfg: DictConfig, held: ExitStack) -> dict:
               f"onto a grid of data.resample_s={period:g} s, the median interval of the fastest "
               f"error tag {tag!r} (written into the config: check it; the tags': "
               f"{intervals_said(long)})")
-    # a gap counted in the grid's rows where the channels are held onto one (stranger80)
+    # a gap counted in the grid's rows where the channels are held onto one (stranger80); a
+    # historian's text file on the grid itself, each tag's runs its own (lab83: its cells were
+    # never scanned, and init's own read refused a probe's Bad samples)
+    if long is not None and not is_lab_file(sample):
+        cells, grid = held_cells(src, manifest, opts), None
     opts, gaps = mark_gaps(src, cells, set(errors), given, opts, grid)   # a probe's left out
-    if grid is not None:     # (a long text's 'value' column: no header of the lab's, stranger80)
-        gaps = [(k, n, h if h in plan.names else None) for k, n, h in gaps]
+    if long is not None:     # (a long text's 'value' column: no header of the lab's, stranger80)
+        gaps = [(k, n, h if h in plan.names else None, at) for k, n, h, at in gaps]
     defaults = OmegaConf.to_container(OmegaConf.load(conf_dir() / "data" / "default.yaml"))
     decimal = opts.decimal             # the first row's (an error file's cells read so: pairhead)
     if pair is not None and not pair.same_separators:   # each logger's file its own: detected
@@ -484,6 +501,14 @@ def _init(cfg: DictConfig, held: ExitStack) -> dict:
         except ContractError as exc:            # (runs the reader refuses: one record, as before)
             print(f"{src.name}: {appended.split(': runs')[0]}: not read at them ({exc}), one record")
     check_declared(cfg, ds, model=False)        # (a folder's run with a sensor the others lack)
+    for raw, name in plan.names.items():        # a PLC's status word: proposed, never decoded
+        # (a unit says a measurement: a position's 0 / 100 / 200 mm are no bits)
+        said = (None if raw in opts.bits or not str(name).startswith("S_")
+                or split_unit(raw)[1] is not None else bits_proposed(
+            raw, np.concatenate([df[name].to_numpy(float) for df in ds.campaigns.values()
+                                 if name in df])))
+        if said:
+            print(f"{sample.name}: {said}")
     air = [h for h, why in plan.roles.items() if why == "ambient" and not asked.roles["ambient"]]
     if air:                                     # by its words (the reader's default: a temperature)
         print(f"ambient: {', '.join(map(repr, air))} ({'their names' if len(air) > 1 else 'its name'}"
