@@ -156,18 +156,13 @@ class Judgement:
 
     def _follow_field(self, level, err, time, events) -> tuple[np.ndarray, np.ndarray]:
         """A drift-excluded sensor whose exclusion the field followed (``new_state_others``
-        other judged sensors out of band before the field was calm for a window since it) comes
-        back, as a new state;
+        other judged sensors out of band within a window of it) comes back, as a new state;
         the new state ends after a window with every judged sensor within band.
         ``(level, error)`` after it."""
         leaving = self._judged & (level >= WARNING)
         out = int(leaving.sum())
         for j in np.flatnonzero(self._since >= 0):
-            # the field may follow until it has been calm for a window since the exclusion, not
-            # only within a window of it: a column's T_left1, out at Q3's onset, was followed 13
-            # samples later and kept out 516 samples (mon83c; a drift's exclusion leaves it calm)
-            if self._active[j] or (self._count - self._since[j] > self.window
-                                   and self._calm_field >= self.window):
+            if self._active[j] or self._count - self._since[j] > self.window:
                 self._since[j] = -1
             elif out >= self.new_state_others:
                 self._since[j] = -1
