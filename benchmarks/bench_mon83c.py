@@ -101,6 +101,10 @@ following of a fresh drift exclusion judged with the excluded sensor back in the
 others' errors under the operator it was excluded from, as ``_resolves`` judges with it out): on
 s8546 ``T_right4`` at row 732 and 3 others at 734, within the window, so the pair back after 3
 rows, not 13 (unmeasured; its bar as this one's, on seeds not used here, and the C to follow).
+An upper bound of what it can give, main's served E_Y on rows 731..k and the fixed model's on
+every other row: 16.480 (k = 731), 16.489 (732), 16.505 (733), 16.559 (734) against fixed's
+16.489: back within 2 rows, or no exclusion at 731, to be "no worse" than fixed on s8546; after
+3 rows +0.1 %, before the guard's rate limit on the way back.
 """
 
 from __future__ import annotations
