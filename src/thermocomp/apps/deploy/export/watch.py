@@ -43,9 +43,8 @@ The served adaptive compensator judges every ``T_`` input before the model reads
   whole band, as served), the sensors due back judged together as served;
 * (cmon82b) a **new thermal state** (``novel``), the served ``_declare``: where with the culprit
   (or its blind partner) out the others stay out of their warning band, or where within a
-  window of a drift exclusion ``new_state_others`` other judged sensors leave it, with it out or
-  (mon83d) with the fresh exclusions put back in the fit (the field followed: the sensor
-  re-admitted at once, ``FOLLOWED``, its wait back to a window).  While it
+  window of a drift exclusion ``new_state_others`` other judged sensors leave it (the field
+  followed: the sensor re-admitted at once, ``FOLLOWED``, its wait back to a window).  While it
   lasts no drift exclusion (the fault signatures still exclude), ``NOVEL`` in the flags and the
   guard's bound ``guard_lo_new`` / ``guard_hi_new`` (:mod:`.output`); it ends after a window of
   samples with every judged sensor within its band.  An export before it (no ``novel``) flags it.
@@ -652,17 +651,15 @@ class CodeMonitor:
     def _follow_field(self) -> None:
         """(cmon82b) The served ``_follow_field``: a drift-excluded sensor whose exclusion the
         field followed (``new_state_others`` other judged sensors out of band within a window
-        of it, with it out or, mon83d, with the fresh exclusions put back in the fit) comes back
-        at once, a new thermal state declared; the state ends after a window with every judged
-        sensor within band (flagged by an export before cmon82b)."""
+        of it) comes back at once, a new thermal state declared; the state ends after a window
+        with every judged sensor within band (flagged by an export before cmon82b)."""
         a = self.a
         level, _ = self._judge()
         _, active, _, judged, _ = self._set()
         self.since[active | (self.count - self.since > self.window)] = -1
         out = int((judged & (level >= WARNING)).sum())
-        back = self._left_with(self.since >= 0) if (self.since >= 0).any() else 0
         for j in np.flatnonzero(self.since >= 0):
-            if max(out, back) < a["new_state_others"]:
+            if out < a["new_state_others"]:
                 continue
             if not a["novel"]:
                 self._flag(NOT_IN_CODE, int(j), DRIFT)
@@ -676,20 +673,6 @@ class CodeMonitor:
         self.calm_field = 0 if out else self.calm_field + 1
         if self.novel and self.calm_field >= self.window:
             self.novel = False
-
-    def _left_with(self, back: np.ndarray) -> int:
-        """(mon83d) How many judged sensors but ``back`` are out of their warning band over the
-        last ``confirm`` samples with ``back`` put back in the fit, as served (the code holds
-        its operator: every sensor in, one out, or the pair out now)."""
-        trial = self._active() | back
-        if len(self._rows()) < self.confirm or trial.sum() < self.a["min_active"]:
-            return 0
-        s = self._op_of(~trial)
-        M, lev = self.M[s], self.lev[s]
-        jd = trial & ~back & (lev < self.max_lev)
-        X = self._X()
-        E = (X[:, jd] - X @ M[jd].T) / (1 - lev[jd])
-        return int((np.abs(E).min(axis=0) >= self.a["warning"][jd]).sum())
 
     def _readmit(self, j: int, rule: int) -> None:
         """``j`` back in (``rule``: why), its partner's place kept, the window re-judged."""

@@ -640,34 +640,13 @@ static void mon_drift(tc_state *s, const int level[], int field) {
             }
 }
 
-/* (mon83d) how many judged sensors but back[] are out of their warning band over the last
-   MON_CONFIRM samples with back[] put back in the fit (the code holds its operator: every sensor
-   in, one out, or the pair out now) */
-static int mon_left_with(const tc_state *s, const int back[]) {
-    double X[MW][NM];
-    int out[NM], k, r, n = 0, op, left = 0, rows = mon_rows(s, X);
-    for (k = 0; k < NM; k++) out[k] = (k == s->mon_out || k == s->mon_out2) && !back[k], n += !out[k];
-    if (rows < MON_CONFIRM || n < MON_MIN_ACTIVE || (op = mon_op_of(out)) < 0) return 0;
-    for (k = 0; k < NM; k++) {
-        double a = HUGE_VAL;
-        if (out[k] || back[k] || MON_LEV[op][k] >= MON_MAX_LEV) continue;
-        for (r = 0; r < rows; r++) {
-            double v = fabs(mon_loo(op, k, X[r]));
-            if (v < a) a = v;
-        }
-        left += a >= MON_WARNING[k];
-    }
-    return left;
-}
-
 /* the served monitor's exclusion by judgement where the code holds it (mon_drift), else
    flagged, none in a new thermal state (cmon82b); and a field that followed a drift exclusion
-   within a window (with it out, or mon83d with the fresh exclusions put back in the fit): the
-   sensor re-admitted, a new thermal state declared (served _follow_field; an export before
-   cmon82b flags it), which ends after a window with every judged sensor within its warning
-   band */
+   within a window: the sensor re-admitted, a new thermal state declared (served _follow_field;
+   an export before cmon82b flags it), which ends after a window with every judged sensor within
+   its warning band */
 static void mon_judgement(tc_state *s) {
-    int level[NM], jd[NM], fresh[NM], k, n, field = 0, leaving = 0, back = 0, any = 0;
+    int level[NM], jd[NM], k, n, field = 0, leaving = 0;
     for (k = 0; k < NM; k++) field |= k == s->mon_out && s->mon_by_field[k];
     field = field ? 2 : MON_EXCLUDE_LEVEL;
     n = mon_levels(s, level, jd);
@@ -683,12 +662,9 @@ static void mon_judgement(tc_state *s) {
         leaving += jd[k] && level[k] >= 1;
         if ((k != s->mon_out && k != s->mon_out2) || s->mon_count - s->mon_since[k] > MW)
             s->mon_since[k] = -1;
-        any |= fresh[k] = s->mon_since[k] >= 0;
     }
-    if (any) back = mon_left_with(s, fresh);
     for (k = 0; k < NM; k++) {
-        if (s->mon_since[k] < 0 || (leaving < MON_NEW_STATE_OTHERS && back < MON_NEW_STATE_OTHERS))
-            continue;
+        if (s->mon_since[k] < 0 || leaving < MON_NEW_STATE_OTHERS) continue;
         if (!MON_NOVEL) {
             mon_flag(s, TC_MON_NOT_IN_CODE, k, TC_MON_DRIFT);
             return;

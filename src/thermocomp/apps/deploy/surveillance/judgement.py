@@ -156,23 +156,15 @@ class Judgement:
 
     def _follow_field(self, level, err, time, events) -> tuple[np.ndarray, np.ndarray]:
         """A drift-excluded sensor whose exclusion the field followed (``new_state_others``
-        other judged sensors out of band within a window of it, with it out or put back in the
-        fit) comes back, as a new state; the new state ends after a window with every judged
-        sensor within band.  ``(level, error)`` after it."""
+        other judged sensors out of band within a window of it) comes back, as a new state;
+        the new state ends after a window with every judged sensor within band.
+        ``(level, error)`` after it."""
         leaving = self._judged & (level >= WARNING)
         out = int(leaving.sum())
-        fresh = ((self._since >= 0) & ~self._active
-                 & (self._count - self._since <= self.window))
-        # the field judged with the fresh exclusions back in too: their exclusion changes the
-        # operator and can hold the others in band (a column's T_left1, out at an unseen
-        # source's onset, and its blind partner: with the pair in T_right4 left the band a row
-        # later, with it out 13 rows later; mon83c, mon83d)
-        back = self._left_with(fresh) if fresh.any() else np.zeros_like(leaving)
         for j in np.flatnonzero(self._since >= 0):
             if self._active[j] or self._count - self._since[j] > self.window:
                 self._since[j] = -1
-            elif max(out, int(back.sum())) >= self.new_state_others:
-                out = max(out, int(back.sum()))
+            elif out >= self.new_state_others:
                 self._since[j] = -1
                 self._active[j], self._by_field[j], self._dwell[j] = True, False, self.window
                 self._explains[j] = False
@@ -181,29 +173,12 @@ class Judgement:
                                 events)
                 self._set_operator()
                 leaving[j] = True
-                self._declare(f"the field followed {self.names[j]}", leaving | back, err, time,
-                              events)
+                self._declare(f"the field followed {self.names[j]}", leaving, err, time, events)
                 level, err = self._judge()
                 leaving = self._judged & (level >= WARNING)
                 out = int(leaving.sum())
         self._end_when_calm(out, time, events)
         return level, err
-
-    def _left_with(self, back: np.ndarray) -> np.ndarray:
-        """The judged sensors but ``back`` out of their warning band over the last ``confirm``
-        samples (every error beyond it, as :meth:`_judge`) with ``back`` put back in the fit."""
-        left = np.zeros(len(self.names), dtype=bool)
-        k = min(self._count, self.confirm)
-        trial = self._active | back
-        if k < self.confirm or trial.sum() < self.min_active_:
-            return left
-        M, lev = self._operator(trial)
-        judged = trial & ~back & (lev < self.pod.max_leverage)
-        rows = self._hist[self._recent[self._pos, :k]]
-        X = np.where(np.isfinite(rows), rows, 0.0)
-        E = (X[:, judged] - X[:, trial] @ M[judged].T) / (1 - lev[judged])
-        left[judged] = np.abs(E).min(axis=0) >= self.warning_c[judged]
-        return left
 
     def _name_state(self, level, err, time, events) -> None:
         """Judge only (``adaptive=False``): the new thermal state the adaptive monitor would
