@@ -5,13 +5,16 @@ Usage (from the repository root, ``PYTHONPATH=<tree>/src``: the code measured is
 
     python benchmarks/bench_mon83d.py trace [ROOT] [SEED] [FIRST] [LAST]
     python benchmarks/bench_mon83d.py score [ROOT] [SEEDS] [KINDS]
+    python benchmarks/bench_mon83d.py bound [ROOT] [SEED] [FIRST] [LAST]
 
 bench_mon83c's ``trace`` and ``score`` (its docstring: column_moving_source, MLR on the train
 split, deployed adaptive with ``monitor.fallbacks=unobservable``; ``score`` per record the E_*
 test RMSE fixed / served, the sensors out as row spans, a drift's first row out), here by default
 on ``/tmp/mon83d-bench`` and this task's fresh seeds 8611-8620.  The stranger machines' healthy
 draws are bench_mon83's ``trunnion`` / ``lathe`` / ``jig`` (``ROOT LABEL SEEDS healthy``) and its
-``table``.
+``table``.  ``bound``: the most a rule that re-admits at row ``k`` can give, every E_* target's
+RMSE with the served output on rows ``FIRST``..``k`` and the fixed model's elsewhere, for ``k``
+from ``FIRST - 1`` to ``LAST`` (defaults 731, 739 on s8546).
 
 The case (bench_mon83c): column_moving_source seed 8546, healthy.  The unseen source Q3 sets in at
 row ~721; at row 731 ``T_left1`` (leverage 0.82) is the only sensor out of band and goes out as a
@@ -75,17 +78,22 @@ alternated; E_* test RMSE in µm, served adaptive, fixed in brackets)
    whole set not run (the bar had failed at 1 and 2).
 
 CPU of ``score`` (user + sys): fresh healthy + drift 8611-8620 13.5 s main (simulations cached by
-it), 9.6 s rule; s8546 1.8 / 1.9 s.
+it), 9.6 s rule; s8546 1.8 / 1.9 s; ``bound`` 1.7 s (main).
 
 Verdict: REFUSED by its bar (parts 1 and 2).  The source is reverted; the rule (served
 ``_left_with``, the numpy mirror's and C's ``mon_left_with``) is ``benchmarks/mon83d_rule.patch``.
 
-What remains.  (a) s8546 needs the pair back within 2-3 rows (mon83c's bound: 16.489 at 732,
-16.559 at 734); the count of others beyond the band with the pair back in reaches 2 only at 739.
-The judgement that named the state at 734 is the veto itself: a fresh drift exclusion re-judged
-each sample with the fresh sensors back in, and re-admitted where the veto would now refuse it
-(with the culprit out the others stay out of band) -- unmeasured, its bar as this one's, on
-seeds not seen here (the column's 8611-8620 are seen now).  (b) s8618 shows the cost of any
+What remains.  (a) s8546: the count of others beyond the band with the pair back in reaches 2
+only at 739.  The judgement that named the state at 734 is the veto itself: a fresh drift
+exclusion re-judged each sample with the fresh sensors back in, and re-admitted where the veto
+would now refuse it (with the culprit out the others stay out of band).  Unmeasured, but
+``bound`` (main's served on rows 731..k, fixed elsewhere; E_Y / E_X_mid / E_Y_mid / E_Z_mid
+above fixed) says what it can give at most: k = 732 +0.0 / +1.6 / +0.7 / +0.3 %, 733 +0.1 / +2.8
+/ +1.2 / +0.4 %, 734 +0.4 / +3.8 / +1.9 / +0.7 %, 738 +2.4 / +9.4 / +5.6 / +2.0 % (the rule's
+measured 16.887 at its re-admission at 739 against the bound's 16.886 at 738: the guard's way
+back costs about nothing).  So re-admission at 734 passes an E_Y bar (+0.4 %) but not this one
+on every target (E_X_mid, 1.2 µm RMSE, +3.8 %); only the pair back by row 732, or never out,
+passes it: the exclusion at 731 itself, on one row's evidence, is what costs.  (b) s8618 shows the cost of any
 such rule: a right-face pair whose exclusion happened to serve better than the fixed model (E_Y
 19.036 against 21.622) is re-admitted and the served error moves toward the fixed model's; a bar
 against main's served rather than the fixed model's refuses that.  (c) s8613's healthy
@@ -102,7 +110,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 import bench_mon83c  # noqa: E402
-from _cli import run_commands  # noqa: E402
+from _cli import made_folder, run_commands  # noqa: E402
 
 
 def trace(root: str = "/tmp/mon83d-bench", seed: str = "8546", first: str = "725",
@@ -117,8 +125,30 @@ def score(root: str = "/tmp/mon83d-bench", seeds: str = "8611-8620",
     bench_mon83c.score(root, seeds, kinds)
 
 
+def bound(root: str = "/tmp/mon83d-bench", seed: str = "8546", first: str = "731",
+          last: str = "739") -> None:
+    """Every E_* with the served output on rows ``first``..k only (docstring)."""
+    from _ccode import rmse
+
+    from thermocomp.apps.deploy.streaming import replay
+
+    deployed, ds, test_ids = bench_mon83c._deployed(made_folder(root), int(seed))
+    targets = deployed.targets_
+    frame = ds.campaigns[test_ids[0]].reset_index(drop=True)
+    served = -bench_mon83c._streamed(deployed, frame)["y"]
+    fixed = -replay(deployed.streaming, frame)[targets].to_numpy(float)
+    errors = frame[targets].to_numpy(float)
+    alone = rmse([errors], [fixed])
+    for k in range(int(first) - 1, int(last) + 1):
+        mixed = fixed.copy()
+        mixed[int(first) - 1:k] = served[int(first) - 1:k]
+        print(f"rows {first}..{k}: " + "  ".join(
+            f"{t} {q:.3f} ({100 * (q / p - 1):+.1f}%)"
+            for t, p, q in zip(targets, alone, rmse([errors], [mixed]))))
+
+
 def main(argv: list[str] | None = None) -> int:
-    return run_commands(__doc__, {"trace": trace, "score": score},
+    return run_commands(__doc__, {"trace": trace, "score": score, "bound": bound},
                         sys.argv[1:] if argv is None else argv, cpu=sys.stderr)
 
 
