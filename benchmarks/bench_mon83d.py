@@ -93,13 +93,13 @@ above fixed) says what it can give at most: k = 732 +0.0 / +1.6 / +0.7 / +0.3 %,
 measured 16.887 at its re-admission at 739 against the bound's 16.886 at 738: the guard's way
 back costs about nothing).  So re-admission at 734 passes an E_Y bar (+0.4 %) but not this one
 on every target (E_X_mid, 1.2 µm RMSE, +3.8 %); only the pair back by row 732, or never out,
-passes it: the exclusion at 731 itself, on one row's evidence, is what costs.  (b) s8618 shows the cost of any
-such rule: a right-face pair whose exclusion happened to serve better than the fixed model (E_Y
-19.036 against 21.622) is re-admitted and the served error moves toward the fixed model's; a bar
-against main's served rather than the fixed model's refuses that.  (c) s8613's healthy
-``T_left1`` out 729-1224 on both is not a drift exclusion: a *freeze* (26.12 °C for 6 samples
-while the field moved 0.54 °C) at Q3's onset, E_Y 12.356 fixed against 19.146 served -- the
-freeze rule's, not this one's.
+passes it: the exclusion at 731 itself, on one row's evidence, is what costs.  (b) s8618 shows
+the cost of any such rule: a right-face sensor whose exclusion happened to serve better than the
+fixed model (main's E_Y 19.036 against 21.622) is re-admitted and the served error moves toward
+the fixed model's; a bar against main's served rather than the fixed model's refuses that.
+(c) s8613's healthy ``T_left1`` out 729-1224 on both is not a drift exclusion: a *freeze*
+(26.12 °C for 6 samples while the field moved 0.54 °C) at Q3's onset, E_Y fixed 12.356, served
+20.102 main / 19.146 rule -- the freeze rule's case, not this one's.
 """
 
 from __future__ import annotations
