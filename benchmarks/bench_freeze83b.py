@@ -6,20 +6,22 @@ Usage (from the repository root, ``PYTHONPATH=<tree>/src``: the code measured is
     python benchmarks/bench_freeze83b.py trace [ROOT] [SEED] [SENSOR] [FIRST] [LAST]
     python benchmarks/bench_freeze83b.py cost [ROOT] [SEEDS] [SENSOR]
     python benchmarks/bench_freeze83b.py census [ROOT] [SEEDS]
+    python benchmarks/bench_freeze83b.py probe [ROOT] [SEEDS]
 
 Both build bench_mon83c's record (``column_moving_source``, MLR on the train split, deployed
 adaptive with ``monitor.fallbacks=unobservable``) into ``ROOT`` (default ``/tmp/freeze83b-bench``),
 and the same seed three times more: noise-free readings (``temp_noise_c=0``, ``temp_quantum_c=0``:
 the generator still draws the same noise, so every other draw is the same), without the unseen
-source (``q3=false``), and both.  ``trace`` (default seed 8613, ``T_left1``, rows 718-735, 1-based): per row
-the reading, its noise-free value, the sensor's constant run, and the field's prediction of it
-(from the others, under the monitor's operator: ``d - e``) on the record and the three variants,
-and the reading without Q3; the sensor's training run limit and warning band.
+source (``q3=false``), and both.  ``trace`` (default seed 8613, ``T_left1``, rows 718-735,
+1-based): per row the reading, its noise-free value, the sensor's constant run, and the field's
+prediction of it (from the others, under the monitor's operator: ``d - e``) on the record and the
+three variants, and the reading without Q3; the sensor's training run limit and warning band.
 ``cost``: per record the E_* test RMSE of the fixed model, the served adaptive one, and the
 served one with the freeze check off for ``SENSOR`` only (its ``_seen_run`` infinite).
 ``census`` (default this task's fresh seeds 8631-8640): every freeze exclusion on the healthy
 record, and on the record with bench_cmon82's sensor held at its middle row's reading from there
-(a frozen fault) the row it goes out.
+(a frozen fault) the row it goes out.  ``probe`` (default s8613): E_* fixed / served / served
+with What remains (a) patched into this process's monitor, healthy and frozen as ``census``.
 
 Traced (2026-12-04, main 61e8e75f, ``trace``; test_cycle of s8613, 1441 rows of 100 s)
 ------------------------------------------------------------------------------------
@@ -77,14 +79,25 @@ tests/apps/test_monitor*.py, tests/shell/test_export*.py pass.
 What remains.  (a) A return rule: a sensor out for a freeze alone whose reading changes again is
 no longer frozen by the freeze's own evidence; it could go back to the judgement's hands (re-
 admitted and judged as an active one, the new-state veto with it) on its first changed reading
-rather than after a window against the field -- on s8613 row 730 (bound +0.0 %).  A frozen fault
-as simulated (held exactly) never changes, so never returns; a real stuck logger toggling one
-step would, and would be re-excluded only by the freeze's run again.  Unmeasured; it needs the
-served monitor, watch.py and watch_c.py (``mon_returning``) and its bar on seeds not used here.
+rather than after a window against the field.  A frozen fault as simulated (held exactly) never
+changes, so never returns; a real stuck logger toggling one step would flap (out again only by
+the freeze's run).  ``probe`` measures it without a source change (``_probe_return``: this
+process's monitor patched, the quiet path handed to the full one while such a sensor is out,
+which re-admits nobody before a window's calm; not the exported C): s8613 healthy ``T_left1`` out
+729 only (main 729-1224), fixed / main / probe E_X 22.316 / 11.441 / 22.315, E_Y 12.356 / 20.102
+/ 12.352, E_Z 5.826 / 11.005 / 5.826, E_X_mid 0.916 / 4.790 / 0.916, E_Y_mid 2.424 / 3.298 /
+2.424, E_Z_mid 2.100 / 4.040 / 2.098 (out: ``T_amb`` 732-736 as with the freeze off); s8613 with
+``T_front1`` frozen from row 721: out at 747 (main 767), E_Y 34.418 / 18.952 / 12.776, E_Y_mid
+10.795 / 3.321 / 5.908, E_X 20.839 / 11.468 / 21.009; fresh 8641-8645 healthy and frozen: the
+same digits and spans as main on all ten (no healthy freeze; the frozen ``T_front1`` never reads
+again), 13.0 s CPU.  Not a scored rule: it needs the served monitor (a freeze-out flag, the
+``_fast`` hand-over), watch.py and watch_c.py (``mon_returning``) to follow, and the bar above
+(8631-8640 healthy, 8631-8635 frozen; unused by it) scored on the sources before the deadline.
 (b) The freeze's evidence is a field prediction the monitor cannot yet doubt at row 729 (every
 sensor in band); a freeze *flagged* but not excluded until the run passes the window where the
 field's move is within 1.1 x the band would cost 8635 / 8639 / 8640 up to 5 rows of a frozen
-sensor in the fit.  CPU (user + sys): ``trace`` 3.2 s, ``cost`` 2.1 s, ``census`` 10.9 s.
+sensor in the fit.  CPU (user + sys): ``trace`` 3.2 s, ``cost`` 2.1 s, ``census`` 10.9 s,
+``probe`` 8613,8641-8645 13.0 s.
 """
 
 from __future__ import annotations
@@ -218,8 +231,71 @@ def census(root: str = "/tmp/freeze83b-bench", seeds: str = "8631-8640") -> None
             print(line, flush=True)
 
 
+def _probe_return(mon) -> None:
+    """Patch ``mon`` (this process only, no source change): a sensor out for a freeze alone is
+    re-admitted on its first changed reading (What remains (a))."""
+    from thermocomp.apps.deploy.surveillance.states import OK
+
+    frozen: set[int] = set()
+    check, readmit, fast = mon._check_freeze, mon._readmit, mon._fast
+
+    def _fast(x):   # the quiet path re-admits nobody before a window's calm: the full one
+        return None if frozen else fast(x)
+
+    def _check_freeze(*args):
+        before = mon._active.copy()
+        check(*args)
+        frozen.update(np.flatnonzero(before & ~mon._active).tolist())
+
+    def _readmit(d, finite, instant, time, events):
+        back = False
+        for j in sorted(frozen):
+            if mon._active[j] or mon._by_field[j] or mon._jumps[j] or mon._dropped[j]:
+                frozen.discard(j)
+            elif mon._run[j] == 0 and finite[j] and j not in instant:
+                mon._set_state(j, OK, time, "re-admitted: reading again after a freeze", events)
+                mon._active[j], back = True, True
+                mon._explains[j] = mon._ranged[j] = False
+                mon._set_operator()
+                frozen.discard(j)
+        return readmit(d, finite, instant, time, events) or back
+
+    mon._check_freeze, mon._readmit, mon._fast = _check_freeze, _readmit, _fast
+
+
+def probe(root: str = "/tmp/freeze83b-bench", seeds: str = "8613") -> None:
+    """E_* fixed / served / served with :func:`_probe_return`, healthy and with bench_cmon82's
+    sensor frozen from the middle row (as ``census``); the sensors out."""
+    from bench_cmon82 import _sensor
+
+    from thermocomp.apps.deploy.export import state_space
+    from thermocomp.apps.deploy.streaming import replay
+
+    folder = made_folder(root)
+    for seed in seed_list(seeds):
+        deployed, ds, test_ids = bench_mon83c._deployed(folder, seed)
+        mon, targets = deployed.monitor, deployed.targets_
+        sensor = _sensor(state_space(deployed, monitor=True))
+        frame = ds.campaigns[test_ids[0]].reset_index(drop=True)
+        frozen = frame.copy()
+        frozen.loc[len(frame) // 2:, sensor] = frame[sensor].iloc[len(frame) // 2]
+        for kind, f in (("healthy", frame), ("frozen", frozen)):
+            errors = f[targets].to_numpy(float)
+            fixed = rmse([errors], [-replay(deployed.streaming, f)[targets].to_numpy(float)])
+            s = bench_mon83c._streamed(deployed, f)
+            patched = bench_mon83c._deployed(folder, seed)[0]
+            _probe_return(patched.monitor)
+            q = bench_mon83c._streamed(patched, f)
+            print(f"{kind} s{seed} fixed / served / probe: " + "  ".join(
+                f"{t} {a:.3f} / {b:.3f} / {c:.3f}" for t, a, b, c in
+                zip(targets, fixed, rmse([errors], [-s["y"]]), rmse([errors], [-q["y"]]))))
+            print(f"  out: {bench_mon83c._spans(s['active'], mon.names)} | probe: "
+                  f"{bench_mon83c._spans(q['active'], mon.names)}", flush=True)
+
+
 def main(argv: list[str] | None = None) -> int:
-    return run_commands(__doc__, {"trace": trace, "cost": cost, "census": census},
+    return run_commands(__doc__, {"trace": trace, "cost": cost, "census": census,
+                         "probe": probe},
                         sys.argv[1:] if argv is None else argv, cpu=sys.stderr)
 
 
