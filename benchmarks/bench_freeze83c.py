@@ -1,0 +1,162 @@
+"""A sensor out for a freeze alone returns to the judgement on its first changed reading
+(freeze83c, issue 34): the rule and its bar.
+
+Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is that tree's,
+``/work/main/src`` shipped, the branch the rule)::
+
+    python benchmarks/bench_freeze83c.py column ROOT LABEL [SEEDS]
+    python benchmarks/bench_freeze83c.py stranger ROOT LABEL [SEEDS]
+    python benchmarks/bench_freeze83c.py verdict ROOT SHIPPED RULE
+
+``column`` (default 8613,8646-8655): bench_mon83c's record (``column_moving_source``, MLR on the
+train split, served adaptive with ``monitor.fallbacks=unobservable``), a line per record and kind
+in ``ROOT/<LABEL>.jsonl``: E_* test RMSE of the fixed and the served model, the sensors' spans
+out, and for a fault the row the faulted sensor (bench_cmon82's ``_sensor``: ``T_front1``) first
+goes out.  Kinds: ``healthy`` on every seed; ``frozen`` (held at its middle row's reading from
+there, bench_freeze83b's census fault) on 8646-8650; ``toggle`` on 8651-8655: a stuck logger that
+from the middle row reads the held value, one sample in ``TOGGLE`` one logger step (the sensor's
+smallest non-zero one-sample change on the record) above it.  ``stranger`` (default 8656-8661):
+bench_mon83's harness, healthy only (trunnion 8656-8657, lathe 8658-8659, jig 8660-8661) into
+``ROOT/<LABEL>-stranger.jsonl``.  ``verdict``: the bar below, part by part, from the two labels.
+
+The rule (src, written and committed before scoring).  ``SensorMonitor``: a sensor excluded by
+the freeze (``_check_freeze``) is marked out for a freeze alone (``_froze``); any other detector
+firing on it (dropout, range, jump) clears the mark; a marked sensor whose reading is finite and
+changed (its run 0), no detector firing, is re-admitted at once (``Readmission._thawed``) and
+judged from there as an active sensor (its drift exclusion and the new-state veto with it).  The
+quiet path (``_fast``) hands such a sample to the full one.  The exported monitor
+(``export/watch.py``, C ``watch_c.py``) follows (rule ``THAWED``), or flags it.
+
+The bar (written before scoring; fresh seeds 8646-8661, none tuned on; REFUSED if any part
+fails, the src reverted, kept as ``benchmarks/freeze83c_rule.patch``):
+1. s8613 healthy (the found case): every E_* of the rule within 2 % of the fixed model's.
+2. Healthy column 8646-8655: no served RMSE more than 2 % above shipped's; no sensor out with
+   the rule that is not out shipped (no new event).
+3. Frozen ``T_front1`` on 8646-8650: out no later than shipped; served RMSE no more than 2 %
+   above shipped's.
+4. Toggling logger on 8651-8655: no E_* more than 2 % above shipped's.
+5. trunnion / lathe / jig healthy 8656-8661: identical records to shipped.
+6. tests/shell/test_monitor*.py, tests/apps/test_monitor*.py, tests/shell/test_export*.py pass.
+
+Scored: not yet.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+import bench_mon83c  # noqa: E402
+from _ccode import rmse  # noqa: E402
+from _cli import made_folder, run_commands, seed_list  # noqa: E402
+
+TOGGLE = 6        # the stuck logger's period (samples): one of them a step up
+FROZEN, TOGGLED = range(8646, 8651), range(8651, 8656)
+
+
+def _faulted(frame, kind: str, sensor: str):
+    """``frame`` with ``sensor`` held from its middle row (``frozen``), or held and one sample in
+    ``TOGGLE`` one logger step above (``toggle``)."""
+    out = frame.copy()
+    half = len(frame) // 2
+    x = frame[sensor].to_numpy(float)
+    held = np.full(len(frame) - half, x[half])
+    if kind == "toggle":
+        steps = np.abs(np.diff(x))
+        held[TOGGLE - 1::TOGGLE] += steps[steps > 0].min()
+    out.loc[half:, sensor] = held
+    return out
+
+
+def column(root: str, label: str, seeds: str = "8613,8646-8655") -> None:
+    from bench_cmon82 import _sensor
+
+    from thermocomp.apps.deploy.export import state_space
+    from thermocomp.apps.deploy.streaming import replay
+
+    folder = made_folder(root)
+    with open(folder / f"{label}.jsonl", "w") as out:
+        for seed in seed_list(seeds):
+            deployed, ds, test_ids = bench_mon83c._deployed(folder, seed)
+            mon, targets = deployed.monitor, deployed.targets_
+            sensor = _sensor(state_space(deployed, monitor=True))
+            frame = ds.campaigns[test_ids[0]].reset_index(drop=True)
+            kinds = ["healthy"] + (["frozen"] if seed in FROZEN else []) + (
+                ["toggle"] if seed in TOGGLED else [])
+            for kind in kinds:
+                f = frame if kind == "healthy" else _faulted(frame, kind, sensor)
+                errors = f[targets].to_numpy(float)
+                fixed = rmse([errors], [-replay(deployed.streaming, f)[targets].to_numpy(float)])
+                s = bench_mon83c._streamed(deployed, f)
+                gone = np.flatnonzero(~s["active"][len(f) // 2:, mon.names.index(sensor)])
+                r = {"seed": seed, "kind": kind, "targets": list(targets),
+                     "fixed": [float(v) for v in fixed],
+                     "served": [float(v) for v in rmse([errors], [-s["y"]])],
+                     "out": bench_mon83c._spans(s["active"], mon.names), "sensor": sensor,
+                     "first_out": int(len(f) // 2 + 1 + gone[0]) if len(gone) else None}
+                out.write(json.dumps(r) + "\n")
+                print(f"{kind} s{seed}: " + "  ".join(
+                    f"{t} {a:.3f}/{b:.3f}" for t, a, b in zip(targets, r["fixed"], r["served"]))
+                    + f" | out {r['out']} | {sensor} first out {r['first_out']}", flush=True)
+
+
+def stranger(root: str, label: str, seeds: str = "8656-8661") -> None:
+    import bench_mon82c as m82c
+
+    s = seed_list(seeds)
+    m82c.trunnion(root, f"{label}-stranger", ",".join(map(str, s[0:2])), "healthy")
+    m82c.lathe(root, f"{label}-stranger", ",".join(map(str, s[2:4])), "healthy")
+    m82c.jig(root, f"{label}-stranger", ",".join(map(str, s[4:6])), "healthy")
+
+
+def _lines(path: Path) -> dict:
+    return {(r["seed"], r["kind"]): r for r in map(json.loads, path.read_text().splitlines())}
+
+
+def verdict(root: str, shipped: str, rule: str) -> None:
+    """The bar, part by part (docstring); the last line KEPT or REFUSED by parts 1-5."""
+    folder = Path(root)
+    a, b = _lines(folder / f"{shipped}.jsonl"), _lines(folder / f"{rule}.jsonl")
+    fails = []
+    for key in sorted(a):
+        p, q = a[key], b[key]
+        worse = [f"{t} {100 * (y / x - 1):+.1f}%" for t, x, y in zip(p["targets"], p["served"],
+                                                                       q["served"]) if y > 1.02 * x]
+        said = (f"s{key[0]} {key[1]}: served shipped/rule " + "  ".join(
+            f"{t} {x:.3f}/{y:.3f}" for t, x, y in zip(p["targets"], p["served"], q["served"]))
+            + f" | out shipped {p['out']} | rule {q['out']}")
+        if key == (8613, "healthy"):
+            bad = [t for t, x, y in zip(q["targets"], q["fixed"], q["served"]) if y > 1.02 * x]
+            said += f" | fixed {' '.join(f'{x:.3f}' for x in q['fixed'])}; >2 % of fixed: {bad}"
+            fails += ["1"] if bad else []
+        else:
+            fails += [key[1]] if worse else []
+            said += f" | >2 % above shipped: {worse or 'none'}"
+        if key[1] == "healthy" and key[0] != 8613:
+            names = [{w.split("@")[0] for w in r["out"].split()} for r in (p, q)]
+            new = names[1] - names[0] - {"none"}
+            fails += ["2 new event"] if new else []
+        if key[1] == "frozen":
+            late = q["first_out"] is None or (p["first_out"] is not None
+                                              and q["first_out"] > p["first_out"])
+            fails += ["3 later"] if late else []
+            said += f" | first out {p['first_out']} -> {q['first_out']}"
+        print(said)
+    same = [(folder / f"{x}-stranger.jsonl").read_text() for x in (shipped, rule)]
+    print(f"stranger healthy records identical: {same[0] == same[1]}")
+    fails += [] if same[0] == same[1] else ["5"]
+    print(f"verdict (parts 1-5): {'REFUSED ' + str(fails) if fails else 'KEPT'}")
+
+
+def main(argv: list[str] | None = None) -> int:
+    return run_commands(__doc__, {"column": column, "stranger": stranger, "verdict": verdict},
+                        sys.argv[1:] if argv is None else argv, cpu=sys.stderr)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
