@@ -38,7 +38,29 @@ fails, the src reverted, kept as ``benchmarks/freeze83c_rule.patch``):
 5. trunnion / lathe / jig healthy 8656-8661: identical records to shipped.
 6. tests/shell/test_monitor*.py, tests/apps/test_monitor*.py, tests/shell/test_export*.py pass.
 
-Scored: not yet.
+Scored (2026-12-04, shipped = /work/main/src at 262ab787, the rule = 909baa27; ``column`` 13.8 s /
+9.4 s CPU, ``stranger`` 20.6 s shipped; E_* served RMSE in µm, shipped -> rule):
+1. s8613 healthy: passes.  ``T_left1`` out 729-1224 -> 729 only (``T_amb`` 732-736 then, as with
+   the freeze off); fixed / shipped / rule E_X 22.316 / 11.441 / 22.315, E_Y 12.356 / 20.102 /
+   12.352, E_Z 5.826 / 11.005 / 5.826, E_X_mid 0.916 / 4.790 / 0.916, E_Y_mid 2.424 / 3.298 /
+   2.424, E_Z_mid 2.100 / 4.040 / 2.098: every target within 0.03 % of fixed.
+2. Healthy 8646-8655: passes; the same digits and spans as shipped on all ten (no freeze on any).
+3. Frozen ``T_front1`` 8646-8650: passes; out at 741, 726, 725, 728, 727 both, same digits (a held
+   reading never changes: never back).
+4. Toggling logger 8651-8655: FAILS on all five.  Shipped keeps ``T_front1`` out from its first
+   freeze (766, 760, 728, 735, 773) to the end or nearly (the return against the field); the rule
+   takes it back at each toggle and it stays in, stuck, until the field has moved a band within
+   one run of 5 equal samples: 12, 13, 17, 14, 12 spans out instead of 1-3.  E_Y 21.632 -> 62.027
+   (s8651), 24.282 -> 53.529, 16.064 -> 39.056, 20.983 -> 61.765, 21.087 -> 63.338; E_Y_mid 7.479
+   -> 16.604, 7.979 -> 14.346, 6.097 -> 13.476, 8.257 -> 16.287, 8.202 -> 16.732 (x2-3).
+5. trunnion / lathe / jig healthy 8656-8661: passes, records identical.
+6. Passes: tests/apps/test_monitor*.py, tests/shell/test_monitor*.py 146 passed, 4 xfailed
+   (64.7 s wall); tests/shell/test_export*.py 245 passed (145.2 s wall).
+
+Verdict: REFUSED by part 4 (the src reverted, kept as ``benchmarks/freeze83c_rule.patch``).  A
+change of reading is the freeze's evidence gone only for a sensor that then goes on reading; a
+logger stuck but for one step every few samples changes as often, and the freeze's run (its
+only catch under a field it follows) restarts at each step.
 """
 
 from __future__ import annotations
@@ -135,7 +157,7 @@ def verdict(root: str, shipped: str, rule: str) -> None:
             said += f" | fixed {' '.join(f'{x:.3f}' for x in q['fixed'])}; >2 % of fixed: {bad}"
             fails += ["1"] if bad else []
         else:
-            fails += [key[1]] if worse else []
+            fails += [{"healthy": "2", "frozen": "3"}.get(key[1], "4") + " " + key[1]] if worse else []
             said += f" | >2 % above shipped: {worse or 'none'}"
         if key[1] == "healthy" and key[0] != 8613:
             names = [{w.split("@")[0] for w in r["out"].split()} for r in (p, q)]

@@ -102,7 +102,6 @@ class InstantFaults:
             instant[j] = why
             if self._active[j]:
                 self._exclude(j, why, time, events)
-                self._froze[j] = self.adaptive   # its return: readmission.py's _thawed
 
     def _check_stepped(self, e, instant, time, events) -> None:
         """A self-prediction error that steps past the alarm band in one sample."""
