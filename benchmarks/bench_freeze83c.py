@@ -75,6 +75,29 @@ counted; fresh: 8662-8665, never run before; REFUSED if any part fails):
    lathe / jig healthy 8656-8661 identical to shipped).
 4. Toggling logger on 8662-8665: no E_* more than 2 % above shipped's.
 6. The same test files pass, with a test that fails on shipped.
+
+Scored (2026-12-04, shipped = /work/main/src at 262ab787 as ``main2`` (its ``stranger`` file the
+first scoring's: the same code and seeds), the second rule = 3838ee9d as ``rule2``; ``column``
+12.7 s / 11.8 s CPU; ``verdict ROOT main2 rule2 8651-8655``; served E_* RMSE in µm):
+1. s8613, 2. healthy 8646-8655 and 8662-8665, 3. frozen 8646-8650, 5. stranger 8656-8661: pass,
+   the same numbers as the first rule's (nothing here is frozen twice).
+4. Toggling logger on fresh 8662-8665: FAILS on three of four.  The first freeze now costs a
+   few rows: ``T_front1`` out 724-905 shipped, with the rule out 724-725, back (a step), out again
+   727-730, back, out 736-905; E_Y 16.788 -> 17.206 (+2.5 %), E_Y_mid 5.581 -> 5.703 (+2.2 %);
+   s8664 (730-734, 736-1441 shipped; 730-734, 736-737, 749-1441) E_Y 12.982 -> 13.256 (+2.1 %);
+   s8665 (856-1284 shipped; 856-857, 862-1284) E_Y 20.367 -> 21.097 (+3.6 %), E_Y_mid 8.767 ->
+   8.994 (+2.6 %); s8663 (748-1441; 748-749, 755-1441) within 0.1 %.  Not counted (seen): 8651
+   E_Y +3.5 %, 8653 +32.3 %, 8654 +96.0 % (back once, stuck in for 170 rows before the field
+   moved a band within one of its runs), 8652 and 8655 within 2 %.
+6. Not run (refused by part 4 before; the tests of the first rule passed).
+
+Verdict: REFUSED by part 4 (src reverted; ``benchmarks/freeze83c_rule.patch`` is now the second
+rule's diff, the first rule's is it less ``_thaws`` / ``thaws`` / ``mon_thaws``).  Between the
+return and the next freeze a stuck sensor is in and read; nothing the monitor holds at the
+return tells a healthy sensor that reads on from a logger that stepped once.  What remains: a
+return judged on more than one changed reading (its changes agreeing with the field's over a few
+samples, not a window against its level), or a toggle caught by its own signature (a run broken
+by one sample that returns to the held value), each with its bar on seeds not yet drawn.
 """
 
 from __future__ import annotations

@@ -62,9 +62,6 @@ The served adaptive compensator judges every ``T_`` input before the model reads
   again once it is back.  One the code cannot hold (an arx_rf forest, an lstm network of another
   shape, other inputs or derived inputs, a cascade of lags, a state times the inputs' rises), or an
   export before it (no ``fallback_set``), flags the campaign ``FALLBACK`` from the exclusion on.
-* (freeze83c) a sensor out for a **freeze alone** (no other detector fired on it since) is
-  re-admitted on its first changed reading (``THAWED``), once a campaign, judged from there as an
-  active one, as served (``Readmission._thawed``).  An export before it (no ``thawed``) flags it ``NO_THAW``.
 
 What else the served monitor does it flags, ``NOT_IN_CODE`` with the rule (:data:`REASONS`),
 and goes on by its own rules: a reading beyond its range at a campaign's first sample, of
@@ -126,18 +123,14 @@ REASONS = ("", "jump: re-referenced and excluded", "freeze: excluded",
            "drift: no other sensor predicts it and its reading explains the others' bands, "
            "excluded, held at its last reading",
            "not in the code: the correction of the model fitted without a sensor no other "
-           "predicts (of a kind the code does not hold), from its exclusion on (monitor.fallbacks)",
-           "re-admitted: reading again after a freeze (out for it alone)",
-           "not in the code: the return of a sensor out for a freeze on its first changed reading "
-           "(an export before freeze83c)")
+           "predicts (of a kind the code does not hold), from its exclusion on (monitor.fallbacks)")
 RULES = ("", "JUMP", "FREEZE", "BACK", "RANGE", "COMMON", "GLITCH", "STEPPED", "DRIFT", "SECOND",
          "BLIND", "DROPOUT", "MISSING_FIRST", "MISSING_SECOND", "MISSING_BLIND",
          "MISSING_FROZEN", "OFF_RANGE", "COMMON_STEP", "DRIFT_OUT",
-         "FOLLOWED", "BLIND_OUT", "FALLBACK",
-         "THAWED", "NO_THAW")   # their names in the C (TC_MON_JUMP ...)
+         "FOLLOWED", "BLIND_OUT", "FALLBACK")   # their names in the C (TC_MON_JUMP ...)
 (JUMP, FREEZE, BACK, RANGE, COMMON, GLITCH, STEPPED, DRIFT, SECOND, BLIND, DROPOUT, MISSING_FIRST,
  MISSING_SECOND, MISSING_BLIND, MISSING_FROZEN, OFF_RANGE, COMMON_STEP, DRIFT_OUT, FOLLOWED,
- BLIND_OUT, FALLBACK, THAWED, NO_THAW) = range(1, len(RULES))
+ BLIND_OUT, FALLBACK) = range(1, len(RULES))
 
 
 @dataclass
@@ -184,7 +177,7 @@ def monitor_fields(deployed, inputs: list) -> dict:
         "period": float(deployed.period_s), "gap_periods": GAP_PERIODS, "readmit": READMIT,
         "drift": 1, "pairs": [list(p) for p in pairs], "new_state": int(mon.new_state),
         "new_state_others": int(mon.new_state_others), "max_backoff": MAX_BACKOFF,
-        "tau": EXCURSION_TAU_S, "growth": EXCURSION_GROWTH, "novel": 1, "blind_out": 1, "thawed": 1,
+        "tau": EXCURSION_TAU_S, "growth": EXCURSION_GROWTH, "novel": 1, "blind_out": 1,
         "fallback": [int(c in falls) for c in mon.names],
         "rounding": np.broadcast_to(getattr(mon, "rounding_c", 0.0), (n,)).tolist()}}
 
@@ -278,8 +271,7 @@ class CodeMonitor:
                      ("max_backoff", MAX_BACKOFF), ("tau", EXCURSION_TAU_S),
                      ("growth", EXCURSION_GROWTH),        # (an export before cmon82: flagged)
                      ("novel", 0),        # (before cmon82b: a new thermal state flagged)
-                     ("blind_out", 0),    # (before cmon82c: a sensor no other predicts, flagged)
-                     ("thawed", 0)):      # (before freeze83c: a freeze's return flagged)
+                     ("blind_out", 0)):   # (before cmon82c: a sensor no other predicts, flagged)
             a.setdefault(k, np.float64(v))
         a.setdefault("rounding", np.zeros(n))    # (before mon83: no culprit held for rounding)
         self.pairs = [tuple(int(i) for i in p) for p in arrays.get("pairs", [])]
@@ -308,8 +300,6 @@ class CodeMonitor:
         # time), jumps re-referenced since it was last in, out for a dropout (cdrop77)
         self.gap, self.jumps = np.ones(n), np.zeros(n, int)
         self.dropped = np.zeros(n, bool)
-        # (freeze83c) out for a freeze alone, back on a change once already this campaign
-        self.froze, self.thaws = np.zeros(n, bool), np.zeros(n, bool)
         # (cmon82) out by a drift exclusion, its exclusions so, the calm samples it needs to
         # return (doubled at each), the sample count at its exclusion (-1: none)
         self.by_field, self.outs = np.zeros(n, bool), np.zeros(n, int)
@@ -504,7 +494,6 @@ class CodeMonitor:
         self.calm[instant] = 0
         pred, e = self._errors(d)
         self.err[pos] = e
-        self.froze[instant] = False      # another detector fired on it: out for that now
         # freeze: constant while the field (its prediction from the others) moves
         _, active, observable, judged, _ = self._set()
         other = d - np.where(np.isfinite(e), e, d - pred)
@@ -515,8 +504,8 @@ class CodeMonitor:
                          | (~observable & (self.run > a["blind_run"])))
         for j in np.flatnonzero(frozen & ~instant):
             instant[j] = True
-            if active[j] and self._exclude(int(j), FREEZE):
-                self.froze[j] = not self.thaws[j]
+            if active[j]:
+                self._exclude(int(j), FREEZE)
         # a stepped self-prediction error (the served monitor excludes its culprit)
         _, active, _, judged, _ = self._set()
         stepped = judged & (np.abs(e) >= a["alarm"]) & (np.abs(e - self.prev_e) >= a["alarm"])
@@ -526,12 +515,10 @@ class CodeMonitor:
         if level[judged].any():
             self.flags |= BAND
         self._judgement()
-        if self.out >= 0 and self.count >= self.window:
-            self._thaw(gone, instant)
         due = ~self._active() & ~gone & (self.run == 0) & ~instant & (self.calm >= self.dwell)
         if due.any() and self.count >= self.window:
             for j in np.flatnonzero(self._returning(due)):
-                self.jumps[j], self.froze[j] = 0, False
+                self.jumps[j] = 0
                 self._readmit(int(j), BACK)
         pred, e = self._errors(d)
         _, active, _, judged, _ = self._set()
@@ -543,17 +530,6 @@ class CodeMonitor:
         self.last = np.where(active & np.isfinite(d), d, self.last)
         self._fold(self.hist[pos], first, dt)
         return self._rebuilt(u, d, pred)
-
-    def _thaw(self, gone, instant) -> None:
-        """(freeze83c) The sensor out for a freeze alone, its reading changed: back at once."""
-        j = self.out
-        if not self.froze[j] or gone[j] or self.run[j] or instant[j]:
-            return
-        if not self.a["thawed"]:
-            self._flag(NOT_IN_CODE, j, NO_THAW)
-            return
-        self.froze[j], self.thaws[j] = False, True
-        self._readmit(j, THAWED)
 
     def _beyond(self, x, d, rng):
         """(cmon80) The readings beyond their range that are read as missing (``rng`` less a

@@ -102,8 +102,6 @@ class InstantFaults:
             instant[j] = why
             if self._active[j]:
                 self._exclude(j, why, time, events)
-                # its return: readmission.py's _thawed, once a campaign
-                self._froze[j] = self.adaptive and not self._thaws[j]
 
     def _check_stepped(self, e, instant, time, events) -> None:
         """A self-prediction error that steps past the alarm band in one sample."""

@@ -74,9 +74,6 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
             self._slow_ok = False
         if "rounding_c" not in state:  # pickled before mon83: judged as before
             self.rounding_c = np.zeros(len(self.names))
-        if "_froze" not in state:      # pickled before freeze83c: nobody out for a freeze alone
-            self._froze = np.zeros(len(self.names), dtype=bool)
-            self._thaws = np.zeros(len(self.names), dtype=bool)
 
     def __init__(self, pod: ThermalPOD, names: Sequence[str], *, warning_c=0.4, alarm_c=0.8,
                  window: int = 10, confirm: int = 2, adaptive: bool = True,
@@ -185,7 +182,7 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
               "_prev_e", "_run", "_run_pred", "_clean", "_quiet", "_calm", "_prev_other",
               "_last_good", "_by_field", "_jumps", "_ref0", "_dropped", "_gap", "_gapped", "_dwell",
               "_outs", "_explains", "_novel", "_calm_field", "_since", "_slow", "_slow_t",
-              "_slow_ok", "_ranged", "_froze", "_thaws")
+              "_slow_ok", "_ranged")
 
     def reset(self) -> None:
         """New campaign: the next sample is the reference; every sensor active and ok."""
@@ -211,8 +208,6 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
         self._explains = np.zeros(n, dtype=bool)     # excluded as explaining the others' errors
         self._dropped = np.zeros(n, dtype=bool)      # its last detector to fire was a dropout
         self._ranged = np.zeros(n, dtype=bool)       # ... was out of range (readmission.py)
-        self._froze = np.zeros(n, dtype=bool)        # out for a freeze alone (readmission.py)
-        self._thaws = np.zeros(n, dtype=bool)        # ... and back on a change once already
         # samples the next step spans (1 + missing ones since the last reading): the jump limit
         # is per sample (a warm-up across 6 missing rows read as a 4 °C jump, re-referenced away)
         self._gap = np.ones(n)
@@ -361,8 +356,6 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
                 return None
             if ((self._calm + 1 >= self.window) & ~self._active).any():
                 return None                  # an excluded sensor may be due for re-admission
-            if (self._froze & (step != 0)).any():
-                return None                  # one out for a freeze reads again: it returns
         same = step == 0
         if same.any():
             other = np.where(self._judged, d - e, pred)
@@ -489,7 +482,6 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
         if not all_finite or (rng | big).any():
             instant = self._instant(x, d, step, finite, rng, big & ~rng)
             for j, why in instant.items():
-                self._froze[j] = False       # out for another reason now: judged as such
                 if self._active[j]:
                     self._exclude(j, why, time, events)
             if rng.any():
