@@ -101,7 +101,8 @@ Left: the healthy tank's exclusion (the fault bar); the drifting tank's flapping
 without it 8.40 / 4.09 / 1.40 µm: no harm seen, nothing proposed); a historian's own long file
 (tag, value per row) still has its gaps looked at as one column, each run taken at the slowest
 tag's grid rows (the safe side); the exported C's monitor says its own re-admission reason
-("within half its warning band ...") whatever the sensor.
+("within half its warning band ...") whatever the sensor.  (Since lab83, bench_lab83: a historian's
+gaps are counted per tag on the read's grid, and ``data.bits`` declares the status word's bits.)
 """
 from __future__ import annotations
 
