@@ -382,6 +382,9 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
     # the design's reach: the target of fewest test blocks (each target has its own, diag82)
     problem = min((s.problem for s in searches.values()), key=lambda p: p.n_blocks_tested)
     reach = smallest_p(problem.n_blocks_tested)
+    # each target's starting design (its rounds re-cut their blocks on their residual, diag82f)
+    designs = {t: {"test_blocks": s.problem.n_blocks_tested, "block_samples": s.problem.block_samples,
+                   "min_p": smallest_p(s.problem.n_blocks_tested)} for t, s in searches.items()}
     if reach > options.alpha:
         # (stranger69: a grinder's 7 runs, 5 and 3 forward blocks; over the campaigns, blocks
         # within them, the planted effect was accepted at 0.01 on both records)
@@ -395,20 +398,16 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
                   else "raise diagnose.n_blocks or diagnose.alpha")
         # each target is tested on its own blocks: the warning says which of them it holds for
         # (fl_thermal: E_ch3's 6 blocks cannot reach 0.01, E_ch1 / E_ch2 / E_ch5's 12-19 can)
-        blocks = {t: s.problem.n_blocks_tested for t, s in searches.items()}
-        short = [t for t, n in blocks.items() if smallest_p(n) > options.alpha]
-        can = [t for t in blocks if t not in short]
+        short = [t for t, d in designs.items() if d["min_p"] > options.alpha]
+        can = ", ".join(f"{t} {d['test_blocks']}" for t, d in designs.items() if t not in short)
         where = ("so no effect can be accepted" if not can else
-                 f"so no effect can be accepted on {', '.join(short)} (the others, "
-                 f"{', '.join(f'{t} {blocks[t]}' for t in can)} test blocks, can reach it)")
+                 f"so no effect can be accepted on {', '.join(short)} (the others, {can} test "
+                 "blocks, can reach it)")
         logger.warning(f"diagnose: {problem.n_units} CV units ({scheme}) in "
                        f"{problem.n_blocks_tested} test blocks: the sign-flip test cannot reach "
                        f"alpha={options.alpha:g} (min p {reach:.2g}; it needs {need} blocks), "
                        f"{where}; {advice}")
     # sensor health on the train campaigns only: the search never sees the test split
-    # each target's starting design (its rounds re-cut their blocks on their residual, diag82f)
-    designs = {t: {"test_blocks": s.problem.n_blocks_tested, "block_samples": s.problem.block_samples,
-                   "min_p": smallest_p(s.problem.n_blocks_tested)} for t, s in searches.items()}
     start_blocks = (problem.n_blocks_tested, problem.block_samples)
     excluded, faults, health, original, table = sensor_health(searches, options=options, start=start)
     test_sensors = test_sensor_warnings(next(iter(searches.values())), excluded, later, options)
