@@ -319,14 +319,13 @@ def run_starts(missing: np.ndarray) -> tuple[int, int, dict]:
     """The longest run of ``missing`` inside and at an end, and where each begins
     (``{"gap": index, "edge": index}``, the first of the longest)."""
     edges = np.flatnonzero(np.diff(np.concatenate([[0], missing.astype(np.int8), [0]])))
-    gap = edge = 0
+    longest = {"gap": 0, "edge": 0}
     starts: dict = {}
     for a, b in zip(edges[::2], edges[1::2]):
         kind = "edge" if a == 0 or b == len(missing) else "gap"
-        if b - a > (edge if kind == "edge" else gap):
-            starts[kind] = int(a)
-            edge, gap = (int(b - a), gap) if kind == "edge" else (edge, int(b - a))
-    return gap, edge, starts
+        if b - a > longest[kind]:
+            longest[kind], starts[kind] = int(b - a), int(a)
+    return longest["gap"], longest["edge"], starts
 
 
 def _shown(column: _Column, pattern: str) -> str:
@@ -375,8 +374,8 @@ def _marks(numbers: list[_Column], decimal: str, found: Cells, given: list) -> N
         # (stranger83: an open thermocouple's +9.90000000E+37 on a Keysight DAQ was refused by
         # the read, and given in data.missing_values its 3 scans refused as a gap)
         valued = _valued(c, decimal, given)
-        if valued.any() and value_of(c.first(valued)) not in values(given):
-            marks[c.first(valued)] = marks.get(c.first(valued), 0) + int(valued.sum())
+        if valued.any() and value_of(first := c.first(valued)) not in values(given):
+            marks[first] = marks.get(first, 0) + int(valued.sum())
         for mark, n in marks.items():
             found.marks.setdefault(mark, {})
             found.marks[mark][c.header] = found.marks[mark].get(c.header, 0) + n

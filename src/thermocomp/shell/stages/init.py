@@ -503,10 +503,10 @@ def _init(cfg: DictConfig, held: ExitStack) -> dict:
     check_declared(cfg, ds, model=False)        # (a folder's run with a sensor the others lack)
     for raw, name in plan.names.items():        # a PLC's status word: proposed, never decoded
         # (a unit says a measurement: a position's 0 / 100 / 200 mm are no bits)
-        said = (None if raw in opts.bits or not str(name).startswith("S_")
-                or split_unit(raw)[1] is not None else bits_proposed(
-            raw, np.concatenate([df[name].to_numpy(float) for df in ds.campaigns.values()
-                                 if name in df])))
+        if raw in opts.bits or not str(name).startswith("S_") or split_unit(raw)[1] is not None:
+            continue
+        said = bits_proposed(raw, np.concatenate([df[name].to_numpy(float)
+                                                  for df in ds.campaigns.values() if name in df]))
         if said:
             print(f"{sample.name}: {said}")
     air = [h for h, why in plan.roles.items() if why == "ambient" and not asked.roles["ambient"]]
