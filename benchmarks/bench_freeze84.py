@@ -54,6 +54,40 @@ any part fails: the src reverted, kept as ``benchmarks/freeze84_rule.patch``):
 5. trunnion / lathe / jig healthy 8709-8715: records identical to shipped (no new event).
 6. tests/shell/test_monitor*.py, tests/apps/test_monitor*.py, tests/shell/test_export*.py pass;
    kept: a test that fails on shipped, docs/monitoring.md.
+
+Scored (2026-12-04, shipped = /work/main/src at bf78019c as ``main``, the rule = 4a980d93 as
+``rule``, run one after the other; ``column`` 14.8 s / 11.9 s CPU, ``stranger`` 26.1 s shipped
+(its data written then; the rule's 0.0 in-process); ``verdict /tmp/freeze84-bench main rule``;
+served E_* RMSE in µm, shipped -> rule):
+1. s8613 healthy: passes.  ``T_left1`` out 729-1224 -> 729-730 (back at 731 on its second
+   reading off 26.12; ``T_amb`` 732-736 then, as with the freeze off); fixed / shipped / rule
+   E_X 22.316 / 11.441 / 22.314, E_Y 12.356 / 20.102 / 12.352, E_Z 5.826 / 11.005 / 5.826,
+   E_X_mid 0.916 / 4.790 / 0.917, E_Y_mid 2.424 / 3.298 / 2.424, E_Z_mid 2.100 / 4.040 / 2.098:
+   every target within 0.1 % of fixed.
+2. Healthy 8701-8708: passes; the same digits and spans as shipped on all eight.  No freeze on
+   any: their exclusions (8701 ``T_amb`` 731-740, 8702 ``T_left1`` 729-733, 8703 ``T_left1`` /
+   ``T_left3`` 732-1294, 8704 ``T_left1`` 732-735, 8706 ``T_right4`` 731-732, 8707 the pair
+   731-739, 8708 ``T_amb`` 730-734) are drift exclusions at Q3's onset, untouched by the rule.
+3. Frozen ``T_front1`` 8701-8708: passes; out 728, 732, 732, 730, 727, 730, 743, 729 to the end
+   both, the same digits (a held reading is never off its value).
+4. Toggling logger 8701-8708: passes; the same spans and digits as shipped on all eight (out
+   from 736, 851, 928, 736, 727, 820, 755, 737; back only by the window against the field where
+   shipped is: 8701 1200-1231, 8705 733-831, 8706 1164-1312, 8707 990-994 and 1332-1441, 8708
+   996-999): its one reading in six off the held value never makes two in a row.
+5. trunnion 8709-8711, lathe 8712-8713, jig 8714-8715 healthy: passes, records identical.
+6. Passes: tests/shell/test_monitor*.py, tests/apps/test_monitor*.py 146 passed, 4 xfailed (71.3 s
+   wall); tests/shell/test_export*.py 245 passed (1298.7 s wall, the machine shared), and the new
+   tests/apps/test_monitor_freeze84.py (its first test fails on shipped: back at sample 175, a
+   window against the field, for 163) and tests/shell/test_export_freeze84.py (served, numpy
+   mirror and compiled C re-admit on the same row, every correction within 1e-9; an export
+   without ``thawed`` flags ``NO_THAW``).
+
+Verdict: KEPT.  A freeze's evidence is a held value; a sensor reading two values in a row off it
+is reading again, and a stuck logger that steps once and returns is still holding.  What remains:
+a logger stuck but for steps of two samples or more would be taken back (not seen on these
+records, not scored); s8703 healthy keeps ``T_left1`` / ``T_left3`` out 732-1294 as a drift at
+Q3's onset (E_Y 93.091 served against 15.275 fixed on shipped and the rule alike): mon83c's
+case on a fresh draw, the field-follow window missing it, not the freeze's.
 """
 
 from __future__ import annotations
