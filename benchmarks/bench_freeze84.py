@@ -75,12 +75,12 @@ served E_* RMSE in µm, shipped -> rule):
    shipped is: 8701 1200-1231, 8705 733-831, 8706 1164-1312, 8707 990-994 and 1332-1441, 8708
    996-999): its one reading in six off the held value never makes two in a row.
 5. trunnion 8709-8711, lathe 8712-8713, jig 8714-8715 healthy: passes, records identical.
-6. Passes: tests/shell/test_monitor*.py, tests/apps/test_monitor*.py 146 passed, 4 xfailed (71.3 s
-   wall); tests/shell/test_export*.py 245 passed (1298.7 s wall, the machine shared), and the new
-   tests/apps/test_monitor_freeze84.py (its first test fails on shipped: back at sample 175, a
-   window against the field, for 163) and tests/shell/test_export_freeze84.py (served, numpy
-   mirror and compiled C re-admit on the same row, every correction within 1e-9; an export
-   without ``thawed`` flags ``NO_THAW``).
+6. Passes: tests/shell/test_monitor*.py, tests/apps/test_monitor*.py 146 passed, 4 xfailed
+   (71.3 s wall; 148 with test_monitor_freeze84, 116.4 s); tests/shell/test_export*.py 245
+   passed (1298.7 s wall, the machine shared); the new tests/apps/test_monitor_freeze84.py (its
+   first test fails on shipped: back at sample 175, a window against the field, for 163) and
+   tests/shell/test_export_freeze84.py (served, numpy mirror and compiled C re-admit on the same
+   row, every correction within 1e-9; an export without ``thawed`` flags ``NO_THAW``).
 
 Verdict: KEPT.  A freeze's evidence is a held value; a sensor reading two values in a row off it
 is reading again, and a stuck logger that steps once and returns is still holding.  What remains:
