@@ -62,6 +62,10 @@ The served adaptive compensator judges every ``T_`` input before the model reads
   again once it is back.  One the code cannot hold (an arx_rf forest, an lstm network of another
   shape, other inputs or derived inputs, a cascade of lags, a state times the inputs' rises), or an
   export before it (no ``fallback_set``), flags the campaign ``FALLBACK`` from the exclusion on.
+* (freeze84) a sensor out for a **freeze alone** (no other detector fired on it since) is
+  re-admitted once ``THAW`` readings in a row are off the value it held (``THAWED``), judged from
+  there as an active one, as served (``Readmission._thawed``).  An export before it (no
+  ``thawed``) flags it ``NO_THAW``.
 
 What else the served monitor does it flags, ``NOT_IN_CODE`` with the rule (:data:`REASONS`),
 and goes on by its own rules: a reading beyond its range at a campaign's first sample, of
@@ -92,6 +96,7 @@ from ..surveillance.states import (
     EXCURSION_TAU_S,
     MAX_BACKOFF,
     READMIT,
+    THAW,
     WARNING,
 )
 
@@ -123,14 +128,18 @@ REASONS = ("", "jump: re-referenced and excluded", "freeze: excluded",
            "drift: no other sensor predicts it and its reading explains the others' bands, "
            "excluded, held at its last reading",
            "not in the code: the correction of the model fitted without a sensor no other "
-           "predicts (of a kind the code does not hold), from its exclusion on (monitor.fallbacks)")
+           "predicts (of a kind the code does not hold), from its exclusion on (monitor.fallbacks)",
+           "re-admitted: readings in a row off the value it held when frozen (out for it alone)",
+           "not in the code: the return of a sensor out for a freeze on readings off the value it "
+           "held (an export before freeze84)")
 RULES = ("", "JUMP", "FREEZE", "BACK", "RANGE", "COMMON", "GLITCH", "STEPPED", "DRIFT", "SECOND",
          "BLIND", "DROPOUT", "MISSING_FIRST", "MISSING_SECOND", "MISSING_BLIND",
          "MISSING_FROZEN", "OFF_RANGE", "COMMON_STEP", "DRIFT_OUT",
-         "FOLLOWED", "BLIND_OUT", "FALLBACK")   # their names in the C (TC_MON_JUMP ...)
+         "FOLLOWED", "BLIND_OUT", "FALLBACK",
+         "THAWED", "NO_THAW")   # their names in the C (TC_MON_JUMP ...)
 (JUMP, FREEZE, BACK, RANGE, COMMON, GLITCH, STEPPED, DRIFT, SECOND, BLIND, DROPOUT, MISSING_FIRST,
  MISSING_SECOND, MISSING_BLIND, MISSING_FROZEN, OFF_RANGE, COMMON_STEP, DRIFT_OUT, FOLLOWED,
- BLIND_OUT, FALLBACK) = range(1, len(RULES))
+ BLIND_OUT, FALLBACK, THAWED, NO_THAW) = range(1, len(RULES))
 
 
 @dataclass
@@ -177,7 +186,7 @@ def monitor_fields(deployed, inputs: list) -> dict:
         "period": float(deployed.period_s), "gap_periods": GAP_PERIODS, "readmit": READMIT,
         "drift": 1, "pairs": [list(p) for p in pairs], "new_state": int(mon.new_state),
         "new_state_others": int(mon.new_state_others), "max_backoff": MAX_BACKOFF,
-        "tau": EXCURSION_TAU_S, "growth": EXCURSION_GROWTH, "novel": 1, "blind_out": 1,
+        "tau": EXCURSION_TAU_S, "growth": EXCURSION_GROWTH, "novel": 1, "blind_out": 1, "thawed": 1,
         "fallback": [int(c in falls) for c in mon.names],
         "rounding": np.broadcast_to(getattr(mon, "rounding_c", 0.0), (n,)).tolist()}}
 
@@ -271,7 +280,8 @@ class CodeMonitor:
                      ("max_backoff", MAX_BACKOFF), ("tau", EXCURSION_TAU_S),
                      ("growth", EXCURSION_GROWTH),        # (an export before cmon82: flagged)
                      ("novel", 0),        # (before cmon82b: a new thermal state flagged)
-                     ("blind_out", 0)):   # (before cmon82c: a sensor no other predicts, flagged)
+                     ("blind_out", 0),    # (before cmon82c: a sensor no other predicts, flagged)
+                     ("thawed", 0)):      # (before freeze84: a freeze's return flagged)
             a.setdefault(k, np.float64(v))
         a.setdefault("rounding", np.zeros(n))    # (before mon83: no culprit held for rounding)
         self.pairs = [tuple(int(i) for i in p) for p in arrays.get("pairs", [])]
@@ -300,6 +310,8 @@ class CodeMonitor:
         # time), jumps re-referenced since it was last in, out for a dropout (cdrop77)
         self.gap, self.jumps = np.ones(n), np.zeros(n, int)
         self.dropped = np.zeros(n, bool)
+        # (freeze84) out for a freeze alone, the reading it held, its readings in a row off it
+        self.froze, self.held, self.off = np.zeros(n, bool), np.zeros(n), np.zeros(n, int)
         # (cmon82) out by a drift exclusion, its exclusions so, the calm samples it needs to
         # return (doubled at each), the sample count at its exclusion (-1: none)
         self.by_field, self.outs = np.zeros(n, bool), np.zeros(n, int)
@@ -494,6 +506,8 @@ class CodeMonitor:
         self.calm[instant] = 0
         pred, e = self._errors(d)
         self.err[pos] = e
+        self.froze[instant] = False      # another detector fired on it: out for that now
+        self.off = np.where(self.froze & np.isfinite(d) & (d != self.held), self.off + 1, 0)
         # freeze: constant while the field (its prediction from the others) moves
         _, active, observable, judged, _ = self._set()
         other = d - np.where(np.isfinite(e), e, d - pred)
@@ -504,8 +518,8 @@ class CodeMonitor:
                          | (~observable & (self.run > a["blind_run"])))
         for j in np.flatnonzero(frozen & ~instant):
             instant[j] = True
-            if active[j]:
-                self._exclude(int(j), FREEZE)
+            if active[j] and self._exclude(int(j), FREEZE):
+                self.froze[j], self.held[j], self.off[j] = True, d[j], 0
         # a stepped self-prediction error (the served monitor excludes its culprit)
         _, active, _, judged, _ = self._set()
         stepped = judged & (np.abs(e) >= a["alarm"]) & (np.abs(e - self.prev_e) >= a["alarm"])
@@ -515,10 +529,12 @@ class CodeMonitor:
         if level[judged].any():
             self.flags |= BAND
         self._judgement()
+        if self.out >= 0 and self.count >= self.window:
+            self._thaw(gone, instant)
         due = ~self._active() & ~gone & (self.run == 0) & ~instant & (self.calm >= self.dwell)
         if due.any() and self.count >= self.window:
             for j in np.flatnonzero(self._returning(due)):
-                self.jumps[j] = 0
+                self.jumps[j], self.froze[j] = 0, False
                 self._readmit(int(j), BACK)
         pred, e = self._errors(d)
         _, active, _, judged, _ = self._set()
@@ -530,6 +546,18 @@ class CodeMonitor:
         self.last = np.where(active & np.isfinite(d), d, self.last)
         self._fold(self.hist[pos], first, dt)
         return self._rebuilt(u, d, pred)
+
+    def _thaw(self, gone, instant) -> None:
+        """(freeze84) The sensor out for a freeze alone, ``THAW`` readings in a row off the value
+        it held: back at once."""
+        j = self.out
+        if not self.froze[j] or gone[j] or instant[j] or self.off[j] < THAW:
+            return
+        if not self.a["thawed"]:
+            self._flag(NOT_IN_CODE, j, NO_THAW)
+            return
+        self.froze[j] = False
+        self._readmit(j, THAWED)
 
     def _beyond(self, x, d, rng):
         """(cmon80) The readings beyond their range that are read as missing (``rng`` less a

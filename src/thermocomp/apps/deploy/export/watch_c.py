@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+from ..surveillance.states import THAW
 from .watch import BAND, EXCLUDED, NOT_IN_CODE, NOVEL, OUT, READMITTED, REASONS, REREFERENCED, RULES
 
 
@@ -15,6 +16,7 @@ def header_part(ss) -> str:
     return f"""#define TC_MONITOR {int(bool(m))}   /* the sensor monitor in the code (docs/monitoring.md) */
 #define TC_N_MONITORED {n}
 #define TC_MON_WINDOW {max(int(m.get("window", 1)), 1)}
+#define TC_MON_THAW {THAW}   /* readings in a row off its held value that end a freeze (freeze84) */
 /* tc_state.mon_flags, per sample: a sensor excluded, re-admitted, one out (the model reads its
    reconstruction), a judged sensor beyond its warning band, a rule of the served monitor that
    is not in the code fired (from here the code may part from the served model), sensors
@@ -44,6 +46,9 @@ STATE = """    /* the sensor monitor (TC_MONITOR): referenced readings d = u - m
        re-referenced since it was last in, out for a dropout (its re-admission band) */
     double mon_gap[NM];
     int mon_jumps[NM], mon_dropped[NM];
+    int mon_froze[NM], mon_off[NM];   /* (freeze84) out for a freeze alone, its readings in a
+                                         row off the one it held (mon_held) */
+    double mon_held[NM];
     int mon_out;                                /* the sensor out (-1: none) */
     /* (cmon82) its blind partner out with it (-1: none), the active set's operator (MON_M's
        index), out by a drift exclusion, its exclusions so, the calm samples it needs to return,
@@ -82,7 +87,7 @@ def monitor_arrays(ss) -> list[tuple[str, object, tuple, str]]:
                ("MON_NEW_STATE_OTHERS", "new_state_others", 2, "int"),
                ("MON_MAX_BACKOFF", "max_backoff", 10, "int"), ("MON_TAU", "tau", 1800.0, "real"),
                ("MON_GROWTH", "growth", 1.5, "real"), ("MON_NOVEL", "novel", 0, "int"),
-               ("MON_BLIND_OUT", "blind_out", 0, "int"))
+               ("MON_BLIND_OUT", "blind_out", 0, "int"), ("MON_THAWED", "thawed", 0, "int"))
     return [("MON_M", m.get("M", []), (n + 1 + len(pairs), n, n), "real"),
             ("MON_LEV", m.get("lev", []), (n + 1 + len(pairs), n), "real"),
             ("MON_PAIR_A", [p[0] for p in pairs], (len(pairs),), "int"),
@@ -700,6 +705,8 @@ static void monitor_step(tc_state *s, double u[], double dt) {
             int w;
             s->mon_prev[k] = s->mon_prev_e[k] = s->mon_prev_other[k] = s->mon_run_pred[k] = NAN;
             s->mon_run[k] = s->mon_calm[k] = s->mon_jumps[k] = s->mon_dropped[k] = 0;
+            s->mon_froze[k] = s->mon_off[k] = 0;
+            s->mon_held[k] = 0.0;
             s->mon_gap[k] = 1.0;
             s->mon_by_field[k] = s->mon_outs[k] = 0;
             s->mon_dwell[k] = MW;
@@ -803,6 +810,9 @@ static void monitor_step(tc_state *s, double u[], double dt) {
     /* freeze: constant while the field (its prediction from the others) moved by the band */
     mon_set(s, a, o, jd, scale);
     for (k = 0; k < NM; k++) {
+        if (instant[k]) s->mon_froze[k] = 0;   /* another detector fired on it: out for that */
+        s->mon_off[k] = s->mon_froze[k] && isfinite(d[k]) && d[k] != s->mon_held[k]
+                        ? s->mon_off[k] + 1 : 0;
         other[k] = d[k] - (isfinite(e[k]) ? e[k] : d[k] - pred[k]);
         if (same[k] && s->mon_run[k] == 1) s->mon_run_pred[k] = other[k];
     }
@@ -813,6 +823,11 @@ static void monitor_step(tc_state *s, double u[], double dt) {
         if (!frozen || instant[k]) continue;
         instant[k] = 1;
         if (a[k]) mon_exclude(s, k, TC_MON_FREEZE);
+        if (a[k] && s->mon_out == k) {
+            s->mon_froze[k] = 1;
+            s->mon_held[k] = d[k];
+            s->mon_off[k] = 0;
+        }
     }
     /* a rule not in the code: a stepped error (its exclusion) */
     mon_set(s, a, o, jd, scale);
@@ -822,6 +837,18 @@ static void monitor_step(tc_state *s, double u[], double dt) {
     for (k = 0; k < NM; k++)
         if (jd[k] && mon_level(s, k)) s->mon_flags |= TC_MON_BAND;
     mon_judgement(s);   /* (cmon82) a drift exclusion */
+    k = s->mon_out;   /* (freeze84) out for a freeze alone, off its held value: back at once */
+    if (k >= 0 && s->mon_count >= MW && s->mon_froze[k] && !gone[k] && !instant[k]
+        && s->mon_off[k] >= TC_MON_THAW) {
+        if (!MON_THAWED) mon_flag(s, TC_MON_NOT_IN_CODE, k, TC_MON_NO_THAW);
+        else {
+            s->mon_froze[k] = s->mon_by_field[k] = s->mon_explains[k] = 0;
+            s->mon_out = s->mon_out2;
+            s->mon_out2 = -1;
+            mon_recompute(s);
+            mon_flag(s, TC_MON_READMITTED, k, TC_MON_THAWED);
+        }
+    }
     if (s->mon_out >= 0 && s->mon_count >= MW) {   /* re-admission, the due sensors together */
         int due[NM], back[NM];
         for (k = 0; k < NM; k++)
@@ -830,7 +857,7 @@ static void monitor_step(tc_state *s, double u[], double dt) {
         mon_returning(s, due, back);
         for (k = 0; k < NM; k++) {
             if (!back[k]) continue;
-            s->mon_jumps[k] = s->mon_by_field[k] = s->mon_explains[k] = 0;
+            s->mon_jumps[k] = s->mon_by_field[k] = s->mon_explains[k] = s->mon_froze[k] = 0;
             if (k == s->mon_out) s->mon_out = s->mon_out2;
             s->mon_out2 = -1;
             mon_recompute(s);

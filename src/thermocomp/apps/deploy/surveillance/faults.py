@@ -102,6 +102,8 @@ class InstantFaults:
             instant[j] = why
             if self._active[j]:
                 self._exclude(j, why, time, events)
+                # its return: readmission.py's _thawed, on readings off the value it held
+                self._froze[j], self._held[j], self._off[j] = self.adaptive, d[j], 0
 
     def _check_stepped(self, e, instant, time, events) -> None:
         """A self-prediction error that steps past the alarm band in one sample."""

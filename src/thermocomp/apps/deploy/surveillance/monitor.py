@@ -74,6 +74,9 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
             self._slow_ok = False
         if "rounding_c" not in state:  # pickled before mon83: judged as before
             self.rounding_c = np.zeros(len(self.names))
+        if "_froze" not in state:      # pickled before freeze84: nobody out for a freeze alone
+            self._froze = np.zeros(len(self.names), dtype=bool)
+            self._held, self._off = np.zeros(len(self.names)), np.zeros(len(self.names), int)
 
     def __init__(self, pod: ThermalPOD, names: Sequence[str], *, warning_c=0.4, alarm_c=0.8,
                  window: int = 10, confirm: int = 2, adaptive: bool = True,
@@ -182,7 +185,7 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
               "_prev_e", "_run", "_run_pred", "_clean", "_quiet", "_calm", "_prev_other",
               "_last_good", "_by_field", "_jumps", "_ref0", "_dropped", "_gap", "_gapped", "_dwell",
               "_outs", "_explains", "_novel", "_calm_field", "_since", "_slow", "_slow_t",
-              "_slow_ok", "_ranged")
+              "_slow_ok", "_ranged", "_froze", "_held", "_off")
 
     def reset(self) -> None:
         """New campaign: the next sample is the reference; every sensor active and ok."""
@@ -208,6 +211,9 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
         self._explains = np.zeros(n, dtype=bool)     # excluded as explaining the others' errors
         self._dropped = np.zeros(n, dtype=bool)      # its last detector to fire was a dropout
         self._ranged = np.zeros(n, dtype=bool)       # ... was out of range (readmission.py)
+        self._froze = np.zeros(n, dtype=bool)        # out for a freeze alone (readmission.py)
+        self._held = np.zeros(n)                     # ... the reading it held then
+        self._off = np.zeros(n, dtype=np.int64)      # ... its readings in a row off that since
         # samples the next step spans (1 + missing ones since the last reading): the jump limit
         # is per sample (a warm-up across 6 missing rows read as a 4 °C jump, re-referenced away)
         self._gap = np.ones(n)
@@ -356,6 +362,8 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
                 return None
             if ((self._calm + 1 >= self.window) & ~self._active).any():
                 return None                  # an excluded sensor may be due for re-admission
+            if (self._froze & ((d != self._held) | (self._off > 0))).any():
+                return None                  # one out for a freeze reads off its held value
         same = step == 0
         if same.any():
             other = np.where(self._judged, d - e, pred)
@@ -482,6 +490,7 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
         if not all_finite or (rng | big).any():
             instant = self._instant(x, d, step, finite, rng, big & ~rng)
             for j, why in instant.items():
+                self._froze[j] = False       # out for another reason now: judged as such
                 if self._active[j]:
                     self._exclude(j, why, time, events)
             if rng.any():
@@ -494,6 +503,7 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
                 all_finite = False
             self._hist[pos] = d             # a jump re-referenced the sensor
         self._run = np.where(same, self._run + 1, 0)
+        self._off = np.where(self._froze & finite & (d != self._held), self._off + 1, 0)
         self._calm += 1
         for j in instant:
             self._calm[j] = 0

@@ -5,13 +5,22 @@ training range, it is back only where its *leak* is within ``READMIT`` of the ot
 every sensor judged with it and without it, the change of its leave-one-out error, as a share of
 its warning band (a gearbox back inside the range's margin 14.8 K off had come back on calm
 alone).  Out for anything else it is judged as before (mon81's and mon82's leak rules for every
-such sensor held a healthy gantry's ``Gabelkopf`` stale, or let a drifting tank flap: mon82b)."""
+such sensor held a healthy gantry's ``Gabelkopf`` stale, or let a drifting tank flap: mon82b).
+
+Out for a freeze alone (no other detector fired on it since), a sensor is back once ``THAW``
+readings in a row are off the value it held when it went out (freeze84): the freeze's own
+evidence is gone, and the judgement takes it from there as an active sensor, the new-state veto
+with it.  Its return judged against the field kept a healthy column sensor out for 496 rows
+where an unseen heat source had moved the field off it (bench_freeze83b: E_Y 12.356 µm fixed,
+20.102 served).  A held run broken by one sample that returns to the held value is still a
+hold: a logger stuck but for one step every few samples, taken back on its first changed
+reading, stayed in, stuck, between the freeze's runs (E_Y x1.6-2.9, bench_freeze83c)."""
 
 from __future__ import annotations
 
 import numpy as np
 
-from .states import OK, READMIT
+from .states import OK, READMIT, THAW
 
 
 class Readmission:
@@ -21,6 +30,7 @@ class Readmission:
         """Re-admission: back within the warning band for a whole window, no detector firing
         (checked against the field where the others can predict it, else calm is enough).
         Whether any sensor came back."""
+        thawed = self._thawed(finite, instant, time, events)
         due = ~self._active & finite & (self._run == 0) & (self._calm >= self._dwell)
         due[list(instant)] = False
         back = self._returning(due) if due.any() else due
@@ -43,9 +53,23 @@ class Readmission:
             self._set_state(j, OK, time, why, events)
             self._jumps[j] = 0
             self._active[j] = True
-            self._by_field[j] = False
+            self._by_field[j] = self._froze[j] = False
             self._explains[j] = False
             self._ranged[j] = False
+            self._set_operator()
+        return bool(back.any()) or thawed
+
+    def _thawed(self, finite, instant, time, events) -> bool:
+        """Those out for a freeze alone, ``THAW`` readings in a row off the value they held,
+        back at once (module doc)."""
+        back = self._froze & ~self._active & finite & (self._off >= THAW)
+        back[list(instant)] = False
+        for j in np.flatnonzero(back):
+            self._set_state(j, OK, time, f"re-admitted: {self._off[j]} readings in a row off "
+                            "the value it held when frozen", events)
+            self._active[j] = True
+            self._froze[j] = self._explains[j] = self._ranged[j] = False
+        if back.any():
             self._set_operator()
         return bool(back.any())
 

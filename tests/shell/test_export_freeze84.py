@@ -1,0 +1,127 @@
+"""A sensor out for a freeze alone, back on readings off its held value, in the exported C
+(freeze84, issue 34): the code's monitor re-admits it where the served one does.
+
+A six-sensor machine (MLR, deployed adaptive, no fallback model) whose sensors warm together,
+logged to 0.01 °C.  On the last test campaign ``T_2`` holds its reading for ``HELD`` rows while
+the field moves past its band (the freeze takes it out), then catches up with its true reading
+over ``CATCH_UP`` rows.  The served monitor takes it back on its second reading off the held
+value (readmission.py); the numpy mirror and the compiled code (gcc -Wall -Wextra -Werror)
+exclude and re-admit it on the same rows, flag nothing and give the served corrections on every
+row.  An export before freeze84 (no ``thawed``) flags the return it does not hold."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+import pandas as pd
+import pytest
+
+import test_export
+from test_export import CAMPAIGNS, built_stream, needs_cc
+from test_export_cmon80 import _streamed
+from thermocomp.apps.deploy.export import Simulator, exported_files, state_space
+from thermocomp.apps.deploy.export.pack import conformance_pack, corrections
+from thermocomp.apps.deploy.export.watch import (
+    EXCLUDED,
+    FREEZE,
+    NO_THAW,
+    NOT_IN_CODE,
+    READMITTED,
+    THAWED,
+)
+from thermocomp.apps.deploy.report import stream_rows
+from thermocomp.shell.builders import build_compensator, deploy_stream, deployable
+from thermocomp.shell.source import read_streamed
+
+ROWS, START, HELD, CATCH_UP = 300, 150, 12, 6
+
+
+def _machine(root):
+    """test_export's six campaigns of six sensors (module doc), one sample every 100 s."""
+    root.mkdir(parents=True)
+    t = np.arange(ROWS)
+    for i, (cid, _) in enumerate(CAMPAIGNS):
+        rng = np.random.default_rng(i)
+        warm = 3 * (1 - np.exp(-t / 80)) + 1.5 * np.sin(t / 23 + i)
+        gradient = 1.5 * np.sin(t / 53 + i)
+        x = 20 + np.round(warm[:, None] + gradient[:, None] * np.linspace(-0.5, 0.5, 6)
+                          + rng.normal(scale=0.02, size=(ROWS, 6)), 2)
+        frame = pd.DataFrame(x, columns=[f"T_{k}" for k in range(6)])
+        frame.insert(0, "time", t * 100.0)
+        frame["E_X"] = 3 * (x[:, 1] - x[0, 1]) - 1.2 * (x[:, 4] - x[0, 4]) + rng.normal(0, 0.2, ROWS)
+        frame.to_csv(root / f"{cid}.csv", index=False)
+    pd.DataFrame([(c, f"{c}.csv", s, "") for c, s in CAMPAIGNS],
+                 columns=["campaign", "file", "split", "notes"]).to_csv(root / "campaigns.csv",
+                                                                        index=False)
+    return root
+
+
+@pytest.fixture(scope="module")
+def served(tmp_path_factory):
+    """``(adaptive MLR, its system with the monitor, the record with T_2 held and caught up)``."""
+    root = _machine(tmp_path_factory.mktemp("freeze84") / "data")
+    cfg = test_export._compose(f"data.path={root}", "track=false", "monitor.adaptive=true",
+                               "model=mlr", "monitor.fallbacks=none")
+    ds, train_ids, test_ids, _ = read_streamed(cfg)
+    train = {c: ds.campaigns[c] for c in train_ids}
+    deployed = deployable(cfg, deploy_stream(cfg, build_compensator(cfg, ds=ds).fit(train), train),
+                          train, ds)
+    frame = ds.campaigns[test_ids[-1]].reset_index(drop=True)
+    x = frame["T_2"].to_numpy(float)
+    end = START + HELD
+    frame.loc[START:end - 1, "T_2"] = x[START]
+    w = np.arange(1, CATCH_UP + 1) / CATCH_UP
+    frame.loc[end:end + CATCH_UP - 1, "T_2"] = np.round(
+        x[START] * (1 - w) + x[end:end + CATCH_UP] * w, 2)
+    return deployed, state_space(deployed, monitor=True), frame
+
+
+def _mirror(ss, frame) -> tuple[np.ndarray, list[tuple[int, int, int]]]:
+    """The numpy mirror's corrections, and its (row, flag, rule) of each exclusion, re-admission
+    and rule it does not hold."""
+    sim = Simulator(ss)
+    sim.reset()
+    got, moves = [], []
+    for i, (u, t) in enumerate(zip(frame[ss.inputs].to_numpy(float), frame["time"])):
+        got.append(sim.step(u, t))
+        for flag in (EXCLUDED, READMITTED, NOT_IN_CODE):
+            if sim.watch.flags & flag:
+                moves.append((i + 1, flag,
+                              sim.watch.missed if flag == NOT_IN_CODE else sim.watch.rule))
+    return np.array(got), moves
+
+
+def _served_moves(deployed, frame) -> list[tuple[int, str, str]]:
+    times = frame["time"].to_numpy(float)
+    return [(int(np.searchsorted(times, e["time"])) + 1, e["to"], e["reason"].split(":")[0])
+            for e in stream_rows(deployed, frame, "K06").events
+            if e.get("sensor") == "T_2" and "excluded" in (e["to"], e["from"])]
+
+
+@needs_cc
+def test_the_code_takes_a_sensor_back_from_a_freeze_where_the_served_monitor_does(served, tmp_path):
+    deployed, ss, frame = served
+    (out, to, why), (back, to2, _) = _served_moves(deployed, frame)
+    assert (to, why, to2) == ("excluded", "freeze", "ok")
+    assert START + HELD < back < START + HELD + CATCH_UP       # on its readings, not a window
+    want = corrections(ss, stream_rows(deployed, frame, "K06").y)
+    got, moves = _mirror(ss, frame)
+    assert moves == [(out, EXCLUDED, FREEZE), (back, READMITTED, THAWED)]
+    assert np.max(np.abs(got - want)) < 1e-9
+    files, summary = conformance_pack(deployed, ss, {"K06": frame})
+    assert summary["campaigns"][0]["cut"] is None
+    stream = built_stream(tmp_path, {**exported_files(deployed, "c"), **files})
+    c, said = _streamed(stream, frame, ss.inputs)
+    assert c.shape == want.shape and np.max(np.abs(c - want)) < 1e-9        # every row
+    assert "not in the code" not in said
+
+
+def test_an_export_before_freeze84_flags_the_return(served):
+    """Without ``thawed`` the mirror flags the served return and keeps the sensor out."""
+    deployed, ss, frame = served
+    back = _served_moves(deployed, frame)[1][0]
+    old = {k: v for k, v in ss.monitor.items() if k != "thawed"}
+    _, moves = _mirror(dataclasses.replace(ss, monitor=old), frame)
+    assert (back, NOT_IN_CODE, NO_THAW) in moves
+    assert not [m for m in moves if m[1] == READMITTED and m[0] <= back]
