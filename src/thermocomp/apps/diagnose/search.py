@@ -60,6 +60,8 @@ are the exchangeable units, so the test flips signs of whole campaigns.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from itertools import permutations
+from math import factorial
 
 import numpy as np
 import pandas as pd
@@ -71,6 +73,8 @@ from .candidates import CONTROL, CandidateOptions, candidates
 from .cv import CrossValidator, CVResult, Problem, sign_flip_maxt, sign_flip_pvalues
 from .features import Effect
 from .sensors import self_prediction
+
+START_PERMUTATIONS = 199    # initial states permuted among the campaigns (Search.permuted_starts)
 
 
 @dataclass
@@ -401,6 +405,23 @@ class Search:
             ev.clears_bar = self._clears(ev.gain_pct, pf, ev.gain_pct_in_range, ev.p_margin,
                                          ev.n_features)
             self._within_checks(ev, current)
+
+    def permuted_starts(self, ev: Evaluation) -> np.ndarray:
+        """``ev``'s CV RMSE with its initial states permuted among the train campaigns
+        (:meth:`~.cv.CrossValidator.started_from`), one per order: every one of the ``n! - 1``
+        orders of ``n`` campaigns when they are at most :data:`START_PERMUTATIONS`, else that
+        many drawn with ``seed`` (the same orders for every candidate of a round)."""
+        n = len(np.unique(np.asarray(self.problem.campaigns, dtype=str)))
+        if factorial(n) - 1 <= START_PERMUTATIONS:
+            orders = list(permutations(range(n)))[1:]
+        else:
+            rng = np.random.default_rng(self.options.seed)
+            orders = [rng.permutation(n) for _ in range(START_PERMUTATIONS)]
+        rmse = np.empty(len(orders))
+        for i, order in enumerate(orders):
+            with self.cv.started_from(ev.effect, order):
+                rmse[i] = self.cv.run(self.inputs(), self.effects + [ev.effect]).rmse
+        return rmse
 
     def _within_checks(self, ev: Evaluation, current: CVResult) -> None:
         """``ev`` clears only if it gains within the campaigns too (:meth:`_within_gain`)."""

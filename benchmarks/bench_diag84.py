@@ -1,0 +1,145 @@
+"""Diagnose's initial-state lags judged on campaigns: their start states permuted among the train
+campaigns (stop 84, diag84; issue 34: "diagnose accepts a planted position effect with 8 train
+campaigns, accepts nothing on clean data, and never leaves a record's test error more than 2 %
+worse").
+
+Usage (from the repository root, ``PYTHONPATH=<tree>/src``: the code measured is that tree's)::
+
+    python benchmarks/bench_diag84.py trace CASE            # every cleared initial-state lag, permuted
+
+CASE: bench_diag83b's (``planted:SEED`` / ``clean:SEED``, ``memory:planted:SEED``,
+``faults:SCENARIO:KIND``) or ``grinder:ROOT:SEED`` (grinder-nocoolant's config on the records
+``bench_remeasure62`` writes to ``ROOT/grinderSEED``, ``ROOT/lag`` its root).  ``trace``: per
+round, each initial-state lag that clears the shipped bar: its CV gain, family-wise p, and
+:meth:`Search.permuted_starts`' randomization over the campaigns (the initial states permuted
+among the train campaigns, the CV refitted; 199 orders drawn, seed 0): the permuted gains'
+median / 95th percentile / largest, the p of the real assignment (``(1 + #{permuted CV RMSE <=
+real}) / 200``) and, with several cleared in a round, family-wise (the largest permuted gain
+of the round's cleared, the same orders).
+
+Traced (2026-12-04, main = bf78019c's src with the randomization measured only; SEEN cases, a
+trace, not a score)
+-------------------------------------------------------------------------------------------
+Each initial-state lag clearing the shipped bar, the round's and the shipped choice's (``*``):
+its CV gain g %, the permuted orders' gains (median / 95th percentile / largest), the real
+assignment's p and the round's family-wise p (the largest permuted gain of the round's cleared
+lags, the same orders); 199 orders of 8-9 campaigns, 119 of 5 (none here), CPU per lag::
+
+  case / target         lag (tau)                  g     permuted med/p95/max  p      fam.   CPU
+  planted:8457 E_X      T_bearing_f2 900 s         46.6  32.1 / 42.4 / 47.5    0.015  0.015  0.8 s
+  (spurious, test       *T_amb 7200 s              46.5  12.6 / 32.6 / 41.0    0.005  0.015
+   0.606 -> 0.924)      T_amb 14400 s              46.9  12.2 / 30.5 / 38.2    0.005  0.015
+  clean:8178 E_Z        T_bearing_f2 900 s         24.8   4.4 / 25.3 / 31.6    0.060  0.085  0.9 s
+  (0.638 -> 0.775)      *T_bearing_f3 900 s        26.4   8.6 / 27.2 / 33.4    0.060  0.060
+  clean:8075 E_Y        *T_box1 3600 s             50.5  10.2 / 39.2 / 52.4    0.015  0.015  0.8 s
+  (0.656 -> 0.701)      T_box2 3600 s / 3 more     48.4-50.5  ~10 / 39-40 / 52-53  0.015-0.020  0.015-0.025
+  clean:8170 E_X        *T_nose 900 s              22.4   0.8 / 16.2 / 25.0    0.015  0.025  0.7 s
+  (0.797 -> 0.916)      5 more (T_box1/2, ...)     22.0-22.5  3-8 / 15-18 / 26  0.020-0.025  0.025
+  grinder 5682 dY       *T_Ständer_vorn 900 s      16.2   0.3 /  9.5 / 20.8    0.015  0.020  6.2 s
+  (harm, 0.740 -> 0.794) T_Ständer_vorn 900 s       8.1   0.1 /  7.3 / 22.5    0.050  0.095
+  planted:6 E_Y rd 2    T_motor2 7200 s            20.5 -16.8 / 13.4 / 32.7    0.025  0.030  0.9 s
+  (kept, 2.881 -> 1.265) *T_motor2 7200 s          21.0 -13.5 / 15.0 / 29.4    0.020  0.030
+  planted:959 E_Y rd 2  inputs 3600 s              16.8   7.5 / 39.7 / 48.0    0.360  0.410  1.1 s
+  (kept, 4.230 -> 0.993) T_motor1 7200 s           17.8   5.5 / 33.3 / 41.8    0.250  0.400
+                        *T_motor2 7200 s           18.8   6.3 / 31.4 / 42.2    0.220  0.380
+  grinder 5687 dY       *T_Ständer_Bohrung 900 s   38.4   3.4 / 28.8 / 38.2    0.005  0.010  6.9 s
+  (kept, 0.543 -> 0.431) T_Ständer_Bohrung 900 s   38.2   3.8 / 26.4 / 40.2    0.010  0.010
+  climate_room:drift    *inputs 900 s (39 camp.)   15.3  14.0 / 17.4 / 20.3    0.185  -     23.1 s
+  E_Z (kept, 0.372 -> 0.326)
+
+(The two rows of one lag and tau are its 2 and 3 learned directions.)
+
+1. Permuted start states gain too: the median permuted order gains 0.3-32 % in CV, the 95th
+   percentile 9.5-42 %, the largest up to 48 % (a block of 2-3 regressors constant within each
+   campaign after a few tau fits 8 campaign levels whichever campaign's start it carries).  Most
+   of every candidate's CV gain, spurious and kept, is what ANY start of that structure gains.
+2. The real assignment beats 99 % of the orders (p <= 0.01 per lag) on two rows only: planted
+   8457's T_amb lags (0.005: an initial-state law exists in the planted physics, and its test
+   harm is the K06 extrapolation, bench_diag83b item 5) and grinder 5687 (0.005 / 0.010,
+   kept).  The spurious clean ones are at 0.015-0.060 (8 campaigns: 1-11 of 199 orders do
+   better), grinder 5682's harm 0.015; the kept planted:6 at 0.020-0.025, planted:959 at
+   0.22-0.36 and climate_room at 0.185 (its 900 s lag gains 14 % with any campaign's start).
+3. Family-wise over the round's cleared lags (the shipped bar is family-wise over the round's
+   candidates): 8457 0.015, 8178 0.060, 8075 0.015, 8170 0.025, 5682 0.020 -- all five harms
+   refused at 0.01 -- and 5687 0.010 (kept, at the bound), planted:6 0.030, planted:959 0.38,
+   climate_room 0.185 (refused).
+4. So the randomization separates on the cases it can: by it the kept gains of planted:959 and
+   climate_room do NOT rest on the start states (permuted ones gain as much), planted:6's
+   barely; their test gain is the block's per-campaign level, as the spurious ones'.  Expected
+   before scoring (from this trace, not measured with the rule): the rule stops the spurious
+   four and 5682's harm and loses the kept initial-state lags of planted:6, planted:959 and
+   climate_room unless their rounds take something as good instead; bar item 4 is at risk.
+"""
+
+from __future__ import annotations
+
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+HERE = Path(__file__).resolve().parent
+sys.path[:0] = [str(HERE), str(HERE.parent / "tests" / "apps")]
+from _cli import run_commands  # noqa: E402
+
+
+def _case(case: str):
+    """(dataset, compensator, targets, options, deployed_of) of ``case``."""
+    if case.startswith("grinder:"):
+        import bench_diagnose_refnoise57 as refnoise
+
+        _, root, seed = case.split(":")
+        ds, comp, options = refnoise.composed(Path(root) / "lag", "grinder-nocoolant",
+                                              f"data.path={Path(root).resolve() / f'grinder{seed}'}")
+        return ds, comp, None, options, None
+    import bench_diag83b
+    return bench_diag83b._case(case)
+
+
+def trace(case: str) -> None:
+    """Every initial-state lag clearing the shipped bar in ``case``'s diagnosis, its campaigns'
+    randomization; the diagnosis itself as shipped (the test is only measured)."""
+    from thermocomp.apps.diagnose import diagnose
+    from thermocomp.apps.diagnose.search import Search
+
+    ds, comp, targets, options, deployed_of = _case(case)
+    shipped = Search._family_bar
+
+    def bar(self, evals, current):
+        shipped(self, evals, current)
+        cleared = [ev for ev in evals if ev.effect.initial_state and ev.clears_bar]
+        gains = []
+        for ev in cleared:
+            cpu = time.process_time()
+            rmse = self.permuted_starts(ev)
+            p = (1 + np.sum(rmse <= ev.cv_rmse)) / (1 + rmse.size)
+            g = 100 * (current.rmse - rmse) / current.rmse
+            gains.append(g)
+            print(f"  {self.problem.target} round {len(self.effects) + 1} ({self.problem.n_blocks_tested} "
+                  f"blocks, {len(np.unique(np.asarray(self.problem.campaigns, dtype=str)))} campaigns): "
+                  f"{ev.effect.title[:70]}: g {ev.gain_pct:.1f} p_fam {ev.p_family:.4f}; permuted g median "
+                  f"{np.median(g):.1f} p95 {np.percentile(g, 95):.1f} max {g.max():.1f}; p_start {p:.4f} "
+                  f"({rmse.size} orders, {time.process_time() - cpu:.1f} s CPU)", flush=True)
+        if len(cleared) > 1:    # the same orders (one seed): family-wise, the largest permuted gain
+            most = np.max(gains, axis=0)
+            print("  family-wise p_start over the round's cleared: " + ", ".join(
+                f"{(1 + np.sum(most >= ev.gain_pct)) / (1 + most.size):.3f}" for ev in cleared), flush=True)
+
+    Search._family_bar = bar
+    try:
+        d = diagnose(ds, comp, targets=targets, options=options, deployed_of=deployed_of)
+    finally:
+        Search._family_bar = shipped
+    for t, x in d.targets.items():
+        j = d.to_json(t)
+        print(f"{case} {t}: accepted {[e.effect.title for e in x.accepted]}; test "
+              f"{j['before']['test_rmse']:.4f} -> {j['after']['test_rmse']:.4f}", flush=True)
+
+
+def main(argv: list[str]) -> int:
+    return run_commands(__doc__, {"trace": trace}, argv, cpu=sys.stderr)
+
+
+if __name__ == "__main__":
+    raise SystemExit(main(sys.argv[1:]))
