@@ -6,6 +6,9 @@ worse").
 Usage (from the repository root, ``PYTHONPATH=<tree>/src``: the code measured is that tree's)::
 
     python benchmarks/bench_diag84.py trace CASE            # every cleared initial-state lag, permuted
+    python benchmarks/bench_diag84.py fresh ROOT LABEL      # the bar's draws -> ROOT/fresh-LABEL.jsonl
+    python benchmarks/bench_diag84.py real ROOT LABEL       # the kept gains -> ROOT/real-LABEL.jsonl
+    python benchmarks/bench_diag84.py compare ROOT A B      # two labels' rows: the bar's counts
 
 CASE: bench_diag83b's (``planted:SEED`` / ``clean:SEED``, ``memory:planted:SEED``,
 ``faults:SCENARIO:KIND``) or ``grinder:ROOT:SEED`` (grinder-nocoolant's config on the records
@@ -15,7 +18,9 @@ round, each initial-state lag that clears the shipped bar: its CV gain, family-w
 among the train campaigns, the CV refitted; 199 orders drawn, seed 0): the permuted gains'
 median / 95th percentile / largest, the p of the real assignment (``(1 + #{permuted CV RMSE <=
 real}) / 200``) and, with several cleared in a round, family-wise (the largest permuted gain
-of the round's cleared, the same orders).
+of the round's cleared, the same orders).  ``fresh`` / ``real`` / ``compare``: bench_diag83b's on
+this stop's seeds, planted (``axis_position`` on Y) 8666-8675, clean 8676-8685 (``real``:
+memory planted:6 / 959, grinders 5687 / 5682 from ``ROOT/lag`` and ``ROOT/grinder568x``).
 
 Traced (2026-12-04, main = bf78019c's src with the randomization measured only; SEEN cases, a
 trace, not a score)
@@ -69,6 +74,45 @@ lags, the same orders); 199 orders of 8-9 campaigns, 119 of 5 (none here), CPU p
    before scoring (from this trace, not measured with the rule): the rule stops the spurious
    four and 5682's harm and loses the kept initial-state lags of planted:6, planted:959 and
    climate_room unless their rounds take something as good instead; bar item 4 is at risk.
+
+The rule (written and committed before scoring)
+-----------------------------------------------
+A lag from the initial state clears only if its start states carry its gain, tested with the
+campaigns as the units (idea (b) of the brief): in each round, the initial-state lags that clear
+every other check (the family-wise bar, margin, in range, within and less the best campaign)
+are refitted in CV with their initial states permuted among the train campaigns
+(``CrossValidator.started_from``: campaign i starts from campaign order[i]'s state, the lag,
+times and every other effect its own; every one of the n! - 1 orders up to 199, else 199 drawn
+with ``seed``, the same orders for the round's lags); each lag's p is family-wise, ``(1 +
+#{orders whose largest permuted CV gain over the round's lags >= its gain}) / (1 + #orders)``,
+and it clears only at ``p <= alpha`` (``Search._start_checks``; ``diagnosis.json``'s evidence
+``p_value_start``).  The null: a campaign's start state carries no information on its errors
+beyond what a block of that structure gains with any campaign's start.  Why (the trace above):
+the block is constant within a campaign after a few tau, so its evidence is one level per
+campaign fitted on 2-3 numbers -- 8 numbers on 8 campaigns whatever the test blocks; the
+permutations give that evidence its campaigns' resolution (8! orders).  Family-wise as the
+shipped bar is over the round's candidates.  Train rows only; nothing chosen by a test figure.
+Not changed: candidates, the other checks, the choice among those that clear, the deployed model.
+Minimum p: 1/200 (8-9 campaigns), 1/120 with 5 (the fewest with which initial-state lags are
+offered): both under alpha = 0.01.
+
+The bar (all must hold, else REFUSED: src reverted, this bench and ``diag84_rule.patch`` kept).
+Main = bf78019c's src (``git archive``), rule = this tree's src exported at the commit that
+writes this; the two runs side by side on the same rows:
+
+1. Planted 8666-8675 (``fresh``): found (an ``interaction`` on ``S_pos_Y`` accepted for E_Y) with
+   the rule on at least main's count.
+2. Clean 8676-8685: nothing accepted on any target with the rule.
+3. The 20 fresh draws: no target's test RMSE as deployed with the rule more than 2 % above
+   main's after.
+4. The kept initial-state gains: planted:6 E_Y, planted:959 E_Y, grinder 5687's dY (``real``)
+   and climate_room's four rows with an initial-state lag (faults58: drift E_Z, contact E_Z,
+   stuck E_X, stuck E_Z): the rule's after no more than 2 % above main's after.
+5. ``bench_diagnose_faults58.py``'s 20 rows: no target's after with the rule more than 2 % above
+   main's.
+6. tests/apps/test_diagnose*.py and tests/shell/test_diagnose*.py pass with the rule.
+
+Reported, not the bar: the spent 8457 / 8178 / 8075 / 8170 and grinder 5682 (fixed or not), CPU.
 """
 
 from __future__ import annotations
@@ -137,8 +181,33 @@ def trace(case: str) -> None:
               f"{j['before']['test_rmse']:.4f} -> {j['after']['test_rmse']:.4f}", flush=True)
 
 
+FRESH_PLANTED = list(range(8666, 8676))
+FRESH_CLEAN = list(range(8676, 8686))
+
+
+def fresh(root: str, label: str) -> None:
+    """bench_diag83b's ``fresh`` (bench_diag82d's) on this stop's seeds."""
+    import bench_diag82d
+
+    bench_diag82d.FRESH_PLANTED, bench_diag82d.FRESH_CLEAN = FRESH_PLANTED, FRESH_CLEAN
+    bench_diag82d.fresh(root, label)
+
+
+def real(root: str, label: str) -> None:
+    """bench_diag83b's ``real``: the kept initial-state gains (and grinder 5682's harm)."""
+    import bench_diag83b
+    bench_diag83b.real(root, label)
+
+
+def compare(root: str, a: str, b: str) -> None:
+    """bench_diag83b's ``compare``: the fresh rows' counts, then every ``real`` row."""
+    import bench_diag83b
+    bench_diag83b.compare(root, a, b)
+
+
 def main(argv: list[str]) -> int:
-    return run_commands(__doc__, {"trace": trace}, argv, cpu=sys.stderr)
+    return run_commands(__doc__, {"trace": trace, "fresh": fresh, "real": real, "compare": compare}, argv,
+                        cpu=sys.stderr)
 
 
 if __name__ == "__main__":
