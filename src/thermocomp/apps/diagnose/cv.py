@@ -34,7 +34,6 @@ minimises the CV error (:mod:`.shrink`).
 
 from __future__ import annotations
 
-from contextlib import contextmanager
 from dataclasses import dataclass, field, replace
 from functools import lru_cache
 
@@ -289,7 +288,6 @@ class CrossValidator:
         self._selection: dict = {}
         self._features = BoundedCache(max_bytes=FEATURE_CACHE_BYTES)
         self._ctx: dict = {}
-        self._restart: tuple | None = None     # (effect, order): :meth:`started_from`
 
     @property
     def closed_form(self) -> bool:
@@ -324,46 +322,24 @@ class CrossValidator:
         rows of ``fold`` (all rows for None), as the fitted model would.
         """
         fold = fold if effect.learns else None
-        if self._restart is not None and effect == self._restart[0]:    # not cached
-            return self._start_features(effect, names, fold, self._restart[1])
         key = (effect, tuple(names) if effect.uses_inputs else None, fold)
         if key not in self._features:
             p = self.problem
-            if effect.initial_state:
-                self._features[key] = self._start_features(effect, names, fold)
+            if effect.initial_state:     # the lag (cached once) + the initial-state transient
+                lag = self.features(replace(effect, initial_state=None, initial_directions=None), names)
+                offsets = self._offsets(effect.initial_state)
+                weights = None
+                if effect.learns:
+                    rows = p.train_rows(fold)
+                    weights = principal_directions(offsets[rows], p.campaigns[rows],
+                                                   effect.initial_directions)
+                start = transient(offsets, weights, p.context["time"].to_numpy(float), p.campaigns,
+                                  effect.tau_s)
+                self._features[key] = np.hstack([lag, start])
             else:
                 X = self.inputs_matrix(names) if effect.uses_inputs else np.empty((len(p.y), 0))
                 self._features[key] = effect_features(effect, X, p.context, p.campaigns, p.reference)
         return self._features[key]
-
-    def _start_features(self, effect: Effect, names, fold, order=None) -> np.ndarray:
-        """The lag (cached once) and its initial-state transient; ``order``: campaign ``i``
-        (of the sorted campaigns) starts from campaign ``order[i]``'s initial state."""
-        p = self.problem
-        lag = self.features(replace(effect, initial_state=None, initial_directions=None), names)
-        offsets = self._offsets(effect.initial_state)
-        if order is not None:
-            _, first, which = np.unique(np.asarray(p.campaigns, dtype=str), return_index=True,
-                                        return_inverse=True)
-            offsets = offsets[first][np.asarray(order)][which]
-        weights = None
-        if effect.learns:
-            rows = p.train_rows(fold)
-            weights = principal_directions(offsets[rows], p.campaigns[rows], effect.initial_directions)
-        start = transient(offsets, weights, p.context["time"].to_numpy(float), p.campaigns, effect.tau_s)
-        return np.hstack([lag, start])
-
-    @contextmanager
-    def started_from(self, effect: Effect, order):
-        """Within it, ``effect``'s initial states are permuted among the campaigns: campaign
-        ``i`` (of the sorted campaigns) starts from campaign ``order[i]``'s; the lag, the
-        times and every other effect are the campaigns' own (the null of
-        :meth:`~.search.Search.permuted_starts`)."""
-        self._restart = (effect, tuple(int(i) for i in order))
-        try:
-            yield self
-        finally:
-            self._restart = None
 
     def _offsets(self, columns: tuple) -> np.ndarray:
         key = ("offsets", columns)

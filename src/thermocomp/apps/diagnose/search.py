@@ -60,8 +60,6 @@ are the exchangeable units, so the test flips signs of whole campaigns.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from itertools import permutations
-from math import factorial
 
 import numpy as np
 import pandas as pd
@@ -73,8 +71,6 @@ from .candidates import CONTROL, CandidateOptions, candidates
 from .cv import CrossValidator, CVResult, Problem, sign_flip_maxt, sign_flip_pvalues
 from .features import Effect
 from .sensors import self_prediction
-
-START_PERMUTATIONS = 199    # initial states permuted among the campaigns (Search.permuted_starts)
 
 
 @dataclass
@@ -118,7 +114,6 @@ class Evaluation:
     p_margin: float = float("nan")            # p of a gain of min_gain_pct at least (the margin)
     gain_pct_within: float | None = None       # within the held-out campaigns (campaigns CV)
     gain_pct_within_rest: float | None = None  # the same without the campaign gaining most there
-    p_start: float | None = None               # initial states permuted (Search._start_checks)
 
     def entry(self) -> dict:
         """The ``effects`` entry of ``diagnosis.json`` (CLI.md keys first)."""
@@ -145,8 +140,6 @@ class Evaluation:
             out["evidence"]["cv_rmse_gain_pct_within"] = self.gain_pct_within
         if self.gain_pct_within_rest is not None:
             out["evidence"]["cv_rmse_gain_pct_within_rest"] = self.gain_pct_within_rest
-        if self.p_start is not None:
-            out["evidence"]["p_value_start"] = self.p_start
         out["effect"] = e.to_dict()
         return out
 
@@ -408,44 +401,6 @@ class Search:
             ev.clears_bar = self._clears(ev.gain_pct, pf, ev.gain_pct_in_range, ev.p_margin,
                                          ev.n_features)
             self._within_checks(ev, current)
-        self._start_checks([ev for ev in family if ev.clears_bar and ev.effect.initial_state])
-
-    def _start_checks(self, tested: list[Evaluation]) -> None:
-        """A lag from the initial state clears only if its start states carry its gain: its CV
-        gain beats, at ``alpha`` family-wise over the round's lags that clear every other check,
-        the same lags with the initial states permuted among the train campaigns
-        (:meth:`permuted_starts`, the same orders for all; ``p = (1 + #{orders whose largest
-        permuted gain >= its gain}) / (1 + #orders)``).  The block ``w'(c(0) - A_0)(1 -
-        exp(-t/tau))`` is constant within a campaign after a few tau: its evidence is one level
-        per campaign fitted on 2-3 numbers, so its unit is the campaign whatever the test blocks.
-        On clean draws (the errors' law has no initial state) such lags gained 22-50 % in CV on
-        8 campaigns, at the sign flips' floor, and raised the test error 7-21 %; with the starts
-        permuted the same lags gained up to 53 %, family-wise p 0.015-0.060
-        (``benchmarks/bench_diag84.py``)."""
-        if not tested:
-            return
-        current = tested[0].cv_rmse + tested[0].gain
-        most = np.max([current - self.permuted_starts(ev) for ev in tested], axis=0)
-        for ev in tested:
-            ev.p_start = float((1 + np.sum(most >= ev.gain)) / (1 + most.size))
-            ev.clears_bar = ev.p_start <= self.options.alpha
-
-    def permuted_starts(self, ev: Evaluation) -> np.ndarray:
-        """``ev``'s CV RMSE with its initial states permuted among the train campaigns
-        (:meth:`~.cv.CrossValidator.started_from`), one per order: every one of the ``n! - 1``
-        orders of ``n`` campaigns when they are at most :data:`START_PERMUTATIONS`, else that
-        many drawn with ``seed`` (the same orders for every candidate of a round)."""
-        n = len(np.unique(np.asarray(self.problem.campaigns, dtype=str)))
-        if factorial(n) - 1 <= START_PERMUTATIONS:
-            orders = list(permutations(range(n)))[1:]
-        else:
-            rng = np.random.default_rng(self.options.seed)
-            orders = [rng.permutation(n) for _ in range(START_PERMUTATIONS)]
-        rmse = np.empty(len(orders))
-        for i, order in enumerate(orders):
-            with self.cv.started_from(ev.effect, order):
-                rmse[i] = self.cv.run(self.inputs(), self.effects + [ev.effect]).rmse
-        return rmse
 
     def _within_checks(self, ev: Evaluation, current: CVResult) -> None:
         """``ev`` clears only if it gains within the campaigns too (:meth:`_within_gain`)."""
