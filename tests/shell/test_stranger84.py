@@ -8,12 +8,14 @@ from __future__ import annotations
 
 import datetime as dt
 import re
+import subprocess
 from pathlib import Path
 
 import numpy as np
 import pytest
 
 from conftest import FAST, refused
+from test_export import checked_pack, needs_cc
 from test_stranger68 import ROWS, linear_run
 from thermocomp.core.io import read_dataset
 from thermocomp.shell.cli import main
@@ -137,3 +139,29 @@ def test_a_catman_export_piped_into_monitor_streams_as_the_file_does(tmp_path, m
     for target in ("E_MCS_X1", "E_MCS_Z"):
         assert said[1][target]["n_samples"] == ROWS
         assert said[1][target]["rmse_fixed"] == pytest.approx(said[0][target]["rmse_fixed"], rel=1e-12)
+
+
+@needs_cc
+def test_the_compiled_stream_refuses_a_catman_export_naming_the_command_that_converts_it(
+        tmp_path, capsys):
+    """Refused at the first channel block, the command named; the rows it writes stream."""
+    for run in (1, 2):
+        path = export(tmp_path / "rig", run)
+    common = [f"data.path={tmp_path / 'rig'}", "data.roles.error=[MCS*]", "data.encoding=cp1252",
+              "data.test_fraction=0.5"]
+    assert main(["run", *common, *FAST, "model=mlr", f"out={tmp_path / 'run'}"]) == 0
+    assert main(["export", *common, "track=false", "export.format=c",
+                 f"export.model={tmp_path / 'run' / 'model.pkl'}", f"out={tmp_path / 'code'}"]) == 0
+    checked_pack(tmp_path / "code")
+    stream = str(tmp_path / "code" / "stream")
+    done = subprocess.run([stream], capture_output=True, input=path.read_bytes())
+    assert done.returncode == 2 and done.stdout == b""
+    assert (b"stream: line 5 is HBM catman's channel block (Channel 1:): its channels are named in "
+            b"blocks above the table; convert it to the rows the served model reads it as: "
+            b"`thermocomp rows FILE") in done.stderr, done.stderr
+    capsys.readouterr()
+    assert main(["rows", str(path), *common[1:3]]) == 0
+    rows = capsys.readouterr().out
+    streamed = subprocess.run([stream], capture_output=True, input=rows.encode())
+    assert streamed.returncode == 0, streamed.stderr
+    assert len(streamed.stdout.decode().splitlines()) == ROWS + 1
