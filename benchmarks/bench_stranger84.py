@@ -1,7 +1,7 @@
 """A stranger's pass on an ISO 230-3 spindle test rig (five capacitive probes) logged by HBM
 catman, exported as catman's ASCII file (stranger84).
 
-    PYTHONPATH=$PWD/src .venv/bin/python benchmarks/bench_stranger84.py write ROOT SEED [LOCALE]
+    PYTHONPATH=$PWD/src .venv/bin/python benchmarks/bench_stranger84.py write ROOT SEED [LOCALE] [clean]
     PYTHONPATH=$PWD/src .venv/bin/python benchmarks/bench_stranger84.py faults ROOT SEED
     PYTHONPATH=$PWD/src .venv/bin/python benchmarks/bench_stranger84.py broken ROOT SEED
     PYTHONPATH=$PWD/src .venv/bin/python benchmarks/bench_stranger84.py matrix ROOT SEED CONF
@@ -34,7 +34,8 @@ catman Easy on a German PC, ``;`` between cells, decimal commas, ``03.05.2027 07
 keys in German (``Datei:``, ``Kommentar:``, ``Kanal 1:``, ``Einheit:``, ``Abtastrate:``,
 ``Länge:``), ONE group, every channel at 1/30 Hz (``Zeit  1 - Standardmessrate``, ``Sonde X1``
 ..., ``T Luft`` ..., ``Drehzahl`` in ``1/min``).  The probes are zeroed at each test's start
-(catman's zero balance).
+(catman's zero balance).  ``clean``: the same draws without the planted pull
+(``ROOT/clean<SEED>/``), the control diagnose should accept nothing on Z's speed in.
 
 ``faults``: ``ROOT/fault_<kind>_<SEED>/``, the files (``en``), the last test with one fault
 (its temperature group's rows): ``frozen`` (``T_STATOR`` held from row 200, 3.3 h in),
@@ -91,10 +92,11 @@ KEYS = {"en": ("File", "Comment", "Channels", "Channel", "Unit", "Sample rate", 
         "de": ("Datei", "Kommentar", "Kanäle", "Kanal", "Einheit", "Abtastrate", "Länge")}
 
 
-def runs(seed: int):
-    """The record: ``(spindle84 result, [(label, local start, rows)])``."""
+def runs(seed: int, clean: bool = False):
+    """The record: ``(spindle84 result, [(label, local start, rows)])``; ``clean``: without the
+    planted pull."""
     import spindle84 as m
-    r = m.simulate(int(seed))
+    r = m.simulate(int(seed), 0.0 if clean else m.PULL_UM)
     return r, [(f"{n:02d}", start, np.arange(rows.start, rows.stop))
                for n, (start, rows) in enumerate(m.run_windows(), start=1)]
 
@@ -162,10 +164,11 @@ def _write_all(folder: Path, r, runs_, locale: str = "en", fault=None) -> None:
             export_text(r, label, start, idx, locale, last).encode("cp1252"))
 
 
-def write(root: str, seed: str, locale: str = "en") -> None:
-    """The lab's files of seed ``seed``: ``ROOT/spindle<SEED>/``."""
-    r, runs_ = runs(int(seed))
-    folder = Path(root) / f"spindle{seed}"
+def write(root: str, seed: str, locale: str = "en", clean: str = "") -> None:
+    """The lab's files of seed ``seed``: ``ROOT/spindle<SEED>/`` (``clean``: ``clean``, without
+    the planted pull, ``ROOT/clean<SEED>/``)."""
+    r, runs_ = runs(int(seed), clean == "clean")
+    folder = Path(root) / f"{'clean' if clean == 'clean' else 'spindle'}{seed}"
     _write_all(folder, r, runs_, locale)
     print(f"wrote {folder} ({len(runs_)} files, {sum(i.size for _, _, i in runs_)} samples)")
 

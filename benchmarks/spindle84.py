@@ -59,6 +59,7 @@ SENSORS = (("T_AIR", "air", 120.0), ("T_BASE", {"base": 1.0}, 600.0),
            ("T_REAR", {"rear": 1.0}, 40.0), ("T_STATOR", {"motor": 1.0}, 60.0),
            ("T_COOLANT", {"coolant": 1.0}, 30.0), ("T_OIL", {"oil": 1.0}, 90.0))
 PROBES = ("X1", "Y1", "X2", "Y2", "Z")
+PULL_UM = 2.5                           # PLANTED: the nose's pull at 10 krpm (µm)
 
 
 def _i(name: str) -> int:
@@ -99,9 +100,10 @@ def _test(n: int, rng: np.random.Generator) -> np.ndarray:
     return speed
 
 
-def simulate(seed: int) -> dict[str, np.ndarray]:
+def simulate(seed: int, planted: float = PULL_UM) -> dict[str, np.ndarray]:
     """The record at STEP_S, spin-up dropped: ``t``, ``air``, ``T``, ``speed``, ``sensors`` and
-    the probes' ``E_<probe>`` (µm, before each run's zero)."""
+    the probes' ``E_<probe>`` (µm, before each run's zero); ``planted``: the centrifugal pull
+    at 10 krpm (0: the clean control, every draw the same)."""
     rng = np.random.default_rng([seed, 84])
     t = np.arange(-SPIN_UP_DAYS * 86400.0, DAYS * 86400.0, STEP_S)
     air = room_air(t, rng)
@@ -128,10 +130,10 @@ def simulate(seed: int) -> dict[str, np.ndarray]:
     t, air, temps, speed = t[keep], air[keep], temps[keep], speed[keep]
     sensors = lagged_readings(temps, {"air": air}, SENSORS, list(NODES), STEP_S, 0.02, 2, rng)
     return {"t": t, "air": air, "T": temps, "speed": speed, "sensors": sensors,
-            **_probes(temps, speed, rng)}
+            **_probes(temps, speed, rng, planted)}
 
 
-def _probes(temps: np.ndarray, speed: np.ndarray, rng: np.random.Generator) -> dict:
+def _probes(temps: np.ndarray, speed: np.ndarray, rng: np.random.Generator, planted: float) -> dict:
     d = temps - 20.0
     n = {name: d[:, _i(name)] for name in NODES}
     tilt_a = 4.0e-6 * (n["motor"] - n["coolant"]) + 1.0e-6 * (n["front"] - n["housing"])
@@ -139,7 +141,7 @@ def _probes(temps: np.ndarray, speed: np.ndarray, rng: np.random.Generator) -> d
     y0 = 1e3 * ALPHA * 60.0 * (n["housing"] - n["base"])
     x0 = 1e3 * ALPHA * 30.0 * (n["base"] - n["housing"])
     z = (1e3 * ALPHA * (250.0 * n["housing"] + 150.0 * n["rotor"] + 80.0 * n["front"]
-                        - 300.0 * n["base"]) - 2.5 * (speed / 1e4) ** 2)
+                        - 300.0 * n["base"]) - planted * (speed / 1e4) ** 2)
     out = {"E_X1": x0 + 1e3 * tilt_b * (L_PIVOT + H1), "E_X2": x0 + 1e3 * tilt_b * (L_PIVOT + H2),
            "E_Y1": y0 + 1e3 * tilt_a * (L_PIVOT + H1),
            "E_Y2": y0 + 1e3 * tilt_a * (L_PIVOT + H2), "E_Z": z}

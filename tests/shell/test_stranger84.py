@@ -111,11 +111,12 @@ def _spoiled(tmp_path, change) -> Path:
 
 
 @pytest.mark.parametrize("change, says", [
-    (lambda b: b[:-20], ["the file's last line holds", "cut off while it was written", "line 167"]),
+    (lambda b: b[:-20],
+     ["the file's last line holds", "cut off while it was written", "line 167 (data row 120)"]),
     (lambda b: b"\r\n".join(b.split(b"\r\n")[:-11]) + b"\r\n",
-     ["holds 110 of its 120 samples", "its block's Length", "line 157"]),
+     ["holds 110 of its 120 samples", "its block's Length", "line 157 (data row 110)"]),
     (lambda b: re.sub(rb"\r\n70\.0\t[^\t]*\t", b"\r\n70.0\t1.2#4\t", b, count=1),
-     ["channel 2 'MCS X1'", "'1.2#4' is no number", "line 55"]),
+     ["channel 2 'MCS X1'", "'1.2#4' is no number", "line 55 (data row 8)"]),
 ])
 def test_a_spoiled_export_is_refused_naming_its_line(tmp_path, capsys, change, says):
     path = _spoiled(tmp_path, change)

@@ -91,6 +91,19 @@ def _record(lines: list[str], label: str, path: Path) -> Record:
                             f"({', '.join(map(repr, names[:4]))} ...)", file=path, line=top + 1)
     body = [(k + 1, line.split(sep)) for k, line in enumerate(lines[top + 1:], start=top + 1)
             if line.strip()]
+    try:
+        return Record(label, _channels(blocks, body, top, sep, path), utc=False)
+    except ContractError as exc:     # its data row beside the line, the row a sample
+        rows = {line: n + 1 for n, (line, _) in enumerate(body)}
+        if exc.row is not None or exc.line not in rows:
+            raise
+        raise ContractError(exc.reason, file=exc.file, column=exc.column, row=rows[exc.line],
+                            line=exc.line) from None
+
+
+def _channels(blocks: list[dict], body: list, top: int, sep: str, path: Path) -> list[Channel]:
+    """The channels of the table's rows ``body`` (``(line, cells)``), each on its group's time."""
+    names = [b["name"] for b in blocks]
     for n, (line, cells) in enumerate(body):
         if len(cells) != len(names):
             cut = ("the file's last line" if n == len(body) - 1 else f"line {line}")
@@ -115,7 +128,7 @@ def _record(lines: list[str], label: str, path: Path) -> Record:
                                 values, time, what))
     if not channels:
         raise ContractError("no channel but time channels in the export", file=path, line=top + 1)
-    return Record(label, channels, utc=False)
+    return channels
 
 
 def _length(block: dict, body: list, j: int, path: Path) -> int:
