@@ -142,8 +142,18 @@ taken for the header); mended (driver.py, test_stranger84): "stream: line 7 is H
 channel block (Channel 1:): its channels are named in blocks above the table; convert it to the
 rows the served model reads it as: `thermocomp rows FILE ...`".
 
+The test's file piped into ``monitor monitor.input=-`` (8727's mlr; 2.6 + 0.3 s): the file's
+RMSEs to the last digit, 0 events.  8726's two-group file was refused, "file <stdin>: 1
+column(s) not read: 'channel' is not numeric ('MCS X1 [µm]')" (the long table of channels at
+their own rates read as a wide one); mended (catman.py, test_stranger84: the slower group held
+onto the fastest group's times): the file's RMSEs to the last digit, 0 events (5.9 + 0.4 s).
+The probe pairs' tilts through ``data.derive`` (``(E_Sonde_X1 - E_Sonde_X2) / 0.1``, µm/m; 8727,
+mlr, 3.1 + 0.3 s): B 0.78 -> 1.02 µrad (WORSE than none: the X tilt, 1 µrad/K of front - rear
+bearing, is the probes' noise over 0.1 m), A 12.57 -> 0.76.
+
 Left: auto worse than mlr on 8726's X1 and Z and 8727's X2 (its validation on the train tests
 chooses hammerstein / a blend the held-out test disagrees with), 8727's Z +76 % of lagbank's;
+mlr's tilt B worse than no correction, deployed without a word;
 hammerstein does not take the speed-squared pull on Z (2.64 against arx's 2.27); the monitor
 under ``T_OIL``'s drift excludes a healthy sensor it predicts and corrects worse than without
 it; diagnose accepts the speed on Y1 / Y2 of the clean control (a real, unplanted lead of the

@@ -124,15 +124,19 @@ def test_a_spoiled_export_is_refused_naming_its_line(tmp_path, capsys, change, s
     assert str(path) in said
 
 
-def test_a_catman_export_piped_into_monitor_streams_as_the_file_does(tmp_path, monkeypatch, capsys):
-    """The test run piped in as catman wrote it streams to the RMSE its file streams to."""
+@pytest.mark.parametrize("groups", [1, 2])
+def test_a_catman_export_piped_into_monitor_streams_as_the_file_does(tmp_path, monkeypatch, capsys,
+                                                                    groups):
+    """The test run piped in as catman wrote it streams to the RMSE its file streams to; two
+    rate groups held as the file's grid holds them (before: "'channel' is not numeric", the
+    long table of channels at their own rates read as a wide one)."""
     import io as _io
     import json
 
     for run in (1, 2):
-        path = export(tmp_path / "rig", run)
+        path = export(tmp_path / "rig", run, groups=groups)
     common = ["monitor", f"data.path={tmp_path / 'rig'}", "data.roles.error=[MCS*]",
-              "data.encoding=cp1252", "data.test_fraction=0.5", *FAST]
+              "data.encoding=cp1252", "data.test_fraction=0.5", "data.resample_s=10", *FAST]
     assert main([*common, f"out={tmp_path / 'file'}"]) == 0
     monkeypatch.setattr("sys.stdin", _io.TextIOWrapper(_io.BytesIO(path.read_bytes())))
     assert main([*common, "monitor.input=-", f"out={tmp_path / 'pipe'}"]) == 0, capsys.readouterr().err

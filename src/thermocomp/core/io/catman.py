@@ -59,8 +59,22 @@ def catman_records(path: Path, encoding: str = UTF8) -> list[Record]:
 
 def catman_as_csv(text: str, source: str) -> str:
     """An export streamed (``monitor.input=-``) as the CSV text its channels are read as from a
-    file (:mod:`.labfile`)."""
-    return text_as_csv(_record, text, source)
+    file (:mod:`.labfile`): a slower group's channels held onto the fastest group's times, as
+    the file's grid of ``data.resample_s`` holds them (a stream reads no long file)."""
+    return text_as_csv(_held, text, source)
+
+
+def _held(lines: list[str], label: str, path: Path) -> Record:
+    """The record, every channel on its fastest group's times: a slower one's value the last
+    sample at or before each (sample and hold)."""
+    record = _record(lines, label, path)
+    grid = max((c.time for c in record.channels), key=len)
+    laid = []
+    for c in record.channels:
+        at = np.searchsorted(c.time, grid, side="right") - 1
+        values = np.where(at >= 0, c.values[np.clip(at, 0, None)], np.nan)
+        laid.append(Channel(c.header, values, grid, c.where))
+    return Record(record.label, laid, utc=False)
 
 
 def _blocks(lines: list[str], sep: str, path: Path) -> tuple[list[dict], int]:
