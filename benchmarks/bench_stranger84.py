@@ -114,8 +114,8 @@ only; 8 CV units, min p 0.0039; 12.8 + 1.2 and 5.5 + 0.9 s CPU): 8726 Z speed ac
 1.01, Y1 / Y2 the speed (0.11 -> 0.09, 0.12 -> 0.10), X nothing; 8727 Z speed 4.15 -> 0.62,
 nothing else: the planted effect found on both, no target worse.  The clean control (8726's
 draws without the pull, ``write ... clean``; 14.7 + 3.7 s): Z nothing accepted (0.37), but Y1 /
-Y2 the speed as above (the rig's own physics, not planted: the tilt A follows the stator's heat,
-which the speed leads, its thermocouple lagging 60 s), X nothing.
+Y2 the speed as above (not planted; presumably the rig's own physics: the tilt A follows the
+stator's heat, which the speed leads, its thermocouple lagging 60 s; not traced), X nothing.
 
 ``monitor`` (8726's mlr, ``plots=none``; 5.2-5.8 + 0.4-0.8 s CPU each) on the healthy last test:
 0 events (fixed = adaptive = 0.075 / 0.105 / 0.054 / 0.109 / 2.376); 8727 with its own mlr: 0
@@ -151,14 +151,13 @@ The probe pairs' tilts through ``data.derive`` (``(E_Sonde_X1 - E_Sonde_X2) / 0.
 mlr, 3.1 + 0.3 s): B 0.78 -> 1.02 µrad (WORSE than none: the X tilt, 1 µrad/K of front - rear
 bearing, is the probes' noise over 0.1 m), A 12.57 -> 0.76.
 
-Left: auto worse than mlr on 8726's X1 and Z and 8727's X2 (its validation on the train tests
-chooses hammerstein / a blend the held-out test disagrees with), 8727's Z +76 % of lagbank's;
-mlr's tilt B worse than no correction, deployed without a word;
-hammerstein does not take the speed-squared pull on Z (2.64 against arx's 2.27); the monitor
-under ``T_OIL``'s drift excludes a healthy sensor it predicts and corrects worse than without
-it; diagnose accepts the speed on Y1 / Y2 of the clean control (a real, unplanted lead of the
-stator's heat over its sensor); the layout is written from memory of catman's export, not
-checked against a file catman wrote.
+Left: auto worse than mlr on 8726's X1 and Z (its validation chose hammerstein on both, the
+held-out test disagrees) and 8727's X2, 8727's Z +76 % of lagbank's; mlr's tilt B worse than no
+correction, deployed without a word; hammerstein does not take the speed-squared pull on Z
+(2.64 against arx's 2.27); the monitor under ``T_OIL``'s drift excludes a healthy sensor it
+predicts and corrects worse than without it; diagnose accepts the speed on Y1 / Y2 of the clean
+control (presumably a real, unplanted lead of the stator's heat over its sensor, not traced);
+the layout is written from memory of catman's export, not checked against a file catman wrote.
 """
 from __future__ import annotations
 
