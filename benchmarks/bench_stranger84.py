@@ -122,7 +122,8 @@ tilt A follows the stator's heat at once), a real effect of the record, not a fa
 
 ``monitor`` (8726's mlr, ``plots=none``; 5.2-5.8 + 0.4-0.8 s CPU each) on the healthy last test:
 0 events (fixed = adaptive = 0.075 / 0.105 / 0.054 / 0.109 / 2.376); 8727 with its own mlr: 0
-events.  Faults in the last test (fixed / adaptive X1, Y1, X2, Y2, Z): ``T_STATOR`` frozen at
+events; with each seed's auto (10.9 + 0.9 and 8.4 + 0.8 s): 0 events (fixed = adaptive = the
+matrix's auto).  Faults in the last test (fixed / adaptive X1, Y1, X2, Y2, Z): ``T_STATOR`` frozen at
 3.33 h: excluded at 3.50 h (0.127 / 0.077, 4.069 / 0.201, 0.093 / 0.054, 5.101 / 0.251, 2.965 /
 2.399); ``T_HOUSING`` +2 K at 3.67 h: excluded at 3.67 h (Z 19.703 / 2.243); 60 empty samples of
 ``T_REAR`` from 4.33 h: excluded at 4.33 h (Z 3.965 / 2.400); ``T_OIL`` drifting 1 K/h from 2.5 h:
