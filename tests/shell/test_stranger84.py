@@ -61,6 +61,9 @@ def export(folder: Path, run: int, groups: int = 1, german: bool = False) -> Pat
 
 
 ROLES = {"roles": {"error": ["MCS*"]}, "encoding": "cp1252", "test_fraction": 0.5}
+# one group's file: the lines above its first sample (the header block's 4, a block of 7 lines
+# per channel and its time channel, the column row)
+TOP = 4 + 7 * (1 + len(CHANNELS)) + 1
 
 
 @pytest.mark.parametrize("german", [False, True])
@@ -112,11 +115,13 @@ def _spoiled(tmp_path, change) -> Path:
 
 @pytest.mark.parametrize("change, says", [
     (lambda b: b[:-20],
-     ["the file's last line holds", "cut off while it was written", "line 167 (data row 120)"]),
+     ["the file's last line holds", "cut off while it was written",
+      f"line {TOP + ROWS} (data row {ROWS})"]),
     (lambda b: b"\r\n".join(b.split(b"\r\n")[:-11]) + b"\r\n",
-     ["holds 110 of its 120 samples", "its block's Length", "line 157 (data row 110)"]),
+     [f"holds {ROWS - 10} of its {ROWS} samples", "its block's Length",
+      f"line {TOP + ROWS - 10} (data row {ROWS - 10})"]),
     (lambda b: re.sub(rb"\r\n70\.0\t[^\t]*\t", b"\r\n70.0\t1.2#4\t", b, count=1),
-     ["channel 2 'MCS X1'", "'1.2#4' is no number", "line 55 (data row 8)"]),
+     ["channel 2 'MCS X1'", "'1.2#4' is no number", f"line {TOP + 8} (data row 8)"]),
 ])
 def test_a_spoiled_export_is_refused_naming_its_line(tmp_path, capsys, change, says):
     path = _spoiled(tmp_path, change)
