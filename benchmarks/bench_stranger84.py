@@ -161,7 +161,9 @@ correction, deployed without a word; hammerstein does not take the speed-squared
 (2.64 against arx's 2.27); the monitor under ``T_OIL``'s drift excludes a healthy sensor it
 predicts and corrects worse than without it; diagnose accepts the speed on Y1 / Y2 of the clean
 control (the thermocouples' lag, traced: nothing accepted with them quick);
-the layout is written from memory of catman's export, not checked against a file catman wrote.
+a T0 with slashes is read month first (catman's en-US), not by the record's one decision
+(slashed.py): an en-GB PC's day-first T0 is misread where its day is 12 or less; the layout is
+written from memory of catman's export, not checked against a file catman wrote.
 """
 from __future__ import annotations
 
