@@ -23,6 +23,7 @@ import pandas as pd
 from ..metrics import angular
 from ..timerule import median_step
 from . import campbell
+from .catman import is_catman
 from .contract import MANIFEST, TIME, ContractError, is_ambient, role
 from .encoding import UTF8, WINDOWS, detect
 from .fixedwidth import is_fixed_width
@@ -157,7 +158,8 @@ def encoding(src: Path, opts, manifest: pd.DataFrame | None) -> str:
     # (UTF-16: its mark; an .lvm and a Scope export are text; a Campbell binary table's .dat is
     # none: lab76, its bytes were taken for a Windows export's, data.encoding: cp1252 written)
     found = [detect(f) for f in files
-             if (is_text(f) or is_lvm(f) or is_scope(f) or is_graphtec(f) or is_yokogawa(f))
+             if (is_text(f) or is_lvm(f) or is_scope(f) or is_graphtec(f) or is_yokogawa(f)
+                 or is_catman(f))
              and not is_utf16(f) and not is_tob(f)]
     return WINDOWS if WINDOWS in found else UTF8
 
@@ -182,6 +184,7 @@ def head(sample: Path, opts) -> tuple[object, list[str], list[str], str]:
                 else "a TwinCAT Scope export" if is_scope(sample)
                 else "a Graphtec logger's CSV (its Amp settings' signal names)" if is_graphtec(sample)
                 else "a Yokogawa viewer's ASCII export (its tags)" if is_yokogawa(sample)
+                else "HBM catman's ASCII export (its channel blocks)" if is_catman(sample)
                 else "an HDF5 file" if is_hdf5(sample)
                 else "a DIAdem TDM/TDX pair" if is_tdm(sample)
                 else "a SINUMERIK trace" if is_trace(sample)

@@ -10,6 +10,7 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
 
+from .catman import catman_records, is_catman
 from .contract import ContractError
 from .encoding import UTF8
 from .fixedwidth import fixed_as_csv, is_fixed_width
@@ -37,10 +38,11 @@ def is_lab_file(path) -> bool:
     LabVIEW Measurement File, (lab75) a Campbell Scientific TOB1 table (lab76: TOB2, TOB3) or
     (stranger76) a TwinCAT Scope CSV export, (stranger77) an HDF5 file or (stranger78) a DIAdem
     TDM/TDX pair or (stranger81) a SINUMERIK trace's XML or (stranger82) a Graphtec logger's CSV
-    or (stranger82b) a Yokogawa recorder's ASCII conversion (:mod:`.labfile`)."""
+    or (stranger82b) a Yokogawa recorder's ASCII conversion or (stranger84) HBM catman's ASCII
+    export with its channel header (:mod:`.labfile`)."""
     return (is_tdms(path) or is_mat(path) or is_lvm(path) or is_tob(path) or is_scope(path)
             or is_hdf5(path) or is_tdm(path) or is_trace(path) or headerless(path)
-            or is_graphtec(path) or is_yokogawa(path))
+            or is_graphtec(path) or is_yokogawa(path) or is_catman(path))
 
 
 def is_converted(path, opts=None) -> bool:
@@ -76,6 +78,7 @@ def _records(path: Path, encoding: str) -> list:
             else scope_records(path, encoding) if is_scope(path)
             else graphtec_records(path, encoding) if is_graphtec(path)
             else yokogawa_records(path, encoding) if is_yokogawa(path)
+            else catman_records(path, encoding) if is_catman(path)
             else refuse_headerless(path) if headerless(path)
             else hdf5_records(path) if is_hdf5(path)
             else tdm_records(path) if is_tdm(path)

@@ -27,6 +27,7 @@ from .again import STRAY, comments_in, kept, lines_in, spans_in, warn
 from .bits import decoded_frame
 from .campbell import has_unit_row
 from .campbell import units as campbell_units
+from .catman import catman_as_csv, is_catman_text
 from .clocksets import undone
 from .contract import ContractError
 from .csvline import EMPTY, SPLIT, split_line
@@ -97,9 +98,9 @@ def _is_tdm(head: bytes) -> bool:
 
 # a logger's text export piped in as written, told apart by its head, read as its channels:
 # a TwinCAT Scope export (stranger76), a Graphtec logger's CSV (stranger82), a Yokogawa
-# viewer's ASCII conversion (stranger82b)
+# viewer's ASCII conversion (stranger82b), HBM catman's ASCII export (stranger84)
 _TEXT_EXPORTS = ((is_scope_text, scope_as_csv), (is_graphtec_text, graphtec_as_csv),
-                 (is_yokogawa_text, yokogawa_as_csv))
+                 (is_yokogawa_text, yokogawa_as_csv), (is_catman_text, catman_as_csv))
 
 
 def _is_trace(head: bytes) -> bool:

@@ -935,6 +935,16 @@ int main(int argc, char **argv) {
         commented = commented && comment_or_blank(line);
         noted = noted || line[strspn(line, " \t")] == '#';
         for (i = 0; i < MAX_PREAMBLE && next_line(line, sizeof line, i + 2); i++) {
+            if (strncmp(line, "Channel 1:", 10) == 0 || strncmp(line, "Kanal 1:", 8) == 0) {
+                /* (stranger84) HBM catman's ASCII export with its channel header: its table
+                   starts below a block a channel (over 100 lines); line 1, `File:`, was taken
+                   for the header and an input said missing that the file holds */
+                fprintf(stderr, "stream: line %d is HBM catman's channel block (%s:): its channels "
+                        "are named in blocks above the table; convert it to the rows the served "
+                        "model reads it as: " ROWS_COMMAND "\n", i + 2,
+                        line[0] == 'C' ? "Channel 1" : "Kanal 1");
+                return 2;
+            }
             if ((n = inputs_named(line)) == TC_N_INPUTS) break;
             if (n > named_most)      /* (the lines above it: comments, a '#' among them?) */
                 named_most = n, most_row = i + 2, most_commented = commented,
