@@ -174,7 +174,8 @@ def column(root: str, label: str, seeds: str = "8686-8693", kinds: str = KINDS) 
                 if kind != "healthy":
                     frame = _faulted(frame, kind, sensor)
                 s = bench_mon83c._streamed(deployed, frame)
-                fixed = -replay(deployed.streaming, frame)[targets].to_numpy(float)
+                # (the fixed model takes no missing reading: it holds the last, as a logger)
+                fixed = -replay(deployed.streaming, frame.ffill())[targets].to_numpy(float)
                 errors = frame[targets].to_numpy(float)
                 a, b = rmse([errors], [fixed]), rmse([errors], [-s["y"]])
                 rec = {"record": f"s{seed} {tid}", "kind": kind, "sensor": sensor,
