@@ -7,6 +7,7 @@ Usage (from the repository root, ``PYTHONPATH=<tree>/src``: the code measured is
     python benchmarks/bench_mon84.py trace [ROOT] [SEED] [FIRST] [LAST]
     python benchmarks/bench_mon84.py column ROOT LABEL [SEEDS [KINDS]]
     python benchmarks/bench_mon84.py ctable ROOT MAIN RULE
+    python benchmarks/bench_mon84.py ccode [ROOT] [SEED] [KIND]
     python benchmarks/bench_mon84.py trunnion ROOT LABEL [SEEDS [KINDS]]
     python benchmarks/bench_mon84.py lathe ROOT LABEL [SEEDS [KINDS]]
     python benchmarks/bench_mon84.py jig ROOT LABEL [SEEDS [KINDS]]
@@ -24,7 +25,9 @@ from the middle row (frozen, +2 K jump, +1 K/h drift, dropout of 30 samples), a 
 in ``ROOT/LABEL-column.jsonl``: E_* test RMSE fixed / served adaptive, the sensors out as row
 spans, and for a fault its sensor's first row out and the evidence there (samples in a row
 beyond its band before it, its ``E`` and ``t`` against the largest other ``t``, every sensor in).
-``ctable``: two labels side by side and the bar's column checks.  ``trunnion`` / ``lathe`` /
+``ctable``: two labels side by side and the bar's column checks.  ``ccode`` (default s8546
+healthy): the exported C with its monitor compiled and fed the test campaign, against the served
+output (and the numpy mirror's first flag of a rule it does not hold).  ``trunnion`` / ``lathe`` /
 ``jig`` / ``table``: bench_mon83's harness (``thermocomp monitor`` on the stranger machines with
 a 0.1 K logger, defaults 8694-8695, 8696-8697, 8698-8700) and its table.
 
@@ -222,6 +225,35 @@ def ctable(root: str, main: str, rule: str) -> None:
         print(line)
 
 
+def ccode(root: str = "/tmp/mon84-bench", seed: str = "8546", kind: str = "healthy") -> None:
+    """The exported C (with its monitor) against the served output on the record (docstring)."""
+    import tempfile
+
+    from _ccode import built, streamed
+    from bench_cmon82 import _first_flag
+
+    from thermocomp.apps.deploy.export import exported_files, state_space
+    from thermocomp.apps.deploy.export.pack import corrections
+    from thermocomp.apps.deploy.report import stream_rows
+
+    deployed, ds, test_ids = bench_mon83c._deployed(made_folder(root), int(seed))
+    ss = state_space(deployed, monitor=True)
+    targets = deployed.targets_
+    with tempfile.TemporaryDirectory(prefix="mon84-") as tmp:
+        binary = built(Path(tmp), exported_files(deployed, "c"))
+        for t in test_ids:
+            df = ds.campaigns[t].reset_index(drop=True)
+            if kind != "healthy":
+                df = _faulted(df, kind, _sensor(ss))
+            served = corrections(ss, stream_rows(deployed, df, t).y)
+            code = streamed(binary, df[["time", *ss.inputs]])
+            errors = df[targets].to_numpy(float)
+            print(f"s{seed} {t} {kind}: max|C - served| {np.max(np.abs(code - served)):.2e} um; "
+                  f"the code's first flag {_first_flag(ss, df) or 'none'}; E_* served / C: "
+                  + "  ".join(f"{x} {a:.3f} / {b:.3f}" for x, a, b in
+                              zip(targets, rmse([errors], [served]), rmse([errors], [code]))))
+
+
 def trunnion(root: str, label: str, seeds: str = "8694-8695", kinds: str = KINDS) -> None:
     m83.trunnion(root, label, seeds, kinds)
 
@@ -240,7 +272,7 @@ def table(root: str, main: str, rule: str) -> None:
 
 def main(argv: list[str] | None = None) -> int:
     np.seterr(all="ignore")
-    return run_commands(__doc__, {"trace": trace, "column": column, "ctable": ctable,
+    return run_commands(__doc__, {"trace": trace, "column": column, "ctable": ctable, "ccode": ccode,
                                   "trunnion": trunnion, "lathe": lathe, "jig": jig,
                                   "table": table},
                         sys.argv[1:] if argv is None else argv, cpu=sys.stderr)
