@@ -69,6 +69,71 @@ if any part fails: the source reverted, the rule kept as ``benchmarks/mon84_rule
    --cases drift:t12 --families mlr``): ``T_t12`` out within 2 samples of main's, its Σ² no more
    than 2 % above main's.
 6. tests/shell/test_monitor*.py, tests/apps/test_monitor*.py, tests/shell/test_export*.py pass.
+
+Traced (2026-12-04, main bf78019c, ``trace``; errors per sample, the latest first).  ``T_left1``
+beyond its band 0.611 on single samples at rows 728 (+0.67) and 730 (+0.69), on two in a row at
+731 (+0.96, +0.69): out at its first judgement beyond the band (``confirm`` = 2), its residual
+``r`` +0.17 °C (0.08 at 727), ``t`` +0.41 on the last sample, 0.35 on the two's mean; the culprit
+``T_right4`` (h 0.18) ``r`` +0.37, ``t`` 0.40 / 0.37 (mean), one sample beyond its 0.4.  Judge
+only, ``_lone_fault`` takes ``T_left1`` again at 732 and 733 (``T_right4`` beyond its band from
+732, one other: no veto), and at 734 (``T_left3``, ``T_right3`` out too) the culprit's verdict
+stands, a new thermal state.  So a rule that only asks for one more row beyond the band
+(confirm + 1) would still exclude ``T_left1`` at 732 and keep it out.  The real faults on the
+fresh column records (``column`` on main, ``T_front1`` from row 721; evidence every sensor in):
+a +2 K jump out at 721 by the jump detector and a dropout at 721, its first sample; a freeze at
+726-828 by the freeze detector (its error beyond the band on at most 2 samples then); a +1 K/h
+drift beyond its band from rows 729-740 but out only at 1066-1283 (327-550 samples beyond it,
+``E`` +10.3 to +15.6 °C): Q3 sets in with it and the new thermal state allows no drift
+exclusion (its ``t`` 4.3-6.6 °C at the exclusion, the largest other's within 1.6 % of it, once
+0.4 % above it).  None went out on a first judgement beyond its band as ``T_left1`` did.
+
+Scored (2026-12-04; "main": ``git archive bf78019c`` sources, "rule": this branch at e045131d
+(83e8f472 for the dropouts of 8686-8687, the fixed model fed the dropout held), each record main
+then rule; E_* test RMSE in µm, served adaptive)
+--------------------------------------------------------------------------------------------------
+1. s8546 healthy (``column ROOT main|rule 8546 healthy``): served main -> rule E_X 23.236 ->
+   25.685 (fixed 25.685), E_Y 71.260 -> 16.489 (16.489), E_Z 16.264 -> 7.961 (7.961), E_X_mid
+   7.465 -> 1.210 (1.210), E_Y_mid 13.647 -> 2.704 (2.729), E_Z_mid 5.044 -> 1.681 (1.681); the
+   pair out 731-1246 -> nothing out, a new thermal state at row 731 (``T_left1`` +0.82,
+   ``T_right4`` +0.41 °C), ended at 1208.  ``ccode``: the exported C with its monitor = served
+   (largest difference 4.6e-13 µm main, 2.8e-13 rule); the code flags nothing with the rule (main:
+   a drift with a sensor out, row 761).  Holds (every target within 0.0 % of fixed).
+2. Fresh healthy 8686-8693: every E_* the same digits on main and rule, the same exclusions
+   (main's own, for 2-12 rows: ``T_right4`` at 730-732 on 8686, 8688, 8689, 8692, 8693,
+   ``T_left1`` / ``T_left3`` 732-738 on 8690, ``T_amb`` on 8691 and 8692, ``T_front3`` 683-725
+   and 732-733 on 8687).  Holds.
+3. Faults on 8686-8693 (32 records): ``T_front1`` first out at the same row on every one (jump and
+   dropout 721; frozen 726-828; drift 1066-1283), every E_* the same digits but s8693's drift,
+   where main's ``T_left1`` / ``T_left3`` out 731-735 (a lone fault at Q3's onset) is not with the
+   rule: E_X 25.135 -> 25.068, E_Y 78.001 -> 77.865, E_X_mid 0.949 -> 0.807, E_Y_mid 20.247 ->
+   20.226, E_Z 9.338 -> 9.319, E_Z_mid 2.866 -> 2.850 (``ccode``: C = served, 3.4e-13 µm, both).
+   Holds.
+4. Trunnion 8694-8695, lathe 8696-8697, jig 8698-8700 healthy and the four faults on 8694 / 8696 /
+   8698 (``table /tmp/mon84-str main rule``): every adaptive RMSE, exclusion and event count the
+   same (no event on any healthy record either way); each fault's own sensor first out at the same
+   time (+0.0 min: trunnion PINOLE 6.989 h, STAENDER_H 5.556, MUTTER_X 6.667, KUEHLUNG never; lathe
+   BETT_R 5.556, MUTTER_Z 6.667, SPINDELKASTEN and KUEHLMITTEL never, the coolant's leak taking the
+   turret out at 5.561 both ways; jig Pinole 5.042, Ständer_hinten_oben 5.828, Mutter_X 6.661,
+   Hydraulik_Tank never, its leak taking Bett_rechts out at 8.106 both ways).  Holds.
+5. fl_thermal t12 1 K/h from 1 h, mlr: ``T_t12`` out at +3825 s, Σ² 144.4 (fixed 188.5) on both.
+   Holds.
+6. With the rule: tests/apps/test_monitor*.py (the new test_monitor_lone84.py with them),
+   tests/shell/test_monitor*.py, tests/shell/test_export*.py: 395 passed, 4 xfailed (238.9 s CPU,
+   19 min wall on the shared cores).  test_monitor_lone84.py on main: 2 of 4 fail (``T_5`` out at
+   sample 142 as a lone fault; the code then flags a rule it does not hold at 197).  Holds.
+
+CPU (user + sys of the bench process): ``column`` on 8546 and 8688-8693 24.0 s main (the first of
+each seed simulates it), 20.9 s rule; 8686-8687's dropouts 2.0 / 1.9 and 2.1 / 2.0 s; ``ccode``
+2.1 s; ``trace`` 1.8 s; the stranger runs' own work is in their ``thermocomp monitor``
+subprocesses, not counted.
+
+Verdict: KEPT (every part held).  What it does not show: the rule changed 2 of the 44 column and
+19 stranger records (s8546 and s8693's drift), both the same case, a far high-leverage sensor
+alone out at Q3's onset; elsewhere the lone fault was the likelier fault wherever it was asked, or
+never asked.  On s8546 the margin is thin (``t`` 0.35 against 0.37 on the two samples' mean;
+0.41 against 0.40 on the last sample alone): a draw where the far sensor's standardised residual
+edges past the culprit's still goes out, and then stays out until the field follows (mon83c,
+mon83d's cases).
 """
 
 from __future__ import annotations
