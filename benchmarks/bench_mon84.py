@@ -127,7 +127,7 @@ each seed simulates it), 20.9 s rule; 8686-8687's dropouts 2.0 / 1.9 and 2.1 / 2
 2.1 s; ``trace`` 1.8 s; the stranger runs' own work is in their ``thermocomp monitor``
 subprocesses, not counted.
 
-Verdict: KEPT (every part held).  What it does not show: the rule changed 2 of the 44 column and
+Verdict: KEPT (every part held).  What it does not show: the rule changed 2 of the 41 column and
 19 stranger records (s8546 and s8693's drift), both the same case, a far high-leverage sensor
 alone out at Q3's onset; elsewhere the lone fault was the likelier fault wherever it was asked, or
 never asked.  On s8546 the margin is thin (``t`` 0.35 against 0.37 on the two samples' mean;
