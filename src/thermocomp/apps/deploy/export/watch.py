@@ -28,7 +28,8 @@ The served adaptive compensator judges every ``T_`` input before the model reads
 * (cmon82) a **drift**: every sensor in, a judged one beyond its band over the last
   ``confirm`` samples (no sensor no other predicts explaining them, the served
   ``_explaining``): the culprit (the largest ``|E|(1 - h)``, or the lone fault that explains the
-  bands, the served ``_lone_fault``) excluded where with it out every other judged sensor is
+  bands, the served ``_lone_fault``, mon84 only the likelier single fault: the largest
+  ``|E| sqrt(1 - h)``) excluded where with it out every other judged sensor is
   within its warning band, fewer than ``new_state_others`` others are out of it, and (a culprit
   within its own band, or mon83 beyond it by less than its readings' rounding moves its error,
   ``rounding``, the memory's error within that of the band) the excursion does not hover
@@ -812,7 +813,7 @@ class CodeMonitor:
         hides = bool(level[j] < WARNING) and self._resolves(j)
         size = np.abs(np.where(judged, np.nan_to_num(err), 0.0))
         std = np.sqrt(np.abs(1 - self.lev[self.op]))
-        likelier = np.argmax(size * std) if hides else None
+        likelier = np.argmax(size * std)     # (mon84: asked of every lone fault)
         for k in np.argsort(-z):
             if (k != j and z[k] >= 0 and level[k] >= WARNING and (likelier is None or likelier == k)
                     and self._resolves(int(k), out,

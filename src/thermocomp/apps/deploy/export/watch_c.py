@@ -437,12 +437,13 @@ static int mon_lone_fault(const tc_state *s, int j, const double z[], const int 
     }
     if (mon_resolves(s, j, level[j] < 1 ? out : 0, -1.0)) return *resolves = 1, j;
     hides = level[j] < 1 && mon_resolves(s, j, 0, -1.0);
-    if (hides)   /* the likelier single fault: the largest standardised residual */
-        for (k = 0; k < NM; k++) {
-            double w = size[k] * sqrt(fabs(1.0 - MON_LEV[s->mon_op][k]));
-            if (likelier < 0 || w > size[likelier] * sqrt(fabs(1.0 - MON_LEV[s->mon_op][likelier])))
-                likelier = k;
-        }
+    /* the likelier single fault: the largest standardised residual (mon84: asked of every
+       lone fault, not only where j hides) */
+    for (k = 0; k < NM; k++) {
+        double w = size[k] * sqrt(fabs(1.0 - MON_LEV[s->mon_op][k]));
+        if (likelier < 0 || w > size[likelier] * sqrt(fabs(1.0 - MON_LEV[s->mon_op][likelier])))
+            likelier = k;
+    }
     for (i = 0; i < NM; i++) {   /* the others, the largest z first */
         double alone = 0.0;
         k = -1;

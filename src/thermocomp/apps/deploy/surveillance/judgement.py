@@ -103,9 +103,10 @@ class Judgement:
         unjudged hides its error).  In order: ``j`` (paper 002's largest error); the
         sensor out of band (largest error first) that one fault explains, off the field the
         others make by more than any other sensor's error now (a fault's own deviation is the
-        largest), and, where ``j``'s exclusion explains the bands only by leaving one out of
-        them unjudged, also the largest standardised residual ``|E|·sqrt(1 - h)`` (the likelier
-        single fault, as in :meth:`_explaining`); else ``j``, if it explains them at all (a
+        largest), and the largest standardised residual ``|E|·sqrt(1 - h)`` (the likelier
+        single fault, as in :meth:`_explaining`; mon84: asked always, before only where ``j``'s
+        exclusion explains the bands by leaving one out of them unjudged); else ``j``, if it
+        explains them at all (a
         coupled pair: :meth:`_exclude_by_judgement` takes the partner out too).  ``j``'s coupled
         neighbour can show the largest error (fl_thermal's t12 drifting, T_t14 then T_t15
         picked, and the drift read as a new thermal state that never ended); and a lathe's
@@ -123,8 +124,13 @@ class Judgement:
         # same question as above, answered no)
         hides = bool(level[j] < WARNING) and self._resolves(j)
         size = np.abs(np.where(self._judged, np.nan_to_num(err), 0.0))
-        # the likelier single fault, where j is one too: the largest standardised residual
-        likelier = np.argmax(size * self._std) if hides else None
+        # the likelier single fault: the largest standardised residual |E|·sqrt(1 - h), the
+        # likelihood ratio's pick for one faulty sensor (a fault on k gives no other a larger
+        # one: Cauchy-Schwarz on the projector I - H).  Asked of every lone fault, not only
+        # where j hides: a column's T_left1 (leverage 0.82), beyond its band at an unseen
+        # source's onset, was taken over T_right4 on a residual 0.17 °C amplified 5.5x by the
+        # leave-one-out division, 0.35 standardised against T_right4's 0.37 (mon84)
+        likelier = np.argmax(size * self._std)
         for k in np.argsort(-z):
             if (k != j and z[k] >= 0 and level[k] >= WARNING and (likelier is None or likelier == k)
                     and self._resolves(int(k), out,
