@@ -230,32 +230,6 @@ def test_with_free_levels_the_strongest_penalty_leaves_the_static_model_not_a_co
     assert both.level_penalty_ == both.cv_results_.loc[both.cv_results_["chosen"], "level_penalty"].item()
 
 
-def test_anchored_the_strongest_penalty_leaves_mlr_and_the_cv_refits_the_anchor_per_fold(monkeypatch):
-    """``anchor``: the levels shrunk towards MLR's static fit, not 0 (bench_auto84b); ``"cv"``
-    scores both targets, each fold's anchor fitted on that fold's training rows alone (one fitted
-    on all rows would have seen the validation rows), and the copy that ``chosen_params`` makes
-    is the fitted model (what is deployed is what was scored)."""
-    from thermocomp.core.models import lagbank
-
-    X, y, context = _lagged_system(seed=5, n_campaigns=4)
-    anchored = LagBank(alphas=[1e9], anchor=True).fit(X, y, context=context)
-    np.testing.assert_allclose(anchored.predict(X, context=context), MLR().fit(X, y).predict(X),
-                               atol=1e-3 * np.std(y))
-    fitted, least_squares = [], lagbank._least_squares
-    monkeypatch.setattr(lagbank, "_least_squares",
-                        lambda X_, y_: fitted.append(len(y_)) or least_squares(X_, y_))
-    est = LagBank(n_taus=3, anchor="cv").fit(X, y, context=context)
-    k = est.splitter_.get_n_splits()
-    assert len(fitted) == k + est.anchor_ and all(n < len(y) for n in fitted[:k])
-    table = est.cv_results_
-    assert set(table["anchor"]) == {False, True}
-    chosen = table[table["chosen"]].iloc[0]
-    assert chosen["cv_mse_free_run"] == table["cv_mse_free_run"].min() and chosen["anchor"] == est.anchor_
-    copy = LagBank(n_taus=3, **est.chosen_params()).fit(X, y, context=context)
-    np.testing.assert_allclose(copy.coef_, est.coef_, rtol=1e-9, atol=1e-12)
-    assert copy.intercept_ == pytest.approx(est.intercept_)
-
-
 def test_splitters_leave_campaigns_out_or_chain_forward_with_a_gap():
     groups = np.repeat(["A", "B", "C"], 10)
     cv = default_splitter(groups, 30, gap=4)
@@ -286,7 +260,7 @@ def test_single_record_uses_forward_chaining_with_the_capped_gap():
     {"ar": "yes"}, {"ar": 1}, {"n_taus": 0}, {"n_taus": 2.5}, {"n_splits": 1},
     {"tau_max_s": -1.0}, {"tau_min_s": 0.0}, {"tau_min_s": 10.0, "tau_max_s": 5.0},
     {"alphas": [1.0, -1.0]}, {"alphas": []}, {"sample_period_s": 0.0}, {"level_penalty": -1.0},
-    {"level_penalty": []}, {"anchor": "yes"}, {"anchor": True, "ar": "auto"},
+    {"level_penalty": []},
 ])
 def test_bad_parameters_raise_parameter_error(params):
     X, y, context = _lagged_system(seed=9, n_campaigns=2, n=30)
