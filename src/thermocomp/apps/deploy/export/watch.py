@@ -67,6 +67,15 @@ The served adaptive compensator judges every ``T_`` input before the model reads
   re-admitted once ``THAW`` readings in a row are off the value it held (``THAWED``), judged from
   there as an active one, as served (``Readmission._thawed``).  An export before it (no
   ``thawed``) flags it ``NO_THAW``.
+* (cmon84) a sensor no other predicts, every other in, **out for a dropout or a freeze** (its
+  missing reading after a campaign's first sample; its reading constant longer than
+  ``blind_run``), as served: held at its last reading while in, its fallback model served while
+  it is out, but, after a dropout, not once it reads again (the served ``_fallen_back``: its
+  held reading the model's while it waits out its window), re-admitted after a calm window
+  (no band judges it).  Not where too few would be left in to rebuild the field.  A jump of it
+  while it is out is flagged ``BLIND`` as before (the served return may undo it).  An export
+  before it (no ``blind_drop``) refuses the missing reading (``MISSING_BLIND``) and flags the
+  freeze (``BLIND``).
 
 What else the served monitor does it flags, ``NOT_IN_CODE`` with the rule (:data:`REASONS`),
 and goes on by its own rules: a reading beyond its range at a campaign's first sample, of
@@ -75,7 +84,8 @@ as it was, so that the reading's return is no jump), several sensors jumping at 
 no common step, a jump at the reference's next sample, a stepped self-prediction error, a drift
 beyond the band with a sensor out already, of more than one blind partner, a second culprit
 beyond the alarm band, a second sensor out, and a sensor no other predicts out for any other
-rule, or with a fallback model the code does not hold.  A missing reading the code cannot
+rule (a jump, its range; cmon84: too few left to rebuild the field without it), or with a
+fallback model the code does not hold.  A missing reading the code cannot
 rebuild (at a campaign's first sample, with another sensor out or missing, of a sensor it does
 not hold out) is refused as before (:meth:`CodeMonitor.refuses`: the sample is not read).  From
 such a row on the code may part from the served model; the conformance pack cuts there
@@ -188,6 +198,7 @@ def monitor_fields(deployed, inputs: list) -> dict:
         "drift": 1, "pairs": [list(p) for p in pairs], "new_state": int(mon.new_state),
         "new_state_others": int(mon.new_state_others), "max_backoff": MAX_BACKOFF,
         "tau": EXCURSION_TAU_S, "growth": EXCURSION_GROWTH, "novel": 1, "blind_out": 1, "thawed": 1,
+        "blind_drop": 1,
         "fallback": [int(c in falls) for c in mon.names],
         "rounding": np.broadcast_to(getattr(mon, "rounding_c", 0.0), (n,)).tolist()}}
 
@@ -282,7 +293,8 @@ class CodeMonitor:
                      ("growth", EXCURSION_GROWTH),        # (an export before cmon82: flagged)
                      ("novel", 0),        # (before cmon82b: a new thermal state flagged)
                      ("blind_out", 0),    # (before cmon82c: a sensor no other predicts, flagged)
-                     ("thawed", 0)):      # (before freeze84: a freeze's return flagged)
+                     ("thawed", 0),       # (before freeze84: a freeze's return flagged)
+                     ("blind_drop", 0)):  # (before cmon84: its missing reading refused)
             a.setdefault(k, np.float64(v))
         a.setdefault("rounding", np.zeros(n))    # (before mon83: no culprit held for rounding)
         self.pairs = [tuple(int(i) for i in p) for p in arrays.get("pairs", [])]
@@ -296,6 +308,9 @@ class CodeMonitor:
         self.fallback = np.asarray(arrays.get("fallback", [0] * n), bool)
         # (cmon83) the law set of its fallback model in the code (0: none, an export before it)
         self.fallset = np.asarray(arrays.get("fallback_set", [0] * n), int)
+        # (cmon84) one no other predicts that the code holds out for a dropout or a freeze (held
+        # at its last reading), as served: enough left in to rebuild the field without it
+        self.drops = bool(a["blind_drop"]) & ~self.predictable & (n - 1 >= a["min_active"])
         self.reset()
 
     def reset(self) -> None:
@@ -327,6 +342,7 @@ class CodeMonitor:
         # sensor's last reading while it was in (what the model reads of one no other predicts)
         self.explains, self.last = np.zeros(n, bool), np.zeros(n)
         self.fell = False      # one whose fallback model the code lacks went out: flagged to the end
+        self.read = np.ones(n, bool)     # (cmon84) the sample's monitored readings there
         self.flags, self.sensor, self.rule, self.missed = 0, -1, 0, 0
 
     # the active set's operator, leverages, which sensors are judged and the errors' scale
@@ -389,14 +405,17 @@ class CodeMonitor:
             self.missed = rule
 
     def _exclude(self, j: int, rule: int) -> bool:
-        """``j`` out where the code holds it (one sensor out, others predict it); else flagged."""
-        if self.out >= 0 or not self.ported[j]:
+        """``j`` out where the code holds it (one sensor out, others predict it, or cmon84 a
+        dropout or a freeze of one no other predicts); else flagged."""
+        held = self.ported[j] or (rule in (DROPOUT, FREEZE) and self.drops[j])
+        if self.out >= 0 or not held:
             self._flag(NOT_IN_CODE, j, SECOND if self.out >= 0 else BLIND)
             return False
         self.out = j
         self.calm[j] = 0
         self._recompute()
         self._flag(EXCLUDED, j, rule)
+        self.fell = self.fell or bool(self.fallback[j] and not self.fallset[j])
         return True
 
     def refuses(self, u: np.ndarray, first: bool) -> int:
@@ -419,7 +438,7 @@ class CodeMonitor:
             rule = MISSING_FIRST
         elif new.sum() > 1 or (new.any() and (self.out >= 0 or rng.any())):
             rule = MISSING_SECOND
-        elif new.any() and not self.ported[j]:
+        elif new.any() and not (self.ported[j] or self.drops[j]):
             rule = MISSING_BLIND
         else:
             return 0
@@ -438,6 +457,7 @@ class CodeMonitor:
     def _step(self, u, first, dt, a):
         x = u[self.idx]
         missing = ~np.isfinite(x)
+        self.read = ~missing
         rng = (x < a["lo_lim"]) | (x > a["hi_lim"])
         if first:
             if rng.any():   # not in the code: the served monitor references it late
@@ -787,13 +807,15 @@ class CodeMonitor:
     def serving(self) -> int:
         """(cmon83) The law set the correction sums (:mod:`.fallbacks`): the fallback model's of
         the first sensor out (the monitor's order) that has one, as served (``_fallen_back``: not
-        while too few are in to rebuild the field; one that has none in the code: 0, flagged
-        ``FALLBACK``); 0: the model's.  (Its other clause, a sensor out for a dropout that reads
-        again, the code never meets: a missing reading of one no other predicts is refused.)"""
+        while too few are in to rebuild the field, nor of one out for a dropout that reads again:
+        cmon84, its held reading the model's while it waits out its window; one that has none in
+        the code: 0, flagged ``FALLBACK``); 0: the model's."""
         active = self._active()
         if active.sum() < self.a["min_active"]:
             return 0
-        k = next((k for k in range(self.n) if not active[k] and self.fallback[k]), None)
+        back = self.dropped & self.read
+        k = next((k for k in range(self.n) if not active[k] and not back[k] and self.fallback[k]),
+                 None)
         return 0 if k is None else int(self.fallset[k])
 
     def _second_culprit(self) -> None:

@@ -63,6 +63,7 @@ STATE = """    /* the sensor monitor (TC_MONITOR): referenced readings d = u - m
        last reading while it was in (what the model reads of one no other predicts, out) */
     int mon_explains[NM], mon_fell;   /* (mon_fell: one whose fallback model the code lacks went out) */
     double mon_last[NM];
+    int mon_read[NM];   /* (cmon84) the sample's monitored readings there (not missing) */
     int mon_flags, mon_sensor, mon_rule;        /* the last sample's (TC_MON_*) */
 """
 
@@ -87,7 +88,8 @@ def monitor_arrays(ss) -> list[tuple[str, object, tuple, str]]:
                ("MON_NEW_STATE_OTHERS", "new_state_others", 2, "int"),
                ("MON_MAX_BACKOFF", "max_backoff", 10, "int"), ("MON_TAU", "tau", 1800.0, "real"),
                ("MON_GROWTH", "growth", 1.5, "real"), ("MON_NOVEL", "novel", 0, "int"),
-               ("MON_BLIND_OUT", "blind_out", 0, "int"), ("MON_THAWED", "thawed", 0, "int"))
+               ("MON_BLIND_OUT", "blind_out", 0, "int"), ("MON_THAWED", "thawed", 0, "int"),
+               ("MON_BLIND_DROP", "blind_drop", 0, "int"))
     return [("MON_M", m.get("M", []), (n + 1 + len(pairs), n, n), "real"),
             ("MON_LEV", m.get("lev", []), (n + 1 + len(pairs), n), "real"),
             ("MON_PAIR_A", [p[0] for p in pairs], (len(pairs),), "int"),
@@ -185,9 +187,17 @@ static void mon_flag(tc_state *s, int bit, int k, int rule) {
     if (!s->mon_rule) s->mon_sensor = k, s->mon_rule = rule;   /* the sample's first event */
 }
 
-/* sensor k out where the code holds it (one out, the others predicting it); else flagged */
+/* (cmon84) 1: sensor k, no other predicts it, held out at its last reading for a dropout or a
+   freeze (as served: enough left in to rebuild the field without it) */
+static int mon_drops(int k) {
+    return MON_BLIND_DROP && !MON_PREDICTABLE[k] && NM - 1 >= MON_MIN_ACTIVE;
+}
+
+/* sensor k out where the code holds it (one out, the others predicting it, or a dropout or a
+   freeze of one no other predicts); else flagged */
 static void mon_exclude(tc_state *s, int k, int rule) {
-    if (s->mon_out >= 0 || !MON_PORTED[k]) {
+    int blind = (rule == TC_MON_DROPOUT || rule == TC_MON_FREEZE) && mon_drops(k);
+    if (s->mon_out >= 0 || !(MON_PORTED[k] || blind)) {
         mon_flag(s, TC_MON_NOT_IN_CODE, k, s->mon_out >= 0 ? TC_MON_SECOND : TC_MON_BLIND);
         return;
     }
@@ -195,6 +205,7 @@ static void mon_exclude(tc_state *s, int k, int rule) {
     s->mon_calm[k] = 0;
     mon_recompute(s);
     mon_flag(s, TC_MON_EXCLUDED, k, rule);
+    if (MON_FALLBACK[k] && !MON_FALLBACK_SET[k]) s->mon_fell = 1;   /* (none in the code) */
 }
 
 /* re-admission (cmon82: judged together, as served): ok[k] whether sensor k of the set trial
@@ -278,7 +289,7 @@ static int mon_refuses(tc_state *s, const double u[]) {
     if (miss < 0) return 0;
     if (s->first) rule = TC_MON_MISSING_FIRST;
     else if (nnew > 1 || (nnew && (s->mon_out >= 0 || rng))) rule = TC_MON_MISSING_SECOND;
-    else if (nnew && !MON_PORTED[j]) rule = TC_MON_MISSING_BLIND;
+    else if (nnew && !MON_PORTED[j] && !mon_drops(j)) rule = TC_MON_MISSING_BLIND;
     if (rule) mon_flag(s, TC_MON_NOT_IN_CODE, j >= 0 ? j : miss, rule);
     return rule;
 }
@@ -299,14 +310,16 @@ static void mon_rebuilt(tc_state *s, double u[], const double d[], const double 
 }
 
 /* (cmon83) the law set the correction sums (LAW_SET): the fallback model's of the first sensor
-   out that has one, as served (not while too few are in to rebuild the field; one whose model is
-   not in the code: 0, flagged FALLBACK); 0: the model's */
+   out that has one, as served (not while too few are in to rebuild the field, nor of one out for
+   a dropout that reads again, cmon84: its held reading the model's while it waits out its
+   window; one whose model is not in the code: 0, flagged FALLBACK); 0: the model's */
 static int mon_serving(const tc_state *s) {
     int k, in = 0;
     for (k = 0; k < NM; k++) in += k != s->mon_out && k != s->mon_out2;
     if (in < MON_MIN_ACTIVE) return 0;
     for (k = 0; k < NM; k++)
-        if ((k == s->mon_out || k == s->mon_out2) && MON_FALLBACK[k]) return MON_FALLBACK_SET[k];
+        if ((k == s->mon_out || k == s->mon_out2) && MON_FALLBACK[k]
+                && !(s->mon_dropped[k] && s->mon_read[k])) return MON_FALLBACK_SET[k];
     return 0;
 }
 
@@ -724,6 +737,7 @@ static void monitor_step(tc_state *s, double u[], double dt) {
     for (k = 0; k < NM; k++) {
         x[k] = u[TC_MONITORED[k]];   /* (NAN: missing, one mon_refuses let through) */
         missing[k] = !isfinite(x[k]);
+        s->mon_read[k] = !missing[k];
         if (missing[k] && lost < 0) lost = k;
         rng[k] = x[k] < MON_LO_LIM[k] || x[k] > MON_HI_LIM[k];
         if (rng[k] && far < 0) far = k;
