@@ -101,6 +101,7 @@ def _is_tdm(head: bytes) -> bool:
 # viewer's ASCII conversion (stranger82b), HBM catman's ASCII export (stranger84)
 _TEXT_EXPORTS = ((is_scope_text, scope_as_csv), (is_graphtec_text, graphtec_as_csv),
                  (is_yokogawa_text, yokogawa_as_csv), (is_catman_text, catman_as_csv))
+_DATED = (catman_as_csv, scope_as_csv)     # their dates with slashes: data.dayfirst (dates84)
 
 
 def _is_trace(head: bytes) -> bool:
@@ -161,7 +162,8 @@ def _read_runs(text: str, columns: list[str], opts, recorded: str | None = None,
     text = text.lstrip("\ufeff").replace(UNICODE_MINUS, "-")
     as_csv = next((convert for is_export, convert in _TEXT_EXPORTS if is_export(text)), None)
     if as_csv is not None:          # a logger's export piped in as written, its rows as CSV
-        text = as_csv(text, SOURCE)
+        text = (as_csv(text, SOURCE, opts.dayfirst) if as_csv in _DATED
+                else as_csv(text, SOURCE))
         opts = replace(opts, delimiter=",", decimal=".", thousands=None)
     opts = detected(text.splitlines()[:SNIFF_LINES], opts, SOURCE)   # data.delimiter=auto ...
     text = _table(text, opts.delimiter)

@@ -92,7 +92,7 @@ def long_period(sample, given: dict) -> dict | None:
     period is given."""
     opts = io.ReadOptions.from_cfg(given)
     if is_lab_file(sample) and opts.resample_s is None:   # a TDMS log's channels at two rates
-        with lab_as_csv(sample, encoding=opts.encoding) as text:
+        with lab_as_csv(sample, encoding=opts.encoding, dayfirst=opts.dayfirst) as text:
             return _long_period(text, given, csv_options(opts))
     return _long_period(sample, given, opts)
 
@@ -121,7 +121,8 @@ def number_cells(src, manifest, sample, given: dict, opts):
             code = given.get("encoding") or opts.encoding
             # (stranger77: a sensor replaced from a run on: its channel's empty runs are no edge)
             shared = SHARED if manifest is None else None
-            texts = [stack.enter_context(lab_as_csv(f, encoding=code, columns=shared)) for f in labs]
+            texts = [stack.enter_context(lab_as_csv(f, encoding=code, columns=shared,
+                                                    dayfirst=opts.dayfirst)) for f in labs]
             return opts, scanned(texts, ",", ".", UTF8, None, [], peek_csv, decimal_given=True)
     files = [f for f in files if is_text(f) and not is_converted(f, opts)]
     if not files or not is_text(sample):
@@ -351,7 +352,8 @@ def _init(cfg: DictConfig, held: ExitStack) -> dict:
     given["encoding"] = encoding(src, asked, manifest)      # a Windows export's
     sample = sample_file(src, manifest)
     # a lab's binary file (a TOB1 table, a TDMS log) converted once for every look and the read
-    held.enter_context(converted_once(src if manifest is None else None, given["encoding"]))
+    held.enter_context(converted_once(src if manifest is None else None, given["encoding"],
+                                      io.ReadOptions.from_cfg(given).dayfirst))
     long = long_period(sample, given)        # a historian's long file: the grid it is held onto
     opts, header, first, layout = head(sample, io.ReadOptions.from_cfg(given))
     pair = paired_head(sample, manifest.index[0], manifest, io.ReadOptions.from_cfg(given),

@@ -1,0 +1,93 @@
+"""Day or month first, decided from a lab file itself (dates84): a catman export's T0 and a Scope
+View export's date-times with slashes were read month first, so an en-GB PC's ``03/05/2027`` (the
+3rd of May) was read as the 5th of March without a word (bench_stranger84)."""
+
+from __future__ import annotations
+
+import datetime as dt
+import re
+
+import pandas as pd
+import pytest
+
+from conftest import refused
+from test_scope77 import ROWS, scope
+from test_stranger84 import START, export
+from thermocomp.core.io import read_dataset
+
+ROLES = {"roles": {"error": ["MCS*"]}, "encoding": "cp1252", "test_fraction": 0.5}
+
+
+def _day_first(path, start: dt.datetime):
+    """The export as an en-GB PC writes it: its T0 day first."""
+    text = path.read_bytes().replace(f"{start:%m/%d/%Y}".encode(), f"{start:%d/%m/%Y}".encode())
+    path.write_bytes(text)
+
+
+def _gb_folder(root, days=(0, 1)):
+    for run, day in enumerate(days, start=1):
+        path = export(root, run)
+        _day_first(path, START + dt.timedelta(days=run - 1))
+        if day != run - 1:          # (the run on another day: its T0's date moved)
+            text = path.read_bytes().decode("cp1252")
+            moved = f"{START + dt.timedelta(days=day):%d/%m/%Y}"
+            path.write_bytes(re.sub(r"\d\d/\d\d/\d{4}", moved, text).encode("cp1252"))
+    return root
+
+
+def test_a_t0_either_order_could_read_is_refused_naming_file_line_and_the_key(tmp_path, capsys):
+    """(Before: read month first, the 5th of March.)"""
+    _gb_folder(tmp_path / "rig")
+    said = refused(["init", str(tmp_path / "rig"), f"out={tmp_path / 'init'}"], capsys,
+                   "column 'T0'", "'03/05/2027 07:00:00' is day or month first",
+                   "data.dayfirst=true", "data.dayfirst=false")
+    assert str(tmp_path / "rig" / "SP_T1.TXT") in said and "line 9" in said
+
+
+@pytest.mark.parametrize("dayfirst, start", [(True, START), (False, dt.datetime(2027, 3, 5, 7))])
+def test_data_dayfirst_says_the_order(tmp_path, dayfirst, start):
+    ds, _ = read_dataset(_gb_folder(tmp_path / "rig"), {**ROLES, "dayfirst": dayfirst})
+    assert ds.manifest["start"].iloc[0] == pd.Timestamp(start)
+
+
+def test_a_day_past_12_fixes_the_order_of_its_file(tmp_path):
+    """(Before: '13/05/2027 07:00:00' refused as no date and time.)"""
+    ds, _ = read_dataset(_gb_folder(tmp_path / "rig", days=(10, 12)), ROLES)
+    assert list(ds.manifest["start"]) == [pd.Timestamp(2027, 5, 13, 7), pd.Timestamp(2027, 5, 15, 7)]
+
+
+def _slashed_scope(path, start):
+    """A Scope View export with absolute times, its date-times ``dd/mm/yyyy HH:MM:SS.fff``."""
+    scope(path, start)
+    text = path.read_bytes().decode("cp1252")
+    path.write_bytes(re.sub(r"(\d\d)\.(\d\d)\.(\d{4}) (\d\d:\d\d:\d\d),(\d{3})", r"\1/\2/\3 \4.\5",
+                            text).encode("cp1252"))
+
+
+def test_a_scope_run_across_midnight_tells_its_order(tmp_path):
+    """01/02 23:59:50 then 02/02 00:00:00: 10 s day first, a month month first (before: read
+    month first, a month's jump in the run)."""
+    root = tmp_path / "runs"
+    root.mkdir()
+    starts = [dt.datetime(2027, 2, day, 23, 55) for day in (1, 3, 5)]
+    for run, start in enumerate(starts, start=1):
+        _slashed_scope(root / f"Scope_{run}.csv", start)
+    ds, _ = read_dataset(root, {"roles": {"error": ["Tracker*"]}, "encoding": "cp1252",
+                                "test_fraction": 0.34, "max_gap_samples": 1})
+    assert list(ds.manifest["start"]) == [pd.Timestamp(s) for s in starts]
+    assert ds.campaigns["Scope_1"]["time"].max() < ROWS * 10.0
+
+
+def test_a_labview_date_day_first_is_read_by_data_dayfirst_not_guessed(tmp_path, capsys):
+    """An en-GB LabVIEW's ``Date 06/09/2027`` (its segments' too): refused, then read by the key
+    (before: month first, the 9th of June)."""
+    from test_stranger69 import CFG, _folder
+
+    folder = _folder(tmp_path / "runs")
+    for path in folder.iterdir():
+        text = path.read_bytes().decode("cp1252")
+        path.write_bytes(re.sub(r"(\d{4})/(\d\d)/(\d\d)", r"\3/\2/\1", text).encode("cp1252"))
+    refused(["init", str(folder), f"out={tmp_path / 'init'}"], capsys, "column 'Date'",
+            "'06/09/2027' is day or month first", "data.dayfirst=true")
+    ds, _ = read_dataset(folder, {**CFG, "dayfirst": True})
+    assert list(ds.manifest["start"]) == [pd.Timestamp(2027, 9, d, 6) for d in (6, 8, 10)]
