@@ -91,3 +91,25 @@ def test_a_labview_date_day_first_is_read_by_data_dayfirst_not_guessed(tmp_path,
             "'06/09/2027' is day or month first", "data.dayfirst=true")
     ds, _ = read_dataset(folder, {**CFG, "dayfirst": True})
     assert list(ds.manifest["start"]) == [pd.Timestamp(2027, 9, d, 6) for d in (6, 8, 10)]
+
+
+def test_a_folder_is_one_record_read_in_the_order_one_of_its_files_says(tmp_path, capsys):
+    """The 3rd's test read day first as the 13th's says, in init (written to the config) and in a
+    read (before: the 13th refused as no date and time)."""
+    root = _gb_folder(tmp_path / "rig", days=(0, 10))
+    ds, _ = read_dataset(root, ROLES)
+    assert list(ds.manifest["start"]) == [pd.Timestamp(2027, 5, 3, 7), pd.Timestamp(2027, 5, 13, 7)]
+    from thermocomp.shell.cli import main
+
+    assert main(["init", str(root), f"out={tmp_path / 'init'}"]) == 0
+    assert "dates with slashes read day first, as SP_T2.TXT's '13/05/2027' says" in capsys.readouterr().out
+    assert "dayfirst: true" in (tmp_path / "init" / "conf" / "data" / "rig.yaml").read_text()
+
+
+def test_files_saying_both_orders_are_refused_naming_both(tmp_path, capsys):
+    root = _gb_folder(tmp_path / "rig", days=(10, 11))
+    second = root / "SP_T2.TXT"                   # its T0 written month first: 05/14/2027
+    second.write_bytes(second.read_bytes().replace(b"14/05/2027", b"05/14/2027"))
+    said = refused(["init", str(root), f"out={tmp_path / 'init'}"], capsys,
+                   "'13/05/2027' is day first", "'05/14/2027' month first", "data.dayfirst=true|false")
+    assert str(root / "SP_T1.TXT") in said and str(second) in said

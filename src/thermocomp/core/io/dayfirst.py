@@ -10,7 +10,9 @@ for the whole file (one date past 12 each way: refused, naming both); else an or
 where the file's dates, read so, never go back and never step 27 days or more at once (where
 the date turns a day in one order it turns a month in the other: a run of samples across
 midnight tells); one order possible is taken, both (a file whose dates are one day's) are
-refused naming the file, the column, the row and ``data.dayfirst``: never a guess.
+refused naming the file, the column, the row and ``data.dayfirst``: never a guess.  A folder's
+files are one record, read in one order: a date past 12 in any of them decides for all
+(:func:`record_dayfirst`; ``init`` writes it as ``data.dayfirst``).
 """
 
 from __future__ import annotations
@@ -18,6 +20,7 @@ from __future__ import annotations
 import re
 from collections.abc import Callable, Sequence
 from datetime import datetime, timedelta
+from pathlib import Path
 
 from .contract import ContractError
 
@@ -106,3 +109,35 @@ def parse_with(forms: Sequence[str]) -> Callable[[str, bool], datetime | None]:
                 continue
         return None
     return parse
+
+
+_ANY = re.compile(r"(?<![\d/])(\d{1,2})/(\d{1,2})/\d{2,4}(?![\d/])")
+
+
+def record_dayfirst(files, dated: Callable[[Path], bool], encoding: str = "utf-8"
+                    ) -> tuple[bool, Path, str] | None:
+    """The order one file of a record's says by a field past 12, for all its files (a catman
+    folder whose tests of the 13th say month first, the 3rd's alike): ``(day_first, file,
+    date)``, None where none says one.  ``dated``: a file read by a reader of its own dates.
+
+    Raises
+    ------
+    ContractError
+        Where one file says day first and another month first, naming both.
+    """
+    said: dict[bool, tuple[Path, str]] = {}
+    for path in files:
+        if not dated(path):
+            continue
+        with open(path, encoding=encoding, errors="replace") as f:
+            for m in _ANY.finditer(f.read()):
+                a, b = int(m[1]), int(m[2])
+                if (a > 12) != (b > 12):
+                    said.setdefault(a > 12, (Path(path), m[0]))
+    if len(said) == 2:
+        (day, d), (month, m) = said[True], said[False]
+        raise ContractError(f"date {d!r} is day first, but file {month}'s {m!r} month first: "
+                            f"the files of one record are read in one order; set {KEY}=true|false "
+                            "to the one the PC wrote, or read each as a record of its own",
+                            file=day)
+    return next(((order, *where) for order, where in said.items()), None)

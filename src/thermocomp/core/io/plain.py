@@ -12,7 +12,8 @@ from pathlib import Path
 
 from .catman import catman_records, is_catman
 from .contract import ContractError
-from .encoding import UTF8
+from .dayfirst import record_dayfirst
+from .encoding import UTF8, text_codec
 from .fixedwidth import fixed_as_csv, is_fixed_width
 from .graphtec import graphtec_records, is_graphtec
 from .hdf5 import hdf5_records, is_hdf5
@@ -43,6 +44,14 @@ def is_lab_file(path) -> bool:
     return (is_tdms(path) or is_mat(path) or is_lvm(path) or is_tob(path) or is_scope(path)
             or is_hdf5(path) or is_tdm(path) or is_trace(path) or headerless(path)
             or is_graphtec(path) or is_yokogawa(path) or is_catman(path))
+
+
+def lab_dayfirst(files, encoding: str = UTF8) -> tuple[bool, Path, str] | None:
+    """The order of the dates with slashes a file of the record ``files`` says by a field past
+    12, among the lab files whose reader parses its own dates (a catman T0, a Scope View date,
+    a LabVIEW Date: :func:`.dayfirst.record_dayfirst`)."""
+    return record_dayfirst(files, lambda p: is_catman(p) or is_scope(p) or is_lvm(p),
+                           text_codec(encoding))
 
 
 def is_converted(path, opts=None) -> bool:

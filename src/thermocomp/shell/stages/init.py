@@ -25,6 +25,7 @@ from ...core import io
 from ...core.io.bits import proposed as bits_proposed
 from ...core.io.cells import Cells, scanned
 from ...core.io.contract import MANIFEST, TIME
+from ...core.io.dayfirst import WAY
 from ...core.io.derived import probe_pairs, proposal
 from ...core.io.detect import (
     TRAVEL_UM,
@@ -65,7 +66,7 @@ from ...core.io.manifest import is_text
 from ...core.io.options import RUN_ROLE
 from ...core.io.pairhead import error_files, pair_time, paired_head, paired_lines
 from ...core.io.period_line import stated_period
-from ...core.io.plain import converted_once, is_converted, is_lab_file, lab_as_csv
+from ...core.io.plain import converted_once, is_converted, is_lab_file, lab_as_csv, lab_dayfirst
 from ...core.io.rates import PAUSE_PERIODS, pauses
 from ...core.io.record import safe_id
 from ...core.io.roles import excel_days_header, naming, split_unit
@@ -351,6 +352,11 @@ def _init(cfg: DictConfig, held: ExitStack) -> dict:
         manifest = None
     given["encoding"] = encoding(src, asked, manifest)      # a Windows export's
     sample = sample_file(src, manifest)
+    files = [src] if manifest is None else [src / f for f in manifest["file"]]
+    if given.get("dayfirst") is None and (said := lab_dayfirst(files, given["encoding"])):
+        given["dayfirst"] = said[0]            # (dates84: one order for the record's files)
+        print(f"{src.name}: dates with slashes read {WAY[said[0]]}, as {said[1].name}'s "
+              f"{said[2]!r} says, in every file: data.dayfirst={str(said[0]).lower()}")
     # a lab's binary file (a TOB1 table, a TDMS log) converted once for every look and the read
     held.enter_context(converted_once(src if manifest is None else None, given["encoding"],
                                       io.ReadOptions.from_cfg(given).dayfirst))
