@@ -173,8 +173,8 @@ Date): a field past 12 in any file of the folder decides for every file, said an
 '05/13/2027' says" (6.0 s); en-GB refused before at T09 ("its T0 '13/05/2027 07:00:00' is no
 date and time"; tests 1-8 alone, read: started 2027-03-05, 04-05, ... 12-05 without a word),
 read day first after in 1 try (6.1 s); tests 1-8 alone (every day 12 or less) refused after,
-naming the file, the column ``T0``, the line and ``data.dayfirst=true|false``.  Tilt B (8727, the command above,
-2.9 + 0.3 s): 0.78 -> 1.02 µrad before and after, as nothing was changed for it: a derived
+naming the file, the column ``T0``, the line and ``data.dayfirst=true|false``.  Tilt B (8727,
+the command above, 2.9 + 0.3 s): 0.78 -> 1.02 µrad before and after, as nothing was changed for it: a derived
 target is computed as each campaign is read, before any model, and gets the zero rule of every
 target (auto validates ``none`` beside its candidates; MLR's table names a target validating
 worse than none, test_stable67 pins both for a derived one).  Its validation (4 blocked folds)
