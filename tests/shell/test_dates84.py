@@ -113,3 +113,28 @@ def test_files_saying_both_orders_are_refused_naming_both(tmp_path, capsys):
     said = refused(["init", str(root), f"out={tmp_path / 'init'}"], capsys,
                    "'13/05/2027' is day first", "'05/14/2027' month first", "data.dayfirst=true|false")
     assert str(root / "SP_T1.TXT") in said and str(second) in said
+
+
+def _csv_folder(root, days):
+    """Two runs of a CSV table, its time ``dd/mm/yyyy HH:MM:SS`` (an en-GB PC's)."""
+    root.mkdir()
+    for run, day in enumerate(days, start=1):
+        t = pd.date_range(dt.datetime(2027, 5, day, 7), periods=40, freq="60s")
+        heat = (t - t[0]).total_seconds().to_numpy() / 2400.0
+        pd.DataFrame({"time": t.strftime("%d/%m/%Y %H:%M:%S"), "T_a": 20 + heat,
+                      "E_x": 3.0 * heat}).to_csv(root / f"run_{run}.csv", index=False)
+    return root
+
+
+def test_a_csv_tables_slashed_dates_read_by_data_dayfirst_too(tmp_path, capsys):
+    """One key for every reader (before: a CSV's either-way date named data.time alone)."""
+    root = _csv_folder(tmp_path / "csv", (3, 4))
+    opts = {"test_fraction": 0.5, "dayfirst": True}
+    ds, _ = read_dataset(root, opts)
+    assert list(ds.manifest["start"]) == [pd.Timestamp(2027, 5, 3, 7), pd.Timestamp(2027, 5, 4, 7)]
+    refused(["init", str(root), f"out={tmp_path / 'init'}"], capsys, "day or month first",
+            "data.dayfirst=true|false")
+    later = _csv_folder(tmp_path / "later", (3, 13))
+    with pytest.raises(Exception, match=r"'13/05/2027 07:00:00' says .* day first, but "
+                                        r"data.dayfirst=false"):
+        read_dataset(later, {**opts, "dayfirst": False})
