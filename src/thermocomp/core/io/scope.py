@@ -158,7 +158,9 @@ def _record(lines: list[str], label: str, path: Path, dayfirst: bool | None = No
     # the order of its dates with slashes: the StartTime's and the first time column's decide
     said = [(c, _line_of(lines, "StartTime")) for c in preamble.get("StartTime", [])]
     said += [(r[cols[0]], line) for line, r in rows if cols and cols[0] < len(r)]
-    order = slashed_order(said, dayfirst, parse_with(_DATES), path, "StartTime")
+    column = ("StartTime" if any("/" in c for c, _ in said[:len(preamble.get("StartTime", []))])
+              else f"Time of {names[cols[0] + 1].strip()!r}" if cols else "Time")
+    order = slashed_order(said, dayfirst, parse_with(_DATES), path, column)
     forms = _DATES if order is None else swapped(_DATES, order)
     start, utc = _start(preamble, path, forms=forms)
     read = [(j, names[j + 1].strip(), *_column(rows, j, decimal, path, names[j + 1].strip(),
