@@ -7,6 +7,7 @@ from __future__ import annotations
 import datetime as dt
 import re
 
+import numpy as np
 import pandas as pd
 import pytest
 
@@ -122,6 +123,7 @@ def _csv_folder(root, days):
         t = pd.date_range(dt.datetime(2027, 5, day, 7), periods=40, freq="60s")
         heat = (t - t[0]).total_seconds().to_numpy() / 2400.0
         pd.DataFrame({"time": t.strftime("%d/%m/%Y %H:%M:%S"), "T_a": 20 + heat,
+                      "T_b": 20 + heat ** 2, "T_c": 20 + np.sin(3 * heat + run),
                       "E_x": 3.0 * heat}).to_csv(root / f"run_{run}.csv", index=False)
     return root
 
@@ -138,3 +140,23 @@ def test_a_csv_tables_slashed_dates_read_by_data_dayfirst_too(tmp_path, capsys):
     with pytest.raises(Exception, match=r"'13/05/2027 07:00:00' says .* day first, but "
                                         r"data.dayfirst=false"):
         read_dataset(later, {**opts, "dayfirst": False})
+
+
+def test_a_stream_of_such_rows_reads_in_data_dayfirsts_order(tmp_path, monkeypatch):
+    """The test run piped in (``monitor.input=-``) scores as its file does (before: refused,
+    "day or month first? set data.time ...", the key read by the file's reader alone)."""
+    import io as _io
+    import json
+
+    from conftest import FAST
+    from thermocomp.shell.cli import main
+
+    root = _csv_folder(tmp_path / "csv", (3, 4))
+    common = ["monitor", f"data.path={root}", "data.test_fraction=0.5", "data.dayfirst=true", *FAST]
+    assert main([*common, f"out={tmp_path / 'file'}"]) == 0
+    monkeypatch.setattr("sys.stdin", _io.StringIO((root / "run_2.csv").read_text()))
+    assert main([*common, "monitor.input=-", f"out={tmp_path / 'pipe'}"]) == 0
+    said = [json.loads((tmp_path / k / "monitor.json").read_text())["targets"]["E_x"]
+            for k in ("file", "pipe")]
+    assert said[1]["n_samples"] == 40
+    assert said[1]["rmse_fixed"] == pytest.approx(said[0]["rmse_fixed"], rel=1e-12)
