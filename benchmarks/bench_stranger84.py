@@ -164,6 +164,25 @@ control (the thermocouples' lag, traced: nothing accepted with them quick);
 a T0 with slashes is read month first (catman's en-US), not by the record's one decision
 (slashed.py): an en-GB PC's day-first T0 is misread where its day is 12 or less; the layout is
 written from memory of catman's export, not checked against a file catman wrote.
+
+dates84 (2026-12-04; a fresh draw 8766, ``write ... en``, and its en-GB copy, every T0 written
+day first; ``init``, CPU user + sys): a slashed T0 is no longer read month first by default
+(:mod:`thermocomp.core.io.dayfirst`, shared by catman's T0, a Scope View's dates, a LabVIEW
+Date): a field past 12 in any file of the folder decides for every file, said and written as
+``data.dayfirst``; en-US 1 try before (6.7 s) and after, "month first, as SP84_T09.TXT's
+'05/13/2027' says" (6.0 s); en-GB refused before at T09 ("its T0 '13/05/2027 07:00:00' is no
+date and time"; tests 1-8 alone, read: started 2027-03-05, 04-05, ... 12-05 without a word),
+read day first after in 1 try (6.1 s); tests 1-8 alone (every day 12 or less) refused after,
+naming the file, the column ``T0``, the line and ``data.dayfirst=true|false``.  Tilt B (8727,
+the command above, 2.9 + 0.3 s): 0.78 -> 1.02 µrad before and after, as nothing was changed for it: a derived
+target is computed as each campaign is read, before any model, and gets the zero rule of every
+target (auto validates ``none`` beside its candidates; MLR's table names a target validating
+worse than none, test_stable67 pins both for a derived one).  Its validation (4 blocked folds)
+says the correction helps, 0.826 against no correction's 1.10 (folds 0.72-0.94), and auto
+kept MLR by it (model=auto, 18.5 + 1.2 s: test 1.02 too); the held-out test disagrees.  The
+tilt derived after prediction from the probes' MLR corrections, ``(C_X1 - C_X2) / 0.1``, is
+the same 1.0235 µrad (MLR is linear): not a derived-target trap, a validation the test
+disagrees with on a target at the probes' noise.
 """
 from __future__ import annotations
 

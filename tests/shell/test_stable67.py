@@ -152,3 +152,18 @@ def test_a_val_split_scores_no_correction_too(record, tmp_path):
     assert noise["auto"]["chosen"] == "none"
     assert noise["test"]["rmse"] == pytest.approx(noise["test"]["rms_before"], rel=1e-12)
     assert real["auto"]["chosen"] != "none"
+
+
+def test_a_derived_target_gets_the_zero_rule_and_its_message(record, tmp_path, capsys):
+    """(dates84) A ``data.derive`` target is computed as the campaign is read, before any model:
+    fitted, validated and judged against no correction as a measured one is (a tilt of the
+    noise probe: auto keeps a zero correction; MLR's table says it validates worse)."""
+    derive = "+data.derive={E_tilt_N: 'E_N / 0.1'}"
+    tilt = _run(record, tmp_path / "auto", *AUTO, derive)["E_tilt_N"]
+    assert tilt["auto"]["chosen"] == "none"
+    assert tilt["test"]["rmse"] == pytest.approx(tilt["test"]["rms_before"], rel=1e-12)
+    capsys.readouterr()
+    v = _run(record, tmp_path / "mlr", "model=mlr", derive)["E_tilt_N"]["validation"]
+    said = capsys.readouterr()
+    line = next(x for x in (said.out + said.err).splitlines() if "WORSE THAN NO COMPENSATION" in x)
+    assert v["rmse"] > v["rms_before"] and f"E_tilt_N {v['rmse']:.3g} > {v['rms_before']:.3g}" in line

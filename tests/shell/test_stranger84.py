@@ -60,7 +60,9 @@ def export(folder: Path, run: int, groups: int = 1, german: bool = False) -> Pat
     return path
 
 
-ROLES = {"roles": {"error": ["MCS*"]}, "encoding": "cp1252", "test_fraction": 0.5}
+# (dates84: an English export's T0 05/03/2027 is month first only by data.dayfirst=false)
+ROLES = {"roles": {"error": ["MCS*"]}, "encoding": "cp1252", "test_fraction": 0.5,
+         "dayfirst": False}
 # one group's file: the lines above its first sample (the header block's 4, a block of 7 lines
 # per channel and its time channel, the column row)
 TOP = 4 + 7 * (1 + len(CHANNELS)) + 1
@@ -99,7 +101,8 @@ def test_two_rate_groups_are_held_onto_the_fast_groups_grid(tmp_path):
 def test_init_reads_a_two_group_folder_in_one_try(tmp_path, capsys):
     for run in (1, 2, 3):
         export(tmp_path / "rig", run, groups=2)
-    assert main(["init", str(tmp_path / "rig"), f"out={tmp_path / 'init'}"]) == 0
+    assert main(["init", str(tmp_path / "rig"), "data.dayfirst=false",
+                 f"out={tmp_path / 'init'}"]) == 0
     said = capsys.readouterr().out
     assert "HBM catman's ASCII export" in said and "data.resample_s=10" in said, said
     conf = (tmp_path / "init" / "conf" / "data" / "rig.yaml").read_text()
@@ -125,7 +128,8 @@ def _spoiled(tmp_path, change) -> Path:
 ])
 def test_a_spoiled_export_is_refused_naming_its_line(tmp_path, capsys, change, says):
     path = _spoiled(tmp_path, change)
-    said = refused(["init", str(tmp_path / "rig"), f"out={tmp_path / 'init'}"], capsys, *says)
+    said = refused(["init", str(tmp_path / "rig"), "data.dayfirst=false", f"out={tmp_path / 'init'}"],
+                   capsys, *says)
     assert str(path) in said
 
 
@@ -141,7 +145,8 @@ def test_a_catman_export_piped_into_monitor_streams_as_the_file_does(tmp_path, m
     for run in (1, 2):
         path = export(tmp_path / "rig", run, groups=groups)
     common = ["monitor", f"data.path={tmp_path / 'rig'}", "data.roles.error=[MCS*]",
-              "data.encoding=cp1252", "data.test_fraction=0.5", "data.resample_s=10", *FAST]
+              "data.encoding=cp1252", "data.test_fraction=0.5", "data.resample_s=10",
+              "data.dayfirst=false", *FAST]
     assert main([*common, f"out={tmp_path / 'file'}"]) == 0
     monkeypatch.setattr("sys.stdin", _io.TextIOWrapper(_io.BytesIO(path.read_bytes())))
     assert main([*common, "monitor.input=-", f"out={tmp_path / 'pipe'}"]) == 0, capsys.readouterr().err
@@ -158,7 +163,7 @@ def test_the_compiled_stream_refuses_a_catman_export_naming_the_command_that_con
     for run in (1, 2):
         path = export(tmp_path / "rig", run)
     common = [f"data.path={tmp_path / 'rig'}", "data.roles.error=[MCS*]", "data.encoding=cp1252",
-              "data.test_fraction=0.5"]
+              "data.dayfirst=false", "data.test_fraction=0.5"]
     assert main(["run", *common, *FAST, "model=mlr", f"out={tmp_path / 'run'}"]) == 0
     assert main(["export", *common, "track=false", "export.format=c",
                  f"export.model={tmp_path / 'run' / 'model.pkl'}", f"out={tmp_path / 'code'}"]) == 0
@@ -170,7 +175,7 @@ def test_the_compiled_stream_refuses_a_catman_export_naming_the_command_that_con
             b"blocks above the table; convert it to the rows the served model reads it as: "
             b"`thermocomp rows FILE") in done.stderr, done.stderr
     capsys.readouterr()
-    assert main(["rows", str(path), *common[1:3]]) == 0
+    assert main(["rows", str(path), *common[1:4]]) == 0
     rows = capsys.readouterr().out
     streamed = subprocess.run([stream], capture_output=True, input=rows.encode())
     assert streamed.returncode == 0, streamed.stderr

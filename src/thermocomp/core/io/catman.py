@@ -23,6 +23,7 @@ from pathlib import Path
 import numpy as np
 
 from .contract import ContractError
+from .dayfirst import parse_with, slashed_order, swapped
 from .encoding import UTF8, text_head, text_lines
 from .labfile import Channel, Record, marked_values, text_as_csv, with_unit
 
@@ -52,22 +53,25 @@ def is_catman_text(text: str) -> bool:
     return _is_head(text[:2048])
 
 
-def catman_records(path: Path, encoding: str = UTF8) -> list[Record]:
-    """The one measurement of the export ``path``."""
-    return [_record(text_lines(path, encoding), path.stem, path)]
+def catman_records(path: Path, encoding: str = UTF8, dayfirst: bool | None = None
+                   ) -> list[Record]:
+    """The one measurement of the export ``path`` (``dayfirst``: ``data.dayfirst``, the order
+    of its T0s with slashes, :mod:`.dayfirst`)."""
+    return [_record(text_lines(path, encoding), path.stem, path, dayfirst)]
 
 
-def catman_as_csv(text: str, source: str) -> str:
+def catman_as_csv(text: str, source: str, dayfirst: bool | None = None) -> str:
     """An export streamed (``monitor.input=-``) as the CSV text its channels are read as from a
     file (:mod:`.labfile`): a slower group's channels held onto the fastest group's times, as
     the file's grid of ``data.resample_s`` holds them (a stream reads no long file)."""
-    return text_as_csv(_held, text, source)
+    return text_as_csv(lambda lines, label, path: _held(lines, label, path, dayfirst), text,
+                       source)
 
 
-def _held(lines: list[str], label: str, path: Path) -> Record:
+def _held(lines: list[str], label: str, path: Path, dayfirst: bool | None = None) -> Record:
     """The record, every channel on its fastest group's times: a slower one's value the last
     sample at or before each (sample and hold)."""
-    record = _record(lines, label, path)
+    record = _record(lines, label, path, dayfirst)
     grid = max((c.time for c in record.channels), key=len)
     laid = []
     for c in record.channels:
@@ -88,15 +92,18 @@ def _blocks(lines: list[str], sep: str, path: Path) -> tuple[list[dict], int]:
             blocks.append({"name": value.strip(), "line": k + 1})
         elif blocks and key.endswith(":") and sep in line:
             blocks[-1][key[:-1].strip().lower()] = value.strip()
+            blocks[-1][f"{key[:-1].strip().lower()} line"] = k + 1
         elif blocks and line.strip():
             return blocks, k
     raise ContractError("no table (a row of the channels' names, then the samples) under the "
                         "channel blocks: the file was cut short?", file=path)
 
 
-def _record(lines: list[str], label: str, path: Path) -> Record:
+def _record(lines: list[str], label: str, path: Path, dayfirst: bool | None = None) -> Record:
     sep = _FIRST.match(lines[0]).group(2)
     blocks, top = _blocks(lines, sep, path)
+    t0s = [(b["t0"], b["t0 line"]) for b in blocks if b.get("t0")]
+    day_first = bool(slashed_order(t0s, dayfirst, parse_with(_T0), path, "T0"))
     header = [c.strip() for c in lines[top].split(sep)]
     names = [b["name"] for b in blocks]
     if header != names:
@@ -106,7 +113,8 @@ def _record(lines: list[str], label: str, path: Path) -> Record:
     body = [(k + 1, line.split(sep)) for k, line in enumerate(lines[top + 1:], start=top + 1)
             if line.strip()]
     try:
-        return Record(label, _channels(blocks, body, top, sep, path), utc=False)
+        return Record(label, _channels(blocks, body, top, sep, path, swapped(_T0, day_first)),
+                      utc=False)
     except ContractError as exc:     # its data row beside the line, the row a sample
         rows = {line: n + 1 for n, (line, _) in enumerate(body)}
         if exc.row is not None or exc.line not in rows:
@@ -115,8 +123,10 @@ def _record(lines: list[str], label: str, path: Path) -> Record:
                             line=exc.line) from None
 
 
-def _channels(blocks: list[dict], body: list, top: int, sep: str, path: Path) -> list[Channel]:
-    """The channels of the table's rows ``body`` (``(line, cells)``), each on its group's time."""
+def _channels(blocks: list[dict], body: list, top: int, sep: str, path: Path,
+              forms: tuple[str, ...]) -> list[Channel]:
+    """The channels of the table's rows ``body`` (``(line, cells)``), each on its group's time
+    (its T0 read by ``forms``)."""
     names = [b["name"] for b in blocks]
     for n, (line, cells) in enumerate(body):
         if len(cells) != len(names):
@@ -132,12 +142,12 @@ def _channels(blocks: list[dict], body: list, top: int, sep: str, path: Path) ->
         length = _length(block, body, j, path)
         rows = body[:length]
         if _TIME.match(block["name"]):
-            time = _times(block, rows, j, comma, path)
+            time = _times(block, rows, j, comma, path, forms)
             continue
         what = f"channel {j + 1} {block['name']!r}"
         values = marked_values(rows, j, what, path, _MISSING, "NaN", comma)
         if time is None or time.size != values.size:
-            time = _times(block, rows, None, comma, path)
+            time = _times(block, rows, None, comma, path, forms)
         channels.append(Channel(with_unit(block["name"], block.get("unit") or block.get("einheit")),
                                 values, time, what))
     if not channels:
@@ -164,7 +174,8 @@ def _length(block: dict, body: list, j: int, path: Path) -> int:
     return length
 
 
-def _times(block: dict, rows: list, j: int | None, comma: bool, path: Path) -> np.ndarray:
+def _times(block: dict, rows: list, j: int | None, comma: bool, path: Path,
+           forms: tuple[str, ...]) -> np.ndarray:
     """The group's times: its T0 plus the time channel's seconds (column ``j``; None: its sample
     rate's steps); seconds alone where the block gives no T0."""
     if j is not None:
@@ -185,7 +196,7 @@ def _times(block: dict, rows: list, j: int | None, comma: bool, path: Path) -> n
     t0 = block.get("t0")
     if not t0:
         return seconds
-    for form in _T0:
+    for form in forms:
         try:
             start = np.datetime64(datetime.strptime(t0, form), "us")
             break

@@ -191,7 +191,7 @@ def head(sample: Path, opts) -> tuple[object, list[str], list[str], str]:
                 else described(sample) if is_tob(sample)
                 else "a TDMS log") + " (its channels as columns)"
         encoding = opts.encoding                 # (the file's: the temporary CSV is UTF-8)
-        with lab_as_csv(sample, encoding=encoding) as text:
+        with lab_as_csv(sample, encoding=encoding, dayfirst=opts.dayfirst) as text:
             opts, header, first, layout = head(text, csv_options(opts))
             layout = layout.replace("a historian's long file (", "channels at their own rates, "
                                     "written long (", 1)

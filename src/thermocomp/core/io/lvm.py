@@ -33,6 +33,7 @@ from pathlib import Path
 import numpy as np
 
 from .contract import ContractError
+from .dayfirst import parse_with, slashed_order, swapped
 from .encoding import UTF8, check_text, first_undecodable, text_codec
 from .labfile import Channel, Record, with_unit
 
@@ -42,15 +43,17 @@ END = "***End_of_Header***"
 SEPARATORS = {"tab": "\t", "comma": ",", "semicolon": ";", "space": " "}
 X_HEADER = "X_Value"
 COMMENT = "Comment"
+_STARTS = ("%Y/%m/%d %H:%M:%S", "%Y-%m-%d %H:%M:%S", "%d.%m.%Y %H:%M:%S", "%m/%d/%Y %H:%M:%S")
 
 
 def is_lvm(path) -> bool:
     return Path(path).suffix.lower() in LVM_SUFFIXES
 
 
-def lvm_records(path: Path, encoding: str = UTF8) -> list[Record]:
+def lvm_records(path: Path, encoding: str = UTF8, dayfirst: bool | None = None) -> list[Record]:
     """The runs of the LabVIEW Measurement File ``path``: one, or one per session that
-    appended to it (each writes its own file header, ``LabVIEW Measurement`` again)."""
+    appended to it (each writes its own file header, ``LabVIEW Measurement`` again);
+    ``dayfirst``: ``data.dayfirst``, the order of its ``Date`` s with slashes (:mod:`.dayfirst`)."""
     raw = path.read_bytes()
     check_text(raw[:1 << 16], encoding, path)
     try:
@@ -89,7 +92,11 @@ def lvm_records(path: Path, encoding: str = UTF8) -> list[Record]:
         raise ContractError("no segment with rows in the LabVIEW Measurement File", file=path)
     runs.append((header, segments))
     labels = [path.stem] if len(runs) == 1 else [f"{path.stem}_{i + 1}" for i in range(len(runs))]
-    return [_record(path, label, *run, sep) for label, run in zip(labels, runs)]
+    dates = [(d, line) for k, line in enumerate(lines, start=1) if lines[k - 1].startswith("Date")
+             for d in _cells(lines[k - 1], sep)[1:2]]
+    order = slashed_order(dates, dayfirst, parse_with(("%m/%d/%Y",)), path, "Date")
+    forms = swapped(_STARTS, bool(order))
+    return [_record(path, label, *run, sep, forms) for label, run in zip(labels, runs)]
 
 
 def lvm_layout(path: Path, encoding: str = UTF8) -> str:
@@ -176,7 +183,8 @@ def _decimal(header: dict) -> str:
     return header.get("Decimal_Separator", ["."])[0] or "."
 
 
-def _record(path: Path, label: str, header: dict, segments: list[dict], sep: str) -> Record:
+def _record(path: Path, label: str, header: dict, segments: list[dict], sep: str,
+            forms: tuple[str, ...] = _STARTS) -> Record:
     """The segments' channels joined, each with its time."""
     decimal = _decimal(header)
     names = segments[0]["names"]
@@ -200,7 +208,7 @@ def _record(path: Path, label: str, header: dict, segments: list[dict], sep: str
             x = table[:, x_col] if x_col is not None else None
             if x is not None and np.isnan(x).all():
                 x = None     # (X_Columns No: LabVIEW still heads an X_Value column, empty)
-            t, kind = _time(path, header, keys, c, x, len(table), decimal, seg["line"])
+            t, kind = _time(path, header, keys, c, x, len(table), decimal, seg["line"], forms)
             timed[kind] = True
             values[j].append(table[:, j])
             times[j].append(t)
@@ -241,7 +249,7 @@ def _numbers(path: Path, seg: dict, names: list[str], decimal: str) -> np.ndarra
 
 
 def _time(path: Path, header: dict, keys: dict, c: int, x: np.ndarray | None, n: int,
-          decimal: str, line: int) -> tuple[np.ndarray | None, str]:
+          decimal: str, line: int, forms: tuple[str, ...] = _STARTS) -> tuple[np.ndarray | None, str]:
     """Channel ``c``'s time in a segment: ``(times, 'dated' | 'seconds' | 'untimed')``."""
     def key(name: str, of: dict):
         cells = of.get(name, [])
@@ -259,17 +267,17 @@ def _time(path: Path, header: dict, keys: dict, c: int, x: np.ndarray | None, n:
         return None, "untimed"
     date, clock = key("Date", keys) or key("Date", header), key("Time", keys) or key("Time", header)
     if date and clock:
-        start = _start(path, date, clock, decimal, line)
+        start = _start(path, date, clock, decimal, line, forms)
         return np.datetime64(start, "us") + (offsets * 1e6).round().astype("timedelta64[us]"), \
             "dated"
     return offsets + (x0 or 0.0) if x is None else x, "seconds"
 
 
-def _start(path: Path, date: str, clock: str, decimal: str, line: int) -> datetime:
+def _start(path: Path, date: str, clock: str, decimal: str, line: int,
+           forms: tuple[str, ...] = _STARTS) -> datetime:
     """A segment's ``Date`` (``2027/09/06``) and ``Time`` (``06:00:00,0000000000``)."""
     whole, _, fraction = clock.replace(decimal, ".").partition(".")
-    for form in ("%Y/%m/%d %H:%M:%S", "%Y-%m-%d %H:%M:%S", "%d.%m.%Y %H:%M:%S",
-                 "%m/%d/%Y %H:%M:%S"):
+    for form in forms:
         try:
             start = datetime.strptime(f"{date} {whole}", form)
             break

@@ -78,6 +78,7 @@ class ReadOptions:
     join_offset_s: float = 0.0
     join_tolerance_s: float | None = None
     runs_at_pauses: bool = False  # one file's runs parted where its time pauses (.runs)
+    dayfirst: bool | None = None  # a lab file's dates with slashes day first (None: the file's)
     derive: dict = field(default_factory=dict)    # derived error columns (.derived): name -> text
     bits: dict = field(default_factory=dict)      # status words' bits as states (.bits)
     # (deploy73) the server's clock sets connect told, undone in a log's timestamps (.clocksets)
@@ -138,6 +139,7 @@ class ReadOptions:
             sheet=None if cfg.get("sheet") is None else str(cfg.get("sheet")),
             **_join(cfg),
             runs_at_pauses=_flag(cfg, "runs_at_pauses"),
+            dayfirst=None if cfg.get("dayfirst") is None else _flag(cfg, "dayfirst"),
             derive=parsed_derive(cfg.get("derive")),
             bits=parsed_bits(cfg.get("bits")),
             clock_sets=(() if cfg.get("clock_sets") is None

@@ -12,7 +12,8 @@ from pathlib import Path
 
 from .catman import catman_records, is_catman
 from .contract import ContractError
-from .encoding import UTF8
+from .dayfirst import record_dayfirst
+from .encoding import UTF8, text_codec
 from .fixedwidth import fixed_as_csv, is_fixed_width
 from .graphtec import graphtec_records, is_graphtec
 from .hdf5 import hdf5_records, is_hdf5
@@ -45,6 +46,14 @@ def is_lab_file(path) -> bool:
             or is_graphtec(path) or is_yokogawa(path) or is_catman(path))
 
 
+def lab_dayfirst(files, encoding: str = UTF8) -> tuple[bool, Path, str] | None:
+    """The order of the dates with slashes a file of the record ``files`` says by a field past
+    12, among the lab files whose reader parses its own dates (a catman T0, a Scope View date,
+    a LabVIEW Date: :func:`.dayfirst.record_dayfirst`)."""
+    return record_dayfirst(files, lambda p: is_catman(p) or is_scope(p) or is_lvm(p),
+                           text_codec(encoding))
+
+
 def is_converted(path, opts=None) -> bool:
     """``path`` is read through a converted copy (a workbook, a UTF-16 text, JSON Lines, a
     fixed-width text, a TDMS or MATLAB file; with the read ``opts``: a historian's long file)."""
@@ -56,7 +65,8 @@ _HELD: dict[Path, tuple] = {}    # a lab file -> (its conversion, its records), 
 
 
 @contextmanager
-def converted_once(path: Path | None, encoding: str = UTF8) -> Iterator[None]:
+def converted_once(path: Path | None, encoding: str = UTF8, dayfirst: bool | None = None
+                   ) -> Iterator[None]:
     """Within the block, every look at the lab file ``path`` reads one conversion of it (lab76:
     ``init`` converted a TOB1 table or a TDMS log for its head, its cells, its runs and its read,
     a binary file parsed and written four times more, its warnings said again); any other
@@ -64,7 +74,7 @@ def converted_once(path: Path | None, encoding: str = UTF8) -> Iterator[None]:
     if path is None or not is_lab_file(path) or Path(path) in _HELD:
         yield
         return
-    records = _records(path, encoding)
+    records = _records(path, encoding, dayfirst)
     with records_as_csv(records, path) as text:
         _HELD[Path(path)] = text, records
         try:
@@ -73,12 +83,13 @@ def converted_once(path: Path | None, encoding: str = UTF8) -> Iterator[None]:
             del _HELD[Path(path)]
 
 
-def _records(path: Path, encoding: str) -> list:
-    return (tdms_records(path) if is_tdms(path) else lvm_records(path, encoding) if is_lvm(path)
-            else scope_records(path, encoding) if is_scope(path)
+def _records(path: Path, encoding: str, dayfirst: bool | None = None) -> list:
+    """``path``'s records (``dayfirst``: ``data.dayfirst``, its dates with slashes, .dayfirst)."""
+    return (tdms_records(path) if is_tdms(path) else lvm_records(path, encoding, dayfirst) if is_lvm(path)
+            else scope_records(path, encoding, dayfirst) if is_scope(path)
             else graphtec_records(path, encoding) if is_graphtec(path)
             else yokogawa_records(path, encoding) if is_yokogawa(path)
-            else catman_records(path, encoding) if is_catman(path)
+            else catman_records(path, encoding, dayfirst) if is_catman(path)
             else refuse_headerless(path) if headerless(path)
             else hdf5_records(path) if is_hdf5(path)
             else tdm_records(path) if is_tdm(path)
@@ -88,7 +99,7 @@ def _records(path: Path, encoding: str) -> list:
 
 @contextmanager
 def lab_as_csv(path: Path, one_run: bool = False, encoding: str = UTF8,
-               columns: dict | None = None) -> Iterator[Path]:
+               columns: dict | None = None, dayfirst: bool | None = None) -> Iterator[Path]:
     """A TDMS log, a MATLAB file or a LabVIEW Measurement File (a text: read in ``encoding``,
     ``data.encoding``) as the temporary CSV file its channels are written to (held by
     :func:`converted_once`: that one); ``one_run``: a folder's file, refused where it holds
@@ -96,7 +107,8 @@ def lab_as_csv(path: Path, one_run: bool = False, encoding: str = UTF8,
     said); ``columns`` (``data.columns``): a sensor replaced from a run on, its new channel
     mapped onto the old one's name, written as one column (:func:`.labfile.replaced_joined`);
     :data:`SHARED`: the channels every run holds alone (a look at the cells' gaps: a replaced
-    sensor's channel is empty in the runs before it, none of a run's gaps)."""
+    sensor's channel is empty in the runs before it, none of a run's gaps); ``dayfirst``:
+    ``data.dayfirst``."""
     if not one_run and Path(path) in _HELD:
         text, records = _HELD[Path(path)]
         joined = replaced_joined(records, columns) if columns is not SHARED else shared(records)
@@ -106,7 +118,7 @@ def lab_as_csv(path: Path, one_run: bool = False, encoding: str = UTF8,
             with records_as_csv(joined, path) as text:
                 yield text
         return
-    records = _records(path, encoding)
+    records = _records(path, encoding, dayfirst)
     if one_run and len(records) > 1:
         labels = ", ".join(repr(r.label) for r in records[:4]) + (", ..." if len(records) > 4 else "")
         raise ContractError(f"{len(records)} runs in one file ({labels}): a folder's file is one "
@@ -140,7 +152,7 @@ def as_read(path: Path, opts, rows: int | None = None, one_run: bool = False
         with json_lines_as_csv(path, rows=rows) as text:
             yield text, utf8_options(opts)
     elif is_lab_file(path):         # a DAQ's TDMS, a MATLAB file: its channels (long: a grid)
-        with lab_as_csv(path, one_run, opts.encoding, opts.columns) as text, \
+        with lab_as_csv(path, one_run, opts.encoding, opts.columns, opts.dayfirst) as text, \
                 as_read(text, csv_options(opts), rows) as read:
             yield read
     elif is_fixed_width(path):      # an old program's report: its columns told by the numbers

@@ -82,6 +82,7 @@ from .contract import (
     is_ambient,
     role,
 )
+from .dayfirst import WAY
 from .derived import sparse_derived, with_derived, without_derived
 from .instants import START, start_instants, start_stamp
 from .joined import joined
@@ -103,7 +104,7 @@ from .manifest import (
 )
 from .options import ROLE_ORDER, RUN_ROLE, ReadOptions
 from .own_headers import with_own_header
-from .plain import as_read, is_lab_file
+from .plain import as_read, is_lab_file, lab_dayfirst
 from .record import check_record_file, cut, hold_out, record_id, shares
 from .roles import RUN, split_unit
 from .runs import (
@@ -679,6 +680,10 @@ def _recorded_time(path: Path, files: list[Path], opts: ReadOptions) -> ReadOpti
     read once, not once for the order and again for the record (small72)."""
     if path.is_file():
         return replace(opts, order_in_rows=opts.time == "auto" and rows_tell(path, opts))
+    if opts.dayfirst is None and (said := lab_dayfirst(files, opts.encoding)):
+        logger.info(f"{path.name}: dates with slashes read {WAY[said[0]]}, as {said[1].name}'s "
+                    f"{said[2]!r} says, in every file (data.dayfirst={str(said[0]).lower()})")
+        opts = replace(opts, dayfirst=said[0])
     return read_in(record_order(files, opts), opts, path, files[0])
 
 

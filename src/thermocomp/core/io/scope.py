@@ -31,6 +31,7 @@ import numpy as np
 
 from ...base.log import logger
 from .contract import ContractError
+from .dayfirst import parse_with, slashed_order, swapped
 from .encoding import UTF8, text_head, text_lines
 from .labfile import Channel, Record, on_union_grid, text_as_csv, with_unit
 
@@ -116,9 +117,11 @@ def scope_layout(path: Path, encoding: str = UTF8) -> str:
     return f"{charset}delimiter {sep!r}, decimal {_decimal(head.splitlines(), sep)!r}"
 
 
-def scope_records(path: Path, encoding: str = UTF8) -> list[Record]:
-    """The one run of the Scope export ``path``."""
-    return [_record(text_lines(path, encoding), path.stem, path)]
+def scope_records(path: Path, encoding: str = UTF8, dayfirst: bool | None = None
+                  ) -> list[Record]:
+    """The one run of the Scope export ``path`` (``dayfirst``: ``data.dayfirst``, the order of
+    its dates with slashes, :mod:`.dayfirst`)."""
+    return [_record(text_lines(path, encoding), path.stem, path, dayfirst)]
 
 
 def is_scope_text(text: str) -> bool:
@@ -128,17 +131,17 @@ def is_scope_text(text: str) -> bool:
                                      for line in text[:1 << 16].splitlines()[:60])
 
 
-def scope_as_csv(text: str, source: str) -> str:
+def scope_as_csv(text: str, source: str, dayfirst: bool | None = None) -> str:
     """A Scope export streamed (``monitor.input=-``) as the CSV text its channels are read as
     from a file (:mod:`.labfile`: a ``time`` of UTC timestamps, each channel a column)."""
-    return text_as_csv(_record, text, source)
+    return text_as_csv(lambda lines, label, path: _record(lines, label, path, dayfirst), text,
+                       source)
 
 
-def _record(lines: list[str], label: str, path: Path) -> Record:
+def _record(lines: list[str], label: str, path: Path, dayfirst: bool | None = None) -> Record:
     """The export's channels, each on its own time (laid onto one grid where they fit one)."""
     sep = _FIRST.match(lines[0]).group(2)
     k, preamble = _keys(lines, 0, sep)
-    start, utc = _start(preamble, path)
     k = _blank(lines, k)
     first_prop = k
     k, props = _keys(lines, k, sep, whole=True)
@@ -152,14 +155,22 @@ def _record(lines: list[str], label: str, path: Path) -> Record:
         k += 1                                      # the Time;Value row over each channel
     decimal = _decimal(lines[k:k + 50], sep)
     rows = [(i + 1, line.split(sep)) for i, line in enumerate(lines[k:], start=k) if line.strip()]
-    read = [(j, names[j + 1].strip(), *_column(rows, j, decimal, path, names[j + 1].strip()))
-            for j in cols]
+    # the order of its dates with slashes: the StartTime's and the first time column's decide
+    said = [(c, _line_of(lines, "StartTime")) for c in preamble.get("StartTime", [])]
+    said += [(r[cols[0]], line) for line, r in rows if cols and cols[0] < len(r)]
+    column = ("StartTime" if any("/" in c for c, _ in said[:len(preamble.get("StartTime", []))])
+              else f"Time of {names[cols[0] + 1].strip()!r}" if cols else "Time")
+    order = slashed_order(said, dayfirst, parse_with(_DATES), path, column)
+    forms = _DATES if order is None else swapped(_DATES, order)
+    start, utc = _start(preamble, path, forms=forms)
+    read = [(j, names[j + 1].strip(), *_column(rows, j, decimal, path, names[j + 1].strip(),
+                                               forms)) for j in cols]
     if not read:
         raise ContractError("no channel under the 'Name' row", file=path, line=first_prop + 1)
     if utc and any(np.issubdtype(t.dtype, np.datetime64) for *_, t, _, _ in read):
         # "Time format: absolute": the PC's date-times, on a clock the file does not say; the
         # channels timed from StartTime counted from its local date alike
-        start, utc = _start(preamble, path, local=True)
+        start, utc = _start(preamble, path, local=True, forms=forms)
     channels = []
     for j, name, times, values, bool_ in read:
         if np.issubdtype(times.dtype, np.datetime64):
@@ -199,27 +210,34 @@ def _said(props: dict, key: str, j: int) -> str | None:
     return cells[j + 1] if j + 1 < len(cells) and cells[j] == key else None
 
 
-def _start(preamble: dict, path: Path, local: bool = False) -> tuple[np.datetime64, bool]:
+def _line_of(lines: list[str], key: str) -> int | None:
+    return next((k + 1 for k, line in enumerate(lines[:60]) if line.lstrip("\ufeff").startswith(key)),
+                None)
+
+
+def _start(preamble: dict, path: Path, local: bool = False,
+           forms: tuple[str, ...] = _DATES) -> tuple[np.datetime64, bool]:
     """``(StartTime, in UTC)``: its FILETIME ticks (UTC), else (or ``local``: where the file
     gives it) the local date after them (on a clock the file does not say)."""
     cells = preamble.get("StartTime") or []
     for cell in cells[1:] if local and cells and cells[0].isdigit() else []:
-        if (found := _date(cell)) is not None:
+        if (found := _date(cell, forms=forms)) is not None:
             return found, False
     if cells and cells[0].isdigit():
         micro = (int(cells[0]) - _TICKS_TO_1970) // 10
         return np.datetime64(datetime(1970, 1, 1) + timedelta(microseconds=micro), "us"), not local
     for cell in cells:
-        if (found := _date(cell)) is not None:
+        if (found := _date(cell, forms=forms)) is not None:
             return found, False
     raise ContractError(f"the preamble's StartTime {cells[:2]!r} is no Windows FILETIME nor date: "
                         "the channels' time counts from it", file=path)
 
 
-def _date(cell: str, first: str | None = None) -> np.datetime64 | None:
+def _date(cell: str, first: str | None = None, forms: tuple[str, ...] = _DATES
+          ) -> np.datetime64 | None:
     """A Scope View date-time (German ``15.02.2027 06:00:00,000``, or ISO), None if none
     (``first``: the format tried first, the one the column's first cell was read by)."""
-    for form in (first, *_DATES) if first else _DATES:
+    for form in (first, *forms) if first else forms:
         try:
             return np.datetime64(datetime.strptime(cell.strip(), form), "us")
         except ValueError:
@@ -227,9 +245,9 @@ def _date(cell: str, first: str | None = None) -> np.datetime64 | None:
     return None
 
 
-def _form(cell: str) -> str | None:
-    """The format of :data:`_DATES` that reads ``cell``."""
-    return next((f for f in _DATES if _fits(cell, f)), None)
+def _form(cell: str, forms: tuple[str, ...] = _DATES) -> str | None:
+    """The format of ``forms`` (:data:`_DATES`, in the file's order) that reads ``cell``."""
+    return next((f for f in forms if _fits(cell, f)), None)
 
 
 def _fits(cell: str, form: str) -> bool:
@@ -248,8 +266,8 @@ def _decimal(lines: list[str], sep: str) -> str:
     return "."
 
 
-def _column(rows: list, j: int, decimal: str, path: Path,
-            name: str) -> tuple[np.ndarray, np.ndarray, bool]:
+def _column(rows: list, j: int, decimal: str, path: Path, name: str,
+            forms: tuple[str, ...] = _DATES) -> tuple[np.ndarray, np.ndarray, bool]:
     """Channel ``name``'s time and value columns ``j``, ``j + 1`` down to its last sample (an
     empty value under a time: missing) and whether it is a BOOL: its times as numbers (ms or s
     since StartTime) or, where the first is a date-time (an absolute time format), datetime64;
@@ -261,11 +279,11 @@ def _column(rows: list, j: int, decimal: str, path: Path,
             continue
         v = cells[j + 1].strip() if j + 1 < len(cells) else ""
         if dated is None:
-            form = _form(t) if _number(t, decimal) is None else None
+            form = _form(t, forms) if _number(t, decimal) is None else None
             dated = form is not None
         if bools is None and v:
             bools = v.lower() in _BOOL
-        stamp = _date(t, form) if dated else _number(t, decimal)
+        stamp = _date(t, form, forms) if dated else _number(t, decimal)
         value = np.nan if not v else _BOOL.get(v.lower()) if bools else _number(v, decimal)
         if stamp is None or value is None:
             bad, what = (t, "no date-time" if dated else "no time") if stamp is None else (

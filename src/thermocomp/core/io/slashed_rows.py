@@ -58,7 +58,16 @@ def decided(saids: Iterable[tuple[dict, dict] | None]) -> Order | None:
 
 def read_in(order: Order | None, opts, record: Path, first: Path):
     """``opts`` with ``time`` the record's ``order`` (unchanged where None), said where a row
-    other than the first of ``record``'s first file ``first`` says it."""
+    other than the first of ``record``'s first file ``first`` says it.  ``data.dayfirst``
+    (dates84), where set, outweighs a Keysight stamp's month first and is refused where a row's
+    day or month past 12 says the other order."""
+    if order is not None and opts.dayfirst is not None:
+        if order.day_first != opts.dayfirst and not order.keysight:
+            raise ContractError(f"value {order.value!r} says its dates with slashes are "
+                                f"{WAY[order.day_first]}, but data.dayfirst="
+                                f"{str(opts.dayfirst).lower()} says {WAY[opts.dayfirst]}",
+                                file=order.file, column=order.header, row=order.row)
+        order = None if order.day_first != opts.dayfirst else order
     if order is None:
         return opts
     if (order.file, order.row) != (first, 1):     # (else the first row says it, as before)

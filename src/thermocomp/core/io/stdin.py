@@ -62,8 +62,10 @@ from .timestamps import (
     described,
     dst_said,
     elapsed_seconds,
+    is_slashed_stamp,
     on_local_clock,
     parsed,
+    slashed_format,
     time_kind,
     time_type,
 )
@@ -101,6 +103,7 @@ def _is_tdm(head: bytes) -> bool:
 # viewer's ASCII conversion (stranger82b), HBM catman's ASCII export (stranger84)
 _TEXT_EXPORTS = ((is_scope_text, scope_as_csv), (is_graphtec_text, graphtec_as_csv),
                  (is_yokogawa_text, yokogawa_as_csv), (is_catman_text, catman_as_csv))
+_DATED = (catman_as_csv, scope_as_csv)     # their dates with slashes: data.dayfirst (dates84)
 
 
 def _is_trace(head: bytes) -> bool:
@@ -161,7 +164,8 @@ def _read_runs(text: str, columns: list[str], opts, recorded: str | None = None,
     text = text.lstrip("\ufeff").replace(UNICODE_MINUS, "-")
     as_csv = next((convert for is_export, convert in _TEXT_EXPORTS if is_export(text)), None)
     if as_csv is not None:          # a logger's export piped in as written, its rows as CSV
-        text = as_csv(text, SOURCE)
+        text = (as_csv(text, SOURCE, opts.dayfirst) if as_csv in _DATED
+                else as_csv(text, SOURCE))
         opts = replace(opts, delimiter=",", decimal=".", thousands=None)
     opts = detected(text.splitlines()[:SNIFF_LINES], opts, SOURCE)   # data.delimiter=auto ...
     text = _table(text, opts.delimiter)
@@ -194,7 +198,8 @@ def _read_runs(text: str, columns: list[str], opts, recorded: str | None = None,
     if TIME in df.columns:        # timestamps counted from each run's first, as a file's runs
         runs = [df[TIME]] if blocks is None else [df[TIME].iloc[start:end]
                                                   for _, start, end in blocks]
-        timed = [_sets_undone(*seconds_and_origin(t, _time_format(t, opts.time, recorded),
+        timed = [_sets_undone(*seconds_and_origin(t, _time_format(t, opts.time, recorded,
+                                                               opts.dayfirst),
                                                   opts.timezone), opts.clock_sets, df.attrs)
                  for t in runs]
         df[TIME] = pd.concat([seconds for seconds, _ in timed])
@@ -257,13 +262,20 @@ def _untimed(rows: int, blocks: list | None, period_s: float | None) -> np.ndarr
     return row * float(period_s)
 
 
-def _time_format(time: pd.Series, given: str, recorded: str | None) -> str:
+def _time_format(time: pd.Series, given: str, recorded: str | None,
+                 dayfirst: bool | None = None) -> str:
     """``data.time`` of a run's time cells: as given, or (``auto``) in the order of the training
     record's dates with slashes, ``recorded`` (:func:`.slashed.stream_format`; a row saying the
-    other order refused), where it holds such dates."""
+    other order refused), where it holds such dates; else in ``data.dayfirst``'s (dates84)."""
     if given != "auto":
         return given
-    return stream_format(time, recorded, SOURCE) or given
+    told = stream_format(time, recorded, SOURCE)
+    if told or dayfirst is None:
+        return told or given
+    first = time.dropna().astype(str).str.strip()
+    if first.empty or not is_slashed_stamp(first.iloc[0]):
+        return given
+    return slashed_format(first.iloc[0], order="%d/%m/" if dayfirst else "%m/%d/")
 
 
 def stream_campaigns(text: str, columns: list[str], opts, recorded: str | None = None,

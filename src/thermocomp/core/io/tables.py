@@ -402,7 +402,8 @@ def _timed(path: Path, value: str, opts: ReadOptions, header: str | None = None)
         hint = f" ({PIPED_HINT})" if opts.missing == "keep" else ""    # as a later row's says
         raise ContractError(f"missing time value{hint}", file=path, column=TIME, row=1)
     number = reads_as_number(value, opts.decimal, opts.thousands)
-    return replace(opts, time=time_kind(value, opts.time, number, path, header))
+    return replace(opts, time=time_kind(value, opts.time, number, path, header,
+                                        dayfirst=opts.dayfirst))
 
 
 def _joined_time(date, clock, path: Path, opts: ReadOptions):

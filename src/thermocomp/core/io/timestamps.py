@@ -97,14 +97,17 @@ STREAMED = ("a stream's time is one column, seconds or a timestamp with its date
 
 
 def time_kind(value: str, kind: str, number: bool, path: Path, header: str | None = None,
-              stream: bool = False) -> str:
+              stream: bool = False, dayfirst: bool | None = None) -> str:
     """``'seconds'``, ``'iso8601'`` or a strptime format for a time column whose first cell is
     ``value`` (``number``: it reads as one), ``kind`` being ``data.time``.  A date alone or a
     time of day alone (``header``: its column's) is refused naming ``data.roles.time`` (a
     ``stream``'s: what its time must be): the one repeats every sample of a day, the other
-    wraps past midnight."""
+    wraps past midnight.  ``dayfirst`` (``data.dayfirst``): the order of a date with slashes no
+    row decided."""
     if kind != "auto":
         return kind
+    if dayfirst is not None and is_slashed_stamp(value):
+        return slashed_format(value, order="%d/%m/" if dayfirst else "%m/%d/")
     if number:
         return compact_format(value) or "seconds"
     name = repr(header) if header else "<this column>"
@@ -126,7 +129,8 @@ def time_kind(value: str, kind: str, number: bool, path: Path, header: str | Non
     if _SLASHED.match(value):
         raise ContractError(f"value {value!r} is a date with slashes, day or month first? set "
                             f"data.time to its format, e.g. data.time={EXAMPLE} (or "
-                            "'%m/%d/%Y %H:%M:%S')", file=path, column=TIME, row=1)
+                            "'%m/%d/%Y %H:%M:%S'), or data.dayfirst=true|false", file=path,
+                            column=TIME, row=1)
     return "iso8601"
 
 

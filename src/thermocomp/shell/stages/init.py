@@ -25,6 +25,7 @@ from ...core import io
 from ...core.io.bits import proposed as bits_proposed
 from ...core.io.cells import Cells, scanned
 from ...core.io.contract import MANIFEST, TIME
+from ...core.io.dayfirst import WAY
 from ...core.io.derived import probe_pairs, proposal
 from ...core.io.detect import (
     TRAVEL_UM,
@@ -65,7 +66,7 @@ from ...core.io.manifest import is_text
 from ...core.io.options import RUN_ROLE
 from ...core.io.pairhead import error_files, pair_time, paired_head, paired_lines
 from ...core.io.period_line import stated_period
-from ...core.io.plain import converted_once, is_converted, is_lab_file, lab_as_csv
+from ...core.io.plain import converted_once, is_converted, is_lab_file, lab_as_csv, lab_dayfirst
 from ...core.io.rates import PAUSE_PERIODS, pauses
 from ...core.io.record import safe_id
 from ...core.io.roles import excel_days_header, naming, split_unit
@@ -92,7 +93,7 @@ def long_period(sample, given: dict) -> dict | None:
     period is given."""
     opts = io.ReadOptions.from_cfg(given)
     if is_lab_file(sample) and opts.resample_s is None:   # a TDMS log's channels at two rates
-        with lab_as_csv(sample, encoding=opts.encoding) as text:
+        with lab_as_csv(sample, encoding=opts.encoding, dayfirst=opts.dayfirst) as text:
             return _long_period(text, given, csv_options(opts))
     return _long_period(sample, given, opts)
 
@@ -121,7 +122,8 @@ def number_cells(src, manifest, sample, given: dict, opts):
             code = given.get("encoding") or opts.encoding
             # (stranger77: a sensor replaced from a run on: its channel's empty runs are no edge)
             shared = SHARED if manifest is None else None
-            texts = [stack.enter_context(lab_as_csv(f, encoding=code, columns=shared)) for f in labs]
+            texts = [stack.enter_context(lab_as_csv(f, encoding=code, columns=shared,
+                                                    dayfirst=opts.dayfirst)) for f in labs]
             return opts, scanned(texts, ",", ".", UTF8, None, [], peek_csv, decimal_given=True)
     files = [f for f in files if is_text(f) and not is_converted(f, opts)]
     if not files or not is_text(sample):
@@ -350,8 +352,14 @@ def _init(cfg: DictConfig, held: ExitStack) -> dict:
         manifest = None
     given["encoding"] = encoding(src, asked, manifest)      # a Windows export's
     sample = sample_file(src, manifest)
+    files = [src] if manifest is None else [src / f for f in manifest["file"]]
+    if given.get("dayfirst") is None and (said := lab_dayfirst(files, given["encoding"])):
+        given["dayfirst"] = said[0]            # (dates84: one order for the record's files)
+        print(f"{src.name}: dates with slashes read {WAY[said[0]]}, as {said[1].name}'s "
+              f"{said[2]!r} says, in every file: data.dayfirst={str(said[0]).lower()}")
     # a lab's binary file (a TOB1 table, a TDMS log) converted once for every look and the read
-    held.enter_context(converted_once(src if manifest is None else None, given["encoding"]))
+    held.enter_context(converted_once(src if manifest is None else None, given["encoding"],
+                                      io.ReadOptions.from_cfg(given).dayfirst))
     long = long_period(sample, given)        # a historian's long file: the grid it is held onto
     opts, header, first, layout = head(sample, io.ReadOptions.from_cfg(given))
     pair = paired_head(sample, manifest.index[0], manifest, io.ReadOptions.from_cfg(given),
