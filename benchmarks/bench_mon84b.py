@@ -1,0 +1,150 @@
+"""A lone fault that blinds its partner (mon84b, issue 34): the column's T_left1 / T_left3 out as a
+drift at an unseen source's onset although T_left1 is the likelier single fault (after mon84).
+
+Usage (from the repository root, ``PYTHONPATH=<tree>/src``: the code measured is that tree's)::
+
+    python benchmarks/bench_mon84b.py trace [ROOT] [SEED] [FIRST] [LAST]
+    python benchmarks/bench_mon84b.py detail [ROOT] [SEED] [FIRST] [LAST] [SENSOR]
+    python benchmarks/bench_mon84b.py column ROOT LABEL [SEEDS [KINDS]]
+    python benchmarks/bench_mon84b.py ctable ROOT MAIN RULE
+    python benchmarks/bench_mon84b.py ccode [ROOT] [SEED] [KIND]
+    python benchmarks/bench_mon84b.py trunnion ROOT LABEL [SEEDS [KINDS]]
+    python benchmarks/bench_mon84b.py lathe ROOT LABEL [SEEDS [KINDS]]
+    python benchmarks/bench_mon84b.py jig ROOT LABEL [SEEDS [KINDS]]
+    python benchmarks/bench_mon84b.py table ROOT MAIN RULE
+
+bench_mon84's commands (its docstring), here by default on ``/tmp/mon84b-bench``, seed 8703 rows
+725-740 (``trace``, judge only) and this task's fresh seeds: ``column`` 8771-8778, ``trunnion``
+8779-8780, ``lathe`` 8781-8782, ``jig`` 8783-8785.  ``detail`` (judge only, every sensor in): per
+row the four largest standardised residuals ``t = |E| sqrt(1 - h)`` (the mean of the last
+``confirm`` samples and each sample), leverage, ``|E|`` / band; then with ``SENSOR`` (default
+``T_left1``) out of the fit, the judged sensors it leaves unjudged (their leverage) and the
+largest ``|E|`` / band of the others (``_resolves``' question).
+
+The case (bench_freeze84's fresh seed 8703, main b3e33b5d, ``column ROOT main 8703 healthy``):
+column_moving_source, healthy, MLR adaptive: ``T_left1`` and ``T_left3`` out 732-1294 as a drift,
+served E_Y 93.091 µm against the fixed model's 15.275, E_Z 21.050 / 9.509, E_X_mid 8.981 /
+1.006, E_Y_mid 17.221 / 1.947, E_Z_mid 6.664 / 1.665 (E_X 30.301 / 30.602).
+
+Traced (2026-12-04, main b3e33b5d, ``trace`` and ``detail``; t as the mean of the 2 samples)
+------------------------------------------------------------------------------------------
+Which path: ``_lone_fault``, not ``_explaining`` nor paper 002's culprit.  At row 731
+``T_left1`` (h 0.77, band 0.514) has its mean error beyond the band (1.03x) but one sample
+within (+0.58, +0.48): level 0.  At 732 (+0.72, +0.58) it is the only sensor out of band
+(``T_right4`` at 0.71 of its band, ``T_right3`` 0.71, ``T_left3`` 0.81): the culprit, the largest
+``|E|(1 - h)``, is ``T_right4`` (h 0.19), whose exclusion leaves ``T_left1`` out.  mon84's
+question is asked and answered yes this time: ``T_left1`` *is* the likelier single fault, t 0.312
+(samples 0.346, 0.277) against ``T_right4``'s 0.254 (0.261, 0.247), ``T_right3`` 0.226, ``T_left3``
+0.197, and has been the largest t since row 729 (0.171 against 0.168).  With it out every other
+judged sensor is within band (the worst ``T_right4`` 0.46 of its band) and its own deviation is
+the largest: a lone fault.  The veto's count: 0 others out of band with it in
+(``new_state_others`` 2): no new thermal state.  But with ``T_left1`` out ``T_left3``'s leverage
+rises 0.63 -> 0.940 (past 0.9): it is no longer judged, and the blind-partner rule takes it out
+too (its ``|E|(1 - h)`` within 0.7 of ``T_left1``'s), though within its band (0.81).  So one
+sensor's evidence took out two, and the one question the single fault hypothesis had to answer
+about ``T_left3`` (is it within band with ``T_left1`` out?) was never asked: it went unjudged.
+The field follows too late: with the pair out one other sensor is out of band only from row 753
+(``T_right4``), never two within the window (10 samples); a new thermal state only at row 1001
+(``T_left5``'s exclusion leaving five out), ended at 1177; the pair, fed rebuilt from the training
+modes (no Q3: ``T_left1`` read 26.44 fed 24.53 °C at 732, read 26.62 fed 17.80 at 760), back at
+1295 (within ±0.257 / ±0.2 °C for 563 samples).  Served minus fixed E_Y -34.6 µm at 732, -187.7
+at 760.  Judge only (the pair kept in), the others leave the band at 733-736 (``T_right4``,
+``T_left3``, ``T_right3``) and a new thermal state is named at 736.
+"""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+import bench_mon83c  # noqa: E402
+import bench_mon84 as m84  # noqa: E402
+from _cli import made_folder, run_commands  # noqa: E402
+
+ROOT = "/tmp/mon84b-bench"
+
+
+def trace(root: str = ROOT, seed: str = "8703", first: str = "725", last: str = "740") -> None:
+    m84.trace(root, seed, first, last)
+
+
+def detail(root: str = ROOT, seed: str = "8703", first: str = "729", last: str = "736",
+           sensor: str = "T_left1") -> None:
+    deployed, ds, test_ids = bench_mon83c._deployed(made_folder(root), int(seed))
+    mon, names = deployed.monitor, deployed.monitor.names
+    mon.adaptive = False
+    frame = ds.campaigns[test_ids[0]].reset_index(drop=True)
+    X, t = frame[deployed.columns_].to_numpy(float), frame["time"].to_numpy(float)
+    k = names.index(sensor)
+    deployed.reset()
+    try:
+        for i, (x, tt) in enumerate(zip(X, t)):
+            deployed._step(x, tt)
+            if not int(first) <= i + 1 <= int(last):
+                continue
+            _, err = mon._judge()
+            rows = mon._recent[mon._pos, :mon.confirm]
+            each = np.abs(mon._err[rows]) * mon._std
+            tm = np.where(mon._judged, np.abs(np.nan_to_num(err)) * mon._std, 0.0)
+            print(f"row {i + 1}: t " + "; ".join(
+                f"{names[q]} {tm[q]:.3f} ({', '.join(f'{v:.3f}' for v in each[:, q])}) "
+                f"h {mon._lev[q]:.2f} E/band {abs(err[q]) / mon.warning_c[q]:.2f}"
+                for q in np.argsort(-tm)[:4]))
+            trial = mon._active.copy()
+            trial[k] = False
+            M, lev = mon._operator(trial)
+            judged = trial & (lev < mon.pod.max_leverage)
+            H = mon._hist[rows]
+            E = ((H[:, judged] - H[:, trial] @ M[judged].T) / (1 - lev[judged])).mean(axis=0)
+            ratio = np.abs(E) / mon.warning_c[judged]
+            jn = np.flatnonzero(judged)
+            lost = np.flatnonzero(mon._judged & trial & ~judged)
+            print(f"    {sensor} out: unjudged " + (", ".join(
+                f"{names[q]} (h {lev[q]:.3f})" for q in lost) or "none") + "; worst E/band "
+                + ", ".join(f"{names[jn[q]]} {ratio[q]:.2f}" for q in np.argsort(-ratio)[:3]))
+    finally:
+        deployed.reset()
+
+
+def column(root: str, label: str, seeds: str = "8771-8778", kinds: str = m84.KINDS) -> None:
+    m84.column(root, label, seeds, kinds)
+
+
+def ctable(root: str, main: str, rule: str) -> None:
+    m84.ctable(root, main, rule)
+
+
+def ccode(root: str = ROOT, seed: str = "8703", kind: str = "healthy") -> None:
+    m84.ccode(root, seed, kind)
+
+
+def trunnion(root: str, label: str, seeds: str = "8779-8780", kinds: str = m84.KINDS) -> None:
+    m84.trunnion(root, label, seeds, kinds)
+
+
+def lathe(root: str, label: str, seeds: str = "8781-8782", kinds: str = m84.KINDS) -> None:
+    m84.lathe(root, label, seeds, kinds)
+
+
+def jig(root: str, label: str, seeds: str = "8783-8785", kinds: str = m84.KINDS) -> None:
+    m84.jig(root, label, seeds, kinds)
+
+
+def table(root: str, main: str, rule: str) -> None:
+    m84.table(root, main, rule)
+
+
+def main(argv: list[str] | None = None) -> int:
+    np.seterr(all="ignore")
+    return run_commands(__doc__, {"trace": trace, "detail": detail, "column": column,
+                                  "ctable": ctable, "ccode": ccode, "trunnion": trunnion,
+                                  "lathe": lathe, "jig": jig, "table": table},
+                        sys.argv[1:] if argv is None else argv, cpu=sys.stderr)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
