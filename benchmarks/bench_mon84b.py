@@ -50,6 +50,33 @@ modes (no Q3: ``T_left1`` read 26.44 fed 24.53 °C at 732, read 26.62 fed 17.80 
 1295 (within ±0.257 / ±0.2 °C for 563 samples).  Served minus fixed E_Y -34.6 µm at 732, -187.7
 at 760.  Judge only (the pair kept in), the others leave the band at 733-736 (``T_right4``,
 ``T_left3``, ``T_right3``) and a new thermal state is named at 736.
+
+The rule (written and committed before scoring).  A lone fault is a single-fault hypothesis
+tested on the others: with it out of the fit, each other judged sensor within its band.  One
+whose exclusion leaves a judged sensor unjudged (its coupled partner's leverage past
+``max_leverage``) is not tested on that sensor, and takes it out with it on no evidence of the
+partner's own (the blind-partner rule): two sensors out on one's evidence, the partner's
+agreement with the hypothesis never asked.  Such a lone fault is not taken over paper 002's
+culprit: ``_lone_fault`` asks ``_resolves`` with ``seen`` = every judged sensor (before: only
+those out of band), so the culprit's verdict stands (on s8703: ``T_right4``, whose exclusion
+leaves ``T_left1`` out of band: a new thermal state, no exclusion).  Paper 002's culprit and its
+blind partner are unchanged.  Served (``Judgement._lone_fault``), numpy mirror
+(``export/watch.py``'s ``_lone_fault``) and C (``watch_c.py``'s ``mon_lone_fault``) alike.
+What it may cost (asked by part 3 only for ``T_front1``): a true fault on a sensor with a blind
+partner whose culprit is another sensor is then a new thermal state, not an exclusion.
+
+Bar (written before scoring; "main": the sources of b3e33b5d, alternated with the rule's;
+REFUSED if any part fails: the source reverted, the rule kept as ``benchmarks/mon84b_rule.patch``):
+1. s8703, s8546, s8613 healthy (``column ROOT LABEL 8703,8546,8613 healthy``): every E_* target's
+   served RMSE no more than 2 % above the fixed model's.
+2. Fresh healthy column_moving_source 8771-8778: no served E_* RMSE more than 2 % above main's.
+3. Frozen / jump / drift / dropout on them (``column``, ``T_front1`` from the middle row): the
+   faulty sensor first out no more than 2 samples later than on main, no served E_* RMSE more
+   than 2 % above main's.
+4. Trunnion 8779-8780, lathe 8781-8782, jig 8783-8785, healthy and the four faults: no exclusion
+   or new thermal state that main does not have, each fault's sensor first out as on main
+   (within 2 samples), adaptive RMSE no more than 2 % above main's.
+5. tests/apps/test_monitor*.py, tests/shell/test_monitor*.py, tests/shell/test_export*.py pass.
 """
 
 from __future__ import annotations

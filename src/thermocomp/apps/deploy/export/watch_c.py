@@ -453,7 +453,8 @@ static int mon_lone_fault(const tc_state *s, int j, const double z[], const int 
         if (k == j || z[k] < 0 || level[k] < 1 || (likelier >= 0 && likelier != k)) continue;
         for (int m = 0; m < NM; m++)
             if (m != k && size[m] > alone) alone = size[m];
-        if (mon_resolves(s, k, out, alone)) return *resolves = 1, k;
+        /* (mon84b: tested on every judged sensor, none left unjudged) */
+        if (mon_resolves(s, k, jd, alone)) return *resolves = 1, k;
     }
     return *resolves = hides, j;
 }
