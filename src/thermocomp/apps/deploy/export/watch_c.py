@@ -453,8 +453,7 @@ static int mon_lone_fault(const tc_state *s, int j, const double z[], const int 
         if (k == j || z[k] < 0 || level[k] < 1 || (likelier >= 0 && likelier != k)) continue;
         for (int m = 0; m < NM; m++)
             if (m != k && size[m] > alone) alone = size[m];
-        /* (mon84b: tested on every judged sensor, none left unjudged) */
-        if (mon_resolves(s, k, jd, alone)) return *resolves = 1, k;
+        if (mon_resolves(s, k, out, alone)) return *resolves = 1, k;
     }
     return *resolves = hides, j;
 }

@@ -105,8 +105,7 @@ class Judgement:
         others make by more than any other sensor's error now (a fault's own deviation is the
         largest), and the largest standardised residual ``|E|·sqrt(1 - h)`` (the likelier
         single fault, as in :meth:`_explaining`; mon84: asked always, before only where ``j``'s
-        exclusion explains the bands by leaving one out of them unjudged), whose exclusion leaves
-        every judged sensor judged (mon84b: else it is not tested on them); else ``j``, if it
+        exclusion explains the bands by leaving one out of them unjudged); else ``j``, if it
         explains them at all (a
         coupled pair: :meth:`_exclude_by_judgement` takes the partner out too).  ``j``'s coupled
         neighbour can show the largest error (fl_thermal's t12 drifting, T_t14 then T_t15
@@ -131,14 +130,10 @@ class Judgement:
         # where j hides: a column's T_left1 (leverage 0.82), beyond its band at an unseen
         # source's onset, was taken over T_right4 on a residual 0.17 °C amplified 5.5x by the
         # leave-one-out division, 0.35 standardised against T_right4's 0.37 (mon84)
-        # a lone fault is tested on every other judged sensor: one whose exclusion leaves a
-        # judged sensor unjudged (its coupled partner past max_leverage) is not, and takes that
-        # partner out with it on no evidence of the partner's own (mon84b: the column's T_left1,
-        # the likelier fault at an unseen source's onset, blinded T_left3 within its band)
         likelier = np.argmax(size * self._std)
         for k in np.argsort(-z):
             if (k != j and z[k] >= 0 and level[k] >= WARNING and (likelier is None or likelier == k)
-                    and self._resolves(int(k), self._judged,
+                    and self._resolves(int(k), out,
                                        alone=float(np.max(np.delete(size, k), initial=0.0)))):
                 return int(k), True
         return j, hides
