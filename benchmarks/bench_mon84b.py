@@ -115,17 +115,22 @@ Verdict: REFUSED by its bar (part 3).  The source is reverted; the rule is
 ``benchmarks/mon84b_rule.patch``.  It is the same judgement on both records: a lone fault whose
 exclusion blinds its coupled partner, right on s8774's freeze (the frozen sensor out at once, its
 healthy partner out 8 rows), wrong on s8703 (a healthy high-leverage sensor at Q3's onset, its
-partner out 563 rows).  What tells them apart is not in this rule: the refused lone fault falls
-back to a culprit that hides the out-of-band sensor (``hides``), which the rule let stand.
+partner out 563 rows).  At the row of the exclusion the rule cannot tell them apart; on s8774
+its refusal fell back to a culprit that hides the sensor out of band (``hides``), which it let
+stand, so the frozen sensor waited, unjudged, for the freeze detector.
 
 What remains.  (a) The fallback ``j, hides`` holds a culprit within its band whose exclusion
 explains the bands only by blinding the sensor out of them (s8774: ``T_edge1`` out, the frozen
 ``T_front1`` unjudged for 7 rows); the same standard applied to it (no judged sensor left
-unjudged) would declare a new thermal state there, and ``T_front1`` would still wait for the
-freeze detector: unmeasured.  (b) A freeze is told by its readings (bench_freeze84), a source's
-onset is not: a lone fault's exclusion that blinds its partner could be let stand only where the
-sensor's own readings show a fault (held, stepped), refused where they move with the field;
-unmeasured, and it needs fresh seeds (8771-8778 are now seen).
+unjudged) declares a new thermal state there.  Traced only (served, no C; s8774 and s8546 are
+seen, so not a score): the rule with the fallback's ``_resolves(j)`` asked with ``seen`` = every
+judged sensor names a new thermal state at row 725 on both freezes and the freeze detector takes
+``T_front1`` out at 726 ("28.07 °C for 6 samples while the field moved 0.64 °C"; s8546 28.51,
+0.53), +1 sample against main's 725: within this bar; to be scored on fresh seeds with the C.
+(b) A freeze is told by its readings (bench_freeze84), a source's onset is not: a lone fault's
+exclusion that blinds its partner could be let stand only where the sensor's own readings show a
+fault (held, stepped), refused where they move with the field; unmeasured.  Either needs fresh
+seeds (8771-8778 are now seen).
 """
 
 from __future__ import annotations
