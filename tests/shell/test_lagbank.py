@@ -230,57 +230,6 @@ def test_with_free_levels_the_strongest_penalty_leaves_the_static_model_not_a_co
     assert both.level_penalty_ == both.cv_results_.loc[both.cv_results_["chosen"], "level_penalty"].item()
 
 
-def test_anchored_the_strongest_penalty_leaves_mlr_and_the_shrink_target_is_chosen_past_the_range(
-        monkeypatch):
-    """``anchor``: the levels shrunk towards MLR's static fit, not 0 (bench_auto84b); ``"cv"``
-    chooses the penalty per shrink target on the campaign folds, then the target on the two
-    :func:`extrapolation_folds` (bench_auto84c), each fold's anchor fitted on that fold's fitting
-    rows alone, and the copy that ``chosen_params`` makes is the fitted model (what is deployed is
-    what was scored)."""
-    from thermocomp.core.models import lagbank
-
-    X, y, context = _lagged_system(seed=5, n_campaigns=4)
-    anchored = LagBank(alphas=[1e9], anchor=True).fit(X, y, context=context)
-    np.testing.assert_allclose(anchored.predict(X, context=context), MLR().fit(X, y).predict(X),
-                               atol=1e-3 * np.std(y))
-    fitted, least_squares = [], lagbank._least_squares
-    monkeypatch.setattr(lagbank, "_least_squares",
-                        lambda X_, y_: fitted.append(len(y_)) or least_squares(X_, y_))
-    est = LagBank(n_taus=3, anchor="cv").fit(X, y, context=context)
-    k = est.splitter_.get_n_splits()
-    assert len(fitted) == k + 2 + est.anchor_ and all(n < len(y) for n in fitted[:k + 2])
-    table = est.cv_results_
-    assert set(table["anchor"]) == {False, True}
-    scored = table.dropna(subset=["cv_mse_extrapolation"])
-    assert sorted(scored["anchor"]) == [False, True]
-    for anchored_, rows in table.groupby("anchor"):      # each target at its own best penalty
-        assert rows.loc[scored.index[scored["anchor"] == anchored_][0], "cv_mse_free_run"] == \
-            rows["cv_mse_free_run"].min()
-    chosen = table[table["chosen"]].iloc[0]
-    assert chosen["cv_mse_extrapolation"] == scored["cv_mse_extrapolation"].min()
-    assert chosen["anchor"] == est.anchor_
-    copy = LagBank(n_taus=3, **est.chosen_params()).fit(X, y, context=context)
-    np.testing.assert_allclose(copy.coef_, est.coef_, rtol=1e-9, atol=1e-12)
-    assert copy.intercept_ == pytest.approx(est.intercept_)
-
-
-def test_extrapolation_folds_hold_out_each_end_of_the_inputs_range():
-    """Each fold's held-out rows lie past its fitting rows on the inputs' first principal
-    direction (a new campaign's inputs leaving the training range, bench_auto84c)."""
-    from thermocomp.core.models.lagbank import extrapolation_folds
-
-    rng = np.random.default_rng(3)
-    t = rng.uniform(20.0, 30.0, 200)
-    X = np.column_stack([t, 20.0 - 2.0 * t + rng.normal(0, 0.05, 200)])   # one direction
-    ends = []
-    for tr, va in extrapolation_folds(X, 5):
-        assert va.size == 40 and np.intersect1d(tr, va).size == 0 and tr.size + va.size == 200
-        below, above = t[va].max() < t[tr].min() + 0.1, t[va].min() > t[tr].max() - 0.1
-        assert below != above
-        ends.append(above)
-    assert sorted(ends) == [False, True]
-
-
 def test_splitters_leave_campaigns_out_or_chain_forward_with_a_gap():
     groups = np.repeat(["A", "B", "C"], 10)
     cv = default_splitter(groups, 30, gap=4)
@@ -311,7 +260,7 @@ def test_single_record_uses_forward_chaining_with_the_capped_gap():
     {"ar": "yes"}, {"ar": 1}, {"n_taus": 0}, {"n_taus": 2.5}, {"n_splits": 1},
     {"tau_max_s": -1.0}, {"tau_min_s": 0.0}, {"tau_min_s": 10.0, "tau_max_s": 5.0},
     {"alphas": [1.0, -1.0]}, {"alphas": []}, {"sample_period_s": 0.0}, {"level_penalty": -1.0},
-    {"level_penalty": []}, {"anchor": "yes"}, {"anchor": True, "ar": "auto"},
+    {"level_penalty": []},
 ])
 def test_bad_parameters_raise_parameter_error(params):
     X, y, context = _lagged_system(seed=9, n_campaigns=2, n=30)

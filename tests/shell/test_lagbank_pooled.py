@@ -30,8 +30,7 @@ def _campaigns(k: int = 9, p: int = 3, seed: int = 0):
     return np.vstack(X), np.concatenate(y), context
 
 
-@pytest.mark.parametrize("params", [{}, {"level_penalty": [1.0, 0.25, 0.0]}, {"alphas": [0.3]},
-                                    {"anchor": True}, {"anchor": "cv", "level_penalty": [1.0, 0.25]}])
+@pytest.mark.parametrize("params", [{}, {"level_penalty": [1.0, 0.25, 0.0]}, {"alphas": [0.3]}])
 def test_the_fit_from_campaign_moments_is_the_fit_over_the_rows(monkeypatch, params):
     X, y, context = _campaigns()
     pooled = LagBank(n_taus=3, **params).fit(X, y, context=context)

@@ -108,7 +108,7 @@ def forward_gap(longest_lag_samples: float, n: int, n_splits: int,
 # -- the ridge path over the folds ---------------------------------------------------------------
 def ridge_path_cv(Z, y, splits, alphas, groups=None, ar_column: int | None = None,
                   ar_scaling: tuple[float, float] = (0.0, 1.0), z_key: bytes | None = None,
-                  free_columns: int = 0, offsets=None) -> dict:
+                  free_columns: int = 0) -> dict:
     r"""Validation MSE of ridge fits of ``y`` on ``Z`` for every fold and penalty.
 
     Each fold centres ``Z`` and ``y`` on its training rows and solves
@@ -127,8 +127,7 @@ def ridge_path_cv(Z, y, splits, alphas, groups=None, ar_column: int | None = Non
 
     The folds' factorisations depend on ``Z`` alone and are remembered (every target of a
     compensator shares its features): by ``z_key``, a digest standing for ``Z``, else by
-    ``Z``'s bytes.  ``offsets``: per fold, a prediction subtracted from ``y`` before that fold's
-    fit and scoring (a fit of the fold's training rows: the lag bank's ``anchor``).
+    ``Z``'s bytes.
 
     Returns
     -------
@@ -142,10 +141,7 @@ def ridge_path_cv(Z, y, splits, alphas, groups=None, ar_column: int | None = Non
     others = [j for j in range(Z.shape[1]) if j != ar_column]
     # the folds' Gram matrices depend on Z alone: every target of a compensator shares them
     spectra = fold_spectra(Z, splits, alphas, free_columns, z_key)
-    target = y
     for f, (tr, va) in enumerate(splits):
-        if offsets is not None:
-            y = target - offsets[f]
         W, c = fold_weights(spectra[f], Z, y, tr, alphas)
         one_step[f] = np.mean((Z[va] @ W + c - y[va, None]) ** 2, axis=0)
         if ar_column is None:
@@ -312,43 +308,6 @@ def _block_clock(clock: tuple, time: np.ndarray, period_s: float) -> tuple[tuple
     return clock, dt
 
 
-def _least_squares(X, y) -> tuple[np.ndarray, float]:
-    """``(b, c)`` of MLR's ordinary least squares ``y ~ c + X b`` (the anchor's levels)."""
-    from sklearn.linear_model import LinearRegression
-
-    fit = LinearRegression().fit(X, y)
-    return np.asarray(fit.coef_, float), float(fit.intercept_)
-
-
-def _fold_anchors(X, y, splits) -> list[np.ndarray]:
-    """Per CV fold, MLR's static fit of its training rows alone, predicted on every row (the
-    anchor refitted per fold: one fitted on all rows would have seen the validation rows)."""
-    out = []
-    for tr, _ in splits:
-        b, c = _least_squares(X[tr], y[tr])
-        out.append(X @ b + c)
-    return out
-
-
-def extrapolation_folds(X, n_splits: int) -> list[tuple[np.ndarray, np.ndarray]]:
-    """Two folds that each hold out one end of the inputs' range: the rows ordered by their
-    projection on the standardised inputs' first principal direction, cut in ``n_splits`` blocks,
-    the lowest block held out (the rest fitted), then the highest.  The held-out inputs lie past
-    the fitting rows' range as a new campaign's do (bench_auto81b), which the campaign folds do not
-    show (bench_auto84b)."""
-    Z = standardised(X, standard_scaler(X))
-    Z = Z - Z.mean(axis=0)
-    direction = np.linalg.svd(Z, full_matrices=False)[2][0]
-    blocks = np.array_split(np.argsort(Z @ direction, kind="stable"), max(int(n_splits), 2))
-    rows = np.arange(len(Z))
-    return [(np.setdiff1d(rows, end), np.sort(end)) for end in (blocks[0], blocks[-1])]
-
-
-def _anchor_options(anchor) -> list[bool]:
-    """The shrink targets the CV scores: ``[False]`` (0), ``[True]`` (MLR's) or both (``"cv"``)."""
-    return [False, True] if anchor == "cv" else [bool(anchor)]
-
-
 def _increments(F, groups) -> np.ndarray:
     """``F(t) - F(t-1)`` per segment, 0 at a segment's first row (steady before it)."""
     return F - F[lag_index(groups, len(F), 1)]
@@ -364,14 +323,14 @@ def _level_scale(n_columns: int, p: int, ratio: float) -> np.ndarray:
     return scale
 
 
-def _records(design: str, ratio: float, alphas, scores: dict, anchor: bool = False) -> list[dict]:
+def _records(design: str, ratio: float, alphas, scores: dict) -> list[dict]:
     """The CV table's rows of one design and level penalty, one per ridge penalty
     (``scores``: :func:`ridge_path_cv`'s; the increments design has no free-run error)."""
     out = []
     for i, alpha in enumerate(alphas):
         free = scores["free_run"][:, i] if design != "increments" else np.array([np.inf])
         out.append({"design": design, "ar": design == "lags+ar", "alpha": float(alpha),
-                    "level_penalty": ratio, "anchor": bool(anchor), **_summary("cv_mse_free_run", free),
+                    "level_penalty": ratio, **_summary("cv_mse_free_run", free),
                     **_summary("cv_mse_one_step", scores["one_step"][:, i])})
     return out
 
@@ -512,18 +471,6 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         Input columns whose lags start at rest (0) at a campaign's first sample instead of
         in steady state at their first value: an input that was 0 before the record (a machine
         state, see :class:`~thermocomp.core.models.hammerstein.Hammerstein`).
-    anchor : {False, True, "cv"}, default False
-        True: the ridge shrinks the levels towards the static least-squares fit of the inputs
-        (MLR's ``c + b_0 . x`` on the training rows), not towards 0: it fits MLR's residual, the
-        levels as departures from MLR's, so the strongest penalty leaves MLR and a weak one the
-        data's own levels.  Each CV fold refits that anchor on its own training rows (one fit
-        on all rows would have seen the validation rows).  ``"cv"``: the CV chooses each shrink
-        target's penalty, then the target, 0 or MLR's, on two folds that each hold out one end of
-        the inputs' range (:func:`extrapolation_folds`: past the training range, as a new
-        campaign; ties: 0).  Shrunk towards 0, a record's levels
-        were near 0 and its slowest lags carried the static response within the record; towards
-        MLR's, records where MLR's static fit is poor lost (``benchmarks/bench_auto84.py``,
-        ``bench_auto84b.py``).  Needs ``ar=False``.
 
     Attributes
     ----------
@@ -542,9 +489,6 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         Chosen ridge penalty.
     level_penalty_ : float
         Chosen share of it on the levels.
-    anchor_ : bool
-        Whether the levels were shrunk towards MLR's (``anchor``); then ``anchor_coef_`` and
-        ``anchor_intercept_``: MLR's fit of the training rows (added into ``coef_``).
     one_step_design_ : {'lags+ar', 'increments'} or None
         Design of the one-step model (None with ``ar=False``).
     coef_one_step_, ar_coef_one_step_, intercept_one_step_, alpha_one_step_ : ndarray, float or None
@@ -562,7 +506,7 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
 
     def __init__(self, n_taus: int = 8, tau_min_s: float | None = None,
                  tau_max_s: float = 172800.0, alphas=None, n_splits: int = 5, ar=False,
-                 sample_period_s: float = 60.0, level_penalty=1.0, rest_columns=None, anchor=False):
+                 sample_period_s: float = 60.0, level_penalty=1.0, rest_columns=None):
         self.n_taus = n_taus
         self.tau_min_s = tau_min_s
         self.tau_max_s = tau_max_s
@@ -572,7 +516,6 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         self.sample_period_s = sample_period_s
         self.level_penalty = level_penalty
         self.rest_columns = rest_columns
-        self.anchor = anchor
 
     # -- parameters ---------------------------------------------------------------------
     # n_taus: a feature per input and time constant
@@ -580,8 +523,7 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
                    "alphas": optional(either(POSITIVE, numbers(0.0, open_lo=True))),
                    "n_splits": integer(MIN_SPLITS), "ar": choice(False, True, "auto"),
                    "sample_period_s": POSITIVE, "level_penalty": either(numbers(0.0), NON_NEGATIVE),
-                   "rest_columns": optional(integers(0, empty=True)),
-                   "anchor": choice(False, True, "cv")}
+                   "rest_columns": optional(integers(0, empty=True))}
 
     def _rest(self, p: int) -> np.ndarray | None:
         """The columns of :attr:`rest_columns` as a mask over ``p`` inputs (None: none)."""
@@ -594,8 +536,6 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
     def param_relations(self) -> list[tuple[str, str]]:
         if self.tau_min_s is not None and not self.tau_min_s <= self.tau_max_s:
             return [("tau_min_s", f"must not exceed tau_max_s={self.tau_max_s}")]
-        if self.anchor and self.ar is not False:
-            return [("anchor", "needs ar=false (the levels are MLR's, no output feedback)")]
         return []
 
     def _check_params(self) -> tuple[np.ndarray, list[float]]:
@@ -654,39 +594,15 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         self.taus_ = np.geomspace(tau_min, float(self.tau_max_s), int(self.n_taus))
         names = [str(c) for c in getattr(self, "feature_names_in_", [f"x{j}" for j in range(p)])]
         self.features_ = names + [f"L[{tau:.6g}s]({c})-{c}" for tau in self.taus_ for c in names]
-        self._fit_rows(X, y, measured, context, groups, alphas, ratios, p, time)
-        return self._anchored()
-
-    def _residual(self, X, y) -> np.ndarray:
-        """``y`` less the chosen anchor (:attr:`anchor_`: MLR's fit of these rows), the target of
-        the refit; sets ``anchor_coef_`` and ``anchor_intercept_``."""
-        if not self.anchor_:
-            return y
-        self.anchor_coef_, self.anchor_intercept_ = _least_squares(X, y)
-        return y - X @ self.anchor_coef_ - self.anchor_intercept_
-
-    def _anchored(self) -> LagBank:
-        """Add the anchor's levels to the fitted ones (``anchor_``; a refit left for later adds
-        them in :meth:`_refit_chosen`)."""
-        if self.anchor_ and getattr(self, "_pending_design", None) is None:
-            self.coef_[:self.anchor_coef_.size] += self.anchor_coef_
-            self.intercept_ += self.anchor_intercept_
-        return self
-
-    def _fit_rows(self, X, y, measured, context, groups, alphas, ratios, p: int, time):
-        """:meth:`fit`'s choice and refit on the rows ``X, y``."""
-        n = X.shape[0]
         if not measured.all():      # a target measured now and then: see _fit_measured
             return self._fit_measured(X, y, measured, context, groups, alphas, ratios, p, time)
 
         splits = self._splits(X, y, groups, self.taus_[-1] / self.sample_period_s_)
         folds = self._campaign_folds(groups, n, splits) if self.ar is False else None
         if folds is not None:
-            return self._fit_pooled(X, y, context, groups, folds, alphas, ratios, p, time, splits)
+            return self._fit_pooled(X, y, context, groups, folds, alphas, ratios, p, time)
 
         f_key, F = self._keyed_features(X, context)
-        options = _anchor_options(self.anchor)
-        offsets = _fold_anchors(X, y, splits) if True in options else None
 
         designs = {False: ["lags"], True: ["lags+ar"], "auto": ["lags", "lags+ar"]}[self.ar]
         if self.ar is not False:
@@ -702,19 +618,16 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
                 z_key = ArrayMemo.key(f_key, design, scaler.mean_, scaler.scale_, ratio,
                                       y_prev if design == "lags+ar" else None)
                 Zw, n_free = _levels_weighted(Z, p, ratio)
-                for anchored in options:
-                    scores = ridge_path_cv(
-                        Zw, target, splits, alphas, groups,
-                        ar_column=D.shape[1] - 1 if design == "lags+ar" else None,
-                        ar_scaling=(scaler.mean_[-1], scaler.scale_[-1]), z_key=z_key,
-                        free_columns=n_free, offsets=offsets if anchored else None)
-                    records += _records(design, ratio, alphas, scores, anchored)
+                scores = ridge_path_cv(Zw, target, splits, alphas, groups,
+                                       ar_column=D.shape[1] - 1 if design == "lags+ar" else None,
+                                       ar_scaling=(scaler.mean_[-1], scaler.scale_[-1]), z_key=z_key,
+                                       free_columns=n_free)
+                records += _records(design, ratio, alphas, scores)
         # the refit standardises its design again: the last design's copies (a year's 1.2 GB
         # each) are not held with it
         del D, Z, Zw
         table = pd.DataFrame(records)
-        design = self._keep_choice(table, self._choose_target(table, X, y, F, p))
-        y = self._residual(X, y)
+        design = self._keep_choice(table, self._choose(table[table["design"] != "increments"]))
         self.context_columns_ = [TIME] if time is not None else []
         if self.ar is False and getattr(self, "_refit_later", False):
             self._pending_design = design      # a caller choosing among lag banks refits its choice
@@ -763,19 +676,15 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         splits = self._splits(F, y[rows], g, self.taus_[-1] / self.sample_period_s_ / spacing)
         scaler = standard_scaler(F)
         Z = standardised(F, scaler)
-        records, options = [], _anchor_options(self.anchor)
-        offsets = _fold_anchors(X[rows], y[rows], splits) if True in options else None
+        records = []
         for ratio in ratios:
             Zw, n_free = _levels_weighted(Z, p, ratio)
-            for anchored in options:
-                scores = ridge_path_cv(Zw, y[rows], splits, alphas, g, free_columns=n_free,
-                                       offsets=offsets if anchored else None)
-                records += _records("lags", ratio, alphas, scores, anchored)
+            scores = ridge_path_cv(Zw, y[rows], splits, alphas, g, free_columns=n_free)
+            records += _records("lags", ratio, alphas, scores)
         table = pd.DataFrame(records)
-        self._keep_choice(table, self._choose_target(table, X[rows], y[rows], F, p))
+        self._keep_choice(table, self._choose(table))
         self.coef_, self.ar_coef_, self.intercept_ = self._refit(
-            "lags", F, self._residual(X[rows], y[rows]), None, g, scaler, self.alpha_, p,
-            self.level_penalty_)
+            "lags", F, y[rows], None, g, scaler, self.alpha_, p, self.level_penalty_)
         self.context_columns_ = [TIME] if time is not None else []
         self.measured_rows_ = int(m)
         return self
@@ -792,8 +701,6 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         if design is None:                      # fitted whole (or pooled: its refit costs nothing)
             return self
         X, y = np.asarray(X, dtype=float), np.asarray(y, dtype=float)
-        if self.anchor_:
-            y = y - X @ self.anchor_coef_ - self.anchor_intercept_
         groups = groups_of(context)
         F = self._features(X, context)
         y_prev = previous(y, groups)
@@ -801,7 +708,7 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         self.coef_, self.ar_coef_, self.intercept_ = self._refit(
             design, F, y, y_prev, groups, standard_scaler(D), self.alpha_, X.shape[1],
             self.level_penalty_)
-        return self._anchored()
+        return self
 
     @staticmethod
     def _campaign_folds(groups, n: int, splits):
@@ -826,34 +733,22 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
             folds.append(tuple(parts))
         return folds
 
-    def _fit_pooled(self, X, y, context, groups, folds, alphas, ratios, p: int, time, splits):
+    def _fit_pooled(self, X, y, context, groups, folds, alphas, ratios, p: int, time):
         """:meth:`fit` without output feedback when the CV holds whole campaigns out: its sums
         from each campaign's moments (:mod:`thermocomp.core.models._pooled`), the same numbers
         up to rounding, and a campaign's moments are computed once for all the fits that hold it."""
         n = X.shape[0]
-        args = (X, self._time(context, groups, n), segment_bounds(groups, n), self.taus_)
-        moments = CampaignMoments(*args, y, self._rest(X.shape[1]))
+        moments = CampaignMoments(X, self._time(context, groups, n), segment_bounds(groups, n),
+                                  self.taus_, y, self._rest(X.shape[1]))
         centre, scale = standardisation(moments.pool(np.arange(len(moments.counts))))
-        options = _anchor_options(self.anchor)
-        # anchored: each fold's moments of y less that fold's anchor (the features' are shared)
-        anchored_moments = ([CampaignMoments(*args, y - off, self._rest(X.shape[1]))
-                             for off in _fold_anchors(X, y, splits)] if True in options else None)
         records = []
         for ratio in ratios:
             d = _level_scale(centre.size, p, ratio) / scale
-            free = p if ratio == 0 else 0
-            for anchored in options:
-                scores = (np.vstack([pooled_path_cv(m, [fold], centre, d, alphas, free)
-                                     for m, fold in zip(anchored_moments, folds)]) if anchored
-                          else pooled_path_cv(moments, folds, centre, d, alphas, free))
-                # without output feedback one step is the free run
-                records += _records("lags", ratio, alphas, {"free_run": scores, "one_step": scores},
-                                    anchored)
+            scores = pooled_path_cv(moments, folds, centre, d, alphas, p if ratio == 0 else 0)
+            # without output feedback one step is the free run
+            records += _records("lags", ratio, alphas, {"free_run": scores, "one_step": scores})
         table = pd.DataFrame(records)
-        F = self._features(X, context) if self.anchor == "cv" else None
-        self._keep_choice(table, self._choose_target(table, X, y, F, p))
-        if self.anchor_:
-            moments = CampaignMoments(*args, self._residual(X, y), self._rest(X.shape[1]))
+        self._keep_choice(table, self._choose(table))
         ratio = self.level_penalty_
         d = _level_scale(centre.size, p, ratio) / scale
         W, c = pooled_refit(moments, centre, d, self.alpha_, p if ratio == 0 else 0)
@@ -867,13 +762,9 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         it on the levels, no one-step model (:meth:`fit` adds one where an AR design may enter);
         the chosen design's name."""
         table["chosen"] = table.index == best
-        scored = self.__dict__.pop("_extrapolation_mse", None)
-        if scored:                            # anchor="cv": what chose the shrink target
-            table["cv_mse_extrapolation"] = pd.Series(scored)
         self.cv_results_ = table
         self.alpha_ = float(table.loc[best, "alpha"])
         self.level_penalty_ = float(table.loc[best, "level_penalty"])
-        self.anchor_ = bool(table.loc[best, "anchor"])
         self.one_step_design_ = self.alpha_one_step_ = self.coef_one_step_ = None
         self.ar_coef_one_step_ = self.intercept_one_step_ = None
         return str(table.loc[best, "design"])
@@ -886,8 +777,7 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         if self.ar is not False:   # a one-step model chosen apart (its own design and penalty):
             return {}              # fixing the free-run choice alone would lose it
         chosen = self.cv_results_.loc[self.cv_results_["chosen"]].iloc[0]
-        return {"alphas": [self.alpha_], "ar": bool(chosen["ar"]), "level_penalty": [self.level_penalty_],
-                "anchor": self.anchor_}
+        return {"alphas": [self.alpha_], "ar": bool(chosen["ar"]), "level_penalty": [self.level_penalty_]}
 
     @staticmethod
     def _design(design: str, F, y, y_prev, groups):
@@ -916,31 +806,10 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         a = {"lags": 0.0, "lags+ar": float(coef[-1]), "increments": 1.0}[design]
         return coef[:F.shape[1]].copy(), a, float(c[0] - scaler.mean_ @ coef)
 
-    def _choose_target(self, table: pd.DataFrame, X, y, F, p: int) -> int:
-        """:meth:`_choose`'s row; with ``anchor="cv"`` the shrink target (0 or MLR's) chosen on
-        :func:`extrapolation_folds` instead, each target with the penalty the CV chose for it (the
-        anchor refitted on each fold's fitting rows; ties: 0), their MSE kept in the table's
-        ``cv_mse_extrapolation``."""
-        table = table[table["design"] != "increments"]    # a one-step design: never the free run
-        if self.anchor != "cv":
-            return self._choose(table)
-        folds = extrapolation_folds(X, self.n_splits)
-        offsets = _fold_anchors(X, y, folds)
-        Z = standardised(F, standard_scaler(F))
-        best = {}
-        for anchored in (False, True):
-            row = self._choose(table[table["anchor"] == anchored])
-            Zw, n_free = _levels_weighted(Z, p, float(table.loc[row, "level_penalty"]))
-            scores = ridge_path_cv(Zw, y, folds, [float(table.loc[row, "alpha"])],
-                                   free_columns=n_free, offsets=offsets if anchored else None)
-            best[row] = float(scores["one_step"].mean())
-        self._extrapolation_mse = best
-        return min(best, key=best.get)        # dicts keep order: a tie keeps 0
-
     @staticmethod
     def _choose(table: pd.DataFrame) -> int:
-        """Row of the lowest free-run CV MSE (ties: no AR, then the levels shrunk towards 0, then the
-        larger share of the penalty on the levels, then the larger penalty).
+        """Row of the lowest free-run CV MSE (ties: no AR, then the larger share of the penalty on
+        the levels, then the larger penalty).
 
         An AR model unstable for every penalty has no finite free-run score:
         forced (``ar=True``) it is then chosen on its one-step score.
@@ -949,7 +818,7 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         if not np.isfinite(score).any():
             score = table["cv_mse_one_step"].to_numpy()
         order = np.lexsort((-table["alpha"].to_numpy(), -table["level_penalty"].to_numpy(),
-                            table["anchor"].to_numpy(), table["ar"].to_numpy(), score))
+                            table["ar"].to_numpy(), score))
         return int(table.index[order[0]])
 
     # -- prediction ---------------------------------------------------------------------
