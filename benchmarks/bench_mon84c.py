@@ -113,8 +113,13 @@ blind partner is the sensor it pushed out of band (the default data's ``T_motor2
 blinds is the fault (s8774: ``T_edge1`` out, the frozen ``T_front1`` left in, unjudged).  The
 difference at the exclusion is whether the blind-partner rule takes the sensor left unjudged out
 with the culprit (``z >= 0.7 z[j]``, ``_exclude_by_judgement``): a fallback that leaves a sensor
-out of band in *and* unjudged is the one to refuse.  Untried and unmeasured; it needs fresh
-seeds (8786-8800 are now seen) and the motor drift test in its bar.
+out of band in *and* unjudged is the one to refuse.  Traced only (served, no mirror nor C; seen
+records, not a score): mon84b's patch plus, in ``_lone_fault``, ``hides`` kept only where every
+sensor out of band that ``j``'s exclusion leaves unjudged has ``z >= 0.7 z[j]`` (it goes out with
+``j``): s8774 frozen ``T_front1`` out at 726 alone (E_Y 11.764, as this rule), s8703 healthy
+nothing out, served = fixed, and the motor drift test's record the pair out on all 8 campaigns,
+E_X / E_Y / E_Z 0.777 / 1.430 / 5.686 µm, main's digits.  To be scored on fresh seeds (8786-8800
+are now seen) with the mirror and the C, the motor drift test in its bar.
 """
 
 from __future__ import annotations
