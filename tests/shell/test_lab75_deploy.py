@@ -58,8 +58,9 @@ def halle_code(tmp_path_factory):
 
 @needs_cc
 def test_the_exported_stream_reads_an_infinity_as_an_empty_cell(halle_code):
-    """``stream.c`` fed the raw TOA5 file: its rows until the first ``INF`` (line 9), then what
-    it says of an empty cell there (a missing input the plain stream refuses, exit 2)."""
+    """``stream.c`` fed the raw TOA5 file: an ``INF`` cell (line 9) is what an empty cell there
+    is (since cmon84 the code's monitor takes the sensor out as a dropout and goes on, to the
+    next missing input it refuses, exit 2)."""
     lines = HALLE.read_text().splitlines()
 
     def fed(cell: str) -> subprocess.CompletedProcess:
@@ -70,11 +71,13 @@ def test_the_exported_stream_reads_an_infinity_as_an_empty_cell(halle_code):
                               capture_output=True)
 
     empty = fed("")
-    assert empty.returncode == 2 and b"line 9: input T_spindle_Avg has no finite value" in empty.stderr
+    assert empty.returncode == 2
+    assert b"line 9: monitor: T_spindle_Avg: dropout: no finite value, excluded" in empty.stderr
     for cell in ('"INF"', '"-INF"', "inf", "Infinity"):
         got = fed(cell)
         assert (got.returncode, got.stdout, got.stderr) == (2, empty.stdout, empty.stderr), cell
-    assert len(empty.stdout.splitlines()) == 5        # the header and rows 1-4
+    assert b"line 12: input T_column_Avg has no finite value" in empty.stderr
+    assert len(empty.stdout.splitlines()) == 8        # the header and rows 1-7 (lines 5-11)
 
 
 @needs_cc
