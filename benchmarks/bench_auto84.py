@@ -338,12 +338,20 @@ def rows(root: Path, work: Path, mode: str, names: list[str]) -> None:
     automore.rows(root, work, names)
 
 
-FRESH = {"col8731": ("column", ["sim=column_moving_source", "seed=8731"]),
-         "col8732": ("column", ["sim=column_moving_source", "seed=8732"]),
-         "swiss8733": ("swiss", ["sim=swiss_lathe_door", "seed=8733"]),
-         "swiss8734": ("swiss", ["sim=swiss_lathe_door", "seed=8734"]),
-         "labmill8735": ("lab_mill", [*automore.LAB_MILL, "seed=8735"]),
-         "mill8736": ("mill", [*automore.remeasure.MILL, "seed=8736"])}
+def fresh_set(first: int) -> dict:
+    """The fresh records drawn from seeds ``first`` .. ``first + 5``: two columns, two Swiss
+    lathes, the lab mill, the mill week (one train campaign each, new test campaigns)."""
+    machines = [("col", "column", ["sim=column_moving_source"]),
+                ("col", "column", ["sim=column_moving_source"]),
+                ("swiss", "swiss", ["sim=swiss_lathe_door"]),
+                ("swiss", "swiss", ["sim=swiss_lathe_door"]),
+                ("labmill", "lab_mill", list(automore.LAB_MILL)),
+                ("mill", "mill", list(automore.remeasure.MILL))]
+    return {f"{tag}{first + i}": (machine, [*over, f"seed={first + i}"])
+            for i, (tag, machine, over) in enumerate(machines)}
+
+
+FRESH = fresh_set(8731)
 FRESH_NEW = [8741, 8742, 8743]       # the new campaigns of each fresh record's machine
 OLD_FL, WORSE_FL, WORSE_NEW, SHIPPED_WORSE, SHIPPED_BETTER = 2.481, 1.01, 1.02, 8, 13
 

@@ -124,12 +124,7 @@ import bench_auto84 as auto84  # noqa: E402
 from _cli import run_commands  # noqa: E402
 
 automore = auto84.automore
-FRESH = {"col8746": ("column", ["sim=column_moving_source", "seed=8746"]),
-         "col8747": ("column", ["sim=column_moving_source", "seed=8747"]),
-         "swiss8748": ("swiss", ["sim=swiss_lathe_door", "seed=8748"]),
-         "swiss8749": ("swiss", ["sim=swiss_lathe_door", "seed=8749"]),
-         "labmill8750": ("lab_mill", [*automore.LAB_MILL, "seed=8750"]),
-         "mill8751": ("mill", [*automore.remeasure.MILL, "seed=8751"])}
+FRESH = auto84.fresh_set(8746)
 FRESH_NEW = [8752, 8753, 8754]       # the new campaigns of each fresh record's machine
 
 

@@ -121,12 +121,7 @@ import bench_auto84b as auto84b  # noqa: E402
 from _cli import run_commands  # noqa: E402
 
 automore = auto84.automore
-FRESH = {"col8801": ("column", ["sim=column_moving_source", "seed=8801"]),
-         "col8802": ("column", ["sim=column_moving_source", "seed=8802"]),
-         "swiss8803": ("swiss", ["sim=swiss_lathe_door", "seed=8803"]),
-         "swiss8804": ("swiss", ["sim=swiss_lathe_door", "seed=8804"]),
-         "labmill8805": ("lab_mill", [*automore.LAB_MILL, "seed=8805"]),
-         "mill8806": ("mill", [*automore.remeasure.MILL, "seed=8806"])}
+FRESH = auto84.fresh_set(8801)
 FRESH_NEW = [8807, 8808, 8809]       # the new campaigns of each fresh record's machine
 
 
