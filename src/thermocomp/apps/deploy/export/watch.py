@@ -29,12 +29,11 @@ The served adaptive compensator judges every ``T_`` input before the model reads
   ``confirm`` samples (no sensor no other predicts explaining them, the served
   ``_explaining``): the culprit (the largest ``|E|(1 - h)``, or the lone fault that explains the
   bands, the served ``_lone_fault``, mon84 only the likelier single fault: the largest
-  ``|E| sqrt(1 - h)``, mon84b the lone fault leaving every judged sensor judged, mon84d the culprit within its
-  band each sensor out of band it leaves unjudged going out with it) excluded where with it out
-  every other judged sensor is within its warning band, fewer than ``new_state_others`` others
-  are out of it, and (a culprit within its own band, or mon83 beyond it by less than its
-  readings' rounding moves its error, ``rounding``, the memory's error within that of the band)
-  the excursion does not hover against the field's memory
+  ``|E| sqrt(1 - h)``) excluded where with it out every other judged sensor is
+  within its warning band, fewer than ``new_state_others`` others are out of it, and (a culprit
+  within its own band, or mon83 beyond it by less than its readings' rounding moves its error,
+  ``rounding``, the memory's error within that of the band) the excursion does not hover
+  against the field's memory
   (``tau``, ``growth``: the served ``_excursion_hovers``); else nothing, as served (a veto).
   Its blind partner (``pairs``: the one judged sensor no other predicts once it is out, an
   operator per pair) goes out with it under the same veto.  Each waits ``window`` times 2 to
@@ -833,14 +832,13 @@ class CodeMonitor:
         out = judged & (level >= WARNING)
         if self._resolves(j, out if level[j] < WARNING else None):
             return j, True
-        # (mon84d: j hiding one out of band only where it goes out with j, its blind partner)
-        hides = bool(level[j] < WARNING) and self._resolves(j, out & (z < 0.7 * z[j]))
+        hides = bool(level[j] < WARNING) and self._resolves(j)
         size = np.abs(np.where(judged, np.nan_to_num(err), 0.0))
         std = np.sqrt(np.abs(1 - self.lev[self.op]))
         likelier = np.argmax(size * std)     # (mon84: asked of every lone fault)
         for k in np.argsort(-z):
             if (k != j and z[k] >= 0 and level[k] >= WARNING and (likelier is None or likelier == k)
-                    and self._resolves(int(k), judged,   # (mon84b: every judged sensor)
+                    and self._resolves(int(k), out,
                                        float(np.max(np.delete(size, k), initial=0.0)))):
                 return int(k), True
         return j, hides

@@ -441,7 +441,7 @@ static int mon_resolves(const tc_state *s, int j, const int seen[], double alone
 static int mon_lone_fault(const tc_state *s, int j, const double z[], const int level[],
                           const int jd[], int *resolves) {
     double size[NM];
-    int out[NM], keep[NM], k, i, hides, likelier = -1, done[NM];
+    int out[NM], k, i, hides, likelier = -1, done[NM];
     for (k = 0; k < NM; k++) {
         double e = mon_mean_err(s, k);
         out[k] = jd[k] && level[k] >= 1;
@@ -449,9 +449,7 @@ static int mon_lone_fault(const tc_state *s, int j, const double z[], const int 
         done[k] = 0;
     }
     if (mon_resolves(s, j, level[j] < 1 ? out : 0, -1.0)) return *resolves = 1, j;
-    /* (mon84d: j hiding one out of band only where it goes out with j, its blind partner) */
-    for (k = 0; k < NM; k++) keep[k] = out[k] && z[k] < 0.7 * z[j];
-    hides = level[j] < 1 && mon_resolves(s, j, keep, -1.0);
+    hides = level[j] < 1 && mon_resolves(s, j, 0, -1.0);
     /* the likelier single fault: the largest standardised residual (mon84: asked of every
        lone fault, not only where j hides) */
     for (k = 0; k < NM; k++) {
@@ -468,8 +466,7 @@ static int mon_lone_fault(const tc_state *s, int j, const double z[], const int 
         if (k == j || z[k] < 0 || level[k] < 1 || (likelier >= 0 && likelier != k)) continue;
         for (int m = 0; m < NM; m++)
             if (m != k && size[m] > alone) alone = size[m];
-        /* (mon84b: tested on every judged sensor, none left unjudged) */
-        if (mon_resolves(s, k, jd, alone)) return *resolves = 1, k;
+        if (mon_resolves(s, k, out, alone)) return *resolves = 1, k;
     }
     return *resolves = hides, j;
 }
