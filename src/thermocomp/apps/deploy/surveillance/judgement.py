@@ -106,8 +106,8 @@ class Judgement:
         largest), and the largest standardised residual ``|E|·sqrt(1 - h)`` (the likelier
         single fault, as in :meth:`_explaining`; mon84: asked always, before only where ``j``'s
         exclusion explains the bands by leaving one out of them unjudged); else ``j``, if it
-        explains them at all (a
-        coupled pair: :meth:`_exclude_by_judgement` takes the partner out too).  ``j``'s coupled
+        explains them at all (a coupled pair: :meth:`_exclude_by_judgement` takes the partner
+        out too).  ``j``'s coupled
         neighbour can show the largest error (fl_thermal's t12 drifting, T_t14 then T_t15
         picked, and the drift read as a new thermal state that never ended); and a lathe's
         healthy T_nc_x1_drive (-0.58 °C, 0.48 standardised), excluded for a drifting
