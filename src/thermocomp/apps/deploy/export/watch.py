@@ -837,7 +837,7 @@ class CodeMonitor:
         std = np.sqrt(np.abs(1 - self.lev[self.op]))
         likelier = np.argmax(size * std)     # (mon84: asked of every lone fault)
         for k in np.argsort(-z):
-            if (k != j and z[k] >= 0 and level[k] >= WARNING and (likelier is None or likelier == k)
+            if (k != j and z[k] >= 0 and level[k] >= WARNING and likelier == k
                     and self._resolves(int(k), out,
                                        float(np.max(np.delete(size, k), initial=0.0)))):
                 return int(k), True

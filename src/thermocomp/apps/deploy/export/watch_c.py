@@ -463,7 +463,7 @@ static int mon_lone_fault(const tc_state *s, int j, const double z[], const int 
         for (int m = 0; m < NM; m++)
             if (!done[m] && (k < 0 || z[m] > z[k])) k = m;
         done[k] = 1;
-        if (k == j || z[k] < 0 || level[k] < 1 || (likelier >= 0 && likelier != k)) continue;
+        if (k == j || z[k] < 0 || level[k] < 1 || likelier != k) continue;
         for (int m = 0; m < NM; m++)
             if (m != k && size[m] > alone) alone = size[m];
         if (mon_resolves(s, k, out, alone)) return *resolves = 1, k;

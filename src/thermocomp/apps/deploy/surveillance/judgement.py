@@ -132,7 +132,7 @@ class Judgement:
         # leave-one-out division, 0.35 standardised against T_right4's 0.37 (mon84)
         likelier = np.argmax(size * self._std)
         for k in np.argsort(-z):
-            if (k != j and z[k] >= 0 and level[k] >= WARNING and (likelier is None or likelier == k)
+            if (k != j and z[k] >= 0 and level[k] >= WARNING and likelier == k
                     and self._resolves(int(k), out,
                                        alone=float(np.max(np.delete(size, k), initial=0.0)))):
                 return int(k), True
