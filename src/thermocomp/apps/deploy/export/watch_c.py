@@ -193,6 +193,16 @@ static int mon_drops(int k) {
     return MON_BLIND_DROP && !MON_PREDICTABLE[k] && NM - 1 >= MON_MIN_ACTIVE;
 }
 
+/* sensor k back in (rule: why), its partner's place kept, the window re-judged (the numpy
+   mirror's _readmit) */
+static void mon_readmit(tc_state *s, int k, int rule) {
+    s->mon_by_field[k] = s->mon_explains[k] = 0;
+    if (k == s->mon_out) s->mon_out = s->mon_out2;
+    s->mon_out2 = -1;
+    mon_recompute(s);
+    mon_flag(s, TC_MON_READMITTED, k, rule);
+}
+
 /* sensor k out where the code holds it (one out, the others predicting it, or a dropout or a
    freeze of one no other predicts); else flagged */
 static void mon_exclude(tc_state *s, int k, int rule) {
@@ -689,12 +699,8 @@ static void mon_judgement(tc_state *s) {
             return;
         }
         s->mon_since[k] = -1;
-        s->mon_by_field[k] = s->mon_explains[k] = 0;
         s->mon_dwell[k] = MW;
-        if (k == s->mon_out) s->mon_out = s->mon_out2;
-        s->mon_out2 = -1;
-        mon_recompute(s);
-        mon_flag(s, TC_MON_READMITTED, k, TC_MON_FOLLOWED);
+        mon_readmit(s, k, TC_MON_FOLLOWED);
         s->mon_novel = 1, s->mon_calm_field = 0;
         mon_levels(s, level, jd);
         for (leaving = 0, n = 0; n < NM; n++) leaving += jd[n] && level[n] >= 1;
@@ -857,11 +863,8 @@ static void monitor_step(tc_state *s, double u[], double dt) {
         && s->mon_off[k] >= TC_MON_THAW) {
         if (!MON_THAWED) mon_flag(s, TC_MON_NOT_IN_CODE, k, TC_MON_NO_THAW);
         else {
-            s->mon_froze[k] = s->mon_by_field[k] = s->mon_explains[k] = 0;
-            s->mon_out = s->mon_out2;
-            s->mon_out2 = -1;
-            mon_recompute(s);
-            mon_flag(s, TC_MON_READMITTED, k, TC_MON_THAWED);
+            s->mon_froze[k] = 0;
+            mon_readmit(s, k, TC_MON_THAWED);
         }
     }
     if (s->mon_out >= 0 && s->mon_count >= MW) {   /* re-admission, the due sensors together */
@@ -872,11 +875,8 @@ static void monitor_step(tc_state *s, double u[], double dt) {
         mon_returning(s, due, back);
         for (k = 0; k < NM; k++) {
             if (!back[k]) continue;
-            s->mon_jumps[k] = s->mon_by_field[k] = s->mon_explains[k] = s->mon_froze[k] = 0;
-            if (k == s->mon_out) s->mon_out = s->mon_out2;
-            s->mon_out2 = -1;
-            mon_recompute(s);
-            mon_flag(s, TC_MON_READMITTED, k, TC_MON_BACK);
+            s->mon_jumps[k] = s->mon_froze[k] = 0;
+            mon_readmit(s, k, TC_MON_BACK);
         }
     }
     mon_errors(s, d, pred, e);
