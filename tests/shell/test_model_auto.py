@@ -673,12 +673,7 @@ def test_candidate_defaults_set_a_family_in_the_candidate_role_under_candidate_p
 
         both = compose(config_name="config", overrides=["model=auto", *lenient(
             ["model.candidate_defaults={lagbank:{n_taus:3}}"])])
-    assert both.model.candidate_defaults == {"lstm": {"max_epochs": 30}, "lagbank": {"n_taus": 3},
-                                             "lagbank_anchor": {"anchor": True},
-                                             "hammerstein_anchor": {"lagbank": {"anchor": True}}}
-    anchored = built()
-    assert anchored["lagbank_anchor"].anchor and not anchored["lagbank"].anchor
-    assert anchored["hammerstein_anchor"].lagbank.anchor and not anchored["hammerstein"].lagbank.anchor
+    assert both.model.candidate_defaults == {"lstm": {"max_epochs": 30}, "lagbank": {"n_taus": 3}}
 
 
 def test_the_ati_baselines_fit_the_chosen_family_not_the_whole_choice(two_targets, tmp_path,

@@ -29,7 +29,6 @@ from .one_step import persistence
 
 ATI = "ati"              # a candidate name: the ATI wrapper (conf/ati/cmeans.yaml) of a family
 BASELINE = "mlr"         # always validated beside the candidates, with persistence
-ANCHORED = "_anchor"      # a candidate <family>_anchor: that family, its levels shrunk towards MLR's
 AUTO = "auto"            # the model that chooses: no candidate of its own
 NONE = "none"            # no correction: validated beside them, kept where nothing beats it
 # the zero undone only where the kept model's per-fold measure is below 1/FOLD_MARGIN of no
@@ -645,10 +644,8 @@ def check_candidates(candidates, params, defaults, sequence=(list, tuple), mappi
 
 
 def candidate_family(name) -> str:
-    """The model family of a candidate: itself, for ``ati`` / ``ati+<family>`` (the ATI
-    wrapper) MLR / that family, for ``<family>_anchor`` (a variant: that family with its
-    ``model.candidate_defaults.<family>_anchor`` settings) that family."""
-    name = str(name).removesuffix(ANCHORED) if str(name) != ANCHORED else name
+    """The model family of a candidate: itself, or for ``ati`` / ``ati+<family>`` (the ATI
+    wrapper) MLR / that family."""
     wrapped = str(name).split("+", 1)
     family = BASELINE if wrapped == [ATI] else wrapped[-1]
     if len(wrapped) == 2 and wrapped[0] != ATI or family in (AUTO, ATI) or not str(name).strip():

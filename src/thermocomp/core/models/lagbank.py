@@ -41,7 +41,6 @@ from threadpoolctl import threadpool_limits
 
 from ...base.errors import ParameterError, TooFewSamples
 from ...base.params import (
-    BOOLEAN,
     NON_NEGATIVE,
     POSITIVE,
     check_estimator,
@@ -309,14 +308,6 @@ def _block_clock(clock: tuple, time: np.ndarray, period_s: float) -> tuple[tuple
     return clock, dt
 
 
-def _least_squares(X, y) -> tuple[np.ndarray, float]:
-    """``(b, c)`` of MLR's ordinary least squares ``y ~ c + X b`` (the anchor's levels)."""
-    from sklearn.linear_model import LinearRegression
-
-    fit = LinearRegression().fit(X, y)
-    return np.asarray(fit.coef_, float), float(fit.intercept_)
-
-
 def _increments(F, groups) -> np.ndarray:
     """``F(t) - F(t-1)`` per segment, 0 at a segment's first row (steady before it)."""
     return F - F[lag_index(groups, len(F), 1)]
@@ -480,13 +471,6 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         Input columns whose lags start at rest (0) at a campaign's first sample instead of
         in steady state at their first value: an input that was 0 before the record (a machine
         state, see :class:`~thermocomp.core.models.hammerstein.Hammerstein`).
-    anchor : bool, default False
-        True: the ridge shrinks the levels towards the static least-squares fit of the inputs
-        (MLR's ``c + b_0 . x`` on the training rows), not towards 0: it fits MLR's residual, the
-        levels as departures from MLR's, so the strongest penalty leaves MLR and a weak one the
-        data's own levels.  Shrunk towards 0, a record's levels were near 0 and its slowest
-        lags carried the static response within the record: past the train range the model
-        followed them (``benchmarks/bench_auto84.py``).  Needs ``ar=False``.
 
     Attributes
     ----------
@@ -522,7 +506,7 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
 
     def __init__(self, n_taus: int = 8, tau_min_s: float | None = None,
                  tau_max_s: float = 172800.0, alphas=None, n_splits: int = 5, ar=False,
-                 sample_period_s: float = 60.0, level_penalty=1.0, rest_columns=None, anchor=False):
+                 sample_period_s: float = 60.0, level_penalty=1.0, rest_columns=None):
         self.n_taus = n_taus
         self.tau_min_s = tau_min_s
         self.tau_max_s = tau_max_s
@@ -532,7 +516,6 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         self.sample_period_s = sample_period_s
         self.level_penalty = level_penalty
         self.rest_columns = rest_columns
-        self.anchor = anchor
 
     # -- parameters ---------------------------------------------------------------------
     # n_taus: a feature per input and time constant
@@ -540,7 +523,7 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
                    "alphas": optional(either(POSITIVE, numbers(0.0, open_lo=True))),
                    "n_splits": integer(MIN_SPLITS), "ar": choice(False, True, "auto"),
                    "sample_period_s": POSITIVE, "level_penalty": either(numbers(0.0), NON_NEGATIVE),
-                   "rest_columns": optional(integers(0, empty=True)), "anchor": BOOLEAN}
+                   "rest_columns": optional(integers(0, empty=True))}
 
     def _rest(self, p: int) -> np.ndarray | None:
         """The columns of :attr:`rest_columns` as a mask over ``p`` inputs (None: none)."""
@@ -553,8 +536,6 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
     def param_relations(self) -> list[tuple[str, str]]:
         if self.tau_min_s is not None and not self.tau_min_s <= self.tau_max_s:
             return [("tau_min_s", f"must not exceed tau_max_s={self.tau_max_s}")]
-        if self.anchor and self.ar is not False:
-            return [("anchor", "needs ar=false (the levels are MLR's, no output feedback)")]
         return []
 
     def _check_params(self) -> tuple[np.ndarray, list[float]]:
@@ -613,23 +594,6 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         self.taus_ = np.geomspace(tau_min, float(self.tau_max_s), int(self.n_taus))
         names = [str(c) for c in getattr(self, "feature_names_in_", [f"x{j}" for j in range(p)])]
         self.features_ = names + [f"L[{tau:.6g}s]({c})-{c}" for tau in self.taus_ for c in names]
-        if self.anchor:             # MLR's levels; the leads fitted on its residual
-            self.anchor_coef_, self.anchor_intercept_ = _least_squares(X[measured], y[measured])
-            y = y - X @ self.anchor_coef_ - self.anchor_intercept_
-        self._fit_rows(X, y, measured, context, groups, alphas, ratios, p, time)
-        return self._anchored()
-
-    def _anchored(self) -> LagBank:
-        """Add the anchor's levels to the fitted ones (``anchor``; a refit left for later adds
-        them in :meth:`_refit_chosen`)."""
-        if self.anchor and getattr(self, "_pending_design", None) is None:
-            self.coef_[:self.anchor_coef_.size] += self.anchor_coef_
-            self.intercept_ += self.anchor_intercept_
-        return self
-
-    def _fit_rows(self, X, y, measured, context, groups, alphas, ratios, p: int, time):
-        """:meth:`fit`'s choice and refit on the rows ``X, y``."""
-        n = X.shape[0]
         if not measured.all():      # a target measured now and then: see _fit_measured
             return self._fit_measured(X, y, measured, context, groups, alphas, ratios, p, time)
 
@@ -737,8 +701,6 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         if design is None:                      # fitted whole (or pooled: its refit costs nothing)
             return self
         X, y = np.asarray(X, dtype=float), np.asarray(y, dtype=float)
-        if self.anchor:
-            y = y - X @ self.anchor_coef_ - self.anchor_intercept_
         groups = groups_of(context)
         F = self._features(X, context)
         y_prev = previous(y, groups)
@@ -746,7 +708,7 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         self.coef_, self.ar_coef_, self.intercept_ = self._refit(
             design, F, y, y_prev, groups, standard_scaler(D), self.alpha_, X.shape[1],
             self.level_penalty_)
-        return self._anchored()
+        return self
 
     @staticmethod
     def _campaign_folds(groups, n: int, splits):

@@ -3,8 +3,7 @@
 A candidate is named by its family's config (``conf/model/<name>.yaml``), so a new
 family becomes a candidate by a config edit (``model.candidates=[...]``);
 ``ati`` / ``ati+<family>`` is the ATI wrapper (``conf/ati/cmeans.yaml``) of MLR /
-that family; ``<family>_anchor`` is that family with ``model.candidate_defaults.<family>_anchor``
-over its own defaults (auto's anchored lag bank and hammerstein: ``conf/model/auto.yaml``).
+that family.
 """
 
 from __future__ import annotations
@@ -41,16 +40,8 @@ def build_candidates(cfg: DictConfig) -> dict:
     out = {}
     for name in names:
         family, where = candidate_family(name), f"model.candidates: {name}"
-        ati = str(name) == "ati" or str(name).startswith("ati+")
-        own = None
-        if family != name and not ati:   # a variant (<family>_anchor): its defaults over its family's
-            own = defaults.get(name)
-            if not own:
-                raise ConfigError(f"model.candidates: {name!r} is a variant of {family} without its "
-                                  f"settings: give them as model.candidate_defaults.{name}")
-        mine = OmegaConf.merge(defaults.get(family) or {}, own or {})
-        estimator = _family(cfg, family, mine if mine else None, params.get(name), name)
-        if ati:
+        estimator = _family(cfg, family, defaults.get(family), params.get(name), name)
+        if family != name:   # an ATI candidate
             ati = load_node(conf_dir() / "ati" / "cmeans.yaml", cfg.get("seed", 0), where)
             estimator = build(ati.estimator, f"model.candidates.{name}")(base_estimator=estimator)
         out[str(name)] = estimator
