@@ -72,9 +72,6 @@ from .cv import CrossValidator, CVResult, Problem, sign_flip_maxt, sign_flip_pva
 from .features import Effect
 from .sensors import self_prediction
 
-# train campaigns per learned direction of the initial state for such a lag to clear
-# (Search.starts_untestable): 2 directions with 8, 3 with 12
-CAMPAIGNS_PER_DIRECTION = 4
 
 @dataclass
 class SearchOptions:
@@ -401,8 +398,8 @@ class Search:
         p = sign_flip_maxt(D, seed=self.options.seed)
         for ev, pf in zip(family, p):
             ev.p_family = float(pf)
-            ev.clears_bar = (self._clears(ev.gain_pct, pf, ev.gain_pct_in_range, ev.p_margin,
-                                          ev.n_features) and not self.starts_untestable(ev.effect))
+            ev.clears_bar = self._clears(ev.gain_pct, pf, ev.gain_pct_in_range, ev.p_margin,
+                                         ev.n_features)
             self._within_checks(ev, current)
 
     def _within_checks(self, ev: Evaluation, current: CVResult) -> None:
@@ -504,19 +501,6 @@ class Search:
         (``benchmarks/bench_diagnose_saturated.py``)."""
         trained = self.problem.units_trained
         return trained is not None and n_features + 1 >= trained
-
-    def starts_untestable(self, effect) -> bool:
-        """True when ``effect`` learns more directions of the initial state than its train
-        campaigns can test: fewer than ``CAMPAIGNS_PER_DIRECTION`` campaigns per direction.  Each
-        learned direction is one level per campaign a few tau after its start, fitted on the
-        campaigns' start states alone; with 8-9 campaigns a third direction fitted their levels in
-        CV and failed on the test campaigns (the clean draws 8457 / 8178 / 8075 / 8170 and grinder
-        5682: +7 to +53 %, every one with 3 directions; the kept gains of planted:6 / 959 and
-        grinder 5687 with 2, climate_room's with 3 on 39; ``benchmarks/bench_diag85.py``).  It
-        stays a rival (:func:`choose`), as a saturating candidate does."""
-        k = effect.initial_directions if effect.initial_state else None
-        n = len(dict.fromkeys(self.problem.campaigns))
-        return bool(k) and n < CAMPAIGNS_PER_DIRECTION * int(k)
 
     def _bank_untestable(self, n_inputs: int) -> bool:
         """True when a state times the rises of all ``n_inputs`` inputs (``inputs_product``) cannot
