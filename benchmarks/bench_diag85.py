@@ -163,8 +163,9 @@ Like the kept planted:6 / 959 it sits in round 2 on ranked blocks after the plan
 its test gain is the lag's own dynamics (alone +12.6 %) rather than the start block, which the
 rule cannot give back: it refuses the candidate, not its start.  What I would try next: (a) when
 an initial-state lag is refused for its directions (or any other start check), let the round
-take the same lag WITHOUT its start if that clears (8885: is ``T_motor1`` 7200 s alone among the
-round's candidates and does it clear? not measured); (b) ask the 3rd direction to earn its keep
+take the same lag WITHOUT its start if that clears (8885: the plain ``T_motor1`` 7200 s lag was not
+evaluated in that round -- the shortlist keeps 2 per kind and column and its 3-direction 7200 s /
+14400 s variants took both; diagnosed on E_Y alone, main's src); (b) ask the 3rd direction to earn its keep
 against the same lag's 2-direction variant (a nested test of the added block, the family-wise
 bar on its increment) instead of a campaign count -- 5682's 3 directions gained 16.2 % against
 the 2's 8.1 % in CV, so (b) may not refuse it; (c) measure the rule's count on draws with more
