@@ -7,8 +7,7 @@ at most the largest leverage of a fit row -- inside the ellipsoid that holds the
 the classical check for hidden extrapolation (Montgomery, Peck & Vining, *Introduction to
 Linear Regression Analysis*, 3.8).  ``diagnose`` asks a gain to hold on those rows
 (:meth:`thermocomp.apps.diagnose.search.Search._clears`); ``model=auto`` can score its candidates there
-(:class:`~thermocomp.core.models.auto.AutoRegressor`, ``validation_rows``), or there only
-(:func:`outside_box`: where a held-out campaign takes an input past the others' range).
+(:class:`~thermocomp.core.models.auto.AutoRegressor`, ``validation_rows``).
 """
 
 from __future__ import annotations
@@ -30,16 +29,4 @@ def within_range(X: np.ndarray, train: np.ndarray, scored: np.ndarray) -> np.nda
     lev = np.sum(((X[scored] - mean) @ W) ** 2, axis=1)
     out = np.zeros(len(X), bool)
     out[np.flatnonzero(scored)] = lev <= limit * (1.0 + 1e-9)
-    return out
-
-
-def outside_box(X: np.ndarray, train: np.ndarray, scored: np.ndarray) -> np.ndarray:
-    """Rows of ``scored`` with at least one input below the ``train`` rows' minimum or above
-    their maximum, per input (the box the fit rows span; a NaN input is never outside)."""
-    Z = X[train]
-    with np.errstate(invalid="ignore"):
-        lo, hi = np.nanmin(Z, axis=0), np.nanmax(Z, axis=0)
-        past = (X[scored] < lo) | (X[scored] > hi)
-    out = np.zeros(len(X), bool)
-    out[np.flatnonzero(scored)] = past.any(axis=1)
     return out

@@ -23,7 +23,7 @@ from ..context import AMBIENT_C0, SideInputs, context_columns, groups_of, step_g
 from ..gains import gain_terms
 from ..metrics import PERSISTENCE, rmse
 from ..model_selection import BlockedForward, LeaveBlockOut, LeaveCampaignsOut
-from ..model_selection.extrapolation import outside_box, within_range
+from ..model_selection.extrapolation import within_range
 from .blend import Blend, fold_ratios, mean_fold_ratio, vote_weights
 from .one_step import persistence
 
@@ -36,10 +36,7 @@ NONE = "none"            # no correction: validated beside them, kept where noth
 # tested better), a fold every model extrapolates beside folds they correct 17-580x (iso67)
 FOLD_MARGIN = 2.0
 FORWARD_ONE = "forward-chaining (one record)"
-MIN_IN_RANGE_ROWS = 20   # validation_rows in_range / outside: a fold with fewer such rows is scored whole
-# validation_rows='outside' only with this many campaign folds: one fold's outside rows handed lab5401's
-# votes to a family its new campaigns did not back (auto85b: 3 train campaigns, +7.3 %)
-MIN_OUTSIDE_FOLDS = 2
+MIN_IN_RANGE_ROWS = 20   # validation_rows='in_range': a fold with fewer in-range rows is scored whole
 BLOCKS_ONE = {"blocks": "leave-block-out (one record)", "late_blocks": "leave-late-block-out (one record)"}
 CAMPAIGN_FOLDS = ("blocked forward", "leave-campaigns-out")   # folds holding out whole campaigns
 
@@ -112,13 +109,7 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         rows, ``oof_in_range_``: None under ``'all'`` unless ``keep_oof``; :func:`in_range_rows`).
         On 12 tuning and 10 fresh simulated records it moved one record per group within 10 % of
         the best family and changed no record's side against MLR; ``fl_thermal`` 90/10 went
-        2.483 -> 2.551 µm (``benchmarks/bench_auto_rules.py``): not the default.  ``'outside'``
-        (extension, auto85b): where the folds hold out whole campaigns, only the held-out rows
-        with an input past the range the fold's fit campaigns span
-        (:func:`~thermocomp.core.model_selection.extrapolation.outside_box`, ``oof_outside_``), as
-        a new campaign's rows are where the families part; a fold with fewer than
-        ``MIN_IN_RANGE_ROWS`` of them is scored whole; fewer than ``MIN_OUTSIDE_FOLDS`` (2)
-        campaign folds (e.g. 3 train campaigns: one) or one record's folds: every row (auto85c).
+        2.483 -> 2.551 µm (``benchmarks/bench_auto_rules.py``): not the default.
     max_seconds : float or None
         A candidate whose folds take longer than this is not validated further
         (skipped, its time recorded): a time budget for the slow families.
@@ -174,7 +165,7 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
                    "min_gain_pct": number(0.0, 100.0),
                    "combine": choice("vote", "best"), "keep_oof": choice(True, False),
                    "uncompensated": choice("zero", "keep"), "fallback": choice("one_se", "none"),
-                   "validation_rows": choice("all", "in_range", "outside")}
+                   "validation_rows": choice("all", "in_range")}
 
     uncompensated = "keep"   # a model pickled before the key: refitted as it was fitted
     fallback = "none"        # likewise
@@ -249,10 +240,6 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         if self.validation_rows == "in_range" or self.keep_oof:
             self.oof_in_range_ = np.concatenate([within_range(X, fit, score)[score]
                                                  for fit, _, score in folds])
-        self.oof_outside_ = None    # validation_rows='outside': held-out campaigns' rows past the fit's box
-        if (self.validation_rows == "outside" and self.scheme_ in CAMPAIGN_FOLDS
-                and len(folds) >= MIN_OUTSIDE_FOLDS):
-            self.oof_outside_ = np.concatenate([outside_box(X, fit, score)[score] for fit, _, score in folds])
         members = [n for n in self.candidates if n in self.oof_]
         if self.combine == "vote" and len(members) > 1 and BASELINE in self.oof_:
             return self._blend(X, y, context, members, how)
@@ -273,9 +260,8 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         blended = rmse(self.oof_y_ - preds @ w)
         mix = ", ".join(f"{n} {v:.2f}" for n, v in sorted(weights.items(), key=lambda kv: -kv[1]))
         doubt = "" if base is None else ", each kept as far as its resamples beat MLR, the rest MLR's"
-        where = "" if rows.all() else (f", on the {rows.sum()} of {rows.size} rows where the fold "
-                                       f"{_WHERE[self.validation_rows]}, "
-                                       f"{np.unique(self.oof_fold_[rows]).size} fold(s)")
+        where = ("" if self.validation_rows == "all" else f", on the {rows.sum()} of {rows.size} rows "
+                 f"where the fold does not extrapolate, {np.unique(self.oof_fold_[rows]).size} fold(s)")
         lead = (f"blend by the folds' votes (share of bootstrap resamples of the folds each "
                 f"candidate wins, mean squared errors relative to MLR's per fold{doubt}{where}): {mix}; "
                 f"blended validation RMSE {blended:.4g}")
@@ -343,23 +329,11 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
                         f"{self.reason_}")
         self.family_, self.chosen_, self.weights_ = NONE, {member: 0.0}, {member: 0.0}
 
-    def _rows_said(self) -> dict:
-        """Which out-of-fold rows the votes scored (``metrics.json``): the rule, counts, folds."""
-        rule = getattr(self, "validation_rows", "all") if self.combine_ == "vote" else "all"
-        if getattr(self, "oof_y_", None) is None or self.scheme_ == "val split":
-            return {"rule": rule, "scored": None, "of": None}
-        rows = self._voting_rows()
-        return {"rule": rule, "scored": int(rows.sum()), "of": int(rows.size),
-                "folds": int(np.unique(self.oof_fold_[rows]).size)}
-
     def _voting_rows(self) -> np.ndarray:
         """The out-of-fold rows the votes score: all, or (``validation_rows='in_range'``) those
-        where the fold does not extrapolate, (``'outside'``, campaign folds) those past its fit
-        campaigns' range (:func:`in_range_rows`)."""
+        where the fold does not extrapolate (:func:`in_range_rows`)."""
         if self.validation_rows == "in_range":
             return in_range_rows(self.oof_in_range_, self.oof_fold_)
-        if self.validation_rows == "outside" and getattr(self, "oof_outside_", None) is not None:
-            return outside_rows(self.oof_outside_, self.oof_fold_)
         return np.ones(len(self.oof_y_), bool)
 
     def _refit(self, X, y, context):
@@ -503,12 +477,8 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
                 "combine": self.combine_, "reason": self.reason_, "scheme": self.scheme_,
                 "skipped": dict(self.skipped_),
                 "validated_as": dict(getattr(self, "validated_as_", {})),
-                "voting_rows": self._rows_said(),
                 "validation_s": {n: round(s, 3) for n, s in self.fit_seconds_.items()}}
 
-
-_WHERE = {"in_range": "does not extrapolate",
-          "outside": "takes an input past its fit campaigns' range", "all": "holds out"}
 
 # a candidate whose folds took this long is said at INFO (else DEBUG): on a year at 1 min the
 # candidates' validation ran 13 minutes without a line (scale58)
@@ -540,18 +510,6 @@ def in_range_rows(in_range: np.ndarray, fold: np.ndarray, min_rows: int = MIN_IN
             keep |= rows
     if np.unique(fold[keep]).size < 2:
         return np.ones(len(fold), bool)
-    return keep
-
-
-def outside_rows(outside: np.ndarray, fold: np.ndarray, min_rows: int = MIN_IN_RANGE_ROWS
-                 ) -> np.ndarray:
-    """Out-of-fold rows to score under ``validation_rows='outside'``: the ``outside`` rows (an
-    input past the fold's fit campaigns' range) of every fold with at least ``min_rows`` of
-    them, every row of the others (too few to score a candidate by)."""
-    keep = np.zeros(len(fold), bool)
-    for f in np.unique(fold):
-        rows = fold == f
-        keep |= rows & outside if (rows & outside).sum() >= min_rows else rows
     return keep
 
 
