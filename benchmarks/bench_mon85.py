@@ -76,6 +76,54 @@ rule's; REFUSED if any part fails: the source reverted, the rule kept as
    or new thermal state that main does not have.
 5. tests/apps/test_monitor*.py, tests/shell/test_monitor*.py, tests/shell/test_export*.py pass.
 Any part not scored by 15:15 UTC: REFUSED as unscored.
+
+Scored (2026-12-04; "main": ``git archive 39d6305f`` sources, "rule": this branch at 6312fe32
+(``git archive``), per seed main's ``column`` run then the rule's; E_* test RMSE in µm, served
+adaptive, ``ctable /tmp/mon85-bench main rule``)
+------------------------------------------------------------------------------------------------
+1. Served against fixed, rule: s8703 every target +0.000 % (main -> rule E_Y 93.091 -> 15.275,
+   E_Z 21.050 -> 9.509, E_X_mid 8.981 -> 1.006, E_Y_mid 17.221 -> 1.947, E_Z_mid 6.664 -> 1.665,
+   E_X 30.300 -> 30.602 = fixed; the pair ``T_left1`` / ``T_left3`` out 732-1294 -> nothing out,
+   one new thermal state); s8546 at most +0.000 % (E_Y_mid -0.894 %), every digit as main's;
+   s8613 at most +0.022 % (E_X_mid), every digit as main's.  s8774 frozen: ``T_front1`` first
+   out 725 -> 726 (+1), alone (main: ``T_front1`` 725-731 and 733-1441, ``T_edge1`` 725-732),
+   E_Y 12.015 -> 11.764, E_Y_mid 5.340 -> 5.245, E_Z 6.196 -> 6.192, E_Z_mid 2.508 -> 2.496,
+   E_X / E_X_mid the same.  ``ccode`` (rule): s8774 frozen and s8703 healthy C = served to
+   2.8e-13 µm, the code flags nothing.  Holds.
+2. With the rule: tests/apps/test_monitor_new_state48.py, tests/shell/test_monitor_blind84b.py,
+   test_monitor_hides84c.py (xfail marks removed) and test_monitor_cli.py: 56 passed (40 s
+   wall).  Holds.
+3. Fresh 8826-8831, healthy and the four faults (30 records): no served E_* more than 2 % above
+   main's; 29 the same digits and exclusions; s8829's drift (main's ``T_left1`` 730-735 at Q3's
+   onset, not now) E_X_mid 1.517 -> 1.501, E_Z_mid 2.141 -> 2.144 (+0.14 %), E_X 28.852 ->
+   28.850.  ``T_front1`` first out at the same row as main's on all 24 faulted records (frozen
+   725 / 751 / 732 / 726 / 732 / 744, jump and dropout 721, drift 1040-1206).  Holds.
+4. Trunnion 8832-8834, lathe 8835-8837, jig 8838-8840 (``table /tmp/mon85-str main rule``),
+   healthy and the four faults (45 records): every line of the two jsonl equal (RMSE,
+   exclusions, events); no event on a healthy record either way; each fault's sensor first out
+   at the same time (trunnion PINOLE 6.294 / 6.639 / 6.967 h, STAENDER_H 5.556, MUTTER_X 6.667,
+   KUEHLUNG never; lathe BETT_R 5.556, MUTTER_Z 6.667, SPINDELKASTEN and KUEHLMITTEL never; jig
+   Pinole 5.042, Ständer_hinten_oben 5.828, Mutter_X 6.661, Hydraulik_Tank 7.306 / 7.706 /
+   7.206; the table's own mon81 check flags the tank flapping, 2-3 exclusions, on both).  Holds.
+5. tests/apps/test_monitor*.py, tests/shell/test_monitor*.py, tests/shell/test_export*.py with the
+   rule: 408 passed, 4 xfailed (the four known gaps of main, none of them the two removed), 234.4
+   s user + 13.0 s sys CPU, 13 min wall beside the bench runs.  Holds.
+
+CPU (user + sys of the bench process): ``column`` on the 10 seeds 34.7 s main (the simulations
+made by it), 29.3 s rule; ``ccode`` 4.8 s for the two; the stranger runs 11.3 / 12.0 / 11.6 s
+main (making the records), 0.0-0.1 rule: their work is in their ``thermocomp monitor`` subprocesses,
+not counted; ``trace48`` 1.2-1.3 s.
+
+Verdict: KEPT (every part held).  The rule changed 3 of the 34 column records (s8703 healthy,
+s8774 frozen, s8829's drift: a lone fault at Q3's onset blinding its partner, no longer taken)
+and none of the 45 stranger records.  What it does not show: the fallback now turns on which of
+two sensors is the likelier single fault, and on fl_thermal the margin is thin (``T_t9``'s ``t``
+0.275 against the culprit ``T_t14``'s 0.282 at sample 10294): a draw where the healthy sensor
+hidden edges past the culprit declares the never-ending new thermal state mon84d did, the
+drifting ``T_t12`` never out.  There main's verdict is itself wrong (the healthy ``T_t14`` out
+to the end of the record; the drifting sensor within its band, its ``t`` 0.221, not yet
+anyone's pick); what would end such a state (a drift that keeps one sensor's error growing
+while the field does not) is unmeasured.
 """
 
 from __future__ import annotations
