@@ -29,11 +29,12 @@ The served adaptive compensator judges every ``T_`` input before the model reads
   ``confirm`` samples (no sensor no other predicts explaining them, the served
   ``_explaining``): the culprit (the largest ``|E|(1 - h)``, or the lone fault that explains the
   bands, the served ``_lone_fault``, mon84 only the likelier single fault: the largest
-  ``|E| sqrt(1 - h)``) excluded where with it out every other judged sensor is
-  within its warning band, fewer than ``new_state_others`` others are out of it, and (a culprit
-  within its own band, or mon83 beyond it by less than its readings' rounding moves its error,
-  ``rounding``, the memory's error within that of the band) the excursion does not hover
-  against the field's memory
+  ``|E| sqrt(1 - h)``, mon84b leaving every judged sensor judged; a culprit within its band,
+  mon85, not by leaving the likelier single fault out of band in and unjudged) excluded where
+  with it out every other judged sensor is within its warning band, fewer than
+  ``new_state_others`` others are out of it, and (a culprit within its own band, or mon83
+  beyond it by less than its readings' rounding moves its error, ``rounding``, the memory's
+  error within that of the band) the excursion does not hover against the field's memory
   (``tau``, ``growth``: the served ``_excursion_hovers``); else nothing, as served (a veto).
   Its blind partner (``pairs``: the one judged sensor no other predicts once it is out, an
   operator per pair) goes out with it under the same veto.  Each waits ``window`` times 2 to
@@ -832,13 +833,15 @@ class CodeMonitor:
         out = judged & (level >= WARNING)
         if self._resolves(j, out if level[j] < WARNING else None):
             return j, True
-        hides = bool(level[j] < WARNING) and self._resolves(j)
         size = np.abs(np.where(judged, np.nan_to_num(err), 0.0))
         std = np.sqrt(np.abs(1 - self.lev[self.op]))
         likelier = np.argmax(size * std)     # (mon84: asked of every lone fault)
+        # (mon85: j within band hiding the likelier single fault, not its blind partner: no)
+        hidden = out & (z < 0.7 * z[j]) & (np.arange(len(z)) == likelier)
+        hides = bool(level[j] < WARNING) and self._resolves(j, hidden)
         for k in np.argsort(-z):
             if (k != j and z[k] >= 0 and level[k] >= WARNING and likelier == k
-                    and self._resolves(int(k), out,
+                    and self._resolves(int(k), judged,   # (mon84b: every judged sensor)
                                        float(np.max(np.delete(size, k), initial=0.0)))):
                 return int(k), True
         return j, hides

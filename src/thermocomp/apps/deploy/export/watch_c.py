@@ -451,7 +451,7 @@ static int mon_resolves(const tc_state *s, int j, const int seen[], double alone
 static int mon_lone_fault(const tc_state *s, int j, const double z[], const int level[],
                           const int jd[], int *resolves) {
     double size[NM];
-    int out[NM], k, i, hides, likelier = -1, done[NM];
+    int out[NM], hidden[NM], k, i, hides, likelier = -1, done[NM];
     for (k = 0; k < NM; k++) {
         double e = mon_mean_err(s, k);
         out[k] = jd[k] && level[k] >= 1;
@@ -459,7 +459,6 @@ static int mon_lone_fault(const tc_state *s, int j, const double z[], const int 
         done[k] = 0;
     }
     if (mon_resolves(s, j, level[j] < 1 ? out : 0, -1.0)) return *resolves = 1, j;
-    hides = level[j] < 1 && mon_resolves(s, j, 0, -1.0);
     /* the likelier single fault: the largest standardised residual (mon84: asked of every
        lone fault, not only where j hides) */
     for (k = 0; k < NM; k++) {
@@ -467,6 +466,9 @@ static int mon_lone_fault(const tc_state *s, int j, const double z[], const int 
         if (likelier < 0 || w > size[likelier] * sqrt(fabs(1.0 - MON_LEV[s->mon_op][likelier])))
             likelier = k;
     }
+    /* (mon85: j within band hiding the likelier single fault, not its blind partner: no) */
+    for (k = 0; k < NM; k++) hidden[k] = out[k] && z[k] < 0.7 * z[j] && k == likelier;
+    hides = level[j] < 1 && mon_resolves(s, j, hidden, -1.0);
     for (i = 0; i < NM; i++) {   /* the others, the largest z first */
         double alone = 0.0;
         k = -1;
@@ -476,7 +478,8 @@ static int mon_lone_fault(const tc_state *s, int j, const double z[], const int 
         if (k == j || z[k] < 0 || level[k] < 1 || likelier != k) continue;
         for (int m = 0; m < NM; m++)
             if (m != k && size[m] > alone) alone = size[m];
-        if (mon_resolves(s, k, out, alone)) return *resolves = 1, k;
+        /* (mon84b: tested on every judged sensor, none left unjudged) */
+        if (mon_resolves(s, k, jd, alone)) return *resolves = 1, k;
     }
     return *resolves = hides, j;
 }

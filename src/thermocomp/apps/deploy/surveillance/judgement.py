@@ -105,9 +105,10 @@ class Judgement:
         others make by more than any other sensor's error now (a fault's own deviation is the
         largest), and the largest standardised residual ``|E|·sqrt(1 - h)`` (the likelier
         single fault, as in :meth:`_explaining`; mon84: asked always, before only where ``j``'s
-        exclusion explains the bands by leaving one out of them unjudged); else ``j``, if it
-        explains them at all (a coupled pair: :meth:`_exclude_by_judgement` takes the partner
-        out too).  ``j``'s coupled
+        exclusion explains the bands by leaving one out of them unjudged), whose exclusion leaves
+        every judged sensor judged (mon84b); else ``j``, if it explains them at all, within its
+        band not by leaving the likelier single fault out of band in and unjudged (mon85; a
+        coupled pair: :meth:`_exclude_by_judgement` takes the partner out too).  ``j``'s coupled
         neighbour can show the largest error (fl_thermal's t12 drifting, T_t14 then T_t15
         picked, and the drift read as a new thermal state that never ended); and a lathe's
         healthy T_nc_x1_drive (-0.58 °C, 0.48 standardised), excluded for a drifting
@@ -120,9 +121,6 @@ class Judgement:
         # partner follows it out); one within its band that does so hides, not explains
         if self._resolves(j, out if level[j] < WARNING else None):
             return j, True
-        # j explains the bands only by hiding a sensor out of them (j out of band itself: the
-        # same question as above, answered no)
-        hides = bool(level[j] < WARNING) and self._resolves(j)
         size = np.abs(np.where(self._judged, np.nan_to_num(err), 0.0))
         # the likelier single fault: the largest standardised residual |E|·sqrt(1 - h), the
         # likelihood ratio's pick for one faulty sensor (a fault on k gives no other a larger
@@ -131,9 +129,20 @@ class Judgement:
         # source's onset, was taken over T_right4 on a residual 0.17 °C amplified 5.5x by the
         # leave-one-out division, 0.35 standardised against T_right4's 0.37 (mon84)
         likelier = np.argmax(size * self._std)
+        # j explains the bands only by hiding a sensor out of them (j out of band itself: the
+        # same question as above, answered no); not where the one it leaves in unjudged (not
+        # its blind partner, z < 0.7 z[j]) is the likelier single fault (mon85: s8774's healthy
+        # T_edge1 hid the frozen T_front1 7 rows; fl_thermal's T_t14 hiding the healthy T_t9,
+        # less likely than itself, is let stand)
+        hidden = out & (z < 0.7 * z[j]) & (np.arange(len(z)) == likelier)
+        hides = bool(level[j] < WARNING) and self._resolves(j, hidden)
+        # a lone fault is tested on every other judged sensor: one whose exclusion leaves a
+        # judged sensor unjudged (its coupled partner past max_leverage) takes that partner
+        # out with it on no evidence of the partner's own (mon84b: a column's T_left1, the
+        # likelier fault at an unseen source's onset, blinded T_left3 within its band)
         for k in np.argsort(-z):
             if (k != j and z[k] >= 0 and level[k] >= WARNING and likelier == k
-                    and self._resolves(int(k), out,
+                    and self._resolves(int(k), self._judged,
                                        alone=float(np.max(np.delete(size, k), initial=0.0)))):
                 return int(k), True
         return j, hides
