@@ -202,14 +202,15 @@ def slashed_time(cfg: DictConfig, ds) -> str | None:
     ``data.dayfirst``'s where it is set (dates85); None where there is none.
     What a stream of the lab's rows reads them in (``monitor.input=-``, the served model, the
     exported ``TC_SLASHED``): a stream cannot see the future (code71)."""
-    given = str(cfg.data.get("time") or "auto")
-    if given != "auto":
-        return given if given.startswith(("%d/%m/", "%m/%d/")) else None
-    if ds is None:
-        return None
     from ..core.io.contract import ContractError
     from ..core.io.dayfirst import ORDER
     from ..core.io.slashed import record_order
+
+    given = str(cfg.data.get("time") or "auto")
+    if given != "auto":
+        return given if given.startswith(tuple(ORDER.values())) else None
+    if ds is None:
+        return None
 
     root = resolve(cfg.data.path)
     files = [root] if root.is_file() else [root / str(f) for f in ds.manifest["file"]]

@@ -44,8 +44,14 @@ def swapped(forms: Sequence[str], day_first: bool) -> tuple[str, ...]:
 def fields(cells) -> tuple[np.ndarray, np.ndarray]:
     """The day-or-month fields ``(a, b)`` of ``a/b/year`` in each of ``cells`` (text), -1 in a
     cell that is no date with slashes."""
-    parts = pc.extract_regex(pa.array(cells, pa.string()) if not isinstance(
-        cells, (pa.Array, pa.ChunkedArray)) else cells, _FIELDS)
+    if not isinstance(cells, (pa.Array, pa.ChunkedArray)):
+        cells = pa.array(cells, pa.string())
+    return parts_fields(pc.extract_regex(cells, _FIELDS))
+
+
+def parts_fields(parts) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`fields` of a regex's matches ``parts`` whose groups ``a`` and ``b`` are the two
+    fields before the year (null: no date with slashes)."""
     return tuple(pc.fill_null(pc.cast(pc.struct_field(parts, n), pa.int16()), -1)
                  .to_numpy(zero_copy_only=False) for n in "ab")
 

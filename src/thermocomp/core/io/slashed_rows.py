@@ -17,7 +17,7 @@ import pyarrow.compute as pc
 
 from ...base.log import logger
 from .contract import ContractError
-from .dayfirst import KEY, ORDER, WAY, fields, parse_with, run_order
+from .dayfirst import KEY, ORDER, WAY, fields, parse_with, parts_fields, run_order
 from .timestamps import slashed_format
 
 
@@ -152,7 +152,7 @@ def _contradiction(day: Order, month: Order) -> ContractError:
 
 # a date with slashes and a time of day, its parts that decide its format (Arrow's regex: no
 # unnamed group; the cell trimmed first), as timestamps.slashed_format reads them
-_PARTS = (r"^\d{1,2}/\d{1,2}/(?P<y>\d{4}|\d\d)(?P<sep>[ T])\d{1,2}:\d\d"
+_PARTS = (r"^(?P<a>\d{1,2})/(?P<b>\d{1,2})/(?P<y>\d{4}|\d\d)(?P<sep>[ T])\d{1,2}:\d\d"
           r"(?P<s>:\d\d(?:[.,:]\d+)?)?$")
 _KEYSIGHT = r"\d:\d\d:\d\d:\d{3}$"
 
@@ -169,7 +169,7 @@ def said_by(cells: pa.Array | pa.ChunkedArray, path: Path, header: str
     if parts.null_count == len(parts):     # (none, or no cell a date with slashes)
         return {}, {}
     field = {n: pc.struct_field(parts, n) for n in ("y", "sep", "s")}
-    shape = [x > 12 for x in fields(text)] + [
+    shape = [x > 12 for x in parts_fields(parts)] + [
         pc.fill_null(flag, False).to_numpy(zero_copy_only=False) for flag in (
             pc.equal(pc.utf8_length(field["y"]), 4), pc.equal(field["sep"], "T"),
             pc.not_equal(field["s"], ""), pc.match_substring_regex(text, _KEYSIGHT))]

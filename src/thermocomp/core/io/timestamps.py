@@ -180,9 +180,9 @@ def slashed_format(value: str, keysight: bool = True, order: str | None = None) 
     if order is not None:
         date = order
     elif first > 12 >= second:
-        date = "%d/%m/"
+        date = ORDER[True]
     elif second > 12 >= first or keysight and first <= 12 and keysight_stamp(value):
-        date = "%m/%d/"
+        date = ORDER[False]
     else:
         return None
     year = "%Y" if len(match["y"]) == 4 else "%y"
