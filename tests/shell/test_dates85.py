@@ -110,7 +110,7 @@ def test_the_served_model_reads_the_labs_rows_in_the_order_it_was_trained_in(tmp
     from thermocomp.apps.deploy.pyfunc import CompensatorModel
 
     deployed = _served(tmp_path, _folder(tmp_path / "csv", night=night), *keys)
-    block = pd.read_csv(_run(tmp_path / "next.csv", dt.datetime(2027, 5, 7, 23, 0), run=3))
+    block = pd.read_csv(_run(tmp_path / "next.csv", dt.datetime(2027, 5, 7, 23, 30), run=3))
     seconds = block.assign(time=np.arange(len(block)) * 60.0)
     served, timed = (CompensatorModel(copy.deepcopy(deployed)).predict(None, b, {"reset": True})
                      for b in (block, seconds))
@@ -127,3 +127,24 @@ def test_the_exported_stream_reads_the_labs_rows_in_data_dayfirsts_order(tmp_pat
     _compiled_stream_equals_its_pack(tmp_path, path, [f"data.path={path}", "data.dayfirst=true",
                                                       "data.test_fraction=0.3",
                                                       "data.reference=none"])
+
+
+def test_a_stream_of_the_labs_rows_reads_in_the_order_a_night_run_settled(tmp_path, monkeypatch):
+    """``monitor.input=-``: the test run piped in, 05/05 23:30 into 06/05 (a month on read month
+    first), scores as its file does, read in the order its record's night runs settled (no key;
+    before: the record refused)."""
+    import io as _io
+    import json
+
+    from conftest import FAST
+    from thermocomp.shell.cli import main
+
+    root = _folder(tmp_path / "csv", night=(True, True))
+    common = ["monitor", f"data.path={root}", "data.test_fraction=0.5", "model=lagbank", *FAST]
+    assert main([*common, f"out={tmp_path / 'file'}"]) == 0
+    monkeypatch.setattr("sys.stdin", _io.StringIO((root / "run_2.csv").read_text()))
+    assert main([*common, "monitor.input=-", f"out={tmp_path / 'pipe'}"]) == 0
+    said = [json.loads((tmp_path / k / "monitor.json").read_text())["targets"]["E_x"]
+            for k in ("file", "pipe")]
+    assert said[1]["n_samples"] == 60
+    assert said[1]["rmse_fixed"] == pytest.approx(said[0]["rmse_fixed"], rel=1e-12)
