@@ -45,8 +45,8 @@ Verdict: KEPT.
   data.time ... or data.dayfirst") -> read day first, "the order its rows say (its run: its data
   row 121, '04/05/2027 00:00:00' ...)", ``data.time='%d/%m/%Y %H:%M:%S'`` written; ``run`` E_dX
   test RMSE 0.448 µm both (main with the key given by hand); ``export``: ``TC_SLASHED 0`` -> 1.
-* gb_day (no night run): ``init`` refused both, now naming the file, column 'Date/Time', data
-  row 1 and ``data.dayfirst=true|false``; with the key 0.473 µm both; ``TC_SLASHED 0`` -> 1
+* gb_day (no night run): ``init`` refused both, now naming the file, column 'Date/Time', line 2 (data
+  row 1) and ``data.dayfirst=true|false``; with the key 0.473 µm both; ``TC_SLASHED 0`` -> 1
   (before, the exported stream refused the lab's every row, the served model every block).
 """
 

@@ -72,7 +72,8 @@ def test_dates_either_order_reads_as_a_run_are_refused_naming_file_column_row_an
                                                                                       capsys):
     root = _folder(tmp_path / "csv", night=(False, False))
     said = refused(["init", str(root), f"out={tmp_path / 'init'}"], capsys,
-                   "column 'time'", "data row 1", "'03/05/2027 07:00:00' is day or month first",
+                   "column 'time', line 2 (data row 1)",
+                   "'03/05/2027 07:00:00' is day or month first",
                    "data.dayfirst=true", "data.dayfirst=false")
     assert str(root / "run_1.csv") in said
 

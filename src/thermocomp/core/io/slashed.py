@@ -28,6 +28,7 @@ import pyarrow as pa
 
 from .contract import TIME, ContractError
 from .dayfirst import ORDER, WAY
+from .lines import Lines
 from .plain import is_converted
 from .slashed_rows import Order, said_by, settled
 from .sniff import resolved
@@ -53,7 +54,8 @@ def record_order(files: Iterable[Path], opts) -> Order | None:
     files = list(files)
     if opts.time != "auto" or not files:
         return None
-    return settled([_said(path, opts) for path in files], opts.dayfirst)
+    return settled([_said(path, opts) for path in files], opts.dayfirst,
+                   lambda exc: _located(exc, opts))
 
 
 def rows_tell(path: Path, opts) -> bool:
@@ -91,6 +93,19 @@ def stream_format(time: pd.Series, recorded: str | None, source: str) -> str | N
                 "the record, or set data.time to the stream's format",
                 file=source, column=TIME, row=int(row) + 1)
     return slashed_format(cells.iloc[0], order=recorded[:6])
+
+
+def _located(exc: ContractError, opts) -> ContractError:
+    """``exc`` naming the line of its file's data row too (a CSV table's, as its read does)."""
+    path = Path(exc.file)
+    if exc.row is None or is_utf16(path):
+        return exc
+    try:
+        opts = resolved(path, opts)
+        skip = peek_csv(path, opts.delimiter, opts.encoding)[2]
+    except (ContractError, ValueError):
+        return exc
+    return Lines(path, opts.delimiter, opts.encoding, skip).located(exc)
 
 
 def _said(path: Path, opts) -> tuple | None:

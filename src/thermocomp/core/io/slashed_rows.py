@@ -86,16 +86,19 @@ def read_in(order: Order | None, opts, record: Path, first: Path):
 RUN_SAID = ": a day on read so, a month on or back read the other way"
 
 
-def settled(read: list, dayfirst: bool | None) -> Order | None:
+def settled(read: list, dayfirst: bool | None, located=None) -> Order | None:
     """:func:`decided` of the record's files ``read`` (each ``(said, path, header, cells)``,
     :func:`said_by`'s and the time cells it looked at; None: as :func:`decided`'s), else, where
     no row of any says an order and ``data.dayfirst`` is unset, the order their runs settle
-    (:func:`by_runs`)."""
+    (:func:`by_runs`; ``located``: its refusal naming the file's line too)."""
     saids = [None if r is None else r[0] for r in read]
     order = decided(saids)
     if (order is None and dayfirst is None and saids and saids[0] is not None
             and not any(s and (s[0] or s[1]) for s in saids)):
-        return by_runs([r[1:] for r in read if r is not None])
+        try:
+            return by_runs([r[1:] for r in read if r is not None])
+        except ContractError as exc:
+            raise exc if located is None else located(exc) from None
     return order
 
 
