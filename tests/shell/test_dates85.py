@@ -14,6 +14,7 @@ import pandas as pd
 import pytest
 
 from conftest import refused
+from test_dates84 import piped_as_its_file
 from test_export import needs_cc
 from test_stranger65 import _compiled_stream_equals_its_pack
 from thermocomp.core.io import read_dataset
@@ -134,18 +135,7 @@ def test_a_stream_of_the_labs_rows_reads_in_the_order_a_night_run_settled(tmp_pa
     """``monitor.input=-``: the test run piped in, 05/05 23:30 into 06/05 (a month on read month
     first), scores as its file does, read in the order its record's night runs settled (no key;
     before: the record refused)."""
-    import io as _io
-    import json
-
-    from conftest import FAST
-    from thermocomp.shell.cli import main
-
-    root = _folder(tmp_path / "csv", night=(True, True))
-    common = ["monitor", f"data.path={root}", "data.test_fraction=0.5", "model=lagbank", *FAST]
-    assert main([*common, f"out={tmp_path / 'file'}"]) == 0
-    monkeypatch.setattr("sys.stdin", _io.StringIO((root / "run_2.csv").read_text()))
-    assert main([*common, "monitor.input=-", f"out={tmp_path / 'pipe'}"]) == 0
-    said = [json.loads((tmp_path / k / "monitor.json").read_text())["targets"]["E_x"]
-            for k in ("file", "pipe")]
+    said = piped_as_its_file(tmp_path, monkeypatch, _folder(tmp_path / "csv", night=(True, True)),
+                             "model=lagbank")
     assert said[1]["n_samples"] == 60
     assert said[1]["rmse_fixed"] == pytest.approx(said[0]["rmse_fixed"], rel=1e-12)
