@@ -103,10 +103,11 @@ def slashed_order(dates: Sequence[tuple[str, int | None]], dayfirst: bool | None
                      line=[ln for _, ln in kept])[0]
 
 
-def run_order(cells: pd.Series, parse: Callable, file, column: str, line=None, row=None,
-              also: str = "") -> tuple[bool, int]:
+def run_order(cells: pd.Series | pa.Array, parse: Callable, file, column: str, line=None,
+              row=None, also: str = "") -> tuple[bool, int]:
     """The one order in which ``cells`` (text, dates with slashes none of whose day or month is
-    past 12, in the file's order) never go back and never step 27 days or more, and the position
+    past 12, in the file's order; ``parse(cells, day_first)``: as datetimes, NaT where one does
+    not read so) never go back and never step 27 days or more, and the position
     of the first cell the other order cannot read so (where it goes back or jumps a month).
     ``line`` / ``row``: each cell's, what a refusal names (at the first cell); ``also``: the
     refusal's other way out.
@@ -117,6 +118,7 @@ def run_order(cells: pd.Series, parse: Callable, file, column: str, line=None, r
         Where both orders run so, or neither.
     """
     broken = {order: _broken(cells, order, parse) for order in (True, False)}
+    first = cells[0].as_py() if isinstance(cells, pa.Array) else cells.iloc[0]
     possible = [order for order, at in broken.items() if at is None]
     if len(possible) == 1:
         return possible[0], broken[not possible[0]]
@@ -124,16 +126,16 @@ def run_order(cells: pd.Series, parse: Callable, file, column: str, line=None, r
            "read either way (no day past 12, and no change of date that only one order "
            "makes a small step)")
     where = {"line": None if line is None else line[0], "row": None if row is None else row[0]}
-    raise ContractError(f"date {cells.iloc[0]!r} is day or month first? the file's dates {why}: "
+    raise ContractError(f"date {first!r} is day or month first? the file's dates {why}: "
                         f"set {KEY}=true|false to the order of the PC that wrote it ({KEY}=true: "
                         f"day first, 05/03 the 5th of March; {KEY}=false: month first, the 3rd "
                         f"of May){also}", file=file, column=column, **where)
 
 
-def _broken(cells: pd.Series, day_first: bool, parse: Callable) -> int | None:
+def _broken(cells, day_first: bool, parse: Callable) -> int | None:
     """The position of the first of ``cells`` that read ``day_first`` does not parse, goes back
     or steps a month on; None where they run."""
-    times = parse(cells, day_first).to_numpy("datetime64[ns]")
+    times = np.asarray(parse(cells, day_first), dtype="datetime64[ms]")   # (a year 27: %Y's)
     bad = np.isnat(times)
     steps = np.diff(times)
     bad[1:] |= (steps < np.timedelta64(0)) | (steps >= _MONTH)

@@ -11,13 +11,12 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
-import pandas as pd
 import pyarrow as pa
 import pyarrow.compute as pc
 
 from ...base.log import logger
 from .contract import ContractError
-from .dayfirst import KEY, ORDER, WAY, fields, parse_with, parts_fields, run_order
+from .dayfirst import KEY, ORDER, WAY, fields, parts_fields, run_order, swapped
 from .timestamps import slashed_format
 
 
@@ -103,8 +102,8 @@ def settled(read: list, dayfirst: bool | None, located=None) -> Order | None:
 
 
 # a CSV table's dates with slashes as :func:`.timestamps.slashed_format` reads them, month first
-# (a second's fraction cut off first: it changes no date)
-_FORMS = tuple(f"%m/%d/{year}{sep}%H:%M{seconds}" for year in ("%Y", "%y") for sep in " T"
+# (a second's fraction cut off first: it changes no date; Arrow's %Y reads '27' too: %y first)
+_FORMS = tuple(f"%m/%d/{year}{sep}%H:%M{seconds}" for year in ("%y", "%Y") for sep in " T"
                for seconds in (":%S", ""))
 _ALSO = ", or data.time to its format, e.g. data.time='%d/%m/%Y %H:%M:%S'"
 _FRACTION = r"(\d:\d\d:\d\d)[.,:]\d+$"
@@ -127,20 +126,31 @@ def by_runs(files: list[tuple[Path, str, pa.Array | pa.ChunkedArray]]) -> Order:
         rows = np.flatnonzero(fields(text)[0] >= 0)
         if not rows.size:
             continue
-        values = pd.Series(text.take(pa.array(rows)).to_pylist())
+        values = text.take(pa.array(rows))
+        if isinstance(values, pa.ChunkedArray):
+            values = values.combine_chunks()
         try:
-            order, at = run_order(values.str.replace(_FRACTION, r"\1", regex=True),
-                                  parse_with(_FORMS), path, header, row=rows + 1, also=_ALSO)
+            order, at = run_order(values, _parse, path, header, row=rows + 1, also=_ALSO)
         except ContractError as exc:
             refusal = refusal or exc
             continue
-        said.setdefault(order, Order(slashed_format(values.iloc[0], order=ORDER[order]), path,
-                                     header, int(rows[at]) + 1, values.iloc[at], False, True))
+        said.setdefault(order, Order(slashed_format(values[0].as_py(), order=ORDER[order]), path,
+                                     header, int(rows[at]) + 1, values[at].as_py(), False, True))
     if len(said) == 2:
         raise _contradiction(said[True], said[False])
     if said:
         return next(iter(said.values()))
     raise refusal
+
+
+def _parse(cells: pa.Array, day_first: bool) -> np.ndarray:
+    """``cells`` read by the first of :data:`_FORMS` (``day_first``: swapped) that reads each,
+    NaT where none does: Arrow's strptime, not a Python loop over a large table's rows."""
+    whole, read = pc.replace_substring_regex(cells, _FRACTION, r"\1"), None
+    for form in swapped(_FORMS, day_first):
+        one = pc.strptime(whole, format=form, unit="s", error_is_null=True)
+        read = one if read is None else pc.coalesce(read, one)
+    return read.to_numpy(zero_copy_only=False)
 
 
 def _contradiction(day: Order, month: Order) -> ContractError:
