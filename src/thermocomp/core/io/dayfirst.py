@@ -135,7 +135,8 @@ def run_order(cells: pd.Series | pa.Array, parse: Callable, file, column: str, l
 def _broken(cells, day_first: bool, parse: Callable) -> int | None:
     """The position of the first of ``cells`` that read ``day_first`` does not parse, goes back
     or steps a month on; None where they run."""
-    times = np.asarray(parse(cells, day_first), dtype="datetime64[ms]")   # (a year 27: %Y's)
+    # (ms, not ns: Arrow's %Y reads a two-digit year, 27, as the year 27, before ns's range)
+    times = np.asarray(parse(cells, day_first), dtype="datetime64[ms]")
     bad = np.isnat(times)
     steps = np.diff(times)
     bad[1:] |= (steps < np.timedelta64(0)) | (steps >= _MONTH)
