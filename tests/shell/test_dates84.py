@@ -142,21 +142,27 @@ def test_a_csv_tables_slashed_dates_read_by_data_dayfirst_too(tmp_path, capsys):
         read_dataset(later, {**opts, "dayfirst": False})
 
 
-def test_a_stream_of_such_rows_reads_in_data_dayfirsts_order(tmp_path, monkeypatch):
-    """The test run piped in (``monitor.input=-``) scores as its file does (before: refused,
-    "day or month first? set data.time ...", the key read by the file's reader alone)."""
+def piped_as_its_file(tmp_path, monkeypatch, root, *keys: str) -> list[dict]:
+    """``monitor`` on the record ``root`` (its test run ``run_2.csv``) read from its file and
+    piped in (``monitor.input=-``): E_x's figures, each."""
     import io as _io
     import json
 
     from conftest import FAST
     from thermocomp.shell.cli import main
 
-    root = _csv_folder(tmp_path / "csv", (3, 4))
-    common = ["monitor", f"data.path={root}", "data.test_fraction=0.5", "data.dayfirst=true", *FAST]
+    common = ["monitor", f"data.path={root}", "data.test_fraction=0.5", *keys, *FAST]
     assert main([*common, f"out={tmp_path / 'file'}"]) == 0
     monkeypatch.setattr("sys.stdin", _io.StringIO((root / "run_2.csv").read_text()))
     assert main([*common, "monitor.input=-", f"out={tmp_path / 'pipe'}"]) == 0
-    said = [json.loads((tmp_path / k / "monitor.json").read_text())["targets"]["E_x"]
+    return [json.loads((tmp_path / k / "monitor.json").read_text())["targets"]["E_x"]
             for k in ("file", "pipe")]
+
+
+def test_a_stream_of_such_rows_reads_in_data_dayfirsts_order(tmp_path, monkeypatch):
+    """The test run piped in (``monitor.input=-``) scores as its file does (before: refused,
+    "day or month first? set data.time ...", the key read by the file's reader alone)."""
+    said = piped_as_its_file(tmp_path, monkeypatch, _csv_folder(tmp_path / "csv", (3, 4)),
+                             "data.dayfirst=true")
     assert said[1]["n_samples"] == 40
     assert said[1]["rmse_fixed"] == pytest.approx(said[0]["rmse_fixed"], rel=1e-12)

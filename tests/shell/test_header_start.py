@@ -103,3 +103,15 @@ def test_a_day_first_start_is_taken_and_an_ambiguous_one_said(tmp_path, capsys):
     assert starts["02_b"] == pd.Timestamp("2027-05-07 12:00:00")
     assert starts["04_d"] == pd.Timestamp("2027-05-13 07:00:00")
     assert ds.manifest.loc["05_e", "split"] == "test"          # name order, as said
+
+
+def test_a_start_either_order_reads_is_read_in_data_dayfirsts(tmp_path):
+    """dates85: the key every reader of dates with slashes reads (before: '05/08/2027' left
+    whatever the key said)."""
+    nest_files(tmp_path / "nest", {"01_a": ["Test start\t05/08/2027 07:00:00"],
+                                   "02_b": ["Test start\t06/08/2027 07:00:00"]})
+    for dayfirst, days in ((True, [(8, 5), (8, 6)]), (False, [(5, 8), (6, 8)])):
+        ds = io.read_dataset(tmp_path / "nest", {"test_fraction": 0.5, "time": "elapsed",
+                                                 "dayfirst": dayfirst})[0]
+        assert list(pd.to_datetime(ds.manifest["start"])) == [
+            pd.Timestamp(2027, month, day, 7) for month, day in days]

@@ -197,24 +197,31 @@ def read_streamed(cfg: DictConfig, test: bool = True):
 
 def slashed_time(cfg: DictConfig, ds) -> str | None:
     """The strptime format the record ``data.path`` (``ds`` as read) reads its dates with slashes
-    in: ``data.time`` where it is one, else (``auto``) the order every row of its files says, as
-    its read took it (:func:`~thermocomp.core.io.slashed.record_order`); None where there is none.
+    in: ``data.time`` where it is one, else (``auto``) the order every row of its files says or
+    their runs settle, as its read took it (:func:`~thermocomp.core.io.slashed.record_order`),
+    ``data.dayfirst``'s where it is set (dates85); None where there is none.
     What a stream of the lab's rows reads them in (``monitor.input=-``, the served model, the
     exported ``TC_SLASHED``): a stream cannot see the future (code71)."""
+    from ..core.io.contract import ContractError
+    from ..core.io.dayfirst import ORDER
+    from ..core.io.slashed import record_order
+
     given = str(cfg.data.get("time") or "auto")
     if given != "auto":
-        return given if given.startswith(("%d/%m/", "%m/%d/")) else None
+        return given if given.startswith(tuple(ORDER.values())) else None
     if ds is None:
         return None
-    from ..core.io.contract import ContractError
-    from ..core.io.slashed import record_order
 
     root = resolve(cfg.data.path)
     files = [root] if root.is_file() else [root / str(f) for f in ds.manifest["file"]]
+    opts = io.ReadOptions.from_cfg(data_options(cfg))
     try:
-        order = record_order(files, io.ReadOptions.from_cfg(data_options(cfg)))
+        order = record_order(files, opts)
     except (ContractError, OSError, ValueError):     # (no text file: nothing said by its cells)
-        return None
+        order = None
+    if opts.dayfirst is not None and (order is None or order.day_first != opts.dayfirst):
+        # (dates85) the key's order, as the reader took it (the shape: each stream's own)
+        return f"{ORDER[opts.dayfirst]}%Y %H:%M:%S"
     return None if order is None else order.format
 
 

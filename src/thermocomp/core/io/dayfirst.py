@@ -1,7 +1,7 @@
 """Day or month first: the order of a lab file's dates with slashes, decided from the file itself
-(dates84), for the readers that parse a date of their own (a catman T0, a Scope View start or
-time column, a LabVIEW segment's Date); a CSV table's time column is decided by its record's rows
-(:mod:`.slashed`).
+(dates84), one mechanism for every reader of them (dates85): those that parse a date of their own
+(a catman T0, a Scope View start or time column, a LabVIEW segment's Date) and a CSV table's time
+column (:mod:`.slashed_rows`, its rows' shapes and a Keysight stamp, a record's files at once).
 
 ``05/03/2027`` is the 3rd of May on an en-US PC and the 5th of March on an en-GB one; catman read
 it month first wherever the day was 12 or less (stranger84).  So: ``data.dayfirst`` (true /
@@ -19,20 +19,41 @@ from __future__ import annotations
 
 import re
 from collections.abc import Callable, Sequence
-from datetime import datetime, timedelta
 from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pyarrow as pa
+import pyarrow.compute as pc
 
 from .contract import ContractError
 
-_FIELDS = re.compile(r"^\s*(\d{1,2})/(\d{1,2})/\d{2,4}\b")
-_MONTH = timedelta(days=27)      # the least step a day turned into a month makes (28-31 days)
+# the two fields before the year (Arrow's regex: named groups; the cell's leading spaces allowed)
+_FIELDS = r"^\s*(?P<a>\d{1,2})/(?P<b>\d{1,2})/\d{2,4}\b"
+_MONTH = np.timedelta64(27, "D")   # the least step a day turned into a month makes (28-31 days)
 WAY = {True: "day first", False: "month first"}
+ORDER = {True: "%d/%m/", False: "%m/%d/"}     # a strptime format's date with slashes, each way
 KEY = "data.dayfirst"
 
 
 def swapped(forms: Sequence[str], day_first: bool) -> tuple[str, ...]:
     """The strptime formats ``forms`` (written month first, ``%m/%d/``) in the order chosen."""
-    return tuple(f.replace("%m/%d/", "%d/%m/") for f in forms) if day_first else tuple(forms)
+    return tuple(f.replace(ORDER[False], ORDER[True]) for f in forms) if day_first else tuple(forms)
+
+
+def fields(cells) -> tuple[np.ndarray, np.ndarray]:
+    """The day-or-month fields ``(a, b)`` of ``a/b/year`` in each of ``cells`` (text), -1 in a
+    cell that is no date with slashes."""
+    if not isinstance(cells, (pa.Array, pa.ChunkedArray)):
+        cells = pa.array(cells, pa.string())
+    return parts_fields(pc.extract_regex(cells, _FIELDS))
+
+
+def parts_fields(parts) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`fields` of a regex's matches ``parts`` whose groups ``a`` and ``b`` are the two
+    fields before the year (null: no date with slashes)."""
+    return tuple(pc.fill_null(pc.cast(pc.struct_field(parts, n), pa.int16()), -1)
+                 .to_numpy(zero_copy_only=False) for n in "ab")
 
 
 def slashed_order(dates: Sequence[tuple[str, int | None]], dayfirst: bool | None, parse: Callable,
@@ -47,7 +68,8 @@ def slashed_order(dates: Sequence[tuple[str, int | None]], dayfirst: bool | None
     dayfirst : bool or None
         ``data.dayfirst`` (None: not set, the file decides).
     parse : callable
-        ``parse(cell, day_first)``: the cell as a ``datetime``, None where it does not read so.
+        ``parse(cells, day_first)``: the cells (a Series of text) as ``datetime64``, NaT where
+        one does not read so (:func:`parse_with`).
     file, column
         What a refusal names.
 
@@ -61,14 +83,14 @@ def slashed_order(dates: Sequence[tuple[str, int | None]], dayfirst: bool | None
     ContractError
         Where the file says both orders, or gives no way to tell and ``data.dayfirst`` is unset.
     """
-    slashed = [(cell, line, _FIELDS.match(cell)) for cell, line in dates]
-    slashed = [(cell, line, int(m[1]), int(m[2])) for cell, line, m in slashed if m]
-    if not slashed:
+    cells = [cell for cell, _ in dates]
+    a, b = fields(cells)
+    slashed = np.flatnonzero(a >= 0)
+    if not slashed.size:
         return None
     if dayfirst is not None:
         return bool(dayfirst)
-    day = next(((c, ln) for c, ln, a, b in slashed if a > 12), None)
-    month = next(((c, ln) for c, ln, a, b in slashed if b > 12), None)
+    day, month = (next((dates[i] for i in slashed if x[i] > 12), None) for x in (a, b))
     if day and month:
         raise ContractError(f"date {day[0]!r} (line {day[1]}) is day first and {month[0]!r} "
                             f"month first: one file's dates are written in one order; set "
@@ -76,42 +98,68 @@ def slashed_order(dates: Sequence[tuple[str, int | None]], dayfirst: bool | None
                             line=month[1])
     if day or month:
         return bool(day)
-    possible = [order for order in (True, False) if _runs(slashed, order, parse)]
+    kept = [dates[i] for i in slashed]
+    return run_order(pd.Series([c for c, _ in kept]), parse, file, column,
+                     line=[ln for _, ln in kept])[0]
+
+
+def run_order(cells: pd.Series | pa.Array, parse: Callable, file, column: str, line=None,
+              row=None, also: str = "") -> tuple[bool, int]:
+    """The one order in which ``cells`` (text, dates with slashes none of whose day or month is
+    past 12, in the file's order; ``parse(cells, day_first)``: as datetimes, NaT where one does
+    not read so) never go back and never step 27 days or more, and the position
+    of the first cell the other order cannot read so (where it goes back or jumps a month).
+    ``line`` / ``row``: each cell's, what a refusal names (at the first cell); ``also``: the
+    refusal's other way out.
+
+    Raises
+    ------
+    ContractError
+        Where both orders run so, or neither.
+    """
+    broken = {order: _broken(cells, order, parse) for order in (True, False)}
+    first = cells[0].as_py() if isinstance(cells, pa.Array) else cells.iloc[0]
+    possible = [order for order, at in broken.items() if at is None]
     if len(possible) == 1:
-        return possible[0]
-    cell, line = slashed[0][:2]
+        return possible[0], broken[not possible[0]]
     why = ("read in neither order as a run that never goes back" if not possible else
            "read either way (no day past 12, and no change of date that only one order "
            "makes a small step)")
-    raise ContractError(f"date {cell!r} is day or month first? the file's dates {why}: set "
-                        f"{KEY}=true (day first, 05/03 the 5th of March) or {KEY}=false (month "
-                        "first, the 3rd of May) to the order of the PC that wrote it",
-                        file=file, column=column, line=line)
+    where = {"line": None if line is None else line[0], "row": None if row is None else row[0]}
+    raise ContractError(f"date {first!r} is day or month first? the file's dates {why}: "
+                        f"set {KEY}=true|false to the order of the PC that wrote it ({KEY}=true: "
+                        f"day first, 05/03 the 5th of March; {KEY}=false: month first, the 3rd "
+                        f"of May){also}", file=file, column=column, **where)
 
 
-def _runs(slashed: list, day_first: bool, parse: Callable) -> bool:
-    """The dates read ``day_first`` parse, never go back, and never step a month at once."""
-    times = [parse(cell, day_first) for cell, *_ in slashed]
-    if any(t is None for t in times):
-        return False
-    steps = [b - a for a, b in zip(times, times[1:])]
-    return all(timedelta(0) <= s < _MONTH for s in steps)
+def _broken(cells, day_first: bool, parse: Callable) -> int | None:
+    """The position of the first of ``cells`` that read ``day_first`` does not parse, goes back
+    or steps a month on; None where they run."""
+    # (ms, not ns: Arrow's %Y reads a two-digit year, 27, as the year 27, before ns's range)
+    times = np.asarray(parse(cells, day_first), dtype="datetime64[ms]")
+    bad = np.isnat(times)
+    steps = np.diff(times)
+    bad[1:] |= (steps < np.timedelta64(0)) | (steps >= _MONTH)
+    return int(np.argmax(bad)) if bad.any() else None
 
 
-def parse_with(forms: Sequence[str]) -> Callable[[str, bool], datetime | None]:
-    """A ``parse`` for :func:`slashed_order`: the first of ``forms`` (month first, swapped for
-    day first) that reads the cell."""
-    def parse(cell: str, day_first: bool) -> datetime | None:
+def parse_with(forms: Sequence[str]) -> Callable[[pd.Series, bool], pd.Series]:
+    """A ``parse`` for :func:`slashed_order`: each cell by the first of ``forms`` (month first,
+    swapped for day first) that reads it."""
+    def parse(cells: pd.Series, day_first: bool) -> pd.Series:
+        text = cells.astype(str).str.strip().reset_index(drop=True)
+        out = pd.Series(pd.NaT, index=text.index, dtype="datetime64[ns]")
         for form in swapped(forms, day_first):
-            try:
-                return datetime.strptime(cell.strip(), form)
-            except ValueError:
-                continue
-        return None
+            left = out.isna()
+            if not left.any():
+                break
+            out[left] = pd.to_datetime(text[left], format=form, errors="coerce")
+        return out
     return parse
 
 
-_ANY = re.compile(r"(?<![\d/])(\d{1,2})/(\d{1,2})/\d{2,4}(?![\d/])")
+# a date with slashes in a lab file's text (no more digits or slashes on either side)
+_ANY = re.compile(r"(?<![\d/])\d{1,2}/\d{1,2}/\d{2,4}(?![\d/])")
 
 
 def record_dayfirst(files, dated: Callable[[Path], bool], encoding: str = "utf-8"
@@ -119,6 +167,7 @@ def record_dayfirst(files, dated: Callable[[Path], bool], encoding: str = "utf-8
     """The order one file of a record's says by a field past 12, for all its files (a catman
     folder whose tests of the 13th say month first, the 3rd's alike): ``(day_first, file,
     date)``, None where none says one.  ``dated``: a file read by a reader of its own dates.
+    A file's distinct dates are looked at, once each (a large export's are a few).
 
     Raises
     ------
@@ -130,10 +179,10 @@ def record_dayfirst(files, dated: Callable[[Path], bool], encoding: str = "utf-8
         if not dated(path):
             continue
         with open(path, encoding=encoding, errors="replace") as f:
-            for m in _ANY.finditer(f.read()):
-                a, b = int(m[1]), int(m[2])
-                if (a > 12) != (b > 12):
-                    said.setdefault(a > 12, (Path(path), m[0]))
+            dates = list(dict.fromkeys(_ANY.findall(f.read())))    # (a file's few, in order)
+        for date, a, b in zip(dates, *fields(dates)):
+            if (a > 12) != (b > 12):
+                said.setdefault(bool(a > 12), (Path(path), date))
     if len(said) == 2:
         (day, d), (month, m) = said[True], said[False]
         raise ContractError(f"date {d!r} is day first, but file {month}'s {m!r} month first: "

@@ -8,7 +8,8 @@ read by its first file, the later one was refused at its 13th's row, or, where t
 first row said day first, the first was read month first without a word (10/03: October).  So
 every row of every file of the record counts: one order for the record (``init`` writes it as
 ``data.time``; a read with ``data.time=auto`` takes it), and files that contradict each other
-(one says day first, another month first) are refused naming both.
+(one says day first, another month first) are refused naming both.  Where no row of any file
+says an order, their runs do (dates85: a run across midnight, :func:`.slashed_rows.by_runs`).
 
 A stream (``monitor.input=-``) cannot see the future: its first row alone decided, and a stream
 of the lab's rows from 10/03 23:00 into 11/03 was read month first (October, then November)
@@ -26,8 +27,10 @@ import pandas as pd
 import pyarrow as pa
 
 from .contract import TIME, ContractError
+from .dayfirst import ORDER, WAY
+from .lines import Lines
 from .plain import is_converted
-from .slashed_rows import WAY, Order, decided, said_by
+from .slashed_rows import Order, said_by, settled
 from .sniff import resolved
 from .suffixes import is_text
 from .tables import peek_csv
@@ -38,18 +41,21 @@ from .utf16 import is_utf16, utf8_options, utf16_as_utf8
 def record_order(files: Iterable[Path], opts) -> Order | None:
     """The order every row of ``files`` (one record's) says of its dates with slashes: a day or
     month past 12 in any file, else a Keysight ``Time`` (month first).  None where ``data.time``
-    is given, the first file's time is no date with slashes, nothing says an order, or rows of
-    one file disagree (its read refuses naming ``data.time``, as before).
+    is given, the first file's time is no date with slashes, or rows of one file disagree (its
+    read refuses naming ``data.time``, as before); where no row says an order, the one the
+    files' runs settle (:func:`.slashed_rows.settled`).
 
     Raises
     ------
     ContractError
-        Where one file says day first and another month first, naming both.
+        Where one file says day first and another month first, naming both; where no row says
+        an order and no run settles one, ``data.dayfirst`` unset.
     """
     files = list(files)
     if opts.time != "auto" or not files:
         return None
-    return decided(_said(path, opts) for path in files)
+    return settled([_said(path, opts) for path in files], opts.dayfirst,
+                   lambda exc: _located(exc, opts))
 
 
 def rows_tell(path: Path, opts) -> bool:
@@ -71,7 +77,7 @@ def stream_format(time: pd.Series, recorded: str | None, source: str) -> str | N
     ContractError
         At the first row that says the other order (a day or month past 12), naming it.
     """
-    if not recorded or not recorded.startswith(("%d/%m/", "%m/%d/")):
+    if not recorded or not recorded.startswith(tuple(ORDER.values())):
         return None
     cells = time.dropna().astype(str).str.strip()
     if cells.empty or not is_slashed_stamp(cells.iloc[0]):
@@ -89,15 +95,30 @@ def stream_format(time: pd.Series, recorded: str | None, source: str) -> str | N
     return slashed_format(cells.iloc[0], order=recorded[:6])
 
 
-def _said(path: Path, opts) -> tuple[dict[str, Order], dict[str, Order]] | None:
-    """The orders ``path``'s rows say (``format``: its first row saying it) by a field past 12,
-    and by a Keysight stamp; None where its first time cell is no date with slashes, it is no
+def _located(exc: ContractError, opts) -> ContractError:
+    """``exc`` naming the line of its file's data row too (a CSV table's, as its read does)."""
+    path = Path(exc.file)
+    if exc.row is None or is_utf16(path):
+        return exc
+    try:
+        opts = resolved(path, opts)
+        skip = peek_csv(path, opts.delimiter, opts.encoding)[2]
+    except (ContractError, ValueError):
+        return exc
+    return Lines(path, opts.delimiter, opts.encoding, skip).located(exc)
+
+
+def _said(path: Path, opts) -> tuple | None:
+    """``(said, path, header, cells)``: the orders ``path``'s rows say (``format``: its first row
+    saying it) by a field past 12, and by a Keysight stamp (:func:`.slashed_rows.said_by`), and
+    the time cells looked at; None where its first time cell is no date with slashes, it is no
     text file (a workbook's cells are dates already) or it does not read."""
     if is_utf16(path):           # looked at as the UTF-8 text it is read as (catman70)
         with utf16_as_utf8(path) as text:
-            said = _said(text, utf8_options(opts))
-        return None if said is None else tuple({f: replace(o, file=path) for f, o in d.items()}
-                                               for d in said)
+            read = _said(text, utf8_options(opts))
+        return None if read is None else (
+            tuple({f: replace(o, file=path) for f, o in d.items()} for d in read[0]), path,
+            *read[2:])
     if not rows_tell(path, opts):
         return None
     try:
@@ -110,7 +131,8 @@ def _said(path: Path, opts) -> tuple[dict[str, Order], dict[str, Order]] | None:
                             usecols=[column], dtype=str, encoding=opts.encoding).iloc[:, 0]
     except (ContractError, ValueError):   # (no evidence: the file's read says what is wrong)
         return None
-    return said_by(pa.array(cells, type=pa.string(), from_pandas=True), path,
-                   header[column] if column < len(header) else TIME)
+    cells = pa.array(cells, type=pa.string(), from_pandas=True)
+    name = header[column] if column < len(header) else TIME
+    return said_by(cells, path, name), path, name, cells
 
 

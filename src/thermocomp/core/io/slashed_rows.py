@@ -1,6 +1,8 @@
 """What the rows of a record say of the order of its dates with slashes (small72): the shapes of
 its time cells, one decision for the record's files (:mod:`.slashed` looks at a folder's files;
-a one-file record's read decides from the cells it reads, :mod:`.tables`)."""
+a one-file record's read decides from the cells it reads, :mod:`.tables`).  Where no row says it
+(no day or month past 12, no Keysight stamp), the files' runs do, as a lab file's dates
+(:func:`.dayfirst.run_order`, dates85): a run across midnight settles the order."""
 
 from __future__ import annotations
 
@@ -14,6 +16,7 @@ import pyarrow.compute as pc
 
 from ...base.log import logger
 from .contract import ContractError
+from .dayfirst import KEY, ORDER, WAY, fields, parts_fields, run_order, swapped
 from .timestamps import slashed_format
 
 
@@ -27,6 +30,7 @@ class Order:
     row: int         # 1-based data row
     value: str
     keysight: bool   # said only by a Keysight DAQ's ms after a colon (no day or month past 12)
+    run: bool = False   # said by the file's run (``row``: where the other order breaks it)
 
     @property
     def day_first(self) -> bool:
@@ -72,11 +76,81 @@ def read_in(order: Order | None, opts, record: Path, first: Path):
         return opts
     if (order.file, order.row) != (first, 1):     # (else the first row says it, as before)
         logger.info(f"{record.name}: dates with slashes read as data.time={order.format!r}, the "
-                    f"order {order.file.name}'s data row {order.row} says ({order.value!r})")
+                    f"order {order.file.name}'s data row {order.row} says ({order.value!r}"
+                    + (RUN_SAID if order.run else "") + ")")
     return replace(opts, time=order.format)
 
 
-WAY = {True: "day first", False: "month first"}
+# how a run says its order: where the date turns a day in one order it turns a month in the other
+RUN_SAID = ": a day on read so, a month on or back read the other way"
+
+
+def settled(read: list, dayfirst: bool | None, located=None) -> Order | None:
+    """:func:`decided` of the record's files ``read`` (each ``(said, path, header, cells)``,
+    :func:`said_by`'s and the time cells it looked at; None: as :func:`decided`'s), else, where
+    no row of any says an order and ``data.dayfirst`` is unset, the order their runs settle
+    (:func:`by_runs`; ``located``: its refusal naming the file's line too)."""
+    saids = [None if r is None else r[0] for r in read]
+    order = decided(saids)
+    if (order is None and dayfirst is None and saids and saids[0] is not None
+            and not any(s and (s[0] or s[1]) for s in saids)):
+        try:
+            return by_runs([r[1:] for r in read if r is not None])
+        except ContractError as exc:
+            raise exc if located is None else located(exc) from None
+    return order
+
+
+# a CSV table's dates with slashes as :func:`.timestamps.slashed_format` reads them, month first
+# (a second's fraction cut off first: it changes no date; Arrow's %Y reads '27' too: %y first)
+_FORMS = tuple(f"%m/%d/{year}{sep}%H:%M{seconds}" for year in ("%y", "%Y") for sep in " T"
+               for seconds in (":%S", ""))
+_ALSO = ", or data.time to its format, e.g. data.time='%d/%m/%Y %H:%M:%S'"
+_FRACTION = r"(\d:\d\d:\d\d)[.,:]\d+$"
+
+
+def by_runs(files: list[tuple[Path, str, pa.Array | pa.ChunkedArray]]) -> Order:
+    """The order the runs of the time cells of ``files`` (``(path, header, cells)``, no row of
+    any saying one) settle (:func:`.dayfirst.run_order`): one file's decides for all, as a row
+    past 12 does.
+
+    Raises
+    ------
+    ContractError
+        Where no file's run settles an order (the first file's refusal, naming ``data.dayfirst``),
+        or two files' runs settle other orders (naming both).
+    """
+    said, refusal = {}, None
+    for path, header, cells in files:
+        text = pc.utf8_trim_whitespace(cells)
+        rows = np.flatnonzero(fields(text)[0] >= 0)
+        if not rows.size:
+            continue
+        values = text.take(pa.array(rows))
+        if isinstance(values, pa.ChunkedArray):
+            values = values.combine_chunks()
+        try:
+            order, at = run_order(values, _parse, path, header, row=rows + 1, also=_ALSO)
+        except ContractError as exc:
+            refusal = refusal or exc
+            continue
+        said.setdefault(order, Order(slashed_format(values[0].as_py(), order=ORDER[order]), path,
+                                     header, int(rows[at]) + 1, values[at].as_py(), False, True))
+    if len(said) == 2:
+        raise _contradiction(said[True], said[False])
+    if said:
+        return next(iter(said.values()))
+    raise refusal
+
+
+def _parse(cells: pa.Array, day_first: bool) -> np.ndarray:
+    """``cells`` read by the first of :data:`_FORMS` (``day_first``: swapped) that reads each,
+    NaT where none does: Arrow's strptime, not a Python loop over a large table's rows."""
+    whole, read = pc.replace_substring_regex(cells, _FRACTION, r"\1"), None
+    for form in swapped(_FORMS, day_first):
+        one = pc.strptime(whole, format=form, unit="s", error_is_null=True)
+        read = one if read is None else pc.coalesce(read, one)
+    return read.to_numpy(zero_copy_only=False)
 
 
 def _contradiction(day: Order, month: Order) -> ContractError:
@@ -85,8 +159,8 @@ def _contradiction(day: Order, month: Order) -> ContractError:
         f"value {first.value!r} says its dates with slashes are {WAY[first.day_first]} "
         f"({first.format!r}), but file {second.file}, column {second.header!r}, data row "
         f"{second.row}: {second.value!r} says {WAY[second.day_first]} ({second.format!r}): the "
-        "files of one record are read in one order (data.time); export them from one PC, or "
-        "read each as a record of its own", file=first.file, column=first.header, row=first.row)
+        f"files of one record are read in one order (data.time, {KEY}); export them from one "
+        "PC, or read each as a record of its own", file=first.file, column=first.header, row=first.row)
 
 
 # a date with slashes and a time of day, its parts that decide its format (Arrow's regex: no
@@ -107,13 +181,12 @@ def said_by(cells: pa.Array | pa.ChunkedArray, path: Path, header: str
     parts = pc.extract_regex(text, _PARTS)
     if parts.null_count == len(parts):     # (none, or no cell a date with slashes)
         return {}, {}
-    field = {n: pc.struct_field(parts, n) for n in ("a", "b", "y", "sep", "s")}
-    shape = [pc.greater(pc.cast(field["a"], pa.int8()), 12),
-             pc.greater(pc.cast(field["b"], pa.int8()), 12), pc.equal(pc.utf8_length(field["y"]), 4),
-             pc.equal(field["sep"], "T"), pc.not_equal(field["s"], ""),
-             pc.match_substring_regex(text, _KEYSIGHT)]
-    code = sum(pc.fill_null(flag, False).to_numpy(zero_copy_only=False).astype(np.int8) << bit
-               for bit, flag in enumerate(shape))
+    field = {n: pc.struct_field(parts, n) for n in ("y", "sep", "s")}
+    shape = [x > 12 for x in parts_fields(parts)] + [
+        pc.fill_null(flag, False).to_numpy(zero_copy_only=False) for flag in (
+            pc.equal(pc.utf8_length(field["y"]), 4), pc.equal(field["sep"], "T"),
+            pc.not_equal(field["s"], ""), pc.match_substring_regex(text, _KEYSIGHT))]
+    code = sum(flag.astype(np.int8) << bit for bit, flag in enumerate(shape))
     code[~parts.is_valid().to_numpy(zero_copy_only=False)] = -1     # (no date with slashes)
     kinds, first = np.unique(code, return_index=True)
     rows = np.sort(first[kinds >= 0])

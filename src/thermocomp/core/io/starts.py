@@ -17,6 +17,7 @@ import pandas as pd
 import pyarrow as pa
 
 from .contract import TIME, ContractError
+from .dayfirst import ORDER
 from .instants import START, on_clock, start_instants, start_stamp
 from .layout import header_line
 from .options import ReadOptions
@@ -32,7 +33,7 @@ from .tables import (
     peek_csv,
     without_pandas_index,
 )
-from .timestamps import CLOCK, dated_format, maybe_elapsed, parsed, time_type
+from .timestamps import CLOCK, dated_format, maybe_elapsed, parsed, slashed_format, time_type
 from .workbook import HEAD_ROWS
 
 
@@ -136,8 +137,10 @@ def _header_block_start(path: Path, lines: list[str], opts: ReadOptions
         return pd.NaT, None
     key, value = keyed[0]
     said = f"'{key}' line of the block above its table"
-    told = dated_format(value)
-    if told:                      # day first with dots, or slashes whose order a field past 12 says
+    # day first with dots, or slashes whose order a field past 12 says, or data.dayfirst (dates85)
+    told = dated_format(value) or (None if opts.dayfirst is None else
+                                   slashed_format(value, order=ORDER[opts.dayfirst]))
+    if told:
         try:                      # as a time column of that format is read (a second's fraction)
             stamp = parsed(pa.array([value]), time_type(told, value), told)
         except pa.ArrowInvalid:   # no such day (32.05.2027)

@@ -31,6 +31,7 @@ from .catman import catman_as_csv, is_catman_text
 from .clocksets import undone
 from .contract import ContractError
 from .csvline import EMPTY, SPLIT, split_line
+from .dayfirst import ORDER
 from .derived import on_frame
 from .encoding import UTF8, check_text, text_codec
 from .footer import TAIL_BYTES, footer_of
@@ -275,7 +276,7 @@ def _time_format(time: pd.Series, given: str, recorded: str | None,
     first = time.dropna().astype(str).str.strip()
     if first.empty or not is_slashed_stamp(first.iloc[0]):
         return given
-    return slashed_format(first.iloc[0], order="%d/%m/" if dayfirst else "%m/%d/")
+    return slashed_format(first.iloc[0], order=ORDER[bool(dayfirst)])
 
 
 def stream_campaigns(text: str, columns: list[str], opts, recorded: str | None = None,

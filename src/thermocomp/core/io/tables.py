@@ -41,7 +41,7 @@ from .own_headers import with_own_header
 from .period_line import period_hint
 from .roles import RUN, active, excel_days_header, naming, split_unit
 from .separators import UNICODE_MINUS, misgrouped, reads_as_number, thousands_hint, ungrouped
-from .slashed_rows import decided, read_in, said_by
+from .slashed_rows import read_in, said_by, settled
 from .sniff import head_lines, resolved
 from .timestamps import (
     CLOCK,
@@ -303,9 +303,11 @@ def _order_in_rows(first: str, opts: ReadOptions) -> bool:
 
 def _read_in_rows_order(cells: pa.ChunkedArray, path: Path, header: str, opts: ReadOptions
                         ) -> ReadOptions:
-    """``opts`` with ``time`` the order the time cells ``cells`` say (unchanged where none: its
-    first row's, as a record whose rows disagree is read, refused naming ``data.time``)."""
-    return read_in(decided([said_by(cells, path, header)]), opts, path, path)
+    """``opts`` with ``time`` the order the time cells ``cells`` say, or their run settles
+    (unchanged where none: its first row's, as a record whose rows disagree is read, refused
+    naming ``data.time``)."""
+    return read_in(settled([(said_by(cells, path, header), path, header, cells)], opts.dayfirst),
+                   opts, path, path)
 
 
 def _without_empty_rows(table: pa.Table, path: Path, lines: Lines) -> pa.Table:

@@ -22,6 +22,7 @@ from ...base.errors import position
 from ...base.log import logger
 from ..timerule import median_step
 from .contract import TIME, ContractError
+from .dayfirst import ORDER
 
 # a first cell that is a date and a time of day (the time column when no header says so)
 _STAMP = re.compile(r"\s*\d{1,4}[-./]\d{1,2}[-./]\d{2,4}[T ]\d\d?:\d\d")
@@ -107,7 +108,7 @@ def time_kind(value: str, kind: str, number: bool, path: Path, header: str | Non
     if kind != "auto":
         return kind
     if dayfirst is not None and is_slashed_stamp(value):
-        return slashed_format(value, order="%d/%m/" if dayfirst else "%m/%d/")
+        return slashed_format(value, order=ORDER[bool(dayfirst)])
     if number:
         return compact_format(value) or "seconds"
     name = repr(header) if header else "<this column>"
@@ -179,9 +180,9 @@ def slashed_format(value: str, keysight: bool = True, order: str | None = None) 
     if order is not None:
         date = order
     elif first > 12 >= second:
-        date = "%d/%m/"
+        date = ORDER[True]
     elif second > 12 >= first or keysight and first <= 12 and keysight_stamp(value):
-        date = "%m/%d/"
+        date = ORDER[False]
     else:
         return None
     year = "%Y" if len(match["y"]) == 4 else "%y"

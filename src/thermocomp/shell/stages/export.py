@@ -34,6 +34,7 @@ from ...base.log import say
 from ...base.paths import resolve
 from ...core.continuation import lead_ins
 from ...core.io.contract import TIME
+from ...core.io.dayfirst import ORDER
 from ...core.io.derived import sources as derived_sources
 from ...core.io.roles import RUN
 from ...core.io.source import check_streamed_columns
@@ -175,7 +176,7 @@ def _code_sizes(files: dict) -> dict:
 
 
 # keysight70: a date with slashes in either order (TC_SLASHED: 1 day first, 2 month first)
-SLASHED = {f"{date}{year} %H:%M{seconds}": order for date, order in (("%d/%m/", 1), ("%m/%d/", 2))
+SLASHED = {f"{ORDER[day_first]}{year} %H:%M{seconds}": 2 - day_first for day_first in (True, False)
            for year in ("%Y", "%y") for seconds in (":%S", "")}
 # data.time values whose times stream.c reads as the reader does (its own parser: driver.py):
 # day-first with a four- or two-digit year, ISO 8601's order, the seconds optional in each

@@ -71,6 +71,7 @@ from ...core.io.rates import PAUSE_PERIODS, pauses
 from ...core.io.record import safe_id
 from ...core.io.roles import excel_days_header, naming, split_unit
 from ...core.io.slashed import record_order
+from ...core.io.slashed_rows import RUN_SAID
 from ...core.io.sniff import resolved
 from ...core.io.starts import stated_start
 from ...core.io.tables import peek_csv
@@ -375,11 +376,11 @@ def _init(cfg: DictConfig, held: ExitStack) -> dict:
         given["time"] = order.format
         opts = replace(opts, time=order.format)
         why = ("a Keysight DAQ's Time, its ms after a colon: month first" if order.keysight
-               else "a day or month past 12")
+               else "its run" if order.run else "a day or month past 12")
+        where = f": its data row {order.row}, {order.value!r}" + (RUN_SAID if order.run else "")
         print(f"{sample.name}: dates with slashes read as data.time={order.format!r}, the order "
-              + (f"its rows say ({why})" if order.file == sample else
-                 f"the rows of {order.file.name} say ({why}: its data row {order.row}, "
-                 f"{order.value!r}), in every file"))
+              + (f"its rows say ({why}{where if order.run else ''})" if order.file == sample else
+                 f"the rows of {order.file.name} say ({why}{where}), in every file"))
     elapsed = elapsed_column(src, manifest, opts, header, cells_of_first)
     if elapsed:            # (a run past 24:00:00: each file's, a shorter run's too, read so)
         print(f"{src.name}: {elapsed!r} h:mm:ss past 24 h in a file: read as data.time="
