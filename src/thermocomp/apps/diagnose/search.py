@@ -59,7 +59,7 @@ are the exchangeable units, so the test flips signs of whole campaigns.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 
 import numpy as np
 import pandas as pd
@@ -71,10 +71,6 @@ from .candidates import CONTROL, CandidateOptions, candidates
 from .cv import CrossValidator, CVResult, Problem, sign_flip_maxt, sign_flip_pvalues
 from .features import Effect
 from .sensors import self_prediction
-
-# train campaigns per learned direction of the initial state for such a lag to clear
-# (Search.starts_untestable): 2 directions with 8, 3 with 12
-CAMPAIGNS_PER_DIRECTION = 4
 
 
 @dataclass
@@ -402,8 +398,8 @@ class Search:
         p = sign_flip_maxt(D, seed=self.options.seed)
         for ev, pf in zip(family, p):
             ev.p_family = float(pf)
-            ev.clears_bar = (self._clears(ev.gain_pct, pf, ev.gain_pct_in_range, ev.p_margin,
-                                          ev.n_features) and not self.starts_untestable(ev.effect))
+            ev.clears_bar = self._clears(ev.gain_pct, pf, ev.gain_pct_in_range, ev.p_margin,
+                                         ev.n_features)
             self._within_checks(ev, current)
 
     def _within_checks(self, ev: Evaluation, current: CVResult) -> None:
@@ -506,34 +502,6 @@ class Search:
         trained = self.problem.units_trained
         return trained is not None and n_features + 1 >= trained
 
-    def starts_untestable(self, effect) -> bool:
-        """True when ``effect`` learns more directions of the initial state than its train
-        campaigns can test: fewer than ``CAMPAIGNS_PER_DIRECTION`` campaigns per direction.  Each
-        learned direction is one level per campaign a few tau after its start, fitted on the
-        campaigns' start states alone; with 8-9 campaigns a third direction fitted their levels in
-        CV and failed on the test campaigns (the clean draws 8457 / 8178 / 8075 / 8170 and grinder
-        5682: +7 to +53 %, every one with 3 directions; the kept gains of planted:6 / 959 and
-        grinder 5687 with 2, climate_room's with 3 on 39; ``benchmarks/bench_diag85.py``).  It
-        stays a rival (:func:`choose`), as a saturating candidate does."""
-        k = effect.initial_directions if effect.initial_state else None
-        return bool(k) and len(dict.fromkeys(self.problem.campaigns)) < CAMPAIGNS_PER_DIRECTION * int(k)
-
-    def _plain_for_untestable(self, short: list, scored: list) -> list:
-        """``short`` and, for each lag in it whose start cannot clear (:meth:`starts_untestable`),
-        the same lag without its initial-state block (the round's candidate, its screening kept),
-        when not shortlisted already: it is evaluated and judged as any candidate.  The start
-        variants of one lag can hold both of its column's shortlist slots and refusing them
-        refused the lag too: planted 8885's ``T_motor1`` 7200 s lag with 3 directions gained
-        11.3 % on the test, its lag alone 12.6 %, and the plain lag was not evaluated
-        (``benchmarks/bench_diag85.py``, ``bench_diag85b.py``)."""
-        r2_of, have, out = dict(scored), {e for e, _ in short}, list(short)
-        for e, _ in short:
-            plain = replace(e, initial_state=None, initial_directions=None) if e.initial_state else None
-            if plain is not None and plain not in have and plain in r2_of and self.starts_untestable(e):
-                have.add(plain)
-                out.append((plain, r2_of[plain]))
-        return out
-
     def _bank_untestable(self, n_inputs: int) -> bool:
         """True when a state times the rises of all ``n_inputs`` inputs (``inputs_product``) cannot
         clear: one test block per CV unit on the shared design (:attr:`~.cv.Problem.shared_ranked`,
@@ -592,8 +560,7 @@ class Search:
             for e in cands:
                 r2, signals[e] = screen_r2(Q, r_perp, self.cv.features(e, names)[ok])
                 scored.append((e, r2))
-            evals = [self._evaluate(e, current, r2) for e, r2 in self._plain_for_untestable(
-                self._shortlist(scored), scored)]
+            evals = [self._evaluate(e, current, r2) for e, r2 in self._shortlist(scored)]
             self._family_bar(evals, current)
             evals.sort(key=lambda ev: -ev.gain)
             control = next((ev for ev in evals if ev.control), None)
