@@ -83,8 +83,10 @@ Test RMSE as deployed (µm), every row where the two differ::
    nowhere.
 3. **Holds.**  The other 58 (draw, target) afters identical; > 2 % above its before: main
    planted:8919 E_X (+21.2 %, a 3-direction start lag on 8 campaigns), the rule none; the rule
-   gains on 8918 E_X by the new part (a plain T_nose 900 s lag that main did not take; not
-   traced).
+   gains on 8918 E_X by the new part: traced after scoring (E_X alone), main's round 1 refitted
+   T_nose's 900 s lag with 3 directions only (13.1 %, p_fam 0.050, not cleared) and never the
+   plain one; with the rule the plain lag is refitted, gains 17.6 % (p_fam 0.0016, within 10.0 %)
+   and is taken: test 0.881 -> 0.674.
 4. **Fails.**  planted:6 E_Y 1.2652 identical; climate_room's four rows identical; planted:959
    E_Y 0.9934 -> 1.1372 (+14.5 %) and grinder 5687 dY 0.4306 -> 0.5433 (+26.2 %).  Traced after
    scoring (E_Y / dY diagnosed alone, each tree's src): on 959 round 2 the added plain lags
