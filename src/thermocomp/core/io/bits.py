@@ -90,6 +90,14 @@ def decoded_frame(df, bits: Mapping, headers: Mapping, source):
     return df
 
 
+def words_decoded(frame: pd.DataFrame, bits: Mapping, source="the request") -> pd.DataFrame:
+    """A served block under the lab's headers with each declared word it holds replaced by its
+    bits' states (:func:`decoded_frame`; bits85: the declaration travels with the model, as
+    its column names do); a block giving the bits as columns of their own is left as it is."""
+    held = {h: named for h, named in (bits or {}).items() if h in frame.columns}
+    return decoded_frame(frame, held, {}, source) if held else frame
+
+
 def _not_read(header: str, path) -> None:
     raise ContractError(f"{KEY} declares {header!r} a status word, and no column of that header "
                         "is read (a column data.roles ignores is not; give it a role, e.g. "
