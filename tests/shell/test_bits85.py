@@ -8,6 +8,9 @@ from __future__ import annotations
 
 import io
 import json
+import re
+import shutil
+import subprocess
 
 import numpy as np
 import pandas as pd
@@ -90,3 +93,41 @@ def test_the_served_model_decodes_the_labs_word_as_the_reader(promoted, capsys):
     bad.loc[7, "Status"] = 130.5
     with pytest.raises(MlflowException, match=r"column 'Status'.*row 8.*130.5 is no whole number"):
         model.predict(bad, params={"reset": True})
+
+
+@pytest.fixture(scope="module")
+def stream_c(promoted, tmp_path_factory):
+    """The promoted model exported as C (no pack) and built: the folder."""
+    if shutil.which("cc") is None:
+        pytest.skip("no C compiler")
+    out = tmp_path_factory.mktemp("c")
+    assert main(["export", *promoted["data"], f"export.model={promoted['model_uri']}",
+                 f"tracking_uri={promoted['uri']}", "export.format=c", "export.check=false",
+                 f"out={out}"]) == 0
+    subprocess.run(["cc", "compensator.c", "stream.c", "-lm", "-o", "stream"], cwd=out, check=True)
+    return out
+
+
+def test_the_c_stream_takes_the_rows_as_served_and_refuses_the_word_by_name(promoted, stream_c,
+                                                                              capsys):
+    """Before, the lab's rows were refused 'lacks input column S_machine_on', the word unnamed."""
+    import mlflow
+
+    rows = _rows(promoted, capsys)
+    fed = subprocess.run(["./stream"], cwd=stream_c, input=rows.to_csv(index=False),
+                         capture_output=True, text=True, check=True)
+    mlflow.set_tracking_uri(promoted["uri"])
+    served = mlflow.pyfunc.load_model(promoted["model_uri"]).predict(rows, params={"reset": True})
+    np.testing.assert_allclose(pd.read_csv(io.StringIO(fed.stdout))["C_dX"], served["C_dX"],
+                               rtol=0, atol=1e-9)
+    lab = promoted["lab"]
+    word = subprocess.run(["./stream"], cwd=stream_c, input=lab.to_csv(index=False),
+                          capture_output=True, text=True)
+    assert word.returncode == 2 and not word.stdout
+    column = list(lab.columns).index("Status") + 1
+    said = re.search(r"lacks input column (S_\w+), bit (\d+) of the PLC status word 'Status' "
+                     rf"\(data.bits; column {column}\): this code does not decode the word",
+                     word.stderr)
+    assert said, word.stderr
+    assert said[1] == f"S_{BITS[int(said[2])]}"
+    assert "as thermocomp rows writes them" in word.stderr
