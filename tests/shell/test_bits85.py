@@ -16,6 +16,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from conftest import refused
 from test_deploy import mlflow_store
 from thermocomp.shell.cli import main
 
@@ -131,3 +132,14 @@ def test_the_c_stream_takes_the_rows_as_served_and_refuses_the_word_by_name(prom
     assert said, word.stderr
     assert said[1] == f"S_{BITS[int(said[2])]}"
     assert "as thermocomp rows writes them" in word.stderr
+
+
+def test_a_replay_without_the_declaration_names_the_models_key(promoted, capsys):
+    """The registered model replayed on a data config without data.bits (the word read as one
+    number, S_Status): refused naming the key the model was fitted with; before, its bits only."""
+    data = [d for d in promoted["data"] if not d.startswith("++data.bits")]
+    refused(["replay", *data, f"replay.model={promoted['model_uri']}",
+             f"tracking_uri={promoted['uri']}", f"out={promoted['root'] / 'replay'}"], capsys,
+            "lacks 3 columns the deployed model reads",
+            "bits of the PLC status word 'Status' the model was fitted with: give data.bits="
+            "{Status: {0: machine_on, 1: spindle_on, 2: coolant_on}}")

@@ -108,7 +108,8 @@ def _pack(cfg: DictConfig, deployed, ds, compensator_json: str, fmt: str
             raise ConfigError(f"export.campaigns names {', '.join(map(repr, unknown))}, no campaign "
                               f"of data.path (it has {', '.join(map(repr, list(ds.campaigns)[:8]))}"
                               f"{', ...' if len(ds.campaigns) > 8 else ''})")
-    check_streamed_columns(ds, ids, plain(deployed).columns_, "the deployed model")
+    check_streamed_columns(ds, ids, plain(deployed).columns_, "the deployed model",
+                           getattr(deployed, "bits_", None))
     files = {c: ds.rows_named(c) for c in ids}
     ss = StateSpace.from_dict(json.loads(compensator_json))
     return conformance_pack(deployed, ss, {c: ds.campaigns[c] for c in ids},
