@@ -95,6 +95,8 @@ def test_the_served_model_decodes_the_labs_word_as_the_reader(promoted, capsys):
     said = r"^column 'Status', data row 8 of the block: value 130.5 is no whole number"
     with pytest.raises(MlflowException, match=said):
         model.predict(bad, params={"reset": True})
+    with pytest.raises(MlflowException, match="gives the status word and its bit S_spindle_on"):
+        model.predict(promoted["lab"].assign(S_spindle_on=1.0), params={"reset": True})
 
 
 @pytest.fixture(scope="module")

@@ -96,6 +96,11 @@ def words_decoded(frame: pd.DataFrame, bits: Mapping) -> pd.DataFrame:
     its column names do); a block giving the bits as columns of their own is left as it is.
     A bad word: a ContractError naming the column and the block's row (no file)."""
     held = {h: named for h, named in (bits or {}).items() if h in frame.columns}
+    for header, named in held.items():      # (one input under two columns, as to_contract's)
+        both = [STATE + n for n in named.values() if STATE + n in frame.columns]
+        if both:
+            raise ContractError(f"column {header!r}: the block gives the status word and its "
+                                f"bit {both[0]} both ({KEY}.{header}): send one of them")
     try:
         return decoded_frame(frame, held, {}, None) if held else frame
     except ContractError as exc:
