@@ -141,12 +141,14 @@ def deployable(cfg: DictConfig, streaming, train: dict, ds=None):
     reference measurements as ``adapt.*`` says (``adapt_``)."""
     from ..apps.deploy.adapt import from_config as adapt_from_config
     from ..apps.deploy.naming import lab_names, lab_units
+    from ..core.io.bits import parsed as parsed_bits
     from ..core.io.derived import parsed as parsed_derive
 
     deployed = build_adaptive(cfg, streaming, train, ds) if bool(cfg.monitor.adaptive) else streaming
     deployed.lab_names_ = lab_names(cfg, ds)
     deployed.lab_units_ = lab_units(ds)    # (the exported stream.c converts these headers)
     deployed.derived_ = parsed_derive(cfg.data.get("derive"))   # a reference's derived targets
+    deployed.bits_ = parsed_bits(cfg.data.get("bits"))   # a served block's status word (bits85)
     deployed.slashed_ = slashed_time(cfg, ds)     # a served block's dates read in its order
     deployed.missing_values_ = [str(m) for m in cfg.data.get("missing_values") or ()]   # (-9999)
     # served: every row that carries a measured error is a reference (no schedule)

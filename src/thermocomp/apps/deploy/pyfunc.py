@@ -91,6 +91,7 @@ from ...base.log import NAME as LOG_NAME
 from ...base.log import configure as configure_log
 from ...core.context import TIME
 from ...core.io import marks
+from ...core.io.bits import STATE, words_decoded
 from ...core.io.derived import on_frame
 from ...core.io.slashed import stream_format
 from ...core.io.stdin import since, stream_stamps
@@ -188,7 +189,9 @@ class CompensatorModel(mlflow.pyfunc.PythonModel):
         session = str(params.get("session") or DEFAULT_SESSION)
         names = self.streaming.lab_names_
         try:
-            frame = to_contract(pd.DataFrame(model_input), names)
+            # a PLC's status word under its header: its declared bits, as the reader's (bits85)
+            frame = words_decoded(pd.DataFrame(model_input), getattr(self.streaming, "bits_", {}))
+            frame = to_contract(frame, names)
             # data.missing_values' marks (-9999 however written) missing, as the reader's (lab74)
             frame = marks.in_frame(frame, getattr(self.streaming, "missing_values_", ()), TIME)
             # a reference measurement's derived targets (data.derive), as a file's are computed
@@ -294,14 +297,19 @@ def signature(streaming: StreamingCompensator | AdaptiveCompensator) -> ModelSig
     deployed compensator.  With the lab's names (``lab_names_``) every input may come under
     either name, so none is required by the schema; the model checks that each is there."""
     names = streaming.lab_names_
-    required = {c: not names for c in streaming.columns_}
+    bits = getattr(streaming, "bits_", {}) or {}
+    decoded = {STATE + n for named in bits.values() for n in named.values()}
+    required = {c: not names and c not in decoded for c in streaming.columns_}
     required[TIME] = streaming.time_required_ and not names
     if getattr(streaming, "adapt_", None) is not None:   # reference measurements, when taken
         required.update({t: False for t in streaming.targets_ if t not in required})
     # the time in seconds or as wall-clock timestamps (a lab's logger's), under either name
     inputs = Schema([ColSpec(_kind(c), c, required=r) for c, r in required.items()]
                     + [ColSpec(_kind(c), raw, required=False) for c in required
-                       for raw in raw_names(names, c)])
+                       for raw in raw_names(names, c)]
+                    # a status word, which the model decodes into the bits it reads (bits85)
+                    + [ColSpec("double", word, required=False) for word in bits
+                       if word not in required])
     outputs = Schema([ColSpec("double", correction_column(t)) for t in streaming.targets_]
                      + [ColSpec("long", "n_clamped")]
                      + ([ColSpec("string", c) for c in REPORT_COLUMNS]

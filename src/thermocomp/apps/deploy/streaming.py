@@ -297,6 +297,7 @@ class StreamingCompensator:
     lab_names_: dict = {}      # replaced, never mutated (older pickles have none)
     lab_units_: dict = {}      # the lab's headers in another unit (naming.lab_units): likewise
     derived_: dict = {}        # data.derive's targets, computed from a block's errors: likewise
+    bits_: dict = {}           # data.bits, a status word a served block decodes: likewise (bits85)
     slashed_ = None            # the record's order of dates with slashes (older pickles: none)
     missing_values_: list = []  # data.missing_values, a served block's marks: likewise (lab74)
     end_states_: dict = {}

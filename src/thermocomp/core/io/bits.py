@@ -90,6 +90,24 @@ def decoded_frame(df, bits: Mapping, headers: Mapping, source):
     return df
 
 
+def words_decoded(frame: pd.DataFrame, bits: Mapping) -> pd.DataFrame:
+    """A served block under the lab's headers with each declared word it holds replaced by its
+    bits' states (:func:`decoded_frame`; bits85: the declaration travels with the model, as
+    its column names do); a block giving the bits as columns of their own is left as it is.
+    A bad word: a ContractError naming the column and the block's row (no file)."""
+    held = {h: named for h, named in (bits or {}).items() if h in frame.columns}
+    for header, named in held.items():      # (one input under two columns, as to_contract's)
+        both = [STATE + n for n in named.values() if STATE + n in frame.columns]
+        if both:
+            raise ContractError(f"column {header!r}: the block gives the status word and its "
+                                f"bit {both[0]} both ({KEY}.{header}): send one of them")
+    try:
+        return decoded_frame(frame, held, {}, None) if held else frame
+    except ContractError as exc:
+        where = f"column {exc.column!r}" + (f", data row {exc.row} of the block" if exc.row else "")
+        raise ContractError(f"{where}: {exc.reason}") from None
+
+
 def _not_read(header: str, path) -> None:
     raise ContractError(f"{KEY} declares {header!r} a status word, and no column of that header "
                         "is read (a column data.roles ignores is not; give it a role, e.g. "

@@ -71,15 +71,30 @@ def _repair_train(ds: Dataset, report: dict, options: Mapping | None) -> None:
             ds.campaigns[cid] = table.to_pandas(split_blocks=True)
 
 
-def check_streamed_columns(ds: Dataset, ids, columns, what: str) -> None:
+def check_streamed_columns(ds: Dataset, ids, columns, what: str, bits=None) -> None:
     """Every campaign ``ids`` of ``ds`` holds every column ``what`` reads: else a ContractError
     naming the first campaign's file and the columns it lacks (one: as its ``column``; several:
-    counted and listed, not joined into one column's name)."""
+    counted and listed, not joined into one column's name).  ``bits``: the status words the
+    model was fitted with (its ``data.bits``, bits85): a lacking bit names the key to give."""
     for cid in ids:
         absent = [c for c in columns if c not in ds.campaigns[cid].columns]
+        hint = _bits_said(absent, bits or {})
         if len(absent) == 1:
-            raise ContractError(f"test campaign {cid} lacks a column {what} reads",
+            raise ContractError(f"test campaign {cid} lacks a column {what} reads{hint}",
                                 file=ds.file_path(cid), column=absent[0])
         if absent:
             raise ContractError(f"test campaign {cid} lacks {len(absent)} columns {what} reads: "
-                                f"{', '.join(absent)}", file=ds.file_path(cid))
+                                f"{', '.join(absent)}{hint}", file=ds.file_path(cid))
+
+
+def _bits_said(absent: list[str], bits) -> str:
+    """Where ``absent`` holds bits of a status word the model declares: the declaration, to
+    give as the model's data config gave it (the word, undeclared, is read as one number)."""
+    words = {w: named for w, named in bits.items()
+             if any(f"S_{n}" in absent for n in named.values())}
+    if not words:
+        return ""
+    key = "; ".join(f"{w}: {{{', '.join(f'{b}: {n}' for b, n in named.items())}}}"
+                    for w, named in words.items())
+    return (f" (bits of the PLC status word{'s' * (len(words) > 1)} "
+            f"{', '.join(map(repr, words))} the model was fitted with: give data.bits={{{key}}})")

@@ -33,6 +33,8 @@ from ...base.files import staged_outputs
 from ...base.log import say
 from ...base.paths import resolve
 from ...core.continuation import lead_ins
+from ...core.io.bits import STATE
+from ...core.io.bits import parsed as parsed_bits
 from ...core.io.contract import TIME
 from ...core.io.dayfirst import ORDER
 from ...core.io.derived import sources as derived_sources
@@ -107,7 +109,8 @@ def _pack(cfg: DictConfig, deployed, ds, compensator_json: str, fmt: str
             raise ConfigError(f"export.campaigns names {', '.join(map(repr, unknown))}, no campaign "
                               f"of data.path (it has {', '.join(map(repr, list(ds.campaigns)[:8]))}"
                               f"{', ...' if len(ds.campaigns) > 8 else ''})")
-    check_streamed_columns(ds, ids, plain(deployed).columns_, "the deployed model")
+    check_streamed_columns(ds, ids, plain(deployed).columns_, "the deployed model",
+                           getattr(deployed, "bits_", None))
     files = {c: ds.rows_named(c) for c in ids}
     ss = StateSpace.from_dict(json.loads(compensator_json))
     return conformance_pack(deployed, ss, {c: ds.campaigns[c] for c in ids},
@@ -293,6 +296,11 @@ def export(cfg: DictConfig) -> dict:
         # (stranger65: stream.c joins the date and its time of day, as the reader does; the
         # export was refused)
         provenance.update(clock_column=str(clock[0]) if clock else None)
+    # (bits85) the inputs a PLC's status word packs, as the model declares them (a model
+    # pickled before it carried none: the config's): stream.c names the word where they lack
+    declared = getattr(deployed, "bits_", None) or parsed_bits(cfg.data.get("bits"))
+    provenance.update(bits={f"{STATE}{n}": [w, b] for w, named in declared.items()
+                            for b, n in named.items() if f"{STATE}{n}" in stream.columns_})
     thousands = cfg.data.get("thousands")       # (the lab's 1.234,5: stream.c ungroups it)
     provenance.update(thousands=None if thousands is None else str(thousands)[:1],
                       elapsed=str(cfg.data.get("time") or "auto") == "elapsed",
@@ -327,12 +335,12 @@ def export(cfg: DictConfig) -> dict:
     if fmt == "c":
         say(f"build: cd {out} && cc compensator.c stream.c -lm -o stream && ./stream < rows.csv"
             " (--state FILE: a restarted stream goes on from FILE)")
-        bits = [(f"S_{n}", b, w) for w, named in (cfg.data.get("bits") or {}).items()
-                for b, n in named.items() if f"S_{n}" in stream.columns_]
-        if bits:            # (lab83: stream.c does not decode a PLC's word)
-            say(f"{', '.join(f'{c} (bit {b} of {w!r})' for c, b, w in bits)}: data.bits; "
-                "the code reads each as a column of its own, as `thermocomp rows` writes them, "
-                "not the word: a controller's rows give each bit so")
+        bits = provenance["bits"]
+        if bits:            # (lab83: stream.c does not decode a PLC's word; bits85: refuses it)
+            say(f"{', '.join(f'{c} (bit {b} of {w!r})' for c, (w, b) in bits.items())}: "
+                "data.bits; the code reads each as a column of its own, as `thermocomp rows` "
+                "writes them, not the word: a controller's rows give each bit so (the word "
+                "alone: refused by name, exit 2)")
     if packed:
         written[PACK] = out / PACK
         say(f"{_said(packed[1])}: {out / PACK}" + (f" (after the build, in {out}: sh check/check.sh)"

@@ -40,7 +40,8 @@ def replay(cfg: DictConfig) -> dict:
         if model is not None:
             name_given_model(tr, "replay", source, name)
         check_volumetric_targets(cfg, ds, deployed.targets_, f"replay.model={source}")
-        check_streamed_columns(ds, test_ids, deployed.columns_, "the deployed model")
+        check_streamed_columns(ds, test_ids, deployed.columns_, "the deployed model",
+                               getattr(deployed, "bits_", None))
         kind = "adaptive" if deployed is not plain(deployed) else "streaming"
         say(f"streaming {len(test_ids)} test campaigns row by row through the {kind} compensator "
             f"({', '.join(deployed.columns_)})")

@@ -78,12 +78,21 @@ def _lab_names(ss: StateSpace) -> str:
     items = ", ".join(f"{{{c_string(raw)}, {c_string(c)}}}" for raw, c, _, _ in pairs) or '{"", ""}'
     units = ", ".join(f"{{{number(a)}, {number(b)}}}" for _, _, a, b in pairs) or "{1.0, 0.0}"
     run = ss.provenance.get("run_column")
+    # (bits85) the inputs a PLC's status word packs (data.bits): not decoded here, named where
+    # the rows lack them ({input, the word's header}, the bit)
+    words = sorted((ss.provenance.get("bits") or {}).items())
+    word_items = ", ".join(f"{{{c_string(c)}, {c_string(w)}}}" for c, (w, _) in words) or '{"", ""}'
+    word_bits = ", ".join(str(int(b)) for _, (_, b) in words) or "0"
     return (f"#define TC_N_LAB_NAMES {len(pairs)}\n"
             f"static const char *const TC_LAB_NAMES[{max(len(pairs), 1)}][2] = {{{items}}};"
             "  /* {the lab's header, the contract name} */\n"
             "/* {scale, offset}: a cell under the lab's header k is read as value * scale + offset\n"
             "   in the contract's unit (um, degC, s), as the model's reader converted it */\n"
             f"static const double TC_LAB_UNITS[{max(len(pairs), 1)}][2] = {{{units}}};\n"
+            f"#define TC_N_WORD_BITS {len(words)}\n"
+            f"static const char *const TC_WORD_BITS[{max(len(words), 1)}][2] = {{{word_items}}};"
+            "  /* {an input, the status word (data.bits) whose bit it is} */\n"
+            f"static const int TC_WORD_BIT[{max(len(words), 1)}] = {{{word_bits}}};\n"
             f"static const char *const TC_RUN_COLUMN = {c_string(run or '')};"
             "  /* a new value starts a campaign (\"\": none) */\n"
             f"static const char *const TC_CLOCK_COLUMN = "

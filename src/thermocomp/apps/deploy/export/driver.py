@@ -1035,6 +1035,19 @@ int main(int argc, char **argv) {
             }
             where[i] = j;
         }
+        for (k = 0; where[i] < 0 && k < TC_N_WORD_BITS; k++) {
+            /* (bits85) a bit of a PLC's status word: this code reads each bit as a column of
+               its own, as `thermocomp rows` writes it; the word itself is refused by name */
+            if (strcmp(TC_INPUT_NAMES[i], TC_WORD_BITS[k][0]) != 0) continue;
+            for (j = 0; j < ncols && strcmp(raw[j], TC_WORD_BITS[k][1]) != 0; j++) {}
+            fprintf(stderr, "stream: the header (line %ld) lacks input column %s, bit %d of the "
+                    "PLC status word '%s' (data.bits; %s%d): this code does not decode the "
+                    "word; give each bit as a column of its own, as thermocomp rows writes "
+                    "them\n", top, TC_INPUT_NAMES[i], TC_WORD_BIT[k], TC_WORD_BITS[k][1],
+                    j < ncols ? "column " : "not in the header, its columns ",
+                    j < ncols ? j + 1 : ncols);
+            return 2;
+        }
         if (where[i] < 0) {
             /* a lab's report or gateway file fed as it is (a title line read as the header):
                what the stream reads, said with the missing name */

@@ -1,0 +1,148 @@
+"""A model fitted on a record whose states come from a PLC status word (``data.bits``, lab83)
+deployed as scored (bits85): the served model takes the lab's own rows, the word in them, and
+decodes it as the reader did (the declaration travels with the model, as its column names do);
+the exported ``stream.c`` reads each bit as a column of its own, as ``thermocomp rows`` writes
+them, and refuses the raw word naming it, its bits and ``thermocomp rows``."""
+
+from __future__ import annotations
+
+import io
+import json
+import re
+import shutil
+import subprocess
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from conftest import refused
+from test_deploy import mlflow_store
+from thermocomp.shell.cli import main
+
+BITS = {0: "machine_on", 1: "spindle_on", 2: "coolant_on"}
+
+
+def _runs(folder, seeds=(8931, 8932, 8933, 8934), n: int = 360):
+    """Four runs of a machine whose spindle and coolant, logged as bits 1 and 2 of ``Status``
+    (bit 7 a ready flag), drive its heat and its error."""
+    folder.mkdir()
+    for k, seed in enumerate(seeds):
+        rng = np.random.default_rng(seed)
+        on = ((np.arange(n) // 60) % 3 != 2).astype(int)
+        spin = on * (rng.random(n // 20).repeat(20) < 0.6)
+        cool = spin * (rng.random(n // 30).repeat(30) < 0.5)
+        heat = np.zeros(n)
+        for i in range(1, n):
+            heat[i] = 0.97 * heat[i - 1] + 1.2 * spin[i] - 0.5 * cool[i] + 0.2 * on[i]
+        pd.DataFrame({"Zeit [s]": np.arange(n) * 10.0,
+                      "Spindel [°C]": (20 + heat / 8 + rng.normal(0, 0.02, n)).round(3),
+                      "Bett [°C]": (20 + np.cumsum(rng.normal(0, 0.01, n))).round(3),
+                      "Ständer [°C]": (20.5 + heat / 20 + rng.normal(0, 0.02, n)).round(3),
+                      "Status": 128 + on + 2 * spin + 4 * cool,
+                      "dX [um]": (2.5 * heat / 8 + 0.8 * spin - 0.6 * cool
+                                  + rng.normal(0, 0.1, n)).round(3)}
+                     ).to_csv(folder / f"run{k}.csv", index=False)
+    return folder
+
+
+@pytest.fixture(scope="module")
+def promoted(tmp_path_factory):
+    """The record run (hammerstein, the bits declared), promoted from a tracking store."""
+    import mlflow
+
+    root = tmp_path_factory.mktemp("bits85")
+    folder = _runs(root / "runs")
+    data = [f"data.path={folder}", "data.roles.error=[dX*]", "data.roles.state=[Status]",
+            "data.test_fraction=0.25", *(f"++data.bits.Status.{b}={n}" for b, n in BITS.items())]
+    uri = mlflow_store(root)
+    light = ["model=hammerstein", "plots=none", "eval.mutual_prediction=false",
+             "eval.ati_baselines=false", "eval.iso10791_a3=false", f"tracking_uri={uri}"]
+    assert main(["run", *data, *light, f"out={root / 'run'}"]) == 0
+    mlflow.set_tracking_uri(uri)
+    run_id = mlflow.search_runs(experiment_names=["thermocomp"])["run_id"].iloc[0]
+    assert main(["promote", *data, *light, f"promote.run_id={run_id}",
+                 f"out={root / 'promote'}"]) == 0
+    report = json.loads((root / "promote" / "promote.json").read_text())
+    return {"root": root, "data": data, "uri": uri, "model_uri": report["model_uri"],
+            "lab": pd.read_csv(folder / "run3.csv").astype(float)}
+
+
+def _rows(promoted, capsys) -> pd.DataFrame:
+    """run3 as ``thermocomp rows`` writes it: the word decoded by the reader."""
+    capsys.readouterr()
+    assert main(["rows", *promoted["data"], "rows.campaigns=[run3]"]) == 0
+    return pd.read_csv(io.StringIO(capsys.readouterr().out))
+
+
+def test_the_served_model_decodes_the_labs_word_as_the_reader(promoted, capsys):
+    """Before, the lab's rows were refused 'input lacks column(s) ['S_machine_on', ...]' (MLflow
+    had dropped ``Status`` as an input the signature lacks)."""
+    import mlflow
+    from mlflow.exceptions import MlflowException
+
+    mlflow.set_tracking_uri(promoted["uri"])
+    model = mlflow.pyfunc.load_model(promoted["model_uri"])
+    rows = _rows(promoted, capsys)
+    assert "Status" not in rows.columns and "S_spindle_on" in rows.columns
+    decoded = model.predict(rows, params={"reset": True})["C_dX"].to_numpy()
+    lab = model.predict(promoted["lab"], params={"reset": True})["C_dX"].to_numpy()
+    assert np.abs(decoded).max() > 1.0
+    np.testing.assert_allclose(lab, decoded, rtol=0, atol=1e-9)
+    # a word that is no whole number: refused naming the column and the row of the block
+    bad = promoted["lab"].copy()
+    bad.loc[7, "Status"] = 130.5
+    said = r"^column 'Status', data row 8 of the block: value 130.5 is no whole number"
+    with pytest.raises(MlflowException, match=said):
+        model.predict(bad, params={"reset": True})
+    with pytest.raises(MlflowException, match="gives the status word and its bit S_spindle_on"):
+        model.predict(promoted["lab"].assign(S_spindle_on=1.0), params={"reset": True})
+
+
+@pytest.fixture(scope="module")
+def stream_c(promoted, tmp_path_factory):
+    """The promoted model exported as C (no pack) and built: the folder."""
+    if shutil.which("cc") is None:
+        pytest.skip("no C compiler")
+    out = tmp_path_factory.mktemp("c")
+    assert main(["export", *promoted["data"], f"export.model={promoted['model_uri']}",
+                 f"tracking_uri={promoted['uri']}", "export.format=c", "export.check=false",
+                 f"out={out}"]) == 0
+    subprocess.run(["cc", "compensator.c", "stream.c", "-lm", "-o", "stream"], cwd=out, check=True)
+    return out
+
+
+def test_the_c_stream_takes_the_rows_as_served_and_refuses_the_word_by_name(promoted, stream_c,
+                                                                              capsys):
+    """Before, the lab's rows were refused 'lacks input column S_machine_on', the word unnamed."""
+    import mlflow
+
+    rows = _rows(promoted, capsys)
+    fed = subprocess.run(["./stream"], cwd=stream_c, input=rows.to_csv(index=False),
+                         capture_output=True, text=True, check=True)
+    mlflow.set_tracking_uri(promoted["uri"])
+    served = mlflow.pyfunc.load_model(promoted["model_uri"]).predict(rows, params={"reset": True})
+    np.testing.assert_allclose(pd.read_csv(io.StringIO(fed.stdout))["C_dX"], served["C_dX"],
+                               rtol=0, atol=1e-9)
+    lab = promoted["lab"]
+    word = subprocess.run(["./stream"], cwd=stream_c, input=lab.to_csv(index=False),
+                          capture_output=True, text=True)
+    assert word.returncode == 2 and not word.stdout
+    column = list(lab.columns).index("Status") + 1
+    said = re.search(r"lacks input column (S_\w+), bit (\d+) of the PLC status word 'Status' "
+                     rf"\(data.bits; column {column}\): this code does not decode the word",
+                     word.stderr)
+    assert said, word.stderr
+    assert said[1] == f"S_{BITS[int(said[2])]}"
+    assert "as thermocomp rows writes them" in word.stderr
+
+
+def test_a_replay_without_the_declaration_names_the_models_key(promoted, capsys):
+    """The registered model replayed on a data config without data.bits (the word read as one
+    number, S_Status): refused naming the key the model was fitted with; before, its bits only."""
+    data = [d for d in promoted["data"] if not d.startswith("++data.bits")]
+    refused(["replay", *data, f"replay.model={promoted['model_uri']}",
+             f"tracking_uri={promoted['uri']}", f"out={promoted['root'] / 'replay'}"], capsys,
+            "lacks 3 columns the deployed model reads",
+            "bits of the PLC status word 'Status' the model was fitted with: give data.bits="
+            "{Status: {0: machine_on, 1: spindle_on, 2: coolant_on}}")
