@@ -147,6 +147,10 @@ def test_one_drifting_sensor_of_a_measured_record_is_excluded_not_called_a_new_s
     out = [e for e in events if e["sensor"] == "T_t12" and e["to"] == "excluded"]
     assert out and out[0]["reason"].startswith("drift")
     assert out[0]["time"] - 15.0 * onset < 2 * 3600      # < 2 K of drift
+    # the healthy T_t14, out within its band as the culprit that hid T_t9 while the drift pulled
+    # the field, is back once T_t12 is out (mon85b: within its whole band, not half), not before
+    back = [e for e in events if e["sensor"] == "T_t14" and e["from"] == "excluded"]
+    assert "T_t14" not in mon.excluded and back and back[0]["time"] >= out[0]["time"]
 
 
 def test_judge_only_names_the_new_state_and_excludes_nothing():

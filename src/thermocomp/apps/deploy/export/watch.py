@@ -342,6 +342,8 @@ class CodeMonitor:
         # (cmon82c) out for explaining the others' errors (no other predicts it), and each
         # sensor's last reading while it was in (what the model reads of one no other predicts)
         self.explains, self.last = np.zeros(n, bool), np.zeros(n)
+        # (mon85b) out as a culprit within its own warning band: its whole band to return
+        self.hid = np.zeros(n, bool)
         self.fell = False      # one whose fallback model the code lacks went out: flagged to the end
         self.read = np.ones(n, bool)     # (cmon84) the sample's monitored readings there
         self.flags, self.sensor, self.rule, self.missed = 0, -1, 0, 0
@@ -412,7 +414,7 @@ class CodeMonitor:
         if self.out >= 0 or not held:
             self._flag(NOT_IN_CODE, j, SECOND if self.out >= 0 else BLIND)
             return False
-        self.out = j
+        self.out, self.hid[j] = j, False
         self.calm[j] = 0
         self._recompute()
         self._flag(EXCLUDED, j, rule)
@@ -670,7 +672,7 @@ class CodeMonitor:
             worst = np.abs((H - H @ M.T) / (1 - lev)).max(axis=0)
         worst[blind] = np.inf
         lost = self.dropped & ~self.by_field & (self.jumps == 0)
-        band = np.where(lost, 1.0, self.a["readmit"]) * self.a["warning"]
+        band = np.where(lost | self.hid, 1.0, self.a["readmit"]) * self.a["warning"]
         ok = np.where(blind, ~self.predictable, worst < band) & trial
         # (cmon82c) one out for explaining the others' errors: back where they all pass their
         # warning band with it in, as served
@@ -766,6 +768,7 @@ class CodeMonitor:
         if not self._exclude(j, DRIFT_OUT):
             return
         self._by_drift(j)
+        self.hid[j] = bool(level[j] < WARNING)     # (mon85b) it passed its own band
         _, active, observable, _, _ = self._set()
         blind = np.flatnonzero(active & ~observable & (z >= 0.7 * z[j]))
         for i in blind:

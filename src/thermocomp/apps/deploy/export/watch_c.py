@@ -61,6 +61,7 @@ STATE = """    /* the sensor monitor (TC_MONITOR): referenced readings d = u - m
     int mon_novel, mon_calm_field;
     /* (cmon82c) out for explaining the others' errors (no other predicts it), and each sensor's
        last reading while it was in (what the model reads of one no other predicts, out) */
+    int mon_hid[NM];   /* (mon85b) out as a culprit within its warning band: its whole band back */
     int mon_explains[NM], mon_fell;   /* (mon_fell: one whose fallback model the code lacks went out) */
     double mon_last[NM];
     int mon_read[NM];   /* (cmon84) the sample's monitored readings there (not missing) */
@@ -212,7 +213,7 @@ static void mon_exclude(tc_state *s, int k, int rule) {
         return;
     }
     s->mon_out = k;
-    s->mon_calm[k] = 0;
+    s->mon_calm[k] = s->mon_hid[k] = 0;
     mon_recompute(s);
     mon_flag(s, TC_MON_EXCLUDED, k, rule);
     if (MON_FALLBACK[k] && !MON_FALLBACK_SET[k]) s->mon_fell = 1;   /* (none in the code) */
@@ -233,7 +234,8 @@ static void mon_pass_once_back(const tc_state *s, const int trial[], int ok[], d
             ok[k] = !MON_PREDICTABLE[k];
             continue;
         }
-        band = (s->mon_dropped[k] && !s->mon_by_field[k] && !s->mon_jumps[k]) ? 1.0 : MON_READMIT;
+        band = ((s->mon_dropped[k] && !s->mon_by_field[k] && !s->mon_jumps[k]) || s->mon_hid[k])
+            ? 1.0 : MON_READMIT;
         worst[k] = 0.0;
         for (w = 0; w < MW; w++) {
             double p = 0.0, v;
@@ -642,6 +644,7 @@ static void mon_drift(tc_state *s, const int level[], int field) {
     mon_exclude(s, j, TC_MON_DRIFT_OUT);
     if (s->mon_out != j) return;   /* (flagged) */
     mon_by_drift(s, j);
+    s->mon_hid[j] = level[j] < 1;   /* (mon85b) it passed its own band */
     mon_set(s, a, o, jd, scale);
     for (k = 0; k < NM; k++)
         if (a[k] && !o[k] && z[k] >= 0.7 * z[j]) nblind++, partner = partner < 0 ? k : partner;
@@ -736,7 +739,7 @@ static void monitor_step(tc_state *s, double u[], double dt) {
             s->mon_since[k] = -1;
             s->mon_slow[k] = 0.0;
             s->mon_novel = s->mon_calm_field = s->mon_fell = 0;
-            s->mon_explains[k] = 0;
+            s->mon_explains[k] = s->mon_hid[k] = 0;
             s->mon_last[k] = 0.0;
             for (w = 0; w < MW; w++) s->mon_hist[w][k] = s->mon_err[w][k] = NAN;
         }

@@ -53,6 +53,7 @@ class Judgement:
             self._exclude(j, f"drift: self-prediction error {err[j]:+.2g} °C over the last "
                              f"{self.confirm} samples", time, events, by_field=True)
             self._since[j] = self._count
+            self._hid[j] = bool(level[j] < WARNING)   # it passed its own band (readmission.py)
             # a sensor out of band that no other can predict once j is out cannot be
             # vouched for (two coupled sensors look alike to self-prediction): out too
             blind = self._active & ~self._observable & (z >= 0.7 * z[j])

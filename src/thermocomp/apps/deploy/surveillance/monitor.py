@@ -185,7 +185,7 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
               "_prev_e", "_run", "_run_pred", "_clean", "_quiet", "_calm", "_prev_other",
               "_last_good", "_by_field", "_jumps", "_ref0", "_dropped", "_gap", "_gapped", "_dwell",
               "_outs", "_explains", "_novel", "_calm_field", "_since", "_slow", "_slow_t",
-              "_slow_ok", "_ranged", "_froze", "_held", "_off")
+              "_slow_ok", "_ranged", "_froze", "_held", "_off", "_hid")
 
     def reset(self) -> None:
         """New campaign: the next sample is the reference; every sensor active and ok."""
@@ -209,6 +209,7 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
         self._last_good = np.zeros(n)               # last reading while the sensor was in
         self._by_field = np.zeros(n, dtype=bool)     # excluded by its self-prediction error
         self._explains = np.zeros(n, dtype=bool)     # excluded as explaining the others' errors
+        self._hid = np.zeros(n, dtype=bool)          # ... as a culprit within its band (readmission.py)
         self._dropped = np.zeros(n, dtype=bool)      # its last detector to fire was a dropout
         self._ranged = np.zeros(n, dtype=bool)       # ... was out of range (readmission.py)
         self._froze = np.zeros(n, dtype=bool)        # out for a freeze alone (readmission.py)
@@ -598,6 +599,7 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
         if not self._predictable[j]:   # say so: for a frozen sensor the exclusion changes nothing
             reason += "; held at its last good reading: no other sensor predicts it"
         self._active[j] = False
+        self._hid[j] = False
         self._calm[j] = 0            # back in only after a whole window inside the band
         if by_field:      # out by its error again since its first return: it waits longer
             self._dwell[j] = self.window * 2 ** min(self._outs[j], MAX_BACKOFF)

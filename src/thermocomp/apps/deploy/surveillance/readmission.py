@@ -108,9 +108,13 @@ class Readmission:
         one out by its error), its whole warning band for one out only for a dropout: it had passed
         its judgement until its reading went missing, the band that kept it in (the half band kept a
         healthy lathe sensor whose error sits at 0.9 of its band out for an hour after one empty
-        logger row: adaptive 1.14x fixed)."""
+        logger row: adaptive 1.14x fixed).  Its whole band too for a culprit taken out within it
+        (mon85b): it passed its own judgement, out for another's error it hid (a drift pulling
+        its field), and it passes again once that sensor is out; the half band kept fl_thermal's
+        healthy ``T_t14`` out to the record's end, its error without the drifting ``T_t12`` (its
+        partner: leverage 0.50 -> 0.73) at 0.83 of its band on the clean record too."""
         lost = self._dropped & ~self._by_field & (self._jumps == 0)
-        return np.where(lost, 1.0, READMIT) * self.warning_c
+        return np.where(lost | self._hid, 1.0, READMIT) * self.warning_c
 
     def _pass_once_back(self, trial: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """``(passes, worst error)`` of the sensors of the set ``trial``: their leave-one-out
