@@ -1,0 +1,146 @@
+"""A drift with a sensor out already in the exported C (cmon85, issue 34): the code's monitor
+rebuilds the field of any active set by a small solve at run time (its POD basis in the code, a
+Cholesky of the reduced normal system) where before it held only the precomputed operators
+(every sensor in, one out, a sensor and its blind partner), so that it follows the served
+monitor where a second sensor goes out while one is out.
+
+    PYTHONPATH=$PWD/src .venv/bin/python benchmarks/bench_cmon85.py count [ROOT] [SPEC]
+    PYTHONPATH=$PWD/src .venv/bin/python benchmarks/bench_cmon85.py compare [ROOT] [SPEC]
+
+``ROOT`` (default ``/tmp/cmon85-bench``); ``SPEC`` (default ``column:8841-8844,trunnion:8845-8846,
+lathe:8847-8848,jig:8849-8850``: this task's fresh seeds, none tuned on).  The records, the
+faults and the model as bench_cmon84 draws them (its ``_records``: ``column_moving_source`` with
+``_faults.four_faults`` planted on bench_cmon82's ``_sensor``, the stranger machines as
+bench_mon83 draws them; MLR deployed adaptive as by default, exported with its monitor).
+``count``: bench_cmon84's count (the rule not in the code each campaign flags first, the
+conformance pack's rows cut).  ``compare``: per campaign, the compiled C (gcc -std=c99 -Wall
+-Wextra -Werror -O2, the export's own compile) "before" (the monitor's arrays without ``solve``:
+the code as on main, which flags a drift with a sensor out) and "now": the rows where C = served
+(every target within 1e-9 µm, over the rows the C takes), the largest |C - served| over them,
+the first flag, the pack's rows kept, and the CPU time of the ``stream`` program on the campaign
+(before / now; best of 3, alternated).
+
+The rule (the code's, not the served one's; the served monitor unchanged): the operator of an
+active set the code does not hold is solved in the C, ``M = Phi_r (Phi_a^T Phi_a)^-1 Phi_a^T``
+with ``r = min(modes, s)`` (``s`` sensors in, the served ``pod.operator``), the leverages its
+diagonal; with it the drift exclusion with one sensor out (a second culprit out, the served
+judgement's loop), its explaining, lone fault and re-admission sets judged as served.  At most
+two out in the code (a third flagged).  Bound: one solve is a Cholesky of ``r x r`` (``r^3 / 6``
+multiply-adds), ``n r^2`` for the triangular solves and ``n^2 r`` for the operator, no allocation
+(arrays of fixed size on the stack); per sample at most ``n + 3`` solves (the lone fault's and the
+explaining's trial sets, the re-admission's trials, the new set's).
+
+Bar (written before scoring): over the 50 campaigns of ``SPEC``, the rows where C = served go up;
+the campaigns flagged go down; every changed campaign's max |C - served| over the rows C takes
+<= 1e-9 µm; no campaign that was C = served on every row before loses it; the export compiles
+with -Werror and the pack check passes (tests/shell/test_export_cmon85.py); the C's worst-case
+work per sample stated (the bound above) and measured as the ratio of ``stream``'s CPU time
+now / before on the campaigns (no timed assertion).
+"""
+
+from __future__ import annotations
+
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from _cli import made_folder, run_commands, seed_list  # noqa: E402
+
+SPEC = "column:8841-8844,trunnion:8845-8846,lathe:8847-8848,jig:8849-8850"
+
+
+def count(root: str = "/tmp/cmon85-bench", spec: str = SPEC) -> None:
+    """bench_cmon84's ``count`` on these seeds."""
+    from bench_cmon84 import count as counted
+
+    counted(root, spec)
+
+
+def _before(ss):
+    """``ss`` as exported before cmon85 (no ``solve``: a drift with a sensor out flagged)."""
+    import dataclasses
+
+    return dataclasses.replace(ss, monitor={k: v for k, v in ss.monitor.items() if k != "solve"})
+
+
+def _cpu(binary: Path, text: str) -> float:
+    """CPU seconds (user + sys) of ``binary`` fed ``text``."""
+    import resource
+    import subprocess
+
+    t0 = resource.getrusage(resource.RUSAGE_CHILDREN)
+    subprocess.run([str(binary)], input=text, text=True, capture_output=True)
+    t1 = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return (t1.ru_utime - t0.ru_utime) + (t1.ru_stime - t0.ru_stime)
+
+
+def measured(deployed, tests: dict, label: str, folder: Path) -> list[str]:
+    """Per campaign, before and now: rows C = served, max |C - served|, first flag, pack rows,
+    ``stream``'s CPU seconds (best of 3, alternated)."""
+    from _ccode import built
+    from bench_cmon84 import _c_rows, flagged
+
+    from thermocomp.apps.deploy.export import c, state_space
+    from thermocomp.apps.deploy.export.driver import DRIVER
+    from thermocomp.apps.deploy.export.pack import conformance_pack, corrections
+    from thermocomp.apps.deploy.report import stream_rows
+
+    now = state_space(deployed, monitor=True)
+    if not now.monitor:
+        return [f"{label}: no monitor in the code"]
+    said, codes = {}, {}
+    for name, ss in (("before", _before(now)), ("now", now)):
+        codes[name] = built(folder / name, {"compensator.h": c.header(ss),
+                                            "compensator.c": c.source(ss), "stream.c": DRIVER})
+        _, summary = conformance_pack(deployed, ss, tests, script=False)
+        kept = {e["campaign"]: e["rows"] for e in summary["campaigns"] if "planted" not in e}
+        for t, df in tests.items():
+            want = corrections(ss, stream_rows(deployed, df, t).y)
+            got = _c_rows(codes[name], df, ss.inputs)
+            gap = np.abs(got - want[:len(got)]).max(axis=1) if len(got) else np.zeros(0)
+            first = flagged(ss, df)
+            said.setdefault(t, []).append(
+                (int((gap < 1e-9).sum()), float(gap.max()) if len(gap) else float("nan"),
+                 f"{first[0][1]}@{first[0][0]}" if first else "none", kept[str(t)], len(df)))
+    out = []
+    for t, ((s0, g0, f0, k0, n), (s1, g1, f1, k1, _)) in said.items():
+        text = tests[t][["time", *now.inputs]].to_csv(index=False, float_format="%.17g")
+        cpu = {"before": [], "now": []}
+        for _ in range(3):
+            for name in ("before", "now"):
+                cpu[name].append(_cpu(codes[name], text))
+        c0, c1 = min(cpu["before"]), min(cpu["now"])
+        out.append(f"{label} {t}: C = served {s0} -> {s1} of {n} rows; max|C - served| "
+                   f"{g0:.2g} -> {g1:.2g} um; first flag {f0} -> {f1}; pack rows {k0} -> {k1}; "
+                   f"stream CPU {c0:.3f} -> {c1:.3f} s")
+    return out
+
+
+def compare(root: str = "/tmp/cmon85-bench", spec: str = SPEC) -> None:
+    """Before / now per campaign (:func:`measured`) on :func:`count`'s records."""
+    import tempfile
+
+    from bench_cmon84 import _records
+
+    folder = made_folder(root)
+    t0 = time.process_time()
+    for part in spec.split(","):
+        name, seeds = part.split(":")
+        for seed in seed_list(seeds):
+            for deployed, tests, label in _records(folder, name, seed):
+                with tempfile.TemporaryDirectory(prefix="cmon85-") as tmp:
+                    print("\n".join(measured(deployed, tests, label, Path(tmp))), flush=True)
+    print(f"bench process CPU {time.process_time() - t0:.1f} s", flush=True)
+
+
+def main(argv: list[str] | None = None) -> int:
+    return run_commands(__doc__, {"count": count, "compare": compare},
+                        sys.argv[1:] if argv is None else argv, cpu=sys.stderr)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
