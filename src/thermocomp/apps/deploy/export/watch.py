@@ -76,14 +76,22 @@ The served adaptive compensator judges every ``T_`` input before the model reads
   while it is out is flagged ``BLIND`` as before (the served return may undo it).  An export
   before it (no ``blind_drop``) refuses the missing reading (``MISSING_BLIND``) and flags the
   freeze (``BLIND``).
+* (cmon85) the operator of a set the code does not hold, **solved** (``solve``, ``basis``: the
+  POD basis's ``modes`` columns; :meth:`CodeMonitor._solved`, the C's ``mon_operator``): a
+  Cholesky of ``Phi_a^T Phi_a``, as the served ``pod.operator``.  With it the drift judgement
+  goes on with a sensor out (its explaining, lone fault and veto sets solved), a second culprit
+  (or a second sensor's freeze) out beside the first, as served; at most two out (a third
+  flagged).  An export before it (no ``solve``) flags a drift with a sensor out (``DRIFT``) and a
+  second sensor out (``SECOND``).
 
 What else the served monitor does it flags, ``NOT_IN_CODE`` with the rule (:data:`REASONS`),
 and goes on by its own rules: a reading beyond its range at a campaign's first sample, of
 several sensors at once or with another sensor out (its sample passes the monitor by, the state
 as it was, so that the reading's return is no jump), several sensors jumping at once that are
 no common step, a jump at the reference's next sample, a stepped self-prediction error, a drift
-beyond the band with a sensor out already, of more than one blind partner, a second culprit
-beyond the alarm band, a second sensor out, and a sensor no other predicts out for any other
+beyond the band that takes a third sensor out (cmon85: with one out, as served), of more than
+one blind partner, a second culprit beyond the alarm band, a second sensor out for a jump, a
+dropout or its range, and a sensor no other predicts out for any other
 rule (a jump, its range; cmon84: too few left to rebuild the field without it), or with a
 fallback model the code does not hold.  A missing reading the code cannot
 rebuild (at a campaign's first sample, with another sensor out or missing, of a sensor it does
@@ -807,7 +815,8 @@ class CodeMonitor:
         self.novel, self.calm_field = True, 0
 
     def _drift(self, level, err, field) -> None:
-        """Every sensor in, one beyond the band: the culprit (the largest ``|E|(1 - h)``) out
+        """A judged sensor beyond the band (every sensor in, or cmon85 one out already): the
+        culprit (the largest ``|E|(1 - h)``) out
         where with it out the others are within their warning bands and fewer than
         ``new_state_others`` others are out of it (else nothing: the served monitor's veto), its
         blind partner with it; flagged where the served monitor does what the code does not."""

@@ -663,10 +663,11 @@ static void mon_by_drift(tc_state *s, int j) {
     s->mon_since[j] = s->mon_count;
 }
 
-/* every sensor in, one beyond the band (level >= field): the culprit (the largest |E|(1 - h))
-   out where with it out the others are within their warning bands and fewer than
-   MON_NEW_STATE_OTHERS others are out of it (else nothing: the served monitor's veto), its blind
-   partner with it; flagged where the served monitor does what the code does not */
+/* a judged sensor beyond the band (level >= field), every sensor in or (cmon85) one out: the
+   culprit (the largest |E|(1 - h)) out where with it out the others are within their warning
+   bands and fewer than MON_NEW_STATE_OTHERS others are out of it (else nothing: the served
+   monitor's veto), its blind partner with it; flagged where the served monitor does what the
+   code does not */
 static void mon_drift(tc_state *s, const int level[], int field) {
     double scale[NM], z[NM], Mp[NM][NM], lp[NM];
     int a[NM], o[NM], jd[NM], lv[NM], k, j = 0, u, nblind = 0, partner = -1;
