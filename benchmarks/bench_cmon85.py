@@ -20,14 +20,14 @@ the code as on main, which flags a drift with a sensor out) and "now": the rows 
 the first flag, the pack's rows kept, and ``tc_step``'s CPU time per sample (:data:`TIMER`: the
 campaign run 15 times, per row the least, then the largest over the rows and their sum).
 
-The rule (the code's, not the served one's; the served monitor unchanged): the operator of an
-active set the code does not hold is solved in the C, ``M = Phi_r (Phi_a^T Phi_a)^-1 Phi_a^T``
-with ``r = min(modes, s)`` (``s`` sensors in, the served ``pod.operator``), the leverages its
-diagonal; with it the drift exclusion with one sensor out (a second culprit out, the served
-judgement's loop; and a second sensor's freeze), its explaining, lone fault and re-admission
-sets judged as served.  At most two out in the code (a third flagged).  Bound: one solve is a
-Cholesky of ``r x r`` (``r^3 / 6`` multiply-adds), ``n r^2`` for the triangular solves and
-``n^2 r`` for the operator, no allocation (arrays of fixed size on the stack); per sample O(n) solves: at most ``n`` for the explaining's
+The rule (the code's, not the served one's; the served monitor unchanged): the operator of an active
+set the code does not hold is solved in the C, ``M = Phi_r (Phi_a^T Phi_a)^-1 Phi_a^T`` with ``r =
+min(modes, s)`` (``s`` sensors in, the served ``pod.operator``), the leverages its diagonal; with it
+the drift exclusion with one sensor out (a second culprit out, the served judgement's loop; and a
+second sensor's freeze), its explaining, lone fault and re-admission sets judged as served. At most
+two out in the code (a third flagged). Bound: one solve is a Cholesky of ``r x r`` (``r^3 / 6``
+multiply-adds), ``n r^2`` for the triangular solves and ``n^2 r`` for the operator, no allocation
+(arrays of fixed size on the stack); per sample O(n) solves: at most ``n`` for the explaining's
 trial sets, 3 for the lone fault's, ``n`` for the re-admission's trials, and one per exclusion,
 re-admission and check of the second place (a set the code holds is copied, no solve).
 
