@@ -740,9 +740,9 @@ class CodeMonitor:
         for a dropout alone: it had passed its judgement until its reading went missing); one
         the others in ``trial`` cannot predict passes where no other predicts it at all."""
         n = self.n
-        if trial.sum() < self.a["min_active"]:
+        if trial.sum() < self.a["min_active"] or (op := self._operator(~trial)) is None:
             return np.zeros(n, bool), np.full(n, np.inf)
-        M, lev = self._operator(~trial)
+        M, lev = op
         blind = lev >= self.max_lev
         H = np.where(np.isfinite(self.hist), self.hist, 0.0)
         with np.errstate(divide="ignore", invalid="ignore"):
