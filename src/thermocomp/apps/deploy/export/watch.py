@@ -77,14 +77,22 @@ The served adaptive compensator judges every ``T_`` input before the model reads
   while it is out is flagged ``BLIND`` as before (the served return may undo it).  An export
   before it (no ``blind_drop``) refuses the missing reading (``MISSING_BLIND``) and flags the
   freeze (``BLIND``).
+* (cmon85) the operator of a set the code does not hold, **solved** (``solve``, ``basis``: the
+  POD basis's ``modes`` columns; :meth:`CodeMonitor._solved`, the C's ``mon_operator``): a
+  Cholesky of ``Phi_a^T Phi_a``, as the served ``pod.operator``.  With it the drift judgement
+  goes on with a sensor out (its explaining, lone fault and veto sets solved), a second culprit
+  (or a second sensor's freeze) out beside the first, as served; at most two out (a third
+  flagged).  An export before it (no ``solve``) flags a drift with a sensor out (``DRIFT``) and a
+  second sensor out (``SECOND``).
 
 What else the served monitor does it flags, ``NOT_IN_CODE`` with the rule (:data:`REASONS`),
 and goes on by its own rules: a reading beyond its range at a campaign's first sample, of
 several sensors at once or with another sensor out (its sample passes the monitor by, the state
 as it was, so that the reading's return is no jump), several sensors jumping at once that are
 no common step, a jump at the reference's next sample, a stepped self-prediction error, a drift
-beyond the band with a sensor out already, of more than one blind partner, a second culprit
-beyond the alarm band, a second sensor out, and a sensor no other predicts out for any other
+beyond the band that takes a third sensor out (cmon85: with one out, as served), of more than
+one blind partner, a second culprit beyond the alarm band, a second sensor out for a jump, a
+dropout or its range, and a sensor no other predicts out for any other
 rule (a jump, its range; cmon84: too few left to rebuild the field without it), or with a
 fallback model the code does not hold.  A missing reading the code cannot
 rebuild (at a campaign's first sample, with another sensor out or missing, of a sensor it does
@@ -95,6 +103,7 @@ such a row on the code may part from the served model; the conformance pack cuts
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -199,7 +208,8 @@ def monitor_fields(deployed, inputs: list) -> dict:
         "drift": 1, "pairs": [list(p) for p in pairs], "new_state": int(mon.new_state),
         "new_state_others": int(mon.new_state_others), "max_backoff": MAX_BACKOFF,
         "tau": EXCURSION_TAU_S, "growth": EXCURSION_GROWTH, "novel": 1, "blind_out": 1, "thawed": 1,
-        "blind_drop": 1,
+        "blind_drop": 1, "solve": 1, "modes": int(mon.pod.n_modes_),
+        "basis": mon.pod.basis_[:, :int(mon.pod.n_modes_)].tolist(),
         "fallback": [int(c in falls) for c in mon.names],
         "rounding": np.broadcast_to(getattr(mon, "rounding_c", 0.0), (n,)).tolist()}}
 
@@ -295,7 +305,8 @@ class CodeMonitor:
                      ("novel", 0),        # (before cmon82b: a new thermal state flagged)
                      ("blind_out", 0),    # (before cmon82c: a sensor no other predicts, flagged)
                      ("thawed", 0),       # (before freeze84: a freeze's return flagged)
-                     ("blind_drop", 0)):  # (before cmon84: its missing reading refused)
+                     ("blind_drop", 0),   # (before cmon84: its missing reading refused)
+                     ("solve", 0)):       # (before cmon85: only the operators it holds)
             a.setdefault(k, np.float64(v))
         a.setdefault("rounding", np.zeros(n))    # (before mon83: no culprit held for rounding)
         self.pairs = [tuple(int(i) for i in p) for p in arrays.get("pairs", [])]
@@ -312,12 +323,18 @@ class CodeMonitor:
         # (cmon84) one no other predicts that the code holds out for a dropout or a freeze (held
         # at its last reading), as served: enough left in to rebuild the field without it
         self.drops = bool(a["blind_drop"]) & ~self.predictable & (n - 1 >= a["min_active"])
+        # (cmon85) the POD basis (n x modes): any other set's operator solved at run time
+        self.solve = bool(a["solve"]) and "basis" in arrays
+        self.phi = np.asarray(arrays.get("basis", np.zeros((n, 0))), float).reshape(n, -1)
         self.reset()
 
     def reset(self) -> None:
         n, w = self.n, self.window
         self.ref = self.base = None
-        self.out, self.out2, self.op = -1, -1, 0     # (cmon82: out2 its blind partner, op the set's)
+        # (cmon82: out2 its blind partner, cmon85 or a second out by drift; Mc / levc the active
+        # set's operator and leverages)
+        self.out, self.out2 = -1, -1
+        self.Mc, self.levc = self.M[0], self.lev[0]
         self.hist, self.err = np.full((w, n), np.nan), np.full((w, n), np.nan)
         self.pos = self.count = 0
         self.prev, self.prev_e, self.prev_other = (np.full(n, np.nan) for _ in range(3))
@@ -356,20 +373,70 @@ class CodeMonitor:
             return k[0] + 1 if k else 0
         return self.n + 1 + self.pairs.index(k) if k in self.pairs else None
 
+    def _operator(self, out: np.ndarray):
+        """``(M, lev)`` of the set with the sensors ``out`` out: the one the code holds, else
+        (cmon85) solved (:meth:`_solved`); None: neither."""
+        s = self._op_of(out)
+        if s is not None:
+            return self.M[s], self.lev[s]
+        return self._solved(~np.asarray(out, bool)) if self.solve else None
+
+    def _solved(self, active: np.ndarray):
+        """(cmon85) The served ``pod.operator`` of ``active``, as the C solves it: ``r = min(modes,
+        s)`` modes, the Cholesky ``L`` of ``G = Phi_a^T Phi_a`` (``r x r``), ``w_k = L^-1 phi_k``,
+        ``M[k, m] = w_k . w_m`` for ``m`` in, the leverage ``w_k . w_k`` (1 out); None where ``G``
+        is not positive definite (a pivot within 1e-12 of its diagonal's scale)."""
+        n, ins = self.n, np.flatnonzero(active)
+        r = min(self.phi.shape[1], len(ins))
+        phi = self.phi.tolist()          # (python floats: the C's arithmetic, in its order)
+        G = [[0.0] * r for _ in range(r)]
+        for i in ins:
+            for p in range(r):
+                for q in range(r):
+                    G[p][q] += phi[i][p] * phi[i][q]
+        L = [[0.0] * r for _ in range(r)]
+        for p in range(r):
+            for q in range(p + 1):
+                v = G[p][q]
+                for c in range(q):
+                    v -= L[p][c] * L[q][c]
+                if p != q:
+                    L[p][q] = v / L[q][q]
+                elif not v > 1e-12 * max(G[p][p], 1e-300):
+                    return None
+                else:
+                    L[p][p] = math.sqrt(v)
+        W = [[0.0] * r for _ in range(n)]
+        for k in range(n):
+            for p in range(r):
+                v = phi[k][p]
+                for c in range(p):
+                    v -= L[p][c] * W[k][c]
+                W[k][p] = v / L[p][p]
+        M, lev = np.zeros((n, n)), np.ones(n)
+        for k in range(n):
+            for m in ins:
+                v = 0.0
+                for p in range(r):
+                    v += W[k][p] * W[m][p]
+                M[k, m] = v
+            if active[k]:
+                lev[k] = M[k, k]
+        return M, lev
+
     def _active(self) -> np.ndarray:
         active = np.ones(self.n, bool)
         active[[k for k in (self.out, self.out2) if k >= 0]] = False
         return active
 
     def _set(self):
-        s = self.op
-        lev = self.lev[s]
+        lev = self.levc
         active = self._active()
         observable = lev < self.max_lev
         judged = active & observable
         scale = np.where(judged, 1.0 / np.maximum(1 - lev, 1e-12), 1.0)
         scale[active & ~observable] = np.nan
-        return self.M[s], active, observable, judged, scale
+        return self.Mc, active, observable, judged, scale
 
     def _errors(self, d):
         M, _, _, _, scale = self._set()
@@ -378,7 +445,7 @@ class CodeMonitor:
 
     def _recompute(self) -> None:
         """The window's errors under the new operator (an exclusion, a re-admission)."""
-        self.op = self._op_of(~self._active())
+        self.Mc, self.levc = self._operator(~self._active())
         M, _, _, _, scale = self._set()
         H = np.where(np.isfinite(self.hist), self.hist, 0.0)
         self.err = (self.hist - H @ M.T) * scale
@@ -411,15 +478,31 @@ class CodeMonitor:
         """``j`` out where the code holds it (one sensor out, others predict it, or cmon84 a
         dropout or a freeze of one no other predicts); else flagged."""
         held = self.ported[j] or (rule in (DROPOUT, FREEZE) and self.drops[j])
-        if self.out >= 0 or not held:
-            self._flag(NOT_IN_CODE, j, SECOND if self.out >= 0 else BLIND)
+        second = self.out >= 0 and not (rule in (DRIFT_OUT, FREEZE) and self.ported[j]
+                                        and self._second_held(j))
+        if second or not held:
+            self._flag(NOT_IN_CODE, j, SECOND if second else BLIND)
             return False
-        self.out, self.hid[j] = j, False
+        self._put_out(j)
+        self.hid[j] = False
         self.calm[j] = 0
         self._recompute()
         self._flag(EXCLUDED, j, rule)
         self.fell = self.fell or bool(self.fallback[j] and not self.fallset[j])
         return True
+
+    def _second_held(self, j: int) -> bool:
+        """(cmon85) ``j`` out (a drift exclusion, a freeze) with one sensor out already: the
+        code's second place free and the set's operator solved."""
+        return self.solve and self.out2 < 0 and self._operator(
+            ~self._active() | (np.arange(self.n) == j)) is not None
+
+    def _put_out(self, j: int) -> None:
+        """``j`` in the first free place out (the second: cmon85)."""
+        if self.out < 0:
+            self.out = j
+        else:
+            self.out2 = j
 
     def refuses(self, u: np.ndarray, first: bool) -> int:
         """The rule by which the code refuses the sample ``u`` (inputs in the code's order, a
@@ -553,8 +636,8 @@ class CodeMonitor:
         if level[judged].any():
             self.flags |= BAND
         self._judgement()
-        if self.out >= 0 and self.count >= self.window:
-            self._thaw(gone, instant)
+        for j in [k for k in (self.out, self.out2) if k >= 0 and self.count >= self.window]:
+            self._thaw(j, gone, instant)
         due = ~self._active() & ~gone & (self.run == 0) & ~instant & (self.calm >= self.dwell)
         if due.any() and self.count >= self.window:
             for j in np.flatnonzero(self._returning(due)):
@@ -571,10 +654,9 @@ class CodeMonitor:
         self._fold(self.hist[pos], first, dt)
         return self._rebuilt(u, d, pred)
 
-    def _thaw(self, gone, instant) -> None:
-        """(freeze84) The sensor out for a freeze alone, ``THAW`` readings in a row off the value
-        it held: back at once."""
-        j = self.out
+    def _thaw(self, j, gone, instant) -> None:
+        """(freeze84) ``j``, out for a freeze alone, ``THAW`` readings in a row off the value it
+        held: back at once (cmon85: either of the two out)."""
         if not self.froze[j] or gone[j] or instant[j] or self.off[j] < THAW:
             return
         if not self.a["thawed"]:
@@ -662,10 +744,9 @@ class CodeMonitor:
         for a dropout alone: it had passed its judgement until its reading went missing); one
         the others in ``trial`` cannot predict passes where no other predicts it at all."""
         n = self.n
-        if trial.sum() < self.a["min_active"]:
+        if trial.sum() < self.a["min_active"] or (op := self._operator(~trial)) is None:
             return np.zeros(n, bool), np.full(n, np.inf)
-        s = self._op_of(~trial)
-        M, lev = self.M[s], self.lev[s]
+        M, lev = op
         blind = lev >= self.max_lev
         H = np.where(np.isfinite(self.hist), self.hist, 0.0)
         with np.errstate(divide="ignore", invalid="ignore"):
@@ -692,7 +773,7 @@ class CodeMonitor:
         # (cmon82b) in a new thermal state no drift exclusion at all (served: every one vetoed)
         if (judged & (level >= field)).any() and active.sum() > a["min_active"] and not (
                 a["new_state"] and self.novel):
-            if not a["drift"] or self.out >= 0:
+            if not a["drift"] or (self.out >= 0 and not self.solve):
                 self._flag(NOT_IN_CODE, int(np.argmax(judged & (level >= field))), DRIFT)
             else:
                 self._drift(level, err, field)
@@ -738,19 +819,20 @@ class CodeMonitor:
         self.novel, self.calm_field = True, 0
 
     def _drift(self, level, err, field) -> None:
-        """Every sensor in, one beyond the band: the culprit (the largest ``|E|(1 - h)``) out
+        """A judged sensor beyond the band (every sensor in, or cmon85 one out already): the
+        culprit (the largest ``|E|(1 - h)``) out
         where with it out the others are within their warning bands and fewer than
         ``new_state_others`` others are out of it (else nothing: the served monitor's veto), its
         blind partner with it; flagged where the served monitor does what the code does not."""
         a = self.a
         _, active, observable, judged, _ = self._set()
         if (u := self._explaining(level, field)) is not None:
-            if a["blind_out"]:
+            if a["blind_out"] and (self.out < 0 or self._second_held(u)):
                 self._blind_out(u)
             else:
                 self._flag(NOT_IN_CODE, u, DRIFT)
             return
-        z = np.where(judged, np.abs(np.nan_to_num(err)) * np.sqrt(np.abs(1 - self.lev[self.op])) ** 2,
+        z = np.where(judged, np.abs(np.nan_to_num(err)) * np.sqrt(np.abs(1 - self.levc)) ** 2,
                      -1.0)
         j = int(np.argmax(z))
         if a["new_state"]:
@@ -774,8 +856,8 @@ class CodeMonitor:
         for i in blind:
             if active.sum() <= a["min_active"]:
                 continue
-            if len(blind) > 1 or self._op_of(~active | (np.arange(self.n) == i)) is None \
-                    or not self.ported[i]:
+            if len(blind) > 1 or self.out2 >= 0 or not self.ported[i] \
+                    or self._operator(~active | (np.arange(self.n) == i)) is None:
                 self._flag(NOT_IN_CODE, int(i), DRIFT)
                 return
             if a["new_state"]:
@@ -800,7 +882,8 @@ class CodeMonitor:
         """(cmon82c) ``u`` (no other predicts it) out for explaining the others' errors, as
         served: a drift exclusion held at its last reading; judged again, a sensor still beyond
         the alarm band is flagged (the served monitor goes on with one out)."""
-        self.out, self.calm[u] = u, 0
+        self._put_out(u)
+        self.calm[u] = 0
         self._recompute()
         self._by_drift(u)
         self.explains[u] = True
@@ -837,7 +920,7 @@ class CodeMonitor:
         if self._resolves(j, out if level[j] < WARNING else None):
             return j, True
         size = np.abs(np.where(judged, np.nan_to_num(err), 0.0))
-        std = np.sqrt(np.abs(1 - self.lev[self.op]))
+        std = np.sqrt(np.abs(1 - self.levc))
         likelier = np.argmax(size * std)     # (mon84: asked of every lone fault)
         # (mon85: j within band hiding the likelier single fault, not its blind partner: no)
         hidden = out & (z < 0.7 * z[j]) & (np.arange(len(z)) == likelier)
@@ -908,10 +991,9 @@ class CodeMonitor:
         trial[j] = False
         if trial.sum() < self.a["min_active"]:
             return True
-        s = self._op_of(~trial)
-        if s is None:
+        if (op := self._operator(~trial)) is None:
             return False
-        M, lev = self.M[s], self.lev[s]
+        M, lev = op
         jd = trial & (lev < self.max_lev)
         if seen is not None and (seen & trial & ~jd).any():
             return False
@@ -925,7 +1007,7 @@ class CodeMonitor:
         """The served monitor's ``_explaining`` (every sensor in): a sensor no other predicts
         whose reading explains the judged sensors beyond the band (None: none does)."""
         _, active, observable, judged, _ = self._set()
-        M, lev = self.M[self.op], self.lev[self.op]
+        M, lev = self.Mc, self.levc
         out = judged & (level >= field)
         band = self.a["warning"] if field == WARNING else self.a["alarm"]
         X = self._X()
@@ -937,8 +1019,9 @@ class CodeMonitor:
             trial[u] = False
             if trial.sum() < self.a["min_active"]:
                 continue
-            s = self._op_of(~trial)
-            Mu, lu = self.M[s], self.lev[s]
+            if (op := self._operator(~trial)) is None:
+                continue
+            Mu, lu = op
             jd = trial & (lu < self.max_lev)
             if (out & ~jd).any():
                 continue

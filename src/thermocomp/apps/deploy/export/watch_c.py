@@ -16,6 +16,7 @@ def header_part(ss) -> str:
     return f"""#define TC_MONITOR {int(bool(m))}   /* the sensor monitor in the code (docs/monitoring.md) */
 #define TC_N_MONITORED {n}
 #define TC_MON_WINDOW {max(int(m.get("window", 1)), 1)}
+#define TC_MON_MODES {max(int(m.get("modes", 1)), 1)}   /* the POD basis's modes (cmon85: MON_PHI) */
 #define TC_MON_THAW {THAW}   /* readings in a row off its held value that end a freeze (freeze84) */
 /* tc_state.mon_flags, per sample: a sensor excluded, re-admitted, one out (the model reads its
    reconstruction), a judged sensor beyond its warning band, a rule of the served monitor that
@@ -51,9 +52,12 @@ STATE = """    /* the sensor monitor (TC_MONITOR): referenced readings d = u - m
     double mon_held[NM];
     int mon_out;                                /* the sensor out (-1: none) */
     /* (cmon82) its blind partner out with it (-1: none), the active set's operator (MON_M's
-       index), out by a drift exclusion, its exclusions so, the calm samples it needs to return,
+       index: now mon_M), out by a drift exclusion, its exclusions so, the calm samples it needs to return,
        the sample count at its drift exclusion (-1: none) */
-    int mon_out2, mon_op, mon_by_field[NM], mon_outs[NM], mon_dwell[NM], mon_since[NM];
+    int mon_out2, mon_by_field[NM], mon_outs[NM], mon_dwell[NM], mon_since[NM];
+    /* (cmon85) the active set's operator and leverages (MON_M's, or solved: mon_operator); the
+       second out may be any sensor out by a drift exclusion or a freeze */
+    double mon_M[NM][NM], mon_lev[NM];
     double mon_slow[NM];     /* the field's memory (the served excursion rule, MON_TAU s) */
     int mon_slow_known;      /* 0: its age unknown (a sample without its time) */
     /* (cmon82b) a new thermal state declared, the samples since a judged sensor was last out of
@@ -91,11 +95,14 @@ def monitor_arrays(ss) -> list[tuple[str, object, tuple, str]]:
                ("MON_GROWTH", "growth", 1.5, "real"), ("MON_NOVEL", "novel", 0, "int"),
                ("MON_BLIND_OUT", "blind_out", 0, "int"), ("MON_THAWED", "thawed", 0, "int"),
                ("MON_BLIND_DROP", "blind_drop", 0, "int"))
+    modes = max(int(m.get("modes", 1)), 1)
     return [("MON_M", m.get("M", []), (n + 1 + len(pairs), n, n), "real"),
             ("MON_LEV", m.get("lev", []), (n + 1 + len(pairs), n), "real"),
             ("MON_PAIR_A", [p[0] for p in pairs], (len(pairs),), "int"),
             ("MON_PAIR_B", [p[1] for p in pairs], (len(pairs),), "int"),
             ("MON_N_PAIRS", len(pairs), (), "int"),
+            ("MON_PHI", m.get("basis", []), (n, modes), "real"),
+            ("MON_SOLVE", int(bool(m.get("solve")) and "basis" in m), (), "int"),
             *((f"MON_{k.upper()}", m.get(k, [0.0] * n), (n,), "real") for k in vectors),
             ("MON_PREDICTABLE", m.get("predictable", []), (n,), "int"),
             ("MON_PORTED", m.get("ported_out", []), (n,), "int"),
@@ -113,7 +120,7 @@ FUNCTIONS = r"""
 static void mon_set(const tc_state *s, int active[], int observable[], int judged[], double scale[]) {
     int k;
     for (k = 0; k < NM; k++) {
-        double lev = MON_LEV[s->mon_op][k];
+        double lev = s->mon_lev[k];
         active[k] = k != s->mon_out && k != s->mon_out2;
         observable[k] = lev < MON_MAX_LEV;
         judged[k] = active[k] && observable[k];
@@ -128,7 +135,7 @@ static void mon_errors(const tc_state *s, const double d[], double pred[], doubl
     mon_set(s, a, o, jd, scale);
     for (k = 0; k < NM; k++) {
         pred[k] = 0.0;
-        for (m = 0; m < NM; m++) pred[k] += MON_M[s->mon_op][k][m] * (isfinite(d[m]) ? d[m] : 0.0);
+        for (m = 0; m < NM; m++) pred[k] += s->mon_M[k][m] * (isfinite(d[m]) ? d[m] : 0.0);
         e[k] = (d[k] - pred[k]) * scale[k];
     }
 }
@@ -148,12 +155,60 @@ static int mon_op_of(const int out[]) {
     return -1;
 }
 
+/* (cmon85) the operator M and leverages lev of the set with the sensors out[] out: one the code
+   holds copied (MON_M), another solved from the POD basis (MON_SOLVE), as the served
+   pod.operator: r = min(TC_MON_MODES, s) modes (s in), the Cholesky L of G = Phi_a^T Phi_a,
+   w_k = L^-1 phi_k, M[k][m] = w_k . w_m for m in, the leverage w_k . w_k (1 out).  Fixed-size
+   arrays, no allocation; at most r^3 / 6 + NM r^2 / 2 + NM^2 r multiply-adds (and NM r^2 for G).
+   0: neither (G not positive definite: a pivot within 1e-12 of its diagonal) */
+static int mon_operator(const int out[], double M[][NM], double lev[]) {
+    double G[TC_MON_MODES][TC_MON_MODES], L[TC_MON_MODES][TC_MON_MODES], W[NM][TC_MON_MODES], v;
+    int k, m, p, q, c, r = 0, op = mon_op_of(out);
+    if (op >= 0) {
+        for (k = 0; k < NM; k++) {
+            lev[k] = MON_LEV[op][k];
+            for (m = 0; m < NM; m++) M[k][m] = MON_M[op][k][m];
+        }
+        return 1;
+    }
+    if (!MON_SOLVE) return 0;
+    for (k = 0; k < NM; k++) r += !out[k];
+    if (r > TC_MON_MODES) r = TC_MON_MODES;
+    for (p = 0; p < r; p++)
+        for (q = 0; q < r; q++) G[p][q] = 0.0;
+    for (k = 0; k < NM; k++)
+        for (p = 0; p < r && !out[k]; p++)
+            for (q = 0; q < r; q++) G[p][q] += MON_PHI[k][p] * MON_PHI[k][q];
+    for (p = 0; p < r; p++)
+        for (q = 0; q <= p; q++) {
+            v = G[p][q];
+            for (c = 0; c < q; c++) v -= L[p][c] * L[q][c];
+            if (p != q) L[p][q] = v / L[q][q];
+            else if (!(v > 1e-12 * (G[p][p] > 1e-300 ? G[p][p] : 1e-300))) return 0;
+            else L[p][p] = sqrt(v);
+        }
+    for (k = 0; k < NM; k++)
+        for (p = 0; p < r; p++) {
+            v = MON_PHI[k][p];
+            for (c = 0; c < p; c++) v -= L[p][c] * W[k][c];
+            W[k][p] = v / L[p][p];
+        }
+    for (k = 0; k < NM; k++) {
+        for (m = 0; m < NM; m++) {
+            M[k][m] = 0.0;
+            for (p = 0; p < r && !out[m]; p++) M[k][m] += W[k][p] * W[m][p];
+        }
+        lev[k] = out[k] ? 1.0 : M[k][k];
+    }
+    return 1;
+}
+
 /* the window's errors redone under a new operator (an exclusion, a re-admission) */
 static void mon_recompute(tc_state *s) {
     double pred[NM];
     int w, out[NM];
     for (w = 0; w < NM; w++) out[w] = w == s->mon_out || w == s->mon_out2;
-    s->mon_op = mon_op_of(out);
+    mon_operator(out, s->mon_M, s->mon_lev);
     for (w = 0; w < MW; w++) {
         double e[NM];
         int k;
@@ -204,15 +259,33 @@ static void mon_readmit(tc_state *s, int k, int rule) {
     mon_flag(s, TC_MON_READMITTED, k, rule);
 }
 
+/* (cmon85) 1: sensor k out (a drift exclusion, a freeze) with one out already: the second place
+   free and the set's operator solved */
+static int mon_second_held(const tc_state *s, int k) {
+    double M[NM][NM], lev[NM];
+    int out[NM], m;
+    if (!MON_SOLVE || s->mon_out2 >= 0) return 0;
+    for (m = 0; m < NM; m++) out[m] = m == k || m == s->mon_out || m == s->mon_out2;
+    return mon_operator(out, M, lev);
+}
+
+/* k in the first free place out (the second: cmon85) */
+static void mon_put_out(tc_state *s, int k) {
+    if (s->mon_out < 0) s->mon_out = k;
+    else s->mon_out2 = k;
+}
+
 /* sensor k out where the code holds it (one out, the others predicting it, or a dropout or a
-   freeze of one no other predicts); else flagged */
+   freeze of one no other predicts; cmon85: a second, for a drift or a freeze); else flagged */
 static void mon_exclude(tc_state *s, int k, int rule) {
     int blind = (rule == TC_MON_DROPOUT || rule == TC_MON_FREEZE) && mon_drops(k);
-    if (s->mon_out >= 0 || !(MON_PORTED[k] || blind)) {
-        mon_flag(s, TC_MON_NOT_IN_CODE, k, s->mon_out >= 0 ? TC_MON_SECOND : TC_MON_BLIND);
+    int second = s->mon_out >= 0 && !((rule == TC_MON_DRIFT_OUT || rule == TC_MON_FREEZE)
+                                      && MON_PORTED[k] && mon_second_held(s, k));
+    if (second || !(MON_PORTED[k] || blind)) {
+        mon_flag(s, TC_MON_NOT_IN_CODE, k, second ? TC_MON_SECOND : TC_MON_BLIND);
         return;
     }
-    s->mon_out = k;
+    mon_put_out(s, k);
     s->mon_calm[k] = s->mon_hid[k] = 0;
     mon_recompute(s);
     mon_flag(s, TC_MON_EXCLUDED, k, rule);
@@ -224,11 +297,12 @@ static void mon_exclude(tc_state *s, int k, int rule) {
    band (one out for a dropout alone: its whole band; one the others in trial cannot predict:
    where no other predicts it at all), worst[k] that error */
 static void mon_pass_once_back(const tc_state *s, const int trial[], int ok[], double worst[]) {
-    int k, w, m, n = 0, out[NM], op;
+    double M[NM][NM], L[NM];
+    int k, w, m, n = 0, out[NM];
     for (k = 0; k < NM; k++) n += trial[k], out[k] = !trial[k], ok[k] = 0, worst[k] = HUGE_VAL;
-    if (n < MON_MIN_ACTIVE || (op = mon_op_of(out)) < 0) return;
+    if (n < MON_MIN_ACTIVE || !mon_operator(out, M, L)) return;
     for (k = 0; k < NM; k++) {
-        double lev = MON_LEV[op][k], band;
+        double lev = L[k], band;
         if (!trial[k]) continue;
         if (lev >= MON_MAX_LEV) {
             ok[k] = !MON_PREDICTABLE[k];
@@ -240,7 +314,7 @@ static void mon_pass_once_back(const tc_state *s, const int trial[], int ok[], d
         for (w = 0; w < MW; w++) {
             double p = 0.0, v;
             for (m = 0; m < NM; m++)
-                p += MON_M[op][k][m] * (isfinite(s->mon_hist[w][m]) ? s->mon_hist[w][m] : 0.0);
+                p += M[k][m] * (isfinite(s->mon_hist[w][m]) ? s->mon_hist[w][m] : 0.0);
             v = fabs(((isfinite(s->mon_hist[w][k]) ? s->mon_hist[w][k] : 0.0) - p) / (1.0 - lev));
             if (v > worst[k]) worst[k] = v;
         }
@@ -249,10 +323,10 @@ static void mon_pass_once_back(const tc_state *s, const int trial[], int ok[], d
     /* (cmon82c) one out for explaining the others' errors: back where they all pass their
        warning band with it in, as served */
     for (k = 0; k < NM; k++)
-        if (trial[k] && MON_LEV[op][k] >= MON_MAX_LEV && s->mon_explains[k]) {
+        if (trial[k] && L[k] >= MON_MAX_LEV && s->mon_explains[k]) {
             ok[k] = 1;
             for (m = 0; m < NM; m++)
-                if (trial[m] && MON_LEV[op][m] < MON_MAX_LEV && !(worst[m] < MON_WARNING[m])) ok[k] = 0;
+                if (trial[m] && L[m] < MON_MAX_LEV && !(worst[m] < MON_WARNING[m])) ok[k] = 0;
         }
 }
 
@@ -414,35 +488,35 @@ static int mon_rows(const tc_state *s, double X[][NM]) {
     return n;
 }
 
-/* sensor k's leave-one-out error under the operator op in row x */
-static double mon_loo(int op, int k, const double x[]) {
+/* sensor k's leave-one-out error under the operator M (leverages lev) in row x */
+static double mon_loo(double M[][NM], const double lev[], int k, const double x[]) {
     double p = 0.0;
     int m;
-    for (m = 0; m < NM; m++) p += MON_M[op][k][m] * x[m];
-    return (x[k] - p) / (1.0 - MON_LEV[op][k]);
+    for (m = 0; m < NM; m++) p += M[k][m] * x[m];
+    return (x[k] - p) / (1.0 - lev[k]);
 }
 
 /* with j out too, every other judged sensor's leave-one-out error over the last MON_CONFIRM
    samples (their mean) within its warning band (1: too few left to judge; 0: a set the code
    does not hold) */
 static int mon_resolves(const tc_state *s, int j, const int seen[], double alone) {
-    double X[MW][NM], off = 0.0;
-    int out[NM], k, r, m, n = 0, op, rows = mon_rows(s, X);
+    double X[MW][NM], M[NM][NM], lev[NM], off = 0.0;
+    int out[NM], k, r, m, n = 0, rows = mon_rows(s, X);
     for (k = 0; k < NM; k++) out[k] = k == j || k == s->mon_out || k == s->mon_out2, n += !out[k];
     if (n < MON_MIN_ACTIVE) return 1;
-    if ((op = mon_op_of(out)) < 0) return 0;
+    if (!mon_operator(out, M, lev)) return 0;
     for (k = 0; k < NM; k++)   /* (seen: each of them still judged) */
-        if (seen && seen[k] && !out[k] && MON_LEV[op][k] >= MON_MAX_LEV) return 0;
+        if (seen && seen[k] && !out[k] && lev[k] >= MON_MAX_LEV) return 0;
     for (k = 0; k < NM; k++) {
         double e = 0.0;
-        if (out[k] || MON_LEV[op][k] >= MON_MAX_LEV) continue;
-        for (r = 0; r < rows; r++) e += mon_loo(op, k, X[r]);
+        if (out[k] || lev[k] >= MON_MAX_LEV) continue;
+        for (r = 0; r < rows; r++) e += mon_loo(M, lev, k, X[r]);
         if (!(fabs(e / rows) < MON_WARNING[k])) return 0;
     }
     if (alone < 0.0) return 1;
     for (r = 0; r < rows; r++) {   /* (alone: j off the others' field by that much at least) */
         double p = 0.0;
-        for (m = 0; m < NM; m++) p += MON_M[op][j][m] * X[r][m];
+        for (m = 0; m < NM; m++) p += M[j][m] * X[r][m];
         off += X[r][j] - p;
     }
     return fabs(off / rows) >= alone;
@@ -464,8 +538,8 @@ static int mon_lone_fault(const tc_state *s, int j, const double z[], const int 
     /* the likelier single fault: the largest standardised residual (mon84: asked of every
        lone fault, not only where j hides) */
     for (k = 0; k < NM; k++) {
-        double w = size[k] * sqrt(fabs(1.0 - MON_LEV[s->mon_op][k]));
-        if (likelier < 0 || w > size[likelier] * sqrt(fabs(1.0 - MON_LEV[s->mon_op][likelier])))
+        double w = size[k] * sqrt(fabs(1.0 - s->mon_lev[k]));
+        if (likelier < 0 || w > size[likelier] * sqrt(fabs(1.0 - s->mon_lev[likelier])))
             likelier = k;
     }
     /* (mon85: j within band hiding the likelier single fault, not its blind partner: no) */
@@ -500,7 +574,7 @@ static int mon_within_rounding(const tc_state *s, int j, int field) {
     }
     if (!s->mon_slow_known || !(least < band + MON_ROUNDING[j])) return 0;
     mon_set(s, a, o, jd, scale);
-    for (m = 0; m < NM; m++) past += MON_M[s->mon_op][j][m] * s->mon_slow[m];
+    for (m = 0; m < NM; m++) past += s->mon_M[j][m] * s->mon_slow[m];
     past = (s->mon_slow[j] - past) * scale[j];
     return past * (sum > 0 ? 1.0 : sum < 0 ? -1.0 : 0.0) >= band - MON_ROUNDING[j];
 }
@@ -519,7 +593,7 @@ static int mon_hovers(const tc_state *s, const int level[]) {
         double past = 0.0, rise = 0.0, e = mon_mean_err(s, k), sgn, then;
         if (!jd[k] || level[k] < 1) continue;
         n++;
-        for (m = 0; m < NM; m++) past += MON_M[s->mon_op][k][m] * s->mon_slow[m];
+        for (m = 0; m < NM; m++) past += s->mon_M[k][m] * s->mon_slow[m];
         past = (s->mon_slow[k] - past) * scale[k];
         for (r = 0; r < rows; r++) rise += X[r][k];
         rise = fabs(rise / rows);
@@ -533,16 +607,16 @@ static int mon_hovers(const tc_state *s, const int level[]) {
 /* the served monitor's _explaining (every sensor in): a sensor no other predicts whose reading
    explains the judged sensors beyond the band (level >= field), -1: none does */
 static int mon_explaining(const tc_state *s, const int level[], int field) {
-    double X[MW][NM], scale[NM], z[NM], best_z = -1.0;
-    int a[NM], o[NM], jd[NM], cand[NM], k, u, r, m, best = -1, rows = mon_rows(s, X);
+    double X[MW][NM], scale[NM], z[NM], best_z = -1.0, Mu[NM][NM], lu[NM];
+    int a[NM], o[NM], jd[NM], cand[NM], out[NM], k, u, r, m, best = -1, rows = mon_rows(s, X);
     mon_set(s, a, o, jd, scale);
     for (k = 0; k < NM; k++) {
-        double e = 0.0, h = 1.0 - MON_LEV[s->mon_op][k];
+        double e = 0.0, h = 1.0 - s->mon_lev[k];
         z[k] = -1.0;
         if (!a[k]) continue;
         for (r = 0; r < rows; r++) {
             double p = 0.0;
-            for (m = 0; m < NM; m++) p += MON_M[s->mon_op][k][m] * X[r][m];
+            for (m = 0; m < NM; m++) p += s->mon_M[k][m] * X[r][m];
             e += X[r][k] - p;
         }
         z[k] = fabs(e / rows) / sqrt(h > 1e-12 ? h : 1e-12);
@@ -550,17 +624,17 @@ static int mon_explaining(const tc_state *s, const int level[], int field) {
     }
     for (k = 0; k < NM; k++) cand[k] = a[k] && !o[k] && z[k] > best_z;
     for (u = 0; u < NM; u++) {
-        int n = 0, op = u + 1, fails = 0;
+        int n = 0, fails = 0;
         if (!cand[u]) continue;
-        for (k = 0; k < NM; k++) n += a[k] && k != u;
-        if (n < MON_MIN_ACTIVE) continue;
+        for (k = 0; k < NM; k++) n += a[k] && k != u, out[k] = !a[k] || k == u;
+        if (n < MON_MIN_ACTIVE || !mon_operator(out, Mu, lu)) continue;
         for (k = 0; k < NM && !fails; k++) {
             double least = HUGE_VAL;
-            int judged = a[k] && k != u && MON_LEV[op][k] < MON_MAX_LEV;
+            int judged = a[k] && k != u && lu[k] < MON_MAX_LEV;
             if (jd[k] && level[k] >= field && !judged) fails = 1;
             if (!judged) continue;
             for (r = 0; r < rows; r++) {
-                double v = fabs(mon_loo(op, k, X[r]));
+                double v = fabs(mon_loo(Mu, lu, k, X[r]));
                 if (v < least) least = v;
             }
             if (least >= (field == 1 ? MON_WARNING[k] : MON_ALARM[k])) fails = 1;
@@ -594,21 +668,22 @@ static void mon_by_drift(tc_state *s, int j) {
     s->mon_since[j] = s->mon_count;
 }
 
-/* every sensor in, one beyond the band (level >= field): the culprit (the largest |E|(1 - h))
-   out where with it out the others are within their warning bands and fewer than
-   MON_NEW_STATE_OTHERS others are out of it (else nothing: the served monitor's veto), its blind
-   partner with it; flagged where the served monitor does what the code does not */
+/* a judged sensor beyond the band (level >= field), every sensor in or (cmon85) one out: the
+   culprit (the largest |E|(1 - h)) out where with it out the others are within their warning
+   bands and fewer than MON_NEW_STATE_OTHERS others are out of it (else nothing: the served
+   monitor's veto), its blind partner with it; flagged where the served monitor does what the
+   code does not */
 static void mon_drift(tc_state *s, const int level[], int field) {
-    double scale[NM], z[NM];
+    double scale[NM], z[NM], Mp[NM][NM], lp[NM];
     int a[NM], o[NM], jd[NM], lv[NM], k, j = 0, u, nblind = 0, partner = -1;
     if ((u = mon_explaining(s, level, field)) >= 0) {
-        if (!MON_BLIND_OUT) {
+        if (!MON_BLIND_OUT || (s->mon_out >= 0 && !mon_second_held(s, u))) {
             mon_flag(s, TC_MON_NOT_IN_CODE, u, TC_MON_DRIFT);
             return;
         }
         /* (cmon82c) out, held at its last reading; judged again, one beyond the alarm band
            flagged (the served monitor goes on with one out) */
-        s->mon_out = u;
+        mon_put_out(s, u);
         s->mon_calm[u] = 0;
         mon_recompute(s);
         mon_by_drift(s, u);
@@ -625,7 +700,7 @@ static void mon_drift(tc_state *s, const int level[], int field) {
     }
     mon_set(s, a, o, jd, scale);
     for (k = 0; k < NM; k++) {
-        double e = mon_mean_err(s, k), sd = sqrt(fabs(1.0 - MON_LEV[s->mon_op][k]));
+        double e = mon_mean_err(s, k), sd = sqrt(fabs(1.0 - s->mon_lev[k]));
         z[k] = jd[k] ? fabs(isnan(e) ? 0.0 : e) * (sd * sd) : -1.0;
         if (z[k] > z[j]) j = k;
     }
@@ -642,7 +717,7 @@ static void mon_drift(tc_state *s, const int level[], int field) {
             return;   /* a regime, not a fault */
     }
     mon_exclude(s, j, TC_MON_DRIFT_OUT);
-    if (s->mon_out != j) return;   /* (flagged) */
+    if (s->mon_out != j && s->mon_out2 != j) return;   /* (flagged) */
     mon_by_drift(s, j);
     s->mon_hid[j] = level[j] < 1;   /* (mon85b) it passed its own band */
     mon_set(s, a, o, jd, scale);
@@ -651,7 +726,7 @@ static void mon_drift(tc_state *s, const int level[], int field) {
     if (nblind && mon_levels(s, lv, jd) > MON_MIN_ACTIVE) {
         int out[NM];
         for (k = 0; k < NM; k++) out[k] = !a[k] || k == partner;
-        if (nblind > 1 || mon_op_of(out) < 0 || !MON_PORTED[partner]) {
+        if (nblind > 1 || s->mon_out2 >= 0 || !MON_PORTED[partner] || !mon_operator(out, Mp, lp)) {
             mon_flag(s, TC_MON_NOT_IN_CODE, partner, TC_MON_DRIFT);
             return;
         }
@@ -682,12 +757,13 @@ static void mon_drift(tc_state *s, const int level[], int field) {
    its warning band */
 static void mon_judgement(tc_state *s) {
     int level[NM], jd[NM], k, n, field = 0, leaving = 0;
-    for (k = 0; k < NM; k++) field |= k == s->mon_out && s->mon_by_field[k];
+    for (k = 0; k < NM; k++) field |= (k == s->mon_out || k == s->mon_out2) && s->mon_by_field[k];
     field = field ? 2 : MON_EXCLUDE_LEVEL;
     n = mon_levels(s, level, jd);
     for (k = 0; k < NM && !(MON_NEW_STATE && s->mon_novel); k++)
         if (jd[k] && level[k] >= field && n > MON_MIN_ACTIVE) {
-            if (!MON_DRIFT || s->mon_out >= 0) mon_flag(s, TC_MON_NOT_IN_CODE, k, TC_MON_DRIFT);
+            if (!MON_DRIFT || (s->mon_out >= 0 && !MON_SOLVE))
+                mon_flag(s, TC_MON_NOT_IN_CODE, k, TC_MON_DRIFT);
             else mon_drift(s, level, field);
             break;
         }
@@ -725,7 +801,6 @@ static void monitor_step(tc_state *s, double u[], double dt) {
     int gone[NM];
     if (s->first) {
         s->mon_out = s->mon_out2 = -1;
-        s->mon_op = 0;
         s->mon_pos = s->mon_count = 0;
         for (k = 0; k < NM; k++) {
             int w;
@@ -743,6 +818,7 @@ static void monitor_step(tc_state *s, double u[], double dt) {
             s->mon_last[k] = 0.0;
             for (w = 0; w < MW; w++) s->mon_hist[w][k] = s->mon_err[w][k] = NAN;
         }
+        mon_recompute(s);   /* (every sensor in: MON_M[0]; the window all NAN) */
     }
     s->mon_flags = s->mon_rule = 0;
     s->mon_sensor = -1;
@@ -850,7 +926,7 @@ static void monitor_step(tc_state *s, double u[], double dt) {
         if (!frozen || instant[k]) continue;
         instant[k] = 1;
         if (a[k]) mon_exclude(s, k, TC_MON_FREEZE);
-        if (a[k] && s->mon_out == k) {
+        if (a[k] && (s->mon_out == k || s->mon_out2 == k)) {
             s->mon_froze[k] = 1;
             s->mon_held[k] = d[k];
             s->mon_off[k] = 0;
@@ -864,13 +940,18 @@ static void monitor_step(tc_state *s, double u[], double dt) {
     for (k = 0; k < NM; k++)
         if (jd[k] && mon_level(s, k)) s->mon_flags |= TC_MON_BAND;
     mon_judgement(s);   /* (cmon82) a drift exclusion */
-    k = s->mon_out;   /* (freeze84) out for a freeze alone, off its held value: back at once */
-    if (k >= 0 && s->mon_count >= MW && s->mon_froze[k] && !gone[k] && !instant[k]
-        && s->mon_off[k] >= TC_MON_THAW) {
-        if (!MON_THAWED) mon_flag(s, TC_MON_NOT_IN_CODE, k, TC_MON_NO_THAW);
-        else {
-            s->mon_froze[k] = 0;
-            mon_readmit(s, k, TC_MON_THAWED);
+    {   /* (freeze84) out for a freeze alone, off its held value: back at once (either out) */
+        int two[2], i;
+        two[0] = s->mon_out, two[1] = s->mon_out2;
+        for (i = 0; i < 2; i++) {
+            k = two[i];
+            if (k < 0 || s->mon_count < MW || !s->mon_froze[k] || gone[k] || instant[k]
+                || s->mon_off[k] < TC_MON_THAW) continue;
+            if (!MON_THAWED) mon_flag(s, TC_MON_NOT_IN_CODE, k, TC_MON_NO_THAW);
+            else {
+                s->mon_froze[k] = 0;
+                mon_readmit(s, k, TC_MON_THAWED);
+            }
         }
     }
     if (s->mon_out >= 0 && s->mon_count >= MW) {   /* re-admission, the due sensors together */

@@ -1,0 +1,135 @@
+"""A drift with a sensor out already in the exported C (cmon85, issue 34): the code's monitor
+solves the operator of an active set it does not hold (its POD basis in the code, a Cholesky of
+the reduced normal system), so that with one sensor out (a dropout) it judges the drift of the
+others and takes a second out as the served monitor does, where before it flagged ``DRIFT`` and
+the pack was cut there (benchmarks/bench_cmon85.py).
+
+The column machine (``thermocomp simulate sim=column_moving_source``, seed 8841 of this task),
+MLR deployed adaptive as by default, its test campaign with bench_cmon82's sensor missing for a
+quarter of the rows after the middle (bench_cmon84's dropout)."""
+
+from __future__ import annotations
+
+import dataclasses
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from test_export import _compose, built_stream, needs_cc
+from test_export_cmon80 import _streamed
+from thermocomp.apps.deploy.export import Simulator, exported_files, state_space
+from thermocomp.apps.deploy.export.pack import conformance_pack, corrections
+from thermocomp.apps.deploy.export.watch import (
+    DRIFT,
+    DRIFT_OUT,
+    DROPOUT,
+    EXCLUDED,
+    NOT_IN_CODE,
+    CodeMonitor,
+)
+from thermocomp.apps.deploy.report import stream_rows
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "benchmarks"))
+
+SEED = 8841
+
+
+@pytest.fixture(scope="module")
+def record(tmp_path_factory):
+    """``(deployed, its system with the monitor, the test campaign with the dropout)``."""
+    from bench_cmon82 import _sensor
+    from bench_cmon84 import _column_faults
+
+    from thermocomp.shell.builders import build_compensator, deploy_stream, deployable
+    from thermocomp.shell.cli import main
+    from thermocomp.shell.source import read_streamed
+
+    data = tmp_path_factory.mktemp("cmon85") / "data"
+    assert main(["-q", "simulate", f"seed={SEED}", f"data.path={data}", "track=false",
+                 "sim=column_moving_source"]) == 0
+    cfg = _compose(f"data.path={data}", "track=false", "model=mlr")
+    ds, train_ids, test_ids, _ = read_streamed(cfg)
+    train = {k: ds.campaigns[k] for k in train_ids}
+    deployed = deployable(cfg, deploy_stream(cfg, build_compensator(cfg, ds=ds).fit(train), train),
+                          train, ds)
+    ss = state_space(deployed, monitor=True)
+    frame = ds.campaigns[test_ids[0]].reset_index(drop=True)
+    return deployed, ss, _column_faults(frame, _sensor(ss))["dropout"]
+
+
+def _before(ss):
+    """``ss`` as exported before cmon85 (no ``solve``)."""
+    return dataclasses.replace(ss, monitor={k: v for k, v in ss.monitor.items() if k != "solve"})
+
+
+def _mirror(ss, frame):
+    """The numpy mirror's corrections, its exclusions ``(row, sensor, rule)`` and the rows it
+    flags ``(row, rule)`` not in the code."""
+    sim = Simulator(ss)
+    sim.reset()
+    names = [ss.inputs[i] for i in ss.monitor["inputs"]]
+    got, out, missed = [], [], []
+    for i, (u, t) in enumerate(zip(frame[ss.inputs].to_numpy(float), frame["time"])):
+        got.append(sim.step(u, t))
+        w = sim.watch
+        if w.flags & EXCLUDED:
+            out.append((i + 1, names[w.sensor], w.rule))
+        if w.flags & NOT_IN_CODE:
+            missed.append((i + 1, w.missed))
+    return np.array(got), out, missed
+
+
+def _served_out(deployed, frame) -> list[tuple[int, str, str]]:
+    """The served monitor's exclusions: ``(row, sensor, why)``, 1-based."""
+    times = frame["time"].to_numpy(float)
+    return [(int(np.searchsorted(times, e["time"])) + 1, e["sensor"], e["reason"].split(":")[0])
+            for e in stream_rows(deployed, frame, "test").events
+            if e.get("sensor") and e["to"] == "excluded"]
+
+
+def test_the_solved_operator_is_the_served_one(record):
+    """Of every set with one or two sensors out, the solve gives the served ``pod.operator``
+    (its pinv) and leverages (its QR)."""
+    deployed, ss, _ = record
+    mon, code = deployed.monitor, CodeMonitor(ss.monitor)
+    n = code.n
+    for out in [np.arange(n) == j for j in range(n)] + [np.isin(np.arange(n), (0, j))
+                                                         for j in range(1, n)]:
+        want_M, want_lev = mon._operator(~out)
+        M, lev = code._solved(~out)
+        assert np.max(np.abs(M[:, ~out] - want_M)) < 1e-9 and np.max(np.abs(lev - want_lev)) < 1e-9
+
+
+@needs_cc
+def test_a_drift_with_a_sensor_out_is_followed_by_the_code_as_served(record, tmp_path):
+    deployed, ss, frame = record
+    served = _served_out(deployed, frame)
+    # the served monitor: the sensor out for its dropout, then a drift exclusion while it is out
+    assert served[0][2] == "dropout" and any(why == "drift" for _, _, why in served[1:]), served
+    want = corrections(ss, stream_rows(deployed, frame, "test").y)
+    got, out, missed = _mirror(ss, frame)
+    assert not missed and np.max(np.abs(got - want)) < 1e-9
+    assert [(r, s) for r, s, _ in out] == [(r, s) for r, s, _ in served]
+    assert [rule for *_, rule in out][:1] == [DROPOUT] and DRIFT_OUT in [rule for *_, rule in out]
+    files, summary = conformance_pack(deployed, ss, {"test": frame})
+    assert (summary["campaigns"][0]["rows"], summary["campaigns"][0]["cut"]) == (len(frame), None)
+    stream = built_stream(tmp_path, {**exported_files(deployed, "c"), **files})
+    c, said = _streamed(stream, frame, ss.inputs)
+    assert c.shape == want.shape and np.max(np.abs(c - want)) < 1e-9        # every row
+    assert "not in the code" not in said
+    script = subprocess.run(["sh", "check/check.sh"], cwd=tmp_path, capture_output=True, text=True)
+    assert script.returncode == 0, script.stderr
+
+
+def test_an_export_before_cmon85_flags_the_drift_with_a_sensor_out(record):
+    """Arrays without ``solve``: the drift beyond the band with the dropout out flagged (``DRIFT``)
+    at the served exclusion's row or before, and the pack cut there."""
+    deployed, ss, frame = record
+    row = next(r for r, _, why in _served_out(deployed, frame) if why == "drift")
+    _, _, missed = _mirror(_before(ss), frame)
+    assert missed and missed[0][1] == DRIFT and missed[0][0] <= row
+    _, summary = conformance_pack(deployed, _before(ss), {"test": frame})
+    assert summary["campaigns"][0]["rows"] < row
