@@ -95,3 +95,7 @@ def test_a_culprit_out_within_its_band_is_back_within_it_served_mirror_and_c(ser
     c, said = _streamed(stream, frame, ss.inputs)
     assert c.shape == want.shape and np.max(np.abs(c - want)) < 1e-9        # every row
     assert "not in the code" not in said
+    # the code's own word on the served rows (its line = the row + the header's)
+    assert [int(m.split(":")[1].split()[-1]) - 1 for m in said.splitlines()
+            if f"{CULPRIT}: re-admitted" in m][:1] == [moves[1][0]]
+    assert "or out as a culprit within it" in said
