@@ -41,8 +41,9 @@ The served adaptive compensator judges every ``T_`` input before the model reads
   the drift exclusions it had (``max_backoff`` at most) to return;
 * while a sensor is out the model reads its POD reconstruction from the others, and it is
   re-admitted after a calm wait (a window; doubled per drift exclusion) whose leave-one-out
-  errors stay within half its warning band (``READMIT``; one out for a dropout alone, within its
-  whole band, as served), the sensors due back judged together as served;
+  errors stay within half its warning band (``READMIT``; one out for a dropout alone, or as a
+  culprit within its band (mon85b), within its whole band, as served), the sensors due back
+  judged together as served;
 * (cmon82b) a **new thermal state** (``novel``), the served ``_declare``: where with the culprit
   (or its blind partner) out the others stay out of their warning band, or where within a
   window of a drift exclusion ``new_state_others`` other judged sensors leave it (the field
@@ -127,7 +128,7 @@ EXCLUDED, READMITTED, OUT, BAND, NOT_IN_CODE, REREFERENCED, NOVEL = 1, 2, 4, 8, 
 # the reason of a flagged event (tc_state.mon_rule): what the code did, then what it does not do
 REASONS = ("", "jump: re-referenced and excluded", "freeze: excluded",
            "re-admitted: within half its warning band for a window (its whole band after a "
-           "dropout)",
+           "dropout, or out as a culprit within it)",
            "not in the code: a reading beyond its training range at a campaign's first sample, "
            "of several sensors at once or with another sensor out",
            "not in the code: several sensors jumping in one sample (no common step)",

@@ -1,0 +1,101 @@
+"""A culprit taken out within its own band comes back within its whole band in the exported code
+too (mon85b, issue 34): served, numpy mirror and compiled C on a deployed model whose record
+takes that branch (bench_mon85b's own case, the monitor warmed on the train part, is no
+deployed model: neither the mirror's ``hid`` nor the C's ``mon_hid`` was reached there).
+
+fl_thermal (the measured spindle, ``data=fl_thermal``) deployed as replay does (adaptive MLR),
+its test campaign with ``T_t12`` drifting 1 K/h (test_monitor_new_state48's drift) and ``T_t14``
+2.7 K/h from row ``ONSET``: the healthy ``T_t15`` goes out as the culprit hiding another's error
+while still within its own warning band, and the served monitor re-admits it within that whole
+band ten rows later (half of it before mon85b: not back there).  The campaign as measured: nothing
+out.  One drift alone did not serve (each sensor at 0.5-6.7 K/h): the code holds one sensor out
+at a time, and there the culprit came back only as the drifting sensor went out (``T_t1`` at
+4 K/h: ``T_t2`` out at row 269, back at 973 as ``T_t1`` goes out), which the code flags as not
+in it (a drift judged with a sensor out, row 294) before that return."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import test_export
+from test_export import built_stream, needs_cc
+from test_export_cmon80 import _streamed
+from thermocomp.apps.deploy.export import Simulator, exported_files, state_space
+from thermocomp.apps.deploy.export.pack import conformance_pack, corrections
+from thermocomp.apps.deploy.export.watch import EXCLUDED, NOT_IN_CODE, READMITTED
+from thermocomp.apps.deploy.report import stream_rows
+from thermocomp.shell.builders import build_compensator, deploy_stream, deployable
+from thermocomp.shell.source import read_streamed
+
+# °C a 15 s row from row ONSET: T_t12 1 K/h (test_monitor_new_state48's), T_t14 2.7 K/h
+ONSET, DRIFTS, CULPRIT = 240, {"T_t12": 15 / 3600, "T_t14": 40 / 3600}, "T_t15"
+
+
+@pytest.fixture(scope="module")
+def served():
+    """``(deployed, its system with the monitor, the test campaign with the drift)``."""
+    cfg = test_export._compose("data=fl_thermal", "track=false", "monitor.adaptive=true",
+                               "model=mlr")
+    ds, train_ids, test_ids, _ = read_streamed(cfg)
+    train = {c: ds.campaigns[c] for c in train_ids}
+    deployed = deployable(cfg, deploy_stream(cfg, build_compensator(cfg, ds=ds).fit(train), train),
+                          train, ds)
+    frame = ds.campaigns[test_ids[-1]].reset_index(drop=True)
+    for name, rate in DRIFTS.items():
+        frame.loc[ONSET:, name] += np.arange(len(frame) - ONSET) * rate
+    return deployed, state_space(deployed, monitor=True), frame
+
+
+def _mirror(ss, frame, hid: bool = True):
+    """The numpy mirror's corrections and its ``(row, flag)`` moves of ``CULPRIT`` (1-based;
+    excluded, re-admitted), each with whether it was out as a culprit within its band there,
+    and the rows it flags a rule not in the code (with that rule);
+    ``hid=False``: that mark wiped every row (the code before mon85b)."""
+    sim = Simulator(ss)
+    sim.reset()
+    k = [ss.inputs[i] for i in ss.monitor["inputs"]].index(CULPRIT)
+    got, moves = [], []
+    for i, (u, t) in enumerate(zip(frame[ss.inputs].to_numpy(float), frame["time"])):
+        if not hid:
+            sim.watch.hid[:] = False
+        was = bool(sim.watch.hid[k])
+        got.append(sim.step(u, t))
+        w = sim.watch
+        if w.flags & NOT_IN_CODE:
+            moves.append((i + 1, "not in the code", w.missed))
+        if w.sensor == k and w.flags & EXCLUDED:
+            moves.append((i + 1, "excluded", bool(w.hid[k])))
+        if w.sensor == k and w.flags & READMITTED:
+            moves.append((i + 1, "ok", was))
+    return np.array(got), moves
+
+
+@needs_cc
+def test_a_culprit_out_within_its_band_is_back_within_it_served_mirror_and_c(served, tmp_path):
+    deployed, ss, frame = served
+    run = stream_rows(deployed, frame, "K06")
+    times = frame["time"].to_numpy(float) - frame["time"].iloc[0]
+    moves = [(int(np.searchsorted(times, e["time"])) + 1, e["to"]) for e in run.events
+             if e.get("sensor") == CULPRIT and "excluded" in (e["from"], e["to"])]
+    assert [to for _, to in moves][:2] == ["excluded", "ok"], moves
+    assert moves[0][0] > ONSET
+    got, code = _mirror(ss, frame)
+    # the mirror moves on the served rows, marked within its band when out, and the first return
+    # is by the whole band: without the mark it is not back there
+    assert [(r, to) for r, to, _ in code] == moves
+    assert code[0][2] and code[1][2]
+    _, before = _mirror(ss, frame, hid=False)
+    assert before[0] == code[0] and before[1][0] > moves[1][0], before
+    want = corrections(ss, run.y)
+    assert np.max(np.abs(got - want)) < 1e-9
+    files, summary = conformance_pack(deployed, ss, {"K06": frame})
+    assert summary["campaigns"][0]["cut"] is None
+    stream = built_stream(tmp_path, {**exported_files(deployed, "c"), **files})
+    c, said = _streamed(stream, frame, ss.inputs)
+    assert c.shape == want.shape and np.max(np.abs(c - want)) < 1e-9        # every row
+    assert "not in the code" not in said
+    # the code's own word on the served rows (its line = the row + the header's)
+    assert [int(m.split(":")[1].split()[-1]) - 1 for m in said.splitlines()
+            if f"{CULPRIT}: re-admitted" in m][:1] == [moves[1][0]]
+    assert "or out as a culprit within it" in said
