@@ -11,6 +11,8 @@ import json
 import re
 import shutil
 import subprocess
+import sys
+from pathlib import Path
 
 import numpy as np
 import pandas as pd
@@ -20,29 +22,16 @@ from conftest import refused
 from test_deploy import mlflow_store
 from thermocomp.shell.cli import main
 
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "benchmarks"))
+import bench_bits85  # noqa: E402 (the record's writer, shared with its bench)
+
 BITS = {0: "machine_on", 1: "spindle_on", 2: "coolant_on"}
 
 
-def _runs(folder, seeds=(8931, 8932, 8933, 8934), n: int = 360):
+def _runs(folder, seeds=(8931, 8932, 8933, 8934)):
     """Four runs of a machine whose spindle and coolant, logged as bits 1 and 2 of ``Status``
-    (bit 7 a ready flag), drive its heat and its error."""
-    folder.mkdir()
-    for k, seed in enumerate(seeds):
-        rng = np.random.default_rng(seed)
-        on = ((np.arange(n) // 60) % 3 != 2).astype(int)
-        spin = on * (rng.random(n // 20).repeat(20) < 0.6)
-        cool = spin * (rng.random(n // 30).repeat(30) < 0.5)
-        heat = np.zeros(n)
-        for i in range(1, n):
-            heat[i] = 0.97 * heat[i - 1] + 1.2 * spin[i] - 0.5 * cool[i] + 0.2 * on[i]
-        pd.DataFrame({"Zeit [s]": np.arange(n) * 10.0,
-                      "Spindel [°C]": (20 + heat / 8 + rng.normal(0, 0.02, n)).round(3),
-                      "Bett [°C]": (20 + np.cumsum(rng.normal(0, 0.01, n))).round(3),
-                      "Ständer [°C]": (20.5 + heat / 20 + rng.normal(0, 0.02, n)).round(3),
-                      "Status": 128 + on + 2 * spin + 4 * cool,
-                      "dX [um]": (2.5 * heat / 8 + 0.8 * spin - 0.6 * cool
-                                  + rng.normal(0, 0.1, n)).round(3)}
-                     ).to_csv(folder / f"run{k}.csv", index=False)
+    (bit 7 a ready flag), drive its heat and its error (benchmarks/bench_bits85.py writes them)."""
+    bench_bits85.write(folder, list(seeds))
     return folder
 
 
