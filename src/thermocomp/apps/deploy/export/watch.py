@@ -485,8 +485,6 @@ class CodeMonitor:
             self._flag(NOT_IN_CODE, j, SECOND if second else BLIND)
             return False
         self._put_out(j)
-        self.hid[j] = False
-        self.calm[j] = 0
         self._recompute()
         self._flag(EXCLUDED, j, rule)
         self.fell = self.fell or bool(self.fallback[j] and not self.fallset[j])
@@ -499,11 +497,13 @@ class CodeMonitor:
             ~self._active() | (np.arange(self.n) == j)) is not None
 
     def _put_out(self, j: int) -> None:
-        """``j`` in the first free place out (the second: cmon85)."""
+        """``j`` in the first free place out (the second: cmon85), its calm count and its
+        within-band mark (mon85b) cleared: the served ``_exclude``'s, whatever took it out."""
         if self.out < 0:
             self.out = j
         else:
             self.out2 = j
+        self.calm[j], self.hid[j] = 0, False
 
     def refuses(self, u: np.ndarray, first: bool) -> int:
         """The rule by which the code refuses the sample ``u`` (inputs in the code's order, a
@@ -872,8 +872,7 @@ class CodeMonitor:
                     return
                 if self._others(int(i), lv, jd) >= a["new_state_others"]:
                     return
-            self.out2 = int(i)
-            self.calm[i] = 0
+            self._put_out(int(i))
             self._recompute()
             self._by_drift(int(i))
             self._flag(EXCLUDED, int(i), DRIFT_OUT)
@@ -884,7 +883,6 @@ class CodeMonitor:
         served: a drift exclusion held at its last reading; judged again, a sensor still beyond
         the alarm band is flagged (the served monitor goes on with one out)."""
         self._put_out(u)
-        self.calm[u] = 0
         self._recompute()
         self._by_drift(u)
         self.explains[u] = True

@@ -269,10 +269,12 @@ static int mon_second_held(const tc_state *s, int k) {
     return mon_operator(out, M, lev);
 }
 
-/* k in the first free place out (the second: cmon85) */
+/* k in the first free place out (the second: cmon85), its calm count and its within-band mark
+   (mon85b) cleared: the served _exclude's, whatever took it out */
 static void mon_put_out(tc_state *s, int k) {
     if (s->mon_out < 0) s->mon_out = k;
     else s->mon_out2 = k;
+    s->mon_calm[k] = s->mon_hid[k] = 0;
 }
 
 /* sensor k out where the code holds it (one out, the others predicting it, or a dropout or a
@@ -286,7 +288,6 @@ static void mon_exclude(tc_state *s, int k, int rule) {
         return;
     }
     mon_put_out(s, k);
-    s->mon_calm[k] = s->mon_hid[k] = 0;
     mon_recompute(s);
     mon_flag(s, TC_MON_EXCLUDED, k, rule);
     if (MON_FALLBACK[k] && !MON_FALLBACK_SET[k]) s->mon_fell = 1;   /* (none in the code) */
@@ -684,7 +685,6 @@ static void mon_drift(tc_state *s, const int level[], int field) {
         /* (cmon82c) out, held at its last reading; judged again, one beyond the alarm band
            flagged (the served monitor goes on with one out) */
         mon_put_out(s, u);
-        s->mon_calm[u] = 0;
         mon_recompute(s);
         mon_by_drift(s, u);
         s->mon_explains[u] = 1;
@@ -736,8 +736,7 @@ static void mon_drift(tc_state *s, const int level[], int field) {
             return;
         }
         if (MON_NEW_STATE && mon_others(lv, jd, partner) >= MON_NEW_STATE_OTHERS) return;
-        s->mon_out2 = partner;
-        s->mon_calm[partner] = 0;
+        mon_put_out(s, partner);
         mon_recompute(s);
         mon_by_drift(s, partner);
         mon_flag(s, TC_MON_EXCLUDED, partner, TC_MON_DRIFT_OUT);
