@@ -31,7 +31,6 @@ from .catman import catman_as_csv, is_catman_text
 from .clocksets import undone
 from .contract import ContractError
 from .csvline import EMPTY, SPLIT, split_line
-from .dayfirst import ORDER
 from .derived import on_frame
 from .encoding import UTF8, check_text, text_codec
 from .footer import TAIL_BYTES, footer_of
@@ -63,10 +62,9 @@ from .timestamps import (
     described,
     dst_said,
     elapsed_seconds,
-    is_slashed_stamp,
+    keyed_format,
     on_local_clock,
     parsed,
-    slashed_format,
     time_kind,
     time_type,
 )
@@ -274,9 +272,7 @@ def _time_format(time: pd.Series, given: str, recorded: str | None,
     if told or dayfirst is None:
         return told or given
     first = time.dropna().astype(str).str.strip()
-    if first.empty or not is_slashed_stamp(first.iloc[0]):
-        return given
-    return slashed_format(first.iloc[0], order=ORDER[bool(dayfirst)])
+    return (not first.empty and keyed_format(first.iloc[0], dayfirst)) or given
 
 
 def stream_campaigns(text: str, columns: list[str], opts, recorded: str | None = None,

@@ -107,8 +107,8 @@ def time_kind(value: str, kind: str, number: bool, path: Path, header: str | Non
     row decided."""
     if kind != "auto":
         return kind
-    if dayfirst is not None and is_slashed_stamp(value):
-        return slashed_format(value, order=ORDER[bool(dayfirst)])
+    if keyed := keyed_format(value, dayfirst):
+        return keyed
     if number:
         return compact_format(value) or "seconds"
     name = repr(header) if header else "<this column>"
@@ -198,6 +198,14 @@ def keysight_stamp(value: str) -> bool:
 def is_slashed_stamp(value: str) -> bool:
     """``value`` is a date with slashes and a time of day (``01/07/2026 13:22:42``)."""
     return bool(_SLASHED_STAMP.fullmatch(value))
+
+
+def keyed_format(value: str, dayfirst: bool | None) -> str | None:
+    """The format of ``value``, a date with slashes and a time of day, in ``data.dayfirst``'s
+    order (dates84); None where the key is unset or ``value`` is no such date."""
+    if dayfirst is None or not is_slashed_stamp(value):
+        return None
+    return slashed_format(value, order=ORDER[bool(dayfirst)])
 
 
 def time_type(kind: str, value: str) -> pa.DataType:
