@@ -30,23 +30,12 @@ def auto_scheme(cfg: DictConfig, ds) -> dict:
     return {"scheme": holdout_scheme(ds)}
 
 
-def new_campaigns(cfg: DictConfig) -> dict:
-    """``{"new_campaigns": ...}`` for ``model.estimator.new_campaigns=auto``: ``restart`` where
-    a test campaign starts its own frame (``data.reference=first_sample``, resolved) and every
-    declared input is a referenced ``T_`` column, else ``none`` (``{}``: a value given)."""
-    if cfg.model.estimator.get("new_campaigns", "none") != "auto":
-        return {}
-    own = reference(cfg) == "first_sample" and all(str(p).startswith("T_") for p in cfg.data.inputs)
-    return {"new_campaigns": "restart" if own else "none"}
-
-
 def build_compensator(cfg: DictConfig, ati: bool = True, ds=None) -> Compensator:
     """The configured compensator; ``ati=False`` leaves out the ATI wrapper (``ati=cmeans``).
     ``ds``: the dataset it will be fitted on, whose split ``model=auto`` validates like."""
     estimator = build(cfg.model.estimator, "model.estimator")
     if is_auto(cfg):           # model=auto: the families it chooses among, from their configs
-        estimator = estimator(candidates=build_candidates(cfg), **auto_scheme(cfg, ds),
-                              **new_campaigns(cfg))
+        estimator = estimator(candidates=build_candidates(cfg), **auto_scheme(cfg, ds))
     if ati and cfg.get("ati") is not None and cfg.ati.estimator is not None:
         estimator = build(cfg.ati.estimator, "ati.estimator")(base_estimator=estimator)
     comp = Compensator(

@@ -39,7 +39,6 @@ FORWARD_ONE = "forward-chaining (one record)"
 MIN_IN_RANGE_ROWS = 20   # validation_rows='in_range': a fold with fewer in-range rows is scored whole
 BLOCKS_ONE = {"blocks": "leave-block-out (one record)", "late_blocks": "leave-late-block-out (one record)"}
 CAMPAIGN_FOLDS = ("blocked forward", "leave-campaigns-out")   # folds holding out whole campaigns
-RESTART = "restart"      # new_campaigns: one record's blocks also predicted as a new campaign is
 
 
 class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
@@ -111,17 +110,6 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         On 12 tuning and 10 fresh simulated records it moved one record per group within 10 % of
         the best family and changed no record's side against MLR; ``fl_thermal`` 90/10 went
         2.483 -> 2.551 µm (``benchmarks/bench_auto_rules.py``): not the default.
-    new_campaigns : {'none', 'restart', 'auto'}, default 'none'
-        (extension, auto86) ``'restart'``: with one record's forward folds, each fold's fitted
-        candidate also predicts its block as a new campaign is predicted (:func:`restart_rows`:
-        from the block's first measured row, inputs, label and ``time`` taken from there, every
-        dynamic state at rest), and a blend the votes kept (not MLR alone) gives way to MLR
-        where its squared error over MLR's on these restarted blocks has a median >= 1 over the
-        folds (most blocks restarted, it does not beat MLR).  For data referenced at each
-        campaign's first sample with every input referenced (the stage's ``auto``:
-        ``data.reference=first_sample`` and ``T_`` inputs): a test campaign starts its own
-        frame and its states at rest, where the record's forward folds carry both over from the
-        record's start.  ``'none'`` / ``'auto'`` (no stage to resolve it): not checked.
     max_seconds : float or None
         A candidate whose folds take longer than this is not validated further
         (skipped, its time recorded): a time budget for the slow families.
@@ -177,20 +165,17 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
                    "min_gain_pct": number(0.0, 100.0),
                    "combine": choice("vote", "best"), "keep_oof": choice(True, False),
                    "uncompensated": choice("zero", "keep"), "fallback": choice("one_se", "none"),
-                   "validation_rows": choice("all", "in_range"),
-                   "new_campaigns": choice("none", RESTART, "auto")}
+                   "validation_rows": choice("all", "in_range")}
 
     uncompensated = "keep"   # a model pickled before the key: refitted as it was fitted
     fallback = "none"        # likewise
-    new_campaigns = "none"   # likewise
 
     def __init__(self, candidates=None, scheme: str = "auto", n_folds: int = 5,
                  min_train_fraction: float = 0.5, gap_blocks: float = 0.5,
                  max_seconds: float | None = None, min_gain_pct: float = 1.0, chosen=None,
                  val_scores=None, given_scores=None, combine: str = "vote", keep_oof: bool = False,
                  one_record: str = "forward", validation_rows: str = "all",
-                 uncompensated: str = "zero", fallback: str = "one_se", new_campaigns: str = "none"):
-        self.new_campaigns = new_campaigns
+                 uncompensated: str = "zero", fallback: str = "one_se"):
         self.fallback = fallback
         self.uncompensated = uncompensated
         self.validation_rows = validation_rows
@@ -225,8 +210,6 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         # measured rows (the candidates fit on theirs, their dynamics run over every row)
         folds = [(fit, pred, score & np.isfinite(y)) for fit, pred, score in self._folds(groups, len(y))]
         self.validation_, self.skipped_, self.fit_seconds_, self.oof_ = {}, {}, {}, {}
-        # one record's blocks predicted as new campaigns too (new_campaigns='restart')
-        self.oof_restart_ = {} if self.new_campaigns == RESTART and self.scheme_ == FORWARD_ONE else None
         runs = dict(self.candidates)
         if BASELINE not in runs:
             from .linear import MLR
@@ -288,7 +271,7 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         self.reason_ = (f"{lead} ({how}); MLR {self.validation_[BASELINE]:.4g}, "
                         f"persistence {self.validation_[PERSISTENCE]:.4g}")
         predicted = preds @ w
-        if self._one_se(predicted, rows, base) or self._restart_check(members, w, base):
+        if self._one_se(predicted, rows, base):
             blended, predicted = self.validation_[BASELINE], self.oof_[BASELINE]
         self._none_unless_better(blended, predicted)
         return self._refit(X, y, context)
@@ -312,23 +295,6 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
             return False
         self.reason_ += (f"; one-SE rule: the blend's mean fold MSE over MLR's {mean:.4g} ± "
                          f"{se:.4g} ({r.size} folds) is not surely below 1: MLR kept")
-        self.weights_, self.family_, self.chosen_ = {BASELINE: 1.0}, BASELINE, BASELINE
-        return True
-
-    def _restart_check(self, members: list, w: np.ndarray, base: int | None) -> bool:
-        """``new_campaigns='restart'``: keep MLR alone where the kept blend (``w`` over
-        ``members``), its blocks predicted as new campaigns (``oof_restart_``), has a per-fold
-        squared error over MLR's (:func:`~thermocomp.core.models.blend.fold_ratios`) whose median
-        is >= 1.  True where it kept MLR."""
-        if self.oof_restart_ is None or base is None or self.weights_ == {BASELINE: 1.0}:
-            return False
-        blend = np.column_stack([self.oof_restart_[n] for n in members]) @ w
-        r = fold_ratios((self.oof_y_ - blend) ** 2, (self.oof_y_ - self.oof_restart_[BASELINE]) ** 2,
-                        self.oof_fold_)
-        if not np.median(r) >= 1.0:
-            return False
-        self.reason_ += (f"; its blocks predicted as new campaigns (from their own start): fold MSE "
-                         f"over MLR's {', '.join(f'{x:.3g}' for x in r)}, median not below 1: MLR kept")
         self.weights_, self.family_, self.chosen_ = {BASELINE: 1.0}, BASELINE, BASELINE
         return True
 
@@ -460,7 +426,7 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
 
     def _validate(self, name, est, X, y, context, folds) -> str | None:
         """Record ``name``'s pooled validation RMSE; the reason when it cannot be validated."""
-        residual, predicted, restarted, t0 = [], [], [], time.perf_counter()
+        residual, predicted, t0 = [], [], time.perf_counter()
         for fit, pred, score in folds:
             try:
                 model = clone(est).fit(X[fit], y[fit], context=subset(context, fit))
@@ -469,11 +435,6 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
                 return f"cannot fit: {' '.join(str(exc).split())}"
             predicted.append(yhat[score[pred]])
             residual.append(y[score] - predicted[-1])
-            if self.oof_restart_ is not None:
-                try:
-                    restarted.append(_restarted(model, X, y, context, score))
-                except (ValueError, ArithmeticError, np.linalg.LinAlgError) as exc:
-                    return f"cannot predict a block from its own start: {' '.join(str(exc).split())}"
             spent = time.perf_counter() - t0
             over = self.max_seconds is not None and spent > float(self.max_seconds)
             if over and len(residual) < len(folds):
@@ -482,8 +443,6 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         self.fit_seconds_[name] = time.perf_counter() - t0
         self.validation_[name] = rmse(np.concatenate(residual))
         self.oof_[name] = np.concatenate(predicted)
-        if self.oof_restart_ is not None:
-            self.oof_restart_[name] = np.concatenate(restarted)
         return None
 
     def predict(self, X, context=None):
@@ -531,25 +490,6 @@ def _said(name: str, seconds: float, score: float | None, why: str | None) -> No
     what = f"skipped, {why}" if why is not None else f"validation RMSE {score:.4g}"
     logger.log(logging.INFO if seconds >= SAY_AFTER_S else logging.DEBUG,
                "auto: %s validated in %.0f s: %s", name, seconds, what)
-
-
-def _restarted(model, X, y, context, score) -> np.ndarray:
-    """``model``'s prediction of the scored rows of one record's block as a new campaign's
-    (:func:`restart_rows`), in the record's frame: the label's value at the block's start added."""
-    rows = restart_rows(score)
-    ctx = subset(context, rows)
-    if ctx is not None and "time" in ctx:
-        ctx = ctx.assign(time=ctx["time"] - ctx["time"].iloc[0])
-    yhat = np.asarray(model.predict(X[rows] - X[rows[0]], context=ctx), float)
-    return yhat[score[rows]] + y[rows[0]]
-
-
-def restart_rows(score: np.ndarray) -> np.ndarray:
-    """The rows of a block (``score``: its scored rows, measured) from its first scored row to
-    its last: predicted as a new campaign, inputs and label referenced at that first row as a
-    new campaign's are at its first sample (``data.reference=first_sample``)."""
-    at = np.flatnonzero(score)
-    return np.arange(at[0], at[-1] + 1)
 
 
 def in_range_rows(in_range: np.ndarray, fold: np.ndarray, min_rows: int = MIN_IN_RANGE_ROWS,
