@@ -59,7 +59,7 @@ are the exchangeable units, so the test flips signs of whole campaigns.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 
 import numpy as np
 import pandas as pd
@@ -71,10 +71,6 @@ from .candidates import CONTROL, CandidateOptions, candidates
 from .cv import CrossValidator, CVResult, Problem, sign_flip_maxt, sign_flip_pvalues
 from .features import Effect
 from .sensors import self_prediction
-
-# train campaigns per learned direction of the initial state for such a lag to be refitted
-# (Search.starts_untestable): 2 directions from 8 campaigns, 3 from 12
-CAMPAIGNS_PER_DIRECTION = 4
 
 
 @dataclass
@@ -506,37 +502,6 @@ class Search:
         trained = self.problem.units_trained
         return trained is not None and n_features + 1 >= trained
 
-    def starts_untestable(self, effect) -> bool:
-        """True when ``effect`` learns more directions of the initial state than its train
-        campaigns can test: fewer than ``CAMPAIGNS_PER_DIRECTION`` campaigns per direction.  A
-        learned direction is one level per campaign a few tau after its start, fitted on the
-        campaigns' start states alone; with 8-9 campaigns a third one fitted their levels in CV
-        and failed on the test campaigns (clean 8457 / 8178 / 8075 / 8170, grinder 5682: +7 to
-        +53 %, each 3 directions; ``benchmarks/bench_diag85.py``)."""
-        k = effect.initial_directions if effect.initial_state else None
-        return bool(k) and len(dict.fromkeys(self.problem.campaigns)) < CAMPAIGNS_PER_DIRECTION * int(k)
-
-    def _stand_ins(self, short: list, scored: list) -> tuple[list, set]:
-        """``short`` with each lag whose start cannot be tested (:meth:`starts_untestable`)
-        replaced by the same lag without its initial-state block (the round's own candidate, its
-        screening kept; dropped when shortlisted already or not a candidate), and the set of those
-        stand-ins.  In place, so the family-wise test's family does not grow (beside it, 5687's
-        kept lag fell over alpha: ``bench_diag85b.py``); the start variants of one lag can hold both
-        slots of its column, and refusing the start must not refuse the lag (planted 8885's
-        ``T_motor1`` 7200 s lag gained on the test by its dynamics, not its start)."""
-        r2_of = dict(scored)
-        out, have, stand_ins = [], {e for e, _ in short}, set()
-        for e, r2 in short:
-            if not self.starts_untestable(e):
-                out.append((e, r2))
-                continue
-            plain = replace(e, initial_state=None, initial_directions=None)
-            if plain not in have and plain in r2_of:
-                have.add(plain)
-                stand_ins.add(plain)
-                out.append((plain, r2_of[plain]))
-        return out, stand_ins
-
     def _bank_untestable(self, n_inputs: int) -> bool:
         """True when a state times the rises of all ``n_inputs`` inputs (``inputs_product``) cannot
         clear: one test block per CV unit on the shared design (:attr:`~.cv.Problem.shared_ranked`,
@@ -595,18 +560,13 @@ class Search:
             for e in cands:
                 r2, signals[e] = screen_r2(Q, r_perp, self.cv.features(e, names)[ok])
                 scored.append((e, r2))
-            short, stand_ins = self._stand_ins(self._shortlist(scored), scored)
-            evals = [self._evaluate(e, current, r2) for e, r2 in short]
+            evals = [self._evaluate(e, current, r2) for e, r2 in self._shortlist(scored)]
             self._family_bar(evals, current)
             evals.sort(key=lambda ev: -ev.gain)
             control = next((ev for ev in evals if ev.control), None)
             bar = control.gain if control is not None else -np.inf
-            # a stand-in is no rival of a start lag that cleared (on 959 a plain lag of one
-            # regressor won the one-standard-error choice from it and lost on the test, +14.5 %)
-            started = any(ev.clears_bar and ev.effect.initial_state for ev in evals)
-            rivals = [ev for ev in evals if not (started and ev.effect in stand_ins)]
-            eligible = choose([ev for ev in rivals if ev.clears_bar and not ev.control and ev.gain > bar],
-                              rivals=rivals)
+            eligible = choose([ev for ev in evals if ev.clears_bar and not ev.control and ev.gain > bar],
+                              rivals=evals)
             screened = [{"kind": e.kind, "column": e.column, "transform": e.label,
                          "screen_r2": r2} for e, r2 in sorted(
                              (s for s in scored if np.isfinite(s[1])), key=lambda s: -s[1])[:20]]
