@@ -1,0 +1,153 @@
+"""A band for the set a sensor is judged in (mon86, issue 34): fl_thermal's healthy ``T_t14``,
+back once the drifting ``T_t12`` is out, warns 15 times against a band trained on the whole set.
+
+Usage (from the repository root, ``PYTHONPATH=<tree>/src``: the code measured is that tree's)::
+
+    python benchmarks/bench_mon86.py trace [CASE]
+    python benchmarks/bench_mon86.py column ROOT LABEL [SEEDS [KINDS]]
+    python benchmarks/bench_mon86.py ctable ROOT MAIN RULE
+    python benchmarks/bench_mon86.py ccode [ROOT] [SEED] [KIND]
+    python benchmarks/bench_mon86.py trunnion ROOT LABEL [SEEDS [KINDS]]
+    python benchmarks/bench_mon86.py lathe ROOT LABEL [SEEDS [KINDS]]
+    python benchmarks/bench_mon86.py jig ROOT LABEL [SEEDS [KINDS]]
+    python benchmarks/bench_mon86.py table ROOT MAIN RULE
+
+``trace``: tests/apps/test_monitor_new_state48.py's case (bench_mon85b's ``trace``; ``CASE``
+``drift``: ``T_t12`` drifting 1 K/h from sample 10243, ``clean``: the record as measured), served:
+every event after the train part, ``T_t14``'s warning episodes (ok -> warning or alarm) after
+its last return, the samples it spends out of ok then, and its bands in the whole set and in the
+set without ``T_t12``.  The rest: bench_mon84's commands (its docstring), by default on
+``/tmp/mon86-bench`` and this task's fresh seeds: ``column`` 8986-8990, ``trunnion`` 8991-8992,
+``lathe`` 8993-8994, ``jig`` 8995.
+
+Traced (2026-12-04, main 14a3bd50).  The bands are set once, in ``from_training``: the configured
+band or ``SPREAD_FACTOR`` (3) x the sensor's training spread, whichever is larger, the spread the
+99.5th percentile of its windowed leave-one-out error with every sensor in.  Every judgement
+(``_judge``: a band left when the last ``confirm`` = 2 errors are all beyond it; ``_set_states``
+turns that into a ``warning`` event) compares the error in the *active* set against that
+whole-set band.  On the drift case ``T_t14`` is out 10294-10498 and back at 10498 (mon85b), in
+the set without ``T_t12`` (``T_t14``'s leverage 0.502 -> 0.725) to the end: training's own
+spread of ``T_t14`` there is 0.166 °C (0.112 with every sensor in), so 3x it is 0.499 > the
+0.400 band it is judged against; its error on the record, as on the clean one, has median
+``|E|`` 0.333 and 90th percentile 0.402: it warns 15 times (bench_mon85b).
+
+The rule (written and committed before scoring).  A sensor's bands are those of the set it is
+judged in: ``max(configured, SPREAD_FACTOR x its training spread in that set)`` (the alarm band
+twice that floor, ``learned_bands`` alike: its floor 4x the spread), never narrower than its
+whole-set band.  Its spread in a set ``S`` is its whole-set spread x ``g_S``, ``g_S = sqrt(a_S' C
+a_S / a_F' C a_F)`` (at least 1; 1 for the whole set ``F`` and where no other sensor predicts it):
+``a`` its row of the leave-one-out error map ``(e_j - M_S[j]) / (1 - h_j)`` (the error is linear
+in the referenced readings, and so is its trailing window mean), ``C`` the second moment of
+training's windowed referenced snapshots (``n x n``, fitted once with the bands).  So the ratio
+of the windowed error's RMS in ``S`` to its RMS in ``F``: no refit, no training data kept, per
+change of the active set ``O(n^3)`` from the operator the monitor computes anyway.  On the trace
+the RMS ratio of ``T_t14`` is 0.0721 / 0.0484 = 1.490 against its 99.5th-percentile ratio 0.166 /
+0.112 = 1.486.  Served: the active set's bands judge (levels, the fast path, the stepped error,
+the freeze's moved field, the culprit and explaining checks, the messages); a re-admission trial
+is judged against the trial set's bands; ``warning_c`` / ``alarm_c`` stay the whole set's (what
+reports show).  Numpy mirror (``export/watch.py``) and C (``watch_c.py``) alike, from the
+exported ``floor`` and ``moment``; an export without them judges as before.
+
+Bar (written before scoring; "main": ``git archive 14a3bd50`` sources, alternated with the rule's
+``git archive``; REFUSED if any part fails: the source reverted, the rule kept as
+``benchmarks/mon86_rule.patch``):
+1. ``trace drift``: ``T_t14``'s warning episodes after its return fewer than main's; ``T_t14``
+   back and ``T_t12`` out at main's samples, no new thermal state.  ``trace clean``: nothing out
+   and every event after the train part main's (no warning it had not).
+2. s8703, s8546, s8613 healthy: every E_* served RMSE no more than main's; s8774 frozen:
+   ``T_front1`` first out no later than main's.
+3. Fresh column_moving_source 8986-8990, healthy and frozen / jump / drift / dropout: no served
+   E_* RMSE more than 2 % above main's; ``T_front1`` first out no more than 2 samples after main's.
+4. Trunnion 8991-8992, lathe 8993-8994, jig 8995, healthy: no exclusion or new thermal state main
+   does not have.
+5. ``ccode`` (rule) on s8774 frozen, s8703 healthy and fresh 8986 drift: C = served to 1e-9 µm.
+6. tests/apps/test_monitor*.py, tests/shell/test_monitor*.py, tests/shell/test_export*.py pass.
+"""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+import bench_mon84 as m84  # noqa: E402
+import bench_mon85b as m85b  # noqa: E402
+from _cli import run_commands  # noqa: E402
+
+ROOT = "/tmp/mon86-bench"
+
+
+def _bands(mon, subset: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The warning and alarm bands of ``subset`` (the rule's, where the tree has it)."""
+    if hasattr(mon, "_bands_of"):
+        return mon._bands_of(subset)
+    return mon.warning_c, mon.alarm_c
+
+
+def trace(case: str = "drift") -> None:
+    from thermocomp.apps.deploy.surveillance import SensorMonitor
+
+    names, x = m85b._fl(case)
+    cut, t14, t12 = 10003, names.index("T_t14"), names.index("T_t12")
+    mon = SensorMonitor.from_training(None, names, {"train": x[:cut]})
+    back, episodes, off = None, 0, 0
+    for i, row in enumerate(x):
+        events = mon.update(row, 15.0 * i)[1]
+        for e in events if i >= cut else []:
+            if e["sensor"] != "T_t14" or e["to"] == "excluded" or e["from"] == "excluded":
+                print(f"{i}: {e['sensor']} {e['from']} -> {e['to']}: {e['reason'][:120]}")
+            if e["sensor"] == "T_t14" and e["from"] == "excluded":
+                back, episodes, off = i, 0, 0
+            elif e["sensor"] == "T_t14" and back is not None and e["from"] == "ok":
+                episodes += 1
+        if back is not None and mon._active[t14]:
+            off += int(mon.states[t14] > 0)
+    print(f"T_t14 last back at {back}: {episodes} warning episodes, {off} samples out of ok after")
+    for label, s in (("whole set", np.ones(len(names), bool)),
+                     ("without T_t12", np.arange(len(names)) != t12)):
+        w, a = _bands(mon, s)
+        print(f"T_t14 bands, {label}: warning {w[t14]:.3f}, alarm {a[t14]:.3f}")
+    print("out at the end:", mon.excluded, "; new thermal state:", mon.new_state_)
+
+
+def column(root: str, label: str, seeds: str = "8986-8990", kinds: str = m84.KINDS) -> None:
+    m84.column(root, label, seeds, kinds)
+
+
+def ctable(root: str, main: str, rule: str) -> None:
+    m84.ctable(root, main, rule)
+
+
+def ccode(root: str = ROOT, seed: str = "8774", kind: str = "frozen") -> None:
+    m84.ccode(root, seed, kind)
+
+
+def trunnion(root: str, label: str, seeds: str = "8991-8992", kinds: str = m84.KINDS) -> None:
+    m84.trunnion(root, label, seeds, kinds)
+
+
+def lathe(root: str, label: str, seeds: str = "8993-8994", kinds: str = m84.KINDS) -> None:
+    m84.lathe(root, label, seeds, kinds)
+
+
+def jig(root: str, label: str, seeds: str = "8995", kinds: str = m84.KINDS) -> None:
+    m84.jig(root, label, seeds, kinds)
+
+
+def table(root: str, main: str, rule: str) -> None:
+    m84.table(root, main, rule)
+
+
+def main(argv: list[str] | None = None) -> int:
+    np.seterr(all="ignore")
+    return run_commands(__doc__, {"trace": trace, "column": column, "ctable": ctable,
+                                  "ccode": ccode, "trunnion": trunnion, "lathe": lathe,
+                                  "jig": jig, "table": table},
+                        sys.argv[1:] if argv is None else argv, cpu=sys.stderr)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
