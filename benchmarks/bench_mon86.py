@@ -62,6 +62,33 @@ Bar (written before scoring; "main": ``git archive 14a3bd50`` sources, alternate
    does not have.
 5. ``ccode`` (rule) on s8774 frozen, s8703 healthy and fresh 8986 drift: C = served to 1e-9 µm.
 6. tests/apps/test_monitor*.py, tests/shell/test_monitor*.py, tests/shell/test_export*.py pass.
+
+Scored, the first rule (2026-12-04; main ``git archive 14a3bd50``, the rule served only: the
+mirror and the C not yet written, part 1 first)
+------------------------------------------------------------------------------------------------
+1. ``trace drift``: main ``T_t14`` out 10294, ``T_t12`` out 10498 (lone fault, ``E`` +0.93),
+   ``T_t14`` back at 10498, then 15 warning episodes and 36 samples out of ok to the end.  The
+   rule: ``T_t14`` out 10294 as main, and ``T_t12``'s bands in the set without ``T_t14`` widen
+   0.453 -> 0.644 (alarm 0.906 -> 1.29, the band that excludes while ``T_t14`` is out by its
+   error): ``T_t12`` reaches it at 10617, when ``T_t15`` and ``T_t8`` (their bands 0.400, 0.580)
+   are out of theirs, and ``_drift_vetoed`` (``new_state_others`` = 2 others out) refuses it on
+   every sample to the end.  ``T_t12`` never out (main: 10498), ``T_t14`` never back; out at the
+   end ``T_t14``.  ``trace clean``: nothing out, no event after the train part, both.  Fails.
+
+Verdict on the first rule: REFUSED at part 1 (the rest not scored): the source reverted, the rule
+kept as ``benchmarks/mon86_rule.patch`` (served only).  The band of the set works both ways: the
+coupled partner of a sensor taken out is predicted worse in training too, so a drift of that
+partner is held to the looser band; where the sensor out is a culprit taken within its band
+(mon85b's ``_hid``: the monitor's guess, not a fault seen), that is the drift it hid, hidden
+further.  ``T_t14``'s own band in the set without ``T_t12``: 0.400 -> 0.500 (alarm 1.001).
+
+The second rule (written and committed before scoring it; the bar above, parts 1-6, unchanged).
+The first rule, but the set that sets the bands counts a culprit out within its own band
+(``_hid``) as in: the active set and every ``_hid`` sensor.  It is out on the monitor's guess (it
+passed its own band; the field pulled round it by another's error) and due back as soon as that
+one is out (mon85b), so it loosens no band meanwhile; a sensor out for its own error beyond the
+band, or an instant fault (dropout, range, jump, freeze), leaves the set it is judged without.
+Served, numpy mirror (``hid``) and C (``mon_hid``) alike.
 """
 
 from __future__ import annotations
