@@ -96,12 +96,15 @@ def test_one_empty_logger_row_costs_the_adaptive_stream_next_to_nothing(lathe, t
     assert lost == {c for c in rows.columns if c.startswith("T_")}      # the dropout, seen
     # back together: within one window (10 samples of 60 s) of the first
     assert set(back) == lost and max(back.values()) - min(back.values()) <= 600.0, back
-    # each says the band it came back within: its whole warning band (the message said half);
-    # one no other sensor predicts, that no band judged it (stranger80: it said its band too)
+    # each says the band it came back within: its whole warning band (the message said half) of
+    # the set it came back in (mon86: the whole set's or wider, some still out); one no other
+    # sensor predicts, that no band judged it (stranger80: it said its band too)
     warning = dict(zip((n for n in report["sensors"]), report["bands"]["warning_c"]))
     for e in (e for e in report["events"] if e["to"] == "ok"):
         if report["sensors"][e["sensor"]]["observable"]:
-            assert e["reason"].startswith(f"re-admitted: within ±{warning[e['sensor']]:.3g} °C"), e
+            assert e["reason"].startswith("re-admitted: within ±"), e
+            said = float(e["reason"].split("±")[1].split()[0])
+            assert said >= float(f"{warning[e['sensor']]:.3g}"), e
         else:
             assert e["reason"].startswith("re-admitted: no detector fired for "), e
     for target, r in report["targets"].items():

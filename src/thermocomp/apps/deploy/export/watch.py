@@ -212,7 +212,18 @@ def monitor_fields(deployed, inputs: list) -> dict:
         "blind_drop": 1, "solve": 1, "modes": int(mon.pod.n_modes_),
         "basis": mon.pod.basis_[:, :int(mon.pod.n_modes_)].tolist(),
         "fallback": [int(c in falls) for c in mon.names],
-        "rounding": np.broadcast_to(getattr(mon, "rounding_c", 0.0), (n,)).tolist()}}
+        "rounding": np.broadcast_to(getattr(mon, "rounding_c", 0.0), (n,)).tolist(),
+        **_set_bands(mon)}}
+
+
+def _set_bands(mon) -> dict:
+    """(mon86) What scales a sensor's bands to the set it is judged in (the served
+    ``_bands_of``): its floor, the training moment of the windowed snapshots and its windowed
+    error's moment with every sensor in (0 where none: never scaled)."""
+    if getattr(mon, "moment", None) is None:
+        return {}
+    return {"floor": mon.floor_c.tolist(), "moment": mon.moment.tolist(),
+            "q_full": np.nan_to_num(mon._q_full, nan=0.0).tolist()}
 
 
 def _pairs(mon) -> list[tuple[int, int]]:
@@ -310,6 +321,10 @@ class CodeMonitor:
                      ("solve", 0)):       # (before cmon85: only the operators it holds)
             a.setdefault(k, np.float64(v))
         a.setdefault("rounding", np.zeros(n))    # (before mon83: no culprit held for rounding)
+        # (before mon86: every set judged by the whole set's bands)
+        a.setdefault("floor", np.zeros(n))
+        a.setdefault("q_full", np.zeros(n))
+        a["moment"] = np.asarray(arrays.get("moment", np.zeros((n, n))), float).reshape(n, n)
         self.pairs = [tuple(int(i) for i in p) for p in arrays.get("pairs", [])]
         self.idx = np.asarray(arrays["inputs"], int)
         self.M, self.lev = a["M"], a["lev"]
@@ -336,6 +351,8 @@ class CodeMonitor:
         # set's operator and leverages)
         self.out, self.out2 = -1, -1
         self.Mc, self.levc = self.M[0], self.lev[0]
+        # (mon86) the bands the active set is judged against
+        self.warn, self.alarm = self.a["warning"], self.a["alarm"]
         self.hist, self.err = np.full((w, n), np.nan), np.full((w, n), np.nan)
         self.pos = self.count = 0
         self.prev, self.prev_e, self.prev_other = (np.full(n, np.nan) for _ in range(3))
@@ -450,6 +467,30 @@ class CodeMonitor:
         M, _, _, _, scale = self._set()
         H = np.where(np.isfinite(self.hist), self.hist, 0.0)
         self.err = (self.hist - H @ M.T) * scale
+        self._set_bands()
+
+    def _set_bands(self) -> None:
+        """(mon86) The active set's bands, a culprit out within its band counted in (served)."""
+        self.warn, self.alarm = self._bands(self._active() | self.hid)
+
+    def _bands(self, ins: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(mon86) ``(warning, alarm)`` of the set ``ins``, the served ``_bands_of``: each floor
+        times ``sqrt(a' C a / q_full)`` (at least 1), ``a`` its row of ``(I - M) / (1 - h)``, never
+        below the whole set's bands; those where the set's operator is not had."""
+        a = self.a
+        if ins.all() or not a["floor"].any() or (op := self._operator(~ins)) is None:
+            return a["warning"], a["alarm"]
+        M, lev = op
+        g = np.ones(self.n)
+        for k in np.flatnonzero(ins & (lev < self.max_lev)):
+            row = np.where(ins, -M[k], 0.0)
+            row[k] += 1.0
+            row /= 1.0 - lev[k]
+            q = float(row @ a["moment"] @ row)
+            if a["q_full"][k] > 0 and q > a["q_full"][k]:
+                g[k] = math.sqrt(q / a["q_full"][k])
+        return (np.maximum(a["warning"], a["floor"] * g),
+                np.maximum(a["alarm"], 2 * a["floor"] * g))
 
     def _level(self) -> np.ndarray:
         return self._judge()[0]
@@ -466,7 +507,7 @@ class CodeMonitor:
             return np.zeros(self.n, int), err
         a = np.abs(self.err[rows]).min(axis=0)
         with np.errstate(invalid="ignore"):
-            return (a >= self.a["warning"]).astype(int) + (a >= self.a["alarm"]), err
+            return (a >= self.warn).astype(int) + (a >= self.alarm), err
 
     def _flag(self, bit: int, sensor: int, rule: int) -> None:
         self.flags |= bit
@@ -622,7 +663,7 @@ class CodeMonitor:
         start = same & (self.run == 1)
         self.run_pred[start] = other[start]
         moved = np.abs(other - self.run_pred)
-        frozen = same & ((observable & (moved >= a["warning"]) & (self.run >= a["seen_run"]))
+        frozen = same & ((observable & (moved >= self.warn) & (self.run >= a["seen_run"]))
                          | (~observable & (self.run > a["blind_run"])))
         for j in np.flatnonzero(frozen & ~instant):
             instant[j] = True
@@ -630,7 +671,7 @@ class CodeMonitor:
                 self.froze[j], self.held[j], self.off[j] = True, d[j], 0
         # a stepped self-prediction error (the served monitor excludes its culprit)
         _, active, _, judged, _ = self._set()
-        stepped = judged & (np.abs(e) >= a["alarm"]) & (np.abs(e - self.prev_e) >= a["alarm"])
+        stepped = judged & (np.abs(e) >= self.alarm) & (np.abs(e - self.prev_e) >= self.alarm)
         if stepped.any():
             self._flag(NOT_IN_CODE, int(np.argmax(stepped)), STEPPED)
         level = self._level()
@@ -754,14 +795,15 @@ class CodeMonitor:
             worst = np.abs((H - H @ M.T) / (1 - lev)).max(axis=0)
         worst[blind] = np.inf
         lost = self.dropped & ~self.by_field & (self.jumps == 0)
-        band = np.where(lost | self.hid, 1.0, self.a["readmit"]) * self.a["warning"]
+        warn = self._bands(trial | self.hid)[0]      # (mon86) the trial set's
+        band = np.where(lost | self.hid, 1.0, self.a["readmit"]) * warn
         ok = np.where(blind, ~self.predictable, worst < band) & trial
         # (cmon82c) one out for explaining the others' errors: back where they all pass their
         # warning band with it in, as served
         explains = trial & blind & self.explains
         if explains.any():
             judged = trial & ~blind
-            ok[explains] = bool((worst[judged] < self.a["warning"][judged]).all())
+            ok[explains] = bool((worst[judged] < warn[judged]).all())
         return ok, worst
 
     # -- (cmon82) the exclusion by judgement (module doc) --------------------------------------
@@ -852,6 +894,7 @@ class CodeMonitor:
             return
         self._by_drift(j)
         self.hid[j] = bool(level[j] < WARNING)     # (mon85b) it passed its own band
+        self._set_bands()
         _, active, observable, _, _ = self._set()
         blind = np.flatnonzero(active & ~observable & (z >= 0.7 * z[j]))
         for i in blind:
@@ -943,7 +986,7 @@ class CodeMonitor:
         """(mon83) The served ``_within_rounding``: ``j``'s smallest error over the last
         ``confirm`` samples beyond the band that excludes by less than its rounding bound, the
         memory's error within that of the band already, on the same side."""
-        band = (self.a["warning"] if field == WARNING else self.a["alarm"])[j]
+        band = (self.warn if field == WARNING else self.alarm)[j]
         last, bound = self.err[self._rows(), j], self.a["rounding"][j]
         if not self.slow_known or not np.abs(last).min() < band + bound:
             return False
@@ -998,7 +1041,7 @@ class CodeMonitor:
             return False
         X = self._X()
         E = ((X[:, jd] - X @ M[jd].T) / (1 - lev[jd])).mean(axis=0)
-        if not (np.abs(E) < self.a["warning"][jd]).all():
+        if not (np.abs(E) < self.warn[jd]).all():
             return False
         return alone is None or bool(abs((X[:, j] - X @ M[j]).mean()) >= alone)
 
@@ -1008,7 +1051,7 @@ class CodeMonitor:
         _, active, observable, judged, _ = self._set()
         M, lev = self.Mc, self.levc
         out = judged & (level >= field)
-        band = self.a["warning"] if field == WARNING else self.a["alarm"]
+        band = self.warn if field == WARNING else self.alarm
         X = self._X()
         r = (X - X @ M.T).mean(axis=0)
         z = np.where(active, np.abs(r) / np.sqrt(np.maximum(1 - lev, 1e-12)), -1.0)

@@ -66,6 +66,7 @@ STATE = """    /* the sensor monitor (TC_MONITOR): referenced readings d = u - m
     /* (cmon82c) out for explaining the others' errors (no other predicts it), and each sensor's
        last reading while it was in (what the model reads of one no other predicts, out) */
     int mon_hid[NM];   /* (mon85b) out as a culprit within its warning band: its whole band back */
+    double mon_warn[NM], mon_alarm[NM];   /* (mon86) the bands of the set judged (mon_bands) */
     int mon_explains[NM], mon_fell;   /* (mon_fell: one whose fallback model the code lacks went out) */
     double mon_last[NM];
     int mon_read[NM];   /* (cmon84) the sample's monitored readings there (not missing) */
@@ -83,7 +84,7 @@ def monitor_arrays(ss) -> list[tuple[str, object, tuple, str]]:
     n = len(m.get("inputs", []))
     pairs = m.get("pairs", [])
     vectors = ("warning", "alarm", "jump_lim", "lo_lim", "hi_lim", "lo_c", "hi_c", "seen_run",
-               "blind_run", "rounding")
+               "blind_run", "rounding", "floor", "q_full")
     scalars = (("MON_MAX_LEV", "max_leverage", 1.0, "real"), ("MON_MIN_ACTIVE", "min_active", 0, "int"),
                ("MON_CONFIRM", "confirm", 1, "int"), ("MON_EXCLUDE_LEVEL", "exclude_level", 1, "int"),
                ("MON_PERIOD", "period", 1.0, "real"), ("MON_GAP_PERIODS", "gap_periods", 1.5, "real"),
@@ -103,6 +104,7 @@ def monitor_arrays(ss) -> list[tuple[str, object, tuple, str]]:
             ("MON_N_PAIRS", len(pairs), (), "int"),
             ("MON_PHI", m.get("basis", []), (n, modes), "real"),
             ("MON_SOLVE", int(bool(m.get("solve")) and "basis" in m), (), "int"),
+            ("MON_MOMENT", m.get("moment", [[0.0] * n for _ in range(n)]), (n, n), "real"),
             *((f"MON_{k.upper()}", m.get(k, [0.0] * n), (n,), "real") for k in vectors),
             ("MON_PREDICTABLE", m.get("predictable", []), (n,), "int"),
             ("MON_PORTED", m.get("ported_out", []), (n,), "int"),
@@ -203,6 +205,38 @@ static int mon_operator(const int out[], double M[][NM], double lev[]) {
     return 1;
 }
 
+/* (mon86) the bands of the set in[] (the served _bands_of): each floor times
+   sqrt(a' C a / MON_Q_FULL) (at least 1), a its row of (I - M) / (1 - h) in the set, C the training
+   moment of the windowed snapshots, never below the whole set's bands; those where the set's
+   operator is not had.  At most NM^3 + NM^2 multiply-adds, at a change of the set only */
+static void mon_bands(const int in[], double warn[], double alarm[]) {
+    double M[NM][NM], lev[NM], row[NM];
+    int out[NM], k, m, c, all = 1, any = 0;
+    for (k = 0; k < NM; k++) {
+        warn[k] = MON_WARNING[k], alarm[k] = MON_ALARM[k];
+        out[k] = !in[k], all = all && in[k], any = any || MON_FLOOR[k] > 0.0;
+    }
+    if (all || !any || !mon_operator(out, M, lev)) return;
+    for (k = 0; k < NM; k++) {
+        double q = 0.0, g;
+        if (!in[k] || !(lev[k] < MON_MAX_LEV) || !(MON_Q_FULL[k] > 0.0)) continue;
+        for (m = 0; m < NM; m++) row[m] = ((m == k) - (in[m] ? M[k][m] : 0.0)) / (1.0 - lev[k]);
+        for (m = 0; m < NM; m++)
+            for (c = 0; c < NM; c++) q += row[m] * MON_MOMENT[m][c] * row[c];
+        if (!(q > MON_Q_FULL[k])) continue;
+        g = sqrt(q / MON_Q_FULL[k]);
+        if (MON_FLOOR[k] * g > warn[k]) warn[k] = MON_FLOOR[k] * g;
+        if (2.0 * MON_FLOOR[k] * g > alarm[k]) alarm[k] = 2.0 * MON_FLOOR[k] * g;
+    }
+}
+
+/* (mon86) the active set's bands, a culprit out within its band (mon_hid) counted in */
+static void mon_set_bands(tc_state *s) {
+    int in[NM], k;
+    for (k = 0; k < NM; k++) in[k] = (k != s->mon_out && k != s->mon_out2) || s->mon_hid[k];
+    mon_bands(in, s->mon_warn, s->mon_alarm);
+}
+
 /* the window's errors redone under a new operator (an exclusion, a re-admission) */
 static void mon_recompute(tc_state *s) {
     double pred[NM];
@@ -215,6 +249,7 @@ static void mon_recompute(tc_state *s) {
         mon_errors(s, s->mon_hist[w], pred, e);
         for (k = 0; k < NM; k++) s->mon_err[w][k] = e[k];
     }
+    mon_set_bands(s);
 }
 
 /* the band (0 ok, 1 warning, 2 alarm) the last MON_CONFIRM errors of sensor k all exceed */
@@ -227,7 +262,7 @@ static int mon_level(const tc_state *s, int k) {
         if (isnan(v)) return 0;
         if (v < a) a = v;
     }
-    return (a >= MON_WARNING[k]) + (a >= MON_ALARM[k]);
+    return (a >= s->mon_warn[k]) + (a >= s->mon_alarm[k]);
 }
 
 /* (cmon82) the mean of the last MON_CONFIRM errors of sensor k */
@@ -298,10 +333,12 @@ static void mon_exclude(tc_state *s, int k, int rule) {
    band (one out for a dropout alone: its whole band; one the others in trial cannot predict:
    where no other predicts it at all), worst[k] that error */
 static void mon_pass_once_back(const tc_state *s, const int trial[], int ok[], double worst[]) {
-    double M[NM][NM], L[NM];
-    int k, w, m, n = 0, out[NM];
+    double M[NM][NM], L[NM], warn[NM], alarm[NM];
+    int k, w, m, n = 0, out[NM], in[NM];
     for (k = 0; k < NM; k++) n += trial[k], out[k] = !trial[k], ok[k] = 0, worst[k] = HUGE_VAL;
     if (n < MON_MIN_ACTIVE || !mon_operator(out, M, L)) return;
+    for (k = 0; k < NM; k++) in[k] = trial[k] || s->mon_hid[k];
+    mon_bands(in, warn, alarm);   /* (mon86) the trial set's */
     for (k = 0; k < NM; k++) {
         double lev = L[k], band;
         if (!trial[k]) continue;
@@ -319,7 +356,7 @@ static void mon_pass_once_back(const tc_state *s, const int trial[], int ok[], d
             v = fabs(((isfinite(s->mon_hist[w][k]) ? s->mon_hist[w][k] : 0.0) - p) / (1.0 - lev));
             if (v > worst[k]) worst[k] = v;
         }
-        ok[k] = worst[k] < band * MON_WARNING[k];
+        ok[k] = worst[k] < band * warn[k];
     }
     /* (cmon82c) one out for explaining the others' errors: back where they all pass their
        warning band with it in, as served */
@@ -327,7 +364,7 @@ static void mon_pass_once_back(const tc_state *s, const int trial[], int ok[], d
         if (trial[k] && L[k] >= MON_MAX_LEV && s->mon_explains[k]) {
             ok[k] = 1;
             for (m = 0; m < NM; m++)
-                if (trial[m] && L[m] < MON_MAX_LEV && !(worst[m] < MON_WARNING[m])) ok[k] = 0;
+                if (trial[m] && L[m] < MON_MAX_LEV && !(worst[m] < warn[m])) ok[k] = 0;
         }
 }
 
@@ -512,7 +549,7 @@ static int mon_resolves(const tc_state *s, int j, const int seen[], double alone
         double e = 0.0;
         if (out[k] || lev[k] >= MON_MAX_LEV) continue;
         for (r = 0; r < rows; r++) e += mon_loo(M, lev, k, X[r]);
-        if (!(fabs(e / rows) < MON_WARNING[k])) return 0;
+        if (!(fabs(e / rows) < s->mon_warn[k])) return 0;
     }
     if (alone < 0.0) return 1;
     for (r = 0; r < rows; r++) {   /* (alone: j off the others' field by that much at least) */
@@ -566,7 +603,7 @@ static int mon_lone_fault(const tc_state *s, int j, const double z[], const int 
    error within that of the band already, on the same side */
 static int mon_within_rounding(const tc_state *s, int j, int field) {
     double least = HUGE_VAL, sum = 0.0, past = 0.0, scale[NM];
-    double band = field == 1 ? MON_WARNING[j] : MON_ALARM[j];
+    double band = field == 1 ? s->mon_warn[j] : s->mon_alarm[j];
     int a[NM], o[NM], jd[NM], r, m;
     for (r = 0; r < MON_CONFIRM; r++) {
         double e = s->mon_err[((s->mon_pos - 1 - r) % MW + MW) % MW][j];
@@ -638,7 +675,7 @@ static int mon_explaining(const tc_state *s, const int level[], int field) {
                 double v = fabs(mon_loo(Mu, lu, k, X[r]));
                 if (v < least) least = v;
             }
-            if (least >= (field == 1 ? MON_WARNING[k] : MON_ALARM[k])) fails = 1;
+            if (least >= (field == 1 ? s->mon_warn[k] : s->mon_alarm[k])) fails = 1;
         }
         if (!fails && z[u] > best_z) best = u, best_z = z[u];
     }
@@ -720,6 +757,7 @@ static void mon_drift(tc_state *s, const int level[], int field) {
     if (s->mon_out != j && s->mon_out2 != j) return;   /* (flagged) */
     mon_by_drift(s, j);
     s->mon_hid[j] = level[j] < 1;   /* (mon85b) it passed its own band */
+    mon_set_bands(s);
     mon_set(s, a, o, jd, scale);
     for (k = 0; k < NM; k++)
         if (a[k] && !o[k] && z[k] >= 0.7 * z[j]) nblind++, partner = partner < 0 ? k : partner;
@@ -919,7 +957,7 @@ static void monitor_step(tc_state *s, double u[], double dt) {
         if (same[k] && s->mon_run[k] == 1) s->mon_run_pred[k] = other[k];
     }
     for (k = 0; k < NM; k++) {
-        int frozen = same[k] && ((o[k] && fabs(other[k] - s->mon_run_pred[k]) >= MON_WARNING[k]
+        int frozen = same[k] && ((o[k] && fabs(other[k] - s->mon_run_pred[k]) >= s->mon_warn[k]
                                   && s->mon_run[k] >= MON_SEEN_RUN[k])
                                  || (!o[k] && s->mon_run[k] > MON_BLIND_RUN[k]));
         if (!frozen || instant[k]) continue;
@@ -934,7 +972,7 @@ static void monitor_step(tc_state *s, double u[], double dt) {
     /* a rule not in the code: a stepped error (its exclusion) */
     mon_set(s, a, o, jd, scale);
     for (k = 0; k < NM; k++)
-        if (jd[k] && fabs(e[k]) >= MON_ALARM[k] && fabs(e[k] - s->mon_prev_e[k]) >= MON_ALARM[k])
+        if (jd[k] && fabs(e[k]) >= s->mon_alarm[k] && fabs(e[k] - s->mon_prev_e[k]) >= s->mon_alarm[k])
             mon_flag(s, TC_MON_NOT_IN_CODE, k, TC_MON_STEPPED);
     for (k = 0; k < NM; k++)
         if (jd[k] && mon_level(s, k)) s->mon_flags |= TC_MON_BAND;

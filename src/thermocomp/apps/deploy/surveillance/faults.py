@@ -108,7 +108,7 @@ class InstantFaults:
     def _check_stepped(self, e, instant, time, events) -> None:
         """A self-prediction error that steps past the alarm band in one sample."""
         de = e - self._prev_e
-        stepped = self._judged & (np.abs(e) >= self.alarm_c) & (np.abs(de) >= self.alarm_c)
+        stepped = self._judged & (np.abs(e) >= self._alarm) & (np.abs(de) >= self._alarm)
         if not stepped.any():
             return
         for j in np.flatnonzero(stepped):
@@ -123,7 +123,7 @@ class InstantFaults:
     def _frozen(self, same: np.ndarray, run: np.ndarray, moved: np.ndarray) -> np.ndarray:
         """The freeze rule (module doc), for :meth:`_fast` and :meth:`_update` alike: ``same``
         unchanged readings, ``run`` their constant-run lengths, ``moved`` the field's change."""
-        return same & ((self._observable & (moved >= self.warning_c) & (run >= self._seen_run))
+        return same & ((self._observable & (moved >= self._warn) & (run >= self._seen_run))
                        | (~self._observable & (run > self._blind_run)))
 
     def _instant(self, x, d, step, finite, rng, big) -> dict[int, str]:

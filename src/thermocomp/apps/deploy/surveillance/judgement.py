@@ -54,6 +54,7 @@ class Judgement:
                              f"{self.confirm} samples", time, events, by_field=True)
             self._since[j] = self._count
             self._hid[j] = bool(level[j] < WARNING)   # it passed its own band (readmission.py)
+            self._set_bands()
             # a sensor out of band that no other can predict once j is out cannot be
             # vouched for (two coupled sensors look alike to self-prediction): out too
             blind = self._active & ~self._observable & (z >= 0.7 * z[j])
@@ -165,7 +166,7 @@ class Judgement:
         rows = self._hist[self._recent[self._pos, :min(self._count, self.confirm)]]
         X = np.where(np.isfinite(rows), rows, 0.0)
         E = ((X[:, judged] - X[:, trial] @ M[judged].T) / (1 - lev[judged])).mean(axis=0)
-        if not (np.abs(E) < self.warning_c[judged]).all():
+        if not (np.abs(E) < self._warn[judged]).all():
             return False
         # (alone: and j itself off the others' field by that much at least, as a fault is)
         return alone is None or bool(abs((X[:, j] - X[:, trial] @ M[j]).mean()) >= alone)
@@ -243,7 +244,7 @@ class Judgement:
         sensor (T_bed_right, which only hid T_xdrive's error).  Of several, the best
         single-fault explanation: the largest standardised residual.  ``None`` if none does."""
         out = self._judged & (level >= self._field_level())
-        band = self.warning_c if self._field_level() == WARNING else self.alarm_c
+        band = self._warn if self._field_level() == WARNING else self._alarm
         rows = self._hist[self._recent[self._pos, :min(self._count, self.confirm)]]
         X = np.where(np.isfinite(rows), rows, 0.0)
         # every active sensor's residual in the current fit, standardised: the likelihood ratio
@@ -277,7 +278,7 @@ class Judgement:
         -0.42 to -0.58 °C in 20 min, was held 23 min: mon83's first rule.)"""
         k = min(self._count, self.confirm)
         last = self._err[self._recent[self._pos, :k], j]
-        band = (self.warning_c if self._field_level() == WARNING else self.alarm_c)[j]
+        band = (self._warn if self._field_level() == WARNING else self._alarm)[j]
         if not self._slow_ok or not float(np.abs(last).min()) < band + self.rounding_c[j]:
             return False
         past = (self._slow[j] - self._M[j] @ self._slow[self._active]) * self._scale[j]

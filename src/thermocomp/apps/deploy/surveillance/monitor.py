@@ -60,6 +60,13 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
         The most rounding the readings to their resolution moves each sensor's self-prediction
         error (°C; :meth:`from_training` fits it): a culprit beyond its band by less, whose
         excursion hovers, is a regime (:meth:`~.judgement.Judgement._within_rounding`).
+    floor_c : float or array
+        The floor of each sensor's warning band set by its training spread with every sensor in
+        (°C; the alarm band's is twice it; :meth:`from_training` fits it, 0: none).
+    moment : array, optional
+        Second moment of training's windowed referenced snapshots (n × n): scales ``floor_c``
+        to the set a sensor is judged in (:meth:`_bands_of`).  ``None``: the bands of the whole
+        set judge every set.
     """
 
     new_state, new_state_others = False, 2   # a monitor pickled before them judged as before
@@ -74,6 +81,9 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
             self._slow_ok = False
         if "rounding_c" not in state:  # pickled before mon83: judged as before
             self.rounding_c = np.zeros(len(self.names))
+        if "floor_c" not in state:     # pickled before mon86: the whole set's bands judge
+            self.floor_c, self.moment, self._q_full = np.zeros(len(self.names)), None, None
+            self._warn, self._alarm = self.warning_c.copy(), self.alarm_c.copy()
         if "_froze" not in state:      # pickled before freeze84: nobody out for a freeze alone
             self._froze = np.zeros(len(self.names), dtype=bool)
             self._held, self._off = np.zeros(len(self.names)), np.zeros(len(self.names), int)
@@ -83,7 +93,8 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
                  exclude_at: str = "warning", max_step_c=None, longest_run=None,
                  lo_c=None, hi_c=None, first_c=None, jump_factor: float = 3.0,
                  freeze_factor: float = 2.0, range_margin_c: float = 10.0,
-                 new_state: bool = True, new_state_others: int = 2, rounding_c=0.0):
+                 new_state: bool = True, new_state_others: int = 2, rounding_c=0.0,
+                 floor_c=0.0, moment=None):
         n = len(names)
         if pod.n_features_in_ != n:
             raise ValueError(f"POD has {pod.n_features_in_} sensors, names {n}")
@@ -102,6 +113,10 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
         self.exclude_at = exclude_at
         self.exclude_level = WARNING if exclude_at == "warning" else ALARM
         self.rounding_c = np.broadcast_to(np.asarray(rounding_c, float), (n,)).copy()
+        self.floor_c = np.broadcast_to(np.asarray(floor_c, float), (n,)).copy()
+        self.moment = None if moment is None else np.asarray(moment, float).reshape(n, n).copy()
+        self._q_full = None if self.moment is None else self._error_moment(*pod.operator(
+            np.ones(n, dtype=bool)), np.ones(n, dtype=bool))
 
         def arr(v, default):
             return np.full(n, default, float) if v is None else np.asarray(v, float).copy()
@@ -167,7 +182,8 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
         factor = float(options.pop("spread_factor", SPREAD_FACTOR))
         if learned_bands:
             # bands from the training spread: 4× it, never below the configured bands' half
-            warn = np.maximum(4 * spread, 0.5 * warn)
+            floor = 4 * spread
+            warn = np.maximum(floor, 0.5 * warn)
             alarm = 2 * warn
         else:
             # never within `spread_factor` × the spread: a sensor the others predict loosely in
@@ -176,7 +192,10 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
             # excluded T_13 21 times); the others keep the configured bands
             floor = factor * spread
             warn, alarm = np.maximum(warn, floor), np.maximum(alarm, 2 * floor)
-        options = {"rounding_c": _rounding(pod, steps), **options, "warning_c": warn, "alarm_c": alarm}
+        # the windowed snapshots' second moment: the spread in any set of sensors (_bands_of)
+        W = windowed_mean(snaps, groups, pod.window)
+        options = {"rounding_c": _rounding(pod, steps), "floor_c": floor,
+                   "moment": W.T @ W / len(W), **options, "warning_c": warn, "alarm_c": alarm}
         return cls(pod, names, max_step_c=steps.max(0), longest_run=runs, lo_c=lo, hi_c=hi,
                    first_c=first, **options)
 
@@ -238,13 +257,61 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
         lev[subset] = h
         return M, lev
 
+    def _error_moment(self, M: np.ndarray, h: np.ndarray, subset: np.ndarray) -> np.ndarray:
+        """Each sensor of ``subset``'s windowed leave-one-out error's second moment in training,
+        ``a' C a`` (``a`` its row of the error's linear map of the readings, ``C`` the
+        ``moment``); NaN outside ``subset`` and where no other sensor predicts it."""
+        n = len(self.names)
+        A = np.zeros((n, n))
+        A[:, subset] = -M
+        A[np.arange(n), np.arange(n)] += 1.0
+        seen = np.zeros(n, dtype=bool)
+        seen[subset] = h < self.pod.max_leverage
+        q = np.full(n, np.nan)
+        S = A[seen] / (1 - h[seen[subset]])[:, None]
+        q[seen] = np.einsum("ij,jk,ik->i", S, self.moment, S)
+        return q
+
+    def _bands_of(self, subset: np.ndarray, M=None, h=None) -> tuple[np.ndarray, np.ndarray]:
+        """``(warning, alarm)`` bands of the sensors judged in ``subset`` (mon86): the floor of
+        each, its training spread's, scaled by its windowed error's RMS in ``subset`` against the
+        whole set's (at least 1), never narrower than the whole set's bands.  A set without a
+        coupled partner predicts a sensor worse (fl_thermal's ``T_t14`` without ``T_t12``:
+        training spread 0.112 -> 0.166 °C); judged against the whole set's band it warned 15
+        times, healthy.  ``M`` / ``h``: ``pod.operator(subset)``, when at hand."""
+        subset = np.asarray(subset, dtype=bool)
+        if self.moment is None or subset.all() or not subset.any() or not self.floor_c.any():
+            return self.warning_c, self.alarm_c
+        if M is None:
+            M, h = self.pod.operator(subset)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            g = np.sqrt(self._error_moment(M, h, subset) / self._q_full)
+        g = np.where(np.isfinite(g) & (g > 1), g, 1.0)
+        return (np.maximum(self.warning_c, self.floor_c * g),
+                np.maximum(self.alarm_c, 2 * self.floor_c * g))
+
+    def _set_bands(self, M=None, lev=None) -> None:
+        """The bands the active sensors are judged against: those of the active set with every
+        culprit out within its own band (``_hid``) counted in (mon86: out on the monitor's guess,
+        it loosens no band; the drift it hid, its coupled partner, would be hidden further).
+        ``M`` / ``lev``: the active set's operator, when that is the set."""
+        s = self._active | self._hid
+        if not self._active.any():
+            self._warn, self._alarm = self.warning_c, self.alarm_c
+        elif (s != self._active).any() or M is None:
+            self._warn, self._alarm = self._bands_of(s)
+        else:
+            self._warn, self._alarm = self._bands_of(s, M, lev[s])
+
     def _set_operator(self) -> None:
-        """Operator, leverages and error scale of the active set; the window's errors redone."""
+        """Operator, leverages, error scale and bands of the active set; the window's errors
+        redone."""
         active = self._active
         self._all_active = bool(active.all())
         M, lev = self._operator(active) if active.any() else (None, np.ones(len(self.names)))
         self._M = M
         self._lev = lev
+        self._set_bands(M, lev)
         self._observable = lev < self.pod.max_leverage
         # enough sensors in to rebuild the others (a total dropout leaves none)
         self._rebuilds = int(active.sum()) >= self.min_active_
@@ -302,7 +369,7 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
         if k < self.confirm:
             return np.zeros(len(err), dtype=np.int8), err
         a = np.abs(last).min(axis=0)          # NaN (unobservable) compares False
-        return (a >= self.warning_c).view(np.int8) + (a >= self.alarm_c), err
+        return (a >= self._warn).view(np.int8) + (a >= self._alarm), err
 
     def skipped(self, periods: float) -> None:
         """The next sample comes ``periods`` sampling periods after the last one (a gap in the
@@ -359,7 +426,7 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
                 return None
         else:
             judged = self._judged
-            if (judged & ((ae >= self.alarm_c) | (a >= self.warning_c))).any():
+            if (judged & ((ae >= self._alarm) | (a >= self._warn))).any():
                 return None
             if ((self._calm + 1 >= self.window) & ~self._active).any():
                 return None                  # an excluded sensor may be due for re-admission
@@ -584,9 +651,9 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
         k = min(self._count, self.confirm)
         smallest = float(np.abs(self._err[self._recent[self._pos, :k], j]).min())
         if level > OK:
-            band = (self.warning_c if level == WARNING else self.alarm_c)[j]
+            band = (self._warn if level == WARNING else self._alarm)[j]
             return f", all beyond ±{band:.3g} °C (the smallest {smallest:.3g})"
-        return f", the smallest {smallest:.3g} within ±{self.warning_c[j]:.3g} °C"
+        return f", the smallest {smallest:.3g} within ±{self._warn[j]:.3g} °C"
 
 
 

@@ -34,8 +34,9 @@ class Readmission:
         due = ~self._active & finite & (self._run == 0) & (self._calm >= self._dwell)
         due[list(instant)] = False
         back = self._returning(due) if due.any() else due
+        band = self._readmit_c(self._active | back | self._hid) if back.any() else None
         for j in np.flatnonzero(back):
-            why = self._why_back(j)
+            why = self._why_back(j, band)
             shift = self._ref[j] - self._ref0[j]
             if not self._predictable[j] and (self._jumps[j] > 1 or (
                     self._jumps[j] and abs(d[j] + shift - self._last_good[j])
@@ -73,14 +74,15 @@ class Readmission:
             self._set_operator()
         return bool(back.any())
 
-    def _why_back(self, j: int) -> str:
+    def _why_back(self, j: int, band: np.ndarray | None = None) -> str:
         """The re-admission's reason, as it was judged: a sensor no other predicts is judged by
         no band (calm, or the others' bands where it was out for explaining their errors:
         :meth:`_pass_once_back`), and its reason said "within ±10.4 °C" (stranger80: a screw
         nut's thermocouple after a dropout, its warning band a figure nothing compared)."""
         calm = self._calm[j]
         if self._predictable[j]:
-            return f"re-admitted: within ±{self._readmit_c()[j]:.3g} °C for {calm} samples"
+            band = self._readmit_c() if band is None else band
+            return f"re-admitted: within ±{band[j]:.3g} °C for {calm} samples"
         if self._explains[j]:
             return (f"re-admitted: the others within their warning bands with it in for {calm} "
                     "samples (no other sensor predicts it)")
@@ -103,7 +105,7 @@ class Readmission:
                 return due & trial
             trial[int(np.argmax(np.where(failing, worst, -1.0)))] = False
 
-    def _readmit_c(self) -> np.ndarray:
+    def _readmit_c(self, trial: np.ndarray | None = None, warn=None) -> np.ndarray:
         """Each sensor's re-admission band (°C): ``READMIT`` of its warning band (the hysteresis of
         one out by its error), its whole warning band for one out only for a dropout: it had passed
         its judgement until its reading went missing, the band that kept it in (the half band kept a
@@ -112,9 +114,13 @@ class Readmission:
         (mon85b): it passed its own judgement, out for another's error it hid (a drift pulling
         its field), and it passes again once that sensor is out; the half band kept fl_thermal's
         healthy ``T_t14`` out to the record's end, its error without the drifting ``T_t12`` (its
-        partner: leverage 0.50 -> 0.73) at 0.83 of its band on the clean record too."""
+        partner: leverage 0.50 -> 0.73) at 0.83 of its band on the clean record too.  The warning
+        band is that of the set ``trial`` it is judged in (its culprits out within band counted in;
+        ``None``: the active set's; ``warn``: that band, when at hand), mon86."""
         lost = self._dropped & ~self._by_field & (self._jumps == 0)
-        return np.where(lost | self._hid, 1.0, READMIT) * self.warning_c
+        return np.where(lost | self._hid, 1.0, READMIT) * (
+            warn if warn is not None else self._warn if trial is None
+            else self._bands_of(trial | self._hid)[0])
 
     def _pass_once_back(self, trial: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """``(passes, worst error)`` of the sensors of the set ``trial``: their leave-one-out
@@ -125,18 +131,20 @@ class Readmission:
         if trial.sum() < self.min_active_:
             return np.zeros(n, dtype=bool), np.full(n, np.inf)
         M, lev = self._operator(trial)
+        bands = trial | self._hid        # a culprit out within its band counts in (_set_bands)
+        warn = self._bands_of(bands, *((M, lev[trial]) if (bands == trial).all() else ()))[0]
         blind = lev >= self.pod.max_leverage
         H = np.where(np.isfinite(self._hist), self._hist, 0.0)
         with np.errstate(divide="ignore", invalid="ignore"):
             worst = np.abs((H - H[:, trial] @ M.T) / (1 - lev)).max(axis=0)
         worst[blind] = np.inf
-        ok = np.where(blind, ~self._predictable, worst < self._readmit_c()) & trial
+        ok = np.where(blind, ~self._predictable, worst < self._readmit_c(warn=warn)) & trial
         # one out for explaining the others' errors is vouched for by them: back only if they
         # stay within the warning band with it in (calm alone let a drifting T_table flap)
         explains = trial & blind & self._explains
         if explains.any():
             judged = trial & ~blind
-            ok[explains] = bool((worst[judged] < self.warning_c[judged]).all())
+            ok[explains] = bool((worst[judged] < warn[judged]).all())
         # one no other predicts, out of range: calm is no evidence its reading is true again
         for u in np.flatnonzero(ok & ~self._active & ~self._predictable & self._ranged):
             ok[u] = self._leak_passes(u, trial, H, M, lev)
