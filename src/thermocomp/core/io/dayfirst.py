@@ -11,8 +11,9 @@ where the file's dates, read so, never go back and never step 27 days or more at
 the date turns a day in one order it turns a month in the other: a run of samples across
 midnight tells); one order possible is taken, both (a file whose dates are one day's) are
 refused naming the file, the column, the row and ``data.dayfirst``: never a guess.  A folder's
-files are one record, read in one order: a date past 12 in any of them decides for all
-(:func:`record_dayfirst`; ``init`` writes it as ``data.dayfirst``).
+files are one record, read in one order: a date past 12 in any of them decides for all, or the
+run of one's dates (data86) (:func:`record_dayfirst`; ``init`` writes it as ``data.dayfirst``, and
+the model carries it: :func:`thermocomp.shell.source.slashed_time`).
 """
 
 from __future__ import annotations
@@ -20,6 +21,7 @@ from __future__ import annotations
 import re
 from collections.abc import Callable, Sequence
 from pathlib import Path
+from typing import NamedTuple
 
 import numpy as np
 import pandas as pd
@@ -160,33 +162,55 @@ def parse_with(forms: Sequence[str]) -> Callable[[pd.Series, bool], pd.Series]:
 
 # a date with slashes in a lab file's text (no more digits or slashes on either side)
 _ANY = re.compile(r"(?<![\d/])\d{1,2}/\d{1,2}/\d{2,4}(?![\d/])")
+_DATES = parse_with(("%m/%d/%Y", "%m/%d/%y"))
+# how a run says its order: where the date turns a day in one order it turns a month in the other
+RUN_SAID = ": a day on read so, a month on or back read the other way"
 
 
-def record_dayfirst(files, dated: Callable[[Path], bool], encoding: str = "utf-8"
-                    ) -> tuple[bool, Path, str] | None:
-    """The order one file of a record's says by a field past 12, for all its files (a catman
-    folder whose tests of the 13th say month first, the 3rd's alike): ``(day_first, file,
-    date)``, None where none says one.  ``dated``: a file read by a reader of its own dates.
-    A file's distinct dates are looked at, once each (a large export's are a few).
+class Said(NamedTuple):
+    """The order a file of a record says for all its files (:func:`record_dayfirst`)."""
+
+    day_first: bool
+    file: Path
+    date: str            # the date that says it
+    run: bool = False    # said by the file's run of dates (``date``: where the other breaks it)
+
+    def __str__(self) -> str:
+        return f"{self.date!r}" + (f" (its run{RUN_SAID})" if self.run else "")
+
+
+def record_dayfirst(files, dated: Callable[[Path], bool], encoding: str = "utf-8") -> Said | None:
+    """The order one file of a record's says, for all its files (a catman folder whose tests of
+    the 13th say month first, the 3rd's alike): by a field past 12, else (data86) by the run of
+    its dates, as a CSV table's (:func:`run_order`: a Scope View export across midnight); None
+    where none says one.  ``dated``: a file read by a reader of its own dates.  A file's
+    distinct dates are looked at, once each (a large export's are a few).
 
     Raises
     ------
     ContractError
         Where one file says day first and another month first, naming both.
     """
-    said: dict[bool, tuple[Path, str]] = {}
+    said: dict[bool, Said] = {}
     for path in files:
         if not dated(path):
             continue
         with open(path, encoding=encoding, errors="replace") as f:
             dates = list(dict.fromkeys(_ANY.findall(f.read())))    # (a file's few, in order)
-        for date, a, b in zip(dates, *fields(dates)):
-            if (a > 12) != (b > 12):
-                said.setdefault(bool(a > 12), (Path(path), date))
+        a, b = fields(dates)
+        for date, x, y in zip(dates, a, b):
+            if (x > 12) != (y > 12):
+                said.setdefault(bool(x > 12), Said(bool(x > 12), Path(path), date))
+        if len(dates) > 1 and not ((a > 12) | (b > 12)).any():
+            try:
+                order, at = run_order(pd.Series(dates), _DATES, path, "")
+            except ContractError:       # (no run settles it: the file's reader says so)
+                continue
+            said.setdefault(order, Said(order, Path(path), dates[at], run=True))
     if len(said) == 2:
-        (day, d), (month, m) = said[True], said[False]
-        raise ContractError(f"date {d!r} is day first, but file {month}'s {m!r} month first: "
-                            f"the files of one record are read in one order; set {KEY}=true|false "
-                            "to the one the PC wrote, or read each as a record of its own",
-                            file=day)
-    return next(((order, *where) for order, where in said.items()), None)
+        day, month = said[True], said[False]
+        raise ContractError(f"date {day} is day first, but file {month.file}'s {month} month "
+                            f"first: the files of one record are read in one order; set "
+                            f"{KEY}=true|false to the one the PC wrote, or read each as a record "
+                            "of its own", file=day.file)
+    return next(iter(said.values()), None)
