@@ -1,8 +1,10 @@
-"""Data in (stop 86, data86): the order a lab file settled, carried by the model.
+"""Data in (stop 86, data86): the order a lab file settled and a status word, carried by the
+model.
 
 Usage (from the repository root, ``PYTHONPATH=<tree>/src``: the code measured is that tree's)::
 
     python benchmarks/bench_data86.py lab ROOT       # (a) an en-GB Scope View folder, seed 9006
+    python benchmarks/bench_data86.py bits ROOT      # (b) a PLC status word, seeds 9007 / 9008
 
 ``lab`` (a): ``ROOT/rig``, three runs of a spindle warm-up as an en-GB PC's TwinCAT Scope View
 exports them (``;``, decimal commas, cp1252, absolute times ``dd/mm/yyyy HH:MM:SS.fff``; seed
@@ -45,6 +47,29 @@ rows in seconds (max |dC| 0 of max |C| 17.50 µm), monitor file 2.2511 = stdin 2
 
 Verdict (no bar): KEPT -- the order the record's files settled is the one every deployed path
 reads the lab's rows in, with no key given by hand.
+
+``bits`` (b): bench_bits85's machine (``Status``: 128 a ready flag + bit 0 on + bit 1 spindle +
+bit 2 coolant), two runs (seeds 9007, 9008; 360 rows of 10 s), the second held out; ``run
+model=hammerstein`` with ``data.bits`` declared, ``promote``; the registered model replayed and
+exported as C with its check pack (``export.check=true``) on three data configs: the key, none,
+the key with bits 1 and 2 swapped.  No bar (a refusal turned into the model's own reading, a
+silent mis-read into a refusal).
+
+Scored (2026-12-04, main 14a3bd50 -> fix/data86, ``bits /tmp/data86/<tree>_b``): run test RMSE
+E_dX 1.0141 µm (both).  With the key: replay 1.0141, the pack of run1's 360 rows (both).
+
+* no key: replay exit 2 "test campaign run1 lacks 3 columns the deployed model reads:
+  S_machine_on, S_spindle_on, S_coolant_on (... give data.bits={Status: {0: machine_on, 1:
+  spindle_on, 2: coolant_on}})", export alike -> replay exit 0, RMSE 1.0141 (the keyed one's);
+  export exit 0, its pack's expected corrections byte for byte the keyed export's.
+* swapped: replay exit 0, RMSE 1.7320 (the spindle read as the coolant, without a word); export
+  exit 0, a pack whose expected corrections are not the keyed one's -> each exit 2,
+  "data.bits={Status: {0: machine_on, 1: coolant_on, 2: spindle_on}} is not the declaration
+  replay.model=models:/thermocomp-compensator/1 was fitted with, data.bits={Status: {0:
+  machine_on, 1: spindle_on, 2: coolant_on}}: a status word is read as the model reads it; leave
+  data.bits out (the model's is read) or give the model's".
+
+Verdict (no bar): KEPT.
 """
 
 from __future__ import annotations
@@ -108,7 +133,7 @@ def _cli(*args: str, stdin: bytes | None = None) -> subprocess.CompletedProcess:
                                                                                done.stderr)))
 
 
-def _said(done: subprocess.CompletedProcess, words: tuple[str, ...] = ("error",)) -> str:
+def _said(done: subprocess.CompletedProcess, words: tuple[str, ...] = ("error:",)) -> str:
     lines = [ln for ln in (done.stdout + done.stderr).splitlines()
              if any(w in ln.lower() for w in words)]
     return " | ".join(lines)[:500] or done.stderr.strip()[-300:]
@@ -208,8 +233,63 @@ def _lab_paths(base: Path, path: Path, test: Path, init: bool = True) -> None:
     print(f"export: exit {done.returncode}; {slashed or _said(done)}")
 
 
+BITS = {0: "machine_on", 1: "spindle_on", 2: "coolant_on"}
+SWAPPED = {0: "machine_on", 1: "coolant_on", 2: "spindle_on"}
+
+
+def bits(root: str) -> None:
+    """(b) ``ROOT/runs``: bench_bits85's machine (its PLC's ``Status``: a ready flag, bit 0 on,
+    bit 1 spindle, bit 2 coolant), two runs, seeds 9007 and 9008, the second held out; ``run``
+    (hammerstein, ``data.bits`` declared), ``promote``; the registered model replayed, and
+    exported as C with its check pack (``export.check=true``), with the key, without it and with
+    a key whose bits 1 and 2 are swapped."""
+    import bench_bits85
+    import mlflow
+
+    base = made_folder(root)
+    bench_bits85.write(base / "runs", [9007, 9008])
+    data = [f"data.path={base / 'runs'}", "data.roles.error=[dX*]", "data.roles.state=[Status]",
+            "data.test_fraction=0.5"]
+    keyed = {"key": BITS, "no key": {}, "swapped": SWAPPED}
+    given = {k: [*data, *(f"++data.bits.Status.{b}={n}" for b, n in named.items())]
+             for k, named in keyed.items()}
+    light = ["model=hammerstein", *LIGHT]
+    uri = f"sqlite:///{base / 'mlflow.db'}"
+    done = _cli("run", *given["key"], *light, f"tracking_uri={uri}", f"out={base / 'run'}")
+    assert done.returncode == 0, done.stderr[-2000:]
+    rmse = json.loads((base / "run" / "metrics.json").read_text())["targets"]["E_dX"]["test"]
+    mlflow.set_tracking_uri(uri)
+    run_id = mlflow.search_runs(experiment_names=["thermocomp"])["run_id"].iloc[0]
+    done = _cli("promote", *given["key"], *light, f"tracking_uri={uri}",
+                f"promote.run_id={run_id}", f"out={base / 'promote'}")
+    assert done.returncode == 0, done.stderr[-2000:]
+    model = json.loads((base / "promote" / "promote.json").read_text())["model_uri"]
+    print(f"run: hammerstein test RMSE E_dX {rmse['rmse']:.4f} µm; promoted {model}")
+    for label, keys in given.items():
+        out = base / f"replay-{label.replace(' ', '')}"
+        done = _cli("replay", *keys, f"replay.model={model}", f"tracking_uri={uri}", f"out={out}")
+        if done.returncode == 0:
+            said = json.loads((out / "replay.json").read_text())["targets"]["E_dX"]["rmse"]
+            shown = f"exit 0, RMSE E_dX {said:.4f}"
+        else:
+            shown = f"exit {done.returncode}, {_said(done)}"
+        print(f"replay, {label}: {shown}")
+        out = base / f"c-{label.replace(' ', '')}"
+        done = _cli("export", *keys, f"export.model={model}", f"tracking_uri={uri}",
+                    "export.format=c", "export.check=true", f"out={out}")
+        if done.returncode == 0:
+            pack = json.loads((out / "check" / "check.json").read_text())["campaigns"][0]
+            same = all(f.read_bytes() == (base / "c-key" / f.relative_to(out)).read_bytes()
+                       for f in (out / "check").rglob("*.csv"))
+            shown = (f"exit 0, pack: {pack['campaign']} {pack['rows']} rows, its expected "
+                     f"corrections {'the same as' if same else 'not'} the keyed export's")
+        else:
+            shown = f"exit {done.returncode}, {_said(done)}"
+        print(f"export c (check), {label}: {shown}")
+
+
 def main(argv: list[str]) -> int:
-    commands = {"lab": lab}
+    commands = {"lab": lab, "bits": bits}
     return run_commands(__doc__, commands, argv, cpu=sys.stderr)
 
 
