@@ -1,10 +1,12 @@
 """Data in (stop 86, data86): the order a lab file settled and a status word, carried by the
-model.
+model; the folder-wide date check without reading whole files.
 
 Usage (from the repository root, ``PYTHONPATH=<tree>/src``: the code measured is that tree's)::
 
     python benchmarks/bench_data86.py lab ROOT       # (a) an en-GB Scope View folder, seed 9006
     python benchmarks/bench_data86.py bits ROOT      # (b) a PLC status word, seeds 9007 / 9008
+    python benchmarks/bench_data86.py write ROOT [ROWS]   # (c) two folders of large exports, 9009
+    python benchmarks/bench_data86.py check ROOT     # (c) CPU of the folder-wide date check
 
 ``lab`` (a): ``ROOT/rig``, three runs of a spindle warm-up as an en-GB PC's TwinCAT Scope View
 exports them (``;``, decimal commas, cp1252, absolute times ``dd/mm/yyyy HH:MM:SS.fff``; seed
@@ -70,6 +72,44 @@ E_dX 1.0141 µm (both).  With the key: replay 1.0141, the pack of run1's 360 row
   data.bits out (the model's is read) or give the model's".
 
 Verdict (no bar): KEPT.
+
+``write`` / ``check`` (c): the folder-wide check (``plain.lab_dayfirst``, run by every read of a
+folder with ``data.dayfirst`` unset, by ``init`` and now by ``slashed_time``) read each lab
+file's whole text and looked at every date in it: 69 MB for ``may`` (24 exports of 20 000 rows,
+2.9 MB each), 35 MB for ``early``.  The rule: a file's dates run forward (its reader refuses a
+time that goes back), so a file whose first and last dates are one is that date throughout (its
+head and its tail read, not its middle); any other file is read from its start only until its
+dates say an order (a day past 12, or a run one order alone reads), where the folder's decision
+can no longer change (an order impossible on a part of a file is impossible on all of it).
+
+The bar (written before scoring): on both folders the check says the same (order, file, date,
+run) as the whole-text check of 37409ee5 (this branch before the rule); its CPU (the least of
+3) at most 0.2 x that check's on each folder.  Trees alternated, the whole-text one first.
+
+Before (2026-12-04, measured before the rule was written; CPU s, the least of 3, two rounds):
+main 14a3bd50: may 1.159 / 1.174 (said day first, Scope_13.csv's '13/05/2027'), early 0.590 /
+0.595 (said nothing: main does not settle by a run); 37409ee5: may 1.200 / 1.190 (the same),
+early 0.595 / 0.608 (day first, Scope_06.csv's '07/05/2027', its run).
+
+Scored (2026-12-04, 37409ee5 -> fix/data86, ``write /tmp/data86/c`` (69 MB / 35 MB), ``check``;
+two rounds, 37409ee5 first; CPU s, the least of 3)
+---------------------------------------------------------------------------------------------
+::
+
+  folder  said (both trees)                                   whole text      -> read as needed
+  may     day first, Scope_13.csv's '13/05/2027'              1.164  1.209    -> 0.109  0.105
+  early   day first, Scope_06.csv's '07/05/2027' (its run)    0.594  0.607    -> 0.052  0.048
+
+The same decision on both folders; the check's CPU 0.09 x (may) and 0.08 x (early) the
+whole-text one's (main's: 1.16 / 0.59, the same reading without the run): bar met, KEPT.  What
+is read: of a morning's export (the 13th's and later alike, their one date past 12) its first
+and last 64 KiB, one date at both ends; of the night run, its text a MiB at a time up to its
+midnight (2 h into a 5.5 h file).  (A first cut left the file at its end where it was
+no larger than 4 x 64 KiB: every small file said nothing; tests/shell/test_data86.py's small
+records caught it before scoring.)  A catman or LabVIEW file, whose dates are in its header (and
+a LabVIEW segment's), holds no date in its tail: read from its start until its dates say an
+order, whole where they say none, as before.  tests/shell/test_data86.py counts what is read
+(< 0.3 of the bytes of a morning and a 13th's / a night's export; before: every byte).
 """
 
 from __future__ import annotations
@@ -84,6 +124,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 from _cli import made_folder, run_commands
+from cpu import cpu_seconds
 
 
 def scope_export(path: Path, rng: np.random.Generator, start: dt.datetime, rows: int,
@@ -288,8 +329,47 @@ def bits(root: str) -> None:
         print(f"export c (check), {label}: {shown}")
 
 
+FOLDERS = {"may": [dt.datetime(2027, 5, d, 7) for d in range(1, 25)],
+           "early": [dt.datetime(2027, 5, d, 22 if d == 6 else 7) for d in range(1, 13)]}
+
+
+def write(root: str, rows: str = "20000") -> None:
+    """(c) Two folders of large Scope View exports (en-GB, as :func:`scope_export` writes them,
+    every second, ``ROWS`` rows each; one generator, seed 9009): ``may``, 24 runs from the 1st
+    to the 24th of May at 07:00 (the 13th's and later say day first by their day); ``early``,
+    12 runs from the 1st to the 12th, the 6th's from 22:00 across midnight (no day or month past
+    12: that run alone says the order)."""
+    rng = np.random.default_rng(9009)
+    for name, starts in FOLDERS.items():
+        folder = made_folder(str(Path(root) / name))
+        for k, start in enumerate(starts, start=1):
+            scope_export(folder / f"Scope_{k:02d}.csv", rng, start, int(rows), period_s=1.0,
+                         run=k % 4)
+        size = sum(f.stat().st_size for f in folder.iterdir())
+        print(f"{folder}: {len(starts)} files, {size / 1e6:.0f} MB")
+
+
+def check(root: str) -> None:
+    """(c) Per folder of :func:`write`, the CPU (user + sys, the least of 3) of the folder-wide
+    check (``plain.lab_dayfirst``: the order one file's dates say for all), and what it said."""
+    from thermocomp.core.io.plain import lab_dayfirst
+
+    for name in FOLDERS:
+        files = sorted((Path(root) / name).glob("*.csv"))
+        times = []
+        for _ in range(3):
+            start = cpu_seconds()
+            said = lab_dayfirst(files, "cp1252")
+            times.append(cpu_seconds() - start)
+        shown = "nothing" if said is None else (
+            f"day first={said[0]}, {said[1].name}'s {said[2]!r}"
+            + (" (its run)" if getattr(said, "run", False) else ""))
+        print(f"{name}: check {min(times):.3f} s CPU (of {', '.join(f'{t:.3f}' for t in times)}),"
+              f" said {shown}")
+
+
 def main(argv: list[str]) -> int:
-    commands = {"lab": lab, "bits": bits}
+    commands = {"lab": lab, "bits": bits, "write": write, "check": check}
     return run_commands(__doc__, commands, argv, cpu=sys.stderr)
 
 

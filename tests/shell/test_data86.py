@@ -120,3 +120,48 @@ def test_a_catman_records_day_past_12_travels_with_its_served_model(tmp_path):
     path = _gb_folder(tmp_path / "rig", days=(12, 13)) / "SP_T1.TXT"
     deployed = _served(tmp_path, path, "data.roles.error=[MCS*]", "data.encoding=cp1252")
     assert deployed.slashed_ == "%d/%m/%Y %H:%M:%S"
+
+
+@pytest.mark.parametrize("starts, said", [
+    ((dt.datetime(2027, 5, 3, 7), dt.datetime(2027, 5, 13, 7)), ("Scope_2.csv", "13/05/2027", False)),
+    ((dt.datetime(2027, 5, 3, 7), dt.datetime(2027, 5, 4, 23)), ("Scope_2.csv", "05/05/2027", True)),
+])
+def test_the_folder_check_reads_only_what_it_needs(tmp_path, monkeypatch, starts, said):
+    """The order a folder's files say (a 13th's day; a run across midnight 2 h into the file),
+    found reading a morning's head and tail and the night's text up to its midnight, not every
+    file whole (before: every byte of every file read and looked at)."""
+    import builtins
+
+    from thermocomp.core.io import dayfirst
+    from thermocomp.core.io.plain import lab_dayfirst
+
+    root = tmp_path / "rig"
+    root.mkdir()
+    rng = np.random.default_rng(9010)
+    for run, start in enumerate(starts, start=1):
+        scope_export(root / f"Scope_{run}.csv", rng, start, 20_000, period_s=1.0, run=run)
+    read = []
+
+    class Counted:                     # a file whose reads are counted (bytes or characters)
+        def __init__(self, f):
+            self.f = f
+
+        def read(self, *size):
+            out = self.f.read(*size)
+            read.append(len(out))
+            return out
+
+        def __getattr__(self, name):
+            return getattr(self.f, name)
+
+        def __enter__(self):
+            return self
+
+        def __exit__(self, *exc):
+            self.f.close()
+
+    monkeypatch.setattr(dayfirst, "open", lambda *a, **kw: Counted(builtins.open(*a, **kw)),
+                        raising=False)
+    found = lab_dayfirst(sorted(root.iterdir()), "cp1252")
+    assert (found.day_first, found.file.name, found.date, found.run) == (True, *said)
+    assert sum(read) < 0.3 * sum(f.stat().st_size for f in root.iterdir())

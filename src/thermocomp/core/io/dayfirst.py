@@ -18,6 +18,7 @@ the model carries it: :func:`thermocomp.shell.source.slashed_time`).
 
 from __future__ import annotations
 
+import codecs
 import re
 from collections.abc import Callable, Sequence
 from pathlib import Path
@@ -183,8 +184,8 @@ def record_dayfirst(files, dated: Callable[[Path], bool], encoding: str = "utf-8
     """The order one file of a record's says, for all its files (a catman folder whose tests of
     the 13th say month first, the 3rd's alike): by a field past 12, else (data86) by the run of
     its dates, as a CSV table's (:func:`run_order`: a Scope View export across midnight); None
-    where none says one.  ``dated``: a file read by a reader of its own dates.  A file's
-    distinct dates are looked at, once each (a large export's are a few).
+    where none says one.  ``dated``: a file read by a reader of its own dates.  Each file is
+    read only as far as it must be (:func:`_file_says`).
 
     Raises
     ------
@@ -193,20 +194,9 @@ def record_dayfirst(files, dated: Callable[[Path], bool], encoding: str = "utf-8
     """
     said: dict[bool, Said] = {}
     for path in files:
-        if not dated(path):
-            continue
-        with open(path, encoding=encoding, errors="replace") as f:
-            dates = list(dict.fromkeys(_ANY.findall(f.read())))    # (a file's few, in order)
-        a, b = fields(dates)
-        for date, x, y in zip(dates, a, b):
-            if (x > 12) != (y > 12):
-                said.setdefault(bool(x > 12), Said(bool(x > 12), Path(path), date))
-        if len(dates) > 1 and not ((a > 12) | (b > 12)).any():
-            try:
-                order, at = run_order(pd.Series(dates), _DATES, path, "")
-            except ContractError:       # (no run settles it: the file's reader says so)
-                continue
-            said.setdefault(order, Said(order, Path(path), dates[at], run=True))
+        if dated(path):
+            for one in _file_says(Path(path), encoding):
+                said.setdefault(one.day_first, one)
     if len(said) == 2:
         day, month = said[True], said[False]
         raise ContractError(f"date {day} is day first, but file {month.file}'s {month} month "
@@ -214,3 +204,60 @@ def record_dayfirst(files, dated: Callable[[Path], bool], encoding: str = "utf-8
                             f"{KEY}=true|false to the one the PC wrote, or read each as a record "
                             "of its own", file=day.file)
     return next(iter(said.values()), None)
+
+
+_ENDS = 1 << 16        # bytes of a file's head and of its tail, looked at first
+_BLOCK = 1 << 20       # then its text from the start, a block at a time
+
+
+def _file_says(path: Path, encoding: str) -> list[Said]:
+    """What the dates of the lab file ``path`` say (:func:`_dates_say`), read only as far as
+    needed (data86: the whole text of every file was read): a file's dates run forward (its
+    reader refuses a time that goes back), so one whose head and tail hold one date is that
+    date throughout; any other is read from its start until its dates say an order, which the
+    rest can no longer change (an order a part of the file rules out, the whole rules out)."""
+    with open(path, "rb") as f:
+        size = f.seek(0, 2)
+        if size > 4 * _ENDS:
+            f.seek(0)
+            head = _ANY.findall(f.read(_ENDS).decode(encoding, "replace"))
+            f.seek(size - _ENDS - (size - _ENDS) % 4)      # (a UTF-16 text's code units)
+            tail = _ANY.findall(f.read().decode(encoding, "replace"))
+            if head and tail and len(ends := set(head + tail)) == 1:
+                return _dates_say(path, list(ends)) or []
+        f.seek(0)
+        decoder = codecs.getincrementaldecoder(encoding)("replace")
+        dates: dict[str, None] = {}
+        text = ""
+        while True:
+            block = f.read(_BLOCK)
+            text += decoder.decode(block, final=not block)
+            cut = text.rfind("\n") + 1 if block else len(text)      # (whole lines only)
+            new = [d for d in dict.fromkeys(_ANY.findall(text, 0, cut)) if d not in dates]
+            text = text[cut:]
+            if new:
+                dates.update(dict.fromkeys(new))
+                said = _dates_say(path, list(dates))
+                if said is not None:
+                    return said
+            if not block:
+                return []
+
+
+def _dates_say(path: Path, dates: list[str]) -> list[Said] | None:
+    """The orders a file's distinct ``dates`` (in its order) say: by a field past 12 (both: the
+    file's reader refuses it), else by their run (:func:`run_order`); ``[]`` where they rule
+    out both orders (its reader refuses), None where either still reads them."""
+    a, b = fields(dates)
+    said = {}
+    for date, x, y in zip(dates, a, b):
+        if (x > 12) != (y > 12):
+            said.setdefault(bool(x > 12), Said(bool(x > 12), path, date))
+    if said or len(dates) < 2:
+        return list(said.values()) or None
+    cells = pd.Series(dates)
+    broken = {order: _broken(cells, order, _DATES) for order in (True, False)}
+    possible = [order for order, at in broken.items() if at is None]
+    if len(possible) == 2:
+        return None
+    return [Said(possible[0], path, dates[broken[not possible[0]]], run=True)] if possible else []
