@@ -99,6 +99,23 @@ def test_a_scope_export_piped_in_reads_in_the_order_its_record_settled(tmp_path,
     assert said["E_Tracker_dX"]["n_samples"] == 240         # (the export's every row)
 
 
+def test_a_piped_export_saying_the_other_order_is_refused_naming_its_date(tmp_path, monkeypatch,
+                                                                          capsys):
+    """An en-US PC's export of the 13th (``05/13/2027``) piped into the model of the en-GB
+    night record: refused naming the date and its line (no reading in an order it rules out)."""
+    from conftest import refused
+
+    path = _night_record(tmp_path)
+    us = tmp_path / "us.csv"
+    scope_export(us, np.random.default_rng(9010), dt.datetime(2027, 5, 13, 7), 40)
+    text = us.read_bytes().decode("cp1252").replace("13/05/2027", "05/13/2027")
+    monkeypatch.setattr("sys.stdin", io.StringIO(text))
+    refused(["monitor", f"data.path={path}", "data.test_fraction=0.5", *KEYS, *FAST,
+             "monitor.input=-", f"out={tmp_path / 'pipe'}"], capsys,
+            "file <stdin>, line 2: date '05/13/2027' says its dates with slashes are month "
+            "first, but the record the model was trained on says day first")
+
+
 def test_the_exported_stream_reads_the_labs_rows_in_the_order_its_record_settled(tmp_path):
     """``TC_SLASHED`` 1 (before: 0, the compiled stream refused the lab's dates as no time)."""
     path = _night_record(tmp_path)

@@ -224,7 +224,7 @@ def _file_says(path: Path, encoding: str) -> list[Said]:
             f.seek(size - _ENDS - (size - _ENDS) % 4)      # (a UTF-16 text's code units)
             tail = _ANY.findall(f.read().decode(encoding, "replace"))
             if head and tail and len(ends := set(head + tail)) == 1:
-                return _dates_say(path, list(ends)) or []
+                return dates_say(path, list(ends)) or []
         f.seek(0)
         decoder = codecs.getincrementaldecoder(encoding)("replace")
         dates: dict[str, None] = {}
@@ -237,14 +237,19 @@ def _file_says(path: Path, encoding: str) -> list[Said]:
             text = text[cut:]
             if new:
                 dates.update(dict.fromkeys(new))
-                said = _dates_say(path, list(dates))
+                said = dates_say(path, list(dates))
                 if said is not None:
                     return said
             if not block:
                 return []
 
 
-def _dates_say(path: Path, dates: list[str]) -> list[Said] | None:
+def text_says(text: str, source) -> list[Said] | None:
+    """:func:`dates_say` of the distinct dates with slashes of ``text`` (a stream's)."""
+    return dates_say(Path(source), list(dict.fromkeys(_ANY.findall(text))))
+
+
+def dates_say(path: Path, dates: list[str]) -> list[Said] | None:
     """The orders a file's distinct ``dates`` (in its order) say: by a field past 12 (both: the
     file's reader refuses it), else by their run (:func:`run_order`); ``[]`` where they rule
     out both orders (its reader refuses), None where either still reads them."""
