@@ -211,7 +211,7 @@ _BLOCK = 1 << 20       # then its text from the start, a block at a time
 
 
 def _file_says(path: Path, encoding: str) -> list[Said]:
-    """What the dates of the lab file ``path`` say (:func:`_dates_say`), read only as far as
+    """What the dates of the lab file ``path`` say (:func:`dates_say`), read only as far as
     needed (data86: the whole text of every file was read): a file's dates run forward (its
     reader refuses a time that goes back), so one whose head and tail hold one date is that
     date throughout; any other is read from its start until its dates say an order, which the
@@ -220,9 +220,12 @@ def _file_says(path: Path, encoding: str) -> list[Said]:
         size = f.seek(0, 2)
         if size > 4 * _ENDS:
             f.seek(0)
-            head = _ANY.findall(f.read(_ENDS).decode(encoding, "replace"))
+            head = f.read(_ENDS).decode(encoding, "replace")
             f.seek(size - _ENDS - (size - _ENDS) % 4)      # (a UTF-16 text's code units)
-            tail = _ANY.findall(f.read().decode(encoding, "replace"))
+            tail = f.read().decode(encoding, "replace")
+            # (whole lines only: a date cut in two is none)
+            head, tail = (_ANY.findall(t) for t in (head[:head.rfind("\n") + 1],
+                                                    tail[tail.find("\n") + 1:]))
             if head and tail and len(ends := set(head + tail)) == 1:
                 return dates_say(path, list(ends)) or []
         f.seek(0)
