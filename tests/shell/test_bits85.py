@@ -2,7 +2,9 @@
 deployed as scored (bits85): the served model takes the lab's own rows, the word in them, and
 decodes it as the reader did (the declaration travels with the model, as its column names do);
 the exported ``stream.c`` reads each bit as a column of its own, as ``thermocomp rows`` writes
-them, and refuses the raw word naming it, its bits and ``thermocomp rows``."""
+them, and refuses the raw word naming it, its bits and ``thermocomp rows``; ``replay`` and
+``export`` of the registered model decode the word by its declaration where no data.bits is given
+(data86), and refuse one given that is not the model's."""
 
 from __future__ import annotations
 
@@ -126,12 +128,48 @@ def test_the_c_stream_takes_the_rows_as_served_and_refuses_the_word_by_name(prom
     assert "as thermocomp rows writes them" in word.stderr
 
 
-def test_a_replay_without_the_declaration_names_the_models_key(promoted, capsys):
-    """The registered model replayed on a data config without data.bits (the word read as one
-    number, S_Status): refused naming the key the model was fitted with; before, its bits only."""
+def _replayed(promoted, name: str, *data: str) -> float:
+    out = promoted["root"] / name
+    assert main(["replay", *data, f"replay.model={promoted['model_uri']}",
+                 f"tracking_uri={promoted['uri']}", f"out={out}"]) == 0
+    return json.loads((out / "replay.json").read_text())["targets"]["E_dX"]["rmse"]
+
+
+def test_a_replay_without_the_declaration_decodes_the_word_as_the_model_declares_it(promoted):
+    """The registered model replayed on a data config without data.bits: the word decoded by
+    the declaration the model carries, as with the key (data86; before: refused, "lacks 3
+    columns the deployed model reads ... give data.bits={Status: ...}")."""
     data = [d for d in promoted["data"] if not d.startswith("++data.bits")]
-    refused(["replay", *data, f"replay.model={promoted['model_uri']}",
-             f"tracking_uri={promoted['uri']}", f"out={promoted['root'] / 'replay'}"], capsys,
-            "lacks 3 columns the deployed model reads",
-            "bits of the PLC status word 'Status' the model was fitted with: give data.bits="
-            "{Status: {0: machine_on, 1: spindle_on, 2: coolant_on}}")
+    assert _replayed(promoted, "replay-bare", *data) == _replayed(promoted, "replay-keyed",
+                                                                   *promoted["data"])
+
+
+@pytest.mark.parametrize("stage", ["replay", "export"])
+def test_a_declaration_given_that_is_not_the_models_is_refused_naming_both(promoted, capsys,
+                                                                            stage):
+    data = [d for d in promoted["data"] if not d.startswith("++data.bits")]
+    # its bits 1 and 2 swapped: every state the model reads is there, each the other's (before:
+    # read so, the spindle taken for the coolant without a word)
+    other = [*data, "++data.bits.Status.0=machine_on", "++data.bits.Status.1=coolant_on",
+             "++data.bits.Status.2=spindle_on"]
+    extra = ["export.format=c", "export.check=true"] if stage == "export" else []
+    refused([stage, *other, f"{stage}.model={promoted['model_uri']}",
+             f"tracking_uri={promoted['uri']}", *extra,
+             f"out={promoted['root'] / ('other-' + stage)}"], capsys,
+            f"data.bits={{Status: {{0: machine_on, 1: coolant_on, 2: spindle_on}}}} is not the "
+            f"declaration {stage}.model={promoted['model_uri']} was fitted with, data.bits="
+            "{Status: {0: machine_on, 1: spindle_on, 2: coolant_on}}: a status word is read as "
+            "the model reads it")
+
+
+def test_the_check_pack_of_an_export_without_the_declaration_decodes_the_word(promoted):
+    """``export export.check=true`` of the registered model, no data.bits: its pack holds the
+    test run, the word decoded as the model declares it (before: refused, "lacks 3 columns")."""
+    data = [d for d in promoted["data"] if not d.startswith("++data.bits")]
+    out = promoted["root"] / "c-bare"
+    assert main(["export", *data, f"export.model={promoted['model_uri']}",
+                 f"tracking_uri={promoted['uri']}", "export.format=c", "export.check=true",
+                 f"out={out}"]) == 0
+    pack = json.loads((out / "check" / "check.json").read_text())
+    first = pack["campaigns"][0]
+    assert (first["campaign"], first["rows"]) == ("run3", len(promoted["lab"]))

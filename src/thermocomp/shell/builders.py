@@ -204,3 +204,32 @@ def _registered(cfg: DictConfig, source: str, path, key: str) -> tuple[object, s
         raise ConfigError(f"{key}={source}: cannot load it "
                           f"({' '.join(str(exc).split())[:200]})") from None
     return deployed, source, model_family(plain(deployed).compensator)
+
+
+def with_model_bits(cfg: DictConfig, deployed, key: str) -> DictConfig:
+    """``cfg`` reading the record as the registered model ``deployed`` (``key``: where it was
+    given) was fitted: its PLC status words decoded by the declaration it carries (``bits_``,
+    bits85) where ``data.bits`` is not given (data86: ``replay`` and ``export`` refused, "give
+    data.bits=..."); a ``data.bits`` given that declares otherwise is refused naming both."""
+    from ..core.io.bits import parsed as parsed_bits
+
+    carried = getattr(deployed, "bits_", None) or {}
+    given = parsed_bits(cfg.data.get("bits"))
+    if not carried or given == carried:
+        return cfg
+    if given:
+        raise ConfigError(f"data.bits={_bits_text(given)} is not the declaration {key} was "
+                          f"fitted with, data.bits={_bits_text(carried)}: a status word is read "
+                          "as the model reads it; leave data.bits out (the model's is read) or "
+                          "give the model's")
+    say(f"data.bits: the PLC status word(s) decoded as {key} declares them, "
+        f"{_bits_text(carried)}")
+    cfg = cfg.copy()
+    OmegaConf.update(cfg, "data.bits", {w: {int(b): n for b, n in named.items()}
+                                        for w, named in carried.items()}, force_add=True)
+    return cfg
+
+
+def _bits_text(bits: dict) -> str:
+    return "{" + "; ".join(f"{w}: {{{', '.join(f'{b}: {n}' for b, n in named.items())}}}"
+                           for w, named in bits.items()) + "}"

@@ -199,11 +199,14 @@ def slashed_time(cfg: DictConfig, ds) -> str | None:
     """The strptime format the record ``data.path`` (``ds`` as read) reads its dates with slashes
     in: ``data.time`` where it is one, else (``auto``) the order every row of its files says or
     their runs settle, as its read took it (:func:`~thermocomp.core.io.slashed.record_order`),
-    ``data.dayfirst``'s where it is set (dates85); None where there is none.
+    ``data.dayfirst``'s where it is set (dates85), else the order a catman, Scope View or LabVIEW
+    file of the record settled (:func:`~thermocomp.core.io.plain.lab_dayfirst`, data86); None
+    where there is none.
     What a stream of the lab's rows reads them in (``monitor.input=-``, the served model, the
     exported ``TC_SLASHED``): a stream cannot see the future (code71)."""
     from ..core.io.contract import ContractError
     from ..core.io.dayfirst import ORDER
+    from ..core.io.plain import lab_dayfirst
     from ..core.io.slashed import record_order
 
     given = str(cfg.data.get("time") or "auto")
@@ -217,6 +220,8 @@ def slashed_time(cfg: DictConfig, ds) -> str | None:
     opts = io.ReadOptions.from_cfg(data_options(cfg))
     try:
         order = record_order(files, opts)
+        if order is None and opts.dayfirst is None and (said := lab_dayfirst(files, opts.encoding)):
+            opts = dataclasses.replace(opts, dayfirst=said.day_first)   # (data86) as the read
     except (ContractError, OSError, ValueError):     # (no text file: nothing said by its cells)
         order = None
     if opts.dayfirst is not None and (order is None or order.day_first != opts.dayfirst):

@@ -11,15 +11,18 @@ where the file's dates, read so, never go back and never step 27 days or more at
 the date turns a day in one order it turns a month in the other: a run of samples across
 midnight tells); one order possible is taken, both (a file whose dates are one day's) are
 refused naming the file, the column, the row and ``data.dayfirst``: never a guess.  A folder's
-files are one record, read in one order: a date past 12 in any of them decides for all
-(:func:`record_dayfirst`; ``init`` writes it as ``data.dayfirst``).
+files are one record, read in one order: a date past 12 in any of them decides for all, or the
+run of one's dates (data86) (:func:`record_dayfirst`; ``init`` writes it as ``data.dayfirst``, and
+the model carries it: :func:`thermocomp.shell.source.slashed_time`).
 """
 
 from __future__ import annotations
 
+import codecs
 import re
 from collections.abc import Callable, Sequence
 from pathlib import Path
+from typing import NamedTuple
 
 import numpy as np
 import pandas as pd
@@ -160,33 +163,109 @@ def parse_with(forms: Sequence[str]) -> Callable[[pd.Series, bool], pd.Series]:
 
 # a date with slashes in a lab file's text (no more digits or slashes on either side)
 _ANY = re.compile(r"(?<![\d/])\d{1,2}/\d{1,2}/\d{2,4}(?![\d/])")
+_DATES = parse_with(("%m/%d/%Y", "%m/%d/%y"))
+# how a run says its order: where the date turns a day in one order it turns a month in the other
+RUN_SAID = ": a day on read so, a month on or back read the other way"
 
 
-def record_dayfirst(files, dated: Callable[[Path], bool], encoding: str = "utf-8"
-                    ) -> tuple[bool, Path, str] | None:
-    """The order one file of a record's says by a field past 12, for all its files (a catman
-    folder whose tests of the 13th say month first, the 3rd's alike): ``(day_first, file,
-    date)``, None where none says one.  ``dated``: a file read by a reader of its own dates.
-    A file's distinct dates are looked at, once each (a large export's are a few).
+class Said(NamedTuple):
+    """The order a file of a record says for all its files (:func:`record_dayfirst`)."""
+
+    day_first: bool
+    file: Path
+    date: str            # the date that says it
+    run: bool = False    # said by the file's run of dates (``date``: where the other breaks it)
+
+    def __str__(self) -> str:
+        return f"{self.date!r}" + (f" (its run{RUN_SAID})" if self.run else "")
+
+
+def record_dayfirst(files, dated: Callable[[Path], bool], encoding: str = "utf-8") -> Said | None:
+    """The order one file of a record's says, for all its files (a catman folder whose tests of
+    the 13th say month first, the 3rd's alike): by a field past 12, else (data86) by the run of
+    its dates, as a CSV table's (:func:`run_order`: a Scope View export across midnight); None
+    where none says one.  ``dated``: a file read by a reader of its own dates.  Each file is
+    read only as far as it must be (:func:`_file_says`).
 
     Raises
     ------
     ContractError
         Where one file says day first and another month first, naming both.
     """
-    said: dict[bool, tuple[Path, str]] = {}
+    said: dict[bool, Said] = {}
     for path in files:
-        if not dated(path):
-            continue
-        with open(path, encoding=encoding, errors="replace") as f:
-            dates = list(dict.fromkeys(_ANY.findall(f.read())))    # (a file's few, in order)
-        for date, a, b in zip(dates, *fields(dates)):
-            if (a > 12) != (b > 12):
-                said.setdefault(bool(a > 12), (Path(path), date))
+        if dated(path):
+            for one in _file_says(Path(path), encoding):
+                said.setdefault(one.day_first, one)
     if len(said) == 2:
-        (day, d), (month, m) = said[True], said[False]
-        raise ContractError(f"date {d!r} is day first, but file {month}'s {m!r} month first: "
-                            f"the files of one record are read in one order; set {KEY}=true|false "
-                            "to the one the PC wrote, or read each as a record of its own",
-                            file=day)
-    return next(((order, *where) for order, where in said.items()), None)
+        day, month = said[True], said[False]
+        raise ContractError(f"date {day} is day first, but file {month.file}'s {month} month "
+                            f"first: the files of one record are read in one order; set "
+                            f"{KEY}=true|false to the one the PC wrote, or read each as a record "
+                            "of its own", file=day.file)
+    return next(iter(said.values()), None)
+
+
+_ENDS = 1 << 16        # bytes of a file's head and of its tail, looked at first
+_BLOCK = 1 << 20       # then its text from the start, a block at a time
+
+
+def _file_says(path: Path, encoding: str) -> list[Said]:
+    """What the dates of the lab file ``path`` say (:func:`dates_say`), read only as far as
+    needed (data86: the whole text of every file was read): a file's dates run forward (its
+    reader refuses a time that goes back), so one whose head and tail hold one date is that
+    date throughout; any other is read from its start until its dates say an order, which the
+    rest can no longer change (an order a part of the file rules out, the whole rules out)."""
+    with open(path, "rb") as f:
+        size = f.seek(0, 2)
+        if size > 4 * _ENDS:
+            f.seek(0)
+            head = f.read(_ENDS).decode(encoding, "replace")
+            f.seek(size - _ENDS - (size - _ENDS) % 4)      # (a UTF-16 text's code units)
+            tail = f.read().decode(encoding, "replace")
+            # (whole lines only: a date cut in two is none)
+            head, tail = (_ANY.findall(t) for t in (head[:head.rfind("\n") + 1],
+                                                    tail[tail.find("\n") + 1:]))
+            if head and tail and len(ends := set(head + tail)) == 1:
+                return dates_say(path, list(ends)) or []
+        f.seek(0)
+        decoder = codecs.getincrementaldecoder(encoding)("replace")
+        dates: dict[str, None] = {}
+        text = ""
+        while True:
+            block = f.read(_BLOCK)
+            text += decoder.decode(block, final=not block)
+            cut = text.rfind("\n") + 1 if block else len(text)      # (whole lines only)
+            new = [d for d in dict.fromkeys(_ANY.findall(text, 0, cut)) if d not in dates]
+            text = text[cut:]
+            if new:
+                dates.update(dict.fromkeys(new))
+                said = dates_say(path, list(dates))
+                if said is not None:
+                    return said
+            if not block:
+                return []
+
+
+def text_says(text: str, source) -> list[Said] | None:
+    """:func:`dates_say` of the distinct dates with slashes of ``text`` (a stream's)."""
+    return dates_say(Path(source), list(dict.fromkeys(_ANY.findall(text))))
+
+
+def dates_say(path: Path, dates: list[str]) -> list[Said] | None:
+    """The orders a file's distinct ``dates`` (in its order) say: by a field past 12 (both: the
+    file's reader refuses it), else by their run (:func:`run_order`); ``[]`` where they rule
+    out both orders (its reader refuses), None where either still reads them."""
+    a, b = fields(dates)
+    said = {}
+    for date, x, y in zip(dates, a, b):
+        if (x > 12) != (y > 12):
+            said.setdefault(bool(x > 12), Said(bool(x > 12), path, date))
+    if said or len(dates) < 2:
+        return list(said.values()) or None
+    cells = pd.Series(dates)
+    broken = {order: _broken(cells, order, _DATES) for order in (True, False)}
+    possible = [order for order, at in broken.items() if at is None]
+    if len(possible) == 2:
+        return None
+    return [Said(possible[0], path, dates[broken[not possible[0]]], run=True)] if possible else []

@@ -682,7 +682,7 @@ def _recorded_time(path: Path, files: list[Path], opts: ReadOptions) -> ReadOpti
         return replace(opts, order_in_rows=opts.time == "auto" and rows_tell(path, opts))
     if opts.dayfirst is None and (said := lab_dayfirst(files, opts.encoding)):
         logger.info(f"{path.name}: dates with slashes read {WAY[said[0]]}, as {said[1].name}'s "
-                    f"{said[2]!r} says, in every file (data.dayfirst={str(said[0]).lower()})")
+                    f"{said} says, in every file (data.dayfirst={str(said[0]).lower()})")
         opts = replace(opts, dayfirst=said[0])
     return read_in(record_order(files, opts), opts, path, files[0])
 

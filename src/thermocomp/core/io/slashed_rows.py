@@ -16,7 +16,7 @@ import pyarrow.compute as pc
 
 from ...base.log import logger
 from .contract import ContractError
-from .dayfirst import KEY, ORDER, WAY, fields, parts_fields, run_order, swapped
+from .dayfirst import KEY, ORDER, RUN_SAID, WAY, fields, parts_fields, run_order, swapped
 from .timestamps import slashed_format
 
 
@@ -79,10 +79,6 @@ def read_in(order: Order | None, opts, record: Path, first: Path):
                     f"order {order.file.name}'s data row {order.row} says ({order.value!r}"
                     + (RUN_SAID if order.run else "") + ")")
     return replace(opts, time=order.format)
-
-
-# how a run says its order: where the date turns a day in one order it turns a month in the other
-RUN_SAID = ": a day on read so, a month on or back read the other way"
 
 
 def settled(read: list, dayfirst: bool | None, located=None) -> Order | None:

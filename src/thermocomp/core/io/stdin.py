@@ -31,6 +31,7 @@ from .catman import catman_as_csv, is_catman_text
 from .clocksets import undone
 from .contract import ContractError
 from .csvline import EMPTY, SPLIT, split_line
+from .dayfirst import ORDER, WAY, text_says
 from .derived import on_frame
 from .encoding import UTF8, check_text, text_codec
 from .footer import TAIL_BYTES, footer_of
@@ -163,7 +164,7 @@ def _read_runs(text: str, columns: list[str], opts, recorded: str | None = None,
     text = text.lstrip("\ufeff").replace(UNICODE_MINUS, "-")
     as_csv = next((convert for is_export, convert in _TEXT_EXPORTS if is_export(text)), None)
     if as_csv is not None:          # a logger's export piped in as written, its rows as CSV
-        text = (as_csv(text, SOURCE, opts.dayfirst) if as_csv in _DATED
+        text = (as_csv(text, SOURCE, _dayfirst(opts.dayfirst, recorded, text)) if as_csv in _DATED
                 else as_csv(text, SOURCE))
         opts = replace(opts, delimiter=",", decimal=".", thousands=None)
     opts = detected(text.splitlines()[:SNIFF_LINES], opts, SOURCE)   # data.delimiter=auto ...
@@ -259,6 +260,24 @@ def _untimed(rows: int, blocks: list | None, period_s: float | None) -> np.ndarr
     for _, start, end in blocks or ():
         row[start:end] -= start
     return row * float(period_s)
+
+
+def _dayfirst(given: bool | None, recorded: str | None, text: str) -> bool | None:
+    """The order a logger's export streamed (``text``) reads its dates with slashes in:
+    ``data.dayfirst``, else the training record's, ``recorded`` (data86: a Scope export of a
+    morning, no day past 12, was refused where the record's night run had settled it); an
+    export whose own dates say the other order is refused naming the date."""
+    if given is not None or not recorded or not recorded.startswith(tuple(ORDER.values())):
+        return given
+    day_first = recorded.startswith(ORDER[True])
+    other = next((s for s in text_says(text, SOURCE) or () if s.day_first != day_first), None)
+    if other is not None:
+        raise ContractError(f"date {other} says its dates with slashes are {WAY[not day_first]}, "
+                            f"but the record the model was trained on says {WAY[day_first]}: a "
+                            "stream is read in its record's order; stream the exports of the PC "
+                            "that wrote the record, or set data.dayfirst", file=SOURCE,
+                            line=text.count("\n", 0, text.find(other.date)) + 1)
+    return day_first
 
 
 def _time_format(time: pd.Series, given: str, recorded: str | None,

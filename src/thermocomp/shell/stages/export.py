@@ -42,7 +42,7 @@ from ...core.io.roles import RUN
 from ...core.io.source import check_streamed_columns
 from ...core.io.timestamps import CLOCK
 from ...core.scoring.evaluation import require_split
-from ..builders import deployable_model, is_registered
+from ..builders import deployable_model, is_registered, with_model_bits
 from ..config.checks import check_config
 from ..model_store import load_model, model_family
 from ..registry import registered_version
@@ -265,6 +265,8 @@ def export(cfg: DictConfig) -> dict:
 
     source, fmt = str(source), str(cfg.export.format)
     deployed, provenance, ds = _deployed(cfg, source, fmt)
+    if ds is None:      # (data86) a registered model's status words: as it declares them
+        cfg = with_model_bits(cfg, deployed, f"export.model={source}")
     stream = plain(deployed)
     left = not_in_code(deployed, fmt)
     # (small72) stream.c computes a derived target's reference from its error columns as the

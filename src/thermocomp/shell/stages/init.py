@@ -357,7 +357,7 @@ def _init(cfg: DictConfig, held: ExitStack) -> dict:
     if given.get("dayfirst") is None and (said := lab_dayfirst(files, given["encoding"])):
         given["dayfirst"] = said[0]            # (dates84: one order for the record's files)
         print(f"{src.name}: dates with slashes read {WAY[said[0]]}, as {said[1].name}'s "
-              f"{said[2]!r} says, in every file: data.dayfirst={str(said[0]).lower()}")
+              f"{said} says, in every file: data.dayfirst={str(said[0]).lower()}")
     # a lab's binary file (a TOB1 table, a TDMS log) converted once for every look and the read
     held.enter_context(converted_once(src if manifest is None else None, given["encoding"],
                                       io.ReadOptions.from_cfg(given).dayfirst))
