@@ -1,0 +1,38 @@
+"""A stranger's lab exports off the happy path (audit86; ``benchmarks/bench_audit86.py`` writes
+the full record): a German Excel export whose speeds are grouped by a point (``6.000``) beside
+decimal commas (``21,18``)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from test_stranger68 import linear_run
+from thermocomp.shell.cli import main
+
+
+def german_export(path: Path, seed: int, speeds: list[str]) -> Path:
+    """A run of linear_run's rows every 60 s as a German Excel writes it: ``;``, decimal commas,
+    a speed column in ``speeds`` (its digits grouped by a point)."""
+    values = linear_run(seed, 1)
+    lines = ["Zeit [s];T Luft [°C];T Spindel [°C];T Lager [°C];dX [µm];dZ [µm];Spindel [1/min]"]
+    for i, row in enumerate(values):
+        cells = [str(60 * i), *(f"{v:.2f}".replace(".", ",") for v in row), speeds[i % len(speeds)]]
+        lines.append(";".join(cells))
+    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    return path
+
+
+def test_init_reads_speeds_grouped_by_a_point_beside_decimal_commas(tmp_path, capsys):
+    # audit86: refused "the decimal mark is ambiguous (cells with ',' and with '.')" before the
+    # thousands separator was looked for: every point groups digits by three, '21,18' and
+    # '0,51' show the comma as the decimal mark (init's rule, own-data.md, initone65)
+    path = german_export(tmp_path / "lauf.csv", 9011, ["6.000", "12.000", "1.500"])
+    assert main(["init", str(path), f"out={tmp_path / 'init'}"]) == 0, capsys.readouterr().err
+    conf = (tmp_path / "init" / "conf" / "data" / "lauf.yaml").read_text()
+    assert "decimal: ','" in conf and "thousands: ." in conf, conf
+    assert "data.thousands='.'" in capsys.readouterr().out
+    # a point that does not group by three still leaves the decimal mark to the user
+    german_export(path, 9011, ["6.000", "12.5"])
+    assert main(["init", str(path), f"out={tmp_path / 'init2'}"]) == 2
+    assert "the decimal mark is ambiguous" in capsys.readouterr().err
+
