@@ -36,3 +36,22 @@ def test_init_reads_speeds_grouped_by_a_point_beside_decimal_commas(tmp_path, ca
     assert main(["init", str(path), f"out={tmp_path / 'init2'}"]) == 2
     assert "the decimal mark is ambiguous" in capsys.readouterr().err
 
+
+
+def test_init_reads_a_folder_whose_runs_two_pcs_exported_each_with_its_own_separators(tmp_path,
+                                                                                      capsys):
+    # audit86: init read every file with the first's separators (`;`, decimal commas) and
+    # refused the UTF-16 TAB file, "set data.delimiter='\t'", which refuses the others; `run`
+    # with data.delimiter=auto reads each file by its own
+    folder = tmp_path / "runs"
+    folder.mkdir()
+    for run in (1, 2):
+        german_export(folder / f"run{run}.csv", 9012 + run, ["6000"])
+    text = german_export(tmp_path / "run3.csv", 9015, ["6000"]).read_text(encoding="utf-8")
+    (folder / "run3.csv").write_text(text.replace(",", ".").replace(";", "\t"), encoding="utf-16")
+    assert main(["init", str(folder), f"out={tmp_path / 'init'}"]) == 0, capsys.readouterr().err
+    assert "each read with its own, data.delimiter=auto" in capsys.readouterr().out
+    conf = (tmp_path / "init" / "conf" / "data" / "runs.yaml").read_text()
+    assert "delimiter: auto" in conf and "decimal: auto" in conf, conf
+    assert main(["run", f"hydra.searchpath=[file://{tmp_path / 'init' / 'conf'}]", "data=runs",
+                 "track=false", "plots=none", f"out={tmp_path / 'out'}"]) == 0
