@@ -6,6 +6,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import pytest
+
 from test_stranger68 import linear_run
 from thermocomp.shell.cli import main
 
@@ -55,3 +57,31 @@ def test_init_reads_a_folder_whose_runs_two_pcs_exported_each_with_its_own_separ
     assert "delimiter: auto" in conf and "decimal: auto" in conf, conf
     assert main(["run", f"hydra.searchpath=[file://{tmp_path / 'init' / 'conf'}]", "data=runs",
                  "track=false", "plots=none", f"out={tmp_path / 'out'}"]) == 0
+
+
+def test_a_manifest_saved_by_excel_with_empty_rows_under_its_campaigns_reads(tmp_path, caplog):
+    # audit86: a manifest kept in Excel (`;`, a BOM) whose rows under the table were touched:
+    # Excel writes them `;;;` and the read refused "campaign id '' is empty" at that row; a
+    # campaign file's row of empty cells is left out, said
+    from thermocomp.core.io import read_dataset
+    from thermocomp.core.io.contract import ContractError
+
+    folder = tmp_path / "runs"
+    folder.mkdir()
+    rows = []
+    for run, split in ((1, "train"), (2, "train"), (3, "test")):
+        german_export(folder / f"r{run}.csv", 9015 + run, ["6000"])
+        rows.append(f"r{run};r{run}.csv;{split}")
+    manifest = folder / "campaigns.csv"
+    manifest.write_bytes("\ufeffcampaign;file;split\r\n".encode() + "\r\n".join(
+        [*rows, ";;", ";;", ""]).encode())
+    opts = {"delimiter": ";", "decimal": ",", "roles": {"error": ["dX", "dZ"]}}
+    ds, _ = read_dataset(folder, opts)
+    assert sorted(ds.campaigns) == ["r1", "r2", "r3"]
+    assert "data rows 4-5 of empty cells" in caplog.text
+    # an empty row among the campaigns is still refused at its row
+    manifest.write_text("campaign;file;split\n" + "\n".join([rows[0], ";;", *rows[1:]]) + "\n")
+    with pytest.raises(ContractError, match="campaign id '' is empty") as refused:
+        read_dataset(folder, opts)
+    assert refused.value.row == 2
+
