@@ -85,3 +85,27 @@ def test_a_manifest_saved_by_excel_with_empty_rows_under_its_campaigns_reads(tmp
         read_dataset(folder, opts)
     assert refused.value.row == 2
 
+
+@pytest.mark.parametrize("rows, fractions, says", [
+    # a train part too short: a larger test fraction leaves it shorter still
+    (10, ["data.test_fraction=0.5", "data.val_fraction=0.4"],
+     "the train part would have 1 sample(s) of the record's 10: at least 2 (lower "
+     "data.val_fraction and data.test_fraction)"),
+    (20, ["data.test_fraction=0.05"], "the test part would have 1 sample(s) of the record's 20: "
+                                      "at least 2 (raise data.test_fraction)"),
+    # no fraction cuts 3 samples into a train and a test part of 2 each
+    (3, [], "the record's 3 samples are too few for 2 parts of at least 2 (train, test)"),
+    (2, [], "the record's 2 samples are too few for 2 parts of at least 2"),
+])
+def test_a_part_too_short_names_the_fraction_that_lengthens_it(tmp_path, capsys, rows, fractions,
+                                                               says):
+    # audit86: a record's train part too short was told "raise data.test_fraction", which
+    # shortens it
+    path = german_export(tmp_path / "kurz.csv", 9017, ["6000"])
+    path.write_text("".join(path.read_text(encoding="utf-8").splitlines(True)[:rows + 1]),
+                    encoding="utf-8")
+    code = main(["run", f"data.path={path}", "data.delimiter=;", "data.decimal=,",
+                 "data.roles.error=[dX, dZ]", "data.test_fraction=0.1", *fractions,
+                 "track=false", "plots=none", f"out={tmp_path / 'out'}"])
+    err = capsys.readouterr().err
+    assert code == 2 and says in err, err
