@@ -109,3 +109,23 @@ def test_a_part_too_short_names_the_fraction_that_lengthens_it(tmp_path, capsys,
                  "track=false", "plots=none", f"out={tmp_path / 'out'}"])
     err = capsys.readouterr().err
     assert code == 2 and says in err, err
+
+
+def test_a_header_written_again_is_refused_without_its_names_said_as_marks(tmp_path, capsys):
+    # audit86: a second export pasted under the first (its header again, dX now in mm): init
+    # said every name of that line a mark for a value not measured, "'dX [mm]' in 1 cell of
+    # number column 'dX [µm]': no number, no digit: ... read as missing", before its read
+    # refused the line as the header written again
+    path = german_export(tmp_path / "lauf.csv", 9018, ["6000"])
+    lines = path.read_text(encoding="utf-8").splitlines()
+    path.write_text("\n".join([*lines, lines[0].replace("dX [µm]", "dX [mm]"), *lines[1:]]) + "\n",
+                    encoding="utf-8")
+    assert main(["init", str(path), f"out={tmp_path / 'init'}"]) == 2
+    said = capsys.readouterr()
+    assert "the file's header written again under its data" in said.err
+    assert "a mark for a value not measured" not in said.out, said.out
+    # a mark in a row of numbers is still found
+    path.write_text("\n".join([*lines[:5], lines[5].replace(";6000", ";---"), *lines[6:]]) + "\n",
+                    encoding="utf-8")
+    assert main(["init", str(path), f"out={tmp_path / 'init2'}"]) == 0
+    assert "'---' in 1 cell of number column 'Spindel [1/min]'" in capsys.readouterr().out
