@@ -129,3 +129,34 @@ def test_a_header_written_again_is_refused_without_its_names_said_as_marks(tmp_p
                     encoding="utf-8")
     assert main(["init", str(path), f"out={tmp_path / 'init2'}"]) == 0
     assert "'---' in 1 cell of number column 'Spindel [1/min]'" in capsys.readouterr().out
+
+
+def test_a_bad_cell_piped_in_with_decimal_commas_is_named_at_its_row(tmp_path):
+    # audit86: a stream with decimal commas read a column holding a bad cell as text, its
+    # commas unread: "column 'T_amb', data row 1: non-numeric value" for a '2x,5' at row 30
+    from dataclasses import replace
+
+    from thermocomp.core.io import ReadOptions
+    from thermocomp.core.io.contract import ContractError
+    from thermocomp.core.io.stdin import stream_campaigns
+
+    lines = german_export(tmp_path / "lauf.csv", 9019, ["6000"]).read_text(
+        encoding="utf-8").splitlines()
+    cells = lines[30].split(";")
+    lines[30] = ";".join([cells[0], "2x,5", *cells[2:]])
+    opts = replace(ReadOptions(), delimiter=";", decimal=",",
+                   roles={"error": ["dX", "dZ"], "ambient": ["T Luft"]})
+    with pytest.raises(ContractError, match="'2x,5' is not a number") as refused:
+        stream_campaigns("\n".join(lines) + "\n", ["T_amb", "T_Spindel"], opts)
+    assert (refused.value.column, refused.value.row) == ("T_amb", 30)
+    # a line of text under the header (a second export's header, another width) too; it was
+    # "'T Spindel [°C]' is not numeric ('20,43')", no row
+    lines[30] = "Zeit [s];T Luft [°C];oops"
+    with pytest.raises(ContractError, match="'T Luft \\[°C\\]' is not a number") as refused:
+        stream_campaigns("\n".join(lines) + "\n", ["T_amb", "T_Spindel"],
+                         replace(opts, roles={"error": ["dX", "dZ"], "ambient": ["T Luft"]}))
+    assert refused.value.row == 30
+    # the rows without it read, the commas as decimal marks
+    lines[30] = ";".join(cells)
+    frames, _ = stream_campaigns("\n".join(lines) + "\n", ["T_amb", "T_Spindel"], opts)
+    assert frames["stdin"]["T_amb"].iloc[29] == float(cells[1].replace(",", "."))
