@@ -4,10 +4,12 @@ decimal commas (``21,18``)."""
 
 from __future__ import annotations
 
+import subprocess
 from pathlib import Path
 
 import pytest
 
+from test_export import built_stream, needs_cc
 from test_stranger68 import linear_run
 from thermocomp.shell.cli import main
 
@@ -160,3 +162,32 @@ def test_a_bad_cell_piped_in_with_decimal_commas_is_named_at_its_row(tmp_path):
     lines[30] = ";".join(cells)
     frames, _ = stream_campaigns("\n".join(lines) + "\n", ["T_amb", "T_Spindel"], opts)
     assert frames["stdin"]["T_amb"].iloc[29] == float(cells[1].replace(",", "."))
+
+
+@needs_cc
+def test_the_compiled_stream_reads_a_header_written_twice_as_the_reader_does(tmp_path, capsys):
+    # audit86: a lab's file with 'T Lager [°C]' twice (different values) is read by run,
+    # replay and monitor as 'T Lager#2 [°C]' (init74), which the model reads; the exported
+    # stream.c refused it, "the header names input T_Lager twice (columns 4 and 5)"
+    path = german_export(tmp_path / "lauf.csv", 9020, ["6000"])
+    lines = path.read_text(encoding="utf-8").splitlines()
+    rows = [ln.split(";") for ln in lines]
+    rows[0].insert(4, rows[0][3])
+    for k, row in enumerate(rows[1:]):
+        row.insert(4, f"{20 + 0.01 * k:.2f}".replace(".", ","))
+    path.write_text("\n".join(";".join(r) for r in rows) + "\n", encoding="utf-8")
+    keys = [f"data.path={path}", "data.delimiter=;", "data.decimal=,", "data.test_fraction=0.2",
+            "data.roles.error=[dX, dZ]", "data.roles.ambient=[T Luft]", "track=false"]
+    assert main(["run", *keys, "plots=none", f"out={tmp_path / 'run'}"]) == 0
+    assert main(["export", *keys, f"export.model={tmp_path / 'run' / 'model.pkl'}",
+                 "export.format=c", f"out={tmp_path / 'code'}"]) == 0
+    stream = built_stream(tmp_path / "code")
+    streamed = subprocess.run([str(stream)], input=path.read_text(encoding="utf-8"), text=True,
+                              capture_output=True)
+    assert streamed.returncode == 0, streamed.stderr
+    # the same rows under the name the reader gives the second column
+    named = path.read_text(encoding="utf-8").replace("T Lager [°C];T Lager [°C]",
+                                                     "T Lager [°C];T Lager#2 [°C]", 1)
+    renamed = subprocess.run([str(stream)], input=named, text=True, capture_output=True)
+    assert renamed.returncode == 0, renamed.stderr
+    assert streamed.stdout == renamed.stdout and len(streamed.stdout.splitlines()) == len(rows)
