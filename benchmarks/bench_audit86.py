@@ -124,7 +124,10 @@ name one, or null for none".  ``lstm`` = mlr and ``hammerstein`` = lagbank to th
 LSTM's early stopping kept the linear law (models.md says so), the Hammerstein powers gave
 nothing over the lags.  On the lathe 9011 (``matrix ... "arx_rf,mlr+denoise=emd,..."``):
 arx_rf 1.4068 / 1.2504 (E_X / E_Y), mlr denoise=emd 2.3642 / 1.4934, lagbank denoise=emd
-1.0884 / 0.7609, run = replay = batch, packs passed; ``adapt.method`` is no key of ``run``
+1.0884 / 0.7609, auto 0.8929 / 0.6848, run = replay = batch, packs passed (plain, ``run``
+alone: mlr 2.1822 / 1.4045, lagbank 1.1121 / 0.7658, hammerstein 0.8929 / 0.6861: auto
+better than mlr on both and within 10 % of the best, hammerstein's, on both);
+``adapt.method`` is no key of ``run``
 (refused naming the groups it composes): ``replay adapt.method=bias`` of the climate room's
 mlr: 16 references, E_X 1.560 -> 1.314, E_Z 2.414 -> 2.246 (2.3 + 0.3 s).
 
