@@ -47,3 +47,21 @@ def test_a_time_starting_again_is_refused_saying_the_logger_restarted(tmp_path):
     assert refused.value.reason == ("time decreases from 240 s (row 5) to 0 s: the time starts "
                                     "again (the logger restarted, or runs joined in one file?): "
                                     "one file per run in a folder reads each as a campaign")
+
+
+def test_a_row_written_out_of_place_is_to_be_sorted_not_cut_as_a_clock_set_back(tmp_path):
+    # audit86: two adjacent rows swapped (a sample a gateway wrote late) were said "the logger's
+    # clock set back ...; sorting the rows would mix its stretches before and after this row:
+    # cut the file at this row into two runs": sorted, they are the logger's regular minutes
+    seconds = [60 * i for i in range(40)]
+    seconds[20], seconds[21] = seconds[21], seconds[20]
+    record(tmp_path / "lab.csv", seconds)
+    with pytest.raises(ContractError) as refused:
+        read_dataset(tmp_path / "lab.csv")
+    assert refused.value.row == 22
+    assert refused.value.reason.endswith("the rows are not in time order; sort them by their time")
+    # a clock set back by 30.5 min into a record's own span still is one (sorted, its samples
+    # fall between the earlier ones)
+    record(tmp_path / "lab.csv", [60 * i for i in range(60)] + [60 * i + 30 for i in range(29, 45)])
+    with pytest.raises(ContractError, match="would mix its stretches"):
+        read_dataset(tmp_path / "lab.csv")

@@ -191,6 +191,7 @@ class _Column:
     ameriflux: bool = False      # the file is an AmeriFlux table (its TIMESTAMP_START)
     blank: np.ndarray | bool = False    # the file's rows empty in every column (left out)
     tags: np.ndarray | None = None      # a lab file's channels written long: each row's channel
+    again: np.ndarray | bool = False    # the file's rows that write its header again (no marks)
 
     def first(self, mask: np.ndarray) -> str:
         return str(self.text[int(np.argmax(mask))].as_py())
@@ -233,6 +234,11 @@ def scanned(files: list[Path], delimiter: str, decimal: str, encoding: str,
             continue
         ameriflux = any(h.strip().lower() == AMERIFLUX_TIME for h in header)
         blank = np.logical_and.reduce([_empty(_texts(column)) for column in table.columns])
+        # a row holding most of the header's names (a second export pasted under the first):
+        # the read refuses it as the header written again; its names are no marks (audit86)
+        again = 2 * np.sum([pc.equal(pc.utf8_trim_whitespace(_texts(column)), h.strip())
+                            .fill_null(False).to_numpy(zero_copy_only=False)
+                            for h, column in zip(header, table.columns)], axis=0) > len(header)
         # a lab file's channels at their own rates, written long (labfile.write_long): each
         # run of missing values is its channel's (stranger80: one 'value' column's runs)
         tags = (_texts(table.columns[1]).to_numpy(zero_copy_only=False)
@@ -241,7 +247,7 @@ def scanned(files: list[Path], delimiter: str, decimal: str, encoding: str,
             if h.strip() and not named_as_time(h):
                 found = _column(h, path, _texts(column), decimal)
                 if found is not None:
-                    numbers.append(replace(found, ameriflux=ameriflux, blank=blank,
+                    numbers.append(replace(found, ameriflux=ameriflux, blank=blank, again=again,
                                            tags=tags if h.strip() == "value" else None))
     found = Cells(thousands=thousands)
     if thousands is None:
@@ -359,7 +365,7 @@ def _marks(numbers: list[_Column], decimal: str, found: Cells, given: list) -> N
         # an infinite reading (a Campbell logger's INF, lab75): missing as read, no mark to list;
         # not said here (lab76): the read says each column's with its rows
         infinite = _matches(c.text, _INFINITE)
-        other = ~numeric & ~c.missing & ~infinite
+        other = ~numeric & ~c.missing & ~infinite & ~c.again
         # a NaN written out (a Campbell logger's NAN, lab74): missing as read, its runs a mark's
         written = c.missing & _matches(c.text, ".")
         counts = pc.value_counts(pc.filter(c.text, pa.array(other))).to_pylist()

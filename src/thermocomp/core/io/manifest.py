@@ -11,6 +11,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from ...base.log import logger
 from .contract import AMBIENT_C, MANIFEST, MANIFEST_REQUIRED, SPLITS, ContractError
 from .encoding import UTF8, check_text, fields, text_codec, undecodable
 from .hdf5 import HDF5_SUFFIXES
@@ -190,9 +191,19 @@ def _load_manifest(path: Path, delimiter: str = ",", optional: tuple = (),
                     if column == "split" else "")
             raise ContractError(f"required manifest column missing{hint}", file=path,
                                 column=column)
+    raw = raw.fillna("").apply(lambda s: s.str.strip())
+    # rows of empty cells under the table (Excel's `;;;`, rows touched below it): left out as
+    # a campaign file's are, said; one among the campaigns is still refused at its row
+    filled = np.flatnonzero((raw != "").any(axis=1).to_numpy())
+    end = int(filled[-1]) + 1 if filled.size else 0
+    if end < len(raw):
+        rows = f"row {end + 1}" if end + 1 == len(raw) else f"rows {end + 1}-{len(raw)}"
+        logger.warning(f"{path}: data {rows} of empty cells under its campaigns (a "
+                       "spreadsheet's empty rows): left out")
+        raw = raw.iloc[:end]
     if raw.empty:
         raise ContractError("manifest lists no campaign", file=path)
-    return raw.fillna("").apply(lambda s: s.str.strip())
+    return raw
 
 
 def _manifest_delimiter(header: str, delimiter: str, path: Path, optional: tuple = ()) -> str:

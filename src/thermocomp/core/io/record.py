@@ -88,10 +88,17 @@ def cut(path: Path, table: pa.Table, report: dict, opts) -> tuple[pd.DataFrame, 
     short = {k: v for k, v in counts.items() if v < MIN_PART_ROWS}
     if short:
         split, rows = next(iter(short.items()))
+        n = table.num_rows - lead - trail
+        if n < MIN_PART_ROWS * len(counts):      # no fraction gives every part enough
+            raise ContractError(f"the record's {n} samples are too few for {len(counts)} parts "
+                                f"of at least {MIN_PART_ROWS} ({', '.join(counts)}): a longer "
+                                "record", file=path)
+        # (audit86: a short train part was told to raise data.test_fraction, shortening it)
+        fix = (" and ".join(f"data.{k}_fraction" for k in counts if k != "train")
+               if split == "train" else f"data.{split}_fraction")
         raise ContractError(f"the {split} part would have {rows} sample(s) of the record's "
-                            f"{table.num_rows}: at least {MIN_PART_ROWS} (raise data."
-                            f"{split if split != 'train' else 'test'}_fraction or lower the "
-                            "others)", file=path)
+                            f"{table.num_rows}: at least {MIN_PART_ROWS} ("
+                            f"{'lower' if split == 'train' else 'raise'} {fix})", file=path)
     if len(counts) > 1:
         logger.info(f"{path.name}: cut chronologically into "
                     + ", ".join(f"{s} {c} rows" for s, c in counts.items()))

@@ -17,6 +17,8 @@ SNIFF_LINES = 50
 _SNIFF_BYTES = 1 << 16
 _DECIMAL_COMMA = re.compile(r"\s*[+\-\u2212]?\d*,\d+(?:[eE][+-]?\d+)?\s*")   # (U+2212: a minus)
 _DECIMAL_POINT = re.compile(r"\s*[+\-\u2212]?\d*\.\d+(?:[eE][+-]?\d+)?\s*")
+_GROUPED = {mark: re.compile(rf"\s*[+\-\u2212]?\d{{1,3}}(?:{re.escape(mark)}\d{{3}})+\s*")
+            for mark in ",."}
 
 
 def resolved(path: Path, opts: ReadOptions) -> ReadOptions:
@@ -75,9 +77,17 @@ def _decimal(lines: list[str], delimiter: str, path: Path) -> str:
     if delimiter == ",":
         return "."
     cells = [c for ln in lines[1:] for c in split_line(ln, delimiter, SPLIT)]
-    comma = any(_DECIMAL_COMMA.fullmatch(c) for c in cells)
-    point = any(_DECIMAL_POINT.fullmatch(c) for c in cells)
+    comma = [c for c in cells if _DECIMAL_COMMA.fullmatch(c)]
+    point = [c for c in cells if _DECIMAL_POINT.fullmatch(c)]
     if comma and point:
+        # one mark grouping digits by three in every cell, the other not in one (a German
+        # export's speed `6.000` beside `21,18`): the other is the decimal mark, and the read
+        # (init: data.thousands) names the grouping
+        for decimal, grouped, other in ((",", point, comma), (".", comma, point)):
+            thousands = "." if decimal == "," else ","
+            if all(_GROUPED[thousands].fullmatch(c) for c in grouped) and not all(
+                    _GROUPED[decimal].fullmatch(c) for c in other):
+                return decimal
         raise ContractError("the decimal mark is ambiguous (cells with ',' and with '.'): set "
                             "data.decimal (and data.thousands if one of them groups digits)",
                             file=path)

@@ -211,11 +211,13 @@ def _read_runs(text: str, columns: list[str], opts, recorded: str | None = None,
     numeric = list(dict.fromkeys([*columns, *(c for c in df.columns
                                               if c == TIME or str(c)[:2] in ("T_", "E_", "S_"))]))
     for c in numeric:
-        bad = pd.to_numeric(df[c], errors="coerce").isna() & df[c].notna()
+        values = _with_decimal(df[c], opts.decimal)
+        bad = pd.to_numeric(values, errors="coerce").isna() & df[c].notna()
         if bad.any():
-            raise ContractError("non-numeric value", file=SOURCE, column=c,
-                                row=int(np.flatnonzero(bad)[0]) + 1)
-        df[c] = pd.to_numeric(df[c], errors="coerce")
+            row = int(np.flatnonzero(bad)[0])
+            raise ContractError(f"non-numeric value: {df[c].iloc[row]!r} is not a number",
+                                file=SOURCE, column=c, row=row + 1)
+        df[c] = pd.to_numeric(values, errors="coerce")
         if c != TIME:          # data.missing_values' -9999, however written, and INF (.marks)
             _infinite_said(df[c], c)
             df[c] = df[c].mask(marks.hits(df[c], opts.missing_values))
@@ -224,6 +226,15 @@ def _read_runs(text: str, columns: list[str], opts, recorded: str | None = None,
             df[c] = df[c] * scale + offset
     df = on_frame(df, opts.derive, SOURCE)      # data.derive: the same arithmetic as a file's
     return df, {c: int(n) for c, n in df[numeric].isna().sum().items() if n}, blocks, origins
+
+
+def _with_decimal(column: pd.Series, decimal: str) -> pd.Series:
+    """``column`` with ``data.decimal`` read as the point where pandas left it text: a column
+    holding one cell that is no number is read as text, its decimal commas as written (audit86:
+    every cell of it was then no number, and the first row named for a bad one further down)."""
+    if decimal == "." or pd.api.types.is_numeric_dtype(column):
+        return column
+    return column.str.strip().str.replace(decimal, ".", regex=False)
 
 
 def _infinite_said(column: pd.Series, name: str) -> None:
@@ -430,8 +441,8 @@ def _named(df: pd.DataFrame, opts) -> tuple[pd.DataFrame, dict, list | None]:
     # Excel's trailing separator: a column without a header ('Unnamed: 4') that holds nothing
     df = df.drop(columns=[c for c in df.columns if _UNNAMED.fullmatch(str(c))
                           and df[c].isna().all()])
-    first = {c: None if df.empty or pd.isna(df[c].iloc[0]) else str(df[c].iloc[0])
-             for c in df.columns}
+    first = {c: None if df.empty or pd.isna(df[c].iloc[0])
+             else str(_with_decimal(df[c].iloc[:1], opts.decimal).iloc[0]) for c in df.columns}
     roles = _runs_if_named(list(df.columns), opts.roles)
     plan = naming(list(df.columns), roles, opts.columns, first, ".", SOURCE, opts.units)
     df = df[[c for c in df.columns if c in plan.names]].rename(columns=plan.names)

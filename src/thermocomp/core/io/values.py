@@ -133,7 +133,12 @@ def _clock_reset(seconds: np.ndarray, back: float, max_days: float | None) -> st
     to its default date, 01.01.2000); '' where sorting mends them (exports pasted out of order)."""
     order = np.argsort(seconds, kind="stable")
     stretches = 1 + int(np.count_nonzero(np.diff(seconds) < 0))
-    interleaved = 1 + int(np.count_nonzero(np.diff(order) != 1)) > stretches
+    # a clock set back into the run's own span puts its samples between the earlier ones:
+    # sorted, some are closer than the logger's period; a row merely written out of place
+    # (a sample a gateway sent late) sorts into the run's regular steps
+    steps = np.diff(seconds[order])
+    interleaved = (1 + int(np.count_nonzero(np.diff(order) != 1)) > stretches
+                   and steps.min() < 0.75 * np.median(steps))
     too_long = max_days is not None and np.ptp(seconds) > max_days * 86400
     if not (interleaved or too_long):
         return ""

@@ -8,7 +8,7 @@ run next.  The data are read with it first: a config that would not read them is
 from __future__ import annotations
 
 import fnmatch
-from contextlib import ExitStack
+from contextlib import ExitStack, nullcontext
 from dataclasses import replace
 from statistics import median
 
@@ -63,7 +63,7 @@ from ...core.io.historian import (
 from ...core.io.historian_layout import long_layout
 from ...core.io.labfile import SHARED
 from ...core.io.manifest import is_text
-from ...core.io.options import RUN_ROLE
+from ...core.io.options import AUTO, RUN_ROLE
 from ...core.io.pairhead import error_files, pair_time, paired_head, paired_lines
 from ...core.io.period_line import stated_period
 from ...core.io.plain import converted_once, is_converted, is_lab_file, lab_as_csv, lab_dayfirst
@@ -76,6 +76,7 @@ from ...core.io.sniff import resolved
 from ...core.io.starts import stated_start
 from ...core.io.tables import peek_csv
 from ...core.io.timestamps import ELAPSED
+from ...core.io.utf16 import is_utf16, utf8_options, utf16_as_utf8
 from ...core.io.workbook import csv_options
 from ...core.timerule import median_step
 from ..config.checks import check_config, data_options
@@ -108,6 +109,29 @@ def _long_period(sample, given: dict, opts) -> dict | None:
     return intervals
 
 
+def text_files(src, manifest, opts) -> list:
+    """The CSV texts of ``src`` (one record, or a folder's by ``manifest``), a UTF-16 one too:
+    the files ``data.delimiter`` and ``data.decimal`` read."""
+    files = [src] if manifest is None else [src / str(f) for f in manifest["file"]]
+    return [f for f in files if is_text(f) and (is_utf16(f) or not is_converted(f, opts))]
+
+
+def separator_groups(files: list, given: dict, opts) -> list[tuple[list, object]]:
+    """``files`` grouped by the separators each is written with, ``[(files, opts)]`` (one group
+    where ``data.delimiter`` and ``data.decimal`` are given): a folder of runs two PCs exported,
+    ``;`` and decimal commas beside a TAB-separated UTF-16 file, which ``run`` reads each by its
+    own (audit86: init read every file with the first's separators and refused the second)."""
+    asked = io.ReadOptions.from_cfg(given)
+    if AUTO not in (asked.delimiter, asked.decimal) or len(files) < 2:
+        return [(files, opts)]
+    groups: dict = {}
+    for f in files:
+        with utf16_as_utf8(f) if is_utf16(f) else nullcontext(f) as text:
+            seps = resolved(text, utf8_options(asked) if is_utf16(f) else asked)
+        groups.setdefault((seps.delimiter, seps.decimal), []).append(f)
+    return [(fs, replace(opts, delimiter=d, decimal=m)) for (d, m), fs in groups.items()]
+
+
 def number_cells(src, manifest, sample, given: dict, opts):
     """``(opts, found)``: ``opts`` (and ``given``, written to the config) with what the text
     files' number cells say (:mod:`.io.cells`: ``data.thousands``, ``data.missing_values``),
@@ -134,7 +158,8 @@ def number_cells(src, manifest, sample, given: dict, opts):
     errors = [f for f in error_files(src, manifest, asked)
               if is_text(f) and not is_converted(f, asked)]
     found = None
-    for group, group_opts in ((files, opts), (errors, errors and resolved(errors[0], asked))):
+    for group, group_opts in (*separator_groups(files, given, opts),
+                              (errors, errors and resolved(errors[0], asked))):
         if group:
             cells = scanned(group, group_opts.delimiter, group_opts.decimal, opts.encoding,
                             opts.thousands, list(opts.missing_values), peek_csv,
@@ -455,6 +480,14 @@ def _init(cfg: DictConfig, held: ExitStack) -> dict:
     decimal = opts.decimal             # the first row's (an error file's cells read so: pairhead)
     if pair is not None and not pair.same_separators:   # each logger's file its own: detected
         opts = replace(opts, delimiter="auto", decimal="auto")
+    groups = separator_groups(text_files(src, manifest, opts), given, opts) if pair is None else []
+    if len(groups) > 1:                                  # each run's file its own: detected
+        opts = replace(opts, delimiter=AUTO, decimal=AUTO)
+        print(f"{src.name}: its files are written with different separators ("
+              + "; ".join(f"{g.delimiter!r} and decimal {g.decimal!r}: {len(fs)} "
+                          f"({', '.join(f.name for f in fs[:3])}{', ...' * (len(fs) > 3)})"
+                          for fs, g in groups)
+              + "): each read with its own, data.delimiter=auto data.decimal=auto")
     config = data_config(src, given, opts, roles, defaults, manifest)
     # refused here as `run` would refuse it; a length read as an error for a look at its span
     # is not held to data.max_abs_error (stranger75: a boring mill's `Y head (mm)`, 150-1850

@@ -107,6 +107,8 @@ static int split_by(char *line, char **cells, char by) {
 
 static int split(char *line, char **cells) { return split_by(line, cells, sep); }
 
+static char *twin(char **raw, int j);
+
 /* Each column's conversion to the contract's unit: value * scale + offset (TC_LAB_UNITS). */
 static double scale_of[MAX_COLS], offset_of[MAX_COLS];
 
@@ -358,15 +360,17 @@ static char separator_of(const char *line) {
 static int inputs_named(const char *line) {
     static char text[MAX_LINE];
     char *cells[MAX_COLS];
+    const char *names[MAX_COLS];
     int ncols, i, j, found, n = 0;
     strcpy(text, line);
     sep = separator_of(text);
     ncols = split(text, cells);
     if (ncols > 0 && cells[0][0] == '#')     /* (a header written as a comment: stranger66) */
         cells[0] = uncommented(cells[0]);
+    for (j = 0; j < ncols; j++) names[j] = named(twin(cells, j), j);
     for (i = 0; i < TC_N_INPUTS; i++) {
         for (found = 0, j = 0; j < ncols && !found; j++)
-            found = strcmp(named(cells[j], j), TC_INPUT_NAMES[i]) == 0;
+            found = strcmp(names[j], TC_INPUT_NAMES[i]) == 0;
         n += found;
     }
     return n;
@@ -440,6 +444,23 @@ static const char *trimmed(char *cell) {
     len = strlen(cell);
     while (len && (cell[len - 1] == ' ' || cell[len - 1] == '"')) cell[--len] = '\0';
     return cell;
+}
+
+/* (audit86) A header written twice, as the reader reads it (twins.py): its k-th occurrence
+   `<name>#<k>` before its unit (`Halle#2 [degC]`), which the model's data names where it read
+   that column (a copy of the first it left out: no input then); the second was refused. */
+static char twins[MAX_COLS][256];
+static char *twin(char **raw, int j) {
+    const char *cell = trimmed(raw[j]), *unit;
+    size_t len = strlen(cell), at = len;
+    int i, k = 1;
+    for (i = 0; i < j; i++) k += strcmp(trimmed(raw[i]), cell) == 0;
+    if (k == 1 || len + 12 > sizeof twins[j]) return raw[j];
+    unit = len ? strrchr(cell, cell[len - 1] == ']' ? '[' : '(') : NULL;
+    if (unit && unit > cell && unit[-1] == ' ' && (cell[len - 1] == ']' || cell[len - 1] == ')'))
+        at = (size_t)(unit - 1 - cell);
+    snprintf(twins[j], sizeof twins[j], "%.*s#%d%s", (int)at, cell, k, cell + at);
+    return twins[j];
 }
 
 /* Column j's cell in the contract's unit (NAN stays NAN). */
@@ -985,7 +1006,7 @@ int main(int argc, char **argv) {
                 "rows the served model reads it as: " ROWS_COMMAND "\n", row);
         return 2;
     }
-    for (j = 0; j < ncols; j++) cells[j] = (char *)named(cells[j], j);
+    for (j = 0; j < ncols; j++) cells[j] = (char *)named(twin(raw, j), j);
     /* (streamraw65) a unit row under the header (`;;degC;W;-;um`: every cell it fills no number,
        an input's among them), as the reader reads it: left out, each header joined to its unit
        (`T Halle [degC]`) */

@@ -454,6 +454,8 @@ static int mon_serving(const tc_state *s) {
    another sensor out, one of a sensor the code does not hold out */
 static int mon_beyond(tc_state *s, const double x[], const double d[], int j, int nrng) {
     int m;
+    if (j < 0) return 0;   /* (none beyond; said so that gcc -O2 -Warray-bounds, inlining
+                              this into the step, does not index MON_PREDICTABLE[-1]) */
     if (nrng > 1 || (s->mon_out >= 0 && j != s->mon_out)) {
         mon_flag(s, TC_MON_NOT_IN_CODE, j, TC_MON_RANGE);
         return -1;
