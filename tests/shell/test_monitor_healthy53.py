@@ -20,6 +20,10 @@ largest distance).
 monitor64 (benchmarks/bench_monitor64.py): T_left1's smallest |E| of the last 2 is 0.4068 against
 its 0.4052 band on one row; judging the window's mean too, or the last 3 errors, quiets it but
 flags drifts later and makes a fresh short-trained mill louder (8 -> 78 / 54 events): refused.
+mon86b (benchmarks/bench_mon86b.py): the pick is _lone_fault's first check (T_right3's exclusion
+brings T_left1 within band), not mon86's bands; not taking a culprit within band where the likelier
+single fault is out of band leaves T_left1's warning (one episode) and excluded a lathe's hovering
+healthy offset (test_monitor_regime73): refused.
 
 A drifting sensor of high leverage (monitor54): the culprit rule's pick explained the bands only
 by raising the drifting sensor's leverage past judging; such an exclusion no longer counts as an
