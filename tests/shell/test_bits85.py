@@ -144,7 +144,36 @@ def test_a_replay_without_the_declaration_decodes_the_word_as_the_model_declares
                                                                    *promoted["data"])
 
 
-@pytest.mark.parametrize("stage", ["replay", "export"])
+def _monitored(promoted, name: str, *args: str, model: str | None = None) -> float:
+    out = promoted["root"] / name
+    assert main(["monitor", *args, f"monitor.model={model or promoted['model_uri']}",
+                 "plots=none", f"tracking_uri={promoted['uri']}", f"out={out}"]) == 0
+    return json.loads((out / "monitor.json").read_text())["targets"]["E_dX"]["rmse_fixed"]
+
+
+def test_a_monitor_of_the_registered_model_decodes_the_word_as_the_model_declares_it(
+        promoted, monkeypatch):
+    """``monitor monitor.model=models:/...`` (and its pyfunc folder) without data.bits, on the
+    record's test run and on the lab's run3.csv piped in: the word decoded by the model's
+    declaration, its fixed stream the one replay scores (data86b; before: refused, "a model.pkl
+    file ...; a registered model replays through replay.model=...")."""
+    import mlflow
+
+    data = [d for d in promoted["data"] if not d.startswith("++data.bits")]
+    scored = _replayed(promoted, "replay-scored", *promoted["data"])
+    assert _monitored(promoted, "monitor-bare", *data) == pytest.approx(scored, rel=1e-9)
+    mlflow.set_tracking_uri(promoted["uri"])
+    folder = mlflow.artifacts.download_artifacts(artifact_uri=promoted["model_uri"],
+                                                 dst_path=str(promoted["root"] / "pyfunc"))
+    assert _monitored(promoted, "monitor-folder", *data, model=folder) == pytest.approx(
+        scored, rel=1e-9)
+    monkeypatch.setattr(sys, "stdin", io.StringIO((promoted["root"] / "runs" / "run3.csv")
+                                                  .read_text()))
+    assert _monitored(promoted, "monitor-stdin", *data, "monitor.input=-") == pytest.approx(
+        scored, rel=1e-9)
+
+
+@pytest.mark.parametrize("stage", ["replay", "export", "monitor"])
 def test_a_declaration_given_that_is_not_the_models_is_refused_naming_both(promoted, capsys,
                                                                             stage):
     data = [d for d in promoted["data"] if not d.startswith("++data.bits")]

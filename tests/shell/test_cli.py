@@ -138,7 +138,10 @@ def test_foreign_headerless_time_csv_through_mapping_config(tmp_path):
     (["replay", "replay.model=", "track=false"], "replay.model is empty"),
     (["run", "~model"], "~model: thermocomp reads every key and group"),
     (["run", "-m", "model=mlr,nosuch"], "unknown model 'nosuch' in the sweep model=mlr,nosuch"),
-    (["monitor", "monitor.model=models:/m@champion", "track=false"], "a registered model replays"),
+    # (data86b) a registered model is monitored as replay streams it: read from a store
+    (["monitor", "monitor.model=models:/m@champion", "track=false"],
+     "this command reads one and creates none"),
+    (["monitor", "monitor.model=", "track=false"], "monitor.model is empty"),
 ])
 def test_bad_config_exits_2_with_one_line(args, needle, capsys, tmp_path):
     code = main([*args, "track=false", f"out={tmp_path / 'o'}"] if args[0] == "run" else args)

@@ -35,7 +35,7 @@ import numpy as np
 from .contract import ContractError
 from .dayfirst import parse_with, slashed_order, swapped
 from .encoding import UTF8, check_text, first_undecodable, text_codec
-from .labfile import Channel, Record, with_unit
+from .labfile import Channel, Record, text_as_csv, with_unit
 
 LVM_SUFFIXES = (".lvm",)
 MAGIC = "LabVIEW Measurement"
@@ -61,7 +61,31 @@ def lvm_records(path: Path, encoding: str = UTF8, dayfirst: bool | None = None) 
     except UnicodeDecodeError:
         raise first_undecodable(path, "\t", None, encoding) or ContractError(
             f"file is not {encoding} text (set data.encoding)", file=path) from None
-    lines = text.splitlines()
+    return _records(text.splitlines(), path, dayfirst)
+
+
+def is_lvm_text(text: str) -> bool:
+    """``text`` (a stream's) is a LabVIEW Measurement File, as its first line says."""
+    return text.startswith(MAGIC)
+
+
+def lvm_as_csv(text: str, source: str, dayfirst: bool | None = None) -> str:
+    """A LabVIEW Measurement File streamed (``monitor.input=-``) as the CSV text its channels
+    are read as from a file (data86b: refused before, "not a CSV table with a header"); a file
+    of more than one session (a run each) is refused: a stream is one campaign."""
+    def one(lines: list[str], label: str, path: Path) -> Record:
+        records = _records(lines, path, dayfirst)
+        if len(records) > 1:
+            raise ContractError(f"the LabVIEW Measurement File streamed holds {len(records)} "
+                                "sessions (a 'LabVIEW Measurement' header each), a run each: "
+                                "stream one run", file=path)
+        return records[0]
+
+    return text_as_csv(one, text, source)
+
+
+def _records(lines: list[str], path: Path, dayfirst: bool | None) -> list[Record]:
+    """:func:`lvm_records` of the file's ``lines``."""
     if not lines or not lines[0].startswith(MAGIC):
         raise ContractError(f"not a LabVIEW Measurement File: its first line is not {MAGIC!r}",
                             file=path, line=1)

@@ -45,6 +45,7 @@ from .layout import (
     unquoted,
     with_units,
 )
+from .lvm import is_lvm_text, lvm_as_csv
 from .options import RUN_ROLE
 from .own_headers import as_named
 from .roles import RUN, active, left_out, naming, split_unit
@@ -100,10 +101,13 @@ def _is_tdm(head: bytes) -> bool:
 
 # a logger's text export piped in as written, told apart by its head, read as its channels:
 # a TwinCAT Scope export (stranger76), a Graphtec logger's CSV (stranger82), a Yokogawa
-# viewer's ASCII conversion (stranger82b), HBM catman's ASCII export (stranger84)
+# viewer's ASCII conversion (stranger82b), HBM catman's ASCII export (stranger84), a LabVIEW
+# Measurement File (data86b)
 _TEXT_EXPORTS = ((is_scope_text, scope_as_csv), (is_graphtec_text, graphtec_as_csv),
-                 (is_yokogawa_text, yokogawa_as_csv), (is_catman_text, catman_as_csv))
-_DATED = (catman_as_csv, scope_as_csv)     # their dates with slashes: data.dayfirst (dates84)
+                 (is_yokogawa_text, yokogawa_as_csv), (is_catman_text, catman_as_csv),
+                 (is_lvm_text, lvm_as_csv))
+# their dates with slashes: data.dayfirst (dates84)
+_DATED = (catman_as_csv, scope_as_csv, lvm_as_csv)
 
 
 def _is_trace(head: bytes) -> bool:

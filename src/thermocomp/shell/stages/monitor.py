@@ -1,10 +1,11 @@
 """`thermocomp monitor`: sensor surveillance and the fault-tolerant compensator, streamed.
 
 The compensator, fitted on the train split of ``data.path`` (or ``monitor.model=<model.pkl>``),
-is made deployable as ``promote`` does and wrapped in an adaptive compensator fitted on the same
-split.  Each test campaign (as recorded: missing cells stay NaN) or the CSV rows of stdin
-(``monitor.input=-``) is streamed from its start, or warmed on the campaigns it continues,
-through both (:func:`thermocomp.apps.monitor.report.monitor_report`).  Writes
+is made deployable as ``promote`` does (a registered model's, a pyfunc folder or ``models:/...``,
+streams as registered, its status words read by its declaration: data86b) and wrapped in an
+adaptive compensator fitted on the same split.  Each test campaign (as recorded: missing cells
+stay NaN) or the CSV rows of stdin (``monitor.input=-``) is streamed from its start, or warmed
+on the campaigns it continues, through both (:func:`thermocomp.apps.monitor.report.monitor_report`).  Writes
 ``<out>/monitor.json`` (CLI.md) and figures in ``<out>/monitor/``.
 """
 
@@ -17,6 +18,7 @@ from omegaconf import DictConfig
 
 from ...apps.deploy.adapt import from_config as adapt_from_config
 from ...apps.deploy.naming import lab_names
+from ...apps.deploy.report import plain
 from ...apps.monitor.report import monitor_report, summary_lines
 from ...apps.monitor.stdin import (
     check_continued,
@@ -36,11 +38,18 @@ from ...core.continuation import fit_joined, lead_ins, said_warmed
 from ...core.io.contract import AMBIENT_C
 from ...core.io.source import check_streamed_columns
 from ...core.io.stdin import TIME_ORIGIN, stdin_text, stream_campaigns
-from ..builders import build_adaptive, build_compensator, deploy_stream, warn_stream_mode
+from ..builders import (
+    build_adaptive,
+    build_compensator,
+    deploy_stream,
+    deployable_model,
+    is_registered,
+    warn_stream_mode,
+    with_model_bits,
+)
 from ..config.checks import check_config, data_options
 from ..model_store import load_model, model_family
 from ..source import check_volumetric_targets, read_streamed, slashed_time
-from ..store import is_registered_model
 from ..tracking import name_given_model, stage_run
 
 
@@ -65,14 +74,21 @@ def _stdin_lead_in(cfg: DictConfig, fixed, ds, streamed: dict, train_ids: list[s
     return leads
 
 
-def _fitted(cfg: DictConfig, ds, train: dict):
-    """The compensator fitted on ``train``, or ``monitor.model``'s."""
+def _fitted(cfg: DictConfig, ds, train: dict, registered):
+    """``(compensator, its plain stream)``: fitted on ``train``, or ``monitor.model``'s (a
+    registered one's stream as registered: what is monitored is what was deployed)."""
     path = cfg.monitor.get("model")
-    # fitted as run fits it: train files that continue one another joined (their state carried over)
-    comp = fit_joined(build_compensator(cfg, ds=ds), ds, list(train), train) if path is None \
-        else load_model(resolve(str(path)))
+    if registered is not None:
+        comp = plain(registered).compensator
+    else:
+        # fitted as run fits it: train files that continue one another joined (their state
+        # carried over)
+        comp = fit_joined(build_compensator(cfg, ds=ds), ds, list(train), train) if path is None \
+            else load_model(resolve(str(path)))
     check_volumetric_targets(cfg, ds, comp.targets_, f"monitor.model={path}")
-    return comp
+    # one plain stream serves both: the fixed run and the adaptive one are each streamed from a
+    # reset, one after the other
+    return comp, plain(registered) if registered is not None else deploy_stream(cfg, comp, train)
 
 
 def monitor(cfg: DictConfig) -> dict:
@@ -80,19 +96,22 @@ def monitor(cfg: DictConfig) -> dict:
     check_config(cfg, inputs=("monitor.model",))
     warn_stream_mode(cfg, "monitor")
     model = cfg.monitor.get("model")
-    if model is not None and (not str(model).strip() or is_registered_model(model)):
-        raise ConfigError(f"monitor.model={model}: a model.pkl file (run's or train's); a "
-                          "registered model replays through replay.model=models:/<name>@<alias>")
+    if model is not None and not str(model).strip():     # resolved, '' is the project root
+        raise ConfigError("monitor.model is empty: a model.pkl, a pyfunc folder or "
+                          "models:/<name>@<alias>")
+    # a registered model, loaded before the record is read: its status words decoded as it
+    # declares them (data86b, as replay's)
+    registered = deployable_model(cfg, None, [], model, "monitor.model")[0] \
+        if is_registered(model) else None
+    if registered is not None:
+        cfg = with_model_bits(cfg, registered, f"monitor.model={model}")
     stdin = cfg.monitor.get("input") == "-"
     ds, train_ids, test_ids, missing = read_streamed(cfg, test=not stdin)
     streamed, train = {c: ds.campaigns[c] for c in test_ids}, {c: ds.campaigns[c] for c in train_ids}
     with stage_run(cfg, "monitor", given_model=model is not None) as tr:
-        comp = _fitted(cfg, ds, train)
+        comp, fixed = _fitted(cfg, ds, train, registered)
         if model is not None:
             name_given_model(tr, "monitor", str(model), model_family(comp))
-        # one plain stream serves both: the fixed run and the adaptive one are each streamed
-        # from a reset, one after the other
-        fixed = deploy_stream(cfg, comp, train)
         adaptive = build_adaptive(cfg, fixed, train, ds)
         if adaptive.monitor is None:
             raise ConfigError("monitor needs at least 3 temperature inputs (T_ columns) in the "
