@@ -185,9 +185,9 @@ def _timed(folder: Path, frame, inputs: list) -> tuple[float, float]:
     return float(out[1]), float(out[2])
 
 
-def measured(deployed, tests: dict, label: str, folder: Path) -> list[str]:
-    """Per campaign, before and now: rows C = served, max |C - served|, first flag, pack rows,
-    ``tc_step``'s CPU time per sample (:func:`_timed`)."""
+def measured(deployed, tests: dict, label: str, folder: Path, before=None) -> list[str]:
+    """Per campaign, before (``before(ss)``; default :func:`_before`) and now: rows C = served,
+    max |C - served|, first flag, pack rows, ``tc_step``'s CPU time per sample (:func:`_timed`)."""
     from _ccode import built
     from bench_cmon84 import _c_rows, flagged
 
@@ -200,7 +200,7 @@ def measured(deployed, tests: dict, label: str, folder: Path) -> list[str]:
     if not now.monitor:
         return [f"{label}: no monitor in the code"]
     said, codes = {}, {}
-    for name, ss in (("before", _before(now)), ("now", now)):
+    for name, ss in (("before", (before or _before)(now)), ("now", now)):
         codes[name] = built(folder / name, {"compensator.h": c.header(ss),
                                             "compensator.c": c.source(ss), "stream.c": DRIVER})
         _, summary = conformance_pack(deployed, ss, tests, script=False)

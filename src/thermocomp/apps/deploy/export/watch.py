@@ -85,13 +85,19 @@ The served adaptive compensator judges every ``T_`` input before the model reads
   (or a second sensor's freeze) out beside the first, as served; at most two out (a third
   flagged).  An export before it (no ``solve``) flags a drift with a sensor out (``DRIFT``) and a
   second sensor out (``SECOND``).
+* (cmon86) a **stepped error** (``stepped``): a judged sensor's error stepping past its alarm band
+  in one sample (the served ``_check_stepped``), each such sensor fired on; the culprit (the
+  largest step times ``sqrt(1 - h)``) out as a drift exclusion is (its wait doubled, no field to
+  follow it), the second beside one out where the set is solved.  An export before it (no
+  ``stepped``) flags it (``STEPPED``).
 
 What else the served monitor does it flags, ``NOT_IN_CODE`` with the rule (:data:`REASONS`),
 and goes on by its own rules: a reading beyond its range at a campaign's first sample, of
 several sensors at once or with another sensor out (its sample passes the monitor by, the state
 as it was, so that the reading's return is no jump), several sensors jumping at once that are
-no common step, a jump at the reference's next sample, a stepped self-prediction error, a drift
-beyond the band that takes a third sensor out (cmon85: with one out, as served), of more than
+no common step, a jump at the reference's next sample, a stepped self-prediction error whose
+culprit would be a third out (or one it does not hold out), a drift beyond the band that takes a
+third sensor out (cmon85: with one out, as served), of more than
 one blind partner, a second culprit beyond the alarm band, a second sensor out for a jump, a
 dropout or its range, and a sensor no other predicts out for any other
 rule (a jump, its range; cmon84: too few left to rebuild the field without it), or with a
@@ -153,15 +159,16 @@ REASONS = ("", "jump: re-referenced and excluded", "freeze: excluded",
            "predicts (of a kind the code does not hold), from its exclusion on (monitor.fallbacks)",
            "re-admitted: readings in a row off the value it held when frozen (out for it alone)",
            "not in the code: the return of a sensor out for a freeze on readings off the value it "
-           "held (an export before freeze84)")
+           "held (an export before freeze84)",
+           "jump: its self-prediction error stepped past the alarm band, excluded")
 RULES = ("", "JUMP", "FREEZE", "BACK", "RANGE", "COMMON", "GLITCH", "STEPPED", "DRIFT", "SECOND",
          "BLIND", "DROPOUT", "MISSING_FIRST", "MISSING_SECOND", "MISSING_BLIND",
          "MISSING_FROZEN", "OFF_RANGE", "COMMON_STEP", "DRIFT_OUT",
          "FOLLOWED", "BLIND_OUT", "FALLBACK",
-         "THAWED", "NO_THAW")   # their names in the C (TC_MON_JUMP ...)
+         "THAWED", "NO_THAW", "STEP_OUT")   # their names in the C (TC_MON_JUMP ...)
 (JUMP, FREEZE, BACK, RANGE, COMMON, GLITCH, STEPPED, DRIFT, SECOND, BLIND, DROPOUT, MISSING_FIRST,
  MISSING_SECOND, MISSING_BLIND, MISSING_FROZEN, OFF_RANGE, COMMON_STEP, DRIFT_OUT, FOLLOWED,
- BLIND_OUT, FALLBACK, THAWED, NO_THAW) = range(1, len(RULES))
+ BLIND_OUT, FALLBACK, THAWED, NO_THAW, STEP_OUT) = range(1, len(RULES))
 
 
 @dataclass
@@ -209,7 +216,7 @@ def monitor_fields(deployed, inputs: list) -> dict:
         "drift": 1, "pairs": [list(p) for p in pairs], "new_state": int(mon.new_state),
         "new_state_others": int(mon.new_state_others), "max_backoff": MAX_BACKOFF,
         "tau": EXCURSION_TAU_S, "growth": EXCURSION_GROWTH, "novel": 1, "blind_out": 1, "thawed": 1,
-        "blind_drop": 1, "solve": 1, "modes": int(mon.pod.n_modes_),
+        "blind_drop": 1, "solve": 1, "stepped": 1, "modes": int(mon.pod.n_modes_),
         "basis": mon.pod.basis_[:, :int(mon.pod.n_modes_)].tolist(),
         "fallback": [int(c in falls) for c in mon.names],
         "rounding": np.broadcast_to(getattr(mon, "rounding_c", 0.0), (n,)).tolist(),
@@ -318,7 +325,8 @@ class CodeMonitor:
                      ("blind_out", 0),    # (before cmon82c: a sensor no other predicts, flagged)
                      ("thawed", 0),       # (before freeze84: a freeze's return flagged)
                      ("blind_drop", 0),   # (before cmon84: its missing reading refused)
-                     ("solve", 0)):       # (before cmon85: only the operators it holds)
+                     ("solve", 0),        # (before cmon85: only the operators it holds)
+                     ("stepped", 0)):     # (before cmon86: a stepped error flagged)
             a.setdefault(k, np.float64(v))
         a.setdefault("rounding", np.zeros(n))    # (before mon83: no culprit held for rounding)
         # (before mon86: every set judged by the whole set's bands)
@@ -518,9 +526,10 @@ class CodeMonitor:
 
     def _exclude(self, j: int, rule: int) -> bool:
         """``j`` out where the code holds it (one sensor out, others predict it, or cmon84 a
-        dropout or a freeze of one no other predicts); else flagged."""
+        dropout or a freeze of one no other predicts; cmon85 a second, for a drift, a freeze or
+        cmon86 a stepped error); else flagged."""
         held = self.ported[j] or (rule in (DROPOUT, FREEZE) and self.drops[j])
-        second = self.out >= 0 and not (rule in (DRIFT_OUT, FREEZE) and self.ported[j]
+        second = self.out >= 0 and not (rule in (DRIFT_OUT, FREEZE, STEP_OUT) and self.ported[j]
                                         and self._second_held(j))
         if second or not held:
             self._flag(NOT_IN_CODE, j, SECOND if second else BLIND)
@@ -669,11 +678,7 @@ class CodeMonitor:
             instant[j] = True
             if active[j] and self._exclude(int(j), FREEZE):
                 self.froze[j], self.held[j], self.off[j] = True, d[j], 0
-        # a stepped self-prediction error (the served monitor excludes its culprit)
-        _, active, _, judged, _ = self._set()
-        stepped = judged & (np.abs(e) >= self.alarm) & (np.abs(e - self.prev_e) >= self.alarm)
-        if stepped.any():
-            self._flag(NOT_IN_CODE, int(np.argmax(stepped)), STEPPED)
+        self._stepped(e, instant)
         level = self._level()
         if level[judged].any():
             self.flags |= BAND
@@ -695,6 +700,25 @@ class CodeMonitor:
         self.last = np.where(active & np.isfinite(d), d, self.last)
         self._fold(self.hist[pos], first, dt)
         return self._rebuilt(u, d, pred)
+
+    def _stepped(self, e, instant) -> None:
+        """A self-prediction error stepped past the alarm band in one sample (the served
+        ``_check_stepped``): each such sensor fired on (``instant``); (cmon86) the culprit, the
+        largest step times ``sqrt(1 - h)``, out as a drift exclusion is (its wait doubled, no
+        field to follow), a second beside one out where the set is solved.  An export before
+        it (no ``stepped``) flags it."""
+        _, active, _, judged, _ = self._set()
+        de = e - self.prev_e
+        stepped = judged & (np.abs(e) >= self.alarm) & (np.abs(de) >= self.alarm)   # (mon86: the set's)
+        if not stepped.any():
+            return
+        if not self.a["stepped"]:
+            self._flag(NOT_IN_CODE, int(np.argmax(stepped)), STEPPED)
+            return
+        instant |= stepped
+        j = int(np.argmax(np.where(stepped, np.abs(de) * np.sqrt(np.abs(1 - self.levc)), -1.0)))
+        if self._exclude(j, STEP_OUT):
+            self._by_drift(j, follows=False)
 
     def _thaw(self, j, gone, instant) -> None:
         """(freeze84) ``j``, out for a freeze alone, ``THAW`` readings in a row off the value it
@@ -1013,12 +1037,14 @@ class CodeMonitor:
         others[j] = False
         return int(others.sum())
 
-    def _by_drift(self, j: int) -> None:
-        """``j`` out by a drift exclusion: its return waits longer each time (served)."""
+    def _by_drift(self, j: int, follows: bool = True) -> None:
+        """``j`` out by a drift exclusion: its return waits longer each time (served); the field
+        may follow it (``follows``: not a stepped error's culprit, cmon86)."""
         self.by_field[j] = True
         self.dwell[j] = self.window * 2 ** min(self.outs[j], int(self.a["max_backoff"]))
         self.outs[j] += 1
-        self.since[j] = self.count
+        if follows:
+            self.since[j] = self.count
 
     def _X(self) -> np.ndarray:
         rows = self.hist[self._rows()]

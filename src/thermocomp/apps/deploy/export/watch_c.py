@@ -95,7 +95,7 @@ def monitor_arrays(ss) -> list[tuple[str, object, tuple, str]]:
                ("MON_MAX_BACKOFF", "max_backoff", 10, "int"), ("MON_TAU", "tau", 1800.0, "real"),
                ("MON_GROWTH", "growth", 1.5, "real"), ("MON_NOVEL", "novel", 0, "int"),
                ("MON_BLIND_OUT", "blind_out", 0, "int"), ("MON_THAWED", "thawed", 0, "int"),
-               ("MON_BLIND_DROP", "blind_drop", 0, "int"))
+               ("MON_BLIND_DROP", "blind_drop", 0, "int"), ("MON_STEPPED", "stepped", 0, "int"))
     modes = max(int(m.get("modes", 1)), 1)
     return [("MON_M", m.get("M", []), (n + 1 + len(pairs), n, n), "real"),
             ("MON_LEV", m.get("lev", []), (n + 1 + len(pairs), n), "real"),
@@ -313,10 +313,12 @@ static void mon_put_out(tc_state *s, int k) {
 }
 
 /* sensor k out where the code holds it (one out, the others predicting it, or a dropout or a
-   freeze of one no other predicts; cmon85: a second, for a drift or a freeze); else flagged */
+   freeze of one no other predicts; cmon85: a second, for a drift, a freeze or cmon86 a stepped
+   error); else flagged */
 static void mon_exclude(tc_state *s, int k, int rule) {
     int blind = (rule == TC_MON_DROPOUT || rule == TC_MON_FREEZE) && mon_drops(k);
-    int second = s->mon_out >= 0 && !((rule == TC_MON_DRIFT_OUT || rule == TC_MON_FREEZE)
+    int second = s->mon_out >= 0 && !((rule == TC_MON_DRIFT_OUT || rule == TC_MON_FREEZE
+                                       || rule == TC_MON_STEP_OUT)
                                       && MON_PORTED[k] && mon_second_held(s, k));
     if (second || !(MON_PORTED[k] || blind)) {
         mon_flag(s, TC_MON_NOT_IN_CODE, k, second ? TC_MON_SECOND : TC_MON_BLIND);
@@ -789,6 +791,34 @@ static void mon_drift(tc_state *s, const int level[], int field) {
             }
 }
 
+/* a self-prediction error stepped past the alarm band in one sample (the served
+   _check_stepped): each such sensor fired on (instant); (cmon86) the culprit, the largest step
+   times sqrt(1 - h), out as a drift exclusion is (its wait doubled, no field to follow), a
+   second beside one out where the set is solved; an export before it (MON_STEPPED 0) flags it */
+static void mon_stepped(tc_state *s, const double e[], int instant[]) {
+    double scale[NM], best = -1.0;
+    int a[NM], o[NM], jd[NM], k, j = -1, since;
+    mon_set(s, a, o, jd, scale);
+    for (k = 0; k < NM; k++) {
+        double de = e[k] - s->mon_prev_e[k], z;
+        /* (mon86) the alarm band of the set judged */
+        if (!(jd[k] && fabs(e[k]) >= s->mon_alarm[k] && fabs(de) >= s->mon_alarm[k])) continue;
+        if (!MON_STEPPED) {
+            mon_flag(s, TC_MON_NOT_IN_CODE, k, TC_MON_STEPPED);
+            return;
+        }
+        instant[k] = 1;
+        z = fabs(de) * sqrt(fabs(1.0 - s->mon_lev[k]));
+        if (z > best) best = z, j = k;
+    }
+    if (j < 0) return;
+    mon_exclude(s, j, TC_MON_STEP_OUT);
+    if (s->mon_out != j && s->mon_out2 != j) return;   /* (flagged) */
+    since = s->mon_since[j];
+    mon_by_drift(s, j);
+    s->mon_since[j] = since;   /* (no field follows it) */
+}
+
 /* the served monitor's exclusion by judgement where the code holds it (mon_drift), else
    flagged, none in a new thermal state (cmon82b); and a field that followed a drift exclusion
    within a window: the sensor re-admitted, a new thermal state declared (served _follow_field;
@@ -971,11 +1001,7 @@ static void monitor_step(tc_state *s, double u[], double dt) {
             s->mon_off[k] = 0;
         }
     }
-    /* a rule not in the code: a stepped error (its exclusion) */
-    mon_set(s, a, o, jd, scale);
-    for (k = 0; k < NM; k++)
-        if (jd[k] && fabs(e[k]) >= s->mon_alarm[k] && fabs(e[k] - s->mon_prev_e[k]) >= s->mon_alarm[k])
-            mon_flag(s, TC_MON_NOT_IN_CODE, k, TC_MON_STEPPED);
+    mon_stepped(s, e, instant);   /* (cmon86) a stepped error's culprit out */
     for (k = 0; k < NM; k++)
         if (jd[k] && mon_level(s, k)) s->mon_flags |= TC_MON_BAND;
     mon_judgement(s);   /* (cmon82) a drift exclusion */

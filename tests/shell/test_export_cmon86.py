@@ -1,0 +1,117 @@
+"""A stepped error's culprit out in the exported C (cmon86, issue 34): the code's monitor excludes
+the culprit of a self-prediction error stepped past the alarm band (the served
+``_check_stepped``), a second sensor beside one out, where before it flagged ``STEPPED`` and the
+pack was cut there (benchmarks/bench_cmon86.py).
+
+The column machine (``thermocomp simulate sim=column_moving_source``, seed 8841, bench_cmon85's),
+MLR deployed adaptive as by default, its test campaign with bench_cmon82's sensor drifting from
+the middle (bench_cmon84's drift): it goes out for its range, and with it out another sensor's
+error steps past its alarm band."""
+
+from __future__ import annotations
+
+import dataclasses
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from test_export import _compose, built_stream, needs_cc
+from test_export_cmon80 import _streamed
+from test_export_cmon85 import _mirror, _served_out
+from thermocomp.apps.deploy.export import Simulator, exported_files, state_space
+from thermocomp.apps.deploy.export.pack import conformance_pack, corrections
+from thermocomp.apps.deploy.export.watch import STEPPED
+from thermocomp.apps.deploy.report import stream_rows
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "benchmarks"))
+
+SEED = 8841
+
+
+@pytest.fixture(scope="module")
+def record(tmp_path_factory):
+    """``(deployed, its system with the monitor, the test campaign with the drift)``."""
+    from bench_cmon82 import _sensor
+    from bench_cmon84 import _column_faults
+
+    from thermocomp.shell.builders import build_compensator, deploy_stream, deployable
+    from thermocomp.shell.cli import main
+    from thermocomp.shell.source import read_streamed
+
+    data = tmp_path_factory.mktemp("cmon86") / "data"
+    assert main(["-q", "simulate", f"seed={SEED}", f"data.path={data}", "track=false",
+                 "sim=column_moving_source"]) == 0
+    cfg = _compose(f"data.path={data}", "track=false", "model=mlr")
+    ds, train_ids, test_ids, _ = read_streamed(cfg)
+    train = {k: ds.campaigns[k] for k in train_ids}
+    deployed = deployable(cfg, deploy_stream(cfg, build_compensator(cfg, ds=ds).fit(train), train),
+                          train, ds)
+    ss = state_space(deployed, monitor=True)
+    frame = ds.campaigns[test_ids[0]].reset_index(drop=True)
+    return deployed, ss, _column_faults(frame, _sensor(ss))["drift"]
+
+
+def _before(ss):
+    """``ss`` as exported before cmon86 (no ``stepped``)."""
+    return dataclasses.replace(ss, monitor={k: v for k, v in ss.monitor.items() if k != "stepped"})
+
+
+def _outs(ss, frame) -> list[tuple[int, str, bool]]:
+    """Each sensor the numpy mirror puts out: ``(row, sensor, by its error)`` (two in a row
+    too: the sample's first event alone names its rule)."""
+    sim = Simulator(ss)
+    sim.reset()
+    names = [ss.inputs[i] for i in ss.monitor["inputs"]]
+    out, seen = [], set()
+    for i, (u, t) in enumerate(zip(frame[ss.inputs].to_numpy(float), frame["time"])):
+        sim.step(u, t)
+        w = sim.watch
+        now = {k for k in (w.out, w.out2) if k >= 0}
+        out += [(i + 1, names[k], bool(w.by_field[k])) for k in sorted(now - seen)]
+        seen = now
+    return out
+
+
+def _stepped_row(served) -> tuple[int, str]:
+    """The served stepped exclusion's ``(row, sensor)``: in the sample of another sensor's
+    exclusion (a second out)."""
+    row, sensor = next((r, s) for r, s, why in served if why == "jump" and (r, s) != served[0][:2])
+    assert any(r == row and s != sensor for r, s, _ in served), served
+    return row, sensor
+
+
+@needs_cc
+def test_a_stepped_culprit_is_followed_by_the_code_as_served(record, tmp_path):
+    deployed, ss, frame = record
+    served = _served_out(deployed, frame)
+    row, sensor = _stepped_row(served)
+    want = corrections(ss, stream_rows(deployed, frame, "test").y)
+    got, _, missed = _mirror(ss, frame)
+    assert not missed and np.max(np.abs(got - want)) < 1e-9
+    out = _outs(ss, frame)
+    assert sorted((r, s) for r, s, _ in out) == sorted((r, s) for r, s, _ in served)
+    # the culprit out by its error (its wait doubled), beside the one out for its range
+    assert sorted((s, by) for r, s, by in out if r == row) == sorted(
+        [(s, s == sensor) for r, s, _ in served if r == row])
+    files, summary = conformance_pack(deployed, ss, {"test": frame})
+    assert (summary["campaigns"][0]["rows"], summary["campaigns"][0]["cut"]) == (len(frame), None)
+    stream = built_stream(tmp_path, {**exported_files(deployed, "c"), **files})
+    c, said = _streamed(stream, frame, ss.inputs)
+    assert c.shape == want.shape and np.max(np.abs(c - want)) < 1e-9        # every row
+    assert "not in the code" not in said
+    script = subprocess.run(["sh", "check/check.sh"], cwd=tmp_path, capture_output=True, text=True)
+    assert script.returncode == 0, script.stderr
+
+
+def test_an_export_before_cmon86_flags_the_stepped_error(record):
+    """Arrays without ``stepped``: the stepped error flagged (``STEPPED``) at the served
+    exclusion's row, and the pack cut there."""
+    deployed, ss, frame = record
+    row, _ = _stepped_row(_served_out(deployed, frame))
+    _, _, missed = _mirror(_before(ss), frame)
+    assert missed and missed[0] == (row, STEPPED)
+    _, summary = conformance_pack(deployed, _before(ss), {"test": frame})
+    assert summary["campaigns"][0]["rows"] < row
