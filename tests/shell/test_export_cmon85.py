@@ -37,9 +37,14 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "benchmarks"))
 SEED = 8841
 
 
-@pytest.fixture(scope="module")
-def record(tmp_path_factory):
-    """``(deployed, its system with the monitor, the test campaign with the dropout)``."""
+def column_record(tmp_path_factory, fault: str):
+    """``(deployed, its system with the monitor, the test campaign with bench_cmon84's
+    ``fault``)`` on the column machine of seed :data:`SEED` (cmon85's and cmon86's record)."""
+    deployed, ss, faults = _column(tmp_path_factory)
+    return deployed, ss, faults[fault]
+
+
+def _column(tmp_path_factory):
     from bench_cmon82 import _sensor
     from bench_cmon84 import _column_faults
 
@@ -47,7 +52,7 @@ def record(tmp_path_factory):
     from thermocomp.shell.cli import main
     from thermocomp.shell.source import read_streamed
 
-    data = tmp_path_factory.mktemp("cmon85") / "data"
+    data = tmp_path_factory.mktemp(f"column{SEED}") / "data"
     assert main(["-q", "simulate", f"seed={SEED}", f"data.path={data}", "track=false",
                  "sim=column_moving_source"]) == 0
     cfg = _compose(f"data.path={data}", "track=false", "model=mlr")
@@ -57,12 +62,18 @@ def record(tmp_path_factory):
                           train, ds)
     ss = state_space(deployed, monitor=True)
     frame = ds.campaigns[test_ids[0]].reset_index(drop=True)
-    return deployed, ss, _column_faults(frame, _sensor(ss))["dropout"]
+    return deployed, ss, _column_faults(frame, _sensor(ss))
 
 
-def _before(ss):
-    """``ss`` as exported before cmon85 (no ``solve``)."""
-    return dataclasses.replace(ss, monitor={k: v for k, v in ss.monitor.items() if k != "solve"})
+def without(ss, feature: str):
+    """``ss`` as exported before ``feature`` (its monitor key) was in the code."""
+    return dataclasses.replace(ss, monitor={k: v for k, v in ss.monitor.items() if k != feature})
+
+
+@pytest.fixture(scope="module")
+def record(tmp_path_factory):
+    """``(deployed, its system with the monitor, the test campaign with the dropout)``."""
+    return column_record(tmp_path_factory, "dropout")
 
 
 def _mirror(ss, frame):
@@ -129,7 +140,7 @@ def test_an_export_before_cmon85_flags_the_drift_with_a_sensor_out(record):
     at the served exclusion's row or before, and the pack cut there."""
     deployed, ss, frame = record
     row = next(r for r, _, why in _served_out(deployed, frame) if why == "drift")
-    _, _, missed = _mirror(_before(ss), frame)
+    _, _, missed = _mirror(without(ss, "solve"), frame)
     assert missed and missed[0][1] == DRIFT and missed[0][0] <= row
-    _, summary = conformance_pack(deployed, _before(ss), {"test": frame})
+    _, summary = conformance_pack(deployed, without(ss, "solve"), {"test": frame})
     assert summary["campaigns"][0]["rows"] < row

@@ -10,7 +10,6 @@ error steps past its alarm band."""
 
 from __future__ import annotations
 
-import dataclasses
 import subprocess
 import sys
 from pathlib import Path
@@ -18,10 +17,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from test_export import _compose, built_stream, needs_cc
+from test_export import built_stream, needs_cc
 from test_export_cmon80 import _streamed
-from test_export_cmon85 import _mirror, _served_out
-from thermocomp.apps.deploy.export import Simulator, exported_files, state_space
+from test_export_cmon85 import _mirror, _served_out, column_record, without
+from thermocomp.apps.deploy.export import Simulator, exported_files
 from thermocomp.apps.deploy.export.pack import conformance_pack, corrections
 from thermocomp.apps.deploy.export.watch import STEPPED
 from thermocomp.apps.deploy.report import stream_rows
@@ -34,29 +33,7 @@ SEED = 8841
 @pytest.fixture(scope="module")
 def record(tmp_path_factory):
     """``(deployed, its system with the monitor, the test campaign with the drift)``."""
-    from bench_cmon82 import _sensor
-    from bench_cmon84 import _column_faults
-
-    from thermocomp.shell.builders import build_compensator, deploy_stream, deployable
-    from thermocomp.shell.cli import main
-    from thermocomp.shell.source import read_streamed
-
-    data = tmp_path_factory.mktemp("cmon86") / "data"
-    assert main(["-q", "simulate", f"seed={SEED}", f"data.path={data}", "track=false",
-                 "sim=column_moving_source"]) == 0
-    cfg = _compose(f"data.path={data}", "track=false", "model=mlr")
-    ds, train_ids, test_ids, _ = read_streamed(cfg)
-    train = {k: ds.campaigns[k] for k in train_ids}
-    deployed = deployable(cfg, deploy_stream(cfg, build_compensator(cfg, ds=ds).fit(train), train),
-                          train, ds)
-    ss = state_space(deployed, monitor=True)
-    frame = ds.campaigns[test_ids[0]].reset_index(drop=True)
-    return deployed, ss, _column_faults(frame, _sensor(ss))["drift"]
-
-
-def _before(ss):
-    """``ss`` as exported before cmon86 (no ``stepped``)."""
-    return dataclasses.replace(ss, monitor={k: v for k, v in ss.monitor.items() if k != "stepped"})
+    return column_record(tmp_path_factory, "drift")
 
 
 def _outs(ss, frame) -> list[tuple[int, str, bool]]:
@@ -111,7 +88,7 @@ def test_an_export_before_cmon86_flags_the_stepped_error(record):
     exclusion's row, and the pack cut there."""
     deployed, ss, frame = record
     row, _ = _stepped_row(_served_out(deployed, frame))
-    _, _, missed = _mirror(_before(ss), frame)
+    _, _, missed = _mirror(without(ss, "stepped"), frame)
     assert missed and missed[0] == (row, STEPPED)
-    _, summary = conformance_pack(deployed, _before(ss), {"test": frame})
+    _, summary = conformance_pack(deployed, without(ss, "stepped"), {"test": frame})
     assert summary["campaigns"][0]["rows"] < row
