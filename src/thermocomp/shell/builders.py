@@ -206,6 +206,16 @@ def _registered(cfg: DictConfig, source: str, path, key: str) -> tuple[object, s
     return deployed, source, model_family(plain(deployed).compensator)
 
 
+def registered_first(cfg: DictConfig, source, key: str) -> tuple[DictConfig, tuple | None]:
+    """``(cfg, loaded)``: a registered ``source`` (:func:`is_registered`; ``key`` where it was
+    given) loaded by :func:`deployable_model` before the record is read, and ``cfg`` reading its
+    status words as it declares them (:func:`with_model_bits`); ``(cfg, None)`` for any other."""
+    if not is_registered(source):
+        return cfg, None
+    loaded = deployable_model(cfg, None, [], source, key)
+    return with_model_bits(cfg, loaded[0], f"{key}={source}"), loaded
+
+
 def with_model_bits(cfg: DictConfig, deployed, key: str) -> DictConfig:
     """``cfg`` reading the record as the registered model ``deployed`` (``key``: where it was
     given) was fitted: its PLC status words decoded by the declaration it carries (``bits_``,

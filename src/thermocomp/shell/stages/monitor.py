@@ -42,10 +42,8 @@ from ..builders import (
     build_adaptive,
     build_compensator,
     deploy_stream,
-    deployable_model,
-    is_registered,
+    registered_first,
     warn_stream_mode,
-    with_model_bits,
 )
 from ..config.checks import check_config, data_options
 from ..model_store import load_model, model_family
@@ -101,10 +99,8 @@ def monitor(cfg: DictConfig) -> dict:
                           "models:/<name>@<alias>")
     # a registered model, loaded before the record is read: its status words decoded as it
     # declares them (data86b, as replay's)
-    registered = deployable_model(cfg, None, [], model, "monitor.model")[0] \
-        if is_registered(model) else None
-    if registered is not None:
-        cfg = with_model_bits(cfg, registered, f"monitor.model={model}")
+    cfg, loaded = registered_first(cfg, model, "monitor.model")
+    registered = loaded[0] if loaded else None
     stdin = cfg.monitor.get("input") == "-"
     ds, train_ids, test_ids, missing = read_streamed(cfg, test=not stdin)
     streamed, train = {c: ds.campaigns[c] for c in test_ids}, {c: ds.campaigns[c] for c in train_ids}

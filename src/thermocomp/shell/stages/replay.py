@@ -21,7 +21,7 @@ from ...base.log import say
 from ...base.paths import resolve
 from ...core.continuation import lead_ins
 from ...core.io.source import check_streamed_columns
-from ..builders import deployable_model, is_registered, warn_stream_mode, with_model_bits
+from ..builders import deployable_model, registered_first, warn_stream_mode
 from ..config.checks import check_config
 from ..source import check_volumetric_targets, read_streamed
 from ..tracking import name_given_model, stage_run
@@ -36,10 +36,7 @@ def replay(cfg: DictConfig) -> dict:
         raise ConfigError("replay.model is empty: a model.pkl, a pyfunc folder or models:/<name>@<alias>")
     # a registered model, loaded before the record is read: its status words decoded as it
     # declares them (data86)
-    loaded = (deployable_model(cfg, None, [], model, "replay.model")
-              if model is not None and is_registered(str(model)) else None)
-    if loaded is not None:
-        cfg = with_model_bits(cfg, loaded[0], f"replay.model={model}")
+    cfg, loaded = registered_first(cfg, model, "replay.model")
     ds, train_ids, test_ids, gaps = read_streamed(cfg)
     with stage_run(cfg, "replay", given_model=model is not None) as tr:
         deployed, source, name = loaded or deployable_model(cfg, ds, train_ids, model,
