@@ -59,7 +59,7 @@ are the exchangeable units, so the test flips signs of whole campaigns.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 
 import numpy as np
 import pandas as pd
@@ -114,7 +114,6 @@ class Evaluation:
     p_margin: float = float("nan")            # p of a gain of min_gain_pct at least (the margin)
     gain_pct_within: float | None = None       # within the held-out campaigns (campaigns CV)
     gain_pct_within_rest: float | None = None  # the same without the campaign gaining most there
-    p_nested: float | None = None             # p of its start block over the plain lag
 
     def entry(self) -> dict:
         """The ``effects`` entry of ``diagnosis.json`` (CLI.md keys first)."""
@@ -141,8 +140,6 @@ class Evaluation:
             out["evidence"]["cv_rmse_gain_pct_within"] = self.gain_pct_within
         if self.gain_pct_within_rest is not None:
             out["evidence"]["cv_rmse_gain_pct_within_rest"] = self.gain_pct_within_rest
-        if self.p_nested is not None:
-            out["evidence"]["p_value_nested"] = self.p_nested
         out["effect"] = e.to_dict()
         return out
 
@@ -393,56 +390,17 @@ class Search:
         family = [ev for ev in evals if not ev.control and ev.effect.transform != "remove"]
         if not family:
             return
-        p = sign_flip_maxt(self._block_gains(current, family), seed=self.options.seed)
+        D = np.array([current.block_mse - ev.result.block_mse for ev in family])
+        if self.problem.n_blocks_tested > self.problem.n_units:
+            D = np.sign(D) * rankdata(np.abs(D), axis=1)
+        else:   # one block per unit (or per run of forward units): its gain as a share of its MSE
+            D = np.clip(D / np.maximum(current.block_mse, 1e-300), -1.0, 1.0)
+        p = sign_flip_maxt(D, seed=self.options.seed)
         for ev, pf in zip(family, p):
             ev.p_family = float(pf)
             ev.clears_bar = self._clears(ev.gain_pct, pf, ev.gain_pct_in_range, ev.p_margin,
                                          ev.n_features)
             self._within_checks(ev, current)
-
-    def _block_gains(self, before: CVResult, evals: list) -> np.ndarray:
-        """:meth:`_family_bar`'s statistic: each test block's gain of ``evals`` over ``before``."""
-        D = np.array([before.block_mse - ev.result.block_mse for ev in evals])
-        if self.problem.n_blocks_tested > self.problem.n_units:
-            return np.sign(D) * rankdata(np.abs(D), axis=1)
-        # one block per unit (or per run of forward units): its gain as a share of its MSE
-        return np.clip(D / np.maximum(before.block_mse, 1e-300), -1.0, 1.0)
-
-    def _nested_starts(self, evals: list, current: CVResult) -> list:
-        """A lag from the initial state clears only if its start block adds over the same lag with
-        no start block: the family's sign-flip test of the blocks' gain of the start lag over the
-        plain lag, at ``alpha`` (``p_nested``; diag87).  A refused one is no rival of the
-        one-standard-error choice; the plain lag, when not refitted in the round, is refitted and
-        judged in its place: its family-wise p with its row in the refused one's (the family's
-        size unchanged), the other members keeping theirs.  Returns those stand-ins.  (diag86b
-        tested the k-th direction over k - 1 instead: the 2-direction variants of spurious start
-        lags cleared on their own, 8457 E_X test +12.4 %.)"""
-        family = [ev for ev in evals if not ev.control and ev.effect.transform != "remove"]
-        known = {ev.effect: ev for ev in evals}
-        added = []
-        for i, ev in enumerate(family):
-            if not (ev.clears_bar and ev.effect.initial_state):
-                continue
-            plain = replace(ev.effect, initial_state=None, initial_directions=None)
-            base = known.get(plain)
-            if base is None:
-                base = self._evaluate(plain, current, float("nan"))
-            ev.p_nested = float(sign_flip_maxt(self._block_gains(base.result, [ev]),
-                                               seed=self.options.seed)[0])
-            if ev.p_nested <= self.options.alpha:
-                continue
-            ev.clears_bar = False
-            if plain in known:
-                continue
-            stand = family[:i] + [base] + family[i + 1:]
-            base.p_family = float(sign_flip_maxt(self._block_gains(current, stand),
-                                                 seed=self.options.seed)[i])
-            base.clears_bar = self._clears(base.gain_pct, base.p_family, base.gain_pct_in_range,
-                                           base.p_margin, base.n_features)
-            self._within_checks(base, current)
-            known[plain] = base
-            added.append(base)
-        return added
 
     def _within_checks(self, ev: Evaluation, current: CVResult) -> None:
         """``ev`` clears only if it gains within the campaigns too (:meth:`_within_gain`)."""
@@ -604,12 +562,11 @@ class Search:
                 scored.append((e, r2))
             evals = [self._evaluate(e, current, r2) for e, r2 in self._shortlist(scored)]
             self._family_bar(evals, current)
-            evals += self._nested_starts(evals, current)
             evals.sort(key=lambda ev: -ev.gain)
             control = next((ev for ev in evals if ev.control), None)
             bar = control.gain if control is not None else -np.inf
             eligible = choose([ev for ev in evals if ev.clears_bar and not ev.control and ev.gain > bar],
-                              rivals=[ev for ev in evals if not (ev.p_nested or 0.0) > self.options.alpha])
+                              rivals=evals)
             screened = [{"kind": e.kind, "column": e.column, "transform": e.label,
                          "screen_r2": r2} for e, r2 in sorted(
                              (s for s in scored if np.isfinite(s[1])), key=lambda s: -s[1])[:20]]
