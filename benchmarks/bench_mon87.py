@@ -6,6 +6,7 @@ Usage (from the repository root, ``PYTHONPATH=<tree>/src``: the code measured is
 
     python benchmarks/bench_mon87.py trace [ROOT]
     python benchmarks/bench_mon87.py fl [CASE]
+    python benchmarks/bench_mon87.py mon85b [FIRST [LAST]]
     python benchmarks/bench_mon87.py column ROOT LABEL [SEEDS [KINDS]]
     python benchmarks/bench_mon87.py ctable ROOT MAIN RULE
     python benchmarks/bench_mon87.py ccode [ROOT] [SEED] [KIND]
@@ -19,7 +20,11 @@ source, 30 h of training, 20 h of test, made once under ``ROOT``, default ``/tmp
 every call of the served ``_lone_fault``, its pick and the evidence), then every warning
 episode: the sensor, its start and end (s), the smallest of its last ``confirm`` errors (the
 event's reason), its band and its rounding bound ``rounding_c``.  ``fl``: bench_mon86's ``trace``
-(fl_thermal, ``drift`` or ``clean``).  The rest: bench_mon84's commands (its docstring) on this
+(fl_thermal, ``drift`` or ``clean``).  ``mon85b``: test_export_mon85b's record (fl_thermal
+deployed adaptive MLR, ``T_t12`` 1 K/h and ``T_t14`` 2.7 K/h from row 240) served, each
+``_lone_fault`` call on rows FIRST-LAST (1-based, default 300-330) as ``trace`` says it, with
+whether the excursion hovers; then ``T_t15``'s and the drifting sensors' moves and the served
+RMSE.  The rest: bench_mon84's commands (its docstring) on this
 task's fresh seeds: ``column`` 9116-9120, ``trunnion`` 9121-9122, ``lathe`` 9123-9124, ``jig``
 9125.
 
@@ -50,8 +55,9 @@ new thermal state or guard event, served RMSE = fixed, and every warning episode
 by less than the sensor's rounding bound ``rounding_c`` (X: the most its readings' rounding to
 their training resolution moves its error, mon83's bound, from training's smallest steps; a
 crossing that the logger's last digit may make alone) and over within fewer than ``confirm``
-samples (Y: the next judgement withdraws it; none confirms it).  The report gives ``rounding_c``
-beside the bands so that a reader (and the test) can tell.  Known when deciding: mon86b's trace
+samples (Y: the next judgement withdraws it; none confirms it).  The rule's report gives
+``rounding_c`` beside the bands so that a reader (and the test) can tell (in the patch: without
+it ``trace`` prints nan).  Known when deciding: mon86b's trace
 (``T_left1`` past its band by 0.0016 °C for one sample); X and Y are the code's existing
 training / configuration quantities, not fitted to it.
 
@@ -71,6 +77,69 @@ reverted, the rule kept as ``benchmarks/mon87_rule.patch``):
    as main.
 7. ``ccode`` (rule) on s8774 frozen, s8703 healthy and 9116 drift: C = served to 1e-9 µm.
 8. tests/apps/test_monitor*.py, tests/shell/test_monitor*.py, tests/shell/test_export*.py pass.
+
+Scored (2026-12-04; "main": ``git archive 25b18da6`` sources, "rule": ``git archive b9efa500``,
+per seed main's run then the rule's; E_* test RMSE in µm, served adaptive)
+------------------------------------------------------------------------------------------------
+1. ``trace`` (rule): one ``_lone_fault`` call, at t = 63100 s: culprit ``T_right3`` (-0.165 °C,
+   band 0.400) -> none yet (the excursion does not hover; ``T_left1``'s own exclusion leaves
+   ``T_left3`` unjudged).  Nothing excluded, no alarm, no new state; served = fixed (E_X 0.731,
+   E_Y 6.072, E_Z 1.349; main 0.776 / 6.106 / 1.345 adaptive).  One warning episode, ``T_left1``
+   63100 -> 63200 s (one sample; ``confirm`` 2), the smallest error 0.407 shown (0.4068 traced)
+   against its 0.4052 band: past it by 0.0016 °C, its ``rounding_c`` 0.0322 °C.  The test with
+   the xfail removed passes.  Holds.
+2. tests/apps/test_monitor_regime73.py: 3 passed (mon86b: 2 failed; the hover check before the
+   hand-over holds the lathe's ``T_toolholder1`` as main).  tests/shell/test_export_mon85b.py:
+   FAILED, as under mon86b (``moves`` = []: ``T_t15`` never out).  ``mon85b`` traces why: at row
+   306 (1-based) culprit ``T_t15`` (-0.279 °C, band 0.400, standardised 0.257) explains the bands;
+   the likelier fault ``T_t14`` (drifting 2.7 K/h; +0.426 / +0.459 against 0.400, standardised
+   0.312) is out of band, the excursion does not hover (a drift grows), and ``T_t14``'s own
+   exclusion leaves ``T_t9`` unjudged (mon84b): none yet, rows 306-312; at 313 ``T_t14`` is
+   paper 002's culprit itself and goes out; ``T_t12`` out at 576 (alarm at 575).  Main: ``T_t15``
+   out 306-316 and 317-323, a new thermal state at 323, no drift out to the end.  On that
+   campaign (``stream_rows``' predictions against its E_ch; uncompensated RMS 8.14 / 8.26 / 28.41
+   / 26.61 / 12.22 µm) E_ch1..5 main 13.50 / 11.17 / 7.70 / 11.04 / 7.93, rule 5.61 / 4.51 /
+   4.89 / 5.53 / 4.37: the rule's drift exclusions serve better here, but the test's branch (a
+   culprit out within its band, the exported code's ``hid``) is not reached.  Fails.
+3. s8703 / s8546 / s8613 healthy: every E_* equal to 3 decimals (s8703 E_X 30.602, s8546 E_Y
+   16.489, s8613 E_Y 12.352); s8774 frozen ``T_front1`` first out 726 -> 726.  Holds.
+4. Fresh 9116-9120, healthy and the four faults (25 records): no E_* more than 0.04 % above main's;
+   ``T_front1`` first out at main's row on every one (+0: frozen 731 / 728 / 754 / 729 / 764,
+   drift 1148 / 1092 / 1162 / 1068 / 1074, jump and dropout 721).  The rule acts on s9119 only,
+   all five records: main takes the healthy ``T_right3`` out (732-734; 731-732 drift), the rule
+   keeps it in (healthy E_X 30.708 -> 30.705, E_Y 13.604 -> 13.599; the rest within 0.001).  Holds.
+5. Trunnion 9121-9122, lathe 9123-9124, jig 9125, healthy: 0 events either way, the jsonl lines
+   equal.  Holds.
+6. ``fl clean``: nothing out, no warning episode, no new state, either tree; ``fl drift``: the
+   output line for line main's (``T_t14`` out 10294, ``T_t12`` out at 10498, ``T_t14`` back
+   at 10498).  Holds.
+7. ``ccode`` (rule): s8774 frozen 2.84e-13, s8703 healthy 2.84e-13, 9116 drift 1.25e-12 µm; where
+   the rule acts s9119 healthy 2.56e-13, frozen 3.13e-13 µm; the code flags nothing.  Holds.
+8. tests/apps/test_monitor*.py, tests/shell/test_monitor*.py, tests/shell/test_export*.py (rule):
+   421 passed, 1 failed (test_export_mon85b, part 2), 3 xfailed (main's known gaps; healthy53 now
+   passes), 1010 s wall on the shared machine.  Fails.
+
+CPU (user + sys of the bench process): ``column`` per seed 3.4-3.8 s main (making the records),
+2.9-3.3 s rule (s8703 / s8546 / s8613 / s8774 one kind: 1.9-2.6 s); ``trace`` 1.7 s; ``mon85b``
+2.3-2.4 s; ``ccode`` 2.5-2.7 s each; ``fl`` 1.3-1.5 s either tree; the stranger runs 3.7-4.4 s
+main (making the records), 0.0 rule.
+
+Verdict: REFUSED (part 2 and so part 8 fail: test_export_mon85b's record no longer takes a culprit
+out within its band).  The source reverted, the rule kept as ``benchmarks/mon87_rule.patch``
+(served, numpy mirror, C, and the report's ``bands.rounding_c``); healthy53 stays a strict xfail.
+What it showed: the hover check asked before the hand-over mends mon86b's regime73 failure (the
+lathe's hovering healthy ``T_toolholder1`` held, as main) and keeps everything mon86b gained
+(healthy53: nothing excluded, served = fixed, one warning episode within the quiet criterion
+above; s9119's healthy ``T_right3`` kept in on all five records; 30 column, 5 stranger and the
+fl_thermal records otherwise main's; C = served).  What remains, for the lead: the one failing
+test covers the exported code's re-admission of a culprit out within its band (mon85b's ``hid``)
+on a two-drift record where the rule refuses that pick for a good reason (the likelier fault,
+``T_t14``, is a drift: out at row 313 instead of main's healthy ``T_t15`` at 306 and a new
+thermal state; E_ch1..5 13.50 / 11.17 / 7.70 / 11.04 / 7.93 -> 5.61 / 4.51 / 4.89 / 5.53 /
+4.37 µm on that campaign).  A next step: give test_export_mon85b a record on which the rule
+still takes a culprit out within its band (its likelier fault within band too), with the same
+assertions, and score this rule again against it; the quiet criterion (warning past its band
+by less than ``rounding_c``, shorter than ``confirm`` samples) goes with it.
 """
 
 from __future__ import annotations
@@ -110,6 +179,48 @@ def trace(root: str = ROOT) -> None:
                   flush=True)
 
 
+def mon85b(first: str = "300", last: str = "330") -> None:
+    sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests" / "shell"))
+    import test_export_mon85b as t85b
+    from thermocomp.apps.deploy.report import stream_rows
+    from thermocomp.apps.deploy.surveillance.judgement import Judgement
+
+    deployed, _, frame = t85b.served.__wrapped__()
+    times = frame["time"].to_numpy(float) - frame["time"].iloc[0]
+    picks, log, row = Judgement._lone_fault, [], [0]
+
+    def lone(self, j, z, level, err):
+        k, resolves = picks(self, j, z, level, err)
+        if int(first) <= row[0] <= int(last):
+            log.append(f"row {row[0]}: hovers {self._excursion_hovers(level, err)}")
+            log.extend(m86b._said(self, j, k, z, level, err))
+        return k, resolves
+
+    def counted(step):
+        def stepped(*a):
+            row[0] += 1
+            return step(*a)
+        return stepped
+
+    deployed._step = counted(deployed._step)
+    Judgement._lone_fault = lone
+    try:
+        run = stream_rows(deployed, frame, "K06")
+    finally:
+        Judgement._lone_fault = picks
+    for line in log:
+        print(line)
+    for e in run.events:
+        if e.get("sensor") in ("T_t12", "T_t14", "T_t15") or e.get("sensor") is None:
+            print(f"row {int(np.searchsorted(times, e['time'])) + 1}: {e.get('sensor')} "
+                  f"{e['from']} -> {e['to']}")
+    print("uncompensated RMS: " + ", ".join(
+        f"{t} {np.sqrt(np.mean(frame[t].to_numpy(float) ** 2)):.2f}" for t in deployed.targets_))
+    print("served RMSE: " + ", ".join(
+        f"{t} {np.sqrt(np.mean((run.y[:, i] - frame[t].to_numpy(float)) ** 2)):.2f}"
+        for i, t in enumerate(deployed.targets_)))
+
+
 def fl(case: str = "drift") -> None:
     m86.trace(case)
 
@@ -144,7 +255,8 @@ def table(root: str, main: str, rule: str) -> None:
 
 def main(argv: list[str] | None = None) -> int:
     np.seterr(all="ignore")
-    return run_commands(__doc__, {"trace": trace, "fl": fl, "column": column, "ctable": ctable,
+    return run_commands(__doc__, {"trace": trace, "fl": fl, "mon85b": mon85b,
+                                  "column": column, "ctable": ctable,
                                   "ccode": ccode, "trunnion": trunnion, "lathe": lathe,
                                   "jig": jig, "table": table},
                         sys.argv[1:] if argv is None else argv, cpu=sys.stderr)
