@@ -84,7 +84,8 @@ per seed main's run then the rule's; E_* test RMSE in µm, served adaptive)
 1. ``trace`` (rule): one ``_lone_fault`` call, at t = 63100 s: culprit ``T_right3`` (-0.165 °C,
    band 0.400) -> none yet (the excursion does not hover; ``T_left1``'s own exclusion leaves
    ``T_left3`` unjudged).  Nothing excluded, no alarm, no new state; served = fixed (E_X 0.731,
-   E_Y 6.072, E_Z 1.349; main 0.776 / 6.106 / 1.345 adaptive).  One warning episode, ``T_left1``
+   E_Y 6.072, E_Z 1.349; main, traced the same way: ``T_right3`` out 63100-64200 s, adaptive
+   0.776 / 6.106 / 1.345).  One warning episode, ``T_left1``
    63100 -> 63200 s (one sample; ``confirm`` 2), the smallest error 0.407 shown (0.4068 traced)
    against its 0.4052 band: past it by 0.0016 °C, its ``rounding_c`` 0.0322 °C.  The test with
    the xfail removed passes.  Holds.
@@ -110,7 +111,8 @@ per seed main's run then the rule's; E_* test RMSE in µm, served adaptive)
    keeps it in (healthy E_X 30.708 -> 30.705, E_Y 13.604 -> 13.599; the rest within 0.001).  Holds.
 5. Trunnion 9121-9122, lathe 9123-9124, jig 9125, healthy: 0 events either way, the jsonl lines
    equal.  Holds.
-6. ``fl clean``: nothing out, no warning episode, no new state, either tree; ``fl drift``: the
+6. ``fl clean``: the output identical either tree (nothing out at the end, no new thermal
+   state, ``T_t14`` never out of ok); ``fl drift``: the
    output line for line main's (``T_t14`` out 10294, ``T_t12`` out at 10498, ``T_t14`` back
    at 10498).  Holds.
 7. ``ccode`` (rule): s8774 frozen 2.84e-13, s8703 healthy 2.84e-13, 9116 drift 1.25e-12 µm; where
@@ -120,9 +122,9 @@ per seed main's run then the rule's; E_* test RMSE in µm, served adaptive)
    passes), 1010 s wall on the shared machine.  Fails.
 
 CPU (user + sys of the bench process): ``column`` per seed 3.4-3.8 s main (making the records),
-2.9-3.3 s rule (s8703 / s8546 / s8613 / s8774 one kind: 1.9-2.6 s); ``trace`` 1.7 s; ``mon85b``
-2.3-2.4 s; ``ccode`` 2.5-2.7 s each; ``fl`` 1.3-1.5 s either tree; the stranger runs 3.7-4.4 s
-main (making the records), 0.0 rule.
+2.9-3.3 s rule (s8703 / s8546 / s8613 / s8774 one kind: 1.9-2.6 s); ``trace`` 1.7 s rule, 2.4 s
+main (making the record); ``mon85b`` 2.3-2.4 s; ``ccode`` 2.5-2.7 s each; ``fl`` 1.3-1.5 s either
+tree; the stranger runs 3.7-4.4 s main (making the records), 0.0 rule.
 
 Verdict: REFUSED (part 2 and so part 8 fail: test_export_mon85b's record no longer takes a culprit
 out within its band).  The source reverted, the rule kept as ``benchmarks/mon87_rule.patch``
