@@ -32,7 +32,7 @@ from .clocksets import undone
 from .contract import ContractError
 from .csvline import EMPTY, SPLIT, split_line
 from .dayfirst import ORDER, WAY, text_says
-from .derived import on_frame
+from .derived import on_frame, without_derived
 from .encoding import UTF8, check_text, text_codec
 from .footer import TAIL_BYTES, footer_of
 from .graphtec import graphtec_as_csv, is_graphtec_text
@@ -55,6 +55,7 @@ from .separators import UNICODE_MINUS, grouped
 from .sinumerik import TRACE_ROOT
 from .slashed import stream_format
 from .sniff import SNIFF_LINES, detected
+from .streamed import check_streamed
 from .tables import MISSING_TOKENS, NO_TIME_COLUMN, first_cast_failure, shortened
 from .timestamps import (
     CLOCK,
@@ -316,6 +317,8 @@ def stream_campaigns(text: str, columns: list[str], opts, recorded: str | None =
     file's are (:mod:`.runs`), so each starts from a reset as a file's run does (:func:`read_stream`;
     ``recorded``: the training record's order of dates with slashes; ``lab``: as there)."""
     df, counts, blocks, origins = _read_runs(text, columns, opts, recorded, lab)
+    check_streamed(df[without_derived(df.columns, opts.derive)], blocks, opts, SOURCE,
+                   df.attrs.get(HEADERS, {}))        # (data87) as a streamed file's values
     if blocks is None:
         df.attrs[TIME_ORIGIN] = origins[0]
         return {STDIN: df}, ({STDIN: counts} if counts else {})
