@@ -1,15 +1,24 @@
 """A lab's files in (data87): a unit changed under an unchanged header is refused on stdin
-(``monitor.input=-``) as on the file, at the same column and row."""
+(``monitor.input=-``) as on the file, at the same column and row; a folder whose files differ in
+encoding or thousands separator (one re-saved by Excel) read each file by its own
+(``data.encoding=auto``, ``data.thousands=auto``), a file ambiguous on its own refused naming
+its column and row."""
 
 from __future__ import annotations
 
 import io
 import shutil
+from types import SimpleNamespace
 
 import pandas as pd
 import pytest
+import yaml
 
+from conftest import refused
+from test_audit86 import german_export
 from test_hostile_units import FAHRENHEIT, MILLIMETRES, from_row
+from thermocomp.core.io import ContractError, read_dataset
+from thermocomp.core.io.stdin import stdin_text
 from thermocomp.shell.cli import main
 
 KELVIN = lambda c: (c + 273.15).round(2)  # noqa: E731 -- as a logger writes it
@@ -51,3 +60,67 @@ def test_a_unit_changed_under_its_header_is_refused_on_stdin_as_on_the_file(
     assert f"file <stdin>, column '{column}', data row 15: " in said, said
     assert f"{name}, column '{column}', line 16 (data row 15): " in file_said, file_said
     assert said.split("data row 15: ", 1)[1] == file_said.split("data row 15): ", 1)[1]
+    # the file's words said the change, a kelvin one too (it was "no temperature, in °C or
+    # kelvin ...: another quantity? give its column a role")
+    assert "the unit changes inside the file, convert it" in said, said
+
+
+# -- (b) a folder whose files were saved by different programs -------------------------------
+
+def _lab_folder(root, script_like: bool):
+    """Three runs a logger's PC wrote as UTF-8 (``script_like``: ``,`` and decimal points; else
+    ``;`` and decimal commas, as the fourth) and a fourth re-saved by a German Excel: cp1252,
+    ``;``, decimal commas, its speeds grouped by a point (``6.000``); seeds 9141-9144."""
+    root.mkdir()
+    for run in (1, 2, 3):
+        path = german_export(root / f"run{run}.csv", 9141 + run, ["6000", "12000", "1500"])
+        if script_like:
+            text = path.read_text(encoding="utf-8").replace(",", ".").replace(";", ",")
+            path.write_text(text, encoding="utf-8")
+    path = german_export(root / "run4.csv", 9141, ["6.000", "12.000", "1.500"])
+    path.write_bytes(path.read_text(encoding="utf-8").encode("cp1252"))
+    return root
+
+
+@pytest.mark.parametrize("script_like", [False, True], ids=["semicolons", "commas"])
+def test_a_folder_with_a_file_excel_saved_again_is_read_each_file_by_its_own(tmp_path, capsys,
+                                                                            script_like):
+    # data87: init refused "byte 0xb0 is not UTF-8 text ... set data.encoding=cp1252", which
+    # refuses the UTF-8 files ("save it as the others"); and a folder-wide data.thousands='.'
+    # refuses the UTF-8 files' decimal points
+    folder = _lab_folder(tmp_path / "runs", script_like)
+    assert main(["init", str(folder), f"out={tmp_path / 'init'}"]) == 0, capsys.readouterr().err
+    said = capsys.readouterr().out
+    assert "encoding each file's own (UTF-8 and cp1252 files)" in said, said
+    conf = yaml.safe_load((tmp_path / "init" / "conf" / "data" / "runs.yaml").read_text(
+        encoding="utf-8"))
+    assert conf["encoding"] == "auto"
+    assert conf["thousands"] == ("auto" if script_like else ".")
+    ds, _ = read_dataset(folder, conf)
+    speeds = {cid: sorted(set(df["S_Spindel"])) for cid, df in ds.campaigns.items()}
+    assert speeds["run4"] == speeds["run1"] == [1500.0, 6000.0, 12000.0], speeds
+    temps = {cid: df["T_Spindel"].iloc[0] for cid, df in ds.campaigns.items()}
+    assert all(19.0 < t < 23.0 for t in temps.values()), temps
+
+
+def test_a_file_whose_decimal_mark_is_ambiguous_is_refused_naming_its_column_and_row(tmp_path,
+                                                                                   capsys):
+    folder = _lab_folder(tmp_path / "runs", False)
+    text = (folder / "run4.csv").read_bytes().decode("cp1252").splitlines()
+    cells = text[4].split(";")
+    cells[-1] = "6.5"                 # neither a thousand nor a decimal comma's neighbour
+    text[4] = ";".join(cells)
+    (folder / "run4.csv").write_bytes(("\n".join(text) + "\n").encode("cp1252"))
+    refused(["run", f"data.path={folder}", "data.encoding=auto", "data.thousands=auto",
+             "data.roles.error=[d*]", "data.test_fraction=0.25", "track=false", "plots=none",
+             f"out={tmp_path / 'out'}"], capsys, "run4.csv", "column 'Spindel [1/min]'",
+            "data row 4", "the decimal mark is ambiguous ('6.5' here")
+
+
+def test_a_stream_in_either_encoding_reads_with_data_encoding_auto():
+    text = "Zeit [s];T Luft [°C];dX [µm]\n0;20,5;1,5\n"
+    for code in ("utf-8", "cp1252"):
+        stream = SimpleNamespace(buffer=io.BytesIO(text.encode(code)))
+        assert stdin_text(stream, "auto") == text
+    with pytest.raises(ContractError, match="byte 0x81 is not UTF-8 or cp1252 text"):
+        stdin_text(SimpleNamespace(buffer=io.BytesIO(b"a\n\x81\n")), "auto")

@@ -33,7 +33,7 @@ from .contract import ContractError
 from .csvline import EMPTY, SPLIT, split_line
 from .dayfirst import ORDER, WAY, text_says
 from .derived import on_frame, without_derived
-from .encoding import UTF8, check_text, text_codec
+from .encoding import AUTO, UTF8, check_text, decoded
 from .footer import TAIL_BYTES, footer_of
 from .graphtec import graphtec_as_csv, is_graphtec_text
 from .layout import (
@@ -138,10 +138,11 @@ def stdin_text(stream, encoding: str = UTF8) -> str:
     else:
         check_text(data[:4], encoding, SOURCE)
     try:
-        return data.decode(text_codec(encoding))
+        return decoded(data, encoding)    # (data87: auto, UTF-8 where it reads so, else cp1252)
     except UnicodeDecodeError as exc:
-        row = data[:exc.start].decode(encoding, "replace").count("\n")
-        raise ContractError(f"byte 0x{data[exc.start]:02x} is not {encoding} text (set "
+        row = data[:exc.start].count(b"\n")
+        said = "UTF-8 or cp1252" if encoding == AUTO else encoding
+        raise ContractError(f"byte 0x{data[exc.start]:02x} is not {said} text (set "
                             "data.encoding to the stream's character set, e.g. cp1252)",
                             file=SOURCE, row=row or None) from None
 
