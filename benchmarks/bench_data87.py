@@ -5,6 +5,7 @@ Usage (from the repository root, ``PYTHONPATH=<tree>/src``: the code measured is
 
     python benchmarks/bench_data87.py units ROOT     # (a) seed 9145
     python benchmarks/bench_data87.py folder ROOT    # (b) seeds 9141-9144
+    python benchmarks/bench_data87.py sessions ROOT  # (c) test_stranger69's LabVIEW runs
 
 ``units`` (a): ``ROOT/ds``, the default scenario at the tests' short size (9 campaigns of 2-3 h,
 6 train, 3 test; seed 9145); its first test campaign with, from data row 15 on, its warmest
@@ -20,6 +21,11 @@ as UTF-8 (``;`` and decimal commas, or a script's ``,`` and decimal points), the
 re-saved by a German Excel, cp1252, ``;``, decimal commas, its speeds grouped by a point
 (``6.000``).  ``init`` (no key), then ``run`` by its config (``data.test_fraction`` 0.25 where
 init wrote none); and ``run`` by hand with each ``data.encoding`` a user can give.
+
+``sessions`` (c): test_data86b's en-GB LabVIEW folder (three ``.lvm`` runs, test_stranger69's
+values), ``init``, ``run model=lagbank`` by its config; the held-out run's ``.lvm`` piped into
+``monitor`` of the run's model.pkl once, and twice appended (two sessions, a 'LabVIEW
+Measurement' header each).
 
 No bar (gaps closed, not a rule scored): each outcome before (main 25b18da6) and after
 (fix/data87).
@@ -66,9 +72,15 @@ before: the unit changes inside the file, convert it (data.max_step_ratio=5)"; m
   '.')" -> "column 'Spindel [1/min]', data row 4: the decimal mark is ambiguous ('6.5' here,
   '20,41' in column 'T Luft [°C]', data row 1: each mark as a decimal mark)".
 
+``sessions`` (c), main -> here: one session piped in, exit 0, campaigns ['stdin'], E_dX RMSE
+fixed 0.0210 µm over 120 samples (both trees); the same twice appended: exit 2, "file <stdin>:
+the LabVIEW Measurement File streamed holds 2 sessions (a 'LabVIEW Measurement' header each), a
+run each: stream one run" -> exit 0, campaigns ['stdin_1', 'stdin_2'], 0.0210 µm over 240
+samples (each session from a reset, as the file's runs: told by its own header, not by a gap).
+``connect.warm``'s log, one campaign, still refuses it.
+
 Verdict (no bar): KEPT -- stdin says what the file says; a folder of files two programs saved
-is read file by file where each is unambiguous.  Left: (c) a LabVIEW stream of several
-sessions on stdin stays refused ("stream one run").
+is read file by file where each is unambiguous; a LabVIEW stream's sessions are its runs.
 """
 
 from __future__ import annotations
@@ -168,8 +180,38 @@ def _said_run(done: subprocess.CompletedProcess) -> str:
                       if ln.startswith("E_"))
 
 
+def sessions(root: str) -> None:
+    """(c): one session and the same twice piped into ``monitor``."""
+    import json
+
+    sys.path[:0] = [str(HERE.parent / "tests" / d) for d in ("", "shell", "apps")]
+    from test_data86b import _gb_folder
+
+    base = made_folder(root)
+    runs = _gb_folder(base / "runs")
+    done = _cli("init", str(runs), f"out={base / 'init'}")
+    assert done.returncode == 0, done.stderr[-2000:]
+    common = [f"hydra.searchpath=[file://{base / 'init' / 'conf'}]", "data=runs",
+              "model=lagbank", *LIGHT]
+    done = _cli("run", *common, f"out={base / 'run'}")
+    assert done.returncode == 0, done.stderr[-2000:]
+    one = (runs / "ZP1200_Lauf_03.lvm").read_bytes()
+    for label, piped in (("one session", one), ("two sessions", one + b"\r\n" + one)):
+        out = base / f"monitor-{label[:3]}"
+        done = _cli("monitor", *common, f"monitor.model={base / 'run' / 'model.pkl'}",
+                    "monitor.input=-", f"out={out}", stdin=piped)
+        if done.returncode:
+            print(f"{label}: exit {done.returncode}, {_said(done)}")
+            continue
+        report = json.loads((out / "monitor.json").read_text())
+        said = report["targets"]["E_dX"]
+        print(f"{label}: exit 0, campaigns {list(report['campaigns'])}, E_dX RMSE fixed "
+              f"{said['rmse_fixed']:.4f} µm over {said['n_samples']} samples")
+
+
 def main(argv: list[str]) -> int:
-    return run_commands(__doc__, {"units": units, "folder": folder}, argv, cpu=sys.stderr)
+    return run_commands(__doc__, {"units": units, "folder": folder, "sessions": sessions}, argv,
+                        cpu=sys.stderr)
 
 
 if __name__ == "__main__":

@@ -7,6 +7,7 @@ its column and row."""
 from __future__ import annotations
 
 import io
+import json
 import shutil
 from types import SimpleNamespace
 
@@ -14,9 +15,11 @@ import pandas as pd
 import pytest
 import yaml
 
-from conftest import refused
+from conftest import LIGHT, refused
 from test_audit86 import german_export
+from test_data86b import _gb_folder
 from test_hostile_units import FAHRENHEIT, MILLIMETRES, from_row
+from test_stranger69 import ROWS
 from thermocomp.core.io import ContractError, read_dataset
 from thermocomp.core.io.stdin import stdin_text
 from thermocomp.shell.cli import main
@@ -124,3 +127,29 @@ def test_a_stream_in_either_encoding_reads_with_data_encoding_auto():
         assert stdin_text(stream, "auto") == text
     with pytest.raises(ContractError, match="byte 0x81 is not UTF-8 or cp1252 text"):
         stdin_text(SimpleNamespace(buffer=io.BytesIO(b"a\n\x81\n")), "auto")
+
+
+# -- (c) a LabVIEW file of several sessions piped in -----------------------------------------
+
+def test_a_labview_stream_of_two_sessions_is_monitored_as_two_runs(tmp_path, capsys,
+                                                                  monkeypatch):
+    # data87: "the LabVIEW Measurement File streamed holds 2 sessions ...: stream one run"
+    # (exit 2); a session begins with its own 'LabVIEW Measurement' header, no gap taken for
+    # one: each is a campaign, from a reset, as the file's runs are
+    folder = _gb_folder(tmp_path / "runs")
+    assert main(["init", str(folder), f"out={tmp_path / 'init'}"]) == 0
+    common = [f"hydra.searchpath=[file://{tmp_path / 'init' / 'conf'}]", "data=runs",
+              "model=lagbank", *LIGHT, "track=false"]
+    assert main(["run", *common, f"out={tmp_path / 'run'}"]) == 0
+    one = (folder / "ZP1200_Lauf_03.lvm").read_bytes().decode("cp1252")
+    scored = {}
+    for label, text in (("one", one), ("two", one + "\r\n" + one)):
+        monkeypatch.setattr("sys.stdin", io.StringIO(text))
+        out = tmp_path / f"monitor-{label}"
+        assert main(["monitor", *common, f"monitor.model={tmp_path / 'run' / 'model.pkl'}",
+                     "monitor.input=-", f"out={out}"]) == 0, capsys.readouterr().err
+        report = json.loads((out / "monitor.json").read_text())
+        scored[label] = report["targets"]["E_dX"]
+    assert list(report["campaigns"]) == ["stdin_1", "stdin_2"]
+    assert scored["two"]["n_samples"] == 2 * scored["one"]["n_samples"] == 2 * ROWS
+    assert scored["two"]["rmse_fixed"] == pytest.approx(scored["one"]["rmse_fixed"], rel=1e-9)

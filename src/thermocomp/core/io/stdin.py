@@ -36,6 +36,7 @@ from .derived import on_frame, without_derived
 from .encoding import AUTO, UTF8, check_text, decoded
 from .footer import TAIL_BYTES, footer_of
 from .graphtec import graphtec_as_csv, is_graphtec_text
+from .labfile import RUN_HEADER
 from .layout import (
     MAX_PROPERTY_ROWS,
     header_line,
@@ -156,13 +157,14 @@ def read_stream(text: str, columns: list[str], opts, recorded: str | None = None
     in ``attrs`` :data:`TIME_ORIGIN`, None for seconds); the headers named as a campaign file's
     are (``data.columns``, ``data.roles`` with a date and a time of day joined, ``data.units``);
     a column it lacks is named as ``lab`` (the model's ``lab_names_``) names it."""
-    df, counts, _, origins = _read_runs(text, columns, opts, recorded, lab)
+    df, counts, _, origins = _read_runs(text, columns, opts, recorded, lab, sessions=False)
     df.attrs[TIME_ORIGIN] = origins[0]
     return df, counts
 
 
 def _read_runs(text: str, columns: list[str], opts, recorded: str | None = None,
-               lab: Mapping | None = None) -> tuple[pd.DataFrame, dict, list | None, list]:
+               lab: Mapping | None = None, sessions: bool = True
+               ) -> tuple[pd.DataFrame, dict, list | None, list]:
     """:func:`read_stream`'s ``(frame, missing cells per column)``, the runs' row blocks
     ``(campaign id, first row, end row)`` (None without a run column) and each run's
     :data:`TIME_ORIGIN` (None: its time is no timestamp): the runs are found once, where their
@@ -170,9 +172,13 @@ def _read_runs(text: str, columns: list[str], opts, recorded: str | None = None,
     text = text.lstrip("\ufeff").replace(UNICODE_MINUS, "-")
     as_csv = next((convert for is_export, convert in _TEXT_EXPORTS if is_export(text)), None)
     if as_csv is not None:          # a logger's export piped in as written, its rows as CSV
-        text = (as_csv(text, SOURCE, _dayfirst(opts.dayfirst, recorded, text)) if as_csv in _DATED
+        dayfirst = _dayfirst(opts.dayfirst, recorded, text) if as_csv in _DATED else None
+        text = (lvm_as_csv(text, SOURCE, dayfirst, STDIN if sessions else None)
+                if as_csv is lvm_as_csv else as_csv(text, SOURCE, dayfirst) if as_csv in _DATED
                 else as_csv(text, SOURCE))
         opts = replace(opts, delimiter=",", decimal=".", thousands=None)
+        if as_csv is lvm_as_csv and text.startswith(f"{RUN_HEADER},"):   # (data87) a run each
+            opts = replace(opts, roles={**opts.roles, RUN_ROLE: RUN_HEADER})
     opts = detected(text.splitlines()[:SNIFF_LINES], opts, SOURCE)   # data.delimiter=auto ...
     text = _table(text, opts.delimiter)
     header = split_line(text.split("\n", 1)[0], opts.delimiter, SPLIT)
