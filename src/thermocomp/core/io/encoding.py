@@ -22,14 +22,14 @@ _CHUNK = 1 << 20
 
 
 def codec(name: str) -> str:
-    """``data.encoding`` as Python names the codec (``latin-1`` -> ``iso8859-1``).
+    """``data.encoding`` as Python names the codec (``latin-1`` -> ``iso8859-1``); ``auto``
+    stays so, each file read in its own (:func:`own`).
 
     Raises
     ------
     ContractError
         An unknown codec, or one that does not write ``,;\\n`` as ASCII does (UTF-16: the
         lines and fields are found in the bytes).
-    ``auto`` stays so: each file read in its own (:func:`own`).
     """
     if str(name) == AUTO:
         return AUTO
