@@ -72,6 +72,10 @@ before: the unit changes inside the file, convert it (data.max_step_ratio=5)"; m
   '.')" -> "column 'Spindel [1/min]', data row 4: the decimal mark is ambiguous ('6.5' here,
   '20,41' in column 'T Luft [°C]', data row 1: each mark as a decimal mark)".
 
+``init`` now looks at every file's bytes of a folder (before: its first file and the manifest):
+0.030 s CPU to decode a 69 MB UTF-8 file (measured once, 2026-12-04), ``ascii_only`` stopping
+at the first byte beyond ASCII.
+
 ``sessions`` (c), main -> here: one session piped in, exit 0, campaigns ['stdin'], E_dX RMSE
 fixed 0.0210 µm over 120 samples (both trees); the same twice appended: exit 2, "file <stdin>:
 the LabVIEW Measurement File streamed holds 2 sessions (a 'LabVIEW Measurement' header each), a
