@@ -48,7 +48,7 @@ import pyarrow.csv as pacsv
 
 from .again import header_again, without
 from .contract import ContractError
-from .encoding import arrow_encoding
+from .encoding import arrow_encoding, own
 from .footer import footer, source
 from .layout import header_line
 from .marks import AMERIFLUX, INFINITE, value_of, values
@@ -224,12 +224,13 @@ def scanned(files: list[Path], delimiter: str, decimal: str, encoding: str,
     the decimal mark where ``decimal_given``)."""
     numbers: list[_Column] = []
     for path in files:
+        code = own(path, encoding)       # (data87: data.encoding=auto, the file's own)
         try:
-            header, _, skip = peek(path, delimiter, encoding)
+            header, _, skip = peek(path, delimiter, code)
         except ContractError:          # (no rows, no text: the reader refuses it, saying why)
             continue
-        preamble = header_line(head_lines(path, encoding), delimiter) or 0
-        table = _table(path, delimiter, encoding, skip, preamble, len(header))
+        preamble = header_line(head_lines(path, code), delimiter) or 0
+        table = _table(path, delimiter, code, skip, preamble, len(header))
         if table is None:
             continue
         ameriflux = any(h.strip().lower() == AMERIFLUX_TIME for h in header)

@@ -25,7 +25,7 @@ from ..timerule import median_step
 from . import campbell
 from .catman import is_catman
 from .contract import MANIFEST, TIME, ContractError, is_ambient, role
-from .encoding import UTF8, WINDOWS, detect
+from .encoding import AUTO, UTF8, WINDOWS, ascii_only, detect, own
 from .fixedwidth import is_fixed_width
 from .graphtec import is_graphtec
 from .hdf5 import is_hdf5
@@ -149,19 +149,24 @@ def sample_file(src: Path, manifest: pd.DataFrame | None) -> Path:
 
 def encoding(src: Path, opts, manifest: pd.DataFrame | None) -> str:
     """``data.encoding`` as given, or, given none (UTF-8), ``cp1252`` where the record, or a
-    folder's manifest or first campaign, is not UTF-8 text (a Windows export)."""
+    folder's manifest or campaign files, are not UTF-8 text (a Windows export); ``auto`` where
+    some of them are and others are not (data87: a file Excel saved again beside a logger's UTF-8
+    ones), each file then read in its own."""
     if opts.encoding != UTF8:
         return opts.encoding
-    files = [sample_file(src, manifest)]
+    files = [src] if manifest is None else [src / str(f) for f in manifest["file"]]
     if (src / MANIFEST).is_file():
         files.append(src / MANIFEST)
     # (UTF-16: its mark; an .lvm and a Scope export are text; a Campbell binary table's .dat is
     # none: lab76, its bytes were taken for a Windows export's, data.encoding: cp1252 written)
-    found = [detect(f) for f in files
+    found = {f: detect(f) for f in files
              if (is_text(f) or is_lvm(f) or is_scope(f) or is_graphtec(f) or is_yokogawa(f)
                  or is_catman(f))
-             and not is_utf16(f) and not is_tob(f)]
-    return WINDOWS if WINDOWS in found else UTF8
+             and not is_utf16(f) and not is_tob(f)}
+    if WINDOWS not in found.values():
+        return UTF8
+    # (an ASCII file reads in cp1252 too: only a UTF-8 one beyond ASCII needs its own)
+    return AUTO if any(code == UTF8 and not ascii_only(f) for f, code in found.items()) else WINDOWS
 
 
 def head(sample: Path, opts) -> tuple[object, list[str], list[str], str]:
@@ -270,7 +275,8 @@ def elapsed_column(src: Path, manifest: pd.DataFrame | None, opts, header: list[
         for file in files:
             try:
                 column = pd.read_csv(file, sep=opts.delimiter, header=None, skiprows=opts.skip_rows,
-                                     usecols=[i], dtype=str, encoding=opts.encoding).iloc[:, 0]
+                                     usecols=[i], dtype=str,
+                                     encoding=own(file, opts.encoding)).iloc[:, 0]
             except (ValueError, OSError, pd.errors.ParserError):
                 continue                    # (its own read says why)
             hours = pd.to_numeric(column.str.extract(r"^\s*(\d+):", expand=False), errors="coerce")
@@ -281,7 +287,8 @@ def elapsed_column(src: Path, manifest: pd.DataFrame | None, opts, header: list[
 
 
 def _separators(sample: Path, opts) -> str:
-    charset = "" if opts.encoding == UTF8 else f"encoding {opts.encoding} (not UTF-8), "
+    charset = ("" if opts.encoding == UTF8 else "encoding each file's own (UTF-8 and cp1252 "
+               "files), " if opts.encoding == AUTO else f"encoding {opts.encoding} (not UTF-8), ")
     return f"{sample.name}: {charset}delimiter {opts.delimiter!r}, decimal {opts.decimal!r}"
 
 

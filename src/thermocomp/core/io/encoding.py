@@ -9,6 +9,7 @@ does not read is refused where it is (row, column) naming the setting that reads
 from __future__ import annotations
 
 import codecs
+from functools import lru_cache
 from pathlib import Path
 
 from .contract import ContractError
@@ -16,11 +17,13 @@ from .csvline import SPLIT, split_line
 
 UTF8 = "utf-8"
 WINDOWS = "cp1252"       # a Windows export; reads Latin-1's printable range alike
+AUTO = "auto"            # (data87) each file's own: a folder with a file Excel saved again
 _CHUNK = 1 << 20
 
 
 def codec(name: str) -> str:
-    """``data.encoding`` as Python names the codec (``latin-1`` -> ``iso8859-1``).
+    """``data.encoding`` as Python names the codec (``latin-1`` -> ``iso8859-1``); ``auto``
+    stays so, each file read in its own (:func:`own`).
 
     Raises
     ------
@@ -28,6 +31,8 @@ def codec(name: str) -> str:
         An unknown codec, or one that does not write ``,;\\n`` as ASCII does (UTF-16: the
         lines and fields are found in the bytes).
     """
+    if str(name) == AUTO:
+        return AUTO
     try:
         found = codecs.lookup(str(name)).name
     except LookupError:
@@ -60,6 +65,40 @@ def detect(path: Path) -> str:
         except UnicodeDecodeError:
             return WINDOWS
     return UTF8
+
+
+def ascii_only(path: Path) -> bool:
+    """Every byte of the file is ASCII (it reads alike in UTF-8 and cp1252)."""
+    with open(path, "rb") as f:
+        while chunk := f.read(_CHUNK):
+            if not chunk.isascii():
+                return False
+    return True
+
+
+def own(path: Path, encoding: str) -> str:
+    """``encoding``, or where it is ``auto`` the file's own (:func:`detect`: UTF-8 where every
+    byte reads so, else cp1252), decided once per file as it is."""
+    if encoding != AUTO:
+        return encoding
+    stat = Path(path).stat()
+    return _detected(str(path), stat.st_mtime_ns, stat.st_size)
+
+
+@lru_cache(maxsize=256)
+def _detected(path: str, mtime_ns: int, size: int) -> str:
+    return detect(Path(path))
+
+
+def decoded(data: bytes, encoding: str) -> str:
+    """``data`` (a stream's bytes) as text in ``encoding``; ``auto``: UTF-8 where every byte
+    reads so, else cp1252 (a byte neither reads raises ``UnicodeDecodeError``)."""
+    if encoding != AUTO:
+        return data.decode(text_codec(encoding))
+    try:
+        return data.decode(text_codec(UTF8))
+    except UnicodeDecodeError:
+        return data.decode(WINDOWS)
 
 
 # a byte-order mark of a text written two or four bytes a character (UTF-32's before UTF-16's:
@@ -97,7 +136,7 @@ def check_not_utf8(head: bytes, encoding: str, path: Path) -> None:
     """Refuse a UTF-8 file (its first bytes ``head``, holding more than ASCII) read with another
     ``data.encoding``: ``°C`` would be read ``Â°C`` (a folder of a Windows export and a file
     saved again as UTF-8)."""
-    if encoding == UTF8 or head.isascii():
+    if encoding in (UTF8, AUTO) or head.isascii():
         return
     try:
         text = head.decode(UTF8)
@@ -116,6 +155,7 @@ def undecodable(path: Path, delimiter: str, names: list[str] | None = None,
                 encoding: str = UTF8) -> ContractError:
     """The error naming the line (1-based, of the file) and field of the first byte
     ``encoding`` does not read, and the ``data.encoding`` that reads it."""
+    encoding = own(path, encoding)
     with open(path, "rb") as f:
         if f.read(2) == GZIP_MAGIC:
             return gzipped(path)
@@ -127,6 +167,7 @@ def first_undecodable(path: Path, delimiter: str, names: list[str] | None,
                       encoding: str = UTF8) -> ContractError | None:
     """:func:`undecodable`'s error, or None if every line reads (line by line, so a large file
     is never held whole)."""
+    encoding = own(path, encoding)
     with open(path, "rb") as f:
         header = names
         for line_no, line in enumerate(f):
@@ -168,6 +209,7 @@ def text_lines(path: Path, encoding: str = UTF8) -> list[str]:
     """The lines of the text file ``path`` (a logger's export read whole: its header block and
     table; :func:`check_text` first), refused naming ``data.encoding`` where it does not decode."""
     raw = path.read_bytes()
+    encoding = own(path, encoding)
     check_text(raw[:1 << 16], encoding, path)
     try:
         return raw.decode(text_codec(encoding)).splitlines()

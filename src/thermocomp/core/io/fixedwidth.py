@@ -29,7 +29,7 @@ from pathlib import Path
 
 from .contract import ContractError
 from .converted import at_file, named_as
-from .encoding import UTF8
+from .encoding import UTF8, own
 from .sniff import SNIFF_LINES
 
 _NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?")
@@ -139,7 +139,7 @@ def is_fixed_width(path, encoding: str = UTF8) -> bool:
 def fixed_as_csv(path: Path, encoding: str = UTF8) -> Iterator[Path]:
     """The fixed-width file ``path`` as a temporary UTF-8 CSV file, line for line (a rule an empty
     line), removed after; a :class:`ContractError` or a warning about it names ``path``."""
-    lines = _text(path, encoding).splitlines()
+    lines = _text(path, own(path, encoding)).splitlines()
     found = layout(lines[:SNIFF_LINES])
     if found is None:
         raise ContractError("no fixed-width table in the first lines", file=path)

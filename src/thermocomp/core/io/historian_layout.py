@@ -109,6 +109,7 @@ def _layout(path: str, _mtime: int, _size: int, delimiter: str, decimal: str, en
 class _Seps:           # what :func:`.sniff.detected` reads of the options
     delimiter: str
     decimal: str
+    thousands: str | None = None
 
 
 def _lines_above(path: Path, encoding: str, header: str) -> int:

@@ -15,7 +15,7 @@ from pathlib import Path
 
 from ...base.errors import position
 from .contract import ContractError
-from .encoding import text_codec
+from .encoding import own, text_codec
 
 
 @dataclass(frozen=True)
@@ -35,7 +35,7 @@ class Lines:
     def line(self, row: int) -> int | None:
         """The file line of the 1-based data ``row`` (None: not in the file)."""
         row += self.shift
-        with open(self.path, newline="", encoding=text_codec(self.encoding),
+        with open(self.path, newline="", encoding=text_codec(own(self.path, self.encoding)),
                   errors="replace") as f:
             for _ in range(self.skip):
                 f.readline()

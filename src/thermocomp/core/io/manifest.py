@@ -13,7 +13,7 @@ import pandas as pd
 
 from ...base.log import logger
 from .contract import AMBIENT_C, MANIFEST, MANIFEST_REQUIRED, SPLITS, ContractError
-from .encoding import UTF8, check_text, fields, text_codec, undecodable
+from .encoding import UTF8, check_text, fields, own, text_codec, undecodable
 from .hdf5 import HDF5_SUFFIXES
 from .instants import on_clock, start_instants, start_stamp
 from .jsonlines import JSON_LINES_SUFFIXES
@@ -174,7 +174,7 @@ def _load_manifest(path: Path, delimiter: str = ",", optional: tuple = (),
                 file=path)
         raise ContractError(f"manifest not found (a dataset folder needs {MANIFEST})"
                             + _other_files(path.parent), file=path)
-    text = _text(path, "," if delimiter == AUTO else delimiter, encoding)
+    text = _text(path, "," if delimiter == AUTO else delimiter, own(path, encoding))
     header = text.splitlines()[0] if text.strip() else ""
     try:
         raw = pd.read_csv(io.StringIO(text), sep=_manifest_delimiter(header, delimiter, path,

@@ -165,7 +165,7 @@ class ReadOptions:
             raise ContractError(f"data.test_fraction + data.val_fraction must be < 1 (a train "
                                 f"part is left), got {self.test_fraction} + {self.val_fraction}")
         # (the field separator may be it: a CSV writer quotes "6,000")
-        if self.thousands is not None and (len(self.thousands) != 1 or self.thousands
+        if self.thousands not in (None, AUTO) and (len(self.thousands) != 1 or self.thousands
                                            == self.decimal or re.match(r"[\w+\-]", self.thousands)
                                            or self.thousands.isspace() and self.thousands
                                            not in NO_BREAK_SPACES):

@@ -8,12 +8,13 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 from contextlib import contextmanager
+from dataclasses import replace
 from pathlib import Path
 
 from .catman import catman_records, is_catman
 from .contract import ContractError
 from .dayfirst import record_dayfirst
-from .encoding import UTF8, text_codec
+from .encoding import AUTO, UTF8, own, text_codec
 from .fixedwidth import fixed_as_csv, is_fixed_width
 from .graphtec import graphtec_records, is_graphtec
 from .hdf5 import hdf5_records, is_hdf5
@@ -51,7 +52,7 @@ def lab_dayfirst(files, encoding: str = UTF8) -> tuple[bool, Path, str] | None:
     12, among the lab files whose reader parses its own dates (a catman T0, a Scope View date,
     a LabVIEW Date: :func:`.dayfirst.record_dayfirst`)."""
     return record_dayfirst(files, lambda p: is_catman(p) or is_scope(p) or is_lvm(p),
-                           text_codec(encoding))
+                           text_codec(UTF8 if encoding == AUTO else encoding))  # (ASCII dates)
 
 
 def is_converted(path, opts=None) -> bool:
@@ -85,6 +86,7 @@ def converted_once(path: Path | None, encoding: str = UTF8, dayfirst: bool | Non
 
 def _records(path: Path, encoding: str, dayfirst: bool | None = None) -> list:
     """``path``'s records (``dayfirst``: ``data.dayfirst``, its dates with slashes, .dayfirst)."""
+    encoding = own(path, encoding)
     return (tdms_records(path) if is_tdms(path) else lvm_records(path, encoding, dayfirst) if is_lvm(path)
             else scope_records(path, encoding, dayfirst) if is_scope(path)
             else graphtec_records(path, encoding) if is_graphtec(path)
@@ -136,6 +138,7 @@ def as_read(path: Path, opts, rows: int | None = None, one_run: bool = False
     """``(file, options)`` the CSV or Parquet reader reads for ``path`` (``rows``: a workbook's
     first rows only, what a look at its head needs; ``one_run``: a folder's campaign file, a
     TDMS or MATLAB file of several runs refused)."""
+    opts = replace(opts, encoding=own(path, opts.encoding))    # (data87: auto, the file's own)
     if is_workbook(path):
         if one_run and opts.sheet is None and len(runs := run_sheets(path).runs) > 1:
             raise ContractError(f"{len(runs)} runs in one workbook, a sheet each ("

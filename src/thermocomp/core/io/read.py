@@ -351,6 +351,17 @@ def _checked(columns: dict, path: Path, opts: ReadOptions, lines: Lines | None) 
     return report
 
 
+def check_kept_values(columns: dict, path, opts: ReadOptions) -> None:
+    """Refuse the values of a streamed campaign's ``columns`` (``T_``, ``E_``, ``S_``; missing
+    ones kept) that :func:`_checked` refuses in a file read so: impossible values, kelvin, °F at
+    the first sample, a unit changed inside it (a stream on stdin, data87)."""
+    if not columns:
+        return
+    _keep_missing(columns, len(next(iter(columns.values()))), path, replace(opts, missing="keep"))
+    _check_fahrenheit(columns, path, opts.fahrenheit_threshold_c, 0)
+    check_unit_steps(columns, path, opts.max_step_ratio, 0)
+
+
 def repaired_part(frame: pd.DataFrame, path: Path, cfg: Mapping | None, first_row: int) -> pa.Table:
     """A part of one record read as kept (``missing="keep"``), repaired as a batch repairs a
     campaign (gaps, edges, kelvin refused); ``first_row``: its first row in the record ``path``

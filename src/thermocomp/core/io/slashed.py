@@ -28,6 +28,7 @@ import pyarrow as pa
 
 from .contract import TIME, ContractError
 from .dayfirst import ORDER, WAY
+from .encoding import own
 from .lines import Lines
 from .plain import is_converted
 from .slashed_rows import Order, said_by, settled
@@ -128,7 +129,8 @@ def _said(path: Path, opts) -> tuple | None:
         if column is None:
             return None
         cells = pd.read_csv(path, sep=opts.delimiter, header=None, skiprows=skip,
-                            usecols=[column], dtype=str, encoding=opts.encoding).iloc[:, 0]
+                            usecols=[column], dtype=str,
+                            encoding=own(path, opts.encoding)).iloc[:, 0]
     except (ContractError, ValueError):   # (no evidence: the file's read says what is wrong)
         return None
     cells = pa.array(cells, type=pa.string(), from_pandas=True)

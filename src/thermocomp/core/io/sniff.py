@@ -8,9 +8,9 @@ from dataclasses import replace
 from pathlib import Path
 
 from .contract import ContractError
-from .csvline import SPLIT, split_line
-from .encoding import UTF8, check_text, text_codec
-from .layout import header_line
+from .csvline import EMPTY, SPLIT, split_line
+from .encoding import UTF8, check_text, own, text_codec
+from .layout import header_line, is_unit_row
 from .options import _OTHER_DELIMITERS, AUTO, ReadOptions
 
 SNIFF_LINES = 50
@@ -19,6 +19,7 @@ _DECIMAL_COMMA = re.compile(r"\s*[+\-\u2212]?\d*,\d+(?:[eE][+-]?\d+)?\s*")   # (
 _DECIMAL_POINT = re.compile(r"\s*[+\-\u2212]?\d*\.\d+(?:[eE][+-]?\d+)?\s*")
 _GROUPED = {mark: re.compile(rf"\s*[+\-\u2212]?\d{{1,3}}(?:{re.escape(mark)}\d{{3}})+\s*")
             for mark in ",."}
+_MARKED = re.compile(r"\s*[+\-\u2212]?[\d.,]*\d[\d.,]*\s*")     # digits and marks alone
 
 
 def resolved(path: Path, opts: ReadOptions) -> ReadOptions:
@@ -30,7 +31,7 @@ def resolved(path: Path, opts: ReadOptions) -> ReadOptions:
         When two separators (or both decimal marks) read the file equally well: naming the
         key to set.
     """
-    if AUTO not in (opts.delimiter, opts.decimal):
+    if AUTO not in (opts.delimiter, opts.decimal, opts.thousands):
         return opts
     return detected(head_lines(path, opts.encoding), opts, path)
 
@@ -41,13 +42,16 @@ def detected(lines: list[str], opts: ReadOptions, where) -> ReadOptions:
     delimiter = _delimiter(lines, where) if opts.delimiter == AUTO else opts.delimiter
     body = lines[(header_line(lines, delimiter) or 0):]       # below a logger's preamble
     decimal = _decimal(body, delimiter, where) if opts.decimal == AUTO else opts.decimal
-    return replace(opts, delimiter=delimiter, decimal=decimal)
+    thousands = (_thousands(body, delimiter, decimal) if opts.thousands == AUTO
+                 else opts.thousands)
+    return replace(opts, delimiter=delimiter, decimal=decimal, thousands=thousands)
 
 
 def head_lines(path: Path, encoding: str = UTF8) -> list[str]:
     """The first whole lines of a file (in its first 64 KiB; undecodable bytes replaced): a
     line the window cuts is left out (a historian's long file cut inside its tag column read as
     a row without a tag, the file then read as wide: labfiles62)."""
+    encoding = own(path, encoding)
     with open(path, "rb") as f:
         head = f.read(_SNIFF_BYTES)
         cut = len(head) == _SNIFF_BYTES and f.read(1) not in (b"", b"\n", b"\r")
@@ -88,7 +92,39 @@ def _decimal(lines: list[str], delimiter: str, path: Path) -> str:
             if all(_GROUPED[thousands].fullmatch(c) for c in grouped) and not all(
                     _GROUPED[decimal].fullmatch(c) for c in other):
                 return decimal
-        raise ContractError("the decimal mark is ambiguous (cells with ',' and with '.'): set "
-                            "data.decimal (and data.thousands if one of them groups digits)",
-                            file=path)
+        # (data87) named where the file turns ambiguous: of each mark the first cell that does
+        # not group digits by three with it (a decimal mark's, then), the later of the two
+        seen, here = sorted((_where(lines, delimiter, next(
+            (c for c in found if not _GROUPED[mark].fullmatch(c)), found[0]))
+            for found, mark in ((comma, ","), (point, "."))), key=lambda w: w[1])
+        raise ContractError(f"the decimal mark is ambiguous ({here[2]!r} here, {seen[2]!r} in "
+                            f"column {seen[0]!r}, data row {seen[1]}: each mark as a decimal "
+                            "mark): set data.decimal (and data.thousands if one of them groups "
+                            "digits)", file=path, column=here[0], row=here[1])
     return "," if comma else "."
+
+
+def _where(lines: list[str], delimiter: str, cell: str) -> tuple[str, int, str]:
+    """``(header, data row, cell)`` of the first cell of ``lines`` (the header first, then its
+    unit row, if any, and the rows: blank lines left out as the reader leaves them) equal to
+    ``cell``."""
+    header = split_line(lines[0], delimiter, SPLIT)
+    units = len(lines) > 1 and is_unit_row(split_line(lines[1], delimiter, EMPTY))
+    for row, line in enumerate(lines[1 + units:], start=1):
+        cells = split_line(line, delimiter, SPLIT)
+        if cell in cells:
+            k = cells.index(cell)
+            return (header[k].strip() if k < len(header) else f"column {k + 1}"), row, cell
+    return "", 0, cell
+
+
+def _thousands(lines: list[str], delimiter: str, decimal: str) -> str | None:
+    """``data.thousands=auto`` (data87): the mark other than ``decimal`` where every number cell
+    holding it groups its digits by three with it (a German Excel's ``6.000`` beside ``21,18``),
+    else None: a cell that holds it otherwise is refused by the read, naming its row."""
+    other = "." if decimal == "," else ","
+    cells = [c for ln in lines[1:] for c in split_line(ln, delimiter, SPLIT)]
+    marked = [c for c in cells if other in c and _MARKED.fullmatch(c)]   # (not a date's dots)
+    if marked and all(_GROUPED[other].fullmatch(c) for c in marked):
+        return other
+    return None

@@ -32,10 +32,11 @@ from .clocksets import undone
 from .contract import ContractError
 from .csvline import EMPTY, SPLIT, split_line
 from .dayfirst import ORDER, WAY, text_says
-from .derived import on_frame
-from .encoding import UTF8, check_text, text_codec
+from .derived import on_frame, without_derived
+from .encoding import AUTO, UTF8, check_text, decoded
 from .footer import TAIL_BYTES, footer_of
 from .graphtec import graphtec_as_csv, is_graphtec_text
+from .labfile import RUN_HEADER
 from .layout import (
     MAX_PROPERTY_ROWS,
     header_line,
@@ -55,6 +56,7 @@ from .separators import UNICODE_MINUS, grouped
 from .sinumerik import TRACE_ROOT
 from .slashed import stream_format
 from .sniff import SNIFF_LINES, detected
+from .streamed import check_streamed
 from .tables import MISSING_TOKENS, NO_TIME_COLUMN, first_cast_failure, shortened
 from .timestamps import (
     CLOCK,
@@ -137,10 +139,11 @@ def stdin_text(stream, encoding: str = UTF8) -> str:
     else:
         check_text(data[:4], encoding, SOURCE)
     try:
-        return data.decode(text_codec(encoding))
+        return decoded(data, encoding)    # (data87: auto, UTF-8 where it reads so, else cp1252)
     except UnicodeDecodeError as exc:
-        row = data[:exc.start].decode(encoding, "replace").count("\n")
-        raise ContractError(f"byte 0x{data[exc.start]:02x} is not {encoding} text (set "
+        row = data[:exc.start].count(b"\n")
+        said = "UTF-8 or cp1252" if encoding == AUTO else encoding
+        raise ContractError(f"byte 0x{data[exc.start]:02x} is not {said} text (set "
                             "data.encoding to the stream's character set, e.g. cp1252)",
                             file=SOURCE, row=row or None) from None
 
@@ -154,13 +157,14 @@ def read_stream(text: str, columns: list[str], opts, recorded: str | None = None
     in ``attrs`` :data:`TIME_ORIGIN`, None for seconds); the headers named as a campaign file's
     are (``data.columns``, ``data.roles`` with a date and a time of day joined, ``data.units``);
     a column it lacks is named as ``lab`` (the model's ``lab_names_``) names it."""
-    df, counts, _, origins = _read_runs(text, columns, opts, recorded, lab)
+    df, counts, _, origins = _read_runs(text, columns, opts, recorded, lab, sessions=False)
     df.attrs[TIME_ORIGIN] = origins[0]
     return df, counts
 
 
 def _read_runs(text: str, columns: list[str], opts, recorded: str | None = None,
-               lab: Mapping | None = None) -> tuple[pd.DataFrame, dict, list | None, list]:
+               lab: Mapping | None = None, sessions: bool = True
+               ) -> tuple[pd.DataFrame, dict, list | None, list]:
     """:func:`read_stream`'s ``(frame, missing cells per column)``, the runs' row blocks
     ``(campaign id, first row, end row)`` (None without a run column) and each run's
     :data:`TIME_ORIGIN` (None: its time is no timestamp): the runs are found once, where their
@@ -168,9 +172,13 @@ def _read_runs(text: str, columns: list[str], opts, recorded: str | None = None,
     text = text.lstrip("\ufeff").replace(UNICODE_MINUS, "-")
     as_csv = next((convert for is_export, convert in _TEXT_EXPORTS if is_export(text)), None)
     if as_csv is not None:          # a logger's export piped in as written, its rows as CSV
-        text = (as_csv(text, SOURCE, _dayfirst(opts.dayfirst, recorded, text)) if as_csv in _DATED
+        dayfirst = _dayfirst(opts.dayfirst, recorded, text) if as_csv in _DATED else None
+        text = (lvm_as_csv(text, SOURCE, dayfirst, STDIN if sessions else None)
+                if as_csv is lvm_as_csv else as_csv(text, SOURCE, dayfirst) if as_csv in _DATED
                 else as_csv(text, SOURCE))
         opts = replace(opts, delimiter=",", decimal=".", thousands=None)
+        if as_csv is lvm_as_csv and text.startswith(f"{RUN_HEADER},"):   # (data87) a run each
+            opts = replace(opts, roles={**opts.roles, RUN_ROLE: RUN_HEADER})
     opts = detected(text.splitlines()[:SNIFF_LINES], opts, SOURCE)   # data.delimiter=auto ...
     text = _table(text, opts.delimiter)
     header = split_line(text.split("\n", 1)[0], opts.delimiter, SPLIT)
@@ -316,6 +324,8 @@ def stream_campaigns(text: str, columns: list[str], opts, recorded: str | None =
     file's are (:mod:`.runs`), so each starts from a reset as a file's run does (:func:`read_stream`;
     ``recorded``: the training record's order of dates with slashes; ``lab``: as there)."""
     df, counts, blocks, origins = _read_runs(text, columns, opts, recorded, lab)
+    check_streamed(df[without_derived(df.columns, opts.derive)], blocks, opts, SOURCE,
+                   df.attrs.get(HEADERS, {}))        # (data87) as a streamed file's values
     if blocks is None:
         df.attrs[TIME_ORIGIN] = origins[0]
         return {STDIN: df}, ({STDIN: counts} if counts else {})

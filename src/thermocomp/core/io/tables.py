@@ -24,7 +24,7 @@ from .campbell import has_unit_row
 from .campbell import units as campbell_units
 from .contract import TIME, ContractError, role
 from .csvline import SPLIT, split_line
-from .encoding import arrow_encoding, first_undecodable, text_codec, undecodable
+from .encoding import arrow_encoding, first_undecodable, own, text_codec, undecodable
 from .footer import blank_inside, footer, source
 from .layout import (
     MAX_PROPERTY_ROWS,
@@ -360,6 +360,7 @@ class NoRows(ContractError):
 def peek_csv(path: Path, delimiter: str, encoding: str) -> tuple[list[str], list[str], int]:
     """Header (stripped names; a unit row's units joined), first data row and the lines above
     it (a logger's preamble, the header, a unit row: :mod:`.layout`), without reading the file."""
+    encoding = own(path, encoding)
     head = head_lines(path, encoding)
     preamble = header_line(head, delimiter) or 0
     try:

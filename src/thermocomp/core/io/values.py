@@ -360,7 +360,14 @@ def _check_celsius(values: np.ndarray, name: str, path: Path, threshold: float,
                     "overload or an open circuit (a Keysight DAQ writes +9.90000000E+37)? list "
                     "it as the file writes it in data.missing_values: a value not measured",
                     file=path, column=name, row=row)
-            why = ("temperatures look like kelvin, convert to °C, or say so: "
+            after = values[row - 1:][np.isfinite(values[row - 1:])]
+            kelvin_after = (row > 1 and not (np.nan_to_num(values[:row - 1]) > threshold).any()
+                            and np.mean((after > threshold) & (after <= threshold - ABSOLUTE_ZERO_C))
+                            >= 1 - FAULTY_SHARE)
+            why = ("the rows from here on read as kelvin of the °C before: the unit changes "
+                   "inside the file, convert it"    # (data87: was "another quantity? ...")
+                   if kelvin_after else
+                   "temperatures look like kelvin, convert to °C, or say so: "
                    "data.units={<its header>: K}"
                    if threshold < median <= threshold - ABSOLUTE_ZERO_C
                    and as_kelvin.mean() >= 1 - FAULTY_SHARE else

@@ -198,6 +198,8 @@ def _stream_encoding(cfg, fmt: str) -> str:
     import codecs
 
     given = str(cfg.data.get("encoding") or "utf-8")
+    if given == "auto":     # (data87) stream.c reads a UTF-8 line as it is, any other as cp1252
+        return "cp1252"
     try:
         name = codecs.lookup(given).name
     except LookupError:

@@ -483,6 +483,12 @@ def _init(cfg: DictConfig, held: ExitStack) -> dict:
     groups = separator_groups(text_files(src, manifest, opts), given, opts) if pair is None else []
     if len(groups) > 1:                                  # each run's file its own: detected
         opts = replace(opts, delimiter=AUTO, decimal=AUTO)
+        if asked.thousands is None and given.get("thousands") is not None:
+            # (data87) a mark found grouping one group's digits may be another's decimal mark
+            print(f"{src.name}: the thousands separator {given['thousands']!r} of some files: "
+                  "each file's own read, data.thousands=auto")
+            given["thousands"] = AUTO
+            opts = replace(opts, thousands=AUTO)
         print(f"{src.name}: its files are written with different separators ("
               + "; ".join(f"{g.delimiter!r} and decimal {g.decimal!r}: {len(fs)} "
                           f"({', '.join(f.name for f in fs[:3])}{', ...' * (len(fs) > 3)})"
