@@ -282,8 +282,8 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         that is not MLR alone and k >= 2 folds among the voting ``rows``, the blend's summed squared
         error over MLR's per fold (:func:`~thermocomp.core.models.blend.fold_ratios`) has a mean
         r and a standard error se = std(ddof=1) / sqrt(k); r + se >= 1 keeps MLR (the one-SE rule
-        of CV model choice: the simpler model unless the other is better by more than one SE;
-        with fewer folds than ``n_folds``, :func:`one_se_margin` SEs).  True where it kept MLR."""
+        of CV model choice: the simpler model unless the other is better by more than one SE).
+        True where it kept MLR."""
         if self.fallback != "one_se" or base is None or self.weights_ == {BASELINE: 1.0}:
             return False
         r = fold_ratios((self.oof_y_[rows] - predicted[rows]) ** 2,
@@ -291,12 +291,10 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         if r.size < 2:
             return False
         mean, se = float(np.mean(r)), float(np.std(r, ddof=1) / np.sqrt(r.size))
-        margin = one_se_margin(r.size, int(self.n_folds))
-        if not mean + margin * se >= 1.0:
+        if not mean + se >= 1.0:
             return False
-        times = "" if margin == 1.0 else f" x {margin:.3g} (fewer folds than n_folds)"
         self.reason_ += (f"; one-SE rule: the blend's mean fold MSE over MLR's {mean:.4g} ± "
-                         f"{se:.4g}{times} ({r.size} folds) is not surely below 1: MLR kept")
+                         f"{se:.4g} ({r.size} folds) is not surely below 1: MLR kept")
         self.weights_, self.family_, self.chosen_ = {BASELINE: 1.0}, BASELINE, BASELINE
         return True
 
@@ -492,16 +490,6 @@ def _said(name: str, seconds: float, score: float | None, why: str | None) -> No
     what = f"skipped, {why}" if why is not None else f"validation RMSE {score:.4g}"
     logger.log(logging.INFO if seconds >= SAY_AFTER_S else logging.DEBUG,
                "auto: %s validated in %.0f s: %s", name, seconds, what)
-
-
-def one_se_margin(k: int, n_folds: int) -> float:
-    """The standard errors the one-SE fallback asks of a blend validated on ``k`` folds: 1 with
-    ``n_folds`` or more, 2 with fewer (2 <= k < n_folds, the folds ``vote_weights`` resamples by
-    their blocks too): a standard error of 2-4 numbers is itself loose.  The 2 was read off seen
-    records (``benchmarks/bench_auto87c.py``: kept few-fold blends that lost to MLR on new
-    campaigns sat 1.35-2.10 SEs below it, the wins from 2.18 up) and scored on fresh ones
-    (``benchmarks/bench_auto87d.py``)."""
-    return 1.0 if k >= n_folds else 2.0
 
 
 def in_range_rows(in_range: np.ndarray, fold: np.ndarray, min_rows: int = MIN_IN_RANGE_ROWS,
