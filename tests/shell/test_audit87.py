@@ -1,8 +1,13 @@
 """A stranger's paths off the happy path (audit87; ``benchmarks/bench_audit87.py`` writes the
-full record): an export into a folder that holds another format's code of an earlier export."""
+full record): an export into a folder that holds another format's code of an earlier export; a
+run saved as a spreadsheet the reader does not read, in a folder of runs."""
 
 from __future__ import annotations
 
+import pytest
+
+from conftest import FAST
+from test_audit86 import german_export
 from test_export import _make_dataset, _trained
 from thermocomp.shell.cli import main
 
@@ -22,3 +27,27 @@ def test_an_export_says_the_code_of_another_format_an_earlier_export_left_in_its
     assert len(said) == 1 and "warning" in said[0], said
     assert all(name in said[0] for name in ("compensator.c", "compensator.h", "stream.c")), said
     assert "compensator.st" not in said[0].split(" in ")[0], said
+
+
+@pytest.mark.parametrize("suffix", [".xls", ".ods"])
+def test_a_run_saved_as_a_spreadsheet_not_read_beside_the_folders_runs_is_refused_by_name(
+        tmp_path, capsys, suffix):
+    # audit87: a lab's folder of runs, one saved on an older PC as an .xls: `init` and `run`
+    # left it out without a word (four campaigns, not five: another one held out as the test),
+    # where data.path naming that file is refused "save it as an Excel workbook (.xlsx), or its
+    # sheet as CSV"
+    folder = tmp_path / "runs"
+    folder.mkdir()
+    for run in (1, 2, 3, 4):
+        german_export(folder / f"lauf{run}.csv", 9136 + run % 2, ["6000"])
+    (folder / f"lauf5{suffix}").write_bytes(b"\xd0\xcf\x11\xe0" + bytes(60))
+    for words in (["init", str(folder), f"out={tmp_path / 'init'}"],
+                  ["run", f"data.path={folder}", "data.test_fraction=0.25", "data.delimiter=;",
+                   "data.decimal=,", "data.roles.error=[dX,dZ]", f"out={tmp_path / 'run'}",
+                   *FAST]):
+        assert main(words) == 2, words[0]
+        err = capsys.readouterr().err
+        assert f"lauf5{suffix}" in err and "save it as" in err and "traceback" not in err.lower(), err
+    # without it the folder reads
+    (folder / f"lauf5{suffix}").unlink()
+    assert main(["init", str(folder), f"out={tmp_path / 'init'}"]) == 0, capsys.readouterr().err
