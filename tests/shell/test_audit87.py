@@ -51,3 +51,28 @@ def test_a_run_saved_as_a_spreadsheet_not_read_beside_the_folders_runs_is_refuse
     # without it the folder reads
     (folder / f"lauf5{suffix}").unlink()
     assert main(["init", str(folder), f"out={tmp_path / 'init'}"]) == 0, capsys.readouterr().err
+
+
+def test_promote_of_a_sweep_whose_every_run_failed_says_so_before_naming_a_data_path(tmp_path):
+    # audit87: every job of `run -m` failed after its child run began (arx_rf without its state
+    # column); `promote` refused "data.path=... was not scored by any run of sweep ... (datasets
+    # seen: ...): promote with the data.path the sweep ran on", read from the failed runs' tags,
+    # and given that data.path "has no finished child run to promote": a fix that does not work
+    from conftest import thermocomp
+    from test_deploy import LIGHT_EVAL, mlflow_store, write_small_dataset
+
+    ran_on, other = (write_small_dataset(tmp_path / name, seed=s)
+                     for name, s in (("small", 0), ("other", 1)))
+    uri, sweep = mlflow_store(tmp_path), tmp_path / "sweep"
+    proc = thermocomp("run", "-m", f"data.path={ran_on}", "model=arx_rf",
+                      "model.estimator.state_column=S_nope,S_none", f"tracking_uri={uri}",
+                      *LIGHT_EVAL, f"hydra.sweep.dir={sweep}", check=False)
+    assert proc.returncode == 2 and "2 sweep job(s) failed" in proc.stderr, proc.stderr[-2000:]
+    for data in (other, ran_on):
+        chosen = thermocomp("promote", f"data.path={data}", f"tracking_uri={uri}",
+                            f"compare.sweep={sweep}", f"out={tmp_path / 'promoted'}", check=False)
+        assert chosen.returncode == 2, chosen.stderr
+        assert "no finished child run to promote (2 of its 2 jobs failed)" in chosen.stderr, \
+            chosen.stderr
+        assert "was not scored" not in chosen.stderr
+    assert not (tmp_path / "promoted").exists()
