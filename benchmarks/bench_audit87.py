@@ -100,8 +100,8 @@ sim.generator.n_machines=2 sim.generator.days=12 sim.generator.test_days=3 seed=
   Issue 34 on this record: auto better than MLR on each target and equal to the best family,
   hammerstein, on each.
 * ``diagnose`` (mlr): accepted a first-order lag (tau 14400 s) of the inputs on E_dY (0.22 ->
-  0.20) and E_dZ (0.67 -> 0.20), none on E_dX; 60.1 + 146.7 s CPU (the system time: its
-  threads on two shared cores; reported).  Its rerun command as written (``experiment=diagnosed``,
+  0.20) and E_dZ (0.67 -> 0.20), none on E_dX; 60.1 + 146.7 s CPU (its system time not
+  traced; reported).  Its rerun command as written (``experiment=diagnosed``,
   10.4 s): 0.2016 / 0.2013 / 0.2002; its ``model.pkl`` exported as C (89.2 s CPU) built with
   ``-Werror``, pack passed; ``monitor``: 0 events, fixed = adaptive = 0.202 / 0.201 / 0.200.
 * ``promote compare.sweep=<the sweep>``: refused to replace v1 (its score on another dataset,
@@ -124,7 +124,7 @@ in tests/shell/test_audit87.py); no exit 1, no traceback anywhere.
 
 Left (reported): ``export`` of a registered auto took 128 s CPU, of the diagnosed mlr 89 s, on
 34560 rows (its pack streams six variants of the test day, five with a planted fault, through
-the served model); diagnose's system time.
+the served model; where the time goes not profiled); diagnose's 147 s of system time.
 """
 from __future__ import annotations
 
