@@ -58,9 +58,14 @@ def best_run(cfg: DictConfig, client, uri: str, dataset_hash: str, data_path) ->
     """The best finished child of the sweep among those scored on this dataset, by its
     simulation-mode validation, and what ranked (:func:`~thermocomp.core.scoring.leaderboard.ranked_by`)."""
     parent = parent_run_id(cfg, client)
-    seen = {r.info.run_id: r.data.tags.get(DATASET_TAG) for r in child_runs(client, parent)}
-    if seen and dataset_hash not in seen.values():
-        hashes = ", ".join(sorted({(h or "none")[:12] for h in seen.values()}))
+    children = child_runs(client, parent)
+    seen = {r.info.run_id: r.data.tags.get(DATASET_TAG) for r in children}
+    # the datasets of the runs that finished: a failed run's is no data.path to promote with
+    # (audit87: a sweep whose every run failed was refused naming theirs, "no finished child
+    # run" only once given it)
+    scored = {seen[r.info.run_id] for r in children if r.info.status == "FINISHED"}
+    if scored and dataset_hash not in scored:
+        hashes = ", ".join(sorted({(h or "none")[:12] for h in scored}))
         raise ConfigError(f"data.path={data_path} (dataset {dataset_hash[:12]}) was not scored by "
                           f"any run of sweep {parent} (datasets seen: {hashes}); promote with "
                           f"the data.path the sweep ran on")

@@ -25,7 +25,7 @@ from .sinumerik import TRACE_SUFFIXES, not_a_trace
 from .suffixes import TEXT_SUFFIXES, is_text
 from .tdm import TDM_SUFFIXES
 from .tdms import TDMS_SUFFIXES
-from .workbook import WORKBOOK_SUFFIXES
+from .workbook import WORKBOOK_SUFFIXES, not_read
 
 # a folder's runs without a manifest (a workbook is read as its CSV export, :mod:`.workbook`; a
 # TDMS log, a MATLAB file or a LabVIEW Measurement File as its channels', :mod:`.labfile`)
@@ -72,6 +72,7 @@ def read_manifest(root: str | Path, opts: ReadOptions | None = None) -> pd.DataF
     files = [] if path.is_file() else campaign_files(root)
     if files:    # a lab's folder of runs: every file a train campaign, in natural name order
         _check_no_manifest_among(files)
+        _check_no_sheet_unread(root, len(files))
         pairs = logger_pairs(files, opts)     # a run of two loggers: its temperature file
         files = [f for f in files if f not in set(pairs.values())]
         raw = pd.DataFrame({"campaign": [paired_id(f) if f in pairs else f.stem for f in files],
@@ -137,6 +138,17 @@ def _check_no_manifest_among(files: list[Path]) -> None:
             raise ContractError(f"a manifest under another name (its header names campaign and "
                                 f"file): rename it {MANIFEST} to read the folder through it",
                                 file=f)
+
+
+def _check_no_sheet_unread(folder: Path, runs: int) -> None:
+    """A run saved as a spreadsheet the reader does not read (``.xls``, ``.xlsb``, ``.ods``)
+    beside the folder's run files (audit87: left out unsaid, the record a campaign short and
+    another one held out), refused as that file named as ``data.path`` is."""
+    for p in sorted(folder.iterdir()):
+        said = not_read(p) if p.is_file() and not p.name.startswith((".", EXCEL_OWNER)) else None
+        if said:
+            raise ContractError(f"{said} (beside the folder's {runs} run file(s) it was left out; "
+                                f"not a run: move it out of the folder)", file=p)
 
 
 def _other_files(folder: Path) -> str:

@@ -30,7 +30,7 @@ from ...apps.deploy.naming import raw_names
 from ...apps.deploy.report import plain
 from ...base.errors import ConfigError
 from ...base.files import staged_outputs
-from ...base.log import say
+from ...base.log import logger, say
 from ...base.paths import resolve
 from ...core.continuation import lead_ins
 from ...core.io.bits import STATE
@@ -48,6 +48,10 @@ from ..model_store import load_model, model_family
 from ..registry import registered_version
 from ..source import read_streamed, slashed_time
 from ..store import is_registered_model
+
+# every code file some format writes: one of them an export does not write, left in ``out`` by an
+# earlier export of another format, is another compensator's code (audit87)
+CODE = ("compensator.c", "compensator.h", "stream.c", "compensator.st")
 
 
 def _registry_provenance(source: str) -> dict:
@@ -323,6 +327,7 @@ def export(cfg: DictConfig) -> dict:
         raise _refused(source, family, fmt, exc) from None
     packed = _pack(cfg, deployed, ds, files["compensator.json"], fmt)
     out = Path(resolve(cfg.out))
+    earlier = [name for name in CODE if name not in files and (out / name).is_file()]
     with staged_outputs(out, last=("compensator.json",)) as tmp:
         for name, text in {**files, **(packed[0] if packed else {})}.items():
             (tmp / name).parent.mkdir(parents=True, exist_ok=True)
@@ -332,6 +337,9 @@ def export(cfg: DictConfig) -> dict:
     laws = exported["provenance"].get("laws")
     kept = f"; per target: {per_target(laws)}" if laws else ""   # what auto / ATI kept
     say(f"export ({fmt}, {family}{kept}): {', '.join(str(p) for p in written.values())}")
+    if earlier:
+        logger.warning(f"{', '.join(earlier)} in {out}: an earlier export's code, not this "
+                       f"compensator's ({fmt}): remove them, or export into a folder of its own")
     if exported.get("forest_target"):
         say(_forest_said(exported, files))
     if exported.get("lstm_target"):
