@@ -320,7 +320,8 @@ def refit_as_chosen(fitted: Compensator) -> Compensator | None:
     from .models.auto import as_chosen
 
     template = clone(fitted)
-    if not any(hasattr(est, "chosen_") for est in getattr(fitted, "estimators_", {}).values()):
+    # auto's mark is family_: an ARX's chosen_ (its order) is no choice of auto's (deploy87)
+    if not any(hasattr(est, "family_") for est in getattr(fitted, "estimators_", {}).values()):
         return template
     template = as_chosen(template, fitted)
     if template.estimator.get_params(deep=False).get("chosen") is None:

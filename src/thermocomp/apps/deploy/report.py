@@ -337,6 +337,30 @@ def replay_json(deployed, result: dict, *, name: str, source: str, test_ids: lis
     return report
 
 
+def with_cold_start(report: dict, cold: dict, continuing: list[str]) -> dict:
+    """``report`` (``replay.json``) with per target ``rmse_cold_start``, the deployed RMSE of
+    ``cold`` (:func:`replay_report` of the same campaigns without lead-ins: each streamed from a
+    reset at its first row, as a compensator restarted there), and ``cold_start_campaigns``, the
+    test campaigns that continue others (``continuing``; none: the two figures are one).  The
+    default figures stay the continued stream's: what ``run`` scores (deploy87)."""
+    for t, r in report["targets"].items():
+        r["rmse_cold_start"] = cold["targets"][t][RMSE]
+    report["cold_start_campaigns"] = list(continuing)
+    return report
+
+
+def cold_start_line(report: dict) -> list[str]:
+    """``cold start (...): RMSE <target> <cold> against <continued> continued, ...``, or nothing
+    without ``replay.cold_start``."""
+    if "cold_start_campaigns" not in report:
+        return []
+    chains = ", ".join(report["cold_start_campaigns"]) or "none continues another"
+    return [f"cold start (each test campaign from a reset at its first row; {chains}): RMSE "
+            + ", ".join(f"{t} {r['rmse_cold_start']:.3f} against {r[RMSE]:.3f} continued"
+                        for t, r in report["targets"].items()
+                        if r.get("rmse_cold_start") is not None and r.get(RMSE) is not None)]
+
+
 def replay_lines(report: dict) -> list[str]:
     """The table and lines ``thermocomp replay`` prints.  RMSE batch: the fitted model's own
     prediction of the same rows (what ``run`` scores), so a deployment that streams
@@ -350,6 +374,7 @@ def replay_lines(report: dict) -> list[str]:
         lines.append(f"{t:<{w}} {r['n_samples']:>8} {r['max_abs_stream_minus_batch']:>18.3g} "
                      f"{rmse:>8} {batch:>11} {r['us_per_sample']:>10.1f}")
     lines += adapt_line(targets, "frozen -> adapted", RMSE)
+    lines += cold_start_line(report)
     clamped = max((r.get("clamped_samples") or 0 for r in targets.values()), default=0)
     if clamped:     # why RMSE leaves RMSE batch where no sensor was excluded
         lines += clamped_line(clamped, next(iter(targets.values()))["n_samples"],

@@ -350,7 +350,7 @@ class Compare:       # compare.descending and compare.target: checked by the sta
 
 @dataclass
 class Replay:        # replay.model: checked where it is loaded
-    pass
+    cold_start: bool = key(BOOLEAN, reports=True)
 
 
 @dataclass

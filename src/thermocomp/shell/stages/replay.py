@@ -4,7 +4,9 @@ The compensator is fitted on the train split of ``data.path`` (``replay.model=nu
 loaded (``replay.model=<model.pkl | pyfunc folder | models:/name@alias>``), made deployable
 exactly as ``promote`` does (a pyfunc model is replayed as it is), and every test campaign
 (missing values kept) is streamed row by row from its start, or warmed on the campaigns it
-continues (:func:`thermocomp.apps.deploy.report.replay_report`).  Writes ``<out>/replay.json``.
+continues (:func:`thermocomp.apps.deploy.report.replay_report`).  Writes ``<out>/replay.json``;
+with ``replay.cold_start=true`` also the deployed RMSE of each test campaign streamed from a reset
+(:func:`~thermocomp.apps.deploy.report.with_cold_start`).
 """
 
 from __future__ import annotations
@@ -14,7 +16,7 @@ from pathlib import Path
 from omegaconf import DictConfig
 
 from ...apps.deploy.adapt import from_config as adapt_from_config
-from ...apps.deploy.report import plain, replay_json, replay_lines, replay_report
+from ...apps.deploy.report import plain, replay_json, replay_lines, replay_report, with_cold_start
 from ...base.errors import ConfigError
 from ...base.files import write_json
 from ...base.log import say
@@ -49,12 +51,18 @@ def replay(cfg: DictConfig) -> dict:
         kind = "adaptive" if deployed is not plain(deployed) else "streaming"
         say(f"streaming {len(test_ids)} test campaigns row by row through the {kind} compensator "
             f"({', '.join(deployed.columns_)})")
-        result = replay_report(deployed, {c: ds.campaigns[c] for c in test_ids},
-                               {c: ds.rows_named(c) for c in test_ids},
-                               lead_ins(plain(deployed).compensator, ds, test_ids),
+        tests = {c: ds.campaigns[c] for c in test_ids}
+        files = {c: ds.rows_named(c) for c in test_ids}
+        leads = lead_ins(plain(deployed).compensator, ds, test_ids)
+        result = replay_report(deployed, tests, files, leads,
                                adapt_from_config(cfg.get("adapt"), len(deployed.targets_)))
         report = replay_json(deployed, result, name=name, source=source, test_ids=test_ids,
                              missing=gaps)
+        if cfg.replay.get("cold_start"):    # what a restart of the compensator costs (deploy87)
+            say("cold start: streaming the test campaigns again, each from a reset at its first row")
+            cold = replay_report(deployed, tests, files, None,
+                                 adapt_from_config(cfg.get("adapt"), len(deployed.targets_)))
+            with_cold_start(report, cold, [c for c in test_ids if c in leads])
         path = write_json(Path(resolve(cfg.out)) / "replay.json", report)
         tr.log_metrics({"replay": report["targets"]})
         tr.log_artifact(path)
