@@ -176,7 +176,9 @@ def monitor_report(adaptive: AdaptiveCompensator, fixed, comp, streamed: dict, t
         sensors[name]["undetected_offset_um"] = cost[name]
     report = {"sensors": sensors, "events": run["events"], "targets": _targets(adaptive, run),
               "pod": _pod(mon, placement),
-              "bands": {"warning_c": mon.warning_c.tolist(), "alarm_c": mon.alarm_c.tolist()},
+              "bands": {"warning_c": mon.warning_c.tolist(), "alarm_c": mon.alarm_c.tolist(),
+                        # (mon87) the bound within which a crossing may be the readings' rounding
+                        "rounding_c": mon.rounding_c.tolist()},
               "alarms": alarm_rate(run["events"], run["hours"]),
               "campaigns": list(streamed)}
     if adapt is not None:

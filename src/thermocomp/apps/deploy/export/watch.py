@@ -904,6 +904,8 @@ class CodeMonitor:
         j = int(np.argmax(z))
         if a["new_state"]:
             j, resolves = self._lone_fault(j, z, level, err, judged)
+            if j < 0:
+                return
             if not resolves:              # a new thermal state (served: declared)
                 if not a["novel"]:
                     self._flag(NOT_IN_CODE, j, DRIFT)
@@ -983,11 +985,14 @@ class CodeMonitor:
         """The served monitor's ``_lone_fault``: ``(sensor, whether with it out the others are
         within band)``, every sensor in."""
         out = judged & (level >= WARNING)
-        if self._resolves(j, out if level[j] < WARNING else None):
-            return j, True
         size = np.abs(np.where(judged, np.nan_to_num(err), 0.0))
         std = np.sqrt(np.abs(1 - self.levc))
         likelier = np.argmax(size * std)     # (mon84: asked of every lone fault)
+        # (mon86b: j within band, the likelier fault out of band: that one or none yet, -1;
+        # mon87: not where the excursion hovers, j then, held as a regime)
+        doubted = self._resolves(j, out if level[j] < WARNING else None)
+        if doubted and not (level[j] < WARNING and out[likelier] and not self._hovers(level, err)):
+            return j, True
         # (mon85: j within band hiding the likelier single fault, not its blind partner: no)
         hidden = out & (z < 0.7 * z[j]) & (np.arange(len(z)) == likelier)
         hides = bool(level[j] < WARNING) and self._resolves(j, hidden)
@@ -996,7 +1001,7 @@ class CodeMonitor:
                     and self._resolves(int(k), judged,   # (mon84b: every judged sensor)
                                        float(np.max(np.delete(size, k), initial=0.0)))):
                 return int(k), True
-        return j, hides
+        return (-1, True) if doubted else (j, hides)
 
     def _fold(self, d, first, dt) -> None:
         """The served monitor's memory of the field (``EXCURSION_TAU_S``), the sample ``d``."""

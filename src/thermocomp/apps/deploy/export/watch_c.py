@@ -564,19 +564,20 @@ static int mon_resolves(const tc_state *s, int j, const int seen[], double alone
     return fabs(off / rows) >= alone;
 }
 
+static int mon_hovers(const tc_state *s, const int level[]);   /* (below) */
+
 /* the served monitor's _lone_fault, every sensor in: the sensor (j: the largest |E|(1 - h), z
    its ranks) whose exclusion explains the bands, *resolves whether it does */
 static int mon_lone_fault(const tc_state *s, int j, const double z[], const int level[],
                           const int jd[], int *resolves) {
     double size[NM];
-    int out[NM], hidden[NM], k, i, hides, likelier = -1, done[NM];
+    int out[NM], hidden[NM], k, i, hides, likelier = -1, done[NM], doubted;
     for (k = 0; k < NM; k++) {
         double e = mon_mean_err(s, k);
         out[k] = jd[k] && level[k] >= 1;
         size[k] = jd[k] ? fabs(isnan(e) ? 0.0 : e) : 0.0;
         done[k] = 0;
     }
-    if (mon_resolves(s, j, level[j] < 1 ? out : 0, -1.0)) return *resolves = 1, j;
     /* the likelier single fault: the largest standardised residual (mon84: asked of every
        lone fault, not only where j hides) */
     for (k = 0; k < NM; k++) {
@@ -584,6 +585,11 @@ static int mon_lone_fault(const tc_state *s, int j, const double z[], const int 
         if (likelier < 0 || w > size[likelier] * sqrt(fabs(1.0 - s->mon_lev[likelier])))
             likelier = k;
     }
+    /* (mon86b: j within band, the likelier fault out of band: that one or none yet, -1;
+       mon87: not where the excursion hovers, j then, held as a regime) */
+    doubted = mon_resolves(s, j, level[j] < 1 ? out : 0, -1.0);
+    if (doubted && !(level[j] < 1 && out[likelier] && !mon_hovers(s, level)))
+        return *resolves = 1, j;
     /* (mon85: j within band hiding the likelier single fault, not its blind partner: no) */
     for (k = 0; k < NM; k++) hidden[k] = out[k] && z[k] < 0.7 * z[j] && k == likelier;
     hides = level[j] < 1 && mon_resolves(s, j, hidden, -1.0);
@@ -599,7 +605,7 @@ static int mon_lone_fault(const tc_state *s, int j, const double z[], const int 
         /* (mon84b: tested on every judged sensor, none left unjudged) */
         if (mon_resolves(s, k, jd, alone)) return *resolves = 1, k;
     }
-    return *resolves = hides, j;
+    return doubted ? (*resolves = 1, -1) : (*resolves = hides, j);
 }
 
 /* (mon83) the served _within_rounding: sensor j's smallest error over the last MON_CONFIRM
@@ -748,6 +754,7 @@ static void mon_drift(tc_state *s, const int level[], int field) {
     if (MON_NEW_STATE) {
         int resolves;
         j = mon_lone_fault(s, j, z, level, jd, &resolves);
+        if (j < 0) return;   /* (mon86b) none yet */
         if (!resolves) {   /* a new thermal state (served: declared) */
             if (MON_NOVEL) s->mon_novel = 1, s->mon_calm_field = 0;
             else mon_flag(s, TC_MON_NOT_IN_CODE, j, TC_MON_DRIFT);

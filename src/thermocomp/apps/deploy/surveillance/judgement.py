@@ -39,7 +39,7 @@ class Judgement:
             # column with more nodes than sensors: the far T_left1 went out first on 3 of 5 runs)
             z = np.where(self._judged, np.abs(np.nan_to_num(err)) * self._std ** 2, -1)
             j, resolves = self._lone_fault(int(np.argmax(z)), z, level, err)
-            if self._drift_vetoed(j, level, err, time, events, resolves):
+            if j < 0 or self._drift_vetoed(j, level, err, time, events, resolves):
                 break
             # a culprit within its own band is blamed for another's excursion only while that
             # grows: one that reached its offset and hovers is a regime (module excursion.py);
@@ -97,32 +97,30 @@ class Judgement:
 
     def _lone_fault(self, j: int, z: np.ndarray, level: np.ndarray,
                     err: np.ndarray) -> tuple[int, bool | None]:
-        """``(sensor, whether with it out the others are within band)`` (None: not asked):
-        the single fault that explains the bands.  An exclusion explains them when, with the
-        sensor out of the fit, every other judged sensor is within its warning band and, unless
-        the sensor is out of band itself, every one out of band is still judged (a coupled pair
-        out of band goes out together; a sensor within its band that leaves one out of band
-        unjudged hides its error).  In order: ``j`` (paper 002's largest error); the
-        sensor out of band (largest error first) that one fault explains, off the field the
-        others make by more than any other sensor's error now (a fault's own deviation is the
-        largest), and the largest standardised residual ``|E|·sqrt(1 - h)`` (the likelier
-        single fault, as in :meth:`_explaining`; mon84: asked always, before only where ``j``'s
-        exclusion explains the bands by leaving one out of them unjudged), whose exclusion leaves
-        every judged sensor judged (mon84b); else ``j``, if it explains them at all, within its
-        band not by leaving the likelier single fault out of band in and unjudged (mon85; a
-        coupled pair: :meth:`_exclude_by_judgement` takes the partner out too).  ``j``'s coupled
-        neighbour can show the largest error (fl_thermal's t12 drifting, T_t14 then T_t15
-        picked, and the drift read as a new thermal state that never ended); and a lathe's
-        healthy T_nc_x1_drive (-0.58 °C, 0.48 standardised), excluded for a drifting
-        T_guidebush (+0.93, 0.51) whose leverage that raised past judging (0.71 -> 0.96), had
-        hidden the drift, until a new thermal state did."""
+        """``(sensor, whether with it out the others are within band)`` (None: not asked; sensor -1: none
+        yet, mon86b): the single fault that explains the bands.  An exclusion explains them when, with
+        the sensor out of the fit, every other judged sensor is within its warning band and, unless
+        the sensor is out of band itself, every one out of band is still judged (a coupled pair out of
+        band goes out together; a sensor within its band that leaves one out of band unjudged hides
+        its error).  In order: ``j`` (paper 002's largest error); the sensor out of band (largest
+        error first) that one fault explains, off the field the others make by more than any other
+        sensor's error now (a fault's own deviation is the largest), and the largest standardised
+        residual ``|E|·sqrt(1 - h)`` (the likelier single fault, as in :meth:`_explaining`; mon84:
+        asked always, before only where ``j``'s exclusion explains the bands by leaving one out of
+        them unjudged), whose exclusion leaves every judged sensor judged (mon84b); else ``j``, if it
+        explains them at all, within its band not by leaving the likelier single fault out of band in
+        and unjudged (mon85; a coupled pair: :meth:`_exclude_by_judgement` takes the partner out too).
+        ``j``'s coupled neighbour can show the largest error (fl_thermal's t12 drifting, T_t14 then
+        T_t15 picked, and the drift read as a new thermal state that never ended); and a lathe's
+        healthy T_nc_x1_drive (-0.58 °C, 0.48 standardised), excluded for a drifting T_guidebush
+        (+0.93, 0.51) whose leverage that raised past judging (0.71 -> 0.96), had hidden the drift,
+        until a new thermal state did.  ``j`` within its band that explains the bands is not taken
+        where the likelier single fault is out of band (mon86b): that one if its own exclusion
+        explains them, else none yet (-1: nothing excluded, nothing declared); unless the
+        excursion hovers (mon87): ``j`` then, which the regime check holds as before."""
         if not self.new_state or self._novel:
             return j, None
         out = self._judged & (level >= WARNING)
-        # a sensor out of band itself may leave its coupled partner out of band unjudged (the
-        # partner follows it out); one within its band that does so hides, not explains
-        if self._resolves(j, out if level[j] < WARNING else None):
-            return j, True
         size = np.abs(np.where(self._judged, np.nan_to_num(err), 0.0))
         # the likelier single fault: the largest standardised residual |E|·sqrt(1 - h), the
         # likelihood ratio's pick for one faulty sensor (a fault on k gives no other a larger
@@ -131,6 +129,17 @@ class Judgement:
         # source's onset, was taken over T_right4 on a residual 0.17 °C amplified 5.5x by the
         # leave-one-out division, 0.35 standardised against T_right4's 0.37 (mon84)
         likelier = np.argmax(size * self._std)
+        # j within its band is no fault where the likelier one is out of band (mon86b: a short-
+        # trained column's healthy T_right3, -0.17 °C for a 0.40 band, 0.135 standardised,
+        # taken for T_left1's 0.4068 against 0.4052, 0.190): that one, or nothing yet; unless
+        # the excursion hovers (mon87: the regime check kept whoever gets the pick: j then, held
+        # by it as on main, not the lathe's healthy T_toolholder1 hovering past its band).
+        # A sensor out of band itself may leave its coupled partner out of band unjudged (the
+        # partner follows it out); one within its band that does so hides, not explains
+        doubted = self._resolves(j, out if level[j] < WARNING else None)
+        if doubted and not (level[j] < WARNING and out[likelier]
+                            and not self._excursion_hovers(level, err)):
+            return j, True
         # j explains the bands only by hiding a sensor out of them (j out of band itself: the
         # same question as above, answered no); not where the one it leaves in unjudged (not
         # its blind partner, z < 0.7 z[j]) is the likelier single fault (mon85: s8774's healthy
@@ -147,7 +156,7 @@ class Judgement:
                     and self._resolves(int(k), self._judged,
                                        alone=float(np.max(np.delete(size, k), initial=0.0)))):
                 return int(k), True
-        return j, hides
+        return (-1, None) if doubted else (j, hides)
 
     def _resolves(self, j: int, seen: np.ndarray | None = None,
                   alone: float | None = None) -> bool:
@@ -206,7 +215,8 @@ class Judgement:
         if not self._novel and (self._judged & (level >= self._field_level())).any():
             z = np.where(self._judged, np.abs(np.nan_to_num(err)) * self._std ** 2, -1)
             j, resolves = self._lone_fault(int(np.argmax(z)), z, level, err)
-            self._drift_vetoed(j, level, err, time, events, resolves)
+            if j >= 0:
+                self._drift_vetoed(j, level, err, time, events, resolves)
         self._end_when_calm(int((self._judged & (level >= WARNING)).sum()), time, events)
 
     def _end_when_calm(self, out: int, time, events) -> None:
