@@ -2,7 +2,8 @@
 (issue 34; stop 87, auto87).
 
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code AND conf measured are that
-tree's, the scratch root's ``conf/`` is linked to the conf beside the package)::
+tree's, the scratch root's ``conf/`` is linked to the conf beside the package; a NEW tree needs the
+rule, ``git apply benchmarks/auto87_rule.patch``: REFUSED, below)::
 
     python benchmarks/bench_auto87.py auto DATA WORK RECORD ...     # auto per record -> WORK/auto.jsonl
     python benchmarks/bench_auto87.py singles DATA WORK RECORD ...  # family x {none, ati} -> singles.jsonl
@@ -55,6 +56,57 @@ and conf, NEW = this tree.
    OLD; 60/20/20 MAE below the authors' GRU on >= 4 of 5 channels.
 5. CPU (user + sys) of ``run model=auto`` on cr9031 NEW <= 2 x OLD (the ``auto`` rows).
 6. tests/**/test_auto*.py pass on NEW.
+
+Scored (2026-12-04; OLD = main 25b18da6, NEW = this tree at c62aff75 (the rule in conf); 2 shared
+cores, load 6-10, ``OMP_NUM_THREADS=1``; every record once, OLD and NEW ``auto`` alternating record
+by record; the singles once, NEW's tree (same family code); ``bar /tmp/auto87/old /tmp/auto87/new
+/tmp/auto87/old22 /tmp/auto87/new22``): **REFUSED** (items 1 and 5 fail; conf reverted, the rule
+in ``benchmarks/auto87_rule.patch``)
+-------------------------------------------------------------------------------------------------
+Test RMSE, mean over E_X / E_Z (µm); "best": the best of the 12 singles (family x {none, ati})::
+
+  record  auto OLD -> NEW (NEW/OLD)   MLR     best single          auto/best OLD -> NEW
+  cr9078  1.420 -> 1.404 (0.989)      1.433   arx ati 0.964        1.473 -> 1.456
+  cr9079  0.850 -> 1.023 (1.203)      4.071   lagbank ati 0.994    0.856 -> 1.029
+  cr9080  0.792 -> 1.055 (1.333)      2.524   mlr ati 0.792        1.000 -> 1.333
+  cr9081  0.686 -> 0.513 (0.748)      1.456   hammerstein ati 0.390  1.759 -> 1.316
+  cr9082  0.894 -> 0.782 (0.875)      1.954   lstm ati 0.560       1.597 -> 1.398
+  cr9083  0.938 -> 0.658 (0.701)      1.719   hammerstein ati 0.572  1.640 -> 1.150
+  cr9084  0.823 -> 0.698 (0.848)      1.722   lstm ati 0.647       1.273 -> 1.079
+  cr9085  2.767 -> 1.066 (0.385)      2.959   hammerstein ati 0.759  3.645 -> 1.405
+
+1. FAILS: (a) within 10 % of the best 2 -> 2 of 8 (OLD cr9079, cr9080; NEW cr9079 at 1.029,
+   cr9084 at 1.079: cr9080 leaves); (b) holds: NEW below MLR on 8 of 8 (so was OLD); (c)
+   FAILS: cr9079 +20.3 %, cr9080 +33.3 % worse than OLD.  The geometric mean of auto / best goes
+   1.509 -> 1.261 and of auto / MLR 0.492 -> 0.411: better on 6 of 8, by up to 2.6x (cr9085), but
+   worse exactly where OLD already kept ATI of MLR and it was right: cr9080 (OLD ``ati`` 1.0 on both
+   targets = the best single) NEW moves E_Z to ``ati+lagbank`` 0.97 (lagbank ati tests 1.081
+   against mlr ati's 0.792); cr9079 (OLD's blend 0.850 beat every single) NEW spreads E_X over
+   ati 0.42 / ati+arx 0.17 / ati+lagbank 0.38.
+2. seen (information; cr9077 / cr9012 singles not finished by the bar): cr9031 3.095 -> 1.759
+   (x0.568; best arx ati 0.613: 5.05 -> 2.87 x best), cr9076 2.085 -> 1.484 (lstm ati 1.110:
+   1.88 -> 1.34 x), cr9077 0.648 -> 0.742 (+14.5 %), cr9012 0.562 -> 0.468.
+3. holds: the 22 (main's run of them now equals /tmp/auto80/new to the digit) moved on the four
+   records where an ATI candidate applies by default, all better: year6511 x0.823, year6512
+   x0.929, year6_5411 x0.934, hmc x0.999; worse than MLR on the new campaigns 8 -> 8; none > 2 %
+   worse (the lab records pass their own candidate list: unchanged).
+4. holds: fl_thermal unchanged (no ambient: the ATI candidates are skipped): 90/10 auto 2.4810;
+   60/20/20 MAE 1.170 / 1.411 / 4.078 / 1.399 / 2.529, mean 2.117, below the authors' on 4 of 5.
+5. FAILS: CPU of ``run model=auto`` on cr9031 5.44 -> 11.25 s (x2.07 > 2).  Over the 8 fresh
+   records 48.6 -> 87.7 s (x1.81); on cr9012 (43 runs, seen) 12.2 -> 81.0 s (x6.7): the
+   ``ati+lagbank`` folds (an interval search, leave-one-campaign-out, per fold) dominate.
+6. holds: tests/core/test_auto_folds45.py, test_auto_in_range47.py, test_auto_zero_folds68.py,
+   tests/shell/test_autocpu63.py on NEW: 17 passed.
+
+What it says, and what remains (not a verdict): the two ATI lag candidates are what auto needed on
+most climate rooms (6 of 8 fresh better by 1-61 %, 3 of 4 seen by 17-43 %), but the folds (4 blocked forward
+folds of 5-8 campaigns) cannot tell ATI of MLR from ATI of a lag family where the plain one is
+right, and more candidates split the votes: cr9080's E_Z went to ``ati+lagbank`` 0.97 on the same
+folds that gave ``ati`` 1.0 when it stood alone.  The best single on 4 of 8 fresh records is
+``hammerstein ati`` or ``lstm ati``, which neither tree offers.  A next rule must keep ATI-of-MLR's
+wins (cr9079, cr9080, cr9077) and cost less: e.g. ``ati+arx`` alone (no lag-bank interval
+search: most of the CPU), or the ATI lag candidates only where ``ati`` itself is kept.  The seeds
+9078-9085 are now looked at; 9086-9090 remain (too few for 6 fresh records of a next bar).
 """
 
 from __future__ import annotations
