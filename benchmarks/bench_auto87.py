@@ -83,11 +83,11 @@ Test RMSE, mean over E_X / E_Z (µm); "best": the best of the 12 singles (family
    targets = the best single) NEW moves E_Z to ``ati+lagbank`` 0.97 (lagbank ati tests 1.081
    against mlr ati's 0.792); cr9079 (OLD's blend 0.850 beat every single) NEW spreads E_X over
    ati 0.42 / ati+arx 0.17 / ati+lagbank 0.38.
-2. seen (information; cr9077's singles finished after the bar was printed, cr9012's (43 runs) not
-   by the deadline): cr9031 3.095 -> 1.759 (x0.568; best arx ati 0.613: 5.05 -> 2.87 x best),
-   cr9076 2.085 -> 1.484 (lstm ati 1.110: 1.88 -> 1.34 x), cr9077 0.648 -> 0.742 (+14.5 %; lagbank
-   ati 0.661: 0.980 -> 1.123 x, out of the 10 %), cr9012 0.562 -> 0.468 (x0.832); within 10 % of
-   the best 1 -> 0 of 3, below MLR 3 of 3 both.
+2. seen (information; their singles finished after the verdict, ``bar`` run again): cr9031 3.095
+   -> 1.759 (x0.568; best arx ati 0.613: 5.05 -> 2.87 x best), cr9076 2.085 -> 1.484 (lstm ati
+   1.110: 1.88 -> 1.34 x), cr9077 0.648 -> 0.742 (+14.5 %; lagbank ati 0.661: 0.981 -> 1.123 x,
+   out of the 10 %), cr9012 0.562 -> 0.468 (x0.832; lstm ati 0.424: 1.324 -> 1.102 x); within
+   10 % of the best 1 -> 0 of 4, below MLR 4 of 4 both.
 3. holds: the 22 (main's run of them now equals /tmp/auto80/new to the digit) moved on the four
    records where an ATI candidate applies by default, all better: year6511 x0.823, year6512
    x0.929, year6_5411 x0.934, hmc x0.999; worse than MLR on the new campaigns 8 -> 8; none > 2 %
