@@ -1,0 +1,206 @@
+"""A spiking sensor no other predicts in the exported C (cmon87, issue 34): the code's monitor
+holds such a sensor out for a jump as the served monitor does (re-referenced, held at its last
+reading, its fallback model served, back after a calm window with its jumps undone where the
+reading returned), where before it flagged ``BLIND``, passed the spike into the correction and
+the conformance pack was cut there.
+
+    PYTHONPATH=$PWD/src .venv/bin/python benchmarks/bench_cmon87.py spikes [ROOT] [SEEDS]
+    PYTHONPATH=$PWD/src .venv/bin/python benchmarks/bench_cmon87.py compare [ROOT] [SPEC]
+
+``spikes``: in ``ROOT`` (default ``/tmp/cmon87-bench``) per seed of ``SEEDS`` (default
+:data:`SEEDS`: bench_audit86b's lr9032 and this task's fresh 9126-9130) a long record as
+bench_audit86b draws lr9032 (``sim=long_record``, 3 days, ``test_fraction=0.2``: R1b, 864 rows,
+continuing R1a), MLR deployed adaptive (``data.reference=none``), and in R1b of the fresh seeds a
+spike on each monitored sensor no other predicts (:func:`spiked`: as the simulator's own
+outliers, 1-3 samples of +-1-5 degC, one per sensor, their rows spread over R1b; lr9032 as
+drawn, its planted -3.89 degC on ``T_table``).  Per record, "before" (the export without
+``blind_jump``: the code as on main) and "now": R1b streamed after R1a (the served stream,
+``stream_rows``, and the compiled C, gcc -std=c99 -Wall -Wextra -Werror -O2, fed the same rows):
+R1b's rows where C = served (every target within 1e-9 um), the largest |C - served| over them,
+the first flag, the pack's rows of R1b and of its planted copies (``conformance_pack`` with
+the lead-in, as ``export`` builds it) and ``tc_step``'s largest / summed CPU time of a sample
+(bench_cmon85's ``_timed``).  ``compare``: bench_cmon86's ``compare`` (bench_cmon85's 50 campaigns
+and bench_cmon86's 50 fresh ones) with "before" the export without ``blind_jump``.
+
+Traced (lr9032, mlr, the code on main at 25b18da6): at R1b's row 397 (1-based; 396 0-based)
+``T_table`` (no other sensor predicts it: ``predictable`` 0, its fallback model law set 6) reads
+3.89 degC low for one sample.  The served monitor: ``_instant``'s jump (its step beyond 3 x the
+largest training step, 0.14 degC), re-referenced by its whole step (no prediction of its change:
+not judged), excluded, "held at its last good reading"; the correction is the fallback model's
+(``_fallen_back``: out for a jump, not dropped); at row 398 its return is a second jump,
+re-referenced back; at row 408 (calm for its window of 10) re-admitted, its 2 jumps undone
+(``_readmit``: a sensor no other predicts, several jumps: the reference before the outage
+restored, -0.06 degC).  The C: the jump of a sensor the code does not hold out (``ported`` 0, not
+``blind_drop``'s dropout or freeze) flagged ``BLIND`` and the sensor kept in as read, the spike
+passing into the model (rows 397-407 part from the served corrections by up to 7.49 um; row 398
+flagged ``BLIND`` again); the pack cut at row 3854 of the fed stream (R1b's row 397), 468 of
+R1b's 864 rows unchecked, and each planted copy too (the spike is in them).
+
+The rule (the code's; the served monitor unchanged): with every other sensor in and enough left
+to rebuild the field, a jump of a sensor no other predicts is re-referenced by its step and out
+as cmon84 holds one out for a dropout or a freeze (held at its last reading, its fallback's law
+set served, back after a calm window); the reference before its first jump kept (``mon_ref0``);
+a jump while it is out re-referenced (no longer flagged); on its return, as served, its jumps
+undone (the reference restored, its window shifted back) where it jumped more than once or,
+once, where the reading with the jump undone is nearer the value it held.  An export before it
+(no ``blind_jump``) flags as before.  Work: O(n) per sample more at most (the window's column
+shifted on a return).
+
+Bar (written before scoring): (1) lr9032 and the fresh records of seeds 9126-9130 with their
+spikes: now C = served on every row of R1b (<= 1e-9 um), nothing flagged, R1b's pack entry
+whole (not cut); (2) bench_cmon85/86's 100 campaigns (``compare``): no campaign that was C =
+served on every row before loses it, the campaigns flagged not up; (3) ``tc_step``'s largest CPU
+time of a sample now / before <= 3 over every campaign of (1) and (2); (4) the export compiles
+with -Werror (every build above) and tests/shell/test_export*.py pass; (5) a test that fails on
+main (tests/shell/test_export_cmon87.py).
+"""
+
+from __future__ import annotations
+
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from _cli import made_folder, run_commands, seed_list  # noqa: E402
+
+SEEDS = "9032,9126-9130"
+RECORD = ("sim=long_record", "sim.generator.duration_days=3.0", "sim.generator.test_fraction=0.2")
+DRAWN = (9032,)          # bench_audit86b's record: its own spike, none planted
+
+
+def _before(ss):
+    """``ss`` as exported before cmon87 (no ``blind_jump``: a blind sensor's jump flagged)."""
+    import dataclasses
+
+    return dataclasses.replace(ss, monitor={k: v for k, v in ss.monitor.items()
+                                            if k != "blind_jump"})
+
+
+def spiked(frame, ss, seed: int):
+    """``(frame with spikes, what was planted)``: on each monitored sensor no other predicts, one
+    spike of 1-3 samples, +-1-5 degC (the simulator's outliers), their rows spread over the
+    frame (one per equal part, 40-60 % into it)."""
+    rng = np.random.default_rng([seed, 87])
+    names = [ss.inputs[i] for i, p in zip(ss.monitor["inputs"], ss.monitor["predictable"]) if not p]
+    out, said = frame.copy(), []
+    part = len(frame) // max(len(names), 1)
+    for k, name in enumerate(names):
+        row = k * part + int(rng.integers(int(0.4 * part), int(0.6 * part)))
+        width = int(rng.integers(1, 4))
+        size = float(rng.choice([-1, 1]) * rng.uniform(1.0, 5.0))
+        out.loc[out.index[row:row + width], name] += size
+        said.append(f"{name} {size:+.2f} degC rows {row + 1}-{row + width}")
+    return out, said
+
+
+def _record(root: Path, seed: int):
+    """``(deployed, ss, {R1b: frame}, {R1b: lead-in}, planted)`` of the long record ``seed``."""
+    from _ccode import deployed_on
+
+    from thermocomp.apps.deploy.export import state_space
+    from thermocomp.apps.deploy.report import plain
+    from thermocomp.core.continuation import lead_ins
+    from thermocomp.shell.cli import main
+
+    data = root / f"lr{seed}"
+    if not (data / "campaigns.csv").exists():
+        assert main(["-q", "simulate", f"seed={seed}", f"data.path={data}", "track=false",
+                     *RECORD]) == 0
+    deployed, ds, test_ids = deployed_on(data, "mlr", ("data.reference=none",))
+    ss = state_space(deployed, monitor=True)
+    tests = {t: ds.campaigns[t].reset_index(drop=True) for t in test_ids}
+    planted = []
+    if seed not in DRAWN:
+        for t in tests:
+            tests[t], planted = spiked(tests[t], ss, seed)
+    return deployed, ss, tests, lead_ins(plain(deployed).compensator, ds, test_ids), planted
+
+
+def measured(deployed, tests: dict, leads: dict, label: str, folder: Path) -> list[str]:
+    """Per test campaign, before (:func:`_before`) and now (module doc)."""
+    from _ccode import built
+    from bench_cmon84 import _c_rows, flagged
+    from bench_cmon85 import _timed
+
+    from thermocomp.apps.deploy.export import c, state_space
+    from thermocomp.apps.deploy.export.driver import DRIVER
+    from thermocomp.apps.deploy.export.pack import conformance_pack, corrections, fed
+    from thermocomp.apps.deploy.report import stream_rows
+
+    now = state_space(deployed, monitor=True)
+    said, codes = {}, {}
+    frames = {t: fed(df, leads.get(t)) for t, df in tests.items()}
+    served = {t: stream_rows(deployed, f, str(t)).y for t, f in frames.items()}
+    for name, ss in (("before", _before(now)), ("now", now)):
+        codes[name] = built(folder / name, {"compensator.h": c.header(ss),
+                                            "compensator.c": c.source(ss), "stream.c": DRIVER})
+        _, summary = conformance_pack(deployed, ss, tests, leads, script=False)
+        kept = {e["campaign"]: e["rows"] - e["lead_in_rows"] for e in summary["campaigns"]}
+        for t, df in tests.items():
+            frame = frames[t]
+            lead = len(frame) - len(df)
+            want = corrections(ss, served[t])[lead:]
+            got = _c_rows(codes[name], frame, ss.inputs)[lead:]
+            gap = np.abs(got - want[:len(got)]).max(axis=1) if len(got) else np.zeros(0)
+            first = [(r - lead, k) for r, k in flagged(ss, frame) if r > lead]
+            copies = [kept[k] for k in kept if k.startswith(f"{t}.")]
+            said.setdefault(t, []).append(
+                (int((gap < 1e-9).sum()), float(gap.max()) if len(gap) else float("nan"),
+                 f"{first[0][1]}@{first[0][0]}" if first else "none", kept[str(t)], copies,
+                 len(df), frame))
+    out = []
+    for t, ((s0, g0, f0, k0, c0, n, frame), (s1, g1, f1, k1, c1, _, _)) in said.items():
+        w0, a0 = _timed(codes["before"].parent, frame, now.inputs)
+        w1, a1 = _timed(codes["now"].parent, frame, now.inputs)
+        out.append(f"{label} {t}: C = served {s0} -> {s1} of {n} rows; max|C - served| "
+                   f"{g0:.2g} -> {g1:.2g} um; first flag {f0} -> {f1}; pack rows {k0} -> {k1} "
+                   f"(planted copies {c0} -> {c1}); tc_step worst {w0:.0f} -> {w1:.0f} ns, sum "
+                   f"{a0 / 1e6:.2f} -> {a1 / 1e6:.2f} ms")
+    return out
+
+
+def spikes(root: str = "/tmp/cmon87-bench", seeds: str = SEEDS) -> None:
+    """Before / now on the long records (module doc)."""
+    import tempfile
+
+    folder = made_folder(root)
+    t0 = time.process_time()
+    for seed in seed_list(seeds):
+        deployed, _, tests, leads, planted = _record(folder, seed)
+        print(f"lr{seed}: planted {planted or 'none (as drawn)'}", flush=True)
+        with tempfile.TemporaryDirectory(prefix="cmon87-") as tmp:
+            print("\n".join(measured(deployed, tests, leads, f"lr{seed}", Path(tmp))), flush=True)
+    print(f"bench process CPU {time.process_time() - t0:.1f} s", flush=True)
+
+
+def compare(root: str = "/tmp/cmon87-bench", spec: str | None = None) -> None:
+    """bench_cmon86's campaigns, before: the export without ``blind_jump``."""
+    import tempfile
+
+    from bench_cmon84 import _records
+    from bench_cmon85 import measured as cmon85_measured
+    from bench_cmon86 import SPEC
+
+    folder = made_folder(root)
+    t0 = time.process_time()
+    for part in (spec or SPEC).split(","):
+        name, seeds = part.split(":")
+        for seed in seed_list(seeds):
+            for deployed, tests, label in _records(folder, name, seed):
+                with tempfile.TemporaryDirectory(prefix="cmon87-") as tmp:
+                    print("\n".join(cmon85_measured(deployed, tests, label, Path(tmp), _before)),
+                          flush=True)
+    print(f"bench process CPU {time.process_time() - t0:.1f} s", flush=True)
+
+
+def main(argv: list[str] | None = None) -> int:
+    return run_commands(__doc__, {"spikes": spikes, "compare": compare},
+                        sys.argv[1:] if argv is None else argv, cpu=sys.stderr)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
