@@ -20,7 +20,9 @@ R1b's rows where C = served (every target within 1e-9 um), the largest |C - serv
 the first flag, the pack's rows of R1b and of its planted copies (``conformance_pack`` with
 the lead-in, as ``export`` builds it) and ``tc_step``'s largest / summed CPU time of a sample
 (bench_cmon85's ``_timed``).  ``compare``: bench_cmon86's ``compare`` (bench_cmon85's 50 campaigns
-and bench_cmon86's 50 fresh ones) with "before" the export without ``blind_jump``.
+and bench_cmon86's 50 fresh ones; bench_cmon85's ``measured`` but the pack's rows of each
+campaign itself, its planted copies not built: :func:`lean`) with "before" the export without
+``blind_jump``.
 
 Traced (lr9032, mlr, the code on main at 25b18da6): at R1b's row 397 (1-based; 396 0-based)
 ``T_table`` (no other sensor predicts it: ``predictable`` 0, its fallback model law set 6) reads
@@ -177,12 +179,63 @@ def spikes(root: str = "/tmp/cmon87-bench", seeds: str = SEEDS) -> None:
     print(f"bench process CPU {time.process_time() - t0:.1f} s", flush=True)
 
 
+def _pack_rows(deployed, ss, frame, want) -> int:
+    """The rows ``conformance_pack`` keeps of ``frame`` itself (its cuts: a refused row, where the
+    exported arithmetic parts from ``want``), without building the planted copies."""
+    from thermocomp.apps.deploy.export.output import not_in_code
+    from thermocomp.apps.deploy.export.pack import _parted, _refused_row
+
+    refused = _refused_row(frame, ss)
+    n = len(frame) if refused is None else refused[0]
+    if n and not_in_code(deployed) and (cut := _parted(ss, frame.iloc[:n], want[:n])) is not None:
+        n = cut["row"] - 1
+    return n
+
+
+def lean(deployed, tests: dict, label: str, folder: Path) -> list[str]:
+    """bench_cmon85's ``measured`` (before: :func:`_before`), the pack's rows of each campaign
+    itself (:func:`_pack_rows`: its planted copies not built, the served stream run once)."""
+    from _ccode import built
+    from bench_cmon84 import _c_rows, flagged
+    from bench_cmon85 import _timed
+
+    from thermocomp.apps.deploy.export import c, state_space
+    from thermocomp.apps.deploy.export.driver import DRIVER
+    from thermocomp.apps.deploy.export.pack import corrections
+    from thermocomp.apps.deploy.report import stream_rows
+
+    now = state_space(deployed, monitor=True)
+    if not now.monitor:
+        return [f"{label}: no monitor in the code"]
+    served = {t: stream_rows(deployed, df, str(t)).y for t, df in tests.items()}
+    said, codes = {}, {}
+    for name, ss in (("before", _before(now)), ("now", now)):
+        codes[name] = built(folder / name, {"compensator.h": c.header(ss),
+                                            "compensator.c": c.source(ss), "stream.c": DRIVER})
+        for t, df in tests.items():
+            want = corrections(ss, served[t])
+            got = _c_rows(codes[name], df, ss.inputs)
+            gap = np.abs(got - want[:len(got)]).max(axis=1) if len(got) else np.zeros(0)
+            first = flagged(ss, df)
+            said.setdefault(t, []).append(
+                (int((gap < 1e-9).sum()), float(gap.max()) if len(gap) else float("nan"),
+                 f"{first[0][1]}@{first[0][0]}" if first else "none",
+                 _pack_rows(deployed, ss, df, want), len(df)))
+    out = []
+    for t, ((s0, g0, f0, k0, n), (s1, g1, f1, k1, _)) in said.items():
+        w0, a0 = _timed(codes["before"].parent, tests[t], now.inputs)
+        w1, a1 = _timed(codes["now"].parent, tests[t], now.inputs)
+        out.append(f"{label} {t}: C = served {s0} -> {s1} of {n} rows; max|C - served| "
+                   f"{g0:.2g} -> {g1:.2g} um; first flag {f0} -> {f1}; pack rows {k0} -> {k1}; "
+                   f"tc_step worst {w0:.0f} -> {w1:.0f} ns, sum {a0 / 1e6:.2f} -> {a1 / 1e6:.2f} ms")
+    return out
+
+
 def compare(root: str = "/tmp/cmon87-bench", spec: str | None = None) -> None:
-    """bench_cmon86's campaigns, before: the export without ``blind_jump``."""
+    """bench_cmon86's campaigns (:func:`lean`), before: the export without ``blind_jump``."""
     import tempfile
 
     from bench_cmon84 import _records
-    from bench_cmon85 import measured as cmon85_measured
     from bench_cmon86 import SPEC
 
     folder = made_folder(root)
@@ -192,8 +245,7 @@ def compare(root: str = "/tmp/cmon87-bench", spec: str | None = None) -> None:
         for seed in seed_list(seeds):
             for deployed, tests, label in _records(folder, name, seed):
                 with tempfile.TemporaryDirectory(prefix="cmon87-") as tmp:
-                    print("\n".join(cmon85_measured(deployed, tests, label, Path(tmp), _before)),
-                          flush=True)
+                    print("\n".join(lean(deployed, tests, label, Path(tmp))), flush=True)
     print(f"bench process CPU {time.process_time() - t0:.1f} s", flush=True)
 
 
