@@ -128,15 +128,21 @@ level: the k = 3 start directions on the levels)::
                            3600 s +initial
      lag:8980      E_X     1.9013 -> 0.8053  T_box1 14400 s +init   2.1791 -> 2.1791  nothing
 
-   Two of three survive; **8980's real start lag (the planted lag_node, test -57.6 % shipped) is
-   lost** with the first readings zeroed (its errors too are 0 at t = 0 before the noise: the
-   effects' ``modify_errors`` all add terms in the rise from the start).  Why is not traced (its
-   CV gain with E(0) = 0 was not measured): either part of its CV gain also sat in the train
-   campaigns' ``-eps(0)``, or the search's path changed.  So zeroing the first reading is the
-   diagnosis of the spurious ones, not a rule: as a rule it fails the issue's bar on 8980.
+   Two of three survive.  8980's real start lag (the planted lag_node, test -57.6 % shipped) is
+   not lost to the zeroing's CV: an ad-hoc run (not a command here; ``Search._family_bar``
+   wrapped, E_X round 1) gives its best start lag (a mode's, 14400 s) CV gain 60.6 % shipped ->
+   76.3 % zeroed, p_fam 0.0000, within 74.4 %, within-rest 70.3 %; diagnosed on E_X alone it is
+   accepted (test 2.1791 -> 0.5732, better than shipped 0.8053), diagnosed on every target the
+   same candidate with the same figures does not clear.  So ``_clears``'s target-set-dependent
+   terms (``problem.shared_ranked`` / ``saturates``, ranked blocks) refuse it there -- not traced
+   further.  ``Search.saturates``'s docstring already names the first sample's probe noise
+   (``reference=first_sample``) as the campaigns' offsets a saturating candidate can match;
+   the spurious start lags pass that guard (they were accepted) and match them by chance
+   (items 1-3).
+   Zeroing the first reading is the diagnosis of the spurious ones, not a rule.
 
-What remains (no src change made): (i) why 8980's start lag falls with E(0) = 0 (its CV gain and
-the round's candidates, zeroed against shipped), and 959 / 5687 zeroed; (ii) a rule to try on
+What remains (no src change made): (i) which term of ``_clears`` refuses 8980's zeroed start lag
+on every target and not on E_X alone, and 959 / 5687 zeroed; (ii) a rule to try on
 fresh seeds only: estimate the first reading's level sd from the within-campaign noise (e.g. the
 lag-1 difference sd / sqrt 2) and refuse a start lag whose start-level sd is within it, or
 reference the errors to a fitted start (mean of the first samples / the model's own intercept
