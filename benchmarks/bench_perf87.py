@@ -42,9 +42,29 @@ next, stream the lead-in once through the served model and the Simulator and sta
 from a copy of both states, and format its rows once (the pack's files unchanged: each
 ``rows.csv`` still holds the lead-in); about 5/6 of export's CPU.
 
-Scored
-------
-(filled below)
+Scored (2026-12-04, 2 cores shared by six sessions; main = 34c66521's diagnose, this branch
+d6d6d7d3; ``OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1``; user + sys of the child)
+-----------------------------------------------------------------------------------------------
+``diagnose /tmp/perf87/lab``, main and this branch run side by side (each CPU time its own):
+
+  run                               user     sys    max RSS
+  main, under cProfile + time -v    58.9 s  142.0 s  5.86 GB   (audit87: 60.1 + 146.7 s)
+  main (bench ``diagnose``)         55.0 s   83.1 s
+  branch, time -v                   26.3 s    4.0 s  3.31 GB
+  branch (bench ``diagnose``)       24.9 s    9.7 s
+
+CPU 138.1 s -> 34.6 s (bench pair), system 83.1 -> 9.7 s.  Outputs: ``diagnosis.json``, the
+three ``diagnosis_<target>.json``, the diagnosed model's and experiment's YAML, the headline
+files equal byte for byte (OMP_NUM_THREADS=1) but for the ``seconds`` and the out folder's
+name in paths; accepted as before: a first-order lag (tau 14400 s) of the inputs on E_dY
+(0.22 -> 0.20) and E_dZ (0.67 -> 0.20), none on E_dX.  ``flips 15840 3``: the same p-values
+to the last bit, main 2.5 user + 8.5 sys s, branch 1.3 + 0.1; ``flips 15840 6``: main 5.2 +
+7.5, branch 2.1 + 0.6.  A direct comparison of main's ``sign_flip_pvalues`` and
+``sign_flip_maxt`` with the branch's at n = 3, 16, 17, 300, 5001, 15840 (seed 9176's gains):
+``array_equal`` on each (tests/apps/test_sign_draw_perf87.py keeps the whole-matrix
+reference at 41 units, blocks of 7 patterns, and the one draw).
+
+Verdict: KEPT (bit-equal, system CPU 83 -> 10 s, total CPU / 4).  Export not mended (above).
 """
 from __future__ import annotations
 
