@@ -52,9 +52,12 @@ d6d6d7d3; ``OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1``; user + sys of the child)
   main (bench ``diagnose``)         55.0 s   83.1 s
   branch, time -v                   26.3 s    4.0 s  3.31 GB
   branch (bench ``diagnose``)       24.9 s    9.7 s
+  then in turn: branch              21.0 s    9.4 s
+                main                52.7 s   73.6 s
 
-CPU 138.1 s -> 34.6 s (bench pair), system 83.1 -> 9.7 s.  Outputs: ``diagnosis.json``, the
-three ``diagnosis_<target>.json``, the diagnosed model's and experiment's YAML, the headline
+CPU 138.1 -> 34.6 s and 126.3 -> 30.4 s (the two bench pairs), system 83.1 -> 9.7 and 73.6 ->
+9.4 s (the bar above was written after the branch's ``time -v`` run had been seen, before
+the pairs).  Outputs of each pair: ``diagnosis.json``, the three ``diagnosis_<target>.json``, the diagnosed model's and experiment's YAML, the headline
 files equal byte for byte (OMP_NUM_THREADS=1) but for the ``seconds`` and the out folder's
 name in paths; accepted as before: a first-order lag (tau 14400 s) of the inputs on E_dY
 (0.22 -> 0.20) and E_dZ (0.67 -> 0.20), none on E_dX.  ``flips 15840 3``: the same p-values
@@ -62,9 +65,10 @@ to the last bit, main 2.5 user + 8.5 sys s, branch 1.3 + 0.1; ``flips 15840 6``:
 7.5, branch 2.1 + 0.6.  A direct comparison of main's ``sign_flip_pvalues`` and
 ``sign_flip_maxt`` with the branch's at n = 3, 16, 17, 300, 5001, 15840 (seed 9176's gains):
 ``array_equal`` on each (tests/apps/test_sign_draw_perf87.py keeps the whole-matrix
-reference at 41 units, blocks of 7 patterns, and the one draw).
+reference at 41 units, blocks of 7 patterns, and the one draw).  The branch's max RSS, 3.3
+GB, is the one draw's int64 indices (``choice``); drawing in blocks would lower it (not done).
 
-Verdict: KEPT (bit-equal, system CPU 83 -> 10 s, total CPU / 4).  Export not mended (above).
+Verdict: KEPT (bit-equal, system CPU 74-83 -> 9-10 s, total CPU / 4).  Export not mended (above).
 """
 from __future__ import annotations
 
