@@ -57,10 +57,11 @@ d6d6d7d3; ``OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1``; user + sys of the child)
 
 CPU 138.1 -> 34.6 s and 126.3 -> 30.4 s (the two bench pairs), system 83.1 -> 9.7 and 73.6 ->
 9.4 s (the bar above was written after the branch's ``time -v`` run had been seen, before
-the pairs).  Outputs of each pair: ``diagnosis.json``, the three ``diagnosis_<target>.json``, the diagnosed model's and experiment's YAML, the headline
-files equal byte for byte (OMP_NUM_THREADS=1) but for the ``seconds`` and the out folder's
-name in paths; accepted as before: a first-order lag (tau 14400 s) of the inputs on E_dY
-(0.22 -> 0.20) and E_dZ (0.67 -> 0.20), none on E_dX.  ``flips 15840 3``: the same p-values
+the pairs).  Outputs of each pair: ``diagnosis.json``, the three ``diagnosis_<target>.json``,
+the diagnosed model's and experiment's YAML, the headline files equal byte for byte
+(OMP_NUM_THREADS=1) but for the ``seconds`` and the out folder's name in paths; accepted as
+before: a first-order lag (tau 14400 s) of the inputs on E_dY (0.22 -> 0.20) and E_dZ (0.67 ->
+0.20), none on E_dX.  ``flips 15840 3``: the same p-values
 to the last bit, main 2.5 user + 8.5 sys s, branch 1.3 + 0.1; ``flips 15840 6``: main 5.2 +
 7.5, branch 2.1 + 0.6.  A direct comparison of main's ``sign_flip_pvalues`` and
 ``sign_flip_maxt`` with the branch's at n = 3, 16, 17, 300, 5001, 15840 (seed 9176's gains):
