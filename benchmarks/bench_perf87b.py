@@ -28,7 +28,35 @@ monitor parts from the served one in it, a refusal, a row cut within it) each ca
 streamed whole as before.
 The bar, written before scoring: the ``check/`` folder byte-identical to main's on the lab record
 and on the three ``packs`` records, and export's CPU (user + sys) on the lab record at least
-halved; else REFUSED.
+halved; else REFUSED.  (Written while the branch's first lab export ran, after main's first,
+75.5 s, had been seen; before the pairs below.)
+
+Scored (2026-12-04, 2 cores shared by six sessions; main = b9c94b3b, this branch af64cd9d;
+``OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1``; user + sys of the child)
+-----------------------------------------------------------------------------------------------
+``export`` of the lab record's mlr model, C with its pack (207,360 rows: the test day and five
+planted copies, each 34,560 rows with its 31,680-row lead-in, none cut), in turn:
+
+  run                                         user     sys    user + sys
+  main   (``/usr/bin/time``, first)           73.1 s   2.4 s    75.5 s
+  branch (``/usr/bin/time``)                  18.2 s   1.8 s    19.9 s
+  main   (bench ``export``)                   66.8 s   1.7 s    68.5 s
+  branch (bench ``export``)                   18.3 s   1.3 s    19.6 s
+  main   (bench ``export``)                   66.5 s   1.1 s    67.6 s
+  branch (bench ``export``)                   17.2 s   1.4 s    18.6 s
+
+Export CPU 75.5 / 68.5 / 67.6 -> 19.9 / 19.6 / 18.6 s (/ 3.5 to 3.8).  ``check/`` (133 MB, six
+campaigns) byte-identical between every main and branch run (``diff -r``), and to bench_perf87's
+main export of it; the code files differ by their ``exported`` time stamp only.  ``packs``: the
+three records' ``check/`` (six campaigns each; back40 80 rows with its 40-row lead-in, back200
+400 with 200, joined40 40 rows with 160, its entries cut in the lead-in where the monitor acts at
+a junction) byte-identical main vs branch.  cProfile of the branch's export (31.2 s under the
+profiler): ``conformance_pack`` 26.3 s, of which the lead-in streamed once (``_Lead``) 13.2 s,
+the numpy model (``_parted``, the lead-in's once included) 16.3 s, CSV text 5.0 s (the lead-in's
+once included), the six copies' served streams 1.8 s, deep copies 0.7 s.
+
+Verdict: KEPT (the pack byte-identical, export CPU / 3.5).  What remains: the one pass over the
+lead-in, row by row through the served model and the numpy model with its code monitor.
 """
 from __future__ import annotations
 
