@@ -39,6 +39,7 @@ and in an ``ambient_c`` column of its rows.csv, which ``stream.c`` reads at a ca
 
 from __future__ import annotations
 
+import copy
 import io
 import json
 import re
@@ -50,6 +51,7 @@ import pandas as pd
 from ....core.io.contract import AMBIENT_C, manifest_ambient
 from ..naming import correction_column
 from ..report import stream_rows
+from ..streaming import OutOfEnvelopeError
 from .output import not_in_code
 from .statespace import Simulator, StateSpace
 from .watch import NOT_IN_CODE, REASONS, planted
@@ -141,15 +143,18 @@ def beyond(got: np.ndarray, want: np.ndarray) -> np.ndarray:
     return ~(np.abs(got - want) <= TOLERANCE_UM + TOLERANCE_RELATIVE * np.abs(want))
 
 
-def _parted(ss: StateSpace, frame: pd.DataFrame, want: np.ndarray) -> dict | None:
+def _parted(ss: StateSpace, frame: pd.DataFrame, want: np.ndarray, start: int = 0,
+            sim: Simulator | None = None) -> dict | None:
     """The cut (``row``, ``why``) before the first row where the exported arithmetic
     (:class:`Simulator`) parts from ``want`` or refuses the row (a missing reading its monitor
-    cannot rebuild), naming the rule not in the code its monitor flagged there."""
-    sim = Simulator(ss)
-    sim.reset(manifest_ambient(frame))
+    cannot rebuild), naming the rule not in the code its monitor flagged there.  ``sim``: a
+    Simulator already stepped over the first ``start`` rows (a shared lead-in, :class:`_Lead`)."""
+    if sim is None:
+        sim, start = Simulator(ss), 0
+        sim.reset(manifest_ambient(frame))
     U = frame[ss.inputs].to_numpy(float)
     t = frame["time"].to_numpy(float) if "time" in frame.columns else np.full(len(frame), np.nan)
-    for i in range(len(frame)):
+    for i in range(start, len(frame)):
         c = sim.step(U[i], t[i])
         if sim.refused or beyond(c, want[i]).any():
             w = sim.watch
@@ -162,6 +167,62 @@ def _parted(ss: StateSpace, frame: pd.DataFrame, want: np.ndarray) -> dict | Non
             return {"row": i + 1, "why": "the served model's sensor monitor acted there, which is "
                     "not in the code" + (f" ({note})" if note else "")}
     return None
+
+
+class _Lead:
+    """A lead-in shared by campaigns (a test campaign and its planted copies, perf87b): streamed
+    once through the served model and the :class:`Simulator`, each campaign's stream started from
+    a deep copy of their states; its rows formatted once.  Each campaign's pack is as streamed
+    from its start (the whole stream is taken instead wherever the shortcut does not apply: a cut
+    within the lead-in, a refusal, a column not float)."""
+
+    def __init__(self, deployed, ss: StateSpace, frame: pd.DataFrame, rows: int, monitor: bool):
+        self.rows, self.served, self.sim, self.parted, self.text = rows, None, None, None, {}
+        lead = frame.iloc[:rows]
+        X = lead[deployed.columns_].to_numpy(float)
+        t = lead["time"].to_numpy(float) if "time" in lead.columns else np.full(rows, np.nan)
+        y = np.empty((rows, len(deployed.targets_)))
+        deployed.reset(manifest_ambient(frame))       # (stream_rows' warm without a lead-in)
+        try:
+            for i in range(rows):
+                y[i] = deployed._step(X[i], t[i])[0]
+        except OutOfEnvelopeError:
+            deployed.reset()
+            return                                   # (the whole stream raises it, named)
+        self.served, self.y = copy.deepcopy(deployed), y
+        deployed.reset()
+        if monitor:
+            sim = Simulator(ss)
+            sim.reset(manifest_ambient(frame))
+            self.parted = _parted(ss, lead, corrections(ss, y), 0, sim)
+            self.sim = sim
+
+    def fits(self, frame: pd.DataFrame) -> bool:
+        """Whether ``frame`` (the lead-in's rows first) can start from the lead-in's states."""
+        return self.served is not None and len(frame) > self.rows and self.parted is None
+
+    def stream(self, frame: pd.DataFrame) -> np.ndarray:
+        """The served model's ``y`` for every row of ``frame``, its rows after the lead-in streamed
+        from a copy of the state the lead-in left (``OutOfEnvelopeError`` as ``_step`` raises)."""
+        served = copy.deepcopy(self.served)
+        X = frame[served.columns_].to_numpy(float)
+        t = frame["time"].to_numpy(float) if "time" in frame.columns else np.full(len(X), np.nan)
+        y = np.empty((len(X), len(served.targets_)))
+        y[:self.rows] = self.y
+        for i in range(self.rows, len(X)):
+            y[i] = served._step(X[i], t[i])[0]
+        return y
+
+    def csv(self, frame: pd.DataFrame) -> str:
+        """:func:`csv_text` of ``frame`` (the lead-in's rows first), those rows formatted once
+        (float columns only: each value formatted on its own, so the text is the same)."""
+        key = tuple(frame.columns)
+        if not all(frame.dtypes == np.float64):
+            return csv_text(frame)
+        if key not in self.text:
+            self.text[key] = csv_text(frame.iloc[:self.rows])
+        rest = csv_text(frame.iloc[self.rows:])
+        return self.text[key] + rest[rest.index("\n") + 1:]
 
 
 def conformance_pack(deployed, ss: StateSpace, campaigns: Mapping[str, pd.DataFrame],
@@ -179,7 +240,7 @@ def conformance_pack(deployed, ss: StateSpace, campaigns: Mapping[str, pd.DataFr
     folders = folder_names(campaigns)
     outputs = [correction_column(t) for t in ss.targets]
     monitor = bool(not_in_code(deployed))
-    out, listed = {}, []
+    out, listed, leads = {}, [], {}
     for cid, campaign in campaigns.items():
         frame = fed(campaign, lead_ins.get(cid))
         lead = len(frame) - len(campaign)
@@ -201,15 +262,33 @@ def conformance_pack(deployed, ss: StateSpace, campaigns: Mapping[str, pd.DataFr
         if not len(frame):
             listed.append({**entry, "rows": 0, "cut": cut})
             continue
-        y = stream_rows(deployed, frame, str(cid), (files or {}).get(cid)).y
+        shared = None
+        if lead and sum(s is lead_ins.get(cid) for s in lead_ins.values()) > 1:
+            key = id(lead_ins[cid])
+            if key not in leads:
+                leads[key] = _Lead(deployed, ss, frame, lead, monitor)
+            shared = leads[key] if leads[key].fits(frame) else None
+        y = None
+        if shared is not None:
+            try:
+                y = shared.stream(frame)
+            except OutOfEnvelopeError:
+                shared = None            # (the whole stream below raises it, file and row named)
+        if y is None:
+            y = stream_rows(deployed, frame, str(cid), (files or {}).get(cid)).y
         want = corrections(ss, y)
-        if monitor and (parted := _parted(ss, frame, want)) is not None:
-            cut = parted
-            frame, want = frame.iloc[:cut["row"] - 1], want[:cut["row"] - 1]
+        if monitor:
+            parted = (_parted(ss, frame, want, lead, copy.deepcopy(shared.sim)) if shared
+                      else _parted(ss, frame, want))
+            if parted is not None:
+                cut = parted
+                frame, want = frame.iloc[:cut["row"] - 1], want[:cut["row"] - 1]
         entry.update(rows=len(frame), cut=cut)
         listed.append(entry)
         if len(frame):
-            out[f"{entry['folder']}/rows.csv"] = csv_text(frame[columns])
+            out[f"{entry['folder']}/rows.csv"] = (
+                shared.csv(frame[columns]) if shared and len(frame) > lead
+                else csv_text(frame[columns]))
             out[f"{entry['folder']}/expected.csv"] = csv_text(pd.DataFrame(want, columns=outputs))
     written = [e for e in listed if e["rows"]]
     summary = {"campaigns": listed, "inputs": ["time", *ss.inputs, *[AMBIENT_C] * ss.ambient_given],
