@@ -152,8 +152,7 @@ def _parted(ss: StateSpace, frame: pd.DataFrame, want: np.ndarray, start: int = 
     if sim is None:
         sim, start = Simulator(ss), 0
         sim.reset(manifest_ambient(frame))
-    U = frame[ss.inputs].to_numpy(float)
-    t = frame["time"].to_numpy(float) if "time" in frame.columns else np.full(len(frame), np.nan)
+    U, t = frame[ss.inputs].to_numpy(float), _times(frame)
     for i in range(start, len(frame)):
         c = sim.step(U[i], t[i])
         if sim.refused or beyond(c, want[i]).any():
@@ -169,6 +168,19 @@ def _parted(ss: StateSpace, frame: pd.DataFrame, want: np.ndarray, start: int = 
     return None
 
 
+def _times(frame: pd.DataFrame) -> np.ndarray:
+    """``frame``'s time column (NaN without one: a stream timed by its sample period)."""
+    return frame["time"].to_numpy(float) if "time" in frame.columns else np.full(len(frame), np.nan)
+
+
+def _stepped(served, frame: pd.DataFrame, y: np.ndarray, start: int) -> None:
+    """``y[start:]``: the served model's ``_step`` (as :func:`stream_rows` steps it) of ``frame``'s
+    rows from ``start`` on, from the state it is in (raises ``OutOfEnvelopeError`` as it does)."""
+    X, t = frame[served.columns_].to_numpy(float), _times(frame)
+    for i in range(start, len(X)):
+        y[i] = served._step(X[i], t[i])[0]
+
+
 class _Lead:
     """A lead-in shared by campaigns (a test campaign and its planted copies, perf87b): streamed
     once through the served model and the :class:`Simulator`, each campaign's stream started from
@@ -179,13 +191,10 @@ class _Lead:
     def __init__(self, deployed, ss: StateSpace, frame: pd.DataFrame, rows: int, monitor: bool):
         self.rows, self.served, self.sim, self.parted, self.text = rows, None, None, None, {}
         lead = frame.iloc[:rows]
-        X = lead[deployed.columns_].to_numpy(float)
-        t = lead["time"].to_numpy(float) if "time" in lead.columns else np.full(rows, np.nan)
         y = np.empty((rows, len(deployed.targets_)))
         deployed.reset(manifest_ambient(frame))       # (stream_rows' warm without a lead-in)
         try:
-            for i in range(rows):
-                y[i] = deployed._step(X[i], t[i])[0]
+            _stepped(deployed, lead, y, 0)
         except OutOfEnvelopeError:
             deployed.reset()
             return                                   # (the whole stream raises it, named)
@@ -205,12 +214,9 @@ class _Lead:
         """The served model's ``y`` for every row of ``frame``, its rows after the lead-in streamed
         from a copy of the state the lead-in left (``OutOfEnvelopeError`` as ``_step`` raises)."""
         served = copy.deepcopy(self.served)
-        X = frame[served.columns_].to_numpy(float)
-        t = frame["time"].to_numpy(float) if "time" in frame.columns else np.full(len(X), np.nan)
-        y = np.empty((len(X), len(served.targets_)))
+        y = np.empty((len(frame), len(served.targets_)))
         y[:self.rows] = self.y
-        for i in range(self.rows, len(X)):
-            y[i] = served._step(X[i], t[i])[0]
+        _stepped(served, frame, y, self.rows)
         return y
 
     def csv(self, frame: pd.DataFrame) -> str:
