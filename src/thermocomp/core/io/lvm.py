@@ -35,7 +35,7 @@ import numpy as np
 from .contract import ContractError
 from .dayfirst import parse_with, slashed_order, swapped
 from .encoding import UTF8, check_text, first_undecodable, text_codec
-from .labfile import Channel, Record, records_as_csv, text_as_csv, with_unit
+from .labfile import Channel, Record, records_as_csv, with_unit
 
 LVM_SUFFIXES = (".lvm",)
 MAGIC = "LabVIEW Measurement"
@@ -77,24 +77,17 @@ def lvm_as_csv(text: str, source: str, dayfirst: bool | None = None,
     ``sessions`` (data87: ``monitor``, which streams a campaign per run) written with a
     :data:`.labfile.RUN_HEADER` column, the sessions ``<sessions>_1``, ``<sessions>_2``, ...:
     each begins with its own 'LabVIEW Measurement' header, no gap taken for one."""
-    if sessions is not None:
-        path = Path(source)
-        records = _records(text.splitlines(), path, dayfirst)
-        if len(records) > 1:
-            named = [Record(f"{sessions}_{i}", r.channels, r.time_header, r.utc)
-                     for i, r in enumerate(records, start=1)]
-            with records_as_csv(named, path) as table:
-                return table.read_text(encoding=UTF8)
-
-    def one(lines: list[str], label: str, path: Path) -> Record:
-        records = _records(lines, path, dayfirst)
-        if len(records) > 1:
+    path = Path(source)
+    records = _records(text.splitlines(), path, dayfirst)
+    if len(records) > 1:
+        if sessions is None:
             raise ContractError(f"the LabVIEW Measurement File streamed holds {len(records)} "
                                 "sessions (a 'LabVIEW Measurement' header each), a run each: "
                                 "stream one run", file=path)
-        return records[0]
-
-    return text_as_csv(one, text, source)
+        records = [Record(f"{sessions}_{i}", r.channels, r.time_header, r.utc)
+                   for i, r in enumerate(records, start=1)]
+    with records_as_csv(records, path) as table:
+        return table.read_text(encoding=UTF8)
 
 
 def _records(lines: list[str], path: Path, dayfirst: bool | None) -> list[Record]:
