@@ -6,7 +6,7 @@ record's test error more than 2 % worse").
 Usage (from the repository root, ``PYTHONPATH=<tree>/src``: the code measured is that tree's)::
 
     python benchmarks/bench_diag88.py write ROOT          # the records ``seen`` reads (lag57's, grinders)
-    python benchmarks/bench_diag88.py seen ROOT LABEL     # SEEN rows -> ROOT/{cases,real,fresh}-seen-LABEL.jsonl
+    python benchmarks/bench_diag88.py seen ROOT LABEL     # SEEN -> ROOT/{cases,real,fresh}-seen-LABEL.jsonl
     python benchmarks/bench_diag88.py fresh ROOT LABEL    # FRESH draws -> ROOT/fresh-LABEL.jsonl
     python benchmarks/bench_diag88.py compare ROOT A B    # two labels' rows: the bar's counts
     python benchmarks/bench_diag88.py why8980             # 8980 E_X zeroed: which term of the bar refuses
@@ -60,6 +60,62 @@ The bar (written before scoring FRESH; all must hold, else REFUSED: src reverted
    position effect wherever main finds it; lag keep a start lag on E_X wherever main accepts one;
    no (draw, target) more than 2 % above main's after.
 5. tests/apps/test_diag*.py and tests/shell/test_diag*.py pass with the rule.
+
+Scored (2026-12-04, 2 cores shared by seven helpers; main = d76bdde2's src, rule = c20d2524's src;
+``seen``, ``fresh`` and faults58's climate_room rows, each for main then the rule; CPU of the
+bench processes main / rule: seen 24.1 / 21.7 s, fresh 15.5 / 15.6 s, faults58 ~2 min each)
+----------------------------------------------------------------------------------------------
+Test RMSE as deployed (µm), before -> after (accepted), every SEEN row where the two differ::
+
+  row                          before  main                                 rule
+  planted:8457 E_X (spurious)  0.6058  0.9239 T_amb 7200 s +init (3)        0.6058 nothing (p_start 0.020)
+  clean:8178 E_Z (spurious)    0.6377  0.7747 T_bearing_f3 900 s +init (3)  0.6377 nothing (0.37)
+  clean:8075 E_Y (spurious)    0.6564  0.7010 T_box1 3600 s +init (3)       0.6564 nothing (0.0115)
+  clean:8170 E_X (spurious)    0.7968  0.9158 T_nose 900 s +init (3)        0.7968 nothing (0.12)
+  planted:9046 E_X (spurious)  0.655   0.845 T_bearing_f1 1800 s +init (2)  0.655 nothing
+  grinder 5682 dY (spurious)   0.7395  0.7943 T_Ständer_vorn 900 s +init    0.7395 nothing (0.09-0.14)
+  planted:959 E_Y (real)       4.2298  0.9934 position + T_motor2 7200 s    1.5177 position (+52.8 %;
+                                       +init (2)                            p_start 0.18)
+  grinder 5687 dY (real)       0.5433  0.4306 T_Ständer_Bohrung 900 s (2)   0.5433 nothing (+26.2 %; 0.0135)
+  climate_room:drift E_Z       0.3721  0.3262 inputs 900 s +init            0.3862 nothing (+18.4 %)
+  climate_room:stuck E_X       0.599   0.5146 inputs 900 s +init (2)        0.6016 nothing (+16.9 %; 0.72)
+  climate_room:stuck E_Z       0.5273  0.4779 T_nc_tool_motor 900 s +init   0.5312 nothing (+11.2 %)
+  climate_room:contact E_Z     0.3866  0.3262 inputs 900 s +init            0.3862 nothing (+18.4 %)
+
+Identical in both: lag:8980 E_X 1.9013 -> 0.8053 (T_box1 14400 s +init (3), p_start 1e-4),
+planted:8885 E_Y 1.4571 (position + T_motor1 7200 s +init, 0.002), planted:9103 E_Y 1.477
+(position + T_motor2 3600 s +init, 0.0014), planted:6 E_Y 1.2652, the positions of 8457 E_Y
+(1.8137) and 9150 E_Y (1.965), every other target of these records and climate_room's E_X rows.
+
+1. **Holds.**  All six SEEN spurious start lags refused, each row back to its before.
+2. **Fails.**  959 E_Y, grinder 5687 dY and the four climate_room rows lose their start lags; 8980,
+   8885, 9103, planted:6 and the positions keep theirs.
+3. **Fails.**  959 +52.8 %, 5687 +26.2 %, climate_room +11.2 .. +18.4 % over main's after.
+4. **Holds, vacuously.**  FRESH 9186-9195: all 30 (draw, target) rows identical to main: clean
+   9186-9189 accept nothing in both trees; planted 9190-9192 keep the position (E_Y 3.914 -> 1.603,
+   5.936 -> 1.989, 2.750 -> 1.619); lag 9193-9195 keep their E_X start lags (2.048 -> 0.920, 2.476 ->
+   1.209, 1.736 -> 0.915).  No spurious start lag arose on these draws, so the rule never acted.
+5. Not run (refused on items 2-3 before it).
+
+**REFUSED** (items 2 and 3).  src reverted to d76bdde2's; the rule in ``diag88_rule.patch``.
+What the numbers say: the clean VMC draws' spurious start lags ARE level effects within the first
+reading's noise, and the test refuses every one; but the real start lags the issue needs (959,
+5687, climate_room) are not level effects at all -- their start blocks move the campaigns' levels
+by less than the noise (959: level sd 0.14 against sigma 0.57 µm; climate_room stuck E_X: 0.02 µm
+on 39 campaigns, p 0.72), and their value is in the transient's shape within the campaigns (959's
+in-sample start signal 126 sigma^2 within the campaigns against ~2 for white noise, 34 sigma^2 in
+the levels).  A level test cannot keep them.  Worse, a refused start variant stays the round's best
+rival, so its plain lag, which carries most of climate_room's gain, is not taken either.
+
+Why 8980 E_X loses its start lag with every target diagnosed (``why8980``; first readings
+zeroed, main's src): the shared design's (the penalty's) blocks are the slowest target's, 77
+samples, one per campaign with all targets (E_X alone: its own 21), so ``shared_ranked`` is False
+and :meth:`Search.saturates` is asked: the 12-regressor lag of every input from the initial state
+(CV gain 76.3 %, 13 >= 7 campaigns a fold trains on) is refused for saturation -- yet stays the
+round's best rival (campaigns' mean MSE 0.2263 + 1 SE 0.0235 = 0.2498), and T_box1's 3-direction
+start lag, which clears (74.7 %, 4 regressors, p_fam < 1e-4, within 73.7 / rest 69.4 %), has
+0.2557: not within one SE, nothing accepted (test 2.1791).  On E_X alone the shared design is
+ranked, saturation is not asked, the inputs' lag clears and is taken (2.1791 -> 0.5732).
 """
 
 from __future__ import annotations
@@ -131,23 +187,24 @@ def why8980() -> None:
         if p.target != "E_X":
             return
         ranked = p.n_blocks_tested > p.n_units
-        print(f"    E_X round: units {p.n_units}, test blocks {p.n_blocks_tested} ({p.block_samples} samples), "
-              f"penalty blocks of {p.penalty_samples} samples, shared_ranked {p.shared_ranked}, "
-              f"ranked {ranked}, units trained {p.units_trained}")
+        print(f"    E_X round: units {p.n_units}, test blocks {p.n_blocks_tested} "
+              f"({p.block_samples} samples), penalty blocks of {p.penalty_samples} samples, "
+              f"shared_ranked {p.shared_ranked}, ranked {ranked}, units trained {p.units_trained}")
         rivals = [ev for ev in evals if not ev.control and ev.effect.transform != "remove"]
         best = max(rivals, key=lambda ev: ev.gain)
         mse = best.result.unit_mse
         control = next((ev for ev in evals if ev.control), None)
-        print(f"      best rival {best.effect.title[:50]} (clears {best.clears_bar}): its campaigns' mean MSE "
-              f"{mse.mean():.4f} + 1 SE {mse.std(ddof=1) / np.sqrt(mse.size):.4f}; control gain "
+        print(f"      best rival {best.effect.title[:50]} (clears {best.clears_bar}): its campaigns' "
+              f"mean MSE {mse.mean():.4f} + 1 SE {mse.std(ddof=1) / np.sqrt(mse.size):.4f}; control gain "
               f"{control.gain_pct if control else float('nan'):.1f} %")
         for ev in evals:
             if ev.effect.initial_state:
-                print(f"      {ev.effect.title[:64]}: gain {ev.gain_pct:.1f} %, p_fam {ev.p_family:.4f}, in range "
-                      f"{ev.gain_pct_in_range:.1f} %, p_margin {ev.p_margin:.4f}, {ev.n_features} features, "
-                      f"saturates {self.saturates(ev.n_features)}, within {ev.gain_pct_within:.1f} / rest "
-                      f"{ev.gain_pct_within_rest:.1f} %, p_start {getattr(ev, 'p_start_level', None)}, "
-                      f"clears {ev.clears_bar}, campaigns' mean MSE {ev.result.unit_mse.mean():.4f}")
+                print(f"      {ev.effect.title[:64]}: gain {ev.gain_pct:.1f} %, p_fam {ev.p_family:.4f}, "
+                      f"in range {ev.gain_pct_in_range:.1f} %, p_margin {ev.p_margin:.4f}, "
+                      f"{ev.n_features} features, saturates {self.saturates(ev.n_features)}, "
+                      f"within {ev.gain_pct_within:.1f} / rest {ev.gain_pct_within_rest:.1f} %, "
+                      f"p_start {getattr(ev, 'p_start_level', None)}, clears {ev.clears_bar}, "
+                      f"campaigns' mean MSE {ev.result.unit_mse.mean():.4f}")
 
     Search._family_bar = traced
     ds = bench_diag87c._zero_first(bench_diag86.draw("lag", 8980, 12))
@@ -161,7 +218,8 @@ def why8980() -> None:
 
 
 def main(argv: list[str]) -> int:
-    return run_commands(__doc__, {"write": write, "seen": seen, "fresh": fresh, "compare": compare, "why8980": why8980}, argv, cpu=sys.stderr)
+    commands = {"write": write, "seen": seen, "fresh": fresh, "compare": compare, "why8980": why8980}
+    return run_commands(__doc__, commands, argv, cpu=sys.stderr)
 
 
 if __name__ == "__main__":

@@ -59,7 +59,7 @@ are the exchangeable units, so the test flips signs of whole campaigns.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 
 import numpy as np
 import pandas as pd
@@ -71,7 +71,6 @@ from .candidates import CONTROL, CandidateOptions, candidates
 from .cv import CrossValidator, CVResult, Problem, sign_flip_maxt, sign_flip_pvalues
 from .features import Effect
 from .sensors import self_prediction
-from .startlevel import start_level_pvalue
 
 
 @dataclass
@@ -115,7 +114,6 @@ class Evaluation:
     p_margin: float = float("nan")            # p of a gain of min_gain_pct at least (the margin)
     gain_pct_within: float | None = None       # within the held-out campaigns (campaigns CV)
     gain_pct_within_rest: float | None = None  # the same without the campaign gaining most there
-    p_start_level: float | None = None        # a start lag's levels against first-reading noise
 
     def entry(self) -> dict:
         """The ``effects`` entry of ``diagnosis.json`` (CLI.md keys first)."""
@@ -142,8 +140,6 @@ class Evaluation:
             out["evidence"]["cv_rmse_gain_pct_within"] = self.gain_pct_within
         if self.gain_pct_within_rest is not None:
             out["evidence"]["cv_rmse_gain_pct_within_rest"] = self.gain_pct_within_rest
-        if self.p_start_level is not None:
-            out["evidence"]["p_value_start_level"] = self.p_start_level
         out["effect"] = e.to_dict()
         return out
 
@@ -405,27 +401,6 @@ class Search:
             ev.clears_bar = self._clears(ev.gain_pct, pf, ev.gain_pct_in_range, ev.p_margin,
                                          ev.n_features)
             self._within_checks(ev, current)
-            self._start_check(ev)
-
-    def _start_check(self, ev: Evaluation) -> None:
-        """A lag from the initial state that clears the bar clears only if its start block moves
-        the train campaigns' levels by more than the first error reading's probe noise can
-        (:func:`~.startlevel.start_level_pvalue` at ``alpha``; the noise from the residual's
-        sample-to-sample differences).  With ``reference=first_sample`` each campaign's labels
-        carry minus its first reading's noise, a random level per campaign; 3 start directions
-        fit 8 of them by chance: clean 8075 E_Y's 3600 s start lag gained in CV and raised the
-        test error 0.656 -> 0.701 µm, 8457 E_X's 0.606 -> 0.924 (diag87c, diag88;
-        ``benchmarks/bench_diag88.py``)."""
-        if not (ev.clears_bar and ev.effect.initial_state):
-            return
-        p, names = self.problem, self.cv.selection(self.inputs(), None)
-        plain = replace(ev.effect, initial_state=None, initial_directions=None)
-        rows = p.measured
-        Z = np.column_stack([np.ones(len(p.y)), self.cv.design(names, self.effects + [plain])])[rows]
-        start = self.cv.features(ev.effect, names)[rows, self.cv.features(plain, names).shape[1]:]
-        ev.p_start_level = start_level_pvalue(_orthonormal(Z), start, p.y[rows], p.campaigns[rows],
-                                              self.options.seed)
-        ev.clears_bar = ev.p_start_level <= self.options.alpha
 
     def _within_checks(self, ev: Evaluation, current: CVResult) -> None:
         """``ev`` clears only if it gains within the campaigns too (:meth:`_within_gain`)."""
