@@ -10,6 +10,7 @@ Usage (from the repository root, ``PYTHONPATH=<tree>/src``: the code measured is
     python benchmarks/bench_diag88.py fresh ROOT LABEL    # FRESH draws -> ROOT/fresh-LABEL.jsonl
     python benchmarks/bench_diag88.py compare ROOT A B    # two labels' rows: the bar's counts
     python benchmarks/bench_diag88.py why8980             # 8980 E_X zeroed: which term of the bar refuses
+    python benchmarks/bench_diag88.py shuffled ROOT CASE...   # start lags against shuffled start offsets
 
 ``seen``: bench_diag86's ``seen`` (``cases`` 8457 / 8178 / 8075 / 8170 / 8885, ``real`` planted:6 /
 959, grinders 5687 / 5682 from ``ROOT/lag`` and ``ROOT/grinder568x``) and :data:`SEEN_DRAWS`
@@ -116,6 +117,25 @@ round's best rival (campaigns' mean MSE 0.2263 + 1 SE 0.0235 = 0.2498), and T_bo
 start lag, which clears (74.7 %, 4 regressors, p_fam < 1e-4, within 73.7 / rest 69.4 %), has
 0.2557: not within one SE, nothing accepted (test 2.1791).  On E_X alone the shared design is
 ranked, saturation is not asked, the inputs' lag clears and is taken (2.1791 -> 0.5732).
+
+After the verdict, SEEN data only (a lead, no rule; ``shuffled``, main's src, CPU 58 s): each start
+lag that clears main's bar, its start block's in-sample fit beyond the model with its plain lag
+against 999 fits with the campaigns' start offsets shuffled among them (directions, transient
+shape and chance alignments kept).  p of the whole signal (levels only)::
+
+  spurious  clean:8075 E_Y 0.003-0.004 (0.014-0.019); planted:9046 E_X 0.002-0.012 (0.05-0.11);
+            clean:8170 E_X 0.016-0.020 (0.02-0.03); grinder 5682 dY 0.009 / 0.045; clean:8178 E_Z
+            0.07 / 0.10 (0.31 / 0.39); planted:8457 E_X 0.07-0.29
+  real      memory 959 E_Y 0.51-0.87 (0.77-0.89); lag:8980 E_X 0.06-0.11; planted:8885 E_Y 0.09 /
+            0.13; planted:9103 E_Y 0.14; climate_room stuck E_X main's (2-direction inputs lag)
+            0.667, drift E_Z 0.325; grinder 5687 dY 0.008 / 0.033
+
+Which campaign started where matters MORE to the spurious fits than to the real ones: the real
+start lags' gain is a transient common to the campaigns (the offsets' shared part times the
+decay), the spurious ones' the chance match of k per-campaign scores to 8 first-reading levels.
+Not a rule (it would refuse the real ones); it says what to try: a start transient common to the
+campaigns (one regressor, ``1 - exp(-t/tau)`` or the lag started from the train campaigns' mean
+offset) in place of the k learned directions, which cannot take a level per campaign.
 """
 
 from __future__ import annotations
@@ -217,8 +237,89 @@ def why8980() -> None:
               f"{[e.effect.title[:60] for e in r.targets['E_X'].accepted]}", flush=True)
 
 
+def _shuffled_pvalues(search, ev, perms: int = 999, seed: int = 0) -> tuple[float, float]:
+    """p of ``ev``'s start block, in-sample beyond the model with its plain lag, against the same
+    block with the campaigns' start offsets shuffled among them (the directions, the transient's
+    shape and the levels' chance alignments kept): of its whole signal, and of its levels only."""
+    from dataclasses import replace
+
+    import numpy as np
+
+    from thermocomp.apps.diagnose.features import principal_directions
+    from thermocomp.apps.diagnose.search import _orthonormal
+
+    p, cv, e = search.problem, search.cv, ev.effect
+    names = cv.selection(search.inputs(), None)
+    plain = replace(e, initial_state=None, initial_directions=None)
+    rows = p.measured
+    Q = _orthonormal(np.column_stack([np.ones(len(p.y)), cv.design(names, search.effects + [plain])])[rows])
+    y = p.y[rows] - Q @ (Q.T @ p.y[rows])
+    offsets = cv._offsets(e.initial_state)
+    W = principal_directions(offsets, p.campaigns, e.initial_directions or offsets.shape[1])
+    campaigns = np.asarray(p.campaigns)[rows]
+    names_c, index, counts = np.unique(campaigns, return_inverse=True, return_counts=True)
+    first = np.array([offsets[np.flatnonzero(np.asarray(p.campaigns) == c)[0]] for c in names_c]) @ W.T
+    time = p.context["time"].to_numpy(float)[rows]
+    t0 = np.array([time[index == i].min() for i in range(len(names_c))])
+    decay = 1.0 - np.exp(-(time - t0[index]) / e.tau_s)
+
+    def fit(order):
+        S = first[order][index] * decay[:, None]
+        B = _orthonormal(S - Q @ (Q.T @ S))
+        s = B @ (B.T @ y)
+        means = np.bincount(index, weights=s) / counts
+        return float(s @ s), float(counts @ means ** 2)
+
+    whole, level = fit(np.arange(len(names_c)))
+    rng = np.random.default_rng(seed)
+    null = np.array([fit(rng.permutation(len(names_c))) for _ in range(perms)])
+    return ((1 + np.count_nonzero(null[:, 0] >= whole)) / (perms + 1),
+            (1 + np.count_nonzero(null[:, 1] >= level)) / (perms + 1))
+
+
+def shuffled(root: str, *cases: str) -> None:
+    """Every start lag that clears main's bar in ``cases`` (``clean:SEED`` / ``planted:SEED`` /
+    ``lag:SEED``: 12-campaign draws; ``memory:CASE``: refnoise57's; ``grinder:SEED`` from
+    ``ROOT/grinderSEED``; ``faults58:SCENARIO:KIND``): :func:`_shuffled_pvalues` (a lead, SEEN only)."""
+    import bench_diag76
+    import bench_diagnose_faults58 as faults58
+    import bench_diagnose_refnoise57 as refnoise
+
+    from thermocomp.apps.diagnose import SearchOptions, diagnose
+    from thermocomp.apps.diagnose.search import Search
+    from thermocomp.core.compensator import Compensator
+    from thermocomp.core.models import MLR
+
+    original = Search._family_bar
+
+    def traced(self, evals, current):
+        original(self, evals, current)
+        for ev in evals:
+            if ev.clears_bar and ev.effect.initial_state:
+                whole, level = _shuffled_pvalues(self, ev)
+                print(f"    {self.problem.target} {ev.effect.title[:72]}: gain {ev.gain_pct:.1f} %; "
+                      f"shuffled starts p {whole:.3f} (levels only {level:.3f})", flush=True)
+
+    Search._family_bar = traced
+    folder = Path(root).resolve()
+    for case in cases:
+        print(f"  {case}", flush=True)
+        kind, _, rest = case.partition(":")
+        if kind == "memory":
+            refnoise.row(rest, "before", folder / "lag")
+        elif kind == "grinder":
+            refnoise._scored(folder / "lag", folder / f"grinder{rest}", ["before"], seed=int(rest))
+        elif kind == "faults58":
+            faults58.row(rest, folder / "faults58")
+        else:
+            ds = bench_diag86.draw(kind, int(rest), 12)
+            diagnose(ds, Compensator(MLR()), options=SearchOptions(max_effects=2),
+                     deployed_of=bench_diag76._deployed_stream(ds))
+
+
 def main(argv: list[str]) -> int:
-    commands = {"write": write, "seen": seen, "fresh": fresh, "compare": compare, "why8980": why8980}
+    commands = {"write": write, "seen": seen, "fresh": fresh, "compare": compare, "why8980": why8980,
+                "shuffled": shuffled}
     return run_commands(__doc__, commands, argv, cpu=sys.stderr)
 
 
