@@ -1,0 +1,81 @@
+"""A lab's data in, the last gaps (data88): ``connect.warm``'s log of several runs (LabVIEW
+sessions appended to one file) warms the stream on the last, the campaign running when it was
+logged (it was refused: "stream one run")."""
+
+from __future__ import annotations
+
+import copy
+import re
+
+import numpy as np
+import pytest
+
+from conftest import LIGHT, offline_connection
+from test_data86b import STARTS, _gb_folder
+from test_export import _compose
+from test_stranger69 import ROWS, _lvm, _values
+from thermocomp.core.io.stdin import TIME_ORIGIN
+from thermocomp.shell.builders import deploy_stream
+from thermocomp.shell.cli import main
+from thermocomp.shell.model_store import load_model
+from thermocomp.shell.source import read_streamed
+from thermocomp.shell.stages.connect import _warm_rows
+
+HALF = ROWS // 2
+
+
+@pytest.fixture(scope="module")
+def fitted(tmp_path_factory):
+    """An en-GB LabVIEW record (three runs), a lag bank fitted on it (a model with memory)."""
+    root = tmp_path_factory.mktemp("data88")
+    folder = _gb_folder(root / "runs")
+    assert main(["init", str(folder), f"out={root / 'init'}"]) == 0
+    common = [f"hydra.searchpath=[file://{root / 'init' / 'conf'}]", "data=runs",
+              "model=lagbank", *LIGHT, "track=false"]
+    assert main(["run", *common, f"out={root / 'run'}"]) == 0
+    cfg = _compose(*common)
+    ds, train_ids, _, _ = read_streamed(cfg, test=False)[:4]
+    stream = deploy_stream(cfg, load_model(root / "run" / "model.pkl"),
+                           {c: ds.campaigns[c] for c in train_ids})
+    return root, common, stream
+
+
+def _gb_lvm(path, start, values) -> str:
+    """``values`` as an en-GB PC's LabVIEW writes them (dates day first) at ``path``: its text."""
+    text = _lvm(path, start, values).read_bytes().decode("cp1252")
+    text = re.sub(r"(\d{4})/(\d\d)/(\d\d)", r"\3/\2/\1", text)
+    path.write_bytes(text.encode("cp1252"))
+    return text
+
+
+def test_connect_warm_on_a_log_of_two_sessions_warms_on_the_last(fitted, tmp_path, capsys):
+    # before: "the LabVIEW Measurement File streamed holds 2 sessions ...: stream one run"
+    # (exit 2): a VI that appends each run to one file leaves such a log at a restart
+    root, common, stream = fitted
+    earlier = _gb_lvm(tmp_path / "earlier.lvm", STARTS[1], _values(2))
+    running = _gb_lvm(tmp_path / "running.lvm", STARTS[2], _values(3)[:HALF])
+    _gb_lvm(tmp_path / "whole.lvm", STARTS[2], _values(3))
+    (tmp_path / "log.lvm").write_bytes((earlier + "\r\n" + running).encode("cp1252"))
+    frames = {name: _warm_rows(_compose(*common, f"connect.warm={tmp_path / name}"), stream)
+              for name in ("running.lvm", "log.lvm", "whole.lvm")}
+    assert ("the log holds 2 runs (sessions); the stream is warmed on the last"
+            in capsys.readouterr().err)
+    alone, logged = frames["running.lvm"], frames["log.lvm"]
+    assert len(logged) == HALF
+    np.testing.assert_array_equal(logged.to_numpy(float), alone.to_numpy(float))
+    assert logged.attrs[TIME_ORIGIN] == alone.attrs[TIME_ORIGIN]
+    # joined at the running campaign's sample HALF: corrections as the client that never stopped
+    cols = list(stream.columns_) + (["time"] if "time" not in stream.columns_ else [])
+    rows = frames["whole.lvm"][cols].to_numpy(float)
+
+    def stepped(first, warm=None):
+        conn = offline_connection(copy.deepcopy(stream), warm=warm)
+        return np.array([conn._step("run3", list(r), k, k) for k, r in enumerate(rows)
+                         if k >= first]), conn
+
+    never_stopped, _ = stepped(0)
+    resumed, conn = stepped(HALF, warm=logged)
+    assert [e["event"] for e in conn.events][-1] == "warmed"
+    np.testing.assert_allclose(resumed, never_stopped[HALF:], atol=1e-9)
+    cold, _ = stepped(HALF)
+    assert np.abs(cold - never_stopped[HALF:]).max() > 1e-3     # the warm-up matters here
