@@ -100,3 +100,20 @@ def test_a_folder_of_one_run_in_two_loggers_files_is_refused_naming_both(tmp_pat
     err = capsys.readouterr().err
     assert "no column reads as a measured error" not in err
     assert "two loggers' files (run01_temp.csv, run01_disp.csv: one campaign)" in err
+
+
+def test_a_time_of_day_past_midnight_goes_in_by_the_fix_its_refusal_gives(tmp_path, capsys):
+    # before: "... or set data.sample_period_s"; set, the same refusal again (the column still
+    # read as the time): the fix given did not read the file
+    t = pd.date_range("2027-03-05 22:00", periods=40, freq="300s")
+    rng = np.random.default_rng(1)
+    temp = 20 + np.cumsum(rng.normal(0, 0.05, (40, 2)), axis=0)
+    path = tmp_path / "night.csv"
+    pd.DataFrame({"Time": t.strftime("%H:%M:%S"), "T_a": temp[:, 0], "T_b": temp[:, 1],
+                  "E_X": 2 * temp[:, 0] - temp[:, 1]}).to_csv(path, index=False)
+    assert main(["init", str(path), f"out={tmp_path / 'init'}"]) == 2
+    err = capsys.readouterr().err
+    fix = re.search(r"or leave it out and time the rows by their period, (\S+) (\S+)=<s>", err)
+    assert fix is not None, err
+    assert main(["init", str(path), f"out={tmp_path / 'init2'}", fix.group(1),
+                 f"{fix.group(2)}=300"]) == 0, capsys.readouterr().err
