@@ -54,7 +54,6 @@ from pathlib import Path
 
 import numpy as np
 import pandas as pd
-
 from _cli import run_commands
 
 HERE = Path(__file__).resolve().parent
