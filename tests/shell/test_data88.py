@@ -117,3 +117,32 @@ def test_a_time_of_day_past_midnight_goes_in_by_the_fix_its_refusal_gives(tmp_pa
     assert fix is not None, err
     assert main(["init", str(path), f"out={tmp_path / 'init2'}", fix.group(1),
                  f"{fix.group(2)}=300"]) == 0, capsys.readouterr().err
+
+
+def _catman(path, t0: str, rows: int = 30) -> None:
+    """A catman AP ASCII export (TAB, ``.``, the channel header; T0 as the PC writes it)."""
+    rng = np.random.default_rng(2)
+    temp = 20 + np.cumsum(rng.normal(0, 0.05, rows))
+    columns = [("Time  1 - default sample rate", "s", np.arange(rows) * 60.0),
+               ("T Spindel", "°C", temp), ("Weg X", "µm", np.round(3 * (temp - 20), 3))]
+    head = ["File:\tD:\\catman\\RUN.BIN", "Comment:\t", "catman Version:\tcatmanAP 5.6.1",
+            f"Export:\t{t0}", f"Channels:\t{len(columns)}", ""]
+    for k, (name, unit, _) in enumerate(columns, start=1):
+        head += [f"Channel {k}:\t{name}", f"Unit:\t{unit}", "Comment:\t",
+                 "Sample rate:\t0.01667", f"T0:\t{t0}", f"Length:\t{rows}", ""]
+    lines = head + ["\t".join(c[0] for c in columns)]
+    lines += ["\t".join(f"{c[2][i]:.3f}" for c in columns) for i in range(rows)]
+    path.write_bytes(("\r\n".join(lines) + "\r\n").encode("cp1252"))
+
+
+def test_a_catman_date_that_reads_the_same_either_way_asks_no_order(tmp_path, capsys):
+    # before: T0 '05/05/2027 07:00:00' refused "day or month first?", though either answer
+    # reads the 5th of May; a T0 that reads two ways is still refused, naming data.dayfirst
+    _catman(tmp_path / "same.TXT", "05/05/2027 07:00:00")
+    assert main(["init", str(tmp_path / "same.TXT"), f"out={tmp_path / 'init'}"]) == 0, \
+        capsys.readouterr().err
+    written = (tmp_path / "init" / "conf" / "data" / "same.yaml").read_text()
+    assert "dayfirst" not in written           # no order taken: none carried to the model
+    _catman(tmp_path / "either.TXT", "03/05/2027 07:00:00")
+    assert main(["init", str(tmp_path / "either.TXT"), f"out={tmp_path / 'init2'}"]) == 2
+    assert "data.dayfirst=true|false" in capsys.readouterr().err

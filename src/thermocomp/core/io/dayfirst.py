@@ -79,7 +79,8 @@ def slashed_order(dates: Sequence[tuple[str, int | None]], dayfirst: bool | None
     Returns
     -------
     bool or None
-        None where no cell is a date with slashes.
+        None where no cell is a date with slashes, or (data88) where each reads the same either
+        way, its day and its month one number.
 
     Raises
     ------
@@ -101,6 +102,11 @@ def slashed_order(dates: Sequence[tuple[str, int | None]], dayfirst: bool | None
                             line=month[1])
     if day or month:
         return bool(day)
+    if (a[slashed] == b[slashed]).all():
+        # (data88) every date reads the same either way (05/05/2027): no order to ask for, and
+        # none taken (it would be written as data.dayfirst and carried by the model): refused
+        # before as "day or month first?", which either answer read alike
+        return None
     kept = [dates[i] for i in slashed]
     return run_order(pd.Series([c for c, _ in kept]), parse, file, column,
                      line=[ln for _, ln in kept])[0]
