@@ -158,7 +158,8 @@ def test_a_catman_folder_whose_dates_settle_nothing_is_refused_naming_its_files(
         _catman(folder / f"T{k:02d}.TXT", f"{t0} 07:00:00")
     assert main(["init", str(folder), f"out={tmp_path / 'init'}"]) == 2
     err = capsys.readouterr().err
-    assert "the dates with slashes of 3 files of the record read either way" in err
+    assert "T01.TXT, column 'T0', line 11: date '03/05/2027 07:00:00' is day or month first?" in err
+    assert "no file of the record settles it: the dates with slashes of 3 files read either way" in err
     assert "T01.TXT, T02.TXT, T04.TXT" in err           # T03's 05/05 reads one date either way
     assert "run 2027-05-03 to 2027-05-06 read day first, 2027-03-05 to 2027-06-05 month first" in err
     assert "data.dayfirst=true|false" in err

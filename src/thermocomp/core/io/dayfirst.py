@@ -229,7 +229,17 @@ def _reads_two_ways(date: str) -> bool:
     return bool(a[0] != b[0])
 
 
-def _unsettled(either: dict[Path, str]) -> ContractError:
+class Unsettled(ContractError):
+    """(data88) A record of several files none of whose dates says an order: ``files``, those
+    whose dates read either way (the first file's reader names its column and line:
+    :func:`thermocomp.core.io.plain.lab_dayfirst`)."""
+
+    def __init__(self, message: str, files: list[Path]):
+        super().__init__(message, file=files[0])
+        self.files = files
+
+
+def _unsettled(either: dict[Path, str]) -> Unsettled:
     """(data88) The refusal of a record of several files none of whose dates says an order
     (``either``: each file's first date): each file's reader named itself alone; the user
     choosing ``data.dayfirst`` is shown all of them and what each answer makes of the record."""
@@ -242,12 +252,10 @@ def _unsettled(either: dict[Path, str]) -> ContractError:
                             else "no date")
     shown = ", ".join(p.name for p in names[:4]) + (f" ... {names[-1].name}" if len(names) > 4
                                                      else "")
-    return ContractError(f"day or month first? the dates with slashes of {len(names)} files of the "
-                         f"record read either way, none settling the order (no day past 12, no "
-                         f"run across midnight): {shown}; their first dates run {spans[True]} "
-                         f"read day first, {spans[False]} month first: set {KEY}=true|false to "
-                         f"the order of the PC that wrote them ({KEY}=true: day first, 05/03 the "
-                         f"5th of March)", file=names[0])
+    return Unsettled(f"no file of the record settles it: the dates with slashes of {len(names)} "
+                     f"files read either way (no day past 12, no run across midnight), {shown}; "
+                     f"their first dates run {spans[True]} read day first, {spans[False]} month "
+                     "first", names)
 
 
 def _file_says(path: Path, encoding: str) -> tuple[list[Said] | None, str | None]:
