@@ -15,6 +15,7 @@ from conftest import LIGHT, offline_connection
 from test_data86b import STARTS, _gb_folder
 from test_export import _compose
 from test_stranger69 import ROWS, _lvm, _values
+from thermocomp.core.io import ContractError
 from thermocomp.core.io.stdin import TIME_ORIGIN
 from thermocomp.shell.builders import deploy_stream
 from thermocomp.shell.cli import main
@@ -164,3 +165,19 @@ def test_a_catman_folder_whose_dates_settle_nothing_is_refused_naming_its_files(
     assert "run 2027-05-03 to 2027-05-06 read day first, 2027-03-05 to 2027-06-05 month first" in err
     assert "data.dayfirst=true|false" in err
     assert main(["init", str(folder), f"out={tmp_path / 'init2'}", "data.dayfirst=true"]) == 0
+
+
+def test_a_bad_cell_in_connect_warms_log_names_the_log_not_stdin(fitted, tmp_path):
+    # before: "file <stdin>, column ...": the log is read as a stream is, and named so
+    root, common, stream = fitted
+    _gb_lvm(tmp_path / "log.lvm", STARTS[2], _values(3)[:HALF])
+    text = (tmp_path / "log.lvm").read_bytes().decode("cp1252").splitlines()
+    row = next(i for i, line in enumerate(text) if line[:1].isdigit()) + 3
+    cells = text[row].split("\t")
+    cells[1] = "#WERT"
+    text[row] = "\t".join(cells)
+    (tmp_path / "log.lvm").write_bytes("\r\n".join(text).encode("cp1252"))
+    with pytest.raises(ContractError) as said:
+        _warm_rows(_compose(*common, f"connect.warm={tmp_path / 'log.lvm'}"), stream)
+    assert str(said.value).startswith(f"file {tmp_path / 'log.lvm'}, column ")
+    assert "<stdin>" not in str(said.value)

@@ -69,7 +69,7 @@ def _warm_rows(cfg: DictConfig, deployed):
     from io import TextIOWrapper
 
     from ...core import io
-    from ...core.io.stdin import read_last_run, stdin_text
+    from ...core.io.stdin import SOURCE, read_last_run, stdin_text
     from ..config.checks import data_options
 
     path = resolve(str(warm))
@@ -77,11 +77,18 @@ def _warm_rows(cfg: DictConfig, deployed):
         raise ConfigError(f"connect.warm={warm}: no such file (the rows logged since the "
                           "running campaign's start, CSV with a header)")
     opts = io.ReadOptions.from_cfg(data_options(cfg))
-    with open(path, "rb") as raw:
-        frame, runs = read_last_run(stdin_text(TextIOWrapper(raw), opts.encoding),
-                                    deployed.columns_, opts,
-                                    getattr(deployed, "slashed_", None),   # the record's order (code71)
-                                    getattr(deployed, "lab_names_", None))
+    try:
+        with open(path, "rb") as raw:
+            frame, runs = read_last_run(stdin_text(TextIOWrapper(raw), opts.encoding),
+                                        deployed.columns_, opts,
+                                        getattr(deployed, "slashed_", None),  # the record's order (code71)
+                                        getattr(deployed, "lab_names_", None))
+    except io.ContractError as exc:
+        if str(exc.file) != SOURCE:
+            raise
+        # (data88) read as a stream is, but a file the user named: "file <stdin>" pointed nowhere
+        raise io.ContractError(exc.reason, file=path, column=exc.column, row=exc.row,
+                               line=exc.line) from None
     if runs > 1:       # (data88) was refused: "stream one run"
         say(f"connect.warm={warm}: the log holds {runs} runs (sessions); the stream is warmed on "
             f"the last, {len(frame)} row(s), the campaign running when it was logged")
