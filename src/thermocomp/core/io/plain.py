@@ -50,7 +50,9 @@ def is_lab_file(path) -> bool:
 def lab_dayfirst(files, encoding: str = UTF8) -> tuple[bool, Path, str] | None:
     """The order of the dates with slashes a file of the record ``files`` says by a field past
     12, among the lab files whose reader parses its own dates (a catman T0, a Scope View date,
-    a LabVIEW Date: :func:`.dayfirst.record_dayfirst`)."""
+    a LabVIEW Date: :func:`.dayfirst.record_dayfirst`).  (data88) Where none says one and
+    several read either way, the first one's reader's refusal (file, column, line, the key),
+    the others and what each answer makes of their dates named after it."""
     try:
         return record_dayfirst(files, lambda p: is_catman(p) or is_scope(p) or is_lvm(p),
                                text_codec(UTF8 if encoding == AUTO else encoding))  # (ASCII dates)
