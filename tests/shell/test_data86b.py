@@ -89,8 +89,9 @@ def test_an_en_gb_labview_record_init_run_promote_served_in_the_order_it_settled
 
 
 def test_a_streamed_labview_file_of_two_sessions_is_refused(tmp_path):
-    """Where a stream is one campaign (``connect.warm``'s log), a file two VI runs appended to
-    (a run each) is refused; ``monitor`` streams each as a campaign (test_data87)."""
+    """Where a stream is one campaign, a file two VI runs appended to (a run each) is refused;
+    ``monitor`` streams each as a campaign (test_data87), ``connect.warm`` warms on the last
+    (test_data88)."""
     one = _lvm(tmp_path / "Lauf.lvm", STARTS[0], _values(1)).read_bytes().decode("cp1252")
     assert lvm_as_csv(one, "<stdin>").startswith("time,Luft [Deg C],")
     with pytest.raises(ContractError, match="holds 2 sessions .* stream one run"):

@@ -79,7 +79,8 @@ def slashed_order(dates: Sequence[tuple[str, int | None]], dayfirst: bool | None
     Returns
     -------
     bool or None
-        None where no cell is a date with slashes.
+        None where no cell is a date with slashes, or (data88) where each reads the same either
+        way, its day and its month one number.
 
     Raises
     ------
@@ -101,6 +102,11 @@ def slashed_order(dates: Sequence[tuple[str, int | None]], dayfirst: bool | None
                             line=month[1])
     if day or month:
         return bool(day)
+    if (a[slashed] == b[slashed]).all():
+        # (data88) every date reads the same either way (05/05/2027): no order to ask for, and
+        # none taken (it would be written as data.dayfirst and carried by the model): refused
+        # before as "day or month first?", which either answer read alike
+        return None
     kept = [dates[i] for i in slashed]
     return run_order(pd.Series([c for c, _ in kept]), parse, file, column,
                      line=[ln for _, ln in kept])[0]
@@ -193,10 +199,16 @@ def record_dayfirst(files, dated: Callable[[Path], bool], encoding: str = "utf-8
         Where one file says day first and another month first, naming both.
     """
     said: dict[bool, Said] = {}
+    either: dict[Path, str] = {}       # a file whose dates read either way: its first
     for path in files:
         if dated(path):
-            for one in _file_says(Path(path), encoding):
+            says, first = _file_says(Path(path), encoding)
+            for one in says or ():
                 said.setdefault(one.day_first, one)
+            if says is None and first is not None and _reads_two_ways(first):
+                either[Path(path)] = first
+    if not said and len(either) > 1:
+        raise _unsettled(either)
     if len(said) == 2:
         day, month = said[True], said[False]
         raise ContractError(f"date {day} is day first, but file {month.file}'s {month} month "
@@ -210,8 +222,45 @@ _ENDS = 1 << 16        # bytes of a file's head and of its tail, looked at first
 _BLOCK = 1 << 20       # then its text from the start, a block at a time
 
 
-def _file_says(path: Path, encoding: str) -> list[Said]:
-    """What the dates of the lab file ``path`` say (:func:`dates_say`), read only as far as
+def _reads_two_ways(date: str) -> bool:
+    """``date`` (with slashes) is two dates, its day and month not one number (05/05/2027 is
+    the 5th of May either way)."""
+    a, b = fields([date])
+    return bool(a[0] != b[0])
+
+
+class Unsettled(ContractError):
+    """(data88) A record of several files none of whose dates says an order: ``files``, those
+    whose dates read either way (the first file's reader names its column and line:
+    :func:`thermocomp.core.io.plain.lab_dayfirst`)."""
+
+    def __init__(self, message: str, files: list[Path]):
+        super().__init__(message, file=files[0])
+        self.files = files
+
+
+def _unsettled(either: dict[Path, str]) -> Unsettled:
+    """(data88) The refusal of a record of several files none of whose dates says an order
+    (``either``: each file's first date): each file's reader named itself alone; the user
+    choosing ``data.dayfirst`` is shown all of them and what each answer makes of the record."""
+    names = list(either)
+    cells = pd.Series(list(either.values()))
+    spans = {}
+    for day_first in (True, False):
+        read = pd.to_datetime(_DATES(cells, day_first), errors="coerce").dropna()
+        spans[day_first] = (f"{read.min():%Y-%m-%d} to {read.max():%Y-%m-%d}" if len(read)
+                            else "no date")
+    shown = ", ".join(p.name for p in names[:4]) + (f" ... {names[-1].name}" if len(names) > 4
+                                                     else "")
+    return Unsettled(f"no file of the record settles it: the dates with slashes of {len(names)} "
+                     f"files read either way (no day past 12, no run across midnight), {shown}; "
+                     f"their first dates run {spans[True]} read day first, {spans[False]} month "
+                     "first", names)
+
+
+def _file_says(path: Path, encoding: str) -> tuple[list[Said] | None, str | None]:
+    """What the dates of the lab file ``path`` say (:func:`dates_say`: None where they read
+    either way) and its first date with slashes (None: none), read only as far as
     needed (data86: the whole text of every file was read): a file's dates run forward (its
     reader refuses a time that goes back), so one whose head and tail hold one date is that
     date throughout; any other is read from its start until its dates say an order, which the
@@ -227,7 +276,7 @@ def _file_says(path: Path, encoding: str) -> list[Said]:
             head, tail = (_ANY.findall(t) for t in (head[:head.rfind("\n") + 1],
                                                     tail[tail.find("\n") + 1:]))
             if head and tail and len(ends := set(head + tail)) == 1:
-                return dates_say(path, list(ends)) or []
+                return dates_say(path, list(ends)), head[0]
         f.seek(0)
         decoder = codecs.getincrementaldecoder(encoding)("replace")
         dates: dict[str, None] = {}
@@ -242,9 +291,9 @@ def _file_says(path: Path, encoding: str) -> list[Said]:
                 dates.update(dict.fromkeys(new))
                 said = dates_say(path, list(dates))
                 if said is not None:
-                    return said
+                    return said, next(iter(dates))
             if not block:
-                return []
+                return (None if dates else []), next(iter(dates), None)
 
 
 def text_says(text: str, source) -> list[Said] | None:

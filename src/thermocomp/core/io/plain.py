@@ -13,7 +13,7 @@ from pathlib import Path
 
 from .catman import catman_records, is_catman
 from .contract import ContractError
-from .dayfirst import record_dayfirst
+from .dayfirst import KEY, Unsettled, record_dayfirst
 from .encoding import AUTO, UTF8, own, text_codec
 from .fixedwidth import fixed_as_csv, is_fixed_width
 from .graphtec import graphtec_records, is_graphtec
@@ -50,9 +50,21 @@ def is_lab_file(path) -> bool:
 def lab_dayfirst(files, encoding: str = UTF8) -> tuple[bool, Path, str] | None:
     """The order of the dates with slashes a file of the record ``files`` says by a field past
     12, among the lab files whose reader parses its own dates (a catman T0, a Scope View date,
-    a LabVIEW Date: :func:`.dayfirst.record_dayfirst`)."""
-    return record_dayfirst(files, lambda p: is_catman(p) or is_scope(p) or is_lvm(p),
-                           text_codec(UTF8 if encoding == AUTO else encoding))  # (ASCII dates)
+    a LabVIEW Date: :func:`.dayfirst.record_dayfirst`).  (data88) Where none says one and
+    several read either way, the first one's reader's refusal (file, column, line, the key),
+    the others and what each answer makes of their dates named after it."""
+    try:
+        return record_dayfirst(files, lambda p: is_catman(p) or is_scope(p) or is_lvm(p),
+                               text_codec(UTF8 if encoding == AUTO else encoding))  # (ASCII dates)
+    except Unsettled as exc:
+        # (data88) the first file's reader's own refusal (its column and line), and the record's
+        try:
+            _records(exc.files[0], encoding)
+        except ContractError as own:
+            raise ContractError(f"{own.reason}; {exc.reason}", file=own.file, column=own.column,
+                                row=own.row, line=own.line) from None
+        raise ContractError(f"day or month first? {exc.reason}: set {KEY}=true|false to the order "
+                            "of the PC that wrote them", file=exc.file) from None
 
 
 def is_converted(path, opts=None) -> bool:

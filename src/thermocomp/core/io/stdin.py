@@ -162,6 +162,25 @@ def read_stream(text: str, columns: list[str], opts, recorded: str | None = None
     return df, counts
 
 
+def read_last_run(text: str, columns: list[str], opts, recorded: str | None = None,
+                  lab: Mapping | None = None) -> tuple[pd.DataFrame, int]:
+    """``(frame, runs)``: :func:`read_stream`'s frame of the last run of a log of ``runs``
+    (data88: ``connect.warm``'s log, LabVIEW sessions appended to one file or runs named by
+    ``data.roles.campaign``; each told as :func:`stream_campaigns` tells them), its times and
+    :data:`TIME_ORIGIN` its own.  A log is written forward, so the last run is the campaign
+    running when it was copied: the earlier ones are campaigns a restart does not continue
+    (each starts from a reset).  Before, such a log was refused, or (a run column) read as
+    one campaign whose times restarted at each run."""
+    df, counts, blocks, origins = _read_runs(text, columns, opts, recorded, lab)
+    if blocks is None:
+        df.attrs[TIME_ORIGIN] = origins[0]
+        return df, 1
+    _, start, end = blocks[-1]
+    last = df.iloc[start:end].drop(columns=RUN).reset_index(drop=True)
+    last.attrs[TIME_ORIGIN] = origins[-1]
+    return last, len(blocks)
+
+
 def _read_runs(text: str, columns: list[str], opts, recorded: str | None = None,
                lab: Mapping | None = None, sessions: bool = True
                ) -> tuple[pd.DataFrame, dict, list | None, list]:

@@ -113,15 +113,21 @@ def time_kind(value: str, kind: str, number: bool, path: Path, header: str | Non
         return compact_format(value) or "seconds"
     name = repr(header) if header else "<this column>"
     if TIME_OF_DAY.fullmatch(value):
+        # (data88) "or set data.sample_period_s" alone was refused again by this very message:
+        # the column is still read as the time; left out, the rows are timed by the period
         way = STREAMED if stream else (f"name the date column with it, data.roles.time=[<date "
-                                       f"column>, {name}], or set data.sample_period_s")
+                                       f"column>, {name}], or leave it out and time the rows by "
+                                       f"their period, data.roles.ignore=[{name}] "
+                                       "data.sample_period_s=<s>")
         raise ContractError(f"value {value!r} is a time of day without its date (it would go back "
                             f"at midnight): {way}; or, the time elapsed since the start (h:mm:ss), "
                             f"data.time={ELAPSED} (and data.roles.time={name} if it is not the time "
                             "column)", file=path, column=TIME, row=1)
     if DATE.fullmatch(value):
         way = STREAMED if stream else (f"name the time-of-day column with it, data.roles.time="
-                                       f"[{name}, <time column>], or set data.sample_period_s")
+                                       f"[{name}, <time column>], or leave it out and time the "
+                                       f"rows by their period, data.roles.ignore=[{name}] "
+                                       "data.sample_period_s=<s>")
         raise ContractError(f"value {value!r} is a date without a time of day: {way}", file=path,
                             column=TIME, row=1)
     told = dated_format(value)

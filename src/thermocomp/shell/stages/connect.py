@@ -61,14 +61,15 @@ def offset_limiter(deployed, guard, hold_s: float, decay_s: float):
 
 def _warm_rows(cfg: DictConfig, deployed):
     """``connect.warm``: the rows logged since the running campaign's start, read as a stream
-    on stdin is (``data.delimiter``, ``data.columns``, a lab's headers and units), or None."""
+    on stdin is (``data.delimiter``, ``data.columns``, a lab's headers and units), or None; of
+    a log of several runs, the last (:func:`~thermocomp.core.io.stdin.read_last_run`)."""
     warm = cfg.connect.get("warm")
     if warm is None:
         return None
     from io import TextIOWrapper
 
     from ...core import io
-    from ...core.io.stdin import read_stream, stdin_text
+    from ...core.io.stdin import SOURCE, read_last_run, stdin_text
     from ..config.checks import data_options
 
     path = resolve(str(warm))
@@ -76,10 +77,21 @@ def _warm_rows(cfg: DictConfig, deployed):
         raise ConfigError(f"connect.warm={warm}: no such file (the rows logged since the "
                           "running campaign's start, CSV with a header)")
     opts = io.ReadOptions.from_cfg(data_options(cfg))
-    with open(path, "rb") as raw:
-        frame, _ = read_stream(stdin_text(TextIOWrapper(raw), opts.encoding), deployed.columns_, opts,
-                               getattr(deployed, "slashed_", None),   # the record's order (code71)
-                               getattr(deployed, "lab_names_", None))
+    try:
+        with open(path, "rb") as raw:
+            frame, runs = read_last_run(stdin_text(TextIOWrapper(raw), opts.encoding),
+                                        deployed.columns_, opts,
+                                        getattr(deployed, "slashed_", None),  # the record's order (code71)
+                                        getattr(deployed, "lab_names_", None))
+    except io.ContractError as exc:
+        if str(exc.file) != SOURCE:
+            raise
+        # (data88) read as a stream is, but a file the user named: "file <stdin>" pointed nowhere
+        raise io.ContractError(exc.reason, file=path, column=exc.column, row=exc.row,
+                               line=exc.line) from None
+    if runs > 1:       # (data88) was refused: "stream one run"
+        say(f"connect.warm={warm}: the log holds {runs} runs (sessions); the stream is warmed on "
+            f"the last, {len(frame)} row(s), the campaign running when it was logged")
     return frame
 
 

@@ -83,9 +83,16 @@ from ..config.checks import check_config, data_options
 from ..source import check_declared, open_source
 
 
-def lone_file(src, manifest) -> bool:
-    """``src`` is a folder without a manifest holding one data file (``manifest``: as read)."""
-    return manifest is not None and len(manifest) == 1 and not (src / MANIFEST).is_file()
+def lone_file(src, manifest, opts) -> bool:
+    """``src`` is a folder without a manifest holding one data file (``manifest``: as read).
+    (data88) A run of two loggers' files (:mod:`~thermocomp.core.io.loggers`) is no lone file:
+    its temperature file was read alone, "no column reads as a measured error"."""
+    from ...core.io.loggers import partner
+    from ...core.io.manifest import campaign_files
+
+    if manifest is None or len(manifest) != 1 or (src / MANIFEST).is_file():
+        return False
+    return partner(src / str(manifest["file"].iloc[0]), opts, campaign_files(src)) is None
 
 
 def long_period(sample, given: dict) -> dict | None:
@@ -370,7 +377,7 @@ def _init(cfg: DictConfig, held: ExitStack) -> dict:
     given = data_options(cfg)
     asked = io.ReadOptions.from_cfg(given)
     manifest = folder_manifest(src, asked)                  # a folder's, read once
-    if lone_file(src, manifest):
+    if lone_file(src, manifest, asked):
         # a lab's one export put in a folder (one long file, its runs numbered in a column):
         # read as the record it is, which `run` would be told to give
         src = src / str(manifest["file"].iloc[0])
