@@ -541,7 +541,7 @@ def test_the_control_signal_is_a_random_walk_no_physical_column_can_collide_with
                                         ("n_folds", 1), ("min_gain_pct", -1),
                                         # were read as given: truthy text, nothing to search
                                         ("shrink", "maybe"), ("families", []),
-                                        ("initial_directions", [-1]), ("n_folds", 2.5)])
+                                        ("initial_directions", [0]), ("n_folds", 2.5)])
 def test_bad_diagnose_settings_are_config_errors(key, value):
     from omegaconf import OmegaConf
 

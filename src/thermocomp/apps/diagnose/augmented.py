@@ -211,8 +211,6 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
 
     def _initial_state(self, i: int, e: Effect, context, a0: float, t: float, state) -> np.ndarray:
         key = ("initial", i)
-        if e.shared_start:              # one transient shared by the campaigns: no sensor read
-            return np.array([1.0 - np.exp(-(t - state["t0"]) / e.tau_s)])
         if key not in state["first"]:   # absolute values at the first sample that has them
             raw = np.array([float((context or {}).get(c, np.nan)) for c in e.initial_state])
             if np.isnan(raw).all():
@@ -238,7 +236,8 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
             else:
                 lead.append(np.nan)
             if tr in ("first_order_lag", "lowpass_inputs") and e.initial_state:
-                lead += [np.nan] * e.start_width
+                w = self.initial_weights_[i]
+                lead += [np.nan] * (len(w) if w is not None else len(e.initial_state))
         return np.asarray(lead) if any(e.transform == "lowpass_inputs" for e in self.effects_) else None
 
     def gain_terms(self, horizon_s: float = np.inf, lead=None, period_s: float = 1.0) -> list:
@@ -306,7 +305,8 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
             else:     # one column of the context, not of x
                 at += 1
             if tr in ("first_order_lag", "lowpass_inputs") and e.initial_state:
-                at += e.start_width
+                w = self.initial_weights_[i]
+                at += len(w) if w is not None else len(e.initial_state)
         if at != gain.size:      # the features' columns as stream_step builds them
             raise ContractError(f"the diagnosed model's features are {at} columns, its base's "
                                 f"gain {gain.size}")

@@ -47,9 +47,7 @@ class CandidateOptions:
     families: tuple = ("signal", "dynamics", "ambient_interval", "interaction", "nonlinear",
                        "sensor_fault")
     min_units_per_side: int = 2
-    # lags also tried from the initial state: 0 the start transient shared by the campaigns
-    # (one regressor), k > 0 k directions of the sensors' initial distances (one level each)
-    initial_directions: tuple = (0,)
+    initial_directions: tuple = (2, 3)   # lags also tried from the initial state, k directions
     extra_columns: list = field(default_factory=list)   # more context columns to try as signals
 
 
@@ -126,7 +124,7 @@ def candidates(problem, model_inputs: list[str], excluded: set, accepted: list[E
         n_campaigns = len(dict.fromkeys(problem.campaigns))
         starts = [{}] + [{"initial_state": field_temps, "initial_directions": int(k)}
                          for k in options.initial_directions
-                         if field_temps and 0 <= k <= len(field_temps) and n_campaigns >= k + 3]
+                         if 1 <= k <= len(field_temps) and n_campaigns >= k + 3]
         states_in = [c for c in model_inputs if c.startswith("S_") and c in s_cols]
         for t in taus:
             out += [Effect("dynamics", "lowpass_inputs", tau_s=t, **st) for st in starts]

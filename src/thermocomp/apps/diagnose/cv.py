@@ -327,8 +327,7 @@ class CrossValidator:
             p = self.problem
             if effect.initial_state:     # the lag (cached once) + the initial-state transient
                 lag = self.features(replace(effect, initial_state=None, initial_directions=None), names)
-                offsets = (np.ones((len(p.y), 1)) if effect.shared_start
-                           else self._offsets(effect.initial_state))
+                offsets = self._offsets(effect.initial_state)
                 weights = None
                 if effect.learns:
                     rows = p.train_rows(fold)

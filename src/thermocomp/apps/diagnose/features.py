@@ -169,9 +169,8 @@ class Effect:
             raise ParameterError("effect over (the air a product's temperature is taken over) only "
                                  "goes with a product, and names another column than its other")
         if self.initial_directions is not None and not (
-                self.initial_state and 0 <= int(self.initial_directions) <= len(self.initial_state)):
-            raise ParameterError("effect initial_directions must be 0 (the start transient shared by "
-                                 "the campaigns) .. the number of initial_state sensors")
+                self.initial_state and 1 <= int(self.initial_directions) <= len(self.initial_state)):
+            raise ParameterError("effect initial_directions must be 1 .. the number of initial_state sensors")
 
     @property
     def title(self) -> str:
@@ -185,10 +184,8 @@ class Effect:
         """The ``transform`` string of ``diagnosis.json``, e.g. ``first_order_lag(tau=240s)``."""
         tau = f"tau={self.tau_s:g}s" if self.tau_s is not None else ""
         start = ""
-        if self.shared_start:
-            start = ", from a start transient shared by the campaigns"
-        elif self.initial_state:
-            k = self.start_width
+        if self.initial_state:
+            k = self.initial_directions or len(self.initial_state)
             start = f", from the initial thermal state ({k} direction{'s' if k > 1 else ''})"
         frame = {"absolute": " (absolute)", "referenced": " (change since the first sample)",
                  None: ""}[self.frame]
@@ -209,20 +206,7 @@ class Effect:
     @property
     def learns(self) -> bool:
         """True when the features hold a part learned from the training rows (initial directions)."""
-        return bool(self.initial_state) and bool(self.initial_directions)
-
-    @property
-    def shared_start(self) -> bool:
-        """True for a lag whose start block is one transient shared by the campaigns
-        (``initial_directions=0``): ``1 - exp(-t/tau)``, no level per campaign."""
-        return bool(self.initial_state) and self.initial_directions == 0
-
-    @property
-    def start_width(self) -> int:
-        """The start block's number of regressors (0 without one)."""
-        if not self.initial_state:
-            return 0
-        return 1 if self.shared_start else self.initial_directions or len(self.initial_state)
+        return bool(self.initial_state) and self.initial_directions is not None
 
     @property
     def uses_inputs(self) -> bool:
@@ -236,8 +220,7 @@ class Effect:
             return []
         own = [c for c in (self.column, self.other, self.over) if c is not None] \
             if not self.uses_inputs or self.transform == "inputs_product" else []
-        start = [] if self.shared_start else list(self.initial_state or ())
-        return list(dict.fromkeys(own + start))
+        return list(dict.fromkeys(own + list(self.initial_state or ())))
 
     def to_dict(self) -> dict:
         """Plain dict without ``None`` values (the form written to the model config)."""
@@ -393,9 +376,6 @@ def initial_state(context: pd.DataFrame | None, columns, groups, tau_s: float,
 def _with_start(lag: np.ndarray, effect: Effect, context, groups, weights) -> np.ndarray:
     if not effect.initial_state:
         return lag
-    if effect.shared_start:
-        shared = transient(np.ones((len(lag), 1)), None, _time(context, len(lag)), groups, effect.tau_s)
-        return np.hstack([lag, shared])
     if effect.learns and weights is None:
         weights = initial_weights(context, effect.initial_state, groups, effect.initial_directions)
     return np.hstack([lag, initial_state(context, effect.initial_state, groups, effect.tau_s, weights)])

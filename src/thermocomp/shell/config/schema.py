@@ -291,7 +291,7 @@ class Diagnose:      # its families are the stage's (diagnose.features.KINDS): c
     min_train_fraction: float = key(number(0.0, 1.0, open_lo=True, open_hi=True))
     shrink: bool = key(BOOLEAN)
     taus_s: list = key(numbers(0.0, open_lo=True, empty=True))     # empty: no lagged effects tried
-    initial_directions: list = key(integers(0, empty=True))
+    initial_directions: list = key(integers(1, empty=True))
     n_squares: int = key(integer(0))
     fault_ratio: float = key(POSITIVE)
     targets: Optional[Any] = key(optional(either(text(), texts("targets"))))
