@@ -47,3 +47,13 @@ def test_train_help_names_every_model_family():
     # it listed model=mlr|...|hammerstein, without auto
     listed = stage_help("train").split("model=", 1)[1].split()[0].split("|")
     assert sorted(listed) == group_options("model")
+
+
+def test_a_typo_whose_closest_key_the_command_does_not_read_is_not_offered_as_the_fix(capsys):
+    # `thermocomp run +diagnose.alpah=0.05` (cli.md's typo, on run) said "did you mean
+    # 'diagnose.alpha'?", which run then refused: it does not read the diagnose group
+    assert main(["run", "+diagnose.alpah=0.05"]) == 2
+    (line,) = capsys.readouterr().err.strip().splitlines()
+    assert "did you mean" not in line and "thermocomp run does not read the diagnose group" in line, line
+    assert main(["diagnose", "+diagnose.alpah=0.05"]) == 2     # where it reads it: the fix
+    assert "did you mean 'diagnose.alpha'?" in capsys.readouterr().err
