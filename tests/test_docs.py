@@ -279,3 +279,16 @@ def test_the_cli_references_example_of_a_group_not_read_is_what_the_command_says
     assert main([example[1], *example[2].split()]) == 2
     said = " ".join(capsys.readouterr().err.split())
     assert f"thermocomp: error: {' '.join(example[3].split())}" in said, said
+
+
+def test_the_layout_names_every_layer_and_package_of_the_source():
+    # layout.md described a flat src/thermocomp/ (stats, iso10791, evaluation, plots, deploy ...
+    # side by side), not the four layers the code has: no base/, core/, apps/, shell/ in it
+    import thermocomp
+
+    text = (ROOT / "docs" / "layout.md").read_text()
+    src = ROOT / "src" / "thermocomp"
+    missing = [f"{layer}/" for layer in thermocomp.__layers__ if f"{layer}/" not in text]
+    missing += [f"{layer}/{p.name}" for layer in thermocomp.__layers__ for p in (src / layer).iterdir()
+                if (p / "__init__.py").is_file() and not re.search(rf"\b{p.name}\b", text)]
+    assert not missing, f"docs/layout.md does not name {missing}"
