@@ -301,3 +301,12 @@ def test_the_home_page_links_every_page_of_the_site():
     linked = {(ROOT / "docs" / t.split("#")[0]).resolve() for t in _links((ROOT / "docs" / "index.md").read_text())}
     missing = [str(p.relative_to(ROOT)) for p in pages()[1:] if p.name != "index.md" and p.resolve() not in linked]
     assert not missing, f"docs/index.md does not link {missing}"
+
+
+def test_the_make_targets_said_to_install_every_extra_do():
+    # install.md said `make run` calls `make install`; it installs the core alone ($(CORE))
+    makefile = (ROOT / "Makefile").read_text()
+    installing = set(re.findall(r"^([\w-]+):[^=\n]*\$\(STAMP\)", makefile, re.M))
+    said = re.search(r"`make install` \(which (.*?)\s+call\)", (ROOT / "docs" / "install.md").read_text(), re.S)[1]
+    named = set(re.findall(r"`make ([\w-]+)`", said))
+    assert named and named <= installing, f"install.md: {sorted(named - installing)} do not run make install"
