@@ -310,3 +310,12 @@ def test_the_make_targets_said_to_install_every_extra_do():
     said = re.search(r"`make install` \(which (.*?)\s+call\)", (ROOT / "docs" / "install.md").read_text(), re.S)[1]
     named = set(re.findall(r"`make ([\w-]+)`", said))
     assert named and named <= installing, f"install.md: {sorted(named - installing)} do not run make install"
+
+
+def test_a_config_searchpath_the_docs_give_is_absolute():
+    # to-the-machine.md gave `hydra.searchpath=[file://init/conf]`: Hydra reads it from the
+    # current folder, so typed anywhere but the project root the data config is not found
+    given = [(doc.name, path) for doc in DOCS for path in re.findall(r"searchpath=\[file://([^\]]*)\]", doc.read_text())]
+    assert given
+    relative = [(name, path) for name, path in given if not path.startswith(("/", "$PWD", "<", "…", "..."))]
+    assert not relative, f"a relative searchpath: {relative}"
