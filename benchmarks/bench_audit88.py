@@ -11,7 +11,7 @@ be whole; the groups a lab or ``diagnose`` writes options into, ``data``, ``sim`
 against the config and the arguments of the objects it builds (``_target_``); every relative
 link and its anchor; every ``thermocomp`` stage against the commands synopsis of outputs.md.
 One line per finding; the dotted names that are no config key are listed apart, to be read (on
-d76bdde2 all 14 are an output's key, ``compensator.json``'s ``monitor.rounding``, a MATLAB
+d76bdde2 all 16 are an output's key, ``compensator.json``'s ``monitor.rounding``, a MATLAB
 struct's field or cli.md's typo on purpose).
 
 ``commands``: every ``thermocomp <stage> ...`` the pages name in a code span (232 on
@@ -88,11 +88,49 @@ Findings (state on fix/audit88):
    diagnose) said "did you mean 'diagnose.alpha'?", which run then refuses. Now it says the
    closest key is of a group run does not read. MENDED (overrides.explain); test_audit88
    fails on main.
+9. diagnose.md's door table (its first commands, run as written) said E_Z ``6.25 -> 1.07``,
+   CV ``6.54 -> 0.87``, three effects (the door's lag at 3600 s and its raw signal); the run
+   prints ``6.25 -> 1.02``, ``6.54 -> 0.92``, two effects (the door's lag at 7200 s); run twice
+   (two clones, load 4-9): the same. E_Y's family-wise p said 0.00017, the run 0.00005 (1/20001).
+   MENDED: the table now the run's and marked ``readme-test: output``, so the page's test
+   checks it (tests/test_readme.py ``docs/diagnose.md`` passes on the branch, 134 s; main's
+   table against the same output: the E_Z line missing).
+10. layout.md described a flat ``src/thermocomp/`` (stats, iso10791, evaluation, plots,
+    deploy ... side by side); the code is four layers (base, core, apps, shell). MENDED;
+    ``test_the_layout_names_every_layer_and_package_of_the_source`` fails on main.
+11. index.md's table left out two pages of the nav (measured/monitoring.md,
+    measured/diagnose.md) and said every command of the pages is run (those a comment skips
+    are not). MENDED; ``test_the_home_page_links_every_page_of_the_site`` fails on main.
+12. install.md said ``make run`` calls ``make install``; it installs the core alone
+    (``$(CORE)``), and the skip's reason said the README's ``make run`` ran it. MENDED;
+    ``test_the_make_targets_said_to_install_every_extra_do`` (against the Makefile) fails on main.
+13. to-the-machine.md's ``thermocomp rows`` example gave ``hydra.searchpath=[file://init/conf]``:
+    found from the project root only (typed in /tmp: "unknown data 'spindle_test'"); every other
+    page writes ``$PWD``. MENDED; ``test_a_config_searchpath_the_docs_give_is_absolute`` fails on
+    main.
+
+Checked and as written (no finding): the DVC study (dvc.md: ``dvc repro`` twice, the second
+"Data and pipelines are up to date", ``dvc metrics show`` the headline table); the skipped
+to-the-machine route (``run model=arx`` -> ``export`` C -> ``cc`` -> ``./stream``, its check
+pack ``sh check/check.sh``: 13 campaigns within tolerance; ``export`` of the champion as ST);
+evaluation.md's E_P95 figures (E_Z 39 -> 9.8 µm at 4 h, 2.4 -> 3.8 at 5 min); models.md's
+table on the default data, row by row (see ``FAMILY_TABLE`` below); a record of my own, fresh
+seed 9221 (``simulate sim=swiss_lathe_door seed=9221`` written as own-data.md's lab export):
+``init`` asks for the error column, then for the sample period, each naming the key, then
+writes a config whose printed ``next:`` runs: test RMSE 3.3572 µm, equal to the page's
+hand-written ``lab.yaml`` on the same files.
 
 Not findings (checked): every ``thermocomp ...`` span of the docs composes (exit 0) but those
 needing a folder the docs make first (``experiment=diagnosed`` without its searchpath); every
 path a code span names exists or is an output; hydra.cc the one external link (not fetched: no
 network).
+
+Left: a relative ``hydra.searchpath`` is read from the current folder (Hydra's), where every
+other relative path is the project root's (outputs.md): rooting it as ``hydra.sweep.dir`` is
+(``base/paths.rooted_override``) is a code change not made here; tests/shell/test_cli_shell.py
+``test_launcher_without_venv_fails_clearly_before_anything`` fails on main as on the branch in
+these worktrees (exit 127 where it expects 0: the launcher finds no ``thermocomp`` in this
+environment), the environment's, not a finding of this audit.
 """
 
 from __future__ import annotations
@@ -105,7 +143,6 @@ import sys
 from pathlib import Path
 
 import yaml
-
 from _cli import made_folder, run_commands
 
 FAMILIES = ("mlr", "pcr", "arx", "lagbank", "hammerstein", "lstm", "auto")
@@ -185,7 +222,8 @@ def docs(root: str) -> None:
         for m in re.finditer(r"`([^`\n]+)`", prose):
             for word in re.split(r"[\s,;()\[\]{}'\"]+", m[1]):
                 key = dotted.match(word)
-                if key and key[1] not in known and not key[1].startswith(free) and not key[1].endswith(outputs):
+                if key and key[1] not in known and not key[1].startswith(free) \
+                        and not key[1].endswith(outputs):
                     print(f"{rel}:{prose[:m.start()].count(chr(10)) + 1}: {key[1]}: not a config key (read: "
                           "an output's key, a module, a typo on purpose?)")
                     unsure += 1
@@ -200,7 +238,8 @@ def docs(root: str) -> None:
             elif anchor and linked.suffix == ".md" and anchor not in _heading_anchors(linked.read_text()):
                 print(f"{rel}: link {target}: no such heading")
                 found += 1
-    synopsis = re.search(r"a synopsis.*?```bash\n(.*?)```", (base / "docs" / "outputs.md").read_text(), re.S)[1]
+    outputs_page = (base / "docs" / "outputs.md").read_text()
+    synopsis = re.search(r"a synopsis.*?```bash\n(.*?)```", outputs_page, re.S)[1]
     from thermocomp.shell.stages import STAGES
     for stage in STAGES:
         if not re.search(rf"^thermocomp (\w+ \| )*{stage}\b", synopsis, re.M):
@@ -245,8 +284,8 @@ def commands(root: str) -> None:
                  ["run", "+diagnose.alpah=0.05"], ["compare", "model=arx"], ["train", "--help"]):
         ran = _thermocomp(base, *args)
         lines = (ran.stderr.strip() or ran.stdout.strip()).splitlines()
-        print(f"{' '.join(args)}: exit {ran.returncode}, {len(lines)} line(s): "
-              f"{next((ln for ln in lines if 'model=' in ln or 'error' in ln or 'path' in ln), lines[-1])[:220]}")
+        telling = next((ln for ln in lines if 'model=' in ln or 'error' in ln or 'path' in ln), lines[-1])
+        print(f"{' '.join(args)}: exit {ran.returncode}, {len(lines)} line(s): {telling[:220]}")
 
 
 def families(root: str, out: str) -> None:
@@ -262,7 +301,8 @@ def families(root: str, out: str) -> None:
             targets = json.loads((job / "metrics.json").read_text())["targets"]
             mae = [targets[t]["test"]["mae"] for t in sorted(targets)]
             rmse = [targets[t]["test"]["rmse"] for t in sorted(targets)]
-            print(f"{split} {family}: MAE {' / '.join(f'{x:.2f}' for x in mae)}, mean {sum(mae) / len(mae):.2f}; "
+            channels = " / ".join(f"{x:.2f}" for x in mae)
+            print(f"{split} {family}: MAE {channels}, mean {sum(mae) / len(mae):.2f}; "
                   f"RMSE mean {sum(rmse) / len(rmse):.3f}; CPU {cpu:.1f} s", flush=True)
 
 

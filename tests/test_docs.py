@@ -298,8 +298,10 @@ def test_the_home_page_links_every_page_of_the_site():
     # index.md's table left out measured/monitoring.md and measured/diagnose.md, both in the nav
     from test_readme import pages
 
-    linked = {(ROOT / "docs" / t.split("#")[0]).resolve() for t in _links((ROOT / "docs" / "index.md").read_text())}
-    missing = [str(p.relative_to(ROOT)) for p in pages()[1:] if p.name != "index.md" and p.resolve() not in linked]
+    home = (ROOT / "docs" / "index.md").read_text()
+    linked = {(ROOT / "docs" / t.split("#")[0]).resolve() for t in _links(home)}
+    missing = [str(p.relative_to(ROOT)) for p in pages()[1:]
+               if p.name != "index.md" and p.resolve() not in linked]
     assert not missing, f"docs/index.md does not link {missing}"
 
 
@@ -307,7 +309,8 @@ def test_the_make_targets_said_to_install_every_extra_do():
     # install.md said `make run` calls `make install`; it installs the core alone ($(CORE))
     makefile = (ROOT / "Makefile").read_text()
     installing = set(re.findall(r"^([\w-]+):[^=\n]*\$\(STAMP\)", makefile, re.M))
-    said = re.search(r"`make install` \(which (.*?)\s+call\)", (ROOT / "docs" / "install.md").read_text(), re.S)[1]
+    install = (ROOT / "docs" / "install.md").read_text()
+    said = re.search(r"`make install` \(which (.*?)\s+call\)", install, re.S)[1]
     named = set(re.findall(r"`make ([\w-]+)`", said))
     assert named and named <= installing, f"install.md: {sorted(named - installing)} do not run make install"
 
@@ -315,7 +318,8 @@ def test_the_make_targets_said_to_install_every_extra_do():
 def test_a_config_searchpath_the_docs_give_is_absolute():
     # to-the-machine.md gave `hydra.searchpath=[file://init/conf]`: Hydra reads it from the
     # current folder, so typed anywhere but the project root the data config is not found
-    given = [(doc.name, path) for doc in DOCS for path in re.findall(r"searchpath=\[file://([^\]]*)\]", doc.read_text())]
+    given = [(doc.name, path) for doc in DOCS
+             for path in re.findall(r"searchpath=\[file://([^\]]*)\]", doc.read_text())]
     assert given
     relative = [(name, path) for name, path in given if not path.startswith(("/", "$PWD", "<", "…", "..."))]
     assert not relative, f"a relative searchpath: {relative}"
