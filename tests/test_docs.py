@@ -323,3 +323,12 @@ def test_a_config_searchpath_the_docs_give_is_absolute():
     assert given
     relative = [(name, path) for name, path in given if not path.startswith(("/", "$PWD", "<", "…", "..."))]
     assert not relative, f"a relative searchpath: {relative}"
+
+
+def test_every_flag_of_the_command_is_in_the_cli_reference():
+    # cli.md, "every command, override group, output file and key", named no -q, -v, --version
+    from thermocomp.shell.cli import LOG_FLAGS
+
+    flags = [*LOG_FLAGS, "--version", "-V", "--help", "-h"]
+    missing = [f for f in flags if f"`{f}`" not in CLI and f"`thermocomp {f}`" not in CLI]
+    assert not missing, f"docs/cli.md lacks the flags {missing}"
