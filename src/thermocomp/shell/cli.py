@@ -330,7 +330,7 @@ def _positional_path(args: list[str]) -> list[str]:
     out = []
     for arg in args:
         flag = out[-1] if out else ""
-        owned = flag in VALUED_FLAGS or flag in ("-i", "--info") and arg in INFO_TOPICS
+        owned = flag in VALUED_FLAGS or (flag in ("-i", "--info") and arg in INFO_TOPICS)
         if "=" not in arg and not arg.startswith("-") and not owned:
             path = Path(arg).expanduser()
             arg = f"data.path={path.resolve() if path.exists() else arg}"
