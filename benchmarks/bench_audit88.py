@@ -269,6 +269,19 @@ def _thermocomp(root: Path, *args: str) -> subprocess.CompletedProcess:
                           cwd=root)
 
 
+def _overrides_of(words: list[str]) -> tuple[str, ...]:
+    """The overrides of a command the docs name, placeholders (``<dir>``, ``…``) and a sweep's
+    lists left out, an optional one (``[key=value]``) as given."""
+    kept = []
+    for word in words[1:]:
+        word = word[1:-1] if word.startswith("[") and word.endswith("]") else word
+        placeholder = any(s in word for s in ("<", "…", "...", "|", "DIR", "ROOT/"))
+        swept = "-m" in words and "," in word.partition("=")[2] and "[" not in word
+        if "=" in word and not word.startswith("-") and not placeholder and not swept:
+            kept.append(word)
+    return tuple(kept)
+
+
 def commands(root: str) -> None:
     """Every ``thermocomp`` command the pages name in a code span, composed with ``--cfg job``."""
     base = Path(root).resolve()
@@ -281,9 +294,7 @@ def commands(root: str) -> None:
             except ValueError:
                 continue
             stage = words[0]
-            kept = tuple(w.strip("[]") for w in words[1:] if "=" in w and not any(
-                s in w for s in ("<", "…", "...", "|", "DIR", "ROOT/")) and not w.startswith("-")
-                and not ("," in w.split("=", 1)[1] and "-m" in words and "[" not in w))
+            kept = _overrides_of(words)
             if (stage, kept) in seen:
                 continue
             seen.add((stage, kept))
