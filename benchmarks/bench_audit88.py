@@ -27,13 +27,14 @@ test MAE per channel and the means of MAE and RMSE, to hold against README's tab
 own-data.md's (CPU user + sys per run).
 
 The bar of an audit (written into this docstring after findings 1-8 had been found on main,
-before findings 9-15 and before any bench command ran on the branch: said): every command of
-the README and of every docs page runs as written, or is a finding; every figure a page states for a command it gives is the run's, to the
-digit printed; every option / key a page names is one the code knows, every key the code knows
-is in docs/cli.md (or data-format.md for data.*); every link and anchor resolves; ``mkdocs build
---strict`` passes. KEPT where every finding is mended on the branch with a test that fails on
-d76bdde2 (code: tests/shell/test_audit88.py; a doc claim a test can check: tests/test_docs.py)
-and the pages' own commands still pass; a finding left is listed as such.
+before findings 9-15 and before any bench command ran on the branch: said): every command of the
+README and of every docs page runs as written, or is a finding; every figure a page states for a
+command it gives is the run's, to the digit printed; every option / key a page names is one the
+code knows, every key the code knows is in docs/cli.md (or data-format.md for data.*); every
+link and anchor resolves; ``mkdocs build --strict`` passes. KEPT where every finding is mended
+on the branch with a test that fails on d76bdde2 (code: tests/shell/test_audit88.py; a doc claim
+a test can check: tests/test_docs.py) and the pages' own commands still pass; a finding left is
+listed as such.
 
 What was run (2026-12-04, d76bdde2 cloned into /tmp/audit88/clone, main's venv behind
 ``.venv/bin/*`` wrappers with PYTHONPATH on the clone's src, ``make install`` a no-op by its
