@@ -127,15 +127,17 @@ Checked and as written (no finding): the DVC study (dvc.md: ``dvc repro`` twice,
 "Data and pipelines are up to date", ``dvc metrics show`` the headline table); the skipped
 to-the-machine route (``run model=arx`` -> ``export`` C -> ``cc`` -> ``./stream``, its check
 pack ``sh check/check.sh``: 13 campaigns within tolerance; ``export`` of the champion as ST);
-evaluation.md's E_P95 figures (E_Z 39 -> 9.8 µm at 4 h, 2.4 -> 3.8 at 5 min); models.md's
-table on the default data (every row but lstm's, finding 15) and evaluation.md's ATI
-columns (ATI, coldest, warmest, one model: 0.76 / 0.26 ... 5.46 / 2.60); the OPC UA route
-with ``adapt.method=bias`` (twin + connect, 8 campaigns, 588 samples: compensated RMS 0.710 /
-1.275 / 3.769 µm = ``replay adapt.method=bias``); ``export.format=onnx`` refused; a record of my own, fresh
-seed 9221 (``simulate sim=swiss_lathe_door seed=9221`` written as own-data.md's lab export):
-``init`` asks for the error column, then for the sample period, each naming the key, then
-writes a config whose printed ``next:`` runs: test RMSE 3.3572 µm, equal to the page's
-hand-written ``lab.yaml`` on the same files.
+evaluation.md's E_P95 figures (E_Z 39 -> 9.8 µm at 4 h, 2.4 -> 3.8 at 5 min); models.md's table
+on the default data (every row but lstm's, finding 15) and evaluation.md's ATI columns (ATI,
+coldest, warmest, one model: 0.76 / 0.26 ... 5.46 / 2.60); the OPC UA route with
+``adapt.method=bias`` (twin + connect, 8 campaigns, 588 samples: compensated RMS 0.710 / 1.275 /
+3.769 µm = ``replay adapt.method=bias``); ``export.format=onnx`` refused; sweeps.md's skipped
+``serve`` of the champion and its ``curl``: C_X / C_Y / C_Z -0.36114180990146894 /
+-0.15504600462203655 / -3.1013423131717808, the exported C's first row of K03 to the last digit;
+a record of my own, fresh seed 9221 (``simulate sim=swiss_lathe_door seed=9221`` written as
+own-data.md's lab export): ``init`` asks for the error column, then for the sample period, each
+naming the key, then writes a config whose printed ``next:`` runs: test RMSE 3.3572 µm, equal to
+the page's hand-written ``lab.yaml`` on the same files.
 
 ``commands`` (each ~2.5 min wall at load 4-9, the composing subprocesses' CPU not counted by
 its CPU line): on d76bdde2 50 distinct commands, 4 not exit 0: ``rows <file>`` (README),
