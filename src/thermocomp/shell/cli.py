@@ -318,12 +318,20 @@ def _multirun() -> bool:
     return HydraConfig.initialized() and HydraConfig.get().mode == RunMode.MULTIRUN
 
 
+# Hydra's flags whose next word is theirs (`--cfg job`, `--package data`), and `--info`'s topics
+# (its word is optional): no file that `init` / `rows` names
+VALUED_FLAGS = {"-c", "--cfg", "-p", "--package", "--experimental-rerun", *overrides.CONFIG_FLAGS}
+INFO_TOPICS = {"all", "config", "defaults", "defaults-tree", "plugins", "searchpath"}
+
+
 def _positional_path(args: list[str]) -> list[str]:
     """``thermocomp init <path>`` (``rows <path>``): the path (relative to the current folder, as a shell user
-    names a file) as ``data.path``."""
+    names a file) as ``data.path``; a word a Hydra flag takes (``--cfg job``) left to it."""
     out = []
     for arg in args:
-        if "=" not in arg and not arg.startswith("-"):
+        flag = out[-1] if out else ""
+        owned = flag in VALUED_FLAGS or (flag in ("-i", "--info") and arg in INFO_TOPICS)
+        if "=" not in arg and not arg.startswith("-") and not owned:
             path = Path(arg).expanduser()
             arg = f"data.path={path.resolve() if path.exists() else arg}"
         out.append(arg)
@@ -399,6 +407,12 @@ def _command(argv: list[str]) -> int:
             cfg = _guarded(overrides.check_jobs, args, stage)
             if cfg is not None:
                 _check_hydra_node(cfg, sweeping=True)
+        elif not any(a in ("-sc", "--shell-completion") for a in args):
+            # a Hydra flag (`--cfg job`, `--info`): its overrides composed as a run's are, so a
+            # mistyped key or option is exit 2 in one line (Hydra's own composition said it in
+            # a multi-line trace, exit 1, and took `--cfg job` with an unknown key as exit 1)
+            _guarded(overrides.compose_checked, [a for a in args if "=" in a and not a.startswith("-")],
+                     stage)
         _launch(stage, args)                               # a sweep, a Hydra flag: hydra.main
     except Terminated:  # the contract's statuses are 0, 2 and 1 for anything else
         _signalled.append("SIGTERM")

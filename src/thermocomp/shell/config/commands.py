@@ -84,7 +84,7 @@ COMMANDS = {
         "fit the configured model on the train split",
         "fit the configured model on the train split",
         "data.interim (+ the denoise/select outputs when they match)",
-        "model_path (models/<name>/model.pkl)", "model=mlr|pcr|arx|arx_rf|lstm|lagbank|hammerstein "
+        "model_path (models/<name>/model.pkl)", "model=mlr|pcr|arx|arx_rf|lstm|lagbank|hammerstein|auto "
         "select=... ati=none|cmeans denoise=none|emd", MODELLING),
     "evaluate": Command(
         "modelling:evaluate",

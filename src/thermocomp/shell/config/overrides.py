@@ -234,6 +234,9 @@ def explain(exc: BaseException, command: str | None = None) -> str:
     if unread:
         return unread
     close = _fix_key(key, _whole_config())
+    unread = close and _unread_group(close, command)
+    if unread:   # the closest key is of a group the command does not read: no fix to offer here
+        return f"unknown config key {key!r}; the closest, {unread}"
     hint = f"; did you mean {close!r}?" if close else ""
     free = [m for m in FREE_MAPS if key.startswith(f"{m}.")]
     if free and not close:   # an entry the scenario's own config leaves out: how to add it
