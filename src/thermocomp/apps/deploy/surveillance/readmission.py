@@ -33,6 +33,7 @@ class Readmission:
         thawed = self._thawed(finite, instant, time, events)
         due = ~self._active & finite & (self._run == 0) & (self._calm >= self._dwell)
         due[list(instant)] = False
+        undone = self._field_undoes(due, d) if due.any() else due
         back = self._returning(due) if due.any() else due
         band = self._readmit_c(self._active | back | self._hid) if back.any() else None
         for j in np.flatnonzero(back):
@@ -51,6 +52,9 @@ class Readmission:
                 d[j] += shift
                 self._hist[:, j] += shift
                 why += f"; its {self._jumps[j]} jump(s) undone: the reading returned ({shift:+.3g} °C)"
+            elif undone[j]:
+                why += (f"; its {self._jumps[j]} jump(s) undone: the field reads it at its "
+                        "reference before them")
             self._set_state(j, OK, time, why, events)
             self._jumps[j] = 0
             self._active[j] = True
@@ -59,6 +63,31 @@ class Readmission:
             self._ranged[j] = False
             self._set_operator()
         return bool(back.any()) or thawed
+
+    def _field_undoes(self, due: np.ndarray, d: np.ndarray) -> np.ndarray:
+        """Of the ``due`` sensors the others predict, out for jumps, those whose reference before
+        the first jump (``_ref0``) the field prefers: the mean of the window's errors against the
+        active sensors' field nearer zero with their jumps undone than kept (mon88).  Undone in
+        place (reference, the window's readings and errors, ``d``); which were, returned.
+
+        A jump re-references a sensor by its step less its change as the others predict it, so
+        a step that stays (an offset) is followed; a spike's two jumps cancel but for that
+        prediction's noise, and the noise stays in the reference: lr9171's healthy ``T_col_back``
+        came back from a 3-sample spike 0.276 °C off its field (its half band 0.381), and a second
+        spike's 0.112 °C more kept it out to the record's end (1.73 h).  The field tells the two
+        apart after the outage, as the last good reading does for a sensor no other predicts."""
+        undone = np.zeros(len(due), dtype=bool)
+        for j in np.flatnonzero(due & self._predictable & (self._jumps > 0)):
+            shift = self._ref[j] - self._ref0[j]
+            errors = self._err[:, j]
+            level = float(np.mean(errors[np.isfinite(errors)])) if np.isfinite(errors).any() else 0.0
+            if abs(level + shift) < abs(level):
+                self._ref[j] = self._ref0[j]
+                d[j] += shift
+                self._hist[:, j] += shift
+                self._err[:, j] += shift
+                undone[j] = True
+        return undone
 
     def _thawed(self, finite, instant, time, events) -> bool:
         """Those out for a freeze alone, ``THAW`` readings in a row off the value they held,
@@ -145,10 +174,35 @@ class Readmission:
         if explains.any():
             judged = trial & ~blind
             ok[explains] = bool((worst[judged] < warn[judged]).all())
+        # a culprit out within its band, blind here only for want of a partner that is out
+        # frozen by its own evidence: what it was blamed for is that partner's (mon88)
+        for u in np.flatnonzero(trial & blind & self._hid & ~self._active):
+            ok[u] = self._blind_for_frozen(u, trial)
         # one no other predicts, out of range: calm is no evidence its reading is true again
         for u in np.flatnonzero(ok & ~self._active & ~self._predictable & self._ranged):
             ok[u] = self._leak_passes(u, trial, H, M, lev)
         return ok, worst
+
+    def _blind_for_frozen(self, u: int, trial: np.ndarray) -> bool:
+        """Whether ``u``, no other in ``trial`` predicting it, would be predicted with a sensor
+        out of ``trial`` that is frozen by the rule for a sensor no other predicts (its reading
+        constant longer than ``_blind_run``: :meth:`~.faults.InstantFaults._frozen`).
+
+        ``u`` was taken out within its own band (``_hid``, mon85b) for its coupled partner's
+        error; with the partner out too, ``u`` is judged by nothing, and a sensor the others
+        predict with every sensor in never passes blind (:meth:`_pass_once_back`): cr9031's
+        healthy ``T_nc_cabinet`` (-0.35 °C in its 0.40 band), taken for a frozen ``T_amb``
+        (+0.43 °C, constant for 16 samples, the field 0.39 °C on: short of the freeze rule's
+        0.40) and out to the campaign's end while ``T_amb`` read the same value 137 samples.
+        The partner's own freeze clears it; the partner comes back as before (judged with it
+        once its reading moves)."""
+        frozen = ~trial & ~self._active & (self._run > self._blind_run)
+        for k in np.flatnonzero(frozen):
+            with_k = trial.copy()
+            with_k[k] = True
+            if self._operator(with_k)[1][u] < self.pod.max_leverage:
+                return True
+        return False
 
     def _leak_passes(self, u: int, trial: np.ndarray, H: np.ndarray, M: np.ndarray,
                      lev: np.ndarray) -> bool:
