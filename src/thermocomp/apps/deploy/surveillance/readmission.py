@@ -36,8 +36,9 @@ class Readmission:
         undone = self._field_undoes(due, d) if due.any() else due
         back = self._returning(due) if due.any() else due
         band = self._readmit_c(self._active | back | self._hid) if back.any() else None
+        blind = (self._operator(self._active | back)[1] >= self.pod.max_leverage) if back.any() else None
         for j in np.flatnonzero(back):
-            why = self._why_back(j, band)
+            why = self._why_back(j, band, bool(blind[j]))
             shift = self._ref[j] - self._ref0[j]
             if not self._predictable[j] and (self._jumps[j] > 1 or (
                     self._jumps[j] and abs(d[j] + shift - self._last_good[j])
@@ -103,12 +104,15 @@ class Readmission:
             self._set_operator()
         return bool(back.any())
 
-    def _why_back(self, j: int, band: np.ndarray | None = None) -> str:
+    def _why_back(self, j: int, band: np.ndarray | None = None, blind: bool = False) -> str:
         """The re-admission's reason, as it was judged: a sensor no other predicts is judged by
         no band (calm, or the others' bands where it was out for explaining their errors:
         :meth:`_pass_once_back`), and its reason said "within ±10.4 °C" (stranger80: a screw
         nut's thermocouple after a dropout, its warning band a figure nothing compared)."""
         calm = self._calm[j]
+        if self._predictable[j] and blind:    # (mon88: _blind_for_frozen)
+            return (f"re-admitted: no detector fired for {calm} samples; the others in do not "
+                    "predict it without a partner that is out frozen, whose error it was")
         if self._predictable[j]:
             band = self._readmit_c() if band is None else band
             return f"re-admitted: within ±{band[j]:.3g} °C for {calm} samples"
@@ -174,9 +178,9 @@ class Readmission:
         if explains.any():
             judged = trial & ~blind
             ok[explains] = bool((worst[judged] < warn[judged]).all())
-        # a culprit out within its band, blind here only for want of a partner that is out
+        # one out by the field's judgement, blind here only for want of a partner that is out
         # frozen by its own evidence: what it was blamed for is that partner's (mon88)
-        for u in np.flatnonzero(trial & blind & self._hid & ~self._active):
+        for u in np.flatnonzero(trial & blind & self._by_field & ~self._explains & ~self._active):
             ok[u] = self._blind_for_frozen(u, trial)
         # one no other predicts, out of range: calm is no evidence its reading is true again
         for u in np.flatnonzero(ok & ~self._active & ~self._predictable & self._ranged):

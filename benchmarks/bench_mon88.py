@@ -1,0 +1,323 @@
+"""The served monitor's two open false exclusions (stop 88, mon88; issue 34's "what remains" ->
+monitor): lr9171's healthy ``T_col_back`` kept out 1.73 h after its second spike, and cr9031's
+healthy ``T_nc_cabinet`` left out behind a frozen ``T_amb``.
+
+Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is that tree's)::
+
+    python benchmarks/bench_mon88.py traced ROOT          # the two cases, events and RMSE
+    python benchmarks/bench_mon88.py fresh ROOT SEEDS     # fresh records -> ROOT/fresh.json
+    python benchmarks/bench_mon88.py compare BEFORE AFTER # two fresh.json side by side
+    python benchmarks/bench_mon88.py pack ROOT            # compiled C / mirror against served
+
+``traced``: in ``ROOT`` (made anew; the measured tree's ``conf/`` linked in, ``THERMOCOMP_ROOT``)
+deploy87's lr9171 (``sim=long_record``, 3 days, ``test_fraction=0.2``: R1b continues R1a; the
+generator's own spikes on ``T_col_back``) with ``model=lagbank data.reference=none`` as
+bench_deploy87 runs it, and audit86b's cr9031 (``sim=climate_room``, 12 runs of 3-4 h,
+``test_fraction=0.25``) with ``model=mlr``, its test campaigns given audit86b's frozen ``T_amb``
+(the reading held from a third of each campaign): ``run`` -> ``replay`` of its ``model.pkl``; the
+replay's RMSE per target (µm) and its events.  ``fresh``: per seed of SEEDS a record drawn as
+:data:`FRESH` says (seeds 9196-9200 long records as lr9171, the generator's spikes left as
+drawn; 9201-9205 climate rooms as cr9031 with :func:`planted` faults), ``model=mlr``, ``run`` ->
+``replay``; per record the replay RMSE and the exclusions / re-admissions (sensor, campaign,
+row) written to ``ROOT/fresh.json``.  ``compare``: the two files' records side by side (run
+with main's src for BEFORE and this tree's for AFTER; the simulator is not changed).  ``pack``:
+on lr9171 (MLR, R1b after R1a) and cr9031 with its frozen ``T_amb`` (MLR): the served stream,
+the numpy mirror and the compiled C (gcc -Werror) of the export with and without this stop's
+two keys (``undo``, ``cleared``): rows where C = served (every target within 1e-9 µm), the first
+flag, the conformance pack's rows.
+
+Traced (main d76bdde2)
+----------------------
+lr9171 (lagbank, R1b): ``T_col_back`` (the others predict it: ``predictable``; its warning band
+0.763 °C, the re-admission band half of it, 0.381) reads within +0.02 °C of its field before
+its first spike.  At 18540 s it reads 3.45 °C low for 3 samples: a jump, re-referenced by its
+step less its change as the others predict it (``_instant``), excluded; its return at 18720 s a
+second jump, re-referenced by the whole step (out, it is judged by no one: no expected change).
+The two re-references do not cancel: the reference moved 18.070 -> 18.346 °C (the others'
+one-sample prediction noise and the true change over the outage kept with it), its error
+against the field from +0.02 to about -0.33 °C for good.  It came back at 19980 s (21 calm
+samples: the half band let it in only when the noise allowed).  At 45540 s a 1-sample +3.79 °C
+spike: the same two jumps move the reference another +0.112 °C (18.458), its error -0.35 to
+-0.47 °C against the 0.381 half band, never within it for a window: out to the record's end
+(1.73 h).  The undo of a spike's jumps at return (``_readmit``) was only for a sensor no other
+predicts (the reading nearer its last good value); for one the field predicts nothing undid it.
+
+cr9031 (mlr; test C11, a room ramped -5 K): ``T_amb`` frozen from row 68; its error grows with
+the field, ``T_nc_cabinet``'s mirrors it (each is the other's only predictor: a coupled pair).
+At 5040 s ``T_amb`` +0.43 °C (band 0.40), ``T_nc_cabinet`` -0.35 °C within its band; the freeze
+rule needs the field 0.40 °C on, it had moved 0.39.  The pick (``_lone_fault``): paper 002's
+culprit ``T_nc_cabinet`` (within its band: ``_hid``), ``T_amb`` out with it as its blind partner.
+Its return (``_pass_once_back``): with ``T_amb`` out no sensor predicts ``T_nc_cabinet``, and a
+sensor the others predict with every sensor in never passes blind; ``T_amb``, frozen (its run
+16 -> 137 samples, past ``blind_run`` 10), never comes back: ``T_nc_cabinet`` out to C11's end.
+The same shape as test_monitor_frozen_pair77's record (``T_b`` out with the frozen ``T_a``).
+
+The rules (served ``readmission.py``, the numpy mirror ``watch.py``, the C ``watch_c.py``)
+-----------------------------------------------------------------------------------------
+(A) ``_field_undoes``: a due sensor the others predict, out for jumps, takes back the reference
+it had before the first of them (``_ref0``) where the mean of its window's errors against the
+active sensors' field is nearer zero with the jumps undone than kept; the field tells a spike
+(the reading returned) from a step that stays, as the last good reading does for a sensor no
+other predicts.  (B) ``_blind_for_frozen``: a sensor out by the field's judgement, blind in the
+re-admission trial only for want of a partner that is out and frozen by the rule for a sensor
+no other predicts (constant longer than ``blind_run``), passes: what it was blamed for is the
+partner's.  Mirror and C: the same, behind the export keys ``undo`` / ``cleared`` (absent: as
+before); the C keeps ``mon_ref0``.  Work: O(window) per due sensor, a solve per frozen partner
+at a re-admission check.
+
+Bar (written before scoring the fresh seeds; the two cases were traced and run on this tree
+first)
+------
+1. lr9171 (lagbank): ``T_col_back`` back after each spike within its calm window (``window``
+   = 10 samples) plus ``confirm`` (2) of the spike's end (the lead's "within confirm samples of
+   the fault's end" cannot hold for any rule that keeps the calm window a jump-excluded sensor
+   waits: said); out at R1b's end: none.  cr9031 (mlr, frozen ``T_amb``): ``T_nc_cabinet`` back
+   within window + confirm samples of its exclusion while ``T_amb`` stays out (the fault does
+   not end in C11; "never out" would need a change of the pick, mon84b / mon86b's refused
+   ground).
+2. Fresh 9196-9205: every exclusion main makes of a faulty sensor (the climate rooms' planted
+   ``T_amb`` and spiked sensor; on the long records each sensor main excludes for a "jump", the
+   generator's spikes) made by the tree at the same campaign and time (no detection lost); no
+   record's replay RMSE (mean over targets) worse than main's by more than 2 %.
+3. Healthy records quiet: tests/shell/test_monitor_healthy53.py and the healthy tests of
+   tests/apps/test_monitor*.py pass; every monitor / export test passes (run in parts, -n 2).
+4. ``pack``: C = served on every row of lr9171's R1b and cr9031's frozen test campaigns where
+   main's C was, and the pack not cut earlier than on main.
+KEPT if 1-4 hold; else REFUSED (src reverted, mon88_rule.patch).
+
+Scored
+------
+(filled in below after the runs)
+"""
+
+from __future__ import annotations
+
+import contextlib
+import io
+import json
+import os
+import shutil
+import sys
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+HERE = Path(__file__).resolve().parent
+sys.path[:0] = [str(HERE)]
+from _cli import made_folder, run_commands, seed_list  # noqa: E402
+from cpu import cpu_seconds  # noqa: E402
+
+LONG = ("sim=long_record", "sim.generator.duration_days=3.0", "sim.generator.test_fraction=0.2")
+ROOM = ("sim=climate_room", "sim.generator.n_runs=12", "sim.generator.duration_h=[3.0,4.0]",
+        "sim.generator.test_fraction=0.25")
+TRACED = {"lr9171": (9171, LONG, ("model=lagbank", "data.reference=none"), False),
+          "cr9031": (9031, ROOM, ("model=mlr",), True)}
+FRESH = {**{seed: ("lr", LONG, ("data.reference=none",)) for seed in range(9196, 9201)},
+         **{seed: ("cr", ROOM, ()) for seed in range(9201, 9206)}}
+
+
+def stage(*args: str) -> tuple[int, str]:
+    """``thermocomp <args>`` in process; (exit status, the last line said on stderr)."""
+    from thermocomp.shell.cli import main
+
+    err = io.StringIO()
+    with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(err):
+        try:
+            rc = main(list(args))
+        except SystemExit as exc:
+            rc = int(exc.code or 0)
+    lines = [x for x in err.getvalue().splitlines() if x.strip()]
+    return rc, lines[-1] if lines else ""
+
+
+def _root(word: str) -> Path:
+    """A scratch project root made anew, the measured tree's ``conf/`` linked in."""
+    import thermocomp
+
+    root = Path(word).resolve()
+    if root.exists():
+        shutil.rmtree(root)
+    root.mkdir(parents=True)
+    (root / "conf").symlink_to(Path(thermocomp.__file__).resolve().parents[2] / "conf")
+    os.environ["THERMOCOMP_ROOT"] = str(root)
+    return root
+
+
+def _tests(data: Path) -> list[str]:
+    manifest = pd.read_csv(data / "campaigns.csv")
+    return list(manifest.loc[manifest["split"] == "test", "file"])
+
+
+def planted(data: Path, seed: int, frozen: bool = True) -> list[str]:
+    """Faults written into the test campaigns of ``data`` (in place): ``T_amb`` held at its
+    reading from a third of each (audit86b's frozen sensor; ``frozen``), and one spike of 1-3
+    samples, +-2-5 °C, on a monitored sensor drawn at random (not ``T_amb``) two thirds in."""
+    rng = np.random.default_rng([seed, 88])
+    said = []
+    for file in _tests(data):
+        df = pd.read_csv(data / file)
+        n = len(df)
+        if frozen:
+            df.loc[n // 3:, "T_amb"] = df.loc[n // 3, "T_amb"]
+            said.append(f"{file} T_amb frozen from row {n // 3 + 1}")
+        names = [c for c in df.columns if c.startswith("T_") and c != "T_amb"]
+        name = names[int(rng.integers(len(names)))]
+        row, width = 2 * n // 3, int(rng.integers(1, 4))
+        size = float(rng.choice([-1, 1]) * rng.uniform(2.0, 5.0))
+        df.loc[row:row + width - 1, name] += size
+        said.append(f"{file} {name} {size:+.2f} °C rows {row + 1}-{row + width}")
+        df.to_csv(data / file, index=False)
+    return said
+
+
+def replayed(root: Path, name: str, data: Path, model: tuple, extra: tuple) -> dict:
+    """``run`` -> ``replay`` of ``data``'s model.pkl: the replay's RMSE per target and events."""
+    out = root / "reports" / name
+    rc, said = stage("run", f"data.path={data}", f"out={out}", "plots=none", "track=false",
+                     *model, *extra)
+    assert rc == 0, said
+    rc, said = stage("replay", f"data.path={data}", f"out={out}-replay", "track=false",
+                     f"replay.model={out / 'model.pkl'}", *extra)
+    assert rc == 0, said
+    rep = json.loads((out.parent / f"{name}-replay" / "replay.json").read_text())
+    return {"rmse": {k: v["rmse"] for k, v in rep["targets"].items()}, "events": rep["events"],
+            "excluded": rep["excluded_inputs"]}
+
+
+def _drawn(name: str, seed: int, sim: tuple, root: Path) -> Path:
+    data = root / "data" / name
+    rc, said = stage("simulate", f"seed={seed}", *sim, f"data.path={data}", "track=false")
+    assert rc == 0, said
+    return data
+
+
+def traced(root: str) -> None:
+    """The two cases (module doc): replay RMSE and every exclusion / re-admission."""
+    folder = _root(root)
+    for name, (seed, sim, model, frozen) in TRACED.items():
+        data = _drawn(name, seed, sim, folder)
+        if frozen:
+            for file in _tests(data):
+                df = pd.read_csv(data / file)
+                df.loc[len(df) // 3:, "T_amb"] = df.loc[len(df) // 3, "T_amb"]
+                df.to_csv(data / file, index=False)
+        start = cpu_seconds()
+        got = replayed(folder, name, data, model, ("data.reference=none",) if not frozen else ())
+        rmse = ", ".join(f"{k} {v:.4f}" for k, v in got["rmse"].items())
+        print(f"{name}: replay RMSE {rmse} µm; excluded at the end {got['excluded']}; "
+              f"CPU {cpu_seconds() - start:.1f} s", flush=True)
+        for e in got["events"]:
+            if e.get("sensor"):
+                print(f"  {e['campaign']} {e['time']:>7.0f} s {e['sensor']:<14} {e['to']:<9} "
+                      f"{e['reason'][:120]}", flush=True)
+
+
+def fresh(root: str, seeds: str) -> None:
+    """Fresh records (module doc) -> ``ROOT/fresh.json``."""
+    folder = _root(root)
+    results = {}
+    for seed in seed_list(seeds):
+        kind, sim, extra = FRESH[seed]
+        name = f"{kind}{seed}"
+        data = _drawn(name, seed, sim, folder)
+        faults = planted(data, seed) if kind == "cr" else ["the generator's spikes as drawn"]
+        start = cpu_seconds()
+        got = replayed(folder, name, data, ("model=mlr",), extra)
+        got.update(faults=faults, cpu=cpu_seconds() - start)
+        results[name] = got
+        print(f"{name}: {faults}; RMSE {got['rmse']}; {len(got['events'])} events; "
+              f"CPU {got['cpu']:.1f} s", flush=True)
+    (folder / "fresh.json").write_text(json.dumps(results, indent=1))
+
+
+def _moves(events: list) -> list[tuple]:
+    return [(e["campaign"], e["time"], e["sensor"], e["to"]) for e in events
+            if e.get("sensor") and e["to"] in ("excluded", "ok")]
+
+
+def compare(before: str, after: str) -> None:
+    """The two ``fresh.json`` side by side: RMSE (mean over targets), exclusions kept / lost,
+    samples out (the sensors' excluded time, s)."""
+    a = json.loads((Path(before) / "fresh.json").read_text())
+    b = json.loads((Path(after) / "fresh.json").read_text())
+    print(f"{'record':<8}{'rmse before':>12}{'after':>9}{'ratio':>8}  exclusions (kept / lost)  "
+          "re-admissions before -> after")
+    for name in a:
+        ra, rb = (float(np.mean(list(r[name]["rmse"].values()))) for r in (a, b))
+        out_a = {m[:3] for m in _moves(a[name]["events"]) if m[3] == "excluded"}
+        out_b = {m[:3] for m in _moves(b[name]["events"]) if m[3] == "excluded"}
+        back_a = [m[:3] for m in _moves(a[name]["events"]) if m[3] == "ok"]
+        back_b = [m[:3] for m in _moves(b[name]["events"]) if m[3] == "ok"]
+        print(f"{name:<8}{ra:>12.4f}{rb:>9.4f}{rb / ra:>8.4f}  {len(out_a & out_b)} / "
+              f"{len(out_a - out_b)} (new {len(out_b - out_a)})  {len(back_a)} -> {len(back_b)}; "
+              f"out at the end {a[name]['excluded']} -> {b[name]['excluded']}")
+        for m in sorted(out_a ^ out_b) + sorted(set(back_a) ^ set(back_b)):
+            print(f"    differs: {m}")
+
+
+def _pack_rows(root: Path, name: str, data: Path, extra: tuple) -> list[str]:
+    """C / mirror / served on ``data``'s test campaigns, the export with and without this stop's
+    keys (module doc)."""
+    import dataclasses
+    import tempfile
+
+    from _ccode import built, deployed_on
+    from bench_cmon84 import _c_rows, flagged
+
+    from thermocomp.apps.deploy.export import c, state_space
+    from thermocomp.apps.deploy.export.driver import DRIVER
+    from thermocomp.apps.deploy.export.pack import conformance_pack, corrections, fed
+    from thermocomp.apps.deploy.report import plain, stream_rows
+    from thermocomp.core.continuation import lead_ins
+
+    deployed, ds, test_ids = deployed_on(data, "mlr", extra)
+    now = state_space(deployed, monitor=True)
+    before = dataclasses.replace(now, monitor={k: v for k, v in now.monitor.items()
+                                               if k not in ("undo", "cleared")})
+    tests = {t: ds.campaigns[t].reset_index(drop=True) for t in test_ids}
+    leads = lead_ins(plain(deployed).compensator, ds, test_ids)
+    frames = {t: fed(df, leads.get(t)) for t, df in tests.items()}
+    lines = []
+    with tempfile.TemporaryDirectory(prefix="mon88-") as tmp:
+        for label, ss in (("without undo / cleared", before), ("with", now)):
+            code = built(Path(tmp) / label.split()[0], {
+                "compensator.h": c.header(ss), "compensator.c": c.source(ss), "stream.c": DRIVER})
+            _, summary = conformance_pack(deployed, ss, tests, leads, script=False)
+            kept = {e["campaign"]: e["rows"] - e["lead_in_rows"] for e in summary["campaigns"]}
+            for t, df in tests.items():
+                frame = frames[t]
+                lead = len(frame) - len(df)
+                want = corrections(ss, stream_rows(deployed, frame, str(t)).y)[lead:]
+                got = _c_rows(code, frame, ss.inputs)[lead:]
+                gap = np.abs(got - want[:len(got)]).max(axis=1)
+                first = [(r - lead, k) for r, k in flagged(ss, frame) if r > lead]
+                lines.append(f"{name} {t} export {label}: C = served {int((gap < 1e-9).sum())} of "
+                             f"{len(df)} rows, max |C - served| {gap.max():.2g} µm, first flag "
+                             f"{first[0] if first else 'none'}, pack rows {kept[str(t)]}")
+    return lines
+
+
+def pack(root: str) -> None:
+    """lr9171 and cr9031 with its frozen ``T_amb`` through the code (module doc)."""
+    folder = _root(root)
+    for name, (seed, sim, _, frozen) in TRACED.items():
+        data = _drawn(name, seed, sim, folder)
+        if frozen:
+            for file in _tests(data):
+                df = pd.read_csv(data / file)
+                df.loc[len(df) // 3:, "T_amb"] = df.loc[len(df) // 3, "T_amb"]
+                df.to_csv(data / file, index=False)
+        start = cpu_seconds()
+        lines = _pack_rows(folder, name, data, () if frozen else ("data.reference=none",))
+        print("\n".join(lines) + f"\n  CPU {cpu_seconds() - start:.1f} s", flush=True)
+
+
+def main(argv: list[str]) -> int:
+    return run_commands(__doc__, {
+        "traced": traced, "fresh": fresh, "compare": compare, "pack": pack,
+    }, argv, cpu=sys.stderr)
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
