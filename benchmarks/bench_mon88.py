@@ -105,7 +105,7 @@ import pandas as pd
 
 HERE = Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE)]
-from _cli import made_folder, run_commands, seed_list  # noqa: E402
+from _cli import run_commands, seed_list  # noqa: E402
 from cpu import cpu_seconds  # noqa: E402
 
 LONG = ("sim=long_record", "sim.generator.duration_days=3.0", "sim.generator.test_fraction=0.2")
