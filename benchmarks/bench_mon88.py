@@ -54,7 +54,7 @@ The same shape as test_monitor_frozen_pair77's record (``T_b`` out with the froz
 
 The rules (served ``readmission.py``, the numpy mirror ``watch.py``, the C ``watch_c.py``)
 -----------------------------------------------------------------------------------------
-(A) ``_field_undoes``: a due sensor the others predict, out for jumps, takes back the reference
+(A, refused: mon88_rule.patch) ``_field_undoes``: a due sensor the others predict, out for jumps, takes back the reference
 it had before the first of them (``_ref0``) where the mean of its window's errors against the
 active sensors' field is nearer zero with the jumps undone than kept; the field tells a spike
 (the reading returned) from a step that stays, as the last good reading does for a sensor no
@@ -62,7 +62,7 @@ other predicts.  (B) ``_blind_for_frozen``: a sensor out by the field's judgemen
 re-admission trial only for want of a partner that is out and frozen by the rule for a sensor
 no other predicts (constant longer than ``blind_run``), passes: what it was blamed for is the
 partner's.  Mirror and C: the same, behind the export keys ``undo`` / ``cleared`` (absent: as
-before); the C keeps ``mon_ref0``.  Work: O(window) per due sensor, a solve per frozen partner
+before); the C keeps ``mon_ref0`` (A's, in the patch only).  Work: O(window) per due sensor, a solve per frozen partner
 at a re-admission check.
 
 Bar (written before scoring the fresh seeds; the two cases were traced and run on this tree
@@ -85,7 +85,36 @@ first)
    main's C was, and the pack not cut earlier than on main.
 KEPT if 1-4 hold; else REFUSED (src reverted, mon88_rule.patch).
 
-Scored
+Scored: rules A + B (2026-12-04, fix/mon88 at 369929b4's src; main = d76bdde2's src, the same
+draws; CPU s of the bench process, 2 cores shared by several helpers)
+------
+1. ``traced``: lr9171 (lagbank) replay E_Z 0.7845 -> 1.0464 µm (run scores 1.053: deployed =
+   scored now); ``T_col_back`` out 18540 s, back 19980 -> 19320 s (10 samples after the spike's
+   end at 18720), out 45540 s, back never -> 46200 s (10 samples after 45600), "its 2 jump(s)
+   undone"; nothing out at R1b's end (main: ``T_col_back``).  cr9031 (mlr, frozen ``T_amb``):
+   E_X / E_Z 2.2553 / 4.0631 -> 2.2061 / 4.0247 µm; ``T_nc_cabinet`` out 5040 s, back never ->
+   5700 s (11 samples), ``T_amb`` out to the end.  MET.
+2. ``fresh`` 9196-9205 (``compare``; RMSE mean over targets, µm, main -> tree): lr9196 1.0451 =,
+   lr9197 1.7626 =, lr9198 1.8510 =, lr9199 0.9303 -> 0.9897 (+6.38 %), lr9200 1.2934 =, cr9201
+   1.2311 -> 1.2514 (+1.65 %), cr9202 2.2088 -> 2.2069, cr9203 2.8231 -> 2.8806 (+2.04 %), cr9204
+   2.4425 -> 2.4414, cr9205 1.3856 -> 1.3881 (+0.18 %); no exclusion lost (24 of 24 at the same
+   campaign and time), re-admissions at main's times but cr9202's ``T_toolholder1`` (C12 9840 ->
+   8100 s).  Two records worse by > 2 %: FAILS.  Every change is rule A's (the reference put
+   back at a re-admission main makes at the same time; B fired on none of them).  lr9199's run
+   (raw readings) scores 1.0479: main's kept offsets served better than the true readings.
+4. ``pack``: C = served on every row on main and with A + B (lr9171 R1b 864 of 864, 8.5e-14 µm;
+   cr9031 C10 / C11 / C12 whole, <= 8.3e-14 µm); without the two keys the tree's C parts from
+   its served at R1b's row 333 and C11's row 96 (the keys are needed).  MET.
+Verdict on A + B: REFUSED by item 2 (benchmarks/mon88_rule.patch: served, mirror, C).
+
+Second rule: B alone (the bar written after A + B was scored, before B alone was; the same
+fresh seeds, on which B fired on no record under A + B: said)
+------
+(B1) cr9031 as item 1 says; lr9171 not mended (A's gap, a strict xfail in
+tests/shell/test_monitor_readmit88.py); (B2) fresh 9196-9205 as item 2; (B3) = 3; (B4) = 4 on
+cr9031.  KEPT if B1-B4 hold.
+
+Scored: B alone
 ------
 (filled in below after the runs)
 """

@@ -4,8 +4,9 @@ lr9171 (deploy87's long record, R1b continuing R1a): ``T_col_back``, which the o
 spikes twice (the generator's outliers); each spike's two jumps were re-referenced, and their
 sum, the others' prediction noise and the true change over the outage, stayed in its reference:
 its error 0.28 °C off its field after the first, past its half band after the second, out to
-the record's end (1.73 h).  Now the reference before the jumps is taken back where the field
-reads it nearer (``Readmission._field_undoes``).
+the record's end (1.73 h).  The rule that took back the reference before the jumps where the
+field reads it nearer (benchmarks/mon88_rule.patch, ``_field_undoes``) mended it but failed its
+bar on fresh records (replay RMSE up to +6.4 %): a strict xfail holds the gap.
 
 cr9031 (audit86b's climate room) with ``T_amb`` frozen from a third of each test campaign: in
 C11 the healthy ``T_nc_cabinet`` (within its band) was taken as the culprit and the frozen
@@ -70,6 +71,9 @@ def _moves(events: list, sensor: str) -> list[tuple[str, float]]:
     return [(e["to"], e["time"]) for e in events if e.get("sensor") == sensor]
 
 
+@pytest.mark.xfail(strict=True, reason="known gap (mon88, rule A refused): a spike's two jumps "
+                   "re-referenced leave their noise in the reference of a sensor the field "
+                   "predicts, past its half band after lr9171's second spike")
 def test_a_spiked_sensor_the_field_predicts_comes_back_after_each_spike(long_record):
     deployed, frame, lead = long_record
     mon = deployed.monitor

@@ -65,6 +65,10 @@ The served adaptive compensator judges every ``T_`` input before the model reads
   again once it is back.  One the code cannot hold (an arx_rf forest, an lstm network of another
   shape, other inputs or derived inputs, a cascade of lags, a state times the inputs' rises), or an
   export before it (no ``fallback_set``), flags the campaign ``FALLBACK`` from the exclusion on.
+* (mon88) a sensor out by the field's judgement whose return no sensor in trial predicts passes
+  where a partner out, frozen by the rule for one no other predicts (constant longer than
+  ``blind_run``), would predict it (``cleared``), as served (``Readmission._blind_for_frozen``).
+  An export before it (no ``cleared``) keeps it out, as before.
 * (freeze84) a sensor out for a **freeze alone** (no other detector fired on it since) is
   re-admitted once ``THAW`` readings in a row are off the value it held (``THAWED``), judged from
   there as an active one, as served (``Readmission._thawed``).  An export before it (no
@@ -216,8 +220,7 @@ def monitor_fields(deployed, inputs: list) -> dict:
         "drift": 1, "pairs": [list(p) for p in pairs], "new_state": int(mon.new_state),
         "new_state_others": int(mon.new_state_others), "max_backoff": MAX_BACKOFF,
         "tau": EXCURSION_TAU_S, "growth": EXCURSION_GROWTH, "novel": 1, "blind_out": 1, "thawed": 1,
-        "blind_drop": 1, "solve": 1, "stepped": 1, "undo": 1, "cleared": 1,
-        "modes": int(mon.pod.n_modes_),
+        "blind_drop": 1, "solve": 1, "stepped": 1, "cleared": 1, "modes": int(mon.pod.n_modes_),
         "basis": mon.pod.basis_[:, :int(mon.pod.n_modes_)].tolist(),
         "fallback": [int(c in falls) for c in mon.names],
         "rounding": np.broadcast_to(getattr(mon, "rounding_c", 0.0), (n,)).tolist(),
@@ -328,7 +331,6 @@ class CodeMonitor:
                      ("blind_drop", 0),   # (before cmon84: its missing reading refused)
                      ("solve", 0),        # (before cmon85: only the operators it holds)
                      ("stepped", 0),      # (before cmon86: a stepped error flagged)
-                     ("undo", 0),         # (before mon88: a jump kept at return, as then)
                      ("cleared", 0)):     # (before mon88: no partner's freeze clears one)
             a.setdefault(k, np.float64(v))
         a.setdefault("rounding", np.zeros(n))    # (before mon83: no culprit held for rounding)
@@ -357,7 +359,7 @@ class CodeMonitor:
 
     def reset(self) -> None:
         n, w = self.n, self.window
-        self.ref = self.base = self.ref0 = None    # (mon88, ref0: the reference before a first jump)
+        self.ref = self.base = None
         # (cmon82: out2 its blind partner, cmon85 or a second out by drift; Mc / levc the active
         # set's operator and leverages)
         self.out, self.out2 = -1, -1
@@ -602,7 +604,7 @@ class CodeMonitor:
         if first:
             if rng.any():   # not in the code: the served monitor references it late
                 self._flag(NOT_IN_CODE, int(np.argmax(rng)), RANGE)
-            self.ref, self.base, self.ref0 = x.copy(), x.copy(), x.copy()
+            self.ref, self.base = x.copy(), x.copy()
         d = x - self.ref
         if rng.any() and not first:
             rng = self._beyond(x, d, rng)
@@ -650,8 +652,6 @@ class CodeMonitor:
                 other = d[j] - e[j] if judged[j] else np.nan
                 expected = other - self.prev_other[j]
                 offset = step[j] - (expected if np.isfinite(expected) else 0.0)
-                if not self.jumps[j]:
-                    self.ref0[j] = self.ref[j]
                 self.ref[j] += offset
                 d[j] -= offset
                 jumped = j
@@ -692,7 +692,6 @@ class CodeMonitor:
             self._thaw(j, gone, instant)
         due = ~self._active() & ~gone & (self.run == 0) & ~instant & (self.calm >= self.dwell)
         if due.any() and self.count >= self.window:
-            self._field_undoes(due, d)
             for j in np.flatnonzero(self._returning(due)):
                 self.jumps[j], self.froze[j] = 0, False
                 self._readmit(int(j), BACK)
@@ -797,23 +796,6 @@ class CodeMonitor:
         if self.fell:       # the served correction is the fallback's (and its switch back)
             self._flag(NOT_IN_CODE, int(np.argmax(self.fallback)), FALLBACK)
         return v
-
-    def _field_undoes(self, due: np.ndarray, d: np.ndarray) -> None:
-        """(mon88) Of the ``due`` sensors the others predict, out for jumps, those whose
-        reference before the first jump (``ref0``) the field prefers (the mean of the window's
-        errors nearer zero with their jumps undone than kept): undone, as served
-        (``Readmission._field_undoes``); ``d``, the window changed in place."""
-        if not self.a["undo"]:
-            return
-        for j in np.flatnonzero(due & self.predictable & (self.jumps > 0)):
-            shift = self.ref[j] - self.ref0[j]
-            errors = self.err[:, j]
-            level = float(np.mean(errors[np.isfinite(errors)])) if np.isfinite(errors).any() else 0.0
-            if abs(level + shift) < abs(level):
-                self.ref[j] = self.ref0[j]
-                d[j] += shift
-                self.hist[:, j] += shift
-                self.err[:, j] += shift
 
     def _returning(self, due: np.ndarray) -> np.ndarray:
         """Which of the ``due`` sensors come back, judged together as served: those that pass in

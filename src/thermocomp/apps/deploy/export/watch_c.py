@@ -50,7 +50,6 @@ STATE = """    /* the sensor monitor (TC_MONITOR): referenced readings d = u - m
     int mon_froze[NM], mon_off[NM];   /* (freeze84) out for a freeze alone, its readings in a
                                          row off the one it held (mon_held) */
     double mon_held[NM];
-    double mon_ref0[NM];   /* (mon88) the reference before a sensor's first jump since it was in */
     int mon_out;                                /* the sensor out (-1: none) */
     /* (cmon82) its blind partner out with it (-1: none), the active set's operator (MON_M's
        index: now mon_M), out by a drift exclusion, its exclusions so, the calm samples it needs to return,
@@ -97,7 +96,7 @@ def monitor_arrays(ss) -> list[tuple[str, object, tuple, str]]:
                ("MON_GROWTH", "growth", 1.5, "real"), ("MON_NOVEL", "novel", 0, "int"),
                ("MON_BLIND_OUT", "blind_out", 0, "int"), ("MON_THAWED", "thawed", 0, "int"),
                ("MON_BLIND_DROP", "blind_drop", 0, "int"), ("MON_STEPPED", "stepped", 0, "int"),
-               ("MON_UNDO", "undo", 0, "int"), ("MON_CLEARED", "cleared", 0, "int"))
+               ("MON_CLEARED", "cleared", 0, "int"))
     modes = max(int(m.get("modes", 1)), 1)
     return [("MON_M", m.get("M", []), (n + 1 + len(pairs), n, n), "real"),
             ("MON_LEV", m.get("lev", []), (n + 1 + len(pairs), n), "real"),
@@ -344,25 +343,6 @@ static int mon_blind_for_frozen(const tc_state *s, int j, const int trial[]) {
         if (mon_operator(out, M, L) && L[j] < MON_MAX_LEV) return 1;
     }
     return 0;
-}
-
-/* (mon88) the due sensors the others predict, out for jumps, whose reference before the first
-   jump (mon_ref0) the field prefers (the mean of the window's errors nearer zero with their
-   jumps undone than kept): undone, d and the window with them, as served */
-static void mon_field_undoes(tc_state *s, const int due[], double d[]) {
-    int k, w, n;
-    for (k = 0; k < NM; k++) {
-        double shift, level = 0.0;
-        if (!due[k] || !MON_PREDICTABLE[k] || !s->mon_jumps[k]) continue;
-        shift = s->mon_ref[k] - s->mon_ref0[k];
-        for (n = 0, w = 0; w < MW; w++)
-            if (isfinite(s->mon_err[w][k])) level += s->mon_err[w][k], n++;
-        if (n) level /= n;
-        if (!(fabs(level + shift) < fabs(level))) continue;
-        s->mon_ref[k] = s->mon_ref0[k];
-        d[k] += shift;
-        for (w = 0; w < MW; w++) s->mon_hist[w][k] += shift, s->mon_err[w][k] += shift;
-    }
 }
 
 /* re-admission (cmon82: judged together, as served): ok[k] whether sensor k of the set trial
@@ -948,7 +928,7 @@ static void monitor_step(tc_state *s, double u[], double dt) {
         nrng += rng[k];
         if (rng[k] && s->first)   /* (not in the code: the served monitor references it late) */
             mon_flag(s, TC_MON_NOT_IN_CODE, k, TC_MON_RANGE);
-        if (s->first) s->mon_ref[k] = s->mon_base[k] = s->mon_ref0[k] = x[k];
+        if (s->first) s->mon_ref[k] = s->mon_base[k] = x[k];
         d[k] = x[k] - s->mon_ref[k];
     }
     if (nrng && !s->first) {   /* (cmon80) beyond its range: read as missing, or as read */
@@ -1004,7 +984,6 @@ static void monitor_step(tc_state *s, double u[], double dt) {
                 mon_errors(s, d, pred, e);
                 expected = (jd[k] ? d[k] - e[k] : NAN) - s->mon_prev_other[k];
                 offset = step[k] - (isfinite(expected) ? expected : 0.0);
-                if (!s->mon_jumps[k]) s->mon_ref0[k] = s->mon_ref[k];   /* (mon88) */
                 s->mon_ref[k] += offset;
                 d[k] -= offset;
                 jumped = k;
@@ -1072,7 +1051,6 @@ static void monitor_step(tc_state *s, double u[], double dt) {
         for (k = 0; k < NM; k++)
             due[k] = (k == s->mon_out || k == s->mon_out2) && s->mon_run[k] == 0 && !instant[k]
                      && !gone[k] && s->mon_calm[k] >= s->mon_dwell[k];
-        if (MON_UNDO) mon_field_undoes(s, due, d);   /* (mon88) */
         mon_returning(s, due, back);
         for (k = 0; k < NM; k++) {
             if (!back[k]) continue;

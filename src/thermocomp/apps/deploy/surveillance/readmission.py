@@ -14,7 +14,12 @@ with it.  Its return judged against the field kept a healthy column sensor out f
 where an unseen heat source had moved the field off it (bench_freeze83b: E_Y 12.356 µm fixed,
 20.102 served).  A held run broken by one sample that returns to the held value is still a
 hold: a logger stuck but for one step every few samples, taken back on its first changed
-reading, stayed in, stuck, between the freeze's runs (E_Y x1.6-2.9, bench_freeze83c)."""
+reading, stayed in, stuck, between the freeze's runs (E_Y x1.6-2.9, bench_freeze83c).
+
+One out by the field's judgement that no sensor left in predicts comes back, after its calm
+window, where a partner out of the set is frozen by the rule for a sensor no other predicts and
+would predict it (mon88): the error the pair shared is the frozen one's (cr9031's healthy
+``T_nc_cabinet`` had stayed out behind a frozen ``T_amb`` to the campaign's end)."""
 
 from __future__ import annotations
 
@@ -33,7 +38,6 @@ class Readmission:
         thawed = self._thawed(finite, instant, time, events)
         due = ~self._active & finite & (self._run == 0) & (self._calm >= self._dwell)
         due[list(instant)] = False
-        undone = self._field_undoes(due, d) if due.any() else due
         back = self._returning(due) if due.any() else due
         band = self._readmit_c(self._active | back | self._hid) if back.any() else None
         blind = (self._operator(self._active | back)[1] >= self.pod.max_leverage) if back.any() else None
@@ -53,9 +57,6 @@ class Readmission:
                 d[j] += shift
                 self._hist[:, j] += shift
                 why += f"; its {self._jumps[j]} jump(s) undone: the reading returned ({shift:+.3g} °C)"
-            elif undone[j]:
-                why += (f"; its {self._jumps[j]} jump(s) undone: the field reads it at its "
-                        "reference before them")
             self._set_state(j, OK, time, why, events)
             self._jumps[j] = 0
             self._active[j] = True
@@ -64,31 +65,6 @@ class Readmission:
             self._ranged[j] = False
             self._set_operator()
         return bool(back.any()) or thawed
-
-    def _field_undoes(self, due: np.ndarray, d: np.ndarray) -> np.ndarray:
-        """Of the ``due`` sensors the others predict, out for jumps, those whose reference before
-        the first jump (``_ref0``) the field prefers: the mean of the window's errors against the
-        active sensors' field nearer zero with their jumps undone than kept (mon88).  Undone in
-        place (reference, the window's readings and errors, ``d``); which were, returned.
-
-        A jump re-references a sensor by its step less its change as the others predict it, so
-        a step that stays (an offset) is followed; a spike's two jumps cancel but for that
-        prediction's noise, and the noise stays in the reference: lr9171's healthy ``T_col_back``
-        came back from a 3-sample spike 0.276 °C off its field (its half band 0.381), and a second
-        spike's 0.112 °C more kept it out to the record's end (1.73 h).  The field tells the two
-        apart after the outage, as the last good reading does for a sensor no other predicts."""
-        undone = np.zeros(len(due), dtype=bool)
-        for j in np.flatnonzero(due & self._predictable & (self._jumps > 0)):
-            shift = self._ref[j] - self._ref0[j]
-            errors = self._err[:, j]
-            level = float(np.mean(errors[np.isfinite(errors)])) if np.isfinite(errors).any() else 0.0
-            if abs(level + shift) < abs(level):
-                self._ref[j] = self._ref0[j]
-                d[j] += shift
-                self._hist[:, j] += shift
-                self._err[:, j] += shift
-                undone[j] = True
-        return undone
 
     def _thawed(self, finite, instant, time, events) -> bool:
         """Those out for a freeze alone, ``THAW`` readings in a row off the value they held,
@@ -192,9 +168,10 @@ class Readmission:
         out of ``trial`` that is frozen by the rule for a sensor no other predicts (its reading
         constant longer than ``_blind_run``: :meth:`~.faults.InstantFaults._frozen`).
 
-        ``u`` was taken out within its own band (``_hid``, mon85b) for its coupled partner's
-        error; with the partner out too, ``u`` is judged by nothing, and a sensor the others
-        predict with every sensor in never passes blind (:meth:`_pass_once_back`): cr9031's
+        ``u`` was taken out by the field's judgement (as the culprit, or as a blind partner) for
+        an error its coupled partner's fault may make alike; with the partner out too, ``u`` is
+        judged by nothing, and a sensor the others predict with every sensor in never passes
+        blind (:meth:`_pass_once_back`): cr9031's
         healthy ``T_nc_cabinet`` (-0.35 °C in its 0.40 band), taken for a frozen ``T_amb``
         (+0.43 °C, constant for 16 samples, the field 0.39 °C on: short of the freeze rule's
         0.40) and out to the campaign's end while ``T_amb`` read the same value 137 samples.
