@@ -54,16 +54,16 @@ The same shape as test_monitor_frozen_pair77's record (``T_b`` out with the froz
 
 The rules (served ``readmission.py``, the numpy mirror ``watch.py``, the C ``watch_c.py``)
 -----------------------------------------------------------------------------------------
-(A, refused: mon88_rule.patch) ``_field_undoes``: a due sensor the others predict, out for jumps, takes back the reference
-it had before the first of them (``_ref0``) where the mean of its window's errors against the
-active sensors' field is nearer zero with the jumps undone than kept; the field tells a spike
-(the reading returned) from a step that stays, as the last good reading does for a sensor no
-other predicts.  (B) ``_blind_for_frozen``: a sensor out by the field's judgement, blind in the
-re-admission trial only for want of a partner that is out and frozen by the rule for a sensor
-no other predicts (constant longer than ``blind_run``), passes: what it was blamed for is the
-partner's.  Mirror and C: the same, behind the export keys ``undo`` / ``cleared`` (absent: as
-before); the C keeps ``mon_ref0`` (A's, in the patch only).  Work: O(window) per due sensor, a solve per frozen partner
-at a re-admission check.
+(A, refused: mon88_rule.patch) ``_field_undoes``: a due sensor the others predict, out for
+jumps, takes back the reference it had before the first of them (``_ref0``) where the mean of
+its window's errors against the active sensors' field is nearer zero with the jumps undone than
+kept; the field tells a spike (the reading returned) from a step that stays, as the last good
+reading does for a sensor no other predicts. (B) ``_blind_for_frozen``: a sensor out by the
+field's judgement, blind in the re-admission trial only for want of a partner that is out and
+frozen by the rule for a sensor no other predicts (constant longer than ``blind_run``), passes:
+what it was blamed for is the partner's. Mirror and C: the same, behind the export keys ``undo``
+/ ``cleared`` (absent: as before); the C keeps ``mon_ref0`` (A's, in the patch only). Work:
+O(window) per due sensor, a solve per frozen partner at a re-admission check.
 
 Bar (written before scoring the fresh seeds; the two cases were traced and run on this tree
 first)
@@ -121,8 +121,6 @@ Scored: B alone
 
 from __future__ import annotations
 
-import contextlib
-import io
 import json
 import os
 import shutil
@@ -135,6 +133,7 @@ import pandas as pd
 HERE = Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE)]
 from _cli import run_commands, seed_list  # noqa: E402
+from bench_deploy87 import stage  # noqa: E402
 from cpu import cpu_seconds  # noqa: E402
 
 LONG = ("sim=long_record", "sim.generator.duration_days=3.0", "sim.generator.test_fraction=0.2")
@@ -144,20 +143,6 @@ TRACED = {"lr9171": (9171, LONG, ("model=lagbank", "data.reference=none"), False
           "cr9031": (9031, ROOM, ("model=mlr",), True)}
 FRESH = {**{seed: ("lr", LONG, ("data.reference=none",)) for seed in range(9196, 9201)},
          **{seed: ("cr", ROOM, ()) for seed in range(9201, 9206)}}
-
-
-def stage(*args: str) -> tuple[int, str]:
-    """``thermocomp <args>`` in process; (exit status, the last line said on stderr)."""
-    from thermocomp.shell.cli import main
-
-    err = io.StringIO()
-    with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(err):
-        try:
-            rc = main(list(args))
-        except SystemExit as exc:
-            rc = int(exc.code or 0)
-    lines = [x for x in err.getvalue().splitlines() if x.strip()]
-    return rc, lines[-1] if lines else ""
 
 
 def _root(word: str) -> Path:
@@ -221,16 +206,23 @@ def _drawn(name: str, seed: int, sim: tuple, root: Path) -> Path:
     return data
 
 
+def _traced_data(folder: Path, name: str) -> Path:
+    """:data:`TRACED`'s record ``name`` drawn into ``folder`` (cr9031: ``T_amb`` frozen from a
+    third of each test campaign, audit86b's fault)."""
+    seed, sim, _, frozen = TRACED[name]
+    data = _drawn(name, seed, sim, folder)
+    for file in _tests(data) if frozen else ():
+        df = pd.read_csv(data / file)
+        df.loc[len(df) // 3:, "T_amb"] = df.loc[len(df) // 3, "T_amb"]
+        df.to_csv(data / file, index=False)
+    return data
+
+
 def traced(root: str) -> None:
     """The two cases (module doc): replay RMSE and every exclusion / re-admission."""
     folder = _root(root)
     for name, (seed, sim, model, frozen) in TRACED.items():
-        data = _drawn(name, seed, sim, folder)
-        if frozen:
-            for file in _tests(data):
-                df = pd.read_csv(data / file)
-                df.loc[len(df) // 3:, "T_amb"] = df.loc[len(df) // 3, "T_amb"]
-                df.to_csv(data / file, index=False)
+        data = _traced_data(folder, name)
         start = cpu_seconds()
         got = replayed(folder, name, data, model, ("data.reference=none",) if not frozen else ())
         rmse = ", ".join(f"{k} {v:.4f}" for k, v in got["rmse"].items())
@@ -330,13 +322,8 @@ def _pack_rows(root: Path, name: str, data: Path, extra: tuple) -> list[str]:
 def pack(root: str) -> None:
     """lr9171 and cr9031 with its frozen ``T_amb`` through the code (module doc)."""
     folder = _root(root)
-    for name, (seed, sim, _, frozen) in TRACED.items():
-        data = _drawn(name, seed, sim, folder)
-        if frozen:
-            for file in _tests(data):
-                df = pd.read_csv(data / file)
-                df.loc[len(df) // 3:, "T_amb"] = df.loc[len(df) // 3, "T_amb"]
-                df.to_csv(data / file, index=False)
+    for name, (_, _, _, frozen) in TRACED.items():
+        data = _traced_data(folder, name)
         start = cpu_seconds()
         lines = _pack_rows(folder, name, data, () if frozen else ("data.reference=none",))
         print("\n".join(lines) + f"\n  CPU {cpu_seconds() - start:.1f} s", flush=True)
