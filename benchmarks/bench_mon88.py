@@ -114,9 +114,29 @@ fresh seeds, on which B fired on no record under A + B: said)
 tests/shell/test_monitor_readmit88.py); (B2) fresh 9196-9205 as item 2; (B3) = 3; (B4) = 4 on
 cr9031.  KEPT if B1-B4 hold.
 
-Scored: B alone
+Scored: B alone (2026-12-04, fix/mon88 at 3dba4e5a's src; ``fresh /tmp/mon88/fr-B 9196-9205``,
+``traced``, ``pack``; main's figures the runs above)
 ------
-(filled in below after the runs)
+B1. cr9031 (mlr, frozen ``T_amb``): replay E_X / E_Z 2.2553 / 4.0631 -> 2.2061 / 4.0247 µm;
+    ``T_nc_cabinet`` out at C11's 5040 s, back never -> 5700 s (11 samples <= window + confirm
+    = 12: "no detector fired for 11 samples; the others in do not predict it without a partner
+    that is out frozen"), ``T_amb`` out to the end; C10's freeze and C12 as on main.  lr9171 as
+    on main (0.7845 µm, ``T_col_back`` out from 45540 s to the end: A's gap, the strict xfail).
+    MET (cr9031; lr9171 left, as the second bar says).  test_monitor_frozen_pair77's record:
+    ``T_b`` back 10 samples after it went out with the frozen ``T_a`` (the strict xfail asks it
+    never out: still a gap).
+B2. fresh 9196-9205: every record's replay RMSE equal to main's (ratio 1.0000 on all ten), 24 of
+    24 exclusions and every re-admission at main's campaign and time: B fired on none.  On
+    cr9201's C12 ``T_amb`` goes out for its freeze (4740 s) and the planted 1-sample spike on
+    ``T_nc_cabinet`` (7680 s) takes that sensor out for a jump, blind behind the frozen
+    ``T_amb``: out to the end on both trees (B asks an exclusion by the field's judgement; a
+    jump's return blind is A's ground).  MET.
+B3. tests: see the verdict below.
+B4. ``pack`` (``pack /tmp/mon88/pack-B``): cr9031 C10 / C11 / C12 C = served on every row (186 /
+    206 / 239, <= 8.2e-14 µm), pack whole; the export without ``cleared`` parts from this
+    served at C11's row 96 (pack 95 rows): the key is needed.  lr9171 R1b 864 of 864 either
+    way.  gcc -Werror builds.  MET.
+CPU: replay of cr9031 1.3 s (main 1.4 s); the check runs only for a blind sensor due back.
 """
 
 from __future__ import annotations
