@@ -131,12 +131,19 @@ B2. fresh 9196-9205: every record's replay RMSE equal to main's (ratio 1.0000 on
     ``T_nc_cabinet`` (7680 s) takes that sensor out for a jump, blind behind the frozen
     ``T_amb``: out to the end on both trees (B asks an exclusion by the field's judgement; a
     jump's return blind is A's ground).  MET.
-B3. tests: see the verdict below.
+B3. tests (-n 2, OMP_NUM_THREADS=1, in parts): tests/shell/test_export*.py 133 + 132 passed (with
+    test_export_mon88.py); tests/shell/test_monitor*.py (healthy53 among them) + faults71 /
+    keysight70 / lab75 / lab_export53 / bits85 / data86b / replay / adaptive_deploy /
+    test_benchmarks_cli 595 passed, 3 xfailed (two known, readmit88's lr9171 strict xfail);
+    tests/apps/test_monitor*.py + sensor_fallback71 / deployed_as_scored44 / warm_batch59 + this
+    stop's two files 120 passed, 2 xfailed.  The new tests fail on d76bdde2 (readmit88's partner
+    test, export_mon88's C test; their controls pass on both).  MET.
 B4. ``pack`` (``pack /tmp/mon88/pack-B``): cr9031 C10 / C11 / C12 C = served on every row (186 /
     206 / 239, <= 8.2e-14 µm), pack whole; the export without ``cleared`` parts from this
     served at C11's row 96 (pack 95 rows): the key is needed.  lr9171 R1b 864 of 864 either
     way.  gcc -Werror builds.  MET.
 CPU: replay of cr9031 1.3 s (main 1.4 s); the check runs only for a blind sensor due back.
+Verdict: rule A REFUSED (mon88_rule.patch, A + B as scored); rule B KEPT by its second bar.
 """
 
 from __future__ import annotations
