@@ -65,6 +65,10 @@ The served adaptive compensator judges every ``T_`` input before the model reads
   again once it is back.  One the code cannot hold (an arx_rf forest, an lstm network of another
   shape, other inputs or derived inputs, a cascade of lags, a state times the inputs' rises), or an
   export before it (no ``fallback_set``), flags the campaign ``FALLBACK`` from the exclusion on.
+* (mon88) a sensor out by the field's judgement whose return no sensor in trial predicts passes
+  where a partner out, frozen by the rule for one no other predicts (constant longer than
+  ``blind_run``), would predict it (``cleared``), as served (``Readmission._blind_for_frozen``).
+  An export before it (no ``cleared``) keeps it out, as before.
 * (freeze84) a sensor out for a **freeze alone** (no other detector fired on it since) is
   re-admitted once ``THAW`` readings in a row are off the value it held (``THAWED``), judged from
   there as an active one, as served (``Readmission._thawed``).  An export before it (no
@@ -216,7 +220,7 @@ def monitor_fields(deployed, inputs: list) -> dict:
         "drift": 1, "pairs": [list(p) for p in pairs], "new_state": int(mon.new_state),
         "new_state_others": int(mon.new_state_others), "max_backoff": MAX_BACKOFF,
         "tau": EXCURSION_TAU_S, "growth": EXCURSION_GROWTH, "novel": 1, "blind_out": 1, "thawed": 1,
-        "blind_drop": 1, "solve": 1, "stepped": 1, "modes": int(mon.pod.n_modes_),
+        "blind_drop": 1, "solve": 1, "stepped": 1, "cleared": 1, "modes": int(mon.pod.n_modes_),
         "basis": mon.pod.basis_[:, :int(mon.pod.n_modes_)].tolist(),
         "fallback": [int(c in falls) for c in mon.names],
         "rounding": np.broadcast_to(getattr(mon, "rounding_c", 0.0), (n,)).tolist(),
@@ -326,7 +330,8 @@ class CodeMonitor:
                      ("thawed", 0),       # (before freeze84: a freeze's return flagged)
                      ("blind_drop", 0),   # (before cmon84: its missing reading refused)
                      ("solve", 0),        # (before cmon85: only the operators it holds)
-                     ("stepped", 0)):     # (before cmon86: a stepped error flagged)
+                     ("stepped", 0),      # (before cmon86: a stepped error flagged)
+                     ("cleared", 0)):     # (before mon88: no partner's freeze clears one)
             a.setdefault(k, np.float64(v))
         a.setdefault("rounding", np.zeros(n))    # (before mon83: no culprit held for rounding)
         # (before mon86: every set judged by the whole set's bands)
@@ -828,7 +833,24 @@ class CodeMonitor:
         if explains.any():
             judged = trial & ~blind
             ok[explains] = bool((worst[judged] < warn[judged]).all())
+        # (mon88) one out by the field's judgement, blind only for want of a partner out frozen
+        if self.a["cleared"]:
+            for j in np.flatnonzero(trial & blind & self.by_field & ~self.explains & ~self._active()):
+                ok[j] = self._blind_for_frozen(j, trial)
         return ok, worst
+
+    def _blind_for_frozen(self, j: int, trial: np.ndarray) -> bool:
+        """(mon88) Whether a sensor out of ``trial``, frozen by the rule for one no other
+        predicts (constant longer than ``blind_run``), would predict ``j``: as served
+        (``Readmission._blind_for_frozen``)."""
+        frozen = ~trial & ~self._active() & (self.run > self.a["blind_run"])
+        for k in np.flatnonzero(frozen):
+            with_k = trial.copy()
+            with_k[k] = True
+            op = self._operator(~with_k)
+            if op is not None and op[1][j] < self.max_lev:
+                return True
+        return False
 
     # -- (cmon82) the exclusion by judgement (module doc) --------------------------------------
     def _judgement(self) -> None:

@@ -95,7 +95,8 @@ def monitor_arrays(ss) -> list[tuple[str, object, tuple, str]]:
                ("MON_MAX_BACKOFF", "max_backoff", 10, "int"), ("MON_TAU", "tau", 1800.0, "real"),
                ("MON_GROWTH", "growth", 1.5, "real"), ("MON_NOVEL", "novel", 0, "int"),
                ("MON_BLIND_OUT", "blind_out", 0, "int"), ("MON_THAWED", "thawed", 0, "int"),
-               ("MON_BLIND_DROP", "blind_drop", 0, "int"), ("MON_STEPPED", "stepped", 0, "int"))
+               ("MON_BLIND_DROP", "blind_drop", 0, "int"), ("MON_STEPPED", "stepped", 0, "int"),
+               ("MON_CLEARED", "cleared", 0, "int"))
     modes = max(int(m.get("modes", 1)), 1)
     return [("MON_M", m.get("M", []), (n + 1 + len(pairs), n, n), "real"),
             ("MON_LEV", m.get("lev", []), (n + 1 + len(pairs), n), "real"),
@@ -330,6 +331,20 @@ static void mon_exclude(tc_state *s, int k, int rule) {
     if (MON_FALLBACK[k] && !MON_FALLBACK_SET[k]) s->mon_fell = 1;   /* (none in the code) */
 }
 
+/* (mon88) 1: a sensor out of the set trial, frozen by the rule for one no other predicts (its
+   reading constant longer than MON_BLIND_RUN), would predict sensor j (as served) */
+static int mon_blind_for_frozen(const tc_state *s, int j, const int trial[]) {
+    double M[NM][NM], L[NM];
+    int k, m, out[NM];
+    for (k = 0; k < NM; k++) {
+        if (trial[k] || (k != s->mon_out && k != s->mon_out2) || !(s->mon_run[k] > MON_BLIND_RUN[k]))
+            continue;
+        for (m = 0; m < NM; m++) out[m] = !trial[m] && m != k;
+        if (mon_operator(out, M, L) && L[j] < MON_MAX_LEV) return 1;
+    }
+    return 0;
+}
+
 /* re-admission (cmon82: judged together, as served): ok[k] whether sensor k of the set trial
    passes, its leave-one-out error in it over the whole window within MON_READMIT of its warning
    band (one out for a dropout alone: its whole band; one the others in trial cannot predict:
@@ -368,6 +383,11 @@ static void mon_pass_once_back(const tc_state *s, const int trial[], int ok[], d
             for (m = 0; m < NM; m++)
                 if (trial[m] && L[m] < MON_MAX_LEV && !(worst[m] < warn[m])) ok[k] = 0;
         }
+    /* (mon88) one out by the field's judgement, blind only for want of a partner out frozen */
+    for (k = 0; k < NM && MON_CLEARED; k++)
+        if (trial[k] && L[k] >= MON_MAX_LEV && s->mon_by_field[k] && !s->mon_explains[k]
+            && (k == s->mon_out || k == s->mon_out2))
+            ok[k] = mon_blind_for_frozen(s, k, trial);
 }
 
 /* which of the due sensors come back (back[]): those that pass in the set of the active ones

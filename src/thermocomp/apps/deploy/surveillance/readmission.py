@@ -14,7 +14,12 @@ with it.  Its return judged against the field kept a healthy column sensor out f
 where an unseen heat source had moved the field off it (bench_freeze83b: E_Y 12.356 µm fixed,
 20.102 served).  A held run broken by one sample that returns to the held value is still a
 hold: a logger stuck but for one step every few samples, taken back on its first changed
-reading, stayed in, stuck, between the freeze's runs (E_Y x1.6-2.9, bench_freeze83c)."""
+reading, stayed in, stuck, between the freeze's runs (E_Y x1.6-2.9, bench_freeze83c).
+
+One out by the field's judgement that no sensor left in predicts comes back, after its calm
+window, where a partner out of the set is frozen by the rule for a sensor no other predicts and
+would predict it (mon88): the error the pair shared is the frozen one's (cr9031's healthy
+``T_nc_cabinet`` had stayed out behind a frozen ``T_amb`` to the campaign's end)."""
 
 from __future__ import annotations
 
@@ -35,8 +40,9 @@ class Readmission:
         due[list(instant)] = False
         back = self._returning(due) if due.any() else due
         band = self._readmit_c(self._active | back | self._hid) if back.any() else None
+        blind = (self._operator(self._active | back)[1] >= self.pod.max_leverage) if back.any() else None
         for j in np.flatnonzero(back):
-            why = self._why_back(j, band)
+            why = self._why_back(j, band, bool(blind[j]))
             shift = self._ref[j] - self._ref0[j]
             if not self._predictable[j] and (self._jumps[j] > 1 or (
                     self._jumps[j] and abs(d[j] + shift - self._last_good[j])
@@ -74,12 +80,15 @@ class Readmission:
             self._set_operator()
         return bool(back.any())
 
-    def _why_back(self, j: int, band: np.ndarray | None = None) -> str:
+    def _why_back(self, j: int, band: np.ndarray | None = None, blind: bool = False) -> str:
         """The re-admission's reason, as it was judged: a sensor no other predicts is judged by
         no band (calm, or the others' bands where it was out for explaining their errors:
         :meth:`_pass_once_back`), and its reason said "within ±10.4 °C" (stranger80: a screw
         nut's thermocouple after a dropout, its warning band a figure nothing compared)."""
         calm = self._calm[j]
+        if self._predictable[j] and blind:    # (mon88: _blind_for_frozen)
+            return (f"re-admitted: no detector fired for {calm} samples; the others in do not "
+                    "predict it without a partner that is out frozen, whose error it was")
         if self._predictable[j]:
             band = self._readmit_c() if band is None else band
             return f"re-admitted: within ±{band[j]:.3g} °C for {calm} samples"
@@ -145,10 +154,36 @@ class Readmission:
         if explains.any():
             judged = trial & ~blind
             ok[explains] = bool((worst[judged] < warn[judged]).all())
+        # one out by the field's judgement, blind here only for want of a partner that is out
+        # frozen by its own evidence: what it was blamed for is that partner's (mon88)
+        for u in np.flatnonzero(trial & blind & self._by_field & ~self._explains & ~self._active):
+            ok[u] = self._blind_for_frozen(u, trial)
         # one no other predicts, out of range: calm is no evidence its reading is true again
         for u in np.flatnonzero(ok & ~self._active & ~self._predictable & self._ranged):
             ok[u] = self._leak_passes(u, trial, H, M, lev)
         return ok, worst
+
+    def _blind_for_frozen(self, u: int, trial: np.ndarray) -> bool:
+        """Whether ``u``, no other in ``trial`` predicting it, would be predicted with a sensor
+        out of ``trial`` that is frozen by the rule for a sensor no other predicts (its reading
+        constant longer than ``_blind_run``: :meth:`~.faults.InstantFaults._frozen`).
+
+        ``u`` was taken out by the field's judgement (as the culprit, or as a blind partner) for
+        an error its coupled partner's fault may make alike; with the partner out too, ``u`` is
+        judged by nothing, and a sensor the others predict with every sensor in never passes
+        blind (:meth:`_pass_once_back`): cr9031's
+        healthy ``T_nc_cabinet`` (-0.35 °C in its 0.40 band), taken for a frozen ``T_amb``
+        (+0.43 °C, constant for 16 samples, the field 0.39 °C on: short of the freeze rule's
+        0.40) and out to the campaign's end while ``T_amb`` read the same value 137 samples.
+        The partner's own freeze clears it; the partner comes back as before (judged with it
+        once its reading moves)."""
+        frozen = ~trial & ~self._active & (self._run > self._blind_run)
+        for k in np.flatnonzero(frozen):
+            with_k = trial.copy()
+            with_k[k] = True
+            if self._operator(with_k)[1][u] < self.pod.max_leverage:
+                return True
+        return False
 
     def _leak_passes(self, u: int, trial: np.ndarray, H: np.ndarray, M: np.ndarray,
                      lev: np.ndarray) -> bool:

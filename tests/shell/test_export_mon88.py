@@ -1,0 +1,60 @@
+"""The exported C follows mon88's re-admission as served (benchmarks/bench_mon88.py ``pack``): a
+sensor out by the field's judgement, blind only for want of a partner out frozen, comes back
+(``cleared``).  The record is tests/shell/test_monitor_readmit88.py's cr9031 (MLR) with
+``T_amb`` frozen from a third of C11."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+import pytest
+
+from test_export import built_stream, needs_cc
+from test_export_cmon80 import _streamed
+from test_monitor_readmit88 import ROOM, deployed_record, frozen_amb
+from thermocomp.apps.deploy.export import Simulator, exported_files, state_space
+from thermocomp.apps.deploy.export.pack import conformance_pack, corrections, fed
+from thermocomp.apps.deploy.report import stream_rows
+
+
+@pytest.fixture(scope="module")
+def room(tmp_path_factory):
+    """``(deployed, ss, {C11: frame with T_amb frozen}, {})`` of cr9031."""
+    deployed, ds, _ = deployed_record(tmp_path_factory.mktemp("cr9031") / "data", ROOM)
+    return (deployed, state_space(deployed, monitor=True),
+            {"C11": frozen_amb(ds.campaigns["C11"].reset_index(drop=True))}, {})
+
+
+def _mirror_out(ss, frame) -> list[str]:
+    """The sensors the numpy mirror holds out after ``frame``'s last row."""
+    sim = Simulator(ss)
+    sim.reset()
+    for u, t in zip(frame[ss.inputs].to_numpy(float), frame["time"]):
+        sim.step(u, t)
+    names = [ss.inputs[i] for i in ss.monitor["inputs"]]
+    return [names[k] for k in (sim.watch.out, sim.watch.out2) if k >= 0]
+
+
+@needs_cc
+def test_the_code_brings_the_healthy_sensor_back_as_served(room, tmp_path):
+    deployed, ss, tests, leads = room
+    (cid, campaign), = tests.items()
+    frame = fed(campaign, leads.get(cid))
+    want = corrections(ss, stream_rows(deployed, frame, cid).y)
+    assert _mirror_out(ss, frame) == ["T_amb"]
+    files, summary = conformance_pack(deployed, ss, tests, leads)
+    entry = next(e for e in summary["campaigns"] if e["campaign"] == cid)
+    assert entry["cut"] is None and entry["rows"] == len(frame)
+    stream = built_stream(tmp_path, {**exported_files(deployed, "c"), **files})
+    c, said = _streamed(stream, frame, ss.inputs)
+    assert c.shape == want.shape and np.max(np.abs(c - want)) < 1e-9        # every row
+    assert "not in the code" not in said
+
+
+def test_an_export_before_mon88_keeps_it_out_as_before(room):
+    """Arrays without ``cleared``: the mirror as before (the healthy sensor kept out)."""
+    deployed, ss, tests, leads = room
+    old = dataclasses.replace(ss, monitor={k: v for k, v in ss.monitor.items() if k != "cleared"})
+    (cid, campaign), = tests.items()
+    assert sorted(_mirror_out(old, fed(campaign, leads.get(cid)))) == ["T_amb", "T_nc_cabinet"]
