@@ -63,9 +63,52 @@ REFUSED: src reverted, this bench and ``diag88c_rule.patch`` kept).  Main = fbc8
    2 % above main's after, and the clean draws accept nothing on any target.
 5. tests/apps/test_diag*.py and tests/shell/test_diag*.py pass with the rule (in parts, -n 2).
 
-Scored
-------
-(pending)
+Scored, rule 1 (2026-12-04, 2 cores shared by seven helpers; main = fbc89e18's src and conf, ``git
+archive``; rule 1 = c2161242's src, now ``diag88c_rule1.patch``; CPU of the bench processes main /
+rule: seen 16.1 / 15.9 s, faults 19.3 / 18.4 s, zeroed 4.7 / 4.8 s)
+------------------------------------------------------------------------------------------------
+Test RMSE as deployed (µm), before -> after (accepted), every row where main and rule 1 differ::
+
+  row                          before  main                               rule 1
+  lag:8980 E_X, E(0)=0 (item 1) 2.1791 2.1791 nothing                     0.4886 T_box1 14400 s +init (3)
+  lag:9235 E_X (item 2)        1.9598  1.9598 nothing                     0.7444 T_box1 14400 s +init (2)
+  planted:8885 E_Z (seen)      6.0040  6.0040 nothing                     6.6377 T_nose 14400 s +init (3)
+                                                                          (+10.6 %)
+  planted:9150 E_Z (seen)      5.1714  5.1714 nothing                     5.4053 T_box2 3600 s +init (3)
+                                                                          (+4.5 %)
+  planted:9103 E_Z (seen)      4.766   4.766 nothing                      3.226 S_spindle_rpm 14400 s lag
+  lag:9258 E_Z (fresh)         4.503   4.503 nothing                      3.888 T_box1 14400 s +init (3)
+  lag:9259 E_X (fresh)         1.765   0.781 T_box1 14400 s +init (3)     0.741 T_box1 14400 s +init (2)
+
+Identical: every other SEEN row (the six spurious start lags as main's, 959, planted:6, 5687, the
+positions), lag:8980 as shipped (0.8053), climate_room's rows, the other 28 FRESH rows (clean
+9251-9255 accept nothing in both; planted 9256 / 9257 find the position in both).
+
+1. **Holds** (2.1791 -> 0.4886).  2. **Holds** (1.960 -> 0.744).  3. **Fails**: planted:8885 E_Z
++10.6 %, planted:9150 E_Z +4.5 %.  4. **Holds** (no FRESH row worse; 2 better; clean nothing).
+5. Not run in full (refused on item 3); the new test passes with rule 1 and fails on main.
+**Rule 1 REFUSED** (item 3).
+
+Why (``trace planted:8885 E_Z`` / ``planted:9150 E_Z``, SEEN): on both the round's best gain is the
+ambient law (model inputs x (ambient_c0 - 20 °C), 10 regressors: 81.2 % / 80.3 %, p_fam 0.0039),
+refused ONLY by saturation.  Kept as a rival it vetoes the 3-direction start lags that clear
+(T_nose 14400 s 36.7 %, T_box2 3600 s 29.7 %) -- stand-ins of another explanation, as
+:func:`choose`'s stand-in rule says; taken, they raise the test error.  So a saturated rival is
+not evidence-free: what it vetoes wrongly on 8980 / 9235 is a start lag of ONE input, where the
+rival is the SAME effect read from every input (a lag of the model inputs from the initial
+state), not another explanation.
+
+Rule 2 (designed from the SEEN traces above, after rule 1's FRESH score was seen: the FRESH seeds
+9251-9260 are spent once already, said plainly; src: ``search._same_effect``)
+-----------------------------------------------------------------------------------------------
+:func:`choose`'s same-effect exemption (pde66: an uncleared richer read of the same effect does
+not veto the leaner one that clears) covers a rival read from EVERY model input (``column``
+None: the lag of the model inputs, ``lowpass_inputs``) against a candidate of the same kind
+traced to one column (a lag of one input, ``first_order_lag``): the same effect read with fewer
+regressors.  Every other uncleared rival keeps its veto (the ambient law above, of another kind,
+still keeps the start lags out).  Rule 1's saturation filter is dropped.
+
+The bar for rule 2 is rule 1's, items 1-5 unchanged, written before any score of rule 2.
 """
 
 from __future__ import annotations

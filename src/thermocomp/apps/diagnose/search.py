@@ -288,9 +288,14 @@ def choose(eligible: list, rivals: list = ()) -> list:
 
 
 def _same_effect(ev, other) -> bool:
-    """The same kind of effect traced to the same column (a richer or leaner transform of it)."""
-    return (ev.effect.column is not None
-            and (ev.effect.kind, ev.effect.column) == (other.effect.kind, other.effect.column))
+    """The same kind of effect traced to the same column (a richer or leaner transform of it), or
+    to one column where ``other`` reads every model input (``column`` None: the lag of the model
+    inputs against the lag of one of them).  Read from every input, the lag from the initial
+    state (12 regressors on 8 train campaigns, CV gain 76.3 %, refused: it saturates) kept
+    T_box1's start lag, which cleared every check (74.7 %), out of lag:8980 E_X: nothing
+    accepted, test 2.18 µm, 0.49 with it (``benchmarks/bench_diag88c.py``)."""
+    return (ev.effect.column is not None and ev.effect.kind == other.effect.kind
+            and other.effect.column in (ev.effect.column, None))
 
 
 def _orthonormal(Z: np.ndarray) -> np.ndarray:
@@ -502,18 +507,6 @@ class Search:
         trained = self.problem.units_trained
         return trained is not None and n_features + 1 >= trained
 
-    def _rivals(self, evals: list[Evaluation]) -> list[Evaluation]:
-        """The refitted candidates the one-SE choice measures from (:func:`choose`): all but those
-        the saturation check refuses (:meth:`_clears`).  Such a candidate's CV gain is what that
-        check says cannot be read as an effect, so it is no other explanation of the residual
-        either.  Kept as a rival, the lag of every input from the initial state (12 regressors on
-        8 train campaigns, CV gain 76.3 %, refused) set the limit on lag:8980 E_X, and T_box1's
-        start lag, which cleared every check (74.7 %, 4 regressors), fell outside it: nothing
-        accepted, test 2.18 µm where the start lag takes it to 0.57 (``bench_diag88c.py``)."""
-        if self.problem.shared_ranked:
-            return evals
-        return [ev for ev in evals if not self.saturates(ev.n_features)]
-
     def _bank_untestable(self, n_inputs: int) -> bool:
         """True when a state times the rises of all ``n_inputs`` inputs (``inputs_product``) cannot
         clear: one test block per CV unit on the shared design (:attr:`~.cv.Problem.shared_ranked`,
@@ -578,7 +571,7 @@ class Search:
             control = next((ev for ev in evals if ev.control), None)
             bar = control.gain if control is not None else -np.inf
             eligible = choose([ev for ev in evals if ev.clears_bar and not ev.control and ev.gain > bar],
-                              rivals=self._rivals(evals))
+                              rivals=evals)
             screened = [{"kind": e.kind, "column": e.column, "transform": e.label,
                          "screen_r2": r2} for e, r2 in sorted(
                              (s for s in scored if np.isfinite(s[1])), key=lambda s: -s[1])[:20]]
