@@ -272,7 +272,8 @@ def choose(eligible: list, rivals: list = ()) -> list:
     at 66 % CV gain, family-wise p 3e-5; the position x every input's rise, 16 regressors,
     gained 70 % but saturates 15 campaigns and did not clear; measured from it, nothing was
     accepted and E_Y kept 11.0 µm): such a candidate is the same effect, read with fewer
-    regressors, and stays eligible.
+    regressors, and stays eligible -- so is one input's lag where the best rival is the lag of
+    every model input (:func:`_same_effect`; an ambient law, another kind, keeps its veto).
     """
     faults = [ev for ev in eligible if ev.effect.transform == "remove"]
     rest = [ev for ev in eligible if ev.effect.transform != "remove"]
