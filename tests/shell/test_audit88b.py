@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import json
 
+import pytest
 import yaml
 
 from conftest import ROOT
@@ -51,19 +52,34 @@ def _keys(node, campaigns: set[str], targets: set[str]) -> set[str]:
     return out
 
 
-def test_every_key_of_a_runs_metrics_json_is_named_in_the_cli_reference(short_dataset, tmp_path):
-    # written and not listed: mutual_prediction.<t>.max_models, ati's improvement_pct
-    # sm_vs_warmest / sd_vs_warmest (the list ended in "…")
+@pytest.fixture(scope="module")
+def run_out(short_dataset, tmp_path_factory):
+    """The folder of a `run` on the short record, every report but the figures."""
     from conftest import UNTRACKED, thermocomp
 
-    out = tmp_path / "out"
+    out = tmp_path_factory.mktemp("audit88b") / "out"
     thermocomp("run", f"data.path={short_dataset}", f"out={out}", *UNTRACKED, "plots=none")
+    return out
+
+
+def test_every_key_of_a_runs_metrics_json_is_named_in_the_cli_reference(run_out):
+    # written and not listed: ati's improvement_pct sm_vs_warmest / sd_vs_warmest (the list
+    # ended in "…")
+    out = run_out
     metrics = json.loads((out / "metrics.json").read_text())
     campaigns = set(json.loads((out / "ingest_report.json").read_text())["campaigns"])
     keys = _keys(metrics, campaigns, set(metrics["targets"]))
     assert {"max_models", "sm_vs_warmest", "iso10791_a3", "anova"} <= keys   # the whole report
     unnamed = sorted(k for k in keys if f"`{k}`" not in CLI)
     assert not unnamed, f"metrics.json keys docs/cli.md does not name: {unnamed}"
+
+
+def test_the_settings_of_an_ingest_report_are_data_config_keys(run_out):
+    # `order_in_rows`, an internal reading option (no data config key), was written among them
+    conf = yaml.safe_load((ROOT / "conf" / "data" / "default.yaml").read_text())
+    keys = set(conf) - {"join"} | {f"join_{sub}" for sub in conf["join"]}   # read as two fields
+    settings = json.loads((run_out / "ingest_report.json").read_text())["settings"]
+    assert set(settings) - keys == set()
 
 
 def test_every_metric_a_run_logs_to_mlflow_is_named_in_the_cli_reference():
