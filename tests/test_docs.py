@@ -315,16 +315,6 @@ def test_the_make_targets_said_to_install_every_extra_do():
     assert named and named <= installing, f"install.md: {sorted(named - installing)} do not run make install"
 
 
-def test_a_config_searchpath_the_docs_give_is_absolute():
-    # to-the-machine.md gave `hydra.searchpath=[file://init/conf]`: Hydra reads it from the
-    # current folder, so typed anywhere but the project root the data config is not found
-    given = [(doc.name, path) for doc in DOCS
-             for path in re.findall(r"searchpath=\[file://([^\]]*)\]", doc.read_text())]
-    assert given
-    relative = [(name, path) for name, path in given if not path.startswith(("/", "$PWD", "<", "…", "..."))]
-    assert not relative, f"a relative searchpath: {relative}"
-
-
 def test_every_flag_of_the_command_is_in_the_cli_reference():
     # cli.md, "every command, override group, output file and key", named no -q, -v, --version
     from thermocomp.shell.cli import LOG_FLAGS

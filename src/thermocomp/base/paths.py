@@ -54,16 +54,6 @@ def conf_dir() -> Path:
     return project_root() / "conf"
 
 
-def rooted_override(arg: str) -> str:
-    """``hydra.sweep.dir=`` / ``hydra.run.dir=`` with a relative value, rooted at the project root:
-    Hydra makes those folders relative to the current directory (a sweep started elsewhere wrote
-    its jobs there, and its sweep.json here)."""
-    for key in ("hydra.sweep.dir=", "hydra.run.dir="):
-        if arg.startswith(key) and not os.path.isabs(os.path.expanduser(arg[len(key):])):
-            return f"{key}{resolve(arg[len(key):])}"
-    return arg
-
-
 def overlap(output: Path, source: Path) -> str | None:
     """How ``output`` overlaps ``source``: ``is``, ``lies inside`` or ``holds``; None if apart."""
     if output == source:

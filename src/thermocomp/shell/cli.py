@@ -28,11 +28,11 @@ from ..base.errors import closest
 from ..base.extras import missing
 from ..base.lifetime import collect_less, end_left_threads, end_local_workers
 from ..base.log import version
-from ..base.paths import elsewhere_hint, resolve, rooted_override
+from ..base.paths import elsewhere_hint, resolve
 from .config import overrides
 from .config.commands import COMMANDS, groups_of, register, root_name
 from .config.overrides import config_errors as _config_errors
-from .config.overrides import lenient
+from .config.overrides import lenient, rooted_override
 from .resolvers import scenario_dataset
 
 # `${root:reports/x}` in the config: the path under the project root (Hydra's own folders).  At

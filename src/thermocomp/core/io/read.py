@@ -137,7 +137,7 @@ MIN_ROWS = 2  # the first sample is the reference: one more is needed to have an
 MAX_GRID_ROWS = 5_000_000
 _READ_ATTEMPTS = 5
 # ReadOptions fields that are no data config key
-INTERNAL = ("missing", "skip_rows", "data_bytes", "drop_bytes", "half")
+INTERNAL = ("missing", "skip_rows", "data_bytes", "drop_bytes", "half", "order_in_rows")
 DEAD_ROLES = ("E", "T")   # columns said when constant over a whole campaign (a dead channel)
 
 

@@ -14,11 +14,12 @@ from __future__ import annotations
 import difflib
 import functools
 import itertools
+import os
 import re
 
 from ...base.errors import ConfigError, closest
 from ...base.extras import missing
-from ...base.paths import conf_dir
+from ...base.paths import conf_dir, resolve
 from .commands import MODEL_KEYS, READ_ONLY_BY, groups_of, register, root_name
 
 # Objects built from `_target_`: `~key` of an argument leaves the constructor's default.
@@ -29,6 +30,9 @@ FREE_MAPS = ("data.columns", "data.units", "data.split_overrides", "data.derive"
              "design.studies", "model.candidate_defaults")
 # Another primary config or config folder would escape the check of what Hydra builds.
 CONFIG_FLAGS = ("-cp", "--config-path", "-cn", "--config-name", "-cd", "--config-dir")
+# Hydra's own folders, read from the current directory by Hydra; thermocomp roots them.
+ROOTED_FOLDERS = ("hydra.sweep.dir", "hydra.run.dir")
+SEARCHPATH = "hydra.searchpath"
 MAX_CHECKED_JOBS = 100   # jobs of a grid sweep composed up front (~0.1-0.3 s each)
 
 
@@ -125,6 +129,41 @@ def lenient(args: list[str]) -> list[str]:
         else:
             out.append(arg)
     return out
+
+
+def rooted_override(arg: str) -> str:
+    """``arg`` with Hydra's own relative folders rooted at the project root, as every relative
+    path thermocomp takes is (outputs.md): ``hydra.sweep.dir`` / ``hydra.run.dir`` and each
+    ``file://`` entry of ``hydra.searchpath``.  Hydra reads them from the current directory, so a
+    sweep started elsewhere wrote its jobs there (and its sweep.json here), and a lab's
+    ``hydra.searchpath=[file://conf_lab]`` typed in a subfolder was not found (audit88)."""
+    from hydra.core.override_parser.types import Quote, QuotedString
+
+    o = parse(arg)
+    if o is None or o.key_or_group not in (*ROOTED_FOLDERS, SEARCHPATH):
+        return arg
+    value = o.value()       # a sweep over folders (a,b) is left to Hydra, as typed
+    if o.key_or_group in ROOTED_FOLDERS:
+        rooted = _rooted(value) if isinstance(value, str) else value
+    elif isinstance(value, list):
+        rooted = [f"file://{_rooted(e[len('file://'):])}"
+                  if isinstance(e, str) and e.startswith("file://") else e for e in value]
+    else:
+        rooted = value
+    if rooted == value:
+        return arg
+    quoted = [QuotedString(text=str(e), quote=Quote.single).with_quotes()
+              for e in (rooted if isinstance(rooted, list) else [rooted])]
+    key = arg.partition("=")[0]                 # as typed, with its + or ++
+    return f"{key}=[{','.join(quoted)}]" if isinstance(rooted, list) else f"{key}={quoted[0]}"
+
+
+def _rooted(path: str) -> str:
+    """``path`` under the project root where it is relative; an absolute one, ``~/...`` and
+    one an interpolation builds (``${root:...}``, ``${oc.env:...}``) as given."""
+    if path.startswith("${") or os.path.isabs(os.path.expanduser(path)):
+        return path
+    return str(resolve(path))
 
 
 def refuse(args: list[str]) -> None:
