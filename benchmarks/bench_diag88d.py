@@ -30,6 +30,38 @@ The bar (the brief's; written here before any run of either tree on these seeds;
    ``interaction`` on S_pos_Y for E_Y) on every planted draw pre finds it on.
 
 Failing any item: the rows are reported and the lead decides (no src change here either way).
+
+Scored (2026-12-04, after the bar above; 2 cores shared by seven helpers; CPU of each ``fresh``
+process 15.3 s main / 15.1 s pre, diagnose 10.4 s in both: the rule costs nothing)
+-------------------------------------------------------------------------------------------------
+Test RMSE as deployed (µm), E_X, the only (draw, target) rows where main and pre differ::
+
+  row           before (no effect)  pre (cfee3705)                      main (f613a8fd)
+  lag:9268 E_X  1.3178              1.3178 nothing                      0.6631 T_box1 14400 s +init (2)
+                                                                        (-49.7 %)
+  lag:9269 E_X  1.6683              1.6683 nothing                      0.7263 T_box1 14400 s +init (2)
+                                                                        (-56.5 %)
+  lag:9270 E_X  2.2005              1.2836 T_box1 14400 s +init (3)     1.3731 T_box1 14400 s +init (2)
+                                                                        (+7.0 %)
+
+Identical in both trees: the other 27 rows.  Clean 9261-9264 accept nothing on any target (12
+rows); planted 9266 / 9267 find the position on E_Y (2.888 -> 1.783, 2.367 -> 1.727), planted 9265
+finds it in neither (E_Y 3.558, nothing accepted); every lag draw's E_Y / E_Z accepts nothing; no
+control clears; no row above diagnose's own before in either tree.
+
+1. **Fails** on one row: lag:9270 E_X, main 1.3731 against pre's 1.2836 (+7.0 %; still -37.6 %
+   against diagnose's before, 2.2005).  2. **Holds** (clean: nothing).  3. **Holds** (9266 / 9267
+   found in both, 9265 in neither).  The bar fails; no src change here: the lead decides.
+
+Why lag:9270 (``bench_diag88c.py trace lag:9270 E_X``, both trees, round 1 identical): the lag of
+every model input from the initial state, 3 directions, gains most (62.3 %) and does not clear;
+T_box1's start lag clears with 3 directions (61.4 %) and with 2 (60.5 %).  pre: the uncleared
+all-inputs lag is a rival and the choice is T_box1 (3 directions).  main: that rival is now the
+same effect (rule 2), so the one-SE choice is among the cleared T_box1 reads and takes the leaner
+2 directions; round 2's CV 0.7709 (pre) -> 0.7878 (main), test +7.0 %.  The same 3 -> 2 swap made
+diag88c's fresh lag:9259 E_X better (0.781 -> 0.741): the direction count the one-SE choice lands
+on is what moves these rows, not whether a start lag is taken.  Over the three lag draws' E_X
+main's after sums to 2.763 against pre's 4.270.
 """
 
 from __future__ import annotations
