@@ -1,5 +1,7 @@
 """Diagnose's one-standard-error choice: an uncleared lag of every model input does not veto a lag
-of one of them that clears (rule 2, KEPT); rule 1, a saturated candidate no rival, REFUSED (stop
+of one of them that clears (rule 2: kept by this bench, then REFUSED by its re-score on unspent
+draws, bench_diag88d: lag:9270 E_X +7.0 %; src reverted, diag88c_rule2.patch); rule 1, a saturated
+candidate no rival, REFUSED (stop
 88, diag88c; issue 34: "diagnose accepts a planted position effect with 8 train campaigns, accepts
 nothing on clean data, and never leaves a record's test error more than 2 % worse").
 
@@ -131,7 +133,10 @@ vetoing ambient law dropped, which rule 2 keeps).
 got 0.878).  3. **Holds** (no SEEN row differs).  4. **Holds** (no FRESH row worse, one 5.2 %
 better, clean accept nothing; the seeds were scored once before, by rule 1, said above).
 5. **Holds**: tests/apps/test_diag*.py 75 passed, tests/shell/test_diag*.py 56 passed (-n 2).
-**Rule 2 KEPT.**  Tests (tests/apps/test_diagnose_rivals88.py, both fail on fbc89e18): the
+**Rule 2 KEPT by this bench; REFUSED after bench_diag88d** (re-scored on unspent seeds 9261-9270
+with the same bar: lag:9268 E_X -49.7 %, lag:9269 -56.5 %, lag:9270 +7.0 % > 2 %; the lead kept the
+bar: src reverted, the rule and its tests in diag88c_rule2.patch).  Tests (in the patch:
+tests/apps/test_diagnose_rivals88.py, both fail on fbc89e18): the
 zeroed 8980 draw takes T_box1's start lag past its saturated all-inputs rival (test < half of
 before); :func:`choose` lets a lag of one input past a lag of every input, not past an ambient law.
 
