@@ -175,8 +175,7 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
                  max_seconds: float | None = None, min_gain_pct: float = 1.0, chosen=None,
                  val_scores=None, given_scores=None, combine: str = "vote", keep_oof: bool = False,
                  one_record: str = "forward", validation_rows: str = "all",
-                 uncompensated: str = "zero", fallback: str = "one_se", ati_refinements=()):
-        self.ati_refinements = ati_refinements
+                 uncompensated: str = "zero", fallback: str = "one_se"):
         self.fallback = fallback
         self.uncompensated = uncompensated
         self.validation_rows = validation_rows
@@ -216,10 +215,7 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
             from .linear import MLR
 
             runs[BASELINE] = MLR()
-        self.refined_, self.fold_intervals_ = {}, {}
         for name, est in runs.items():
-            if name in self._refinements():      # validated after the blend, where it keeps ati
-                continue
             why = _not_applicable(name, context, groups) or _same_as(name, est, runs, context,
                                                                       len(y))
             if why is None:
@@ -246,10 +242,10 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
                                                  for fit, _, score in folds])
         members = [n for n in self.candidates if n in self.oof_]
         if self.combine == "vote" and len(members) > 1 and BASELINE in self.oof_:
-            return self._blend(X, y, context, members, how, folds)
+            return self._blend(X, y, context, members, how)
         return self._keep_best(X, y, context, None, how)
 
-    def _blend(self, X, y, context, members: list, how: str, folds: list):
+    def _blend(self, X, y, context, members: list, how: str):
         """Keep the blend of ``members`` the folds vote for.  MLR, a candidate, gets the votes
         of the resamples it wins and the doubted part of the others' (``vote_weights``'s
         ``base_column``), which is its tie-break here (min_gain_pct is ``best``'s: a gate on the
@@ -277,61 +273,8 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         predicted = preds @ w
         if self._one_se(predicted, rows, base):
             blended, predicted = self.validation_[BASELINE], self.oof_[BASELINE]
-        elif self.weights_.get(ATI, 0.0) > 0 and self._refine_ati(X, y, context, folds, rows):
-            predicted = sum(v * self.oof_[n] for n, v in self.weights_.items())
-            blended = rmse(self.oof_y_ - predicted)
         self._none_unless_better(blended, predicted)
         return self._refit(X, y, context)
-
-    def _refinements(self) -> list:
-        """The ``ati_refinements`` among the candidates (a list of candidates without them, e.g.
-        ``model.candidates=[mlr,ati]``, has none); each must be an ``ati+<family>``."""
-        for name in self.ati_refinements or ():
-            if not str(name).startswith(ATI + "+"):
-                raise ParameterError(f"model.estimator.ati_refinements: {name!r} is not an "
-                                     "ati+<family> candidate")
-        return [n for n in self.ati_refinements or () if n in (self.candidates or {})]
-
-    def _refine_ati(self, X, y, context, folds: list, rows: np.ndarray) -> bool:
-        """``ati_refinements`` (extension, auto88): where the blend keeps ``ati`` (ATI of MLR),
-        each ``ati+<family>`` is validated on the same folds with the interval count ``ati``'s
-        elbow chose in that fold (its own elbow refits the family per held-out campaign: on
-        cr9012's 43 runs ati+lagbank took auto from 12 to 81 s, auto87), and the one whose
-        per-fold squared error over ati's has the lowest mean r takes ati's whole share where
-        r + se < 1 (the one-SE rule against ati, as ``fallback='one_se'`` against MLR): a lag
-        family inside the intervals only where the folds are surely in its favour.  Offered as
-        candidates beside ``ati``, the folds handed E_Z of cr9080 to ati+lagbank where ati alone
-        was right (test 1.081 against 0.792, auto87).  True where one took ati's share."""
-        best = None
-        for name in self._refinements():
-            why = self._validate(name, self.candidates[name], X, y, context, folds,
-                                 self.fold_intervals_[ATI])
-            if why is not None:
-                self.skipped_[name] = why
-                continue
-            r = fold_ratios((self.oof_y_[rows] - self.oof_[name][rows]) ** 2,
-                            (self.oof_y_[rows] - self.oof_[ATI][rows]) ** 2, self.oof_fold_[rows])
-            if r.size < 2:
-                continue
-            mean, se = float(np.mean(r)), float(np.std(r, ddof=1) / np.sqrt(r.size))
-            self.reason_ += (f"; {name} (ati's intervals per fold) over ati: mean fold MSE ratio "
-                             f"{mean:.4g} ± {se:.4g} ({r.size} folds)")
-            if mean + se < 1.0 and (best is None or mean < best[1]):
-                best = (name, mean)
-        if best is None:
-            return False
-        share = self.weights_.pop(ATI)
-        self.weights_[best[0]] = self.weights_.get(best[0], 0.0) + share
-        self.refined_[best[0]] = self._with_ati_intervals(best[0], X, y, context)
-        self.family_ = max(self.weights_, key=self.weights_.get)
-        self.chosen_ = self.family_ if len(self.weights_) == 1 else dict(self.weights_)
-        self.reason_ += f": {best[0]} takes ati's share {share:.2f} (surely below ati by one SE)"
-        return True
-
-    def _with_ati_intervals(self, name: str, X, y, context):
-        """Candidate ``name`` with the interval count ``ati``'s elbow chooses on every training row."""
-        n = _elbow_count(clone(self.candidates[ATI]).fit(X, y, context=context))
-        return clone(self.candidates[name]).set_params(n_intervals=n)
 
     def _one_se(self, predicted: np.ndarray, rows: np.ndarray, base: int | None) -> bool:
         """``fallback='one_se'``: keep MLR alone where the folds are not surely in favour of the
@@ -400,10 +343,9 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
 
     def _estimator(self, chosen):
         """The unfitted candidate named by ``chosen``, or the blend its weights make."""
-        pick = {**self.candidates, **getattr(self, "refined_", {})}
         if isinstance(chosen, str):
-            return clone(pick[chosen])
-        return Blend({n: pick[n] for n in chosen}, dict(chosen))
+            return clone(self.candidates[chosen])
+        return Blend({n: self.candidates[n] for n in chosen}, dict(chosen))
 
     def _keep_best(self, X, y, context, given, how: str):
         """Choose among the validated candidates (``given``: scores from elsewhere) and refit."""
@@ -482,17 +424,12 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
             return LeaveBlockOut(self.n_folds, start, self.gap_blocks).folds(n)
         return BlockedForward(self.n_folds, self.min_train_fraction, self.gap_blocks).folds(groups, n)
 
-    def _validate(self, name, est, X, y, context, folds, counts=None) -> str | None:
-        """Record ``name``'s pooled validation RMSE; the reason when it cannot be validated.
-        ``counts``: per fold, the ATI interval count ``est`` is fitted with (``_refine_ati``);
-        ``ati``'s own elbow counts are kept in ``fold_intervals_``."""
+    def _validate(self, name, est, X, y, context, folds) -> str | None:
+        """Record ``name``'s pooled validation RMSE; the reason when it cannot be validated."""
         residual, predicted, t0 = [], [], time.perf_counter()
-        for k, (fit, pred, score) in enumerate(folds):
+        for fit, pred, score in folds:
             try:
-                model = clone(est) if counts is None else clone(est).set_params(n_intervals=counts[k])
-                model = model.fit(X[fit], y[fit], context=subset(context, fit))
-                if name == ATI:
-                    self.fold_intervals_.setdefault(name, []).append(_elbow_count(model))
+                model = clone(est).fit(X[fit], y[fit], context=subset(context, fit))
                 yhat = np.asarray(model.predict(X[pred], context=subset(context, pred)), float)
             except (ValueError, ArithmeticError, np.linalg.LinAlgError) as exc:
                 return f"cannot fit: {' '.join(str(exc).split())}"
@@ -574,13 +511,6 @@ def in_range_rows(in_range: np.ndarray, fold: np.ndarray, min_rows: int = MIN_IN
     if np.unique(fold[keep]).size < 2:
         return np.ones(len(fold), bool)
     return keep
-
-
-def _elbow_count(ati) -> int:
-    """The interval count a fitted ATI model's elbow chose (before thin intervals merged), or the
-    count it kept: what a copy fitted with ``n_intervals`` = it rebuilds, interval for interval."""
-    elbow = getattr(ati, "elbow_", None)
-    return int(elbow["chosen"]) if elbow else int(ati.n_intervals_)
 
 
 def _not_applicable(name: str, context, groups) -> str | None:

@@ -19,9 +19,7 @@ def val_split_scores(comp, ds) -> dict:
     as the run's validation scores a val split (:func:`~.evaluation.validation_report`); where a
     candidate cannot fit, the reason (a str, as the folds' path gives it).  The test split is not
     read."""
-    # the ATI refinements are judged against ati on the folds only (AutoRegressor._refine_ati)
-    later = set(comp.estimator.get_params(deep=False).get("ati_refinements") or ())
-    candidates = {n: c for n, c in comp.estimator.candidates.items() if n not in later}
+    candidates = {**comp.estimator.candidates}
     candidates.setdefault(BASELINE, MLR())
     scores: dict = {}
     fitted = None     # any candidate fitted on the train split: its frame gives the measured errors
