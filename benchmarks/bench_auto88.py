@@ -223,28 +223,27 @@ def compare(work: Path, variants: list[str]) -> None:
               f"{max(ratio):.3f}, > 5 % worse {sum(x > 1.05 for x in ratio)}")
 
 
-def _auto_in(src: Path, data: Path, work: Path, variant: str, record: str) -> None:
-    """This bench's ``auto`` on one record in a process whose PYTHONPATH is ``src`` (OLD or NEW)."""
+def _auto_in(src: Path, data: Path, work: Path, variant: str, record: str, bench: str) -> None:
+    """``bench``'s ``auto`` on one record in a process whose PYTHONPATH is ``src`` (OLD or NEW)."""
     env = {**os.environ, "PYTHONPATH": str(src), "OMP_NUM_THREADS": "1"}
-    subprocess.run([sys.executable, __file__, "auto", str(data), str(work), variant, record],
+    subprocess.run([sys.executable, bench, "auto", str(data), str(work), variant, record],
                    env=env, check=True)
 
 
-def fresh(data: Path, work: Path, old_src: Path) -> None:
+def fresh(data: Path, work: Path, old_src: Path, bench: str = __file__) -> None:
+    """OLD / NEW / MLR alternating on :data:`FRESH`, then the CPU records; ``bench``: the bench
+    whose ``auto`` runs them (bench_auto88b's, with its own fresh records)."""
     new_src = HERE.parent / "src"
     for record in FRESH:
-        _auto_in(old_src, data, work / "old", "main", record)
-        _auto_in(new_src, data, work / "new", "main", record)
-        _auto_in(new_src, data, work / "mlr", "mlr", record)
+        _auto_in(old_src, data, work / "old", "main", record, bench)
+        _auto_in(new_src, data, work / "new", "main", record, bench)
+        _auto_in(new_src, data, work / "mlr", "mlr", record, bench)
     for record in ("cr9031", "cr9012"):
-        _auto_in(old_src, data, work / "cpu_old", "main", record)
-        _auto_in(new_src, data, work / "cpu_new", "main", record)
+        _auto_in(old_src, data, work / "cpu_old", "main", record, bench)
+        _auto_in(new_src, data, work / "cpu_new", "main", record, bench)
 
 
 def bar(work: Path, old22: Path, new22: Path) -> None:
-    import bench_auto80 as auto80
-    import bench_auto84 as auto84
-
     old, new, mlr = (_rows(work / w / f"{v}.jsonl") for w, v in (("old", "main"), ("new", "main"),
                                                                   ("mlr", "mlr")))
     lines, ok = ["record  OLD -> NEW (NEW/OLD)   MLR   NEW kept"], {}
@@ -261,6 +260,18 @@ def bar(work: Path, old22: Path, new22: Path) -> None:
     ok["1a none > 5 % worse"] = len(ratio) == len(FRESH) and max(ratio) <= 1.05
     ok["1b geo < 1"] = geo < 1
     ok["1c below MLR on each"] = below == len(FRESH)
+    common_items(work, old22, new22, lines, ok)
+    lines += [f"{k}: {'holds' if v else 'FAILS'}" for k, v in ok.items()]
+    lines.append("(5: the tests, run apart) VERDICT of 1-4: " + ("KEPT" if all(ok.values()) else "REFUSED"))
+    print("\n".join(lines))
+
+
+def common_items(work: Path, old22: Path, new22: Path, lines: list, ok: dict) -> None:
+    """Items 2-4 of the bar (the 22, fl_thermal, CPU) into ``lines`` and ``ok``; bench_auto88b's
+    bar shares them."""
+    import bench_auto80 as auto80
+    import bench_auto84 as auto84
+
     s_old, s_new = auto84._sums(old22), auto84._sums(new22)
     worse = [[k for k, x in s.items() if x["to_mlr"][1] > 1] for s in (s_old, s_new)]
     lines.append("the 22, re-run records, auto/MLR on the new campaigns OLD -> NEW: "
@@ -278,9 +289,6 @@ def bar(work: Path, old22: Path, new22: Path) -> None:
         lines.append(f"CPU run model=auto {r}: {c_old[r]['cpu_s']:.1f} -> {c_new[r]['cpu_s']:.1f} s "
                      f"(x{c_new[r]['cpu_s'] / c_old[r]['cpu_s']:.2f})")
         ok[f"4 CPU {r}"] = c_new[r]["cpu_s"] <= CPU_RATIO * c_old[r]["cpu_s"]
-    lines += [f"{k}: {'holds' if v else 'FAILS'}" for k, v in ok.items()]
-    lines.append("(5: the tests, run apart) VERDICT of 1-4: " + ("KEPT" if all(ok.values()) else "REFUSED"))
-    print("\n".join(lines))
 
 
 def main(argv: list[str]) -> int:
