@@ -95,12 +95,23 @@ def past_midnight(seconds: pa.Array, path: Path, header: str | None = None) -> p
     ``23:55:00`` then ``00:00:00``); None where no step goes back so.  The rows' own times
     are kept, so a sample a logger skipped stays skipped (timing the rows by their period
     closed the gap); any other step back stays, for the reader to refuse ("time decreases").
-    A pause of a day or more between two rows cannot be told from the clock alone."""
+    Each step is read as the shorter way round the clock: one of half a day or more forward
+    reads as well as a step back past midnight and is refused (file, column, row); a pause of
+    a day or more between two rows cannot be told from the clock alone."""
     values = seconds.to_numpy(zero_copy_only=False).astype(float)
     valid = np.flatnonzero(~np.isnan(values))
-    wraps = np.diff(values[valid]) < -DAY_S / 2
+    steps = np.diff(values[valid])
+    wraps = steps < -DAY_S / 2
     if not wraps.any():
         return None
+    if (far := np.flatnonzero(steps >= DAY_S / 2)).size:
+        k = valid[far[0] + 1]
+        raise ContractError(f"a time of day without its date that passes midnight steps "
+                            f"{steps[far[0]] / 3600:.3g} h forward here: as well "
+                            f"{(DAY_S - steps[far[0]]) / 3600:.3g} h back (no date to tell): "
+                            "give the date column with it, data.roles.time=[<date column>, "
+                            f"{repr(header) if header else '<this column>'}]",
+                            file=path, column=TIME, row=int(k) + 1)
     days = np.zeros(len(values))
     days[valid[1:]] = np.cumsum(wraps) * DAY_S
     logger.info(f"{path.name}: {repr(header) if header else TIME} is a time of day that passes "
