@@ -1,0 +1,123 @@
+"""A lab's data in (stop 88, data88b): ONE run as two loggers' files, and a time of day past
+midnight with no date, through ``thermocomp init`` + ``run`` with no key typed (data88 found both
+refused; bench_data88's writers, fresh seeds).
+
+Usage (from the repository root, ``PYTHONPATH=<tree>/src``: the code measured is that tree's)::
+
+    python benchmarks/bench_data88b.py write ROOT SEED     # bench_data88's exports + skips
+    python benchmarks/bench_data88b.py score ROOT SEED     # init + run (+ replay) of each
+
+``write``: bench_data88's ``write`` (``thermocomp simulate seed=SEED``, its longest campaign as
+a lab's one record from 21:30:00, past midnight: ``contract.csv``, ``midnight.csv`` with
+``Time`` as ``hh:mm:ss`` and no date, ``groups/`` the run as two loggers' files
+``run01_temp.csv`` + ``run01_disp.csv`` with timestamps, and its other exports), then a logger
+that skipped samples: four rows dropped (the first after midnight and three drawn by SEED
+among the inner rows), as ``skips_contract.csv`` and ``skips_midnight.csv``.
+
+``score``: per record ``init <path>`` then ``run model=mlr data.test_fraction=0.25`` on the data
+config it wrote (bench_data88's ``_run``), the exit codes and the test RMSE per target; the
+skips' midnight also with data88's fix (``data.roles.ignore=['Time'] data.sample_period_s=300``,
+its rows timed by the period), for contrast; ``groups`` and ``contract`` also ``replay`` with the
+same fraction (the stream warmed on the train part it continues), its streamed RMSE.
+
+BAR (written before the fresh seeds 9236-9240 were scored; dev seed 4242 only before): KEPT
+where on 5 of 5 seeds (a) ``groups`` goes in with no key, its test RMSE equal to
+``contract``'s to 1e-6 µm on every target and its replay's streamed RMSE equal to
+``contract``'s replay's to 1e-6; (b) ``midnight`` goes in with no key, RMSE = ``contract``'s to
+1e-6; (c) ``skips_midnight`` goes in with no key, RMSE = ``skips_contract``'s to 1e-6.  Any
+export read silently wrong (exit 0, RMSE not the contract's) refuses the rule; a refusal on a
+seed leaves it TRACED with the reason.  On main 86f7cf7c (a checkout of it) all three are
+expected refused (exit 2).
+
+Scored: (filled in below after the fresh seeds ran)
+"""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+from _cli import run_commands
+from bench_data88 import START, _cli, _refusal, _run, _short
+from bench_data88 import write as write_exports
+
+DROPPED = 3            # inner rows a logger skipped, beside the first after midnight
+FIX = ("data.roles.ignore=['Time']", "data.sample_period_s=300")     # data88's refusal's fix
+
+
+def write(root: str, seed: str) -> None:
+    """bench_data88's exports of ``seed`` and the skips (module docstring)."""
+    write_exports(root, seed)
+    base = Path(root) / seed
+    rows = pd.read_csv(base / "contract.csv")
+    clock = START + pd.to_timedelta(rows["time"], unit="s")
+    after = int(np.flatnonzero(clock.dt.date.to_numpy() != clock.dt.date.iloc[0])[0])
+    inner = [k for k in range(2, len(rows) - 2) if k != after]
+    drawn = np.random.default_rng(int(seed)).choice(inner, DROPPED, replace=False)
+    kept = rows.drop(index=[after, *drawn.tolist()]).reset_index(drop=True)
+    kept.to_csv(base / "skips_contract.csv", index=False)
+    text = (base / "midnight.csv").read_text(encoding="utf-8").splitlines()
+    dropped = {after, *drawn.tolist()}
+    lines = [text[0], *(ln for k, ln in enumerate(text[1:]) if k not in dropped)]
+    (base / "skips_midnight.csv").write_text("\n".join(lines) + "\n", encoding="utf-8")
+    print(f"skips: rows {sorted(int(k) for k in dropped)} of {len(rows)} dropped "
+          f"(row {after} the first after midnight)")
+
+
+def _replay(base: Path, label: str) -> dict | None:
+    """``replay`` of ``label``'s run, the last quarter held out: streamed RMSE per target."""
+    import json
+
+    init, out = base / f"{label}-init", base / f"{label}-replay"
+    data = next((init / "conf" / "data").glob("*.yaml")).stem
+    done = _cli("replay", f"hydra.searchpath=[file://{init / 'conf'}]", f"data={data}",
+                "model=mlr", "data.test_fraction=0.25",
+                f"replay.model={base / f'{label}-run' / 'model.pkl'}", f"out={out}",
+                "track=false", "plots=none")
+    if done.returncode:
+        print(f"    replay exit {done.returncode}: {_refusal(done)}")
+        return None
+    said = json.loads((out / "replay.json").read_text())["targets"]
+    return {t: float(s["rmse"]) for t, s in said.items()}
+
+
+def _same(got: dict | None, want: dict | None) -> bool:
+    return (got is not None and want is not None and len(got) == len(want)
+            and all(abs(a - b) <= 1e-6 for a, b in zip(sorted(got.values()),
+                                                        sorted(want.values()))))
+
+
+def score(root: str, seed: str) -> None:
+    """Each record of ``seed`` through init + run (+ replay) against its contract file."""
+    base = Path(root) / seed
+    wanted = {}
+    for label, path, against in (("contract", "contract.csv", None),
+                                 ("skips_contract", "skips_contract.csv", None),
+                                 ("groups", "groups", "contract"),
+                                 ("midnight", "midnight.csv", "contract"),
+                                 ("skips_midnight", "skips_midnight.csv", "skips_contract")):
+        said, got = _run(base, base / path, label)
+        wanted[label] = got
+        verdict = ("" if against is None else
+                   " = " + against if _same(got, wanted[against]) else
+                   f" != {against} {_short(wanted[against] or {})}")
+        print(f"seed {seed} {label}: {said}; RMSE {_short(got) if got else '-'}{verdict}")
+    said, got = _run(base, base / "skips_midnight.csv", "skips_period", *FIX)
+    print(f"seed {seed} skips_midnight with data88's fix {' '.join(FIX)}: {said}; RMSE "
+          f"{_short(got) if got else '-'}"
+          f"{' = skips_contract' if _same(got, wanted['skips_contract']) else ' != skips_contract'}")
+    if wanted["groups"] is not None:
+        streamed = {label: _replay(base, label) for label in ("contract", "groups")}
+        print(f"seed {seed} replay: contract {_short(streamed['contract'] or {})}; groups "
+              f"{_short(streamed['groups'] or {})}"
+              f"{' = contract' if _same(streamed['groups'], streamed['contract']) else ' != contract'}")
+
+
+def main(argv: list[str]) -> int:
+    return run_commands(__doc__, {"write": write, "score": score}, argv, cpu=sys.stderr)
+
+
+if __name__ == "__main__":
+    raise SystemExit(main(sys.argv[1:]))
