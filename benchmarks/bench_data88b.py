@@ -6,6 +6,7 @@ Usage (from the repository root, ``PYTHONPATH=<tree>/src``: the code measured is
 
     python benchmarks/bench_data88b.py write ROOT SEED     # bench_data88's exports + skips
     python benchmarks/bench_data88b.py score ROOT SEED     # init + run (+ replay) of each
+    python benchmarks/bench_data88b.py times ROOT SEED     # the skips' times as read
 
 ``write``: bench_data88's ``write`` (``thermocomp simulate seed=SEED``, its longest campaign as
 a lab's one record from 21:30:00, past midnight: ``contract.csv``, ``midnight.csv`` with
@@ -19,6 +20,9 @@ config it wrote (bench_data88's ``_run``), the exit codes and the test RMSE per 
 skips' midnight also with data88's fix (``data.roles.ignore=['Time'] data.sample_period_s=300``,
 its rows timed by the period), for contrast; ``groups`` and ``contract`` also ``replay`` with the
 same fraction (the stream warmed on the train part it continues), its streamed RMSE.
+``times`` (added while the fresh seeds were scored; no bar of its own): MLR reads no time, so
+the RMSE cannot see what data88's fix does to the skips' times: read in process, each time from
+its first row against ``skips_contract.csv``'s.
 
 BAR (written before the fresh seeds 9236-9240 were scored; dev seed 4242 only before): KEPT
 where on 5 of 5 seeds (a) ``groups`` goes in with no key, its test RMSE equal to
@@ -115,8 +119,35 @@ def score(root: str, seed: str) -> None:
               f"{' = contract' if _same(streamed['groups'], streamed['contract']) else ' != contract'}")
 
 
+def times(root: str, seed: str) -> None:
+    """The skips' times as read (in this process, by the data configs ``score``'s inits wrote):
+    ``skips_midnight.csv`` (no key, and with data88's fix) against ``skips_contract.csv``'s,
+    each from its first row (s)."""
+    from thermocomp.core.io import ContractError, read_dataset
+
+    import yaml
+
+    base = Path(root) / seed
+    want = read_dataset(base / "skips_contract.csv")[0].campaigns["skips_contract"]["time"]
+    for label, init in (("no key", "skips_midnight"), ("data88's fix", "skips_period")):
+        # the data config `score`'s init wrote (its roles; the fix's keys in it)
+        written = next((base / f"{init}-init" / "conf" / "data").glob("*.yaml"), None)
+        cfg = {k: v for k, v in yaml.safe_load(written.read_text()).items()
+               if k not in ("defaults", "test_fraction", "val_fraction")   # (the whole record)
+               } if written else {}
+        try:
+            got = read_dataset(base / "skips_midnight.csv", cfg)[0].campaigns["skips_midnight"]
+        except ContractError as exc:
+            print(f"seed {seed} skips_midnight, {label}: refused: {exc}")
+            continue
+        diff = np.abs((got["time"] - got["time"].iloc[0]).to_numpy() - want.to_numpy())
+        print(f"seed {seed} skips_midnight, {label}: max |time - contract's| {diff.max():g} s, "
+              f"{int((diff > 0).sum())} of {len(diff)} rows off")
+
+
 def main(argv: list[str]) -> int:
-    return run_commands(__doc__, {"write": write, "score": score}, argv, cpu=sys.stderr)
+    return run_commands(__doc__, {"write": write, "score": score, "times": times}, argv,
+                        cpu=sys.stderr)
 
 
 if __name__ == "__main__":
