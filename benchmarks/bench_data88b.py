@@ -123,9 +123,8 @@ def times(root: str, seed: str) -> None:
     """The skips' times as read (in this process, by the data configs ``score``'s inits wrote):
     ``skips_midnight.csv`` (no key, and with data88's fix) against ``skips_contract.csv``'s,
     each from its first row (s)."""
-    from thermocomp.core.io import ContractError, read_dataset
-
     import yaml
+    from thermocomp.core.io import ContractError, read_dataset
 
     base = Path(root) / seed
     want = read_dataset(base / "skips_contract.csv")[0].campaigns["skips_contract"]["time"]
