@@ -124,6 +124,7 @@ def times(root: str, seed: str) -> None:
     ``skips_midnight.csv`` (no key, and with data88's fix) against ``skips_contract.csv``'s,
     each from its first row (s)."""
     import yaml
+
     from thermocomp.core.io import ContractError, read_dataset
 
     base = Path(root) / seed
