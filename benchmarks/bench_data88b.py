@@ -33,7 +33,40 @@ export read silently wrong (exit 0, RMSE not the contract's) refuses the rule; a
 seed leaves it TRACED with the reason.  On main 86f7cf7c (a checkout of it) all three are
 expected refused (exit 2).
 
-Scored: (filled in below after the fresh seeds ran)
+Scored (2026-12-04, fresh seeds 9236-9240, each ``write`` once by fix/data88b, then ``score`` on
+fix/data88b and on a checkout of main 86f7cf7c (a copy of the same files); dev seed 4242 only
+before the bar was written; the bar unchanged)
+------------------------------------------------------------------------------------------
+Test RMSE (µm, E_X / E_Y / E_Z; mlr, the last quarter held out), the same on both trees where
+read: contract 9236 0.601667 / 0.430106 / 1.444719; 9237 0.620475 / 1.046665 / 0.683143; 9238
+0.582517 / 0.325924 / 1.559920; 9239 0.575786 / 1.144084 / 0.868375; 9240 0.378085 / 0.559337 /
+1.287203.  skips_contract (rows dropped: 9236 5, 14, 30, 47 of 52; 9237 9, 11, 30, 40 of 59;
+9238 8, 30, 45, 48 of 59; 9239 19, 20, 21, 30 of 57; 9240 30, 37, 43, 47 of 55; row 30 the
+first after midnight): 9236 0.635541 / 0.476237 / 1.664238; 9237 0.449789 / 1.103260 /
+0.587831; 9238 0.585475 / 0.321548 / 1.655670; 9239 0.554944 / 0.801019 / 0.788718; 9240
+0.404954 / 0.677875 / 1.723105.
+
+==============  ==========================================  ===========================================
+record          main 86f7cf7c (5 of 5 seeds alike)          fix/data88b (5 of 5 seeds alike)
+==============  ==========================================  ===========================================
+groups          init exit 2 "a folder whose one run is      init 0, run 0, RMSE = contract (1e-6);
+                two loggers' files ... not cut in two"      replay = contract's replay (1e-6; 9236
+                                                            0.601667 / 0.430106 / 1.444719 ... 9240
+                                                            0.387393 / 0.611189 / 0.835739)
+midnight        init exit 2 "a time of day without its      init 0, run 0, RMSE = contract (1e-6)
+                date (it would go back at midnight)"
+skips_midnight  init exit 2 (the same)                      init 0, run 0, RMSE = skips_contract (1e-6)
+  data88's fix  accepted, RMSE = skips_contract (MLR        same; ``times`` (this tree): 1200 s off
+                reads no time)                              on 43 / 46 / 47 / 34 / 21 rows
+==============  ==========================================  ===========================================
+
+``times`` (fix/data88b): skips_midnight read with no key, its time from the first row, equals
+skips_contract's on every row of every seed (max 0 s); data88's fix (rows timed by the period)
+puts 21-47 rows of each seed up to 1200 s off (the 4 skipped samples closed up): the loss the
+rule mends, which MLR's RMSE does not see (a lag bank or Hammerstein reads the time).
+
+Against the BAR: (a), (b), (c) hold on 5 of 5 seeds on fix/data88b; nothing was read silently
+wrong.  KEPT.  On main all three were refused on 5 of 5 seeds.
 """
 
 from __future__ import annotations
