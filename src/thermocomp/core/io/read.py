@@ -617,6 +617,14 @@ def folder_splits(path: Path, opts: ReadOptions, manifest: pd.DataFrame | None =
         # a lab's one export put in a folder: its one file is one campaign, nothing to hold out
         # (the refusal named a campaigns.csv that is not there and said to lower the fraction)
         only = path / str(manifest["file"].iloc[0])
+        errors = partner(only, opts, campaign_files(path))
+        if errors is not None:      # (data88; a read cuts it as one record: fleet's groups)
+            raise ContractError(f"a folder whose one run is two loggers' files ({only.name}, "
+                                f"{errors.name}: one campaign) has none to hold out for "
+                                "data.test_fraction / data.val_fraction, and a run of two files "
+                                "is not cut in two: put each run's two files in the folder (a "
+                                "later run held out), or give one file of the run's columns "
+                                "joined on their time", file=path)
         raise ContractError(f"a folder whose one file ({only.name}) is its one campaign has none to "
                             f"hold out for data.test_fraction / data.val_fraction: give the file, "
                             f"data.path={only} (one record: its last share is held out)", file=path)
