@@ -92,6 +92,7 @@ from .loggers import (
     NO_ERROR,
     errors_elsewhere,
     named_error_file,
+    paired_id,
     partner,
     unrecorded,
 )
@@ -617,7 +618,7 @@ def folder_splits(path: Path, opts: ReadOptions, manifest: pd.DataFrame | None =
         # (the refusal named a campaigns.csv that is not there and said to lower the fraction)
         only = path / str(manifest["file"].iloc[0])
         errors = partner(only, opts, campaign_files(path))
-        if errors is not None:      # (data88) giving the temperature file alone reads no error
+        if errors is not None:      # (data88; a read cuts it as one record: fleet's groups)
             raise ContractError(f"a folder whose one run is two loggers' files ({only.name}, "
                                 f"{errors.name}: one campaign) has none to hold out for "
                                 "data.test_fraction / data.val_fraction, and a run of two files "
@@ -677,6 +678,14 @@ def _source(path: Path, opts: ReadOptions, campaigns=None) -> tuple[Path, pd.Dat
         return path.parent, manifest.loc[ids], ((c, *parts.pop(c)) for c in ids)
     listed = read_manifest(path, opts)
     opts = _recorded_time(path, [path / f for f in listed["file"]], opts)   # before the starts
+    if (run := _one_run_of_two(path, opts, listed)) is not None:
+        # (data88b) one run of two loggers' files: one record, as a one-file record is (its
+        # last share held out, continuing the rest); refused before, "not cut in two"
+        table, report = read_campaign(run, opts, one_run=True)
+        manifest, parts = cut(run, table, report, opts, paired_id(run))
+        del table
+        ids = list(manifest.index if campaigns is None else campaigns)
+        return path, manifest.loc[ids], ((c, *parts.pop(c)) for c in ids)
     manifest = folder_splits(path, opts, listed)
     if not (path / MANIFEST).is_file():      # said once per read, not per look at the folder
         logger.info(f"{path.name}: no {MANIFEST}; its {len(manifest)} campaign files read as "
@@ -689,6 +698,15 @@ def _source(path: Path, opts: ReadOptions, campaigns=None) -> tuple[Path, pd.Dat
     if campaigns is not None:
         manifest = manifest.loc[list(campaigns)]
     return path, manifest, _iter_campaigns(path, manifest, opts)
+
+
+def _one_run_of_two(path: Path, opts: ReadOptions, listed: pd.DataFrame) -> Path | None:
+    """The temperature file of the folder ``path``'s one run where it is two loggers' files
+    (:mod:`.loggers`), no manifest, and a fraction asks for a held-out share; else None."""
+    if not shares(opts) or len(listed) != 1 or (path / MANIFEST).is_file():
+        return None
+    only = path / str(listed["file"].iloc[0])
+    return only if partner(only, opts, campaign_files(path)) is not None else None
 
 
 def _recorded_time(path: Path, files: list[Path], opts: ReadOptions) -> ReadOptions:

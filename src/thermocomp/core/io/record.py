@@ -71,8 +71,11 @@ def safe_id(text: str) -> str:
     return _UNSAFE_ID.sub("_", text).strip("._") or "record"
 
 
-def cut(path: Path, table: pa.Table, report: dict, opts) -> tuple[pd.DataFrame, dict]:
-    """The one-file record ``path`` (read as ``table``) as campaigns.
+def cut(path: Path, table: pa.Table, report: dict, opts, stem: str | None = None
+        ) -> tuple[pd.DataFrame, dict]:
+    """The one-file record ``path`` (read as ``table``) as campaigns, their ids ``stem`` (the
+    file's, :func:`record_id`) and the part's split (data88b: a run of two loggers' files,
+    ``path`` its temperature file, ``stem`` the run's).
 
     Returns
     -------
@@ -81,7 +84,7 @@ def cut(path: Path, table: pa.Table, report: dict, opts) -> tuple[pd.DataFrame, 
     parts : dict
         Campaign id -> (table, report entry with the record's ``rows`` ``[from, to)``).
     """
-    stem = record_id(path)
+    stem = stem or record_id(path)
     _warn_pauses(path, table)
     lead, trail = _batch_edges(table, report, opts)
     counts = _counts(table.num_rows - lead - trail, opts) or {"train": table.num_rows - lead - trail}

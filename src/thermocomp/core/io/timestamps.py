@@ -68,19 +68,56 @@ def elapsed_seconds(text, kind: str, path: Path, header: str | None = None):
     row."""
     parts = pc.extract_regex(text, f"^{_ELAPSED.pattern}$")
     hours = pc.cast(pc.struct_field(parts, "h"), pa.float64())
+    seconds = pc.cast(pc.replace_substring(pc.struct_field(parts, "s"), ",", "."), pa.float64())
+    minutes = pc.cast(pc.struct_field(parts, "m"), pa.float64())
+    total = pc.add(pc.add(pc.multiply(hours, 3600.0), pc.multiply(minutes, 60.0)), seconds)
     said = kind == ELAPSED or (header is not None and _bare(header) in ELAPSED_HEADERS)
     if not said and not (pc.max(hours).as_py() or 0) >= 24:
-        first = text.filter(text.is_valid())
-        time_kind(first[0].as_py().strip() if len(first) else "", "auto", False, path, header)
+        total = past_midnight(total, path, header)
+        if total is None:       # a time of day that never wraps: no date, nothing to unwrap
+            first = text.filter(text.is_valid())
+            time_kind(first[0].as_py().strip() if len(first) else "", "auto", False, path, header)
     bad = pc.and_(text.is_valid(), parts.is_null()).to_numpy(zero_copy_only=False)
     if bad.any():
         row = int(np.argmax(bad))
         raise ContractError(f"value {text[row].as_py()!r} is not an elapsed time h:mm:ss (hours "
                             "may pass 24)", file=path, column=TIME, row=row + 1)
-    seconds = pc.cast(pc.replace_substring(pc.struct_field(parts, "s"), ",", "."), pa.float64())
-    minutes = pc.cast(pc.struct_field(parts, "m"), pa.float64())
-    total = pc.add(pc.add(pc.multiply(hours, 3600.0), pc.multiply(minutes, 60.0)), seconds)
     return pc.cast(pc.round(pc.multiply(total, 1e9)), pa.int64()).cast(pa.duration("ns"))
+
+
+DAY_S = 86400.0
+
+
+def past_midnight(seconds: pa.Array, path: Path, header: str | None = None) -> pa.Array | None:
+    """(extension, data88b) A time of day without its date (``seconds`` since midnight, null
+    where a cell is missing or no ``h:mm:ss``) as a continuing time: a day added at each step
+    back of more than half a day between consecutive valid rows (the clock passing midnight,
+    ``23:55:00`` then ``00:00:00``); None where no step goes back so.  The rows' own times
+    are kept, so a sample a logger skipped stays skipped (timing the rows by their period
+    closed the gap); any other step back stays, for the reader to refuse ("time decreases").
+    Each step is read as the shorter way round the clock: one of half a day or more forward
+    reads as well as a step back past midnight and is refused (file, column, row); a pause of
+    a day or more between two rows cannot be told from the clock alone."""
+    values = seconds.to_numpy(zero_copy_only=False).astype(float)
+    valid = np.flatnonzero(~np.isnan(values))
+    steps = np.diff(values[valid])
+    wraps = steps < -DAY_S / 2
+    if not wraps.any():
+        return None
+    if (far := np.flatnonzero(steps >= DAY_S / 2)).size:
+        k = valid[far[0] + 1]
+        raise ContractError(f"a time of day without its date that passes midnight steps "
+                            f"{steps[far[0]] / 3600:.3g} h forward here: as well "
+                            f"{(DAY_S - steps[far[0]]) / 3600:.3g} h back (no date to tell): "
+                            "give the date column with it, data.roles.time=[<date column>, "
+                            f"{repr(header) if header else '<this column>'}]",
+                            file=path, column=TIME, row=int(k) + 1)
+    days = np.zeros(len(values))
+    days[valid[1:]] = np.cumsum(wraps) * DAY_S
+    logger.info(f"{path.name}: {repr(header) if header else TIME} is a time of day that passes "
+                f"midnight {int(wraps.sum())} time(s) (no date): read as a continuing time, "
+                "a day added at each")
+    return pa.array(values + days, from_pandas=True)
 
 
 def _bare(header: str) -> str:
