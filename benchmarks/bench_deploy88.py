@@ -19,7 +19,8 @@ fed (a) each test campaign after the campaigns it continues (the chain, times on
 file's clock, as replay warms) and (b) the raw test file's bytes alone, as docs/to-the-machine.md
 tells a user (``./stream < K03.csv``).  Columns (µm, mean over targets): ``run`` metrics.json's
 test RMSE; ``batch`` replay.json's ``rmse_batch``; ``plain`` replay.json's ``rmse`` with
-``monitor.adaptive=false`` (the streaming compensator alone: no sensor monitor, no guard);
+``monitor.adaptive=false promote.envelope.policy=off`` (the streaming compensator alone: no
+sensor monitor, no guard, no clamp: must equal ``run``);
 ``replay`` replay.json's ``rmse``; ``promo`` promote.json's "as deployed"
 (``candidate.test_reported``); ``C`` the compiled C's RMSE on (a); ``cold`` replay.json's
 ``rmse_cold_start``; ``pcold`` promote.json's cold figure (``candidate.test_reported_cold_start``,
@@ -174,7 +175,7 @@ def cell(root: Path, record: str, family: str, wrapper: str, data: Path) -> dict
     row["cold"] = np.mean([rep["targets"][t]["rmse_cold_start"] for t in targets])
     row["batch"], row["events"] = np.mean([rep["targets"][t]["rmse_batch"] for t in targets]), len(rep["events"])
     rc, said = stage("replay", f"data.path={data}", f"out={out}-plain", f"replay.model={out / 'model.pkl'}",
-                     "monitor.adaptive=false", *extra)
+                     "monitor.adaptive=false", "promote.envelope.policy=off", *extra)
     if rc == 0:
         plain = json.loads((out.parent / f"{family}-{wrapper}-plain" / "replay.json").read_text())
         row["plain"] = np.mean([plain["targets"][t]["rmse"] for t in targets])

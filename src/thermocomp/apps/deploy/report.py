@@ -354,11 +354,18 @@ def cold_start_line(report: dict) -> list[str]:
     without ``replay.cold_start``."""
     if "cold_start_campaigns" not in report:
         return []
-    chains = ", ".join(report["cold_start_campaigns"]) or "none continues another"
+    return cold_line(report["cold_start_campaigns"],
+                     [(t, r.get("rmse_cold_start"), r.get(RMSE)) for t, r in report["targets"].items()])
+
+
+def cold_line(continuing: list[str], figures: list[tuple]) -> list[str]:
+    """The line saying what a cold start costs: ``figures`` ``(name, cold, continued)`` RMSEs
+    of the test campaigns ``continuing`` others (the stream warmed on them) and of each from a
+    reset at its first row.  One wording for ``replay`` and ``promote`` (deploy87, deploy88)."""
+    chains = ", ".join(continuing) or "none continues another"
     return [f"cold start (each test campaign from a reset at its first row; {chains}): RMSE "
-            + ", ".join(f"{t} {r['rmse_cold_start']:.3f} against {r[RMSE]:.3f} continued"
-                        for t, r in report["targets"].items()
-                        if r.get("rmse_cold_start") is not None and r.get(RMSE) is not None)]
+            + ", ".join(f"{name} {cold:.3f} against {warm:.3f} continued"
+                        for name, cold, warm in figures if cold is not None and warm is not None)]
 
 
 def replay_lines(report: dict) -> list[str]:
