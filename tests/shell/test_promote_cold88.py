@@ -48,3 +48,32 @@ def test_promote_prints_what_the_cold_start_costs(promoted):  # noqa: F811
     # nothing continues: the two figures are one stream's, no line
     cand.cold_start_campaigns = []
     assert not any(x.startswith("cold start") for x in deployed_lines(cand, "off"))
+
+
+def test_replays_batch_figure_covers_a_gapped_campaign_as_run_scores_it(record, tmp_path):  # noqa: F811
+    """``rmse_batch`` stopped at a test campaign's first missing value (audit86b: one NaN row
+    mid-campaign, 1.14 µm against run's 2.19 over half the rows); with a gap ``run`` reads
+    (``data.max_gap_samples``) it is ``run``'s test RMSE, the gap filled as run fills it."""
+    import json
+    import shutil
+
+    import pandas as pd
+
+    from test_deployed_as_scored import COLUMNS, FAST
+    from thermocomp.shell.cli import main
+
+    gapped = tmp_path / "gapped"
+    shutil.copytree(record, gapped)
+    b = pd.read_csv(gapped / "B.csv")
+    b.loc[100, "T3"] = np.nan            # one missing reading a third into the test file
+    b.to_csv(gapped / "B.csv", index=False)
+    common = [f"data.path={gapped}", "data.reference=none", "data.max_gap_samples=1", COLUMNS, *FAST]
+    assert main(["run", f"out={tmp_path / 'run'}", "model=lagbank", *common]) == 0
+    run = json.loads((tmp_path / "run" / "metrics.json").read_text())["targets"]
+    assert main(["replay", f"out={tmp_path / 'replay'}", f"replay.model={tmp_path / 'run' / 'model.pkl'}",
+                 *common]) == 0
+    replayed = json.loads((tmp_path / "replay" / "replay.json").read_text())
+    assert replayed["missing"] == {"B": {"T_3": 1}}      # streamed as recorded
+    for t, r in replayed["targets"].items():
+        assert r["rmse_batch"] == pytest.approx(run[t]["test"]["rmse"], rel=1e-9)
+        assert r["max_abs_stream_minus_batch"] < 1e-6    # the rows before the gap, as before

@@ -13,8 +13,9 @@ unscored (:func:`~.streaming.warm`).  Two streams per campaign:
   monitor), compared with the batch prediction of the same fitted
   :class:`~thermocomp.core.compensator.Compensator` (of the campaign joined to the
   ones it continues, as ``run`` scores it): any difference is the stream's
-  (causality, state).  Both stop at a campaign's first missing value,
-  which the plain stream refuses;
+  (causality, state).  The comparison stops at a campaign's first missing value,
+  which the plain stream refuses; the batch prediction's RMSE covers every row, the
+  missing input cells interpolated as ``run``'s read repairs a gap (deploy88);
 * the **deployed** stream (as registered), whose residual gives ``rmse`` and
   whose events and excluded sensors fill ``replay.json``.
 
@@ -160,6 +161,22 @@ def complete_rows(campaign: pd.DataFrame, columns) -> int:
     return int(np.argmax(bad)) if bad.any() else len(campaign)
 
 
+def gaps_interpolated(campaign: pd.DataFrame, columns) -> pd.DataFrame:
+    """``campaign`` with the missing cells of ``columns`` on the line between their two valid
+    neighbours in time (its ``time``, else its rows), as ``run``'s read repairs a gap within
+    ``data.max_gap_samples``; before a column's first or after its last valid value, that value
+    held.  The batch prediction of every row, beside a stream that holds or reconstructs them."""
+    filled = campaign.copy()
+    t = campaign[TIME].to_numpy(float) if TIME in campaign.columns else np.arange(len(campaign), dtype=float)
+    t = t if np.isfinite(t).all() else np.arange(len(campaign), dtype=float)
+    for c in columns:
+        v = campaign[c].to_numpy(float)
+        ok = np.isfinite(v)
+        if ok.any() and not ok.all():
+            filled[c] = np.where(ok, v, np.interp(t, t[ok], v[ok]))
+    return filled
+
+
 def replay_report(deployed, campaigns: Mapping[str, pd.DataFrame],
                   files: Mapping[str, object] | None = None,
                   lead_ins: Mapping[str, pd.DataFrame] | None = None, adapt=None) -> dict:
@@ -174,8 +191,8 @@ def replay_report(deployed, campaigns: Mapping[str, pd.DataFrame],
         ``targets`` (per target: ``n_samples``; ``max_abs_stream_minus_batch``, the
         largest |plain stream − batch| over the complete rows, envelope off;
         ``rmse``, of the residual the deployed correction leaves (missing
-        measurements skipped); ``rmse_batch``, the batch prediction's over the
-        complete rows; ``us_per_sample``; ``clamped_samples``; ``max_abs_correction``
+        measurements skipped); ``rmse_batch``, the batch prediction's over every row,
+        missing input cells interpolated (:func:`gaps_interpolated`); ``us_per_sample``; ``clamped_samples``; ``max_abs_correction``
         and ``all_finite`` of the deployed stream; ``guarded_samples``, the samples whose
         correction the guard bounded, rate-limited or held (None without a guard);
         ``streamed_range`` [min, max] of it;
@@ -202,15 +219,17 @@ def replay_report(deployed, campaigns: Mapping[str, pd.DataFrame],
     rows = bar(total=sum(len(df) for df in campaigns.values()), desc="replay", unit="row")
     for cid, df in campaigns.items():
         m = measured[cid][targets].to_numpy(float)
-        k = complete_rows(df, stream.columns_)
+        k, batch = complete_rows(df, stream.columns_), np.empty((0, len(targets)))
+        lead = lead_ins.get(cid)
         if k:
             head = df.iloc[:k]
-            lead = lead_ins.get(cid)
             batch = batch_prediction(comp, head, lead)[targets].to_numpy()
             with stream.envelope_off():   # the same inputs as batch: any difference is the stream's
                 free = stream_rows(stream, head, cid, lead_in=lead).y
             diffs.append(np.abs(free - batch))
-            batch_residuals.append(m[:k] - batch)
+        if k < len(df):     # every row, gaps filled as run fills them: like with like (deploy88)
+            batch = batch_prediction(comp, gaps_interpolated(df, stream.columns_), lead)[targets].to_numpy()
+        batch_residuals.append(m - batch)
         run = stream_rows(deployed, df, cid, (files or {}).get(cid), lead_ins.get(cid))
         if adapt is not None:
             frozen.append(m - run.y)
