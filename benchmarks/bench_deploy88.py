@@ -25,7 +25,8 @@ sensor monitor, no guard, no clamp: must equal ``run``);
 (``candidate.test_reported``); ``C`` the compiled C's RMSE on (a); ``cold`` replay.json's
 ``rmse_cold_start``; ``pcold`` promote.json's cold figure (``candidate.test_reported_cold_start``,
 where the tree has it); ``Craw`` the compiled C's on (b) (errors as run scores them, for both C
-columns); ``pack`` check.sh's exit (the row-by-row check of the C against the served model); ``st`` / ``onnx`` export's exit; ``cpu`` the cell's CPU s.
+columns); ``pack`` check.sh's exit (the row-by-row check of the C against the served model);
+``st`` / ``onnx`` export's exit; ``cpu`` the cell's CPU s.
 
 Records (fresh, seeds 9211-9215; chosen before any was simulated):
 
@@ -173,7 +174,8 @@ def cell(root: Path, record: str, family: str, wrapper: str, data: Path) -> dict
     rep = json.loads((out.parent / f"{family}-{wrapper}-replay" / "replay.json").read_text())
     row["replay"] = np.mean([rep["targets"][t]["rmse"] for t in targets])
     row["cold"] = np.mean([rep["targets"][t]["rmse_cold_start"] for t in targets])
-    row["batch"], row["events"] = np.mean([rep["targets"][t]["rmse_batch"] for t in targets]), len(rep["events"])
+    row["batch"] = np.mean([rep["targets"][t]["rmse_batch"] for t in targets])
+    row["events"] = len(rep["events"])
     rc, said = stage("replay", f"data.path={data}", f"out={out}-plain", f"replay.model={out / 'model.pkl'}",
                      "monitor.adaptive=false", "promote.envelope.policy=off", *extra)
     if rc == 0:
@@ -214,7 +216,8 @@ def cell(root: Path, record: str, family: str, wrapper: str, data: Path) -> dict
     return {**row, "note": note, "cpu": cpu_seconds() - start}
 
 
-COLUMNS = ["run", "batch", "plain", "replay", "promo", "C", "cold", "pcold", "Craw", "pack", "st", "onnx", "events", "cpu"]
+COLUMNS = ["run", "batch", "plain", "replay", "promo", "C", "cold", "pcold", "Craw", "pack", "st", "onnx",
+           "events", "cpu"]
 
 
 def sweep(root: Path, chosen: list[str]) -> None:

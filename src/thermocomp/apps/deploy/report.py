@@ -192,9 +192,10 @@ def replay_report(deployed, campaigns: Mapping[str, pd.DataFrame],
         largest |plain stream − batch| over the complete rows, envelope off;
         ``rmse``, of the residual the deployed correction leaves (missing
         measurements skipped); ``rmse_batch``, the batch prediction's over every row,
-        missing input cells interpolated (:func:`gaps_interpolated`); ``us_per_sample``; ``clamped_samples``; ``max_abs_correction``
-        and ``all_finite`` of the deployed stream; ``guarded_samples``, the samples whose
-        correction the guard bounded, rate-limited or held (None without a guard);
+        missing input cells interpolated (:func:`gaps_interpolated`); ``us_per_sample``;
+        ``clamped_samples``; ``max_abs_correction`` and ``all_finite`` of the deployed
+        stream; ``guarded_samples``, the samples whose correction the guard bounded,
+        rate-limited or held (None without a guard);
         ``streamed_range`` [min, max] of it;
         ``bound``, the guard's [lo, hi] or null), ``excluded_inputs`` (sensors excluded
         at the end of any campaign, sorted) and ``events`` (every event with its
