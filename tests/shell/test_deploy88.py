@@ -1,4 +1,6 @@
-"""``promote`` reports a cold start beside the figures "as deployed" (extension, deploy88).
+"""Deployed as scored, warm and cold (deploy88): ``promote`` reports a cold start beside the
+figures "as deployed" (extension); replay's ``rmse_batch`` covers a gapped test campaign as
+``run`` scores it; the onnx refusal names every family that exports.
 
 A test campaign that continues the record is scored, replayed and deployed warmed on the
 campaigns before it; a controller powered on at its first row (after a power-off, or the
@@ -77,3 +79,15 @@ def test_replays_batch_figure_covers_a_gapped_campaign_as_run_scores_it(record, 
     for t, r in replayed["targets"].items():
         assert r["rmse_batch"] == pytest.approx(run[t]["test"]["rmse"], rel=1e-9)
         assert r["max_abs_stream_minus_batch"] < 1e-6    # the rows before the gap, as before
+
+
+def test_the_onnx_refusal_names_every_family_that_exports():
+    """bench_deploy88's every family x wrapper: onnx is refused (exit 2) for each, and the
+    message sent a user of arx_rf or lstm away ("the linear families ... export to json, c and
+    st"), where both export to all three (their arrays)."""
+    from thermocomp.apps.deploy.export import NotExportable, check_exportable
+
+    with pytest.raises(NotExportable, match="no ONNX export is implemented yet") as info:
+        check_exportable(None, "onnx")
+    for family in ("mlr", "pcr", "arx", "lagbank", "hammerstein", "ATI", "model=auto", "arx_rf", "lstm"):
+        assert family in str(info.value)
