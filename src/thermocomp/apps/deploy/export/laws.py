@@ -412,4 +412,5 @@ def _spread(row: np.ndarray, cols: np.ndarray, n: int) -> np.ndarray:
     return out
 
 
-__all__ = ["AMBIENT_CENTRE_C", "EXPORTED_FAMILIES", "LINEAR_FAMILIES", "UNBOUNDED", "Law", "target_laws", "with_gains"]
+__all__ = ["AMBIENT_CENTRE_C", "EXPORTED_FAMILIES", "LINEAR_FAMILIES", "UNBOUNDED", "Law", "target_laws",
+           "with_gains"]
