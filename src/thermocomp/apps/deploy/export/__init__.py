@@ -43,8 +43,8 @@ def _check_format(fmt: str) -> None:
     if fmt not in FORMATS:
         raise NotExportable(f"export.format={fmt!r}: one of {', '.join(FORMATS)}")
     if fmt == "onnx":
-        raise NotExportable("export.format=onnx: no ONNX export is implemented yet; json, c and "
-                            f"st export the families {EXPORTED_FAMILIES}")
+        raise NotExportable("export.format=onnx: no ONNX export is implemented yet; the families "
+                            f"{EXPORTED_FAMILIES} export to json, c and st")
 
 
 def check_exportable(compensator, fmt: str) -> None:
