@@ -91,3 +91,45 @@ def test_the_onnx_refusal_names_every_family_that_exports():
         check_exportable(None, "onnx")
     for family in ("mlr", "pcr", "arx", "lagbank", "hammerstein", "ATI", "model=auto", "arx_rf", "lstm"):
         assert family in str(info.value)
+
+
+def test_replay_says_what_the_monitor_did_on_a_lead_in(record, tmp_path, capsys):  # noqa: F811
+    """bench_deploy88's dl9213 (a logger's day files, R1b continuing D1..D4): a lag bank's
+    deployed RMSE 0.5526 against run's 0.5514 with no event, clamp or guarded row: the sensor
+    monitor had acted on a spike in D1 while the stream was warmed (24 events, unreported), and
+    the state it left decays into R1b.  Here the cut spindle record with a third part: C
+    continues the test part B, which holds a one-sample -4 °C spike on T3."""
+    import json
+    import shutil
+
+    import pandas as pd
+
+    from test_deployed_as_scored import COLUMNS, FAST
+    from thermocomp.shell.cli import main
+
+    chain = tmp_path / "chain"
+    shutil.copytree(record, chain)
+    b = pd.read_csv(chain / "B.csv")
+    b.iloc[150:].to_csv(chain / "C.csv", index=False)
+    b = b.iloc[:150].copy()
+    b.loc[50, "T3"] -= 4.0
+    b.to_csv(chain / "B.csv", index=False)
+    pd.DataFrame({"campaign": ["A", "B", "C"], "file": ["A.csv", "B.csv", "C.csv"],
+                  "split": ["train", "test", "test"], "continues": ["", "A", "B"]}
+                 ).to_csv(chain / "campaigns.csv", index=False)
+    common = [f"data.path={chain}", "data.reference=none", COLUMNS, *FAST]
+    assert main(["run", f"out={tmp_path / 'run'}", "model=lagbank", *common]) == 0
+    capsys.readouterr()
+    assert main(["replay", f"out={tmp_path / 'replay'}", f"replay.model={tmp_path / 'run' / 'model.pkl'}",
+                 *common]) == 0
+    said = capsys.readouterr().out
+    replayed = json.loads((tmp_path / "replay" / "replay.json").read_text())
+    in_b = [e for e in replayed["events"] if e["campaign"] == "B" and e.get("sensor") == "T_3"]
+    assert in_b and in_b[0]["to"] == "excluded"              # B's own stream: reported as before
+    warm = replayed["lead_in_events"]
+    assert {e["campaign"] for e in warm} == {"C"}            # C's stream, warmed through B
+    first = next(e for e in warm if e.get("sensor") == "T_3")
+    assert first["to"] == "excluded" and first["time"] < 0   # before C's first row
+    assert first["reason"] == in_b[0]["reason"]              # the same spike, the same judgement
+    line = next(x for x in said.splitlines() if x.startswith("warm-up: "))
+    assert f"warm-up: {len(warm)} events" in line and "before C" in line

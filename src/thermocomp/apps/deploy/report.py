@@ -54,6 +54,8 @@ class Streamed:
     events: list = field(default_factory=list)     # the adaptive compensator's, in order
     excluded: list = field(default_factory=list)   # sensors excluded after the last row
     guarded: np.ndarray | None = None  # rows per target whose correction the guard changed
+    # the adaptive compensator's events while warmed on the campaigns it continues (deploy88)
+    warm_events: list = field(default_factory=list)
 
 
 def plain(deployed) -> StreamingCompensator:
@@ -128,6 +130,8 @@ def stream_rows(deployed, campaign: pd.DataFrame, cid: str = "", file=None,
     except OutOfEnvelopeError as exc:
         raise ContractError(f"campaign {cid}: {exc}", file=file) from None
     warmed = guard_changes(deployed)
+    # what the monitor did on the lead-in leaves the state the campaign starts from (deploy88)
+    lead_events = list(getattr(deployed, "rows_events_", [])) if adaptive and lead_in is not None else []
     step = deployed._step   # returns the clamp count too
     start = clock.perf_counter()
     i = 0
@@ -152,7 +156,9 @@ def stream_rows(deployed, campaign: pd.DataFrame, cid: str = "", file=None,
     excluded = list(deployed.excluded_inputs) if adaptive else []
     guarded = None if warmed is None else guard_changes(deployed) - warmed
     deployed.reset()
-    return Streamed(y, clamped, seconds, events, excluded, guarded)
+    # their times, as the campaign's events', from its first row on the stream's clock (< 0)
+    lead_events = [{"campaign": cid, **e, "time": e["time"] - t0} for e in lead_events]
+    return Streamed(y, clamped, seconds, events, excluded, guarded, lead_events)
 
 
 def complete_rows(campaign: pd.DataFrame, columns) -> int:
@@ -212,7 +218,7 @@ def replay_report(deployed, campaigns: Mapping[str, pd.DataFrame],
     measured = comp.measured(campaigns)
     targets = list(deployed.targets_)
     diffs, residuals, batch_residuals, outputs, frozen = [], [], [], [], []
-    events, excluded = [], set()
+    events, excluded, lead_events = [], set(), []
     clamps, seconds, n, hours = 0, 0.0, 0, 0.0
     guarded_each = []       # per campaign: rows per target the guard changed (None: no guard)
     from ...base.progress import bar
@@ -238,6 +244,7 @@ def replay_report(deployed, campaigns: Mapping[str, pd.DataFrame],
         residuals.append(m - run.y)
         outputs.append(run.y)
         events += run.events
+        lead_events += run.warm_events
         excluded.update(run.excluded)
         clamps += int((run.clamped > 0).sum())
         guarded_each.append(run.guarded)
@@ -279,6 +286,8 @@ def replay_report(deployed, campaigns: Mapping[str, pd.DataFrame],
               **summary(deployed)}
     if result["adaptive"]:
         result["alarms"] = alarm_rate(events, hours)
+    if lead_events:
+        result["lead_in_events"] = lead_events
     return result
 
 
@@ -354,6 +363,8 @@ def replay_json(deployed, result: dict, *, name: str, source: str, test_ids: lis
               "test_campaigns": test_ids}
     if missing:
         report["missing"] = missing     # missing cells per test campaign and column, streamed as NaN
+    if result.get("lead_in_events"):
+        report["lead_in_events"] = result["lead_in_events"]
     return report
 
 
@@ -415,4 +426,17 @@ def replay_lines(report: dict) -> list[str]:
         lines.append(f"events: {len(report['events'])}, excluded at a campaign's end: "
                      f"{', '.join(report['excluded_inputs']) or 'none'}"
                      + first_exclusion(report["events"]) + new_states(report["events"]))
-    return lines
+    return lines + lead_in_line(report.get("lead_in_events") or [])
+
+
+def lead_in_line(events: list[dict]) -> list[str]:
+    """The line saying the sensor monitor acted while the stream was warmed on the campaigns a
+    test campaign continues (``replay.json``'s ``lead_in_events``): the test campaign starts
+    from the state that left, where RMSE batch (run's) streamed them unmonitored (deploy88)."""
+    if not events:
+        return []
+    e = events[0]
+    return [f"warm-up: {len(events)} events of the sensor monitor on the campaigns the test "
+            f"campaigns continue (first: {e.get('sensor') or '-'} {e.get('to', '')}, "
+            f"{-e['time'] / 3600:.2f} h before {e['campaign']}); the test campaign starts from the "
+            "state they left, RMSE batch (run's) saw them unmonitored"]
