@@ -85,7 +85,9 @@ auto; a planted one-sample spike of T_head_left in R1b, row 580)::
   lr9211/lagbank-none, -ati   0.8560069  0.9911534  2.169599   2
   lr9211/hammerstein-*        0.9343525  1.13878    3.181972   2
   lr9211/auto-none            0.5870468  0.7233615  1.796415   2
-  LR9211_REST
+  lr9211/arx-none, -ati       0.5455567  0.5455567  0.5455567  2   (no AR term; fallbacks)
+  lr9211/arx_rf-none, -ati    0.5495816  0.5495816  0.5495816  2
+  (lstm and the main-side auto cells not reached by the deadline)
 
 cr9215 (the branch; nothing continues: ``cold`` = ``pcold`` = the one stream)::
 
@@ -94,13 +96,25 @@ cr9215 (the branch; nothing continues: ``cold`` = ``pcold`` = the one stream)::
   cr9215/hammerstein-*        3.426069 / 0.6583556                                 0
   cr9215/auto-none            1.673274; auto-ati refused, exit 2 (by design)       0
 
-DL9214_ROWS
+dl9214 (the branch; a spike of T_head_left in R1b at 20.13 h, 6 lead-in events reported)::
+
+  dl9214/mlr-none, -ati       0.8782045  0.8551415  0.8548909  2
+  dl9214/lagbank-none, -ati   6.661441   6.661707   7.627749   2
+  dl9214/hammerstein-*        0.6334503  0.6586582  3.369785   2
+  dl9214/auto-none            0.8782045  0.8551415  0.8548909  2   (auto kept mlr)
+  dl9214/auto-ati             run refused, exit 2 (by design)
+
+Not run by the deadline: lr9212 (seed 9212 unspent), dl9214's pcr / arx / arx_rf / lstm, the
+main side of cr9215 and dl9214 (their ``promo`` is checked against main only on dl9213 and
+lr9211).
 
 Every cell: ``pack`` 0 (the C's check pack passes), ``st`` export 0, ``onnx`` export exit 2
 ("no ONNX export is implemented yet", now naming every family that exports); ``pcold`` =
 replay's ``rmse_cold_start`` to the bit (``repr`` of promote.json and replay.json) in all 14
-branch cells read; promote's warm figure ``test_reported`` equal to main's to the bit in the
-cells run on both trees (dl9213 lagbank / hammerstein x none / ati).
+branch cells read (24: lr9211 5, dl9213 5, cr9215 7, dl9214 7; auto-ati refused in each);
+promote's warm figure ``test_reported`` equal to main's to
+the bit in all 8 cells run on both trees (dl9213 lagbank / hammerstein x none / ati and auto,
+lr9211 lagbank x none / ati and hammerstein-none).
 
 Against the bar
 ---------------
@@ -121,7 +135,7 @@ Against the bar
 3. Every refusal exit 2 with a message: onnx (its message named only the linear five; mended:
    arx_rf, lstm, ATI, auto named), auto + ati.  No exit 1, no traceback.
 4. The rule (promote reports the cold start): ``pcold`` = ``cold`` to the bit in every branch
-   cell (continuing: lr9211, dl9213[, dl9214]; not continuing: cr9215, the same figure);
+   cell (continuing: lr9211, dl9213, dl9214; not continuing: cr9215, the same figure);
    ``promo`` unchanged; four tests in tests/shell/test_deploy88.py, each failing on d76bdde2
    (KeyError / the gapped campaign's 0.317 against run's 0.918 / the onnx message); the
    deploy / replay / promote / export tests run in parts pass (see the report).  KEPT.
