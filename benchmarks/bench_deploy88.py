@@ -77,8 +77,7 @@ dl9213 (main, every family x wrapper; ``pcold`` from the branch for lagbank, ham
   dl9213/auto-none            0.7744201  0.7743541  0.7297458  0
   dl9213/auto-ati             run refused, exit 2 (by design: ATI is auto's candidate)
 
-lr9211 (main, every family x wrapper as far as it ran; the branch for lagbank, hammerstein,
-auto; a planted one-sample spike of T_head_left in R1b, row 580)::
+lr9211 (main, every family x wrapper; the branch for lagbank, hammerstein, auto; a planted one-sample spike of T_head_left in R1b, row 580)::
 
   lr9211/mlr-none, -ati       0.7718121  0.6436783  0.6404264  2
   lr9211/pcr-none             2.773242   2.834425   2.837065   2
@@ -87,7 +86,8 @@ auto; a planted one-sample spike of T_head_left in R1b, row 580)::
   lr9211/auto-none            0.5870468  0.7233615  1.796415   2
   lr9211/arx-none, -ati       0.5455567  0.5455567  0.5455567  2   (no AR term; fallbacks)
   lr9211/arx_rf-none, -ati    0.5495816  0.5495816  0.5495816  2
-  (lstm and the main-side auto cells not reached by the deadline)
+  lr9211/lstm-none, -ati      0.7820404  0.6550902  0.6517021  2
+  lr9211/auto-ati             run refused, exit 2 (by design)
 
 cr9215 (the branch; nothing continues: ``cold`` = ``pcold`` = the one stream)::
 
@@ -104,17 +104,17 @@ dl9214 (the branch; a spike of T_head_left in R1b at 20.13 h, 6 lead-in events r
   dl9214/auto-none            0.8782045  0.8551415  0.8548909  2   (auto kept mlr)
   dl9214/auto-ati             run refused, exit 2 (by design)
 
-Not run by the deadline: lr9212 (seed 9212 unspent), dl9214's pcr / arx / arx_rf / lstm, the
-main side of cr9215 and dl9214 (their ``promo`` is checked against main only on dl9213 and
-lr9211).
+Not run by the deadline: lr9212 (seed 9212 unspent), pcr / arx / arx_rf / lstm on cr9215 and
+dl9214, the main side of cr9215 and dl9214 (``promo`` checked against main on dl9213 and
+lr9211 only).
 
 Every cell: ``pack`` 0 (the C's check pack passes), ``st`` export 0, ``onnx`` export exit 2
 ("no ONNX export is implemented yet", now naming every family that exports); ``pcold`` =
 replay's ``rmse_cold_start`` to the bit (``repr`` of promote.json and replay.json) in all 14
 branch cells read (24: lr9211 5, dl9213 5, cr9215 7, dl9214 7; auto-ati refused in each);
 promote's warm figure ``test_reported`` equal to main's to
-the bit in all 8 cells run on both trees (dl9213 lagbank / hammerstein x none / ati and auto,
-lr9211 lagbank x none / ati and hammerstein-none).
+the bit in all 10 cells run on both trees (lagbank / hammerstein x none / ati and auto-none,
+on dl9213 and lr9211).
 
 Against the bar
 ---------------
