@@ -77,7 +77,8 @@ dl9213 (main, every family x wrapper; ``pcold`` from the branch for lagbank, ham
   dl9213/auto-none            0.7744201  0.7743541  0.7297458  0
   dl9213/auto-ati             run refused, exit 2 (by design: ATI is auto's candidate)
 
-lr9211 (main, every family x wrapper; the branch for lagbank, hammerstein, auto; a planted one-sample spike of T_head_left in R1b, row 580)::
+lr9211 (main, every family x wrapper; the branch for lagbank, hammerstein, auto;
+a planted one-sample spike of T_head_left in R1b, row 580)::
 
   lr9211/mlr-none, -ati       0.7718121  0.6436783  0.6404264  2
   lr9211/pcr-none             2.773242   2.834425   2.837065   2
