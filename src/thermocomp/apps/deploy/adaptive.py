@@ -178,6 +178,7 @@ class AdaptiveCompensator:
         self._time_bad = False
         self._y = None
         self.last_events_: list[dict] = []
+        self.rows_events_: list[dict] = []
         self.n_samples_ = 0
 
     def __setstate__(self, state: dict) -> None:
@@ -353,6 +354,8 @@ class AdaptiveCompensator:
         clamped[rows] = clamps
         self._guard_rows(rows, y, dx, dts, ts, novel, refused, events, out)
         self.last_events_ = events.get(n - 1, []) if n else []
+        # every row's, in order: what the monitor did over a lead-in it was warmed on (deploy88)
+        self.rows_events_ = [e for k in sorted(events) for e in events[k]]
         return out, clamped
 
     def _inputs_block(self, X, time, start: int, xs, ts, dts, novel) -> int:

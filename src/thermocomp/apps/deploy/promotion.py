@@ -24,7 +24,8 @@ the champion decision itself is :mod:`thermocomp.core.scoring.champion`.  The st
    and its test figures (streamed per test campaign as deployed, from a reset
    or, for a campaign that continues others, warmed on them: reported, never
    used to decide; ``promote.json`` adds, per target, the test rows whose correction the
-   guard changed).
+   guard changed, and the test figures of each test campaign streamed from a reset at its
+   first row, as a controller powered on there: ``test_reported_cold_start``).
 3. The gate compares validation scores on the same dataset: the candidate's
    against the one the champion was promoted with, when the champion's
    ``dataset_hash``, ``criterion_target`` and ``validation_mode`` tags match
@@ -75,6 +76,10 @@ class Candidate:
     val_figures: dict
     figures: dict = field(default_factory=dict)
     test_figures: dict = field(default_factory=dict)
+    # the same test figures with each test campaign streamed from a reset at its first row (a
+    # controller powered on there), and the test campaigns that continue others (none: one stream)
+    test_figures_cold: dict = field(default_factory=dict)
+    cold_start_campaigns: list = field(default_factory=list)
     # per target, the test rows whose correction the guard changed (None: the plain stream)
     test_guarded: dict | None = None
     test_samples: int = 0
@@ -184,6 +189,13 @@ def deploy(cand: Candidate, comp, ds, *, stream_of: Callable, deployed_of: Calla
     scores = stream_scores(cand.deployed, test, sample_period(ds, test_ids), *e_p95, leads,
                            adapt=adapt_of(len(cand.deployed.targets_)))
     cand.test_figures = {k: v for k, v in figures_of(scores, target).items() if not is_validation(k)}
+    # a machine powered off between its campaigns starts the next one cold: the same figures
+    # from a reset at each test campaign's first row, beside the continued ones (deploy88)
+    cand.cold_start_campaigns = [c for c in test_ids if c in leads]
+    cand.test_figures_cold = cand.test_figures if not cand.cold_start_campaigns else {
+        k: v for k, v in figures_of(stream_scores(
+            cand.deployed, test, sample_period(ds, test_ids), *e_p95,
+            adapt=adapt_of(len(cand.deployed.targets_))), target).items() if not is_validation(k)}
     # why "as deployed" leaves run's test figure with no input clamped (guard70, as replay says it)
     guarded = {t: s["guarded_samples"] for t, s in scores.items()}
     cand.test_guarded = None if None in guarded.values() else guarded
@@ -233,6 +245,8 @@ def promote_report(cand: Candidate, outcome: Outcome, *, name: str, alias: str,
             "criterion": criterion, "ranked_by": cand.basis,
             "candidate": {"score": cand.score, "figures": cand.figures,
                           "validation": cand.val_figures, "test_reported": cand.test_figures,
+                          "test_reported_cold_start": cand.test_figures_cold,
+                          "cold_start_campaigns": cand.cold_start_campaigns,
                           "test_rows_guarded": cand.test_guarded,
                           "test_rows_clamped": cand.test_clamped,
                           "test_rows_excluded": cand.test_excluded},

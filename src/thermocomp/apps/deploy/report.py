@@ -13,8 +13,9 @@ unscored (:func:`~.streaming.warm`).  Two streams per campaign:
   monitor), compared with the batch prediction of the same fitted
   :class:`~thermocomp.core.compensator.Compensator` (of the campaign joined to the
   ones it continues, as ``run`` scores it): any difference is the stream's
-  (causality, state).  Both stop at a campaign's first missing value,
-  which the plain stream refuses;
+  (causality, state).  The comparison stops at a campaign's first missing value,
+  which the plain stream refuses; the batch prediction's RMSE covers every row, the
+  missing input cells interpolated as ``run``'s read repairs a gap (deploy88);
 * the **deployed** stream (as registered), whose residual gives ``rmse`` and
   whose events and excluded sensors fill ``replay.json``.
 
@@ -53,6 +54,8 @@ class Streamed:
     events: list = field(default_factory=list)     # the adaptive compensator's, in order
     excluded: list = field(default_factory=list)   # sensors excluded after the last row
     guarded: np.ndarray | None = None  # rows per target whose correction the guard changed
+    # the adaptive compensator's events while warmed on the campaigns it continues (deploy88)
+    warm_events: list = field(default_factory=list)
 
 
 def plain(deployed) -> StreamingCompensator:
@@ -127,6 +130,8 @@ def stream_rows(deployed, campaign: pd.DataFrame, cid: str = "", file=None,
     except OutOfEnvelopeError as exc:
         raise ContractError(f"campaign {cid}: {exc}", file=file) from None
     warmed = guard_changes(deployed)
+    # what the monitor did on the lead-in leaves the state the campaign starts from (deploy88)
+    lead_events = list(getattr(deployed, "rows_events_", [])) if adaptive and lead_in is not None else []
     step = deployed._step   # returns the clamp count too
     start = clock.perf_counter()
     i = 0
@@ -151,13 +156,31 @@ def stream_rows(deployed, campaign: pd.DataFrame, cid: str = "", file=None,
     excluded = list(deployed.excluded_inputs) if adaptive else []
     guarded = None if warmed is None else guard_changes(deployed) - warmed
     deployed.reset()
-    return Streamed(y, clamped, seconds, events, excluded, guarded)
+    # their times, as the campaign's events', from its first row on the stream's clock (< 0)
+    lead_events = [{"campaign": cid, **e, "time": e["time"] - t0} for e in lead_events]
+    return Streamed(y, clamped, seconds, events, excluded, guarded, lead_events)
 
 
 def complete_rows(campaign: pd.DataFrame, columns) -> int:
     """Rows before the campaign's first missing value in ``columns``."""
     bad = ~np.isfinite(campaign[list(columns)].to_numpy(float)).all(axis=1)
     return int(np.argmax(bad)) if bad.any() else len(campaign)
+
+
+def gaps_interpolated(campaign: pd.DataFrame, columns) -> pd.DataFrame:
+    """``campaign`` with the missing cells of ``columns`` on the line between their two valid
+    neighbours in time (its ``time``, else its rows), as ``run``'s read repairs a gap within
+    ``data.max_gap_samples``; before a column's first or after its last valid value, that value
+    held.  The batch prediction of every row, beside a stream that holds or reconstructs them."""
+    filled = campaign.copy()
+    t = campaign[TIME].to_numpy(float) if TIME in campaign.columns else np.arange(len(campaign), dtype=float)
+    t = t if np.isfinite(t).all() else np.arange(len(campaign), dtype=float)
+    for c in columns:
+        v = campaign[c].to_numpy(float)
+        ok = np.isfinite(v)
+        if ok.any() and not ok.all():
+            filled[c] = np.where(ok, v, np.interp(t, t[ok], v[ok]))
+    return filled
 
 
 def replay_report(deployed, campaigns: Mapping[str, pd.DataFrame],
@@ -174,10 +197,11 @@ def replay_report(deployed, campaigns: Mapping[str, pd.DataFrame],
         ``targets`` (per target: ``n_samples``; ``max_abs_stream_minus_batch``, the
         largest |plain stream − batch| over the complete rows, envelope off;
         ``rmse``, of the residual the deployed correction leaves (missing
-        measurements skipped); ``rmse_batch``, the batch prediction's over the
-        complete rows; ``us_per_sample``; ``clamped_samples``; ``max_abs_correction``
-        and ``all_finite`` of the deployed stream; ``guarded_samples``, the samples whose
-        correction the guard bounded, rate-limited or held (None without a guard);
+        measurements skipped); ``rmse_batch``, the batch prediction's over every row,
+        missing input cells interpolated (:func:`gaps_interpolated`); ``us_per_sample``;
+        ``clamped_samples``; ``max_abs_correction`` and ``all_finite`` of the deployed
+        stream; ``guarded_samples``, the samples whose correction the guard bounded,
+        rate-limited or held (None without a guard);
         ``streamed_range`` [min, max] of it;
         ``bound``, the guard's [lo, hi] or null), ``excluded_inputs`` (sensors excluded
         at the end of any campaign, sorted) and ``events`` (every event with its
@@ -194,7 +218,7 @@ def replay_report(deployed, campaigns: Mapping[str, pd.DataFrame],
     measured = comp.measured(campaigns)
     targets = list(deployed.targets_)
     diffs, residuals, batch_residuals, outputs, frozen = [], [], [], [], []
-    events, excluded = [], set()
+    events, excluded, lead_events = [], set(), []
     clamps, seconds, n, hours = 0, 0.0, 0, 0.0
     guarded_each = []       # per campaign: rows per target the guard changed (None: no guard)
     from ...base.progress import bar
@@ -202,15 +226,17 @@ def replay_report(deployed, campaigns: Mapping[str, pd.DataFrame],
     rows = bar(total=sum(len(df) for df in campaigns.values()), desc="replay", unit="row")
     for cid, df in campaigns.items():
         m = measured[cid][targets].to_numpy(float)
-        k = complete_rows(df, stream.columns_)
+        k, batch = complete_rows(df, stream.columns_), np.empty((0, len(targets)))
+        lead = lead_ins.get(cid)
         if k:
             head = df.iloc[:k]
-            lead = lead_ins.get(cid)
             batch = batch_prediction(comp, head, lead)[targets].to_numpy()
             with stream.envelope_off():   # the same inputs as batch: any difference is the stream's
                 free = stream_rows(stream, head, cid, lead_in=lead).y
             diffs.append(np.abs(free - batch))
-            batch_residuals.append(m[:k] - batch)
+        if k < len(df):     # every row, gaps filled as run fills them: like with like (deploy88)
+            batch = batch_prediction(comp, gaps_interpolated(df, stream.columns_), lead)[targets].to_numpy()
+        batch_residuals.append(m - batch)
         run = stream_rows(deployed, df, cid, (files or {}).get(cid), lead_ins.get(cid))
         if adapt is not None:
             frozen.append(m - run.y)
@@ -218,6 +244,7 @@ def replay_report(deployed, campaigns: Mapping[str, pd.DataFrame],
         residuals.append(m - run.y)
         outputs.append(run.y)
         events += run.events
+        lead_events += run.warm_events
         excluded.update(run.excluded)
         clamps += int((run.clamped > 0).sum())
         guarded_each.append(run.guarded)
@@ -259,6 +286,8 @@ def replay_report(deployed, campaigns: Mapping[str, pd.DataFrame],
               **summary(deployed)}
     if result["adaptive"]:
         result["alarms"] = alarm_rate(events, hours)
+    if lead_events:
+        result["lead_in_events"] = lead_events
     return result
 
 
@@ -334,6 +363,8 @@ def replay_json(deployed, result: dict, *, name: str, source: str, test_ids: lis
               "test_campaigns": test_ids}
     if missing:
         report["missing"] = missing     # missing cells per test campaign and column, streamed as NaN
+    if result.get("lead_in_events"):
+        report["lead_in_events"] = result["lead_in_events"]
     return report
 
 
@@ -354,11 +385,18 @@ def cold_start_line(report: dict) -> list[str]:
     without ``replay.cold_start``."""
     if "cold_start_campaigns" not in report:
         return []
-    chains = ", ".join(report["cold_start_campaigns"]) or "none continues another"
+    return cold_line(report["cold_start_campaigns"],
+                     [(t, r.get("rmse_cold_start"), r.get(RMSE)) for t, r in report["targets"].items()])
+
+
+def cold_line(continuing: list[str], figures: list[tuple]) -> list[str]:
+    """The line saying what a cold start costs: ``figures`` ``(name, cold, continued)`` RMSEs
+    of the test campaigns ``continuing`` others (the stream warmed on them) and of each from a
+    reset at its first row.  One wording for ``replay`` and ``promote`` (deploy87, deploy88)."""
+    chains = ", ".join(continuing) or "none continues another"
     return [f"cold start (each test campaign from a reset at its first row; {chains}): RMSE "
-            + ", ".join(f"{t} {r['rmse_cold_start']:.3f} against {r[RMSE]:.3f} continued"
-                        for t, r in report["targets"].items()
-                        if r.get("rmse_cold_start") is not None and r.get(RMSE) is not None)]
+            + ", ".join(f"{name} {cold:.3f} against {warm:.3f} continued"
+                        for name, cold, warm in figures if cold is not None and warm is not None)]
 
 
 def replay_lines(report: dict) -> list[str]:
@@ -388,4 +426,17 @@ def replay_lines(report: dict) -> list[str]:
         lines.append(f"events: {len(report['events'])}, excluded at a campaign's end: "
                      f"{', '.join(report['excluded_inputs']) or 'none'}"
                      + first_exclusion(report["events"]) + new_states(report["events"]))
-    return lines
+    return lines + lead_in_line(report.get("lead_in_events") or [])
+
+
+def lead_in_line(events: list[dict]) -> list[str]:
+    """The line saying the sensor monitor acted while the stream was warmed on the campaigns a
+    test campaign continues (``replay.json``'s ``lead_in_events``): the test campaign starts
+    from the state that left, where RMSE batch (run's) streamed them unmonitored (deploy88)."""
+    if not events:
+        return []
+    e = events[0]
+    return [f"warm-up: {len(events)} events of the sensor monitor on the campaigns the test "
+            f"campaigns continue (first: {e.get('sensor') or '-'} {e.get('to', '')}, "
+            f"{-e['time'] / 3600:.2f} h before {e['campaign']}); the test campaign starts from the "
+            "state they left, RMSE batch (run's) saw them unmonitored"]

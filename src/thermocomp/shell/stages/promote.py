@@ -15,7 +15,7 @@ from omegaconf import DictConfig, OmegaConf
 from ...apps.deploy import POLICIES
 from ...apps.deploy.adapt import from_config as adapt_from_config
 from ...apps.deploy.promotion import deploy, deploy_key, promote_report
-from ...apps.deploy.report import clamped_line, guarded_line
+from ...apps.deploy.report import clamped_line, cold_line, guarded_line
 from ...base.files import write_json
 from ...base.log import logger
 from ...base.params import choice
@@ -81,16 +81,20 @@ def promote(cfg: DictConfig) -> dict:
     write_json(resolve(cfg.out) / "promote.json", report)
     print(outcome_line(name, outcome.version, alias, outcome.moved, outcome.why,
                        outcome.champion_version))
-    for line in deployed_lines(cand, str(cfg.promote.envelope.policy)):
+    for line in deployed_lines(cand, str(cfg.promote.envelope.policy), str(cfg.promote.target)):
         print(line)
     return report
 
 
-def deployed_lines(cand, policy: str) -> list[str]:
+def deployed_lines(cand, policy: str, target: str = "mean") -> list[str]:
     """Why the test figures "as deployed" leave run's: the rows clamped to the envelope, with an
-    input the sensor monitor excluded, whose correction the guard changed (replay's lines)."""
+    input the sensor monitor excluded, whose correction the guard changed (replay's lines); and,
+    where a test campaign continues others, what a cold start there costs (deploy88)."""
     n, why = cand.test_samples, "the test figures are the {} stream's, run's the model's own"
-    lines = clamped_line(cand.test_clamped, n, policy, why.format("clamped"))
+    lines = cold_line(cand.cold_start_campaigns, [(target, cand.test_figures_cold.get("rmse"),
+                                                   cand.test_figures.get("rmse"))]
+                      ) if cand.cold_start_campaigns else []
+    lines += clamped_line(cand.test_clamped, n, policy, why.format("clamped"))
     if cand.test_excluded:
         lines.append(f"excluded: {cand.test_excluded} of {n} samples had an input excluded by "
                      "the sensor monitor (monitor.adaptive; replay names them); "

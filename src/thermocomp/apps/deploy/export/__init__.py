@@ -31,6 +31,7 @@ from __future__ import annotations
 import json
 
 from .errors import NotExportable
+from .laws import EXPORTED_FAMILIES
 from .output import not_in_code
 from .statespace import FORMATS, LINEAR_FAMILIES, Simulator, StateSpace, state_space
 
@@ -42,8 +43,8 @@ def _check_format(fmt: str) -> None:
     if fmt not in FORMATS:
         raise NotExportable(f"export.format={fmt!r}: one of {', '.join(FORMATS)}")
     if fmt == "onnx":
-        raise NotExportable("export.format=onnx: no ONNX export is implemented yet; the linear "
-                            f"families ({', '.join(LINEAR_FAMILIES)}) export to json, c and st")
+        raise NotExportable("export.format=onnx: no ONNX export is implemented yet; the families "
+                            f"{EXPORTED_FAMILIES} export to json, c and st")
 
 
 def check_exportable(compensator, fmt: str) -> None:

@@ -39,6 +39,10 @@ from .members import described, is_diagnosed, members
 from .recurrent import is_lstm, net_reads, skip_law
 
 LINEAR_FAMILIES = ("mlr", "pcr", "arx", "lagbank", "hammerstein")   # what exports to C / ST
+# what exports, as every refusal names it: the linear families, what wraps them, and the two
+# nonlinear ones as arrays (an onnx refusal named the linear five only: deploy88)
+EXPORTED_FAMILIES = (f"{', '.join(LINEAR_FAMILIES)}; their ATI models and model=auto's blends of "
+                     "them too; arx_rf, its forest as arrays; lstm, its network as arrays")
 # and arx_rf: its ARX a law, its forest walked as arrays (:mod:`.forest`, exportrest62); lstm:
 # its skip path a law, its cell stepped over arrays (:mod:`.recurrent`, lstmexport62); both within
 # an ATI model too, each interval's forest or network counting in its interval (exportati63);
@@ -348,10 +352,8 @@ def _target_law(est, n: int, period: float | None):
     """``(c, b0, {delay: row}, [(tau, input, gain)], a, period)`` of one fitted estimator."""
     if type(est) not in (MLR, PCR, ARX, LagBank):     # exactly: a subclass may stream otherwise
         raise NotExportable(f"model {type(est).__name__} is not one of the linear families that "
-                            f"export to C/ST ({', '.join(LINEAR_FAMILIES)}; their ATI models and "
-                            "model=auto's blends of them too; arx_rf, its forest as arrays; "
-                            "lstm, its network as arrays); the served model runs it (thermocomp "
-                            "serve, connect)")
+                            f"export to C/ST ({EXPORTED_FAMILIES}); the served model runs it "
+                            "(thermocomp serve, connect)")
     c = float(est.intercept_)
     if isinstance(est, (MLR, PCR)):
         return c, np.asarray(est.coef_, float), {}, [], 0.0, period
@@ -410,4 +412,5 @@ def _spread(row: np.ndarray, cols: np.ndarray, n: int) -> np.ndarray:
     return out
 
 
-__all__ = ["AMBIENT_CENTRE_C", "LINEAR_FAMILIES", "UNBOUNDED", "Law", "target_laws", "with_gains"]
+__all__ = ["AMBIENT_CENTRE_C", "EXPORTED_FAMILIES", "LINEAR_FAMILIES", "UNBOUNDED", "Law", "target_laws",
+           "with_gains"]
