@@ -103,7 +103,7 @@ def not_in_code(deployed, fmt: str | None = None) -> list[str]:
                 "a reading beyond its training range, a common step, one sensor out "
                 "reconstructed from the others and its re-admission, a drift exclusion while no "
                 "sensor is out, of one sensor or of it and its blind partner, a new thermal "
-                "state, a sensor no other predicts out for a dropout or a freeze, a stepped "
+                "state, a sensor no other predicts out for a dropout, a freeze or a jump, a stepped "
                 "self-prediction error's culprit out, one or two out): a missing "
                 "reading at a campaign's first sample, with another sensor out or missing, or of a "
                 "sensor the code does not hold out (the code refuses the row), a missing reading of "

@@ -90,6 +90,13 @@ The served adaptive compensator judges every ``T_`` input before the model reads
   largest step times ``sqrt(1 - h)``) out as a drift exclusion is (its wait doubled, no field to
   follow it), the second beside one out where the set is solved.  An export before it (no
   ``stepped``) flags it (``STEPPED``).
+* (cmon87) a sensor no other predicts, every other in, **out for a jump** (``blind_jump``, as
+  cmon84's dropout: ``spikes``): re-referenced by its whole step (no prediction of its change),
+  held at its last reading, its fallback's law set served while it is out, back after a calm
+  window; a jump while it is out re-referenced too; on its return its jumps are undone as served
+  (``Readmission._readmit``: several are noise or a spike, of one the reading nearer its held
+  value is taken): the reference before its first jump (``ref0``) restored, its window shifted
+  back.  An export before it (no ``blind_jump``) flags the jump (``BLIND``).
 
 What else the served monitor does it flags, ``NOT_IN_CODE`` with the rule (:data:`REASONS`),
 and goes on by its own rules: a reading beyond its range at a campaign's first sample, of
@@ -100,7 +107,7 @@ culprit would be a third out (or one it does not hold out), a drift beyond the b
 third sensor out (cmon85: with one out, as served), of more than
 one blind partner, a second culprit beyond the alarm band, a second sensor out for a jump, a
 dropout or its range, and a sensor no other predicts out for any other
-rule (a jump, its range; cmon84: too few left to rebuild the field without it), or with a
+rule (its range; a jump with another out; cmon84: too few left to rebuild the field without it), or with a
 fallback model the code does not hold.  A missing reading the code cannot
 rebuild (at a campaign's first sample, with another sensor out or missing, of a sensor it does
 not hold out) is refused as before (:meth:`CodeMonitor.refuses`: the sample is not read).  From
@@ -216,7 +223,7 @@ def monitor_fields(deployed, inputs: list) -> dict:
         "drift": 1, "pairs": [list(p) for p in pairs], "new_state": int(mon.new_state),
         "new_state_others": int(mon.new_state_others), "max_backoff": MAX_BACKOFF,
         "tau": EXCURSION_TAU_S, "growth": EXCURSION_GROWTH, "novel": 1, "blind_out": 1, "thawed": 1,
-        "blind_drop": 1, "solve": 1, "stepped": 1, "modes": int(mon.pod.n_modes_),
+        "blind_drop": 1, "solve": 1, "stepped": 1, "blind_jump": 1, "modes": int(mon.pod.n_modes_),
         "basis": mon.pod.basis_[:, :int(mon.pod.n_modes_)].tolist(),
         "fallback": [int(c in falls) for c in mon.names],
         "rounding": np.broadcast_to(getattr(mon, "rounding_c", 0.0), (n,)).tolist(),
@@ -326,7 +333,8 @@ class CodeMonitor:
                      ("thawed", 0),       # (before freeze84: a freeze's return flagged)
                      ("blind_drop", 0),   # (before cmon84: its missing reading refused)
                      ("solve", 0),        # (before cmon85: only the operators it holds)
-                     ("stepped", 0)):     # (before cmon86: a stepped error flagged)
+                     ("stepped", 0),      # (before cmon86: a stepped error flagged)
+                     ("blind_jump", 0)):  # (before cmon87: a blind sensor's jump flagged)
             a.setdefault(k, np.float64(v))
         a.setdefault("rounding", np.zeros(n))    # (before mon83: no culprit held for rounding)
         # (before mon86: every set judged by the whole set's bands)
@@ -347,6 +355,8 @@ class CodeMonitor:
         # (cmon84) one no other predicts that the code holds out for a dropout or a freeze (held
         # at its last reading), as served: enough left in to rebuild the field without it
         self.drops = bool(a["blind_drop"]) & ~self.predictable & (n - 1 >= a["min_active"])
+        # (cmon87) ... and for a jump, its jumps undone on its return where the reading returned
+        self.spikes = self.drops & bool(a["blind_jump"])
         # (cmon85) the POD basis (n x modes): any other set's operator solved at run time
         self.solve = bool(a["solve"]) and "basis" in arrays
         self.phi = np.asarray(arrays.get("basis", np.zeros((n, 0))), float).reshape(n, -1)
@@ -354,7 +364,7 @@ class CodeMonitor:
 
     def reset(self) -> None:
         n, w = self.n, self.window
-        self.ref = self.base = None
+        self.ref = self.base = self.ref0 = None    # (ref0: the reference before a first jump)
         # (cmon82: out2 its blind partner, cmon85 or a second out by drift; Mc / levc the active
         # set's operator and leverages)
         self.out, self.out2 = -1, -1
@@ -528,7 +538,8 @@ class CodeMonitor:
         """``j`` out where the code holds it (one sensor out, others predict it, or cmon84 a
         dropout or a freeze of one no other predicts; cmon85 a second, for a drift, a freeze or
         cmon86 a stepped error); else flagged."""
-        held = self.ported[j] or (rule in (DROPOUT, FREEZE) and self.drops[j])
+        held = self.ported[j] or (rule in (DROPOUT, FREEZE) and self.drops[j]) or (
+            rule == JUMP and self.spikes[j])
         second = self.out >= 0 and not (rule in (DRIFT_OUT, FREEZE, STEP_OUT) and self.ported[j]
                                         and self._second_held(j))
         if second or not held:
@@ -599,7 +610,7 @@ class CodeMonitor:
         if first:
             if rng.any():   # not in the code: the served monitor references it late
                 self._flag(NOT_IN_CODE, int(np.argmax(rng)), RANGE)
-            self.ref, self.base = x.copy(), x.copy()
+            self.ref, self.base, self.ref0 = x.copy(), x.copy(), x.copy()
         d = x - self.ref
         if rng.any() and not first:
             rng = self._beyond(x, d, rng)
@@ -637,12 +648,14 @@ class CodeMonitor:
         elif big.any():
             j = int(np.argmax(big))
             _, active, _, judged, _ = self._set()
-            if active[j] and (self.out >= 0 or not self.ported[j]):
+            if active[j] and (self.out >= 0 or not (self.ported[j] or self.spikes[j])):
                 self._exclude(j, JUMP)       # flagged: not in the code; the sensor stays as read
             else:
-                if not active[j] and not self.predictable[j]:
+                if not active[j] and not self.predictable[j] and not a["blind_jump"]:
                     # (cmon82c) the served return may undo it (readmission.py): not in the code
                     self._flag(NOT_IN_CODE, j, BLIND)
+                if not self.jumps[j]:
+                    self.ref0[j] = self.ref[j]
                 _, e = self._errors(d)
                 other = d[j] - e[j] if judged[j] else np.nan
                 expected = other - self.prev_other[j]
@@ -688,6 +701,8 @@ class CodeMonitor:
         due = ~self._active() & ~gone & (self.run == 0) & ~instant & (self.calm >= self.dwell)
         if due.any() and self.count >= self.window:
             for j in np.flatnonzero(self._returning(due)):
+                if a["blind_jump"]:
+                    self._undone(int(j), d)
                 self.jumps[j], self.froze[j] = 0, False
                 self._readmit(int(j), BACK)
         pred, e = self._errors(d)
@@ -700,6 +715,18 @@ class CodeMonitor:
         self.last = np.where(active & np.isfinite(d), d, self.last)
         self._fold(self.hist[pos], first, dt)
         return self._rebuilt(u, d, pred)
+
+    def _undone(self, j: int, d) -> None:
+        """(cmon87) ``j``, no other predicts it, back: its jumps undone as served (``_readmit``:
+        several are noise or a spike; of one, the reading nearer its held value taken), its
+        reference restored and ``d`` and its window shifted back."""
+        shift = self.ref[j] - self.ref0[j]
+        if self.predictable[j] or not self.jumps[j] or (
+                self.jumps[j] == 1 and not abs(d[j] + shift - self.last[j]) < abs(d[j] - self.last[j])):
+            return
+        self.ref[j] = self.ref0[j]
+        d[j] += shift
+        self.hist[:, j] += shift
 
     def _stepped(self, e, instant) -> None:
         """A self-prediction error stepped past the alarm band in one sample (the served
