@@ -223,7 +223,7 @@ def monitor_fields(deployed, inputs: list) -> dict:
         "drift": 1, "pairs": [list(p) for p in pairs], "new_state": int(mon.new_state),
         "new_state_others": int(mon.new_state_others), "max_backoff": MAX_BACKOFF,
         "tau": EXCURSION_TAU_S, "growth": EXCURSION_GROWTH, "novel": 1, "blind_out": 1, "thawed": 1,
-        "blind_drop": 1, "solve": 1, "stepped": 1, "blind_jump": 1, "modes": int(mon.pod.n_modes_),
+        "blind_drop": 1, "solve": 1, "stepped": 1, "blind_jump": 1, "second_jump": 1, "modes": int(mon.pod.n_modes_),
         "basis": mon.pod.basis_[:, :int(mon.pod.n_modes_)].tolist(),
         "fallback": [int(c in falls) for c in mon.names],
         "rounding": np.broadcast_to(getattr(mon, "rounding_c", 0.0), (n,)).tolist(),
@@ -334,7 +334,8 @@ class CodeMonitor:
                      ("blind_drop", 0),   # (before cmon84: its missing reading refused)
                      ("solve", 0),        # (before cmon85: only the operators it holds)
                      ("stepped", 0),      # (before cmon86: a stepped error flagged)
-                     ("blind_jump", 0)):  # (before cmon87: a blind sensor's jump flagged)
+                     ("blind_jump", 0),   # (before cmon87: a blind sensor's jump flagged)
+                     ("second_jump", 0)):  # (before cmon88: a jump with one out flagged)
             a.setdefault(k, np.float64(v))
         a.setdefault("rounding", np.zeros(n))    # (before mon83: no culprit held for rounding)
         # (before mon86: every set judged by the whole set's bands)
@@ -357,6 +358,8 @@ class CodeMonitor:
         self.drops = bool(a["blind_drop"]) & ~self.predictable & (n - 1 >= a["min_active"])
         # (cmon87) ... and for a jump, its jumps undone on its return where the reading returned
         self.spikes = self.drops & bool(a["blind_jump"])
+        # (cmon85, cmon86) the rules that take a second sensor out beside one; (cmon88) a jump too
+        self.seconds = (DRIFT_OUT, FREEZE, STEP_OUT) + ((JUMP,) if a["second_jump"] else ())
         # (cmon85) the POD basis (n x modes): any other set's operator solved at run time
         self.solve = bool(a["solve"]) and "basis" in arrays
         self.phi = np.asarray(arrays.get("basis", np.zeros((n, 0))), float).reshape(n, -1)
@@ -479,6 +482,11 @@ class CodeMonitor:
         pred = M @ np.where(np.isfinite(d), d, 0.0)      # (a missing reading is out: column 0)
         return pred, (d - pred) * scale
 
+    def _others_seen(self, d) -> np.ndarray:
+        """Each judged sensor's reading as the other active ones predict it (NaN: not judged)."""
+        _, e = self._errors(d)
+        return np.where(self._set()[3], d - e, np.nan)
+
     def _recompute(self) -> None:
         """The window's errors under the new operator (an exclusion, a re-admission)."""
         self.Mc, self.levc = self._operator(~self._active())
@@ -540,7 +548,7 @@ class CodeMonitor:
         cmon86 a stepped error); else flagged."""
         held = self.ported[j] or (rule in (DROPOUT, FREEZE) and self.drops[j]) or (
             rule == JUMP and self.spikes[j])
-        second = self.out >= 0 and not (rule in (DRIFT_OUT, FREEZE, STEP_OUT) and self.ported[j]
+        second = self.out >= 0 and not (rule in self.seconds and self.ported[j]
                                         and self._second_held(j))
         if second or not held:
             self._flag(NOT_IN_CODE, j, SECOND if second else BLIND)
@@ -550,6 +558,11 @@ class CodeMonitor:
         self._flag(EXCLUDED, j, rule)
         self.fell = self.fell or bool(self.fallback[j] and not self.fallset[j])
         return True
+
+    def _jump_held(self, j: int) -> bool:
+        """(cmon88) ``j``'s jump with one sensor out already held by the code: re-referenced and
+        out as the second, as served, where the others predict it and the set is solved."""
+        return JUMP in self.seconds and self.ported[j] and self._second_held(j)
 
     def _second_held(self, j: int) -> bool:
         """(cmon85) ``j`` out (a drift exclusion, a freeze) with one sensor out already: the
@@ -631,6 +644,9 @@ class CodeMonitor:
         instant = missing | rng
         if big.sum() >= a["common_min"]:
             big = self._common_step(d, step, big, pos)
+        # a lone jump's change as the others see it, judged by the set in before this sample's
+        # dropout or range exclusion, as served (its instant faults read first, then excluded)
+        other = self._others_seen(d) if big.sum() == 1 else None
         if missing.any():   # (refuses() let one through: a new one, or the sensor out again)
             j = int(np.argmax(missing))
             if j != self.out:
@@ -647,8 +663,9 @@ class CodeMonitor:
             self._flag(NOT_IN_CODE, int(np.argmax(big)), GLITCH)
         elif big.any():
             j = int(np.argmax(big))
-            _, active, _, judged, _ = self._set()
-            if active[j] and (self.out >= 0 or not (self.ported[j] or self.spikes[j])):
+            active = self._active()
+            if active[j] and not (self._jump_held(j) if self.out >= 0
+                                  else self.ported[j] or self.spikes[j]):
                 self._exclude(j, JUMP)       # flagged: not in the code; the sensor stays as read
             else:
                 if not active[j] and not self.predictable[j] and not a["blind_jump"]:
@@ -656,9 +673,7 @@ class CodeMonitor:
                     self._flag(NOT_IN_CODE, j, BLIND)
                 if not self.jumps[j]:
                     self.ref0[j] = self.ref[j]
-                _, e = self._errors(d)
-                other = d[j] - e[j] if judged[j] else np.nan
-                expected = other - self.prev_other[j]
+                expected = other[j] - self.prev_other[j]
                 offset = step[j] - (expected if np.isfinite(expected) else 0.0)
                 self.ref[j] += offset
                 d[j] -= offset

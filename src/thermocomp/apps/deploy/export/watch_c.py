@@ -97,7 +97,8 @@ def monitor_arrays(ss) -> list[tuple[str, object, tuple, str]]:
                ("MON_GROWTH", "growth", 1.5, "real"), ("MON_NOVEL", "novel", 0, "int"),
                ("MON_BLIND_OUT", "blind_out", 0, "int"), ("MON_THAWED", "thawed", 0, "int"),
                ("MON_BLIND_DROP", "blind_drop", 0, "int"), ("MON_STEPPED", "stepped", 0, "int"),
-               ("MON_BLIND_JUMP", "blind_jump", 0, "int"))
+               ("MON_BLIND_JUMP", "blind_jump", 0, "int"),
+               ("MON_SECOND_JUMP", "second_jump", 0, "int"))
     modes = max(int(m.get("modes", 1)), 1)
     return [("MON_M", m.get("M", []), (n + 1 + len(pairs), n, n), "real"),
             ("MON_LEV", m.get("lev", []), (n + 1 + len(pairs), n), "real"),
@@ -326,6 +327,12 @@ static int mon_second_held(const tc_state *s, int k) {
     return mon_operator(out, M, lev);
 }
 
+/* (cmon88) 1: sensor k's jump with one out already held by the code: re-referenced and out as
+   the second, as served, where the others predict it and the set is solved */
+static int mon_jump_held(const tc_state *s, int k) {
+    return MON_SECOND_JUMP && MON_PORTED[k] && mon_second_held(s, k);
+}
+
 /* k in the first free place out (the second: cmon85), its calm count and its within-band mark
    (mon85b) cleared: the served _exclude's, whatever took it out */
 static void mon_put_out(tc_state *s, int k) {
@@ -336,12 +343,13 @@ static void mon_put_out(tc_state *s, int k) {
 
 /* sensor k out where the code holds it (one out, the others predicting it, or a dropout or a
    freeze of one no other predicts; cmon85: a second, for a drift, a freeze or cmon86 a stepped
-   error); else flagged */
+   error, cmon88 a jump); else flagged */
 static void mon_exclude(tc_state *s, int k, int rule) {
     int blind = ((rule == TC_MON_DROPOUT || rule == TC_MON_FREEZE) && mon_drops(k))
                 || (rule == TC_MON_JUMP && mon_spikes(k));
     int second = s->mon_out >= 0 && !((rule == TC_MON_DRIFT_OUT || rule == TC_MON_FREEZE
-                                       || rule == TC_MON_STEP_OUT)
+                                       || rule == TC_MON_STEP_OUT
+                                       || (rule == TC_MON_JUMP && MON_SECOND_JUMP))
                                       && MON_PORTED[k] && mon_second_held(s, k));
     if (second || !(MON_PORTED[k] || blind)) {
         mon_flag(s, TC_MON_NOT_IN_CODE, k, second ? TC_MON_SECOND : TC_MON_BLIND);
@@ -964,6 +972,12 @@ static void monitor_step(tc_state *s, double u[], double dt) {
         mon_common_step(s, d, step, big, pos);
         for (nbig = 0, k = 0; k < NM; k++) nbig += big[k];
     }
+    if (nbig == 1) {   /* a lone jump's change as the others see it, judged by the set in before
+                          this sample's dropout or range exclusion, as served */
+        mon_errors(s, d, pred, e);
+        mon_set(s, a, o, jd, scale);
+        for (k = 0; k < NM; k++) other[k] = jd[k] ? d[k] - e[k] : NAN;
+    }
     /* (cdrop77) a missing reading: excluded, rebuilt from the others (the sensor out, missing
        again: rebuilt as it was; out for a freeze, flagged: its re-admission band is the served
        monitor's path, not held here) */
@@ -979,7 +993,7 @@ static void monitor_step(tc_state *s, double u[], double dt) {
         else if (s->mon_count == 2) mon_flag(s, TC_MON_NOT_IN_CODE, k, TC_MON_GLITCH);
         else {
             mon_set(s, a, o, jd, scale);
-            if (a[k] && (s->mon_out >= 0 || !(MON_PORTED[k] || mon_spikes(k))))
+            if (a[k] && !(s->mon_out >= 0 ? mon_jump_held(s, k) : MON_PORTED[k] || mon_spikes(k)))
                 mon_exclude(s, k, TC_MON_JUMP);   /* flagged */
             else {   /* re-referenced by its step less its change as the others predict it */
                 double expected, offset;
@@ -987,8 +1001,7 @@ static void monitor_step(tc_state *s, double u[], double dt) {
                                                                          return may undo it */
                     mon_flag(s, TC_MON_NOT_IN_CODE, k, TC_MON_BLIND);
                 if (!s->mon_jumps[k]) s->mon_ref0[k] = s->mon_ref[k];
-                mon_errors(s, d, pred, e);
-                expected = (jd[k] ? d[k] - e[k] : NAN) - s->mon_prev_other[k];
+                expected = other[k] - s->mon_prev_other[k];
                 offset = step[k] - (isfinite(expected) ? expected : 0.0);
                 s->mon_ref[k] += offset;
                 d[k] -= offset;
