@@ -29,14 +29,18 @@ SEED = 9032
 
 @pytest.fixture(scope="module")
 def record(tmp_path_factory):
+    return long_record(tmp_path_factory, SEED)
+
+
+def long_record(tmp_path_factory, seed: int):
     """``(deployed, its system with the monitor, R1b after its lead-in, the lead-in's rows,
-    R1b, the lead-ins by campaign)``."""
+    R1b, the lead-ins by campaign)`` of the long record ``seed``."""
     from thermocomp.shell.builders import build_compensator, deploy_stream, deployable
     from thermocomp.shell.cli import main
     from thermocomp.shell.source import read_streamed
 
-    data = tmp_path_factory.mktemp(f"lr{SEED}") / "data"
-    assert main(["-q", "simulate", f"seed={SEED}", f"data.path={data}", "track=false",
+    data = tmp_path_factory.mktemp(f"lr{seed}") / "data"
+    assert main(["-q", "simulate", f"seed={seed}", f"data.path={data}", "track=false",
                  "sim=long_record", "sim.generator.duration_days=3.0",
                  "sim.generator.test_fraction=0.2"]) == 0
     cfg = _compose(f"data.path={data}", "track=false", "model=mlr", "data.reference=none")

@@ -104,7 +104,8 @@ def not_in_code(deployed, fmt: str | None = None) -> list[str]:
                 "reconstructed from the others and its re-admission, a drift exclusion while no "
                 "sensor is out, of one sensor or of it and its blind partner, a new thermal "
                 "state, a sensor no other predicts out for a dropout, a freeze or a jump, a stepped "
-                "self-prediction error's culprit out, one or two out): a missing "
+                "self-prediction error's culprit out, a second sensor out for a jump, one or two "
+                "out): a missing "
                 "reading at a campaign's first sample, with another sensor out or missing, or of a "
                 "sensor the code does not hold out (the code refuses the row), a missing reading of "
                 "a sensor out for a freeze (its re-admission band), a reading beyond its training "
@@ -113,7 +114,7 @@ def not_in_code(deployed, fmt: str | None = None) -> list[str]:
                 "a jump at the sample after the reference, a stepped self-prediction "
                 "error whose culprit would be a third out, a drift beyond the band with a "
                 "sensor out, of a sensor no other predicts, of more than one blind partner, a "
-                "second sensor out, a "
+                "second sensor out for another rule, a third out, a "
                 "sensor no other predicts out for another rule, or with a fallback model (the "
                 "model fitted without it) of a kind the code does not step beside the model "
                 "(an arx_rf forest, an lstm network of another shape)"]

@@ -90,6 +90,11 @@ The served adaptive compensator judges every ``T_`` input before the model reads
   largest step times ``sqrt(1 - h)``) out as a drift exclusion is (its wait doubled, no field to
   follow it), the second beside one out where the set is solved.  An export before it (no
   ``stepped``) flags it (``STEPPED``).
+* (cmon88) a **jump with one sensor out** (``second_jump``): a sensor the others predict,
+  re-referenced by its step less its change as the others see it and out as the second where the
+  set is solved, as served (``_instant``; its change judged by the set in before the sample's
+  dropout or range exclusion: the served monitor reads a sample's instant faults together, then
+  excludes).  An export before it (no ``second_jump``) flags it (``SECOND``).
 * (cmon87) a sensor no other predicts, every other in, **out for a jump** (``blind_jump``, as
   cmon84's dropout: ``spikes``): re-referenced by its whole step (no prediction of its change),
   held at its last reading, its fallback's law set served while it is out, back after a calm
@@ -105,8 +110,8 @@ as it was, so that the reading's return is no jump), several sensors jumping at 
 no common step, a jump at the reference's next sample, a stepped self-prediction error whose
 culprit would be a third out (or one it does not hold out), a drift beyond the band that takes a
 third sensor out (cmon85: with one out, as served), of more than
-one blind partner, a second culprit beyond the alarm band, a second sensor out for a jump, a
-dropout or its range, and a sensor no other predicts out for any other
+one blind partner, a second culprit beyond the alarm band, a second sensor out for a dropout or
+its range, a third for a jump, and a sensor no other predicts out for any other
 rule (its range; a jump with another out; cmon84: too few left to rebuild the field without it), or with a
 fallback model the code does not hold.  A missing reading the code cannot
 rebuild (at a campaign's first sample, with another sensor out or missing, of a sensor it does
@@ -544,8 +549,8 @@ class CodeMonitor:
 
     def _exclude(self, j: int, rule: int) -> bool:
         """``j`` out where the code holds it (one sensor out, others predict it, or cmon84 a
-        dropout or a freeze of one no other predicts; cmon85 a second, for a drift, a freeze or
-        cmon86 a stepped error); else flagged."""
+        dropout or a freeze of one no other predicts; cmon85 a second, for a drift, a freeze,
+        cmon86 a stepped error or cmon88 a jump); else flagged."""
         held = self.ported[j] or (rule in (DROPOUT, FREEZE) and self.drops[j]) or (
             rule == JUMP and self.spikes[j])
         second = self.out >= 0 and not (rule in self.seconds and self.ported[j]
