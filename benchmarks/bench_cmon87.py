@@ -224,15 +224,24 @@ def measured(deployed, tests: dict, leads: dict, label: str, folder: Path,
 
 def spikes(root: str = "/tmp/cmon87-bench", seeds: str = SEEDS) -> None:
     """Before / now on the long records (module doc)."""
+    spiked_records(root, seeds)
+
+
+def spiked_records(root: str, seeds: str, before=None, more=None) -> None:
+    """:func:`measured` (``before``) on the long records of ``seeds``; ``more(deployed, ss,
+    tests, leads, label)``: lines printed after each record's."""
     import tempfile
 
     folder = made_folder(root)
     t0 = time.process_time()
     for seed in seed_list(seeds):
-        deployed, _, tests, leads, planted = _record(folder, seed)
+        deployed, ss, tests, leads, planted = _record(folder, seed)
         print(f"lr{seed}: planted {planted or 'none (as drawn)'}", flush=True)
         with tempfile.TemporaryDirectory(prefix="cmon87-") as tmp:
-            print("\n".join(measured(deployed, tests, leads, f"lr{seed}", Path(tmp))), flush=True)
+            print("\n".join(measured(deployed, tests, leads, f"lr{seed}", Path(tmp), before)),
+                  flush=True)
+        if more is not None:
+            print("\n".join(more(deployed, ss, tests, leads, f"lr{seed}")), flush=True)
     print(f"bench process CPU {time.process_time() - t0:.1f} s", flush=True)
 
 

@@ -71,14 +71,13 @@ from __future__ import annotations
 
 import dataclasses
 import sys
-import time
 from pathlib import Path
 
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from _cli import made_folder, run_commands, seed_list  # noqa: E402
+from _cli import made_folder, run_commands  # noqa: E402
 
 SEEDS = "9032,9126,9131-9135,9206-9210"
 
@@ -148,29 +147,24 @@ def trace(root: str = "/tmp/cmon88-bench", seed: str = "9126") -> None:
 
 def spikes(root: str = "/tmp/cmon88-bench", seeds: str = SEEDS) -> None:
     """Before (main) / now on the long records (module doc); the mirror with cmon87 alone."""
-    import tempfile
+    from bench_cmon87 import spiked_records
 
-    from bench_cmon87 import _record, measured
+    spiked_records(root, seeds, _main, _alone)
 
+
+def _alone(deployed, ss, tests, leads, label) -> list[str]:
+    """The mirror with cmon87's rule alone on each test campaign: rows = served, first flag."""
     from thermocomp.apps.deploy.export.pack import corrections, fed
     from thermocomp.apps.deploy.report import stream_rows
 
-    folder = made_folder(root)
-    t0 = time.process_time()
-    for seed in seed_list(seeds):
-        deployed, ss, tests, leads, planted = _record(folder, seed)
-        print(f"lr{seed}: planted {planted or 'none (as drawn)'}", flush=True)
-        with tempfile.TemporaryDirectory(prefix="cmon88-") as tmp:
-            print("\n".join(measured(deployed, tests, leads, f"lr{seed}", Path(tmp), _main)),
-                  flush=True)
-        for t, df in tests.items():
-            frame = fed(df, leads.get(t))
-            lead = len(frame) - len(df)
-            want = corrections(ss, stream_rows(deployed, frame, str(t)).y)
-            same, first, _ = mirrored(_cmon87(ss), frame, want, lead)
-            print(f"lr{seed} {t}: mirror with cmon87 alone = served on {same} of {len(df)} rows, "
-                  f"first flag {first}", flush=True)
-    print(f"bench process CPU {time.process_time() - t0:.1f} s", flush=True)
+    out = []
+    for t, df in tests.items():
+        frame = fed(df, leads.get(t))
+        want = corrections(ss, stream_rows(deployed, frame, str(t)).y)
+        same, first, _ = mirrored(_cmon87(ss), frame, want, len(frame) - len(df))
+        out.append(f"{label} {t}: mirror with cmon87 alone = served on {same} of {len(df)} rows, "
+                   f"first flag {first}")
+    return out
 
 
 def compare(root: str = "/tmp/cmon88-bench", spec: str | None = None) -> None:

@@ -72,24 +72,33 @@ def _served_spike(deployed, ss, tests, leads, lead) -> tuple[int, int, str]:
     return row(out["time"]), row(back["time"]), out["sensor"]
 
 
+def held_as_served(record, folder) -> tuple[list, str, dict]:
+    """The mirror and the compiled C of ``record`` equal to the served corrections on every row,
+    nothing flagged, R1b's pack entry whole and its check passing (in ``folder``): ``(the
+    mirror's exclusions (row, sensor, rule), the stream's stderr, the pack's summary)``."""
+    deployed, ss, frame, lead, tests, leads = record
+    want = corrections(ss, stream_rows(deployed, frame, "R1b").y)
+    got, out, missed = _mirror(ss, frame)
+    assert not missed and np.max(np.abs(got - want)) < 1e-9
+    files, summary = conformance_pack(deployed, ss, tests, leads)
+    entry = summary["campaigns"][0]
+    assert (entry["rows"], entry["cut"]) == (len(frame), None)
+    stream = built_stream(folder, {**exported_files(deployed, "c"), **files})
+    c, said = _streamed(stream, frame, ss.inputs)
+    assert c.shape == want.shape and np.max(np.abs(c - want)) < 1e-9        # every row
+    assert "not in the code" not in said
+    script = subprocess.run(["sh", "check/check.sh"], cwd=folder, capture_output=True, text=True)
+    assert script.returncode == 0, script.stderr
+    return out, said, summary
+
+
 @needs_cc
 def test_a_spiking_sensor_no_other_predicts_is_held_by_the_code_as_served(record, tmp_path):
     deployed, ss, frame, lead, tests, leads = record
     row, back, sensor = _served_spike(deployed, ss, tests, leads, lead)
-    want = corrections(ss, stream_rows(deployed, frame, "R1b").y)
-    got, out, missed = _mirror(ss, frame)
-    assert not missed and np.max(np.abs(got - want)) < 1e-9
+    out, _, summary = held_as_served(record, tmp_path)
     assert (row, sensor, JUMP) in out
-    files, summary = conformance_pack(deployed, ss, tests, leads)
-    entry = summary["campaigns"][0]
-    assert (entry["rows"], entry["cut"]) == (len(frame), None)
     assert all(e["cut"] is None for e in summary["campaigns"])
-    stream = built_stream(tmp_path, {**exported_files(deployed, "c"), **files})
-    c, said = _streamed(stream, frame, ss.inputs)
-    assert c.shape == want.shape and np.max(np.abs(c - want)) < 1e-9        # every row
-    assert "not in the code" not in said
-    script = subprocess.run(["sh", "check/check.sh"], cwd=tmp_path, capture_output=True, text=True)
-    assert script.returncode == 0, script.stderr
 
 
 def test_an_export_before_cmon87_flags_the_spike(record):
