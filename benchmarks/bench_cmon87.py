@@ -178,8 +178,9 @@ def _record(root: Path, seed: int):
     return deployed, ss, tests, lead_ins(plain(deployed).compensator, ds, test_ids), planted
 
 
-def measured(deployed, tests: dict, leads: dict, label: str, folder: Path) -> list[str]:
-    """Per test campaign, before (:func:`_before`) and now (module doc)."""
+def measured(deployed, tests: dict, leads: dict, label: str, folder: Path,
+             before=None) -> list[str]:
+    """Per test campaign, before (``before(ss)``; default :func:`_before`) and now (module doc)."""
     from _ccode import built
     from bench_cmon84 import _c_rows, flagged
     from bench_cmon85 import _timed
@@ -193,7 +194,7 @@ def measured(deployed, tests: dict, leads: dict, label: str, folder: Path) -> li
     said, codes = {}, {}
     frames = {t: fed(df, leads.get(t)) for t, df in tests.items()}
     served = {t: stream_rows(deployed, f, str(t)).y for t, f in frames.items()}
-    for name, ss in (("before", _before(now)), ("now", now)):
+    for name, ss in (("before", (before or _before)(now)), ("now", now)):
         codes[name] = built(folder / name, {"compensator.h": c.header(ss),
                                             "compensator.c": c.source(ss), "stream.c": DRIVER})
         _, summary = conformance_pack(deployed, ss, tests, leads, script=False)
@@ -223,15 +224,24 @@ def measured(deployed, tests: dict, leads: dict, label: str, folder: Path) -> li
 
 def spikes(root: str = "/tmp/cmon87-bench", seeds: str = SEEDS) -> None:
     """Before / now on the long records (module doc)."""
+    spiked_records(root, seeds)
+
+
+def spiked_records(root: str, seeds: str, before=None, more=None) -> None:
+    """:func:`measured` (``before``) on the long records of ``seeds``; ``more(deployed, ss,
+    tests, leads, label)``: lines printed after each record's."""
     import tempfile
 
     folder = made_folder(root)
     t0 = time.process_time()
     for seed in seed_list(seeds):
-        deployed, _, tests, leads, planted = _record(folder, seed)
+        deployed, ss, tests, leads, planted = _record(folder, seed)
         print(f"lr{seed}: planted {planted or 'none (as drawn)'}", flush=True)
         with tempfile.TemporaryDirectory(prefix="cmon87-") as tmp:
-            print("\n".join(measured(deployed, tests, leads, f"lr{seed}", Path(tmp))), flush=True)
+            print("\n".join(measured(deployed, tests, leads, f"lr{seed}", Path(tmp), before)),
+                  flush=True)
+        if more is not None:
+            print("\n".join(more(deployed, ss, tests, leads, f"lr{seed}")), flush=True)
     print(f"bench process CPU {time.process_time() - t0:.1f} s", flush=True)
 
 
@@ -248,9 +258,10 @@ def _pack_rows(deployed, ss, frame, want) -> int:
     return n
 
 
-def lean(deployed, tests: dict, label: str, folder: Path) -> list[str]:
-    """bench_cmon85's ``measured`` (before: :func:`_before`), the pack's rows of each campaign
-    itself (:func:`_pack_rows`: its planted copies not built, the served stream run once)."""
+def lean(deployed, tests: dict, label: str, folder: Path, before=None) -> list[str]:
+    """bench_cmon85's ``measured`` (before: ``before(ss)``, default :func:`_before`), the pack's
+    rows of each campaign itself (:func:`_pack_rows`: its planted copies not built, the served
+    stream run once)."""
     from _ccode import built
     from bench_cmon84 import _c_rows, flagged
     from bench_cmon85 import _timed
@@ -265,7 +276,7 @@ def lean(deployed, tests: dict, label: str, folder: Path) -> list[str]:
         return [f"{label}: no monitor in the code"]
     served = {t: stream_rows(deployed, df, str(t)).y for t, df in tests.items()}
     said, codes = {}, {}
-    for name, ss in (("before", _before(now)), ("now", now)):
+    for name, ss in (("before", (before or _before)(now)), ("now", now)):
         codes[name] = built(folder / name, {"compensator.h": c.header(ss),
                                             "compensator.c": c.source(ss), "stream.c": DRIVER})
         for t, df in tests.items():
@@ -289,6 +300,11 @@ def lean(deployed, tests: dict, label: str, folder: Path) -> list[str]:
 
 def compare(root: str = "/tmp/cmon87-bench", spec: str | None = None) -> None:
     """bench_cmon86's campaigns (:func:`lean`), before: the export without ``blind_jump``."""
+    compared(root, spec, _before)
+
+
+def compared(root: str, spec: str | None, before) -> None:
+    """bench_cmon86's campaigns (``spec``; None: its SPEC), :func:`lean` with ``before``."""
     import tempfile
 
     from bench_cmon84 import _records
@@ -301,7 +317,8 @@ def compare(root: str = "/tmp/cmon87-bench", spec: str | None = None) -> None:
         for seed in seed_list(seeds):
             for deployed, tests, label in _records(folder, name, seed):
                 with tempfile.TemporaryDirectory(prefix="cmon87-") as tmp:
-                    print("\n".join(lean(deployed, tests, label, Path(tmp))), flush=True)
+                    print("\n".join(lean(deployed, tests, label, Path(tmp), before)),
+                          flush=True)
     print(f"bench process CPU {time.process_time() - t0:.1f} s", flush=True)
 
 

@@ -79,10 +79,12 @@ def test_a_reading_beyond_its_range_and_a_common_step_are_what_the_code_does_as_
     # spike on T_b comes while the planted sensor is out (a second sensor out), or (the common
     # step) with it: two sensors jumping beside one beyond its range are no common step; the
     # freeze (cmon85) kept whole: T_a's freeze seen while T_b is out is a second sensor out the
-    # code holds (before: cut at row 31)
+    # code holds (before: cut at row 31); and (cmon88) the jump: T_a's jump in the row T_b goes
+    # beyond its range is a second sensor out for a jump the code holds, its change judged by
+    # the set in before T_b's exclusion, as served (before: cut at row 21)
     assert [(e["campaign"], e["rows"], e["cut"] is None) for e in summary["campaigns"]] == [
         ("spike", 40, True), ("beyond", 40, True), ("common", 40, True), ("hotter", 40, True),
-        ("spike.jump.T_a", 20, False), ("spike.freeze.T_a", 40, True),
+        ("spike.jump.T_a", 40, True), ("spike.freeze.T_a", 40, True),
         ("spike.dropout.T_a", 20, False), ("spike.range.T_a", 20, False),
         ("spike.common.step", 20, False)]
     stream = built_stream(tmp_path, {**exported_files(deployed, "c"), **files})

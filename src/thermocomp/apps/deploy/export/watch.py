@@ -94,6 +94,18 @@ The served adaptive compensator judges every ``T_`` input before the model reads
   largest step times ``sqrt(1 - h)``) out as a drift exclusion is (its wait doubled, no field to
   follow it), the second beside one out where the set is solved.  An export before it (no
   ``stepped``) flags it (``STEPPED``).
+* (cmon88) a **jump with one sensor out** (``second_jump``): a sensor the others predict,
+  re-referenced by its step less its change as the others see it and out as the second where the
+  set is solved, as served (``_instant``; its change judged by the set in before the sample's
+  dropout or range exclusion: the served monitor reads a sample's instant faults together, then
+  excludes).  An export before it (no ``second_jump``) flags it (``SECOND``).
+* (cmon87) a sensor no other predicts, every other in, **out for a jump** (``blind_jump``, as
+  cmon84's dropout: ``spikes``): re-referenced by its whole step (no prediction of its change),
+  held at its last reading, its fallback's law set served while it is out, back after a calm
+  window; a jump while it is out re-referenced too; on its return its jumps are undone as served
+  (``Readmission._readmit``: several are noise or a spike, of one the reading nearer its held
+  value is taken): the reference before its first jump (``ref0``) restored, its window shifted
+  back.  An export before it (no ``blind_jump``) flags the jump (``BLIND``).
 
 What else the served monitor does it flags, ``NOT_IN_CODE`` with the rule (:data:`REASONS`),
 and goes on by its own rules: a reading beyond its range at a campaign's first sample, of
@@ -102,9 +114,9 @@ as it was, so that the reading's return is no jump), several sensors jumping at 
 no common step, a jump at the reference's next sample, a stepped self-prediction error whose
 culprit would be a third out (or one it does not hold out), a drift beyond the band that takes a
 third sensor out (cmon85: with one out, as served), of more than
-one blind partner, a second culprit beyond the alarm band, a second sensor out for a jump, a
-dropout or its range, and a sensor no other predicts out for any other
-rule (a jump, its range; cmon84: too few left to rebuild the field without it), or with a
+one blind partner, a second culprit beyond the alarm band, a second sensor out for a dropout or
+its range, a third for a jump, and a sensor no other predicts out for any other
+rule (its range; a jump with another out; cmon84: too few left to rebuild the field without it), or with a
 fallback model the code does not hold.  A missing reading the code cannot
 rebuild (at a campaign's first sample, with another sensor out or missing, of a sensor it does
 not hold out) is refused as before (:meth:`CodeMonitor.refuses`: the sample is not read).  From
@@ -220,7 +232,8 @@ def monitor_fields(deployed, inputs: list) -> dict:
         "drift": 1, "pairs": [list(p) for p in pairs], "new_state": int(mon.new_state),
         "new_state_others": int(mon.new_state_others), "max_backoff": MAX_BACKOFF,
         "tau": EXCURSION_TAU_S, "growth": EXCURSION_GROWTH, "novel": 1, "blind_out": 1, "thawed": 1,
-        "blind_drop": 1, "solve": 1, "stepped": 1, "cleared": 1, "modes": int(mon.pod.n_modes_),
+        "blind_drop": 1, "solve": 1, "stepped": 1, "cleared": 1, "blind_jump": 1, "second_jump": 1,
+        "modes": int(mon.pod.n_modes_),
         "basis": mon.pod.basis_[:, :int(mon.pod.n_modes_)].tolist(),
         "fallback": [int(c in falls) for c in mon.names],
         "rounding": np.broadcast_to(getattr(mon, "rounding_c", 0.0), (n,)).tolist(),
@@ -331,7 +344,9 @@ class CodeMonitor:
                      ("blind_drop", 0),   # (before cmon84: its missing reading refused)
                      ("solve", 0),        # (before cmon85: only the operators it holds)
                      ("stepped", 0),      # (before cmon86: a stepped error flagged)
-                     ("cleared", 0)):     # (before mon88: no partner's freeze clears one)
+                     ("cleared", 0),      # (before mon88: no partner's freeze clears one)
+                     ("blind_jump", 0),   # (before cmon87: a blind sensor's jump flagged)
+                     ("second_jump", 0)):  # (before cmon88: a jump with one out flagged)
             a.setdefault(k, np.float64(v))
         a.setdefault("rounding", np.zeros(n))    # (before mon83: no culprit held for rounding)
         # (before mon86: every set judged by the whole set's bands)
@@ -352,6 +367,10 @@ class CodeMonitor:
         # (cmon84) one no other predicts that the code holds out for a dropout or a freeze (held
         # at its last reading), as served: enough left in to rebuild the field without it
         self.drops = bool(a["blind_drop"]) & ~self.predictable & (n - 1 >= a["min_active"])
+        # (cmon87) ... and for a jump, its jumps undone on its return where the reading returned
+        self.spikes = self.drops & bool(a["blind_jump"])
+        # (cmon85, cmon86) the rules that take a second sensor out beside one; (cmon88) a jump too
+        self.seconds = (DRIFT_OUT, FREEZE, STEP_OUT) + ((JUMP,) if a["second_jump"] else ())
         # (cmon85) the POD basis (n x modes): any other set's operator solved at run time
         self.solve = bool(a["solve"]) and "basis" in arrays
         self.phi = np.asarray(arrays.get("basis", np.zeros((n, 0))), float).reshape(n, -1)
@@ -359,7 +378,7 @@ class CodeMonitor:
 
     def reset(self) -> None:
         n, w = self.n, self.window
-        self.ref = self.base = None
+        self.ref = self.base = self.ref0 = None    # (ref0: the reference before a first jump)
         # (cmon82: out2 its blind partner, cmon85 or a second out by drift; Mc / levc the active
         # set's operator and leverages)
         self.out, self.out2 = -1, -1
@@ -474,6 +493,11 @@ class CodeMonitor:
         pred = M @ np.where(np.isfinite(d), d, 0.0)      # (a missing reading is out: column 0)
         return pred, (d - pred) * scale
 
+    def _others_seen(self, d) -> np.ndarray:
+        """Each judged sensor's reading as the other active ones predict it (NaN: not judged)."""
+        _, e = self._errors(d)
+        return np.where(self._set()[3], d - e, np.nan)
+
     def _recompute(self) -> None:
         """The window's errors under the new operator (an exclusion, a re-admission)."""
         self.Mc, self.levc = self._operator(~self._active())
@@ -531,10 +555,11 @@ class CodeMonitor:
 
     def _exclude(self, j: int, rule: int) -> bool:
         """``j`` out where the code holds it (one sensor out, others predict it, or cmon84 a
-        dropout or a freeze of one no other predicts; cmon85 a second, for a drift, a freeze or
-        cmon86 a stepped error); else flagged."""
-        held = self.ported[j] or (rule in (DROPOUT, FREEZE) and self.drops[j])
-        second = self.out >= 0 and not (rule in (DRIFT_OUT, FREEZE, STEP_OUT) and self.ported[j]
+        dropout or a freeze of one no other predicts; cmon85 a second, for a drift, a freeze,
+        cmon86 a stepped error or cmon88 a jump); else flagged."""
+        held = self.ported[j] or (rule in (DROPOUT, FREEZE) and self.drops[j]) or (
+            rule == JUMP and self.spikes[j])
+        second = self.out >= 0 and not (rule in self.seconds and self.ported[j]
                                         and self._second_held(j))
         if second or not held:
             self._flag(NOT_IN_CODE, j, SECOND if second else BLIND)
@@ -544,6 +569,11 @@ class CodeMonitor:
         self._flag(EXCLUDED, j, rule)
         self.fell = self.fell or bool(self.fallback[j] and not self.fallset[j])
         return True
+
+    def _jump_held(self, j: int) -> bool:
+        """(cmon88) ``j``'s jump with one sensor out already held by the code: re-referenced and
+        out as the second, as served, where the others predict it and the set is solved."""
+        return JUMP in self.seconds and self.ported[j] and self._second_held(j)
 
     def _second_held(self, j: int) -> bool:
         """(cmon85) ``j`` out (a drift exclusion, a freeze) with one sensor out already: the
@@ -604,7 +634,7 @@ class CodeMonitor:
         if first:
             if rng.any():   # not in the code: the served monitor references it late
                 self._flag(NOT_IN_CODE, int(np.argmax(rng)), RANGE)
-            self.ref, self.base = x.copy(), x.copy()
+            self.ref, self.base, self.ref0 = x.copy(), x.copy(), x.copy()
         d = x - self.ref
         if rng.any() and not first:
             rng = self._beyond(x, d, rng)
@@ -625,6 +655,9 @@ class CodeMonitor:
         instant = missing | rng
         if big.sum() >= a["common_min"]:
             big = self._common_step(d, step, big, pos)
+        # a lone jump's change as the others see it, judged by the set in before this sample's
+        # dropout or range exclusion, as served (its instant faults read first, then excluded)
+        other = self._others_seen(d) if big.sum() == 1 else None
         if missing.any():   # (refuses() let one through: a new one, or the sensor out again)
             j = int(np.argmax(missing))
             if j != self.out:
@@ -641,16 +674,17 @@ class CodeMonitor:
             self._flag(NOT_IN_CODE, int(np.argmax(big)), GLITCH)
         elif big.any():
             j = int(np.argmax(big))
-            _, active, _, judged, _ = self._set()
-            if active[j] and (self.out >= 0 or not self.ported[j]):
+            active = self._active()
+            if active[j] and not (self._jump_held(j) if self.out >= 0
+                                  else self.ported[j] or self.spikes[j]):
                 self._exclude(j, JUMP)       # flagged: not in the code; the sensor stays as read
             else:
-                if not active[j] and not self.predictable[j]:
+                if not active[j] and not self.predictable[j] and not a["blind_jump"]:
                     # (cmon82c) the served return may undo it (readmission.py): not in the code
                     self._flag(NOT_IN_CODE, j, BLIND)
-                _, e = self._errors(d)
-                other = d[j] - e[j] if judged[j] else np.nan
-                expected = other - self.prev_other[j]
+                if not self.jumps[j]:
+                    self.ref0[j] = self.ref[j]
+                expected = other[j] - self.prev_other[j]
                 offset = step[j] - (expected if np.isfinite(expected) else 0.0)
                 self.ref[j] += offset
                 d[j] -= offset
@@ -693,6 +727,8 @@ class CodeMonitor:
         due = ~self._active() & ~gone & (self.run == 0) & ~instant & (self.calm >= self.dwell)
         if due.any() and self.count >= self.window:
             for j in np.flatnonzero(self._returning(due)):
+                if a["blind_jump"]:
+                    self._undone(int(j), d)
                 self.jumps[j], self.froze[j] = 0, False
                 self._readmit(int(j), BACK)
         pred, e = self._errors(d)
@@ -705,6 +741,18 @@ class CodeMonitor:
         self.last = np.where(active & np.isfinite(d), d, self.last)
         self._fold(self.hist[pos], first, dt)
         return self._rebuilt(u, d, pred)
+
+    def _undone(self, j: int, d) -> None:
+        """(cmon87) ``j``, no other predicts it, back: its jumps undone as served (``_readmit``:
+        several are noise or a spike; of one, the reading nearer its held value taken), its
+        reference restored and ``d`` and its window shifted back."""
+        shift = self.ref[j] - self.ref0[j]
+        if self.predictable[j] or not self.jumps[j] or (
+                self.jumps[j] == 1 and not abs(d[j] + shift - self.last[j]) < abs(d[j] - self.last[j])):
+            return
+        self.ref[j] = self.ref0[j]
+        d[j] += shift
+        self.hist[:, j] += shift
 
     def _stepped(self, e, instant) -> None:
         """A self-prediction error stepped past the alarm band in one sample (the served

@@ -41,6 +41,7 @@ static const int TC_MONITORED[{max(n, 1)}] = {{{", ".join(str(i) for i in m.get(
 STATE = """    /* the sensor monitor (TC_MONITOR): referenced readings d = u - mon_ref of the monitored
        inputs, their self-prediction errors over the last TC_MON_WINDOW samples (a ring) */
     double mon_ref[NM], mon_base[NM], mon_prev[NM], mon_prev_e[NM], mon_prev_other[NM];
+    double mon_ref0[NM];   /* (cmon87) the reference before a sensor's first jump since it was in */
     double mon_hist[TC_MON_WINDOW][NM], mon_err[TC_MON_WINDOW][NM], mon_run_pred[NM];
     int mon_run[NM], mon_calm[NM], mon_pos, mon_count;
     /* (cdrop77) samples the next step spans (1 + its missing ones, or a gap in time), jumps
@@ -96,7 +97,9 @@ def monitor_arrays(ss) -> list[tuple[str, object, tuple, str]]:
                ("MON_GROWTH", "growth", 1.5, "real"), ("MON_NOVEL", "novel", 0, "int"),
                ("MON_BLIND_OUT", "blind_out", 0, "int"), ("MON_THAWED", "thawed", 0, "int"),
                ("MON_BLIND_DROP", "blind_drop", 0, "int"), ("MON_STEPPED", "stepped", 0, "int"),
-               ("MON_CLEARED", "cleared", 0, "int"))
+               ("MON_CLEARED", "cleared", 0, "int"),
+               ("MON_BLIND_JUMP", "blind_jump", 0, "int"),
+               ("MON_SECOND_JUMP", "second_jump", 0, "int"))
     modes = max(int(m.get("modes", 1)), 1)
     return [("MON_M", m.get("M", []), (n + 1 + len(pairs), n, n), "real"),
             ("MON_LEV", m.get("lev", []), (n + 1 + len(pairs), n), "real"),
@@ -285,6 +288,26 @@ static int mon_drops(int k) {
     return MON_BLIND_DROP && !MON_PREDICTABLE[k] && NM - 1 >= MON_MIN_ACTIVE;
 }
 
+/* (cmon87) 1: sensor k, no other predicts it, held out for a jump as for a dropout (its jumps
+   undone on its return where the reading returned: mon_undone) */
+static int mon_spikes(int k) {
+    return MON_BLIND_JUMP && mon_drops(k);
+}
+
+/* (cmon87) sensor k, no other predicts it, back: its jumps undone as served (several are noise or
+   a spike; of one, the reading nearer its held value taken), its reference restored and d[k]
+   and its window shifted back */
+static void mon_undone(tc_state *s, int k, double d[]) {
+    double shift = s->mon_ref[k] - s->mon_ref0[k];
+    int w;
+    if (MON_PREDICTABLE[k] || !s->mon_jumps[k] || (s->mon_jumps[k] == 1
+            && !(fabs(d[k] + shift - s->mon_last[k]) < fabs(d[k] - s->mon_last[k]))))
+        return;
+    s->mon_ref[k] = s->mon_ref0[k];
+    d[k] += shift;
+    for (w = 0; w < MW; w++) s->mon_hist[w][k] += shift;
+}
+
 /* sensor k back in (rule: why), its partner's place kept, the window re-judged (the numpy
    mirror's _readmit) */
 static void mon_readmit(tc_state *s, int k, int rule) {
@@ -305,6 +328,12 @@ static int mon_second_held(const tc_state *s, int k) {
     return mon_operator(out, M, lev);
 }
 
+/* (cmon88) 1: sensor k's jump with one out already held by the code: re-referenced and out as
+   the second, as served, where the others predict it and the set is solved */
+static int mon_jump_held(const tc_state *s, int k) {
+    return MON_SECOND_JUMP && MON_PORTED[k] && mon_second_held(s, k);
+}
+
 /* k in the first free place out (the second: cmon85), its calm count and its within-band mark
    (mon85b) cleared: the served _exclude's, whatever took it out */
 static void mon_put_out(tc_state *s, int k) {
@@ -315,11 +344,13 @@ static void mon_put_out(tc_state *s, int k) {
 
 /* sensor k out where the code holds it (one out, the others predicting it, or a dropout or a
    freeze of one no other predicts; cmon85: a second, for a drift, a freeze or cmon86 a stepped
-   error); else flagged */
+   error, cmon88 a jump); else flagged */
 static void mon_exclude(tc_state *s, int k, int rule) {
-    int blind = (rule == TC_MON_DROPOUT || rule == TC_MON_FREEZE) && mon_drops(k);
+    int blind = ((rule == TC_MON_DROPOUT || rule == TC_MON_FREEZE) && mon_drops(k))
+                || (rule == TC_MON_JUMP && mon_spikes(k));
     int second = s->mon_out >= 0 && !((rule == TC_MON_DRIFT_OUT || rule == TC_MON_FREEZE
-                                       || rule == TC_MON_STEP_OUT)
+                                       || rule == TC_MON_STEP_OUT
+                                       || (rule == TC_MON_JUMP && MON_SECOND_JUMP))
                                       && MON_PORTED[k] && mon_second_held(s, k));
     if (second || !(MON_PORTED[k] || blind)) {
         mon_flag(s, TC_MON_NOT_IN_CODE, k, second ? TC_MON_SECOND : TC_MON_BLIND);
@@ -928,7 +959,7 @@ static void monitor_step(tc_state *s, double u[], double dt) {
         nrng += rng[k];
         if (rng[k] && s->first)   /* (not in the code: the served monitor references it late) */
             mon_flag(s, TC_MON_NOT_IN_CODE, k, TC_MON_RANGE);
-        if (s->first) s->mon_ref[k] = s->mon_base[k] = x[k];
+        if (s->first) s->mon_ref[k] = s->mon_base[k] = s->mon_ref0[k] = x[k];
         d[k] = x[k] - s->mon_ref[k];
     }
     if (nrng && !s->first) {   /* (cmon80) beyond its range: read as missing, or as read */
@@ -961,6 +992,12 @@ static void monitor_step(tc_state *s, double u[], double dt) {
         mon_common_step(s, d, step, big, pos);
         for (nbig = 0, k = 0; k < NM; k++) nbig += big[k];
     }
+    if (nbig == 1) {   /* a lone jump's change as the others see it, judged by the set in before
+                          this sample's dropout or range exclusion, as served */
+        mon_errors(s, d, pred, e);
+        mon_set(s, a, o, jd, scale);
+        for (k = 0; k < NM; k++) other[k] = jd[k] ? d[k] - e[k] : NAN;
+    }
     /* (cdrop77) a missing reading: excluded, rebuilt from the others (the sensor out, missing
        again: rebuilt as it was; out for a freeze, flagged: its re-admission band is the served
        monitor's path, not held here) */
@@ -976,13 +1013,15 @@ static void monitor_step(tc_state *s, double u[], double dt) {
         else if (s->mon_count == 2) mon_flag(s, TC_MON_NOT_IN_CODE, k, TC_MON_GLITCH);
         else {
             mon_set(s, a, o, jd, scale);
-            if (a[k] && (s->mon_out >= 0 || !MON_PORTED[k])) mon_exclude(s, k, TC_MON_JUMP);   /* flagged */
+            if (a[k] && !(s->mon_out >= 0 ? mon_jump_held(s, k) : MON_PORTED[k] || mon_spikes(k)))
+                mon_exclude(s, k, TC_MON_JUMP);   /* flagged */
             else {   /* re-referenced by its step less its change as the others predict it */
                 double expected, offset;
-                if (!a[k] && !MON_PREDICTABLE[k])   /* (cmon82c) the served return may undo it */
+                if (!a[k] && !MON_PREDICTABLE[k] && !MON_BLIND_JUMP)   /* (cmon82c) the served
+                                                                         return may undo it */
                     mon_flag(s, TC_MON_NOT_IN_CODE, k, TC_MON_BLIND);
-                mon_errors(s, d, pred, e);
-                expected = (jd[k] ? d[k] - e[k] : NAN) - s->mon_prev_other[k];
+                if (!s->mon_jumps[k]) s->mon_ref0[k] = s->mon_ref[k];
+                expected = other[k] - s->mon_prev_other[k];
                 offset = step[k] - (isfinite(expected) ? expected : 0.0);
                 s->mon_ref[k] += offset;
                 d[k] -= offset;
@@ -1054,6 +1093,7 @@ static void monitor_step(tc_state *s, double u[], double dt) {
         mon_returning(s, due, back);
         for (k = 0; k < NM; k++) {
             if (!back[k]) continue;
+            if (MON_BLIND_JUMP) mon_undone(s, k, d);   /* (cmon87) */
             s->mon_jumps[k] = s->mon_froze[k] = 0;
             mon_readmit(s, k, TC_MON_BACK);
         }

@@ -1,0 +1,116 @@
+"""A spiking sensor no other predicts in the exported C (cmon87, issue 34): the code's monitor holds
+it out for a jump as the served monitor does (re-referenced, held at its last reading, its
+fallback model served, back after a calm window with its jumps undone where the reading
+returned), where before it flagged ``BLIND``, passed the spike into the correction and the pack
+was cut there (benchmarks/bench_cmon87.py).
+
+bench_audit86b's lr9032 (``thermocomp simulate sim=long_record``, seed 9032, 3 days, R1b the last
+fifth continuing R1a), MLR deployed adaptive with ``data.reference=none``: the simulator's own
+one-sample spike on a sensor no other predicts in R1b, which R1b is streamed after R1a."""
+
+from __future__ import annotations
+
+import subprocess
+
+import numpy as np
+import pytest
+
+from test_export import _compose, built_stream, needs_cc
+from test_export_cmon80 import _streamed
+from test_export_cmon85 import _mirror, without
+from thermocomp.apps.deploy.export import exported_files, state_space
+from thermocomp.apps.deploy.export.pack import conformance_pack, corrections, fed
+from thermocomp.apps.deploy.export.watch import BLIND, JUMP
+from thermocomp.apps.deploy.report import plain, stream_rows
+from thermocomp.core.continuation import lead_ins
+
+SEED = 9032
+
+
+@pytest.fixture(scope="module")
+def record(tmp_path_factory):
+    return long_record(tmp_path_factory, SEED)
+
+
+def long_record(tmp_path_factory, seed: int):
+    """``(deployed, its system with the monitor, R1b after its lead-in, the lead-in's rows,
+    R1b, the lead-ins by campaign)`` of the long record ``seed``."""
+    from thermocomp.shell.builders import build_compensator, deploy_stream, deployable
+    from thermocomp.shell.cli import main
+    from thermocomp.shell.source import read_streamed
+
+    data = tmp_path_factory.mktemp(f"lr{seed}") / "data"
+    assert main(["-q", "simulate", f"seed={seed}", f"data.path={data}", "track=false",
+                 "sim=long_record", "sim.generator.duration_days=3.0",
+                 "sim.generator.test_fraction=0.2"]) == 0
+    cfg = _compose(f"data.path={data}", "track=false", "model=mlr", "data.reference=none")
+    ds, train_ids, test_ids, _ = read_streamed(cfg)
+    train = {k: ds.campaigns[k] for k in train_ids}
+    deployed = deployable(cfg, deploy_stream(cfg, build_compensator(cfg, ds=ds).fit(train), train),
+                          train, ds)
+    leads = lead_ins(plain(deployed).compensator, ds, test_ids)
+    test = test_ids[0]
+    frame = fed(ds.campaigns[test], leads.get(test))
+    return (deployed, state_space(deployed, monitor=True), frame,
+            len(frame) - len(ds.campaigns[test]), {test: ds.campaigns[test]}, leads)
+
+
+def _served_spike(deployed, ss, tests, leads, lead) -> tuple[int, int, str]:
+    """The served exclusion of a sensor no other predicts for a jump: ``(row, its return's row,
+    sensor)``, 1-based in the fed frame (R1b after ``lead`` rows); its jumps undone on its
+    return."""
+    (test, campaign), = tests.items()
+    times = campaign["time"].to_numpy(float) - campaign["time"].iloc[0]
+    blind = {ss.inputs[i] for i, p in zip(ss.monitor["inputs"], ss.monitor["predictable"]) if not p}
+    events = [e for e in stream_rows(deployed, campaign, test, lead_in=leads[test]).events
+              if e.get("sensor") in blind]
+    out = next(e for e in events if e["to"] == "excluded" and e["reason"].startswith("jump"))
+    back = next(e for e in events if e["to"] == "ok" and e["sensor"] == out["sensor"]
+                and e["time"] > out["time"])
+    assert "undone" in back["reason"]
+    row = lambda t: lead + int(np.searchsorted(times, t)) + 1      # noqa: E731
+    return row(out["time"]), row(back["time"]), out["sensor"]
+
+
+def held_as_served(record, folder) -> tuple[list, str, dict]:
+    """The mirror and the compiled C of ``record`` equal to the served corrections on every row,
+    nothing flagged, R1b's pack entry whole and its check passing (in ``folder``): ``(the
+    mirror's exclusions (row, sensor, rule), the stream's stderr, the pack's summary)``."""
+    deployed, ss, frame, lead, tests, leads = record
+    want = corrections(ss, stream_rows(deployed, frame, "R1b").y)
+    got, out, missed = _mirror(ss, frame)
+    assert not missed and np.max(np.abs(got - want)) < 1e-9
+    files, summary = conformance_pack(deployed, ss, tests, leads)
+    entry = summary["campaigns"][0]
+    assert (entry["rows"], entry["cut"]) == (len(frame), None)
+    stream = built_stream(folder, {**exported_files(deployed, "c"), **files})
+    c, said = _streamed(stream, frame, ss.inputs)
+    assert c.shape == want.shape and np.max(np.abs(c - want)) < 1e-9        # every row
+    assert "not in the code" not in said
+    script = subprocess.run(["sh", "check/check.sh"], cwd=folder, capture_output=True, text=True)
+    assert script.returncode == 0, script.stderr
+    return out, said, summary
+
+
+@needs_cc
+def test_a_spiking_sensor_no_other_predicts_is_held_by_the_code_as_served(record, tmp_path):
+    deployed, ss, frame, lead, tests, leads = record
+    row, back, sensor = _served_spike(deployed, ss, tests, leads, lead)
+    out, _, summary = held_as_served(record, tmp_path)
+    assert (row, sensor, JUMP) in out
+    assert all(e["cut"] is None for e in summary["campaigns"])
+
+
+def test_an_export_before_cmon87_flags_the_spike(record):
+    """Arrays without ``blind_jump``: the jump flagged (``BLIND``) at the served exclusion's row,
+    the correction parting from the served one while the sensor is out, and the pack cut there."""
+    deployed, ss, frame, lead, tests, leads = record
+    row, back, _ = _served_spike(deployed, ss, tests, leads, lead)
+    old = without(ss, "blind_jump")
+    got, _, missed = _mirror(old, frame)
+    assert missed and missed[0] == (row, BLIND)
+    want = corrections(ss, stream_rows(deployed, frame, "R1b").y)
+    parted = np.flatnonzero(np.abs(got - want).max(axis=1) > 1e-9) + 1
+    assert parted.min() == row and parted.max() < back
+    _, summary = conformance_pack(deployed, old, tests, leads)
+    assert summary["campaigns"][0]["rows"] == row - 1
