@@ -22,7 +22,49 @@ records (the export tests pass unchanged), and export's CPU (user + sys) of MLR 
 each cut by at least a third, in alternated main / branch runs; else REFUSED (or TRACED where no
 rule was tried) with the profile below.
 
-SCORED_PLACEHOLDER
+Profiled (2026-12-04, main 50364abe, cProfile of the mlr export: 376 s under the profiler on 2
+cores at load 15-21, so shares only).  ``conformance_pack`` 88 %: the numpy model of the code
+(``_parted``, ``Simulator.step``, 48,960 rows = the lead-in once + 6 x 2,880) 57 %, of it the
+code monitor (``CodeMonitor.step``) 31 % and the model's step (``Simulator._model``) 13 %; its
+``_set`` (the active set, asked some seven times a row, 342,729 calls, rebuilt each time) 8 %;
+the served model's steps (``_stepped``) 15 %; CSV text (pandas' per-value formatter and NaN
+test, 2.6 M values) 15 %; 65 % of the rows stepped are the lead-in's, streamed once (perf87b).
+py-spy (80 s of auto's main export, in its lead-in pass): ``Simulator.step`` 98 %,
+``CodeMonitor.step`` 49 %, ``Simulator._model`` 34 %, ``CodeMonitor._set`` 16 %, the LSTM
+cells (``Cells.step``) 7 %.  Nothing in that pass is LTI between monitor actions in a way that
+gives the same bits: the served and the code's models are stepped by float64 sums whose order a
+batched product would change (the pack's ``expected.csv`` is the served stream to the bit).
+
+The rule tried (``perf88_rule.patch``: src and its test, which fails on main): (1) ``csv_text``
+formats a float64 frame's body in one ``%`` of all rows (``%.17g``, "nan" emptied: %g writes
+nothing else so), the header pandas'; pandas' whole where a column is not float64 or there is
+one column (the csv module's ``""``); 2.1x less CPU than ``to_csv`` (``csv 31680 40``: 1.10 s
+against 2.37 s), equal to the byte (NaN, inf, -0.0, 5e-324, names needing quotes).  (2)
+``CodeMonitor._set`` kept for its key (out, out2 and the operator's arrays, by identity),
+its arrays read-only: made 12 times for 1,688 asks on test_export's planted pack.
+
+Scored (2026-12-04, 2 cores shared by 7 sessions, load 15-21; main = 50364abe unpacked under
+/tmp, branch 6d686edb; ``OMP_NUM_THREADS=1``; user + sys of the child), in turn:
+
+  model  run                      user     sys    user + sys
+  mlr    main 1                   29.3 s   1.1 s    30.4 s
+  mlr    branch 1                 24.3 s   1.3 s    25.6 s
+  mlr    main 2                   29.9 s   1.0 s    30.9 s
+  mlr    branch 2                 23.3 s   1.3 s    24.6 s
+  auto   main 1                   61.4 s   1.8 s    63.2 s
+  auto   branch 1                 53.2 s   2.5 s    55.7 s
+
+MLR 30.4 / 30.9 -> 25.6 / 24.6 s (x 0.84 / 0.80); auto (audit87's champion kind: its test E_dX
+0.20124 as there) 63.2 -> 55.7 s (x 0.88).  ``check/`` (133 MB mlr, 134 MB auto; six
+campaigns) byte-identical main vs branch for both models (``diff -r``); the code files differ
+by their ``exported`` stamp only.  Export tests with the rule: test_export, lead_perf87b,
+cmon85, cmon86, mon86, check61, freeze84, dropout53 and the rule's own: 55 passed.
+
+Verdict: REFUSED by its bar (a cut of 12-20 %, not a third; the pack byte-identical).  The
+src is main's; the rule is ``perf88_rule.patch``.  What remains: the code monitor's Python
+per row (``CodeMonitor._step`` and its ``_judgement``, ``_judge``, ``_errors``) and the
+Simulator's ``_model``: a third needs them rewritten with fewer numpy calls per row on small
+arrays (n ~ 40), each bit checked, or the pack's lead-in pass kept across exports of one model.
 """
 from __future__ import annotations
 

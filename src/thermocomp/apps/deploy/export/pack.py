@@ -99,27 +99,6 @@ def folder_names(campaigns) -> dict[str, str]:
 
 def csv_text(frame: pd.DataFrame) -> str:
     """CSV as ``stream.c`` reads it: ``,``, ``.``, a number to the last bit (17 digits), NaN empty."""
-    if not _plain_floats(frame):
-        return _pandas_csv(frame)
-    # The body formatted here as pandas formats it (perf88: its per-value formatter and NaN test
-    # took most of the pack's CSV time): each float ``"%.17g" % value``, NaN the empty field, a
-    # row its fields joined by ``,``; no field of that form needs quoting.  One format of all
-    # rows; "nan" is what %g makes of a NaN (of either sign) and of nothing else, so it is
-    # emptied.  The header, whose names may need quoting, stays pandas'.
-    rows, width = frame.shape
-    body = ((",".join(["%.17g"] * width) + "\n") * rows) % tuple(
-        frame.to_numpy(np.float64).ravel().tolist())
-    return _pandas_csv(frame.iloc[:0]) + body.replace("nan", "")
-
-
-def _plain_floats(frame: pd.DataFrame) -> bool:
-    """Whether :func:`csv_text` may format ``frame``'s body itself: float64 columns only, two or
-    more of them (a row of one empty field is written ``""`` by the csv module), names flat."""
-    return (len(frame.columns) > 1 and not isinstance(frame.columns, pd.MultiIndex)
-            and bool((frame.dtypes == np.float64).all()))
-
-
-def _pandas_csv(frame: pd.DataFrame) -> str:
     buf = io.StringIO()
     frame.to_csv(buf, index=False, float_format="%.17g", na_rep="", lineterminator="\n")
     return buf.getvalue()

@@ -456,20 +456,6 @@ class CodeMonitor:
         return active
 
     def _set(self):
-        # (perf88) a step asks for the set some seven times and it changes only with out, out2
-        # and the operator (new arrays where it changes): kept for that key, its arrays read-only
-        # so that no caller can change what a later call is given
-        key = (self.out, self.out2, self.Mc, self.levc)
-        kept = getattr(self, "_kept_set", None)
-        if kept is not None and all(a is b for a, b in zip(kept[0], key)):
-            return kept[1]
-        made = self._made_set()
-        for array in made[1:]:
-            array.flags.writeable = False
-        self._kept_set = key, made
-        return made
-
-    def _made_set(self):
         lev = self.levc
         active = self._active()
         observable = lev < self.max_lev
