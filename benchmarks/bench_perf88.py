@@ -53,14 +53,22 @@ Scored (2026-12-04, 2 cores shared by 7 sessions, load 15-21; main = 50364abe un
   mlr    branch 2                 23.3 s   1.3 s    24.6 s
   auto   main 1                   61.4 s   1.8 s    63.2 s
   auto   branch 1                 53.2 s   2.5 s    55.7 s
+  auto   main 2                   52.9 s   4.5 s    57.4 s
+  auto   main 2b (*)              57.2 s   4.3 s    61.5 s
+  auto   branch 3                 44.7 s   4.6 s    49.3 s
+  auto   main 3                   50.3 s   3.3 s    53.6 s
 
-MLR 30.4 / 30.9 -> 25.6 / 24.6 s (x 0.84 / 0.80); auto (audit87's champion kind: its test E_dX
-0.20124 as there) 63.2 -> 55.7 s (x 0.88).  ``check/`` (133 MB mlr, 134 MB auto; six
-campaigns) byte-identical main vs branch for both models (``diff -r``); the code files differ
-by their ``exported`` stamp only.  Export tests with the rule: test_export, lead_perf87b,
-cmon85, cmon86, mon86, check61, freeze84, dropout53 and the rule's own: 55 passed.
+(*) meant as branch 2, but run after the src was reverted (ea58de98): main's code, so a main
+run; branch 3 ran 6d686edb unpacked under /tmp.  The load fell from ~20 to ~4 during the runs.
 
-Verdict: REFUSED by its bar (a cut of 12-20 %, not a third; the pack byte-identical).  The
+MLR 30.4 / 30.9 -> 25.6 / 24.6 s (x 0.84 / 0.80); auto (this record's, test E_dX 0.20124 as
+audit87's) 63.2 -> 55.7 s and 53.6 -> 49.3 s (x 0.88 / 0.92), main's own runs spreading
+53.6-63.2 s.  ``check/`` (133 MB mlr, 134 MB auto; six campaigns) byte-identical main vs branch
+for both models (``diff -r``; auto in pairs 1 and 3); the code files differ by their
+``exported`` stamp only.  Export tests with the rule: test_export, lead_perf87b, cmon85,
+cmon86, mon86, check61, freeze84, dropout53 and the rule's own: 55 passed.
+
+Verdict: REFUSED by its bar (a cut of 8-20 %, not a third; the pack byte-identical).  The
 src is main's; the rule is ``perf88_rule.patch``.  What remains: the code monitor's Python
 per row (``CodeMonitor._step`` and its ``_judgement``, ``_judge``, ``_errors``) and the
 Simulator's ``_model``: a third needs them rewritten with fewer numpy calls per row on small
