@@ -5,7 +5,8 @@ while a test campaign's stream was warmed on the campaigns it continues, as ``re
 deploy88 gave ``replay`` that report; promote's "as deployed" figures stream the same way
 through its own path (``stream_scores``) and said nothing: a figure moved by a spike on the
 lead-in with no event behind it.  Here test_deploy88's chain: C continues the test part B,
-which holds a one-sample -4 °C spike on T3.
+which holds a one-sample -4 °C spike on T3.  And ``init`` says a cut run of two loggers'
+files once (data88b's record).
 """
 
 from __future__ import annotations
@@ -55,3 +56,18 @@ def test_promote_says_what_the_monitor_did_on_a_lead_in_as_replay_does(record, t
     assert first["to"] == "excluded" and first["time"] < 0   # before C's first row
     line = next(x for x in said.splitlines() if x.startswith("warm-up: "))
     assert line == next(x for x in replayed_said.splitlines() if x.startswith("warm-up: "))
+
+
+def test_init_says_a_cut_run_of_two_loggers_files_once(tmp_path, capsys):
+    """(data88b) ``thermocomp init`` on a folder of one run in two loggers' files cuts it into a
+    train and a test part; its "two loggers ... one run" line was printed once per part, each
+    with that part's rows: one run, one line, its parts named and its rows all counted."""
+    from test_data88b import _pair, _record
+
+    rows = _record()
+    _pair(tmp_path / "pair", rows)
+    assert main(["init", str(tmp_path / "pair"), f"out={tmp_path / 'init'}"]) == 0
+    said = [x for x in capsys.readouterr().out.splitlines() if ": two loggers, " in x]
+    assert len(said) == 1
+    assert said[0].startswith("run01_train, run01_test: two loggers, run01_temp.csv")
+    assert said[0].endswith(f"; {len(rows)} rows")
