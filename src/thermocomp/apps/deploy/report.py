@@ -40,8 +40,14 @@ from ...core.timerule import stream_start
 from .adapt import adapt_figures, finite_rms
 from .adaptive import AdaptiveCompensator
 from .guard import guard_changes
-from .streaming import (OutOfEnvelopeError, StreamingCompensator, batch_prediction, on_campaign_clock,
-                        warm, warm_events)
+from .streaming import (
+    OutOfEnvelopeError,
+    StreamingCompensator,
+    batch_prediction,
+    on_campaign_clock,
+    warm,
+    warm_events,
+)
 from .surveillance import NEW_STATE
 
 
