@@ -12,26 +12,15 @@ files once (data88b's record).
 from __future__ import annotations
 
 import json
-import shutil
-
-import pandas as pd
 
 from test_deploy import mlflow_store
+from test_deploy88 import spiked_chain
 from test_deployed_as_scored import COLUMNS, FAST, record  # noqa: F401  (the fixture)
 from thermocomp.shell.cli import main
 
 
 def test_promote_says_what_the_monitor_did_on_a_lead_in_as_replay_does(record, tmp_path, capsys):  # noqa: F811
-    chain = tmp_path / "chain"
-    shutil.copytree(record, chain)
-    b = pd.read_csv(chain / "B.csv")
-    b.iloc[150:].to_csv(chain / "C.csv", index=False)
-    b = b.iloc[:150].copy()
-    b.loc[50, "T3"] -= 4.0
-    b.to_csv(chain / "B.csv", index=False)
-    pd.DataFrame({"campaign": ["A", "B", "C"], "file": ["A.csv", "B.csv", "C.csv"],
-                  "split": ["train", "test", "test"], "continues": ["", "A", "B"]}
-                 ).to_csv(chain / "campaigns.csv", index=False)
+    chain = spiked_chain(record, tmp_path / "chain")
     uri = mlflow_store(tmp_path)
     fast = [o for o in FAST if not o.startswith(("track=", "eval.validation="))]
     common = [f"data.path={chain}", "data.reference=none", COLUMNS, *fast]
