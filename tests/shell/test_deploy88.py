@@ -100,23 +100,11 @@ def test_replay_says_what_the_monitor_did_on_a_lead_in(record, tmp_path, capsys)
     the state it left decays into R1b.  Here the cut spindle record with a third part: C
     continues the test part B, which holds a one-sample -4 °C spike on T3."""
     import json
-    import shutil
-
-    import pandas as pd
 
     from test_deployed_as_scored import COLUMNS, FAST
     from thermocomp.shell.cli import main
 
-    chain = tmp_path / "chain"
-    shutil.copytree(record, chain)
-    b = pd.read_csv(chain / "B.csv")
-    b.iloc[150:].to_csv(chain / "C.csv", index=False)
-    b = b.iloc[:150].copy()
-    b.loc[50, "T3"] -= 4.0
-    b.to_csv(chain / "B.csv", index=False)
-    pd.DataFrame({"campaign": ["A", "B", "C"], "file": ["A.csv", "B.csv", "C.csv"],
-                  "split": ["train", "test", "test"], "continues": ["", "A", "B"]}
-                 ).to_csv(chain / "campaigns.csv", index=False)
+    chain = spiked_chain(record, tmp_path / "chain")
     common = [f"data.path={chain}", "data.reference=none", COLUMNS, *FAST]
     assert main(["run", f"out={tmp_path / 'run'}", "model=lagbank", *common]) == 0
     capsys.readouterr()
@@ -133,3 +121,22 @@ def test_replay_says_what_the_monitor_did_on_a_lead_in(record, tmp_path, capsys)
     assert first["reason"] == in_b[0]["reason"]              # the same spike, the same judgement
     line = next(x for x in said.splitlines() if x.startswith("warm-up: "))
     assert f"warm-up: {len(warm)} events" in line and "before C" in line
+
+
+def spiked_chain(cut, chain):
+    """``cut`` (the cut record: A train, B test continuing A) with a third part: C continues B, cut from B's
+    row 150 on; B holds a one-sample -4 °C spike on T3 (row 51)."""
+    import shutil
+
+    import pandas as pd
+
+    shutil.copytree(cut, chain)
+    b = pd.read_csv(chain / "B.csv")
+    b.iloc[150:].to_csv(chain / "C.csv", index=False)
+    b = b.iloc[:150].copy()
+    b.loc[50, "T3"] -= 4.0
+    b.to_csv(chain / "B.csv", index=False)
+    pd.DataFrame({"campaign": ["A", "B", "C"], "file": ["A.csv", "B.csv", "C.csv"],
+                  "split": ["train", "test", "test"], "continues": ["", "A", "B"]}
+                 ).to_csv(chain / "campaigns.csv", index=False)
+    return chain

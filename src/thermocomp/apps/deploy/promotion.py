@@ -25,7 +25,9 @@ the champion decision itself is :mod:`thermocomp.core.scoring.champion`.  The st
    or, for a campaign that continues others, warmed on them: reported, never
    used to decide; ``promote.json`` adds, per target, the test rows whose correction the
    guard changed, and the test figures of each test campaign streamed from a reset at its
-   first row, as a controller powered on there: ``test_reported_cold_start``).
+   first row, as a controller powered on there: ``test_reported_cold_start``; and, as
+   ``replay.json``, ``lead_in_events``: what the sensor monitor did while a test campaign's
+   stream was warmed on the campaigns it continues).
 3. The gate compares validation scores on the same dataset: the candidate's
    against the one the champion was promoted with, when the champion's
    ``dataset_hash``, ``criterion_target`` and ``validation_mode`` tags match
@@ -86,6 +88,8 @@ class Candidate:
     # the test rows with an input clamped to the envelope / excluded by the sensor monitor
     test_clamped: int = 0
     test_excluded: int = 0
+    # what the sensor monitor did while a test campaign's stream was warmed (replay's, deploy88b)
+    lead_in_events: list = field(default_factory=list)
     deviation: float = 0.0
     deployed: object = None
     streaming: object = None
@@ -203,6 +207,7 @@ def deploy(cand: Candidate, comp, ds, *, stream_of: Callable, deployed_of: Calla
     first = next(iter(scores.values()), {})
     cand.test_clamped, cand.test_excluded = first.get("clamped_samples", 0), first.get(
         "excluded_samples", 0)
+    cand.lead_in_events = first.get("lead_in_events", [])
     cand.figures = {**cand.val_figures, **cand.test_figures}
 
 
@@ -249,7 +254,8 @@ def promote_report(cand: Candidate, outcome: Outcome, *, name: str, alias: str,
                           "cold_start_campaigns": cand.cold_start_campaigns,
                           "test_rows_guarded": cand.test_guarded,
                           "test_rows_clamped": cand.test_clamped,
-                          "test_rows_excluded": cand.test_excluded},
+                          "test_rows_excluded": cand.test_excluded,
+                          **({"lead_in_events": cand.lead_in_events} if cand.lead_in_events else {})},
             "champion": None if o.champion_version is None else {"version": o.champion_version,
                                                                  "score": o.champion_score},
             "stream_deviation_um": cand.deviation, "model_uri": f"models:/{name}/{o.version}",

@@ -40,7 +40,14 @@ from ...core.timerule import stream_start
 from .adapt import adapt_figures, finite_rms
 from .adaptive import AdaptiveCompensator
 from .guard import guard_changes
-from .streaming import OutOfEnvelopeError, StreamingCompensator, batch_prediction, warm
+from .streaming import (
+    OutOfEnvelopeError,
+    StreamingCompensator,
+    batch_prediction,
+    on_campaign_clock,
+    warm,
+    warm_events,
+)
 from .surveillance import NEW_STATE
 
 
@@ -131,7 +138,7 @@ def stream_rows(deployed, campaign: pd.DataFrame, cid: str = "", file=None,
         raise ContractError(f"campaign {cid}: {exc}", file=file) from None
     warmed = guard_changes(deployed)
     # what the monitor did on the lead-in leaves the state the campaign starts from (deploy88)
-    lead_events = list(getattr(deployed, "rows_events_", [])) if adaptive and lead_in is not None else []
+    lead_events = warm_events(deployed, lead_in)
     step = deployed._step   # returns the clamp count too
     start = clock.perf_counter()
     i = 0
@@ -141,7 +148,7 @@ def stream_rows(deployed, campaign: pd.DataFrame, cid: str = "", file=None,
             if adaptive and not i:
                 t0 = deployed.clock_time_
             if adaptive and deployed.last_events_:
-                events += [{"campaign": cid, **e, "time": e["time"] - t0} for e in deployed.last_events_]
+                events += on_campaign_clock(deployed.last_events_, t0, cid)
     except OutOfEnvelopeError as exc:
         deployed.reset()
         gap = np.flatnonzero(~np.isfinite(X[i]))
@@ -157,7 +164,7 @@ def stream_rows(deployed, campaign: pd.DataFrame, cid: str = "", file=None,
     guarded = None if warmed is None else guard_changes(deployed) - warmed
     deployed.reset()
     # their times, as the campaign's events', from its first row on the stream's clock (< 0)
-    lead_events = [{"campaign": cid, **e, "time": e["time"] - t0} for e in lead_events]
+    lead_events = on_campaign_clock(lead_events, t0, cid)
     return Streamed(y, clamped, seconds, events, excluded, guarded, lead_events)
 
 

@@ -816,10 +816,34 @@ def replay(streaming: StreamingCompensator, campaign: pd.DataFrame, chunk: int |
     :func:`~thermocomp.core.guarded.mark_guarded`)."""
     warm(streaming, lead_in, campaign)
     warmed = guard_changes(streaming)
-    out = _streamed(streaming, campaign, chunk)
+    lead = warm_events(streaming, lead_in)
+    if lead and len(campaign):
+        # the first row puts the campaign on the stream's clock: the lead-in's events count from it
+        out = _streamed(streaming, campaign.iloc[:1], None)
+        lead = on_campaign_clock(lead, streaming.clock_time_)
+        if len(campaign) > 1:
+            out = pd.concat([out, _streamed(streaming, campaign.iloc[1:], chunk)], ignore_index=True)
+    else:
+        out = _streamed(streaming, campaign, chunk)
     if warmed is not None:
         mark_guarded(out, streaming.targets_, guard_changes(streaming) - warmed)
+    if lead:
+        out.attrs["lead_in_events"] = lead
     return out
+
+
+def warm_events(deployed, lead_in: pd.DataFrame | None) -> list[dict]:
+    """What the sensor monitor of an adaptive compensator did while :func:`warm` streamed
+    ``lead_in``: the campaign starts from the state that left (deploy88); none for the plain
+    stream or without a lead-in."""
+    return list(getattr(deployed, "rows_events_", [])) if lead_in is not None else []
+
+
+def on_campaign_clock(events: list[dict], t0: float, cid: str | None = None) -> list[dict]:
+    """``events`` with their ``time`` from the campaign's first row (``t0`` on the stream's
+    clock; a lead-in's are < 0) and, given ``cid``, the ``campaign`` they belong to."""
+    named = {} if cid is None else {"campaign": cid}
+    return [{**named, **e, "time": e["time"] - t0} for e in events]
 
 
 def _streamed(streaming, campaign: pd.DataFrame, chunk: int | None) -> pd.DataFrame:
@@ -874,7 +898,8 @@ def stream_scores(streaming: StreamingCompensator, campaigns: Mapping[str, pd.Da
     the plain stream), ``clamped_samples`` the rows with an input clamped to the envelope and
     ``excluded_samples`` those with an input the sensor monitor excluded (stranger74: promote
     said the guard's 2 rows where 109 were clamped and a sensor excluded, its "as deployed"
-    1.18 µm against run's 0.71).
+    1.18 µm against run's 0.71), ``lead_in_events`` what the sensor monitor did while a test
+    campaign's stream was warmed (``replay.json``'s, each with its ``campaign``).
     """
     lead_ins = lead_ins or {}
     predicted = {c: replay(streaming, df, lead_in=lead_ins.get(c)) for c, df in campaigns.items()}
@@ -882,6 +907,9 @@ def stream_scores(streaming: StreamingCompensator, campaigns: Mapping[str, pd.Da
     clamped = sum(int((p["n_clamped"].to_numpy() > 0).sum()) for p in predicted.values())
     excluded = sum(int((p["excluded_inputs"].fillna("").astype(str) != "").sum())
                    for p in predicted.values() if "excluded_inputs" in p.columns)
+    # what the sensor monitor did while a test campaign's stream was warmed, as replay says it
+    lead_events = [{"campaign": c, **e} for c, p in predicted.items()
+                   for e in p.attrs.get("lead_in_events", [])]
     streaming.reset()
     # (a probe's first reading after the first row: the deployed y_hat(m) completes the label)
     measured = streaming.compensator.measured(campaigns, predicted=predicted)
@@ -898,5 +926,6 @@ def stream_scores(streaming: StreamingCompensator, campaigns: Mapping[str, pd.Da
         r = {c: y[c] - predicted[c][t].to_numpy() for c in campaigns}
         out[t] = {"test": split_scores(y, r, sample_period_s, statistic, points),
                   "guarded_samples": None if guarded is None else guarded[t],
-                  "clamped_samples": clamped, "excluded_samples": excluded}
+                  "clamped_samples": clamped, "excluded_samples": excluded,
+                  "lead_in_events": lead_events}
     return out

@@ -96,17 +96,22 @@ def pair_time(pair: PairedHead, sample: Path, header: list, first: dict, opts) -
 
 def paired_lines(report: dict) -> list[str]:
     """A line per run of two loggers in the read ``report``: its files, their periods, the
-    clock offset and the rows cut."""
-    out = []
+    clock offset and the rows cut.  A run cut into parts (``data.test_fraction``) is one run:
+    one line naming its parts, their rows summed (data88b: it was said once per part)."""
+    runs: dict[tuple, list] = {}
     for cid, entry in report["campaigns"].items():
         pair = entry.get("paired")
-        if not pair:
-            continue
+        if pair:
+            runs.setdefault((pair["temperatures"], pair["errors"]), []).append((cid, entry))
+    out = []
+    for parts in runs.values():
+        pair = parts[0][1]["paired"]
         cut = {k: n for k, n in pair["cut"].items() if n}
-        out.append(f"{cid}: two loggers, {pair['temperatures']} (every {pair['periods_s'][0]:g} s)"
-                   f" + {pair['errors']} (every {pair['periods_s'][1]:g} s): one run, its rows "
-                   f"the errors' times, the temperatures' last sample at or before each (data.join.offset_s="
-                   f"{pair['offset_s']:g}); {entry['rows']} rows"
+        out.append(f"{', '.join(cid for cid, _ in parts)}: two loggers, {pair['temperatures']} "
+                   f"(every {pair['periods_s'][0]:g} s) + {pair['errors']} (every "
+                   f"{pair['periods_s'][1]:g} s): one run, its rows the errors' times, the "
+                   f"temperatures' last sample at or before each (data.join.offset_s="
+                   f"{pair['offset_s']:g}); {sum(entry['rows'] for _, entry in parts)} rows"
                    + (f", {sum(cut.values())} error sample(s) cut ("
                       + ", ".join(f"{n} {k}" for k, n in cut.items()) + ")" if cut else ""))
     return out

@@ -15,7 +15,7 @@ from omegaconf import DictConfig, OmegaConf
 from ...apps.deploy import POLICIES
 from ...apps.deploy.adapt import from_config as adapt_from_config
 from ...apps.deploy.promotion import deploy, deploy_key, promote_report
-from ...apps.deploy.report import clamped_line, cold_line, guarded_line
+from ...apps.deploy.report import clamped_line, cold_line, guarded_line, lead_in_line
 from ...base.files import write_json
 from ...base.log import logger
 from ...base.params import choice
@@ -89,7 +89,8 @@ def promote(cfg: DictConfig) -> dict:
 def deployed_lines(cand, policy: str, target: str = "mean") -> list[str]:
     """Why the test figures "as deployed" leave run's: the rows clamped to the envelope, with an
     input the sensor monitor excluded, whose correction the guard changed (replay's lines); and,
-    where a test campaign continues others, what a cold start there costs (deploy88)."""
+    where a test campaign continues others, what a cold start there costs (deploy88) and what
+    the sensor monitor did while it was warmed (replay's ``warm-up:`` line, deploy88b)."""
     n, why = cand.test_samples, "the test figures are the {} stream's, run's the model's own"
     lines = cold_line(cand.cold_start_campaigns, [(target, cand.test_figures_cold.get("rmse"),
                                                    cand.test_figures.get("rmse"))]
@@ -99,4 +100,5 @@ def deployed_lines(cand, policy: str, target: str = "mean") -> list[str]:
         lines.append(f"excluded: {cand.test_excluded} of {n} samples had an input excluded by "
                      "the sensor monitor (monitor.adaptive; replay names them); "
                      + why.format("adaptive"))
-    return lines + guarded_line(cand.test_guarded or {}, n, why.format("guarded"))
+    return (lines + guarded_line(cand.test_guarded or {}, n, why.format("guarded"))
+            + lead_in_line(cand.lead_in_events))
