@@ -21,6 +21,7 @@ from ...base.log import logger
 from ...base.params import choice
 from ...base.paths import resolve
 from ...core.continuation import lead_ins
+from ...core.metrics import RMSE
 from ...core.scoring.champion import check_criterion, outcome_line
 from .. import registry
 from ..builders import deploy_stream, deployable
@@ -92,8 +93,8 @@ def deployed_lines(cand, policy: str, target: str = "mean") -> list[str]:
     where a test campaign continues others, what a cold start there costs (deploy88) and what
     the sensor monitor did while it was warmed (replay's ``warm-up:`` line, deploy88b)."""
     n, why = cand.test_samples, "the test figures are the {} stream's, run's the model's own"
-    lines = cold_line(cand.cold_start_campaigns, [(target, cand.test_figures_cold.get("rmse"),
-                                                   cand.test_figures.get("rmse"))]
+    lines = cold_line(cand.cold_start_campaigns, [(target, cand.test_figures_cold.get(RMSE),
+                                                   cand.test_figures.get(RMSE))]
                       ) if cand.cold_start_campaigns else []
     lines += clamped_line(cand.test_clamped, n, policy, why.format("clamped"))
     if cand.test_excluded:
