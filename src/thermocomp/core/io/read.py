@@ -613,11 +613,10 @@ def folder_splits(path: Path, opts: ReadOptions, manifest: pd.DataFrame | None =
     campaigns held out by ``data.test_fraction``): a group of the folder holds out what the
     whole folder does."""
     manifest = read_manifest(path, opts) if manifest is None else manifest
-    if shares(opts) and len(manifest) == 1 and not (path / MANIFEST).is_file():
+    if shares(opts) and (run := lone_run(path, opts, manifest)) is not None:
         # a lab's one export put in a folder: its one file is one campaign, nothing to hold out
         # (the refusal named a campaigns.csv that is not there and said to lower the fraction)
-        only = path / str(manifest["file"].iloc[0])
-        errors = partner(only, opts, campaign_files(path))
+        only, errors = run
         if errors is not None:      # (data88; a read cuts it as one record: fleet's groups)
             raise ContractError(f"a folder whose one run is two loggers' files ({only.name}, "
                                 f"{errors.name}: one campaign) has none to hold out for "
@@ -703,10 +702,19 @@ def _source(path: Path, opts: ReadOptions, campaigns=None) -> tuple[Path, pd.Dat
 def _one_run_of_two(path: Path, opts: ReadOptions, listed: pd.DataFrame) -> Path | None:
     """The temperature file of the folder ``path``'s one run where it is two loggers' files
     (:mod:`.loggers`), no manifest, and a fraction asks for a held-out share; else None."""
-    if not shares(opts) or len(listed) != 1 or (path / MANIFEST).is_file():
+    run = lone_run(path, opts, listed) if shares(opts) else None
+    return run[0] if run is not None and run[1] is not None else None
+
+
+def lone_run(path: Path, opts: ReadOptions, listed: pd.DataFrame) -> tuple[Path, Path | None] | None:
+    """``(file, errors)``: the one data file the folder ``path`` lists (``listed``: as read) where
+    it has no manifest, and its errors' file where the run is two loggers' (:mod:`.loggers`),
+    else None; None for any other folder.  One look for the read, its held-out share and
+    ``init`` (data88, data88b)."""
+    if len(listed) != 1 or (path / MANIFEST).is_file():
         return None
     only = path / str(listed["file"].iloc[0])
-    return only if partner(only, opts, campaign_files(path)) is not None else None
+    return only, partner(only, opts, campaign_files(path))
 
 
 def _recorded_time(path: Path, files: list[Path], opts: ReadOptions) -> ReadOptions:

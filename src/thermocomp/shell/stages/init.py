@@ -87,12 +87,10 @@ def lone_file(src, manifest, opts) -> bool:
     """``src`` is a folder without a manifest holding one data file (``manifest``: as read).
     (data88) A run of two loggers' files (:mod:`~thermocomp.core.io.loggers`) is no lone file:
     its temperature file was read alone, "no column reads as a measured error"."""
-    from ...core.io.loggers import partner
-    from ...core.io.manifest import campaign_files
+    from ...core.io.read import lone_run
 
-    if manifest is None or len(manifest) != 1 or (src / MANIFEST).is_file():
-        return False
-    return partner(src / str(manifest["file"].iloc[0]), opts, campaign_files(src)) is None
+    run = None if manifest is None else lone_run(src, opts, manifest)
+    return run is not None and run[1] is None
 
 
 def long_period(sample, given: dict) -> dict | None:
