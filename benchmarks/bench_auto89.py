@@ -4,9 +4,9 @@ part of every train campaign held out (issue 34; stop 89, auto89).  TRACED (no r
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``; ``seen`` and ``one`` need the trace
 instrument: ``git apply benchmarks/auto89_rule.patch``, the rule as tried, below)::
 
-    python benchmarks/bench_auto89.py seen DATA WORK RECORD ...   # -> WORK/main.jsonl + metrics
-    python benchmarks/bench_auto89.py table WORK                  # late parts against the test
-    python benchmarks/bench_auto89.py one WORK RECORD             # one-record records (column)
+    python benchmarks/bench_auto89.py seen DATA WORK VARIANT RECORD ...  # -> WORK/VARIANT.jsonl
+    python benchmarks/bench_auto89.py table WORK VARIANT                 # the check against the test
+    python benchmarks/bench_auto89.py one WORK RECORD                    # one-record records (column)
 
 ``seen``: bench_auto88's ``auto`` runner (``run model=auto``, this tree's src and conf) on climate
 rooms of bench_auto88b's :data:`RECORDS` (simulated into DATA where absent); with the patch each
@@ -32,8 +32,9 @@ campaign the blend's summed squared error over MLR's; mean >= 1 keeps MLR alone.
 per member and MLR (CPU cr9031 7.2 -> 7.1 s, cr9012 9.9 -> 12.1 s, within x1.5).
 
 Trace (2026-12-05; main a0d62dea + the patch, ``git archive`` copy; 2 shared cores, load 2-4,
-``OMP_NUM_THREADS=1``; seen records only: ``seen /tmp/auto89/data /tmp/auto89/seen2 <the 31
-rooms below>``, ``table /tmp/auto89/seen2``, ``one /tmp/auto89/one col1403``)
+``OMP_NUM_THREADS=1``; seen records only: ``seen /tmp/auto89/data /tmp/auto89/seen2 late <the 31
+rooms below>``, ``table /tmp/auto89/seen2 late``, the same with ``extremes``, ``one /tmp/auto89/one
+col1403``; the patch as committed reproduces cr9245's / cr9088's figures of both to the bit)
 ------------------------------------------------------------------------------------------------
 * cr9245 (auto88b's fresh; main auto 2.482 against MLR 1.922): E_X keeps ``ati`` 1.00 (its folds
   over MLR 0.27 0.31 0.90 0.07; validation RMSE 1.70 against MLR 5.98; test 0.919 against MLR
@@ -67,18 +68,29 @@ rooms below>``, ``table /tmp/auto89/seen2``, ``one /tmp/auto89/one col1403``)
   worse (cr9079 0.850 -> 3.115, cr9182 1.268 -> 1.836, cr9076 2.085 -> 2.595, cr9244 0.869 ->
   1.200 ...), worse than MLR 2 -> 2 (cr9245 mended, cr9076 now); median >= 1: geo 1.029, 5 > 2 %,
   2 -> 3; geo >= 1: geo 1.019, 4 > 2 % (cr9244 x1.38, cr9076 x1.24, cr9183 x1.31), 2 -> 2.
+* Probe after the rule failed (seen only, no rule taken from it): ``late_check=ambient_extremes``,
+  the two train campaigns of the lowest and highest initial ambient held out (the fit on the
+  others), aimed at cr9245's cause.  cr9245 right on both targets (E_X 1.46 0.47, mean 0.96: kept;
+  E_Z 1.13 2.02: MLR; record 2.482 -> 1.806, below MLR's 1.922), but over the 60 targets Spearman
+  +0.30 (mean) / +0.41 (geo), below the folds' +0.57: ATI's big wins fail it (cr9181 E_Z 0.17 x
+  MLR on test: 1.14; cr9081 E_Z 0.50: 29.3), a loss passes (cr9089 E_Z geo 0.94).  As a rule
+  (mean >= 1): geo x main 1.142, 8 records > 2 % worse (cr9181 0.655 -> 2.754, cr9079 0.850 ->
+  3.115, cr9081 0.686 -> 1.456), worse than MLR 2 -> 1; geo >= 1: 1.025, 4 > 2 % worse.  Whether
+  a test campaign's ambient lies outside the train span does not mark the losses either (cr9248:
+  all three above the span, 0.28 / 0.30 x MLR; cr9083 E_X lost with all three inside).
 * CPU of ``run model=auto`` with the check (not alternated with main: indicative): cr9031 7.1 s
   (main 7.2 in auto88), cr9012 11.2-12.1 s (main 9.9): one fit per member and MLR.
 
-Verdict: the rule (mean >= 1, and the median / geo forms) makes the SEEN rooms worse, so it was
-not taken to fresh seeds: **TRACED**, src as on main (the instrument in auto89_rule.patch).  Seeds
-9271-9280 NOT drawn (left for the next rule).  The brief's bar (fresh 9271-9280 as bench_auto88b's
-climate rooms: geo auto / MLR not worse than main's and none > 2 % worse; the 22: fewer than 8
-worse than MLR, none > 2 % worse; CPU x1.5 on cr9031 / cr9012; auto tests) was not scored.
-Left: cr9245's loss is ambient extrapolation at test (an input the choice may not read); the
-column's is a new test cycle.  Neither shows in rows of the train campaigns seen so far (folds,
-restarted blocks (auto86), later halves (here)); next: a deployed-side guard (ATI outside its
-train ambient span falling back to its base family) scored as deployed, not a selection rule.
+Verdict: the rule (mean >= 1, and the median / geo forms) makes the SEEN rooms worse, as does
+the extremes probe, so neither was taken to fresh seeds: **TRACED**, src as on main (the
+instrument in auto89_rule.patch).  Seeds 9271-9280 NOT drawn (left for the next rule).  The
+brief's bar (fresh 9271-9280 as bench_auto88b's climate rooms: geo auto / MLR not worse than
+main's and none > 2 % worse; the 22: fewer than 8 worse than MLR, none > 2 % worse; CPU x1.5 on
+cr9031 / cr9012; auto tests) was not scored.
+Left: the seen losses are small but for cr9245 E_Z (x1.50) and cr9089 E_Z (x1.22); no train-side
+signal tried (fold spreads and votes auto87b-d, restarted blocks auto86, later halves and ambient
+extremes here) separates them from the wins.  A lead, one record, not a finding: cr9245's train
+ambient span (23.4-31.5 °C, 8.1 K) is the narrowest of the 31 rooms (the others 11.3-19.8 K).
 """
 
 from __future__ import annotations
@@ -98,6 +110,9 @@ STORES = {"main": ["/tmp/auto88/seen/main.jsonl", "/tmp/auto88/fresh/old/main.js
                    "/tmp/auto88b/fresh/old/main.jsonl"],
           "mlr": ["/tmp/auto88/seen/mlr.jsonl", "/tmp/auto88/fresh/mlr/mlr.jsonl",
                   "/tmp/auto88b/fresh/mlr/mlr.jsonl"]}
+# the checks (auto89_rule.patch's ``late_check``): late halves of every train campaign (the rule
+# tried), the two ambient-extreme train campaigns held out (a probe)
+auto88b.auto88.VARIANTS.update({"late": [], "extremes": ["+model.estimator.late_check=ambient_extremes"]})
 STATISTICS = {"mean": np.mean, "median": np.median, "geo": lambda r: float(np.exp(np.mean(np.log(r))))}
 
 
@@ -108,12 +123,12 @@ def _rows(paths: list[str]) -> dict:
     return out
 
 
-def late_rows(work: Path) -> list[dict]:
+def late_rows(work: Path, variant: str) -> list[dict]:
     """Per target of WORK's runs with late-part figures: record, target, main's and MLR's test
     RMSE (the stored rows), the late parts' per-campaign ratios and the validation folds'."""
     main, mlr = _rows(STORES["main"]), _rows(STORES["mlr"])
     out = []
-    for path in sorted((work / "root" / "reports").glob("*-main/metrics.json")):
+    for path in sorted((work / "root" / "reports").glob(f"*-{variant}/metrics.json")):
         record = path.parent.name.rsplit("-", 1)[0]
         if record not in main or record not in mlr:
             continue
@@ -127,7 +142,7 @@ def late_rows(work: Path) -> list[dict]:
     return out
 
 
-def rule_effect(rows: list[dict], statistic, work: Path) -> dict:
+def rule_effect(rows: list[dict], statistic) -> dict:
     """Exactly from the rows: targets where ``statistic`` of the late parts >= 1 take MLR's test
     RMSE; per record the mean over its targets (targets without figures: main's, as kept)."""
     main, mlr = _rows(STORES["main"]), _rows(STORES["mlr"])
@@ -142,8 +157,8 @@ def rule_effect(rows: list[dict], statistic, work: Path) -> dict:
     return out
 
 
-def table(work: str) -> None:
-    rows = late_rows(Path(work))
+def table(work: str, variant: str) -> None:
+    rows = late_rows(Path(work), variant)
     print("record  target  main/MLR | late parts mean  median  geo | folds mean   main's kept blend")
     for r in sorted(rows, key=lambda r: r["main"] / r["mlr"]):
         stats = "  ".join(f"{f(r['late']):6.3f}" for f in STATISTICS.values())
@@ -153,7 +168,7 @@ def table(work: str) -> None:
     print(f"\n{len(rows)} targets, {lost.sum()} lost to MLR on test")
     for name, f in STATISTICS.items():
         flagged = np.array([f(r["late"]) >= 1.0 for r in rows])
-        effect = rule_effect(rows, f, Path(work))
+        effect = rule_effect(rows, f)
         ratio = np.array([n / o for o, n, _ in effect.values()])
         worse_mlr = [(o > m * (1 + 1e-9), n > m * (1 + 1e-9)) for o, n, m in effect.values()]
         print(f"rule '{name} >= 1': flags {flagged.sum()} ({(flagged & lost).sum()} of the {lost.sum()} "
@@ -176,8 +191,8 @@ def table(work: str) -> None:
           + f"; a constant 'below MLR' {np.mean(~lost):.2f}")
 
 
-def seen(data: str, work: str, *records: str) -> None:
-    auto88b.auto88.auto(Path(data).resolve(), Path(work).resolve(), "main", list(records))
+def seen(data: str, work: str, variant: str, *records: str) -> None:
+    auto88b.auto88.auto(Path(data).resolve(), Path(work).resolve(), variant, list(records))
 
 
 def one(work: str, record: str) -> None:
