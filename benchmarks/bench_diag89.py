@@ -126,9 +126,9 @@ def choices(case: str, target: str) -> None:
             for ev in sorted(pool, key=lambda ev: -ev.gain)[:8]:
                 m = ev.result.unit_mse
                 mark = "*" if taken and ev is taken[0] else ("+" if ev in taken else " ")
+                se = m.std(ddof=1) / np.sqrt(m.size)
                 print(f"   {mark} {ev.effect.title[:64]:64s} {ev.n_features:2d} features, gain "
-                      f"{ev.gain_pct:5.1f} %, CV MSE {m.mean():.4f} (SE {m.std(ddof=1) / np.sqrt(m.size):.4f}), "
-                      f"clears {ev.clears_bar}")
+                      f"{ev.gain_pct:5.1f} %, CV MSE {m.mean():.4f} (SE {se:.4f}), clears {ev.clears_bar}")
         return taken
 
     search_module.choose = traced
