@@ -70,7 +70,7 @@ spurious start lags (8457 E_X 0.9239, 8178 E_Z 0.7747, 8075 E_Y 0.7010, 8170 E_X
 grinder 5682 dY 0.7943) as main, neither mended nor worse; 959 E_Y 0.9934, planted:6 E_Y 1.2652,
 5687 dY 0.4306, 8885 E_Y 1.4571, 8885 E_Z 6.0040 (the ambient law still vetoes), the positions.
 bench_diag88c's ``faults`` (climate_room drift / stuck / contact): identical JSON.  ``zeroed
-lag:8980`` E_X 2.1791 -> 0.4886 (main 2.1791, nothing).  ``draws`` (36 draws, 108 rows), the only
+lag:8980`` E_X 2.1791 -> 0.4886 (main 2.1791, nothing).  ``draws`` (40 draws, 120 rows), the only
 rows that differ, test RMSE as deployed (µm), E_X::
 
   row        before  main               rule
@@ -80,7 +80,7 @@ rows that differ, test RMSE as deployed (µm), E_X::
   lag:9269   1.668   1.668 nothing      0.726 T_box1 14400 s +init (2)   -56.5 %
 
 lag:9270 E_X 1.2836 and lag:9259 E_X 0.7814 (T_box1 +init (3)) as main (diag88c's rule 2 alone:
-1.3731 / 0.7409); the 19 clean draws accept nothing in both; planted found on 9 of 10 in both
+1.3731 / 0.7409); the 18 clean draws accept nothing in both; planted found on 9 of 10 in both
 (9265 in neither); no control clears.  CPU: diagnose's own figures as main's (the choice reorders a
 list; nothing refitted).
 """
