@@ -1,5 +1,5 @@
 """Diagnose's one-SE choice: an uncleared richer read of the same effect still sets the band; it
-stops vetoing the cleared reads only where none of them is within its band (stop 89, diag89;
+stops vetoing the cleared reads only where none of them is within its band (KEPT; stop 89, diag89;
 issue 34: "diagnose accepts a planted position effect with 8 train campaigns, accepts nothing on
 clean data, and never leaves a record's test error more than 2 % worse").
 
@@ -83,6 +83,33 @@ lag:9270 E_X 1.2836 and lag:9259 E_X 0.7814 (T_box1 +init (3)) as main (diag88c'
 1.3731 / 0.7409); the 18 clean draws accept nothing in both; planted found on 9 of 10 in both
 (9265 in neither); no control clears.  CPU: diagnose's own figures as main's (the choice reorders a
 list; nothing refitted).
+
+Scored on FRESH (2026-12-05, once, after the bar and the SEEN rows above were committed: a870c57a;
+``fresh ROOT main`` / ``fresh ROOT rule``, CPU of the processes 14.0 / 14.4 s)
+-----------------------------------------------------------------------------------------------
+Test RMSE as deployed (µm); the only (draw, target) row where main and the rule differ::
+
+  row            before  main            rule
+  lag:9290 E_X   2.004   2.004 nothing   0.842 T_box1 14400 s +init (2)   -58.0 %
+
+Identical: the other 29 rows.  Clean 9281-9284 accept nothing on any target in both; planted
+9285 / 9286 / 9287 find the position on E_Y in both (5.271 -> 1.412, 3.943 -> 1.495, 4.158 ->
+1.648); lag:9288 / 9289 E_X accept nothing in both (1.169, 2.182: no start lag clears; their
+one-input reads reach family-wise p 0.03-0.05, the all-inputs lag 0.002 / 0.012, ``bench_diag88b.py
+trace``); no control clears; no row above diagnose's own before.
+
+1. **Holds** (no row worse; one -58 %).  2. **Holds** (clean: nothing).  3. **Holds** (3 of 3 in
+both).  4. **Holds** (SEEN ``draws``: lag:9268 0.663 / 9269 0.726 against main's 1.318 / 1.668;
+9270 1.2836 = main).  5. **Holds**: tests/apps/test_diag*.py 76 passed, tests/shell/test_diag*.py 56
+passed (-n 2).  **KEPT.**  Tests (tests/apps/test_diagnose_choice89.py, all 3 fail on a0d62dea;
+the band test fails on diag88c's rule 2 alone too): the zeroed 8980 draw takes T_box1's start
+lag past its saturated all-inputs rival (test < half of before); :func:`choose` lets a lag of
+one input past a lag of every input but not past an ambient law; a cleared read within the
+rival's band is taken over a leaner one outside it, and with none within, the fewest regressors.
+
+Left: lag:9288 / 9289 E_X (fresh; the one-input start lags do not clear at 0.01 family-wise);
+planted:9265 E_Y (found by neither); the six spurious start lags (as main); planted:9103 /
+lag:9258 E_Z (the saturated ambient law's veto, as bench_diag88c says).
 """
 
 from __future__ import annotations
