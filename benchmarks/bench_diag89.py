@@ -133,16 +133,19 @@ FRESH = ([("clean", s, 12) for s in range(9281, 9285)] + [("planted", s, 12) for
          + [("lag", s, 12) for s in range(9288, 9291)])
 
 
+def _diagnosed(cases: list, root: str, label: str) -> None:
+    bench_diag86.FRESH = cases
+    bench_diag86.fresh(root, label)
+
+
 def draws(root: str, label: str) -> None:
     """:data:`SEEN_DRAWS` through bench_diag86's ``fresh`` -> ``ROOT/fresh-draws-LABEL.jsonl``."""
-    bench_diag86.FRESH = SEEN_DRAWS
-    bench_diag86.fresh(root, f"draws-{label}")
+    _diagnosed(SEEN_DRAWS, root, f"draws-{label}")
 
 
 def fresh(root: str, label: str) -> None:
-    """:data:`FRESH` through bench_diag86's ``fresh``."""
-    bench_diag86.FRESH = FRESH
-    bench_diag86.fresh(root, label)
+    """:data:`FRESH` through bench_diag86's ``fresh`` -> ``ROOT/fresh-LABEL.jsonl``."""
+    _diagnosed(FRESH, root, label)
 
 
 def compare(root: str, a: str, b: str) -> None:
