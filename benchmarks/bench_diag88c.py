@@ -1,6 +1,7 @@
 """Diagnose's one-standard-error choice: an uncleared lag of every model input does not veto a lag
 of one of them that clears (rule 2: kept by this bench, then REFUSED by its re-score on unspent
-draws, bench_diag88d: lag:9270 E_X +7.0 %; src reverted, diag88c_rule2.patch); rule 1, a saturated
+draws, bench_diag88d: lag:9270 E_X +7.0 %; src reverted, diag88c_rule2.patch; stop 89 it came back
+inside diag89's choice, where the rival still sets the one-SE band: bench_diag89); rule 1, a saturated
 candidate no rival, REFUSED (stop
 88, diag88c; issue 34: "diagnose accepts a planted position effect with 8 train campaigns, accepts
 nothing on clean data, and never leaves a record's test error more than 2 % worse").
