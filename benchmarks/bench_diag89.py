@@ -159,12 +159,8 @@ def choices(case: str, target: str) -> None:
     """``case`` (``kind:seed``, 12 campaigns) diagnosed on every target; for ``target``, each round
     where a start lag clears: the refitted candidates, the band's limit, what the choice takes."""
     import numpy as np
-    from bench_diag76 import _deployed_stream
 
-    from thermocomp.apps.diagnose import SearchOptions, diagnose
     from thermocomp.apps.diagnose import search as search_module
-    from thermocomp.core.compensator import Compensator
-    from thermocomp.core.models import MLR
 
     original = search_module.choose
 
@@ -185,6 +181,18 @@ def choices(case: str, target: str) -> None:
         return taken
 
     search_module.choose = traced
+    diagnosed(case, target)
+
+
+def diagnosed(case: str, target: str):
+    """``case`` (``kind:seed``, 12 campaigns) diagnosed on every target (MLR, ``max_effects=2``, test
+    figures as deployed); prints ``target``'s test RMSE before -> after and what it accepted."""
+    from bench_diag76 import _deployed_stream
+
+    from thermocomp.apps.diagnose import SearchOptions, diagnose
+    from thermocomp.core.compensator import Compensator
+    from thermocomp.core.models import MLR
+
     kind, seed = case.split(":")
     ds = bench_diag86.draw(kind, int(seed), 12)
     d = diagnose(ds, Compensator(MLR()), options=SearchOptions(max_effects=2),
@@ -192,6 +200,7 @@ def choices(case: str, target: str) -> None:
     j = d.to_json(target)
     print(f"{case} {target}: test {j['before']['test_rmse']:.4f} -> {j['after']['test_rmse']:.4f} "
           f"{[e.effect.title for e in d.targets[target].accepted]}")
+    return d
 
 
 def main(argv: list[str]) -> int:
