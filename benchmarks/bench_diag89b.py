@@ -73,7 +73,10 @@ A. **The design's floor** (8966, 8968, 8969): round 1 re-cuts the test blocks on
    one per campaign; the sign flips' smallest p is 1/256 (1/512 with 9), the position's own p is
    1-4 of those, and the step-down max-T over the round's ~9 candidates puts it at 3/256-6/256
    or 6/512-12/512 (0.0117-0.0234) > 0.01.  The two draws on 8 blocks that are found (9104,
-   9266) reach p_fam = 1/256 exactly: nothing else in their family ties under the flips.  Taken
+   9266) reach p_fam = 1/256 exactly: nothing else in their family ties under the flips.  What
+   ties (``round1 8969``): 8969's start lags of T_motor1 / T_motor2 (7200 s, from the initial
+   state: the spurious kind of bench_diag88) gain 34-36 % at own p 1/256 beside the position's
+   2/256, all at p_fam 3/256; on 8966 the position's two products tie at 2/512.  Taken
    (``round1 SEED 1``: the best cleared candidate whatever its p), the test would fall 3.793 ->
    1.640, 4.994 -> 2.210, 5.057 -> 1.694 (-57 to -66 %).
 B. **Ranks over fine blocks, then the one-SE choice** (9265; ``round1 9265``): 83 ranked blocks;
