@@ -579,7 +579,8 @@ def stream_stamps(time: pd.Series, time_format: str = "auto", zone: str | None =
     if kind == "auto" and isinstance(first, str) and not clock:    # read as a campaign file's
         kind = time_kind(first.strip(), kind, not pd.isna(pd.to_numeric(first, errors="coerce")),
                          SOURCE, stream=True)
-    elif kind == "auto" and not clock and float(first).is_integer() and (form := compact_format(f"{first:.0f}")):
+    elif (kind == "auto" and not clock and float(first).is_integer()
+          and (form := compact_format(f"{first:.0f}"))):
         kind = form                                     # (realexport73: an AmeriFlux table's
         time = time.map(lambda v: v if pd.isna(v) else f"{v:.0f}")    # 202503272330, as digits)
     text = pa.chunked_array([pa.array(time.astype("string"), type=pa.string())])
