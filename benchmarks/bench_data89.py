@@ -45,7 +45,7 @@ from pathlib import Path
 
 import pandas as pd
 from _cli import run_commands
-from bench_data88 import FOLLOWED, START, UNIT, _cli, _lab, _refusal, _run, _short
+from bench_data88 import START, UNIT, _cli, _lab, _refusal, _run, _short, followed
 from bench_data88 import write as write_exports
 
 LIGHT = ["track=false", "plots=none"]
@@ -108,16 +108,10 @@ def score(root: str, seed: str, labels: str = ",".join(PATHS)) -> None:
     print(f"seed {seed} contract: {said}; RMSE {_short(want or {})}; replay "
           f"{_short(streamed or {})}")
     for label in labels.split(","):
-        said, got = _run(base, base / PATHS[label], label)
+        said, got, key = followed(base, base / PATHS[label], label)
         if got is None:
-            print(f"  {label}: REFUSED {said}")
-            key = next((typed for asked, typed in FOLLOWED.items() if asked in said), None)
-            if key is None:
-                continue
-            said, got = _run(base, base / PATHS[label], label, *key)
-            if got is None:
-                print(f"    with {' '.join(key)} as it says: REFUSED {said}")
-                continue
+            continue
+        if key:
             print(f"    with {' '.join(key)} as it says:")
         replayed = _replay(base, label)
         run_ok = _same(_by_contract(got), want)
