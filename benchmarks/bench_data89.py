@@ -33,6 +33,53 @@ of ``contract.csv`` to 1e-6 µm on every target and its replay the contract's re
 1e-6; (c) ``stream``: the piped night accepted and equal to the piped contract to 1e-9; and
 the tests of tests/shell/test_data89.py fail on main a0d62dea and pass here (one per mended
 defect).  Any export read silently wrong (exit 0, RMSE not the contract's) refuses the branch.
+
+Scored (2026-12-05, fresh seeds 9311-9315, each ``write`` once by fix/data89, then ``score`` and
+``stream`` on fix/data89 (all exports) and on a checkout of main a0d62dea (a copy of the same
+files: contract, trace, daysec, midnight and the stream; bench_data88's other exports were
+scored on main by data88 / data88b); dev seed 4242 only before; the bar unchanged)
+------------------------------------------------------------------------------------------
+Test RMSE (µm, E_X / E_Y / E_Z; mlr, the last quarter held out) of contract.csv, then its
+replay: 9311 0.426707 / 0.317845 / 0.783287, replay the same; 9312 0.616153 / 0.492033 /
+0.984750, replay 0.604195 / 1.855936 / 1.079805; 9313 0.358389 / 1.194591 / 0.474087, replay
+0.387168 / 1.598611 / 1.603729; 9314 0.678606 / 0.480536 / 0.915081, replay the same; 9315
+0.391480 / 1.134777 / 0.767666, replay 0.420107 / 1.298616 / 0.829918.
+
+==========  ===========================================  ============================================
+export      main a0d62dea (5 of 5 seeds alike)           fix/data89 (5 of 5 seeds alike)
+==========  ===========================================  ============================================
+excel2,     (data88 / data88b: accepted)                 accepted, RMSE and replay = contract (1e-6)
+tabcomment,
+latin1,
+groups
+catman      (data88: refused for a date reading two      refused exit 2 (file, column T0, line 11,
+            ways, accepted with the key)                 data.dayfirst=true|false); with
+                                                         data.dayfirst=false: RMSE and replay =
+                                                         contract
+midnight    accepted, RMSE and replay = contract         the same
+trace       accepted, RMSE and replay = contract         the same (the header block read as a
+                                                         preamble)
+daysec      refused exit 2: file, "no 'time' column ...  the same (file and key; no column, no row)
+            set data.sample_period_s"
+stream      the night piped: exit 2 "file <stdin>,       accepted, rmse_fixed / rmse_adaptive /
+            column 'time', data row 1: value '21:30:00'  n_samples = the contract piped (1e-9; 9311
+            is a time of day without its date"           E_X 0.305522 / 0.305522 / 53 ... 9315 E_Z
+                                                         0.574413 / 0.574413 / 58)
+==========  ===========================================  ============================================
+
+Tests (tests/shell/test_data89.py, 7): all fail on a checkout of main a0d62dea (the stream's
+time of day refused; the monitor exit 2; the served block's refusal says no why; settings name
+``data.join_offset_s``, ``data.skip_rows`` ...; an old ingest's refusal says "which had no
+data.join.offset_s"; no pause warning; runs_at_pauses on a text time: ValueError) and pass here.
+
+Against the BAR: (a) every export accepted, or refused exit 2 naming file, column and row
+(catman) or file and key (daysec); (b) 35 of 35 accepted runs and replays = the contract's to
+1e-6; (c) the piped night = the piped contract on 5 of 5 (main: exit 2); tests as said.
+KEPT.  Seen, not in the bar: daysec's refusal's key (data.sample_period_s=300) leads next to
+"77400 °C is above data.kelvin_threshold_c ... data.roles.ignore=['Seconds of day']" (column,
+row), and with data.roles.time='Seconds of day' to "time decreases from 86100 s (row 30) to 0 s:
+... sort them by their time": the rows are in order, a clock of seconds since midnight passed
+it (Left: read it by the time of day's rule, or say so).
 """
 
 from __future__ import annotations
