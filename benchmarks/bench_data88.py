@@ -250,6 +250,23 @@ FOLLOWED = {"data.dayfirst=true|false": ("data.dayfirst=false",),
             "or set data.sample_period_s": ("data.sample_period_s=300",)}   # (main's words)
 
 
+def followed(base: Path, path: Path, label: str) -> tuple[str, dict | None, tuple]:
+    """:func:`_run` of ``path``, and where it is refused naming a key (FOLLOWED), once more with
+    that key typed: (what happened, the test RMSE per target or None, the key typed); each
+    refusal printed."""
+    said, got = _run(base, path, label)
+    if got is not None:
+        return said, got, ()
+    print(f"  {label}: REFUSED {said}")
+    key = next((typed for asked, typed in FOLLOWED.items() if asked in said), ())
+    if not key:
+        return said, None, ()
+    said, got = _run(base, path, label, *key)
+    if got is None:
+        print(f"    with {' '.join(key)} as it says: REFUSED {said}")
+    return said, got, key
+
+
 def score(root: str, seed: str) -> None:
     """Each export of ``seed`` through init + run against the contract file (module docstring)."""
     base = Path(root) / seed
@@ -258,16 +275,10 @@ def score(root: str, seed: str) -> None:
     paths = {"excel2": "excel2.csv", "tabcomment": "tabcomment.txt", "midnight": "midnight.csv",
              "latin1": "latin1.csv", "groups": "groups", "catman": "catman.TXT"}
     for label in EXPORTS:
-        said, got = _run(base, base / paths[label], label)
+        said, got, key = followed(base, base / paths[label], label)
         if got is None:
-            print(f"  {label}: REFUSED {said}")
-            key = next((typed for asked, typed in FOLLOWED.items() if asked in said), None)
-            if key is None:
-                continue
-            said, got = _run(base, base / paths[label], label, *key)
-            if got is None:
-                print(f"    with {' '.join(key)} as it says: REFUSED {said}")
-                continue
+            continue
+        if key:
             label = f"  with {' '.join(key)} as it says"
         same = want is not None and len(got) == len(want) and all(
             abs(a - b) <= 1e-6 for a, b in zip(sorted(got.values()), sorted(want.values())))

@@ -243,9 +243,9 @@ def ingest_fingerprint(cfg: DictConfig) -> dict:
     keys of a volumetric dataset's parameter series), which are kept beside (``settings``, with
     the folder) to name what changed.  ``ingest`` records it; the stages reading
     ``data.interim`` compare."""
-    opts = dataclasses.asdict(io.ReadOptions.from_cfg(data_options(cfg)))
-    opts.pop("missing")      # internal: no data config key
-    settings = {f"data.{k}": v for k, v in opts.items()}
+    # (data89) by the keys a user types: a changed one is named so in the refusal
+    settings = {f"data.{k}": v
+                for k, v in io.ReadOptions.from_cfg(data_options(cfg)).data_keys().items()}
     if is_volumetric(cfg) and cfg.get("calibrate") is not None:
         # a volumetric dataset's parameter series depend on its calibration too (an outside
         # probe's ingest with a prior was evaluated without one: 33 targets, 25 rows, exit 0)
@@ -279,6 +279,11 @@ def _changed(cfg: DictConfig, made: dict, want: dict) -> str:
     if CONFIG not in made:
         return "it was ingested by an earlier version (no digest and config hash in ingested_with)"
     was, now = made.get(SETTINGS_KEY) or {}, want[SETTINGS_KEY]
+    gone = [k for k in was if k not in now]
+    if gone:         # (data89) recorded under names this version no longer records
+        return (f"it was ingested by an earlier version, which recorded its settings under "
+                f"other names ({', '.join(gone[:4])}{' ...' if len(gone) > 4 else ''}; now "
+                "the data config's keys): ingest again, once")
     key = next((k for k in now if was.get(k) != now[k]), None)
     if key is None:
         return f"data.path={cfg.data.path} changed since it was ingested (its files differ)"

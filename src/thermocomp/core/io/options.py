@@ -6,7 +6,7 @@ import math
 import re
 import zoneinfo
 from collections.abc import Mapping
-from dataclasses import dataclass, field
+from dataclasses import asdict, dataclass, field
 
 import numpy as np
 
@@ -30,6 +30,10 @@ MISSING_MODES = ("repair", "keep", "keep_errors")
 SPARSE_TARGETS = ("auto", "true", "false")   # data.sparse_targets: an E_ column measured now and then
 
 _OTHER_DELIMITERS = (";", "\t", "|", ",")
+# ReadOptions fields that are no data config key (the reader's own)
+INTERNAL = ("missing", "skip_rows", "data_bytes", "drop_bytes", "half", "order_in_rows")
+# ReadOptions fields read from a nested data config key (``data.join.offset_s``)
+NESTED = {"join_offset_s": "join.offset_s", "join_tolerance_s": "join.tolerance_s"}
 
 
 # ---------------------------------------------------------------------------
@@ -147,6 +151,13 @@ class ReadOptions:
         )
         opts._check()
         return opts
+
+    def data_keys(self) -> dict:
+        """(data89) The options under the data config keys a user types (``join.offset_s``,
+        dotted where nested), the internal fields left out: what an ingest's
+        ``ingested_with.settings`` names, so that a changed one is said by the key that
+        changes it (it named ``data.join_offset_s`` and internal ``data.skip_rows``)."""
+        return {NESTED.get(k, k): v for k, v in asdict(self).items() if k not in INTERNAL}
 
     def _check(self) -> None:
         if self.time not in TIME_FORMATS and "%" not in self.time:

@@ -16,12 +16,11 @@ from ...base.errors import position
 from ...base.log import logger
 from ..timerule import median_step
 from .contract import TIME
-from .timestamps import skips_an_hour
+from .timestamps import PAUSE_PERIODS, skips_an_hour
 
 RATE_CHANGE = 2.0    # the median steps before and after the change this far apart
 SETTLED = 10         # steps at least on each side of a change
 GAP_PERIODS = 1.5    # a step this many sample periods or more: rows not logged
-PAUSE_PERIODS = 100  # a record silent this many sample periods: runs joined in one file?
 
 
 def pauses(seconds: np.ndarray) -> np.ndarray:

@@ -103,7 +103,7 @@ from .manifest import (
     said_subfolders,
     subfolder_runs,
 )
-from .options import ROLE_ORDER, RUN_ROLE, ReadOptions
+from .options import INTERNAL, ROLE_ORDER, RUN_ROLE, ReadOptions
 from .own_headers import with_own_header
 from .plain import as_read, is_lab_file, lab_dayfirst
 from .record import check_record_file, cut, hold_out, record_id, shares
@@ -137,8 +137,6 @@ INGEST_REPORT = "ingest_report.json"
 MIN_ROWS = 2  # the first sample is the reference: one more is needed to have anything to score
 MAX_GRID_ROWS = 5_000_000
 _READ_ATTEMPTS = 5
-# ReadOptions fields that are no data config key
-INTERNAL = ("missing", "skip_rows", "data_bytes", "drop_bytes", "half", "order_in_rows")
 DEAD_ROLES = ("E", "T")   # columns said when constant over a whole campaign (a dead channel)
 
 

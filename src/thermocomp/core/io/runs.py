@@ -93,8 +93,17 @@ def pause_blocks(seconds: np.ndarray, stem: str, path: Path | str
     Raises
     ------
     ContractError
-        No pause: one run (``data.runs_at_pauses`` splits nothing).
+        No pause: one run (``data.runs_at_pauses`` splits nothing); ``seconds`` None, a time
+        written as text the file's read parses later (data89: a time of day without its date
+        crashed here).
     """
+    if seconds is None:
+        raise ContractError("data.runs_at_pauses finds the pauses in a time of seconds or of "
+                            "timestamps with their date; this one is written otherwise (a time "
+                            "of day without its date?): give the date column with it, "
+                            "data.roles.time=[<date column>, <time column>], or a column "
+                            "numbering the runs, data.roles.campaign=<header>", file=path,
+                            column="time")
     found = pauses(seconds) + 1
     if not found.size:
         raise ContractError(f"data.runs_at_pauses: the time never pauses for more than "

@@ -67,6 +67,7 @@ from .timestamps import (
     dst_said,
     elapsed_seconds,
     keyed_format,
+    maybe_elapsed,
     on_local_clock,
     parsed,
     time_kind,
@@ -565,22 +566,27 @@ def stream_stamps(time: pd.Series, time_format: str = "auto", zone: str | None =
     campaign file's are (:func:`.timestamps.parsed`: ISO 8601 with or without its offset, a
     decimal comma, a day-first ``07.01.2023 08:45:00``, ``data.time``'s format; ``zone``:
     ``data.timezone``, the local clock of timestamps without an offset); the elapsed
-    ``h:mm:ss`` as seconds (a Series); None where the time is seconds (or none is read).
+    ``h:mm:ss``, or (data89) a time of day passing midnight, as seconds (a Series:
+    :func:`.timestamps.elapsed_seconds`, the file's rule); None where the time is seconds (or none is read).
     ``served``: a served model's block (no ``data.timezone`` read), said so in a clock set back."""
     read = time.dropna()
     if read.empty:                 # no time at all: every row's for the guard to substitute
         return None
     first, kind = read.iloc[0], time_format
-    if kind == "auto" and isinstance(first, str):      # read as a campaign file's
+    # h:mm:ss: an elapsed time (data.time=elapsed, or said by its hours or header) or (data89) a
+    # time of day passing midnight, read as a file's (it was refused, a time of day)
+    clock = kind == ELAPSED or isinstance(first, str) and maybe_elapsed(first.strip(), kind)
+    if kind == "auto" and isinstance(first, str) and not clock:    # read as a campaign file's
         kind = time_kind(first.strip(), kind, not pd.isna(pd.to_numeric(first, errors="coerce")),
                          SOURCE, stream=True)
-    elif kind == "auto" and float(first).is_integer() and (form := compact_format(f"{first:.0f}")):
+    elif (kind == "auto" and not clock and float(first).is_integer()
+          and (form := compact_format(f"{first:.0f}"))):
         kind = form                                     # (realexport73: an AmeriFlux table's
         time = time.map(lambda v: v if pd.isna(v) else f"{v:.0f}")    # 202503272330, as digits)
     text = pa.chunked_array([pa.array(time.astype("string"), type=pa.string())])
-    if kind == ELAPSED:        # h:mm:ss since the start (a stream says so: data.time=elapsed)
-        ns = elapsed_seconds(text, kind, SOURCE).cast(pa.int64()).to_numpy(zero_copy_only=False)
-        return pd.Series(ns / 1e9, index=time.index)
+    if clock:
+        ns = elapsed_seconds(text, kind, SOURCE, stream=True, unwrap=not served).cast(pa.int64())
+        return pd.Series(ns.to_numpy(zero_copy_only=False) / 1e9, index=time.index)
     if kind in ("auto", "seconds"):
         return None
     target = time_type(kind, str(first).strip())

@@ -59,13 +59,16 @@ def maybe_elapsed(value: str, kind: str) -> bool:
     return kind == ELAPSED or kind == "auto" and bool(_ELAPSED.fullmatch(value))
 
 
-def elapsed_seconds(text, kind: str, path: Path, header: str | None = None):
+def elapsed_seconds(text, kind: str, path: Path, header: str | None = None,
+                    stream: bool = False, unwrap: bool = True):
     """A time column of text (``h:mm:ss``, a fraction of a second after ``.`` or ``,``) as a
     duration (ns: the report says ``elapsed``), read so where it cannot be a time of day:
     ``data.time=elapsed``, a header saying so (:data:`ELAPSED_HEADERS`: ``Dauer``, ``elapsed
     time``), or an hour past 23 in the column.  Else refused as a time of day
-    (:func:`time_kind`) naming ``data.time``; a cell that is no ``h:mm:ss`` is refused with its
-    row."""
+    (:func:`time_kind`) naming ``data.time`` (a ``stream``'s: what its time must be), unless it
+    passes midnight (:func:`past_midnight`: a file's and, data89, a stream's rows alike;
+    ``unwrap=False``, a served model's block read alone, never); a cell that is no ``h:mm:ss``
+    is refused with its row."""
     parts = pc.extract_regex(text, f"^{_ELAPSED.pattern}$")
     hours = pc.cast(pc.struct_field(parts, "h"), pa.float64())
     seconds = pc.cast(pc.replace_substring(pc.struct_field(parts, "s"), ",", "."), pa.float64())
@@ -73,10 +76,11 @@ def elapsed_seconds(text, kind: str, path: Path, header: str | None = None):
     total = pc.add(pc.add(pc.multiply(hours, 3600.0), pc.multiply(minutes, 60.0)), seconds)
     said = kind == ELAPSED or (header is not None and _bare(header) in ELAPSED_HEADERS)
     if not said and not (pc.max(hours).as_py() or 0) >= 24:
-        total = past_midnight(total, path, header)
+        total = past_midnight(total, path, header) if unwrap else None
         if total is None:       # a time of day that never wraps: no date, nothing to unwrap
             first = text.filter(text.is_valid())
-            time_kind(first[0].as_py().strip() if len(first) else "", "auto", False, path, header)
+            time_kind(first[0].as_py().strip() if len(first) else "", "auto", False, path, header,
+                      stream)
     bad = pc.and_(text.is_valid(), parts.is_null()).to_numpy(zero_copy_only=False)
     if bad.any():
         row = int(np.argmax(bad))
@@ -97,7 +101,9 @@ def past_midnight(seconds: pa.Array, path: Path, header: str | None = None) -> p
     closed the gap); any other step back stays, for the reader to refuse ("time decreases").
     Each step is read as the shorter way round the clock: one of half a day or more forward
     reads as well as a step back past midnight and is refused (file, column, row); a pause of
-    a day or more between two rows cannot be told from the clock alone."""
+    a day or more between two rows cannot be told from the clock alone: (data89) a pause, a
+    step of :data:`PAUSE_PERIODS` sample periods or more, is warned of with its row, as well
+    a day (or more) longer, naming the date column that tells."""
     values = seconds.to_numpy(zero_copy_only=False).astype(float)
     valid = np.flatnonzero(~np.isnan(values))
     steps = np.diff(values[valid])
@@ -114,10 +120,36 @@ def past_midnight(seconds: pa.Array, path: Path, header: str | None = None) -> p
                             file=path, column=TIME, row=int(k) + 1)
     days = np.zeros(len(values))
     days[valid[1:]] = np.cumsum(wraps) * DAY_S
-    logger.info(f"{path.name}: {repr(header) if header else TIME} is a time of day that passes "
-                f"midnight {int(wraps.sum())} time(s) (no date): read as a continuing time, "
-                "a day added at each")
+    name = Path(path).name        # (a stream's: <stdin>)
+    column = repr(header) if header else TIME
+    logger.info(f"{name}: {column} is a time of day that passes midnight {int(wraps.sum())} "
+                "time(s) (no date): read as a continuing time, a day added at each")
+    _said_pauses(values[valid] + days[valid], valid, name, column)
     return pa.array(values + days, from_pandas=True)
+
+
+PAUSE_PERIODS = 100   # a record silent this many sample periods: runs joined in one file?
+
+
+def _said_pauses(seconds: np.ndarray, rows: np.ndarray, name: str, column: str) -> None:
+    """(data89) Warn of the pauses of a dateless clock's continuing time (``seconds`` of the
+    data rows ``rows``): a stretch of :data:`PAUSE_PERIODS` sample periods or more without
+    rows is read as the clock says, but reads as well a whole day or more longer (the
+    logger stopped overnight, or over a weekend): the date column tells, the clock cannot."""
+    steps = np.diff(seconds)
+    period = median_step(seconds)
+    if not period:
+        return
+    found = np.flatnonzero(steps >= PAUSE_PERIODS * period)
+    if not found.size:
+        return
+    k = int(found[0])
+    logger.warning(f"{name}, column {column}, {position(int(rows[k + 1]) + 1)}: the time of day "
+                   f"pauses {steps[k] / 3600:.3g} h ({steps[k] / period:.0f} sample periods of "
+                   f"{period:g} s{f'; {found.size} such pauses' if found.size > 1 else ''}): "
+                   f"read so, but as well {steps[k] / 3600 + 24:.3g} h or more, a day lost "
+                   "(no date to tell): give the date column with it, data.roles.time=[<date "
+                   f"column>, {column}], or cut the record at the pause")
 
 
 def _bare(header: str) -> str:
@@ -130,7 +162,9 @@ def is_format(kind: str) -> bool:
     return "%" in kind
 
 
-STREAMED = ("a stream's time is one column, seconds or a timestamp with its date, or two joined "
+STREAMED = ("a stream's time is one column, seconds or a timestamp with its date (or, data89, a "
+            "time of day that passes midnight, read as a file's: not in a served model's block, "
+            "read alone, where a day passing between two blocks cannot be told), or two joined "
             "as a file's are, data.roles.time=[<date column>, <time column>]")
 
 
