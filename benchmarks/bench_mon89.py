@@ -7,6 +7,8 @@ Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is
     python benchmarks/bench_mon89.py traced ROOT          # lr9211 / lr9171: run, replay, events
     python benchmarks/bench_mon89.py fresh ROOT SEEDS     # fresh records -> ROOT/fresh.json
     python benchmarks/bench_mon89.py compare BEFORE AFTER # two fresh.json side by side
+    python benchmarks/bench_mon89.py pack ROOT            # compiled C / mirror against served
+    python benchmarks/bench_mon89.py why ROOT SEED FAMILY # one fresh record row by row
 
 ``traced``: in ``ROOT`` (made anew; the measured tree's ``conf/`` linked in, ``THERMOCOMP_ROOT``)
 deploy88's lr9211 and mon88's lr9171 (``sim=long_record``, 3 days, ``test_fraction=0.2``: R1b
@@ -20,7 +22,14 @@ lr9171, the generator's spikes left as drawn; 9296-9300: climate rooms as cr9031
 ``ROOT/fresh.json``.  ``compare``: the two files row by row (record x family): replay RMSE before
 -> after and its ratio, |replay - run| before -> after and their means, exclusions kept / lost /
 new, re-admissions (run with main's src for BEFORE and this tree's for AFTER; the simulator is
-not changed).
+not changed).  ``pack``: lr9211 (mlr and lagbank, R1b after R1a): the served stream, the numpy
+mirror and the compiled C (gcc -Werror) of the export with and without the ``spike`` key; rows
+where C = served (every target within 1e-9 µm), the first flag, the conformance pack's rows
+(bench_mon88's ``_pack_rows``).  ``why``: the fresh record of SEED (as ``fresh`` draws it)
+with FAMILY deployed as promote deploys it, per test campaign: the deployed stream's and the
+unmonitored one's RMSE, the rows where they part, the sum of squares and mean residual before
+the first event, from it, and per quarter after, and each monitored sensor's reference at the
+end against the one it started with (run on main's src and the tree's: main's kept offsets).
 
 Traced (main a0d62dea; lr9211, mlr; ``T_head_left``: warning band 0.40 °C, re-admission band
 0.20, jump limit 0.54 °C)
@@ -61,6 +70,73 @@ On fresh 9291-9300 (``fresh``, :data:`FAMILIES` mlr and lagbank on every record:
 5. The exported C and its numpy mirror follow the served monitor (C = served on every row of
    lr9211's R1b, as on main), older exports (without the new key) unchanged.
 KEPT if 1-5 hold; else REFUSED (src reverted; benchmarks/mon89_rule.patch).
+
+Scored (2026-12-05; main = a0d62dea's src, rule = a0d62dea's src with benchmarks/mon89_rule.patch's
+src (a copy under /tmp), the same draws; ``fresh`` then ``compare``; CPU s of the bench process,
+2 cores shared by seven helpers)
+------
+``traced`` (seen, not in the bar; run -> replay µm, main | rule)::
+
+  lr9211/mlr      0.7718 -> 0.6437 (|gap| 0.1281) | 0.6663 (0.1055)  T_head_left back 34860 s (was 35820)
+  lr9211/lagbank  0.8560 -> 0.9912 (0.1351)       | 0.8628 (0.0068)
+  lr9171/mlr      0.7955 -> 0.5097 (0.2858)       | 0.6019 (0.1936)  T_col_back back at each spike's
+  lr9171/lagbank  1.0527 -> 0.7845 (0.2682)       | 1.0442 (0.0086)  end (was: out to R1b's end)
+
+1. ``fresh`` 9291-9300, replay RMSE (mean over targets, µm) main -> rule, run's in brackets::
+
+     lr9291 mlr 0.8417 = / lagbank 1.2527 =        lr9292, lr9293, lr9295: no row changed
+     lr9294/mlr      1.4640 -> 1.5093  x1.0309  (run 1.6007)   2 spikes
+     lr9294/lagbank  1.8189 -> 1.8477  x1.0158  (run 1.8257)
+     cr9296/mlr      3.5673 -> 3.5736  x1.0018  (run 3.5666)
+     cr9296/lagbank  3.4261 -> 3.4383  x1.0035  (run 4.4981)
+     cr9297/mlr      2.6166 -> 2.6767  x1.0230  (run 4.4419)
+     cr9297/lagbank  3.2796 -> 3.4589  x1.0547  (run 9.6533)
+     cr9298/mlr      3.2081 -> 3.2778  x1.0217  (run 3.5125)
+     cr9298/lagbank  2.2094 -> 2.2296  x1.0092  (run 2.3538)
+     cr9299/mlr      1.4323 -> 1.4454  x1.0091  (run 2.0641)
+     cr9299/lagbank  1.1015 -> 1.1047  x1.0029  (run 1.2022)
+     cr9300/mlr      1.6111 -> 1.5671  x0.9727  (run 3.0673)
+     cr9300/lagbank  2.6503 -> 2.6581  x1.0030  (run 10.2131)
+
+   Four rows more than 2 % worse (lr9294/mlr +3.1 %, cr9297/mlr +2.3 %, cr9297/lagbank +5.5 %,
+   cr9298/mlr +2.2 %): FAILS.
+2. Mean |replay - run| over the 20 rows 0.9817 -> 0.9644 µm: MET (row by row it shrinks on 9,
+   grows on 3: lr9294/lagbank 0.0068 -> 0.0220, cr9296/mlr 0.0007 -> 0.0070, cr9300/mlr
+   1.4562 -> 1.5002; the climate rooms' gap is their frozen ``T_amb``'s, which the rule leaves).
+3. Every exclusion main makes made at the same campaign and time (46 of 46 over the 20 rows),
+   none new: MET.  Each of the 13 spikes of a sensor the others predict (per family: 2 on lr9294,
+   11 on the rooms) now back at the spike's end (1-3 samples after its jump, its reading within
+   0.0007-0.198 °C of the field; main: after 10-36 calm samples); the 4 of sensors no other predicts
+   (``T_motor``, ``T_nc_spindle_motor``, ``T_nc_tool_motor``) as on main.
+4. On the rule's src (-n 2, OMP_NUM_THREADS=1): tests/apps/test_monitor*.py + sensor_fallback71
+   / deployed_as_scored44 / warm_batch59 / fallback_arx87 118 passed, 1 xfailed (mon77's);
+   tests/shell/test_monitor*.py (healthy53, readmit88 with lr9171 no longer xfailed, the
+   patch's spike89) 122 passed, 2 xfailed (the drift gaps); tests/shell/test_replay*.py +
+   adaptive_deploy / deploy88 / deploy88b / deployed_as_scored / deployed_guarded 76 passed;
+   tests/shell/test_export*.py (the patch's export_spike89) 271 passed; tests/test_readme.py +
+   tests/test_docs.py 53 passed.  The patch's tests fail on a0d62dea (spike89: the sensor back
+   at the next sample, deployed = unmonitored but on the spike's row; export_spike89: C =
+   served with one row out), their controls (a step that stays; an export without ``spike``)
+   pass on both.  MET.
+5. ``pack`` (lr9211 R1b after R1a): C = served on 864 of 864 rows with ``spike`` (mlr 9.2e-14,
+   lagbank 5.6e-13 µm), pack 864 rows; without the key the C parts from the served at row 581
+   (the spike's return: the export before it re-references it as before).  MET.
+CPU: ``fresh`` 31.2 s (main) / 32.0 s (rule) for the 20 rows.
+
+Why item 1 fails (``why 9294 mlr`` / ``why 9297 lagbank`` on both trees, the spent draws, after
+the verdict): with the rule the deployed stream parts from the unmonitored one on the spike rows
+alone (lr9294/mlr: 3 rows; RMSE 1.5093 against 1.5114) and every reference ends where it
+started.  Main's two re-references per spike left ``T_col_back`` +0.0067 °C and ``T_bed_left``
++0.0457 °C (809 rows parted); R1b's residual has a mean of +1.3 to +1.95 µm (the model's own
+drift), and the offsets, through MLR's several-µm/°C weights on the collinear head / bed
+sensors, happen to pull against it: last quarter's sum of squares 797.7 (unmonitored) / 799.0
+(rule) / 695.5 (main).  cr9297/lagbank, ``T_amb`` frozen out: C12's ``T_frame2`` kept -0.098 °C
+(E_X / E_Z 2.578 / 5.954 main, 2.888 / 6.613 rule), while C10's ``T_toolholder1`` kept -0.026 °C
+the other way (1.497 / 3.955 main, 1.440 / 3.837 rule).  The offsets are the others' one-sample
+prediction noise and the sensor's true change over the outage; their sign relative to a
+record's residual is the draw's: main's luck, as mon88 found for lr9199 (run 1.0479, main
+0.9303).  A bar on replay RMSE against main's cannot tell that luck from a loss.
+Verdict: REFUSED by item 1 (benchmarks/mon89_rule.patch: served, mirror, C, docs and tests).
 """
 
 from __future__ import annotations
@@ -74,7 +150,17 @@ import numpy as np
 HERE = Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE)]
 from _cli import run_commands, seed_list  # noqa: E402
-from bench_mon88 import LONG, ROOM, _drawn, _moves, _root, planted, replayed  # noqa: E402
+from bench_mon88 import (  # noqa: E402
+    LONG,
+    ROOM,
+    _drawn,
+    _pack_rows,
+    _root,
+    drawn_fresh,
+    exclusions_and_returns,
+    print_events,
+    replayed,
+)
 from cpu import cpu_seconds  # noqa: E402
 
 FAMILIES = ("mlr", "lagbank")
@@ -93,7 +179,7 @@ def scored(root: Path, name: str, data: Path, family: str, extra: tuple) -> dict
     start = cpu_seconds()
     got = replayed(root, f"{name}-{family}", data, (f"model={family}",), extra)
     metrics = json.loads((root / "reports" / f"{name}-{family}" / "metrics.json").read_text())
-    run = {t: metrics["targets"][t]["rmse"] for t in got["rmse"]}
+    run = {t: metrics["targets"][t]["test"]["rmse"] for t in got["rmse"]}
     return {"run": _mean(run), "replay": _mean(got["rmse"]), "events": got["events"],
             "excluded": got["excluded"], "cpu": cpu_seconds() - start}
 
@@ -112,10 +198,7 @@ def traced(root: str) -> None:
         for family in FAMILIES:
             got = scored(folder, name, data, family, ("data.reference=none",))
             print(_said(name, family, got), flush=True)
-            for e in got["events"]:
-                if e.get("sensor"):
-                    print(f"  {e['campaign']} {e['time']:>7.0f} s {e['sensor']:<14} {e['to']:<9} "
-                          f"{e['reason'][:150]}", flush=True)
+            print_events(got["events"], 150)
 
 
 def fresh(root: str, seeds: str) -> None:
@@ -123,10 +206,7 @@ def fresh(root: str, seeds: str) -> None:
     folder = _root(root)
     results = {}
     for seed in seed_list(seeds):
-        kind, sim, extra = FRESH[seed]
-        name = f"{kind}{seed}"
-        data = _drawn(name, seed, sim, folder)
-        faults = planted(data, seed) if kind == "cr" else ["the generator's spikes as drawn"]
+        name, data, faults, extra = drawn_fresh(folder, seed, FRESH)
         for family in FAMILIES:
             got = scored(folder, name, data, family, extra)
             got["faults"] = faults
@@ -146,10 +226,7 @@ def compare(before: str, after: str) -> None:
         ra, rb = a[row]["replay"], b[row]["replay"]
         ga, gb = abs(ra - a[row]["run"]), abs(rb - b[row]["run"])
         gaps.append((ga, gb))
-        out_a = {m[:3] for m in _moves(a[row]["events"]) if m[3] == "excluded"}
-        out_b = {m[:3] for m in _moves(b[row]["events"]) if m[3] == "excluded"}
-        back_a = [m[:3] for m in _moves(a[row]["events"]) if m[3] == "ok"]
-        back_b = [m[:3] for m in _moves(b[row]["events"]) if m[3] == "ok"]
+        out_a, out_b, back_a, back_b = exclusions_and_returns(a[row]["events"], b[row]["events"])
         print(f"{row:<16}{a[row]['run']:>8.4f}{ra:>15.4f}{rb:>9.4f}{rb / ra:>8.4f}{ga:>14.4f}"
               f"{gb:>8.4f}  {len(out_a & out_b)} / {len(out_a - out_b)} ({len(out_b - out_a)})"
               f"  {len(back_a)} -> {len(back_b)}; out at the end {a[row]['excluded']} -> "
@@ -160,9 +237,70 @@ def compare(before: str, after: str) -> None:
     print(f"mean |replay - run| over {len(gaps)} rows: {ga:.4f} -> {gb:.4f} µm")
 
 
+def pack(root: str) -> None:
+    """lr9211 through the code, with and without the ``spike`` key (module doc)."""
+    folder = _root(root)
+    data = _drawn("lr9211", TRACED["lr9211"], LONG, folder)
+    for family in FAMILIES:
+        start = cpu_seconds()
+        lines = _pack_rows(folder, f"lr9211/{family}", data, ("data.reference=none",),
+                           model=family, keys=("spike",))
+        print("\n".join(lines) + f"\n  CPU {cpu_seconds() - start:.1f} s", flush=True)
+
+
+def why(root: str, seed: str, family: str) -> None:
+    """One fresh record row by row (module doc)."""
+    import copy
+
+    from _ccode import deployed_on
+
+    from thermocomp.apps.deploy.report import plain, stream_rows
+    from thermocomp.apps.deploy.surveillance.monitor import SensorMonitor
+    from thermocomp.core.continuation import lead_ins
+
+    name, data, _, extra = drawn_fresh(_root(root), int(seed), FRESH)
+    deployed, ds, test_ids = deployed_on(data, family, extra)
+    leads = lead_ins(plain(deployed).compensator, ds, test_ids)
+    refs = []
+    update = SensorMonitor.update
+
+    def kept(self, *args, **kwargs):     # each sample's reference, to read the last one's
+        out = update(self, *args, **kwargs)
+        refs.append(None if self._ref is None else self._ref.copy())
+        return out
+
+    SensorMonitor.update = kept
+    try:
+        for t in test_ids:
+            frame = ds.campaigns[t].reset_index(drop=True)
+            errors = frame[deployed.targets_].to_numpy(float)
+            refs.clear()
+            served = stream_rows(copy.deepcopy(deployed), frame, str(t), lead_in=leads.get(t))
+            start, end = refs[-len(frame)], refs[-1]
+            bare = stream_rows(plain(copy.deepcopy(deployed)), frame, str(t), lead_in=leads.get(t))
+            r = {"deployed": errors - served.y, "plain": errors - bare.y}
+            moved = {n: round(float(b - a), 4) for n, a, b in
+                     zip(deployed.monitor.names, start, end) if abs(b - a) > 1e-9}
+            events = [(e["time"], e["sensor"], e["to"]) for e in served.events if e.get("sensor")]
+            parted = np.flatnonzero(np.abs(r["deployed"] - r["plain"]).max(axis=1) > 1e-9)
+            print(f"{name}/{family} {t}: RMSE deployed "
+                  f"{np.sqrt(np.mean(r['deployed'] ** 2, axis=0)).round(4)} plain "
+                  f"{np.sqrt(np.mean(r['plain'] ** 2, axis=0)).round(4)}; events {events}; "
+                  f"rows parted {len(parted)}; reference end - start {moved}", flush=True)
+            first = int(parted[0]) if len(parted) else len(frame)
+            edges = [0, first, *np.linspace(first + 1, len(frame), 5).astype(int)[:-1], len(frame)]
+            for lo, hi in zip(edges[:-1], edges[1:]):
+                if hi > lo:
+                    print(f"  rows {lo}-{hi}: SS " + ", ".join(
+                        f"{k} {float((v[lo:hi] ** 2).sum()):.2f} (mean {v[lo:hi].mean():+.3f})"
+                        for k, v in r.items()), flush=True)
+    finally:
+        SensorMonitor.update = update
+
+
 def main(argv: list[str]) -> int:
-    return run_commands(__doc__, {"traced": traced, "fresh": fresh, "compare": compare},
-                        argv, cpu=sys.stderr)
+    return run_commands(__doc__, {"traced": traced, "fresh": fresh, "compare": compare,
+                                  "pack": pack, "why": why}, argv, cpu=sys.stderr)
 
 
 if __name__ == "__main__":
