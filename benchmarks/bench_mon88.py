@@ -255,10 +255,26 @@ def traced(root: str) -> None:
         rmse = ", ".join(f"{k} {v:.4f}" for k, v in got["rmse"].items())
         print(f"{name}: replay RMSE {rmse} µm; excluded at the end {got['excluded']}; "
               f"CPU {cpu_seconds() - start:.1f} s", flush=True)
-        for e in got["events"]:
-            if e.get("sensor"):
-                print(f"  {e['campaign']} {e['time']:>7.0f} s {e['sensor']:<14} {e['to']:<9} "
-                      f"{e['reason'][:120]}", flush=True)
+        print_events(got["events"], 120)
+
+
+def print_events(events: list, width: int) -> None:
+    """A replay's sensor events, one a line (the reason cut at ``width``)."""
+    for e in events:
+        if e.get("sensor"):
+            print(f"  {e['campaign']} {e['time']:>7.0f} s {e['sensor']:<14} {e['to']:<9} "
+                  f"{e['reason'][:width]}", flush=True)
+
+
+def drawn_fresh(folder: Path, seed: int, table: dict) -> tuple[str, Path, list, tuple]:
+    """``(name, data, faults, overrides)`` of the fresh record ``table[seed]`` names (``(kind,
+    sim, overrides)``: ``lr`` as drawn, ``cr`` with :func:`planted`'s faults) drawn into
+    ``folder``."""
+    kind, sim, extra = table[seed]
+    name = f"{kind}{seed}"
+    data = _drawn(name, seed, sim, folder)
+    faults = planted(data, seed) if kind == "cr" else ["the generator's spikes as drawn"]
+    return name, data, faults, extra
 
 
 def fresh(root: str, seeds: str) -> None:
@@ -266,10 +282,7 @@ def fresh(root: str, seeds: str) -> None:
     folder = _root(root)
     results = {}
     for seed in seed_list(seeds):
-        kind, sim, extra = FRESH[seed]
-        name = f"{kind}{seed}"
-        data = _drawn(name, seed, sim, folder)
-        faults = planted(data, seed) if kind == "cr" else ["the generator's spikes as drawn"]
+        name, data, faults, extra = drawn_fresh(folder, seed, FRESH)
         start = cpu_seconds()
         got = replayed(folder, name, data, ("model=mlr",), extra)
         got.update(faults=faults, cpu=cpu_seconds() - start)
@@ -284,6 +297,14 @@ def _moves(events: list) -> list[tuple]:
             if e.get("sensor") and e["to"] in ("excluded", "ok")]
 
 
+def exclusions_and_returns(before: list, after: list) -> tuple[set, set, list, list]:
+    """``(out before, out after, back before, back after)``: (campaign, time, sensor) of the
+    exclusions and re-admissions of two runs' events."""
+    outs = [{m[:3] for m in _moves(ev) if m[3] == "excluded"} for ev in (before, after)]
+    backs = [[m[:3] for m in _moves(ev) if m[3] == "ok"] for ev in (before, after)]
+    return outs[0], outs[1], backs[0], backs[1]
+
+
 def compare(before: str, after: str) -> None:
     """The two ``fresh.json`` side by side: RMSE (mean over targets), exclusions kept / lost,
     samples out (the sensors' excluded time, s)."""
@@ -293,10 +314,7 @@ def compare(before: str, after: str) -> None:
           "re-admissions before -> after")
     for name in a:
         ra, rb = (float(np.mean(list(r[name]["rmse"].values()))) for r in (a, b))
-        out_a = {m[:3] for m in _moves(a[name]["events"]) if m[3] == "excluded"}
-        out_b = {m[:3] for m in _moves(b[name]["events"]) if m[3] == "excluded"}
-        back_a = [m[:3] for m in _moves(a[name]["events"]) if m[3] == "ok"]
-        back_b = [m[:3] for m in _moves(b[name]["events"]) if m[3] == "ok"]
+        out_a, out_b, back_a, back_b = exclusions_and_returns(a[name]["events"], b[name]["events"])
         print(f"{name:<8}{ra:>12.4f}{rb:>9.4f}{rb / ra:>8.4f}  {len(out_a & out_b)} / "
               f"{len(out_a - out_b)} (new {len(out_b - out_a)})  {len(back_a)} -> {len(back_b)}; "
               f"out at the end {a[name]['excluded']} -> {b[name]['excluded']}")
@@ -304,9 +322,10 @@ def compare(before: str, after: str) -> None:
             print(f"    differs: {m}")
 
 
-def _pack_rows(root: Path, name: str, data: Path, extra: tuple) -> list[str]:
-    """C / mirror / served on ``data``'s test campaigns, the export with and without this stop's
-    keys (module doc)."""
+def _pack_rows(root: Path, name: str, data: Path, extra: tuple, model: str = "mlr",
+               keys: tuple = ("undo", "cleared")) -> list[str]:
+    """C / mirror / served on ``data``'s test campaigns, the export with and without the monitor
+    ``keys`` (this stop's by default: module doc)."""
     import dataclasses
     import tempfile
 
@@ -319,16 +338,16 @@ def _pack_rows(root: Path, name: str, data: Path, extra: tuple) -> list[str]:
     from thermocomp.apps.deploy.report import plain, stream_rows
     from thermocomp.core.continuation import lead_ins
 
-    deployed, ds, test_ids = deployed_on(data, "mlr", extra)
+    deployed, ds, test_ids = deployed_on(data, model, extra)
     now = state_space(deployed, monitor=True)
     before = dataclasses.replace(now, monitor={k: v for k, v in now.monitor.items()
-                                               if k not in ("undo", "cleared")})
+                                               if k not in keys})
     tests = {t: ds.campaigns[t].reset_index(drop=True) for t in test_ids}
     leads = lead_ins(plain(deployed).compensator, ds, test_ids)
     frames = {t: fed(df, leads.get(t)) for t, df in tests.items()}
     lines = []
     with tempfile.TemporaryDirectory(prefix="mon88-") as tmp:
-        for label, ss in (("without undo / cleared", before), ("with", now)):
+        for label, ss in ((f"without {' / '.join(keys)}", before), ("with", now)):
             code = built(Path(tmp) / label.split()[0], {
                 "compensator.h": c.header(ss), "compensator.c": c.source(ss), "stream.c": DRIVER})
             _, summary = conformance_pack(deployed, ss, tests, leads, script=False)
