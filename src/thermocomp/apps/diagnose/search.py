@@ -296,14 +296,21 @@ def choose(eligible: list, rivals: list = ()) -> list:
 
 
 def _same_effect(ev, other) -> bool:
-    """The same kind of effect traced to the same column (a richer or leaner transform of it), or
-    to one column where ``other`` reads every model input (``column`` None: the lag of the model
-    inputs against the lag of one of them).  Read from every input, the lag from the initial
-    state (12 regressors on 8 train campaigns, CV gain 76.3 %, refused: it saturates) kept
-    T_box1's start lag, which cleared every check (74.7 %), out of lag:8980 E_X: nothing
-    accepted, test 2.18 µm, 0.49 with it (``benchmarks/bench_diag88c.py``)."""
-    return (ev.effect.column is not None and ev.effect.kind == other.effect.kind
-            and other.effect.column in (ev.effect.column, None))
+    """An effect traced to the same column, whatever its kind (a richer or leaner read of one
+    sensor), or of the same kind on one column where ``other`` reads every model input (``column``
+    None: the lag of the model inputs against the lag of one of them).  Read from every input, the
+    lag from the initial state (12 regressors on 8 train campaigns, CV gain 76.3 %, refused: it
+    saturates) kept T_box1's start lag, which cleared every check (74.7 %), out of lag:8980 E_X:
+    nothing accepted, test 2.18 µm, 0.49 with it (``benchmarks/bench_diag88c.py``).  The kind is
+    not asked where the columns agree (diag89d): on planted:9265 E_Y the position x the inputs'
+    rises (``interaction`` on S_pos_Y, 19.9 %) did not clear by ranks over 83 blocks, and kept
+    S_pos_Y itself (``signal``, 11.8 %, family-wise p 0.0009), a leaner read of the same sensor,
+    out (``benchmarks/bench_diag89d.py``).  An ambient law has no column: it keeps its veto."""
+    if ev.effect.column is None:
+        return False
+    if other.effect.column is None:
+        return ev.effect.kind == other.effect.kind
+    return ev.effect.column == other.effect.column
 
 
 def _orthonormal(Z: np.ndarray) -> np.ndarray:

@@ -1,0 +1,76 @@
+"""Diagnose's one-SE choice: a cleared read of the same column as the round's uncleared best rival
+counts as its effect whatever the kind (a ``signal`` on S_pos_Y against the ``interaction`` on
+S_pos_Y; stop 89, diag89d; issue 34: "diagnose accepts a planted position effect with 8 train
+campaigns, accepts nothing on clean data, and never leaves a record's test error more than 2 %
+worse").
+
+Usage (from the repository root, ``PYTHONPATH=<tree>/src``: the code measured is that tree's)::
+
+    python benchmarks/bench_diag89d.py write ROOT           # the records ``seen`` reads (bench_diag88's)
+    python benchmarks/bench_diag89d.py seen ROOT LABEL      # bench_diag88's SEEN -> ROOT/{cases,real,fresh}-seen-LABEL.jsonl
+    python benchmarks/bench_diag89d.py draws ROOT LABEL     # SEEN_DRAWS -> ROOT/fresh-draws-LABEL.jsonl
+    python benchmarks/bench_diag89d.py fresh ROOT LABEL     # FRESH draws -> ROOT/fresh-LABEL.jsonl
+    python benchmarks/bench_diag89d.py compare ROOT A B     # two labels' rows: the bar's counts
+    python benchmarks/bench_diag89d.py one CASE TARGET      # one draw diagnosed: TARGET's test and effects
+
+``write``, ``seen``: bench_diag88's (the records 8457 / 8178 / 8075 / 8170 / 8885, planted:6 /
+959, grinders 5687 / 5682 and the draws planted:9046 / 9103 / 9150, lag:8980).  ``draws``:
+:data:`SEEN_DRAWS` -- bench_diag89's 40 seen draws, the rest of bench_diag89b's 23 planted draws
+(8966-8969, 9047-9049, 9101 / 9102 / 9104) and bench_diag89's fresh draws 9281-9290 (spent) --
+through bench_diag86's ``fresh`` (12 campaigns, every 3rd test, 8 train; MLR, every target,
+``max_effects=2``, test figures as deployed).  ``fresh``: :data:`FRESH` the same way.
+``compare``: bench_diag89's (bench_diag88's SEEN and FRESH rows, then the draws').  ``one``:
+bench_diag89's ``diagnosed``.  All imported, nothing copied.
+
+Why (bench_diag89b, cause B): planted:9265 E_Y (83 ranked blocks): the position products
+(``interaction`` on S_pos_Y) gain 19.9 % but do not clear (family-wise p 0.63 / 0.16 by ranks);
+S_pos_Y itself (``signal``, 11.8 %, p_fam 0.0009; its 900 s lag 10.0 %, p_fam 5e-5) passes every
+check but lies outside one SE of the uncleared product and is another kind, so ``choose`` takes
+nothing (test 3.558 µm).
+
+The rule (src: :func:`thermocomp.apps.diagnose.search._same_effect`, used by ``choose`` only in
+diag89's branch: the band's best did not clear and no cleared candidate is within its band): a
+cleared candidate on the same column as that best is its effect whatever the kind; where the
+best has no column, only a candidate of its kind is (the lag of every model input against one
+input's, diag88c); an ambient law (no column) keeps its veto.
+"""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+sys.path[:0] = [str(HERE), str(HERE.parent / "tests" / "apps")]
+import bench_diag86  # noqa: E402
+import bench_diag88  # noqa: E402
+import bench_diag89  # noqa: E402
+from _cli import run_commands  # noqa: E402
+
+# (kind, seed, campaigns): every 3rd campaign test, so 12 -> 8 train
+SEEN_DRAWS = (bench_diag89.SEEN_DRAWS
+              + [("planted", s, 12) for s in (8966, 8967, 8968, 8969, 9047, 9048, 9049, 9101, 9102, 9104)]
+              + bench_diag89.FRESH)
+FRESH = [("clean", s, 12) for s in range(9326, 9330)] + [("planted", s, 12) for s in range(9330, 9336)]
+
+
+def draws(root: str, label: str) -> None:
+    """:data:`SEEN_DRAWS` through bench_diag86's ``fresh`` -> ``ROOT/fresh-draws-LABEL.jsonl``."""
+    bench_diag86.FRESH = SEEN_DRAWS
+    bench_diag86.fresh(root, f"draws-{label}")
+
+
+def fresh(root: str, label: str) -> None:
+    """:data:`FRESH` through bench_diag86's ``fresh`` -> ``ROOT/fresh-LABEL.jsonl``."""
+    bench_diag86.FRESH = FRESH
+    bench_diag86.fresh(root, label)
+
+
+def main(argv: list[str]) -> int:
+    commands = {"write": bench_diag88.write, "seen": bench_diag88.seen, "draws": draws, "fresh": fresh,
+                "compare": bench_diag89.compare, "one": bench_diag89.diagnosed}
+    return run_commands(__doc__, commands, argv, cpu=sys.stderr)
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
