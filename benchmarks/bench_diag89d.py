@@ -7,7 +7,7 @@ worse").
 Usage (from the repository root, ``PYTHONPATH=<tree>/src``: the code measured is that tree's)::
 
     python benchmarks/bench_diag89d.py write ROOT           # the records ``seen`` reads (bench_diag88's)
-    python benchmarks/bench_diag89d.py seen ROOT LABEL      # bench_diag88's SEEN -> ROOT/{cases,real,fresh}-seen-LABEL.jsonl
+    python benchmarks/bench_diag89d.py seen ROOT LABEL      # bench_diag88's SEEN -> ROOT/*-seen-LABEL.jsonl
     python benchmarks/bench_diag89d.py draws ROOT LABEL     # SEEN_DRAWS -> ROOT/fresh-draws-LABEL.jsonl
     python benchmarks/bench_diag89d.py fresh ROOT LABEL     # FRESH draws -> ROOT/fresh-LABEL.jsonl
     python benchmarks/bench_diag89d.py compare ROOT A B     # two labels' rows: the bar's counts
