@@ -33,6 +33,33 @@ diag89's branch: the band's best did not clear and no cleared candidate is withi
 cleared candidate on the same column as that best is its effect whatever the kind; where the
 best has no column, only a candidate of its kind is (the lag of every model input against one
 input's, diag88c); an ambient law (no column) keeps its veto.
+
+The bar (the brief's; written here before ANY fresh score of the rule, after the seen draws below;
+all must hold, else REFUSED: src reverted, this bench and ``diag89d_rule.patch`` kept).  Main =
+9e764979's src and conf (``git archive``), rule = this tree's src:
+
+1. FRESH (:data:`FRESH`: ``clean`` 9326-9329, ``planted`` 9330-9335, bench_diag86's generators as
+   bench_diag88d; 12 campaigns, every 3rd test, 8 train; every target diagnosed): the planted
+   position (an ``interaction`` on S_pos_Y accepted for E_Y) found on at least as many draws as
+   main.
+2. The clean draws 9326-9329 accept nothing on any target (rule).
+3. No FRESH (draw, target) row's test RMSE (after, as deployed) more than 2 % above main's.
+4. No SEEN row (``seen``: bench_diag88's records and draws; ``draws``: :data:`SEEN_DRAWS`) more
+   than 2 % above main's.
+5. tests/apps/test_diag*.py and tests/shell/test_diag*.py pass with the rule (in parts, -n 2).
+
+Measured on SEEN data (2026-12-05, before any FRESH run of either tree; 2 cores shared by seven
+helpers)
+-----------------------------------------------------------------------------------------------
+``draws`` (60 draws, 180 rows): one row differs, test RMSE as deployed (µm)::
+
+  row              before  main      rule
+  planted:9265 E_Y 3.558   3.558 []  3.006 signal:S_pos_Y raw   -15.5 %
+
+The other 179 rows identical.  Planted position found on 18 of 23 in both (missed: 8966 / 8968 /
+8969 / 9048 / 9265; 9265 now takes S_pos_Y's raw signal, not the product, so it does not count as
+found); the 22 clean draws accept nothing in both; no control clears; one row above diagnose's
+own before in both (planted:8969 E_X +21.7 %, as main).  Diagnose CPU 66.5 s main / 67.8 s rule.
 """
 
 from __future__ import annotations
