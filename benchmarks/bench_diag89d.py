@@ -60,6 +60,33 @@ The other 179 rows identical.  Planted position found on 18 of 23 in both (misse
 8969 / 9048 / 9265; 9265 now takes S_pos_Y's raw signal, not the product, so it does not count as
 found); the 22 clean draws accept nothing in both; no control clears; one row above diagnose's
 own before in both (planted:8969 E_X +21.7 %, as main).  Diagnose CPU 66.5 s main / 67.8 s rule.
+``seen`` (bench_diag88's cases 8457 / 8178 / 8075 / 8170 / 8885, real planted:6 / 959, grinders
+5687 / 5682, draws planted:9046 / 9103 / 9150, lag:8980): every JSON row identical to main's (the
+six spurious start lags as main, 8885 E_Y 1.4571, 8885 E_Z 6.0040: the ambient law still vetoes).
+
+Scored on FRESH (2026-12-05, once, after the bar and the SEEN rows above were committed: 70c895eb;
+``fresh ROOT rule`` / ``fresh ROOT main``, CPU of the processes 17.7 / 16.5 s, diagnose 12.4 / 11.5)
+-----------------------------------------------------------------------------------------------
+All 30 (draw, target) rows identical in both trees.  Clean 9326-9329 accept nothing on any target;
+planted found on 5 of 6 in both (E_Y 3.371 -> 2.056, 5.952 -> 1.721, 4.858 -> 1.821, 2.699 ->
+1.543, 3.931 -> 1.557 on 9330 / 9331 / 9332 / 9333 / 9335); 9334 E_Y 4.167 nothing in both:
+bench_diag89b's cause A (8 test blocks, the position products' p_fam 0.0156 > 0.01, ``bench_diag89b.py
+round1 9334``), where no candidate clears and the choice is never asked; no control clears; no
+row above diagnose's own before.
+
+1. **Holds** (5 of 6 = main).  2. **Holds** (clean: nothing).  3. **Holds** (no row differs).
+4. **Holds** (one seen row differs: planted:9265 E_Y 3.558 -> 3.006, -15.5 %).  5. **Holds**:
+tests/apps/test_diag*.py 78 passed, tests/shell/test_diag*.py 56 passed (run with
+tests/test_benchmarks_cli.py: 475 in all; -n 2).  **KEPT.**
+Tests (tests/apps/test_diagnose_choice89d.py, both fail on 9e764979): :func:`choose` takes a
+cleared ``signal`` on S_pos_Y past an uncleared ``interaction`` on S_pos_Y outside its band, but
+not a signal on another column, nor past an ambient law; planted:9265 E_Y (E_Y alone) accepts a
+read of S_pos_Y of another kind than the uncleared best product, and the test error falls.
+
+Left: the rule is exercised on one seen row only (9265) and on no fresh row; its cost is nil
+(the choice reorders a list).  9265 takes S_pos_Y's raw signal (3.006), not the product x T_motor1
+that ``bench_diag89b.py round1 9265 1`` reaches (2.753): the position itself is still missed there
+(ranks over 83 blocks).  The design floor (cause A: 8966 / 8968 / 8969, fresh 9334) remains.
 """
 
 from __future__ import annotations

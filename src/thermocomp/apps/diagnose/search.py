@@ -267,18 +267,19 @@ def choose(eligible: list, rivals: list = ()) -> list:
     worse), gained 45 % against 33 %; accepted, it raised the test error 4 %.  (On such blocks
     its 10 regressors now keep it from clearing at all: :meth:`Search.saturates`.)
 
-    A best rival that did not clear is no OTHER explanation of a cleared candidate of its own
-    kind and column (``pde66``: the planted position x screw temperature, 1 regressor, cleared
-    at 66 % CV gain, family-wise p 3e-5; the position x every input's rise, 16 regressors,
-    gained 70 % but saturates 15 campaigns and did not clear; measured from it, nothing was
-    accepted and E_Y kept 11.0 µm): such a candidate is the same effect, read with fewer
-    regressors -- so is one input's lag where the best rival is the lag of every model input
-    (:func:`_same_effect`; an ambient law, another kind, keeps its veto).  That rival still
-    sets the band: where a cleared candidate is within it, the choice is made there as from
-    any best; only where none is does the rival stop keeping its own effect out, and its
-    cleared reads are admitted.  Admitted whatever their CV error, the fewest regressors took
-    T_box1's start lag with 2 directions (CV MSE 0.627, outside the band of 0.603 of the lag of
-    every input) over 3 (0.588, inside), and the test error rose 1.28 -> 1.37 µm (lag:9270 E_X;
+    A best rival that did not clear is no OTHER explanation of a cleared candidate on its own
+    column, whatever the kind (``pde66``: the planted position x screw temperature, 1 regressor,
+    cleared at 66 % CV gain, family-wise p 3e-5; the position x every input's rise, 16 regressors,
+    gained 70 % but saturates 15 campaigns and did not clear; measured from it, nothing was accepted
+    and E_Y kept 11.0 µm; diag89d: S_pos_Y's raw ``signal`` against its uncleared ``interaction``
+    products, planted:9265 E_Y 3.56 -> 3.01 µm): such a candidate is the same effect, read with
+    fewer regressors -- so is one input's lag where the best rival is the lag of every model input
+    (:func:`_same_effect`; an ambient law, which has no column, keeps its veto).  That rival still
+    sets the band: where a cleared candidate is within it, the choice is made there as from any
+    best; only where none is does the rival stop keeping its own effect out, and its cleared reads
+    are admitted.  Admitted whatever their CV error, the fewest regressors took T_box1's start lag
+    with 2 directions (CV MSE 0.627, outside the band of 0.603 of the lag of every input) over 3
+    (0.588, inside), and the test error rose 1.28 -> 1.37 µm (lag:9270 E_X;
     ``benchmarks/bench_diag89.py``).
     """
     faults = [ev for ev in eligible if ev.effect.transform == "remove"]
