@@ -267,18 +267,19 @@ def choose(eligible: list, rivals: list = ()) -> list:
     worse), gained 45 % against 33 %; accepted, it raised the test error 4 %.  (On such blocks
     its 10 regressors now keep it from clearing at all: :meth:`Search.saturates`.)
 
-    A best rival that did not clear is no OTHER explanation of a cleared candidate of its own
-    kind and column (``pde66``: the planted position x screw temperature, 1 regressor, cleared
-    at 66 % CV gain, family-wise p 3e-5; the position x every input's rise, 16 regressors,
-    gained 70 % but saturates 15 campaigns and did not clear; measured from it, nothing was
-    accepted and E_Y kept 11.0 µm): such a candidate is the same effect, read with fewer
-    regressors -- so is one input's lag where the best rival is the lag of every model input
-    (:func:`_same_effect`; an ambient law, another kind, keeps its veto).  That rival still
-    sets the band: where a cleared candidate is within it, the choice is made there as from
-    any best; only where none is does the rival stop keeping its own effect out, and its
-    cleared reads are admitted.  Admitted whatever their CV error, the fewest regressors took
-    T_box1's start lag with 2 directions (CV MSE 0.627, outside the band of 0.603 of the lag of
-    every input) over 3 (0.588, inside), and the test error rose 1.28 -> 1.37 µm (lag:9270 E_X;
+    A best rival that did not clear is no OTHER explanation of a cleared candidate on its own
+    column, whatever the kind (``pde66``: the planted position x screw temperature, 1 regressor,
+    cleared at 66 % CV gain, family-wise p 3e-5; the position x every input's rise, 16 regressors,
+    gained 70 % but saturates 15 campaigns and did not clear; measured from it, nothing was accepted
+    and E_Y kept 11.0 µm; diag89d: S_pos_Y's raw ``signal`` against its uncleared ``interaction``
+    products, planted:9265 E_Y 3.56 -> 3.01 µm): such a candidate is the same effect, read with
+    fewer regressors -- so is one input's lag where the best rival is the lag of every model input
+    (:func:`_same_effect`; an ambient law, which has no column, keeps its veto).  That rival still
+    sets the band: where a cleared candidate is within it, the choice is made there as from any
+    best; only where none is does the rival stop keeping its own effect out, and its cleared reads
+    are admitted.  Admitted whatever their CV error, the fewest regressors took T_box1's start lag
+    with 2 directions (CV MSE 0.627, outside the band of 0.603 of the lag of every input) over 3
+    (0.588, inside), and the test error rose 1.28 -> 1.37 µm (lag:9270 E_X;
     ``benchmarks/bench_diag89.py``).
     """
     faults = [ev for ev in eligible if ev.effect.transform == "remove"]
@@ -296,14 +297,21 @@ def choose(eligible: list, rivals: list = ()) -> list:
 
 
 def _same_effect(ev, other) -> bool:
-    """The same kind of effect traced to the same column (a richer or leaner transform of it), or
-    to one column where ``other`` reads every model input (``column`` None: the lag of the model
-    inputs against the lag of one of them).  Read from every input, the lag from the initial
-    state (12 regressors on 8 train campaigns, CV gain 76.3 %, refused: it saturates) kept
-    T_box1's start lag, which cleared every check (74.7 %), out of lag:8980 E_X: nothing
-    accepted, test 2.18 µm, 0.49 with it (``benchmarks/bench_diag88c.py``)."""
-    return (ev.effect.column is not None and ev.effect.kind == other.effect.kind
-            and other.effect.column in (ev.effect.column, None))
+    """An effect traced to the same column, whatever its kind (a richer or leaner read of one
+    sensor), or of the same kind on one column where ``other`` reads every model input (``column``
+    None: the lag of the model inputs against the lag of one of them).  Read from every input, the
+    lag from the initial state (12 regressors on 8 train campaigns, CV gain 76.3 %, refused: it
+    saturates) kept T_box1's start lag, which cleared every check (74.7 %), out of lag:8980 E_X:
+    nothing accepted, test 2.18 µm, 0.49 with it (``benchmarks/bench_diag88c.py``).  The kind is
+    not asked where the columns agree (diag89d): on planted:9265 E_Y the position x the inputs'
+    rises (``interaction`` on S_pos_Y, 19.9 %) did not clear by ranks over 83 blocks, and kept
+    S_pos_Y itself (``signal``, 11.8 %, family-wise p 0.0009), a leaner read of the same sensor,
+    out (``benchmarks/bench_diag89d.py``).  An ambient law has no column: it keeps its veto."""
+    if ev.effect.column is None:
+        return False
+    if other.effect.column is None:
+        return ev.effect.kind == other.effect.kind
+    return ev.effect.column == other.effect.column
 
 
 def _orthonormal(Z: np.ndarray) -> np.ndarray:
