@@ -129,6 +129,39 @@ def past_midnight(seconds: pa.Array, path: Path, header: str | None = None) -> p
 
 
 PAUSE_PERIODS = 100   # a record silent this many sample periods: runs joined in one file?
+# (data89b) a numeric time column's header that says it holds seconds since midnight
+OF_DAY_HEADERS = frozenset({"seconds of day", "second of day", "seconds of the day", "sec of day",
+                            "secs of day", "seconds since midnight", "daysec", "day seconds",
+                            "tagessekunden", "sekunden seit mitternacht", "sekunde des tages"})
+
+
+def seconds_of_day(seconds: np.ndarray, path: Path, header: str | None = None) -> np.ndarray:
+    """(extension, data89b) A numeric time column of seconds since midnight, a logger's
+    ``Seconds of day`` (77400 ... 86100, then 0, 300 ...), as a continuing time by the time of
+    day's rule (:func:`past_midnight`: a day added at each step back by more than half a day):
+    where all its values are within a day, [0, 86400) s, and its header says so
+    (:data:`OF_DAY_HEADERS`) or its values do (:func:`over_midnight`).  ``seconds`` as they
+    are otherwise: a step back is the reader's to refuse ("time decreases")."""
+    finite = seconds[np.isfinite(seconds)]
+    if not finite.size or finite.min() < 0 or finite.max() >= DAY_S:
+        return seconds
+    said = header is not None and _bare(header) in OF_DAY_HEADERS
+    if not (said or over_midnight(finite)):
+        return seconds
+    unwrapped = past_midnight(pa.array(seconds, from_pandas=True), path, header)
+    return seconds if unwrapped is None else unwrapped.to_numpy(zero_copy_only=False)
+
+
+def over_midnight(seconds: np.ndarray) -> bool:
+    """``seconds`` (within a day) step back by more than half a day, and each such step, a day
+    added, is one of the clock's steps, no pause (:data:`PAUSE_PERIODS` sample periods): a
+    clock of the day's seconds passing midnight.  An elapsed time started again after half a
+    day (a logger restarted: 50000 s, then 0) is no such step, and stays refused."""
+    steps = np.diff(seconds)
+    back = steps < -DAY_S / 2
+    period = median_step(seconds)
+    return bool(back.any() and period and np.all(steps[back] + DAY_S < PAUSE_PERIODS * period))
+
 
 
 def _said_pauses(seconds: np.ndarray, rows: np.ndarray, name: str, column: str) -> None:
