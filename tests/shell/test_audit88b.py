@@ -75,9 +75,11 @@ def test_every_key_of_a_runs_metrics_json_is_named_in_the_cli_reference(run_out)
 
 
 def test_the_settings_of_an_ingest_report_are_data_config_keys(run_out):
-    # `order_in_rows`, an internal reading option (no data config key), was written among them
+    # `order_in_rows`, an internal reading option (no data config key), was written among them;
+    # (data89b) `data.join` as its keys are typed, `join.offset_s`, as `ingested_with.settings`
+    # name them (it was read as two fields, `join_offset_s`, `join_tolerance_s`)
     conf = yaml.safe_load((ROOT / "conf" / "data" / "default.yaml").read_text())
-    keys = set(conf) - {"join"} | {f"join_{sub}" for sub in conf["join"]}   # read as two fields
+    keys = set(conf) - {"join"} | {f"join.{sub}" for sub in conf["join"]}
     settings = json.loads((run_out / "ingest_report.json").read_text())["settings"]
     assert set(settings) - keys == set()
 

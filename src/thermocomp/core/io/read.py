@@ -60,7 +60,7 @@ import functools
 import json
 import math
 from collections.abc import Iterator, Mapping, Sequence
-from dataclasses import asdict, replace
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -103,7 +103,7 @@ from .manifest import (
     said_subfolders,
     subfolder_runs,
 )
-from .options import INTERNAL, ROLE_ORDER, RUN_ROLE, ReadOptions
+from .options import ROLE_ORDER, RUN_ROLE, ReadOptions
 from .own_headers import with_own_header
 from .plain import as_read, is_lab_file, lab_dayfirst
 from .record import check_record_file, cut, hold_out, record_id, shares
@@ -309,7 +309,8 @@ def _assembled(columns: dict, renamed: dict, rescaled: dict, path: Path, opts: R
         if opts.bits:                   # (before the checks: a word's gap is its bits')
             renamed = dict(renamed)
             decoded(columns, renamed, opts.bits, path)
-        report = _checked(columns, path, opts, lines)
+        report = _checked(columns, path, opts, lines,
+                          next((raw for raw, name in renamed.items() if name == TIME), None))
     except ContractError as exc:        # a CSV file's row: its line too
         exc = with_own_header(exc, renamed)
         if lines is not None:
@@ -328,14 +329,16 @@ def _assembled(columns: dict, renamed: dict, rescaled: dict, path: Path, opts: R
     return table, {"rows": table.num_rows, **report}
 
 
-def _checked(columns: dict, path: Path, opts: ReadOptions, lines: Lines | None) -> dict:
+def _checked(columns: dict, path: Path, opts: ReadOptions, lines: Lines | None,
+             time_header: str | None = None) -> dict:
     """A campaign's columns made the contract's (time in seconds, values checked, missing
-    ones repaired or kept, resampled), in place; its report."""
+    ones repaired or kept, resampled), in place; its report (``time_header``: the time
+    column's header in the file, which may say it holds seconds of the day)."""
     rows = len(next(iter(columns.values())))
     if rows == 0:
         raise ContractError("file has no data rows", file=path)
     missing = _keep_missing if opts.missing == "keep" else _repair_missing
-    report = {"source_rows": rows, **_set_time_seconds(columns, rows, path, opts, lines),
+    report = {"source_rows": rows, **_set_time_seconds(columns, rows, path, opts, lines, time_header),
               **missing(columns, rows, path, opts)}
     _check_length(len(columns[TIME]), path, "complete " if opts.missing != "keep" else "")
     _check_fahrenheit(columns, path, opts.fahrenheit_threshold_c, report["trimmed"]["start"])
@@ -407,8 +410,9 @@ def _dataset_report(name: str, entries: dict, columns: dict, opts: ReadOptions) 
               "campaigns": entries, "repairs": totals("repairs"),
               "columns": {r: list(columns.get(r, {})) for r in ROLE_ORDER},
               **_renamed(entries),
+              # (data89b) under the data config's keys, as ingested_with.settings names them
               "settings": {k: [list(v) for v in value] if k == "clock_sets" else value
-                           for k, value in asdict(opts).items() if k not in INTERNAL}}
+                           for k, value in opts.data_keys().items()}}
     if opts.missing != "repair":
         report["missing"] = totals("missing")
     sparse = sparse_totals(entries)

@@ -23,8 +23,10 @@ from .manifest import BINARY_KINDS, RECORD_SUFFIXES
 from .rates import PAUSE_PERIODS, pauses
 from .sinumerik import not_a_trace
 from .sparse import probe_cycle
+from .timestamps import ELAPSED, OF_DAY
 from .workbook import not_read
 
+SAID_AS_READ = (ELAPSED, OF_DAY)    # a time whose pauses the reading of it says
 MIN_PART_ROWS = 2          # as a campaign: a reference sample and one to score
 _UNSAFE_ID = re.compile(r"[^\w.\-]+")
 
@@ -85,7 +87,7 @@ def cut(path: Path, table: pa.Table, report: dict, opts, stem: str | None = None
         Campaign id -> (table, report entry with the record's ``rows`` ``[from, to)``).
     """
     stem = stem or record_id(path)
-    _warn_pauses(path, table)
+    _warn_pauses(path, table, report.get("time"))
     lead, trail = _batch_edges(table, report, opts)
     counts = _counts(table.num_rows - lead - trail, opts) or {"train": table.num_rows - lead - trail}
     short = {k: v for k, v in counts.items() if v < MIN_PART_ROWS}
@@ -129,11 +131,15 @@ def cut(path: Path, table: pa.Table, report: dict, opts, stem: str | None = None
     return pd.DataFrame(rows).set_index("campaign"), parts
 
 
-def _warn_pauses(path: Path, table: pa.Table) -> None:
+def _warn_pauses(path: Path, table: pa.Table, kind: str | None = None) -> None:
     """Say where one record stops for hours between samples a minute apart: a lab's runs
     exported into one file read as one campaign (absolute, every run continuing the last, one
-    ambient level for ATI) where a folder of one file per run reads each as a campaign."""
-    if "time" not in table.column_names or table.num_rows < 3:
+    ambient level for ATI) where a folder of one file per run reads each as a campaign.
+    (data89b) Not of a time ``kind`` whose pauses were said as it was read, once each, with
+    what works for it (:func:`.timestamps.elapsed_seconds`, :func:`.timestamps.past_midnight`):
+    ``h:mm:ss`` (``elapsed``, which ``data.runs_at_pauses`` cannot split) or seconds of the day
+    past midnight (a pause there may as well be a day longer)."""
+    if "time" not in table.column_names or table.num_rows < 3 or kind in SAID_AS_READ:
         return
     time = table.column("time").to_numpy(zero_copy_only=False).astype(float)
     steps, found = np.diff(time), pauses(time)

@@ -34,6 +34,7 @@ from .timestamps import (
     DATE,
     ELAPSED_HEADERS,
     EXCEL_DAYS,
+    OF_DAY_HEADERS,
     TIME_OF_DAY,
     looks_like_timestamp,
 )
@@ -65,7 +66,7 @@ _UNSAFE = re.compile(r"[^\w.\-]+")
 TIME_HEADERS = frozenset({"time", "t", "ts", "zeit", "時間", "时间", "timestamp", "datetime", "date_time",
                           "zeitstempel", "temps", "tiempo", "tempo", "seconds", "timestamp_start",
                           "tmstamp",     # (a Campbell Scientific logger's TOACI1 file, lab74)
-                          *ELAPSED_HEADERS})
+                          *ELAPSED_HEADERS, *OF_DAY_HEADERS})
 # HBM catman's time channel, one per rate group: 'Zeit  1 - Standardmessrate', 'Time  2 - 10 Hz'
 _RATE_GROUP_TIME = re.compile(r"(?i)(?:time|zeit|temps|tiempo|tempo)\s+\d+\s+-\s+\S.*")
 TWIN = "twin"         # a header written twice (:mod:`.twins`): left out, or refused as unnamed
@@ -180,6 +181,8 @@ def excel_days_header(headers, first: Mapping, units: Mapping, decimal: str = ".
         base, unit = split_unit(h)
         if unit is not None or h in units or not (base.strip().lower() in DATE_HEADERS
                                                    or named_as_time(h)):
+            continue
+        if base.strip().lower() in OF_DAY_HEADERS:    # (data89b) 77400 s is 21:30, no date
             continue
         value = number(str(first.get(h) or ""), decimal)
         if value is not None and EXCEL_DAYS[0] <= value <= EXCEL_DAYS[1]:

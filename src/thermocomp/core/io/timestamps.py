@@ -68,7 +68,9 @@ def elapsed_seconds(text, kind: str, path: Path, header: str | None = None,
     (:func:`time_kind`) naming ``data.time`` (a ``stream``'s: what its time must be), unless it
     passes midnight (:func:`past_midnight`: a file's and, data89, a stream's rows alike;
     ``unwrap=False``, a served model's block read alone, never); a cell that is no ``h:mm:ss``
-    is refused with its row."""
+    is refused with its row.  (data89b) A file's pauses are said here, once each, as what
+    reads each run as a campaign (:func:`_said_pauses`): ``data.runs_at_pauses`` cannot split a
+    time written as text, and the record's own pause warning leaves such a time to this one."""
     parts = pc.extract_regex(text, f"^{_ELAPSED.pattern}$")
     hours = pc.cast(pc.struct_field(parts, "h"), pa.float64())
     seconds = pc.cast(pc.replace_substring(pc.struct_field(parts, "s"), ",", "."), pa.float64())
@@ -81,6 +83,11 @@ def elapsed_seconds(text, kind: str, path: Path, header: str | None = None,
             first = text.filter(text.is_valid())
             time_kind(first[0].as_py().strip() if len(first) else "", "auto", False, path, header,
                       stream)
+    elif not stream:       # (data89b) a stream's rows come a block at a time: no pause to tell
+        values = total.to_numpy(zero_copy_only=False).astype(float)
+        valid = np.flatnonzero(~np.isnan(values))
+        _said_pauses(values[valid], valid, Path(path).name, repr(header) if header else TIME,
+                     clock=False)
     bad = pc.and_(text.is_valid(), parts.is_null()).to_numpy(zero_copy_only=False)
     if bad.any():
         row = int(np.argmax(bad))
@@ -129,13 +136,53 @@ def past_midnight(seconds: pa.Array, path: Path, header: str | None = None) -> p
 
 
 PAUSE_PERIODS = 100   # a record silent this many sample periods: runs joined in one file?
+OF_DAY = "seconds of day"   # (data89b) the report's time of seconds since midnight, unwrapped
+# (data89b) a numeric time column's header that says it holds seconds since midnight
+OF_DAY_HEADERS = frozenset({"seconds of day", "second of day", "seconds of the day", "sec of day",
+                            "secs of day", "seconds since midnight", "daysec", "day seconds",
+                            "tagessekunden", "sekunden seit mitternacht", "sekunde des tages"})
 
 
-def _said_pauses(seconds: np.ndarray, rows: np.ndarray, name: str, column: str) -> None:
+def seconds_of_day(seconds: np.ndarray, path: Path, header: str | None = None
+                   ) -> np.ndarray | None:
+    """(extension, data89b) A numeric time column of seconds since midnight, a logger's
+    ``Seconds of day`` (77400 ... 86100, then 0, 300 ...), as a continuing time by the time of
+    day's rule (:func:`past_midnight`: a day added at each step back by more than half a day):
+    where all its values are within a day, [0, 86400) s, and its header says so
+    (:data:`OF_DAY_HEADERS`) or its values do (:func:`over_midnight`); None otherwise (a step
+    back is the reader's to refuse, "time decreases"), as where it never passes midnight."""
+    finite = seconds[np.isfinite(seconds)]
+    if not finite.size or finite.min() < 0 or finite.max() >= DAY_S:
+        return None
+    said = header is not None and _bare(header) in OF_DAY_HEADERS
+    if not (said or over_midnight(finite)):
+        return None
+    unwrapped = past_midnight(pa.array(seconds, from_pandas=True), path, header)
+    return None if unwrapped is None else unwrapped.to_numpy(zero_copy_only=False)
+
+
+def over_midnight(seconds: np.ndarray) -> bool:
+    """``seconds`` (within a day) step back by more than half a day, and each such step, a day
+    added, is no longer than a step the clock takes elsewhere: a clock of the day's seconds
+    passing midnight.  An elapsed time started again after half a day (a logger restarted:
+    57000 s, then 0; as well 29400 s forward) is no such step, and stays refused (a header
+    saying seconds of the day reads it, a pause at midnight warned of)."""
+    steps = np.diff(seconds)
+    back, forward = steps < -DAY_S / 2, steps > 0
+    return bool(back.any() and forward.any()
+                and np.all(steps[back] + DAY_S <= steps[forward].max()))
+
+
+
+def _said_pauses(seconds: np.ndarray, rows: np.ndarray, name: str, column: str,
+                 clock: bool = True) -> None:
     """(data89) Warn of the pauses of a dateless clock's continuing time (``seconds`` of the
     data rows ``rows``): a stretch of :data:`PAUSE_PERIODS` sample periods or more without
     rows is read as the clock says, but reads as well a whole day or more longer (the
-    logger stopped overnight, or over a weekend): the date column tells, the clock cannot."""
+    logger stopped overnight, or over a weekend): the date column tells, the clock cannot.
+    (data89b) ``clock=False``: an elapsed ``h:mm:ss``, whose pause says runs joined in one
+    file, what reads each as a campaign named (not ``data.runs_at_pauses``, which cannot
+    split a time written as text)."""
     steps = np.diff(seconds)
     period = median_step(seconds)
     if not period:
@@ -144,6 +191,14 @@ def _said_pauses(seconds: np.ndarray, rows: np.ndarray, name: str, column: str) 
     if not found.size:
         return
     k = int(found[0])
+    if not clock:
+        logger.warning(f"{name}, column {column}, {position(int(rows[k + 1]) + 1)}: the elapsed "
+                       f"time pauses {steps[k] / 3600:.3g} h ({steps[k] / period:.0f} sample "
+                       f"periods of {period:g} s{f'; {found.size} such pauses' if found.size > 1 else ''}"
+                       "): runs joined in one file? One file per run in a folder, or a column "
+                       "numbering the runs (data.roles.campaign=<header>), reads each as a "
+                       "campaign (data.runs_at_pauses cannot split a time written as h:mm:ss)")
+        return
     logger.warning(f"{name}, column {column}, {position(int(rows[k + 1]) + 1)}: the time of day "
                    f"pauses {steps[k] / 3600:.3g} h ({steps[k] / period:.0f} sample periods of "
                    f"{period:g} s{f'; {found.size} such pauses' if found.size > 1 else ''}): "

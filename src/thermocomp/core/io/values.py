@@ -22,7 +22,14 @@ from .options import ReadOptions
 from .rates import period_groups, said_if_rate_changes, said_if_rows_missing
 from .sparse import intermittent, probe_cycle
 from .tables import PIPED_HINT, _chunks, _values
-from .timestamps import clock_set_back, on_local_clock, said_if_clock_skips
+from .timestamps import (
+    DAY_S,
+    OF_DAY,
+    clock_set_back,
+    on_local_clock,
+    said_if_clock_skips,
+    seconds_of_day,
+)
 
 MAX_ABS_T_C = 1e4  # refused whatever data.kelvin_threshold_c says
 FAULTY_SHARE = 0.1  # at most this share of a streamed T_ column above the kelvin threshold: faults
@@ -40,9 +47,10 @@ def reading_limit(column: str) -> float:
 
 
 def _set_time_seconds(columns: dict, rows: int, path: Path, opts: ReadOptions,
-                      lines: Lines | None = None) -> dict:
+                      lines: Lines | None = None, header: str | None = None) -> dict:
     """Replace (or add) ``time`` by float seconds; describe its source (``lines``: where a
-    row stands in the file, for a warning)."""
+    row stands in the file, for a warning; ``header``: the time column's in the file, which
+    may say it holds seconds of the day, :func:`.timestamps.seconds_of_day`)."""
     if TIME not in columns:
         columns[TIME] = pa.array(np.arange(rows) * opts.sample_period_s)
         return {"time": "sample_period_s"}
@@ -51,7 +59,7 @@ def _set_time_seconds(columns: dict, rows: int, path: Path, opts: ReadOptions,
         if column.null_count:
             row = int(np.argmax(column.is_null().to_numpy(zero_copy_only=False))) + 1
             raise ContractError("missing time value", file=path, column=TIME, row=row)
-        seconds, info = _seconds(column, path, opts.timezone)
+        seconds, info = _seconds(column, path, opts.timezone, header)
         seconds, origin, found = undone(seconds, info.get("time_origin"), opts.clock_sets, path)
         if found:       # (the sets found, by index: the record's report names those not found)
             info.update(time_origin=origin, clock_sets_undone=len(found), clock_sets_found=found)
@@ -75,8 +83,8 @@ def _set_time_seconds(columns: dict, rows: int, path: Path, opts: ReadOptions,
     return info
 
 
-def _seconds(column: pa.ChunkedArray, path: Path, zone: str | None = None
-             ) -> tuple[np.ndarray, dict]:
+def _seconds(column: pa.ChunkedArray, path: Path, zone: str | None = None,
+             header: str | None = None) -> tuple[np.ndarray, dict]:
     kind = column.type
     if pa.types.is_timestamp(kind):
         ns = pc.cast(pc.cast(column, pa.timestamp("ns", kind.tz)), pa.int64()).to_numpy()
@@ -89,7 +97,10 @@ def _seconds(column: pa.ChunkedArray, path: Path, zone: str | None = None
     if pa.types.is_duration(kind):     # an elapsed time (h:mm:ss, a Parquet timedelta)
         ns = pc.cast(pc.cast(column, pa.duration("ns")), pa.int64()).to_numpy()
         return ns / 1e9, {"time": "elapsed"}
-    return pc.cast(column, pa.float64()).to_numpy(), {"time": "seconds"}
+    seconds = pc.cast(column, pa.float64()).to_numpy()
+    if (of_day := seconds_of_day(seconds, path, header)) is not None:
+        return of_day, {"time": OF_DAY}
+    return seconds, {"time": "seconds"}
 
 
 def _check_increasing(seconds: np.ndarray, path: Path, local: bool = False,
@@ -122,8 +133,21 @@ def _check_increasing(seconds: np.ndarray, path: Path, local: bool = False,
             ": the time starts again (the logger restarted, or runs joined in one file?): one "
             "file per run in a folder reads each as a campaign")
         what = (f"time decreases from {_shown(before, origin)} (row {i + 1}) to "
-                f"{_shown(after, origin)}{dst}{unsorted}{again}")
+                f"{_shown(after, origin)}{dst}{unsorted}{again}{_of_day_said(seconds, origin, i)}")
     raise ContractError(what, file=path, column=TIME, row=i + 2)
+
+
+def _of_day_said(seconds: np.ndarray, origin: str | None, i: int) -> str:
+    """(data89b) What to say of seconds within a day going back by more than half a day after
+    row ``i + 1`` that are not read as seconds of the day (:func:`.timestamps.seconds_of_day`:
+    the step over midnight longer than any other of the record's)."""
+    if origin is not None or seconds.min() < 0 or seconds.max() >= DAY_S or \
+            seconds[i] - seconds[i + 1] <= DAY_S / 2:
+        return ""
+    pause = (seconds[i + 1] + DAY_S - seconds[i]) / 3600
+    return (f"; or seconds of the day past midnight after {pause:.3g} h without rows? a "
+            "header saying so ('Seconds of day', 'seconds since midnight') reads them so "
+            "(data.roles.time=<it> names the column, not what it holds)")
 
 
 def _clock_reset(seconds: np.ndarray, back: float, max_days: float | None) -> str:
