@@ -233,6 +233,7 @@ def monitor_fields(deployed, inputs: list) -> dict:
         "new_state_others": int(mon.new_state_others), "max_backoff": MAX_BACKOFF,
         "tau": EXCURSION_TAU_S, "growth": EXCURSION_GROWTH, "novel": 1, "blind_out": 1, "thawed": 1,
         "blind_drop": 1, "solve": 1, "stepped": 1, "cleared": 1, "blind_jump": 1, "second_jump": 1,
+        "second_instant": 1,
         "modes": int(mon.pod.n_modes_),
         "basis": mon.pod.basis_[:, :int(mon.pod.n_modes_)].tolist(),
         "fallback": [int(c in falls) for c in mon.names],
@@ -346,7 +347,8 @@ class CodeMonitor:
                      ("stepped", 0),      # (before cmon86: a stepped error flagged)
                      ("cleared", 0),      # (before mon88: no partner's freeze clears one)
                      ("blind_jump", 0),   # (before cmon87: a blind sensor's jump flagged)
-                     ("second_jump", 0)):  # (before cmon88: a jump with one out flagged)
+                     ("second_jump", 0),   # (before cmon88: a jump with one out flagged)
+                     ("second_instant", 0)):   # (before cmon89: a dropout, ... flagged)
             a.setdefault(k, np.float64(v))
         a.setdefault("rounding", np.zeros(n))    # (before mon83: no culprit held for rounding)
         # (before mon86: every set judged by the whole set's bands)
@@ -371,6 +373,11 @@ class CodeMonitor:
         self.spikes = self.drops & bool(a["blind_jump"])
         # (cmon85, cmon86) the rules that take a second sensor out beside one; (cmon88) a jump too
         self.seconds = (DRIFT_OUT, FREEZE, STEP_OUT) + ((JUMP,) if a["second_jump"] else ())
+        # (cmon89) a dropout or a reading beyond its range as the second out, and the jump of
+        # one no other predicts (held at its last reading)
+        self.instant = bool(a["second_instant"])
+        if self.instant:
+            self.seconds += (DROPOUT, OFF_RANGE)
         # (cmon85) the POD basis (n x modes): any other set's operator solved at run time
         self.solve = bool(a["solve"]) and "basis" in arrays
         self.phi = np.asarray(arrays.get("basis", np.zeros((n, 0))), float).reshape(n, -1)
@@ -559,7 +566,7 @@ class CodeMonitor:
         cmon86 a stepped error or cmon88 a jump); else flagged."""
         held = self.ported[j] or (rule in (DROPOUT, FREEZE) and self.drops[j]) or (
             rule == JUMP and self.spikes[j])
-        second = self.out >= 0 and not (rule in self.seconds and self.ported[j]
+        second = self.out >= 0 and not (rule in self.seconds and self._second_kind(j, rule)
                                         and self._second_held(j))
         if second or not held:
             self._flag(NOT_IN_CODE, j, SECOND if second else BLIND)
@@ -573,7 +580,21 @@ class CodeMonitor:
     def _jump_held(self, j: int) -> bool:
         """(cmon88) ``j``'s jump with one sensor out already held by the code: re-referenced and
         out as the second, as served, where the others predict it and the set is solved."""
-        return JUMP in self.seconds and self.ported[j] and self._second_held(j)
+        return JUMP in self.seconds and self._second_kind(j, JUMP) and self._second_held(j)
+
+    def _second_kind(self, j: int, rule: int) -> bool:
+        """Whether the code takes ``j`` out as the second for ``rule``: one the others predict;
+        (cmon89) an instant fault only where the field is rebuilt without both, and one no other
+        predicts for a jump (held at its last reading, as served)."""
+        if rule not in (DROPOUT, OFF_RANGE) and not (rule == JUMP and self.instant):
+            return bool(self.ported[j])
+        rebuilds = self._active().sum() - 1 >= self.a["min_active"]
+        return rebuilds and bool(self.ported[j] or (rule == JUMP and self.spikes[j]))
+
+    def _outs(self) -> list[int]:
+        """The sensors out whose missing reading (or range) is read as such: the first; (cmon89)
+        the second too."""
+        return [k for k in ((self.out, self.out2) if self.instant else (self.out,)) if k >= 0]
 
     def _second_held(self, j: int) -> bool:
         """(cmon85) ``j`` out (a drift exclusion, a freeze) with one sensor out already: the
@@ -601,14 +622,16 @@ class CodeMonitor:
         if not missing.any():
             return 0
         new = missing.copy()
-        if not first and self.out >= 0:
-            new[self.out] = False            # the sensor out, missing again: rebuilt as it was
+        if not first:
+            new[self._outs()] = False        # the sensor out, missing again: rebuilt as it was
         j = int(np.argmax(new if new.any() else missing))
         with np.errstate(invalid="ignore"):
             rng = (x < self.a["lo_lim"]) | (x > self.a["hi_lim"])
         if first:
             rule = MISSING_FIRST
-        elif new.sum() > 1 or (new.any() and (self.out >= 0 or rng.any())):
+        elif new.sum() > 1 or (new.any() and (rng.any() or self.out >= 0 and not (
+                DROPOUT in self.seconds and self._second_kind(j, DROPOUT)
+                and self._second_held(j)))):
             rule = MISSING_SECOND
         elif new.any() and not (self.ported[j] or self.drops[j]):
             rule = MISSING_BLIND
@@ -659,14 +682,16 @@ class CodeMonitor:
         # dropout or range exclusion, as served (its instant faults read first, then excluded)
         other = self._others_seen(d) if big.sum() == 1 else None
         if missing.any():   # (refuses() let one through: a new one, or the sensor out again)
-            j = int(np.argmax(missing))
-            if j != self.out:
+            new = missing.copy()
+            new[self._outs()] = False
+            j = int(np.argmax(new if new.any() else missing))
+            if j not in self._outs():
                 self._exclude(j, DROPOUT)
             elif not self.dropped[j] and not self.jumps[j]:
                 # out for a freeze: the served monitor marks it dropped or not by the path it
                 # takes (its band on re-admission), which the code does not follow
                 self._flag(NOT_IN_CODE, j, MISSING_FROZEN)
-        if rng.any() and (j := int(np.argmax(rng))) != self.out:
+        if rng.any() and (j := int(np.argmax(rng))) not in self._outs():
             self._exclude(j, OFF_RANGE)       # (cmon80: read as missing, as a dropout)
         if big.sum() > 1:
             self._flag(NOT_IN_CODE, int(np.argmax(big)), COMMON)
@@ -790,16 +815,21 @@ class CodeMonitor:
         code does not hold it (flagged): several at once, one with another sensor out, one of
         a sensor it does not hold out."""
         j, a = int(np.argmax(rng)), self.a
-        if rng.sum() > 1 or (self.out >= 0 and j != self.out):
+        outs = self._outs()
+        if rng.sum() > 1 or (self.out >= 0 and j not in outs and not (
+                OFF_RANGE in self.seconds and self._second_kind(j, OFF_RANGE)
+                and self._second_held(j))):
             self._flag(NOT_IN_CODE, j, RANGE)
             return None
-        if j == self.out and not self.predictable[j]:    # (served: its leak judges its return)
+        if j in outs and not self.predictable[j]:    # (served: its leak judges its return)
             self._flag(NOT_IN_CODE, j, BLIND)
             return None
-        if j == self.out:                # out already: read as missing
+        if j in outs:                    # out already: read as missing
             return rng
-        if self.n - 1 >= a["min_active"]:     # predicted from the others, all within range
-            p = (x - d)[j] + self.M[j + 1][j] @ np.where(np.arange(self.n) == j, 0.0, d)
+        inside = self._active() & (np.arange(self.n) != j)
+        if inside.sum() >= a["min_active"]:   # predicted from the others in, all within range
+            M = self.M[j + 1] if self.out < 0 else self._operator(~inside)[0]
+            p = (x - d)[j] + M[j] @ np.where(inside, d, 0.0)
             up = x[j] > a["hi_c"][j]
             edge = a["hi_c"][j] if up else a["lo_c"][j]
             beyond = (p - edge if up else edge - p) > a["warning"][j]
