@@ -827,9 +827,9 @@ class CodeMonitor:
         if j in outs:                    # out already: read as missing
             return rng
         inside = self._active() & (np.arange(self.n) != j)
-        if inside.sum() >= a["min_active"]:   # predicted from the others in, all within range
-            M = self.M[j + 1] if self.out < 0 else self._operator(~inside)[0]
-            p = (x - d)[j] + M[j] @ np.where(inside, d, 0.0)
+        # predicted from the others in, all within range (cmon89: one out already, set solved)
+        if inside.sum() >= a["min_active"] and (op := self._operator(~inside)) is not None:
+            p = (x - d)[j] + op[0][j] @ np.where(inside, d, 0.0)
             up = x[j] > a["hi_c"][j]
             edge = a["hi_c"][j] if up else a["lo_c"][j]
             beyond = (p - edge if up else edge - p) > a["warning"][j]
