@@ -1,15 +1,66 @@
-"""The exported C's monitor on the check pack's planted copies of fresh long records (cmon89,
-issue 34): where the code and the served monitor part.
+"""An instant fault as the second sensor out in the exported C (cmon89, issue 34): with one sensor
+out already, a dropout or a reading beyond its range of a sensor the others predict, and the jump
+of a sensor no other predicts, taken out as the second as the served monitor does, where before
+the code refused the row or flagged it and the check pack's planted copies were cut there.
 
     PYTHONPATH=$PWD/src .venv/bin/python benchmarks/bench_cmon89.py trace [ROOT] [SEEDS]
+    PYTHONPATH=$PWD/src .venv/bin/python benchmarks/bench_cmon89.py spikes [ROOT] [SEEDS]
+    PYTHONPATH=$PWD/src .venv/bin/python benchmarks/bench_cmon89.py compare [ROOT] [SPEC]
 
 ``trace``: in ``ROOT`` (default ``/tmp/cmon89-bench``) per seed of ``SEEDS`` (default
-:data:`SEEDS`) bench_cmon87's long record (``_record``: 3 days, R1b continuing R1a, MLR deployed
+:data:`TRACED`) bench_cmon87's long record (``_record``: 3 days, R1b continuing R1a, MLR deployed
 adaptive, a spike planted on each sensor no other predicts) and the pack's planted copies of R1b
 (:func:`~thermocomp.apps.deploy.export.watch.planted`: a jump, a freeze, a dropout, a reading
 beyond its range of the first sensor the code holds out, from R1b's middle row on); per copy
 (rows 1-based in R1b): the served monitor's events, the numpy mirror's exclusions, its first flag,
-the first row where its corrections part from the served ones and the pack's rows.
+the first row where its corrections part from the served ones.  ``spikes``: bench_cmon87's
+``spikes`` over ``SEEDS`` (default :data:`SEEDS`) with "before" the export as on main (without
+``second_instant``: :func:`_main`), each compiled (gcc -std=c99 -Wall -Wextra -Werror -O2) and fed
+R1b after its lead-in: R1b's rows where C = served, the largest gap, the first flag, the pack's
+rows of R1b and of its planted copies (jump, freeze, dropout, range), ``tc_step``'s largest /
+summed time of a sample.  ``compare``: bench_cmon87's ``compare`` (bench_cmon85's 50 campaigns
+and bench_cmon86's 50) with "before" the export as on main.
+
+Traced (main's a0d62dea; lr9132 and lr9135, bench_cmon88's seen records; rows 1-based in R1b of
+864, the planted faults on ``T_head_left`` from row 433):
+
+* lr9132 dropout / range copies (cut at 433 on main): at 430 the served monitor holds ``T_motor``
+  (no other predicts it) out for a spike (cmon87); at 433 ``T_head_left`` reads nothing / 45.62
+  degC (range 18.6-25.6 +- 10): served excludes it as the second (rebuilt from the others), back
+  at 550 (within +-0.4 / +-0.2 degC for 10 samples).  The code refused the row
+  (``MISSING_SECOND``: a missing reading with another out) / flagged ``RANGE`` (a range reading
+  with another out: the sample passes the monitor by).
+* lr9132 freeze copy (cut at 666): ``T_head_left`` out by drift at 484; at 666 the simulator's own
+  +2.41 degC outlier of ``T_zdrive`` (no other predicts it): served re-references it by its whole
+  step, holds it at its last reading, back at 677 with its jumps undone.  The code flagged
+  ``SECOND`` (a blind sensor's jump with one out) and kept it in as read.
+* lr9135 freeze copy (cut at 781): the same with the planted ``T_table`` +2.75 degC spike while
+  ``T_head_left`` is out by drift (550); dropout / range copies (cut at 503): the planted
+  ``T_motor`` +1.81 degC spike while ``T_head_left`` is out for its dropout / range (433-540):
+  ``SECOND``.
+* No third out on these copies: every cut is one of the three paths.
+
+The rule (the code's and its mirror's; served unchanged; ``second_instant`` in compensator.json,
+an export without it flags as before): with one sensor out and the second place free (the set of
+the two out solved, cmon85), and the field rebuilt without both (at least ``min_active`` left
+in), (a) a missing reading of a sensor the others predict is excluded as the second (a dropout,
+its return judged in its whole band as served); (b) a reading beyond its range of one the others
+predict is read as missing and excluded as the second (a machine hotter than training read as
+before, judged by the others in); (c) the jump of a sensor no other predicts is re-referenced by
+its whole step and out as the second, held at its last reading (cmon87's path as the second).
+The second out missing again (or beyond its range again) is read as missing, as the first is.
+Work: on a range reading one operator copied (or solved) more; nothing on other samples.
+
+Bar (written before scoring the fresh seeds, from the brief; 9301-9305 not drawn before): (1)
+fresh 9301-9305 (bench_cmon87's generator and spikes): R1b's rows where C = served now >= before
+on every record, its first flag not earlier; (2) the pack's planted copies on lr9132, lr9135
+(seen: traced while the rule was written) and 9301-9305: rows kept now >= before on every copy
+of every record, and more on the traced cases (lr9132 and lr9135: freeze, dropout, range); (3)
+bench_cmon85/86's 100 campaigns (``compare``) identical before -> now: rows C = served, first
+flag and pack rows the same on every campaign; (4) ``tc_step``'s summed time over those 100
+campaigns now / before <= 1.1; (5) every export above compiles with -Werror; (6) the new test
+fails on main and passes here, and tests/shell/test_export*.py and the monitor tests pass.  Any
+item missed: REFUSED (src reverted, the rule kept as benchmarks/cmon89_rule.patch).
 """
 
 from __future__ import annotations
@@ -23,7 +74,16 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from _cli import made_folder, run_commands, seed_list  # noqa: E402
 
-SEEDS = "9132,9135"
+TRACED = "9132,9135"
+SEEDS = "9132,9135,9301-9305"
+
+
+def _main(ss):
+    """``ss`` as exported on main: without ``second_instant``."""
+    import dataclasses
+
+    return dataclasses.replace(ss, monitor={k: v for k, v in ss.monitor.items()
+                                            if k != "second_instant"})
 
 
 def _parted_at(ss, frame, want, lead: int) -> tuple[int | None, list, str]:
@@ -51,7 +111,7 @@ def _parted_at(ss, frame, want, lead: int) -> tuple[int | None, list, str]:
     return parted, out, first or "none"
 
 
-def trace(root: str = "/tmp/cmon89-bench", seeds: str = SEEDS) -> None:
+def trace(root: str = "/tmp/cmon89-bench", seeds: str = TRACED) -> None:
     """Per planted copy of R1b: served events, the mirror's exclusions, first flag and parting."""
     from bench_cmon87 import _record
 
@@ -81,9 +141,23 @@ def trace(root: str = "/tmp/cmon89-bench", seeds: str = SEEDS) -> None:
                   flush=True)
 
 
+def spikes(root: str = "/tmp/cmon89-bench", seeds: str = SEEDS) -> None:
+    """Before (main) / now on the long records and their planted copies (module doc)."""
+    from bench_cmon87 import spiked_records
+
+    spiked_records(root, seeds, _main)
+
+
+def compare(root: str = "/tmp/cmon89-bench", spec: str | None = None) -> None:
+    """bench_cmon86's campaigns (bench_cmon87's ``compared``), before: the export as on main."""
+    from bench_cmon87 import compared
+
+    compared(root, spec, _main)
+
+
 def main(argv: list[str] | None = None) -> int:
-    return run_commands(__doc__, {"trace": trace}, sys.argv[1:] if argv is None else argv,
-                        cpu=sys.stderr)
+    return run_commands(__doc__, {"trace": trace, "spikes": spikes, "compare": compare},
+                        sys.argv[1:] if argv is None else argv, cpu=sys.stderr)
 
 
 if __name__ == "__main__":
