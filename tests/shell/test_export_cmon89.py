@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import subprocess
 
-import numpy as np
 import pytest
 
 from test_export import built_stream, needs_cc

@@ -106,6 +106,14 @@ The served adaptive compensator judges every ``T_`` input before the model reads
   (``Readmission._readmit``: several are noise or a spike, of one the reading nearer its held
   value is taken): the reference before its first jump (``ref0``) restored, its window shifted
   back.  An export before it (no ``blind_jump``) flags the jump (``BLIND``).
+* (cmon89) an **instant fault as the second out** (``second_instant``): with one sensor out, the
+  set of the two out solved and the field rebuilt without both (``min_active`` left in), a
+  missing reading or a reading beyond its range of a sensor the others predict is excluded as
+  the second (a dropout; a machine hotter than training judged by the others in), and the jump of
+  a sensor no other predicts re-referenced by its whole step and out as the second, held at its
+  last reading (cmon87's path), as served; the second out missing (or beyond its range) again is
+  read as missing, as the first is.  An export before it (no ``second_instant``) refuses the
+  missing reading (``MISSING_SECOND``) and flags the range (``RANGE``) and the jump (``SECOND``).
 
 What else the served monitor does it flags, ``NOT_IN_CODE`` with the rule (:data:`REASONS`),
 and goes on by its own rules: a reading beyond its range at a campaign's first sample, of
@@ -115,8 +123,9 @@ no common step, a jump at the reference's next sample, a stepped self-prediction
 culprit would be a third out (or one it does not hold out), a drift beyond the band that takes a
 third sensor out (cmon85: with one out, as served), of more than
 one blind partner, a second culprit beyond the alarm band, a second sensor out for a dropout or
-its range, a third for a jump, and a sensor no other predicts out for any other
-rule (its range; a jump with another out; cmon84: too few left to rebuild the field without it), or with a
+its range where the field is not rebuilt without both (cmon89), a third for a jump, and a sensor no
+other predicts out for any other rule (its range; cmon84: too few left to rebuild the field without
+it), or with a
 fallback model the code does not hold.  A missing reading the code cannot
 rebuild (at a campaign's first sample, with another sensor out or missing, of a sensor it does
 not hold out) is refused as before (:meth:`CodeMonitor.refuses`: the sample is not read).  From
