@@ -61,6 +61,37 @@ flag and pack rows the same on every campaign; (4) ``tc_step``'s summed time ove
 campaigns now / before <= 1.1; (5) every export above compiles with -Werror; (6) the new test
 fails on main and passes here, and tests/shell/test_export*.py and the monitor tests pass.  Any
 item missed: REFUSED (src reverted, the rule kept as benchmarks/cmon89_rule.patch).
+
+Scored (2026-12-05, this branch's src at c886acbc; "before" the same export without
+``second_instant``; ``spikes`` with the defaults, 95.3 s CPU of the bench process, under a load
+of 8-9 on the two shared cores; ``tc_step`` times the timer's least of 15 runs per row).
+9301-9305 drawn first by this run.  R1b of the long records, before -> now (rows C = served of
+864, every target within 1e-9 um; max abs(C - served); the first flag; the pack's rows of R1b; of
+its planted copies: jump, freeze, dropout, range; ``tc_step``'s summed time of R1b, ms):
+
+| record | C = served | max gap, um | flag | pack | planted copies | tc_step sum |
+|---|---|---|---|---|---|---|
+| lr9132 | 864 -> 864 | 1.2e-13 -> 1.2e-13 | - -> - | 864 -> 864 | 864,665,432,432 -> 864 x4 | 6.92 -> 6.85 |
+| lr9135 | 864 -> 864 | 9.2e-14 -> 9.2e-14 | - -> - | 864 -> 864 | 864,780,502,502 -> 864 x4 | 6.83 -> 6.85 |
+| lr9301 | 864 -> 864 | 1.0e-13 -> 1.0e-13 | - -> - | 864 -> 864 | 864,805,514,514 -> 864 x4 | 6.86 -> 6.93 |
+| lr9302 | 864 -> 864 | 6.4e-14 -> 6.4e-14 | - -> - | 864 -> 864 | 864,864,432,432 -> 864 x4 | 6.73 -> 6.72 |
+| lr9303 | 90 -> 90 | 0.31 -> 0.31 | C@91 -> C@91 | 90 -> 90 | 90 x5 -> 90 x5 | 6.92 -> 6.92 |
+| lr9304 | 864 -> 864 | 7.5e-14 -> 7.5e-14 | - -> - | 864 -> 864 | 441,673,441,441 -> 864 x4 | 6.88 -> 6.89 |
+| lr9305 | 864 -> 864 | 8.5e-14 -> 8.5e-14 | - -> - | 864 -> 864 | 864 x4 -> 864 x4 | 6.71 -> 6.71 |
+
+(flag: the first not in the code, ``C`` COMMON, - none; ``tc_step``'s largest time of a sample,
+ns, before -> now: 9614 -> 10065, 13350 -> 13290, 11747 -> 11257, 8733 -> 8503, 11707 -> 11387,
+9665 -> 11097, 15223 -> 15373.)  (1) met: R1b as before on every record (lr9303's R1b is cut at
+row 91 on both by another rule: several sensors jumping in one sample that are no common step,
+the planted ``T_amb`` spike meeting the simulator's own outlier; its five copies with it).  (2)
+met: no copy loses a row; the traced copies of lr9132 / lr9135 (seen) are whole, and so are the
+cut copies of the fresh records, 11 of them (lr9301 805 / 514 / 514, lr9302 432 / 432, lr9304
+441 / 673 / 441 / 441).  Traced after scoring (lr9304, the mirror before / now against served):
+the jump copy's ``T_head_left`` out for its planted jump at 433 (served back at 443) meets
+``T_motor``'s spike at 442 (a blind sensor's jump as the second, ``SECOND`` before; now out,
+back at 454 as served); the dropout and range copies the same with ``T_head_left`` out for its
+dropout / range; the freeze copy ``T_table``'s spike at 674 with ``T_head_left`` out for its
+freeze.  Every cut of these copies was one of the three traced paths; none a third out.
 """
 
 from __future__ import annotations
