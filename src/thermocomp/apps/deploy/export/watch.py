@@ -593,12 +593,14 @@ class CodeMonitor:
 
     def _second_kind(self, j: int, rule: int) -> bool:
         """Whether the code takes ``j`` out as the second for ``rule``: one the others predict;
-        (cmon89) an instant fault only where the field is rebuilt without both, and one no other
-        predicts for a jump (held at its last reading, as served)."""
-        if rule not in (DROPOUT, OFF_RANGE) and not (rule == JUMP and self.instant):
+        (cmon89) for a dropout or a range reading only where the field is rebuilt without both
+        (served feeds a dropped sensor's returned reading where it is not), and for a jump one no
+        other predicts there too (held at its last reading, as served)."""
+        blind = rule == JUMP and self.instant and not self.ported[j] and self.spikes[j]
+        if rule not in (DROPOUT, OFF_RANGE) and not blind:
             return bool(self.ported[j])
         rebuilds = self._active().sum() - 1 >= self.a["min_active"]
-        return rebuilds and bool(self.ported[j] or (rule == JUMP and self.spikes[j]))
+        return bool(rebuilds and (self.ported[j] or blind))
 
     def _outs(self) -> list[int]:
         """The sensors out whose missing reading (or range) is read as such: the first; (cmon89)

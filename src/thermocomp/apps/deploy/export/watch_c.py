@@ -330,15 +330,14 @@ static int mon_second_held(const tc_state *s, int k) {
 }
 
 /* 1: the code takes sensor k out as the second for rule: one the others predict; (cmon89) for
-   an instant fault only where the field is rebuilt without both, and for a jump one no other
-   predicts too (held at its last reading, as served) */
+   a dropout or a range reading only where the field is rebuilt without both, and for a jump one
+   no other predicts there too (held at its last reading, as served) */
 static int mon_second_kind(const tc_state *s, int k, int rule) {
     int m, in = 0;
-    if (!(rule == TC_MON_DROPOUT || rule == TC_MON_OFF_RANGE
-          || (rule == TC_MON_JUMP && MON_SECOND_INSTANT)))
-        return MON_PORTED[k];
+    int blind = rule == TC_MON_JUMP && MON_SECOND_INSTANT && !MON_PORTED[k] && mon_spikes(k);
+    if (!(rule == TC_MON_DROPOUT || rule == TC_MON_OFF_RANGE || blind)) return MON_PORTED[k];
     for (m = 0; m < NM; m++) in += m != s->mon_out && m != s->mon_out2;
-    return in - 1 >= MON_MIN_ACTIVE && (MON_PORTED[k] || (rule == TC_MON_JUMP && mon_spikes(k)));
+    return in - 1 >= MON_MIN_ACTIVE && (MON_PORTED[k] || blind);
 }
 
 /* (cmon88) 1: sensor k's jump with one out already held by the code: re-referenced and out as
