@@ -180,15 +180,17 @@ def spikes(root: str = "/tmp/cmon89-bench", seeds: str = SEEDS) -> None:
 
 
 def compare(root: str = "/tmp/cmon89-bench", spec: str | None = None) -> None:
-    """bench_cmon86's campaigns (bench_cmon87's ``compared``), before: the export as on main."""
+    """bench_cmon85/86's 100 campaigns, before (:func:`_main`) / now (module doc)."""
     from bench_cmon87 import compared
 
     compared(root, spec, _main)
 
 
+COMMANDS = {"trace": trace, "spikes": spikes, "compare": compare}
+
+
 def main(argv: list[str] | None = None) -> int:
-    return run_commands(__doc__, {"trace": trace, "spikes": spikes, "compare": compare},
-                        sys.argv[1:] if argv is None else argv, cpu=sys.stderr)
+    return run_commands(__doc__, COMMANDS, sys.argv[1:] if argv is None else argv, cpu=sys.stderr)
 
 
 if __name__ == "__main__":
