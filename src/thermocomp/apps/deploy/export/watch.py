@@ -106,6 +106,14 @@ The served adaptive compensator judges every ``T_`` input before the model reads
   (``Readmission._readmit``: several are noise or a spike, of one the reading nearer its held
   value is taken): the reference before its first jump (``ref0``) restored, its window shifted
   back.  An export before it (no ``blind_jump``) flags the jump (``BLIND``).
+* (cmon89) an **instant fault as the second out** (``second_instant``): with one sensor out, the
+  set of the two out solved and the field rebuilt without both (``min_active`` left in), a
+  missing reading or a reading beyond its range of a sensor the others predict is excluded as
+  the second (a dropout; a machine hotter than training judged by the others in), and the jump of
+  a sensor no other predicts re-referenced by its whole step and out as the second, held at its
+  last reading (cmon87's path), as served; the second out missing (or beyond its range) again is
+  read as missing, as the first is.  An export before it (no ``second_instant``) refuses the
+  missing reading (``MISSING_SECOND``) and flags the range (``RANGE``) and the jump (``SECOND``).
 
 What else the served monitor does it flags, ``NOT_IN_CODE`` with the rule (:data:`REASONS`),
 and goes on by its own rules: a reading beyond its range at a campaign's first sample, of
@@ -115,8 +123,9 @@ no common step, a jump at the reference's next sample, a stepped self-prediction
 culprit would be a third out (or one it does not hold out), a drift beyond the band that takes a
 third sensor out (cmon85: with one out, as served), of more than
 one blind partner, a second culprit beyond the alarm band, a second sensor out for a dropout or
-its range, a third for a jump, and a sensor no other predicts out for any other
-rule (its range; a jump with another out; cmon84: too few left to rebuild the field without it), or with a
+its range where the field is not rebuilt without both (cmon89), a third for a jump, and a sensor no
+other predicts out for any other rule (its range; cmon84: too few left to rebuild the field without
+it), or with a
 fallback model the code does not hold.  A missing reading the code cannot
 rebuild (at a campaign's first sample, with another sensor out or missing, of a sensor it does
 not hold out) is refused as before (:meth:`CodeMonitor.refuses`: the sample is not read).  From
@@ -233,6 +242,7 @@ def monitor_fields(deployed, inputs: list) -> dict:
         "new_state_others": int(mon.new_state_others), "max_backoff": MAX_BACKOFF,
         "tau": EXCURSION_TAU_S, "growth": EXCURSION_GROWTH, "novel": 1, "blind_out": 1, "thawed": 1,
         "blind_drop": 1, "solve": 1, "stepped": 1, "cleared": 1, "blind_jump": 1, "second_jump": 1,
+        "second_instant": 1,
         "modes": int(mon.pod.n_modes_),
         "basis": mon.pod.basis_[:, :int(mon.pod.n_modes_)].tolist(),
         "fallback": [int(c in falls) for c in mon.names],
@@ -346,7 +356,8 @@ class CodeMonitor:
                      ("stepped", 0),      # (before cmon86: a stepped error flagged)
                      ("cleared", 0),      # (before mon88: no partner's freeze clears one)
                      ("blind_jump", 0),   # (before cmon87: a blind sensor's jump flagged)
-                     ("second_jump", 0)):  # (before cmon88: a jump with one out flagged)
+                     ("second_jump", 0),   # (before cmon88: a jump with one out flagged)
+                     ("second_instant", 0)):   # (before cmon89: a dropout, ... flagged)
             a.setdefault(k, np.float64(v))
         a.setdefault("rounding", np.zeros(n))    # (before mon83: no culprit held for rounding)
         # (before mon86: every set judged by the whole set's bands)
@@ -371,6 +382,11 @@ class CodeMonitor:
         self.spikes = self.drops & bool(a["blind_jump"])
         # (cmon85, cmon86) the rules that take a second sensor out beside one; (cmon88) a jump too
         self.seconds = (DRIFT_OUT, FREEZE, STEP_OUT) + ((JUMP,) if a["second_jump"] else ())
+        # (cmon89) a dropout or a reading beyond its range as the second out, and the jump of
+        # one no other predicts (held at its last reading)
+        self.instant = bool(a["second_instant"])
+        if self.instant:
+            self.seconds += (DROPOUT, OFF_RANGE)
         # (cmon85) the POD basis (n x modes): any other set's operator solved at run time
         self.solve = bool(a["solve"]) and "basis" in arrays
         self.phi = np.asarray(arrays.get("basis", np.zeros((n, 0))), float).reshape(n, -1)
@@ -559,7 +575,7 @@ class CodeMonitor:
         cmon86 a stepped error or cmon88 a jump); else flagged."""
         held = self.ported[j] or (rule in (DROPOUT, FREEZE) and self.drops[j]) or (
             rule == JUMP and self.spikes[j])
-        second = self.out >= 0 and not (rule in self.seconds and self.ported[j]
+        second = self.out >= 0 and not (rule in self.seconds and self._second_kind(j, rule)
                                         and self._second_held(j))
         if second or not held:
             self._flag(NOT_IN_CODE, j, SECOND if second else BLIND)
@@ -573,7 +589,23 @@ class CodeMonitor:
     def _jump_held(self, j: int) -> bool:
         """(cmon88) ``j``'s jump with one sensor out already held by the code: re-referenced and
         out as the second, as served, where the others predict it and the set is solved."""
-        return JUMP in self.seconds and self.ported[j] and self._second_held(j)
+        return JUMP in self.seconds and self._second_kind(j, JUMP) and self._second_held(j)
+
+    def _second_kind(self, j: int, rule: int) -> bool:
+        """Whether the code takes ``j`` out as the second for ``rule``: one the others predict;
+        (cmon89) for a dropout or a range reading only where the field is rebuilt without both
+        (served feeds a dropped sensor's returned reading where it is not), and for a jump one no
+        other predicts there too (held at its last reading, as served)."""
+        blind = rule == JUMP and self.instant and not self.ported[j] and self.spikes[j]
+        if rule not in (DROPOUT, OFF_RANGE) and not blind:
+            return bool(self.ported[j])
+        rebuilds = self._active().sum() - 1 >= self.a["min_active"]
+        return bool(rebuilds and (self.ported[j] or blind))
+
+    def _outs(self) -> list[int]:
+        """The sensors out whose missing reading (or range) is read as such: the first; (cmon89)
+        the second too."""
+        return [k for k in ((self.out, self.out2) if self.instant else (self.out,)) if k >= 0]
 
     def _second_held(self, j: int) -> bool:
         """(cmon85) ``j`` out (a drift exclusion, a freeze) with one sensor out already: the
@@ -601,14 +633,16 @@ class CodeMonitor:
         if not missing.any():
             return 0
         new = missing.copy()
-        if not first and self.out >= 0:
-            new[self.out] = False            # the sensor out, missing again: rebuilt as it was
+        if not first:
+            new[self._outs()] = False        # the sensor out, missing again: rebuilt as it was
         j = int(np.argmax(new if new.any() else missing))
         with np.errstate(invalid="ignore"):
             rng = (x < self.a["lo_lim"]) | (x > self.a["hi_lim"])
         if first:
             rule = MISSING_FIRST
-        elif new.sum() > 1 or (new.any() and (self.out >= 0 or rng.any())):
+        elif new.sum() > 1 or (new.any() and (rng.any() or self.out >= 0 and not (
+                DROPOUT in self.seconds and self._second_kind(j, DROPOUT)
+                and self._second_held(j)))):
             rule = MISSING_SECOND
         elif new.any() and not (self.ported[j] or self.drops[j]):
             rule = MISSING_BLIND
@@ -659,14 +693,16 @@ class CodeMonitor:
         # dropout or range exclusion, as served (its instant faults read first, then excluded)
         other = self._others_seen(d) if big.sum() == 1 else None
         if missing.any():   # (refuses() let one through: a new one, or the sensor out again)
-            j = int(np.argmax(missing))
-            if j != self.out:
+            new = missing.copy()
+            new[self._outs()] = False
+            j = int(np.argmax(new if new.any() else missing))
+            if j not in self._outs():
                 self._exclude(j, DROPOUT)
             elif not self.dropped[j] and not self.jumps[j]:
                 # out for a freeze: the served monitor marks it dropped or not by the path it
                 # takes (its band on re-admission), which the code does not follow
                 self._flag(NOT_IN_CODE, j, MISSING_FROZEN)
-        if rng.any() and (j := int(np.argmax(rng))) != self.out:
+        if rng.any() and (j := int(np.argmax(rng))) not in self._outs():
             self._exclude(j, OFF_RANGE)       # (cmon80: read as missing, as a dropout)
         if big.sum() > 1:
             self._flag(NOT_IN_CODE, int(np.argmax(big)), COMMON)
@@ -790,16 +826,21 @@ class CodeMonitor:
         code does not hold it (flagged): several at once, one with another sensor out, one of
         a sensor it does not hold out."""
         j, a = int(np.argmax(rng)), self.a
-        if rng.sum() > 1 or (self.out >= 0 and j != self.out):
+        outs = self._outs()
+        if rng.sum() > 1 or (self.out >= 0 and j not in outs and not (
+                OFF_RANGE in self.seconds and self._second_kind(j, OFF_RANGE)
+                and self._second_held(j))):
             self._flag(NOT_IN_CODE, j, RANGE)
             return None
-        if j == self.out and not self.predictable[j]:    # (served: its leak judges its return)
+        if j in outs and not self.predictable[j]:    # (served: its leak judges its return)
             self._flag(NOT_IN_CODE, j, BLIND)
             return None
-        if j == self.out:                # out already: read as missing
+        if j in outs:                    # out already: read as missing
             return rng
-        if self.n - 1 >= a["min_active"]:     # predicted from the others, all within range
-            p = (x - d)[j] + self.M[j + 1][j] @ np.where(np.arange(self.n) == j, 0.0, d)
+        inside = self._active() & (np.arange(self.n) != j)
+        # predicted from the others in, all within range (cmon89: one out already, set solved)
+        if inside.sum() >= a["min_active"] and (op := self._operator(~inside)) is not None:
+            p = (x - d)[j] + op[0][j] @ np.where(inside, d, 0.0)
             up = x[j] > a["hi_c"][j]
             edge = a["hi_c"][j] if up else a["lo_c"][j]
             beyond = (p - edge if up else edge - p) > a["warning"][j]

@@ -99,7 +99,8 @@ def monitor_arrays(ss) -> list[tuple[str, object, tuple, str]]:
                ("MON_BLIND_DROP", "blind_drop", 0, "int"), ("MON_STEPPED", "stepped", 0, "int"),
                ("MON_CLEARED", "cleared", 0, "int"),
                ("MON_BLIND_JUMP", "blind_jump", 0, "int"),
-               ("MON_SECOND_JUMP", "second_jump", 0, "int"))
+               ("MON_SECOND_JUMP", "second_jump", 0, "int"),
+               ("MON_SECOND_INSTANT", "second_instant", 0, "int"))
     modes = max(int(m.get("modes", 1)), 1)
     return [("MON_M", m.get("M", []), (n + 1 + len(pairs), n, n), "real"),
             ("MON_LEV", m.get("lev", []), (n + 1 + len(pairs), n), "real"),
@@ -328,10 +329,33 @@ static int mon_second_held(const tc_state *s, int k) {
     return mon_operator(out, M, lev);
 }
 
+/* 1: the code takes sensor k out as the second for rule: one the others predict; (cmon89) for
+   a dropout or a range reading only where the field is rebuilt without both, and for a jump one
+   no other predicts there too (held at its last reading, as served) */
+static int mon_second_kind(const tc_state *s, int k, int rule) {
+    int m, in = 0;
+    int blind = rule == TC_MON_JUMP && MON_SECOND_INSTANT && !MON_PORTED[k] && mon_spikes(k);
+    if (!(rule == TC_MON_DROPOUT || rule == TC_MON_OFF_RANGE || blind)) return MON_PORTED[k];
+    for (m = 0; m < NM; m++) in += m != s->mon_out && m != s->mon_out2;
+    return in - 1 >= MON_MIN_ACTIVE && (MON_PORTED[k] || blind);
+}
+
 /* (cmon88) 1: sensor k's jump with one out already held by the code: re-referenced and out as
    the second, as served, where the others predict it and the set is solved */
 static int mon_jump_held(const tc_state *s, int k) {
-    return MON_SECOND_JUMP && MON_PORTED[k] && mon_second_held(s, k);
+    return MON_SECOND_JUMP && mon_second_kind(s, k, TC_MON_JUMP) && mon_second_held(s, k);
+}
+
+/* (cmon85, cmon86, cmon88; cmon89) 1: rule takes a second sensor out beside one */
+static int mon_second_rule(int rule) {
+    return rule == TC_MON_DRIFT_OUT || rule == TC_MON_FREEZE || rule == TC_MON_STEP_OUT
+           || (rule == TC_MON_JUMP && MON_SECOND_JUMP)
+           || ((rule == TC_MON_DROPOUT || rule == TC_MON_OFF_RANGE) && MON_SECOND_INSTANT);
+}
+
+/* (cmon89) 1: sensor k out the first, or the second where an instant fault may take one */
+static int mon_is_out(const tc_state *s, int k) {
+    return k >= 0 && (k == s->mon_out || (MON_SECOND_INSTANT && k == s->mon_out2));
 }
 
 /* k in the first free place out (the second: cmon85), its calm count and its within-band mark
@@ -348,10 +372,8 @@ static void mon_put_out(tc_state *s, int k) {
 static void mon_exclude(tc_state *s, int k, int rule) {
     int blind = ((rule == TC_MON_DROPOUT || rule == TC_MON_FREEZE) && mon_drops(k))
                 || (rule == TC_MON_JUMP && mon_spikes(k));
-    int second = s->mon_out >= 0 && !((rule == TC_MON_DRIFT_OUT || rule == TC_MON_FREEZE
-                                       || rule == TC_MON_STEP_OUT
-                                       || (rule == TC_MON_JUMP && MON_SECOND_JUMP))
-                                      && MON_PORTED[k] && mon_second_held(s, k));
+    int second = s->mon_out >= 0 && !(mon_second_rule(rule) && mon_second_kind(s, k, rule)
+                                      && mon_second_held(s, k));
     if (second || !(MON_PORTED[k] || blind)) {
         mon_flag(s, TC_MON_NOT_IN_CODE, k, second ? TC_MON_SECOND : TC_MON_BLIND);
         return;
@@ -457,7 +479,7 @@ static int mon_refuses(tc_state *s, const double u[]) {
         double x = u[TC_MONITORED[k]];
         if (!measured(u, TC_MONITORED[k])) {
             if (miss < 0) miss = k;
-            if (s->first || k != s->mon_out) {
+            if (s->first || !mon_is_out(s, k)) {
                 if (j < 0) j = k;
                 nnew++;
             }
@@ -465,7 +487,10 @@ static int mon_refuses(tc_state *s, const double u[]) {
     }
     if (miss < 0) return 0;
     if (s->first) rule = TC_MON_MISSING_FIRST;
-    else if (nnew > 1 || (nnew && (s->mon_out >= 0 || rng))) rule = TC_MON_MISSING_SECOND;
+    else if (nnew > 1 || (nnew && (rng || (s->mon_out >= 0 && !(
+                 MON_SECOND_INSTANT && mon_second_kind(s, j, TC_MON_DROPOUT)
+                 && mon_second_held(s, j))))))
+        rule = TC_MON_MISSING_SECOND;   /* (cmon89: a dropout as the second out taken) */
     else if (nnew && !MON_PORTED[j] && !mon_drops(j)) rule = TC_MON_MISSING_BLIND;
     if (rule) mon_flag(s, TC_MON_NOT_IN_CODE, j >= 0 ? j : miss, rule);
     return rule;
@@ -506,22 +531,30 @@ static int mon_serving(const tc_state *s) {
    machine hotter than training), -1 not in the code (flagged): several at once, one with
    another sensor out, one of a sensor the code does not hold out */
 static int mon_beyond(tc_state *s, const double x[], const double d[], int j, int nrng) {
-    int m;
+    double M[NM][NM], lev[NM];
+    int m, out[NM], nin = 0;
     if (j < 0) return 0;   /* (none beyond; said so that gcc -O2 -Warray-bounds, inlining
                               this into the step, does not index MON_PREDICTABLE[-1]) */
-    if (nrng > 1 || (s->mon_out >= 0 && j != s->mon_out)) {
+    if (nrng > 1 || (s->mon_out >= 0 && !mon_is_out(s, j) && !(
+            MON_SECOND_INSTANT && mon_second_kind(s, j, TC_MON_OFF_RANGE)
+            && mon_second_held(s, j)))) {
         mon_flag(s, TC_MON_NOT_IN_CODE, j, TC_MON_RANGE);
         return -1;
     }
-    if (j == s->mon_out && !MON_PREDICTABLE[j]) {   /* (served: its leak judges its return) */
+    if (mon_is_out(s, j) && !MON_PREDICTABLE[j]) {   /* (served: its leak judges its return) */
         mon_flag(s, TC_MON_NOT_IN_CODE, j, TC_MON_BLIND);
         return -1;
     }
-    if (j == s->mon_out) return 1;   /* out already: read as missing */
-    if (NM - 1 >= MON_MIN_ACTIVE) {   /* predicted from the others, all within range */
+    if (mon_is_out(s, j)) return 1;   /* out already: read as missing */
+    for (m = 0; m < NM; m++) {
+        out[m] = m == j || m == s->mon_out || m == s->mon_out2;
+        nin += !out[m];
+    }
+    /* predicted from the others in, all within range (cmon89: one out already, the set solved) */
+    if (nin >= MON_MIN_ACTIVE && mon_operator(out, M, lev)) {
         double p = 0.0, edge;
         int up = x[j] > MON_HI_C[j], beyond;
-        for (m = 0; m < NM; m++) p += MON_M[j + 1][j][m] * (m == j ? 0.0 : d[m]);
+        for (m = 0; m < NM; m++) p += M[j][m] * (out[m] ? 0.0 : d[m]);
         p += x[j] - d[j];
         edge = up ? MON_HI_C[j] : MON_LO_C[j];
         beyond = (up ? p - edge : edge - p) > MON_WARNING[j];
@@ -953,7 +986,7 @@ static void monitor_step(tc_state *s, double u[], double dt) {
         x[k] = u[TC_MONITORED[k]];   /* (NAN: missing, one mon_refuses let through) */
         missing[k] = !isfinite(x[k]);
         s->mon_read[k] = !missing[k];
-        if (missing[k] && lost < 0) lost = k;
+        if (missing[k] && (lost < 0 || (mon_is_out(s, lost) && !mon_is_out(s, k)))) lost = k;
         rng[k] = x[k] < MON_LO_LIM[k] || x[k] > MON_HI_LIM[k];
         if (rng[k] && far < 0) far = k;
         nrng += rng[k];
@@ -1002,11 +1035,11 @@ static void monitor_step(tc_state *s, double u[], double dt) {
        again: rebuilt as it was; out for a freeze, flagged: its re-admission band is the served
        monitor's path, not held here) */
     if (lost >= 0) {
-        if (lost != s->mon_out) mon_exclude(s, lost, TC_MON_DROPOUT);
+        if (!mon_is_out(s, lost)) mon_exclude(s, lost, TC_MON_DROPOUT);
         else if (!s->mon_dropped[lost] && !s->mon_jumps[lost])
             mon_flag(s, TC_MON_NOT_IN_CODE, lost, TC_MON_MISSING_FROZEN);
     }
-    if (far >= 0 && far != s->mon_out) mon_exclude(s, far, TC_MON_OFF_RANGE);   /* (cmon80) */
+    if (far >= 0 && !mon_is_out(s, far)) mon_exclude(s, far, TC_MON_OFF_RANGE);   /* (cmon80) */
     for (k = 0; k < NM && nbig; k++) {
         if (!big[k]) continue;
         if (nbig > 1) mon_flag(s, TC_MON_NOT_IN_CODE, k, TC_MON_COMMON);
