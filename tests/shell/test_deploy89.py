@@ -20,7 +20,7 @@ import pandas as pd
 import pytest
 
 from test_deploy88 import spiked_chain
-from test_deployed_as_scored import COLUMNS, FAST, LAB, CONTRACT, record  # noqa: F401  (the fixture)
+from test_deployed_as_scored import COLUMNS, CONTRACT, FAST, LAB, record  # noqa: F401  (the fixture)
 from test_export import built_stream, needs_cc
 from thermocomp.shell.cli import main
 
