@@ -53,8 +53,6 @@ Scored: (filled in after the sweep; nothing above changed after any fresh number
 from __future__ import annotations
 
 import json
-import os
-import shutil
 import sys
 from pathlib import Path
 
@@ -67,7 +65,7 @@ sys.path[:0] = [str(HERE)]
 from _cli import run_commands  # noqa: E402
 from bench_audit86b import stage, test_frames  # noqa: E402
 from bench_deploy88 import COLUMNS as COLUMNS88  # noqa: E402
-from bench_deploy88 import FAMILIES, LONG, WRAPPERS, cell, day_files, extra_of  # noqa: E402
+from bench_deploy88 import LONG, cell, extra_of, sweep  # noqa: E402
 from cpu import cpu_seconds  # noqa: E402
 
 RECORDS = {
@@ -130,31 +128,9 @@ def cell89(root: Path, record: str, family: str, wrapper: str, data: Path) -> di
     return {**row, "cpu": cpu_seconds() - start}
 
 
-def sweep(root: Path, chosen: list[str]) -> None:
-    os.environ["THERMOCOMP_ROOT"] = str(root)
-    if root.exists():
-        shutil.rmtree(root)
-    root.mkdir(parents=True)
-    (root / "conf").symlink_to(REPO / "conf")
-    records = [r for r in RECORDS if r in chosen] or list(RECORDS)
-    families = [f for f in FAMILIES if f in chosen] or list(FAMILIES)
-    print(f"{'cell':<24}" + "".join(f"{c:>10}" for c in COLUMNS) + "  note", flush=True)
-    for record in records:
-        data = root / "data" / record
-        rc, said = stage("simulate", *RECORDS[record], f"data.path={data}")
-        assert rc == 0, said
-        if record.startswith("dl"):
-            day_files(data)
-        for family in families:
-            for wrapper in WRAPPERS:
-                r = cell89(root, record, family, wrapper, data)
-                cells = "".join(f"{r[c]:>10.7g}" if c in r else f"{'-':>10}" for c in COLUMNS)
-                print(f"{r['cell']:<24}{cells}  {r.get('note', '')}", flush=True)
-
-
 def main(argv: list[str]) -> int:
     return run_commands(__doc__, {
-        "sweep": lambda root, *chosen: sweep(Path(root).resolve(), list(chosen)),
+        "sweep": lambda root, *chosen: sweep(Path(root).resolve(), list(chosen), RECORDS, cell89, COLUMNS),
     }, argv, cpu=sys.stderr)
 
 
