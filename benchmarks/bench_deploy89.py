@@ -88,9 +88,9 @@ row to the digit on lr / dl (one train interval) and are not repeated::
   lr9306/arx            1.071432   1.071432   1.06976    1     8    0   20.8 / 21.1
   lr9306/lagbank        1.570381   1.557708   8.664031   1     8    0   15.3 / 16.1
   lr9306/hammerstein    2.309152   2.2973     20.34544   1     8    0   19.9 / 20.9
-  lr9306/arx_rf         1.191719   1.191719   1.18705    1     8    0   54.3 / 53.5
-  lr9306/lstm-none      0.9322771  0.9322771  0.9320648  1     8    0   61.5
-LR9306_MORE
+  lr9306/arx_rf         1.191719   1.191719   1.18705    1     8    0   48.1 / 48.6
+  lr9306/lstm           0.9322771  0.9322771  0.9320648  1     8    0   58.9 / 54.7
+  lr9306/auto-none      0.8849595  0.8849595  0.8849595  1     8    0   10.1; auto-ati exit 2
 cr9308 (nothing continues: ``ncold`` 0, no lead-in; warm = cold = every column), none / ati::
 
   cr9308/mlr            0.8482046 / 0.6143747       cr9308/arx_rf   0.8595478 / 0.7623871
@@ -99,7 +99,10 @@ cr9308 (nothing continues: ``ncold`` 0, no lead-in; warm = cold = every column),
   cr9308/lagbank        0.9033184 / 0.549599        (cpu 6-45 s a cell)
   cr9308/hammerstein    0.8260081 / 0.549599
 
-Not run by the deadline: lr9309 and dl9310 (seeds 9309, 9310 unspent), LR9306_LEFT; main's side
+(lr9306 as a second whole sweep gave it, ``sweep ROOT lr9306``: every column equal to the first,
+interrupted sweep's where both ran, and ``plain`` on mlr-none = ``run``.)
+
+Not run by the deadline: lr9309 and dl9310 (seeds 9309, 9310 unspent); main's side
 (the change adds pack entries and a monitor report only: no warm figure can move; the tests show
 main has neither).
 
@@ -121,9 +124,10 @@ Against the bar
 2. Cold: ``cold`` = ``pcold`` = ``Craw`` = ``Pcold`` in every cell but lr9212/arx_rf (the same
    fallback: ``Pcold`` 0.99966 over the 764 rows before the cut, ``Craw`` 1.039593 against
    ``cold`` 1.041456); ``ncold`` 1 on every lr / dl cell, 0 on cr9308; every pack exits 0
-   including its cold campaign (45 cells); no cold entry cut but lr9212/arx_rf's.
+   including its cold campaign (60 cells); no cold entry cut but lr9212/arx_rf's.
 3. monitor: ``same`` = 1 in every cell (its ``lead_in_events`` = replay's, 8 / 2 / 8 on lr9212 /
-   dl9307 / lr9306, none on cr9308) and ``mon`` = ``replay`` to the digit in every cell.
+   dl9307 / lr9306, none on cr9308; on a0d62dea monitor.json has none) and ``mon`` = ``replay``
+   to the digit in every cell.
 4. The tests (tests/shell/test_deploy89.py, 3) fail on a0d62dea (KeyError 'B.cold', check.sh
    without it, KeyError 'lead_in_events') and pass on the branch.  By the bar as written: the
    pack's cold campaign and monitor's warm-up report KEPT (1-3 hold in every cell but
