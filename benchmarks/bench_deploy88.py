@@ -310,25 +310,30 @@ COLUMNS = ["run", "batch", "plain", "replay", "promo", "C", "cold", "pcold", "Cr
            "events", "cpu"]
 
 
-def sweep(root: Path, chosen: list[str]) -> None:
+def sweep(root: Path, chosen: list[str], records: dict | None = None, run_cell=None,
+          columns: list[str] | None = None) -> None:
+    """The table: per record of ``records`` (default :data:`RECORDS`) in ``chosen`` (all where it
+    names none) and family x wrapper, ``run_cell`` (default :func:`cell`) printed in ``columns``
+    (deploy89's bench runs its own cell on its records through this)."""
+    records_all, run_cell, columns = records or RECORDS, run_cell or cell, columns or COLUMNS
     os.environ["THERMOCOMP_ROOT"] = str(root)
     if root.exists():
         shutil.rmtree(root)
     root.mkdir(parents=True)
     (root / "conf").symlink_to(REPO / "conf")
-    records = [r for r in RECORDS if r in chosen] or list(RECORDS)
+    records = [r for r in records_all if r in chosen] or list(records_all)
     families = [f for f in FAMILIES if f in chosen] or list(FAMILIES)
-    print(f"{'cell':<24}" + "".join(f"{c:>10}" for c in COLUMNS) + "  note", flush=True)
+    print(f"{'cell':<24}" + "".join(f"{c:>10}" for c in columns) + "  note", flush=True)
     for record in records:
         data = root / "data" / record
-        rc, said = stage("simulate", *RECORDS[record], f"data.path={data}")
+        rc, said = stage("simulate", *records_all[record], f"data.path={data}")
         assert rc == 0, said
         if record.startswith("dl"):
             day_files(data)
         for family in families:
             for wrapper in WRAPPERS:
-                r = cell(root, record, family, wrapper, data)
-                cells = "".join(f"{r[c]:>10.7g}" if c in r else f"{'-':>10}" for c in COLUMNS)
+                r = run_cell(root, record, family, wrapper, data)
+                cells = "".join(f"{r[c]:>10.7g}" if c in r else f"{'-':>10}" for c in columns)
                 print(f"{r['cell']:<24}{cells}  {r.get('note', '')}", flush=True)
 
 

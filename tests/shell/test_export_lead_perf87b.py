@@ -47,15 +47,19 @@ def test_the_lead_in_is_streamed_once_and_the_pack_is_the_whole_streams(continue
     entries = summary["campaigns"]
     lead = len(next(iter(lead_ins.values())))
     rows = len(next(iter(campaigns.values())))
+    # (deploy89) the campaign from a cold start too: its own rows, no lead-in to share
+    cold = [e for e in entries if "cold_start" in e]
+    entries = [e for e in entries if "cold_start" not in e]
+    assert [e["lead_in_rows"] for e in cold] == [0]
     assert len(entries) > 2 and {e["lead_in_rows"] for e in entries} == {lead}   # copies planted
     # the lead-in's rows once, each campaign's own rows once (none cut before its stream)
-    assert len(served) == lead + len(entries) * rows
-    assert len(simulated) == lead + sum(e["rows"] - lead for e in entries)
+    assert len(served) == lead + len(entries) * rows + rows
+    assert len(simulated) == lead + sum(e["rows"] - lead for e in entries) + rows
     # the whole stream per campaign, as before: the same files to the byte
     before = len(served)
     monkeypatch.setattr(pack_module._Lead, "fits", lambda self, frame: False)
     whole = conformance_pack(deployed, ss, campaigns, lead_ins)
-    assert len(served) - before == lead + len(entries) * (lead + rows)   # (the lead-in's own too)
+    assert len(served) - before == lead + len(entries) * (lead + rows) + rows   # (the lead-in's too)
     assert whole[0] == files and whole[1] == summary
     for e in entries:
         text = files[f"{e['folder']}/rows.csv"]

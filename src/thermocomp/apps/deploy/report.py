@@ -436,14 +436,15 @@ def replay_lines(report: dict) -> list[str]:
     return lines + lead_in_line(report.get("lead_in_events") or [])
 
 
-def lead_in_line(events: list[dict]) -> list[str]:
+def lead_in_line(events: list[dict], unmonitored: str = "RMSE batch (run's)") -> list[str]:
     """The line saying the sensor monitor acted while the stream was warmed on the campaigns a
     test campaign continues (``replay.json``'s ``lead_in_events``): the test campaign starts
-    from the state that left, where RMSE batch (run's) streamed them unmonitored (deploy88)."""
+    from the state that left, where the figure named ``unmonitored`` (replay's and promote's
+    RMSE batch, run's; monitor's RMSE fixed) streamed them unmonitored (deploy88, deploy89)."""
     if not events:
         return []
     e = events[0]
     return [f"warm-up: {len(events)} events of the sensor monitor on the campaigns the test "
             f"campaigns continue (first: {e.get('sensor') or '-'} {e.get('to', '')}, "
             f"{-e['time'] / 3600:.2f} h before {e['campaign']}); the test campaign starts from the "
-            "state they left, RMSE batch (run's) saw them unmonitored"]
+            f"state they left, {unmonitored} saw them unmonitored"]

@@ -23,17 +23,19 @@ from ..deploy.report import (
     campaign_start,
     first_exclusion,
     guarded_line,
+    lead_in_line,
     new_states,
     streamed_hours,
 )
-from ..deploy.streaming import warm
+from ..deploy.streaming import on_campaign_clock, warm, warm_events
 from ..deploy.surveillance import STATES
 from .blind import undetected_offset_um
 from .placement import covariance_sensors, qr_sensors
 
 
 def stream_campaign(model, df: pd.DataFrame, lead_in: pd.DataFrame | None = None,
-                    clamped: list | None = None, guarded: list | None = None
+                    clamped: list | None = None, guarded: list | None = None,
+                    warmed_events: list | None = None
                     ) -> tuple[np.ndarray, list[dict], tuple[list, list]]:
     """Stream one campaign from its start (a reset, or warmed on ``lead_in``, the campaigns it
     continues: :func:`~thermocomp.apps.deploy.streaming.warm`); a step of the fixed compensator
@@ -43,13 +45,18 @@ def stream_campaign(model, df: pd.DataFrame, lead_in: pd.DataFrame | None = None
     clock, :mod:`~thermocomp.core.timerule`).  ``clamped``: a list given gets each
     row's count of inputs clamped to the training envelope; ``guarded``: a list given gets, of a
     model with a correction guard, the campaign's rows per target whose correction it changed
-    (:func:`~thermocomp.apps.deploy.guard.guard_changes`, the lead-in's not)."""
+    (:func:`~thermocomp.apps.deploy.guard.guard_changes`, the lead-in's not); ``warmed_events``:
+    a list given gets the sensor monitor's events while the stream was warmed on ``lead_in``
+    (:func:`~thermocomp.apps.deploy.streaming.warm_events`, their times from the campaign's first
+    row: negative), as ``replay`` reports them (deploy89)."""
     X = df[model.columns_].to_numpy(float)
     t = df[TIME].to_numpy(float) if TIME in df.columns else np.arange(len(df), dtype=float)
     y = np.zeros((len(X), len(model.targets_)))
     events, states, errors = [], [], []
     warm(model, lead_in, df)
     warmed = guard_changes(model)
+    # what the monitor did on the lead-in leaves the state the campaign starts from (deploy88)
+    lead = warm_events(model, lead_in)
     t0 = 0.0
     for i in range(len(X)):
         n = 0
@@ -57,6 +64,8 @@ def stream_campaign(model, df: pd.DataFrame, lead_in: pd.DataFrame | None = None
             y[i], n = model._step(X[i], t[i])
             if not i and isinstance(model, AdaptiveCompensator):
                 t0 = model.clock_time_
+                if warmed_events is not None:
+                    warmed_events += on_campaign_clock(lead, t0)
         except ValueError:                   # the fixed compensator on a missing value
             if isinstance(model, AdaptiveCompensator):
                 raise
@@ -88,7 +97,7 @@ def _stream_all(adaptive, fixed, comp, streamed: dict, leads: dict,
     names = adaptive.monitor.names
     out = {"counts": np.zeros((len(names), len(STATES)), dtype=np.int64), "first_alarm": {},
            "events": [], "traces": {}, "res_f": [], "res_a": [], "res_frozen": [], "corr": [],
-           "hours": 0.0, "clamped": 0, "samples": 0, "guarded": []}
+           "hours": 0.0, "clamped": 0, "samples": 0, "guarded": [], "lead_in_events": []}
     measured = comp.measured(streamed) if any(t in df.columns for df in streamed.values()
                                               for t in comp.targets_) else None
     for cid, df in streamed.items():
@@ -96,8 +105,10 @@ def _stream_all(adaptive, fixed, comp, streamed: dict, leads: dict,
         y_fix, _, _ = stream_campaign(fixed, df, leads.get(cid), clamped)
         out["clamped"] += int(np.count_nonzero(clamped))
         out["samples"] += len(df)
+        warmed: list[dict] = []
         y_ad, ev, (states, errors) = stream_campaign(adaptive, df, leads.get(cid),
-                                                     guarded=out["guarded"])
+                                                     guarded=out["guarded"], warmed_events=warmed)
+        out["lead_in_events"] += [{"campaign": cid, **e} for e in warmed]
         start = campaign_start(df, adaptive.period_s)   # CLI.md: times in s from the campaign start
         t = (df[TIME].to_numpy(float) if TIME in df.columns else np.arange(len(df), dtype=float)) - start
         m = None if measured is None else measured[cid][adaptive.targets_].to_numpy()
@@ -181,6 +192,8 @@ def monitor_report(adaptive: AdaptiveCompensator, fixed, comp, streamed: dict, t
                         "rounding_c": mon.rounding_c.tolist()},
               "alarms": alarm_rate(run["events"], run["hours"]),
               "campaigns": list(streamed)}
+    if run["lead_in_events"]:           # (deploy89) as replay.json's, present when there is any
+        report["lead_in_events"] = run["lead_in_events"]
     if adapt is not None:
         for t, figures in adapt_figures(adapt, run["res_frozen"], adaptive.targets_).items():
             report["targets"][t]["adapt"] = figures
@@ -210,7 +223,7 @@ def summary_lines(report: dict) -> list[str]:
     lines.append(f"events: {len(report['events'])}, exclusions: {len(excl)}"
                  + ("" if rate is None else f" ({rate:.3g} per 100 h)")
                  + first_exclusion(report["events"]) + new_states(report["events"]))
-    return lines
+    return lines + lead_in_line(report.get("lead_in_events") or [], "RMSE fixed")
 
 
 def _offset_lines(sensors: dict) -> list[str]:

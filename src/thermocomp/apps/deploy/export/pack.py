@@ -28,6 +28,12 @@ first campaign with a fault planted follow (:func:`~.watch.planted`: a jump, a f
 dropout of a monitored sensor from its middle row on, ``planted`` in their entries), the served
 model's monitor acting on them: every pack checks the code's monitor, cut where it parts.
 
+(deploy89) Each campaign that continues others follows once more as ``<campaign>.cold``, streamed
+from a reset at its first row, not warmed on their rows (``cold_start`` in its entry: the campaign
+it copies): a controller restarted mid-campaign, or ``stream`` fed the campaign's file alone,
+starts there, and what the code gives from that state is checked like the continued stream (its
+figure is ``replay``'s ``rmse_cold_start``).
+
 Of a model that reads no ambient sensor and picks its laws by a campaign's initial ambient
 (``ambient_given``: the manifest's ``ambient_c``), each campaign's value is in check.json's entry
 and in an ``ambient_c`` column of its rows.csv, which ``stream.c`` reads at a campaign's first row.
@@ -112,6 +118,14 @@ def fed(campaign: pd.DataFrame, lead_in: pd.DataFrame | None) -> pd.DataFrame:
     joined = pd.concat([lead_in, campaign], ignore_index=True)
     joined.attrs = dict(lead_in.attrs)
     return joined
+
+
+def cold_copies(campaigns: Mapping[str, pd.DataFrame], lead_ins: Mapping[str, pd.DataFrame]
+                ) -> dict[str, tuple[pd.DataFrame, str]]:
+    """``{<campaign>.cold: (campaign, the campaign it copies)}``: each campaign with a lead-in (one
+    that continues others), to be streamed from a reset at its first row (deploy89)."""
+    return {f"{cid}.cold": (df, cid) for cid, df in campaigns.items()
+            if lead_ins.get(cid) is not None and len(lead_ins[cid])}
 
 
 def _refused_row(frame: pd.DataFrame, ss: StateSpace) -> tuple[int, str] | None:
@@ -242,7 +256,10 @@ def conformance_pack(deployed, ss: StateSpace, campaigns: Mapping[str, pd.DataFr
     faults = planted(ss, campaigns)     # (the code's monitor checked on planted faults, cmon76)
     for cid, (_, _, source) in faults.items():
         lead_ins[cid] = lead_ins.get(source)
-    campaigns = {**campaigns, **{c: f[0] for c, f in faults.items() if c not in campaigns}}
+    # (deploy89) a continuing campaign from a reset too: the code's cold start, no lead-in
+    colds = {c: f for c, f in cold_copies(campaigns, lead_ins).items() if c not in campaigns}
+    campaigns = {**campaigns, **{c: f[0] for c, f in faults.items() if c not in campaigns},
+                 **{c: f[0] for c, f in colds.items()}}
     folders = folder_names(campaigns)
     outputs = [correction_column(t) for t in ss.targets]
     monitor = bool(not_in_code(deployed))
@@ -263,6 +280,8 @@ def conformance_pack(deployed, ss: StateSpace, campaigns: Mapping[str, pd.DataFr
         entry = {"campaign": str(cid), "folder": f"{CHECK}/{folders[cid]}", "lead_in_rows": lead}
         if cid in faults:
             entry["planted"] = faults[cid][1]
+        if cid in colds:
+            entry["cold_start"] = colds[cid][1]
         if ss.ambient_given:
             entry[AMBIENT_C] = a0
         if not len(frame):
