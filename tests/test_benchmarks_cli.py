@@ -48,7 +48,7 @@ COMMAND_BENCHES = (
     "bench_mon81g", "bench_mon82", "bench_mon82b", "bench_mon82c", "bench_mon82d", "bench_mon83",
     "bench_mon83b", "bench_mon83c", "bench_mon83d", "bench_mon84", "bench_mon84b", "bench_mon84c",
     "bench_mon84d", "bench_mon85", "bench_mon85b", "bench_mon86", "bench_mon86b", "bench_mon87",
-    "bench_mon88", "bench_mon89", "bench_moretest68", "bench_nested63", "bench_pair70", "bench_pair82",
+    "bench_mon88", "bench_mon89", "bench_mon89b", "bench_moretest68", "bench_nested63", "bench_pair70", "bench_pair82",
     "bench_pde66", "bench_pen0b69", "bench_perf87", "bench_perf87b", "bench_perf88", "bench_planted69",
     "bench_planted72", "bench_power78", "bench_range73", "bench_range77", "bench_rate71", "bench_rate83",
     "bench_remeasure62", "bench_rigdiag70", "bench_speedsq68", "bench_stable67", "bench_stranger63",

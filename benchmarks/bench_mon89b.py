@@ -1,0 +1,159 @@
+"""A blind sensor's own one-sample jump behind a frozen-out partner kept it out to the campaign's
+end (stop 88's mon88 "left": cr9201 C12; stop 89, mon89b).
+
+Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is that tree's)::
+
+    python benchmarks/bench_mon89b.py traced ROOT          # cr9201: replay, events, C12 per part
+    python benchmarks/bench_mon89b.py fresh ROOT SEEDS     # fresh records -> ROOT/fresh.json
+    python benchmarks/bench_mon89b.py compare BEFORE AFTER # two fresh.json side by side
+    python benchmarks/bench_mon89b.py pack ROOT            # compiled C / mirror against served
+
+``traced``: in ``ROOT`` (made anew; the measured tree's ``conf/`` linked in) bench_mon88's fresh
+cr9201 (``sim=climate_room``, 12 runs, its test campaigns given :func:`~bench_mon88.planted`'s
+frozen ``T_amb`` and spike), ``model=mlr``: ``run`` -> ``replay``, the replay's RMSE and events;
+then per test campaign the deployed stream's error and the error of the same model fed the
+record drawn again without the planted faults (the true readings: the model's own error, mon89's
+"measure the models' error, not only the readings"), RMSE and mean per part (before the freeze,
+freeze to spike, the spike's 12 rows, after).  ``fresh``: per seed of SEEDS bench_mon88's
+generators as :data:`FRESH` says (9351-9355 long lathe records, the generator's spikes as drawn;
+9356-9360 climate rooms with a frozen ``T_amb`` and a planted spike), ``model=mlr``, ``run`` ->
+``replay`` -> ``ROOT/fresh.json`` (bench_mon88's ``fresh``).  ``compare``: bench_mon88's
+(record RMSE mean over targets, before -> after, exclusions kept / lost / new, re-admissions).
+``pack``: cr9201 through the served stream, the numpy mirror and the compiled C (gcc -Werror),
+the export with and without ``jump_cleared``: rows where C = served.
+
+Traced (main 2f23e004; cr9201, mlr, test C12: ``T_amb`` frozen from row 65, ``T_nc_cabinet``
+-3.31 °C on row 129 alone)
+------
+4740 s: ``T_amb`` out for its freeze (23.85 °C for 16 samples while the field moved 0.43 °C),
+constant to the end (past ``blind_run``).  With it out no sensor predicts ``T_nc_cabinet`` (the
+coupled pair of cr9031).  7680 s: ``T_nc_cabinet`` reads 3.33 °C low in one sample: a jump;
+excluded as the second out, re-referenced by its whole step (blind: no change the others
+predict); 7740 s its reading returns: a second jump, re-referenced by its whole step again
+(reference net +0.05 °C: the sample's true change and noise).  From 8340 s it is calm for its
+window, due back; but judged in the set it returns to it is blind (leverage past
+``max_leverage``), and a sensor the others predict with all in never passes blind
+(``_pass_once_back``: ``ok = ~predictable`` where blind); mon88's ``_blind_for_frozen`` clears
+only one out by the field's judgement, not one out for a jump: out to C12's end (193 rows, 53
+after the spike).  The compiled C follows served on every row (it holds it out as the second).
+
+The rule (served ``Readmission._pass_once_back`` / ``_jumped_alone`` / ``_readmit``; mirror
+``watch.py``; C ``watch_c.py``; export key ``monitor.jump_cleared``)
+------
+A sensor out for its own jumps alone (the last detector to fire a jump: not a dropout, out of
+range, a freeze, nor the field's judgement), blind in the re-admission set only for want of a
+partner out and frozen by the rule for a sensor no other predicts (mon88's
+``_blind_for_frozen``), passes after its calm window, as one no other predicts does; and at its
+return its jumps are undone as for one no other predicts (several: noise or a spike; one: the
+reading nearer its last good value), since nothing else can tell a spike from a step there.  An
+export without the key keeps it out (older exports unchanged).  Work: one operator per frozen
+partner at a due blind sensor's check (mon88's), one at a return in the mirror and the C.
+
+Bar (written before the fresh seeds 9351-9360 were drawn or scored; cr9201 traced and run on
+this tree first: cr9201's replay RMSE mean over targets 1.2311 -> 1.2496 (+1.5 %), E_X 0.7674 ->
+0.8015: in C12 the deployed error from the return follows the true-reading model's (mean E_X
+after the spike -0.346 -> +0.605 µm, the true-reading model's +0.620): main's held-out pair was
+a lucky offset, said)
+---
+1. fresh 9351-9360 (``fresh`` then ``compare``, main's src = 2f23e004): no record's replay RMSE
+   (mean over targets) more than 2 % worse than main's.
+2. No planted-fault exclusion lost: every exclusion main makes (sensor, campaign, time) made by
+   the tree; no new exclusion.
+3. Healthy records no new events: tests/shell/test_monitor_healthy53.py and the monitor tests
+   pass; monitor / export tests and tests/test_readme.py pass.
+4. ``pack``: C = served on every row of cr9201's test campaigns with the key; without it as on
+   main (the key needed).
+KEPT if 1-4 hold; else REFUSED (src reverted; benchmarks/mon89b_rule.patch).
+"""
+
+from __future__ import annotations
+
+import copy
+import sys
+from pathlib import Path
+
+import numpy as np
+
+HERE = Path(__file__).resolve().parent
+sys.path[:0] = [str(HERE)]
+from _cli import run_commands  # noqa: E402
+from bench_mon88 import (  # noqa: E402
+    FRESH as MON88_FRESH,
+)
+from bench_mon88 import (  # noqa: E402
+    LONG,
+    ROOM,
+    _drawn,
+    _pack_rows,
+    _root,
+    compare,
+    drawn_fresh,
+    print_events,
+    replayed,
+)
+from bench_mon88 import fresh as mon88_fresh  # noqa: E402
+from cpu import cpu_seconds  # noqa: E402
+
+TRACED = 9201
+FRESH = {**{seed: ("lr", LONG, ("data.reference=none",)) for seed in range(9351, 9356)},
+         **{seed: ("cr", ROOM, ()) for seed in range(9356, 9361)}}
+
+
+def traced(root: str) -> None:
+    """cr9201: replay and events, then the deployed and the true-reading error per part."""
+    from _ccode import deployed_on
+
+    from thermocomp.apps.deploy.report import plain, stream_rows
+    from thermocomp.core.continuation import lead_ins
+
+    folder = _root(root)
+    name, data, faults, extra = drawn_fresh(folder, TRACED, MON88_FRESH)
+    start = cpu_seconds()
+    got = replayed(folder, name, data, ("model=mlr",), extra)
+    rmse = ", ".join(f"{k} {v:.4f}" for k, v in got["rmse"].items())
+    print(f"{name}: {faults}\n  replay RMSE {rmse} µm (mean {np.mean(list(got['rmse'].values())):.4f});"
+          f" excluded at the end {got['excluded']}; CPU {cpu_seconds() - start:.1f} s", flush=True)
+    print_events(got["events"], 200)
+    clean = _drawn(f"{name}-clean", TRACED, MON88_FRESH[TRACED][1], folder)
+    deployed, ds, tests = deployed_on(data, "mlr", extra)
+    _, true_ds, _ = deployed_on(clean, "mlr", extra)
+    leads = lead_ins(plain(deployed).compensator, ds, tests)
+    for t in tests:
+        frame = ds.campaigns[t].reset_index(drop=True)
+        errors = frame[deployed.targets_].to_numpy(float)
+        served = stream_rows(copy.deepcopy(deployed), frame, str(t), lead_in=leads.get(t))
+        true = stream_rows(plain(copy.deepcopy(deployed)), true_ds.campaigns[t].reset_index(drop=True),
+                           str(t), lead_in=leads.get(t))
+        r = {"deployed": errors - served.y, "true readings": errors - true.y}
+        print(f"{name} {t}: RMSE " + ", ".join(
+            f"{k} {np.sqrt(np.mean(v ** 2, axis=0)).round(4)}" for k, v in r.items()), flush=True)
+        n = len(frame)
+        for lo, hi in ((0, n // 3), (n // 3, 2 * n // 3), (2 * n // 3, 2 * n // 3 + 12),
+                       (2 * n // 3 + 12, n)):
+            print(f"  rows {lo}-{hi}: " + "; ".join(
+                f"{k} RMSE {np.sqrt(np.mean(v[lo:hi] ** 2, axis=0)).round(3)} mean "
+                f"{v[lo:hi].mean(axis=0).round(3)}" for k, v in r.items()), flush=True)
+
+
+def fresh(root: str, seeds: str) -> None:
+    """Fresh records (module doc; bench_mon88's ``fresh`` on :data:`FRESH`) -> ``ROOT/fresh.json``."""
+    MON88_FRESH.update(FRESH)
+    mon88_fresh(root, seeds)
+
+
+def pack(root: str) -> None:
+    """cr9201 through the code, with and without ``jump_cleared`` (module doc)."""
+    folder = _root(root)
+    name, data, _, extra = drawn_fresh(folder, TRACED, MON88_FRESH)
+    start = cpu_seconds()
+    lines = _pack_rows(folder, name, data, extra, keys=("jump_cleared",))
+    print("\n".join(lines) + f"\n  CPU {cpu_seconds() - start:.1f} s", flush=True)
+
+
+def main(argv: list[str]) -> int:
+    return run_commands(__doc__, {"traced": traced, "fresh": fresh, "compare": compare,
+                                  "pack": pack}, argv, cpu=sys.stderr)
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
