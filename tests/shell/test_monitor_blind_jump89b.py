@@ -77,6 +77,17 @@ def test_its_jumps_are_undone_at_its_return(room, monkeypatch):
     assert refs[-1] == pytest.approx(refs[row - 1], abs=1e-12)   # main: +0.05 °C kept
 
 
+def test_one_no_other_predicts_comes_back_on_calm_as_before(room):
+    """The control (passes on main; the rule's first draft, which cleared it only behind a
+    frozen partner that would predict it, kept it out to the end: fresh cr9360): a one-sample
+    jump of ``T_nc_tool_motor``, predicted by no sensor, behind the frozen ``T_amb``."""
+    deployed, _, drawn, _, row = room
+    frame = frozen_amb(drawn)
+    frame.loc[row, "T_nc_tool_motor"] += 2.48
+    moves = _moves(stream_rows(deployed, frame, "C12").events, "T_nc_tool_motor")
+    assert [to for to, _ in moves] == ["excluded", "ok"], moves
+
+
 def test_the_campaign_as_drawn_stays_quiet(room):
     """The control: C12 as drawn, nothing excluded (on main too)."""
     deployed, _, drawn, _, _ = room

@@ -892,7 +892,7 @@ class CodeMonitor:
             ok[explains] = bool((worst[judged] < warn[judged]).all())
         # (mon88) one out by the field's judgement, blind only for want of a partner out frozen
         # (mon89b) ... or out for its own jumps alone (``jump_cleared``)
-        jumped = (self.jumps > 0) & ~self.by_field & ~self.dropped & ~self.froze
+        jumped = self.predictable & (self.jumps > 0) & ~self.by_field & ~self.dropped & ~self.froze
         cleared = self.by_field | (jumped if self.a["jump_cleared"] else False)
         if self.a["cleared"]:
             for j in np.flatnonzero(trial & blind & cleared & ~self.explains & ~self._active()):

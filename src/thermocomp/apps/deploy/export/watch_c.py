@@ -419,8 +419,8 @@ static void mon_pass_once_back(const tc_state *s, const int trial[], int ok[], d
        (mon89b) or out for its own jumps alone */
     for (k = 0; k < NM && MON_CLEARED; k++)
         if (trial[k] && L[k] >= MON_MAX_LEV && !s->mon_explains[k]
-            && (s->mon_by_field[k] || (MON_JUMP_CLEARED && s->mon_jumps[k] && !s->mon_dropped[k]
-                                       && !s->mon_froze[k]))
+            && (s->mon_by_field[k] || (MON_JUMP_CLEARED && MON_PREDICTABLE[k] && s->mon_jumps[k]
+                                       && !s->mon_dropped[k] && !s->mon_froze[k]))
             && (k == s->mon_out || k == s->mon_out2))
             ok[k] = mon_blind_for_frozen(s, k, trial);
 }

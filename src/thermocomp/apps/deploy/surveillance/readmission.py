@@ -172,10 +172,11 @@ class Readmission:
         return ok, worst
 
     def _jumped_alone(self) -> np.ndarray:
-        """Which sensors are out for their own jumps alone: the last detector to fire on them a
-        jump (not a dropout, a reading out of range or a freeze), not by the field's judgement."""
-        return ((self._jumps > 0) & ~self._by_field & ~self._dropped & ~self._ranged
-                & ~self._froze)
+        """Which sensors the others predict are out for their own jumps alone: the last detector
+        to fire on them a jump (not a dropout, a reading out of range or a freeze), not by the
+        field's judgement.  (One no other predicts passes blind on calm already.)"""
+        return (self._predictable & (self._jumps > 0) & ~self._by_field & ~self._dropped
+                & ~self._ranged & ~self._froze)
 
     def _blind_for_frozen(self, u: int, trial: np.ndarray) -> bool:
         """Whether ``u``, no other in ``trial`` predicting it, would be predicted with a sensor
