@@ -16,12 +16,10 @@ import dataclasses
 import numpy as np
 import pytest
 
-from test_export import built_stream, needs_cc
-from test_export_cmon80 import _streamed
-from test_export_mon88 import _mirror_out
+from test_export import needs_cc
+from test_export_mon88 import _mirror_out, assert_code_as_served
 from test_monitor_readmit88 import deployed_record, frozen_amb
-from thermocomp.apps.deploy.export import exported_files, state_space
-from thermocomp.apps.deploy.export.pack import conformance_pack, corrections, fed
+from thermocomp.apps.deploy.export import state_space
 from thermocomp.apps.deploy.report import stream_rows
 from thermocomp.apps.deploy.surveillance.monitor import SensorMonitor
 
@@ -97,16 +95,7 @@ def test_the_campaign_as_drawn_stays_quiet(room):
 @needs_cc
 def test_the_code_brings_it_back_as_served(room, tmp_path):
     deployed, ss, _, frame, _ = room
-    tests = {"C12": frame}
-    want = corrections(ss, stream_rows(deployed, fed(frame, None), "C12").y)
-    assert _mirror_out(ss, frame) == ["T_amb"]
-    files, summary = conformance_pack(deployed, ss, tests, {})
-    entry = next(e for e in summary["campaigns"] if e["campaign"] == "C12")
-    assert entry["cut"] is None and entry["rows"] == len(frame)
-    stream = built_stream(tmp_path, {**exported_files(deployed, "c"), **files})
-    c, said = _streamed(stream, frame, ss.inputs)
-    assert c.shape == want.shape and np.max(np.abs(c - want)) < 1e-9        # every row
-    assert "not in the code" not in said
+    assert_code_as_served(deployed, ss, {"C12": frame}, {}, tmp_path, ["T_amb"])
 
 
 def test_an_export_before_mon89b_keeps_it_out_as_before(room):
