@@ -126,6 +126,26 @@ Reported besides: for every row where the rule fires (a re-admission whose reaso
 its jump; the others in do not predict it without a partner that is out frozen"), the replay
 vs main vs a model fed the true readings (``traced ROOT SEED``: the campaign's parts), and on
 how many draws it fired.  BAR HOLDS if 1-3 hold; else BAR FAILS.
+
+Scored (mon89c, 2026-12-05; main = dae16ad2's src, the tree = 7b1177eb's src; ``fresh``
+9366-9375 once on each, ``compare``; then ``traced ROOT 9372`` on each, ``mlr``)
+1. Record RMSE mean over targets, µm, main -> rule: lr9366 0.6228 =, lr9367 0.5203 =, lr9368
+   0.5985 =, lr9369 0.5898 =, lr9370 1.0316 =, cr9371 1.7284 =, cr9372 1.3452 -> 1.3606
+   (+1.15 %), cr9373 2.5986 =, cr9374 2.1900 =, cr9375 4.3505 = (= : equal to every digit, each
+   target).  Rows: cr9372 E_X 0.9596 -> 0.9325 (-2.82 %), E_Z 1.7308 -> 1.7888 (+3.35 %): one
+   row more than 2 % worse.  NOT MET (the row clause; the record clause holds).
+2. Exclusions 30 of 30 at main's campaign and time, none new.  MET.
+3. The 9 records where the rule does not fire: events identical to main's (so are their RMSEs:
+   main's changes since 2f23e004 moved nothing on these draws).  MET.
+Fires on 1 draw of 10: cr9372's C11 (``T_amb`` frozen from row 79; ``T_nc_cabinet`` +4.99 °C
+rows 158-160): out at 9420 s for its jump, back at 10200 s (10 calm samples, its 2 jumps undone,
++0.0486 °C); main keeps it out to the end.  C11's RMSE E_X / E_Z, replay main -> rule (true
+readings): whole campaign 1.087 / 1.381 -> 0.973 / 1.528 (0.975 / 1.591); after the spike's 12
+rows (169-236) 1.303 / 0.893 -> 0.934 / 1.518 (1.176 / 2.071), mean E_Z -0.673 -> -1.282
+(-1.844).  The re-admission is right on the readings and the deployed error moves toward the
+true-reading model's; main's better E_Z is the held-out pair's lucky offset again (mon88 /
+mon89's pattern, cr9201 and cr9359 above), but the bar counts rows against main: it fails.
+Verdict: BAR FAILS (item 1's row clause: cr9372 E_Z +3.35 %); items 2-3 met.
 """
 
 from __future__ import annotations
