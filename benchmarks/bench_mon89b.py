@@ -146,6 +146,13 @@ rows (169-236) 1.303 / 0.893 -> 0.934 / 1.518 (1.176 / 2.071), mean E_Z -0.673 -
 true-reading model's; main's better E_Z is the held-out pair's lucky offset again (mon88 /
 mon89's pattern, cr9201 and cr9359 above), but the bar counts rows against main: it fails.
 Verdict: BAR FAILS (item 1's row clause: cr9372 E_Z +3.35 %); items 2-3 met.
+
+Lead (stop 89): **REFUSED** by the bar on unspent seeds (as diag88c's rule 2 was after diag88d).
+src, docs and the tests reverted; the rule with its tests (three fail on 2f23e004) and docs is
+``benchmarks/mon89b_rule.patch`` (a diff from 2f23e004).  Where it fired (cr9201 C12, cr9359 C11,
+cr9372 C11) the deployed error moved toward the true-reading model's and away from main's on
+one target each: a bar that compares deployed with a model fed the true readings, not with main,
+would read these differently; it was not the bar written.
 """
 
 from __future__ import annotations

@@ -36,13 +36,13 @@ def _mirror_out(ss, frame) -> list[str]:
     return [names[k] for k in (sim.watch.out, sim.watch.out2) if k >= 0]
 
 
-def assert_code_as_served(deployed, ss, tests: dict, leads: dict, tmp_path, out: list) -> None:
-    """The one campaign of ``tests`` through the compiled C: = served on every row, the pack
-    whole, nothing flagged, the mirror holding ``out`` out at its end (mon89b reuses it)."""
+@needs_cc
+def test_the_code_brings_the_healthy_sensor_back_as_served(room, tmp_path):
+    deployed, ss, tests, leads = room
     (cid, campaign), = tests.items()
     frame = fed(campaign, leads.get(cid))
     want = corrections(ss, stream_rows(deployed, frame, cid).y)
-    assert _mirror_out(ss, frame) == out
+    assert _mirror_out(ss, frame) == ["T_amb"]
     files, summary = conformance_pack(deployed, ss, tests, leads)
     entry = next(e for e in summary["campaigns"] if e["campaign"] == cid)
     assert entry["cut"] is None and entry["rows"] == len(frame)
@@ -50,11 +50,6 @@ def assert_code_as_served(deployed, ss, tests: dict, leads: dict, tmp_path, out:
     c, said = _streamed(stream, frame, ss.inputs)
     assert c.shape == want.shape and np.max(np.abs(c - want)) < 1e-9        # every row
     assert "not in the code" not in said
-
-
-@needs_cc
-def test_the_code_brings_the_healthy_sensor_back_as_served(room, tmp_path):
-    assert_code_as_served(*room, tmp_path, ["T_amb"])
 
 
 def test_an_export_before_mon88_keeps_it_out_as_before(room):

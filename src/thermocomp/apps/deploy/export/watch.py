@@ -68,9 +68,7 @@ The served adaptive compensator judges every ``T_`` input before the model reads
 * (mon88) a sensor out by the field's judgement whose return no sensor in trial predicts passes
   where a partner out, frozen by the rule for one no other predicts (constant longer than
   ``blind_run``), would predict it (``cleared``), as served (``Readmission._blind_for_frozen``).
-  An export before it (no ``cleared``) keeps it out, as before.  (mon89b) So does one out for
-  its own jumps alone (``jump_cleared``), its jumps undone at its return as for one no other
-  predicts (``_undone``); an export before it keeps it out.
+  An export before it (no ``cleared``) keeps it out, as before.
 * (freeze84) a sensor out for a **freeze alone** (no other detector fired on it since) is
   re-admitted once ``THAW`` readings in a row are off the value it held (``THAWED``), judged from
   there as an active one, as served (``Readmission._thawed``).  An export before it (no
@@ -235,7 +233,6 @@ def monitor_fields(deployed, inputs: list) -> dict:
         "new_state_others": int(mon.new_state_others), "max_backoff": MAX_BACKOFF,
         "tau": EXCURSION_TAU_S, "growth": EXCURSION_GROWTH, "novel": 1, "blind_out": 1, "thawed": 1,
         "blind_drop": 1, "solve": 1, "stepped": 1, "cleared": 1, "blind_jump": 1, "second_jump": 1,
-        "jump_cleared": 1,
         "modes": int(mon.pod.n_modes_),
         "basis": mon.pod.basis_[:, :int(mon.pod.n_modes_)].tolist(),
         "fallback": [int(c in falls) for c in mon.names],
@@ -349,8 +346,7 @@ class CodeMonitor:
                      ("stepped", 0),      # (before cmon86: a stepped error flagged)
                      ("cleared", 0),      # (before mon88: no partner's freeze clears one)
                      ("blind_jump", 0),   # (before cmon87: a blind sensor's jump flagged)
-                     ("second_jump", 0),  # (before cmon88: a jump with one out flagged)
-                     ("jump_cleared", 0)):  # (before mon89b: a blind jump's return kept out)
+                     ("second_jump", 0)):  # (before cmon88: a jump with one out flagged)
             a.setdefault(k, np.float64(v))
         a.setdefault("rounding", np.zeros(n))    # (before mon83: no culprit held for rounding)
         # (before mon86: every set judged by the whole set's bands)
@@ -730,13 +726,9 @@ class CodeMonitor:
             self._thaw(j, gone, instant)
         due = ~self._active() & ~gone & (self.run == 0) & ~instant & (self.calm >= self.dwell)
         if due.any() and self.count >= self.window:
-            back = self._returning(due)
-            # (mon89b) which are blind in the set they return to
-            op = self._operator(~(self._active() | back)) if a["jump_cleared"] and back.any() else ()
-            blind = np.full(self.n, op is None) if not op else op[1] >= self.max_lev
-            for j in np.flatnonzero(back):
+            for j in np.flatnonzero(self._returning(due)):
                 if a["blind_jump"]:
-                    self._undone(int(j), d, bool(blind[j]))
+                    self._undone(int(j), d)
                 self.jumps[j], self.froze[j] = 0, False
                 self._readmit(int(j), BACK)
         pred, e = self._errors(d)
@@ -750,13 +742,12 @@ class CodeMonitor:
         self._fold(self.hist[pos], first, dt)
         return self._rebuilt(u, d, pred)
 
-    def _undone(self, j: int, d, blind: bool = False) -> None:
-        """(cmon87) ``j``, no other predicts it (mon89b: or none in the set it returns to,
-        ``blind``), back: its jumps undone as served (``_readmit``: several are noise or a spike;
-        of one, the reading nearer its held value taken), its reference restored and ``d`` and
-        its window shifted back."""
+    def _undone(self, j: int, d) -> None:
+        """(cmon87) ``j``, no other predicts it, back: its jumps undone as served (``_readmit``:
+        several are noise or a spike; of one, the reading nearer its held value taken), its
+        reference restored and ``d`` and its window shifted back."""
         shift = self.ref[j] - self.ref0[j]
-        if (self.predictable[j] and not blind) or not self.jumps[j] or (
+        if self.predictable[j] or not self.jumps[j] or (
                 self.jumps[j] == 1 and not abs(d[j] + shift - self.last[j]) < abs(d[j] - self.last[j])):
             return
         self.ref[j] = self.ref0[j]
@@ -891,11 +882,8 @@ class CodeMonitor:
             judged = trial & ~blind
             ok[explains] = bool((worst[judged] < warn[judged]).all())
         # (mon88) one out by the field's judgement, blind only for want of a partner out frozen
-        # (mon89b) ... or out for its own jumps alone (``jump_cleared``)
-        jumped = self.predictable & (self.jumps > 0) & ~self.by_field & ~self.dropped & ~self.froze
-        cleared = self.by_field | (jumped if self.a["jump_cleared"] else False)
         if self.a["cleared"]:
-            for j in np.flatnonzero(trial & blind & cleared & ~self.explains & ~self._active()):
+            for j in np.flatnonzero(trial & blind & self.by_field & ~self.explains & ~self._active()):
                 ok[j] = self._blind_for_frozen(j, trial)
         return ok, worst
 

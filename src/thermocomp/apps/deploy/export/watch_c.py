@@ -99,8 +99,7 @@ def monitor_arrays(ss) -> list[tuple[str, object, tuple, str]]:
                ("MON_BLIND_DROP", "blind_drop", 0, "int"), ("MON_STEPPED", "stepped", 0, "int"),
                ("MON_CLEARED", "cleared", 0, "int"),
                ("MON_BLIND_JUMP", "blind_jump", 0, "int"),
-               ("MON_SECOND_JUMP", "second_jump", 0, "int"),
-               ("MON_JUMP_CLEARED", "jump_cleared", 0, "int"))
+               ("MON_SECOND_JUMP", "second_jump", 0, "int"))
     modes = max(int(m.get("modes", 1)), 1)
     return [("MON_M", m.get("M", []), (n + 1 + len(pairs), n, n), "real"),
             ("MON_LEV", m.get("lev", []), (n + 1 + len(pairs), n), "real"),
@@ -298,10 +297,10 @@ static int mon_spikes(int k) {
 /* (cmon87) sensor k, no other predicts it, back: its jumps undone as served (several are noise or
    a spike; of one, the reading nearer its held value taken), its reference restored and d[k]
    and its window shifted back */
-static void mon_undone(tc_state *s, int k, double d[], int blind) {
+static void mon_undone(tc_state *s, int k, double d[]) {
     double shift = s->mon_ref[k] - s->mon_ref0[k];
     int w;
-    if ((MON_PREDICTABLE[k] && !blind) || !s->mon_jumps[k] || (s->mon_jumps[k] == 1
+    if (MON_PREDICTABLE[k] || !s->mon_jumps[k] || (s->mon_jumps[k] == 1
             && !(fabs(d[k] + shift - s->mon_last[k]) < fabs(d[k] - s->mon_last[k]))))
         return;
     s->mon_ref[k] = s->mon_ref0[k];
@@ -415,12 +414,9 @@ static void mon_pass_once_back(const tc_state *s, const int trial[], int ok[], d
             for (m = 0; m < NM; m++)
                 if (trial[m] && L[m] < MON_MAX_LEV && !(worst[m] < warn[m])) ok[k] = 0;
         }
-    /* (mon88) one out by the field's judgement, blind only for want of a partner out frozen;
-       (mon89b) or out for its own jumps alone */
+    /* (mon88) one out by the field's judgement, blind only for want of a partner out frozen */
     for (k = 0; k < NM && MON_CLEARED; k++)
-        if (trial[k] && L[k] >= MON_MAX_LEV && !s->mon_explains[k]
-            && (s->mon_by_field[k] || (MON_JUMP_CLEARED && MON_PREDICTABLE[k] && s->mon_jumps[k]
-                                       && !s->mon_dropped[k] && !s->mon_froze[k]))
+        if (trial[k] && L[k] >= MON_MAX_LEV && s->mon_by_field[k] && !s->mon_explains[k]
             && (k == s->mon_out || k == s->mon_out2))
             ok[k] = mon_blind_for_frozen(s, k, trial);
 }
@@ -1090,22 +1086,14 @@ static void monitor_step(tc_state *s, double u[], double dt) {
         }
     }
     if (s->mon_out >= 0 && s->mon_count >= MW) {   /* re-admission, the due sensors together */
-        int due[NM], back[NM], out[NM], seen, any = 0;
-        double M[NM][NM], L[NM];
+        int due[NM], back[NM];
         for (k = 0; k < NM; k++)
             due[k] = (k == s->mon_out || k == s->mon_out2) && s->mon_run[k] == 0 && !instant[k]
                      && !gone[k] && s->mon_calm[k] >= s->mon_dwell[k];
         mon_returning(s, due, back);
         for (k = 0; k < NM; k++) {
-            out[k] = (k == s->mon_out || k == s->mon_out2) && !back[k];
-            any |= back[k];
-        }
-        /* (mon89b) which are blind in the set they return to */
-        seen = MON_JUMP_CLEARED && any && mon_operator(out, M, L);
-        for (k = 0; k < NM; k++) {
             if (!back[k]) continue;
-            if (MON_BLIND_JUMP)   /* (cmon87; mon89b: one blind where it returns, as served) */
-                mon_undone(s, k, d, MON_JUMP_CLEARED && (!seen || L[k] >= MON_MAX_LEV));
+            if (MON_BLIND_JUMP) mon_undone(s, k, d);   /* (cmon87) */
             s->mon_jumps[k] = s->mon_froze[k] = 0;
             mon_readmit(s, k, TC_MON_BACK);
         }

@@ -44,9 +44,7 @@ class Readmission:
         for j in np.flatnonzero(back):
             why = self._why_back(j, band, bool(blind[j]))
             shift = self._ref[j] - self._ref0[j]
-            # (mon89b) one the others predict, back blind behind a frozen partner, as one no
-            # other predicts: the reading alone says the jump was a spike
-            if (not self._predictable[j] or blind[j]) and (self._jumps[j] > 1 or (
+            if not self._predictable[j] and (self._jumps[j] > 1 or (
                     self._jumps[j] and abs(d[j] + shift - self._last_good[j])
                     < abs(d[j] - self._last_good[j]))):
                 # a sensor no other predicts: its outage's jumps were re-referenced one by
@@ -88,9 +86,6 @@ class Readmission:
         :meth:`_pass_once_back`), and its reason said "within ±10.4 °C" (stranger80: a screw
         nut's thermocouple after a dropout, its warning band a figure nothing compared)."""
         calm = self._calm[j]
-        if self._predictable[j] and blind and self._jumps[j]:    # (mon89b)
-            return (f"re-admitted: no detector fired for {calm} samples since its jump; the "
-                    "others in do not predict it without a partner that is out frozen")
         if self._predictable[j] and blind:    # (mon88: _blind_for_frozen)
             return (f"re-admitted: no detector fired for {calm} samples; the others in do not "
                     "predict it without a partner that is out frozen, whose error it was")
@@ -161,22 +156,12 @@ class Readmission:
             ok[explains] = bool((worst[judged] < warn[judged]).all())
         # one out by the field's judgement, blind here only for want of a partner that is out
         # frozen by its own evidence: what it was blamed for is that partner's (mon88)
-        # (mon89b) so is one out for its own jumps alone (calm is their end): judged, like one
-        # no other predicts, by its calm window, its jumps undone at its return (_readmit)
-        for u in np.flatnonzero(trial & blind & (self._by_field | self._jumped_alone())
-                                & ~self._explains & ~self._active):
+        for u in np.flatnonzero(trial & blind & self._by_field & ~self._explains & ~self._active):
             ok[u] = self._blind_for_frozen(u, trial)
         # one no other predicts, out of range: calm is no evidence its reading is true again
         for u in np.flatnonzero(ok & ~self._active & ~self._predictable & self._ranged):
             ok[u] = self._leak_passes(u, trial, H, M, lev)
         return ok, worst
-
-    def _jumped_alone(self) -> np.ndarray:
-        """Which sensors the others predict are out for their own jumps alone: the last detector
-        to fire on them a jump (not a dropout, a reading out of range or a freeze), not by the
-        field's judgement.  (One no other predicts passes blind on calm already.)"""
-        return (self._predictable & (self._jumps > 0) & ~self._by_field & ~self._dropped
-                & ~self._ranged & ~self._froze)
 
     def _blind_for_frozen(self, u: int, trial: np.ndarray) -> bool:
         """Whether ``u``, no other in ``trial`` predicting it, would be predicted with a sensor
