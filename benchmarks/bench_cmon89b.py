@@ -65,9 +65,10 @@ from bench_deploy87 import stage  # noqa: E402
 SEEN = ("9316", "9322", "9317", "9323", "9318", "9324")
 
 
-def _exported(model: Path, args: list, out: Path) -> dict:
+def _exported(model: Path, args: list, out: Path, sensor: str | None = None) -> dict:
     """The C export of ``model`` with the pack of ``args``'s test campaigns in ``out``, built and
-    checked (bench_audit89's ``_pack``), with the exported ``blind_range`` key."""
+    checked (bench_audit89's ``_pack``), with the exported ``blind_range`` key (and whether the
+    others predict ``sensor``)."""
     if out.exists():
         shutil.rmtree(out)
     rc, said = stage("export", f"export.model={model}", "export.format=c", "export.check=true",
@@ -77,7 +78,10 @@ def _exported(model: Path, args: list, out: Path) -> dict:
     comp = json.loads((out / "compensator.json").read_text())
     monitor = comp.get("monitor") or {}
     pack = _pack(out)
-    return {"blind_range": int(monitor.get("blind_range", 0)), "check_rc": pack["check_rc"],
+    names = [comp["inputs"][i] for i in monitor.get("inputs", [])] if "inputs" in comp else []
+    predicted = (bool(monitor["predictable"][names.index(sensor)]) if sensor in names else None)
+    return {"predicted": predicted, "blind_range": int(monitor.get("blind_range", 0)),
+            "check_rc": pack["check_rc"],
             "cut": {c: k for c, k in pack["cuts"].items() if "." not in c},
             "copies_cut": len([c for c in pack["cuts"] if "." in c])}
 
@@ -119,9 +123,8 @@ def _fresh_record(root: Path, record: str) -> dict:
     mon = json.loads((out / "monitor" / "monitor.json").read_text())
     sensor = _costliest(mon)
     copy, _ = plant(root, label, sensor, "range")
-    comp = _exported(model, data_args(root, label, copy), out / "c-range")
-    predicted = bool(mon["sensors"][sensor].get("predictable", True))
-    return {"record": label, "sensor": sensor, "predicted": predicted, **comp}
+    return {"record": label, "sensor": sensor,
+            **_exported(model, data_args(root, label, copy), out / "c-range", sensor)}
 
 
 def fresh(root: str, seeds: str) -> None:

@@ -33,7 +33,7 @@ COMMAND_BENCHES = (
     "bench_cadence74", "bench_cascade81", "bench_catman70", "bench_cdrop77", "bench_clamp74",
     "bench_clamp75", "bench_clamp78", "bench_clean69", "bench_clockset71", "bench_cmon76", "bench_cmon80",
     "bench_cmon82", "bench_cmon82b", "bench_cmon82c", "bench_cmon83", "bench_cmon84", "bench_cmon85",
-    "bench_cmon86", "bench_cmon87", "bench_cmon88", "bench_connect72", "bench_cvpick69", "bench_data86",
+    "bench_cmon86", "bench_cmon87", "bench_cmon88", "bench_cmon89b", "bench_connect72", "bench_cvpick69", "bench_data86",
     "bench_data86b", "bench_data87", "bench_data88", "bench_data88b", "bench_data89", "bench_dates85",
     "bench_deploy73", "bench_deploy87", "bench_deploy88", "bench_derive71", "bench_diag70", "bench_diag73",
     "bench_diag74", "bench_diag75", "bench_diag76", "bench_diag77", "bench_diag81b", "bench_diag81c",

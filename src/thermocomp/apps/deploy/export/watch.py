@@ -106,6 +106,10 @@ The served adaptive compensator judges every ``T_`` input before the model reads
   (``Readmission._readmit``: several are noise or a spike, of one the reading nearer its held
   value is taken): the reference before its first jump (``ref0``) restored, its window shifted
   back.  An export before it (no ``blind_jump``) flags the jump (``BLIND``).
+* (cmon89b) a sensor no other predicts, every other in, **out for a reading beyond its range**
+  (``blind_range``: ``ranges``): read as missing, held at its last reading, back after a calm
+  window only where its leak onto the others passes (:meth:`CodeMonitor._leak_passes`, the
+  served ``Readmission._leak_passes``).  An export before it flags the reading (``BLIND``).
 
 What else the served monitor does it flags, ``NOT_IN_CODE`` with the rule (:data:`REASONS`),
 and goes on by its own rules: a reading beyond its range at a campaign's first sample, of
