@@ -36,7 +36,31 @@ B3. compare: bench_cmon85/86's 100 campaigns identical before -> now (C = served
 B4. every build -Werror clean (a warning fails the build, so B1/B2 show it).
 Refused if B1 or B2 fails on any record; B3 not run by the deadline is said so.
 
-Scored: see the section below (filled after the runs).
+Scored (2026-12-05, fix/cmon89b; "before" = main f4543acc's src, the same commands; 2 shared
+cores).  B1 ``seen /tmp/audit89/fresh`` (28.4 s CPU now, 22.1 s main): main -> now, the faulted
+campaign's pack and check.sh (exit 0 both: a cut pack checks only the rows before its cut):
+
+| record | sensor (none predicts it) | main | now | planted copies cut main -> now |
+|---|---|---|---|---|
+| col9316 | T_front3 | cut at 721 | whole | 5 -> 2 |
+| col9322 | T_front3 | cut at 721 | whole | 5 -> 2 |
+| swiss9317 | T_nc_spindle_motor | cut at 721 | whole | 5 -> 2 |
+| swiss9323 | T_nc_spindle_motor | cut at 721 | whole | 5 -> 2 |
+| yr9318 | T_amb | K09/K12/K15/K18 cut at 29/41/26/48 | whole | 3 -> 3 |
+| yr9324 | T_amb | K09/K12/K15/K18 cut at 27/46/39/48 | whole | 3 -> 3 |
+
+B1 MET (6 of 6 whole, exit 0).  B2 ``fresh 9361-9365`` (105.1 s CPU now, 94.8 s main; the key
+set on 5 of 5): lmw9361 ``T_col_10``, fleet9362 ``T_s27``, lmv9363 ``T_col_04``, swiss9365
+``T_guidebush`` (each predicted by others): whole on main and now (copies cut 2, 2, 2, 3 both);
+column9364 ``T_front3`` (none predicts it): cut at 721 on main -> whole now (copies cut 5 -> 4).
+B2 MET (5 of 5 whole, exit 0; the rule's own evidence is column9364).  B3 ``compare`` run on the
+first half of bench_cmon86's SPEC only (column 8841-8844, trunnion 8845-8846, lathe 8847-8848,
+jig 8849-8850: 50 campaigns) by the deadline: 50 of 50 identical (C = served on every row before
+and now, largest gap, first flag, pack rows unchanged); summed ``tc_step`` time 334.49 -> 334.76
+ms (x1.001; per campaign x0.986-1.014; worst sample x0.83-1.25, the timer's noise).  The second
+half (8996-9005) NOT run.  B4 MET: every build above -Werror.  Not scored: bench_cmon88's fresh
+rows (``bench_cmon88.py spikes``), not run by the deadline.
+Verdict: KEPT (B1, B2, B4 met; B3 met on the 50 campaigns run, half of the bar's 100).
 """
 
 from __future__ import annotations
