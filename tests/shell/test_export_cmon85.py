@@ -48,6 +48,13 @@ def _column(tmp_path_factory):
     from bench_cmon82 import _sensor
     from bench_cmon84 import _column_faults
 
+    deployed, ss, frame = column_system(tmp_path_factory)
+    return deployed, ss, _column_faults(frame, _sensor(ss))
+
+
+def column_system(tmp_path_factory):
+    """``(deployed, its system with the monitor, the test campaign)`` of the column machine of
+    seed :data:`SEED`."""
     from thermocomp.shell.builders import build_compensator, deploy_stream, deployable
     from thermocomp.shell.cli import main
     from thermocomp.shell.source import read_streamed
@@ -61,8 +68,7 @@ def _column(tmp_path_factory):
     deployed = deployable(cfg, deploy_stream(cfg, build_compensator(cfg, ds=ds).fit(train), train),
                           train, ds)
     ss = state_space(deployed, monitor=True)
-    frame = ds.campaigns[test_ids[0]].reset_index(drop=True)
-    return deployed, ss, _column_faults(frame, _sensor(ss))
+    return deployed, ss, ds.campaigns[test_ids[0]].reset_index(drop=True)
 
 
 def without(ss, feature: str):

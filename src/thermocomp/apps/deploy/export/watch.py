@@ -114,6 +114,10 @@ The served adaptive compensator judges every ``T_`` input before the model reads
   last reading (cmon87's path), as served; the second out missing (or beyond its range) again is
   read as missing, as the first is.  An export before it (no ``second_instant``) refuses the
   missing reading (``MISSING_SECOND``) and flags the range (``RANGE``) and the jump (``SECOND``).
+* (cmon89b) a sensor no other predicts, every other in, **out for a reading beyond its range**
+  (``blind_range``: ``ranges``): read as missing, held at its last reading, back after a calm
+  window only where its leak onto the others passes (:meth:`CodeMonitor._leak_passes`, the
+  served ``Readmission._leak_passes``).  An export before it flags the reading (``BLIND``).
 
 What else the served monitor does it flags, ``NOT_IN_CODE`` with the rule (:data:`REASONS`),
 and goes on by its own rules: a reading beyond its range at a campaign's first sample, of
@@ -243,6 +247,7 @@ def monitor_fields(deployed, inputs: list) -> dict:
         "tau": EXCURSION_TAU_S, "growth": EXCURSION_GROWTH, "novel": 1, "blind_out": 1, "thawed": 1,
         "blind_drop": 1, "solve": 1, "stepped": 1, "cleared": 1, "blind_jump": 1, "second_jump": 1,
         "second_instant": 1,
+        "blind_range": 1,
         "modes": int(mon.pod.n_modes_),
         "basis": mon.pod.basis_[:, :int(mon.pod.n_modes_)].tolist(),
         "fallback": [int(c in falls) for c in mon.names],
@@ -357,7 +362,8 @@ class CodeMonitor:
                      ("cleared", 0),      # (before mon88: no partner's freeze clears one)
                      ("blind_jump", 0),   # (before cmon87: a blind sensor's jump flagged)
                      ("second_jump", 0),   # (before cmon88: a jump with one out flagged)
-                     ("second_instant", 0)):   # (before cmon89: a dropout, ... flagged)
+                     ("second_instant", 0),   # (before cmon89: a dropout, ... flagged)
+                     ("blind_range", 0)):  # (before cmon89b: a blind sensor's range flagged)
             a.setdefault(k, np.float64(v))
         a.setdefault("rounding", np.zeros(n))    # (before mon83: no culprit held for rounding)
         # (before mon86: every set judged by the whole set's bands)
@@ -380,6 +386,9 @@ class CodeMonitor:
         self.drops = bool(a["blind_drop"]) & ~self.predictable & (n - 1 >= a["min_active"])
         # (cmon87) ... and for a jump, its jumps undone on its return where the reading returned
         self.spikes = self.drops & bool(a["blind_jump"])
+        # (cmon89b) ... and for a reading beyond its range, back only where its leak onto the
+        # others passes (:meth:`_leak_passes`), as served
+        self.ranges = self.drops & bool(a["blind_range"])
         # (cmon85, cmon86) the rules that take a second sensor out beside one; (cmon88) a jump too
         self.seconds = (DRIFT_OUT, FREEZE, STEP_OUT) + ((JUMP,) if a["second_jump"] else ())
         # (cmon89) a dropout or a reading beyond its range as the second out, and the jump of
@@ -410,6 +419,7 @@ class CodeMonitor:
         # time), jumps re-referenced since it was last in, out for a dropout (cdrop77)
         self.gap, self.jumps = np.ones(n), np.zeros(n, int)
         self.dropped = np.zeros(n, bool)
+        self.ranged = np.zeros(n, bool)     # (cmon89b) out for a reading beyond its range
         # (freeze84) out for a freeze alone, the reading it held, its readings in a row off it
         self.froze, self.held, self.off = np.zeros(n, bool), np.zeros(n), np.zeros(n, int)
         # (cmon82) out by a drift exclusion, its exclusions so, the calm samples it needs to
@@ -574,7 +584,7 @@ class CodeMonitor:
         dropout or a freeze of one no other predicts; cmon85 a second, for a drift, a freeze,
         cmon86 a stepped error or cmon88 a jump); else flagged."""
         held = self.ported[j] or (rule in (DROPOUT, FREEZE) and self.drops[j]) or (
-            rule == JUMP and self.spikes[j])
+            rule == JUMP and self.spikes[j]) or (rule == OFF_RANGE and self.ranges[j])
         second = self.out >= 0 and not (rule in self.seconds and self._second_kind(j, rule)
                                         and self._second_held(j))
         if second or not held:
@@ -774,6 +784,7 @@ class CodeMonitor:
         self.gap = np.where(gone, gap + 1, 1.0)
         self.prev_e = e
         self.dropped[instant] = missing[instant]       # (the last detector to fire on it)
+        self.ranged[instant] = rng[instant]
         self.last = np.where(active & np.isfinite(d), d, self.last)
         self._fold(self.hist[pos], first, dt)
         return self._rebuilt(u, d, pred)
@@ -832,8 +843,8 @@ class CodeMonitor:
                 and self._second_held(j))):
             self._flag(NOT_IN_CODE, j, RANGE)
             return None
-        if j in outs and not self.predictable[j]:    # (served: its leak judges its return)
-            self._flag(NOT_IN_CODE, j, BLIND)
+        if j in outs and not (self.predictable[j] or (j == self.out and self.ranges[j])):
+            self._flag(NOT_IN_CODE, j, BLIND)    # (served: its leak judges its return)
             return None
         if j in outs:                    # out already: read as missing
             return rng
@@ -846,7 +857,7 @@ class CodeMonitor:
             beyond = (p - edge if up else edge - p) > a["warning"][j]
             if beyond and abs(x[j] - p) < 0.5 * abs(x[j] - edge):
                 return np.zeros_like(rng)     # a machine hotter than training: read
-        if not self.ported[j]:
+        if not (self.ported[j] or self.ranges[j]):
             self._flag(NOT_IN_CODE, j, BLIND)
             return None
         return rng
@@ -926,7 +937,29 @@ class CodeMonitor:
         if self.a["cleared"]:
             for j in np.flatnonzero(trial & blind & self.by_field & ~self.explains & ~self._active()):
                 ok[j] = self._blind_for_frozen(j, trial)
+        # (cmon89b) one no other predicts, out of range: back where its leak passes, as served
+        for j in np.flatnonzero(ok & ~self._active() & self.ranges & self.ranged):
+            ok[j] = self._leak_passes(j, trial, H, M, lev)
         return ok, worst
+
+    def _leak_passes(self, u: int, trial: np.ndarray, H, M, lev) -> bool:
+        """(cmon89b) Whether the leak of ``u`` onto the sensors judged in ``trial`` with it and
+        without it is within ``readmit`` of their warning bands on every sample of the window
+        ``H``, as served (``Readmission._leak_passes``): True where too few are left without it
+        to judge; False where the set without it has no operator in the code."""
+        rest = trial & (np.arange(self.n) != u)
+        if rest.sum() < self.a["min_active"]:
+            return True
+        if (op := self._operator(~rest)) is None:
+            return False
+        M2, lev2 = op
+        both = rest & (lev < self.max_lev) & (lev2 < self.max_lev)
+        if not both.any():
+            return True
+        with np.errstate(divide="ignore", invalid="ignore"):
+            e_in = (H[:, both] - H @ M[both].T) / (1 - lev[both])
+            e_out = (H[:, both] - H @ M2[both].T) / (1 - lev2[both])
+        return bool((np.abs(e_in - e_out) / self.a["warning"][both]).max() < self.a["readmit"])
 
     def _blind_for_frozen(self, j: int, trial: np.ndarray) -> bool:
         """(mon88) Whether a sensor out of ``trial``, frozen by the rule for one no other
@@ -987,7 +1020,7 @@ class CodeMonitor:
 
     def _readmit(self, j: int, rule: int) -> None:
         """``j`` back in (``rule``: why), its partner's place kept, the window re-judged."""
-        self.by_field[j], self.explains[j] = False, False
+        self.by_field[j], self.explains[j], self.ranged[j] = False, False, False
         self.out, self.out2 = (self.out2, -1) if j == self.out else (self.out, -1)
         self._recompute()
         self._flag(READMITTED, j, rule)

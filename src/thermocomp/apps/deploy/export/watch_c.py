@@ -48,6 +48,7 @@ STATE = """    /* the sensor monitor (TC_MONITOR): referenced readings d = u - m
        re-referenced since it was last in, out for a dropout (its re-admission band) */
     double mon_gap[NM];
     int mon_jumps[NM], mon_dropped[NM];
+    int mon_ranged[NM];   /* (cmon89b) out for a reading beyond its range (its leak judges it) */
     int mon_froze[NM], mon_off[NM];   /* (freeze84) out for a freeze alone, its readings in a
                                          row off the one it held (mon_held) */
     double mon_held[NM];
@@ -100,7 +101,8 @@ def monitor_arrays(ss) -> list[tuple[str, object, tuple, str]]:
                ("MON_CLEARED", "cleared", 0, "int"),
                ("MON_BLIND_JUMP", "blind_jump", 0, "int"),
                ("MON_SECOND_JUMP", "second_jump", 0, "int"),
-               ("MON_SECOND_INSTANT", "second_instant", 0, "int"))
+               ("MON_SECOND_INSTANT", "second_instant", 0, "int"),
+               ("MON_BLIND_RANGE", "blind_range", 0, "int"))
     modes = max(int(m.get("modes", 1)), 1)
     return [("MON_M", m.get("M", []), (n + 1 + len(pairs), n, n), "real"),
             ("MON_LEV", m.get("lev", []), (n + 1 + len(pairs), n), "real"),
@@ -295,6 +297,12 @@ static int mon_spikes(int k) {
     return MON_BLIND_JUMP && mon_drops(k);
 }
 
+/* (cmon89b) 1: sensor k, no other predicts it, held out for a reading beyond its range, back
+   only where its leak onto the others passes (mon_leak_passes), as served */
+static int mon_ranges(int k) {
+    return MON_BLIND_RANGE && mon_drops(k);
+}
+
 /* (cmon87) sensor k, no other predicts it, back: its jumps undone as served (several are noise or
    a spike; of one, the reading nearer its held value taken), its reference restored and d[k]
    and its window shifted back */
@@ -312,7 +320,7 @@ static void mon_undone(tc_state *s, int k, double d[]) {
 /* sensor k back in (rule: why), its partner's place kept, the window re-judged (the numpy
    mirror's _readmit) */
 static void mon_readmit(tc_state *s, int k, int rule) {
-    s->mon_by_field[k] = s->mon_explains[k] = 0;
+    s->mon_by_field[k] = s->mon_explains[k] = s->mon_ranged[k] = 0;
     if (k == s->mon_out) s->mon_out = s->mon_out2;
     s->mon_out2 = -1;
     mon_recompute(s);
@@ -371,7 +379,8 @@ static void mon_put_out(tc_state *s, int k) {
    error, cmon88 a jump); else flagged */
 static void mon_exclude(tc_state *s, int k, int rule) {
     int blind = ((rule == TC_MON_DROPOUT || rule == TC_MON_FREEZE) && mon_drops(k))
-                || (rule == TC_MON_JUMP && mon_spikes(k));
+                || (rule == TC_MON_JUMP && mon_spikes(k))
+                || (rule == TC_MON_OFF_RANGE && mon_ranges(k));
     int second = s->mon_out >= 0 && !(mon_second_rule(rule) && mon_second_kind(s, k, rule)
                                       && mon_second_held(s, k));
     if (second || !(MON_PORTED[k] || blind)) {
@@ -396,6 +405,34 @@ static int mon_blind_for_frozen(const tc_state *s, int j, const int trial[]) {
         if (mon_operator(out, M, L) && L[j] < MON_MAX_LEV) return 1;
     }
     return 0;
+}
+
+/* (cmon89b) 1: the leak of sensor u onto the sensors judged in the set trial with it (M, L)
+   and without it is within MON_READMIT of their warning bands on every sample of the window, as
+   served (Readmission._leak_passes): also where too few are left without it to judge; 0 where
+   the set without it has no operator in the code */
+static int mon_leak_passes(const tc_state *s, int u, const int trial[], double M[][NM],
+                           const double L[]) {
+    double M2[NM][NM], L2[NM];
+    int k, w, m, n = 0, out[NM], both[NM];
+    for (k = 0; k < NM; k++) out[k] = !trial[k] || k == u, n += !out[k];
+    if (n < MON_MIN_ACTIVE) return 1;
+    if (!mon_operator(out, M2, L2)) return 0;
+    for (k = 0; k < NM; k++) both[k] = !out[k] && L[k] < MON_MAX_LEV && L2[k] < MON_MAX_LEV;
+    for (w = 0; w < MW; w++)
+        for (k = 0; k < NM; k++) {
+            double h, p = 0.0, p2 = 0.0, v;
+            if (!both[k]) continue;
+            h = isfinite(s->mon_hist[w][k]) ? s->mon_hist[w][k] : 0.0;
+            for (m = 0; m < NM; m++) {
+                double x = isfinite(s->mon_hist[w][m]) ? s->mon_hist[w][m] : 0.0;
+                p += M[k][m] * x;
+                p2 += M2[k][m] * x;
+            }
+            v = fabs((h - p) / (1.0 - L[k]) - (h - p2) / (1.0 - L2[k])) / MON_WARNING[k];
+            if (!(v < MON_READMIT)) return 0;
+        }
+    return 1;
 }
 
 /* re-admission (cmon82: judged together, as served): ok[k] whether sensor k of the set trial
@@ -441,6 +478,10 @@ static void mon_pass_once_back(const tc_state *s, const int trial[], int ok[], d
         if (trial[k] && L[k] >= MON_MAX_LEV && s->mon_by_field[k] && !s->mon_explains[k]
             && (k == s->mon_out || k == s->mon_out2))
             ok[k] = mon_blind_for_frozen(s, k, trial);
+    /* (cmon89b) one no other predicts, out of range: back where its leak passes, as served */
+    for (k = 0; k < NM; k++)
+        if (ok[k] && (k == s->mon_out || k == s->mon_out2) && mon_ranges(k) && s->mon_ranged[k])
+            ok[k] = mon_leak_passes(s, k, trial, M, L);
 }
 
 /* which of the due sensors come back (back[]): those that pass in the set of the active ones
@@ -541,7 +582,8 @@ static int mon_beyond(tc_state *s, const double x[], const double d[], int j, in
         mon_flag(s, TC_MON_NOT_IN_CODE, j, TC_MON_RANGE);
         return -1;
     }
-    if (mon_is_out(s, j) && !MON_PREDICTABLE[j]) {   /* (served: its leak judges its return) */
+    if (mon_is_out(s, j) && !MON_PREDICTABLE[j] && !(j == s->mon_out && mon_ranges(j))) {
+        /* (served: its leak judges its return) */
         mon_flag(s, TC_MON_NOT_IN_CODE, j, TC_MON_BLIND);
         return -1;
     }
@@ -560,7 +602,7 @@ static int mon_beyond(tc_state *s, const double x[], const double d[], int j, in
         beyond = (up ? p - edge : edge - p) > MON_WARNING[j];
         if (beyond && fabs(x[j] - p) < 0.5 * fabs(x[j] - edge)) return 0;
     }
-    if (!MON_PORTED[j]) {
+    if (!MON_PORTED[j] && !mon_ranges(j)) {
         mon_flag(s, TC_MON_NOT_IN_CODE, j, TC_MON_BLIND);
         return -1;
     }
@@ -966,6 +1008,7 @@ static void monitor_step(tc_state *s, double u[], double dt) {
             int w;
             s->mon_prev[k] = s->mon_prev_e[k] = s->mon_prev_other[k] = s->mon_run_pred[k] = NAN;
             s->mon_run[k] = s->mon_calm[k] = s->mon_jumps[k] = s->mon_dropped[k] = 0;
+            s->mon_ranged[k] = 0;
             s->mon_froze[k] = s->mon_off[k] = 0;
             s->mon_held[k] = 0.0;
             s->mon_gap[k] = 1.0;
@@ -1139,6 +1182,7 @@ static void monitor_step(tc_state *s, double u[], double dt) {
         s->mon_gap[k] = gone[k] ? gap[k] + 1.0 : 1.0;
         s->mon_prev_e[k] = e[k];
         if (instant[k]) s->mon_dropped[k] = missing[k];   /* the last detector to fire on it */
+        if (instant[k]) s->mon_ranged[k] = rng[k];
         if (a[k] && isfinite(d[k])) s->mon_last[k] = d[k];
     }
     /* the field's memory (served: the sample folded in by its time since the last) */
