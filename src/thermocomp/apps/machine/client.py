@@ -458,7 +458,7 @@ class Connection:
         """(opcleft67) A step of the server's clock of :data:`~...core.io.rates.GAP_PERIODS`
         periods or more since the last sample is kept in the stream's time, as ``replay`` and
         ``run`` read the same step in a file's ``time`` (the lag bank steps over it), and said
-        (``clock_gap``) as the file reader says it: up to :data:`~...core.io.rates.PAUSE_PERIODS`
+        (``clock_gap``) as the file reader says it: up to :data:`~...core.io.timestamps.PAUSE_PERIODS`
         periods a stretch without samples (a link or the server down: counted missed), beyond
         them a pause (the machine off, or its clock set forward: no sample was published that
         the client did not see, none counted).  The samples the step spans (``steps``), or 1."""

@@ -23,17 +23,6 @@ SETTLED = 10         # steps at least on each side of a change
 GAP_PERIODS = 1.5    # a step this many sample periods or more: rows not logged
 
 
-def pauses(seconds: np.ndarray) -> np.ndarray:
-    """The steps of ``seconds`` (a record's time, s, increasing) longer than
-    :data:`PAUSE_PERIODS` of its median period: where one file's runs, appended, join (index
-    ``i``: between rows ``i`` and ``i + 1``).  The one rule of the pause warning, of
-    ``data.runs_at_pauses`` and of ``init`` proposing it."""
-    period = median_step(seconds)
-    if not period or len(seconds) < 3:
-        return np.array([], int)
-    return np.flatnonzero(np.diff(seconds) > PAUSE_PERIODS * period)
-
-
 def period_groups(periods: Mapping[str, float]) -> dict[float, list[str]]:
     """``{period (3 digits): its campaigns}``, shortest first, of campaigns logged at sample
     periods (s, positive) :data:`RATE_CHANGE` times apart or more (a lab's runs at 10 s and at

@@ -20,10 +20,9 @@ import pyarrow as pa
 from ...base.log import logger
 from .contract import MANIFEST, ContractError
 from .manifest import BINARY_KINDS, RECORD_SUFFIXES
-from .rates import PAUSE_PERIODS, pauses
 from .sinumerik import not_a_trace
 from .sparse import probe_cycle
-from .timestamps import ELAPSED, OF_DAY
+from .timestamps import ELAPSED, OF_DAY, PAUSE_PERIODS, pauses
 from .workbook import not_read
 
 SAID_AS_READ = (ELAPSED, OF_DAY)    # a time whose pauses the reading of it says

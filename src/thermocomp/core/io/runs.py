@@ -10,7 +10,7 @@ header's name before it (``Lauf_3``).
 
 A file without such a column, its runs appended one after the other with the logger silent
 between them (catman70: a lab's week of ISO 230-3 tests in one catman export), is split where
-its time pauses for more than :data:`.rates.PAUSE_PERIODS` sample periods with
+its time pauses for more than :data:`.timestamps.PAUSE_PERIODS` sample periods with
 ``data.runs_at_pauses=true`` (extension; :func:`pause_blocks`): the runs ``<file>_1``,
 ``<file>_2`` ..., read as those of a run column are.
 """
@@ -28,8 +28,8 @@ import pyarrow.compute as pc
 from ..timerule import median_step
 from .contract import ContractError
 from .options import RUN_ROLE
-from .rates import PAUSE_PERIODS, pauses
 from .roles import split_unit
+from .timestamps import PAUSE_PERIODS, pauses
 
 MIN_RUN_ROWS = 10        # a run counter holds each value this many rows on average at least
 _UNSAFE_ID = re.compile(r"[^\w.\-]+")
@@ -87,7 +87,7 @@ def run_blocks(values: Sequence[str | None], header: str, path: Path | str
 def pause_blocks(seconds: np.ndarray, stem: str, path: Path | str
                  ) -> list[tuple[str, int, int]]:
     """``(campaign id, first row, end row)`` of each stretch of ``seconds`` (the record's time)
-    between pauses longer than :data:`.rates.PAUSE_PERIODS` sample periods; ids ``<stem>_<k>``
+    between pauses longer than :data:`.timestamps.PAUSE_PERIODS` sample periods; ids ``<stem>_<k>``
     from 1.
 
     Raises

@@ -143,6 +143,17 @@ OF_DAY_HEADERS = frozenset({"seconds of day", "second of day", "seconds of the d
                             "tagessekunden", "sekunden seit mitternacht", "sekunde des tages"})
 
 
+def pauses(seconds: np.ndarray) -> np.ndarray:
+    """The steps of ``seconds`` (a record's time, s, increasing) longer than
+    :data:`PAUSE_PERIODS` of its median period: where one file's runs, appended, join (index
+    ``i``: between rows ``i`` and ``i + 1``).  The one rule of the pause warning, of
+    ``data.runs_at_pauses`` and of ``init`` proposing it."""
+    period = median_step(seconds)
+    if not period or len(seconds) < 3:
+        return np.array([], int)
+    return np.flatnonzero(np.diff(seconds) > PAUSE_PERIODS * period)
+
+
 def seconds_of_day(seconds: np.ndarray, path: Path, header: str | None = None
                    ) -> np.ndarray | None:
     """(extension, data89b) A numeric time column of seconds since midnight, a logger's
@@ -173,23 +184,20 @@ def over_midnight(seconds: np.ndarray) -> bool:
                 and np.all(steps[back] + DAY_S <= steps[forward].max()))
 
 
-
 def _said_pauses(seconds: np.ndarray, rows: np.ndarray, name: str, column: str,
                  clock: bool = True) -> None:
     """(data89) Warn of the pauses of a dateless clock's continuing time (``seconds`` of the
-    data rows ``rows``): a stretch of :data:`PAUSE_PERIODS` sample periods or more without
-    rows is read as the clock says, but reads as well a whole day or more longer (the
-    logger stopped overnight, or over a weekend): the date column tells, the clock cannot.
+    data rows ``rows``): a stretch of more than :data:`PAUSE_PERIODS` sample periods without
+    rows (:func:`pauses`, the reader's one rule) is read as the clock says, but reads as well
+    a whole day or more longer (the logger stopped overnight, or over a weekend): the date
+    column tells, the clock cannot.
     (data89b) ``clock=False``: an elapsed ``h:mm:ss``, whose pause says runs joined in one
     file, what reads each as a campaign named (not ``data.runs_at_pauses``, which cannot
     split a time written as text)."""
-    steps = np.diff(seconds)
-    period = median_step(seconds)
-    if not period:
-        return
-    found = np.flatnonzero(steps >= PAUSE_PERIODS * period)
+    found = pauses(seconds)
     if not found.size:
         return
+    steps, period = np.diff(seconds), median_step(seconds)
     k = int(found[0])
     if not clock:
         logger.warning(f"{name}, column {column}, {position(int(rows[k + 1]) + 1)}: the elapsed "

@@ -67,7 +67,6 @@ from ...core.io.options import AUTO, RUN_ROLE
 from ...core.io.pairhead import error_files, pair_time, paired_head, paired_lines
 from ...core.io.period_line import stated_period
 from ...core.io.plain import converted_once, is_converted, is_lab_file, lab_as_csv, lab_dayfirst
-from ...core.io.rates import PAUSE_PERIODS, pauses
 from ...core.io.record import safe_id
 from ...core.io.roles import excel_days_header, naming, split_unit
 from ...core.io.slashed import record_order
@@ -75,7 +74,7 @@ from ...core.io.slashed_rows import RUN_SAID
 from ...core.io.sniff import resolved
 from ...core.io.starts import stated_start
 from ...core.io.tables import peek_csv
-from ...core.io.timestamps import ELAPSED
+from ...core.io.timestamps import ELAPSED, PAUSE_PERIODS, pauses
 from ...core.io.utf16 import is_utf16, utf8_options, utf16_as_utf8
 from ...core.io.workbook import csv_options
 from ...core.timerule import median_step
@@ -323,7 +322,7 @@ def stated_starts(src, ds, report: dict, opts) -> None:
 
 def appended_runs(src, ds, opts) -> str | None:
     """Why one record ``src`` (read as ``ds``, cut into parts) is runs appended in one file: its
-    time pauses (the reader's rule, :func:`.io.rates.pauses`) -- how many times and the longest;
+    time pauses (the reader's rule, :func:`.io.timestamps.pauses`) -- how many times and the longest;
     None where it does not, or where its runs are otherwise told (a run column, a folder)."""
     if not src.is_file() or opts.runs_at_pauses or opts.roles.get(RUN_ROLE):
         return None
