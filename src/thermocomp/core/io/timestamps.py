@@ -406,7 +406,7 @@ def said_if_not_seconds(time: np.ndarray, file: Path, header: str, own: bool = F
     logger's seconds come every 1, 10, 60, 300 s ...).  A volumetric cycle of 1200 s or a
     logger every 120 s is no such step; a lab's every 100 s or 500 s in seconds is said and
     quietened with ``data.units={time: s}``.  Also said: Excel's serial day numbers (a date
-    shown as a number, :func:`_excel_days`), ``data.units={time: d}``."""
+    shown as a number, :func:`excel_days`), ``data.units={time: d}``."""
     period = median_step(time)
     if period is None or not np.all(np.isfinite(time)):
         return
@@ -418,7 +418,7 @@ def said_if_not_seconds(time: np.ndarray, file: Path, header: str, own: bool = F
         logger.warning(f"{file}, column {header!r}: samples {period:g} s apart, {why}: "
                        f"milliseconds? say so with data.units={{{header!r}: ms}} (or a unit in "
                        f"the header, 'time [ms]'; seconds: data.units={{{header!r}: s}})")
-    elif _excel_days(time[0], period):
+    elif excel_days(time[0], period):
         logger.warning(f"{file}, column {header!r}: from {time[0]:g}, samples {period:g} s = "
                        f"{period * 86400:.4g} s / 86400 apart: Excel's serial days (a date shown "
                        f"as a number)? say so with data.units={{{header!r}: d}}, or save the "
@@ -428,7 +428,7 @@ def said_if_not_seconds(time: np.ndarray, file: Path, header: str, own: bool = F
 EXCEL_DAYS = (20000.0, 80000.0)   # Excel's serial day numbers 1954 .. 2119
 
 
-def _excel_days(first: float, period: float) -> bool:
+def excel_days(first: float, period: float) -> bool:
     """A time from an Excel serial day number, sampled at whole seconds: not a second apart as
     seconds, whole seconds as days (a 1440 Hz record starting 46000 s in is no thermal test)."""
     seconds = period * 86400
