@@ -99,7 +99,8 @@ def elapsed_seconds(text, kind: str, path: Path, header: str | None = None,
 DAY_S = 86400.0
 
 
-def past_midnight(seconds: pa.Array, path: Path, header: str | None = None) -> pa.Array | None:
+def past_midnight(seconds: pa.Array, path: Path, header: str | None = None,
+                  pauses_said: bool = True) -> pa.Array | None:
     """(extension, data88b) A time of day without its date (``seconds`` since midnight, null
     where a cell is missing or no ``h:mm:ss``) as a continuing time: a day added at each step
     back of more than half a day between consecutive valid rows (the clock passing midnight,
@@ -110,7 +111,8 @@ def past_midnight(seconds: pa.Array, path: Path, header: str | None = None) -> p
     reads as well as a step back past midnight and is refused (file, column, row); a pause of
     a day or more between two rows cannot be told from the clock alone: (data89) a pause, a
     step of :data:`PAUSE_PERIODS` sample periods or more, is warned of with its row, as well
-    a day (or more) longer, naming the date column that tells."""
+    a day (or more) longer, naming the date column that tells; not where ``pauses_said`` is False
+    (lead90: the pauses ``data.runs_at_pauses`` splits the record at, each run a campaign)."""
     values = seconds.to_numpy(zero_copy_only=False).astype(float)
     valid = np.flatnonzero(~np.isnan(values))
     steps = np.diff(values[valid])
@@ -131,7 +133,8 @@ def past_midnight(seconds: pa.Array, path: Path, header: str | None = None) -> p
     column = repr(header) if header else TIME
     logger.info(f"{name}: {column} is a time of day that passes midnight {int(wraps.sum())} "
                 "time(s) (no date): read as a continuing time, a day added at each")
-    _said_pauses(values[valid] + days[valid], valid, name, column)
+    if pauses_said:
+        _said_pauses(values[valid] + days[valid], valid, name, column)
     return pa.array(values + days, from_pandas=True)
 
 
@@ -154,21 +157,23 @@ def pauses(seconds: np.ndarray) -> np.ndarray:
     return np.flatnonzero(np.diff(seconds) > PAUSE_PERIODS * period)
 
 
-def seconds_of_day(seconds: np.ndarray, path: Path, header: str | None = None
-                   ) -> np.ndarray | None:
+def seconds_of_day(seconds: np.ndarray, path: Path, header: str | None = None,
+                   pauses_said: bool = True) -> np.ndarray | None:
     """(extension, data89b) A numeric time column of seconds since midnight, a logger's
     ``Seconds of day`` (77400 ... 86100, then 0, 300 ...), as a continuing time by the time of
     day's rule (:func:`past_midnight`: a day added at each step back by more than half a day):
     where all its values are within a day, [0, 86400) s, and its header says so
     (:data:`OF_DAY_HEADERS`) or its values do (:func:`over_midnight`); None otherwise (a step
-    back is the reader's to refuse, "time decreases"), as where it never passes midnight."""
+    back is the reader's to refuse, "time decreases"), as where it never passes midnight;
+    ``pauses_said``: its pauses warned of (:func:`past_midnight`)."""
     finite = seconds[np.isfinite(seconds)]
     if not finite.size or finite.min() < 0 or finite.max() >= DAY_S:
         return None
     said = header is not None and _bare(header) in OF_DAY_HEADERS
     if not (said or over_midnight(finite)):
         return None
-    unwrapped = past_midnight(pa.array(seconds, from_pandas=True), path, header)
+    unwrapped = past_midnight(pa.array(seconds, from_pandas=True), path, header,
+                              pauses_said)
     return None if unwrapped is None else unwrapped.to_numpy(zero_copy_only=False)
 
 
