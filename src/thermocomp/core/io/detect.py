@@ -45,6 +45,7 @@ from .roles import (
     LOGGER,
     RUN,
     date_and_time_of_day,
+    excel_days_header,
     header_pattern,
     left_out,
     logger_columns,
@@ -56,13 +57,14 @@ from .roles import (
 )
 from .runs import looks_like_run_labels, says_run
 from .scope import is_scope, scope_layout
-from .separators import reads_as_number
+from .separators import number, reads_as_number
 from .sinumerik import is_trace
 from .sniff import head_lines, resolved
 from .tables import parquet, peek_csv, without_pandas_index
 from .tdm import is_tdm
 from .timestamps import (
     CLOCK,
+    excel_days,
     looks_like_timestamp,
     maybe_elapsed,
 )
@@ -255,6 +257,27 @@ def epoch_ms_column(header: list[str], first: dict, opts) -> str | None:
         if EPOCH_MS[0] <= value <= EPOCH_MS[1]:
             return h
     return None
+
+
+def excel_days_column(sample: Path, opts, header: list[str], first: dict) -> str | None:
+    """The header of a column of Excel's serial days (:func:`.roles.excel_days_header`, read
+    from its first cell) whose first rows in a text ``sample`` step as the reader's own rule
+    says days do (:func:`.timestamps.excel_days`: a fraction of a day, whole seconds); None
+    otherwise.  Why: a plain ``time`` of seconds since a logger started 8 h 20 min before its
+    first row (30000, 30060, ...) lies in the day numbers' range, and read as days it lasted
+    65 years.  A file read through a converter, or of one row, is judged by its first cell."""
+    days = excel_days_header(header, first, opts.units, opts.decimal)
+    if days is None or not is_text(sample) or is_converted(sample, opts):
+        return days
+    try:
+        cells = pd.read_csv(sample, sep=opts.delimiter, header=None, skiprows=opts.skip_rows,
+                            usecols=[header.index(days)], dtype=str, nrows=HEAD_ROWS,
+                            encoding=own(sample, opts.encoding)).iloc[:, 0]
+    except (ValueError, OSError, pd.errors.ParserError):
+        return days                     # (its own read says why)
+    values = np.array([v for c in cells if (v := number(str(c), opts.decimal)) is not None])
+    period = median_step(values) if len(values) > 1 else None
+    return days if period is None or excel_days(values[0], period) else None
 
 
 def elapsed_column(src: Path, manifest: pd.DataFrame | None, opts, header: list[str],

@@ -123,7 +123,7 @@ from .sparse import measured_on, on_grid, said, sparse_totals
 from .starts import campaign_starts, commented_start
 from .steps import check_unit_steps
 from .tables import NoRows, _load_csv, _load_parquet, _ordered, _values, parquet
-from .timestamps import CLOCK
+from .timestamps import CLOCK, seconds_of_day
 from .values import (
     _check_periods,
     _error_ranges,
@@ -809,6 +809,19 @@ def _numbers(column) -> np.ndarray | None:
     return None
 
 
+def _continuing(columns: dict, renamed: dict, path: Path) -> np.ndarray | None:
+    """The record's time as numbers where its pauses are found: seconds of the day past
+    midnight as a continuing time (the reader's rule, :func:`.timestamps.seconds_of_day`; lead90:
+    the raw values split a record at its forward pauses only, a run after a pause across
+    midnight joined to the one before), each run then read alone as a file of it is."""
+    seconds = _numbers(columns.get(TIME))
+    if seconds is None:
+        return None
+    header = next((raw for raw, name in renamed.items() if name == TIME), None)
+    of_day = seconds_of_day(seconds, path, header, pauses_said=False)
+    return seconds if of_day is None else of_day
+
+
 def _run_parts(path: Path, opts: ReadOptions) -> tuple[pd.DataFrame, dict]:
     """One long file split into campaigns by ``data.roles.campaign`` or, with
     ``data.runs_at_pauses``, where its time pauses (:mod:`.runs`), each read as a file of that
@@ -818,7 +831,7 @@ def _run_parts(path: Path, opts: ReadOptions) -> tuple[pd.DataFrame, dict]:
         columns, renamed, rescaled, lines = _loaded(source, source_opts)
         if opts.runs_at_pauses:
             header = None
-            blocks = pause_blocks(_numbers(columns.get(TIME)), record_id(path), path)
+            blocks = pause_blocks(_continuing(columns, renamed, path), record_id(path), path)
         else:
             header = next(raw for raw, name in renamed.items() if name == RUN)
             renamed = {raw: name for raw, name in renamed.items() if name != RUN}

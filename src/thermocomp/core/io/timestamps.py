@@ -99,7 +99,8 @@ def elapsed_seconds(text, kind: str, path: Path, header: str | None = None,
 DAY_S = 86400.0
 
 
-def past_midnight(seconds: pa.Array, path: Path, header: str | None = None) -> pa.Array | None:
+def past_midnight(seconds: pa.Array, path: Path, header: str | None = None,
+                  pauses_said: bool = True) -> pa.Array | None:
     """(extension, data88b) A time of day without its date (``seconds`` since midnight, null
     where a cell is missing or no ``h:mm:ss``) as a continuing time: a day added at each step
     back of more than half a day between consecutive valid rows (the clock passing midnight,
@@ -110,7 +111,8 @@ def past_midnight(seconds: pa.Array, path: Path, header: str | None = None) -> p
     reads as well as a step back past midnight and is refused (file, column, row); a pause of
     a day or more between two rows cannot be told from the clock alone: (data89) a pause, a
     step of :data:`PAUSE_PERIODS` sample periods or more, is warned of with its row, as well
-    a day (or more) longer, naming the date column that tells."""
+    a day (or more) longer, naming the date column that tells; not where ``pauses_said`` is False
+    (lead90: the pauses ``data.runs_at_pauses`` splits the record at, each run a campaign)."""
     values = seconds.to_numpy(zero_copy_only=False).astype(float)
     valid = np.flatnonzero(~np.isnan(values))
     steps = np.diff(values[valid])
@@ -131,7 +133,8 @@ def past_midnight(seconds: pa.Array, path: Path, header: str | None = None) -> p
     column = repr(header) if header else TIME
     logger.info(f"{name}: {column} is a time of day that passes midnight {int(wraps.sum())} "
                 "time(s) (no date): read as a continuing time, a day added at each")
-    _said_pauses(values[valid] + days[valid], valid, name, column)
+    if pauses_said:
+        _said_pauses(values[valid] + days[valid], valid, name, column)
     return pa.array(values + days, from_pandas=True)
 
 
@@ -154,21 +157,23 @@ def pauses(seconds: np.ndarray) -> np.ndarray:
     return np.flatnonzero(np.diff(seconds) > PAUSE_PERIODS * period)
 
 
-def seconds_of_day(seconds: np.ndarray, path: Path, header: str | None = None
-                   ) -> np.ndarray | None:
+def seconds_of_day(seconds: np.ndarray, path: Path, header: str | None = None,
+                   pauses_said: bool = True) -> np.ndarray | None:
     """(extension, data89b) A numeric time column of seconds since midnight, a logger's
     ``Seconds of day`` (77400 ... 86100, then 0, 300 ...), as a continuing time by the time of
     day's rule (:func:`past_midnight`: a day added at each step back by more than half a day):
     where all its values are within a day, [0, 86400) s, and its header says so
     (:data:`OF_DAY_HEADERS`) or its values do (:func:`over_midnight`); None otherwise (a step
-    back is the reader's to refuse, "time decreases"), as where it never passes midnight."""
+    back is the reader's to refuse, "time decreases"), as where it never passes midnight;
+    ``pauses_said``: its pauses warned of (:func:`past_midnight`)."""
     finite = seconds[np.isfinite(seconds)]
     if not finite.size or finite.min() < 0 or finite.max() >= DAY_S:
         return None
     said = header is not None and _bare(header) in OF_DAY_HEADERS
     if not (said or over_midnight(finite)):
         return None
-    unwrapped = past_midnight(pa.array(seconds, from_pandas=True), path, header)
+    unwrapped = past_midnight(pa.array(seconds, from_pandas=True), path, header,
+                              pauses_said)
     return None if unwrapped is None else unwrapped.to_numpy(zero_copy_only=False)
 
 
@@ -406,7 +411,7 @@ def said_if_not_seconds(time: np.ndarray, file: Path, header: str, own: bool = F
     logger's seconds come every 1, 10, 60, 300 s ...).  A volumetric cycle of 1200 s or a
     logger every 120 s is no such step; a lab's every 100 s or 500 s in seconds is said and
     quietened with ``data.units={time: s}``.  Also said: Excel's serial day numbers (a date
-    shown as a number, :func:`_excel_days`), ``data.units={time: d}``."""
+    shown as a number, :func:`excel_days`), ``data.units={time: d}``."""
     period = median_step(time)
     if period is None or not np.all(np.isfinite(time)):
         return
@@ -418,7 +423,7 @@ def said_if_not_seconds(time: np.ndarray, file: Path, header: str, own: bool = F
         logger.warning(f"{file}, column {header!r}: samples {period:g} s apart, {why}: "
                        f"milliseconds? say so with data.units={{{header!r}: ms}} (or a unit in "
                        f"the header, 'time [ms]'; seconds: data.units={{{header!r}: s}})")
-    elif _excel_days(time[0], period):
+    elif excel_days(time[0], period):
         logger.warning(f"{file}, column {header!r}: from {time[0]:g}, samples {period:g} s = "
                        f"{period * 86400:.4g} s / 86400 apart: Excel's serial days (a date shown "
                        f"as a number)? say so with data.units={{{header!r}: d}}, or save the "
@@ -428,7 +433,7 @@ def said_if_not_seconds(time: np.ndarray, file: Path, header: str, own: bool = F
 EXCEL_DAYS = (20000.0, 80000.0)   # Excel's serial day numbers 1954 .. 2119
 
 
-def _excel_days(first: float, period: float) -> bool:
+def excel_days(first: float, period: float) -> bool:
     """A time from an Excel serial day number, sampled at whole seconds: not a second apart as
     seconds, whole seconds as days (a 1440 Hz record starting 46000 s in is no thermal test)."""
     seconds = period * 86400

@@ -37,6 +37,7 @@ from ...core.io.detect import (
     elapsed_column,
     encoding,
     epoch_ms_column,
+    excel_days_column,
     flag_headers,
     flags_as_states,
     folder_manifest,
@@ -68,7 +69,7 @@ from ...core.io.pairhead import error_files, pair_time, paired_head, paired_line
 from ...core.io.period_line import stated_period
 from ...core.io.plain import converted_once, is_converted, is_lab_file, lab_as_csv, lab_dayfirst
 from ...core.io.record import safe_id
-from ...core.io.roles import excel_days_header, naming, split_unit
+from ...core.io.roles import naming, split_unit
 from ...core.io.slashed import record_order
 from ...core.io.slashed_rows import RUN_SAID
 from ...core.io.sniff import resolved
@@ -428,7 +429,7 @@ def _init(cfg: DictConfig, held: ExitStack) -> dict:
         opts = replace(opts, units={**opts.units, epoch: "ms"})
         print(f"{sample.name}: {epoch!r} from {cells_of_first[epoch]}: milliseconds "
               f"since 1970, read as data.units={{{epoch}: ms}}")
-    days = (excel_days_header(header, cells_of_first, opts.units, opts.decimal)
+    days = (excel_days_column(sample, opts, header, cells_of_first)
             if opts.roles.get("time", "auto") == "auto" else None)
     if days:               # (a date cell saved as a number: days, read as seconds otherwise)
         given["units"] = {**(given.get("units") or {}), days: "d"}
