@@ -264,16 +264,14 @@ def excel_days_column(sample: Path, opts, header: list[str], first: dict) -> str
     from its first cell) whose first rows in a text ``sample`` step as the reader's own rule
     says days do (:func:`.timestamps.excel_days`: a fraction of a day, whole seconds); None
     otherwise.  Why: a plain ``time`` of seconds since a logger started 8 h 20 min before its
-    first row (30000, 30060, ...) lies in the day numbers' range, and read as days it lasted
-    65 years.  A file read through a converter, or of one row, is judged by its first cell."""
+    first row (30000, 30060, ...) lies in the day numbers' range, and read as days its 240 rows
+    lasted 14,340 days (init's own read refused it).  A file read through a converter, or of one
+    row, is judged by its first cell."""
     days = excel_days_header(header, first, opts.units, opts.decimal)
     if days is None or not is_text(sample) or is_converted(sample, opts):
         return days
-    try:
-        cells = pd.read_csv(sample, sep=opts.delimiter, header=None, skiprows=opts.skip_rows,
-                            usecols=[header.index(days)], dtype=str, nrows=HEAD_ROWS,
-                            encoding=own(sample, opts.encoding)).iloc[:, 0]
-    except (ValueError, OSError, pd.errors.ParserError):
+    cells = _column_cells(sample, opts, header.index(days), rows=HEAD_ROWS)
+    if cells is None:
         return days                     # (its own read says why)
     values = np.array([v for c in cells if (v := number(str(c), opts.decimal)) is not None])
     period = median_step(values) if len(values) > 1 else None
@@ -296,17 +294,26 @@ def elapsed_column(src: Path, manifest: pd.DataFrame | None, opts, header: list[
         if not maybe_elapsed(str(first.get(h) or ""), opts.time):
             continue
         for file in files:
-            try:
-                column = pd.read_csv(file, sep=opts.delimiter, header=None, skiprows=opts.skip_rows,
-                                     usecols=[i], dtype=str,
-                                     encoding=own(file, opts.encoding)).iloc[:, 0]
-            except (ValueError, OSError, pd.errors.ParserError):
+            column = _column_cells(file, opts, i)
+            if column is None:
                 continue                    # (its own read says why)
             hours = pd.to_numeric(column.str.extract(r"^\s*(\d+):", expand=False), errors="coerce")
             if hours.max() > 23:
                 return h
         return None
     return None
+
+
+def _column_cells(file: Path, opts, index: int, rows: int | None = None) -> pd.Series | None:
+    """The cells of a text ``file``'s column ``index`` as text, from its first line under the
+    lines ``opts.skip_rows`` skips (its first ``rows``; every one where None); None where the
+    file does not read so (the record's own read says why)."""
+    try:
+        return pd.read_csv(file, sep=opts.delimiter, header=None, skiprows=opts.skip_rows,
+                           usecols=[index], dtype=str, nrows=rows,
+                           encoding=own(file, opts.encoding)).iloc[:, 0]
+    except (ValueError, OSError, pd.errors.ParserError):
+        return None
 
 
 def _separators(sample: Path, opts) -> str:
