@@ -348,11 +348,11 @@ def export(cfg: DictConfig) -> dict:
         say(f"build: cd {out} && cc compensator.c stream.c -lm -o stream && ./stream < rows.csv"
             " (--state FILE: a restarted stream goes on from FILE)")
         bits = provenance["bits"]
-        if bits:            # (lab83: stream.c does not decode a PLC's word; bits85: refuses it)
+        if bits:            # (lead91: stream.c decodes the word as the reader does)
             say(f"{', '.join(f'{c} (bit {b} of {w!r})' for c, (w, b) in bits.items())}: "
                 "data.bits; the code reads each as a column of its own, as `thermocomp rows` "
-                "writes them, not the word: a controller's rows give each bit so (the word "
-                "alone: refused by name, exit 2)")
+                "writes them, or from the word in their place, decoded as the reader decodes it "
+                "(the word and a bit of it both: refused by name, exit 2)")
     if packed:
         written[PACK] = out / PACK
         say(f"{_said(packed[1])}: {out / PACK}" + (f" (after the build, in {out}: sh check/check.sh)"

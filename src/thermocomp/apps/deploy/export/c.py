@@ -78,8 +78,8 @@ def _lab_names(ss: StateSpace) -> str:
     items = ", ".join(f"{{{c_string(raw)}, {c_string(c)}}}" for raw, c, _, _ in pairs) or '{"", ""}'
     units = ", ".join(f"{{{number(a)}, {number(b)}}}" for _, _, a, b in pairs) or "{1.0, 0.0}"
     run = ss.provenance.get("run_column")
-    # (bits85) the inputs a PLC's status word packs (data.bits): not decoded here, named where
-    # the rows lack them ({input, the word's header}, the bit)
+    # the inputs a PLC's status word packs (data.bits; {input, the word's header}, the bit):
+    # stream.c decodes the word where the rows give it in place of the bits (lead91)
     words = sorted((ss.provenance.get("bits") or {}).items())
     word_items = ", ".join(f"{{{c_string(c)}, {c_string(w)}}}" for c, (w, _) in words) or '{"", ""}'
     word_bits = ", ".join(str(int(b)) for _, (_, b) in words) or "0"
