@@ -102,6 +102,8 @@ def _lab_names(ss: StateSpace) -> str:
             "   /* data.time=elapsed: the time a logger's h:mm:ss since the start (iso67) */\n"
             f"#define TC_SLASHED {int(ss.provenance.get('slashed') or 0)}"
             "   /* data.time's dates with slashes: 1 day first, 2 month first (keysight70) */\n"
+            f"#define TC_DAY_SECONDS {int(bool(ss.provenance.get('day_seconds')))}"
+            "   /* the time seconds since midnight, a day added as it passes (lead91) */\n"
             f"#define TC_PAUSE_S {number(float(ss.provenance.get('pause_s') or 0.0))}"
             "   /* data.runs_at_pauses: a longer step of the time starts a campaign (0: none) */\n"
             f"static const char *const TC_THOUSANDS = "

@@ -622,6 +622,30 @@ static int elapsed(const char *cell, double *t) {
 /* The stream's clock: the form of its first time, and the first time of the campaign. */
 static struct { int kind, started; long long origin; double origin_fraction; } clock_;
 
+/* (lead91) TC_DAY_SECONDS: the time a logger's seconds since midnight (`Seconds of day`,
+   data89b), read as the reader's past_midnight reads it: a day added at each step back by more
+   than half a day (the clock passing midnight), so a pause across midnight is the pause it is
+   (runs_at_pauses: TC_PAUSE_S) and no step back; a step forward of half a day or more reads as
+   well a step back and is refused, as the reader refuses it.  `last`: the last time so read. */
+static double day_last = NAN, day_added = 0.0;
+
+static int of_day(double *t, long row) {
+    double raw = *t;
+    if (!isfinite(raw)) return 0;
+    *t = raw + day_added;
+    while (isfinite(day_last) && *t < day_last - 43200.0) day_added += 86400.0, *t += 86400.0;
+    if (isfinite(day_last) && *t - day_last >= 43200.0) {
+        fprintf(stderr, "stream: line %ld: the time of day (%.10g s, seconds since midnight) "
+                "steps %.3g h forward: as well %.3g h back, a day passed (no date to tell; "
+                "the reader refuses it alike): give the date column with it, or cut the "
+                "record there\n", row, raw, (*t - day_last) / 3600.0,
+                (86400.0 - (*t - day_last)) / 3600.0);
+        return 2;
+    }
+    day_last = *t;
+    return 0;
+}
+
 /* A row's time cell as seconds (NAN: none) into *t; wall-clock times as seconds since the
    campaign's first.  Returns 0, or 2 after saying why the cell is refused. */
 static int time_of(const char *cell, long row, double scale, double offset, double *t) {
@@ -1138,6 +1162,7 @@ int main(int argc, char **argv) {
                 "remove it to start cold\n", state_path);
         return 2;
     }
+    if (restored) day_last = s.t_read;     /* (a file continuing past midnight: its days) */
     while (pending || next_line(line, sizeof line, row + 1)) {
         if (pending) strcpy(line, first_row), pending = 0;
         row++;
@@ -1250,8 +1275,9 @@ int main(int argc, char **argv) {
             snprintf(stamp, sizeof stamp, "%s %s", trimmed(cells[time_col]),
                      trimmed(cells[clock_col]));
             if (time_of(stamp, row, 1.0, 0.0, &t) != 0) return 2;
-        } else if (time_col >= 0 && time_of(cells[time_col], row, scale_of[time_col],
-                                            offset_of[time_col], &t) != 0) return 2;
+        } else if (time_col >= 0 && (time_of(cells[time_col], row, scale_of[time_col],
+                                             offset_of[time_col], &t) != 0
+                                     || (TC_DAY_SECONDS && of_day(&t, row) != 0))) return 2;
         if (TC_PAUSE_S > 0 && isfinite(t) && !s.first && isfinite(s.t_read)
             && t - s.t_read > TC_PAUSE_S) {
             /* (catman70) the logger silent longer than data.runs_at_pauses' pause: the next
@@ -1260,7 +1286,7 @@ int main(int argc, char **argv) {
             if (time_col >= 0 && clock_col >= 0) {
                 if (time_of(stamp, row, 1.0, 0.0, &t) != 0) return 2;
             } else if (time_of(cells[time_col], row, scale_of[time_col], offset_of[time_col],
-                               &t) != 0) return 2;
+                               &t) != 0 || (TC_DAY_SECONDS && of_day(&t, row) != 0)) return 2;
         }
         if (TC_SUBSTITUTE_TIME && isfinite(t) && !s.first && isfinite(s.t_read) && t <= s.t_read
             && !isfinite(s.t_back) && said_back++ < 5)
