@@ -49,3 +49,12 @@ def test_without_the_key_the_pauses_are_still_warned_of(tmp_path, caplog):
     assert list(ds.campaigns) == ["week"]
     [said] = [r.getMessage() for r in caplog.records if "a day lost" in r.getMessage()]
     assert "2 such pauses" in said
+
+
+def test_a_run_passing_midnight_stays_one_run_between_its_pauses(tmp_path):
+    # (data90) 16:00; 23:00 to 01:00 the next day, midnight inside the run; 09:00
+    ds, report = read_dataset(_runs(tmp_path / "week.csv", [16, 23, 33]), {"runs_at_pauses": True})
+    assert list(ds.campaigns) == ["week_1", "week_2", "week_3"]
+    for campaign in ds.campaigns.values():
+        assert np.allclose(np.diff(campaign["time"].to_numpy()), PERIOD_S)
+    assert report["campaigns"]["week_2"]["time"] == "seconds of day"

@@ -2,7 +2,7 @@
 deployed as scored (bits85): the served model takes the lab's own rows, the word in them, and
 decodes it as the reader did (the declaration travels with the model, as its column names do);
 the exported ``stream.c`` reads each bit as a column of its own, as ``thermocomp rows`` writes
-them, and refuses the raw word naming it, its bits and ``thermocomp rows``; ``replay`` and
+them, or the word in their place, decoded as served decodes it (lead91; bits85 refused it); ``replay`` and
 ``export`` of the registered model decode the word by its declaration where no data.bits is given
 (data86), and refuse one given that is not the model's."""
 
@@ -103,29 +103,49 @@ def stream_c(promoted, tmp_path_factory):
     return out
 
 
-def test_the_c_stream_takes_the_rows_as_served_and_refuses_the_word_by_name(promoted, stream_c,
-                                                                              capsys):
-    """Before, the lab's rows were refused 'lacks input column S_machine_on', the word unnamed."""
+def test_the_c_stream_takes_the_rows_as_served_and_the_word_as_served(promoted, stream_c,
+                                                                       capsys):
+    """The rows as ``thermocomp rows`` writes them (each bit a column) and the lab's own rows (the
+    word): both streamed as served (before, lead91: the word refused, "this code does not decode
+    the word")."""
     import mlflow
 
     rows = _rows(promoted, capsys)
-    fed = subprocess.run(["./stream"], cwd=stream_c, input=rows.to_csv(index=False),
-                         capture_output=True, text=True, check=True)
     mlflow.set_tracking_uri(promoted["uri"])
-    served = mlflow.pyfunc.load_model(promoted["model_uri"]).predict(rows, params={"reset": True})
-    np.testing.assert_allclose(pd.read_csv(io.StringIO(fed.stdout))["C_dX"], served["C_dX"],
-                               rtol=0, atol=1e-9)
+    model = mlflow.pyfunc.load_model(promoted["model_uri"])
     lab = promoted["lab"]
-    word = subprocess.run(["./stream"], cwd=stream_c, input=lab.to_csv(index=False),
+    for fed_rows in (rows, lab):
+        fed = subprocess.run(["./stream"], cwd=stream_c, input=fed_rows.to_csv(index=False),
+                             capture_output=True, text=True)
+        assert fed.returncode == 0, fed.stderr
+        served = model.predict(fed_rows, params={"reset": True})
+        np.testing.assert_allclose(pd.read_csv(io.StringIO(fed.stdout))["C_dX"],
+                                   served["C_dX"], rtol=0, atol=1e-9)
+
+
+def _streamed(stream_c, rows: pd.DataFrame) -> subprocess.CompletedProcess:
+    return subprocess.run(["./stream"], cwd=stream_c, input=rows.to_csv(index=False),
                           capture_output=True, text=True)
-    assert word.returncode == 2 and not word.stdout
+
+
+def test_the_c_stream_refuses_a_word_that_is_none_as_served(promoted, stream_c):
+    lab = promoted["lab"].copy()
     column = list(lab.columns).index("Status") + 1
+    lab.loc[7, "Status"] = 130.5            # the block's data row 8, the file's line 9
+    bad = _streamed(stream_c, lab)
+    # (a stream: the rows above it corrected, as for any cell that is no number)
+    assert bad.returncode == 2 and len(bad.stdout.splitlines()) == 1 + 7
+    assert (f"stream: line 9, column {column} ('Status'): value 130.5 is no whole number >= 0: "
+            "no status word (data.bits)") in bad.stderr
+    both = _streamed(stream_c, promoted["lab"].assign(S_spindle_on=1.0))
+    assert both.returncode == 2 and not both.stdout
+    assert "gives the status word 'Status'" in both.stderr and "S_spindle_on" in both.stderr
+    neither = _streamed(stream_c, promoted["lab"].drop(columns="Status"))
+    assert neither.returncode == 2 and not neither.stdout
     said = re.search(r"lacks input column (S_\w+), bit (\d+) of the PLC status word 'Status' "
-                     rf"\(data.bits; column {column}\): this code does not decode the word",
-                     word.stderr)
-    assert said, word.stderr
+                     r"\(data.bits\), and the word", neither.stderr)
+    assert said, neither.stderr
     assert said[1] == f"S_{BITS[int(said[2])]}"
-    assert "as thermocomp rows writes them" in word.stderr
 
 
 def _replayed(promoted, name: str, *data: str) -> float:

@@ -123,7 +123,7 @@ from .sparse import measured_on, on_grid, said, sparse_totals
 from .starts import campaign_starts, commented_start
 from .steps import check_unit_steps
 from .tables import NoRows, _load_csv, _load_parquet, _ordered, _values, parquet
-from .timestamps import CLOCK, seconds_of_day
+from .timestamps import CLOCK, OF_DAY, seconds_of_day
 from .values import (
     _check_periods,
     _error_ranges,
@@ -596,6 +596,10 @@ def read_dataset(path: str | Path, cfg: Mapping | None = None, *, missing: str =
             # the header of a time of day joined to the date (data.roles.time: [date, time])
             "time_of_day": next((e["time_of_day"] for e in entries.values() if "time_of_day" in e),
                                 None),
+            # (lead91) a time of seconds since midnight, days added as it passed (data89b):
+            # what an exported stream reads the lab's raw file as
+            "seconds_of_day": any(OF_DAY in (e.get("time"), e.get("record_time"))
+                                  for e in entries.values()),
             # None: the splits came from no file (a record, a folder of runs): data.*_fraction
             "manifest": str(root / MANIFEST) if Path(path).is_dir() and (root / MANIFEST).is_file()
             else None}
@@ -809,17 +813,18 @@ def _numbers(column) -> np.ndarray | None:
     return None
 
 
-def _continuing(columns: dict, renamed: dict, path: Path) -> np.ndarray | None:
+def _continuing(columns: dict, renamed: dict, path: Path) -> tuple[np.ndarray | None, bool]:
     """The record's time as numbers where its pauses are found: seconds of the day past
     midnight as a continuing time (the reader's rule, :func:`.timestamps.seconds_of_day`; lead90:
     the raw values split a record at its forward pauses only, a run after a pause across
-    midnight joined to the one before), each run then read alone as a file of it is."""
+    midnight joined to the one before), each run then read alone as a file of it is; and
+    whether it was read as seconds of the day."""
     seconds = _numbers(columns.get(TIME))
     if seconds is None:
-        return None
+        return None, False
     header = next((raw for raw, name in renamed.items() if name == TIME), None)
     of_day = seconds_of_day(seconds, path, header, pauses_said=False)
-    return seconds if of_day is None else of_day
+    return (seconds, False) if of_day is None else (of_day, True)
 
 
 def _run_parts(path: Path, opts: ReadOptions) -> tuple[pd.DataFrame, dict]:
@@ -830,10 +835,10 @@ def _run_parts(path: Path, opts: ReadOptions) -> tuple[pd.DataFrame, dict]:
     with as_read(path, opts) as (source, source_opts):
         columns, renamed, rescaled, lines = _loaded(source, source_opts)
         if opts.runs_at_pauses:
-            header = None
-            blocks = pause_blocks(_continuing(columns, renamed, path), record_id(path), path)
+            header, (times, of_day) = None, _continuing(columns, renamed, path)
+            blocks = pause_blocks(times, record_id(path), path)
         else:
-            header = next(raw for raw, name in renamed.items() if name == RUN)
+            header, of_day = next(raw for raw, name in renamed.items() if name == RUN), False
             renamed = {raw: name for raw, name in renamed.items() if name != RUN}
             blocks = run_blocks(run_values(columns.pop(RUN)), header, path)
         parts = {}
@@ -846,7 +851,9 @@ def _run_parts(path: Path, opts: ReadOptions) -> tuple[pd.DataFrame, dict]:
                                                  lines, start), opts, path)
             parts[cid] = table, {
                 "file": path.name, "split": "train", **report, "record_rows": [start, end],
-                **({"run_column": header} if header else {})}
+                **({"run_column": header} if header else {}),
+                # (lead91) the record's time, not only this run's, seconds of the day
+                **({"record_time": OF_DAY} if of_day else {})}
     _check_runs(parts, path, opts)
     manifest = pd.DataFrame({"file": path.name, "split": "train"}, index=pd.Index(
         list(parts), name="campaign"))

@@ -169,12 +169,17 @@ def seconds_of_day(seconds: np.ndarray, path: Path, header: str | None = None,
     finite = seconds[np.isfinite(seconds)]
     if not finite.size or finite.min() < 0 or finite.max() >= DAY_S:
         return None
-    said = header is not None and _bare(header) in OF_DAY_HEADERS
+    said = names_seconds_of_day(header)
     if not (said or over_midnight(finite)):
         return None
     unwrapped = past_midnight(pa.array(seconds, from_pandas=True), path, header,
                               pauses_said)
     return None if unwrapped is None else unwrapped.to_numpy(zero_copy_only=False)
+
+
+def names_seconds_of_day(header: str | None) -> bool:
+    """The header says seconds since midnight (:data:`OF_DAY_HEADERS`, its unit aside)."""
+    return header is not None and _bare(header) in OF_DAY_HEADERS
 
 
 def over_midnight(seconds: np.ndarray) -> bool:

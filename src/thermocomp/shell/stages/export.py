@@ -40,7 +40,7 @@ from ...core.io.dayfirst import ORDER
 from ...core.io.derived import sources as derived_sources
 from ...core.io.roles import RUN
 from ...core.io.source import check_streamed_columns
-from ...core.io.timestamps import CLOCK
+from ...core.io.timestamps import CLOCK, names_seconds_of_day
 from ...core.scoring.evaluation import require_split
 from ..builders import deployable_model, is_registered, with_model_bits
 from ..config.checks import check_config
@@ -258,6 +258,18 @@ def _pause_s(cfg: DictConfig, ds) -> float:
     return PAUSE_PERIODS * float(median_step(first[TIME].to_numpy(float)) or 0.0)
 
 
+def _day_seconds(ds, time_header) -> bool:
+    """``TC_DAY_SECONDS``: the record's time was read as seconds since midnight, a day added
+    as it passed (the ingest report's ``time``, data89b), or its lab header says so (a record
+    that never passed midnight, a registered model exported without its record: the machine's
+    log will); ``stream.c`` then reads the lab's raw file so (lead91: it took midnight's step
+    back for a clock set back, one period on, and a run after a pause across midnight for the
+    run before it)."""
+    headers = [time_header] if isinstance(time_header, str) else list(time_header or ())
+    return bool(ds is not None and ds.meta.get("seconds_of_day")) or any(
+        names_seconds_of_day(str(h)) for h in headers)
+
+
 def export(cfg: DictConfig) -> dict:
     """Write the export of ``export.model`` in ``export.format`` to ``out``; ``{file: path}``."""
     # a registered model is read from the store: none created (export logs no run)
@@ -312,7 +324,8 @@ def export(cfg: DictConfig) -> dict:
     thousands = cfg.data.get("thousands")       # (the lab's 1.234,5: stream.c ungroups it)
     provenance.update(thousands=None if thousands is None else str(thousands)[:1],
                       elapsed=str(cfg.data.get("time") or "auto") == "elapsed",
-                      slashed=_slashed(cfg, ds), pause_s=_pause_s(cfg, ds))
+                      slashed=_slashed(cfg, ds), pause_s=_pause_s(cfg, ds),
+                      day_seconds=_day_seconds(ds, lab.get(TIME)))
     # (streamraw65: the lab's raw file as the reader reads it -- its character set and its marks
     # of a value not measured travel with the model, as data.thousands does)
     provenance.update(encoding=_stream_encoding(cfg, fmt),
@@ -348,11 +361,11 @@ def export(cfg: DictConfig) -> dict:
         say(f"build: cd {out} && cc compensator.c stream.c -lm -o stream && ./stream < rows.csv"
             " (--state FILE: a restarted stream goes on from FILE)")
         bits = provenance["bits"]
-        if bits:            # (lab83: stream.c does not decode a PLC's word; bits85: refuses it)
+        if bits:            # (lead91: stream.c decodes the word as the reader does)
             say(f"{', '.join(f'{c} (bit {b} of {w!r})' for c, (w, b) in bits.items())}: "
                 "data.bits; the code reads each as a column of its own, as `thermocomp rows` "
-                "writes them, not the word: a controller's rows give each bit so (the word "
-                "alone: refused by name, exit 2)")
+                "writes them, or from the word in their place, decoded as the reader decodes it "
+                "(the word and a bit of it both: refused by name, exit 2)")
     if packed:
         written[PACK] = out / PACK
         say(f"{_said(packed[1])}: {out / PACK}" + (f" (after the build, in {out}: sh check/check.sh)"

@@ -78,8 +78,8 @@ def _lab_names(ss: StateSpace) -> str:
     items = ", ".join(f"{{{c_string(raw)}, {c_string(c)}}}" for raw, c, _, _ in pairs) or '{"", ""}'
     units = ", ".join(f"{{{number(a)}, {number(b)}}}" for _, _, a, b in pairs) or "{1.0, 0.0}"
     run = ss.provenance.get("run_column")
-    # (bits85) the inputs a PLC's status word packs (data.bits): not decoded here, named where
-    # the rows lack them ({input, the word's header}, the bit)
+    # the inputs a PLC's status word packs (data.bits; {input, the word's header}, the bit):
+    # stream.c decodes the word where the rows give it in place of the bits (lead91)
     words = sorted((ss.provenance.get("bits") or {}).items())
     word_items = ", ".join(f"{{{c_string(c)}, {c_string(w)}}}" for c, (w, _) in words) or '{"", ""}'
     word_bits = ", ".join(str(int(b)) for _, (_, b) in words) or "0"
@@ -102,6 +102,8 @@ def _lab_names(ss: StateSpace) -> str:
             "   /* data.time=elapsed: the time a logger's h:mm:ss since the start (iso67) */\n"
             f"#define TC_SLASHED {int(ss.provenance.get('slashed') or 0)}"
             "   /* data.time's dates with slashes: 1 day first, 2 month first (keysight70) */\n"
+            f"#define TC_DAY_SECONDS {int(bool(ss.provenance.get('day_seconds')))}"
+            "   /* the time seconds since midnight, a day added as it passes (lead91) */\n"
             f"#define TC_PAUSE_S {number(float(ss.provenance.get('pause_s') or 0.0))}"
             "   /* data.runs_at_pauses: a longer step of the time starts a campaign (0: none) */\n"
             f"static const char *const TC_THOUSANDS = "

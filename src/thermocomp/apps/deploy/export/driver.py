@@ -356,6 +356,15 @@ static char separator_of(const char *line) {
     return strchr(line, ';') ? ';' : strchr(line, '\t') ? '\t' : strchr(line, '|') ? '|' : ',';
 }
 
+/* 1: a header's cell is the status word (data.bits) one of whose bits is input i (lead91). */
+static int word_holds(const char *cell, int i) {
+    int k;
+    for (k = 0; k < TC_N_WORD_BITS; k++)
+        if (strcmp(TC_INPUT_NAMES[i], TC_WORD_BITS[k][0]) == 0
+            && strcmp(cell, TC_WORD_BITS[k][1]) == 0) return 1;
+    return 0;
+}
+
 /* How many inputs of TC_INPUT_NAMES `line` (not changed) names (sets `sep` to the line's). */
 static int inputs_named(const char *line) {
     static char text[MAX_LINE];
@@ -370,7 +379,7 @@ static int inputs_named(const char *line) {
     for (j = 0; j < ncols; j++) names[j] = named(twin(cells, j), j);
     for (i = 0; i < TC_N_INPUTS; i++) {
         for (found = 0, j = 0; j < ncols && !found; j++)
-            found = strcmp(names[j], TC_INPUT_NAMES[i]) == 0;
+            found = strcmp(names[j], TC_INPUT_NAMES[i]) == 0 || word_holds(cells[j], i);
         n += found;
     }
     return n;
@@ -613,6 +622,30 @@ static int elapsed(const char *cell, double *t) {
 /* The stream's clock: the form of its first time, and the first time of the campaign. */
 static struct { int kind, started; long long origin; double origin_fraction; } clock_;
 
+/* (lead91) TC_DAY_SECONDS: the time a logger's seconds since midnight (`Seconds of day`,
+   data89b), read as the reader's past_midnight reads it: a day added at each step back by more
+   than half a day (the clock passing midnight), so a pause across midnight is the pause it is
+   (runs_at_pauses: TC_PAUSE_S) and no step back; a step forward of half a day or more reads as
+   well a step back and is refused, as the reader refuses it.  `last`: the last time so read. */
+static double day_last = NAN, day_added = 0.0;
+
+static int of_day(double *t, long row) {
+    double raw = *t;
+    if (!isfinite(raw)) return 0;
+    *t = raw + day_added;
+    while (isfinite(day_last) && *t < day_last - 43200.0) day_added += 86400.0, *t += 86400.0;
+    if (isfinite(day_last) && *t - day_last >= 43200.0) {
+        fprintf(stderr, "stream: line %ld: the time of day (%.10g s, seconds since midnight) "
+                "steps %.3g h forward: as well %.3g h back, a day passed (no date to tell; "
+                "the reader refuses it alike): give the date column with it, or cut the "
+                "record there\n", row, raw, (*t - day_last) / 3600.0,
+                (86400.0 - (*t - day_last)) / 3600.0);
+        return 2;
+    }
+    day_last = *t;
+    return 0;
+}
+
 /* A row's time cell as seconds (NAN: none) into *t; wall-clock times as seconds since the
    campaign's first.  Returns 0, or 2 after saying why the cell is refused. */
 static int time_of(const char *cell, long row, double scale, double offset, double *t) {
@@ -854,6 +887,7 @@ int main(int argc, char **argv) {
     static char line[MAX_LINE], run[MAX_CELL] = "";
     char *cells[MAX_COLS], *state_path = NULL, *state_tmp = NULL, *end;
     int where[TC_N_INPUTS], error_col[TC_N_OUTPUTS], time_col = -1, reset_col = -1, run_col = -1;
+    int word_of[TC_N_INPUTS];   /* an input read from a status word: its TC_WORD_BITS row (-1: none) */
     int source_col[TC_N_SOURCES + 1], k;
     double r[TC_N_SOURCES + 1];        /* a row's error columns of derived targets (um) */
     int clock_col = -1;        /* a time of day beside the date (TC_CLOCK_COLUMN): joined */
@@ -1056,18 +1090,31 @@ int main(int argc, char **argv) {
             }
             where[i] = j;
         }
-        for (k = 0; where[i] < 0 && k < TC_N_WORD_BITS; k++) {
-            /* (bits85) a bit of a PLC's status word: this code reads each bit as a column of
-               its own, as `thermocomp rows` writes it; the word itself is refused by name */
+        word_of[i] = -1;
+        for (k = 0; k < TC_N_WORD_BITS; k++) {
+            /* (lead91; bits85 refused it) a bit of a PLC's status word (data.bits), the word
+               given in its place: read from the word, as the reader and the served model
+               decode it; the word and the bit both given refused, as served refuses them */
             if (strcmp(TC_INPUT_NAMES[i], TC_WORD_BITS[k][0]) != 0) continue;
             for (j = 0; j < ncols && strcmp(raw[j], TC_WORD_BITS[k][1]) != 0; j++) {}
-            fprintf(stderr, "stream: the header (line %ld) lacks input column %s, bit %d of the "
-                    "PLC status word '%s' (data.bits; %s%d): this code does not decode the "
-                    "word; give each bit as a column of its own, as thermocomp rows writes "
-                    "them\n", top, TC_INPUT_NAMES[i], TC_WORD_BIT[k], TC_WORD_BITS[k][1],
-                    j < ncols ? "column " : "not in the header, its columns ",
-                    j < ncols ? j + 1 : ncols);
-            return 2;
+            if (j == ncols && where[i] >= 0) break;
+            if (j == ncols) {
+                fprintf(stderr, "stream: the header (line %ld) lacks input column %s, bit %d of "
+                        "the PLC status word '%s' (data.bits), and the word: give either, the "
+                        "word as the controller logs it or each bit as a column of its own, as "
+                        "thermocomp rows writes them\n", top, TC_INPUT_NAMES[i], TC_WORD_BIT[k],
+                        TC_WORD_BITS[k][1]);
+                return 2;
+            }
+            if (where[i] >= 0) {
+                fprintf(stderr, "stream: the header (line %ld) gives the status word '%s' "
+                        "(column %d) and its bit %s (column %d) both (data.bits): send one "
+                        "of them\n", top, TC_WORD_BITS[k][1], j + 1, TC_INPUT_NAMES[i],
+                        where[i] + 1);
+                return 2;
+            }
+            where[i] = j;
+            word_of[i] = k;
         }
         if (where[i] < 0) {
             /* a lab's report or gateway file fed as it is (a title line read as the header):
@@ -1115,6 +1162,7 @@ int main(int argc, char **argv) {
                 "remove it to start cold\n", state_path);
         return 2;
     }
+    if (restored) day_last = s.t_read;     /* (a file continuing past midnight: its days) */
     while (pending || next_line(line, sizeof line, row + 1)) {
         if (pending) strcpy(line, first_row), pending = 0;
         row++;
@@ -1183,6 +1231,16 @@ int main(int argc, char **argv) {
         for (i = 0; i < TC_N_INPUTS; i++) {
             int bad = 0;
             u[i] = converted(cells, where[i], &bad);
+            if (word_of[i] >= 0 && isfinite(u[i])) {
+                /* the reader's rule (core/io/bits.py): a whole number >= 0 below 2^63 */
+                if (u[i] < 0 || u[i] != floor(u[i]) || u[i] >= 9223372036854775808.0) {
+                    fprintf(stderr, "stream: line %ld, column %d ('%s'): value %g is no whole "
+                            "number >= 0: no status word (data.bits)\n", row, where[i] + 1,
+                            TC_WORD_BITS[word_of[i]][1], u[i]);
+                    return 2;
+                }
+                u[i] = (double)(((unsigned long long)u[i] >> TC_WORD_BIT[word_of[i]]) & 1ULL);
+            }
             if (bad && names_every_input(row_raw)) {   /* (names_every_input set sep: the same) */
                 fprintf(stderr, "stream: line %ld is a header other than the first (another "
                         "file's: a column renamed?): stream each file by itself, --state FILE "
@@ -1217,8 +1275,9 @@ int main(int argc, char **argv) {
             snprintf(stamp, sizeof stamp, "%s %s", trimmed(cells[time_col]),
                      trimmed(cells[clock_col]));
             if (time_of(stamp, row, 1.0, 0.0, &t) != 0) return 2;
-        } else if (time_col >= 0 && time_of(cells[time_col], row, scale_of[time_col],
-                                            offset_of[time_col], &t) != 0) return 2;
+        } else if (time_col >= 0 && (time_of(cells[time_col], row, scale_of[time_col],
+                                             offset_of[time_col], &t) != 0
+                                     || (TC_DAY_SECONDS && of_day(&t, row) != 0))) return 2;
         if (TC_PAUSE_S > 0 && isfinite(t) && !s.first && isfinite(s.t_read)
             && t - s.t_read > TC_PAUSE_S) {
             /* (catman70) the logger silent longer than data.runs_at_pauses' pause: the next
@@ -1227,7 +1286,7 @@ int main(int argc, char **argv) {
             if (time_col >= 0 && clock_col >= 0) {
                 if (time_of(stamp, row, 1.0, 0.0, &t) != 0) return 2;
             } else if (time_of(cells[time_col], row, scale_of[time_col], offset_of[time_col],
-                               &t) != 0) return 2;
+                               &t) != 0 || (TC_DAY_SECONDS && of_day(&t, row) != 0)) return 2;
         }
         if (TC_SUBSTITUTE_TIME && isfinite(t) && !s.first && isfinite(s.t_read) && t <= s.t_read
             && !isfinite(s.t_back) && said_back++ < 5)

@@ -1,0 +1,83 @@
+"""The exported ``stream.c`` reads a lab's time of seconds since midnight as the reader does
+(lead91): a day added where the clock passes midnight, so a run after a pause across midnight
+starts a campaign of its own (``data.runs_at_pauses``), as the record was scored.  Before, the
+step back was taken for a clock set back (one period on, said) and the third run streamed as
+the second's continuation: its corrections off by up to 31 µm on a simulated record
+(``benchmarks/bench_data90.py``'s 9381 ``longpause``)."""
+
+from __future__ import annotations
+
+import io
+import shutil
+import subprocess
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from thermocomp.shell.cli import main
+
+ROWS, PERIOD_S, DAY_S = 120, 60, 86400
+LIGHT = ["model=mlr", "plots=none", "track=false", "eval.mutual_prediction=false",
+         "eval.ati_baselines=false", "eval.iso10791_a3=false"]
+
+
+def _runs(path, starts_h):
+    """Runs of ``ROWS`` rows each starting at ``starts_h`` hours, under ``Seconds of day``; each
+    run's error follows its own rise from its first sample (data.reference=first_sample)."""
+    rng = np.random.default_rng(91)
+    frames = []
+    for start in starts_h:
+        t = start * 3600 + np.arange(ROWS) * PERIOD_S
+        rise = np.cumsum(rng.normal(0.02, 0.05, (ROWS, 2)), axis=0)
+        temp = 20 + rng.normal(0, 1) + rise
+        frames.append(pd.DataFrame({"Seconds of day": t % DAY_S, "T_a": temp[:, 0],
+                                    "T_b": temp[:, 1], "E_X": 3 * rise[:, 0] - rise[:, 1]}))
+    pd.concat(frames, ignore_index=True).to_csv(path, index=False)
+    return path
+
+
+@pytest.fixture(scope="module")
+def exported(tmp_path_factory):
+    if shutil.which("cc") is None:
+        pytest.skip("no C compiler")
+    root = tmp_path_factory.mktemp("day91")
+    # 20:00; 01:00 the next day (a pause across midnight); 10:30
+    record = _runs(root / "week.csv", [20, 25, 34.5])
+    data = [f"data.path={record}", "data.runs_at_pauses=true", "data.test_fraction=0.34"]
+    assert main(["run", *data, *LIGHT, f"out={root / 'run'}"]) == 0
+    out = root / "c"
+    assert main(["export", *data, f"export.model={root / 'run' / 'model.pkl'}",
+                 "export.format=c", "export.check=false", f"out={out}"]) == 0
+    subprocess.run(["cc", "-Werror", "compensator.c", "stream.c", "-lm", "-o", "stream"],
+                   cwd=out, check=True)
+    return {"root": root, "data": data, "out": out, "record": record}
+
+
+def _stream(out, text: str) -> subprocess.CompletedProcess:
+    return subprocess.run(["./stream"], cwd=out, input=text, capture_output=True, text=True)
+
+
+def test_the_raw_record_streams_as_its_campaigns(exported, capsys):
+    capsys.readouterr()
+    assert main(["rows", *exported["data"]]) == 0
+    rows = capsys.readouterr().out          # the reader's campaigns, a blank line between
+    assert rows.count("\n\n") == 2
+    want = _stream(exported["out"], rows)
+    raw = _stream(exported["out"], exported["record"].read_text())
+    assert want.returncode == 0 and raw.returncode == 0, raw.stderr
+    assert "not after the last read" not in raw.stderr
+    expected = pd.read_csv(io.StringIO(want.stdout))["C_X"]
+    got = pd.read_csv(io.StringIO(raw.stdout))["C_X"]
+    assert len(got) == 3 * ROWS and np.abs(expected).max() > 0.1
+    np.testing.assert_allclose(got, expected, rtol=0, atol=1e-9)
+
+
+def test_a_step_of_half_a_day_forward_is_refused_as_the_reader_refuses_it(exported):
+    record = pd.read_csv(exported["record"]).iloc[:20]
+    record["Seconds of day"] = 3600 + np.arange(20) * PERIOD_S     # 01:00 ...
+    record.loc[10:, "Seconds of day"] += 13 * 3600                  # ... 14:10: 11 h back?
+    fed = _stream(exported["out"], record.to_csv(index=False))
+    assert fed.returncode == 2
+    assert "stream: line 12: the time of day (51000 s, seconds since midnight) steps 13 h" \
+        " forward: as well 11 h back" in fed.stderr
