@@ -8,95 +8,103 @@ tree's; ROOT holds lab5401's written record, WORK the rows)::
     python benchmarks/bench_auto91.py rows ROOT WORK RECORD ...    # bench_automore69's rows
     python benchmarks/bench_auto91.py folds WORK RECORD ...        # kept blend, per-fold ratios
     python benchmarks/bench_auto91.py where ROOT WORK RECORD ...   # the loss in time, in range
+    python benchmarks/bench_auto91.py guard ROOT WORK RECORD ...   # a probe: MLR out of range
 
 ``rows``: lab5401's record written into ROOT where absent (bench_auto_losses56's ``lab_record``),
 then bench_automore69's ``rows`` (auto and every candidate alone fitted on the record's train part,
-scored on its own test and on 12 new campaigns of its machine: seeds 6911-6922, already looked at;
-the candidates' and auto's out-of-fold and test predictions kept in WORK/pred).  ``folds``: per
-target, the kept weights, every member's summed squared error over MLR's per validation fold (the
-votes' measure), the blend's, the one-SE figures the fallback reads (mean and SE over the folds;
-with one fold, the fold's ratio and its SE over bootstrap resamples of the blocks the votes
-resample) and each member's test RMSE over MLR's on the new campaigns; then the excess squared
-error of auto over MLR on the new campaigns per tenth of the campaign (share of MLR's total).
-``where``: the share of rows whose inputs (the ``T_`` columns, referenced at the campaign's first
-sample as ``data.reference=first_sample`` does) lie within the leverage range of the train rows
-(:func:`thermocomp.core.model_selection.extrapolation.within_range`): for each forward fold's
-block against its fit rows, and for the new campaigns per tenth against the whole train record;
-per lossy target the share of auto's excess squared error (over MLR's) in out-of-range rows.
+scored on its own test and on the 12 new campaigns of its machine, seeds 6911-6922, already
+looked at; their out-of-fold and test predictions kept in WORK/pred).  ``folds``: per target, the
+kept weights, every member's summed squared error over MLR's per validation fold (the votes'
+measure), the blend's, the figures the one-SE fallback reads (mean + SE over the folds; with one
+fold, its ratio + the SE over bootstrap resamples of the blocks the votes resample), each member's
+test RMSE over MLR's on the new campaigns, auto's excess squared error over MLR's per tenth of the
+new campaigns (a share of MLR's total), and each kept member's ratio per fifth of the folds' rows
+and of the new campaigns (does its error grow with a horizon the folds do not reach?).  ``where``:
+whether each row's inputs (the ``T_`` columns less the campaign's first sample, as
+``data.reference=first_sample`` takes them) lie within the leverage range of the train rows
+(:func:`thermocomp.core.model_selection.extrapolation.within_range`): each forward fold's block
+against its fit rows, the new campaigns per tenth against the whole train record, and per target
+with a blend the share of auto's excess squared error in out-of-range rows.  ``guard``: a probe,
+not a rule (it reads the deployed rows' inputs): auto's prediction replaced by MLR's in the rows
+out of range; the record's figure (mean over targets of the new campaigns' pooled RMSE) over MLR's.
 
 The question (stop 90's "what remains": 8 of 22 records worse than MLR on their new campaigns, the
 largest the column's, col5791 x1.258, col1403 x1.311, and lab5401 x1.070): is the loss the test
 extrapolating past the last fold's operating range, a member whose error grows with a horizon longer
 than the fold's, or folds shorter than the test?  A rule only where a general cause showed.
 
-Traced (2026-12-05; this tree = main 277a181d; 2 shared cores, load 2-4, ``OMP_NUM_THREADS=1``;
-``rows /tmp/auto91/root /tmp/auto91/seen col5791 col1403 lab5401 col1514 col6512``, ``folds`` and
-``where`` on them; CPU of the rows 17 / 13 / 6 / 13 / 13 s a record)
-------------------------------------------------------------------------------------------------
-auto / MLR on the new campaigns reproduce stop 90's: col5791 1.258, col1403 1.311, lab5401 1.070,
-col1514 1.019, col6512 1.004.
+Traced (2026-12-05; this tree = main 277a181d; 2 shared cores, load 2-3, ``OMP_NUM_THREADS=1``;
+``rows /tmp/auto91/root /tmp/auto91/seen col5791 col1403 lab5401 col1514 col6512 swiss303
+swiss5454 year6511 year6_5411 mill1514``, then ``folds``, ``where`` and ``guard`` on them; CPU of
+the rows 17 / 13 / 6 / 13 / 13 s for the first five, 60 s for the other five)
+-------------------------------------------------------------------------------------------------
+auto / MLR on the new campaigns as stop 90 has them: col5791 1.258, col1403 1.311, lab5401 1.070,
+col1514 1.019, col6512 1.004 (swiss303 0.569, swiss5454 0.950, year6511 0.351, year6_5411 0.518,
+mill1514 1.000).
 
-* The records' shape.  The column (``column_moving_source``): ONE train campaign of 1441 rows
-  (40 h), its own test a separate 40 h test cycle of 1441 rows referenced at its first sample (a
-  new campaign, not a continuation: shifted ambient, the source Q3 never run in training, from 50
-  to 75 % of the cycle); auto's folds: 5 forward blocks of 144 rows over the later half, each
-  predicted in free run from the record's start, so a fold's horizon is 793-1441 rows from the
-  start, as long as the test's.  lab5401: three 10 h train runs and a 12 h test run (campaign
-  folds: min_train_fraction 0.5 leaves ONE fold, Lauf_3, 1200 rows; the test 1441 rows, 1.2 x).
-  Neither record's test is longer than its folds' horizon by more than 20 %: the horizon is not
-  the cause.
-* Where the column loses: the excess of auto over MLR lies in the tenths 6-8 of the cycle (Q3
-  running), and there the inputs lie outside the train record's range: the in-range share of
-  the new campaigns per tenth 0.47 0.42 0.57 0.40 0.72 0.03 0.00 0.00 0.09 0.48 (col5791;
-  col1403 alike).  col5791 E_Z_mid (lagbank 0.81, hammerstein 0.02, arx 0.02, MLR 0.15; 2.94 x
-  MLR on the new campaigns): excess per tenth -0.01 -0.02 -0.01 +0.00 +0.00 +1.24 +3.29 +2.98
-  +0.20 -0.01 (of MLR's total SSE); E_X_mid (arx 0.50) and E_Z (hammerstein 0.10, lstm 0.22) the
-  same tenths, smaller.  col1514 E_Z_mid (lagbank 0.18, hammerstein 0.41; 1.61 x) +0.85 +0.54
-  +0.22 in the tenths 7-9, col6512 E_X_mid (arx 0.65; 1.07 x) in 5-7.  The forward folds
-  extrapolate too (col5791's blocks in range 0.00 0.17 0.50 0.92 0.97 of their rows, col1403's
-  0.00 0.00 0.76 0.99 1.00), but along the record's own warming, where the lag families win
-  (col5791 E_Z_mid lagbank per fold 1.04 1.14 0.13 0.11 0.92 x MLR; the blend 1.03 0.68 0.09 0.08
-  0.48, one-SE mean 0.47 + SE 0.19: kept), not along Q3's direction, which no fold holds.
-* col1403 (E_Y: lagbank 0.84, arx 0.15, 1.85 x MLR; E_Y_mid: hammerstein 0.64, lagbank 0.36,
-  2.08 x): the loss also lies in range, over the whole cycle (E_Y excess per tenth -0.03 +0.13
-  +0.27 +0.21 +0.21 +1.08 +0.30 +0.10 +0.17 -0.00), the Q3 tenths the largest.  Its folds are
-  sure the other way: E_Y lagbank 0.33 0.07 1.09 0.40 0.64, blend 0.29 0.06 0.92 0.42 0.59; even
-  the last two (fit on the most, in range 0.99 / 1.00) 0.42 / 0.59.  A new campaign starts its
-  frame and states afresh where no fold of one record does (auto86's finding: both a restarted
-  block and a shifted frame read this loss, and read the Swiss lathe's right hammerstein as
-  failing as well: refused there).
-* lab5401 (one fold: the votes resample its blocks, the one-SE fallback needs k >= 2 folds and
-  is off): E_Z keeps MLR 0.57, lstm 0.28, arx 0.15 (1.19 x MLR on the new campaigns): on Lauf_3 arx
-  0.97, lstm 0.96, the blend 0.67 x MLR -- the members' errors cancel on the one fold.  arx's
-  error grows with the hour on the new 12 h runs (per fifth 1.51 4.41 5.33 6.80 7.68 x MLR) where
-  on the fold it does not (1.30 2.26 0.26 1.51 0.78); the blend's excess grows likewise (+0.00 ..
-  +0.08 per tenth).  E_Y (lagbank 0.04) 1.05 x. A one-SE rule on the fold's blocks (its ratio +
-  the bootstrap SE over the 4-6 blocks the votes use) would keep every blend: E_X 0.963 + 0.014,
-  E_Y 0.902 + 0.034, E_Z 0.666 + 0.069 (mean + SE over the blocks 0.976 / 0.974 / 0.875): it
-  does not fire, so it was not written as a rule.  With 52 inputs and 3600 train rows, the new
-  runs are out of range from their third tenth (0.27 0.12 0.03 0.00 ...): the leverage range says
-  nothing on this record.
-* The brief's rule candidates, each read from these figures without a refit: folds as long as the
-  test (the column's folds already run 793-1441 rows from the start; lab5401's fold 10 h of 12);
-  folds weighted to the latest (the last folds keep the losing blends: col5791 E_Z_mid 0.48,
-  col1403 E_Y 0.59, E_Y_mid 0.88); the one-SE rule on forward folds (already main's fallback; the
-  losing blends pass it: col5791 E_Z_mid 0.47 + 0.19, col1403 E_Y 0.46 + 0.15, E_Y_mid 0.49 +
-  0.14; on lab5401's one fold by blocks, above).  None touches the losses.
+* Not the horizon.  The column (``column_moving_source``): ONE train campaign of 1441 rows (40 h);
+  its test a separate 40 h cycle of 1441 rows referenced at its own first sample (a new campaign,
+  not a continuation: shifted ambient, and a source, Q3, that the train record never runs, from 50
+  to 75 % of the cycle).  auto's folds: 5 forward blocks of 144 rows over the later half, each
+  predicted in free run from the record's start: horizons of 793-1441 rows, the test's 1441.
+  lab5401: three 10 h train runs, a 12 h test run; campaign folds, min_train_fraction 0.5 leaves
+  ONE fold (Lauf_3, 1200 rows; the test 1441).  The members' error does not grow across the fold
+  (col1403 E_Y lagbank per fifth of the blocks 0.41 0.45 0.41 0.59 0.29 x MLR; lab5401 E_Z arx
+  1.30 2.26 0.26 1.51 0.78); on the new campaigns it grows (lab5401's arx 1.51 4.41 5.33 6.80
+  7.68) or peaks where Q3 runs (col5791 E_Z_mid's lag bank 0.17 0.87 12.23 13.21 3.70): the test's
+  conditions, not a horizon the folds miss.
+* Where the column loses: in the tenths 6-8 of the cycle (Q3 running), where the inputs leave the
+  train record's range: the new campaigns' in-range share per tenth 0.47 0.42 0.57 0.40 0.72 0.03
+  0.00 0.00 0.09 0.48 (col5791; col1403, col1514, col6512 alike, 0.00-0.02 in tenths 6-8).
+  col5791 E_Z_mid (lagbank 0.81, arx 0.02, hammerstein 0.02, MLR 0.15; 2.944 x MLR): auto's excess
+  per tenth -0.007 -0.024 -0.008 +0.004 +0.002 +1.238 +3.286 +2.977 +0.204 -0.005 (of MLR's total
+  SSE).  Share of auto's excess SSE in out-of-range rows (the rows out of range): col5791 E_Z 1.00,
+  E_X_mid 1.00, E_Z_mid 1.00 (0.68); col1514 E_Z_mid 0.90 (0.73); col6512 E_X_mid 1.00, E_Z_mid
+  0.97 (0.76); col1403 E_Y 0.80, E_Y_mid 0.92 (0.64).  The forward folds extrapolate too (col5791's
+  blocks in range of their fit rows 0.00 0.17 0.50 0.92 0.97, col1403's 0.00 0.00 0.76 0.99 1.00,
+  col1514's 0.01 0.00 0.58 1.00 1.00), but along the record's own warming, where the lag families
+  win (col5791 E_Z_mid lagbank per fold 1.04 1.14 0.13 0.11 0.92 x MLR, the blend 1.03 0.68 0.09
+  0.08 0.48, one-SE 0.473 + 0.181: kept; col1403 E_Y blend 0.29 0.06 0.92 0.42 0.59, 0.457 +
+  0.145; E_Y_mid 0.22 0.20 0.33 0.80 0.88, 0.485 + 0.148), never along Q3's, which no part of the
+  train record holds.
+* col1403 loses in range as well (E_Y's excess per tenth -0.028 +0.126 +0.270 +0.211 +0.210
+  +1.077 +0.301 +0.103 +0.168 -0.003): a new campaign starts its frame and its states afresh where
+  no fold of one record does (auto86: a restarted block and a shifted frame both read this loss and
+  the Swiss lathe's right hammerstein as failing alike; refused there).
+* lab5401 (one fold: the votes resample its blocks; the one-SE fallback needs k >= 2 folds and
+  is off): E_Z keeps MLR 0.57, lstm 0.28, arx 0.15 (1.187 x MLR on the new campaigns): on Lauf_3
+  arx 0.97, lstm 0.96, the blend 0.67 x MLR: the members' errors cancel on the one fold and not on
+  the new runs, where arx's error grows with the hour (above).  E_Y (lagbank 0.04) 1.047 x.  A
+  one-SE rule on the fold's blocks (the fold's ratio + the bootstrap SE over the 4-6 blocks the
+  votes use) would keep every blend: E_X 0.963 + 0.014, E_Y 0.902 + 0.034, E_Z 0.666 + 0.069; it
+  does not fire, so it was not written as a rule.  With 52 inputs and 3600 train rows the new runs
+  are out of range from their third tenth (0.27 0.12 0.03 0.00 ...): the range says little here.
+* The brief's candidate rules, each read from these figures without a refit: folds as long as
+  the test (they are: above); folds weighted to the latest (the last folds keep the losing blends:
+  col5791 E_Z_mid 0.48, col1403 E_Y 0.59, E_Y_mid 0.88, col1514 E_Z_mid 0.36 x MLR); the one-SE
+  rule on forward folds (main's fallback; the losing blends pass it, above).  None touches them.
+* ``guard`` (the probe, reading the deployed rows' inputs, so not a train-side rule and not
+  proposed): auto / MLR col5791 1.258 -> 0.999, col1403 1.311 -> 1.074, lab5401 1.070 -> 1.000
+  (0.96 of its rows out of range: MLR nearly everywhere), col1514 1.019 -> 1.003, col6512 1.004 ->
+  1.000; swiss303, swiss5454, year6511, mill1514 unchanged (0.00-0.17 out of range); year6_5411
+  0.518 -> 0.744 (0.22 out of range: ATI's win at ambient levels outside the train span is lost).
 
-Verdict: TRACED, no rule, src as on main.  The column's losses lie where the test runs a source
-(Q3) no part of the train record runs, the inputs outside its range, which no fold of that record
-can hold (four of the five columns); col1403's also lie in range, where a new campaign's fresh
-start misleads the lag families (auto86's ground, refused twice); lab5401's is a one-fold blend
-whose members' errors cancel on that fold.  No bar was written and fresh seeds 9271-9280 were NOT
-drawn (left for a rule).  Left: a rule that reads the test rows' extrapolation at predict time (a
-deployed guard falling back to MLR where the inputs leave the train range along a direction no
-fold saw) is outside the train-side choice this brief allows; for one validation fold, a blend
-kept only where it beats its best member by less than the fold's block SE (untested).
+Verdict: TRACED, no rule, src as on main.  The column's losses lie where its test runs a source
+the train record never runs (its inputs outside the record's range, a direction no fold can hold);
+col1403's also in range, where a new campaign's fresh start misleads the lag families (auto86's
+ground); lab5401's is a one-fold blend whose members' errors cancel on that fold.  None has a
+train-side signal here, so no bar was written and fresh seeds 9271-9280 were NOT drawn (left for a
+rule).  Left: a deployed fallback to MLR where the inputs leave the train range cures the column
+and lab5401 on these rows but costs year6_5411's ATI win (0.518 -> 0.744); a version that keeps
+extrapolation along directions the folds did see would have to tell ATI's ambient (right beyond the
+span on year6_5411, wrong on cr9245, ati90) from the column's Q3, and it reads the deployed inputs:
+a runtime guard, outside the train-side choice; for one validation fold, a blend that beats each of
+its members on that fold by more than their own margins over MLR (lab5401 E_Z 0.67 against 0.96 /
+0.97) is a cancellation that did not carry to new runs here (one record: a lead, not a finding).
 """
 
 from __future__ import annotations
 
-import json
 import sys
 from pathlib import Path
 
@@ -182,10 +190,19 @@ def folds(work: str, *records: str) -> None:
             print("    blend        folds / MLR " + " ".join(f"{r:6.2f}" for r in per) + f"   ({se})")
             part = _parts(a["campaign"], TENTHS)
             total = np.sum((y_new - a["pred_mlr"])[new] ** 2)
-            excess = [np.sum(((y_new - a["pred_auto"]) ** 2 - (y_new - a["pred_mlr"]) ** 2)[new & (part == p)])
-                      / total for p in range(TENTHS)]
+            gap = (y_new - a["pred_auto"]) ** 2 - (y_new - a["pred_mlr"]) ** 2
+            excess = [np.sum(gap[new & (part == p)]) / total for p in range(TENTHS)]
             print("    new campaigns, auto's excess SSE over MLR's per tenth (of MLR's total): "
                   + " ".join(f"{e:+.3f}" for e in excess))
+            # a horizon longer than the folds': each kept member's ratio per fifth of a fold (its
+            # rows in time order, the folds pooled) and per fifth of the new campaigns
+            fifth, fifth_new = _parts(fold, FIFTHS), _parts(a["campaign"], FIFTHS)
+            for m in (m for m in weights if m != "mlr"):
+                in_folds = [_ratio(y, a[f"oof_{m}"], base, fifth == p) for p in range(FIFTHS)]
+                in_new = [_ratio(y_new, a[f"pred_{m}"], a["pred_mlr"], new & (fifth_new == p))
+                          for p in range(FIFTHS)]
+                print(f"    {m} / MLR per fifth: folds " + " ".join(f"{r:5.2f}" for r in in_folds)
+                      + "; new campaigns " + " ".join(f"{r:5.2f}" for r in in_new))
 
 
 def _inputs(frame, columns) -> np.ndarray:
@@ -194,36 +211,47 @@ def _inputs(frame, columns) -> np.ndarray:
     return values - values[0]
 
 
-def where(root: str, work: str, *records: str) -> None:
+def _in_range(root: str, work_path: Path, name: str):
+    """``(row, in_range, shares)``: the stored row of ``name``, per row of its stored test arrays
+    (own test, then the new campaigns) whether its inputs lie in the train record's range, and
+    the in-range share of each forward fold's block against its fit rows (one train record)."""
     import bench_auto_rank as rank
 
     from thermocomp.core.model_selection import BlockedForward
     from thermocomp.core.model_selection.extrapolation import within_range
 
+    overrides = [o.format(root=Path(root).resolve()) for o in automore.OVERRIDES[name]]
+    sys.argv[2:] = overrides                      # bench_auto_rank simulates when sim= is asked
+    cfg, ds, train = rank.setup(overrides)
+    frames = list(train.values())
+    columns = [c for c in frames[0].columns if c.startswith("T_")]
+    x_train = np.vstack([_inputs(f, columns) for f in frames])
+    shares = []
+    if len(frames) == 1:
+        groups = np.zeros(len(x_train), int)
+        shares = [float(within_range(x_train, fit, score)[score].mean())
+                  for fit, _, score in BlockedForward(5, 0.5, 0.5).folds(groups, len(x_train))]
+    row = _row(work_path, name)
+    news = automore.draws(automore.OF[name], work_path, cfg)
+    tests = [ds.campaigns[c] for c in row["own"]] + [d.campaigns[c] for d in news for c in d.ids()]
+    flags = []
+    for frame in tests:
+        x = np.vstack([x_train, _inputs(frame, columns)])
+        fit = np.arange(len(x)) < len(x_train)
+        flags.append(within_range(x, fit, ~fit)[~fit])
+    print(f"== {name}: {len(frames)} train campaign(s), {len(x_train)} rows, {len(columns)} inputs")
+    return row, np.concatenate(flags), shares
+
+
+def where(root: str, work: str, *records: str) -> None:
     work_path = Path(work).resolve()
     for name in records:
-        overrides = [o.format(root=Path(root).resolve()) for o in automore.OVERRIDES[name]]
-        sys.argv[2:] = overrides                      # bench_auto_rank simulates when sim= is asked
-        cfg, ds, train = rank.setup(overrides)
-        frames = list(train.values())
-        columns = [c for c in frames[0].columns if c.startswith("T_")]
-        x_train = np.vstack([_inputs(f, columns) for f in frames])
-        print(f"== {name}: {len(frames)} train campaign(s), {len(x_train)} rows, {len(columns)} inputs")
-        if len(frames) == 1:
-            groups = np.zeros(len(x_train), int)
-            shares = [within_range(x_train, fit, score)[score].mean()
-                      for fit, _, score in BlockedForward(5, 0.5, 0.5).folds(groups, len(x_train))]
-            print("  forward folds' blocks in range of their fit rows: " + " ".join(f"{s:.2f}" for s in shares))
-        row = _row(work_path, name)
-        news = automore.draws(automore.OF[name], work_path, cfg)
-        tests = [ds.campaigns[c] for c in row["own"]] + [d.campaigns[c] for d in news for c in d.ids()]
-        in_range = []
-        for frame in tests:
-            x = np.vstack([x_train, _inputs(frame, columns)])
-            fit = np.arange(len(x)) < len(x_train)
-            in_range.append(within_range(x, fit, ~fit)[~fit])
-        in_range = np.concatenate(in_range)
+        row, in_range, shares = _in_range(root, work_path, name)
+        if shares:
+            print("  forward folds' blocks in range of their fit rows: "
+                  + " ".join(f"{s:.2f}" for s in shares))
         a = np.load(work_path / "pred" / f"{name}.{next(iter(row['weights']))}.npz")
+        assert len(a["campaign"]) == len(in_range), name
         new, part = a["campaign"] >= len(row["own"]), _parts(a["campaign"], TENTHS)
         print("  new campaigns in range of the train record, per tenth: "
               + " ".join(f"{in_range[new & (part == p)].mean():.2f}" for p in range(TENTHS)))
@@ -240,8 +268,30 @@ def where(root: str, work: str, *records: str) -> None:
                   f"{np.mean(~in_range[keep]):.2f})")
 
 
+def guard(root: str, work: str, *records: str) -> None:
+    """A probe, not a rule (it reads the deployed rows' inputs, not the train side): auto's
+    prediction replaced by MLR's wherever the row's inputs lie outside the train record's range;
+    per record the mean over targets of the pooled RMSE on the new campaigns, over MLR's."""
+    work_path = Path(work).resolve()
+    for name in records:
+        row, in_range, _ = _in_range(root, work_path, name)
+        figures = {"auto": [], "guarded": [], "mlr": []}
+        for target in row["weights"]:
+            a = np.load(work_path / "pred" / f"{name}.{target}.npz")
+            y = automore.label(a, row["reference"])
+            keep = (a["campaign"] >= len(row["own"])) & np.isfinite(y)
+            guarded = np.where(in_range, a["pred_auto"], a["pred_mlr"])
+            for key, predicted in (("auto", a["pred_auto"]), ("guarded", guarded), ("mlr", a["pred_mlr"])):
+                figures[key].append(np.sqrt(np.mean((y - predicted)[keep] ** 2)))
+        auto, guarded, mlr = (float(np.mean(figures[k])) for k in ("auto", "guarded", "mlr"))
+        out = 1 - in_range[a["campaign"] >= len(row["own"])].mean()
+        print(f"  {name}: new campaigns out of range {out:.2f}; "
+              f"auto / MLR {auto / mlr:.3f} -> guarded {guarded / mlr:.3f}")
+
+
 def main(argv: list[str]) -> int:
-    return run_commands(__doc__, {"rows": rows, "folds": folds, "where": where}, argv, cpu=sys.stderr)
+    return run_commands(__doc__, {"rows": rows, "folds": folds, "where": where, "guard": guard}, argv,
+                        cpu=sys.stderr)
 
 
 if __name__ == "__main__":
