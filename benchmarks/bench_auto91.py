@@ -9,6 +9,7 @@ tree's; ROOT holds lab5401's written record, WORK the rows)::
     python benchmarks/bench_auto91.py folds WORK RECORD ...        # kept blend, per-fold ratios
     python benchmarks/bench_auto91.py where ROOT WORK RECORD ...   # the loss in time, in range
     python benchmarks/bench_auto91.py guard ROOT WORK RECORD ...   # a probe: MLR out of range
+    python benchmarks/bench_auto91.py rooms RECORD ...             # the probe on climate rooms
 
 ``rows``: lab5401's record written into ROOT where absent (bench_auto_losses56's ``lab_record``),
 then bench_automore69's ``rows`` (auto and every candidate alone fitted on the record's train part,
@@ -27,6 +28,8 @@ against its fit rows, the new campaigns per tenth against the whole train record
 with a blend the share of auto's excess squared error in out-of-range rows.  ``guard``: a probe,
 not a rule (it reads the deployed rows' inputs): auto's prediction replaced by MLR's in the rows
 out of range; the record's figure (mean over targets of the new campaigns' pooled RMSE) over MLR's.
+``rooms``: the same probe on climate rooms of bench_auto88b's :data:`RECORDS` (several campaigns,
+scored on their own test campaigns; auto and MLR fitted again here, simulated in memory).
 
 The question (stop 90's "what remains": 8 of 22 records worse than MLR on their new campaigns, the
 largest the column's, col5791 x1.258, col1403 x1.311, and lab5401 x1.070): is the loss the test
@@ -88,6 +91,14 @@ mill1514 1.000).
   (0.96 of its rows out of range: MLR nearly everywhere), col1514 1.019 -> 1.003, col6512 1.004 ->
   1.000; swiss303, swiss5454, year6511, mill1514 unchanged (0.00-0.17 out of range); year6_5411
   0.518 -> 0.744 (0.22 out of range: ATI's win at ambient levels outside the train span is lost).
+  On 13 seen climate rooms (``rooms cr9031 cr9076 cr9079 cr9081 cr9083 cr9088 cr9089 cr9181
+  cr9182 cr9183 cr9244 cr9248`` and ``rooms cr9245``; 6 s CPU a room; auto refitted here is within
+  0.4 % of the stored rows but for cr9079, 0.882 against 0.850), auto -> guarded (µm, mean of E_X /
+  E_Z): cr9245 2.485 -> 2.049 (MLR 1.922: the one loss mended in part), but cr9079 0.882 -> 1.889,
+  cr9182 1.268 -> 1.803, cr9248 0.798 -> 1.041, cr9244 0.869 -> 1.113, cr9181 0.655 -> 0.736,
+  cr9183 1.421 -> 1.517; cr9031 / 9076 / 9081 / 9083 / 9088 / 9089 within 0.3 %.  Geo guarded /
+  auto 1.133 over the 13, six rooms more than 2 % worse: out of the train range is where the
+  wins of ATI and the lag families lie too, so the range alone does not mark the losses.
 
 Verdict: TRACED, no rule, src as on main.  The column's losses lie where its test runs a source
 the train record never runs (its inputs outside the record's range, a direction no fold can hold);
@@ -95,7 +106,8 @@ col1403's also in range, where a new campaign's fresh start misleads the lag fam
 ground); lab5401's is a one-fold blend whose members' errors cancel on that fold.  None has a
 train-side signal here, so no bar was written and fresh seeds 9271-9280 were NOT drawn (left for a
 rule).  Left: a deployed fallback to MLR where the inputs leave the train range cures the column
-and lab5401 on these rows but costs year6_5411's ATI win (0.518 -> 0.744); a version that keeps
+and lab5401 on these rows but costs year6_5411's ATI win (0.518 -> 0.744) and the climate rooms'
+(geo x1.133 on 13, above); a version that keeps
 extrapolation along directions the folds did see would have to tell ATI's ambient (right beyond the
 span on year6_5411, wrong on cr9245, ati90) from the column's Q3, and it reads the deployed inputs:
 a runtime guard, outside the train-side choice; for one validation fold, a blend that beats each of
@@ -211,6 +223,18 @@ def _inputs(frame, columns) -> np.ndarray:
     return values - values[0]
 
 
+def _in_range_rows(x_train: np.ndarray, frames, columns) -> list[np.ndarray]:
+    """Per campaign of ``frames``, each row's inputs within the leverage range of ``x_train``."""
+    from thermocomp.core.model_selection.extrapolation import within_range
+
+    flags = []
+    for frame in frames:
+        x = np.vstack([x_train, _inputs(frame, columns)])
+        fit = np.arange(len(x)) < len(x_train)
+        flags.append(within_range(x, fit, ~fit)[~fit])
+    return flags
+
+
 def _in_range(root: str, work_path: Path, name: str):
     """``(row, in_range, shares)``: the stored row of ``name``, per row of its stored test arrays
     (own test, then the new campaigns) whether its inputs lie in the train record's range, and
@@ -234,11 +258,7 @@ def _in_range(root: str, work_path: Path, name: str):
     row = _row(work_path, name)
     news = automore.draws(automore.OF[name], work_path, cfg)
     tests = [ds.campaigns[c] for c in row["own"]] + [d.campaigns[c] for d in news for c in d.ids()]
-    flags = []
-    for frame in tests:
-        x = np.vstack([x_train, _inputs(frame, columns)])
-        fit = np.arange(len(x)) < len(x_train)
-        flags.append(within_range(x, fit, ~fit)[~fit])
+    flags = _in_range_rows(x_train, tests, columns)
     print(f"== {name}: {len(frames)} train campaign(s), {len(x_train)} rows, {len(columns)} inputs")
     return row, np.concatenate(flags), shares
 
@@ -289,9 +309,47 @@ def guard(root: str, work: str, *records: str) -> None:
               f"auto / MLR {auto / mlr:.3f} -> guarded {guarded / mlr:.3f}")
 
 
+def rooms(*records: str) -> None:
+    """``guard`` on climate rooms (bench_auto88b's :data:`RECORDS`: several campaigns, the test
+    campaigns their own): auto and MLR fitted on the train campaigns, each test campaign predicted
+    as ``run`` scores it; the guard's rows out of range of all train rows (inputs less each
+    campaign's first sample); mean over targets of the pooled test RMSE, over MLR's."""
+    import bench_auto88b as auto88b
+    import bench_auto_rank as rank
+    from sklearn.base import clone
+
+    from thermocomp.core.scoring.evaluation import split_residuals
+    from thermocomp.shell.builders import build_compensator
+
+    for name in records:
+        overrides = list(auto88b.RECORDS[name])
+        sys.argv[2:] = overrides
+        cfg, ds, train = rank.setup(overrides)
+        auto = build_compensator(cfg, ds=ds).fit(train)
+        mlr = clone(auto).set_params(estimator=rank._mlr()).fit(train)
+        ids = ds.ids("test")
+        columns = [c for c in next(iter(train.values())).columns if c.startswith("T_")]
+        x_train = np.vstack([_inputs(f, columns) for f in train.values()])
+        flags = dict(zip(ids, _in_range_rows(x_train, [ds.campaigns[c] for c in ids], columns)))
+        series = {k: split_residuals(m, ds, ids, "simulation")[2] for k, m in (("auto", auto), ("mlr", mlr))}
+        figures = {"auto": [], "guarded": [], "mlr": []}
+        for t in series["auto"]:
+            y = np.concatenate([series["auto"][t][0][c] for c in ids])
+            r_auto = np.concatenate([series["auto"][t][1][c] for c in ids])
+            r_mlr = np.concatenate([series["mlr"][t][1][c] for c in ids])
+            ok = np.concatenate([flags[c] for c in ids])
+            keep = np.isfinite(y)
+            for key, r in (("auto", r_auto), ("guarded", np.where(ok, r_auto, r_mlr)), ("mlr", r_mlr)):
+                figures[key].append(np.sqrt(np.mean(r[keep] ** 2)))
+        a, g, m = (float(np.mean(figures[k])) for k in ("auto", "guarded", "mlr"))
+        out = 1 - np.concatenate(list(flags.values())).mean()
+        print(f"  {name}: test rows out of range {out:.2f}; auto {a:.4f}, guarded {g:.4f}, MLR {m:.4f}: "
+              f"auto / MLR {a / m:.3f} -> guarded {g / m:.3f}", flush=True)
+
+
 def main(argv: list[str]) -> int:
-    return run_commands(__doc__, {"rows": rows, "folds": folds, "where": where, "guard": guard}, argv,
-                        cpu=sys.stderr)
+    commands = {"rows": rows, "folds": folds, "where": where, "guard": guard, "rooms": rooms}
+    return run_commands(__doc__, commands, argv, cpu=sys.stderr)
 
 
 if __name__ == "__main__":
