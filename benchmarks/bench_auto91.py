@@ -80,8 +80,12 @@ mill1514 1.000).
   the new runs, where arx's error grows with the hour (above).  E_Y (lagbank 0.04) 1.047 x.  A
   one-SE rule on the fold's blocks (the fold's ratio + the bootstrap SE over the 4-6 blocks the
   votes use) would keep every blend: E_X 0.963 + 0.014, E_Y 0.902 + 0.034, E_Z 0.666 + 0.069; it
-  does not fire, so it was not written as a rule.  With 52 inputs and 3600 train rows the new runs
-  are out of range from their third tenth (0.27 0.12 0.03 0.00 ...): the range says little here.
+  does not fire, so it was not written as a rule.  Two folds instead (probe: bench_automore69's
+  ``rows`` with ``model.estimator.min_train_fraction=0.33``, Lauf_2 and Lauf_3 validate; into
+  /tmp/auto91/probe2f): lab5401 1.070 -> 1.29 x MLR (E_X keeps a zero correction, 1.785 x: the
+  Lauf_2 fold, fitted on one run, sends it there; E_Z 1.187 -> 1.041).  With 52 inputs and 3600
+  train rows the new runs are out of range from their third tenth (0.27 0.12 0.03 0.00 ...): the
+  range says little here.
 * The brief's candidate rules, each read from these figures without a refit: folds as long as
   the test (they are: above); folds weighted to the latest (the last folds keep the losing blends:
   col5791 E_Z_mid 0.48, col1403 E_Y 0.59, E_Y_mid 0.88, col1514 E_Z_mid 0.36 x MLR); the one-SE
