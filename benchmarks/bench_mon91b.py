@@ -112,7 +112,26 @@ under the band, delay h):
   (the Q3 regime: a false alarm would be paid); swiss +0.7 %.  Written into the data the estimate
   steps at the crossing row and today's monitor reads a jump (adaptive 13.47 > the drift's
   12.97): a rule must substitute inside the monitor, where that step is no reading.
-ROOMS_SERVED
+- Served on bench_mon88's records (costliest blind sensor; main's monitor names the drifting sensor
+  in no event on any of the ten, lr9197's two events being a jump at 25020 s the truth has too):
+
+| record | sensor | truth | drift | A drift->estimate | B drift->estimate | B truth->estimate |
+|---|---|---|---|---|---|---|
+| lr9196 | T_table | 1.045 | 9.457 | 2.991 (6.223) | 1.821 (4.531) | 0.763 |
+| lr9197 | T_table | 1.724 (1.763) | 7.190 (6.987) | 1.873 (2.233) | 1.756 (1.436) | 1.792 (1.829) |
+| lr9198 | T_spindle_front | 1.851 | 6.354 | 6.075 (6.112) | 2.198 (4.152) | 1.010 |
+| lr9199 | T_table | 0.993 (0.930) | 8.713 (8.809) | not found | 3.064 (6.256) | 0.642 (0.605) |
+| lr9200 | T_spindle_front | 1.293 | 6.228 | not found | 2.187 (4.187) | 0.647 |
+
+  cr9201-9205 (``T_nc_spindle_motor``): the drift (<= 1 degC) costs -9 % .. +10 % (1.246 -> 1.292,
+  2.216 -> 2.016, 2.914 -> 3.059, 2.333 -> 2.331, 1.299 -> 1.430) and no variant finds it; B's
+  estimate in place of the healthy sensor 1.224 / 2.182 / 2.827 / 2.319 / 1.358.
+  On the long records an undetected +3.6 degC drift multiplies the error 4-9 x and B's estimate
+  from its crossing (2.4-4.1 h in) takes most of it back (fixed 1.76-3.06 um); in place of the
+  HEALTHY sensor B's estimate beats the sensor itself on 4 of 5 long records (lr9198 1.851 ->
+  1.010, lr9200 1.293 -> 0.647) and 4 of 5 rooms (cr9205 +4.6 %): stop 89's question (the field's
+  estimate a better model input than the reading) again.  Adaptive > fixed in every substituted
+  cell: the estimate written into the data is read as a jump.
 
 Verdict: TRACED (no src change).  (1) The brief's rule (A, the states and ambient) separates on
 none of audit89's six records (criterion above, written before the trace).  (2) The brief's bar
@@ -123,7 +142,7 @@ carry a blind sensor to drift, the bar asks >= 5.  (3) B, which does bound, need
 time inside ``SensorMonitor`` (it is fitted and streamed on temperatures only), the estimate in
 place of ``_last_good`` for an excluded blind sensor, the warm snapshot and the C behind a key:
 not this session's size.  Fresh seeds 9396-9405 unspent.  CPU: ``trace`` 1-5 s a set, ``served``
-56 s (audit89's six), ROOMS_CPU; ``healthy`` 158 s as audit89, ``rooms`` 17 s.
+56 s (audit89's six), 77 s (bench_mon88's ten); ``healthy`` 158 s as audit89, ``rooms`` 17 s.
 """
 
 from __future__ import annotations
