@@ -90,7 +90,8 @@ under the band, delay h):
   drift reaches <= 1 degC) under any variant.
 - B (a ridge over the states' responses AND the other temperatures) is what bounds: "no other
   predicts" is the POD's leverage over its r modes, not what a regression on the others can do
-  (col ``T_front3``: POD leverage > 0.9, ridge CV R2 0.73).  0 false crossings on all 54 blind
+  (col9316 ``T_front3``: POD leverage > 0.9; a ridge on the other temperatures alone CV R2 0.83,
+  with the states 0.73).  0 false crossings on all 54 blind
   sensor-records (audit89 10, fl 3, rooms 41); found in every test part: audit89 3 of 10 (3 of 6
   costliest, late: 11-14 h, 5.7-7 degC into the drift), fl 0 of 3, rooms 29 of 41 (5 of 10
   costliest).  C (the other temperatures alone) crosses on healthy parts (col9316 / col9322
