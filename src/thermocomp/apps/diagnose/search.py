@@ -22,7 +22,8 @@ once, at the end, to report before and after):
    :math:`g = \mathrm{RMSE}_{cv} - \mathrm{RMSE}_{cv}^{+}` and the one-sided
    sign-flip p-value of the gains in mean squared error of the test blocks:
    time blocks within the held-out campaigns (validation blocks), as long as
-   the residual takes to decorrelate (:mod:`~thermocomp.core.model_selection.blocks`), so
+   the residual takes to decorrelate (:mod:`~thermocomp.core.model_selection.blocks`), or as
+   the candidates' gains do where shorter (:meth:`Search._recut_on_gains`), so
    that 8 campaigns are not 256 outcomes.  With an MLR base the effect features are shrunk by
    the ridge penalty of least CV error (:mod:`.shrink`), so an effect of many
    correlated regressors competes at its best generalising strength.  (The deployed model of
