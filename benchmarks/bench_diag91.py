@@ -7,6 +7,7 @@ Usage (from the repository root, ``PYTHONPATH=<tree>/src``: the code measured is
 
     python benchmarks/bench_diag91.py draws ROOT LABEL SET   # SET's draws -> ROOT/SET-LABEL.jsonl
     python benchmarks/bench_diag91.py compare ROOT SET A B   # two labels' rows of SET: the bar's counts
+    python benchmarks/bench_diag91.py record ROOT            # the measured record cut 90/10, every channel
 
 ``draws``: every draw of ``SET`` (:data:`SETS`: ``trace`` the six rows the brief names, ``seen``
 bench_diag89b's 23 planted draws, bench_diag88's seen draws and the seen clean / lag draws,
@@ -16,7 +17,11 @@ figures as run (bench_diag89b's ``halved``), per target each round's test blocks
 candidate's own and family-wise p on E_Y, the smallest p the round's blocks can reach, what was
 accepted and whether the control ever clears.  ``compare``: per label the planted draws found,
 the clean draws accepting anything, the controls clearing; then every (draw, target) whose after
-differs, with the change against A.
+differs, with the change against A.  ``record``: tests/apps/test_diagnose_record.py's record (the
+vendored fl_thermal spindle record cut 90/10, MLR, ``reference=none``, forward chaining, shipped
+options) diagnosed on every channel: per channel its rounds' test blocks (and samples), before ->
+after and what was accepted.  The rule is not in src (refused, below): ``git apply
+benchmarks/diag91_rule.patch`` in a scratch copy to measure it.
 
 The rule (``Search._recut_on_gains``; the diff against main in ``diag91_rule.patch`` if refused)
 -----------------------------------------------------------------------------------------------
@@ -48,6 +53,97 @@ seeds; all must hold, else REFUSED: src reverted, this bench and ``diag91_rule.p
    position found on more draws than main, no row more than 2 % worse than main, no seen clean
    draw accepting what main does not.
 5. tests/*/test_diag*.py pass (in parts, ``-n 2``).
+
+Scored (2026-12-05, 2 cores shared by seven helpers; main = 277a181d's src (``git archive`` under
+/tmp/diag91/main), rule = 88bbc85c's src; each command once per tree, main after the rule)
+------------------------------------------------------------------------------------------
+Test RMSE (µm, as run), before -> after; every (draw, target) row where main and the rule differ.
+
+``trace`` (the brief's six rows; seen)::
+
+  row             before  main                   rule
+  planted:8966 E_Y 3.7935 nothing (9 blocks)     1.6397 position (45 blocks; p_fam 1e-4)  -56.8 %
+  planted:8968 E_Y 4.9939 nothing (9 blocks)     2.3810 position (17 blocks; p_fam 1e-4)  -52.3 %
+  lag:9288 E_X     1.1694 nothing (12 blocks)    0.8135 T_box2 14400 s +init (19)         -30.4 %
+  lag:9289 E_X     2.1815 nothing (10 blocks)    1.0737 T_box1 14400 s +init (30)         -50.8 %
+  planted:8969 / 8885: identical (8969's round 1 stays at 8 blocks: a family member's gain
+  forgets no faster than the residual; its position p 2/256, p_fam 3/256, still missed; 8885 keeps
+  both its effects, round 2 on 13 blocks, not 8).
+
+Smallest p each row's round-1 design reaches (``min_p``: 1/2^n exact up to 16 blocks, 1/20001
+beyond), main -> rule: 8966 E_Y 1/512 -> 1/20001 (45 blocks); 8968 E_Y 1/512 -> 1/20001 (17);
+9288 E_X 1/4096 -> 1/20001 (19); 9289 E_X 1/1024 -> 1/20001 (30); 8969 E_Y 1/256 in both (8);
+8885 E_Y 1/8192 in both (13).  The position's own p on the rule: 5e-5 (8966, 8968), family-wise
+1e-4.
+
+``seen`` (44 draws, 132 rows): position found on 19 draws in both trees (+ ``trace``'s 8966 /
+8968: 20 -> 22 over the seen draws); clean draws accept what main accepts (8075 / 8170 / 8178's
+spurious start lags, bench_diag88's); no control clears in either; three rows differ::
+
+  planted:9266 E_X 0.6664 nothing (8 blocks)  -> 0.6764 T_nose 14400 s +init (14, 205)  +1.5 %
+  clean:8075 E_Y   0.7010 T_box1 3600 s +init -> 0.6998 T_box2 3600 s +init             -0.2 %
+  lag:9193 E_X     0.9167 T_box2 14400 s      -> 0.7684 T_box1 14400 s                  -16.2 %
+
+bench_diag88's ``seen`` (cases 8457 / 8178 / 8075 / 8170 / 8885, real planted:6 / 959, grinders
+5687 / 5682, draws 9046 / 9103 / 8980 / 9150): identical but 8075 E_Y (-0.2 %, above).
+bench_diagnose_faults58's climate_room drift / stuck / contact: identical JSON lines.
+CPU (``seen``, diagnose only): 32.0 s main, 32.9 s rule.
+
+``fresh`` (9336-9345, once, after the bar above): position found on 9340-9342 in both; clean
+9336-9339 accept nothing in both (their blocks finer on the rule: 9339 E_Y 8 -> 53, E_Z 8 -> 35,
+nothing taken); the control clears on lag:9343 E_Z in BOTH trees (main's own, not the rule's);
+one row differs: planted:9341 E_Y 1.2988 -> 1.2980 (-0.1 %, a 7200 s spindle lag added in round
+2 on 26 blocks, not 8).  The start lags of 9343-9345 are taken in both trees (0.610 / 0.805 /
+0.866).  CPU 7.4 s main, 7.3 s rule.
+
+Bar: 1 holds (0 rows > 2 %); 2 holds on the clean draws (nothing accepted; no control clears
+there -- lag:9343 E_Z's control clears in both trees); 3 holds (3 of 3 in both); 4 holds (found
+20 -> 22, worst row +1.5 %).  **5 fails**: 2 of 136 tests in the 24 diagnose files (three parts,
+``-n 2``; the other 134 pass, the rule's two new tests among them):
+
+- ``test_diagnose_record.py::test_diagnose_never_makes_the_measured_record_worse``: the measured
+  record (``record``)::
+
+    channel  main: round-1 blocks, after      rule: round blocks (samples), after, taken
+    E_ch1    12 (403)  4.6016 nothing         14 (356)  4.6016 nothing
+    E_ch2    12 (389)  3.9533 nothing         13 (367), 34 (146)  1.8772 the inputs' rises x a state
+    E_ch3     6 (715)  4.3425 nothing         14 (342), 14 (344)  4.5449 (+4.7 %) 3600 s lag of the
+                                              inputs, CV gain 59.0 %, p_fam 0.0061, margin p 0.0007
+    E_ch4     7 (686)  4.3244 nothing         13 (365), 13 (374)  5.4407 (+25.8 %) the same lag,
+                                              60.3 %, p_fam 0.0078, margin p 0.0015
+    E_ch5    19 (251)  3.0405 nothing         19 (251)  3.0405 nothing
+
+  the very harm blocks.py records (16 forward validation blocks tested as units passed a lag that
+  made ch3 / ch4 33 % / 38 % worse): in forward chaining the gains forget in half the residual's
+  time, the units are halved, and the same lag passes.  (The warning that E_ch3's 6 blocks
+  cannot reach alpha also goes stale under the rule: it is printed from the starting design.)
+- ``test_diagnose_few.py::test_a_candidate_that_can_match_every_training_campaign_is_not_accepted_
+  on_campaign_blocks`` (clean seed 4004, E_Y): nothing is accepted on either tree, but round 1 is
+  no longer on the campaign blocks (8 of 70 samples -> 13 of 37): the 12-regressor start lag that
+  fits the campaigns' offsets reaches p_fam 0.0015 (main 0.0039) and is kept out by saturation
+  only; the spindle's one-regressor lag's p_fam goes 0.0039 -> 0.0101, so the test's one-regressor
+  clause is left empty.  A residual of campaign offsets: the gains of a candidate matching them are
+  one number per campaign, yet their autocorrelation falls under 0.2 within half a campaign.
+
+**REFUSED** (item 5; the record's E_ch3 +4.7 % / E_ch4 +25.8 % is the issue's "never more than
+2 % worse" on the one measured record diagnose is tested on).  src and docs reverted to
+277a181d's; the rule (``Search._recut_on_gains``, ``Search._block_evidence`` split out of
+``_evaluate``, docstrings) in ``diag91_rule.patch``; its two tests (8966 E_Y alone: 3.793 ->
+1.640, round 1 on 45 blocks; lag:9289 every target: E_X 2.182 -> 1.074 on 30 blocks; both fail on
+277a181d) dropped with it.  Also seen, not a bar item: lag:9289 E_X diagnosed ALONE takes the
+all-inputs start lag in round 1 on the rule, and round 2's control (random walk, CV gain 33 %)
+clears at p 1/1024 on the residual's 10 blocks as on the gains' 12 (1/4096): main never reaches
+that round (nothing taken in round 1).
+
+What the numbers say: on the year-round VMC with 8 campaigns the gains' blocks do what the brief
+hoped (cause A's 8966 / 8968 found, the two short start lags taken, nothing worse than 1.5 %); on
+the measured spindle record in forward chaining, and on a clean draw whose residual is campaign
+offsets, the gain's autocorrelation at 0.2 understates what its units share (a slow lag's gain,
+an offset's gain), which the residual's length had held.  Next (not scored here; it needs
+unspent seeds): the same rule in the ``campaigns`` scheme only (forward validation blocks already
+share test blocks by the residual's length: the record would stay as main), with the gain's
+length read where its autocorrelation reaches 0.2 AND its campaign-level share (the variance of
+the campaigns' mean gains against the gain's variance) is small -- the 4004 case.
 """
 
 from __future__ import annotations
@@ -154,8 +250,27 @@ def compare(root: str, name: str, a: str, b: str) -> None:
     print(f"rows more than 2 % worse in {b} than in {a}: {worse}")
 
 
+def record(root: str) -> None:
+    """The measured record cut 90/10 (tests/apps/test_diagnose_record.py), every channel."""
+    from test_diagnose_record import record_cut
+    from thermocomp.apps.diagnose import SearchOptions, diagnose
+    from thermocomp.core.compensator import Compensator
+    from thermocomp.core.models import MLR
+
+    ds = record_cut(made_folder(root) / "fl_9010")
+    d = diagnose(ds, Compensator(MLR(), reference="none"), options=SearchOptions())
+    for t in d.targets:
+        j = d.to_json(t)
+        taken = [(e["transform"][:50], round(e["evidence"]["cv_rmse_gain_pct"], 1),
+                  e["evidence"].get("p_value_family")) for e in j["effects"] if e["accepted"]]
+        print(f"  {t}: {j['cv']['units']} units, rounds' blocks "
+              f"{[(r['test_blocks'], r['block_samples']) for r in j['rounds'] if r['step'] > 0]}, "
+              f"{j['before']['test_rmse']:.4f} -> {j['after']['test_rmse']:.4f} {taken}", flush=True)
+
+
 def main(argv: list[str]) -> int:
-    return run_commands(__doc__, {"draws": draws, "compare": compare}, argv, cpu=sys.stderr)
+    return run_commands(__doc__, {"draws": draws, "compare": compare, "record": record}, argv,
+                        cpu=sys.stderr)
 
 
 if __name__ == "__main__":
