@@ -809,7 +809,7 @@ def _numbers(column) -> np.ndarray | None:
     return None
 
 
-def _continuing(columns: dict, renamed: dict, path: Path) -> np.ndarray | None:
+def _continuing(columns: dict, renamed: dict, path: Path, kind: str = "auto") -> np.ndarray | None:
     """The record's time as numbers where its pauses are found: seconds of the day past
     midnight as a continuing time (the reader's rule, :func:`.timestamps.seconds_of_day`; lead90:
     the raw values split a record at its forward pauses only, a run after a pause across
@@ -818,7 +818,7 @@ def _continuing(columns: dict, renamed: dict, path: Path) -> np.ndarray | None:
     if seconds is None:
         return None
     header = next((raw for raw, name in renamed.items() if name == TIME), None)
-    of_day = seconds_of_day(seconds, path, header, pauses_said=False)
+    of_day = seconds_of_day(seconds, path, header, pauses_said=False, kind=kind)
     return seconds if of_day is None else of_day
 
 
@@ -831,7 +831,8 @@ def _run_parts(path: Path, opts: ReadOptions) -> tuple[pd.DataFrame, dict]:
         columns, renamed, rescaled, lines = _loaded(source, source_opts)
         if opts.runs_at_pauses:
             header = None
-            blocks = pause_blocks(_continuing(columns, renamed, path), record_id(path), path)
+            blocks = pause_blocks(_continuing(columns, renamed, path, opts.time),
+                                  record_id(path), path)
         else:
             header = next(raw for raw, name in renamed.items() if name == RUN)
             renamed = {raw: name for raw, name in renamed.items() if name != RUN}

@@ -41,6 +41,9 @@ EXAMPLE = "'%d/%m/%Y %H:%M:%S'"
 CLOCK = " time of day"       # the column joined to the date (data.roles.time: [date, time]); no
 # contract name has a space
 ELAPSED = "elapsed"          # data.time: h:mm:ss since the start, the hours past 24
+# (data91) data.time: a time of day without its date, seconds since midnight (or h:mm:ss), read
+# by the time of day's rule whatever its header or its steps say (:func:`seconds_of_day`)
+OF_DAY_KIND = "of_day"
 _ELAPSED = re.compile(r"\s*(?P<h>\d+):(?P<m>[0-5]\d):(?P<s>[0-5]\d(?:[.,]\d+)?)\s*")
 # a time column's header that says it holds an elapsed time (the word, or a unit after it)
 ELAPSED_HEADERS = frozenset({"elapsed", "elapsed time", "elapsed_time", "duration", "dauer",
@@ -55,8 +58,9 @@ def looks_like_timestamp(text) -> bool:
 def maybe_elapsed(value: str, kind: str) -> bool:
     """The time column's first cell may start an elapsed time (``h:mm:ss``): ``data.time``
     ``elapsed``, or ``auto``, the whole column telling it from a time of day
-    (:func:`elapsed_seconds`)."""
-    return kind == ELAPSED or kind == "auto" and bool(_ELAPSED.fullmatch(value))
+    (:func:`elapsed_seconds`); (data91) or ``of_day``'s ``h:mm:ss``, read there as a time of
+    day."""
+    return kind == ELAPSED or kind in ("auto", OF_DAY_KIND) and bool(_ELAPSED.fullmatch(value))
 
 
 def elapsed_seconds(text, kind: str, path: Path, header: str | None = None,
@@ -76,8 +80,17 @@ def elapsed_seconds(text, kind: str, path: Path, header: str | None = None,
     seconds = pc.cast(pc.replace_substring(pc.struct_field(parts, "s"), ",", "."), pa.float64())
     minutes = pc.cast(pc.struct_field(parts, "m"), pa.float64())
     total = pc.add(pc.add(pc.multiply(hours, 3600.0), pc.multiply(minutes, 60.0)), seconds)
-    said = kind == ELAPSED or (header is not None and _bare(header) in ELAPSED_HEADERS)
-    if not said and not (pc.max(hours).as_py() or 0) >= 24:
+    said = kind == ELAPSED or (header is not None and _bare(header) in ELAPSED_HEADERS
+                               and kind != OF_DAY_KIND)
+    if kind == OF_DAY_KIND and (pc.max(hours).as_py() or 0) >= 24:
+        row = int(np.argmax(hours.to_numpy(zero_copy_only=False) >= 24))
+        raise ContractError(f"value {text[row].as_py()!r} is no time of day (data.time="
+                            f"{OF_DAY_KIND}): an elapsed time? data.time={ELAPSED}", file=path,
+                            column=TIME, row=row + 1)
+    if kind == OF_DAY_KIND:         # (data91) said a time of day: one that never wraps is one
+        unwrapped = past_midnight(total, path, header) if unwrap else None
+        total = total if unwrapped is None else unwrapped
+    elif not said and not (pc.max(hours).as_py() or 0) >= 24:
         total = past_midnight(total, path, header) if unwrap else None
         if total is None:       # a time of day that never wraps: no date, nothing to unwrap
             first = text.filter(text.is_valid())
@@ -158,23 +171,35 @@ def pauses(seconds: np.ndarray) -> np.ndarray:
 
 
 def seconds_of_day(seconds: np.ndarray, path: Path, header: str | None = None,
-                   pauses_said: bool = True) -> np.ndarray | None:
+                   pauses_said: bool = True, kind: str = "auto") -> np.ndarray | None:
     """(extension, data89b) A numeric time column of seconds since midnight, a logger's
     ``Seconds of day`` (77400 ... 86100, then 0, 300 ...), as a continuing time by the time of
     day's rule (:func:`past_midnight`: a day added at each step back by more than half a day):
     where all its values are within a day, [0, 86400) s, and its header says so
     (:data:`OF_DAY_HEADERS`) or its values do (:func:`over_midnight`); None otherwise (a step
     back is the reader's to refuse, "time decreases"), as where it never passes midnight;
-    ``pauses_said``: its pauses warned of (:func:`past_midnight`)."""
+    ``pauses_said``: its pauses warned of (:func:`past_midnight`).
+    (data91) ``kind``, ``data.time``: ``of_day`` says it whatever the header (``t``, ``time``)
+    and the steps (a logger paused over midnight: its step over it longer than any other): the
+    values read so, those that never pass midnight as they are; a value outside a day refused
+    with its row."""
     finite = seconds[np.isfinite(seconds)]
+    said = kind == OF_DAY_KIND
+    if said and finite.size and (finite.min() < 0 or finite.max() >= DAY_S):
+        row = int(np.argmax((seconds < 0) | (seconds >= DAY_S)))
+        raise ContractError(f"value {seconds[row]:g} s is no second of a day, [0, 86400) "
+                            f"(data.time={OF_DAY_KIND}: seconds since midnight)", file=path,
+                            column=TIME, row=row + 1)
     if not finite.size or finite.min() < 0 or finite.max() >= DAY_S:
         return None
-    said = header is not None and _bare(header) in OF_DAY_HEADERS
+    said = said or header is not None and _bare(header) in OF_DAY_HEADERS
     if not (said or over_midnight(finite)):
         return None
     unwrapped = past_midnight(pa.array(seconds, from_pandas=True), path, header,
                               pauses_said)
-    return None if unwrapped is None else unwrapped.to_numpy(zero_copy_only=False)
+    if unwrapped is None:      # (data91: said by data.time, a record within one day is one)
+        return seconds if kind == OF_DAY_KIND else None
+    return unwrapped.to_numpy(zero_copy_only=False)
 
 
 def over_midnight(seconds: np.ndarray) -> bool:
@@ -355,7 +380,7 @@ def keyed_format(value: str, dayfirst: bool | None) -> str | None:
 
 def time_type(kind: str, value: str) -> pa.DataType:
     """The Arrow type a time column of ``kind`` is read as (``value``: its first cell)."""
-    if kind in ("seconds", ELAPSED):
+    if kind in ("seconds", ELAPSED, OF_DAY_KIND):
         return pa.float64()
     zoned = "%z" in kind if is_format(kind) else bool(_ZONE_OFFSET.search(value))
     return pa.timestamp("ns", tz="UTC" if zoned else None)
