@@ -561,14 +561,16 @@ def since(ns: np.ndarray, valid: np.ndarray, origin: int) -> np.ndarray:
 
 
 def stream_stamps(time: pd.Series, time_format: str = "auto", zone: str | None = None,
-                  served: bool = False):
+                  served: bool = False, carried: list | None = None):
     """A stream's timestamps as ``(int64 nanoseconds since the epoch, valid)``, read as a
     campaign file's are (:func:`.timestamps.parsed`: ISO 8601 with or without its offset, a
     decimal comma, a day-first ``07.01.2023 08:45:00``, ``data.time``'s format; ``zone``:
     ``data.timezone``, the local clock of timestamps without an offset); the elapsed
     ``h:mm:ss``, or (data89) a time of day passing midnight, as seconds (a Series:
     :func:`.timestamps.elapsed_seconds`, the file's rule); None where the time is seconds (or none is read).
-    ``served``: a served model's block (no ``data.timezone`` read), said so in a clock set back."""
+    ``served``: a served model's block (no ``data.timezone`` read), said so in a clock set back;
+    (data91) ``carried``: its session's time of day, the block's read on from it
+    (:func:`.timestamps.continued`, updated in place), None: a block read alone."""
     read = time.dropna()
     if read.empty:                 # no time at all: every row's for the guard to substitute
         return None
@@ -585,7 +587,8 @@ def stream_stamps(time: pd.Series, time_format: str = "auto", zone: str | None =
         time = time.map(lambda v: v if pd.isna(v) else f"{v:.0f}")    # 202503272330, as digits)
     text = pa.chunked_array([pa.array(time.astype("string"), type=pa.string())])
     if clock:
-        ns = elapsed_seconds(text, kind, SOURCE, stream=True, unwrap=not served).cast(pa.int64())
+        ns = elapsed_seconds(text, kind, SOURCE, stream=True, unwrap=not served,
+                             carried=carried).cast(pa.int64())
         return pd.Series(ns.to_numpy(zero_copy_only=False) / 1e9, index=time.index)
     if kind in ("auto", "seconds"):
         return None

@@ -64,7 +64,7 @@ def maybe_elapsed(value: str, kind: str) -> bool:
 
 
 def elapsed_seconds(text, kind: str, path: Path, header: str | None = None,
-                    stream: bool = False, unwrap: bool = True):
+                    stream: bool = False, unwrap: bool = True, carried: list | None = None):
     """A time column of text (``h:mm:ss``, a fraction of a second after ``.`` or ``,``) as a
     duration (ns: the report says ``elapsed``), read so where it cannot be a time of day:
     ``data.time=elapsed``, a header saying so (:data:`ELAPSED_HEADERS`: ``Dauer``, ``elapsed
@@ -74,7 +74,9 @@ def elapsed_seconds(text, kind: str, path: Path, header: str | None = None,
     ``unwrap=False``, a served model's block read alone, never); a cell that is no ``h:mm:ss``
     is refused with its row.  (data89b) A file's pauses are said here, once each, as what
     reads each run as a campaign (:func:`_said_pauses`): ``data.runs_at_pauses`` cannot split a
-    time written as text, and the record's own pause warning leaves such a time to this one."""
+    time written as text, and the record's own pause warning leaves such a time to this one.
+    (data91) ``carried``: a served session's time of day, continued (:func:`continued`), its
+    block read as the rows of a file go on, not alone."""
     parts = pc.extract_regex(text, f"^{_ELAPSED.pattern}$")
     hours = pc.cast(pc.struct_field(parts, "h"), pa.float64())
     seconds = pc.cast(pc.replace_substring(pc.struct_field(parts, "s"), ",", "."), pa.float64())
@@ -87,7 +89,10 @@ def elapsed_seconds(text, kind: str, path: Path, header: str | None = None,
         raise ContractError(f"value {text[row].as_py()!r} is no time of day (data.time="
                             f"{OF_DAY_KIND}): an elapsed time? data.time={ELAPSED}", file=path,
                             column=TIME, row=row + 1)
-    if kind == OF_DAY_KIND:         # (data91) said a time of day: one that never wraps is one
+    if carried is not None and not said and not (pc.max(hours).as_py() or 0) >= 24:
+        # (data91) a served session's time of day: what it read before tells the days
+        total = continued(total, carried, path)
+    elif kind == OF_DAY_KIND:       # (data91) said a time of day: one that never wraps is one
         unwrapped = past_midnight(total, path, header) if unwrap else None
         total = total if unwrapped is None else unwrapped
     elif not said and not (pc.max(hours).as_py() or 0) >= 24:
@@ -149,6 +154,26 @@ def past_midnight(seconds: pa.Array, path: Path, header: str | None = None,
     if pauses_said:
         _said_pauses(values[valid] + days[valid], valid, name, column)
     return pa.array(values + days, from_pandas=True)
+
+
+def continued(seconds: pa.Array, carried: list, path: Path) -> pa.Array:
+    """(data91) A served block's time of day without its date (``seconds`` since midnight) as
+    its session's continuing time: the block read after the last time of day the session read,
+    by the file's rule (:func:`past_midnight`: a day added at each step back by more than half a
+    day, a step of half a day or more forward refused), so a stream of blocks passing midnight
+    reads as the rows of one file do (it was refused, each block read alone).  ``carried``: the
+    session's ``[last time of day read (s; NaN: none yet), days added (s)]``, updated in place
+    (the caller keeps it only where the block is taken).  A block whose time never passes
+    midnight is read as it is, hours past 24 being the elapsed time's (:func:`elapsed_seconds`)."""
+    last, added = carried
+    raw = seconds.to_numpy(zero_copy_only=False).astype(float)
+    joined = pa.array(np.concatenate([[last], raw]), from_pandas=True)
+    unwrapped = past_midnight(joined, path, pauses_said=False)
+    values = (joined if unwrapped is None else unwrapped).to_numpy(zero_copy_only=False)[1:] + added
+    valid = np.flatnonzero(~np.isnan(raw))
+    if valid.size:
+        carried[:] = [raw[valid[-1]], values[valid[-1]] - raw[valid[-1]]]
+    return pa.array(values, from_pandas=True)
 
 
 PAUSE_PERIODS = 100   # a record silent this many sample periods: runs joined in one file?
@@ -257,7 +282,8 @@ def is_format(kind: str) -> bool:
 
 STREAMED = ("a stream's time is one column, seconds or a timestamp with its date (or, data89, a "
             "time of day that passes midnight, read as a file's: not in a served model's block, "
-            "read alone, where a day passing between two blocks cannot be told), or two joined "
+            "read alone, where a day passing between two blocks cannot be told; data91: a "
+            "session's blocks are read on from the last time it read), or two joined "
             "as a file's are, data.roles.time=[<date column>, <time column>]")
 
 
