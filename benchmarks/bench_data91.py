@@ -6,6 +6,7 @@ Usage (from the repository root, ``PYTHONPATH=<tree>/src``: the code measured is
 
     python benchmarks/bench_data91.py write ROOT SEED            # the exports of SEED
     python benchmarks/bench_data91.py score ROOT SEED [LABELS]    # init + run + replay of each
+    python benchmarks/bench_data91.py served ROOT SEED            # h:mm:ss blocks past midnight
 
 ``write``: bench_data89b's ``write`` (``thermocomp simulate seed=SEED``, its longest campaign
 as a lab's one record from 21:30:00, past midnight: ``contract.csv`` and ``excel2``,
@@ -19,6 +20,13 @@ against ``contract.csv``'s); ``nightpause`` against ``contract_pause.csv``'s.  P
 ``init <path>`` then ``run model=mlr data.test_fraction=0.25`` on the config it wrote (a
 refusal's own key typed once where it names one: bench_data88's FOLLOWED, and here
 ``data.time=of_day``), then ``replay``.  ``LABELS`` (comma-separated): only those.
+``served``: ``run model=lagbank data.test_fraction=0.25`` on ``contract.csv`` (a lag bank reads
+the stream's clock: a time set back is taken as missing), its model served in process (the
+pyfunc ``thermocomp serve`` runs) over the whole record in blocks of 10 rows, once with the time
+as seconds since midnight continuing past it (77400 + t) and once as dateless ``h:mm:ss`` from
+21:30:00 (one session each, ``reset`` on the first block): the blocks refused, or max |clock -
+seconds| of the corrections; traced beside (no rule): the time as numeric seconds of the day
+(86100, then 0: ``daysec``'s), max |daysec - seconds|.
 
 The rule (src): ``data.time=of_day`` says the time column holds the time of day without its
 date, seconds since midnight (or ``h:mm:ss``): read by the time of day's rule (data88b's
@@ -50,9 +58,10 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
+import numpy as np
 import pandas as pd
 from _cli import run_commands
-from bench_data88 import FOLLOWED, _run, _short, followed
+from bench_data88 import FOLLOWED, LIGHT, START, _run, _short, followed
 from bench_data89 import DAY_S, PATHS, _by_contract, _replay, _same
 from bench_data89 import score as score_exports
 from bench_data89b import write as write_exports
@@ -102,8 +111,65 @@ def score(root: str, seed: str, labels: str = ",".join([*PATHS, "nightpause"])) 
           f"{_short(replayed or {})} {'= contract' if replay_ok else '!= contract'}")
 
 
+def served(root: str, seed: str, block: int = 10) -> None:
+    """The record served in blocks, its time in seconds and as h:mm:ss (module docstring)."""
+    from bench_data88 import _cli
+
+    from thermocomp.apps.deploy import StreamingCompensator
+    from thermocomp.apps.deploy.pyfunc import CompensatorModel
+    from thermocomp.core.io import read_dataset
+    from thermocomp.shell.model_store import load_model
+
+    base = Path(root) / seed
+    out = base / "lagbank-run"
+    done = _cli("run", f"data.path={base / 'contract.csv'}", "model=lagbank",
+                "data.test_fraction=0.25", f"out={out}", *LIGHT)
+    if done.returncode:
+        print(f"seed {seed} served: run exit {done.returncode}")
+        return
+    ds, _ = read_dataset(base / "contract.csv", {"test_fraction": 0.25})
+    train = {c: ds.campaigns[c] for c in ds.ids() if ds.manifest.loc[c, "split"] == "train"}
+    model = CompensatorModel(StreamingCompensator.from_training(load_model(out / "model.pkl"),
+                                                                train))
+    model.load_context(None)
+    rows = pd.read_csv(base / "contract.csv")
+    clock = [(START + pd.Timedelta(seconds=float(t))).strftime("%H:%M:%S") for t in rows["time"]]
+    said = {}
+    shapes = (("seconds", rows["time"] + START_S), ("clock", clock),
+              ("daysec", (rows["time"] + START_S) % DAY_S))
+    for session, time in shapes:
+        frame = rows.assign(time=time)
+        try:
+            said[session] = pd.concat([model.predict(None, frame.iloc[a:a + block],
+                                                     {"session": session, "reset": a == 0})
+                                       for a in range(0, len(frame), block)], ignore_index=True)
+        except Exception as exc:       # (an MlflowException: the server's HTTP 400)
+            said[session] = f"refused: {str(exc)[:160]}"
+    if isinstance(said["clock"], str) or isinstance(said["seconds"], str):
+        print(f"seed {seed} served: seconds {_taken(said['seconds'])}; clock "
+              f"{_taken(said['clock'])}")
+        return
+    print(f"seed {seed} served: {len(rows)} rows in blocks of {block}, h:mm:ss past midnight "
+          f"taken; max |clock - seconds| {_gap(said['clock'], said['seconds'])}; (traced) "
+          f"numeric seconds of day (86100 then 0) max |daysec - seconds| "
+          f"{_gap(said['daysec'], said['seconds'])}")
+
+
+def _taken(said) -> str:
+    return said if isinstance(said, str) else "taken"
+
+
+def _gap(got, want) -> str:
+    """max |got - want| of the served corrections (µm), or why ``got`` was refused."""
+    if isinstance(got, str):
+        return got
+    columns = [c for c in want.columns if c != "n_clamped"]
+    return f"{float(np.max(np.abs(got[columns].to_numpy(float) - want[columns].to_numpy(float)))):.3g} um"
+
+
 def main(argv: list[str]) -> int:
-    return run_commands(__doc__, {"write": write, "score": score}, argv, cpu=sys.stderr)
+    return run_commands(__doc__, {"write": write, "score": score, "served": served}, argv,
+                        cpu=sys.stderr)
 
 
 if __name__ == "__main__":

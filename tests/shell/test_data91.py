@@ -94,3 +94,12 @@ def test_a_served_session_passes_midnight_in_h_mm_ss_blocks_as_in_seconds():
                                                                  "reset": a == 0})
                      for a in range(0, len(clock), 25)], ignore_index=True)
     pd.testing.assert_frame_equal(got, want)
+
+
+def test_a_stream_of_seconds_of_day_paused_at_midnight_reads_as_the_file_with_the_key():
+    # (the stream's numbers under data.time=of_day were parsed as timestamps: AttributeError)
+    rows = _paused(_record(95))
+    text = _headerless(rows).rename(columns={"t": "time"}).to_csv(index=False)
+    streamed, _ = read_stream(text, ["T_a", "T_b", "T_c"], ReadOptions.from_cfg({"time": "of_day"}))
+    time = streamed["time"].to_numpy()
+    np.testing.assert_allclose(time - time[0], rows["time"], atol=1e-9)

@@ -62,6 +62,7 @@ from .timestamps import (
     CLOCK,
     ELAPSED,
     HOUR_S,
+    OF_DAY_KIND,
     compact_format,
     described,
     dst_said,
@@ -70,6 +71,7 @@ from .timestamps import (
     maybe_elapsed,
     on_local_clock,
     parsed,
+    past_midnight,
     time_kind,
     time_type,
 )
@@ -546,6 +548,11 @@ def seconds_and_origin(time: pd.Series, time_format: str, zone: str | None = Non
     timestamps (a time without an offset as written, or on ``zone``'s clock: as a file's
     ``time_origin`` becomes its ``start``, :mod:`.instants`), else None (seconds, elapsed)."""
     stamps = stream_stamps(time, time_format, zone)
+    if stamps is None and time_format == OF_DAY_KIND:     # (data91) as a file's are read
+        seconds = pd.to_numeric(time, errors="coerce").to_numpy(float)
+        unwrapped = past_midnight(pa.array(seconds, from_pandas=True), SOURCE, pauses_said=False)
+        if unwrapped is not None:
+            return pd.Series(unwrapped.to_numpy(zero_copy_only=False), index=time.index), None
     if stamps is None or isinstance(stamps, pd.Series):   # seconds; h:mm:ss in seconds
         return (time if stamps is None else stamps), None
     ns, valid = stamps
@@ -590,7 +597,7 @@ def stream_stamps(time: pd.Series, time_format: str = "auto", zone: str | None =
         ns = elapsed_seconds(text, kind, SOURCE, stream=True, unwrap=not served,
                              carried=carried).cast(pa.int64())
         return pd.Series(ns.to_numpy(zero_copy_only=False) / 1e9, index=time.index)
-    if kind in ("auto", "seconds"):
+    if kind in ("auto", "seconds", OF_DAY_KIND):     # (data91: of_day's numbers, as a file's)
         return None
     target = time_type(kind, str(first).strip())
     found = first_cast_failure(text, target, kind)
