@@ -103,3 +103,14 @@ def test_a_stream_of_seconds_of_day_paused_at_midnight_reads_as_the_file_with_th
     streamed, _ = read_stream(text, ["T_a", "T_b", "T_c"], ReadOptions.from_cfg({"time": "of_day"}))
     time = streamed["time"].to_numpy()
     np.testing.assert_allclose(time - time[0], rows["time"], atol=1e-9)
+
+
+def test_a_dateless_clock_that_never_passes_midnight_reads_with_the_key(tmp_path):
+    # before: refused under any data.time, "a time of day without its date"
+    rows = _record(96).iloc[:20]                  # 21:30 to 23:05: no midnight
+    _clock(rows).to_csv(tmp_path / "evening.csv", index=False)
+    with pytest.raises(ContractError, match="time of day without its date"):
+        read_dataset(tmp_path / "evening.csv")
+    ds, _ = read_dataset(tmp_path / "evening.csv", {"time": "of_day"})
+    time = ds.campaigns["evening"]["time"].to_numpy()
+    np.testing.assert_allclose(time - time[0], rows["time"], atol=1e-9)

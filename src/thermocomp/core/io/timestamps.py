@@ -84,18 +84,19 @@ def elapsed_seconds(text, kind: str, path: Path, header: str | None = None,
     total = pc.add(pc.add(pc.multiply(hours, 3600.0), pc.multiply(minutes, 60.0)), seconds)
     said = kind == ELAPSED or (header is not None and _bare(header) in ELAPSED_HEADERS
                                and kind != OF_DAY_KIND)
-    if kind == OF_DAY_KIND and (pc.max(hours).as_py() or 0) >= 24:
+    past_a_day = (pc.max(hours).as_py() or 0) >= 24       # (an elapsed time's hours only)
+    if kind == OF_DAY_KIND and past_a_day:
         row = int(np.argmax(hours.to_numpy(zero_copy_only=False) >= 24))
         raise ContractError(f"value {text[row].as_py()!r} is no time of day (data.time="
                             f"{OF_DAY_KIND}): an elapsed time? data.time={ELAPSED}", file=path,
                             column=TIME, row=row + 1)
-    if carried is not None and not said and not (pc.max(hours).as_py() or 0) >= 24:
+    if carried is not None and not said and not past_a_day:
         # (data91) a served session's time of day: what it read before tells the days
         total = continued(total, carried, path)
     elif kind == OF_DAY_KIND:       # (data91) said a time of day: one that never wraps is one
         unwrapped = past_midnight(total, path, header) if unwrap else None
         total = total if unwrapped is None else unwrapped
-    elif not said and not (pc.max(hours).as_py() or 0) >= 24:
+    elif not said and not past_a_day:
         total = past_midnight(total, path, header) if unwrap else None
         if total is None:       # a time of day that never wraps: no date, nothing to unwrap
             first = text.filter(text.is_valid())
