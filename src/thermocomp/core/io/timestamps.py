@@ -313,7 +313,8 @@ def time_kind(value: str, kind: str, number: bool, path: Path, header: str | Non
         raise ContractError(f"value {value!r} is a time of day without its date (it would go back "
                             f"at midnight): {way}; or, the time elapsed since the start (h:mm:ss), "
                             f"data.time={ELAPSED} (and data.roles.time={name} if it is not the time "
-                            "column)", file=path, column=TIME, row=1)
+                            f"column); or the time of day as the time, data.time={OF_DAY_KIND}",
+                            file=path, column=TIME, row=1)
     if DATE.fullmatch(value):
         way = STREAMED if stream else (f"name the time-of-day column with it, data.roles.time="
                                        f"[{name}, <time column>], or leave it out and time the "
