@@ -50,7 +50,60 @@ RMSE of its contract file (``contract.csv``; ``nightpause``: ``contract_pause.cs
 tests/shell/test_data91.py fail on main 277a181d and pass here.  Any export read silently wrong
 (exit 0, RMSE not the contract's) refuses the branch.
 
-Scored: (see below, filled in after the scoring)
+Scored (2026-12-05, fresh seeds 9386-9395, each ``write`` once, then ``score`` and ``served``
+of fix/data91 cb4bd4cf; on main 277a181d ``score ... nightpause`` and ``served`` on copies of
+the same files; dev seed 4242 only before; the bar unchanged.  A first pass of 9386-9390 on
+fix/data91 204e6acc, before the served session and the stream's of_day, read the same numbers)
+------------------------------------------------------------------------------------------
+Test RMSE (µm, E_X / E_Y / E_Z; mlr, the last quarter held out) of contract.csv (=
+contract_pause.csv's to the digit: mlr reads no time), then its replay: 9386 0.410737 / 0.868047
+/ 0.766450, replay 0.423805 / 1.033319 / 1.081384; 9387 1.200273 / 1.806667 / 1.541620, replay
+0.621220 / 1.161521 / 2.379064; 9388 0.516278 / 0.732466 / 0.927206, replay 0.667456 / 0.579097
+/ 2.135355; 9389 0.645650 / 0.600328 / 1.151845, replay 0.522553 / 0.639782 / 1.932768; 9390
+0.453608 / 0.279692 / 1.234579 (replay alike); 9391 0.364235 / 0.660205 / 1.018618, replay
+0.354491 / 0.673185 / 1.195044; 9392 0.392033 / 1.377319 / 0.695249 (replay alike); 9393
+0.451642 / 0.860691 / 1.032555 (replay alike); 9394 0.466659 / 0.646944 / 0.851154 (replay
+alike); 9395 0.523312 / 1.688152 / 0.893997, replay 0.458656 / 1.702242 / 2.179783.
+
+==========  ==========================================  =============================================
+export      main 277a181d (10 of 10 seeds alike)         fix/data91 (10 of 10 seeds alike)
+==========  ==========================================  =============================================
+excel2,     (data88 ... data89b: accepted)              accepted, RMSE and replay = contract (1e-6)
+tabcomment,
+midnight,
+latin1,
+groups,
+trace,
+daysec
+catman      (data89: as here)                           refused exit 2 (file, column T0, line 11,
+                                                        data.dayfirst=true|false); with
+                                                        data.dayfirst=false: = contract
+nightpause  refused exit 2: file, column 'time', line   refused exit 2: the same file, column,
+            32 (data row 31), "time decreases from      line, row, "... say so, data.time=of_day";
+            86100 s (row 30) to 1800 s: ... sort them   with data.time=of_day typed once: accepted
+            ...; a header saying so ('Seconds of        (init: "time: 't', seconds of day ...,
+            day') reads them so" (no key: the file      data.time=of_day", written to the config),
+            edited by hand)                             RMSE and replay = contract_pause (1e-6)
+served      h:mm:ss blocks refused at block 1 (400,     taken; max |clock - seconds| 0 µm on 10 of
+(lagbank)   "a time of day without its date")           10 (55-61 rows, 6-7 blocks each)
+==========  ==========================================  =============================================
+
+Traced beside (no rule, ``served``): numeric seconds of the day (86100, then 0) in the served
+blocks give the continuing seconds' corrections already (0 µm, main and here, 10 of 10).  The
+lag bank reads the stream's clock (dev 4242, by hand: the rows after midnight served an hour
+later move the corrections by 3.36 µm), so 0 µm is no blind figure.
+
+Tests (tests/shell/test_data91.py, 7): all fail on a checkout of main 277a181d (data.time=of_day
+refused as no data.time; the refusal names no key; stream_stamps takes no session's time; each
+served h:mm:ss block refused; a dateless clock that never passes midnight refused under any key)
+and pass here.  tests/shell/test_lab_stream52.py's served dateless-clock refusal is now an
+equality with the dated rows' corrections (lagbank, 1e-9): it fails on main, by design.
+
+Against the BAR: (a) every export accepted, or refused exit 2 naming file, column and row
+(catman, nightpause; each its key typed, accepted); (b) 90 of 90 accepted runs and replays = the
+contract's to 1e-6, nightpause 10 of 10 (main: 0 of 10, refused, no key); (c) tests as said.
+KEPT.  CPU: the key reads the column's min / max and steps once, as data89b's rule; the served
+session's carry concatenates one value to a block (no cost seen).
 """
 
 from __future__ import annotations
