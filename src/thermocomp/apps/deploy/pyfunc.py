@@ -164,8 +164,9 @@ class CompensatorModel(mlflow.pyfunc.PythonModel):
         return ends[campaign]
 
     def _state(self, session: str, reset: bool, continues: str = "", ambient_c=None) -> list:
-        """``[stream state, time shift, learned, clock origin]`` of ``session``, most recent last
-        (the origin: the campaign's first timestamp, ns, once a block gave one): a fresh one
+        """``[stream state, time shift, learned, clock origin, time of day]`` of ``session``,
+        most recent last (the origin: the campaign's first timestamp, ns, once a block gave one;
+        data91, the time of day: the last read and the days added, :func:`_no_clock`): a fresh one
         when new or reset (with the campaign's ``ambient_c``, for a model that reads no ambient
         sensor); the end state of campaign ``continues`` when given (its time shift, an
         :class:`EndState` until the session's first row fixes it).  ``learned`` (what the
@@ -173,12 +174,12 @@ class CompensatorModel(mlflow.pyfunc.PythonModel):
         learned = self._sessions[session][2] if session in self._sessions else self._learned0
         if continues:
             end = self._end_state(continues)
-            self._sessions[session] = [copy.deepcopy(end.state), end, learned, None]
+            self._sessions[session] = [copy.deepcopy(end.state), end, learned, None, _no_clock()]
         elif reset or session not in self._sessions:
             if not reset:
                 log.warning(unheld_session(session))
             self.streaming.reset(float("nan") if ambient_c is None else float(ambient_c))
-            self._sessions[session] = [self.streaming._snapshot(), 0.0, learned, None]
+            self._sessions[session] = [self.streaming._snapshot(), 0.0, learned, None, _no_clock()]
         while len(self._sessions) > MAX_SESSIONS:
             self._sessions.popitem(last=False)
         self._sessions.move_to_end(session)
@@ -202,8 +203,9 @@ class CompensatorModel(mlflow.pyfunc.PythonModel):
         with self._lock:
             state = self._state(session, bool(params.get("reset")), str(params.get("continues") or ""),
                                 params.get("ambient_c"))
+            carried = list(state[4])        # (kept below only where the block is taken)
             if TIME in frame.columns:
-                frame = _on_campaign_clock(frame, state, self.streaming.slashed_)
+                frame = _on_campaign_clock(frame, state, self.streaming.slashed_, carried)
             if isinstance(state[1], EndState):
                 # a continuing campaign's clock follows its predecessor's last sample by one
                 # period, as `run` joins them (the client's own clock may restart at 0)
@@ -220,6 +222,7 @@ class CompensatorModel(mlflow.pyfunc.PythonModel):
                 raise MlflowException(str(exc), error_code=INVALID_PARAMETER_VALUE) from exc
             finally:  # a refused block leaves the session where it was (predict rolls back)
                 state[0] = self.streaming._snapshot()
+            state[4] = carried
             adapt = getattr(self.streaming, "adapt_", None)
             if adapt is not None:
                 targets = self.streaming.targets_
@@ -251,15 +254,24 @@ def unheld_session(session: str) -> str:
             "to resume it; start a new campaign with reset=true to say so")
 
 
-def _on_campaign_clock(frame: pd.DataFrame, state: list, slashed: str | None = None
-                       ) -> pd.DataFrame:
+def _no_clock() -> list:
+    """A session's time of day before its first block (:func:`.timestamps.continued`): none
+    read, no day added."""
+    return [float("nan"), 0.0]
+
+
+def _on_campaign_clock(frame: pd.DataFrame, state: list, slashed: str | None = None,
+                       carried: list | None = None) -> pd.DataFrame:
     """``frame`` with wall-clock times (a lab's logger: ``07.01.2023 08:45:00``, ISO 8601) as
     seconds since its campaign's first (the session's origin, kept over its blocks until a
     reset), as ``run`` and ``replay`` read a campaign's timestamps, dates with slashes in the
-    record's order ``slashed`` (code71: a block's first row alone decided); seconds as they are."""
+    record's order ``slashed`` (code71: a block's first row alone decided); seconds as they are.
+    (data91) A time of day without its date (``h:mm:ss``) read on from the last the session
+    read, ``carried`` (updated in place), a day added where it passes midnight, as a file's rows
+    are (each block was refused, read alone)."""
     try:
         stamps = stream_stamps(frame[TIME], stream_format(frame[TIME], slashed, "the request")
-                               or "auto", served=True)
+                               or "auto", served=True, carried=carried)
     except ContractError as exc:     # a time that is no time: its row of the block, not of stdin
         where = f"column {exc.column!r}, data row {exc.row} of the block: " if exc.row else ""
         raise MlflowException(where + exc.reason, error_code=INVALID_PARAMETER_VALUE) from exc

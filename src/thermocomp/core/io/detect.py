@@ -64,6 +64,8 @@ from .tables import parquet, peek_csv, without_pandas_index
 from .tdm import is_tdm
 from .timestamps import (
     CLOCK,
+    OF_DAY,
+    OF_DAY_KIND,
     excel_days,
     looks_like_timestamp,
     maybe_elapsed,
@@ -690,10 +692,13 @@ def detection_lines(layout: str, opts, header, plan, ds, report, period_s: float
     times = [h for h, n in plan.names.items() if n in ("time", CLOCK)]
     # timestamps: the first as read, so that a day read as the month shows
     origin = report["campaigns"][ds.ids()[0]].get("time_origin")
-    elapsed = report["campaigns"][ds.ids()[0]].get("time") == "elapsed"
+    read_as = report["campaigns"][ds.ids()[0]].get("time")
     time = (f"time: {' + '.join(repr(h) if h else 'the column without a header' for h in times)}" + (
-        f", timestamps from {origin}" if origin else ", elapsed h:mm:ss" if elapsed
-        else _seconds_unit(times[0], opts)) if times
+        f", timestamps from {origin}" if origin else ", elapsed h:mm:ss" if read_as == "elapsed"
+        # (data91) seconds since midnight, passing it: said, with the key where it took one
+        else f", {OF_DAY} (since midnight, a day added where it passes midnight"
+             f"{', data.time=' + opts.time if opts.time == OF_DAY_KIND else ''})"
+        if read_as == OF_DAY else _seconds_unit(times[0], opts)) if times
             else "time: none in the file, data.sample_period_s rows apart")
     lines = [layout, time, f"sample period: {period_s:g} s, {report['rows']} rows{_periods(ds)}"]
     width = max(len(h or "(no header)") for h in header)

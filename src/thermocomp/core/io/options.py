@@ -20,7 +20,7 @@ from .encoding import UTF8, codec
 from .marks import is_number_mark
 from .separators import NO_BREAK_SPACES, any_number
 
-TIME_FORMATS = ("auto", "seconds", "iso8601", "elapsed")
+TIME_FORMATS = ("auto", "seconds", "iso8601", "elapsed", "of_day")   # (data91: of_day)
 AUTO = "auto"                     # data.delimiter / data.decimal / data.roles.time: detected
 ROLE_PATTERNS = ("error", "state", "ambient", "ignore")   # data.roles.<key>: glob patterns
 RUN_ROLE = "campaign"     # data.roles.campaign: the one column numbering a long file's runs

@@ -813,7 +813,8 @@ def _numbers(column) -> np.ndarray | None:
     return None
 
 
-def _continuing(columns: dict, renamed: dict, path: Path) -> tuple[np.ndarray | None, bool]:
+def _continuing(columns: dict, renamed: dict, path: Path,
+                kind: str = "auto") -> tuple[np.ndarray | None, bool]:
     """The record's time as numbers where its pauses are found: seconds of the day past
     midnight as a continuing time (the reader's rule, :func:`.timestamps.seconds_of_day`; lead90:
     the raw values split a record at its forward pauses only, a run after a pause across
@@ -823,7 +824,7 @@ def _continuing(columns: dict, renamed: dict, path: Path) -> tuple[np.ndarray | 
     if seconds is None:
         return None, False
     header = next((raw for raw, name in renamed.items() if name == TIME), None)
-    of_day = seconds_of_day(seconds, path, header, pauses_said=False)
+    of_day = seconds_of_day(seconds, path, header, pauses_said=False, kind=kind)
     return (seconds, False) if of_day is None else (of_day, True)
 
 
@@ -835,7 +836,7 @@ def _run_parts(path: Path, opts: ReadOptions) -> tuple[pd.DataFrame, dict]:
     with as_read(path, opts) as (source, source_opts):
         columns, renamed, rescaled, lines = _loaded(source, source_opts)
         if opts.runs_at_pauses:
-            header, (times, of_day) = None, _continuing(columns, renamed, path)
+            header, (times, of_day) = None, _continuing(columns, renamed, path, opts.time)
             blocks = pause_blocks(times, record_id(path), path)
         else:
             header, of_day = next(raw for raw, name in renamed.items() if name == RUN), False

@@ -62,6 +62,7 @@ from .timestamps import (
     CLOCK,
     ELAPSED,
     HOUR_S,
+    OF_DAY_KIND,
     compact_format,
     described,
     dst_said,
@@ -70,6 +71,7 @@ from .timestamps import (
     maybe_elapsed,
     on_local_clock,
     parsed,
+    past_midnight,
     time_kind,
     time_type,
 )
@@ -546,6 +548,11 @@ def seconds_and_origin(time: pd.Series, time_format: str, zone: str | None = Non
     timestamps (a time without an offset as written, or on ``zone``'s clock: as a file's
     ``time_origin`` becomes its ``start``, :mod:`.instants`), else None (seconds, elapsed)."""
     stamps = stream_stamps(time, time_format, zone)
+    if stamps is None and time_format == OF_DAY_KIND:     # (data91) as a file's are read
+        seconds = pd.to_numeric(time, errors="coerce").to_numpy(float)
+        unwrapped = past_midnight(pa.array(seconds, from_pandas=True), SOURCE, pauses_said=False)
+        if unwrapped is not None:
+            return pd.Series(unwrapped.to_numpy(zero_copy_only=False), index=time.index), None
     if stamps is None or isinstance(stamps, pd.Series):   # seconds; h:mm:ss in seconds
         return (time if stamps is None else stamps), None
     ns, valid = stamps
@@ -561,14 +568,16 @@ def since(ns: np.ndarray, valid: np.ndarray, origin: int) -> np.ndarray:
 
 
 def stream_stamps(time: pd.Series, time_format: str = "auto", zone: str | None = None,
-                  served: bool = False):
+                  served: bool = False, carried: list | None = None):
     """A stream's timestamps as ``(int64 nanoseconds since the epoch, valid)``, read as a
     campaign file's are (:func:`.timestamps.parsed`: ISO 8601 with or without its offset, a
     decimal comma, a day-first ``07.01.2023 08:45:00``, ``data.time``'s format; ``zone``:
     ``data.timezone``, the local clock of timestamps without an offset); the elapsed
     ``h:mm:ss``, or (data89) a time of day passing midnight, as seconds (a Series:
     :func:`.timestamps.elapsed_seconds`, the file's rule); None where the time is seconds (or none is read).
-    ``served``: a served model's block (no ``data.timezone`` read), said so in a clock set back."""
+    ``served``: a served model's block (no ``data.timezone`` read), said so in a clock set back;
+    (data91) ``carried``: its session's time of day, the block's read on from it
+    (:func:`.timestamps.continued`, updated in place), None: a block read alone."""
     read = time.dropna()
     if read.empty:                 # no time at all: every row's for the guard to substitute
         return None
@@ -585,9 +594,10 @@ def stream_stamps(time: pd.Series, time_format: str = "auto", zone: str | None =
         time = time.map(lambda v: v if pd.isna(v) else f"{v:.0f}")    # 202503272330, as digits)
     text = pa.chunked_array([pa.array(time.astype("string"), type=pa.string())])
     if clock:
-        ns = elapsed_seconds(text, kind, SOURCE, stream=True, unwrap=not served).cast(pa.int64())
+        ns = elapsed_seconds(text, kind, SOURCE, stream=True, unwrap=not served,
+                             carried=carried).cast(pa.int64())
         return pd.Series(ns.to_numpy(zero_copy_only=False) / 1e9, index=time.index)
-    if kind in ("auto", "seconds"):
+    if kind in ("auto", "seconds", OF_DAY_KIND):     # (data91: of_day's numbers, as a file's)
         return None
     target = time_type(kind, str(first).strip())
     found = first_cast_failure(text, target, kind)

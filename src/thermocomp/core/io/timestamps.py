@@ -41,6 +41,9 @@ EXAMPLE = "'%d/%m/%Y %H:%M:%S'"
 CLOCK = " time of day"       # the column joined to the date (data.roles.time: [date, time]); no
 # contract name has a space
 ELAPSED = "elapsed"          # data.time: h:mm:ss since the start, the hours past 24
+# (data91) data.time: a time of day without its date, seconds since midnight (or h:mm:ss), read
+# by the time of day's rule whatever its header or its steps say (:func:`seconds_of_day`)
+OF_DAY_KIND = "of_day"
 _ELAPSED = re.compile(r"\s*(?P<h>\d+):(?P<m>[0-5]\d):(?P<s>[0-5]\d(?:[.,]\d+)?)\s*")
 # a time column's header that says it holds an elapsed time (the word, or a unit after it)
 ELAPSED_HEADERS = frozenset({"elapsed", "elapsed time", "elapsed_time", "duration", "dauer",
@@ -55,12 +58,13 @@ def looks_like_timestamp(text) -> bool:
 def maybe_elapsed(value: str, kind: str) -> bool:
     """The time column's first cell may start an elapsed time (``h:mm:ss``): ``data.time``
     ``elapsed``, or ``auto``, the whole column telling it from a time of day
-    (:func:`elapsed_seconds`)."""
-    return kind == ELAPSED or kind == "auto" and bool(_ELAPSED.fullmatch(value))
+    (:func:`elapsed_seconds`); (data91) or ``of_day``'s ``h:mm:ss``, read there as a time of
+    day."""
+    return kind == ELAPSED or kind in ("auto", OF_DAY_KIND) and bool(_ELAPSED.fullmatch(value))
 
 
 def elapsed_seconds(text, kind: str, path: Path, header: str | None = None,
-                    stream: bool = False, unwrap: bool = True):
+                    stream: bool = False, unwrap: bool = True, carried: list | None = None):
     """A time column of text (``h:mm:ss``, a fraction of a second after ``.`` or ``,``) as a
     duration (ns: the report says ``elapsed``), read so where it cannot be a time of day:
     ``data.time=elapsed``, a header saying so (:data:`ELAPSED_HEADERS`: ``Dauer``, ``elapsed
@@ -70,14 +74,29 @@ def elapsed_seconds(text, kind: str, path: Path, header: str | None = None,
     ``unwrap=False``, a served model's block read alone, never); a cell that is no ``h:mm:ss``
     is refused with its row.  (data89b) A file's pauses are said here, once each, as what
     reads each run as a campaign (:func:`_said_pauses`): ``data.runs_at_pauses`` cannot split a
-    time written as text, and the record's own pause warning leaves such a time to this one."""
+    time written as text, and the record's own pause warning leaves such a time to this one.
+    (data91) ``carried``: a served session's time of day, continued (:func:`continued`), its
+    block read as the rows of a file go on, not alone."""
     parts = pc.extract_regex(text, f"^{_ELAPSED.pattern}$")
     hours = pc.cast(pc.struct_field(parts, "h"), pa.float64())
     seconds = pc.cast(pc.replace_substring(pc.struct_field(parts, "s"), ",", "."), pa.float64())
     minutes = pc.cast(pc.struct_field(parts, "m"), pa.float64())
     total = pc.add(pc.add(pc.multiply(hours, 3600.0), pc.multiply(minutes, 60.0)), seconds)
-    said = kind == ELAPSED or (header is not None and _bare(header) in ELAPSED_HEADERS)
-    if not said and not (pc.max(hours).as_py() or 0) >= 24:
+    said = kind == ELAPSED or (header is not None and _bare(header) in ELAPSED_HEADERS
+                               and kind != OF_DAY_KIND)
+    past_a_day = (pc.max(hours).as_py() or 0) >= 24       # (an elapsed time's hours only)
+    if kind == OF_DAY_KIND and past_a_day:
+        row = int(np.argmax(hours.to_numpy(zero_copy_only=False) >= 24))
+        raise ContractError(f"value {text[row].as_py()!r} is no time of day (data.time="
+                            f"{OF_DAY_KIND}): an elapsed time? data.time={ELAPSED}", file=path,
+                            column=TIME, row=row + 1)
+    if carried is not None and not said and not past_a_day:
+        # (data91) a served session's time of day: what it read before tells the days
+        total = continued(total, carried, path)
+    elif kind == OF_DAY_KIND:       # (data91) said a time of day: one that never wraps is one
+        unwrapped = past_midnight(total, path, header) if unwrap else None
+        total = total if unwrapped is None else unwrapped
+    elif not said and not past_a_day:
         total = past_midnight(total, path, header) if unwrap else None
         if total is None:       # a time of day that never wraps: no date, nothing to unwrap
             first = text.filter(text.is_valid())
@@ -138,6 +157,26 @@ def past_midnight(seconds: pa.Array, path: Path, header: str | None = None,
     return pa.array(values + days, from_pandas=True)
 
 
+def continued(seconds: pa.Array, carried: list, path: Path) -> pa.Array:
+    """(data91) A served block's time of day without its date (``seconds`` since midnight) as
+    its session's continuing time: the block read after the last time of day the session read,
+    by the file's rule (:func:`past_midnight`: a day added at each step back by more than half a
+    day, a step of half a day or more forward refused), so a stream of blocks passing midnight
+    reads as the rows of one file do (it was refused, each block read alone).  ``carried``: the
+    session's ``[last time of day read (s; NaN: none yet), days added (s)]``, updated in place
+    (the caller keeps it only where the block is taken).  A block whose time never passes
+    midnight is read as it is, hours past 24 being the elapsed time's (:func:`elapsed_seconds`)."""
+    last, added = carried
+    raw = seconds.to_numpy(zero_copy_only=False).astype(float)
+    joined = pa.array(np.concatenate([[last], raw]), from_pandas=True)
+    unwrapped = past_midnight(joined, path, pauses_said=False)
+    values = (joined if unwrapped is None else unwrapped).to_numpy(zero_copy_only=False)[1:] + added
+    valid = np.flatnonzero(~np.isnan(raw))
+    if valid.size:
+        carried[:] = [raw[valid[-1]], values[valid[-1]] - raw[valid[-1]]]
+    return pa.array(values, from_pandas=True)
+
+
 PAUSE_PERIODS = 100   # a record silent this many sample periods: runs joined in one file?
 OF_DAY = "seconds of day"   # (data89b) the report's time of seconds since midnight, unwrapped
 # (data89b) a numeric time column's header that says it holds seconds since midnight
@@ -158,23 +197,35 @@ def pauses(seconds: np.ndarray) -> np.ndarray:
 
 
 def seconds_of_day(seconds: np.ndarray, path: Path, header: str | None = None,
-                   pauses_said: bool = True) -> np.ndarray | None:
+                   pauses_said: bool = True, kind: str = "auto") -> np.ndarray | None:
     """(extension, data89b) A numeric time column of seconds since midnight, a logger's
     ``Seconds of day`` (77400 ... 86100, then 0, 300 ...), as a continuing time by the time of
     day's rule (:func:`past_midnight`: a day added at each step back by more than half a day):
     where all its values are within a day, [0, 86400) s, and its header says so
     (:data:`OF_DAY_HEADERS`) or its values do (:func:`over_midnight`); None otherwise (a step
     back is the reader's to refuse, "time decreases"), as where it never passes midnight;
-    ``pauses_said``: its pauses warned of (:func:`past_midnight`)."""
+    ``pauses_said``: its pauses warned of (:func:`past_midnight`).
+    (data91) ``kind``, ``data.time``: ``of_day`` says it whatever the header (``t``, ``time``)
+    and the steps (a logger paused over midnight: its step over it longer than any other): the
+    values read so, those that never pass midnight as they are; a value outside a day refused
+    with its row."""
     finite = seconds[np.isfinite(seconds)]
+    said = kind == OF_DAY_KIND
+    if said and finite.size and (finite.min() < 0 or finite.max() >= DAY_S):
+        row = int(np.argmax((seconds < 0) | (seconds >= DAY_S)))
+        raise ContractError(f"value {seconds[row]:g} s is no second of a day, [0, 86400) "
+                            f"(data.time={OF_DAY_KIND}: seconds since midnight)", file=path,
+                            column=TIME, row=row + 1)
     if not finite.size or finite.min() < 0 or finite.max() >= DAY_S:
         return None
-    said = names_seconds_of_day(header)
+    said = said or names_seconds_of_day(header)
     if not (said or over_midnight(finite)):
         return None
     unwrapped = past_midnight(pa.array(seconds, from_pandas=True), path, header,
                               pauses_said)
-    return None if unwrapped is None else unwrapped.to_numpy(zero_copy_only=False)
+    if unwrapped is None:      # (data91: said by data.time, a record within one day is one)
+        return seconds if kind == OF_DAY_KIND else None
+    return unwrapped.to_numpy(zero_copy_only=False)
 
 
 def names_seconds_of_day(header: str | None) -> bool:
@@ -237,7 +288,8 @@ def is_format(kind: str) -> bool:
 
 STREAMED = ("a stream's time is one column, seconds or a timestamp with its date (or, data89, a "
             "time of day that passes midnight, read as a file's: not in a served model's block, "
-            "read alone, where a day passing between two blocks cannot be told), or two joined "
+            "read alone, where a day passing between two blocks cannot be told; data91: a "
+            "session's blocks are read on from the last time it read), or two joined "
             "as a file's are, data.roles.time=[<date column>, <time column>]")
 
 
@@ -266,7 +318,8 @@ def time_kind(value: str, kind: str, number: bool, path: Path, header: str | Non
         raise ContractError(f"value {value!r} is a time of day without its date (it would go back "
                             f"at midnight): {way}; or, the time elapsed since the start (h:mm:ss), "
                             f"data.time={ELAPSED} (and data.roles.time={name} if it is not the time "
-                            "column)", file=path, column=TIME, row=1)
+                            f"column); or the time of day as the time, data.time={OF_DAY_KIND}",
+                            file=path, column=TIME, row=1)
     if DATE.fullmatch(value):
         way = STREAMED if stream else (f"name the time-of-day column with it, data.roles.time="
                                        f"[{name}, <time column>], or leave it out and time the "
@@ -360,7 +413,7 @@ def keyed_format(value: str, dayfirst: bool | None) -> str | None:
 
 def time_type(kind: str, value: str) -> pa.DataType:
     """The Arrow type a time column of ``kind`` is read as (``value``: its first cell)."""
-    if kind in ("seconds", ELAPSED):
+    if kind in ("seconds", ELAPSED, OF_DAY_KIND):
         return pa.float64()
     zoned = "%z" in kind if is_format(kind) else bool(_ZONE_OFFSET.search(value))
     return pa.timestamp("ns", tz="UTC" if zoned else None)

@@ -25,6 +25,7 @@ from .tables import PIPED_HINT, _chunks, _values
 from .timestamps import (
     DAY_S,
     OF_DAY,
+    OF_DAY_KIND,
     clock_set_back,
     on_local_clock,
     said_if_clock_skips,
@@ -59,7 +60,7 @@ def _set_time_seconds(columns: dict, rows: int, path: Path, opts: ReadOptions,
         if column.null_count:
             row = int(np.argmax(column.is_null().to_numpy(zero_copy_only=False))) + 1
             raise ContractError("missing time value", file=path, column=TIME, row=row)
-        seconds, info = _seconds(column, path, opts.timezone, header)
+        seconds, info = _seconds(column, path, opts.timezone, header, opts.time)
         seconds, origin, found = undone(seconds, info.get("time_origin"), opts.clock_sets, path)
         if found:       # (the sets found, by index: the record's report names those not found)
             info.update(time_origin=origin, clock_sets_undone=len(found), clock_sets_found=found)
@@ -84,7 +85,7 @@ def _set_time_seconds(columns: dict, rows: int, path: Path, opts: ReadOptions,
 
 
 def _seconds(column: pa.ChunkedArray, path: Path, zone: str | None = None,
-             header: str | None = None) -> tuple[np.ndarray, dict]:
+             header: str | None = None, written: str = "auto") -> tuple[np.ndarray, dict]:
     kind = column.type
     if pa.types.is_timestamp(kind):
         ns = pc.cast(pc.cast(column, pa.timestamp("ns", kind.tz)), pa.int64()).to_numpy()
@@ -98,7 +99,7 @@ def _seconds(column: pa.ChunkedArray, path: Path, zone: str | None = None,
         ns = pc.cast(pc.cast(column, pa.duration("ns")), pa.int64()).to_numpy()
         return ns / 1e9, {"time": "elapsed"}
     seconds = pc.cast(column, pa.float64()).to_numpy()
-    if (of_day := seconds_of_day(seconds, path, header)) is not None:
+    if (of_day := seconds_of_day(seconds, path, header, kind=written)) is not None:
         return of_day, {"time": OF_DAY}
     return seconds, {"time": "seconds"}
 
@@ -145,9 +146,9 @@ def _of_day_said(seconds: np.ndarray, origin: str | None, i: int) -> str:
             seconds[i] - seconds[i + 1] <= DAY_S / 2:
         return ""
     pause = (seconds[i + 1] + DAY_S - seconds[i]) / 3600
-    return (f"; or seconds of the day past midnight after {pause:.3g} h without rows? a "
-            "header saying so ('Seconds of day', 'seconds since midnight') reads them so "
-            "(data.roles.time=<it> names the column, not what it holds)")
+    # (data91) the key that says it (was: only a header naming it, the file edited by hand)
+    return (f"; or seconds of the day past midnight after {pause:.3g} h without rows? say so, "
+            f"data.time={OF_DAY_KIND} (a header saying so, 'Seconds of day', reads them so too)")
 
 
 def _clock_reset(seconds: np.ndarray, back: float, max_days: float | None) -> str:
