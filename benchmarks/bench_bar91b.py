@@ -116,8 +116,7 @@ def verdict(main: dict, rule: dict, keys: list) -> dict:
     """The bar's four clauses (module doc) on the records ``keys`` (record/family)."""
     a, b = _logs(main, keys), _logs(rule, keys)
     far = {row: (a[row], b[row]) for row in a if abs(b[row]) > abs(a[row]) + SLACK}
-    noisy = [k for k in keys if main[k]["true_events"] != rule[k]["true_events"]]
-    found = [sum(sum(s[k]["detected"]) for k in keys) for s in (main, rule)]
+    noisy, found = (bar91.verdict(main, rule, keys)[k] for k in ("noisy", "found"))  # (c), (d)
     mean = (float(np.mean(np.abs(list(a.values())))), float(np.mean(np.abs(list(b.values())))))
     return {"mean": mean, "far": far, "noisy": noisy, "found": found,
             "passes": (round(mean[1], 4) < round(mean[0], 4) and not far and not noisy
