@@ -83,7 +83,14 @@ not kept beside it (one mechanism per concern: both read a spike's return).
 
 Kept with it: mon89's tests (tests/shell/test_monitor_spike89.py, test_export_spike89.py: the
 exported C and mirror read the spike as served; test_monitor_readmit88.py's strict xfail on
-lr9171's ``T_col_back`` now a test): 4 fail on 10918742, pass here.
+lr9171's ``T_col_back`` now a test): 4 fail on 10918742, pass here; and
+tests/apps/test_monitor_spike_back91b.py (a one-sample spike planted on the small line of
+test_monitor_new_state48: the sensor back at the next sample, its first reference put back;
+2 cases, both fail on 10918742: back 11 samples later).  Run on this branch: tests/apps/
+test_monitor*.py 45 passed 1 xfailed; tests/shell/test_monitor*.py 122 passed 2 xfailed;
+tests/shell/test_export_*mon*.py + test_export_spike89.py 47 passed; deploy88 / 88b / 89,
+sensor_faults, export_spike54, deployed_as_scored44, the new test, benchmarks CLI, lint 550
+passed; config_schema, export_freeze84 160 passed.
 """
 
 from __future__ import annotations

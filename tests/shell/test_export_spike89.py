@@ -7,16 +7,15 @@ from __future__ import annotations
 
 import dataclasses
 
-import numpy as np
 import pytest
 
-from test_export import built_stream, needs_cc
-from test_export_cmon80 import _streamed
+from test_export import needs_cc
+from test_export_mon88 import assert_code_as_served
 from test_monitor_readmit88 import deployed_record
 from test_monitor_spike89 import LONG
-from thermocomp.apps.deploy.export import Simulator, exported_files, state_space
-from thermocomp.apps.deploy.export.pack import conformance_pack, corrections, fed
-from thermocomp.apps.deploy.report import plain, stream_rows
+from thermocomp.apps.deploy.export import Simulator, state_space
+from thermocomp.apps.deploy.export.pack import fed
+from thermocomp.apps.deploy.report import plain
 from thermocomp.core.continuation import lead_ins
 
 
@@ -49,15 +48,8 @@ def test_the_code_reads_the_spike_as_served(record, tmp_path):
     deployed, ss, tests, leads = record
     (cid, campaign), = tests.items()
     frame = fed(campaign, leads.get(cid))
-    want = corrections(ss, stream_rows(deployed, frame, cid).y)
     assert len(_mirror_out_rows(ss, frame, len(frame) - len(campaign))) == 1   # the spike's alone
-    files, summary = conformance_pack(deployed, ss, tests, leads)
-    entry = next(e for e in summary["campaigns"] if e["campaign"] == cid)
-    assert entry["cut"] is None and entry["rows"] == len(frame)
-    stream = built_stream(tmp_path, {**exported_files(deployed, "c"), **files})
-    c, said = _streamed(stream, frame, ss.inputs)
-    assert c.shape == want.shape and np.max(np.abs(c - want)) < 1e-9        # every row
-    assert "not in the code" not in said
+    assert_code_as_served(deployed, ss, tests, leads, tmp_path)
 
 
 def test_an_export_before_mon89_re_references_the_return_as_before(record):
