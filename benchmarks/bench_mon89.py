@@ -137,6 +137,7 @@ prediction noise and the sensor's true change over the outage; their sign relati
 record's residual is the draw's: main's luck, as mon88 found for lr9199 (run 1.0479, main
 0.9303).  A bar on replay RMSE against main's cannot tell that luck from a loss.
 Verdict: REFUSED by item 1 (benchmarks/mon89_rule.patch: served, mirror, C, docs and tests).
+Kept later by bar91b (benchmarks/bench_bar91b.py: scored by the distance to the truth).
 """
 
 from __future__ import annotations

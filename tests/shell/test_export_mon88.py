@@ -36,20 +36,27 @@ def _mirror_out(ss, frame) -> list[str]:
     return [names[k] for k in (sim.watch.out, sim.watch.out2) if k >= 0]
 
 
+def assert_code_as_served(deployed, ss, tests: dict, leads: dict, folder) -> None:
+    """The compiled C of ``deployed`` (built in ``folder``) streams the one test campaign of
+    ``tests`` after its lead-in as served, every row, nothing flagged "not in the code"."""
+    (cid, campaign), = tests.items()
+    frame = fed(campaign, leads.get(cid))
+    want = corrections(ss, stream_rows(deployed, frame, cid).y)
+    files, summary = conformance_pack(deployed, ss, tests, leads)
+    entry = next(e for e in summary["campaigns"] if e["campaign"] == cid)
+    assert entry["cut"] is None and entry["rows"] == len(frame)
+    stream = built_stream(folder, {**exported_files(deployed, "c"), **files})
+    c, said = _streamed(stream, frame, ss.inputs)
+    assert c.shape == want.shape and np.max(np.abs(c - want)) < 1e-9        # every row
+    assert "not in the code" not in said
+
+
 @needs_cc
 def test_the_code_brings_the_healthy_sensor_back_as_served(room, tmp_path):
     deployed, ss, tests, leads = room
     (cid, campaign), = tests.items()
-    frame = fed(campaign, leads.get(cid))
-    want = corrections(ss, stream_rows(deployed, frame, cid).y)
-    assert _mirror_out(ss, frame) == ["T_amb"]
-    files, summary = conformance_pack(deployed, ss, tests, leads)
-    entry = next(e for e in summary["campaigns"] if e["campaign"] == cid)
-    assert entry["cut"] is None and entry["rows"] == len(frame)
-    stream = built_stream(tmp_path, {**exported_files(deployed, "c"), **files})
-    c, said = _streamed(stream, frame, ss.inputs)
-    assert c.shape == want.shape and np.max(np.abs(c - want)) < 1e-9        # every row
-    assert "not in the code" not in said
+    assert _mirror_out(ss, fed(campaign, leads.get(cid))) == ["T_amb"]
+    assert_code_as_served(deployed, ss, tests, leads, tmp_path)
 
 
 def test_an_export_before_mon88_keeps_it_out_as_before(room):

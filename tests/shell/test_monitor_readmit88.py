@@ -6,7 +6,9 @@ sum, the others' prediction noise and the true change over the outage, stayed in
 its error 0.28 °C off its field after the first, past its half band after the second, out to
 the record's end (1.73 h).  The rule that took back the reference before the jumps where the
 field reads it nearer (benchmarks/mon88_rule.patch, ``_field_undoes``) mended it but failed its
-bar on fresh records (replay RMSE up to +6.4 %): a strict xfail holds the gap.
+bar on fresh records (replay RMSE up to +6.4 %); mon89's spike (``InstantFaults._spike_back``:
+a return to the field on the reference before the jump ends a spike) brings it back at each
+spike's end.
 
 cr9031 (audit86b's climate room) with ``T_amb`` frozen from a third of each test campaign: in
 C11 the healthy ``T_nc_cabinet`` (within its band) was taken as the culprit and the frozen
@@ -71,9 +73,6 @@ def _moves(events: list, sensor: str) -> list[tuple[str, float]]:
     return [(e["to"], e["time"]) for e in events if e.get("sensor") == sensor]
 
 
-@pytest.mark.xfail(strict=True, reason="known gap (mon88, rule A refused): a spike's two jumps "
-                   "re-referenced leave their noise in the reference of a sensor the field "
-                   "predicts, past its half band after lr9171's second spike")
 def test_a_spiked_sensor_the_field_predicts_comes_back_after_each_spike(long_record):
     deployed, frame, lead = long_record
     mon = deployed.monitor

@@ -118,6 +118,11 @@ The served adaptive compensator judges every ``T_`` input before the model reads
   (``blind_range``: ``ranges``): read as missing, held at its last reading, back after a calm
   window only where its leak onto the others passes (:meth:`CodeMonitor._leak_passes`, the
   served ``Readmission._leak_passes``).  An export before it flags the reading (``BLIND``).
+* (mon89; kept by bar91b) a sensor the others predict, out for jumps alone, whose next jump
+  within a window brings its reading, on its reference before the first (``ref0``), within
+  its re-admission band of the field: a **spike** (``spike``), in again at once with that
+  reference put back (``SPIKE``), as served (``InstantFaults._spike_back``).  An export
+  before it (no ``spike``) re-references the return as before.
 
 What else the served monitor does it flags, ``NOT_IN_CODE`` with the rule (:data:`REASONS`),
 and goes on by its own rules: a reading beyond its range at a campaign's first sample, of
@@ -189,15 +194,17 @@ REASONS = ("", "jump: re-referenced and excluded", "freeze: excluded",
            "re-admitted: readings in a row off the value it held when frozen (out for it alone)",
            "not in the code: the return of a sensor out for a freeze on readings off the value it "
            "held (an export before freeze84)",
-           "jump: its self-prediction error stepped past the alarm band, excluded")
+           "jump: its self-prediction error stepped past the alarm band, excluded",
+           "re-admitted: a spike, its reading back with the field on its reference before the "
+           "jump (the jump undone)")
 RULES = ("", "JUMP", "FREEZE", "BACK", "RANGE", "COMMON", "GLITCH", "STEPPED", "DRIFT", "SECOND",
          "BLIND", "DROPOUT", "MISSING_FIRST", "MISSING_SECOND", "MISSING_BLIND",
          "MISSING_FROZEN", "OFF_RANGE", "COMMON_STEP", "DRIFT_OUT",
          "FOLLOWED", "BLIND_OUT", "FALLBACK",
-         "THAWED", "NO_THAW", "STEP_OUT")   # their names in the C (TC_MON_JUMP ...)
+         "THAWED", "NO_THAW", "STEP_OUT", "SPIKE")   # their names in the C (TC_MON_JUMP ...)
 (JUMP, FREEZE, BACK, RANGE, COMMON, GLITCH, STEPPED, DRIFT, SECOND, BLIND, DROPOUT, MISSING_FIRST,
  MISSING_SECOND, MISSING_BLIND, MISSING_FROZEN, OFF_RANGE, COMMON_STEP, DRIFT_OUT, FOLLOWED,
- BLIND_OUT, FALLBACK, THAWED, NO_THAW, STEP_OUT) = range(1, len(RULES))
+ BLIND_OUT, FALLBACK, THAWED, NO_THAW, STEP_OUT, SPIKE) = range(1, len(RULES))
 
 
 @dataclass
@@ -248,6 +255,7 @@ def monitor_fields(deployed, inputs: list) -> dict:
         "blind_drop": 1, "solve": 1, "stepped": 1, "cleared": 1, "blind_jump": 1, "second_jump": 1,
         "second_instant": 1,
         "blind_range": 1,
+        "spike": 1,
         "modes": int(mon.pod.n_modes_),
         "basis": mon.pod.basis_[:, :int(mon.pod.n_modes_)].tolist(),
         "fallback": [int(c in falls) for c in mon.names],
@@ -363,7 +371,8 @@ class CodeMonitor:
                      ("blind_jump", 0),   # (before cmon87: a blind sensor's jump flagged)
                      ("second_jump", 0),   # (before cmon88: a jump with one out flagged)
                      ("second_instant", 0),   # (before cmon89: a dropout, ... flagged)
-                     ("blind_range", 0)):  # (before cmon89b: a blind sensor's range flagged)
+                     ("blind_range", 0),   # (before cmon89b: a blind sensor's range flagged)
+                     ("spike", 0)):        # (before bar91b: a spike's return re-referenced)
             a.setdefault(k, np.float64(v))
         a.setdefault("rounding", np.zeros(n))    # (before mon83: no culprit held for rounding)
         # (before mon86: every set judged by the whole set's bands)
@@ -721,7 +730,9 @@ class CodeMonitor:
         elif big.any():
             j = int(np.argmax(big))
             active = self._active()
-            if active[j] and not (self._jump_held(j) if self.out >= 0
+            if not active[j] and a["spike"] and not gone.any() and self._spike_back(j, x, d):
+                self._readmit(j, SPIKE)
+            elif active[j] and not (self._jump_held(j) if self.out >= 0
                                   else self.ported[j] or self.spikes[j]):
                 self._exclude(j, JUMP)       # flagged: not in the code; the sensor stays as read
             else:
@@ -788,6 +799,27 @@ class CodeMonitor:
         self.last = np.where(active & np.isfinite(d), d, self.last)
         self._fold(self.hist[pos], first, dt)
         return self._rebuilt(u, d, pred)
+
+    def _spike_back(self, j: int, x, d) -> bool:
+        """(mon89) ``j``, out for jumps alone and the others predicting it, jumping back within a
+        window of its last jump to within its re-admission band of the field the active sensors
+        predict, on its reference before the first jump: a spike, its reference put back and
+        ``d`` with it, as served (``InstantFaults._spike_back``)."""
+        _, active, _, _, _ = self._set()
+        if (not self.predictable[j] or not self.jumps[j] or self.by_field[j] or self.froze[j]
+                or self.dropped[j] or not self.calm[j] < self.window
+                or active.sum() < self.a["min_active"] or not np.isfinite(d[active]).all()):
+            return False
+        trial = active.copy()
+        trial[j] = True
+        if (op := self._operator(~trial)) is None or not op[1][j] < self.max_lev:
+            return False
+        pred, _ = self._errors(d)
+        back = x[j] - self.ref0[j]
+        if not abs(back - pred[j]) < self.a["readmit"] * self._bands(trial | self.hid)[0][j]:
+            return False
+        self.ref[j], d[j], self.jumps[j] = self.ref0[j], back, 0
+        return True
 
     def _undone(self, j: int, d) -> None:
         """(cmon87) ``j``, no other predicts it, back: its jumps undone as served (``_readmit``:

@@ -102,7 +102,8 @@ def monitor_arrays(ss) -> list[tuple[str, object, tuple, str]]:
                ("MON_BLIND_JUMP", "blind_jump", 0, "int"),
                ("MON_SECOND_JUMP", "second_jump", 0, "int"),
                ("MON_SECOND_INSTANT", "second_instant", 0, "int"),
-               ("MON_BLIND_RANGE", "blind_range", 0, "int"))
+               ("MON_BLIND_RANGE", "blind_range", 0, "int"),
+               ("MON_SPIKE", "spike", 0, "int"))
     modes = max(int(m.get("modes", 1)), 1)
     return [("MON_M", m.get("M", []), (n + 1 + len(pairs), n, n), "real"),
             ("MON_LEV", m.get("lev", []), (n + 1 + len(pairs), n), "real"),
@@ -315,6 +316,31 @@ static void mon_undone(tc_state *s, int k, double d[]) {
     s->mon_ref[k] = s->mon_ref0[k];
     d[k] += shift;
     for (w = 0; w < MW; w++) s->mon_hist[w][k] += shift;
+}
+
+/* (mon89) 1: sensor k, out for jumps alone and the others predicting it, jumping back within a
+   window of its last jump to within its re-admission band of the field the active sensors
+   predict (pred), on its reference before the first jump (x its reading): a spike, its
+   reference put back (as served: _spike_back; d[k] the caller's) */
+static int mon_spike_back(tc_state *s, int k, const double x[], const double d[],
+                          const double pred[], const int a[]) {
+    double M[NM][NM], L[NM], warn[NM], alarm[NM];
+    int m, n = 0, out[NM], in[NM];
+    if (!MON_SPIKE || a[k] || !MON_PREDICTABLE[k] || !s->mon_jumps[k] || s->mon_by_field[k]
+        || s->mon_froze[k] || s->mon_dropped[k] || !(s->mon_calm[k] < MW))
+        return 0;
+    for (m = 0; m < NM; m++) {
+        if (a[m] && !isfinite(d[m])) return 0;
+        n += a[m];
+        out[m] = !a[m] && m != k;
+    }
+    if (n < MON_MIN_ACTIVE || !mon_operator(out, M, L) || !(L[k] < MON_MAX_LEV)) return 0;
+    for (m = 0; m < NM; m++) in[m] = !out[m] || s->mon_hid[m];
+    mon_bands(in, warn, alarm);
+    if (!(fabs(x[k] - s->mon_ref0[k] - pred[k]) < MON_READMIT * warn[k])) return 0;
+    s->mon_ref[k] = s->mon_ref0[k];
+    s->mon_jumps[k] = 0;
+    return 1;
 }
 
 /* sensor k back in (rule: why), its partner's place kept, the window re-judged (the numpy
@@ -1089,7 +1115,11 @@ static void monitor_step(tc_state *s, double u[], double dt) {
         else if (s->mon_count == 2) mon_flag(s, TC_MON_NOT_IN_CODE, k, TC_MON_GLITCH);
         else {
             mon_set(s, a, o, jd, scale);
-            if (a[k] && !(s->mon_out >= 0 ? mon_jump_held(s, k) : MON_PORTED[k] || mon_spikes(k)))
+            if (lost < 0 && far < 0 && mon_spike_back(s, k, x, d, pred, a)) {   /* (mon89) */
+                d[k] = x[k] - s->mon_ref[k];
+                mon_readmit(s, k, TC_MON_SPIKE);
+            }
+            else if (a[k] && !(s->mon_out >= 0 ? mon_jump_held(s, k) : MON_PORTED[k] || mon_spikes(k)))
                 mon_exclude(s, k, TC_MON_JUMP);   /* flagged */
             else {   /* re-referenced by its step less its change as the others predict it */
                 double expected, offset;

@@ -555,6 +555,8 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
             step, big = self._common_step(d, step, big & ~rng & finite, pos, time, events)
         if self._count == 2 and big.any():
             step, big = self._reference_glitch(d, step, big & ~rng, pos, time, events)
+        if (big & ~self._active).any() and not (rng | ~np.isfinite(d)).any():
+            big = self._spike_back(x, d, big, pos, time, events)
         if not all_finite or (rng | big).any():
             instant = self._instant(x, d, step, finite, rng, big & ~rng)
             for j, why in instant.items():
