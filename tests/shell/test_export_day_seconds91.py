@@ -81,3 +81,35 @@ def test_a_step_of_half_a_day_forward_is_refused_as_the_reader_refuses_it(export
     assert fed.returncode == 2
     assert "stream: line 12: the time of day (51000 s, seconds since midnight) steps 13 h" \
         " forward: as well 11 h back" in fed.stderr
+
+
+@pytest.mark.parametrize("written, starts_h", [("seconds", [20, 25, 34.5]), ("h:mm:ss", [23])])
+def test_data_time_of_day_exports_and_streams_the_raw_record(tmp_path, capsys, written, starts_h):
+    """data.time=of_day (data91) under a header that does not say it (``t``), as seconds or
+    ``h:mm:ss`` of the day: exported (data91 refused the key for the C) and the raw record
+    streamed as its campaigns (lead91): three runs split at their pauses, or one run from 23:00
+    cut in two by data.test_fraction (runs_at_pauses cannot split a time written as text)."""
+    if shutil.which("cc") is None:
+        pytest.skip("no C compiler")
+    record = pd.read_csv(_runs(tmp_path / "week.csv", starts_h))
+    seconds = record.pop("Seconds of day").astype(int)
+    record.insert(0, "t", seconds if written == "seconds" else [
+        f"{s // 3600}:{s // 60 % 60:02d}:{s % 60:02d}" for s in seconds])
+    record.to_csv(tmp_path / "week.csv", index=False)
+    data = [f"data.path={tmp_path / 'week.csv'}", "data.time=of_day", "data.test_fraction=0.34",
+            *(["data.runs_at_pauses=true"] if len(starts_h) > 1 else [])]
+    assert main(["run", *data, *LIGHT, f"out={tmp_path / 'run'}"]) == 0
+    out = tmp_path / "c"
+    assert main(["export", *data, f"export.model={tmp_path / 'run' / 'model.pkl'}",
+                 "export.format=c", "export.check=false", f"out={out}"]) == 0
+    subprocess.run(["cc", "-Werror", "compensator.c", "stream.c", "-lm", "-o", "stream"],
+                   cwd=out, check=True)
+    capsys.readouterr()
+    assert main(["rows", *data]) == 0
+    want = _stream(out, capsys.readouterr().out)
+    raw = _stream(out, (tmp_path / "week.csv").read_text())
+    assert want.returncode == 0 and raw.returncode == 0, raw.stderr
+    got = pd.read_csv(io.StringIO(raw.stdout))["C_X"]
+    assert len(got) == len(starts_h) * ROWS
+    np.testing.assert_allclose(got, pd.read_csv(io.StringIO(want.stdout))["C_X"], rtol=0,
+                               atol=1e-9)

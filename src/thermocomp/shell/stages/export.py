@@ -40,7 +40,7 @@ from ...core.io.dayfirst import ORDER
 from ...core.io.derived import sources as derived_sources
 from ...core.io.roles import RUN
 from ...core.io.source import check_streamed_columns
-from ...core.io.timestamps import CLOCK, names_seconds_of_day
+from ...core.io.timestamps import CLOCK, OF_DAY_KIND, names_seconds_of_day
 from ...core.scoring.evaluation import require_split
 from ..builders import deployable_model, is_registered, with_model_bits
 from ..config.checks import check_config
@@ -187,8 +187,8 @@ SLASHED = {f"{ORDER[day_first]}{year} %H:%M{seconds}": 2 - day_first for day_fir
            for year in ("%Y", "%y") for seconds in (":%S", "")}
 # data.time values whose times stream.c reads as the reader does (its own parser: driver.py):
 # day-first with a four- or two-digit year, ISO 8601's order, the seconds optional in each
-# (iso67: and a logger's elapsed h:mm:ss, TC_ELAPSED)
-STREAM_C_TIMES = frozenset({"auto", "seconds", "iso8601", "elapsed",
+# (iso67: and a logger's elapsed h:mm:ss, TC_ELAPSED; lead91: data.time=of_day, TC_DAY_SECONDS)
+STREAM_C_TIMES = frozenset({"auto", "seconds", "iso8601", "elapsed", OF_DAY_KIND,
                             *(f"{date} %H:%M{seconds}" for date in ("%d.%m.%Y", "%d.%m.%y")
                               for seconds in (":%S", "")),
                             *(f"%Y-%m-%d{sep}%H:%M{seconds}" for sep in (" ", "T")
@@ -325,7 +325,8 @@ def export(cfg: DictConfig) -> dict:
     provenance.update(thousands=None if thousands is None else str(thousands)[:1],
                       elapsed=str(cfg.data.get("time") or "auto") == "elapsed",
                       slashed=_slashed(cfg, ds), pause_s=_pause_s(cfg, ds),
-                      day_seconds=_day_seconds(ds, lab.get(TIME)))
+                      day_seconds=_day_seconds(ds, lab.get(TIME))
+                      or str(cfg.data.get("time")) == OF_DAY_KIND)
     # (streamraw65: the lab's raw file as the reader reads it -- its character set and its marks
     # of a value not measured travel with the model, as data.thousands does)
     provenance.update(encoding=_stream_encoding(cfg, fmt),

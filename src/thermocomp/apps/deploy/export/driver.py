@@ -626,7 +626,8 @@ static struct { int kind, started; long long origin; double origin_fraction; } c
    data89b), read as the reader's past_midnight reads it: a day added at each step back by more
    than half a day (the clock passing midnight), so a pause across midnight is the pause it is
    (runs_at_pauses: TC_PAUSE_S) and no step back; a step forward of half a day or more reads as
-   well a step back and is refused, as the reader refuses it.  `last`: the last time so read. */
+   well a step back and is refused, as the reader refuses it.  A time past a day is taken as it
+   is: the rows `thermocomp rows` and the check pack write carry the days already. */
 static double day_last = NAN, day_added = 0.0;
 
 static int of_day(double *t, long row) {
@@ -655,10 +656,13 @@ static int time_of(const char *cell, long row, double scale, double offset, doub
     double fraction = 0.0;
     int bad = 0, kind;
     *t = value(cell, &bad);
-    if (TC_ELAPSED && bad) {            /* (iso67) data.time=elapsed: h:mm:ss since the start */
+    if ((TC_ELAPSED || TC_DAY_SECONDS) && bad) {
+        /* (iso67) data.time=elapsed: h:mm:ss since the start; (lead91) of_day: the time of day
+           as h:mm:ss, its seconds since midnight (of_day() carries the days) */
         if (!elapsed(cell, t)) {
-            fprintf(stderr, "stream: row %ld: the time is no h:mm:ss since the start "
-                    "(data.time=elapsed: 0:00:00, 25:30:00.5)\n", row);
+            fprintf(stderr, "stream: row %ld: the time is no h:mm:ss %s\n", row, TC_ELAPSED
+                    ? "since the start (data.time=elapsed: 0:00:00, 25:30:00.5)"
+                    : "of the day (data.time=of_day: 23:59:30, 0:00:30)");
             return 2;
         }
         clock_.kind = SECONDS;
