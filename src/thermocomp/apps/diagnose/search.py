@@ -23,7 +23,8 @@ once, at the end, to report before and after):
    sign-flip p-value of the gains in mean squared error of the test blocks:
    time blocks within the held-out campaigns (validation blocks), as long as
    the residual takes to decorrelate (:mod:`~thermocomp.core.model_selection.blocks`), or as
-   the candidates' gains do where shorter (:meth:`Search._recut_on_gains`), so
+   the candidates' gains do where shorter in the ``campaigns`` scheme
+   (:meth:`Search._recut_on_gains`), so
    that 8 campaigns are not 256 outcomes.  With an MLR base the effect features are shrunk by
    the ridge penalty of least CV error (:mod:`.shrink`), so an effect of many
    correlated regressors competes at its best generalising strength.  (The deployed model of
@@ -68,8 +69,7 @@ from scipy.stats import rankdata
 from scipy.stats import t as student_t
 
 from ...core.metrics import reduction_pct
-from ...core.model_selection.blocks import (BETWEEN_CAMPAIGNS, between_campaign_share,
-                                               decorrelation_length)
+from ...core.model_selection.blocks import BETWEEN_CAMPAIGNS, between_campaign_share, decorrelation_length
 from .candidates import CONTROL, CandidateOptions, candidates
 from .cv import CrossValidator, CVResult, Problem, sign_flip_maxt, sign_flip_pvalues
 from .features import Effect
@@ -387,7 +387,9 @@ class Search:
 
     def _recut_on_gains(self, evals: list[Evaluation], current: CVResult) -> CVResult:
         """Test the round on blocks as long as the candidates' GAINS take to decorrelate, where
-        that is shorter than the residual's blocks (diag91); ``current`` on those blocks.
+        that is shorter than the residual's blocks (diag91), in the ``campaigns`` scheme
+        (diag91b: forward validation blocks keep the residual's, which they already share);
+        ``current`` on those blocks.
 
         A sign-flip test asks its units' gains to be near-independent, not the residual's
         values: the per-sample gain ``e^2 - e_+^2`` forgets faster than the residual ``e`` that

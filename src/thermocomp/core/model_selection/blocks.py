@@ -37,10 +37,13 @@ memory longer, not shorter (14 of 15 planted position effects; seed 515: 71 samp
 removing the position's dwells leaves the slow misfit of the static model), only wrong
 candidates' residuals forget fast (an ambient interval: 6); blocks as long as each candidate's
 own gain takes to forget accepted 8 of 24 clean records (test error up to 80 % worse; stop 41,
-before the within-campaign, margin and saturation checks).  Since diag91 the search re-cuts a
-round's blocks as long as its candidates' gains take to forget, the longest over the round, where
-that is shorter than the residual's (:meth:`~thermocomp.apps.diagnose.search.Search._recut_on_gains`,
-``benchmarks/bench_diag91.py``).  With one
+before the within-campaign, margin and saturation checks).  Since diag91b the search re-cuts a
+round's blocks in the ``campaigns`` scheme as long as its candidates' gains take to forget, the
+longest over the round, where that is shorter than the residual's, unless a gain is mostly one
+number per campaign (:func:`between_campaign_share` over :data:`BETWEEN_CAMPAIGNS`)
+(:meth:`~thermocomp.apps.diagnose.search.Search._recut_on_gains`, ``benchmarks/bench_diag91b.py``;
+in forward chaining it took a lag that made the spindle record's ch4 26 % worse, bench_diag91).
+With one
 or more of 8 campaigns against a real effect (seeds 515, 737, 1514), no campaign-level statistic
 (exact sign flips, t, bootstrap-t) reaches ``alpha`` even before the family-wise correction.
 
