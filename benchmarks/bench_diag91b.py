@@ -55,18 +55,66 @@ all must hold, else REFUSED: src reverted, this bench and ``diag91b_rule.patch``
 5. ALL tests/*/test_diag*.py pass (three parts, ``-n 2``), test_diagnose_record and
    test_diagnose_few among them.
 
-Scored
-------
-(filled in after the runs below)
+Scored (2026-12-05, 2 cores shared with other helpers; main = 10918742's src (``git archive`` under
+/tmp/diag91b/main), rule = this branch's src; each command once per tree, main first)
+-------------------------------------------------------------------------------------------------
+Test RMSE (µm, as run), before -> after; every (draw, target) row where main and the rule differ.
+
+``trace`` (seen; the threshold was read on it)::
+
+  row             before  main                   rule
+  few:4004 E_Y     0.7370 nothing (8 blocks)     0.7370 nothing (8 blocks: the guard; diag91: 13)
+  planted:8966 E_Y 3.7935 nothing (9 blocks)     1.6397 position (45 blocks; p_fam 1e-4)   -56.8 %
+  planted:8968 E_Y 4.9939 nothing (9 blocks)     2.3810 position (17 blocks; p_fam 1e-4)   -52.3 %
+  lag:9288 E_X     1.1694 nothing (12 blocks)    0.8135 T_box2 14400 s +init (19)          -30.4 %
+  lag:9289 E_X     2.1815 nothing (10 blocks)    1.0737 T_box1 14400 s +init (30)          -50.8 %
+  planted:8969 / 8885: identical (8969 E_X's +21.8 % T_bearing_f1 lag is main's own).
+
+``seen`` (44 draws, 132 rows; as diag91's, the guard changes none): position found on 19 draws in
+both (with ``trace``: 20 -> 22); clean draws accept what main accepts (8075 / 8170 / 8178's spurious
+start lags, main's; 8075 E_Y takes T_box2's 3600 s lag where main takes T_box1's, -0.2 %); no
+control clears in either; three rows differ, none > 2 % worse::
+
+  planted:9266 E_X 0.6664 nothing (8 blocks)  -> 0.6764 T_nose 14400 s +init (14, 205)  +1.5 %
+  clean:8075 E_Y   0.7010 T_box1 3600 s +init -> 0.6998 T_box2 3600 s +init             -0.2 %
+  lag:9193 E_X     0.9167 T_box2 14400 s      -> 0.7684 T_box1 14400 s                  -16.2 %
+
+CPU (``seen``, diagnose only): 32.9 s main, 31.8 s rule.
+
+``fresh`` 9436-9445 (once, after the bar above): position found on 9441 / 9442 in both (9440 missed
+in both: E_Y on 62 blocks already in main); clean 9436-9439 accept nothing in both (blocks finer
+on the rule: 9437 E_X 8 -> 38, E_Y 8 -> 34; nothing taken); no control clears; one row differs::
+
+  lag:9445 E_X     2.6441 nothing (8 blocks)  -> 1.5363 T_box1 14400 s +init (19, 12)   -41.9 %
+
+(lag:9443 E_Y's +13.2 % T_bearing_f3 lag is main's own, in both trees.)  CPU 6.4 s main, 7.7 s rule.
+
+``record`` (forward chaining): every channel as main (E_ch1-5 on 12 / 12 / 6 / 7 / 19 blocks,
+nothing taken, 4.6016 / 3.9533 / 4.3425 / 4.3244 / 3.0405).
+
+Bar: 1 holds (0 fresh rows > 2 % worse; best -41.9 %); 2 holds (clean fresh accept nothing); 3 holds
+(2 of 2 where main finds it); 4 holds (found 20 -> 22 over the seen draws, worst row +1.5 %, clean
+draws accept only what main does, 8075's start lag by another box sensor); 5 holds: the 24
+tests/*/test_diag*.py files in three parts, ``-n 2``: 37 + 38 + 59 = 134 passed before the new
+file, test_diagnose_record and test_diagnose_few among them (the final counts in the report).
+
+**KEPT.**  Tests: tests/apps/test_diagnose_gain_blocks91b.py (8966 E_Y alone: round 1 on > 16 blocks,
+the position taken, test error halved; lag:9289 every target, E_X: round 1 on > 16 blocks, a start
+lag taken, test error < 0.7 x before, the control never clears; the between-campaign share on
+made-up gains); the first two fail on 10918742 (9 and 10 blocks), the third cannot import there.
+
+What it does not do: the guard fires on 4004 through a member with no gain; a candidate whose gain
+is truly one number per campaign under per-sample noise reads a small share (4004's offset lag:
+0.176).  A share of the blocks' mean gains (not the samples') would single it out; not measured.
 """
 
-import json
 import sys
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE), str(HERE.parent / "tests" / "apps")]
-from _cli import made_folder, run_commands  # noqa: E402
+from _cli import run_commands  # noqa: E402
+from bench_diag91 import compare, diagnose_cases, record  # noqa: E402 (the same rows)
 
 # (kind, seed): 12 campaigns, every 3rd test, so 8 train
 SETS = {
@@ -93,98 +141,9 @@ def _dataset(kind: str, seed: int):
     return draw(kind, seed, 12), None
 
 
-def _position(rnd) -> dict | None:
-    """E_Y's best position candidate of a round (an interaction on S_pos_Y): its evidence."""
-    pos = [ev for ev in rnd.evaluated if ev.effect.kind == "interaction"
-           and "S_pos_Y" in f"{ev.effect.column} {ev.effect.other}"]
-    if not pos:
-        return None
-    ev = max(pos, key=lambda e: e.gain)
-    return {"gain_pct": round(ev.gain_pct, 1), "p": ev.p_value, "p_fam": ev.p_family,
-            "p_margin": ev.p_margin, "clears": bool(ev.clears_bar)}
-
-
 def draws(root: str, label: str, name: str) -> None:
     """:data:`SETS` ``name`` diagnosed (module doc) -> ``ROOT/NAME-LABEL.jsonl``."""
-    from cpu import cpu_seconds
-
-    from thermocomp.apps.diagnose import SearchOptions, diagnose
-    from thermocomp.apps.diagnose.cv import smallest_p
-    from thermocomp.core.compensator import Compensator
-    from thermocomp.core.models import MLR
-
-    with open(made_folder(root) / f"{name}-{label}.jsonl", "w") as out:
-        for kind, seed in SETS[name]:
-            ds, targets = _dataset(kind, seed)
-            t0 = cpu_seconds()
-            d = diagnose(ds, Compensator(MLR()), targets=targets, options=SearchOptions(max_effects=2))
-            row = {"case": f"{kind}:{seed}", "cpu_s": round(cpu_seconds() - t0, 1), "targets": {}}
-            for t, x in d.targets.items():
-                j = d.to_json(t)
-                rounds = x.search.rounds
-                row["targets"][t] = {
-                    "before": j["before"]["test_rmse"], "after": j["after"]["test_rmse"],
-                    "accepted": [e.effect.title for e in x.accepted],
-                    "blocks": [r.test_blocks for r in rounds],
-                    "min_p": [smallest_p(r.test_blocks) for r in rounds],
-                    "control": bool(j["control_ever_clears_bar"]),
-                    "position": [_position(r) for r in rounds] if t == "E_Y" else None}
-            row["found"] = any(a.startswith("interaction:S_pos_Y")
-                               for a in row["targets"]["E_Y"]["accepted"])
-            print(json.dumps(row, ensure_ascii=False, default=float), file=out, flush=True)
-            print(f"  {row['case']} {label} ({row['cpu_s']} s): found {row['found']}; " + " | ".join(
-                f"{t} {v['blocks']} {v['before']:.3f} -> {v['after']:.3f} "
-                f"{[a[:40] for a in v['accepted']]}{' CONTROL' if v['control'] else ''}"
-                for t, v in row["targets"].items()), flush=True)
-            if row["targets"]["E_Y"]["position"]:
-                print(f"    E_Y position by round: {row['targets']['E_Y']['position']}", flush=True)
-
-
-def _rows(path: Path) -> dict:
-    with open(path) as f:
-        return {r["case"]: r for r in map(json.loads, f)}
-
-
-def compare(root: str, name: str, a: str, b: str) -> None:
-    """The bar's counts of labels ``a`` and ``b`` on set ``name``, then the rows that differ."""
-    rows = {n: _rows(Path(root) / f"{name}-{n}.jsonl") for n in (a, b)}
-    for n, rs in rows.items():
-        found = sorted(c for c, r in rs.items() if r["found"])
-        clean = [c for c, r in rs.items()
-                 if c.startswith("clean:") and any(v["accepted"] for v in r["targets"].values())]
-        control = [f"{c} {t}" for c, r in rs.items() for t, v in r["targets"].items() if v["control"]]
-        print(f"{n}: position found on {len(found)} {found}; clean accepting {clean}; control clears "
-              f"{control}; diagnose CPU {sum(r['cpu_s'] for r in rs.values()):.1f} s")
-    worse = 0
-    for c, r in rows[a].items():
-        for t, v in r["targets"].items():
-            w = rows[b][c]["targets"][t]
-            if (v["accepted"], v["after"]) != (w["accepted"], w["after"]):
-                change = 100 * (w["after"] / v["after"] - 1)
-                worse += change > 2.0
-                print(f"  {c} {t}: before {v['before']:.4f}; {a} {v['after']:.4f} {v['blocks']} "
-                      f"{[x[:44] for x in v['accepted']]} | {b} {w['after']:.4f} {w['blocks']} "
-                      f"{[x[:44] for x in w['accepted']]} ({change:+.1f} %)")
-    print(f"rows more than 2 % worse in {b} than in {a}: {worse}")
-
-
-def record(root: str) -> None:
-    """The measured record cut 90/10 (tests/apps/test_diagnose_record.py), every channel."""
-    from test_diagnose_record import record_cut
-    from thermocomp.apps.diagnose import SearchOptions, diagnose
-    from thermocomp.core.compensator import Compensator
-    from thermocomp.core.models import MLR
-
-    ds = record_cut(made_folder(root) / "fl_9010")
-    d = diagnose(ds, Compensator(MLR(), reference="none"), options=SearchOptions())
-    for t in d.targets:
-        j = d.to_json(t)
-        taken = [(e["transform"][:50], round(e["evidence"]["cv_rmse_gain_pct"], 1),
-                  e["evidence"].get("p_value_family")) for e in j["effects"] if e["accepted"]]
-        print(f"  {t}: {j['cv']['units']} units, rounds' blocks "
-              f"{[(r['test_blocks'], r['block_samples']) for r in j['rounds'] if r['step'] > 0]}, "
-              f"{j['before']['test_rmse']:.4f} -> {j['after']['test_rmse']:.4f} {taken}", flush=True)
-
+    diagnose_cases(root, label, name, SETS[name], _dataset)
 
 def main(argv: list[str]) -> int:
     return run_commands(__doc__, {"draws": draws, "compare": compare, "record": record}, argv,
