@@ -94,7 +94,7 @@ nothing taken, 4.6016 / 3.9533 / 4.3425 / 4.3244 / 3.0405).
 
 Bar: 1 holds (0 fresh rows > 2 % worse; best -41.9 %); 2 holds (clean fresh accept nothing); 3 holds
 (2 of 2 where main finds it); 4 holds (found 20 -> 22 over the seen draws, worst row +1.5 %, clean
-draws accept only what main does, 8075's start lag by another box sensor); 5 holds: the 24
+draws accept only what main does, 8075's start lag by another box sensor); 5 holds: the 23
 tests/*/test_diag*.py files in three parts, ``-n 2``: 37 + 38 + 59 = 134 passed before the new
 file, test_diagnose_record and test_diagnose_few among them (the final counts in the report).
 
