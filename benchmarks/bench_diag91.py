@@ -185,9 +185,20 @@ def _position(rnd) -> dict | None:
             "p_margin": ev.p_margin, "clears": bool(ev.clears_bar)}
 
 
+def _draw(kind: str, seed: int):
+    """bench_diag86's draw with 12 campaigns, every target diagnosed."""
+    from bench_diag86 import draw
+    return draw(kind, seed, 12), None
+
+
 def draws(root: str, label: str, name: str) -> None:
     """:data:`SETS` ``name`` diagnosed (module doc) -> ``ROOT/NAME-LABEL.jsonl``."""
-    from bench_diag86 import draw
+    diagnose_cases(root, label, name, SETS[name], _draw)
+
+
+def diagnose_cases(root: str, label: str, name: str, cases, dataset) -> None:
+    """``cases`` ((kind, seed) pairs) diagnosed -> ``ROOT/NAME-LABEL.jsonl``; ``dataset(kind,
+    seed)`` gives the draw and the targets diagnosed (None: every one)."""
     from cpu import cpu_seconds
 
     from thermocomp.apps.diagnose import SearchOptions, diagnose
@@ -196,10 +207,10 @@ def draws(root: str, label: str, name: str) -> None:
     from thermocomp.core.models import MLR
 
     with open(made_folder(root) / f"{name}-{label}.jsonl", "w") as out:
-        for kind, seed in SETS[name]:
-            ds = draw(kind, seed, 12)
+        for kind, seed in cases:
+            ds, targets = dataset(kind, seed)
             t0 = cpu_seconds()
-            d = diagnose(ds, Compensator(MLR()), options=SearchOptions(max_effects=2))
+            d = diagnose(ds, Compensator(MLR()), targets=targets, options=SearchOptions(max_effects=2))
             row = {"case": f"{kind}:{seed}", "cpu_s": round(cpu_seconds() - t0, 1), "targets": {}}
             for t, x in d.targets.items():
                 j = d.to_json(t)

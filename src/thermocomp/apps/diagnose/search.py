@@ -22,7 +22,9 @@ once, at the end, to report before and after):
    :math:`g = \mathrm{RMSE}_{cv} - \mathrm{RMSE}_{cv}^{+}` and the one-sided
    sign-flip p-value of the gains in mean squared error of the test blocks:
    time blocks within the held-out campaigns (validation blocks), as long as
-   the residual takes to decorrelate (:mod:`~thermocomp.core.model_selection.blocks`), so
+   the residual takes to decorrelate (:mod:`~thermocomp.core.model_selection.blocks`), or as
+   the candidates' gains do where shorter in the ``campaigns`` scheme
+   (:meth:`Search._recut_on_gains`), so
    that 8 campaigns are not 256 outcomes.  With an MLR base the effect features are shrunk by
    the ridge penalty of least CV error (:mod:`.shrink`), so an effect of many
    correlated regressors competes at its best generalising strength.  (The deployed model of
@@ -67,6 +69,7 @@ from scipy.stats import rankdata
 from scipy.stats import t as student_t
 
 from ...core.metrics import reduction_pct
+from ...core.model_selection.blocks import BETWEEN_CAMPAIGNS, between_campaign_share, decorrelation_length
 from .candidates import CONTROL, CandidateOptions, candidates
 from .cv import CrossValidator, CVResult, Problem, sign_flip_maxt, sign_flip_pvalues
 from .features import Effect
@@ -358,23 +361,68 @@ class Search:
         pct = 100.0 * gain / current.rmse if current.rmse > 0 else 0.0
         inside = reduction_pct(current.in_range_rmse, res.in_range_rmse)   # None: no such row
         inside = float("nan") if inside is None else inside
-        p, p_margin = _flip_pvalues(current.block_mse, res.block_mse, self.options.min_gain_pct,
-                                    self.options.seed)
-        lcb = gain_lower_bound(current.block_mse, res.block_mse)
-        margin = gain_lower_bound(current.block_mse, res.block_mse, 1.0 - self.options.alpha)
         jump = (float(faults.loc[effect.column, "jump_ratio"])
                 if effect.transform == "remove" and faults is not None and effect.column in faults.index
                 else None)
         q = self.cv.features(effect, self.cv.selection(self.inputs(), None)).shape[1]
+        ev = Evaluation(effect, res.rmse, gain, pct, float("nan"), r2, False, effect.column == CONTROL,
+                        jump_ratio=jump, n_features=q, alpha=res.alpha, result=res,
+                        gain_pct_in_range=inside)
+        self._block_evidence(ev, current)
         if effect.transform == "remove":   # evidence of the fault is the self-prediction jump
-            clears = bool(jump is not None and jump >= self.options.candidates.fault_ratio
-                          and pct > -self.options.min_gain_pct
-                          and inside > -self.options.min_gain_pct)   # NaN (no such row): refused
-        else:   # the control's bar; an effect's p is made family-wise by _family_bar
-            clears = self._clears(pct, p, inside, p_margin, q)
-        return Evaluation(effect, res.rmse, gain, pct, p, r2, clears, effect.column == CONTROL,
-                          jump_ratio=jump, gain_lcb=lcb, n_features=q, alpha=res.alpha, result=res,
-                          gain_pct_in_range=inside, gain_lcb_alpha=margin, p_margin=p_margin)
+            ev.clears_bar = bool(jump is not None and jump >= self.options.candidates.fault_ratio
+                                 and pct > -self.options.min_gain_pct
+                                 and inside > -self.options.min_gain_pct)   # NaN (no such row): refused
+        return ev
+
+    def _block_evidence(self, ev: Evaluation, current: CVResult) -> None:
+        """``ev``'s sign-flip p, margin p and lower bounds over the current test blocks, and the
+        control's bar (an effect's p is made family-wise by :meth:`_family_bar`)."""
+        b, a = current.block_mse, ev.result.block_mse
+        ev.p_value, ev.p_margin = _flip_pvalues(b, a, self.options.min_gain_pct, self.options.seed)
+        ev.gain_lcb = gain_lower_bound(b, a)
+        ev.gain_lcb_alpha = gain_lower_bound(b, a, 1.0 - self.options.alpha)
+        ev.clears_bar = self._clears(ev.gain_pct, ev.p_value, ev.gain_pct_in_range, ev.p_margin,
+                                     ev.n_features)
+
+    def _recut_on_gains(self, evals: list[Evaluation], current: CVResult) -> CVResult:
+        """Test the round on blocks as long as the candidates' GAINS take to decorrelate, where
+        that is shorter than the residual's blocks (diag91), in the ``campaigns`` scheme
+        (diag91b: forward validation blocks keep the residual's, which they already share);
+        ``current`` on those blocks.
+
+        A sign-flip test asks its units' gains to be near-independent, not the residual's
+        values: the per-sample gain ``e^2 - e_+^2`` forgets faster than the residual ``e`` that
+        still holds the effect tested (cause A of bench_diag89b: one block per campaign, the
+        family-wise floor 3/256 > 0.01).  The length is the longest over the round's family
+        (every member's gains near-independent on the same blocks, one max-T null), never
+        longer than the residual's (no round tests on fewer blocks than before)."""
+        p = self.problem
+        family = [ev for ev in evals if not ev.control and ev.effect.transform != "remove"]
+        if p.block_samples is None or p.forward or not family:
+            return current
+        loss = current.residual ** 2
+        length = max(self._gain_length(loss - ev.result.residual ** 2) for ev in family)
+        if length >= p.block_samples:
+            return current
+        p.block_samples = int(length)
+        p.block_index = p._cut(p.block_samples)
+        current = self.cv._result(current.prediction, current.alpha)
+        for ev in evals:
+            ev.result = self.cv._result(ev.result.prediction, ev.result.alpha)
+            if ev.effect.transform != "remove":
+                self._block_evidence(ev, current)
+        return current
+
+    def _gain_length(self, gain: np.ndarray) -> int:
+        """Samples a candidate's per-sample ``gain`` takes to decorrelate, or the residual's
+        blocks where the gain is mostly one number per campaign
+        (:data:`~thermocomp.core.model_selection.blocks.BETWEEN_CAMPAIGNS`): its blocks then
+        share their campaign's mean whatever the autocorrelation says (diag91b)."""
+        p = self.problem
+        if between_campaign_share(gain, p.campaigns, p.validated) > BETWEEN_CAMPAIGNS:
+            return p.block_samples
+        return decorrelation_length(gain, p.campaigns, p.validated, p.held_out)
 
     def _read_columns(self) -> set:
         """Context columns the estimator is set to read (a string parameter naming one, e.g. an
@@ -582,6 +630,7 @@ class Search:
                 r2, signals[e] = screen_r2(Q, r_perp, self.cv.features(e, names)[ok])
                 scored.append((e, r2))
             evals = [self._evaluate(e, current, r2) for e, r2 in self._shortlist(scored)]
+            current = self._recut_on_gains(evals, current)
             self._family_bar(evals, current)
             evals.sort(key=lambda ev: -ev.gain)
             control = next((ev for ev in evals if ev.control), None)

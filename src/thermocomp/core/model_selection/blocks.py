@@ -36,7 +36,14 @@ being tested.  Lengths from what is left once a candidate is fitted were measure
 memory longer, not shorter (14 of 15 planted position effects; seed 515: 71 samples against 67;
 removing the position's dwells leaves the slow misfit of the static model), only wrong
 candidates' residuals forget fast (an ambient interval: 6); blocks as long as each candidate's
-own gain takes to forget accepted 8 of 24 clean records (test error up to 80 % worse).  With one
+own gain takes to forget accepted 8 of 24 clean records (test error up to 80 % worse; stop 41,
+before the within-campaign, margin and saturation checks).  Since diag91b the search re-cuts a
+round's blocks in the ``campaigns`` scheme as long as its candidates' gains take to forget, the
+longest over the round, where that is shorter than the residual's, unless a gain is mostly one
+number per campaign (:func:`between_campaign_share` over :data:`BETWEEN_CAMPAIGNS`)
+(:meth:`~thermocomp.apps.diagnose.search.Search._recut_on_gains`, ``benchmarks/bench_diag91b.py``;
+in forward chaining it took a lag that made the spindle record's ch4 26 % worse, bench_diag91).
+With one
 or more of 8 campaigns against a real effect (seeds 515, 737, 1514), no campaign-level statistic
 (exact sign flips, t, bootstrap-t) reaches ``alpha`` even before the family-wise correction.
 
@@ -54,6 +61,7 @@ from __future__ import annotations
 import numpy as np
 
 DECORRELATED = 0.2        # autocorrelation at which two samples count as near-independent
+BETWEEN_CAMPAIGNS = 0.4   # share of a gain's variance in its campaigns' means: campaign-sized units
 
 
 def decorrelation_length(residual, campaigns, scored, span=None) -> int:
@@ -84,6 +92,29 @@ def decorrelation_length(residual, campaigns, scored, span=None) -> int:
         if num / cnt / var <= DECORRELATED:       # cnt > 0: lag < the longest run
             return lag
     return longest
+
+
+def between_campaign_share(values, campaigns, scored) -> float:
+    """Share of ``values``' variance (over the ``scored`` rows) that lies between the campaigns'
+    means: the intraclass share of a one-way decomposition (0: every campaign alike on average,
+    1: one number per campaign).
+
+    A design effect: where a per-sample gain is mostly a per-campaign constant, its blocks
+    within a campaign share that constant whatever their autocorrelation says (a candidate
+    matching the campaigns' offsets, clean seed 4004 of ``benchmarks/bench_diag91.py``), and the
+    effective number of units is the number of campaigns."""
+    x = np.asarray(values, float)
+    ok = np.asarray(scored, bool) & np.isfinite(x)
+    if ok.sum() < 2:
+        return 1.0
+    x = x[ok]
+    _, group = np.unique(np.asarray(campaigns, dtype=object)[ok].astype(str), return_inverse=True)
+    counts = np.bincount(group)
+    means = np.bincount(group, weights=x) / counts
+    total = float(np.sum((x - x.mean()) ** 2))
+    if total <= 0.0:
+        return 0.0
+    return float(np.sum(counts * (means - x.mean()) ** 2) / total)
 
 
 def _runs(campaigns: np.ndarray, ok: np.ndarray, span=None) -> list[np.ndarray]:
