@@ -37,38 +37,46 @@ def _runs(path, starts_h):
     return path
 
 
-@pytest.fixture(scope="module")
-def exported(tmp_path_factory):
+def _built(root, data: list[str]):
+    """``data``'s record run (mlr), exported as C and built: the folder."""
     if shutil.which("cc") is None:
         pytest.skip("no C compiler")
-    root = tmp_path_factory.mktemp("day91")
-    # 20:00; 01:00 the next day (a pause across midnight); 10:30
-    record = _runs(root / "week.csv", [20, 25, 34.5])
-    data = [f"data.path={record}", "data.runs_at_pauses=true", "data.test_fraction=0.34"]
     assert main(["run", *data, *LIGHT, f"out={root / 'run'}"]) == 0
     out = root / "c"
     assert main(["export", *data, f"export.model={root / 'run' / 'model.pkl'}",
                  "export.format=c", "export.check=false", f"out={out}"]) == 0
     subprocess.run(["cc", "-Werror", "compensator.c", "stream.c", "-lm", "-o", "stream"],
                    cwd=out, check=True)
-    return {"root": root, "data": data, "out": out, "record": record}
+    return out
+
+
+@pytest.fixture(scope="module")
+def exported(tmp_path_factory):
+    root = tmp_path_factory.mktemp("day91")
+    # 20:00; 01:00 the next day (a pause across midnight); 10:30
+    record = _runs(root / "week.csv", [20, 25, 34.5])
+    data = [f"data.path={record}", "data.runs_at_pauses=true", "data.test_fraction=0.34"]
+    return {"root": root, "data": data, "out": _built(root, data), "record": record}
 
 
 def _stream(out, text: str) -> subprocess.CompletedProcess:
     return subprocess.run(["./stream"], cwd=out, input=text, capture_output=True, text=True)
 
 
-def test_the_raw_record_streams_as_its_campaigns(exported, capsys):
+def _raw_and_rows(out, data: list[str], record, capsys) -> tuple[pd.Series, pd.Series]:
+    """The C's corrections fed the raw record, and fed its campaigns as ``thermocomp rows``
+    writes them (a blank line between: where the stream starts one)."""
     capsys.readouterr()
-    assert main(["rows", *exported["data"]]) == 0
-    rows = capsys.readouterr().out          # the reader's campaigns, a blank line between
-    assert rows.count("\n\n") == 2
-    want = _stream(exported["out"], rows)
-    raw = _stream(exported["out"], exported["record"].read_text())
+    assert main(["rows", *data]) == 0
+    want = _stream(out, capsys.readouterr().out)
+    raw = _stream(out, record.read_text())
     assert want.returncode == 0 and raw.returncode == 0, raw.stderr
     assert "not after the last read" not in raw.stderr
-    expected = pd.read_csv(io.StringIO(want.stdout))["C_X"]
-    got = pd.read_csv(io.StringIO(raw.stdout))["C_X"]
+    return (pd.read_csv(io.StringIO(fed.stdout))["C_X"] for fed in (raw, want))
+
+
+def test_the_raw_record_streams_as_its_campaigns(exported, capsys):
+    got, expected = _raw_and_rows(exported["out"], exported["data"], exported["record"], capsys)
     assert len(got) == 3 * ROWS and np.abs(expected).max() > 0.1
     np.testing.assert_allclose(got, expected, rtol=0, atol=1e-9)
 
@@ -89,8 +97,6 @@ def test_data_time_of_day_exports_and_streams_the_raw_record(tmp_path, capsys, w
     ``h:mm:ss`` of the day: exported (data91 refused the key for the C) and the raw record
     streamed as its campaigns (lead91): three runs split at their pauses, or one run from 23:00
     cut in two by data.test_fraction (runs_at_pauses cannot split a time written as text)."""
-    if shutil.which("cc") is None:
-        pytest.skip("no C compiler")
     record = pd.read_csv(_runs(tmp_path / "week.csv", starts_h))
     seconds = record.pop("Seconds of day").astype(int)
     record.insert(0, "t", seconds if written == "seconds" else [
@@ -98,18 +104,6 @@ def test_data_time_of_day_exports_and_streams_the_raw_record(tmp_path, capsys, w
     record.to_csv(tmp_path / "week.csv", index=False)
     data = [f"data.path={tmp_path / 'week.csv'}", "data.time=of_day", "data.test_fraction=0.34",
             *(["data.runs_at_pauses=true"] if len(starts_h) > 1 else [])]
-    assert main(["run", *data, *LIGHT, f"out={tmp_path / 'run'}"]) == 0
-    out = tmp_path / "c"
-    assert main(["export", *data, f"export.model={tmp_path / 'run' / 'model.pkl'}",
-                 "export.format=c", "export.check=false", f"out={out}"]) == 0
-    subprocess.run(["cc", "-Werror", "compensator.c", "stream.c", "-lm", "-o", "stream"],
-                   cwd=out, check=True)
-    capsys.readouterr()
-    assert main(["rows", *data]) == 0
-    want = _stream(out, capsys.readouterr().out)
-    raw = _stream(out, (tmp_path / "week.csv").read_text())
-    assert want.returncode == 0 and raw.returncode == 0, raw.stderr
-    got = pd.read_csv(io.StringIO(raw.stdout))["C_X"]
+    got, expected = _raw_and_rows(_built(tmp_path, data), data, tmp_path / "week.csv", capsys)
     assert len(got) == len(starts_h) * ROWS
-    np.testing.assert_allclose(got, pd.read_csv(io.StringIO(want.stdout))["C_X"], rtol=0,
-                               atol=1e-9)
+    np.testing.assert_allclose(got, expected, rtol=0, atol=1e-9)
