@@ -154,9 +154,13 @@ class Problem:
                      self.penalty_samples)
         if length == self.block_samples:
             return False
+        self.cut_to(length)
+        return True
+
+    def cut_to(self, length: int) -> None:
+        """The test blocks cut anew, ``length`` samples each."""
         self.block_samples = int(length)
         self.block_index = self._cut(self.block_samples)
-        return True
 
     def _cut(self, length: int) -> np.ndarray:
         return cut_blocks(self.unit_index, self.campaigns, length, timeline=self.forward,

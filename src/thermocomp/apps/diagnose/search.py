@@ -405,8 +405,7 @@ class Search:
         length = max(self._gain_length(loss - ev.result.residual ** 2) for ev in family)
         if length >= p.block_samples:
             return current
-        p.block_samples = int(length)
-        p.block_index = p._cut(p.block_samples)
+        p.cut_to(length)
         current = self.cv._result(current.prediction, current.alpha)
         for ev in evals:
             ev.result = self.cv._result(ev.result.prediction, ev.result.alpha)

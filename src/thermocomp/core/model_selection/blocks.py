@@ -43,8 +43,7 @@ longest over the round, where that is shorter than the residual's, unless a gain
 number per campaign (:func:`between_campaign_share` over :data:`BETWEEN_CAMPAIGNS`)
 (:meth:`~thermocomp.apps.diagnose.search.Search._recut_on_gains`, ``benchmarks/bench_diag91b.py``;
 in forward chaining it took a lag that made the spindle record's ch4 26 % worse, bench_diag91).
-With one
-or more of 8 campaigns against a real effect (seeds 515, 737, 1514), no campaign-level statistic
+With one or more of 8 campaigns against a real effect (seeds 515, 737, 1514), no campaign-level statistic
 (exact sign flips, t, bootstrap-t) reaches ``alpha`` even before the family-wise correction.
 
 **One block per campaign** is also what a residual made of campaign offsets gives: with
