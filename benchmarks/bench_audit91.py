@@ -206,7 +206,8 @@ def fl_cell(root: Path, family: str, wrapper: str, data: Path) -> dict:
     _, scored = batch(root, out / "model.pkl", data, args)
     measured = np.vstack([scored[c][spec["targets"]].to_numpy(float) for c in test_ids])
     row["C"] = rmse(measured, correction)
-    rc, said = stage("monitor", *args, f"out={out}-monitor", f"monitor.model={out / 'model.pkl'}", "plots=none")
+    rc, said = stage("monitor", *args, f"out={out}-monitor", f"monitor.model={out / 'model.pkl'}",
+                     "plots=none")
     if rc == 0:
         row["mon"] = mean_of(json.loads((out.parent / f"{out.name}-monitor" / "monitor.json").read_text()),
                              "rmse_adaptive")
@@ -258,7 +259,8 @@ def lab_header(column: str) -> str:
 
 def cli(*args: str) -> subprocess.CompletedProcess:
     env = {**os.environ, "OMP_NUM_THREADS": "1"}
-    return subprocess.run([sys.executable, "-m", "thermocomp", *args], capture_output=True, text=True, env=env)
+    return subprocess.run([sys.executable, "-m", "thermocomp", *args], capture_output=True, text=True,
+                          env=env)
 
 
 def said_of(done: subprocess.CompletedProcess) -> str:
