@@ -6,6 +6,8 @@ Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is
 
     python benchmarks/bench_audit91.py sweep ROOT [RECORD|FAMILY ...]   # every cell, the table
     python benchmarks/bench_audit91.py lab ROOT SEED                    # the lab's raw export
+    python benchmarks/bench_audit91.py trace ROOT                       # cells where replay != run
+    python benchmarks/bench_audit91.py packwarm ROOT RECORD             # the C fed the pack's chain
 
 ``sweep``: in a scratch project root ROOT (made anew, this tree's ``conf/`` linked in;
 ``THERMOCOMP_ROOT``), per record of :data:`RECORDS` (``simulate`` as written there; ``fl`` the
@@ -23,6 +25,14 @@ contract's names and its last 10 % taken, the check pack compiled with ``-Werror
 bench_deploy89 (µm, mean over targets): ``run``, ``batch``, ``plain``, ``replay``, ``promo``,
 ``C``, ``cold``, ``pcold``, ``Craw``, ``pack`` (check.sh's exit), ``st`` / ``onnx`` (export's
 exit), ``mon`` (monitor.json's ``rmse_adaptive``), ``events`` (replay's), ``cpu``.
+
+``packwarm``: per cell of RECORD in a swept ROOT, the compiled C fed each test campaign's chain
+as the check pack writes it (``rows.csv``, lead-in included) and scored on its own rows, against
+replay (:func:`pack_warm`: the chain where the reader, not the manifest, says a day continues).
+
+``trace``: per cell of a swept ROOT whose ``replay`` leaves ``run`` by more than 1 %, per target
+``run``, ``plain``, ``replay``, the samples clamped to the training envelope / guarded, and the
+kinds of replay's events (what B1 asks traced).
 
 ``lab``: seed SEED's swiss lathe (``swiss_lathe_door``), its production campaign written as the
 data contract has it (``contract.csv``) and as a lab's acquisition PC writes it (``raw.csv``: a
@@ -247,6 +257,60 @@ def sweep(root: Path, chosen: list[str]) -> None:
                 print(f"{r['cell']:<26}{cells}  {r.get('note', '')}", flush=True)
 
 
+def pack_warm(root: str, record: str) -> None:
+    """Per cell of ``record`` in a swept ROOT: the compiled C fed each test campaign as its check pack
+    writes it (``rows.csv``: the campaigns it continues as the reader chains them, then its own rows,
+    on its clock), its own rows scored as run scores them, against replay.  bench_deploy88's ``C``
+    feeds the chain the manifest's ``continues`` column names; a record whose reader chains days by
+    their start (the fleet's) has none, and there that ``C`` is the cold start."""
+    from bench_audit86b import batch
+
+    base = Path(root).resolve()
+    os.environ["THERMOCOMP_ROOT"] = str(base)
+    data = base / "data" / record
+    for c_dir in sorted((base / "reports" / record).glob("*-c")):
+        cell = c_dir.name.removesuffix("-c")
+        pack = json.loads((c_dir / "check" / "check.json").read_text())
+        rep = json.loads((c_dir.parent / f"{cell}-replay" / "replay.json").read_text())
+        _, scored = batch(base, c_dir.parent / cell / "model.pkl", data, [])
+        residuals = []
+        for cid in scored:
+            entry = next(e for e in pack["campaigns"] if e["campaign"] == cid)
+            fed = (c_dir / entry["folder"] / "rows.csv").read_bytes()
+            out = subprocess.run([str(c_dir / "stream")], input=fed, capture_output=True, check=True)
+            correction = pd.read_csv(io.BytesIO(out.stdout)).to_numpy(float)[entry["lead_in_rows"]:]
+            targets = [f"E_{c[2:]}" for c in pack["outputs"]]
+            residuals.append(scored[cid][targets].to_numpy(float) + correction)
+        got = bench_deploy89.mean_rmse(residuals)
+        want = mean_of(rep, "rmse")
+        print(f"{record}/{cell:<16} C on the pack's chain {got:.7g}  replay {want:.7g}  "
+              f"rel {abs(got - want) / want:.1e}", flush=True)
+
+
+def trace(root: str) -> None:
+    """Per cell of a swept ROOT whose ``replay`` leaves ``run`` by more than 1 % (B1): per target
+    run, plain and replay, the samples clamped to the training envelope and guarded, and the kinds
+    of replay's events."""
+    for rep_path in sorted(Path(root).resolve().glob("reports/*/*-replay/replay.json")):
+        cell = rep_path.parent.name.removesuffix("-replay")
+        plain_path = rep_path.parent.parent / f"{cell}-plain" / "replay.json"
+        if not plain_path.exists():             # a cell still running
+            continue
+        rep, plain = json.loads(rep_path.read_text()), json.loads(plain_path.read_text())
+        run = json.loads((rep_path.parent.parent / cell / "metrics.json").read_text())
+        said = {t: (run["targets"][t]["test"]["rmse"], plain["targets"][t]["rmse"], v["rmse"],
+                    v.get("clamped_samples", 0), v.get("guarded_samples", 0))
+                for t, v in rep["targets"].items()}
+        mean_run, mean_rep = (np.mean([v[k] for v in said.values()]) for k in (0, 2))
+        if abs(mean_rep - mean_run) <= 0.01 * mean_run:
+            continue
+        kinds = pd.Series([f"{e.get('from')}->{e.get('to')}" for e in rep["events"]]).value_counts()
+        print(f"{rep_path.parent.parent.name}/{cell}: run {mean_run:.6g} replay {mean_rep:.6g} "
+              f"({100 * (mean_rep / mean_run - 1):+.1f} %); events {dict(kinds)}")
+        for t, (r, p, d, clamped, guarded) in said.items():
+            print(f"  {t:<10} run {r:.6g} plain {p:.6g} replay {d:.6g} clamped {clamped} guarded {guarded}")
+
+
 # -- the lab's raw export ---------------------------------------------------------------------
 LAB_NAMES = {"T": ("Temp. ", "°C"), "E": ("Fehler ", "µm"), "S": ("Drehzahl ", "1/min")}
 LAB_FAMILIES = ("mlr", "arx", "lagbank")
@@ -331,6 +395,8 @@ def main(argv: list[str]) -> int:
     return run_commands(__doc__, {
         "sweep": lambda root, *chosen: sweep(Path(root).resolve(), list(chosen)),
         "lab": lab,
+        "trace": trace,
+        "packwarm": pack_warm,
     }, argv, cpu=sys.stderr)
 
 
