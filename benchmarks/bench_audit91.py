@@ -151,25 +151,26 @@ mlr 1.49584982 / 1.06195156, arx 1.50980328 / 1.1053499, lagbank 2.28873661 / 1.
 Against the bar
 ---------------
 B1 FAILS on col9406 only: ``batch`` = ``plain`` = ``run`` in every cell, but ``replay`` leaves
-``run`` by 1.2-15.3 % in 8 of 8 cells (``trace``).  Traced: the training envelope's clamp
+``run`` by 1.2-15.3 % in 8 of 8 cells (``trace``). Traced: the training envelope's clamp
 (``promote.envelope``, default ``clamp`` with its pattern gate; docs/sweeps.md "The training
 envelope"), not the monitor: the same model.pkl replayed with ``promote.envelope.policy=off``
 (monitor on; ``thermocomp replay data.path=<col9406> replay.model=<cell>/model.pkl
-promote.envelope.policy=off``) gives mlr 10.42141 (Σ² over the six targets 880 µm², run 867, clamp 1035) and arx
-7.896679 (Σ² 450, run 555, clamp 1088).  The clamp costs Σ² against run in the seven families read (arx_rf not; E_X
-mlr 1.80 -> 27.76 µm, E_Y 22.67 -> 14.49), where docs/sweeps.md measured it paying on the column
-(4 seeds pooled, 13156 against 30192 off).  It is the documented deployed behaviour (promote's
-"as deployed" and the C carry it: B2 holds), so no defect of "deployed = scored"; whether the
-clamp should act on this kind is the envelope's own question (its bench, bench_envelope_policy,
-on more column seeds), not mended here.  Elsewhere replay = run to 1 % on every cell (lmw9409:
-the 14 clamped samples move it by 6e-6; fl/pcr: the guard's one sample, -0.04 %).
+promote.envelope.policy=off``) gives mlr 10.42141 (Σ² over the six targets 880 µm², run 867,
+clamp 1035) and arx 7.896679 (Σ² 450, run 555, clamp 1088). The clamp costs Σ² against run in
+the seven families read (arx_rf not; E_X mlr 1.80 -> 27.76 µm, E_Y 22.67 -> 14.49), where
+docs/sweeps.md measured it paying on the column (4 seeds pooled, 13156 against 30192 off). It is
+the documented deployed behaviour (promote's "as deployed" and the C carry it: B2 holds), so no
+defect of "deployed = scored"; whether the clamp should act on this kind is the envelope's own
+question (its bench, bench_envelope_policy, on more column seeds), not mended here. Elsewhere
+replay = run to 1 % on every cell (lmw9409: the 14 clamped samples move it by 6e-6; fl/pcr: the
+guard's one sample, -0.04 %).
 B2 HOLDS on every cell (57 cells run; auto + ati refused by design on yr9408 and fleet9410):
-``promo`` = ``C`` = ``mon`` = ``replay``, ``cold`` = ``pcold`` (= ``Craw``
-on the simulated records), every pack compiled with -Werror and check.sh exit 0.  fleet9410's
-``C`` column is the bench's feed (bench_deploy88.chained reads the manifest's ``continues``; the
-reader chains the fleet's days by their start), and the C fed the chain its pack writes equals
-replay to 1.1e-15 in its 8 cells (``packwarm``); lmv9411's ``promo`` averages promote's 15 µm
-targets (= replay over them, to the bit).
+``promo`` = ``C`` = ``mon`` = ``replay``, ``cold`` = ``pcold`` (= ``Craw`` on the simulated
+records), every pack compiled with -Werror and check.sh exit 0. fleet9410's ``C`` column is the
+bench's feed (bench_deploy88.chained reads the manifest's ``continues``; the reader chains the
+fleet's days by their start), and the C fed the chain its pack writes equals replay to 1.1e-15
+in its 8 cells (``packwarm``); lmv9411's ``promo`` averages promote's 15 µm targets (= replay
+over them, to the bit).
 B3 HOLDS: onnx exit 2 in every cell, auto + ati exit 2 naming ``model.candidates``, arx_rf's
 missing state column exit 2 naming the key and the columns there are, a missing sample period
 exit 2 naming the file and ``data.sample_period_s``.
