@@ -156,4 +156,4 @@ def test_export_says_the_code_reads_each_bit_as_its_own_column(tmp_path, capsys)
     assert read, header[:2000]
     said = capsys.readouterr().err
     assert ", ".join(f"S_{n} (bit {b} of 'Status')" for b, n in BITS.items() if n in read) in said
-    assert "not the word: a controller's rows give each bit so" in said
+    assert "or from the word in their place, decoded as the reader decodes it" in said

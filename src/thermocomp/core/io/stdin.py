@@ -49,7 +49,7 @@ from .layout import (
 from .lvm import is_lvm_text, lvm_as_csv
 from .options import RUN_ROLE
 from .own_headers import as_named
-from .roles import RUN, active, left_out, naming, split_unit
+from .roles import RUN, active, left_out, named_as_time, naming, split_unit
 from .runs import run_blocks, run_values
 from .scope import is_scope_text, scope_as_csv
 from .separators import UNICODE_MINUS, grouped
@@ -472,8 +472,16 @@ def _named(df: pd.DataFrame, opts) -> tuple[pd.DataFrame, dict, list | None]:
     ``data.units`` set, as :func:`.roles.naming` names a campaign file's headers (a date and a
     time of day joined into one time)."""
     if not (active(opts.roles) or opts.units):
-        return (df.rename(columns={k: v for k, v in opts.columns.items() if k in df.columns}), {},
-                None)
+        df = df.rename(columns={k: v for k, v in opts.columns.items() if k in df.columns})
+        # (lead91) the time under a header the file reader takes for it (``t``, ``Zeit``, in
+        # seconds: another unit is data.units' to convert): the stream refused the record's
+        # own file, "no 'time' column"
+        timed = [c for c in df.columns if named_as_time(str(c))
+                 and split_unit(str(c))[1] in (None, "s")]
+        if TIME not in df.columns and len(timed) == 1:
+            df = df.rename(columns={timed[0]: TIME})
+            df.attrs[HEADERS] = {TIME: timed[0]}
+        return df, {}, None
     # Excel's trailing separator: a column without a header ('Unnamed: 4') that holds nothing
     df = df.drop(columns=[c for c in df.columns if _UNNAMED.fullmatch(str(c))
                           and df[c].isna().all()])
