@@ -4,7 +4,9 @@ stop 91, freeze91).  freeze90 (benchmarks/freeze90_rule.patch: a predicted senso
 behind the compensator.json key ``long_freeze``) failed bar91b's bar on main before mon89 was
 kept (clauses (a), (b): cr9435/mlr E_X +5.37 -> +9.03, log x 100) while it detected 42 -> 62
 faults.  Here it is scored again ON TOP of mon89's spike rule (kept by bar91b, merged in this
-branch's base 6d1f04a4), on records never drawn before.
+branch's base 6d1f04a4), on records never drawn before.  REFUSED (src as on 6d1f04a4; the rule
+as ported: ``benchmarks/freeze91_rule.patch``): it PASSES the bar below, but takes every healthy
+sensor of a settled field on a 0.1 K logger out for a freeze (the monitor's own tests, below).
 
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is that tree's)::
 
@@ -49,9 +51,72 @@ the fresh records, or moves none nearer, is not kept on no evidence.  Here "main
 6d1f04a4 (mon89 kept) and the one RULE is freeze90 on top of it.  Reported beside the bar (not
 the bar): mean d on the ``lr`` and the ``cr`` rows apart, and rows more than 2 % above the truth.
 
-Scored
+Scored (2026-12-05, after the bar's commit a1525963; each tree once, ``score ROOT 9446-9455`` ->
+``table``; 10 records x 2 families = 20 record-families, 30 rows; CPU 28.8 s base, 29.1 s rule)
 ------
-(not yet: filled in after scoring, below the bar above)
+Trees: ``base`` = ``git archive 6d1f04a4 src conf``; ``freeze90`` = the same with
+freeze90_rule.patch: ``faults.py`` applied whole (offset 41 lines), ``watch_c.py``'s C hunk
+(offset 30) and ``watch.py``'s mirror hunk (offset 11); its three key-list hunks (``watch.py``'s
+``monitor_fields`` and ``CodeMonitor`` defaults, ``watch_c.py``'s ``MON_*`` list) failed on
+bar91b's ``spike`` key and were ported by hand (``long_freeze`` added after ``spike``)::
+
+    row                      truth    main  freeze90   (truth RMSE µm; log(deployed / truth) x 100 per tree)
+    lr9446/mlr E_Z          1.6331   +0.00     +0.00
+    lr9446/lagbank E_Z      0.9485   -0.00     -0.00
+    lr9447/mlr E_Z          1.0999   +0.00     +0.00
+    lr9447/lagbank E_Z      0.7672   -0.20     -0.20
+    lr9448/mlr E_Z          0.8277   +0.00     +0.00
+    lr9448/lagbank E_Z      0.6706   +0.16     +0.16
+    lr9449/mlr E_Z          1.3226   +0.00     +0.00
+    lr9449/lagbank E_Z      0.7012   +0.09     +0.09
+    lr9450/mlr E_Z          1.2157   -0.02     -0.02
+    lr9450/lagbank E_Z      1.5496   -0.04     -0.04
+    cr9451/mlr E_X          1.1252   +1.27     +1.60
+    cr9451/mlr E_Z          1.7837   +2.43     +2.33
+    cr9451/lagbank E_X      1.0088   +1.85     +1.14
+    cr9451/lagbank E_Z      1.6551   +1.12     +0.35
+    cr9452/mlr E_X          1.9501   -0.08     -0.42
+    cr9452/mlr E_Z          2.5980   -0.12     -0.27
+    cr9452/lagbank E_X      1.3211   +0.63     +0.61
+    cr9452/lagbank E_Z      2.9148   +0.22     +0.89
+    cr9453/mlr E_X          1.8600   +9.54     +0.38
+    cr9453/mlr E_Z          3.2411   -0.40     -0.22
+    cr9453/lagbank E_X      2.1037  +22.72     +1.74
+    cr9453/lagbank E_Z      2.4708  +31.51     +4.26
+    cr9454/mlr E_X          1.7058   +1.88     +0.13
+    cr9454/mlr E_Z          3.2266   +2.92     +1.04
+    cr9454/lagbank E_X      1.5450   +4.61     +5.11
+    cr9454/lagbank E_Z      2.7217   +1.04     +1.48
+    cr9455/mlr E_X          1.0940  +24.24    +22.46
+    cr9455/mlr E_Z          1.6887  +27.15    +22.59
+    cr9455/lagbank E_X      1.2037   +2.21     +0.80
+    cr9455/lagbank E_Z      1.3033   +0.36     -0.13
+
+    base: mean d 0.0456 (lr 0.0005, cr 0.0682); rows > 2 % above the truth 9; faults detected 52
+    freeze90: mean d 0.0228 (lr 0.0005, cr 0.0340); rows > 2 % above the truth 5; rows past (b)
+    0; true records with other events 0; faults detected 52 -> 64: PASSES (a)-(d)
+
+The ``lr`` rows are identical (no long constant run on a noisy lathe); the ``cr`` rows move with
+the frozen ``T_amb`` taken out earlier: cr9453/lagbank E_Z +31.51 -> +4.26, E_X +22.72 -> +1.74,
+cr9453/mlr E_X +9.54 -> +0.38; the largest step away from the truth cr9452/lagbank E_Z +0.22 ->
++0.89 (within (b)).
+
+Verdict: REFUSED, the bar passed.  The bar, written before scoring and unchanged, passed; with
+the rule in src the monitor's tests (run after scoring: tests/apps/test_monitor*.py) failed 5:
+test_monitor_rounding83.py's four (a warm-up settling on a noiseless 0.1 K logger: each healthy
+sensor constant past its ``blind_run`` goes out for a freeze, T_5 at sample 301 ``freeze: 22.9 °C
+for 62 samples (longest constant run in training 30)``, then T_b, T_3, T_a, T_4, T_0 ...: 18
+exclusions where the tests assert one drift, or a warning alone), and test_monitor_frozen_pair77's
+strict xfail XPASSED (the frozen ``T_a`` out alone: the rule closes that gap).  tests/shell/
+test_monitor*.py: 121 passed, 1 failed (test_monitor_readmit88's partner test: T_amb now out
+before the healthy cabinet is ever taken for it, the premise of the test gone: not a harm).  A
+settled machine on a coarse logger is a record the bar's noisy simulations never draw; the rule
+cannot be kept while it empties the monitor there.  Trace (served only, seen seeds, not scored
+for a verdict): a guard "no long freeze while most sensors are past their ``blind_run``" leaves
+the table above as the rule's, and does not mend rounding83 (its sensors settle one by one, the
+first out while most still move): two of its tests still fail.  Kept: the gap as a strict xfail
+(tests/apps/test_monitor_long_freeze91.py, 3 cases: a predicted sensor frozen on a still,
+noisy field, the mirror as served; they pass with freeze91_rule.patch and fail on 6d1f04a4).
 """
 
 from __future__ import annotations

@@ -1,10 +1,12 @@
-"""A sensor the others predict, frozen while the field hardly moves, is frozen (lead90's rule,
-kept by freeze91 on top of mon89: benchmarks/bench_freeze91.py).  Constant for longer than
-``blind_run`` (``freeze_factor`` times its longest constant run in training), it goes out whether
-or not the others' prediction of it moved by its warning band; before, only a sensor no other
-predicts did, and a predicted one frozen on a still field was read as healthy for ever.  The
-export's numpy mirror (the C's arithmetic) takes it out at the same sample behind
-``long_freeze``; an export without the key keeps the old rule.
+"""A sensor the others predict, frozen while the field hardly moves: a known gap (freeze90's
+long-freeze rule, refused again by freeze91: benchmarks/bench_freeze91.py, the rule
+benchmarks/freeze91_rule.patch).  Only a sensor no other predicts is taken for frozen by its
+constant run alone (longer than ``blind_run``, ``freeze_factor`` times its longest constant run
+in training); a predicted one is frozen only where the others' prediction of it moved by its
+warning band, so one frozen on a still field is read as healthy for ever.  The rule (frozen by
+the run alone, predicted or not; the export's mirror and C behind ``long_freeze``) closes the gap
+here and passed bar91b's distance bar, but took every healthy sensor of a settled field on a
+0.1 K logger out (tests/apps/test_monitor_rounding83.py): the strict xfail holds the gap.
 
 The line of ``test_monitor_new_state48.py`` (10 sensors, a warm-up and a gradient, readings with
 0.02 °C noise: no healthy reading repeats itself), streamed as drawn until ``AT``, then the field
@@ -21,6 +23,8 @@ from thermocomp.apps.deploy.export.watch import EXCLUDED, FREEZE, NOT_IN_CODE, C
 from thermocomp.apps.deploy.surveillance import SensorMonitor
 
 AT = 200
+pytestmark = pytest.mark.xfail(strict=True, reason="known gap (freeze91, rule refused): a "
+                               "predicted sensor frozen on a still field is never taken out")
 
 
 def _monitor() -> SensorMonitor:

@@ -254,7 +254,7 @@ def monitor_fields(deployed, inputs: list) -> dict:
         "tau": EXCURSION_TAU_S, "growth": EXCURSION_GROWTH, "novel": 1, "blind_out": 1, "thawed": 1,
         "blind_drop": 1, "solve": 1, "stepped": 1, "cleared": 1, "blind_jump": 1, "second_jump": 1,
         "second_instant": 1,
-        "blind_range": 1, "long_freeze": 1,
+        "blind_range": 1,
         "spike": 1,
         "modes": int(mon.pod.n_modes_),
         "basis": mon.pod.basis_[:, :int(mon.pod.n_modes_)].tolist(),
@@ -372,8 +372,7 @@ class CodeMonitor:
                      ("second_jump", 0),   # (before cmon88: a jump with one out flagged)
                      ("second_instant", 0),   # (before cmon89: a dropout, ... flagged)
                      ("blind_range", 0),   # (before cmon89b: a blind sensor's range flagged)
-                     ("spike", 0),         # (before bar91b: a spike's return re-referenced)
-                     ("long_freeze", 0)):  # (before lead90: a predicted sensor's long freeze flagged)
+                     ("spike", 0)):        # (before bar91b: a spike's return re-referenced)
             a.setdefault(k, np.float64(v))
         a.setdefault("rounding", np.zeros(n))    # (before mon83: no culprit held for rounding)
         # (before mon86: every set judged by the whole set's bands)
@@ -769,10 +768,8 @@ class CodeMonitor:
         start = same & (self.run == 1)
         self.run_pred[start] = other[start]
         moved = np.abs(other - self.run_pred)
-        # (lead90) constant longer than blind_run: frozen, another sensor predicting it or not
-        long = self.run > a["blind_run"]
         frozen = same & ((observable & (moved >= self.warn) & (self.run >= a["seen_run"]))
-                         | (long if a["long_freeze"] else ~observable & long))
+                         | (~observable & (self.run > a["blind_run"])))
         for j in np.flatnonzero(frozen & ~instant):
             instant[j] = True
             if active[j] and self._exclude(int(j), FREEZE):

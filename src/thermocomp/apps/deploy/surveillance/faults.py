@@ -137,8 +137,7 @@ class InstantFaults:
             if j in instant:
                 continue
             why = (f"freeze: {x[j]:.4g} °C for {self._run[j] + 1} samples while the field "
-                   f"moved {moved[j]:.2g} °C" if self._observable[j] and moved[j] >= self._warn[j]
-                   else
+                   f"moved {moved[j]:.2g} °C" if self._observable[j] else
                    f"freeze: {x[j]:.4g} °C for {self._run[j] + 1} samples (longest constant "
                    f"run in training {self.longest_run[j]:.0f})")
             instant[j] = why
@@ -164,13 +163,9 @@ class InstantFaults:
 
     def _frozen(self, same: np.ndarray, run: np.ndarray, moved: np.ndarray) -> np.ndarray:
         """The freeze rule (module doc), for :meth:`_fast` and :meth:`_update` alike: ``same``
-        unchanged readings, ``run`` their constant-run lengths, ``moved`` the field's change.
-        A reading constant longer than ``_blind_run`` (``freeze_factor`` times the longest
-        constant run in training) is frozen whether or not another sensor predicts it (lead90:
-        fl_thermal's frozen ``T_t11``, its field moving 0.28 °C within its 0.728 °C band, was
-        never taken for frozen: held 555 samples, against 1 at most in training)."""
+        unchanged readings, ``run`` their constant-run lengths, ``moved`` the field's change."""
         return same & ((self._observable & (moved >= self._warn) & (run >= self._seen_run))
-                       | (run > self._blind_run))
+                       | (~self._observable & (run > self._blind_run)))
 
     def _instant(self, x, d, step, finite, rng, big) -> dict[int, str]:
         """Reasons of the instant detectors that fire (dropout, out of range, jump)."""
