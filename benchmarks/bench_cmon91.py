@@ -16,7 +16,7 @@ corrections, the law set the code serves and the rule it flags as not in the cod
 first row where they part (none: C = served on every row).
 
 ``fresh``: per record of :data:`FRESH` (all where none is named; made once under ``ROOT``, the
-``run`` of ``model=arx_rf`` too, so both trees score the same fitted model), deployed as
+``run`` of ``model=arx_rf`` too, bench_deploy88's settings: 10 trees on ``S_spindle_rpm``, so both trees score the same fitted model), deployed as
 ``export`` deploys it, then the healthy test campaigns and, per sensor with a fallback model (a
 sensor no other predicts: ``deployed.fallbacks_``), a copy of them with that sensor read 5 °C
 high for 10 samples from the test campaign's middle row (a spike read as a jump: excluded, its
@@ -89,7 +89,7 @@ REPO = HERE.parent
 sys.path[:0] = [str(HERE)]
 from _cli import run_commands  # noqa: E402
 from bench_audit86b import stage  # noqa: E402
-from bench_deploy88 import LONG, day_files, extra_of  # noqa: E402
+from bench_deploy88 import FAMILIES, LONG, day_files, extra_of  # noqa: E402
 
 FRESH = {      # bench_deploy89's generators, chosen before any was simulated
     "lr9376": [*LONG, "seed=9376", "sim.generator.duration_days=3.0"],
@@ -203,7 +203,7 @@ def made(root: Path, record: str) -> Path:
     if record.startswith("dl"):
         day_files(data)
     rc, said = stage("run", f"data.path={data}", f"out={model.parent}", "plots=none", "model=arx_rf",
-                     "track=false", *extra_of(record))
+                     *FAMILIES["arx_rf"], "track=false", *extra_of(record))
     assert rc == 0, said
     return model
 
