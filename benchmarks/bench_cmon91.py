@@ -80,7 +80,43 @@ sensor spiked in turn (``GAP``) instead of one copy per sensor: on dev seed lr42
 with a fallback) the ten copies took 4.7 CPU min for one record, the machine shared by 7
 helpers (there C = served on all 864 rows of every copy, no cut, ``check.sh`` 0).
 
-Results: (below, once scored)
+Results (2026-12-05; fix/cmon91's src at 968d83cd = as scored; main 277a181d, the same fitted
+models; 2 cores shared by 7 helpers):
+
+1. Seen, lr9212/arx_rf (``bench_deploy89.py sweep ROOT lr9212 arx_rf``), none and ati alike:
+   main ``C`` 1.035993 / ``Craw`` 1.039593 against ``replay`` = ``promo`` 1.037863 / ``cold``
+   1.041456, R1b and R1b.cold cut at 765 (99 of 864 rows unchecked); branch ``C`` = ``replay``
+   = ``promo`` = 1.037863, ``Craw`` = ``cold`` = ``Pcold`` = 1.041456, ``cut`` 0, ``check.sh`` 0
+   (every other column as main's).  ``trace`` above: no parting row.
+2. Fresh (``fresh ROOT branch`` then ``fresh ROOT main`` with main's src, the same models; every
+   build -Werror, every ``check.sh`` exit 0 in both trees)::
+
+     record/case      campaign   fb   rows   branch: same first cut maxd   main: same first cut maxd
+     lr9376/healthy   R1b         0    864   864  -   -   5.7e-14           864  -   -   5.7e-14
+     lr9376/spikes    R1b        80    864   864  -   -   1.1e-13           804  257 257 5.15
+     dl9377/healthy   R1b        12   1440   1440 -   -   9.9e-14           1440 -   -   3.6e-13
+     dl9377/spikes    R1b       101   1440   1440 -   -   9.9e-14           1359 361 361 3.62
+     cr9378/healthy   C10/11/12   0    213/224/236 all, none cut           all, none cut
+     cr9378/spikes    C10        41    213   213  -   -   1.4e-14           172  54  54  1.77
+     cr9378/spikes    C11        40    224   224  -   -   1.5e-14           184  57  57  2.01
+     cr9378/spikes    C12        40    236   236  -   -   1.8e-14           196  60  60  2.49
+     lr9379/healthy   R1b         0    864   864  -   -   5.0e-14           864  -   -   5.0e-14
+     lr9379/spikes    R1b        80    864   864  -   -   5.0e-14           804  217 217 4.31
+     dl9380/healthy   R1b         0   1440   1440 -   -   5.0e-14           1440 -   -   5.0e-14
+     dl9380/spikes    R1b       121   1440   1440 -   -   6.4e-14           1340 361 361 3.50
+
+   Branch: C = served on every row of all 16 campaign cases, no pack cut.  Main: every spiked
+   copy cut at the first spike whose sensor's fallback served (the C held the reading, up to
+   5.15 µm off).  dl9377 healthy: 12 rows served by a fallback in the test campaign and C =
+   served on main too (3.6e-13 µm): that fallback's corrections equal the model's there (its
+   ARX chose the same terms without the sensor).  CPU: branch 186.6 s, main 167.2 s (the five
+   records, the fits shared).
+4. ``tc_step`` on lr9212/arx_rf-none's C (``timing``, the branch's R1b rows, 4321 rows, two
+   runs each): main 1012 / 1003 ns, branch 1084 / 1115 ns per sample: x1.07-1.11 (five
+   fallback ARX laws stepped per sample; their forests walked only while served);
+   compensator.c 206 -> 362 KB.
+5. The export tests (tests/*/test_export*.py, 51 files in three parts, -n 2): 116, 85 and 76
+   passed (277, none failed), the new test file among them.
 """
 
 from __future__ import annotations
