@@ -111,6 +111,13 @@ models; 2 cores shared by 7 helpers):
    served on main too (3.6e-13 µm): that fallback's corrections equal the model's there (its
    ARX chose the same terms without the sensor).  CPU: branch 186.6 s, main 167.2 s (the five
    records, the fits shared).
+3. Other deploy89 cells, ``bench_deploy89.py sweep ROOT dl9307 lr9306 cr9308 arx_rf`` under the
+   branch (the cells whose system holds a forest: the only ones the rule can move; auto's
+   candidates there hold none): every column of all six cells = bench_deploy89's table to the
+   digits printed (lr9306 1.191719 / cold 1.18705; dl9307 replay = promo = C 0.8598465, cold =
+   Craw = Pcold 0.8604102; cr9308 none 0.8595478, ati 0.7623871), packs whole, ``check.sh`` 0;
+   CPU 213.9 s.  lr9212's other families (no forest: ``_holds`` and the C's walk unchanged for
+   them, ``TC_N_FORESTS`` 0): LR9212_OTHERS
 4. ``tc_step`` on lr9212/arx_rf-none's C (``timing``, the branch's R1b rows, 4321 rows, two
    runs each): main 1012 / 1003 ns, branch 1084 / 1115 ns per sample: x1.07-1.11 (five
    fallback ARX laws stepped per sample; their forests walked only while served);
