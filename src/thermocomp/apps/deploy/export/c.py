@@ -403,8 +403,9 @@ static int off_pattern(const double x[]) {{
    target's output y: per tau a state's ramp expit(k (t - t0) / tau) from its last change t0 (k
    +1 on, -1 off; before its first change the state, 0 or 1), cast to float as scikit-learn's
    trees compare it with their thresholds; each tree walked from its root to a leaf (at most
-   TC_TREE_DEPTH steps), a forest the mean of its trees' leaves */
-static void forests(tc_state *s, const double v[], double t, double y[]) {{
+   TC_TREE_DEPTH steps), a forest the mean of its trees' leaves; a fallback model's forest
+   (cmon91: its law's LAW_SET) only while its set is served, as its laws */
+static void forests(tc_state *s, const double v[], double t, double y[], int serving) {{
     float f32[{max(len(ss.switch_feature), 1)}];
     int l, r, d, node;
     for (l = 0; l < TC_N_SWITCHES; l++) {{
@@ -422,7 +423,7 @@ static void forests(tc_state *s, const double v[], double t, double y[]) {{
     }}
     for (l = 0; l < TC_N_FORESTS; l++) {{
         double sum = 0.0, factor = s->factor[FOREST_LAW[l]];
-        if (factor == 0.0) continue;
+        if (factor == 0.0 || LAW_SET[FOREST_LAW[l]] != serving) continue;
         for (r = FOREST_TREES[l]; r < FOREST_TREES[l + 1]; r++) {{
             node = TREE_ROOT[r];
             for (d = 0; d < TC_TREE_DEPTH && NODE_LEFT[node] >= 0; d++)
@@ -716,7 +717,7 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
                 ysum[h][LAW_TARGET[r]] += s->factor[r] * ych[h];
         }}
     }}
-    if (TC_N_FORESTS) forests(s, v, TC_SWITCH_RAW_TIME ? time : now, ysum[0]);
+    if (TC_N_FORESTS) forests(s, v, TC_SWITCH_RAW_TIME ? time : now, ysum[0], serving);
     if (TC_N_LSTM) lstms(s, (const double (*)[TC_WIDTH])x, ysum[0], serving);
     for (i = 0; i < TC_N_OUTPUTS; i++) {{
         double bound = 0.0;

@@ -8,10 +8,14 @@ laws go into the code's system after the model's, ``law_set`` naming whose each 
 model's, ``s`` the fallback of set ``s``): every law steps on every sample (its history, lags,
 feedback and clamp bound its own), and the output sums the laws of the set being served (the
 monitor's ``fallback_set``: per monitored sensor its set, 0 none in the code); its lstm networks
-(of the model's shape) step beside the model's too, and other static powers are appended.  A
-fallback the system cannot hold beside the model (another denoiser, envelope, inputs or derived
-inputs, a cascade of lags, a state times the inputs' rises, an arx_rf forest, an lstm network of
-another shape) is left out: its exclusion stays flagged ``FALLBACK`` (:mod:`.watch`).
+(of the model's shape) step beside the model's too, and other static powers are appended; an
+arx_rf fallback's forest (cmon91) joins the model's forests, counting by its ARX's law (its
+``forest_law``), so it adds only while its set is served (the code's forest walk, as its laws).
+A fallback the system cannot hold beside the model (another denoiser, envelope, inputs or
+derived inputs, a cascade of lags, a state times the inputs' rises, a forest ramping on another
+clock, an lstm network of another shape) is left out: its exclusion stays flagged ``FALLBACK``
+(:mod:`.watch`).  An export before a fallback's laws were merged has none in its
+``fallback_set`` (0): it flags as it did.
 """
 
 from __future__ import annotations
@@ -50,8 +54,9 @@ def with_fallbacks(ss, deployed, system) -> None:
 
 def _holds(ss, fb) -> bool:
     """Whether ``fb``'s laws can step beside ``ss``'s in one system."""
-    lone = not (ss.forest_target or fb.forest_target or ss.clamp_states or fb.clamp_states
-                or fb.lag_of)
+    lone = not (ss.clamp_states or fb.clamp_states or fb.lag_of)
+    # (cmon91) forests ramp their states over one clock: the stream's, or the time as read
+    clock = not (ss.forest_target and fb.forest_target) or ss.switch_raw_time == fb.switch_raw_time
     # other static powers (a Hammerstein model refitted may keep another degree): appended,
     # where no derived input's column (nor a network's lag) follows them
     nets = ss.lstm_target or fb.lstm_target
@@ -59,7 +64,7 @@ def _holds(ss, fb) -> bool:
     # networks (an lstm, a model=auto blend's member): the code steps one shape of them
     shape = not (ss.lstm_target and fb.lstm_target) or (
         (ss.lstm_hidden, ss.lstm_layers) == (fb.lstm_hidden, fb.lstm_layers))
-    return lone and powers and shape and all(getattr(ss, k) == getattr(fb, k) for k in SHARED)
+    return lone and clock and powers and shape and all(getattr(ss, k) == getattr(fb, k) for k in SHARED)
 
 
 def _merge(ss, fb, s: int) -> None:
@@ -110,6 +115,41 @@ def _merge(ss, fb, s: int) -> None:
     ss.uses_time = ss.uses_time or fb.uses_time
     if fb.lstm_target:
         _merge_nets(ss, fb, laws, col, where)
+    if fb.forest_target:
+        _merge_forests(ss, fb, laws)
+
+
+def _merge_forests(ss, fb, laws: int) -> None:
+    """(cmon91) ``fb``'s forests appended to ``ss``'s: its states and features mapped onto the
+    system's (one of its own appended where none is), its trees' nodes and roots shifted past the
+    system's, each forest counting by its ARX's law among ``fb``'s (after the ``laws`` before)."""
+    if not ss.forest_target:
+        ss.switch_raw_time = fb.switch_raw_time
+    switch = []
+    for j in fb.switch_input:
+        if j not in ss.switch_input:
+            ss.switch_input.append(j)
+        switch.append(ss.switch_input.index(j))
+    feature = []
+    for s, tau in fb.switch_feature:
+        key = [switch[int(s)], float(tau)]
+        if key not in ss.switch_feature:
+            ss.switch_feature.append(key)
+        feature.append(ss.switch_feature.index(key))
+    nodes, trees = len(ss.node_left), len(ss.tree_root)
+    ss.tree_root = list(ss.tree_root) + [nodes + int(r) for r in fb.tree_root]
+    ss.node_feature = list(ss.node_feature) + [-1 if f < 0 else feature[f] for f in fb.node_feature]
+    for k in ("node_left", "node_right"):
+        setattr(ss, k, list(getattr(ss, k)) + [-1 if c < 0 else nodes + int(c)
+                                                for c in getattr(fb, k)])
+    ss.node_threshold = list(ss.node_threshold) + list(fb.node_threshold)
+    ss.node_value = list(ss.node_value) + list(fb.node_value)
+    ss.forest_trees = (list(ss.forest_trees) or [0]) + [trees + int(b) for b in fb.forest_trees[1:]]
+    ss.forest_law = (list(ss.forest_law) or [0] * len(ss.forest_target)) + [
+        laws + int(r) for r in fb.forest_law or [0] * len(fb.forest_target)]
+    ss.forest_target = list(ss.forest_target) + list(fb.forest_target)
+    ss.forest_weight = list(ss.forest_weight) + list(fb.forest_weight)
+    ss.tree_depth = max(ss.tree_depth, fb.tree_depth)
 
 
 def _merge_nets(ss, fb, laws: int, col, where: list) -> None:

@@ -117,7 +117,7 @@ def not_in_code(deployed, fmt: str | None = None) -> list[str]:
                 "second sensor out for another rule, a third out, a "
                 "sensor no other predicts out for another rule, or with a fallback model (the "
                 "model fitted without it) of a kind the code does not step beside the model "
-                "(an arx_rf forest, an lstm network of another shape)"]
+                "(an lstm network of another shape, other inputs)"]
     return ["sensor monitor (exclusion, reconstruction of a sensor from the others)"]
 
 

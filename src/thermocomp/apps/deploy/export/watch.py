@@ -62,8 +62,9 @@ The served adaptive compensator judges every ``T_`` input before the model reads
   out is the model fitted without it): its laws step beside the model's (:mod:`.fallbacks`,
   ``law_set``) and the code serves them while the sensor is out and enough are in to rebuild the
   field (:meth:`CodeMonitor.serving`, the served ``_fallen_back``; ``fallback_set``), the model's
-  again once it is back.  One the code cannot hold (an arx_rf forest, an lstm network of another
-  shape, other inputs or derived inputs, a cascade of lags, a state times the inputs' rises), or an
+  again once it is back; (cmon91) an arx_rf fallback's forest too, walked while its set is served.
+  One the code cannot hold (a forest ramping on another clock, an lstm network of another shape,
+  other inputs or derived inputs, a cascade of lags, a state times the inputs' rises), or an
   export before it (no ``fallback_set``), flags the campaign ``FALLBACK`` from the exclusion on.
 * (mon88) a sensor out by the field's judgement whose return no sensor in trial predicts passes
   where a partner out, frozen by the rule for one no other predicts (constant longer than
