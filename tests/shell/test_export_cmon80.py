@@ -59,6 +59,19 @@ def _streamed(binary, frame, inputs):
     return pd.read_csv(pd.io.common.StringIO(run.stdout)).to_numpy(float), run.stderr
 
 
+def assert_packed_as_served(folder, deployed, ss, campaign: str, frame, want) -> None:
+    """``frame``'s conformance pack whole, the compiled C (built in ``folder``) = ``want`` (the
+    served corrections) on every row with nothing flagged, and ``check.sh`` passing."""
+    files, summary = conformance_pack(deployed, ss, {campaign: frame})
+    assert (summary["campaigns"][0]["rows"], summary["campaigns"][0]["cut"]) == (len(frame), None)
+    stream = built_stream(folder, {**exported_files(deployed, "c"), **files})
+    c, said = _streamed(stream, frame, ss.inputs)
+    assert c.shape == want.shape and np.max(np.abs(c - want)) < 1e-9        # every row
+    assert "not in the code" not in said
+    script = subprocess.run(["sh", "check/check.sh"], cwd=folder, capture_output=True, text=True)
+    assert script.returncode == 0, script.stderr
+
+
 @needs_cc
 def test_a_reading_beyond_its_range_and_a_common_step_are_what_the_code_does_as_served(served,
                                                                                        tmp_path):

@@ -13,16 +13,15 @@ flags."""
 from __future__ import annotations
 
 import dataclasses
-import subprocess
 
 import numpy as np
 import pandas as pd
 import pytest
 
-from test_export import built_stream, needs_cc
-from test_export_cmon80 import _streamed
+from test_export import needs_cc
+from test_export_cmon80 import assert_packed_as_served
 from test_export_cmon82c import _deployed, _machine, _served_moves
-from thermocomp.apps.deploy.export import Simulator, exported_files, state_space
+from thermocomp.apps.deploy.export import Simulator, state_space
 from thermocomp.apps.deploy.export.fallbacks import _merge
 from thermocomp.apps.deploy.export.pack import conformance_pack, corrections
 from thermocomp.apps.deploy.export.watch import FALLBACK, NOT_IN_CODE
@@ -77,14 +76,7 @@ def test_the_code_serves_the_fallback_model_while_its_sensor_is_out(served, tmp_
     # the model alone (an export before cmon83) parts from the served corrections there
     alone, _, _ = _mirror(_before_cmon83(ss), frame)
     assert np.max(np.abs(alone - want)[out - 1:back - 1]) > 1e-3
-    files, summary = conformance_pack(deployed, ss, {"K06": frame})
-    assert (summary["campaigns"][0]["rows"], summary["campaigns"][0]["cut"]) == (len(frame), None)
-    stream = built_stream(tmp_path, {**exported_files(deployed, "c"), **files})
-    c, said = _streamed(stream, frame, ss.inputs)
-    assert c.shape == want.shape and np.max(np.abs(c - want)) < 1e-9        # every row
-    assert "not in the code" not in said
-    script = subprocess.run(["sh", "check/check.sh"], cwd=tmp_path, capture_output=True, text=True)
-    assert script.returncode == 0, script.stderr
+    assert_packed_as_served(tmp_path, deployed, ss, "K06", frame, want)
 
 
 def test_an_export_before_cmon83_flags_the_fallback_from_the_exclusion_on(served):

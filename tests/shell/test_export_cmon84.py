@@ -12,15 +12,14 @@ fallback model (the default) and without one."""
 from __future__ import annotations
 
 import dataclasses
-import subprocess
 
 import numpy as np
 import pytest
 
-from test_export import built_stream, needs_cc
-from test_export_cmon80 import _streamed
+from test_export import needs_cc
+from test_export_cmon80 import assert_packed_as_served
 from test_export_cmon82c import RAMP, RATE, ROWS, _deployed, _machine, _served_moves
-from thermocomp.apps.deploy.export import Simulator, exported_files, state_space
+from thermocomp.apps.deploy.export import Simulator, state_space
 from thermocomp.apps.deploy.export.pack import conformance_pack, corrections
 from thermocomp.apps.deploy.export.watch import (
     BLIND,
@@ -91,14 +90,7 @@ def test_a_sensor_no_other_predicts_is_held_out_by_the_code_as_served(record, tm
     fell = int(fallbacks == "unobservable")
     until = ROWS // 2 + LOST[kind] + 1 if kind == "dropout" else back
     assert sets == [0] * (gone - 1) + [fell] * (until - gone) + [0] * (len(frame) - until + 1)
-    files, summary = conformance_pack(deployed, ss, {"K06": frame})
-    assert (summary["campaigns"][0]["rows"], summary["campaigns"][0]["cut"]) == (len(frame), None)
-    stream = built_stream(tmp_path, {**exported_files(deployed, "c"), **files})
-    c, said = _streamed(stream, frame, ss.inputs)
-    assert c.shape == want.shape and np.max(np.abs(c - want)) < 1e-9        # every row
-    assert "not in the code" not in said
-    script = subprocess.run(["sh", "check/check.sh"], cwd=tmp_path, capture_output=True, text=True)
-    assert script.returncode == 0, script.stderr
+    assert_packed_as_served(tmp_path, deployed, ss, "K06", frame, want)
 
 
 def test_an_export_before_cmon84_refuses_the_missing_reading_and_flags_the_freeze(record):

@@ -11,16 +11,15 @@ quarter of the rows after the middle (bench_cmon84's dropout)."""
 from __future__ import annotations
 
 import dataclasses
-import subprocess
 import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
 
-from test_export import _compose, built_stream, needs_cc
-from test_export_cmon80 import _streamed
-from thermocomp.apps.deploy.export import Simulator, exported_files, state_space
+from test_export import _compose, needs_cc
+from test_export_cmon80 import assert_packed_as_served
+from thermocomp.apps.deploy.export import Simulator, state_space
 from thermocomp.apps.deploy.export.pack import conformance_pack, corrections
 from thermocomp.apps.deploy.export.watch import (
     DRIFT,
@@ -131,14 +130,7 @@ def test_a_drift_with_a_sensor_out_is_followed_by_the_code_as_served(record, tmp
     assert not missed and np.max(np.abs(got - want)) < 1e-9
     assert [(r, s) for r, s, _ in out] == [(r, s) for r, s, _ in served]
     assert [rule for *_, rule in out][:1] == [DROPOUT] and DRIFT_OUT in [rule for *_, rule in out]
-    files, summary = conformance_pack(deployed, ss, {"test": frame})
-    assert (summary["campaigns"][0]["rows"], summary["campaigns"][0]["cut"]) == (len(frame), None)
-    stream = built_stream(tmp_path, {**exported_files(deployed, "c"), **files})
-    c, said = _streamed(stream, frame, ss.inputs)
-    assert c.shape == want.shape and np.max(np.abs(c - want)) < 1e-9        # every row
-    assert "not in the code" not in said
-    script = subprocess.run(["sh", "check/check.sh"], cwd=tmp_path, capture_output=True, text=True)
-    assert script.returncode == 0, script.stderr
+    assert_packed_as_served(tmp_path, deployed, ss, "test", frame, want)
 
 
 def test_an_export_before_cmon85_flags_the_drift_with_a_sensor_out(record):

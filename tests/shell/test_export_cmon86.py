@@ -10,17 +10,16 @@ error steps past its alarm band."""
 
 from __future__ import annotations
 
-import subprocess
 import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
 
-from test_export import built_stream, needs_cc
-from test_export_cmon80 import _streamed
+from test_export import needs_cc
+from test_export_cmon80 import assert_packed_as_served
 from test_export_cmon85 import _mirror, _served_out, column_record, without
-from thermocomp.apps.deploy.export import Simulator, exported_files
+from thermocomp.apps.deploy.export import Simulator
 from thermocomp.apps.deploy.export.pack import conformance_pack, corrections
 from thermocomp.apps.deploy.export.watch import STEPPED
 from thermocomp.apps.deploy.report import stream_rows
@@ -73,14 +72,7 @@ def test_a_stepped_culprit_is_followed_by_the_code_as_served(record, tmp_path):
     # the culprit out by its error (its wait doubled), beside the one out for its range
     assert sorted((s, by) for r, s, by in out if r == row) == sorted(
         [(s, s == sensor) for r, s, _ in served if r == row])
-    files, summary = conformance_pack(deployed, ss, {"test": frame})
-    assert (summary["campaigns"][0]["rows"], summary["campaigns"][0]["cut"]) == (len(frame), None)
-    stream = built_stream(tmp_path, {**exported_files(deployed, "c"), **files})
-    c, said = _streamed(stream, frame, ss.inputs)
-    assert c.shape == want.shape and np.max(np.abs(c - want)) < 1e-9        # every row
-    assert "not in the code" not in said
-    script = subprocess.run(["sh", "check/check.sh"], cwd=tmp_path, capture_output=True, text=True)
-    assert script.returncode == 0, script.stderr
+    assert_packed_as_served(tmp_path, deployed, ss, "test", frame, want)
 
 
 def test_an_export_before_cmon86_flags_the_stepped_error(record):

@@ -14,16 +14,15 @@ fallback (as before cmon91) still flags."""
 from __future__ import annotations
 
 import dataclasses
-import subprocess
 
 import numpy as np
 import pytest
 
-from test_export import built_stream, needs_cc
-from test_export_cmon80 import _streamed
+from test_export import needs_cc
+from test_export_cmon80 import assert_packed_as_served
 from test_export_cmon82c import _deployed, _machine, _served_moves
 from test_export_cmon83 import _mirror, _plain
-from thermocomp.apps.deploy.export import exported_files, state_space
+from thermocomp.apps.deploy.export import state_space
 from thermocomp.apps.deploy.export.fallbacks import _merge
 from thermocomp.apps.deploy.export.pack import conformance_pack, corrections
 from thermocomp.apps.deploy.export.watch import FALLBACK
@@ -58,14 +57,7 @@ def test_the_code_serves_an_arx_rf_fallback_with_its_forest(served, tmp_path):
     got, sets, missed = _mirror(ss, frame)
     assert sets == [0] * (out - 1) + [s] * (back - out) + [0] * (len(frame) - back + 1)
     assert not any(missed) and np.max(np.abs(got - want)) < 1e-9
-    files, summary = conformance_pack(deployed, ss, {"K06": frame})
-    assert (summary["campaigns"][0]["rows"], summary["campaigns"][0]["cut"]) == (len(frame), None)
-    stream = built_stream(tmp_path, {**exported_files(deployed, "c"), **files})
-    c, said = _streamed(stream, frame, ss.inputs)
-    assert c.shape == want.shape and np.max(np.abs(c - want)) < 1e-9        # every row
-    assert "not in the code" not in said
-    script = subprocess.run(["sh", "check/check.sh"], cwd=tmp_path, capture_output=True, text=True)
-    assert script.returncode == 0, script.stderr
+    assert_packed_as_served(tmp_path, deployed, ss, "K06", frame, want)
     # the same system with no set for T_u's fallback (an export before cmon91: 0 there) flags
     # from the exclusion to the end, the pack cut there, as it did
     sets = list(ss.monitor["fallback_set"])
