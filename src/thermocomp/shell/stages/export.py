@@ -258,16 +258,19 @@ def _pause_s(cfg: DictConfig, ds) -> float:
     return PAUSE_PERIODS * float(median_step(first[TIME].to_numpy(float)) or 0.0)
 
 
-def _day_seconds(ds, time_header) -> bool:
-    """``TC_DAY_SECONDS``: the record's time was read as seconds since midnight, a day added
-    as it passed (the ingest report's ``time``, data89b), or its lab header says so (a record
+def _day_seconds(cfg: DictConfig, ds, time_header) -> bool:
+    """``TC_DAY_SECONDS``: ``data.time=of_day`` says the time is the time of day, or the record's
+    time was read as seconds since midnight, a day added as it passed (the ingest report's
+    ``time``, data89b), or its lab header says so (a record
     that never passed midnight, a registered model exported without its record: the machine's
     log will); ``stream.c`` then reads the lab's raw file so (lead91: it took midnight's step
     back for a clock set back, one period on, and a run after a pause across midnight for the
     run before it)."""
+    if str(cfg.data.get("time")) == OF_DAY_KIND or ds is not None and ds.meta.get(
+            "seconds_of_day"):
+        return True
     headers = [time_header] if isinstance(time_header, str) else list(time_header or ())
-    return bool(ds is not None and ds.meta.get("seconds_of_day")) or any(
-        names_seconds_of_day(str(h)) for h in headers)
+    return any(names_seconds_of_day(str(h)) for h in headers)
 
 
 def export(cfg: DictConfig) -> dict:
@@ -325,8 +328,7 @@ def export(cfg: DictConfig) -> dict:
     provenance.update(thousands=None if thousands is None else str(thousands)[:1],
                       elapsed=str(cfg.data.get("time") or "auto") == "elapsed",
                       slashed=_slashed(cfg, ds), pause_s=_pause_s(cfg, ds),
-                      day_seconds=_day_seconds(ds, lab.get(TIME))
-                      or str(cfg.data.get("time")) == OF_DAY_KIND)
+                      day_seconds=_day_seconds(cfg, ds, lab.get(TIME)))
     # (streamraw65: the lab's raw file as the reader reads it -- its character set and its marks
     # of a value not measured travel with the model, as data.thousands does)
     provenance.update(encoding=_stream_encoding(cfg, fmt),

@@ -697,6 +697,17 @@ static int time_of(const char *cell, long row, double scale, double offset, doub
     return 0;
 }
 
+/* A row's time into *t (time_of): the date and its time of day joined (`stamp`, clock_col) or
+   the time column's cell, a time of day carried past midnight (TC_DAY_SECONDS: of_day); *t as it
+   was without a time column.  Returns 0, or 2 after saying why. */
+static int row_time(char **cells, int time_col, int clock_col, const char *stamp, long row,
+                    double *t) {
+    if (time_col < 0) return 0;
+    if (clock_col >= 0) return time_of(stamp, row, 1.0, 0.0, t);
+    if (time_of(cells[time_col], row, scale_of[time_col], offset_of[time_col], t) != 0) return 2;
+    return TC_DAY_SECONDS ? of_day(t, row) : 0;
+}
+
 /* --state FILE: what a restarted process needs to go on as if it had not stopped. The bytes
    are this build's (the sizes and a mark are checked), as tc_state is plain data. */
 static const char STATE_MARK[8] = "tcstat1";
@@ -1275,22 +1286,16 @@ int main(int argc, char **argv) {
                 return 2;
             }
         }
-        if (time_col >= 0 && clock_col >= 0) {     /* '07.06.2027' and '14:00:00': one time */
+        if (time_col >= 0 && clock_col >= 0)      /* '07.06.2027' and '14:00:00': one time */
             snprintf(stamp, sizeof stamp, "%s %s", trimmed(cells[time_col]),
                      trimmed(cells[clock_col]));
-            if (time_of(stamp, row, 1.0, 0.0, &t) != 0) return 2;
-        } else if (time_col >= 0 && (time_of(cells[time_col], row, scale_of[time_col],
-                                             offset_of[time_col], &t) != 0
-                                     || (TC_DAY_SECONDS && of_day(&t, row) != 0))) return 2;
+        if (row_time(cells, time_col, clock_col, stamp, row, &t) != 0) return 2;
         if (TC_PAUSE_S > 0 && isfinite(t) && !s.first && isfinite(s.t_read)
             && t - s.t_read > TC_PAUSE_S) {
             /* (catman70) the logger silent longer than data.runs_at_pauses' pause: the next
                test, a campaign of its own (as the reader splits the file), its clock from here */
             restart(&s, 1);
-            if (time_col >= 0 && clock_col >= 0) {
-                if (time_of(stamp, row, 1.0, 0.0, &t) != 0) return 2;
-            } else if (time_of(cells[time_col], row, scale_of[time_col], offset_of[time_col],
-                               &t) != 0 || (TC_DAY_SECONDS && of_day(&t, row) != 0)) return 2;
+            if (row_time(cells, time_col, clock_col, stamp, row, &t) != 0) return 2;
         }
         if (TC_SUBSTITUTE_TIME && isfinite(t) && !s.first && isfinite(s.t_read) && t <= s.t_read
             && !isfinite(s.t_back) && said_back++ < 5)
