@@ -23,8 +23,6 @@ from thermocomp.apps.deploy.export.watch import EXCLUDED, FREEZE, NOT_IN_CODE, C
 from thermocomp.apps.deploy.surveillance import SensorMonitor
 
 AT = 200
-pytestmark = pytest.mark.xfail(strict=True, reason="known gap (freeze91, rule refused): a "
-                               "predicted sensor frozen on a still field is never taken out")
 
 
 def _monitor() -> SensorMonitor:
