@@ -11,9 +11,7 @@ The served adaptive compensator judges every ``T_`` input before the model reads
 * a **jump** of one sensor (a one-sample step beyond ``jump_lim``, times the periods a gap in
   time spans): re-referenced by its step less its change as the others predict it, excluded;
 * a **freeze** (its reading constant for ``seen_run`` samples while the others' prediction of
-  it moved by its warning band; one no other predicts: longer than ``blind_run``; freeze92,
-  ``long_freeze``: a predicted one longer than ``blind_run`` while the others' prediction of it
-  moved since the run began by more than twice its rounding bound ``rounding``): excluded;
+  it moved by its warning band; one no other predicts: longer than ``blind_run``): excluded;
 * a **dropout** (cdrop77: a missing reading, NaN, an infinity or a value beyond its input's
   limit, after a campaign's first sample): excluded at that sample, its last reading kept as the
   one its return is stepped from (a jump limit times the samples it spans);
@@ -257,7 +255,7 @@ def monitor_fields(deployed, inputs: list) -> dict:
         "tau": EXCURSION_TAU_S, "growth": EXCURSION_GROWTH, "novel": 1, "blind_out": 1, "thawed": 1,
         "blind_drop": 1, "solve": 1, "stepped": 1, "cleared": 1, "blind_jump": 1, "second_jump": 1,
         "second_instant": 1,
-        "blind_range": 1, "long_freeze": 1,
+        "blind_range": 1,
         "spike": 1,
         "modes": int(mon.pod.n_modes_),
         "basis": mon.pod.basis_[:, :int(mon.pod.n_modes_)].tolist(),
@@ -375,8 +373,7 @@ class CodeMonitor:
                      ("second_jump", 0),   # (before cmon88: a jump with one out flagged)
                      ("second_instant", 0),   # (before cmon89: a dropout, ... flagged)
                      ("blind_range", 0),   # (before cmon89b: a blind sensor's range flagged)
-                     ("spike", 0),         # (before bar91b: a spike's return re-referenced)
-                     ("long_freeze", 0)):  # (before freeze92: a predicted sensor's long freeze flagged)
+                     ("spike", 0)):        # (before bar91b: a spike's return re-referenced)
             a.setdefault(k, np.float64(v))
         a.setdefault("rounding", np.zeros(n))    # (before mon83: no culprit held for rounding)
         # (before mon86: every set judged by the whole set's bands)
@@ -772,13 +769,8 @@ class CodeMonitor:
         start = same & (self.run == 1)
         self.run_pred[start] = other[start]
         moved = np.abs(other - self.run_pred)
-        # constant longer than blind_run: frozen where no other sensor predicts it, and (freeze92)
-        # where the others' prediction of it moved since the run began by more than twice its
-        # rounding bound (its own reading's bin and the others' digits: the most rounding moves it)
-        long = self.run > a["blind_run"]
-        past = (moved > 2 * a["rounding"]) if a["long_freeze"] else np.zeros(len(long), dtype=bool)
         frozen = same & ((observable & (moved >= self.warn) & (self.run >= a["seen_run"]))
-                         | (long & (~observable | past)))
+                         | (~observable & (self.run > a["blind_run"])))
         for j in np.flatnonzero(frozen & ~instant):
             instant[j] = True
             if active[j] and self._exclude(int(j), FREEZE):

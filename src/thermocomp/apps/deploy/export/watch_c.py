@@ -103,8 +103,7 @@ def monitor_arrays(ss) -> list[tuple[str, object, tuple, str]]:
                ("MON_SECOND_JUMP", "second_jump", 0, "int"),
                ("MON_SECOND_INSTANT", "second_instant", 0, "int"),
                ("MON_BLIND_RANGE", "blind_range", 0, "int"),
-               ("MON_SPIKE", "spike", 0, "int"),
-               ("MON_LONG_FREEZE", "long_freeze", 0, "int"))
+               ("MON_SPIKE", "spike", 0, "int"))
     modes = max(int(m.get("modes", 1)), 1)
     return [("MON_M", m.get("M", []), (n + 1 + len(pairs), n, n), "real"),
             ("MON_LEV", m.get("lev", []), (n + 1 + len(pairs), n), "real"),
@@ -1164,10 +1163,7 @@ static void monitor_step(tc_state *s, double u[], double dt) {
     for (k = 0; k < NM; k++) {
         int frozen = same[k] && ((o[k] && fabs(other[k] - s->mon_run_pred[k]) >= s->mon_warn[k]
                                   && s->mon_run[k] >= MON_SEEN_RUN[k])
-                                 || (s->mon_run[k] > MON_BLIND_RUN[k]
-                                     && (!o[k] || (MON_LONG_FREEZE   /* (freeze92) past rounding */
-                                                   && fabs(other[k] - s->mon_run_pred[k])
-                                                      > 2 * MON_ROUNDING[k]))));
+                                 || (!o[k] && s->mon_run[k] > MON_BLIND_RUN[k]));
         if (!frozen || instant[k]) continue;
         instant[k] = 1;
         if (a[k]) mon_exclude(s, k, TC_MON_FREEZE);

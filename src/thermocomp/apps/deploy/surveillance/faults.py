@@ -136,15 +136,10 @@ class InstantFaults:
         for j in np.flatnonzero(self._frozen(same, self._run, moved)):
             if j in instant:
                 continue
-            why = f"freeze: {x[j]:.4g} °C for {self._run[j] + 1} samples"
-            if not self._observable[j]:
-                why += f" (longest constant run in training {self.longest_run[j]:.0f})"
-            elif moved[j] >= self._warn[j]:
-                why += f" while the field moved {moved[j]:.2g} °C"
-            else:
-                why += (f" (longest constant run in training {self.longest_run[j]:.0f}) while the "
-                        f"field moved {moved[j]:.2g} °C, past what its readings' rounding moves it "
-                        f"({2 * self.rounding_c[j]:.2g} °C)")
+            why = (f"freeze: {x[j]:.4g} °C for {self._run[j] + 1} samples while the field "
+                   f"moved {moved[j]:.2g} °C" if self._observable[j] else
+                   f"freeze: {x[j]:.4g} °C for {self._run[j] + 1} samples (longest constant "
+                   f"run in training {self.longest_run[j]:.0f})")
             instant[j] = why
             if self._active[j]:
                 self._exclude(j, why, time, events)
@@ -168,21 +163,9 @@ class InstantFaults:
 
     def _frozen(self, same: np.ndarray, run: np.ndarray, moved: np.ndarray) -> np.ndarray:
         """The freeze rule (module doc), for :meth:`_fast` and :meth:`_update` alike: ``same``
-        unchanged readings, ``run`` their constant-run lengths, ``moved`` the field's change
-        since the run began.  A reading constant longer than ``_blind_run`` (``freeze_factor``
-        times the longest constant run in training) is frozen where no other sensor predicts it,
-        and where others do, once their prediction of it has moved since the run began by more
-        than the readings' rounding can move it while its own reading holds (freeze92): twice
-        ``rounding_c``, its own reading's bin (the truth may move within it unseen) and each
-        other reading's rounding swinging by its whole digit, ``s_j q_j + sum_k |S_jk| q_k``.  WHY the long run
-        for a predicted sensor: fl_thermal's frozen ``T_t11``, its field moving 0.28 °C within
-        its 0.728 °C band, was never taken for frozen (held 555 samples, against 1 at most in
-        training; freeze90).  WHY the rounding: on a settled machine read to 0.1 K every healthy
-        sensor stays constant past its ``blind_run`` while its prediction moves by the others'
-        last digits alone (freeze91, tests/apps/test_monitor_rounding83.py): settled, not frozen."""
-        long = run > self._blind_run
+        unchanged readings, ``run`` their constant-run lengths, ``moved`` the field's change."""
         return same & ((self._observable & (moved >= self._warn) & (run >= self._seen_run))
-                       | (~self._observable & long) | (long & (moved > 2 * self.rounding_c)))
+                       | (~self._observable & (run > self._blind_run)))
 
     def _instant(self, x, d, step, finite, rng, big) -> dict[int, str]:
         """Reasons of the instant detectors that fire (dropout, out of range, jump)."""
