@@ -85,15 +85,13 @@ import shutil
 import sys
 from pathlib import Path
 
-import numpy as np
-
 HERE = Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE)]
-from _cli import run_commands  # noqa: E402
+from _cli import run_commands, seed_list  # noqa: E402
 from bench_audit89 import KINDS, QUIET, _costliest, _mean_rmse, _named, _traced  # noqa: E402
 from bench_deploy87 import stage  # noqa: E402
 from bench_mon88 import LONG  # noqa: E402
-from bench_mon91b import _copy_fed, _overrides, campaigns, labels_of, trace_sensor  # noqa: E402
+from bench_mon91b import _copy_fed, campaigns, first_crossing, labels_of, trace_sensor, windowed  # noqa: E402
 
 CYCLE = ("lr", "column", "swiss", "yearround")   # the brief's kinds with a blind sensor, its order
 FRESH = {seed: CYCLE[k % len(CYCLE)] for k, seed in enumerate(range(9396, 9406))}
@@ -111,9 +109,162 @@ def fresh() -> None:
         print(f"{seed} {kind:<10} {' '.join(sim)} {' '.join(extra)}".rstrip(), flush=True)
 
 
+class forced_out:
+    """In the ``with`` block the served ``SensorMonitor`` excludes each sensor of ``plan``
+    (``{sensor: [time or None per campaign streamed]}``) at its first sample at or after its time
+    in the k-th campaign it streams, and keeps it out (the reason names this bench).  A hook on
+    ``update`` alone: the monitor stage streams row by row, and ``update_block`` takes rows only
+    while every sensor is in."""
+
+    REASON = "drift beyond the band of its ridge on the others and the states (monb92 prototype)"
+
+    def __init__(self, plan: dict):
+        self.plan, self.k, self.fresh = plan, -1, False
+
+    def __enter__(self):
+        from thermocomp.apps.deploy.surveillance.monitor import SensorMonitor
+
+        self.cls, self.saved = SensorMonitor, (SensorMonitor.update, SensorMonitor.reset)
+        update, reset, hook = *self.saved, self
+
+        def hooked_reset(mon):
+            hook.fresh = True
+            return reset(mon)
+
+        def hooked_update(mon, reading, time=float("nan")):
+            if hook.fresh:              # the first sample of a campaign streamed
+                hook.k, hook.fresh = hook.k + 1, False
+            clean, events = update(mon, reading, time)
+            for sensor, times in hook.plan.items():
+                j = mon.names.index(sensor)
+                at = times[hook.k] if hook.k < len(times) else None
+                if at is not None and time >= at and mon._active[j]:
+                    mon._exclude(j, hook.REASON, time, events, by_field=True)
+            return clean, events
+
+        SensorMonitor.update, SensorMonitor.reset = hooked_update, hooked_reset
+        return self
+
+    def __exit__(self, *exc):
+        self.cls.update, self.cls.reset = self.saved
+        return False
+
+
+def _monitored(folder: Path, label: str, name: str, sensor: str, columns: list, plan=None):
+    """``monitor`` (the healthy run's model) on a copy of ``label`` whose test files read
+    ``columns`` as ``sensor``, the sensors of ``plan`` forced out (:class:`forced_out`; None:
+    nothing forced)."""
+    out = folder / "reports" / label
+    copy = _copy_fed(folder, label, name, sensor, columns)
+    args = ("monitor", f"data.path={copy}", f"out={out / ('monb92-' + name)}", *QUIET,
+            *_overrides(label), f"monitor.model={out / 'run' / 'model.pkl'}")
+    if plan is None:
+        rc, said = stage(*args)
+    else:
+        with forced_out(plan):
+            rc, said = stage(*args)
+    shutil.rmtree(copy)
+    if rc:
+        return {"note": f"monitor exit {rc}: {said[:200]}"}
+    got = json.loads((out / f"monb92-{name}" / "monitor.json").read_text())
+    named = [e for e in got["events"] if sensor in _named(e)]
+    return {"rmse_fixed": _mean_rmse(got, "rmse_fixed"), "rmse_adaptive": _mean_rmse(got, "rmse_adaptive"),
+            "events": len(named), "first_event": _traced(named[0]) if named else "",
+            "all_events": len(got["events"])}
+
+
+def _overrides(label: str) -> tuple:
+    """The data overrides a record ``label`` is run with: a long record's (bench_mon88's)."""
+    return ("data.reference=none",) if label.startswith("lr") else ()
+
+
+def _healthy_times(frame, first: int, part: dict) -> float | None:
+    """The time B's band is first crossed on the HEALTHY test part (None: never)."""
+    residual = (part["truth"] - part["estimate"])[first:]
+    hit = first_crossing(windowed(residual), part["band"])
+    return None if hit is None else float(frame["time"].iloc[first + hit])
+
+
+def _b_parts(train, test, sensor: str) -> tuple[list[dict], dict]:
+    """B's trace of ``sensor`` (mon91b's ``trace_sensor``), each part given its truth and band."""
+    row = trace_sensor(train, test, sensor, "B")
+    for (frame, _), p in zip(test, row["parts"]):
+        p["truth"], p["band"] = frame[sensor].to_numpy(float), row["band_rule"]
+    return row["parts"], row
+
+
+def served(root: str, records: str) -> None:
+    """The served stream with B's exclusion forced at its offline crossing (module doc) ->
+    ROOT/servedb92.json."""
+    folder = Path(root).resolve()
+    os.environ["THERMOCOMP_ROOT"] = str(folder)
+    rows = []
+    print(f"{'record':<14}{'sensor':<20}{'case':<14}{'fixed':>9}{'adaptive':>9}{'events':>7}{'all':>5}"
+          "  B's crossing (h after the fault) / the first event naming the sensor", flush=True)
+    for label in labels_of(folder, records):
+        mon = json.loads((folder / "reports" / label / "monitor" / "monitor.json").read_text())
+        train, test = campaigns(folder, label)
+        blind = [s for s, v in mon["sensors"].items() if not v["observable"]]
+        # healthy: B's crossings of every blind sensor on the true readings (a new event each)
+        false = {}
+        for s in blind:
+            parts, _ = _b_parts(train, test, s)
+            times = [_healthy_times(f, first, p) for (f, first), p in zip(test, parts)]
+            if any(t is not None for t in times):
+                false[s] = times
+        sensor = _costliest(mon)
+        if label == "fl_thermal" or mon["sensors"][sensor]["observable"]:
+            sensor = blind[0] if blind else None
+        if sensor is None:
+            print(f"{label:<14}no blind sensor", flush=True)
+            continue
+        parts, _ = _b_parts(train, test, sensor)
+        times = [None if p["row_rule"] is None else float(f["time"].iloc[p["row_rule"]])
+                 for (f, _), p in zip(test, parts)]
+        truth = [p["truth"] for p in parts]
+        drifted = [p["drifted"] for p in parts]
+        said = ", ".join("-" if d is None else f"{d:.1f}" for d in (p["delay_rule"] for p in parts))
+        cases = [("truth", truth, None), ("drift", drifted, None)]
+        if any(t is not None for t in times):
+            cases += [("drift+B-out", drifted, {sensor: times}), ("truth+B-out", truth, {sensor: times})]
+        if false:
+            cases.append(("truth+B-false", truth, false))
+        for name, columns, plan in cases:
+            r = {"record": label, "sensor": sensor, "case": name, "crossing_h": said, "blind": blind,
+                 "false": {s: t for s, t in false.items()}, "plan": plan,
+                 **_monitored(folder, label, name.replace("+", "_"), sensor, columns, plan)}
+            rows.append(r)
+            if "note" in r:
+                print(f"{label:<14}{sensor:<20}{name:<14}{r['note']}", flush=True)
+                continue
+            print(f"{label:<14}{sensor:<20}{name:<14}{r['rmse_fixed']:>9.4f}{r['rmse_adaptive']:>9.4f}"
+                  f"{r['events']:>7}{r['all_events']:>5}  {said if name.startswith('drift') else ''} "
+                  f"{r['first_event'][:60]}", flush=True)
+        print(f"{label:<14}blind {len(blind)}: healthy crossings {sorted(false) or 'none'}", flush=True)
+    (folder / "servedb92.json").write_text(json.dumps(rows, indent=1))
+
+
+def draw(root: str, seeds: str) -> None:
+    """The bar's fresh records (:data:`FRESH`, seeds of it) drawn healthy into ROOT (made anew):
+    ``simulate`` -> ``run model=mlr`` -> ``monitor``, each with its kind's overrides."""
+    from bench_mon88 import _drawn, _root
+
+    folder = _root(root)
+    for seed in seed_list(seeds):
+        kind = FRESH[seed]
+        sim, extra = generator(kind)
+        label = f"{kind}{seed}"
+        data, out = _drawn(label, seed, sim, folder), folder / "reports" / label
+        model = f"monitor.model={out / 'run' / 'model.pkl'}"
+        for name, more in (("run", ["model=mlr"]), ("monitor", [model])):
+            rc, said = stage(name, f"data.path={data}", f"out={out / name}", *QUIET, *extra, *more)
+            assert rc == 0, said
+        print(f"{label}: drawn, run, monitored", flush=True)
+
+
 def main(argv: list[str] | None = None) -> int:
-    return run_commands(__doc__, {"fresh": fresh}, sys.argv[1:] if argv is None else argv,
-                        cpu=sys.stderr)
+    return run_commands(__doc__, {"draw": draw, "served": served, "fresh": fresh},
+                        sys.argv[1:] if argv is None else argv, cpu=sys.stderr)
 
 
 if __name__ == "__main__":
