@@ -85,6 +85,8 @@ import shutil
 import sys
 from pathlib import Path
 
+import pandas as pd
+
 HERE = Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE)]
 from _cli import run_commands, seed_list  # noqa: E402
@@ -150,10 +152,12 @@ class forced_out:
         return False
 
 
-def _monitored(folder: Path, label: str, name: str, sensor: str, columns: list, plan=None):
+def _monitored(folder: Path, label: str, name: str, sensor: str, columns: list, plan=None,
+               faults: dict | None = None):
     """``monitor`` (the healthy run's model) on a copy of ``label`` whose test files read
     ``columns`` as ``sensor``, the sensors of ``plan`` forced out (:class:`forced_out`; None:
-    nothing forced)."""
+    nothing forced); ``faults``: ``{campaign: the fault's time}`` (the events naming the sensor
+    from then on are counted ``after``: a detection)."""
     out = folder / "reports" / label
     copy = _copy_fed(folder, label, name, sensor, columns)
     args = ("monitor", f"data.path={copy}", f"out={out / ('monb92-' + name)}", *QUIET,
@@ -170,7 +174,9 @@ def _monitored(folder: Path, label: str, name: str, sensor: str, columns: list, 
     named = [e for e in got["events"] if sensor in _named(e)]
     return {"rmse_fixed": _mean_rmse(got, "rmse_fixed"), "rmse_adaptive": _mean_rmse(got, "rmse_adaptive"),
             "events": len(named), "first_event": _traced(named[0]) if named else "",
-            "all_events": len(got["events"])}
+            "all_events": len(got["events"]),
+            "after": {c: sum(e.get("campaign") == c and e["time"] >= t for e in named)
+                      for c, t in (faults or {}).items()}}
 
 
 def _overrides(label: str) -> tuple:
@@ -199,8 +205,8 @@ def served(root: str, records: str) -> None:
     folder = Path(root).resolve()
     os.environ["THERMOCOMP_ROOT"] = str(folder)
     rows = []
-    print(f"{'record':<14}{'sensor':<20}{'case':<14}{'fixed':>9}{'adaptive':>9}{'events':>7}{'all':>5}"
-          "  B's crossing (h after the fault) / the first event naming the sensor", flush=True)
+    print(f"{'record':<14}{'sensor':<20}{'case':<14}{'fixed':>9}{'adaptive':>9}{'events':>7}{'all':>5}{'after':>8}"
+          " B's crossing (h after the fault) / the first event naming the sensor", flush=True)
     for label in labels_of(folder, records):
         mon = json.loads((folder / "reports" / label / "monitor" / "monitor.json").read_text())
         train, test = campaigns(folder, label)
@@ -213,14 +219,18 @@ def served(root: str, records: str) -> None:
             if any(t is not None for t in times):
                 false[s] = times
         sensor = _costliest(mon)
-        if label == "fl_thermal" or mon["sensors"][sensor]["observable"]:
-            sensor = blind[0] if blind else None
-        if sensor is None:
-            print(f"{label:<14}no blind sensor", flush=True)
+        if label == "fl_thermal" or mon["sensors"][sensor]["observable"] or not blind:
+            # fl's costliest sensor is predicted (and its record no manifest): healthy only
+            rows.append({"record": label, "blind": blind, "false": false})
+            print(f"{label:<14}blind {len(blind)}: healthy crossings {sorted(false) or 'none'}",
+                  flush=True)
             continue
         parts, _ = _b_parts(train, test, sensor)
         times = [None if p["row_rule"] is None else float(f["time"].iloc[p["row_rule"]])
                  for (f, _), p in zip(test, parts)]
+        manifest = pd.read_csv(folder / "data" / label / "campaigns.csv")
+        tests = list(manifest.loc[manifest["split"] == "test", "campaign"])
+        faults = {c: float(f["time"].iloc[p["mid"]]) for c, (f, _), p in zip(tests, test, parts)}
         truth = [p["truth"] for p in parts]
         drifted = [p["drifted"] for p in parts]
         said = ", ".join("-" if d is None else f"{d:.1f}" for d in (p["delay_rule"] for p in parts))
@@ -232,13 +242,14 @@ def served(root: str, records: str) -> None:
         for name, columns, plan in cases:
             r = {"record": label, "sensor": sensor, "case": name, "crossing_h": said, "blind": blind,
                  "false": {s: t for s, t in false.items()}, "plan": plan,
-                 **_monitored(folder, label, name.replace("+", "_"), sensor, columns, plan)}
+                 **_monitored(folder, label, name.replace("+", "_"), sensor, columns, plan, faults)}
             rows.append(r)
             if "note" in r:
                 print(f"{label:<14}{sensor:<20}{name:<14}{r['note']}", flush=True)
                 continue
             print(f"{label:<14}{sensor:<20}{name:<14}{r['rmse_fixed']:>9.4f}{r['rmse_adaptive']:>9.4f}"
-                  f"{r['events']:>7}{r['all_events']:>5}  {said if name.startswith('drift') else ''} "
+                  f"{r['events']:>7}{r['all_events']:>5}{sum(v > 0 for v in r['after'].values()):>4}/"
+                  f"{len(r['after']):<3}{said if name.startswith('drift') else ''} "
                   f"{r['first_event'][:60]}", flush=True)
         print(f"{label:<14}blind {len(blind)}: healthy crossings {sorted(false) or 'none'}", flush=True)
     (folder / "servedb92.json").write_text(json.dumps(rows, indent=1))
