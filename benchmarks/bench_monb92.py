@@ -5,6 +5,7 @@ Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is
 
     python benchmarks/bench_audit89.py healthy ROOT RECORDS  # first: simulate, run, monitor, healthy
     python benchmarks/bench_mon91b.py rooms ROOT SEEDS       # or: bench_mon88's long records, healthy
+    python benchmarks/bench_monb92.py draw ROOT SEEDS        # or: the bar's fresh records, healthy
     python benchmarks/bench_monb92.py served ROOT RECORDS    # the served stream, B's exclusion forced
     python benchmarks/bench_monb92.py fresh                  # the bar's seeds and their generators
 
@@ -28,8 +29,14 @@ refitted without it, ``monitor.fallbacks=unobservable``, :mod:`thermocomp.apps.d
 gives the correction, else its last good reading is held.  Cases: ``truth``; ``drift`` (main:
 the drift read); ``drift+B-out`` (the rule's exclusion, the fallback's correction);
 ``truth+B-out`` (the same exclusion on the HEALTHY copy at the drifted copy's crossing row: the
-cost of a false alarm there).  RMSE fixed / adaptive (mean over targets, um), the events naming
-the sensor.  -> ``ROOT/servedb92.json``.
+cost of a false alarm there); ``truth+B-false`` where B crosses on a healthy test part (any blind
+sensor of the record: each such crossing a new event), those sensors forced out there.  RMSE
+fixed / adaptive (mean over targets, um), the events naming the sensor, all events, the test
+campaigns with an event naming it at or after the fault's time.  ``fl_thermal`` (no manifest,
+its costliest sensor predicted): the healthy crossings only.  -> ``ROOT/servedb92.json``.
+
+``draw``: :data:`FRESH`'s seeds (``9396-9405``) drawn healthy into ROOT (made anew):
+``simulate`` (the kind's generator, :func:`generator`) -> ``run model=mlr`` -> ``monitor``.
 
 ``fresh``: prints the bar's fresh records (:data:`FRESH`), nothing run.
 
@@ -75,6 +82,65 @@ healthy: no new event on any of the 10, nor on bench_mon88's seen healthy rows (
 datasets/fl_thermal; served RMSE on every healthy row identical to main's; monitor / export /
 replay tests + tests/test_readme.py pass; a check pack of a B-carrying export passes or the export
 is refused with a clear message.
+(After the bar and before the fresh draw the bench gained ``draw`` and the healthy crossings of
+EVERY blind sensor in ``served``, and the detection count became "an event naming the sensor at
+or after the fault's time in a test campaign": measurement, not the bar's numbers.)
+
+Measured (2026-12-05, src = main 2b918bfd, the rule a bench prototype: no src change).  Seen
+(bench_audit89 ``healthy`` reproduces audit89 to the digit, col9316 9.4267 ...; bench_mon88's
+9196-9205 drawn healthy; fl): adaptive RMSE um, main -> B's exclusion (the fallback's correction)
+-> mon91b's B estimate written into the data (its fixed figure):
+
+| record | sensor | truth | drift (main) | drift+B-out | mon91b estimate | truth+B-out (false alarm) |
+|---|---|---|---|---|---|---|
+| col9316 | T_front3 | 9.427 | 12.974 | 11.145 | 11.144 | 9.616 (+2.0 %; estimate: +17 %) |
+| col9322 | T_front3 | 8.546 | 13.302 | 10.444 | 10.482 | 8.654 (+1.3 %; estimate: +28 %) |
+| swiss9317 | T_nc_spindle_motor | 1.640 | 1.892 | 1.872 | 1.872 | 1.640 |
+| yr9324 | T_amb (1 of 8 parts) | 3.105 | 3.765 | 3.645 | 3.646 | 3.086 |
+| lr9196 | T_table | 1.045 | 9.457 | 1.876 | 1.821 | 0.993 |
+| lr9197 | T_table | 1.763 | 6.987 | 2.677 | 1.756 | 2.695 (+53 %) |
+| lr9198 | T_spindle_front | 1.851 | 6.354 | 2.572 | 2.198 | 1.942 |
+| lr9199 | T_table | 0.988 | 8.737 | 3.574 | 3.064 | 1.377 |
+| lr9200 | T_spindle_front | 1.293 | 6.228 | 2.321 | 2.187 | 1.311 |
+
+Not found: swiss9323, yr9318 (0 of 8), cr9201-9205 (the drift <= 1 degC in 3-4 h).  Healthy: no
+crossing of any blind sensor on the 54 seen blind sensor-records (audit89's six 10, fl 3,
+bench_mon88's 41): the served stream there is main's to the bit.  So the served rule needs NO
+estimate in place of ``_last_good``: the exclusion alone hands the correction to the fallback
+family, which takes back as much of the drift as the estimate on the column and swiss
+(11.145 / 10.444 against 11.144 / 10.482) and costs a false alarm on the column +1-2 % where the
+estimate costs +17 / +28 %; on long records the estimate is the better input (1.76-3.06 against
+1.88-3.57 um).
+
+Fresh 9396-9405 (drawn after the bar, e32ebd8e; scored once, nothing changed after; adaptive RMSE
+um; the healthy column: the truth's RMSE with B's false exclusions forced):
+
+| record | sensor | truth | drift (main) | drift+B-out | main finds | B finds (h after) | healthy: crossings |
+|---|---|---|---|---|---|---|---|
+| lr9396 | T_table | 0.545 | 4.197 | 4.197 | yes | yes, 6.7 (main first) | none |
+| column9397 | T_front3 | 14.148 | 18.663 | 17.209 | no | yes, 13.7 | T_front3, T_amb: -> 13.923 |
+| swiss9398 | T_nc_spindle_motor | 1.572 | 1.539 | 1.543 (+0.28 %) | no | yes, 11.1 | none |
+| yr9399 | T_amb | 2.868 | 3.014 | - | no | no (0 of 8) | none |
+| lr9400 | T_table | 1.652 | 5.282 | 4.978 | yes | yes, 5.9 | none |
+| column9401 | T_front3 | 9.595 | 15.825 | 11.265 | no | yes, 11.8 | T_front3, T_amb: -> 11.557 (+20 %) |
+| swiss9402 | T_nc_spindle_motor | 1.232 | 1.248 | 1.220 | no | yes, 6.8 | none |
+| yr9403 | T_amb | 2.981 | 3.443 | - | no | no (0 of 8) | none |
+| lr9404 | T_table | 0.629 | 10.414 | 7.126 | no | yes, 5.6 | T_col_front_top: -> 0.631 |
+| column9405 | T_front3 | 9.182 | 13.533 | 10.947 | no | yes, 15.7 | none |
+
+Against the bar: detected on 6 of the 8 records where main detects nothing (>= 5: met); a drifted
+row worse than main's: swiss9398 1.5391 -> 1.5434 (+0.28 %: failed); healthy: new events on 3 of
+10 (column9397, column9401, lr9404: failed), none on bench_mon88's seen rows nor fl (met).  The
+healthy crossings lie where B's inputs leave their training range (at the crossing 24-44 % of
+B's inputs beyond it on the column, against a median 5-8 % over the part; lr9404 63 %) and on
+the column's ``T_amb`` B predicts worse than its mean (CV R2 -0.67 / -1.25, band 12-14 degC,
+the healthy part's windowed residual reaching 14-26 degC).  Fixed RMSE is main's in every row
+(the fixed compensator reads no monitor).
+
+Verdict: TRACED -- the rule, prototyped in the served stream (B's exclusion at its causal
+crossing, the fallback family taking over), FAILS its bar on the fresh seeds (3 of 10 healthy
+records gain events, one drifted row +0.28 %); no src change, fresh 9396-9405 spent on this
+score.  CPU: ``served`` 15-29 s a set (4-5 monitor stages a record), ``draw`` 17 s for the ten.
 """
 
 from __future__ import annotations
@@ -205,7 +271,8 @@ def served(root: str, records: str) -> None:
     folder = Path(root).resolve()
     os.environ["THERMOCOMP_ROOT"] = str(folder)
     rows = []
-    print(f"{'record':<14}{'sensor':<20}{'case':<14}{'fixed':>9}{'adaptive':>9}{'events':>7}{'all':>5}{'after':>8}"
+    print(f"{'record':<14}{'sensor':<20}{'case':<14}{'fixed':>9}{'adaptive':>9}{'events':>7}{'all':>5}"
+          f"{'after':>8}"
           " B's crossing (h after the fault) / the first event naming the sensor", flush=True)
     for label in labels_of(folder, records):
         mon = json.loads((folder / "reports" / label / "monitor" / "monitor.json").read_text())
