@@ -47,7 +47,7 @@ What the served monitor does today (read on 2b918bfd, the brief's part 1):
   NaN error scale (never judged, no band: ``_scale``), ``_predictable`` (every sensor in) is the
   same test with all in.  Bands: ``from_training`` -> ``max(warning_c, spread_factor x
   spread)`` per sensor, spread the 99.5th percentile of the windowed leave-one-out POD error
-  (NaN -> 0 for a blind sensor: its band is the configured 0.4 / 0.8 degC, never read);
+  (a blind sensor has one too, never read: its error scale is NaN, so no band bounds its drift);
   ``_bands_of`` rescales a sensor's floor for the active set (mon86).
 * An excluded sensor's input: its POD reconstruction where predictable, else ``_last_good``
   (its last referenced reading while in; ``_fast`` / ``_update``); but in the adaptive
@@ -105,7 +105,10 @@ Measured (2026-12-05, src = main 2b918bfd, the rule a bench prototype: no src ch
 
 Not found: swiss9323, yr9318 (0 of 8), cr9201-9205 (the drift <= 1 degC in 3-4 h).  Healthy: no
 crossing of any blind sensor on the 54 seen blind sensor-records (audit89's six 10, fl 3,
-bench_mon88's 41): the served stream there is main's to the bit.  So the served rule needs NO
+bench_mon88's 41): the served stream there is main's to the bit.  Once B's exclusion is in, the
+fallback family gives the correction on every row after it (counted by a hook on
+``AdaptiveCompensator._fallen_back``: col9316 219 rows, lr9196 281, fresh swiss9398 53; every
+blind sensor of these records has one).  So the served rule needs NO
 estimate in place of ``_last_good``: the exclusion alone hands the correction to the fallback
 family, which takes back as much of the drift as the estimate on the column and swiss
 (11.145 / 10.444 against 11.144 / 10.482) and costs a false alarm on the column +1-2 % where the
@@ -159,7 +162,15 @@ from _cli import run_commands, seed_list  # noqa: E402
 from bench_audit89 import KINDS, QUIET, _costliest, _mean_rmse, _named, _traced  # noqa: E402
 from bench_deploy87 import stage  # noqa: E402
 from bench_mon88 import LONG  # noqa: E402
-from bench_mon91b import _copy_fed, campaigns, first_crossing, labels_of, trace_sensor, windowed  # noqa: E402
+from bench_mon91b import (  # noqa: E402
+    _copy_fed,
+    campaigns,
+    drawn_run_monitored,
+    first_crossing,
+    labels_of,
+    trace_sensor,
+    windowed,
+)
 
 CYCLE = ("lr", "column", "swiss", "yearround")   # the brief's kinds with a blind sensor, its order
 FRESH = {seed: CYCLE[k % len(CYCLE)] for k, seed in enumerate(range(9396, 9406))}
@@ -325,20 +336,12 @@ def served(root: str, records: str) -> None:
 def draw(root: str, seeds: str) -> None:
     """The bar's fresh records (:data:`FRESH`, seeds of it) drawn healthy into ROOT (made anew):
     ``simulate`` -> ``run model=mlr`` -> ``monitor``, each with its kind's overrides."""
-    from bench_mon88 import _drawn, _root
+    from bench_mon88 import _root
 
     folder = _root(root)
     for seed in seed_list(seeds):
-        kind = FRESH[seed]
-        sim, extra = generator(kind)
-        label = f"{kind}{seed}"
-        data, out = _drawn(label, seed, sim, folder), folder / "reports" / label
-        model = f"monitor.model={out / 'run' / 'model.pkl'}"
-        for name, more in (("run", ["model=mlr"]), ("monitor", [model])):
-            rc, said = stage(name, f"data.path={data}", f"out={out / name}", *QUIET, *extra, *more)
-            assert rc == 0, said
-        print(f"{label}: drawn, run, monitored", flush=True)
-
+        sim, extra = generator(FRESH[seed])
+        drawn_run_monitored(folder, f"{FRESH[seed]}{seed}", seed, sim, extra)
 
 def main(argv: list[str] | None = None) -> int:
     return run_commands(__doc__, {"draw": draw, "served": served, "fresh": fresh},
