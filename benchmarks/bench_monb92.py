@@ -140,6 +140,14 @@ the column's ``T_amb`` B predicts worse than its mean (CV R2 -0.67 / -1.25, band
 the healthy part's windowed residual reaching 14-26 degC).  Fixed RMSE is main's in every row
 (the fixed compensator reads no monitor).
 
+After the score (all 20 records now seen; nothing re-scored, no bar moved): no simple guard
+separates the healthy crossings from the found drifts.  A CV R2 > 0 floor drops the column's two
+``T_amb`` crossings but not ``T_front3`` (CV R2 0.52 / 0.72: the healthy part's windowed residual
+7.53 / 5.92 against bands 7.45 / 5.78, a 1-2 % margin) nor lr9404 ``T_col_front_top`` (CV R2 0.99,
+band 0.49 degC); withholding judgement while B's inputs leave the training range would drop them
+and also every long-record find (at the find 79-84 % of the inputs beyond it on lr9196 / 9198 /
+9199 / 9200 / 9396; false crossings 23-63 %).
+
 Verdict: TRACED -- the rule, prototyped in the served stream (B's exclusion at its causal
 crossing, the fallback family taking over), FAILS its bar on the fresh seeds (3 of 10 healthy
 records gain events, one drifted row +0.28 %); no src change, fresh 9396-9405 spent on this
