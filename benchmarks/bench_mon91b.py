@@ -351,18 +351,25 @@ def rooms(root: str, seeds: str) -> None:
     """bench_mon88's fresh records (``FRESH``: 9196-9200 long records, R1b continuing R1a, 9201-9205
     climate rooms) drawn HEALTHY (nothing planted) into ROOT (made anew): ``run model=mlr`` ->
     ``monitor`` (its overrides); then ``trace ROOT all`` traces them."""
-    from bench_mon88 import FRESH, _drawn, _root
+    from bench_mon88 import FRESH, _root
 
     folder = _root(root)
     for seed in seed_list(seeds):
         kind, sim, extra = FRESH[seed]
-        label = f"{kind}{seed}"
-        data, out = _drawn(label, seed, sim, folder), folder / "reports" / label
-        model = f"monitor.model={out / 'run' / 'model.pkl'}"
-        for name, more in (("run", ["model=mlr"]), ("monitor", [model])):
-            rc, said = stage(name, f"data.path={data}", f"out={out / name}", *QUIET, *extra, *more)
-            assert rc == 0, said
-        print(f"{label}: drawn, run, monitored", flush=True)
+        drawn_run_monitored(folder, f"{kind}{seed}", seed, sim, extra)
+
+
+def drawn_run_monitored(folder: Path, label: str, seed: int, sim: tuple, extra: tuple) -> None:
+    """``simulate seed=<seed> <sim>`` into ``folder/data/label`` -> ``run model=mlr`` ->
+    ``monitor`` (the run's model), each with the data overrides ``extra``."""
+    from bench_mon88 import _drawn
+
+    data, out = _drawn(label, seed, sim, folder), folder / "reports" / label
+    model = f"monitor.model={out / 'run' / 'model.pkl'}"
+    for name, more in (("run", ["model=mlr"]), ("monitor", [model])):
+        rc, said = stage(name, f"data.path={data}", f"out={out / name}", *QUIET, *extra, *more)
+        assert rc == 0, said
+    print(f"{label}: drawn, run, monitored", flush=True)
 
 
 def trace(root: str, records: str) -> None:
