@@ -1,0 +1,236 @@
+"""The exported C with one, two or three sensors out at once (cmon92, issue 34): C against the served
+model per row, and where they part, whether the C's monitor says so (a ``NOT_IN_CODE`` flag).
+
+Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is that tree's)::
+
+    python benchmarks/bench_cmon92.py trace ROOT RECORD CELLS [SIZES]
+    python benchmarks/bench_cmon92.py fresh ROOT [RECORD ...]
+
+``trace``: each cell of ``CELLS`` (comma-separated, e.g. ``mlr-none,arx-none``: a folder
+``ROOT/reports/RECORD/CELL`` with its ``model.pkl``; ``ROOT/data/RECORD`` the record, as
+bench_deploy89's ``sweep`` leaves them), deployed as ``export`` deploys it (bench_cmon91's
+``deployed_cell``: fallbacks fitted at deploy build), its first test campaign streamed after its
+lead-in through the served model and through the numpy mirror of the exported C
+(:class:`Simulator`, the code's monitor in it) up to a quarter of the campaign; from there, per
+case, copies of both states stepped over a copy of the next rows with a fault planted on every
+sensor of a set of monitored sensors AT ONCE, from that row: ``spike`` (each read
+:data:`SPIKE_C` high for :data:`SPIKE_ROWS` samples: bench_cmon91's spike) and ``freeze`` (each
+held at its reading of the first planted row for :data:`FREEZE_ROWS` samples, then read again);
+each case :data:`AFTER` rows past the fault's end.  Sets: every single sensor, every pair, and
+the triples of :func:`triples` (``SIZES``: the set sizes, default ``1,2,3``).  Per (cell, size,
+kind) the cases counted: ``same`` C = served on every row (the pack's tolerance); ``flagged``
+they part and the code's monitor flagged ``NOT_IN_CODE`` at the first parting row or before it
+in the case (the pack's cut names the rule); ``silent`` they part and nothing was flagged
+before or at that row; ``fb`` cases where the served correction was a fallback's on some row;
+``outs`` the most sensors the served monitor had out at once (max over the cases).  Then each
+silent case (cell, kind, sensors, first parting row, |C - served| there, the rows the served
+model was on a fallback, the code's ``serving`` set there).
+
+``fresh``: the same on fresh records (bench_cmon91's generators, seeds of :data:`FRESH`: lr / dl /
+cr / lr / dl as cmon91 drew them; each simulated once under ``ROOT/data``, ``run`` of each family of
+:data:`CELLS` once under ``ROOT/reports/RECORD/<family>-none``, bench_deploy88's settings: arx_rf
+10 trees on ``S_spindle_rpm``), every cell traced as ``trace`` does (sizes 1, 2, 3).  Before the
+faults, the healthy rows up to a quarter of the test campaign (the lead-in and the first quarter)
+are checked C = served (the bench stops where they part).
+
+What the trace compares is the numpy mirror of the exported C (the pack's reference, whose
+compiled C each check pack checks against it): per case a compiled C would be a build per case.
+
+The contract asked (the brief): the C equals served, or it says that it does not (a
+``NOT_IN_CODE`` flag: the check pack cuts there with the rule named, the machine's integration
+sees the flag word); never a silent divergence.
+
+The bar (written before any fresh record was simulated; seeds 9496-9500 never run before; the
+contract, not a rule, is scored: the trace on the seen lr9212 found no silent case, below)::
+
+1. Fresh 9496-9500, cells mlr, arx, lagbank, arx_rf (``-none``), sizes 1, 2 and 3, spike and
+   freeze: ``silent`` = 0 in every row of the table (every case where the C parts from served is
+   flagged ``NOT_IN_CODE`` at or before its first parting row), and the healthy rows before the
+   faults C = served (the bench asserts it).
+2. Single sensors (size 1): ``same`` = ``cases`` (the code holds one out of every kind planted,
+   cmon83-cmon91, fallbacks included).
+If 1 and 2 hold: TRACED-clean, the contract holds as main is (no rule: the code flags what it
+does not hold; making it hold two or three sensors jumping at once is a rule of its own, below).
+If a silent case appears: TRACED with the case named (the next rule: flag it, or hold it), src
+as on main (no time for a rule scored on its own fresh seeds by the deadline).
+"""
+
+from __future__ import annotations
+
+import copy
+import itertools
+import sys
+from pathlib import Path
+
+import numpy as np
+
+HERE = Path(__file__).resolve().parent
+sys.path[:0] = [str(HERE)]
+from _cli import run_commands  # noqa: E402
+from bench_audit86b import stage  # noqa: E402
+from bench_cmon91 import deployed_cell  # noqa: E402
+from bench_deploy88 import FAMILIES, LONG, day_files, extra_of  # noqa: E402
+
+FRESH = {      # bench_cmon91's generators (lr / dl / cr / lr / dl), chosen before any was simulated
+    "lr9496": [*LONG, "seed=9496", "sim.generator.duration_days=3.0"],
+    "dl9497": [*LONG, "seed=9497", "sim.generator.duration_days=5.0"],
+    "cr9498": ["sim=climate_room", "seed=9498", "sim.generator.n_runs=12",
+               "sim.generator.duration_h=[3.0,4.0]", "sim.generator.test_fraction=0.25"],
+    "lr9499": [*LONG, "seed=9499", "sim.generator.duration_days=3.0"],
+    "dl9500": [*LONG, "seed=9500", "sim.generator.duration_days=5.0"],
+}
+CELLS = ("mlr", "arx", "lagbank", "arx_rf")
+
+SPIKE_C, SPIKE_ROWS = 5.0, 10      # bench_cmon91's planted spike (lr9212's T_motor, +4.98 °C)
+FREEZE_ROWS = 60                   # a freeze: longer than every blind_run (10) and seen_run
+AFTER = 60                         # rows stepped past the fault's end: re-admission windows (10)
+N_TRIPLES = 40                     # triples beyond those of the fallback sensors, drawn (seed 92)
+
+
+def triples(names: list[str], falls: list[str]) -> list[tuple[str, ...]]:
+    """Every triple of sensors with a fallback (``falls``), and :data:`N_TRIPLES` others drawn
+    from all triples with a fixed seed (92) chosen before any was run."""
+    own = list(itertools.combinations(falls, 3))
+    rest = [c for c in itertools.combinations(names, 3) if c not in own]
+    pick = np.random.default_rng(92).choice(len(rest), min(N_TRIPLES, len(rest)), replace=False)
+    return own + [rest[k] for k in sorted(pick)]
+
+
+def planted(frame, start: int, sensors: tuple[str, ...], kind: str):
+    """``frame``'s rows from ``start`` with ``sensors`` spiked or frozen at once (module doc)."""
+    rows = SPIKE_ROWS if kind == "spike" else FREEZE_ROWS
+    part = frame.iloc[start:start + rows + AFTER].copy()
+    for s in sensors:
+        col = part.columns.get_loc(s)
+        if kind == "spike":
+            part.iloc[:rows, col] += SPIKE_C
+        else:
+            part.iloc[:rows, col] = part.iloc[0, col]
+    return part
+
+
+class Stepped:
+    """The served model and the code's arithmetic stepped together over a frame's rows."""
+
+    def __init__(self, deployed, ss):
+        from thermocomp.apps.deploy.export import Simulator
+
+        self.served, self.sim, self.ss = deployed, Simulator(ss), ss
+        self.sim.reset()
+        deployed.reset()
+
+    def rows(self, part):
+        """Per row ``(C, served C, code's flags, rule missed, served fallback, served out count,
+        code's serving set)`` of ``part``'s rows from the states they are in."""
+        from thermocomp.apps.deploy.export.pack import corrections
+
+        served, sim, ss = self.served, self.sim, self.ss
+        X = part[served.columns_].to_numpy(float)
+        U, t = part[ss.inputs].to_numpy(float), part["time"].to_numpy(float)
+        mon = served.monitor
+        for i in range(len(part)):
+            read = X[i] if served._mon_all else X[i, served._mon]
+            y = served._step(X[i], t[i])[0]
+            fell = served._fallen_back(read)
+            c = sim.step(U[i], t[i])
+            w = sim.watch
+            yield (c, corrections(ss, y[None, :])[0], w.flags, w.missed, fell,
+                   int((~mon._active).sum()), sim.serving)
+
+
+def trace_cell(root: Path, record: str, cell: str, sizes: list[int], out: list) -> None:
+    """One cell's table rows (module doc) appended to ``out``; its silent cases printed."""
+    from thermocomp.apps.deploy.export import state_space
+    from thermocomp.apps.deploy.export.pack import beyond, fed
+    from thermocomp.apps.deploy.export.watch import NOT_IN_CODE, REASONS
+    from thermocomp.apps.deploy.report import plain
+    from thermocomp.shell.stages.export import lead_ins
+
+    deployed, ds, _, test_ids = deployed_cell(root, record, root / "reports" / record / cell / "model.pkl")
+    ss = state_space(deployed, monitor=True)
+    names = list(deployed.monitor.names)
+    falls = list(deployed.fallbacks_)
+    cid = test_ids[0]
+    leads = lead_ins(plain(deployed).compensator, ds, [cid])
+    frame = fed(ds.campaigns[cid], leads.get(cid))
+    lead = len(frame) - len(ds.campaigns[cid])
+    start = lead + (len(frame) - lead) // 4
+    base = Stepped(deployed, ss)
+    for c, want, *_ in base.rows(frame.iloc[:start]):
+        assert not beyond(c, want).any(), f"{cell}: C and served part before the faults"
+    sets = {1: [(s,) for s in names], 2: list(itertools.combinations(names, 2)),
+            3: triples(names, falls)}
+    print(f"{cell}: fallbacks {falls}, fallback_set "
+          f"{[k for k, f in zip(ss.monitor['fallback_set'], ss.monitor['fallback']) if f]}, "
+          f"{len(names)} monitored, min_active {ss.monitor['min_active']}; faults from test row "
+          f"{start - lead + 1} of {cid}", flush=True)
+    for size in sizes:
+        for kind in ("spike", "freeze"):
+            tally = {"same": 0, "flagged": 0, "silent": 0, "fb": 0, "outs": 0}
+            for sensors in sets[size]:
+                run = copy.deepcopy(base)
+                part = planted(frame, start, sensors, kind)
+                first_flag = parted = None
+                fb = False
+                for i, (c, want, flags, missed, fell, outs, serving) in enumerate(run.rows(part)):
+                    fb = fb or fell is not None
+                    tally["outs"] = max(tally["outs"], outs)
+                    if first_flag is None and flags & NOT_IN_CODE:
+                        first_flag = (i, REASONS[missed].split(":")[0])
+                    if parted is None and beyond(c, want).any():
+                        parted = (i, float(np.max(np.abs(c - want))), fell, serving)
+                tally["fb"] += fb
+                if parted is None:
+                    tally["same"] += 1
+                elif first_flag is not None and first_flag[0] <= parted[0]:
+                    tally["flagged"] += 1
+                else:
+                    tally["silent"] += 1
+                    print(f"  SILENT {cell} {kind} {'+'.join(sensors)}: parts at fault row "
+                          f"{parted[0] + 1} by {parted[1]:.3g} µm, served fallback {parted[2]}, "
+                          f"code serving set {parted[3]}, first flag {first_flag}", flush=True)
+            out.append((cell, size, kind, len(sets[size]), tally))
+            print(f"{cell:<14}{size:>3}{kind:>8}{len(sets[size]):>6}" + "".join(
+                f"{tally[k]:>9}" for k in tally), flush=True)
+
+
+def trace(root: str, record: str, cells: str, sizes: str = "1,2,3") -> None:
+    """The ``trace`` table (module doc)."""
+    out: list = []
+    print(f"{'cell':<14}{'n':>3}{'kind':>8}{'cases':>6}" + "".join(
+        f"{k:>9}" for k in ("same", "flagged", "silent", "fb", "outs")), flush=True)
+    for cell in cells.split(","):
+        trace_cell(Path(root).resolve(), record, cell, [int(s) for s in sizes.split(",")], out)
+
+
+def made(root: Path, record: str, family: str) -> None:
+    """``root/data/record`` simulated and ``run model=family`` on it into
+    ``root/reports/record/<family>-none``, each once."""
+    data, out = root / "data" / record, root / "reports" / record / f"{family}-none"
+    if not data.exists():
+        rc, said = stage("simulate", *FRESH[record], f"data.path={data}")
+        assert rc == 0, said
+        if record.startswith("dl"):
+            day_files(data)
+    if not (out / "model.pkl").exists():
+        rc, said = stage("run", f"data.path={data}", f"out={out}", "plots=none", f"model={family}",
+                         *FAMILIES[family], "track=false", *extra_of(record))
+        assert rc == 0, said
+
+
+def fresh(root: str, *chosen: str) -> None:
+    """The ``fresh`` tables (module doc)."""
+    root = Path(root).resolve()
+    for record in [r for r in FRESH if r in chosen] or list(FRESH):
+        for family in CELLS:
+            made(root, record, family)
+        print(f"== {record}", flush=True)
+        trace(str(root), record, ",".join(f"{f}-none" for f in CELLS))
+
+
+def main(argv: list[str]) -> int:
+    return run_commands(__doc__, {"trace": trace, "fresh": fresh}, argv, cpu=sys.stderr)
+
+
+if __name__ == "__main__":
+    raise SystemExit(main(sys.argv[1:]))
