@@ -22,7 +22,8 @@ kind) the cases counted: ``same`` C = served on every row (the pack's tolerance)
 they part and the code's monitor flagged ``NOT_IN_CODE`` at the first parting row or before it
 in the case (the pack's cut names the rule); ``silent`` they part and nothing was flagged
 before or at that row; ``fb`` cases where the served correction was a fallback's on some row;
-``outs`` the most sensors the served monitor had out at once (max over the cases).  Then each
+``outs`` the most sensors the served monitor had out at once (max over the cases); after them
+the rules first flagged not in the code in the cases that part, with their counts.  Then each
 silent case (cell, kind, sensors, first parting row, |C - served| there, the rows the served
 model was on a fallback, the code's ``serving`` set there).
 
@@ -167,6 +168,7 @@ def trace_cell(root: Path, record: str, cell: str, sizes: list[int], out: list) 
     for size in sizes:
         for kind in ("spike", "freeze"):
             tally = {"same": 0, "flagged": 0, "silent": 0, "fb": 0, "outs": 0}
+            why: dict = {}      # the first rule flagged not in the code, of the cases that part
             for sensors in sets[size]:
                 run = copy.deepcopy(base)
                 part = planted(frame, start, sensors, kind)
@@ -176,7 +178,7 @@ def trace_cell(root: Path, record: str, cell: str, sizes: list[int], out: list) 
                     fb = fb or fell is not None
                     tally["outs"] = max(tally["outs"], outs)
                     if first_flag is None and flags & NOT_IN_CODE:
-                        first_flag = (i, REASONS[missed].split(":")[0])
+                        first_flag = (i, REASONS[missed].split(": ", 1)[-1][:44])
                     if parted is None and beyond(c, want).any():
                         parted = (i, float(np.max(np.abs(c - want))), fell, serving)
                 tally["fb"] += fb
@@ -189,9 +191,12 @@ def trace_cell(root: Path, record: str, cell: str, sizes: list[int], out: list) 
                     print(f"  SILENT {cell} {kind} {'+'.join(sensors)}: parts at fault row "
                           f"{parted[0] + 1} by {parted[1]:.3g} µm, served fallback {parted[2]}, "
                           f"code serving set {parted[3]}, first flag {first_flag}", flush=True)
+                if parted is not None and first_flag is not None:
+                    why[first_flag[1]] = why.get(first_flag[1], 0) + 1
             out.append((cell, size, kind, len(sets[size]), tally))
             print(f"{cell:<14}{size:>3}{kind:>8}{len(sets[size]):>6}" + "".join(
-                f"{tally[k]:>9}" for k in tally), flush=True)
+                f"{tally[k]:>9}" for k in tally) + "  " + ", ".join(
+                f"{k} {n}" for k, n in sorted(why.items(), key=lambda kv: -kv[1])), flush=True)
 
 
 def trace(root: str, record: str, cells: str, sizes: str = "1,2,3") -> None:
