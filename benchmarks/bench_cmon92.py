@@ -5,6 +5,7 @@ Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is
 
     python benchmarks/bench_cmon92.py trace ROOT RECORD CELLS [SIZES]
     python benchmarks/bench_cmon92.py fresh ROOT [RECORD ...]
+    python benchmarks/bench_cmon92.py compiled ROOT RECORD CELL SENSORS KIND
 
 ``trace``: each cell of ``CELLS`` (comma-separated, e.g. ``mlr-none,arx-none``: a folder
 ``ROOT/reports/RECORD/CELL`` with its ``model.pkl``; ``ROOT/data/RECORD`` the record, as
@@ -33,6 +34,12 @@ cr / lr / dl as cmon91 drew them; each simulated once under ``ROOT/data``, ``run
 10 trees on ``S_spindle_rpm``), every cell traced as ``trace`` does (sizes 1, 2, 3).  Before the
 faults, the healthy rows up to a quarter of the test campaign (the lead-in and the first quarter)
 are checked C = served (the bench stops where they part).
+
+``compiled``: one case of ``trace`` (``SENSORS`` joined by ``+``, ``KIND`` ``spike`` or ``freeze``)
+through the compiled C (``gcc -std=c99 -Wall -Wextra -Werror -O2``, under ``ROOT/c``) fed the
+whole stream (lead-in, the rows before the fault, the faulted rows): its corrections against the
+mirror's on every row, the fault row where the mirror parts from served and where the mirror
+flagged ``NOT_IN_CODE`` from the fault on, and ``stream.c``'s "not in the code" lines on stderr.
 
 What the trace compares is the numpy mirror of the exported C (the pack's reference, whose
 compiled C each check pack checks against it): per case a compiled C would be a build per case.
@@ -87,6 +94,18 @@ one per sensor: ``fallback.sensor_fallbacks``); the served monitor's rules the c
 hold: two or more sensors jumping in one sample that are no common step (served reads the
 sample's instant faults together and takes them out: ``outs`` 3), a third sensor out (the code
 holds two), and one drift with a sensor out.
+
+The compiled C (``compiled``, lr9212, -Werror; 4.2-7.2 s CPU each): mlr T_head_left+T_head_right
+spike, arx_rf T_amb+T_motor spike and freeze, arx_rf T_amb+T_spindle_front+T_col_back freeze:
+compiled C = mirror to 8.5e-14 / 1.1e-13 µm on every row (3743-3793 rows), and (a driver
+printing ``mon_flags`` per row, by hand under /tmp) its ``mon_flags`` equal the mirror's on every
+row of those four and of arx_rf T_head_left+T_bed_left+T_zdrive spiked (``NOT_IN_CODE`` on 50 /
+50 / 3 / 3 rows, first at fault row 12 / 12 / 1 / 1).  ``stream.c``'s stderr names the spikes'
+rule at fault row 1 (``not in the code: several sensors jumping in one sample``), but not the
+freeze pair's: at row 12 the flag word holds ``EXCLUDED | OUT | NOT_IN_CODE`` with ``mon_rule``
+2 (T_amb's freeze exclusion, said), and from row 13 the not-in-code rule (9, a second sensor out)
+is already flagged, so ``said_monitor`` (which says one rule per row, and a not-in-code rule only
+as it sets in) never names it; there C = served on every row anyway (T_motor frozen = held).
 
 A forest on another clock: unreachable from a deployed model's fallbacks, traced by reading and
 on lr9212 / lr9496 arx_rf: a fallback's system ramps its forest over the time as read
@@ -279,6 +298,49 @@ def trace(root: str, record: str, cells: str, sizes: str = "1,2,3") -> None:
         trace_cell(Path(root).resolve(), record, cell, [int(s) for s in sizes.split(",")], out)
 
 
+def compiled(root: str, record: str, cell: str, sensors: str, kind: str) -> None:
+    """The ``compiled`` rows (module doc)."""
+    import subprocess
+
+    import pandas as pd
+
+    from thermocomp.apps.deploy.export import exported_files, state_space
+    from thermocomp.apps.deploy.export.pack import beyond, fed
+    from thermocomp.apps.deploy.export.watch import NOT_IN_CODE
+    from thermocomp.apps.deploy.report import plain
+    from thermocomp.shell.stages.export import lead_ins
+
+    root = Path(root).resolve()
+    deployed, ds, _, test_ids = deployed_cell(root, record, root / "reports" / record / cell / "model.pkl")
+    ss = state_space(deployed, monitor=True)
+    folder = root / "c" / record / cell
+    folder.mkdir(parents=True, exist_ok=True)
+    for name, text in exported_files(deployed, "c").items():
+        (folder / name).write_text(text)
+    subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", "compensator.c",
+                    "stream.c", "-lm", "-o", "stream"], cwd=folder, check=True, capture_output=True)
+    cid = test_ids[0]
+    frame = fed(ds.campaigns[cid], lead_ins(plain(deployed).compensator, ds, [cid]).get(cid))
+    lead = len(frame) - len(ds.campaigns[cid])
+    start = lead + (len(frame) - lead) // 4
+    frame = pd.concat([frame.iloc[:start], planted(frame, start, tuple(sensors.split("+")), kind)])
+    run = subprocess.run([str(folder / "stream")], capture_output=True, text=True, check=True,
+                         input=frame[["time", *ss.inputs]].to_csv(index=False, float_format="%.17g"))
+    got = pd.read_csv(pd.io.common.StringIO(run.stdout)).to_numpy(float)
+    mirror, parted, flagged = [], None, None
+    for i, (c, want, flags, *_) in enumerate(Stepped(deployed, ss).rows(frame)):
+        mirror.append(c)
+        if parted is None and beyond(c, want).any():
+            parted = i - start + 1
+        if flagged is None and flags & NOT_IN_CODE and i >= start:
+            flagged = i - start + 1
+    mirror = np.asarray(mirror)
+    print(f"{cell} {kind} {sensors}: compiled C = mirror to {np.max(np.abs(got - mirror)):.2g} µm "
+          f"over {len(frame)} rows; mirror parts from served at fault row {parted}, flagged at "
+          f"{flagged}; stream.c's stderr on it:")
+    print("\n".join(line for line in run.stderr.splitlines() if "not in the code" in line))
+
+
 def made(root: Path, record: str, family: str) -> None:
     """``root/data/record`` simulated and ``run model=family`` on it into
     ``root/reports/record/<family>-none``, each once."""
@@ -305,7 +367,8 @@ def fresh(root: str, *chosen: str) -> None:
 
 
 def main(argv: list[str]) -> int:
-    return run_commands(__doc__, {"trace": trace, "fresh": fresh}, argv, cpu=sys.stderr)
+    return run_commands(__doc__, {"trace": trace, "fresh": fresh, "compiled": compiled}, argv,
+                        cpu=sys.stderr)
 
 
 if __name__ == "__main__":
