@@ -14,19 +14,19 @@ bench_deploy89's ``sweep`` leaves them), deployed as ``export`` deploys it (benc
 lead-in through the served model and through the numpy mirror of the exported C
 (:class:`Simulator`, the code's monitor in it) up to a quarter of the campaign; from there, per
 case, copies of both states stepped over a copy of the next rows with a fault planted on every
-sensor of a set of monitored sensors AT ONCE, from that row: ``spike`` (each read
-:data:`SPIKE_C` high for :data:`SPIKE_ROWS` samples: bench_cmon91's spike) and ``freeze`` (each
-held at its reading of the first planted row for :data:`FREEZE_ROWS` samples, then read again);
-each case :data:`AFTER` rows past the fault's end.  Sets: every single sensor, every pair, and
-the triples of :func:`triples` (``SIZES``: the set sizes, default ``1,2,3``).  Per (cell, size,
-kind) the cases counted: ``same`` C = served on every row (the pack's tolerance); ``flagged``
-they part and the code's monitor flagged ``NOT_IN_CODE`` at the first parting row or before it
-in the case (the pack's cut names the rule); ``silent`` they part and nothing was flagged
+sensor of a set of monitored sensors AT ONCE, from that row: ``spike`` (each read :data:`SPIKE_C`
+high for :data:`SPIKE_ROWS` samples: bench_cmon91's spike) and ``freeze`` (each held at its reading
+of the first planted row for :data:`FREEZE_ROWS` samples, then read again); each case :data:`AFTER`
+rows past the fault's end. Sets: every single sensor, every pair, and the triples of
+:func:`triples` (``SIZES``: the set sizes, default ``1,2,3``). Per (cell, size, kind) the cases
+counted: ``same`` C = served on every row (the pack's tolerance: 1e-9 µm + 1e-9 x |served|);
+``flagged`` they part and the code's monitor flagged ``NOT_IN_CODE`` at the first parting row or
+before it in the case (the pack's cut names the rule); ``silent`` they part and nothing was flagged
 before or at that row; ``fb`` cases where the served correction was a fallback's on some row;
-``outs`` the most sensors the served monitor had out at once (max over the cases); after them
-the rules first flagged not in the code in the cases that part, with their counts.  Then each
-silent case (cell, kind, sensors, first parting row, |C - served| there, the rows the served
-model was on a fallback, the code's ``serving`` set there).
+``outs`` the most sensors the served monitor had out at once (max over the cases); after them the
+rules first flagged not in the code in the cases that part, with their counts. Then each silent
+case (cell, kind, sensors, first parting row, |C - served| there, the rows the served model was on
+a fallback, the code's ``serving`` set there).
 
 ``fresh``: the same on fresh records (bench_cmon91's generators, seeds of :data:`FRESH`: lr / dl /
 cr / lr / dl as cmon91 drew them; each simulated once under ``ROOT/data``, ``run`` of each family of
@@ -75,7 +75,7 @@ T_spindle_rear, T_motor, T_table, every one in the code (``fallback_set`` 1-5, a
 forests: cmon91); 14 monitored, ``min_active`` 10; faults from test row 217 of R1b::
 
     cell        n kind    cases same flagged silent  the rule first flagged (cases that part)
-    mlr/lagbank 1 spike     14   14     0      0
+    (all four)  1 spike     14   14     0      0
     (all four)  1 freeze    14   14     0      0
     mlr/lagbank 2 spike     91   12    79      0    several jumping in one sample 78, drift 1
     arx/arx_rf  2 spike     91   17    74      0    several jumping in one sample 73, drift 1
@@ -86,7 +86,7 @@ forests: cmon91); 14 monitored, ``min_active`` 10; faults from test row 217 of R
 
 No silent case: where the C parts from served (520 cases of 1220, |C - served| at the first
 parting row up to 19.4 µm, median 8.3) the code flagged ``NOT_IN_CODE`` at that row (spikes) or
-two rows before it (a third freeze out at fault row 11, parting at 13-14).  Why they part: not
+one or two rows before it (a third freeze out at fault row 12, parting at 13-14).  Why they part: not
 a fallback missing (every fallback is exported, and with two out both sides serve the first
 out's fallback, the other read as the monitor rebuilds or holds it: freeze pairs 91 of 91 C =
 served, ``outs`` 2) and not a refit on demand (served has no fallback for a set of sensors, only
@@ -137,8 +137,14 @@ record); summed over the four cells::
     dl9500  3         200    32  168      0             200   132   68      0
     all               7064 cases: 3220 C = served, 3844 flagged, 0 silent
 
-Every family alike to +-4 cases per row (mlr = lagbank, arx = arx_rf everywhere but two rows).
-RULES_FRESH_WHY
+Per (record, size, kind) the families' ``same`` counts spread by 5 cases at most (mlr = lagbank and
+arx = arx_rf in all 30).
+The rule first flagged in the 3844 cases that part (``fresh`` again on the same models with the
+last column, 788.0 s CPU, every count as scored): two or more sensors jumping in one sample (no
+common step) 2740 (2382 of the 2402 spiked cases that part; and 358 frozen ones, cr9498 272,
+dl9497 86: frozen sensors read again after 60 samples step in one sample), a second sensor
+out (here the third, or a second where too few are left in: cr9498's, dl9497's) 1040, a drift
+beyond the band with a sensor out 64.
 
 By the bar: 1 (silent 0 in all 120 rows, the healthy rows C = served) and 2 (size 1: 544 of 544
 C = served) hold: TRACED-clean.  The contract (C = served, or ``NOT_IN_CODE`` at or before the
