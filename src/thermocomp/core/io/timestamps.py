@@ -318,7 +318,9 @@ def time_kind(value: str, kind: str, number: bool, path: Path, header: str | Non
         raise ContractError(f"value {value!r} is a time of day without its date (it would go back "
                             f"at midnight): {way}; or, the time elapsed since the start (h:mm:ss), "
                             f"data.time={ELAPSED} (and data.roles.time={name} if it is not the time "
-                            f"column); or the time of day as the time, data.time={OF_DAY_KIND}",
+                            f"column); or the time of day as the time, data.time={OF_DAY_KIND}"
+                            # (data92) the key alone read no time column: this refusal again
+                            f" (and data.roles.time={name} if it is not the time column)",
                             file=path, column=TIME, row=1)
     if DATE.fullmatch(value):
         way = STREAMED if stream else (f"name the time-of-day column with it, data.roles.time="
