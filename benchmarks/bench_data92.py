@@ -26,8 +26,9 @@ the test rows (measured + correction), and max |C(file) - C(contract.csv)| over 
 day (row 40: 86460 s), piped into ``monitor monitor.input=-`` under ``data.time=of_day``: the
 exit status and the refusal, beside the file reader's of the same rows.
 ``served``: lagbank served in process over the record's test rows in blocks of 10, its time a
-dateless ``h:mm:ss``, once straight and once with a pause of a day and 30 min (and of 30 min)
-before block 5: what the session does (the corrections after the pause, compared).
+dateless ``h:mm:ss``, once straight and once with a pause before block 5 of 30 min (6 sample
+periods), of 10 h (120: a pause by the file's rule), and of each a day longer: what the session
+does (the corrections after the pause compared; the session's pause warnings counted).
 
 BAR (written before the fresh seeds 9501-9505 were scored; dev seed 4242 only before)
 ------------------------------------------------------------------------------------
@@ -50,8 +51,10 @@ Any accepted case read silently wrong refuses the branch.
 
 from __future__ import annotations
 
+import contextlib
 import io
 import json
+import logging
 import re
 import subprocess
 import sys
@@ -65,6 +68,10 @@ from bench_data91 import write as write_exports
 
 FAMILIES = ("mlr", "lagbank")
 FILES = ("contract", "raw", "rawclock")
+# the served session's pause before block 5 (s): none, 6 sample periods, 120 (a pause by the
+# file's rule, PAUSE_PERIODS), each also a day longer
+PAUSES = {"straight": 0.0, "pause30m": 1800.0, "pause1d30m": 86400.0 + 1800.0,
+          "pause10h": 36000.0, "pause1d10h": 86400.0 + 36000.0}
 DAY_S = 86400.0
 
 
@@ -227,8 +234,8 @@ def served(root: str, seed: str, block: int = 10) -> None:
     train = {c: ds.campaigns[c] for c in ds.ids() if ds.manifest.loc[c, "split"] == "train"}
     rows = pd.read_csv(base / "contract.csv")
     cut = 4 * block
-    said = {}
-    for name, pause in (("straight", 0.0), ("pause30m", 1800.0), ("pause1d30m", DAY_S + 1800.0)):
+    said, warned = {}, {}
+    for name, pause in PAUSES.items():
         model = CompensatorModel(StreamingCompensator.from_training(load_model(out / "model.pkl"),
                                                                     train))
         model.load_context(None)
@@ -236,12 +243,13 @@ def served(root: str, seed: str, block: int = 10) -> None:
         clock = [(START + pd.Timedelta(seconds=float(t))).strftime("%H:%M:%S") for t in time]
         frame = rows.assign(time=clock)
         try:
-            said[name] = pd.concat([model.predict(None, frame.iloc[a:a + block],
-                                                  {"session": name, "reset": a == 0})
-                                    for a in range(0, len(frame), block)], ignore_index=True)
+            with _counted(warned, name):
+                said[name] = pd.concat([model.predict(None, frame.iloc[a:a + block],
+                                                      {"session": name, "reset": a == 0})
+                                        for a in range(0, len(frame), block)], ignore_index=True)
         except Exception as exc:       # (an MlflowException: the server's HTTP 400)
             said[name] = f"refused: {str(exc)[:200]}"
-    for name in ("pause30m", "pause1d30m"):
+    for name in list(PAUSES)[1:]:
         got, want = said[name], said["straight"]
         if isinstance(got, str):
             print(f"seed {seed} served {name}: {got}")
@@ -250,11 +258,31 @@ def served(root: str, seed: str, block: int = 10) -> None:
         gap = np.abs(got[columns].to_numpy(float) - want[columns].to_numpy(float))[cut:]
         print(f"seed {seed} served {name}: taken; max |{name} - straight| after the pause "
               f"{gap.max():.4g} um")
-    if not isinstance(said["pause30m"], str) and not isinstance(said["pause1d30m"], str):
-        columns = [c for c in said["pause30m"].columns if c.startswith("C_")]
-        same = np.abs(said["pause30m"][columns].to_numpy(float)
-                      - said["pause1d30m"][columns].to_numpy(float)).max()
-        print(f"  a day's pause read as 30 min: max |pause1d30m - pause30m| {same:.3g} um")
+    for short, long in (("pause30m", "pause1d30m"), ("pause10h", "pause1d10h")):
+        if not isinstance(said[short], str) and not isinstance(said[long], str):
+            columns = [c for c in said[short].columns if c.startswith("C_")]
+            same = np.abs(said[short][columns].to_numpy(float)
+                          - said[long][columns].to_numpy(float)).max()
+            print(f"  a day's pause read as {short[5:]}: max |{long} - {short}| {same:.3g} um; "
+                  f"warned: {warned.get(long, 0)} (the session's pause warning, of {long})")
+
+
+@contextlib.contextmanager
+def _counted(warned: dict, name: str):
+    """Count the session pause warnings (thermocomp's logger) said while served as ``name``."""
+    from thermocomp.base.log import logger
+
+    class Counter(logging.Handler):
+        def emit(self, record):
+            if "served session" in record.getMessage() and "a day lost" in record.getMessage():
+                warned[name] = warned.get(name, 0) + 1
+
+    handler = Counter(level=logging.WARNING)
+    logger.addHandler(handler)
+    try:
+        yield
+    finally:
+        logger.removeHandler(handler)
 
 
 def main(argv: list[str]) -> int:
