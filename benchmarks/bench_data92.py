@@ -64,6 +64,7 @@ import numpy as np
 import pandas as pd
 from _cli import made_folder, run_commands
 from bench_data88 import LIGHT, START, UNIT, _cli, _lab, _refusal
+from bench_data91 import served_lagbank
 from bench_data91 import write as write_exports
 
 FAMILIES = ("mlr", "lagbank")
@@ -216,35 +217,21 @@ def stdin(root: str, seed: str) -> None:
 
 def served(root: str, seed: str, block: int = 10) -> None:
     """lagbank served over the record in dateless h:mm:ss blocks, a pause before block 5."""
-    from bench_data91 import START_S  # noqa: F401  (the record starts at 21:30:00)
-
-    from thermocomp.apps.deploy import StreamingCompensator
-    from thermocomp.apps.deploy.pyfunc import CompensatorModel
-    from thermocomp.core.io import read_dataset
-    from thermocomp.shell.model_store import load_model
-
     base = Path(root) / seed
-    out = base / "served-lagbank"
-    done = _cli("run", f"data.path={base / 'contract.csv'}", "model=lagbank",
-                "data.test_fraction=0.25", f"out={out}", *LIGHT)
-    if done.returncode:
-        print(f"seed {seed} served: run exit {done.returncode}")
+    served = served_lagbank(base, base / "served-lagbank")
+    if isinstance(served, int):
+        print(f"seed {seed} served: run exit {served}")
         return
-    ds, _ = read_dataset(base / "contract.csv", {"test_fraction": 0.25})
-    train = {c: ds.campaigns[c] for c in ds.ids() if ds.manifest.loc[c, "split"] == "train"}
     rows = pd.read_csv(base / "contract.csv")
     cut = 4 * block
     said, warned = {}, {}
     for name, pause in PAUSES.items():
-        model = CompensatorModel(StreamingCompensator.from_training(load_model(out / "model.pkl"),
-                                                                    train))
-        model.load_context(None)
         time = rows["time"] + pause * (np.arange(len(rows)) >= cut)
         clock = [(START + pd.Timedelta(seconds=float(t))).strftime("%H:%M:%S") for t in time]
         frame = rows.assign(time=clock)
         try:
             with _counted(warned, name):
-                said[name] = pd.concat([model.predict(None, frame.iloc[a:a + block],
+                said[name] = pd.concat([served.predict(None, frame.iloc[a:a + block],
                                                       {"session": name, "reset": a == 0})
                                         for a in range(0, len(frame), block)], ignore_index=True)
         except Exception as exc:       # (an MlflowException: the server's HTTP 400)
