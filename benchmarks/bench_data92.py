@@ -47,6 +47,58 @@ before any fresh seed: "run = replay = C" split into run = plain replay and repl
 on main the replay as deployed carries the monitor and the guard: 4242/mlr E_Z run 0.4659,
 replay 0.7496 = C; and the refusal's key followed once, as bench_data88's FOLLOWED.)
 Any accepted case read silently wrong refuses the branch.
+
+Scored (2026-12-05, fresh seeds 9501-9505, each ``write`` once, then ``score``, ``stdin`` and
+``served`` of fix/data92 75efd5fb (its src and conf copied aside while it ran); ``score`` and
+``stdin`` of main 2b918bfd on copies of the same files; dev seed 4242 only before; the bar as
+refined on 4242 above, unchanged after)
+------------------------------------------------------------------------------------------
+Records: 54-61 rows at 300 s from 21:30:00 (past midnight), 3 targets; mlr and lagbank, the last
+quarter held out.  Test RMSE (µm, run / replay as deployed, E_X E_Y E_Z): 9501 mlr 0.256 / 0.327,
+0.901 / 0.848, 0.766 / 1.300, lagbank 0.294 / 0.552, 0.917 / 1.288, 0.447 / 0.362; 9503 lagbank
+E_Z 0.352 / 3.557 (the replay's monitor and guard; the plain replay = run).
+
+==========  ======================================  ==============================================
+file        main 2b918bfd (5 of 5 seeds alike)      fix/data92 (5 of 5 seeds alike)
+==========  ======================================  ==============================================
+contract    accepted: run = plain replay (5.1e-15   as main, every printed figure equal (60 of 60
+            µm), replay = C (8.0e-15), pack 0       target rows, mlr + lagbank)
+raw         accepted (data.sample_period_s=300):    as main; C(raw) = C(contract) 0 µm on every row
+            as contract.csv to 0 µm, every row
+rawclock    refused exit 2 (file, column 'time',    refused exit 2, the same words and row, its
+            data row 1), naming data.time=of_day;   last clause now "data.time=of_day (and
+            typed: refused again by the same        data.roles.time='Uhrzeit' if it is not the
+            message (10 of 10 family x seed)        time column)"; typed once: accepted, run =
+                                                    plain replay, replay = C, C(rawclock) =
+                                                    C(contract) 0 µm on every row, 10 of 10
+stdin       exit 2 at data row 40, "a time of day   exit 2, "file <stdin>, column 'time', data row
+(row 40:    ... steps 23.4 h forward here: as       40: value 86460 s is no second of a day ...",
+86460 s)    well 0.65 h back" (the file reader:     the file reader's words, 5 of 5
+            "no second of a day")
+==========  ======================================  ==============================================
+
+Beside (by hand, read_stream of the same rows, 5 of 5 seeds): 86460 s at data row 13 (before
+midnight) -- main: ACCEPTED, the sample 9060 s after the first (3600 s by its row: 1.5 h out of
+place); here refused with its row.
+``served`` (traced, and the warning the rule adds): a pause before block 5 of 30 min or 10 h
+gives the same corrections as one a day longer, 0 µm on every row, 5 of 5 seeds (after the pause
+the corrections move 1.0-2.5 µm (30 min) and 5.5-15.8 µm (10 h) from the unpaused session's):
+no clock tells them apart.  Main read on in silence; here the 10 h pause (120 sample periods, a
+pause by the file's rule) is warned of once in the server's log, its block row named, "as well
+34.1 h or more, a day lost ... send the time with its date ..., or reset=true"; the 30 min one
+(6 periods) is warned of by neither the file reader nor the session.
+
+Against the BAR: (a) 5 of 5 stdin refusals name <stdin>, column, row, in the file's words (main:
+exit 2 with a clock's words at row 40, and a bad row before midnight taken); (b)
+tests/shell/test_stdin_of_day92.py (3) fail on 2b918bfd and pass here; (c) every accepted case as
+main's to the printed digit.  Part 2: PASSES on 5 of 5 seeds, both raw variants = the contract
+file's C on every row (0 µm) and run = plain replay, replay = C to 8e-15 µm: the C reads the raw
+dialect (BOM, ';', decimal commas, unit-bearing headers, a dateless h:mm:ss past midnight) as the
+reader does; nothing is written into compensator.json.  What failed was the refusal's key for the
+raw clock (a loop): mended in its words, tests/shell/test_lab_clock92.py (2: the key typed as
+written reads the file; a served session's pause warned of) fail on 2b918bfd.  KEPT.
+CPU: the rule reads a block's steps once more (pauses(): one median and one diff of 11 values);
+``score`` per seed 2-3 min (6 stages x 2 families x 3 files).
 """
 
 from __future__ import annotations

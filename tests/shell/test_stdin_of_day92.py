@@ -1,7 +1,7 @@
 """A stream on stdin under ``data.time=of_day`` reads its time by the file's one function
 (data92, :func:`thermocomp.core.io.timestamps.seconds_of_day`): a value outside a day,
 [0, 86400) s, is refused with its row, exit 2, in the file's words.  Before, stdin unwrapped the
-column by ``past_midnight`` alone: 86460 s was taken as a time (a sample 1.6 h out of place), a
+column by ``past_midnight`` alone: 86460 s was taken as a time (a sample 1.5 h out of place), a
 negative one refused as a clock stepping 22 h forward."""
 
 from __future__ import annotations
