@@ -114,7 +114,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 from _cli import run_commands
-from bench_data88 import FOLLOWED, LIGHT, START, _run, _short, followed
+from bench_data88 import FOLLOWED, LIGHT, START, _cli, _run, _short, followed
 from bench_data89 import DAY_S, PATHS, _by_contract, _replay, _same
 from bench_data89 import score as score_exports
 from bench_data89b import write as write_exports
@@ -164,27 +164,34 @@ def score(root: str, seed: str, labels: str = ",".join([*PATHS, "nightpause"])) 
           f"{_short(replayed or {})} {'= contract' if replay_ok else '!= contract'}")
 
 
-def served(root: str, seed: str, block: int = 10) -> None:
-    """The record served in blocks, its time in seconds and as h:mm:ss (module docstring)."""
-    from bench_data88 import _cli
-
+def served_lagbank(base: Path, out: Path):
+    """``run model=lagbank data.test_fraction=0.25`` on ``base``'s ``contract.csv`` into ``out``,
+    its model served in process (the pyfunc ``thermocomp serve`` runs), or the run's exit
+    status where it was refused."""
     from thermocomp.apps.deploy import StreamingCompensator
     from thermocomp.apps.deploy.pyfunc import CompensatorModel
     from thermocomp.core.io import read_dataset
     from thermocomp.shell.model_store import load_model
 
-    base = Path(root) / seed
-    out = base / "lagbank-run"
     done = _cli("run", f"data.path={base / 'contract.csv'}", "model=lagbank",
                 "data.test_fraction=0.25", f"out={out}", *LIGHT)
     if done.returncode:
-        print(f"seed {seed} served: run exit {done.returncode}")
-        return
+        return done.returncode
     ds, _ = read_dataset(base / "contract.csv", {"test_fraction": 0.25})
     train = {c: ds.campaigns[c] for c in ds.ids() if ds.manifest.loc[c, "split"] == "train"}
     model = CompensatorModel(StreamingCompensator.from_training(load_model(out / "model.pkl"),
                                                                 train))
     model.load_context(None)
+    return model
+
+
+def served(root: str, seed: str, block: int = 10) -> None:
+    """The record served in blocks, its time in seconds and as h:mm:ss (module docstring)."""
+    base = Path(root) / seed
+    model = served_lagbank(base, base / "lagbank-run")
+    if isinstance(model, int):
+        print(f"seed {seed} served: run exit {model}")
+        return
     rows = pd.read_csv(base / "contract.csv")
     clock = [(START + pd.Timedelta(seconds=float(t))).strftime("%H:%M:%S") for t in rows["time"]]
     said = {}

@@ -71,7 +71,7 @@ from .timestamps import (
     maybe_elapsed,
     on_local_clock,
     parsed,
-    past_midnight,
+    seconds_of_day,
     time_kind,
     time_type,
 )
@@ -557,10 +557,10 @@ def seconds_and_origin(time: pd.Series, time_format: str, zone: str | None = Non
     ``time_origin`` becomes its ``start``, :mod:`.instants`), else None (seconds, elapsed)."""
     stamps = stream_stamps(time, time_format, zone)
     if stamps is None and time_format == OF_DAY_KIND:     # (data91) as a file's are read
+        # (data92) by the file's one function: a value outside a day refused with its row
         seconds = pd.to_numeric(time, errors="coerce").to_numpy(float)
-        unwrapped = past_midnight(pa.array(seconds, from_pandas=True), SOURCE, pauses_said=False)
-        if unwrapped is not None:
-            return pd.Series(unwrapped.to_numpy(zero_copy_only=False), index=time.index), None
+        of_day = seconds_of_day(seconds, SOURCE, pauses_said=False, kind=OF_DAY_KIND)
+        return pd.Series(of_day, index=time.index), None
     if stamps is None or isinstance(stamps, pd.Series):   # seconds; h:mm:ss in seconds
         return (time if stamps is None else stamps), None
     ns, valid = stamps

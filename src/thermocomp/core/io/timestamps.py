@@ -173,8 +173,30 @@ def continued(seconds: pa.Array, carried: list, path: Path) -> pa.Array:
     values = (joined if unwrapped is None else unwrapped).to_numpy(zero_copy_only=False)[1:] + added
     valid = np.flatnonzero(~np.isnan(raw))
     if valid.size:
+        if not np.isnan(last):
+            _said_session_pause(np.concatenate([[last + added], values]), valid)
         carried[:] = [raw[valid[-1]], values[valid[-1]] - raw[valid[-1]]]
     return pa.array(values, from_pandas=True)
+
+
+def _said_session_pause(seconds: np.ndarray, valid: np.ndarray) -> None:
+    """(data92) Warn of a pause in a served session's time of day (``seconds``: the last time
+    it read, then the block's continuing times; ``valid``: the block's rows with a time), by the
+    file's rule (:func:`pauses`): read as the clock says, but it reads as well a day or more
+    longer (the machine stopped overnight between two blocks), which no time of day tells, as
+    a file's dateless clock is warned of (:func:`_said_pauses`)."""
+    timed = np.concatenate([[0], valid + 1])
+    found = pauses(seconds[timed])
+    if not found.size:
+        return
+    k = int(found[0])
+    step = seconds[timed[k + 1]] - seconds[timed[k]]
+    where = "since the session's last block" if k == 0 else "within the block"
+    logger.warning(f"served session, data row {int(valid[k]) + 1} of the block: the time of day "
+                   f"pauses {step / 3600:.3g} h {where}: read so, but as well {step / 3600 + 24:.3g} "
+                   "h or more, a day lost (no date to tell): send the time with its date (a "
+                   "timestamp) where a day may pass between blocks, or reset=true to start a new "
+                   "campaign")
 
 
 PAUSE_PERIODS = 100   # a record silent this many sample periods: runs joined in one file?
@@ -318,7 +340,9 @@ def time_kind(value: str, kind: str, number: bool, path: Path, header: str | Non
         raise ContractError(f"value {value!r} is a time of day without its date (it would go back "
                             f"at midnight): {way}; or, the time elapsed since the start (h:mm:ss), "
                             f"data.time={ELAPSED} (and data.roles.time={name} if it is not the time "
-                            f"column); or the time of day as the time, data.time={OF_DAY_KIND}",
+                            f"column); or the time of day as the time, data.time={OF_DAY_KIND}"
+                            # (data92) the key alone read no time column: this refusal again
+                            f" (and data.roles.time={name} if it is not the time column)",
                             file=path, column=TIME, row=1)
     if DATE.fullmatch(value):
         way = STREAMED if stream else (f"name the time-of-day column with it, data.roles.time="
