@@ -43,7 +43,7 @@ COMMAND_BENCHES = (
     "bench_diag84", "bench_diag84b", "bench_diag85", "bench_diag85b", "bench_diag86", "bench_diag86b",
     "bench_diag87", "bench_diag87b", "bench_diag87c", "bench_diag88", "bench_diag88b", "bench_diag88c",
     "bench_diag88d", "bench_diag89", "bench_diag89b", "bench_diag89c", "bench_diag89d", "bench_diag91",
-    "bench_diag91b", "bench_diag91c", "bench_diagfault65", "bench_diagfault72", "bench_diagpower67",
+    "bench_diag91b", "bench_diag91c", "bench_diag92b", "bench_diagfault65", "bench_diagfault72", "bench_diagpower67",
     "bench_diagref65", "bench_drift74", "bench_fault70", "bench_faults71", "bench_freeze83",
     "bench_freeze83b", "bench_freeze83c", "bench_freeze84", "bench_freeze90", "bench_freeze91",
     "bench_fresh69", "bench_gate71", "bench_gate77", "bench_initlag67", "bench_iso67", "bench_jig68",
