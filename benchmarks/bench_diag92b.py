@@ -44,6 +44,10 @@ nothing at any threshold between 4004 (0.488) and 8968 (0.563, 0.610): a guard o
 return 8968 to 9 blocks and lose its win (4.9939 -> 2.2098 on main today, -55.7 %; not run
 as a rule: read off the trace).
 
+Which campaign: in both draws the one carrying the gain is the only train campaign held at a
+constant 6000 rpm (9440 K11, 7.7 h; 8969 K05, 7.5 h; the manifests): the planted position term
+rides on the thermal rise, largest there, so the other seven train campaigns hold little of it.
+
 Verdict: TRACED, no rule.  Both misses are a position whose train gain sits in one campaign of
 8: 9440 refused at p_fam 0.39 on 62 fine blocks (power), 8969 at p_fam 0.0117 on 8 (the floor).
 CPU of ``trace``: 2-3 s per draw.
