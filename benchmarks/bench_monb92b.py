@@ -56,11 +56,11 @@ costliest drifted on 26; CPU 7 s), before any fresh draw was scored:
 |---|---|---|---|
 | base (monb92) | 5 (column9397, column9401, lr9404) | 17 of 26 | 6 of 8 / 3 of 10 |
 | (a) blocks2 | 1 (lr9404) | 10 of 26 | 1 of 8 / 1 of 10 |
-| (a) blocks3 | 3 (column9397, column9401, lr9404) | 11 of 26 | 1 of 8 / 3 of 10 |
+| (a) blocks3 | 3 (column9397, column9401, lr9404) | 11 of 26 | 2 of 8 / 3 of 10 |
 | (b) grow3 | 4 (column9397, column9401) | 17 of 26 | 6 of 8 / 2 of 10 |
 | (b) grow6 | 2 (column9397 T_amb, column9401 T_front3) | 17 of 26 | 6 of 8 / 2 of 10 |
 | blocks2+grow3 | 0 | 10 of 26 | 1 of 8 / 0 of 10 |
-| blocks3+grow3 / +grow6 | 2 (column9397, column9401) | 11 of 26 | 1 of 8 / 2 of 10 |
+| blocks3+grow3 / +grow6 | 2 (column9397, column9401) | 11 of 26 | 2 of 8 / 2 of 10 |
 
 (a) does not separate the column's false crossings from its finds: a band from 2 or 3 longer
 blocks is wide enough to stop the healthy ``T_front3`` crossings only because it is wider than
