@@ -93,8 +93,8 @@ the fixed compensator reads no monitor):
 
 Against the bar: detected on 5 of the 9 records where main detects nothing (>= 5: met, at the
 edge); no drifted row worse than main's (every find lowers the adaptive RMSE, 2.490 -> 2.313 the
-least; the rest unchanged: met); healthy: no crossing of any of the 10 records' 40 blind
-sensor-records, so no new event and the served stream main's to the bit (met); the seen healthy
+least; the rest unchanged: met); healthy: no crossing of any of the 10 records' blind
+sensor-records (32), so no new event and the served stream main's to the bit (met); the seen healthy
 rows 9196-9205 and fl_thermal: no crossing under grow6 (``seen``: met).  The tests / export terms
 of monb92's bar are not reachable by a prototype (no src): for the build.
 
@@ -123,7 +123,7 @@ import pandas as pd
 
 HERE = Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE)]
-from _cli import run_commands, seed_list  # noqa: E402
+from _cli import run_commands  # noqa: E402
 from bench_audit89 import _costliest, faulted  # noqa: E402
 from bench_mon91b import (  # noqa: E402
     BLOCKS,
@@ -133,50 +133,20 @@ from bench_mon91b import (  # noqa: E402
     WINDOW,
     _fit,
     campaigns,
-    drawn_run_monitored,
+    cv_residual,
     features,
     labels_of,
     target,
     windowed,
 )
-from bench_monb92 import CYCLE, _monitored, generator  # noqa: E402
+from bench_monb92 import CYCLE, _monitored  # noqa: E402
+from bench_monb92 import draw as draw_kinds  # noqa: E402
+from bench_monb92 import fresh as print_kinds  # noqa: E402
 
 FRESH = {seed: CYCLE[k % len(CYCLE)] for k, seed in enumerate(range(9516, 9526))}
 RULES = {"base": (BLOCKS, 0), "blocks2": (2, 0), "blocks3": (3, 0), "grow3": (BLOCKS, 3),
          "grow6": (BLOCKS, 6), "blocks2+grow3": (2, 3),
          "blocks3+grow3": (3, 3), "blocks3+grow6": (3, 6)}   # (blocks where < 3 campaigns, K growths)
-
-
-def fresh() -> None:
-    """The bar's fresh records: seed, kind, simulate overrides (nothing run)."""
-    for seed, kind in FRESH.items():
-        sim, extra = generator(kind)
-        print(f"{seed} {kind:<10} {' '.join(sim)} {' '.join(extra)}".rstrip(), flush=True)
-
-
-def draw(root: str, seeds: str) -> None:
-    """:data:`FRESH`'s seeds drawn healthy into ROOT (made anew): simulate -> run mlr -> monitor."""
-    from bench_mon88 import _root
-
-    folder = _root(root)
-    for seed in seed_list(seeds):
-        sim, extra = generator(FRESH[seed])
-        drawn_run_monitored(folder, f"{FRESH[seed]}{seed}", seed, sim, extra)
-
-
-def cv_residual(F: list[np.ndarray], Y: list[np.ndarray], blocks: int) -> np.ndarray:
-    """Out-of-fold residual over the train rows: one train campaign out where there are >= 3,
-    else ``blocks`` contiguous time blocks (mon91b's with the block count a parameter)."""
-    X, y = np.vstack(F), np.concatenate(Y)
-    if len(F) >= 3:
-        groups = np.concatenate([np.full(len(f), k) for k, f in enumerate(F)])
-    else:
-        groups = np.minimum(np.arange(len(y)) * blocks // len(y), blocks - 1)
-    out = np.empty_like(y)
-    for g in np.unique(groups):
-        held = groups == g
-        out[held] = y[held] - _fit(X[~held], y[~held]).predict(X[held])
-    return out
 
 
 def band_of(F: list[np.ndarray], Y: list[np.ndarray], blocks: int) -> float:
@@ -318,7 +288,9 @@ def served(root: str, rule: str) -> None:
 
 
 def main(argv: list[str] | None = None) -> int:
-    return run_commands(__doc__, {"seen": seen, "draw": draw, "served": served, "fresh": fresh},
+    commands = {"seen": seen, "served": served, "fresh": lambda: print_kinds(FRESH),
+                "draw": lambda root, seeds: draw_kinds(root, seeds, FRESH)}
+    return run_commands(__doc__, commands,
                         sys.argv[1:] if argv is None else argv, cpu=sys.stderr)
 
 
