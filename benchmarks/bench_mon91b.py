@@ -273,14 +273,14 @@ def first_crossing(w: np.ndarray, band: float, start: int = 0) -> int | None:
     return int(hits[0]) + start if hits.size else None
 
 
-def cv_residual(F: list[np.ndarray], Y: list[np.ndarray]) -> np.ndarray:
+def cv_residual(F: list[np.ndarray], Y: list[np.ndarray], blocks: int = BLOCKS) -> np.ndarray:
     """Out-of-fold residual over the train rows (campaign order): one train campaign out where
-    there are >= 3, else :data:`BLOCKS` contiguous blocks."""
+    there are >= 3, else ``blocks`` contiguous blocks (bench_monb92b varies the count)."""
     X, y = np.vstack(F), np.concatenate(Y)
     if len(F) >= 3:
         groups = np.concatenate([np.full(len(f), k) for k, f in enumerate(F)])
     else:
-        groups = np.minimum(np.arange(len(y)) * BLOCKS // len(y), BLOCKS - 1)
+        groups = np.minimum(np.arange(len(y)) * blocks // len(y), blocks - 1)
     out = np.empty_like(y)
     for g in np.unique(groups):
         held = groups == g

@@ -189,9 +189,10 @@ def generator(kind: str) -> tuple:
     return (LONG, ("data.reference=none",)) if kind == "lr" else (KINDS[kind], ())
 
 
-def fresh() -> None:
-    """The bar's fresh records: seed, kind, simulate overrides (nothing run)."""
-    for seed, kind in FRESH.items():
+def fresh(seeds: dict | None = None) -> None:
+    """The bar's fresh records (``seeds``, {seed: kind}; None: :data:`FRESH`): seed, kind,
+    simulate overrides (nothing run)."""
+    for seed, kind in (seeds or FRESH).items():
         sim, extra = generator(kind)
         print(f"{seed} {kind:<10} {' '.join(sim)} {' '.join(extra)}".rstrip(), flush=True)
 
@@ -341,18 +342,20 @@ def served(root: str, records: str) -> None:
     (folder / "servedb92.json").write_text(json.dumps(rows, indent=1))
 
 
-def draw(root: str, seeds: str) -> None:
-    """The bar's fresh records (:data:`FRESH`, seeds of it) drawn healthy into ROOT (made anew):
-    ``simulate`` -> ``run model=mlr`` -> ``monitor``, each with its kind's overrides."""
+def draw(root: str, seeds: str, kinds: dict | None = None) -> None:
+    """The bar's fresh records (``kinds``, {seed: kind}; None: :data:`FRESH`; ``seeds`` of it)
+    drawn healthy into ROOT (made anew): ``simulate`` -> ``run model=mlr`` -> ``monitor``, each
+    with its kind's overrides."""
     from bench_mon88 import _root
 
-    folder = _root(root)
+    folder, kinds = _root(root), kinds or FRESH
     for seed in seed_list(seeds):
-        sim, extra = generator(FRESH[seed])
-        drawn_run_monitored(folder, f"{FRESH[seed]}{seed}", seed, sim, extra)
+        sim, extra = generator(kinds[seed])
+        drawn_run_monitored(folder, f"{kinds[seed]}{seed}", seed, sim, extra)
 
 def main(argv: list[str] | None = None) -> int:
-    return run_commands(__doc__, {"draw": draw, "served": served, "fresh": fresh},
+    return run_commands(__doc__, {"draw": lambda root, seeds: draw(root, seeds), "served": served,
+                                  "fresh": lambda: fresh()},
                         sys.argv[1:] if argv is None else argv, cpu=sys.stderr)
 
 
