@@ -313,11 +313,11 @@ def guard(root: str, work: str, *records: str) -> None:
               f"auto / MLR {auto / mlr:.3f} -> guarded {guarded / mlr:.3f}")
 
 
-def rooms(*records: str) -> None:
-    """``guard`` on climate rooms (bench_auto88b's :data:`RECORDS`: several campaigns, the test
-    campaigns their own): auto and MLR fitted on the train campaigns, each test campaign predicted
-    as ``run`` scores it; the guard's rows out of range of all train rows (inputs less each
-    campaign's first sample); mean over targets of the pooled test RMSE, over MLR's."""
+def room(name: str):
+    """``(ds, ids, columns, x_train, series)`` of the climate room ``name`` (bench_auto88b's
+    :data:`RECORDS`): auto and MLR fitted on its train campaigns, its test campaign ids, the ``T_``
+    columns, the train inputs (:func:`_inputs`, stacked) and per model (``auto``, ``mlr``) the
+    simulation-mode residual series as ``run`` scores them."""
     import bench_auto88b as auto88b
     import bench_auto_rank as rank
     from sklearn.base import clone
@@ -325,17 +325,26 @@ def rooms(*records: str) -> None:
     from thermocomp.core.scoring.evaluation import split_residuals
     from thermocomp.shell.builders import build_compensator
 
+    overrides = list(auto88b.RECORDS[name])
+    sys.argv[2:] = overrides
+    cfg, ds, train = rank.setup(overrides)
+    auto = build_compensator(cfg, ds=ds).fit(train)
+    mlr = clone(auto).set_params(estimator=rank._mlr()).fit(train)
+    ids = ds.ids("test")
+    columns = [c for c in next(iter(train.values())).columns if c.startswith("T_")]
+    x_train = np.vstack([_inputs(f, columns) for f in train.values()])
+    series = {k: split_residuals(m, ds, ids, "simulation")[2] for k, m in (("auto", auto), ("mlr", mlr))}
+    return ds, ids, columns, x_train, series
+
+
+def rooms(*records: str) -> None:
+    """``guard`` on climate rooms (bench_auto88b's :data:`RECORDS`: several campaigns, the test
+    campaigns their own): auto and MLR fitted on the train campaigns, each test campaign predicted
+    as ``run`` scores it; the guard's rows out of range of all train rows (inputs less each
+    campaign's first sample); mean over targets of the pooled test RMSE, over MLR's."""
     for name in records:
-        overrides = list(auto88b.RECORDS[name])
-        sys.argv[2:] = overrides
-        cfg, ds, train = rank.setup(overrides)
-        auto = build_compensator(cfg, ds=ds).fit(train)
-        mlr = clone(auto).set_params(estimator=rank._mlr()).fit(train)
-        ids = ds.ids("test")
-        columns = [c for c in next(iter(train.values())).columns if c.startswith("T_")]
-        x_train = np.vstack([_inputs(f, columns) for f in train.values()])
+        ds, ids, columns, x_train, series = room(name)
         flags = dict(zip(ids, _in_range_rows(x_train, [ds.campaigns[c] for c in ids], columns)))
-        series = {k: split_residuals(m, ds, ids, "simulation")[2] for k, m in (("auto", auto), ("mlr", mlr))}
         figures = {"auto": [], "guarded": [], "mlr": []}
         for t in series["auto"]:
             y = np.concatenate([series["auto"][t][0][c] for c in ids])
