@@ -145,6 +145,9 @@ class Evaluation:
             out["evidence"]["cv_rmse_gain_pct_within"] = self.gain_pct_within
         if self.gain_pct_within_rest is not None:
             out["evidence"]["cv_rmse_gain_pct_within_rest"] = self.gain_pct_within_rest
+        if self.p_within is not None:     # a start lag's two parts (diag92c)
+            out["evidence"]["p_value_within"] = self.p_within
+            out["evidence"]["p_value_between"] = self.p_between
         out["effect"] = e.to_dict()
         return out
 
