@@ -117,8 +117,6 @@ class Evaluation:
     p_margin: float = float("nan")            # p of a gain of min_gain_pct at least (the margin)
     gain_pct_within: float | None = None       # within the held-out campaigns (campaigns CV)
     gain_pct_within_rest: float | None = None  # the same without the campaign gaining most there
-    p_within: float | None = None              # a start lag's: its within-campaign part's p
-    p_between: float | None = None             # ... its campaigns' means part's p (campaigns)
 
     def entry(self) -> dict:
         """The ``effects`` entry of ``diagnosis.json`` (CLI.md keys first)."""
@@ -145,9 +143,6 @@ class Evaluation:
             out["evidence"]["cv_rmse_gain_pct_within"] = self.gain_pct_within
         if self.gain_pct_within_rest is not None:
             out["evidence"]["cv_rmse_gain_pct_within_rest"] = self.gain_pct_within_rest
-        if self.p_within is not None:     # a start lag's two parts (diag92c)
-            out["evidence"]["p_value_within"] = self.p_within
-            out["evidence"]["p_value_between"] = self.p_between
         out["effect"] = e.to_dict()
         return out
 
@@ -484,42 +479,6 @@ class Search:
         if self.problem.scheme == "campaigns":    # and not from one campaign (clean69)
             ev.gain_pct_within_rest = self._within_gain(current, ev.result, less_best=True)
             ev.clears_bar = ev.clears_bar and ev.gain_pct_within_rest >= self.options.min_gain_pct
-            if ev.effect.kind == "dynamics" and ev.effect.initial_state:
-                ev.clears_bar = ev.clears_bar and self._split_clears(ev, current)
-
-    def _split_clears(self, ev: Evaluation, current: CVResult) -> bool:
-        """A start lag (a lag from the initial thermal state) clears only if its gain holds in
-        one of its two parts on its own (diag92c): the WITHIN-campaign part (each held-out
-        campaign's residual less its mean) by the blocks' test -- sign flips of the test blocks'
-        within MSE gains, ``p`` and, on blocks finer than the campaigns, the margin's ``p`` at
-        ``alpha`` -- or the part in the campaigns' MEANS by a test of the campaigns: each
-        campaign's gain in its squared mean as a share of its MSE, flipped by campaign (exact,
-        ``p >= 2^-n``).  The transient ``1 - exp(-t/tau)`` is near a constant per campaign, so
-        a start lag can fit the campaigns' offsets, and the pooled blocks count one campaign's
-        offset many times: on planted 8969 E_X T_bearing_f1's 7200 s start lag gained 24.9 % in
-        CV, 9.1 % within, and raised the test error 21.7 % (``benchmarks/bench_diag92.py``)."""
-        p, opts = self.problem, self.options
-        ok = p.validated & np.isfinite(current.residual) & np.isfinite(ev.result.residual)
-        units, n = p.unit_index[ok], p.n_units
-        counts = np.maximum(np.bincount(units, minlength=n), 1)
-        blocks = p.block_index[ok]
-        n_blocks = int(blocks.max()) + 1 if blocks.size else 0
-        block_counts = np.maximum(np.bincount(blocks, minlength=n_blocks), 1)
-
-        def parts(residual):
-            r = residual[ok]
-            mean = np.bincount(units, weights=r, minlength=n) / counts
-            w = r - mean[units]
-            return (np.bincount(blocks, weights=w * w, minlength=n_blocks) / block_counts,
-                    mean ** 2, np.bincount(units, weights=r * r, minlength=n) / counts)
-
-        (w0, m0, mse0), (w1, m1, _) = parts(current.residual), parts(ev.result.residual)
-        ev.p_within, p_margin = _flip_pvalues(w0, w1, opts.min_gain_pct, opts.seed)
-        ranked = p.n_blocks_tested > p.n_units
-        ev.p_between = float(sign_flip_pvalues([np.clip((m0 - m1) / np.maximum(mse0, 1e-300), -1, 1)],
-                                               seed=opts.seed)[0])
-        within = ev.p_within <= opts.alpha and (p_margin <= opts.alpha or not ranked)
-        return bool(within or ev.p_between <= opts.alpha)
 
     def _within_gain(self, current: CVResult, result: CVResult, campaigns: bool = False,
                      less_best: bool = False) -> float:
