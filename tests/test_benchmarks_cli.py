@@ -45,7 +45,7 @@ COMMAND_BENCHES = (
     "bench_diag88c", "bench_diag88d", "bench_diag89", "bench_diag89b", "bench_diag89c", "bench_diag89d",
     "bench_diag91", "bench_diag91b", "bench_diag91c", "bench_diag92", "bench_diag92b", "bench_diag92c",
     "bench_diagfault65", "bench_diagfault72", "bench_diagpower67", "bench_diagref65", "bench_drift74",
-    "bench_env92", "bench_fault70", "bench_faults71", "bench_freeze83", "bench_freeze83b",
+    "bench_env92", "bench_env92b", "bench_fault70", "bench_faults71", "bench_freeze83", "bench_freeze83b",
     "bench_freeze83c", "bench_freeze84", "bench_freeze90", "bench_freeze91", "bench_freeze92",
     "bench_fresh69", "bench_gate71", "bench_gate77", "bench_initlag67", "bench_iso67", "bench_jig68",
     "bench_keysight70", "bench_lab83", "bench_lagwithin68", "bench_margin67", "bench_mon71", "bench_mon72",
