@@ -1,6 +1,7 @@
 """``model=auto``'s guard to MLR off the training pattern, with the pattern built WITHOUT the
 ambient: does a pattern that an ambient shift cannot leave keep auto's ambient wins and still fix
-its column losers?  (issue 34; stop 92, auto92b, follow-up of bench_auto92).  RESULT: see below.
+its column losers?  (issue 34; stop 92, auto92b, follow-up of bench_auto92).  TRACED (no rule;
+src as on main)
 
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``; ROOT and WORK as bench_auto92's,
 i.e. bench_auto91's ``rows`` already run into WORK)::
@@ -37,9 +38,63 @@ guarded / MLR <= 1.02) AND keeps year6_5411 and every climate room within 2 % of
 guarded / auto > 1.02) and the rooms' geo mean guarded / auto <= 1.00.  Seen records only, NO
 fresh seeds in this stop (fresh 9271-9280 are for the next, if a probe passes here).
 
-Measured
---------
-(filled in below after the run)
+Traced (2026-12-05, this tree = main 6b725f1c, src as 2b918bfd; WORK = /tmp/auto92/seen, auto92's rows)
+---------------------------------------------------------------------------------------------------
+``guard /tmp/auto92/root /tmp/auto92/seen col5791 col1403 lab5401 year6_5411 col1514 col6512
+swiss303 swiss5454 year6511 mill1514`` (7 s CPU), ``rooms cr9079 cr9182 cr9248 cr9244 cr9181
+cr9183 cr9245 cr9031 cr9076 cr9081 cr9083 cr9088 cr9089`` (26 s CPU) and ``trace cr9182`` (4 s
+CPU); 2 shared cores, nice, ``OMP_NUM_THREADS=1``.  ``pattern`` / ``both`` reproduce bench_auto92
+to the digit.
+
+Seen records, new campaigns: auto / MLR -> guarded / MLR (share of rows guarded)::
+
+              auto    pattern  both   pattern_noamb both_noamb  pattern_rel  both_rel
+  col5791     1.258   0.999    1.004  0.999 (0.50)  1.005 (0.31) 1.000 (0.39) 1.072 (0.23)
+  col1403     1.311   1.111    1.130  1.111 (0.47)  1.139 (0.30) 1.110 (0.47) 1.253 (0.23)
+  lab5401     1.070   1.063    1.070  1.066 (0.07)  1.070 (0.00) 1.033 (0.50) 1.070 (0.00)
+  year6_5411  0.518   0.655    0.518  0.656 (0.03)  0.518 (0.00) 0.664 (0.14) 0.518 (0.00)
+  col1514     1.019   1.006    1.011  1.006         1.011        1.005        1.005
+  col6512     1.004   1.000    1.000  1.000         1.000        1.000        1.001
+  swiss303 / swiss5454 / year6511 / mill1514: unchanged (within 0.001) under all six.
+
+Climate rooms (own test campaigns), guarded / auto::
+
+              pattern  both   pattern_noamb  both_noamb  pattern_rel  both_rel
+  cr9079      1.352    1.000  1.427          1.000       1.328        1.000
+  cr9182      1.057    1.054  1.042          1.042       1.020        1.021
+  cr9248      1.084    1.000  1.084          1.000       1.117        1.000
+  cr9245      1.008    1.007  1.010          1.006       1.008        1.007
+  cr9083      1.000    1.000  1.000          1.000       1.031        1.000
+  cr9089      1.000    1.000  1.000          1.000       1.009        1.000
+  cr9183 1.003 / 1.011 (pattern / pattern_rel), cr9076 / 9081 / 9088 within 0.5 %, cr9244 /
+  9181 / 9031 none guarded
+  geo mean    1.036    1.005  1.039          1.004       1.037        1.002
+
+``trace cr9182`` (621 test rows in 3 campaigns; pattern rank 6 of 12, tol 0.0649; train
+ambient, referenced, -0.13 .. +4.42 K): all 21 rows ``both`` guards lie in ONE test campaign,
+C11, rows 146-203, in 8 runs, while its ambient has fallen 2.8 .. 4.2 K below its first
+sample, where no train campaign's ambient fell more than 0.13 K (a cooling room; train warmed).  The inputs beyond the bounds are ``T_amb`` and ``T_nc_cabinet`` on every
+run; the residual off the pattern is carried NOT by the ambient but by ``T_frame1`` (0.36-0.49
+of it) and ``T_guidebush`` / ``T_frame2`` (0.18-0.32): the frame lags a cooling room in a
+direction the warming-only train never showed.  auto's SSE over those rows is 72 against MLR's
+294 (MLR worse on 7 of 8 runs); the guard adds 221 to auto's 2001 over the room's test rows.  Without
+the ambient the same rows stay off the pattern (``both_noamb`` guards 15 of the 21, ``both_rel``
+8): removing the ambient column does not remove the ambient's footprint on the structure.
+
+Bar (bench_auto92's, unchanged; written before scoring): ``pattern_noamb`` and ``pattern_rel``
+fail as ``pattern`` did (year6_5411 0.518 -> 0.656 / 0.664; cr9079 x1.427 / x1.328; rooms geo
+1.039 / 1.037).  ``both_noamb`` fixes one loser (col5791 1.005; col1403 1.139, lab5401 1.070)
+and fails cr9182 (x1.042, geo 1.004); ``both_rel`` fixes none (col5791 1.072) and cr9182 is
+x1.021 (geo 1.002).  No probe meets the bar on the seen records, so no rule was built and fresh
+seeds 9271-9280 were NOT drawn.
+
+Verdict: TRACED.  Dropping the ambient from the pattern (or referencing each temperature to it)
+does not separate an ambient shift from a new source: an ambient outside the train span moves
+the machine's own sensors off the pattern (cr9182: the frame against a cooling room), and the
+ambient-free frames lose part of col5791 / col1403's fix (both_rel).  What is left: a guard on
+the ambient's own span (the row's ambient within the train ambient range as a precondition of
+the guard, i.e. guard only where the ambient is in span and the row is off pattern), or a
+pattern built on train rows covering both ambient directions.
 """
 
 from __future__ import annotations
@@ -158,14 +213,15 @@ def trace(name: str) -> None:
         out = [columns[j] for j in np.flatnonzero(beyond[rows].any(axis=0))]
         ratio = np.sqrt((resid[rows] ** 2).sum(axis=1)).max() / envelope.tol
         k = campaign[rows[0]]
+        residual = " ".join(f"{columns[j]} {share[j]:.2f}" for j in top)
+        ambient_span = f"{amb_test[rows].min():+.2f} .. {amb_test[rows].max():+.2f}"
+        still = ", ".join(f"{p} {gates[p][rows].mean():.2f}" for p in ("both_noamb", "both_rel"))
         print(f"   {ids[k]} rows {rows[0] - start[k]}-{rows[-1] - start[k]} ({rows.size}): off x{ratio:.2f} "
-              f"tol, residual " + " ".join(f"{columns[j]} {share[j]:.2f}" for j in top)
-              + f"; beyond {','.join(out)}; ambient {amb_test[rows].min():+.2f} .. {amb_test[rows].max():+.2f}"
-              f"; SSE auto {err['auto'][rows].sum():.1f} MLR {err['mlr'][rows].sum():.1f}; kept by "
-              f"both_noamb {gates['both_noamb'][rows].mean():.2f}, both_rel {gates['both_rel'][rows].mean():.2f}")
-    total = {k: err[k].sum() for k in err}
+              f"tol, residual {residual}; beyond {','.join(out)}; ambient {ambient_span}; SSE auto "
+              f"{err['auto'][rows].sum():.1f} MLR {err['mlr'][rows].sum():.1f}; still guarded by {still}")
     both = gates["both"]
-    print(f"   all rows SSE auto {total['auto']:.1f}; under both: + {err['mlr'][both].sum() - err['auto'][both].sum():.1f}")
+    added = err["mlr"][both].sum() - err["auto"][both].sum()
+    print(f"   all rows SSE auto {err['auto'].sum():.1f}; under both: + {added:.1f}")
 
 
 def main(argv: list[str]) -> int:
