@@ -73,13 +73,14 @@ Climate rooms (own test campaigns), guarded / auto::
 ``trace cr9182`` (621 test rows in 3 campaigns; pattern rank 6 of 12, tol 0.0649; train
 ambient, referenced, -0.13 .. +4.42 K): all 21 rows ``both`` guards lie in ONE test campaign,
 C11, rows 146-203, in 8 runs, while its ambient has fallen 2.8 .. 4.2 K below its first
-sample, where no train campaign's ambient fell more than 0.13 K (a cooling room; train warmed).  The inputs beyond the bounds are ``T_amb`` and ``T_nc_cabinet`` on every
-run; the residual off the pattern is carried NOT by the ambient but by ``T_frame1`` (0.36-0.49
-of it) and ``T_guidebush`` / ``T_frame2`` (0.18-0.32): the frame lags a cooling room in a
-direction the warming-only train never showed.  auto's SSE over those rows is 72 against MLR's
-294 (MLR worse on 7 of 8 runs); the guard adds 221 to auto's 2001 over the room's test rows.  Without
-the ambient the same rows stay off the pattern (``both_noamb`` guards 15 of the 21, ``both_rel``
-8): removing the ambient column does not remove the ambient's footprint on the structure.
+sample, where no train campaign's ambient fell more than 0.13 K (a cooling room; train warmed).
+The inputs beyond the bounds are ``T_amb`` and ``T_nc_cabinet`` on every run; the residual off
+the pattern is carried NOT by the ambient but by ``T_frame1`` (0.36-0.49 of it) and
+``T_guidebush`` / ``T_frame2`` (0.18-0.32): the frame lags a cooling room in a direction the
+warming-only train never showed.  auto's SSE over those rows is 72 against MLR's 294 (MLR worse
+on 7 of 8 runs); the guard adds 221 to auto's 2001 over the room's test rows.  Without the
+ambient the same rows stay off the pattern (``both_noamb`` guards 15 of the 21, ``both_rel`` 8):
+removing the ambient column does not remove the ambient's footprint on the structure.
 
 Bar (bench_auto92's, unchanged; written before scoring): ``pattern_noamb`` and ``pattern_rel``
 fail as ``pattern`` did (year6_5411 0.518 -> 0.656 / 0.664; cr9079 x1.427 / x1.328; rooms geo
