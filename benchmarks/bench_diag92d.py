@@ -33,9 +33,52 @@ all must hold, else REFUSED: src reverted, this bench and ``diag92d_rule.patch``
 4. SEEN (``trace`` + ``seen``): no row more than 2 % worse than main; few:4004 accepts nothing.
 5. ALL tests/*/test_diag*.py pass (three parts, ``-n 2``).
 
-Scored
-------
-(below, filled in after the runs)
+Scored (2026-12-05, 2 cores shared; main = 2b918bfd's src (``git archive`` under /tmp/diag92d/main),
+rule = this branch's src; each command once per tree, main first)
+---------------------------------------------------------------------------------------------------
+Test RMSE (µm, as run), before -> after; every (draw, target) row where main and the rule differ
+(``[..]``: each round's test blocks).
+
+``trace`` (seen): position found on 3 -> 4 draws; few:4004 accepts nothing in both (round 1 on 8
+-> 43 blocks: diag91b's guard fired through a T_amb lag with no gain, which no longer sets the
+length; on 43 blocks nothing clears: the offset lags, p 5e-5, saturate, 12-13 regressors)::
+
+  planted:8969 E_Y 5.0569 main nothing [8] | rule 2.5898 position + T_motor1 7200 s lag [14, 8] -48.8 %
+
+``seen`` (44 draws): position found on 19 in both; clean draws accept on the same three (8075 /
+8170 / 8178, main's spurious start lags); no control clears; four rows differ, none worse::
+
+  planted:9103 E_Y 2.9079 main 1.4766 [50, 8]  | rule 1.4576 [50, 13] (same effects)    -1.3 %
+  planted:9150 E_Y 3.7639 main 1.9646 [58, 8]  | rule 1.3529 [58, 13] + T_motor1 lag    -31.1 %
+  clean:8170 E_X   0.7968 main 0.9158 T_nose lag [21, 573] | rule 0.9079 T_box1 lag [573, 573] -0.9 %
+  lag:9195 E_Y     1.4699 main nothing [8]     | rule 0.7583 T_motor2 7200 s lag [14, 27] -48.4 %
+
+CPU (``seen``, diagnose only): 32.0 s main, 30.2 s rule.
+
+``fresh`` 9486-9495 (once, after the bar above): position found on 9490 / 9491 / 9492 in both;
+clean 9486-9489 accept nothing in both (identical rows); no control clears; two rows differ::
+
+  planted:9491 E_X 1.0036 main nothing [19]    | rule 0.9797 T_bearing_f3 lag [203, 73] -2.4 %
+  lag:9493 E_Y     1.5952 main nothing [12]    | rule 1.6189 T_motor1 7200 s lag [550, 8] +1.5 %
+
+CPU 6.9 s main, 7.7 s rule.
+
+Is 8969's p earned?  Round 1's 14 blocks of 33 samples: K05 (the constant-6000-rpm campaign)
+holds 2 blocks and most of the blocks' MSE gain (34 + 134 of ~250 summed); of the 12 blocks
+outside K05, 9 gain (as a share of their own MSE, what the test reads: K01 0.75 / 0.84, K02
+0.74, K04 0.16 / 0.74, K08 0.40 / 0.84, K10 0.40, K11 0.79) and 3 lose (K07 -0.01 / -0.13, K10 -0.70): the
+position gains in 6 of the 7 other campaigns, so the test is not carried by K05 alone.  But
+the two blocks of one campaign mostly share a sign (K01, K04, K05, K07, K08), so 14 blocks
+are not 14 independent units; p_fam 0.0070 sits between a campaign-level floor (3/256) and
+what 14 independent blocks would give.  Said plainly: partly earned.
+
+Bar: 1 holds (worst fresh row +1.5 %); 2 holds; 3 holds (3 of 3 where main finds 3); 4 holds
+(no seen row worse, 4004 nothing); 5: see the report's counts (tests/*/test_diag*.py, three
+parts, ``-n 2``).
+
+**KEPT.**  Test: tests/apps/test_diagnose_could_clear92d.py (planted 8969 E_Y alone: round 1 on
+more than 8 blocks, the position taken at p_fam <= alpha, test error < 0.6 x before, the control
+never clears); it fails on 2b918bfd (8 blocks).
 """
 
 import sys
