@@ -73,8 +73,8 @@ are not 14 independent units; p_fam 0.0070 sits between a campaign-level floor (
 what 14 independent blocks would give.  Said plainly: partly earned.
 
 Bar: 1 holds (worst fresh row +1.5 %); 2 holds; 3 holds (3 of 3 where main finds 3); 4 holds
-(no seen row worse, 4004 nothing); 5: see the report's counts (tests/*/test_diag*.py, three
-parts, ``-n 2``).
+(no seen row worse, 4004 nothing); 5 holds: the 25 tests/*/test_diag*.py files (three
+parts, ``-n 2``, the new file among them) 37 + 40 + 61 = 138 passed.
 
 **KEPT.**  Test: tests/apps/test_diagnose_could_clear92d.py (planted 8969 E_Y alone: round 1 on
 more than 8 blocks, the position taken at p_fam <= alpha, test error < 0.6 x before, the control
