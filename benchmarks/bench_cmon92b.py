@@ -1,0 +1,130 @@
+"""stream.c names every rule of the served monitor the exported C does not follow (cmon92b,
+issue 34): where such a rule (``TC_MON_NOT_IN_CODE``) sets in at the sample of an exclusion,
+``stream`` said only the exclusion (the sample's first event, ``mon_rule``), never the rule it
+does not follow (bench_cmon92: lr9212 arx_rf, ``T_amb`` and ``T_motor`` frozen together).
+
+Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is that tree's)::
+
+    python benchmarks/bench_cmon92b.py named ROOT SEEDS SENSORS
+
+``named``: per seed of ``SEEDS`` (``9132`` or ``9132,9133`` or ``9130-9133``) the long record
+(``thermocomp simulate sim=long_record``, 3 days, R1b the last fifth, under ``ROOT/lrSEED``), MLR
+deployed adaptive with ``data.reference=none`` (test_export_cmon87's ``long_record``), the
+sensors of ``SENSORS`` (joined by ``+``) frozen together from R1b's middle row; its C
+(``gcc -std=c99 -Wall -Wextra -Werror -O2``, under ``ROOT/lrSEED/c``) fed the whole stream
+(lead-in, R1b).  Counted against the numpy mirror of that C (:class:`Simulator`): ``sets_in`` the
+rows where a rule not in the code sets in (flagged, the row before not), ``at_exclusion`` those
+where the sample's first event is another (an exclusion, re-admission or common step), ``named``
+the rows whose rule not in the code ``stream`` names on stderr on that input line, and ``C =
+mirror`` the largest |C - mirror| over the rows (µm).
+
+The rule (src): the state keeps the sample's first rule not in the code and its sensor
+(``mon_missed``, ``mon_missed_sensor``, set where ``mon_flag`` flags ``TC_MON_NOT_IN_CODE``), and
+``said_monitor`` says it beside the sample's first event where the two differ.
+
+The bar (written before it was scored; no rule is fitted to data, there is nothing to tune)::
+
+    named == sets_in on every record run, at_exclusion >= 1 on the seen one (lr9132,
+    T_table+T_xdrive: the test's record), C = mirror < 1e-9 µm (the corrections untouched),
+    the build -Werror; main (2b918bfd) names fewer (at_exclusion of them missed).
+    KEPT if it holds; else REFUSED.
+
+Measured (this tree against 2b918bfd, 17:10 UTC, 2 cores shared)::
+
+    (filled below)
+"""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+
+HERE = Path(__file__).resolve().parent
+sys.path[:0] = [str(HERE), str(HERE.parent / "tests" / "shell"), str(HERE.parent / "tests")]
+
+from _cli import made_folder, run_commands, seed_list  # noqa: E402
+
+
+class _Folders:
+    """``long_record``'s ``tmp_path_factory``: its folders under one root."""
+
+    def __init__(self, root: Path):
+        self.root = root
+
+    def mktemp(self, name: str) -> Path:
+        folder = self.root / name
+        folder.mkdir(parents=True, exist_ok=True)
+        return folder
+
+
+def named_rows(said: str, ss, frame) -> tuple[int, int, int, np.ndarray]:
+    """``(sets_in, at_exclusion, named, the mirror's corrections)`` of ``frame`` (module doc),
+    ``said`` the stream's stderr."""
+    import re
+
+    from thermocomp.apps.deploy.export import Simulator
+    from thermocomp.apps.deploy.export.watch import EXCLUDED, NOT_IN_CODE, READMITTED, REASONS, REREFERENCED
+
+    lines: dict[int, list[str]] = {}
+    for line, why in re.findall(r"line (\d+): monitor: \S+: (.*)", said):
+        lines.setdefault(int(line), []).append(why)
+    sim = Simulator(ss)
+    sim.reset()
+    sets_in = at_exclusion = named = 0
+    flagged, mirror = False, []
+    for i, (u, t) in enumerate(zip(frame[ss.inputs].to_numpy(float), frame["time"])):
+        mirror.append(sim.step(u, t))
+        w = sim.watch
+        now = bool(w.flags & NOT_IN_CODE)
+        if now and not flagged:
+            sets_in += 1
+            at_exclusion += bool(w.flags & (EXCLUDED | READMITTED | REREFERENCED)
+                                 and w.missed != w.rule)
+            named += REASONS[w.missed] in lines.get(i + 2, [])     # (line 1: the header)
+        flagged = now
+    return sets_in, at_exclusion, named, np.asarray(mirror)
+
+
+def named(root: str, seeds: str, sensors: str) -> None:
+    """The ``named`` rows (module doc)."""
+    import pandas as pd
+
+    from test_export_cmon87 import long_record
+    from thermocomp.apps.deploy.export import exported_files
+    from thermocomp.apps.deploy.export.pack import fed
+
+    base = made_folder(root)
+    print(f"{'record':<10}{'sensors':<24}{'sets_in':>8}{'at_excl':>8}{'named':>7}{'C=mirror':>10}")
+    for seed in seed_list(seeds):
+        deployed, ss, _, _, tests, leads = long_record(_Folders(base), seed)
+        (test, campaign), = tests.items()
+        campaign = campaign.copy()
+        half = campaign.index[len(campaign) // 2:]
+        for sensor in sensors.split("+"):
+            campaign.loc[half, sensor] = campaign.loc[half[0] - 1, sensor]
+        frame = fed(campaign, leads.get(test))
+        folder = base / f"lr{seed}" / "c"
+        folder.mkdir(parents=True, exist_ok=True)
+        for name, text in exported_files(deployed, "c").items():
+            (folder / name).write_text(text)
+        subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", "compensator.c",
+                        "stream.c", "-lm", "-o", "stream"], cwd=folder, check=True,
+                       capture_output=True)
+        run = subprocess.run([str(folder / "stream")], capture_output=True, text=True, check=True,
+                             input=frame[["time", *ss.inputs]].to_csv(index=False,
+                                                                     float_format="%.17g"))
+        got = pd.read_csv(pd.io.common.StringIO(run.stdout)).to_numpy(float)
+        sets_in, at_exclusion, said, mirror = named_rows(run.stderr, ss, frame)
+        print(f"lr{seed:<8}{sensors:<24}{sets_in:>8}{at_exclusion:>8}{said:>7}"
+              f"{np.max(np.abs(got - mirror)):>10.2g}", flush=True)
+
+
+def main(argv: list[str]) -> int:
+    return run_commands(__doc__, {"named": named}, argv, cpu=sys.stderr)
+
+
+if __name__ == "__main__":
+    raise SystemExit(main(sys.argv[1:]))
