@@ -55,7 +55,30 @@ which the mirror probe on lr9132 showed meeting an exclusion)::
 VERDICT: KEPT.  Every rule not in the code that sets in is named on its input line (13 of 13;
 BASE 7 of 13: the 6 that set in at an exclusion never named).  The bar was written before the
 bench was run; the seen case (lr9132 T_table+T_xdrive) had been found with the mirror first.
-The fresh seeds 9526-9530 of the brief's part (2) were not drawn (part 2 not started).
+The fresh seeds 9526-9530 of the brief's part (2) were not drawn.
+
+Part (2), TRACED by reading (no rule, no bench command; src as after the rule above): two or
+more sensors jumping in the SAME sample, no common step (bench_cmon92: 2382 of the 2402 fresh
+spiked cases that part).  The served monitor (surveillance/monitor.py ``update``, faults.py
+``_instant`` and ``_unjumped_change``) reads the sample's faults together, none first: a common
+step is tried first (``_common_step``: at least ``COMMON_MIN`` jumps within the spread, else
+none taken); then EVERY jumping sensor is re-referenced by its step less the change the active
+sensors that did not jump predict for it (one operator solved on that set, ``_operator(base)``;
+NaN, i.e. the whole step, where its leverage with that set reaches ``max_leverage``, or where
+fewer than ``min_active`` did not jump) and excluded in the monitor's order; the correction is
+then the fallback model of the first sensor out that has one (``_fallen_back``), else the model
+on the others' reconstruction.  The C flags ``TC_MON_COMMON`` at ``nbig > 1`` (watch_c.py) and
+takes nothing out.  What the C already carries for a PAIR: a solved operator for any set
+(``mon_operator``, ``MON_SOLVE``: the set without both jumpers and, per jumper, with it for the
+leverage test), a second out (``mon_out2``, cmon85/cmon88: a jump as the second out held) and
+the fallback of the first out that has one (``mon_serving``).  So a pair with none out before,
+``MON_SOLVE`` on and enough left in (NM - 2 >= MON_MIN_ACTIVE) is solvable with no new constant:
+the rule would be ``nbig == 2`` -> per jumper ``offset = step - M_base[j] . (d - prev)[base]``
+(leverage-gated), re-referenced, both excluded in index order.  Not solvable with what it
+carries: three or more jumping (the C holds two out), a pair with one already out (a third),
+and exports without the POD basis.  How many of the 2382 are pairs with none out before is
+not counted here (needs bench_cmon92 ``fresh`` with a size column, ~790 s CPU): the first
+thing to measure before building it.
 """
 
 from __future__ import annotations
