@@ -789,16 +789,25 @@ static int check_open(void) {
    or 2 (FILE unreadable there) after saying where. */
 /* (cmon76) the sensor monitor's events on stderr: each exclusion and re-admission, a common
    step re-referenced (cmon80), and where a rule of the served monitor that is not in the code
-   sets in (from there the code may part from the served model); 100 lines at most */
-static void said_monitor(const tc_state *s, long row) {
-    static int said = 0, flagged = 0;
-    int now = (s->mon_flags & TC_MON_NOT_IN_CODE) != 0;
-    if (s->mon_rule && (s->mon_flags & (TC_MON_EXCLUDED | TC_MON_READMITTED | TC_MON_REREFERENCED)
-                        || (now && !flagged))
-        && said++ < 100)
+   sets in (from there the code may part from the served model); 100 lines at most.  (cmon92b)
+   Where that rule sets in at a sample whose first event is another (an exclusion), both are
+   said: every rule the code does not follow is named. */
+static void said_event(long row, int sensor, int rule) {
+    static int said = 0;
+    if (said++ < 100)
         fprintf(stderr, "stream: line %ld: monitor: %s: %s%s\n", row,
-                TC_INPUT_NAMES[TC_MONITORED[s->mon_sensor]], TC_MONITOR_REASONS[s->mon_rule],
+                TC_INPUT_NAMES[TC_MONITORED[sensor]], TC_MONITOR_REASONS[rule],
                 said == 100 ? " (no more said)" : "");
+}
+
+static void said_monitor(const tc_state *s, long row) {
+    static int flagged = 0;
+    int now = (s->mon_flags & TC_MON_NOT_IN_CODE) != 0, sets_in = now && !flagged;
+    if (s->mon_rule && (s->mon_flags & (TC_MON_EXCLUDED | TC_MON_READMITTED | TC_MON_REREFERENCED)
+                        || sets_in))
+        said_event(row, s->mon_sensor, s->mon_rule);
+    if (sets_in && s->mon_missed && s->mon_missed != s->mon_rule)
+        said_event(row, s->mon_missed_sensor, s->mon_missed);
     flagged = now;
 }
 

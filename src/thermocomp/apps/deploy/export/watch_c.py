@@ -73,6 +73,9 @@ STATE = """    /* the sensor monitor (TC_MONITOR): referenced readings d = u - m
     double mon_last[NM];
     int mon_read[NM];   /* (cmon84) the sample's monitored readings there (not missing) */
     int mon_flags, mon_sensor, mon_rule;        /* the last sample's (TC_MON_*) */
+    /* (cmon92b) the sample's first rule not in the code and its sensor, where its first event
+       (mon_rule) is another (an exclusion in the same sample): stream.c names both */
+    int mon_missed, mon_missed_sensor;
 """
 
 
@@ -284,6 +287,8 @@ static double mon_mean_err(const tc_state *s, int k) {
 static void mon_flag(tc_state *s, int bit, int k, int rule) {
     s->mon_flags |= bit;
     if (!s->mon_rule) s->mon_sensor = k, s->mon_rule = rule;   /* the sample's first event */
+    if (bit == TC_MON_NOT_IN_CODE && !s->mon_missed)   /* and its first rule not in the code */
+        s->mon_missed_sensor = k, s->mon_missed = rule;
 }
 
 /* (cmon84) 1: sensor k, no other predicts it, held out at its last reading for a dropout or a
@@ -540,8 +545,8 @@ static int mon_watched(int j) {
    (or out of range), of a sensor the code does not hold out; flagged in mon_flags / mon_rule */
 static int mon_refuses(tc_state *s, const double u[]) {
     int k, j = -1, nnew = 0, miss = -1, rng = 0, rule = 0;
-    s->mon_flags = s->mon_rule = 0;
-    s->mon_sensor = -1;
+    s->mon_flags = s->mon_rule = s->mon_missed = 0;
+    s->mon_sensor = s->mon_missed_sensor = -1;
     for (k = 0; k < TC_N_MONITORED; k++) {
         double x = u[TC_MONITORED[k]];
         if (!measured(u, TC_MONITORED[k])) {
@@ -1049,8 +1054,8 @@ static void monitor_step(tc_state *s, double u[], double dt) {
         }
         mon_recompute(s);   /* (every sensor in: MON_M[0]; the window all NAN) */
     }
-    s->mon_flags = s->mon_rule = 0;
-    s->mon_sensor = -1;
+    s->mon_flags = s->mon_rule = s->mon_missed = 0;
+    s->mon_sensor = s->mon_missed_sensor = -1;
     for (k = 0; k < NM; k++) {
         x[k] = u[TC_MONITORED[k]];   /* (NAN: missing, one mon_refuses let through) */
         missing[k] = !isfinite(x[k]);
