@@ -126,20 +126,12 @@ from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE)]
-import bench_bar91 as bar91  # noqa: E402
 import bench_bar91b as bar91b  # noqa: E402
-import bench_mon88 as mon88  # noqa: E402
 from _cli import run_commands  # noqa: E402
-
-FRESH = {**{seed: ("lr", mon88.LONG, ("data.reference=none",)) for seed in range(9446, 9451)},
-         **{seed: ("cr", mon88.ROOM, ()) for seed in range(9451, 9456)}}
-bar91.RECORDS.update(FRESH)     # bar91's score / why draw the records its RECORDS names
-bar91b.FRESH = FRESH            # bar91b's table reads the rows of the records FRESH names
 
 
 def main(argv: list[str]) -> int:
-    return run_commands(__doc__, {"score": bar91.score, "table": bar91b.table, "why": bar91.why},
-                        argv, cpu=sys.stderr)
+    return run_commands(__doc__, bar91b.commands_on(9446), argv, cpu=sys.stderr)
 
 
 if __name__ == "__main__":
