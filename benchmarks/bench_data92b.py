@@ -40,8 +40,7 @@ from pathlib import Path
 
 import pandas as pd
 from _cli import run_commands
-from bench_data88 import START, _cli, _lab, _refusal
-from bench_data88 import UNIT
+from bench_data88 import START, UNIT, _cli, _lab, _refusal
 from bench_data92 import score as score_files
 from bench_data92 import write as write_raw
 
