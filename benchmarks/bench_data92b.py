@@ -40,7 +40,7 @@ from pathlib import Path
 
 import pandas as pd
 from _cli import run_commands
-from bench_data88 import START, UNIT, _cli, _lab, _refusal
+from bench_data88 import START, _cli, _refusal
 from bench_data92 import score as score_files
 from bench_data92 import write as write_raw
 
@@ -48,22 +48,21 @@ FILES = "contract,rawclock,rawpair,rawzeit"
 
 
 def write(root: str, seed: str) -> None:
-    """bench_data92's exports of ``seed``, ``rawpair.csv`` and ``rawzeit.csv`` (module docstring)."""
+    """bench_data92's exports of ``seed``, ``rawpair.csv`` and ``rawzeit.csv`` (module docstring):
+    ``rawclock.csv``'s lines, its ``Uhrzeit`` beside its date or in place of the seconds."""
     write_raw(root, seed)
     base = Path(root) / seed
     rows = pd.read_csv(base / "contract.csv")
-    values = rows.drop(columns="time")
-    head = [f"{_lab(c)} [{UNIT[c[0]]}]" for c in values.columns]
-    body = [[repr(float(v)).replace(".", ",") for v in r] for r in values.itertuples(index=False)]
+    head, *body = (base / "rawclock.csv").read_bytes().decode("utf-8").removeprefix(
+        "\ufeff").split("\r\n")[:len(rows) + 1]
     stamps = [START + pd.Timedelta(seconds=float(t)) for t in rows["time"]]
-    pair = [[s.strftime("%d.%m.%Y"), s.strftime("%H:%M:%S")] for s in stamps]
     since = [repr(float(t - rows["time"].iloc[0])).replace(".", ",") for t in rows["time"]]
-    for name, lines in (("rawpair.csv", [["Datum", "Uhrzeit", *head],
-                                         *([*p, *b] for p, b in zip(pair, body))]),
-                        ("rawzeit.csv", [["Zeit [s]", *head],
-                                         *([z, *b] for z, b in zip(since, body))])):
-        text = "\ufeff" + "".join(";".join(cells) + "\r\n" for cells in lines)
-        (base / name).write_bytes(text.encode("utf-8"))
+    for name, lines in (("rawpair.csv", [f"Datum;{head}", *(f"{s:%d.%m.%Y};{line}" for s, line
+                                                             in zip(stamps, body))]),
+                        ("rawzeit.csv", [f"Zeit [s];{head.partition(';')[2]}",
+                                         *(f"{z};{line.partition(';')[2]}" for z, line
+                                           in zip(since, body))])):
+        (base / name).write_bytes(("\ufeff" + "".join(f"{ln}\r\n" for ln in lines)).encode())
     print(f"wrote {base}: rawpair.csv, rawzeit.csv ({len(rows)} rows)")
 
 
