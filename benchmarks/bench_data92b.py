@@ -30,7 +30,44 @@ file, the column and the row (main: refused too, the cell or the column); (d) te
 8cd822b4 pass here.  Any case main accepts read otherwise here, or a value no time of day
 accepted, refuses the rule.
 
-Scored: see the bottom of this docstring (written after the fresh seeds only).
+Scored (2026-12-05, fresh seeds 9531-9535, each ``write`` once on this tree, copies of the same
+files scored by main 8cd822b4's src and conf; ``score`` (mlr) and ``bad`` of fix/data92b fb4552fe
+src, unchanged since; no seed drawn before; the bar above unchanged after)
+---------------------------------------------------------------------------------------------
+Records 55-61 rows at 300 s from 21:30:00 (past midnight), 3 targets, the last quarter held out.
+
+==========  ==========================================  =============================================
+file        main 8cd822b4 (5 of 5 seeds alike)          fix/data92b (5 of 5 seeds alike)
+==========  ==========================================  =============================================
+contract    accepted, C = contract 0 µm                 as main, every printed figure equal (0 µm)
+rawclock    init exit 2 at data row 1 ("a time of day   accepted with NO key: init says "'Uhrzeit'
+            without its date"); the two keys it names   h:mm:ss, its header a time of day ... read
+            typed (data.time=of_day data.roles.time=    as data.time='of_day'" and writes ``time:
+            'Uhrzeit'): accepted, C = contract 0 µm     of_day``; run = plain replay (<= 8.9e-15 µm),
+                                                        replay = C (<= 2.5e-14 µm), C(rawclock) =
+                                                        C(contract) 0 µm on every row; every figure
+                                                        = main's with the two keys typed (0 µm)
+rawpair     accepted (Datum + Uhrzeit one timestamp),   as main, every figure equal (0 µm), no
+            C = contract 0 µm                           of_day key written
+rawzeit     accepted (Zeit [s]), C = contract 0 µm      as main, every figure equal (0 µm)
+bad 25:10   exit 2, data row 1 (the clock refused as    exit 2, column 'time' (header 'Uhrzeit'),
+(row 20)    a time of day without its date)             data row 21: "time decreases from 90600 s
+                                                        (row 20) to 83400 s" (init's one rule, an
+                                                        hour past 23 in the file: data.time=elapsed)
+bad 21.75   exit 2, column 'Uhrzeit', data row 20       as main (the same words)
+(row 20)    (the decimal mark is ambiguous)
+==========  ==========================================  =============================================
+
+Test RMSE (µm, run, E_X E_Y E_Z): 9531 0.345 1.075 0.888; 9532 0.531 0.758 1.669; 9533 0.746
+0.577 1.062 (replay as deployed 0.768 1.941 1.676: the monitor and the guard, as main's).
+
+Against the BAR: (a) 5 of 5; (b) 10 of 10 (rawpair, rawzeit) as main to the printed digit; (c)
+10 of 10 refused exit 2 naming file / column / row (the 25:10 one at its next row, naming row 20:
+``init``'s rule reads a file whose ``h:mm:ss`` passes 23 h as elapsed, kept as it is, so the
+clock's step back after it is what is refused; read without ``init`` the file reader says
+"'25:10:00' is no time of day (data.time=of_day)" at row 20, the test); (d)
+tests/shell/test_clock_header92b.py, 7 of 8 fail on 8cd822b4 (the eighth a guard of the date
+pair).  KEPT.  CPU: one set look-up per header; ``score`` ~4 min per seed (4 files, mlr).
 """
 
 from __future__ import annotations
