@@ -85,10 +85,11 @@ def test_a_time_of_day_alone_under_any_header_is_refused_saying_so(tmp_path, cap
     path = _write(tmp_path / "clock.csv", ["time", "T1", "dX [µm]"], [t, t1, e])
     lines = path.read_text(encoding="utf-8").splitlines()
     rows = [f"{c},{ln.split(',', 1)[1]}" for c, ln in zip(clock, lines[1:])]
-    path.write_text("\n".join(["Uhrzeit,T1,dX [µm]", *rows]) + "\n", encoding="utf-8")
+    # (data92b: 'Uhrzeit' names a time of day, read as data.time=of_day: a header no time header names)
+    path.write_text("\n".join(["Erfasst,T1,dX [µm]", *rows]) + "\n", encoding="utf-8")
     out = tmp_path / "init"
     refused(["init", str(path), f"out={out}"], capsys, str(path), "time of day without its date",
-            "'Uhrzeit'", "data.sample_period_s")
+            "'Erfasst'", "data.sample_period_s")
     assert not out.exists()
     assert main(["init", str(path), "data.sample_period_s=60", f"out={out}"]) == 0
 

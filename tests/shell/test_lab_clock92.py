@@ -20,11 +20,11 @@ from thermocomp.core.io.stdin import stream_stamps
 from thermocomp.shell.cli import main
 
 
-def _raw_clock(rows: pd.DataFrame) -> str:
+def _raw_clock(rows: pd.DataFrame, header: str = "Uhrzeit") -> str:
     """``rows`` as a lab's PC writes them: a BOM, ``;``, decimal commas, units in the headers,
-    CRLF, the time a dateless ``h:mm:ss`` under ``Uhrzeit`` (past midnight)."""
+    CRLF, the time a dateless ``h:mm:ss`` under ``header`` (past midnight)."""
     clock = _clock(rows)
-    head = ["Uhrzeit", "T a [°C]", "T b [°C]", "T c [°C]", "dX [µm]"]
+    head = [header, "T a [°C]", "T b [°C]", "T c [°C]", "dX [µm]"]
     body = [[r.Time, *(repr(float(v)).replace(".", ",") for v in (r.T_a, r.T_b, r.T_c, r.E_X))]
             for r in clock.itertuples(index=False)]
     return "\ufeff" + "".join(";".join(cells) + "\r\n" for cells in [head, *body])
@@ -32,7 +32,8 @@ def _raw_clock(rows: pd.DataFrame) -> str:
 
 def test_the_refusals_time_of_day_key_typed_as_written_reads_the_file(tmp_path, capsys):
     rows = _record(921)
-    (tmp_path / "lab.csv").write_bytes(_raw_clock(rows).encode("utf-8"))
+    # (data92b: 'Uhrzeit' names a time of day, read so with no key: a header no time header names)
+    (tmp_path / "lab.csv").write_bytes(_raw_clock(rows, "Erfasst").encode("utf-8"))
     said = refused(["init", str(tmp_path / "lab.csv"), f"out={tmp_path / 'a'}"], capsys,
                    "lab.csv", "column 'time'", "data row 1", "data.time=of_day")
     keys = re.findall(r"data\.[\w.]+=[^\s)]+", said.rpartition("the time of day as the time, ")[2])
@@ -40,7 +41,7 @@ def test_the_refusals_time_of_day_key_typed_as_written_reads_the_file(tmp_path, 
     # before: the key alone, typed, was refused by this very message
     assert main(["init", str(tmp_path / "lab.csv"), *keys, f"out={tmp_path / 'b'}"]) == 0
     written = next((tmp_path / "b" / "conf" / "data").glob("*.yaml")).read_text()
-    assert "time: Uhrzeit" in written and "time: of_day" in written
+    assert "time: Erfasst" in written and "time: of_day" in written
 
 
 def _served_clock(pause_s: float) -> pd.Series:

@@ -69,6 +69,7 @@ from .timestamps import (
     excel_days,
     looks_like_timestamp,
     maybe_elapsed,
+    names_time_of_day,
 )
 from .tob1 import described, is_tob
 from .units import AMBIGUOUS, UNITS, ambiguity, foreign_unit, is_flag, is_humidity, role_by_unit
@@ -304,6 +305,18 @@ def elapsed_column(src: Path, manifest: pd.DataFrame | None, opts, header: list[
                 return h
         return None
     return None
+
+
+def clock_column(header: list[str], first: dict, opts) -> str | None:
+    """(data92b) The header of the time column a time-of-day header names (``Uhrzeit``,
+    ``Heure``: :func:`.timestamps.names_time_of_day`) whose first cell is ``h:mm:ss``, with no
+    date column beside it (:func:`.roles.date_and_time_of_day`: the pair is one timestamp), for
+    ``data.time=of_day``; None where ``data.time`` or ``data.roles.time`` is given."""
+    if opts.time != "auto" or opts.roles.get("time", "auto") != "auto" or \
+            date_and_time_of_day(header, first):
+        return None
+    return next((h for h in header if names_time_of_day(h)
+                 and maybe_elapsed(str(first.get(h) or "").strip(), opts.time)), None)
 
 
 def _column_cells(file: Path, opts, index: int, rows: int | None = None) -> pd.Series | None:
@@ -695,10 +708,11 @@ def detection_lines(layout: str, opts, header, plan, ds, report, period_s: float
     read_as = report["campaigns"][ds.ids()[0]].get("time")
     time = (f"time: {' + '.join(repr(h) if h else 'the column without a header' for h in times)}" + (
         f", timestamps from {origin}" if origin else ", elapsed h:mm:ss" if read_as == "elapsed"
+        and opts.time != OF_DAY_KIND        # (data92b: of_day's h:mm:ss is read as a duration)
         # (data91) seconds since midnight, passing it: said, with the key where it took one
         else f", {OF_DAY} (since midnight, a day added where it passes midnight"
              f"{', data.time=' + opts.time if opts.time == OF_DAY_KIND else ''})"
-        if read_as == OF_DAY else _seconds_unit(times[0], opts)) if times
+        if opts.time == OF_DAY_KIND or read_as == OF_DAY else _seconds_unit(times[0], opts)) if times
             else "time: none in the file, data.sample_period_s rows apart")
     lines = [layout, time, f"sample period: {period_s:g} s, {report['rows']} rows{_periods(ds)}"]
     width = max(len(h or "(no header)") for h in header)

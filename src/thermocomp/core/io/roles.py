@@ -31,6 +31,7 @@ from .options import AUTO, ROLE_PATTERNS, RUN_ROLE, _roles
 from .separators import number, reads_as_number
 from .timestamps import (
     CLOCK,
+    CLOCK_HEADERS,
     DATE,
     ELAPSED_HEADERS,
     EXCEL_DAYS,
@@ -66,7 +67,7 @@ _UNSAFE = re.compile(r"[^\w.\-]+")
 TIME_HEADERS = frozenset({"time", "t", "ts", "zeit", "時間", "时间", "timestamp", "datetime", "date_time",
                           "zeitstempel", "temps", "tiempo", "tempo", "seconds", "timestamp_start",
                           "tmstamp",     # (a Campbell Scientific logger's TOACI1 file, lab74)
-                          *ELAPSED_HEADERS, *OF_DAY_HEADERS})
+                          *ELAPSED_HEADERS, *OF_DAY_HEADERS, *CLOCK_HEADERS})
 # HBM catman's time channel, one per rate group: 'Zeit  1 - Standardmessrate', 'Time  2 - 10 Hz'
 _RATE_GROUP_TIME = re.compile(r"(?i)(?:time|zeit|temps|tiempo|tempo)\s+\d+\s+-\s+\S.*")
 TWIN = "twin"         # a header written twice (:mod:`.twins`): left out, or refused as unnamed

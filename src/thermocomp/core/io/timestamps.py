@@ -48,6 +48,13 @@ _ELAPSED = re.compile(r"\s*(?P<h>\d+):(?P<m>[0-5]\d):(?P<s>[0-5]\d(?:[.,]\d+)?)\
 # a time column's header that says it holds an elapsed time (the word, or a unit after it)
 ELAPSED_HEADERS = frozenset({"elapsed", "elapsed time", "elapsed_time", "duration", "dauer",
                              "laufzeit", "verstrichene zeit"})
+# (data92b) a time column's header that names the time of day, its h:mm:ss read by data.time=of_day
+# (:func:`names_time_of_day`): the time-of-day column of the date + time pairs loggers write in
+# their language, `Datum;Uhrzeit`, `Date;Heure`, `Fecha;Hora`, `Data;Ora`, `日付;時刻`, and the
+# English words.  Not 'time' nor 'Zeit' (an elapsed h:mm:ss as often), nor a bare 'clock' (a
+# CPU's 'Clock [MHz]' reads as a time header then)
+CLOCK_HEADERS = frozenset({"uhrzeit", "tageszeit", "time of day", "time_of_day", "timeofday",
+                           "clock time", "heure", "hora", "ora", "時刻", "时刻"})
 
 
 def looks_like_timestamp(text) -> bool:
@@ -82,6 +89,8 @@ def elapsed_seconds(text, kind: str, path: Path, header: str | None = None,
     seconds = pc.cast(pc.replace_substring(pc.struct_field(parts, "s"), ",", "."), pa.float64())
     minutes = pc.cast(pc.struct_field(parts, "m"), pa.float64())
     total = pc.add(pc.add(pc.multiply(hours, 3600.0), pc.multiply(minutes, 60.0)), seconds)
+    if kind == "auto" and names_time_of_day(header):
+        kind = OF_DAY_KIND     # (data92b) its header says so, as the key does
     said = kind == ELAPSED or (header is not None and _bare(header) in ELAPSED_HEADERS
                                and kind != OF_DAY_KIND)
     past_a_day = (pc.max(hours).as_py() or 0) >= 24       # (an elapsed time's hours only)
@@ -253,6 +262,12 @@ def seconds_of_day(seconds: np.ndarray, path: Path, header: str | None = None,
 def names_seconds_of_day(header: str | None) -> bool:
     """The header says seconds since midnight (:data:`OF_DAY_HEADERS`, its unit aside)."""
     return header is not None and _bare(header) in OF_DAY_HEADERS
+
+
+def names_time_of_day(header: str | None) -> bool:
+    """(data92b) The header names the time of day (:data:`CLOCK_HEADERS`, its unit aside): its
+    ``h:mm:ss`` is read as ``data.time=of_day`` says, without a date column beside it."""
+    return header is not None and _bare(header) in CLOCK_HEADERS
 
 
 def over_midnight(seconds: np.ndarray) -> bool:

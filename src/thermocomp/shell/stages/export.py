@@ -40,7 +40,7 @@ from ...core.io.dayfirst import ORDER
 from ...core.io.derived import sources as derived_sources
 from ...core.io.roles import RUN
 from ...core.io.source import check_streamed_columns
-from ...core.io.timestamps import CLOCK, OF_DAY_KIND, names_seconds_of_day
+from ...core.io.timestamps import CLOCK, OF_DAY_KIND, names_seconds_of_day, names_time_of_day
 from ...core.scoring.evaluation import require_split
 from ..builders import deployable_model, is_registered, with_model_bits
 from ..config.checks import check_config
@@ -270,7 +270,9 @@ def _day_seconds(cfg: DictConfig, ds, time_header) -> bool:
             "seconds_of_day"):
         return True
     headers = [time_header] if isinstance(time_header, str) else list(time_header or ())
-    return any(names_seconds_of_day(str(h)) for h in headers)
+    # (data92b) a time-of-day header alone (not joined to its date) reads as data.time=of_day
+    return any(names_seconds_of_day(str(h)) for h in headers) or (
+        isinstance(time_header, str) and names_time_of_day(time_header))
 
 
 def export(cfg: DictConfig) -> dict:

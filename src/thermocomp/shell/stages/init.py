@@ -32,6 +32,7 @@ from ...core.io.detect import (
     axis_lengths,
     beyond,
     check_an_error_is_named,
+    clock_column,
     data_config,
     detection_lines,
     elapsed_column,
@@ -75,7 +76,7 @@ from ...core.io.slashed_rows import RUN_SAID
 from ...core.io.sniff import resolved
 from ...core.io.starts import stated_start
 from ...core.io.tables import peek_csv
-from ...core.io.timestamps import ELAPSED, PAUSE_PERIODS, pauses
+from ...core.io.timestamps import ELAPSED, OF_DAY_KIND, PAUSE_PERIODS, pauses
 from ...core.io.utf16 import is_utf16, utf8_options, utf16_as_utf8
 from ...core.io.workbook import csv_options
 from ...core.timerule import median_step
@@ -423,6 +424,12 @@ def _init(cfg: DictConfig, held: ExitStack) -> dict:
     if elapsed:
         given["time"] = ELAPSED
         opts = replace(opts, time=ELAPSED)
+    elif clock := clock_column(header, cells_of_first, opts):
+        given["time"] = OF_DAY_KIND      # (data92b) written, so that a stream and the C read so
+        opts = replace(opts, time=OF_DAY_KIND)
+        print(f"{sample.name}: {clock!r} h:mm:ss, its header a time of day, no date column "
+              f"beside it: read as data.time={OF_DAY_KIND!r}, the time since midnight, a day "
+              "added where it passes midnight")
     epoch = epoch_ms_column(header, cells_of_first, opts)
     if epoch:              # (a gateway's time stamp: read as seconds, 1000 times too long)
         given["units"] = {**(given.get("units") or {}), epoch: "ms"}
