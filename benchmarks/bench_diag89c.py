@@ -184,12 +184,13 @@ def family_ways(D, keys, saturated) -> tuple[int, dict]:
     return best, ways
 
 
-def trace(cases: str, target: str) -> None:
-    """Every round of ``target`` in each case: the family as ``_family_bar`` forms it, each way."""
+def capture_families(rounds: list):
+    """Wrap ``Search._family_bar``: each family-wise test appends ``(search, members, D)`` to
+    ``rounds`` (the gains it hands to ``sign_flip_maxt``, nothing changed); the original returned,
+    to be put back."""
     from thermocomp.apps.diagnose import search as search_module
-    from thermocomp.apps.diagnose.cv import sign_flip_pvalues
 
-    rounds, family_bar = [], search_module.Search._family_bar
+    family_bar = search_module.Search._family_bar
 
     def captured(self, evals, current):
         maxt = search_module.sign_flip_maxt
@@ -206,6 +207,16 @@ def trace(cases: str, target: str) -> None:
             search_module.sign_flip_maxt = maxt
 
     search_module.Search._family_bar = captured
+    return family_bar
+
+
+def trace(cases: str, target: str) -> None:
+    """Every round of ``target`` in each case: the family as ``_family_bar`` forms it, each way."""
+    from thermocomp.apps.diagnose import search as search_module
+    from thermocomp.apps.diagnose.cv import sign_flip_pvalues
+
+    rounds = []
+    family_bar = capture_families(rounds)
     try:
         for case in cases.split(","):
             rounds.clear()
