@@ -79,6 +79,13 @@ parts, ``-n 2``, the new file among them) 37 + 40 + 61 = 138 passed.
 **KEPT.**  Test: tests/apps/test_diagnose_could_clear92d.py (planted 8969 E_Y alone: round 1 on
 more than 8 blocks, the position taken at p_fam <= alpha, test error < 0.6 x before, the control
 never clears); it fails on 2b918bfd (8 blocks).
+**Then REFUSED by the lead after the merge** (the rule's src, its test and docs reverted;
+``benchmarks/diag92d_rule.patch`` holds them): (1) the fresh-clone CI's docs test ran
+docs/diagnose.md's door example (a seen record outside this bar's lists) and the rule changed it:
+E_Y 2.85 -> 1.39 µm but E_Z 1.02 -> 1.14 (+11.8 % against main: S_door's first-order lag of 3600 s taken
+where main takes 7200 s, both at CV 0.92); the bar's own words (no seen row more than 2 % worse
+than main) fail there.  (2) bench_diag92e: at the campaigns' resolution (a campaign's blocks
+flipped together) 6 of the 7 rounds this rule changed fail 0.01 (8969 E_Y p_fam 0.0070 -> 0.0391).
 """
 
 import sys

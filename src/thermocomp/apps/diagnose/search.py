@@ -402,8 +402,7 @@ class Search:
         if p.block_samples is None or p.forward or not family:
             return current
         loss = current.residual ** 2
-        length = max(self._gain_length(loss - ev.result.residual ** 2)
-                     for ev in self._could_clear(family))
+        length = max(self._gain_length(loss - ev.result.residual ** 2) for ev in family)
         if length >= p.block_samples:
             return current
         p.cut_to(length)
@@ -413,16 +412,6 @@ class Search:
             if ev.effect.transform != "remove":
                 self._block_evidence(ev, current)
         return current
-
-    @staticmethod
-    def _could_clear(family: list[Evaluation]) -> list[Evaluation]:
-        """The members of ``family`` that clear the bar on the current blocks by their own p
-        (``clears_bar`` before :meth:`_family_bar` makes p family-wise), or the whole family where
-        none does.  Only they set the round's block length (diag92d): a member that cannot clear
-        does not coarsen the test of those that can (planted 8969 E_Y: S_pos_Y raw, p 0.09 and
-        51 samples to decorrelate, kept the position members, p 0.008 and 32-33 samples, on one
-        block per campaign, where the family-wise floor 3/256 exceeds 0.01)."""
-        return [ev for ev in family if ev.clears_bar] or family
 
     def _gain_length(self, gain: np.ndarray) -> int:
         """Samples a candidate's per-sample ``gain`` takes to decorrelate, or the residual's
