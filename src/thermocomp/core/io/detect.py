@@ -697,6 +697,23 @@ def _periods(ds) -> str:
             ", ".join(f"{p:g} s: {len(ids)}" for p, ids in groups.items()) + ")")
 
 
+def _time_line(times: list, origin, read_as, opts) -> str:
+    """``init``'s line on the time: its columns and how they were read (``origin``: the first
+    timestamp, where timestamps; ``read_as``: the ingest report's ``time``)."""
+    if not times:
+        return "time: none in the file, data.sample_period_s rows apart"
+    named = f"time: {' + '.join(repr(h) if h else 'the column without a header' for h in times)}"
+    if origin:
+        return f"{named}, timestamps from {origin}"
+    if opts.time == OF_DAY_KIND or read_as == OF_DAY:
+        # (data91) seconds since midnight, passing it: said, with the key where it took one (its
+        # h:mm:ss is read as a duration first, data92b: the report says "elapsed" then)
+        key = f", data.time={opts.time}" if opts.time == OF_DAY_KIND else ""
+        return f"{named}, {OF_DAY} (since midnight, a day added where it passes midnight{key})"
+    return f"{named}, elapsed h:mm:ss" if read_as == "elapsed" else \
+        f"{named}{_seconds_unit(times[0], opts)}"
+
+
 def detection_lines(layout: str, opts, header, plan, ds, report, period_s: float, path: Path,
                     name: str, scans: dict | None = None) -> list[str]:
     """What ``thermocomp init`` prints: separators, time, sample period, each column's role
@@ -706,15 +723,8 @@ def detection_lines(layout: str, opts, header, plan, ds, report, period_s: float
     # timestamps: the first as read, so that a day read as the month shows
     origin = report["campaigns"][ds.ids()[0]].get("time_origin")
     read_as = report["campaigns"][ds.ids()[0]].get("time")
-    time = (f"time: {' + '.join(repr(h) if h else 'the column without a header' for h in times)}" + (
-        f", timestamps from {origin}" if origin else ", elapsed h:mm:ss" if read_as == "elapsed"
-        and opts.time != OF_DAY_KIND        # (data92b: of_day's h:mm:ss is read as a duration)
-        # (data91) seconds since midnight, passing it: said, with the key where it took one
-        else f", {OF_DAY} (since midnight, a day added where it passes midnight"
-             f"{', data.time=' + opts.time if opts.time == OF_DAY_KIND else ''})"
-        if opts.time == OF_DAY_KIND or read_as == OF_DAY else _seconds_unit(times[0], opts)) if times
-            else "time: none in the file, data.sample_period_s rows apart")
-    lines = [layout, time, f"sample period: {period_s:g} s, {report['rows']} rows{_periods(ds)}"]
+    lines = [layout, _time_line(times, origin, read_as, opts),
+             f"sample period: {period_s:g} s, {report['rows']} rows{_periods(ds)}"]
     width = max(len(h or "(no header)") for h in header)
     for h in header:
         contract = plan.names.get(h)
