@@ -2,7 +2,9 @@
 AMBIENT does not explain: does a row count as new only where the machine's sensors depart from
 their ambient-driven response learned on train (an internal source never seen), not where the
 ambient itself has left its span (a colder room the response explains)?  (issue 34; stop 93,
-auto93, follow-up of bench_auto92 / 92b / 92c).
+auto93, follow-up of bench_auto92 / 92b / 92c).  TRACED (no rule; src as on main): the rule
+chosen on the seen records (``both_wide``) keeps every room, seen and fresh, but FAILS its bar on
+the fresh columns (col9278 / col9280 x1.21: auto's wins there handed to MLR).
 
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``; ROOT and WORK as bench_auto92's,
 i.e. bench_auto91's ``rows`` already run into WORK)::
@@ -124,6 +126,52 @@ four columns, 0 elsewhere; ``both_widex`` 0.30 + 0.27 + 0.30 + 0.29).  The rule 
 seeds: ``both_wide`` -- a row goes to MLR where it is beyond the envelope's bounds AND off the
 train pattern widened by the ambient-driven directions, i.e. ``Envelope.excess`` with the widened
 pattern.
+
+Fresh (scored ONCE, 2026-12-05, after the choice above was committed in 622acd0d; ``fresh``,
+55.5 s CPU, nice, ``OMP_NUM_THREADS=1``): each record's own test campaigns, auto / MLR and
+guarded / auto (share of rows guarded)::
+
+  record   auto     MLR      auto/MLR  both_wide       -> /MLR   both          widex         pattern  dyn
+  cr9271    0.7165   2.5429  0.282     1.000 (0)       0.282     1.000 (0)     1.000 (0)     1.035    1.033
+  cr9272    1.5970   1.8883  0.846     1.000 (0)       0.846     1.000 (0)     1.000 (0)     1.006    1.002
+  cr9273    1.3049   1.6276  0.802     1.000 (0)       0.802     1.000 (0)     1.000 (0)     1.000    1.001
+  cr9274    2.7608   2.5577  1.079     1.000 (0)       1.079     1.000 (0)     1.000 (0)     1.000    1.001
+  cr9275    0.7496   1.6297  0.460     1.000 (0)       0.460     1.000 (0)     1.000 (0)     1.001    0.999
+  col9276  14.0815  14.1473  0.995     1.006 (0.31)    1.001     1.006 (0.33)  1.006 (0.29)  1.006    1.006
+  col9277  23.2808  20.8845  1.115     0.898 (0.28)    1.001     0.898 (0.28)  0.901 (0.31)  0.901    0.901
+  col9278  15.9512  19.3557  0.824     1.209 (0.29)    0.996     1.213 (0.38)  1.208 (0.27)  1.213    1.213
+  col9279  13.2453  11.3410  1.168     0.948 (0.29)    1.107     0.948 (0.29)  0.913 (0.32)  0.901    0.871
+  col9280   8.7701  10.5449  0.832     1.210 (0.31)    1.006     1.210 (0.34)  1.210 (0.28)  1.208    1.209
+  geo over the 10, guarded / auto: both_wide 1.0228, both 1.0231, widex 1.0192, pattern 1.0223,
+  dyn 1.0184; the 5 rooms 1.000 under every ``wide*`` / ``both*`` probe
+
+Against the bar (written before the fresh score, unchanged): (a) FAILS -- col9278 x1.209 and
+col9280 x1.210 are worse than auto by > 1 % (col9276 x1.006 within), geo 1.0228 > 1.002; the
+rooms pass (no row guarded on any of the 5; cr9274, a room where auto loses, x1.000).  Losers on
+fresh: 3 (cr9274 1.079, col9277 1.115, col9279 1.168); fixed (within 2 % of MLR): col9277 only
+(1.001); col9279 1.168 -> 1.107.
+
+Why (read from the table, not a new probe): the widening did what it was built for -- not one
+room row guarded, seen or fresh, where ``pattern`` / ``dyn`` cost cr9271 +3.5 % -- but on the
+column the guarded rows are the Q3 source's and the guard turns auto into MLR there whatever
+MLR's worth: guarded / MLR is 0.996-1.006 on four of the five fresh columns, the two where auto
+won (0.824, 0.832) included.  ``both`` (bench_auto92's, no widening) loses the same (x1.213 /
+x1.210): the failure is the pattern guard's on the column, not the ambient's handling.  The seen
+columns were all records where auto already lost (chosen as losers), which no seen record could
+show.  Choosing by the row alone cannot tell which model extrapolates better along a new source.
+
+CPU: the gate costs 0.017 s CPU on cr9182 (1836 train, 621 test rows) against auto's fit 4.03 s
+(0.4 %), 0.011 s on col9276 against 9.83 s (0.1 %): within the brief's 10 % (a bench measure,
+scratch script; no src).
+
+Verdict: TRACED (no src; the prototype failed its fresh bar; fresh 9271-9280 now spent).
+What is kept from it: a colder (or warmer) room is excused by widening the training pattern with
+the ambient-driven directions (the filter's coefficients per ambient feature): 13 seen + 5 fresh
+rooms with no row guarded, where every earlier guard touched cr9182 / cr9079.  Left: on the
+column, whether auto or MLR is better on a new source's rows is the record's draw (x0.90 ..
+x1.21 against auto over the fresh seeds), so a guard to MLR there needs a train-side reason
+(e.g. which of the two extrapolates better along the train pattern's own leading directions in
+the folds), not the row's novelty.
 """
 
 from __future__ import annotations
