@@ -12,6 +12,7 @@ i.e. bench_auto91's ``rows`` already run into WORK)::
     python benchmarks/bench_auto93.py guard ROOT WORK RECORD ...   # seen records, stored rows
     python benchmarks/bench_auto93.py rooms RECORD ...             # bench_auto88b's climate rooms
     python benchmarks/bench_auto93.py fresh                        # seeds 9271-9280, once (bar)
+    python benchmarks/bench_auto93.py blends RECORD ...            # auto's blend, guarded rows
 
 ``guard`` and ``rooms`` are bench_auto92's commands (imported, same records, same figures) with
 the probes below in place of its four; the gate now also sees each campaign's frame (its
@@ -160,6 +161,16 @@ x1.210): the failure is the pattern guard's on the column, not the ambient's han
 columns were all records where auto already lost (chosen as losers), which no seen record could
 show.  Choosing by the row alone cannot tell which model extrapolates better along a new source.
 
+``blends col9276 col9277 col9278 col9279 col9280`` (44 s CPU; a trace after the fresh score, on
+the spent seeds, choosing nothing; auto refitted, so an lstm member may differ in the last digit
+from ``fresh``): per target, auto's test SSE over MLR's in the rows ``both_wide`` guards against
+the other rows shows the guarded rows are often where auto's dynamic members gain MOST --
+col9278 E_Y_mid (0.68 arx) 0.262 vs 0.650, E_Z_mid (0.90 hammerstein) 0.117 vs 0.410; col9280
+E_Y_mid 0.153 vs 0.771, E_X 0.680 vs 0.963; col9279 E_Y (0.93 hammerstein) 0.126 vs 2.296 -- and
+sometimes where they lose (col9277 E_Y, 0.20 lagbank, 1.502 vs 1.107; col9278 E_X, 0.76 lstm,
+1.152 vs 1.043).  col9279's loss is not the guard's kind: its E_Z_mid blend (0.67 hammerstein,
+folds 0.565 of MLR) is 40.8 x MLR's SSE on the guarded rows and 62.8 x on the OTHERS.
+
 CPU: the gate costs 0.017 s CPU on cr9182 (1836 train, 621 test rows) against auto's fit 4.03 s
 (0.4 %), 0.011 s on col9276 against 9.83 s (0.1 %): within the brief's 10 % (a bench measure,
 scratch script; no src).
@@ -171,7 +182,8 @@ rooms with no row guarded, where every earlier guard touched cr9182 / cr9079.  L
 column, whether auto or MLR is better on a new source's rows is the record's draw (x0.90 ..
 x1.21 against auto over the fresh seeds), so a guard to MLR there needs a train-side reason
 (e.g. which of the two extrapolates better along the train pattern's own leading directions in
-the folds), not the row's novelty.
+the folds), not the row's novelty; col9279 E_Z_mid's blow-up on every test row (hammerstein kept
+on folds 0.565 of MLR) is a loss no row guard reaches.
 """
 
 from __future__ import annotations
@@ -346,8 +358,50 @@ def fresh() -> None:
     _with_probes(auto92.rooms)(*FRESH)
 
 
+def blends(*records: str) -> None:
+    """Per record (a room or a :data:`FRESH` name) and target: auto's kept blend, its folds'
+    squared error over MLR's, and on the test auto's squared error over MLR's in the rows
+    ``both_wide`` guards and in the others."""
+    import bench_auto_rank as rank
+    from sklearn.base import clone
+
+    from thermocomp.apps.deploy.streaming import Envelope
+    from thermocomp.core.scoring.evaluation import split_residuals
+    from thermocomp.shell.builders import build_compensator
+
+    auto88b.RECORDS.update(FRESH)
+    for name in records:
+        sys.argv[2:] = overrides = list(auto88b.RECORDS[name])
+        cfg, ds, train = rank.setup(overrides)
+        auto = build_compensator(cfg, ds=ds).fit(train)
+        mlr = clone(auto).set_params(estimator=rank._mlr()).fit(train)
+        ids, frames = ds.ids("test"), list(train.values())
+        columns = [c for c in frames[0].columns if c.startswith("T_")]
+        x_train = np.vstack([auto91._inputs(f, columns) for f in frames])
+        x_test = np.vstack([auto91._inputs(ds.campaigns[c], columns) for c in ids])
+        raw = Envelope.from_data(pd.DataFrame(x_train), margin=auto92c._margin())
+        guard = off_widened(raw, ambient_directions(frames, x_train, columns), x_test)
+        guard &= raw.outside(x_test).any(axis=1)
+        series = {k: split_residuals(m, ds, ids, "simulation")[2] for k, m in (("auto", auto), ("mlr", mlr))}
+        print(f"  {name}: rows guarded {guard.mean():.2f}", flush=True)
+        for t, est in auto.estimators_.items():
+            sse = {k: np.concatenate([series[k][t][1][c] for c in ids]) ** 2 for k in series}
+            ok = np.isfinite(sse["auto"])
+            ratio = {part: np.sum(sse["auto"][ok & rows]) / np.sum(sse["mlr"][ok & rows])
+                     for part, rows in (("guarded", guard), ("other", ~guard))}
+            kept = " + ".join(f"{w:.2f} {n}" for n, w in est.weights_.items())
+            folds = est.validation_.get("auto", np.nan)
+            oof = est.out_of_fold()
+            if oof is not None:
+                *_, y, predicted = oof
+                folds = np.sum((y - predicted) ** 2) / np.sum((y - est.oof_["mlr"]) ** 2)
+            print(f"   {t}: kept {kept}; folds SSE / MLR {folds:.3f}; test SSE / MLR guarded rows "
+                  f"{ratio['guarded']:.3f}, other rows {ratio['other']:.3f}", flush=True)
+
+
 def main(argv: list[str]) -> int:
-    commands = {"guard": _with_probes(auto92.guard), "rooms": _with_probes(auto92.rooms), "fresh": fresh}
+    commands = {"guard": _with_probes(auto92.guard), "rooms": _with_probes(auto92.rooms), "fresh": fresh,
+                "blends": blends}
     return run_commands(__doc__, commands, argv, cpu=sys.stderr)
 
 
