@@ -178,7 +178,8 @@ scratch script; no src).
 Verdict: TRACED (no src; the prototype failed its fresh bar; fresh 9271-9280 now spent).
 What is kept from it: a colder (or warmer) room is excused by widening the training pattern with
 the ambient-driven directions (the filter's coefficients per ambient feature): 13 seen + 5 fresh
-rooms with no row guarded, where every earlier guard touched cr9182 / cr9079.  Left: on the
+rooms with no row guarded, where every earlier guard touched cr9182, cr9079 or cr9245
+(auto92c's ``both_inamb``: cr9245 0.04 of its rows, x1.008).  Left: on the
 column, whether auto or MLR is better on a new source's rows is the record's draw (x0.90 ..
 x1.21 against auto over the fresh seeds), so a guard to MLR there needs a train-side reason
 (e.g. which of the two extrapolates better along the train pattern's own leading directions in
