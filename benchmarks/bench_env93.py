@@ -62,7 +62,104 @@ On the seen cells (``rule`` on the 19 seeds above, 57 cells): G 0.583, 1 cell > 
 Verdict: the bar met -> the rule goes into src (stream, and the exported code mirrors it) with
 tests and docs, else REFUSED with the rule as a patch (or TRACED if no src was written).
 
-Traced and scored: see below.
+TRACE (``trace /tmp/env93/lines 3141,5003,4253,6007,9406,9466-9475,9412-9415``: env92's drawn lines
+copied, the 38 noiseless records simulated here; 2026-12-05, main 5fe17063's src; CPU 9.5 s with the
+lines and truth cached, ~80 s more to simulate the truth)::
+
+  model's response to Q3 against the truth's, over the 19 cells (median [min, max])
+  family   target    slope                   corr  miss/true  clamp better  lag-1 of train residual
+  mlr      E_X        0.98 [  0.93,   1.08]  1.000      0.04      0/19       0.11 [ 0.06,  0.15]
+  mlr      E_Y       -1.39 [-19.55,  24.09] -0.136     17.63     17/19       0.90 [ 0.88,  0.92]
+  mlr      E_Z        1.27 [  0.86,   1.61]  0.921      0.36     12/19       0.78 [ 0.69,  0.83]
+  mlr      E_X_mid    3.56 [  2.66,   4.91]  0.902      2.86     19/19       0.02 [-0.05,  0.08]
+  mlr      E_Y_mid    3.17 [-15.28,  13.14]  0.247     21.10     17/19       0.89 [ 0.84,  0.91]
+  mlr      E_Z_mid    0.56 [ -0.10,   1.04]  0.367      1.13     17/19       0.73 [ 0.64,  0.78]
+  arx      E_X        0.95 [  0.80,   1.18]  1.000      0.06      0/19       0.22 [ 0.05,  0.41]
+  arx      E_Y       -1.50 [-19.05,  25.69] -0.096     14.09     13/19       0.93 [ 0.89,  0.94]
+  arx      E_Z        1.35 [  0.51,   2.24]  0.881      0.56     13/19       0.85 [ 0.65,  0.99]
+  arx      E_X_mid    3.79 [  1.46,   4.99]  0.910      3.26     18/19       0.06 [-0.03,  0.13]
+  arx      E_Y_mid    1.07 [ -3.74,   8.14]  0.193      7.07     14/19       0.89 [ 0.82,  0.92]
+  arx      E_Z_mid    1.09 [  0.57,   1.80]  0.846      0.55     19/19       0.82 [ 0.67,  0.92]
+  lagbank  E_X        0.69 [ -0.86,   1.35]  0.981      0.61      1/19       0.14 [ 0.12,  0.23]
+  lagbank  E_Y       -4.18 [-15.76,  26.98] -0.273     14.89     17/19       0.78 [ 0.70,  0.86]
+  lagbank  E_Z        1.18 [  0.97,   1.69]  0.957      0.20     12/19       0.21 [ 0.14,  0.28]
+  lagbank  E_X_mid    4.23 [  1.48,   6.53]  0.846      2.81     19/19      -0.02 [-0.09,  0.05]
+  lagbank  E_Y_mid   -6.61 [-28.15,   5.43] -0.495     13.50     19/19       0.81 [ 0.74,  0.86]
+  lagbank  E_Z_mid    0.90 [ -2.37,   5.32]  0.716      0.93     19/19       0.16 [ 0.10,  0.20]
+
+Which inputs: the gate clamps only rows Q3 moves (419-528 of 1441); the clamped inputs are the right
+face's T_right2-5 and T_amb in every cell (T_front3 / T_edge5 in 48 of 57); of E_X's |gain * excess|
+T_right3 carries 0.68 (mlr; arx 0.83, lagbank 0.43), T_right4 0.23 (0.12, 0.35): the sensors on
+either side of Q3's node right_7.  MLR's step gains on T_right1..5 (µm/K, mean over the 19 cells):
+E_X -10.0 -12.8 -11.3 -3.6 0.2 against the map's -16.2 -12.6 -9.0 -5.4 -1.8 (each sensor read for
+its level and the odd one below): E_X's model weighs the right face as the physics does, the same sign
+everywhere, so an out-of-envelope right face is carried on linearly and right (slope 0.98; the
+clamp freezes a true extrapolation: 0 of 19 cells better clamped).  E_Y: -25.4 -12.4 -5.9 8.0 4.6 on
+the same sensors, with +20 on the front ones: the right face stands in for the unmeasured back
+face, which Q3 does not heat as training's sources did (slopes from -20 to +24).  The split is
+physical: E_X is left face against right, both measured; E_Y front against the unmeasured back;
+E_Z every node and the base.  And training shows it: a model whose target is in the sensors leaves
+white noise (E_X lag-1 0.06-0.41); one that leans on stand-ins leaves structure (0.64-0.99).  The
+candidates read off the gains alone did not separate E_X (sign against the marginal correlation;
+the gain's share off the training pattern; a blocked CV of the off-pattern directions: E_Z_mid
+and E_Z gain there as E_X does), so the rule is the residual's.
+
+SCORED ONCE (``rule /tmp/env93/fresh 9506-9515``, 2026-12-05, after the rule and bar above were
+committed in b89df99c; main's src for the draws, the rule composed; CPU 150.8 s, the 30 cells'
+simulation, fits and 90 replays included)::
+
+  record  model    pattern     off    rule  ratio  unclamped
+  9506    mlr         1225    6552     636  0.519  E_X,E_X_mid
+  9506    arx         1524    9210     941  0.617  E_X,E_X_mid
+  9506    lagbank      699     532     509  0.727  E_X,E_Z,E_X_mid,E_Z_mid
+  9507    mlr         1039    3292     669  0.644  E_X,E_X_mid
+  9507    arx          882    1348     524  0.594  E_X,E_X_mid
+  9507    lagbank      929     932     864  0.929  E_X,E_Z,E_X_mid,E_Z_mid
+  9508    mlr         1191    3528     751  0.630  E_X,E_X_mid
+  9508    arx          847     872     787  0.930  E_X,E_X_mid
+  9508    lagbank     1539    1545    1405  0.913  E_X,E_Z,E_X_mid,E_Z_mid
+  9509    mlr          985     279     308  0.312  E_X,E_X_mid
+  9509    arx         1618    6484     930  0.574  E_X,E_X_mid
+  9509    lagbank     1539    1727    1426  0.926  E_X,E_Z,E_X_mid,E_Z_mid
+  9510    mlr          735     865     200  0.272  E_X,E_X_mid
+  9510    arx          959    3458     429  0.448  E_X,E_X_mid
+  9510    lagbank      916     926     850  0.928  E_X,E_Z,E_X_mid,E_Z_mid
+  9511    mlr          905    1666     436  0.481  E_X,E_X_mid
+  9511    arx          810     315     337  0.416  E_X,E_X_mid
+  9511    lagbank     1194    1152    1145  0.959  E_X,E_Z,E_X_mid,E_Z_mid
+  9512    mlr         1202    1716     617  0.513  E_X,E_X_mid
+  9512    arx         1241    5897     991  0.799  E_X,E_X_mid
+  9512    lagbank     1135    1357     980  0.863  E_X,E_Z,E_X_mid,E_Z_mid
+  9513    mlr          716    1559     308  0.430  E_X,E_X_mid
+  9513    arx         1043    6109     612  0.587  E_X,E_X_mid
+  9513    lagbank      774     829     805  1.040  E_X,E_Z,E_X_mid,E_Z_mid
+  9514    mlr         1164     737     819  0.704  E_X,E_X_mid
+  9514    arx         1249     902     925  0.741  E_X,E_X_mid
+  9514    lagbank     1099     971     981  0.892  E_X,E_Z,E_X_mid,E_Z_mid
+  9515    mlr          980    2533     613  0.625  E_X,E_X_mid
+  9515    arx          855     566     475  0.555  E_X,E_X_mid
+  9515    lagbank      861     897     870  1.010  E_X,E_Z,E_X_mid,E_Z_mid
+  pooled Σ² µm²: pattern 31 855, off 68 756, rule 22 143 (mlr 10 142 / 22 727 / 5 357, arx 11 028 /
+  35 161 / 6 951, lagbank 10 685 / 10 868 / 9 835); G per family mlr 0.492, arx 0.609, lagbank 0.915
+
+  rule: G 0.650, 0 cells > 10 % worse, 22 > 10 % better (worst 9513 lagbank 1.040); E_X alone
+  unclamped 0.633, the oracle 0.604.  BAR MET (G <= 0.95, worse 0 <= better 22).
+
+Against the shipped code: the rule built into src (``promote.envelope.per_target``, default true),
+``replay`` with the defaults on the cached fits gives the composed Σ² to its rounding: fresh 9506
+mlr 635.7 (composed 636), 9506 lagbank 508.6 (509), 9513 lagbank 804.8 (805), 9509 arx 929.5 (930);
+seen 3141 mlr / lagbank 315.6 / 849.8, 9470 mlr / lagbank 427.0 / 1136.2 (composed the same).
+Verdict: KEPT AS AN OPT-IN KEY (``promote.envelope.per_target=true``; default ``false``, the shipped
+clamp unchanged).  The bar was met, but with the rule on by default the spike suite failed
+(tests/shell/test_export_spike54.py, ARX on ``yearround_spindle``: after a +50 °C one-row spike the
+white target's corrections differ from the ones the clamp gives by up to 2.89 µm on 17 of 38 rows,
+in the plain stream and in the code): an unclamped target takes a sensor's fault as it takes a new
+source, and the bar did not price faults.  Found after the fresh score, so the default is left as
+it was rather than the rule changed after seeing numbers.  Left: a rule that unclamps a white
+target only for an excursion a heat source can make (e.g. an excess within the training width, a
+rate a sensor's node can follow), so a spike stays clamped; or the monitor's exclusion first
+(``monitor.adaptive``) measured with the key on.  src, tests/apps/test_envelope_per_target93.py
+(3, failing on 5fe17063: the key is new; the behaviour under it is asserted), docs.
 """
 
 from __future__ import annotations
@@ -97,7 +194,9 @@ def _cell(root: Path, record: str, family: str):
 
 def residual_lag1(model, campaigns) -> dict[str, float]:
     """Per target the lag-1 autocorrelation of the training residual (measured less the model's
-    simulation), over pairs of consecutive samples within a campaign."""
+    simulation), over pairs of consecutive samples within a campaign: the rule as it was scored,
+    on main's src (shipped since as ``streaming.white_targets``; the same on these records: the
+    replays of the built rule give the composed Σ², below)."""
     m = model.stacked(campaigns)
     e = m.Y[model.targets_].to_numpy() - model.predict_stacked(m)
     same = m.groups[1:] == m.groups[:-1]

@@ -1,5 +1,5 @@
-"""The envelope's clamp per target (env93, ``promote.envelope.per_target``): a target whose
-training residual is white streams unclamped, the others keep the training-pattern gate.
+"""The envelope's clamp per target (env93, ``promote.envelope.per_target=true``, opt-in): a target
+whose training residual is white streams unclamped, the others keep the training-pattern gate.
 
 A column with a heat source the training never saw (``column_moving_source``'s Q3, on the right
 face): E_X (left face against right, both measured) is fitted to its noise and its model carries
@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from thermocomp.apps.deploy import StreamingCompensator, replay
+from thermocomp.apps.deploy import replay
 from thermocomp.apps.deploy.export import Simulator, state_space
 from thermocomp.apps.sim.column import ColumnMovingSource
 from thermocomp.core.compensator import Compensator
@@ -31,6 +31,9 @@ def column():
     return Compensator(MLR()).fit(train), train, test
 
 
+PER_TARGET = "promote.envelope.per_target=true"
+
+
 def _deployed(comp, train, *keys):
     """The stream the deploying stages build (replay, promote, export) under ``keys``."""
     return deploy_stream(overrides.compose(["data.path=/x", *keys], "replay"), comp, train)
@@ -38,16 +41,16 @@ def _deployed(comp, train, *keys):
 
 def test_the_target_left_unclamped_is_the_one_whose_physics_is_measured(column):
     comp, train, _ = column
-    free = _deployed(comp, train).unclamped_                  # the default: per target
+    free = _deployed(comp, train, PER_TARGET).unclamped_
     assert "E_X" in free
     assert "E_Y" not in free and "E_Z" not in free
-    assert _deployed(comp, train, "promote.envelope.per_target=false").unclamped_ == ()
+    assert _deployed(comp, train).unclamped_ == ()               # the default: one clamp for all
 
 
 def test_a_white_target_streams_unclamped_the_others_stay_clamped(column):
     comp, train, test = column
-    per_target = replay(_deployed(comp, train), test)
-    shared = replay(StreamingCompensator.from_training(comp, train), test)   # one envelope for all
+    per_target = replay(_deployed(comp, train, PER_TARGET), test)
+    shared = replay(_deployed(comp, train), test)             # one envelope for every target
     off = replay(_deployed(comp, train, "promote.envelope.policy=off"), test)
     assert (per_target["n_clamped"] > 0).sum() > 10            # Q3 takes the inputs off the pattern
     acted = shared["n_clamped"].to_numpy() > 0
@@ -64,9 +67,10 @@ def test_a_white_target_streams_unclamped_the_others_stay_clamped(column):
 
 def test_the_exported_code_leaves_the_same_target_unclamped(column):
     comp, train, test = column
-    stream = _deployed(comp, train)
+    stream = _deployed(comp, train, PER_TARGET)
     assert stream.unclamped_
     out = replay(stream, test)
     sim = Simulator(state_space(stream))
-    exported = np.array([-sim.step(u, t) for u, t in zip(test[stream.columns_].to_numpy(float), test["time"])])
+    rows = zip(test[stream.columns_].to_numpy(float), test["time"])
+    exported = np.array([-sim.step(u, t) for u, t in rows])
     np.testing.assert_allclose(exported, out[stream.targets_].to_numpy(), atol=1e-8)

@@ -405,8 +405,8 @@ class StreamingCompensator:
         """Envelope from the training campaigns, in the frame the model sees (its horizon: the
         longest campaign's ``time`` span; ``pattern``: the clamp acts only off the training
         pattern, :class:`Envelope`; ``per_target``: the targets :func:`white_targets` finds
-        stream unclamped, ``unclamped_``; the deploying stages' default, ``promote.envelope.
-        per_target``).
+        stream unclamped, ``unclamped_``; the deploying stages read ``promote.envelope.
+        per_target``, default false).
 
         Ambient sensors that are not declared inputs are added to the input
         columns when a model needs the initial ambient temperature (ATI).
