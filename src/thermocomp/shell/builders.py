@@ -95,7 +95,8 @@ def deploy_stream(cfg: DictConfig, comp: Compensator, train: dict, what: str = "
     env = cfg.promote.envelope
     try:
         return StreamingCompensator.from_training(comp, train, float(env.margin), str(env.policy),
-                                                  bool(env.get("pattern", True)))
+                                                  bool(env.get("pattern", True)),
+                                                  bool(env.get("per_target", False)))
     except ValueError as exc:
         raise ConfigError(f"{what} cannot be deployed: {exc}") from None
 

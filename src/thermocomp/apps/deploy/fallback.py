@@ -46,6 +46,7 @@ def without_sensor(streaming: StreamingCompensator, campaigns: Mapping[str, pd.D
         return None
     stream = StreamingCompensator(fitted, streaming.envelope, streaming.policy,
                                   streaming.ambient_columns)
+    stream.unclamped_ = streaming.unclamped_      # the model's targets, as its envelope
     return stream if stream.columns_ == streaming.columns_ else None
 
 

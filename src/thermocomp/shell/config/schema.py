@@ -175,6 +175,7 @@ class Monitor:
 class Envelope:
     margin: float = key(NON_NEGATIVE)
     pattern: bool = key(BOOLEAN)
+    per_target: bool = key(BOOLEAN)
 
 
 @dataclass

@@ -319,8 +319,10 @@ def state_space(deployed, provenance: dict | None = None, known_ambient: bool = 
                 forests.add(i, b.weight, b.model, inputs, r)
         # the clamp's gain: the deployed model's own, split as its laws count (gain61: the one
         # computation the stream's step_gain sums at the campaign's A0); none: clamped outright
-        terms, by = _clamp_terms(t, est, env.horizon_s, inputs) if clamp else (None, {})
-        outright.append(int(clamp and terms is None))
+        # a target the stream leaves unclamped (white_targets): no gain, not outright: no bound
+        clamped = clamp and t not in stream.unclamped_
+        terms, by = _clamp_terms(t, est, env.horizon_s, inputs) if clamped else (None, {})
+        outright.append(int(clamped and terms is None))
         by_state.append(int(bool(by) and terms is not None))
         if terms is not None:
             with_gains(own, terms, cols, N, t, by)
