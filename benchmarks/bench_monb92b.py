@@ -157,19 +157,20 @@ def band_of(F: list[np.ndarray], Y: list[np.ndarray], blocks: int) -> float:
     return max(WARNING_C, SPREAD_FACTOR * float(np.quantile(np.abs(w), 0.995)))
 
 
-def crossing(w: np.ndarray, band: float, grows: int, start: int = 0) -> int | None:
+def crossing(w: np.ndarray, band: float, grows: int, start: int = 0,
+             spacing: int = WINDOW) -> int | None:
     """First row >= ``start`` ending :data:`CONFIRM` windowed residuals in a row beyond ``band``
-    where also (``grows`` > 0) the windowed residual read every :data:`WINDOW` rows back rose
+    where also (``grows`` > 0) the windowed residual read every ``spacing`` rows back rose
     ``grows`` times in a row in the crossing's direction.  Causal: row i reads rows <= i."""
     beyond = np.abs(w) > band
     ok = np.convolve(beyond, np.ones(CONFIRM, int), "full")[:len(w)] >= CONFIRM
     if grows:
         sign = np.sign(w)
         for k in range(grows):       # w[i - k W] - w[i - (k+1) W] of the crossing's sign
-            a = np.roll(w, k * WINDOW)
-            b = np.roll(w, (k + 1) * WINDOW)
+            a = np.roll(w, k * spacing)
+            b = np.roll(w, (k + 1) * spacing)
             ok &= sign * (a - b) > 0
-        ok[:grows * WINDOW] = False   # not read so far back yet
+        ok[:grows * spacing] = False  # not read so far back yet
     hits = np.flatnonzero(ok[start:])
     return int(hits[0]) + start if hits.size else None
 

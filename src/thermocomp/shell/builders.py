@@ -129,7 +129,8 @@ def build_adaptive(cfg: DictConfig, streaming, train: dict, ds=None):
         return AdaptiveCompensator.from_training(
             streaming, train, monitor=options, pod=pod,
             guard=OmegaConf.to_container(m.guard), learned_bands=bool(m.bands.learned),
-            fallbacks=str(m.get("fallbacks", "unobservable")))
+            fallbacks=str(m.get("fallbacks", "unobservable")),
+            blind_drift=bool(m.get("blind_drift", True)))
     except ValueError as exc:
         raise ConfigError(f"monitor: {exc}") from None
 

@@ -1,0 +1,249 @@
+"""The blind-sensor drift rule built in the served monitor (monb93, issue 34): monb92b's prototype
+(``grow6``) with its two seen false crossings fixed, in ``AdaptiveCompensator``.
+
+Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is that tree's)::
+
+    python benchmarks/bench_monb93.py horizons ROOT ...        # the choice, offline, seen records
+    python benchmarks/bench_monb93.py draw ROOT SEEDS          # the bar's fresh records, healthy
+    python benchmarks/bench_monb93.py served ROOT MODE         # the served monitor, healthy + drifted
+    python benchmarks/bench_monb93.py score ROOT               # the bar, rule against main
+    python benchmarks/bench_monb93.py fresh                    # the bar's seeds and their generators
+
+``ROOT``: a folder of records drawn and monitored healthy as bench_monb92's (``data/<label>``,
+``reports/<label>/{run,monitor}``); bench_monb92b's seen roots (bench_audit89 ``healthy``
+9316-9318 / 9322-9324, bench_mon91b ``rooms`` 9196-9205, bench_monb92 ``draw`` 9396-9405, fl).
+
+``horizons``: for every blind sensor (``observable: false`` in the healthy monitor) of every
+record, offline as bench_monb92b ``seen`` (mon91b's ridge B, its band, bench_audit89's +0.5 degC/h
+drift from the test part's middle row), the ridge's CV R2 and, per growth spacing (``grow6``'s
+fixed 10 samples; a share of the sensor's own e-folding time in training), the healthy parts
+crossed and the drifted parts found.  CPU ~40 s over the seen roots.
+
+``served``: the ``monitor`` stage (the healthy run's model.pkl, ``PYTHONPATH``'s tree) on copies
+of each record whose costliest blind sensor reads the truth and the drift (bench_monb92's
+``_monitored``): ``MODE`` = ``rule`` (the tree's defaults), ``off`` (``monitor.blind_drift=false``)
+or ``main`` (no override: run it with ``PYTHONPATH`` on main's tree) -> ROOT/servedb93-MODE.json.
+``score``: rule against main: per drifted record the served RMSE (fixed, adaptive) and whether
+an event names the sensor at or after the fault's time in a test campaign; per healthy copy
+whether the served report (every target's figures and every event) is main's to the bit; the
+events the rule adds (its reason starts ``blind drift``).
+
+The rule (src/thermocomp/apps/deploy/blind_drift.py, ``monitor.blind_drift``, default true): for
+each sensor with a fallback family (those the POD cannot predict, :mod:`.fallback`), a ridge
+(``StandardScaler`` + ``RidgeCV``) of its change since the campaign's first row on the same
+change of the other temperatures THE MODEL READS and of every state's (and the ambient's)
+low-pass response at 900 / 3600 / 14400 s (bench_mon91b's variant B, from the model's inputs: the
+served stream has no other columns); band max(0.4 degC, 3 x the 99.5th percentile of its windowed
+CV residual, campaigns out where >= 3, else 5 blocks); a crossing is 2 windowed residuals beyond
+the band AND 6 growths in a row in its direction read every ``spacing`` samples back.  Changed
+from monb92b, on the seen records only: (a) no rule for a sensor whose ridge's CV R2 <= 0
+(column9397 / 9401 ``T_amb``, -0.67 / -1.25: a model that predicts nothing does not judge);
+(b) ``spacing`` = max(10, a third of the sensor's e-folding time in training: the lag where the
+autocorrelation of its reading falls below 1/e), so the 6 growths span twice the time the sensor
+itself takes to decorrelate (monb92b: 10 samples); found building it (served, seen records):
+(c) the judged sensors are those with CV R2 > 0 on the temperatures the monitor's bands judge;
+each judged sensor's ridge then reads every temperature but the judged ones (lr9396: with every
+other temperature, ``T_table``'s drift took the healthy ``T_spindle_front`` out through its
+ridge, 4.197 -> 4.548 um; with the bands' temperatures alone the column's ``T_front3`` lost its
+``T_amb`` and crossed healthy on col9316 / col9322); (d) judged only while the monitor's field is
+quiet (every sensor in and ok, no new thermal state): col9322's healthy ``T_front3`` under its
+test's new source Q3 still crossed (8.555 -> 16.588 um adaptive, the fallback from 85700 s on),
+at any spacing up to the e-folding time itself; a sensor out is a faulty input of every ridge.
+The exclusion is held to the campaign's end (``SensorMonitor.exclude_pinned``: no re-admission;
+the drift only grows) and its fallback corrects; a sensor without a fallback is not judged.
+Served only: the C does not hold it, ``provenance.not_in_code`` names it.
+
+Choice (part 1; ``horizons`` on the seen roots, before any fresh draw; healthy parts crossed /
+costliest drifted records found, of 86 blind sensor-records, 26 drifted):
+
+| spacing | healthy crossings | costliest found | 9396-9405 false records |
+|---|---|---|---|
+| 10 (monb92b grow6) | 2 (column9397 T_amb, column9401 T_front3) | 17 of 26 | 2 of 10 |
+| 10, CV R2 > 0 | 1 (column9401 T_front3) | 17 of 26 | 1 of 10 |
+| e-folding / 6, R2 > 0 | 1 (column9401 T_front3) | 17 of 26 | 1 of 10 |
+| e-folding / 4, R2 > 0 | 1 (column9397 T_front3) | 16 of 26 | 1 of 10 |
+| e-folding / 3, R2 > 0 (CHOSEN) | 0 | 14 of 26 (lr9196, lr9197, lr9400 T_table lost) | 0 of 10 |
+| e-folding / 2, R2 > 0 | 0 | 12 of 26 | 0 of 10 |
+
+Fixed growth spacings (20 / 30 / 45 / 60 / 90 samples) were tried too: column9397 ``T_front3``
+is crossed at 30 and 60 and not at 20 / 45 / 90 (no monotone trade); the share of the sensor's
+own time scale is the one that leaves no seen false crossing while keeping most finds.
+
+BAR (written here before any fresh score; monb92b's unchanged, on the BUILT code): fresh seeds
+9536-9545 drawn only from kinds that carry a blind sensor, lr / column / swiss / yearround cycled
+(:data:`FRESH`), each healthy and with bench_audit89's +0.5 degC/h drift in its costliest blind
+sensor.  KEPT only if: the drift detected (an event naming the sensor at or after the fault's time
+in a test campaign) on >= 5 of 10 where main detects it on 0 (of those where main detects none,
+if fewer than 10); no drifted row's served RMSE (fixed and adaptive) worse than main's; healthy:
+no new event on any of the 10, the served stream (every target's figures, every event) identical
+to main's on every healthy record where the rule never fires; fl_thermal's healthy record quiet
+(no rule event); the monitor / export tests this change touches pass.
+
+Measured: (filled in after the score)
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import sys
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+HERE = Path(__file__).resolve().parent
+sys.path[:0] = [str(HERE)]
+from _cli import run_commands  # noqa: E402
+from bench_audit89 import faulted  # noqa: E402
+from bench_mon91b import BLOCKS, WINDOW, _fit, campaigns, cv_residual, features, labels_of, target  # noqa: E402
+from bench_monb92 import CYCLE, _monitored  # noqa: E402
+from bench_monb92 import draw as draw_kinds  # noqa: E402
+from bench_monb92 import fresh as print_kinds  # noqa: E402
+from bench_monb92b import _blind, band_of, crossing  # noqa: E402
+
+FRESH = {seed: CYCLE[k % len(CYCLE)] for k, seed in enumerate(range(9536, 9546))}
+GROWTHS = 6
+SHARES = (None, 6, 4, 3, 2)      # None: monb92b's fixed 10-sample spacing
+MODES = {"rule": (), "off": ("monitor.blind_drift=false",), "main": ()}
+RULE_REASON = "blind drift"
+
+
+def _efolding(x: np.ndarray) -> int:
+    """Lag (samples) where the autocorrelation of ``x`` first falls below 1/e (as the src's)."""
+    from thermocomp.apps.deploy.blind_drift import _efolding as of_src
+
+    return of_src(x)
+
+
+def horizons(*roots: str) -> None:
+    """Each spacing's healthy crossings and finds on every blind sensor of each ROOT."""
+    tally = {s: [0, set(), 0, 0] for s in SHARES}     # false parts, false records, found, drifted
+    print(f"{'record':<15}{'sensor':<21}{'R2':>6}{'e-fold':>7}" + "".join(
+        f"{'/' + str(s) if s else 'fixed10':>9}" for s in SHARES) + "  (false/found)", flush=True)
+    for root in roots:
+        folder = Path(root).resolve()
+        for label in labels_of(folder, "all"):
+            blind, costliest = _blind(folder, label)
+            train, test = campaigns(folder, label)
+            for s in blind:
+                F = [features(f, s, variant="B") for f in train]
+                Y = [target(f, s) for f in train]
+                r, y = cv_residual(F, Y, BLOCKS), np.concatenate(Y)
+                r2 = 1 - float(r @ r) / float(((y - y.mean()) ** 2).sum())
+                tau = max(_efolding(f[s].to_numpy(float)) for f in train)
+                model, band = _fit(np.vstack(F), y), band_of(F, Y, BLOCKS)
+                drifted = s == costliest and label != "fl_thermal"
+                cells = []
+                for share in SHARES:
+                    spacing = WINDOW if share is None else max(WINDOW, int(np.ceil(tau / share)))
+                    false = found = 0
+                    if share is None or r2 > 0:
+                        for frame, first in test:
+                            fit = model.predict(features(frame, s, first, "B"))
+                            t, x = frame["time"].to_numpy(float), frame[s].to_numpy(float)
+                            xd, mid = faulted(x, t, first, "drift")
+                            wt = _windowed(target(frame, s, first) - fit)
+                            wd = _windowed(xd[first:] - xd[first] - fit)
+                            false += crossing(wt, band, GROWTHS, 0, spacing) is not None
+                            found += crossing(wd, band, GROWTHS, mid - first, spacing) is not None
+                    tally[share][0] += false
+                    if false:
+                        tally[share][1].add(f"{label} {s}")
+                    if drifted:
+                        tally[share][3] += 1
+                        tally[share][2] += found > 0
+                    cells.append(f"{false}/{found}")
+                print(f"{label:<15}{s[:20]:<21}{r2:>6.2f}{tau:>7}" + "".join(f"{c:>9}" for c in cells)
+                      + ("  *" if drifted else ""), flush=True)
+    for share, (false, where, found, drifted) in tally.items():
+        print(f"{'fixed 10' if share is None else 'e-fold/' + str(share):<10} healthy crossings "
+              f"{false} {sorted(where)}; costliest found {found} of {drifted}", flush=True)
+
+
+def _windowed(r: np.ndarray) -> np.ndarray:
+    from bench_mon91b import windowed
+
+    return windowed(r)
+
+
+def served(root: str, mode: str) -> None:
+    """The served monitor on the truth and the drift of each record's costliest blind sensor
+    (module doc) -> ROOT/servedb93-MODE.json."""
+    folder = Path(root).resolve()
+    os.environ["THERMOCOMP_ROOT"] = str(folder)
+    rows = []
+    for label in labels_of(folder, "all"):
+        blind, sensor = _blind(folder, label)
+        train, test = campaigns(folder, label)
+        if label == "fl_thermal":
+            sensor = blind[0] if blind else sensor
+            parts = [(frame[sensor].to_numpy(float), None, None) for frame, _ in test]
+        else:
+            parts = []
+            for frame, first in test:
+                t, x = frame["time"].to_numpy(float), frame[sensor].to_numpy(float)
+                xd, mid = faulted(x, t, first, "drift")
+                parts.append((x, xd, float(t[mid])))
+        cases = [("truth", [p[0] for p in parts])]
+        faults = None
+        if label != "fl_thermal" and sensor in blind:
+            manifest = pd.read_csv(folder / "data" / label / "campaigns.csv")
+            tests = list(manifest.loc[manifest["split"] == "test", "campaign"])
+            faults = {c: p[2] for c, p in zip(tests, parts)}
+            cases.append(("drift", [p[1] for p in parts]))
+        for case, columns in cases:
+            r = {"record": label, "sensor": sensor, "blind": blind, "case": case, "mode": mode,
+                 **_monitored(folder, label, f"b93{mode}-{case}", sensor, columns, None,
+                              faults if case == "drift" else None, MODES[mode])}
+            rows.append(r)
+            if "note" in r:
+                print(f"{label:<14}{sensor:<20}{case:<7}{r['note']}", flush=True)
+                continue
+            rule = [e for e in r["served"]["events"] if str(e.get("reason", "")).startswith(RULE_REASON)]
+            print(f"{label:<14}{sensor:<20}{case:<7}{r['rmse_fixed']:>9.4f}{r['rmse_adaptive']:>9.4f}"
+                  f"{r['events']:>4}{r['all_events']:>5} found {sum(v > 0 for v in r['after'].values())}"
+                  f"/{len(r['after'])} rule events {[(e['sensor'], e['time']) for e in rule]}",
+                  flush=True)
+    (folder / f"servedb93-{mode}.json").write_text(json.dumps(rows, indent=1))
+
+
+def score(root: str) -> None:
+    """The bar: ``served`` rule against main (module doc)."""
+    folder = Path(root).resolve()
+    got = {m: {(r["record"], r["case"]): r for r in json.loads(
+        (folder / f"servedb93-{m}.json").read_text())} for m in ("rule", "main")}
+    found_new = missed_by_main = worse = new_events = differ = 0
+    print(f"{'record':<14}{'sensor':<20}{'case':<7}{'main fixed':>11}{'rule':>9}{'main adapt':>11}"
+          f"{'rule':>9}  main finds / rule finds / rule events / served as main", flush=True)
+    for key, r in got["rule"].items():
+        m = got["main"][key]
+        rule = [(e["sensor"], e["time"]) for e in r["served"]["events"]
+                if str(e.get("reason", "")).startswith(RULE_REASON)]
+        same = r["served"] == m["served"]
+        main_finds = any(v > 0 for v in m["after"].values())
+        rule_finds = any(v > 0 for v in r["after"].values())
+        if key[1] == "drift":
+            missed_by_main += not main_finds
+            found_new += rule_finds and not main_finds
+            worse += (r["rmse_fixed"] > m["rmse_fixed"]) or (r["rmse_adaptive"] > m["rmse_adaptive"])
+        else:
+            new_events += bool(rule)
+            differ += not same
+        print(f"{key[0]:<14}{r['sensor']:<20}{key[1]:<7}{m['rmse_fixed']:>11.4f}{r['rmse_fixed']:>9.4f}"
+              f"{m['rmse_adaptive']:>11.4f}{r['rmse_adaptive']:>9.4f}  {main_finds} / {rule_finds} / "
+              f"{rule} / {same}", flush=True)
+    print(f"drift found by the rule where main finds none: {found_new} of {missed_by_main}; drifted "
+          f"rows worse than main: {worse}; healthy records with a rule event: {new_events}; healthy "
+          f"served streams not main's: {differ}", flush=True)
+
+
+def main(argv: list[str] | None = None) -> int:
+    commands = {"horizons": horizons, "served": served, "score": score,
+                "fresh": lambda: print_kinds(FRESH),
+                "draw": lambda root, seeds: draw_kinds(root, seeds, FRESH)}
+    return run_commands(__doc__, commands, sys.argv[1:] if argv is None else argv, cpu=sys.stderr)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
