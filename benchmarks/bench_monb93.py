@@ -56,18 +56,19 @@ Served only: the C does not hold it, ``provenance.not_in_code`` names it.
 Choice (part 1; ``horizons`` on the seen roots, before any fresh draw; healthy parts crossed /
 costliest drifted records found, of 86 blind sensor-records, 26 drifted):
 
-| spacing | healthy crossings | costliest found | 9396-9405 false records |
-|---|---|---|---|
-| 10 (monb92b grow6) | 2 (column9397 T_amb, column9401 T_front3) | 17 of 26 | 2 of 10 |
-| 10, CV R2 > 0 | 1 (column9401 T_front3) | 17 of 26 | 1 of 10 |
-| e-folding / 6, R2 > 0 | 1 (column9401 T_front3) | 17 of 26 | 1 of 10 |
-| e-folding / 4, R2 > 0 | 1 (column9397 T_front3) | 16 of 26 | 1 of 10 |
-| e-folding / 3, R2 > 0 (CHOSEN) | 0 | 14 of 26 (lr9196, lr9197, lr9400 T_table lost) | 0 of 10 |
-| e-folding / 2, R2 > 0 | 0 | 12 of 26 | 0 of 10 |
+| spacing | healthy crossings | costliest found |
+|---|---|---|
+| 10 (monb92b grow6) | 2 (column9397 T_amb, column9401 T_front3) | 17 of 26 |
+| e-folding / 6, R2 > 0 | 1 (column9401 T_front3) | 17 of 26 |
+| e-folding / 4, R2 > 0 | 1 (column9397 T_front3) | 15 of 26 |
+| e-folding / 3, R2 > 0 (CHOSEN) | 0 | 14 of 26 (lr9196, lr9197, lr9400 T_table lost) |
+| e-folding / 2, R2 > 0 | 0 | 12 of 26 |
 
-Fixed growth spacings (20 / 30 / 45 / 60 / 90 samples) were tried too: column9397 ``T_front3``
-is crossed at 30 and 60 and not at 20 / 45 / 90 (no monotone trade); the share of the sensor's
-own time scale is the one that leaves no seen false crossing while keeping most finds.
+(``fixed10`` applies no R2 floor; with it, column9397 ``T_amb`` (R2 -0.67) goes and column9401
+``T_front3`` stays.)  Fixed growth spacings (20 / 30 / 45 / 60 / 90 samples) were tried too:
+column9397 ``T_front3`` is crossed at 30 and 60 and not at 20 / 45 / 90 (no monotone trade);
+the share of the sensor's own time scale is the one that leaves no seen false crossing while
+keeping most finds (part1c / horizons: the fixed spacings were tried in a scratch script).
 
 BAR (written here before any fresh score; monb92b's unchanged, on the BUILT code): fresh seeds
 9536-9545 drawn only from kinds that carry a blind sensor, lr / column / swiss / yearround cycled

@@ -98,6 +98,10 @@ def _windowed(r: np.ndarray, lengths: Sequence[int]) -> np.ndarray:
     return np.concatenate(out) if out else np.zeros(0)
 
 
+def _copy(v):
+    return None if v is None else np.copy(v)
+
+
 class BlindDrift:
     """The blind-sensor drift rule (module doc): fitted by :meth:`from_training`, streamed by
     :meth:`scan` / :meth:`advance` on the compensator's rows (order of ``columns``)."""
@@ -153,15 +157,13 @@ class BlindDrift:
         self.out_ = np.zeros(k, dtype=bool)             # excluded by the rule this campaign
 
     def snapshot(self) -> tuple:
-        copy = (lambda v: None if v is None else np.copy(v))
-        return (copy(self._ref), copy(self._zref), copy(self._state), copy(self._last),
+        return (_copy(self._ref), _copy(self._zref), _copy(self._state), _copy(self._last),
                 self._r.copy(), self._w.copy(), self._n, self.out_.copy())
 
     def restore(self, snap: tuple) -> None:
         ref, zref, state, last, r, w, n, out = snap
-        copy = (lambda v: None if v is None else np.copy(v))
-        self._ref, self._zref = copy(ref), copy(zref)
-        self._state, self._last = copy(state), copy(last)
+        self._ref, self._zref = _copy(ref), _copy(zref)
+        self._state, self._last = _copy(state), _copy(last)
         self._r, self._w, self._n, self.out_ = r.copy(), w.copy(), int(n), out.copy()
 
     def _run(self, X: np.ndarray, dt) -> tuple[np.ndarray, tuple]:
