@@ -16,6 +16,7 @@ import pytest
 
 import thermocomp.apps.deploy.blind_drift as blind_drift
 from thermocomp.apps.deploy import AdaptiveCompensator, StreamingCompensator
+from thermocomp.apps.deploy.export import not_in_code
 from thermocomp.apps.deploy.report import stream_rows
 from thermocomp.core.compensator import Compensator
 from thermocomp.core.models import MLR
@@ -69,6 +70,9 @@ def test_a_blind_sensors_slow_drift_is_excluded_and_its_fallback_corrects(train)
     assert sorted(deployed.fallbacks_) == ["T_col", "T_spindle"]      # no other predicts them
     assert deployed.blind_drift_.sensors == ["T_spindle", "T_col"]
     assert off.blind_drift_ is None
+    # served only: the C names it among the rules it does not follow
+    assert "monitor.blind_drift: T_spindle, T_col" in not_in_code(deployed, "c")[-1]
+    assert not any("blind_drift" in rule for rule in not_in_code(off, "c"))
     test = _campaign(77)
     h = N // 2
     drifted = test.copy()
