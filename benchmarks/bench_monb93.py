@@ -97,11 +97,21 @@ HERE = Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE)]
 from _cli import run_commands  # noqa: E402
 from bench_audit89 import faulted  # noqa: E402
-from bench_mon91b import BLOCKS, WINDOW, _fit, campaigns, cv_residual, features, labels_of, target  # noqa: E402
+from bench_mon91b import (  # noqa: E402
+    BLOCKS,
+    WINDOW,
+    _fit,
+    campaigns,
+    cv_residual,
+    features,
+    labels_of,
+    target,
+    windowed,
+)
 from bench_monb92 import CYCLE, _monitored  # noqa: E402
 from bench_monb92 import draw as draw_kinds  # noqa: E402
 from bench_monb92 import fresh as print_kinds  # noqa: E402
-from bench_monb92b import _blind, band_of, crossing  # noqa: E402
+from bench_monb92b import _blind, band_of, blind_sensor_records, crossing  # noqa: E402
 
 FRESH = {seed: CYCLE[k % len(CYCLE)] for k, seed in enumerate(range(9536, 9546))}
 GROWTHS = 6
@@ -122,50 +132,39 @@ def horizons(*roots: str) -> None:
     tally = {s: [0, set(), 0, 0] for s in SHARES}     # false parts, false records, found, drifted
     print(f"{'record':<15}{'sensor':<21}{'R2':>6}{'e-fold':>7}" + "".join(
         f"{'/' + str(s) if s else 'fixed10':>9}" for s in SHARES) + "  (false/found)", flush=True)
-    for root in roots:
-        folder = Path(root).resolve()
-        for label in labels_of(folder, "all"):
-            blind, costliest = _blind(folder, label)
-            train, test = campaigns(folder, label)
-            for s in blind:
-                F = [features(f, s, variant="B") for f in train]
-                Y = [target(f, s) for f in train]
-                r, y = cv_residual(F, Y, BLOCKS), np.concatenate(Y)
-                r2 = 1 - float(r @ r) / float(((y - y.mean()) ** 2).sum())
-                tau = max(_efolding(f[s].to_numpy(float)) for f in train)
-                model, band = _fit(np.vstack(F), y), band_of(F, Y, BLOCKS)
-                drifted = s == costliest and label != "fl_thermal"
-                cells = []
-                for share in SHARES:
-                    spacing = WINDOW if share is None else max(WINDOW, int(np.ceil(tau / share)))
-                    false = found = 0
-                    if share is None or r2 > 0:
-                        for frame, first in test:
-                            fit = model.predict(features(frame, s, first, "B"))
-                            t, x = frame["time"].to_numpy(float), frame[s].to_numpy(float)
-                            xd, mid = faulted(x, t, first, "drift")
-                            wt = _windowed(target(frame, s, first) - fit)
-                            wd = _windowed(xd[first:] - xd[first] - fit)
-                            false += crossing(wt, band, GROWTHS, 0, spacing) is not None
-                            found += crossing(wd, band, GROWTHS, mid - first, spacing) is not None
-                    tally[share][0] += false
-                    if false:
-                        tally[share][1].add(f"{label} {s}")
-                    if drifted:
-                        tally[share][3] += 1
-                        tally[share][2] += found > 0
-                    cells.append(f"{false}/{found}")
-                print(f"{label:<15}{s[:20]:<21}{r2:>6.2f}{tau:>7}" + "".join(f"{c:>9}" for c in cells)
-                      + ("  *" if drifted else ""), flush=True)
+    for label, s, costliest, train, test in blind_sensor_records(roots):
+        F = [features(f, s, variant="B") for f in train]
+        Y = [target(f, s) for f in train]
+        r, y = cv_residual(F, Y, BLOCKS), np.concatenate(Y)
+        r2 = 1 - float(r @ r) / float(((y - y.mean()) ** 2).sum())
+        tau = max(_efolding(f[s].to_numpy(float)) for f in train)
+        model, band = _fit(np.vstack(F), y), band_of(F, Y, BLOCKS)
+        drifted = s == costliest and label != "fl_thermal"
+        cells = []
+        for share in SHARES:
+            spacing = WINDOW if share is None else max(WINDOW, int(np.ceil(tau / share)))
+            false = found = 0
+            if share is None or r2 > 0:
+                for frame, first in test:
+                    fit = model.predict(features(frame, s, first, "B"))
+                    t, x = frame["time"].to_numpy(float), frame[s].to_numpy(float)
+                    xd, mid = faulted(x, t, first, "drift")
+                    wt = windowed(target(frame, s, first) - fit)
+                    wd = windowed(xd[first:] - xd[first] - fit)
+                    false += crossing(wt, band, GROWTHS, 0, spacing) is not None
+                    found += crossing(wd, band, GROWTHS, mid - first, spacing) is not None
+            tally[share][0] += false
+            if false:
+                tally[share][1].add(f"{label} {s}")
+            if drifted:
+                tally[share][3] += 1
+                tally[share][2] += found > 0
+            cells.append(f"{false}/{found}")
+        print(f"{label:<15}{s[:20]:<21}{r2:>6.2f}{tau:>7}" + "".join(f"{c:>9}" for c in cells)
+              + ("  *" if drifted else ""), flush=True)
     for share, (false, where, found, drifted) in tally.items():
         print(f"{'fixed 10' if share is None else 'e-fold/' + str(share):<10} healthy crossings "
               f"{false} {sorted(where)}; costliest found {found} of {drifted}", flush=True)
-
-
-def _windowed(r: np.ndarray) -> np.ndarray:
-    from bench_mon91b import windowed
-
-    return windowed(r)
 
 
 def served(root: str, mode: str) -> None:

@@ -275,13 +275,14 @@ def _fit(X: np.ndarray, y: np.ndarray):
     return make_pipeline(StandardScaler(), RidgeCV(alphas=ALPHAS)).fit(X, y)
 
 
-def _cv_residual(X: np.ndarray, y: np.ndarray, lengths: Sequence[int]) -> np.ndarray:
-    """Out-of-fold residual: one campaign out where there are >= 3, else :data:`BLOCKS`
-    contiguous blocks."""
+def _cv_residual(X: np.ndarray, y: np.ndarray, lengths: Sequence[int],
+                 blocks: int = BLOCKS) -> np.ndarray:
+    """Out-of-fold residual: one campaign out where there are >= 3 (``lengths``: their rows),
+    else ``blocks`` contiguous blocks."""
     if len(lengths) >= 3:
         groups = np.concatenate([np.full(m, k) for k, m in enumerate(lengths)])
     else:
-        groups = np.minimum(np.arange(len(y)) * BLOCKS // len(y), BLOCKS - 1)
+        groups = np.minimum(np.arange(len(y)) * blocks // len(y), blocks - 1)
     out = np.empty_like(y)
     for g in np.unique(groups):
         held = groups == g
