@@ -21,8 +21,12 @@ crossed and the drifted parts found.  CPU ~40 s over the seen roots.
 
 ``served``: the ``monitor`` stage (the healthy run's model.pkl, ``PYTHONPATH``'s tree) on copies
 of each record whose costliest blind sensor reads the truth and the drift (bench_monb92's
-``_monitored``): ``MODE`` = ``rule`` (the tree's defaults), ``off`` (``monitor.blind_drift=false``)
-or ``main`` (no override: run it with ``PYTHONPATH`` on main's tree) -> ROOT/servedb93-MODE.json.
+``_monitored``): ``MODE`` = ``rule`` (the tree's defaults: a tree with ``monb93_rule.patch``
+applied, ``git apply benchmarks/monb93_rule.patch``; the rule was REFUSED, main has no key),
+``off`` (``monitor.blind_drift=false``, the patched tree) or ``main`` (no override: run it with
+``PYTHONPATH`` on main's tree) -> ROOT/servedb93-MODE.json.  fl_thermal (no manifest) is not
+streamed by ``served``: its healthy check is ``thermocomp monitor data=fl_thermal model=mlr`` on
+both trees, the two monitor.json compared.
 ``score``: rule against main: per drifted record the served RMSE (fixed, adaptive) and whether
 an event names the sensor at or after the fault's time in a test campaign; per healthy copy
 whether the served report (every target's figures and every event) is main's to the bit; the
@@ -80,7 +84,52 @@ no new event on any of the 10, the served stream (every target's figures, every 
 to main's on every healthy record where the rule never fires; fl_thermal's healthy record quiet
 (no rule event); the monitor / export tests this change touches pass.
 
-Measured: (filled in after the score)
+Measured (2026-12-05; base 5fe17063, the rule as in :data:`PATCH`, committed (de74b50a) before
+the fresh draw was scored; fresh drawn by ``draw`` CPU 26 s, ``served`` rule + main ~60 s CPU).
+Fresh 9536-9545, scored ONCE, nothing changed after; served RMSE um (mean over targets; fixed is
+main's in every row: the fixed compensator reads no monitor), main -> rule:
+
+| record | sensor | healthy adaptive (main = rule) | drift adaptive main -> rule | main finds | rule at (s) |
+|---|---|---|---|---|---|
+| column9537 | T_front3 | 9.1570 | 17.3394 -> 16.8764 | no | yes, 141300 |
+| column9541 | T_front3 | 8.3753 | 13.6385 -> 11.6279 | no | yes, 124700 |
+| column9545 | T_front3 | 11.4785 | 14.4134 -> 13.8647 | no | yes, 134300 |
+| lr9536 | T_table | 1.1130 | 7.7465 -> 3.4580 | no | yes, 32760 |
+| lr9540 | T_table | 2.2696 | 4.9967 -> 5.3020 (+6.1 %) | yes | yes, 31620 |
+| lr9544 | T_spindle_front | 2.1605 | 5.9190 -> 4.2226 | no | yes, 47400 |
+| swiss9538 | T_guidebush (observable: no drift case) | 1.4558 | - | - | - |
+| swiss9542 | T_nc_spindle_motor | 1.2947 | 1.3916 -> 1.3916 | no | no |
+| yr9539 | T_amb | 2.4968 | 2.6331 -> 2.6331 | no | no |
+| yr9543 | T_amb | 2.4055 | 2.6703 -> 2.6703 | no | no |
+
+Against the bar: drift found on 5 of the 8 drifted records where main finds none (>= 5: met);
+a drifted row worse than main's: lr9540 adaptive 4.9967 -> 5.3020 (+6.1 %: FAILED; main finds
+that drift too, later, and its own handling beats the fallback from 31620 s on); healthy: no
+rule event on any of the 10, the served report (every target's figures and every event)
+main's to the bit on all 10 (met); fl_thermal healthy (``monitor data=fl_thermal model=mlr``):
+no event, targets and events main's to the bit (met); tests with the rule: its own
+tests/apps/test_blind_drift93.py (2, fail on 5fe17063: no module), test_monitor_blame44.py (the
+culprit rule kept under ``blind_drift=false``; the default takes T_table out first by the rule,
+fails on 5fe17063), the 16 tests/apps/test_monitor* + 2 fallback files + its own 55 passed / 4
+xfailed (blame44 once changed), the 12 tests/shell/test_monitor* + test_benchmarks_cli 621
+passed / 2 xfailed, 8 C export files (not_in_code, watch, fallbacks, guard) 59 passed (met).
+
+The seen records through the built rule (``served`` rule vs main; chosen on these, not a score):
+9396-9405 found 3 of 8 where main finds none (col9397 18.663 -> 17.238, col9401 15.825 ->
+14.837, col9405 13.533 -> 10.600; lr9400, which main finds, 5.282 -> 4.998), no healthy event,
+every healthy stream main's; audit89's six: col9316 12.974 -> 12.769, col9322 13.302 -> 12.006
+(found), swiss / yearround not; no healthy event; bench_mon88's ten: lr9197 6.987 -> 2.642,
+lr9199 8.737 -> 6.458 found, no healthy event (the cr rooms' drifts stay < 1 degC).  Fewer
+finds than monb92b's prototype on the same records (17 of 26 offline): the quiet-field veto
+delays or drops finds where the monitor is warning (lr9404, 9396-9405), and the ridge reads only
+the model's inputs (the swiss MLR reads no state: swiss9398's spindle motor, band 13.8 degC, CV R2
+0.90, against mon91b's prototype with the states on swiss9317, 5.36 degC, R2 1.00).
+
+Verdict: REFUSED on its bar (one drifted row worse than main: lr9540 +6.1 %, where main's own
+drift rule finds the drift); src, conf, tests and docs as main; the rule (blind_drift.py, the
+compensator's wiring, ``SensorMonitor.exclude_pinned``, the C's ``not_in_code`` entry, the key,
+its tests and docs/cli.md row, bench_mon91b reading the src's CV residual) in :data:`PATCH`.
+Fresh 9536-9545 spent on this score.
 """
 
 from __future__ import annotations
@@ -118,13 +167,18 @@ GROWTHS = 6
 SHARES = (None, 6, 4, 3, 2)      # None: monb92b's fixed 10-sample spacing
 MODES = {"rule": (), "off": ("monitor.blind_drift=false",), "main": ()}
 RULE_REASON = "blind drift"
+PATCH = HERE / "monb93_rule.patch"     # the rule (refused): src, conf, its tests, docs/cli.md
 
 
 def _efolding(x: np.ndarray) -> int:
-    """Lag (samples) where the autocorrelation of ``x`` first falls below 1/e (as the src's)."""
-    from thermocomp.apps.deploy.blind_drift import _efolding as of_src
-
-    return of_src(x)
+    """Lag (samples) where the autocorrelation of ``x`` first falls below 1/e (as the rule's
+    ``blind_drift._efolding`` in :data:`PATCH`)."""
+    x = x - x.mean()
+    v = float(x @ x)
+    for lag in range(1, len(x)):
+        if float(x[lag:] @ x[:-lag]) < v / np.e:
+            return lag
+    return len(x)
 
 
 def horizons(*roots: str) -> None:

@@ -21,9 +21,7 @@ def test_a_drift_no_other_sensor_predicts_is_not_blamed_on_a_healthy_sensor(reco
     cut = ("data.test_fraction=0.1", *FAST)
     thermocomp("run", f"data.path={record}", *cut, "model=mlr", f"out={tmp_path / 'run'}")
     drifting = drifted(record, tmp_path / "run", UNSEEN, tmp_path / "data")
-    # the culprit rule itself: the blind drift rule (monb93, monitor.blind_drift) takes T_table
-    # out first on this record, by its ridge on the others and the states
-    thermocomp("monitor", f"data.path={drifting}", *cut, "monitor.blind_drift=false",
+    thermocomp("monitor", f"data.path={drifting}", *cut,
                f"monitor.model={tmp_path / 'run' / 'model.pkl'}", f"out={tmp_path / 'mon'}")
     report = json.loads((tmp_path / "mon" / "monitor.json").read_text())
     assert report["sensors"][UNSEEN]["observable"] is False
@@ -37,12 +35,3 @@ def test_a_drift_no_other_sensor_predicts_is_not_blamed_on_a_healthy_sensor(reco
     assert reason.startswith("drift: its reading explains the others'") and "no other sensor" in reason
     healthy = [s for s in report["sensors"] if s != UNSEEN]
     assert all(report["sensors"][s]["state_counts"]["excluded"] == 0 for s in healthy)
-    # with the blind drift rule (the default) the same sensor goes out, no later, none else
-    thermocomp("monitor", f"data.path={drifting}", *cut,
-               f"monitor.model={tmp_path / 'run' / 'model.pkl'}", f"out={tmp_path / 'blind'}")
-    blind = json.loads((tmp_path / "blind" / "monitor.json").read_text())
-    out = [e for e in blind["events"] if e["sensor"]]
-    assert [(e["sensor"], e["to"]) for e in out] == [(UNSEEN, "excluded")]
-    assert out[0]["reason"].startswith("blind drift") and out[0]["time"] <= report["events"][0]["time"]
-    assert (blind["targets"]["E_Z"]["rmse_adaptive"]
-            <= report["targets"]["E_Z"]["rmse_adaptive"])

@@ -129,8 +129,7 @@ def build_adaptive(cfg: DictConfig, streaming, train: dict, ds=None):
         return AdaptiveCompensator.from_training(
             streaming, train, monitor=options, pod=pod,
             guard=OmegaConf.to_container(m.guard), learned_bands=bool(m.bands.learned),
-            fallbacks=str(m.get("fallbacks", "unobservable")),
-            blind_drift=bool(m.get("blind_drift", True)))
+            fallbacks=str(m.get("fallbacks", "unobservable")))
     except ValueError as exc:
         raise ConfigError(f"monitor: {exc}") from None
 

@@ -26,7 +26,6 @@ import pandas as pd
 from ...core.context import TIME, step_gain
 from ...core.io.own_headers import as_named
 from ...core.timerule import SampleClock
-from .blind_drift import GROWTHS, BlindDrift
 from .fallback import sensor_fallbacks
 from .guard import CorrectionGuard
 from .pod import ThermalPOD
@@ -68,9 +67,6 @@ class AdaptiveCompensator:
     adapt_ = None
     # {sensor: the family fitted without it} (fallback.py): its correction while the sensor is out
     fallbacks_: dict = {}
-    # the drift rule of the sensors with a fallback, by a ridge on the others (blind_drift.py;
-    # older pickles: none)
-    blind_drift_ = None
 
     def __init__(self, streaming: StreamingCompensator, monitor: SensorMonitor | None = None,
                  guard: CorrectionGuard | None = None, period_s: float = 1.0):
@@ -90,11 +86,9 @@ class AdaptiveCompensator:
     def from_training(cls, streaming: StreamingCompensator, campaigns: Mapping[str, pd.DataFrame],
                       *, monitor: dict | None = None, pod: dict | None = None,
                       guard: dict | None = None, learned_bands: bool = False,
-                      fallbacks: str = "unobservable", blind_drift: bool = True
-                      ) -> "AdaptiveCompensator":
-        """Fit the POD, the detectors' limits, the guard, (``fallbacks``, :mod:`.fallback`)
-        the sensor fallbacks and (``blind_drift``, :mod:`.blind_drift`) the drift rule of the
-        sensors with one on the training campaigns."""
+                      fallbacks: str = "unobservable") -> "AdaptiveCompensator":
+        """Fit the POD, the detectors' limits, the guard and (``fallbacks``, :mod:`.fallback`)
+        the sensor fallbacks on the training campaigns."""
         comp = streaming.compensator
         names = [c for c in streaming.columns_ if c.startswith("T_")]
         mon = None
@@ -119,13 +113,6 @@ class AdaptiveCompensator:
         out = cls(streaming, mon, g, g.period_s)
         if mon is not None:
             out.fallbacks_ = sensor_fallbacks(streaming, mon, campaigns, fallbacks)
-            if blind_drift and mon.adaptive and out.fallbacks_:
-                # each ridge reads the temperatures the monitor's bands judge (and the states):
-                # another blind sensor's drift would move it (lr9396: T_table's drift took the
-                # healthy T_spindle_front out through its ridge, 4.20 -> 4.55 µm)
-                readable = [c for c, p in zip(mon.names, mon._predictable) if p]
-                out.blind_drift_ = BlindDrift.from_training(
-                    streaming.columns_, campaigns, list(out.fallbacks_), readable, g.period_s)
             out.reset()
         return out
 
@@ -179,8 +166,6 @@ class AdaptiveCompensator:
         self.streaming.reset(ambient_c)
         for fallback in self.fallbacks_.values():
             fallback.reset(ambient_c)
-        if self.blind_drift_ is not None:
-            self.blind_drift_.reset()
         if self.monitor is not None:
             self.monitor.reset()
         if self.guard is not None:
@@ -210,23 +195,15 @@ class AdaptiveCompensator:
                 None if self._late is None else self._late.copy(), self._clock.snapshot(),
                 self._held.copy(), self._held_state.copy(), self._time_bad,
                 None if self._y is None else self._y.copy(), self.n_samples_,
-                {s: f._snapshot() for s, f in self.fallbacks_.items()},
-                None if self.blind_drift_ is None else self.blind_drift_.snapshot())
+                {s: f._snapshot() for s, f in self.fallbacks_.items()})
 
     def _restore(self, snap: tuple) -> None:
         if not isinstance(snap[5], tuple):   # taken before the time rule (an older model's)
             snap = (*snap[:5], _clock_of(snap[5], snap[6]), *snap[7:])
         if len(snap) == 11:     # taken before the fallbacks (fallback.py): none to restore
             snap = (*snap, {})
-        if len(snap) == 12:     # taken before the blind drift rule (blind_drift.py)
-            snap = (*snap, None)
         (s, m, g, self._base, self._late, clock, self._held,
-         self._held_state, self._time_bad, self._y, self.n_samples_, falls, blind) = snap
-        if self.blind_drift_ is not None:
-            if blind is None:
-                self.blind_drift_.reset()
-            else:
-                self.blind_drift_.restore(blind)
+         self._held_state, self._time_bad, self._y, self.n_samples_, falls) = snap
         for sensor, fallback in self.fallbacks_.items():
             if sensor in falls:
                 fallback._restore(falls[sensor])
@@ -288,8 +265,6 @@ class AdaptiveCompensator:
         if self.monitor is not None:
             if dt is not None and dt > GAP_PERIODS * self.period_s:
                 self.monitor.skipped(dt / self.period_s)
-            if self.blind_drift_ is not None:
-                self._blind_drifts(x[None, :], self.period_s if dt is None else dt, t, events)
             clean, ev = self.monitor.update(x if self._mon_all else x[self._mon], t)
             events += ev
             ref = self.monitor._ref
@@ -312,27 +287,6 @@ class AdaptiveCompensator:
                 x = x.copy()
             x[self._other] = self._hold(x[self._other], t, events)
         return x
-
-    def _blind_drifts(self, X: np.ndarray, dt, t: float, events: list) -> None:
-        """The blind drift rule (:mod:`.blind_drift`) over the one row ``X``: a sensor it finds
-        drifting is excluded and held out (its fallback corrects); the row taken into its state.
-        (:meth:`_inputs_block` scans only rows the monitor takes with every sensor in.)"""
-        blind, mon = self.blind_drift_, self.monitor
-        # judged only while the monitor's field is quiet (every sensor in and ok, no new thermal
-        # state): a sensor out is a faulty input of the ridges, and a field the bands see moving
-        # is a source training never saw, which moves the blind sensor too (column9322's healthy
-        # T_front3 under its test's new source Q3 crossed, 8.55 -> 16.59 µm out)
-        quiet = mon._active.all() and not mon._novel and not mon._state.any()
-        row, found = blind.scan(X, dt) if quiet else (None, [])
-        blind.advance(X, dt)
-        for k in found if row is not None else ():
-            sensor = blind.sensors[k]
-            blind.out_[k] = True
-            mon.exclude_pinned(mon.names.index(sensor), (
-                f"blind drift: its windowed residual from what the other temperatures and the "
-                f"states predict beyond ±{blind.band_[k]:.3g} °C and grown {GROWTHS} times in a row "
-                f"(every {blind.spacing_[k]} samples); its fallback (the model fitted without it) "
-                "corrects until the campaign ends"), t, events)
 
     def _output(self, y: np.ndarray, dt: float, t: float, allowance, events: list) -> None:
         """The guarded correction of the model's ``y`` (``self._y``); the row counted, its events kept."""
@@ -431,25 +385,14 @@ class AdaptiveCompensator:
         if not m:
             return 0
         block = block[:m].copy()
-        blind = self.blind_drift_ if mon is not None else None
-        if blind is not None:
-            # a row where the blind drift rule excludes a sensor goes row by row (_inputs)
-            first_out = blind.scan(block, np.diff(np.r_[t_prev, t[:m] - shift]))[0]
-            if first_out is not None:
-                if not first_out:
-                    return 0
-                m = first_out
-                block, t, gap = block[:m], t[:m], gap[:m]
         if mon is not None:
             if gap[0]:
                 mon.skipped((t[0] - t_read) / self.period_s)
-            clean = mon.update_block(block if self._mon_all else block[:, self._mon], t[:m] - shift)
+            clean = mon.update_block(block if self._mon_all else block[:, self._mon], t - shift)
             m = len(clean)
             if not m:
                 return 0
             block = block[:m]
-            if blind is not None:
-                blind.advance(block, np.diff(np.r_[t_prev, t[:m] - shift]))
             if self._mon_all:
                 block = self._base + clean
             else:

@@ -117,20 +117,8 @@ def not_in_code(deployed, fmt: str | None = None) -> list[str]:
                 "second sensor out for another rule, a third out, a "
                 "sensor no other predicts out for another rule, or with a fallback model (the "
                 "model fitted without it) of a kind the code does not step beside the model "
-                "(an lstm network of another shape, other inputs)"] + _blind_drift(deployed)
+                "(an lstm network of another shape, other inputs)"]
     return ["sensor monitor (exclusion, reconstruction of a sensor from the others)"]
-
-
-def _blind_drift(deployed) -> list[str]:
-    """The blind-sensor drift rule (monitor.blind_drift, :mod:`..blind_drift`), where the model
-    carries it: the code holds neither its ridge nor the fallback that corrects once it fires, so
-    the code reads the drifting sensor on (its rows are cut by the check pack, not flagged)."""
-    blind = getattr(deployed, "blind_drift_", None)
-    if blind is None:
-        return []
-    return ["a drift of a sensor no other predicts, found by a ridge on the other temperatures "
-            "and the states (monitor.blind_drift: " + ", ".join(blind.sensors) + "); the code "
-            "reads the sensor on"]
 
 
 class Output:

@@ -84,8 +84,6 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
         if "floor_c" not in state:     # pickled before mon86: the whole set's bands judge
             self.floor_c, self.moment, self._q_full = np.zeros(len(self.names)), None, None
             self._warn, self._alarm = self.warning_c.copy(), self.alarm_c.copy()
-        if "_pinned" not in state:     # pickled before monb93: nobody held out by a caller
-            self._pinned = np.zeros(len(self.names), dtype=bool)
         if "_froze" not in state:      # pickled before freeze84: nobody out for a freeze alone
             self._froze = np.zeros(len(self.names), dtype=bool)
             self._held, self._off = np.zeros(len(self.names)), np.zeros(len(self.names), int)
@@ -206,7 +204,7 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
               "_prev_e", "_run", "_run_pred", "_clean", "_quiet", "_calm", "_prev_other",
               "_last_good", "_by_field", "_jumps", "_ref0", "_dropped", "_gap", "_gapped", "_dwell",
               "_outs", "_explains", "_novel", "_calm_field", "_since", "_slow", "_slow_t",
-              "_slow_ok", "_ranged", "_froze", "_held", "_off", "_hid", "_pinned")
+              "_slow_ok", "_ranged", "_froze", "_held", "_off", "_hid")
 
     def reset(self) -> None:
         """New campaign: the next sample is the reference; every sensor active and ok."""
@@ -231,7 +229,6 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
         self._by_field = np.zeros(n, dtype=bool)     # excluded by its self-prediction error
         self._explains = np.zeros(n, dtype=bool)     # excluded as explaining the others' errors
         self._hid = np.zeros(n, dtype=bool)          # ... as a culprit within its band (readmission.py)
-        self._pinned = np.zeros(n, dtype=bool)       # held out to the campaign's end (exclude_pinned)
         self._dropped = np.zeros(n, dtype=bool)      # its last detector to fire was a dropout
         self._ranged = np.zeros(n, dtype=bool)       # ... was out of range (readmission.py)
         self._froze = np.zeros(n, dtype=bool)        # out for a freeze alone (readmission.py)
@@ -346,7 +343,6 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
                      else getattr(self, k) for k in self._STATE)
 
     def restore(self, snap: tuple) -> None:
-        self._pinned = np.zeros(len(self.names), dtype=bool)    # a snapshot taken before it
         for k, v in zip(self._STATE, snap):
             setattr(self, k, np.copy(v) if isinstance(v, np.ndarray) else v)
         count = self._count
@@ -680,16 +676,6 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
         self._by_field[j] = by_field
         self._set_state(j, EXCLUDED, time, reason, events)
         self._set_operator()
-
-    def exclude_pinned(self, j: int, reason: str, time: float, events: list) -> None:
-        """Exclude sensor ``j`` for a rule the caller judges (the compensator's blind-sensor
-        drift, :mod:`..blind_drift`) and hold it out to the campaign's end: that rule's evidence
-        (a drift that kept growing) does not come back, and no band of the monitor's judges it."""
-        if self._active[j]:
-            self._exclude(j, reason, time, events)
-        if not self._active[j]:
-            self._pinned[j] = True
-            self._quiet = False
 
     def _set_state(self, j: int, new: int, time: float, reason: str, events: list) -> None:
         if new == self._state[j]:

@@ -36,7 +36,7 @@ class Readmission:
         (checked against the field where the others can predict it, else calm is enough).
         Whether any sensor came back."""
         thawed = self._thawed(finite, instant, time, events)
-        due = ~self._active & finite & (self._run == 0) & (self._calm >= self._dwell) & ~self._pinned
+        due = ~self._active & finite & (self._run == 0) & (self._calm >= self._dwell)
         due[list(instant)] = False
         back = self._returning(due) if due.any() else due
         band = self._readmit_c(self._active | back | self._hid) if back.any() else None
@@ -69,7 +69,7 @@ class Readmission:
     def _thawed(self, finite, instant, time, events) -> bool:
         """Those out for a freeze alone, ``THAW`` readings in a row off the value they held,
         back at once (module doc)."""
-        back = self._froze & ~self._active & finite & (self._off >= THAW) & ~self._pinned
+        back = self._froze & ~self._active & finite & (self._off >= THAW)
         back[list(instant)] = False
         for j in np.flatnonzero(back):
             self._set_state(j, OK, time, f"re-admitted: {self._off[j]} readings in a row off "
