@@ -239,15 +239,16 @@ class forced_out:
 
 
 def _monitored(folder: Path, label: str, name: str, sensor: str, columns: list, plan=None,
-               faults: dict | None = None):
+               faults: dict | None = None, extra: tuple = ()):
     """``monitor`` (the healthy run's model) on a copy of ``label`` whose test files read
     ``columns`` as ``sensor``, the sensors of ``plan`` forced out (:class:`forced_out`; None:
     nothing forced); ``faults``: ``{campaign: the fault's time}`` (the events naming the sensor
-    from then on are counted ``after``: a detection)."""
+    from then on are counted ``after``: a detection); ``extra``: more overrides (bench_monb93);
+    ``served``: the report's targets and events (a stream compared to the bit)."""
     out = folder / "reports" / label
     copy = _copy_fed(folder, label, name, sensor, columns)
     args = ("monitor", f"data.path={copy}", f"out={out / ('monb92-' + name)}", *QUIET,
-            *_overrides(label), f"monitor.model={out / 'run' / 'model.pkl'}")
+            *_overrides(label), f"monitor.model={out / 'run' / 'model.pkl'}", *extra)
     if plan is None:
         rc, said = stage(*args)
     else:
@@ -260,7 +261,8 @@ def _monitored(folder: Path, label: str, name: str, sensor: str, columns: list, 
     named = [e for e in got["events"] if sensor in _named(e)]
     return {"rmse_fixed": _mean_rmse(got, "rmse_fixed"), "rmse_adaptive": _mean_rmse(got, "rmse_adaptive"),
             "events": len(named), "first_event": _traced(named[0]) if named else "",
-            "all_events": len(got["events"]),
+            "all_events": len(got["events"]), "served": {"targets": got["targets"],
+                                                         "events": got["events"]},
             "after": {c: sum(e.get("campaign") == c and e["time"] >= t for e in named)
                       for c, t in (faults or {}).items()}}
 

@@ -157,19 +157,20 @@ def band_of(F: list[np.ndarray], Y: list[np.ndarray], blocks: int) -> float:
     return max(WARNING_C, SPREAD_FACTOR * float(np.quantile(np.abs(w), 0.995)))
 
 
-def crossing(w: np.ndarray, band: float, grows: int, start: int = 0) -> int | None:
+def crossing(w: np.ndarray, band: float, grows: int, start: int = 0,
+             spacing: int = WINDOW) -> int | None:
     """First row >= ``start`` ending :data:`CONFIRM` windowed residuals in a row beyond ``band``
-    where also (``grows`` > 0) the windowed residual read every :data:`WINDOW` rows back rose
+    where also (``grows`` > 0) the windowed residual read every ``spacing`` rows back rose
     ``grows`` times in a row in the crossing's direction.  Causal: row i reads rows <= i."""
     beyond = np.abs(w) > band
     ok = np.convolve(beyond, np.ones(CONFIRM, int), "full")[:len(w)] >= CONFIRM
     if grows:
         sign = np.sign(w)
         for k in range(grows):       # w[i - k W] - w[i - (k+1) W] of the crossing's sign
-            a = np.roll(w, k * WINDOW)
-            b = np.roll(w, (k + 1) * WINDOW)
+            a = np.roll(w, k * spacing)
+            b = np.roll(w, (k + 1) * spacing)
             ok &= sign * (a - b) > 0
-        ok[:grows * WINDOW] = False   # not read so far back yet
+        ok[:grows * spacing] = False  # not read so far back yet
     hits = np.flatnonzero(ok[start:])
     return int(hits[0]) + start if hits.size else None
 
@@ -204,37 +205,43 @@ def _blind(folder: Path, label: str) -> tuple[list[str], str]:
     return [s for s, v in mon["sensors"].items() if not v["observable"]], _costliest(mon)
 
 
-def seen(*roots: str) -> None:
-    """Each rule's healthy crossings and finds on every record of each ROOT (module doc)."""
-    rows, tally = [], {r: {"false": 0, "false_records": set(), "found": 0, "drifted": 0}
-                       for r in RULES}
-    print(f"{'record':<15}{'sensor':<21}{'n':>3}" + "".join(f"{r:>15}" for r in RULES)
-          + "   (false parts / found parts, delay h)", flush=True)
+def blind_sensor_records(roots):
+    """``(label, sensor, costliest, train, test)`` for every blind sensor of every record of each
+    ROOT (``costliest``: the record's costliest blind sensor; train / test: :func:`campaigns`)."""
     for root in roots:
         folder = Path(root).resolve()
         for label in labels_of(folder, "all"):
             blind, costliest = _blind(folder, label)
             train, test = campaigns(folder, label)
             for s in blind:
-                got = trace(train, test, s)
-                drifted = s == costliest and label != "fl_thermal"
-                cells, row = [], {"record": label, "sensor": s, "costliest": drifted,
-                                  "bands": got["bands"]}
-                for r in RULES:
-                    false = sum(p[r]["false_time"] is not None for p in got["parts"])
-                    found = [p[r]["delay_h"] for p in got["parts"] if p[r]["found_time"] is not None]
-                    tally[r]["false"] += false
-                    if false:
-                        tally[r]["false_records"].add(label)
-                    if drifted:
-                        tally[r]["drifted"] += 1
-                        tally[r]["found"] += bool(found)
-                    row[r] = {"false": false, "found": len(found), "delay_h": found}
-                    cell = f"{false}" + (f"/{len(found)} {min(found):.1f}" if found else
-                                         ("/0" if drifted else ""))
-                    cells.append(f"{cell:>15}")
-                rows.append(row)
-                print(f"{label:<15}{s[:20]:<21}{len(got['parts']):>3}" + "".join(cells), flush=True)
+                yield label, s, costliest, train, test
+
+
+def seen(*roots: str) -> None:
+    """Each rule's healthy crossings and finds on every record of each ROOT (module doc)."""
+    rows, tally = [], {r: {"false": 0, "false_records": set(), "found": 0, "drifted": 0}
+                       for r in RULES}
+    print(f"{'record':<15}{'sensor':<21}{'n':>3}" + "".join(f"{r:>15}" for r in RULES)
+          + "   (false parts / found parts, delay h)", flush=True)
+    for label, s, costliest, train, test in blind_sensor_records(roots):
+        got = trace(train, test, s)
+        drifted = s == costliest and label != "fl_thermal"
+        cells, row = [], {"record": label, "sensor": s, "costliest": drifted, "bands": got["bands"]}
+        for r in RULES:
+            false = sum(p[r]["false_time"] is not None for p in got["parts"])
+            found = [p[r]["delay_h"] for p in got["parts"] if p[r]["found_time"] is not None]
+            tally[r]["false"] += false
+            if false:
+                tally[r]["false_records"].add(label)
+            if drifted:
+                tally[r]["drifted"] += 1
+                tally[r]["found"] += bool(found)
+            row[r] = {"false": false, "found": len(found), "delay_h": found}
+            cell = f"{false}" + (f"/{len(found)} {min(found):.1f}" if found else
+                                 ("/0" if drifted else ""))
+            cells.append(f"{cell:>15}")
+        rows.append(row)
+        print(f"{label:<15}{s[:20]:<21}{len(got['parts']):>3}" + "".join(cells), flush=True)
     print("rule: healthy crossings (parts; records) / drifted records found", flush=True)
     for r, v in tally.items():
         print(f"  {r:<15}{v['false']:>4} parts on {len(v['false_records'])} records "
