@@ -6,6 +6,8 @@ Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is
     python benchmarks/bench_step93.py spread ROOT RECORDS        # each sensor's step spreads
     python benchmarks/bench_step93.py trace ROOT RECORDS RULE    # steps planted, main or RULE
     python benchmarks/bench_step93.py healthy ROOT RECORDS RULE  # the records unplanted: events
+    python benchmarks/bench_step93.py score ROOT RULE [SEEDS]    # bench_bar91b's score, RULE on
+    python benchmarks/bench_step93.py table MAIN RULE [FIRST]    # bench_bar91b's distance bar
 
 ``RECORDS``: labels ``<kind><seed>`` joined by commas: ``swiss`` (bench_audit89's
 ``sim=swiss_lathe_door``), ``lr`` / ``cr`` (bench_mon88's long lathe record, R1b continuing R1a,
@@ -41,7 +43,8 @@ innovation at all.  What IS tighter there is its own dynamics: the change of its
 change (a motor heats along a smooth ramp, its steps correlated 0.75 lag to lag): training
 |d2x| 0.39 / 0.40 degC against |dx| 0.73 / 0.74 on swiss / climate-room motors.
 
-Prototype ``curv`` (no src): a sensor the others do not predict whose one-sample change departs
+Prototype ``curv`` (no src): a sensor the others do not predict (in or out, as main's jump limit
+reads every sensor) whose one-sample change departs
 from its own last one-sample change by more than ``jump_factor`` (3) x the largest such departure
 in its training campaigns is treated as a jump in that sample (main's jump path: re-referenced by
 its step, out until calm for a window).  The same factor as main's jump limit; nothing read off
@@ -54,7 +57,8 @@ The rule is KEPT only if, on the fresh records, scored once:
 (a) bench_bar91b's distance bar on its own rows (``bench_bar91b.py score`` on a tree carrying the
     rule against main; mean d strictly below main's, no row past main's d + log(1.02), true
     records event for event as main's, faults detected not fewer); and
-(b) 0 new sensor events on the healthy records (``healthy`` here, RULE against main);
+(b) 0 new sensor events on the healthy records (``healthy ROOT lr9561,...,cr9570 RULE`` here, the
+    same seeds drawn true, against main);
 and, for KEPT, the rule built in src with tests failing on 5fe17063 and docs/monitoring.md (the C
 flagged NOT_IN_CODE where it does not follow).  Otherwise TRACED (no src) or REFUSED (its patch).
 """
@@ -112,7 +116,8 @@ def _patch_curv() -> None:
         if before is not None:
             with np.errstate(invalid="ignore"):
                 step = np.asarray(reading, float) - self._ref - before
-                fired = (self._active & (self._gap == 1) & (np.abs(step - last) > lim)
+                # every sensor, in or out, as main's jump limit (an out sensor's return is a jump too)
+                fired = ((self._gap == 1) & (np.abs(step - last) > lim)
                          & ~(np.abs(step) > self._jump_lim))
         saved = self._jump_lim.copy()
         if fired.any():
@@ -243,9 +248,43 @@ def healthy(root: str, labels: str, rule: str) -> None:
     (folder / f"healthy-{rule}.json").write_text(json.dumps(out, indent=1))
 
 
+def score(root: str, rule: str, seeds: str = "9561-9570") -> None:
+    """bench_bar91b's ``score`` on its fresh cycle from ``seeds``' first (lr x 5, cr x 5), mlr and
+    lagbank, with RULE (``main`` or ``curv``) in this process -> ``ROOT/score.json``; then
+    ``bench_bar91b.py table`` (with ``commands_on`` of the same first seed) gives the bar."""
+    import _ccode
+    import bench_bar91b as bar91b
+
+    if rule == "curv":
+        _patch_curv()
+        fit = _ccode.deployed_on
+
+        def deployed_on(data, model, overrides=()):
+            deployed, ds, tests = fit(data, model, overrides)
+            if deployed.monitor is not None:
+                train = [k for k in ds.campaigns if k not in tests]
+                deployed.monitor._curv_lim = _curv_limits(deployed.monitor, ds, train)
+            return deployed, ds, tests
+
+        _ccode.deployed_on = deployed_on
+    elif rule != "main":
+        raise SystemExit(f"RULE must be main or curv, got {rule!r}")
+    bar91b.commands_on(int(seeds.split("-")[0]))
+    bar91.score(root, seeds)
+
+
+def table(main_root: str, rule_root: str, first: str = "9561") -> None:
+    """bench_bar91b's distance bar of RULE_ROOT's score.json against MAIN_ROOT's (fresh cycle
+    from ``first``)."""
+    import bench_bar91b as bar91b
+
+    bar91b.commands_on(int(first))
+    bar91b.table(main_root, rule_root)
+
+
 def main(argv: list[str]) -> int:
-    return run_commands(__doc__, {"spread": spread, "trace": trace, "healthy": healthy}, argv,
-                        cpu=sys.stderr)
+    return run_commands(__doc__, {"spread": spread, "trace": trace, "healthy": healthy,
+                                  "score": score, "table": table}, argv, cpu=sys.stderr)
 
 
 if __name__ == "__main__":
