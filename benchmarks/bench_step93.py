@@ -8,6 +8,7 @@ Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is
     python benchmarks/bench_step93.py healthy ROOT RECORDS RULE  # the records unplanted: events
     python benchmarks/bench_step93.py score ROOT RULE [SEEDS]    # bench_bar91b's score, RULE on
     python benchmarks/bench_step93.py table MAIN RULE [FIRST]    # bench_bar91b's distance bar
+    python benchmarks/bench_step93.py steps MAIN_ROOT RULE_ROOT RULE  # clause (a) of the bar
 
 ``RECORDS``: labels ``<kind><seed>`` joined by commas: ``swiss`` (bench_audit89's
 ``sim=swiss_lathe_door``), ``lr`` / ``cr`` (bench_mon88's long lathe record, R1b continuing R1a,
@@ -308,9 +309,33 @@ def table(main_root: str, rule_root: str, first: str = "9561") -> None:
     bar91b.table(main_root, rule_root)
 
 
+def steps_table(main_root: str, rule_root: str, rule: str) -> None:
+    """Clause (a): ``trace-main.json`` of MAIN_ROOT against ``trace-RULE.json`` of RULE_ROOT:
+    mean d over the (record, sensor, k) cells, the cells RULE moves, those past main's d +
+    log(1.02), detections; per record and over the sensors no other predicts apart."""
+    a = json.loads((Path(main_root) / "trace-main.json").read_text())
+    b = json.loads((Path(rule_root) / f"trace-{rule}.json").read_text())
+    rows = [(rec, name, ca, cb) for rec in a for name in a[rec]
+            for ca, cb in zip(a[rec][name], b[rec][name])]
+    da, db = np.array([r[2]["d"] for r in rows]), np.array([r[3]["d"] for r in rows])
+    far = [r for r, x, y in zip(rows, da, db) if y > x + np.log(1.02)]
+    print(f"{len(rows)} cells: mean d main {da.mean():.4f} -> {rule} {db.mean():.4f}; detected "
+          f"{sum(r[2]['detected'] for r in rows)} -> {sum(r[3]['detected'] for r in rows)}; "
+          f"cells past main's d + log(1.02): {len(far)}")
+    for rec, name, ca, cb in rows:
+        if abs(cb["d"] - ca["d"]) > 1e-6:
+            print(f"  {rec} {name} {ca['k']:g}x ({ca['size']:.3g} degC): d x 100 {100 * ca['d']:.2f} "
+                  f"-> {100 * cb['d']:.2f}; detected {ca['detected']} -> {cb['detected']}")
+    for rec, name, ca, cb in far:
+        print(f"  PAST (a): {rec} {name} {ca['k']:g}x d x 100 {100 * ca['d']:.2f} -> {100 * cb['d']:.2f}")
+    passes = round(db.mean(), 4) < round(da.mean(), 4) and not far
+    print(f"(a) {'MET' if passes else 'FAILS'}")
+
+
 def main(argv: list[str]) -> int:
     return run_commands(__doc__, {"spread": spread, "trace": trace, "healthy": healthy,
-                                  "score": score, "table": table}, argv, cpu=sys.stderr)
+                                  "score": score, "table": table,
+                                  "steps": steps_table}, argv, cpu=sys.stderr)
 
 
 if __name__ == "__main__":
