@@ -134,7 +134,8 @@ def _patch_curv() -> None:
                 fired = ((self._gap == 1) & (np.abs(step - last) > lim)
                          & ~(np.abs(step) > self._jump_lim))
         saved = self._jump_lim.copy()
-        stay = fired & ~self._predictable & self._active if getattr(self, "_curv_in", False) else fired & False
+        stay = (fired & ~self._predictable & self._active if getattr(self, "_curv_in", False)
+                else fired & False)
         said = []
         for j in np.flatnonzero(stay):    # ``curvin``: re-referenced by its departure, stays in
             off = float(step[j] - (last[j] if np.isfinite(last[j]) else 0.0))
