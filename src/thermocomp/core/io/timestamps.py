@@ -270,6 +270,44 @@ def names_time_of_day(header: str | None) -> bool:
     return header is not None and _bare(header) in CLOCK_HEADERS
 
 
+HOURS_OF_DAY = 24.0
+
+
+def hours_of_day(values: np.ndarray, header: str | None, unit: str | None) -> bool:
+    """(extension, data93) A numeric time column under a time-of-day header
+    (:func:`names_time_of_day`, ``Hora``), no unit in the header nor in ``data.units``
+    (``unit``), whose values are mostly within a day's hours (their median below 24): a lab's
+    decimal hours, ``21.5``, ``21.58`` ...  Read as seconds since midnight the record would lie
+    within 24 s of midnight, no thermal test; the median, not every value, so that a cell
+    past 24 is refused at its row once the unit is set (:func:`seconds_of_day`), not read as
+    seconds with the rest."""
+    finite = values[np.isfinite(values)]
+    return (unit is None and names_time_of_day(header) and finite.size > 0
+            and float(np.median(finite)) < HOURS_OF_DAY)
+
+
+def day_fraction_too(values: np.ndarray) -> bool:
+    """(data93) Decimal hours that may as well be a fraction of a day, as Excel stores a time
+    (21:30 is 0.896): every value within [0, 1], a record within the hour after midnight read
+    as hours, or a whole day read as a day's fraction; no step tells them apart."""
+    finite = values[np.isfinite(values)]
+    return bool(finite.size and finite.min() >= 0 and finite.max() <= 1)
+
+
+def refuse_hours(values: np.ndarray, path: Path, header: str) -> None:
+    """(data93) Refuse a time column :func:`hours_of_day` says holds hours, read without its
+    unit (as seconds: a sample period of 0.083 s for a lab's every 5 min, refused at midnight),
+    naming the keys that read it (``init`` writes them where no fraction of a day is as
+    likely, :func:`day_fraction_too`)."""
+    row = int(np.argmax(np.isfinite(values)))
+    either = (f"; or a fraction of a day, as Excel stores a time (21:30 is 0.896): "
+              f"data.units={{{header!r}: d}}" if day_fraction_too(values) else "")
+    raise ContractError(f"value {values[row]:g} under a time-of-day header, no unit: read as "
+                        "seconds since midnight the record would lie within 24 s of midnight; "
+                        f"decimal hours (21.5 is 21:30)? data.units={{{header!r}: h}} data.time="
+                        f"{OF_DAY_KIND}{either}", file=path, column=TIME, row=row + 1)
+
+
 def over_midnight(seconds: np.ndarray) -> bool:
     """``seconds`` (within a day) step back by more than half a day, and each such step, a day
     added, is no longer than a step the clock takes elsewhere: a clock of the day's seconds
