@@ -193,9 +193,13 @@ def _said_session_pause(seconds: np.ndarray, valid: np.ndarray) -> None:
     it read, then the block's continuing times; ``valid``: the block's rows with a time), by the
     file's rule (:func:`pauses`): read as the clock says, but it reads as well a day or more
     longer (the machine stopped overnight between two blocks), which no time of day tells, as
-    a file's dateless clock is warned of (:func:`_said_pauses`)."""
+    a file's dateless clock is warned of (:func:`_said_pauses`).  (data93) Rows missing too
+    (:func:`.rates.row_gaps`, fewer than :data:`PAUSE_PERIODS`: a block resuming 30 min on may
+    as well resume a day and 30 min on); a day lost at a step of one period shows nowhere."""
+    from .rates import row_gaps     # (rates reads this module's pause rule)
+
     timed = np.concatenate([[0], valid + 1])
-    found = pauses(seconds[timed])
+    found = np.union1d(pauses(seconds[timed]), row_gaps(seconds[timed]))
     if not found.size:
         return
     k = int(found[0])

@@ -25,10 +25,12 @@ from .sparse import intermittent, probe_cycle
 from .tables import PIPED_HINT, _chunks, _values
 from .timestamps import (
     DAY_S,
+    ELAPSED,
     OF_DAY,
     OF_DAY_KIND,
     clock_set_back,
     hours_of_day,
+    names_time_of_day,
     on_local_clock,
     refuse_hours,
     said_if_clock_skips,
@@ -77,7 +79,8 @@ def _set_time_seconds(columns: dict, rows: int, path: Path, opts: ReadOptions,
             said_if_clock_skips(seconds, path, at=at(lines), origin=info.get("time_origin"))
         if opts.resample_s is None:        # (on one grid, as the warning says to put it)
             if not said_if_rate_changes(seconds, path, at=at(lines)):   # (its slower steps)
-                said_if_rows_missing(seconds, path, at=at(lines))
+                said_if_rows_missing(seconds, path, at=at(lines),
+                                     dateless=is_time_of_day(info, header, opts.time))
     except ContractError as exc:
         if opts.missing != "keep":
             raise
@@ -86,6 +89,14 @@ def _set_time_seconds(columns: dict, rows: int, path: Path, opts: ReadOptions,
     _check_duration(seconds, path, opts.max_duration_days)
     columns[TIME] = pa.array(seconds)
     return info
+
+
+def is_time_of_day(info: dict, header: str | None, written: str) -> bool:
+    """(data93) The time was read as a time of day without its date (``info``: the reader's
+    report of it): ``data.time=of_day`` (``written``), seconds of the day, or an ``h:mm:ss``
+    under a time-of-day header (:func:`.timestamps.names_time_of_day`), read as a duration."""
+    return (written == OF_DAY_KIND or info.get("time") == OF_DAY
+            or written != ELAPSED and info.get("time") == ELAPSED and names_time_of_day(header))
 
 
 def _unit(header: str | None, opts: ReadOptions) -> str | None:
