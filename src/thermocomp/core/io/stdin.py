@@ -48,8 +48,8 @@ from .layout import (
 )
 from .lvm import is_lvm_text, lvm_as_csv
 from .options import RUN_ROLE
-from .rates import said_if_rows_missing
 from .own_headers import as_named
+from .rates import said_if_rows_missing
 from .roles import RUN, active, left_out, named_as_time, naming, split_unit
 from .runs import run_blocks, run_values
 from .scope import is_scope_text, scope_as_csv
