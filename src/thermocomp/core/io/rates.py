@@ -16,11 +16,15 @@ from ...base.errors import position
 from ...base.log import logger
 from ..timerule import median_step
 from .contract import TIME
-from .timestamps import PAUSE_PERIODS, skips_an_hour
+
+# (data93) the rows-missing rule lives beside the pause rule, which a served session reads too;
+# its periods re-exported here, where the machine client reads them
+from .timestamps import GAP_PERIODS as GAP_PERIODS
+from .timestamps import PAUSE_PERIODS as PAUSE_PERIODS
+from .timestamps import row_gaps
 
 RATE_CHANGE = 2.0    # the median steps before and after the change this far apart
 SETTLED = 10         # steps at least on each side of a change
-GAP_PERIODS = 1.5    # a step this many sample periods or more: rows not logged
 
 
 def period_groups(periods: Mapping[str, float]) -> dict[float, list[str]]:
@@ -66,19 +70,6 @@ def _change(steps: np.ndarray) -> int | None:
     head = np.cumsum(logs)[k - 1]
     shift = head / k - (logs.sum() - head) / (n - k)
     return int(k[np.argmax(np.abs(shift) * np.sqrt(k * (n - k)))])
-
-
-def row_gaps(seconds: np.ndarray) -> np.ndarray:
-    """The steps of ``seconds`` (a time, s, increasing) of :data:`GAP_PERIODS` sample periods or
-    more, up to :data:`PAUSE_PERIODS` (a pause, said on its own), but for an hour and a period
-    (daylight saving time, said on its own): rows not logged (index ``i``: between rows ``i``
-    and ``i + 1``)."""
-    period = median_step(seconds)
-    if period is None or period <= 0:
-        return np.array([], int)
-    steps = np.diff(seconds)
-    return np.flatnonzero((steps >= GAP_PERIODS * period) & (steps <= PAUSE_PERIODS * period)
-                          & ~skips_an_hour(steps, period))
 
 
 # (data93) what a gap in a time of day without its date reads as as well: the clock cannot tell

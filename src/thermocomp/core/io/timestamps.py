@@ -194,7 +194,7 @@ def _said_session_pause(seconds: np.ndarray, valid: np.ndarray) -> None:
     file's rule (:func:`pauses`): read as the clock says, but it reads as well a day or more
     longer (the machine stopped overnight between two blocks), which no time of day tells, as
     a file's dateless clock is warned of (:func:`_said_pauses`).  (data93) Rows missing too
-    (:func:`.rates.row_gaps`, fewer than :data:`PAUSE_PERIODS`: a block resuming 30 min on may
+    (:func:`row_gaps`, fewer than :data:`PAUSE_PERIODS`: a block resuming 30 min on may
     as well resume a day and 30 min on); a day lost at a step of one period shows nowhere."""
     from .rates import row_gaps  # (rates reads this module's pause rule)
 
@@ -213,6 +213,7 @@ def _said_session_pause(seconds: np.ndarray, valid: np.ndarray) -> None:
 
 
 PAUSE_PERIODS = 100   # a record silent this many sample periods: runs joined in one file?
+GAP_PERIODS = 1.5     # a step this many sample periods or more: rows not logged
 OF_DAY = "seconds of day"   # (data89b) the report's time of seconds since midnight, unwrapped
 # (data89b) a numeric time column's header that says it holds seconds since midnight
 OF_DAY_HEADERS = frozenset({"seconds of day", "second of day", "seconds of the day", "sec of day",
@@ -229,6 +230,19 @@ def pauses(seconds: np.ndarray) -> np.ndarray:
     if not period or len(seconds) < 3:
         return np.array([], int)
     return np.flatnonzero(np.diff(seconds) > PAUSE_PERIODS * period)
+
+
+def row_gaps(seconds: np.ndarray) -> np.ndarray:
+    """The steps of ``seconds`` (a time, s, increasing) of :data:`GAP_PERIODS` sample periods or
+    more, up to :data:`PAUSE_PERIODS` (a pause, said on its own), but for an hour and a period
+    (daylight saving time, said on its own): rows not logged (index ``i``: between rows ``i``
+    and ``i + 1``)."""
+    period = median_step(seconds)
+    if period is None or period <= 0:
+        return np.array([], int)
+    steps = np.diff(seconds)
+    return np.flatnonzero((steps >= GAP_PERIODS * period) & (steps <= PAUSE_PERIODS * period)
+                          & ~skips_an_hour(steps, period))
 
 
 def seconds_of_day(seconds: np.ndarray, path: Path, header: str | None = None,
