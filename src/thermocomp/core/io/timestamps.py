@@ -196,8 +196,6 @@ def _said_session_pause(seconds: np.ndarray, valid: np.ndarray) -> None:
     a file's dateless clock is warned of (:func:`_said_pauses`).  (data93) Rows missing too
     (:func:`row_gaps`, fewer than :data:`PAUSE_PERIODS`: a block resuming 30 min on may
     as well resume a day and 30 min on); a day lost at a step of one period shows nowhere."""
-    from .rates import row_gaps  # (rates reads this module's pause rule)
-
     timed = np.concatenate([[0], valid + 1])
     found = np.union1d(pauses(seconds[timed]), row_gaps(seconds[timed]))
     if not found.size:
