@@ -66,7 +66,9 @@ from .timestamps import (
     CLOCK,
     OF_DAY,
     OF_DAY_KIND,
+    day_fraction_too,
     excel_days,
+    hours_of_day,
     looks_like_timestamp,
     maybe_elapsed,
     names_time_of_day,
@@ -317,6 +319,30 @@ def clock_column(header: list[str], first: dict, opts) -> str | None:
         return None
     return next((h for h in header if names_time_of_day(h)
                  and maybe_elapsed(str(first.get(h) or "").strip(), opts.time)), None)
+
+
+def hours_column(sample: Path, opts, header: list[str], first: dict) -> str | None:
+    """(data93) The header of a text ``sample``'s time column in a lab's decimal hours of the
+    day (:func:`.timestamps.hours_of_day`: ``Hora`` 21.5, 21.58 ..., no unit), to be written as
+    ``data.units={<header>: h}`` and ``data.time=of_day``; None where ``data.time`` or
+    ``data.roles.time`` is given, a date column stands beside it, the file is read through a
+    converter, or its values may as well be a fraction of a day
+    (:func:`.timestamps.day_fraction_too`: left to the reader's refusal, which names both)."""
+    if opts.time != "auto" or opts.roles.get("time", "auto") != "auto" or \
+            date_and_time_of_day(header, first) or not is_text(sample) or \
+            is_converted(sample, opts):
+        return None
+    for i, h in enumerate(header):
+        if not names_time_of_day(h) or number(str(first.get(h) or ""), opts.decimal) is None:
+            continue
+        cells = _column_cells(sample, opts, i)
+        if cells is None:
+            return None                     # (its own read says why)
+        values = np.array([v if (v := number(str(c), opts.decimal)) is not None else np.nan
+                           for c in cells])
+        unit = opts.units.get(h) or split_unit(h)[1]
+        return h if hours_of_day(values, h, unit) and not day_fraction_too(values) else None
+    return None
 
 
 def _column_cells(file: Path, opts, index: int, rows: int | None = None) -> pd.Series | None:
@@ -709,6 +735,8 @@ def _time_line(times: list, origin, read_as, opts) -> str:
         # (data91) seconds since midnight, passing it: said, with the key where it took one (its
         # h:mm:ss is read as a duration first, data92b: the report says "elapsed" then)
         key = f", data.time={opts.time}" if opts.time == OF_DAY_KIND else ""
+        unit = opts.units.get(times[0]) if times[0] else None     # (data93: decimal hours)
+        key += f", data.units={{{times[0]!r}: {unit}}}" if unit else ""
         return f"{named}, {OF_DAY} (since midnight, a day added where it passes midnight{key})"
     return f"{named}, elapsed h:mm:ss" if read_as == "elapsed" else \
         f"{named}{_seconds_unit(times[0], opts)}"

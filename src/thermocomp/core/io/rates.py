@@ -16,11 +16,15 @@ from ...base.errors import position
 from ...base.log import logger
 from ..timerule import median_step
 from .contract import TIME
-from .timestamps import PAUSE_PERIODS, skips_an_hour
+
+# (data93) the rows-missing rule lives beside the pause rule, which a served session reads too;
+# its periods re-exported here, where the machine client reads them
+from .timestamps import GAP_PERIODS as GAP_PERIODS
+from .timestamps import PAUSE_PERIODS as PAUSE_PERIODS
+from .timestamps import row_gaps
 
 RATE_CHANGE = 2.0    # the median steps before and after the change this far apart
 SETTLED = 10         # steps at least on each side of a change
-GAP_PERIODS = 1.5    # a step this many sample periods or more: rows not logged
 
 
 def period_groups(periods: Mapping[str, float]) -> dict[float, list[str]]:
@@ -68,25 +72,28 @@ def _change(steps: np.ndarray) -> int | None:
     return int(k[np.argmax(np.abs(shift) * np.sqrt(k * (n - k)))])
 
 
-def said_if_rows_missing(seconds: np.ndarray, file, at: Callable[[int], str] = position) -> None:
-    """Say the stretches of ``seconds`` (a campaign's time, s, increasing) without rows: steps of
-    :data:`GAP_PERIODS` sample periods or more (a gateway's outage, a lost buffer; newmachine59's
-    EDM lost 7 and 25 min of rows and nothing said so), up to :data:`PAUSE_PERIODS` (a record's
-    pause between runs, said where one file is read as one record) and but for an hour and a
-    period (daylight saving time, said on its own).  A model whose lags count samples reads
-    each as one period."""
-    period = median_step(seconds)
-    if period is None or period <= 0:
-        return
-    steps = np.diff(seconds)
-    gaps = np.flatnonzero((steps >= GAP_PERIODS * period) & (steps <= PAUSE_PERIODS * period)
-                          & ~skips_an_hour(steps, period))
+# (data93) what a gap in a time of day without its date reads as as well: the clock cannot tell
+# a day lost with the rows, nor, at a step of one period, a day lost between two rows at all
+DAY_HIDDEN = ("; a time of day without its date: as well a day longer ({hours:.3g} h or more, "
+              "the logger stopped overnight), no date to tell: give the date column with it")
+
+
+def said_if_rows_missing(seconds: np.ndarray, file, at: Callable[[int], str] = position,
+                         dateless: bool = False) -> None:
+    """Say the stretches of ``seconds`` (a campaign's time, s, increasing) without rows
+    (:func:`row_gaps`: a gateway's outage, a lost buffer; newmachine59's EDM lost 7 and 25 min of
+    rows and nothing said so).  A model whose lags count samples reads each as one period.
+    (data93) ``dateless``: a time of day without its date (``data.time=of_day``, a clock header),
+    whose gap reads as well a day longer (:data:`DAY_HIDDEN`): said so."""
+    gaps = row_gaps(seconds)
     if not gaps.size:
         return
+    period, steps = median_step(seconds), np.diff(seconds)
     k = int(gaps[np.argmax(steps[gaps])])
     sizes = ", ".join(f"{steps[g] / period:.3g}" for g in gaps[:5]) + (", ..." if gaps.size > 5 else "")
+    day = DAY_HIDDEN.format(hours=steps[k] / 3600 + 24) if dateless else ""
     logger.warning(f"{file}, column {TIME!r}: {gaps.size} stretch(es) without rows (steps of "
                    f"{sizes} sample periods of {period:g} s; the longest {steps[k] / 60:.3g} min, "
                    f"before {at(k + 2)}): a logger's outage? The lag bank and Hammerstein read "
                    "the time; a model whose lags count samples (arx, lstm) reads each as one "
-                   f"period; data.resample_s={period:g} fills them by linear interpolation")
+                   f"period; data.resample_s={period:g} fills them by linear interpolation{day}")

@@ -49,6 +49,7 @@ from .layout import (
 from .lvm import is_lvm_text, lvm_as_csv
 from .options import RUN_ROLE
 from .own_headers import as_named
+from .rates import said_if_rows_missing
 from .roles import RUN, active, left_out, named_as_time, naming, split_unit
 from .runs import run_blocks, run_values
 from .scope import is_scope_text, scope_as_csv
@@ -559,8 +560,11 @@ def seconds_and_origin(time: pd.Series, time_format: str, zone: str | None = Non
     if stamps is None and time_format == OF_DAY_KIND:     # (data91) as a file's are read
         # (data92) by the file's one function: a value outside a day refused with its row
         seconds = pd.to_numeric(time, errors="coerce").to_numpy(float)
-        of_day = seconds_of_day(seconds, SOURCE, pauses_said=False, kind=OF_DAY_KIND)
-        return pd.Series(of_day, index=time.index), None
+        stamps = pd.Series(seconds_of_day(seconds, SOURCE, pauses_said=False, kind=OF_DAY_KIND),
+                           index=time.index)
+    if time_format == OF_DAY_KIND and isinstance(stamps, pd.Series):
+        # (data93) rows missing in a time of day: as well a day longer, said as a file's gap is
+        said_if_rows_missing(stamps.to_numpy(float), SOURCE, dateless=True)
     if stamps is None or isinstance(stamps, pd.Series):   # seconds; h:mm:ss in seconds
         return (time if stamps is None else stamps), None
     ns, valid = stamps

@@ -193,9 +193,11 @@ def _said_session_pause(seconds: np.ndarray, valid: np.ndarray) -> None:
     it read, then the block's continuing times; ``valid``: the block's rows with a time), by the
     file's rule (:func:`pauses`): read as the clock says, but it reads as well a day or more
     longer (the machine stopped overnight between two blocks), which no time of day tells, as
-    a file's dateless clock is warned of (:func:`_said_pauses`)."""
+    a file's dateless clock is warned of (:func:`_said_pauses`).  (data93) Rows missing too
+    (:func:`row_gaps`, fewer than :data:`PAUSE_PERIODS`: a block resuming 30 min on may
+    as well resume a day and 30 min on); a day lost at a step of one period shows nowhere."""
     timed = np.concatenate([[0], valid + 1])
-    found = pauses(seconds[timed])
+    found = np.union1d(pauses(seconds[timed]), row_gaps(seconds[timed]))
     if not found.size:
         return
     k = int(found[0])
@@ -209,6 +211,7 @@ def _said_session_pause(seconds: np.ndarray, valid: np.ndarray) -> None:
 
 
 PAUSE_PERIODS = 100   # a record silent this many sample periods: runs joined in one file?
+GAP_PERIODS = 1.5     # a step this many sample periods or more: rows not logged
 OF_DAY = "seconds of day"   # (data89b) the report's time of seconds since midnight, unwrapped
 # (data89b) a numeric time column's header that says it holds seconds since midnight
 OF_DAY_HEADERS = frozenset({"seconds of day", "second of day", "seconds of the day", "sec of day",
@@ -225,6 +228,19 @@ def pauses(seconds: np.ndarray) -> np.ndarray:
     if not period or len(seconds) < 3:
         return np.array([], int)
     return np.flatnonzero(np.diff(seconds) > PAUSE_PERIODS * period)
+
+
+def row_gaps(seconds: np.ndarray) -> np.ndarray:
+    """The steps of ``seconds`` (a time, s, increasing) of :data:`GAP_PERIODS` sample periods or
+    more, up to :data:`PAUSE_PERIODS` (a pause, said on its own), but for an hour and a period
+    (daylight saving time, said on its own): rows not logged (index ``i``: between rows ``i``
+    and ``i + 1``)."""
+    period = median_step(seconds)
+    if period is None or period <= 0:
+        return np.array([], int)
+    steps = np.diff(seconds)
+    return np.flatnonzero((steps >= GAP_PERIODS * period) & (steps <= PAUSE_PERIODS * period)
+                          & ~skips_an_hour(steps, period))
 
 
 def seconds_of_day(seconds: np.ndarray, path: Path, header: str | None = None,
@@ -268,6 +284,44 @@ def names_time_of_day(header: str | None) -> bool:
     """(data92b) The header names the time of day (:data:`CLOCK_HEADERS`, its unit aside): its
     ``h:mm:ss`` is read as ``data.time=of_day`` says, without a date column beside it."""
     return header is not None and _bare(header) in CLOCK_HEADERS
+
+
+HOURS_OF_DAY = 24.0
+
+
+def hours_of_day(values: np.ndarray, header: str | None, unit: str | None) -> bool:
+    """(extension, data93) A numeric time column under a time-of-day header
+    (:func:`names_time_of_day`, ``Hora``), no unit in the header nor in ``data.units``
+    (``unit``), whose values are mostly within a day's hours (their median below 24): a lab's
+    decimal hours, ``21.5``, ``21.58`` ...  Read as seconds since midnight the record would lie
+    within 24 s of midnight, no thermal test; the median, not every value, so that a cell
+    past 24 is refused at its row once the unit is set (:func:`seconds_of_day`), not read as
+    seconds with the rest."""
+    finite = values[np.isfinite(values)]
+    return (unit is None and names_time_of_day(header) and finite.size > 0
+            and float(np.median(finite)) < HOURS_OF_DAY)
+
+
+def day_fraction_too(values: np.ndarray) -> bool:
+    """(data93) Decimal hours that may as well be a fraction of a day, as Excel stores a time
+    (21:30 is 0.896): every value within [0, 1], a record within the hour after midnight read
+    as hours, or a whole day read as a day's fraction; no step tells them apart."""
+    finite = values[np.isfinite(values)]
+    return bool(finite.size and finite.min() >= 0 and finite.max() <= 1)
+
+
+def refuse_hours(values: np.ndarray, path: Path, header: str) -> None:
+    """(data93) Refuse a time column :func:`hours_of_day` says holds hours, read without its
+    unit (as seconds: a sample period of 0.083 s for a lab's every 5 min, refused at midnight),
+    naming the keys that read it (``init`` writes them where no fraction of a day is as
+    likely, :func:`day_fraction_too`)."""
+    row = int(np.argmax(np.isfinite(values)))
+    either = (f"; or a fraction of a day, as Excel stores a time (21:30 is 0.896): "
+              f"data.units={{{header!r}: d}}" if day_fraction_too(values) else "")
+    raise ContractError(f"value {values[row]:g} under a time-of-day header, no unit: read as "
+                        "seconds since midnight the record would lie within 24 s of midnight; "
+                        f"decimal hours (21.5 is 21:30)? data.units={{{header!r}: h}} data.time="
+                        f"{OF_DAY_KIND}{either}", file=path, column=TIME, row=row + 1)
 
 
 def over_midnight(seconds: np.ndarray) -> bool:

@@ -20,14 +20,19 @@ from .lines import Lines, at
 from .marks import ABSOLUTE_ZERO_C
 from .options import ReadOptions
 from .rates import period_groups, said_if_rate_changes, said_if_rows_missing
+from .roles import split_unit
 from .sparse import intermittent, probe_cycle
 from .tables import PIPED_HINT, _chunks, _values
 from .timestamps import (
     DAY_S,
+    ELAPSED,
     OF_DAY,
     OF_DAY_KIND,
     clock_set_back,
+    hours_of_day,
+    names_time_of_day,
     on_local_clock,
+    refuse_hours,
     said_if_clock_skips,
     seconds_of_day,
 )
@@ -60,7 +65,8 @@ def _set_time_seconds(columns: dict, rows: int, path: Path, opts: ReadOptions,
         if column.null_count:
             row = int(np.argmax(column.is_null().to_numpy(zero_copy_only=False))) + 1
             raise ContractError("missing time value", file=path, column=TIME, row=row)
-        seconds, info = _seconds(column, path, opts.timezone, header, opts.time)
+        seconds, info = _seconds(column, path, opts.timezone, header, opts.time,
+                                 _unit(header, opts))
         seconds, origin, found = undone(seconds, info.get("time_origin"), opts.clock_sets, path)
         if found:       # (the sets found, by index: the record's report names those not found)
             info.update(time_origin=origin, clock_sets_undone=len(found), clock_sets_found=found)
@@ -73,7 +79,8 @@ def _set_time_seconds(columns: dict, rows: int, path: Path, opts: ReadOptions,
             said_if_clock_skips(seconds, path, at=at(lines), origin=info.get("time_origin"))
         if opts.resample_s is None:        # (on one grid, as the warning says to put it)
             if not said_if_rate_changes(seconds, path, at=at(lines)):   # (its slower steps)
-                said_if_rows_missing(seconds, path, at=at(lines))
+                said_if_rows_missing(seconds, path, at=at(lines),
+                                     dateless=is_time_of_day(info, header, opts.time))
     except ContractError as exc:
         if opts.missing != "keep":
             raise
@@ -84,8 +91,24 @@ def _set_time_seconds(columns: dict, rows: int, path: Path, opts: ReadOptions,
     return info
 
 
+def is_time_of_day(info: dict, header: str | None, written: str) -> bool:
+    """(data93) The time was read as a time of day without its date (``info``: the reader's
+    report of it): ``data.time=of_day`` (``written``), seconds of the day, or an ``h:mm:ss``
+    under a time-of-day header (:func:`.timestamps.names_time_of_day`), read as a duration."""
+    return (written == OF_DAY_KIND or info.get("time") == OF_DAY
+            or written != ELAPSED and info.get("time") == ELAPSED and names_time_of_day(header))
+
+
+def _unit(header: str | None, opts: ReadOptions) -> str | None:
+    """The unit a time column's header or ``data.units`` gives it, None where neither does."""
+    if header is None:
+        return None
+    return opts.units.get(header) or split_unit(header)[1]
+
+
 def _seconds(column: pa.ChunkedArray, path: Path, zone: str | None = None,
-             header: str | None = None, written: str = "auto") -> tuple[np.ndarray, dict]:
+             header: str | None = None, written: str = "auto",
+             unit: str | None = None) -> tuple[np.ndarray, dict]:
     kind = column.type
     if pa.types.is_timestamp(kind):
         ns = pc.cast(pc.cast(column, pa.timestamp("ns", kind.tz)), pa.int64()).to_numpy()
@@ -99,6 +122,8 @@ def _seconds(column: pa.ChunkedArray, path: Path, zone: str | None = None,
         ns = pc.cast(pc.cast(column, pa.duration("ns")), pa.int64()).to_numpy()
         return ns / 1e9, {"time": "elapsed"}
     seconds = pc.cast(column, pa.float64()).to_numpy()
+    if written in ("auto", OF_DAY_KIND) and hours_of_day(seconds, header, unit):
+        refuse_hours(seconds, path, header)      # (data93) a lab's decimal hours, no unit
     if (of_day := seconds_of_day(seconds, path, header, kind=written)) is not None:
         return of_day, {"time": OF_DAY}
     return seconds, {"time": "seconds"}

@@ -44,6 +44,7 @@ from ...core.io.detect import (
     folder_manifest,
     foreign_said,
     head,
+    hours_column,
     ignored,
     length_errors,
     proposed_campaign,
@@ -430,6 +431,16 @@ def _init(cfg: DictConfig, held: ExitStack) -> dict:
         print(f"{sample.name}: {clock!r} h:mm:ss, its header a time of day, no date column "
               f"beside it: read as data.time={OF_DAY_KIND!r}, the time since midnight, a day "
               "added where it passes midnight")
+    elif hours := hours_column(sample, opts, header, cells_of_first):
+        # (data93) a lab's decimal hours of the day (21.5, 21.58 ...): read as seconds, a record
+        # within 24 s of midnight; the unit and the key written, so a stream and the C read so
+        given["units"] = {**(given.get("units") or {}), hours: "h"}
+        given["time"] = OF_DAY_KIND
+        opts = replace(opts, units={**opts.units, hours: "h"}, time=OF_DAY_KIND)
+        print(f"{sample.name}: {hours!r} from {cells_of_first[hours]}, numbers within a day's "
+              f"hours under a time-of-day header: decimal hours, read as data.units={{{hours!r}: "
+              f"h}} data.time={OF_DAY_KIND!r}, the time since midnight, a day added where it "
+              "passes midnight")
     epoch = epoch_ms_column(header, cells_of_first, opts)
     if epoch:              # (a gateway's time stamp: read as seconds, 1000 times too long)
         given["units"] = {**(given.get("units") or {}), epoch: "ms"}
