@@ -74,6 +74,8 @@ def _planted(frame, ss, k, kind):
     df = frame.copy()
     if kind == "jump":                  # (watch.planted's: twice its step limit, it stays)
         df.loc[FAULT:, name] += 2.0 * m["jump_lim"][k]
+    elif kind == "spike":               # as much for LOST rows, then back
+        df.loc[FAULT:FAULT + LOST - 1, name] += 2.0 * m["jump_lim"][k]
     elif kind == "dropout":
         df.loc[FAULT:FAULT + LOST - 1, name] = np.nan
     else:                               # beyond its range by its margin again, within U_LIMIT
@@ -81,7 +83,8 @@ def _planted(frame, ss, k, kind):
     return df, name
 
 
-@pytest.mark.parametrize("kind, rule, why", [("jump", JUMP, "jump"), ("dropout", DROPOUT, "dropout"),
+@pytest.mark.parametrize("kind, rule, why", [("jump", JUMP, "jump"), ("spike", JUMP, "jump"),
+                                             ("dropout", DROPOUT, "dropout"),
                                              ("range", OFF_RANGE, "out of range")])
 def test_a_planted_fault_raises_the_flag_at_the_served_event(record, kind, rule, why):
     deployed, ss, frame, block, k = record
@@ -92,9 +95,10 @@ def test_a_planted_fault_raises_the_flag_at_the_served_event(record, kind, rule,
     assert _served(deployed, df)[0] == (row, name, why)
     assert _mirror(ss, df)[1][0] == (row, name, rule)
     assert REASONS[rule].startswith(why)
-    lasting = 1 if kind == "jump" else LOST
+    # a jump flagged once (its return, a spike's end, is the fault over: not flagged)
+    lasting = 1 if kind in ("jump", "spike") else LOST
     assert flags == [(row + i, name, rule) for i in range(lasting)]
-    if kind == "jump":      # re-referenced by its whole step: read on, nothing refused
+    if kind in ("jump", "spike"):      # re-referenced by its whole step: read on, nothing refused
         assert not any(refused)
     else:                   # the sensor not read: the sample refused, the last correction held
         assert [i + 1 for i, r in enumerate(refused) if r] == list(range(row, row + LOST))

@@ -10,7 +10,9 @@ Per sample, of each monitored sensor ``k`` (the input ``MON_INPUT[k]``, the C's 
 * a one-sample step from its last reading beyond its jump limit times the samples it spans (a
   gap in time: its periods, past ``MON_GAP_PERIODS``): ``JUMP`` (``GLITCH`` at the sample after
   the reference; several sensors at once ``COMMON``, at least ``MON_COMMON_MIN`` a common step,
-  ``COMMON_STEP``, not flagged).
+  ``COMMON_STEP``, not flagged); one that brings a re-referenced sensor back within its jump
+  limit of its reference before its jumps ends the fault (a spike's return, the jump undone:
+  ``SPIKE``, not flagged, as the C re-admits a spike).
 
 ``mon_flag`` says the sample's fault, ``mon_rule`` its rule (the C's ``mon_rule`` codes, named
 by ``TC_MONITOR_REASONS``) and ``mon_sensor`` its monitored sensor ``k`` (-1: none): the first,
@@ -28,7 +30,8 @@ not in the ST, they stay with the served model (``provenance.not_in_code``).
 
 from __future__ import annotations
 
-from .watch import COMMON, COMMON_STEP, DROPOUT, GLITCH, JUMP, MISSING_FIRST, OFF_RANGE, RANGE
+from .watch import (COMMON, COMMON_STEP, DROPOUT, GLITCH, JUMP, MISSING_FIRST, OFF_RANGE, RANGE,
+                    SPIKE)
 
 
 def constants(watch: dict, literal, constant) -> list[str]:
@@ -37,7 +40,7 @@ def constants(watch: dict, literal, constant) -> list[str]:
     n = len(watch.get("inputs", []))
     rules = (("JUMP", JUMP), ("GLITCH", GLITCH), ("COMMON", COMMON), ("COMMON_STEP", COMMON_STEP),
              ("DROPOUT", DROPOUT), ("MISSING_FIRST", MISSING_FIRST), ("OFF_RANGE", OFF_RANGE),
-             ("RANGE", RANGE))
+             ("RANGE", RANGE), ("SPIKE", SPIKE))
     return [f"    MON_N : INT := {n};",
             constant("MON_INPUT", watch.get("inputs", []), (n,), "INT"),
             *(constant(f"MON_{name}", watch.get(key, []), (n,))
@@ -66,6 +69,7 @@ VARS = """    mon_last : ARRAY[{nm}] OF LREAL;
     mon_x : LREAL;
     mon_jumps : INT;
     mon_gone : BOOL;
+    mon_back : BOOL;
     mk : INT;
 """
 
@@ -136,10 +140,21 @@ FOR mk := 0 TO MON_N - 1 DO
     j := MON_INPUT[mk];
     IF mon_big[mk] THEN
         (* re-referenced by its whole step: the model reads it on from its last reading *)
+        mon_back := mon_shift[j] <> 0.0 AND mon_jumps = 1;
         mon_shift[j] := mon_shift[j] + mon_step[mk];
+        IF mon_back THEN
+            (* back within its jump limit of its reference before the jump: a spike's end, *)
+            (* the jump undone (the C's SPIKE: the fault is over, not a new one) *)
+            mon_back := mon_shift[j] <= MON_JUMP_LIM[mk] AND mon_shift[j] >= -MON_JUMP_LIM[mk];
+        END_IF;
+        IF mon_back THEN
+            mon_shift[j] := 0.0;
+        END_IF;
         IF mon_rule = 0 THEN
             mon_sensor := mk;
-            IF mon_jumps >= MON_COMMON_MIN THEN
+            IF mon_back THEN
+                mon_rule := RULE_SPIKE;
+            ELSIF mon_jumps >= MON_COMMON_MIN THEN
                 mon_rule := RULE_COMMON_STEP;
             ELSIF mon_jumps > 1 THEN
                 mon_rule := RULE_COMMON;
@@ -151,7 +166,7 @@ FOR mk := 0 TO MON_N - 1 DO
         END_IF;
     END_IF;
 END_FOR;
-mon_flag := mon_rule <> 0 AND mon_rule <> RULE_COMMON_STEP;
+mon_flag := mon_rule <> 0 AND mon_rule <> RULE_COMMON_STEP AND mon_rule <> RULE_SPIKE;
 (* a return is stepped from the last reading, over the samples it spans *)
 FOR mk := 0 TO MON_N - 1 DO
     j := MON_INPUT[mk];
