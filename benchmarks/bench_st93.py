@@ -108,7 +108,7 @@ class Stepped:
         t = part["time"].to_numpy(float)
         for i in range(len(part)):
             served._step(X[i], t[i])
-            out = [(e["sensor"], e["reason"].split(":")[0]) for e in served.last_events_
+            out = [(e["sensor"], _kind(e["reason"])) for e in served.last_events_
                    if e.get("sensor") and e["to"] == "excluded"]
             c = fb(U[i], t[i], self.first)
             self.first = False
@@ -117,9 +117,16 @@ class Stepped:
             yield c, flag, out
 
 
+def _kind(reason: str) -> str:
+    """A served exclusion's kind: its reason's head, ``stepped`` for the jump of a self-prediction
+    error (``InstantFaults._check_stepped``: judged by the others' prediction, the POD, not in the
+    ST; its reason also begins ``jump``)."""
+    return "stepped" if "self-prediction error stepped" in reason else reason.split(":")[0]
+
+
 def scored(rows, planted_sensor=None, fault_rows=0) -> dict:
     """The counts of the module doc over ``rows`` (``Stepped.rows``'s)."""
-    tally = {"served": 0, "hits": 0, "misses": 0, "other": 0, "false": 0}
+    tally = {"served": 0, "hits": 0, "misses": 0, "stepped": 0, "other": 0, "false": 0}
     cases = []
     for i, (_, flag, out) in enumerate(rows):
         for sensor, why in out:
@@ -130,7 +137,7 @@ def scored(rows, planted_sensor=None, fault_rows=0) -> dict:
                 if not hit:
                     cases.append(f"miss row {i + 1} {sensor} {why} (block {flag})")
             else:
-                tally["other"] += 1
+                tally["stepped" if why == "stepped" else "other"] += 1
         if flag is not None and flag[0] not in [s for s, _ in out]:
             ours = flag[0] == planted_sensor and i <= fault_rows
             if not ours:
@@ -147,7 +154,8 @@ def trace(root: str, record: str) -> None:
     from thermocomp.shell.stages.export import lead_ins
 
     root = Path(root).resolve()
-    deployed, ds, _, test_ids = deployed_cell(root, record, root / "reports" / record / "mlr-none" / "model.pkl")
+    model = root / "reports" / record / "mlr-none" / "model.pkl"
+    deployed, ds, _, test_ids = deployed_cell(root, record, model)
     ss = state_space(deployed, monitor=True)
     block = exported_files(deployed, "st")["compensator.st"]
     cid = test_ids[0]

@@ -79,7 +79,6 @@ def exported_files(deployed, fmt: str, provenance: dict | None = None,
                       "stream.c": DRIVER})
     elif fmt == "st":
         from . import st
-
         from .watch import monitor_fields
 
         # (st93) the monitor's detection, as outputs; the model's laws are the plain ones

@@ -23,11 +23,11 @@ from __future__ import annotations
 from ....core.timerule import ST_TIME_RULE
 from .forest import forest_arrays
 from .recurrent import net_arrays, net_inputs
-from .statespace import StateSpace
 from .st_watch import BLOCK as MONITOR_BLOCK
 from .st_watch import OUTPUTS as MONITOR_OUTPUTS
 from .st_watch import constants as monitor_constants
 from .st_watch import declarations as monitor_declarations
+from .statespace import StateSpace
 from .text import banner
 
 NAME = "FB_ThermoComp"
@@ -454,7 +454,8 @@ IF reset THEN
         c[i] := 0.0;
     END_FOR;
 END_IF;
-{MONITOR_BLOCK}(* an input not measured refuses the sample, as tc_step: not finite (NaN, infinity: every IEEE *)
+{MONITOR_BLOCK}\
+(* an input not measured refuses the sample, as tc_step: not finite (NaN, infinity: every IEEE *)
 (* comparison false) or beyond its U_LIMIT (a temperature's 10000 degC: an overload mark) *)
 (* nothing remembered changes, c keeps the last corrections (0 before a campaign's first sample) *)
 refused := FALSE;

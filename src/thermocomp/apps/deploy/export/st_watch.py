@@ -30,8 +30,7 @@ not in the ST, they stay with the served model (``provenance.not_in_code``).
 
 from __future__ import annotations
 
-from .watch import (COMMON, COMMON_STEP, DROPOUT, GLITCH, JUMP, MISSING_FIRST, OFF_RANGE, RANGE,
-                    SPIKE)
+from .watch import COMMON, COMMON_STEP, DROPOUT, GLITCH, JUMP, MISSING_FIRST, OFF_RANGE, RANGE, SPIKE
 
 
 def constants(watch: dict, literal, constant) -> list[str]:
@@ -171,10 +170,8 @@ mon_flag := mon_rule <> 0 AND mon_rule <> RULE_COMMON_STEP AND mon_rule <> RULE_
 FOR mk := 0 TO MON_N - 1 DO
     j := MON_INPUT[mk];
     mon_x := u[j];
-    IF mon_x >= -U_LIMIT[j] AND mon_x <= U_LIMIT[j] AND mon_x >= MON_LO_LIM[mk] AND mon_x <= MON_HI_LIM[mk] THEN
-        mon_last[mk] := mon_x;
-        mon_gap[mk] := 1.0;
-    ELSIF first THEN
+    mon_back := mon_x >= -U_LIMIT[j] AND mon_x <= U_LIMIT[j];
+    IF first OR (mon_back AND mon_x >= MON_LO_LIM[mk] AND mon_x <= MON_HI_LIM[mk]) THEN
         mon_last[mk] := mon_x;
         mon_gap[mk] := 1.0;
     ELSE
