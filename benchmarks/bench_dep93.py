@@ -30,7 +30,37 @@ every file and target and no other printed figure moves (run, plain, replay, max
 
 Measured (2026-12-05, seed 9559 written by bench_data93 on this tree = main da5edc38's src)
 ---------------------------------------------------------------------------------------------
-(filled in below after scoring)
+Trace (``trace /tmp/dep93 9559 mlr``; 58 rows, lead-in 43, test 15).  No row parts: on every test
+row |C + y(replay as deployed)| <= 5.0e-14 µm, on every lead-in row |C + y(pack)| <= 1e-9, and the
+pack's stream = the replay's to 0 on every test row.  What acts there acts alike in all three:
+the monitor excludes T_amb at row 46 (t 13500 s, 600 s into the test part; "drift:
+self-prediction error -0.47 °C"; the C: "stream: line 47: monitor: T_amb ... excluded" -- line 47
+of the file is data row 46), the envelope clamps rows 55-58 (10 inputs each) in both, the guard
+changes no sample, no time-of-day or lead-in difference.  The 0.020 / 0.050 / 0.038 µm is the
+bench's arithmetic: bench_data92's ``score`` took the test part as ``round(0.25 * 58)`` = 14 rows
+(Python rounds 14.5 half to even), the reader holds out ``floor(14.5 + 0.5)`` = 15 (record.py's
+``_counts``, half up); RMSE(measured + C) over the last 14 rows = 0.955905750 / 1.587065311 /
+1.917655104 µm, data93's "C" figures to every digit; over the reader's 15 = 0.935451983 /
+1.537190364 / 1.879405700 = replay.json's.  ``rows`` 9556-9560: 56 / 56 / 61 / 58 / 54 rows, only
+9559 (n = 58, n = 2 mod 8: 0.25 n = k + 0.5 with k even) parts (14 against 15).
+
+Fix (bench, not src): bench_data92's ``_stage`` returns the replay's ``n_samples`` (the rows the
+run held out, as the reader counts them) and ``score`` takes the C's test rows from it.  Scored
+(``bench_data93.py score /tmp/dep93 9559``, the four files, after the BAR was written): contract,
+rawclock, rawhora, rawhora4 alike -- |replay-C| 1.33e-15 / 4.22e-15 / 1.04e-14 µm (was 2.05e-02 /
+4.99e-02 / 3.82e-02), C 0.935451983 / 1.537190364 / 1.879405700 (was 0.955905750 / 1.587065311 /
+1.917655104); run 0.687189453 / 0.886930829 / 1.268534428, plain = run, replay and
+max|C-C(contract)| 0 µm as before to every printed digit.  BAR met: TRACED (no src rule), the
+bench fixed.  The check pack was right: it streams the whole record (lead-in 43 + 15) and its
+tolerance held.
+
+What is left of "replay as deployed" on 9559 is the deployed model's own doing, not C against
+served: run 0.687 / 0.887 / 1.269 against replay as deployed 0.935 / 1.537 / 1.879 µm; with
+``monitor.adaptive=false`` 1.236 / 1.276 / 2.020 (12 rows clamped); with
+``promote.envelope.policy=off`` 0.546 / 0.999 / 1.015 (T_amb still excluded, 0 clamped).  The
+simulator planted no fault (sim.truth.json: no sensor fault, no undeclared effect): T_amb's
+exclusion is a false one, and the test quarter leaves the training envelope.
+CPU: ``trace`` 1.6 s after bench_data92's ``score`` of contract (~55 s per file and family).
 """
 
 from __future__ import annotations
