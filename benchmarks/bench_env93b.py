@@ -74,20 +74,20 @@ deployed Σ² off / on (R3 = T_right3, L3 = T_left3; jump, range and dropout as 
   cms9406  lagbank     782 /   692     3 /  22     86 / 112      102 /  245      653 /  865
   cms9406  mlr        1035 /   371    11 /  61    104 /  94       77 /  783      562 /  994
 
-Reading.  The monitor takes a spike, a jump, an out-of-range stretch and a dropout out: the four
-leave the same footprint to a few µm² (the sensor replaced by the field's prediction for the
-monitor's window, then back; no sensor excluded at the campaign's end in any case), and with the
-key on that footprint costs +6 % more (1486 -> 1582 µm² added over 30 cases): while it stands
-in, the replacement does not carry Q3, which the unclamped E_X then misses.  Against the truth's
-distance (bar91b's) on is further in 26 of 30 cases of each of the four, a relative figure
-against a truth that on makes smaller (true Σ² pooled 16 160 off / 10 407 on): in deployed Σ²
-on stays lower than off in every such case but cms5003 lagbank's (1.019-1.021), whose true Σ²
-is already 1.9 % higher on.  The unsafe fault is the slow DRIFT (+1 K/h from three quarters of
-the campaign, 10 K at its end): the adaptive compensator does not take it out (the sensor is not
-excluded at the end in any case), the clamp bounds what a clamped target takes of it, and an
-unclamped white target follows it linearly: added Σ² larger
-on in 30 of 30 cases (22 971 -> 37 940 pooled), deployed Σ² on > 1.02 off in 21 of 30 (up to
-1.60x: cms6007 arx drift:R3 1074 -> 1721; mlr drift:R3 2.2-10x the added Σ²).
+Reading. The monitor takes a spike, a jump, an out-of-range stretch and a dropout out: the four
+leave the same footprint to a few µm² (read as the sensor replaced by the field's prediction for the
+monitor's window, then back: inferred, not traced event by event; no sensor excluded at the
+campaign's end in any case), and with the key on that footprint costs +6 % more (1486 -> 1582 µm²
+added over 30 cases): while it stands in, the replacement presumably does not carry Q3, which the
+unclamped E_X then misses. Against the truth's distance (bar91b's) on is further in 26 of 30 cases
+of each of the four, a relative figure against a truth that on makes smaller (true Σ² pooled 16 160
+off / 10 407 on): in deployed Σ² on stays lower than off in every such case but cms5003 lagbank's
+(1.019-1.021), whose true Σ² is already 1.9 % higher on. The unsafe fault is the slow DRIFT (+1 K/h
+from three quarters of the campaign, 10 K at its end): the adaptive compensator does not take it out
+(the sensor is not excluded at the end in any case), the clamp bounds what a clamped target takes of
+it, and an unclamped white target follows it linearly: added Σ² larger on in 30 of 30 cases (22 971
+-> 37 940 pooled), deployed Σ² on > 1.02 off in 21 of 30 (up to 1.60x: cms6007 arx drift:R3 1074 ->
+1721; mlr drift:R3 2.2-10x the added Σ²).
 
 ``widths`` (seen seeds, mlr; largest excess in training widths): Q3 on the true record 0.75 /
 0.76 / 1.04 / 0.80 / 0.91 (3141, 5003, 4253, 6007, 9406); spike 10.5-12.5 (R3) and 7.2-8.6
