@@ -87,8 +87,10 @@ fold ratio, no cancellation; test SSE auto / MLR)::
 * ``earned`` (stored 10 exact; rooms by ``probe earned``): lab5401 1.070 -> 1.000, col1514 1.019 ->
   1.000, col6512 1.004 -> 1.001, cr9245 1.293 -> 0.940; but swiss5454 0.950 -> 0.999 (x1.052),
   year6511 0.351 -> 0.384 (x1.094), year6_5411 0.518 -> 0.532, col1403 1.311 -> 1.335, cr9182 0.558
-  -> 0.650 (x1.165), cr9248 0.294 -> 0.323, cr9183 0.586 -> 0.724: a member that fails alone in a
-  fold is often one the blend needs.
+  -> 0.650 (x1.165), cr9248 0.294 -> 0.323, cr9183 0.586 -> 0.724, cr9076 0.831 -> 1.063 (x1.279),
+  cr9088 1.117 -> 1.129, cr9272 0.846 -> 0.910, cr9273 0.802 -> 0.839, cr9031 0.970 -> 0.980; cr9274
+  1.079 -> 1.000 (``probe earned`` on the 18 rooms 39.1 s CPU): a member that fails alone in a fold
+  is often one the blend needs.
 * ``earned_one``: acts on lab5401 only of the 28 seen (every other record votes on 4-5 folds):
   1.070 -> 1.000 (E_X lstm 0.961, E_Y, E_Z to MLR: the one fold's block SE 0.04-0.07 covers each
   member's gain).
