@@ -92,8 +92,9 @@ fold ratio, no cancellation; test SSE auto / MLR)::
   1.079 -> 1.000 (``probe earned`` on the 18 rooms 39.1 s CPU): a member that fails alone in a fold
   is often one the blend needs.
 * ``earned_one``: acts on lab5401 only of the 28 seen (every other record votes on 4-5 folds):
-  1.070 -> 1.000 (E_X lstm 0.961, E_Y, E_Z to MLR: the one fold's block SE 0.04-0.07 covers each
-  member's gain).
+  1.070 -> 1.000 on the 12 new campaigns (E_Y, E_Z to MLR: the one fold's block SE covers each
+  member's gain; E_X keeps 0.94 lstm, 0.961 surely below 1 by its blocks, on test as MLR); on its
+  own test run Lauf_4 (refitted, ``probe earned_one``) 1.024 -> 1.000 (E_Z 1.429 -> 1, E_Y 0.901 -> 1).
 
 Choice (seen only): the probes ``M1se`` and ``earned`` fail the seen condition below (records
 worse than auto by > 1 %); ``earned_one`` meets it; it is scored on fresh seeds.  Nothing was
