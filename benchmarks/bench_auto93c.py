@@ -145,8 +145,12 @@ on two).
 Verdict: TRACED; ``earned_one`` passes its bar (build next stop: in ``AutoRegressor._blend``
 after the votes, where the voting rows hold ONE fold and MLR is a candidate, each member's
 weight to MLR unless its own fold SSE over MLR's + the SE over the fold's blocks is below 1 --
-the block bootstrap of bench_auto91's ``_one_fold_se``, to be made the votes' own; a key beside
-``fallback``; tests on a one-fold record; docs).  Not built here (time).  Left: the rooms'
+the block bootstrap of bench_auto91's ``_one_fold_se``; in src it is the votes' own:
+``vote_weights`` with one fold already draws ``resampled`` (resample x member, the fold's blocks
+resampled, ratio of sums), so the rule is a member's weight to MLR unless ``resampled`` mean +
+std < 1 there; a key beside ``fallback``; a test on a one-fold record; docs; the scored numbers
+then re-measured with the votes' resamples, which are not bench_auto91's 500).  Not built here:
+a src rule measured with another bootstrap than the one scored would not be the rule scored.  Left: the rooms'
 losing blends (cr9274 E_Z 1.638, cr9245 E_Z 2.262, cr9088 1.142 / 1.338 of MLR's test SSE) win
 3-4 of 4 folds through members' errors cancelling; every train-side reading of that tried here
 (the cancellation share, M + SE, members earning their weight on k >= 2 folds, a majority of
