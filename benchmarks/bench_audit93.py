@@ -8,7 +8,7 @@ Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is
     python benchmarks/bench_audit93.py lab ROOT SEED [FAMILIES]         # the lab's clock exports
 
 ``sweep``: in a scratch project root ROOT (``THERMOCOMP_ROOT``, this tree's ``conf/`` linked in),
-per record of :data:`RECORDS` and family of :data:`SWEPT` x wrapper (none; ``ati=cmeans`` on the
+per record of :data:`RECORDS` and family of :data:`SWEPT` (:data:`EXTRA` where named) x wrapper (none; ``ati=cmeans`` on the
 climate room only, whose train runs sit at several ambient levels; auto + ati is refused by design):
 bench_audit91's ``sim_cell`` (bench_deploy89's cell: ``run`` -> ``replay`` warm and cold -> the
 plain replay -> ``promote`` -> ``export`` st / onnx / C with its check pack -> the compiled C fed
@@ -86,6 +86,7 @@ RECORDS = {
 }
 ATI_RECORDS = ("cr",)
 SWEPT = ("mlr", "arx", "lagbank", "auto")
+EXTRA = ("lstm", "arx_rf")            # swept only when named (bench_deploy88's light settings)
 COLUMNS = [*bench_audit91.COLUMNS, "clamp", "guard", "mev", "dC"]
 LAB_FILES = ("contract", "rawpair", "rawclock")
 START = pd.Timestamp("2027-03-05 21:30:00")
@@ -112,7 +113,7 @@ def sweep(root: Path, chosen: list[str]) -> None:
     if not (root / "conf").exists():
         (root / "conf").symlink_to(REPO / "conf")
     records = [r for r in RECORDS if r in chosen] or list(RECORDS)
-    families = [f for f in SWEPT if f in chosen] or list(SWEPT)
+    families = [f for f in (*SWEPT, *EXTRA) if f in chosen] or list(SWEPT)
     print(f"{'cell':<22}" + "".join(f"{c:>10}" for c in COLUMNS) + "  note", flush=True)
     for record in records:
         data = root / "data" / record
