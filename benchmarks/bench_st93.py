@@ -5,8 +5,8 @@ Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is
     python benchmarks/bench_st93.py trace ROOT RECORD
     python benchmarks/bench_st93.py fresh ROOT [RECORD ...]
 
-(The block measured is the rule's: on a tree with ``benchmarks/st93_rule.patch`` applied; main's
-block has no ``mon_flag``.)
+(The block measured is the rule's: on a tree with ``benchmarks/st93_rule.patch`` applied; since
+st93b, KEPT on fresh seeds by ``bench_st93b.py``, main's block is that rule.)
 
 ``trace``: the cell ``ROOT/reports/RECORD/mlr-none`` (its ``model.pkl``; ``ROOT/data/RECORD`` the
 record, as bench_cmon92's ``made`` leaves them) deployed as ``export`` deploys it (bench_cmon91's

@@ -79,6 +79,9 @@ def exported_files(deployed, fmt: str, provenance: dict | None = None,
                       "stream.c": DRIVER})
     elif fmt == "st":
         from . import st
+        from .watch import monitor_fields
 
-        files["compensator.st"] = st.function_block(ss)
+        # (st93) the monitor's detection, as outputs; the model's laws are the plain ones
+        watch = monitor_fields(deployed, list(ss.inputs)).get("monitor", {}) if monitor else {}
+        files["compensator.st"] = st.function_block(ss, watch)
     return files

@@ -23,6 +23,10 @@ from __future__ import annotations
 from ....core.timerule import ST_TIME_RULE
 from .forest import forest_arrays
 from .recurrent import net_arrays, net_inputs
+from .st_watch import BLOCK as MONITOR_BLOCK
+from .st_watch import OUTPUTS as MONITOR_OUTPUTS
+from .st_watch import constants as monitor_constants
+from .st_watch import declarations as monitor_declarations
 from .statespace import StateSpace
 from .text import banner
 
@@ -221,7 +225,11 @@ def _copied(ss: StateSpace, back: bool, indent: str = "        ") -> str:
     return "\n".join(lines)
 
 
-def function_block(ss: StateSpace) -> str:
+def function_block(ss: StateSpace, watch: dict | None = None) -> str:
+    """``FB_ThermoComp`` of ``ss``; ``watch`` (st93): the adaptive compensator's monitor
+    (:func:`.watch.monitor_fields`'s ``monitor``), whose detection the block outputs
+    (:mod:`.st_watch`; none: ``MON_N`` 0, never flagged)."""
+    watch = watch or {}
     n, m, taps, k, d = len(ss.inputs), len(ss.targets), len(ss.fir), len(ss.taus), ss.depth
     p, r, qi = len(ss.powers), len(ss.laws), len(ss.initial)
     q = len(ss.derived) + qi       # the derived inputs, then the transients' (N_DERIVED first)
@@ -298,7 +306,8 @@ def function_block(ss: StateSpace) -> str:
         f"    MAX_GAIN_CHANGE : LREAL := {literal(ss.adapt_max_gain_change)};",
         f"    FORGETTING : LREAL := {literal(ss.adapt_forgetting)};",
         f"    MAX_BIAS : LREAL := {literal(ss.adapt_max_bias)};",
-        f"    CAP_VARIANCE : LREAL := {literal(ss.adapt_var_cap)};"])
+        f"    CAP_VARIANCE : LREAL := {literal(ss.adapt_var_cap)};",
+        *monitor_constants(watch, literal, _constant)])
     kept = "\n".join(f"    {name}_kept : " + (f"ARRAY[{_dims(*shape)}] OF {kind};" if shape else f"{kind};")
                      for name, kind, shape in _memory(ss))
     save, restore = _copied(ss, back=False, indent="            "), _copied(ss, back=True)
@@ -325,7 +334,7 @@ VAR_OUTPUT
     c : ARRAY[{_dims(m)}] OF LREAL;
     n_clamped : INT;
     refused : BOOL;
-END_VAR
+{MONITOR_OUTPUTS}END_VAR
 VAR
     first : BOOL := TRUE;
     buf : ARRAY[{_dims(taps, n)}] OF LREAL;
@@ -434,7 +443,7 @@ VAR
     l : INT;
     h : INT;
     r : INT;
-END_VAR
+{monitor_declarations(n, watch, _dims)}END_VAR
 VAR CONSTANT
 {consts}
 END_VAR
@@ -445,6 +454,7 @@ IF reset THEN
         c[i] := 0.0;
     END_FOR;
 END_IF;
+{MONITOR_BLOCK}\
 (* an input not measured refuses the sample, as tc_step: not finite (NaN, infinity: every IEEE *)
 (* comparison false) or beyond its U_LIMIT (a temperature's 10000 degC: an overload mark) *)
 (* nothing remembered changes, c keeps the last corrections (0 before a campaign's first sample) *)
@@ -454,6 +464,10 @@ FOR j := 0 TO N_INPUTS - 1 DO
         refused := TRUE;
     END_IF;
 END_FOR;
+(* (st93) so does a monitored reading beyond the monitor's range: no sensor rebuilds it here *)
+IF mon_gone THEN
+    refused := TRUE;
+END_IF;
 (* so does a campaign's first sample without its ambient given (AMBIENT_GIVEN: no sensor) *)
 (* (stranger66: not where it is optional, AMBIENT_OPTIONAL: a lag's initial state alone reads it) *)
 IF AMBIENT_GIVEN AND NOT AMBIENT_OPTIONAL AND first THEN
@@ -470,8 +484,8 @@ IF NOT refused THEN
             seen[j] := FALSE;
         END_IF;
         IF u[j] >= -U_LIMIT[j] AND u[j] <= U_LIMIT[j] THEN
-            last[j] := u[j];
-            uu[j] := u[j];
+            uu[j] := u[j] - mon_shift[j];   (* (st93) a jump re-referenced *)
+            last[j] := uu[j];
         ELSIF seen[j] THEN
             uu[j] := last[j];
         ELSE

@@ -1,0 +1,195 @@
+"""(st93) The sensor monitor's detection in Structured Text: the rules the C's monitor
+(:mod:`.watch`) checks on each monitored reading without the POD, as outputs of ``FB_ThermoComp``.
+
+Per sample, of each monitored sensor ``k`` (the input ``MON_INPUT[k]``, the C's ``TC_MONITORED``):
+
+* a reading not measured (NaN, an infinity, beyond its ``U_LIMIT``): ``DROPOUT`` (``MISSING_FIRST``
+  at a campaign's first sample);
+* a reading beyond the monitor's range (``MON_LO_LIM`` / ``MON_HI_LIM``): ``OFF_RANGE`` (``RANGE``
+  at a campaign's first sample);
+* a one-sample step from its last reading beyond its jump limit times the samples it spans (a
+  gap in time: its periods, past ``MON_GAP_PERIODS``): ``JUMP`` (``GLITCH`` at the sample after
+  the reference; several sensors at once ``COMMON``, at least ``MON_COMMON_MIN`` a common step,
+  ``COMMON_STEP``, not flagged); one that brings a re-referenced sensor back within its jump
+  limit of its reference before its jumps ends the fault (a spike's return, the jump undone:
+  ``SPIKE``, not flagged, as the C re-admits a spike).
+
+``mon_flag`` says the sample's fault, ``mon_rule`` its rule (the C's ``mon_rule`` codes, named
+by ``TC_MONITOR_REASONS``) and ``mon_sensor`` its monitored sensor ``k`` (-1: none): the first,
+in that order, as the C's ``tc_state`` names the sample's first event.
+
+What the block does then, without the POD that rebuilds a sensor in the C: a reading not
+measured or beyond the range refuses the sample (``refused``: ``c`` holds the last correction,
+nothing remembered changes, as for any input not measured), the correction of a sensor the
+block cannot read being the last one read with it; a jump is re-referenced by its whole step
+(``mon_shift``), the C's path for a sensor no other predicts (cmon87), so that the model reads
+the sensor continuous with its last reading and a spike's return undoes it.  The freeze, the
+drift, the stepped self-prediction error (the C's ``STEP_OUT``), the re-admission and the rest
+judge a sensor by the others' prediction of it (the POD): not in the ST, they stay with the served
+model (``provenance.not_in_code``).
+"""
+
+from __future__ import annotations
+
+from .watch import COMMON, COMMON_STEP, DROPOUT, GLITCH, JUMP, MISSING_FIRST, OFF_RANGE, RANGE, SPIKE
+
+
+def constants(watch: dict, literal, constant) -> list[str]:
+    """The monitor's constants (``watch``: :func:`.watch.monitor_fields`'s ``monitor``, empty:
+    none, ``MON_N`` 0) in the block's ``VAR CONSTANT``."""
+    n = len(watch.get("inputs", []))
+    rules = (("JUMP", JUMP), ("GLITCH", GLITCH), ("COMMON", COMMON), ("COMMON_STEP", COMMON_STEP),
+             ("DROPOUT", DROPOUT), ("MISSING_FIRST", MISSING_FIRST), ("OFF_RANGE", OFF_RANGE),
+             ("RANGE", RANGE), ("SPIKE", SPIKE))
+    return [f"    MON_N : INT := {n};",
+            constant("MON_INPUT", watch.get("inputs", []), (n,), "INT"),
+            *(constant(f"MON_{name}", watch.get(key, []), (n,))
+              for name, key in (("JUMP_LIM", "jump_lim"), ("LO_LIM", "lo_lim"), ("HI_LIM", "hi_lim"))),
+            f"    MON_PERIOD : LREAL := {literal(watch.get('period', 1.0))};",
+            f"    MON_GAP_PERIODS : LREAL := {literal(watch.get('gap_periods', 1.5))};",
+            f"    MON_COMMON_MIN : INT := {int(watch.get('common_min', 3))};",
+            *(f"    RULE_{name} : INT := {code};" for name, code in rules)]
+
+
+OUTPUTS = """    mon_flag : BOOL;
+    mon_rule : INT;
+    mon_sensor : INT;
+"""
+
+VARS = """    mon_last : ARRAY[{nm}] OF LREAL;
+    mon_gap : ARRAY[{nm}] OF LREAL;
+    mon_step : ARRAY[{nm}] OF LREAL;
+    mon_big : ARRAY[{nm}] OF BOOL;
+    mon_shift : ARRAY[{n}] OF LREAL;
+    mon_t_prev : LREAL;
+    mon_t_known : BOOL;
+    mon_count : INT;
+    mon_span : LREAL;
+    mon_lim : LREAL;
+    mon_x : LREAL;
+    mon_jumps : INT;
+    mon_gone : BOOL;
+    mon_back : BOOL;
+    mk : INT;
+"""
+
+# before the refusal: the sample's monitored readings judged (the block's first == a campaign's)
+BLOCK = """(* (st93) the sensor monitor's detection (the C's rules without the POD): a reading not *)
+(* measured, beyond the monitor's range, or a step from its last reading past its jump limit *)
+mon_flag := FALSE;
+mon_rule := 0;
+mon_sensor := -1;
+mon_gone := FALSE;
+IF first THEN
+    mon_count := 0;
+    mon_t_known := FALSE;
+    FOR j := 0 TO N_INPUTS - 1 DO
+        mon_shift[j] := 0.0;
+    END_FOR;
+END_IF;
+(* a gap in time: each step judged as that many one-sample steps, as the C *)
+mon_span := 1.0;
+IF has_time AND mon_t_known AND NOT first THEN
+    IF time_s - mon_t_prev > MON_GAP_PERIODS * MON_PERIOD THEN
+        mon_span := (time_s - mon_t_prev) / MON_PERIOD;
+    END_IF;
+END_IF;
+mon_jumps := 0;
+FOR mk := 0 TO MON_N - 1 DO
+    j := MON_INPUT[mk];
+    mon_x := u[j];
+    mon_big[mk] := FALSE;
+    IF NOT (mon_x >= -U_LIMIT[j] AND mon_x <= U_LIMIT[j]) THEN
+        IF mon_rule = 0 THEN
+            mon_sensor := mk;
+            mon_rule := RULE_DROPOUT;
+            IF first THEN
+                mon_rule := RULE_MISSING_FIRST;
+            END_IF;
+        END_IF;
+        mon_gone := TRUE;
+    ELSIF mon_x < MON_LO_LIM[mk] OR mon_x > MON_HI_LIM[mk] THEN
+        mon_gone := TRUE;
+    ELSIF NOT first THEN
+        mon_lim := MON_JUMP_LIM[mk] * mon_gap[mk];
+        IF mon_span > mon_gap[mk] THEN
+            mon_lim := MON_JUMP_LIM[mk] * mon_span;
+        END_IF;
+        mon_step[mk] := mon_x - mon_last[mk];
+        IF mon_step[mk] > mon_lim OR mon_step[mk] < -mon_lim THEN
+            mon_big[mk] := TRUE;
+            mon_jumps := mon_jumps + 1;
+        END_IF;
+    END_IF;
+END_FOR;
+(* then a reading beyond the range (read as missing, as the C), then the jumps *)
+FOR mk := 0 TO MON_N - 1 DO
+    j := MON_INPUT[mk];
+    mon_x := u[j];
+    IF mon_rule = 0 AND mon_x >= -U_LIMIT[j] AND mon_x <= U_LIMIT[j] THEN
+        IF mon_x < MON_LO_LIM[mk] OR mon_x > MON_HI_LIM[mk] THEN
+            mon_sensor := mk;
+            mon_rule := RULE_OFF_RANGE;
+            IF first THEN
+                mon_rule := RULE_RANGE;
+            END_IF;
+        END_IF;
+    END_IF;
+END_FOR;
+FOR mk := 0 TO MON_N - 1 DO
+    j := MON_INPUT[mk];
+    IF mon_big[mk] THEN
+        (* re-referenced by its whole step: the model reads it on from its last reading *)
+        mon_back := mon_shift[j] <> 0.0 AND mon_jumps = 1;
+        mon_shift[j] := mon_shift[j] + mon_step[mk];
+        IF mon_back THEN
+            (* back within its jump limit of its reference before the jump: a spike's end, *)
+            (* the jump undone (the C's SPIKE: the fault is over, not a new one) *)
+            mon_back := mon_shift[j] <= MON_JUMP_LIM[mk] AND mon_shift[j] >= -MON_JUMP_LIM[mk];
+        END_IF;
+        IF mon_back THEN
+            mon_shift[j] := 0.0;
+        END_IF;
+        IF mon_rule = 0 THEN
+            mon_sensor := mk;
+            IF mon_back THEN
+                mon_rule := RULE_SPIKE;
+            ELSIF mon_jumps >= MON_COMMON_MIN THEN
+                mon_rule := RULE_COMMON_STEP;
+            ELSIF mon_jumps > 1 THEN
+                mon_rule := RULE_COMMON;
+            ELSIF mon_count = 1 THEN
+                mon_rule := RULE_GLITCH;
+            ELSE
+                mon_rule := RULE_JUMP;
+            END_IF;
+        END_IF;
+    END_IF;
+END_FOR;
+mon_flag := mon_rule <> 0 AND mon_rule <> RULE_COMMON_STEP AND mon_rule <> RULE_SPIKE;
+(* a return is stepped from the last reading, over the samples it spans *)
+FOR mk := 0 TO MON_N - 1 DO
+    j := MON_INPUT[mk];
+    mon_x := u[j];
+    mon_back := mon_x >= -U_LIMIT[j] AND mon_x <= U_LIMIT[j];
+    IF first OR (mon_back AND mon_x >= MON_LO_LIM[mk] AND mon_x <= MON_HI_LIM[mk]) THEN
+        mon_last[mk] := mon_x;
+        mon_gap[mk] := 1.0;
+    ELSE
+        IF mon_span > mon_gap[mk] THEN
+            mon_gap[mk] := mon_span;
+        END_IF;
+        mon_gap[mk] := mon_gap[mk] + 1.0;
+    END_IF;
+END_FOR;
+mon_count := mon_count + 1;
+IF has_time THEN
+    mon_t_prev := time_s;
+    mon_t_known := TRUE;
+END_IF;
+"""
+
+
+def declarations(n_inputs: int, watch: dict, dims) -> str:
+    """The block's monitor memory (``VAR``), sized by its inputs and monitored sensors."""
+    return VARS.format(nm=dims(len(watch.get("inputs", []))), n=dims(n_inputs))
