@@ -528,57 +528,6 @@ def test_auto_with_three_train_campaigns_keeps_mlr_against_a_twin_that_won_its_o
     assert len(weights) >= 3 and min(weights) > 0 and np.mean(weights) > 0.4
 
 
-def _three_sensors(n_campaigns: int, seed: int, noise=(0.3, 0.3, 0.3)):
-    """``y = s`` seen by three sensors with independent noise of the given s.d., ``n_campaigns``
-    of 100 rows."""
-    rng = np.random.default_rng(seed)
-    s = rng.uniform(-1.0, 1.0, n_campaigns * 100)
-    X = s[:, None] + rng.normal(0.0, 1.0, (len(s), 3)) * np.asarray(noise)
-    context = pd.DataFrame({"campaign": np.repeat([f"K{i}" for i in range(n_campaigns)], 100)})
-    return X, s, context
-
-
-def test_on_one_fold_a_member_keeps_its_weight_only_where_it_alone_surely_beats_mlr():
-    from thermocomp.core.models.auto import AutoRegressor
-    from thermocomp.core.models.blend import fold_ratios
-
-    # three train campaigns (blocked forward: ONE fold, where the one-SE fallback cannot act);
-    # two twins of MLR (sensors as noisy as its own): the votes share the model among the three,
-    # the twins' blend gaining on the fold by their errors averaging, neither surely better alone
-    candidates = {"mlr": _OneSensor(0), "a": _OneSensor(1), "b": _OneSensor(2)}
-    voted, earned = [], []
-    for seed in range(1, 9):
-        X, y, context = _three_sensors(3, seed)
-        votes = AutoRegressor(candidates, one_fold="votes").fit(X, y, context=context)
-        auto = AutoRegressor(candidates).fit(X, y, context=context)        # one_fold='earned'
-        assert np.unique(auto.oof_fold_).size == 1
-        voted.append(1.0 - votes.weights_.get("mlr", 0.0))
-        earned.append(1.0 - auto.weights_.get("mlr", 0.0))
-        for n in auto.weights_.keys() - {"mlr"}:         # a member kept won the fold alone
-            r = fold_ratios((auto.oof_y_ - auto.oof_[n]) ** 2, (auto.oof_y_ - auto.oof_["mlr"]) ** 2,
-                            auto.oof_fold_)
-            assert r[0] < 1.0 and auto.weights_[n] == pytest.approx(votes.weights_[n])
-        if auto.weights_ != votes.weights_:
-            assert "one fold: each kept only where" in auto.reason_
-    # measured: the votes gave the twins 0.14-0.73 (mean 0.52), earned 0 in 6 seeds of 8 (mean 0.17)
-    assert min(voted) > 0.1 and np.mean(earned) < 0.5 * np.mean(voted)
-    assert sum(e == 0.0 for e in earned) >= 4             # most seeds: MLR alone
-    # a sensor three times closer than MLR's surely beats it on the fold: it keeps every vote
-    candidates = {"mlr": _OneSensor(0), "close": _OneSensor(1)}
-    X, y, context = _three_sensors(3, 1, noise=(0.3, 0.1, 0.3))
-    assert AutoRegressor(candidates).fit(X, y, context=context).weights_ == {"close": 1.0}
-    # two or more folds: the votes' weights as before, and a model pickled before the key refits so
-    X, y, context = _three_sensors(20, 1)
-    candidates = {"mlr": _OneSensor(0), "a": _OneSensor(1), "b": _OneSensor(2)}
-    many = AutoRegressor(candidates).fit(X, y, context=context)
-    assert many.weights_ == AutoRegressor(candidates, one_fold="votes").fit(X, y, context=context).weights_
-    pickled = AutoRegressor(candidates)
-    del pickled.__dict__["one_fold"]
-    X, y, context = _three_sensors(3, 1)
-    assert (pickled.fit(X, y, context=context).weights_
-            == AutoRegressor(candidates, one_fold="votes").fit(X, y, context=context).weights_)
-
-
 THREE = "model.candidates=[mlr,arx,lagbank]"      # E_B: arx and lagbank validate alike
 
 

@@ -125,12 +125,6 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         voting rows, MLR a candidate) has mean + standard error >= 1, the reason saying so;
         ``'none'``: the blend the votes give (a model pickled before the key refits so).  The
         zero rule (``uncompensated``) then judges what is kept.
-    one_fold : {'earned', 'votes'}, default 'earned'
-        ``combine='vote'`` (extension, auto93d), where the voting rows hold ONE fold (the one-SE
-        ``fallback`` needs two): ``'earned'`` keeps a candidate's weight only where it alone surely
-        beats MLR on that fold (its fold ratio over the resamples of the fold's blocks has mean +
-        standard deviation below 1), the rest going to MLR (``vote_weights``'s ``earned_one``);
-        ``'votes'``: the votes' weights as they are (a model pickled before the key refits so).
     min_gain_pct : float, default 1.0
         ``combine='best'``: MLR, when a candidate, is kept unless the best candidate's validation
         RMSE is lower
@@ -171,20 +165,17 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
                    "min_gain_pct": number(0.0, 100.0),
                    "combine": choice("vote", "best"), "keep_oof": choice(True, False),
                    "uncompensated": choice("zero", "keep"), "fallback": choice("one_se", "none"),
-                   "one_fold": choice("earned", "votes"),
                    "validation_rows": choice("all", "in_range")}
 
     uncompensated = "keep"   # a model pickled before the key: refitted as it was fitted
     fallback = "none"        # likewise
-    one_fold = "votes"       # likewise
 
     def __init__(self, candidates=None, scheme: str = "auto", n_folds: int = 5,
                  min_train_fraction: float = 0.5, gap_blocks: float = 0.5,
                  max_seconds: float | None = None, min_gain_pct: float = 1.0, chosen=None,
                  val_scores=None, given_scores=None, combine: str = "vote", keep_oof: bool = False,
                  one_record: str = "forward", validation_rows: str = "all",
-                 uncompensated: str = "zero", fallback: str = "one_se", one_fold: str = "earned"):
-        self.one_fold = one_fold
+                 uncompensated: str = "zero", fallback: str = "one_se"):
         self.fallback = fallback
         self.uncompensated = uncompensated
         self.validation_rows = validation_rows
@@ -264,15 +255,11 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         base = members.index(BASELINE) if BASELINE in members else None
         rows = self._voting_rows()
         w = vote_weights(preds[rows], self.oof_y_[rows], self.oof_fold_[rows], self.oof_[BASELINE][rows],
-                         base_column=base, min_folds=int(self.n_folds),
-                         earned_one=self.one_fold == "earned")
+                         base_column=base, min_folds=int(self.n_folds))
         weights = {n: float(v) for n, v in zip(members, w) if v > 0}
         blended = rmse(self.oof_y_ - preds @ w)
         mix = ", ".join(f"{n} {v:.2f}" for n, v in sorted(weights.items(), key=lambda kv: -kv[1]))
         doubt = "" if base is None else ", each kept as far as its resamples beat MLR, the rest MLR's"
-        if base is not None and self.one_fold == "earned" and np.unique(self.oof_fold_[rows]).size == 1:
-            doubt += ("; one fold: each kept only where its resamples' mean + SD of its fold MSE over "
-                      "MLR's is below 1")
         where = ("" if self.validation_rows == "all" else f", on the {rows.sum()} of {rows.size} rows "
                  f"where the fold does not extrapolate, {np.unique(self.oof_fold_[rows]).size} fold(s)")
         lead = (f"blend by the folds' votes (share of bootstrap resamples of the folds each "

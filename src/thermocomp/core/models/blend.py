@@ -94,8 +94,7 @@ class Blend(SideInputs, RegressorMixin, BaseEstimator):
 
 def vote_weights(predictions: np.ndarray, y: np.ndarray, fold: np.ndarray, base: np.ndarray,
                  n_resamples: int = N_RESAMPLES, base_column: int | None = None,
-                 min_folds: int = 2, squared: np.ndarray | None = None,
-                 earned_one: bool = False) -> np.ndarray:
+                 min_folds: int = 2, squared: np.ndarray | None = None) -> np.ndarray:
     """Weights of the columns of ``predictions`` (each candidate's out-of-fold free-run
     predictions): the share of bootstrap resamples of the validation folds in which the column
     has the lowest error, a fold's mean squared error taken relative to that of ``base`` (MLR's
@@ -140,14 +139,6 @@ def vote_weights(predictions: np.ndarray, y: np.ndarray, fold: np.ndarray, base:
     ``squared``: each row's squared error of every column and, last, of ``base`` (default: ``(y -
     prediction)^2``); the benches score other squares through it (``benchmarks/rereference65.py``:
     held-out runs re-referenced at their first samples, measured and not taken).
-
-    ``earned_one`` (with ``base_column``): where the votes rest on ONE fold, a candidate keeps its
-    weight only where it ALONE surely beats MLR there -- the mean + standard deviation of its
-    fold ratio over the resamples (the fold's blocks) below 1 -- else its weight goes to MLR.  A
-    blend of members none of which surely beats MLR gains on the one fold only by their errors
-    cancelling, which a test does not repeat, and with one fold no one-SE rule can judge the blend
-    (``large_mill_week`` seed 5401 and five fresh draws of it, auto / MLR 1.07-1.32 -> 1.00-1.27;
-    ``benchmarks/bench_auto93c.py``, ``bench_auto93d.py``).
     """
     unit = np.unique(fold, return_inverse=True)[1]
     blocks = unit.max() + 1 < min_folds        # else each fold is one unit, as measured before
@@ -161,13 +152,7 @@ def vote_weights(predictions: np.ndarray, y: np.ndarray, fold: np.ndarray, base:
         w, doubt = w * sure, w * (1.0 - sure)
         w[base_column] += doubt.sum()
     w[w < MIN_WEIGHT] = 0.0
-    w = w / w.sum()
-    if earned_one and base_column is not None and unit.max() == 0:
-        unsure = resampled.mean(axis=0) + resampled.std(axis=0, ddof=1) >= 1.0
-        unsure[base_column] = False
-        w[base_column] += w[unsure].sum()
-        w[unsure] = 0.0
-    return w
+    return w / w.sum()
 
 
 def fold_ratios(squared: np.ndarray, base: np.ndarray, fold: np.ndarray) -> np.ndarray:
