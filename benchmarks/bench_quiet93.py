@@ -113,25 +113,24 @@ def _record(root: str, seed: int, hours: float) -> tuple[pd.DataFrame, dict]:
 
 
 def _monitor(train: pd.DataFrame, names: list[str]):
-    """The SensorMonitor ``build_adaptive`` fits with the default ``monitor`` group."""
-    from omegaconf import OmegaConf
+    """The SensorMonitor ``build_adaptive`` fits with the default ``monitor`` group: its own
+    options, caught on their way to ``AdaptiveCompensator.from_training`` (no model needed)."""
+    from types import SimpleNamespace
+    from unittest import mock
 
+    from thermocomp.apps.deploy.adaptive import AdaptiveCompensator
     from thermocomp.apps.deploy.pod import ThermalPOD
     from thermocomp.apps.deploy.surveillance import SensorMonitor
+    from thermocomp.shell.builders import build_adaptive
     from thermocomp.shell.config.overrides import compose
 
-    m = compose([*LIGHT], "replay").monitor
-    share = m.pod.fit_share
-    pod = {"energy": float(m.pod.energy), "modes": m.pod.modes,
-           "fit_band_c": None if share is None else float(share) * float(m.bands.warning_c),
-           "window": int(m.window), "max_leverage": float(m.pod.max_leverage)}
-    options = {"warning_c": float(m.bands.warning_c), "alarm_c": float(m.bands.alarm_c),
-               "window": int(m.window), "confirm": int(m.confirm), "adaptive": bool(m.adaptive),
-               "exclude_at": str(m.exclude_at), "spread_factor": float(m.bands.spread_factor),
-               "new_state": bool(m.new_state.enabled), "new_state_others": int(m.new_state.others),
-               **OmegaConf.to_container(m.detectors)}
-    return SensorMonitor.from_training(ThermalPOD(**pod), names, {"train": train[names].to_numpy(float)},
-                                       learned_bands=bool(m.bands.learned), **options)
+    caught = {}
+    with mock.patch.object(AdaptiveCompensator, "from_training",
+                           lambda *args, **kwargs: caught.update(kwargs)):
+        build_adaptive(compose([*LIGHT], "replay"), SimpleNamespace(compensator=None), {})
+    return SensorMonitor.from_training(ThermalPOD(**caught["pod"]), names,
+                                       {"train": train[names].to_numpy(float)},
+                                       learned_bands=caught["learned_bands"], **caught["monitor"])
 
 
 def _split(rows: pd.DataFrame) -> int:
@@ -270,7 +269,8 @@ def planted(root: str, seeds: str, hours: str = "4", rate: str = "0.05") -> None
 
 
 def main(argv: list[str]) -> int:
-    return run_commands(__doc__, {"trace": trace, "count": count, "planted": planted}, argv, cpu=sys.stderr)
+    commands = {"trace": trace, "count": count, "planted": planted}
+    return run_commands(__doc__, commands, argv, cpu=sys.stderr)
 
 
 if __name__ == "__main__":
