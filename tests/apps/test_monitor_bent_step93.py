@@ -85,3 +85,22 @@ def test_a_monitor_pickled_before_the_rule_reads_as_before():
     record[AT:, -1] += 2.0 * mon.max_step_c[-1]
     _, events = monitored(old, record)
     assert events == []
+
+
+def test_a_step_off_its_own_and_its_return_are_undone_with_the_jumps():
+    """(step93b) A step of the motor and its return three samples later (a loose contact): the
+    first re-referenced and kept in, the second a jump (a second step off its own since it was
+    in), and the sensor's return undoes both, its reference back to its first reading -- where
+    each was re-referenced and kept, a noise burst on yearround's ``T_amb`` left it 16 °C off."""
+    mon = _monitor()
+    healthy = _record(600, 2)
+    size = 1.5 * mon.max_step_c[-1]
+    record = healthy.copy()
+    record[AT:AT + 3, -1] += size
+    fields, events = monitored(mon, record)
+    said = [(e["sensor"], e["time"], e["to"]) for e in events]
+    assert said[:2] == [(MOTOR, float(AT), "re-referenced"), (MOTOR, float(AT + 3), "excluded")], said
+    assert said[2:] and said[2][0] == MOTOR and said[2][2] == "ok" and len(said) == 3, said
+    assert mon._ref[-1] == record[0, -1]                  # both undone: as first referenced
+    back = int(said[2][1])
+    np.testing.assert_allclose(fields[back:, -1], healthy[back:, -1] - healthy[0, -1], atol=1e-9)
