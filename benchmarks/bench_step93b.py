@@ -53,7 +53,15 @@ and the monitor / C-export suites green.  Main's ``trace`` on 9561-9570 was run 
 (its bar's baseline, output not read there); the rule's trace had been stopped and deleted
 unread: these seeds were scored by no rule before this bench.
 
-Measured (2026-12-05): PENDING.
+Measured (2026-12-05; main = 5fe17063's src, ``git archive`` under /tmp/step93b; seen first)
+---
+Seen, the rule built (``trace swiss9317,swiss9323,lr9426,cr9431``, 200 cells, against step93's
+main trace of the same records): mean d 0.1644 -> 0.1426, detected 46 -> 60, no cell past main's
+d + log(1.02): every cell equal to step93's prototype ``curvin`` (0 of 200 differ; its 14
+changed cells as listed in bench_step93).  ``healthy`` on 15 seen records (swiss9317 / 9323, yr9318
+/ 9324, column9316, lr9426-9430, cr9431-9435): events and d as main's on every one (column9316's
+188, lr9430's 3, d x 100 41.965).  Main's two failing tests pass unchanged (above), the patch's
+7 tests too.  CPU: trace 48.1 s for the 4 seen records.
 """
 
 from __future__ import annotations
