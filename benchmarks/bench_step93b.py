@@ -1,6 +1,7 @@
 """A blind sensor's step under its jump limit, kept inside the jump bookkeeping (step93b, issue
 34; follow-up of ``bench_step93.py``, whose rule ``curvin`` was refused: two of main's tests failed).
-VERDICT: PENDING (filled in below once scored).
+KEPT: the bar below (bench_step93's, unchanged) met on fresh lr 9561-9565, cr 9566-9570, scored
+once; main's two failing tests pass unchanged; src, tests and docs as built.
 
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is that tree's,
 its monitor as built -- main's src, or this branch's with the rule)::
@@ -62,6 +63,21 @@ changed cells as listed in bench_step93).  ``healthy`` on 15 seen records (swiss
 / 9324, column9316, lr9426-9430, cr9431-9435): events and d as main's on every one (column9316's
 188, lr9430's 3, d x 100 41.965).  Main's two failing tests pass unchanged (above), the patch's
 7 tests too.  CPU: trace 48.1 s for the 4 seen records.
+
+Fresh, scored once after the seen check (``trace`` / ``healthy`` / ``score`` on this branch's src,
+main's ``healthy`` / ``score`` run here on 5fe17063's src, main's ``trace`` step93's run):
+(a) ``steps``: 520 cells, mean d 0.1598 -> 0.1350, detected 136 -> 167, 0 cells past main's d +
+    log(1.02): MET.  33 cells changed, every one nearer the truth, all steps of a sensor no other
+    predicts at 2 x / 2.9 x (d x 100): lr9561 T_motor 95.87 / 123.92 -> 4.86; lr9562 T_motor
+    66.65 / 45.87 -> 5.80, T_spindle_front 2.9 x 145.36 -> 20.28; lr9563 T_motor 33.74 / 46.43 ->
+    1.29; lr9564 T_motor 53.80 / 93.78 -> 4.29, T_spindle_front 2.9 x 75.24 -> 17.27; lr9565
+    T_spindle_front 131.62 / 173.49 -> 26.36, T_motor 2.9 x 118.16 -> 5.31 (its 2 x missed);
+    cr9566-9570 spindle motors 6.23-32.30 -> 0.24-1.79, tool motors 0.71-11.16 -> 0.06-0.49.
+(b) ``table``: 20 record-families, mean d 0.0272 -> 0.0267 (lr 0.0025 both, cr 0.0396 ->
+    0.0388), rows past main's d + log(1.02) 0, true records with other events 0, faults detected
+    50 -> 52: PASSES.
+(c) ``events``: the 10 true records 0 events under both, d 0 on both: MET.
+CPU: trace 103.9 s (main's 101.7 s), healthy 11.0 s (10.7), score 30.4 s (31.2).
 """
 
 from __future__ import annotations
