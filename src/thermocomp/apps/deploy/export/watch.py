@@ -197,15 +197,17 @@ REASONS = ("", "jump: re-referenced and excluded", "freeze: excluded",
            "held (an export before freeze84)",
            "jump: its self-prediction error stepped past the alarm band, excluded",
            "re-admitted: a spike, its reading back with the field on its reference before the "
-           "jump (the jump undone)")
+           "jump (the jump undone)",
+           "step off its own: a sensor no other predicts re-referenced by its step less its last, "
+           "kept in")
 RULES = ("", "JUMP", "FREEZE", "BACK", "RANGE", "COMMON", "GLITCH", "STEPPED", "DRIFT", "SECOND",
          "BLIND", "DROPOUT", "MISSING_FIRST", "MISSING_SECOND", "MISSING_BLIND",
          "MISSING_FROZEN", "OFF_RANGE", "COMMON_STEP", "DRIFT_OUT",
          "FOLLOWED", "BLIND_OUT", "FALLBACK",
-         "THAWED", "NO_THAW", "STEP_OUT", "SPIKE")   # their names in the C (TC_MON_JUMP ...)
+         "THAWED", "NO_THAW", "STEP_OUT", "SPIKE", "BENT")   # their names in the C (TC_MON_JUMP ...)
 (JUMP, FREEZE, BACK, RANGE, COMMON, GLITCH, STEPPED, DRIFT, SECOND, BLIND, DROPOUT, MISSING_FIRST,
  MISSING_SECOND, MISSING_BLIND, MISSING_FROZEN, OFF_RANGE, COMMON_STEP, DRIFT_OUT, FOLLOWED,
- BLIND_OUT, FALLBACK, THAWED, NO_THAW, STEP_OUT, SPIKE) = range(1, len(RULES))
+ BLIND_OUT, FALLBACK, THAWED, NO_THAW, STEP_OUT, SPIKE, BENT) = range(1, len(RULES))
 
 
 @dataclass
@@ -257,6 +259,7 @@ def monitor_fields(deployed, inputs: list) -> dict:
         "second_instant": 1,
         "blind_range": 1,
         "spike": 1,
+        "bent": 1, "bend_lim": mon._bend_lim.tolist(),
         "modes": int(mon.pod.n_modes_),
         "basis": mon.pod.basis_[:, :int(mon.pod.n_modes_)].tolist(),
         "fallback": [int(c in falls) for c in mon.names],
@@ -373,8 +376,10 @@ class CodeMonitor:
                      ("second_jump", 0),   # (before cmon88: a jump with one out flagged)
                      ("second_instant", 0),   # (before cmon89: a dropout, ... flagged)
                      ("blind_range", 0),   # (before cmon89b: a blind sensor's range flagged)
-                     ("spike", 0)):        # (before bar91b: a spike's return re-referenced)
+                     ("spike", 0),         # (before bar91b: a spike's return re-referenced)
+                     ("bent", 0)):         # (before step93: a step off its own read as heat)
             a.setdefault(k, np.float64(v))
+        a.setdefault("bend_lim", np.full(n, np.inf))
         a.setdefault("rounding", np.zeros(n))    # (before mon83: no culprit held for rounding)
         # (before mon86: every set judged by the whole set's bands)
         a.setdefault("floor", np.zeros(n))
@@ -423,6 +428,7 @@ class CodeMonitor:
         self.hist, self.err = np.full((w, n), np.nan), np.full((w, n), np.nan)
         self.pos = self.count = 0
         self.prev, self.prev_e, self.prev_other = (np.full(n, np.nan) for _ in range(3))
+        self.last_step = np.full(n, np.nan)      # (step93) each sensor's last one-sample change
         self.run, self.calm = np.zeros(n, int), np.zeros(n, int)
         self.run_pred = np.full(n, np.nan)
         # samples the next step spans (1 + its missing ones since its last reading, or a gap in
@@ -709,6 +715,9 @@ class CodeMonitor:
         instant = missing | rng
         if big.sum() >= a["common_min"]:
             big = self._common_step(d, step, big, pos)
+        was_in = self._active()
+        if a["bent"]:
+            big = self._bent(d, step, big, gone, gap, pos)
         # a lone jump's change as the others see it, judged by the set in before this sample's
         # dropout or range exclusion, as served (its instant faults read first, then excluded)
         other = self._others_seen(d) if big.sum() == 1 else None
@@ -792,6 +801,8 @@ class CodeMonitor:
         pred, e = self._errors(d)
         _, active, _, judged, _ = self._set()
         self.prev_other = np.where(judged, d - e, np.nan)
+        # (step93) none over a gap, of a jump, of a sensor out or back (a return's undo)
+        self.last_step = np.where(~gone & (gap == 1) & ~big & was_in & active, d - self.prev, np.nan)
         self.prev = np.where(gone, self.prev, d)     # a return is stepped from the last reading
         self.gap = np.where(gone, gap + 1, 1.0)
         self.prev_e = e
@@ -913,6 +924,23 @@ class CodeMonitor:
         self._flag(REREFERENCED, int(np.argmax(took)), COMMON_STEP)
         step[took] = 0.0
         return big & ~took
+
+    def _bent(self, d, step, big, gone, gap, pos):
+        """(step93) A step of a sensor no other predicts off its own last one beyond ``bend_lim``
+        (``InstantFaults._bent``): re-referenced by the departure and kept in, counted a jump
+        (``ref0``); a second since it was in is a jump (step93b).  ``d``, ``step``, the window's
+        row ``pos`` changed in place.  The jumps after it."""
+        off = step - self.last_step       # NaN for a sensor out or back (no last step)
+        bent = ~big & ~gone & (gap == 1) & (np.abs(off) > self.a["bend_lim"])
+        again = bent & (self.jumps > 0)
+        for j in np.flatnonzero(bent & ~again):
+            self.ref0[j], self.jumps[j] = self.ref[j], 1
+            self.ref[j] += off[j]
+            d[j] -= off[j]
+            step[j] -= off[j]
+            self.hist[pos, j] = d[j]
+            self._flag(REREFERENCED, int(j), BENT)
+        return big | again
 
     def _rebuilt(self, u, d, pred=None):
         """``u`` with the monitored inputs as the model reads them: the reading, the sensor out

@@ -42,6 +42,7 @@ STATE = """    /* the sensor monitor (TC_MONITOR): referenced readings d = u - m
        inputs, their self-prediction errors over the last TC_MON_WINDOW samples (a ring) */
     double mon_ref[NM], mon_base[NM], mon_prev[NM], mon_prev_e[NM], mon_prev_other[NM];
     double mon_ref0[NM];   /* (cmon87) the reference before a sensor's first jump since it was in */
+    double mon_last_step[NM];   /* (step93) each sensor's last one-sample change */
     double mon_hist[TC_MON_WINDOW][NM], mon_err[TC_MON_WINDOW][NM], mon_run_pred[NM];
     int mon_run[NM], mon_calm[NM], mon_pos, mon_count;
     /* (cdrop77) samples the next step spans (1 + its missing ones, or a gap in time), jumps
@@ -89,7 +90,7 @@ def monitor_arrays(ss) -> list[tuple[str, object, tuple, str]]:
     n = len(m.get("inputs", []))
     pairs = m.get("pairs", [])
     vectors = ("warning", "alarm", "jump_lim", "lo_lim", "hi_lim", "lo_c", "hi_c", "seen_run",
-               "blind_run", "rounding", "floor", "q_full")
+               "blind_run", "rounding", "floor", "q_full", "bend_lim")
     scalars = (("MON_MAX_LEV", "max_leverage", 1.0, "real"), ("MON_MIN_ACTIVE", "min_active", 0, "int"),
                ("MON_CONFIRM", "confirm", 1, "int"), ("MON_EXCLUDE_LEVEL", "exclude_level", 1, "int"),
                ("MON_PERIOD", "period", 1.0, "real"), ("MON_GAP_PERIODS", "gap_periods", 1.5, "real"),
@@ -106,7 +107,7 @@ def monitor_arrays(ss) -> list[tuple[str, object, tuple, str]]:
                ("MON_SECOND_JUMP", "second_jump", 0, "int"),
                ("MON_SECOND_INSTANT", "second_instant", 0, "int"),
                ("MON_BLIND_RANGE", "blind_range", 0, "int"),
-               ("MON_SPIKE", "spike", 0, "int"))
+               ("MON_SPIKE", "spike", 0, "int"), ("MON_BENT", "bent", 0, "int"))
     modes = max(int(m.get("modes", 1)), 1)
     return [("MON_M", m.get("M", []), (n + 1 + len(pairs), n, n), "real"),
             ("MON_LEV", m.get("lev", []), (n + 1 + len(pairs), n), "real"),
@@ -676,6 +677,27 @@ static void mon_common_step(tc_state *s, double d[], double step[], int big[], i
         if (took[k]) step[k] = 0.0, big[k] = 0;
 }
 
+/* (step93) a step of a sensor no other predicts off its own last one by more than MON_BEND_LIM
+   (not a jump, read, no gap; none for a sensor out or back): re-referenced by the departure and
+   kept in, counted a jump (mon_ref0); (step93b) a second since it was in is a jump (big) */
+static void mon_bent(tc_state *s, double d[], double step[], int big[], const int gone[],
+                     const double gap[], int pos) {
+    double off;
+    int k;
+    for (k = 0; k < NM; k++) {
+        off = step[k] - s->mon_last_step[k];
+        if (big[k] || gone[k] || gap[k] != 1.0 || !(fabs(off) > MON_BEND_LIM[k])) continue;
+        if (s->mon_jumps[k]) { big[k] = 1; continue; }
+        s->mon_ref0[k] = s->mon_ref[k];
+        s->mon_jumps[k] = 1;
+        s->mon_ref[k] += off;
+        d[k] -= off;
+        step[k] -= off;
+        s->mon_hist[pos][k] = d[k];
+        mon_flag(s, TC_MON_REREFERENCED, k, TC_MON_BENT);
+    }
+}
+
 /* (cmon82) the exclusion by judgement: the last MON_CONFIRM rows of the window, NAN as 0 */
 static int mon_rows(const tc_state *s, double X[][NM]) {
     int r, k, n = s->mon_count < MON_CONFIRM ? s->mon_count : MON_CONFIRM;
@@ -1031,13 +1053,14 @@ static void monitor_step(tc_state *s, double u[], double dt) {
     int a[NM], o[NM], jd[NM], big[NM], same[NM], instant[NM], rng[NM], missing[NM];
     double scale[NM];
     int k, pos, nbig = 0, jumped = -1, lost = -1, far = -1, nrng = 0;
-    int gone[NM];
+    int gone[NM], was_in[NM];
     if (s->first) {
         s->mon_out = s->mon_out2 = -1;
         s->mon_pos = s->mon_count = 0;
         for (k = 0; k < NM; k++) {
             int w;
             s->mon_prev[k] = s->mon_prev_e[k] = s->mon_prev_other[k] = s->mon_run_pred[k] = NAN;
+            s->mon_last_step[k] = NAN;
             s->mon_run[k] = s->mon_calm[k] = s->mon_jumps[k] = s->mon_dropped[k] = 0;
             s->mon_ranged[k] = 0;
             s->mon_froze[k] = s->mon_off[k] = 0;
@@ -1097,6 +1120,11 @@ static void monitor_step(tc_state *s, double u[], double dt) {
     }
     if (nbig >= MON_COMMON_MIN) {   /* (cmon80) a common step re-referenced */
         mon_common_step(s, d, step, big, pos);
+        for (nbig = 0, k = 0; k < NM; k++) nbig += big[k];
+    }
+    for (k = 0; k < NM; k++) was_in[k] = k != s->mon_out && k != s->mon_out2;
+    if (MON_BENT) {   /* (step93) a step off its own: re-referenced and kept in; a second, a jump */
+        mon_bent(s, d, step, big, gone, gap, pos);
         for (nbig = 0, k = 0; k < NM; k++) nbig += big[k];
     }
     if (nbig == 1) {   /* a lone jump's change as the others see it, judged by the set in before
@@ -1213,6 +1241,8 @@ static void monitor_step(tc_state *s, double u[], double dt) {
     mon_set(s, a, o, jd, scale);
     for (k = 0; k < NM; k++) {
         s->mon_prev_other[k] = jd[k] ? d[k] - e[k] : NAN;
+        s->mon_last_step[k] = !gone[k] && gap[k] == 1.0 && !big[k] && was_in[k] && a[k]   /* (step93) */
+            ? d[k] - s->mon_prev[k] : NAN;
         if (!gone[k]) s->mon_prev[k] = d[k];   /* a return is stepped from the last reading */
         s->mon_gap[k] = gone[k] ? gap[k] + 1.0 : 1.0;
         s->mon_prev_e[k] = e[k];

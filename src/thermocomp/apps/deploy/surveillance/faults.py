@@ -71,6 +71,40 @@ class InstantFaults:
         step = np.where(took, 0.0, step)
         return step, big & ~took
 
+    def _bent(self, d, step, big, gone, pos, time, events) -> tuple[np.ndarray, np.ndarray]:
+        """A step of a sensor no other predicts, in, that departs from its own last step by more
+        than its bound (``jump_factor`` x the largest such departure in training): a fault of the
+        sensor (a contact, a recalibration), not heat -- a motor warms along a ramp whose steps
+        change little from one sample to the next.  Its one-sample limit is 3 x its largest
+        training step, taken while it warmed fastest (swiss's spindle motor: 0.73 °C, so a +2 °C
+        step was read as heat, audit89); its step's change is far tighter (0.39 °C).  It is
+        re-referenced by the departure, its step taken as its last one, and stays in: nobody
+        predicts it, so held out it would be read at its last value and its heating meanwhile
+        kept as an offset on its return (cr9431's spindle motor +1.5 °C: 8 % from the truth).
+        It is kept in the jump bookkeeping (step93b): the reference before it is ``_ref0`` and it
+        counts as a jump, so a second such step before the sensor is next admitted is a jump
+        (re-referenced, out) and the return undoes both, as a blind sensor's jumps are undone
+        (:meth:`~.readmission.Readmission._readmit`): a noise burst's steps, re-referenced one by
+        one and kept, had left yearround's ``T_amb`` 16 °C off.  A sensor out, or back this
+        sample, has no last step (``_last_step`` NaN): a return's undo is no step of its own.
+        ``gone``: missing or beyond range (not judged); ``d``, the window's row ``pos``, changed in
+        place.  ``(step, big)`` after it."""
+        off = step - self._last_step              # NaN (no last step) compares False
+        bent = ~big & ~gone & (self._gap == 1) & (np.abs(off) > self._bend_lim)
+        again = bent & (self._jumps > 0)          # a second one since it was admitted: a jump
+        big, bent = big | again, bent & ~again
+        for j in np.flatnonzero(bent):
+            self._ref0[j] = self._ref[j]
+            self._jumps[j] = 1
+            self._ref[j] += off[j]
+            d[j] = self._hist[pos, j] = d[j] - off[j]
+            events.append({"time": float(time), "sensor": self.names[j], "from": STATES[self._state[j]],
+                           "to": "re-referenced", "reason": f"step off its own: {step[j]:+.3g} °C in "
+                           f"one sample after {self._last_step[j]:+.3g} °C (no other sensor predicts "
+                           f"it; largest change of its step in training {self.max_bend_c[j]:.3g} "
+                           "°C); re-referenced"})
+        return np.where(bent, step - off, step), big
+
     def _spike_back(self, x, d, big, pos, time, events) -> np.ndarray:
         """A sensor the others predict, out for a jump, whose next jump brings its reading back to
         the field on its reference before the first (``_ref0``) within a window of its last one:

@@ -42,6 +42,10 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
         Exclude and re-admit sensors (otherwise only judge them).
     max_step_c : array
         Largest one-sample change of each sensor in training (°C).
+    max_bend_c : array, optional
+        Largest change of each sensor's one-sample change from one sample to the next in
+        training (°C): ``jump_factor`` times it bounds the step of a sensor no other predicts
+        against its own last step (:meth:`~.faults.InstantFaults._bent`).  ``None``: no bound.
     longest_run : array
         Longest run of identical readings of each sensor in training.
     lo_c, hi_c : array
@@ -87,10 +91,14 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
         if "_froze" not in state:      # pickled before freeze84: nobody out for a freeze alone
             self._froze = np.zeros(len(self.names), dtype=bool)
             self._held, self._off = np.zeros(len(self.names)), np.zeros(len(self.names), int)
+        if "max_bend_c" not in state:  # pickled before step93: no step judged by its bend
+            self.max_bend_c = np.full(len(self.names), np.inf)
+            self._bend_lim, self._bends = self.max_bend_c.copy(), False
+            self._last_step = np.full(len(self.names), np.nan)
 
     def __init__(self, pod: ThermalPOD, names: Sequence[str], *, warning_c=0.4, alarm_c=0.8,
                  window: int = 10, confirm: int = 2, adaptive: bool = True,
-                 exclude_at: str = "warning", max_step_c=None, longest_run=None,
+                 exclude_at: str = "warning", max_step_c=None, max_bend_c=None, longest_run=None,
                  lo_c=None, hi_c=None, first_c=None, jump_factor: float = 3.0,
                  freeze_factor: float = 2.0, range_margin_c: float = 10.0,
                  new_state: bool = True, new_state_others: int = 2, rounding_c=0.0,
@@ -122,6 +130,7 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
             return np.full(n, default, float) if v is None else np.asarray(v, float).copy()
 
         self.max_step_c = arr(max_step_c, np.inf)
+        self.max_bend_c = arr(max_bend_c, np.inf)
         self.longest_run = arr(longest_run, np.inf)
         self.lo_c, self.hi_c = arr(lo_c, -np.inf), arr(hi_c, np.inf)
         self.first_c = arr(first_c, 0.0)
@@ -140,6 +149,9 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
         self._true = np.ones(n, dtype=bool)
         # which sensors the others can predict with every sensor in (re-admission check)
         self._predictable = pod.operator(self._true)[1] < pod.max_leverage
+        # a sensor no other predicts: its step judged against its own last step too (_bent)
+        self._bend_lim = np.where(self._predictable, np.inf, self.jump_factor * self.max_bend_c)
+        self._bends = bool(np.isfinite(self._bend_lim).any())
         self._zero_run = np.zeros(n, dtype=np.int64)
         self._mid, self._half = (self._lo_lim + self._hi_lim) / 2, (self._hi_lim - self._lo_lim) / 2
         # ring rows of the `confirm - 1` samples before each write position
@@ -169,6 +181,8 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
             pod.fit(snaps, groups=groups)
         steps = np.vstack([np.abs(np.diff(a, axis=0)) for a in arrays if len(a) > 1]
                           or [np.zeros((1, len(names)))])
+        bends = np.vstack([np.abs(np.diff(a, n=2, axis=0)) for a in arrays if len(a) > 2]
+                          or [np.full((1, len(names)), np.inf)])
         runs = np.max([_longest_runs(a) for a in arrays], axis=0)
         lo = np.min([a.min(0) for a in arrays], axis=0)
         hi = np.max([a.max(0) for a in arrays], axis=0)
@@ -196,7 +210,8 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
         W = windowed_mean(snaps, groups, pod.window)
         options = {"rounding_c": _rounding(pod, steps), "floor_c": floor,
                    "moment": W.T @ W / len(W), **options, "warning_c": warn, "alarm_c": alarm}
-        return cls(pod, names, max_step_c=steps.max(0), longest_run=runs, lo_c=lo, hi_c=hi,
+        return cls(pod, names, max_step_c=steps.max(0), max_bend_c=bends.max(0), longest_run=runs,
+                   lo_c=lo, hi_c=hi,
                    first_c=first, **options)
 
     # -- state ------------------------------------------------------------------------------
@@ -204,7 +219,7 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
               "_prev_e", "_run", "_run_pred", "_clean", "_quiet", "_calm", "_prev_other",
               "_last_good", "_by_field", "_jumps", "_ref0", "_dropped", "_gap", "_gapped", "_dwell",
               "_outs", "_explains", "_novel", "_calm_field", "_since", "_slow", "_slow_t",
-              "_slow_ok", "_ranged", "_froze", "_held", "_off", "_hid")
+              "_slow_ok", "_ranged", "_froze", "_held", "_off", "_hid", "_last_step")
 
     def reset(self) -> None:
         """New campaign: the next sample is the reference; every sensor active and ok."""
@@ -217,6 +232,7 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
         self._pos = 0
         self._count = 0
         self._prev = np.full(n, np.nan)
+        self._last_step = np.full(n, np.nan)   # each sensor's last one-sample change (_bent)
         self._prev_e = np.full(n, np.nan)
         self._run = np.zeros(n, dtype=np.int64)
         self._calm = np.zeros(n, dtype=np.int64)   # samples since a detector last fired
@@ -413,7 +429,8 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
         if ((not complete and ((self._active & ~finite).any()   # a sensor in use went missing
                                or (np.isfinite(x) & ~finite).any()))   # or one comes, unreferenced
                 or (np.abs(x - self._mid) > self._half).any()
-                or (np.abs(step) > (self._jump_lim * self._gap if self._gapped else self._jump_lim)).any()):
+                or (np.abs(step) > (self._jump_lim * self._gap if self._gapped else self._jump_lim)).any()
+                or (self._bends and (np.abs(step - self._last_step) > self._bend_lim).any())):
             return None
         pred = self._M @ (d if self._all_active else d[self._active])
         e = (d - pred) * self._scale
@@ -449,6 +466,8 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
         self._count += 1
         self._calm += 1
         self._prev_other = np.where(self._judged, d - e, np.nan)
+        self._last_step = (step if self._all_active and not self._gapped   # none of one out
+                           else np.where(self._active & (self._gap == 1), step, np.nan))
         if complete:
             self._prev = d
             if self._gapped:
@@ -490,6 +509,9 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
                 lim[0] = self._jump_lim * self._gap
             ok = (np.isfinite(d).all(axis=1) & ~(np.abs(X - self._mid) > self._half).any(axis=1)
                   & ~(np.abs(step) > lim).any(axis=1))
+            if self._bends:
+                last = np.vstack([self._last_step, step[:-1]])
+                ok &= ~(np.abs(step - last) > self._bend_lim).any(axis=1)
             pred = d @ self._M.T
             e = (d - pred) * self._scale
             ae = np.abs(e)
@@ -523,6 +545,9 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
         self._run, self._run_pred = run[m - 1].astype(np.int64), run_pred[m - 1]
         self._prev_other = np.where(self._judged, d[m - 1] - e[m - 1], np.nan)
         self._prev, self._prev_e = d[m - 1], e[m - 1]
+        last = step[m - 1] if m > 1 or not self._gapped else np.where(
+            self._gap == 1, step[0], np.nan)           # none over a gap
+        self._last_step = last if self._all_active else np.where(self._active, last, np.nan)
         if self._gapped:
             self._gap, self._gapped = np.ones(n), False
         self._last_good = self._clean = d[m - 1]
@@ -555,6 +580,9 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
             step, big = self._common_step(d, step, big & ~rng & finite, pos, time, events)
         if self._count == 2 and big.any():
             step, big = self._reference_glitch(d, step, big & ~rng, pos, time, events)
+        was_in = self._active.copy()
+        if self._bends:
+            step, big = self._bent(d, step, big, rng | ~finite, pos, time, events)
         if (big & ~self._active).any() and not (rng | ~np.isfinite(d)).any():
             big = self._spike_back(x, d, big, pos, time, events)
         if not all_finite or (rng | big).any():
@@ -590,6 +618,10 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
         pred, e = self._errors(d)
         self._set_states(level, err, instant, time, events)
         self._prev_other = np.where(self._judged, d - e, np.nan)
+        # the change each sensor read took (after any re-reference); none over a gap of its own,
+        # of a jump, of a sensor out or back this sample (a return's undo is no step: step93b)
+        self._last_step = np.where(finite & (self._gap == 1) & ~big & was_in & self._active,
+                                   d - self._prev, np.nan)
         self._prev = np.where(finite, d, self._prev)
         self._gap = np.where(finite, 1.0, self._gap + 1)
         self._gapped = bool((self._gap > 1).any())
