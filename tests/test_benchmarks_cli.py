@@ -35,7 +35,7 @@ COMMAND_BENCHES = (
     "bench_clamp74", "bench_clamp75", "bench_clamp78", "bench_clean69", "bench_clockset71", "bench_cmon76",
     "bench_cmon80", "bench_cmon82", "bench_cmon82b", "bench_cmon82c", "bench_cmon83", "bench_cmon84",
     "bench_cmon85", "bench_cmon86", "bench_cmon87", "bench_cmon88", "bench_cmon89", "bench_cmon89b",
-    "bench_cmon91", "bench_cmon92", "bench_cmon92b", "bench_connect72", "bench_cvpick69", "bench_data86",
+    "bench_cmon91", "bench_cmon92", "bench_cmon92b", "bench_cmon93", "bench_connect72", "bench_cvpick69", "bench_data86",
     "bench_data86b", "bench_data87", "bench_data88", "bench_data88b", "bench_data89", "bench_data89b",
     "bench_data90", "bench_data91", "bench_data92", "bench_data92b", "bench_dates85", "bench_deploy73",
     "bench_deploy87", "bench_deploy88", "bench_deploy89", "bench_derive71", "bench_diag70", "bench_diag73",
