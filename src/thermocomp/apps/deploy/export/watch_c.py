@@ -284,6 +284,13 @@ static double mon_mean_err(const tc_state *s, int k) {
     return n ? e / n : 0.0;
 }
 
+/* the sample's monitor fields cleared (flags, its first event and its first rule not in the
+   code, cmon92b): by mon_refuses and monitor_step, whichever reads the sample first */
+static void mon_clear(tc_state *s) {
+    s->mon_flags = s->mon_rule = s->mon_missed = 0;
+    s->mon_sensor = s->mon_missed_sensor = -1;
+}
+
 static void mon_flag(tc_state *s, int bit, int k, int rule) {
     s->mon_flags |= bit;
     if (!s->mon_rule) s->mon_sensor = k, s->mon_rule = rule;   /* the sample's first event */
@@ -545,8 +552,7 @@ static int mon_watched(int j) {
    (or out of range), of a sensor the code does not hold out; flagged in mon_flags / mon_rule */
 static int mon_refuses(tc_state *s, const double u[]) {
     int k, j = -1, nnew = 0, miss = -1, rng = 0, rule = 0;
-    s->mon_flags = s->mon_rule = s->mon_missed = 0;
-    s->mon_sensor = s->mon_missed_sensor = -1;
+    mon_clear(s);
     for (k = 0; k < TC_N_MONITORED; k++) {
         double x = u[TC_MONITORED[k]];
         if (!measured(u, TC_MONITORED[k])) {
@@ -1054,8 +1060,7 @@ static void monitor_step(tc_state *s, double u[], double dt) {
         }
         mon_recompute(s);   /* (every sensor in: MON_M[0]; the window all NAN) */
     }
-    s->mon_flags = s->mon_rule = s->mon_missed = 0;
-    s->mon_sensor = s->mon_missed_sensor = -1;
+    mon_clear(s);
     for (k = 0; k < NM; k++) {
         x[k] = u[TC_MONITORED[k]];   /* (NAN: missing, one mon_refuses let through) */
         missing[k] = !isfinite(x[k]);
