@@ -124,12 +124,19 @@ The served adaptive compensator judges every ``T_`` input before the model reads
   its re-admission band of the field: a **spike** (``spike``), in again at once with that
   reference put back (``SPIKE``), as served (``InstantFaults._spike_back``).  An export
   before it (no ``spike``) re-references the return as before.
+* (cmon93) **two sensors jumping in one sample** (``pair_jump``), no common step, every reading
+  there and in range, as served (``_spike_back``, ``_instant``): where both are out, each tried
+  as a spike's return first; every jumper left re-referenced by its step less its change as the
+  active sensors that did not jump predict it (one operator on that set, its whole step where
+  its leverage with it reaches the limit), those in out in the monitor's order (the second by
+  cmon88's rule).  A third out or a set the code cannot solve, or an export before it (no
+  ``pair_jump``), flags ``COMMON`` as before.
 
 What else the served monitor does it flags, ``NOT_IN_CODE`` with the rule (:data:`REASONS`),
 and goes on by its own rules: a reading beyond its range at a campaign's first sample, of
 several sensors at once or with another sensor out (its sample passes the monitor by, the state
 as it was, so that the reading's return is no jump), several sensors jumping at once that are
-no common step, a jump at the reference's next sample, a stepped self-prediction error whose
+no common step (cmon93: three or more, or two it cannot hold), a jump at the reference's next sample, a stepped self-prediction error whose
 culprit would be a third out (or one it does not hold out), a drift beyond the band that takes a
 third sensor out (cmon85: with one out, as served), of more than
 one blind partner, a second culprit beyond the alarm band, a second sensor out for a dropout or
