@@ -132,22 +132,20 @@ The served adaptive compensator judges every ``T_`` input before the model reads
   cmon88's rule).  A third out or a set the code cannot solve, or an export before it (no
   ``pair_jump``), flags ``COMMON`` as before.
 
-What else the served monitor does it flags, ``NOT_IN_CODE`` with the rule (:data:`REASONS`),
-and goes on by its own rules: a reading beyond its range at a campaign's first sample, of
-several sensors at once or with another sensor out (its sample passes the monitor by, the state
-as it was, so that the reading's return is no jump), several sensors jumping at once that are
-no common step (cmon93: three or more, or two it cannot hold), a jump at the reference's next sample, a stepped self-prediction error whose
-culprit would be a third out (or one it does not hold out), a drift beyond the band that takes a
-third sensor out (cmon85: with one out, as served), of more than
-one blind partner, a second culprit beyond the alarm band, a second sensor out for a dropout or
-its range where the field is not rebuilt without both (cmon89), a third for a jump, and a sensor no
+What else the served monitor does it flags, ``NOT_IN_CODE`` with the rule (:data:`REASONS`), and
+goes on by its own rules: a reading beyond its range at a campaign's first sample, of several
+sensors at once or with another sensor out (its sample passes the monitor by, the state as it was,
+so that the reading's return is no jump), several sensors jumping at once that are no common step
+(cmon93: three or more, or two it cannot hold), a jump at the reference's next sample, a stepped
+self-prediction error whose culprit would be a third out (or one it does not hold out), a drift
+beyond the band that takes a third sensor out (cmon85: with one out, as served), of more than one
+blind partner, a second culprit beyond the alarm band, a second sensor out for a dropout or its
+range where the field is not rebuilt without both (cmon89), a third for a jump, and a sensor no
 other predicts out for any other rule (its range; cmon84: too few left to rebuild the field without
-it), or with a
-fallback model the code does not hold.  A missing reading the code cannot
-rebuild (at a campaign's first sample, with another sensor out or missing, of a sensor it does
-not hold out) is refused as before (:meth:`CodeMonitor.refuses`: the sample is not read).  From
-such a row on the code may part from the served model; the conformance pack cuts there
-(:func:`~.pack.conformance_pack`).
+it), or with a fallback model the code does not hold.  A missing reading the code cannot rebuild (at
+a campaign's first sample, with another sensor out or missing, of a sensor it does not hold out) is
+refused as before (:meth:`CodeMonitor.refuses`: the sample is not read).  From such a row on the code
+may part from the served model; the conformance pack cuts there (:func:`~.pack.conformance_pack`).
 """
 
 from __future__ import annotations
