@@ -347,12 +347,12 @@ def compiled(root: str, record: str, cell: str, sensors: str, kind: str) -> None
     print("\n".join(line for line in run.stderr.splitlines() if "not in the code" in line))
 
 
-def made(root: Path, record: str, family: str) -> None:
-    """``root/data/record`` simulated and ``run model=family`` on it into
-    ``root/reports/record/<family>-none``, each once."""
+def made(root: Path, record: str, family: str, generators: dict | None = None) -> None:
+    """``root/data/record`` simulated (its words in ``generators``, default :data:`FRESH`) and
+    ``run model=family`` on it into ``root/reports/record/<family>-none``, each once."""
     data, out = root / "data" / record, root / "reports" / record / f"{family}-none"
     if not data.exists():
-        rc, said = stage("simulate", *FRESH[record], f"data.path={data}")
+        rc, said = stage("simulate", *(generators or FRESH)[record], f"data.path={data}")
         assert rc == 0, said
         if record.startswith("dl"):
             day_files(data)

@@ -124,23 +124,28 @@ The served adaptive compensator judges every ``T_`` input before the model reads
   its re-admission band of the field: a **spike** (``spike``), in again at once with that
   reference put back (``SPIKE``), as served (``InstantFaults._spike_back``).  An export
   before it (no ``spike``) re-references the return as before.
+* (cmon93) **two sensors jumping in one sample** (``pair_jump``), no common step, every reading
+  there and in range, as served (``_spike_back``, ``_instant``): where both are out, each tried
+  as a spike's return first; every jumper left re-referenced by its step less its change as the
+  active sensors that did not jump predict it (one operator on that set, its whole step where
+  its leverage with it reaches the limit), those in out in the monitor's order (the second by
+  cmon88's rule).  A third out or a set the code cannot solve, or an export before it (no
+  ``pair_jump``), flags ``COMMON`` as before.
 
-What else the served monitor does it flags, ``NOT_IN_CODE`` with the rule (:data:`REASONS`),
-and goes on by its own rules: a reading beyond its range at a campaign's first sample, of
-several sensors at once or with another sensor out (its sample passes the monitor by, the state
-as it was, so that the reading's return is no jump), several sensors jumping at once that are
-no common step, a jump at the reference's next sample, a stepped self-prediction error whose
-culprit would be a third out (or one it does not hold out), a drift beyond the band that takes a
-third sensor out (cmon85: with one out, as served), of more than
-one blind partner, a second culprit beyond the alarm band, a second sensor out for a dropout or
-its range where the field is not rebuilt without both (cmon89), a third for a jump, and a sensor no
+What else the served monitor does it flags, ``NOT_IN_CODE`` with the rule (:data:`REASONS`), and
+goes on by its own rules: a reading beyond its range at a campaign's first sample, of several
+sensors at once or with another sensor out (its sample passes the monitor by, the state as it was,
+so that the reading's return is no jump), several sensors jumping at once that are no common step
+(cmon93: three or more, or two it cannot hold), a jump at the reference's next sample, a stepped
+self-prediction error whose culprit would be a third out (or one it does not hold out), a drift
+beyond the band that takes a third sensor out (cmon85: with one out, as served), of more than one
+blind partner, a second culprit beyond the alarm band, a second sensor out for a dropout or its
+range where the field is not rebuilt without both (cmon89), a third for a jump, and a sensor no
 other predicts out for any other rule (its range; cmon84: too few left to rebuild the field without
-it), or with a
-fallback model the code does not hold.  A missing reading the code cannot
-rebuild (at a campaign's first sample, with another sensor out or missing, of a sensor it does
-not hold out) is refused as before (:meth:`CodeMonitor.refuses`: the sample is not read).  From
-such a row on the code may part from the served model; the conformance pack cuts there
-(:func:`~.pack.conformance_pack`).
+it), or with a fallback model the code does not hold.  A missing reading the code cannot rebuild (at
+a campaign's first sample, with another sensor out or missing, of a sensor it does not hold out) is
+refused as before (:meth:`CodeMonitor.refuses`: the sample is not read).  From such a row on the code
+may part from the served model; the conformance pack cuts there (:func:`~.pack.conformance_pack`).
 """
 
 from __future__ import annotations
@@ -260,6 +265,7 @@ def monitor_fields(deployed, inputs: list) -> dict:
         "blind_range": 1,
         "spike": 1,
         "bent": 1, "bend_lim": mon._bend_lim.tolist(),
+        "pair_jump": 1,
         "modes": int(mon.pod.n_modes_),
         "basis": mon.pod.basis_[:, :int(mon.pod.n_modes_)].tolist(),
         "fallback": [int(c in falls) for c in mon.names],
@@ -377,7 +383,8 @@ class CodeMonitor:
                      ("second_instant", 0),   # (before cmon89: a dropout, ... flagged)
                      ("blind_range", 0),   # (before cmon89b: a blind sensor's range flagged)
                      ("spike", 0),         # (before bar91b: a spike's return re-referenced)
-                     ("bent", 0)):         # (before step93: a step off its own read as heat)
+                     ("bent", 0),          # (before step93: a step off its own read as heat)
+                     ("pair_jump", 0)):    # (before cmon93: two jumping in one sample flagged)
             a.setdefault(k, np.float64(v))
         a.setdefault("bend_lim", np.full(n, np.inf))
         a.setdefault("rounding", np.zeros(n))    # (before mon83: no culprit held for rounding)
@@ -455,7 +462,7 @@ class CodeMonitor:
         self.hid = np.zeros(n, bool)
         self.fell = False      # one whose fallback model the code lacks went out: flagged to the end
         self.read = np.ones(n, bool)     # (cmon84) the sample's monitored readings there
-        self.flags, self.sensor, self.rule, self.missed = 0, -1, 0, 0
+        self._clear()
 
     # the active set's operator, leverages, which sensors are judged and the errors' scale
     def _op_of(self, out: np.ndarray) -> int | None:
@@ -588,6 +595,11 @@ class CodeMonitor:
         with np.errstate(invalid="ignore"):
             return (a >= self.warn).astype(int) + (a >= self.alarm), err
 
+    def _clear(self) -> None:
+        """The sample's flags, its first event and its first rule not in the code cleared (the
+        C's ``mon_clear``): by :meth:`refuses` and :meth:`step`, whichever reads it first."""
+        self.flags, self.sensor, self.rule, self.missed = 0, -1, 0, 0
+
     def _flag(self, bit: int, sensor: int, rule: int) -> None:
         self.flags |= bit
         if not self.rule:            # the sample's first event names its sensor and rule
@@ -653,7 +665,7 @@ class CodeMonitor:
         missing reading NaN) for a monitored reading it cannot rebuild (0: it takes the sample):
         at a campaign's first sample, with another sensor out or missing (or out of range), of a
         sensor it does not hold out.  The reason is flagged; nothing else changes."""
-        self.flags, self.sensor, self.rule, self.missed = 0, -1, 0, 0
+        self._clear()
         x = np.asarray(u, float)[self.idx]
         missing = ~np.isfinite(x)
         if not missing.any():
@@ -682,7 +694,7 @@ class CodeMonitor:
         :meth:`refuses` takes) with the monitored ones as the model reads them."""
         if first:
             self.reset()
-        self.flags, self.sensor, self.rule, self.missed = 0, -1, 0, 0
+        self._clear()
         with np.errstate(invalid="ignore"):
             return self._step(np.asarray(u, float), first, dt, self.a)
 
@@ -733,7 +745,11 @@ class CodeMonitor:
                 self._flag(NOT_IN_CODE, j, MISSING_FROZEN)
         if rng.any() and (j := int(np.argmax(rng))) not in self._outs():
             self._exclude(j, OFF_RANGE)       # (cmon80: read as missing, as a dropout)
-        if big.sum() > 1:
+        if big.sum() == 2 and a["pair_jump"] and not gone.any() and self.count != 2 and (
+                (held := self._pair_jump(x, d, step, big)) is not None):
+            instant |= held
+            self.hist[pos] = d
+        elif big.sum() > 1:
             self._flag(NOT_IN_CODE, int(np.argmax(big)), COMMON)
         elif big.any() and self.count == 2:
             self._flag(NOT_IN_CODE, int(np.argmax(big)), GLITCH)
@@ -811,6 +827,70 @@ class CodeMonitor:
         self.last = np.where(active & np.isfinite(d), d, self.last)
         self._fold(self.hist[pos], first, dt)
         return self._rebuilt(u, d, pred)
+
+    def _pair_jump(self, x, d, step, big) -> np.ndarray | None:
+        """(cmon93) Two sensors jumping in one sample (``big``), no common step, every reading
+        there and in range, as the served monitor reads a sample's instant faults together
+        (``_spike_back``, ``_instant``): where both are out, each tried as a spike's return first
+        (mon89, in the monitor's order, the field's prediction redone after a return); every
+        jumper left re-referenced by its step less its change as the active sensors that did
+        not jump predict it (:meth:`_unjumped_change`; alone, its whole step), those in excluded
+        in the monitor's order.  The jumpers re-referenced (they fired), or None where the code
+        does not hold it (a third out, a set it cannot solve, one it does not hold out):
+        nothing changed, flagged by the caller as before (``d`` changed in place)."""
+        left = big.copy()
+        if self.a["spike"] and not (big & self._active()).any():
+            for j in np.flatnonzero(big):
+                if self._spike_back(int(j), x, d):
+                    self._readmit(int(j), SPIKE)
+                    left[j] = False
+        expected = self._unjumped_change(d, left) if left.sum() == 2 else np.full(self.n, np.nan)
+        if expected is None or not self._pair_held(left & self._active()):
+            return None
+        for j in np.flatnonzero(left):
+            if not self._active()[j] and not self.predictable[j] and not self.a["blind_jump"]:
+                self._flag(NOT_IN_CODE, int(j), BLIND)   # (cmon82c: the served return may undo it)
+            if not self.jumps[j]:
+                self.ref0[j] = self.ref[j]
+            offset = step[j] - (expected[j] if np.isfinite(expected[j]) else 0.0)
+            self.ref[j] += offset
+            d[j] -= offset
+            self.jumps[j] += 1
+        for j in np.flatnonzero(left & self._active()):
+            self._exclude(int(j), JUMP)
+        return left
+
+    def _unjumped_change(self, d, big) -> np.ndarray | None:
+        """(cmon93) The change since the last sample of each ``big`` sensor as the active ones
+        that did not jump predict it (one operator on that set, the served
+        ``_unjumped_change``); NaN where they cannot (fewer than ``min_active`` of them, or its
+        leverage with them at the limit); None where the code has no operator of a set."""
+        expected = np.full(self.n, np.nan)
+        base = self._active() & ~big & np.isfinite(self.prev)
+        if base.sum() < self.a["min_active"]:
+            return expected
+        if (op := self._operator(~base)) is None:
+            return None
+        change = np.where(base, d - self.prev, 0.0)
+        for j in np.flatnonzero(big):
+            if (own := self._operator(~base & (np.arange(self.n) != j))) is None:
+                return None
+            if own[1][j] < self.max_lev:
+                expected[j] = op[0][j] @ change
+        return expected
+
+    def _pair_held(self, ins: np.ndarray) -> bool:
+        """(cmon93) Whether the code takes every sensor of ``ins`` out for a jump, in the
+        monitor's order, as the first out (one it holds out) or the second (cmon88)."""
+        saved = self.out, self.out2
+        try:
+            for j in np.flatnonzero(ins):
+                if not (self._jump_held(int(j)) if self.out >= 0 else self.ported[j] or self.spikes[j]):
+                    return False
+                self.out, self.out2 = (j, -1) if self.out < 0 else (self.out, j)
+            return True
+        finally:
+            self.out, self.out2 = saved
 
     def _spike_back(self, j: int, x, d) -> bool:
         """(mon89) ``j``, out for jumps alone and the others predicting it, jumping back within a

@@ -107,7 +107,8 @@ def monitor_arrays(ss) -> list[tuple[str, object, tuple, str]]:
                ("MON_SECOND_JUMP", "second_jump", 0, "int"),
                ("MON_SECOND_INSTANT", "second_instant", 0, "int"),
                ("MON_BLIND_RANGE", "blind_range", 0, "int"),
-               ("MON_SPIKE", "spike", 0, "int"), ("MON_BENT", "bent", 0, "int"))
+               ("MON_SPIKE", "spike", 0, "int"), ("MON_BENT", "bent", 0, "int"),
+               ("MON_PAIR_JUMP", "pair_jump", 0, "int"))
     modes = max(int(m.get("modes", 1)), 1)
     return [("MON_M", m.get("M", []), (n + 1 + len(pairs), n, n), "real"),
             ("MON_LEV", m.get("lev", []), (n + 1 + len(pairs), n), "real"),
@@ -283,6 +284,13 @@ static double mon_mean_err(const tc_state *s, int k) {
     int r, n = s->mon_count < MON_CONFIRM ? s->mon_count : MON_CONFIRM;
     for (r = 0; r < n; r++) e += s->mon_err[((s->mon_pos - 1 - r) % MW + MW) % MW][k];
     return n ? e / n : 0.0;
+}
+
+/* the sample's monitor fields cleared (flags, its first event and its first rule not in the
+   code, cmon92b): by mon_refuses and monitor_step, whichever reads the sample first */
+static void mon_clear(tc_state *s) {
+    s->mon_flags = s->mon_rule = s->mon_missed = 0;
+    s->mon_sensor = s->mon_missed_sensor = -1;
 }
 
 static void mon_flag(tc_state *s, int bit, int k, int rule) {
@@ -546,8 +554,7 @@ static int mon_watched(int j) {
    (or out of range), of a sensor the code does not hold out; flagged in mon_flags / mon_rule */
 static int mon_refuses(tc_state *s, const double u[]) {
     int k, j = -1, nnew = 0, miss = -1, rng = 0, rule = 0;
-    s->mon_flags = s->mon_rule = s->mon_missed = 0;
-    s->mon_sensor = s->mon_missed_sensor = -1;
+    mon_clear(s);
     for (k = 0; k < TC_N_MONITORED; k++) {
         double x = u[TC_MONITORED[k]];
         if (!measured(u, TC_MONITORED[k])) {
@@ -696,6 +703,91 @@ static void mon_bent(tc_state *s, double d[], double step[], int big[], const in
         s->mon_hist[pos][k] = d[k];
         mon_flag(s, TC_MON_REREFERENCED, k, TC_MON_BENT);
     }
+/* (cmon93) the change since the last sample of each sensor of big[] as the active ones that did
+   not jump predict it (one operator on that set, as served: _unjumped_change), in expected[]:
+   NAN where they cannot (fewer than MON_MIN_ACTIVE of them, or its leverage with them at the
+   limit).  0: the code has no operator of a set (expected[] not to be read) */
+static int mon_unjumped(const tc_state *s, const double d[], const int big[], double expected[]) {
+    double M[NM][NM], lev[NM], Mj[NM][NM], levj[NM];
+    int out[NM], k, m, nbase = 0;
+    for (k = 0; k < NM; k++) {
+        out[k] = k == s->mon_out || k == s->mon_out2 || big[k] || !isfinite(s->mon_prev[k]);
+        nbase += !out[k];
+        expected[k] = NAN;
+    }
+    if (nbase < MON_MIN_ACTIVE) return 1;
+    if (!mon_operator(out, M, lev)) return 0;
+    for (k = 0; k < NM; k++) {
+        if (!big[k]) continue;
+        out[k] = 0;   /* (its leverage with the set) */
+        if (!mon_operator(out, Mj, levj)) return 0;
+        out[k] = 1;
+        if (!(levj[k] < MON_MAX_LEV)) continue;
+        expected[k] = 0.0;
+        for (m = 0; m < NM; m++)
+            if (!out[m]) expected[k] += M[k][m] * (d[m] - s->mon_prev[m]);
+    }
+    return 1;
+}
+
+/* (cmon93) 1: the code takes every sensor of ins[] out for a jump, in the monitor's order, as
+   the first out (one it holds out) or the second (cmon88's rule); the state as it was */
+static int mon_pair_held(tc_state *s, const int ins[]) {
+    int out = s->mon_out, out2 = s->mon_out2, k, ok = 1;
+    for (k = 0; k < NM && ok; k++) {
+        if (!ins[k]) continue;
+        ok = s->mon_out >= 0 ? mon_jump_held(s, k) : MON_PORTED[k] || mon_spikes(k);
+        if (s->mon_out < 0) s->mon_out = k;
+        else s->mon_out2 = k;
+    }
+    s->mon_out = out, s->mon_out2 = out2;
+    return ok;
+}
+
+/* (cmon93) two sensors jumping in one sample (big[]), no common step, every reading there and in
+   range, as the served monitor reads a sample's instant faults together (_spike_back, _instant):
+   where both are out, each tried as a spike's return first (mon89, in the monitor's order, the
+   field's prediction redone after a return); every jumper left re-referenced by its step less
+   its change as the active sensors that did not jump predict it (mon_unjumped; alone, its whole
+   step), those in excluded in the monitor's order.  1: held (instant[] the jumpers
+   re-referenced, d[] changed); 0: not in the code (a third out, a set it cannot solve, one it
+   does not hold out), nothing changed, flagged by the caller as before */
+static int mon_pair_jump(tc_state *s, const double x[], double d[], const double step[],
+                         const int big[], int instant[]) {
+    double pred[NM], e[NM], expected[NM], scale[NM];
+    int a[NM], o[NM], jd[NM], left[NM], ins[NM], k, nleft = 0, anyin = 0;
+    mon_set(s, a, o, jd, scale);
+    for (k = 0; k < NM; k++) left[k] = big[k], anyin = anyin || (big[k] && a[k]);
+    for (k = 0; k < NM && MON_SPIKE && !anyin; k++) {   /* both out: a spike's return first */
+        if (!big[k]) continue;
+        mon_errors(s, d, pred, e);
+        mon_set(s, a, o, jd, scale);
+        if (!mon_spike_back(s, k, x, d, pred, a)) continue;
+        d[k] = x[k] - s->mon_ref[k];
+        mon_readmit(s, k, TC_MON_SPIKE);
+        left[k] = 0;
+    }
+    for (k = 0; k < NM; k++) nleft += left[k], expected[k] = NAN;
+    if (nleft == 2 && !mon_unjumped(s, d, left, expected)) return 0;
+    mon_set(s, a, o, jd, scale);
+    for (k = 0; k < NM; k++) ins[k] = left[k] && a[k];
+    if (!mon_pair_held(s, ins)) return 0;
+    for (k = 0; k < NM; k++) {
+        double offset;
+        if (!left[k]) continue;
+        if (!a[k] && !MON_PREDICTABLE[k] && !MON_BLIND_JUMP)   /* (cmon82c) the served return
+                                                                 may undo it */
+            mon_flag(s, TC_MON_NOT_IN_CODE, k, TC_MON_BLIND);
+        if (!s->mon_jumps[k]) s->mon_ref0[k] = s->mon_ref[k];
+        offset = step[k] - (isfinite(expected[k]) ? expected[k] : 0.0);
+        s->mon_ref[k] += offset;
+        d[k] -= offset;
+        s->mon_jumps[k]++;
+        instant[k] = 1;
+    }
+    for (k = 0; k < NM; k++)
+        if (ins[k]) mon_exclude(s, k, TC_MON_JUMP);
+    return 1;
 }
 
 /* (cmon82) the exclusion by judgement: the last MON_CONFIRM rows of the window, NAN as 0 */
@@ -1077,8 +1169,7 @@ static void monitor_step(tc_state *s, double u[], double dt) {
         }
         mon_recompute(s);   /* (every sensor in: MON_M[0]; the window all NAN) */
     }
-    s->mon_flags = s->mon_rule = s->mon_missed = 0;
-    s->mon_sensor = s->mon_missed_sensor = -1;
+    mon_clear(s);
     for (k = 0; k < NM; k++) {
         x[k] = u[TC_MONITORED[k]];   /* (NAN: missing, one mon_refuses let through) */
         missing[k] = !isfinite(x[k]);
@@ -1142,6 +1233,11 @@ static void monitor_step(tc_state *s, double u[], double dt) {
             mon_flag(s, TC_MON_NOT_IN_CODE, lost, TC_MON_MISSING_FROZEN);
     }
     if (far >= 0 && !mon_is_out(s, far)) mon_exclude(s, far, TC_MON_OFF_RANGE);   /* (cmon80) */
+    if (nbig == 2 && MON_PAIR_JUMP && lost < 0 && far < 0 && s->mon_count != 2
+            && mon_pair_jump(s, x, d, step, big, instant)) {   /* (cmon93) */
+        for (k = 0; k < NM; k++) s->mon_hist[pos][k] = d[k];
+        nbig = 0;
+    }
     for (k = 0; k < NM && nbig; k++) {
         if (!big[k]) continue;
         if (nbig > 1) mon_flag(s, TC_MON_NOT_IN_CODE, k, TC_MON_COMMON);

@@ -1,0 +1,81 @@
+"""Two sensors jumping in one sample in the exported C (cmon93, issue 34): the code's monitor
+re-references both by their step less their change as the sensors that did not jump predict it
+and takes both out, then reads their return as a spike's, as the served monitor does, where
+before it flagged ``COMMON`` ("several sensors jumping in one sample") and parted from the served
+corrections (benchmarks/bench_cmon92.py: 2382 of the 2402 fresh spiked cases that part;
+benchmarks/bench_cmon93.py).
+
+bench_audit86b's lr9032 (``thermocomp simulate sim=long_record``, seed 9032, 3 days, R1b the last
+fifth continuing R1a), MLR deployed adaptive with ``data.reference=none``; ``T_head_left`` and
+``T_head_right`` (the others predict both) read 5 degC high together for 10 samples from R1b's
+row a quarter in (bench_cmon92's spike)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from test_export import needs_cc
+from test_export_cmon85 import _mirror, without
+from test_export_cmon87 import held_as_served, long_record
+from thermocomp.apps.deploy.export.pack import conformance_pack, corrections, fed
+from thermocomp.apps.deploy.export.watch import COMMON, JUMP, SPIKE
+from thermocomp.apps.deploy.report import stream_rows
+
+SEED = 9032
+PAIR = ("T_head_left", "T_head_right")
+SPIKE_C, SPIKE_ROWS = 5.0, 10
+
+
+@pytest.fixture(scope="module")
+def record(tmp_path_factory):
+    """``long_record``'s tuple with R1b spiked on :data:`PAIR`, and the fault's row (1-based in
+    the fed frame)."""
+    deployed, ss, _, lead, tests, leads = long_record(tmp_path_factory, SEED)
+    (test, campaign), = tests.items()
+    campaign = campaign.copy()
+    start = len(campaign) // 4
+    for sensor in PAIR:
+        campaign.loc[campaign.index[start:start + SPIKE_ROWS], sensor] += SPIKE_C
+    frame = fed(campaign, leads.get(test))
+    return (deployed, ss, frame, lead, {test: campaign}, leads), lead + start + 1
+
+
+@needs_cc
+def test_two_sensors_jumping_in_one_sample_are_held_as_served(record, tmp_path):
+    (deployed, ss, frame, *_), row = record
+    # every row through the compiled C = served, nothing flagged, the pack whole and passing
+    out, said, _ = held_as_served(record[0], tmp_path)
+    assert (row, PAIR[0], JUMP) in out
+    assert f"line {row + 1}: monitor: {PAIR[0]}: jump: re-referenced and excluded" in said
+    # their return SPIKE_ROWS later read as a spike's (the jump undone), as served
+    assert (row + SPIKE_ROWS, SPIKE) in [(r, rule) for r, _, rule in _readmitted(ss, frame)]
+
+
+def _readmitted(ss, frame) -> list[tuple[int, int, int]]:
+    """The mirror's re-admissions ``(row, sensor, rule)``, 1-based."""
+    from thermocomp.apps.deploy.export import Simulator
+    from thermocomp.apps.deploy.export.watch import READMITTED
+
+    sim = Simulator(ss)
+    sim.reset()
+    back = []
+    for i, (u, t) in enumerate(zip(frame[ss.inputs].to_numpy(float), frame["time"])):
+        sim.step(u, t)
+        if sim.watch.flags & READMITTED:
+            back.append((i + 1, sim.watch.sensor, sim.watch.rule))
+    return back
+
+
+def test_an_export_before_cmon93_flags_the_pair(record):
+    """Arrays without ``pair_jump``: ``COMMON`` flagged at the fault's row, the corrections
+    parting from the served ones there, and the pack cut there."""
+    (deployed, ss, frame, _, tests, leads), row = record
+    old = without(ss, "pair_jump")
+    got, _, missed = _mirror(old, frame)
+    assert missed and missed[0] == (row, COMMON)
+    want = corrections(ss, stream_rows(deployed, frame, "R1b").y)
+    parted = np.flatnonzero(np.abs(got - want).max(axis=1) > 1e-9) + 1
+    assert parted.min() >= row and np.abs(got - want).max() > 1e-3
+    _, summary = conformance_pack(deployed, old, tests, leads)
+    assert summary["campaigns"][0]["rows"] == parted.min() - 1
