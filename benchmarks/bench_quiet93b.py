@@ -43,7 +43,34 @@ brief asks for the drift kind in the distance bar.  Clause (3), added: on drifts
 one-campaign ``lr`` records (``drift``; 9426-9430 are bar91b's, seen -- no fresh ``lr`` seeds were
 given), the rule's mean d is not above main's by more than 2 % (log(1.02)).
 
-Measured: see the end of this docstring (filled in after scoring).
+Measured (2026-12-05, this tree = main 5fe17063's src, the rule patched in by the bench)
+-------------------------------------------------------------------------------------------
+Healthy records, records with an exclusion main -> rule (``count``; all of main's T_amb, drift):
+SEEN bench_quiet93's 30 (9501-9505, 9531-9535, 9556-9560; records copied from its scratch) 4 h
+7 -> 0 of 15, 12 h 3 -> 0 of 15 (main reproduces bench_quiet93's table); FRESH 9619-9623 at 4 h
+1 -> 0 of 5 (9620: main T_amb +0.41 °C at row 46), 9624-9628 at 12 h 0 -> 0 of 5.  Clause (1):
+holds (0 of 10 fresh).
+bar91b's distance bar (``score`` 9426-9435 main / rule, ``table``; mlr + lagbank, 30 rows):
+every row, every event identical (mean d 0.0120 -> 0.0120, lr 0.0009, cr 0.0176; (b) 0 rows,
+(c) 0 records, (d) 42 -> 42 faults): clause (2) holds -- but only because its one-campaign
+``lr`` records carry spikes alone (jump path) and its ``cr`` rooms train on 9 campaigns: it
+cannot see the rule.
+Planted drifts on the one-campaign ``lr`` records (``drift 9426-9430``, mlr, 14 sensors x 5 =
+70): mean d 0.6519 (main) -> 1.5252 (rule), median 0.0948 -> 1.5685; main excludes the
+drifting sensor on 49 of 70 (there median d 0.051 against the rule's 1.64, e.g. lr9426
+T_col_front_top 0.007 -> 2.171, T_bed_right 0.057 -> 2.372).  The rule is nearer the truth on
+T_amb (lr9426 0.846 -> 0.253, lr9427 0.620 -> 0.116, lr9428 0.328 -> 0.101, lr9430 0.551 ->
+0.039: main never excludes the drifting air there; why main is the farther, not traced) and
+lr9426 T_spindle_rear (3.141 -> 1.303).  Clause (3): FAILS (x2.34).
+Detection beside it (``planted``, 0.05 °C per 300 s sample from the first test row, swiss
+records, 10 sensors each): missed main -> rule SEEN 4 h 55 -> 150 of 150, 12 h 26 -> 150 of
+150; FRESH 9619-9623 4 h 2 -> 50 of 50, 9624-9628 12 h 5 -> 50 of 50 (range / jump never catch a
+0.6 °C/h ramp).
+Verdict: TRACED -- the rule removes every healthy exclusion (0 of 30 seen, 0 of 10 fresh) but
+gives up drift detection whole on a one-campaign training: d on planted drifts x2.34 (clause 3,
+added before the fresh seeds, after the seen numbers).  Not built; src as on main.
+CPU: ``count`` 30 records 10 s; ``planted`` 30 seen records 82 s, 10 fresh 30 s; ``score`` 28 s
+per variant; ``drift`` 5 records 108 s.
 """
 
 from __future__ import annotations
