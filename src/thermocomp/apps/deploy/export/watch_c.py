@@ -703,6 +703,8 @@ static void mon_bent(tc_state *s, double d[], double step[], int big[], const in
         s->mon_hist[pos][k] = d[k];
         mon_flag(s, TC_MON_REREFERENCED, k, TC_MON_BENT);
     }
+}
+
 /* (cmon93) the change since the last sample of each sensor of big[] as the active ones that did
    not jump predict it (one operator on that set, as served: _unjumped_change), in expected[]:
    NAN where they cannot (fewer than MON_MIN_ACTIVE of them, or its leverage with them at the
