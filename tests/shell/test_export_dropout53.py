@@ -86,8 +86,8 @@ def _c_run(folder, tests, columns) -> tuple[np.ndarray, np.ndarray]:
     return out[:, 0], out[:, 1:]
 
 
-def _st(deployed, tests, columns) -> tuple[np.ndarray, np.ndarray]:
-    fb = StructuredText(exported_files(deployed, "st")["compensator.st"])
+def _st(deployed, tests, columns, monitor=True) -> tuple[np.ndarray, np.ndarray]:
+    fb = StructuredText(exported_files(deployed, "st", monitor=monitor)["compensator.st"])
     refused, out = [], []
     for df in tests:
         for k, (u, t) in enumerate(zip(df[columns].to_numpy(float), df["time"])):

@@ -83,7 +83,8 @@ def test_a_one_row_spike_leaves_no_memory_in_any_form_of_the_code(dataset, tmp_p
     after = slice(row + 1, None)
     assert np.max(np.abs(c_spiked - c_healthy)[after]) > 0.05         # the spike did reach the model
     np.testing.assert_allclose(c_spiked[after], c_edge[after], rtol=0, atol=TOLERANCE_UM)
-    refused, st_spiked = _st(deployed, [spiked], cols)
+    # the ST without its monitor's detection (st93), as the C above: its arithmetic, compared
+    refused, st_spiked = _st(deployed, [spiked], cols, monitor=False)
     sim_spiked = _simulated(ss, [spiked], cols)
     assert not refused.any()
     for other in (st_spiked, sim_spiked):
@@ -115,7 +116,7 @@ def test_a_lasting_step_of_the_ambient_reading_is_followed_not_refused(dataset, 
     # T_amb, which the others predict here, and re-references it: tests/shell/test_export_monitor76)
     returned, c_warmer = _c(deployed, tmp_path, [warmer], cols, monitor=False)
     _, c_healthy = _c(deployed, tmp_path, [healthy], cols, monitor=False)
-    refused, st_warmer = _st(deployed, [warmer], cols)
+    refused, st_warmer = _st(deployed, [warmer], cols, monitor=False)
     assert (returned >= 0).all() and not refused.any()
     np.testing.assert_allclose(st_warmer, c_warmer, rtol=0, atol=TOLERANCE_UM)
     moved = np.abs(c_warmer - c_healthy)[-1]
