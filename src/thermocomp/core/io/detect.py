@@ -53,6 +53,7 @@ from .roles import (
     named_as_time,
     naming,
     split_unit,
+    time_unit,
     voltage_hint,
 )
 from .runs import looks_like_run_labels, says_run
@@ -309,13 +310,20 @@ def elapsed_column(src: Path, manifest: pd.DataFrame | None, opts, header: list[
     return None
 
 
+def _lone_clock_left(header: list[str], first: dict, opts) -> bool:
+    """Whether the time is left to ``init`` to read (``data.time`` and ``data.roles.time`` not
+    given) and no date column stands beside a time of day (:func:`.roles.date_and_time_of_day`:
+    the pair is one timestamp): where a time-of-day column alone may be found."""
+    return opts.time == "auto" and opts.roles.get("time", "auto") == "auto" and \
+        not date_and_time_of_day(header, first)
+
+
 def clock_column(header: list[str], first: dict, opts) -> str | None:
     """(data92b) The header of the time column a time-of-day header names (``Uhrzeit``,
     ``Heure``: :func:`.timestamps.names_time_of_day`) whose first cell is ``h:mm:ss``, with no
     date column beside it (:func:`.roles.date_and_time_of_day`: the pair is one timestamp), for
     ``data.time=of_day``; None where ``data.time`` or ``data.roles.time`` is given."""
-    if opts.time != "auto" or opts.roles.get("time", "auto") != "auto" or \
-            date_and_time_of_day(header, first):
+    if not _lone_clock_left(header, first, opts):
         return None
     return next((h for h in header if names_time_of_day(h)
                  and maybe_elapsed(str(first.get(h) or "").strip(), opts.time)), None)
@@ -328,8 +336,7 @@ def hours_column(sample: Path, opts, header: list[str], first: dict) -> str | No
     ``data.roles.time`` is given, a date column stands beside it, the file is read through a
     converter, or its values may as well be a fraction of a day
     (:func:`.timestamps.day_fraction_too`: left to the reader's refusal, which names both)."""
-    if opts.time != "auto" or opts.roles.get("time", "auto") != "auto" or \
-            date_and_time_of_day(header, first) or not is_text(sample) or \
+    if not _lone_clock_left(header, first, opts) or not is_text(sample) or \
             is_converted(sample, opts):
         return None
     for i, h in enumerate(header):
@@ -340,8 +347,7 @@ def hours_column(sample: Path, opts, header: list[str], first: dict) -> str | No
             return None                     # (its own read says why)
         values = np.array([v if (v := number(str(c), opts.decimal)) is not None else np.nan
                            for c in cells])
-        unit = opts.units.get(h) or split_unit(h)[1]
-        return h if hours_of_day(values, h, unit) and not day_fraction_too(values) else None
+        return h if hours_of_day(values, h, time_unit(h, opts)) and not day_fraction_too(values) else None
     return None
 
 
@@ -847,7 +853,7 @@ def _table_start(sample: Path, opts, unit: str = "line") -> str:
 
 def _seconds_unit(header: str, opts) -> str:
     """The unit a numeric time column is read in, said where the header does not give it."""
-    unit = opts.units.get(header, split_unit(header)[1])
+    unit = time_unit(header, opts)
     if unit:
         return f", in {unit}"
     return f", in seconds: no unit in the header (data.units={{{header!r}: ms}} if not seconds)"

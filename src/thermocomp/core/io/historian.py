@@ -50,7 +50,7 @@ from .converted import named_as
 from .encoding import UTF8
 from .historian_layout import Layout, quality_of
 from .influx import influx_samples
-from .roles import split_unit
+from .roles import time_unit
 from .separators import reads_as_number
 from .tables import time_of_text
 from .timestamps import DATE, TIME_OF_DAY, on_local_clock, said_if_not_seconds
@@ -235,7 +235,7 @@ def _times(column: pd.Series, tag: pd.Series, opts, layout: Layout, row, path
     if not pa.types.is_timestamp(read.type):      # a number: its unit's seconds
         number = pc.cast(read, pa.float64()).to_numpy()
         scale = _time_scale(header, opts, path)
-        if _time_unit(header, opts) is None:      # (milliseconds? Excel's days? said)
+        if time_unit(header, opts) is None:      # (milliseconds? Excel's days? said)
             said_if_not_seconds(np.unique(number), path, header)
         seconds = (number - number.min()) * scale
         # a unit's seconds to the microsecond: 46000.5 serial days hold no finer, and a sample
@@ -260,15 +260,9 @@ def _word(layout: Layout) -> str:
     return "line" if layout.influx else "data row"
 
 
-def _time_unit(header: str, opts) -> str | None:
-    """The unit of a time column of numbers, as the wide reader takes it: ``data.units``, else
-    the header's."""
-    return opts.units.get(header, split_unit(header)[1])
-
-
 def _time_scale(header: str, opts, path) -> float:
     """The seconds one unit of the time column is (``data.units={<its header>: ms}``: 0.001)."""
-    unit = _time_unit(header, opts)
+    unit = time_unit(header, opts)
     if unit is None:
         return 1.0
     scale = UNITS["time"].get(unit.lower().replace(" ", ""))
@@ -424,7 +418,7 @@ def wide_options(opts, layout: Layout):
     time = opts.time if opts.time in ("auto", "seconds") else "auto"
     header = layout.header[layout.time]
     # (its unit, data.units' or the header's, read into the grid's seconds already)
-    units = opts.units if _time_unit(header, opts) is None else {**opts.units, header: "s"}
+    units = opts.units if time_unit(header, opts) is None else {**opts.units, header: "s"}
     # (the grid is the resampling: read as it is, a silence left without rows)
     return replace(opts, delimiter=",", decimal=".", thousands=None, encoding=UTF8,
                    time=time, missing_values=[], resample_s=None, units=units)

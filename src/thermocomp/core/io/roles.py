@@ -116,6 +116,12 @@ def split_unit(header: str) -> tuple[str, str | None]:
     return header.strip(), None
 
 
+def time_unit(header: str | None, opts) -> str | None:
+    """The unit of a time column of numbers: ``data.units``' (``opts.units``), else its
+    header's (:func:`split_unit`); None where neither gives one (or no header)."""
+    return None if header is None else opts.units.get(header, split_unit(header)[1])
+
+
 def _bare_unit(header: str) -> tuple[str, str] | None:
     """``('dZ', 'um')`` for a unit written as the last word (``dZ um``) or, in a header that is
     no contract name (``T_spindle_degC`` keeps its name), as an ``_`` suffix (``dZ_um``)."""

@@ -20,7 +20,7 @@ from .lines import Lines, at
 from .marks import ABSOLUTE_ZERO_C
 from .options import ReadOptions
 from .rates import period_groups, said_if_rate_changes, said_if_rows_missing
-from .roles import split_unit
+from .roles import time_unit
 from .sparse import intermittent, probe_cycle
 from .tables import PIPED_HINT, _chunks, _values
 from .timestamps import (
@@ -66,7 +66,7 @@ def _set_time_seconds(columns: dict, rows: int, path: Path, opts: ReadOptions,
             row = int(np.argmax(column.is_null().to_numpy(zero_copy_only=False))) + 1
             raise ContractError("missing time value", file=path, column=TIME, row=row)
         seconds, info = _seconds(column, path, opts.timezone, header, opts.time,
-                                 _unit(header, opts))
+                                 time_unit(header, opts))
         seconds, origin, found = undone(seconds, info.get("time_origin"), opts.clock_sets, path)
         if found:       # (the sets found, by index: the record's report names those not found)
             info.update(time_origin=origin, clock_sets_undone=len(found), clock_sets_found=found)
@@ -97,13 +97,6 @@ def is_time_of_day(info: dict, header: str | None, written: str) -> bool:
     under a time-of-day header (:func:`.timestamps.names_time_of_day`), read as a duration."""
     return (written == OF_DAY_KIND or info.get("time") == OF_DAY
             or written != ELAPSED and info.get("time") == ELAPSED and names_time_of_day(header))
-
-
-def _unit(header: str | None, opts: ReadOptions) -> str | None:
-    """The unit a time column's header or ``data.units`` gives it, None where neither does."""
-    if header is None:
-        return None
-    return opts.units.get(header) or split_unit(header)[1]
 
 
 def _seconds(column: pa.ChunkedArray, path: Path, zone: str | None = None,
