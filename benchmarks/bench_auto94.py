@@ -2,7 +2,11 @@
 chosen (main's votes and one-SE fallback) on the other folds only and the blend so chosen scored
 on fold k; where that nested blend does not beat MLR, the target's weight goes back to MLR
 (issue 34; stop 94, auto94, follow-up of bench_auto93c / 93d).
-VERDICT: (filled in below, after the scoring)
+TRACED: the brief's criteria (the nested blend's pooled SSE, mean, one-SE against MLR's) fix the
+room losers (cr9274 1.079, cr9088 1.117, lr9587 1.059 -> 1.000) but lose 7-12 of the 39 seen records
+by > 1 % (swiss5454 0.950 -> 1.000, cr9248 0.294 -> 0.540 ...); the one criterion passing the seen
+condition (``trim``) fixed 1 seen loser and moved NO fresh record (9634-9643 scored once): untested
+on fresh data.  Src as on main.
 
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``)::
 
@@ -101,6 +105,41 @@ swiss5454).  Record figure / MLR (mean over targets of the pooled test RMSE)::
 * Not reached by any criterion: col1403 (1.311; nested pooled 0.418 / 0.316 on E_Y / E_Y_mid, tested
   3.4 / 4.3: the forward folds misrank its one record, bench_automore69), col5791 E_Z_mid (nested
   0.724, test 8.67: Q3, no fold holds it), lab5401 (one fold).
+
+Fresh (scored ONCE, 2026-12-05, after the bar below was committed in 7efe249d (written in
+feb8c367); ``fresh /tmp/auto94/fresh`` 26.9 s CPU, nice, ``OMP_NUM_THREADS=1``; the verdict rests on
+``trim`` alone, the other criteria printed as measurement)::
+
+  record   auto/MLR  pooled  one_se  mean    geo     median  trim   folds
+  cr9634   0.427     0.427   0.427   0.427   0.427   0.427   0.427  4
+  cr9635   0.947     0.947   1.000   0.947   0.947   0.947   0.947  4
+  cr9636   0.649     0.649   0.649   0.649   0.649   0.649   0.649  4
+  cr9637   0.562     0.562   0.698   0.698   0.698   0.562   0.562  4
+  cr9638   0.980     0.980   0.980   0.980   0.980   0.980   0.980  4
+  lr9639   1.000     1.000   1.000   1.000   1.000   1.000   1.000  (MLR kept)
+  lr9640   0.858     1.000   1.000   1.000   1.000   0.858   0.858  5
+  lr9641   0.637     0.637   0.637   0.637   0.637   0.637   0.637  5
+  lr9642   0.674     0.674   0.674   0.674   0.674   0.674   0.674  5
+  lr9643   0.519     0.519   0.519   0.519   0.519   0.519   0.519  5
+  geo / auto       1.0154  1.0434  1.0377  1.0377  1.0000  1.0000
+  > 1 % worse      1       3       2       2       0       0
+
+Against the bar (unchanged): no fresh loser (auto beats or equals MLR on all 10); ``trim`` (a) met,
+(b) met (1.0000), (c) 0 losers, but NO fresh record moved: by the bar, untested -- TRACED.  The
+brief's criteria on fresh (measurement, not the verdict): ``pooled`` loses lr9640 (0.858 -> 1.000,
+E_Z 0.13 hammerstein; nested 6.947 0.827 0.844 0.906 0.861: the first forward fold again),
+``mean`` / ``geo`` lr9640 and cr9637 (0.562 -> 0.698, E_X nested 2.416 0.908 0.746 0.861, test
+0.423), ``one_se`` three: as on seen, one bad nested fold marks winners and losers alike.
+
+Verdict: TRACED, no src.  What nesting shows: the votes' same-fold optimism is real (the room
+losers' nested blends fail in one fold their same-fold blends won: cr9274 E_Z 0.129 -> 28.2), but a
+winner's nested blend fails one fold just as often (swiss5454 E_Y 3.57, cr9606 E_X 2.75, lr9640
+E_Z 6.95), so the nested score does not tell them apart on these records.  One-fold records (lab5401
+and its generator: 3 train runs, one validation fold) cannot be nested (no fold to choose on), and
+k = 2 leaves one fold to choose on (the votes' block resampling of that fold): nothing here speaks
+for changing them.  Left: col1403 (forward folds misrank its one record), the column's Q3 losses
+(no fold holds Q3), the labs' one-fold misranking; a nested score on more outer units (blocks of the
+forward folds' rows) might separate one bad fold from a steady loss -- not tried.
 
 Criteria ``geo`` (mean log ratio >= 0), ``median`` (median ratio >= 1) and ``trim`` (the mean
 ratio without the outer fold where the nested blend does worst >= 1: a loss on most folds, not one
