@@ -279,7 +279,8 @@ def stored(out: str, work: str, *records: str) -> None:
             a = np.load(work_path / "pred" / f"{name}.{target}.npz")
             y_new = auto91.automore.label(a, row["reference"])
             new = (a["campaign"] >= len(row["own"])) & np.isfinite(y_new)
-            members = {k[4:]: a[k] for k in a.files if k.startswith("oof_") and k not in ("oof_y", "oof_fold")}
+            members = {k[4:]: a[k] for k in a.files
+                       if k.startswith("oof_") and k not in ("oof_y", "oof_fold")}
             verdict = None if _is_mlr(weights) else nested(members, a["oof_y"], a["oof_fold"])
             rmse = {k: float(np.sqrt(np.mean((y_new - a[f"pred_{k}"])[new] ** 2))) for k in ("auto", "mlr")}
             _say(name, target, weights, verdict, rmse)
@@ -344,7 +345,8 @@ def table(*outs: str) -> None:
         for c in CRITERIA:
             moved[c] = [k for k, t in targets.items()
                         if t["nested"] and to_mlr(t["nested"]["ratios"], t["nested"]["pooled"])[c]]
-            figs[c] = np.mean([t["rmse"]["mlr" if k in moved[c] else "auto"] for k, t in targets.items()]) / mlr
+            picked = [t["rmse"]["mlr" if k in moved[c] else "auto"] for k, t in targets.items()]
+            figs[c] = np.mean(picked) / mlr
             ratios[c].append(figs[c] / (auto / mlr))
             counts[c]["fixed"] += auto / mlr > 1.02 and figs[c] <= 1.02
             counts[c]["lost"] += auto / mlr < 0.98 and figs[c] / (auto / mlr) > 1.01
