@@ -274,13 +274,7 @@ def stored(out: str, work: str, *records: str) -> None:
     predictions (the machine's new campaigns)."""
     work_path = Path(work).resolve()
     for name in records:
-        row = auto91._row(work_path, name)
-        for target, weights in row["weights"].items():
-            a = np.load(work_path / "pred" / f"{name}.{target}.npz")
-            y_new = auto91.automore.label(a, row["reference"])
-            new = (a["campaign"] >= len(row["own"])) & np.isfinite(y_new)
-            members = {k[4:]: a[k] for k in a.files
-                       if k.startswith("oof_") and k not in ("oof_y", "oof_fold")}
+        for target, weights, a, y_new, new, members in auto91.stored_targets(work_path, name):
             verdict = None if _is_mlr(weights) else nested(members, a["oof_y"], a["oof_fold"])
             rmse = {k: float(np.sqrt(np.mean((y_new - a[f"pred_{k}"])[new] ** 2))) for k in ("auto", "mlr")}
             _say(name, target, weights, verdict, rmse)
