@@ -147,6 +147,18 @@ def _row(work: Path, name: str) -> dict:
     return next(r for r in automore.remeasure._read(work / "automore.jsonl") if r["record"] == name)
 
 
+def stored_targets(work: Path, name: str):
+    """Per target of ``name``'s stored row in WORK: ``(target, kept weights, its npz arrays, the
+    label as scored, the new campaigns' scored rows, the members' out-of-fold predictions)``."""
+    row = _row(work, name)
+    for target, weights in row["weights"].items():
+        a = np.load(work / "pred" / f"{name}.{target}.npz")
+        y_new = automore.label(a, row["reference"])
+        new = (a["campaign"] >= len(row["own"])) & np.isfinite(y_new)
+        members = {k[4:]: a[k] for k in a.files if k.startswith("oof_") and k not in ("oof_y", "oof_fold")}
+        yield target, weights, a, y_new, new, members
+
+
 def _parts(campaign: np.ndarray, n: int) -> np.ndarray:
     """Each row's part (0 .. n - 1) of its campaign's rows, in order."""
     out = np.zeros(len(campaign), int)

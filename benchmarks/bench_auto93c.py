@@ -366,12 +366,7 @@ def stored(out: str, work: str, *records: str) -> None:
         row = auto91._row(work_path, name)
         print(f"== {name} (reference {row['reference']}; own test {row['own']})", flush=True)
         figure = {"auto": [], "mlr": [], "earned": []}
-        for target, weights in row["weights"].items():
-            a = np.load(work_path / "pred" / f"{name}.{target}.npz")
-            y_new = auto91.automore.label(a, row["reference"])
-            new = (a["campaign"] >= len(row["own"])) & np.isfinite(y_new)
-            members = {k[4:]: a[k] for k in a.files
-                       if k.startswith("oof_") and k not in ("oof_y", "oof_fold")}
+        for target, weights, a, y_new, new, members in auto91.stored_targets(work_path, name):
             tested = {k[5:]: a[k] for k in a.files if k.startswith("pred_")}
             probe_w = (weights if set(weights) == {"mlr"} else
                        earned_then_one_se(weights, members, a["oof_y"], a["oof_fold"], a["oof_mlr"]))
