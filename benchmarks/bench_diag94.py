@@ -80,6 +80,14 @@ shows: a clean draw's start lags fit the campaigns' offsets at every tau -- with
 8170 takes a 3600 s start lag of another sensor that harms alike (+13.5 %), 9342 a 7200 s one
 (+19.4 %) -- so tau is not the cause and no tau bound can be.  Fresh 9546-9555 UNSPENT (the seen
 items failed first).  Door example not run (no src change kept).
+
+The replacements on 30 random 8 / 4 splits (bench_diag92's ``splits`` with the rule's src, numpy
+seed 0; median test RMSE ratio, share > 1.02; the draw's split): clean:8170 E_X's 3600 s
+T_bearing_f3 start lag 1.081, 80 % (1.167) -- as main's 900 s lag (1.123, 83 %): the harm is the
+start block's, at any tau; planted:9342's 7200 s T_amb lag 0.777, 10 % (1.214) and clean:8075's
+7200 s T_bearing_r lag 0.849, 17 % (1.069): the fixed split's, as bench_diag93b read their mains.
+The failing row is the split's too, but so is the one row the rule mends (9046); on 8170, the
+harm that holds over splits, the rule changes nothing that matters.  CPU 4.8-5.2 s a row.
 CPU (the bench's own line, user + sys): ``trace seen`` 87.9 s; ``draws seen`` 74.1 s (main), 87.0 s
 (rule).
 """
