@@ -218,6 +218,13 @@ def _print(r: dict) -> None:
 def trace(root: str, name: str) -> None:
     """Every accepted start lag of :data:`SETS` ``name``: the one-SE reads and the early share
     -> ``ROOT/trace-NAME.jsonl`` and a table (module doc)."""
+    start_lag_rows(root, name, _read, _print)
+
+
+def start_lag_rows(root: str, name: str, read, show) -> None:
+    """Each round of :data:`SETS` ``name`` whose accepted effect is a start lag: ``read(ds, d,
+    search, evals, current, accepted)`` -> a row of ``ROOT/trace-NAME.jsonl``; ``show(row)`` prints
+    the rows by test change."""
     from thermocomp.apps.diagnose import SearchOptions, diagnose
     from thermocomp.core.compensator import Compensator
     from thermocomp.core.models import MLR
@@ -236,11 +243,11 @@ def trace(root: str, name: str) -> None:
                 if acc is None or not _start_lag(acc):
                     continue
                 row = {"case": f"{kind}:{seed}", "round": step[target],
-                       **_read(ds, d, search, evals, current, acc)}
+                       **read(ds, d, search, evals, current, acc)}
                 rows.append(row)
                 print(json.dumps(row, default=float), file=out, flush=True)
     for r in sorted(rows, key=lambda r: r["test_change"]):
-        _print(r)
+        show(r)
 
 
 def offsets(*rows: str) -> None:
