@@ -1,0 +1,156 @@
+"""(draft) A bound on how far / how fast a per-target unclamped excess may grow (env94, issue 34).
+
+Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is that tree's)::
+
+    python benchmarks/bench_env94.py cache ROOT SEEDS
+    python benchmarks/bench_env94.py rules ROOT
+"""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import numpy as np
+
+HERE = Path(__file__).resolve().parent
+sys.path[:0] = [str(HERE)]
+import bench_env92 as env92  # noqa: E402
+import bench_env93b as env93b  # noqa: E402
+import bench_envelope_policy as envelope_policy  # noqa: E402
+from _cli import run_commands, seed_list  # noqa: E402
+
+CASES = ("true",) + tuple(f"{k}:{s}" for s in env93b.SENSORS for k in env93b.KINDS)
+
+
+def _excess_recorder(stream) -> list:
+    """A list that gets, per stepped row of ``stream``, the excess its envelope gate passed to the
+    clamp (zeros: none), in the model frame (``Envelope.excess`` of the inputs as the models read
+    them)."""
+    rows, models = [], stream._models
+    env = stream.envelope
+
+    def recorded(seen, time, first):
+        out = models(seen, time, first)
+        rows.append(env.excess(stream.last_x_))
+        return out
+    stream._models = recorded
+    return rows
+
+
+def cache(root: str, seeds: str) -> None:
+    """Per cell the deployed rows off / on of the true test campaign and each fault case, the
+    measured error, and the model's simulation of its train campaigns: ``ROOT/rows/<cell>.npz``."""
+    from thermocomp.apps.deploy.report import stream_rows
+    from thermocomp.shell.builders import deployable_model
+    from thermocomp.shell.source import read_streamed
+
+    env92.draw(root, seeds)
+    base = Path(root)
+    (base / "rows").mkdir(exist_ok=True)
+    for seed in seed_list(seeds):
+        record = f"cms{seed}"
+        for fam in envelope_policy.FAMILIES:
+            path = base / "rows" / f"{record}-{fam}.npz"
+            if path.exists():
+                continue
+            out = {}
+            for on in (False, True):
+                cfg = env93b._config(f"data.path={base / 'data' / record}", "track=false",
+                                     "monitor.adaptive=true", f"{env93b.KEY}={str(on).lower()}")
+                ds, train_ids, test_ids, _ = read_streamed(cfg)
+                deployed, _, _ = deployable_model(cfg, ds, train_ids,
+                                                  str(base / "fit" / f"{record}-{fam}" / "model.pkl"),
+                                                  "replay.model")
+                tid, comp = test_ids[0], deployed.streaming.compensator
+                true = ds.campaigns[tid]
+                seen = _excess_recorder(deployed.streaming)
+                for case in CASES:
+                    frame = true if case == "true" else env93b.planted(true, *case.split(":"))
+                    seen.clear()
+                    out[f"{'on' if on else 'off'}|{case}"] = stream_rows(deployed, frame, tid).y
+                    if on:
+                        out[f"excess|{case}"] = np.array(seen)
+                if on:
+                    targets = list(deployed.targets_)
+                    out["unclamped"] = np.array(deployed.streaming.unclamped_, dtype=str)
+                    out["targets"] = np.array(targets, dtype=str)
+                    out["measured"] = comp.measured({tid: true})[tid][targets].to_numpy(float)
+                    out["time"] = true["time"].to_numpy(float)
+                    train = {c: ds.campaigns[c] for c in train_ids}
+                    pred = comp.predict(train)
+                    meas = comp.measured(train, pred)
+                    for c in train:
+                        out[f"train_pred|{c}"] = pred[c][targets].to_numpy(float)
+                        out[f"train_meas|{c}"] = meas[c][targets].to_numpy(float)
+                        out[f"train_time|{c}"] = train[c]["time"].to_numpy(float)
+            np.savez(path, **out)
+            print(record, fam, "unclamped", list(out["unclamped"]), flush=True)
+
+
+def _load(path: Path) -> dict:
+    d = np.load(path)
+    return {k: d[k] for k in d.files}
+
+
+def composed(cell: dict, case: str, rule: str) -> np.ndarray:
+    """The deployed rows of ``case`` under ``rule``: per white target (``unclamped``) row by row
+    the unclamped stream's correction where the rule frees it, else the clamped one's (exact:
+    each target's unclamped and clamped streams step the same states whichever is output, and
+    the other targets are the same in both)."""
+    off, on = cell[f"off|{case}"], cell[f"on|{case}"]
+    if rule == "off":
+        return off
+    if rule == "on":
+        return on
+    free = np.zeros(len(off), dtype=bool)
+    if rule == "multi":      # a heat source moves several sensors out together, a fault one
+        free = (cell[f"excess|{case}"] != 0).sum(axis=1) >= 2
+    y = off.copy()
+    for t in cell["unclamped"]:
+        k = list(cell["targets"]).index(t)
+        y[:, k] = np.where(free, on[:, k], off[:, k])
+    return y
+
+
+def sigma2(cell: dict, y: np.ndarray) -> float:
+    """Σ² (µm²): the squared RMSE of the deployed residual summed over the targets."""
+    r = cell["measured"] - y
+    return float(np.nansum(np.nanmean(r ** 2, axis=0)))
+
+
+RULES = ("off", "on", "multi")
+
+
+def rules(root: str) -> None:
+    """Per cell the true record's Σ² per rule, and per fault case Σ² per rule against off."""
+    cells = {p.stem: _load(p) for p in sorted((Path(root) / "rows").glob("*.npz"))}
+    print("clean (true test record), Σ² per rule:")
+    ratio = {r: [] for r in RULES}
+    for name, cell in cells.items():
+        s = {r: sigma2(cell, composed(cell, "true", r)) for r in RULES}
+        for r in RULES:
+            ratio[r].append(s[r] / s["off"])
+        print(f"  {name:16} " + " ".join(f"{r} {s[r]:7.0f}" for r in RULES))
+    for r in RULES:
+        a = np.array(ratio[r])
+        print(f"  {r:6} G {np.exp(np.log(a).mean()):.3f}  >10% worse {int((a > 1.1).sum())}"
+              f"  >10% better {int((a < 1 / 1.1).sum())}")
+    print("fault cases: Σ² rule / off > 1.02 (count, worst), per kind")
+    for r in RULES:
+        worst, line = 0.0, []
+        for kind in env93b.KINDS:
+            q = np.array([sigma2(c, composed(c, case, r)) / sigma2(c, composed(c, case, "off"))
+                          for c in cells.values() for case in CASES if case.startswith(kind + ":")])
+            worst = max(worst, q.max())
+            line.append(f"{kind} {int((q > 1.02).sum())}/{len(q)} (max {q.max():.3f})")
+        print(f"  {r:6} " + "  ".join(line) + f"  worst {worst:.3f}")
+
+
+def main(argv: list[str] | None = None) -> int:
+    return run_commands(__doc__, {"cache": cache, "rules": rules}, sys.argv[1:] if argv is None else argv,
+                        cpu=sys.stderr)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
