@@ -1,11 +1,59 @@
-"""(draft) A bound on how far / how fast a per-target unclamped excess may grow (env94, issue 34).
+"""A white target's unclamped excess only while several inputs share it: the per-target clamp
+(``promote.envelope.per_target``, env93) priced against a drifting sensor (env93b) and bounded
+(env94, issue 34).
 
-Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is that tree's)::
+Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is that tree's;
+``cache`` needs main 4f0fc94a's src, where ``per_target`` on leaves a white target unclamped
+at every sample: the rule is composed from it)::
 
     python benchmarks/bench_env94.py cache ROOT SEEDS
     python benchmarks/bench_env94.py rules ROOT
-"""
 
+``cache``: bench_env92's ``draw ROOT SEEDS`` (``column_moving_source`` seed by seed, per family
+``mlr``, ``arx``, ``lagbank`` fitted; cells drawn already are not redone), then per cell the model
+deployed as ``replay`` / ``promote`` deploy it (``monitor.adaptive=true``) with ``per_target``
+off (the shipped default: one clamp for every target) and on, and per row the deployed
+correction of the true test campaign and of bench_env93b's 10 fault cases (spike, jump, drift,
+range, dropout on T_right3 and T_left3 from three quarters of the campaign), the excess the
+envelope's gate passed on each row (the stream's ``Envelope.excess``), the measured error:
+``ROOT/rows/<record>-<family>.npz``.
+``rules``: per cell the true record's Σ² (µm², the six targets' squared RMSE summed) under
+``off``, ``on`` and the rule, G and the cells either way against ``off``; per fault kind the fault
+cases whose Σ² under a rule exceeds 1.02 x ``off``'s.  The rule is composed row by row from the
+``off`` and ``on`` rows (exact: a white target's unclamped stream and its clamped twin step the
+same states whichever is output, the other targets are the same in both; checked against the
+built src below).
+
+THE RULE (chosen on the seen cases: env93b's seeds 3141, 5003, 4253, 6007, 9406)
+----------------------------------------------------------------------------------
+A white target (``white_targets``) streams unclamped at a sample only when the excess the gate
+passes to the clamp is shared by at least two inputs (``spread_excess``); at any other sample
+(one input out alone, or back in range) it is clamped as every target is (its clamped twin
+forked at the campaign's first excess, the bound of the last excess held).  Why: a heat source
+warms the sensors around it together (Q3 took T_right2-5 and T_amb out in every seen cell,
+env93's trace), a faulty sensor moves alone; a drift (+1 K/h, never excluded by the monitor)
+reaches one width where Q3 does (env93b's widths), so no bound on the excess's size or rate
+separates them in a drift's first hours, while the number of inputs out does: on the seen cells,
+after Q3's excursion the drifting sensor is the one input out.  No threshold: "two or more" is the
+smallest count that is not one sensor.  Not tuned (the only rule tried besides off / on).
+
+BAR (written and committed before the fresh seeds were drawn; the brief's)
+--------------------------------------------------------------------------
+FRESH ``column_moving_source`` 9589-9593 (stop 93's, unspent) x mlr / arx / lagbank = 15 cells,
+deployed adaptive, scored ONCE:
+(a) the clean gain, env92b's bar as env93 applied it: over the 15 true test records
+    G = geometric mean of Σ²(rule) / Σ²(off) <= 0.95, and the cells > 10 % worse no more than
+    the cells > 10 % better;
+(b) the faults: NO fault case (15 cells x 5 kinds x 2 sensors = 150) with Σ²(rule) > 1.02 x
+    Σ²(off) under the adaptive deployment.
+Both met -> KEPT: the rule in the stream and in the exported code (C, ST, the numpy reference:
+``clamp_spread``), under ``promote.envelope.per_target`` (the default is left to the lead: it moves
+every README / docs figure of a clamped record, not re-measured here).  Else REFUSED (the src
+diff saved as benchmarks/env94_rule.patch).
+
+MEASURED
+--------
+(to follow)
 from __future__ import annotations
 
 import sys
