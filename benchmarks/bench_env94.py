@@ -54,6 +54,8 @@ diff saved as benchmarks/env94_rule.patch).
 MEASURED
 --------
 (to follow)
+"""
+
 from __future__ import annotations
 
 import sys
