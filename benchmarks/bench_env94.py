@@ -8,6 +8,7 @@ at every sample: the rule is composed from it)::
 
     python benchmarks/bench_env94.py cache ROOT SEEDS
     python benchmarks/bench_env94.py rules ROOT
+    python benchmarks/bench_env94.py check ROOT CELL CASE
 
 ``cache``: bench_env92's ``draw ROOT SEEDS`` (``column_moving_source`` seed by seed, per family
 ``mlr``, ``arx``, ``lagbank`` fitted; cells drawn already are not redone), then per cell the model
@@ -22,7 +23,10 @@ envelope's gate passed on each row (the stream's ``Envelope.excess``), the measu
 cases whose Σ² under a rule exceeds 1.02 x ``off``'s.  The rule is composed row by row from the
 ``off`` and ``on`` rows (exact: a white target's unclamped stream and its clamped twin step the
 same states whichever is output, the other targets are the same in both; checked against the
-built src below).
+built src below).  ``check`` (this branch's src): one cell (``cms3141-arx``) deployed with
+``per_target`` on, one case (``drift:T_right3``) streamed by the built rule, against the composed.
+Beside the bar (not part of it), ``rules`` prints what the faults add to Σ² pooled, off / rule,
+and how many of the cases > 1.02 have a true record already worse under the rule.
 
 THE RULE (chosen on the seen cases: env93b's seeds 3141, 5003, 4253, 6007, 9406)
 ----------------------------------------------------------------------------------
@@ -186,19 +190,58 @@ def rules(root: str) -> None:
         a = np.array(ratio[r])
         print(f"  {r:6} G {np.exp(np.log(a).mean()):.3f}  >10% worse {int((a > 1.1).sum())}"
               f"  >10% better {int((a < 1 / 1.1).sum())}")
-    print("fault cases: Σ² rule / off > 1.02 (count, worst), per kind")
+    print("fault cases: Σ² rule / off > 1.02 (count, worst), per kind; beside (not the bar): of those,"
+          " how many whose true record is already worse under the rule than off; what the faults"
+          " add to Σ², pooled, off / rule")
     for r in RULES:
-        worst, line = 0.0, []
+        worst, line, clean = 0.0, [], 0
         for kind in env93b.KINDS:
-            q = np.array([sigma2(c, composed(c, case, r)) / sigma2(c, composed(c, case, "off"))
-                          for c in cells.values() for case in CASES if case.startswith(kind + ":")])
+            q, add_off, add_rule = [], 0.0, 0.0
+            for c in cells.values():
+                t_rule, t_off = (sigma2(c, composed(c, "true", x)) for x in (r, "off"))
+                for case in CASES:
+                    if case.startswith(kind + ":"):
+                        a, b = sigma2(c, composed(c, case, r)), sigma2(c, composed(c, case, "off"))
+                        q.append(a / b)
+                        clean += a / b > 1.02 and t_rule > t_off
+                        add_rule, add_off = add_rule + a - t_rule, add_off + b - t_off
+            q = np.array(q)
             worst = max(worst, q.max())
-            line.append(f"{kind} {int((q > 1.02).sum())}/{len(q)} (max {q.max():.3f})")
-        print(f"  {r:6} " + "  ".join(line) + f"  worst {worst:.3f}")
+            line.append(f"{kind} {int((q > 1.02).sum())}/{len(q)} (max {q.max():.3f};"
+                        f" added {add_off:.0f} / {add_rule:.0f})")
+        print(f"  {r:6} " + "  ".join(line) + f"  worst {worst:.3f}; of the > 1.02, true record"
+              f" already worse: {clean}")
+
+
+def check(root: str, cell: str, case: str) -> None:
+    """The built src (``PYTHONPATH``: this branch) against the rule composed from main's rows:
+    ``cell`` (``cms3141-mlr``) deployed with ``per_target`` on, ``case`` streamed; the largest
+    |streamed - composed| per target (µm)."""
+    from thermocomp.apps.deploy.report import stream_rows
+    from thermocomp.shell.builders import deployable_model
+    from thermocomp.shell.source import read_streamed
+
+    base = Path(root)
+    record, fam = cell.split("-")
+    cfg = env93b._config(f"data.path={base / 'data' / record}", "track=false", "monitor.adaptive=true",
+                         f"{env93b.KEY}=true")
+    ds, train_ids, test_ids, _ = read_streamed(cfg)
+    deployed, _, _ = deployable_model(cfg, ds, train_ids, str(base / "fit" / cell / "model.pkl"),
+                                      "replay.model")
+    true = ds.campaigns[test_ids[0]]
+    frame = true if case == "true" else env93b.planted(true, *case.split(":"))
+    rows = _load(base / "rows" / f"{cell}.npz")
+    y = stream_rows(deployed, frame, test_ids[0]).y
+    gap = np.abs(y - composed(rows, case, "multi")).max(axis=0)
+    print(cell, case, "max |src - composed| per target:",
+          dict(zip(rows["targets"], np.round(gap, 12))), "Σ² src", round(sigma2(rows, y), 1),
+          "composed", round(sigma2(rows, composed(rows, case, "multi")), 1),
+          "off", round(sigma2(rows, composed(rows, case, "off")), 1), flush=True)
 
 
 def main(argv: list[str] | None = None) -> int:
-    return run_commands(__doc__, {"cache": cache, "rules": rules}, sys.argv[1:] if argv is None else argv,
+    return run_commands(__doc__, {"cache": cache, "rules": rules, "check": check},
+                        sys.argv[1:] if argv is None else argv,
                         cpu=sys.stderr)
 
 
