@@ -57,7 +57,29 @@ diff saved as benchmarks/env94_rule.patch).
 
 MEASURED
 --------
-(to follow)
+SEEN (``cache /tmp/env94/seen 3141,5003,4253,6007,9406`` on main 4f0fc94a's src, env93b's fits;
+2026-12-05; stopped after 8 of the 15 cells, cms4253 lagbank, cms6007 and cms9406 not cached, to
+leave the two shared cores to the fresh draw: 80 fault cases, not 150; CPU ~60-100 s a cell)::
+
+  rule   clean G (Σ²/off)  >10 % worse / better   fault cases Σ² > 1.02 off (worst)   drift added Σ² off / rule
+  on         0.607             0 / 7                 15 of 80 (1.185; drift 11/16)          13 546 / 22 155
+  rule       0.607             0 / 7                  5 of 80 (1.024; drift  1/16)          13 546 / 13 606
+
+The rule equals ``on`` on every true record (the Q3 rows that ``on`` frees all have two inputs or
+more out; Σ² to the µm²: 848, 850, 316, 866, 505, 364, 1412, 1518 against off's 1336, 943, 788,
+1528, 1179, 867, 1386, 1952), and takes the drift's extra cost out (pooled added Σ² 13 606 against
+off's 13 546; on 22 155).  The 5 cases above 1.02 are all cms5003 lagbank's (spike, jump, range,
+dropout 1.021, drift:L3 1.024), whose TRUE record is 1.019x off already under ``on`` and the rule
+(env93b's "1.9 % worse without a fault"): not the fault's price, but bar (b) counts them.
+``check``: the built src against the composed rule, Σ² 4043.8 vs 4043.7 (cms3141-arx drift:R3;
+E_X's largest row gap 11.9 µm, not traced: the adaptive compensator's state after a switch),
+2000.2 vs 2000.2 (cms5003-lagbank drift:L3, every row to 0).
+Found on the way (tests/apps/test_envelope_spread94.py's record, seed 9301): the count is of the
+inputs beyond their bounds at a sample off the pattern, so a machine still hot from Q3 along with
+one drifting sensor counts 2+ inputs and the drift passes unclamped there; a sensor off alone
+before Q3 is clamped.
+
+FRESH: (to follow)
 """
 
 from __future__ import annotations
