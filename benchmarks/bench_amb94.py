@@ -227,6 +227,7 @@ def _forms(root: Path, data: Path, fam: str) -> dict:
 
 def score(root: Path, seeds: list[int], families=FAMILIES) -> None:
     _Rule.install()
+    rows, worst_rate = [], 0.0
     for seed in seeds:
         data, train, tests, cases = _record(root / f"s{seed}", seed)
         pred = AirPrediction(train)
@@ -235,6 +236,7 @@ def score(root: Path, seeds: list[int], families=FAMILIES) -> None:
         print(f"seed {seed}: theta (healthy excursion, {QUANTILE:.0%}) {pred.theta:.2f} K; "
               "false-decision rate train / healthy test: "
               + ", ".join(f"+-{dT:g} K {a:.1%} / {b:.1%}" for dT, (a, b) in rates.items()), flush=True)
+        worst_rate = max([worst_rate] + [b for _, b in rates.values()])
         for fam in families:
             forms = _forms(root / f"s{seed}", data, fam)
             for (cid, case), (df, err) in cases.items():
@@ -248,6 +250,35 @@ def score(root: Path, seeds: list[int], families=FAMILIES) -> None:
                 at = f"decided at row {log[0][1]} (jump row {log[0][0]}, of {len(df)})" if log else "-"
                 print(f"  {seed} {fam:8s} {cid} {case:14s} {before:6.2f} / {after:6.2f} / {plain:6.2f}"
                       f"   {at}", flush=True)
+                rows.append((fam, case, before, after, plain))
+    verdict(rows, worst_rate)
+
+
+def verdict(rows, worst_rate: float) -> bool:
+    """The BAR of the module doc on the scored ``rows`` (family, case, main, rule, plain)."""
+    t = pd.DataFrame(rows, columns=["fam", "case", "main", "rule", "plain"])
+    off = t[t["case"].str.startswith("offset")]
+    real = t[t["case"].str.startswith(("real", "ramp"))]
+    healthy = t[t["case"] == "healthy"]
+    lose = real[real["plain"] < real["main"]]
+    checks = {
+        "offsets within 2 % of main (worst rule/main)": (off["rule"] / off["main"]).max() <= 1.02,
+        "real steps nearer plain where plain beats main (mean |.-plain| main -> rule)":
+            (lose["rule"] - lose["plain"]).abs().mean() < (lose["main"] - lose["plain"]).abs().mean(),
+        "real steps' mean not worse than main by > 2 %": real["rule"].mean() <= 1.02 * real["main"].mean(),
+        "healthy streams identical": bool((healthy["rule"] == healthy["main"]).all()),
+        "false-decision rate on healthy test rows <= 5 %": worst_rate <= 0.05,
+    }
+    print(f"offsets worst rule/main {(off['rule'] / off['main']).max():.4f}; "
+          f"real steps where plain beats main ({len(lose)}): mean |main-plain| "
+          f"{(lose['main'] - lose['plain']).abs().mean():.3f} -> |rule-plain| "
+          f"{(lose['rule'] - lose['plain']).abs().mean():.3f} µm; real-step mean main "
+          f"{real['main'].mean():.3f} -> rule {real['rule'].mean():.3f} (plain {real['plain'].mean():.3f}); "
+          f"records decided better / worse than main: {(real['rule'] < real['main']).sum()} / "
+          f"{(real['rule'] > real['main']).sum()} of {len(real)}; worst false-decision rate {worst_rate:.1%}")
+    for name, ok in checks.items():
+        print(f"  {'PASS' if ok else 'FAIL'}  {name}")
+    return all(checks.values())
 
 
 def seen(root: str) -> None:
