@@ -100,24 +100,13 @@ from _cli import made_folder, run_commands, seed_list  # noqa: E402
 
 from thermocomp.apps.deploy.adaptive import AdaptiveCompensator  # noqa: E402
 from thermocomp.apps.deploy.surveillance import SensorMonitor  # noqa: E402
-from thermocomp.apps.sim.ambient import step_air  # noqa: E402
 from thermocomp.apps.sim.scenario import write_scenario  # noqa: E402
-from thermocomp.apps.sim.yearround import YearRoundSpindle  # noqa: E402
 from thermocomp.shell.cli import main as thermocomp  # noqa: E402
 
 AIR, WINDOW, QUANTILE = s55.AIR, s55.WINDOW, 0.99
 REAL = (("real +5", 5.0, 0.0), ("real +2", 2.0, 0.0), ("ramp +5/30min", 5.0, 1800.0))
 OFFSETS = (5.0, 2.0)
 FAMILIES = ("mlr", "arx", "lagbank")
-
-
-class _AirStepped(YearRoundSpindle):
-    def __init__(self, *args, cid="K06", step_c=5.0, ramp_s=0.0, **kwargs):
-        super().__init__(*args, **kwargs)
-        self.cid, self.step_c, self.ramp_s = cid, step_c, ramp_s
-
-    def plans(self, rng):
-        return step_air(super().plans(rng), self.cid, self.step_c, self.ramp_s)
 
 
 class AirPrediction:
@@ -230,8 +219,7 @@ def _record(root: Path, seed: int):
         for name, step, ramp in REAL:
             path = root / f"air94_{cid}_{step:+g}_{ramp:g}"
             if not path.exists():
-                write_scenario(_AirStepped(n_campaigns=9, duration_h=(3.0, 5.0), seed=seed, cid=cid,
-                                           step_c=step, ramp_s=ramp), path)
+                write_scenario(s55._scenario(seed, cid=cid, step_c=step, ramp_s=ramp), path)
             df = pd.read_csv(path / f"{cid}.csv")
             cases[cid, name] = (df, df)
         for dT in OFFSETS:
@@ -239,23 +227,6 @@ def _record(root: Path, seed: int):
             f.loc[len(raw) // 2:, AIR] += dT
             cases[cid, f"offset +{dT:g}"] = (f, raw)
     return data, train, tests, cases
-
-
-def _forms(root: Path, data: Path, fam: str) -> dict:
-    from hydra import compose, initialize_config_dir
-
-    from thermocomp.base.paths import conf_dir
-    from thermocomp.shell.builders import deployable_model
-    from thermocomp.shell.source import read_streamed
-    forms = {}
-    for adaptive in ("true", "false"):
-        with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3"):
-            cfg = compose(config_name="config", overrides=[
-                f"data.path={data}", "track=false", f"monitor.adaptive={adaptive}"])
-        ds, train_ids, _, _ = read_streamed(cfg)
-        forms[adaptive] = deployable_model(cfg, ds, train_ids, str(root / f"{fam}/model.pkl"),
-                                           "replay.model")[0]
-    return forms
 
 
 def score(root: Path, seeds: list[int], families=FAMILIES) -> None:
@@ -273,7 +244,7 @@ def score(root: Path, seeds: list[int], families=FAMILIES) -> None:
               + ", ".join(f"+-{dT:g} K {a:.1%} / {b:.1%}" for dT, (a, b) in rates.items()), flush=True)
         worst_rate = max([worst_rate] + [b for _, b in rates.values()])
         for fam in families:
-            forms = _forms(root / f"s{seed}", data, fam)
+            forms = s55._forms(root / f"s{seed}", fam)
             for (cid, case), (df, err) in cases.items():
                 _Rule.pred = None
                 before = s55._rms(forms["true"], df, err, cid)
