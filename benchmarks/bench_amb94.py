@@ -52,7 +52,7 @@ one line printing the healthy test campaigns' own excursion was added after the 
 rule's numbers unchanged).  RMS (µm) main / rule / plain, the decisions only (every other record
 of the tables reads main = rule; the run prints all of them):
 
-  SEEN 5353 / 4242 (MLR, ARX, lag bank; theta 1.89 / 2.34 K): no offset taken (54 offset records
+  SEEN 5353 / 4242 (MLR, ARX, lag bank; theta 1.89 / 2.34 K): no offset taken (36 offset records
   rule = main), healthy test campaigns identical, false-decision rate on the healthy test rows
   0 % at +-5 K, 4.1 % / 0.0 % at +-2 K (train 0 % / 1.0-1.2 %); 15 of 54 real-step records decided
   (no ramp: the jump the monitor
