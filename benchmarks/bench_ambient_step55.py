@@ -105,14 +105,15 @@ STEPS, OFFSETS, WINDOW, LAGS = (5.0, 2.0, -5.0), (5.0, 2.0, -5.0, -2.0), 10, 2
 
 
 class _AirStepped(YearRoundSpindle):
-    """The record with the air of campaign ``cid`` stepped by ``step_c`` from its middle row."""
+    """The record with the air of campaign ``cid`` stepped by ``step_c`` from its middle row
+    (over ``ramp_s`` seconds: bench_amb94)."""
 
-    def __init__(self, *args, cid="K06", step_c=5.0, **kwargs):
+    def __init__(self, *args, cid="K06", step_c=5.0, ramp_s=0.0, **kwargs):
         super().__init__(*args, **kwargs)
-        self.cid, self.step_c = cid, step_c
+        self.cid, self.step_c, self.ramp_s = cid, step_c, ramp_s
 
     def plans(self, rng):
-        return step_air(super().plans(rng), self.cid, self.step_c)
+        return step_air(super().plans(rng), self.cid, self.step_c, self.ramp_s)
 
 
 def _scenario(seed: int, **kwargs):
@@ -120,15 +121,16 @@ def _scenario(seed: int, **kwargs):
     return _AirStepped(**kw, **kwargs) if kwargs else YearRoundSpindle(**kw)
 
 
-def _forms(root: Path) -> dict:
-    """The adaptive and the plain deployed MLR of the record under ``root``."""
+def _forms(root: Path, family: str = "mlr") -> dict:
+    """The adaptive and the plain deployed ``family`` (``root/family/model.pkl``) of the record
+    under ``root``."""
     forms = {}
     for adaptive in ("true", "false"):
         with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3"):
             cfg = compose(config_name="config", overrides=[
                 f"data.path={root / 'ys'}", "track=false", f"monitor.adaptive={adaptive}"])
         ds, train_ids, _, _ = read_streamed(cfg)
-        forms[adaptive] = deployable_model(cfg, ds, train_ids, str(root / "mlr/model.pkl"),
+        forms[adaptive] = deployable_model(cfg, ds, train_ids, str(root / family / "model.pkl"),
                                            "replay.model")[0]
     return forms
 
