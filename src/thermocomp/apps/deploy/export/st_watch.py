@@ -12,7 +12,17 @@ Per sample, of each monitored sensor ``k`` (the input ``MON_INPUT[k]``, the C's 
   the reference; several sensors at once ``COMMON``, at least ``MON_COMMON_MIN`` a common step,
   ``COMMON_STEP``, not flagged); one that brings a re-referenced sensor back within its jump
   limit of its reference before its jumps ends the fault (a spike's return, the jump undone:
-  ``SPIKE``, not flagged, as the C re-admits a spike).
+  ``SPIKE``, not flagged, as the C re-admits a spike);
+* (st94) a step of a sensor no other predicts off its own last step by more than
+  ``MON_BEND_LIM`` (the C's ``bend_lim``; the largest LREAL for one the others predict), under
+  its jump limit, no gap: re-referenced by the departure and kept in, the C's arithmetic
+  (``BENT``, named but not flagged: the C's ``REREFERENCED``, as a common step); a second one
+  since it was re-referenced a jump (the C's ``mon_jumps``), none judged of a sensor re-referenced
+  by a jump (the C holds it out) nor over a gap (the C's last step);
+* (st94) two sensors jumping in one sample, every reading there and in range, not at the sample
+  after the reference, each one in taken out by the C (:func:`pair_places`): ``JUMP`` on the
+  first in (the C's exclusion, where before ``COMMON``); where both were re-referenced by jumps,
+  each first tried as a spike's return, one not back re-referenced again with no new fault.
 
 ``mon_flag`` says the sample's fault, ``mon_rule`` its rule (the C's ``mon_rule`` codes, named
 by ``TC_MONITOR_REASONS``) and ``mon_sensor`` its monitored sensor ``k`` (-1: none): the first,
@@ -23,7 +33,11 @@ measured or beyond the range refuses the sample (``refused``: ``c`` holds the la
 nothing remembered changes, as for any input not measured), the correction of a sensor the
 block cannot read being the last one read with it; a jump is re-referenced by its whole step
 (``mon_shift``), the C's path for a sensor no other predicts (cmon87), so that the model reads
-the sensor continuous with its last reading and a spike's return undoes it.  The freeze, the
+the sensor continuous with its last reading and a spike's return undoes it; a pair's jumpers too
+(the C re-references them by their step less the change the others predict, and rebuilds them:
+the block parts from the C after the pair's sample, as after any jump the C excludes).  The block
+keeps no count of the sensors the C holds out (it cannot tell the C's re-admission): a pair is
+judged as the C judges it with none out but the jumpers.  The freeze, the
 drift, the stepped self-prediction error (the C's ``STEP_OUT``), the re-admission and the rest
 judge a sensor by the others' prediction of it (the POD): not in the ST, they stay with the served
 model (``provenance.not_in_code``).
