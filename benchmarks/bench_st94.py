@@ -75,7 +75,43 @@ the lead-in, row 3448); bent 32 cases (8 blind sensors x 4), C BENT 3 matched 3,
 rules the block does not hold (stepped error, drift, blind exclusion); pair 91 cases, held 88,
 first agree 88, re-referenced 88 / 88, 3 other (stepped error).
 
-Results: (below, after scoring).
+Results (2026-12-05; 2 cores shared by 8 helpers).  ``fresh /tmp/st94/fresh`` scored once with
+this branch's block (82.8 s of this process's CPU for the five, each record's simulation and
+``run model=mlr`` a few seconds more), then, the same models, with main's (4f0fc94a's src,
+``git archive``; 69.7 s): main -> rule::
+
+    record  healthy  max|ST-C| µm   bent  C BENT     re-ref     max|ST-C| µm       first agree/
+            false    (rows)        cases matched    matched                       other/mismatch
+    lr9666  0 -> 0   1.14e-13 (4321)  20  0/3 -> 3/3  0/3 -> 3/3  8.71 -> 1.1e-13    0/6/0 -> 0/6/0
+    dl9667  0 -> 0   9.95e-14 (5970)  16  0/2 -> 2/2  0/2 -> 2/2  2.05 -> 9.9e-14    0/3/0 -> 0/3/0
+    cr9668  0 -> 0   7.11e-15 (219)    8  0/3 -> 3/3  0/3 -> 3/3  2.30 -> 1.1e-14    0/0/0 -> 0/0/0
+    lr9669  0 -> 0   1.07e-13 (2277)  20  0/2 -> 2/2  0/2 -> 2/2  5.83 -> 7.8e-14    0/5/0 -> 0/5/0
+    dl9670  0 -> 0   8.13e-14 (21)    28  0/1 -> 1/1  4/6 -> 6/6  1.57 -> 8.5e-14    4/3/1 -> 5/3/0
+
+    record  pair: cases  C held (JUMP)  first agree            mismatch (COMMON)  other  re-ref matched
+    lr9666        91     90             24 -> 90               66 -> 0            1      90/90 both
+    dl9667        91     91             13 -> 91               78 -> 0            0      91/91 both
+    cr9668        66     66              0 -> 66               66 -> 0            0      66/66 both
+    lr9669        91     90             24 -> 90               66 -> 0            1      90/90 both
+    dl9670        91     90             24 -> 90               66 -> 0            1      90/90 both
+
+Healthy identical under both blocks (the rules do not fire on them; the C's first healthy event, a
+stepped error / drift / jump, named or not as before; dl9670's at row 22, in the lead-in).  The
+"C held" pairs include the cases where one of the two spiked sensors stays under its jump limit
+(a single jump: main flagged those alike, its 24 / 13 agreements); the C flagged ``COMMON`` on
+none of the 430 (every monitored sensor ``MON_PAIR_FIRST`` / ``_SECOND`` on these exports).
+``other``: the C's first event a stepped self-prediction error (not in the ST), 3 pairs and 17
+bent cases; main's dl9670 bent mismatch: T_motor 2x, the C's second bend a jump, main's block
+re-referencing nothing at the first.
+
+Bar item 4, ``bench_st93b.py fresh`` on copies of st93b's 9614-9618 records and models (this
+block; 36.1 s CPU): every count of its docstring's table again (healthy served / hits / misses /
+stepped / other / false 0 0 0 1 1 0, 0 0 0 1 1 0, 0s, 3 3 0 0 0 0, 2 2 0 1 0 0; spike served
+11 / 11 / 12 / 14 / 12 all hit, stepped 2 / 2 / 0 / 0 / 2, other 0 / 1 / 0 / 0 / 0; dropout,
+range 14 / 14 / 12 / 14 / 14 hit; freeze other 8 / 7 / 10 / 4 / 9; false 0 everywhere), max|ST -
+C| 9.24e-14 / 9.95e-14 / 1.07e-14 / 9.24e-14 / 1.03e-13 µm, the same digits.
+
+Verdict by the bar as written (unchanged since its commit 305f1dff): 1-4 hold on all five: KEPT.
 """
 
 from __future__ import annotations
@@ -266,12 +302,8 @@ def _said(first, names) -> str:
 
 
 def fresh(root: str, *chosen: str) -> None:
-    """The ``fresh`` tables (module doc)."""
-    bench_cmon92.FRESH.update(FRESH)       # its made() simulates and runs the records it names
-    for record in [r for r in FRESH if r in chosen] or list(FRESH):
-        bench_cmon92.made(Path(root).resolve(), record, "mlr")
-        print(f"== {record}", flush=True)
-        trace(root, record)
+    """The ``fresh`` tables (module doc): bench_st93's ``fresh`` with this bench's records and trace."""
+    bench_st93.fresh(root, *chosen, records=FRESH, traced=trace)
 
 
 def main(argv: list[str]) -> int:
