@@ -248,13 +248,15 @@ def trace(root: str, record: str) -> None:
             print(f"    {line}", flush=True)
 
 
-def fresh(root: str, *chosen: str) -> None:
-    """The ``fresh`` tables (module doc)."""
-    bench_cmon92.FRESH.update(FRESH)       # its made() simulates and runs the records it names
-    for record in [r for r in FRESH if r in chosen] or list(FRESH):
+def fresh(root: str, *chosen: str, records: dict | None = None, traced=None) -> None:
+    """The ``fresh`` tables (module doc); ``records`` / ``traced`` (bench_st94): other generators
+    and another ``trace`` (default :data:`FRESH`, :func:`trace`)."""
+    records, traced = records or FRESH, traced or trace
+    bench_cmon92.FRESH.update(records)       # its made() simulates and runs the records it names
+    for record in [r for r in records if r in chosen] or list(records):
         bench_cmon92.made(Path(root).resolve(), record, "mlr")
         print(f"== {record}", flush=True)
-        trace(root, record)
+        traced(root, record)
 
 
 def main(argv: list[str]) -> int:

@@ -12,7 +12,17 @@ Per sample, of each monitored sensor ``k`` (the input ``MON_INPUT[k]``, the C's 
   the reference; several sensors at once ``COMMON``, at least ``MON_COMMON_MIN`` a common step,
   ``COMMON_STEP``, not flagged); one that brings a re-referenced sensor back within its jump
   limit of its reference before its jumps ends the fault (a spike's return, the jump undone:
-  ``SPIKE``, not flagged, as the C re-admits a spike).
+  ``SPIKE``, not flagged, as the C re-admits a spike);
+* (st94) a step of a sensor no other predicts off its own last step by more than
+  ``MON_BEND_LIM`` (the C's ``bend_lim``; the largest LREAL for one the others predict), under
+  its jump limit, no gap: re-referenced by the departure and kept in, the C's arithmetic
+  (``BENT``, named but not flagged: the C's ``REREFERENCED``, as a common step); a second one
+  since it was re-referenced a jump (the C's ``mon_jumps``), none judged of a sensor re-referenced
+  by a jump (the C holds it out) nor over a gap (the C's last step);
+* (st94) two sensors jumping in one sample, every reading there and in range, not at the sample
+  after the reference, each one in taken out by the C (:func:`pair_places`): ``JUMP`` on the
+  first in (the C's exclusion, where before ``COMMON``); where both were re-referenced by jumps,
+  each first tried as a spike's return, one not back re-referenced again with no new fault.
 
 ``mon_flag`` says the sample's fault, ``mon_rule`` its rule (the C's ``mon_rule`` codes, named
 by ``TC_MONITOR_REASONS``) and ``mon_sensor`` its monitored sensor ``k`` (-1: none): the first,
@@ -23,7 +33,11 @@ measured or beyond the range refuses the sample (``refused``: ``c`` holds the la
 nothing remembered changes, as for any input not measured), the correction of a sensor the
 block cannot read being the last one read with it; a jump is re-referenced by its whole step
 (``mon_shift``), the C's path for a sensor no other predicts (cmon87), so that the model reads
-the sensor continuous with its last reading and a spike's return undoes it.  The freeze, the
+the sensor continuous with its last reading and a spike's return undoes it; a pair's jumpers too
+(the C re-references them by their step less the change the others predict, and rebuilds them:
+the block parts from the C after the pair's sample, as after any jump the C excludes).  The block
+keeps no count of the sensors the C holds out (it cannot tell the C's re-admission): a pair is
+judged as the C judges it with none out but the jumpers.  The freeze, the
 drift, the stepped self-prediction error (the C's ``STEP_OUT``), the re-admission and the rest
 judge a sensor by the others' prediction of it (the POD): not in the ST, they stay with the served
 model (``provenance.not_in_code``).
@@ -31,7 +45,30 @@ model (``provenance.not_in_code``).
 
 from __future__ import annotations
 
-from .watch import COMMON, COMMON_STEP, DROPOUT, GLITCH, JUMP, MISSING_FIRST, OFF_RANGE, RANGE, SPIKE
+import sys
+
+import numpy as np
+
+from .watch import BENT, COMMON, COMMON_STEP, DROPOUT, GLITCH, JUMP, MISSING_FIRST, OFF_RANGE, RANGE, SPIKE
+
+
+def pair_places(watch: dict) -> tuple[np.ndarray, np.ndarray]:
+    """(st94) Which monitored sensors the C takes out for a jump of two in one sample (cmon93,
+    :meth:`.watch.CodeMonitor._pair_held`): ``(first, second)``, as the first out (the others
+    predict it, or cmon87 one no other predicts held at its last reading) and as the second
+    (cmon88: one the others predict; cmon89: one no other predicts where the field is rebuilt
+    without both), the set of the two solved (``solve``).  All False for an export before
+    ``pair_jump``: the pair flagged ``COMMON`` as before."""
+    n = len(watch.get("inputs", []))
+    if not watch.get("pair_jump") or not n:
+        return np.zeros(n, bool), np.zeros(n, bool)
+    ported = np.asarray(watch["ported_out"], bool)
+    blind = ~np.asarray(watch["predictable"], bool)
+    held = bool(watch.get("blind_drop")) and bool(watch.get("blind_jump"))
+    spikes = blind & held & (n - 1 >= watch["min_active"])
+    second = bool(watch.get("second_jump")) and bool(watch.get("solve")) and "basis" in watch
+    instant = bool(watch.get("second_instant")) & spikes & (n - 2 >= watch["min_active"])
+    return ported | spikes, second & (ported | instant)
 
 
 def constants(watch: dict, literal, constant) -> list[str]:
@@ -40,11 +77,19 @@ def constants(watch: dict, literal, constant) -> list[str]:
     n = len(watch.get("inputs", []))
     rules = (("JUMP", JUMP), ("GLITCH", GLITCH), ("COMMON", COMMON), ("COMMON_STEP", COMMON_STEP),
              ("DROPOUT", DROPOUT), ("MISSING_FIRST", MISSING_FIRST), ("OFF_RANGE", OFF_RANGE),
-             ("RANGE", RANGE), ("SPIKE", SPIKE))
+             ("RANGE", RANGE), ("SPIKE", SPIKE), ("BENT", BENT))
+    # (st94) no bound where the export has none (before step93, a sensor the others predict):
+    # the largest LREAL, as ST has no infinity
+    bends = np.asarray(watch.get("bend_lim", []) if watch.get("bent") else [np.inf] * n, float)
+    first, second = pair_places(watch)
     return [f"    MON_N : INT := {n};",
             constant("MON_INPUT", watch.get("inputs", []), (n,), "INT"),
             *(constant(f"MON_{name}", watch.get(key, []), (n,))
               for name, key in (("JUMP_LIM", "jump_lim"), ("LO_LIM", "lo_lim"), ("HI_LIM", "hi_lim"))),
+            constant("MON_BEND_LIM", np.minimum(bends, sys.float_info.max).tolist(), (n,)),
+            f"    MON_PAIR_JUMP : BOOL := {'TRUE' if first.any() else 'FALSE'};",
+            constant("MON_PAIR_FIRST", first.astype(int).tolist(), (n,), "INT"),
+            constant("MON_PAIR_SECOND", second.astype(int).tolist(), (n,), "INT"),
             f"    MON_PERIOD : LREAL := {literal(watch.get('period', 1.0))};",
             f"    MON_GAP_PERIODS : LREAL := {literal(watch.get('gap_periods', 1.5))};",
             f"    MON_COMMON_MIN : INT := {int(watch.get('common_min', 3))};",
@@ -60,6 +105,11 @@ VARS = """    mon_last : ARRAY[{nm}] OF LREAL;
     mon_gap : ARRAY[{nm}] OF LREAL;
     mon_step : ARRAY[{nm}] OF LREAL;
     mon_big : ARRAY[{nm}] OF BOOL;
+    mon_last_step : ARRAY[{nm}] OF LREAL;
+    mon_has_step : ARRAY[{nm}] OF BOOL;
+    mon_out : ARRAY[{nm}] OF BOOL;
+    mon_rerefd : ARRAY[{nm}] OF BOOL;
+    mon_spike : ARRAY[{nm}] OF BOOL;
     mon_shift : ARRAY[{n}] OF LREAL;
     mon_t_prev : LREAL;
     mon_t_known : BOOL;
@@ -70,6 +120,10 @@ VARS = """    mon_last : ARRAY[{nm}] OF LREAL;
     mon_jumps : INT;
     mon_gone : BOOL;
     mon_back : BOOL;
+    mon_off : LREAL;
+    mon_pair : BOOL;
+    mon_place : INT;
+    mon_outs : INT;
     mk : INT;
 """
 
@@ -85,6 +139,10 @@ IF first THEN
     mon_t_known := FALSE;
     FOR j := 0 TO N_INPUTS - 1 DO
         mon_shift[j] := 0.0;
+    END_FOR;
+    FOR mk := 0 TO MON_N - 1 DO
+        mon_out[mk] := FALSE;
+        mon_rerefd[mk] := FALSE;
     END_FOR;
 END_IF;
 (* a gap in time: each step judged as that many one-sample steps, as the C *)
@@ -118,6 +176,25 @@ FOR mk := 0 TO MON_N - 1 DO
         mon_step[mk] := mon_x - mon_last[mk];
         IF mon_step[mk] > mon_lim OR mon_step[mk] < -mon_lim THEN
             mon_big[mk] := TRUE;
+        ELSIF mon_has_step[mk] AND mon_gap[mk] = 1.0 AND mon_span = 1.0 THEN
+            (* (st94) a step of a sensor no other predicts off its own last one (the C's BENT) *)
+            mon_off := mon_step[mk] - mon_last_step[mk];
+            IF mon_off > MON_BEND_LIM[mk] OR mon_off < -MON_BEND_LIM[mk] THEN
+                IF mon_rerefd[mk] THEN
+                    mon_big[mk] := TRUE;    (* a second since it was in: a jump, as the C *)
+                ELSE
+                    (* re-referenced by the departure and kept in, its step its last one *)
+                    mon_shift[j] := mon_shift[j] + mon_off;
+                    mon_step[mk] := mon_step[mk] - mon_off;
+                    mon_rerefd[mk] := TRUE;
+                    IF mon_rule <> RULE_BENT THEN    (* the C judges it before a dropout *)
+                        mon_sensor := mk;
+                        mon_rule := RULE_BENT;
+                    END_IF;
+                END_IF;
+            END_IF;
+        END_IF;
+        IF mon_big[mk] THEN
             mon_jumps := mon_jumps + 1;
         END_IF;
     END_IF;
@@ -136,24 +213,70 @@ FOR mk := 0 TO MON_N - 1 DO
         END_IF;
     END_IF;
 END_FOR;
+(* (st94) two sensors jumping in one sample, every reading there and in range, not at the *)
+(* sample after the reference: held where the C takes each jumper in out (the first, the *)
+(* second: MON_PAIR_FIRST / MON_PAIR_SECOND), each out tried first as a spike's return *)
+mon_pair := FALSE;
+mon_outs := 0;
+IF MON_PAIR_JUMP AND mon_jumps = 2 AND NOT mon_gone AND mon_count <> 1 THEN
+    mon_pair := TRUE;
+    FOR mk := 0 TO MON_N - 1 DO
+        IF mon_big[mk] AND mon_out[mk] THEN
+            mon_outs := mon_outs + 1;
+        END_IF;
+    END_FOR;
+    mon_place := mon_outs;
+    FOR mk := 0 TO MON_N - 1 DO
+        IF mon_big[mk] AND NOT mon_out[mk] THEN
+            IF mon_place = 0 THEN
+                mon_pair := mon_pair AND MON_PAIR_FIRST[mk] = 1;
+            ELSE
+                mon_pair := mon_pair AND mon_place = 1 AND MON_PAIR_SECOND[mk] = 1;
+            END_IF;
+            mon_place := mon_place + 1;
+        END_IF;
+    END_FOR;
+END_IF;
+(* the spikes' returns first (named first, as the C re-admits them before it excludes) *)
 FOR mk := 0 TO MON_N - 1 DO
     j := MON_INPUT[mk];
-    IF mon_big[mk] THEN
-        (* re-referenced by its whole step: the model reads it on from its last reading *)
-        mon_back := mon_shift[j] <> 0.0 AND mon_jumps = 1;
-        mon_shift[j] := mon_shift[j] + mon_step[mk];
-        IF mon_back THEN
-            (* back within its jump limit of its reference before the jump: a spike's end, *)
-            (* the jump undone (the C's SPIKE: the fault is over, not a new one) *)
-            mon_back := mon_shift[j] <= MON_JUMP_LIM[mk] AND mon_shift[j] >= -MON_JUMP_LIM[mk];
-        END_IF;
-        IF mon_back THEN
-            mon_shift[j] := 0.0;
-        END_IF;
+    mon_spike[mk] := FALSE;
+    mon_back := FALSE;
+    IF mon_big[mk] AND mon_out[mk] THEN
+        mon_back := mon_jumps = 1 OR (mon_pair AND mon_outs = 2);
+    END_IF;
+    IF mon_back THEN
+        (* back within its jump limit of its reference before the jump: a spike's end, *)
+        (* the jump undone (the C's SPIKE: the fault is over, not a new one) *)
+        mon_x := mon_shift[j] + mon_step[mk];
+        mon_back := mon_x <= MON_JUMP_LIM[mk] AND mon_x >= -MON_JUMP_LIM[mk];
+    END_IF;
+    IF mon_back THEN
+        mon_spike[mk] := TRUE;
+        mon_shift[j] := 0.0;
+        mon_out[mk] := FALSE;
+        mon_rerefd[mk] := FALSE;
         IF mon_rule = 0 THEN
             mon_sensor := mk;
-            IF mon_back THEN
-                mon_rule := RULE_SPIKE;
+            mon_rule := RULE_SPIKE;
+        END_IF;
+    END_IF;
+END_FOR;
+FOR mk := 0 TO MON_N - 1 DO
+    j := MON_INPUT[mk];
+    IF mon_big[mk] AND NOT mon_spike[mk] THEN
+        (* re-referenced by its whole step: the model reads it on from its last reading *)
+        mon_shift[j] := mon_shift[j] + mon_step[mk];
+        mon_back := mon_pair AND mon_out[mk];  (* a pair's out already: no new fault, as the C *)
+        mon_out[mk] := TRUE;
+        mon_rerefd[mk] := TRUE;
+        IF NOT mon_back AND mon_jumps < MON_COMMON_MIN THEN
+            mon_flag := TRUE;
+        END_IF;
+        IF mon_rule = 0 AND NOT mon_back THEN
+            mon_sensor := mk;
+            IF mon_pair THEN
+                mon_rule := RULE_JUMP;
             ELSIF mon_jumps >= MON_COMMON_MIN THEN
                 mon_rule := RULE_COMMON_STEP;
             ELSIF mon_jumps > 1 THEN
@@ -166,16 +289,24 @@ FOR mk := 0 TO MON_N - 1 DO
         END_IF;
     END_IF;
 END_FOR;
-mon_flag := mon_rule <> 0 AND mon_rule <> RULE_COMMON_STEP AND mon_rule <> RULE_SPIKE;
+(* a fault: a reading not read, or a jump not a common step nor a spike's return (BENT, *)
+(* re-referenced and kept in, is named by mon_rule and not flagged, as a common step) *)
+mon_flag := mon_flag OR mon_gone;
 (* a return is stepped from the last reading, over the samples it spans *)
 FOR mk := 0 TO MON_N - 1 DO
     j := MON_INPUT[mk];
     mon_x := u[j];
     mon_back := mon_x >= -U_LIMIT[j] AND mon_x <= U_LIMIT[j];
+    (* (st94) its own step, the next one's to bend from: none over a gap, of a jump, of a *)
+    (* sensor out, or a campaign's first sample (the C's last step) *)
+    mon_has_step[mk] := NOT first AND mon_back AND mon_gap[mk] = 1.0 AND mon_span = 1.0;
+    mon_has_step[mk] := mon_has_step[mk] AND NOT mon_big[mk] AND NOT mon_out[mk];
+    mon_last_step[mk] := mon_step[mk];
     IF first OR (mon_back AND mon_x >= MON_LO_LIM[mk] AND mon_x <= MON_HI_LIM[mk]) THEN
         mon_last[mk] := mon_x;
         mon_gap[mk] := 1.0;
     ELSE
+        mon_has_step[mk] := FALSE;
         IF mon_span > mon_gap[mk] THEN
             mon_gap[mk] := mon_span;
         END_IF;

@@ -1,0 +1,94 @@
+"""The Structured Text block holds the C's BENT and its pair jump (st94, issue 34): a sensor no other
+predicts stepping off its own last step under its jump limit is re-referenced by the departure
+and kept in, as the C re-references it (``mon_rule`` BENT, the block = the C after it); two
+sensors jumping in one sample are flagged ``JUMP`` on the first, as the C excludes them, where
+before st94 the block read the first as heat and flagged the second ``COMMON``.
+
+lr9132 (``thermocomp simulate sim=long_record``, seed 9132, 3 days), MLR deployed adaptive with
+``data.reference=none``, its first 1100 fed rows, as tests/shell/test_export_st93.py
+(benchmarks/bench_st94.py scores both rules on fresh records)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from test_export import TOLERANCE_UM, StructuredText
+from test_export_cmon87 import long_record
+from thermocomp.apps.deploy.export import Simulator, exported_files
+from thermocomp.apps.deploy.export.watch import BAND, BENT, EXCLUDED, JUMP, REREFERENCED, SPIKE
+
+SEED = 9132
+ROWS, FAULT, LOST = 1100, 1000, 5       # rows fed, the fault's first (0-based), rows a spike lasts
+
+
+@pytest.fixture(scope="module")
+def record(tmp_path_factory):
+    """``(deployed, ss, the fed rows, the ST block)``."""
+    deployed, ss, frame, *_ = long_record(tmp_path_factory, SEED)
+    block = exported_files(deployed, "st")["compensator.st"]
+    return deployed, ss, frame.iloc[:ROWS].reset_index(drop=True), block
+
+
+def _both(ss, block, frame):
+    """Per row: the block's corrections and ``(mon_flag, mon_rule, mon_sensor)``, its mon_shift of
+    the monitored inputs; the C mirror's corrections and ``(flags, rule, sensor)``."""
+    fb, sim = StructuredText(block), Simulator(ss)
+    sim.reset()
+    idx = ss.monitor["inputs"]
+    st, st_said, shifts, c, c_said = [], [], [], [], []
+    for i, (u, t) in enumerate(zip(frame[ss.inputs].to_numpy(float), frame["time"])):
+        st.append(fb(u, t, i == 0))
+        v = fb.vars
+        st_said.append((bool(v["mon_flag"]), int(v["mon_rule"]), int(v["mon_sensor"])))
+        shifts.append(np.array(v["mon_shift"], float)[idx])
+        c.append(sim.step(u, t))
+        c_said.append((int(sim.watch.flags) & ~BAND, int(sim.watch.rule), int(sim.watch.sensor)))
+    return np.array(st), st_said, np.array(shifts), np.array(c), c_said
+
+
+def test_a_blind_sensors_step_off_its_own_is_re_referenced_as_the_c_does(record):
+    deployed, ss, frame, block = record
+    m, mon = ss.monitor, deployed.monitor
+    names = [ss.inputs[i] for i in m["inputs"]]
+    # the sensors no other predicts, each stepped twice its largest training step from FAULT on
+    # (bench_step93's 2x: under the jump limit of 3x), the first the C re-references as BENT
+    for k in [k for k, p in enumerate(m["predictable"]) if not p]:
+        df = frame.copy()
+        df.loc[FAULT:, names[k]] += 2.0 * float(mon.max_step_c[k])
+        st, st_said, shifts, c, c_said = _both(ss, block, df)
+        if c_said[FAULT] == (REREFERENCED, BENT, k):
+            break
+    else:
+        pytest.fail("no blind sensor's step re-referenced by the C")
+    # the C nothing else on these rows: the block = the C on every row, the step's included
+    assert all(s == (0, 0, -1) for i, s in enumerate(c_said) if i != FAULT)
+    assert np.max(np.abs(st - c)) <= TOLERANCE_UM
+    # named at its row (kept in: no fault flagged), re-referenced there and only there
+    assert st_said[FAULT] == (False, BENT, k)
+    assert [i for i, s in enumerate(st_said) if s != (False, 0, -1)] == [FAULT]
+    moved = np.flatnonzero(np.any(np.diff(shifts, axis=0) != 0.0, axis=1)) + 1
+    assert moved.tolist() == [FAULT]
+
+
+def test_two_sensors_jumping_in_one_sample_are_flagged_as_the_c_excludes_them(record):
+    _, ss, frame, block = record
+    m = ss.monitor
+    names = [ss.inputs[i] for i in m["inputs"]]
+    a, b = [k for k, p in enumerate(m["ported_out"]) if p][:2]     # two the others predict
+    df = frame.copy()
+    for k in (a, b):             # twice its jump limit for LOST rows, then back
+        df.loc[FAULT:FAULT + LOST - 1, names[k]] += 2.0 * m["jump_lim"][k]
+    st, st_said, shifts, c, c_said = _both(ss, block, df)
+    # the C excludes both, the first named; nothing before, the block = the C there
+    assert c_said[FAULT][1:] == (JUMP, a) and c_said[FAULT][0] & EXCLUDED
+    assert all(s == (0, 0, -1) for s in c_said[:FAULT])
+    assert np.max(np.abs(st[:FAULT] - c[:FAULT])) <= TOLERANCE_UM
+    # the block: a jump of the first (not COMMON), both re-referenced; their return the spikes'
+    # end (not flagged), the jumps undone
+    assert st_said[FAULT] == (True, JUMP, a)
+    assert set(np.flatnonzero(shifts[FAULT] != shifts[FAULT - 1])) == {a, b}
+    back = FAULT + LOST
+    assert st_said[back] == (False, SPIKE, a)
+    assert [i for i, s in enumerate(st_said) if s[0]] == [FAULT]
+    assert np.all(shifts[back:, [a, b]] == 0.0)
