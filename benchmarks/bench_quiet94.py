@@ -200,7 +200,6 @@ def leak(seeds: str) -> None:
     sys.path[:0] = [str(HERE.parent / "tests"), str(HERE.parent / "tests" / "apps")]
     from conftest import monitored
     from test_monitor_new_state48 import NAMES, _field
-
     from thermocomp.apps.deploy.surveillance import SensorMonitor
 
     for seed in seed_list(seeds):
