@@ -62,9 +62,45 @@ were measured first, on seen records only).  KEPT only if all hold:
 Otherwise REFUSED (src reverted, the rule as benchmarks/quiet94_rule.patch).
 
 Measured (2026-12-05, this tree; SEEN first: bench_quiet93's 30 records 9501-9505, 9531-9535,
-9556-9560 at 4 and 12 h; bar91b's 9426-9435)
+9556-9560 at 4 and 12 h; bar91b's 9426-9435; then FRESH 9644-9653 once, after the bar's commit)
 -------------------------------------------------------------------------------------------
-(filled in below as measured)
+Built twice on the SEEN records before the bar was final.  v1: a warn-only culprit stops the
+drift loop (``break``): seen ``planted`` 4 h missed 55 -> 61 of 150, 12 h 26 -> 32 (while the
+air was the worst error nothing else went out: 9559 4 h T_box1 / T_box2, 9560 12 h four
+sensors).  v2, the rule as built: the warn-only sensor's error is no evidence at all
+(``_judging``: not a culprit, not an explainer, no veto, not counted in a resolve).
+Healthy records with an exclusion main -> rule (``count``; every one of main's T_amb, drift):
+SEEN 4 h 7 -> 0 of 15, 12 h 3 -> 0 of 15 (main reproduces bench_quiet93's table; 9559 12 h's
+T_amb out as "explaining" the others needed the explainer shielded too); FRESH 9644-9648 (4 h)
+1 -> 0 of 5 (9646: main T_amb +0.5 °C at row 52), 9649-9653 (12 h) 1 -> 0 of 5 (9653: T_amb
+out as explaining, row 150).  Clause (1): HOLDS (0 of 10).
+bar91b (``score`` 9426-9435 main / rule, ``table``): every row and event identical, mean d
+0.0120 -> 0.0120 (lr 0.0009, cr 0.0176), (b) 0 rows, (c) 0 records, (d) 42 -> 42 (bar91b's own
+verdict line says FAILS: its (a) is strict, "below"; this bar's (2) is "not above").  Its ``cr``
+rooms train on 9 campaigns, its ``lr`` records' air is not judged: the rule cannot act there.
+Clause (2): HOLDS.
+Planted swiss drifts (``planted``, 0.05 °C / 300 s from the first test row), missed (never
+excluded) main -> rule, of them T_amb: SEEN 4 h 55 -> 39 of 150 (T_amb 3 -> 15; the others 52 ->
+24: main's healthy air out raises the field's band to the alarm one, the rule's air stays in),
+FRESH 4 h 9 -> 9 of 50 (T_amb 0 -> 5, others 9 -> 4), 12 h 10 -> 9 of 50 (T_amb 5 -> 5, others
+5 -> 4).  Fresh total 19 -> 18 of 100, bound 29; non-ambient 14 -> 8.  Clause (3): HOLDS.
+A drifting T_amb: FRESH 4 h flagged (warning / alarm) by main 5 of 5, by the rule 5 of 5 (now
+warned, not excluded); at 12 h the air is unobservable (a mode of its own) and neither flags it
+(5 of 5 never flagged, both).  bench_quiet93b's one-campaign ``lr`` drifts (``drift``
+9426-9430, mlr, 70): mean d 0.6519 -> 0.6519, every cell identical (the lr air is not judged).
+Clause (4): HOLDS.
+VERDICT: KEPT (all four clauses on the fresh seeds).
+Its known price, outside the bar (``leak 0-3``, synthetic, after scoring): the warned air stays
+IN the fit, and where the others lean on it (tests/apps' 10-sensor line, the air rising 0.01
+°C / sample against a machine warm after 120 train samples) its departure leaks onto their
+predictions: seed 0 healthy, main T_amb out at 132 | rule a healthy T_0 out at 159 and a new
+thermal state at 196; seed 2 healthy, a new thermal state at 231 and T_3's planted drift alarmed,
+not excluded (main: out at 244); seed 1 the rule catches T_3 earlier (223 against 240); seed 3
+identical.  On the swiss simulator (air leverage 0.056) it did not show: 0 healthy exclusions
+on 40 records.  Next: the warned air out of the judging fit (predicted by the others, predicting
+none of them), which the C could hold as a per-sensor mask.
+CPU: ``count`` 30 records 10 s; ``planted`` 30 seen records ~100 s, 10 fresh ~60 s; ``drift`` 5
+records ~110 s; ``score`` ~32 s per variant; ``leak`` 3 s.
 """
 
 from __future__ import annotations
