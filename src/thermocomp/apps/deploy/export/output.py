@@ -99,6 +99,9 @@ def not_in_code(deployed, fmt: str | None = None) -> list[str]:
     if not (isinstance(deployed, AdaptiveCompensator) and deployed.monitor is not None):
         return []
     if fmt == "c" and deployed.monitor.adaptive:
+        # (quiet94) the code's drift rule excludes every judged sensor alike
+        warned = [c for c, w in zip(deployed.monitor.names,
+                                    getattr(deployed.monitor, "drift_warn_only", ())) if w]
         return ["sensor monitor rules (the C holds the jump, the freeze, a missing reading, "
                 "a reading beyond its training range, a common step, one sensor out "
                 "reconstructed from the others and its re-admission, a drift exclusion while no "
@@ -118,7 +121,10 @@ def not_in_code(deployed, fmt: str | None = None) -> list[str]:
                 "second sensor out for another rule, a third out, a "
                 "sensor no other predicts out for another rule, or with a fallback model (the "
                 "model fitted without it) of a kind the code does not step beside the model "
-                "(an lstm network of another shape, other inputs)"]
+                "(an lstm network of another shape, other inputs)",
+                *(["a drift of " + ", ".join(warned) + " (an ambient sensor of a one-campaign "
+                   "training: warned, not excluded, by the served monitor; the code excludes "
+                   "it)"] if warned else [])]
     return ["sensor monitor (exclusion, reconstruction of a sensor from the others)"]
 
 

@@ -58,7 +58,7 @@ class Excursion:
         """Whether every judged sensor out of band has an error that is no larger a share of its
         rise than ``EXCURSION_TAU_S`` ago (the memory's error against its rise then), within
         ``EXCURSION_GROWTH``: a regime, not a fault.  False where the memory is not known."""
-        out = np.flatnonzero(self._judged & (level >= WARNING))
+        out = np.flatnonzero(self._judging & (level >= WARNING))
         if not self._slow_ok or not np.isfinite(self._slow_t) or not len(out):
             return False
         slow = self._slow[self._active]

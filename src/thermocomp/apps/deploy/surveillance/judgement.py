@@ -1,5 +1,7 @@
 """The judgement of :class:`~.monitor.SensorMonitor`: drift exclusions by the self-prediction
-errors, and the new thermal state."""
+errors, and the new thermal state.  Its evidence is the errors of the sensors ``_judging``: the
+judged ones but those ``drift_warn_only`` (an ambient trained on one campaign, quiet94), whose
+error is warned but neither blames them, nor vetoes, nor holds another's exclusion."""
 
 from __future__ import annotations
 
@@ -16,12 +18,12 @@ class Judgement:
         """Judgement over the last ``confirm`` samples, worst first, redone after every
         exclusion; ``(level, error)`` of :meth:`_judge` after it."""
         level, err = self._judge()
-        while (self.adaptive and (self._judged & (level >= self._field_level())).any()
+        while (self.adaptive and (self._judging & (level >= self._field_level())).any()
                and self._active.sum() > self.min_active_):
             # a drift exclusion too: none in a new thermal state, and its field may follow it
             u = None if self.new_state and self._novel else self._explaining(level)
             if u is not None:
-                out = np.flatnonzero(self._judged & (level >= self._field_level()))
+                out = np.flatnonzero(self._judging & (level >= self._field_level()))
                 named = ", ".join(f"{self.names[i]} {err[i]:+.2g} °C" for i in out)
                 self._exclude(u, f"drift: its reading explains the others' self-prediction errors "
                                  f"({named} over the last {self.confirm} samples)", time, events,
@@ -37,7 +39,7 @@ class Judgement:
             # for a new source spread over several: its high-leverage sensors near the source
             # pull the fit, and a well-predicted sensor far away then looks worst (measured on a
             # column with more nodes than sensors: the far T_left1 went out first on 3 of 5 runs)
-            z = np.where(self._judged, np.abs(np.nan_to_num(err)) * self._std ** 2, -1)
+            z = np.where(self._judging, np.abs(np.nan_to_num(err)) * self._std ** 2, -1)
             j, resolves = self._lone_fault(int(np.argmax(z)), z, level, err)
             if j < 0 or self._drift_vetoed(j, level, err, time, events, resolves):
                 break
@@ -57,7 +59,7 @@ class Judgement:
             self._set_bands()
             # a sensor out of band that no other can predict once j is out cannot be
             # vouched for (two coupled sensors look alike to self-prediction): out too
-            blind = self._active & ~self._observable & (z >= 0.7 * z[j])
+            blind = self._active & ~self._observable & ~self.drift_warn_only & (z >= 0.7 * z[j])
             for i in np.flatnonzero(blind):
                 if self._active.sum() > self.min_active_:
                     if self._drift_vetoed(i, *self._judge(), time, events):
@@ -87,7 +89,7 @@ class Judgement:
             return False
         if self._novel:
             return True
-        others = self._judged & (level >= WARNING)
+        others = self._judging & (level >= WARNING)
         others[j] = False
         if not (self._resolves(j) if resolves is None else resolves):
             self._declare(f"with {self.names[j]} out the others stay out of band",
@@ -120,8 +122,8 @@ class Judgement:
         excursion hovers (mon87): ``j`` then, which the regime check holds as before."""
         if not self.new_state or self._novel:
             return j, None
-        out = self._judged & (level >= WARNING)
-        size = np.abs(np.where(self._judged, np.nan_to_num(err), 0.0))
+        out = self._judging & (level >= WARNING)
+        size = np.abs(np.where(self._judging, np.nan_to_num(err), 0.0))
         # the likelier single fault: the largest standardised residual |E|·sqrt(1 - h), the
         # likelihood ratio's pick for one faulty sensor (a fault on k gives no other a larger
         # one: Cauchy-Schwarz on the projector I - H).  Asked of every lone fault, not only
@@ -153,7 +155,7 @@ class Judgement:
         # likelier fault at an unseen source's onset, blinded T_left3 within its band)
         for k in np.argsort(-z):
             if (k != j and z[k] >= 0 and level[k] >= WARNING and likelier == k
-                    and self._resolves(int(k), self._judged,
+                    and self._resolves(int(k), self._judging,
                                        alone=float(np.max(np.delete(size, k), initial=0.0)))):
                 return int(k), True
         return (-1, None) if doubted else (j, hides)
@@ -169,7 +171,7 @@ class Judgement:
         if trial.sum() < self.min_active_:
             return True
         M, lev = self._operator(trial)
-        judged = trial & (lev < self.pod.max_leverage)
+        judged = trial & (lev < self.pod.max_leverage) & ~self.drift_warn_only
         if seen is not None and (seen & trial & ~judged).any():
             return False
         rows = self._hist[self._recent[self._pos, :min(self._count, self.confirm)]]
@@ -185,7 +187,7 @@ class Judgement:
         other judged sensors out of band within a window of it) comes back, as a new state;
         the new state ends after a window with every judged sensor within band.
         ``(level, error)`` after it."""
-        leaving = self._judged & (level >= WARNING)
+        leaving = self._judging & (level >= WARNING)
         out = int(leaving.sum())
         for j in np.flatnonzero(self._since >= 0):
             if self._active[j] or self._count - self._since[j] > self.window:
@@ -201,7 +203,7 @@ class Judgement:
                 leaving[j] = True
                 self._declare(f"the field followed {self.names[j]}", leaving, err, time, events)
                 level, err = self._judge()
-                leaving = self._judged & (level >= WARNING)
+                leaving = self._judging & (level >= WARNING)
                 out = int(leaving.sum())
         self._end_when_calm(out, time, events)
         return level, err
@@ -212,12 +214,12 @@ class Judgement:
         a lone fault, out, the others stay out of band), and its end; nothing is excluded
         either way.  Without it, a source training never saw read as several sensors in
         alarm with no word of why."""
-        if not self._novel and (self._judged & (level >= self._field_level())).any():
-            z = np.where(self._judged, np.abs(np.nan_to_num(err)) * self._std ** 2, -1)
+        if not self._novel and (self._judging & (level >= self._field_level())).any():
+            z = np.where(self._judging, np.abs(np.nan_to_num(err)) * self._std ** 2, -1)
             j, resolves = self._lone_fault(int(np.argmax(z)), z, level, err)
             if j >= 0:
                 self._drift_vetoed(j, level, err, time, events, resolves)
-        self._end_when_calm(int((self._judged & (level >= WARNING)).sum()), time, events)
+        self._end_when_calm(int((self._judging & (level >= WARNING)).sum()), time, events)
 
     def _end_when_calm(self, out: int, time, events) -> None:
         """Count the samples with no judged sensor out of band (``out``: how many are); the
@@ -253,7 +255,7 @@ class Judgement:
         by itself, leaks onto them; the culprit rule below, blind to it, then took out a healthy
         sensor (T_bed_right, which only hid T_xdrive's error).  Of several, the best
         single-fault explanation: the largest standardised residual.  ``None`` if none does."""
-        out = self._judged & (level >= self._field_level())
+        out = self._judging & (level >= self._field_level())
         band = self._warn if self._field_level() == WARNING else self._alarm
         rows = self._hist[self._recent[self._pos, :min(self._count, self.confirm)]]
         X = np.where(np.isfinite(rows), rows, 0.0)
@@ -261,14 +263,15 @@ class Judgement:
         # of a fault on it alone; a sensor no other predicts is blamed only as the best of all
         r = (X - X[:, self._active] @ self._M.T).mean(axis=0)
         z = np.where(self._active, np.abs(r) / np.sqrt(np.maximum(1 - self._lev, 1e-12)), -1.0)
-        best, best_z = None, float(np.max(np.where(self._judged, z, -1.0)))
-        for u in np.flatnonzero(self._active & ~self._observable & (z > best_z)):
+        best, best_z = None, float(np.max(np.where(self._judging, z, -1.0)))
+        for u in np.flatnonzero(self._active & ~self._observable & ~self.drift_warn_only
+                                & (z > best_z)):
             trial = self._active.copy()
             trial[u] = False
             if trial.sum() < self.min_active_:
                 continue
             M, lev = self._operator(trial)
-            judged = trial & (lev < self.pod.max_leverage)
+            judged = trial & (lev < self.pod.max_leverage) & ~self.drift_warn_only
             if (out & ~judged).any():
                 continue
             E = (X[:, judged] - X[:, trial] @ M[judged].T) / (1 - lev[judged])
