@@ -497,10 +497,27 @@ def _named(df: pd.DataFrame, opts) -> tuple[pd.DataFrame, dict, list | None]:
     if run is not None:
         blocks = run_blocks(run_values(pa.array(df[RUN], from_pandas=True)), run, SOURCE)
         df[RUN] = _run_ids(blocks, df.index)
-    if CLOCK in df.columns:
-        date, clock = (df[c].astype("string").str.strip() for c in (TIME, CLOCK))
-        df = df.drop(columns=CLOCK).assign(**{TIME: (date + " " + clock).astype(object)})
-    return df, plan.scales, blocks
+    return with_clock_joined(df), plan.scales, blocks
+
+
+def with_clock_joined(df: pd.DataFrame, source: str = SOURCE) -> pd.DataFrame:
+    """``df`` with a date (``time``) and its time of day (:data:`CLOCK`, ``Datum;Uhrzeit``)
+    joined into one time (``'05.03.2027 21:30:00'``), as the file reader joins the pair
+    (``data.roles.time=[date, time of day]``); as it is without a :data:`CLOCK` column.  A
+    time of day without its date column is refused (``source``: the stream or block naming
+    it): read alone it would be another time, the day unknown.  (data94) The served model's
+    block reads the pair so too, as ``stream.c`` does: it was refused, "a date without a time
+    of day"."""
+    if CLOCK not in df.columns:
+        return df
+    if TIME not in df.columns:
+        own = df.attrs.get(HEADERS, {})
+        raise ContractError(f"a time of day ({own.get(CLOCK, 'its column')!r}) without the date "
+                            "column beside it: the model was fitted on the two joined "
+                            f"(data.roles.time=[<date>, <time of day>]); send both", file=source,
+                            column=TIME)
+    date, clock = (df[c].astype("string").str.strip() for c in (TIME, CLOCK))
+    return df.drop(columns=CLOCK).assign(**{TIME: (date + " " + clock).astype(object)})
 
 
 def _unread(df: pd.DataFrame, columns: list[str]) -> str:
