@@ -19,6 +19,7 @@ from __future__ import annotations
 import fnmatch
 import functools
 import re
+from collections import Counter
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -529,8 +530,9 @@ def shortened(headers: Sequence[str], columns: Mapping) -> frozenset:
         return _bare(_safe(text).removeprefix(PREFIX["temperature"])).lower()
 
     short = {h for h in headers if _bare(_safe(split_unit(h)[0])) != _safe(split_unit(h)[0])}
-    keys = [key(split_unit(h)[0]) for h in headers] + [key(str(c)) for c in columns.values()]
-    return frozenset(h for h in short if keys.count(key(split_unit(h)[0])) == 1)
+    keys = Counter([key(split_unit(h)[0]) for h in headers]
+                   + [key(str(c)) for c in columns.values()])
+    return frozenset(h for h in short if keys[key(split_unit(h)[0])] == 1)
 
 
 def _derived(kind: str, base: str, several_ambient: bool, short: bool = False) -> str:
