@@ -129,6 +129,6 @@ def test_a_served_block_reads_a_date_and_its_time_of_day_as_the_file_does(tmp_pa
     assert np.isfinite(served["pair"]["C_dX"]).all()
     np.testing.assert_array_equal(served["pair"]["C_dX"], served["stamped"]["C_dX"])
     # a time of day without its date: refused naming the date, not read as another time
-    with pytest.raises(Exception, match=r"without the date"):
+    with pytest.raises(Exception, match=r"'Uhrzeit'\) without its date column \('Datum'\)"):
         CompensatorModel(copy.deepcopy(deployed)).predict(
             None, pair.drop(columns="Datum").iloc[:10], {"reset": True})
