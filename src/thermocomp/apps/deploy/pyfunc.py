@@ -195,9 +195,7 @@ class CompensatorModel(mlflow.pyfunc.PythonModel):
             frame = words_decoded(pd.DataFrame(model_input), getattr(self.streaming, "bits_", {}))
             frame = to_contract(frame, names)
             # (data94) a date and its time of day (Datum;Uhrzeit) as one time, as the file's
-            frame = with_clock_joined(frame, "the request",
-                                      {c: raw_names(names, c)[0] for c in (TIME, CLOCK)
-                                       if raw_names(names, c)})
+            frame = with_clock_joined(frame)
             # data.missing_values' marks (-9999 however written) missing, as the reader's (lab74)
             frame = marks.in_frame(frame, getattr(self.streaming, "missing_values_", ()), TIME)
             # a reference measurement's derived targets (data.derive), as a file's are computed

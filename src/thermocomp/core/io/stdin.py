@@ -500,24 +500,15 @@ def _named(df: pd.DataFrame, opts) -> tuple[pd.DataFrame, dict, list | None]:
     return with_clock_joined(df), plan.scales, blocks
 
 
-def with_clock_joined(df: pd.DataFrame, source: str = SOURCE,
-                      headers: Mapping | None = None) -> pd.DataFrame:
+def with_clock_joined(df: pd.DataFrame) -> pd.DataFrame:
     """``df`` with a date (``time``) and its time of day (:data:`CLOCK`, ``Datum;Uhrzeit``)
     joined into one time (``'05.03.2027 21:30:00'``), as the file reader joins the pair
-    (``data.roles.time=[date, time of day]``); as it is without a :data:`CLOCK` column.  A
-    time of day without its date column is refused (``source``: the stream or block naming
-    it; ``headers``: contract name -> the lab's header, for the message, else ``df``'s own):
-    read alone it would be another time, the day unknown.  (data94) The served model's block
-    reads the pair so too, as ``stream.c`` does: it was refused, "a date without a time of
-    day"."""
-    if CLOCK not in df.columns:
+    (``data.roles.time=[date, time of day]``); as it is without the two (a time of day without
+    its date column is left to the time's own rule: a model that reads no time serves such a
+    block, as before).  (data94) The served model's block reads the pair so too, as
+    ``stream.c`` does: it was refused, "a date without a time of day"."""
+    if CLOCK not in df.columns or TIME not in df.columns:
         return df
-    if TIME not in df.columns:
-        own = headers or df.attrs.get(HEADERS, {})
-        raise ContractError(f"a time of day ({own.get(CLOCK, CLOCK.strip())!r}) without its date "
-                            f"column ({own.get(TIME, 'the date')!r}) beside it: the model was "
-                            "fitted on the two joined, data.roles.time=[<date>, <time of day>]; "
-                            "send both", file=source, column=TIME)
     date, clock = (df[c].astype("string").str.strip() for c in (TIME, CLOCK))
     return df.drop(columns=CLOCK).assign(**{TIME: (date + " " + clock).astype(object)})
 
