@@ -92,7 +92,7 @@ def test_an_hour_past_24_among_decimal_hours_is_refused_at_its_row(tmp_path, cap
     (tmp_path / "bad.csv").write_bytes("\r\n".join(text).encode("utf-8"))
     assert main(["init", str(tmp_path / "bad.csv"), f"out={tmp_path / 'init'}"]) == 2
     said = capsys.readouterr().err
-    assert "bad.csv" in said and "data row 20" in said and "no second of a day" in said
+    assert "bad.csv" in said and "data row 20" in said and "25.25 h is no hour of a day" in said
 
 
 def test_seconds_of_the_day_under_such_a_header_read_as_before(tmp_path):

@@ -79,7 +79,7 @@ OPTIONS = {"roles": {"error": ["Tracker*"]}, "encoding": "cp1252", "test_fractio
 def test_channels_on_two_clocks_are_read_on_the_union_of_their_times(tmp_path, absolute):
     ds, _ = read_dataset(folder(tmp_path / "runs", absolute), OPTIONS)
     frame = ds.campaigns["Scope_2"]
-    assert list(frame.columns) == ["time", "T_Temp_Bett", "T_Temp_Ständer", "E_Tracker_dX",
+    assert list(frame.columns) == ["time", "T_Bett", "T_Ständer", "E_Tracker_dX",
                                    "S_Spindel_an"]
     fast = np.arange(ROWS) * PERIOD
     slow = np.arange(0, ROWS * PERIOD, EVERY * PERIOD) + OFFSET
@@ -89,7 +89,7 @@ def test_channels_on_two_clocks_are_read_on_the_union_of_their_times(tmp_path, a
     np.testing.assert_allclose(frame["time"][measured], slow, atol=1e-6)
     np.testing.assert_allclose(frame["E_Tracker_dX"][measured], truth(slow)[2], atol=1e-3)
     # a temperature at the tracker's times: interpolated in time over its one-row gap
-    np.testing.assert_allclose(frame["T_Temp_Bett"], truth(frame["time"].to_numpy())[0],
+    np.testing.assert_allclose(frame["T_Bett"], truth(frame["time"].to_numpy())[0],
                                atol=2e-3)
     # the BOOL's True / False: 1 / 0, a state
     on = frame.loc[np.isin(frame["time"], fast), "S_Spindel_an"].to_numpy()
@@ -164,14 +164,14 @@ def test_rows_writes_each_campaign_a_block_with_the_errors_on_request(tmp_path, 
     blocks = capsys.readouterr().out.split("\n\n")
     assert len(blocks) == 3
     header = blocks[0].splitlines()[0]
-    assert header == "time,T_Temp_Bett,T_Temp_Ständer,E_Tracker_dX,S_Spindel_an"
+    assert header == "time,T_Bett,T_Ständer,E_Tracker_dX,S_Spindel_an"
     for cid, block in zip(["Scope_1", "Scope_2", "Scope_3"], blocks):
         got = pd.read_csv(io.StringIO(block if block.startswith("time") else f"{header}\n{block}"))
         pd.testing.assert_frame_equal(got, ds.campaigns[cid][got.columns].reset_index(drop=True),
                                       check_exact=True, check_dtype=False)
     assert main(["rows", str(runs), *given, "rows.campaigns=[Scope_2]"]) == 0
     only = capsys.readouterr().out
-    assert "\n\n" not in only and only.splitlines()[0] == "time,T_Temp_Bett,T_Temp_Ständer,S_Spindel_an"
+    assert "\n\n" not in only and only.splitlines()[0] == "time,T_Bett,T_Ständer,S_Spindel_an"
     assert len(only.splitlines()) == len(ds.campaigns["Scope_2"]) + 1
     refused(["rows", str(runs), *given, "rows.campaigns=[Scope_4]"], capsys,
             "rows.campaigns names 'Scope_4', no campaign of data.path (it has 'Scope_1', "

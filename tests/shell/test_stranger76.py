@@ -72,7 +72,7 @@ def test_a_folder_of_scope_exports_reads_each_channel_at_its_own_time(tmp_path):
     # StartTime's FILETIME ticks are UTC: the run started 05:00 UTC
     assert ds.manifest["start"].iloc[1] == pd.Timestamp("2027-02-15 05:00", tz="UTC")
     frame = ds.campaigns["Scope_Portal_2"]
-    assert list(frame.columns) == ["time", "T_Temp_Luft", "T_Temp_Ständer", "T_Temp_Spindel",
+    assert list(frame.columns) == ["time", "T_Luft", "T_Ständer", "T_Spindel",
                                    "E_Tracker_dX", "E_Tracker_dZ"]
     np.testing.assert_array_equal(frame["time"], np.arange(ROWS) * 10.0)
     want = linear_run(7671, 2)
@@ -156,7 +156,7 @@ def test_the_compiled_stream_refuses_a_scope_export_naming_the_command_that_conv
     capsys.readouterr()
     assert main(["rows", str(folder / "Scope_Portal_3.csv"), *config]) == 0
     rows = capsys.readouterr().out
-    assert rows.splitlines()[0] == "time,T_Temp_Luft,T_Temp_Ständer,T_Temp_Spindel"
+    assert rows.splitlines()[0] == "time,T_Luft,T_Ständer,T_Spindel"
     streamed = subprocess.run([str(tmp_path / "code" / "stream")], capture_output=True,
                               input=rows.encode(), check=True).stdout
     got = pd.read_csv(io.BytesIO(streamed))

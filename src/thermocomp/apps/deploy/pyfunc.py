@@ -94,7 +94,8 @@ from ...core.io import marks
 from ...core.io.bits import STATE, words_decoded
 from ...core.io.derived import on_frame
 from ...core.io.slashed import stream_format
-from ...core.io.stdin import since, stream_stamps
+from ...core.io.stdin import since, stream_stamps, with_clock_joined
+from ...core.io.timestamps import CLOCK
 from .adaptive import AdaptiveCompensator
 from .naming import correction_column, raw_names, to_contract
 from .streaming import EndState, StreamingCompensator
@@ -193,6 +194,8 @@ class CompensatorModel(mlflow.pyfunc.PythonModel):
             # a PLC's status word under its header: its declared bits, as the reader's (bits85)
             frame = words_decoded(pd.DataFrame(model_input), getattr(self.streaming, "bits_", {}))
             frame = to_contract(frame, names)
+            # (data94) a date and its time of day (Datum;Uhrzeit) as one time, as the file's
+            frame = with_clock_joined(frame)
             # data.missing_values' marks (-9999 however written) missing, as the reader's (lab74)
             frame = marks.in_frame(frame, getattr(self.streaming, "missing_values_", ()), TIME)
             # a reference measurement's derived targets (data.derive), as a file's are computed
@@ -319,6 +322,9 @@ def signature(streaming: StreamingCompensator | AdaptiveCompensator) -> ModelSig
     inputs = Schema([ColSpec(_kind(c), c, required=r) for c, r in required.items()]
                     + [ColSpec(_kind(c), raw, required=False) for c in required
                        for raw in raw_names(names, c)]
+                    # (data94) the time of day beside the date (Datum;Uhrzeit), joined to it:
+                    # outside the schema MLflow drops it, and the date alone is refused
+                    + [ColSpec(AnyType(), raw, required=False) for raw in raw_names(names, CLOCK)]
                     # a status word, which the model decodes into the bits it reads (bits85)
                     + [ColSpec("double", word, required=False) for word in bits
                        if word not in required])

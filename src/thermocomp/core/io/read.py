@@ -107,7 +107,7 @@ from .options import ROLE_ORDER, RUN_ROLE, ReadOptions
 from .own_headers import with_own_header
 from .plain import as_read, is_lab_file, lab_dayfirst
 from .record import check_record_file, cut, hold_out, record_id, shares
-from .roles import RUN, split_unit
+from .roles import RUN, split_unit, time_unit
 from .runs import (
     looks_like_run_counter,
     pause_blocks,
@@ -814,7 +814,7 @@ def _numbers(column) -> np.ndarray | None:
 
 
 def _continuing(columns: dict, renamed: dict, path: Path,
-                kind: str = "auto") -> tuple[np.ndarray | None, bool]:
+                opts: ReadOptions) -> tuple[np.ndarray | None, bool]:
     """The record's time as numbers where its pauses are found: seconds of the day past
     midnight as a continuing time (the reader's rule, :func:`.timestamps.seconds_of_day`; lead90:
     the raw values split a record at its forward pauses only, a run after a pause across
@@ -824,7 +824,8 @@ def _continuing(columns: dict, renamed: dict, path: Path,
     if seconds is None:
         return None, False
     header = next((raw for raw, name in renamed.items() if name == TIME), None)
-    of_day = seconds_of_day(seconds, path, header, pauses_said=False, kind=kind)
+    of_day = seconds_of_day(seconds, path, header, pauses_said=False, kind=opts.time,
+                            unit=time_unit(header, opts))
     return (seconds, False) if of_day is None else (of_day, True)
 
 
@@ -836,7 +837,7 @@ def _run_parts(path: Path, opts: ReadOptions) -> tuple[pd.DataFrame, dict]:
     with as_read(path, opts) as (source, source_opts):
         columns, renamed, rescaled, lines = _loaded(source, source_opts)
         if opts.runs_at_pauses:
-            header, (times, of_day) = None, _continuing(columns, renamed, path, opts.time)
+            header, (times, of_day) = None, _continuing(columns, renamed, path, opts)
             blocks = pause_blocks(times, record_id(path), path)
         else:
             header, of_day = next(raw for raw, name in renamed.items() if name == RUN), False

@@ -19,6 +19,7 @@ from __future__ import annotations
 import fnmatch
 import functools
 import re
+from collections import Counter
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -267,6 +268,7 @@ def naming(headers: Sequence[str], roles: Mapping, columns: Mapping, first: Mapp
                                  + [None, None])[:2]
     ambient = [h for h in headers if h not in columns and matching_roles(h, roles) == ["ambient"]]
     bookkeeping = logger_columns(headers)
+    short = shortened(headers, columns)
     run = _run_header(headers, roles, columns, problems)
     for header in headers:
         base, unit = split_unit(header)
@@ -340,7 +342,7 @@ def naming(headers: Sequence[str], roles: Mapping, columns: Mapping, first: Mapp
                 continue
         if unit is None and kind in ("temperature", "ambient"):
             base, unit = _letter_unit(header, first.get(header), decimal) or (base, unit)
-        name = _derived(kind, base, len(ambient) > 1)
+        name = _derived(kind, base, len(ambient) > 1, header in short)
         tilt = kind == "error" and _angle(unit)
         if tilt and not angular(name):
             if role(base) == "E":      # the lab's own contract name: renamed, it would not be
@@ -497,10 +499,48 @@ def date_and_time_of_day(headers: Sequence[str], first: Mapping) -> list[str]:
 
 
 _AMB = re.compile(r"^(T_)?amb(ient)?_", re.I)
+# (data94) a temperature's word a lab writes before the sensor's name, in the languages labs
+# write (``Temp. headstock``, ``Temperatur Spindel``, ``Temperatura husillo``, ``Température
+# broche``, ``Temperatuur spil``): the ``T_`` prefix says it already (``T_Temp._headstock``
+# read as ``T_headstock``); never ``temps`` / ``tempo``, which are a time's words
+_TEMPERATURE_LEAD = re.compile(
+    r"^(?:temp|temperature|temperatur|temperatura|température|temperatuur)[_.\-]+(?=[^\W_])",
+    re.I)
 
 
-def _derived(kind: str, base: str, several_ambient: bool) -> str:
-    name = _UNSAFE.sub("_", base).strip("_").replace("..", ".")
+def _safe(base: str) -> str:
+    """``base`` as a contract name's part: no character but word ones, ``.`` and ``-``."""
+    return _UNSAFE.sub("_", base).strip("_").replace("..", ".")
+
+
+def _bare(name: str) -> str:
+    """``name`` (:func:`_safe`) without a temperature's leading word (:data:`_TEMPERATURE_LEAD`),
+    or as it is where nothing but the word, or an ambient's name, would be left."""
+    rest = _TEMPERATURE_LEAD.sub("", name)
+    return name if not rest or _AMB.match(f"{rest}_") else rest
+
+
+def shortened(headers: Sequence[str], columns: Mapping) -> frozenset:
+    """(data94) The headers whose temperature word is left out of the name derived from them
+    (:func:`_bare`): those it shortens whose short name no other header's, nor a
+    ``data.columns`` name, reads as (``Temp. headstock`` beside ``headstock``, or beside
+    ``T_headstock``, keeps ``T_Temp._headstock``, as before: the names stay unique without a
+    refusal main did not make)."""
+    def key(text: str) -> str:
+        return _bare(_safe(text).removeprefix(PREFIX["temperature"])).lower()
+
+    short = {h for h in headers if _bare(_safe(split_unit(h)[0])) != _safe(split_unit(h)[0])}
+    keys = Counter([key(split_unit(h)[0]) for h in headers]
+                   + [key(str(c)) for c in columns.values()])
+    return frozenset(h for h in short if keys[key(split_unit(h)[0])] == 1)
+
+
+def _derived(kind: str, base: str, several_ambient: bool, short: bool = False) -> str:
+    """The contract name of a header's ``base`` read as ``kind`` (``short``: its temperature
+    word left out, :func:`shortened`)."""
+    name = _safe(base)
+    if short and kind in ("temperature", "ambient"):
+        name = _bare(name)
     if kind == "ambient":
         # 'amb left' is T_amb_left, not T_amb_amb_left: the header's own 'amb' is the prefix
         return f"T_amb_{_AMB.sub('', name) or name}" if several_ambient else "T_amb"

@@ -497,10 +497,20 @@ def _named(df: pd.DataFrame, opts) -> tuple[pd.DataFrame, dict, list | None]:
     if run is not None:
         blocks = run_blocks(run_values(pa.array(df[RUN], from_pandas=True)), run, SOURCE)
         df[RUN] = _run_ids(blocks, df.index)
-    if CLOCK in df.columns:
-        date, clock = (df[c].astype("string").str.strip() for c in (TIME, CLOCK))
-        df = df.drop(columns=CLOCK).assign(**{TIME: (date + " " + clock).astype(object)})
-    return df, plan.scales, blocks
+    return with_clock_joined(df), plan.scales, blocks
+
+
+def with_clock_joined(df: pd.DataFrame) -> pd.DataFrame:
+    """``df`` with a date (``time``) and its time of day (:data:`CLOCK`, ``Datum;Uhrzeit``)
+    joined into one time (``'05.03.2027 21:30:00'``), as the file reader joins the pair
+    (``data.roles.time=[date, time of day]``); as it is without the two (a time of day without
+    its date column is left to the time's own rule: a model that reads no time serves such a
+    block, as before).  (data94) The served model's block reads the pair so too, as
+    ``stream.c`` does: it was refused, "a date without a time of day"."""
+    if CLOCK not in df.columns or TIME not in df.columns:
+        return df
+    date, clock = (df[c].astype("string").str.strip() for c in (TIME, CLOCK))
+    return df.drop(columns=CLOCK).assign(**{TIME: (date + " " + clock).astype(object)})
 
 
 def _unread(df: pd.DataFrame, columns: list[str]) -> str:

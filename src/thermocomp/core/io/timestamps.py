@@ -23,6 +23,7 @@ from ...base.log import logger
 from ..timerule import median_step
 from .contract import TIME, ContractError
 from .dayfirst import ORDER
+from .units import UNITS
 
 # a first cell that is a date and a time of day (the time column when no header says so)
 _STAMP = re.compile(r"\s*\d{1,4}[-./]\d{1,2}[-./]\d{2,4}[T ]\d\d?:\d\d")
@@ -244,7 +245,8 @@ def row_gaps(seconds: np.ndarray) -> np.ndarray:
 
 
 def seconds_of_day(seconds: np.ndarray, path: Path, header: str | None = None,
-                   pauses_said: bool = True, kind: str = "auto") -> np.ndarray | None:
+                   pauses_said: bool = True, kind: str = "auto",
+                   unit: str | None = None) -> np.ndarray | None:
     """(extension, data89b) A numeric time column of seconds since midnight, a logger's
     ``Seconds of day`` (77400 ... 86100, then 0, 300 ...), as a continuing time by the time of
     day's rule (:func:`past_midnight`: a day added at each step back by more than half a day):
@@ -255,13 +257,14 @@ def seconds_of_day(seconds: np.ndarray, path: Path, header: str | None = None,
     (data91) ``kind``, ``data.time``: ``of_day`` says it whatever the header (``t``, ``time``)
     and the steps (a logger paused over midnight: its step over it longer than any other): the
     values read so, those that never pass midnight as they are; a value outside a day refused
-    with its row."""
+    with its row; (data94) ``unit``: the unit the column was written in (``data.units``' or its
+    header's, :func:`.roles.time_unit`), the refused value named in it, as the lab wrote it
+    (``25.25 h``, not the 90900 s it was converted to)."""
     finite = seconds[np.isfinite(seconds)]
     said = kind == OF_DAY_KIND
     if said and finite.size and (finite.min() < 0 or finite.max() >= DAY_S):
         row = int(np.argmax((seconds < 0) | (seconds >= DAY_S)))
-        raise ContractError(f"value {seconds[row]:g} s is no second of a day, [0, 86400) "
-                            f"(data.time={OF_DAY_KIND}: seconds since midnight)", file=path,
+        raise ContractError(no_time_of_day(seconds[row], unit, header), file=path,
                             column=TIME, row=row + 1)
     if not finite.size or finite.min() < 0 or finite.max() >= DAY_S:
         return None
@@ -273,6 +276,25 @@ def seconds_of_day(seconds: np.ndarray, path: Path, header: str | None = None,
     if unwrapped is None:      # (data91: said by data.time, a record within one day is one)
         return seconds if kind == OF_DAY_KIND else None
     return unwrapped.to_numpy(zero_copy_only=False)
+
+
+# (data94) the word a unit of time says a time of day in, its refusal naming the value in it
+_OF_DAY_WORDS = {1.0: "second", 60.0: "minute", 3600.0: "hour"}
+
+
+def no_time_of_day(seconds: float, unit: str | None, header: str | None) -> str:
+    """What a refusal of ``seconds`` (read under ``data.time=of_day``) says, the value named as
+    the lab wrote it, in ``unit`` (the column's, ``data.units``' or its header's: ``25.25 h``,
+    not the 90900 s it was converted to; seconds where None or no time's unit), 12
+    significant digits (the conversion's last bit is no digit the lab wrote)."""
+    scale = UNITS["time"].get((unit or "s").lower().replace(" ", ""), (1.0, 0.0))[0]
+    if scale == 1.0:
+        return (f"value {seconds:g} s is no second of a day, [0, 86400) (data.time={OF_DAY_KIND}: "
+                "seconds since midnight)")
+    word = _OF_DAY_WORDS.get(scale, "time")
+    return (f"value {seconds / scale:.12g} {unit} is no {word} of a day, [0, "
+            f"{DAY_S / scale:.12g}) {unit} (data.time={OF_DAY_KIND}, data.units="
+            f"{{{header!r}: {unit}}}: the time since midnight in {unit}; read as {seconds:g} s)")
 
 
 def names_seconds_of_day(header: str | None) -> bool:

@@ -117,7 +117,7 @@ def _seconds(column: pa.ChunkedArray, path: Path, zone: str | None = None,
     seconds = pc.cast(column, pa.float64()).to_numpy()
     if written in ("auto", OF_DAY_KIND) and hours_of_day(seconds, header, unit):
         refuse_hours(seconds, path, header)      # (data93) a lab's decimal hours, no unit
-    if (of_day := seconds_of_day(seconds, path, header, kind=written)) is not None:
+    if (of_day := seconds_of_day(seconds, path, header, kind=written, unit=unit)) is not None:
         return of_day, {"time": OF_DAY}
     return seconds, {"time": "seconds"}
 
