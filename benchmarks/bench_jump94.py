@@ -1,0 +1,293 @@
+"""A blind sensor's jump the monitor reads as heat: fl_thermal's ``T_t16`` (jump94, issue 34).
+
+VERDICT: (filled in at the end)
+
+Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is that tree's)::
+
+    python benchmarks/bench_jump94.py limits                    # T_t16's limits and statistics
+    python benchmarks/bench_jump94.py fl ROOT RULE              # fl_thermal planted / healthy
+    python benchmarks/bench_jump94.py trace ROOT RECORDS RULE   # bench_step93's trace, RULE on
+    python benchmarks/bench_jump94.py healthy ROOT RECORDS RULE # bench_step93's healthy, RULE on
+    python benchmarks/bench_jump94.py steps MAIN_ROOT RULE_ROOT # bench_step93b's clause (a)
+    python benchmarks/bench_jump94.py events MAIN_ROOT RULE_ROOT  # bench_step93b's clause (c)
+
+``RULE``: ``main`` (the tree's monitor as it is) or ``settled`` (the prototype below, patched onto
+the tree's ``SensorMonitor`` in this process only; ``fl`` runs ``thermocomp monitor`` in a child
+process that patches it the same way).
+
+``limits``: for each sensor no other predicts on fl_thermal (the monitor as ``thermocomp run
+data=fl_thermal model=mlr`` deploys it: train = the first 90 %), the jump limit (``jump_factor``
+x its largest training step), step93b's bend limit (x its largest change of step), and the
+candidate statistic below, on the train and the healthy test part.
+
+``fl``: ``thermocomp run data=fl_thermal model=mlr`` once (ROOT/run), then ``thermocomp monitor``
+on the healthy record and on copies with ``T_t16`` stepped by each of :data:`SIZES` degC from
+each of :data:`ONSETS` samples (15 s) into the test part to its end (the test part continues
+the train part: warmed on it).  Per cell: the events naming ``T_t16`` at or after the onset (delay
+in samples, first word of the reason), Σ² = sum over ch1..ch5 of the adaptive RMSE² (µm²), and
+d = mean over targets of |log(RMSE_planted / RMSE_healthy)| (the healthy record as the truth:
+bench_bar91b's distance) -> ``ROOT/fl-RULE.json``.
+
+``trace`` / ``healthy`` / ``steps`` / ``events``: bench_step93's / bench_step93b's commands on
+simulated records (``RECORDS``: ``swiss9317,lr9426,...``, their doc), with RULE patched in or not.
+
+Prototype ``settled`` (no src): a sensor no other predicts (``~_predictable``), in, whose last
+``window`` samples (monitor.window, 10) lie wholly above -- or wholly below -- the ``window``
+samples before them by more than ``jump_factor`` (3) x the largest such separation in its
+training campaigns: separation = min(after) - max(before) (or min(before) - max(after)), on the
+referenced readings.  It is re-referenced by the difference of the two windows' medians and kept
+in (as step93b's BENT: nobody predicts it, held out it would be read at its last value); the
+window's readings are shifted with it, so the next windows compare like with like.  Why this
+statistic (read on fl_thermal's train part only, ``limits``): ``T_t16`` is a noisy sensor whose
+healthy record holds bursts of 2-3 degC that come back within a few samples (its largest training
+step 2.88 degC, the jump limit 8.63 degC; its largest change of step 4.46, BENT's limit 13.4
+degC): a +3 degC step is, at its sample, smaller than the sensor's own healthy transients.  What
+tells it apart is that it stays: two successive windows never separate in training by more than
+0.12 degC (a burst lifts the max of one window, not the min of the next), a held step of 1 degC
+separates them by about 1 degC less the noise.  A heating ramp separates successive windows by
+about its rise over a window: the limit scales with the sensor's own fastest training warming.
+The delay is a window (the step read as heat for 10 samples); nothing is fitted to a planted cell.
+
+Measured
+---
+(filled in below as measured)
+"""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+
+HERE = Path(__file__).resolve().parent
+sys.path[:0] = [str(HERE)]
+from _cli import run_commands  # noqa: E402
+
+REPO = HERE.parent
+RECORD = REPO / "datasets" / "fl_thermal" / "spindle_test.csv"
+SENSOR = "t16(°C)"                      # T_t16: no other fl_thermal sensor predicts it
+SIZES = (1.0, 2.0, 3.0, 5.0, -3.0)      # degC (the brief's)
+ONSETS = (240, 556, 900)                # samples into the 1112-sample test part: 1 h, middle, 3/4
+
+
+# -- the prototype rule, patched onto the monitor of this process only -------------------------
+def separation(a: np.ndarray, w: int) -> np.ndarray:
+    """Per sample t >= 2w-1 and column: how far the window ``a[t-w+1..t]`` lies wholly above or
+    below the window before it (min of one less max of the other; negative where they overlap)."""
+    from numpy.lib.stride_tricks import sliding_window_view
+    win = sliding_window_view(np.asarray(a, float), w, axis=0)      # (n - w + 1, cols, w)
+    lo, hi = win.min(-1), win.max(-1)
+    return np.maximum(lo[w:] - hi[:-w], lo[:-w] - hi[w:])
+
+
+def _settled_limits(mon, arrays) -> np.ndarray:
+    """``jump_factor`` x each blind sensor's largest training separation; inf where the others
+    predict it or no campaign holds two windows."""
+    worst = np.full(len(mon.names), -np.inf)
+    for a in arrays:
+        if len(a) >= 2 * mon.window:
+            worst = np.maximum(worst, separation(a, mon.window).max(0))
+    ok = ~mon._predictable & np.isfinite(worst)
+    return np.where(ok, mon.jump_factor * np.maximum(worst, 0.0), np.inf)
+
+
+def patch_settled() -> None:
+    """``SensorMonitor`` patched (this process): ``from_training`` sets ``_sep_lim``, ``reset``
+    clears the buffer, ``update`` checks the rule before main's sample; ``update_block`` returns
+    no row, so every sample goes through ``update`` (main's fast path is the same arithmetic)."""
+    from thermocomp.apps.deploy.surveillance.monitor import SensorMonitor
+    if getattr(SensorMonitor, "_jump94", False):
+        return
+    fit, reset, update = SensorMonitor.from_training.__func__, SensorMonitor.reset, SensorMonitor.update
+
+    def from_training(cls, pod, names, campaigns, learned_bands=False, **options):
+        mon = fit(cls, pod, names, campaigns, learned_bands, **options)
+        mon._sep_lim = _settled_limits(mon, [np.asarray(a, float) for a in campaigns.values()])
+        mon.reset()
+        return mon
+
+    def patched_reset(self):
+        reset(self)
+        self._sep_buf = []                  # the last 2w - 1 referenced readings (rows)
+
+    def patched_update(self, reading, time=float("nan")):
+        lim = getattr(self, "_sep_lim", None)
+        if lim is None:
+            return update(self, reading, time)
+        x = np.asarray(reading, float)
+        w, said = self.window, []
+        buf = self._sep_buf
+        if self._ref is not None and len(buf) == 2 * w - 1:
+            with np.errstate(invalid="ignore"):
+                d = x - self._ref
+                rows = np.vstack(buf + [d])
+                before, after = rows[:w], rows[w:]
+                sep = np.maximum(after.min(0) - before.max(0), before.min(0) - after.max(0))
+                fire = self._active & np.isfinite(sep) & (sep > lim) & (self._gap == 1)
+            for j in np.flatnonzero(fire):
+                off = float(np.median(after[:, j]) - np.median(before[:, j]))
+                self._ref[j] += off
+                self._prev[j] -= off
+                self._hist[:, j] -= off
+                self._last_good[j] -= off
+                for r in buf[w:]:
+                    r[j] -= off
+                said.append({"time": float(time), "sensor": self.names[j], "from": "ok",
+                             "to": "re-referenced", "reason": f"settled off its own: its last {w} "
+                             f"samples {off:+.3g} °C off the {w} before (no other sensor predicts "
+                             f"it; limit {lim[j]:.3g} °C); re-referenced"})
+        clean, events = update(self, reading, time)
+        if self._ref is not None:
+            buf.append(np.asarray(x - self._ref, float).copy())
+            del buf[:-(2 * w - 1)]
+        if said:
+            self._quiet = False
+            return clean, said + events
+        return clean, events
+
+    SensorMonitor.from_training = classmethod(from_training)
+    SensorMonitor.reset = patched_reset
+    SensorMonitor.update = patched_update
+    SensorMonitor.update_block = lambda self, X, times=None: np.empty((0, len(self.names)))
+    SensorMonitor._jump94 = True
+
+
+def _rule(rule: str) -> None:
+    if rule == "settled":
+        patch_settled()
+    elif rule != "main":
+        raise SystemExit(f"RULE must be main or settled, got {rule!r}")
+
+
+# -- fl_thermal ----------------------------------------------------------------------------
+def _thermocomp(rule: str, *args: str) -> None:
+    subprocess.run([sys.executable, str(Path(__file__).resolve()), "_tc", rule, *args,
+                    "plots=none", "track=false"], check=True, capture_output=True, cwd=REPO)
+
+
+def _tc(rule: str, *args: str) -> int:
+    """(child) ``thermocomp ARGS`` with RULE patched in."""
+    _rule(rule)
+    from thermocomp.shell.cli import main as cli
+    return cli(["-q", *args])
+
+
+def _fit(root: Path) -> tuple[Path, int]:
+    run = root / "run"
+    if not (run / "model.pkl").exists():
+        _thermocomp("main", "run", "data=fl_thermal", "model=mlr", f"out={run}",
+                    "eval.mutual_prediction=false")
+    first = json.loads((run / "ingest_report.json").read_text()
+                       )["campaigns"]["spindle_test_test"]["record_rows"][0]
+    return run / "model.pkl", first
+
+
+def limits() -> None:
+    """T_t16's (and the other blind sensors') limits, train | test (module doc)."""
+    import pandas as pd
+    df = pd.read_csv(RECORD)
+    n_train = 10003             # data=fl_thermal's train part (test_fraction 0.1: 1112 test rows)
+    for name in ("t4(°C)", "t5(°C)", "t16(°C)", "t1(°C)"):
+        x = df[name].to_numpy(float)
+        parts = {"train": x[:n_train], "test": x[n_train:]}
+        row = {}
+        for part, a in parts.items():
+            row[part] = (np.abs(np.diff(a)).max(), np.quantile(np.abs(np.diff(a)), 0.5),
+                         np.abs(np.diff(a, 2)).max(), separation(a[:, None], 10).max())
+        tr, te = row["train"], row["test"]
+        print(f"{name:<9} |dx| max {tr[0]:.3f} | {te[0]:.3f} (jump limit {3 * tr[0]:.3f}), median "
+              f"{tr[1]:.4f} | {te[1]:.4f}; |d2x| max {tr[2]:.3f} | {te[2]:.3f} (BENT limit "
+              f"{3 * tr[2]:.3f}); separation(10) max {tr[3]:.3f} | {te[3]:.3f} (limit {3 * tr[3]:.3f})")
+
+
+def _summary(report: dict, onset_s: float, period: float, truth: dict | None) -> dict:
+    mine = [e for e in report["events"] if e.get("sensor") == "T_t16" and e["time"] >= onset_s]
+    rmse = {t: v["rmse_adaptive"] for t, v in report["targets"].items()}
+    return {"events": [(round((e["time"] - onset_s) / period), e["to"], e["reason"].split(":")[0])
+                       for e in mine],
+            "all_events": len(report["events"]),
+            "sigma2": float(sum(r * r for r in rmse.values())),
+            "sigma2_fixed": float(sum(v["rmse_fixed"] ** 2 for v in report["targets"].values())),
+            "d": None if truth is None else float(np.mean([abs(np.log(rmse[t] / truth[t]))
+                                                           for t in rmse]))}
+
+
+def fl(root: str, rule: str) -> None:
+    """fl_thermal: the healthy record and T_t16 stepped (module doc) -> ROOT/fl-RULE.json."""
+    import pandas as pd
+    _rule("main")          # the child patches; validated here
+    folder = Path(root)
+    folder.mkdir(parents=True, exist_ok=True)
+    model, first = _fit(folder)
+    df = pd.read_csv(RECORD)
+    t = df.iloc[:, 0].to_numpy(float)
+    period = float(np.median(np.diff(t)))
+
+    def monitored(path: Path, tag: str) -> dict:
+        out = folder / f"mon-{rule}-{tag}"
+        _thermocomp(rule, "monitor", "data=fl_thermal", f"data.path={path}", f"out={out}",
+                    f"monitor.model={model}")
+        return json.loads((out / "monitor.json").read_text())
+
+    healthy_report = monitored(RECORD, "healthy")
+    truth = {k: v["rmse_adaptive"] for k, v in healthy_report["targets"].items()}
+    out = {"healthy": {**_summary(healthy_report, t[first] - t[first], period, None),
+                       "sensor_events": [(e["time"], e.get("sensor"), e["to"], e["reason"][:60])
+                                         for e in healthy_report["events"] if e.get("sensor")]}}
+    print(f"healthy ({rule}): {out['healthy']['all_events']} events, sensor events "
+          f"{out['healthy']['sensor_events'][:4]}; Σ² {out['healthy']['sigma2']:.2f} µm²", flush=True)
+    for onset in ONSETS:
+        for size in SIZES:
+            frame = df.copy()
+            frame.loc[first + onset:, SENSOR] += size
+            path = folder / "planted" / f"{size:+g}-{onset}" / RECORD.name
+            path.parent.mkdir(parents=True, exist_ok=True)
+            frame.to_csv(path, index=False)
+            cell = _summary(monitored(path, f"{size:+g}-{onset}"), t[first + onset] - t[first],
+                            period, truth)
+            out[f"{size:+g}@{onset}"] = cell
+            print(f"{size:+g} degC @ {onset:>3}: T_t16 events {cell['events'][:3] or '-'}; Σ² "
+                  f"{cell['sigma2']:.2f} (fixed {cell['sigma2_fixed']:.2f}) µm², d x 100 "
+                  f"{100 * cell['d']:.2f}", flush=True)
+    (folder / f"fl-{rule}.json").write_text(json.dumps(out, indent=1))
+
+
+# -- simulated records: bench_step93 / bench_step93b with RULE ----------------------------------
+def trace(root: str, labels: str, rule: str) -> None:
+    """bench_step93's ``trace`` with RULE in -> ``ROOT/trace-main.json``."""
+    import bench_step93 as step93
+    _rule(rule)
+    step93.trace(root, labels, "main")
+
+
+def healthy(root: str, labels: str, rule: str) -> None:
+    """bench_step93's ``healthy`` with RULE in -> ``ROOT/healthy-main.json``."""
+    import bench_step93 as step93
+    _rule(rule)
+    step93.healthy(root, labels, "main")
+
+
+def steps(main_root: str, rule_root: str) -> None:
+    """bench_step93b's clause (a): the planted steps, main against the rule."""
+    import bench_step93b as step93b
+    step93b.steps(main_root, rule_root)
+
+
+def events(main_root: str, rule_root: str) -> None:
+    """bench_step93b's clause (c): the true records' sensor events and d, main against the rule."""
+    import bench_step93b as step93b
+    step93b.events(main_root, rule_root)
+
+
+def main(argv: list[str]) -> int:
+    if argv[:1] == ["_tc"]:
+        return _tc(argv[1], *argv[2:])
+    return run_commands(__doc__, {"limits": limits, "fl": fl, "trace": trace, "healthy": healthy,
+                                  "steps": steps, "events": events}, argv, cpu=sys.stderr)
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
