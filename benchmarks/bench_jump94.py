@@ -6,6 +6,7 @@ Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is
 
     python benchmarks/bench_jump94.py limits                    # T_t16's limits and statistics
     python benchmarks/bench_jump94.py fl ROOT RULE              # fl_thermal planted / healthy
+    python benchmarks/bench_jump94.py flbar ROOT                # clause (c): main against settled
     python benchmarks/bench_jump94.py trace ROOT RECORDS RULE   # bench_step93's trace, RULE on
     python benchmarks/bench_jump94.py healthy ROOT RECORDS RULE # bench_step93's healthy, RULE on
     python benchmarks/bench_jump94.py steps MAIN_ROOT RULE_ROOT # bench_step93b's clause (a)
@@ -26,7 +27,7 @@ each of :data:`ONSETS` samples (15 s) into the test part to its end (the test pa
 the train part: warmed on it).  Per cell: the events naming ``T_t16`` at or after the onset (delay
 in samples, first word of the reason), Σ² = sum over ch1..ch5 of the adaptive RMSE² (µm²), and
 d = mean over targets of |log(RMSE_planted / RMSE_healthy)| (the healthy record as the truth:
-bench_bar91b's distance) -> ``ROOT/fl-RULE.json``.
+bench_bar91b's distance) -> ``ROOT/fl-RULE.json``.  ``flbar``: the two files side by side, clause (c).
 
 ``trace`` / ``healthy`` / ``steps`` / ``events``: bench_step93's / bench_step93b's commands on
 simulated records (``RECORDS``: ``swiss9317,lr9426,...``, their doc), with RULE patched in or not.
@@ -281,6 +282,26 @@ def fl(root: str, rule: str) -> None:
     (folder / f"fl-{rule}.json").write_text(json.dumps(out, indent=1))
 
 
+def flbar(root: str) -> None:
+    """Clause (c): ``ROOT/fl-main.json`` against ``ROOT/fl-settled.json``, cell by cell."""
+    a, b = (json.loads((Path(root) / f"fl-{r}.json").read_text()) for r in ("main", "settled"))
+    quiet = not b["healthy"]["sensor_events"] and abs(b["healthy"]["sigma2"] - a["healthy"]["sigma2"]) < 0.01
+    cells = [k for k in a if k != "healthy"]
+    caught = {k: any(e[1] != "ok" for e in b[k]["events"]) for k in cells}
+    far = [k for k in cells if b[k]["d"] > a[k]["d"] + np.log(1.02)]
+    big_missed = [k for k in cells if abs(float(k.split("@")[0])) >= 2 and not caught[k]]
+    for k in cells:
+        print(f"{k:>8}: Σ² {a[k]['sigma2']:7.2f} -> {b[k]['sigma2']:7.2f} µm², d x 100 "
+              f"{100 * a[k]['d']:6.2f} -> {100 * b[k]['d']:6.2f}; T_t16 events main "
+              f"{a[k]['events'][:1] or '-'}, settled {b[k]['events'][:2] or '-'}")
+    da, db = (np.mean([x[k]["d"] for k in cells]) for x in (a, b))
+    print(f"healthy Σ² {a['healthy']['sigma2']:.2f} -> {b['healthy']['sigma2']:.2f}, sensor events "
+          f"{len(b['healthy']['sensor_events'])}; mean d x 100 {100 * da:.2f} -> {100 * db:.2f}; "
+          f"|size| >= 2 missed {big_missed}; past main's d + log(1.02) {far}")
+    ok = quiet and not far and not big_missed and db < da
+    print(f"(c) {'MET' if ok else 'FAILS'}")
+
+
 # -- simulated records: bench_step93 / bench_step93b with RULE ----------------------------------
 def trace(root: str, labels: str, rule: str) -> None:
     """bench_step93's ``trace`` with RULE in -> ``ROOT/trace-main.json``."""
@@ -311,8 +332,8 @@ def events(main_root: str, rule_root: str) -> None:
 def main(argv: list[str]) -> int:
     if argv[:1] == ["_tc"]:
         return _tc(argv[1], *argv[2:])
-    return run_commands(__doc__, {"limits": limits, "fl": fl, "trace": trace, "healthy": healthy,
-                                  "steps": steps, "events": events}, argv, cpu=sys.stderr)
+    return run_commands(__doc__, {"limits": limits, "fl": fl, "flbar": flbar, "trace": trace,
+                                  "healthy": healthy, "steps": steps, "events": events}, argv, cpu=sys.stderr)
 
 
 if __name__ == "__main__":
