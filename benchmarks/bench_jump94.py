@@ -70,9 +70,56 @@ The prototype passes only if:
 KEPT only with src (served + numpy mirror + C), tests failing on main and docs/monitoring.md;
 a prototype passing the bar without them is TRACED (passes as a prototype).
 
-Measured
+Measured (2026-12-05, the tree at 4f0fc94a; seen first, under a load of ~15 on 2 cores)
 ---
-(filled in below as measured)
+``limits`` (degC, train | healthy test part; fl_thermal's three sensors no other predicts, and
+T_t1 for scale):
+
+    sensor  |dx| max (jump limit)   |dx| median    |d2x| max (BENT limit)   separation(10) (limit)
+    T_t16   2.878 | 2.549 (8.634)   0.092 | 0.117  4.456 | 4.263 (13.37)    0.121 | 0.066 (0.362)
+    T_t4    0.500 | 0.150 (1.501)   0.029 | 0.021  0.458 | 0.103 (1.373)    0.344 | 0.150 (1.032)
+    T_t5    0.235 | 0.315 (0.705)   0.020 | 0.032  0.299 | 0.534 (0.896)    0.187 | 0.163 (0.560)
+    T_t1    0.079 | 0.069 (0.238)   0.012 | 0.011  0.087 | 0.073 (0.260)    0.079 | 0.069 (0.238)
+
+The trace: T_t16 reads bursts of 1.3-2.9 degC lasting 3-8 samples (rows 4636, 5230, 5835, 5005,
+5631 of the train part: 26.9 -> 29.7 -> 28.2 -> 27.7 -> ... -> 26.9), its steps anticorrelated
+lag to lag (-0.33).  Its largest training step, 2.88 degC, is a burst's, so the jump limit is
+8.63 degC; its largest change of step, 4.46 degC, a burst's rise and fall, so step93b's BENT limit
+is 13.37 degC: neither rule can see a step under 8.6 degC; the sensor's own noise (median step
+0.09 degC) is 30 x below the limit its bursts set.  The band does not judge it (no other predicts
+it: leverage at the POD's limit).  A -3 degC step is taken out at once by main's drift rule (its
+reading explains T_t9's and T_t14's self-prediction errors, -0.77 / -0.44 degC: T_t16 enters
+their prediction though none enters its), held at its last value, re-admitted 528 / 212 samples
+later with the offset and out again 49 samples on; a + step moves those errors the other way,
+inside their bands: never judged.
+
+``fl ROOT main`` / ``fl ROOT settled`` / ``flbar`` (T_t16 stepped at 240 / 556 / 900 samples
+into the 1112-sample test part; Σ² µm², healthy 83.90; d x 100 against the healthy record):
+
+    cell        main: Σ²  d x 100  T_t16 event      settled: Σ²  d x 100  T_t16 event
+    +1 @ 240    48.95     42.47    -                88.69         2.85    re-referenced +9
+    +2 @ 240    62.18     46.05    -                88.88         2.67    re-referenced +9
+    +3 @ 240   123.35     28.94    -                89.58         3.07    re-referenced +9
+    +5 @ 240   261.13     51.98    -                92.26         4.72    re-referenced +9
+    -3 @ 240   206.19     43.35    drift out +1     89.33         3.35    out +1, re-ref +9, in +11
+    +1 @ 556    60.47     21.11    -                60.47        21.11    - (missed)
+    +2 @ 556    67.70     24.68    -                86.69         1.60    re-referenced +9
+    +3 @ 556   105.35     16.22    -                87.14         1.96    re-referenced +9
+    +5 @ 556   171.16     35.96    -                89.36         3.39    re-referenced +9
+    -3 @ 556   210.33     44.19    drift out +1     87.41         1.86    out +1, re-ref +9, in +11
+    +1 @ 900    80.41      3.62    -                82.80         0.67    re-referenced +9
+    +2 @ 900    88.61      4.09    -                82.90         0.61    re-referenced +9
+    +3 @ 900   108.24     12.58    -                83.49         0.52    re-referenced +9
+    +5 @ 900   123.03     19.11    -                84.25         0.56    re-referenced +9
+    -3 @ 900   164.89     32.87    -                87.39         1.99    re-referenced +9
+
+Healthy: 0 events under both, Σ² 83.90 = 83.90.  Mean d x 100 28.48 -> 3.39; 14 of 15 cells
+caught 9 samples (2.25 min) after the step (main: 0 caught as a fault; the two -3 degC drift
+exclusions kept the offset); the +1 degC at 556 is missed (the test part warms there: the
+window before is not wholly below).  Main's Σ² below the healthy 83.90 at +1 / +2 degC (48.95,
+62.18) is the model's own error offset by the fault: d, not Σ², is the distance.  (c) MET.
+The first version (``fl-settled-v1``, in sensors only) left the -3 degC cells as main (out by
+the drift rule at +1, never judged): why an out sensor is judged too (before any fresh seed).
 """
 
 from __future__ import annotations
