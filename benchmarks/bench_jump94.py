@@ -181,6 +181,7 @@ def patch_settled() -> None:
     def patched_reset(self):
         reset(self)
         self._sep_buf = []                  # the last 2w - 1 referenced readings (rows)
+        self._sep_age = np.zeros(len(self.names), dtype=np.int64)   # rows since its ref moved
 
     def patched_update(self, reading, time=float("nan")):
         lim = getattr(self, "_sep_lim", None)
@@ -198,7 +199,7 @@ def patch_settled() -> None:
                 # in, or out for another reason than a jump (main undoes a blind sensor's
                 # jumps on its return to its reference before them: ``_ref0``)
                 fire = ((self._active | (self._jumps == 0)) & np.isfinite(sep) & (sep > lim)
-                        & (self._gap == 1))
+                        & (self._gap == 1) & (self._sep_age >= 2 * w - 1))
             for j in np.flatnonzero(fire):
                 off = float(np.median(after[:, j]) - np.median(before[:, j]))
                 self._ref[j] += off
@@ -213,8 +214,13 @@ def patch_settled() -> None:
                              "to": "re-referenced", "reason": f"settled off its own: its last {w} "
                              f"samples {off:+.3g} °C off the {w} before (no other sensor predicts "
                              f"it; limit {lim[j]:.3g} °C); re-referenced"})
+        ref = None if self._ref is None else self._ref.copy()
         clean, events = update(self, reading, time)
         if self._ref is not None:
+            # rows read on another reference (main's jump, its undo on a return, BENT, a
+            # common step) are not compared with the rows after: the rule waits 2w - 1 rows
+            moved = ~np.isclose(self._ref, ref, rtol=0.0, atol=1e-12) if ref is not None else True
+            self._sep_age = np.where(moved, 1, self._sep_age + 1)
             buf.append(np.asarray(x - self._ref, float).copy())
             del buf[:-(2 * w - 1)]
         if said:
