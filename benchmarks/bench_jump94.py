@@ -41,7 +41,11 @@ referenced readings.  It is re-referenced by the difference of the two windows' 
 in (as step93b's BENT: nobody predicts it, held out it would be read at its last value); an out
 sensor is re-referenced the same (its held value, from before the step, untouched), so it can be
 re-admitted without the offset (seen -3 degC cells: the drift rule takes ``T_t16`` out at once,
-its offset stays on its return, 528 samples later); the
+its offset stays on its return, 528 samples later); judged only on rows read on the sensor's
+current reference (none moved it for 2 x window - 1 samples: main's jump, its undo on a return,
+BENT, a common step): main's own noise-burst test (tests/shell/test_monitor.py, +-0.5 degC for 10
+samples on yearround's ``T_amb``) failed without it, the undo of the burst's jumps on the return
+(-1.74 .. -2.28 degC) read as a settled step on 3 of 8 campaigns and ``T_amb`` left out; the
 window's readings are shifted with it, so the next windows compare like with like.  Why this
 statistic (read on fl_thermal's train part only, ``limits``): ``T_t16`` is a noisy sensor whose
 healthy record holds bursts of 2-3 degC that come back within a few samples (its largest training
@@ -120,6 +124,14 @@ window before is not wholly below).  Main's Σ² below the healthy 83.90 at +1 /
 62.18) is the model's own error offset by the fault: d, not Σ², is the distance.  (c) MET.
 The first version (``fl-settled-v1``, in sensors only) left the -3 degC cells as main (out by
 the drift rule at +1, never judged): why an out sensor is judged too (before any fresh seed).
+The rule as now (judging only rows on the current reference) gives the same 16 fl lines (rerun).
+
+Seen simulated (the rule as now): ``healthy`` on bench_step93b's 15 seen records (swiss9317 /
+9323, yr9318 / 9324, column9316, lr9426-9430, cr9431-9435) against main's: events and d as main's
+on every one (column9316's 188, lr9430's 3, d x 100 41.965): ``events`` 0 new, (d) healthy MET.
+Main's suites with the prototype patched in (a pytest plugin importing this bench and calling
+``patch_settled``): tests/shell/test_monitor.py 39 passed, 2 xfailed (the first version failed
+its noise-burst case, above); tests/apps/test_monitor_bent_step93.py 6 passed.
 """
 
 from __future__ import annotations
