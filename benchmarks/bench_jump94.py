@@ -132,6 +132,10 @@ on every one (column9316's 188, lr9430's 3, d x 100 41.965): ``events`` 0 new, (
 Main's suites with the prototype patched in (a pytest plugin importing this bench and calling
 ``patch_settled``): tests/shell/test_monitor.py 39 passed, 2 xfailed (the first version failed
 its noise-burst case, above); tests/apps/test_monitor_bent_step93.py 6 passed.
+``trace swiss9317,swiss9323,lr9426,cr9431`` (200 cells) against main's: mean d 0.1426 -> 0.1407,
+detected 60 -> 61, 0 cells past main's d + log(1.02); one cell moved: lr9426 ``T_table`` 2 x
+(0.36 degC, no other predicts it) d x 100 54.86 -> 16.46, caught: (d) MET.  (Main's mean 0.1426
+here = step93b's rule's: main at 4f0fc94a holds BENT.)
 """
 
 from __future__ import annotations
