@@ -1,6 +1,12 @@
 """A blind sensor's jump the monitor reads as heat: fl_thermal's ``T_t16`` (jump94, issue 34).
 
-VERDICT: (filled in at the end)
+TRACED, passes its bar as a prototype (not built: no src, no tests; the build -- served, numpy
+mirror, C -- did not fit the 75 minutes).  T_t16's jump limit (8.63 degC) and BENT's (13.37 degC)
+are set by its own healthy bursts (2.9 degC steps that come back within 3-8 samples): a +3 degC
+step is under both, and nothing else judges a sensor no other predicts.  ``settled`` (a blind
+sensor's last window wholly off the window before, past 3 x its training largest) catches 14 of
+15 planted steps on fl_thermal (mean d x 100 28.48 -> 3.39, the +3 degC at 1 h Σ² 123.35 ->
+89.58 µm², healthy 83.90 = 83.90) and met the bar written before fresh 9661-9665 were drawn.
 
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is that tree's)::
 
@@ -136,6 +142,24 @@ its noise-burst case, above); tests/apps/test_monitor_bent_step93.py 6 passed.
 detected 60 -> 61, 0 cells past main's d + log(1.02); one cell moved: lr9426 ``T_table`` 2 x
 (0.36 degC, no other predicts it) d x 100 54.86 -> 16.46, caught: (d) MET.  (Main's mean 0.1426
 here = step93b's rule's: main at 4f0fc94a holds BENT.)
+
+Fresh, scored once (lr9661-9663, cr9664-9665, drawn after the bar was committed in 3169980b; the
+rule then changed once more before they were drawn, for main's noise-burst test, above):
+(a) ``steps``: 264 cells, mean d 0.1154 -> 0.1088, detected 74 -> 79, 0 cells past main's d +
+    log(1.02): MET.  Five cells moved, all lr ``T_table`` (no other predicts it) at 2 x / 2.9 x
+    its training step: lr9661 2 x 100.20 -> 12.05; lr9662 10.77 / 8.18 -> 8.22 / 8.12; lr9663
+    70.97 / 41.53 -> 14.55 / 14.07 (d x 100); all five caught (main: none).
+(b) ``events``: the 5 true records 0 events under both, d 0 on both: MET.
+(c), (d) above (seen): MET.  Bench_bar91b's rows not run (the bar says why).
+CPU (under load ~11-15 on 2 cores): fresh trace main 64.2 s, prototype 181.0 s (the patch sends
+every sample through ``update``, no fast path: a prototype's cost, not the rule's); healthy 9.0 /
+12.8 s; fl 16 monitor runs ~3 s each.
+
+Left: the build (served ``InstantFaults`` with a 2 x window ring of a blind sensor's referenced
+readings in the state, the numpy mirror and the C: ``TC_MON_SETTLED``, min / max / median over
+``window``), its tests (fl_thermal's +3 degC T_t16 at 1 h: caught, Σ² within 2 % of the healthy
+83.90 x (1 + ...)); the +1 degC at mid-test (warming there) missed; a step caught a window late
+(the model reads it for 10 samples: the +3 degC cells keep 87-90 against 83.90 µm²).
 """
 
 from __future__ import annotations
