@@ -157,9 +157,10 @@ every sample through ``update``, no fast path: a prototype's cost, not the rule'
 
 Left: the build (served ``InstantFaults`` with a 2 x window ring of a blind sensor's referenced
 readings in the state, the numpy mirror and the C: ``TC_MON_SETTLED``, min / max / median over
-``window``), its tests (fl_thermal's +3 degC T_t16 at 1 h: caught, Σ² within 2 % of the healthy
-83.90 x (1 + ...)); the +1 degC at mid-test (warming there) missed; a step caught a window late
-(the model reads it for 10 samples: the +3 degC cells keep 87-90 against 83.90 µm²).
+``window``), its tests (fl_thermal's +3 degC T_t16 at 1 h: main reads it as heat, Σ² 123.35; the
+rule re-references it 9 samples on, Σ² 89.58; the healthy record quiet), the C = served on it.
+Missed: the +1 degC at mid-test (the sensor warms there, the windows overlap).  Cost kept: a step
+is read for a window before it is caught (the +-3 / +5 degC cells keep 87-92 against 83.90 µm²).
 """
 
 from __future__ import annotations
