@@ -81,7 +81,45 @@ The fresh draw is scored as the brief asks, with this bar, unchanged.
 
 MEASURED
 --------
-(filled after the fresh draw)
+FRESH 9676-9680, scored ONCE (``cache /tmp/env94b/fresh 9676-9680`` on main d9fdbce8's src after
+the bar was committed in 57508308, then ``score``; nothing changed after; CPU 337 s for the draw's
+15 cells and the 330 streams, under a load of ~13 on the 2 shared cores, 24 min wall)::
+
+  record   model    Σ² off  rule            record   model    Σ² off  rule
+  cms9676  arx        1023   376 (0.367)    cms9678  mlr         892   478 (0.536)
+  cms9676  lagbank     820   810 (0.988)    cms9679  arx         717   347 (0.484)
+  cms9676  mlr         762   310 (0.407)    cms9679  lagbank    1059  1005 (0.949)
+  cms9677  arx        1028   662 (0.644)    cms9679  mlr         736   339 (0.461)
+  cms9677  lagbank    1262  1152 (0.912)    cms9680  arx        1047   594 (0.568)
+  cms9677  mlr         852   348 (0.408)    cms9680  lagbank    1177  1053 (0.894)
+  cms9678  arx         728   368 (0.505)    cms9680  mlr        1226   773 (0.630)
+  cms9678  lagbank    1119  1084 (0.969)
+
+  (a) clean: G 0.612, 0 cells > 10 % worse, 11 better: MET.
+  (b) added Σ² pooled per kind, off -> rule: spike 1397 -> 1887 (1.351x), jump 1455 -> 1945
+      (1.337x), drift 18 252 -> 18 571 (1.018x, met), range 1397 -> 1887 (1.351x), dropout
+      1384 -> 1879 (1.358x): NOT MET (4 of 5 kinds).
+
+VERDICT: REFUSED by the restated bar, as the seen records foretold.  What (b) charges is E_X's clean
+gain lost while the monitor has the faulty sensor out, not a fault made worse than off: of the
+spike's added 1887, E_X's is 606 against off's 129 (E_Y 1183 = 1183, the others within 7), all
+after the fault's onset (per family mlr 267 -> 474, arx 788 -> 982, lagbank 342 -> 431); the rule
+equals ``on`` for these four kinds, whose fault records stay below off's (bench_env94's ``rules``
+on this root: 0 of 120 cases > 1.02 x off, worst 0.992).  Beside the bar, NOT a verdict: by
+env94's clause (b) (no case Σ²(rule) > 1.02 x Σ²(off)) this draw has 0 of 150 (worst 1.006; ``on``
+22 of 30 drift cases, up to 1.580): no lag bank cell here loses clean under the key (0.894-0.988),
+so env94's failure came from its cell (cms9592 lagbank, 1.058); switching bars after seeing this
+is not done here.  (1): the lag bank's clean loss is E_Z / E_Z_mid's (fresh too: E_Z_mid worse in
+4 of 5, E_Z in 3), white at lags 5 / 20 as on the seen ones (|autocorr| <= 0.11), Ljung-Box(72)
+rejecting E_X (p 2.8e-4 .. 2.3e-6) with them: no whiteness test added.  The rule (stream, numpy /
+C / ST export) and its tests, unchanged from env94 (src identical 4f0fc94a .. d9fdbce8; the patch
+applies to d9fdbce8 as is): benchmarks/env94b_rule.patch.  src is main's; ``per_target`` stays
+opt-in.
+Left: a bar that does not charge a fault with the gain the key loses while a sensor is out (the
+brief's "added" form does); E_X's loss after the exclusion (the adaptive compensator's sub-model
+without T_right3 / T_left3, with the key on) not traced; the lag bank's E_Z / E_Z_mid clean loss
+has no general cure found (clamping the base's targets by name is not general); the count's blind
+spot (a drift starting while other inputs are still out) not measured.
 """
 
 from __future__ import annotations
