@@ -105,7 +105,7 @@ gain lost while the monitor has the faulty sensor out, not a fault made worse th
 spike's added 1887, E_X's is 606 against off's 129 (E_Y 1183 = 1183, the others within 7), all
 after the fault's onset (per family mlr 267 -> 474, arx 788 -> 982, lagbank 342 -> 431); the rule
 equals ``on`` for these four kinds, whose fault records stay below off's (bench_env94's ``rules``
-on this root: 0 of 120 cases > 1.02 x off, worst 0.992).  Beside the bar, NOT a verdict: by
+on this root: 0 of 120 cases > 1.02 x off, worst 0.991).  Beside the bar, NOT a verdict: by
 env94's clause (b) (no case Σ²(rule) > 1.02 x Σ²(off)) this draw has 0 of 150 (worst 1.006; ``on``
 22 of 30 drift cases, up to 1.580): no lag bank cell here loses clean under the key (0.894-0.988),
 so env94's failure came from its cell (cms9592 lagbank, 1.058); switching bars after seeing this
