@@ -31,7 +31,7 @@ is clamped as every target is.  Composed row by row from the ``off`` / ``on`` ro
 (1) THE LAG BANK'S CLEAN LOSS, TRACED on SEEN records (env93b's 3141 / 5003 and env94's fresh
 9589-9593, spent by env94 and so seen here: said plainly) before the bar was written
 ---------------------------------------------------------------------------------------------
-``trace /tmp/env94b/fresh`` (env94's rows of 9589-9593) and ``/tmp/env94b/seen``::
+``trace /tmp/env94b/fresh_spent`` (env94's rows of 9589-9593) and ``/tmp/env94b/seen``::
 
   cell             E_X off -> on   E_Z off -> on   E_Z_mid off -> on   E_X_mid   Σ² off -> on
   cms9592-lagbank    521 -> 357       22 -> 178         48 -> 131        6 -> 10   1389 -> 1470
