@@ -1,0 +1,190 @@
+"""Three or more sensors jumping in one sample in the exported C's monitor (cmon94, issue 34):
+what the served monitor does with them, and what the code could hold of it (a trace).
+
+Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is that tree's)::
+
+    python benchmarks/bench_cmon94.py trace ROOT RECORD CELLS [SIZES]
+    python benchmarks/bench_cmon94.py fresh ROOT [RECORD ...]
+
+``trace``: bench_cmon92's cells, lead-in, fault row and cases (``SIZES`` default ``3``: its
+triples, every triple of sensors with a fallback and 40 drawn with seed 92; ``1,2,3`` adds every
+single sensor and pair), spiked or frozen at once, the served model and the numpy mirror of the
+exported C (bench_cmon92's :class:`Stepped`: the export as the tree on ``PYTHONPATH`` makes it)
+stepped side by side.  Per (cell, size, kind) the cases: ``same`` (C = served on every row, the
+pack's tolerance), ``flagged`` (they part and ``NOT_IN_CODE`` was flagged at or before the first
+parting row), ``silent`` (they part, nothing flagged before), ``common`` (the cases whose first
+``NOT_IN_CODE`` flag is ``COMMON``, several sensors jumping in one sample), ``over2`` (of those,
+the cases where the served monitor has three or more sensors out right after that sample) and
+``outs`` (the most sensors the served monitor had out at once in any case).  ``common - over2`` is
+the most a rule for k jumpers within the code's two places out (``mon_out``, ``mon_out2``) could
+hold.  Every silent case is printed.
+
+``fresh``: the same on the fresh seeds of :data:`FRESH` (9654-9658, given for this brief, never
+drawn before: bench_cmon93's generators lr / dl / cr / lr / dl, each simulated once under
+``ROOT/data``, ``run`` of mlr, arx, lagbank, arx_rf once, bench_cmon92's ``made``), sizes 1-3,
+then the sums per (record, size, kind) over the cells and over all.
+
+The k-jump rule the brief asks for is measured as a tree: ``benchmarks/cmon94_rule.patch`` (the
+mirror's two conditions ``== 2`` -> ``>= 2``: every sample with two or more jumpers, no common
+step, read as cmon93's pair; the C not changed, since the pack holds the C to the mirror) applied
+to a copy of ``src``, the same commands run with ``PYTHONPATH`` on that copy (KJUMP) and on this
+tree (MAIN, 4f0fc94a), the counts compared per row.
+
+The trace (by reading; before any number).  The served monitor reads k >= 2 jumpers in one sample
+(after the common step, ``_common_step``, and the bend, ``_bent``) as one rule for every k: where
+no jumper is in, each is first tried as a spike's return (``_spike_back``, only then); every
+jumper left is re-referenced by its step less its change as the active sensors that did not jump
+predict it (``_unjumped_change``: one operator on that set), and every jumper in is excluded, in
+index order (``_instant``'s dict, then ``_exclude``, which has no bound on how many are out).  So
+the pair rule generalised, yes; and every jumper ends the sample out.  The C holds two sensors
+out (``mon_out``, ``mon_out2``; fixed-size state, no allocation): with k >= 3 jumpers at least one
+is in before the sample (two at most are out), so none returns as a spike, and after it k >= 3 are
+out, one more than the code can hold.  A k-jump rule bounded by the code's two places therefore
+holds no sample of three or more jumpers: its bound is k = 2, cmon93's rule.  What would hold
+them is a third (k-th) place out, a rule on every path that reads ``mon_out`` / ``mon_out2``
+(re-admission, the second's operator, fallbacks, thaw, judgement), not a change of the jump rule.
+
+The bar (written before any fresh seed was drawn; seeds 9654-9658 never run before)::
+
+    On fresh 9654-9658 (``fresh``, cells mlr / arx / lagbank / arx_rf, sizes 1-3, spike and
+    freeze), MAIN and KJUMP on the same models:
+    1. silent = 0 in every (record, cell, size, kind) row for both, and the healthy rows before
+       the faults C = served (the bench asserts it).
+    2. The number stated before scoring: KJUMP's triple cases flagged = MAIN's, in every row (the
+       reading above: the k-jump rule within two places holds none; MAIN's summed triple flags
+       are what both show), and over2 = common in every row for MAIN (no triple flagged COMMON
+       leaves the served monitor with two or fewer out).
+    3. No kind's flag count rises and single sensors and pairs unchanged: KJUMP = MAIN in
+       every size-1 and size-2 row (same, flagged, silent).
+    If 1-3 hold: TRACED, no src change (the k-jump rule holds nothing; the patch kept to show it);
+    the next rule is a third place out, worth at most the ``common`` cases.  If KJUMP holds
+    triples MAIN flags with 1 and 3 holding: TRACED too with the cases named (no time left for
+    the C, its tests and a second fresh draw by the deadline), the rule named as the next.
+    A silent case: TRACED with the case named.
+"""
+
+from __future__ import annotations
+
+import copy
+import sys
+from pathlib import Path
+
+import numpy as np
+
+HERE = Path(__file__).resolve().parent
+sys.path[:0] = [str(HERE)]
+from _cli import run_commands  # noqa: E402
+from bench_cmon91 import deployed_cell  # noqa: E402
+from bench_cmon92 import CELLS, Stepped, made, planted, triples  # noqa: E402
+from bench_cmon93 import FRESH as CMON93_FRESH  # noqa: E402
+
+# bench_cmon93's generators (lr / dl / cr / lr / dl) on the seeds given for this brief
+FRESH = {f"{record[:2]}{seed}": [f"seed={seed}" if w.startswith("seed=") else w for w in words]
+         for (record, words), seed in zip(CMON93_FRESH.items(), range(9654, 9659))}
+COUNTS = ("same", "flagged", "silent", "common", "over2", "outs")
+
+
+def _case(run: Stepped, part) -> tuple:
+    """``(first parting row, |C - served| there)`` or None, and ``(row, rule, served out count
+    there)`` of the first ``NOT_IN_CODE`` flag or None, and the most sensors served had out."""
+    from thermocomp.apps.deploy.export.pack import beyond
+    from thermocomp.apps.deploy.export.watch import NOT_IN_CODE
+
+    parted = flag = None
+    most = 0
+    for i, (c, want, flags, missed, _, outs, _) in enumerate(run.rows(part)):
+        most = max(most, outs)
+        if flag is None and flags & NOT_IN_CODE:
+            flag = (i, missed, outs)
+        if parted is None and beyond(c, want).any():
+            parted = (i, float(np.max(np.abs(c - want))))
+    return parted, flag, most
+
+
+def trace_cell(root: Path, record: str, cell: str, sizes: list[int], out: list) -> None:
+    """One cell's table rows (module doc) appended to ``out``; silent cases printed."""
+    import itertools
+
+    from thermocomp.apps.deploy.export import state_space
+    from thermocomp.apps.deploy.export.pack import beyond, fed
+    from thermocomp.apps.deploy.export.watch import COMMON
+    from thermocomp.apps.deploy.report import plain
+    from thermocomp.shell.stages.export import lead_ins
+
+    deployed, ds, _, test_ids = deployed_cell(root, record, root / "reports" / record / cell / "model.pkl")
+    ss = state_space(deployed, monitor=True)
+    names = list(deployed.monitor.names)
+    cid = test_ids[0]
+    frame = fed(ds.campaigns[cid], lead_ins(plain(deployed).compensator, ds, [cid]).get(cid))
+    lead = len(frame) - len(ds.campaigns[cid])
+    start = lead + (len(frame) - lead) // 4
+    base = Stepped(deployed, ss)
+    for c, want, *_ in base.rows(frame.iloc[:start]):
+        assert not beyond(c, want).any(), f"{cell}: C and served part before the faults"
+    sets = {1: [(s,) for s in names], 2: list(itertools.combinations(names, 2)),
+            3: triples(names, list(deployed.fallbacks_))}
+    print(f"{cell}: {len(names)} monitored, min_active {ss.monitor['min_active']}; faults from "
+          f"test row {start - lead + 1} of {cid}", flush=True)
+    for size in sizes:
+        for kind in ("spike", "freeze"):
+            tally = dict.fromkeys(COUNTS, 0)
+            for sensors in sets[size]:
+                parted, flag, most = _case(copy.deepcopy(base), planted(frame, start, sensors, kind))
+                tally["outs"] = max(tally["outs"], most)
+                if parted is None:
+                    tally["same"] += 1
+                elif flag is not None and flag[0] <= parted[0]:
+                    tally["flagged"] += 1
+                else:
+                    tally["silent"] += 1
+                    print(f"  SILENT {cell} {kind} {'+'.join(sensors)}: parts at fault row "
+                          f"{parted[0] + 1} by {parted[1]:.3g} µm, first flag {flag}", flush=True)
+                if flag is not None and flag[1] == COMMON:
+                    tally["common"] += 1
+                    tally["over2"] += flag[2] >= 3
+            out.append((record, cell, size, kind, len(sets[size]), tally))
+            print(f"{cell:<14}{size:>3}{kind:>8}{len(sets[size]):>6}"
+                  + "".join(f"{tally[k]:>8}" for k in COUNTS), flush=True)
+
+
+HEAD = f"{'cell':<14}{'n':>3}{'kind':>8}{'cases':>6}" + "".join(f"{k:>8}" for k in COUNTS)
+
+
+def trace(root: str, record: str, cells: str, sizes: str = "3") -> list:
+    """The ``trace`` table (module doc)."""
+    out: list = []
+    print(HEAD, flush=True)
+    for cell in cells.split(","):
+        trace_cell(Path(root).resolve(), record, cell, [int(s) for s in sizes.split(",")], out)
+    return out
+
+
+def fresh(root: str, *chosen: str) -> None:
+    """The ``fresh`` tables and their sums (module doc)."""
+    root = Path(root).resolve()
+    rows: list = []
+    for record in [r for r in FRESH if r in chosen] or list(FRESH):
+        for family in CELLS:
+            made(root, record, family, FRESH)
+        print(f"== {record}", flush=True)
+        rows += trace(str(root), record, ",".join(f"{f}-none" for f in CELLS), "1,2,3")
+    summed: dict = {}
+    for record, _, size, kind, cases, tally in rows:
+        s = summed.setdefault((record, size, kind), dict.fromkeys(("cases", *COUNTS), 0))
+        s["cases"] += cases
+        for k, v in tally.items():
+            s[k] = max(s[k], v) if k == "outs" else s[k] + v
+    print("\nsummed over the cells (record, size, kind): " + " ".join(("cases", *COUNTS)))
+    for (record, size, kind), s in summed.items():
+        print(f"{record:<8}{size:>3}{kind:>8}" + "".join(f"{s[k]:>8}" for k in ("cases", *COUNTS)),
+              flush=True)
+    print("all: " + ", ".join(f"{k} {sum(s[k] for s in summed.values())}"
+                              for k in ("cases", *COUNTS[:-1])))
+
+
+def main(argv: list[str]) -> int:
+    return run_commands(__doc__, {"trace": trace, "fresh": fresh}, argv, cpu=sys.stderr)
+
+
+if __name__ == "__main__":
+    raise SystemExit(main(sys.argv[1:]))
