@@ -61,6 +61,14 @@ The bar (written before any fresh seed was drawn; seeds 9654-9658 never run befo
     triples MAIN flags with 1 and 3 holding: TRACED too with the cases named (no time left for
     the C, its tests and a second fresh draw by the deadline), the rule named as the next.
     A silent case: TRACED with the case named.
+
+Changed after the bar was committed (9be1cf8b), before any KJUMP number on a fresh seed was seen
+(MAIN's first cell, lr9654 mlr, had printed): KJUMP is traced on the fresh records for triples
+alone (``trace ROOT RECORD CELLS 3`` per record), beside MAIN's whole ``fresh``, so that both end
+by the deadline (one cell took ~3 min under a load of 10); bar 3 (KJUMP = MAIN for one and two
+sensors) is then by reading only: where fewer than three sensors jump the patch's code is main's
+(``big.sum() == 2`` gives ``left.sum() <= 2``).  The fresh records were simulated and run (no
+monitor stepped, no number seen) before the bar was committed.
 """
 
 from __future__ import annotations
