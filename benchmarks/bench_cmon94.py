@@ -4,7 +4,7 @@ what the served monitor does with them, and what the code could hold of it (a tr
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is that tree's)::
 
     python benchmarks/bench_cmon94.py trace ROOT RECORD CELLS [SIZES]
-    python benchmarks/bench_cmon94.py fresh ROOT [RECORD ...]
+    python benchmarks/bench_cmon94.py fresh ROOT SIZES [RECORD ...]
 
 ``trace``: bench_cmon92's cells, lead-in, fault row and cases (``SIZES`` default ``3``: its
 triples, every triple of sensors with a fallback and 40 drawn with seed 92; ``1,2,3`` adds every
@@ -21,8 +21,9 @@ hold.  Every silent case is printed.
 
 ``fresh``: the same on the fresh seeds of :data:`FRESH` (9654-9658, given for this brief, never
 drawn before: bench_cmon93's generators lr / dl / cr / lr / dl, each simulated once under
-``ROOT/data``, ``run`` of mlr, arx, lagbank, arx_rf once, bench_cmon92's ``made``), sizes 1-3,
-then the sums per (record, size, kind) over the cells and over all.
+``ROOT/data``, ``run`` of mlr, arx, lagbank, arx_rf once, bench_cmon92's ``made``), ``SIZES``
+(as scored: ``3``; the bar as written: ``1,2,3``), then the sums per (record, size, kind) over
+the cells and over all.
 
 The k-jump rule the brief asks for is measured as a tree: ``benchmarks/cmon94_rule.patch`` (the
 mirror's two conditions ``== 2`` -> ``>= 2``: every sample with two or more jumpers, no common
@@ -82,9 +83,10 @@ import numpy as np
 HERE = Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE)]
 from _cli import run_commands  # noqa: E402
-from bench_cmon91 import deployed_cell  # noqa: E402
-from bench_cmon92 import CELLS, Stepped, made, planted, triples  # noqa: E402
+from bench_cmon92 import Stepped, fault_sets, faulted_cell, planted  # noqa: E402
 from bench_cmon93 import FRESH as CMON93_FRESH  # noqa: E402
+from bench_cmon93 import trace as cmon93_trace  # noqa: E402
+from bench_cmon93 import traced_records  # noqa: E402
 
 # bench_cmon93's generators (lr / dl / cr / lr / dl) on the seeds given for this brief
 FRESH = {f"{record[:2]}{seed}": [f"seed={seed}" if w.startswith("seed=") else w for w in words]
@@ -111,28 +113,16 @@ def _case(run: Stepped, part) -> tuple:
 
 def trace_cell(root: Path, record: str, cell: str, sizes: list[int], out: list) -> None:
     """One cell's table rows (module doc) appended to ``out``; silent cases printed."""
-    import itertools
-
-    from thermocomp.apps.deploy.export import state_space
-    from thermocomp.apps.deploy.export.pack import beyond, fed
+    from thermocomp.apps.deploy.export.pack import beyond
     from thermocomp.apps.deploy.export.watch import COMMON
-    from thermocomp.apps.deploy.report import plain
-    from thermocomp.shell.stages.export import lead_ins
 
-    deployed, ds, _, test_ids = deployed_cell(root, record, root / "reports" / record / cell / "model.pkl")
-    ss = state_space(deployed, monitor=True)
-    names = list(deployed.monitor.names)
-    cid = test_ids[0]
-    frame = fed(ds.campaigns[cid], lead_ins(plain(deployed).compensator, ds, [cid]).get(cid))
-    lead = len(frame) - len(ds.campaigns[cid])
-    start = lead + (len(frame) - lead) // 4
+    deployed, ss, frame, lead, start, cid = faulted_cell(root, record, cell)
     base = Stepped(deployed, ss)
     for c, want, *_ in base.rows(frame.iloc[:start]):
         assert not beyond(c, want).any(), f"{cell}: C and served part before the faults"
-    sets = {1: [(s,) for s in names], 2: list(itertools.combinations(names, 2)),
-            3: triples(names, list(deployed.fallbacks_))}
-    print(f"{cell}: {len(names)} monitored, min_active {ss.monitor['min_active']}; faults from "
-          f"test row {start - lead + 1} of {cid}", flush=True)
+    sets = fault_sets(deployed)
+    print(f"{cell}: {len(deployed.monitor.names)} monitored, min_active {ss.monitor['min_active']}; "
+          f"faults from test row {start - lead + 1} of {cid}", flush=True)
     for size in sizes:
         for kind in ("spike", "freeze"):
             tally = dict.fromkeys(COUNTS, 0)
@@ -160,22 +150,13 @@ HEAD = f"{'cell':<14}{'n':>3}{'kind':>8}{'cases':>6}" + "".join(f"{k:>8}" for k 
 
 def trace(root: str, record: str, cells: str, sizes: str = "3") -> list:
     """The ``trace`` table (module doc)."""
-    out: list = []
-    print(HEAD, flush=True)
-    for cell in cells.split(","):
-        trace_cell(Path(root).resolve(), record, cell, [int(s) for s in sizes.split(",")], out)
-    return out
+    return cmon93_trace(root, record, cells, sizes, head=HEAD, cell_rows=trace_cell)
 
 
-def fresh(root: str, *chosen: str) -> None:
+def fresh(root: str, sizes: str, *chosen: str) -> None:
     """The ``fresh`` tables and their sums (module doc)."""
-    root = Path(root).resolve()
-    rows: list = []
-    for record in [r for r in FRESH if r in chosen] or list(FRESH):
-        for family in CELLS:
-            made(root, record, family, FRESH)
-        print(f"== {record}", flush=True)
-        rows += trace(str(root), record, ",".join(f"{f}-none" for f in CELLS), "1,2,3")
+    rows = traced_records(Path(root).resolve(), chosen, FRESH,
+                          lambda at, record, cells: trace(at, record, cells, sizes))
     summed: dict = {}
     for record, _, size, kind, cases, tally in rows:
         s = summed.setdefault((record, size, kind), dict.fromkeys(("cases", *COUNTS), 0))
