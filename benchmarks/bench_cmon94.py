@@ -70,6 +70,44 @@ by the deadline (one cell took ~3 min under a load of 10); bar 3 (KJUMP = MAIN f
 sensors) is then by reading only: where fewer than three sensors jump the patch's code is main's
 (``big.sum() == 2`` gives ``left.sum() <= 2``).  The fresh records were simulated and run (no
 monitor stepped, no number seen) before the bar was committed.
+
+Results (2026-12-05; MAIN this tree = 4f0fc94a's src, KJUMP a copy of it with
+``cmon94_rule.patch``; 2 cores shared by eight helpers, load 9-15).
+
+Seen, lr9526 (bench_cmon93's fresh record, simulated again under /tmp; ``trace ROOT lr9526
+mlr-none,arx-none 3``, 26 / 25 s CPU): MAIN = KJUMP in all four rows; spiked triples 50 per cell,
+same 1 / 3, flagged 49 / 47, common 38 = over2 38; frozen 49 same, 1 flagged (not COMMON).
+
+Fresh (``trace ROOT RECORD CELLS 3`` per record, cells mlr / arx / lagbank / arx_rf; MAIN and
+KJUMP side by side, 830 s CPU for both trees' 40 cell runs; the table summed over the cells, MAIN's, and
+KJUMP's equal to it in every (record, cell, kind) row)::
+
+    record      kind   cases    same flagged  silent  common   over2    outs
+    lr9654     spike     300     204      96       0      92      92       3
+    lr9654    freeze     300     120     180       0       0       0       3
+    dl9655     spike     240      72     168       0     168     168       3
+    dl9655    freeze     240     168      72       0       8       4       4
+    cr9656     spike     160       0     160       0     160     160       3
+    cr9656    freeze     160      72      88       0       8       8       4
+    lr9657     spike     176       4     172       0     108     108       3
+    lr9657    freeze     176     124      52       0       0       0       3
+    dl9658     spike     300      72     228       0     140     140       4
+    dl9658    freeze     300     200     100       0       0       0       3
+    all          2352    1036    1316       0     684     680
+
+By the bar: 1. silent 0 in every row, MAIN and KJUMP, and the healthy rows before the faults C =
+served (asserted in every cell); of sizes 1-2 only lr9654 mlr / arx were traced fresh (MAIN's
+whole ``fresh`` cut for time, above): 12 rows, every case C = served.  2. KJUMP's triple flags =
+MAIN's in every row (the bar stated it as "MAIN's", not as a count; MAIN's is 1316 of
+2352; none held by the k-jump rule), as the reading says.  over2 = common fails in dl9655's freeze rows (4 cases, one a
+cell: T_head_left + T_head_right + T_table frozen, at the sample they are read again two jump,
+both in, T_table out for its freeze: cmon93's pair with a third out, refused, where the served
+monitor takes the pair out and then thaws T_table in the same sample, two out after it; traced by
+hand on dl9655 mlr; the other three cells' one each not traced by hand).  No sample of three or
+more jumpers found that left the served monitor with two or fewer out.  3. by reading (KJUMP not run at sizes 1-2).  VERDICT: TRACED, src as main.  The next rule:
+a third place out (``mon_out3``, or a set of outs of fixed size), worth at most the ``common``
+cases (684 here); and, smaller, a pair jump beside a frozen sensor out that thaws in the
+same sample (dl9655's 4).
 """
 
 from __future__ import annotations
