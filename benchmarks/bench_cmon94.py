@@ -96,18 +96,18 @@ KJUMP's equal to it in every (record, cell, kind) row)::
     all          2352    1036    1316       0     684     680
 
 By the bar: 1. silent 0 in every row, MAIN and KJUMP, and the healthy rows before the faults C =
-served (asserted in every cell); of sizes 1-2 only lr9654 mlr / arx were traced fresh (MAIN's
-whole ``fresh`` cut for time, above): 12 rows, every case C = served.  2. KJUMP's triple flags =
-MAIN's in every row (the bar stated it as "MAIN's", not as a count; MAIN's is 1316 of
-2352; none held by the k-jump rule), as the reading says.  over2 = common fails in dl9655's freeze rows (4 cases, one a
-cell: T_head_left + T_head_right + T_table frozen, at the sample they are read again two jump,
-both in, T_table out for its freeze: cmon93's pair with a third out, refused, where the served
-monitor takes the pair out and then thaws T_table in the same sample, two out after it; traced by
-hand on dl9655 mlr; the other three cells' one each not traced by hand).  No sample of three or
-more jumpers found that left the served monitor with two or fewer out.  3. by reading (KJUMP not run at sizes 1-2).  VERDICT: TRACED, src as main.  The next rule:
-a third place out (``mon_out3``, or a set of outs of fixed size), worth at most the ``common``
-cases (684 here); and, smaller, a pair jump beside a frozen sensor out that thaws in the
-same sample (dl9655's 4).
+served (asserted in every cell); of sizes 1-2 only lr9654 mlr / arx were traced fresh (MAIN's whole
+``fresh`` cut for time, above): 12 rows, every case C = served. 2. KJUMP's triple flags = MAIN's in
+every row (the bar stated it as "MAIN's", not as a count; MAIN's is 1316 of 2352; none held by the
+k-jump rule), as the reading says. over2 = common fails in dl9655's freeze rows (4 cases, one a
+cell: T_head_left + T_head_right + T_table frozen, at the sample they are read again two jump, both
+in, T_table out for its freeze: cmon93's pair with a third out, refused, where the served monitor
+takes the pair out and then thaws T_table in the same sample, two out after it; traced by hand on
+dl9655 mlr; the other three cells' one each not traced by hand). No sample of three or more jumpers
+found that left the served monitor with two or fewer out. 3. by reading (KJUMP not run at sizes
+1-2). VERDICT: TRACED, src as main. The next rule: a third place out (``mon_out3``, or a set of outs
+of fixed size), worth at most the ``common`` cases (684 here); and, smaller, a pair jump beside a
+frozen sensor out that thaws in the same sample (dl9655's 4).
 """
 
 from __future__ import annotations
