@@ -193,6 +193,28 @@ def triples(names: list[str], falls: list[str]) -> list[tuple[str, ...]]:
     return own + [rest[k] for k in sorted(pick)]
 
 
+def faulted_cell(root: Path, record: str, cell: str):
+    """A cell as ``trace`` faults it (module doc): ``(deployed, state space, its first test
+    campaign's frame after its lead-in, the lead-in's rows, the first faulted row, the campaign)``."""
+    from thermocomp.apps.deploy.export import state_space
+    from thermocomp.apps.deploy.export.pack import fed
+    from thermocomp.apps.deploy.report import plain
+    from thermocomp.shell.stages.export import lead_ins
+
+    deployed, ds, _, test_ids = deployed_cell(root, record, root / "reports" / record / cell / "model.pkl")
+    cid = test_ids[0]
+    frame = fed(ds.campaigns[cid], lead_ins(plain(deployed).compensator, ds, [cid]).get(cid))
+    lead = len(frame) - len(ds.campaigns[cid])
+    return deployed, state_space(deployed, monitor=True), frame, lead, lead + (len(frame) - lead) // 4, cid
+
+
+def fault_sets(deployed) -> dict[int, list[tuple[str, ...]]]:
+    """The cases per set size (module doc): every single sensor, every pair, :func:`triples`."""
+    names = list(deployed.monitor.names)
+    return {1: [(s,) for s in names], 2: list(itertools.combinations(names, 2)),
+            3: triples(names, list(deployed.fallbacks_))}
+
+
 def planted(frame, start: int, sensors: tuple[str, ...], kind: str):
     """``frame``'s rows from ``start`` with ``sensors`` spiked or frozen at once (module doc)."""
     rows = SPIKE_ROWS if kind == "spike" else FREEZE_ROWS
@@ -237,26 +259,15 @@ class Stepped:
 
 def trace_cell(root: Path, record: str, cell: str, sizes: list[int], out: list) -> None:
     """One cell's table rows (module doc) appended to ``out``; its silent cases printed."""
-    from thermocomp.apps.deploy.export import state_space
-    from thermocomp.apps.deploy.export.pack import beyond, fed
+    from thermocomp.apps.deploy.export.pack import beyond
     from thermocomp.apps.deploy.export.watch import NOT_IN_CODE, REASONS
-    from thermocomp.apps.deploy.report import plain
-    from thermocomp.shell.stages.export import lead_ins
 
-    deployed, ds, _, test_ids = deployed_cell(root, record, root / "reports" / record / cell / "model.pkl")
-    ss = state_space(deployed, monitor=True)
-    names = list(deployed.monitor.names)
-    falls = list(deployed.fallbacks_)
-    cid = test_ids[0]
-    leads = lead_ins(plain(deployed).compensator, ds, [cid])
-    frame = fed(ds.campaigns[cid], leads.get(cid))
-    lead = len(frame) - len(ds.campaigns[cid])
-    start = lead + (len(frame) - lead) // 4
+    deployed, ss, frame, lead, start, cid = faulted_cell(root, record, cell)
+    names, falls = list(deployed.monitor.names), list(deployed.fallbacks_)
     base = Stepped(deployed, ss)
     for c, want, *_ in base.rows(frame.iloc[:start]):
         assert not beyond(c, want).any(), f"{cell}: C and served part before the faults"
-    sets = {1: [(s,) for s in names], 2: list(itertools.combinations(names, 2)),
-            3: triples(names, falls)}
+    sets = fault_sets(deployed)
     print(f"{cell}: fallbacks {falls}, fallback_set "
           f"{[k for k, f in zip(ss.monitor['fallback_set'], ss.monitor['fallback']) if f]}, "
           f"{len(names)} monitored, min_active {ss.monitor['min_active']}; faults from test row "
@@ -310,25 +321,18 @@ def compiled(root: str, record: str, cell: str, sensors: str, kind: str) -> None
 
     import pandas as pd
 
-    from thermocomp.apps.deploy.export import exported_files, state_space
-    from thermocomp.apps.deploy.export.pack import beyond, fed
+    from thermocomp.apps.deploy.export import exported_files
+    from thermocomp.apps.deploy.export.pack import beyond
     from thermocomp.apps.deploy.export.watch import NOT_IN_CODE
-    from thermocomp.apps.deploy.report import plain
-    from thermocomp.shell.stages.export import lead_ins
 
     root = Path(root).resolve()
-    deployed, ds, _, test_ids = deployed_cell(root, record, root / "reports" / record / cell / "model.pkl")
-    ss = state_space(deployed, monitor=True)
+    deployed, ss, frame, _, start, _ = faulted_cell(root, record, cell)
     folder = root / "c" / record / cell
     folder.mkdir(parents=True, exist_ok=True)
     for name, text in exported_files(deployed, "c").items():
         (folder / name).write_text(text)
     subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", "compensator.c",
                     "stream.c", "-lm", "-o", "stream"], cwd=folder, check=True, capture_output=True)
-    cid = test_ids[0]
-    frame = fed(ds.campaigns[cid], lead_ins(plain(deployed).compensator, ds, [cid]).get(cid))
-    lead = len(frame) - len(ds.campaigns[cid])
-    start = lead + (len(frame) - lead) // 4
     frame = pd.concat([frame.iloc[:start], planted(frame, start, tuple(sensors.split("+")), kind)])
     run = subprocess.run([str(folder / "stream")], capture_output=True, text=True, check=True,
                          input=frame[["time", *ss.inputs]].to_csv(index=False, float_format="%.17g"))

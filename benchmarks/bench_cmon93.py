@@ -138,7 +138,6 @@ from __future__ import annotations
 
 import copy
 import dataclasses
-import itertools
 import sys
 from pathlib import Path
 
@@ -147,8 +146,7 @@ import numpy as np
 HERE = Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE)]
 from _cli import run_commands  # noqa: E402
-from bench_cmon91 import deployed_cell  # noqa: E402
-from bench_cmon92 import CELLS, compiled, made, planted, triples  # noqa: E402
+from bench_cmon92 import CELLS, compiled, fault_sets, faulted_cell, made, planted  # noqa: E402
 from bench_cmon92 import FRESH as CMON92_FRESH  # noqa: E402
 
 # bench_cmon92's generators (lr / dl / cr / lr / dl) on the seeds given for this rule
@@ -205,27 +203,17 @@ def _case(run: Stepped, part) -> dict:
 
 def trace_cell(root: Path, record: str, cell: str, sizes: list[int], out: list) -> None:
     """One cell's table rows (module doc) appended to ``out``; silent cases printed."""
-    from thermocomp.apps.deploy.export import state_space
-    from thermocomp.apps.deploy.export.pack import beyond, fed
+    from thermocomp.apps.deploy.export.pack import beyond
     from thermocomp.apps.deploy.export.watch import COMMON, REASONS
-    from thermocomp.apps.deploy.report import plain
-    from thermocomp.shell.stages.export import lead_ins
 
-    deployed, ds, _, test_ids = deployed_cell(root, record, root / "reports" / record / cell / "model.pkl")
-    ss = state_space(deployed, monitor=True)
-    names = list(deployed.monitor.names)
-    cid = test_ids[0]
-    frame = fed(ds.campaigns[cid], lead_ins(plain(deployed).compensator, ds, [cid]).get(cid))
-    lead = len(frame) - len(ds.campaigns[cid])
-    start = lead + (len(frame) - lead) // 4
+    deployed, ss, frame, lead, start, cid = faulted_cell(root, record, cell)
     base = Stepped(deployed, ss)
     for want, codes in base.rows(frame.iloc[:start]):
         for m, (c, *_) in codes.items():
             assert not beyond(c, want).any(), f"{cell} {m}: C and served part before the faults"
-    sets = {1: [(s,) for s in names], 2: list(itertools.combinations(names, 2)),
-            3: triples(names, list(deployed.fallbacks_))}
-    print(f"{cell}: {len(names)} monitored, min_active {ss.monitor['min_active']}; faults from "
-          f"test row {start - lead + 1} of {cid}", flush=True)
+    sets = fault_sets(deployed)
+    print(f"{cell}: {len(deployed.monitor.names)} monitored, min_active {ss.monitor['min_active']}; "
+          f"faults from test row {start - lead + 1} of {cid}", flush=True)
     for size in sizes:
         for kind in ("spike", "freeze"):
             tally = {m: {"same": 0, "flagged": 0, "silent": 0, "pair": 0} for m in MIRRORS}
@@ -258,24 +246,32 @@ HEAD = f"{'cell':<14}{'n':>3}{'kind':>8}{'cases':>6}" + "".join(
     f"{m[0] + ':' + k:>7}" for m in MIRRORS for k in ("same", "flag", "silent", "pair"))
 
 
-def trace(root: str, record: str, cells: str, sizes: str = "1,2,3") -> list:
-    """The ``trace`` table (module doc)."""
+def trace(root: str, record: str, cells: str, sizes: str = "1,2,3", *, head: str = HEAD,
+          cell_rows=trace_cell) -> list:
+    """The ``trace`` table (module doc): ``head``, then each cell's rows by ``cell_rows``."""
     out: list = []
-    print(HEAD, flush=True)
+    print(head, flush=True)
     for cell in cells.split(","):
-        trace_cell(Path(root).resolve(), record, cell, [int(s) for s in sizes.split(",")], out)
+        cell_rows(Path(root).resolve(), record, cell, [int(s) for s in sizes.split(",")], out)
     return out
+
+
+def traced_records(root: Path, chosen: tuple, generators: dict, traced) -> list:
+    """The rows of each record of ``generators`` (those ``chosen``; none chosen: all), made
+    (bench_cmon92's ``made``: simulated, each family of :data:`CELLS` run) and its cells traced by
+    ``traced(root, record, cells)``."""
+    rows: list = []
+    for record in [r for r in generators if r in chosen] or list(generators):
+        for family in CELLS:
+            made(root, record, family, generators)
+        print(f"== {record}", flush=True)
+        rows += traced(str(root), record, ",".join(f"{f}-none" for f in CELLS))
+    return rows
 
 
 def fresh(root: str, *chosen: str) -> None:
     """The ``fresh`` tables and the bar's sums (module doc)."""
-    root = Path(root).resolve()
-    rows: list = []
-    for record in [r for r in FRESH if r in chosen] or list(FRESH):
-        for family in CELLS:
-            made(root, record, family, FRESH)
-        print(f"== {record}", flush=True)
-        rows += trace(str(root), record, ",".join(f"{f}-none" for f in CELLS))
+    rows = traced_records(Path(root).resolve(), chosen, FRESH, trace)
     summed: dict = {}
     for record, _, size, kind, cases, tally in rows:
         s = summed.setdefault((record, size, kind), {m: dict.fromkeys(tally[m], 0) for m in MIRRORS})
