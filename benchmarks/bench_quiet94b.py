@@ -18,6 +18,7 @@ Usage (from ``benchmarks/``, ``PYTHONPATH=<tree>/src``: the code measured is tha
     python benchmarks/bench_quiet94b.py leak SEEDS [BASE]                          # synthetic
     python benchmarks/bench_quiet94b.py count ROOT SEEDS [HOURS [BASE]]            # healthy
     python benchmarks/bench_quiet94b.py planted ROOT SEEDS [HOURS [RATE [BASE]]]   # drifts
+    python benchmarks/bench_quiet94b.py bare SEEDS                                 # no air
 
 Each compares BASE (``quiet94``, the default: the air warned but in the fit, i.e. main at
 a9e5422c; or ``main``: no sensor warned, a9e5422c's flag cleared, bench_quiet94's ``main``)
@@ -41,9 +42,35 @@ BAR (written and committed BEFORE the fresh seeds 9686-9695 were scored).  KEPT 
     the air, ``not_in_code`` no longer naming the warned air.
 Otherwise REFUSED (src reverted, the rule as benchmarks/quiet94b_rule.patch) or TRACED.
 
-Measured (2026-12-05, this tree)
---------------------------------
-(pending)
+Said plainly: the bar above was written after the SEEN ``leak`` of the rule had been run once
+(its numbers below), before any other measure and before the fresh seeds; clause (1) is the
+lead's as given, not changed after it.
+
+Measured (2026-12-05, this tree; SEEN first, then FRESH 9686-9695 once, after the bar's commit)
+-------------------------------------------------------------------------------------------
+``leak 0-3`` (synthetic, seen), quiet94 -> rule (exclusions, alarms, new states):
+seed 0 healthy: T_0 out 159, new state 196, 5 alarms -> T_9 out 233; T_3 drifting: T_0 out
+159, new state 196, T_3 alarmed 214 never out -> T_3 out 219.  Seed 1 healthy: new state 292 ->
+nothing; drifting: T_3 out 223, new state 354 -> T_3 out 220.  Seed 2 healthy: new state 231, 3
+alarms -> nothing; drifting: new state 215, T_3 alarmed 252 never out -> T_3 out 222.  Seed 3
+healthy: T_0 out 153, new state 159, 12 alarms (main's own, no sensor warned, the same) -> T_9
+out 150, T_1 out 193; drifting: the same plus new state 263, T_3 alarmed 263 (both).
+T_amb still alarmed on seeds 0-2 (142, 247, 185: quiet94's rows).  ``bare 0-3``: the line with
+NO air sensor at all (10 sensors, one POD mode on seeds 0 and 3) excludes a healthy sensor and
+declares a new state on seeds 0 (T_0 145, 154) and 3 (T_9 154, 163): the remaining exclusions
+are the line's own on 120 train rows, not the air's leak.  Clause (1) as written: FAILS (seeds
+0 and 3, T_9 / T_1 out); no new state on a healthy record (4 of 4); T_3 excluded 4 of 4 seeds?
+no: seed 3 alarmed only (as quiet94 and main) -> 3 of 4.
+``count`` SEEN 30 records quiet94 -> rule: 4 h 0 -> 0 of 15, 12 h 0 -> 0 of 15 (no exclusion back).
+``planted`` SEEN 30 records (0.05 °C / 300 s), missed (never excluded) quiet94 -> rule: 4 h 39 ->
+23 of 150 (T_amb 15 -> 15, the others 24 -> 8), 12 h 21 -> 16 of 150 (T_amb 15 -> 15, the
+others 6 -> 1); never flagged 4 h 12 -> 8, 12 h 17 -> 15; T_amb drifts quiet94 flags and the
+rule does not: 0 and 0.  (quiet94's column reproduces bench_quiet94's seen 39 / 21.)
+Clause (3), the C: NOT BUILT (no time in this session): the export's held operators come from
+``mon._operator`` and so would follow the mask, but the C's run-time solved operators
+(``mon_operator``, cmon85) and its drift rule (which excludes the warned air) do not:
+``not_in_code`` still names the warned air.
+CPU: ``leak`` 3 s, ``bare`` 2 s, ``count`` 30 records 11 s, ``planted`` 30 records 100 s.
 """
 
 from __future__ import annotations
@@ -58,7 +85,7 @@ import numpy as np
 HERE = Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE)]
 import bench_quiet94 as quiet94  # noqa: E402
-from _cli import run_commands  # noqa: E402
+from _cli import run_commands, seed_list  # noqa: E402
 
 @contextlib.contextmanager
 def variant(name: str):
@@ -114,8 +141,29 @@ def planted(root: str, seeds: str, hours: str = "4", rate: str = "0.05",
         quiet94.planted(root, seeds, hours, rate)
 
 
+def bare(seeds: str) -> None:
+    """``leak``'s healthy records with no air sensor at all (the 10 machine sensors, this tree's
+    monitor), beside the rule on them with the air: what the line does alone."""
+    sys.path[:0] = [str(HERE.parent / "tests"), str(HERE.parent / "tests" / "apps")]
+    from conftest import monitored
+    from test_monitor_ambient_one_campaign94 import AMBIENT, TRAIN, _record
+    from thermocomp.apps.deploy.surveillance import SensorMonitor
+
+    for seed in seed_list(seeds):
+        record = _record(seed=seed)
+        said = []
+        for cols in (slice(0, -1), slice(None)):
+            mon = SensorMonitor.from_training(None, AMBIENT[cols], {"a": record[:TRAIN, cols]})
+            events = monitored(mon, record[:, cols])[1]
+            said.append(f"{mon.pod.n_modes_} modes: " + (", ".join(
+                f"{e['sensor'] or 'field'} {e['to']} {e['time']:g}" for e in events
+                if e["to"] in ("excluded", "new thermal state")) or "-"))
+        print(f"seed {seed} healthy: no air ({said[0]}) | rule with the air ({said[1]})")
+
+
 def main(argv: list[str]) -> int:
-    return run_commands(__doc__, {"leak": leak, "count": count, "planted": planted}, argv,
+    return run_commands(__doc__, {"leak": leak, "count": count, "planted": planted,
+                                  "bare": bare}, argv,
                         cpu=sys.stderr)
 
 
