@@ -133,9 +133,8 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
         self.moment = None if moment is None else np.asarray(moment, float).reshape(n, n).copy()
         self.drift_warn_only = (np.zeros(n, dtype=bool) if drift_warn_only is None
                                 else np.broadcast_to(np.asarray(drift_warn_only, bool), (n,)).copy())
-        every = np.ones(n, dtype=bool)
-        self._q_full = None if self.moment is None else self._error_moment(
-            self._operator(every)[0], self._operator(every)[1], every)
+        self._q_full = None if self.moment is None else self._error_moment(*pod.operator(
+            np.ones(n, dtype=bool)), np.ones(n, dtype=bool))
 
         def arr(v, default):
             return np.full(n, default, float) if v is None else np.asarray(v, float).copy()
@@ -159,7 +158,7 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
         self._seen_run = np.minimum(self.longest_run, self.window)
         self._true = np.ones(n, dtype=bool)
         # which sensors the others can predict with every sensor in (re-admission check)
-        self._predictable = self._operator(self._true)[1] < pod.max_leverage
+        self._predictable = pod.operator(self._true)[1] < pod.max_leverage
         # a sensor no other predicts: its step judged against its own last step too (_bent)
         self._bend_lim = np.where(self._predictable, np.inf, self.jump_factor * self.max_bend_c)
         self._bends = bool(np.isfinite(self._bend_lim).any())
@@ -198,18 +197,8 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
         lo = np.min([a.min(0) for a in arrays], axis=0)
         hi = np.max([a.max(0) for a in arrays], axis=0)
         first = np.mean([a[0] for a in arrays], axis=0)
-        # one campaign: the ambient's co-trend with the machine is that day's (the air warms
-        # while the machine heats), no physics; it breaks once the stream leaves the rows the
-        # POD was fitted on (quiet93: a healthy T_amb's forward spread 5.4x its in-sample one,
-        # out by drift on 7 of 15 short records), so its error is warned, not acted on, and it
-        # predicts none of the others (quiet94b: kept in their fit, its departure leaked onto
-        # them -- a healthy T_0 out, a new thermal state declared on healthy data)
-        warn_only = np.array([is_ambient(c) for c in names]) & (len(arrays) < 2)
-        # the training spread of each sensor: 99.5th percentile of its windowed leave-one-out
-        # error, under the operator that judges it
-        M, lev = judging_operator(pod, np.ones(len(names), dtype=bool), warn_only)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            E = np.where(lev < 1 - 1e-9, (snaps - snaps @ M.T) / (1 - lev), np.nan)
+        # the training spread of each sensor: 99.5th percentile of its windowed leave-one-out error
+        E = pod.deleted_residuals(snaps)
         spread = np.nanquantile(np.abs(windowed_mean(np.nan_to_num(E), groups, pod.window)),
                                 0.995, axis=0)
         warn = np.asarray(options.get("warning_c", 0.4), float)
@@ -229,6 +218,11 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
             warn, alarm = np.maximum(warn, floor), np.maximum(alarm, 2 * floor)
         # the windowed snapshots' second moment: the spread in any set of sensors (_bands_of)
         W = windowed_mean(snaps, groups, pod.window)
+        # one campaign: the ambient's co-trend with the machine is that day's (the air warms
+        # while the machine heats), no physics; it breaks once the stream leaves the rows the
+        # POD was fitted on (quiet93: a healthy T_amb's forward spread 5.4x its in-sample one,
+        # out by drift on 7 of 15 short records), so its error is warned, not acted on
+        warn_only = [is_ambient(c) for c in names] if len(arrays) < 2 else None
         options = {"rounding_c": _rounding(pod, steps), "floor_c": floor,
                    "moment": W.T @ W / len(W), "drift_warn_only": warn_only, **options,
                    "warning_c": warn, "alarm_c": alarm}
@@ -289,9 +283,11 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
 
     def _operator(self, subset: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """The POD operator of the sensors ``subset`` and every sensor's leverage in it (1, no
-        prediction, outside it); a ``drift_warn_only`` sensor predicts none of the others
-        (:func:`judging_operator`)."""
-        return judging_operator(self.pod, subset, self.drift_warn_only)
+        prediction, outside it)."""
+        M, h = self.pod.operator(subset)
+        lev = np.ones(len(self.names))
+        lev[subset] = h
+        return M, lev
 
     def _error_moment(self, M: np.ndarray, h: np.ndarray, subset: np.ndarray) -> np.ndarray:
         """Each sensor of ``subset``'s windowed leave-one-out error's second moment in training,
@@ -319,8 +315,7 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
         if self.moment is None or subset.all() or not subset.any() or not self.floor_c.any():
             return self.warning_c, self.alarm_c
         if M is None:
-            M, lev = self._operator(subset)
-            h = lev[subset]
+            M, h = self.pod.operator(subset)
         with np.errstate(divide="ignore", invalid="ignore"):
             g = np.sqrt(self._error_moment(M, h, subset) / self._q_full)
         g = np.where(np.isfinite(g) & (g > 1), g, 1.0)
@@ -743,30 +738,6 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
                        "to": STATES[new], "reason": reason})
         self._state[j] = new
 
-
-
-def judging_operator(pod: ThermalPOD, subset: np.ndarray, mute: np.ndarray
-                     ) -> tuple[np.ndarray, np.ndarray]:
-    """``(M, lev)``: the POD operator of the sensors ``subset`` (n x s, ``pod.operator``'s) and
-    every sensor's leverage in it (1 outside it), the sensors ``mute`` predicting none of the
-    others (quiet94b).  Their column is zero: the others' rows and leverages are those of the
-    subset without them, as when a sensor is excluded; their own rows and leverages are those
-    of the whole subset, so their leave-one-out error (``/(1 - lev)``) is still the others'
-    prediction of them, judged and warned as before."""
-    subset = np.asarray(subset, dtype=bool)
-    M, h = pod.operator(subset)
-    lev = np.ones(len(subset))
-    lev[subset] = h
-    rest = subset & ~np.asarray(mute, dtype=bool)
-    if rest.all() or rest.sum() in (0, subset.sum()):
-        return M, lev
-    Mr, hr = pod.operator(rest)
-    own = subset & ~rest
-    masked = np.zeros_like(M)
-    masked[:, rest[subset]] = Mr
-    masked[own] = M[own]
-    lev[rest] = hr
-    return masked, lev
 
 
 def _longest_runs(a: np.ndarray) -> np.ndarray:
