@@ -78,8 +78,9 @@ Clause (3), the C: NOT BUILT (no time in this session): the export's held operat
 A price the bar did not name: tests/apps/test_monitor_blame44.py FAILS with the rule (passes
 at a9e5422c): on its one-campaign long_record (T_amb muted) the 1 K/h drift of T_table (no other
 predicts it) no longer leaks past any band -- no event at all, where quiet94 excludes T_table
-as explaining the others.  Not traced; a guess: the others' training spread, now taken without
-the air that helped predict them, widens their floors (``spread_factor`` x spread) past the leak.
+as explaining the others.  Not the floors (a probe with the training spread taken as at
+a9e5422c, ``pod.deleted_residuals``, still fails): the others' operator without the air carries
+less of T_table's drift onto them.  Not traced further.
 VERDICT: REFUSED -- clause (1) fails as written (seeds 0 and 3: a healthy T_9 / T_1 out; the
 line alone, ``bare``, does as badly there), clause (3) not built, and a drift lost on blame44.
 The served part is a clear gain on the swiss records (drifts missed fresh 4 h 14 -> 6 of 50)
