@@ -47,7 +47,7 @@ COMMAND_BENCHES = (
     "bench_diag87b", "bench_diag87c", "bench_diag88", "bench_diag88b", "bench_diag88c", "bench_diag88d",
     "bench_diag89", "bench_diag89b", "bench_diag89c", "bench_diag89d", "bench_diag91", "bench_diag91b",
     "bench_diag91c", "bench_diag92", "bench_diag92b", "bench_diag92c", "bench_diag92d", "bench_diag92e",
-    "bench_diag93", "bench_diag93b", "bench_diag94", "bench_diag94b", "bench_diagfault65",
+    "bench_diag93", "bench_diag93b", "bench_diag94", "bench_diag94b", "bench_diag94c", "bench_diagfault65",
     "bench_diagfault72", "bench_diagpower67", "bench_diagref65", "bench_drift74", "bench_env92",
     "bench_env92b", "bench_env93", "bench_env93b", "bench_env94", "bench_env94b", "bench_fault70",
     "bench_faults71", "bench_freeze83", "bench_freeze83b", "bench_freeze83c", "bench_freeze84",
