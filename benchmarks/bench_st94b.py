@@ -129,6 +129,11 @@ def _line(got: dict, names, plain=bench_st94._line) -> str:
     return f"{plain(got, names)}, early {got['early']}"
 
 
+def fresh(root: str, *chosen: str) -> None:
+    """Both traces on :data:`FRESH` (module doc), each record made once by bench_st93's ``fresh``."""
+    bench_st93.fresh(root, *chosen, records=FRESH, traced=trace)
+
+
 def trace(root: str, record: str) -> None:
     """The ``trace`` tables (module doc)."""
     bench_st94.HELD = (*bench_st94.HELD, "STEP_OUT")
@@ -138,12 +143,8 @@ def trace(root: str, record: str) -> None:
     bench_st93.trace(root, record)
 
 
-def fresh(root: str, *chosen: str) -> None:
-    """The ``fresh`` tables (module doc)."""
-    bench_st93.fresh(root, *chosen, records=FRESH, traced=trace)
-
-
 def main(argv: list[str]) -> int:
+    """The command ``argv`` names (module doc; none: the usage, status 2)."""
     return run_commands(__doc__, {"trace": trace, "fresh": fresh}, argv, cpu=sys.stderr)
 
 
