@@ -61,7 +61,53 @@ KEPT if 1-4 hold on all five fresh records; REFUSED with the cases named otherwi
 main, the rule's diff in benchmarks/st94b_rule.patch); TRACED if it cannot be scored by the
 deadline.
 
-Results: (to come, after the bar's commit)
+The bar is unchanged since its commit (f1813acf, before 9681-9685 were simulated); nothing was
+tuned on them.  Seen before (development, spent lr9666 of st94): healthy 0 flags; bent T_table
+2x / 2.9x the C's ``STEP_OUT`` of T_col_back named alike (2), one pair too; early 0.
+
+Results (2026-12-05; 2 cores shared by 7-8 helpers).  ``fresh /tmp/st94b/fresh`` scored once
+(111.9 s of this process's CPU for the five, each record's simulation and ``run model=mlr`` a few
+seconds more)::
+
+    record  healthy: false early  max|ST-C| µm (rows)  C's first event (row) = the block's
+    lr9681           0     0      1.05e-13 (3194)      STEP_OUT T_head_right (3195, lead-in)
+    dl9682           0     0      6.22e-14 (249)       STEP_OUT T_col_front_top (250, lead-in)
+    cr9683           0     0      1.78e-14 (189)       none
+    lr9684           0     0      1.21e-13 (3500)      JUMP T_spindle_front (3501)
+    dl9685           0     0      1.07e-13 (1856)      STEP_OUT T_head_left (1857, lead-in)
+
+    record  bent cases: agree/mismatch/apart/other/none  early  max|ST-C|   pair: agree/mismatch/apart  early
+    lr9681  24          1/0/2/4/17                       0      1.0e-13     91: 90/0/1                  0
+    dl9682  16          0/0/0/0/16                       0      1.0e-13     91: 85/0/6                  0
+    cr9683   8          1/0/0/0/7                        0      2.1e-14     66: 66/0/0                  0
+    lr9684  24          0/0/1/1/22                       0      8.3e-14     91: 91/0/0                  0
+    dl9685  20          0/0/2/3/15                       0      9.9e-14     91: 88/0/3                  0
+
+    bench_st93's kinds (served / hits / misses / stepped / other / false), every record:
+    spike   12/10/12/13/11 served, all hit, misses 0, stepped 1/4/0/0/3, other 1/0/0/1/0, false 0
+    dropout 14/14/12/14/14 all hit, false 0;  range 14/14/12/14/14 all hit, false 0
+    freeze  other 6/13/11/6/14, false 0;  healthy served 0/0/0/3/1 all hit, stepped 1/4/0/0/1, false 0
+
+Every C ``STEP_OUT`` with the field whole since the campaign's start is named by the block at
+its row with the sensor: the three healthy ones (lr9681, dl9682, dl9685, in the lead-in), 0
+mismatches, 0 early flags in the 5 healthy runs and 522 cases. ``apart`` 15 (5 bent, 10 pair):
+on lr9681 / dl9682 / dl9685 every case starts after the lead-in's stepped error, on lr9684 after
+its jump at row 3501; the C took the sensor out, re-admitted it by its band (or holds one out),
+and judges on; the block, flagged there, judges no more. No bent or pair case on a fresh record
+reached a C ``STEP_OUT`` with the field whole from the start (the bent and pair ``agree`` are
+JUMPs): the rule's reach beyond the lead-in is measured by the test and lr9666 (seen), not by
+these draws.
+
+Bar item 4 (this block): ``bench_st93b.py fresh`` on copies of 9614-9618 (38.9 s CPU) printed its
+docstring's table again, every count and max|ST-C| 9.24e-14 / 9.95e-14 / 1.07e-14 / 9.24e-14 /
+1.03e-13 µm; ``bench_st94.py fresh`` on copies of 9666-9670 (75.2 s CPU) its table again (bent
+C BENT 3/3, 2/2, 3/3, 2/2, 1/1, re-ref 6/6 on dl9670; first agree/other 0/6, 0/3, 0/0, 0/5, 5/3;
+pairs agree 90 / 91 / 66 / 90 / 90, other 1 / 0 / 0 / 1 / 1; max|ST-C| to the digit): bench_st94
+counts a ``STEP_OUT`` first event ``other`` by its own HELD, so nothing it passed changed.
+
+Verdict by the bar as written: 1-4 hold on all five fresh records: KEPT -- with the limit above:
+the block's judgement ends at the campaign's first exclusion, and 15 fresh C ``STEP_OUT`` after
+a re-admission stay with the C.
 """
 
 from __future__ import annotations
