@@ -105,6 +105,11 @@ C BENT 3/3, 2/2, 3/3, 2/2, 1/1, re-ref 6/6 on dl9670; first agree/other 0/6, 0/3
 pairs agree 90 / 91 / 66 / 90 / 90, other 1 / 0 / 0 / 1 / 1; max|ST-C| to the digit): bench_st94
 counts a ``STEP_OUT`` first event ``other`` by its own HELD, so nothing it passed changed.
 
+After scoring, measurement only (spent 9666-9670, st94's models; this bench's ``trace`` without
+bench_st93's part, ~80 s CPU): of st94's 20 stepped ``other`` cases, the C ``STEP_OUT`` with the
+field whole named alike 3 (lr9666: T_table 2x / 2.9x, one pair), plus lr9669's healthy one (row
+2278); 6 apart (lr9669, dl9670: after the lead-in's stepped error); 0 mismatches, 0 early.
+
 Verdict by the bar as written: 1-4 hold on all five fresh records: KEPT -- with the limit above:
 the block's judgement ends at the campaign's first exclusion, and 15 fresh C ``STEP_OUT`` after
 a re-admission stay with the C.
