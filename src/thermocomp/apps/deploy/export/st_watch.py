@@ -22,7 +22,15 @@ Per sample, of each monitored sensor ``k`` (the input ``MON_INPUT[k]``, the C's 
 * (st94) two sensors jumping in one sample, every reading there and in range, not at the sample
   after the reference, each one in taken out by the C (:func:`pair_places`): ``JUMP`` on the
   first in (the C's exclusion, where before ``COMMON``); where both were re-referenced by jumps,
-  each first tried as a spike's return, one not back re-referenced again with no new fault.
+  each first tried as a spike's return, one not back re-referenced again with no new fault;
+* (st94b) while the field is whole -- no reading missing, beyond its range or jumping since the
+  campaign's first sample, nor a stepped error flagged (a BENT re-reference keeps it whole) -- a
+  judged sensor's self-prediction error ``e = (d - M d) / (1 - h)`` stepping past its alarm
+  band (``|e|`` and its one-sample change at least ``MON_ALARM``): the C's ``STEP_OUT`` on the
+  culprit (the largest change times ``sqrt(1 - h)``; ``BLIND`` where the C does not hold it out),
+  flagged.  ``d`` the readings on their references (the first sample's, moved by the block's
+  re-references), ``M`` / ``h`` the POD's operator and leverages with every sensor in: the one
+  fixed operator the C holds first (``MON_SELF``, ``MON_SCALE``), no Cholesky in the block.
 
 ``mon_flag`` says the sample's fault, ``mon_rule`` its rule (the C's ``mon_rule`` codes, named
 by ``TC_MONITOR_REASONS``) and ``mon_sensor`` its monitored sensor ``k`` (-1: none): the first,
@@ -38,9 +46,12 @@ the sensor continuous with its last reading and a spike's return undoes it; a pa
 the block parts from the C after the pair's sample, as after any jump the C excludes).  The block
 keeps no count of the sensors the C holds out (it cannot tell the C's re-admission): a pair is
 judged as the C judges it with none out but the jumpers.  The freeze, the
-drift, the stepped self-prediction error (the C's ``STEP_OUT``), the re-admission and the rest
-judge a sensor by the others' prediction of it (the POD): not in the ST, they stay with the served
-model (``provenance.not_in_code``).
+drift, the re-admission and the rest judge a sensor by the others' prediction of it over a set
+the block does not know (the POD): not in the ST, they stay with the served model
+(``provenance.not_in_code``).  (st94b) The stepped self-prediction error is judged while the
+field is whole only: from the first exclusion the block flags (a jump, a dropout, a reading beyond range, a
+stepped error) to the campaign's end the C judges it with a sensor out (or re-admitted by a band
+the block does not hold), and the block does not; that flag marks the row its judgement ends.
 """
 
 from __future__ import annotations
@@ -49,7 +60,20 @@ import sys
 
 import numpy as np
 
-from .watch import BENT, COMMON, COMMON_STEP, DROPOUT, GLITCH, JUMP, MISSING_FIRST, OFF_RANGE, RANGE, SPIKE
+from .watch import (
+    BENT,
+    BLIND,
+    COMMON,
+    COMMON_STEP,
+    DROPOUT,
+    GLITCH,
+    JUMP,
+    MISSING_FIRST,
+    OFF_RANGE,
+    RANGE,
+    SPIKE,
+    STEP_OUT,
+)
 
 
 def pair_places(watch: dict) -> tuple[np.ndarray, np.ndarray]:
@@ -71,17 +95,35 @@ def pair_places(watch: dict) -> tuple[np.ndarray, np.ndarray]:
     return ported | spikes, second & (ported | instant)
 
 
+def self_prediction(watch: dict) -> tuple:
+    """(st94b) The C's self-prediction error with every monitored sensor in, as fixed arrays:
+    ``(M, scale, root, judged, alarm, on)``, ``e = (d - M d) * scale`` (``scale`` ``1 / (1 - h)``
+    of a judged sensor, 0 of another), ``root`` ``sqrt(|1 - h|)`` (the culprit's weight), the
+    sensors judged (``h`` below the POD's leverage limit), their alarm bands (the whole set's),
+    and whether the block judges it (an export with ``stepped``: all zero, off, before)."""
+    n = len(watch.get("inputs", []))
+    if not (n and watch.get("stepped") and watch.get("M")):
+        return np.zeros((n, n)), np.zeros(n), np.zeros(n), np.zeros(n, bool), np.zeros(n), False
+    M, lev = np.asarray(watch["M"][0], float), np.asarray(watch["lev"][0], float)
+    judged = lev < float(watch["max_leverage"])
+    # (the C's scale, the mirror's ``_set``: 1 / (1 - h), floored as there)
+    scale = np.where(judged, 1.0 / np.maximum(1.0 - lev, 1e-12), 0.0)
+    return M, scale, np.sqrt(np.abs(1.0 - lev)), judged, np.asarray(watch["alarm"], float), True
+
+
 def constants(watch: dict, literal, constant) -> list[str]:
     """The monitor's constants (``watch``: :func:`.watch.monitor_fields`'s ``monitor``, empty:
     none, ``MON_N`` 0) in the block's ``VAR CONSTANT``."""
     n = len(watch.get("inputs", []))
     rules = (("JUMP", JUMP), ("GLITCH", GLITCH), ("COMMON", COMMON), ("COMMON_STEP", COMMON_STEP),
              ("DROPOUT", DROPOUT), ("MISSING_FIRST", MISSING_FIRST), ("OFF_RANGE", OFF_RANGE),
-             ("RANGE", RANGE), ("SPIKE", SPIKE), ("BENT", BENT))
+             ("RANGE", RANGE), ("SPIKE", SPIKE), ("BENT", BENT),
+             ("STEP_OUT", STEP_OUT), ("BLIND", BLIND))
     # (st94) no bound where the export has none (before step93, a sensor the others predict):
     # the largest LREAL, as ST has no infinity
     bends = np.asarray(watch.get("bend_lim", []) if watch.get("bent") else [np.inf] * n, float)
     first, second = pair_places(watch)
+    self_m, scale, root, judged, alarm, stepped = self_prediction(watch)
     return [f"    MON_N : INT := {n};",
             constant("MON_INPUT", watch.get("inputs", []), (n,), "INT"),
             *(constant(f"MON_{name}", watch.get(key, []), (n,))
@@ -90,6 +132,12 @@ def constants(watch: dict, literal, constant) -> list[str]:
             f"    MON_PAIR_JUMP : BOOL := {'TRUE' if first.any() else 'FALSE'};",
             constant("MON_PAIR_FIRST", first.astype(int).tolist(), (n,), "INT"),
             constant("MON_PAIR_SECOND", second.astype(int).tolist(), (n,), "INT"),
+            f"    MON_STEP_JUDGE : BOOL := {'TRUE' if stepped else 'FALSE'};",
+            constant("MON_SELF", self_m.tolist(), (n, n)),
+            *(constant(name, values.tolist(), (n,)) for name, values in
+              (("MON_SCALE", scale), ("MON_ROOT", root), ("MON_ALARM", alarm))),
+            constant("MON_JUDGED", judged.astype(int).tolist(), (n,), "INT"),
+            constant("MON_STEP_HELD", [int(p) for p in watch.get("ported_out", [])], (n,), "INT"),
             f"    MON_PERIOD : LREAL := {literal(watch.get('period', 1.0))};",
             f"    MON_GAP_PERIODS : LREAL := {literal(watch.get('gap_periods', 1.5))};",
             f"    MON_COMMON_MIN : INT := {int(watch.get('common_min', 3))};",
@@ -111,6 +159,15 @@ VARS = """    mon_last : ARRAY[{nm}] OF LREAL;
     mon_rerefd : ARRAY[{nm}] OF BOOL;
     mon_spike : ARRAY[{nm}] OF BOOL;
     mon_shift : ARRAY[{n}] OF LREAL;
+    mon_base : ARRAY[{nm}] OF LREAL;
+    mon_d : ARRAY[{nm}] OF LREAL;
+    mon_e : ARRAY[{nm}] OF LREAL;
+    mon_prev_e : ARRAY[{nm}] OF LREAL;
+    mon_lost : BOOL;
+    mon_e_known : BOOL;
+    mon_best : LREAL;
+    mon_culprit : INT;
+    mj : INT;
     mon_t_prev : LREAL;
     mon_t_known : BOOL;
     mon_count : INT;
@@ -143,7 +200,10 @@ IF first THEN
     FOR mk := 0 TO MON_N - 1 DO
         mon_out[mk] := FALSE;
         mon_rerefd[mk] := FALSE;
+        mon_base[mk] := u[MON_INPUT[mk]];    (* (st94b) the C's reference *)
     END_FOR;
+    mon_lost := FALSE;
+    mon_e_known := FALSE;
 END_IF;
 (* a gap in time: each step judged as that many one-sample steps, as the C *)
 mon_span := 1.0;
@@ -292,6 +352,54 @@ END_FOR;
 (* a fault: a reading not read, or a jump not a common step nor a spike's return (BENT, *)
 (* re-referenced and kept in, is named by mon_rule and not flagged, as a common step) *)
 mon_flag := mon_flag OR mon_gone;
+(* (st94b) the self-prediction error stepped past the alarm band (the C's STEP_OUT), judged *)
+(* while the field is whole: any exclusion since the campaign's first sample ends it *)
+IF mon_gone OR mon_jumps > 0 THEN
+    mon_lost := TRUE;
+END_IF;
+IF MON_STEP_JUDGE AND NOT mon_lost THEN
+    FOR mk := 0 TO MON_N - 1 DO
+        j := MON_INPUT[mk];
+        mon_d[mk] := u[j] - mon_base[mk] - mon_shift[j];
+    END_FOR;
+    mon_best := -1.0;
+    mon_culprit := -1;
+    FOR mk := 0 TO MON_N - 1 DO
+        mon_x := 0.0;
+        FOR mj := 0 TO MON_N - 1 DO
+            mon_x := mon_x + MON_SELF[mk, mj] * mon_d[mj];
+        END_FOR;
+        mon_e[mk] := (mon_d[mk] - mon_x) * MON_SCALE[mk];
+        IF mon_e_known AND MON_JUDGED[mk] = 1 THEN
+            mon_off := mon_e[mk] - mon_prev_e[mk];
+            IF mon_off < 0.0 THEN
+                mon_off := -mon_off;
+            END_IF;
+            IF mon_off >= MON_ALARM[mk] AND (mon_e[mk] >= MON_ALARM[mk] OR mon_e[mk] <= -MON_ALARM[mk]) THEN
+                (* the culprit: the largest change times sqrt(1 - h), the first of equals *)
+                IF mon_off * MON_ROOT[mk] > mon_best THEN
+                    mon_best := mon_off * MON_ROOT[mk];
+                    mon_culprit := mk;
+                END_IF;
+            END_IF;
+        END_IF;
+        mon_prev_e[mk] := mon_e[mk];
+    END_FOR;
+    mon_e_known := TRUE;
+    IF mon_culprit >= 0 THEN
+        (* out in the C (rebuilt by the POD, or flagged where it does not hold it out): *)
+        (* the block reads it on, and judges no more *)
+        mon_flag := TRUE;
+        mon_lost := TRUE;
+        IF mon_rule = 0 THEN
+            mon_sensor := mon_culprit;
+            mon_rule := RULE_BLIND;
+            IF MON_STEP_HELD[mon_culprit] = 1 THEN
+                mon_rule := RULE_STEP_OUT;
+            END_IF;
+        END_IF;
+    END_IF;
+END_IF;
 (* a return is stepped from the last reading, over the samples it spans *)
 FOR mk := 0 TO MON_N - 1 DO
     j := MON_INPUT[mk];
