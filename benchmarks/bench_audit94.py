@@ -8,6 +8,7 @@ Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is
 
     python benchmarks/bench_audit94.py sweep ROOT [RECORD|FAMILY ...]   # the cells, the table
     python benchmarks/bench_audit94.py st ROOT RECORD                   # ST = C, healthy
+    python benchmarks/bench_audit94.py drift ROOT RECORD [RATE]         # served vs C, T_amb drift
     python benchmarks/bench_audit94.py lab ROOT SEED [FAMILIES]         # the lab's export
 
 ``sweep``: bench_audit93's sweep (bench_audit91's cell: ``run`` -> ``replay`` warm and cold -> the
@@ -22,6 +23,11 @@ code does not do, 0 where it names another set or none; the names in the row's n
 fed rows of its test campaign (lead-in, then the campaign): bench_st94's healthy line (the
 block's false flags against the served monitor, ``max|ST-C|`` up to the C's first event), and
 the deployed monitor's sensors marked ``drift_warn_only`` (quiet94's ``warned``).
+``drift`` (added after the bar was scored; beside it, not scored by it): the mlr cell deployed
+as ``export`` deploys it, its test campaign with T_amb drifting RATE (0.01) °C per sample from a
+quarter on, streamed by the served model (``stream_rows``, corrections as exported) and by the
+C's numpy mirror: the first row they part (> 1e-9 µm), the C's flags there, the served T_amb
+events (time on the campaign's clock, s), both test RMSE, and what the C's header names.
 ``lab``: bench_data94's ``write`` (seed SEED's swiss production campaign, 1441 rows at 60 s from
 21:30:00 past midnight: ``contract.csv``, and ``rawpair.csv`` as a lab writes it -- BOM, ``;``,
 decimal commas, CRLF, ``Datum;Uhrzeit`` then ``Temp. <name> [°C]`` / ``Fehler <axis> [µm]``)
@@ -128,9 +134,23 @@ header ``C_X,C_Y,C_Z``; ``twin`` + ``connect`` exit 0, "E_Z: RMS 37.887 -> 2.192
 (3 stale samples under load); ``serve`` on 5002 + the ``curl``: ``"C_Z": -2.751171448828849``,
 the C's first row to every digit.  ``make test`` skipped (its marker: the suite itself).
 
+Beside the bar, a T_amb drift planted (``drift``; one case each, after the scoring): the served
+model and the C part first at the row the served monitor WARNS T_amb (quiet94) in all three:
+sw9697 0.01 °C/sample (0.6 K/h) from row 61 of 241: part at row 73, the C's ``DRIFT_OUT``
+T_amb there (served: ok -> warning at 4320 s = row 73), test RMSE served 1.953 / C 0.915 µm
+(healthy 1.499); sw9696 0.01 from row 361 of 1441: part at row 411 (served T_amb warning at
+24600 s = row 411), but the C's flag there is ``DRIFT_OUT`` of T_nc_cabinet (a healthy sensor,
+0.8 ambient), never T_amb: served 2.432 / C 2.029 µm; sw9696 0.001 from row 361: served warns at
+row 770 and 828, the C takes T_nc_cabinet out at row 828: served 1.505 / C 1.845 µm (healthy
+1.495).  So the parting is never silent (it sits on a served T_amb warning, and the header
+names "a drift of T_amb"), but the header's words "the code excludes it" are inexact: on sw9696
+the code's drift rule (main's, T_amb judged as any sensor) excludes ANOTHER sensor, T_nc_cabinet,
+not T_amb.  And the served rule's price on a real ambient drift: sw9697 1.953 against the C's
+0.915 µm (the drifting air kept in), as quiet94 accepted (its clause 4: flagged, not excluded).
+
 Against the bar: S1-S5 hold on all 8 sweep cells (replay = run exactly, no clamp, no guard, dC
 <= 2.3e-14 µm, every pack 0, 0 events, ``nic`` 1, no parting to name); T1 holds on both records;
-L1 holds (6 of 6); L3-like equalities hold (rawpair = contract, 0 µm); R1 holds (5 commands).
+L1 holds (6 of 6); L2's other equalities hold (rawpair = contract 0 µm, session = C, nic 1); R1 holds.
 L2 AS WRITTEN breaks in 4 lab cells (mlr and lagbank on contract and rawpair: C = run to 1e-9 µm
 asked, 6e-9 to 8.0e-5 µm measured), said plainly: the bar's L2 dropped audit93's clause for a
 clamp acting (S1 has it), and the one clamped sample is the documented envelope, C = replay =
@@ -140,7 +160,7 @@ mlr 1.4990 (+4.4 %) and lagbank 0.5367 (2.9x): forward chaining on one 8 h campa
 ranked lagbank last (validation 4.54 / 3.25 µm, test best 0.553 / 0.520) and blended mlr 0.41,
 pcr 0.40, hammerstein 0.17, arx 0.02 on E_X; on sw9696 auto 0.846 is the best family.  CPU of
 the bench process: sweep 30.1 + 59.6 s, st 2.3 + 3.5 s, lab 6.0 s (the stages' subprocesses not
-counted); wall ~3 + 4 + 1 + 6 min.
+counted); wall ~3 + 4 + 1 + 6 min; ``drift`` 2-4 s a case.
 """
 
 from __future__ import annotations
@@ -148,6 +168,8 @@ from __future__ import annotations
 import re
 import sys
 from pathlib import Path
+
+import numpy as np
 
 HERE = Path(__file__).resolve().parent
 REPO = HERE.parent
@@ -232,6 +254,53 @@ def st(root: str, record: str) -> None:
               f"{_line(whole, names)} {'; '.join(cases)}", flush=True)
 
 
+def drift(root: str, record: str, rate: str = "0.01") -> None:
+    """A drift of RATE °C per sample planted on T_amb from a quarter of the test campaign on:
+    the cell ``mlr-none`` served (:func:`~thermocomp.apps.deploy.report.stream_rows`, corrections
+    as exported) and its C (the numpy mirror) on the same rows -- where they part, what each
+    says about T_amb up to there, and the test RMSE of both."""
+    from bench_cmon91 import deployed_cell
+
+    from thermocomp.apps.deploy.export import Simulator, state_space
+    from thermocomp.apps.deploy.export.pack import corrections, fed
+    from thermocomp.apps.deploy.export.watch import RULES
+    from thermocomp.apps.deploy.report import plain, stream_rows
+    from thermocomp.shell.stages.export import lead_ins
+
+    base = Path(root).resolve()
+    deployed, ds, _, test_ids = deployed_cell(base, record, base / "reports" / record / "mlr-none"
+                                              / "model.pkl")
+    ss = state_space(deployed, monitor=True)
+    cid = test_ids[0]
+    campaign = ds.campaigns[cid].copy()
+    start = len(campaign) // 4
+    campaign.iloc[start:, campaign.columns.get_loc("T_amb")] += float(rate) * np.arange(
+        1, len(campaign) - start + 1)
+    frame = fed(campaign, lead_ins(plain(deployed).compensator, ds, [cid]).get(cid))
+    got = stream_rows(deployed, frame, cid)
+    served = corrections(ss, got.y)
+    sim, names = Simulator(ss), [ss.inputs[i] for i in ss.monitor["inputs"]]
+    sim.reset()
+    U, t = frame[ss.inputs].to_numpy(float), frame["time"].to_numpy(float)
+    code, flags = np.empty_like(served), []
+    for i in range(len(frame)):
+        code[i] = sim.step(U[i], t[i])
+        w = sim.watch
+        if w.flags and w.sensor >= 0:
+            flags.append((i + 1, RULES[int(w.rule)], names[int(w.sensor)]))
+    apart = np.flatnonzero(np.abs(served - code).max(axis=1) > 1e-9)
+    amb = [e for e in got.events if e.get("sensor") == "T_amb"]
+    measured = campaign[list(deployed.targets_)].to_numpy(float)
+    rmse = [float(np.sqrt(np.mean((measured + y[-len(campaign):]) ** 2))) for y in (served, code)]
+    print(f"{record} {cid}: T_amb +{rate} °C per sample from row {start + 1} of {len(campaign)}; "
+          f"served and C part first at row {apart[0] + 1 if len(apart) else None} "
+          f"({len(apart)} rows apart); the C's first flags (row, rule, sensor) {flags[:3]}, its "
+          f"first T_amb flag {next((f for f in flags if f[2] == 'T_amb'), None)}; served T_amb events "
+          f"{[(round(e['time']), e.get('from'), e.get('to')) for e in amb][:4]}; test RMSE served "
+          f"{rmse[0]:.6g} C {rmse[1]:.6g} µm; the C's header names it: "
+          f"{named_in_code(base / 'reports' / record / 'mlr-none-c')}", flush=True)
+
+
 def lab(root: str, seed: str, families: str = "mlr,arx,lagbank") -> None:
     """bench_data94's ``write`` and ``score`` on contract / rawpair, and the C's ``nic``."""
     base = Path(root).resolve() / f"lab{seed}"
@@ -248,6 +317,7 @@ def main(argv: list[str]) -> int:
     return run_commands(__doc__, {
         "sweep": lambda root, *chosen: sweep(Path(root).resolve(), list(chosen)),
         "st": st,
+        "drift": drift,
         "lab": lab,
     }, argv, cpu=sys.stderr)
 
