@@ -45,9 +45,32 @@ BAR (written and committed BEFORE the fresh seeds 9714-9718 were simulated; the 
     monitor76, spike54, check61, tests/apps/test_monitor_ambient_one_campaign94.py).
 Otherwise REFUSED (src reverted, the rule as benchmarks/quiet94c_rule.patch).
 
-Measured (2026-12-05, this tree)
---------------------------------
-(pending: seen first, then fresh once)
+Measured (2026-12-05, this tree; SEEN 9559 / 9646 and the lr records first, the bar committed
+(ad3febbc) before FRESH 9714-9718 were simulated, then fresh once; the bar unchanged)
+--------------------------------------------------------------------------------------------
+``swiss`` (BASE = main's drift rule in the same arrays; the served monitor excluded nothing on
+any record; ``warn_only`` = [T_amb] on every one; rows: the lead-in and the test part)::
+
+    record     rows  BASE max|C-served|  BASE rows parted  NEW mirror  compiled C  pack  check.sh
+    9559 seen    58        3.7 µm               9           4.3e-14     6.4e-14    whole    0
+    9646 seen    56        1.7 µm               4           0           1.8e-14    whole    0
+    9714 fresh   58        4.4 µm               8           1.8e-14     5.0e-14    whole    0
+    9715 fresh   59        0                    0           0           5.0e-14    whole    0
+    9716 fresh   55        1.4 µm               9           7.1e-15     4.3e-14    whole    0
+    9717 fresh   57        2.1e-14              0           2.1e-14     3.7e-14    whole    0
+    9718 fresh   60        8.9e-16              0           8.9e-16     2.1e-14    whole    0
+
+No NOT_IN_CODE on any row (NEW nor BASE: main's C took the healthy air out by a drift it holds,
+silently), the stream said nothing "not in the code", ``not_in_code`` one entry naming no
+ambient drift (main's: two, the second "a drift of T_amb").  Clause (1): HOLDS (7 of 7).
+``lr`` (lr9212 seen by bench_cmon93, lr9526 / lr9529 its fresh ones, now seen; 4321 rows each):
+their training is ONE campaign too (R1a; R1b continues it), so ``warn_only`` = [T_amb] there as
+well -- the brief's "more than one campaign" does not describe them, said plainly -- yet NEW =
+BASE on every row of all three (corrections, flags, rules, missed rules identical; NEW = served
+to 0 µm; lr9212's one NOT_IN_CODE, a DRIFT at row 682, the same in both).  Clause (2): HOLDS.
+Clause (3): see the report (the suites run on this tree).
+CPU: ``swiss`` ~4 s per record (its C build included), ``lr`` ~6 s per record after its
+simulation.
 """
 
 from __future__ import annotations
@@ -60,10 +83,12 @@ from pathlib import Path
 import numpy as np
 
 HERE = Path(__file__).resolve().parent
-sys.path[:0] = [str(HERE)]
+sys.path[:0] = [str(HERE), str(HERE.parent / "tests" / "shell"), str(HERE.parent / "tests")]
 import bench_quiet93 as quiet93  # noqa: E402
 from _cli import run_commands, seed_list  # noqa: E402
 from bench_cmon93 import FRESH as CMON93_FRESH  # noqa: E402
+
+from test_export_cmon87 import deployed_mlr  # noqa: E402
 
 LR = {"lr9212": ["sim=long_record", "seed=9212", "sim.generator.duration_days=3.0",
                  "sim.generator.test_fraction=0.2"],
@@ -73,24 +98,9 @@ TOL = 1e-9
 
 def _deployed(data: str, *words: str):
     """``(deployed, system with its monitor, the test part after its lead-in, tests, leads)``
-    of ``data`` run with ``words``, as ``replay`` deploys it."""
-    from thermocomp.apps.deploy.export import state_space
-    from thermocomp.apps.deploy.export.pack import fed
-    from thermocomp.apps.deploy.report import plain
-    from thermocomp.core.continuation import lead_ins
-    from thermocomp.shell.builders import build_compensator, deploy_stream, deployable
-    from thermocomp.shell.config.overrides import compose
-    from thermocomp.shell.source import read_streamed
-
-    cfg = compose([f"data.path={data}", "track=false", "model=mlr", *words])
-    ds, train_ids, test_ids, _ = read_streamed(cfg)
-    train = {k: ds.campaigns[k] for k in train_ids}
-    deployed = deployable(cfg, deploy_stream(cfg, build_compensator(cfg, ds=ds).fit(train), train),
-                          train, ds)
-    leads = lead_ins(plain(deployed).compensator, ds, test_ids)
-    test = test_ids[0]
-    return (deployed, state_space(deployed, monitor=True), fed(ds.campaigns[test], leads.get(test)),
-            {test: ds.campaigns[test]}, leads)
+    of ``data`` run with ``words``, as ``replay`` deploys it (the tests' helper)."""
+    deployed, ss, frame, _, tests, leads = deployed_mlr(f"data.path={data}", *words)
+    return deployed, ss, frame, tests, leads
 
 
 def _stepped(deployed, ss, frame) -> dict:

@@ -131,6 +131,12 @@ The served adaptive compensator judges every ``T_`` input before the model reads
   its leverage with it reaches the limit), those in out in the monitor's order (the second by
   cmon88's rule).  A third out or a set the code cannot solve, or an export before it (no
   ``pair_jump``), flags ``COMMON`` as before.
+* (quiet94c) the **warned air of a one-campaign training** (``warn_only``: the served
+  ``drift_warn_only``): such a sensor's error is no evidence for the drift judgement (its
+  trigger, culprit, lone fault, explaining sensor, veto and resolve sets, blind partner, hover,
+  followed field, a new state's end: :meth:`CodeMonitor._judging`, as the served ``_judging``),
+  its band still flagged and its fault signatures still excluding it.  An export before it (no
+  ``warn_only``) judges it as any other sensor.
 
 What else the served monitor does it flags, ``NOT_IN_CODE`` with the rule (:data:`REASONS`), and
 goes on by its own rules: a reading beyond its range at a campaign's first sample, of several

@@ -1058,7 +1058,8 @@ static void mon_drift(tc_state *s, const int level[], int field) {
     mon_set_bands(s);
     mon_set(s, a, o, jd, scale);
     for (k = 0; k < NM; k++)
-        if (a[k] && !o[k] && !MON_WARN_ONLY[k] && z[k] >= 0.7 * z[j]) nblind++, partner = partner < 0 ? k : partner;
+        if (a[k] && !o[k] && !MON_WARN_ONLY[k] && z[k] >= 0.7 * z[j])
+            nblind++, partner = partner < 0 ? k : partner;
     if (nblind && mon_levels(s, lv, jd) > MON_MIN_ACTIVE) {
         int out[NM];
         for (k = 0; k < NM; k++) out[k] = !a[k] || k == partner;
