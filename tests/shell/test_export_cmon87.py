@@ -35,15 +35,23 @@ def record(tmp_path_factory):
 def long_record(tmp_path_factory, seed: int):
     """``(deployed, its system with the monitor, R1b after its lead-in, the lead-in's rows,
     R1b, the lead-ins by campaign)`` of the long record ``seed``."""
-    from thermocomp.shell.builders import build_compensator, deploy_stream, deployable
     from thermocomp.shell.cli import main
-    from thermocomp.shell.source import read_streamed
 
     data = tmp_path_factory.mktemp(f"lr{seed}") / "data"
     assert main(["-q", "simulate", f"seed={seed}", f"data.path={data}", "track=false",
                  "sim=long_record", "sim.generator.duration_days=3.0",
                  "sim.generator.test_fraction=0.2"]) == 0
-    cfg = _compose(f"data.path={data}", "track=false", "model=mlr", "data.reference=none")
+    return deployed_mlr(f"data.path={data}", "data.reference=none")
+
+
+def deployed_mlr(*words: str):
+    """MLR run with ``words`` and deployed as ``replay`` deploys it: ``(deployed, its system with
+    the monitor, the first test campaign after its lead-in, the lead-in's rows, that campaign by
+    its name, the lead-ins by campaign)`` (quiet94c: a one-file record too)."""
+    from thermocomp.shell.builders import build_compensator, deploy_stream, deployable
+    from thermocomp.shell.source import read_streamed
+
+    cfg = _compose(*words, "track=false", "model=mlr")
     ds, train_ids, test_ids, _ = read_streamed(cfg)
     train = {k: ds.campaigns[k] for k in train_ids}
     deployed = deployable(cfg, deploy_stream(cfg, build_compensator(cfg, ds=ds).fit(train), train),

@@ -99,16 +99,16 @@ def not_in_code(deployed, fmt: str | None = None) -> list[str]:
     if not (isinstance(deployed, AdaptiveCompensator) and deployed.monitor is not None):
         return []
     if fmt == "c" and deployed.monitor.adaptive:
-        # (quiet94) the code's drift rule excludes every judged sensor alike
-        warned = [c for c, w in zip(deployed.monitor.names,
-                                    getattr(deployed.monitor, "drift_warn_only", ())) if w]
+        # (quiet94c) the ambient of a one-campaign training, warned and not excluded by its
+        # drift (quiet94), is held by the code too (``warn_only``): not named here any more
         return ["sensor monitor rules (the C holds the jump, the freeze, a missing reading, "
                 "a reading beyond its training range, a common step, one sensor out "
                 "reconstructed from the others and its re-admission, a drift exclusion while no "
                 "sensor is out, of one sensor or of it and its blind partner, a new thermal "
                 "state, a sensor no other predicts out for a dropout, a freeze or a jump, a stepped "
                 "self-prediction error's culprit out, a second sensor out for a jump, two sensors "
-                "jumping in one sample, one or two out): a missing "
+                "jumping in one sample, one or two out, the drift of an ambient sensor of a "
+                "one-campaign training warned and not excluded): a missing "
                 "reading at a campaign's first sample, with another sensor out or missing, or of a "
                 "sensor the code does not hold out (the code refuses the row), a missing reading of "
                 "a sensor out for a freeze (its re-admission band), a reading beyond its training "
@@ -121,10 +121,7 @@ def not_in_code(deployed, fmt: str | None = None) -> list[str]:
                 "second sensor out for another rule, a third out, a "
                 "sensor no other predicts out for another rule, or with a fallback model (the "
                 "model fitted without it) of a kind the code does not step beside the model "
-                "(an lstm network of another shape, other inputs)",
-                *(["a drift of " + ", ".join(warned) + " (an ambient sensor of a one-campaign "
-                   "training: warned, not excluded, by the served monitor; the code excludes "
-                   "it)"] if warned else [])]
+                "(an lstm network of another shape, other inputs)"]
     return ["sensor monitor (exclusion, reconstruction of a sensor from the others)"]
 
 

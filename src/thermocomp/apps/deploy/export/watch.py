@@ -131,6 +131,12 @@ The served adaptive compensator judges every ``T_`` input before the model reads
   its leverage with it reaches the limit), those in out in the monitor's order (the second by
   cmon88's rule).  A third out or a set the code cannot solve, or an export before it (no
   ``pair_jump``), flags ``COMMON`` as before.
+* (quiet94c) the **warned air of a one-campaign training** (``warn_only``: the served
+  ``drift_warn_only``): such a sensor's error is no evidence for the drift judgement (its
+  trigger, culprit, lone fault, explaining sensor, veto and resolve sets, blind partner, hover,
+  followed field, a new state's end: :meth:`CodeMonitor._judging`, as the served ``_judging``),
+  its band still flagged and its fault signatures still excluding it.  An export before it (no
+  ``warn_only``) judges it as any other sensor.
 
 What else the served monitor does it flags, ``NOT_IN_CODE`` with the rule (:data:`REASONS`), and
 goes on by its own rules: a reading beyond its range at a campaign's first sample, of several
@@ -266,6 +272,8 @@ def monitor_fields(deployed, inputs: list) -> dict:
         "spike": 1,
         "bent": 1, "bend_lim": mon._bend_lim.tolist(),
         "pair_jump": 1,
+        # (quiet94c) the ambient of a one-campaign training: its drift warned, not acted on
+        "warn_only": [int(w) for w in getattr(mon, "drift_warn_only", np.zeros(n, bool))],
         "modes": int(mon.pod.n_modes_),
         "basis": mon.pod.basis_[:, :int(mon.pod.n_modes_)].tolist(),
         "fallback": [int(c in falls) for c in mon.names],
@@ -400,6 +408,8 @@ class CodeMonitor:
         self.max_lev = float(arrays["max_leverage"])
         self.ported = np.asarray(arrays["ported_out"], bool)
         self.predictable = np.asarray(arrays["predictable"], bool)
+        # (quiet94c) sensors whose drift is warned only (an export before it: none)
+        self.warn_only = np.asarray(arrays.get("warn_only", [0] * n), bool)
         self.fallback = np.asarray(arrays.get("fallback", [0] * n), bool)
         # (cmon83) the law set of its fallback model in the code (0: none, an export before it)
         self.fallset = np.asarray(arrays.get("fallback_set", [0] * n), int)
@@ -536,6 +546,11 @@ class CodeMonitor:
         scale = np.where(judged, 1.0 / np.maximum(1 - lev, 1e-12), 1.0)
         scale[active & ~observable] = np.nan
         return self.Mc, active, observable, judged, scale
+
+    def _judging(self) -> np.ndarray:
+        """(quiet94c) The judged sensors whose error is the drift rule's evidence, as served
+        (``SensorMonitor._judging``): a ``warn_only`` one's is warned (its band), not acted on."""
+        return self._set()[3] & ~self.warn_only
 
     def _errors(self, d):
         M, _, _, _, scale = self._set()
@@ -1120,7 +1135,7 @@ class CodeMonitor:
         """The served monitor's drift exclusion where the code holds it, else flagged."""
         a = self.a
         level, err = self._judge()
-        _, active, _, judged, _ = self._set()
+        active, judged = self._active(), self._judging()
         field = ALARM if (self.by_field & ~active).any() else a["exclude_level"]
         # (cmon82b) in a new thermal state no drift exclusion at all (served: every one vetoed)
         if (judged & (level >= field)).any() and active.sum() > a["min_active"] and not (
@@ -1140,7 +1155,7 @@ class CodeMonitor:
         with every judged sensor within band (flagged by an export before cmon82b)."""
         a = self.a
         level, _ = self._judge()
-        _, active, _, judged, _ = self._set()
+        active, judged = self._active(), self._judging()
         self.since[active | (self.count - self.since > self.window)] = -1
         out = int((judged & (level >= WARNING)).sum())
         for j in np.flatnonzero(self.since >= 0):
@@ -1153,7 +1168,7 @@ class CodeMonitor:
             self._readmit(int(j), FOLLOWED)
             self._declare()
             level, _ = self._judge()
-            _, _, _, judged, _ = self._set()
+            judged = self._judging()
             out = int((judged & (level >= WARNING)).sum())
         self.calm_field = 0 if out else self.calm_field + 1
         if self.novel and self.calm_field >= self.window:
@@ -1177,7 +1192,7 @@ class CodeMonitor:
         ``new_state_others`` others are out of it (else nothing: the served monitor's veto), its
         blind partner with it; flagged where the served monitor does what the code does not."""
         a = self.a
-        _, active, observable, judged, _ = self._set()
+        judged = self._judging()
         if (u := self._explaining(level, field)) is not None:
             if a["blind_out"] and (self.out < 0 or self._second_held(u)):
                 self._blind_out(u)
@@ -1207,7 +1222,7 @@ class CodeMonitor:
         self.hid[j] = bool(level[j] < WARNING)     # (mon85b) it passed its own band
         self._set_bands()
         _, active, observable, _, _ = self._set()
-        blind = np.flatnonzero(active & ~observable & (z >= 0.7 * z[j]))
+        blind = np.flatnonzero(active & ~observable & ~self.warn_only & (z >= 0.7 * z[j]))
         for i in blind:
             if active.sum() <= a["min_active"]:
                 continue
@@ -1217,7 +1232,7 @@ class CodeMonitor:
                 return
             if a["new_state"]:
                 lv, _ = self._judge()
-                _, _, _, jd, _ = self._set()
+                jd = self._judging()
                 if not self._resolves(int(i)):    # a new thermal state (served: declared)
                     if not a["novel"]:
                         self._flag(NOT_IN_CODE, int(i), DRIFT)
@@ -1262,7 +1277,7 @@ class CodeMonitor:
         """After an exclusion the served monitor judges again and goes on with one out: a sensor
         still beyond the alarm band is flagged (a second culprit, not in the code)."""
         level, _ = self._judge()
-        _, active, _, judged, _ = self._set()
+        active, judged = self._active(), self._judging()
         if (judged & (level >= ALARM)).any() and active.sum() > self.a["min_active"]:
             self._flag(NOT_IN_CODE, int(np.argmax(judged & (level >= ALARM))), DRIFT)
 
@@ -1311,8 +1326,8 @@ class CodeMonitor:
     def _hovers(self, level, err) -> bool:
         """The served monitor's ``_excursion_hovers``: every judged sensor out of band has an
         error no larger a share of its rise than the memory's (a regime, not a fault)."""
-        M, _, _, judged, scale = self._set()
-        out = np.flatnonzero(judged & (level >= WARNING))
+        M, _, _, _, scale = self._set()
+        out = np.flatnonzero(self._judging() & (level >= WARNING))
         if not self.slow_known or self.count < 2 or not len(out):
             return False
         past = (self.slow - M @ self.slow) * scale
@@ -1352,7 +1367,7 @@ class CodeMonitor:
         if (op := self._operator(~trial)) is None:
             return False
         M, lev = op
-        jd = trial & (lev < self.max_lev)
+        jd = trial & (lev < self.max_lev) & ~self.warn_only
         if seen is not None and (seen & trial & ~jd).any():
             return False
         X = self._X()
@@ -1364,7 +1379,8 @@ class CodeMonitor:
     def _explaining(self, level, field) -> int | None:
         """The served monitor's ``_explaining`` (every sensor in): a sensor no other predicts
         whose reading explains the judged sensors beyond the band (None: none does)."""
-        _, active, observable, judged, _ = self._set()
+        _, active, observable, _, _ = self._set()
+        judged = self._judging()
         M, lev = self.Mc, self.levc
         out = judged & (level >= field)
         band = self.warn if field == WARNING else self.alarm
@@ -1372,7 +1388,7 @@ class CodeMonitor:
         r = (X - X @ M.T).mean(axis=0)
         z = np.where(active, np.abs(r) / np.sqrt(np.maximum(1 - lev, 1e-12)), -1.0)
         best, best_z = None, float(np.max(np.where(judged, z, -1.0)))
-        for u in np.flatnonzero(active & ~observable & (z > best_z)):
+        for u in np.flatnonzero(active & ~observable & ~self.warn_only & (z > best_z)):
             trial = active.copy()
             trial[u] = False
             if trial.sum() < self.a["min_active"]:
@@ -1380,7 +1396,7 @@ class CodeMonitor:
             if (op := self._operator(~trial)) is None:
                 continue
             Mu, lu = op
-            jd = trial & (lu < self.max_lev)
+            jd = trial & (lu < self.max_lev) & ~self.warn_only
             if (out & ~jd).any():
                 continue
             E = (X[:, jd] - X @ Mu[jd].T) / (1 - lu[jd])

@@ -121,6 +121,8 @@ def monitor_arrays(ss) -> list[tuple[str, object, tuple, str]]:
             *((f"MON_{k.upper()}", m.get(k, [0.0] * n), (n,), "real") for k in vectors),
             ("MON_PREDICTABLE", m.get("predictable", []), (n,), "int"),
             ("MON_PORTED", m.get("ported_out", []), (n,), "int"),
+            # (quiet94c) drift warned only (an ambient of a one-campaign training; before: none)
+            ("MON_WARN_ONLY", m.get("warn_only", [0] * n), (n,), "int"),
             ("MON_FALLBACK", m.get("fallback", [0] * n), (n,), "int"),
             ("MON_FALLBACK_SET", m.get("fallback_set", [0] * n), (n,), "int"),
             *((name, m.get(key, default), (), kind) for name, key, default, kind in scalars)]
@@ -144,6 +146,13 @@ static void mon_set(const tc_state *s, int active[], int observable[], int judge
 }
 
 /* each sensor's prediction from the active ones (the POD operator of the set) and its error */
+/* (quiet94c) of the judged sensors jd[], those whose error is the drift rule's evidence, as
+   served (_judging): one MON_WARN_ONLY is warned (its band), never blamed, vetoing or holding */
+static void mon_judging(int jd[]) {
+    int k;
+    for (k = 0; k < NM; k++) jd[k] = jd[k] && !MON_WARN_ONLY[k];
+}
+
 static void mon_errors(const tc_state *s, const double d[], double pred[], double e[]) {
     int a[NM], o[NM], jd[NM], k, m;
     double scale[NM];
@@ -821,10 +830,10 @@ static int mon_resolves(const tc_state *s, int j, const int seen[], double alone
     if (n < MON_MIN_ACTIVE) return 1;
     if (!mon_operator(out, M, lev)) return 0;
     for (k = 0; k < NM; k++)   /* (seen: each of them still judged) */
-        if (seen && seen[k] && !out[k] && lev[k] >= MON_MAX_LEV) return 0;
+        if (seen && seen[k] && !out[k] && (lev[k] >= MON_MAX_LEV || MON_WARN_ONLY[k])) return 0;
     for (k = 0; k < NM; k++) {
         double e = 0.0;
-        if (out[k] || lev[k] >= MON_MAX_LEV) continue;
+        if (out[k] || lev[k] >= MON_MAX_LEV || MON_WARN_ONLY[k]) continue;
         for (r = 0; r < rows; r++) e += mon_loo(M, lev, k, X[r]);
         if (!(fabs(e / rows) < s->mon_warn[k])) return 0;
     }
@@ -907,6 +916,7 @@ static int mon_hovers(const tc_state *s, const int level[]) {
     int a[NM], o[NM], jd[NM], k, m, r, n = 0, rows;
     if (!s->mon_slow_known || s->mon_count < 2) return 0;
     mon_set(s, a, o, jd, scale);
+    mon_judging(jd);
     rows = s->mon_count < MON_CONFIRM ? s->mon_count : MON_CONFIRM;
     for (r = 0; r < rows; r++)
         for (k = 0; k < NM; k++) X[r][k] = s->mon_hist[((s->mon_pos - 1 - r) % MW + MW) % MW][k];
@@ -931,6 +941,7 @@ static int mon_explaining(const tc_state *s, const int level[], int field) {
     double X[MW][NM], scale[NM], z[NM], best_z = -1.0, Mu[NM][NM], lu[NM];
     int a[NM], o[NM], jd[NM], cand[NM], out[NM], k, u, r, m, best = -1, rows = mon_rows(s, X);
     mon_set(s, a, o, jd, scale);
+    mon_judging(jd);
     for (k = 0; k < NM; k++) {
         double e = 0.0, h = 1.0 - s->mon_lev[k];
         z[k] = -1.0;
@@ -943,7 +954,7 @@ static int mon_explaining(const tc_state *s, const int level[], int field) {
         z[k] = fabs(e / rows) / sqrt(h > 1e-12 ? h : 1e-12);
         if (jd[k] && z[k] > best_z) best_z = z[k];
     }
-    for (k = 0; k < NM; k++) cand[k] = a[k] && !o[k] && z[k] > best_z;
+    for (k = 0; k < NM; k++) cand[k] = a[k] && !o[k] && !MON_WARN_ONLY[k] && z[k] > best_z;
     for (u = 0; u < NM; u++) {
         int n = 0, fails = 0;
         if (!cand[u]) continue;
@@ -951,7 +962,7 @@ static int mon_explaining(const tc_state *s, const int level[], int field) {
         if (n < MON_MIN_ACTIVE || !mon_operator(out, Mu, lu)) continue;
         for (k = 0; k < NM && !fails; k++) {
             double least = HUGE_VAL;
-            int judged = a[k] && k != u && lu[k] < MON_MAX_LEV;
+            int judged = a[k] && k != u && lu[k] < MON_MAX_LEV && !MON_WARN_ONLY[k];
             if (jd[k] && level[k] >= field && !judged) fails = 1;
             if (!judged) continue;
             for (r = 0; r < rows; r++) {
@@ -965,11 +976,13 @@ static int mon_explaining(const tc_state *s, const int level[], int field) {
     return best;
 }
 
-/* level[] and the judged sensors (jd[]) of the active set, how many are active */
+/* level[] and the judged sensors (jd[]) of the active set that judge a drift (mon_judging),
+   how many are active */
 static int mon_levels(const tc_state *s, int level[], int jd[]) {
     int a[NM], o[NM], k, n = 0;
     double scale[NM];
     mon_set(s, a, o, jd, scale);
+    mon_judging(jd);
     for (k = 0; k < NM; k++) level[k] = jd[k] ? mon_level(s, k) : 0, n += a[k];
     return n;
 }
@@ -1019,6 +1032,7 @@ static void mon_drift(tc_state *s, const int level[], int field) {
         return;
     }
     mon_set(s, a, o, jd, scale);
+    mon_judging(jd);
     for (k = 0; k < NM; k++) {
         double e = mon_mean_err(s, k), sd = sqrt(fabs(1.0 - s->mon_lev[k]));
         z[k] = jd[k] ? fabs(isnan(e) ? 0.0 : e) * (sd * sd) : -1.0;
@@ -1044,7 +1058,8 @@ static void mon_drift(tc_state *s, const int level[], int field) {
     mon_set_bands(s);
     mon_set(s, a, o, jd, scale);
     for (k = 0; k < NM; k++)
-        if (a[k] && !o[k] && z[k] >= 0.7 * z[j]) nblind++, partner = partner < 0 ? k : partner;
+        if (a[k] && !o[k] && !MON_WARN_ONLY[k] && z[k] >= 0.7 * z[j])
+            nblind++, partner = partner < 0 ? k : partner;
     if (nblind && mon_levels(s, lv, jd) > MON_MIN_ACTIVE) {
         int out[NM];
         for (k = 0; k < NM; k++) out[k] = !a[k] || k == partner;
