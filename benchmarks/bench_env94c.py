@@ -44,7 +44,41 @@ docs of the key say so.  Else REFUSED (the patch kept as benchmarks/env94c_rule.
 
 MEASURED
 --------
-(filled in after the single scoring run)
+FRESH 9709-9713, scored ONCE (``cache /tmp/env94c/fresh 9709-9713`` on main ce2ee62b's src after
+the bar was committed in 561e284f, then ``score``; nothing changed after; CPU 318 s for the draw's
+15 cells and the 330 streams, under a load of ~9 on the 2 shared cores, 14 min wall)::
+
+  cell              Σ² off    on  rule  rule/on   cell              Σ² off    on  rule  rule/on
+  cms9709-arx          769   328   328  1.000     cms9711-mlr          805   391   391  1.000
+  cms9709-lagbank     1144  1024  1023  1.000     cms9712-arx          837   316   316  1.000
+  cms9709-mlr         1192   648   648  1.000     cms9712-lagbank     2314  2156  2155  1.000
+  cms9710-arx         1107   409   409  1.000     cms9712-mlr          813   440   440  1.000
+  cms9710-lagbank     1456  1283  1282  1.000     cms9713-arx          892   493   493  1.000
+  cms9710-mlr         1102   534   534  1.000     cms9713-lagbank     1338  1205  1204  0.999
+  cms9711-arx          656   257   257  1.000     cms9713-mlr          805   397   397  1.000
+  cms9711-lagbank      849   785   785  1.000
+
+  (a) clean: 0 of 15 cells > 1.01 x on (worst 1.000); G against off 0.578 (on) and 0.578 (rule),
+      ratio 1.000: MET.
+  (b) 0 of 150 fault cases > 1.02 x on (worst 1.000): MET.  Per kind, added Σ² pooled over 30
+      cases off / on / rule: spike 433 / 734 / 734, jump 427 / 730 / 730, drift 17 174 / 33 822 /
+      17 640, range 437 / 735 / 734, dropout 427 / 725 / 725.
+  (c) drift's added Σ²: on 33 822 -> rule 17 640 (0.52x): MET.
+  Beside (not the bar): cases > 1.02 x off: drift 21 of 30 under ``on``, 0 under the rule; the
+  other kinds 0 and 0.  Against off, spike / jump / range / dropout still add 1.7x under both (the
+  reason env94b refused the rule as the DEFAULT; unchanged here: the key stays opt-in).
+  The built src (the patch applied) against the composed rule (bench_env94's ``check
+  /tmp/env94c/fresh cms9712-lagbank drift:T_right3``): Σ² 2011.2 vs 2011.1 (off 2161.8); E_Z's
+  largest row gap 3.4 µm, the other targets 0 (as env94's check found on cms3141-arx: not traced).
+
+VERDICT: KEPT.  env94's patch applied (``git apply -3``, clean) under ``promote.envelope.per_target``
+(default unchanged: false); its 4 tests (tests/apps/test_envelope_spread94.py) fail on main
+ce2ee62b and pass here; docs/cli.md (the key's row, extension marked), docs/sweeps.md,
+docs/to-the-machine.md say so.
+Left: the count's blind spot (a drift starting while a source still has other inputs out passes
+unclamped; seed 9301's record, env94) not priced; E_X's gain lost while the monitor has a sensor out
+(the 1.7x against off for spike / jump / range / dropout) not traced; the lag bank's E_Z / E_Z_mid
+clean loss under the key has no general cure (env94b).
 """
 
 from __future__ import annotations
