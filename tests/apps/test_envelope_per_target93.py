@@ -55,7 +55,10 @@ def test_a_white_target_streams_unclamped_the_others_stay_clamped(column):
     assert (per_target["n_clamped"] > 0).sum() > 10            # Q3 takes the inputs off the pattern
     acted = shared["n_clamped"].to_numpy() > 0
     assert np.abs(shared["E_X"] - off["E_X"]).to_numpy()[acted].max() > 1.0   # main froze E_X
-    np.testing.assert_allclose(per_target["E_X"], off["E_X"], atol=1e-9)
+    # unclamped where the excess is a source's, two inputs or more out (env94: one alone, clamped)
+    spread = per_target["n_clamped"].to_numpy() >= 2
+    np.testing.assert_allclose(per_target["E_X"].to_numpy()[spread], off["E_X"].to_numpy()[spread],
+                               atol=1e-9)
     np.testing.assert_allclose(per_target["E_Y"], shared["E_Y"], atol=1e-9)
     assert np.abs(per_target["E_Y"] - off["E_Y"]).max() > 1.0
     # the new source's E_X carried on: closer to the measured error than the clamped stream

@@ -347,6 +347,7 @@ def source(ss: StateSpace) -> str:
         _array("BD", ss.bd, (r, d, n)), _array("G", ss.g, (r, k)), _array("AR", ss.ar, (r,)),
         _array("CLAMP_GAIN", ss.clamp_gain or [[0.0] * n] * r, (r, n)),
         _ints("CLAMP_OUTRIGHT", ss.clamp_outright or [0] * len(ss.targets)),
+        _ints("CLAMP_SPREAD", ss.clamp_spread or [0] * len(ss.targets)),
         *_forest_constants(ss),
         *_lstm_constants(ss),
         *_pattern_constants(ss),
@@ -726,6 +727,8 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
         for (h = 0; h < TC_N_SETS && (s->first || clamped); h++) s->bound[h][i] = fabs(excess[h][i]);
         /* outright: no step gain (or none yet: a state's, out at the campaign's first sample) */
         bound = (CLAMP_OUTRIGHT[i] || s->by_outright[i]) ? HUGE_VAL : s->bound[serving][i];
+        /* a white target at a sample whose excess two inputs or more share: a heat source's */
+        if (CLAMP_SPREAD[i] && clamped >= 2) bound = 0.0;
         yout[i] = ych[0] - (ych[1] > bound ? bound : (ych[1] < -bound ? -bound : ych[1]));
     }}
     for (h = 0; h < 2; h++)

@@ -246,6 +246,7 @@ def function_block(ss: StateSpace, watch: dict | None = None) -> str:
         _constant("LO", ss.lo or [], (n,)), _constant("HI", ss.hi or [], (n,)),
         _constant("CLAMP_GAIN", ss.clamp_gain or [], (r, n)),
         _constant("CLAMP_OUTRIGHT", ss.clamp_outright or [], (m,), "INT"),
+        _constant("CLAMP_SPREAD", ss.clamp_spread or [], (m,), "INT"),
         f"    PATTERN : BOOL := {'TRUE' if ss.pattern else 'FALSE'};",
         f"    PATTERN_RANK : INT := {len(ss.pattern_basis[0]) if ss.pattern else 0};",
         f"    PATTERN_TOL : LREAL := {literal(ss.pattern_tol)};",
@@ -904,6 +905,10 @@ IF NOT refused THEN
         IF CLAMP_OUTRIGHT[i] <> 0 OR by_outright[i] THEN
             (* a model without a step gain: the response to the excess taken out whole *)
             bound := REAL_LIMIT;
+        END_IF;
+        IF CLAMP_SPREAD[i] <> 0 AND n_clamped >= 2 THEN
+            (* a white target at a sample whose excess two inputs or more share: a heat source's *)
+            bound := 0.0;
         END_IF;
         IF ych[1] > bound THEN
             y := ych[0] - bound;

@@ -42,6 +42,8 @@ everything its :meth:`~thermocomp.apps.deploy.StreamingCompensator.step` does to
    :mod:`.forest`, adds to ``y_t`` times its weight, an ``lstm``'s residual too, its cell stepped
    on the clamped features, ``[x, lags]`` minus their excess channel: :mod:`.recurrent`),
    ``b_t = |clamp_gain_t . ex|`` the response to the excess held for the envelope's horizon
+   (0 for a target of ``clamp_spread`` at a sample with two inputs or more out: a white target,
+   ``promote.envelope.per_target``)
    (as the stream does; the gain plus ``sum_s r_s clamp_state_gain[s]``, ``r_s`` a state's
    value at the sample before the campaign's first excess, held: an ``inputs_product``'s,
    export62; ``y_t - r_t`` in a campaign out at its first sample where ``clamp_state_first_t``,
@@ -158,6 +160,9 @@ class _System:
     # (n_targets,) 1: the response to the excess is taken out whole (b_t infinite): the stream
     # clamps a model without a step gain outright; empty: none
     clamp_outright: list = field(default_factory=list)
+    # (n_targets,) 1: a white target (``promote.envelope.per_target``): unclamped (b_t = 0) at a
+    # sample whose excess at least two inputs share (the stream's spread_excess); empty: none
+    clamp_spread: list = field(default_factory=list)
     # a diagnosed state times the inputs' rises (inputs_product, export62): the gain grows by each
     # state's value r_a (``[input, referenced]``: v_a - referenced v_a(0), as a derived input's)
     # at the sample before the campaign's first excess, times ``clamp_state_gain`` (n_laws,
@@ -305,7 +310,7 @@ def state_space(deployed, provenance: dict | None = None, known_ambient: bool = 
     N = len(inputs)
     env, clamp = stream.envelope, stream.envelope is not None and stream.policy == "clamp"
     laws, period, powers, chosen = [], None, Powers(), {}      # laws: (target index, Law)
-    outright, by_state, forests, nets = [], [], Forests(), Nets()
+    outright, spread, by_state, forests, nets = [], [], [], Forests(), Nets()
     for i, (t, est, idx) in enumerate(stream._plan):
         cols = np.arange(n) if idx is None else np.asarray(idx)
         beside: list = []        # an arx_rf's forest, an lstm's network (laws.Beside)
@@ -319,10 +324,11 @@ def state_space(deployed, provenance: dict | None = None, known_ambient: bool = 
                 forests.add(i, b.weight, b.model, inputs, r)
         # the clamp's gain: the deployed model's own, split as its laws count (gain61: the one
         # computation the stream's step_gain sums at the campaign's A0); none: clamped outright
-        # a target the stream leaves unclamped (white_targets): no gain, not outright: no bound
-        clamped = clamp and t not in stream.unclamped_
-        terms, by = _clamp_terms(t, est, env.horizon_s, inputs) if clamped else (None, {})
-        outright.append(int(clamped and terms is None))
+        # a target the stream leaves unclamped (white_targets) has its gain too: it is clamped
+        # at a sample whose excess one input alone carries (clamp_spread)
+        terms, by = _clamp_terms(t, est, env.horizon_s, inputs) if clamp else (None, {})
+        outright.append(int(clamp and terms is None))
+        spread.append(int(clamp and t in stream.unclamped_))
         by_state.append(int(bool(by) and terms is not None))
         if terms is not None:
             with_gains(own, terms, cols, N, t, by)
@@ -399,6 +405,7 @@ def state_space(deployed, provenance: dict | None = None, known_ambient: bool = 
         clamp_gain=[(law.gain if law.gain is not None else np.zeros(N)).tolist()
                     for _, law in laws] if clamp else None,
         clamp_outright=outright if any(outright) else [],
+        clamp_spread=spread if any(spread) else [],
         clamp_states=[list(k) for k in states_by], clamp_state_gain=state_gain.tolist()
         if states_by else [], clamp_state_first=by_state if states_by else [],
         **_pattern_fields(env if clamp else None, len(states)),
@@ -719,6 +726,8 @@ class Simulator:
             self.bound = np.abs([self._summed(gain @ excess, k) for k in range(self.sets)])
         outright = np.asarray(ss.clamp_outright or [0] * len(y[0]), bool) | self.by_outright
         bound = np.where(outright, np.inf, self.bound[self.serving])
+        if ss.clamp_spread and np.count_nonzero(excess) >= 2:     # a heat source's: carried on
+            bound = np.where(np.asarray(ss.clamp_spread, bool), 0.0, bound)
         return y[0] - np.clip(y[1], -bound, bound), self.output.allowance(x, self.envelope)
 
     def _beside(self, y: np.ndarray, targets: list, weights: list, laws: list,
