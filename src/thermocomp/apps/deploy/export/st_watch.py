@@ -40,7 +40,9 @@ keeps no count of the sensors the C holds out (it cannot tell the C's re-admissi
 judged as the C judges it with none out but the jumpers.  The freeze, the
 drift, the stepped self-prediction error (the C's ``STEP_OUT``), the re-admission and the rest
 judge a sensor by the others' prediction of it (the POD): not in the ST, they stay with the served
-model (``provenance.not_in_code``).
+model (``provenance.not_in_code``).  (jump94b) The level shift of a sensor no other predicts told by
+two windows (the C's ``SETTLED``: a ring of ``2 window - 1`` readings and two medians) is not in
+the ST either: the block reads the shifted sensor as heat, as the served monitor did before it.
 """
 
 from __future__ import annotations
