@@ -1361,8 +1361,6 @@ static void mon_sample(tc_state *s, double u[], double dt) {
     }
     mon_rebuilt(s, u, d, pred);
 }
-#undef NM
-#undef MW
 
 /* the median of the n values v (n <= MW; v is sorted in place) */
 static double mon_median(double v[], int n) {
@@ -1387,12 +1385,21 @@ static void mon_settled(tc_state *s, const double x[], double dt) {
         gap = span > s->mon_gap[k] ? span : s->mon_gap[k];
         if (!(MON_SETTLE_LIM[k] < HUGE_VAL) || gap != 1.0 || s->mon_settle_age[k] < 2 * MW - 1
             || (mon_is_out(s, k) && s->mon_jumps[k])) continue;
-        lo1 = lo2 = HUGE_VAL, hi1 = hi2 = -HUGE_VAL, ok = isfinite(x[k] - s->mon_ref[k]);
+        lo1 = lo2 = HUGE_VAL;
+        hi1 = hi2 = -HUGE_VAL;
+        ok = isfinite(x[k] - s->mon_ref[k]);
         for (r = 0; r < 2 * MW && ok; r++) {
             v = r < 2 * MW - 1 ? s->mon_settle[r][k] : x[k] - s->mon_ref[k];
             ok = isfinite(v);
-            if (r < MW) b[r] = v, lo1 = v < lo1 ? v : lo1, hi1 = v > hi1 ? v : hi1;
-            else c[r - MW] = v, lo2 = v < lo2 ? v : lo2, hi2 = v > hi2 ? v : hi2;
+            if (r < MW) {
+                b[r] = v;
+                lo1 = v < lo1 ? v : lo1;
+                hi1 = v > hi1 ? v : hi1;
+            } else {
+                c[r - MW] = v;
+                lo2 = v < lo2 ? v : lo2;
+                hi2 = v > hi2 ? v : hi2;
+            }
         }
         sep = lo2 - hi1 > lo1 - hi2 ? lo2 - hi1 : lo1 - hi2;
         if (!ok || !(sep > MON_SETTLE_LIM[k])) continue;
@@ -1434,4 +1441,7 @@ static void monitor_step(tc_state *s, double u[], double dt) {
         s->mon_settle[2 * MW - 2][k] = s->mon_hist[(s->mon_pos + MW - 1) % MW][k];   /* (NAN beyond range) */
     }
 }
+
+#undef NM
+#undef MW
 """
