@@ -65,6 +65,10 @@ class Settled:
         sep = np.maximum(after.min(0) - before.max(0), before.min(0) - after.max(0))
         fire = ((self._active[cols] | (self._jumps[cols] == 0)) & (sep > self._settle_lim[cols])
                 & (self._gap[cols] == 1) & (self._settle_age[cols] >= 2 * w - 1))
+        if fire.any():
+            # the fast path leaves one array as the last reading, the last good one and the
+            # field served (monitor._fast): each shifted once, on its own copy
+            self._prev, self._last_good = self._prev.copy(), self._last_good.copy()
         for k in np.flatnonzero(fire):
             j = int(cols[k])
             off = float(np.median(after[:, k]) - np.median(before[:, k]))
