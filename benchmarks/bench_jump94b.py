@@ -62,6 +62,12 @@ Seen, fl_thermal (``fl`` on both, ``flbar``): every one of the 16 lines equal to
 prototype (Σ², d, events): the +3 degC at 1 h Σ² 123.35 -> 89.58 µm², re-referenced 9 samples on;
 healthy 83.90 = 83.90, 0 sensor events; mean d x 100 28.48 -> 3.39; 14 of 15 caught (the +1 degC
 at mid-test missed, as the prototype); none past main's d + log(1.02): (c) MET.
+Seen simulated, (d): ``healthy`` on bench_step93b's 15 seen records (separate ROOTs): events and
+d as main's on every one (column9316's 188, lr9430's 3, d x 100 41.965), 0 new: MET.  ``trace
+swiss9317,swiss9323,lr9426,cr9431`` (200 cells): mean d 0.1406 -> 0.1387, detected 59 -> 60, 0
+cells past main's d + log(1.02); the one cell moved as the prototype's (lr9426 ``T_table`` 2 x,
+d x 100 54.86 -> 16.46, caught).  (Main's 0.1406 here, 0.1426 at 4f0fc94a in bench_jump94.)
+CPU: seen healthy 18.2 / 21.0 s, seen trace 47.2 / 60.5 s.
 
 Fresh, scored once (lr9699-9703, cr9704-9708):
 (a) ``trace``: 512 cells, mean d 0.1652 -> 0.1564, detected 163 -> 171, 0 cells past main's d +
