@@ -1,5 +1,8 @@
 """A blind sensor's level shift caught by two windows, built (jump94b, issue 34; follow-up of
 ``bench_jump94.py``, whose prototype ``settled`` passed its bar but was not built).
+KEPT: bench_jump94's bar (unchanged) met on fresh lr9699-9703 / cr9704-9708, scored once, and on
+the seen cells (fl_thermal, bench_step93b's records, 9661-9665) as the prototype; served, numpy
+mirror and C (``TC_MON_SETTLED``) built, the ST does not hold it.
 
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is that tree's
 monitor as built -- main's src, or this branch's with the rule)::
@@ -67,7 +70,11 @@ d as main's on every one (column9316's 188, lr9430's 3, d x 100 41.965), 0 new: 
 swiss9317,swiss9323,lr9426,cr9431`` (200 cells): mean d 0.1406 -> 0.1387, detected 59 -> 60, 0
 cells past main's d + log(1.02); the one cell moved as the prototype's (lr9426 ``T_table`` 2 x,
 d x 100 54.86 -> 16.46, caught).  (Main's 0.1406 here, 0.1426 at 4f0fc94a in bench_jump94.)
-CPU: seen healthy 18.2 / 21.0 s, seen trace 47.2 / 60.5 s.
+``trace lr9661,lr9662,lr9663,cr9664,cr9665`` (bench_jump94's fresh, now seen; 264 cells): mean d
+0.1154 -> 0.1088, detected 74 -> 79, 0 past: every cell as the prototype's there (lr9661
+``T_table`` 2 x 100.20 -> 12.05; lr9662 10.77 / 8.18 -> 8.22 / 8.12; lr9663 70.97 / 41.53 -> 14.55
+/ 14.07).  (d) MET.
+CPU: seen healthy 18.2 / 21.0 s, seen trace 47.2 / 60.5 s, 9661-9665 trace 60.6 / 70.5 s.
 
 Fresh, scored once (lr9699-9703, cr9704-9708):
 (a) ``trace``: 512 cells, mean d 0.1652 -> 0.1564, detected 163 -> 171, 0 cells past main's d +
