@@ -52,6 +52,9 @@ the block does not know (the POD): not in the ST, they stay with the served mode
 field is whole only: from the first exclusion the block flags (a jump, a dropout, a reading beyond range, a
 stepped error) to the campaign's end the C judges it with a sensor out (or re-admitted by a band
 the block does not hold), and the block does not; that flag marks the row its judgement ends.
+(jump94b) The level shift of a sensor no other predicts told by two windows (the C's
+``SETTLED``: a ring of ``2 window - 1`` readings and two medians) is not in the ST either: the
+block reads the shifted sensor as heat, as the served monitor did before it.
 """
 
 from __future__ import annotations

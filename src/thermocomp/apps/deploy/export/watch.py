@@ -210,15 +210,18 @@ REASONS = ("", "jump: re-referenced and excluded", "freeze: excluded",
            "re-admitted: a spike, its reading back with the field on its reference before the "
            "jump (the jump undone)",
            "step off its own: a sensor no other predicts re-referenced by its step less its last, "
-           "kept in")
+           "kept in",
+           "settled off its own: a sensor no other predicts whose last window lies wholly off the "
+           "window before, re-referenced by their medians' difference, kept in")
 RULES = ("", "JUMP", "FREEZE", "BACK", "RANGE", "COMMON", "GLITCH", "STEPPED", "DRIFT", "SECOND",
          "BLIND", "DROPOUT", "MISSING_FIRST", "MISSING_SECOND", "MISSING_BLIND",
          "MISSING_FROZEN", "OFF_RANGE", "COMMON_STEP", "DRIFT_OUT",
          "FOLLOWED", "BLIND_OUT", "FALLBACK",
-         "THAWED", "NO_THAW", "STEP_OUT", "SPIKE", "BENT")   # their names in the C (TC_MON_JUMP ...)
+         "THAWED", "NO_THAW", "STEP_OUT", "SPIKE", "BENT",
+         "SETTLED")   # their names in the C (TC_MON_JUMP ...)
 (JUMP, FREEZE, BACK, RANGE, COMMON, GLITCH, STEPPED, DRIFT, SECOND, BLIND, DROPOUT, MISSING_FIRST,
  MISSING_SECOND, MISSING_BLIND, MISSING_FROZEN, OFF_RANGE, COMMON_STEP, DRIFT_OUT, FOLLOWED,
- BLIND_OUT, FALLBACK, THAWED, NO_THAW, STEP_OUT, SPIKE, BENT) = range(1, len(RULES))
+ BLIND_OUT, FALLBACK, THAWED, NO_THAW, STEP_OUT, SPIKE, BENT, SETTLED) = range(1, len(RULES))
 
 
 @dataclass
@@ -271,6 +274,8 @@ def monitor_fields(deployed, inputs: list) -> dict:
         "blind_range": 1,
         "spike": 1,
         "bent": 1, "bend_lim": mon._bend_lim.tolist(),
+        "settled": int(getattr(mon, "_settles", False)),
+        "settle_lim": getattr(mon, "_settle_lim", np.full(n, np.inf)).tolist(),
         "pair_jump": 1,
         # (quiet94c) the ambient of a one-campaign training: its drift warned, not acted on
         "warn_only": [int(w) for w in getattr(mon, "drift_warn_only", np.zeros(n, bool))],
@@ -392,9 +397,13 @@ class CodeMonitor:
                      ("blind_range", 0),   # (before cmon89b: a blind sensor's range flagged)
                      ("spike", 0),         # (before bar91b: a spike's return re-referenced)
                      ("bent", 0),          # (before step93: a step off its own read as heat)
+                     ("settled", 0),       # (before jump94b: a blind level shift read as heat)
                      ("pair_jump", 0)):    # (before cmon93: two jumping in one sample flagged)
             a.setdefault(k, np.float64(v))
         a.setdefault("bend_lim", np.full(n, np.inf))
+        a.setdefault("settle_lim", np.full(n, np.inf))
+        # (jump94b) the sensors no other predicts whose level shift two windows tell
+        self.settles = np.flatnonzero(bool(a["settled"]) & np.isfinite(a["settle_lim"]))
         a.setdefault("rounding", np.zeros(n))    # (before mon83: no culprit held for rounding)
         # (before mon86: every set judged by the whole set's bands)
         a.setdefault("floor", np.zeros(n))
@@ -446,6 +455,9 @@ class CodeMonitor:
         self.pos = self.count = 0
         self.prev, self.prev_e, self.prev_other = (np.full(n, np.nan) for _ in range(3))
         self.last_step = np.full(n, np.nan)      # (step93) each sensor's last one-sample change
+        # (jump94b) its last 2 w - 1 readings on its current reference (oldest first), and the
+        # samples since that reference moved
+        self.settle, self.settle_age = np.full((2 * w - 1, n), np.nan), np.zeros(n, int)
         self.run, self.calm = np.zeros(n, int), np.zeros(n, int)
         self.run_pred = np.full(n, np.nan)
         # samples the next step spans (1 + its missing ones since its last reading, or a gap in
@@ -710,8 +722,45 @@ class CodeMonitor:
         if first:
             self.reset()
         self._clear()
+        u = np.asarray(u, float)
         with np.errstate(invalid="ignore"):
-            return self._step(np.asarray(u, float), first, dt, self.a)
+            if not len(self.settles):
+                return self._step(u, first, dt, self.a)
+            x = u[self.idx]
+            if not first:
+                self._settled(x, dt)
+            ref = None if first else self.ref.copy()
+            out = self._step(u, first, dt, self.a)
+            moved = True if ref is None else ~np.isclose(self.ref, ref, rtol=0.0, atol=1e-12)
+            self.settle_age = np.where(moved, 1, self.settle_age + 1)
+            self.settle[:-1] = self.settle[1:]
+            self.settle[-1] = self.hist[(self.pos - 1) % self.window]   # (NaN beyond range)
+            return out
+
+    def _settled(self, x, dt) -> None:
+        """(jump94b) Before the sample: a sensor no other predicts, in or out for another rule
+        than a jump, whose window ending at ``x`` lies wholly off the one before by more than
+        ``settle_lim``, on one reference for 2 w - 1 samples (``served Settled._settled``):
+        re-referenced by the two windows' median difference, kept in (``SETTLED``)."""
+        w, a, cols = self.window, self.a, self.settles
+        gap = np.maximum(self.gap, max(1.0, dt / a["period"])) if (
+            dt > a["gap_periods"] * a["period"]) else self.gap
+        rows = np.vstack([self.settle[:, cols], x[cols] - self.ref[cols]])
+        before, after = rows[:w], rows[w:]
+        sep = np.maximum(after.min(0) - before.max(0), before.min(0) - after.max(0))
+        active = self._active()[cols]
+        fire = ((active | (self.jumps[cols] == 0)) & (sep > a["settle_lim"][cols])
+                & (gap[cols] == 1) & (self.settle_age[cols] >= 2 * w - 1))
+        for k in np.flatnonzero(fire):
+            j = int(cols[k])
+            off = float(np.median(after[:, k]) - np.median(before[:, k]))
+            self.ref[j] += off
+            self.prev[j] -= off
+            self.hist[:, j] -= off
+            if active[k]:
+                self.last[j] -= off
+            self.settle[w:, j] -= off
+            self._flag(REREFERENCED, j, SETTLED)
 
     def _step(self, u, first, dt, a):
         x = u[self.idx]

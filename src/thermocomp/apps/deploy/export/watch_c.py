@@ -43,6 +43,10 @@ STATE = """    /* the sensor monitor (TC_MONITOR): referenced readings d = u - m
     double mon_ref[NM], mon_base[NM], mon_prev[NM], mon_prev_e[NM], mon_prev_other[NM];
     double mon_ref0[NM];   /* (cmon87) the reference before a sensor's first jump since it was in */
     double mon_last_step[NM];   /* (step93) each sensor's last one-sample change */
+    /* (jump94b) each sensor's last 2 TC_MON_WINDOW - 1 readings on its current reference
+       (oldest first) and the samples since that reference moved */
+    double mon_settle[2 * TC_MON_WINDOW - 1][NM];
+    int mon_settle_age[NM];
     double mon_hist[TC_MON_WINDOW][NM], mon_err[TC_MON_WINDOW][NM], mon_run_pred[NM];
     int mon_run[NM], mon_calm[NM], mon_pos, mon_count;
     /* (cdrop77) samples the next step spans (1 + its missing ones, or a gap in time), jumps
@@ -90,7 +94,7 @@ def monitor_arrays(ss) -> list[tuple[str, object, tuple, str]]:
     n = len(m.get("inputs", []))
     pairs = m.get("pairs", [])
     vectors = ("warning", "alarm", "jump_lim", "lo_lim", "hi_lim", "lo_c", "hi_c", "seen_run",
-               "blind_run", "rounding", "floor", "q_full", "bend_lim")
+               "blind_run", "rounding", "floor", "q_full", "bend_lim", "settle_lim")
     scalars = (("MON_MAX_LEV", "max_leverage", 1.0, "real"), ("MON_MIN_ACTIVE", "min_active", 0, "int"),
                ("MON_CONFIRM", "confirm", 1, "int"), ("MON_EXCLUDE_LEVEL", "exclude_level", 1, "int"),
                ("MON_PERIOD", "period", 1.0, "real"), ("MON_GAP_PERIODS", "gap_periods", 1.5, "real"),
@@ -108,7 +112,7 @@ def monitor_arrays(ss) -> list[tuple[str, object, tuple, str]]:
                ("MON_SECOND_INSTANT", "second_instant", 0, "int"),
                ("MON_BLIND_RANGE", "blind_range", 0, "int"),
                ("MON_SPIKE", "spike", 0, "int"), ("MON_BENT", "bent", 0, "int"),
-               ("MON_PAIR_JUMP", "pair_jump", 0, "int"))
+               ("MON_PAIR_JUMP", "pair_jump", 0, "int"), ("MON_SETTLED", "settled", 0, "int"))
     modes = max(int(m.get("modes", 1)), 1)
     return [("MON_M", m.get("M", []), (n + 1 + len(pairs), n, n), "real"),
             ("MON_LEV", m.get("lev", []), (n + 1 + len(pairs), n), "real"),
@@ -1157,7 +1161,7 @@ static void mon_judgement(tc_state *s) {
 
 /* one sample of the monitored inputs of u, replaced by what the model reads (the reading, or
    its POD reconstruction while it is out), as the served monitor (watch.py's slice) */
-static void monitor_step(tc_state *s, double u[], double dt) {
+static void mon_sample(tc_state *s, double u[], double dt) {
     double x[NM], d[NM], step[NM], pred[NM], e[NM], other[NM], gap[NM], span = 1.0;
     int a[NM], o[NM], jd[NM], big[NM], same[NM], instant[NM], rng[NM], missing[NM];
     double scale[NM];
@@ -1186,7 +1190,6 @@ static void monitor_step(tc_state *s, double u[], double dt) {
         }
         mon_recompute(s);   /* (every sensor in: MON_M[0]; the window all NAN) */
     }
-    mon_clear(s);
     for (k = 0; k < NM; k++) {
         x[k] = u[TC_MONITORED[k]];   /* (NAN: missing, one mon_refuses let through) */
         missing[k] = !isfinite(x[k]);
@@ -1373,6 +1376,87 @@ static void monitor_step(tc_state *s, double u[], double dt) {
     }
     mon_rebuilt(s, u, d, pred);
 }
+
+/* the median of the n values v (n <= MW; v is sorted in place) */
+static double mon_median(double v[], int n) {
+    int i, j;
+    double t;
+    for (i = 1; i < n; i++) {
+        for (t = v[i], j = i; j > 0 && v[j - 1] > t; j--) v[j] = v[j - 1];
+        v[j] = t;
+    }
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+/* (jump94b) before the sample x: a sensor no other predicts (MON_SETTLE_LIM finite), in or out
+   for another rule than a jump, on one reference for 2 MW - 1 samples, no gap, whose window
+   ending at x lies wholly off the MW before by more than MON_SETTLE_LIM: re-referenced by the
+   two windows' median difference, kept in (as served: Settled._settled) */
+static void mon_settled(tc_state *s, const double x[], double dt) {
+    double lo1, hi1, lo2, hi2, v, sep, off, b[MW], c[MW], span = 1.0, gap;
+    int k, r, ok;
+    if (dt > MON_GAP_PERIODS * MON_PERIOD) span = dt / MON_PERIOD > 1.0 ? dt / MON_PERIOD : 1.0;
+    for (k = 0; k < NM; k++) {
+        gap = span > s->mon_gap[k] ? span : s->mon_gap[k];
+        if (!(MON_SETTLE_LIM[k] < HUGE_VAL) || gap != 1.0 || s->mon_settle_age[k] < 2 * MW - 1
+            || (mon_is_out(s, k) && s->mon_jumps[k])) continue;
+        lo1 = lo2 = HUGE_VAL;
+        hi1 = hi2 = -HUGE_VAL;
+        ok = isfinite(x[k] - s->mon_ref[k]);
+        for (r = 0; r < 2 * MW && ok; r++) {
+            v = r < 2 * MW - 1 ? s->mon_settle[r][k] : x[k] - s->mon_ref[k];
+            ok = isfinite(v);
+            if (r < MW) {
+                b[r] = v;
+                lo1 = v < lo1 ? v : lo1;
+                hi1 = v > hi1 ? v : hi1;
+            } else {
+                c[r - MW] = v;
+                lo2 = v < lo2 ? v : lo2;
+                hi2 = v > hi2 ? v : hi2;
+            }
+        }
+        sep = lo2 - hi1 > lo1 - hi2 ? lo2 - hi1 : lo1 - hi2;
+        if (!ok || !(sep > MON_SETTLE_LIM[k])) continue;
+        off = mon_median(c, MW) - mon_median(b, MW);
+        s->mon_ref[k] += off;
+        s->mon_prev[k] -= off;
+        for (r = 0; r < MW; r++) s->mon_hist[r][k] -= off;
+        if (!mon_is_out(s, k)) s->mon_last[k] -= off;
+        for (r = MW; r < 2 * MW - 1; r++) s->mon_settle[r][k] -= off;
+        mon_flag(s, TC_MON_REREFERENCED, k, TC_MON_SETTLED);
+    }
+}
+
+/* one sample of the monitored inputs of u, replaced by what the model reads (the reading, or
+   its POD reconstruction while it is out), as the served monitor (watch.py's slice); (jump94b)
+   a blind sensor's settled level shift judged before it, its ring of readings after */
+static void monitor_step(tc_state *s, double u[], double dt) {
+    double x[NM], ref[NM];
+    int k, r;
+    mon_clear(s);
+    if (!MON_SETTLED) {
+        mon_sample(s, u, dt);
+        return;
+    }
+    for (k = 0; k < NM; k++) x[k] = u[TC_MONITORED[k]];
+    if (s->first)
+        for (k = 0; k < NM; k++) {
+            s->mon_settle_age[k] = 0;
+            for (r = 0; r < 2 * MW - 1; r++) s->mon_settle[r][k] = NAN;
+        }
+    else
+        mon_settled(s, x, dt);
+    for (k = 0; k < NM; k++) ref[k] = s->mon_ref[k];
+    mon_sample(s, u, dt);
+    for (k = 0; k < NM; k++) {
+        s->mon_settle_age[k] = s->first || !(fabs(s->mon_ref[k] - ref[k]) <= 1e-12)
+            ? 1 : s->mon_settle_age[k] + 1;
+        for (r = 0; r < 2 * MW - 2; r++) s->mon_settle[r][k] = s->mon_settle[r + 1][k];
+        s->mon_settle[2 * MW - 2][k] = s->mon_hist[(s->mon_pos + MW - 1) % MW][k];   /* (NAN beyond range) */
+    }
+}
+
 #undef NM
 #undef MW
 """

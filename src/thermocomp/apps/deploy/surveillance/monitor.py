@@ -17,10 +17,11 @@ from .excursion import Excursion
 from .faults import InstantFaults
 from .judgement import Judgement
 from .readmission import Readmission
+from .settled import Settled, largest_separation
 from .states import ALARM, COMMON_MIN, EXCLUDED, MAX_BACKOFF, OK, SPREAD_FACTOR, STATES, WARNING
 
 
-class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
+class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion, Settled):
     """Stateful monitor of ``names`` (see module doc).
 
     Parameters
@@ -47,6 +48,10 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
         Largest change of each sensor's one-sample change from one sample to the next in
         training (°C): ``jump_factor`` times it bounds the step of a sensor no other predicts
         against its own last step (:meth:`~.faults.InstantFaults._bent`).  ``None``: no bound.
+    max_settle_c : array, optional
+        Largest separation of two successive windows of each sensor in training (°C,
+        :func:`~.settled.separation`): ``jump_factor`` times it bounds the level shift of a
+        sensor no other predicts (:mod:`.settled`).  ``None``: no bound.
     longest_run : array
         Longest run of identical readings of each sensor in training.
     lo_c, hi_c : array
@@ -103,10 +108,15 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
             self.max_bend_c = np.full(len(self.names), np.inf)
             self._bend_lim, self._bends = self.max_bend_c.copy(), False
             self._last_step = np.full(len(self.names), np.nan)
+        if "max_settle_c" not in state:   # pickled before jump94b: no level shift judged
+            self.max_settle_c = np.full(len(self.names), np.inf)
+            self._set_settle_lim()
+            self._settle_reset()
 
     def __init__(self, pod: ThermalPOD, names: Sequence[str], *, warning_c=0.4, alarm_c=0.8,
                  window: int = 10, confirm: int = 2, adaptive: bool = True,
-                 exclude_at: str = "warning", max_step_c=None, max_bend_c=None, longest_run=None,
+                 exclude_at: str = "warning", max_step_c=None, max_bend_c=None, max_settle_c=None,
+                 longest_run=None,
                  lo_c=None, hi_c=None, first_c=None, jump_factor: float = 3.0,
                  freeze_factor: float = 2.0, range_margin_c: float = 10.0,
                  new_state: bool = True, new_state_others: int = 2, rounding_c=0.0,
@@ -141,6 +151,7 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
 
         self.max_step_c = arr(max_step_c, np.inf)
         self.max_bend_c = arr(max_bend_c, np.inf)
+        self.max_settle_c = arr(max_settle_c, np.inf)
         self.longest_run = arr(longest_run, np.inf)
         self.lo_c, self.hi_c = arr(lo_c, -np.inf), arr(hi_c, np.inf)
         self.first_c = arr(first_c, 0.0)
@@ -162,6 +173,7 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
         # a sensor no other predicts: its step judged against its own last step too (_bent)
         self._bend_lim = np.where(self._predictable, np.inf, self.jump_factor * self.max_bend_c)
         self._bends = bool(np.isfinite(self._bend_lim).any())
+        self._set_settle_lim()
         self._zero_run = np.zeros(n, dtype=np.int64)
         self._mid, self._half = (self._lo_lim + self._hi_lim) / 2, (self._hi_lim - self._lo_lim) / 2
         # ring rows of the `confirm - 1` samples before each write position
@@ -226,7 +238,9 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
         options = {"rounding_c": _rounding(pod, steps), "floor_c": floor,
                    "moment": W.T @ W / len(W), "drift_warn_only": warn_only, **options,
                    "warning_c": warn, "alarm_c": alarm}
-        return cls(pod, names, max_step_c=steps.max(0), max_bend_c=bends.max(0), longest_run=runs,
+        settle = largest_separation(arrays, int(options.get("window", 10)), len(names))
+        return cls(pod, names, max_step_c=steps.max(0), max_bend_c=bends.max(0),
+                   max_settle_c=settle, longest_run=runs,
                    lo_c=lo, hi_c=hi,
                    first_c=first, **options)
 
@@ -235,7 +249,14 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
               "_prev_e", "_run", "_run_pred", "_clean", "_quiet", "_calm", "_prev_other",
               "_last_good", "_by_field", "_jumps", "_ref0", "_dropped", "_gap", "_gapped", "_dwell",
               "_outs", "_explains", "_novel", "_calm_field", "_since", "_slow", "_slow_t",
-              "_slow_ok", "_ranged", "_froze", "_held", "_off", "_hid", "_last_step")
+              "_slow_ok", "_ranged", "_froze", "_held", "_off", "_hid", "_last_step", "_settle",
+              "_settle_age")
+
+    def _set_settle_lim(self) -> None:
+        # a sensor no other predicts: a level shift told by two windows (.settled)
+        self._settle_lim = np.where(self._predictable, np.inf, self.jump_factor * self.max_settle_c)
+        self._settle_cols = np.flatnonzero(np.isfinite(self._settle_lim))
+        self._settles = bool(len(self._settle_cols))
 
     def reset(self) -> None:
         """New campaign: the next sample is the reference; every sensor active and ok."""
@@ -279,6 +300,7 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
         self._calm_field = 0         # samples since a judged sensor was last out of band
         self._since = np.full(n, -1, dtype=np.int64)   # sample count at its drift exclusion
         self._slow_reset()
+        self._settle_reset()
         self._set_operator()
 
     def _operator(self, subset: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -422,12 +444,21 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
         """One sample (absolute °C, order of ``names``) -> (referenced field for the model,
         events).  Never NaN unless every sensor has been missing since the start."""
         x = np.asarray(reading, dtype=float)
+        settled: list[dict] = []
         with np.errstate(invalid="ignore"):    # NaN (missing, unobservable) compares False
+            if self._settles:
+                self._settled(x, time, settled)
+                ref = None if self._ref is None else self._ref.copy()
             clean = self._fast(x) if self._quiet else None
             out = (clean, []) if clean is not None else self._update(x, time)
+        if self._settles:
+            self._settle_push(ref)
         self._slow_step(self._hist[(self._pos - 1) % self.window], float(time))
         if clean is None:    # a new thermal state counts its calm samples on the full path
             self._quiet = self._rebuilds and not self._novel and not self._state[self._active].any()
+        if settled:          # the next sample on the full path
+            self._quiet = False
+            return out[0], settled + out[1]
         return out
 
     @property
@@ -555,6 +586,8 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
             run_pred = np.where(begun >= 0, np.take_along_axis(other, np.maximum(begun, 0), axis=0),
                                 self._run_pred)
             ok &= ~self._frozen(same, run, np.abs(other - run_pred)).any(axis=1)
+            if self._settles:
+                ok &= ~self._settle_block(d)
         m = len(d) if ok.all() else int(np.argmin(ok))
         if not m:
             return np.empty((0, n))
@@ -574,6 +607,8 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion):
             self._gap, self._gapped = np.ones(n), False
         self._last_good = self._clean = d[m - 1]
         self._slow_block(d[:m], None if times is None else np.asarray(times, float)[:m])
+        if self._settles:
+            self._settle_commit(d[:m])
         return d[:m]
 
     def _update(self, x: np.ndarray, time: float) -> tuple[np.ndarray, list[dict]]:

@@ -1,0 +1,114 @@
+"""A level shift of a sensor no other predicts, told from heat by two windows (jump94b).
+
+A blind sensor's step below its jump limit is read as heat: nothing else judges a sensor no
+other predicts.  fl_thermal's ``T_t16`` reads healthy bursts of 2-3 °C that come back within a
+few samples, so its jump limit is 8.6 °C and a +3 °C step at 1 h raised the adaptive error from
+83.90 to 123.35 µm² (``benchmarks/bench_jump94.py``).  What tells a step from a burst is that it
+stays: the last ``window`` samples lie wholly above (or below) the ``window`` before them.  In
+training two successive windows of ``T_t16`` never part by more than 0.12 °C (a burst lifts one
+window's maximum, not the next one's minimum); a heating ramp parts them by its rise over a
+window, so the bound scales with the sensor's own fastest training warming.  A sensor parted
+past ``jump_factor`` x its largest training separation is re-referenced by the difference of the
+two windows' medians and kept in (as :meth:`~.faults.InstantFaults._bent`: held out it would be
+read at its last value), a window after the step.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.lib.stride_tricks import sliding_window_view
+
+from .states import STATES
+
+
+def separation(a: np.ndarray, w: int) -> np.ndarray:
+    """Per sample ``t >= 2w - 1`` (rows of the result: ``t - 2w + 1``) and column: how far the
+    window ``a[t-w+1..t]`` lies wholly above or below the ``w`` samples before it (the minimum of
+    one less the maximum of the other; negative where they overlap, NaN where one is missing)."""
+    win = sliding_window_view(np.asarray(a, float), w, axis=0)      # (n - w + 1, cols, w)
+    lo, hi = win.min(-1), win.max(-1)
+    return np.maximum(lo[w:] - hi[:-w], lo[:-w] - hi[w:])
+
+
+def largest_separation(arrays, w: int, n: int) -> np.ndarray:
+    """Each sensor's largest training :func:`separation` (never below 0; inf: no campaign holds
+    two windows)."""
+    worst = np.full(n, -np.inf)
+    for a in arrays:
+        if len(a) >= 2 * w:
+            worst = np.maximum(worst, separation(a, w).max(0))
+    return np.where(np.isfinite(worst), np.maximum(worst, 0.0), np.inf)
+
+
+class Settled:
+    """Mixin of :class:`~.monitor.SensorMonitor` (its state): the last ``2 window - 1`` readings
+    of each sensor on its current reference, and the rule on them (module doc)."""
+
+    def _settle_reset(self) -> None:
+        n = len(self.names)
+        self._settle = np.full((2 * self.window - 1, n), np.nan)   # oldest first
+        self._settle_age = np.zeros(n, dtype=np.int64)    # samples since its reference moved
+
+    def _settled(self, x: np.ndarray, time: float, events: list) -> None:
+        """Before the sample ``x`` (absolute °C) is read: a blind sensor in, or out for another
+        reason than a jump (main undoes a blind sensor's jumps on its return), whose window
+        ending at ``x`` lies wholly off the window before by more than its limit is
+        re-referenced by the two windows' median difference.  Only readings on the sensor's
+        current reference are compared (none moved it -- a jump, its undo on a return, BENT, a
+        common step -- for ``2 window - 1`` samples): the undo of a noise burst's jumps read as a
+        settled step left yearround's ``T_amb`` out (tests/shell/test_monitor.py)."""
+        if self._ref is None:
+            return
+        w, cols = self.window, self._settle_cols
+        rows = np.vstack([self._settle[:, cols], x[cols] - self._ref[cols]])
+        before, after = rows[:w], rows[w:]
+        sep = np.maximum(after.min(0) - before.max(0), before.min(0) - after.max(0))
+        fire = ((self._active[cols] | (self._jumps[cols] == 0)) & (sep > self._settle_lim[cols])
+                & (self._gap[cols] == 1) & (self._settle_age[cols] >= 2 * w - 1))
+        if fire.any():
+            # the fast path leaves one array as the last reading, the last good one and the
+            # field served (monitor._fast): each shifted once, on its own copy
+            self._prev, self._last_good = self._prev.copy(), self._last_good.copy()
+        for k in np.flatnonzero(fire):
+            j = int(cols[k])
+            off = float(np.median(after[:, k]) - np.median(before[:, k]))
+            self._ref[j] += off
+            self._prev[j] -= off
+            self._hist[:, j] -= off
+            if self._active[j]:     # out: its last good reading is from before the step
+                self._last_good[j] -= off
+            self._settle[w:, j] -= off     # the window after: compared like with like next
+            events.append({"time": float(time), "sensor": self.names[j],
+                           "from": STATES[self._state[j]] if self._active[j] else "excluded",
+                           "to": "re-referenced", "reason": f"settled off its own: its last {w} "
+                           f"samples {off:+.3g} °C off the {w} before (no other sensor predicts "
+                           f"it; limit {self._settle_lim[j]:.3g} °C); re-referenced"})
+
+    def _settle_push(self, ref_before) -> None:
+        """After the sample: its reading as the monitor read it (the window's row: on the
+        reference it left, NaN beyond its range -- no measurement: a nut back from out of range
+        read its return as a settled step), and the age of each sensor's reference (1 where the
+        sample moved it)."""
+        with np.errstate(invalid="ignore"):
+            moved = (True if ref_before is None
+                     else ~np.isclose(self._ref, ref_before, rtol=0.0, atol=1e-12))
+        self._settle_age = np.where(moved, 1, self._settle_age + 1)
+        self._settle[:-1] = self._settle[1:]
+        self._settle[-1] = self._hist[(self._pos - 1) % self.window]
+
+    def _settle_block(self, d: np.ndarray) -> np.ndarray:
+        """Rows of a fast block (``d``: referenced, every sensor in, one reference) on which the
+        rule would fire: the block stops before the first."""
+        w, cols = self.window, self._settle_cols
+        rows = np.vstack([self._settle[:, cols], d[:, cols]])
+        m = len(d)
+        sep = separation(rows, w)[:m]            # row i: its window against the one before
+        age = self._settle_age[cols] + np.arange(m)[:, None]
+        gap = np.ones((m, len(cols)))
+        gap[0] = self._gap[cols]
+        return ((sep > self._settle_lim[cols]) & (gap == 1) & (age >= 2 * w - 1)).any(axis=1)
+
+    def _settle_commit(self, d: np.ndarray) -> None:
+        """A fast block's rows taken: the ring's last rows, each reference older by them."""
+        self._settle = np.vstack([self._settle, d])[-len(self._settle):]
+        self._settle_age = self._settle_age + len(d)
