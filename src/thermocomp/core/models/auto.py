@@ -19,17 +19,7 @@ from sklearn.utils.validation import check_is_fitted
 from ...base.errors import ConfigError, ParameterError
 from ...base.log import logger
 from ...base.params import check_estimator, choice, integer, number
-from ..context import (
-    AMBIENT_C0,
-    TIME,
-    SideInputs,
-    context_columns,
-    groups_of,
-    step_gain,
-    stream_steps,
-    subset,
-    values,
-)
+from ..context import AMBIENT_C0, SideInputs, context_columns, groups_of, step_gain, stream_steps, subset
 from ..gains import gain_terms
 from ..metrics import PERSISTENCE, rmse
 from ..model_selection import BlockedForward, LeaveBlockOut, LeaveCampaignsOut
@@ -135,14 +125,6 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         voting rows, MLR a candidate) has mean + standard error >= 1, the reason saying so;
         ``'none'``: the blend the votes give (a model pickled before the key refits so).  The
         zero rule (``uncompensated``) then judges what is kept.
-    reach : {'all', 'memory'}, default 'all'
-        ``combine='vote'`` on forward folds of one record (extension, auto94c): ``'memory'`` lets
-        a candidate with a memory M (the longest lag it is configured with, ``tau_max_s``: a lag
-        bank's, a Hammerstein's) vote only on the folds whose fit rows span at least M (the
-        context's ``time``), none: on its last fold; the static families vote on all.  A 48 h lag
-        family fitted on 26 h is judged on folds it cannot fit (``benchmarks/bench_auto94b.py``,
-        ``bench_auto94c.py``: passes the seen records, not yet scored on fresh: not the default).
-        Campaign folds and leave-block-out are untouched.
     min_gain_pct : float, default 1.0
         ``combine='best'``: MLR, when a candidate, is kept unless the best candidate's validation
         RMSE is lower
@@ -183,20 +165,17 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
                    "min_gain_pct": number(0.0, 100.0),
                    "combine": choice("vote", "best"), "keep_oof": choice(True, False),
                    "uncompensated": choice("zero", "keep"), "fallback": choice("one_se", "none"),
-                   "reach": choice("all", "memory"),
                    "validation_rows": choice("all", "in_range")}
 
     uncompensated = "keep"   # a model pickled before the key: refitted as it was fitted
     fallback = "none"        # likewise
-    reach = "all"            # likewise
 
     def __init__(self, candidates=None, scheme: str = "auto", n_folds: int = 5,
                  min_train_fraction: float = 0.5, gap_blocks: float = 0.5,
                  max_seconds: float | None = None, min_gain_pct: float = 1.0, chosen=None,
                  val_scores=None, given_scores=None, combine: str = "vote", keep_oof: bool = False,
                  one_record: str = "forward", validation_rows: str = "all",
-                 uncompensated: str = "zero", fallback: str = "one_se", reach: str = "all"):
-        self.reach = reach
+                 uncompensated: str = "zero", fallback: str = "one_se"):
         self.fallback = fallback
         self.uncompensated = uncompensated
         self.validation_rows = validation_rows
@@ -253,7 +232,6 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         self.validation_[NONE] = rmse(self.oof_y_)     # no correction, on the candidates' rows
         self.oof_fold_ = np.concatenate([np.full(score.sum(), k) for k, (*_, score) in enumerate(folds)])
         self.oof_folds_ = (len(y), [(np.flatnonzero(fit), np.flatnonzero(score)) for fit, _, score in folds])
-        self.oof_train_s_ = _train_spans(values(context, TIME, len(y)), [fit for fit, *_ in folds])
         self.oof_campaign_ = None   # folds of whole campaigns: the campaign of each row (benches')
         if self.scheme_ in CAMPAIGN_FOLDS:
             codes = np.unique(np.asarray(groups, dtype=object).astype(str), return_inverse=True)[1]
@@ -277,7 +255,7 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         base = members.index(BASELINE) if BASELINE in members else None
         rows = self._voting_rows()
         w = vote_weights(preds[rows], self.oof_y_[rows], self.oof_fold_[rows], self.oof_[BASELINE][rows],
-                         base_column=base, min_folds=int(self.n_folds), voting=self._reach(members, rows))
+                         base_column=base, min_folds=int(self.n_folds))
         weights = {n: float(v) for n, v in zip(members, w) if v > 0}
         blended = rmse(self.oof_y_ - preds @ w)
         mix = ", ".join(f"{n} {v:.2f}" for n, v in sorted(weights.items(), key=lambda kv: -kv[1]))
@@ -297,19 +275,6 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
             blended, predicted = self.validation_[BASELINE], self.oof_[BASELINE]
         self._none_unless_better(blended, predicted)
         return self._refit(X, y, context)
-
-    def _reach(self, members: list, rows: np.ndarray) -> np.ndarray | None:
-        """``reach='memory'`` on forward folds of one record: fold x member, the folds each member
-        votes on (those whose fit span reaches its memory, none: its last); else None (all)."""
-        if self.reach != "memory" or self.scheme_ != FORWARD_ONE or self.oof_train_s_ is None:
-            return None
-        voted = np.unique(self.oof_fold_[rows])
-        span = self.oof_train_s_[voted]
-        out = np.ones((voted.size, len(members)), bool)
-        for j, name in enumerate(members):
-            reached = span >= memory_s(self.candidates[name])
-            out[:, j] = reached if reached.any() else np.arange(voted.size) == voted.size - 1
-        return out
 
     def _one_se(self, predicted: np.ndarray, rows: np.ndarray, base: int | None) -> bool:
         """``fallback='one_se'``: keep MLR alone where the folds are not surely in favour of the
@@ -518,20 +483,6 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
 # a candidate whose folds took this long is said at INFO (else DEBUG): on a year at 1 min the
 # candidates' validation ran 13 minutes without a line (scale58)
 SAY_AFTER_S = 10.0
-
-
-def memory_s(estimator) -> float:
-    """The longest lag ``estimator`` is configured with (s): its (or a member's) ``tau_max_s``,
-    0 for a static family."""
-    params = estimator.get_params(deep=True)
-    return max([float(v) for k, v in params.items() if k.split("__")[-1] == "tau_max_s"], default=0.0)
-
-
-def _train_spans(time: np.ndarray | None, fits: list) -> np.ndarray | None:
-    """Each fold's fit rows' span in ``time`` (s); None without a time."""
-    if time is None:
-        return None
-    return np.array([float(np.ptp(time[fit])) if fit.any() else 0.0 for fit in fits])
 
 
 def _said(name: str, seconds: float, score: float | None, why: str | None) -> None:

@@ -94,8 +94,7 @@ class Blend(SideInputs, RegressorMixin, BaseEstimator):
 
 def vote_weights(predictions: np.ndarray, y: np.ndarray, fold: np.ndarray, base: np.ndarray,
                  n_resamples: int = N_RESAMPLES, base_column: int | None = None,
-                 min_folds: int = 2, squared: np.ndarray | None = None,
-                 voting: np.ndarray | None = None) -> np.ndarray:
+                 min_folds: int = 2, squared: np.ndarray | None = None) -> np.ndarray:
     """Weights of the columns of ``predictions`` (each candidate's out-of-fold free-run
     predictions): the share of bootstrap resamples of the validation folds in which the column
     has the lowest error, a fold's mean squared error taken relative to that of ``base`` (MLR's
@@ -140,16 +139,12 @@ def vote_weights(predictions: np.ndarray, y: np.ndarray, fold: np.ndarray, base:
     ``squared``: each row's squared error of every column and, last, of ``base`` (default: ``(y -
     prediction)^2``); the benches score other squares through it (``benchmarks/rereference65.py``:
     held-out runs re-referenced at their first samples, measured and not taken).
-
-    ``voting`` (extension, auto94c): fold x column, the folds on which each column votes (default
-    all); a column's ratio in a resample is its mean over the drawn folds it votes on, and a
-    resample that draws none of them does not count for it (it neither wins nor beats MLR there).
     """
     unit = np.unique(fold, return_inverse=True)[1]
     blocks = unit.max() + 1 < min_folds        # else each fold is one unit, as measured before
     if squared is None:
         squared = np.column_stack([(y[:, None] - predictions) ** 2, (y - base) ** 2])
-    resampled = _nested_resamples(squared, y, unit, base, n_resamples, blocks, voting)  # resample x cand.
+    resampled = _nested_resamples(squared, y, unit, base, n_resamples, blocks)  # resample x cand.
     w = np.bincount(np.argmin(resampled, axis=1), minlength=predictions.shape[1]) / n_resamples
     if base_column is not None:
         sure = np.mean(resampled < 1.0, axis=0)           # P(beats MLR) over the resamples
@@ -174,13 +169,12 @@ def mean_fold_ratio(squared: np.ndarray, base: np.ndarray, fold: np.ndarray) -> 
     return float(np.mean(fold_ratios(squared, base, fold)))
 
 
-def _nested_resamples(squared, y, fold, base, n_resamples, blocks: bool, voting=None) -> np.ndarray:
+def _nested_resamples(squared, y, fold, base, n_resamples, blocks: bool) -> np.ndarray:
     """resample x candidate: the folds resampled, each drawn fold's ratio (its squared error
     summed over its units relative to ``base``'s, the last column of ``squared``) taken on a
     resample of its units, the mean over the drawn folds.  A fold's units are the fold itself, or
     with ``blocks`` contiguous stretches as long as ``base``'s residual takes to decorrelate (the
-    diagnosis's test blocks, :mod:`thermocomp.core.model_selection.blocks`).  ``voting``: fold x
-    candidate, the folds each candidate's mean is taken over (none drawn: ``inf``)."""
+    diagnosis's test blocks, :mod:`thermocomp.core.model_selection.blocks`)."""
     n_folds = fold.max() + 1
     block = (cut_blocks(np.zeros(len(y), int), fold,
                         decorrelation_length(y - base, fold, np.ones(len(y), bool))) if blocks else fold)
@@ -188,14 +182,10 @@ def _nested_resamples(squared, y, fold, base, n_resamples, blocks: bool, voting=
     rng = np.random.default_rng(0)
     picks = rng.integers(0, n_folds, (n_resamples, n_folds))     # as the folds' bootstrap drew them
     total = np.zeros((n_resamples, squared.shape[1] - 1))
-    voting = np.ones((n_folds, total.shape[1]), bool) if voting is None else np.asarray(voting, bool)
-    drawn_votes = np.zeros_like(total)
     for f in range(n_folds):
         own = np.unique(block[fold == f])
         draws, _ = np.nonzero(picks == f)                           # the resample of each draw of f
         counts = rng.multinomial(own.size, np.full(own.size, 1.0 / own.size), size=draws.size)
         drawn = counts @ sse[own]
-        np.add.at(total, draws, voting[f] * drawn[:, :-1] / np.maximum(drawn[:, -1:], 1e-300))
-        np.add.at(drawn_votes, draws, np.broadcast_to(voting[f], drawn[:, :-1].shape).astype(float))
-    with np.errstate(invalid="ignore", divide="ignore"):
-        return np.where(drawn_votes > 0, total / np.maximum(drawn_votes, 1), np.inf)
+        np.add.at(total, draws, drawn[:, :-1] / np.maximum(drawn[:, -1:], 1e-300))
+    return total / n_folds
