@@ -162,6 +162,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..adaptive import GAP_PERIODS, AdaptiveCompensator
+from ..surveillance.settled import advanced, separation
 from ..surveillance.states import (
     ALARM,
     COMMON_MIN,
@@ -731,10 +732,8 @@ class CodeMonitor:
                 self._settled(x, dt)
             ref = None if first else self.ref.copy()
             out = self._step(u, first, dt, self.a)
-            moved = True if ref is None else ~np.isclose(self.ref, ref, rtol=0.0, atol=1e-12)
-            self.settle_age = np.where(moved, 1, self.settle_age + 1)
-            self.settle[:-1] = self.settle[1:]
-            self.settle[-1] = self.hist[(self.pos - 1) % self.window]   # (NaN beyond range)
+            self.settle, self.settle_age = advanced(   # the row: NaN beyond range
+                self.settle, self.settle_age, self.ref, ref, self.hist[(self.pos - 1) % self.window])
             return out
 
     def _settled(self, x, dt) -> None:
@@ -747,7 +746,7 @@ class CodeMonitor:
             dt > a["gap_periods"] * a["period"]) else self.gap
         rows = np.vstack([self.settle[:, cols], x[cols] - self.ref[cols]])
         before, after = rows[:w], rows[w:]
-        sep = np.maximum(after.min(0) - before.max(0), before.min(0) - after.max(0))
+        sep = separation(rows, w)[0]
         active = self._active()[cols]
         fire = ((active | (self.jumps[cols] == 0)) & (sep > a["settle_lim"][cols])
                 & (gap[cols] == 1) & (self.settle_age[cols] >= 2 * w - 1))

@@ -40,6 +40,16 @@ def largest_separation(arrays, w: int, n: int) -> np.ndarray:
     return np.where(np.isfinite(worst), np.maximum(worst, 0.0), np.inf)
 
 
+def advanced(ring: np.ndarray, age: np.ndarray, ref: np.ndarray, ref_before, row: np.ndarray):
+    """``(ring, age)`` after a sample: the ring's oldest row dropped and ``row`` (the sample as
+    the monitor read it) last; each sensor's reference age one older, 1 where the sample moved
+    its reference (``ref_before``: the reference before it; None at a campaign's first).  One
+    step for the served monitor and the code's mirror (``CodeMonitor.step``)."""
+    with np.errstate(invalid="ignore"):
+        moved = True if ref_before is None else ~np.isclose(ref, ref_before, rtol=0.0, atol=1e-12)
+    return np.vstack([ring[1:], row[None]]), np.where(moved, 1, age + 1)
+
+
 class Settled:
     """Mixin of :class:`~.monitor.SensorMonitor` (its state): the last ``2 window - 1`` readings
     of each sensor on its current reference, and the rule on them (module doc)."""
@@ -62,7 +72,7 @@ class Settled:
         w, cols = self.window, self._settle_cols
         rows = np.vstack([self._settle[:, cols], x[cols] - self._ref[cols]])
         before, after = rows[:w], rows[w:]
-        sep = np.maximum(after.min(0) - before.max(0), before.min(0) - after.max(0))
+        sep = separation(rows, w)[0]
         fire = ((self._active[cols] | (self._jumps[cols] == 0)) & (sep > self._settle_lim[cols])
                 & (self._gap[cols] == 1) & (self._settle_age[cols] >= 2 * w - 1))
         if fire.any():
@@ -89,12 +99,8 @@ class Settled:
         reference it left, NaN beyond its range -- no measurement: a nut back from out of range
         read its return as a settled step), and the age of each sensor's reference (1 where the
         sample moved it)."""
-        with np.errstate(invalid="ignore"):
-            moved = (True if ref_before is None
-                     else ~np.isclose(self._ref, ref_before, rtol=0.0, atol=1e-12))
-        self._settle_age = np.where(moved, 1, self._settle_age + 1)
-        self._settle[:-1] = self._settle[1:]
-        self._settle[-1] = self._hist[(self._pos - 1) % self.window]
+        self._settle, self._settle_age = advanced(self._settle, self._settle_age, self._ref,
+                                                  ref_before, self._hist[(self._pos - 1) % self.window])
 
     def _settle_block(self, d: np.ndarray) -> np.ndarray:
         """Rows of a fast block (``d``: referenced, every sensor in, one reference) on which the
