@@ -80,19 +80,26 @@ def _rmse(meas: dict, pred: dict) -> dict:
 
 
 def seen(out: str, *records: str) -> None:
+    fit_ways(out, records, RECORDS, {})
+
+
+def fit_ways(out: str, records, overrides: dict, params: dict) -> dict:
+    """Each record of ``records`` (its ``overrides``) fitted as ``seen`` says, auto's estimator
+    given ``params`` besides ``reach`` (bench_auto95 reuses it); OUT/RECORD.json; the reports."""
     import bench_auto_rank as rank
     from sklearn.base import clone
 
     from thermocomp.shell.builders import build_compensator
 
     Path(out).mkdir(parents=True, exist_ok=True)
+    reports = {}
     for name in records:
-        sys.argv[2:] = list(RECORDS[name])      # rank._dataset reads sim= from argv
-        cfg, ds, train = rank.setup(list(RECORDS[name]))
+        sys.argv[2:] = list(overrides[name])      # rank._dataset reads sim= from argv
+        cfg, ds, train = rank.setup(list(overrides[name]))
         rep = {"weights": {}}
         for way in WAYS:
             auto = build_compensator(cfg, ds=ds)
-            auto.estimator.set_params(reach=way)
+            auto.estimator.set_params(reach=way, **params)
             auto.fit(train)
             meas, pred = rank._test(auto, ds)
             rep[way] = _rmse(meas, pred)
@@ -101,6 +108,8 @@ def seen(out: str, *records: str) -> None:
         rep["mlr"] = _rmse(*rank._test(mlr, ds))
         Path(out, f"{name}.json").write_text(json.dumps(rep, indent=1, default=float))
         print(name, {w: {t: round(rep[w][t] / rep["mlr"][t], 3) for t in rep[w]} for w in WAYS}, flush=True)
+        reports[name] = rep
+    return reports
 
 
 def table(out: str, *records: str) -> None:
