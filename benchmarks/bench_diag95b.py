@@ -5,7 +5,7 @@ seen rows > 2 % worse than before diagnose, the train-side acceptance rules of d
 
 Usage (from the repository root, ``PYTHONPATH=<tree>/src``: the code measured is that tree's)::
 
-    python benchmarks/bench_diag95b.py trace ROOT SET [CASES]  # evidence + adoption curve -> ROOT/trace-SET.jsonl
+    python benchmarks/bench_diag95b.py trace ROOT SET [CASES]  # evidence, curves -> ROOT/trace-SET.jsonl
     python benchmarks/bench_diag95b.py table ROOT SET          # trace-SET.jsonl read: factors, test
     python benchmarks/bench_diag95b.py draws ROOT LABEL SET    # SET's draws -> ROOT/SET-LABEL.jsonl
     python benchmarks/bench_diag95b.py compare ROOT SET A B    # two labels' rows of SET: the bar's counts
@@ -15,7 +15,9 @@ SET is :data:`SETS`'s: ``seen`` bench_diag92's 70 draws (bench_diag93b's ``seen`
 Each draw diagnosed as bench_diag92 (MLR, every target, ``max_effects=2``, test figures as run).
 CASES (optional): ``kind:seed,kind:seed`` of SET only.
 
-``trace`` (the code as it is; ``adopt`` of the diagnosed model set by hand, nothing else changed):
+``trace`` (the diagnosed model refitted with ``adopt`` set by hand; the table was run before the
+rule was wired into ``diagnose``, so its ``after`` was main's -- with the patch it is the rule's,
+main's is the ``whole`` column ``table`` reads):
 every accepted effect (not a sensor removal) read in its round, on the round's own test blocks and
 CV units: the CV gain, the Student t of the per-unit MSE gains (``t_units``: the held-out campaigns,
 or forward validation blocks) and of the per-block MSE gains (``t_blocks``), the CV-optimal blend
@@ -23,8 +25,8 @@ or forward validation blocks) and of the per-block MSE gains (``t_blocks``), the
 ``r1`` and its jackknife t over the units; then the target's test RMSE with that effect adopted at
 0, 0.25, 0.5, 0.75 and 1 (the target's other effects whole), and with every effect at each factor
 rule's value.  ``table``: the rows read back, per rule the rows > 2 % worse than before diagnose
-and the gain each helpful row keeps.  ``draws`` / ``compare``: bench_diag91's rows (``draws`` of the
-rule needs its src: this tree at the bar's commit, or ``git apply benchmarks/diag95b_rule.patch``).
+and the gain each helpful row keeps.  ``draws`` / ``compare``: bench_diag91's rows.  ``trace`` and the
+rule's ``draws`` need its src: ``git apply benchmarks/diag95b_rule.patch`` (``adopt`` is not in main).
 
 The rule (the brief's James-Stein factor; ``search.adoption``, ``SearchOptions.adopt``, default on)
 ---------------------------------------------------------------------------------------------------
@@ -53,13 +55,54 @@ FRESH 9734-9738 (clean 9734 / 9735, planted 9736 / 9737, lag 9738), scored once 
 F1 rows > 2 % worse than before diagnose not more than main's; F2 no helpful row loses more than 5
 points; F3 the position found wherever main finds it; F4 clean draws accept nothing.  KEPT needs
 S1-S5, F1-F4 and tests/apps/test_diagnose*.py, tests/test_lint.py passing.
+
+Measured (2026-12-06, main 34af1fcb's src, the rule = it + the patch; 2 cores shared; SEEN only)
+-----------------------------------------------------------------------------------------------
+Main already carries the brief's first idea: with an MLR base every effect is a ridge on its own
+standardised features with the penalty the same CV folds choose (least error; one SE for effects of
+several features, ``shrink``); the 8 harms are deployed at penalties 3e-4 .. 0.1.
+
+``trace seen`` (53 target rows accept, 56 effects; 8 rows > 2 % worse than before, 44 better by
+> 2 %): the evidence does not order harm and help the way adoption needs.  t over the 8 held-out
+campaigns' MSE gains: the 8 harms 2.04 .. 4.68 (median 3.70), every other accepted effect 1.46 ..
+9.81 (median 2.64) -- a start lag fitting the campaigns' offsets gains alike in every campaign, a
+real position effect by each campaign's own excursion, scattered, so the factor shrinks the real
+effects MORE (planted:9342 E_Y's position t 1.51, a = 0.56).  The CV-optimal blend of the
+candidate's change ``s*`` is 1.01 .. 1.36 on the harms (the CV asks for more of each), 0.91 .. 1.29
+on the rest.  Adoption curves (test change % of before at a = 0 / .25 / .5 / .75 / 1): harms need
+a <= 0.25 to stay within 2 % (8969 0 / +4.9 / +10.2 / +15.8 / +21.7; 8457 0 / +3.4 / +14.6 / +31.6
+/ +52.5; 8170 0 / +2.4 / +5.8 / +10.0 / +14.9), the position loses 6-12 points already at 0.75
+(8885 -0.5 / -21.3 / -41.2 / -59.2 / -71.0; 9047 .. / -51.5 / -60.3; 8968 .. / -46.5 / -52.3);
+9342 E_X and 9443 E_Y would gain at a = 0.25 (-6.9 / -5.5 %).  Factors read on the same rows (rows
+> 2 % worse than before, main 8; helpful rows' largest loss of reduction, points):
+t_units (the rule) 8, 25.1 (9341 E_Y); t over the test blocks 8, 13.2 (lag:9193); ``s*`` times
+its own James-Stein factor 8, 3.8; the within-campaign share of the CV gain (diag92's ratio,
+refused as an acceptance rule by diag92c) 7 (8075 out; 8969 +7.3, 9046 +12.0, 8457 +7.2, 8170
++2.9, 8178 +3.7, 9342 +4.2, 9443 E_Y +8.0), 11.5 (planted:9103 E_Y's round 2, -49.2 -> -37.7).
+
+The rule, ``draws seen`` main -> rule (``compare``; the same numbers as ``trace``'s t_units column):
+S1 FAILS: rows > 2 % worse than before diagnose 8 -> 8, each harm shrunk a little (8457 E_X +52.5
+-> +32.4 %, 9046 E_X +29.0 -> +25.4, 8969 +21.7 -> +20.2, 8178 E_Z +21.5 -> +17.6, 8170 +14.9 ->
++14.0, 9342 E_X +13.9 -> +9.3, 9443 E_Y +13.3 -> +9.5, 8075 E_Y +6.6 -> +5.7).  S2 FAILS: 13 of the
+44 helpful rows lose > 5 points (planted:9341 E_Y -72.2 -> -47.1 %, lag:9193 -62.5 -> -41.4,
+planted:9191 -66.5 -> -46.7, 9342 E_Y -57.5 -> -42.6, 9102 -76.5 -> -64.2, 9047 -60.3 -> -51.2,
+8885 -71.0 -> -62.5, 9232, 9231, lag:9343, lag:9445, 9101, 9103 5.2-8.5).  S3 holds (position 27 ->
+27), S4 holds (clean 8075 E_Y / 8170 E_X / 8178 E_Z accept as main).  S5 FAILS: 28 rows > 2 %
+worse than main.
+
+Verdict: **REFUSED** (src as main; the rule, its plumbing into the written config and 2 tests in
+``benchmarks/diag95b_rule.patch``).  Fresh 9734-9738 UNSPENT (the seen items failed first).  What it
+shows: on these draws the CV's evidence for a harmful start lag is as strong and more uniform than
+for a real effect, so no factor monotone in it mends the harms without taking the real gains; the
+harms are the fixed split's (bench_diag93b), which the train campaigns cannot see.
+CPU (the bench's own line, user + sys): ``trace seen`` 88.3 s (70 draws, 9-13 fits per accepting
+target); ``draws seen`` 69.7 s main, 74.1 s rule (diagnose alone 44.7 / 48.6 s).
 """
 
 from __future__ import annotations
 
 import json
 import sys
-from contextlib import contextmanager
 from pathlib import Path
 
 import numpy as np
@@ -70,30 +113,13 @@ from _cli import made_folder, run_commands  # noqa: E402
 from bench_diag91 import compare, diagnose_cases  # noqa: E402 (the same rows)
 from bench_diag92c import _dataset  # noqa: E402
 from bench_diag93b import SETS as SETS_93B  # noqa: E402
+from bench_diag93b import _rounds_captured  # noqa: E402 (each round's family test, captured)
 
 SETS = {
     "seen": SETS_93B["seen"],
     "fresh": [("clean", 9734), ("clean", 9735), ("planted", 9736), ("planted", 9737), ("lag", 9738)],
 }
 FACTORS = (0.0, 0.25, 0.5, 0.75, 1.0)
-
-
-@contextmanager
-def _rounds_captured(rounds: list):
-    """Each round's family test appends ``(search, evals, current)`` (nothing changed)."""
-    from thermocomp.apps.diagnose import search as search_module
-
-    original = search_module.Search._family_bar
-
-    def captured(self, evals, current):
-        original(self, evals, current)
-        rounds.append((self, list(evals), current))
-
-    search_module.Search._family_bar = captured
-    try:
-        yield rounds
-    finally:
-        search_module.Search._family_bar = original
 
 
 def _t(d: np.ndarray) -> float:

@@ -23,7 +23,7 @@ from ...core.models._campaign_ls import LSTSQ_TOL
 from ...core.models.base import measured_rows
 from ...core.models.linear import MLR
 from ...core.timerule import CLOCK_START, median_step, step_time
-from .features import AMBIENT_CENTRE_C, Effect, as_effect, design_blocks, frames, initial_weights
+from .features import AMBIENT_CENTRE_C, Effect, as_effect, design, frames, initial_weights
 from .shrink import PartialRidgePath
 
 MODEL_NAME = "diagnosed"   # the model diagnose writes (conf/model/diagnosed.yaml, "<family>+diagnosed")
@@ -74,11 +74,6 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
         to unit spread, so its cut-off is fair to every unit).  Other bases
         ignore it (they fit their own way: PCR truncates, ARX selects, lagbank
         has its ridge).
-    adopt : sequence of float in [0, 1], dict target -> sequence, or None
-        With ``alpha`` and an MLR base: per effect (in order), the share of its shrunk
-        coefficients the model keeps (:meth:`~.shrink.PartialRidgePath.coefficients`, the
-        inputs refitted to what the effects leave); chosen by ``diagnose`` from each effect's
-        cross-validated evidence (:func:`~.search.adoption`).  ``None``: every effect whole.
 
     Attributes
     ----------
@@ -95,13 +90,11 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
     n_features_in_ : int
     """
 
-    def __init__(self, estimator=None, effects=(), reference: str = "first_sample", alpha=None,
-                 adopt=None):
+    def __init__(self, estimator=None, effects=(), reference: str = "first_sample", alpha=None):
         self.estimator = estimator
         self.effects = effects
         self.reference = reference
         self.alpha = alpha
-        self.adopt = adopt
 
     def for_target(self, target: str) -> "AugmentedRegressor":
         """An unfitted copy with the effects of ``target`` (per-target dict) as a list."""
@@ -109,9 +102,8 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
         if isinstance(effects, Mapping):
             effects = effects.get(target, ())
         alpha = self.alpha.get(target) if isinstance(self.alpha, Mapping) else self.alpha
-        adopt = self.adopt.get(target) if isinstance(self.adopt, Mapping) else self.adopt
         return clone(self).set_params(effects=[dict(e) if isinstance(e, Mapping) else e
-                                               for e in effects], alpha=alpha, adopt=adopt)
+                                               for e in effects], alpha=alpha)
 
     def _effects(self) -> list[Effect]:
         effects = self.effects if self.effects is not None else ()
@@ -121,13 +113,10 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
         return [e for e in (as_effect(e) for e in effects) if e.transform != "remove"]
 
     def _design(self, X, context) -> np.ndarray:
-        return np.hstack(self._blocks_of(X, context))
-
-    def _blocks_of(self, X, context) -> list[np.ndarray]:
         if context is not None and len(context) != X.shape[0]:
             raise ValueError(f"context has {len(context)} rows, X has {X.shape[0]}")
-        return design_blocks(X, self.effects_, context, groups_of(context), self.reference,
-                             self.initial_weights_)
+        return design(X, self.effects_, context, groups_of(context), self.reference,
+                      self.initial_weights_)
 
     def fit(self, X, y, context=None):
         if self.reference not in ("first_sample", "none"):
@@ -145,9 +134,7 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
         self.initial_weights_ = [
             initial_weights(context, e.initial_state, g, e.initial_directions) if e.learns else None
             for e in self.effects_]
-        blocks = self._blocks_of(X, context)
-        Z = np.hstack(blocks)
-        adopted = self._adopted([b.shape[1] for b in blocks[1:]])
+        Z = self._design(X, context)
         base = self.estimator if self.estimator is not None else MLR()
         widened = isinstance(base, MLR) and Z.shape[1] > X.shape[1]    # an MLR with effect features
         # at penalty 0 it fits them scale-fair: LinearRegression's relative cut-off (1e-6) on
@@ -156,16 +143,15 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
         # drops only a direction collinear there (pen0b69; an exact fit gave a lag's collinear
         # initial-state offsets -1.4e15, the stream 1e-3 off the batch); with a penalty the
         # ridge path below gives both coef_ and intercept_
-        scale = (_spread(Z[measured], base.fit_intercept) if widened and not alpha and adopted is None
-                 else None)
+        scale = _spread(Z[measured], base.fit_intercept) if widened and not alpha else None
         self.estimator_ = clone(base).fit(Z if scale is None else Z / scale, y, context=context)
         if scale is not None:
             self.estimator_.coef_ = self.estimator_.coef_ / scale   # the intercept is the same
-        if (alpha or adopted is not None) and widened:
+        if alpha and widened:
             # the same law, its effect coefficients shrunk (streams as any MLR does)
             # the effects' features run on every row, the law is the measured rows' least squares
             path = PartialRidgePath(Z[measured], y[measured], X.shape[1], self.estimator_.fit_intercept)
-            self.estimator_.coef_, self.estimator_.intercept_ = path.coefficients(alpha, adopted)
+            self.estimator_.coef_, self.estimator_.intercept_ = path.coefficients(alpha)
         # the campaign's initial ambient: an ambient law needs it; a lag's initial state reads
         # it where it is known, else the mean of its sensors' first values (features.initial_state),
         # as every deployed form does (stranger66: a record without an air sensor and without a
@@ -179,20 +165,6 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
                                               self.required_context_,
                                               context_columns(self.estimator_))
         return self
-
-    def _adopted(self, widths: list[int]) -> np.ndarray | None:
-        """Each effect feature's adoption factor (``adopt`` repeated over its effect's columns);
-        ``None`` where every effect is adopted whole (the fit as before ``adopt``)."""
-        if self.adopt is None:
-            return None
-        if isinstance(self.adopt, Mapping):
-            raise ParameterError("AugmentedRegressor adopt is given per target: fit the copy "
-                                 "for_target(target) returns (the Compensator does)")
-        adopt = np.asarray(self.adopt, float).ravel()
-        if adopt.size != len(widths) or not np.all((adopt >= 0) & (adopt <= 1)):
-            raise ParameterError(f"AugmentedRegressor adopt={list(self.adopt)!r}: one factor in "
-                                 f"[0, 1] per effect ({len(widths)})")
-        return None if np.all(adopt == 1) else np.repeat(adopt, widths)
 
     def _alpha(self) -> float:
         if isinstance(self.alpha, Mapping):

@@ -34,15 +34,13 @@ from .sensors import self_prediction
 
 
 def augment(template: Compensator, effects: Mapping[str, list], excluded=(),
-            inputs=None, alphas: Mapping[str, float | None] | None = None,
-            adopt: Mapping[str, list] | None = None) -> Compensator:
+            inputs=None, alphas: Mapping[str, float | None] | None = None) -> Compensator:
     """An unfitted copy of ``template`` whose estimator adds ``effects`` (per target).
 
     ``excluded`` sensors (accepted ``sensor_fault``) leave the declared inputs:
     ``inputs`` (the resolved input columns, default ``template.inputs_``)
     without them become the explicit input list.  ``alphas``: per target, the
-    penalty on the effect features (MLR base, chosen by the CV).  ``adopt``: per target, each
-    effect's adoption factor (:class:`~.augmented.AugmentedRegressor`; None: whole).
+    penalty on the effect features (MLR base, chosen by the CV).
     """
     base_inputs = list(inputs) if inputs is not None else list(getattr(template, "inputs_", []))
     kept = [c for c in base_inputs if c not in set(excluded)] if excluded else template.inputs
@@ -50,8 +48,7 @@ def augment(template: Compensator, effects: Mapping[str, list], excluded=(),
                              {t: [Effect.to_dict(e) if isinstance(e, Effect) else dict(e) for e in es]
                               for t, es in effects.items()},
                              template.reference,
-                             {t: a for t, a in (alphas or {}).items() if a} or None,
-                             {t: list(a) for t, a in (adopt or {}).items()} or None)
+                             {t: a for t, a in (alphas or {}).items() if a} or None)
     return clone(template).set_params(estimator=est, inputs=kept)
 
 
@@ -228,11 +225,9 @@ def diagnose(ds: Dataset, compensator: Compensator, targets=None, mode: str = "s
     options : SearchOptions
     make_compensator : callable, optional
         ``(effects: dict target -> list[Effect], excluded: list[str],
-        inputs: list[str], alphas: dict target -> float or None, adopt: dict target -> list
-        of float, or None) -> Compensator``,
+        inputs: list[str], alphas: dict target -> float or None) -> Compensator``,
         the diagnosed model, given the resolved declared inputs and the
-        penalties on the effect features and each effect's adoption factor (default
-        :func:`augment` of the template;
+        penalties on the effect features (default :func:`augment` of the template;
         the ``diagnose`` stage builds it from the config it writes, so
         ``thermocomp run`` with that config gives the same "after").
     model_name, ati : str, optional
@@ -419,11 +414,8 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
     found = {t: s.run(original[t], faults[t], health[t], table) for t, s in searches.items()}
     effects = {t: r.effects for t, r in found.items()}
     alphas = {t: r.alpha for t, r in found.items()}
-    # each effect's share adopted (diag95b); None where every one is whole (the model as before)
-    adopt = {t: r.adopted for t, r in found.items() if any(a < 1 for a in r.adopted)} or None
-    build = make_compensator or (lambda eff, exc, inputs, al, ad: augment(compensator, eff, exc, inputs,
-                                                                          al, ad))
-    after = fit_joined(build(effects, excluded, list(before.inputs_), alphas, adopt), ds, train_ids)
+    build = make_compensator or (lambda eff, exc, inputs, al: augment(compensator, eff, exc, inputs, al))
+    after = fit_joined(build(effects, excluded, list(before.inputs_), alphas), ds, train_ids)
     after_scores, after_pred = test_scores(after, ds, test_ids, mode, e_p95_statistic, e_p95_points)
     out = {t: TargetDiagnosis(t, r, original[t].rmse, r.final.rmse, before_scores[t], after_scores[t])
            for t, r in found.items()}

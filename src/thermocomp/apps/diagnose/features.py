@@ -418,17 +418,11 @@ def effect_features(effect: Effect, X, context: pd.DataFrame | None = None, grou
     return X * (a0 > effect.threshold_c)[:, None].astype(float)   # ambient_step
 
 
-def design_blocks(X, effects, context: pd.DataFrame | None = None, groups=None,
-                  reference: str = "first_sample", weights=None) -> list[np.ndarray]:
-    """Model inputs ``X``, then the features of each effect (``weights[i]`` of effect i), as
-    separate blocks: :func:`design` joined, their widths what each effect's coefficients span."""
-    X = np.asarray(X, dtype=float)
-    weights = weights or [None] * len(effects)
-    return [X] + [effect_features(as_effect(e), X, context, groups, reference, w)
-                  for e, w in zip(effects, weights)]
-
-
 def design(X, effects, context: pd.DataFrame | None = None, groups=None,
            reference: str = "first_sample", weights=None) -> np.ndarray:
     """Model inputs ``X`` followed by the features of every effect (``weights[i]`` of effect i)."""
-    return np.hstack(design_blocks(X, effects, context, groups, reference, weights))
+    X = np.asarray(X, dtype=float)
+    weights = weights or [None] * len(effects)
+    blocks = [X] + [effect_features(as_effect(e), X, context, groups, reference, w)
+                    for e, w in zip(effects, weights)]
+    return np.hstack(blocks)

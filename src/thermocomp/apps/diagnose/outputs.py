@@ -53,10 +53,10 @@ def search_options(d: Mapping) -> SearchOptions:
 
 
 def diagnosed_model(estimator: dict, ati: dict | None, reference: str, effects: dict, name: str,
-                    alphas: dict | None = None, adopt: dict | None = None) -> dict:
+                    alphas: dict | None = None) -> dict:
     """The ``model`` config of the diagnosed model around ``estimator`` (an ATI wrapper,
     ``ati``, moves inside it); ``alphas``: per target, the CV-chosen penalty on the effect
-    features (MLR base); ``adopt``: per target, each effect's adoption factor (None: whole)."""
+    features (MLR base)."""
     base = dict(estimator)
     if ati is not None:
         inner = {k: v for k, v in ati.items() if k != "_partial_"}
@@ -67,7 +67,6 @@ def diagnosed_model(estimator: dict, ati: dict | None, reference: str, effects: 
         "reference": reference,
         "effects": {t: [e.to_dict() for e in es] for t, es in effects.items()},
         "alpha": {t: float(a) for t, a in (alphas or {}).items() if a} or None,
-        "adopt": {t: [float(x) for x in a] for t, a in (adopt or {}).items()} or None,
         "estimator": base}}
 
 

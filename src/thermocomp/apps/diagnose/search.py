@@ -90,7 +90,6 @@ class SearchOptions:
     cv: str = "auto"                  # auto | campaigns | forward (model_selection.cv_scheme)
     min_train_fraction: float = 0.5   # forward: validate on the rest of the record
     shrink: bool = True               # MLR base: ridge on the effect features, penalty by CV
-    adopt: bool = True                # MLR base: each accepted effect adopted by its evidence (diag95b)
     candidates: CandidateOptions = field(default_factory=CandidateOptions)
 
 
@@ -118,7 +117,6 @@ class Evaluation:
     p_margin: float = float("nan")            # p of a gain of min_gain_pct at least (the margin)
     gain_pct_within: float | None = None       # within the held-out campaigns (campaigns CV)
     gain_pct_within_rest: float | None = None  # the same without the campaign gaining most there
-    adopt: float = 1.0                         # share of its coefficients deployed (:func:`adoption`)
 
     def entry(self) -> dict:
         """The ``effects`` entry of ``diagnosis.json`` (CLI.md keys first)."""
@@ -132,7 +130,7 @@ class Evaluation:
                             "shrink_alpha": self.alpha, "p_value_family": self.p_family,
                             "cv_rmse_gain_pct_in_range": self.gain_pct_in_range,
                             "cv_rmse_gain_lcb_alpha": self.gain_lcb_alpha,
-                            "p_value_margin": self.p_margin, "adopted": self.adopt},
+                            "p_value_margin": self.p_margin},
                "accepted": self.accepted}
         if self.control:
             out["control"] = True
@@ -196,34 +194,6 @@ class SearchResult:
     @property
     def effects(self) -> list[Effect]:
         return [ev.effect for ev in self.accepted if ev.effect.transform != "remove"]
-
-    @property
-    def adopted(self) -> list[float]:
-        """Each of :attr:`effects`' adoption factor (:func:`adoption`), in order."""
-        return [ev.adopt for ev in self.accepted if ev.effect.transform != "remove"]
-
-
-def adoption(mse_before, mse_after) -> float:
-    r"""The share of an accepted effect's coefficients the deployed model keeps: the
-    positive-part James-Stein factor of its CV gain over the held-out units.
-
-    With :math:`d_u = \mathrm{MSE}_u - \mathrm{MSE}^{+}_u` the gain of unit :math:`u` (a
-    held-out campaign, or a forward validation block) and
-    :math:`t = \bar d / (s_d / \sqrt{n})` its Student t over the :math:`n` units,
-
-    .. math:: a = \max\left(0,\ 1 - 1/t^2\right)
-
-    (a normal mean :math:`\theta` estimated :math:`t` standard errors from 0 with a prior
-    variance fitted by moments, :math:`\hat\tau^2 = \max(0, \hat\theta^2 - \sigma^2)`, has
-    the posterior mean :math:`\hat\tau^2 / (\hat\tau^2 + \sigma^2)\,\hat\theta`): an effect
-    every unit confirms is adopted nearly whole, one whose gain the units scatter about is
-    shrunk towards the model without it.  Fewer than 2 units, or no spread: 1."""
-    d = np.asarray(mse_before, float) - np.asarray(mse_after, float)
-    d = d[np.isfinite(d)]
-    if d.size < 2 or not d.std(ddof=1) > 0:
-        return 1.0
-    t = d.mean() / (d.std(ddof=1) / np.sqrt(d.size))
-    return float(max(0.0, 1.0 - 1.0 / t ** 2)) if t > 0 else 0.0
 
 
 def gain_lower_bound(mse_before, mse_after, level: float = 0.95) -> float:
@@ -676,8 +646,6 @@ class Search:
                 break
             best = eligible[0]
             best.accepted = True
-            if opts.adopt and self.cv.shrink and self.cv.closed_form:
-                best.adopt = adoption(current.unit_mse, best.result.unit_mse)
             rnd.accepted = best
             rnd.figure_data = {"residual": current.residual[ok].copy(),
                                "signal": signals.get(best.effect), "units": p.units[ok],

@@ -138,14 +138,8 @@ class PartialRidgePath:
         A, Fs = Zc[:, :self.n_free], Zc[:, self.n_free:] / self.f_scale
         return self.y_mean + (A @ self.b_y)[:, None] + (Fs - A @ self.B_f) @ self._weights(alphas)
 
-    def coefficients(self, alpha: float, adopted=None) -> tuple[np.ndarray, float]:
-        """``(coef over Z's columns, intercept)`` of the fit with penalty ``alpha``.
-
-        ``adopted`` (one factor per effect feature, default 1): the effect coefficients
-        :math:`w` scaled to :math:`s \\odot w` and the inputs' refitted to what they leave,
-        :math:`b = b_y - B_f (s \\odot w)` (Frisch-Waugh-Lovell, as at any penalty)."""
+    def coefficients(self, alpha: float) -> tuple[np.ndarray, float]:
+        """``(coef over Z's columns, intercept)`` of the fit with penalty ``alpha``."""
         w = self._weights([alpha])[:, 0]
-        if adopted is not None:
-            w = w * np.asarray(adopted, float)
         coef = np.r_[self.b_y - self.B_f @ w, w / self.f_scale]
         return coef, self.y_mean - float(self.z_mean @ coef)

@@ -133,11 +133,11 @@ def diagnose(cfg: DictConfig) -> dict:
     check_declared(cfg, ds)
     written: dict = {}
 
-    def make_after(effects, excluded, inputs, alphas=None, adopt=None):
+    def make_after(effects, excluded, inputs, alphas=None):
         written["kept"] = [c for c in inputs if c not in set(excluded)] if excluded else None
         written["model"] = outputs.diagnosed_model(
             _container(cfg.model.estimator), _ati(cfg), str(cfg.data.reference), effects,
-            f"{cfg.model.name}+{MODEL_NAME}", alphas, adopt)
+            f"{cfg.model.name}+{MODEL_NAME}", alphas)
         return build_compensator(after_config(cfg, written["model"], written["kept"]))
 
     ati = _ati(cfg)
