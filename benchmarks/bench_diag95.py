@@ -90,7 +90,14 @@ nothing; 9046 +29.0 -> -1.1 %; 9342 +13.9 -> -8.7; 9443 +13.3 -> -23.3 (another 
 helpful keep theirs: 9269 -56.5 -> -51.3, 9445 -41.9 -> -41.7, 9195 -45.5 -> -49.2, 8885 E_Y -71.0
 -> -72.6, 9103 E_Y -49.2 -> -49.0.  The test's "before" moves with the data (8170 0.7968 ->
 0.7298; 8178 E_Z 0.6377 -> 1.1755: a line over 4 samples of 300 s bends where E_Z rises fast).
-SEEN_70_PLACEHOLDER
+``quiet seen`` against ``draws seen main`` (bench_diag92's 70 draws, the what-if on all of them):
+rows > 2 % worse than before diagnose 8 -> 0 (each against its own data's "before"); the position
+found on 27 -> 28 draws (+ planted:9048); clean draws still accept two 900 s start lags, harmless
+(9189 E_Y +1.0 %, 9283 E_Y +0.2 %: 4 samples shrink the reference's noise, they do not remove it);
+the control clears on planted:9191 E_X and lag:9343 E_Y (main: lag:9343 E_Z), deciding nothing.
+Not a rule: the line moves every score (clean draws' E_Z before +30 .. +260 %, where the error
+rises fast in its first 4 samples), so main's and the what-if's "after" do not compare (74 rows
+differ > 2 %); it shows where the harm comes from.  diagnose CPU 48.1 s (main) / 46.8 s.
 
 Verdict: **TRACED** (src as main).  The CV and the test score alike; the start lag's 8/8 is 8
 campaign offsets that are the probe's noise in each campaign's first sample, which the first-sample
@@ -99,7 +106,8 @@ reference read off more than one noisy sample (a rule of the data's frame: every
 own bar), or diagnose weighing the train campaigns' offsets against the noise floor the reference
 puts there (8170: offsets s.d. 0.351 µm, the residual's white noise 0.415 µm).
 CPU (the bench's own line, user + sys): ``paths`` 14.4 s (11 rows), ``loco`` 16.4 s (12 rows),
-``rivals`` 15.9 s (11), ``directions`` 14.3 s (11), ``reference`` 29.3 s (13) + 4.4 s (8170).
+``rivals`` 15.9 s (11), ``directions`` 14.3 s (11), ``reference`` 29.3 s (13) + 4.4 s (8170);
+``draws seen main`` 74.1 s, ``quiet seen`` 71.8 s (70 draws each).
 """
 
 from __future__ import annotations
@@ -230,14 +238,21 @@ def _case(arg: str):
     return ds, d, found[target], target, effects, alpha
 
 
+def _with_test_fold(arg: str):
+    """``_case(arg)`` and the rows the search stacks with the test campaigns after them: (case...,
+    m, y, groups, test rows, the search's validator whose one fold is the test split)."""
+    case = _case(arg)
+    ds, d, search, target = case[:4]
+    m, y = _stacked(ds, d, target)
+    groups = np.asarray(m.groups)
+    test = np.isin(groups, list(d.cv["test_campaigns"]))
+    return (*case, m, y, groups, test, _validator(search, m, y, np.where(test, 0, -1)))
+
+
 def paths(*rows: str) -> None:
     """Each ``CASE/TARGET``: the test campaigns through the CV's path against run's (module doc)."""
     for arg in rows:
-        ds, d, search, target, effects, alpha = _case(arg)
-        m, y = _stacked(ds, d, target)
-        groups = np.asarray(m.groups)
-        test = np.isin(groups, list(d.cv["test_campaigns"]))
-        cv = _validator(search, m, y, np.where(test, 0, -1))
+        ds, d, search, target, effects, alpha, m, y, groups, test, cv = _with_test_fold(arg)
         k = list(d.targets).index(target)
         same = np.allclose(m.X.to_numpy(float)[~test], search.problem.X.to_numpy(float), equal_nan=True) \
             and np.allclose(y[~test], search.problem.y, equal_nan=True)
@@ -308,11 +323,7 @@ def rivals(*rows: str) -> None:
     from bench_diag92 import _rounds
 
     for arg in rows:
-        ds, d, search, target, _, _ = _case(arg)
-        m, y = _stacked(ds, d, target)
-        groups = np.asarray(m.groups)
-        test = np.isin(groups, list(d.cv["test_campaigns"]))
-        cv = _validator(search, m, y, np.where(test, 0, -1))
+        ds, d, search, target, _, _, m, y, groups, test, cv = _with_test_fold(arg)
         x = d.targets[target]
         for rnd, current in _rounds(x):
             if rnd.accepted is None or not rnd.accepted.effect.initial_state:
@@ -353,10 +364,7 @@ def directions(*rows: str) -> None:
     from bench_diag92 import _rounds
 
     for arg in rows:
-        ds, d, search, target, _, _ = _case(arg)
-        m, y = _stacked(ds, d, target)
-        test = np.isin(np.asarray(m.groups), list(d.cv["test_campaigns"]))
-        cv = _validator(search, m, y, np.where(test, 0, -1))
+        ds, d, search, target, _, _, m, y, _, test, cv = _with_test_fold(arg)
         x = d.targets[target]
         rnd, current = next((r, c) for r, c in _rounds(x)
                             if r.accepted is not None and r.accepted.effect.initial_state)
