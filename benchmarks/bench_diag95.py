@@ -67,8 +67,8 @@ s) CV +21.8 .. +22.5 %, 8/8 campaigns gaining, test +15.9 .. +17.1 %.  Over the 
 47 of 59 start lags gain on all 8 train campaigns, 57 of 59 leave the test > 2 % worse; the 3
 helpful rows: 5 of 22 gain on all 8, none worse.  ``directions``: the 2nd / 3rd directions carry the
 harm's CV gain (8969 1 -> 2 directions -0.2 -> +26.4 %, test -0.1 -> +23.7 %; 9443 +6.8 -> +36.8 %,
-test -11.9 -> +3.4 %; 8170 +3.9 -> +22.4 % at 3, test +7.5 -> +16.8 %) -- their spread over the
-campaigns is 0.1-0.2 K against 1.3-4.9 K on the first; one direction still harms 8457 (+52.6 %),
+test -11.9 -> +3.4 %; 8170 +3.9 -> +22.4 % at 3, test +7.5 -> +16.8 %) -- over the train campaigns
+they span 0.05-0.25 K against 2.1-4.7 K on the first (``paths``); one direction still harms 8457 (+52.6 %),
 9342 (+22.9), 8178 (+11.9), 8170 (+7.5) and keeps the helpful (9269 -52.5, 9445 -44.4, 9195 -37.6).
 
 What differs between 8170's train and test campaigns: not the programme (constant / run-stop /
