@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import io
 import json
+import os
 import re
 import subprocess
 import sys
@@ -196,3 +197,21 @@ def test_a_command_s_folder_is_made_and_resolved(tmp_path, monkeypatch):
     folder = _cli().made_folder("a/b")
     assert folder == (tmp_path / "a" / "b").resolve() and folder.is_dir()
     assert _cli().made_folder("a/b") == folder          # there already: the same folder
+
+
+def test_a_commands_project_root_keeps_what_an_earlier_command_wrote(tmp_path, monkeypatch):
+    # before (review95): bench_mon88's ``_root`` (bar91, freeze90, mon89/89b, mon91b, monb92,
+    # quiet93b, step93/93b, jump94/94b) made ROOT anew: jump94b's ``healthy`` deleted the
+    # ``trace-main.json`` its ``trace`` had written there
+    import thermocomp
+
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setenv("THERMOCOMP_ROOT", "elsewhere")
+    root = _cli().project_root("a/root")
+    assert root == (tmp_path / "a" / "root").resolve() and root.is_dir()
+    conf = Path(thermocomp.__file__).resolve().parents[2] / "conf"
+    assert (root / "conf").resolve() == conf.resolve()
+    assert os.environ["THERMOCOMP_ROOT"] == str(root)
+    (root / "trace-main.json").write_text("{}")              # the first command's output
+    assert _cli().project_root("a/root") == root                # the second command's root
+    assert (root / "trace-main.json").read_text() == "{}" and (root / "conf").is_symlink()
