@@ -53,3 +53,21 @@ def made_folder(word: str) -> Path:
     folder = Path(word).resolve()
     folder.mkdir(parents=True, exist_ok=True)
     return folder
+
+
+def project_root(word: str) -> Path:
+    """The scratch project root ``word`` names, for the stages a command runs in this process:
+    made where missing, the measured tree's ``conf/`` (the one beside the ``thermocomp`` on
+    ``PYTHONPATH``) linked in where no ``conf`` is, ``THERMOCOMP_ROOT`` set to it.  What an
+    earlier command wrote there is kept: a command that must start clean removes its own output
+    (review95: ``bench_mon88``'s root was made anew, and a second command into the same ROOT
+    deleted the first's output -- jump94b's ``trace-main.json`` under ``healthy``)."""
+    import os
+
+    import thermocomp
+
+    root = made_folder(word)
+    if not (root / "conf").exists():
+        (root / "conf").symlink_to(Path(thermocomp.__file__).resolve().parents[2] / "conf")
+    os.environ["THERMOCOMP_ROOT"] = str(root)
+    return root

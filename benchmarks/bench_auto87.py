@@ -116,7 +116,6 @@ from __future__ import annotations
 import contextlib
 import io
 import json
-import os
 import sys
 from pathlib import Path
 
@@ -124,7 +123,7 @@ import numpy as np
 
 HERE = Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE), str(HERE.parent / "tests" / "apps")]
-from _cli import run_commands  # noqa: E402
+from _cli import project_root, run_commands  # noqa: E402
 from cpu import cpu_seconds  # noqa: E402
 
 SMALL = ["sim.generator.n_runs=12", "sim.generator.duration_h=[3.0,4.0]", "sim.generator.test_fraction=0.25"]
@@ -150,16 +149,9 @@ def stage(*args: str) -> int:
 
 
 def _root(work: Path) -> Path:
-    """WORK/root, its ``conf/`` the conf beside the package on PYTHONPATH (the tree measured)."""
-    import thermocomp
-
-    root = work / "root"
-    root.mkdir(parents=True, exist_ok=True)
-    conf = Path(thermocomp.__file__).resolve().parents[2] / "conf"
-    if not (root / "conf").exists():
-        (root / "conf").symlink_to(conf)
-    os.environ["THERMOCOMP_ROOT"] = str(root)
-    return root
+    """WORK/root (:func:`_cli.project_root`: its ``conf/`` the conf beside the package on
+    PYTHONPATH, the tree measured)."""
+    return project_root(str(work / "root"))
 
 
 def _data(data: Path, record: str) -> Path:

@@ -10,7 +10,7 @@ Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is
     python benchmarks/bench_bar91.py table MAIN RULE [RULE ...]    # the bar, per rule
     python benchmarks/bench_bar91.py why ROOT SEED FAMILY          # one record per test campaign
 
-``score``: in ``ROOT`` (made anew; the measured tree's ``conf/`` linked in, ``THERMOCOMP_ROOT``)
+``score``: in ``ROOT`` (kept; the measured tree's ``conf/`` linked in, ``THERMOCOMP_ROOT``)
 per seed of SEEDS the record :data:`RECORDS` names, drawn twice: as scored (bench_mon88's
 generators: ``lr`` a long lathe record of 3 days, R1b continuing R1a, with the generator's own
 temperature spikes; ``cr`` a climate room of 12 runs with :func:`~bench_mon88.planted`'s frozen

@@ -84,8 +84,9 @@ Fresh, scored once (lr9699-9703, cr9704-9708):
     lr9703 T_table 2 x / 2.9 x 126.92 / 162.33 -> 21.39 / 29.99 (eight caught, main none); cr9708
     T_nc_x1_drive 2.9 x 34.19 -> 22.08 (not counted detected either way).
     The two ``trace-main.json`` were deleted by ``healthy`` run in the same ROOT (bench_mon88's
-    ``_root`` makes the ROOT anew): (a) is scored from the two runs' printed cell tables
-    (d x 100 to 2 decimals; the same run, read once).  Use separate ROOTs for trace and healthy.
+    ``_root`` made the ROOT anew): (a) is scored from the two runs' printed cell tables
+    (d x 100 to 2 decimals; the same run, read once).  Since review95 ``_root`` keeps what an
+    earlier command wrote (``trace`` and ``healthy`` may share a ROOT).
 (b) ``healthy`` / ``events``: the 10 true records 0 sensor events under both, d 0 on both: MET.
 CPU: trace main 105.7 s, rule 134.1 s; healthy 11.3 / 13.5 s; fl 16 monitor runs ~3 s each.
 """

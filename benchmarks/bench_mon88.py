@@ -9,22 +9,22 @@ Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is
     python benchmarks/bench_mon88.py compare BEFORE AFTER # two fresh.json side by side
     python benchmarks/bench_mon88.py pack ROOT            # compiled C / mirror against served
 
-``traced``: in ``ROOT`` (made anew; the measured tree's ``conf/`` linked in, ``THERMOCOMP_ROOT``)
-deploy87's lr9171 (``sim=long_record``, 3 days, ``test_fraction=0.2``: R1b continues R1a; the
-generator's own spikes on ``T_col_back``) with ``model=lagbank data.reference=none`` as
-bench_deploy87 runs it, and audit86b's cr9031 (``sim=climate_room``, 12 runs of 3-4 h,
-``test_fraction=0.25``) with ``model=mlr``, its test campaigns given audit86b's frozen ``T_amb``
-(the reading held from a third of each campaign): ``run`` -> ``replay`` of its ``model.pkl``; the
-replay's RMSE per target (µm) and its events.  ``fresh``: per seed of SEEDS a record drawn as
-:data:`FRESH` says (seeds 9196-9200 long records as lr9171, the generator's spikes left as
-drawn; 9201-9205 climate rooms as cr9031 with :func:`planted` faults), ``model=mlr``, ``run`` ->
-``replay``; per record the replay RMSE and the exclusions / re-admissions (sensor, campaign,
-row) written to ``ROOT/fresh.json``.  ``compare``: the two files' records side by side (run
-with main's src for BEFORE and this tree's for AFTER; the simulator is not changed).  ``pack``:
-on lr9171 (MLR, R1b after R1a) and cr9031 with its frozen ``T_amb`` (MLR): the served stream,
-the numpy mirror and the compiled C (gcc -Werror) of the export with and without this stop's
-two keys (``undo``, ``cleared``): rows where C = served (every target within 1e-9 µm), the first
-flag, the conformance pack's rows.
+``traced``: in ``ROOT`` (made where missing, what an earlier command wrote there kept: review95;
+the measured tree's ``conf/`` linked in, ``THERMOCOMP_ROOT``) deploy87's lr9171
+(``sim=long_record``, 3 days, ``test_fraction=0.2``: R1b continues R1a; the generator's own spikes
+on ``T_col_back``) with ``model=lagbank data.reference=none`` as bench_deploy87 runs it, and
+audit86b's cr9031 (``sim=climate_room``, 12 runs of 3-4 h, ``test_fraction=0.25``) with
+``model=mlr``, its test campaigns given audit86b's frozen ``T_amb`` (the reading held from a third
+of each campaign): ``run`` -> ``replay`` of its ``model.pkl``; the replay's RMSE per target (µm)
+and its events.  ``fresh``: per seed of SEEDS a record drawn as :data:`FRESH` says (seeds
+9196-9200 long records as lr9171, the generator's spikes left as drawn; 9201-9205 climate rooms as
+cr9031 with :func:`planted` faults), ``model=mlr``, ``run`` -> ``replay``; per record the replay
+RMSE and the exclusions / re-admissions (sensor, campaign, row) written to ``ROOT/fresh.json``.
+``compare``: the two files' records side by side (run with main's src for BEFORE and this tree's
+for AFTER; the simulator is not changed).  ``pack``: on lr9171 (MLR, R1b after R1a) and cr9031
+with its frozen ``T_amb`` (MLR): the served stream, the numpy mirror and the compiled C (gcc
+-Werror) of the export with and without this stop's two keys (``undo``, ``cleared``): rows where C
+= served (every target within 1e-9 µm), the first flag, the conformance pack's rows.
 
 Traced (main d76bdde2)
 ----------------------
@@ -149,8 +149,6 @@ Verdict: rule A REFUSED (mon88_rule.patch, A + B as scored); rule B KEPT by its 
 from __future__ import annotations
 
 import json
-import os
-import shutil
 import sys
 from pathlib import Path
 
@@ -159,7 +157,7 @@ import pandas as pd
 
 HERE = Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE)]
-from _cli import run_commands, seed_list  # noqa: E402
+from _cli import project_root, run_commands, seed_list  # noqa: E402
 from bench_deploy87 import stage  # noqa: E402
 from cpu import cpu_seconds  # noqa: E402
 
@@ -173,16 +171,9 @@ FRESH = {**{seed: ("lr", LONG, ("data.reference=none",)) for seed in range(9196,
 
 
 def _root(word: str) -> Path:
-    """A scratch project root made anew, the measured tree's ``conf/`` linked in."""
-    import thermocomp
-
-    root = Path(word).resolve()
-    if root.exists():
-        shutil.rmtree(root)
-    root.mkdir(parents=True)
-    (root / "conf").symlink_to(Path(thermocomp.__file__).resolve().parents[2] / "conf")
-    os.environ["THERMOCOMP_ROOT"] = str(root)
-    return root
+    """The scratch project root (:func:`_cli.project_root`: made where missing, what an earlier
+    command wrote there kept; until review95 it was made anew)."""
+    return project_root(word)
 
 
 def _tests(data: Path) -> list[str]:

@@ -10,7 +10,7 @@ Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is
     python benchmarks/bench_mon89.py pack ROOT            # compiled C / mirror against served
     python benchmarks/bench_mon89.py why ROOT SEED FAMILY # one fresh record row by row
 
-``traced``: in ``ROOT`` (made anew; the measured tree's ``conf/`` linked in, ``THERMOCOMP_ROOT``)
+``traced``: in ``ROOT`` (kept; the measured tree's ``conf/`` linked in, ``THERMOCOMP_ROOT``)
 deploy88's lr9211 and mon88's lr9171 (``sim=long_record``, 3 days, ``test_fraction=0.2``: R1b
 continues R1a; the generator's own spikes) with ``data.reference=none``, per family of
 :data:`FAMILIES`: ``run`` -> ``replay`` of its ``model.pkl``; run's and replay's test RMSE (µm,

@@ -8,7 +8,7 @@ Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is
     python benchmarks/bench_mon89b.py compare BEFORE AFTER # two fresh.json side by side
     python benchmarks/bench_mon89b.py pack ROOT            # compiled C / mirror against served
 
-``traced``: in ``ROOT`` (made anew; the measured tree's ``conf/`` linked in) bench_mon88's fresh
+``traced``: in ``ROOT`` (kept; the measured tree's ``conf/`` linked in) bench_mon88's fresh
 cr9201 (``sim=climate_room``, 12 runs, its test campaigns given :func:`~bench_mon88.planted`'s
 frozen ``T_amb`` and spike), ``model=mlr``: ``run`` -> ``replay``, the replay's RMSE and events;
 then per test campaign the deployed stream's error and the error of the same model fed the

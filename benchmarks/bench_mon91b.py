@@ -11,7 +11,7 @@ Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is
 ``RECORDS``: bench_audit89's (``9316-9325``, ``fl``), or ``all`` (every record of ``ROOT`` with a
 monitor report).  ``rooms``: bench_mon88's ``FRESH`` records (9196-9200 long records, R1b
 continuing R1a, ``data.reference=none``; 9201-9205 climate rooms), drawn healthy (nothing
-planted), ``run model=mlr`` -> ``monitor`` into ``ROOT`` (made anew).
+planted), ``run model=mlr`` -> ``monitor`` into ``ROOT`` (kept).
 
 ``trace``: for every sensor the healthy monitor calls not observable (``observable: false`` in
 monitor.json: the POD's leverage above ``max_leverage``, "no other sensor predicts it"; the one
@@ -349,7 +349,7 @@ def _overrides(label: str) -> tuple:
 
 def rooms(root: str, seeds: str) -> None:
     """bench_mon88's fresh records (``FRESH``: 9196-9200 long records, R1b continuing R1a, 9201-9205
-    climate rooms) drawn HEALTHY (nothing planted) into ROOT (made anew): ``run model=mlr`` ->
+    climate rooms) drawn HEALTHY (nothing planted) into ROOT (kept): ``run model=mlr`` ->
     ``monitor`` (its overrides); then ``trace ROOT all`` traces them."""
     from bench_mon88 import FRESH, _root
 

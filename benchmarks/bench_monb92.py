@@ -35,7 +35,7 @@ fixed / adaptive (mean over targets, um), the events naming the sensor, all even
 campaigns with an event naming it at or after the fault's time.  ``fl_thermal`` (no manifest,
 its costliest sensor predicted): the healthy crossings only.  -> ``ROOT/servedb92.json``.
 
-``draw``: :data:`FRESH`'s seeds (``9396-9405``) drawn healthy into ROOT (made anew):
+``draw``: :data:`FRESH`'s seeds (``9396-9405``) drawn healthy into ROOT (kept):
 ``simulate`` (the kind's generator, :func:`generator`) -> ``run model=mlr`` -> ``monitor``.
 
 ``fresh``: prints the bar's fresh records (:data:`FRESH`), nothing run.
@@ -346,7 +346,7 @@ def served(root: str, records: str) -> None:
 
 def draw(root: str, seeds: str, kinds: dict | None = None) -> None:
     """The bar's fresh records (``kinds``, {seed: kind}; None: :data:`FRESH`; ``seeds`` of it)
-    drawn healthy into ROOT (made anew): ``simulate`` -> ``run model=mlr`` -> ``monitor``, each
+    drawn healthy into ROOT (kept): ``simulate`` -> ``run model=mlr`` -> ``monitor``, each
     with its kind's overrides."""
     from bench_mon88 import _root
 

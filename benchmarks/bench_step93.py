@@ -19,7 +19,7 @@ Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is
 ``sim=swiss_lathe_door``), ``lr`` / ``cr`` (bench_mon88's long lathe record, R1b continuing R1a,
 ``data.reference=none``; climate room of 12 runs), e.g. ``swiss9317,lr9426,cr9431``.  Every
 record is drawn TRUE: nothing planted (``lr``: the generator's own temperature spikes taken
-back out, bench_bar91's ``_true_readings``).  ``ROOT`` is made anew (``conf/`` linked in).
+back out, bench_bar91's ``_true_readings``).  ``ROOT`` is kept (``conf/`` linked in where missing).
 Model ``mlr`` fitted on the train campaigns and deployed as ``promote`` deploys it (adaptive,
 monitored; ``_ccode.deployed_on``); every test campaign streamed as ``replay`` streams it
 (bench_bar91's ``_streams``: warmed on the campaigns it continues).

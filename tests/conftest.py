@@ -456,6 +456,37 @@ def parsed_block(tmp_path_factory) -> str:
     return exported_files(_deployed(data, *PARSED_BLOCK)[0], "st")["compensator.st"]
 
 
+def deployed_as_replay(cfg) -> tuple:
+    """``(the model cfg configures, fitted on its train split and deployed as replay deploys it,
+    the dataset, its test campaign ids)``: the plain stream with ``promote.envelope``
+    (``builders.deploy_stream``) made deployable (``builders.deployable``: the adaptive
+    compensator around it under ``monitor.adaptive``).  One home: the served monitor's and the
+    exported code's tests each wrote these lines out again (review95: 13 modules)."""
+    from thermocomp.shell.builders import build_compensator, deploy_stream, deployable
+    from thermocomp.shell.source import read_streamed
+
+    ds, train_ids, test_ids, _ = read_streamed(cfg)
+    train = {c: ds.campaigns[c] for c in train_ids}
+    stream = deploy_stream(cfg, build_compensator(cfg, ds=ds).fit(train), train)
+    return deployable(cfg, stream, train, ds), ds, test_ids
+
+
+# the measured spindle (datasets/fl_thermal, its last 10 % the test campaign), adaptive MLR
+FL_THERMAL_MLR = ("data=fl_thermal", "track=false", "monitor.adaptive=true", "model=mlr")
+
+
+def fl_thermal_served() -> tuple:
+    """``(adaptive MLR fitted on fl_thermal's train part and deployed as replay deploys it, its
+    system with the monitor, the test campaign)``: a new fit and frame at each call (a module's
+    fixture changes its frame)."""
+    from test_export import _compose
+    from thermocomp.apps.deploy.export import state_space
+
+    deployed, ds, test_ids = deployed_as_replay(_compose(*FL_THERMAL_MLR))
+    return (deployed, state_space(deployed, monitor=True),
+            ds.campaigns[test_ids[-1]].reset_index(drop=True))
+
+
 def set_keys(path: Path, **values) -> None:
     """Set ``key: value`` on the first line of the YAML file ``path`` that holds ``key:`` (its
     indent and any other line kept): a scratch copy's config made smaller, as a user edits it."""

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import io
 import json
+import os
 import re
 import subprocess
 import sys
@@ -64,14 +65,14 @@ COMMAND_BENCHES = (
     "bench_pde66", "bench_pen0b69", "bench_perf87", "bench_perf87b", "bench_perf88", "bench_planted69",
     "bench_planted72", "bench_power78", "bench_quiet93", "bench_quiet93b", "bench_quiet94",
     "bench_quiet94b", "bench_quiet94c", "bench_range73", "bench_range77", "bench_rate71", "bench_rate83",
-    "bench_remeasure62", "bench_rigdiag70", "bench_speedsq68", "bench_st93", "bench_st93b", "bench_st94",
-    "bench_st94b", "bench_stable67", "bench_step93", "bench_step93b", "bench_stranger63",
-    "bench_stranger64", "bench_stranger65", "bench_stranger66", "bench_stranger68", "bench_stranger69",
-    "bench_stranger74", "bench_stranger75", "bench_stranger76", "bench_stranger77", "bench_stranger78",
-    "bench_stranger80", "bench_stranger81", "bench_stranger82", "bench_stranger82b", "bench_stranger83",
-    "bench_stranger84", "bench_sub71", "bench_sweepdvc63", "bench_twolog70", "bench_verify82",
-    "bench_volfleet63", "bench_volstranger66", "bench_within67", "bench_zerocheck67", "bench_zerofew67",
-    "bench_zerofold68",
+    "bench_remeasure62", "bench_review95", "bench_rigdiag70", "bench_speedsq68", "bench_st93",
+    "bench_st93b", "bench_st94", "bench_st94b", "bench_stable67", "bench_step93", "bench_step93b",
+    "bench_stranger63", "bench_stranger64", "bench_stranger65", "bench_stranger66", "bench_stranger68",
+    "bench_stranger69", "bench_stranger74", "bench_stranger75", "bench_stranger76", "bench_stranger77",
+    "bench_stranger78", "bench_stranger80", "bench_stranger81", "bench_stranger82", "bench_stranger82b",
+    "bench_stranger83", "bench_stranger84", "bench_sub71", "bench_sweepdvc63", "bench_twolog70",
+    "bench_verify82", "bench_volfleet63", "bench_volstranger66", "bench_within67", "bench_zerocheck67",
+    "bench_zerofew67", "bench_zerofold68",
 )
 
 # Run in the child: per bench, main([])'s status and what it printed, and, for every usage line of
@@ -197,3 +198,21 @@ def test_a_command_s_folder_is_made_and_resolved(tmp_path, monkeypatch):
     folder = _cli().made_folder("a/b")
     assert folder == (tmp_path / "a" / "b").resolve() and folder.is_dir()
     assert _cli().made_folder("a/b") == folder          # there already: the same folder
+
+
+def test_a_commands_project_root_keeps_what_an_earlier_command_wrote(tmp_path, monkeypatch):
+    # before (review95): bench_mon88's ``_root`` (bar91, freeze90, mon89/89b, mon91b, monb92,
+    # quiet93b, step93/93b, jump94/94b) made ROOT anew: jump94b's ``healthy`` deleted the
+    # ``trace-main.json`` its ``trace`` had written there
+    import thermocomp
+
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setenv("THERMOCOMP_ROOT", "elsewhere")
+    root = _cli().project_root("a/root")
+    assert root == (tmp_path / "a" / "root").resolve() and root.is_dir()
+    conf = Path(thermocomp.__file__).resolve().parents[2] / "conf"
+    assert (root / "conf").resolve() == conf.resolve()
+    assert os.environ["THERMOCOMP_ROOT"] == str(root)
+    (root / "trace-main.json").write_text("{}")              # the first command's output
+    assert _cli().project_root("a/root") == root                # the second command's root
+    assert (root / "trace-main.json").read_text() == "{}" and (root / "conf").is_symlink()

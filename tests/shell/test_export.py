@@ -26,7 +26,7 @@ import pandas as pd
 import pytest
 from hydra import compose, initialize_config_dir
 
-from conftest import FAST, refused
+from conftest import FAST, deployed_as_replay, refused
 from thermocomp.apps.deploy.export import Simulator, exported_files, state_space
 from thermocomp.apps.deploy.streaming import replay
 from thermocomp.base.paths import conf_dir
@@ -71,15 +71,8 @@ def built_stream(folder: Path, files: dict | None = None) -> Path:
 def adaptive_mlr(folder: Path) -> tuple:
     """``(adaptive MLR as replay deploys it, the dataset, its test campaign ids)``, on this
     module's record written into ``folder`` (the exported monitor's tests: cmon76, cdrop77, cmon80)."""
-    from thermocomp.shell.builders import deployable
-
-    cfg = _compose(f"data.path={_make_dataset(folder)}", "track=false", "monitor.adaptive=true",
-                   "model=mlr")
-    ds, train_ids, test_ids, _ = read_streamed(cfg)
-    train = {c: ds.campaigns[c] for c in train_ids}
-    deployed = deployable(cfg, deploy_stream(cfg, build_compensator(cfg, ds=ds).fit(train), train),
-                          train, ds)
-    return deployed, ds, test_ids
+    return deployed_as_replay(_compose(f"data.path={_make_dataset(folder)}", "track=false",
+                                       "monitor.adaptive=true", "model=mlr"))
 
 
 def checked_pack(out: Path) -> str:

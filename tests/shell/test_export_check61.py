@@ -16,7 +16,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from conftest import FAST, refused
+from conftest import FAST, deployed_as_replay, refused
 from test_export import StructuredText, _compose, _make_dataset, _trained, built_stream, needs_cc
 from test_run_column52 import _long, _runs
 from test_stream_units60 import _in_lab_units, dated_runs
@@ -183,13 +183,9 @@ def test_a_campaign_is_cut_where_the_served_models_sensor_monitor_acts(dataset):
     from thermocomp.apps.deploy.export import state_space
     from thermocomp.apps.deploy.export.pack import conformance_pack
     from thermocomp.apps.deploy.report import stream_rows
-    from thermocomp.shell.builders import build_compensator, deployable
 
     cfg = _compose(f"data.path={dataset}", "track=false", "monitor.adaptive=true", "model=mlr")
-    ds, train_ids, test_ids, _ = read_streamed(cfg)
-    train = {c: ds.campaigns[c] for c in train_ids}
-    deployed = deployable(cfg, deploy_stream(cfg, build_compensator(cfg, ds=ds).fit(train), train),
-                          train, ds)
+    deployed, ds, test_ids = deployed_as_replay(cfg)
     healthy, faulty = (ds.campaigns[c].reset_index(drop=True).copy() for c in test_ids)
     faulty.loc[len(faulty) // 2:, "T_b"] += 8.0            # one sensor leaves the others
     events = stream_rows(deployed, faulty, "K06").events

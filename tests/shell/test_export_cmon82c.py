@@ -23,6 +23,7 @@ import pandas as pd
 import pytest
 
 import test_export
+from conftest import deployed_as_replay
 from test_export import CAMPAIGNS, built_stream, needs_cc
 from test_export_cmon80 import _streamed
 from thermocomp.apps.deploy.export import Simulator, exported_files, state_space
@@ -34,8 +35,6 @@ from thermocomp.apps.deploy.export.watch import (
     READMITTED,
 )
 from thermocomp.apps.deploy.report import stream_rows
-from thermocomp.shell.builders import build_compensator, deploy_stream, deployable
-from thermocomp.shell.source import read_streamed
 
 ROWS, RATE, RAMP = 80, -0.8, 20
 
@@ -70,10 +69,7 @@ def _deployed(folder, fallbacks: str, model: str = "mlr"):
     record)``."""
     cfg = test_export._compose(f"data.path={folder}", "track=false", "monitor.adaptive=true",
                                f"model={model}", f"monitor.fallbacks={fallbacks}")
-    ds, train_ids, test_ids, _ = read_streamed(cfg)
-    train = {c: ds.campaigns[c] for c in train_ids}
-    deployed = deployable(cfg, deploy_stream(cfg, build_compensator(cfg, ds=ds).fit(train), train),
-                          train, ds)
+    deployed, ds, test_ids = deployed_as_replay(cfg)
     frame = ds.campaigns[test_ids[-1]].reset_index(drop=True)
     half = ROWS // 2
     ramp = np.r_[np.arange(RAMP), RAMP - np.arange(RAMP), np.zeros(ROWS - half - 2 * RAMP)]

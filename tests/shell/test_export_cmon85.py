@@ -17,6 +17,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from conftest import deployed_as_replay
 from test_export import _compose, needs_cc
 from test_export_cmon80 import assert_packed_as_served
 from thermocomp.apps.deploy.export import Simulator, state_space
@@ -54,18 +55,13 @@ def _column(tmp_path_factory):
 def column_system(tmp_path_factory):
     """``(deployed, its system with the monitor, the test campaign)`` of the column machine of
     seed :data:`SEED`."""
-    from thermocomp.shell.builders import build_compensator, deploy_stream, deployable
     from thermocomp.shell.cli import main
-    from thermocomp.shell.source import read_streamed
 
     data = tmp_path_factory.mktemp(f"column{SEED}") / "data"
     assert main(["-q", "simulate", f"seed={SEED}", f"data.path={data}", "track=false",
                  "sim=column_moving_source"]) == 0
     cfg = _compose(f"data.path={data}", "track=false", "model=mlr")
-    ds, train_ids, test_ids, _ = read_streamed(cfg)
-    train = {k: ds.campaigns[k] for k in train_ids}
-    deployed = deployable(cfg, deploy_stream(cfg, build_compensator(cfg, ds=ds).fit(train), train),
-                          train, ds)
+    deployed, ds, test_ids = deployed_as_replay(cfg)
     ss = state_space(deployed, monitor=True)
     return deployed, ss, ds.campaigns[test_ids[0]].reset_index(drop=True)
 

@@ -15,6 +15,7 @@ import subprocess
 import numpy as np
 import pytest
 
+from conftest import deployed_as_replay
 from test_export import _compose, built_stream, needs_cc
 from test_export_cmon80 import _streamed
 from test_export_cmon85 import _mirror, without
@@ -48,14 +49,9 @@ def deployed_mlr(*words: str):
     """MLR run with ``words`` and deployed as ``replay`` deploys it: ``(deployed, its system with
     the monitor, the first test campaign after its lead-in, the lead-in's rows, that campaign by
     its name, the lead-ins by campaign)`` (quiet94c: a one-file record too)."""
-    from thermocomp.shell.builders import build_compensator, deploy_stream, deployable
-    from thermocomp.shell.source import read_streamed
 
     cfg = _compose(*words, "track=false", "model=mlr")
-    ds, train_ids, test_ids, _ = read_streamed(cfg)
-    train = {k: ds.campaigns[k] for k in train_ids}
-    deployed = deployable(cfg, deploy_stream(cfg, build_compensator(cfg, ds=ds).fit(train), train),
-                          train, ds)
+    deployed, ds, test_ids = deployed_as_replay(cfg)
     leads = lead_ins(plain(deployed).compensator, ds, test_ids)
     test = test_ids[0]
     frame = fed(ds.campaigns[test], leads.get(test))

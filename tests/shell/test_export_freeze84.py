@@ -18,6 +18,7 @@ import pandas as pd
 import pytest
 
 import test_export
+from conftest import deployed_as_replay
 from test_export import CAMPAIGNS, built_stream, needs_cc
 from test_export_cmon80 import _streamed
 from thermocomp.apps.deploy.export import Simulator, exported_files, state_space
@@ -31,8 +32,6 @@ from thermocomp.apps.deploy.export.watch import (
     THAWED,
 )
 from thermocomp.apps.deploy.report import stream_rows
-from thermocomp.shell.builders import build_compensator, deploy_stream, deployable
-from thermocomp.shell.source import read_streamed
 
 ROWS, START, HELD, CATCH_UP = 300, 150, 12, 6
 
@@ -63,10 +62,7 @@ def served(tmp_path_factory):
     root = _machine(tmp_path_factory.mktemp("freeze84") / "data")
     cfg = test_export._compose(f"data.path={root}", "track=false", "monitor.adaptive=true",
                                "model=mlr", "monitor.fallbacks=none")
-    ds, train_ids, test_ids, _ = read_streamed(cfg)
-    train = {c: ds.campaigns[c] for c in train_ids}
-    deployed = deployable(cfg, deploy_stream(cfg, build_compensator(cfg, ds=ds).fit(train), train),
-                          train, ds)
+    deployed, ds, test_ids = deployed_as_replay(cfg)
     frame = ds.campaigns[test_ids[-1]].reset_index(drop=True)
     x = frame["T_2"].to_numpy(float)
     end = START + HELD

@@ -20,6 +20,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from conftest import deployed_as_replay
 from test_export import (
     CAMPAIGNS,
     EVERY_EXCURSION,
@@ -40,7 +41,7 @@ from thermocomp.apps.deploy.guard import CorrectionGuard
 from thermocomp.apps.deploy.pyfunc import CompensatorModel
 from thermocomp.apps.deploy.streaming import replay
 from thermocomp.core.models._dynamics import first_order_lag
-from thermocomp.shell.builders import build_compensator, deploy_stream, deployable
+from thermocomp.shell.builders import build_compensator, deploy_stream
 from thermocomp.shell.cli import main
 from thermocomp.shell.source import read_streamed
 
@@ -62,10 +63,7 @@ def _adaptive(dataset, family, *extra):
     missing, a repeated and a backward time (taken as the previous one plus one period)."""
     cfg = _compose(f"data.path={dataset}", "track=false", "monitor.adaptive=true",
                    *FAMILIES[family], *extra)
-    ds, train_ids, test_ids, _ = read_streamed(cfg)
-    train = {c: ds.campaigns[c] for c in train_ids}
-    deployed = deployable(cfg, deploy_stream(cfg, build_compensator(cfg, ds=ds).fit(train), train),
-                          train, ds)
+    deployed, ds, test_ids = deployed_as_replay(cfg)
     tests = [ds.campaigns[c].reset_index(drop=True).copy() for c in test_ids]
     tests[1]["time"] += np.r_[0.0, np.random.default_rng(1).uniform(-30, 30, len(tests[1]) - 1)]
     time = tests[1]["time"].to_numpy(copy=True)
@@ -251,10 +249,7 @@ def test_every_step_of_the_block_parses_as_iec_61131_3(dataset, tmp_path):
     data = _spindle_dataset(tmp_path / "data")
     cfg = _compose(f"data.path={data}", "track=false", "model=hammerstein", "adapt.method=bias",
                    "model.estimator.lagbank.n_taus=3")
-    ds, train_ids, _, _ = read_streamed(cfg)
-    train = {c: ds.campaigns[c] for c in train_ids}
-    deployed = deployable(cfg, deploy_stream(cfg, build_compensator(cfg, ds=ds).fit(train), train),
-                          train, ds)
+    deployed, ds, _ = deployed_as_replay(cfg)
     ss = state_space(deployed)
     assert ss.powers and ss.guard and ss.substitute_time and ss.adapt == "bias"
     parsed = exported_files(_deployed(dataset, *PARSED_BLOCK)[0], "st")["compensator.st"]

@@ -24,6 +24,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from conftest import deployed_as_replay
 from test_export import EVERY_EXCURSION, _compose, needs_cc
 from test_export_cadence72 import FASTER, _faster
 from test_export_dropout53 import _c, _st
@@ -31,8 +32,6 @@ from test_export_guard import _simulated, _spindle_dataset
 from thermocomp.apps.deploy.adaptive import AdaptiveCompensator
 from thermocomp.apps.deploy.export import state_space
 from thermocomp.apps.deploy.streaming import batch_prediction, replay
-from thermocomp.shell.builders import build_compensator, deploy_stream, deployable
-from thermocomp.shell.source import read_streamed
 
 TOLERANCE_UM = 1e-9
 # variant: (data set, overrides); every excursion clamped but on the pattern (test_export.EVERY_EXCURSION)
@@ -65,10 +64,7 @@ def _fitted(dataset, variant):
     """``(adaptive compensator as replay deploys it, a healthy test campaign)``."""
     cfg = _compose(f"data.path={dataset}", "track=false", "monitor.adaptive=true", "model=hammerstein",
                    "model.estimator.lagbank.n_taus=3", *VARIANTS[variant][1:])
-    ds, train_ids, test_ids, _ = read_streamed(cfg)
-    train = {c: ds.campaigns[c] for c in train_ids}
-    deployed = deployable(cfg, deploy_stream(cfg, build_compensator(cfg, ds=ds).fit(train), train),
-                          train, ds)
+    deployed, ds, test_ids = deployed_as_replay(cfg)
     return deployed, ds.campaigns[test_ids[0]].reset_index(drop=True).copy()
 
 

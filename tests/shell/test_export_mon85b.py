@@ -23,15 +23,13 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-import test_export
+from conftest import fl_thermal_served
 from test_export import built_stream, needs_cc
 from test_export_cmon80 import _streamed
-from thermocomp.apps.deploy.export import Simulator, exported_files, state_space
+from thermocomp.apps.deploy.export import Simulator, exported_files
 from thermocomp.apps.deploy.export.pack import conformance_pack, corrections
 from thermocomp.apps.deploy.export.watch import EXCLUDED, NOT_IN_CODE, READMITTED
 from thermocomp.apps.deploy.report import stream_rows
-from thermocomp.shell.builders import build_compensator, deploy_stream, deployable
-from thermocomp.shell.source import read_streamed
 
 # °C a 15 s row from row ONSET for RISE rows, then back as fast: T_t1 2.7 K/h, T_t7 1 K/h
 ONSET, RISE, DRIFTS, CULPRIT = 240, 60, {"T_t1": 40 / 3600, "T_t7": 15 / 3600}, "T_t2"
@@ -40,17 +38,11 @@ ONSET, RISE, DRIFTS, CULPRIT = 240, 60, {"T_t1": 40 / 3600, "T_t7": 15 / 3600}, 
 @pytest.fixture(scope="module")
 def served():
     """``(deployed, its system with the monitor, the test campaign with the transient)``."""
-    cfg = test_export._compose("data=fl_thermal", "track=false", "monitor.adaptive=true",
-                               "model=mlr")
-    ds, train_ids, test_ids, _ = read_streamed(cfg)
-    train = {c: ds.campaigns[c] for c in train_ids}
-    deployed = deployable(cfg, deploy_stream(cfg, build_compensator(cfg, ds=ds).fit(train), train),
-                          train, ds)
-    frame = ds.campaigns[test_ids[-1]].reset_index(drop=True)
+    deployed, ss, frame = fl_thermal_served()
     rows = np.arange(len(frame) - ONSET)
     for name, rate in DRIFTS.items():
         frame.loc[ONSET:, name] += np.clip(RISE - np.abs(rows - RISE), 0, None) * rate
-    return deployed, state_space(deployed, monitor=True), frame
+    return deployed, ss, frame
 
 
 def _mirror(ss, frame, hid: bool = True):

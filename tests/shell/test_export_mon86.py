@@ -12,6 +12,7 @@ import copy
 import numpy as np
 
 import test_export
+from conftest import FL_THERMAL_MLR
 from test_export import built_stream, needs_cc
 from test_export_cmon80 import _streamed
 from test_export_mon85b import ONSET, served  # noqa: F401  (the module's fixture)
@@ -24,9 +25,7 @@ from thermocomp.shell.source import read_streamed
 
 def _frozen():
     """The test campaign as measured, ``T_t12`` held at its reading of row ``ONSET`` from there."""
-    cfg = test_export._compose("data=fl_thermal", "track=false", "monitor.adaptive=true",
-                               "model=mlr")
-    ds, _, test_ids, _ = read_streamed(cfg)
+    ds, _, test_ids, _ = read_streamed(test_export._compose(*FL_THERMAL_MLR))
     frame = ds.campaigns[test_ids[-1]].reset_index(drop=True)
     frame.loc[ONSET:, "T_t12"] = frame["T_t12"].iloc[ONSET]
     return frame

@@ -20,14 +20,13 @@ import pandas as pd
 import pytest
 
 import test_export
+from conftest import deployed_as_replay
 from test_export import built_stream, needs_cc
 from test_export_cmon80 import _streamed
 from test_monitor_rounding83 import NAMES, PERIOD, TRAIN, _monitor, _record
 from thermocomp.apps.deploy.export import exported_files, state_space
 from thermocomp.apps.deploy.export.pack import corrections
 from thermocomp.apps.deploy.report import stream_rows
-from thermocomp.shell.builders import build_compensator, deploy_stream, deployable
-from thermocomp.shell.source import read_streamed
 
 WEIGHTS = np.array([1.5, -0.5, 0.8, 0.0, 0.3, -0.2, 2.0, -1.0])   # µm per °C: E_X's sensors
 SAID = re.compile(r"line (\d+): monitor: (\S+): (.*)")
@@ -54,10 +53,7 @@ def served(tmp_path_factory):
                                                                         index=False)
     cfg = test_export._compose(f"data.path={root}", "track=false", "monitor.adaptive=true",
                                "model=mlr")
-    ds, train_ids, test_ids, _ = read_streamed(cfg)
-    train = {c: ds.campaigns[c] for c in train_ids}
-    deployed = deployable(cfg, deploy_stream(cfg, build_compensator(cfg, ds=ds).fit(train), train),
-                          train, ds)
+    deployed, ds, test_ids = deployed_as_replay(cfg)
     return deployed, ds.campaigns[test_ids[0]].reset_index(drop=True)
 
 

@@ -21,13 +21,12 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from conftest import deployed_as_replay
 from test_export import EVERY_EXCURSION, _compose, _make_dataset, needs_cc
 from test_export_dropout53 import _c, _st
 from test_export_guard import _simulated
 from thermocomp.apps.deploy.export import state_space
 from thermocomp.apps.deploy.streaming import replay, streaming_deviation
-from thermocomp.shell.builders import build_compensator, deploy_stream, deployable
-from thermocomp.shell.source import read_streamed
 
 FAMILIES = {"arx": ["model=arx", "model.estimator.ar=true", "model.estimator.delays=[2]"],
             "lagbank": ["model=lagbank"]}
@@ -46,10 +45,7 @@ def _deployed(dataset, family):
     clamped (the sensors here move independently: test_export.EVERY_EXCURSION)."""
     cfg = _compose(f"data.path={dataset}", "track=false", "monitor.adaptive=true",
                    EVERY_EXCURSION, *FAMILIES[family])
-    ds, train_ids, test_ids, _ = read_streamed(cfg)
-    train = {c: ds.campaigns[c] for c in train_ids}
-    deployed = deployable(cfg, deploy_stream(cfg, build_compensator(cfg, ds=ds).fit(train), train),
-                          train, ds)
+    deployed, ds, test_ids = deployed_as_replay(cfg)
     return deployed, ds.campaigns[test_ids[0]].reset_index(drop=True).copy()
 
 

@@ -15,11 +15,10 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from conftest import deployed_as_replay
 from test_export import TOLERANCE_UM, StructuredText, _compiled, _compose, _streamed, needs_cc
 from thermocomp.apps.deploy.export import Simulator, exported_files, state_space
 from thermocomp.apps.deploy.streaming import replay
-from thermocomp.shell.builders import build_compensator, deploy_stream, deployable
-from thermocomp.shell.source import read_streamed
 
 ROWS, STEP_S = 60, 120.0
 SPLITS = ["train"] * 5 + ["test"]
@@ -53,10 +52,8 @@ def hotter(tmp_path_factory):
                   "file": [f"K{i}.csv" for i in range(len(SPLITS))], "split": SPLITS,
                   "notes": ""}).to_csv(root / "campaigns.csv", index=False)
     cfg = _compose(f"data.path={root}", "track=false", "monitor.adaptive=true", "model=mlr")
-    ds, train_ids, test_ids, _ = read_streamed(cfg)
-    train = {c: ds.campaigns[c] for c in train_ids}
-    stream = deploy_stream(cfg, build_compensator(cfg, ds=ds).fit(train), train)
-    return deployable(cfg, stream, train, ds), ds.campaigns[test_ids[0]].reset_index(drop=True)
+    deployed, ds, test_ids = deployed_as_replay(cfg)
+    return deployed, ds.campaigns[test_ids[0]].reset_index(drop=True)
 
 
 def test_the_bound_follows_a_hotter_machine_and_not_one_sensor(hotter):

@@ -16,14 +16,12 @@ import dataclasses
 import numpy as np
 import pytest
 
-import test_export
+from conftest import fl_thermal_served
 from test_export import built_stream, needs_cc
 from test_export_cmon80 import _streamed
-from thermocomp.apps.deploy.export import Simulator, exported_files, state_space, watch
+from thermocomp.apps.deploy.export import Simulator, exported_files, watch
 from thermocomp.apps.deploy.export.pack import conformance_pack, corrections
 from thermocomp.apps.deploy.report import stream_rows
-from thermocomp.shell.builders import build_compensator, deploy_stream, deployable
-from thermocomp.shell.source import read_streamed
 
 SENSOR, ONSET, SIZE = "T_t16", 240, 3.0
 
@@ -31,16 +29,10 @@ SENSOR, ONSET, SIZE = "T_t16", 240, 3.0
 @pytest.fixture(scope="module")
 def served():
     """``(deployed, its system with the monitor, the test campaign, it with T_t16 stepped)``."""
-    cfg = test_export._compose("data=fl_thermal", "track=false", "monitor.adaptive=true",
-                               "model=mlr")
-    ds, train_ids, test_ids, _ = read_streamed(cfg)
-    train = {c: ds.campaigns[c] for c in train_ids}
-    deployed = deployable(cfg, deploy_stream(cfg, build_compensator(cfg, ds=ds).fit(train), train),
-                          train, ds)
-    frame = ds.campaigns[test_ids[-1]].reset_index(drop=True)
+    deployed, ss, frame = fl_thermal_served()
     stepped = frame.copy()
     stepped.loc[ONSET:, SENSOR] += SIZE
-    return deployed, state_space(deployed, monitor=True), frame, stepped
+    return deployed, ss, frame, stepped
 
 
 def _events(run, frame) -> list[tuple[int, str, str]]:
