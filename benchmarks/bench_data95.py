@@ -79,7 +79,29 @@ stored: main's figures of contract and rawpair = here's (0 µm); main names rawe
 campaigns ``mainend_*``: fixed in the bench before the bar, the config now the copy's own file).
 ``names``: fl_thermal 23, audit93 rawpair 19, others 13 headers: 0 named otherwise.
 
-Scored: (not yet; below once, after the bar's commit)
+Scored (2026-12-06, fresh seeds 9759-9760, once, after the bar's commit 67f1b8fc; main 34af1fcb's
+src and conf by ``git archive``; the bar and the rule unchanged after the numbers)
+-------------------------------------------------------------------------------------------------
+Test RMSE (µm, E_X / E_Y), mlr; every file of a seed (contract, rawpair, rawend, rawtmp) equal to
+every printed digit, run = plain = replay as deployed = C:
+
+=====  ===========================  ======================  ==============================
+seed   every file, here and main    max |session - C|       (s3) main's model here
+=====  ===========================  ======================  ==============================
+9759   1.577889817 / 1.071975665    1.5e-13 µm, 4 files     = main's 0 µm; session 1.5e-13
+9760   2.000113985 / 1.417219057    2.0e-13 µm, 4 files     = main's 0 µm; session 2.0e-13
+=====  ===========================  ======================  ==============================
+
+(a) max|fig - contract's| 0 and max|C(file) - C(contract)| 0 µm, all 1441 rows, 3 raw files x 2
+seeds.  (b) init's names of rawend and rawtmp: ``T_amb, T_headstock, ... T_nc_cabinet`` (the
+contract's); main's of rawend ``T_headstock_Temperatur ... T_nc_cabinet_Temp.`` (11 of 12).
+(c) (s1) replay of main's model and (s2) run under main's config with its 12 inputs: exit 2, 2 of
+2 seeds each, naming the 11 old names, 11 new names with their headers, an 11-entry data.columns;
+(s3) with that data.columns: replay, plain, C = main's (0 µm), session = main's C to 2.0e-13 µm.
+(d) main's figures and C of contract and rawpair = here's, 0 µm, both seeds; ``names`` 0 of 55.
+(e) tests/shell/test_lab_names95.py: 13 of 18 fail on 34af1fcb (the 5 guards pass there).
+Against the BAR: (a)-(e) met, both rules: KEPT.  CPU: score ~3.3 s of this process (its
+subprocesses ~6 min wall per seed, under nice, 2 seeds in parallel), stored ~6 min wall.
 """
 
 from __future__ import annotations
