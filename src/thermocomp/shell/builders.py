@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from omegaconf import DictConfig, OmegaConf
 
-from ..base.errors import ConfigError, ThermocompError
+from ..base.errors import ConfigError, ContractError, ThermocompError
 from ..base.log import logger, say
 from ..base.params import check_params
 from ..base.paths import resolve
@@ -186,7 +186,20 @@ def deployable_model(cfg: DictConfig, ds, train_ids, source, key: str,
         comp = loaded if loaded is not None else load_model(resolve(source))
         name, what = model_family(comp), f"{key}={source}"
         train = {c: ds.campaigns[c] for c in train_ids}
+        check_model_names(cfg, ds, comp, what)
     return deployable(cfg, deploy_stream(cfg, comp, train, what), train, ds), source, name
+
+
+def check_model_names(cfg: DictConfig, ds, comp, what: str) -> None:
+    """(data95) A model fitted under a name an earlier rule derived from a lab's header
+    (``T_Temp_Luft``, now ``T_Luft``) is refused saying the name now and how to keep the old
+    (it was refused as a column the train campaigns lack, the new name unsaid)."""
+    from ..core.io.roles import former_said
+
+    absent = [c for c in getattr(comp, "inputs_", ()) if c not in ds.columns]
+    said = former_said(absent, ds.meta.get("column_map") or {}, cfg.data.path)
+    if said:
+        raise ContractError(f"{what}: {said}", file=cfg.data.path)
 
 
 def _registered(cfg: DictConfig, source: str, path, key: str) -> tuple[object, str, str]:

@@ -307,6 +307,7 @@ def check_declared(cfg: DictConfig, ds, model: bool = True) -> None:
     columns the model's config reads (``init`` has none)."""
     from ..core.frame import check_common_columns
 
+    check_former_names(cfg, ds)
     inputs, targets = declared_columns(cfg, ds)
     missing = named_inputs_missing(cfg, ds)
     if missing:
@@ -317,6 +318,21 @@ def check_declared(cfg: DictConfig, ds, model: bool = True) -> None:
                          headers, starts)
     if model:
         check_model_columns(cfg, ds)
+
+
+def check_former_names(cfg: DictConfig, ds) -> None:
+    """(data95) A ``data.inputs`` entry (a stored config's: a run's, ``diagnose``'s refit) that
+    names a column by the name an earlier rule derived from a lab's header (``T_Temp_Luft``,
+    now ``T_Luft``) is refused saying the name now: it was fitted without that sensor, said
+    only as a warning (:func:`named_inputs_missing`), or refused as matching no column."""
+    from ..core.io.roles import former_names, former_said
+
+    named = [str(p) for p in list(cfg.data.inputs) if not any(ch in str(p) for ch in "*?[")]
+    column_map = ds.meta.get("column_map") or {}
+    absent = [p for p in named if p not in ds.columns and p in former_names(column_map)]
+    if absent:
+        raise io.ContractError(f"data.inputs: {former_said(absent, column_map, cfg.data.path)}",
+                               file=cfg.data.path, column=absent[0])
 
 
 def named_inputs_missing(cfg: DictConfig, ds) -> str | None:

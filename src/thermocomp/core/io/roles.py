@@ -501,11 +501,15 @@ def date_and_time_of_day(headers: Sequence[str], first: Mapping) -> list[str]:
 _AMB = re.compile(r"^(T_)?amb(ient)?_", re.I)
 # (data94) a temperature's word a lab writes before the sensor's name, in the languages labs
 # write (``Temp. headstock``, ``Temperatur Spindel``, ``Temperatura husillo``, ``Température
-# broche``, ``Temperatuur spil``): the ``T_`` prefix says it already (``T_Temp._headstock``
-# read as ``T_headstock``); never ``temps`` / ``tempo``, which are a time's words
-_TEMPERATURE_LEAD = re.compile(
-    r"^(?:temp|temperature|temperatur|temperatura|température|temperatuur)[_.\-]+(?=[^\W_])",
-    re.I)
+# broche``, ``Temperatuur spil``; data95: ``Tmp. headstock``): the ``T_`` prefix says it
+# already (``T_Temp._headstock`` read as ``T_headstock``); never ``temps`` / ``tempo``, which
+# are a time's words
+_TEMPERATURE_WORD = r"(?:temp|tmp|temperature|temperatur|temperatura|température|temperatuur)"
+_TEMPERATURE_LEAD = re.compile(rf"^{_TEMPERATURE_WORD}[_.\-]+(?=[^\W_])", re.I)
+# (data95) the same word after the sensor's name (``headstock temp``, ``Spindel Temperatur``,
+# ``bed temperature [°C]``, ``Coolant Temp.``): ``T_headstock``, not ``T_headstock_temp``; not
+# after a dot, a historian's or an OPC UA node's path (``MC07.Spindle.Bearing.Temp``: its tag)
+_TEMPERATURE_TAIL = re.compile(rf"(?<=[^\W_])[_\-]+{_TEMPERATURE_WORD}\.?$", re.I)
 
 
 def _safe(base: str) -> str:
@@ -513,10 +517,12 @@ def _safe(base: str) -> str:
     return _UNSAFE.sub("_", base).strip("_").replace("..", ".")
 
 
-def _bare(name: str) -> str:
-    """``name`` (:func:`_safe`) without a temperature's leading word (:data:`_TEMPERATURE_LEAD`),
-    or as it is where nothing but the word, or an ambient's name, would be left."""
+def _bare(name: str, tail: bool = True) -> str:
+    """``name`` (:func:`_safe`) without a temperature's leading word (:data:`_TEMPERATURE_LEAD`)
+    and (``tail``) its trailing one (:data:`_TEMPERATURE_TAIL`), or as it is where nothing but
+    the word, or an ambient's name, would be left."""
     rest = _TEMPERATURE_LEAD.sub("", name)
+    rest = _TEMPERATURE_TAIL.sub("", rest) if tail else rest
     return name if not rest or _AMB.match(f"{rest}_") else rest
 
 
@@ -529,10 +535,50 @@ def shortened(headers: Sequence[str], columns: Mapping) -> frozenset:
     def key(text: str) -> str:
         return _bare(_safe(text).removeprefix(PREFIX["temperature"])).lower()
 
-    short = {h for h in headers if _bare(_safe(split_unit(h)[0])) != _safe(split_unit(h)[0])}
+    # (a lab's own contract name with a unit, 'T_spindle_temp [°C]', is its name: data95)
+    short = {h for h in headers if _bare(_safe(split_unit(h)[0])) != _safe(split_unit(h)[0])
+             and role(split_unit(h)[0]) is None}
     keys = Counter([key(split_unit(h)[0]) for h in headers]
                    + [key(str(c)) for c in columns.values()])
     return frozenset(h for h in short if keys[key(split_unit(h)[0])] == 1)
+
+
+def former_names(column_map: Mapping) -> dict[str, tuple[str, str]]:
+    """(data95) ``{a name an earlier rule derived: (the name derived now, the header)}`` for the
+    headers of ``column_map`` (``{header: contract name}``, a dataset's ``column_map``) whose
+    temperature word :func:`shortened` leaves out: before stop 94 every word was kept
+    (``T_Temp_Luft``, ``T_Luft_temp``), from stop 94 to 95 the trailing one (``T_Luft_temp``).
+    A stored config or model naming one is told the name now (:func:`former_said`)."""
+    out: dict[str, tuple[str, str]] = {}
+    for raw, name in column_map.items():
+        base = split_unit(str(raw))[0]
+        safe = _safe(base)
+        if role(base) is not None or name != PREFIX["temperature"] + _bare(safe):
+            continue
+        for before in (safe, _bare(safe, tail=False)):
+            former = _derived("temperature", before, False)
+            if former != name:
+                out.setdefault(former, (str(name), str(raw)))
+    return out
+
+
+def former_said(names: Sequence[str], column_map: Mapping, file) -> str | None:
+    """What to say of ``names`` (a config's, a stored model's) that are no column of ``file``
+    but an earlier rule's name of one of its headers (:func:`former_names`), else None."""
+    former = former_names(column_map)
+    hits = [(old, *former[old]) for old in names if old in former]
+    if not hits:
+        return None
+    keep = ", ".join(f"{raw!r}: {old}" for old, _, raw in hits)
+    if len(hits) == 1:
+        old, new, raw = hits[0]
+        said = f"{old} is no column of {file}, the derived name is {new} (header {raw!r})"
+    else:
+        said = (f"{', '.join(old for old, _, _ in hits)} are no columns of {file}, the derived "
+                f"names are {', '.join(f'{new} ({raw!r})' for _, new, raw in hits)}")
+    return (f"{said}: since stop 94/95 a temperature's word is not repeated after T_; name "
+            f"{'it' if len(hits) == 1 else 'them'} so, or keep the old name"
+            f"{'s' * (len(hits) > 1)}, data.columns={{{keep}}}")
 
 
 def _derived(kind: str, base: str, several_ambient: bool, short: bool = False) -> str:

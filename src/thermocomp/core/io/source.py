@@ -21,6 +21,7 @@ from .loggers import named_error_file
 from .options import ReadOptions
 from .own_headers import with_own_header
 from .read import read_campaign, read_dataset, repaired_part
+from .roles import former_said
 
 
 def open_dataset(root: str | Path, options: Mapping | None = None, *, stream: bool = False,
@@ -78,6 +79,10 @@ def check_streamed_columns(ds: Dataset, ids, columns, what: str, bits=None) -> N
     model was fitted with (its ``data.bits``, bits85): a lacking bit names the key to give."""
     for cid in ids:
         absent = [c for c in columns if c not in ds.campaigns[cid].columns]
+        former = former_said(absent, ds.meta.get("column_map") or {}, ds.file_path(cid))
+        if former:       # (data95) a model fitted before the temperature word was left out
+            raise ContractError(f"test campaign {cid}, {what}: {former}",
+                                file=ds.file_path(cid), column=absent[0])
         hint = _bits_said(absent, bits or {})
         if len(absent) == 1:
             raise ContractError(f"test campaign {cid} lacks a column {what} reads{hint}",
