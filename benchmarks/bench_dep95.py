@@ -21,7 +21,40 @@ had out and the fallback whose correction was taken (none where the sensor has n
 into the rows before the fault's onset, the rows the monitor has the faulty sensor out, and the
 rows after; in the out rows, per target, on's and off's squared error against the truth and the
 clean record's, how many of them the white targets stream unclamped (the excess shared, env94's
-rule) in the clean and the fault record, the stand-in's excess against the true reading's.
+rule) in the clean and the fault record, the stand-in's excess against the true reading's; and
+on paper the mend the brief names (a white target clamped while an input is a stand-in: off's
+rows for the white targets in the out rows, exact as in bench_env94's ``composed``).
+
+MEASURED (SEEN: env94c's fresh 9709-9713, spent, x mlr / arx / lagbank = 15 cells; ``cache
+/tmp/dep95/seen 9709-9713`` on 34af1fcb's src, CPU 71 + 141 + 163 s under a shared load, then
+``trace``; the totals equal env94c's: spike 433 / 734, jump 427 / 730, dropout 427 / 725)::
+
+  kind     added Σ² off / on: before   out rows    after   total   | E_X off / on
+  spike                        0 / 0   423 / 724   10 / 10  433 / 734 | 250 / 511
+  jump                         0 / 0   421 / 722    6 / 8   427 / 730 | 244 / 506
+  range                        0 / 0   428 / 725   10 / 10  437 / 734 | 255 / 512
+  dropout                      0 / 0   515 / 812  -87 / -87 427 / 725 | 246 / 503
+
+WHERE: all of on's extra cost (301 / 301 / 297 / 297 µm²) is in the rows the monitor has the
+faulty sensor out (~110 rows a case, its window), and E_X's (+261, E_Z +43 on the lag banks).
+No fallback is involved: every cell's fallbacks are for T_amb and T_front3 only; T_right3 /
+T_left3 are stood in for by the monitor's POD reconstruction, read by the model itself.  The clamp
+takes no other decision: the white targets stream unclamped (excess on >= 2 inputs) in 2433 of
+3417 out rows clean and 2445 with the spike (dropout 2307 = 2307); the envelope is one per input,
+so no target's clamp reads another target's range.  The stand-in misses the true reading by 0.96
+°C mean |.| (1.27 dropout); under off the clamp removes the response beyond hi (the true reading
+above hi in 1188 out rows, the stand-in in 1440), so the stand-in's error barely reaches E_X (white
+targets' correction fault - clean RMS 4.46 µm); unclamped, E_X follows it at its gain (9.33 µm).
+IT IS THE GAIN, NOT LOST: in the out rows the white targets' Σ² is off 1028 clean / 1324 fault, on
+366 / 963 (spike; dropout 1030 / 1314 against 337 / 919): with the sensor out on is still
+1324 - 963 = 361 µm² better than off, the stand-in carrying less of Q3 than the sensor did.  The
+mend on paper (clamp a white target while an input is a stand-in) gives off's 1324: Σ² +361 and
+an added Σ² of 958 against on's 597 (spike): refused on paper, not built.
+
+VERDICT: TRACED.  Not a clamp defect: the 1.7x added Σ² is part of the key's gain (E_X following
+Q3 through T_right3 / T_left3) that a POD stand-in cannot carry while the monitor has the sensor
+out; per_target stays below off in those rows.  src untouched; the default stays off.
+Left: a stand-in that carries a heat source's local part (the monitor's reconstruction), if any.
 """
 
 from __future__ import annotations
@@ -166,6 +199,7 @@ def trace(root: str) -> None:
         n_out, free = 0, {"clean": 0, "fault": 0}
         stand, err = [], {k: 0.0 for k in ("off|true", "off|fault", "on|true", "on|fault", "mend")}
         above = {"true": 0, "stand-in": 0}
+        depart: list = []
         for cell in cells.values():
             targets = list(cell["targets"])
             white = [targets.index(t) for t in cell["on|unclamped"]]
@@ -189,6 +223,8 @@ def trace(root: str) -> None:
                 for r in RULES:
                     for c, name in (("true", "true"), ("fault", case)):
                         err[f"{r}|{c}"] += float(_sq(cell, r, name)[m][:, white].sum())
+                dep = [cell[f"{r}|{case}|y"][m][:, white] - cell[f"{r}|true|y"][m][:, white] for r in RULES]
+                depart.append(np.column_stack([x.ravel() for x in dep]))
                 # the mend tried on paper: white targets clamped (off's rows) while the sensor is out
                 mend = cell[f"on|{case}|y"].copy()
                 mend[np.ix_(m, white)] = cell[f"off|{case}|y"][np.ix_(m, white)]
@@ -204,6 +240,11 @@ def trace(root: str) -> None:
                   f" fault {free['fault']}; stand-in - true reading {np.mean(stand):+.2f} °C"
                   f" (|.| {np.mean(np.abs(stand)):.2f}); above hi: true {above['true']},"
                   f" stand-in {above['stand-in']}")
+            d = np.vstack(depart)
+            h = d.shape[1] // 2
+            print(f"   white targets' correction, fault - clean, in the out rows: RMS off"
+                  f" {np.sqrt(np.nanmean(d[:, :h] ** 2)):.2f} µm,"
+                  f" on {np.sqrt(np.nanmean(d[:, h:] ** 2)):.2f} µm")
             print("   white targets' Σ² share in the out rows (µm²): "
                   + "  ".join(f"{k} {v:.0f}" for k, v in err.items()))
 
