@@ -82,7 +82,6 @@ def ramp() -> None:
     import tempfile
     sys.path[:0] = [str(HERE.parent / "tests" / "shell"), str(HERE.parent / "tests")]
     from test_export_cmon82c import _deployed, _machine, _served_moves
-
     from thermocomp.apps.deploy.surveillance import settled
     judge = settled.Settled._settled
 

@@ -25,7 +25,7 @@ from thermocomp.apps.deploy.report import stream_rows
 
 
 def test_a_straight_ramp_spreads_its_windows_as_much_as_it_parts_them():
-    from thermocomp.apps.deploy.surveillance.settled import STEADY, steadiness   # (settle95)
+    from thermocomp.apps.deploy.surveillance.settled import STEADY, steadiness  # (settle95)
     w = 10
     ramp = -0.8 * np.arange(2 * w, dtype=float)[:, None]
     step = np.r_[np.zeros(w), np.ones(w)][:, None] + 0.01 * np.sin(np.arange(2 * w))[:, None]

@@ -742,7 +742,8 @@ class CodeMonitor:
         """(jump94b) Before the sample: a sensor no other predicts, in or out for another rule
         than a jump, whose window ending at ``x`` lies wholly off the one before by more than
         ``settle_lim`` and (settle95) whose windows' median difference passes ``settle_steady`` x
-        their larger median absolute deviation (not a ramp), on one reference for 2 w - 1 samples (``served Settled._settled``):
+        their larger median absolute deviation (not a ramp), on one reference for 2 w - 1
+        samples (``served Settled._settled``):
         re-referenced by the two windows' median difference, kept in (``SETTLED``)."""
         w, a, cols = self.window, self.a, self.settles
         gap = np.maximum(self.gap, max(1.0, dt / a["period"])) if (
