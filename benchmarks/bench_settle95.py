@@ -1,6 +1,9 @@
 """A fast ramp of a sensor no other predicts is not a settled step (settle95, issue 34; follow-up
 of ``bench_jump94b.py``, whose ``settled`` rule re-references a blind sensor whose last window
 lies wholly off the window before by more than 3 x its largest training separation).
+KEPT: the bar below (committed in f1f17de0 before the fresh seeds) met on fresh lr9739-9743 /
+cr9744-9748, scored once, and on the seen cells; served, numpy mirror and C alike.  Fault (2)
+(fl_thermal's +1 degC T_t16 at mid-test) TRACED, not mended: not a warming trend (below).
 
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is that tree's
 monitor as built -- main's src, or this branch's with the rule)::
@@ -62,6 +65,30 @@ bench_bar91b's ten-seed cycle ``commands_on(9739)``, drawn true; main = 34af1fcb
     records): as (a) and (b).
 KEPT only if all hold, with src (served + mirror + C), tests failing on 34af1fcb and docs; else
 REFUSED (``benchmarks/settle95_rule.patch``).  Fault (2) is TRACED above, not in the bar.
+
+Measured (2026-12-06; main = 34af1fcb's src and conf under /tmp, the rule = this branch at
+f1f17de0; under a load of ~6-10 on 2 cores)
+---
+(r) ``ramp``: main re-references ``T_u`` at row 63 (-9.77 degC) and row 80 (+8.81), re-admitted
+    at row 68; the rule: three samples part past the limit (ratios 4.18, 3.42, 3.66), none
+    re-referenced; ``T_u`` out at row 58 for its leak, back at row 75, its reference unmoved.
+    tests/shell/test_monitor_settled95.py: mirror and compiled C = served on every row: MET.
+(c) ``fl`` / ``flbar`` (seen): every one of the 16 lines equal to main's (Σ², d, events):
+    healthy 83.90 = 83.90 µm², 0 sensor events; the 14 caught cells caught at +9 as main's;
+    mean d x 100 3.39 = 3.39; 0 cells past main's d + log(1.02); +1 degC at 556 missed by both.
+    (``flbar`` prints "(c) FAILS": bench_jump94's (c) asked mean d strictly below main's; this
+    bar's (c) asks the 14 still caught and none past: MET.)
+(d) seen ``trace lr9699-9703,cr9704-9708``: 520 cells, every cell equal to main's (mean d 0.1586
+    = 0.1586, detected 175 = 175, 0 past); ``healthy`` on bench_step93b's 15 seen records:
+    events and d as main's on every one (column9316's 188, lr9430's 3), 0 new: MET.
+Fresh, scored once (lr9739-9743, cr9744-9748):
+(a) ``trace``: 520 cells, every cell equal to main's: mean d 0.1487 = 0.1487, detected 164 =
+    164, 0 cells past main's d + log(1.02): MET.
+(b) ``healthy`` / ``events``: the 10 true records 0 sensor events under both, d 0 on both: MET.
+CPU: fresh trace main 146.7 s, rule 192.0 s; healthy 10.3 / 11.3 s; seen trace 154.5 / 199.9 s,
+healthy 15.7 / 18.9 s; ``ramp`` 2 s; fl 16 monitor runs ~3 s each.  The rule left every simulated
+and fl cell as main's (it can only withhold main's re-references); its one measured effect is
+the ramp of (r).
 """
 
 from __future__ import annotations
