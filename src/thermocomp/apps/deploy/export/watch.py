@@ -162,7 +162,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..adaptive import GAP_PERIODS, AdaptiveCompensator
-from ..surveillance.settled import advanced, separation
+from ..surveillance.settled import STEADY, advanced, separation, steadiness
 from ..surveillance.states import (
     ALARM,
     COMMON_MIN,
@@ -277,6 +277,7 @@ def monitor_fields(deployed, inputs: list) -> dict:
         "bent": 1, "bend_lim": mon._bend_lim.tolist(),
         "settled": int(getattr(mon, "_settles", False)),
         "settle_lim": getattr(mon, "_settle_lim", np.full(n, np.inf)).tolist(),
+        "settle_steady": STEADY,
         "pair_jump": 1,
         # (quiet94c) the ambient of a one-campaign training: its drift warned, not acted on
         "warn_only": [int(w) for w in getattr(mon, "drift_warn_only", np.zeros(n, bool))],
@@ -403,6 +404,7 @@ class CodeMonitor:
             a.setdefault(k, np.float64(v))
         a.setdefault("bend_lim", np.full(n, np.inf))
         a.setdefault("settle_lim", np.full(n, np.inf))
+        a.setdefault("settle_steady", np.float64(0))   # (before settle95: a fast ramp settled)
         # (jump94b) the sensors no other predicts whose level shift two windows tell
         self.settles = np.flatnonzero(bool(a["settled"]) & np.isfinite(a["settle_lim"]))
         a.setdefault("rounding", np.zeros(n))    # (before mon83: no culprit held for rounding)
@@ -739,20 +741,23 @@ class CodeMonitor:
     def _settled(self, x, dt) -> None:
         """(jump94b) Before the sample: a sensor no other predicts, in or out for another rule
         than a jump, whose window ending at ``x`` lies wholly off the one before by more than
-        ``settle_lim``, on one reference for 2 w - 1 samples (``served Settled._settled``):
+        ``settle_lim`` and (settle95) whose windows' median difference passes ``settle_steady`` x
+        their larger median absolute deviation (not a ramp), on one reference for 2 w - 1
+        samples (``served Settled._settled``):
         re-referenced by the two windows' median difference, kept in (``SETTLED``)."""
         w, a, cols = self.window, self.a, self.settles
         gap = np.maximum(self.gap, max(1.0, dt / a["period"])) if (
             dt > a["gap_periods"] * a["period"]) else self.gap
         rows = np.vstack([self.settle[:, cols], x[cols] - self.ref[cols]])
-        before, after = rows[:w], rows[w:]
         sep = separation(rows, w)[0]
+        shift, spread = (v[0] for v in steadiness(rows, w))
         active = self._active()[cols]
         fire = ((active | (self.jumps[cols] == 0)) & (sep > a["settle_lim"][cols])
+                & (np.abs(shift) > a["settle_steady"] * spread)   # (settle95) not a ramp
                 & (gap[cols] == 1) & (self.settle_age[cols] >= 2 * w - 1))
         for k in np.flatnonzero(fire):
             j = int(cols[k])
-            off = float(np.median(after[:, k]) - np.median(before[:, k]))
+            off = float(shift[k])
             self.ref[j] += off
             self.prev[j] -= off
             self.hist[:, j] -= off

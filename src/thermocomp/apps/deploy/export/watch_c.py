@@ -112,7 +112,8 @@ def monitor_arrays(ss) -> list[tuple[str, object, tuple, str]]:
                ("MON_SECOND_INSTANT", "second_instant", 0, "int"),
                ("MON_BLIND_RANGE", "blind_range", 0, "int"),
                ("MON_SPIKE", "spike", 0, "int"), ("MON_BENT", "bent", 0, "int"),
-               ("MON_PAIR_JUMP", "pair_jump", 0, "int"), ("MON_SETTLED", "settled", 0, "int"))
+               ("MON_PAIR_JUMP", "pair_jump", 0, "int"), ("MON_SETTLED", "settled", 0, "int"),
+               ("MON_SETTLE_STEADY", "settle_steady", 0.0, "real"))
     modes = max(int(m.get("modes", 1)), 1)
     return [("MON_M", m.get("M", []), (n + 1 + len(pairs), n, n), "real"),
             ("MON_LEV", m.get("lev", []), (n + 1 + len(pairs), n), "real"),
@@ -1391,9 +1392,11 @@ static double mon_median(double v[], int n) {
 /* (jump94b) before the sample x: a sensor no other predicts (MON_SETTLE_LIM finite), in or out
    for another rule than a jump, on one reference for 2 MW - 1 samples, no gap, whose window
    ending at x lies wholly off the MW before by more than MON_SETTLE_LIM: re-referenced by the
-   two windows' median difference, kept in (as served: Settled._settled) */
+   two windows' median difference, kept in (as served: Settled._settled); (settle95) only where
+   that difference passes MON_SETTLE_STEADY x the windows' larger median absolute deviation (a
+   fast ramp spreads each window about as much as it parts them: not a step) */
 static void mon_settled(tc_state *s, const double x[], double dt) {
-    double lo1, hi1, lo2, hi2, v, sep, off, b[MW], c[MW], span = 1.0, gap;
+    double lo1, hi1, lo2, hi2, v, sep, off, mb, mc, db, dc, b[MW], c[MW], span = 1.0, gap;
     int k, r, ok;
     if (dt > MON_GAP_PERIODS * MON_PERIOD) span = dt / MON_PERIOD > 1.0 ? dt / MON_PERIOD : 1.0;
     for (k = 0; k < NM; k++) {
@@ -1418,7 +1421,16 @@ static void mon_settled(tc_state *s, const double x[], double dt) {
         }
         sep = lo2 - hi1 > lo1 - hi2 ? lo2 - hi1 : lo1 - hi2;
         if (!ok || !(sep > MON_SETTLE_LIM[k])) continue;
-        off = mon_median(c, MW) - mon_median(b, MW);
+        mb = mon_median(b, MW);
+        mc = mon_median(c, MW);
+        off = mc - mb;
+        for (r = 0; r < MW; r++) {
+            b[r] = fabs(b[r] - mb);
+            c[r] = fabs(c[r] - mc);
+        }
+        db = mon_median(b, MW);
+        dc = mon_median(c, MW);
+        if (!(fabs(off) > MON_SETTLE_STEADY * (db > dc ? db : dc))) continue;
         s->mon_ref[k] += off;
         s->mon_prev[k] -= off;
         for (r = 0; r < MW; r++) s->mon_hist[r][k] -= off;

@@ -11,6 +11,15 @@ window, so the bound scales with the sensor's own fastest training warming.  A s
 past ``jump_factor`` x its largest training separation is re-referenced by the difference of the
 two windows' medians and kept in (as :meth:`~.faults.InstantFaults._bent`: held out it would be
 read at its last value), a window after the step.
+
+A fast ramp parts two windows too (by its rise over one sample), so the separation alone read a
+blind sensor's ramp of 0.8 °C a sample as two settled steps, -9.77 and +8.81 °C, and left the
+sensor that far off its truth (tests/shell/test_export_cmon91.py's ``T_u``; settle95).  A step
+moves the windows' medians far more than either window spreads; a ramp spreads each window about
+as much as it moves them (a straight ramp over ``w`` samples: median difference ``w`` x its rate,
+each window's median absolute deviation about ``w / 4`` x it, a ratio of 4).  So the windows'
+median difference must also pass :data:`STEADY` x the larger of their median absolute deviations
+(fl_thermal's planted ``T_t16`` steps the rule catches: ratios 8.5-52; ``bench_settle95.py``).
 """
 
 from __future__ import annotations
@@ -20,6 +29,10 @@ from numpy.lib.stride_tricks import sliding_window_view
 
 from .states import STATES
 
+STEADY = 6.0
+"""A settled step's windows' median difference over the larger of their median absolute
+deviations must pass this (a straight ramp's ratio is 4, fl_thermal's planted steps' 8.5-52)."""
+
 
 def separation(a: np.ndarray, w: int) -> np.ndarray:
     """Per sample ``t >= 2w - 1`` (rows of the result: ``t - 2w + 1``) and column: how far the
@@ -28,6 +41,17 @@ def separation(a: np.ndarray, w: int) -> np.ndarray:
     win = sliding_window_view(np.asarray(a, float), w, axis=0)      # (n - w + 1, cols, w)
     lo, hi = win.min(-1), win.max(-1)
     return np.maximum(lo[w:] - hi[:-w], lo[:-w] - hi[w:])
+
+
+def steadiness(a: np.ndarray, w: int) -> tuple[np.ndarray, np.ndarray]:
+    """Per sample ``t >= 2w - 1`` (rows ``t - 2w + 1``) and column, as :func:`separation`: the
+    median of the window ``a[t-w+1..t]`` less the median of the ``w`` samples before it, and the
+    larger of the two windows' median absolute deviations (a ramp's spread; NaN where one is
+    missing)."""
+    win = sliding_window_view(np.asarray(a, float), w, axis=0)      # (n - w + 1, cols, w)
+    med = np.median(win, -1)
+    mad = np.median(np.abs(win - med[..., None]), -1)
+    return med[w:] - med[:-w], np.maximum(mad[w:], mad[:-w])
 
 
 def largest_separation(arrays, w: int, n: int) -> np.ndarray:
@@ -71,9 +95,10 @@ class Settled:
             return
         w, cols = self.window, self._settle_cols
         rows = np.vstack([self._settle[:, cols], x[cols] - self._ref[cols]])
-        before, after = rows[:w], rows[w:]
         sep = separation(rows, w)[0]
+        shift, spread = (v[0] for v in steadiness(rows, w))
         fire = ((self._active[cols] | (self._jumps[cols] == 0)) & (sep > self._settle_lim[cols])
+                & (np.abs(shift) > STEADY * spread)      # not a ramp (module doc)
                 & (self._gap[cols] == 1) & (self._settle_age[cols] >= 2 * w - 1))
         if fire.any():
             # the fast path leaves one array as the last reading, the last good one and the
@@ -81,7 +106,7 @@ class Settled:
             self._prev, self._last_good = self._prev.copy(), self._last_good.copy()
         for k in np.flatnonzero(fire):
             j = int(cols[k])
-            off = float(np.median(after[:, k]) - np.median(before[:, k]))
+            off = float(shift[k])
             self._ref[j] += off
             self._prev[j] -= off
             self._hist[:, j] -= off
@@ -109,10 +134,12 @@ class Settled:
         rows = np.vstack([self._settle[:, cols], d[:, cols]])
         m = len(d)
         sep = separation(rows, w)[:m]            # row i: its window against the one before
+        shift, spread = (v[:m] for v in steadiness(rows, w))
         age = self._settle_age[cols] + np.arange(m)[:, None]
         gap = np.ones((m, len(cols)))
         gap[0] = self._gap[cols]
-        return ((sep > self._settle_lim[cols]) & (gap == 1) & (age >= 2 * w - 1)).any(axis=1)
+        return ((sep > self._settle_lim[cols]) & (np.abs(shift) > STEADY * spread) & (gap == 1)
+                & (age >= 2 * w - 1)).any(axis=1)
 
     def _settle_commit(self, d: np.ndarray) -> None:
         """A fast block's rows taken: the ring's last rows, each reference older by them."""
