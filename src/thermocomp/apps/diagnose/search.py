@@ -65,7 +65,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 import pandas as pd
-from scipy.stats import chi2, rankdata
+from scipy.stats import rankdata
 from scipy.stats import t as student_t
 
 from ...core.metrics import reduction_pct
@@ -117,7 +117,6 @@ class Evaluation:
     p_margin: float = float("nan")            # p of a gain of min_gain_pct at least (the margin)
     gain_pct_within: float | None = None       # within the held-out campaigns (campaigns CV)
     gain_pct_within_rest: float | None = None  # the same without the campaign gaining most there
-    p_start_offsets: float | None = None       # a start lag's: the offsets only the reference's noise
 
     def entry(self) -> dict:
         """The ``effects`` entry of ``diagnosis.json`` (CLI.md keys first)."""
@@ -144,8 +143,6 @@ class Evaluation:
             out["evidence"]["cv_rmse_gain_pct_within"] = self.gain_pct_within
         if self.gain_pct_within_rest is not None:
             out["evidence"]["cv_rmse_gain_pct_within_rest"] = self.gain_pct_within_rest
-        if self.p_start_offsets is not None:
-            out["evidence"]["p_value_start_offsets"] = self.p_start_offsets
         out["effect"] = e.to_dict()
         return out
 
@@ -482,37 +479,6 @@ class Search:
         if self.problem.scheme == "campaigns":    # and not from one campaign (clean69)
             ev.gain_pct_within_rest = self._within_gain(current, ev.result, less_best=True)
             ev.clears_bar = ev.clears_bar and ev.gain_pct_within_rest >= self.options.min_gain_pct
-        if (ev.effect.initial_state and self.problem.scheme == "campaigns"
-                and self.problem.reference == "first_sample"):      # and not from E(0)'s noise
-            ev.p_start_offsets = self._offsets_beyond_noise(current)
-            ev.clears_bar = ev.clears_bar and ev.p_start_offsets <= self.options.alpha
-
-    def _offsets_beyond_noise(self, current: CVResult) -> float:
-        """p of the held-out campaigns' mean CV residuals were they only the reference's noise.
-
-        With ``reference=first_sample`` the first error sample's probe noise ``n(0)`` shifts the
-        whole campaign, so each held-out campaign's mean residual carries at least that noise's
-        variance, ``sigma^2 (1 + 1/n)`` (``sigma^2`` the residual's white noise, half the mean
-        square of its steps within the campaigns; ``n`` the campaign's samples).  A lag from the
-        initial state is past ``tau`` one constant per campaign: it can only gain on offsets that
-        exceed that floor.  ``T = sum_u m_u^2 / (sigma^2 (1 + 1/n_u))`` is chi-square with one
-        degree per campaign when they do not (bench_diag95: clean 8170 E_X's train offsets s.d.
-        0.351 µm against a white noise of 0.415 µm; its start lag gained 22 % in CV and raised the
-        test error 14.9 %)."""
-        p = self.problem
-        ok = p.validated & np.isfinite(current.residual)
-        units, n = p.unit_index[ok], p.n_units
-        r = current.residual[ok]
-        counts = np.bincount(units, minlength=n)
-        means = np.bincount(units, weights=r, minlength=n) / np.maximum(counts, 1)
-        same = units[1:] == units[:-1]
-        steps = np.diff(r)[same]
-        if steps.size == 0 or not np.any(steps):
-            return 0.0
-        sigma2 = float(np.mean(steps ** 2)) / 2.0
-        used = counts > 0
-        t = float(np.sum(means[used] ** 2 / (sigma2 * (1.0 + 1.0 / counts[used]))))
-        return float(chi2.sf(t, int(used.sum())))
 
     def _within_gain(self, current: CVResult, result: CVResult, campaigns: bool = False,
                      less_best: bool = False) -> float:
