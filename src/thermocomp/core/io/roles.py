@@ -576,8 +576,8 @@ def former_said(names: Sequence[str], column_map: Mapping, file) -> str | None:
     else:
         said = (f"{', '.join(old for old, _, _ in hits)} are no columns of {file}, the derived "
                 f"names are {', '.join(f'{new} ({raw!r})' for _, new, raw in hits)}")
-    return (f"{said}: since stop 94/95 a temperature's word is not repeated after T_; name "
-            f"{'it' if len(hits) == 1 else 'them'} so, or keep the old name"
+    return (f"{said}: a temperature's word (Temp, Temperatur, ...) is no longer repeated "
+            f"after T_; name {'it' if len(hits) == 1 else 'them'} so, or keep the old name"
             f"{'s' * (len(hits) > 1)}, data.columns={{{keep}}}")
 
 
