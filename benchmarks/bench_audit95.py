@@ -7,6 +7,7 @@ Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is
 
     python benchmarks/bench_audit95.py sweep ROOT [RECORD|FAMILY ...]   # cell 3, the table
     python benchmarks/bench_audit95.py lab ROOT SEED [FAMILIES]         # cell 2, the lab's export
+    python benchmarks/bench_audit95.py faults ROOT [RECORD]             # cell 4 (F1), cr9763
 
 ``sweep``: bench_audit94's sweep (bench_audit93's cell and columns: ``run`` -> ``replay`` warm and
 cold -> the plain replay -> ``promote`` -> ``export`` st / onnx / C with its check pack -> the
@@ -20,6 +21,17 @@ by design, exit 2, its row printed so).
 -> replay, plain replay -> ``monitor monitor.input=-`` fed the raw file -> the session served in
 process fed the rows as written -> ``export`` C + pack -> the compiled ``stream`` fed the RAW
 bytes), and the C header's ``nic``.
+
+``faults`` (added at scoring, after the bar, to score F1; the bar unchanged): :data:`FAULTED`
+simulated once and ``run model=mlr`` (bench_cmon92's ``made``), deployed as ``export`` deploys it
+(``faulted_cell``: its first test campaign after its lead-in, faults from a quarter in), the
+served model and the C's numpy mirror stepped together (bench_cmon92's :class:`Stepped`) over the
+healthy frame, then four cases: ``spike`` (+5 °C for 10 rows) and ``frozen`` (held 60 rows,
+bench_cmon92's ``planted``) and ``dropout`` (missing 10 rows) on the first monitored sensor others
+predict, and ``step`` (+3 °C from the row on) on the first one no other predicts (the monitor's
+``predictable``).  Per case: the first row (from the fault) the served monitor reports an event
+(its sensor, reason) and the C's watch flags (its sensor, rule), and max |C - served| over the
+rows before the first of the two; healthy: the served events and the C's flagged rules, all rows.
 
 Records (fresh seeds of this brief, 9761-9763, chosen before any was simulated)::
 
@@ -64,6 +76,8 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
+import numpy as np
+
 HERE = Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE)]
 import bench_audit93  # noqa: E402
@@ -75,6 +89,8 @@ RECORDS = {
                "sim.generator.duration_h=[3.0,4.0]", "sim.generator.test_fraction=0.25"],
 }
 ATI_RECORDS = ("cr",)
+FAULTED = {"cr9763": ["sim=climate_room", "seed=9763", "sim.generator.n_runs=8",
+                      "sim.generator.duration_h=[3.0,4.0]", "sim.generator.test_fraction=0.25"]}
 SWEPT = ("mlr", "pcr", "arx", "lagbank", "lstm", "auto")
 
 
@@ -87,10 +103,77 @@ def sweep(root: Path, chosen: list[str]) -> None:
     bench_audit93.sweep(root, [*chosen, *([] if named else SWEPT)])
 
 
+def _stepped(deployed, ss, frame) -> list[tuple]:
+    """Per row of ``frame`` ``(|C - served| max, served events, C's rule, C's sensor)``."""
+    from bench_cmon92 import Stepped
+
+    run, rows = Stepped(deployed, ss), []
+    for c, want, *_ in run.rows(frame):
+        w = run.sim.watch
+        rows.append((float(np.max(np.abs(c - want))), list(deployed.last_events_), w.rule, w.sensor))
+    return rows
+
+
+def faults(root: str, record: str = "cr9763") -> None:
+    """The ``faults`` rows (module doc)."""
+    import pandas as pd
+    from bench_cmon92 import faulted_cell, made, planted
+
+    from thermocomp.apps.deploy.export.watch import RULES
+
+    base = Path(root).resolve()
+    made(base, record, "mlr", FAULTED)
+    deployed, ss, frame, lead, start, cid = faulted_cell(base, record, "mlr-none")
+    mon = deployed.monitor
+    names = list(mon.names)
+    healthy = _stepped(deployed, ss, frame)
+    n_served = sum(len(r[1]) for r in healthy)
+    n_c = sum(r[2] != 0 for r in healthy)
+    print(f"{record} mlr-none, test campaign {cid}: {len(frame)} fed rows ({lead} lead-in), "
+          f"monitored {names}, predictable {[bool(p) for p in mon._predictable]}; healthy: served "
+          f"events {n_served}, C's flagged rows {n_c}, max|C - served| "
+          f"{max(r[0] for r in healthy):.3g} µm", flush=True)
+    for r in healthy:
+        if r[1] or r[2]:
+            print(f"  healthy event: served {r[1][:2]} C {RULES[r[2]]} "
+                  f"{names[r[3]] if r[3] >= 0 else '-'}")
+    others = next(n for n, p in zip(names, mon._predictable) if p)
+    blind = next((n for n, p in zip(names, mon._predictable) if not p), None)
+    cases = {"spike": (others, planted(frame, start, (others,), "spike")),
+             "frozen": (others, planted(frame, start, (others,), "freeze"))}
+    part = frame.iloc[start:start + 70].copy()
+    part.iloc[:10, part.columns.get_loc(others)] = np.nan
+    cases["dropout"] = (others, part)
+    if blind is None:
+        print("  step: every monitored sensor is predicted by the others: no case")
+    else:
+        part = frame.iloc[start:start + 120].copy()
+        part[blind] += 3.0
+        cases["step"] = (blind, part)
+    for kind, (sensor, part) in cases.items():
+        try:
+            rows = _stepped(deployed, ss, pd.concat([frame.iloc[:start], part]))[start:]
+        except Exception as exc:  # noqa: BLE001 -- a failing stream is the finding, printed
+            print(f"  {kind:<8}{sensor}: FAILED {type(exc).__name__}: {exc}", flush=True)
+            continue
+        s_at = next((i for i, r in enumerate(rows) if r[1]), None)
+        c_at = next((i for i, r in enumerate(rows) if r[2]), None)
+        first = min(x for x in (s_at, c_at, len(rows)) if x is not None)
+        before = max((r[0] for r in rows[:first]), default=0.0)
+        said = (f"{rows[s_at][1][0].get('sensor')} ({rows[s_at][1][0].get('reason', '')[:40]})"
+                if s_at is not None else "-")
+        c_said = f"{names[rows[c_at][3]] if rows[c_at][3] >= 0 else '-'} {RULES[rows[c_at][2]]}" \
+            if c_at is not None else "-"
+        print(f"  {kind:<8}{sensor}: served flags at fault row {s_at} {said}; C at {c_at} {c_said};"
+              f" max|C - served| before {before:.3g} µm; after: {max(r[0] for r in rows):.3g} µm",
+              flush=True)
+
+
 def main(argv: list[str]) -> int:
     return run_commands(__doc__, {
         "sweep": lambda root, *chosen: sweep(Path(root).resolve(), list(chosen)),
         "lab": bench_audit94.lab,
+        "faults": faults,
     }, argv, cpu=sys.stderr)
 
 
