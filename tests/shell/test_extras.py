@@ -73,6 +73,19 @@ def test_a_postgresql_store_without_psycopg2_names_the_team_extra(tmp_path, caps
     assert not (tmp_path / "out").exists()
 
 
+@pytest.mark.parametrize("stage", ["twin", "connect"])
+def test_opc_ua_without_asyncua_names_the_machine_extra(tmp_path, capsys, monkeypatch, stage):
+    # audit95: `make run` installs the core; the README's twin / connect then ended in a
+    # ModuleNotFoundError traceback, exit 1, not the extra's one line
+    data = make_dataset(tmp_path / "ds")
+    model = tmp_path / "model.pkl"
+    model.write_bytes(b"")
+    _hide(monkeypatch, "asyncua")
+    words = {"twin": [f"data.path={data}"], "connect": [f"connect.model={model}"]}[stage]
+    refused([stage, *words, f"out={tmp_path / 'out'}"], capsys, "asyncua", "'.[machine]'")
+    assert not (tmp_path / "out").exists()
+
+
 def test_a_launcher_config_of_a_missing_plugin_names_its_extra():
     from hydra.errors import MissingConfigException
 

@@ -20,6 +20,7 @@ MODULES = {
     "hydra_plugins.hydra_submitit_launcher": ("scale", "hydra/launcher=slurm"),
     "submitit": ("scale", "hydra/launcher=slurm"),
     "psycopg2": ("team", "a PostgreSQL tracking store"),
+    "asyncua": ("machine", "OPC UA (thermocomp twin / connect)"),
     "openpyxl": ("excel", "an Excel workbook (data.path=<file>.xlsx)"),
     "nptdms": ("tdms", "a National Instruments TDMS file (data.path=<file>.tdms)"),
     "h5py": ("matlab", "a MATLAB -v7.3 file or an HDF5 file (data.path=<file>.mat | .h5)"),
