@@ -9,6 +9,7 @@ Usage (from the repository root, ``PYTHONPATH=<tree>/src``; audit95's spent reco
 copied: ``DATA`` its ``data/cr9762``, ``MODELS/<cell>/model.pkl`` its ``reports/cr9762/<cell>``)::
 
     python benchmarks/bench_guard95.py trace DATA MODELS mlr-none mlr-ati pcr-none ...
+    python benchmarks/bench_guard95.py hysteresis DATA MODELS 0.8 mlr-none mlr-ati ...
 
 ``trace``: per cell, the model made deployable as ``replay`` makes it (default config) and the
 test campaigns streamed from a reset three times: as deployed (``guard``), with the rate limit
@@ -22,6 +23,10 @@ fastest change of the measured error, of ``raw`` and of ``norate``; on C11 the r
 ``norate`` steps beyond the limit and the envelope clamp count before -> at them; the envelope's
 inputs beyond their bound on C11, its gate's residual / tol there and how often the clamp
 switches on or off; the room's fastest ramp (15-min slope of T_amb, K/h) per campaign.
+``hysteresis``: the same deployed streams with the envelope's pattern gate patched in this
+process only (``Envelope.leaves_pattern``: off the pattern above ``tol``, and stays off until
+the residual falls below ``H`` x ``tol``; the state reset with each campaign; the guard's bound
+allowance reads the same gate): C11's events, clamped rows, switches, RMSE; C10 / C12's.
 
 Traced (2026-12-06, at bc37bd53, the 11 cells of audit95 less the 2 ``auto-none`` / ``lstm-none``
 copies of ``mlr-none``; events as audit95's in every cell: 7 3 5 5 9 0 5 0 2)::
@@ -62,8 +67,14 @@ The defect, if one, is the gate's lack of hysteresis (streaming.Envelope.leaves_
 guard.  Clamping every excursion (nogate) silences the chatter (0 events in all 9 cells) but is no
 mend by itself: C11's RMSE falls in 10 of 18 cell-targets (pcr-ati E_Z 2.263 -> 1.541, lstm-ati
 E_X 1.918 -> 1.192) and rises in 8 (lagbank-none E_Z 2.008 -> 2.546, arx-none E_X 1.133 -> 1.499).
-A gate with hysteresis (clamp on above tol, off below a lower one) is the next step to measure;
-not built (guard95's 30 min), and it would want its bar on more than one ramped test campaign.
+A gate with hysteresis (``hysteresis`` 0.8, measured after the trace, no bar: a look, not a
+rule) is no clear mend either: switches 58 -> 17, 95 rows clamped, events 36 -> 31 over the 9
+cells (mlr-none 7 -> 3, lagbank-none 5 -> 0, lstm-ati 2 -> 0, but pcr-none 5 -> 7, pcr-ati 5 -> 9);
+C11's RMSE falls in 12 of 18 cell-targets (pcr-ati E_Z 2.263 -> 1.496) and rises in 6
+(lagbank-ati E_X 0.855 -> 1.001, lagbank-none E_Z 2.008 -> 2.178); C10 / C12 unchanged, 0 events.
+Not built: a rule would want its bar on more than one ramped test campaign (one here).
+CPU (this process, 2 shared cores): trace 55.7 s for the 9 cells (1 min 55 s wall), hysteresis
+21.6 s (27 s wall).
 """
 
 from __future__ import annotations
@@ -176,8 +187,43 @@ def _room_slope(T: np.ndarray, t: np.ndarray, n: int = 15) -> float:
     return float(np.max(np.abs(slope)) * 3600.0)
 
 
+def hysteresis(data: str, models: str, h: str, *cells: str) -> None:
+    """Per cell: the test campaigns streamed as deployed with the pattern gate given hysteresis
+    ``h`` (module doc; patched in this process only)."""
+    from thermocomp.apps.deploy import report, streaming
+
+    state = {"off": False}
+    h2 = float(h) ** 2
+
+    def leaves(env, x):      # idempotent for one x: _step asks the clamp's and the bound's gate
+        if env.basis is None:
+            return True
+        z = (x - env.mean) / env.scale
+        r = z - env.basis @ (env.basis.T @ z)
+        q = float(r @ r) / env.tol ** 2
+        state["off"] = q > 1.0 or (state["off"] and q > h2)
+        return state["off"]
+
+    def fresh(*args, **kwargs):
+        state["off"] = False
+        return stream(*args, **kwargs)
+
+    stream = report.stream_rows
+    streaming.Envelope.leaves_pattern, report.stream_rows = leaves, fresh
+    for cell in cells:
+        dep, ds, _, out = _streams(data, str(Path(models) / cell / "model.pkl"), [])
+        comp, tg = dep.compensator, dep.targets_
+        line = []
+        for c, (y, cl, ev) in out.items():
+            m = comp.measured({c: ds.campaigns[c]})[c][tg].to_numpy(float)
+            line.append(f"{c} events {ev} clamped {int((cl > 0).sum())} switches "
+                        f"{int(np.sum(np.diff((cl > 0).astype(int)) != 0))} "
+                        f"RMSE {_r(np.sqrt(np.nanmean((m - y) ** 2, axis=0)))}")
+        print(f"{cell} H={h}: " + "; ".join(line))
+
+
 def main(argv: list[str]) -> int:
-    return run_commands(__doc__, {"trace": trace}, argv, cpu=sys.stderr)
+    return run_commands(__doc__, {"trace": trace, "hysteresis": hysteresis}, argv, cpu=sys.stderr)
 
 
 if __name__ == "__main__":
