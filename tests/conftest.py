@@ -483,8 +483,10 @@ def fl_thermal_served() -> tuple:
     from thermocomp.apps.deploy.export import state_space
 
     deployed, ds, test_ids = deployed_as_replay(_compose(*FL_THERMAL_MLR))
+    # a copy of its own: the reader's columns are Arrow's read-only buffers, and once ``ds`` is
+    # collected pandas (copy on write) sees no other user and writes into them in place
     return (deployed, state_space(deployed, monitor=True),
-            ds.campaigns[test_ids[-1]].reset_index(drop=True))
+            ds.campaigns[test_ids[-1]].reset_index(drop=True).copy())
 
 
 def set_keys(path: Path, **values) -> None:
