@@ -61,7 +61,6 @@ from pathlib import Path
 HERE = Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE), str(HERE.parent / "tests" / "shell"), str(HERE.parent / "tests")]
 import bench_st93  # noqa: E402
-import bench_st94  # noqa: E402
 import bench_st94b  # noqa: E402
 import bench_st95  # noqa: E402
 from _cli import run_commands  # noqa: E402

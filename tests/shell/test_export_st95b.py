@@ -41,7 +41,8 @@ def test_the_block_follows_the_c_back_and_names_its_next_stepped_error(record): 
     # the C's BACK of it after its wait (a window), no other C event up to FAULT
     back = [i for i in range(PULSE + 1, FAULT) if c_said[i][1]]
     assert len(back) == 1 and back[0] > PULSE + ss.monitor["window"]
-    assert c_said[back[0]][0] & READMITTED and (RULES[c_said[back[0]][1]], c_said[back[0]][2]) == ("BACK", culprit)
+    bits, rule, sensor = c_said[back[0]]
+    assert bits & READMITTED and (RULES[rule], sensor) == ("BACK", culprit)
     # the lasting step: the C's STEP_OUT again, and the block names it at its row (before st95b
     # the block judged no more after the pulse and said nothing here)
     assert c_said[FAULT][1] == STEP_OUT

@@ -30,7 +30,12 @@ Per sample, of each monitored sensor ``k`` (the input ``MON_INPUT[k]``, the C's 
   culprit (the largest change times ``sqrt(1 - h)``; ``BLIND`` where the C does not hold it out),
   flagged.  ``d`` the readings on their references (the first sample's, moved by the block's
   re-references), ``M`` / ``h`` the POD's operator and leverages with every sensor in: the one
-  fixed operator the C holds first (``MON_SELF``, ``MON_SCALE``), no Cholesky in the block.
+  fixed operator the C holds first (``MON_SELF``, ``MON_SCALE``), no Cholesky in the block;
+* (st95b) a sensor out alone by that ``STEP_OUT`` (one the C holds out, nothing else named in its
+  row) followed to the C's ``BACK`` (:func:`back_constants`): not judged while it is out, back
+  after the C's wait where its error with every sensor in is within ``MON_BACK_BAND`` over the
+  ring of the last ``MON_WINDOW`` readings (the C's ``_pass_once_back`` with all in), the block
+  judging on from there.
 
 ``mon_flag`` says the sample's fault, ``mon_rule`` its rule (the C's ``mon_rule`` codes, named
 by ``TC_MONITOR_REASONS``) and ``mon_sensor`` its monitored sensor ``k`` (-1: none): the first,
@@ -50,8 +55,9 @@ drift, the re-admission and the rest judge a sensor by the others' prediction of
 the block does not know (the POD): not in the ST, they stay with the served model
 (``provenance.not_in_code``).  (st94b) The stepped self-prediction error is judged while the
 field is whole only: from the first exclusion the block flags (a jump, a dropout, a reading beyond range, a
-stepped error) to the campaign's end the C judges it with a sensor out (or re-admitted by a band
-the block does not hold), and the block does not; that flag marks the row its judgement ends.
+stepped error not followed to its ``BACK``) to the campaign's end the C judges it with a sensor out
+(or re-admitted by a band the block does not hold), and the block does not; that flag marks the row
+its judgement ends (st95b: or, while one is out, a rule named or its reading standing still).
 (jump94b) The level shift of a sensor no other predicts told by two windows (the C's
 ``SETTLED``: a ring of ``2 window - 1`` readings and two medians) is not in the ST either: the
 block reads the shifted sensor as heat, as the served monitor did before it.
