@@ -50,7 +50,41 @@ KEPT if 1-4 hold; REFUSED with the cases named otherwise (src as on 674a868c, th
 benchmarks/st95b_rule.patch); TRACED / not scored if fresh cannot be scored by the deadline
 (02:45 UTC; the seeds then left undrawn).
 
-Results: see below (filled after the runs).
+The bar is unchanged since its commit (dfeae4a1, with the rule, before 9749-9753 were simulated);
+nothing was tuned on them.  Seen before it (development): lr9681's first follow lost at 3196 under a
+first guard (any monitored reading equal to its last: the readings are quantized), narrowed to the
+held sensor's own run (the C's ``run`` / freeze), then T_head_right back at 3207 as the C.
+
+Results (2026-12-06, 2 cores shared; CPU of this process).  Seen ``trace`` on bench_st94b's
+records (71.5 s + 92.9 s, two processes)::
+
+    record  bent agree/apart (674a868c)  pair agree/apart (674a868c)  mismatch early
+    lr9681  3/0 (1/2)                    91/0 (90/1)                  0        0
+    dl9682  0/0 (0/0)                    91/0 (85/6)                  0        0
+    lr9684  0/1 (0/1)                    91/0 (91/0)                  0        0
+    dl9685  2/0 (0/2)                    91/0 (88/3)                  0        0
+
+14 of the 15 apart named alike at their row; lr9684's stays apart (as written in bar 3);
+bench_st93's planted kinds misses 0 false 0 on all four.
+
+Fresh ``fresh`` (scored once; 115.1 s + 105.6 s, two processes, with the simulations)::
+
+    record  healthy false early max|ST-C| µm (rows)  C first event (row) = block   bent a/m/ap/o/n  pair a/m/ap/o
+    lr9749          0     0     9.59e-14 (1438)      BLIND_OUT (1439), other       1/0/4/10/9      85/0/5/1
+    dl9750          0     0     8.53e-14 (1677)      STEP_OUT (1678) agree         6/0/0/8/14      90/0/0/1
+    cr9751          0     0     1.42e-14 (205)       none                          0/0/0/0/8       66/0/0/0
+    lr9752          0     0     9.24e-14 (3090)      STEP_OUT (3091) agree         1/0/0/4/11      91/0/0/0
+    dl9753          0     0     1.21e-13 (3609)      STEP_OUT (3610) agree         4/0/0/10/14     90/0/0/1
+
+bench_st93's spike / dropout / range / freeze on every record: misses 0, false 0.  ``frame``: every
+block flag on a C event named alike (lr9749 STEP_OUT 3183; dl9750 1678; lr9752 3091 and JUMP 4049,
+SPIKE 4052; dl9753 3610), 0 block flags on rows without a C event; the C's BACK 10-11 rows after
+each STEP_OUT.  The bent cases whose first C event is a STEP_OUT after the lead-in's step-back:
+dl9750 3, lr9752 1, dl9753 3 named alike (per-case lines); ``mismatch`` 0, ``early`` 0 over all
+cases.  lr9749's 9 apart are ``one-other`` (the C's BLIND_OUT of T_spindle_rear 1439 and
+T_spindle_front 2916 before them, not in the block): not reached.
+
+Verdict by the bar as written: 1-4 hold: KEPT.
 """
 
 from __future__ import annotations
