@@ -69,12 +69,12 @@ bench_st93's planted kinds misses 0 false 0 on all four.
 
 Fresh ``fresh`` (scored once; 115.1 s + 105.6 s, two processes, with the simulations)::
 
-    record  healthy false early max|ST-C| µm (rows)  C first event (row) = block   bent a/m/ap/o/n  pair a/m/ap/o
-    lr9749          0     0     9.59e-14 (1438)      BLIND_OUT (1439), other       1/0/4/10/9      85/0/5/1
-    dl9750          0     0     8.53e-14 (1677)      STEP_OUT (1678) agree         6/0/0/8/14      90/0/0/1
-    cr9751          0     0     1.42e-14 (205)       none                          0/0/0/0/8       66/0/0/0
-    lr9752          0     0     9.24e-14 (3090)      STEP_OUT (3091) agree         1/0/0/4/11      91/0/0/0
-    dl9753          0     0     1.21e-13 (3609)      STEP_OUT (3610) agree         4/0/0/10/14     90/0/0/1
+    record  false early max|ST-C| µm (rows)  C first event (row) = block  bent a/m/ap/o/n  pair a/m/ap/o
+    lr9749  0     0     9.59e-14 (1438)      BLIND_OUT (1439), other      1/0/4/10/9       85/0/5/1
+    dl9750  0     0     8.53e-14 (1677)      STEP_OUT (1678) agree        6/0/0/8/14       90/0/0/1
+    cr9751  0     0     1.42e-14 (205)       none                         0/0/0/0/8        66/0/0/0
+    lr9752  0     0     9.24e-14 (3090)      STEP_OUT (3091) agree        1/0/0/4/11       91/0/0/0
+    dl9753  0     0     1.21e-13 (3609)      STEP_OUT (3610) agree        4/0/0/10/14      90/0/0/1
 
 bench_st93's spike / dropout / range / freeze on every record: misses 0, false 0.  ``frame``: every
 block flag on a C event named alike (lr9749 STEP_OUT 3183; dl9750 1678; lr9752 3091 and JUMP 4049,
@@ -83,6 +83,12 @@ each STEP_OUT.  The bent cases whose first C event is a STEP_OUT after the lead-
 dl9750 3, lr9752 1, dl9753 3 named alike (per-case lines); ``mismatch`` 0, ``early`` 0 over all
 cases.  lr9749's 9 apart are ``one-other`` (the C's BLIND_OUT of T_spindle_rear 1439 and
 T_spindle_front 2916 before them, not in the block): not reached.
+
+674a868c's block on the same fresh cells (this ``trace``, PYTHONPATH at 674a868c's src, after the
+scoring): the step-back cases it leaves silent (``mismatch`` here, ``apart`` in bench_st94b) --
+dl9750 bent 3 + pair 5, lr9752 bent 1, dl9753 bent 3 + pair 2: 14, every one named alike by the
+rule (bent agree 3 -> 6 / 0 -> 1 / 1 -> 4, pair 85 -> 90 / 91 / 88 -> 90); lr9749 and the rest
+of every table as above, to the digit.
 
 Verdict by the bar as written: 1-4 hold: KEPT.
 """
