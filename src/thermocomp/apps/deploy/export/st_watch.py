@@ -30,7 +30,12 @@ Per sample, of each monitored sensor ``k`` (the input ``MON_INPUT[k]``, the C's 
   culprit (the largest change times ``sqrt(1 - h)``; ``BLIND`` where the C does not hold it out),
   flagged.  ``d`` the readings on their references (the first sample's, moved by the block's
   re-references), ``M`` / ``h`` the POD's operator and leverages with every sensor in: the one
-  fixed operator the C holds first (``MON_SELF``, ``MON_SCALE``), no Cholesky in the block.
+  fixed operator the C holds first (``MON_SELF``, ``MON_SCALE``), no Cholesky in the block;
+* (st95b) a sensor out alone by that ``STEP_OUT`` (one the C holds out, nothing else named in its
+  row) followed to the C's ``BACK`` (:func:`back_constants`): not judged while it is out, back
+  after the C's wait where its error with every sensor in is within ``MON_BACK_BAND`` over the
+  ring of the last ``MON_WINDOW`` readings (the C's ``_pass_once_back`` with all in), the block
+  judging on from there.
 
 ``mon_flag`` says the sample's fault, ``mon_rule`` its rule (the C's ``mon_rule`` codes, named
 by ``TC_MONITOR_REASONS``) and ``mon_sensor`` its monitored sensor ``k`` (-1: none): the first,
@@ -50,8 +55,9 @@ drift, the re-admission and the rest judge a sensor by the others' prediction of
 the block does not know (the POD): not in the ST, they stay with the served model
 (``provenance.not_in_code``).  (st94b) The stepped self-prediction error is judged while the
 field is whole only: from the first exclusion the block flags (a jump, a dropout, a reading beyond range, a
-stepped error) to the campaign's end the C judges it with a sensor out (or re-admitted by a band
-the block does not hold), and the block does not; that flag marks the row its judgement ends.
+stepped error not followed to its ``BACK``) to the campaign's end the C judges it with a sensor out
+(or re-admitted by a band the block does not hold), and the block does not; that flag marks the row
+its judgement ends (st95b: or, while one is out, a rule named or its reading standing still).
 (jump94b) The level shift of a sensor no other predicts told by two windows (the C's
 ``SETTLED``: a ring of ``2 window - 1`` readings and two medians) is not in the ST either: the
 block reads the shifted sensor as heat, as the served monitor did before it.
@@ -114,6 +120,22 @@ def self_prediction(watch: dict) -> tuple:
     return M, scale, np.sqrt(np.abs(1.0 - lev)), judged, np.asarray(watch["alarm"], float), True
 
 
+def back_constants(watch: dict, n: int, stepped: bool, constant) -> list[str]:
+    """(st95b) What the block needs to follow the C's re-admission by ``BACK`` of one sensor out
+    alone by its own ``STEP_OUT``: the window ``w`` (its ring's rows, the C's count before any
+    return), the largest doubling of the wait (``max_backoff``) and each sensor's re-admission
+    band with every sensor in (``READMIT`` times the whole set's warning band)."""
+    band = float(watch.get("readmit", 0.5)) * np.asarray(watch.get("warning", [0.0] * n), float)
+    # the shorter of its freeze runs (one the others see, one they do not: the C's frozen)
+    runs = np.minimum(np.asarray(watch.get("seen_run", [1] * n), int),
+                      np.asarray(watch.get("blind_run", [0] * n), int) + 1)
+    return [f"    MON_FOLLOW_BACK : BOOL := {'TRUE' if stepped and n else 'FALSE'};",
+            f"    MON_WINDOW : INT := {max(int(watch.get('window', 1)), 1)};",
+            f"    MON_MAX_BACKOFF : INT := {int(watch.get('max_backoff', 10))};",
+            constant("MON_BACK_BAND", band.tolist(), (n,)),
+            constant("MON_FREEZE_RUN", runs.tolist(), (n,), "INT")]
+
+
 def constants(watch: dict, literal, constant) -> list[str]:
     """The monitor's constants (``watch``: :func:`.watch.monitor_fields`'s ``monitor``, empty:
     none, ``MON_N`` 0) in the block's ``VAR CONSTANT``."""
@@ -141,6 +163,7 @@ def constants(watch: dict, literal, constant) -> list[str]:
               (("MON_SCALE", scale), ("MON_ROOT", root), ("MON_ALARM", alarm))),
             constant("MON_JUDGED", judged.astype(int).tolist(), (n,), "INT"),
             constant("MON_STEP_HELD", [int(p) for p in watch.get("ported_out", [])], (n,), "INT"),
+            *back_constants(watch, alarm.size, stepped, constant),
             f"    MON_PERIOD : LREAL := {literal(watch.get('period', 1.0))};",
             f"    MON_GAP_PERIODS : LREAL := {literal(watch.get('gap_periods', 1.5))};",
             f"    MON_COMMON_MIN : INT := {int(watch.get('common_min', 3))};",
@@ -185,6 +208,16 @@ VARS = """    mon_last : ARRAY[{nm}] OF LREAL;
     mon_place : INT;
     mon_outs : INT;
     mk : INT;
+    mon_ring : ARRAY[{ring}] OF LREAL;
+    mon_pos : INT;
+    mon_held : INT;
+    mon_was : INT;
+    mon_calm : INT;
+    mon_run : INT;
+    mon_run_was : INT;
+    mon_dwell : INT;
+    mon_stepouts : ARRAY[{nm}] OF INT;
+    mr : INT;
 """
 
 # before the refusal: the sample's monitored readings judged (the block's first == a campaign's)
@@ -204,9 +237,12 @@ IF first THEN
         mon_out[mk] := FALSE;
         mon_rerefd[mk] := FALSE;
         mon_base[mk] := u[MON_INPUT[mk]];    (* (st94b) the C's reference *)
+        mon_stepouts[mk] := 0;
     END_FOR;
     mon_lost := FALSE;
     mon_e_known := FALSE;
+    mon_pos := 0;
+    mon_held := -1;
 END_IF;
 (* a gap in time: each step judged as that many one-sample steps, as the C *)
 mon_span := 1.0;
@@ -356,15 +392,39 @@ END_FOR;
 (* re-referenced and kept in, is named by mon_rule and not flagged, as a common step) *)
 mon_flag := mon_flag OR mon_gone;
 (* (st94b) the self-prediction error stepped past the alarm band (the C's STEP_OUT), judged *)
-(* while the field is whole: any exclusion since the campaign's first sample ends it *)
+(* while the field is whole: any exclusion since the campaign's first sample ends it, but *)
+(* (st95b) one sensor out alone by the block's own STEP_OUT, followed to the C's BACK *)
 IF mon_gone OR mon_jumps > 0 THEN
     mon_lost := TRUE;
+END_IF;
+mon_was := mon_held;
+mon_run := 0;
+IF mon_held >= 0 THEN
+    (* its readings standing still: the C's run (no return while it runs), a freeze past the *)
+    (* shorter of its freeze runs not followed *)
+    IF u[MON_INPUT[mon_held]] = mon_last[mon_held] THEN
+        mon_run := mon_run_was + 1;
+    END_IF;
+    mon_run_was := mon_run;
+    (* anything else while it is out the block does not follow (a rule named) ends its *)
+    (* judgement, as before st95b *)
+    IF mon_rule <> 0 OR mon_run >= MON_FREEZE_RUN[mon_held] THEN
+        mon_lost := TRUE;
+    END_IF;
+    IF mon_lost THEN
+        mon_held := -1;
+    END_IF;
 END_IF;
 IF MON_STEP_JUDGE AND NOT mon_lost THEN
     FOR mk := 0 TO MON_N - 1 DO
         j := MON_INPUT[mk];
         mon_d[mk] := u[j] - mon_base[mk] - mon_shift[j];
+        mon_ring[mon_pos, mk] := mon_d[mk];    (* (st95b) the C's window of readings *)
     END_FOR;
+    mon_pos := mon_pos + 1;
+    IF mon_pos >= MON_WINDOW THEN
+        mon_pos := 0;
+    END_IF;
     mon_best := -1.0;
     mon_culprit := -1;
     FOR mk := 0 TO MON_N - 1 DO
@@ -373,7 +433,7 @@ IF MON_STEP_JUDGE AND NOT mon_lost THEN
             mon_x := mon_x + MON_SELF[mk, mj] * mon_d[mj];
         END_FOR;
         mon_e[mk] := (mon_d[mk] - mon_x) * MON_SCALE[mk];
-        IF mon_e_known AND MON_JUDGED[mk] = 1 THEN
+        IF mon_e_known AND MON_JUDGED[mk] = 1 AND mon_held < 0 THEN
             mon_off := mon_e[mk] - mon_prev_e[mk];
             IF mon_off < 0.0 THEN
                 mon_off := -mon_off;
@@ -386,12 +446,13 @@ IF MON_STEP_JUDGE AND NOT mon_lost THEN
                 END_IF;
             END_IF;
         END_IF;
+        (* (st95b) its error with every sensor in, also while one is out: the C's last errors *)
+        (* once it is back *)
         mon_prev_e[mk] := mon_e[mk];
     END_FOR;
     mon_e_known := TRUE;
     IF mon_culprit >= 0 THEN
-        (* out in the C (rebuilt by the POD, or flagged where it does not hold it out): *)
-        (* the block reads it on, and judges no more *)
+        (* out in the C (rebuilt by the POD, or flagged where it does not hold it out) *)
         mon_flag := TRUE;
         mon_lost := TRUE;
         IF mon_rule = 0 THEN
@@ -399,6 +460,44 @@ IF MON_STEP_JUDGE AND NOT mon_lost THEN
             mon_rule := RULE_BLIND;
             IF MON_STEP_HELD[mon_culprit] = 1 THEN
                 mon_rule := RULE_STEP_OUT;
+                (* (st95b) out alone, as a drift exclusion is: its wait the window doubled at *)
+                (* each such exclusion (at most MON_MAX_BACKOFF times) *)
+                IF MON_FOLLOW_BACK THEN
+                    mon_lost := FALSE;
+                    mon_held := mon_culprit;
+                    mon_calm := 0;
+                    mon_run_was := 0;
+                    mon_dwell := MON_WINDOW;
+                    FOR mr := 1 TO mon_stepouts[mon_culprit] DO
+                        IF mr <= MON_MAX_BACKOFF THEN
+                            mon_dwell := mon_dwell * 2;
+                        END_IF;
+                    END_FOR;
+                    mon_stepouts[mon_culprit] := mon_stepouts[mon_culprit] + 1;
+                END_IF;
+            END_IF;
+        END_IF;
+    ELSIF mon_was >= 0 THEN
+        (* (st95b) the C's BACK of the one out: calm for its wait, a full window counted, its *)
+        (* error with every sensor in within MON_BACK_BAND on every row of the window *)
+        mon_calm := mon_calm + 1;
+        IF mon_calm >= mon_dwell AND mon_count + 1 >= MON_WINDOW AND mon_run = 0 THEN
+            mon_best := 0.0;
+            FOR mr := 0 TO MON_WINDOW - 1 DO
+                mon_x := 0.0;
+                FOR mj := 0 TO MON_N - 1 DO
+                    mon_x := mon_x + MON_SELF[mon_was, mj] * mon_ring[mr, mj];
+                END_FOR;
+                mon_off := (mon_ring[mr, mon_was] - mon_x) * MON_SCALE[mon_was];
+                IF mon_off < 0.0 THEN
+                    mon_off := -mon_off;
+                END_IF;
+                IF mon_off > mon_best THEN
+                    mon_best := mon_off;
+                END_IF;
+            END_FOR;
+            IF mon_best < MON_BACK_BAND[mon_was] THEN
+                mon_held := -1;
             END_IF;
         END_IF;
     END_IF;
@@ -412,6 +511,8 @@ FOR mk := 0 TO MON_N - 1 DO
     (* sensor out, or a campaign's first sample (the C's last step) *)
     mon_has_step[mk] := NOT first AND mon_back AND mon_gap[mk] = 1.0 AND mon_span = 1.0;
     mon_has_step[mk] := mon_has_step[mk] AND NOT mon_big[mk] AND NOT mon_out[mk];
+    (* (st95b) none of one out by a STEP_OUT, nor at its return (the C's last step) *)
+    mon_has_step[mk] := mon_has_step[mk] AND mk <> mon_was AND mk <> mon_held;
     mon_last_step[mk] := mon_step[mk];
     IF first OR (mon_back AND mon_x >= MON_LO_LIM[mk] AND mon_x <= MON_HI_LIM[mk]) THEN
         mon_last[mk] := mon_x;
@@ -434,4 +535,5 @@ END_IF;
 
 def declarations(n_inputs: int, watch: dict, dims) -> str:
     """The block's monitor memory (``VAR``), sized by its inputs and monitored sensors."""
-    return VARS.format(nm=dims(len(watch.get("inputs", []))), n=dims(n_inputs))
+    n = len(watch.get("inputs", []))
+    return VARS.format(nm=dims(n), n=dims(n_inputs), ring=dims(max(int(watch.get("window", 1)), 1), n))
