@@ -59,7 +59,20 @@ Measured (2026-12-06, stop 95, 2 cores shared, ``nice``; main = 98f46c1a's src):
     is small: the pre-mon83 failure the test pins is gone) and the C still excludes it at 12180 s;
     test_monitor.py's column: the first sensor out is T_left1, not the nearest T_right3/T_right4
     (mon84's case).  Why the shares undo mon84's picks: not traced (time).
-CPU: ``cell`` 1.3-2.9 s, ``fl`` 3.3-4.1 s, ``mon85b`` 2.9-3.2 s (user + sys).
+(5) bench_mon87's ``trace`` (healthy53 column record, seed 5305): the same events (T_left1
+    warned 63100-63200 s, nothing out), served RMSE unchanged.  bench_mon85b's ``trace`` (drift):
+    as (2).  bench_mon84's ``column`` on its spent seeds 8686-8693 (healthy + 4 faults, 40
+    records; ``ctable``): served RMSE within 2 % of main on every record, T_front1's first row
+    out the same on all 32 faulted; T_right4 (healthy) briefly out at the unseen Q3's onset
+    (rows 730-734): main 19 of 40 records (seeds 8686, 8688, 8689, 8693), the prototype 18
+    (8688, 8689, 8692, 8693: 8686 spared, 8692 new, 8688's drift spared).  ``trunnion``
+    8694-8695 and ``lathe`` 8696-8697 (10 records each, 0.1 K logger; ``table``): the same
+    sensors out at the same hours, the same RMSE.  Run as ``bench_mon84.py column ROOT LABEL
+    8686-8693`` / ``trunnion`` / ``lathe ROOT LABEL SEEDS`` with ``PYTHONPATH`` main's src or
+    the patched one.  Not run: ``jig`` 8698-8700, mon83-mon86b's own ``score``/column seeds.
+CPU: ``cell`` 1.3-2.9 s, ``fl`` 3.3-4.1 s, ``mon85b`` 2.9-3.2 s (user + sys); mon84 ``column``
+8686-8693 37 s user (82 s wall, two at once), ``trunnion`` / ``lathe`` 92-96 s user each
+(201-208 s wall).
 """
 
 from __future__ import annotations
