@@ -34,7 +34,7 @@ COMMAND_BENCHES = (
     "bench_auto95c", "bench_auto_ati58", "bench_auto_hmc59", "bench_auto_hmc60", "bench_auto_vtl60",
     "bench_autoati75", "bench_autocheck65", "bench_autofb72", "bench_autoloss68", "bench_automore69",
     "bench_autorep65", "bench_autorule69", "bench_bar91", "bench_bar91b", "bench_between73",
-    "bench_between74", "bench_bits85", "bench_blame95", "bench_blocks68", "bench_cadence72",
+    "bench_between74", "bench_bits85", "bench_blame95", "bench_blame95b", "bench_blocks68", "bench_cadence72",
     "bench_cadence74",
     "bench_cascade81", "bench_catman70", "bench_cdrop77", "bench_clamp74", "bench_clamp75", "bench_clamp78",
     "bench_clean69", "bench_clockset71", "bench_cmon76", "bench_cmon80", "bench_cmon82", "bench_cmon82b",
