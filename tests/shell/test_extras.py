@@ -81,6 +81,10 @@ def test_opc_ua_without_asyncua_names_the_machine_extra(tmp_path, capsys, monkey
     model = tmp_path / "model.pkl"
     model.write_bytes(b"")
     _hide(monkeypatch, "asyncua")
+    # the stages import the OPC UA modules when run: one an earlier test imported would be found
+    # again with asyncua in it, and the stage would go on to read its model
+    for name in [n for n in sys.modules if n.startswith("thermocomp.apps.machine")]:
+        monkeypatch.delitem(sys.modules, name)
     words = {"twin": [f"data.path={data}"], "connect": [f"connect.model={model}"]}[stage]
     refused([stage, *words, f"out={tmp_path / 'out'}"], capsys, "asyncua", "'.[machine]'")
     assert not (tmp_path / "out").exists()
