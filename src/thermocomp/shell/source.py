@@ -329,7 +329,8 @@ def check_former_names(cfg: DictConfig, ds) -> None:
 
     named = [str(p) for p in list(cfg.data.inputs) if not any(ch in str(p) for ch in "*?[")]
     column_map = ds.meta.get("column_map") or {}
-    absent = [p for p in named if p not in ds.columns and p in former_names(column_map)]
+    former = former_names(column_map)
+    absent = [p for p in named if p not in ds.columns and p in former]
     if absent:
         raise io.ContractError(f"data.inputs: {former_said(absent, column_map, cfg.data.path)}",
                                file=cfg.data.path, column=absent[0])

@@ -162,7 +162,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..adaptive import GAP_PERIODS, AdaptiveCompensator
-from ..surveillance.settled import STEADY, advanced, separation, steadiness
+from ..surveillance.settled import STEADY, advanced, level_shift
 from ..surveillance.states import (
     ALARM,
     COMMON_MIN,
@@ -749,11 +749,9 @@ class CodeMonitor:
         gap = np.maximum(self.gap, max(1.0, dt / a["period"])) if (
             dt > a["gap_periods"] * a["period"]) else self.gap
         rows = np.vstack([self.settle[:, cols], x[cols] - self.ref[cols]])
-        sep = separation(rows, w)[0]
-        shift, spread = (v[0] for v in steadiness(rows, w))
+        parted, shift = (v[0] for v in level_shift(rows, w, a["settle_lim"][cols], a["settle_steady"]))
         active = self._active()[cols]
-        fire = ((active | (self.jumps[cols] == 0)) & (sep > a["settle_lim"][cols])
-                & (np.abs(shift) > a["settle_steady"] * spread)   # (settle95) not a ramp
+        fire = ((active | (self.jumps[cols] == 0)) & parted
                 & (gap[cols] == 1) & (self.settle_age[cols] >= 2 * w - 1))
         for k in np.flatnonzero(fire):
             j = int(cols[k])

@@ -54,6 +54,17 @@ def steadiness(a: np.ndarray, w: int) -> tuple[np.ndarray, np.ndarray]:
     return med[w:] - med[:-w], np.maximum(mad[w:], mad[:-w])
 
 
+def level_shift(a: np.ndarray, w: int, lim, steady: float = STEADY) -> tuple[np.ndarray, np.ndarray]:
+    """Per sample ``t >= 2w - 1`` (rows ``t - 2w + 1``) and column, as :func:`separation`: whether
+    the window ending at ``t`` settled off the one before -- parted from it by more than ``lim``
+    (:func:`separation`) and moved by a median difference past ``steady`` x their spread, not a
+    ramp (:func:`steadiness`; ``steady`` 0: the parting alone, an export from before settle95) --
+    and that median difference, the shift a re-reference takes out.  The one test of the served
+    monitor's sample and fast block and of the exported code's mirror."""
+    shift, spread = steadiness(a, w)
+    return (separation(a, w) > lim) & (np.abs(shift) > steady * spread), shift
+
+
 def largest_separation(arrays, w: int, n: int) -> np.ndarray:
     """Each sensor's largest training :func:`separation` (never below 0; inf: no campaign holds
     two windows)."""
@@ -95,10 +106,8 @@ class Settled:
             return
         w, cols = self.window, self._settle_cols
         rows = np.vstack([self._settle[:, cols], x[cols] - self._ref[cols]])
-        sep = separation(rows, w)[0]
-        shift, spread = (v[0] for v in steadiness(rows, w))
-        fire = ((self._active[cols] | (self._jumps[cols] == 0)) & (sep > self._settle_lim[cols])
-                & (np.abs(shift) > STEADY * spread)      # not a ramp (module doc)
+        parted, shift = (v[0] for v in level_shift(rows, w, self._settle_lim[cols]))
+        fire = ((self._active[cols] | (self._jumps[cols] == 0)) & parted
                 & (self._gap[cols] == 1) & (self._settle_age[cols] >= 2 * w - 1))
         if fire.any():
             # the fast path leaves one array as the last reading, the last good one and the
@@ -133,13 +142,11 @@ class Settled:
         w, cols = self.window, self._settle_cols
         rows = np.vstack([self._settle[:, cols], d[:, cols]])
         m = len(d)
-        sep = separation(rows, w)[:m]            # row i: its window against the one before
-        shift, spread = (v[:m] for v in steadiness(rows, w))
+        parted = level_shift(rows, w, self._settle_lim[cols])[0][:m]   # row i: against the one before
         age = self._settle_age[cols] + np.arange(m)[:, None]
         gap = np.ones((m, len(cols)))
         gap[0] = self._gap[cols]
-        return ((sep > self._settle_lim[cols]) & (np.abs(shift) > STEADY * spread) & (gap == 1)
-                & (age >= 2 * w - 1)).any(axis=1)
+        return (parted & (gap == 1) & (age >= 2 * w - 1)).any(axis=1)
 
     def _settle_commit(self, d: np.ndarray) -> None:
         """A fast block's rows taken: the ring's last rows, each reference older by them."""
