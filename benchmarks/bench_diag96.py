@@ -23,8 +23,12 @@ simulated ``col*``, ``mill1514``, ``swiss*``, ``year*`` and ``fl9010``).  MLR (`
 ``model=mlr``) is fitted on the train campaigns with ``first_sample`` and with ``start_level`` and
 predicts the test campaigns in simulation; both are scored in the SAME frame, twice: F applied to
 the measured error AND to the prediction, F the first-sample frame (x(t) - x(t0), the machinist's
-zero) and the start-level frame (x(t) - its mean over the start span).  Printed per target: the
-test RMSE of each fit in each frame, and each fit's own (its ``run``'s) number.
+zero) and the start-level frame (x(t) - its mean over the start span); in each frame the fit
+made in it is scored as its ``run`` scores it (its prediction as it is, the label in its frame),
+the other fit's prediction taken into the frame by F (its predicted change from t0, or from its
+predicted start level) -- ``nat``; and both fits' predictions taken into the frame by F alike
+(``map``: a fit's constant offset, its intercept, drops out for both).  Printed per target and
+record (mean over targets): the two fits' test RMSEs and their ratio, each frame, each way.
 
 The rule (``data.reference=start_level``; ``core.frame.frame_shift`` / ``start_rows``; default unchanged)
 ----------------------------------------------------------------------------------------------------
@@ -107,7 +111,8 @@ def bar(root: str, name: str, main: str, rule: str) -> None:
     seen = name == "seen"
     one = len(worse[rule]) <= 2
     two = len(found[rule]) >= (27 if seen else len(found[main]))
-    print(f"(1) rows > 2 % worse {len(worse[main])} -> {len(worse[rule])} (<= 2): {'met' if one else 'FAILS'}")
+    print(f"(1) rows > 2 % worse {len(worse[main])} -> {len(worse[rule])} (<= 2): "
+          f"{'met' if one else 'FAILS'}")
     print(f"(2) position found {len(found[main])} -> {len(found[rule])} "
           f"(>= {27 if seen else len(found[main])}): {'met' if two else 'FAILS'}")
     print(f"(3) helpful rows losing > 5 points: {len(lost)} {lost}: {'met' if not lost else 'FAILS'}")
@@ -129,46 +134,64 @@ def _in_frame(x: np.ndarray, time: np.ndarray, frame: str) -> np.ndarray:
     return x - base
 
 
+def _composed(overrides: list[str]):
+    from hydra import compose, initialize_config_dir
+
+    import thermocomp.shell.cli  # noqa: F401  (registers the config's resolvers: ${sim_dataset:})
+    from thermocomp.base.paths import conf_dir
+
+    with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3"):
+        return compose(config_name="config", overrides=overrides)
+
+
+def _dataset(cfg, overrides: list[str]):
+    """The record: simulated from its seed (bench_automore69's way), or read (``data=...``)."""
+    from hydra.utils import instantiate
+
+    from thermocomp.shell.source import open_source
+
+    if any(o.startswith("data=") for o in overrides):
+        return open_source(cfg)
+    return instantiate(cfg.sim.generator).generate()[0]
+
+
 def scores(*records: str) -> None:
     """Each record: MLR fitted with each reference, scored in both frames (module doc)."""
-    from bench_auto_rank import setup
-    from omegaconf import open_dict
-
     from thermocomp.shell.builders import build_compensator
 
     for name in records:
-        fits = {}
+        fits, ds = {}, None
         for ref in REFERENCES:
-            cfg, ds, train = setup([*_record(name), "model=mlr", f"data.reference={ref}"])
-            with open_dict(cfg):
-                cfg.data.reference = ref
+            over = [*_record(name), "model=mlr", f"data.reference={ref}", "track=false"]
+            cfg = _composed(over)
+            ds = _dataset(cfg, over) if ds is None else ds
+            train = {c: ds.campaigns[c] for c in ds.ids("train")}
             comp = build_compensator(cfg, ds=ds).fit(train)
             test = {c: ds.campaigns[c] for c in ds.ids("test")}
             fits[ref] = (comp, comp.predict(test, mode="simulation"), comp.measured(test))
-        comp = fits["first_sample"][0]
-        targets = list(comp.targets_)
+        targets = list(fits["first_sample"][0].targets_)
         print(f"== {name}: {len(train)} train / {len(test)} test campaigns, targets {targets}")
-        for k, t in enumerate(targets):
+        ratios = {}
+        for t in targets:
             out = []
             for frame in REFERENCES:
-                res = {ref: [] for ref in REFERENCES}
+                res = {(ref, how): [] for ref in REFERENCES for how in ("mapped", "native")}
                 for c, df in test.items():
                     time = df["time"].to_numpy(float)
                     y = _in_frame(df[[t]].to_numpy(float), time, frame)[:, 0]
                     for ref in REFERENCES:
                         p = np.asarray(fits[ref][1][c][t], float)[:, None]
-                        res[ref].append(y - _in_frame(p, time, frame)[:, 0])
-                r = {ref: float(np.sqrt(np.nanmean(np.concatenate(v) ** 2))) for ref, v in res.items()}
-                out.append(f"{frame} frame {r['first_sample']:.4f} -> {r['start_level']:.4f} "
-                           f"(x{r['start_level'] / r['first_sample']:.3f})")
-            own = []
-            for ref in REFERENCES:
-                _, pred, meas = fits[ref]
-                e = np.concatenate([np.asarray(meas[c][t], float) - np.asarray(pred[c][t], float)
-                                    for c in test])
-                own.append(float(np.sqrt(np.nanmean(e ** 2))))
-            print(f"  {t}: first_sample fit -> start_level fit: " + "; ".join(out)
-                  + f"; own frames {own[0]:.4f} / {own[1]:.4f}", flush=True)
+                        res[ref, "mapped"].append(y - _in_frame(p, time, frame)[:, 0])
+                        own = p if ref == frame else _in_frame(p, time, frame)   # as its run scores it
+                        res[ref, "native"].append(y - own[:, 0])
+                r = {k: float(np.sqrt(np.nanmean(np.concatenate(v) ** 2))) for k, v in res.items()}
+                for how in ("mapped", "native"):
+                    a, b = r["first_sample", how], r["start_level", how]
+                    ratios.setdefault((frame, how), []).append(b / a)
+                    out.append(f"{frame[:5]} {how[:3]} {a:.4f} -> {b:.4f} (x{b / a:.3f})")
+            print(f"  {t}: " + "; ".join(out), flush=True)
+        print(f"  {name} mean over targets, start_level / first_sample fit: " + ", ".join(
+            f"{f[:5]} {h[:3]} x{np.mean(v):.3f}" for (f, h), v in ratios.items()), flush=True)
 
 
 def main(argv: list[str]) -> int:

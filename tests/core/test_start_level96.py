@@ -59,7 +59,8 @@ def test_one_noisy_first_reading_is_a_quarter_of_the_offset():
 def test_an_error_not_read_in_the_span_is_refused_naming_campaign_and_column():
     df = campaign()
     df.loc[df["time"] <= START_SPAN_S, "E_X"] = np.nan
-    with pytest.raises(ContractError, match=r"start_level: campaign K07's E_X has no value in its first 900 s"):
+    says = r"start_level: campaign K07's E_X has no value in its first 900 s"
+    with pytest.raises(ContractError, match=says):
         stack({"K07": df}, ["T_a"], ["E_X"], "start_level")
 
 
@@ -67,7 +68,8 @@ def test_diagnose_reads_its_candidates_from_the_same_level():
     time = np.r_[np.arange(6), np.arange(3)] * PERIOD
     v = np.array([1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 10.0, 20.0, 30.0])
     g = np.array(["a"] * 6 + ["b"] * 3)
-    np.testing.assert_allclose(in_frame(v, g, "start_level", time), [-1.5, -.5, .5, 1.5, 2.5, 3.5, -10, 0, 10])
+    np.testing.assert_allclose(in_frame(v, g, "start_level", time),
+                               [-1.5, -.5, .5, 1.5, 2.5, 3.5, -10, 0, 10])
 
 
 def test_a_start_level_model_refuses_to_stream():
