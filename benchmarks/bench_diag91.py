@@ -196,9 +196,11 @@ def draws(root: str, label: str, name: str) -> None:
     diagnose_cases(root, label, name, SETS[name], _draw)
 
 
-def diagnose_cases(root: str, label: str, name: str, cases, dataset) -> None:
+def diagnose_cases(root: str, label: str, name: str, cases, dataset,
+                   reference: str = "first_sample") -> None:
     """``cases`` ((kind, seed) pairs) diagnosed -> ``ROOT/NAME-LABEL.jsonl``; ``dataset(kind,
-    seed)`` gives the draw and the targets diagnosed (None: every one)."""
+    seed)`` gives the draw and the targets diagnosed (None: every one); MLR fitted with
+    ``data.reference=reference``."""
     from cpu import cpu_seconds
 
     from thermocomp.apps.diagnose import SearchOptions, diagnose
@@ -210,7 +212,8 @@ def diagnose_cases(root: str, label: str, name: str, cases, dataset) -> None:
         for kind, seed in cases:
             ds, targets = dataset(kind, seed)
             t0 = cpu_seconds()
-            d = diagnose(ds, Compensator(MLR()), targets=targets, options=SearchOptions(max_effects=2))
+            d = diagnose(ds, Compensator(MLR(), reference=reference), targets=targets,
+                         options=SearchOptions(max_effects=2))
             row = {"case": f"{kind}:{seed}", "cpu_s": round(cpu_seconds() - t0, 1), "targets": {}}
             for t, x in d.targets.items():
                 j = d.to_json(t)

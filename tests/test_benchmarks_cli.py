@@ -52,7 +52,7 @@ COMMAND_BENCHES = (
     "bench_diag88c", "bench_diag88d", "bench_diag89", "bench_diag89b", "bench_diag89c", "bench_diag89d",
     "bench_diag91", "bench_diag91b", "bench_diag91c", "bench_diag92", "bench_diag92b", "bench_diag92c",
     "bench_diag92d", "bench_diag92e", "bench_diag93", "bench_diag93b", "bench_diag94", "bench_diag94b",
-    "bench_diag94c", "bench_diag95", "bench_diag95b", "bench_diag95c", "bench_diag95d",
+    "bench_diag94c", "bench_diag95", "bench_diag95b", "bench_diag95c", "bench_diag95d", "bench_diag96",
     "bench_diagfault65",
     "bench_diagfault72", "bench_diagpower67", "bench_diagref65", "bench_drift74", "bench_env92",
     "bench_env92b", "bench_env93", "bench_env93b", "bench_env94", "bench_env94b", "bench_env94c",
