@@ -99,7 +99,7 @@ limit is 0.  0 healthy fires on the three blind sensors at every W.  A window of
 a lead, not a result: chosen here it would be chosen on this one cell (15 fails, 20 passes), it
 delays the re-reference (past main's d on the caught cells) and the monitor's window is shared by
 its other rules; it needs a derivation from training alone and records other than fl_thermal.
-CPU: ``candidates`` 0.2-0.5 s; ``fl`` 16 monitor runs + a fit ~3 s each (3.0-3.1 s of this
+CPU: ``candidates`` 0.2-0.5 s; ``fl`` 16 monitor runs + a fit ~3 s each (2.9-3.1 s of this
 process, the children's not counted); ``healthy`` 15 records 19.6 (main) / 20.2 / 21.3 s.
 """
 
