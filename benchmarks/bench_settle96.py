@@ -97,8 +97,9 @@ medmad1.5 / 2.28 / 3 and trim3 catch all 15 (medmad2.28 1.21 x, limit 0.416 degC
 limit falls to 0.050 degC (training windows of 20 part by 0.017 at most); at W = 30 minmax's
 limit is 0.  0 healthy fires on the three blind sensors at every W.  A window of the rule's own is
 a lead, not a result: chosen here it would be chosen on this one cell (15 fails, 20 passes), it
-delays the re-reference to up to 2 W - 1 samples after the step (not run in the monitor here) and
-the monitor's window is shared by its other rules; it needs a derivation from training alone and records other than fl_thermal.
+delays the re-reference to up to 2 W - 1 samples after the step (not run in the monitor here)
+and the monitor's window is shared by its other rules; it needs a derivation from training alone
+and records other than fl_thermal.
 CPU: ``candidates`` 0.2-0.5 s; ``fl`` 2.9-3.1 s of this process (its fit and 16 monitor runs are
 children, not counted; a few minutes wall each); ``healthy`` 15 records 19.6 (main) / 20.2 / 21.3 s.
 """
