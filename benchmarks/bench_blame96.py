@@ -77,7 +77,8 @@ case is its generator's: which sensor, if any, was faulted):
     after T_t12 out twice a new thermal state, no drift exclusion after it) and regime73 (the
     lathe's hovering T_toolholder1: a new state at 29100 s, T_guidebush the pick) fail.
     ``both``: cell 0.923 / 1.726, lone84, new_state48, regime73 pass, the column and rounding83
-    as ``calm``.
+    as ``calm`` (a first run of ``both``, an in-place prototype of the same sums, gave the cell
+    main's 3.521: not reproduced, two runs since, one on the patch, 0.923).
 (8) ``cadence``: main names a new state at 142 on the source and excludes T_5 at 122 on the
     drift at 1, 20 and 60 s per sample alike; ``calm`` excludes the healthy T_5 at 142 at all
     three; ``memory`` and ``both`` keep lone84 only at its 1 s stamps (the 30-min memory has
