@@ -2,11 +2,7 @@
 
 With ``reference="first_sample"`` every ``T_`` and ``E_`` column is taken
 relative to the campaign's first valid sample (ΔT, ΔE); ``S_`` columns keep
-their values.  Models, metrics and diagnosis all work in this frame.  With
-``reference="start_level"`` (an extension of the contract) the same columns are taken relative
-to their START LEVEL instead: the mean of their valid values over the campaign's first
-:data:`~thermocomp.core.choices.START_SPAN_S` seconds (:func:`start_rows`), so that one sample's
-probe noise is not a whole campaign's offset (bench_diag95, bench_diag96).
+their values.  Models, metrics and diagnosis all work in this frame.
 
 :func:`stack` builds the matrices of a batch of campaigns and their per-row
 ``context`` (:mod:`thermocomp.core.context`); :func:`context_record` is the one rule
@@ -25,7 +21,7 @@ import numpy as np
 import pandas as pd
 
 from ..base.errors import ContractError, listed
-from .choices import REFERENCES, START_SPAN_S
+from .choices import REFERENCES
 from .context import AMBIENT_C0, CAMPAIGN, TIME
 from .io.contract import is_ambient, manifest_ambient, match_columns
 from .io.instants import start_instants
@@ -52,68 +48,14 @@ def first_valid(A: np.ndarray) -> np.ndarray:
     return first
 
 
-def start_rows(time) -> int:
-    """How many of a campaign's first rows make its start level (``reference='start_level'``):
-    those within :data:`~thermocomp.core.choices.START_SPAN_S` of its first row, at least one.
-
-    Why a span of time, not a count: the level must be read off several probe readings (each
-    carries the probe's noise) while the machine's thermal state has hardly moved; 900 s is the
-    shortest time constant diagnose offers for a thermal lag (its grid's floor), and the same
-    span holds 4 samples at the twin's 300 s period.  Every ``T_`` and ``E_`` column is shifted
-    by its mean over the SAME rows, so a law linear in the temperatures holds in this frame as
-    in the first-sample frame."""
-    t = np.asarray(time, dtype=float)
-    if t.size == 0:
-        return 0
-    return max(1, int(np.sum(t - t[0] <= START_SPAN_S)))
-
-
-def frame_shift(A: np.ndarray, reference: str, time=None, campaign=None, cols=()) -> np.ndarray:
-    """What the reference frame subtracts from each column of one campaign's ``A``: its first
-    valid value (``first_sample``), or its start level (``start_level``: the mean of its valid
-    values over the first :func:`start_rows` rows of ``time``).  A ``start_level`` column with
-    no valid value in that span is a ContractError naming ``campaign`` and the column (``cols``)."""
-    A = np.asarray(A, dtype=float)
-    if reference != "start_level":
-        return first_valid(A)
-    if time is None:
-        raise ContractError("data.reference=start_level needs each campaign's time column: its "
-                            "start level is the mean over its first seconds", column=TIME)
-    head = A[:start_rows(time)]
-    seen = ~np.isnan(head)
-    level = np.where(seen, head, 0.0).sum(axis=0) / np.maximum(seen.sum(axis=0), 1)
-    late = [c for c, ok, any_ in zip(cols, seen.any(axis=0), (~np.isnan(A)).any(axis=0))
-            if any_ and not ok]
-    if late:
-        raise ContractError(f"data.reference=start_level: campaign {campaign}'s {listed(late)} has no "
-                            f"value in its first {START_SPAN_S:g} s, whose mean is its start level; "
-                            "data.reference=first_sample references it at its first value",
-                            column=late[0])
-    level[~seen.any(axis=0)] = np.nan
-    return level
-
-
-def refuse_stream(reference: str) -> None:
-    """A ContractError for a model fitted with ``data.reference=start_level`` where it would
-    stream (replay, serve, export, connect, monitor, promote's figures): its start level is a
-    mean over the campaign's first seconds, which a causal stream has not seen when it starts."""
-    if reference == "start_level":
-        raise ContractError(f"data.reference=start_level cannot stream: a campaign's start level is "
-                            f"its mean over the first {START_SPAN_S:g} s, which a stream has not seen "
-                            "when it starts; fit with data.reference=first_sample (or none) to deploy")
-
-
 def referenced(df: pd.DataFrame, reference: str = "first_sample") -> pd.DataFrame:
-    """Copy of ``df`` with ``T_``/``E_`` columns relative to their first valid sample (or, with
-    ``start_level``, to their start level: :func:`frame_shift`)."""
+    """Copy of ``df`` with ``T_``/``E_`` columns relative to their first valid sample."""
     check_reference(reference)
     if reference == "none":
         return df
     out = df.copy()
     cols = [c for c in df.columns if c.startswith(REFERENCED_PREFIXES)]
-    time = df[TIME].to_numpy(float) if TIME in df else None
-    out[cols] = df[cols].to_numpy(float) - frame_shift(df[cols].to_numpy(float), reference, time,
-                                                       None, cols)
+    out[cols] = df[cols].to_numpy(float) - first_valid(df[cols].to_numpy(float))
     return out
 
 
@@ -310,12 +252,11 @@ def _renamed(campaigns, column: str, twin: str, files, headers, starts=None) -> 
         **({"file": files[first]} if files and first in files else {}))
 
 
-def _framed(A: np.ndarray, cols, reference: str, time=None, campaign=None) -> np.ndarray:
-    """Columns of one campaign in the reference frame (``time``: its times, for ``start_level``)."""
+def _framed(A: np.ndarray, cols, reference: str) -> np.ndarray:
+    """Columns of one campaign in the reference frame."""
     if reference == "none" or A.shape[1] == 0:
         return A
-    shift = np.where([c.startswith(REFERENCED_PREFIXES) for c in cols],
-                     frame_shift(A, reference, time, campaign, cols), 0.0)
+    shift = np.where([c.startswith(REFERENCED_PREFIXES) for c in cols], first_valid(A), 0.0)
     return A - shift
 
 
@@ -333,9 +274,8 @@ def stack(campaigns: Mapping[str, pd.DataFrame], x_cols, y_cols,
             check_common_columns(campaigns, x_cols + y_cols)
         A = df.to_numpy(dtype=float)      # one conversion; columns picked by position below
         n = len(df)
-        t = A[:, pos[TIME]] if TIME in pos else None
-        xs.append(_framed(A[:, [pos[c] for c in x_cols]], x_cols, reference, t, cid))
-        ys.append(_framed(A[:, [pos[c] for c in y_cols]], y_cols, reference, t, cid))
+        xs.append(_framed(A[:, [pos[c] for c in x_cols]], x_cols, reference))
+        ys.append(_framed(A[:, [pos[c] for c in y_cols]], y_cols, reference))
         groups.append(np.full(n, cid, dtype=object))
         times.append(A[:, pos[TIME]])
         amb = [pos[c] for c in df.columns if is_ambient(c)]

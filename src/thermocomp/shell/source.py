@@ -151,9 +151,6 @@ def volumetric_distances(cfg: DictConfig, ds: io.Dataset):
     return without_cut_cycles(raw, report), cal, report
 
 
-RESTARTING = ("first_sample", "start_level")   # data.reference values that restart each campaign
-
-
 def reference(cfg: DictConfig) -> str:
     """``data.reference`` as resolved by :func:`resolve_reference`; ``auto`` before the data are
     read (a library caller building from the config alone) is the contract's ``first_sample``."""
@@ -168,7 +165,7 @@ def resolve_reference(cfg: DictConfig, ds) -> str:
     from ..core.continuation import predecessors, said_junction_steps
 
     links = predecessors(ds)
-    if str(cfg.data.reference) not in RESTARTING:   # (each file restarts: no junction)
+    if str(cfg.data.reference) != "first_sample":   # (each file restarts: no junction)
         said_junction_steps(ds, links)
     scored = [c for c in ds.ids() if c in links and ds.manifest.loc[c, "split"] in ("test", "val")]
     given = cfg.data.reference
@@ -179,9 +176,9 @@ def resolve_reference(cfg: DictConfig, ds) -> str:
         say(f"data.reference=auto: {resolved} ({why})")
         with open_dict(cfg):
             cfg.data.reference = resolved
-    elif given in RESTARTING and scored:
-        logger.warning(f"data.reference={given}: {scored[0]} continues {links[scored[0]]}, "
-                       "but each campaign restarts at its own start, no state carried "
+    elif given == "first_sample" and scored:
+        logger.warning(f"data.reference=first_sample: {scored[0]} continues {links[scored[0]]}, "
+                       "but each campaign restarts at its own first sample, no state carried "
                        "over (data.reference=none or auto carries it)")
     return cfg.data.reference
 

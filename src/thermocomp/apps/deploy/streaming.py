@@ -81,7 +81,7 @@ from ...core.context import (
     stream_steps,
 )
 from ...core.continuation import campaign_period
-from ...core.frame import ambient_c0, context_record, refuse_stream
+from ...core.frame import ambient_c0, context_record
 from ...core.guarded import mark_guarded, summed_frames
 from ...core.io.contract import is_ambient, manifest_ambient
 from ...core.io.own_headers import as_named
@@ -358,7 +358,6 @@ class StreamingCompensator:
                  policy: str = "clamp", ambient_columns=None):
         if not hasattr(compensator, "estimators_"):
             raise ValueError("the compensator is not fitted; fit it before deploying")
-        refuse_stream(getattr(compensator, "reference", "first_sample"))
         if policy not in POLICIES:
             raise ValueError(f"envelope policy must be one of {POLICIES}, got {policy!r}")
         self.compensator, self.envelope, self.policy = compensator, envelope, policy

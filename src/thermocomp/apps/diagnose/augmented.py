@@ -9,7 +9,6 @@ from sklearn.base import BaseEstimator, RegressorMixin, clone
 from sklearn.utils.validation import check_is_fitted, validate_data
 
 from ...base.errors import ContractError, ParameterError
-from ...core.choices import REFERENCES
 from ...core.context import (
     AMBIENT_C0,
     TIME,
@@ -19,7 +18,6 @@ from ...core.context import (
     merge_columns,
     scalar,
 )
-from ...core.frame import refuse_stream
 from ...core.gains import GainTerm, gain_at, gain_terms, within
 from ...core.models._campaign_ls import LSTSQ_TOL
 from ...core.models.base import measured_rows
@@ -67,9 +65,8 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
         ``transform``, ``column``, ``other``, ``tau_s``, ``threshold_c``).  A
         dict gives each target its own effects: :meth:`for_target` picks them
         (the Compensator calls it per target); a target missing from it gets none.
-    reference : {'first_sample', 'none', 'start_level'}
-        Frame of the context columns (``data.reference``; ``start_level`` in batch only: its level
-        needs a campaign's first seconds, which no stream has at its start).
+    reference : {'first_sample', 'none'}
+        Frame of the context columns (``data.reference``).
     alpha : float >= 0, dict target -> float, or None
         Ridge penalty on the standardised effect features when the base is an
         MLR (chosen by ``diagnose``'s cross-validation); ``None`` or 0: the
@@ -122,9 +119,9 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
                       self.initial_weights_)
 
     def fit(self, X, y, context=None):
-        if self.reference not in REFERENCES:
-            raise ParameterError(f"AugmentedRegressor reference={self.reference!r} is not one of "
-                                 f"{REFERENCES}")
+        if self.reference not in ("first_sample", "none"):
+            raise ParameterError(f"AugmentedRegressor reference={self.reference!r} is not "
+                                 "first_sample or none")
         alpha = self._alpha()
         X, y, measured = measured_rows(self, X, y)   # (NaN between a probe cycle's measurements)
         self.effects_ = self._effects()
@@ -187,7 +184,6 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
     def stream_init(self, context: Mapping | None = None) -> dict:
         """State before a campaign's first sample; ``context`` may hold ``ambient_c0``."""
         check_is_fitted(self)
-        refuse_stream(self.reference)
         return {"first": {}, "last": {}, "lag": {}, "t": None, "clock": CLOCK_START,
                 "ambient_c0": scalar(context, AMBIENT_C0),
                 "base": self.estimator_.stream_init(context)}

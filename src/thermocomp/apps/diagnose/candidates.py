@@ -105,9 +105,8 @@ def candidates(problem, model_inputs: list[str], excluded: set, accepted: list[E
     s_cols = [c for c in s_cols if problem.varies(c)]
     unused_t = [c for c in t_cols if c not in model_inputs and problem.varies(c)]
 
-    # the frame of a state other than the data's (the data's own is the legacy frame=None; a
-    # referenced frame, first_sample or start_level, offers the absolute one)
-    other_frame = "absolute" if problem.reference != "none" else "referenced"
+    # the frame of a state other than the data's (the data's own is the legacy frame=None)
+    other_frame = "absolute" if problem.reference == "first_sample" else "referenced"
 
     def signal_family(col: str, frame: str | None = None) -> list[Effect]:
         return [Effect("signal", "raw", col, frame=frame)] + [
@@ -145,7 +144,7 @@ def candidates(problem, model_inputs: list[str], excluded: set, accepted: list[E
         # the referenced one is the legacy product; the absolute one differs from the referenced
         # one by S(0) times the rise, the same candidate when S(0) is the same in every campaign)
         for s in s_cols:
-            frames = ([] if problem.reference != "none" else ["referenced"]) + (
+            frames = ([] if problem.reference == "first_sample" else ["referenced"]) + (
                 ["absolute"] if _start_varies(problem, s) else [])
             out += [Effect("interaction", "product", s, other=t, frame=f) for f in frames for t in temps]
         # the state's change times a temperature's rise over the air's (each ambient sensor's): a
@@ -153,7 +152,7 @@ def candidates(problem, model_inputs: list[str], excluded: set, accepted: list[E
         # reads; through the lever p - p(0) only, one product per sensor; the search keeps them
         # only where the bank below cannot be tested (Search._bank_untestable, planted72)
         airs = [c for c in temps if is_ambient(c)]
-        lever = None if problem.reference != "none" else "referenced"
+        lever = None if problem.reference == "first_sample" else "referenced"
         out += [Effect("interaction", "product", s, other=t, frame=lever, over=a)
                 for s in s_cols for a in airs for t in temps if not is_ambient(t)]
         # the state times the rise of every model input at once (its lever on each structure's

@@ -197,8 +197,7 @@ class Problem:
         """True when context ``column`` changes within the train data (in the target's frame)."""
         cache = self.__dict__.setdefault("_varies", {})
         if column not in cache:
-            framed = in_frame(self.context[column].to_numpy(float), self.campaigns, self.reference,
-                              self.context["time"].to_numpy(float) if "time" in self.context else None)
+            framed = in_frame(self.context[column].to_numpy(float), self.campaigns, self.reference)
             cache[column] = bool(np.nanstd(framed) > 1e-12)
         return cache[column]
 

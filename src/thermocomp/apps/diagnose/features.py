@@ -80,7 +80,6 @@ import numpy as np
 import pandas as pd
 
 from ...base.errors import ParameterError
-from ...core.frame import start_rows
 from ...core.gains import AMBIENT_CENTRE_C  # ambient_linear's centre: the ATI interaction's
 from ...core.io.contract import ContractError
 from ...core.models._dynamics import first_order_lag, segment_bounds  # noqa: F401 (re-exported)
@@ -255,14 +254,12 @@ def frames(effect: Effect, reference: str) -> tuple[str, str]:
     return ("none" if effect.frame == "absolute" else "first_sample"), "first_sample"
 
 
-def in_frame(values, groups, reference: str = "first_sample", time=None) -> np.ndarray:
+def in_frame(values, groups, reference: str = "first_sample") -> np.ndarray:
     """A raw context column in the target's frame, gaps held, per segment.
 
     NaN is held from the previous sample (the first valid value before it);
     a campaign without the column gives zeros.  With ``first_sample`` the
-    result is the change since the first valid sample; with ``start_level`` the change from its
-    mean over the segment's first :func:`~thermocomp.core.frame.start_rows` rows of ``time``
-    (the data's own start level, so a candidate sits in the frame of the inputs and targets).
+    result is the change since the first valid sample.
     """
     v = np.asarray(values, dtype=float)
     out = np.zeros_like(v)
@@ -272,11 +269,7 @@ def in_frame(values, groups, reference: str = "first_sample", time=None) -> np.n
             seg = pd.Series(seg).ffill().bfill().to_numpy()
         if np.isnan(seg).all():
             continue
-        if reference == "start_level":
-            seg = seg - seg[:start_rows(np.asarray(time, float)[start:stop])].mean()
-        elif reference == "first_sample":
-            seg = seg - seg[0]
-        out[start:stop] = seg
+        out[start:stop] = seg - seg[0] if reference == "first_sample" else seg
     return out
 
 
@@ -402,21 +395,20 @@ def effect_features(effect: Effect, X, context: pd.DataFrame | None = None, grou
     if tr == "remove":
         return np.empty((n, 0))
     own, other = frames(effect, reference)
-    t = _time(context, n) if reference == "start_level" else None
     if tr in ("raw", "first_order_lag", "square"):
-        c = in_frame(_context_column(context, effect.column), g, own, t)
+        c = in_frame(_context_column(context, effect.column), g, own)
         if tr == "first_order_lag":
             return _with_start(first_order_lag(c, _time(context, n), g, effect.tau_s)[:, None],
                                effect, context, g, weights)
         return (c**2 if tr == "square" else c)[:, None]
     if tr == "product":
-        a = in_frame(_context_column(context, effect.column), g, own, t)
-        b = in_frame(_context_column(context, effect.other), g, other, t)
+        a = in_frame(_context_column(context, effect.column), g, own)
+        b = in_frame(_context_column(context, effect.other), g, other)
         if effect.over is not None:
-            b = b - in_frame(_context_column(context, effect.over), g, other, t)
+            b = b - in_frame(_context_column(context, effect.over), g, other)
         return (a * b)[:, None]
     if tr == "inputs_product":
-        return in_frame(_context_column(context, effect.column), g, own, t)[:, None] * rises(X, g)
+        return in_frame(_context_column(context, effect.column), g, own)[:, None] * rises(X, g)
     if tr == "lowpass_inputs":
         return _with_start(first_order_lag(X, _time(context, n), g, effect.tau_s), effect, context, g,
                            weights)
