@@ -197,10 +197,10 @@ def draws(root: str, label: str, name: str) -> None:
 
 
 def diagnose_cases(root: str, label: str, name: str, cases, dataset,
-                   reference: str = "first_sample") -> None:
+                   reference: str = "first_sample", keep=None) -> None:
     """``cases`` ((kind, seed) pairs) diagnosed -> ``ROOT/NAME-LABEL.jsonl``; ``dataset(kind,
     seed)`` gives the draw and the targets diagnosed (None: every one); MLR fitted with
-    ``data.reference=reference``."""
+    ``data.reference=reference``; ``keep(case, ds, diagnosis)``, if given, is called on each."""
     from cpu import cpu_seconds
 
     from thermocomp.apps.diagnose import SearchOptions, diagnose
@@ -228,6 +228,8 @@ def diagnose_cases(root: str, label: str, name: str, cases, dataset,
             row["found"] = any(a.startswith("interaction:S_pos_Y")
                                for a in row["targets"]["E_Y"]["accepted"])
             print(json.dumps(row, ensure_ascii=False, default=float), file=out, flush=True)
+            if keep is not None:
+                keep(row["case"], ds, d)
             print(f"  {row['case']} {label} ({row['cpu_s']} s): found {row['found']}; " + " | ".join(
                 f"{t} {v['blocks']} {v['before']:.3f} -> {v['after']:.3f} "
                 f"{[a[:40] for a in v['accepted']]}{' CONTROL' if v['control'] else ''}"
