@@ -4,8 +4,11 @@
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``)::
 
     python benchmarks/bench_auto96.py one OUT RECORD ...          # one-campaign records: fit, keep arrays
-    python benchmarks/bench_auto96.py signals WORK ...            # per target with lag weight: signals
-    python benchmarks/bench_auto96.py table SIGNAL LIMIT WORK ... # the prototype rule, per record
+    python benchmarks/bench_auto96.py signals SIDE WORK ...       # per target with lag weight: signals
+    python benchmarks/bench_auto96.py table SIDE SIGNAL LIMIT WORK ... # the prototype rule
+    python benchmarks/bench_auto96.py amp ROOT OUT RECORD ...     # refits: amplification
+    python benchmarks/bench_auto96.py leo ROOT OUT RECORD ...     # refits: leave the extremes out
+    python benchmarks/bench_auto96.py stab ROOT OUT RECORD ...    # refits: fold models' spread
 
 Two kinds of stored rows, both fitted on the record's train part only (nothing of a test is read
 to compute a signal; the tests are only scored):
@@ -85,6 +88,47 @@ def one(out: str, *records: str) -> None:
     for name in records:
         sys.argv[2:] = list(recs[name])           # rank._dataset reads sim= from argv
         rank.main(name, list(recs[name]))
+
+
+def ways(root: str, out: str, *records: str) -> None:
+    """Each record fitted as ``run`` fits it with ``lag_fade`` off (main) and at its default (the
+    rule), and MLR alone; OUT/RECORD.json: per target the test RMSEs and both weights; the record's
+    auto / MLR both ways (bench_auto95's figure: the mean over targets of the ratio)."""
+    import bench_auto_rank as rank
+    from sklearn.base import clone
+
+    from thermocomp.shell.builders import build_compensator
+
+    Path(out).mkdir(parents=True, exist_ok=True)
+    for name in records:
+        cfg, ds, train = _setup(name, root)
+        rep = {"weights": {}}
+        for way, fade in (("main", None), ("rule", 0.3)):
+            auto = build_compensator(cfg, ds=ds)
+            auto.estimator.set_params(lag_fade=fade)
+            auto.fit(train)
+            meas, pred = rank._test(auto, ds)
+            rep[way] = {t: _rmse(meas[t], pred[t]) for t in meas}
+            rep["weights"][way] = {t: e.weights_ for t, e in auto.estimators_.items()}
+        meas, pred = rank._test(clone(auto).set_params(estimator=rank._mlr()).fit(train), ds)
+        rep["mlr"] = {t: _rmse(meas[t], pred[t]) for t in meas}
+        Path(out, f"{name}.json").write_text(json.dumps(rep, indent=1, default=float))
+        fig = {w: float(np.mean([rep[w][t] / rep["mlr"][t] for t in rep["mlr"]])) for w in ("main", "rule")}
+        print(f"{name} auto/MLR main {fig['main']:.3f} rule {fig['rule']:.3f} rule/main "
+              f"{fig['rule'] / fig['main']:.3f}; weights rule {rep['weights']['rule']}", flush=True)
+
+
+def ways_table(out: str, *records: str) -> None:
+    figs = {}
+    for name in records:
+        rep = json.loads(Path(out, f"{name}.json").read_text())
+        figs[name] = {w: float(np.mean([rep[w][t] / rep["mlr"][t] for t in rep["mlr"]]))
+                      for w in ("main", "rule")}
+        f = figs[name]
+        print(f"{name:8s} main {f['main']:.3f} rule {f['rule']:.3f} rule/main {f['rule'] / f['main']:.3f}")
+    m, r = [f["main"] for f in figs.values()], [f["rule"] for f in figs.values()]
+    print(f"geo auto/MLR main {_geo(m):.4f} rule {_geo(r):.4f}; worst rule/main "
+          f"{max(np.divide(r, m)):.3f}; losers {sum(v > 1 for v in m)} -> {sum(v > 1 for v in r)}")
 
 
 # --------------------------------------------------------------------------- amplification
@@ -377,11 +421,12 @@ def signals(side: str, *works: str) -> None:
 
 
 # --------------------------------------------------------------------------- the prototype rule
-def _moved(w: dict, oof, y, fold, signal: str, limit: float) -> dict:
-    """``w`` with each lag family whose SIGNAL exceeds LIMIT handing its weight to MLR."""
+def _moved(w: dict, oof, y, fold, value) -> dict:
+    """``w`` with each lag family whose signal (``value(name, fold ratios)``; None: not measured,
+    kept) exceeds the limit handing its weight to MLR."""
     out = dict(w)
     for n in LAG:
-        if out.get(n, 0) > 0 and SIGNALS[signal](_ratios(oof, y, fold, n)) > limit:
+        if out.get(n, 0) > 0 and value(n, _ratios(oof, y, fold, n)):
             out["mlr"] = out.get("mlr", 0.0) + out.pop(n)
     return out
 
@@ -398,27 +443,33 @@ def _geo(v) -> float:
     return float(np.exp(np.mean(np.log(v))))
 
 
-def table(signal: str, limit: str, *works: str) -> None:
+def table(side: str, signal: str, limit: str, *works: str) -> None:
     lim = float(limit)
     print(f"rule: a lag family with {signal} > {lim} hands its weight to MLR")
-    print("record   kind main   rule   rule/main  moved")
+    print("record    kind main   rule   rule/main  moved")
     main_all, rule_all = [], []
     for work in works:
         for name, kind, rows, _ in _targets(Path(work).resolve()):
+            def value(n, r, t):
+                sig = {k: f(r) for k, f in SIGNALS.items()} | _trained(Path(side), name, t, n)
+                return signal in sig and sig[signal] > lim
+
             base = [w for _, w, *_ in rows]
-            new = [_moved(w, oof, y, fold, signal, lim) for _, w, oof, y, fold, *_ in rows]
+            new = [_moved(w, oof, y, fold, lambda n, r, t=t: value(n, r, t))
+                   for t, w, oof, y, fold, *_ in rows]
             m, r = _figure(kind, rows, base), _figure(kind, rows, new)
             moved = [t for (t, *_), a, b in zip(rows, base, new) if a != b]
             main_all.append(m)
             rule_all.append(r)
-            print(f"{name:8s} {kind:4s} {m:.3f}  {r:.3f}  {r / m:.3f}      {' '.join(moved)}")
-    worst = max(np.divide(rule_all, main_all))
+            print(f"{name:9s} {kind:4s} {m:.3f}  {r:.3f}  {r / m:.3f}      {' '.join(moved)}")
+    worse = int(np.sum(np.divide(rule_all, main_all) > 1.01))
     print(f"geo auto/MLR main {_geo(main_all):.4f} rule {_geo(rule_all):.4f}; losers (> 1.0) "
-          f"{sum(v > 1.0 for v in main_all)} -> {sum(v > 1.0 for v in rule_all)}; worst rule/main {worst:.3f}")
+          f"{sum(v > 1.0 for v in main_all)} -> {sum(v > 1.0 for v in rule_all)}; > 1 % worse than "
+          f"main {worse}; worst rule/main {max(np.divide(rule_all, main_all)):.3f}")
 
 
 def main(argv: list[str]) -> int:
-    commands = {"one": one, "amp": amp, "leo": leo, "stab": stab, "signals": signals, "table": table}
+    commands = {"one": one, "amp": amp, "leo": leo, "stab": stab, "ways": ways, "ways_table": ways_table, "signals": signals, "table": table}
     return run_commands(__doc__, commands, argv, cpu=sys.stderr)
 
 
