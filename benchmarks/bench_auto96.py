@@ -57,6 +57,113 @@ auto / MLR is below main's, (3) fewer records lose to MLR (> 1.0) than on main. 
 above main's.  (1)-(3) failing for every signal: no src, no fresh seed drawn (TRACED), the
 signal table kept as the finding.  Limits tried (named here, from the signal table's gaps on the
 seen targets): ``last`` 0.9, ``trend`` 0.3, ``amp`` 0.9, ``disp`` 1.2.
+
+REFUSED on the SEEN gate: src as on main; the rule built is ``benchmarks/auto96_rule.patch`` (against
+bd118abf: ``model.estimator.lag_fade`` (0.3), ``blend.fading_gain``, conf, docs and its test; apply
+it to run ``ways``, whose key main does not have).
+
+Measured (2026-12-06, bd118abf + the bench; nice, ``OMP_NUM_THREADS=1``, 2 cores shared, load 5-15;
+CPU: ``rows`` of the 22 (bench_auto91's, ROOT /tmp/auto96/root written by bench_iso67 / stranger68 /
+stranger66 / automore69 / new_machines57, 59, 60 ``write`` + ``init``; col5791 / col1403 reused from
+auto95b's WORK at 34af1fcb: no model src changed since) 79 + 21 + 37 + 71 s; ``one`` on the 10 seen
+42.7 s; ``amp`` 36 s; ``ways`` on the fresh 57.4 s).  Every main figure reproduces the tables it
+comes from (col5791 1.258, col1403 1.311, lab5401 1.070, iso_a 1.083, mtc_b 1.075, hmc 1.005; lr9587
+1.059, sw9697 1.044, lr9641 0.637).
+
+Signals per target where a lag family holds weight (L: hm hammerstein / lb lagbank, w its weight;
+r_k its fold SSE / MLR's; amp / leo_top / stab measured on 19 / 9 / 19 records, ``-``: not run;
+auto and L alone: test RMSE / MLR's, the 22's on their new campaigns, the one-campaign 10 own)::
+
+  record     target    L  w    r_k (forward folds, in order)  disp trend  last   amp leo_t  stab  auto  L
+  lr9211     E_Z       hm 0.54 0.27 2.26 0.09 0.66 0.19   1.11 -0.20  0.19  0.47  0.61  3.19  0.761 1.211
+  lr9212     E_Z       hm 0.77 1.18 0.65 0.71 1.13 0.70   0.26 -0.05  0.70  0.99  0.51  1.79  0.760 0.736
+  lr9587     E_Z       lb 0.10 0.79 0.10 0.37 0.57 6.39   1.34  0.59  6.39  0.54  0.35  1.31  1.059 1.545
+  lr9640     E_Z       hm 0.13 6.86 0.05 0.09 0.38 0.93   1.72 -0.20  0.93  0.76  0.78  0.84  0.858 1.198
+  lr9641     E_Z       hm 0.95 0.84 0.07 0.09 0.59 0.85   1.10  0.21  0.85  0.41  0.51  0.56  0.637 0.608
+  lr9642     E_Z       hm 1.00 0.45 0.29 0.05 0.14 0.17   0.77 -0.27  0.17  0.72  0.43  1.05  0.674 0.674
+  lr9643     E_Z       lb 1.00 0.21 0.71 0.90 0.22 0.04   1.14 -0.46  0.04  0.78  0.54  2.92  0.519 0.519
+  sw9696     E_X       hm 1.00 0.61 0.47 0.20 0.33 0.58   0.41 -0.05  0.58  0.14  0.35  3.86  0.558 0.558
+  sw9696     E_Y       hm 0.98 1.20 0.50 0.20 0.37 0.49   0.58 -0.21  0.49  0.14  0.30  6.80  0.575 0.575
+  sw9697     E_X       hm 0.17 1.30 0.12 0.33 3.10 0.07   1.42 -0.26  0.07  0.19  0.03  0.56  1.040 0.589
+  sw9697     E_Y       hm 0.38 0.23 0.17 0.24 1.34 2.07   1.02  0.64  2.07  0.18  0.14  0.31  1.048 1.015
+  col5791    E_Z       hm 0.10 0.01 0.34 27.91 0.92 0.63  2.52  0.92  0.63  0.83     -  1.32  1.033 0.753
+  col5791    E_Z_mid   lb 0.81 1.04 1.14 0.13 0.11 0.92   1.04 -0.25  0.92  1.26     -  1.12  2.944 3.357
+  col1403    E_Y       lb 0.84 0.33 0.07 1.09 0.40 0.64   0.92  0.30  0.64  0.54  0.45  0.95  1.853 2.103
+  col1403    E_Y_mid   hm 0.64 0.22 0.22 0.31 0.80 0.90   0.62  0.41  0.90  0.50  0.97  0.48  2.082 2.234
+  col1403    E_Z_mid   hm 0.35 1.27 0.42 0.53 0.75 1.36   0.46  0.07  1.36  1.04  0.61  1.11  0.867 1.158
+  swiss303   E_X       hm 1.00 0.47 0.50 0.24 0.30 0.31   0.29 -0.14  0.31  0.14  0.34  7.24  0.570 0.570
+  swiss303   E_Y       hm 1.00 0.28 0.68 0.25 0.37 0.24   0.38 -0.09  0.24  0.13  0.31  6.07  0.567 0.567
+  lab5401    E_Y       lb 0.04 1.48                       0.00  0.00  1.48  0.66     -  0.00  1.047 2.461
+  col1514    E_Z_mid   hm 0.41 0.78 0.08 0.73 2.01 0.30   1.08  0.12  0.30  0.72     -  1.74  1.611 3.057
+  swiss5454  E_X       lb 0.04 3.26 2.62 0.55 0.55 0.48   0.85 -0.54  0.48  0.14  0.49 21.92  0.964 0.648
+  swiss5454  E_Y       lb 0.12 3.79 1.11 0.53 0.41 0.51   0.81 -0.50  0.51  0.13  0.49 19.91  0.929 0.711
+  year6511   E_X       lb 0.28 0.76 1.27 1.31 0.59 0.83   0.31 -0.06  0.83  0.42     -  1.02  0.949 0.922
+  year6_5411 E_X       hm 1.00 0.92 0.96 0.36 0.43        0.44 -0.33  0.43     -     -     -  1.187 1.187
+  year6_5411 E_Y       lb 0.52 0.50 0.10 1.29 0.69        0.96  0.35  0.69     -     -     -  1.157 1.608
+  col6511    E_Z_mid   lb 0.12 3.19 0.41 0.07 0.51 2.00   1.32 -0.07  2.00     -     -  2.63  0.959 0.430
+  year6512   E_X       lb 0.37 0.58 0.84 1.16 0.93 0.83   0.22  0.08  0.83     -     -     -  0.926 0.905
+  year6512   E_Y       lb 0.62 0.19 0.34 0.39 0.40 0.37   0.27  0.15  0.37     -     -     -  0.728 0.728
+  iso_a      E_Y1      lb 0.23 1.19 0.13                  1.11 -2.22  0.13     -     -     -  1.018 0.714
+  mtc_b      E_dX      hm 1.00 0.24 0.37 0.15             0.36 -0.21  0.15     -     -     -  1.119 1.119
+  mtc_b      E_dY      hm 0.67 0.46 0.68 0.29             0.34 -0.22  0.29     -     -     -  0.860 1.056
+  mtc_b      E_dZ      hm 1.00 0.30 0.27 0.19             0.20 -0.24  0.19     -     -     -  1.046 1.046
+  iso_b      E_X1      hm 0.71 0.50 0.55                  0.05  0.10  0.55     -     -     -  1.220 1.394
+  iso_b      E_Z       hm 0.78 0.76 0.02                  1.73 -3.47  0.02     -     -     -  0.550 0.555
+  mtc_a      E_dX      hm 0.83 1.03 0.25 0.30             0.63 -0.62  0.30     -     -     -  0.630 0.684
+  mtc_a      E_dY      lb 1.00 0.42 0.37 0.36             0.06 -0.07  0.36     -     -     -  0.703 0.703
+  mtc_a      E_dZ      hm 0.96 0.75 0.19 0.31             0.57 -0.44  0.31     -     -     -  0.772 0.793
+  tsc_a2     E_dX1     hm 0.23 0.34 1.62                  0.78  1.56  1.62     -     -     -  0.926 1.461
+  tsc_a2     E_dZ1     hm 0.71 0.01 0.02                  0.38  0.75  0.02     -     -     -  0.096 0.106
+  tsc_a2     E_dX2     lb 0.98 0.06 0.29                  0.82  1.65  0.29     -     -     -  0.416 0.420
+  tsc_a2     E_dZ2     lb 0.79 0.40 0.53                  0.14  0.27  0.53     -     -     -  0.545 0.585
+  grind_a    E_Y       lb 0.01 1.59 0.74 1.05 1.31 0.76   0.30 -0.09  0.76     -     -     -  0.995 0.969
+  grind_b    E_X       hm 0.76 1.05 0.36 0.79 0.76 1.23   0.43  0.11  1.23     -     -     -  0.967 0.971
+  hmc        CH15_Disp hm 1.00 0.39 0.92 0.48             0.36  0.10  0.48     -     -     -  1.082 1.082
+  hmc        CH16_Disp hm 0.58 0.41 1.09 0.62             0.40  0.21  0.62     -     -     -  0.901 0.902
+  jig_grinder E_DISP_Y  lb 0.18 1.02 0.46 1.10             0.39  0.04  1.10     -     -     -  0.885 1.039
+  twin_lathe E_Z1      hm 0.33 1.12 0.91 1.44 0.99 0.36   0.47 -0.22  0.36     -     -     -  0.953 0.937
+  twin_lathe E_Z2      lb 0.04 14.41 0.86 0.83 0.91 1.30  1.10 -0.48  1.30     -     -     -  0.995 0.905
+
+  separation of the targets whose L alone loses to MLR on test (19) from those where it wins (29),
+  AUC (1: every loser above every winner): disp 0.50, last 0.67, trend 0.64, worst 0.56, cv 0.50,
+  amp 0.75 (10 / 13 targets), leo 0.75 (7 / 11), leo_top 0.73 (7 / 11), stab 0.21 (10 / 14: the
+  failing lag families' fold models spread LESS than the winners', relative to MLR's).
+
+No signal separates: the winners show each of them too.  ``trend`` (the gain fading over the folds)
+catches col1403's two (+0.30, +0.41), lr9587 (+0.59) and sw9697 E_Y (+0.64), but col5791 E_Z_mid
+fades the other way (-0.25: its loss is Q3's, which no fold holds) and tsc_a2's winners "fade" on
+two folds from 0.01 to 0.02 (+0.75); ``amp`` catches col5791 E_Z_mid (1.26) but flags lr9212's
+winning hammerstein (0.99); ``last`` / ``leo_top`` split lr9641 (winner) from col1403 E_Y_mid
+(loser) by 0.05.
+
+The prototype rules, auto / MLR per record (geo over the records; losers = records above 1.0):
+
+  rule (limit)    22-table geo      losers  > 1 % worse   one-campaign 10 geo   > 1 % worse
+  main            0.8265                 8                0.7657
+  trend > 0.3     0.8325                 7  1 (tsc_a2)    0.7622                0
+  last > 0.9      0.8201                10  4             0.7740                1 (lr9640 +17 %)
+  amp > 0.9       0.8182                 8  0             0.7870                1 (lr9212 +32 %)
+  disp > 1.2      0.8336                10  2             0.7748                2
+
+``trend`` 0.3, built in src (``lag_fade``, committed 418ebf27), record by record where it moves:
+col1403 1.311 -> 0.977 (E_Y, E_Y_mid to MLR), lr9587 1.059 -> 1.007, year6_5411 0.518 -> 0.450,
+sw9697 1.044 -> 1.048, col5791 1.258 -> 1.266, tsc_a2 0.376 -> 0.675 (+79.5 %: all four targets, two
+campaign folds each); over the 32 geo 0.8070 -> 0.8098, losers 10 -> 9.  Against the bar: (1) fails
+(tsc_a2), (2) fails on the 22 (0.8265 -> 0.8325; the 32: 0.8098 > 0.8070), (3) met (8 -> 7): REFUSED.
+``fl_thermal`` 90/10 unchanged (2.481 both ways: no lag family fades there).
+
+Fresh 9719-9728: NOT held back as the bar says -- ``ways`` ran them through the committed rule
+(418ebf27) while the last seven seen records' rows were still running (the deadline), and they were
+read after the seen gate had failed; the rule was not changed in between.  Auto / MLR main -> rule:
+lr9719-9723 0.995 0.991 0.483 0.997 0.807, unchanged; sw9724-9726 1.003 1.000 1.017 unchanged; sw9727
+1.049 -> 1.026; sw9728 1.380 -> 1.384; geo 0.9444 -> 0.9426, worst 1.003, losers 4 -> 4: the fresh
+clause would have been met.  These seeds are spent.
+
+After the fact (measurement, not a rule: chosen on the seen table above AND after the fresh score):
+``trend3`` (the fade counted only with 3 folds or more: two folds are one difference) leaves tsc_a2
+alone: the 22 geo 0.8265 -> 0.8106, losers 8 -> 7, none > 1 % worse (worst col5791 1.006); the 10
+one-campaign records as ``trend``; on the fresh (5 folds each) identical to the rule.  A lead for the
+next stop, to be scored on new fresh seeds (e.g. 9729-9738) -- not KEPT here.
 """
 
 import json
@@ -91,9 +198,10 @@ def one(out: str, *records: str) -> None:
 
 
 def ways(root: str, out: str, *records: str) -> None:
-    """Each record fitted as ``run`` fits it with ``lag_fade`` off (main) and at its default (the
-    rule), and MLR alone; OUT/RECORD.json: per target the test RMSEs and both weights; the record's
-    auto / MLR both ways (bench_auto95's figure: the mean over targets of the ratio)."""
+    """(needs ``benchmarks/auto96_rule.patch`` applied) Each record fitted as ``run`` fits it with
+    ``lag_fade`` off (main) and at its default (the rule), and MLR alone; OUT/RECORD.json: per
+    target the test RMSEs and both weights; the record's auto / MLR both ways (bench_auto95's
+    figure: the mean over targets of the ratio)."""
     import bench_auto_rank as rank
     from sklearn.base import clone
 
@@ -199,26 +307,9 @@ def amp(root: str, out: str, *records: str) -> None:
 TAIL = 0.1    # a fold holds out the rows where one input lies in its top (or bottom) tenth
 
 
-def extreme_folds(X: np.ndarray, tail: float = TAIL) -> list:
-    """``(fit, predict, score)`` masks: per input column and tail, the rows beyond its ``tail``
-    quantile held out (scored), every other row fitted, the whole record predicted in free run;
-    identical masks once, columns with fewer than 3 values (states) none."""
-    folds, seen = [], set()
-    for j in range(X.shape[1]):
-        x = X[:, j]
-        if np.unique(x).size < 3:
-            continue
-        lo, hi = np.quantile(x, [tail, 1 - tail])
-        for held in (x > hi, x < lo):
-            key = held.tobytes()
-            if held.sum() >= 10 and key not in seen:
-                seen.add(key)
-                folds.append((~held, np.ones(len(x), bool), held))
-    return folds
-
-
-def _tails(X: np.ndarray, tail: float = TAIL) -> list:
-    """``"top"`` / ``"bottom"`` for each of :func:`extreme_folds`'s folds, in order."""
+def _extremes(X: np.ndarray, tail: float = TAIL) -> list:
+    """``(side, held rows)``: per input column and tail (``"top"`` / ``"bottom"``), the rows beyond
+    its ``tail`` quantile; identical masks once, columns with fewer than 3 values (states) none."""
     out, seen = [], set()
     for j in range(X.shape[1]):
         x = X[:, j]
@@ -226,20 +317,37 @@ def _tails(X: np.ndarray, tail: float = TAIL) -> list:
             continue
         lo, hi = np.quantile(x, [tail, 1 - tail])
         for side, held in (("top", x > hi), ("bottom", x < lo)):
-            key = held.tobytes()
-            if held.sum() >= 10 and key not in seen:
-                seen.add(key)
-                out.append(side)
+            if held.sum() >= 10 and held.tobytes() not in seen:
+                seen.add(held.tobytes())
+                out.append((side, held))
     return out
+
+
+def extreme_folds(X: np.ndarray, tail: float = TAIL) -> list:
+    """``(fit, predict, score)`` masks: each of :func:`_extremes` held out (scored), every other
+    row fitted, the whole record predicted in free run."""
+    return [(~held, np.ones(len(held), bool), held) for _, held in _extremes(X, tail)]
+
+
+def _lag_fitted(root: str, name: str):
+    """``name``'s train record fitted by auto restricted to MLR and the lag families, each kept
+    with its out-of-fold predictions (``combine='best'``: no blend), under the folds the caller
+    gave ``AutoRegressor._folds``."""
+    from sklearn.base import clone
+
+    from thermocomp.shell.builders import build_compensator
+
+    cfg, ds, train = _setup(name, root)
+    auto = build_compensator(cfg, ds=ds)
+    cands = {n: c for n, c in auto.estimator.candidates.items() if n in ("mlr", *LAG)}
+    est = clone(auto.estimator).set_params(candidates=cands, combine="best", keep_oof=True, fallback="none")
+    return clone(auto).set_params(estimator=est).fit(train)
 
 
 def leo(root: str, out: str, *records: str) -> None:
     """Per record and target, MLR and the lag families fitted without each input's extreme rows,
     scored on them (:func:`extreme_folds`): the lag family's fold ratios to MLR."""
-    from sklearn.base import clone
-
     from thermocomp.core.models.auto import AutoRegressor
-    from thermocomp.shell.builders import build_compensator
 
     AutoRegressor._folds = lambda self, groups, n: extreme_folds(self._X_leo)
     fit0 = AutoRegressor.fit
@@ -251,16 +359,11 @@ def leo(root: str, out: str, *records: str) -> None:
     AutoRegressor.fit = fit
     Path(out).mkdir(parents=True, exist_ok=True)
     for name in records:
-        cfg, ds, train = _setup(name, root)
-        auto = build_compensator(cfg, ds=ds)
-        cands = {n: c for n, c in auto.estimator.candidates.items() if n in ("mlr", *LAG)}
-        est = clone(auto.estimator).set_params(candidates=cands, combine="best", keep_oof=True,
-                                               fallback="none")
-        comp = clone(auto).set_params(estimator=est).fit(train)
+        comp = _lag_fitted(root, name)
         got = {}
         for t, e in comp.estimators_.items():
             got[t] = {n: np.bincount(e.oof_fold_, (e.oof_y_ - e.oof_[n]) ** 2).tolist() for n in e.oof_}
-            got[t]["tail"] = _tails(e._X_leo)
+            got[t]["tail"] = [side for side, _ in _extremes(e._X_leo)]
         Path(out, f"{name}.json").write_text(json.dumps(got, indent=1))
         print(name, {t: {n: round(_pooled(g, n), 3) for n in LAG if n in g} for t, g in got.items()},
               flush=True)
@@ -271,22 +374,14 @@ def stab(root: str, out: str, *records: str) -> None:
     folds' fit rows, each predicting the WHOLE train record in free run: the spread of a family's
     fold models' predictions (RMS over rows of their standard deviation across folds) over MLR's,
     its coefficients' instability seen through what they predict."""
-    from sklearn.base import clone
-
     from thermocomp.core.models.auto import AutoRegressor
-    from thermocomp.shell.builders import build_compensator
 
     folds0 = AutoRegressor._folds
     AutoRegressor._folds = lambda self, groups, n: [(fit, np.ones(n, bool), np.ones(n, bool))
                                                     for fit, *_ in folds0(self, groups, n)]
     Path(out).mkdir(parents=True, exist_ok=True)
     for name in records:
-        cfg, ds, train = _setup(name, root)
-        auto = build_compensator(cfg, ds=ds)
-        cands = {n: c for n, c in auto.estimator.candidates.items() if n in ("mlr", *LAG)}
-        est = clone(auto.estimator).set_params(candidates=cands, combine="best", keep_oof=True,
-                                               fallback="none")
-        comp = clone(auto).set_params(estimator=est).fit(train)
+        comp = _lag_fitted(root, name)
         got = {}
         for t, e in comp.estimators_.items():
             k = int(e.oof_fold_.max()) + 1
@@ -357,6 +452,7 @@ SIGNALS = {   # of the lag family's fold ratios r_k (k = 1..K, forward folds in 
     "trend": lambda r: _slope(np.log(r)),               # the gain fading over later folds (> 0)
     "worst": lambda r: float(np.max(r)),                # its worst fold
     "cv": lambda r: float(np.std(r) / np.mean(r)),      # dispersion relative to its mean ratio
+    "trend3": lambda r: _slope(np.log(r)) if r.size >= 3 else 0.0,   # trend, 3 folds or more (after)
 }
 
 
@@ -469,7 +565,8 @@ def table(side: str, signal: str, limit: str, *works: str) -> None:
 
 
 def main(argv: list[str]) -> int:
-    commands = {"one": one, "amp": amp, "leo": leo, "stab": stab, "ways": ways, "ways_table": ways_table, "signals": signals, "table": table}
+    commands = {"one": one, "amp": amp, "leo": leo, "stab": stab, "ways": ways, "ways_table": ways_table,
+                "signals": signals, "table": table}
     return run_commands(__doc__, commands, argv, cpu=sys.stderr)
 
 
