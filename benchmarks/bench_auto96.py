@@ -71,7 +71,7 @@ comes from (col5791 1.258, col1403 1.311, lab5401 1.070, iso_a 1.083, mtc_b 1.07
 1.059, sw9697 1.044, lr9641 0.637).
 
 Signals per target where a lag family holds weight (L: hm hammerstein / lb lagbank, w its weight;
-r_k its fold SSE / MLR's; amp / leo_top / stab measured on 19 / 9 / 19 records, ``-``: not run;
+r_k its fold SSE / MLR's; amp / leo_top / stab measured on 19 / 14 / 19 records, ``-``: not run;
 auto and L alone: test RMSE / MLR's, the 22's on their new campaigns, the one-campaign 10 own)::
 
   record     target    L  w    r_k (forward folds, in order)  disp trend  last   amp leo_t  stab  auto  L
@@ -86,18 +86,18 @@ auto and L alone: test RMSE / MLR's, the 22's on their new campaigns, the one-ca
   sw9696     E_Y       hm 0.98 1.20 0.50 0.20 0.37 0.49   0.58 -0.21  0.49  0.14  0.30  6.80  0.575 0.575
   sw9697     E_X       hm 0.17 1.30 0.12 0.33 3.10 0.07   1.42 -0.26  0.07  0.19  0.03  0.56  1.040 0.589
   sw9697     E_Y       hm 0.38 0.23 0.17 0.24 1.34 2.07   1.02  0.64  2.07  0.18  0.14  0.31  1.048 1.015
-  col5791    E_Z       hm 0.10 0.01 0.34 27.91 0.92 0.63  2.52  0.92  0.63  0.83     -  1.32  1.033 0.753
-  col5791    E_Z_mid   lb 0.81 1.04 1.14 0.13 0.11 0.92   1.04 -0.25  0.92  1.26     -  1.12  2.944 3.357
+  col5791    E_Z       hm 0.10 0.01 0.34 27.91 0.92 0.63  2.52  0.92  0.63  0.83  0.86  1.32  1.033 0.753
+  col5791    E_Z_mid   lb 0.81 1.04 1.14 0.13 0.11 0.92   1.04 -0.25  0.92  1.26  0.47  1.12  2.944 3.357
   col1403    E_Y       lb 0.84 0.33 0.07 1.09 0.40 0.64   0.92  0.30  0.64  0.54  0.45  0.95  1.853 2.103
   col1403    E_Y_mid   hm 0.64 0.22 0.22 0.31 0.80 0.90   0.62  0.41  0.90  0.50  0.97  0.48  2.082 2.234
   col1403    E_Z_mid   hm 0.35 1.27 0.42 0.53 0.75 1.36   0.46  0.07  1.36  1.04  0.61  1.11  0.867 1.158
   swiss303   E_X       hm 1.00 0.47 0.50 0.24 0.30 0.31   0.29 -0.14  0.31  0.14  0.34  7.24  0.570 0.570
   swiss303   E_Y       hm 1.00 0.28 0.68 0.25 0.37 0.24   0.38 -0.09  0.24  0.13  0.31  6.07  0.567 0.567
-  lab5401    E_Y       lb 0.04 1.48                       0.00  0.00  1.48  0.66     -  0.00  1.047 2.461
-  col1514    E_Z_mid   hm 0.41 0.78 0.08 0.73 2.01 0.30   1.08  0.12  0.30  0.72     -  1.74  1.611 3.057
+  lab5401    E_Y       lb 0.04 1.48                       0.00  0.00  1.48  0.66  0.74  0.00  1.047 2.461
+  col1514    E_Z_mid   hm 0.41 0.78 0.08 0.73 2.01 0.30   1.08  0.12  0.30  0.72  0.14  1.74  1.611 3.057
   swiss5454  E_X       lb 0.04 3.26 2.62 0.55 0.55 0.48   0.85 -0.54  0.48  0.14  0.49 21.92  0.964 0.648
   swiss5454  E_Y       lb 0.12 3.79 1.11 0.53 0.41 0.51   0.81 -0.50  0.51  0.13  0.49 19.91  0.929 0.711
-  year6511   E_X       lb 0.28 0.76 1.27 1.31 0.59 0.83   0.31 -0.06  0.83  0.42     -  1.02  0.949 0.922
+  year6511   E_X       lb 0.28 0.76 1.27 1.31 0.59 0.83   0.31 -0.06  0.83  0.42  1.34  1.02  0.949 0.922
   year6_5411 E_X       hm 1.00 0.92 0.96 0.36 0.43        0.44 -0.33  0.43     -     -     -  1.187 1.187
   year6_5411 E_Y       lb 0.52 0.50 0.10 1.29 0.69        0.96  0.35  0.69     -     -     -  1.157 1.608
   col6511    E_Z_mid   lb 0.12 3.19 0.41 0.07 0.51 2.00   1.32 -0.07  2.00     -     -  2.63  0.959 0.430
@@ -126,15 +126,17 @@ auto and L alone: test RMSE / MLR's, the 22's on their new campaigns, the one-ca
 
   separation of the targets whose L alone loses to MLR on test (19) from those where it wins (29),
   AUC (1: every loser above every winner): disp 0.50, last 0.67, trend 0.64, worst 0.56, cv 0.50,
-  amp 0.75 (10 / 13 targets), leo 0.75 (7 / 11), leo_top 0.73 (7 / 11), stab 0.21 (10 / 14: the
-  failing lag families' fold models spread LESS than the winners', relative to MLR's).
+  trend3 0.65, amp 0.75 (10 / 13 targets), leo 0.70 (10 / 13; the column's lag families 140-2300 x
+  MLR on every target, winners too), leo_top 0.58 (10 / 13: col5791 E_Z_mid 0.47, col1514 0.14 --
+  each input's own top tenth is no Q3), stab 0.21 (10 / 14: the failing lag families' fold models
+  spread LESS than the winners', relative to MLR's; ``leo`` 150 s CPU for the 5 column / lab / year).
 
 No signal separates: the winners show each of them too.  ``trend`` (the gain fading over the folds)
 catches col1403's two (+0.30, +0.41), lr9587 (+0.59) and sw9697 E_Y (+0.64), but col5791 E_Z_mid
 fades the other way (-0.25: its loss is Q3's, which no fold holds) and tsc_a2's winners "fade" on
 two folds from 0.01 to 0.02 (+0.75); ``amp`` catches col5791 E_Z_mid (1.26) but flags lr9212's
-winning hammerstein (0.99); ``last`` / ``leo_top`` split lr9641 (winner) from col1403 E_Y_mid
-(loser) by 0.05.
+winning hammerstein (0.99); ``last`` splits lr9641 (0.85, a winner) from col1403 E_Y_mid (0.90, a
+loser) by 0.05 and misses col1403 E_Y (0.64); ``leo_top`` does not see the column's Q3 losses at all.
 
 The prototype rules, auto / MLR per record (geo over the records; losers = records above 1.0):
 
