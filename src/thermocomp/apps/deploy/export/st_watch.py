@@ -35,7 +35,14 @@ Per sample, of each monitored sensor ``k`` (the input ``MON_INPUT[k]``, the C's 
   row) followed to the C's ``BACK`` (:func:`back_constants`): not judged while it is out, back
   after the C's wait where its error with every sensor in is within ``MON_BACK_BAND`` over the
   ring of the last ``MON_WINDOW`` readings (the C's ``_pass_once_back`` with all in), the block
-  judging on from there.
+  judging on from there;
+* (st96) the C's drift judgement with every sensor in, none out (:func:`blind_constants`): a
+  sensor no other predicts that explains the judged sensors beyond the band (the C's
+  ``_explaining``) flagged ``BLIND_OUT`` and held out alone by the same hold, back where every
+  judged sensor's error with every sensor in is within its warning band over the ring; while it
+  is out the set without it judged, the block's judgement ending where the C could act on it.
+  A drift judgement it cannot follow, or the C's level shift (``SETTLED``, told by the C's test
+  over ``2 MON_WINDOW`` readings), ends the ``BLIND_OUT`` judgement to the campaign's end.
 
 ``mon_flag`` says the sample's fault, ``mon_rule`` its rule (the C's ``mon_rule`` codes, named
 by ``TC_MONITOR_REASONS``) and ``mon_sensor`` its monitored sensor ``k`` (-1: none): the first,
