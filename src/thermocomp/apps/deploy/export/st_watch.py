@@ -35,7 +35,14 @@ Per sample, of each monitored sensor ``k`` (the input ``MON_INPUT[k]``, the C's 
   row) followed to the C's ``BACK`` (:func:`back_constants`): not judged while it is out, back
   after the C's wait where its error with every sensor in is within ``MON_BACK_BAND`` over the
   ring of the last ``MON_WINDOW`` readings (the C's ``_pass_once_back`` with all in), the block
-  judging on from there.
+  judging on from there;
+* (st96) the C's drift judgement with every sensor in, none out (:func:`blind_constants`): a
+  sensor no other predicts that explains the judged sensors beyond the band (the C's
+  ``_explaining``) flagged ``BLIND_OUT`` and held out alone by the same hold, back where every
+  judged sensor's error with every sensor in is within its warning band over the ring; while it
+  is out the set without it judged, the block's judgement ending where the C could act on it.
+  A drift judgement it cannot follow, or the C's level shift (``SETTLED``, told by the C's test
+  over ``2 MON_WINDOW`` readings), ends the ``BLIND_OUT`` judgement to the campaign's end.
 
 ``mon_flag`` says the sample's fault, ``mon_rule`` its rule (the C's ``mon_rule`` codes, named
 by ``TC_MONITOR_REASONS``) and ``mon_sensor`` its monitored sensor ``k`` (-1: none): the first,
@@ -72,6 +79,7 @@ import numpy as np
 from .watch import (
     BENT,
     BLIND,
+    BLIND_OUT,
     COMMON,
     COMMON_STEP,
     DROPOUT,
@@ -136,6 +144,61 @@ def back_constants(watch: dict, n: int, stepped: bool, constant) -> list[str]:
             constant("MON_FREEZE_RUN", runs.tolist(), (n,), "INT")]
 
 
+def blind_constants(watch: dict, n: int, stepped: bool, literal, constant) -> list[str]:
+    """(st96) What the block needs to take out, as the C's drift judgement does with every sensor
+    in, a sensor no other predicts that explains the others' errors (``BLIND_OUT``, the C's
+    ``_explaining``), and to hold it out alone to the C's ``BACK``: the band the last ``confirm``
+    errors must all reach (``exclude_level``'s: ``MON_FIELD_BAND``), the whole set's warning band,
+    the sensors whose error is evidence (not ``warn_only``), each residual's divisor
+    ``sqrt(1 - h)``, and per such sensor (``MON_BLIND``) the operator, scale, evidence and bands
+    of the set without it (:class:`.watch.CodeMonitor`'s ``_operator`` / ``_bands``)."""
+    from .watch import CodeMonitor
+
+    judge = bool(n and stepped and watch.get("blind_out") and watch.get("drift"))
+    mon = CodeMonitor(watch) if judge else None
+    lev = np.asarray(watch["lev"][0], float) if judge else np.zeros(n)
+    judged = lev < float(watch.get("max_leverage", 1.0))
+    warned = np.asarray(watch.get("warn_only", [0] * n), bool)
+    evidence = judged & ~warned
+    # (the C's candidates: in, no other predicts it, its error evidence, enough left without it)
+    blinds = [u for u in range(n) if judge and not judged[u] and not warned[u]
+              and n - 1 >= watch["min_active"]]
+    self_m, scale, judging, warn, alarm = (np.zeros((max(len(blinds), 1), n, n)),
+                                           *(np.zeros((max(len(blinds), 1), n)) for _ in range(4)))
+    for b, u in enumerate(blinds):
+        out = np.arange(n) == u
+        M, lu = mon._operator(out)
+        self_m[b] = M
+        scale[b] = np.where(~out & (lu < mon.max_lev), 1.0 / np.maximum(1.0 - lu, 1e-12), 0.0)
+        judging[b] = (scale[b] > 0) & ~mon.warn_only
+        warn[b], alarm[b] = mon._bands(~out)
+    field = (watch.get("warning") if int(watch.get("exclude_level", 2)) == 1 else watch.get("alarm"))
+    nb = len(blinds)
+    w = max(int(watch.get("window", 1)), 1)
+    # (jump94b) the sensors whose level shift the C re-references (SETTLED)
+    settle = np.asarray(watch.get("settle_lim", [np.inf] * n), float)
+    settles = bool(watch.get("settled")) & np.isfinite(settle)
+    judge = judge and n > watch["min_active"] and nb > 0     # (the C's: more in than min_active)
+    return [f"    MON_BLIND_JUDGE : BOOL := {'TRUE' if judge else 'FALSE'};",
+            f"    MON_CONFIRM : INT := {max(int(watch.get('confirm', 1)), 1)};",
+            f"    MON_BLINDS : INT := {nb};",
+            constant("MON_BLIND", blinds, (nb,), "INT"),
+            constant("MON_FIELD_BAND", list(field or [0.0] * n), (n,)),
+            constant("MON_WARN", list(watch.get("warning", [0.0] * n)), (n,)),
+            constant("MON_JUDGING", evidence.astype(int).tolist(), (n,), "INT"),
+            constant("MON_SETTLES", settles.astype(int).tolist(), (n,), "INT"),
+            constant("MON_SETTLE_LIM", np.where(settles, settle, 0.0).tolist(), (n,)),
+            f"    MON_SETTLE_STEADY : LREAL := {literal(watch.get('settle_steady', 0.0))};",
+            f"    MON_MID_LO : INT := {(w - 1) // 2};",
+            f"    MON_MID_HI : INT := {w // 2};",
+            constant("MON_Z_ROOT", np.sqrt(np.maximum(1.0 - lev, 1e-12)).tolist(), (n,)),
+            constant("MON_OUT_SELF", self_m.tolist(), (nb, n, n)),
+            constant("MON_OUT_SCALE", scale.tolist(), (nb, n)),
+            constant("MON_OUT_JUDGING", judging.astype(int).tolist(), (nb, n), "INT"),
+            constant("MON_OUT_WARN", warn.tolist(), (nb, n)),
+            constant("MON_OUT_ALARM", alarm.tolist(), (nb, n))]
+
+
 def constants(watch: dict, literal, constant) -> list[str]:
     """The monitor's constants (``watch``: :func:`.watch.monitor_fields`'s ``monitor``, empty:
     none, ``MON_N`` 0) in the block's ``VAR CONSTANT``."""
@@ -143,7 +206,7 @@ def constants(watch: dict, literal, constant) -> list[str]:
     rules = (("JUMP", JUMP), ("GLITCH", GLITCH), ("COMMON", COMMON), ("COMMON_STEP", COMMON_STEP),
              ("DROPOUT", DROPOUT), ("MISSING_FIRST", MISSING_FIRST), ("OFF_RANGE", OFF_RANGE),
              ("RANGE", RANGE), ("SPIKE", SPIKE), ("BENT", BENT),
-             ("STEP_OUT", STEP_OUT), ("BLIND", BLIND))
+             ("STEP_OUT", STEP_OUT), ("BLIND", BLIND), ("BLIND_OUT", BLIND_OUT))
     # (st94) no bound where the export has none (before step93, a sensor the others predict):
     # the largest LREAL, as ST has no infinity
     bends = np.asarray(watch.get("bend_lim", []) if watch.get("bent") else [np.inf] * n, float)
@@ -164,6 +227,7 @@ def constants(watch: dict, literal, constant) -> list[str]:
             constant("MON_JUDGED", judged.astype(int).tolist(), (n,), "INT"),
             constant("MON_STEP_HELD", [int(p) for p in watch.get("ported_out", [])], (n,), "INT"),
             *back_constants(watch, alarm.size, stepped, constant),
+            *blind_constants(watch, alarm.size, stepped, literal, constant),
             f"    MON_PERIOD : LREAL := {literal(watch.get('period', 1.0))};",
             f"    MON_GAP_PERIODS : LREAL := {literal(watch.get('gap_periods', 1.5))};",
             f"    MON_COMMON_MIN : INT := {int(watch.get('common_min', 3))};",
@@ -216,8 +280,37 @@ VARS = """    mon_last : ARRAY[{nm}] OF LREAL;
     mon_run : INT;
     mon_run_was : INT;
     mon_dwell : INT;
-    mon_stepouts : ARRAY[{nm}] OF INT;
+    mon_field_outs : ARRAY[{nm}] OF INT;
     mr : INT;
+    mon_held_set : INT;
+    mon_take : INT;
+    mon_take_set : INT;
+    mon_judge : BOOL;
+    mon_blind_lost : BOOL;
+    mon_reach : BOOL;
+    mon_go : BOOL;
+    mon_ok : BOOL;
+    mon_ev : BOOL;
+    mon_zbest : LREAL;
+    mon_set : INT;
+    mb : INT;
+    mi : INT;
+    mon_min : ARRAY[{nm}] OF LREAL;
+    mon_r : ARRAY[{nm}] OF LREAL;
+    mon_z : ARRAY[{nm}] OF LREAL;
+    mon_over : ARRAY[{nm}] OF BOOL;
+    mon_eu : ARRAY[{nm}] OF LREAL;
+    mon_prev_eu : ARRAY[{nm}] OF LREAL;
+    mon_settle_ring : ARRAY[{settle}] OF LREAL;
+    mon_spos : INT;
+    mon_sort : ARRAY[{w}] OF LREAL;
+    mon_wlo : ARRAY[0..1] OF LREAL;
+    mon_whi : ARRAY[0..1] OF LREAL;
+    mon_med : ARRAY[0..1] OF LREAL;
+    mon_mad : ARRAY[0..1] OF LREAL;
+    mw : INT;
+    mq : INT;
+    ma : INT;
 """
 
 # before the refusal: the sample's monitored readings judged (the block's first == a campaign's)
@@ -237,12 +330,15 @@ IF first THEN
         mon_out[mk] := FALSE;
         mon_rerefd[mk] := FALSE;
         mon_base[mk] := u[MON_INPUT[mk]];    (* (st94b) the C's reference *)
-        mon_stepouts[mk] := 0;
+        mon_field_outs[mk] := 0;
     END_FOR;
     mon_lost := FALSE;
+    mon_blind_lost := FALSE;
     mon_e_known := FALSE;
     mon_pos := 0;
+    mon_spos := 0;
     mon_held := -1;
+    mon_held_set := -1;
 END_IF;
 (* a gap in time: each step judged as that many one-sample steps, as the C *)
 mon_span := 1.0;
@@ -419,11 +515,89 @@ IF MON_STEP_JUDGE AND NOT mon_lost THEN
     FOR mk := 0 TO MON_N - 1 DO
         j := MON_INPUT[mk];
         mon_d[mk] := u[j] - mon_base[mk] - mon_shift[j];
+        mon_settle_ring[mon_spos, mk] := mon_d[mk];
+        IF MON_SETTLES[mk] = 1 AND mon_count + 1 >= 2 * MON_WINDOW THEN
+            (* (st96) the C's level shift (SETTLED, not in the block): the window ending here *)
+            (* parted from the one before by MON_SETTLE_LIM and moved past MON_SETTLE_STEADY *)
+            (* x their spread (settled.level_shift); it ends the block's BLIND_OUT judgement *)
+            FOR mw := 0 TO 1 DO
+                FOR mi := 0 TO MON_WINDOW - 1 DO
+                    mr := mon_spos - mi - mw * MON_WINDOW;
+                    IF mr < 0 THEN
+                        mr := mr + 2 * MON_WINDOW;
+                    END_IF;
+                    mon_x := mon_settle_ring[mr, mk];
+                    IF mi = 0 OR mon_x < mon_wlo[mw] THEN
+                        mon_wlo[mw] := mon_x;
+                    END_IF;
+                    IF mi = 0 OR mon_x > mon_whi[mw] THEN
+                        mon_whi[mw] := mon_x;
+                    END_IF;
+                END_FOR;
+            END_FOR;
+            mon_x := mon_wlo[0] - mon_whi[1];
+            IF mon_wlo[1] - mon_whi[0] > mon_x THEN
+                mon_x := mon_wlo[1] - mon_whi[0];
+            END_IF;
+            IF mon_x > MON_SETTLE_LIM[mk] THEN
+                (* each window's median, then its readings' median deviation from it *)
+                FOR mw := 0 TO 1 DO
+                    FOR mq := 0 TO 1 DO
+                        FOR mi := 0 TO MON_WINDOW - 1 DO
+                            mr := mon_spos - mi - mw * MON_WINDOW;
+                            IF mr < 0 THEN
+                                mr := mr + 2 * MON_WINDOW;
+                            END_IF;
+                            mon_sort[mi] := mon_settle_ring[mr, mk];
+                            IF mq = 1 THEN
+                                mon_sort[mi] := mon_sort[mi] - mon_med[mw];
+                                IF mon_sort[mi] < 0.0 THEN
+                                    mon_sort[mi] := -mon_sort[mi];
+                                END_IF;
+                            END_IF;
+                        END_FOR;
+                        FOR ma := 1 TO MON_WINDOW - 1 DO
+                            FOR mi := 0 TO MON_WINDOW - 1 - ma DO
+                                IF mon_sort[mi] > mon_sort[mi + 1] THEN
+                                    mon_x := mon_sort[mi];
+                                    mon_sort[mi] := mon_sort[mi + 1];
+                                    mon_sort[mi + 1] := mon_x;
+                                END_IF;
+                            END_FOR;
+                        END_FOR;
+                        mon_x := (mon_sort[MON_MID_LO] + mon_sort[MON_MID_HI]) / 2.0;
+                        IF mq = 0 THEN
+                            mon_med[mw] := mon_x;
+                        ELSE
+                            mon_mad[mw] := mon_x;
+                        END_IF;
+                    END_FOR;
+                END_FOR;
+                mon_x := mon_med[0] - mon_med[1];
+                IF mon_x < 0.0 THEN
+                    mon_x := -mon_x;
+                END_IF;
+                mon_lim := mon_mad[0];
+                IF mon_mad[1] > mon_lim THEN
+                    mon_lim := mon_mad[1];
+                END_IF;
+                IF mon_x > MON_SETTLE_STEADY * mon_lim THEN
+                    mon_blind_lost := TRUE;
+                    IF mon_held_set >= 0 THEN
+                        mon_lost := TRUE;
+                    END_IF;
+                END_IF;
+            END_IF;
+        END_IF;
         mon_ring[mon_pos, mk] := mon_d[mk];    (* (st95b) the C's window of readings *)
     END_FOR;
     mon_pos := mon_pos + 1;
     IF mon_pos >= MON_WINDOW THEN
         mon_pos := 0;
+    END_IF;
+    mon_spos := mon_spos + 1;
+    IF mon_spos >= 2 * MON_WINDOW THEN
+        mon_spos := 0;
     END_IF;
     mon_best := -1.0;
     mon_culprit := -1;
@@ -451,6 +625,8 @@ IF MON_STEP_JUDGE AND NOT mon_lost THEN
         mon_prev_e[mk] := mon_e[mk];
     END_FOR;
     mon_e_known := TRUE;
+    mon_take := -1;
+    mon_take_set := -1;
     IF mon_culprit >= 0 THEN
         (* out in the C (rebuilt by the POD, or flagged where it does not hold it out) *)
         mon_flag := TRUE;
@@ -460,43 +636,185 @@ IF MON_STEP_JUDGE AND NOT mon_lost THEN
             mon_rule := RULE_BLIND;
             IF MON_STEP_HELD[mon_culprit] = 1 THEN
                 mon_rule := RULE_STEP_OUT;
-                (* (st95b) out alone, as a drift exclusion is: its wait the window doubled at *)
-                (* each such exclusion (at most MON_MAX_BACKOFF times) *)
                 IF MON_FOLLOW_BACK THEN
-                    mon_lost := FALSE;
-                    mon_held := mon_culprit;
-                    mon_calm := 0;
-                    mon_run_was := 0;
-                    mon_dwell := MON_WINDOW;
-                    FOR mr := 1 TO mon_stepouts[mon_culprit] DO
-                        IF mr <= MON_MAX_BACKOFF THEN
-                            mon_dwell := mon_dwell * 2;
-                        END_IF;
-                    END_FOR;
-                    mon_stepouts[mon_culprit] := mon_stepouts[mon_culprit] + 1;
+                    mon_lost := FALSE;    (* (st95b) out alone, followed to its BACK *)
+                    mon_take := mon_culprit;
                 END_IF;
             END_IF;
         END_IF;
-    ELSIF mon_was >= 0 THEN
-        (* (st95b) the C's BACK of the one out: calm for its wait, a full window counted, its *)
-        (* error with every sensor in within MON_BACK_BAND on every row of the window *)
-        mon_calm := mon_calm + 1;
-        IF mon_calm >= mon_dwell AND mon_count + 1 >= MON_WINDOW AND mon_run = 0 THEN
-            mon_best := 0.0;
-            FOR mr := 0 TO MON_WINDOW - 1 DO
-                mon_x := 0.0;
-                FOR mj := 0 TO MON_N - 1 DO
-                    mon_x := mon_x + MON_SELF[mon_was, mj] * mon_ring[mr, mj];
-                END_FOR;
-                mon_off := (mon_ring[mr, mon_was] - mon_x) * MON_SCALE[mon_was];
-                IF mon_off < 0.0 THEN
-                    mon_off := -mon_off;
+    END_IF;
+    (* (st96) the C's drift judgement with every sensor in, where its last MON_CONFIRM errors *)
+    (* reach the band (MON_FIELD_BAND): a sensor no other predicts that explains them out *)
+    (* (BLIND_OUT); a judgement the block cannot follow ends this one (not the stepped one) *)
+    mon_judge := MON_BLIND_JUDGE AND NOT mon_blind_lost AND mon_was < 0 AND mon_culprit < 0;
+    mon_judge := mon_judge AND mon_count + 1 >= MON_CONFIRM;
+    mon_reach := FALSE;
+    mon_zbest := -1.0;
+    FOR mb := -1 TO MON_BLINDS DO
+        (* -1: every sensor in; 0 .. MON_BLINDS - 1: each candidate out; MON_BLINDS: the one out *)
+        mon_set := mb;
+        mon_go := mon_judge;
+        IF mb = MON_BLINDS THEN
+            IF mon_reach AND mon_take_set < 0 THEN
+                mon_blind_lost := TRUE;    (* the C's lone fault, veto or new state: not here *)
+            ELSIF mon_take_set >= 0 THEN
+                mon_flag := TRUE;
+                mon_lost := mon_rule <> 0;
+                IF mon_rule = 0 THEN
+                    mon_sensor := MON_BLIND[mon_take_set];
+                    mon_rule := RULE_BLIND_OUT;
+                    mon_take := mon_sensor;
                 END_IF;
-                IF mon_off > mon_best THEN
-                    mon_best := mon_off;
+            END_IF;
+            IF mon_take >= 0 AND NOT mon_lost THEN
+                (* (st95b) out alone, as a drift exclusion is: its wait the window doubled at *)
+                (* each exclusion of it by judgement (at most MON_MAX_BACKOFF times) *)
+                mon_held := mon_take;
+                mon_held_set := mon_take_set;
+                mon_calm := 0;
+                mon_run_was := 0;
+                mon_dwell := MON_WINDOW;
+                FOR mr := 1 TO mon_field_outs[mon_take] DO
+                    IF mr <= MON_MAX_BACKOFF THEN
+                        mon_dwell := mon_dwell * 2;
+                    END_IF;
+                END_FOR;
+                mon_field_outs[mon_take] := mon_field_outs[mon_take] + 1;
+            END_IF;
+            mon_set := mon_held_set;
+            mon_go := mon_held >= 0 AND mon_held_set >= 0 AND NOT mon_lost;
+        ELSIF mb >= 0 THEN
+            mon_go := mon_go AND mon_reach AND mon_z[MON_BLIND[mb]] > mon_zbest;
+        END_IF;
+        IF mon_go THEN
+            (* each evidence sensor's smallest |error| in the set over the last MON_CONFIRM *)
+            (* rows, and each residual's sum (the C's err window under the set's operator) *)
+            FOR mk := 0 TO MON_N - 1 DO
+                mon_min[mk] := -1.0;
+                mon_r[mk] := 0.0;
+            END_FOR;
+            FOR mi := 1 TO MON_CONFIRM DO
+                mr := mon_pos - mi;
+                IF mr < 0 THEN
+                    mr := mr + MON_WINDOW;
+                END_IF;
+                FOR mk := 0 TO MON_N - 1 DO
+                    mon_x := 0.0;
+                    FOR mj := 0 TO MON_N - 1 DO
+                        IF mon_set < 0 THEN
+                            mon_x := mon_x + MON_SELF[mk, mj] * mon_ring[mr, mj];
+                        ELSE
+                            mon_x := mon_x + MON_OUT_SELF[mon_set, mk, mj] * mon_ring[mr, mj];
+                        END_IF;
+                    END_FOR;
+                    mon_x := mon_ring[mr, mk] - mon_x;
+                    mon_r[mk] := mon_r[mk] + mon_x;
+                    IF mon_set < 0 THEN
+                        mon_off := mon_x * MON_SCALE[mk];
+                        mon_ev := MON_JUDGING[mk] = 1;
+                    ELSE
+                        mon_off := mon_x * MON_OUT_SCALE[mon_set, mk];
+                        mon_ev := MON_OUT_JUDGING[mon_set, mk] = 1;
+                        IF mi = 1 THEN
+                            mon_eu[mk] := mon_off;
+                        END_IF;
+                    END_IF;
+                    IF mon_off < 0.0 THEN
+                        mon_off := -mon_off;
+                    END_IF;
+                    IF mon_ev AND (mon_min[mk] < 0.0 OR mon_off < mon_min[mk]) THEN
+                        mon_min[mk] := mon_off;
+                    END_IF;
+                END_FOR;
+            END_FOR;
+            mon_ok := TRUE;
+            FOR mk := 0 TO MON_N - 1 DO
+                IF mb < 0 THEN
+                    (* the C's _judge (the band its last errors all reach), _explaining's z *)
+                    mon_over[mk] := MON_JUDGING[mk] = 1 AND mon_min[mk] >= MON_FIELD_BAND[mk];
+                    IF mon_over[mk] THEN
+                        mon_reach := TRUE;
+                    END_IF;
+                    mon_x := mon_r[mk] / MON_CONFIRM;
+                    IF mon_x < 0.0 THEN
+                        mon_x := -mon_x;
+                    END_IF;
+                    mon_z[mk] := mon_x / MON_Z_ROOT[mk];
+                    IF MON_JUDGING[mk] = 1 AND mon_z[mk] > mon_zbest THEN
+                        mon_zbest := mon_z[mk];
+                    END_IF;
+                ELSIF mb < MON_BLINDS THEN
+                    (* _explaining: with it out each sensor beyond the band still judged, and *)
+                    (* every judged one within the band on a row at least *)
+                    IF mon_over[mk] AND MON_OUT_JUDGING[mb, mk] = 0 THEN
+                        mon_ok := FALSE;
+                    END_IF;
+                    IF MON_OUT_JUDGING[mb, mk] = 1 AND mon_min[mk] >= MON_FIELD_BAND[mk] THEN
+                        mon_ok := FALSE;
+                    END_IF;
+                ELSE
+                    (* one held out by its BLIND_OUT: where the C, judging the set without it, *)
+                    (* may take a second out or let it back another way (a stepped error, a *)
+                    (* sensor at its warning band: _stepped, _drift, _follow_field), no more *)
+                    IF MON_OUT_JUDGING[mon_set, mk] = 1 AND mon_min[mk] >= MON_OUT_WARN[mon_set, mk] THEN
+                        mon_ok := FALSE;
+                    END_IF;
+                    mon_x := mon_eu[mk] - mon_prev_eu[mk];
+                    IF mon_x < 0.0 THEN
+                        mon_x := -mon_x;
+                    END_IF;
+                    mon_off := mon_eu[mk];
+                    IF mon_off < 0.0 THEN
+                        mon_off := -mon_off;
+                    END_IF;
+                    IF mon_was >= 0 AND MON_OUT_SCALE[mon_set, mk] > 0.0 THEN
+                        IF mon_x >= MON_OUT_ALARM[mon_set, mk] AND mon_off >= MON_OUT_ALARM[mon_set, mk] THEN
+                            mon_ok := FALSE;
+                        END_IF;
+                    END_IF;
+                    mon_prev_eu[mk] := mon_eu[mk];
                 END_IF;
             END_FOR;
-            IF mon_best < MON_BACK_BAND[mon_was] THEN
+            IF mb >= 0 AND mb < MON_BLINDS AND mon_ok THEN
+                mon_zbest := mon_z[MON_BLIND[mb]];
+                mon_take_set := mb;
+            ELSIF mb = MON_BLINDS AND NOT mon_ok THEN
+                mon_lost := TRUE;
+                mon_held := -1;
+            END_IF;
+        END_IF;
+    END_FOR;
+    IF mon_was >= 0 AND mon_held >= 0 AND NOT mon_lost THEN
+        (* (st95b) the C's BACK of the one out: calm for its wait, a full window counted, and *)
+        (* on every row of the window, with every sensor in, its error within MON_BACK_BAND *)
+        (* (st96: one out by BLIND_OUT, every judged sensor's within its warning band) *)
+        mon_calm := mon_calm + 1;
+        IF mon_calm >= mon_dwell AND mon_count + 1 >= MON_WINDOW AND mon_run = 0 THEN
+            mon_ok := TRUE;
+            FOR mr := 0 TO MON_WINDOW - 1 DO
+                FOR mk := 0 TO MON_N - 1 DO
+                    mon_ev := mk = mon_was;
+                    mon_lim := MON_BACK_BAND[mk];
+                    IF mon_held_set >= 0 THEN
+                        mon_ev := MON_SCALE[mk] > 0.0;
+                        mon_lim := MON_WARN[mk];
+                    END_IF;
+                    IF mon_ev THEN
+                        mon_x := 0.0;
+                        FOR mj := 0 TO MON_N - 1 DO
+                            mon_x := mon_x + MON_SELF[mk, mj] * mon_ring[mr, mj];
+                        END_FOR;
+                        mon_off := (mon_ring[mr, mk] - mon_x) * MON_SCALE[mk];
+                        IF mon_off < 0.0 THEN
+                            mon_off := -mon_off;
+                        END_IF;
+                        IF mon_off >= mon_lim THEN
+                            mon_ok := FALSE;
+                        END_IF;
+                    END_IF;
+                END_FOR;
+            END_FOR;
+            IF mon_ok THEN
                 mon_held := -1;
             END_IF;
         END_IF;
@@ -536,4 +854,5 @@ END_IF;
 def declarations(n_inputs: int, watch: dict, dims) -> str:
     """The block's monitor memory (``VAR``), sized by its inputs and monitored sensors."""
     n = len(watch.get("inputs", []))
-    return VARS.format(nm=dims(n), n=dims(n_inputs), ring=dims(max(int(watch.get("window", 1)), 1), n))
+    w = max(int(watch.get("window", 1)), 1)
+    return VARS.format(nm=dims(n), n=dims(n_inputs), ring=dims(w, n), settle=dims(2 * w, n), w=dims(w))

@@ -1,0 +1,68 @@
+"""The Structured Text block takes out, as the C's drift judgement does, a sensor no other
+predicts that explains the others' errors (``BLIND_OUT``), holds it out alone to the C's ``BACK``
+and judges on (st96, issue 34): before st96 the block did not see the C's exclusion and judged
+the field as whole while the C held the sensor out.
+
+lr9132 (``thermocomp simulate sim=long_record``, seed 9132, 3 days), MLR deployed adaptive with
+``data.reference=none``, its first 1100 fed rows, as tests/shell/test_export_st95b.py
+(benchmarks/bench_st96.py scores the rule on fresh records)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from test_export import TOLERANCE_UM, StructuredText
+from test_export_st94 import FAULT, record  # noqa: F401 (the module's fixture)
+from thermocomp.apps.deploy.export import Simulator
+from thermocomp.apps.deploy.export.watch import BAND, BLIND_OUT, EXCLUDED, READMITTED, RULES, STEP_OUT
+
+BLIND = "T_spindle_rear"     # one no other predicts (lr9132)
+START, RISE, HOLD, RISE_C = 600, 20, 30, 6.0    # a smooth bump of it, +6 °C for 30 rows
+PULSE = FAULT - 60           # then st95b's one-row step (2.9 x its largest training step)
+
+
+def _stepped(ss, block, frame):
+    """Per row: the block's corrections, ``(mon_flag, mon_rule, mon_sensor)`` and the sensor it
+    holds out (``mon_held``, -1 none; ``mon_lost``: its judgement ended); the C mirror's
+    corrections and ``(flags, rule, sensor)``."""
+    fb, sim = StructuredText(block), Simulator(ss)
+    sim.reset()
+    st, st_said, held, c, c_said = [], [], [], [], []
+    for i, (u, t) in enumerate(zip(frame[ss.inputs].to_numpy(float), frame["time"])):
+        st.append(fb(u, t, i == 0))
+        v = fb.vars
+        st_said.append((bool(v["mon_flag"]), int(v["mon_rule"]), int(v["mon_sensor"])))
+        held.append(-2 if v["mon_lost"] else int(v["mon_held"]))
+        c.append(sim.step(u, t))
+        c_said.append((int(sim.watch.flags) & ~BAND, int(sim.watch.rule), int(sim.watch.sensor)))
+    return np.array(st), st_said, held, np.array(c), c_said
+
+
+def test_the_block_takes_out_a_blind_sensor_as_the_c_and_follows_its_back(record):  # noqa: F811
+    deployed, ss, frame, block = record
+    k = [ss.inputs[i] for i in ss.monitor["inputs"]].index(BLIND)
+    df = frame.copy()
+    rise = RISE_C * (1 - np.cos(np.pi * np.arange(RISE) / RISE)) / 2
+    bump = np.concatenate([rise, np.full(HOLD, RISE_C), rise[::-1]])
+    df.loc[START:START + len(bump) - 1, BLIND] += bump
+    df.loc[PULSE:PULSE, BLIND] += 2.9 * float(deployed.monitor.max_step_c[k])
+    st, st_said, held, c, c_said = _stepped(ss, block, df.iloc[:FAULT])
+    # the C's first event: BLIND_OUT of the bumped sensor (it explains the others' errors)
+    out = next(i for i, s in enumerate(c_said) if s[1])
+    assert START < out < START + len(bump) and c_said[out][0] & EXCLUDED
+    assert c_said[out][1:] == (BLIND_OUT, k)
+    assert np.max(np.abs(st[:out] - c[:out])) <= TOLERANCE_UM
+    # the block names it at its row (before st96: nothing) and holds it out
+    assert st_said[out] == (True, BLIND_OUT, k)
+    # the C's BACK of it after its wait, no other C event between
+    back = next(i for i in range(out + 1, PULSE) if c_said[i][1])
+    assert back > out + ss.monitor["window"]
+    assert c_said[back][0] & READMITTED and (RULES[c_said[back][1]], c_said[back][2]) == ("BACK", k)
+    # the block held it out up to that row and lets it back there, judging on
+    assert held[out:back] == [k] * (back - out) and held[back] == -1
+    # back in, the block = the C again (the C served its fallback while it was out)
+    assert np.max(np.abs(st[back:PULSE] - c[back:PULSE])) <= TOLERANCE_UM
+    # the pulse: the C's STEP_OUT, named alike by the block; no other block flag
+    assert c_said[PULSE][1] == STEP_OUT and st_said[PULSE] == (True, STEP_OUT, c_said[PULSE][2])
+    assert [i for i, s in enumerate(st_said[:PULSE + 1]) if s[0]] == [out, PULSE]
+    assert [i for i, s in enumerate(c_said[:PULSE]) if s[1]] == [out, back]
