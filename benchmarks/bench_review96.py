@@ -45,7 +45,31 @@ BAR (committed before any comparison's result below was read; no fresh seeds: no
     digit (NaN = NaN);
 (e) ``duplicates --change --base bd118abf``: no pair added by the change in what it touched.
 
-MEASURED: (see the end of this docstring once run)
+MEASURED (2026-12-06, 2 cores shared with 7 helpers, load ~14; bd118abf = ``git archive`` in
+/tmp/review96/base)
+---
+(a) MET.  11 files (cmon80, freeze84, mon85b, settled94b, mon86, settled95; cmon83/84/85/86/91
+    through ``assert_packed_as_served``): 33 passed on bd118abf, 33 passed here, test by test
+    (134.9 -> 140.8 s CPU; 812 / 684 s wall); cmon80's other importers (cmon82/82b/82c/87, mon88,
+    quiet94c, rounding83) collect (15 tests); lint + benchmarks_cli 615 passed -> 619 passed
+    (bench_review96's usage and documented-commands cases, the two new root tests).
+(b) MET.  bd118abf: ``-n 0`` 9 passed, ``--dist load`` 1 failed 8 passed, ``--dist loadfile`` 9
+    passed, ``-k ray`` 1 failed (the ray case each time); here 9 / 9 / 9 / 1 passed.  With
+    test_extras46.py beside it, ``--dist load``: 15 passed on both (the case not first on a worker).
+(c) MET.  bd118abf's ``_root``: faults.json kept by ``faults``, deleted by a second ``healthy``;
+    here kept by both (``keep``: 0.3 s CPU).
+(d) MET.  Seed 9709 x mlr / arx / lagbank: dep95 3 cells x 165 arrays, env94 3 x 40, max|A-B| 0,
+    the printed lines the same (dep95 cache 106.9 / 114.3 s CPU base / here, env94 94.4 / 91.4);
+    dep95's rows also = dep95's own seen rows of 9709 (34af1fcb's src), 0.  data92's ``_stage``
+    and data95's ``_given`` on seen lab 4242 (contract, mlr), base / here: the same returned
+    figures (json byte-equal), C corrections equal (1441 x 2), the written raw files byte-equal
+    (rawend, rawtmp, rawtemp, rawhora25); 25.7 / 25.9 s CPU.
+(e) MET.  ``duplicates --change --base bd118abf``: no duplicates the change adds; the whole tree
+    402 -> 393 pairs.  Left, shape only: audit93's ``lab`` loop ~ data95's ``score`` loop (other
+    prints; audit93 counts its test rows itself, round(0.25 n), so sharing would move its
+    numbers); jump94 ~ jump94b (jump94b's docstring quotes jump94's bar on purpose).
+
+VERDICT: KEPT (tests and benches only; src untouched).
 """
 
 from __future__ import annotations
