@@ -55,19 +55,21 @@ def made_folder(word: str) -> Path:
     return folder
 
 
-def project_root(word: str) -> Path:
+def project_root(word: str, conf: Path | None = None) -> Path:
     """The scratch project root ``word`` names, for the stages a command runs in this process:
-    made where missing, the measured tree's ``conf/`` (the one beside the ``thermocomp`` on
-    ``PYTHONPATH``) linked in where no ``conf`` is, ``THERMOCOMP_ROOT`` set to it.  What an
-    earlier command wrote there is kept: a command that must start clean removes its own output
-    (review95: ``bench_mon88``'s root was made anew, and a second command into the same ROOT
-    deleted the first's output -- jump94b's ``trace-main.json`` under ``healthy``)."""
+    made where missing, ``conf`` (default: the measured tree's ``conf/``, the one beside the
+    ``thermocomp`` on ``PYTHONPATH``) linked in where no ``conf`` is, ``THERMOCOMP_ROOT`` set to
+    it.  What an earlier command wrote there is kept: a command that must start clean removes its
+    own output (review95: ``bench_mon88``'s root was made anew, and a second command into the same
+    ROOT deleted the first's output -- jump94b's ``trace-main.json`` under ``healthy``; review96:
+    bench_audit89's ``healthy`` and the one-command sweeps of audit86b, auto86b, deploy87/88,
+    deployed_as_scored59 and export_atiprod65 the same)."""
     import os
 
     import thermocomp
 
     root = made_folder(word)
     if not (root / "conf").exists():
-        (root / "conf").symlink_to(Path(thermocomp.__file__).resolve().parents[2] / "conf")
+        (root / "conf").symlink_to(conf or Path(thermocomp.__file__).resolve().parents[2] / "conf")
     os.environ["THERMOCOMP_ROOT"] = str(root)
     return root

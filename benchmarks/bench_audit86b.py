@@ -5,7 +5,8 @@ Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is
 
     python benchmarks/bench_audit86b.py sweep ROOT [RECORD|FAMILY ...]   # the table below
 
-``sweep``: in a scratch project root ROOT (made anew, the tree's ``conf/`` linked in;
+``sweep``: in a scratch project root ROOT (made where missing,
+what an earlier command wrote kept -- made anew until review96 --; the tree's ``conf/`` linked in;
 ``THERMOCOMP_ROOT``), per record of :data:`RECORDS` (``simulate`` with this stop's seeds) and per
 family (:data:`FAMILIES`) x wrapper (none, ``ati=cmeans``: the only wrapper ``conf/`` holds; the
 door is a state input of ``arx_rf``, a diagnosed model is ``diagnose``'s, not ``run``'s):
@@ -160,7 +161,6 @@ from __future__ import annotations
 import contextlib
 import io
 import json
-import os
 import shutil
 import subprocess
 import sys
@@ -172,7 +172,7 @@ import pandas as pd
 HERE = Path(__file__).resolve().parent
 REPO = HERE.parent
 sys.path[:0] = [str(HERE)]
-from _cli import run_commands  # noqa: E402
+from _cli import project_root, run_commands  # noqa: E402
 from cpu import cpu_seconds  # noqa: E402
 
 # this stop's seeds (9031-9045): a climate room (12 runs at their own ambient: ATI applies) and
@@ -376,11 +376,7 @@ def cell(root: Path, record: str, family: str, wrapper: str, data: Path) -> dict
 
 
 def sweep(root: Path, chosen: list[str]) -> None:
-    os.environ["THERMOCOMP_ROOT"] = str(root)
-    if root.exists():
-        shutil.rmtree(root)
-    root.mkdir(parents=True)
-    (root / "conf").symlink_to(REPO / "conf")
+    project_root(str(root), REPO / "conf")      # kept: made anew until review96
     records = [r for r in RECORDS if r in chosen] or list(RECORDS)
     families = [f for f in FAMILIES if f in chosen] or list(FAMILIES)
     cols = ["run", "batch", "replay", "promo", "C", "C+run", "C-json", "pack", "events", "cpu"]

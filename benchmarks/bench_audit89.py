@@ -12,7 +12,8 @@ the machine ``KINDS[(s - 9316) % 6]`` (:data:`KINDS`, ``thermocomp simulate`` as
 every simulator kind but ``long_record`` / ``climate_room``, which mon81..mon88 tuned on;
 large_mill_week cut to 72 h train + 48 h test and the fleet to one machine of 8 days, 2 of them
 test, so that a record runs in seconds).  Every stage is the CLI's (in process; ``ROOT`` made
-anew by ``healthy``, ``conf/`` linked in, ``THERMOCOMP_ROOT``), model ``mlr``, deployed adaptive
+where missing, what an earlier command wrote there kept -- until review96 ``healthy`` made it
+anew --, ``conf/`` linked in, ``THERMOCOMP_ROOT``), model ``mlr``, deployed adaptive
 as by default.
 
 ``healthy``: per record ``simulate`` -> ``run`` -> ``monitor`` (``monitor.model`` = run's
@@ -148,7 +149,6 @@ sensor the others predict (fl's ``T_t11``).
 from __future__ import annotations
 
 import json
-import os
 import shutil
 import subprocess
 import sys
@@ -159,7 +159,7 @@ import pandas as pd
 
 HERE = Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE)]
-from _cli import run_commands, seed_list  # noqa: E402
+from _cli import project_root, run_commands, seed_list  # noqa: E402
 from bench_deploy87 import stage  # noqa: E402
 
 FIRST = 9316
@@ -254,15 +254,11 @@ def _named(event: dict) -> list:
     return [event.get("sensor"), *(event.get("sensors") or [])]
 
 
-def _root(word: str, fresh: bool) -> Path:
-    root = Path(word).resolve()
-    if fresh and root.exists():
-        shutil.rmtree(root)
-    root.mkdir(parents=True, exist_ok=True)
-    if not (root / "conf").exists():
-        (root / "conf").symlink_to(HERE.parent / "conf")
-    os.environ["THERMOCOMP_ROOT"] = str(root)
-    return root
+def _root(word: str) -> Path:
+    """The scratch project root (:func:`_cli.project_root`, this tree's ``conf/`` linked in):
+    made where missing, what an earlier command wrote there kept (until review96 ``healthy``
+    made it anew, deleting what another command had written)."""
+    return project_root(word, HERE.parent / "conf")
 
 
 def healthy_record(root: Path, record: str) -> dict:
@@ -300,7 +296,7 @@ def healthy_record(root: Path, record: str) -> dict:
 
 def healthy(root: str, records: str) -> None:
     """Healthy records (module doc) -> ROOT/healthy.json."""
-    folder = _root(root, fresh=True)
+    folder = _root(root)
     rows = []
     print(f"{'record':<14}{'h':>7}{'events':>8}{'/h':>8}{'sensor':>8}{'excl':>6}{'new':>5}{'replay':>8}"
           f"{'fixed':>9}{'adaptive':>9}{'rc':>4}  cuts / note", flush=True)
@@ -426,7 +422,7 @@ def fault_record(root: Path, record: str) -> list[dict]:
 
 def faults(root: str, records: str) -> None:
     """Faulted copies of the healthy records (module doc) -> ROOT/faults.json."""
-    folder = _root(root, fresh=False)
+    folder = _root(root)
     rows = []
     print(f"{'record':<14}{'fault':<9}{'sensor':<18}{'det':>4}{'delay':>10}{'healthy':>9}{'fixed':>9}"
           f"{'adaptive':>9}{'rc':>4}  C cut", flush=True)

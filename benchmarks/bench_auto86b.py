@@ -4,8 +4,9 @@ Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is
 
     python benchmarks/bench_auto86b.py trace ROOT [RECORD ...]   # the tables below
 
-``trace``: in a scratch project root ROOT (made anew, the tree's ``conf/`` linked in), per record
-of :data:`RECORDS` (``simulate``), ``run model=auto`` with the candidates of bench_audit86b
+``trace``: in a scratch project root ROOT (made where missing,
+what an earlier command wrote kept -- made anew until review96 --; the tree's ``conf/`` linked
+in), per record of :data:`RECORDS` (``simulate``), ``run model=auto`` with the candidates of bench_audit86b
 (``mlr, pcr, arx, lagbank, hammerstein, ati``) and ``keep_oof=true``, every fold model auto fits
 recorded as it is fitted (``clone`` wrapped: nothing else changes).  Per target: each candidate's
 pooled validation RMSE, the kept weights, then per validation fold (blocked forward: the train
@@ -136,7 +137,7 @@ import pandas as pd
 HERE = Path(__file__).resolve().parent
 REPO = HERE.parent
 sys.path[:0] = [str(HERE)]
-from _cli import run_commands  # noqa: E402
+from _cli import project_root, run_commands  # noqa: E402
 
 # cr9031: bench_audit86b's record; cr9012: bench_audit86's (auto kept mlr + ATI there);
 # cr9076 / cr9077: this stop's fresh draws (seeds 9076-9085), the cr9031 settings
@@ -203,11 +204,7 @@ def fitted_folds(run) -> list:
 def trace(root: Path, chosen: list[str]) -> None:
     from thermocomp.shell.model_store import load_model
 
-    os.environ["THERMOCOMP_ROOT"] = str(root)
-    if root.exists():
-        shutil.rmtree(root)
-    root.mkdir(parents=True)
-    (root / "conf").symlink_to(REPO / "conf")
+    project_root(str(root), REPO / "conf")      # kept: made anew until review96
     for record in [r for r in RECORDS if r in chosen] or list(RECORDS):
         data, out = root / "data" / record, root / "reports" / record
         assert stage("simulate", *RECORDS[record], f"data.path={data}") == 0

@@ -119,7 +119,7 @@ def _print(row: dict) -> None:
 
 def seen(audit_root: str, out: str) -> None:
     """bench_audit89's six range-faulted copies exported and checked (module doc)."""
-    src, folder = Path(audit_root).resolve(), _root(out, fresh=False)
+    src, folder = Path(audit_root).resolve(), _root(out)
     rows = []
     for record in SEEN:
         label = label_of(record)
@@ -153,7 +153,7 @@ def _fresh_record(root: Path, record: str) -> dict:
 
 def fresh(root: str, seeds: str) -> None:
     """Fresh records with the range fault on their costliest sensor (module doc)."""
-    folder = _root(root, fresh=False)
+    folder = _root(root)
     rows = []
     for record in seed_list(seeds):
         row = _fresh_record(folder, str(record))

@@ -159,28 +159,12 @@ def _stage(base: Path, label: str, family: str, keys: tuple[str, ...]) -> dict:
     if done.returncode:
         return {"said": f"run exit {done.returncode}: {_refusal(done)}"}
     run = json.loads((out / "metrics.json").read_text())["targets"]
-    done = _cli("replay", *search, f"replay.model={out / 'model.pkl'}", f"out={out}-replay")
-    if done.returncode:
-        return {"said": f"replay exit {done.returncode}: {_refusal(done)}"}
-    rep = json.loads((base / f"{label}-{family}-replay" / "replay.json").read_text())["targets"]
-    done = _cli("replay", *search, f"replay.model={out / 'model.pkl'}", f"out={out}-plain",
-                "monitor.adaptive=false", "promote.envelope.policy=off")
-    plain = json.loads((base / f"{label}-{family}-plain" / "replay.json").read_text())["targets"] \
-        if not done.returncode else {}
-    c_dir = base / f"{label}-{family}-c"
-    done = _cli("export", *search, f"export.model={out / 'model.pkl'}", "export.format=c",
-                "export.check=true", f"out={c_dir}")
-    if done.returncode:
-        return {"said": f"export exit {done.returncode}: {_refusal(done)}"}
-    subprocess.run(["gcc", "-O2", "compensator.c", "stream.c", "-lm", "-o", "stream"], cwd=c_dir,
-                   check=True, capture_output=True)
-    pack = subprocess.run(["sh", "check/check.sh"], cwd=c_dir, capture_output=True, text=True)
-    with path.open("rb") as raw:
-        fed = subprocess.run([str(c_dir / "stream")], stdin=raw, capture_output=True)
-    row = {"said": f"init 0, run 0, replay 0, export 0, pack {pack.returncode}, C {fed.returncode}",
-           "run": {t: v["test"]["rmse"] for t, v in run.items()},
-           "replay": {t: v["rmse"] for t, v in rep.items()},
-           "plain": {t: v["rmse"] for t, v in plain.items()},
+    row = deployed_and_fed(search, out, path, pack=True)
+    if "fed" not in row:
+        return row
+    fed, rep = row.pop("fed"), row.pop("rep")
+    row = {"said": f"init 0, run 0, replay 0, export 0, pack {row.pop('pack')}, C {fed.returncode}",
+           "run": {t: v["test"]["rmse"] for t, v in run.items()}, **row,
            # the rows the run held out, as the reader counts them (dep93: a count of the bench's
            # own, round(0.25 n) -- half to even --, took 14 of seed 9559's 58 rows, the reader 15)
            "n_test": next(iter(rep.values()))["n_samples"]}
@@ -189,6 +173,39 @@ def _stage(base: Path, label: str, family: str, keys: tuple[str, ...]) -> dict:
         return row
     row["C"] = pd.read_csv(io.BytesIO(fed.stdout))
     return row
+
+
+def deployed_and_fed(search: list[str], out: Path, path: Path, pack: bool = False) -> dict:
+    """``OUT/model.pkl`` replayed (adaptive, and plain: no monitor, no envelope) and exported as C
+    with its check pack (``export.check=true``; ``pack``: ``check/check.sh`` run), the C built
+    and fed the raw file ``path``, each stage with the overrides ``search``: ``{"said": why}`` at
+    the first refusal, else the replay and plain RMSE per target, ``rep`` (replay's targets),
+    ``fed`` (the C's run) and ``pack`` (check.sh's exit status, with ``pack``).  ``_stage``'s
+    part after ``run`` and bench_data95's ``_given`` (a model given, no init nor run)."""
+    model = out / "model.pkl"
+    done = _cli("replay", *search, f"replay.model={model}", f"out={out}-replay")
+    if done.returncode:
+        return {"said": f"replay exit {done.returncode}: {_refusal(done)}"}
+    rep = json.loads((out.parent / f"{out.name}-replay" / "replay.json").read_text())["targets"]
+    done = _cli("replay", *search, f"replay.model={model}", f"out={out}-plain",
+                "monitor.adaptive=false", "promote.envelope.policy=off")
+    plain = json.loads((out.parent / f"{out.name}-plain" / "replay.json").read_text())["targets"] \
+        if not done.returncode else {}
+    c_dir = out.parent / f"{out.name}-c"
+    done = _cli("export", *search, f"export.model={model}", "export.format=c",
+                "export.check=true", f"out={c_dir}")
+    if done.returncode:
+        return {"said": f"export exit {done.returncode}: {_refusal(done)}"}
+    subprocess.run(["gcc", "-O2", "compensator.c", "stream.c", "-lm", "-o", "stream"], cwd=c_dir,
+                   check=True, capture_output=True)
+    checked = {}
+    if pack:
+        checked["pack"] = subprocess.run(["sh", "check/check.sh"], cwd=c_dir, capture_output=True,
+                                         text=True).returncode
+    with path.open("rb") as raw:
+        fed = subprocess.run([str(c_dir / "stream")], stdin=raw, capture_output=True)
+    return {"replay": {t: v["rmse"] for t, v in rep.items()},
+            "plain": {t: v["rmse"] for t, v in plain.items()}, "rep": rep, "fed": fed, **checked}
 
 
 def _followed(said: str) -> tuple[str, ...]:

@@ -130,13 +130,19 @@ BLOCK = 60                    # rows per served block
 HOUR25_ROW = 20               # rawhora25's data row holding 25,25
 
 
-def write(root: str, seed: str) -> None:
-    """bench_audit93's lab exports of ``seed``, ``rawtemp.csv`` and ``rawhora25.csv``."""
+def lab_rawpair(root: str, seed: str) -> tuple[Path, list[str], list[str]]:
+    """bench_audit93's lab exports of ``seed`` written to ``ROOT/lab<seed>``: that folder, and
+    ``rawpair.csv``'s header cells and data lines (the files a bench re-heads; data95's too)."""
     base = made_folder(root) / f"lab{seed}"
     base.mkdir(exist_ok=True)
     write_lab(base, int(seed))
     head, *body = _lines(base, "rawpair.csv")
-    cells = head.split(";")
+    return base, head.split(";"), body
+
+
+def write(root: str, seed: str) -> None:
+    """bench_audit93's lab exports of ``seed``, ``rawtemp.csv`` and ``rawhora25.csv``."""
+    base, cells, body = lab_rawpair(root, seed)
     joined = [c.replace("Temp. ", "Temp._").replace(" [°C]", "").replace(" ", "_") + " [°C]"
               if c.startswith("Temp. ") else c for c in cells]
     _save(base / "rawtemp.csv", [";".join(joined), *body])

@@ -120,9 +120,9 @@ import yaml
 from _cli import made_folder, run_commands
 from bench_audit93 import lab_files as write_lab
 from bench_data88 import LIGHT, _cli, _refusal
-from bench_data92 import _stage, _targets
+from bench_data92 import _stage, _targets, deployed_and_fed
 from bench_data93 import _lines, _save
-from bench_data94 import session
+from bench_data94 import lab_rawpair, session
 
 FILES = ("contract", "rawpair", "rawend", "rawtmp")
 FAMILY = "mlr"
@@ -146,11 +146,7 @@ def _headers(cells: list[str], form) -> list[str]:
 
 def write(root: str, seed: str) -> None:
     """bench_audit93's lab exports of ``seed``, ``rawend.csv`` and ``rawtmp.csv``."""
-    base = made_folder(root) / f"lab{seed}"
-    base.mkdir(exist_ok=True)
-    write_lab(base, int(seed))
-    head, *body = _lines(base, "rawpair.csv")
-    cells = head.split(";")
+    base, cells, body = lab_rawpair(root, seed)
     end = _headers(cells, lambda k, n: f"{n} {END_WORDS[k % len(END_WORDS)]}")
     tmp = _headers(cells, lambda k, n: TMP_FORMS[k % len(TMP_FORMS)].format(n))
     _save(base / "rawend.csv", [";".join(end), *body])
@@ -313,33 +309,17 @@ def _config_as(base: Path, label: str, **keys) -> None:
 
 
 def _given(base: Path, label: str, family: str) -> dict:
-    """bench_data92's stage from replay on, ``label``'s model.pkl given (no init, no run)."""
-    import subprocess
+    """bench_data92's stage from replay on (its ``deployed_and_fed``), ``label``'s model.pkl
+    given (no init, no run)."""
+    import io
 
-    search, out = _search(base, label), base / f"{label}-{family}"
-    model = out / "model.pkl"
-    done = _cli("replay", *search, f"replay.model={model}", f"out={out}-replay")
-    if done.returncode:
-        return {"said": f"replay exit {done.returncode}: {_refusal(done)}"}
-    rep = json.loads((out.parent / f"{out.name}-replay" / "replay.json").read_text())["targets"]
-    done = _cli("replay", *search, f"replay.model={model}", f"out={out}-plain",
-                "monitor.adaptive=false", "promote.envelope.policy=off")
-    plain = json.loads((out.parent / f"{out.name}-plain" / "replay.json").read_text())["targets"] \
-        if not done.returncode else {}
-    c_dir = out.parent / f"{out.name}-c"
-    done = _cli("export", *search, f"export.model={model}", "export.format=c",
-                "export.check=true", f"out={c_dir}")
-    if done.returncode:
-        return {"said": f"export exit {done.returncode}: {_refusal(done)}"}
-    subprocess.run(["gcc", "-O2", "compensator.c", "stream.c", "-lm", "-o", "stream"], cwd=c_dir,
-                   check=True, capture_output=True)
-    with (base / f"{label}.csv").open("rb") as raw:
-        fed = subprocess.run([str(c_dir / "stream")], stdin=raw, capture_output=True)
-    row = {"said": f"replay 0, export 0, C {fed.returncode}",
-           "replay": {t: v["rmse"] for t, v in rep.items()},
-           "plain": {t: v["rmse"] for t, v in plain.items()}}
+    row = deployed_and_fed(_search(base, label), base / f"{label}-{family}", base / f"{label}.csv")
+    if "fed" not in row:
+        return row
+    fed = row.pop("fed")
+    row = {"said": f"replay 0, export 0, C {fed.returncode}", "replay": row["replay"],
+           "plain": row["plain"]}
     if not fed.returncode:
-        import io
         row["C"] = pd.read_csv(io.BytesIO(fed.stdout))
     return row
 

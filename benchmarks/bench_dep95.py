@@ -66,12 +66,11 @@ import numpy as np
 
 HERE = Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE)]
-import bench_env92 as env92  # noqa: E402
 import bench_env93b as env93b  # noqa: E402
-import bench_envelope_policy as envelope_policy  # noqa: E402
-from _cli import run_commands, seed_list  # noqa: E402
+import bench_env94 as env94  # noqa: E402
+from _cli import run_commands  # noqa: E402
 
-CASES = ("true",) + tuple(f"{k}:{s}" for s in env93b.SENSORS for k in env93b.KINDS)
+CASES = env94.CASES        # the true test campaign and bench_env93b's 10 fault cases
 RULES = ("off", "on")
 
 
@@ -119,49 +118,34 @@ def _recorded(deployed, frame) -> dict:
 
 def cache(root: str, seeds: str) -> None:
     """Per cell the recorded rows off / on of the true test campaign and each fault case:
-    ``ROOT/rows/<cell>.npz``."""
+    ``ROOT/rows/<cell>.npz`` (the cells and their deployed models: bench_env94's
+    ``deployed_cells``)."""
     from thermocomp.apps.deploy.report import stream_rows
-    from thermocomp.shell.builders import deployable_model
-    from thermocomp.shell.source import read_streamed
 
-    env92.draw(root, seeds)
-    base = Path(root)
-    (base / "rows").mkdir(exist_ok=True)
-    for seed in seed_list(seeds):
-        record = f"cms{seed}"
-        for fam in envelope_policy.FAMILIES:
-            path = base / "rows" / f"{record}-{fam}.npz"
-            if path.exists():
-                continue
-            out = {}
-            for rule in RULES:
-                cfg = env93b._config(f"data.path={base / 'data' / record}", "track=false",
-                                     "monitor.adaptive=true", f"{env93b.KEY}={str(rule == 'on').lower()}")
-                ds, train_ids, test_ids, _ = read_streamed(cfg)
-                deployed, _, _ = deployable_model(cfg, ds, train_ids,
-                                                  str(base / "fit" / f"{record}-{fam}" / "model.pkl"),
-                                                  "replay.model")
-                tid = test_ids[0]
-                true = ds.campaigns[tid]
-                for case in CASES:
-                    frame = true if case == "true" else env93b.planted(true, *case.split(":"))
-                    for k, v in _recorded(deployed, frame).items():
-                        out[f"{rule}|{case}|{k}"] = v
-                gap = np.abs(stream_rows(deployed, true, tid).y - out[f"{rule}|true|y"]).max()
-                assert gap < 1e-9, f"{record}-{fam} {rule}: recorded rows differ from replay's by {gap}"
-                out[f"{rule}|unclamped"] = np.array(deployed.streaming.unclamped_, dtype=str)
-                out[f"{rule}|fallbacks"] = np.array(sorted(deployed.fallbacks_), dtype=str)
-            targets = list(deployed.targets_)
-            comp = deployed.streaming.compensator
-            out["targets"] = np.array(targets, dtype=str)
-            out["inputs"] = np.array(comp.inputs_, dtype=str)
-            out["monitored"] = np.array(deployed.monitor.names, dtype=str)
-            out["measured"] = comp.measured({tid: true})[tid][targets].to_numpy(float)
-            out["lo"], out["hi"] = deployed.envelope.lo, deployed.envelope.hi
-            out["true_x"] = out["off|true|x"]
-            np.savez(path, **out)
-            print(record, fam, "unclamped", list(out["on|unclamped"]), "fallbacks",
-                  list(out["on|fallbacks"]), flush=True)
+    for record, fam, path, deployed_with in env94.deployed_cells(root, seeds):
+        out = {}
+        for rule in RULES:
+            deployed, ds, _, tid = deployed_with(rule == "on")
+            true = ds.campaigns[tid]
+            for case in CASES:
+                frame = true if case == "true" else env93b.planted(true, *case.split(":"))
+                for k, v in _recorded(deployed, frame).items():
+                    out[f"{rule}|{case}|{k}"] = v
+            gap = np.abs(stream_rows(deployed, true, tid).y - out[f"{rule}|true|y"]).max()
+            assert gap < 1e-9, f"{record}-{fam} {rule}: recorded rows differ from replay's by {gap}"
+            out[f"{rule}|unclamped"] = np.array(deployed.streaming.unclamped_, dtype=str)
+            out[f"{rule}|fallbacks"] = np.array(sorted(deployed.fallbacks_), dtype=str)
+        targets = list(deployed.targets_)
+        comp = deployed.streaming.compensator
+        out["targets"] = np.array(targets, dtype=str)
+        out["inputs"] = np.array(comp.inputs_, dtype=str)
+        out["monitored"] = np.array(deployed.monitor.names, dtype=str)
+        out["measured"] = comp.measured({tid: true})[tid][targets].to_numpy(float)
+        out["lo"], out["hi"] = deployed.envelope.lo, deployed.envelope.hi
+        out["true_x"] = out["off|true|x"]
+        np.savez(path, **out)
+        print(record, fam, "unclamped", list(out["on|unclamped"]), "fallbacks",
+              list(out["on|fallbacks"]), flush=True)
 
 
 def _cells(root: str) -> dict:

@@ -6,7 +6,8 @@ Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is
 
     python benchmarks/bench_deploy87.py sweep ROOT [RECORD|CELL ...]   # the table below
 
-``sweep``: in a scratch project root ROOT (made anew, the measured tree's ``conf/`` linked in;
+``sweep``: in a scratch project root ROOT (made where missing,
+what an earlier command wrote kept -- made anew until review96 --; the measured tree's ``conf/`` linked in;
 ``THERMOCOMP_ROOT``), per record of :data:`RECORDS` (``simulate``) and per cell of :data:`CELLS`
 (family x wrapper): ``run`` -> ``replay`` of its ``model.pkl`` (the default stream: after the
 campaign the test part continues, as ``run`` scores it) and, where the tree has it,
@@ -97,8 +98,6 @@ from __future__ import annotations
 import contextlib
 import io
 import json
-import os
-import shutil
 import sys
 from pathlib import Path
 
@@ -106,7 +105,7 @@ import numpy as np
 
 HERE = Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE)]
-from _cli import run_commands  # noqa: E402
+from _cli import project_root, run_commands  # noqa: E402
 from cpu import cpu_seconds  # noqa: E402
 
 # audit86b's lr9032 (reproduced: the finding's record) and this stop's fresh draw 9171 (deploy87's
@@ -169,13 +168,7 @@ def cell(root: Path, record: str, name: str, data: Path) -> dict:
 
 
 def sweep(root: Path, chosen: list[str]) -> None:
-    import thermocomp
-
-    os.environ["THERMOCOMP_ROOT"] = str(root)
-    if root.exists():
-        shutil.rmtree(root)
-    root.mkdir(parents=True)
-    (root / "conf").symlink_to(Path(thermocomp.__file__).resolve().parents[2] / "conf")
+    project_root(str(root))                     # kept: made anew until review96
     records = [r for r in RECORDS if r in chosen] or list(RECORDS)
     cells = [c for c in CELLS if c in chosen] or list(CELLS)
     cols = ["run", "replay", "again", "cold", "ev", "cpu"]

@@ -6,7 +6,8 @@ Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is
 
     python benchmarks/bench_deploy88.py sweep ROOT [RECORD|FAMILY ...]   # the table below
 
-``sweep``: in a scratch project root ROOT (made anew, this tree's ``conf/`` linked in;
+``sweep``: in a scratch project root ROOT (made where missing,
+what an earlier command wrote kept -- made anew until review96 --; this tree's ``conf/`` linked in;
 ``THERMOCOMP_ROOT``), per record of :data:`RECORDS` (``simulate`` with this stop's seeds
 9211-9215; the ``dl`` records re-cut by :func:`day_files`) and per family (:data:`FAMILIES`,
 every ``conf/model/``) x wrapper (none, ``ati=cmeans``: the only wrapper ``conf/ati`` offers;
@@ -150,8 +151,6 @@ hammerstein 1.139 -> 3.182, auto 0.723 -> 1.796; dl9213 lagbank / hammerstein 0.
 from __future__ import annotations
 
 import json
-import os
-import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -162,7 +161,7 @@ import pandas as pd
 HERE = Path(__file__).resolve().parent
 REPO = HERE.parent
 sys.path[:0] = [str(HERE)]
-from _cli import run_commands  # noqa: E402
+from _cli import project_root, run_commands  # noqa: E402
 from bench_audit86b import batch, compiled, last_run_id, stage, test_frames  # noqa: E402
 from cpu import cpu_seconds  # noqa: E402
 
@@ -316,11 +315,7 @@ def sweep(root: Path, chosen: list[str], records: dict | None = None, run_cell=N
     names none) and family x wrapper, ``run_cell`` (default :func:`cell`) printed in ``columns``
     (deploy89's bench runs its own cell on its records through this)."""
     records_all, run_cell, columns = records or RECORDS, run_cell or cell, columns or COLUMNS
-    os.environ["THERMOCOMP_ROOT"] = str(root)
-    if root.exists():
-        shutil.rmtree(root)
-    root.mkdir(parents=True)
-    (root / "conf").symlink_to(REPO / "conf")
+    project_root(str(root), REPO / "conf")      # kept: made anew until review96
     records = [r for r in records_all if r in chosen] or list(records_all)
     families = [f for f in FAMILIES if f in chosen] or list(FAMILIES)
     print(f"{'cell':<24}" + "".join(f"{c:>10}" for c in columns) + "  note", flush=True)

@@ -20,7 +20,8 @@ reference (``Simulator``).  Columns (µm):
 - ``C rmse`` against ``promote``'s ``test_reported`` RMSE ("as deployed") and ``replay``'s.
 
 Run: ``.venv/bin/python benchmarks/bench_deployed_as_scored59.py [ROOT] [FAMILY ...]``
-(ROOT default ``/tmp/deploy59-bench``, made anew).  Measured 2026-11-30 (stop 59, 166 s of CPU,
+(ROOT default ``/tmp/deploy59-bench``, made where missing: made anew until review96).  Measured
+2026-11-30 (stop 59, 166 s of CPU,
 2 shared cores; climate_room seed 5901, 12 runs of 3-4 h, test C10-C12 starting at 26.4 / 23.2 /
 30.0 °C ambient)::
 
@@ -57,7 +58,6 @@ import contextlib
 import io
 import json
 import os
-import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -69,6 +69,8 @@ REPO = Path(__file__).resolve().parents[1]
 ROOT = Path(sys.argv[1]) if len(sys.argv) > 1 and "/" in sys.argv[1] else Path("/tmp/deploy59-bench")
 os.environ["THERMOCOMP_ROOT"] = str(ROOT)          # before thermocomp resolves its root
 sys.path[:0] = [str(REPO / "tests"), str(REPO / "tests" / "shell")]
+
+from _cli import project_root  # noqa: E402
 
 from test_export import StructuredText  # noqa: E402  (the suite's ST transpiler)
 from thermocomp.apps.deploy.export import Simulator  # noqa: E402
@@ -195,10 +197,7 @@ def cell(family: str, wrapper: str, data: Path) -> dict:
 
 
 def main_bench() -> None:
-    if ROOT.exists():
-        shutil.rmtree(ROOT)
-    ROOT.mkdir(parents=True)
-    (ROOT / "conf").symlink_to(REPO / "conf")
+    project_root(str(ROOT), REPO / "conf")      # kept: made anew until review96
     data = ROOT / "data" / "cr"
     rc, said = stage("simulate", *SIM, f"data.path={data}")
     assert rc == 0, said

@@ -122,8 +122,10 @@ the count's blind spot (a sensor drifting while other inputs are still out).
 
 from __future__ import annotations
 
+import functools
 import sys
 from pathlib import Path
+from typing import Callable, Iterator
 
 import numpy as np
 
@@ -152,13 +154,12 @@ def _excess_recorder(stream) -> list:
     return rows
 
 
-def cache(root: str, seeds: str) -> None:
-    """Per cell the deployed rows off / on of the true test campaign and each fault case, the
-    measured error, and the model's simulation of its train campaigns: ``ROOT/rows/<cell>.npz``."""
-    from thermocomp.apps.deploy.report import stream_rows
-    from thermocomp.shell.builders import deployable_model
-    from thermocomp.shell.source import read_streamed
-
+def deployed_cells(root: str, seeds: str) -> Iterator[tuple[str, str, Path, Callable]]:
+    """bench_env92's ``draw ROOT SEEDS`` (cells drawn already not redone), then per cell (record x
+    family) whose ``ROOT/rows/<record>-<family>.npz`` is not there yet: ``(record, family, that
+    path, deployed)``, ``deployed(on)`` the cell's fitted model deployed as ``replay`` deploys it
+    (``monitor.adaptive=true``) with ``promote.envelope.per_target`` off / on, and ``(its dataset,
+    the train ids, the test campaign's id)`` -- the cells bench_dep95's ``cache`` records too."""
     env92.draw(root, seeds)
     base = Path(root)
     (base / "rows").mkdir(exist_ok=True)
@@ -166,40 +167,55 @@ def cache(root: str, seeds: str) -> None:
         record = f"cms{seed}"
         for fam in envelope_policy.FAMILIES:
             path = base / "rows" / f"{record}-{fam}.npz"
-            if path.exists():
-                continue
-            out = {}
-            for on in (False, True):
-                cfg = env93b._config(f"data.path={base / 'data' / record}", "track=false",
-                                     "monitor.adaptive=true", f"{env93b.KEY}={str(on).lower()}")
-                ds, train_ids, test_ids, _ = read_streamed(cfg)
-                deployed, _, _ = deployable_model(cfg, ds, train_ids,
-                                                  str(base / "fit" / f"{record}-{fam}" / "model.pkl"),
-                                                  "replay.model")
-                tid, comp = test_ids[0], deployed.streaming.compensator
-                true = ds.campaigns[tid]
-                seen = _excess_recorder(deployed.streaming)
-                for case in CASES:
-                    frame = true if case == "true" else env93b.planted(true, *case.split(":"))
-                    seen.clear()
-                    out[f"{'on' if on else 'off'}|{case}"] = stream_rows(deployed, frame, tid).y
-                    if on:
-                        out[f"excess|{case}"] = np.array(seen)
+            if not path.exists():
+                yield record, fam, path, functools.partial(_deployed, base, record, fam)
+
+
+def _deployed(base: Path, record: str, fam: str, on: bool) -> tuple:
+    from thermocomp.shell.builders import deployable_model
+    from thermocomp.shell.source import read_streamed
+
+    cfg = env93b._config(f"data.path={base / 'data' / record}", "track=false",
+                         "monitor.adaptive=true", f"{env93b.KEY}={str(on).lower()}")
+    ds, train_ids, test_ids, _ = read_streamed(cfg)
+    deployed, _, _ = deployable_model(cfg, ds, train_ids,
+                                      str(base / "fit" / f"{record}-{fam}" / "model.pkl"), "replay.model")
+    return deployed, ds, train_ids, test_ids[0]
+
+
+def cache(root: str, seeds: str) -> None:
+    """Per cell the deployed rows off / on of the true test campaign and each fault case, the
+    measured error, and the model's simulation of its train campaigns: ``ROOT/rows/<cell>.npz``."""
+    from thermocomp.apps.deploy.report import stream_rows
+
+    for record, fam, path, deployed_with in deployed_cells(root, seeds):
+        out = {}
+        for on in (False, True):
+            deployed, ds, train_ids, tid = deployed_with(on)
+            comp = deployed.streaming.compensator
+            true = ds.campaigns[tid]
+            seen = _excess_recorder(deployed.streaming)
+            for case in CASES:
+                frame = true if case == "true" else env93b.planted(true, *case.split(":"))
+                seen.clear()
+                out[f"{'on' if on else 'off'}|{case}"] = stream_rows(deployed, frame, tid).y
                 if on:
-                    targets = list(deployed.targets_)
-                    out["unclamped"] = np.array(deployed.streaming.unclamped_, dtype=str)
-                    out["targets"] = np.array(targets, dtype=str)
-                    out["measured"] = comp.measured({tid: true})[tid][targets].to_numpy(float)
-                    out["time"] = true["time"].to_numpy(float)
-                    train = {c: ds.campaigns[c] for c in train_ids}
-                    pred = comp.predict(train)
-                    meas = comp.measured(train, pred)
-                    for c in train:
-                        out[f"train_pred|{c}"] = pred[c][targets].to_numpy(float)
-                        out[f"train_meas|{c}"] = meas[c][targets].to_numpy(float)
-                        out[f"train_time|{c}"] = train[c]["time"].to_numpy(float)
-            np.savez(path, **out)
-            print(record, fam, "unclamped", list(out["unclamped"]), flush=True)
+                    out[f"excess|{case}"] = np.array(seen)
+            if on:
+                targets = list(deployed.targets_)
+                out["unclamped"] = np.array(deployed.streaming.unclamped_, dtype=str)
+                out["targets"] = np.array(targets, dtype=str)
+                out["measured"] = comp.measured({tid: true})[tid][targets].to_numpy(float)
+                out["time"] = true["time"].to_numpy(float)
+                train = {c: ds.campaigns[c] for c in train_ids}
+                pred = comp.predict(train)
+                meas = comp.measured(train, pred)
+                for c in train:
+                    out[f"train_pred|{c}"] = pred[c][targets].to_numpy(float)
+                    out[f"train_meas|{c}"] = meas[c][targets].to_numpy(float)
+                    out[f"train_time|{c}"] = train[c]["time"].to_numpy(float)
+        np.savez(path, **out)
+        print(record, fam, "unclamped", list(out["unclamped"]), flush=True)
 
 
 def _load(path: Path) -> dict:

@@ -213,7 +213,9 @@ def main() -> None:
     if sys.argv[1:] == ["gantry61"]:
         gantry61(ROOT / "gantry61")
         return
-    shutil.rmtree(ROOT, ignore_errors=True)
+    # its own outputs only (review96: ROOT was removed whole, ``gantry61``'s folder with it)
+    for own in [ROOT / "data", *(ROOT / f"{f}-{int(i)}" for f in FAMILIES for i in (False, True))]:
+        shutil.rmtree(own, ignore_errors=True)
     data = _gantry(ROOT / "data", ROWS)
     print("family      interaction  |C-replay|  |ST-replay| |numpy-replay| max|C|  laws  "
           "c KB  CPU s  state gain moves  MAE ATI -> diagnosed")

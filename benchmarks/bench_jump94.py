@@ -184,6 +184,11 @@ ONSETS = (240, 556, 900)                # samples into the 1112-sample test part
 
 
 # -- the prototype rule, patched onto the monitor of this process only -------------------------
+# ``separation`` and ``_settled_limits`` are the arithmetic of src's settled.separation and
+# ``jump_factor`` x settled.largest_separation on the blind sensors (jump94b built them from these;
+# equal to the digit), but not imported: RULE=settled patches a tree from before jump94b
+# (4f0fc94a here, 51493fa9 as jump94b's main), which has no settled module; on a tree that has
+# it, the rule is already the tree's own (RULE=main) and the patch would apply it twice (review96).
 def separation(a: np.ndarray, w: int) -> np.ndarray:
     """Per sample t >= 2w-1 and column: how far the window ``a[t-w+1..t]`` lies wholly above or
     below the window before it (min of one less max of the other; negative where they overlap)."""

@@ -67,15 +67,15 @@ COMMAND_BENCHES = (
     "bench_nested63", "bench_pair70", "bench_pair82", "bench_pde66", "bench_pen0b69", "bench_perf87",
     "bench_perf87b", "bench_perf88", "bench_planted69", "bench_planted72", "bench_power78", "bench_quiet93",
     "bench_quiet93b", "bench_quiet94", "bench_quiet94b", "bench_quiet94c", "bench_range73", "bench_range77",
-    "bench_rate71", "bench_rate83", "bench_remeasure62", "bench_review95", "bench_rigdiag70",
-    "bench_settle95", "bench_settle96", "bench_speedsq68", "bench_st93", "bench_st93b", "bench_st94",
-    "bench_st94b", "bench_st95", "bench_st95b", "bench_st96", "bench_stable67", "bench_step93",
-    "bench_step93b", "bench_stranger63", "bench_stranger64", "bench_stranger65", "bench_stranger66",
-    "bench_stranger68", "bench_stranger69", "bench_stranger74", "bench_stranger75", "bench_stranger76",
-    "bench_stranger77", "bench_stranger78", "bench_stranger80", "bench_stranger81", "bench_stranger82",
-    "bench_stranger82b", "bench_stranger83", "bench_stranger84", "bench_sub71", "bench_sweepdvc63",
-    "bench_twolog70", "bench_verify82", "bench_volfleet63", "bench_volstranger66", "bench_within67",
-    "bench_zerocheck67", "bench_zerofew67", "bench_zerofold68",
+    "bench_rate71", "bench_rate83", "bench_remeasure62", "bench_review95", "bench_review96",
+    "bench_rigdiag70", "bench_settle95", "bench_settle96", "bench_speedsq68", "bench_st93", "bench_st93b",
+    "bench_st94", "bench_st94b", "bench_st95", "bench_st95b", "bench_st96", "bench_stable67",
+    "bench_step93", "bench_step93b", "bench_stranger63", "bench_stranger64", "bench_stranger65",
+    "bench_stranger66", "bench_stranger68", "bench_stranger69", "bench_stranger74", "bench_stranger75",
+    "bench_stranger76", "bench_stranger77", "bench_stranger78", "bench_stranger80", "bench_stranger81",
+    "bench_stranger82", "bench_stranger82b", "bench_stranger83", "bench_stranger84", "bench_sub71",
+    "bench_sweepdvc63", "bench_twolog70", "bench_verify82", "bench_volfleet63", "bench_volstranger66",
+    "bench_within67", "bench_zerocheck67", "bench_zerofew67", "bench_zerofold68",
 )
 
 # Run in the child: per bench, main([])'s status and what it printed, and, for every usage line of
@@ -219,3 +219,23 @@ def test_a_commands_project_root_keeps_what_an_earlier_command_wrote(tmp_path, m
     (root / "trace-main.json").write_text("{}")              # the first command's output
     assert _cli().project_root("a/root") == root                # the second command's root
     assert (root / "trace-main.json").read_text() == "{}" and (root / "conf").is_symlink()
+
+
+def test_a_project_root_links_the_conf_a_bench_names(tmp_path, monkeypatch):
+    # review96: the benches that linked their own tree's conf (audit86b, auto86b, deploy88,
+    # deployed_as_scored59, audit89) keep it through project_root
+    monkeypatch.setenv("THERMOCOMP_ROOT", "elsewhere")
+    conf = tmp_path / "bench-tree" / "conf"
+    conf.mkdir(parents=True)
+    root = _cli().project_root(str(tmp_path / "root"), conf)
+    assert (root / "conf").resolve() == conf.resolve()
+
+
+def test_audit89s_healthy_keeps_what_its_faults_command_wrote(tmp_path):
+    # before (review96): bench_audit89's ``healthy`` made ROOT anew (``_root(fresh=True)``),
+    # deleting what another command had written there
+    run = subprocess.run([sys.executable, str(BENCHMARKS / "bench_review96.py"), "keep",
+                          str(tmp_path / "root")], capture_output=True, text=True, cwd=tmp_path)
+    assert run.returncode == 0, run.stderr[-2000:]
+    assert "faults.json kept" in run.stdout and ": MET" in run.stdout
+    assert (tmp_path / "root" / "faults.json").read_text() == "{}"

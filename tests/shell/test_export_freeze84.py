@@ -19,10 +19,10 @@ import pytest
 
 import test_export
 from conftest import deployed_as_replay
-from test_export import CAMPAIGNS, built_stream, needs_cc
-from test_export_cmon80 import _streamed
-from thermocomp.apps.deploy.export import Simulator, exported_files, state_space
-from thermocomp.apps.deploy.export.pack import conformance_pack, corrections
+from test_export import CAMPAIGNS, needs_cc
+from test_export_cmon80 import streamed_as_served
+from thermocomp.apps.deploy.export import Simulator, state_space
+from thermocomp.apps.deploy.export.pack import corrections
 from thermocomp.apps.deploy.export.watch import (
     EXCLUDED,
     FREEZE,
@@ -105,12 +105,7 @@ def test_the_code_takes_a_sensor_back_from_a_freeze_where_the_served_monitor_doe
     got, moves = _mirror(ss, frame)
     assert moves == [(out, EXCLUDED, FREEZE), (back, READMITTED, THAWED)]
     assert np.max(np.abs(got - want)) < 1e-9
-    files, summary = conformance_pack(deployed, ss, {"K06": frame})
-    assert summary["campaigns"][0]["cut"] is None
-    stream = built_stream(tmp_path, {**exported_files(deployed, "c"), **files})
-    c, said = _streamed(stream, frame, ss.inputs)
-    assert c.shape == want.shape and np.max(np.abs(c - want)) < 1e-9        # every row
-    assert "not in the code" not in said
+    streamed_as_served(tmp_path, deployed, ss, "K06", frame, want)
 
 
 def test_an_export_before_freeze84_flags_the_return(served):

@@ -24,10 +24,10 @@ import numpy as np
 import pytest
 
 from conftest import fl_thermal_served
-from test_export import built_stream, needs_cc
-from test_export_cmon80 import _streamed
-from thermocomp.apps.deploy.export import Simulator, exported_files
-from thermocomp.apps.deploy.export.pack import conformance_pack, corrections
+from test_export import needs_cc
+from test_export_cmon80 import streamed_as_served
+from thermocomp.apps.deploy.export import Simulator
+from thermocomp.apps.deploy.export.pack import corrections
 from thermocomp.apps.deploy.export.watch import EXCLUDED, NOT_IN_CODE, READMITTED
 from thermocomp.apps.deploy.report import stream_rows
 
@@ -88,12 +88,7 @@ def test_a_culprit_out_within_its_band_is_back_within_it_served_mirror_and_c(ser
     assert not any(to == "ok" and r <= moves[1][0] for r, to, _ in before), before
     want = corrections(ss, run.y)
     assert np.max(np.abs(got - want)) < 1e-9
-    files, summary = conformance_pack(deployed, ss, {"K06": frame})
-    assert summary["campaigns"][0]["cut"] is None
-    stream = built_stream(tmp_path, {**exported_files(deployed, "c"), **files})
-    c, said = _streamed(stream, frame, ss.inputs)
-    assert c.shape == want.shape and np.max(np.abs(c - want)) < 1e-9        # every row
-    assert "not in the code" not in said
+    _, said = streamed_as_served(tmp_path, deployed, ss, "K06", frame, want)
     # the code's own word on the served rows (its line = the row + the header's)
     assert [int(m.split(":")[1].split()[-1]) - 1 for m in said.splitlines()
             if f"{CULPRIT}: re-admitted" in m][:1] == [moves[1][0]]

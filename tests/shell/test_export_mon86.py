@@ -13,11 +13,10 @@ import numpy as np
 
 import test_export
 from conftest import FL_THERMAL_MLR
-from test_export import built_stream, needs_cc
-from test_export_cmon80 import _streamed
+from test_export import needs_cc
+from test_export_cmon80 import streamed_as_served
 from test_export_mon85b import ONSET, served  # noqa: F401  (the module's fixture)
-from thermocomp.apps.deploy.export import exported_files
-from thermocomp.apps.deploy.export.pack import conformance_pack, corrections
+from thermocomp.apps.deploy.export.pack import corrections
 from thermocomp.apps.deploy.export.watch import CodeMonitor
 from thermocomp.apps.deploy.report import stream_rows
 from thermocomp.shell.source import read_streamed
@@ -74,9 +73,4 @@ def test_a_frozen_sensor_out_the_rest_judged_in_its_set_served_mirror_and_c(serv
     assert mon.excluded == ["T_t12"] and wider          # the set's bands judged the rest
     run = stream_rows(deployed, frame, "K06")
     want = corrections(ss, run.y)
-    files, summary = conformance_pack(deployed, ss, {"K06": frame})
-    assert summary["campaigns"][0]["cut"] is None
-    c, said = _streamed(built_stream(tmp_path, {**exported_files(deployed, "c"), **files}), frame,
-                        ss.inputs)
-    assert c.shape == want.shape and np.max(np.abs(c - want)) < 1e-9
-    assert "not in the code" not in said
+    streamed_as_served(tmp_path, deployed, ss, "K06", frame, want)

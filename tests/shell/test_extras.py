@@ -31,11 +31,34 @@ class _Absent:
 def _hide(monkeypatch, *modules: str) -> None:
     """Imports of ``modules`` fail with ModuleNotFoundError, as without their extra (what was
     imported already is put back after the test)."""
+    _unplug(monkeypatch, [m for m in modules if m.startswith("hydra_plugins.")])
     for name in list(sys.modules):
         if (any(name == m or name.startswith(m + ".") for m in modules)
                 or name == "thermocomp.core.models.lstm"):
             monkeypatch.delitem(sys.modules, name)
     monkeypatch.setattr(sys, "meta_path", [_Absent(modules), *sys.meta_path])
+
+
+def _unplug(monkeypatch, packages: list[str]) -> None:
+    """Hydra's plugin registry as where ``packages`` are not installed, whatever ran before in
+    this process: scanned now, before the finder hides them, and their classes taken out.
+
+    The scan imports each plugin module from its file, past ``sys.meta_path``: run after the
+    hiding (the first Hydra call of a fresh process: ``-n 2 --dist load`` gave the ray case a
+    worker of its own), it loaded the launcher's package half, and the sweep ended in its launch
+    with an ImportError of ``_core`` that names no extra (exit 1); run before it, the cached
+    launcher class was what the command used (review96)."""
+    if not packages:
+        return
+    from hydra.core.plugins import Plugins
+
+    plugins = Plugins.instance()
+    gone = [c for n, c in plugins.class_name_to_class.items() if n.startswith(tuple(packages))]
+    for name in [n for n, c in plugins.class_name_to_class.items() if c in gone]:
+        monkeypatch.delitem(plugins.class_name_to_class, name)
+    for kind, classes in list(plugins.plugin_type_to_subclass_list.items()):
+        monkeypatch.setitem(plugins.plugin_type_to_subclass_list, kind,
+                            [c for c in classes if c not in gone])
 
 
 def test_model_lstm_without_torch_names_the_lstm_extra(tmp_path, capsys, monkeypatch):
