@@ -1,0 +1,49 @@
+"""An Italian PC's export with a unit row (stop 96, benchmarks/bench_audit96.py ``lab``).
+
+Its speeds' unit ``giri/min`` (revolutions per minute) was no unit the reader knew: under the
+headers the unit row was then read as data, every column refused as text ("no column reads as
+a measured error ...; the numeric columns: 'Data e ora'"), and in a header (``[giri/min]``) the
+speed was left out as a unit of no sensor.  French ``tr/min`` and English ``rev/min`` alike.
+"""
+
+from __future__ import annotations
+
+import pytest
+import yaml
+
+from thermocomp.core.io.roles import contract_columns
+from thermocomp.shell.cli import main
+
+HEADERS = ["Data e ora", "Temperatura ambiente", "Temperatura testa motrice", "Errore X",
+           "Velocità mandrino", "Porta"]
+
+
+def lab_file(path, speed_unit: str):
+    """Excel's ``sep=;`` line, the headers, a unit row under them (``giri/min``, ``-``), 40 rows
+    a minute apart with offset timestamps, decimal commas and thousands dots (``5.000``)."""
+    rows = ["sep=;", ";".join(HEADERS), ";".join(["", "°C", "°C", "µm", speed_unit, "-"])]
+    for i in range(40):
+        rows.append(";".join([f"2027-03-27 21:{10 + i:02d}:00+01:00",
+                              f"{20 + 0.01 * i:.2f}".replace(".", ","),
+                              f"{21 + 0.05 * i:.2f}".replace(".", ","),
+                              f"{0.4 * i:.1f}".replace(".", ","),
+                              "5.000" if i % 10 < 5 else "3.000", str(i // 20)]))
+    path.write_text("\n".join(rows) + "\n", encoding="utf-8")
+    return path
+
+
+@pytest.mark.parametrize("unit", ["giri/min", "tr/min", "rev/min"])
+def test_a_unit_row_with_a_speed_in_the_labs_language_is_read(tmp_path, unit):
+    path = lab_file(tmp_path / "prova.csv", unit)
+    assert main(["init", str(path), "data.test_fraction=0.25", f"out={tmp_path / 'init'}"]) == 0
+    config = yaml.safe_load((tmp_path / "init" / "conf" / "data" / "prova.yaml").read_text())
+    assert config["roles"]["error"] == ["Errore X"]         # (refused before: the unit row as data)
+    assert config["roles"]["state"] == ["Velocità mandrino", "Porta"]
+    assert config["thousands"] == "."
+
+
+def test_a_header_in_giri_per_minute_is_a_state():
+    named = contract_columns(["t [s]", "T1 [°C]", "Errore X [µm]", "Velocità mandrino [giri/min]",
+                              "Vitesse broche [tr/min]"], {"error": ["Errore X"]})
+    assert named["Velocità mandrino [giri/min]"] == "S_Velocità_mandrino"     # (left out before)
+    assert named["Vitesse broche [tr/min]"] == "S_Vitesse_broche"
