@@ -3,7 +3,8 @@
 Its speeds' unit ``giri/min`` (revolutions per minute) was no unit the reader knew: under the
 headers the unit row was then read as data, every column refused as text ("no column reads as
 a measured error ...; the numeric columns: 'Data e ora'"), and in a header (``[giri/min]``) the
-speed was left out as a unit of no sensor.  French ``tr/min`` and English ``rev/min`` alike.
+speed was left out as a unit of no sensor.  French ``tr/min`` and English ``rev/min`` alike; and a
+unit row with a unit of no sensor (a coolant's ``l/min``) was read as data so too.
 """
 
 from __future__ import annotations
@@ -47,3 +48,14 @@ def test_a_header_in_giri_per_minute_is_a_state():
                               "Vitesse broche [tr/min]"], {"error": ["Errore X"]})
     assert named["Velocità mandrino [giri/min]"] == "S_Velocità_mandrino"     # (left out before)
     assert named["Vitesse broche [tr/min]"] == "S_Vitesse_broche"
+
+
+def test_a_unit_row_with_a_unit_of_no_sensor_is_read_and_its_column_left_out(tmp_path):
+    # a coolant's flow in l/min under the speed's header: the row was read as data (every
+    # column refused as text); now a unit row, the flow left out by its unit as in a header
+    path = lab_file(tmp_path / "prova.csv", "l/min")
+    assert main(["init", str(path), "data.test_fraction=0.25", f"out={tmp_path / 'init'}"]) == 0
+    config = yaml.safe_load((tmp_path / "init" / "conf" / "data" / "prova.yaml").read_text())
+    assert config["roles"]["error"] == ["Errore X"]
+    assert config["roles"]["state"] == ["Porta"]
+    assert "Velocità mandrino" in config["roles"]["ignore"]
