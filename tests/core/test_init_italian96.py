@@ -59,3 +59,25 @@ def test_a_unit_row_with_a_unit_of_no_sensor_is_read_and_its_column_left_out(tmp
     assert config["roles"]["error"] == ["Errore X"]
     assert config["roles"]["state"] == ["Porta"]
     assert "Velocità mandrino" in config["roles"]["ignore"]
+
+
+def test_a_mark_without_a_digit_is_no_misgrouped_thousand(tmp_path, capsys):
+    # 'n.d.' (not available) in a temperature of a file with thousands dots: init refused the
+    # speeds' '5.000' at data row 1 ("a thousands separator? set data.thousands='.'"), and a run
+    # with data.thousands='.' said 'n.d.' "does not group its digits by three"
+    path = lab_file(tmp_path / "prova.csv", "giri/min")
+    lines = path.read_text(encoding="utf-8").splitlines()
+    cells = lines[3 + 19].split(";")
+    cells[2] = "n.d."
+    lines[3 + 19] = ";".join(cells)
+    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    assert main(["init", str(path), "data.test_fraction=0.25", f"out={tmp_path / 'init'}"]) == 0
+    config = yaml.safe_load((tmp_path / "init" / "conf" / "data" / "prova.yaml").read_text())
+    assert config["thousands"] == "." and config["missing_values"] == ["n.d."]
+    capsys.readouterr()
+    assert main(["ingest", f"data.path={path}", "data.thousands=.", "data.decimal=,",
+                 "data.delimiter=;", "data.roles.error=[Errore X]",
+                 "data.roles.state=['Velocità mandrino',Porta]"]) == 2
+    said = capsys.readouterr().err
+    assert "column 'T_testa_motrice', line 23 (data row 20): value 'n.d.' is not a number" in said
+    assert "data.missing_values" in said
