@@ -171,7 +171,6 @@ the bench processes: sweep 169.0 + 42.1 s (wall ~25 + 6 min), lab 7.3 s (~8 min)
 from __future__ import annotations
 
 import json
-import os
 import shutil
 import sys
 from pathlib import Path
@@ -183,7 +182,7 @@ HERE = Path(__file__).resolve().parent
 REPO = HERE.parent
 sys.path[:0] = [str(HERE)]
 import bench_audit95  # noqa: E402
-from _cli import made_folder, run_commands  # noqa: E402
+from _cli import run_commands  # noqa: E402
 
 RECORDS = {"lmv9775": ["sim=large_mill_volumetric", "seed=9775"]}
 SWEPT = ("mlr", "pcr", "arx", "lagbank", "lstm", "auto")
@@ -244,11 +243,9 @@ def write_lab(base: Path, seed: int) -> None:
 
 
 def _lab_root(root: str, seed: str) -> Path:
-    base = made_folder(root) / f"lab{seed}"
-    os.environ["THERMOCOMP_ROOT"] = str(base)
-    base.mkdir(exist_ok=True)
-    if not (base / "conf").exists():
-        (base / "conf").symlink_to(REPO / "conf")
+    import bench_audit91
+
+    base = bench_audit91.lab_root(root, seed)
     if not (base / "rawit.csv").exists():
         write_lab(base, int(seed))
     return base
