@@ -493,12 +493,19 @@ def init_run_replay(base: Path, label: str, path: Path, family: str, *keys: str)
             "replay": {t: v["rmse"] for t, v in rep["targets"].items()}}
 
 
-def lab(root: str, seed: str) -> None:
+def lab_root(root: str, seed: str) -> Path:
+    """``ROOT/lab<SEED>``, made, the project root of the stages (``THERMOCOMP_ROOT``), this
+    tree's ``conf/`` linked in."""
     base = made_folder(root) / f"lab{seed}"
     os.environ["THERMOCOMP_ROOT"] = str(base)
     base.mkdir(exist_ok=True)
     if not (base / "conf").exists():
         (base / "conf").symlink_to(REPO / "conf")
+    return base
+
+
+def lab(root: str, seed: str) -> None:
+    base = lab_root(root, seed)
     period = lab_files(base, int(seed))
     done = cli("init", str(base / "raw.csv"), f"out={base / 'bare-init'}")
     print(f"raw.csv without a period: exit {done.returncode}: {said_of(done)}")

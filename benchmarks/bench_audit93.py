@@ -114,7 +114,6 @@ subprocesses not counted); wall ~10 + 14 + 7 min.
 from __future__ import annotations
 
 import json
-import os
 import sys
 from pathlib import Path
 
@@ -125,7 +124,7 @@ HERE = Path(__file__).resolve().parent
 REPO = HERE.parent
 sys.path[:0] = [str(HERE)]
 import bench_audit91  # noqa: E402
-from _cli import made_folder, run_commands  # noqa: E402
+from _cli import run_commands  # noqa: E402
 from bench_audit91 import sim_cell  # noqa: E402
 from bench_data92 import _stage, _targets  # noqa: E402
 from bench_deploy88 import LONG  # noqa: E402
@@ -201,11 +200,7 @@ def init_line(base: Path, label: str) -> str:
 
 
 def lab(root: str, seed: str, families: str = "mlr,arx,lagbank") -> None:
-    base = made_folder(root) / f"lab{seed}"
-    os.environ["THERMOCOMP_ROOT"] = str(base)
-    base.mkdir(exist_ok=True)
-    if not (base / "conf").exists():
-        (base / "conf").symlink_to(REPO / "conf")
+    base = bench_audit91.lab_root(root, seed)
     if not (base / "rawclock.csv").exists():
         lab_files(base, int(seed))
     rows = pd.read_csv(base / "contract.csv")

@@ -190,14 +190,20 @@ def session(base: Path, label: str, family: str, n_test: int) -> np.ndarray | st
     :data:`BLOCK`, the first continuing the train campaign: the corrections (rows x targets),
     or what refused them."""
     model, config = _served(base, label, family)
+    return sent(model, _raw_rows(base / f"{label}.csv", config).iloc[-n_test:], label)
+
+
+def sent(model, rows: pd.DataFrame, label: str, said: int = 240) -> np.ndarray | str:
+    """``rows`` sent to the served ``model`` in blocks of :data:`BLOCK`, the first continuing
+    ``<label>_train``: the corrections (rows x targets), or what refused them (``said`` chars)."""
+    rows = rows.reset_index(drop=True)
     with contextlib.redirect_stderr(io.StringIO()):
-        rows = _raw_rows(base / f"{label}.csv", config).iloc[-n_test:].reset_index(drop=True)
         try:
             out = [model.predict(None, rows.iloc[a:a + BLOCK].reset_index(drop=True),
                                  {"session": label, "continues": f"{label}_train" if a == 0
                                   else ""}) for a in range(0, len(rows), BLOCK)]
         except Exception as exc:        # (an MlflowException: the server's HTTP 400)
-            return f"refused: {' '.join(str(exc).split())[:240]}"
+            return f"refused: {' '.join(str(exc).split())[:said]}"
     got = pd.concat(out, ignore_index=True)
     return got[[c for c in got.columns if c.startswith("C_")]].to_numpy(float)
 

@@ -23,11 +23,22 @@ def true_changes(truth, cal, times: dict) -> tuple[dict | None, str | None]:
     return out, None
 
 
+def _chosen(est) -> dict:
+    """The inputs and autoregression an ARX chose (its ``chosen_``); ``model=auto``'s kept
+    estimator's, whose own ``chosen_`` names a family or a blend's weights (audit96: read as
+    the ARX's, ``run model=auto`` on a volumetric dataset stopped, AttributeError); {} else."""
+    chosen = getattr(est, "chosen_", None)
+    if isinstance(chosen, dict) and {"n_inputs", "ar"} & set(chosen):
+        return chosen
+    inner = getattr(est, "estimator_", None)
+    return _chosen(inner) if inner is not None and inner is not est else {}
+
+
 def _models(comp) -> dict:
     """What each parameter's thermal model uses: inputs, autoregression."""
     models = {}
     for name, est in comp.estimators_.items():
-        chosen = getattr(est, "chosen_", None) or {}
+        chosen = _chosen(est)
         models[name] = {"n_inputs": int(chosen.get("n_inputs", len(comp.selected_[name]))),
                         "ar": bool(chosen.get("ar", False))}
     return models

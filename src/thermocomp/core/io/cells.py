@@ -279,7 +279,9 @@ def _thousands(numbers: list[_Column], decimal: str, said: list) -> str | None:
     for mark in GROUP_MARKS:
         if mark == decimal:
             continue
-        holding = [(c, _holds(c.text, mark)) for c in numbers]
+        # (a cell without a digit, 'n.d.', is a mark, not a number the mark groups: audit96,
+        # one made init refuse the speeds' '5.000' at row 1, far from it)
+        holding = [(c, _holds(c.text, mark) & _matches(c.text, r"\d")) for c in numbers]
         holding = [(c, h) for c, h in holding if h.any()]
         if not holding:
             continue

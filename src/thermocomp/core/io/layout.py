@@ -1,17 +1,18 @@
 """Where a lab's CSV table starts: lines a logger writes above the header (``Logger: XY-200``,
 ``Date: 28.11.2026``) and a row of units under it (``s;°C;°C;µm``).
 
-The header is the first line, most of its fields named, from which every sampled line splits
-into the same number (> 1) of fields; below a preamble it must hold no number (a data row is
-never taken for it).  A
-unit row is the line under the header whose every cell is a unit the reader knows (or empty):
-its units join the headers (``T1`` over ``°C`` is ``T1 [°C]``).  A logger writes the time
-column's FORMAT in that row (``h:mm:ss``, ``yyyy/mm/dd hh:mm:ss``): a cell of the row, joined to
-no header (the column's cells say their time themselves).  Between the unit row and the samples
-a logger may write rows that describe its channels (HBM catman's ASCII export: a row of channel
-comments, rows ``T0`` / ``dt`` of each channel's start and step, catman70): they are left out
-(:func:`property_rows`).  A Campbell Scientific logger's TOA5 file has a fixed layout, read so
-(:mod:`.campbell`): its environment line above the header, a units row and a processing row.
+The header is the first line, most of its fields named, from which every sampled line splits into
+the same number (> 1) of fields; below a preamble it must hold no number (a data row is never
+taken for it). A unit row is the line under the header whose every cell is a unit the reader knows
+(or empty), or one written as a unit of no sensor of the model (``l/min``, ``W/m^2``: its column
+left out by its unit, as in a header): its units join the headers (``T1`` over ``°C`` is ``T1
+[°C]``). A logger writes the time column's FORMAT in that row (``h:mm:ss``, ``yyyy/mm/dd
+hh:mm:ss``): a cell of the row, joined to no header (the column's cells say their time
+themselves). Between the unit row and the samples a logger may write rows that describe its
+channels (HBM catman's ASCII export: a row of channel comments, rows ``T0`` / ``dt`` of each
+channel's start and step, catman70): they are left out (:func:`property_rows`). A Campbell
+Scientific logger's TOA5 file has a fixed layout, read so (:mod:`.campbell`): its environment line
+above the header, a units row and a processing row.
 """
 
 from __future__ import annotations
@@ -23,7 +24,7 @@ from .csvline import EMPTY, split_line
 from .roles import STATE_UNITS, UNITS, split_unit
 from .separators import any_number
 from .timestamps import looks_like_timestamp
-from .units import ANGLE_UNITS
+from .units import ANGLE_UNITS, foreign_unit
 
 MAX_PREAMBLE = 20
 MAX_PROPERTY_ROWS = 6
@@ -53,9 +54,11 @@ def header_line(lines: list[str], sep: str) -> int | None:
             if not _text(lines[k]):        # bytes that are no text (a gzip file): no preamble
                 return None
             continue
-        # (a '#' comment among the rows: a DAQ's block written again with its header, stranger66)
+        # (a '#' comment among the rows: a DAQ's block written again with its header, stranger66;
+        # a line of the preamble so, audit96: a second export's Excel 'sep=;' above its header)
+        above = set(lines[:k])
         body = [w for w, ln in zip(widths[k + 1:], lines[k + 1:])
-                if w is not None and not ln.lstrip().startswith("#")]
+                if w is not None and not ln.lstrip().startswith("#") and ln not in above]
         body = body[:-1] if len(body) > 1 else body        # the last may be cut short
         if all(w == width for w in body):
             return k
@@ -109,9 +112,11 @@ def _text(line: str) -> bool:
 def is_unit_row(row: list[str]) -> bool:
     """Every cell a unit (or empty), at least one."""
     units = [c.strip().lower().replace(" ", "") for c in row if c.strip()]
-    # (an axis' angle, '°', is a state's unit: stranger68's 'B axis' over '°' made the row data)
+    # (an axis' angle, '°', is a state's unit: stranger68's 'B axis' over '°' made the row data;
+    # audit96: a coolant's 'l/min' among them did too, every column then refused as text)
     known = {u for table in UNITS.values() for u in table} | STATE_UNITS | ANGLE_UNITS | {"-"}
-    return bool(units) and all(u.strip("[]()") in known or is_time_format(u) for u in units)
+    return bool(units) and all(u.strip("[]()") in known or is_time_format(u) or foreign_unit(u)
+                               for u in units)
 
 
 def is_time_format(cell: str) -> bool:

@@ -67,8 +67,10 @@ def thousands_hint(value: str, column: pa.ChunkedArray, decimal: str) -> str | N
 
 def misgrouped(column: pa.ChunkedArray, mark: str, decimal: str) -> int | None:
     """Position of the first cell that holds ``mark`` without grouping digits by three with
-    it (``6,00`` with ``data.thousands=','`` is no thousand: it is refused, not read as 600)."""
-    bad = pc.and_(pc.match_substring(column, mark),
+    it (``6,00`` with ``data.thousands=','`` is no thousand: it is refused, not read as 600).
+    A cell without a digit (``n.d.``, an Italian lab's "not available") is no number: the cast
+    refuses it as the text it is (audit96: it was said not to group its digits by three)."""
+    bad = pc.and_(pc.and_(pc.match_substring(column, mark), pc.match_substring_regex(column, r"\d")),
                   pc.invert(pc.match_substring_regex(column, f"^{grouped(mark, decimal)}$")))
     flags = pc.fill_null(bad, False).to_numpy(zero_copy_only=False)
     return int(np.argmax(flags)) if flags.any() else None

@@ -39,9 +39,12 @@ UNITS = {
 # the first value is one in it, from this value (a °C reading below: 'Sensor K' is a name)
 LETTER_UNITS = {"k": 150.0, "f": 45.0}
 
-# units that say "a machine state" (speeds, loads, positions, on/off)
-STATE_UNITS = {"rpm", "krpm", "1/min", "min-1", "u/min", "%", "hz", "a", "w", "kw", "nm", "bar", "v",
-               "on/off", "0/1", "mm/min"}
+# units that say "a machine state" (speeds, loads, positions, on/off); a speed as labs spell
+# revolutions per minute in their language (audit96: an Italian PC's unit row 'giri/min' was no
+# unit, so the row was read as data and every column refused as text): German U/min, Italian
+# giri/min, French tr/min, English rev/min, r/min
+STATE_UNITS = {"rpm", "krpm", "1/min", "min-1", "u/min", "giri/min", "tr/min", "rev/min", "r/min",
+               "%", "hz", "a", "w", "kw", "nm", "bar", "v", "on/off", "0/1", "mm/min"}
 # a voltage as a DAQ labels a DC or AC volts channel (Keysight's VDC, VAC): a probe's signal
 VOLTS = {"v", "vdc", "vac", "mv", "mvdc"}
 # a dimensionless unit in brackets, '[-]' or '[1]' (DIN 1313's "no unit"): an on/off flag, a

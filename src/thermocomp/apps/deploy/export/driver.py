@@ -446,6 +446,27 @@ static const char *strip_end(char *line) {
     return line;
 }
 
+/* (audit96) `line` (without its line end) added to `above`, the preamble's lines each ended by
+   '\n', where it fits */
+static void kept(char *above, const char *line) {
+    size_t n = strlen(above), len = strcspn(line, "\r\n");
+    if (len == 0 || n + len + 2 > MAX_LINE) return;
+    memcpy(above + n, line, len);
+    above[n + len] = '\n';
+    above[n + len + 1] = '\0';
+}
+
+/* (audit96) `line` (its end stripped) is one of the preamble's lines `above` */
+static int among(const char *above, const char *line) {
+    size_t len = strlen(line);
+    const char *at = above;
+    while (len > 0 && (at = strstr(at, line)) != NULL) {
+        if ((at == above || at[-1] == '\n') && at[len] == '\n') return 1;
+        at++;
+    }
+    return 0;
+}
+
 /* `cell` without the spaces and double quotes around it (in place). */
 static const char *trimmed(char *cell) {
     size_t len;
@@ -921,6 +942,10 @@ int main(int argc, char **argv) {
        comments (or blank); one of them a `#` comment; the header written as one; `#` lines
        among the rows said */
     int pending = 0, again = 0, commented = 1, noted = 0, hashed = 0, said_hash = 0;
+    /* (audit96) the preamble's lines above the header (Excel's `sep=;`, a logger's title), to
+       know them written again above it; the line of a row held as one (0: none) */
+    static char above[MAX_LINE];
+    long held_row = 0;
     static char stamp[2 * MAX_CELL + 2];
     int ambient_col = -1;
     int said_back = 0;         /* rows said whose time is not after the last read */
@@ -1011,6 +1036,7 @@ int main(int argc, char **argv) {
         int named_most = inputs_named(line), most_row = 1, most_commented = 0, most_noted = 0, n;
         strcpy(first, line);
         strcpy(most, line);
+        kept(above, line);
         commented = commented && comment_or_blank(line);
         noted = noted || line[strspn(line, " \t")] == '#';
         for (i = 0; i < MAX_PREAMBLE && next_line(line, sizeof line, i + 2); i++) {
@@ -1025,6 +1051,7 @@ int main(int argc, char **argv) {
                 return 2;
             }
             if ((n = inputs_named(line)) == TC_N_INPUTS) break;
+            kept(above, line);
             if (n > named_most)      /* (the lines above it: comments, a '#' among them?) */
                 named_most = n, most_row = i + 2, most_commented = commented,
                 most_noted = noted, strcpy(most, line);
@@ -1033,13 +1060,17 @@ int main(int argc, char **argv) {
         }
         if (i < MAX_PREAMBLE && names_every_input(line))
             row = i + 2;                          /* the header's line */
-        else if (most_row > 1)
-            /* (stranger73) no line names every input: the one naming the most is the header
-               whose missing input is said (line 1, a preamble's, was, naming the first input
-               of all as missing) */
-            strcpy(line, most), row = most_row, commented = most_commented, noted = most_noted;
-        else
-            strcpy(line, first), commented = 1, noted = 0;
+        else {
+            above[0] = '\0';                      /* (no header found: no preamble known) */
+            if (most_row > 1)
+                /* (stranger73) no line names every input: the one naming the most is the
+                   header whose missing input is said (line 1, a preamble's, was, naming the
+                   first input of all as missing) */
+                strcpy(line, most), row = most_row, commented = most_commented,
+                    noted = most_noted;
+            else
+                strcpy(line, first), commented = 1, noted = 0;
+        }
     }
     sep = separator_of(line);
     strcpy(header_raw, line);
@@ -1190,6 +1221,25 @@ int main(int argc, char **argv) {
     while (pending || next_line(line, sizeof line, row + 1)) {
         if (pending) strcpy(line, first_row), pending = 0;
         row++;
+        /* (audit96) a line of the preamble written again above the header (a second export
+           appended to the first: Excel's `sep=;` above it), not of the header's width: held,
+           and left out with the header under it, as the reader leaves it out (stranger66); any
+           other line under it refuses it, as before */
+        if (above[0] && line[strspn(line, " \t")] != '#' && among(above, strip_end(line))) {
+            strcpy(row_raw, line);
+            if (split(row_raw, cells) != ncols) {
+                if (!held_row) held_row = row;
+                continue;
+            }
+        }
+        if (held_row && strcmp(strip_end(line), header_raw) != 0) {
+            fprintf(stderr, "stream: line %ld has not %d cells\n", held_row, ncols);
+            return 2;
+        }
+        if (held_row)
+            fprintf(stderr, "stream: line %ld: the file's preamble written again above its header "
+                    "(a second export appended?): left out\n", held_row);
+        held_row = 0;
         /* (streamraw65) the header written again (a logger restarted), the unit row under it
            too: left out, as the reader leaves it out, and said (the rows after it go on) */
         if (strcmp(strip_end(line), header_raw) == 0) {
@@ -1359,6 +1409,10 @@ int main(int argc, char **argv) {
         }
         if (measured) tc_reference(&s, e);
         if (!saved(state_path, state_tmp, &s, run)) return 2;
+    }
+    if (held_row) {                 /* (audit96) the preamble's line last: refused, as before */
+        fprintf(stderr, "stream: line %ld has not %d cells\n", held_row, ncols);
+        return 2;
     }
     if (footer_at)
         fprintf(stderr, "stream: lines %ld-%ld: a '#' block under the rows (a logger's summary): "
