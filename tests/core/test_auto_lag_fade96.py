@@ -87,3 +87,21 @@ def test_lag_fade_is_checked():
     X, y, context = _record()
     with pytest.raises(ParameterError, match="lag_fade"):
         AutoRegressor({"mlr": MLR()}, lag_fade=-1.0).fit(X, y, context=context)
+
+
+def test_two_folds_are_one_difference_not_a_fade():
+    """auto96b: tsc_a2's winning lag families had two campaign folds, ratios 0.01 0.02 (+0.75 read
+    as a fade, 0.376 -> 0.675 x MLR); fewer than three folds read no fade, three or more as before."""
+    two = np.array([0.01, 0.02])
+    assert fading_gain(np.repeat(two, 4), np.ones(8), np.repeat(np.arange(2), 4)) == 0.0
+    three = np.array([0.01, 0.02, 0.04])
+    assert fading_gain(np.repeat(three, 4), np.ones(12), np.repeat(np.arange(3), 4)) == pytest.approx(np.log(2))
+
+
+def test_a_fading_lag_family_on_two_folds_keeps_its_weight():
+    X, y, context = _record()
+    main = AutoRegressor({"mlr": MLR(), "fading": FadingLag()}, n_folds=2, lag_fade=None).fit(
+        X, y, context=context)
+    auto = AutoRegressor({"mlr": MLR(), "fading": FadingLag()}, n_folds=2).fit(X, y, context=context)
+    assert np.unique(auto.oof_fold_).size == 2
+    assert auto.weights_ == main.weights_ and "lag_fade" not in auto.reason_
