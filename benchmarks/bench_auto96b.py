@@ -2,6 +2,12 @@
 counted only with >= 3 folds, hands its weight to MLR (issue 34; stop 96, auto96b; follow-up of
 ``bench_auto96.py``'s after-the-fact lead).
 
+REFUSED: the seen gate (1) and fl_thermal (3) met, the fresh clause (2) not (lr9731 1.025 x main,
+geo 0.7560 -> 0.7583).  src / conf / docs as on f16d68e8; the rule built is
+``benchmarks/auto96b_rule.patch`` (against f16d68e8: auto96_rule.patch + ``MIN_FADE_FOLDS``, conf,
+docs, ``tests/core/test_auto_lag_fade96.py`` 6 cases).  Apply it to run ``rows`` / ``ways`` as
+measured: ``ways`` sets ``lag_fade``, a key main does not have.
+
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is that tree's
 ``model=auto`` as built)::
 
@@ -10,8 +16,8 @@ Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is
     python benchmarks/bench_auto96b.py ways ROOT OUT RECORD ...      # fit with lag_fade off / 0.3, MLR
     python benchmarks/bench_auto96b.py ways_table OUT RECORD ...     # their figures, main -> rule
 
-The rule as built (``model.estimator.lag_fade``, default 0.3; ``auto.py`` ``_faded``, ``blend.py``
-``fading_gain`` / ``MIN_FADE_FOLDS``): ``benchmarks/auto96_rule.patch`` applied as it is, plus one
+The rule as built (in the patch: ``model.estimator.lag_fade``, default 0.3; ``auto.py`` ``_faded``,
+``blend.py`` ``fading_gain`` / ``MIN_FADE_FOLDS``): ``benchmarks/auto96_rule.patch`` as it is, plus one
 condition: ``fading_gain`` is 0 (no fade) where the validation folds are fewer than 3 (two folds are
 one difference: tsc_a2's winning lag families, ratios 0.01 0.02, read as +0.75 and handed to MLR,
 0.376 -> 0.675 x MLR in bench_auto96).  The limit 0.3 is unchanged and was set on the SEEN table
@@ -48,6 +54,41 @@ BAR (written and committed before FRESH 9729-9738 are simulated; the rule is KEP
     main's.
 (3) fl_thermal 90/10 unchanged (README table: auto 2.48 µm mean RMSE over ch1..ch5).
 Else REFUSED: src reverted, the rule as ``benchmarks/auto96b_rule.patch``.
+
+Measured (2026-12-06, f16d68e8 + the patch, bar committed 10c1ddd1 before any fresh seed; nice,
+``OMP_NUM_THREADS=1``, 2 cores shared, load 3-5; CPU: ``rows`` of the 22 185 s, ``ways`` seen 10
+60 s, fresh 10 104 s, fl_thermal ``run`` 240 s wall).
+
+(1) SEEN, through the built code.  22-table (``compare /tmp/auto96/seen /tmp/auto96b/seen``; main =
+auto96's stored rows)::
+
+  col5791 1.258 -> 1.266 (1.006)   col1403 1.311 -> 0.977 (0.745)   year6_5411 0.518 -> 0.450 (0.869)
+  the other 19 unchanged (tsc_a2 0.376: its two folds read no fade)
+  geo auto/MLR 0.8264 -> 0.8105; losers 8 -> 7; > 1 % worse 0; worst col5791 1.006
+
+It reproduces auto96's after-the-fact ``trend3`` (0.8106, losers 7, worst col5791 1.006); main's geo
+reads 0.8264 here against 0.8265 in bench_auto96's docstring (the same stored rows: rounding).
+One-campaign 10 (``ways``): lr9587 1.059 -> 1.007, sw9697 1.044 -> 1.048, the 8 others unchanged;
+geo 0.7658 -> 0.7622, worst 1.004, losers 2 -> 2 (auto96: 0.7657 -> 0.7622).  Clause (1) met.
+
+(2) FRESH 9729-9738, scored once (``ways``), auto / MLR main -> rule::
+
+  lr9729 1.000 1.000   lr9730 0.254 0.254   lr9731 0.956 0.981 (1.025)   sw9732 0.939 0.939
+  sw9733 0.987 0.987   col9734 0.998 1.004 (1.005)   col9735 0.980 0.980   year6_9736 0.575 0.575
+  climate9737 0.501 0.501   lab9738 0.961 0.961
+  geo 0.7560 -> 0.7583; worst lr9731 1.025; losers 0 -> 1 (col9734)
+
+Clause (2) fails on both counts.  lr9731 (after the score, a trace): E_Z's hammerstein held 0.034 of
+the blend (mlr 0.94, lagbank 0.03), fold ratios 0.53 1.43 0.13 1.69 3.78, slope +0.41 -> to MLR; the
+blend with it was 0.956 x MLR on test, without it 0.981: a small lag weight that fades on the folds
+still helped.  col9734 E_Z: lagbank's 0.037 to MLR, 0.965 -> 0.997 x MLR.  The multi-campaign fresh
+records (col9735, year6_9736, climate9737, lab9738) were not moved at all.
+(3) fl_thermal 90/10: 2.893 3.444 1.803 1.993 2.271, mean 2.481 µm, as auto96's main: met.
+
+REFUSED.  Next, if any: both fresh losses are small lag weights (0.03-0.04) moved; on the seen
+table the moves that gained were large (col1403 0.84 / 0.64, year6_5411 0.52) but lr9587's gain
+was 0.10 and col5791 E_Z's loss 0.10 too, so the weight alone does not separate either -- a new
+prototype would need its own bar on seen records (these fresh seeds are now spent).
 """
 
 import os

@@ -18,13 +18,13 @@ from sklearn.utils.validation import check_is_fitted
 
 from ...base.errors import ConfigError, ParameterError
 from ...base.log import logger
-from ...base.params import check_estimator, choice, integer, number, optional
+from ...base.params import check_estimator, choice, integer, number
 from ..context import AMBIENT_C0, SideInputs, context_columns, groups_of, step_gain, stream_steps, subset
 from ..gains import gain_terms
 from ..metrics import PERSISTENCE, rmse
 from ..model_selection import BlockedForward, LeaveBlockOut, LeaveCampaignsOut
 from ..model_selection.extrapolation import within_range
-from .blend import Blend, fading_gain, fold_ratios, mean_fold_ratio, vote_weights
+from .blend import Blend, fold_ratios, mean_fold_ratio, vote_weights
 from .one_step import persistence
 
 ATI = "ati"              # a candidate name: the ATI wrapper (conf/ati/cmeans.yaml) of a family
@@ -165,19 +165,17 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
                    "min_gain_pct": number(0.0, 100.0),
                    "combine": choice("vote", "best"), "keep_oof": choice(True, False),
                    "uncompensated": choice("zero", "keep"), "fallback": choice("one_se", "none"),
-                   "validation_rows": choice("all", "in_range"), "lag_fade": optional(number(0.0, 10.0))}
+                   "validation_rows": choice("all", "in_range")}
 
     uncompensated = "keep"   # a model pickled before the key: refitted as it was fitted
     fallback = "none"        # likewise
-    lag_fade = None          # likewise
 
     def __init__(self, candidates=None, scheme: str = "auto", n_folds: int = 5,
                  min_train_fraction: float = 0.5, gap_blocks: float = 0.5,
                  max_seconds: float | None = None, min_gain_pct: float = 1.0, chosen=None,
                  val_scores=None, given_scores=None, combine: str = "vote", keep_oof: bool = False,
                  one_record: str = "forward", validation_rows: str = "all",
-                 uncompensated: str = "zero", fallback: str = "one_se", lag_fade: float | None = 0.3):
-        self.lag_fade = lag_fade
+                 uncompensated: str = "zero", fallback: str = "one_se"):
         self.fallback = fallback
         self.uncompensated = uncompensated
         self.validation_rows = validation_rows
@@ -275,36 +273,8 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         predicted = preds @ w
         if self._one_se(predicted, rows, base):
             blended, predicted = self.validation_[BASELINE], self.oof_[BASELINE]
-        elif base is not None and self._faded(rows):
-            predicted = sum(v * self.oof_[n] for n, v in self.weights_.items())
-            blended = rmse(self.oof_y_ - predicted)
         self._none_unless_better(blended, predicted)
         return self._refit(X, y, context)
-
-    def _faded(self, rows: np.ndarray) -> bool:
-        """``lag_fade`` (extension, auto96): a member with a memory (a ``tau_max_s``: lagbank,
-        hammerstein) whose gain over MLR fades over the folds (:func:`fading_gain`, the slope of
-        its log per-fold MSE over MLR's, > ``lag_fade``) hands its weight to MLR (a candidate).
-        True where one did."""
-        if self.lag_fade is None:
-            return False
-        base = (self.oof_y_[rows] - self.oof_[BASELINE][rows]) ** 2
-        fading = {n: fading_gain((self.oof_y_[rows] - self.oof_[n][rows]) ** 2, base, self.oof_fold_[rows])
-                  for n in self.weights_ if _has_memory(self.candidates[n])}
-        faded = [n for n, slope in fading.items() if slope > float(self.lag_fade)]
-        if not faded:
-            return False
-        weights = dict(self.weights_)
-        for n in faded:
-            weights[BASELINE] = weights.get(BASELINE, 0.0) + weights.pop(n)
-        self.reason_ += ("; lag_fade: " + ", ".join(f"{n}'s gain over MLR fades over the folds "
-                                                    f"(slope of its log MSE ratio {fading[n]:+.3g} > "
-                                                    f"{float(self.lag_fade):g})" for n in faded)
-                         + ": its weight to MLR")
-        self.weights_ = weights
-        self.family_ = max(weights, key=weights.get)
-        self.chosen_ = self.family_ if len(weights) == 1 else weights
-        return True
 
     def _one_se(self, predicted: np.ndarray, rows: np.ndarray, base: int | None) -> bool:
         """``fallback='one_se'``: keep MLR alone where the folds are not surely in favour of the
@@ -520,13 +490,6 @@ def _said(name: str, seconds: float, score: float | None, why: str | None) -> No
     what = f"skipped, {why}" if why is not None else f"validation RMSE {score:.4g}"
     logger.log(logging.INFO if seconds >= SAY_AFTER_S else logging.DEBUG,
                "auto: %s validated in %.0f s: %s", name, seconds, what)
-
-
-def _has_memory(est) -> bool:
-    """A lag family: a bank of first-order lags up to ``tau_max_s`` (lagbank), or built on one
-    (hammerstein's ``lagbank``)."""
-    params = est.get_params(deep=False)
-    return "tau_max_s" in params or "lagbank" in params
 
 
 def in_range_rows(in_range: np.ndarray, fold: np.ndarray, min_rows: int = MIN_IN_RANGE_ROWS,

@@ -162,23 +162,6 @@ def fold_ratios(squared: np.ndarray, base: np.ndarray, fold: np.ndarray) -> np.n
     return np.bincount(unit, squared) / np.maximum(np.bincount(unit, base), 1e-300)
 
 
-MIN_FADE_FOLDS = 3   # fewer folds: no fade read (two folds are one difference; auto96b)
-
-
-def fading_gain(squared: np.ndarray, base: np.ndarray, fold: np.ndarray) -> float:
-    """How fast one model's gain over MLR fades over the validation folds, taken in the order of
-    their labels (forward folds: later, fitted on more rows, nearer the test): the least-squares
-    slope of the log of :func:`fold_ratios` over the fold index; 0 with fewer than
-    :data:`MIN_FADE_FOLDS` folds (two folds are one difference: tsc_a2's winning lag families,
-    ratios 0.01 0.02, read as a fade of +0.75; ``benchmarks/bench_auto96b.py``).  A lag family
-    whose slow lags fit one record's history wins its early folds and less and less the later ones
-    (``benchmarks/bench_auto96.py``: column_moving_source seed 1403 E_Y lagbank 0.33 0.07 1.09
-    0.40 0.64, slope +0.30, 2.10 x MLR on new campaigns); one that will win does not fade
-    (swiss_lathe_door seed 303 E_X hammerstein 0.47 0.50 0.24 0.30 0.31, -0.14; 0.57 x)."""
-    r = np.maximum(fold_ratios(squared, base, fold), 1e-300)
-    return float(np.polyfit(np.arange(r.size), np.log(r), 1)[0]) if r.size >= MIN_FADE_FOLDS else 0.0
-
-
 def mean_fold_ratio(squared: np.ndarray, base: np.ndarray, fold: np.ndarray) -> float:
     """The votes' measure of one model without resampling: the mean over the folds of its summed
     squared errors (``squared``, per row) over MLR's (``base``) there, so every fold counts alike
