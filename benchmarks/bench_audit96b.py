@@ -68,13 +68,258 @@ documented for the lead: TRACED.
 
 from __future__ import annotations
 
+import json
+import os
+import re
+import sqlite3
+import subprocess
 import sys
+import time
+from pathlib import Path
 
 from _cli import run_commands
 
 
+def _env() -> dict:
+    """The environment a stranger's shell has: the clone's venv not activated, no PYTHONPATH
+    (the clone's editable install is what runs), one BLAS thread (two cores shared)."""
+    env = {k: v for k, v in os.environ.items()
+           if k not in ("PYTHONPATH", "VIRTUAL_ENV", "THERMOCOMP_ROOT")}
+    env.update(OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1", MKL_NUM_THREADS="1")
+    return env
+
+
+def sh(root: Path, line: str, *, timeout: float = 1800) -> subprocess.CompletedProcess:
+    """``line`` run by ``sh -c`` in ``root`` under ``nice`` (the docs' commands as written);
+    prints the command, its exit status, wall time and the last lines of its output."""
+    start = time.monotonic()
+    done = subprocess.run(["nice", "sh", "-c", line], cwd=root, env=_env(), capture_output=True,
+                          text=True, timeout=timeout)
+    tail = (done.stdout + done.stderr).strip().splitlines()[-3:]
+    print(f"$ {line}\n  exit {done.returncode}, {time.monotonic() - start:.1f} s wall"
+          + "".join(f"\n  | {t[:160]}" for t in tail), flush=True)
+    return done
+
+
+def _stages_run(out: str) -> list[str]:
+    return re.findall(r"Running stage '([^']+)'", out)
+
+
+def dvc(root: str) -> None:
+    """Cell 1: docs/dvc.md's three commands, then ``dvc exp run -S`` and its metrics."""
+    root_ = Path(root).resolve()
+    first = sh(root_, ".venv/bin/dvc repro")
+    print("  stages run:", _stages_run(first.stdout))
+    second = sh(root_, ".venv/bin/dvc repro")
+    print("  stages run again:", _stages_run(second.stdout))
+    shown = sh(root_, ".venv/bin/dvc metrics show --json")
+    metrics = json.loads(root_.joinpath("reports/default/metrics.json").read_text())
+    mlflow = _mlflow_metrics(root_, stage="evaluate")
+    dvc_figures = _flatten(json.loads(shown.stdout or "{}"))
+    for key, value in sorted(dvc_figures.items()):
+        if "headline" not in key or not isinstance(value, (int, float)):
+            continue
+        target, name = Path(key.split("headline/")[1]).stem.split(".json")[0], key.rsplit(".", 1)[-1]
+        target = key.split("headline/")[1].split(".json")[0]
+        block = metrics["targets"].get(target, {})
+        ref = {"test_rmse": block.get("test", {}).get("rmse"),
+               "val_rmse": (block.get("validation") or {}).get("rmse")}.get(name)
+        ml = mlflow.get(f"{target}.test.rmse" if name == "test_rmse" else f"{target}.val.rmse"
+                        if name == "val_rmse" else "")
+        print(f"  dvc {target} {name} {value}  metrics.json {ref}  mlflow {ml}")
+    exp = sh(root_, ".venv/bin/dvc exp run -S conf/model/mlr.yaml:estimator.fit_intercept=false")
+    print("  exp stages run:", _stages_run(exp.stdout))
+    sh(root_, ".venv/bin/dvc metrics show")
+    sh(root_, ".venv/bin/dvc exp show --no-pager --md --keep --only-changed")
+
+
+def _flatten(tree, prefix: str = "") -> dict:
+    if isinstance(tree, dict):
+        out = {}
+        for key, value in tree.items():
+            out.update(_flatten(value, f"{prefix}.{key}" if prefix else str(key)))
+        return out
+    return {prefix: tree}
+
+
+def _db(root: Path) -> sqlite3.Connection:
+    return sqlite3.connect(root / "mlruns" / "mlflow.db")
+
+
+def _mlflow_metrics(root: Path, *, stage: str | None = None, run_id: str | None = None) -> dict:
+    """The latest metrics of ``run_id``, or of the newest run tagged ``stage``."""
+    with _db(root) as db:
+        if run_id is None:
+            run_id = db.execute("select r.run_uuid from runs r join tags t on t.run_uuid=r.run_uuid "
+                                "where t.key='stage' and t.value=? order by r.start_time desc "
+                                "limit 1", (stage,)).fetchone()[0]
+        rows = db.execute("select key, value from latest_metrics where run_uuid=?", (run_id,))
+        return dict(rows.fetchall())
+
+
+def sweep(root: str, seed: str) -> None:
+    """Cell 2: a fresh record, the 4-job sweep over two families x both eval.modes, compare,
+    promote, replay of @champion, and what the SQLite store holds per child run."""
+    root_ = Path(root).resolve()
+    data = f"data/raw/s{seed}"
+    out = root_ / "audit96b" / "sweep"
+    out.mkdir(parents=True, exist_ok=True)
+    sh(root_, f".venv/bin/thermocomp simulate seed={seed} data.path={data}")
+    sh(root_, f".venv/bin/thermocomp run -m model=mlr,arx eval.mode=simulation,one_step "
+              f"hydra/launcher=joblib plots=none data.path={data} "
+              f"hydra.sweep.dir=audit96b/sweep/multirun")
+    compare = sh(root_, ".venv/bin/thermocomp compare compare.sweep=audit96b/sweep/multirun")
+    print("\n".join("  " + x for x in compare.stdout.splitlines()))
+    promote = sh(root_, f".venv/bin/thermocomp promote data.path={data} out=audit96b/sweep/promote")
+    print("\n".join("  " + x for x in promote.stdout.splitlines()))
+    sh(root_, f".venv/bin/thermocomp replay data.path={data} "
+              "replay.model=models:/thermocomp-compensator@champion out=audit96b/sweep/replay")
+    compared = json.loads((root_ / "audit96b/sweep/multirun/compare.json").read_text())
+    print("  compare.json ranked_by:", compared.get("ranked_by"))
+    promoted = json.loads((root_ / "audit96b/sweep/promote/promote.json").read_text())
+    replayed = json.loads((root_ / "audit96b/sweep/replay/replay.json").read_text())
+    print("  promote:", {k: promoted.get(k) for k in ("version", "run_id", "moved", "registered",
+                                                      "criterion", "ranked_by")})
+    multirun = root_ / "audit96b/sweep/multirun"
+    jobs = sorted(p.parent.parent for p in multirun.glob("*/.hydra/overrides.yaml"))
+    with _db(root_) as db:
+        for job in jobs:
+            metrics = json.loads((job / "metrics.json").read_text())
+            figures = {}
+            for target, block in metrics["targets"].items():
+                val = block.get("validation") or {}
+                sim = val.get("validation_simulation") or val
+                figures[target] = (round(sim.get("rmse", float("nan")), 4),
+                                   round(block["test"]["rmse"], 4))
+            print(f"  job {job.name}: {(job / '.hydra/overrides.yaml').read_text().split()}"
+                  f" (val sim, test) {figures}")
+        children = db.execute("select r.run_uuid, r.name, r.status from runs r join tags t on "
+                              "t.run_uuid=r.run_uuid where t.key='mlflow.parentRunId' and t.value="
+                              "(select value from tags where run_uuid=? and key='mlflow.parentRunId')",
+                              (promoted["run_id"],)).fetchall()
+        for run_id, name, status in children:
+            params = dict(db.execute("select key, value from params where run_uuid=?", (run_id,)))
+            n_metrics = db.execute("select count(*) from latest_metrics where run_uuid=?",
+                                   (run_id,)).fetchone()[0]
+            art = db.execute("select artifact_uri from runs where run_uuid=?", (run_id,)).fetchone()[0]
+            art_dir = Path(art.replace("file://", "")) if art.startswith(("/", "file:")) else root_ / art
+            files = sorted(str(p.relative_to(art_dir)) for p in art_dir.rglob("*") if p.is_file()) \
+                if art_dir.exists() else [f"(not a folder: {art})"]
+            print(f"  child {name} {status}{' CHAMPION' if run_id == promoted['run_id'] else ''}: "
+                  f"model={params.get('model.name')} eval.mode={params.get('eval.mode')} "
+                  f"{len(params)} params, {n_metrics} metrics, artifacts "
+                  f"{[f for f in files if '/' not in f]}")
+    deployed = promoted["candidate"]["test_reported"]
+    for target, block in replayed["targets"].items():
+        ours = deployed.get(target, {})
+        print(f"  {target}: promote as deployed rmse {ours.get('rmse')}  replay rmse {block.get('rmse')}")
+
+
+def docs(root: str) -> None:
+    """Cell 3: the docs site built strictly."""
+    sh(Path(root).resolve(), ".venv/bin/mkdocs build --strict")
+
+
+def volumetric(root: str, seed: str) -> None:
+    """Cell 4a: docs/volumetric.md's four commands with ``seed=SEED``."""
+    root_ = Path(root).resolve()
+    for stage in ("simulate", "calibrate", "run", "design"):
+        sh(root_, f".venv/bin/thermocomp {stage} experiment=volumetric_large_mill seed={seed}")
+    rep = root_ / "reports" / "volumetric_large_mill"
+    cal = json.loads((rep / "calibration.json").read_text())
+    print("  calibration:", {k: v for k, v in cal.items() if not isinstance(v, (dict, list))})
+    vol = json.loads((rep / "metrics.json").read_text()).get("volumetric", {})
+    print("  volumetric:", {k: v for k, v in vol.items() if k != "parameters"})
+    print("  design.json:", (rep / "design.json").exists())
+
+
+def simulation(root: str, seed: str) -> None:
+    """Cell 4b: docs/simulation.md's commands with ``seed=SEED``."""
+    root_ = Path(root).resolve()
+    for sim in ("yearround_spindle", "large_mill_week", "swiss_lathe_door", "column_moving_source",
+                "long_record", "climate_room"):
+        path = f"audit96b/sim/{sim}"
+        sh(root_, f".venv/bin/thermocomp simulate sim={sim} seed={seed} data.path={path}")
+        manifest = root_ / path / "manifest.csv"
+        if manifest.exists():
+            lines = manifest.read_text().splitlines()
+            print(f"  {sim}: {len(lines) - 1} campaigns; header {lines[0]}")
+    conf = root_ / "audit96b" / "myconf" / "sim"
+    conf.mkdir(parents=True, exist_ok=True)
+    page = (root_ / "docs" / "simulation.md").read_text()
+    conf.joinpath("my_column.yaml").write_text(
+        re.search(r"file myconf/sim/my_column.yaml -->\n```yaml\n(.*?)```", page, re.S).group(1))
+    search = f'"hydra.searchpath=[file://{root_}/audit96b/myconf]"'
+    sh(root_, f".venv/bin/thermocomp simulate {search} sim=my_column seed={seed} "
+              "data.path=audit96b/my_column")
+    diag = sh(root_, f".venv/bin/thermocomp diagnose {search} sim=my_column seed={seed} "
+                     "data.path=audit96b/my_column out=audit96b/reports/my_column")
+    print("\n".join("  " + x for x in diag.stdout.splitlines()[-25:]))
+    sh(root_, f'.venv/bin/thermocomp simulate sim=yearround_spindle seed={seed} '
+              f'"sim.generator.effects=[door]" data.path=audit96b/door')
+    truth = json.loads((root_ / "audit96b/door.truth.json").read_text())
+    print("  door truth undeclared_effects:", truth.get("undeclared_effects"))
+    sh(root_, f".venv/bin/thermocomp simulate {search} sim=my_column seed={seed} "
+              "sim.generator.sample_perod_s=60 data.path=audit96b/typo")
+
+
+def serve(root: str, port: str) -> None:
+    """Cell 5: the README's fl_thermal model served, requests under the lab's and the contract's
+    names; a tampered and an unsigned copy refused."""
+    import shutil
+    import urllib.request
+
+    root_ = Path(root).resolve()
+    sh(root_, ".venv/bin/thermocomp run data=fl_thermal out=reports/fl_thermal")
+    head = (root_ / "datasets/fl_thermal/spindle_test.csv").read_text(encoding="utf-8").splitlines()[:2]
+    names, row = head[0].split(","), [float(x) for x in head[1].split(",")]
+    keep = [i for i, n in enumerate(names) if not n.startswith("ch")]
+    lab = {"columns": [names[i] for i in keep], "data": [[row[i] for i in keep]]}
+    contract = {"columns": ["time" if names[i].startswith("時間") else
+                            "S_spindle" if names[i].startswith("spindle") else
+                            "T_" + names[i].split("(")[0] for i in keep], "data": lab["data"]}
+    server = subprocess.Popen(["nice", ".venv/bin/thermocomp", "serve",
+                               "serve.model=reports/fl_thermal/model.pkl", f"serve.port={port}"],
+                              cwd=root_, env=_env(), stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                              text=True)
+    try:
+        for _ in range(240):
+            try:
+                urllib.request.urlopen(f"http://127.0.0.1:{port}/ping", timeout=2)
+                break
+            except OSError:
+                time.sleep(1)
+        for label, frame in (("lab", lab), ("contract", contract)):
+            body = json.dumps({"dataframe_split": frame,
+                               "params": {"session": label, "reset": True}}).encode()
+            request = urllib.request.Request(f"http://127.0.0.1:{port}/invocations", body,
+                                             {"Content-Type": "application/json"})
+            try:
+                answer = urllib.request.urlopen(request, timeout=60).read().decode()
+            except urllib.error.HTTPError as exc:
+                answer = f"HTTP {exc.code}: {exc.read().decode()[:300]}"
+            print(f"  {label} names {frame['columns'][:3]}...: {answer[:400]}")
+    finally:
+        server.terminate()
+        server.wait(timeout=30)
+    bad = root_ / "audit96b" / "bad"
+    bad.mkdir(parents=True, exist_ok=True)
+    for name in ("model.pkl", "model.pkl.sig"):
+        shutil.copy(root_ / "reports/fl_thermal" / name, bad / name)
+    raw = bytearray((bad / "model.pkl").read_bytes())
+    raw[len(raw) // 2] ^= 1
+    (bad / "model.pkl").write_bytes(bytes(raw))
+    sh(root_, f".venv/bin/thermocomp serve serve.model=audit96b/bad/model.pkl serve.port={port}",
+       timeout=120)
+    (bad / "model.pkl.sig").unlink()
+    shutil.copy(root_ / "reports/fl_thermal/model.pkl", bad / "model.pkl")
+    sh(root_, f".venv/bin/thermocomp serve serve.model=audit96b/bad/model.pkl serve.port={port}",
+       timeout=120)
+
+
 def main(argv: list[str]) -> int:
-    return run_commands(__doc__, {}, argv, cpu=sys.stderr)
+    return run_commands(__doc__, {"dvc": dvc, "sweep": sweep, "docs": docs, "volumetric": volumetric,
+                                  "simulation": simulation, "serve": serve}, argv, cpu=sys.stderr)
 
 
 if __name__ == "__main__":
