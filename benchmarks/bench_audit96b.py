@@ -187,12 +187,12 @@ def sweep(root: str, seed: str) -> None:
             metrics = json.loads((job / "metrics.json").read_text())
             figures = {}
             for target, block in metrics["targets"].items():
-                val = block.get("validation") or {}
-                sim = val.get("validation_simulation") or val
-                figures[target] = (round(sim.get("rmse", float("nan")), 4),
+                own = (block.get("validation") or {}).get("rmse", float("nan"))
+                sim = (block.get("validation_simulation") or block.get("validation") or {})
+                figures[target] = (round(own, 4), round(sim.get("rmse", float("nan")), 4),
                                    round(block["test"]["rmse"], 4))
             print(f"  job {job.name}: {(job / '.hydra/overrides.yaml').read_text().split()}"
-                  f" (val sim, test) {figures}")
+                  f" (val own mode, val sim, test) {figures}")
         children = db.execute("select r.run_uuid, r.name, r.status from runs r join tags t on "
                               "t.run_uuid=r.run_uuid where t.key='mlflow.parentRunId' and t.value="
                               "(select value from tags where run_uuid=? and key='mlflow.parentRunId')",
