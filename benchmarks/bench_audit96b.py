@@ -270,7 +270,8 @@ def serve(root: str, port: str) -> None:
     import urllib.request
 
     root_ = Path(root).resolve()
-    sh(root_, ".venv/bin/thermocomp run data=fl_thermal out=reports/fl_thermal")
+    if not (root_ / "reports/fl_thermal/model.pkl").exists():
+        sh(root_, ".venv/bin/thermocomp run data=fl_thermal out=reports/fl_thermal")
     head = (root_ / "datasets/fl_thermal/spindle_test.csv").read_text(encoding="utf-8").splitlines()[:2]
     names, row = head[0].split(","), [float(x) for x in head[1].split(",")]
     keep = [i for i, n in enumerate(names) if not n.startswith("ch")]
@@ -279,7 +280,8 @@ def serve(root: str, port: str) -> None:
                             "S_spindle" if names[i].startswith("spindle") else
                             "T_" + names[i].split("(")[0] for i in keep], "data": lab["data"]}
     server = subprocess.Popen(["nice", ".venv/bin/thermocomp", "serve",
-                               "serve.model=reports/fl_thermal/model.pkl", f"serve.port={port}"],
+                               "serve.model=reports/fl_thermal/model.pkl", "data=fl_thermal",
+                               f"serve.port={port}"],
                               cwd=root_, env=_env(), stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                               text=True)
     try:
@@ -288,6 +290,9 @@ def serve(root: str, port: str) -> None:
                 urllib.request.urlopen(f"http://127.0.0.1:{port}/ping", timeout=2)
                 break
             except OSError:
+                if server.poll() is not None:      # it stopped: what it said
+                    print("  serve exited", server.returncode, server.stdout.read()[-600:])
+                    return
                 time.sleep(1)
         for label, frame in (("lab", lab), ("contract", contract)):
             body = json.dumps({"dataframe_split": frame,
@@ -309,12 +314,12 @@ def serve(root: str, port: str) -> None:
     raw = bytearray((bad / "model.pkl").read_bytes())
     raw[len(raw) // 2] ^= 1
     (bad / "model.pkl").write_bytes(bytes(raw))
-    sh(root_, f".venv/bin/thermocomp serve serve.model=audit96b/bad/model.pkl serve.port={port}",
-       timeout=120)
+    sh(root_, f".venv/bin/thermocomp serve serve.model=audit96b/bad/model.pkl data=fl_thermal "
+              f"serve.port={port}", timeout=120)
     (bad / "model.pkl.sig").unlink()
     shutil.copy(root_ / "reports/fl_thermal/model.pkl", bad / "model.pkl")
-    sh(root_, f".venv/bin/thermocomp serve serve.model=audit96b/bad/model.pkl serve.port={port}",
-       timeout=120)
+    sh(root_, f".venv/bin/thermocomp serve serve.model=audit96b/bad/model.pkl data=fl_thermal "
+              f"serve.port={port}", timeout=120)
 
 
 def main(argv: list[str]) -> int:
