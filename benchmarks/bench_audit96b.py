@@ -64,6 +64,84 @@ R1. serve: the lab's own names and the contract names give the same C_* (to 1e-1
 A cell breaking one of these is a finding, named with command, file, row and numbers; mended where
 small and clear with a test that fails on 324eb8b2 (docs mends count): verdict KEPT; else
 documented for the lead: TRACED.
+
+Status: the bar above committed in 907fb9f7 before any of 9777-9779 was simulated; unchanged.
+After it, the ``serve`` cell got ``data=fl_thermal`` (finding F2: without it the cell cannot run),
+the ``dvc`` cell a valid ``dvc exp show`` line (mine was not: ``--keep`` takes an argument) and a
+``git checkout`` of the value ``dvc exp run`` leaves in the workspace; the ``sweep`` cell reads
+``validation_simulation`` where metrics.json keeps it (per target, not inside ``validation``).
+
+Scored (2026-12-06, 04:12-04:45 UTC; /work/main 324eb8b2 cloned to /tmp/audit96b/clone, its own
+``make run`` (core) then ``uv pip install -e '.[pipeline,docs,machine]'``: DVC 3.67.1, MkDocs 1.6.1,
+asyncua; 2 cores shared by up to 8 helpers, every command ``nice``, one at a time):
+
+- README: ``make run`` exit 0, the table to every digit (E_X / E_Y / E_Z 0.75 / 1.42 / 5.80, Rsd SM
+  0.72 / 1.38 / 5.46), 22.4 s wall, 7.7 + 0.9 s CPU; ``run data=fl_thermal`` E_ch5 3.054 (mean 4.06).
+- D1 met. ``dvc repro`` exit 0, 97 s wall: simulate, ingest, denoise, select, train, evaluate,
+  diagnose; again: no stage, "Data and pipelines are up to date" (3.2 s); ``dvc metrics show``:
+  test_rmse E_X / E_Y / E_Z 0.7504270762223771 / 1.4235257363114437 / 5.801905216023422, val_rmse
+  0.7698 / 1.9134 / 6.0659 = metrics.json = the evaluate run's MLflow ``<t>.test.rmse`` /
+  ``<t>.val.rmse`` to every digit. ``dvc exp run -S conf/model/mlr.yaml:estimator.fit_intercept=false``
+  exit 0 (50 s): train, evaluate, diagnose rerun; E_X test 0.7504 -> 0.7716 (= metrics.json = its
+  MLflow run, 0.771640140303543). ``dvc exp show``'s baseline row is empty in a fresh clone (no
+  dvc.lock committed): DVC's, not a claim of the docs.
+- S1 met. seed 9777 (24 campaigns, 1726 rows): the 4-job sweep exit 0, 39 s wall, one parent, 4
+  FINISHED child runs, each with params (16 mlr / 22 arx), 34 metrics (37 one_step), artifacts
+  config.yaml, metrics.json, model.pkl, model.pkl.sig, thermocomp.log; ``compare`` exit 0.
+- S2 met. Simulation-mode validation (mean of E_X, E_Y, E_Z): arx 2.3520 (both modes: the same
+  model), mlr 2.4007; ``promote`` put arx (eval.mode=simulation, 1096cb8a) @champion v1,
+  ``ranked_by`` mode simulation; its "as deployed" test RMSE 2.2065783873271636 = the mean of
+  ``replay replay.model=models:/thermocomp-compensator@champion`` (0.74628 / 0.75907 / 5.11438)
+  to every digit; the version tags carry ``validation_mode simulation`` and ``metric.*``.
+  FINDING F1 (MENDED): ``compare``'s reported test columns are each run's own eval.mode with
+  nothing saying so: beside the simulation-mode ``val_rmse`` 2.35 of both arx runs, test:rmse
+  2.21 (simulation) and 0.62 (one_step run: its one-step figure), while the one_step run's model
+  deploys at 2.21. ``compare.csv`` / ``compare.md`` / ``compare.json`` now carry ``test_mode``
+  (shell/sweeps.py); cli.md and sweeps.md say it. tests/shell/test_choose_by_simulation.py
+  ``test_compare_says_the_mode_of_the_test_figures_it_reports`` fails on 324eb8b2. Left to the
+  lead: reporting every run's simulation-mode test (``test_simulation``) instead.
+- M1 met. ``mkdocs build --strict`` exit 0 (5.7 s). Blocks run as written: README's (make run,
+  fl_thermal, serve + the lab-name request), dvc.md's three, sweeps.md's first four (sweep exit 0;
+  compare exit 0; promote: "v2 not promoted", the store's champion was 9777's on another dataset, as
+  the page says it must; again: no new version) and its swiss_lathe_door replay (exit 0, E_X /
+  E_Y 1.207 / 0.786, stream = batch 4e-14), volumetric.md's DVC line (``dvc repro
+  pipelines/volumetric/dvc.yaml`` exit 0, 4 stages, 131 s wall, 51 + 7 s CPU: seed 0 distance
+  errors 4.07 -> 1.35, VCE 8.72 -> 3.12, identified 9.33 -> 4.38, A.3 8.89 / 24.59 -> 1.74 / 5.34,
+  22 parameters, 95.43 % within 2u, residual 1.124 µm: the page to every digit shown).
+  FINDING F3 (MENDED, doc): volumetric.md said ``E_ZY2`` 1.01 -> 1.55 µm/m; a straightness, µm
+  (metrics.json ``unit``); tests/test_docs.py
+  ``test_an_error_parameters_figure_the_docs_give_is_in_its_unit`` fails on 324eb8b2.
+- V1 met. seed 9778: simulate / calibrate / run / design exit 0 (4.2 / 6.1 / 25.6 / 20.9 s wall);
+  22 of 33 identified (11 rotations unseen), 96.4 % within 2u (page 95.4 % +- 1.5 between seeds),
+  max |z| 4.55, residual 0.848 µm (expected 0.946); distance errors 4.46 -> 1.47 µm (67.0 %), VCE
+  9.12 -> 3.15 (65.5 %), identified 9.92 -> 4.52 (54.4 %), A.3 8.88 / 24.37 -> 2.00 / 5.60; design.json.
+- T1 met. seed 9779: yearround_spindle 24 campaigns, large_mill_week 2 (48 362 rows),
+  swiss_lathe_door 2, column_moving_source 2, long_record 2 (30 241 rows), climate_room 43 (23 661
+  rows), each exit 0; my_column (the page's yaml) 2 campaigns, 2402 rows; its ``diagnose`` exit 0
+  (54 s): E_X 2.26 -> 0.66 µm accepting ``S_hydraulic_temp_C`` (and on E_X_mid 0.52 -> 0.38), lags
+  elsewhere, as the page says of seed 0; ``effects=[door]`` in the truth (S_door, E_Y);
+  ``+sim.generator.sample_perod_s=60`` exit 2 "not an argument of ...ColumnMovingSource; did you
+  mean sim.generator.sample_period_s?" (without ``+``: Hydra's key check, "unknown config key",
+  exit 2, the closest key too).
+- R1 met with ``data=fl_thermal``. FINDING F2 (MENDED): ``serve
+  serve.model=reports/fl_thermal/model.pkl`` (as the README serves make run's) exit 2, "column
+  'T_t1': 16 of 16 campaigns lack it ...; give it to all of them or leave it out of data.inputs":
+  a model.pkl is made deployable on the train split of ``data.path`` (the default dataset here);
+  ``replay`` and ``export`` alike. Now (shell/builders.py ``other_record``) where the record has
+  none of some columns the model reads: "... cannot be deployed on data.path=...: the record has
+  none of T_t1, T_t2, T_t3, T_t4 and 17 more, which the model reads. It was fitted on another
+  record ...: give the data config its run read"; to-the-machine.md says ``data=fl_thermal``.
+  tests/shell/test_audit96b.py fails on 324eb8b2. With it: the lab's own names (``時間(s)``,
+  ``spindle(RPM)``, ``t1(°C)`` ...) and the contract's (``time``, ``S_spindle``, ``T_t1`` ...) give
+  the same C_ch1..C_ch5 to every digit (C_ch1 -1.2970472882211652); a flipped byte: exit 2
+  "signature mismatch (model.pkl.sig)"; no .sig: exit 2 "not signed by this project ...; refusing
+  to unpickle it".
+
+Observed, not a finding: ``dvc repro pipelines/volumetric/dvc.yaml``'s run stage warns WORSE THAN
+NO COMPENSATION on validation for 13 parameters (E_YZ2 8.34 > 4.92 ...) whose test figures the
+page gives as reductions (E_YZ2 -62 %): validation and test differ there; the page does not
+mention the warning. ``simulate experiment=volumetric_large_mill seed=9778`` writes the same
+folder as seed 0 (data/raw/large_mill_volumetric): a changed seed replaces the dataset in place.
 """
 
 from __future__ import annotations
@@ -130,7 +208,8 @@ def dvc(root: str) -> None:
     exp = sh(root_, ".venv/bin/dvc exp run -S conf/model/mlr.yaml:estimator.fit_intercept=false")
     print("  exp stages run:", _stages_run(exp.stdout))
     sh(root_, ".venv/bin/dvc metrics show")
-    sh(root_, ".venv/bin/dvc exp show --no-pager --md --keep --only-changed")
+    sh(root_, ".venv/bin/dvc exp show --no-pager --md")
+    sh(root_, "git checkout -- conf/model/mlr.yaml")   # dvc exp run leaves the value in the workspace
 
 
 def _flatten(tree, prefix: str = "") -> dict:
