@@ -322,3 +322,15 @@ def test_every_flag_of_the_command_is_in_the_cli_reference():
     flags = [*LOG_FLAGS, "--version", "-V", "--help", "-h"]
     missing = [f for f in flags if f"`{f}`" not in CLI and f"`thermocomp {f}`" not in CLI]
     assert not missing, f"docs/cli.md lacks the flags {missing}"
+
+
+def test_an_error_parameters_figure_the_docs_give_is_in_its_unit():
+    """audit96b: volumetric.md gave `E_ZY2` (a straightness, µm) as "1.01 → 1.55 µm/m", the figures
+    of its run on seed 0 in µm.  Each "`E_..` ... a → b <unit>" in a page names the parameter's
+    unit (:func:`thermocomp.core.metrics.unit`).  Fails on 324eb8b2."""
+    from thermocomp.core.metrics import unit
+
+    pattern = re.compile(r"`(E_[A-Z]{2}\d)`[^`.;]*?\d+(?:\.\d+)? → \d+(?:\.\d+)? (µm/m|µm)\b")
+    wrong = [(doc.name, name, said) for doc in DOCS
+             for name, said in pattern.findall(doc.read_text(encoding="utf-8")) if said != unit(name)]
+    assert wrong == []

@@ -156,3 +156,19 @@ def test_compare_ranks_by_the_simulation_mode_validation_and_says_so(two_mode_sw
     assert [r["val_rmse"] for r in ranked] == sorted(r["simulation"] for r in runs.values())
     assert runs[report["best"]["run_id"]]["inputs"] == "['T_2']"
     assert "simulation-mode validation" in printed
+
+
+def test_compare_says_the_mode_of_the_test_figures_it_reports(two_mode_sweep, capsys):
+    """audit96b: the validation columns are the simulation mode's whatever ``eval.mode``, the
+    reported test columns the run's own; a one_step run's test RMSE (its one-step figure) read
+    beside the simulation-mode validation with nothing saying so.  Fails on 324eb8b2 (no
+    ``test_mode`` column)."""
+    s, runs = two_mode_sweep, two_mode_sweep["runs"]
+    out = s["root"] / "compare_modes"
+    assert main(["compare", f"tracking_uri={s['uri']}", f"compare.sweep={s['sweep']}",
+                 f"compare.out={out}"]) == 0
+    assert "test_mode" in capsys.readouterr().out
+    table = pd.read_csv(out / "compare.csv").set_index("run_id")
+    assert table["val_mode"].eq("simulation").all()
+    assert {run_id: table.loc[run_id, "test_mode"] for run_id in runs} == {
+        run_id: r["mode"] for run_id, r in runs.items()}

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from omegaconf import DictConfig, OmegaConf
 
-from ..base.errors import ConfigError, ContractError, ThermocompError
+from ..base.errors import ConfigError, ContractError, ThermocompError, listed
 from ..base.log import logger, say
 from ..base.params import check_params
 from ..base.paths import resolve
@@ -187,7 +187,27 @@ def deployable_model(cfg: DictConfig, ds, train_ids, source, key: str,
         name, what = model_family(comp), f"{key}={source}"
         train = {c: ds.campaigns[c] for c in train_ids}
         check_model_names(cfg, ds, comp, what)
+        try:
+            stream = deploy_stream(cfg, comp, train, what)
+        except ConfigError as exc:
+            raise ConfigError(other_record(cfg, ds, comp, what) or str(exc)) from None
+        return deployable(cfg, stream, train, ds), source, name
     return deployable(cfg, deploy_stream(cfg, comp, train, what), train, ds), source, name
+
+
+def other_record(cfg: DictConfig, ds, comp, what: str) -> str:
+    """Why a model.pkl cannot be deployed on ``data.path`` where the record lacks every column of
+    some it reads: it was fitted on another record (audit96b: ``serve
+    serve.model=reports/fl_thermal/model.pkl`` read the default dataset and advised leaving
+    ``T_t1`` out of data.inputs); "" where each is in some campaign (a fault of the record)."""
+    wanted = [*getattr(comp, "inputs_", ()), *getattr(comp, "targets_", ())]
+    absent = [c for c in wanted if c not in ds.columns]
+    if not absent:
+        return ""
+    return (f"{what} cannot be deployed on data.path={cfg.data.path}: the record has none of "
+            f"{listed(absent, 4)}, which the model reads. It was fitted on another record, and a "
+            "model.pkl is made deployable on the train split of data.path: give the data config "
+            "its run read (data=<name> or data.path=..., as for that run)")
 
 
 def check_model_names(cfg: DictConfig, ds, comp, what: str) -> None:

@@ -25,7 +25,7 @@ from ..core.scoring.leaderboard import (
     validation_method,
     validation_mode,
 )
-from ..core.scoring.results import VAL_RMSE
+from ..core.scoring.results import DEPLOYED_MODE, VAL_RMSE
 from .tracking import DATASET_TAG, child_runs, latest_sweep, retry_locked
 
 # Written to the sweep folder by the callback: ``{"parent_run_id": ..., "overrides": [...]}``.
@@ -149,7 +149,8 @@ def failed_note(failed: int, jobs: int) -> str:
 def sweep_rows(client, uri: str, parent_id: str, target: str = "mean",
                baselines: list | None = None) -> list[dict]:
     """One row per child run of ``parent_id`` (unsorted); its ``val_*`` figures are of the
-    deployed (simulation) mode, ``val_mode`` says so (or names the fallback of an old run).
+    deployed (simulation) mode, ``val_mode`` says so (or names the fallback of an old run); the
+    reported test figures are of the run's own ``eval.mode``, ``test_mode`` says which.
 
     ``baselines``, when given, receives each run's persistence figures
     (:func:`~thermocomp.core.scoring.leaderboard.persistence_summary`, None when absent).
@@ -180,6 +181,9 @@ def sweep_rows(client, uri: str, parent_id: str, target: str = "mean",
         row.update({f: figures[f] for f in VAL_FIGURES})     # what ranks, then what is reported
         row["val_method"] = method
         row["val_mode"] = validation_mode(metrics) if metrics else None   # simulation, or a fallback
+        # the reported test figures are of the run's own eval.mode: a one_step run's beside the
+        # simulation-mode validation read 0.62 µm where the same model deploys at 2.21 (audit96b)
+        row["test_mode"] = metrics.get("mode", DEPLOYED_MODE) if metrics else None
         row.update({f: figures[f] for f in FIGURES})
         if baselines is not None:
             base = persistence_summary(metrics["targets"], target) if metrics else None
