@@ -41,7 +41,7 @@ failing on 4afc74c7; the rest listed for the lead.  KEPT (mends) or TRACED (find
 
 Scored (2026-12-06, once; main = 4afc74c7's src, ``/tmp/badin96/main``; the mends = fix/badin96,
 ``/tmp/badin96/rule``; 2 cores shared with other helpers: 44 cases 3 min 25 s wall on main,
-10 min 18 s on the branch under load, 104-112 s CPU of the children)
+10 min 18 s on the branch under load; 118 / 128 s CPU, user + sys of the children)
 ---
 Clauses met, main -> mends: B1 39 -> 40 of 44, B2 39 -> 40, B3 38 -> 39, B4 39 -> 40.  No
 traceback in any case; every exit-2 case left nothing under out/ (7 left an MLflow run marked
