@@ -187,10 +187,13 @@ def deployable_model(cfg: DictConfig, ds, train_ids, source, key: str,
         name, what = model_family(comp), f"{key}={source}"
         train = {c: ds.campaigns[c] for c in train_ids}
         check_model_names(cfg, ds, comp, what)
+        foreign = other_record(cfg, ds, comp, what)     # another record's model: say so first
+        if not foreign:
+            check_model_columns_in(ds, train, comp, what)
         try:
             stream = deploy_stream(cfg, comp, train, what)
         except ConfigError as exc:
-            raise ConfigError(other_record(cfg, ds, comp, what) or str(exc)) from None
+            raise ConfigError(foreign or str(exc)) from None
         return deployable(cfg, stream, train, ds), source, name
     return deployable(cfg, deploy_stream(cfg, comp, train, what), train, ds), source, name
 
@@ -220,6 +223,21 @@ def check_model_names(cfg: DictConfig, ds, comp, what: str) -> None:
     said = former_said(absent, ds.meta.get("column_map") or {}, cfg.data.path)
     if said:
         raise ContractError(f"{what}: {said}", file=cfg.data.path)
+
+
+def check_model_columns_in(ds, train: dict, comp, what: str) -> None:
+    """Every train campaign holds every input a loaded model reads (what its stream's envelope is
+    built from): else refused naming the odd campaign's file (badin96: the stream's own check,
+    :meth:`StreamingCompensator.from_training`'s, named the campaign's id alone)."""
+    from ..core.frame import check_common_columns
+
+    headers = {name: raw for raw, name in (ds.meta.get("column_map") or {}).items()}
+    try:
+        check_common_columns(train, list(getattr(comp, "inputs_", ())),
+                             {cid: ds.file_path(cid) for cid in train}, headers)
+    except ContractError as exc:
+        raise ContractError(f"{what} cannot be deployed: {exc.reason}", file=exc.file,
+                            column=exc.column) from None
 
 
 def _registered(cfg: DictConfig, source: str, path, key: str) -> tuple[object, str, str]:

@@ -422,6 +422,13 @@ def matching_roles(header: str, roles: Mapping) -> list[str]:
                                             for p in map(_without_unit, roles.get(k, ())))]
 
 
+def idle_patterns(headers: Sequence[str], roles: Mapping) -> list[str]:
+    """``data.roles.<kind>=[<pattern>]`` of each role pattern that matches none of ``headers``
+    (as :func:`matching_roles` matches): a mistyped pattern, which names nothing."""
+    return [f"data.roles.{k}=[{p!r}]" for k in ROLE_PATTERNS for p in roles.get(k, ())
+            if not any(matching_roles(h, {k: [p]}) for h in headers)]
+
+
 # a role pattern ending in the unit its columns' values are in: '*DISP* (um)', a space before
 # the brackets and no glob character in them ('Kanal[*]' is a glob)
 _PATTERN_UNIT = re.compile(r"^(.*\S)\s+[\[(]([^\[\]()*?]+)[\])]\s*$")

@@ -17,7 +17,7 @@ import pandas as pd
 import yaml
 from omegaconf import DictConfig, OmegaConf
 
-from ...base.errors import ContractError
+from ...base.errors import ContractError, listed
 from ...base.files import atomic_write_text
 from ...base.log import held_back, said_after
 from ...base.paths import conf_dir, resolve
@@ -71,7 +71,7 @@ from ...core.io.pairhead import error_files, pair_time, paired_head, paired_line
 from ...core.io.period_line import stated_period
 from ...core.io.plain import converted_once, is_converted, is_lab_file, lab_as_csv, lab_dayfirst
 from ...core.io.record import safe_id
-from ...core.io.roles import naming, split_unit
+from ...core.io.roles import idle_patterns, naming, split_unit
 from ...core.io.slashed import record_order
 from ...core.io.slashed_rows import RUN_SAID
 from ...core.io.sniff import resolved
@@ -458,6 +458,10 @@ def _init(cfg: DictConfig, held: ExitStack) -> dict:
               f"data.units={{{days!r}: d}}")
     opts, cells = number_cells(src, manifest, sample, given, opts)   # thousands, marks
     stated = stated_units(sample, opts)             # (a TOA5 file's units row)
+    idle = idle_patterns(header, opts.roles) if src.is_file() else []
+    if idle:     # (badin96: kept in the config written, naming nothing, a detected role beside it)
+        raise ContractError(f"{listed(idle)} matches no column (its headers: {listed(header, 8)})",
+                            file=sample)
     roles = proposed_roles(header, cells_of_first, opts, stated)
     for line in foreign_said(header, roles, opts, stated):   # W/m^2, m/s: left out, said
         print(f"{sample.name}: {line}")

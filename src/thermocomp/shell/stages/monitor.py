@@ -41,6 +41,7 @@ from ...core.io.stdin import TIME_ORIGIN, stdin_text, stream_campaigns
 from ..builders import (
     build_adaptive,
     build_compensator,
+    check_model_columns_in,
     check_model_names,
     deploy_stream,
     registered_first,
@@ -86,6 +87,7 @@ def _fitted(cfg: DictConfig, ds, train: dict, registered):
             else load_model(resolve(str(path)))
     if path is not None and registered is None:
         check_model_names(cfg, ds, comp, f"monitor.model={path}")
+        check_model_columns_in(ds, train, comp, f"monitor.model={path}")
     check_volumetric_targets(cfg, ds, comp.targets_, f"monitor.model={path}")
     # one plain stream serves both: the fixed run and the adaptive one are each streamed from a
     # reset, one after the other
