@@ -21,7 +21,8 @@ and each test campaign streamed from a reset (bench_guard95's stream): the guard
 (rate / bound / other), the rows it changed, RMSE per target against the measured error; the
 corrections kept (``OUT.npz``) so that ``compare`` can give max|rule - base|.  ``fresh``: SEEDS
 simulated in ROOT (:data:`FRESH`), every cell of :data:`CELLS` fitted by ``run``; then ``score``
-with ROOT's data and reports.
+with ROOT's data and reports.  A cell named ``CELL+c`` is also exported as C, compiled (gcc) and
+fed its test campaigns from a reset: max|C - deployed| (``dC``, µm).
 
 BAR (written and committed BEFORE fresh seeds 9782-9786 were simulated; the rule unchanged after)
 -------------------------------------------------------------------------------------------
@@ -47,11 +48,13 @@ model's correction beyond the training error bound on 13 (mlr) / 45 (pcr) / 25 (
 
 from __future__ import annotations
 
+import io
 import json
 import sys
 from pathlib import Path
 
 import numpy as np
+import pandas as pd
 
 HERE = Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE)]
@@ -87,14 +90,48 @@ def _stream(data: str, model: str) -> dict:
         s = stream_rows(dep, ds.campaigns[c], c)
         m = dep.compensator.measured({c: ds.campaigns[c]})[c][dep.targets_].to_numpy(float)
         out[c] = (np.asarray(s.y, float), m, list(s.events), dep.targets_)
-    return out
+    return out, dep, {c: ds.campaigns[c] for c in test}
+
+
+def _c_apart(dep, frames: dict, folder: Path) -> float:
+    """max|C's correction + deployed y| (µm) over ``frames``, each streamed from a reset by the
+    compiled exported C (``-y`` is the correction it prints); NaN where the model exports no C."""
+    import subprocess
+
+    from thermocomp.apps.deploy.export import exported_files, state_space
+    from thermocomp.apps.deploy.report import stream_rows
+
+    try:
+        ss = state_space(dep, monitor=True)
+    except Exception:  # noqa: BLE001  (NotExportable and its kin: said as NaN)
+        return float("nan")
+    folder.mkdir(parents=True, exist_ok=True)
+    for name, text in exported_files(dep, "c").items():
+        (folder / name).parent.mkdir(parents=True, exist_ok=True)
+        (folder / name).write_text(text)
+    subprocess.run(["gcc", "-O2", "compensator.c", "stream.c", "-lm", "-o", "stream"], cwd=folder,
+                   check=True, capture_output=True)
+    worst = 0.0
+    for c, frame in frames.items():
+        y = np.asarray(stream_rows(dep, frame, c).y, float)
+        run = subprocess.run([str(folder / "stream")], capture_output=True, text=True, check=True,
+                             input=frame[["time", *ss.inputs]].to_csv(index=False, float_format="%.17g"))
+        code = -pd.read_csv(io.StringIO(run.stdout)).to_numpy(float)
+        worst = max(worst, float(np.nanmax(np.abs(code - y))))
+    return worst
 
 
 def score(data: str, models: str, out: str, *cells: str) -> None:
-    """Per cell: events by kind, rows changed by the guard, RMSE per target (module doc)."""
+    """Per cell: events by kind, rows changed by the guard, RMSE per target (module doc); a cell
+    named ``CELL+c`` also the exported C against the deployed stream (``dC``, µm)."""
     rows, ys = {}, {}
-    for cell in cells:
-        for c, (y, m, events, targets) in _stream(data, str(Path(models) / cell / "model.pkl")).items():
+    for named in cells:
+        cell, _, code = named.partition("+")
+        streams, dep, frames = _stream(data, str(Path(models) / cell / "model.pkl"))
+        if code:
+            print(f"{cell:<28} dC {_c_apart(dep, frames, Path(out).parent / f'c-{cell}'):.3g} µm",
+                  flush=True)
+        for c, (y, m, events, targets) in streams.items():
             kinds = [_kind(e) for e in events if e.get("from") == "free" or e.get("sensor")]
             rmse = np.sqrt(np.nanmean((m - y) ** 2, axis=0))
             key = f"{cell}/{c}"

@@ -228,7 +228,7 @@ class AdaptiveCompensator:
         take = None
         try:
             y, clamped = self.streaming._step(x, t, clocked=True)
-            stepped, take = True, self.streaming.last_take_
+            stepped, take = True, getattr(self.streaming, "last_take_", None)
         except ValueError as exc:    # OutOfEnvelopeError (policy=refuse) and its kin
             y, clamped, stepped = np.full(len(self.targets_), np.nan), 0, False
             events.append(_held_event(t, exc))
@@ -241,7 +241,7 @@ class AdaptiveCompensator:
                 except ValueError:
                     pass
             if stepped and out in falls:
-                y, take = falls[out], self.fallbacks_[out].last_take_
+                y, take = falls[out], getattr(self.fallbacks_[out], "last_take_", None)
         self._output(y, dt, t, self._allowance(stepped), events, take)
         return self._y, clamped
 
@@ -347,12 +347,12 @@ class AdaptiveCompensator:
 
         rows = np.flatnonzero(done)
         y, clamps, dx = self.streaming.run_rows(xs[rows], ts[rows], clocked=True, on_refused=held)
-        takes = self.streaming.takes_
+        takes = _takes(self.streaming, y)
         for sensor, fallback in self.fallbacks_.items():
             ys = fallback.run_rows(xs[rows], ts[rows], clocked=True,
                                    on_refused=lambda k, exc: None)[0]
             use = (fallen[rows] == sensor) & ~refused[rows] & np.isfinite(ys).all(axis=1)
-            y[use], takes[use] = ys[use], fallback.takes_[use]
+            y[use], takes[use] = ys[use], _takes(fallback, ys)[use]
         out = np.full((n, len(self.targets_)), np.nan)
         clamped = np.zeros(n, dtype=np.int64)
         clamped[rows] = clamps
@@ -514,6 +514,13 @@ def _held_event(t: float, exc: Exception) -> dict:
     """The event of a row the plain stream refused: the correction held."""
     return {"time": t, "sensor": None, "from": "running", "to": "held",
             "reason": f"correction held: {exc}"}
+
+
+def _takes(streaming, y: np.ndarray) -> np.ndarray:
+    """What ``streaming``'s clamp took out of each row of its last ``run_rows`` (``y``), zeros
+    for a stream without one (:meth:`~.guard.CorrectionGuard.step`'s ``take``)."""
+    takes = getattr(streaming, "takes_", None)
+    return np.zeros_like(y) if takes is None or takes.shape != y.shape else takes
 
 
 def stream_allowance(guard: CorrectionGuard, streaming: StreamingCompensator,
