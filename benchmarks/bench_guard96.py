@@ -15,6 +15,7 @@ Usage (from the repository root, ``PYTHONPATH=<tree>/src``: the code measured is
     python benchmarks/bench_guard96.py score DATA MODELS OUT.json CELL...
     python benchmarks/bench_guard96.py compare BASE.json RULE.json
     python benchmarks/bench_guard96.py fresh ROOT SEEDS
+    python benchmarks/bench_guard96.py faults ROOT OUT.json
 
 ``score``: per cell (``MODELS/<cell>/model.pkl``), the model made deployable as ``replay`` makes it
 and each test campaign streamed from a reset (bench_guard95's stream): the guard's events by kind
@@ -22,7 +23,9 @@ and each test campaign streamed from a reset (bench_guard95's stream): the guard
 corrections kept (``OUT.npz``) so that ``compare`` can give max|rule - base|.  ``fresh``: SEEDS
 simulated in ROOT (:data:`FRESH`), every cell of :data:`CELLS` fitted by ``run``; then ``score``
 with ROOT's data and reports.  A cell named ``CELL+c`` is also exported as C, compiled (gcc) and
-fed its test campaigns from a reset: max|C - deployed| (``dC``, µm).
+fed its test campaigns from a reset: max|C - deployed| (``dC``, µm).  ``faults``: the record,
+models and injected faults of bench_deploy_faults.py through the adaptive form (the served
+model): the guard's events per fault (row, target, state) and the corrections, for B3.
 
 BAR (written and committed BEFORE fresh seeds 9782-9786 were simulated; the rule unchanged after)
 -------------------------------------------------------------------------------------------
@@ -44,6 +47,47 @@ model's correction beyond the training error bound on 13 (mlr) / 45 (pcr) / 25 (
 (lagbank) rows while the measured error stays inside it on every row; the bound cuts RMSE E_XY1
 2.6125 -> 2.6082 (mlr), 4.8025 -> 4.7537 (pcr), 3.0910 -> 3.0677 (arx), 4.1385 -> 4.0849
 (lagbank; E_ZY1 3.5181 -> 3.5146): the guard doing its job on a model that extrapolates.
+
+Status: the bar and the rule were committed in 0ece5f46 before any of 9782-9786 was simulated.
+After it, before the fresh score: a stream object without ``last_take_`` / ``takes_`` read as
+taking nothing (``getattr``; no change for the shipped streams), and this bench's reporting only
+(``CELL+c``, ``faults``).  Scored once, 2026-12-06 04:48-04:53 UTC (2 shared cores, ``nice``).
+
+Seen (``score`` at 55f940b8's src -> the rule's; events = every guard event, episodes = from free)::
+
+  cr9762 C11       mlr-none mlr-ati pcr-none pcr-ati arx-none arx-ati lagbank-none lagbank-ati lstm-ati
+  events main       7        3       5        5       9        0       5            0           2
+  events rule       0        0       0        0       0        0       0            0           2
+  C10, C12: 0 -> 0 everywhere; every cell's corrections max|rule - main| = 0 µm (RMSE the same
+  to every digit); mlr-none's exported C = the rule's stream to 1.2e-14 µm over C10-C12.
+  lmv9775 (bound events): mlr 2 -> 2, pcr 6 -> 6, arx 2 -> 2, lagbank 4 -> 4; max|dy| 0 µm.
+
+B1: cr9762's 36 events (21 rate-limited episodes) -> 2, in 8 of 9 cells 0; lstm-ati's one pair
+(E_X, 11880 s) remains: ATI over an LSTM has no step gain, so the clamp is not taken out of its
+correction but streamed inside the model (the stream on the clamped inputs alone): no ``take``
+to tell the clamp's step from the model's.  lmv9775's 14 bound events remain (traced above: the
+bound right, the measured error inside it on every row).  B2: max|rule - main| = 0 µm in every
+cell: RMSE unchanged.  B3: the guard and monitor tests below pass unchanged; bench_deploy_faults'
+record (seed 5353, K06, 17 faults + healthy, mlr / arx / lagbank, adaptive form): the guard's
+events per fault identical main / rule (none there: the monitor takes those faults) and the
+corrections identical (max|dy| 0 µm over 51 streams).
+
+Fresh, scored once (B4)::
+
+  record   cells  events main -> rule         max|dy|  worst RMSE  dC (rule, compiled C)
+  cr9782   6      0 -> 0 (C10-C12, every cell) 0 µm     +0 %        <= 8.2e-14 µm
+  cr9783   6      0 -> 0                       0 µm     +0 %        <= 5.7e-14 µm
+  cr9784   6      0 -> 0                       0 µm     +0 %        <= 3.8e-14 µm
+  lmv9785  4      4 / 4 / 2 / 4 -> the same (bound)   0 µm     +0 %        <= 6.1e-14 µm
+  lmv9786  4      2 / 6 / 2 / 4 -> the same (bound)   0 µm     +0 %        <= 4.8e-14 µm
+
+B4 holds: events <= main's in every cell (equal), no RMSE worse, deployed = main's to 0 µm and =
+the compiled C to 8.2e-14 µm.  The fresh climate rooms had no clamp chatter (0 events on main):
+they show the rule harmless, not at work; the seen cr9762 is where it works.
+Verdict KEPT (B1 with lstm-ati's one pair and lmv9775's bound events said, B2-B4 met).
+CPU (this process): seen score 27.7 (main) / 30.8 s (rule) for cr9762, 5.0 / 5.4 s lmv9775;
+fresh simulate + 26 runs 68.1 s; fresh score 33.1 (main) / 41.6 s (rule with the C);
+faults 8.3 (main, with its fits) / 4.5 s (rule).
 """
 
 from __future__ import annotations
@@ -179,8 +223,49 @@ def fresh(root: str, seeds: str) -> None:
                 print(f"{kind}{seed} {cell}: run exit {rc} {said[-120:] if rc else ''}", flush=True)
 
 
+def faults(root: str, out: str) -> None:
+    """bench_deploy_faults' record, models and faults through the adaptive form: per family and
+    fault the guard's events (row, target, to) and the corrections (``OUT.json``, ``OUT.npz``)."""
+    import bench_deploy_faults as bdf
+
+    from thermocomp.apps.deploy.report import stream_rows
+    from thermocomp.shell.builders import deployable_model
+    from thermocomp.shell.source import read_streamed
+
+    base = project_root(root)
+    data = base / "ys"
+    if not data.exists():
+        bdf.main(["simulate", "sim=yearround_spindle", "seed=5353", "sim.generator.n_campaigns=9",
+                  "sim.generator.duration_h=[3.0,5.0]", f"data.path={data}", f"out={base / 'sim'}"])
+    raw = pd.read_csv(data / f"{bdf.CAMPAIGN}.csv")
+    rows, ys = {}, {}
+    for family in bdf.FAMILIES:
+        model = base / family / "model.pkl"
+        if not model.exists():
+            bdf.main(["run", f"data.path={data}", f"model={family}", "track=false", "plots=none",
+                      f"out={base / family}"])
+        cfg = bdf._cfg(data, "monitor.adaptive=true")
+        ds, train_ids, _, _ = read_streamed(cfg)
+        dep = deployable_model(cfg, ds, train_ids, str(model), "replay.model")[0]
+        for name, df in {"healthy": raw, **bdf.faults(raw)}.items():
+            try:
+                s = stream_rows(dep, df, bdf.CAMPAIGN)
+            except Exception as exc:  # noqa: BLE001  (a refusal: said)
+                rows[f"{family}/{name}"] = str(exc)[:80]
+                continue
+            t = df["time"].to_numpy(float)
+            got = [[int(np.searchsorted(t, e["time"])) if np.isfinite(e["time"]) else -1,
+                    e["target"], e["to"]] for e in s.events if e.get("target")]
+            rows[f"{family}/{name}"] = got
+            ys[f"{family}__{name}"] = np.asarray(s.y, float)
+            print(f"{family:<8} {name:<17} guard events {got}", flush=True)
+    Path(out).write_text(json.dumps(rows, indent=1))
+    np.savez(Path(out).with_suffix(".npz"), **ys)
+
+
 def main(argv: list[str]) -> int:
-    return run_commands(__doc__, {"score": score, "compare": compare, "fresh": fresh}, argv,
+    return run_commands(__doc__, {"score": score, "compare": compare, "fresh": fresh,
+                                  "faults": faults}, argv,
                         cpu=sys.stdout)
 
 

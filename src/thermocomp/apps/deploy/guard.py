@@ -8,7 +8,10 @@ rate taken from the error alone clips a healthy stream, a measured spindle recor
 4.6 h), over a step or one training period, whichever is longer (:func:`rate_span`).  Each
 target's state (``free``, ``bounded``, ``rate_limited``, ``held``) changes with an event; it is
 reported ``free`` again only after :data:`CALM` samples within bound and rate, so a jumpy episode
-is one event pair.
+is one event pair.  A target is reported ``rate_limited`` only where the model's own correction,
+before the envelope clamp took its share out (``take``), moved beyond the limit: a step the
+clamp made by switching on or off is paced all the same, without an event (guard96: a room
+ramped past training, the clamp's pattern gate on its threshold, 36 events in 9 healthy cells).
 While the sensor monitor declares a new thermal state (a source training never saw), the bound
 is the training range widened by ``new_state_margin`` instead (``None``: the same bound).
 
