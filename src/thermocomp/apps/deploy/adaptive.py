@@ -225,9 +225,10 @@ class AdaptiveCompensator:
         t, dt = self._check_time(float(time), events)
         read = x if self._mon_all else x[self._mon]
         x = self._inputs(x, t, events, dt)
+        take = None
         try:
             y, clamped = self.streaming._step(x, t, clocked=True)
-            stepped = True
+            stepped, take = True, getattr(self.streaming, "last_take_", None)
         except ValueError as exc:    # OutOfEnvelopeError (policy=refuse) and its kin
             y, clamped, stepped = np.full(len(self.targets_), np.nan), 0, False
             events.append(_held_event(t, exc))
@@ -240,8 +241,8 @@ class AdaptiveCompensator:
                 except ValueError:
                     pass
             if stepped and out in falls:
-                y = falls[out]
-        self._output(y, dt, t, self._allowance(stepped), events)
+                y, take = falls[out], getattr(self.fallbacks_[out], "last_take_", None)
+        self._output(y, dt, t, self._allowance(stepped), events, take)
         return self._y, clamped
 
     def _fallen_back(self, read: np.ndarray) -> str | None:
@@ -288,11 +289,13 @@ class AdaptiveCompensator:
             x[self._other] = self._hold(x[self._other], t, events)
         return x
 
-    def _output(self, y: np.ndarray, dt: float, t: float, allowance, events: list) -> None:
-        """The guarded correction of the model's ``y`` (``self._y``); the row counted, its events kept."""
+    def _output(self, y: np.ndarray, dt: float, t: float, allowance, events: list,
+                take: np.ndarray | None = None) -> None:
+        """The guarded correction of the model's ``y`` (``self._y``; ``take``: the clamp's,
+        :meth:`~.guard.CorrectionGuard.step`); the row counted, its events kept."""
         if self.guard is not None:
             y, ev = self.guard.step(y, dt, t, self.monitor is not None and self.monitor.new_state_,
-                                    allowance)
+                                    allowance, take)
             events += ev
         elif not np.all(np.isfinite(y)):
             y = np.where(np.isfinite(y), y, 0.0 if self._y is None else self._y)
@@ -344,15 +347,16 @@ class AdaptiveCompensator:
 
         rows = np.flatnonzero(done)
         y, clamps, dx = self.streaming.run_rows(xs[rows], ts[rows], clocked=True, on_refused=held)
+        takes = _takes(self.streaming, y)
         for sensor, fallback in self.fallbacks_.items():
             ys = fallback.run_rows(xs[rows], ts[rows], clocked=True,
                                    on_refused=lambda k, exc: None)[0]
             use = (fallen[rows] == sensor) & ~refused[rows] & np.isfinite(ys).all(axis=1)
-            y[use] = ys[use]
+            y[use], takes[use] = ys[use], _takes(fallback, ys)[use]
         out = np.full((n, len(self.targets_)), np.nan)
         clamped = np.zeros(n, dtype=np.int64)
         clamped[rows] = clamps
-        self._guard_rows(rows, y, dx, dts, ts, novel, refused, events, out)
+        self._guard_rows(rows, y, dx, dts, ts, novel, refused, events, out, takes)
         self.last_events_ = events.get(n - 1, []) if n else []
         # every row's, in order: what the monitor did over a lead-in it was warmed on (deploy88)
         self.rows_events_ = [e for k in sorted(events) for e in events[k]]
@@ -406,9 +410,10 @@ class AdaptiveCompensator:
             self._held = block[-1, self._other].copy()
         return m
 
-    def _guard_rows(self, rows, y, dx, dts, ts, novel, refused, events, out) -> None:
+    def _guard_rows(self, rows, y, dx, dts, ts, novel, refused, events, out, takes) -> None:
         """The guard over the plain stream's ``y`` of ``rows`` (``out`` filled in, ``events``
-        added to): in one go where its fast path takes them, else row by row as :meth:`_step`."""
+        added to; ``takes``: the clamp's per row): in one go where its fast path takes them, else
+        row by row as :meth:`_step`."""
         guard = self.guard
         # rows the guard may take in one go: stepped, no allowance (the inputs in their range)
         plain = ~refused[rows]
@@ -423,7 +428,7 @@ class AdaptiveCompensator:
         while k < len(rows):
             if guard is not None and plain[k]:
                 r = rows[k:nxt[k]]
-                m = guard.step_block(y[k:nxt[k]], dts[r], novel[r])
+                m = guard.step_block(y[k:nxt[k]], dts[r], novel[r], takes[k:nxt[k]])
                 if m:
                     out[rows[k:k + m]] = y[k:k + m]
                     self._y = y[k + m - 1].copy()
@@ -435,7 +440,8 @@ class AdaptiveCompensator:
             allowance = None if refused[i] or guard is None else \
                 stream_allowance(guard, self.streaming, dx[k])
             if guard is not None:
-                y_i, ev = guard.step(y[k], dts[i], ts[i], novel[i], allowance)
+                y_i, ev = guard.step(y[k], dts[i], ts[i], novel[i], allowance,
+                                     None if refused[i] else takes[k])
                 row_events += ev
             else:
                 y_i = y[k]
@@ -508,6 +514,13 @@ def _held_event(t: float, exc: Exception) -> dict:
     """The event of a row the plain stream refused: the correction held."""
     return {"time": t, "sensor": None, "from": "running", "to": "held",
             "reason": f"correction held: {exc}"}
+
+
+def _takes(streaming, y: np.ndarray) -> np.ndarray:
+    """What ``streaming``'s clamp took out of each row of its last ``run_rows`` (``y``), zeros
+    for a stream without one (:meth:`~.guard.CorrectionGuard.step`'s ``take``)."""
+    takes = getattr(streaming, "takes_", None)
+    return np.zeros_like(y) if takes is None or takes.shape != y.shape else takes
 
 
 def stream_allowance(guard: CorrectionGuard, streaming: StreamingCompensator,

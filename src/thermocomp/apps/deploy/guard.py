@@ -8,7 +8,10 @@ rate taken from the error alone clips a healthy stream, a measured spindle recor
 4.6 h), over a step or one training period, whichever is longer (:func:`rate_span`).  Each
 target's state (``free``, ``bounded``, ``rate_limited``, ``held``) changes with an event; it is
 reported ``free`` again only after :data:`CALM` samples within bound and rate, so a jumpy episode
-is one event pair.
+is one event pair.  A target is reported ``rate_limited`` only where the model's own correction,
+before the envelope clamp took its share out (``take``), moved beyond the limit: a step the
+clamp made by switching on or off is paced all the same, without an event (guard96: a room
+ramped past training, the clamp's pattern gate on its threshold, 36 events in 9 healthy cells).
 While the sensor monitor declares a new thermal state (a source training never saw), the bound
 is the training range widened by ``new_state_margin`` instead (``None``: the same bound).
 
@@ -48,6 +51,7 @@ class CorrectionGuard:
     # last reset: why a deployed figure leaves the model's batch one with no input clamped
     # (depl70; None: older pickles until their first reset)
     changed_ = None
+    _raw = None   # the model's own correction at the last row, before the clamp (older pickles)
 
     def __init__(self, targets: Sequence[str], lo, hi, max_rate_per_s, period_s: float,
                  lo_new=None, hi_new=None):
@@ -102,7 +106,7 @@ class CorrectionGuard:
         return widening(x, self.in_lo, self.in_hi, self.in_gain, envelope)
 
     def reset(self) -> None:
-        self._prev = None
+        self._prev = self._raw = None
         self._state = [FREE] * len(self.targets)
         self._free = True
         self._calm = np.zeros(len(self.targets), dtype=np.int64)
@@ -110,18 +114,20 @@ class CorrectionGuard:
 
     def snapshot(self) -> tuple:
         return (None if self._prev is None else self._prev.copy(), list(self._state),
-                self._calm.copy())
+                self._calm.copy(), None if self._raw is None else self._raw.copy())
 
     def restore(self, snap: tuple) -> None:
         self._prev, self._state = (None if snap[0] is None else snap[0].copy()), list(snap[1])
         self._calm = snap[2].copy()
+        self._raw = snap[3].copy() if len(snap) > 3 and snap[3] is not None else None
         self._free = all(s == FREE for s in self._state)
 
-    def step_block(self, Y: np.ndarray, dt: np.ndarray, new_state: np.ndarray) -> int:
+    def step_block(self, Y: np.ndarray, dt: np.ndarray, new_state: np.ndarray,
+                   takes: np.ndarray | None = None) -> int:
         """How many of the first rows of ``Y`` (model corrections, (m, targets)) :meth:`step`
         passes as they are on its fast path (every target free, finite, within rate and bound;
         no allowance: the inputs within their training range), taken in one go; the rows after
-        them are for :meth:`step`."""
+        them are for :meth:`step`; ``takes``: each row's ``take`` (:meth:`step`; None: none)."""
         if not self._free or self._prev is None or not len(Y):
             return 0
         with np.errstate(invalid="ignore"):
@@ -135,14 +141,23 @@ class CorrectionGuard:
         m = len(Y) if ok.all() else int(np.argmin(ok))
         if m:
             self._prev = Y[m - 1].copy()
+            self._raw = self._prev + (0.0 if takes is None else takes[m - 1])
         return m
 
     def step(self, y: np.ndarray, dt: float, time: float, new_state: bool = False,
-             allowance: np.ndarray | None = None) -> tuple[np.ndarray, list[dict]]:
+             allowance: np.ndarray | None = None, take: np.ndarray | None = None
+             ) -> tuple[np.ndarray, list[dict]]:
         """Guarded correction for the model's ``y`` (NaN: held at the previous one);
         ``new_state``: the monitor declares a new thermal state (the bound ``lo_new``, ``hi_new``);
-        ``allowance``: the bound widened by it at this sample (:meth:`allowance`)."""
+        ``allowance``: the bound widened by it at this sample (:meth:`allowance`); ``take``: what
+        the envelope clamp took out of the model's correction to give ``y`` (None: nothing).
+
+        The output's rate is limited as ever; a target is reported ``rate_limited`` (an event)
+        only where the model's own correction, ``y + take``, moved beyond the limit: a step made
+        by the clamp switching on or off (the deployment's own act, not the model's) is paced
+        without one (guard96), and counted in :attr:`changed_`."""
         y = np.asarray(y, dtype=float)
+        raw, self._raw = self._raw, y if take is None else y + take
         prev = self._prev
         lo, hi = (self.lo_new, self.hi_new) if new_state and self.lo_new is not None else (
             self.lo, self.hi)
@@ -161,12 +176,17 @@ class CorrectionGuard:
             lim = self.max_rate_per_s * rate_span(dt, self.period_s)
             fast = np.abs(out - prev) > lim
             out = np.where(fast, prev + np.sign(out - prev) * lim, out)
-            state[fast & ~held] = RATE
+            with np.errstate(invalid="ignore"):     # (a held target's NaN: not the model's step)
+                own = fast if raw is None else fast & ~(np.abs(self._raw - raw) <= lim)
+            state[own & ~held] = RATE
+            paced = fast & ~own
+        else:
+            paced = np.zeros(len(y), dtype=bool)
         outside = (out < lo) | (out > hi)
         out = np.minimum(np.maximum(out, lo), hi)
         state[outside & ~held] = BOUNDED
         events = []
-        self.changed_ = (0 if self.changed_ is None else self.changed_) + (state != FREE)
+        self.changed_ = (0 if self.changed_ is None else self.changed_) + ((state != FREE) | paced)
         self._calm = np.where(state == FREE, self._calm + 1, 0)
         for k, new in enumerate(state):
             if new == FREE and self._calm[k] < CALM:

@@ -349,6 +349,7 @@ class StreamingCompensator:
     ambient_optional_ = False  # older pickles: an ambient given is needed
     adapt_ = None
     unclamped_: tuple = ()     # targets the clamp leaves alone (white_targets; older pickles: none)
+    last_take_ = None          # what the clamp took from the last row's correction (None: nothing)
     _held = None               # older pickles: no stream on the clamped inputs yet
     _gains: dict = {}
     _bounds: dict = {}         # replaced, never mutated (older pickles have none)
@@ -630,6 +631,7 @@ class StreamingCompensator:
             # a white target's clamped twin too: the samples that are not a source's take it back
             self._held = {t: copy.deepcopy(states[t]) for t, g in self._gains.items() if g is not None}
         held = self._held
+        take = np.zeros(len(self._plan))
         for k, (t, est, idx) in enumerate(self._plan):
             x = dx if idx is None else dx[idx]
             e = None if excess is None else excess if idx is None else excess[idx]
@@ -646,7 +648,11 @@ class StreamingCompensator:
             # back in range the last excess's bound holds (module doc): an excess that ends at
             # once leaves its memory in the lags and the feedback, taken out as it decays
             bound = self._bounds.get(t, 0.0)
-            y[k] -= min(max(y[k] - clamped, -bound), bound)
+            take[k] = min(max(y[k] - clamped, -bound), bound)
+            y[k] -= take[k]
+        # what the clamp took out of the model's correction: the guard judges the model's own
+        # step, not the clamp switching on or off (guard96)
+        self.last_take_ = take
         self.n_samples_ += 1
         return y, n_clamped
 
@@ -682,6 +688,7 @@ class StreamingCompensator:
         y = np.full((n, len(self.targets_)), np.nan)
         clamps = np.zeros(n, dtype=np.int64)
         dx = np.full((n, self._n_inputs), np.nan)
+        self.takes_ = np.zeros_like(y)     # each row's last_take_ (a row in one go: none)
         i = 0
         while i < n:
             stop = self._run_batch(X, time, i, clocked, y, dx)
@@ -691,6 +698,7 @@ class StreamingCompensator:
             try:
                 y[i], clamps[i] = self._step(X[i], time[i], clocked)
                 dx[i] = self.last_x_
+                self.takes_[i] = self.last_take_
             except ValueError as exc:
                 if on_refused is None:
                     raise
@@ -727,7 +735,7 @@ class StreamingCompensator:
             y[rows, k], self._states[target] = stream_steps(
                 est, d if idx is None else d[:, idx], self._states[target], context)
         dx[rows] = d
-        self.last_x_ = d[-1]
+        self.last_x_, self.last_take_ = d[-1], None
         self.n_samples_ += m
         if self._grid:
             self._on_grid = (float(t[-1]), float(t[-1]))
