@@ -41,8 +41,13 @@ Per sample, of each monitored sensor ``k`` (the input ``MON_INPUT[k]``, the C's 
   ``_explaining``) flagged ``BLIND_OUT`` and held out alone by the same hold, back where every
   judged sensor's error with every sensor in is within its warning band over the ring; while it
   is out the set without it judged, the block's judgement ending where the C could act on it.
-  A drift judgement it cannot follow, or the C's level shift (``SETTLED``, told by the C's test
-  over ``2 MON_WINDOW`` readings), ends the ``BLIND_OUT`` judgement to the campaign's end.
+  A drift judgement it cannot follow ends the ``BLIND_OUT`` judgement to the campaign's end;
+* (st96b) the C's level shift of a sensor no other predicts (``SETTLED``), told by the C's test
+  over ``2 MON_WINDOW`` readings (``mon_settle_ring``, ``settled.level_shift``) on the C's
+  conditions (its reference unmoved for ``2 MON_WINDOW - 1`` samples, no gap, the reading before
+  the sample's BENT): named, not flagged (a re-reference, as BENT), and re-referenced as the C
+  does (``mon_shift``, the window ``mon_ring``; the band test reads a row from before it on its
+  reference, as the C's stored errors), the block judging on.
 
 ``mon_flag`` says the sample's fault, ``mon_rule`` its rule (the C's ``mon_rule`` codes, named
 by ``TC_MONITOR_REASONS``) and ``mon_sensor`` its monitored sensor ``k`` (-1: none): the first,
@@ -65,9 +70,6 @@ field is whole only: from the first exclusion the block flags (a jump, a dropout
 stepped error not followed to its ``BACK``) to the campaign's end the C judges it with a sensor out
 (or re-admitted by a band the block does not hold), and the block does not; that flag marks the row
 its judgement ends (st95b: or, while one is out, a rule named or its reading standing still).
-(jump94b) The level shift of a sensor no other predicts told by two windows (the C's
-``SETTLED``: a ring of ``2 window - 1`` readings and two medians) is not in the ST either: the
-block reads the shifted sensor as heat, as the served monitor did before it.
 """
 
 from __future__ import annotations
@@ -533,8 +535,8 @@ IF MON_STEP_JUDGE AND NOT mon_lost THEN
         IF mon_since[mk] < MON_WINDOW THEN
             mon_since[mk] := mon_since[mk] + 1;
         END_IF;
-        IF MON_SETTLES[mk] = 1 AND mon_sage[mk] >= 2 * MON_WINDOW - 1
-                AND mon_span = 1.0 AND mon_gap[mk] = 1.0 THEN
+        mon_go := mon_span = 1.0 AND mon_gap[mk] = 1.0;    (* no gap *)
+        IF MON_SETTLES[mk] = 1 AND mon_sage[mk] >= 2 * MON_WINDOW - 1 AND mon_go THEN
             (* (st96) the C's level shift (SETTLED): the window ending here parted from the *)
             (* one before by MON_SETTLE_LIM and moved past MON_SETTLE_STEADY x their spread *)
             (* (settled.level_shift), on one reference for 2 w - 1 samples, no gap *)
