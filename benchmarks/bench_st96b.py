@@ -63,6 +63,33 @@ SETTLED in the healthy frame).  lr9132 (scratch, 0.5x / 1x steps of each settlin
 every C SETTLED named alike at its row (T_spindle_rear, T_table 609; T_xdrive 609 after a C
 STEP_OUT the block followed and after a C DRIFT_OUT it did not see), max|ST-C| <= 1.3e-13 µm
 where no unseen C event came before.
+
+The bar is unchanged since its commit (f03f3cd5, with the rule, before 9790-9794 were simulated);
+nothing was tuned on them.  After it, before any fresh line was printed: the SETTLED test's ``IF``,
+split over two lines for the 110-column lint, was not in the tests' ST interpreter's subset and the
+first ``fresh`` stopped after simulating and running lr9790 / lr9793; the condition went into
+``mon_go`` (the same test, 277a533c) and ``fresh`` ran once on all five.
+
+Results (2026-12-06, 2 cores shared by up to 8 helpers; CPU of each process).  Seen: above.
+Fresh ``fresh`` (scored once; 191.2 s + 181.0 s CPU, two processes, about 16 min wall with the
+simulations)::
+
+    record  false early max|ST-C| µm (rows)  C first event (row) = block  bent a/m/ap/o/n  pair a/m/ap/o
+    lr9790  0     0     1.07e-13 (3607)      JUMP (3608) agree            2/0/4/0/14       91/0/0/0
+    dl9791  0     0     9.95e-14 (986)       STEP_OUT (987) agree         3/0/8/2/7        88/0/2/1
+    cr9792  0     0     8.88e-15 (223)       none                         0/0/0/0/8        66/0/0/0
+    lr9793  0     0     1.07e-13 (2385)      STEP_OUT (2386) agree        7/0/0/0/13       91/0/0/0
+    dl9794  0     0     9.24e-14 (4263)      STEP_OUT (4264) agree        1/0/4/0/11       91/0/0/0
+
+bench_st93's spike / dropout / range / freeze on every record: misses 0, false 0.  ``frame``: every
+block flag at a C event named alike, 0 block flags on rows without a C event; no C SETTLED in any
+healthy frame (none named by the block).  First C ``SETTLED`` in 16 bent cases: the class of
+clause 4 is lr9793's 3 (T_spindle_front 0.5x, T_table 2x / 2.9x, the field whole), all 3 named at
+their row with their sensor (``agree``); the other 13 (lr9790 4, dl9791 7, dl9794 2) follow a C
+JUMP in the lead-in (held by the C to BACK; the block flags it and ends its judgement there):
+``apart``, not named, as the class said.  ``mismatch`` 0 and ``early`` 0 over all cases.
+
+Verdict by the bar as written: 1-4 hold: KEPT.  Not measured: 64c61b33's block on 9790-9794.
 """
 
 from __future__ import annotations
