@@ -99,10 +99,7 @@ from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE), str(HERE.parent / "tests" / "shell"), str(HERE.parent / "tests")]
-import bench_st93  # noqa: E402
 import bench_st94  # noqa: E402
-import bench_st94b  # noqa: E402
-import bench_st95  # noqa: E402
 import bench_st95b  # noqa: E402
 import bench_st96  # noqa: E402
 from _cli import run_commands  # noqa: E402
@@ -123,25 +120,24 @@ def _first_kind(first, plain=bench_st96._first_kind) -> str:
     return bench_st95b._PLAIN(first) if bench_st96.followed(rule.log[:-1], rule.before) else "apart"
 
 
+def _hooked() -> None:
+    """bench_st96's ``trace`` / ``fresh`` with ``SETTLED`` among the held rules, this bench's
+    first-event kinds and records."""
+    if "SETTLED" not in bench_st94.HELD:
+        bench_st94.HELD = (*bench_st94.HELD, "SETTLED")
+    bench_st96._first_kind, bench_st96.FRESH = _first_kind, FRESH
+
+
 def trace(root: str, *records: str) -> None:
-    """The ``trace`` tables (module doc): bench_st96's with this bench's first-event kinds."""
-    bench_st95.ORACLE = False
-    for rule in ("BLIND_OUT", "SETTLED"):
-        if rule not in bench_st94.HELD:
-            bench_st94.HELD = (*bench_st94.HELD, rule)
-    bench_st94b._first_kind, bench_st94b._added = _first_kind, bench_st96._added
-    for record in records:
-        bench_st96.AFTER_BLIND.clear()
-        bench_st95.trace(root, record)
-        print(f"{record} after BLIND_OUT: {bench_st96.AFTER_BLIND}", flush=True)
-        bench_st93.trace(root, record)
+    """The ``trace`` tables (module doc)."""
+    _hooked()
+    bench_st96.trace(root, *records)
 
 
 def fresh(root: str, *chosen: str) -> None:
-    """``trace`` and ``frame`` on :data:`FRESH` (module doc), each record made once: bench_st95b's
-    ``fresh`` with this bench's records and trace."""
-    bench_st95b.trace, bench_st95b.FRESH = trace, FRESH
-    bench_st95b.fresh(root, *chosen)
+    """``trace`` and ``frame`` on :data:`FRESH` (module doc), each record made once."""
+    _hooked()
+    bench_st96.fresh(root, *chosen)
 
 
 def main(argv: list[str]) -> int:
