@@ -41,8 +41,13 @@ Per sample, of each monitored sensor ``k`` (the input ``MON_INPUT[k]``, the C's 
   ``_explaining``) flagged ``BLIND_OUT`` and held out alone by the same hold, back where every
   judged sensor's error with every sensor in is within its warning band over the ring; while it
   is out the set without it judged, the block's judgement ending where the C could act on it.
-  A drift judgement it cannot follow, or the C's level shift (``SETTLED``, told by the C's test
-  over ``2 MON_WINDOW`` readings), ends the ``BLIND_OUT`` judgement to the campaign's end.
+  A drift judgement it cannot follow ends the ``BLIND_OUT`` judgement to the campaign's end;
+* (st96b) the C's level shift of a sensor no other predicts (``SETTLED``), told by the C's test
+  over ``2 MON_WINDOW`` readings (``mon_settle_ring``, ``settled.level_shift``) on the C's
+  conditions (its reference unmoved for ``2 MON_WINDOW - 1`` samples, no gap, the reading before
+  the sample's BENT): named, not flagged (a re-reference, as BENT), and re-referenced as the C
+  does (``mon_shift``, the window ``mon_ring``; the band test reads a row from before it on its
+  reference, as the C's stored errors), the block judging on.
 
 ``mon_flag`` says the sample's fault, ``mon_rule`` its rule (the C's ``mon_rule`` codes, named
 by ``TC_MONITOR_REASONS``) and ``mon_sensor`` its monitored sensor ``k`` (-1: none): the first,
@@ -65,9 +70,6 @@ field is whole only: from the first exclusion the block flags (a jump, a dropout
 stepped error not followed to its ``BACK``) to the campaign's end the C judges it with a sensor out
 (or re-admitted by a band the block does not hold), and the block does not; that flag marks the row
 its judgement ends (st95b: or, while one is out, a rule named or its reading standing still).
-(jump94b) The level shift of a sensor no other predicts told by two windows (the C's
-``SETTLED``: a ring of ``2 window - 1`` readings and two medians) is not in the ST either: the
-block reads the shifted sensor as heat, as the served monitor did before it.
 """
 
 from __future__ import annotations
@@ -88,6 +90,7 @@ from .watch import (
     MISSING_FIRST,
     OFF_RANGE,
     RANGE,
+    SETTLED,
     SPIKE,
     STEP_OUT,
 )
@@ -206,7 +209,8 @@ def constants(watch: dict, literal, constant) -> list[str]:
     rules = (("JUMP", JUMP), ("GLITCH", GLITCH), ("COMMON", COMMON), ("COMMON_STEP", COMMON_STEP),
              ("DROPOUT", DROPOUT), ("MISSING_FIRST", MISSING_FIRST), ("OFF_RANGE", OFF_RANGE),
              ("RANGE", RANGE), ("SPIKE", SPIKE), ("BENT", BENT),
-             ("STEP_OUT", STEP_OUT), ("BLIND", BLIND), ("BLIND_OUT", BLIND_OUT))
+             ("STEP_OUT", STEP_OUT), ("BLIND", BLIND), ("BLIND_OUT", BLIND_OUT),
+             ("SETTLED", SETTLED))
     # (st94) no bound where the export has none (before step93, a sensor the others predict):
     # the largest LREAL, as ST has no infinity
     bends = np.asarray(watch.get("bend_lim", []) if watch.get("bent") else [np.inf] * n, float)
@@ -311,6 +315,11 @@ VARS = """    mon_last : ARRAY[{nm}] OF LREAL;
     mw : INT;
     mq : INT;
     ma : INT;
+    mon_bent : ARRAY[{nm}] OF LREAL;
+    mon_sage : ARRAY[{nm}] OF INT;
+    mon_since : ARRAY[{nm}] OF INT;
+    mon_sback : ARRAY[{nm}] OF LREAL;
+    mon_undo : LREAL;
 """
 
 # before the refusal: the sample's monitored readings judged (the block's first == a campaign's)
@@ -331,6 +340,9 @@ IF first THEN
         mon_rerefd[mk] := FALSE;
         mon_base[mk] := u[MON_INPUT[mk]];    (* (st94b) the C's reference *)
         mon_field_outs[mk] := 0;
+        mon_sage[mk] := 0;    (* (st96b) the C's reference age and its last SETTLED *)
+        mon_since[mk] := MON_WINDOW;
+        mon_sback[mk] := 0.0;
     END_FOR;
     mon_lost := FALSE;
     mon_blind_lost := FALSE;
@@ -352,6 +364,7 @@ FOR mk := 0 TO MON_N - 1 DO
     j := MON_INPUT[mk];
     mon_x := u[j];
     mon_big[mk] := FALSE;
+    mon_bent[mk] := 0.0;
     IF NOT (mon_x >= -U_LIMIT[j] AND mon_x <= U_LIMIT[j]) THEN
         IF mon_rule = 0 THEN
             mon_sensor := mk;
@@ -380,6 +393,7 @@ FOR mk := 0 TO MON_N - 1 DO
                 ELSE
                     (* re-referenced by the departure and kept in, its step its last one *)
                     mon_shift[j] := mon_shift[j] + mon_off;
+                    mon_bent[mk] := mon_off;
                     mon_step[mk] := mon_step[mk] - mon_off;
                     mon_rerefd[mk] := TRUE;
                     IF mon_rule <> RULE_BENT THEN    (* the C judges it before a dropout *)
@@ -515,11 +529,17 @@ IF MON_STEP_JUDGE AND NOT mon_lost THEN
     FOR mk := 0 TO MON_N - 1 DO
         j := MON_INPUT[mk];
         mon_d[mk] := u[j] - mon_base[mk] - mon_shift[j];
-        mon_settle_ring[mon_spos, mk] := mon_d[mk];
-        IF MON_SETTLES[mk] = 1 AND mon_count + 1 >= 2 * MON_WINDOW THEN
-            (* (st96) the C's level shift (SETTLED, not in the block): the window ending here *)
-            (* parted from the one before by MON_SETTLE_LIM and moved past MON_SETTLE_STEADY *)
-            (* x their spread (settled.level_shift); it ends the block's BLIND_OUT judgement *)
+        (* (st96b) the C tests its level shift before the sample's BENT: on the reading *)
+        (* before it *)
+        mon_settle_ring[mon_spos, mk] := mon_d[mk] + mon_bent[mk];
+        IF mon_since[mk] < MON_WINDOW THEN
+            mon_since[mk] := mon_since[mk] + 1;
+        END_IF;
+        mon_go := mon_span = 1.0 AND mon_gap[mk] = 1.0;    (* no gap *)
+        IF MON_SETTLES[mk] = 1 AND mon_sage[mk] >= 2 * MON_WINDOW - 1 AND mon_go THEN
+            (* (st96) the C's level shift (SETTLED): the window ending here parted from the *)
+            (* one before by MON_SETTLE_LIM and moved past MON_SETTLE_STEADY x their spread *)
+            (* (settled.level_shift), on one reference for 2 w - 1 samples, no gap *)
             FOR mw := 0 TO 1 DO
                 FOR mi := 0 TO MON_WINDOW - 1 DO
                     mr := mon_spos - mi - mw * MON_WINDOW;
@@ -582,12 +602,38 @@ IF MON_STEP_JUDGE AND NOT mon_lost THEN
                     mon_lim := mon_mad[1];
                 END_IF;
                 IF mon_x > MON_SETTLE_STEADY * mon_lim THEN
-                    mon_blind_lost := TRUE;
-                    IF mon_held_set >= 0 THEN
-                        mon_lost := TRUE;
+                    (* (st96b) re-referenced by the windows' median difference, kept in, as *)
+                    (* the C: its window of readings shifted (the C's hist), its errors *)
+                    (* stored before it not (mon_sback, mon_since: its err rows) *)
+                    mon_off := mon_med[0] - mon_med[1];
+                    mon_shift[j] := mon_shift[j] + mon_off;
+                    mon_d[mk] := mon_d[mk] - mon_off;
+                    FOR mr := 0 TO MON_WINDOW - 1 DO
+                        mon_ring[mr, mk] := mon_ring[mr, mk] - mon_off;
+                    END_FOR;
+                    FOR mi := 1 TO MON_WINDOW - 1 DO    (* and the ring's last w - 1 rows *)
+                        mr := mon_spos - mi;
+                        IF mr < 0 THEN
+                            mr := mr + 2 * MON_WINDOW;
+                        END_IF;
+                        mon_settle_ring[mr, mk] := mon_settle_ring[mr, mk] - mon_off;
+                    END_FOR;
+                    mon_sback[mk] := mon_off;
+                    mon_since[mk] := 1;
+                    IF mon_rule = 0 OR mon_rule = RULE_BENT THEN    (* the C's first event *)
+                        mon_sensor := mk;
+                        mon_rule := RULE_SETTLED;
                     END_IF;
                 END_IF;
             END_IF;
+        END_IF;
+        (* the ring's row as the C keeps it (after its BENT and SETTLED), the reference's age *)
+        (* (1 where its BENT moved it: the C's SETTLED moves it before the age is taken) *)
+        mon_settle_ring[mon_spos, mk] := mon_d[mk];
+        IF mon_bent[mk] <> 0.0 THEN
+            mon_sage[mk] := 1;
+        ELSIF mon_sage[mk] < 2 * MON_WINDOW THEN
+            mon_sage[mk] := mon_sage[mk] + 1;
         END_IF;
         mon_ring[mon_pos, mk] := mon_d[mk];    (* (st95b) the C's window of readings *)
     END_FOR;
@@ -700,15 +746,30 @@ IF MON_STEP_JUDGE AND NOT mon_lost THEN
                 END_IF;
                 FOR mk := 0 TO MON_N - 1 DO
                     mon_x := 0.0;
+                    mon_undo := 0.0;
                     FOR mj := 0 TO MON_N - 1 DO
+                        mon_off := mon_ring[mr, mj];
+                        IF mi > mon_since[mj] THEN
+                            mon_off := mon_off + mon_sback[mj];    (* as read, before SETTLED *)
+                        END_IF;
                         IF mon_set < 0 THEN
                             mon_x := mon_x + MON_SELF[mk, mj] * mon_ring[mr, mj];
+                            mon_undo := mon_undo + MON_SELF[mk, mj] * mon_off;
                         ELSE
                             mon_x := mon_x + MON_OUT_SELF[mon_set, mk, mj] * mon_ring[mr, mj];
+                            mon_undo := mon_undo + MON_OUT_SELF[mon_set, mk, mj] * mon_off;
                         END_IF;
                     END_FOR;
                     mon_x := mon_ring[mr, mk] - mon_x;
                     mon_r[mk] := mon_r[mk] + mon_x;
+                    IF mb < 0 OR mb = MON_BLINDS THEN
+                        (* (st96b) the C's stored errors (its _judge), not its window: a row *)
+                        (* from before a SETTLED on the reference it was read on *)
+                        mon_x := mon_ring[mr, mk] - mon_undo;
+                        IF mi > mon_since[mk] THEN
+                            mon_x := mon_x + mon_sback[mk];
+                        END_IF;
+                    END_IF;
                     IF mon_set < 0 THEN
                         mon_off := mon_x * MON_SCALE[mk];
                         mon_ev := MON_JUDGING[mk] = 1;
