@@ -42,6 +42,7 @@ def _served(tmp_path, text: str, columns: dict | None = None):
     """MLR fitted on ``text``'s first 75 %, deployed as ``thermocomp serve`` deploys it
     (``columns``: data.columns, headers Hydra's override grammar does not take)."""
     from omegaconf import OmegaConf
+
     from test_export import _compose
     from thermocomp.shell.builders import deployable_model
     from thermocomp.shell.source import read_streamed

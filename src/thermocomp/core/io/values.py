@@ -3,6 +3,7 @@ temperatures in °C, and the missing samples (repaired or kept, see :mod:`thermo
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable, Mapping
 from pathlib import Path
 
@@ -212,13 +213,17 @@ def _shown(seconds: float, origin: str | None) -> str:
     return (pd.Timestamp(origin) + pd.Timedelta(seconds=float(seconds))).isoformat()
 
 
+# a timestamp cell in ISO 8601's order, with its offset or without
+_ISO_CELL = re.compile(r"\d{4}-\d\d-\d\d[T ]\d\d:\d\d(:\d\d([.,]\d+)?)?\s*(Z|[+-]\d\d(:?\d\d)?)?")
+
+
 def _as_written(seconds: float, origin: str | None, cell: str | None) -> str:
     """:func:`_shown`, said as the file's ``cell`` writes it where the cell is that instant:
     timestamps whose offsets change (daylight saving time, ``+01:00`` then ``+02:00``) are held
     in UTC, and ``08:29:00+00:00`` is no time the lab's file holds (audit96); UTC beside it."""
     shown = _shown(seconds, origin)
-    if origin is None or not cell:
-        return shown
+    if origin is None or not cell or not _ISO_CELL.fullmatch(cell):
+        return shown       # (a date with dots stays ISO 8601 as read: one order, messy58)
     try:
         stamp = pd.Timestamp(cell)
         same = stamp == pd.Timestamp(shown)
