@@ -28,7 +28,6 @@ from ...core.io.own_headers import as_named
 from ...core.timerule import SampleClock
 from .fallback import sensor_fallbacks
 from .guard import CorrectionGuard
-from .naming import accepted_names
 from .pod import ThermalPOD
 from .streaming import OutOfEnvelopeError, StreamingCompensator, step_block
 from .surveillance import SensorMonitor
@@ -485,8 +484,7 @@ class AdaptiveCompensator:
         ``excluded_inputs`` (comma-separated) and ``events`` (JSON list of the row's events)."""
         missing = [c for c in self.columns_ if c not in frame.columns]
         if missing:
-            named = as_named(missing, accepted_names(self.lab_names_, self.lab_units_))
-            raise OutOfEnvelopeError(f"input lacks column(s) {named} "
+            raise OutOfEnvelopeError(f"input lacks column(s) {as_named(missing, self.lab_names_)} "
                                      f"(need {self.columns_})")
         X = np.column_stack([pd.to_numeric(frame[c], errors="coerce").to_numpy(dtype=float)
                              for c in self.columns_]) if self.columns_ else np.empty((len(frame), 0))

@@ -105,7 +105,8 @@ def bare_names(names: Mapping, converted: Mapping | None = None
 
 def accepted_names(names: Mapping, converted: Mapping | None = None) -> dict[str, list[str]]:
     """``{contract name: every name the model takes it by}``: ``names`` (:func:`lab_names`)
-    with the bare forms :func:`bare_names` finds certain."""
+    with the bare forms :func:`bare_names` finds certain.  A refusal of a lacking column names
+    the lab's headers as the reader named them (``names``: the joined form, stranger74)."""
     bare = bare_names(names, converted)[0]
     return {str(c): [*raw_names(names, c), *bare.get(str(c), [])] for c in names}
 

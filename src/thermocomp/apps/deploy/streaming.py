@@ -89,7 +89,6 @@ from ...core.io.values import MAX_ABS_T_C, reading_limit
 from ...core.metrics import split_scores
 from ...core.timerule import SampleClock, on_grid
 from .guard import guard_changes
-from .naming import accepted_names
 
 log = logging.getLogger(__name__)
 POLICIES = ("clamp", "refuse", "off")
@@ -530,8 +529,7 @@ class StreamingCompensator:
         need = self.columns_ + ([TIME] if self.time_required_ else [])
         missing = [c for c in need if c not in frame.columns]
         if missing:
-            named = as_named(missing, accepted_names(self.lab_names_, self.lab_units_))
-            raise OutOfEnvelopeError(f"input lacks column(s) {named} "
+            raise OutOfEnvelopeError(f"input lacks column(s) {as_named(missing, self.lab_names_)} "
                                      f"(need {need})")
         X = np.column_stack([frame[c].to_numpy(dtype=float) for c in self.columns_]) \
             if self.columns_ else np.empty((len(frame), 0))
