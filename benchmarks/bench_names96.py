@@ -41,6 +41,64 @@ B3. bad_overlap: init and run exit 2, one line naming the file, column 'time', l
 B4. fresh lab 9781 (de, mlr; drawn after this bar): init with no key exits 0, and B1 alike.
 B5. main's figures untouched: C(rawit) = bench_audit96's (replay 1.823539367 / 1.207312034 mlr).
 KEPT if B1-B5 hold with src + tests failing on 55f940b8 + docs; else REFUSED / TRACED.
+
+Status: the bar above was committed in 21bd51ba before any change was scored and before 9781 was
+drawn, unchanged.  Scored 2026-12-06 04:32-04:42 UTC (2 cores shared, ``nice``), main = 55f940b8's
+src (``git archive``), rule = this branch's (e81c4848; the time refusal's ISO-cell guard,
+8ed11546, a refusal's text only, written while 9781 ran, before its score was read; ``overlap``
+scored again on 8ed11546: the same line).  First scored with the "lacks column(s)" refusal listing
+the bare form too ("'Temperatura ambiente [°C]' or 'Temperatura ambiente'"); that broke
+test_lab_stream52 (stranger74's text), so ff4541d6 names the reader's form as before and both labs
+were scored again (04:50-04:54): every figure the same, the refusal texts as below.
+
+The rule (``apps/deploy/naming.py``: ``bare_names`` / ``accepted_names``, used by ``to_contract``
+and the schema ``pyfunc.signature``; no key): a lab header ending
+in `` [unit]`` (``core/io/layout.bare_header``, ``with_units``' join undone) is also taken bare,
+unless the bare form is some column's name as it is, or two columns share it but for their unit
+(one of them read in another unit, ``lab_units``, too): that one is refused naming both.  The time
+refusal (``core/io/values._as_written``, the cell from ``lines.Lines.time_cell``) quotes an ISO
+8601 cell as the file writes it, UTC beside it where it has an offset.
+
+  lab 9774 (it, mlr, seen)          main (55f940b8)                   rule
+  run E_X / E_Y                      1.823920772 / 1.207627324         same
+  replay = C (B5)                    1.823539367 / 1.207312034         same
+  session, bare headers (B1)         refused "input lacks column(s)    = C 1.5e-13 µm (360 rows)
+                                     ['Temperatura ambiente [°C]' ..."
+  session, joined headers            = C 1.5e-13 µm                    = C 1.5e-13 µm; bare - joined 0
+  lacking the ambient (B2)           lacks every bare column           "lacks column(s) ['Temperatura
+                                                                       ambiente [°C]' (read as T_amb)]"
+  ambient bare + joined (B2)         lacks the 11 other columns        "names one column twice ...
+                                                                       ('Temperatura ambiente [°C]' and
+                                                                       'Temperatura ambiente')"
+  bad_overlap init / run (B3)        exit 2, "...from 2027-03-28T08:   exit 2, "file .../bad_overlap.csv,
+                                     29:00+00:00 (row 720) to          column 'time', line 724 (data row
+                                     ...08:20:00+00:00"                721): time decreases from 2027-03-28
+                                                                       10:29:00+02:00 = 2027-03-28 08:29:00
+                                                                       UTC (row 720) to 2027-03-28 10:20:00
+                                                                       +02:00 = ... 08:20:00 UTC"; wrote []
+
+  lab 9781 (de, mlr, FRESH, once)   main                               rule
+  init (no key) .. C                 0 0 0 0 pack 0 C 0                same
+  run / replay E_X / E_Y             1.538241197 / 1.013994956,        same
+                                     1.538277638 / 1.013897794
+  session, bare headers (B4)         refused "['Umgebungstemperatur    = C 1.6e-13 µm (360 rows)
+                                     [°C]' (read as T_amb), ..."
+  session, joined headers            = C 1.6e-13 µm                    = C 1.6e-13 µm; bare - joined 0
+  refusals                           lacks every bare column           "lacks column(s) ['Umgebungs-
+                                                                       temperatur [°C]' (read as T_amb)]";
+                                                                       twice: named both
+
+Beside the bar (rule's src): ``monitor monitor.input=-`` fed rawit 9774 without its unit rows (bare
+headers, the stdin reader's roles) = fed with them to every digit (E_X 1.290258512553073, E_Y
+0.8621684147036891): no change needed there; the pyfunc saved and loaded by MLflow (its schema
+enforced; test_bare_names96's small record): bare = joined 0, the shared bare ``T`` (``T [°C]``,
+``T [K]``) refused naming both.  B2's two-units clause: tests/shell/test_bare_names96.py.
+
+VERDICT: KEPT (B1-B5 hold).  Left: ``stream.c`` takes a bare header by the first lab name it
+prefixes (``named``), no refusal of a bare name two columns share; a model registered before
+this change carries its old schema (MLflow drops a bare column before the model sees it).
+CPU of the bench processes: lab 9774 6.1 s / again 4.1 s, lab 9781 5.8 s / 4.8 s (rule), overlap 0.0 s (stage
+subprocesses not counted); wall ~2-3 min per lab.
 """
 
 from __future__ import annotations
