@@ -4,7 +4,11 @@ A record read with ``data.columns`` (``{raw: contract}``, e.g. ``{T0: T_0, "delt
 is modelled under contract names; the machine that calls the deployed model
 still sends its logger's names.  The model keeps :func:`lab_names` and reads
 any name of a column (:func:`to_contract`): a record whose runs came from two loggers may
-name one column two ways (``Zeit [s]`` and ``Zeit``), and each is that column.
+name one column two ways (``Zeit [s]`` and ``Zeit``), and each is that column.  A header whose
+unit sits in a unit row under it is named by the reader with the unit joined (``Temperatura
+ambiente [°C]``); the machine's logger sends it bare (``Temperatura ambiente``), and the model
+takes that too (:func:`accepted_names`, as the exported ``stream.c`` does), unless two columns
+are alike but for their unit (``T [°C]``, ``T [K]``): then the bare name is refused, naming both.
 """
 
 from __future__ import annotations
@@ -14,6 +18,7 @@ from collections.abc import Mapping
 import pandas as pd
 
 from ...base.errors import ContractError
+from ...core.io.layout import bare_header
 from ...core.io.roles import RUN
 from ...core.io.timestamps import CLOCK
 
@@ -68,11 +73,58 @@ def raw_names(names: Mapping, contract: str) -> list[str]:
     return [raws] if isinstance(raws, str) else list(raws)
 
 
-def to_contract(frame: pd.DataFrame, names: Mapping) -> pd.DataFrame:
-    """``frame`` with the lab's names of ``names`` (:func:`lab_names`) renamed to contract
-    names; a frame may use one name of a column, not two (two columns for one input)."""
+def bare_names(names: Mapping, converted: Mapping | None = None
+               ) -> tuple[dict[str, list[str]], dict[str, list[str]]]:
+    """``({contract name: its headers' bare forms}, {bare form: the headers it may be})`` of
+    ``names`` (:func:`lab_names`) and ``converted`` (:func:`lab_units`, read in another unit):
+    the header ``Temperatura ambiente [°C]`` is also ``Temperatura ambiente``, as the lab's
+    logger writes it above its unit row (:func:`~thermocomp.core.io.layout.bare_header`).  A
+    name that is some column's header or contract name as it is stays that column's; a bare
+    form two columns share, or one a header read in another unit shares (``T [°C]`` and ``T
+    [K]``), is in the second mapping: it names no column for sure."""
+    converted = converted or {}
+    exact = {str(c) for c in names} | {r for c in names for r in raw_names(names, c)} \
+        | {str(h) for h in converted}
+    claims: dict[str, dict[str, str]] = {}       # bare form -> {header: contract name}
+    for contract in names:
+        for raw in raw_names(names, contract):
+            bare = bare_header(raw)
+            if bare is not None and bare not in exact:
+                claims.setdefault(bare, {})[raw] = str(contract)
+    for header, (contract, *_) in converted.items():
+        if (bare := bare_header(header)) in claims:
+            claims[bare][str(header)] = str(contract)
+    bare, ambiguous = {}, {}
+    for form, headers in claims.items():
+        if len(set(headers.values())) > 1 or any(h in converted for h in headers):
+            ambiguous[form] = list(headers)
+        else:
+            bare.setdefault(next(iter(headers.values())), []).append(form)
+    return bare, ambiguous
+
+
+def accepted_names(names: Mapping, converted: Mapping | None = None) -> dict[str, list[str]]:
+    """``{contract name: every name the model takes it by}``: ``names`` (:func:`lab_names`)
+    with the bare forms :func:`bare_names` finds certain.  A refusal of a lacking column names
+    the lab's headers as the reader named them (``names``: the joined form, stranger74)."""
+    bare = bare_names(names, converted)[0]
+    return {str(c): [*raw_names(names, c), *bare.get(str(c), [])] for c in names}
+
+
+def to_contract(frame: pd.DataFrame, names: Mapping, converted: Mapping | None = None
+                ) -> pd.DataFrame:
+    """``frame`` with the lab's names of ``names`` (:func:`lab_names`; bare or with the unit
+    row's unit joined, :func:`accepted_names`) renamed to contract names; a frame may use one
+    name of a column, not two (two columns for one input), nor a bare name two columns share."""
     if not names:
         return frame
+    unsure = bare_names(names, converted)[1]
+    sent = [form for form in unsure if form in frame.columns]
+    if sent:
+        raise ContractError("the input's column(s) " + "; ".join(
+            f"{form!r} may be {' or '.join(map(repr, unsure[form]))}" for form in sent)
+            + ": two columns alike but for their unit; send the header with its unit")
+    names = accepted_names(names, converted)
     both = []
     for contract in names:
         given = [n for n in (*raw_names(names, contract), contract) if n in frame.columns]

@@ -97,7 +97,7 @@ from ...core.io.slashed import stream_format
 from ...core.io.stdin import since, stream_stamps, with_clock_joined
 from ...core.io.timestamps import CLOCK
 from .adaptive import AdaptiveCompensator
-from .naming import correction_column, raw_names, to_contract
+from .naming import accepted_names, bare_names, correction_column, raw_names, to_contract
 from .streaming import EndState, StreamingCompensator
 
 MODEL_NAME = "compensator"          # artifact name of the pyfunc model inside a run
@@ -193,7 +193,7 @@ class CompensatorModel(mlflow.pyfunc.PythonModel):
         try:
             # a PLC's status word under its header: its declared bits, as the reader's (bits85)
             frame = words_decoded(pd.DataFrame(model_input), getattr(self.streaming, "bits_", {}))
-            frame = to_contract(frame, names)
+            frame = to_contract(frame, names, getattr(self.streaming, "lab_units_", {}))
             # (data94) a date and its time of day (Datum;Uhrzeit) as one time, as the file's
             frame = with_clock_joined(frame)
             # data.missing_values' marks (-9999 however written) missing, as the reader's (lab74)
@@ -312,6 +312,10 @@ def signature(streaming: StreamingCompensator | AdaptiveCompensator) -> ModelSig
     deployed compensator.  With the lab's names (``lab_names_``) every input may come under
     either name, so none is required by the schema; the model checks that each is there."""
     names = streaming.lab_names_
+    converted = getattr(streaming, "lab_units_", {}) or {}
+    # a header bare above its unit row too (Temperatura ambiente): a bare name two columns share
+    # in the schema as well, so that the model refuses it by name rather than MLflow dropping it
+    accepted, unsure = accepted_names(names, converted), bare_names(names, converted)[1]
     bits = getattr(streaming, "bits_", {}) or {}
     decoded = {STATE + n for named in bits.values() for n in named.values()}
     required = {c: not names and c not in decoded for c in streaming.columns_}
@@ -321,7 +325,8 @@ def signature(streaming: StreamingCompensator | AdaptiveCompensator) -> ModelSig
     # the time in seconds or as wall-clock timestamps (a lab's logger's), under either name
     inputs = Schema([ColSpec(_kind(c), c, required=r) for c, r in required.items()]
                     + [ColSpec(_kind(c), raw, required=False) for c in required
-                       for raw in raw_names(names, c)]
+                       for raw in dict.fromkeys(raw_names(accepted, c))]
+                    + [ColSpec(AnyType(), form, required=False) for form in unsure]
                     # (data94) the time of day beside the date (Datum;Uhrzeit), joined to it:
                     # outside the schema MLflow drops it, and the date alone is refused
                     + [ColSpec(AnyType(), raw, required=False) for raw in raw_names(names, CLOCK)]

@@ -161,3 +161,14 @@ def with_units(header: list[str], units: list[str]) -> list[str]:
             for h, u in zip(header, [*units, *[""] * len(header)])]
 
 
+_JOINED = re.compile(r"(.*\S) \[[^\[\]]+\]")
+
+
+def bare_header(header: str) -> str | None:
+    """The header as the lab's logger writes it above a unit row: ``Temperatura ambiente`` for
+    ``Temperatura ambiente [°C]`` (:func:`with_units`' join undone; the exported ``stream.c``
+    reads a header so, ``named``); None for a header without a unit in brackets at its end."""
+    match = _JOINED.fullmatch(str(header))
+    return match.group(1) if match else None
+
+

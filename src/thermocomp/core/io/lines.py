@@ -31,9 +31,22 @@ class Lines:
     empty_left_out: bool = False
     shift: int = 0
     dropped: tuple = ()     # file lines left out (the header written again: .again)
+    time_field: int | None = None    # the time column's place among a row's fields
 
     def line(self, row: int) -> int | None:
         """The file line of the 1-based data ``row`` (None: not in the file)."""
+        return self._record(row)[0]
+
+    def time_cell(self, row: int) -> str | None:
+        """The time of the 1-based data ``row`` as the file writes it (``2027-03-28
+        10:29:00+02:00``, where the reader holds the instant in UTC); None where unknown."""
+        fields = self._record(row)[1]
+        if self.time_field is None or fields is None or self.time_field >= len(fields):
+            return None
+        return fields[self.time_field].strip() or None
+
+    def _record(self, row: int) -> tuple[int | None, list[str] | None]:
+        """``(file line, fields)`` of the 1-based data ``row`` (None, None: not in the file)."""
         row += self.shift
         with open(self.path, newline="", encoding=text_codec(own(self.path, self.encoding)),
                   errors="replace") as f:
@@ -48,10 +61,10 @@ class Lines:
                         c.strip() for c in record)) or self.skip + start in self.dropped
                     count += not blank
                     if count == row and not blank:
-                        return self.skip + start
+                        return self.skip + start, record
             except csv.Error:          # a line the csv module cannot split: no line to name
-                return None
-        return None
+                return None, None
+        return None, None
 
     def at(self, row: int) -> str:
         """``line 13 (data row 9)``: where a warning points."""

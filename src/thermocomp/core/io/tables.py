@@ -243,7 +243,8 @@ def _typed_columns(path: Path, header: list[str], first_row: list[str], opts: Re
         opts = _read_in_rows_order(table.column(TIME), path, header[names.index(TIME)], opts)
     if TIME in types:          # and from here on rows are counted without them
         table = _without_empty_rows(table, path, lines)
-        lines = replace(lines, empty_left_out=True)
+        # (names96) a refusal of the time quotes its cells as written, not as the instant read
+        lines = replace(lines, empty_left_out=True, time_field=names.index(TIME))
     if TIME in types and pa.types.is_floating(types[TIME]) and TIME not in scales:
         said_if_not_seconds(_values(table.column(TIME)), path, header[names.index(TIME)],
                             own=active(opts.roles))

@@ -3,7 +3,8 @@ temperatures in °C, and the missing samples (repaired or kept, see :mod:`thermo
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+import re
+from collections.abc import Callable, Mapping
 from pathlib import Path
 
 import numpy as np
@@ -74,7 +75,7 @@ def _set_time_seconds(columns: dict, rows: int, path: Path, opts: ReadOptions,
         local = (pa.types.is_timestamp(column.type) and column.type.tz is None
                  and opts.timezone is None)
         _check_increasing(seconds, path, local, info.get("time_origin"),
-                          opts.max_duration_days)
+                          opts.max_duration_days, lines.time_cell if lines is not None else None)
         if local:
             said_if_clock_skips(seconds, path, at=at(lines), origin=info.get("time_origin"))
         if opts.resample_s is None:        # (on one grid, as the warning says to put it)
@@ -123,11 +124,16 @@ def _seconds(column: pa.ChunkedArray, path: Path, zone: str | None = None,
 
 
 def _check_increasing(seconds: np.ndarray, path: Path, local: bool = False,
-                      origin: str | None = None, max_days: float | None = None) -> None:
+                      origin: str | None = None, max_days: float | None = None,
+                      written: Callable[[int], str | None] | None = None) -> None:
     """Refuse a time that does not increase, saying the fix (``local``: timestamps on a local
     clock without an offset, where an hour set back is daylight saving time ending, said so;
     ``origin``: the first timestamp, so that a time is named as written, not as seconds;
-    ``max_days``: a longer campaign, sorted, is no run but a clock reset)."""
+    ``max_days``: a longer campaign, sorted, is no run but a clock reset; ``written``: a data
+    row's time cell as the file writes it, :meth:`.lines.Lines.time_cell`)."""
+    def shown(row: int) -> str:
+        return _as_written(seconds[row - 1], origin, written and written(row))
+
     finite = np.isfinite(seconds)
     if not finite.all():
         row = int(np.argmin(finite)) + 1
@@ -139,7 +145,7 @@ def _check_increasing(seconds: np.ndarray, path: Path, local: bool = False,
     i = int(np.argmax(steps <= 0))
     before, after = seconds[i], seconds[i + 1]
     if after == before:
-        what = (f"duplicate time {_shown(after, origin)} (same as row {i + 1}): two samples at "
+        what = (f"duplicate time {shown(i + 2)} (same as row {i + 1}): two samples at "
                 "one time; delete the row written twice, or give it its own time")
     else:
         dst = clock_set_back(before, after, median_step(seconds), origin) if local else ""
@@ -151,8 +157,8 @@ def _check_increasing(seconds: np.ndarray, path: Path, local: bool = False,
         again = "" if dst or unsorted or after > seconds[0] else (
             ": the time starts again (the logger restarted, or runs joined in one file?): one "
             "file per run in a folder reads each as a campaign")
-        what = (f"time decreases from {_shown(before, origin)} (row {i + 1}) to "
-                f"{_shown(after, origin)}{dst}{unsorted}{again}{_of_day_said(seconds, origin, i)}")
+        what = (f"time decreases from {shown(i + 1)} (row {i + 1}) to "
+                f"{shown(i + 2)}{dst}{unsorted}{again}{_of_day_said(seconds, origin, i)}")
     raise ContractError(what, file=path, column=TIME, row=i + 2)
 
 
@@ -205,6 +211,29 @@ def _shown(seconds: float, origin: str | None) -> str:
     if origin is None:
         return f"{seconds:g} s"
     return (pd.Timestamp(origin) + pd.Timedelta(seconds=float(seconds))).isoformat()
+
+
+# a timestamp cell in ISO 8601's order, with its offset or without
+_ISO_CELL = re.compile(r"\d{4}-\d\d-\d\d[T ]\d\d:\d\d(:\d\d([.,]\d+)?)?\s*(Z|[+-]\d\d(:?\d\d)?)?")
+
+
+def _as_written(seconds: float, origin: str | None, cell: str | None) -> str:
+    """:func:`_shown`, said as the file's ``cell`` writes it where the cell is that instant:
+    timestamps whose offsets change (daylight saving time, ``+01:00`` then ``+02:00``) are held
+    in UTC, and ``08:29:00+00:00`` is no time the lab's file holds (audit96); UTC beside it."""
+    shown = _shown(seconds, origin)
+    if origin is None or not cell or not _ISO_CELL.fullmatch(cell):
+        return shown       # (a date with dots stays ISO 8601 as read: one order, messy58)
+    try:
+        stamp = pd.Timestamp(cell)
+        same = stamp == pd.Timestamp(shown)
+    except (ValueError, TypeError):     # another layout (a date with dots), or no zone to compare
+        return shown
+    if not same:
+        return shown
+    if stamp.tzinfo is None or not stamp.utcoffset():
+        return cell
+    return f"{cell} = {stamp.tz_convert('UTC'):%Y-%m-%d %H:%M:%S} UTC"
 
 
 def _check_duration(seconds: np.ndarray, path: Path, max_days: float | None) -> None:
