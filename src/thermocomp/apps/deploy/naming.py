@@ -103,12 +103,14 @@ def bare_names(names: Mapping, converted: Mapping | None = None
     return bare, ambiguous
 
 
-def accepted_names(names: Mapping, converted: Mapping | None = None) -> dict[str, list[str]]:
-    """``{contract name: every name the model takes it by}``: ``names`` (:func:`lab_names`)
-    with the bare forms :func:`bare_names` finds certain.  A refusal of a lacking column names
-    the lab's headers as the reader named them (``names``: the joined form, stranger74)."""
-    bare = bare_names(names, converted)[0]
-    return {str(c): [*raw_names(names, c), *bare.get(str(c), [])] for c in names}
+def accepted_names(names: Mapping, converted: Mapping | None = None
+                   ) -> tuple[dict[str, list[str]], dict[str, list[str]]]:
+    """``({contract name: every name the model takes it by}, {bare form: the headers it may
+    be})``: ``names`` (:func:`lab_names`) with the bare forms :func:`bare_names` finds certain,
+    and those it does not (to refuse by name).  A refusal of a lacking column names the lab's
+    headers as the reader named them (``names``: the joined form, stranger74)."""
+    bare, unsure = bare_names(names, converted)
+    return {str(c): [*raw_names(names, c), *bare.get(str(c), [])] for c in names}, unsure
 
 
 def to_contract(frame: pd.DataFrame, names: Mapping, converted: Mapping | None = None
@@ -118,13 +120,12 @@ def to_contract(frame: pd.DataFrame, names: Mapping, converted: Mapping | None =
     name of a column, not two (two columns for one input), nor a bare name two columns share."""
     if not names:
         return frame
-    unsure = bare_names(names, converted)[1]
+    names, unsure = accepted_names(names, converted)
     sent = [form for form in unsure if form in frame.columns]
     if sent:
         raise ContractError("the input's column(s) " + "; ".join(
             f"{form!r} may be {' or '.join(map(repr, unsure[form]))}" for form in sent)
             + ": two columns alike but for their unit; send the header with its unit")
-    names = accepted_names(names, converted)
     both = []
     for contract in names:
         given = [n for n in (*raw_names(names, contract), contract) if n in frame.columns]

@@ -97,7 +97,7 @@ from ...core.io.slashed import stream_format
 from ...core.io.stdin import since, stream_stamps, with_clock_joined
 from ...core.io.timestamps import CLOCK
 from .adaptive import AdaptiveCompensator
-from .naming import accepted_names, bare_names, correction_column, raw_names, to_contract
+from .naming import accepted_names, correction_column, raw_names, to_contract
 from .streaming import EndState, StreamingCompensator
 
 MODEL_NAME = "compensator"          # artifact name of the pyfunc model inside a run
@@ -315,7 +315,7 @@ def signature(streaming: StreamingCompensator | AdaptiveCompensator) -> ModelSig
     converted = getattr(streaming, "lab_units_", {}) or {}
     # a header bare above its unit row too (Temperatura ambiente): a bare name two columns share
     # in the schema as well, so that the model refuses it by name rather than MLflow dropping it
-    accepted, unsure = accepted_names(names, converted), bare_names(names, converted)[1]
+    accepted, unsure = accepted_names(names, converted)
     bits = getattr(streaming, "bits_", {}) or {}
     decoded = {STATE + n for named in bits.values() for n in named.values()}
     required = {c: not names and c not in decoded for c in streaming.columns_}
