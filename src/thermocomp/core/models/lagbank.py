@@ -506,8 +506,7 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
 
     def __init__(self, n_taus: int = 8, tau_min_s: float | None = None,
                  tau_max_s: float = 172800.0, alphas=None, n_splits: int = 5, ar=False,
-                 sample_period_s: float = 60.0, level_penalty=1.0, rest_columns=None,
-                 lead_margin: float | None = None):
+                 sample_period_s: float = 60.0, level_penalty=1.0, rest_columns=None):
         self.n_taus = n_taus
         self.tau_min_s = tau_min_s
         self.tau_max_s = tau_max_s
@@ -517,7 +516,6 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         self.sample_period_s = sample_period_s
         self.level_penalty = level_penalty
         self.rest_columns = rest_columns
-        self.lead_margin = lead_margin
 
     # -- parameters ---------------------------------------------------------------------
     # n_taus: a feature per input and time constant
@@ -525,7 +523,7 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
                    "alphas": optional(either(POSITIVE, numbers(0.0, open_lo=True))),
                    "n_splits": integer(MIN_SPLITS), "ar": choice(False, True, "auto"),
                    "sample_period_s": POSITIVE, "level_penalty": either(numbers(0.0), NON_NEGATIVE),
-                   "rest_columns": optional(integers(0, empty=True)), "lead_margin": optional(NON_NEGATIVE)}
+                   "rest_columns": optional(integers(0, empty=True))}
 
     def _rest(self, p: int) -> np.ndarray | None:
         """The columns of :attr:`rest_columns` as a mask over ``p`` inputs (None: none)."""
@@ -580,15 +578,6 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
     # (an eigendecomposition 15x slower with 2 threads on a busy 2-core machine), as in diagnose.
     @threadpool_limits.wrap(limits=1, user_api="blas")
     def fit(self, X, y, context=None):
-        self._fit(X, y, context)
-        self.lead_range_ = None
-        if self.lead_margin is not None:
-            X_rows = np.asarray(X, dtype=float)
-            self.lead_range_ = lead_range(self._features(X_rows, context), X_rows.shape[1],
-                                          float(self.lead_margin))
-        return self
-
-    def _fit(self, X, y, context=None):
         alphas, ratios = self._check_params()
         X, y, measured = measured_rows(self, X, y)
         X = np.asarray(X, dtype=float)
@@ -840,7 +829,7 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         X = validate_data(self, X, reset=False)
         X = np.asarray(X, dtype=float)
         groups, y_measured = groups_of(context), values(context, Y_MEASURED, X.shape[0])
-        F = self._clipped(self._features(X, context), X.shape[1])
+        F = self._features(X, context)
         if y_measured is not None and self.coef_one_step_ is not None:
             coef, a, c = self.coef_one_step_, self.ar_coef_one_step_, self.intercept_one_step_
             if self.one_step_design_ == "increments":
@@ -861,16 +850,6 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         for t in range(len(u)):
             prev = 0.0 if t in starts else (out[t - 1] if missing[t] else y_prev[t])
             out[t] = a * prev + u[t]
-        return out
-
-    def _clipped(self, F, p: int) -> np.ndarray:
-        """``F`` with its leads (the columns after the ``p`` levels) held in :attr:`lead_range_`
-        (a copy; ``F`` itself where no range was kept)."""
-        bounds = getattr(self, "lead_range_", None)
-        if bounds is None:
-            return F
-        out = np.array(F, dtype=float)
-        np.clip(out[:, p:], bounds[0], bounds[1], out=out[:, p:])
         return out
 
     # -- streaming (deployment) ---------------------------------------------------------
@@ -896,8 +875,7 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         else:
             a = np.repeat(np.exp(-dt / self.taus_), x.size)
             z = a * state["z"] + (1.0 - a) * np.tile(x, self.taus_.size)
-        y_hat = float(self._clipped(np.concatenate([x, z - np.tile(x, self.taus_.size)])[None], x.size)[0]
-                      @ self.coef_ + self.intercept_
+        y_hat = float(np.concatenate([x, z - np.tile(x, self.taus_.size)]) @ self.coef_ + self.intercept_
                       + self.ar_coef_ * state["y_prev"])
         return y_hat, {"z": z, "clock": clock, "y_prev": y_hat}
 
@@ -937,10 +915,7 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
                     Z[start:stop] = lfilter([1.0 - a], [1.0, -a], X[start:stop], axis=0,
                                             zi=a * Z[start - 1:start])[0]
             z_last[k] = Z[-1]
-            lead = Z - X
-            if getattr(self, "lead_range_", None) is not None:
-                np.clip(lead, *(b[p * k:p * (k + 1)] for b in self.lead_range_), out=lead)
-            y += lead @ coef[p * (k + 1):p * (k + 2)]
+            y += (Z - X) @ coef[p * (k + 1):p * (k + 2)]
         a = float(self.ar_coef_)
         if a != 0.0:
             y = lfilter([1.0], [1.0, -a], y, zi=[a * state["y_prev"]])[0]
@@ -989,15 +964,6 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
                                for tau in self.taus_])
             gain[j] = gain[j] * s1 + lags[:, j] @ (s2 - s1)
         return feedback_gain(gain, self.ar_coef_)
-
-
-def lead_range(F, p: int, margin: float) -> tuple[np.ndarray, np.ndarray]:
-    """``(low, high)`` of the leads ``F[:, p:]`` (``L_tau[x] - x``) over the fit's rows, widened by
-    ``margin`` times their span on each side: what a lead may reach at prediction."""
-    leads = F[:, p:]
-    low, high = leads.min(axis=0), leads.max(axis=0)
-    span = high - low
-    return low - margin * span, high + margin * span
 
 
 def _decayed(a: float, m: float) -> float:
