@@ -106,12 +106,21 @@ from bench_auto95 import SEEN as SEEN95  # noqa: E402
 from bench_auto95 import SWISS_SHORT  # noqa: E402
 from bench_deploy88 import LONG  # noqa: E402
 
-FRESH = {**{f"lr{s}": [*LONG, f"seed={s}", "sim.generator.duration_days=3.0"] for s in range(9729, 9732)},
-         **{f"sw{s}": [*SWISS_SHORT, f"seed={s}"] for s in (9732, 9733)},
-         **{f"col{s}": ["sim=column_moving_source", f"seed={s}"] for s in (9734, 9735)},
-         "year6_9736": ["sim=yearround_spindle", "sim.generator.n_campaigns=6", "seed=9736"],
-         "climate9737": ["sim=climate_room", "sim.generator.n_runs=12", "seed=9737"],
-         "lab9738": ["data.path={root}/lab9738"]}
+
+def fresh_records(first: int) -> dict:
+    """The ten fresh records of seeds ``first`` .. ``first + 9``, as the BAR's clause (2) names them
+    (``{root}``: ROOT): three long records, two swiss, two column, a 6-campaign year, a 12-run
+    climate room, a lab."""
+    s = first
+    return {**{f"lr{k}": [*LONG, f"seed={k}", "sim.generator.duration_days=3.0"] for k in range(s, s + 3)},
+            **{f"sw{k}": [*SWISS_SHORT, f"seed={k}"] for k in (s + 3, s + 4)},
+            **{f"col{k}": ["sim=column_moving_source", f"seed={k}"] for k in (s + 5, s + 6)},
+            f"year6_{s + 7}": ["sim=yearround_spindle", "sim.generator.n_campaigns=6", f"seed={s + 7}"],
+            f"climate{s + 8}": ["sim=climate_room", "sim.generator.n_runs=12", f"seed={s + 8}"],
+            f"lab{s + 9}": [f"data.path={{root}}/lab{s + 9}"]}
+
+
+FRESH = fresh_records(9729)
 RECORDS = {**SEEN95, **SPENT95, **FRESH}
 LABS = {"lab9738": 9738}       # written by bench_auto_losses56's lab_record under ROOT
 
