@@ -65,7 +65,8 @@ its test as ``benchmarks/diag97_rule.patch``, src reverted, this bench and its n
 Measured (2026-12-06; MAIN = ``git archive b77996ba src``, RULE = a07f4a8c's src; nice, 2 cores shared)
 -----------------------------------------------------------------------------------------------------
 The bar at a07f4a8c (06:14:57 UTC); the fresh draws started 06:24:51, scored once, bar unchanged.
-``draws``: process CPU seen main 79.5 s, rule 77.2 s; fresh 12.3 / 12.4 s.  Main's 70 seen rows are
+``draws``: process CPU seen main 79.5 s, rule 77.2 s; fresh 12.3 / 12.4 s; ``trace /tmp seen`` (main's
+src) 81.3 s, its 197 cleared candidates the reads quoted above.  Main's 70 seen rows are
 bench_diag96b's ``seen-main`` rows (af5dfe9a) to the last digit (0 of 210 differ).
 
 SEEN, ``bar ROOT seen main rule``: (1) rows > 2 % worse 8 -> 0: met (all 8 take nothing: 8969 E_X
