@@ -64,6 +64,17 @@ Why no rule here (what following them needs, read from watch.CodeMonitor and mea
 * 8 seconds are DRIFT_OUT (the C's lone fault, veto, new state: the drift judgement, not in the
   ST) and 2 FREEZE (not in the ST).
 
+The returns after a JUMP on the same records (``seconds``' tables, bench_st95's logs of the apart
+cases): st96b's 13 SETTLED-first ``apart`` are 6 after a C JUMP of one no other predicts held to
+BACK (lr9790 4: T_motor 3608-3619; dl9794 2: T_table 6048-6061) and 7 after a C JUMP of one the
+others predict back by SPIKE at the next row (dl9791: T_col_front_top 5931 / 5932, the block's SPIKE
+there too); the same logs precede dl9791's 3 other apart (STEP_OUT) and dl9794's 2 (BLIND_OUT).
+The second kind reads the jump row's errors of the set without the jumper (the C's ``prev_e`` at
+the SPIKE row: its one-out operator, ``M[j + 1]``) and the C's re-reference of a predicted jumper.
+
+Rerun after the per-line ``held`` / ``solved`` mark was added (``seconds`` on dl9768, then dl9791 and
+lr9793; 49.1 s and 75.8 s CPU): every line as above, each two-out set ``solved``.
+
 So the second out needs the C's pair machinery and, first, the returns after a JUMP, which need the
 C's held reading on the correction path (st.py's inputs, not st_watch's monitor alone): neither fits
 this stop's time (06:08 to 07:50 UTC), and a bar on 9820-9824 would have scored a class
