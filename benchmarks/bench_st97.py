@@ -196,18 +196,11 @@ def seconds(root: str, *records: str) -> None:
 
 def frame(root: str, *records: str) -> None:
     """The block, told nothing, and the C over each whole healthy frame, the C's outs (module doc)."""
-    from thermocomp.apps.deploy.export import exported_files, state_space
-    from thermocomp.apps.deploy.export.pack import fed
+    from thermocomp.apps.deploy.export import exported_files
     from thermocomp.apps.deploy.export.watch import BAND, RULES
-    from thermocomp.apps.deploy.report import plain
-    from thermocomp.shell.stages.export import lead_ins
 
     for record in records:
-        model = Path(root).resolve() / "reports" / record / "mlr-none" / "model.pkl"
-        deployed, ds, _, test_ids = bench_st94.deployed_cell(Path(root).resolve(), record, model)
-        ss = state_space(deployed, monitor=True)
-        cid = test_ids[0]
-        rows = fed(ds.campaigns[cid], lead_ins(plain(deployed).compensator, ds, [cid]).get(cid))
+        deployed, ss, rows = bench_st95.healthy_frame(root, record)
         NAMES[:] = [ss.inputs[i] for i in ss.monitor["inputs"]]
         both = bench_st94.Both(ss, exported_files(copy.deepcopy(deployed), "st")["compensator.st"])
         said, outs, two, by = [], (-1, -1), 0, ""
