@@ -43,7 +43,7 @@ then FREEZE T_zdrive).  None follows a BLIND_OUT the block holds.  The block nam
 SPIKE of the jumper (dl9768 T_head_right+T_table, row 11, the C's STEP_OUT T_zdrive).  The first
 C event of each of the 31 is the block's already (JUMP / STEP_OUT, ``agree``): the case tables do
 not see the second out.  ``frame``: 0 rows with two out in the six healthy frames (14.5 s + 40.6 s
-CPU).
+CPU; cr9792 in the command's first form, 43.2 s for the five of 9790-9794).
 
 Why no rule here (what following them needs, read from watch.CodeMonitor and measured):
 
