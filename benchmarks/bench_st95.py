@@ -161,22 +161,30 @@ def oracle(root: str, *records: str) -> None:
     trace(root, *records)
 
 
-def frame(root: str, *records: str) -> None:
-    """The told block and the C over each record's whole healthy frame (module doc)."""
-    from thermocomp.apps.deploy.export import exported_files, state_space
+def healthy_frame(root: str, record: str) -> tuple:
+    """``(deployed, state space, fed rows)`` of the cell ``ROOT/reports/RECORD/mlr-none``: its
+    first test campaign's whole healthy frame, the lead-in first (also bench_st97's)."""
+    from thermocomp.apps.deploy.export import state_space
     from thermocomp.apps.deploy.export.pack import fed
-    from thermocomp.apps.deploy.export.watch import BAND, EXCLUDED, READMITTED, RULES
     from thermocomp.apps.deploy.report import plain
     from thermocomp.shell.stages.export import lead_ins
+
+    model = Path(root).resolve() / "reports" / record / "mlr-none" / "model.pkl"
+    deployed, ds, _, test_ids = bench_st94.deployed_cell(Path(root).resolve(), record, model)
+    cid = test_ids[0]
+    rows = fed(ds.campaigns[cid], lead_ins(plain(deployed).compensator, ds, [cid]).get(cid))
+    return deployed, state_space(deployed, monitor=True), rows
+
+
+def frame(root: str, *records: str) -> None:
+    """The told block and the C over each record's whole healthy frame (module doc)."""
+    from thermocomp.apps.deploy.export import exported_files
+    from thermocomp.apps.deploy.export.watch import BAND, EXCLUDED, READMITTED, RULES
 
     global ORACLE
     ORACLE = True
     for record in records:
-        model = Path(root).resolve() / "reports" / record / "mlr-none" / "model.pkl"
-        deployed, ds, _, test_ids = bench_st94.deployed_cell(Path(root).resolve(), record, model)
-        ss = state_space(deployed, monitor=True)
-        cid = test_ids[0]
-        rows = fed(ds.campaigns[cid], lead_ins(plain(deployed).compensator, ds, [cid]).get(cid))
+        deployed, ss, rows = healthy_frame(root, record)
         names = [*[ss.inputs[i] for i in ss.monitor["inputs"]], "-"]
         said = []
         for i, (_, _, (flag, rule, s), (bits, crule, cs), _) in enumerate(
