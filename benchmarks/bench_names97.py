@@ -122,7 +122,7 @@ def twounits(root: str) -> None:
 
     folder = made_folder(root) / "twounits"
     folder.mkdir(exist_ok=True)
-    rows = _rows()
+    rows = _rows().round(4)       # (the numbers the file writes: the C and the session alike)
     (folder / "lab.csv").write_text(_text(rows, HEADERS, UNITS), encoding="utf-8")
     overrides = [f"data.path={folder / 'lab.csv'}", "data.test_fraction=0.25", "data.delimiter=';'",
                  "data.decimal=','", "data.roles.error=[dX]", "model=mlr", "track=false",
@@ -143,7 +143,9 @@ def twounits(root: str) -> None:
     model = CompensatorModel(copy.deepcopy(deployed))
     joined = rows.rename(columns={"time": "Zeit [s]", "T_a": "T [°C]", "T_b": "T [K]",
                                   "T_c": "Temp c [°C]", "E_X": "dX [µm]"})
-    served = model.predict(None, joined.drop(columns="dX [µm]"), {"reset": True})["C_dX"].to_numpy()
+    # (a header read in another unit is served by its contract name only, in the contract's unit)
+    sent = joined.drop(columns=["dX [µm]", "T [K]"]).assign(T_b=rows["T_b"] - 273.15)
+    served = model.predict(None, sent, {"reset": True})["C_dX"].to_numpy()
     texts = {"(a) unit row": _text(rows, HEADERS, UNITS),
              "(b) joined": _text(rows, list(joined.columns)),
              "(c) bare 'T' beside 'T [K]'": _text(rows, ["Zeit [s]", "T", "T [K]", "Temp c [°C]",
