@@ -210,9 +210,10 @@ def lab(root: str, seed: str, lang: str = "it") -> None:
     lines = raw.decode("utf-8").splitlines(keepends=True)
     unit_row = next(i for i, ln in enumerate(lines) if "°C" in ln and i > 0
                     and not any(ch.isdigit() for ch in ln.replace("°C", "")))
-    bare = "".join(lines[:unit_row] + lines[unit_row + 1:]).encode("utf-8")
+    # (every unit row: a second export appended repeats it under its header again)
+    bare = "".join(ln for ln in lines if ln != lines[unit_row]).encode("utf-8")
     fed_bare = subprocess.run([str(code / "stream")], input=bare, capture_output=True)
-    print(f"  C raw exit {fed.returncode}, C bare (unit row, line {unit_row + 1}, left out) exit "
+    print(f"  C raw exit {fed.returncode}, C bare (unit rows as line {unit_row + 1} left out) exit "
           f"{fed_bare.returncode}: {fed_bare.stderr.decode(errors='replace').strip()[:300]}",
           flush=True)
     if not fed.returncode and not fed_bare.returncode:
