@@ -57,7 +57,7 @@ def test_stream_c_refuses_a_bare_header_two_columns_share_but_for_their_unit(tmp
                tmp_path / "model.pkl")
     export(cfg)
     code = tmp_path / "code"
-    subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", "compensator.c",
+    subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-O0", "compensator.c",
                     "stream.c", "-lm", "-o", "stream"], cwd=code, check=True, capture_output=True)
 
     def fed(headers):

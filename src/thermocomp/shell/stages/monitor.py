@@ -78,21 +78,20 @@ def _fitted(cfg: DictConfig, ds, train: dict, registered):
     """``(compensator, its plain stream)``: fitted on ``train``, or ``monitor.model``'s (a
     registered one's stream as registered: what is monitored is what was deployed)."""
     path = cfg.monitor.get("model")
-    if registered is not None:
-        comp = plain(registered).compensator
-    else:
-        # fitted as run fits it: train files that continue one another joined (their state
-        # carried over)
-        comp = fit_joined(build_compensator(cfg, ds=ds), ds, list(train), train) if path is None \
-            else load_model(resolve(str(path)))
-    if path is not None and registered is None:    # checked as replay checks it (names97)
-        stream = loaded_stream(cfg, ds, train, comp, f"monitor.model={path}")
-    check_volumetric_targets(cfg, ds, comp.targets_, f"monitor.model={path}")
     # one plain stream serves both: the fixed run and the adaptive one are each streamed from a
     # reset, one after the other
     if registered is not None:
-        return comp, plain(registered)
-    return comp, stream if path is not None else deploy_stream(cfg, comp, train)
+        comp, stream = plain(registered).compensator, plain(registered)
+    elif path is None:
+        # fitted as run fits it: train files that continue one another joined (their state
+        # carried over)
+        comp = fit_joined(build_compensator(cfg, ds=ds), ds, list(train), train)
+        stream = deploy_stream(cfg, comp, train)
+    else:       # a model.pkl, checked as replay checks it (names97: another record's said first)
+        comp = load_model(resolve(str(path)))
+        stream = loaded_stream(cfg, ds, train, comp, f"monitor.model={path}")
+    check_volumetric_targets(cfg, ds, comp.targets_, f"monitor.model={path}")
+    return comp, stream
 
 
 def monitor(cfg: DictConfig) -> dict:
