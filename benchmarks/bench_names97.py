@@ -120,6 +120,7 @@ subprocesses not counted); wall: twounits ~40 s, cases ~2-4 min, lab ~3-5 min ea
 
 from __future__ import annotations
 
+import io
 import json
 import subprocess
 import sys
@@ -155,7 +156,7 @@ def _text(rows: pd.DataFrame, headers, units=None) -> str:
 
 def _fed(code: Path, text: str):
     done = subprocess.run([str(code / "stream")], input=text.encode(), capture_output=True)
-    out = pd.read_csv(__import__("io").BytesIO(done.stdout)) if done.stdout else pd.DataFrame()
+    out = pd.read_csv(io.BytesIO(done.stdout)) if done.stdout else pd.DataFrame()
     return done.returncode, done.stderr.decode(errors="replace").strip(), out
 
 
@@ -271,8 +272,8 @@ def lab(root: str, seed: str, lang: str = "it") -> None:
           f"{fed_bare.returncode}: {fed_bare.stderr.decode(errors='replace').strip()[:300]}",
           flush=True)
     if not fed.returncode and not fed_bare.returncode:
-        a = pd.read_csv(__import__("io").BytesIO(fed.stdout))
-        b = pd.read_csv(__import__("io").BytesIO(fed_bare.stdout))
+        a = pd.read_csv(io.BytesIO(fed.stdout))
+        b = pd.read_csv(io.BytesIO(fed_bare.stdout))
         cols = [c for c in a.columns if c.startswith("C_")]
         print(f"  max |C(bare) - C(raw)| {np.max(np.abs(a[cols].to_numpy() - b[cols].to_numpy())):.2g} "
               f"µm ({len(a)} / {len(b)} rows)", flush=True)
