@@ -186,27 +186,41 @@ def deployable_model(cfg: DictConfig, ds, train_ids, source, key: str,
         comp = loaded if loaded is not None else load_model(resolve(source))
         name, what = model_family(comp), f"{key}={source}"
         train = {c: ds.campaigns[c] for c in train_ids}
-        check_model_names(cfg, ds, comp, what)
-        foreign = other_record(cfg, ds, comp, what)     # another record's model: say so first
-        if not foreign:
-            check_model_columns_in(ds, train, comp, what)
-        try:
-            stream = deploy_stream(cfg, comp, train, what)
-        except ConfigError as exc:
-            raise ConfigError(foreign or str(exc)) from None
-        return deployable(cfg, stream, train, ds), source, name
+        return deployable(cfg, loaded_stream(cfg, ds, train, comp, what), train, ds), source, name
     return deployable(cfg, deploy_stream(cfg, comp, train, what), train, ds), source, name
+
+
+def loaded_stream(cfg: DictConfig, ds, train: dict, comp, what: str):
+    """The plain stream of a loaded model.pkl made deployable on ``train``, checked in one order
+    by every stage given one (``deployable_model``: replay, serve, export, connect; ``monitor``):
+    a name an earlier rule derived, then another record's model (said first: names97, monitor
+    named a campaign's file where replay said "fitted on another record"), then a train
+    campaign lacking an input, by its file."""
+    check_model_names(cfg, ds, comp, what)
+    foreign = other_record(cfg, ds, comp, what)     # another record's model: say so first
+    if not foreign:
+        check_model_columns_in(ds, train, comp, what)
+    try:
+        return deploy_stream(cfg, comp, train, what)
+    except ConfigError as exc:
+        raise ConfigError(foreign or str(exc)) from None
 
 
 def other_record(cfg: DictConfig, ds, comp, what: str) -> str:
     """Why a model.pkl cannot be deployed on ``data.path`` where the record lacks every column of
     some it reads: it was fitted on another record (audit96b: ``serve
     serve.model=reports/fl_thermal/model.pkl`` read the default dataset and advised leaving
-    ``T_t1`` out of data.inputs); "" where each is in some campaign (a fault of the record)."""
+    ``T_t1`` out of data.inputs); "" where each is in some campaign (a fault of the record).
+    Each is named as its lab wrote it where the model carries the lab's names (``lab_names_``,
+    a model.pkl of ``run``: names97, ``'t1(°C)' (read as T_t1)``)."""
+    from ..core.io.own_headers import named_one
+
     wanted = [*getattr(comp, "inputs_", ()), *getattr(comp, "targets_", ())]
     absent = [c for c in wanted if c not in ds.columns]
     if not absent:
         return ""
+    lab = getattr(comp, "lab_names_", None) or {}
+    absent = [named_one(c, lab) if lab.get(c) else c for c in absent]
     return (f"{what} cannot be deployed on data.path={cfg.data.path}: the record has none of "
             f"{listed(absent, 4)}, which the model reads. It was fitted on another record, and a "
             "model.pkl is made deployable on the train split of data.path: give the data config "

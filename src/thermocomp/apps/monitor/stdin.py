@@ -6,11 +6,13 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from ...base.errors import ConfigError
+from ...base.errors import ConfigError, listed
 from ...base.log import logger
 from ...core.continuation import campaign_period, chain, preceding, predecessors
 from ...core.io.contract import TIME
 from ...core.io.instants import START, start_instants
+from ...core.io.own_headers import named_one
+from ...core.io.stdin import HEADERS, SOURCE
 from ..deploy.surveillance import COMMON_MIN
 
 
@@ -234,3 +236,17 @@ def said_if_cold_continuation(ds, deployed, cid: str) -> None:
         f"on {scored[0]} warmed on {links[scored[0]]}, the record it continues: if this stream "
         f"goes on from the machine's record, say the campaign it continues "
         f"(monitor.continues=<campaign>); else its first rows are a cold start")
+
+
+def said_if_unknown(streamed: dict, ds) -> None:
+    """(names97) A stream's columns the model's record holds none of (a sensor added since, a
+    logger's channel the data config never read) said once, by the stream's own headers: the
+    model does not read them (undeclared, docs/data-format.md).  badin96: a stream with an extra
+    column was read without a word, where a lacking one is refused naming the unread ones."""
+    known = {TIME, *ds.columns}
+    unknown = list(dict.fromkeys(c for frame in streamed.values() for c in frame.columns
+                                 if c not in known))
+    if unknown:
+        own = next(iter(streamed.values())).attrs.get(HEADERS, {})
+        logger.warning(f"{SOURCE}: column(s) {listed([named_one(c, own) for c in unknown], 6)} "
+                       "not in the data the model was fitted on: not read")

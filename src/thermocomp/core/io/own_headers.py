@@ -39,9 +39,12 @@ def as_named(columns, names: Mapping) -> str:
     """``columns`` (contract names) listed as the lab named them, ``names`` being ``{contract
     name: the lab's header(s)}`` (a deployed model's ``lab_names_``): a stream lacking a sensor
     was refused naming ``T_Hydraulik``, a name none of the lab's files holds ('Hydraulik (°C)')."""
-    said = []
-    for column in columns:
-        raws = names.get(column) or []
-        raws = [raws] if isinstance(raws, str) else list(raws)
-        said.append(" or ".join(map(repr, raws)) + f" (read as {column})" if raws else repr(column))
-    return f"[{', '.join(said)}]"
+    return f"[{', '.join(named_one(column, names) for column in columns)}]"
+
+
+def named_one(column: str, names: Mapping) -> str:
+    """``column`` as :func:`as_named` lists it: ``'t1(°C)' (read as T_t1)``, or ``'T_t1'``
+    where ``names`` holds no header of it."""
+    raws = names.get(column) or []
+    raws = [raws] if isinstance(raws, str) else list(raws)
+    return " or ".join(map(repr, raws)) + f" (read as {column})" if raws else repr(column)

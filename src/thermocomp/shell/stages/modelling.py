@@ -54,6 +54,8 @@ def train(cfg: DictConfig):
     comp = fit_from_artifacts(cfg, ds)
     fit_s = time.perf_counter() - t0
     comp.interim_digest_ = ds.meta["digest"]   # what it learnt from: evaluate refuses another
+    from ...apps.deploy.naming import lab_names
+    comp.lab_names_ = lab_names(cfg, ds)       # (names97: as run's)
     path = save_model(comp, cfg.model_path)
     say(f"model saved to {path} ({fit_s:.2f} s)")
     with stage_run(cfg, "train") as tr:
@@ -100,6 +102,10 @@ def run(cfg: DictConfig) -> dict:
         comp = fit_chain(cfg, ds)     # what denoise -> select -> train compute, in memory
         fit_s = time.perf_counter() - t0
         clock.lap("fit")
+
+        # the lab's headers travel with the model: another record's refusal names them (names97)
+        from ...apps.deploy.naming import lab_names
+        comp.lab_names_ = lab_names(cfg, ds)
 
         def stage_files(stage):  # committed with metrics.json, or not at all
             save_model(comp, stage / "model.pkl")

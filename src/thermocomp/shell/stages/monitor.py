@@ -25,6 +25,7 @@ from ...apps.monitor.stdin import (
     said_if_cold_continuation,
     said_if_mid_campaign,
     said_if_other_period,
+    said_if_unknown,
     stdin_chain,
     stdin_lead_in,
 )
@@ -41,9 +42,8 @@ from ...core.io.stdin import TIME_ORIGIN, stdin_text, stream_campaigns
 from ..builders import (
     build_adaptive,
     build_compensator,
-    check_model_columns_in,
-    check_model_names,
     deploy_stream,
+    loaded_stream,
     registered_first,
     warn_stream_mode,
 )
@@ -78,20 +78,20 @@ def _fitted(cfg: DictConfig, ds, train: dict, registered):
     """``(compensator, its plain stream)``: fitted on ``train``, or ``monitor.model``'s (a
     registered one's stream as registered: what is monitored is what was deployed)."""
     path = cfg.monitor.get("model")
-    if registered is not None:
-        comp = plain(registered).compensator
-    else:
-        # fitted as run fits it: train files that continue one another joined (their state
-        # carried over)
-        comp = fit_joined(build_compensator(cfg, ds=ds), ds, list(train), train) if path is None \
-            else load_model(resolve(str(path)))
-    if path is not None and registered is None:
-        check_model_names(cfg, ds, comp, f"monitor.model={path}")
-        check_model_columns_in(ds, train, comp, f"monitor.model={path}")
-    check_volumetric_targets(cfg, ds, comp.targets_, f"monitor.model={path}")
     # one plain stream serves both: the fixed run and the adaptive one are each streamed from a
     # reset, one after the other
-    return comp, plain(registered) if registered is not None else deploy_stream(cfg, comp, train)
+    if registered is not None:
+        comp, stream = plain(registered).compensator, plain(registered)
+    elif path is None:
+        # fitted as run fits it: train files that continue one another joined (their state
+        # carried over)
+        comp = fit_joined(build_compensator(cfg, ds=ds), ds, list(train), train)
+        stream = deploy_stream(cfg, comp, train)
+    else:       # a model.pkl, checked as replay checks it (names97: another record's said first)
+        comp = load_model(resolve(str(path)))
+        stream = loaded_stream(cfg, ds, train, comp, f"monitor.model={path}")
+    check_volumetric_targets(cfg, ds, comp.targets_, f"monitor.model={path}")
+    return comp, stream
 
 
 def monitor(cfg: DictConfig) -> dict:
@@ -124,6 +124,7 @@ def monitor(cfg: DictConfig) -> dict:
             streamed, missing = stream_campaigns(stdin_text(sys.stdin, opts.encoding),
                                                  adaptive.columns_, opts, slashed_time(cfg, ds),
                                                  lab_names(cfg, ds))
+            said_if_unknown(streamed, ds)
             if cfg.monitor.get("ambient_c") is not None:   # as the manifest's ambient_c is carried
                 for df in streamed.values():
                     df.attrs[AMBIENT_C] = float(cfg.monitor.ambient_c)

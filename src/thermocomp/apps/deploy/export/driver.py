@@ -137,25 +137,46 @@ static const char *lab_header(const char *input) {
     return "";
 }
 
+/* (names97) The lab's headers a bare header of column j may be, two columns alike but for their
+   unit (`T` of `T [degC]` and `T [K]`): -1 where it names one column for sure. The served model
+   refuses such a name naming both (naming.bare_names); the stream took its first match. */
+static int alike_of[MAX_COLS][2];
+
+/* 1: lab headers k and m are one bare name's two columns: another contract name, or one of
+   them read in another unit (its cells converted). */
+static int alike(int k, int m) {
+    return strcmp(TC_LAB_NAMES[k][1], TC_LAB_NAMES[m][1]) != 0
+           || TC_LAB_UNITS[k][0] != 1.0 || TC_LAB_UNITS[k][1] != 0.0
+           || TC_LAB_UNITS[m][0] != 1.0 || TC_LAB_UNITS[m][1] != 0.0;
+}
+
+/* 1: `cell` (len bytes) is lab header k's text before ` [` (its unit): k's bare form. */
+static int bare_of(const char *cell, size_t len, int k) {
+    return strncmp(cell, TC_LAB_NAMES[k][0], len) == 0 && TC_LAB_NAMES[k][0][len] == ' '
+           && TC_LAB_NAMES[k][0][len + 1] == '[' && strcmp(cell, TC_LAB_NAMES[k][1]) != 0;
+}
+
 static const char *named(char *cell, int j) {
     size_t len;
-    int k;
+    int k, m;
     const char *lab;
     while (*cell == ' ' || *cell == '"') cell++;
     len = strlen(cell);
     while (len && (cell[len - 1] == ' ' || cell[len - 1] == '"')) cell[--len] = '\0';
     scale_of[j] = 1.0;
     offset_of[j] = 0.0;
+    alike_of[j][0] = alike_of[j][1] = -1;
     if ((lab = lab_named(cell, j)) != NULL) return lab;
     /* (streamraw65) a header whose unit is in the unit row under it (`T Halle` over `degC`): the
        reader named it `T Halle [degC]`; the unit row, where there is one, says which (united) */
     /* (restart66) not a contract name itself: the check pack's rows.csv heads `time` in s where
        the lab's header was `time [h]` (read as hours, the pack failed its own check) */
     for (k = 0; len && k < TC_N_LAB_NAMES; k++)
-        if (strncmp(cell, TC_LAB_NAMES[k][0], len) == 0 && TC_LAB_NAMES[k][0][len] == ' '
-            && TC_LAB_NAMES[k][0][len + 1] == '[' && strcmp(cell, TC_LAB_NAMES[k][1]) != 0) {
+        if (bare_of(cell, len, k)) {
             scale_of[j] = TC_LAB_UNITS[k][0];
             offset_of[j] = TC_LAB_UNITS[k][1];
+            for (m = k + 1; m < TC_N_LAB_NAMES; m++)     /* (names97: the first match is not sure) */
+                if (bare_of(cell, len, m) && alike(k, m)) alike_of[j][0] = k, alike_of[j][1] = m;
             return TC_LAB_NAMES[k][1];
         }
     return cell;
@@ -1123,7 +1144,8 @@ int main(int argc, char **argv) {
                 const char *u = trimmed(units[j]), *lab;
                 if (!*u) continue;
                 snprintf(joined, sizeof joined, "%s [%s]", trimmed(raw[j]), u);
-                if ((lab = lab_named(joined, j)) != NULL) cells[j] = (char *)lab;
+                if ((lab = lab_named(joined, j)) != NULL)    /* (its unit row says which) */
+                    cells[j] = (char *)lab, alike_of[j][0] = -1;
             }
         } else {
             strcpy(first_row, units_raw);   /* the first row: read in the loop */
@@ -1186,6 +1208,17 @@ int main(int argc, char **argv) {
             return 2;
         }
     }
+    for (j = 0; j < ncols; j++)
+        if (alike_of[j][0] >= 0) {
+            /* (names97) a bare header two of the model's columns share but for their unit, no
+               unit row under it: refused naming both, as the served model refuses it (it was
+               read as the first, which may be the other column) */
+            fprintf(stderr, "stream: the header (line %ld), column %d: '%s' may be '%s' or '%s': "
+                    "two columns alike but for their unit; send the header with its unit\n", top,
+                    j + 1, trimmed(raw[j]), TC_LAB_NAMES[alike_of[j][0]][0],
+                    TC_LAB_NAMES[alike_of[j][1]][0]);
+            return 2;
+        }
     for (i = 0; i < TC_N_OUTPUTS; i++) {
         error_col[i] = -1;
         for (j = 0; TC_ADAPT && j < ncols; j++)
