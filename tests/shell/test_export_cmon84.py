@@ -12,7 +12,6 @@ fallback model (the default) and without one."""
 from __future__ import annotations
 
 import dataclasses
-from functools import lru_cache
 
 import numpy as np
 import pytest
@@ -40,11 +39,6 @@ LOST = {"dropout": 6, "freeze": ROWS - ROWS // 2}
 @pytest.fixture(scope="module")
 def record(tmp_path_factory):
     return _machine(tmp_path_factory.mktemp("cmon84") / "data")
-
-
-@lru_cache(maxsize=None)    # one fit per fallbacks for the module (each stream, pack resets it)
-def _deployed_once(record, fallbacks: str):
-    return _deployed(record, fallbacks)
 
 
 def _lost(frame, kind: str = "dropout"):
@@ -78,7 +72,7 @@ def _mirror(ss, frame):
 @pytest.mark.parametrize("fallbacks", ["unobservable", "none"])
 def test_a_sensor_no_other_predicts_is_held_out_by_the_code_as_served(record, tmp_path, fallbacks,
                                                                       kind):
-    deployed, frame = _deployed_once(record, fallbacks)
+    deployed, frame = _deployed(record, fallbacks)
     frame = _lost(frame, kind)
     ss = state_space(deployed, monitor=True)
     k = [ss.inputs[i] for i in ss.monitor["inputs"]].index("T_u")
@@ -102,7 +96,7 @@ def test_a_sensor_no_other_predicts_is_held_out_by_the_code_as_served(record, tm
 def test_an_export_before_cmon84_refuses_the_missing_reading_and_flags_the_freeze(record):
     """Arrays without ``blind_drop``: the first missing reading refused (``MISSING_BLIND``), the
     freeze flagged (``BLIND``) where the served monitor excludes it; the pack cut there."""
-    deployed, frame = _deployed_once(record, "unobservable")
+    deployed, frame = _deployed(record, "unobservable")
     ss = state_space(deployed, monitor=True)
     old = dataclasses.replace(ss, monitor={k: v for k, v in ss.monitor.items() if k != "blind_drop"})
     for kind, rule in (("dropout", MISSING_BLIND), ("freeze", BLIND)):

@@ -35,25 +35,6 @@ def test_a_straight_ramp_spreads_its_windows_as_much_as_it_parts_them():
     assert abs(s_shift[0, 0]) > STEADY * s_spread[0, 0] and np.isclose(s_shift[0, 0], 1.0, atol=0.02)
 
 
-def test_the_per_sample_test_is_the_whole_tests_last_row():
-    """``level_shift(last=True)``, the served sample's and the mirror's test of their ring's last
-    ``2 w`` readings, computes the two windows it reads alone (ci97: 98 -> 55 us a call): the
-    whole test's last row, bit for bit, missing readings, ties and steady 0 too."""
-    from thermocomp.apps.deploy.surveillance.settled import level_shift
-    rng = np.random.default_rng(97)
-    for _ in range(400):
-        w, cols = int(rng.integers(1, 13)), int(rng.integers(1, 6))
-        a = rng.normal(0.0, 1.0, (2 * w + int(rng.integers(0, 3)), cols)) * rng.choice([1e-3, 1, 50])
-        a[rng.random(a.shape) < rng.choice([0.0, 0.1])] = np.nan
-        a = np.round(a, 1) if rng.random() < 0.3 else a
-        lim, steady = rng.normal(0.0, 1.0, cols), rng.choice([0.0, 2.5, 6.0])
-        (parted, shift), (one, one_shift) = (level_shift(a, w, lim, steady, last=last)
-                                             for last in (False, True))
-        assert one.shape == one_shift.shape == (1, cols)
-        assert np.array_equal(one[0], parted[-1]) and np.array_equal(one_shift[0], shift[-1],
-                                                                     equal_nan=True)
-
-
 @needs_cc
 def test_a_blind_sensors_fast_ramp_is_not_re_referenced_served_mirror_and_code(tmp_path):
     deployed, frame = _deployed(_machine(tmp_path / "data"), "none")

@@ -749,8 +749,7 @@ class CodeMonitor:
         gap = np.maximum(self.gap, max(1.0, dt / a["period"])) if (
             dt > a["gap_periods"] * a["period"]) else self.gap
         rows = np.vstack([self.settle[:, cols], x[cols] - self.ref[cols]])
-        parted, shift = (v[0] for v in level_shift(rows, w, a["settle_lim"][cols], a["settle_steady"],
-                                                     last=True))
+        parted, shift = (v[0] for v in level_shift(rows, w, a["settle_lim"][cols], a["settle_steady"]))
         active = self._active()[cols]
         fire = ((active | (self.jumps[cols] == 0)) & parted
                 & (gap[cols] == 1) & (self.settle_age[cols] >= 2 * w - 1))

@@ -34,48 +34,35 @@ STEADY = 6.0
 deviations must pass this (a straight ramp's ratio is 4, fl_thermal's planted steps' 8.5-52)."""
 
 
-def _windows(a: np.ndarray, w: int, last: bool) -> tuple[np.ndarray, int]:
-    """``a``'s windows of ``w`` samples, ``(n - w + 1, cols, w)``, and how many rows apart a window
-    and the one before it lie; ``last``: only the last sample's two (the per-sample test reads
-    no other: the w - 1 windows between, each a median, cost a sample twice as much)."""
-    a = np.asarray(a, float)
-    if last:
-        return np.moveaxis(a[-2 * w:].reshape(2, w, -1), 1, -1), 1
-    return sliding_window_view(a, w, axis=0), w
-
-
-def separation(a: np.ndarray, w: int, last: bool = False) -> np.ndarray:
-    """Per sample ``t >= 2w - 1`` (rows of the result: ``t - 2w + 1``; ``last``: the last sample's
-    row alone) and column: how far the window ``a[t-w+1..t]`` lies wholly above or below the ``w``
-    samples before it (the minimum of one less the maximum of the other; negative where they
-    overlap, NaN where one is missing)."""
-    win, k = _windows(a, w, last)
+def separation(a: np.ndarray, w: int) -> np.ndarray:
+    """Per sample ``t >= 2w - 1`` (rows of the result: ``t - 2w + 1``) and column: how far the
+    window ``a[t-w+1..t]`` lies wholly above or below the ``w`` samples before it (the minimum of
+    one less the maximum of the other; negative where they overlap, NaN where one is missing)."""
+    win = sliding_window_view(np.asarray(a, float), w, axis=0)      # (n - w + 1, cols, w)
     lo, hi = win.min(-1), win.max(-1)
-    return np.maximum(lo[k:] - hi[:-k], lo[:-k] - hi[k:])
+    return np.maximum(lo[w:] - hi[:-w], lo[:-w] - hi[w:])
 
 
-def steadiness(a: np.ndarray, w: int, last: bool = False) -> tuple[np.ndarray, np.ndarray]:
-    """Per sample ``t >= 2w - 1`` (rows ``t - 2w + 1``; ``last``: the last sample's alone) and
-    column, as :func:`separation`: the median of the window ``a[t-w+1..t]`` less the median of the
-    ``w`` samples before it, and the larger of the two windows' median absolute deviations (a
-    ramp's spread; NaN where one is missing)."""
-    win, k = _windows(a, w, last)
+def steadiness(a: np.ndarray, w: int) -> tuple[np.ndarray, np.ndarray]:
+    """Per sample ``t >= 2w - 1`` (rows ``t - 2w + 1``) and column, as :func:`separation`: the
+    median of the window ``a[t-w+1..t]`` less the median of the ``w`` samples before it, and the
+    larger of the two windows' median absolute deviations (a ramp's spread; NaN where one is
+    missing)."""
+    win = sliding_window_view(np.asarray(a, float), w, axis=0)      # (n - w + 1, cols, w)
     med = np.median(win, -1)
     mad = np.median(np.abs(win - med[..., None]), -1)
-    return med[k:] - med[:-k], np.maximum(mad[k:], mad[:-k])
+    return med[w:] - med[:-w], np.maximum(mad[w:], mad[:-w])
 
 
-def level_shift(a: np.ndarray, w: int, lim, steady: float = STEADY,
-                last: bool = False) -> tuple[np.ndarray, np.ndarray]:
-    """Per sample ``t >= 2w - 1`` (rows ``t - 2w + 1``; ``last``: the last sample's row alone, the
-    same values) and column, as :func:`separation`: whether
+def level_shift(a: np.ndarray, w: int, lim, steady: float = STEADY) -> tuple[np.ndarray, np.ndarray]:
+    """Per sample ``t >= 2w - 1`` (rows ``t - 2w + 1``) and column, as :func:`separation`: whether
     the window ending at ``t`` settled off the one before -- parted from it by more than ``lim``
     (:func:`separation`) and moved by a median difference past ``steady`` x their spread, not a
     ramp (:func:`steadiness`; ``steady`` 0: the parting alone, an export from before settle95) --
     and that median difference, the shift a re-reference takes out.  The one test of the served
     monitor's sample and fast block and of the exported code's mirror."""
-    shift, spread = steadiness(a, w, last)
-    return (separation(a, w, last) > lim) & (np.abs(shift) > steady * spread), shift
+    shift, spread = steadiness(a, w)
+    return (separation(a, w) > lim) & (np.abs(shift) > steady * spread), shift
 
 
 def largest_separation(arrays, w: int, n: int) -> np.ndarray:
@@ -119,7 +106,7 @@ class Settled:
             return
         w, cols = self.window, self._settle_cols
         rows = np.vstack([self._settle[:, cols], x[cols] - self._ref[cols]])
-        parted, shift = (v[0] for v in level_shift(rows, w, self._settle_lim[cols], last=True))
+        parted, shift = (v[0] for v in level_shift(rows, w, self._settle_lim[cols]))
         fire = ((self._active[cols] | (self._jumps[cols] == 0)) & parted
                 & (self._gap[cols] == 1) & (self._settle_age[cols] >= 2 * w - 1))
         if fire.any():
