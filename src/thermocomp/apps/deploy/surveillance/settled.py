@@ -129,6 +129,8 @@ class Settled:
         w, cols = self.window, self._settle_cols
         rows = np.vstack([self._settle[:, cols], x[cols] - self._ref[cols]])
         parted, shift = (v[0] for v in level_shift(rows, w, self._settle_lim[cols]))
+        if not parted.any():       # nearly every sample: nothing to re-reference
+            return
         fire = ((self._active[cols] | (self._jumps[cols] == 0)) & parted
                 & (self._gap[cols] == 1) & (self._settle_age[cols] >= 2 * w - 1))
         if fire.any():
