@@ -16,13 +16,13 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from conftest import served_rows
 from test_export import needs_cc
 from test_export_cmon80 import assert_packed_as_served
 from test_export_cmon85 import _mirror, _served_out, column_record, without
 from thermocomp.apps.deploy.export import Simulator
 from thermocomp.apps.deploy.export.pack import conformance_pack, corrections
 from thermocomp.apps.deploy.export.watch import STEPPED
-from thermocomp.apps.deploy.report import stream_rows
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "benchmarks"))
 
@@ -64,7 +64,7 @@ def test_a_stepped_culprit_is_followed_by_the_code_as_served(record, tmp_path):
     deployed, ss, frame = record
     served = _served_out(deployed, frame)
     row, sensor = _stepped_row(served)
-    want = corrections(ss, stream_rows(deployed, frame, "test").y)
+    want = corrections(ss, served_rows(deployed, frame, "test").y)
     got, _, missed = _mirror(ss, frame)
     assert not missed and np.max(np.abs(got - want)) < 1e-9
     out = _outs(ss, frame)

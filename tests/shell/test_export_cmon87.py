@@ -15,14 +15,14 @@ import subprocess
 import numpy as np
 import pytest
 
-from conftest import deployed_as_replay
+from conftest import deployed_as_replay, served_rows
 from test_export import _compose, built_stream, needs_cc
 from test_export_cmon80 import _streamed
 from test_export_cmon85 import _mirror, without
 from thermocomp.apps.deploy.export import exported_files, state_space
 from thermocomp.apps.deploy.export.pack import conformance_pack, corrections, fed
 from thermocomp.apps.deploy.export.watch import BLIND, JUMP
-from thermocomp.apps.deploy.report import plain, stream_rows
+from thermocomp.apps.deploy.report import plain
 from thermocomp.core.continuation import lead_ins
 
 SEED = 9032
@@ -66,7 +66,7 @@ def _served_spike(deployed, ss, tests, leads, lead) -> tuple[int, int, str]:
     (test, campaign), = tests.items()
     times = campaign["time"].to_numpy(float) - campaign["time"].iloc[0]
     blind = {ss.inputs[i] for i, p in zip(ss.monitor["inputs"], ss.monitor["predictable"]) if not p}
-    events = [e for e in stream_rows(deployed, campaign, test, lead_in=leads[test]).events
+    events = [e for e in served_rows(deployed, campaign, test, lead_in=leads[test]).events
               if e.get("sensor") in blind]
     out = next(e for e in events if e["to"] == "excluded" and e["reason"].startswith("jump"))
     back = next(e for e in events if e["to"] == "ok" and e["sensor"] == out["sensor"]
@@ -81,7 +81,7 @@ def held_as_served(record, folder) -> tuple[list, str, dict]:
     nothing flagged, R1b's pack entry whole and its check passing (in ``folder``): ``(the
     mirror's exclusions (row, sensor, rule), the stream's stderr, the pack's summary)``."""
     deployed, ss, frame, lead, tests, leads = record
-    want = corrections(ss, stream_rows(deployed, frame, "R1b").y)
+    want = corrections(ss, served_rows(deployed, frame, "R1b").y)
     got, out, missed = _mirror(ss, frame)
     assert not missed and np.max(np.abs(got - want)) < 1e-9
     files, summary = conformance_pack(deployed, ss, tests, leads)
@@ -113,7 +113,7 @@ def test_an_export_before_cmon87_flags_the_spike(record):
     old = without(ss, "blind_jump")
     got, _, missed = _mirror(old, frame)
     assert missed and missed[0] == (row, BLIND)
-    want = corrections(ss, stream_rows(deployed, frame, "R1b").y)
+    want = corrections(ss, served_rows(deployed, frame, "R1b").y)
     parted = np.flatnonzero(np.abs(got - want).max(axis=1) > 1e-9) + 1
     assert parted.min() == row and parted.max() < back
     _, summary = conformance_pack(deployed, old, tests, leads)

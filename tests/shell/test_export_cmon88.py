@@ -14,12 +14,12 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from conftest import served_rows
 from test_export import needs_cc
 from test_export_cmon85 import _mirror, without
 from test_export_cmon87 import held_as_served, long_record
 from thermocomp.apps.deploy.export.pack import conformance_pack, corrections
 from thermocomp.apps.deploy.export.watch import JUMP, SECOND
-from thermocomp.apps.deploy.report import stream_rows
 
 SEED = 9126
 
@@ -34,7 +34,7 @@ def _served_second(deployed, frame) -> tuple[int, int, str]:
     row, sensor)``, 1-based in the fed ``frame``."""
     times = frame["time"].to_numpy(float) - frame["time"].iloc[0]
     moves = [(int(np.searchsorted(times, e["time"])) + 1, e["sensor"], e["to"], e["reason"])
-             for e in stream_rows(deployed, frame, "R1b").events if e.get("sensor")]
+             for e in served_rows(deployed, frame, "R1b").events if e.get("sensor")]
     out, seconds = set(), []
     for i, (row, sensor, to, why) in enumerate(moves):
         if to == "excluded" and out and why.startswith("jump") and "stepped" not in why:
@@ -67,7 +67,7 @@ def test_an_export_before_cmon88_flags_the_second_jump(record):
     old = without(ss, "second_jump")
     got, _, missed = _mirror(old, frame)
     assert missed and missed[0] == (row, SECOND)
-    want = corrections(ss, stream_rows(deployed, frame, "R1b").y)
+    want = corrections(ss, served_rows(deployed, frame, "R1b").y)
     parted = np.flatnonzero(np.abs(got - want).max(axis=1) > 1e-9) + 1
     assert parted.min() == back
     _, summary = conformance_pack(deployed, old, tests, leads)

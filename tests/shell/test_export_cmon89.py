@@ -72,9 +72,9 @@ def test_an_export_before_cmon89_flags_the_second_instant_fault(record):
     for cid, (df, _, _) in planted(ss, tests).items():
         fault = cid.split(".")[1]
         if fault in want:
-            _, _, missed = _mirror(old, fed(df, leads.get(test)))
+            _, _, missed = _mirror(old, fed(df, leads.get(test)), lead)
             assert missed and missed[0] == want[fault], fault
-            _, _, now = _mirror(ss, fed(df, leads.get(test)))
+            _, _, now = _mirror(ss, fed(df, leads.get(test)), lead)
             assert not now, (fault, now[:3])
     _, summary = conformance_pack(deployed, old, tests, leads)
     assert {f: e["rows"] for f, e in _copies(summary).items() if f in want} == {

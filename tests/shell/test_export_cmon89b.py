@@ -14,12 +14,12 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from conftest import served_rows
 from test_export import needs_cc
 from test_export_cmon85 import _mirror, column_system, without
 from test_export_cmon87 import held_as_served
 from thermocomp.apps.deploy.export.pack import conformance_pack, corrections
 from thermocomp.apps.deploy.export.watch import BLIND, OFF_RANGE
-from thermocomp.apps.deploy.report import stream_rows
 
 SENSOR = "T_front3"
 
@@ -38,7 +38,7 @@ def record(tmp_path_factory):
 
 
 def _served(deployed, frame) -> tuple[np.ndarray, list[dict]]:
-    rows = stream_rows(deployed, frame, "test")
+    rows = served_rows(deployed, frame, "test")
     return rows.y, [e for e in rows.events if e.get("sensor") == SENSOR]
 
 

@@ -15,12 +15,12 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from conftest import served_rows
 from test_export import needs_cc
 from test_export_cmon85 import _mirror, without
 from test_export_cmon87 import held_as_served, long_record
 from thermocomp.apps.deploy.export.pack import conformance_pack, corrections, fed
 from thermocomp.apps.deploy.export.watch import COMMON, JUMP, SPIKE
-from thermocomp.apps.deploy.report import stream_rows
 
 SEED = 9032
 PAIR = ("T_head_left", "T_head_right")
@@ -74,7 +74,7 @@ def test_an_export_before_cmon93_flags_the_pair(record):
     old = without(ss, "pair_jump")
     got, _, missed = _mirror(old, frame)
     assert missed and missed[0] == (row, COMMON)
-    want = corrections(ss, stream_rows(deployed, frame, "R1b").y)
+    want = corrections(ss, served_rows(deployed, frame, "R1b").y)
     parted = np.flatnonzero(np.abs(got - want).max(axis=1) > 1e-9) + 1
     assert parted.min() >= row and np.abs(got - want).max() > 1e-3
     _, summary = conformance_pack(deployed, old, tests, leads)

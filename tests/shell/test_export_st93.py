@@ -62,7 +62,7 @@ def _served(deployed, frame) -> list[tuple[int, str, str]]:
 def test_a_healthy_record_is_never_flagged_and_the_block_is_the_c(record):
     deployed, ss, frame, block, _ = record
     got, flags, refused = _st(block, ss, frame)
-    want, out, missed = _mirror(ss, frame)
+    want, out, missed = _mirror(ss, frame, FAULT)      # (its first FAULT rows the cases' too)
     assert not out and not missed and not _served(deployed, frame)     # healthy, as both see it
     assert flags == [] and not any(refused)
     assert np.max(np.abs(got - want)) <= TOLERANCE_UM
@@ -93,7 +93,7 @@ def test_a_planted_fault_raises_the_flag_at_the_served_event(record, kind, rule,
     row = FAULT + 1
     # the served monitor and the C exclude the sensor at the row, for the rule the block names
     assert _served(deployed, df)[0] == (row, name, why)
-    assert _mirror(ss, df)[1][0] == (row, name, rule)
+    assert _mirror(ss, df, FAULT)[1][0] == (row, name, rule)
     assert REASONS[rule].startswith(why)
     # a jump flagged once (its return, a spike's end, is the fault over: not flagged)
     lasting = 1 if kind in ("jump", "spike") else LOST

@@ -34,13 +34,27 @@ STEADY = 6.0
 deviations must pass this (a straight ramp's ratio is 4, fl_thermal's planted steps' 8.5-52)."""
 
 
+def _windows(a, w: int) -> tuple[np.ndarray, int]:
+    """The windows of ``w`` rows of ``a`` that :func:`separation` and :func:`steadiness` compare
+    (``(windows, cols, w)``), and how many windows apart one is from the ``w`` rows before it.
+
+    Every window in general (``sliding_window_view``, ``w`` apart); of ``2 w`` rows (the one
+    sample's test of the served monitor and the code's mirror) only the two it compares, 1
+    apart: the same values without the ``w - 1`` windows between them (ci97b)."""
+    a = np.asarray(a, float)
+    if len(a) == 2 * w:
+        # rows (2, w, cols...) -> (2, cols..., w), what sliding_window_view's axis=0 gives
+        return a.reshape(2, w, *a.shape[1:]).transpose(0, *range(2, a.ndim + 1), 1), 1
+    return sliding_window_view(a, w, axis=0), w     # (n - w + 1, cols, w)
+
+
 def separation(a: np.ndarray, w: int) -> np.ndarray:
     """Per sample ``t >= 2w - 1`` (rows of the result: ``t - 2w + 1``) and column: how far the
     window ``a[t-w+1..t]`` lies wholly above or below the ``w`` samples before it (the minimum of
     one less the maximum of the other; negative where they overlap, NaN where one is missing)."""
-    win = sliding_window_view(np.asarray(a, float), w, axis=0)      # (n - w + 1, cols, w)
+    win, k = _windows(a, w)
     lo, hi = win.min(-1), win.max(-1)
-    return np.maximum(lo[w:] - hi[:-w], lo[:-w] - hi[w:])
+    return np.maximum(lo[k:] - hi[:-k], lo[:-k] - hi[k:])
 
 
 def steadiness(a: np.ndarray, w: int) -> tuple[np.ndarray, np.ndarray]:
@@ -48,10 +62,10 @@ def steadiness(a: np.ndarray, w: int) -> tuple[np.ndarray, np.ndarray]:
     median of the window ``a[t-w+1..t]`` less the median of the ``w`` samples before it, and the
     larger of the two windows' median absolute deviations (a ramp's spread; NaN where one is
     missing)."""
-    win = sliding_window_view(np.asarray(a, float), w, axis=0)      # (n - w + 1, cols, w)
+    win, k = _windows(a, w)
     med = np.median(win, -1)
     mad = np.median(np.abs(win - med[..., None]), -1)
-    return med[w:] - med[:-w], np.maximum(mad[w:], mad[:-w])
+    return med[k:] - med[:-k], np.maximum(mad[k:], mad[:-k])
 
 
 def level_shift(a: np.ndarray, w: int, lim, steady: float = STEADY) -> tuple[np.ndarray, np.ndarray]:
@@ -60,9 +74,14 @@ def level_shift(a: np.ndarray, w: int, lim, steady: float = STEADY) -> tuple[np.
     (:func:`separation`) and moved by a median difference past ``steady`` x their spread, not a
     ramp (:func:`steadiness`; ``steady`` 0: the parting alone, an export from before settle95) --
     and that median difference, the shift a re-reference takes out.  The one test of the served
-    monitor's sample and fast block and of the exported code's mirror."""
+    monitor's sample and fast block and of the exported code's mirror.  Where no window parted
+    the medians are not computed (nearly every sample; ci97b) and the shift is all NaN: its
+    callers take it only where one settled."""
+    parted = separation(a, w) > lim
+    if not parted.any():
+        return parted, np.full(parted.shape, np.nan)
     shift, spread = steadiness(a, w)
-    return (separation(a, w) > lim) & (np.abs(shift) > steady * spread), shift
+    return parted & (np.abs(shift) > steady * spread), shift
 
 
 def largest_separation(arrays, w: int, n: int) -> np.ndarray:
@@ -81,8 +100,11 @@ def advanced(ring: np.ndarray, age: np.ndarray, ref: np.ndarray, ref_before, row
     its reference (``ref_before``: the reference before it; None at a campaign's first).  One
     step for the served monitor and the code's mirror (``CodeMonitor.step``)."""
     with np.errstate(invalid="ignore"):
-        moved = True if ref_before is None else ~np.isclose(ref, ref_before, rtol=0.0, atol=1e-12)
-    return np.vstack([ring[1:], row[None]]), np.where(moved, 1, age + 1)
+        # np.isclose(ref, ref_before, rtol=0, atol=1e-12) without its per-call overhead (a
+        # sample's): within 1e-12, or equal (an infinite reference); NaN is moved
+        moved = True if ref_before is None else ~((np.abs(ref - ref_before) <= 1e-12)
+                                                  | (ref == ref_before))
+    return np.concatenate((ring[1:], row[None])), np.where(moved, 1, age + 1)
 
 
 class Settled:
@@ -107,6 +129,8 @@ class Settled:
         w, cols = self.window, self._settle_cols
         rows = np.vstack([self._settle[:, cols], x[cols] - self._ref[cols]])
         parted, shift = (v[0] for v in level_shift(rows, w, self._settle_lim[cols]))
+        if not parted.any():       # nearly every sample: nothing to re-reference
+            return
         fire = ((self._active[cols] | (self._jumps[cols] == 0)) & parted
                 & (self._gap[cols] == 1) & (self._settle_age[cols] >= 2 * w - 1))
         if fire.any():
