@@ -90,6 +90,30 @@ cut 90 / 10 (16 of 16 dithered, no test reading repeats): 0 dithered sensors pas
 lesson again on the climate room: the field's estimate of the ambient that replaces the held
 reading is further from the room than the reading held 60 rows (+24 % on cr9763's 120 rows),
 nearer on the long record (-14 %), +1.2 % on sw9776.
+
+Scored (fresh 9815-9819, once, after the bar's commit f40586c7; the rule unchanged since; main =
+``git archive b77996ba src conf``, each tree its own ROOT simulating the records itself; CPU
+55.2 / 55.6 s user, wall 641 / 647 s under a load of 15-23 on 2 cores)::
+
+    record  frozen sensor   main: served / C first flag       rule: served / C  RMSE main -> rule (healthy)
+    sw9815  T_amb           none / none                       10 / 10 FREEZE    0.8518 -> 0.8555 (0.8559)
+    cr9816  T_amb           none / none                       11 / 11 FREEZE    2.6278 -> 2.6239 (2.6127)
+    lr9817  T_spindle_rear  112 T_bed_right (its own healthy  11 / 11 FREEZE    1.2128 -> 1.2112 (1.2244)
+                            step, as in the healthy frame)
+    sw9818  T_amb           none / none                       11 / 11 FREEZE    1.4589 -> 1.4646 (1.4622)
+    cr9819  T_amb           16 T_nc_cabinet DRIFT_OUT         11 / 11 FREEZE    1.8230 -> 1.7956 (1.8309)
+
+B1 MET: the frozen sensor flagged by both at the same row, 10-11 rows after the onset (``blind_run``
+10 on every frozen sensor: at most 11); on cr9819 main had taken the healthy ``T_nc_cabinet`` for
+the frozen ambient at row 16.  B2 MET: every healthy frame's served events and C flags as main's,
+line for line (0 on sw / cr; lr9817 22 served events, 8 C flags, the generator's own steps and
+spikes, none a freeze); ``quiet`` on the 5 fresh folders: every sensor dithered, longest healthy
+test run 2-6 against ``blind_run`` 10-12, 0 past it.  B3 MET: spike, dropout, step and drift rows
+identical on both trees, line for line (the drift's culprit the healthy ``T_nc_cabinet`` on 4 of 5
+records on both: (b), left).  B4 MET: max|C - served| <= 3.13e-13 µm over every case.  B5: below.
+Beside the bar: the frozen case's RMSE moved -1.5 % .. +0.4 % (fresh), the substitute no worse
+than the held reading on these 60-row freezes; the seen cr9763's +24 % stays the rule's known
+cost (freeze92's).
 """
 
 from __future__ import annotations
