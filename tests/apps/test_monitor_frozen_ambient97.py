@@ -66,11 +66,11 @@ def _code(record: np.ndarray, drop: tuple = ()) -> list[tuple[float, str]]:
 
 def test_the_frozen_ambient_goes_out_for_its_freeze_once_constant_past_blind_run():
     mon = _monitor()
-    assert mon.dithered.all() and mon._blind_run[0] < HELD
     events = _served(mon, _record(frozen=True))
     out = [(e["time"], e["sensor"], e["reason"]) for e in events if e["to"] == "excluded"]
     assert [(t, name) for t, name, _ in out] == [(AT + mon._blind_run[0] + 1, "T_amb")], out
     assert "its noise spans its resolution" in out[0][2]
+    assert mon.dithered.all() and mon._blind_run[0] < HELD
 
 
 def test_the_healthy_record_stays_quiet():
