@@ -175,13 +175,15 @@ def sweep(root: Path, chosen: list[str]) -> None:
 
 
 def _stepped(deployed, ss, frame) -> list[tuple]:
-    """Per row of ``frame`` ``(|C - served| max, served events, C's rule, C's sensor)``."""
+    """Per row of ``frame`` ``(|C - served| max, served events, C's rule, C's sensor, the served
+    corrections)``."""
     from bench_cmon92 import Stepped
 
     run, rows = Stepped(deployed, ss), []
     for c, want, *_ in run.rows(frame):
         w = run.sim.watch
-        rows.append((float(np.max(np.abs(c - want))), list(deployed.last_events_), w.rule, w.sensor))
+        rows.append((float(np.max(np.abs(c - want))), list(deployed.last_events_), w.rule, w.sensor,
+                     want))
     return rows
 
 

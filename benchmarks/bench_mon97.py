@@ -127,6 +127,7 @@ import pandas as pd
 HERE = Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE)]
 from _cli import run_commands  # noqa: E402
+from bench_audit95 import _stepped as _step  # noqa: E402
 from bench_audit96 import DRIFT_K_PER_H  # noqa: E402
 from bench_cmon91 import FRESH as CMON91  # noqa: E402
 from bench_deploy88 import LONG  # noqa: E402
@@ -138,19 +139,6 @@ LR = [*LONG, "sim.generator.duration_days=3.0"]
 SEEN = {"sw9776": [*SW, "seed=9776"], "cr9763": [*CR, "seed=9763"], "lr9376": CMON91["lr9376"]}
 FRESH = {"sw9815": [*SW, "seed=9815"], "cr9816": [*CR, "seed=9816"], "lr9817": [*LR, "seed=9817"],
          "sw9818": [*SW, "seed=9818"], "cr9819": [*CR, "seed=9819"]}
-
-
-def _step(deployed, ss, frame) -> list[tuple]:
-    """Per row of ``frame`` ``(|C - served| max, served events, C's rule, C's sensor, the served
-    corrections)``, both monitors from a reset."""
-    from bench_cmon92 import Stepped
-
-    run, rows = Stepped(deployed, ss), []
-    for c, want, *_ in run.rows(frame):
-        w = run.sim.watch
-        rows.append((float(np.max(np.abs(c - want))), list(deployed.last_events_), w.rule, w.sensor,
-                     want))
-    return rows
 
 
 def _cases(frame, start: int, names: list[str], predictable) -> dict:

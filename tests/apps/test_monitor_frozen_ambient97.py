@@ -10,8 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from thermocomp.apps.deploy.adaptive import AdaptiveCompensator
-from thermocomp.apps.deploy.export.watch import EXCLUDED, FREEZE, NOT_IN_CODE, CodeMonitor, monitor_fields
+from test_monitor_long_freeze91 import code_freezes
 from thermocomp.apps.deploy.surveillance import SensorMonitor
 
 NAMES = ["T_amb"] + [f"T_{k}" for k in range(6)]
@@ -51,17 +50,7 @@ def _served(mon: SensorMonitor, record: np.ndarray) -> list[dict]:
 
 
 def _code(record: np.ndarray, drop: tuple = ()) -> list[tuple[float, str]]:
-    """The export's numpy mirror (its arrays less the keys ``drop``): its freeze exclusions."""
-    deployed = AdaptiveCompensator.__new__(AdaptiveCompensator)     # its monitor is all it reads
-    deployed.monitor, deployed.period_s = _monitor(), 1.0
-    arrays = monitor_fields(deployed, NAMES)["monitor"]
-    code, out = CodeMonitor({k: v for k, v in arrays.items() if k not in drop}), []
-    for i, row in enumerate(record):
-        code.step(row, i == 0, 1.0)
-        assert not code.flags & NOT_IN_CODE, (i, code.missed)
-        if code.flags & EXCLUDED and code.rule == FREEZE:
-            out.append((float(i), NAMES[code.sensor]))
-    return out
+    return code_freezes(_monitor(), record, drop)
 
 
 def test_the_frozen_ambient_goes_out_for_its_freeze_once_constant_past_blind_run():

@@ -45,19 +45,23 @@ def _served(record: np.ndarray) -> list[tuple[float, str, str]]:
             if e["to"] == "excluded"]
 
 
-def _code(record: np.ndarray, drop: tuple = ()) -> list[tuple[float, str]]:
-    """The exported monitor's numpy mirror on ``record`` (its arrays less the keys ``drop``):
-    its freeze exclusions; it must flag nothing it does not hold."""
+def code_freezes(monitor: SensorMonitor, record: np.ndarray, drop: tuple = ()) -> list[tuple[float, str]]:
+    """The exported ``monitor``'s numpy mirror on ``record`` (its arrays less the keys ``drop``,
+    1 s rows): its freeze exclusions; it must flag nothing it does not hold."""
     deployed = AdaptiveCompensator.__new__(AdaptiveCompensator)     # its monitor is all it reads
-    deployed.monitor, deployed.period_s = _monitor(), 1.0
-    arrays = monitor_fields(deployed, NAMES)["monitor"]
+    deployed.monitor, deployed.period_s = monitor, 1.0
+    arrays = monitor_fields(deployed, monitor.names)["monitor"]
     code, out = CodeMonitor({k: v for k, v in arrays.items() if k not in drop}), []
     for i, row in enumerate(record):
         code.step(row, i == 0, 1.0)
         assert not code.flags & NOT_IN_CODE, (i, code.missed)
         if code.flags & EXCLUDED and code.rule == FREEZE:
-            out.append((float(i), NAMES[code.sensor]))
+            out.append((float(i), monitor.names[code.sensor]))
     return out
+
+
+def _code(record: np.ndarray, drop: tuple = ()) -> list[tuple[float, str]]:
+    return code_freezes(_monitor(), record, drop)
 
 
 @pytest.mark.parametrize("sensor", [2, 7])
