@@ -128,6 +128,7 @@ HERE = Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE)]
 from _cli import run_commands  # noqa: E402
 from bench_audit95 import _stepped as _step  # noqa: E402
+from bench_audit95 import healthy_events  # noqa: E402
 from bench_audit96 import DRIFT_K_PER_H  # noqa: E402
 from bench_cmon91 import FRESH as CMON91  # noqa: E402
 from bench_deploy88 import LONG  # noqa: E402
@@ -188,10 +189,7 @@ def cases(root: str, *records: str) -> None:
               f"onset row {start}; dithered {len(dithered)} of {len(names)}; healthy: served events "
               f"{sum(len(r[1]) for r in healthy)}, C flagged rows {sum(r[2] != 0 for r in healthy)}"
               f", max|C - served| {max(r[0] for r in healthy):.3g} µm", flush=True)
-        for r in healthy:
-            if r[1] or r[2]:
-                print(f"  healthy event: served {r[1][:1]} C {RULES[r[2]]} "
-                      f"{names[r[3]] if r[3] >= 0 else '-'}")
+        healthy_events(healthy, names, shown=1)
         for kind, (sensor, part) in _cases(frame, start, names, mon._predictable).items():
             rows = _step(deployed, ss, pd.concat([frame.iloc[:start], part]))[start:]
             s_at = next((i for i, r in enumerate(rows) if r[1]), None)
