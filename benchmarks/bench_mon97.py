@@ -110,7 +110,25 @@ line for line (0 on sw / cr; lr9817 22 served events, 8 C flags, the generator's
 spikes, none a freeze); ``quiet`` on the 5 fresh folders: every sensor dithered, longest healthy
 test run 2-6 against ``blind_run`` 10-12, 0 past it.  B3 MET: spike, dropout, step and drift rows
 identical on both trees, line for line (the drift's culprit the healthy ``T_nc_cabinet`` on 4 of 5
-records on both: (b), left).  B4 MET: max|C - served| <= 3.13e-13 µm over every case.  B5: below.
+records on both: (b), left).  B4 MET: max|C - served| <= 3.13e-13 µm over every case.  B5 MET but
+for its last words: tests/apps/test_monitor_*.py (with tests/test_lint.py, test_benchmarks_cli)
+713 passed 1 xfailed; tests/shell/test_monitor*.py, test_export*mon*.py, test_export*freeze*.py
+and test_export.py 211 passed 2 xfailed; long_freeze91's strict xfail removed (3 pass), frozen_pair77's
+kept for a reading that does not dither beside a new passing test for a dithered one.  Changed
+besides (after the fresh score, when the suites' results came in): test_monitor_readmit88's partner
+test and test_export_mon88's fixture failed (``T_amb`` out for its freeze before the healthy cabinet
+is taken for it: their premise gone, as freeze92 found); they now run on a copy of the monitor
+without the rule (``undithered``: ``_dither_run`` infinite, a reading that does not dither), and
+two tests of the room as it is were added (``T_amb`` out for its freeze, the cabinet never, the
+compiled C as served on every row).  Also run: test_export_cdrop77, test_deployed_as_scored44,
+test_alarms, test_export_rounding83 / spike89 / bent93 / lead_perf87b, test_sensor_faults,
+test_twin: 108 passed.  The ST block: the freeze is not in it (the served model's, ``not_in_code``);
+unchanged, its ``MON_FREEZE_RUN`` already the shorter ``seen_run``.
+
+VERDICT: KEPT (B1-B4 met, B5 with the two premise tests moved to the monitor without the rule,
+said above).  Left: (b), the drift's culprit (the healthy ``T_nc_cabinet`` on sw9815 / cr9816 /
+sw9818 / cr9819 and the seen sw9776); the frozen ambient's substitute (cr9763 +24 % over its 120
+rows): a frozen ``T_amb`` could be flagged and held at its reading rather than rebuilt.
 Beside the bar: the frozen case's RMSE moved -1.5 % .. +0.4 % (fresh), the substitute no worse
 than the held reading on these 60-row freezes; the seen cr9763's +24 % stays the rule's known
 cost (freeze92's).
