@@ -175,14 +175,27 @@ def sweep(root: Path, chosen: list[str]) -> None:
 
 
 def _stepped(deployed, ss, frame) -> list[tuple]:
-    """Per row of ``frame`` ``(|C - served| max, served events, C's rule, C's sensor)``."""
+    """Per row of ``frame`` ``(|C - served| max, served events, C's rule, C's sensor, the served
+    corrections)``."""
     from bench_cmon92 import Stepped
 
     run, rows = Stepped(deployed, ss), []
     for c, want, *_ in run.rows(frame):
         w = run.sim.watch
-        rows.append((float(np.max(np.abs(c - want))), list(deployed.last_events_), w.rule, w.sensor))
+        rows.append((float(np.max(np.abs(c - want))), list(deployed.last_events_), w.rule, w.sensor,
+                     want))
     return rows
+
+
+def healthy_events(healthy: list[tuple], names: list[str], shown: int = 2) -> None:
+    """One line per row of :func:`_stepped`'s ``healthy`` with a served event or a C flag: its
+    first ``shown`` served events, the C's rule and sensor."""
+    from thermocomp.apps.deploy.export.watch import RULES
+
+    for r in healthy:
+        if r[1] or r[2]:
+            print(f"  healthy event: served {r[1][:shown]} C {RULES[r[2]]} "
+                  f"{names[r[3]] if r[3] >= 0 else '-'}")
 
 
 def faults(root: str, record: str = "cr9763") -> None:
@@ -204,10 +217,7 @@ def faults(root: str, record: str = "cr9763") -> None:
           f"monitored {names}, predictable {[bool(p) for p in mon._predictable]}; healthy: served "
           f"events {n_served}, C's flagged rows {n_c}, max|C - served| "
           f"{max(r[0] for r in healthy):.3g} µm", flush=True)
-    for r in healthy:
-        if r[1] or r[2]:
-            print(f"  healthy event: served {r[1][:2]} C {RULES[r[2]]} "
-                  f"{names[r[3]] if r[3] >= 0 else '-'}")
+    healthy_events(healthy, names)
     others = next(n for n, p in zip(names, mon._predictable) if p)
     blind = next((n for n, p in zip(names, mon._predictable) if not p), None)
     cases = {"spike": (others, planted(frame, start, (others,), "spike")),

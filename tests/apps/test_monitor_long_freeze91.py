@@ -1,16 +1,12 @@
-"""A sensor the others predict, frozen while the field hardly moves: a known gap (freeze90's
-long-freeze rule, refused again by freeze91: benchmarks/bench_freeze91.py, the rule
-benchmarks/freeze91_rule.patch).  Only a sensor no other predicts is taken for frozen by its
-constant run alone (longer than ``blind_run``, ``freeze_factor`` times its longest constant run
-in training); a predicted one is frozen only where the others' prediction of it moved by its
-warning band, so one frozen on a still field is read as healthy for ever.  The rule (frozen by
-the run alone, predicted or not; the export's mirror and C behind ``long_freeze``) closes the gap
-here and passed bar91b's distance bar, but took every healthy sensor of a settled field on a
-0.1 K logger out (tests/apps/test_monitor_rounding83.py).  freeze92's rule (the run counted only
-where the others' prediction moved past twice ``rounding_c``: benchmarks/bench_freeze92.py,
-benchmarks/freeze92_rule.patch) passes these three, still fails rounding83's (a healthy offset of
-a partner moves the prediction past it) and failed the distance bar on fresh 9456-9465, as
-freeze91's rule did there: the strict xfail holds the gap.
+"""A sensor the others predict, frozen while the field hardly moves: out for its freeze once
+constant past ``blind_run`` (mon97: benchmarks/bench_mon97.py).  Its readings dither over their
+resolution (0.02 °C noise, no healthy reading repeats itself), so a constant run longer than
+``blind_run`` (``freeze_factor`` times its longest constant run in training) is a freeze whatever
+the field did.  Before mon97 a predicted sensor was frozen only where the others' prediction of
+it moved by its warning band, so one frozen on a still field was read as healthy for ever (a
+known gap held by a strict xfail here: freeze91's rule, frozen by the run alone for every sensor,
+and freeze92's took a noiseless 0.1 K logger's settled sensors out, tests/apps/
+test_monitor_rounding83.py, which mon97's rule leaves as before: such a reading does not dither).
 
 The line of ``test_monitor_new_state48.py`` (10 sensors, a warm-up and a gradient, readings with
 0.02 °C noise: no healthy reading repeats itself), streamed as drawn until ``AT``, then the field
@@ -27,8 +23,6 @@ from thermocomp.apps.deploy.export.watch import EXCLUDED, FREEZE, NOT_IN_CODE, C
 from thermocomp.apps.deploy.surveillance import SensorMonitor
 
 AT = 200
-pytestmark = pytest.mark.xfail(strict=True, reason="known gap (freeze91, freeze92: rules refused): a "
-                               "predicted sensor frozen on a still field is never taken out")
 
 
 def _monitor() -> SensorMonitor:
@@ -51,25 +45,29 @@ def _served(record: np.ndarray) -> list[tuple[float, str, str]]:
             if e["to"] == "excluded"]
 
 
-def _code(record: np.ndarray, drop: tuple = ()) -> list[tuple[float, str]]:
-    """The exported monitor's numpy mirror on ``record`` (its arrays less the keys ``drop``):
-    its freeze exclusions; it must flag nothing it does not hold."""
+def code_freezes(monitor: SensorMonitor, record: np.ndarray, drop: tuple = ()) -> list[tuple[float, str]]:
+    """The exported ``monitor``'s numpy mirror on ``record`` (its arrays less the keys ``drop``,
+    1 s rows): its freeze exclusions; it must flag nothing it does not hold."""
     deployed = AdaptiveCompensator.__new__(AdaptiveCompensator)     # its monitor is all it reads
-    deployed.monitor, deployed.period_s = _monitor(), 1.0
-    arrays = monitor_fields(deployed, NAMES)["monitor"]
+    deployed.monitor, deployed.period_s = monitor, 1.0
+    arrays = monitor_fields(deployed, monitor.names)["monitor"]
     code, out = CodeMonitor({k: v for k, v in arrays.items() if k not in drop}), []
     for i, row in enumerate(record):
         code.step(row, i == 0, 1.0)
         assert not code.flags & NOT_IN_CODE, (i, code.missed)
         if code.flags & EXCLUDED and code.rule == FREEZE:
-            out.append((float(i), NAMES[code.sensor]))
+            out.append((float(i), monitor.names[code.sensor]))
     return out
+
+
+def _code(record: np.ndarray, drop: tuple = ()) -> list[tuple[float, str]]:
+    return code_freezes(_monitor(), record, drop)
 
 
 @pytest.mark.parametrize("sensor", [2, 7])
 def test_a_predicted_sensor_frozen_on_a_still_field_goes_out_alone(sensor):
     out = _served(_record(sensor))
-    # it alone, for a freeze, once constant past blind_run (on main: never, nobody out)
+    # it alone, for a freeze, once constant past blind_run (before mon97: never, nobody out)
     blind_run = _monitor()._blind_run[sensor]
     assert [(name, why) for _, name, why in out] == [(f"T_{sensor}", "freeze")], out
     assert out[0][0] == AT + blind_run + 1      # the first sample constant for more than it
@@ -79,4 +77,4 @@ def test_the_exported_monitor_takes_it_out_as_served_and_an_older_export_does_no
     record = _record(7)
     served = [(t, name) for t, name, _ in _served(record)]
     assert served and _code(record) == served
-    assert _code(record, drop=("long_freeze",)) == []       # an export before the key: as before
+    assert _code(record, drop=("dither_run",)) == []        # an export before the key: as before

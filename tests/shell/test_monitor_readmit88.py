@@ -14,10 +14,15 @@ cr9031 (audit86b's climate room) with ``T_amb`` frozen from a third of each test
 C11 the healthy ``T_nc_cabinet`` (within its band) was taken as the culprit and the frozen
 ``T_amb`` out with it as its blind partner; with ``T_amb`` out no sensor predicts
 ``T_nc_cabinet``, and it never passed its return.  Now a partner out frozen by the rule for a
-sensor no other predicts clears it (``Readmission._blind_for_frozen``)."""
+sensor no other predicts clears it (``Readmission._blind_for_frozen``).  Since mon97 (benchmarks/
+bench_mon97.py) the room's ``T_amb``, whose readings dither over their resolution, is out for its
+freeze once constant past ``blind_run``, before the cabinet is ever taken for it; the partner's
+return is tested on the monitor as it was (:func:`undithered`: a reading that does not dither,
+judged by the field's freeze rule alone)."""
 
 from __future__ import annotations
 
+import copy
 import sys
 from pathlib import Path
 
@@ -43,6 +48,14 @@ def deployed_record(folder: Path, sim: tuple, overrides: tuple = ()):
 
     assert main(["-q", "simulate", *sim, f"data.path={folder}", "track=false"]) == 0
     return deployed_on(folder, "mlr", overrides)
+
+
+def undithered(deployed):
+    """A copy of ``deployed`` whose monitor takes no reading for dithered (mon97): a predicted
+    sensor frozen only where the field moved by its band, as for a noiseless logger's reading."""
+    deployed = copy.deepcopy(deployed)
+    deployed.monitor._dither_run[:] = np.inf
+    return deployed
 
 
 def frozen_amb(frame: pd.DataFrame) -> pd.DataFrame:
@@ -90,6 +103,7 @@ def test_a_spiked_sensor_the_field_predicts_comes_back_after_each_spike(long_rec
 
 def test_a_partner_frozen_out_clears_the_healthy_sensor_taken_for_it(room):
     deployed, drawn = room
+    deployed = undithered(deployed)        # the premise: T_amb not out for its freeze first
     frame = frozen_amb(drawn)
     mon = deployed.monitor
     period = float(np.median(np.diff(frame["time"])))
@@ -101,6 +115,22 @@ def test_a_partner_frozen_out_clears_the_healthy_sensor_taken_for_it(room):
     back = [t for to, t in cabinet if to == "ok" and t > out[0]]
     assert back and back[0] - out[0] <= (mon.window + mon.confirm) * period, cabinet
     assert cabinet[-1][0] == "ok"                             # ... and back in
+
+
+def test_the_frozen_ambient_goes_out_for_its_freeze_before_the_cabinet_is_taken_for_it(room):
+    """(mon97) Its readings dither: out once constant past ``blind_run``, the healthy cabinet
+    never out (before mon97: the cabinet out at C11's third + 10 samples, ``T_amb`` with it)."""
+    deployed, drawn = room
+    frame = frozen_amb(drawn)
+    mon = deployed.monitor
+    j = mon.names.index("T_amb")
+    events = stream_rows(deployed, frame, "C11").events
+    out = [e for e in events if e.get("sensor") and e["to"] == "excluded"]
+    assert [e["sensor"] for e in out] == ["T_amb"] and out[0]["reason"].startswith("freeze:"), out
+    onset = float(frame["time"].iloc[len(frame) // 3])
+    period = float(np.median(np.diff(frame["time"])))
+    assert out[0]["time"] <= onset + (mon._blind_run[j] + 1) * period
+    assert mon.dithered[j]
 
 
 def test_the_room_as_drawn_stays_quiet(room):

@@ -11,7 +11,8 @@ The served adaptive compensator judges every ``T_`` input before the model reads
 * a **jump** of one sensor (a one-sample step beyond ``jump_lim``, times the periods a gap in
   time spans): re-referenced by its step less its change as the others predict it, excluded;
 * a **freeze** (its reading constant for ``seen_run`` samples while the others' prediction of
-  it moved by its warning band; one no other predicts: longer than ``blind_run``): excluded;
+  it moved by its warning band; one no other predicts, or whose reading dithers over its
+  resolution (mon97, ``dither_run``): longer than ``blind_run``): excluded;
 * a **dropout** (cdrop77: a missing reading, NaN, an infinity or a value beyond its input's
   limit, after a campaign's first sample): excluded at that sample, its last reading kept as the
   one its return is stepped from (a jump limit times the samples it spans);
@@ -265,6 +266,8 @@ def monitor_fields(deployed, inputs: list) -> dict:
         "lo_c": mon.lo_c.tolist(), "hi_c": mon.hi_c.tolist(),
         "common_min": COMMON_MIN, "common_spread": COMMON_SPREAD,
         "seen_run": mon._seen_run.tolist(), "blind_run": mon._blind_run.tolist(),
+        # (mon97) a dithered reading frozen by its run alone (inf: by the field, as before)
+        "dither_run": getattr(mon, "_dither_run", np.full(n, np.inf)).tolist(),
         "predictable": [int(p) for p in mon._predictable], "ported_out": ported,
         "period": float(deployed.period_s), "gap_periods": GAP_PERIODS, "readmit": READMIT,
         "drift": 1, "pairs": [list(p) for p in pairs], "new_state": int(mon.new_state),
@@ -404,6 +407,7 @@ class CodeMonitor:
             a.setdefault(k, np.float64(v))
         a.setdefault("bend_lim", np.full(n, np.inf))
         a.setdefault("settle_lim", np.full(n, np.inf))
+        a.setdefault("dither_run", np.full(n, np.inf))   # (before mon97: frozen by the field)
         a.setdefault("settle_steady", np.float64(0))   # (before settle95: a fast ramp settled)
         # (jump94b) the sensors no other predicts whose level shift two windows tell
         self.settles = np.flatnonzero(bool(a["settled"]) & np.isfinite(a["settle_lim"]))
@@ -861,7 +865,7 @@ class CodeMonitor:
         self.run_pred[start] = other[start]
         moved = np.abs(other - self.run_pred)
         frozen = same & ((observable & (moved >= self.warn) & (self.run >= a["seen_run"]))
-                         | (~observable & (self.run > a["blind_run"])))
+                         | (~observable & (self.run > a["blind_run"])) | (self.run > a["dither_run"]))
         for j in np.flatnonzero(frozen & ~instant):
             instant[j] = True
             if active[j] and self._exclude(int(j), FREEZE):

@@ -3,6 +3,8 @@
 
 from __future__ import annotations
 
+import math
+
 from ..surveillance.states import THAW
 from .watch import BAND, EXCLUDED, NOT_IN_CODE, NOVEL, OUT, READMITTED, REASONS, REREFERENCED, RULES
 
@@ -124,6 +126,8 @@ def monitor_arrays(ss) -> list[tuple[str, object, tuple, str]]:
             ("MON_SOLVE", int(bool(m.get("solve")) and "basis" in m), (), "int"),
             ("MON_MOMENT", m.get("moment", [[0.0] * n for _ in range(n)]), (n, n), "real"),
             *((f"MON_{k.upper()}", m.get(k, [0.0] * n), (n,), "real") for k in vectors),
+            # (mon97) a dithered reading frozen by its run alone (an export before it: never)
+            ("MON_DITHER_RUN", m.get("dither_run", [math.inf] * n), (n,), "real"),
             ("MON_PREDICTABLE", m.get("predictable", []), (n,), "int"),
             ("MON_PORTED", m.get("ported_out", []), (n,), "int"),
             # (quiet94c) drift warned only (an ambient of a one-campaign training; before: none)
@@ -1313,7 +1317,8 @@ static void mon_sample(tc_state *s, double u[], double dt) {
     for (k = 0; k < NM; k++) {
         int frozen = same[k] && ((o[k] && fabs(other[k] - s->mon_run_pred[k]) >= s->mon_warn[k]
                                   && s->mon_run[k] >= MON_SEEN_RUN[k])
-                                 || (!o[k] && s->mon_run[k] > MON_BLIND_RUN[k]));
+                                 || (!o[k] && s->mon_run[k] > MON_BLIND_RUN[k])
+                                 || s->mon_run[k] > MON_DITHER_RUN[k]);
         if (!frozen || instant[k]) continue;
         instant[k] = 1;
         if (a[k]) mon_exclude(s, k, TC_MON_FREEZE);

@@ -32,7 +32,8 @@ Detectors, each named in the event's reason:
 * ``freeze`` — the reading does not change, for longer than its longest constant
   run in training (capped at ``window``), while its prediction from the other
   sensors moves by the warning band (for a sensor no other predicts: no change
-  for longer than ``freeze_factor`` × that run);
+  for longer than ``freeze_factor`` × that run; for a reading whose noise spans its resolution
+  in training, ``dithered``: no change for that long whatever the field did, mon97);
 * ``drift`` — the windowed self-prediction error leaves the band gradually.
 
 Adaptive mode (paper 002, 2.3): the worst sensor (largest self-prediction error

@@ -170,10 +170,12 @@ class InstantFaults:
         for j in np.flatnonzero(self._frozen(same, self._run, moved)):
             if j in instant:
                 continue
+            by_field = self._observable[j] and moved[j] >= self._warn[j]
             why = (f"freeze: {x[j]:.4g} °C for {self._run[j] + 1} samples while the field "
-                   f"moved {moved[j]:.2g} °C" if self._observable[j] else
+                   f"moved {moved[j]:.2g} °C" if by_field else
                    f"freeze: {x[j]:.4g} °C for {self._run[j] + 1} samples (longest constant "
-                   f"run in training {self.longest_run[j]:.0f})")
+                   f"run in training {self.longest_run[j]:.0f}"
+                   + ("; its noise spans its resolution)" if self.dithered[j] else ")"))
             instant[j] = why
             if self._active[j]:
                 self._exclude(j, why, time, events)
@@ -197,9 +199,10 @@ class InstantFaults:
 
     def _frozen(self, same: np.ndarray, run: np.ndarray, moved: np.ndarray) -> np.ndarray:
         """The freeze rule (module doc), for :meth:`_fast` and :meth:`_update` alike: ``same``
-        unchanged readings, ``run`` their constant-run lengths, ``moved`` the field's change."""
+        unchanged readings, ``run`` their constant-run lengths, ``moved`` the field's change;
+        a dithered reading (mon97) by its run alone, as one no other predicts."""
         return same & ((self._observable & (moved >= self._warn) & (run >= self._seen_run))
-                       | (~self._observable & (run > self._blind_run)))
+                       | (~self._observable & (run > self._blind_run)) | (run > self._dither_run))
 
     def _instant(self, x, d, step, finite, rng, big) -> dict[int, str]:
         """Reasons of the instant detectors that fire (dropout, out of range, jump)."""

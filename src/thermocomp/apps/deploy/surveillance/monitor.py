@@ -18,7 +18,7 @@ from .faults import InstantFaults
 from .judgement import Judgement
 from .readmission import Readmission
 from .settled import Settled, largest_separation
-from .states import ALARM, COMMON_MIN, EXCLUDED, MAX_BACKOFF, OK, SPREAD_FACTOR, STATES, WARNING
+from .states import ALARM, COMMON_MIN, DITHER, EXCLUDED, MAX_BACKOFF, OK, SPREAD_FACTOR, STATES, WARNING
 
 
 class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion, Settled):
@@ -82,6 +82,11 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion, Settled):
         names them as explaining the others'); every other detector still excludes them.
         :meth:`from_training` marks the ambient sensors of a training that holds one campaign
         (quiet94).  ``None``: none.
+    dithered : array of bool, optional
+        Sensors whose reading's noise spans its resolution in training (:meth:`from_training`:
+        the median absolute second difference at least ``DITHER`` times the smallest step): a
+        constant run of one longer than ``blind_run`` is a freeze whatever the field did
+        (mon97; a frozen ambient the slow field moves less than the warning band).  ``None``: none.
     """
 
     new_state, new_state_others = False, 2   # a monitor pickled before them judged as before
@@ -107,6 +112,9 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion, Settled):
         if "max_bend_c" not in state:  # pickled before step93: no step judged by its bend
             self.max_bend_c = np.full(len(self.names), np.inf)
             self._bend_lim, self._bends = self.max_bend_c.copy(), False
+        if "dithered" not in state:    # pickled before mon97: a predicted sensor's freeze by the field
+            self.dithered = np.zeros(len(self.names), dtype=bool)
+            self._dither_run = np.full(len(self.names), np.inf)
             self._last_step = np.full(len(self.names), np.nan)
         if "max_settle_c" not in state:   # pickled before jump94b: no level shift judged
             self.max_settle_c = np.full(len(self.names), np.inf)
@@ -120,7 +128,7 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion, Settled):
                  lo_c=None, hi_c=None, first_c=None, jump_factor: float = 3.0,
                  freeze_factor: float = 2.0, range_margin_c: float = 10.0,
                  new_state: bool = True, new_state_others: int = 2, rounding_c=0.0,
-                 floor_c=0.0, moment=None, drift_warn_only=None):
+                 floor_c=0.0, moment=None, drift_warn_only=None, dithered=None):
         n = len(names)
         if pod.n_features_in_ != n:
             raise ValueError(f"POD has {pod.n_features_in_} sensors, names {n}")
@@ -167,6 +175,13 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion, Settled):
         # a run no longer than training's longest is no freeze, whatever the field did (a noisy
         # partner moved the field 0.55 °C while a quantised sensor read 3 equal samples)
         self._seen_run = np.minimum(self.longest_run, self.window)
+        # (mon97) a reading that dithers over its resolution repeats itself by chance only in
+        # short runs, on a still field as on a moving one: past blind_run it is stuck (a frozen
+        # ambient the slow field moved 0.16 °C, short of the band); a noiseless logger's reading
+        # is not dithered (flat for hours on a settled machine, rounding83)
+        self.dithered = (np.zeros(n, dtype=bool) if dithered is None
+                         else np.broadcast_to(np.asarray(dithered, bool), (n,)).copy())
+        self._dither_run = np.where(self.dithered, self._blind_run, np.inf)
         self._true = np.ones(n, dtype=bool)
         # which sensors the others can predict with every sensor in (re-admission check)
         self._predictable = pod.operator(self._true)[1] < pod.max_leverage
@@ -235,7 +250,11 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion, Settled):
         # POD was fitted on (quiet93: a healthy T_amb's forward spread 5.4x its in-sample one,
         # out by drift on 7 of 15 short records), so its error is warned, not acted on
         warn_only = [is_ambient(c) for c in names] if len(arrays) < 2 else None
-        options = {"rounding_c": _rounding(pod, steps), "floor_c": floor,
+        # (mon97) the reading's noise against its resolution; bends: its second differences
+        # (no resolution seen: a sensor that never moved, or too short a training to tell)
+        quantum, bend = _quantum(steps), np.median(bends, axis=0)
+        dithered = (quantum > 0) & np.isfinite(bend) & (bend >= DITHER * quantum)
+        options = {"rounding_c": _rounding(pod, steps), "floor_c": floor, "dithered": dithered,
                    "moment": W.T @ W / len(W), "drift_warn_only": warn_only, **options,
                    "warning_c": warn, "alarm_c": alarm}
         settle = largest_separation(arrays, int(options.get("window", 10)), len(names))
@@ -795,7 +814,15 @@ def _rounding(pod: ThermalPOD, steps: np.ndarray) -> np.ndarray:
     continuous reading); 0 where no other sensor predicts it (mon82c's bound)."""
     n = pod.n_features_in_
     M, h = pod.operator(np.ones(n, dtype=bool))
-    q = np.array([np.min(s[s > 0], initial=np.inf) for s in steps.T])
-    q[~np.isfinite(q)] = 0.0             # a sensor that never moved in training
+    q = _quantum(steps)
     S = (np.eye(n) - M) / np.maximum(1 - h, 1e-12)[:, None]
     return np.where(h < pod.max_leverage, 0.5 * np.abs(S) @ q, 0.0)
+
+
+def _quantum(steps: np.ndarray) -> np.ndarray:
+    """Each sensor's resolution as training shows it: its smallest non-zero one-sample step
+    (``steps``, absolute; a logger's 0.1 K, about none on a continuous reading), 0 for a sensor
+    that never moved."""
+    q = np.array([np.min(s[s > 0], initial=np.inf) for s in steps.T])
+    q[~np.isfinite(q)] = 0.0
+    return q

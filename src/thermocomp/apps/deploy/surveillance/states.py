@@ -5,6 +5,9 @@ SPREAD_FACTOR = 3.0   # bands never within this × a sensor's training spread (f
 MAX_BACKOFF = 10      # a sensor excluded again waits at most window × 2**MAX_BACKOFF to return
 READMIT = 0.5   # hysteresis: back in when within this share of the warning band for a window
 THAW = 2        # readings in a row off the value it held that bring one out for a freeze back
+# a reading whose noise spans its resolution: training's median |second difference| at least
+# this many of its smallest step (mon97: its constant run past blind_run is a freeze alone)
+DITHER = 2.0
 STATES = ("ok", "warning", "alarm", "excluded")
 COMMON_MIN = 3        # jumping sensors, at least, that a common step (a logger's fault) needs
 COMMON_SPREAD = 2.0   # ... each within this factor of their median step (about the same size)
