@@ -1,0 +1,154 @@
+"""stream.c finds a header whose unit row tells two alike columns apart (stop 97, names97b; issue
+34 item 1, "the deployed model accepts the lab's own names", item 2 "deployed as scored").
+
+names97 (``bench_names97.py``, its B1 (a), TRACED; seen) found on main: a lab's file whose header
+repeats a bare name over a unit row that tells the columns apart (``T;T`` over ``°C;K``) is read
+by the Python reader (``layout.with_units`` joins the unit row first, ``twins.occurrences``
+numbers what is still repeated: ``T [°C]``, ``T [K]``; ``Temp;Temp`` over ``°C;°C`` is ``Temp
+[°C]``, ``Temp#2 [°C]``) and refused by the exported ``stream.c`` ("lacks input column T_b"): its
+header search takes a line as the header only where its bare names (twins numbered on the bare
+names: ``T``, ``T#2``) name every input, so it reads past line 1 and its unit row.
+
+Rule (``apps/deploy/export/driver.py``, stream.c; no key): a line is the header where it names
+every input alone (as before) or with the unit row under it, named as the reader names it: each
+header joined to its unit, then a name still written twice numbered ``<name>#<k>`` before its
+unit (one naming routine for the search and for the header read).  A bare header two columns
+share with no unit row is refused as names97 refuses it; every other header as before.
+
+Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is that tree's)::
+
+    python benchmarks/bench_names97b.py twounits ROOT       # bench_names97's (a) (b) (c)
+    python benchmarks/bench_names97b.py lab ROOT SEED       # a twin-header Italian export
+
+``twounits``: ``bench_names97.twounits`` as it is (seed 971; (a) the file as written, ``T;T``
+over ``°C;K``; (b) the joined headers; (c) a bare ``T`` beside ``T [K]``).
+``lab``: bench_audit96's lab of SEED written as its Italian ``rawit.csv`` (``;``, decimal commas,
+``sep=;``, a unit row, trailing ``;``, the header block written again), but with two pairs of
+temperatures under ONE bare header each: ``Temperatura basamento`` over ``°C`` and over ``K``
+(T_frame1; T_frame2 written in kelvin) and ``Temperatura portautensile`` over ``°C`` twice
+(T_toolholder1, T_toolholder2): ``twinit.csv``.  bench_data92's stage (init with no key -> run
+``data.test_fraction=0.25`` mlr -> replay -> export C with its check pack -> the C fed the raw
+bytes), then the served session (bench_data94's ``sent``: blocks, the first continuing the train
+part) fed the test rows under the reader's names (the kelvin column by its contract name in °C,
+as the served model takes a column read in another unit): max |C - session| µm.
+
+BAR (written and committed BEFORE the rule is scored and before lab 9829 is drawn; the two-unit
+record and lab 9774 are seen)
+-----------------------------------------------------------------------------------------------
+B1. twounits (a) on main reproduces names97's exit 2 "lacks input column T_b"; after: (a) exit 0,
+    48 rows, max |C - served| <= 1e-9 µm; (b) exit 0 and <= 1e-9 µm as on main; (c) exit 2, 0 rows,
+    the names97 refusal line ("column 2: 'T' may be 'T [°C]' or 'T [K]'") as on main.
+B2. fresh lab 9829 (twinit, mlr; drawn after this bar, scored once): init with no key .. C exit
+    0, pack 0; the C's rows = the file's 1441; max |C - session| on the test rows <= 1e-9 µm.
+    (On main the C is expected refused: said as measured, whatever it is.)
+B3. healthy labs unchanged: ``bench_names97 lab ROOT 9774`` (seen; rawit, no twin) with the rule:
+    replay 1.823539367 / 1.207312034 µm, session bare/joined = C <= 1e-9 µm, C(bare) - C(raw) 0.
+B4. tests: a small test (< 10 s) failing on c9c1d35c: (a) read, = the served session; the
+    ``Temp;Temp;Temp`` over ``°C;°C;K`` header read; a bare twin header without a unit row refused.
+KEPT if B1-B4 hold with src + tests + docs; a clause not met is said and the rule REFUSED (patch
+kept as benchmarks/names97b_rule.patch) or the finding TRACED.
+"""
+
+from __future__ import annotations
+
+import io
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+HERE = Path(__file__).resolve().parent
+sys.path[:0] = [str(HERE)]
+from _cli import run_commands  # noqa: E402
+
+LABEL = "twinit"
+# contract name -> (the bare header it shares, its unit in the unit row)
+TWINS = {"T_frame1": ("Temperatura basamento", "°C"), "T_frame2": ("Temperatura basamento", "K"),
+         "T_toolholder1": ("Temperatura portautensile", "°C"),
+         "T_toolholder2": ("Temperatura portautensile", "°C")}
+KELVIN = 273.15
+
+
+def twounits(root: str) -> None:
+    """bench_names97's two-unit record, (a) (b) (c) (module doc)."""
+    import bench_names97
+
+    bench_names97.twounits(root)
+
+
+def _twin_text(rows: pd.DataFrame) -> str:
+    """``rows`` (the contract's) as rawit, with :data:`TWINS`' headers and units (module doc)."""
+    import bench_audit96 as it
+
+    words = {**it.ITALIAN, **{c: h for c, (h, _) in TWINS.items()}}
+    kelvin = [c for c, (_, u) in TWINS.items() if u == "K"]
+    was = it.ITALIAN
+    it.ITALIAN = words
+    try:
+        text = it.lab_text(rows.assign(**{c: rows[c] + KELVIN for c in kelvin}), it.ODDITIES)
+    finally:
+        it.ITALIAN = was
+    cols = [c for c in rows.columns if c != "time"]
+    unit_row = ";".join(["", *("-" if c == "S_door" else TWINS.get(c, ("", it.UNIT[c[0]]))[1]
+                               for c in cols)]) + ";"
+    plain = ";".join(["", *("-" if c == "S_door" else it.UNIT[c[0]] for c in cols)]) + ";"
+    return "".join(unit_row + "\n" if ln == plain else ln + "\n" for ln in text.splitlines())
+
+
+def _session_rows(path: Path) -> pd.DataFrame:
+    """The file's data rows under the reader's names (unit row joined, twins numbered); a column
+    read in another unit by its contract name, in the contract's unit."""
+    from thermocomp.core.io.layout import with_units
+    from thermocomp.core.io.twins import occurrences
+
+    lines = path.read_text(encoding="utf-8").splitlines()
+    head = lines[1].rstrip(";").split(";")
+    units = lines[2].rstrip(";").split(";")
+    names = occurrences(with_units(head, units))[0]
+    rows = [ln.rstrip(";").split(";") for ln in lines
+            if ln and ln[0].isdigit() and not ln.startswith("sep=")]
+    frame = pd.DataFrame(rows, columns=names)
+    for col in names[1:]:
+        frame[col] = frame[col].str.replace(".", "", regex=False).str.replace(",", ".").astype(float)
+    kelvin = [n for n, u in zip(names, units) if u.strip() == "K"]
+    contract = [c for c, (_, u) in TWINS.items() if u == "K"]
+    for name, c in zip(kelvin, contract):
+        frame[c] = frame.pop(name) - KELVIN
+    return frame
+
+
+def lab(root: str, seed: str) -> None:
+    """The twin-header export through init .. C, and the served session (module doc)."""
+    import bench_audit96
+    from bench_data92 import _stage, _targets
+    from bench_data94 import sent, _served
+
+    base = bench_audit96._lab_root(root, seed)
+    path = base / f"{LABEL}.csv"
+    if not path.exists():
+        path.write_text(_twin_text(pd.read_csv(base / "contract.csv")), encoding="utf-8")
+    lines = path.read_text(encoding="utf-8").splitlines()
+    print(f"seed {seed} {LABEL}: header {lines[1][:160]!r}; units {lines[2]!r}", flush=True)
+    got = _stage(base, LABEL, "mlr", ())
+    print(f"  {got['said']}", flush=True)
+    if "C" not in got:
+        return
+    n_test = got["n_test"]
+    corr = got["C"][[c for c in got["C"].columns if c.startswith("C_")]].to_numpy(float)
+    print(f"  replay {_targets(got['replay'])}  run {_targets(got['run'])}; C rows {len(corr)}",
+          flush=True)
+    model, _ = _served(base, LABEL, "mlr")
+    served = sent(model, _session_rows(path).iloc[-n_test:], LABEL, 300)
+    print("  session (reader's names): " + (served if isinstance(served, str) else
+          f"max |session - C| {np.max(np.abs(served - corr[-n_test:])):.2g} µm "
+          f"({len(served)} rows)"), flush=True)
+
+
+def main(argv: list[str]) -> int:
+    return run_commands(__doc__, {"twounits": twounits, "lab": lab}, argv, cpu=sys.stderr)
+
+
+if __name__ == "__main__":
+    raise SystemExit(main(sys.argv[1:]))
