@@ -18,7 +18,7 @@ share with no unit row is refused as names97 refuses it; every other header as b
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is that tree's)::
 
     python benchmarks/bench_names97b.py twounits ROOT       # bench_names97's (a) (b) (c)
-    python benchmarks/bench_names97b.py lab ROOT SEED       # a twin-header Italian export
+    python benchmarks/bench_names97b.py lab ROOT SEED [keyed]   # a twin-header Italian export
 
 ``twounits``: ``bench_names97.twounits`` as it is (seed 971; (a) the file as written, ``T;T``
 over ``°C;K``; (b) the joined headers; (c) a bare ``T`` beside ``T [K]``).
@@ -45,6 +45,15 @@ B3. healthy labs unchanged: ``bench_names97 lab ROOT 9774`` (seen; rawit, no twi
     replay 1.823539367 / 1.207312034 µm, session bare/joined = C <= 1e-9 µm, C(bare) - C(raw) 0.
 B4. tests: a small test (< 10 s) failing on c9c1d35c: (a) read, = the served session; the
     ``Temp;Temp;Temp`` over ``°C;°C;K`` header read; a bare twin header without a unit row refused.
+B2' (added after lab 9829 was scored, which stopped at init on main and rule alike: "'Temperatura
+    basamento [°C]' and 'Temperatura basamento [K]' both give T_Temperatura_basamento; give each
+    ... a name (data.columns)", before any C was built; such a key is no command-line override,
+    Hydra's grammar takes no key with spaces or brackets).  ``lab ROOT SEED keyed``: init's data
+    config given the pair's names (:data:`NAMED`; :func:`_keyed_stage`), traced on seen 9774 only
+    for the command line.  Fresh lab 9830 (drawn after this clause, scored once): init (keyed) ..
+    C exit 0, pack 0; the C's rows 1441; max |C - session| on the test rows <= 1e-9 µm.  The
+    bench's pair ``°C``/``K`` is as for 9829 (a ``degC`` spelling tried on seen 9774 only, for the
+    command line, and dropped).
 KEPT if B1-B4 hold with src + tests + docs; a clause not met is said and the rule REFUSED (patch
 kept as benchmarks/names97b_rule.patch) or the finding TRACED.
 """
@@ -52,7 +61,7 @@ kept as benchmarks/names97b_rule.patch) or the finding TRACED.
 from __future__ import annotations
 
 import io
-import subprocess
+import json
 import sys
 from pathlib import Path
 
@@ -119,8 +128,53 @@ def _session_rows(path: Path) -> pd.DataFrame:
     return frame
 
 
-def lab(root: str, seed: str) -> None:
-    """The twin-header export through init .. C, and the served session (module doc)."""
+# (B2', after 9829: init refuses the kelvin pair, both derived T_Temperatura_basamento; a key with
+# spaces or brackets is no command-line override: written into init's data config instead)
+NAMED = {"Temperatura basamento [°C]": "T_frame1", "Temperatura basamento [K]": "T_frame2"}
+
+
+def _keyed_stage(base: Path) -> dict:
+    """bench_data92's ``_stage`` with init's data config given :data:`NAMED` (``columns``): init
+    run with the pair ignored, the ignore replaced by the names in the config it wrote."""
+    import yaml
+    from bench_data92 import LIGHT, _cli, _refusal, deployed_and_fed
+
+    path, init = base / f"{LABEL}.csv", base / f"{LABEL}-init"
+    pair = "Temperatura basamento*"
+    done = _cli("init", str(path), f"out={init}", f"data.roles.ignore=['{pair}']")
+    if done.returncode:
+        return {"said": f"init exit {done.returncode}: {_refusal(done)}"}
+    conf = next((init / "conf" / "data").glob("*.yaml"))
+    text = conf.read_text(encoding="utf-8")
+    data = yaml.safe_load(text)
+    data["roles"]["ignore"] = [g for g in data["roles"]["ignore"] if g != pair]
+    data["columns"] = {**(data.get("columns") or {}), **NAMED}
+    conf.write_text(text.splitlines()[0] + "\n" + yaml.safe_dump(data, allow_unicode=True),
+                    encoding="utf-8")
+    search = [f"hydra.searchpath=[file://{init / 'conf'}]", f"data={conf.stem}", *LIGHT,
+              "data.test_fraction=0.25"]
+    out = base / f"{LABEL}-mlr"
+    done = _cli("run", *search, "model=mlr", f"out={out}")
+    if done.returncode:
+        return {"said": f"run exit {done.returncode}: {_refusal(done)}"}
+    run = json.loads((out / "metrics.json").read_text())["targets"]
+    row = deployed_and_fed(search, out, path, pack=True)
+    if "fed" not in row:
+        return row
+    fed, rep = row.pop("fed"), row.pop("rep")
+    row = {"said": f"init 0 (keyed), run 0, replay 0, export 0, pack {row.pop('pack')}, C "
+                   f"{fed.returncode}", "run": {t: v["test"]["rmse"] for t, v in run.items()},
+           **row, "n_test": next(iter(rep.values()))["n_samples"]}
+    if fed.returncode:
+        row["said"] += f": {fed.stderr.decode(errors='replace').strip()[-300:]}"
+        return row
+    row["C"] = pd.read_csv(io.BytesIO(fed.stdout))
+    return row
+
+
+def lab(root: str, seed: str, keyed: str = "") -> None:
+    """The twin-header export through init .. C, and the served session (module doc);
+    ``keyed``: init given :data:`NAMED`."""
     import bench_audit96
     from bench_data92 import _stage, _targets
     from bench_data94 import sent, _served
@@ -131,7 +185,7 @@ def lab(root: str, seed: str) -> None:
         path.write_text(_twin_text(pd.read_csv(base / "contract.csv")), encoding="utf-8")
     lines = path.read_text(encoding="utf-8").splitlines()
     print(f"seed {seed} {LABEL}: header {lines[1][:160]!r}; units {lines[2]!r}", flush=True)
-    got = _stage(base, LABEL, "mlr", ())
+    got = _keyed_stage(base) if keyed else _stage(base, LABEL, "mlr", ())
     print(f"  {got['said']}", flush=True)
     if "C" not in got:
         return
