@@ -56,6 +56,44 @@ B2' (added after lab 9829 was scored, which stopped at init on main and rule ali
     command line, and dropped).
 KEPT if B1-B4 hold with src + tests + docs; a clause not met is said and the rule REFUSED (patch
 kept as benchmarks/names97b_rule.patch) or the finding TRACED.
+
+Status: B1-B4 committed in fc8e2e3e before the rule was scored and before 9829 was drawn; B2'
+added in a5c2a15b after 9829 stopped at init (main and rule alike), before 9830 was drawn; the
+rule (src) unchanged since its first score.  Scored 2026-12-06 06:58-07:07 UTC (2 cores shared,
+load ~12, ``nice``), main = c9c1d35c's src (``git archive``), rule = this branch's.
+
+  two-unit record (seen, B1)      main (c9c1d35c)                    rule
+  (a) ``T;T`` over ``°C;K``        exit 2, 0 rows, "lacks input       exit 0, 48 rows, = served
+                                  column T_b (the lab's header       3.6e-15 µm
+                                  'T [K]')"
+  (b) joined headers              exit 0, = served 3.6e-15 µm        same
+  (c) bare 'T' beside 'T [K]'     exit 2, "column 2: 'T' may be      same line
+                                  'T [°C]' or 'T [K]' ..."
+  lab 9829 (twinit, FRESH, B2)    init exit 2 "'Temperatura          the same (no C built: B2 not
+                                  basamento [°C]' and 'Temperatura   scored; a Python-side init
+                                  basamento [K]' both give           rule, not stream.c's)
+                                  T_Temperatura_basamento; give
+                                  each ... a name (data.columns)"
+  lab 9830 (twinit keyed, FRESH,  init .. pack 0, C exit 2 "lacks    C exit 0, 1441 rows; replay
+  B2', once)                      input column T_frame2 (the lab's   2.038472787 / 1.385004397 µm;
+                                  header 'Temperatura basamento      max |C - session| 1.8e-13 µm
+                                  [K]')"                             (360 rows)
+  lab 9774 twinit keyed (seen)    C exit 2, the same line            C 0, 1441 rows; replay
+                                                                     1.823539367 / 1.207312034;
+                                                                     |C - session| 1.3e-13 µm
+  lab 9774 rawit (seen, B3,       --                                 replay 1.823539367 /
+  bench_names97 lab)                                                 1.207312034; session bare /
+                                                                     joined = C 1.5e-13 µm, bare -
+                                                                     joined 0; C(bare) - C(raw) 0
+                                                                     (1441 rows)
+  ``Temp;Temp`` over ``°C;°C``     exit 2 "the header names input     exit 0, 40 rows
+  (test_names97b's rows, seen)    T_a twice (columns 2 and 3)"
+
+B2 not met as written: 9829 never reached the C (init refuses a pair alike but for its unit
+without names, on main as on the rule; no command-line key can name them).  B2' (keyed, 9830)
+met; B1, B3 met; B4: tests/shell/test_names97b.py, 2 cases, both fail on c9c1d35c (see the note).
+CPU of the bench processes: twounits 2.9-3.3 s, lab 1.6-3.9 s (stage subprocesses not counted);
+wall: twounits ~17 s, lab keyed ~47 s on an existing lab root (+ ~60 s to simulate one).
 """
 
 from __future__ import annotations
