@@ -36,8 +36,10 @@ DRIVER = r"""/* stream.c: CSV rows of raw inputs on stdin -> corrections C_<axis
  * mid-write leaves the previous row's state); a FILE of another build is refused.
  * A logger's preamble above the header (`Machine;PM-12`, `Operator: ...`: at most MAX_PREAMBLE
  * lines) is skipped as the model's reader skips it: the header is the first line naming every
- * input.  A unit row under the header (`;;degC;W;um`) is left out, each header read with its
- * unit (`T Halle [degC]`), and rows under them that describe the channels before the first
+ * input, alone or with the unit row under it.  A unit row under the header (`;;degC;W;um`) is
+ * left out, each header read with its unit (`T Halle [degC]`; a name then still written twice
+ * numbered as the reader numbers it: `T;T` over `degC;K` is `T [degC]`, `T [K]`; `Temp;Temp`
+ * over `degC;degC` is `Temp [degC]`, `Temp#2 [degC]`), and rows under them that describe the channels before the first
  * sample (catman70: HBM catman's row of channel comments, its T0 / dt rows) are left out as the
  * reader leaves them out; a line in data.encoding (TC_ENCODING: a Windows logger's cp1252) is
  * read as UTF-8 (a line that is UTF-8 already as it is); the header written again further down
