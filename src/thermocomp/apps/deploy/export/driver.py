@@ -39,11 +39,12 @@ DRIVER = r"""/* stream.c: CSV rows of raw inputs on stdin -> corrections C_<axis
  * input, alone or with the unit row under it.  A unit row under the header (`;;degC;W;um`) is
  * left out, each header read with its unit (`T Halle [degC]`; a name then still written twice
  * numbered as the reader numbers it: `T;T` over `degC;K` is `T [degC]`, `T [K]`; `Temp;Temp`
- * over `degC;degC` is `Temp [degC]`, `Temp#2 [degC]`), and rows under them that describe the channels before the first
- * sample (catman70: HBM catman's row of channel comments, its T0 / dt rows) are left out as the
- * reader leaves them out; a line in data.encoding (TC_ENCODING: a Windows logger's cp1252) is
- * read as UTF-8 (a line that is UTF-8 already as it is); the header written again further down
- * (a logger restarted), with its unit row, is left out and said; a cell holding a mark of
+ * over `degC;degC` is `Temp [degC]`, `Temp#2 [degC]`), and rows under them that describe the
+ * channels before the first sample (catman70: HBM catman's row of channel comments, its T0 / dt
+ * rows) are left out as the reader leaves them out; a line in data.encoding (TC_ENCODING: a
+ * Windows logger's cp1252) is read as UTF-8 (a line that is UTF-8 already as it is); the header
+ * written again further down (a logger restarted), with its unit row, is left out and said; a
+ * cell holding a mark of
  * data.missing_values (TC_MISSING: `---`; TC_MISSING_VALUE: -9999 however written) or an
  * infinite reading (`INF`, `-INF`, `Infinity`) is a missing value, as an empty cell is, and a cell
  * of an input that is no number nor a mark is refused with its row, as the reader refuses it.
