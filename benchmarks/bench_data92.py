@@ -151,6 +151,13 @@ def _stage(base: Path, label: str, family: str, keys: tuple[str, ...]) -> dict:
     done = _cli("init", str(path), f"out={init}", *keys)
     if done.returncode:
         return {"said": f"init exit {done.returncode}: {_refusal(done)}"}
+    return _initialised(base, label, family)
+
+
+def _initialised(base: Path, label: str, family: str) -> dict:
+    """``_stage`` after init (its data config under ``<label>-init``; bench_names97b edits it)."""
+    path = base / f"{label}.csv"
+    init = base / f"{label}-init"
     data = next((init / "conf" / "data").glob("*.yaml")).stem
     search = [f"hydra.searchpath=[file://{init / 'conf'}]", f"data={data}", *LIGHT,
               "data.test_fraction=0.25"]

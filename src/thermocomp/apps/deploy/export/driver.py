@@ -36,12 +36,15 @@ DRIVER = r"""/* stream.c: CSV rows of raw inputs on stdin -> corrections C_<axis
  * mid-write leaves the previous row's state); a FILE of another build is refused.
  * A logger's preamble above the header (`Machine;PM-12`, `Operator: ...`: at most MAX_PREAMBLE
  * lines) is skipped as the model's reader skips it: the header is the first line naming every
- * input.  A unit row under the header (`;;degC;W;um`) is left out, each header read with its
- * unit (`T Halle [degC]`), and rows under them that describe the channels before the first
- * sample (catman70: HBM catman's row of channel comments, its T0 / dt rows) are left out as the
- * reader leaves them out; a line in data.encoding (TC_ENCODING: a Windows logger's cp1252) is
- * read as UTF-8 (a line that is UTF-8 already as it is); the header written again further down
- * (a logger restarted), with its unit row, is left out and said; a cell holding a mark of
+ * input, alone or with the unit row under it.  A unit row under the header (`;;degC;W;um`) is
+ * left out, each header read with its unit (`T Halle [degC]`; a name then still written twice
+ * numbered as the reader numbers it: `T;T` over `degC;K` is `T [degC]`, `T [K]`; `Temp;Temp`
+ * over `degC;degC` is `Temp [degC]`, `Temp#2 [degC]`), and rows under them that describe the
+ * channels before the first sample (catman70: HBM catman's row of channel comments, its T0 / dt
+ * rows) are left out as the reader leaves them out; a line in data.encoding (TC_ENCODING: a
+ * Windows logger's cp1252) is read as UTF-8 (a line that is UTF-8 already as it is); the header
+ * written again further down (a logger restarted), with its unit row, is left out and said; a
+ * cell holding a mark of
  * data.missing_values (TC_MISSING: `---`; TC_MISSING_VALUE: -9999 however written) or an
  * infinite reading (`INF`, `-INF`, `Infinity`) is a missing value, as an empty cell is, and a cell
  * of an input that is no number nor a mark is refused with its row, as the reader refuses it.
@@ -108,6 +111,7 @@ static int split_by(char *line, char **cells, char by) {
 static int split(char *line, char **cells) { return split_by(line, cells, sep); }
 
 static char *twin(char **raw, int j);
+static int unit_named(char **raw, int ncols, const char *line, const char **names);
 
 /* Each column's conversion to the contract's unit: value * scale + offset (TC_LAB_UNITS). */
 static double scale_of[MAX_COLS], offset_of[MAX_COLS];
@@ -116,15 +120,19 @@ static double scale_of[MAX_COLS], offset_of[MAX_COLS];
    column j's conversion set from the lab's header (1 and 0 under a contract name). */
 /* The contract name of the lab's header `cell` (exactly as written), its unit's scale and offset
    set for column j; NULL where the model's data names no such header. */
-static const char *lab_named(const char *cell, int j) {
+static int lab_index(const char *cell) {
     int k;
     for (k = 0; k < TC_N_LAB_NAMES; k++)
-        if (strcmp(cell, TC_LAB_NAMES[k][0]) == 0) {
-            scale_of[j] = TC_LAB_UNITS[k][0];
-            offset_of[j] = TC_LAB_UNITS[k][1];
-            return TC_LAB_NAMES[k][1];
-        }
-    return NULL;
+        if (strcmp(cell, TC_LAB_NAMES[k][0]) == 0) return k;
+    return -1;
+}
+
+static const char *lab_named(const char *cell, int j) {
+    int k = lab_index(cell);
+    if (k < 0) return NULL;
+    scale_of[j] = TC_LAB_UNITS[k][0];
+    offset_of[j] = TC_LAB_UNITS[k][1];
+    return TC_LAB_NAMES[k][1];
 }
 
 /* The lab's header of contract name `input`, "" where the model's data names it so itself: a
@@ -386,8 +394,9 @@ static int word_holds(const char *cell, int i) {
     return 0;
 }
 
-/* How many inputs of TC_INPUT_NAMES `line` (not changed) names (sets `sep` to the line's). */
-static int inputs_named(const char *line) {
+/* How many inputs of TC_INPUT_NAMES `line` (not changed) names, with the unit row `units` under
+   it where `units` is one (NULL: none; unit_named) (sets `sep` to the line's). */
+static int inputs_named_over(const char *line, const char *units) {
     static char text[MAX_LINE];
     char *cells[MAX_COLS];
     const char *names[MAX_COLS];
@@ -398,6 +407,7 @@ static int inputs_named(const char *line) {
     if (ncols > 0 && cells[0][0] == '#')     /* (a header written as a comment: stranger66) */
         cells[0] = uncommented(cells[0]);
     for (j = 0; j < ncols; j++) names[j] = named(twin(cells, j), j);
+    if (units != NULL) unit_named(cells, ncols, units, names);
     for (i = 0; i < TC_N_INPUTS; i++) {
         for (found = 0, j = 0; j < ncols && !found; j++)
             found = strcmp(names[j], TC_INPUT_NAMES[i]) == 0 || word_holds(cells[j], i);
@@ -405,6 +415,8 @@ static int inputs_named(const char *line) {
     }
     return n;
 }
+
+static int inputs_named(const char *line) { return inputs_named_over(line, NULL); }
 
 /* `line` names every input, as the header must: a logger's preamble line above it does not. */
 static int names_every_input(const char *line) {
@@ -500,18 +512,58 @@ static const char *trimmed(char *cell) {
 /* (audit86) A header written twice, as the reader reads it (twins.py): its k-th occurrence
    `<name>#<k>` before its unit (`Halle#2 [degC]`), which the model's data names where it read
    that column (a copy of the first it left out: no input then); the second was refused. */
-static char twins[MAX_COLS][256];
-static char *twin(char **raw, int j) {
+#define MAX_NAME 256
+static char *numbered(char **raw, int j, char *out) {
     const char *cell = trimmed(raw[j]), *unit;
     size_t len = strlen(cell), at = len;
     int i, k = 1;
     for (i = 0; i < j; i++) k += strcmp(trimmed(raw[i]), cell) == 0;
-    if (k == 1 || len + 12 > sizeof twins[j]) return raw[j];
+    if (k == 1 || len + 12 > MAX_NAME) return raw[j];
     unit = len ? strrchr(cell, cell[len - 1] == ']' ? '[' : '(') : NULL;
     if (unit && unit > cell && unit[-1] == ' ' && (cell[len - 1] == ']' || cell[len - 1] == ')'))
         at = (size_t)(unit - 1 - cell);
-    snprintf(twins[j], sizeof twins[j], "%.*s#%d%s", (int)at, cell, k, cell + at);
-    return twins[j];
+    snprintf(out, MAX_NAME, "%.*s#%d%s", (int)at, cell, k, cell + at);
+    return out;
+}
+
+static char twins[MAX_COLS][MAX_NAME];
+static char *twin(char **raw, int j) { return numbered(raw, j, twins[j]); }
+
+/* (streamraw65, names97b) `line` is a unit row under the header `raw` (`;;degC;W;-;um`: every
+   cell it fills no number, a unit under an input among them): 1, each column's name in `names`
+   (the header's, `named`) as the reader names it, the header joined to its unit (`T Halle
+   [degC]`), then a name still written twice numbered (`Temp;Temp` over `degC;degC`: `Temp
+   [degC]`, `Temp#2 [degC]`; `T;T` over `degC;K`: `T [degC]`, `T [K]`, which the bare header's
+   twin `T#2` never named): layout.with_units, then twins.occurrences.  A joined name the
+   model's data does not hold keeps the header's name.  0, `names` as they were: no unit row. */
+static int unit_named(char **raw, int ncols, const char *line, const char **names) {
+    static char copy[MAX_LINE], texts[MAX_COLS][MAX_NAME], joined[MAX_COLS][MAX_NAME];
+    char *units[MAX_COLS], *text[MAX_COLS];
+    int lab[MAX_COLS], n, j, k, filled = 0;
+    strcpy(copy, line);
+    n = split(copy, units);
+    for (j = 0; j < n; j++) {
+        int bad = 0;
+        units[j] = (char *)trimmed(units[j]);
+        if (*units[j] && (is_mark(units[j]) || isfinite(value(units[j], &bad)) || !bad)) return 0;
+    }
+    for (j = 0; j < ncols; j++) {
+        const char *u = j < n ? units[j] : "";
+        if (!*u || snprintf(texts[j], MAX_NAME, "%s [%s]", trimmed(raw[j]), u) >= MAX_NAME)
+            snprintf(texts[j], MAX_NAME, "%s", trimmed(raw[j]));
+        text[j] = texts[j];
+    }
+    for (j = 0; j < ncols; j++) {
+        lab[j] = j < n && *units[j] ? lab_index(numbered(text, j, joined[j])) : -1;
+        for (k = 0; j < n && *units[j] && k < TC_N_INPUTS; k++)   /* (a unit under an input) */
+            if (strcmp(names[j], TC_INPUT_NAMES[k]) == 0
+                || (lab[j] >= 0 && strcmp(TC_LAB_NAMES[lab[j]][1], TC_INPUT_NAMES[k]) == 0))
+                filled = 1;
+    }
+    for (j = 0; filled && j < ncols; j++)
+        if (lab[j] >= 0)                                   /* (its unit row says which) */
+            names[j] = lab_named(TC_LAB_NAMES[lab[j]][0], j), alike_of[j][0] = -1;
+    return filled;
 }
 
 /* Column j's cell in the contract's unit (NAN stays NAN). */
@@ -958,6 +1010,7 @@ int main(int argc, char **argv) {
     double r[TC_N_SOURCES + 1];        /* a row's error columns of derived targets (um) */
     int clock_col = -1;        /* a time of day beside the date (TC_CLOCK_COLUMN): joined */
     static char header_raw[MAX_LINE], units_raw[MAX_LINE], first_row[MAX_LINE], row_raw[MAX_LINE];
+    static char units_given[MAX_LINE];   /* (names97b) the unit row the header search read */
     char *raw[MAX_COLS];
     /* a first row read after the header; a header again seen; lines above the header all `#`
        comments (or blank); one of them a `#` comment; the header written as one; `#` lines
@@ -1052,11 +1105,15 @@ int main(int argc, char **argv) {
     }
     if (!names_every_input(line)) {
         /* a logger's preamble (stranger64: `Machine;PM-12`, `Operator: ...` above the header):
-           the first of the next MAX_PREAMBLE lines naming every input is the header */
-        static char first[MAX_LINE], most[MAX_LINE];
+           the first of the next MAX_PREAMBLE lines naming every input is the header; (names97b)
+           or naming them with the unit row under it (`T;T` over `degC;K`: unit_named) */
+        static char first[MAX_LINE], most[MAX_LINE], prev[MAX_LINE];
         int named_most = inputs_named(line), most_row = 1, most_commented = 0, most_noted = 0, n;
+        size_t prev_above = 0;          /* (the preamble, `commented`, `noted` above `prev`) */
+        int prev_commented = commented, prev_noted = noted;
         strcpy(first, line);
         strcpy(most, line);
+        strcpy(prev, line);
         kept(above, line);
         commented = commented && comment_or_blank(line);
         noted = noted || line[strspn(line, " \t")] == '#';
@@ -1071,15 +1128,26 @@ int main(int argc, char **argv) {
                         line[0] == 'C' ? "Channel 1" : "Kanal 1");
                 return 2;
             }
+            if (inputs_named_over(prev, line) == TC_N_INPUTS) {
+                strcpy(units_given, line);        /* the header's unit row, read */
+                strcpy(line, prev);
+                above[prev_above] = '\0';
+                commented = prev_commented, noted = prev_noted;
+                break;
+            }
             if ((n = inputs_named(line)) == TC_N_INPUTS) break;
+            prev_above = strlen(above), prev_commented = commented, prev_noted = noted;
             kept(above, line);
             if (n > named_most)      /* (the lines above it: comments, a '#' among them?) */
                 named_most = n, most_row = i + 2, most_commented = commented,
                 most_noted = noted, strcpy(most, line);
             commented = commented && comment_or_blank(line);
             noted = noted || line[strspn(line, " \t")] == '#';
+            strcpy(prev, line);
         }
-        if (i < MAX_PREAMBLE && names_every_input(line))
+        if (units_given[0])
+            row = i + 1;                          /* the header's line, its unit row's under it */
+        else if (i < MAX_PREAMBLE && names_every_input(line))
             row = i + 2;                          /* the header's line */
         else {
             above[0] = '\0';                      /* (no header found: no preamble known) */
@@ -1121,32 +1189,14 @@ int main(int argc, char **argv) {
        an input's among them), as the reader reads it: left out, each header joined to its unit
        (`T Halle [degC]`) */
     top = row;
-    if ((pending = next_line(units_raw, sizeof units_raw, row + 1)) != 0) {
-        static char copy[MAX_LINE], joined[MAX_CELL * 2 + 4];
-        char *units[MAX_COLS];
-        int n, filled = 0, unit_row = 1, k;
-        strcpy(copy, units_raw);
-        n = split(copy, units);
-        for (j = 0; j < n && unit_row; j++) {
-            const char *u = trimmed(units[j]);
-            int bad = 0;
-            if (!*u) continue;
-            for (k = 0; j < ncols && k < TC_N_INPUTS; k++)   /* (a unit under an input) */
-                if (strcmp(cells[j], TC_INPUT_NAMES[k]) == 0) filled = 1;
-            if (is_mark(u) || isfinite(value(u, &bad)) || !bad) unit_row = 0;
-        }
-        if (filled && unit_row) {
+    if (units_given[0]) strcpy(units_raw, units_given), pending = 1;   /* (read by the search) */
+    else pending = next_line(units_raw, sizeof units_raw, row + 1);
+    if (pending) {
+        if (unit_named(raw, ncols, units_raw, (const char **)cells)) {
             pending = 0;
             unit_rowed = 1;
             row++;
             units_raw[strcspn(units_raw, "\r\n")] = '\0';
-            for (j = 0; j < ncols && j < n; j++) {
-                const char *u = trimmed(units[j]), *lab;
-                if (!*u) continue;
-                snprintf(joined, sizeof joined, "%s [%s]", trimmed(raw[j]), u);
-                if ((lab = lab_named(joined, j)) != NULL)    /* (its unit row says which) */
-                    cells[j] = (char *)lab, alike_of[j][0] = -1;
-            }
         } else {
             strcpy(first_row, units_raw);   /* the first row: read in the loop */
             units_raw[0] = '\0';
