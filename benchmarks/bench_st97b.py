@@ -29,7 +29,8 @@ The declared class (said before any fresh seed): a C ``JUMP`` of a monitored sen
 out alone for a jump without the others predicting it (``CodeMonitor.spikes`` and not
 ``ported``: cmon87), none out before it, held at its last reading until the C's ``BACK`` of it.
 
-The rule (src/thermocomp/apps/deploy/export/st_watch.py BLOCK, st.py's input loop): where the
+The rule (REFUSED: benchmarks/st97b_rule.patch, on 02b2e099's st_watch.py BLOCK and st.py's input
+loop, with tests/shell/test_export_st97b.py and docs/monitoring.md's wording; src reverted): where the
 block's judgement goes on (the field followed, none held) and a lone jump (``RULE_JUMP``, one
 jumper, no dropout, range or pair) is of a sensor in ``MON_JUMP_SET`` (the class, and among st96's
 ``MON_BLIND`` candidates: its place there), the block flags ``JUMP`` as before and holds it out by
@@ -67,6 +68,56 @@ benchmarks/st97b_rule.patch); where no fresh record holds a class jump (healthy 
 case), KEPT needs 1-3 and 5, said so.  TRACED / not scored if fresh cannot be scored by 07:50 UTC.
 The second class (a predicted jumper back by SPIKE a row later, dl9791: its one-out M[j + 1]) is
 not built; whether it changes is reported, not scored.
+
+The bar is unchanged since its commit (c2105605, after the rule 39b83f2e, before 9820-9824 were
+simulated); nothing was tuned on them.  Results (2026-12-06, 2 cores shared by up to 8 helpers, a
+load of 11-14; CPU of each process).
+
+Seen (st96b's fresh records, spent), the rule's src: ``trace`` lr9790 bent a/m/ap/o/n 2/0/4/0/14
+-> 6/0/0/0/14, dl9794 1/0/4/0/11 -> 5/0/0/0/11 (st96b's numbers on main -> the rule: the 6 apart
+after the held jumper now ``agree``), pair 91 / 91 agree, early 0, healthy false 0, max|ST-C|
+before the C's first event 1.07e-13 / 9.24e-14 µm; planted misses 0 false 0.  ``held`` (35.6 s CPU
+for lr9790 dl9794 dl9791; main's src alike)::
+
+    record hold (C JUMP - C BACK)       main: block             rule: block            max|ST-C| µm
+    lr9790 T_motor 3608 - 3619          SPIKE 3609, not held    held alike, no event   0.332 -> 0.25
+    lr9790 T_spindle_rear 3754 - 3768   SPIKE 3756, not held    held alike, no event   0.211 -> 0.229
+    dl9794 T_table 6048 - 6061          SPIKE 6051, not held    held alike, no event   2.46 -> 1.92
+
+(max|ST-C| over the hold; from its BACK to the next C event 7.64e-14 / 6.75e-14 / 9.95e-14 µm on both.)
+
+Every row of the three holds the C serves the jumper's fallback model (``serving()`` 4 / 4 / 4;
+0 of 12 / 15 / 14 rows its own laws), which the ST does not hold: max|ST-C| through them stays
+0.229-1.92 µm with the held reading; from the BACK on ST = C (<= 9.95e-14 µm) on main and rule.
+C events named alike by ``held``'s crude match (rule and sensor): lr9790 50 -> 52, dl9794 34 -> 35 of
+54 / 38.  dl9791 (the second class): 0 holds of the class, the block's events unchanged (C events 15, 14
+named alike on both srcs).  Healthy frames: 0 block flags without a C event on all three.
+
+Fresh ``fresh`` (scored once; 149.0 s + 132.3 s CPU, two processes, about 20 min wall with the
+simulations)::
+
+    record  false early max|ST-C| µm (rows)  C first event (row) = block  bent a/m/ap/o/n  pair a/m/ap/o
+    lr9820  0     0     6.04e-14 (334)       STEP_OUT (335) agree         8/0/0/0/12       91/0/0/0
+    dl9821  0     0     1.14e-13 (606)       STEP_OUT (607) agree         7/0/0/1/16       91/0/0/0
+    cr9822  0     0     3.33e-16 (210)       none                         0/0/0/0/8        66/0/0/0
+    lr9823  0     0     9.59e-14 (379)       other (380)                  10/3/0/1/10      91/0/0/0
+    dl9824  0     0     6.75e-14 (128)       STEP_OUT (129) agree         6/0/0/0/14       91/0/0/0
+
+``held`` on each: 0 holds of the class, 0 block flags without a C event.
+
+bench_st93's spike / dropout / range / freeze on every record: misses 0, false 0.  The declared
+class is empty on fresh: no C hold of a lone blind jumper in any healthy frame (``held`` 0 holds)
+and no trace case past one (no ``apart`` and no case whose log holds one); 3 trace cases' first C
+event is a class JUMP (dl9821 T_motor 2x, dl9824 T_amb / T_motor 2.9x), named alike at its row
+(the case ends there).  lr9823's 3 ``mismatch`` (T_spindle_front 2x, T_motor 2x / 2.9x: the C's
+BLIND_OUT at the case's second row, the block silent) are the same on 02b2e099's block (``trace``
+lr9823 on main's src after the scoring, measurement only: bent 10/3/0/1/10 to the digit): not from
+this rule, an st96 BLIND_OUT the block does not name.
+
+Verdict by the bar as written: 1, 2 and 3 hold; the class being empty, KEPT needed 1-3 and 5, and
+5's ``mismatch 0 over all cases`` fails on lr9823 (3, main's alike).  REFUSED: the rule's diff in
+benchmarks/st97b_rule.patch (applies on 02b2e099; its test fails there: held -2 at the C's JUMP),
+src as on 02b2e099.  Read as "no new mismatch" clause 5 would hold (0 new); not re-scored so.
 """
 
 from __future__ import annotations

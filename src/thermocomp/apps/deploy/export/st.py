@@ -484,9 +484,7 @@ IF NOT refused THEN
         IF first THEN
             seen[j] := FALSE;
         END_IF;
-        IF mon_hold_in = j THEN
-            uu[j] := last[j];   (* (st97b) held out by its jump: its last reading, as the C *)
-        ELSIF u[j] >= -U_LIMIT[j] AND u[j] <= U_LIMIT[j] THEN
+        IF u[j] >= -U_LIMIT[j] AND u[j] <= U_LIMIT[j] THEN
             uu[j] := u[j] - mon_shift[j];   (* (st93) a jump re-referenced *)
             last[j] := uu[j];
         ELSIF seen[j] THEN

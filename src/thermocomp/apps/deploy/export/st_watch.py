@@ -182,15 +182,10 @@ def blind_constants(watch: dict, n: int, stepped: bool, literal, constant) -> li
     settle = np.asarray(watch.get("settle_lim", [np.inf] * n), float)
     settles = bool(watch.get("settled")) & np.isfinite(settle)
     judge = judge and n > watch["min_active"] and nb > 0     # (the C's: more in than min_active)
-    # (st97b) each candidate the C holds out alone at its last reading for a lone jump (cmon87:
-    # ``pair_places``' first of one no other predicts): its place in MON_BLIND, else -1
-    spikes = pair_places(dict(watch, pair_jump=1))[0] & ~np.asarray(watch.get("ported_out", [0] * n), bool)
-    jump_set = [blinds.index(k) if judge and k in blinds and spikes[k] else -1 for k in range(n)]
     return [f"    MON_BLIND_JUDGE : BOOL := {'TRUE' if judge else 'FALSE'};",
             f"    MON_CONFIRM : INT := {max(int(watch.get('confirm', 1)), 1)};",
             f"    MON_BLINDS : INT := {nb};",
             constant("MON_BLIND", blinds, (nb,), "INT"),
-            constant("MON_JUMP_SET", jump_set, (n,), "INT"),
             constant("MON_FIELD_BAND", list(field or [0.0] * n), (n,)),
             constant("MON_WARN", list(watch.get("warning", [0.0] * n)), (n,)),
             constant("MON_JUDGING", evidence.astype(int).tolist(), (n,), "INT"),
@@ -325,15 +320,6 @@ VARS = """    mon_last : ARRAY[{nm}] OF LREAL;
     mon_since : ARRAY[{nm}] OF INT;
     mon_sback : ARRAY[{nm}] OF LREAL;
     mon_undo : LREAL;
-    mon_jheld : BOOL;
-    mon_jtake : INT;
-    mon_again : BOOL;
-    mon_own : INT;
-    mon_jcount : INT;
-    mon_doubles : INT;
-    mon_shift0 : LREAL;
-    mon_hval : LREAL;
-    mon_hold_in : INT;
 """
 
 # before the refusal: the sample's monitored readings judged (the block's first == a campaign's)
@@ -365,7 +351,6 @@ IF first THEN
     mon_spos := 0;
     mon_held := -1;
     mon_held_set := -1;
-    mon_jheld := FALSE;
 END_IF;
 (* a gap in time: each step judged as that many one-sample steps, as the C *)
 mon_span := 1.0;
@@ -375,7 +360,6 @@ IF has_time AND mon_t_known AND NOT first THEN
     END_IF;
 END_IF;
 mon_jumps := 0;
-mon_again := FALSE;
 FOR mk := 0 TO MON_N - 1 DO
     j := MON_INPUT[mk];
     mon_x := u[j];
@@ -467,7 +451,7 @@ FOR mk := 0 TO MON_N - 1 DO
     j := MON_INPUT[mk];
     mon_spike[mk] := FALSE;
     mon_back := FALSE;
-    IF mon_big[mk] AND mon_out[mk] AND NOT (mon_jheld AND mk = mon_held) THEN
+    IF mon_big[mk] AND mon_out[mk] THEN
         mon_back := mon_jumps = 1 OR (mon_pair AND mon_outs = 2);
     END_IF;
     IF mon_back THEN
@@ -491,18 +475,8 @@ FOR mk := 0 TO MON_N - 1 DO
     j := MON_INPUT[mk];
     IF mon_big[mk] AND NOT mon_spike[mk] THEN
         (* re-referenced by its whole step: the model reads it on from its last reading *)
-        IF mon_jumps = 1 AND NOT mon_out[mk] THEN
-            mon_shift0 := mon_shift[j];    (* (st97b) its reference before a lone jump *)
-        END_IF;
         mon_shift[j] := mon_shift[j] + mon_step[mk];
         mon_back := mon_pair AND mon_out[mk];  (* a pair's out already: no new fault, as the C *)
-        IF mon_jheld AND mk = mon_held THEN
-            (* (st97b) the jumper held out jumping again (its return): re-referenced, no new *)
-            (* fault, its calm count started again (the C's cmon87 path) *)
-            mon_back := TRUE;
-            mon_again := TRUE;
-            mon_jcount := mon_jcount + 1;
-        END_IF;
         mon_out[mk] := TRUE;
         mon_rerefd[mk] := TRUE;
         IF NOT mon_back AND mon_jumps < MON_COMMON_MIN THEN
@@ -530,22 +504,7 @@ mon_flag := mon_flag OR mon_gone;
 (* (st94b) the self-prediction error stepped past the alarm band (the C's STEP_OUT), judged *)
 (* while the field is whole: any exclusion since the campaign's first sample ends it, but *)
 (* (st95b) one sensor out alone by the block's own STEP_OUT, followed to the C's BACK *)
-(* (st97b) a lone jump (none out, the field followed) of a sensor no other predicts that the *)
-(* C holds out alone at its last reading (MON_JUMP_SET: its place in MON_BLIND), held to its *)
-(* BACK by the hold below (cmon87: the model reads it held, its return re-referenced) *)
-mon_jtake := -1;
-mon_own := 0;
-IF mon_again THEN
-    mon_own := 1;
-END_IF;
-IF mon_jumps = 1 AND NOT mon_gone AND NOT mon_lost AND mon_held < 0 AND mon_rule = RULE_JUMP THEN
-    IF MON_STEP_JUDGE AND MON_FOLLOW_BACK AND MON_JUMP_SET[mon_sensor] >= 0 THEN
-        mon_jtake := mon_sensor;
-        mon_own := 1;
-        mon_jcount := 1;
-    END_IF;
-END_IF;
-IF mon_gone OR mon_jumps > mon_own THEN
+IF mon_gone OR mon_jumps > 0 THEN
     mon_lost := TRUE;
 END_IF;
 mon_was := mon_held;
@@ -577,7 +536,6 @@ IF MON_STEP_JUDGE AND NOT mon_lost THEN
             mon_since[mk] := mon_since[mk] + 1;
         END_IF;
         mon_go := mon_span = 1.0 AND mon_gap[mk] = 1.0;    (* no gap *)
-        mon_go := mon_go AND NOT (mon_jheld AND mk = mon_held);    (* (st97b) nor held by a jump *)
         IF MON_SETTLES[mk] = 1 AND mon_sage[mk] >= 2 * MON_WINDOW - 1 AND mon_go THEN
             (* (st96) the C's level shift (SETTLED): the window ending here parted from the *)
             (* one before by MON_SETTLE_LIM and moved past MON_SETTLE_STEADY x their spread *)
@@ -672,7 +630,7 @@ IF MON_STEP_JUDGE AND NOT mon_lost THEN
         (* the ring's row as the C keeps it (after its BENT and SETTLED), the reference's age *)
         (* (1 where its BENT moved it: the C's SETTLED moves it before the age is taken) *)
         mon_settle_ring[mon_spos, mk] := mon_d[mk];
-        IF mon_bent[mk] <> 0.0 OR mon_big[mk] THEN    (* (st97b) or a jump re-referenced it *)
+        IF mon_bent[mk] <> 0.0 THEN
             mon_sage[mk] := 1;
         ELSIF mon_sage[mk] < 2 * MON_WINDOW THEN
             mon_sage[mk] := mon_sage[mk] + 1;
@@ -695,7 +653,7 @@ IF MON_STEP_JUDGE AND NOT mon_lost THEN
             mon_x := mon_x + MON_SELF[mk, mj] * mon_d[mj];
         END_FOR;
         mon_e[mk] := (mon_d[mk] - mon_x) * MON_SCALE[mk];
-        IF mon_e_known AND MON_JUDGED[mk] = 1 AND mon_held < 0 AND mon_jtake < 0 THEN
+        IF mon_e_known AND MON_JUDGED[mk] = 1 AND mon_held < 0 THEN
             mon_off := mon_e[mk] - mon_prev_e[mk];
             IF mon_off < 0.0 THEN
                 mon_off := -mon_off;
@@ -709,11 +667,7 @@ IF MON_STEP_JUDGE AND NOT mon_lost THEN
             END_IF;
         END_IF;
         (* (st95b) its error with every sensor in, also while one is out: the C's last errors *)
-        (* once it is back; (st97b) at a jump it holds out, the last ones with every sensor in *)
-        (* its set's stepped errors are judged from (the C excludes it before _stepped) *)
-        IF mon_jtake >= 0 THEN
-            mon_prev_eu[mk] := mon_prev_e[mk];
-        END_IF;
+        (* once it is back *)
         mon_prev_e[mk] := mon_e[mk];
     END_FOR;
     mon_e_known := TRUE;
@@ -739,7 +693,6 @@ IF MON_STEP_JUDGE AND NOT mon_lost THEN
     (* reach the band (MON_FIELD_BAND): a sensor no other predicts that explains them out *)
     (* (BLIND_OUT); a judgement the block cannot follow ends this one (not the stepped one) *)
     mon_judge := MON_BLIND_JUDGE AND NOT mon_blind_lost AND mon_was < 0 AND mon_culprit < 0;
-    mon_judge := mon_judge AND mon_jtake < 0;    (* (st97b) the C judges without the jumper *)
     mon_judge := mon_judge AND mon_count + 1 >= MON_CONFIRM;
     mon_reach := FALSE;
     mon_zbest := -1.0;
@@ -759,33 +712,20 @@ IF MON_STEP_JUDGE AND NOT mon_lost THEN
                     mon_take := mon_sensor;
                 END_IF;
             END_IF;
-            IF mon_jtake >= 0 THEN
-                (* (st97b) the jumper, its set judged as a BLIND_OUT's *)
-                mon_take := mon_jtake;
-                mon_take_set := MON_JUMP_SET[mon_jtake];
-            END_IF;
             IF mon_take >= 0 AND NOT mon_lost THEN
                 (* (st95b) out alone, as a drift exclusion is: its wait the window doubled at *)
-                (* each exclusion of it by judgement (at most MON_MAX_BACKOFF times); (st97b) *)
-                (* a jump's the wait of its last such exclusion, not counted (the C's dwell) *)
+                (* each exclusion of it by judgement (at most MON_MAX_BACKOFF times) *)
                 mon_held := mon_take;
                 mon_held_set := mon_take_set;
-                mon_jheld := mon_jtake >= 0;
-                mon_hval := mon_d[mon_take];    (* its last reading in (the C's last) *)
                 mon_calm := 0;
                 mon_run_was := 0;
                 mon_dwell := MON_WINDOW;
-                mon_doubles := mon_field_outs[mon_take];
-                IF mon_jheld THEN
-                    mon_doubles := mon_doubles - 1;
-                ELSE
-                    mon_field_outs[mon_take] := mon_field_outs[mon_take] + 1;
-                END_IF;
-                FOR mr := 1 TO mon_doubles DO
+                FOR mr := 1 TO mon_field_outs[mon_take] DO
                     IF mr <= MON_MAX_BACKOFF THEN
                         mon_dwell := mon_dwell * 2;
                     END_IF;
                 END_FOR;
+                mon_field_outs[mon_take] := mon_field_outs[mon_take] + 1;
             END_IF;
             mon_set := mon_held_set;
             mon_go := mon_held >= 0 AND mon_held_set >= 0 AND NOT mon_lost;
@@ -888,7 +828,7 @@ IF MON_STEP_JUDGE AND NOT mon_lost THEN
                     IF mon_off < 0.0 THEN
                         mon_off := -mon_off;
                     END_IF;
-                    IF (mon_was >= 0 OR mon_jtake >= 0) AND MON_OUT_SCALE[mon_set, mk] > 0.0 THEN
+                    IF mon_was >= 0 AND MON_OUT_SCALE[mon_set, mk] > 0.0 THEN
                         IF mon_x >= MON_OUT_ALARM[mon_set, mk] AND mon_off >= MON_OUT_ALARM[mon_set, mk] THEN
                             mon_ok := FALSE;
                         END_IF;
@@ -910,9 +850,6 @@ IF MON_STEP_JUDGE AND NOT mon_lost THEN
         (* on every row of the window, with every sensor in, its error within MON_BACK_BAND *)
         (* (st96: one out by BLIND_OUT, every judged sensor's within its warning band) *)
         mon_calm := mon_calm + 1;
-        IF mon_again THEN
-            mon_calm := 0;    (* (st97b) the jumper held jumped again: its calm from here *)
-        END_IF;
         IF mon_calm >= mon_dwell AND mon_count + 1 >= MON_WINDOW AND mon_run = 0 THEN
             mon_ok := TRUE;
             FOR mr := 0 TO MON_WINDOW - 1 DO
@@ -922,9 +859,6 @@ IF MON_STEP_JUDGE AND NOT mon_lost THEN
                     IF mon_held_set >= 0 THEN
                         mon_ev := MON_SCALE[mk] > 0.0;
                         mon_lim := MON_WARN[mk];
-                    END_IF;
-                    IF mon_jheld THEN
-                        mon_ev := FALSE;    (* (st97b) a jumper no other predicts: back at once *)
                     END_IF;
                     IF mon_ev THEN
                         mon_x := 0.0;
@@ -941,45 +875,11 @@ IF MON_STEP_JUDGE AND NOT mon_lost THEN
                     END_IF;
                 END_FOR;
             END_FOR;
-            IF mon_ok AND mon_jheld THEN
-                (* (st97b) the C's _undone: its jumps undone (its reference before the first) *)
-                (* where it jumped more than once or that reading is nearer the one it held *)
-                mk := mon_was;
-                j := MON_INPUT[mk];
-                mon_off := mon_shift[j] - mon_shift0;
-                mon_x := mon_d[mk] + mon_off - mon_hval;
-                IF mon_x < 0.0 THEN
-                    mon_x := -mon_x;
-                END_IF;
-                mon_lim := mon_d[mk] - mon_hval;
-                IF mon_lim < 0.0 THEN
-                    mon_lim := -mon_lim;
-                END_IF;
-                IF mon_jcount > 1 OR mon_x < mon_lim THEN
-                    mon_shift[j] := mon_shift0;
-                    mon_d[mk] := mon_d[mk] + mon_off;
-                    FOR mr := 0 TO MON_WINDOW - 1 DO
-                        mon_ring[mr, mk] := mon_ring[mr, mk] + mon_off;
-                    END_FOR;
-                    FOR mr := 0 TO 2 * MON_WINDOW - 1 DO
-                        mon_settle_ring[mr, mk] := mon_settle_ring[mr, mk] + mon_off;
-                    END_FOR;
-                    mon_sage[mk] := 1;
-                END_IF;
-                mon_out[mk] := FALSE;
-                mon_rerefd[mk] := FALSE;
-                mon_jheld := FALSE;
-            END_IF;
             IF mon_ok THEN
                 mon_held := -1;
             END_IF;
         END_IF;
     END_IF;
-END_IF;
-(* (st97b) the input the model reads held at its last reading (a jumper held out), -1 none *)
-mon_hold_in := -1;
-IF mon_jheld AND mon_held >= 0 THEN
-    mon_hold_in := MON_INPUT[mon_held];
 END_IF;
 (* a return is stepped from the last reading, over the samples it spans *)
 FOR mk := 0 TO MON_N - 1 DO
