@@ -130,9 +130,9 @@ import numpy as np
 
 HERE = Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE), str(HERE.parent / "tests" / "shell"), str(HERE.parent / "tests")]
-import bench_st93  # noqa: E402
 import bench_st94  # noqa: E402
 import bench_st95  # noqa: E402
+import bench_st95b  # noqa: E402
 import bench_st96  # noqa: E402
 import bench_st96b  # noqa: E402
 from _cli import run_commands  # noqa: E402
@@ -244,12 +244,11 @@ def held(root: str, *records: str) -> None:
 
 
 def fresh(root: str, *chosen: str) -> None:
-    """``trace`` and ``held`` on :data:`FRESH` (module doc), each record made once."""
-    def both(root, record):
-        trace(root, record)       # (bench_st96's: bench_st93's planted kinds too)
-        held(root, record)
-
-    bench_st93.fresh(root, *chosen, records=FRESH, traced=both)
+    """``trace`` and ``held`` on :data:`FRESH` (module doc), each record made once: bench_st95b's
+    ``fresh`` with this bench's records, trace (bench_st96's: bench_st93's planted kinds too) and
+    ``held`` for its frame."""
+    bench_st95b.trace, bench_st95b.frame, bench_st95b.FRESH = trace, held, FRESH
+    bench_st95b.fresh(root, *chosen)
 
 
 def main(argv: list[str]) -> int:
