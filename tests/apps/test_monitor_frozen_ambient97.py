@@ -76,3 +76,21 @@ def test_the_exported_monitor_takes_it_out_as_served_and_an_older_export_does_no
 def test_a_noiseless_logger_does_not_dither_and_is_judged_as_before():
     mon = _monitor(noise=0.0, quantum=0.1)
     assert not mon.dithered.any() and np.isinf(mon._dither_run).all()
+
+
+def test_a_monitor_pickled_before_the_rule_keeps_its_last_steps_and_judges_as_before():
+    """A monitor pickled after step93, before mon97 (no ``dithered``): loaded, its last one-sample
+    steps mid-stream are kept (the bend test reads them) and no freeze is judged by the run alone."""
+    import pickle
+
+    mon = _monitor()
+    record = _record(frozen=True)
+    for i, row in enumerate(record[:AT]):
+        mon.update(row, float(i))
+    state = {k: v for k, v in mon.__dict__.items() if k not in ("dithered", "_dither_run")}
+    old = SensorMonitor.__new__(SensorMonitor)
+    old.__setstate__(pickle.loads(pickle.dumps(state)))
+    np.testing.assert_array_equal(old._last_step, mon._last_step)
+    assert np.isfinite(old._last_step).all()
+    events = [e for i, row in enumerate(record[AT:], AT) for e in old.update(row, float(i))[1]]
+    assert not [e for e in events if e["to"] == "excluded" and e["sensor"] == "T_amb"]

@@ -112,10 +112,10 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion, Settled):
         if "max_bend_c" not in state:  # pickled before step93: no step judged by its bend
             self.max_bend_c = np.full(len(self.names), np.inf)
             self._bend_lim, self._bends = self.max_bend_c.copy(), False
+            self._last_step = np.full(len(self.names), np.nan)
         if "dithered" not in state:    # pickled before mon97: a predicted sensor's freeze by the field
             self.dithered = np.zeros(len(self.names), dtype=bool)
             self._dither_run = np.full(len(self.names), np.inf)
-            self._last_step = np.full(len(self.names), np.nan)
         if "max_settle_c" not in state:   # pickled before jump94b: no level shift judged
             self.max_settle_c = np.full(len(self.names), np.inf)
             self._set_settle_lim()
