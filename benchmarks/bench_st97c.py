@@ -27,7 +27,11 @@ mismatch -> 0; dl9768 / 9790-9794 / 9820-9822 / 9824's tables (bench_st97b fresh
 unchanged but for those cases; healthy frames 0 false.  No fresh seed is drawn in this task.
 
 Results (2026-12-06, 2 cores shared by up to 8 helpers; lr9823 rebuilt into /tmp/st97c by
-bench_st97b's ``fresh ROOT lr9823``; main's src, 8ee16d2b).  ``ended lr9823`` (4321 fed rows, 3457
+bench_st97b's ``fresh ROOT lr9823``, 38.6 s CPU, which on 8ee16d2b's src printed st97b's lr9823
+again: bent 10/3/0/1/10 with the same 3 mismatch rows, pair 91 agree, healthy false 0, max|ST-C|
+before the C's first event (380) 9.59e-14 µm, 0 holds of st97b's class; its planted freeze ``other``
+14 where st97b printed 6 on 02b2e099, misses 0 false 0 both: the served monitor's src changed
+between them, not looked into).  ``ended lr9823`` (4321 fed rows, 3457
 lead-in; window 10, confirm 2, exclude_level 1 (warning band), min_active 10, new_state_others 2;
 14 monitored, all in; 12.0 s CPU)::
 
