@@ -147,6 +147,13 @@ replay = promo = C = cold = pcold = Craw = mon in every cell, clamp = guard = 0,
   mlr-ati     1.945723   137.8   (= mlr-none to every digit: two levels 0.3 K apart)
   pcr-none    3.859651   131.4
   pcr-ati     3.859651    66.9   (run ... st, onnx; its export c killed by me: not scored)
+  hammerstein-none  1.900243  239.6  C = cold = pcold = Craw 1.384218 (dC 0.516: see below)
+
+hammerstein-none's ``C`` is the cold start (bench_deploy88 feeds the C the chain the manifest's
+``continues`` column names; trunnion's manifest has none, the reader chains W1-W3 by time: the
+cold start, as bench_audit91's ``pack_warm`` says of the fleet); its check pack, which feeds the
+chain, exits 0 (C = the served warm corrections to 1e-9 µm).  The warm start, deployed as scored,
+is 37 % worse than the cold one here (1.900 against 1.384 µm): left for the lead.
 
 P1, in a clone on tr9827's record: the 4 jobs exit 0 (890.6 s wall); simulation-mode validation
 mean mlr 1.14686 (both modes), arx 1.14729; promote put a15fc47d (mlr, eval.mode=simulation)
