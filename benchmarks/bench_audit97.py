@@ -90,7 +90,7 @@ promote's figure per target from a mean (None): it prints the mean now.  ``fault
 kelvin lines share bench_audit96's ``first_flags`` (a refactor after the run, the same text), and
 ``kelvin`` prints the corrections of some rows (what ``/tmp/audit97/kelvin_trace.py`` printed).
 
-Scored (2026-12-06, 06:13-07:20 UTC; b77996ba's src (the bench's commit a2dd81c0) but where said;
+Scored (2026-12-06, 06:13-07:37 UTC; b77996ba's src (the bench's commit a2dd81c0) but where said;
 2 cores shared by up to 8 helpers, load 12-19, every job ``nice``):
 
 R1 (clone of a2dd81c0, shims on the shared venv): every block exit 0 and its words printed but two.
@@ -148,6 +148,10 @@ replay = promo = C = cold = pcold = Craw = mon in every cell, clamp = guard = 0,
   pcr-none    3.859651   131.4
   pcr-ati     3.859651    66.9   (run ... st, onnx; its export c killed by me: not scored)
   hammerstein-none  1.900243  239.6  C = cold = pcold = Craw 1.384218 (dC 0.516: see below)
+  hammerstein-ati   1.900243  231.2  (= hammerstein-none to every digit)
+  arx_rf-none       1.671971  592.7  (dC 2.2e-16; arx_rf-ati stopped by me at the deadline)
+
+lagbank, lstm and auto were not reached (stopped 07:37 UTC, the deadline's half hour past).
 
 hammerstein-none's ``C`` is the cold start (bench_deploy88 feeds the C the chain the manifest's
 ``continues`` column names; trunnion's manifest has none, the reader chains W1-W3 by time: the
