@@ -455,8 +455,6 @@ def drift_case(root: Path, record: str) -> None:
     """The slow drift (module doc), bench_audit95's columns."""
     from bench_cmon92 import faulted_cell
 
-    from thermocomp.apps.deploy.export.watch import RULES
-
     deployed, ss, frame, lead, start, cid = faulted_cell(root, record, "mlr-none")
     names = list(deployed.monitor.names)
     sensor = next(n for n, p in zip(names, deployed.monitor._predictable) if p)
@@ -464,6 +462,15 @@ def drift_case(root: Path, record: str) -> None:
     part = frame.iloc[start:].copy()
     part[sensor] += DRIFT_K_PER_H * period / 3600.0 * np.arange(1, len(part) + 1)
     rows = bench_audit95._stepped(deployed, ss, pd.concat([frame.iloc[:start], part]))[start:]
+    print(f"  drift   {sensor} +{DRIFT_K_PER_H} K/h ({period:g} s rows, {len(part)} rows): served "
+          f"flags at fault row {first_flags(rows, names)}", flush=True)
+
+
+def first_flags(rows: list[tuple], names: list[str]) -> str:
+    """Where the served monitor and the C's watch first flag over ``rows`` (bench_audit95's
+    ``_stepped`` columns first), what they name, and max |C - served| before and after."""
+    from thermocomp.apps.deploy.export.watch import RULES
+
     s_at = next((i for i, r in enumerate(rows) if r[1]), None)
     c_at = next((i for i, r in enumerate(rows) if r[2]), None)
     first = min(x for x in (s_at, c_at, len(rows)) if x is not None)
@@ -471,10 +478,9 @@ def drift_case(root: Path, record: str) -> None:
             if s_at is not None else "-")
     c_said = (f"{names[rows[c_at][3]] if rows[c_at][3] >= 0 else '-'} {RULES[rows[c_at][2]]}"
               if c_at is not None else "-")
-    print(f"  drift   {sensor} +{DRIFT_K_PER_H} K/h ({period:g} s rows, {len(part)} rows): served "
-          f"flags at fault row {s_at} {said}; C at {c_at} {c_said}; max|C - served| before "
-          f"{max((r[0] for r in rows[:first]), default=0.0):.3g} µm; after "
-          f"{max(r[0] for r in rows):.3g} µm", flush=True)
+    return (f"{s_at} {said}; C at {c_at} {c_said}; max|C - served| before "
+            f"{max((r[0] for r in rows[:first]), default=0.0):.3g} µm; after "
+            f"{max(r[0] for r in rows):.3g} µm")
 
 
 def faults(root: str, record: str = "sw9776") -> None:

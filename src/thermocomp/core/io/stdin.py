@@ -625,7 +625,7 @@ def stream_stamps(time: pd.Series, time_format: str = "auto", zone: str | None =
     found = first_cast_failure(text, target, kind)
     if found is not None:
         row, value = found
-        raise ContractError(f"value {value!r} is not {described(target, kind)} (data.time="
+        raise ContractError(f"value {value!r} is not {described(target, kind, value)} (data.time="
                             f"{time_format}: the stream's first row is a timestamp)",
                             file=SOURCE, column=TIME, row=row + 1)
     stamps = pc.cast(parsed(text, target, kind), pa.int64())

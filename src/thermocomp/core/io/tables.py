@@ -225,9 +225,11 @@ def _typed_columns(path: Path, header: list[str], first_row: list[str], opts: Re
             types[TIME] = pa.string()     # (h:mm:ss, a date with slashes: the column tells)
         else:
             opts = _timed(path, first, opts, header[names.index(TIME)])
-            # (a second's fraction Arrow does not read, 13:05:00,500: read as text, parsed here)
-            types[TIME] = pa.string() if unread_fraction(first, opts.time) else time_type(
-                opts.time, first)
+            # (a second's fraction Arrow does not read, 13:05:00,500, and (audit97) a date in a
+            # strptime format, whose day 31 of February Arrow's reader reads as March 3: read as
+            # text, parsed and checked here)
+            types[TIME] = pa.string() if unread_fraction(first, opts.time) or is_format(
+                opts.time) else time_type(opts.time, first)
     # a state written as an on/off flag ('true' / 'false'): read as such, then as 1 / 0
     flags = [n for n in types if role(n) == "S" and is_flag(first_row[names.index(n)])]
     types.update(dict.fromkeys(flags, pa.bool_()))
@@ -428,7 +430,7 @@ def _stamps(text, path: Path, opts: ReadOptions, what: str = ""):
     target = time_type(kind, value)
     found = first_cast_failure(text, target, kind)
     if found is not None:
-        raise ContractError(f"value {found[1]!r}{what} is not {_describe(target, kind)}",
+        raise ContractError(f"value {found[1]!r}{what} is not {_describe(target, kind, found[1])}",
                             file=path, column=TIME, row=found[0] + 1)
     return parsed(text, target, kind)
 
@@ -741,8 +743,8 @@ def _casts(values, target: pa.DataType, kind: str = "seconds") -> bool:
     return True
 
 
-def _describe(target: pa.DataType, kind: str = "seconds") -> str:
-    return described(target, kind) if pa.types.is_timestamp(target) else "a number"
+def _describe(target: pa.DataType, kind: str = "seconds", value=None) -> str:
+    return described(target, kind, value) if pa.types.is_timestamp(target) else "a number"
 
 
 # ---------------------------------------------------------------------------

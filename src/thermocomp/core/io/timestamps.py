@@ -540,10 +540,43 @@ def _strptime(values, kind: str):
     added to them: Arrow's strptime reads none."""
     fraction = pc.struct_field(pc.extract_regex(values, FRACTION), "f")
     whole = pc.replace_substring_regex(values, r"(\d:\d\d:\d\d)[.,:]\d{1,9}", r"\1")
-    stamps = pc.strptime(whole, format=re.sub(r"[.,:]%f", "", kind), unit="ns",
-                         error_is_null=False)
+    form = re.sub(r"[.,:]%f", "", kind)
+    stamps = pc.strptime(whole, format=form, unit="ns", error_is_null=False)
+    day = first_impossible_day(whole, stamps, form)
+    if day is not None:
+        raise pa.ArrowInvalid(f"no such day: {day!r}")
     ns = pc.fill_null(pc.cast(pc.utf8_rpad(fraction, 9, "0"), pa.int64()), 0)
     return pc.add(stamps, pc.cast(ns, pa.duration("ns")))
+
+
+def no_such_day(value: str, form: str) -> bool:
+    """``value`` names a day its month has not (``31.02.2027 04:19:00``) in the strptime
+    format ``form``: Python's strptime refuses it so, as the exported C does."""
+    try:
+        datetime.strptime(value.strip(), form)
+    except ValueError as exc:
+        return "out of range" in str(exc)
+    return False
+
+
+def first_impossible_day(text, stamps, form: str) -> str | None:
+    """The first cell of ``text`` that :func:`no_such_day` refuses, None where none does.
+    (audit97) Arrow's strptime reads day 29-31 of a shorter month as the next month's first
+    days (``31.02.2027`` as 2027-03-03), so a mistyped date was read as another and refused as
+    "time decreases ... sort them".  Only a cell read as day 1-3 whose stamp, written back in
+    ``form``, is not the cell may be one: a file's rows are not looked at one by one."""
+    seconds = pc.cast(stamps, pa.timestamp("s", stamps.type.tz), safe=False)
+    try:
+        back = pc.strftime(seconds, format=form)
+    except (pa.ArrowInvalid, pa.ArrowNotImplementedError):
+        back = None
+    near = pc.less_equal(pc.day(stamps), 3)
+    if back is not None:
+        near = pc.and_(near, pc.not_equal(back, text))
+    for value in pc.filter(text, pc.fill_null(near, False)).to_pylist():
+        if no_such_day(value, form):
+            return value
+    return None
 
 
 def unread_fraction(value: str, kind: str) -> bool:
@@ -566,9 +599,11 @@ def parsed(values, target: pa.DataType, kind: str):
     return pc.cast(values, target)
 
 
-def described(target: pa.DataType, kind: str) -> str:
-    """What a cell of a time column should have been."""
+def described(target: pa.DataType, kind: str, value=None) -> str:
+    """What a cell of a time column (``value``, where given) should have been."""
     if is_format(kind):
+        if value is not None and no_such_day(str(value), re.sub(r"[.,:]%f", "", kind)):
+            return f"a day of the calendar (its month has fewer days; data.time's format {kind!r})"
         return f"a time in data.time's format {kind!r}"
     zone = "with" if target.tz else "without"
     return (f"an ISO 8601 timestamp {zone} zone offset (like the first row; another format: "
