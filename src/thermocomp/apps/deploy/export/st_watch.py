@@ -241,6 +241,8 @@ def constants(watch: dict, literal, constant) -> list[str]:
 OUTPUTS = """    mon_flag : BOOL;
     mon_rule : INT;
     mon_sensor : INT;
+    mon_stop : BOOL;
+    mon_stop_row : INT;
 """
 
 VARS = """    mon_last : ARRAY[{nm}] OF LREAL;
@@ -328,9 +330,11 @@ BLOCK = """(* (st93) the sensor monitor's detection (the C's rules without the P
 mon_flag := FALSE;
 mon_rule := 0;
 mon_sensor := -1;
+mon_stop := FALSE;
 mon_gone := FALSE;
 IF first THEN
     mon_count := 0;
+    mon_stop_row := 0;
     mon_t_known := FALSE;
     FOR j := 0 TO N_INPUTS - 1 DO
         mon_shift[j] := 0.0;
@@ -703,6 +707,9 @@ IF MON_STEP_JUDGE AND NOT mon_lost THEN
         IF mb = MON_BLINDS THEN
             IF mon_reach AND mon_take_set < 0 THEN
                 mon_blind_lost := TRUE;    (* the C's lone fault, veto or new state: not here *)
+                (* (st97d) said, once, with its row: the block silent from here is not "healthy" *)
+                mon_stop := TRUE;
+                mon_stop_row := mon_count + 1;
             ELSIF mon_take_set >= 0 THEN
                 mon_flag := TRUE;
                 mon_lost := mon_rule <> 0;
