@@ -51,7 +51,11 @@ Per sample, of each monitored sensor ``k`` (the input ``MON_INPUT[k]``, the C's 
 
 ``mon_flag`` says the sample's fault, ``mon_rule`` its rule (the C's ``mon_rule`` codes, named
 by ``TC_MONITOR_REASONS``) and ``mon_sensor`` its monitored sensor ``k`` (-1: none): the first,
-in that order, as the C's ``tc_state`` names the sample's first event.
+in that order, as the C's ``tc_state`` names the sample's first event.  (st97d) ``mon_stop`` is
+TRUE on the one sample where the ``BLIND_OUT`` judgement ends for the campaign (the C's lone fault,
+veto or new thermal state, which the block does not follow), ``mon_stop_row`` that sample's
+number in the campaign (1 the first; 0 while it judges): said once, no fault flagged with it, so
+that the block's silence from there is not read as "healthy".
 
 What the block does then, without the POD that rebuilds a sensor in the C: a reading not
 measured or beyond the range refuses the sample (``refused``: ``c`` holds the last correction,
