@@ -47,6 +47,35 @@ fresh seed in this task)::
 4. Reported, not scored: on which healthy frames it stops, how often, and what the C does on that
    row (a new thermal state, a lone fault, a veto: st97c's classes).
 KEPT if 1-3 hold (with src, test and docs); REFUSED otherwise.
+
+Results (2026-12-06, 2 cores shared by up to 8 helpers; the bar unchanged since its commit
+c3930258, the rule not changed after it; the records made into /tmp/st97d by ``made``, 10.7 s
+CPU, lr9823 st97c's own).  KEPT: 1-3 hold.
+
+``stops`` on the 11 seen records, 17 healthy frames (cr: 3 test campaigns each; 118.4 s CPU)::
+
+    frame        rows  lost -> TRUE   mon_stop   C on that row                diff rows  C first  max|ST-C|
+    lr9823 R1b   4321  380            380        new state (flags 72, no rule)  0        380      9.59e-14
+    dl9821 R1b   7200  4544           4544       new state (flags 72, no rule)  0        607      1.14e-13
+    15 others          never          never      -                              0        -        <= 1.07e-13
+
+``mon_stop_row`` wrong on 0 rows of any frame (0 before the stop, its row from it on); false 0
+everywhere; dl9768 / lr9790's first C event and max|ST-C| as bench_st96 / st97b printed them
+(503, 9.24e-14; 3608, 1.07e-13).  Both stops are in the lead-in (lr9823: 3457 rows; dl9821: 5760)
+at a new thermal state the C declares on a healthy frame (NOVEL, no rule): the block arrives at
+the test campaign with its BLIND_OUT judgement ended, and now says so (``mon_stop_row`` 380 /
+4544); 2 of 17 healthy frames raise it, each once.  That is right as a status, not a fault: from
+that row the block does not judge what the C judges (st97c: lr9823's 3 bent mismatches follow).
+
+``cases`` (bent cases from the state at their start; 22.4 + 116.5 s CPU), 244 cases, every one with
+0 diff rows and 0 ``mon_stop`` rows (no stop inside a case; lr9823 / dl9821 start stopped,
+``mon_stop_row`` 380 / 4544), the classes a/m/o/n as on BASE: lr9823 7/3/4/10 (st97c's), lr9790
+2/4/0/14 (st97b's 4 ``apart`` counted mismatch here), dl9768 9/0/5/18, dl9791 3/7/3/7, cr9792
+1/0/0/23, lr9793 5/0/2/13, dl9794 1/4/0/11, lr9820 5/0/3/12, dl9821 5/0/3/16, cr9822 0/0/0/24,
+dl9824 6/0/0/14.
+
+Reported, not scored (st95b's seen lr9749 dl9750 cr9751 lr9752 dl9753, made and run after the
+others, 62.4 s CPU): 7 healthy frames, never stops, diff rows 0, false 0.
 """
 
 from __future__ import annotations
@@ -72,12 +101,13 @@ SEEN = ("dl9768", "lr9790", "dl9791", "cr9792", "lr9793", "dl9794",
 
 
 def generators() -> dict:
-    """The seen records' simulate words (bench_st96 / st96b / st97b's ``FRESH``)."""
+    """The seen records' simulate words (bench_st95b / st96 / st96b / st97b's ``FRESH``)."""
+    import bench_st95b
     import bench_st96
     import bench_st96b
     import bench_st97b
 
-    return {**bench_st96.FRESH, **bench_st96b.FRESH, **bench_st97b.FRESH}
+    return {**bench_st95b.FRESH, **bench_st96.FRESH, **bench_st96b.FRESH, **bench_st97b.FRESH}
 
 
 def base_block(deployed) -> str:
