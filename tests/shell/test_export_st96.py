@@ -21,10 +21,25 @@ START, RISE, HOLD, RISE_C = 600, 20, 30, 6.0    # a smooth bump of it, +6 °C fo
 PULSE = FAULT - 60           # then st95b's one-row step (2.9 x its largest training step)
 
 
-def _stepped(ss, block, frame):
-    """Per row: the block's corrections, ``(mon_flag, mon_rule, mon_sensor)`` and the sensor it
-    holds out (``mon_held``, -1 none; ``mon_lost``: its judgement ended); the C mirror's
-    corrections and ``(flags, rule, sensor)``."""
+def _held(v) -> int:
+    """The sensor the block holds out (``mon_held``, -1 none; -2 ``mon_lost``: its judgement ended)."""
+    return -2 if v["mon_lost"] else int(v["mon_held"])
+
+
+def bumped(frame, sensor: str):
+    """``frame`` with ``sensor`` bumped smoothly from ``START``: up ``RISE_C`` over ``RISE`` rows,
+    held ``HOLD`` rows, down again; and the bump's last row."""
+    df = frame.copy()
+    rise = RISE_C * (1 - np.cos(np.pi * np.arange(RISE) / RISE)) / 2
+    bump = np.concatenate([rise, np.full(HOLD, RISE_C), rise[::-1]])
+    df.loc[START:START + len(bump) - 1, sensor] += bump
+    return df, START + len(bump) - 1
+
+
+def _stepped(ss, block, frame, kept=_held):
+    """Per row: the block's corrections, ``(mon_flag, mon_rule, mon_sensor)`` and what ``kept``
+    reads of its memory (default :func:`_held`); the C mirror's corrections and ``(flags, rule,
+    sensor)``."""
     fb, sim = StructuredText(block), Simulator(ss)
     sim.reset()
     st, st_said, held, c, c_said = [], [], [], [], []
@@ -32,7 +47,7 @@ def _stepped(ss, block, frame):
         st.append(fb(u, t, i == 0))
         v = fb.vars
         st_said.append((bool(v["mon_flag"]), int(v["mon_rule"]), int(v["mon_sensor"])))
-        held.append(-2 if v["mon_lost"] else int(v["mon_held"]))
+        held.append(kept(v))
         c.append(sim.step(u, t))
         c_said.append((int(sim.watch.flags) & ~BAND, int(sim.watch.rule), int(sim.watch.sensor)))
     return np.array(st), st_said, held, np.array(c), c_said
@@ -41,15 +56,12 @@ def _stepped(ss, block, frame):
 def test_the_block_takes_out_a_blind_sensor_as_the_c_and_follows_its_back(record):  # noqa: F811
     deployed, ss, frame, block = record
     k = [ss.inputs[i] for i in ss.monitor["inputs"]].index(BLIND)
-    df = frame.copy()
-    rise = RISE_C * (1 - np.cos(np.pi * np.arange(RISE) / RISE)) / 2
-    bump = np.concatenate([rise, np.full(HOLD, RISE_C), rise[::-1]])
-    df.loc[START:START + len(bump) - 1, BLIND] += bump
+    df, end = bumped(frame, BLIND)
     df.loc[PULSE:PULSE, BLIND] += 2.9 * float(deployed.monitor.max_step_c[k])
     st, st_said, held, c, c_said = _stepped(ss, block, df.iloc[:FAULT])
     # the C's first event: BLIND_OUT of the bumped sensor (it explains the others' errors)
     out = next(i for i, s in enumerate(c_said) if s[1])
-    assert START < out < START + len(bump) and c_said[out][0] & EXCLUDED
+    assert START < out <= end and c_said[out][0] & EXCLUDED
     assert c_said[out][1:] == (BLIND_OUT, k)
     assert np.max(np.abs(st[:out] - c[:out])) <= TOLERANCE_UM
     # the block names it at its row (before st96: nothing) and holds it out

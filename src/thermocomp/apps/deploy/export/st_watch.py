@@ -51,7 +51,11 @@ Per sample, of each monitored sensor ``k`` (the input ``MON_INPUT[k]``, the C's 
 
 ``mon_flag`` says the sample's fault, ``mon_rule`` its rule (the C's ``mon_rule`` codes, named
 by ``TC_MONITOR_REASONS``) and ``mon_sensor`` its monitored sensor ``k`` (-1: none): the first,
-in that order, as the C's ``tc_state`` names the sample's first event.
+in that order, as the C's ``tc_state`` names the sample's first event.  (st97d) ``mon_stop`` is
+TRUE on the one sample where the ``BLIND_OUT`` judgement ends for the campaign (the C's lone fault,
+veto or new thermal state, which the block does not follow), ``mon_stop_row`` that sample's
+number in the campaign (1 the first; 0 while it judges): said once, no fault flagged with it, so
+that the block's silence from there is not read as "healthy".
 
 What the block does then, without the POD that rebuilds a sensor in the C: a reading not
 measured or beyond the range refuses the sample (``refused``: ``c`` holds the last correction,
@@ -241,6 +245,8 @@ def constants(watch: dict, literal, constant) -> list[str]:
 OUTPUTS = """    mon_flag : BOOL;
     mon_rule : INT;
     mon_sensor : INT;
+    mon_stop : BOOL;
+    mon_stop_row : INT;
 """
 
 VARS = """    mon_last : ARRAY[{nm}] OF LREAL;
@@ -328,9 +334,11 @@ BLOCK = """(* (st93) the sensor monitor's detection (the C's rules without the P
 mon_flag := FALSE;
 mon_rule := 0;
 mon_sensor := -1;
+mon_stop := FALSE;
 mon_gone := FALSE;
 IF first THEN
     mon_count := 0;
+    mon_stop_row := 0;
     mon_t_known := FALSE;
     FOR j := 0 TO N_INPUTS - 1 DO
         mon_shift[j] := 0.0;
@@ -703,6 +711,9 @@ IF MON_STEP_JUDGE AND NOT mon_lost THEN
         IF mb = MON_BLINDS THEN
             IF mon_reach AND mon_take_set < 0 THEN
                 mon_blind_lost := TRUE;    (* the C's lone fault, veto or new state: not here *)
+                (* (st97d) said, once, with its row: the block silent from here is not "healthy" *)
+                mon_stop := TRUE;
+                mon_stop_row := mon_count + 1;
             ELSIF mon_take_set >= 0 THEN
                 mon_flag := TRUE;
                 mon_lost := mon_rule <> 0;

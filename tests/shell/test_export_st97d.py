@@ -1,0 +1,44 @@
+"""The Structured Text block says, once and with its row, where its ``BLIND_OUT`` judgement ends
+for the campaign (st97d, issue 34): ``mon_stop`` TRUE on that sample, ``mon_stop_row`` its number
+from there on (0 while it judges).  Before st97d the judgement ended without a word
+(``mon_blind_lost``, internal) and the block, silent from there, read as "all healthy" where the
+C went on naming faults.
+
+lr9132 (``thermocomp simulate sim=long_record``, seed 9132, 3 days), MLR deployed adaptive with
+``data.reference=none``, its first 670 fed rows (tests/shell/test_export_st94.py's fixture;
+benchmarks/bench_st97d.py measures the rule on the seen records)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from test_export import TOLERANCE_UM
+from test_export_st94 import record  # noqa: F401 (the module's fixture)
+from test_export_st96 import START, _stepped, bumped
+from thermocomp.apps.deploy.export.watch import DRIFT_OUT, EXCLUDED, OUT
+
+DRIFTED = "T_head_left"      # one the others predict (lr9132): its drift is the C's lone fault
+
+
+def _stop(v) -> tuple:
+    """``(mon_stop, mon_stop_row, mon_blind_lost)``."""
+    return bool(v["mon_stop"]), int(v["mon_stop_row"]), bool(v["mon_blind_lost"])
+
+
+def test_the_block_says_once_with_its_row_where_its_blind_out_judgement_ends(record):  # noqa: F811
+    _, ss, frame, block = record
+    k = [ss.inputs[i] for i in ss.monitor["inputs"]].index(DRIFTED)
+    # a drift of a sensor the others predict: the C takes it out (its lone fault), which the
+    # block does not follow: its BLIND_OUT judgement ends on that row, and it says so there
+    df, end = bumped(frame, DRIFTED)
+    # healthy: the judgement never ends, nothing said
+    assert set(_stepped(ss, block, frame.iloc[:end + 1], _stop)[2]) == {(False, 0, False)}
+    st, st_said, stop, c, c_said = _stepped(ss, block, df.iloc[:end + 1], _stop)
+    out = next(i for i, s in enumerate(c_said) if s[1])
+    assert START < out <= end and c_said[out] == (EXCLUDED | OUT, DRIFT_OUT, k)
+    assert np.max(np.abs(st[:out] - c[:out])) <= TOLERANCE_UM
+    assert stop[:out] == [(False, 0, False)] * out
+    assert stop[out] == (True, out + 1, True)             # the row, 1-based, as the campaign's
+    assert stop[out + 1:] == [(False, out + 1, True)] * (len(stop) - out - 1)    # once
+    # the status is all it says there: no fault flagged on that row (the C's is not the block's)
+    assert st_said[out] == (False, 0, -1)
