@@ -321,7 +321,7 @@ def test_a_record_that_is_not_there_is_named(tmp_path, capsys):
 def test_the_deployed_model_takes_the_labs_names_of_columns_it_did_not_convert(tmp_path):
     from omegaconf import OmegaConf
 
-    from thermocomp.apps.deploy.naming import lab_names
+    from thermocomp.core.io.own_headers import lab_names
 
     t = np.arange(30) * 10.0
     pd.DataFrame({"t(s)": t, "X(mm)": t / 1e4, "Y(um)": t, "a(°C)": 20 + t / 100,

@@ -90,8 +90,8 @@ def test_the_served_model_reads_a_labs_wall_clock_times_as_replay_does(tmp_path)
     import mlflow
     from mlflow.exceptions import MlflowException
 
-    from thermocomp.apps.deploy.naming import lab_names
     from thermocomp.apps.deploy.pyfunc import save_compensator
+    from thermocomp.core.io.own_headers import lab_names
 
     runs = _runs(3)
     for k, run in enumerate(runs):

@@ -35,9 +35,9 @@ def _lab_folder(root, runs: int = 6):
 
 def test_the_served_model_reads_the_time_under_each_name_the_labs_runs_gave_it(tmp_path):
     from thermocomp.apps.deploy import StreamingCompensator
-    from thermocomp.apps.deploy.naming import lab_names
     from thermocomp.apps.deploy.pyfunc import CompensatorModel
     from thermocomp.core.io import read_dataset
+    from thermocomp.core.io.own_headers import lab_names
     from thermocomp.shell.model_store import load_model
 
     folder = _lab_folder(tmp_path / "lab")

@@ -138,12 +138,13 @@ def build_adaptive(cfg: DictConfig, streaming, train: dict, ds=None):
 def deployable(cfg: DictConfig, streaming, train: dict, ds=None):
     """What ``promote`` registers and ``replay`` streams: the adaptive compensator around
     ``streaming`` when ``monitor.adaptive`` (default), else ``streaming`` itself; it reads
-    the lab's column names too (:func:`~thermocomp.apps.deploy.naming.lab_names`) and learns from
+    the lab's column names too (:func:`~thermocomp.core.io.own_headers.lab_names`) and learns from
     reference measurements as ``adapt.*`` says (``adapt_``)."""
     from ..apps.deploy.adapt import from_config as adapt_from_config
-    from ..apps.deploy.naming import lab_names, lab_units
+    from ..apps.deploy.naming import lab_units
     from ..core.io.bits import parsed as parsed_bits
     from ..core.io.derived import parsed as parsed_derive
+    from ..core.io.own_headers import lab_names
 
     deployed = build_adaptive(cfg, streaming, train, ds) if bool(cfg.monitor.adaptive) else streaming
     deployed.lab_names_ = lab_names(cfg, ds)

@@ -2,7 +2,7 @@
 
 A record read with ``data.columns`` (``{raw: contract}``, e.g. ``{T0: T_0, "delta L": E_L}``)
 is modelled under contract names; the machine that calls the deployed model
-still sends its logger's names.  The model keeps :func:`lab_names` and reads
+still sends its logger's names.  The model keeps ``lab_names`` (core.io.own_headers) and reads
 any name of a column (:func:`to_contract`): a record whose runs came from two loggers may
 name one column two ways (``Zeit [s]`` and ``Zeit``), and each is that column.  A header whose
 unit sits in a unit row under it is named by the reader with the unit joined (``Temperatura
@@ -19,8 +19,6 @@ import pandas as pd
 
 from ...base.errors import ContractError
 from ...core.io.layout import bare_header
-from ...core.io.roles import RUN
-from ...core.io.timestamps import CLOCK
 
 CORRECTION_PREFIX = "C_"
 
@@ -30,44 +28,17 @@ def correction_column(target: str) -> str:
     return CORRECTION_PREFIX + (target[2:] if target.startswith("E_") else target)
 
 
-def lab_names(cfg, ds=None) -> dict[str, list[str]]:
-    """``{contract name: the lab's raw names}``: the one place that knows how a record's
-    headers map to contract names -- as the dataset ``ds`` was read (``data.columns`` and
-    ``data.roles``, :func:`thermocomp.core.io.roles.contract_columns`, every campaign's
-    headers), else ``data.columns``.  A column read in another unit (``ch1(mm)`` -> ``E_ch1``
-    in µm) is left out: under the lab's name it would carry the lab's unit, so the model takes
-    it by its contract name only.  The run-number column of a long file
-    (``data.roles.campaign``, ``ds.meta["run_column"]``) comes under :data:`RUN`: a stream of
-    the lab's file starts a campaign at each of its values (the exported code, a model from
-    the registry too, which has no dataset to ask); a time of day joined to the date
-    (``data.roles.time: [date, time]``, found by ``auto`` too) under :data:`CLOCK`."""
-    columns = dict(cfg.data.get("columns") or {})
-    converted = set()
-    if ds is not None:
-        columns.update(ds.meta.get("column_map") or {})
-        converted = set(ds.meta.get("converted") or ())
-        if ds.meta.get("run_column"):
-            columns[ds.meta["run_column"]] = RUN
-        if ds.meta.get("time_of_day"):     # joined to the date: what export refuses by name
-            columns[ds.meta["time_of_day"]] = CLOCK
-    names: dict[str, list[str]] = {}
-    for raw, contract in columns.items():
-        if str(raw) != str(contract) and str(contract) not in converted:
-            names.setdefault(str(contract), []).append(str(raw))
-    return names
-
-
 def lab_units(ds=None) -> dict[str, list]:
     """``{the lab's header: [contract name, scale, offset]}`` of the columns ``ds`` was read in
     another unit (``data.units``, a unit in the header: mm, nm, °F, K, min), which
-    :func:`lab_names` leaves out: the exported ``stream.c`` reads them as the lab wrote them
+    ``lab_names`` leaves out: the exported ``stream.c`` reads them as the lab wrote them
     and converts each cell (``value * scale + offset``) as the reader did.  The served model
     takes such a column by its contract name only."""
     return dict((ds.meta.get("lab_units") or {}) if ds is not None else {})
 
 
 def raw_names(names: Mapping, contract: str) -> list[str]:
-    """The lab's names of ``contract`` in ``names`` (:func:`lab_names`; a model pickled before
+    """The lab's names of ``contract`` in ``names`` (``lab_names``; a model pickled before
     a column could have several holds one name as a string)."""
     raws = names.get(contract, [])
     return [raws] if isinstance(raws, str) else list(raws)
@@ -76,7 +47,7 @@ def raw_names(names: Mapping, contract: str) -> list[str]:
 def bare_names(names: Mapping, converted: Mapping | None = None
                ) -> tuple[dict[str, list[str]], dict[str, list[str]]]:
     """``({contract name: its headers' bare forms}, {bare form: the headers it may be})`` of
-    ``names`` (:func:`lab_names`) and ``converted`` (:func:`lab_units`, read in another unit):
+    ``names`` (``lab_names``) and ``converted`` (:func:`lab_units`, read in another unit):
     the header ``Temperatura ambiente [°C]`` is also ``Temperatura ambiente``, as the lab's
     logger writes it above its unit row (:func:`~thermocomp.core.io.layout.bare_header`).  A
     name that is some column's header or contract name as it is stays that column's; a bare
@@ -106,7 +77,7 @@ def bare_names(names: Mapping, converted: Mapping | None = None
 def accepted_names(names: Mapping, converted: Mapping | None = None
                    ) -> tuple[dict[str, list[str]], dict[str, list[str]]]:
     """``({contract name: every name the model takes it by}, {bare form: the headers it may
-    be})``: ``names`` (:func:`lab_names`) with the bare forms :func:`bare_names` finds certain,
+    be})``: ``names`` (``lab_names``) with the bare forms :func:`bare_names` finds certain,
     and those it does not (to refuse by name).  A refusal of a lacking column names the lab's
     headers as the reader named them (``names``: the joined form, stranger74)."""
     bare, unsure = bare_names(names, converted)
@@ -115,7 +86,7 @@ def accepted_names(names: Mapping, converted: Mapping | None = None
 
 def to_contract(frame: pd.DataFrame, names: Mapping, converted: Mapping | None = None
                 ) -> pd.DataFrame:
-    """``frame`` with the lab's names of ``names`` (:func:`lab_names`; bare or with the unit
+    """``frame`` with the lab's names of ``names`` (``lab_names``; bare or with the unit
     row's unit joined, :func:`accepted_names`) renamed to contract names; a frame may use one
     name of a column, not two (two columns for one input), nor a bare name two columns share."""
     if not names:

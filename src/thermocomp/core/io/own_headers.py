@@ -9,9 +9,10 @@ import re
 from collections.abc import Mapping
 
 from .contract import ContractError
-from .roles import header_pattern
+from .roles import RUN, header_pattern
+from .timestamps import CLOCK
 
-__all__ = ["as_named", "header_pattern", "with_own_header"]
+__all__ = ["as_named", "header_pattern", "lab_names", "with_own_header"]
 
 _QUOTED = re.compile(r"'([^']+)'")
 
@@ -48,3 +49,30 @@ def named_one(column: str, names: Mapping) -> str:
     raws = names.get(column) or []
     raws = [raws] if isinstance(raws, str) else list(raws)
     return " or ".join(map(repr, raws)) + f" (read as {column})" if raws else repr(column)
+
+
+def lab_names(cfg, ds=None) -> dict[str, list[str]]:
+    """``{contract name: the lab's raw names}``: the one place that knows how a record's
+    headers map to contract names -- as the dataset ``ds`` was read (``data.columns`` and
+    ``data.roles``, :func:`thermocomp.core.io.roles.contract_columns`, every campaign's
+    headers), else ``data.columns``.  A column read in another unit (``ch1(mm)`` -> ``E_ch1``
+    in µm) is left out: under the lab's name it would carry the lab's unit, so the model takes
+    it by its contract name only.  The run-number column of a long file
+    (``data.roles.campaign``, ``ds.meta["run_column"]``) comes under :data:`RUN`: a stream of
+    the lab's file starts a campaign at each of its values (the exported code, a model from
+    the registry too, which has no dataset to ask); a time of day joined to the date
+    (``data.roles.time: [date, time]``, found by ``auto`` too) under :data:`CLOCK`."""
+    columns = dict(cfg.data.get("columns") or {})
+    converted = set()
+    if ds is not None:
+        columns.update(ds.meta.get("column_map") or {})
+        converted = set(ds.meta.get("converted") or ())
+        if ds.meta.get("run_column"):
+            columns[ds.meta["run_column"]] = RUN
+        if ds.meta.get("time_of_day"):     # joined to the date: what export refuses by name
+            columns[ds.meta["time_of_day"]] = CLOCK
+    names: dict[str, list[str]] = {}
+    for raw, contract in columns.items():
+        if str(raw) != str(contract) and str(contract) not in converted:
+            names.setdefault(str(contract), []).append(str(raw))
+    return names

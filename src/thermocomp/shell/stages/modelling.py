@@ -54,7 +54,7 @@ def train(cfg: DictConfig):
     comp = fit_from_artifacts(cfg, ds)
     fit_s = time.perf_counter() - t0
     comp.interim_digest_ = ds.meta["digest"]   # what it learnt from: evaluate refuses another
-    from ...apps.deploy.naming import lab_names
+    from ...core.io.own_headers import lab_names
     comp.lab_names_ = lab_names(cfg, ds)       # (names97: as run's)
     path = save_model(comp, cfg.model_path)
     say(f"model saved to {path} ({fit_s:.2f} s)")
@@ -104,7 +104,7 @@ def run(cfg: DictConfig) -> dict:
         clock.lap("fit")
 
         # the lab's headers travel with the model: another record's refusal names them (names97)
-        from ...apps.deploy.naming import lab_names
+        from ...core.io.own_headers import lab_names
         comp.lab_names_ = lab_names(cfg, ds)
 
         def stage_files(stage):  # committed with metrics.json, or not at all

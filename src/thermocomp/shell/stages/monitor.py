@@ -17,7 +17,6 @@ from pathlib import Path
 from omegaconf import DictConfig
 
 from ...apps.deploy.adapt import from_config as adapt_from_config
-from ...apps.deploy.naming import lab_names
 from ...apps.deploy.report import plain
 from ...apps.monitor.report import monitor_report, summary_lines
 from ...apps.monitor.stdin import (
@@ -37,6 +36,7 @@ from ...core import io
 from ...core.context import TIME
 from ...core.continuation import fit_joined, lead_ins, said_warmed
 from ...core.io.contract import AMBIENT_C
+from ...core.io.own_headers import lab_names
 from ...core.io.source import check_streamed_columns
 from ...core.io.stdin import TIME_ORIGIN, stdin_text, stream_campaigns
 from ..builders import (
