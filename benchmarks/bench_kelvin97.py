@@ -34,6 +34,32 @@ K3. whole dropout (every input NaN from the fault row, 60 rows): max |C - served
     every row, with the rule as on main.
 KEPT if K1-K3 hold with src (served unchanged; numpy mirror + C), a test failing on f59b6361
 (tests/shell/test_export_kelvin97.py) and docs; else REFUSED or TRACED.
+
+Status: the bar above committed in 596ed3c7 before the rule's run; unchanged.  ROOT: a copy of
+audit97's scratch (``/tmp/audit97/faults``: tr9828 and its mlr-none model, built on b77996ba's
+src), the same files for both runs.  "C" here is the numpy mirror of the C (bench_cmon92's
+``Stepped``); the compiled C is held to it by tests/shell/test_export_kelvin97.py.
+
+Scored (2026-12-06, 07:43-07:58 UTC, ``nice``, 2 cores shared, load 5-7): main = f59b6361's src
+(``git archive``), 180.3 s CPU; the rule = c2f39d51, 166.5 s CPU:
+
+  case      first flag (served; C)                    max|C - served| after (µm), main -> rule
+  healthy   none; none                                 0 -> 0
+  spike     0 T_ram jump; 0 T_ram JUMP                 0 -> 0
+  frozen    11 T_ram freeze; 11 T_ram FREEZE           1.42e-14 -> 1.42e-14
+  dropout   0 T_ram dropout; 0 T_ram DROPOUT           1.42e-14 -> 1.42e-14
+  step      0 T_spindle_front jump; 0 ... JUMP         0 -> 0
+  drift     148 new thermal state; 817 T_ram OFF_RANGE 7.11e-14 -> 7.11e-14
+  kelvin    0 T_spindle_front range; 0 ... RANGE       70.2 -> 0   (C E_Z row 0/1/2/5: 134.82 /
+            154.45 / 174.08 / 185.45 -> 115.2 every row; served 115.2; max |C| 185.4 -> 115.2)
+  whole     0 T_spindle_front dropout; 0 MISSING_SECOND  0 -> 0  (9 inputs NaN, C held 115.2)
+
+K1 holds (0 µm on every row).  K3 holds (as on main: the C's tc_step refuses the rows, its
+correction held; the served model holds its field).  K2: every case as on main, flag rows,
+sensors and rules the same; against audit97's lines one differs on main itself, not by the rule:
+``frozen`` is flagged at fault row 11 (FREEZE, both monitors) on f59b6361's src where audit97 saw
+no flag on b77996ba's (mon97's dithered freeze, merged between: 4917d42a).
+VERDICT: KEPT (src: watch.py ``CodeMonitor._step``, watch_c.py ``monitor_step``; no key).
 """
 
 from __future__ import annotations
