@@ -779,9 +779,12 @@ class CodeMonitor:
             self.ref, self.base, self.ref0 = x.copy(), x.copy(), x.copy()
         d = x - self.ref
         if rng.any() and not first:
+            every = bool(rng.all())
             rng = self._beyond(x, d, rng)
             if rng is None:  # not in the code: the sample passes the monitor by, its state as it
-                return self._rebuilt(u, x - self.ref)   # was (so that the return is no jump)
+                # was (so that the return is no jump); (kelvin97) every reading beyond its range:
+                # nothing to rebuild from, the model reads the last field, as served (``_clean``)
+                return self._rebuilt(u, self.last if every else x - self.ref)
         gone = missing | rng        # read as missing (cmon80: beyond its range too)
         pos = self.pos
         self.hist[pos] = d

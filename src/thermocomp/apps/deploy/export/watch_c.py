@@ -1211,9 +1211,12 @@ static void mon_sample(tc_state *s, double u[], double dt) {
     if (nrng && !s->first) {   /* (cmon80) beyond its range: read as missing, or as read */
         int r = mon_beyond(s, x, d, far, nrng);
         if (r < 0) {   /* not in the code: the sample passes the monitor by, its state as it
-                          was, so that the reading's return is no jump */
-            mon_errors(s, d, pred, e);
-            mon_rebuilt(s, u, d, pred);
+                          was, so that the reading's return is no jump; (kelvin97) every
+                          reading beyond its range: nothing to rebuild from, the model reads
+                          the last field, as served */
+            const double *field = nrng == NM ? s->mon_last : d;
+            mon_errors(s, field, pred, e);
+            mon_rebuilt(s, u, field, pred);
             return;
         }
         if (!r) rng[far] = 0, far = -1;
