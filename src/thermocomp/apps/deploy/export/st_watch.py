@@ -55,7 +55,9 @@ in that order, as the C's ``tc_state`` names the sample's first event.  (st97d) 
 TRUE on the one sample where the ``BLIND_OUT`` judgement ends for the campaign (the C's lone fault,
 veto or new thermal state, which the block does not follow), ``mon_stop_row`` that sample's
 number in the campaign (1 the first; 0 while it judges): said once, no fault flagged with it, so
-that the block's silence from there is not read as "healthy".
+that the block's silence from there is not read as "healthy".  The counters that grow with the campaign
+(``mon_count``, ``mon_stop_row``, ``mon_calm``, ``mon_run``) are DINT: an INT wraps after 32767
+samples (9 h at 1 s), and a wrapped count stops the judgement (``mon_count + 1 >= MON_CONFIRM``).
 
 What the block does then, without the POD that rebuilds a sensor in the C: a reading not
 measured or beyond the range refuses the sample (``refused``: ``c`` holds the last correction,
@@ -246,7 +248,7 @@ OUTPUTS = """    mon_flag : BOOL;
     mon_rule : INT;
     mon_sensor : INT;
     mon_stop : BOOL;
-    mon_stop_row : INT;
+    mon_stop_row : DINT;
 """
 
 VARS = """    mon_last : ARRAY[{nm}] OF LREAL;
@@ -270,7 +272,7 @@ VARS = """    mon_last : ARRAY[{nm}] OF LREAL;
     mj : INT;
     mon_t_prev : LREAL;
     mon_t_known : BOOL;
-    mon_count : INT;
+    mon_count : DINT;
     mon_span : LREAL;
     mon_lim : LREAL;
     mon_x : LREAL;
@@ -286,9 +288,9 @@ VARS = """    mon_last : ARRAY[{nm}] OF LREAL;
     mon_pos : INT;
     mon_held : INT;
     mon_was : INT;
-    mon_calm : INT;
-    mon_run : INT;
-    mon_run_was : INT;
+    mon_calm : DINT;
+    mon_run : DINT;
+    mon_run_was : DINT;
     mon_dwell : INT;
     mon_field_outs : ARRAY[{nm}] OF INT;
     mr : INT;
@@ -915,7 +917,10 @@ FOR mk := 0 TO MON_N - 1 DO
         mon_gap[mk] := mon_gap[mk] + 1.0;
     END_IF;
 END_FOR;
-mon_count := mon_count + 1;
+(* a campaign's sample count, held at DINT's top: never wraps back through 1 *)
+IF mon_count < 2147483646 THEN
+    mon_count := mon_count + 1;
+END_IF;
 IF has_time THEN
     mon_t_prev := time_s;
     mon_t_known := TRUE;
