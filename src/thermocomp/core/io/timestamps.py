@@ -540,13 +540,19 @@ def _strptime(values, kind: str):
     added to them: Arrow's strptime reads none."""
     fraction = pc.struct_field(pc.extract_regex(values, FRACTION), "f")
     whole = pc.replace_substring_regex(values, r"(\d:\d\d:\d\d)[.,:]\d{1,9}", r"\1")
-    form = re.sub(r"[.,:]%f", "", kind)
+    form = _whole_seconds(kind)
     stamps = pc.strptime(whole, format=form, unit="ns", error_is_null=False)
     day = first_impossible_day(whole, stamps, form)
     if day is not None:
         raise pa.ArrowInvalid(f"no such day: {day!r}")
     ns = pc.fill_null(pc.cast(pc.utf8_rpad(fraction, 9, "0"), pa.int64()), 0)
     return pc.add(stamps, pc.cast(ns, pa.duration("ns")))
+
+
+def _whole_seconds(kind: str) -> str:
+    """The strptime format ``kind`` without its second's fraction (``%f``), which Arrow's
+    strptime does not read: :func:`_strptime` adds the fraction itself."""
+    return re.sub(r"[.,:]%f", "", kind)
 
 
 def no_such_day(value: str, form: str) -> bool:
@@ -602,7 +608,7 @@ def parsed(values, target: pa.DataType, kind: str):
 def described(target: pa.DataType, kind: str, value=None) -> str:
     """What a cell of a time column (``value``, where given) should have been."""
     if is_format(kind):
-        if value is not None and no_such_day(str(value), re.sub(r"[.,:]%f", "", kind)):
+        if value is not None and no_such_day(str(value), _whole_seconds(kind)):
             return f"a day of the calendar (its month has fewer days; data.time's format {kind!r})"
         return f"a time in data.time's format {kind!r}"
     zone = "with" if target.tz else "without"
