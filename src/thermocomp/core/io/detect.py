@@ -238,7 +238,7 @@ def head(sample: Path, opts) -> tuple[object, list[str], list[str], str]:
     if not is_text(sample):
         table = without_pandas_index(parquet().read_table(sample).slice(0, 1))
         return (opts, table.column_names, [str(v[0].as_py()) for v in table.columns],
-                _separators(sample, opts))
+                f"{sample.name}: a Parquet file (its columns typed: no delimiter, no decimal)")
     opts = resolved(sample, opts)
     header, first, skip = peek_csv(sample, opts.delimiter, opts.encoding)
     opts = replace(opts, skip_rows=skip)
@@ -701,9 +701,9 @@ def data_config(src: Path, given: dict, opts, roles: dict, defaults: dict,
     folder's, as read (:func:`folder_manifest`; read here if not given)."""
     if manifest is None and src.is_dir():
         manifest = read_manifest(src, opts)
-    # a sheet, a TDMS or MATLAB file has no separators (a CSV file beside them: detected)
+    # a sheet, a Parquet, TDMS or MATLAB file has no separators (a CSV file beside them: detected)
     sample = sample_file(src, manifest)
-    separators = {} if is_workbook(sample) or is_lab_file(sample) else {
+    separators = {} if not is_text(sample) or is_lab_file(sample) else {
         "delimiter": opts.delimiter, "decimal": opts.decimal}
     config = {"path": str(src), **separators, "roles": roles}
     for key, value in given.items():
