@@ -68,6 +68,39 @@ W2 <- W1 T_bed -0.56 (3.3x), T_column -0.50 (2.6x); W3 <- W2 at most 0.6x (T_bed
 +0.38); errors W2 -> W3 E_X +0.40 -> +0.10, E_Y +0.70 -> +0.10, E_Z -1.90 -> +0.10 µm.
 bench_auto97's rows (the 22 seen records of bench_auto96b, /tmp/auto96/seen/automore.jsonl): every
 one ``reference`` first_sample (their new campaigns continue none): warm = cold by construction.
+
+Scored ONCE (2026-12-06 09:15 UTC, after the bar's commit 0b0d8a59, bar unchanged; 16d3b58d's src;
+``warmcold /tmp/ham98/fresh tr9846|tr9847|tr9848``, 19.4 s CPU, 68 s wall for the three; no
+junction of the three records warned; warm / cold / first_sample)::
+
+  tr9846 hammerstein 0.8900 / 1.9697 / 0.2630   lagbank 0.8282 / 1.8692 / 0.4886   mlr 1.2068 x2 / 1.0931
+  tr9847 hammerstein 3.8729 / 2.3912 / 0.9404   lagbank 3.6034 / 2.2142 / 0.6253   mlr 2.7857 x2 / 1.3871
+  tr9848 hammerstein 1.4596 / 2.8896 / 0.5596   lagbank 1.3595 / 2.7571 / 0.7095   mlr 1.3793 x2 / 1.2745
+
+(1) FAILS in its first half: cold is below warm on tr9847 only; on tr9846 and tr9848 warm is
+    below cold by about 2x (hammerstein 0.890 vs 1.970, 1.460 vs 2.890).  Its second half holds on
+    all three: first_sample 41-72 % below the better of warm and cold (hammerstein 70 / 61 / 62 %,
+    lagbank 41 / 72 / 48 %).
+(2) holds: mlr warm = cold to 0.0 µm on each (the carried state is the lag families' alone).
+(3) held before the bar (lr9211 hammerstein 0.934 warm vs 2.970 cold; fl 2.949 vs 6.915).
+
+VERDICT: TRACED, no src change.  What the trace explains: on trunnion63's weekly records neither
+start is right -- both read three separately simulated weeks, each zeroed at its start, as one
+absolute record, and which of warm or cold lands nearer is a matter of the seed (cold better on
+4 of 6, warm on 2); the frame the record has (``first_sample``) is 17-72 % below both on all
+six (41-72 % on the fresh three).  audit97's "the warm start is worse" is that frame's symptom,
+not a wrong carried state: dropping the warm start would have made tr9846 / tr9848 2.0-2.2x
+worse and lr9211 / fl 2.3-4.8x.
+What the record shows that the reader does not use (``junctions``, seen): at each trunnion
+junction every error restarts at 0 (E_Z -2.70 / -1.90 / -4.30 / +2.50 / -3.90 / +1.70 -> each
+error within 0.3 µm of 0) while no temperature steps more than 3.3x the inside steps (W3 <- W2
+at most 1.4x); where the record is one experiment the errors run on (lr9211 E_Z +12.66 ->
++13.35; fl E_ch1 +7.81 -> +7.82).  A rule reading a link found by time as a restart when the
+later file's errors all start at 0 is the next step; it was not built (the fresh seeds are
+spent, and it would move ``data.reference=auto`` and every stage that joins campaigns).
+tr9827 scored = deployed: as on main, the scored (warm) figure is replay's and the check pack's
+C's (audit97: C = served warm to 1e-9 µm); the C fed W3 alone is the cold start, which replay
+and promote report beside it (deploy88).  Nothing here changes which the lab deploys.
 """
 
 from __future__ import annotations
