@@ -6,6 +6,7 @@ Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is
     python benchmarks/bench_ham98.py warmcold ROOT RECORD [FAMILY ...]   # warm / cold / first_sample
     python benchmarks/bench_ham98.py parts ROOT RECORD FAMILY            # warm - cold, by input
     python benchmarks/bench_ham98.py junctions ROOT RECORD               # each link's steps, errors
+    python benchmarks/bench_ham98.py weekly ROOT                         # weekly lab files' errors
 
 RECORD: ``tr<seed>`` (trunnion63, stranger63's machine, bench_audit97's ``RECORDS``: weeks W1, W2
 train, W3 test, errors every 10th row), ``lr<seed>`` (``long_record``, 3 days, R1b the last 20 %,
@@ -22,7 +23,10 @@ test campaign split by input: the lead-in with one column held at the test campa
 value (that column's lags start as cold), RMS of each part.  ``junctions``: for each link
 :func:`~thermocomp.core.continuation.predecessors` finds, every temperature's step at the
 junction over the largest one-sample step inside the two files (the reader warns at 3x), and
-each error's last value before / first after.
+each error's last value before / first after.  ``weekly``: the weekly files of two seen benches,
+written into ROOT where missing (bench_stranger64's ``pm12``, one record cut at each Monday, and
+``pm12_restarts``, its weeks simulated apart; bench_probe61's ``grinder``, one record), each
+week's first and last measured error (µm) as the lab's file has it.
 
 TRACE (seen: tr9827 rebuilt into /tmp/ham98 = audit97's files byte for byte, tr9828, tr6301;
 before any fresh seed; numbers in "Measured" below).  Warm is not stale by a gap (the weeks'
@@ -95,9 +99,14 @@ What the record shows that the reader does not use (``junctions``, seen): at eac
 junction every error restarts at 0 (E_Z -2.70 / -1.90 / -4.30 / +2.50 / -3.90 / +1.70 -> each
 error within 0.3 µm of 0) while no temperature steps more than 3.3x the inside steps (W3 <- W2
 at most 1.4x); where the record is one experiment the errors run on (lr9211 E_Z +12.66 ->
-+13.35; fl E_ch1 +7.81 -> +7.82).  A rule reading a link found by time as a restart when the
-later file's errors all start at 0 is the next step; it was not built (the fresh seeds are
-spent, and it would move ``data.reference=auto`` and every stage that joins campaigns).
++13.35; fl E_ch1 +7.81 -> +7.82).  ``weekly /tmp/ham98/wk`` (after the fresh run, seen benches
+only): pm12's weeks, one record, start where the week before ended (dX +5.8 -> +5.7, dY +8.1 ->
++8.9; +10.8 -> +10.4, +18.5 -> +17.9 µm), pm12_restarts' weeks, simulated apart, at 0 (every
+first error within 0.5 µm of 0; the week before ended 1.9-13.5 µm from 0); the grinder's weekly files (one record)
+first probe hours in (row 741-775), +14.8 .. +20.6 µm.  A rule reading a link found by time as
+a restart where every error of the later file starts at 0 on its first row is the next step; it
+was not built (the fresh seeds are spent, and it would move ``data.reference=auto`` and every
+stage that joins campaigns).
 tr9827 scored = deployed: as on main, the scored (warm) figure is replay's and the check pack's
 C's (audit97: C = served warm to 1e-9 µm); the C fed W3 alone is the cold start, which replay
 and promote report beside it (deploy88).  Nothing here changes which the lab deploys.
@@ -115,7 +124,7 @@ import numpy as np
 
 HERE = Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE)]
-from _cli import project_root, run_commands  # noqa: E402
+from _cli import made_folder, project_root, run_commands  # noqa: E402
 
 TRUNNION = ["THERMOCOMP_TARGETS=trunnion63.", f"hydra.searchpath=[file://{HERE / 'conf63'}]",
             "sim=trunnion63"]
@@ -247,9 +256,34 @@ def junctions(root: str, record: str) -> None:
         print(f"{record} {cid} <- {prev}: " + ", ".join(steps) + "; errors " + ", ".join(errors))
 
 
+def weekly(root: str) -> None:
+    """Each weekly file's first and last measured error (µm) of pm12, pm12_restarts, grinder."""
+    import bench_probe61
+    import bench_stranger64
+    import pandas as pd
+
+    folder = made_folder(root)
+    if not (folder / "pm12").is_dir():
+        bench_stranger64.write(folder)
+    if not (folder / "grinder").is_dir():
+        bench_probe61.write(folder)
+    files = {name: sorted((folder / name).glob("PM12_week*.txt")) for name in ("pm12", "pm12_restarts")}
+    files["grinder"] = sorted((folder / "grinder").glob("PG31_KW*.csv"))
+    for name, paths in files.items():
+        for path in paths:
+            lab = path.suffix == ".txt"      # (TAB, decimal commas, four preamble lines, mm)
+            frame = (pd.read_csv(path, sep="\t", skiprows=4, decimal=",") if lab else pd.read_csv(path))
+            errors = [c for c in frame.columns if c.startswith(("dX", "dY", "dZ", "Probe"))]
+            scale = 1000.0 if lab else 1.0
+            ends = [(c, frame[c].dropna()) for c in errors]
+            print(f"{name} {path.name}: " + ", ".join(
+                f"{c} {v.iloc[0] * scale:+.1f} .. {v.iloc[-1] * scale:+.1f} (first at row {v.index[0]})"
+                for c, v in ends))
+
+
 def main(argv: list[str]) -> int:
-    return run_commands(__doc__, {"warmcold": warmcold, "parts": parts, "junctions": junctions},
-                        argv, cpu=sys.stderr)
+    return run_commands(__doc__, {"warmcold": warmcold, "parts": parts, "junctions": junctions,
+                                  "weekly": weekly}, argv, cpu=sys.stderr)
 
 
 if __name__ == "__main__":
