@@ -102,11 +102,11 @@ at most 1.4x); where the record is one experiment the errors run on (lr9211 E_Z 
 +13.35; fl E_ch1 +7.81 -> +7.82).  ``weekly /tmp/ham98/wk`` (after the fresh run, seen benches
 only): pm12's weeks, one record, start where the week before ended (dX +5.8 -> +5.7, dY +8.1 ->
 +8.9; +10.8 -> +10.4, +18.5 -> +17.9 µm), pm12_restarts' weeks, simulated apart, at 0 (every
-first error within 0.5 µm of 0; the week before ended 1.9-13.5 µm from 0); the grinder's weekly files (one record)
-first probe hours in (row 741-775), +14.8 .. +20.6 µm.  A rule reading a link found by time as
-a restart where every error of the later file starts at 0 on its first row is the next step; it
-was not built (the fresh seeds are spent, and it would move ``data.reference=auto`` and every
-stage that joins campaigns).
+first error within 0.5 µm of 0; the week before ended 1.9-13.5 µm from 0); the grinder's
+weekly files (one record) first probe hours in (row 741-775), +14.8 .. +20.6 µm.  A rule reading
+a link found by time as a restart where every error of the later file starts at 0 on its first
+row is the next step; it was not built (the fresh seeds are spent, and it would move
+``data.reference=auto`` and every stage that joins campaigns).
 tr9827 scored = deployed: as on main, the scored (warm) figure is replay's and the check pack's
 C's (audit97: C = served warm to 1e-9 µm); the C fed W3 alone is the cold start, which replay
 and promote report beside it (deploy88).  Nothing here changes which the lab deploys.
