@@ -325,15 +325,10 @@ def beside(root: str, out: str, margin: str, *records: str) -> None:
 
 
 def _with_root(root: str, records) -> None:
-    import bench_auto96
-    from bench_auto_losses56 import lab_record
+    """bench_auto96's record table: :data:`RECORDS` with ROOT in place (bench_auto96b's)."""
+    from bench_auto96b import _with_records
 
-    root_path = Path(root).resolve()
-    for name, seed in LABS.items():
-        if name in records and not (root_path / name).exists():
-            lab_record(root_path / name, seed)
-    table = {n: [o.format(root=root_path) for o in ov] for n, ov in RECORDS.items()}
-    bench_auto96._records = lambda: table
+    _with_records(root, RECORDS, LABS, records)
 
 
 def beside22(root: str, main_work: str, out: str, margin: str, *records: str) -> None:
