@@ -149,16 +149,18 @@ def compare(main_work: str, rule_work: str) -> None:
           f"worst rule/main {ratio.max():.3f} ({list(both)[int(ratio.argmax())]})")
 
 
-def _with_records(root: str) -> None:
-    """bench_auto96's record table: :data:`RECORDS` with ROOT in place (its lab records written)."""
+def _with_records(root: str, records: dict | None = None, labs: dict | None = None, wanted=None) -> None:
+    """bench_auto96's record table: ``records`` (:data:`RECORDS`) with ROOT in place, the lab records
+    of ``labs`` (:data:`LABS`, name -> seed) written where ``wanted`` (None: all) names them."""
     import bench_auto96
     from bench_auto_losses56 import lab_record
 
     root_path = Path(root).resolve()
-    for name, seed in LABS.items():
-        if not (root_path / name).exists():
+    for name, seed in (LABS if labs is None else labs).items():
+        if (wanted is None or name in wanted) and not (root_path / name).exists():
             lab_record(root_path / name, seed)
-    table = {n: [o.format(root=root_path) for o in ov] for n, ov in RECORDS.items()}
+    table = {n: [o.format(root=root_path) for o in ov] for n, ov in (RECORDS if records is None
+                                                                       else records).items()}
     bench_auto96._records = lambda: table
 
 

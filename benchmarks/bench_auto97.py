@@ -174,17 +174,12 @@ def ways(root: str, out: str, *records: str) -> None:
     (the rule), and MLR alone; OUT/RECORD.json as bench_auto96's ``ways`` writes it."""
     import bench_auto96
     import bench_auto_rank as rank
-    from bench_auto_losses56 import lab_record
+    from bench_auto96b import _with_records
     from sklearn.base import clone
 
     from thermocomp.shell.builders import build_compensator
 
-    root_path = Path(root).resolve()
-    for name, seed in LABS.items():
-        if name in records and not (root_path / name).exists():
-            lab_record(root_path / name, seed)
-    table = {n: [o.format(root=root_path) for o in ov] for n, ov in RECORDS.items()}
-    bench_auto96._records = lambda: table
+    _with_records(root, RECORDS, LABS, records)
     Path(out).mkdir(parents=True, exist_ok=True)
     for name in records:
         cfg, ds, train = bench_auto96._setup(name, root)
