@@ -144,9 +144,9 @@ def _twin_text(rows: pd.DataFrame) -> str:
     return "".join(unit_row + "\n" if ln == plain else ln + "\n" for ln in text.splitlines())
 
 
-def _session_rows(path: Path) -> pd.DataFrame:
-    """The file's data rows under the reader's names (unit row joined, twins numbered); a column
-    read in another unit by its contract name, in the contract's unit."""
+def reader_rows(path: Path) -> tuple[pd.DataFrame, list[str]]:
+    """The file's data rows under the reader's names (unit row joined, twins numbered), its cells
+    as written (a kelvin column in K), and the unit row."""
     from thermocomp.core.io.layout import with_units
     from thermocomp.core.io.twins import occurrences
 
@@ -159,6 +159,14 @@ def _session_rows(path: Path) -> pd.DataFrame:
     frame = pd.DataFrame(rows, columns=names)
     for col in names[1:]:
         frame[col] = frame[col].str.replace(".", "", regex=False).str.replace(",", ".").astype(float)
+    return frame, units
+
+
+def _session_rows(path: Path) -> pd.DataFrame:
+    """:func:`reader_rows`, a column read in another unit by its contract name, in the
+    contract's unit."""
+    frame, units = reader_rows(path)
+    names = list(frame.columns)
     kelvin = [n for n, u in zip(names, units) if u.strip() == "K"]
     contract = [c for c, (_, u) in TWINS.items() if u == "K"]
     for name, c in zip(kelvin, contract):
