@@ -70,4 +70,20 @@ def said(header: Sequence[str], names: dict) -> list[str]:
             lines.append(f"columns {first + 1} and {i + 1} have the same header "
                          f"{header[first]!r}, different values: column {i + 1} read as "
                          f"{h!r} ({names[h]}; data.columns / data.roles name it so)")
+        elif (first := _in_another_unit(header, i, names)) is not None:
+            lines.append(f"columns {first + 1} and {i + 1} hold one name in two units "
+                         f"({header[first]!r}, {h!r}): column {i + 1} read as {names[h]} "
+                         f"(data.columns names it otherwise)")
     return lines
+
+
+def _in_another_unit(header: Sequence[str], i: int, names: dict) -> int | None:
+    """(twins98) The index of the first header whose name ``header[i]`` holds in another unit
+    (or spelling), the second read numbered (:func:`.roles.again_in`: ``T_Temp`` and
+    ``T_Temp_2``); None for any other header."""
+    base, unit = split_unit(header[i])
+    if unit is None or header[i] not in names:
+        return None
+    return next((j for j, h in enumerate(header[:i]) if h in names and split_unit(h)[1] is not None
+                 and split_unit(h)[0] == base and names[h] != names[header[i]]
+                 and names[header[i]].startswith(f"{names[h]}_")), None)
