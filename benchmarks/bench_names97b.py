@@ -206,8 +206,7 @@ def lab(root: str, seed: str, keyed: str = "") -> None:
     """The twin-header export through init .. C, and the served session (module doc);
     ``keyed``: init given :data:`NAMED`."""
     import bench_audit96
-    from bench_data92 import _stage, _targets
-    from bench_data94 import _served, sent
+    from bench_data92 import _stage
 
     base = bench_audit96._lab_root(root, seed)
     path = base / f"{LABEL}.csv"
@@ -216,6 +215,16 @@ def lab(root: str, seed: str, keyed: str = "") -> None:
     lines = path.read_text(encoding="utf-8").splitlines()
     print(f"seed {seed} {LABEL}: header {lines[1][:160]!r}; units {lines[2]!r}", flush=True)
     got = _keyed_stage(base) if keyed else _stage(base, LABEL, "mlr", ())
+    reported(got, base, LABEL, lambda model, config: _session_rows(path), "reader's names")
+
+
+def reported(got: dict, base: Path, label: str, rows, names: str) -> None:
+    """bench_data92's stage ``got`` said; where it built a C, the served session (mlr) fed the
+    test rows of ``rows(model, config)`` (under ``names``): max |C - session| (bench_twins98's
+    too)."""
+    from bench_data92 import _targets
+    from bench_data94 import _served, sent
+
     print(f"  {got['said']}", flush=True)
     if "C" not in got:
         return
@@ -223,9 +232,9 @@ def lab(root: str, seed: str, keyed: str = "") -> None:
     corr = got["C"][[c for c in got["C"].columns if c.startswith("C_")]].to_numpy(float)
     print(f"  replay {_targets(got['replay'])}  run {_targets(got['run'])}; C rows {len(corr)}",
           flush=True)
-    model, _ = _served(base, LABEL, "mlr")
-    served = sent(model, _session_rows(path).iloc[-n_test:], LABEL, 300)
-    print("  session (reader's names): " + (served if isinstance(served, str) else
+    model, config = _served(base, label, "mlr")
+    served = sent(model, rows(model, config).iloc[-n_test:], label, 300)
+    print(f"  session ({names}): " + (served if isinstance(served, str) else
           f"max |session - C| {np.max(np.abs(served - corr[-n_test:])):.2g} µm "
           f"({len(served)} rows)"), flush=True)
 

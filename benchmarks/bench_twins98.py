@@ -57,6 +57,42 @@ T4. tests (< 10 s) failing on 4b9de3c8: the pair read (T_t1, T_t1_2, the kelvin 
     reader, and by the exported stream.c in a streamed header.
 KEPT if T1-T4 hold with src + tests + docs; a clause not met is said and the rule REFUSED (patch
 kept as benchmarks/twins98_rule.patch) or the finding TRACED.
+
+Status: the bar committed in adef5e74, the rule in e0eafe61, before lab 9858 was drawn (its lab
+simulated by the fresh run itself).  Scored 2026-12-06 09:31-09:38 UTC (2 cores shared, load
+~20, ``nice``), main = 4b9de3c8's src (``git archive``), rule = e0eafe61's src (``git archive``).
+
+  record                         main (4b9de3c8)                    rule
+  repro (seen, T1)               init exit 2 "'Temp basamento [°C]'  init .. pack 0, C 0, 480 rows;
+                                 and 'Temp basamento [K]' both give  replay = run 0.04505 µm;
+                                 T_Temp_basamento ..."               |C - session| 7.1e-15 µm (120)
+  lab 9829 twinit (seen, T1)     init exit 2 "'Temperatura           init .. pack 0, C 0, 1441 rows;
+                                 basamento [°C]' and 'Temperatura    replay 1.158816394 / 0.846494797;
+                                 basamento [K]' both give            |C - session| 2.1e-13 µm (360)
+                                 T_Temperatura_basamento ..."
+  lab 9858 twinit (FRESH, T2,    (not run: drawn for the rule)       init .. pack 0, C 0, 1441 rows;
+  once)                                                              replay 1.642938936 / 1.147578659;
+                                                                     |C - session| 1.7e-13 µm (360)
+  names97b twounits (T3)         (names97b's: (a) 3.6e-15, (b)       (a) exit 0, 48 rows, 3.6e-15 µm;
+                                 3.6e-15, (c) exit 2)                (b) 3.6e-15 µm; (c) exit 2,
+                                                                     "column 2: 'T' may be 'T [°C]'
+                                                                     or 'T [K]' ..."
+  names97b lab 9774 keyed (T3)   (names97b's: 1.823539367 /          replay 1.823539367 /
+                                 1.207312034, 1.3e-13)               1.207312034; C 0, 1441 rows;
+                                                                     |C - session| 1.3e-13 µm
+  names97b lab 9830 keyed (T3)   (names97b's: 2.038472787 /          replay 2.038472787 /
+                                 1.385004397, 1.8e-13)               1.385004397; C 0, 1441 rows;
+                                                                     |C - session| 1.8e-13 µm
+
+T1-T3 met; T4: tests/shell/test_twins98.py, 2 cases (7.4 s + 0.1 s), both fail on 4b9de3c8
+("'T [°C]' and 'T [K]' both give T_T", "'t1(°C)' and 't1 [K]' both give T_t1").  After the
+fresh run (no name, value nor refusal changed): the reader's warning finds a numbered twin by
+its name's ``_<k>`` (``T_2`` was not said: e0eafe61 asked ``T_T_``), and ``_scored`` shares
+bench_names97b's ``reported`` (duplicates D1): repro, 9829 and names97b's 9774 keyed run again
+on it with 5edff0ec's src (09:38-09:43): every figure the same (9858 not run again).
+CPU of the bench process: repro 3.0-3.3 s, lab 3.3-4.4 s (stage subprocesses not counted: 16-21 s
+user of the whole); wall: main's init refusals ~9-10 s, repro ~74 s, lab ~78-95 s on an existing
+lab root (9858 simulated in its ~87 s).
 """
 
 from __future__ import annotations
@@ -92,23 +128,12 @@ def _repro_text(n: int = 480, seed: int = 98) -> str:
 
 def _scored(base: Path, label: str, rows) -> None:
     """bench_data92's stage on ``base/label.csv`` (no key), then the served session fed
-    ``rows(config)``'s test rows: what each said, max |C - session|."""
-    from bench_data92 import _stage, _targets
-    from bench_data94 import _served, sent
+    ``rows(config)``'s test rows (:func:`_in_contract_units`): what each said, max |C - session|."""
+    from bench_data92 import _stage
+    from bench_names97b import reported
 
-    got = _stage(base, label, "mlr", ())
-    print(f"  {got['said']}", flush=True)
-    if "C" not in got:
-        return
-    n_test = got["n_test"]
-    corr = got["C"][[c for c in got["C"].columns if c.startswith("C_")]].to_numpy(float)
-    print(f"  replay {_targets(got['replay'])}  run {_targets(got['run'])}; C rows {len(corr)}",
-          flush=True)
-    model, config = _served(base, label, "mlr")
-    served = sent(model, _in_contract_units(rows(config), model).iloc[-n_test:], label, 300)
-    print("  session (the lab's names): " + (served if isinstance(served, str) else
-          f"max |session - C| {np.max(np.abs(served - corr[-n_test:])):.2g} µm "
-          f"({len(served)} rows)"), flush=True)
+    reported(_stage(base, label, "mlr", ()), base, label,
+             lambda model, config: _in_contract_units(rows(config), model), "the lab's names")
 
 
 def _in_contract_units(frame: pd.DataFrame, model) -> pd.DataFrame:
