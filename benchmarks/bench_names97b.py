@@ -205,8 +205,17 @@ def _keyed_stage(base: Path) -> dict:
 def lab(root: str, seed: str, keyed: str = "") -> None:
     """The twin-header export through init .. C, and the served session (module doc);
     ``keyed``: init given :data:`NAMED`."""
-    import bench_audit96
     from bench_data92 import _stage
+
+    base, path = twin_file(root, seed)
+    got = _keyed_stage(base) if keyed else _stage(base, LABEL, "mlr", ())
+    reported(got, base, LABEL, lambda model, config: _session_rows(path), "reader's names")
+
+
+def twin_file(root: str, seed: str) -> tuple[Path, Path]:
+    """Lab SEED's root and its ``twinit.csv`` (written where it is not), its header said (bench_
+    twins98's too)."""
+    import bench_audit96
 
     base = bench_audit96._lab_root(root, seed)
     path = base / f"{LABEL}.csv"
@@ -214,8 +223,7 @@ def lab(root: str, seed: str, keyed: str = "") -> None:
         path.write_text(_twin_text(pd.read_csv(base / "contract.csv")), encoding="utf-8")
     lines = path.read_text(encoding="utf-8").splitlines()
     print(f"seed {seed} {LABEL}: header {lines[1][:160]!r}; units {lines[2]!r}", flush=True)
-    got = _keyed_stage(base) if keyed else _stage(base, LABEL, "mlr", ())
-    reported(got, base, LABEL, lambda model, config: _session_rows(path), "reader's names")
+    return base, path
 
 
 def reported(got: dict, base: Path, label: str, rows, names: str) -> None:

@@ -87,9 +87,9 @@ simulated by the fresh run itself).  Scored 2026-12-06 09:31-09:38 UTC (2 cores 
 T1-T3 met; T4: tests/shell/test_twins98.py, 2 cases (7.4 s + 0.1 s), both fail on 4b9de3c8
 ("'T [°C]' and 'T [K]' both give T_T", "'t1(°C)' and 't1 [K]' both give T_t1").  After the
 fresh run (no name, value nor refusal changed): the reader's warning finds a numbered twin by
-its name's ``_<k>`` (``T_2`` was not said: e0eafe61 asked ``T_T_``), and ``_scored`` shares
-bench_names97b's ``reported`` (duplicates D1): repro, 9829 and names97b's 9774 keyed run again
-on it with 5edff0ec's src (09:38-09:43): every figure the same (9858 not run again).
+its name's ``_<k>`` (``T_2`` was not said: e0eafe61 asked ``T_T_``), and ``_scored`` / ``lab``
+share bench_names97b's ``reported`` / ``twin_file`` (duplicates D1): repro, 9829 and names97b's
+9774 keyed run again on them with 5edff0ec's src: every figure the same (9858 not run again).
 CPU of the bench process: repro 3.0-3.3 s, lab 3.3-4.4 s (stage subprocesses not counted: 16-21 s
 user of the whole); wall: main's init refusals ~9-10 s, repro ~74 s, lab ~78-95 s on an existing
 lab root (9858 simulated in its ~87 s).
@@ -161,15 +161,9 @@ def repro(root: str) -> None:
 
 def lab(root: str, seed: str) -> None:
     """bench_names97b's twin-header export of lab SEED with no key (module doc)."""
-    import bench_audit96
-    from bench_names97b import LABEL, _twin_text, reader_rows
+    from bench_names97b import LABEL, reader_rows, twin_file
 
-    base = bench_audit96._lab_root(root, seed)
-    path = base / f"{LABEL}.csv"
-    if not path.exists():
-        path.write_text(_twin_text(pd.read_csv(base / "contract.csv")), encoding="utf-8")
-    lines = path.read_text(encoding="utf-8").splitlines()
-    print(f"seed {seed} {LABEL}: header {lines[1][:160]!r}; units {lines[2]!r}", flush=True)
+    base, path = twin_file(root, seed)
     _scored(base, LABEL, lambda config: reader_rows(path)[0])
 
 
