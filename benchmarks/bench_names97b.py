@@ -144,9 +144,9 @@ def _twin_text(rows: pd.DataFrame) -> str:
     return "".join(unit_row + "\n" if ln == plain else ln + "\n" for ln in text.splitlines())
 
 
-def _session_rows(path: Path) -> pd.DataFrame:
-    """The file's data rows under the reader's names (unit row joined, twins numbered); a column
-    read in another unit by its contract name, in the contract's unit."""
+def reader_rows(path: Path) -> tuple[pd.DataFrame, list[str]]:
+    """The file's data rows under the reader's names (unit row joined, twins numbered), its cells
+    as written (a kelvin column in K), and the unit row."""
     from thermocomp.core.io.layout import with_units
     from thermocomp.core.io.twins import occurrences
 
@@ -159,6 +159,14 @@ def _session_rows(path: Path) -> pd.DataFrame:
     frame = pd.DataFrame(rows, columns=names)
     for col in names[1:]:
         frame[col] = frame[col].str.replace(".", "", regex=False).str.replace(",", ".").astype(float)
+    return frame, units
+
+
+def _session_rows(path: Path) -> pd.DataFrame:
+    """:func:`reader_rows`, a column read in another unit by its contract name, in the
+    contract's unit."""
+    frame, units = reader_rows(path)
+    names = list(frame.columns)
     kelvin = [n for n, u in zip(names, units) if u.strip() == "K"]
     contract = [c for c, (_, u) in TWINS.items() if u == "K"]
     for name, c in zip(kelvin, contract):
@@ -197,9 +205,17 @@ def _keyed_stage(base: Path) -> dict:
 def lab(root: str, seed: str, keyed: str = "") -> None:
     """The twin-header export through init .. C, and the served session (module doc);
     ``keyed``: init given :data:`NAMED`."""
+    from bench_data92 import _stage
+
+    base, path = twin_file(root, seed)
+    got = _keyed_stage(base) if keyed else _stage(base, LABEL, "mlr", ())
+    reported(got, base, LABEL, lambda model, config: _session_rows(path), "reader's names")
+
+
+def twin_file(root: str, seed: str) -> tuple[Path, Path]:
+    """Lab SEED's root and its ``twinit.csv`` (written where it is not), its header said (bench_
+    twins98's too)."""
     import bench_audit96
-    from bench_data92 import _stage, _targets
-    from bench_data94 import _served, sent
 
     base = bench_audit96._lab_root(root, seed)
     path = base / f"{LABEL}.csv"
@@ -207,7 +223,16 @@ def lab(root: str, seed: str, keyed: str = "") -> None:
         path.write_text(_twin_text(pd.read_csv(base / "contract.csv")), encoding="utf-8")
     lines = path.read_text(encoding="utf-8").splitlines()
     print(f"seed {seed} {LABEL}: header {lines[1][:160]!r}; units {lines[2]!r}", flush=True)
-    got = _keyed_stage(base) if keyed else _stage(base, LABEL, "mlr", ())
+    return base, path
+
+
+def reported(got: dict, base: Path, label: str, rows, names: str) -> None:
+    """bench_data92's stage ``got`` said; where it built a C, the served session (mlr) fed the
+    test rows of ``rows(model, config)`` (under ``names``): max |C - session| (bench_twins98's
+    too)."""
+    from bench_data92 import _targets
+    from bench_data94 import _served, sent
+
     print(f"  {got['said']}", flush=True)
     if "C" not in got:
         return
@@ -215,9 +240,9 @@ def lab(root: str, seed: str, keyed: str = "") -> None:
     corr = got["C"][[c for c in got["C"].columns if c.startswith("C_")]].to_numpy(float)
     print(f"  replay {_targets(got['replay'])}  run {_targets(got['run'])}; C rows {len(corr)}",
           flush=True)
-    model, _ = _served(base, LABEL, "mlr")
-    served = sent(model, _session_rows(path).iloc[-n_test:], LABEL, 300)
-    print("  session (reader's names): " + (served if isinstance(served, str) else
+    model, config = _served(base, label, "mlr")
+    served = sent(model, rows(model, config).iloc[-n_test:], label, 300)
+    print(f"  session ({names}): " + (served if isinstance(served, str) else
           f"max |session - C| {np.max(np.abs(served - corr[-n_test:])):.2g} µm "
           f"({len(served)} rows)"), flush=True)
 

@@ -165,7 +165,9 @@ def test_a_missing_sample_period_is_an_error_not_a_guess(tmp_path, capsys):
 
 
 def test_every_column_not_read_is_named_in_one_message(tmp_path, capsys):
-    path = _lab_file(tmp_path / "lab.csv", operator=["anna"] * 40, **{"t1 [K]": np.full(40, 294.0)},
+    # (twins98: 't1(°C)' beside 't1 [K]' is read, T_t1 and T_t1_2; a bare 't1' beside it names
+    # the same T_t1, still refused)
+    path = _lab_file(tmp_path / "lab.csv", operator=["anna"] * 40, t1=np.full(40, 294.0),
                      spindle=np.zeros(40))
     out = tmp_path / "out"
     before = snapshot(out)
@@ -173,7 +175,7 @@ def test_every_column_not_read_is_named_in_one_message(tmp_path, capsys):
                     "data.roles.state=['spindle','ch*']", "data.sample_period_s=60",
                     "data.test_fraction=0.2", f"out={out}", *MLR], capsys, "lab.csv",
                    "'ch1(um)' is matched by data.roles.error and data.roles.state",
-                   "'operator' is not numeric ('anna')", "'t1(°C)' and 't1 [K]' both give T_t1")
+                   "'operator' is not numeric ('anna')", "'t1(°C)' and 't1' both give T_t1")
     assert "3 column(s) not read" in line
     assert snapshot(out) == before
 

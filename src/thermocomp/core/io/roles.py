@@ -270,6 +270,7 @@ def naming(headers: Sequence[str], roles: Mapping, columns: Mapping, first: Mapp
     bookkeeping = logger_columns(headers)
     short = shortened(headers, columns)
     run = _run_header(headers, roles, columns, problems)
+    in_units: set[str] = set()      # the names before a unit derived so far (:func:`again_in`)
     for header in headers:
         base, unit = split_unit(header)
         unit = units.get(header, unit)
@@ -342,6 +343,8 @@ def naming(headers: Sequence[str], roles: Mapping, columns: Mapping, first: Mapp
                 continue
         if unit is None and kind in ("temperature", "ambient"):
             base, unit = _letter_unit(header, first.get(header), decimal) or (base, unit)
+        if unit is not None:
+            base = again_in(base, in_units)
         name = _derived(kind, base, len(ambient) > 1, header in short)
         tilt = kind == "error" and _angle(unit)
         if tilt and not angular(name):
@@ -362,6 +365,21 @@ def naming(headers: Sequence[str], roles: Mapping, columns: Mapping, first: Mapp
     if problems:
         raise _refusal(problems, by_role, out.names, out.roles, file)
     return out
+
+
+def again_in(base: str, taken: set[str]) -> str:
+    """(twins98) ``base``, the name before a header's unit, numbered ``<base>#<k>`` where an
+    earlier header read gave it already (``taken``, to which the name given is added): one name
+    written in two units, ``Temp [°C]`` and ``Temp [K]`` (two sensors, or one logged twice), is
+    read as ``T_Temp`` and ``T_Temp_2``, as the second of a header written twice
+    (:func:`.twins.occurrences`, ``Temp#2 [°C]``) is; each header keeps its text, by which
+    ``data.columns``, ``data.roles`` and the exported ``stream.c`` address it."""
+    name, k = base, 1
+    while name in taken:
+        k += 1
+        name = f"{base}#{k}"
+    taken.add(name)
+    return name
 
 
 def logger_columns(headers: Sequence[str]) -> frozenset:

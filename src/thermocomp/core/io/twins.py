@@ -4,11 +4,14 @@ columns 18 and 19): each occurrence after the first is read as ``<name>#<k>`` (`
 one whose cells are those of the first, row for row, is the same channel exported twice and
 left out (``Halle#2 (°C) [= column 18]``), said by the reader (both read back by :func:`.roles.
 left_out` / :func:`.roles.first_of`, which name the headers).  A header holding no name (an
-empty one, Excel's trailing separators) is left as it is.
+empty one, Excel's trailing separators) is left as it is.  (twins98) One name written in two
+units (``T [°C]``, ``T [K]``) keeps its headers, unique already; the second's contract name is
+numbered as a twin's (:func:`.roles.again_in`: ``T_T``, ``T_2``), said here too.
 """
 
 from __future__ import annotations
 
+import re
 from collections.abc import Iterable, Sequence
 
 from .roles import first_of, left_out, split_unit
@@ -70,4 +73,24 @@ def said(header: Sequence[str], names: dict) -> list[str]:
             lines.append(f"columns {first + 1} and {i + 1} have the same header "
                          f"{header[first]!r}, different values: column {i + 1} read as "
                          f"{h!r} ({names[h]}; data.columns / data.roles name it so)")
+        elif (first := _in_another_unit(header, i, names)) is not None:
+            lines.append(f"columns {first + 1} and {i + 1} hold one name in two units "
+                         f"({header[first]!r}, {h!r}): column {i + 1} read as {names[h]} "
+                         f"(data.columns names it otherwise)")
     return lines
+
+
+def _in_another_unit(header: Sequence[str], i: int, names: dict) -> int | None:
+    """(twins98) The index of the first header whose name ``header[i]`` holds in another unit
+    (or spelling), the second read numbered (:func:`.roles.again_in`: ``T_Temp`` and
+    ``T_Temp_2``); None for any other header."""
+    base, unit = split_unit(header[i])
+    if unit is None or header[i] not in names:
+        return None
+    if not _NUMBERED.search(str(names[header[i]])):
+        return None
+    return next((j for j, h in enumerate(header[:i]) if h in names and split_unit(h)[1] is not None
+                 and split_unit(h)[0] == base and names[h] != names[header[i]]), None)
+
+
+_NUMBERED = re.compile(r"_\d+$")      # ('T_2', 'T_Temp_2': a name numbered by again_in)
