@@ -193,7 +193,8 @@ def without_lag(auto):
     for est in out.estimators_.values():
         kept = est.estimator_
         if isinstance(kept, Blend):
-            kept.weights_ = np.array([0.0 if n in LAG else w for n, w in zip(kept.estimators_, kept.weights_)])
+            kept.weights_ = np.array([0.0 if n in LAG else w
+                                      for n, w in zip(kept.estimators_, kept.weights_)])
         elif est.family_ in LAG:
             est.estimator_ = Blend({est.family_: kept}, {est.family_: 1.0})
             est.estimator_.estimators_, est.estimator_.weights_ = {est.family_: kept}, np.zeros(1)
@@ -204,8 +205,8 @@ def without_lag(auto):
 def _said(name: str, rep: dict) -> None:
     parts = []
     for t, c in rep.items():
-        regs = " ".join(f"{r} {c[r]['beyond']}/{c['n']} a|m {c[r]['auto_beyond']:.3g}|{c[r]['mlr_beyond']:.3g} "
-                        f"swap {c[r]['swap']:.4g}" for r in REGIONS)
+        regs = " ".join(f"{r} {c[r]['beyond']}/{c['n']} a|m {c[r]['auto_beyond']:.3g}|"
+                        f"{c[r]['mlr_beyond']:.3g} swap {c[r]['swap']:.4g}" for r in REGIONS)
         parts.append(f"{t} lag={c['lag']} auto {c['main']:.4g} mlr {c['mlr']:.4g} {regs}")
     print(name, "; ".join(parts), flush=True)
 
@@ -236,22 +237,14 @@ def rule(root: str, out: str, *records: str) -> None:
 def trace22(root: str, main_work: str, out: str, *records: str) -> None:
     import bench_auto_rank as rank
     from bench_auto91 import stored_targets
-    from bench_automore69 import OF, OVERRIDES, draws
-    from bench_moretest68 import with_new
-    from sklearn.base import clone
+    from bench_auto98 import with_new_campaigns
 
     from thermocomp.shell.builders import build_compensator
 
     work = Path(main_work).resolve()
     Path(out).mkdir(parents=True, exist_ok=True)
     for name in records:
-        overrides = [o.format(root=Path(root).resolve()) for o in OVERRIDES[name]]
-        sys.argv[2:] = overrides
-        cfg, ds, train = rank.setup(overrides)
-        full = with_new(ds, draws(OF[name], work, cfg))
-        row = json.loads(next(line for line in (work / "automore.jsonl").read_text().splitlines()
-                              if json.loads(line)["record"] == name))
-        ids = row["own"] + row["new"]
+        cfg, ds, train, full, ids = with_new_campaigns(root, work, name)
         comp = build_compensator(cfg, ds=ds)
         comp = comp.set_params(estimator=rank._mlr()).fit(train)   # the frame and columns only
         m_fit, m_all = comp.stacked(train), comp.stacked({c: full.campaigns[c] for c in ids})
@@ -284,7 +277,8 @@ def table(out: str, *records: str) -> None:
         figs[name] = fig
         print(f"{name:11s} main {fig['main']:.3f} " + " ".join(
             f"{k} {v:.3f} ({v / fig['main']:.3f})" for k, v in fig.items() if k != "main")
-            + "; lag targets' excess over MLR on the beyond rows " + ", ".join(f"{r} {share[r]}" for r in REGIONS))
+            + "; lag targets' excess over MLR on the beyond rows "
+            + ", ".join(f"{r} {share[r]}" for r in REGIONS))
     main = [f["main"] for f in figs.values()]
     for r in [k for k in next(iter(figs.values())) if k != "main"]:
         rule = [f[r] for f in figs.values()]
