@@ -204,11 +204,24 @@ def ways_table(out: str, margin: str, *records: str) -> None:
           f"> 1 % worse {int(np.sum(ratio > 1.01))}")
 
 
-def seen22(root: str, main_work: str, out: str, margins: str, *records: str) -> None:
+def with_new_campaigns(root: str, work: Path, name: str):
+    """``(cfg, dataset, train, dataset with the new campaigns, scored ids)`` of a 22-table record
+    (bench_automore69's, main's stored rows in WORK: its own test campaigns, then the new ones)."""
     import bench_auto_rank as rank
-    from bench_auto91 import stored_targets
     from bench_automore69 import OF, OVERRIDES, draws
     from bench_moretest68 import with_new
+
+    overrides = [o.format(root=Path(root).resolve()) for o in OVERRIDES[name]]
+    sys.argv[2:] = overrides
+    cfg, ds, train = rank.setup(overrides)
+    full = with_new(ds, draws(OF[name], work, cfg))
+    row = json.loads(next(line for line in (work / "automore.jsonl").read_text().splitlines()
+                          if json.loads(line)["record"] == name))
+    return cfg, ds, train, full, row["own"] + row["new"]
+
+
+def seen22(root: str, main_work: str, out: str, margins: str, *records: str) -> None:
+    from bench_auto91 import stored_targets
     from sklearn.base import clone
 
     from thermocomp.core.scoring.evaluation import split_residuals
@@ -222,13 +235,7 @@ def seen22(root: str, main_work: str, out: str, margins: str, *records: str) -> 
                           | ({"lagbank"} if "pred_lagbank" in stored[0][2].files else set()))
         rep = {"families": families, "targets": {}}
         if families:
-            overrides = [o.format(root=Path(root).resolve()) for o in OVERRIDES[name]]
-            sys.argv[2:] = overrides
-            cfg, ds, train = rank.setup(overrides)
-            full = with_new(ds, draws(OF[name], work, cfg))
-            row = json.loads(next(line for line in (work / "automore.jsonl").read_text().splitlines()
-                                  if json.loads(line)["record"] == name))
-            ids = row["own"] + row["new"]
+            cfg, ds, train, full, ids = with_new_campaigns(root, work, name)
             auto = build_compensator(cfg, ds=ds)
             preds = {}
             for fam in families:
