@@ -71,6 +71,39 @@ behaviour (readmit88: a whole window calm), left alone here.
 
 Records: tr9828 (seen); tr9852 = trunnion63 seed 9852 (fresh, the kind picked before it was
 simulated: the machine whose blind sensors carry the settled rule), scored once after the bar.
+
+Status: the bar above committed in 4e7d88d6 with the settled ring's mend traced on tr9828.  After
+it and BEFORE the fresh run the rule grew by one part, found on test_export_cmon82c's machine
+(seen, the test's record; not a bench record): the C's passed sample also counts in each step's
+span, as served (a reading beyond range one sample more of its sensor's gap, one in range its last
+reading), where the return after 20 kelvin samples had been read as one sample's COMMON_STEP and
+every sensor re-referenced (3.28 µm to the end; tests/shell/test_export_unit_back98.py).  The
+rule's description above says the ring only; the commit 88606d95 both.  Bar unchanged.
+
+Scored once (2026-12-06 09:19-09:50 UTC, ``nice``, 2 cores shared, load 5-24; main = 16d3b58d's
+src, rule = 88606d95's, both by ``git archive``; tr9852 simulated and run once, on the rule's src:
+simulate / run do not touch the export)::
+
+  tr9852      max|C - served| kelvin / hold / after (µm)   after: rows > 1e-9 (first equal row)
+  (fresh)     main -> rule                                   main -> rule
+  all         0 / 7.22 / 0 -> the same                       0 (41) -> 0 (41)
+  card_blind  114 / 93.4 / 0 -> the same                     0 (40) -> 0 (40)
+  card_pred   20.5 / 14.9 / 1.07 -> the same                 2 (43) -> 2 (43): rows 41-42, served's
+                                                             guard still rate-limited from the hold
+  stagger     0 / 10.9 / 0 -> the same                       0 (47) -> 0 (47)
+  healthy     max|C - served| 0 µm on all 30240 rows, main and rule; no SETTLED after any return
+
+D1 fails as traced: a card of three in kelvin, the C reads their kelvin values (tr9852 card_blind
+C E_Z 185.6 µm where served, on the spindle sensors' fallback model, gives 72.0; tr9828 186.8
+against 115.1), and from the return to served's re-admission the two read different fields (all:
+served holds the last field, 7.22 µm off the healthy frame on tr9852, 36.4 on tr9828; the C = the
+healthy frame).  D2 holds on both records (tr9852: main too -- on this seed no sensor moved past
+its settled limit nor a common step's over the 30 samples: the fresh record does not part main).
+D3 holds: bench_kelvin97 ``faults`` on tr9828, its 16 lines identical main -> rule (healthy,
+spike, frozen, dropout, step, drift, kelvin with its rows, whole; 184.5 / 194.1 s CPU).  D4 holds.
+VERDICT: KEPT on D2-D4 (mirror ``CodeMonitor.step`` / ``_step``, C ``monitor_step`` /
+``mon_sample``; no key; test_export_unit_back98 fails on 16d3b58d), D1 TRACED (not met: a card in
+kelvin, and served's hold until re-admission, need the C to hold any set out with fallbacks).
 """
 
 from __future__ import annotations
