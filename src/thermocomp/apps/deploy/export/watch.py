@@ -736,10 +736,14 @@ class CodeMonitor:
             x = u[self.idx]
             if not first:
                 self._settled(x, dt)
-            ref = None if first else self.ref.copy()
+            ref, count = (None, -1) if first else (self.ref.copy(), self.count)
             out = self._step(u, first, dt, self.a)
-            self.settle, self.settle_age = advanced(   # the row: NaN beyond range
-                self.settle, self.settle_age, self.ref, ref, self.hist[(self.pos - 1) % self.window])
+            # the row: NaN beyond range; (dep98) of a sample that passed the monitor by too (its
+            # window untouched), as served: the window's last row again read a unit's return
+            # (K -> °C after 30 samples) as a settled step of 3.15 °C, kept for good
+            row = self.hist[(self.pos - 1) % self.window] if self.count != count else np.where(
+                (x < self.a["lo_lim"]) | (x > self.a["hi_lim"]), np.nan, x - self.ref)
+            self.settle, self.settle_age = advanced(self.settle, self.settle_age, self.ref, ref, row)
             return out
 
     def _settled(self, x, dt) -> None:
@@ -778,21 +782,26 @@ class CodeMonitor:
                 self._flag(NOT_IN_CODE, int(np.argmax(rng)), RANGE)
             self.ref, self.base, self.ref0 = x.copy(), x.copy(), x.copy()
         d = x - self.ref
+        # a gap in time: each step judged as that many one-sample steps, and a sensor's own
+        # missing samples since its last reading too (the served monitor's gap per sensor)
+        gap = np.maximum(self.gap, max(1.0, dt / a["period"])) if (
+            not first and dt > a["gap_periods"] * a["period"]) else self.gap
         if rng.any() and not first:
-            every = bool(rng.all())
+            every, far = bool(rng.all()), rng | missing
             rng = self._beyond(x, d, rng)
             if rng is None:  # not in the code: the sample passes the monitor by, its state as it
                 # was (so that the return is no jump); (kelvin97) every reading beyond its range:
-                # nothing to rebuild from, the model reads the last field, as served (``_clean``)
+                # nothing to rebuild from, the model reads the last field, as served (``_clean``);
+                # (dep98) but each step spans it, as served: a reading beyond range one sample
+                # more of its gap, one in range its last (the return after 20 samples in kelvin
+                # was read as one sample's common step, the sensors re-referenced for good)
+                self.prev = np.where(far, self.prev, d)
+                self.gap = np.where(far, gap + 1, 1.0)
                 return self._rebuilt(u, self.last if every else x - self.ref)
         gone = missing | rng        # read as missing (cmon80: beyond its range too)
         pos = self.pos
         self.hist[pos] = d
         self.pos, self.count = (pos + 1) % self.window, self.count + 1
-        # a gap in time: each step judged as that many one-sample steps, and a sensor's own
-        # missing samples since its last reading too (the served monitor's gap per sensor)
-        gap = np.maximum(self.gap, max(1.0, dt / a["period"])) if (
-            not first and dt > a["gap_periods"] * a["period"]) else self.gap
         step = d - self.prev
         big = (np.abs(step) > a["jump_lim"] * gap) & ~rng
         same = step == 0

@@ -1208,13 +1208,23 @@ static void mon_sample(tc_state *s, double u[], double dt) {
         if (s->first) s->mon_ref[k] = s->mon_base[k] = s->mon_ref0[k] = x[k];
         d[k] = x[k] - s->mon_ref[k];
     }
+    /* a gap in time: the step judged as that many one-sample steps, and a sensor's own
+       missing samples since its last reading too */
+    if (!s->first && dt > MON_GAP_PERIODS * MON_PERIOD) span = dt / MON_PERIOD > 1.0 ? dt / MON_PERIOD : 1.0;
     if (nrng && !s->first) {   /* (cmon80) beyond its range: read as missing, or as read */
         int r = mon_beyond(s, x, d, far, nrng);
         if (r < 0) {   /* not in the code: the sample passes the monitor by, its state as it
                           was, so that the reading's return is no jump; (kelvin97) every
                           reading beyond its range: nothing to rebuild from, the model reads
-                          the last field, as served */
+                          the last field, as served; (dep98) but each step spans it, as
+                          served: one beyond range a sample more of its gap, one in range
+                          its last reading */
             const double *field = nrng == NM ? s->mon_last : d;
+            for (k = 0; k < NM; k++) {
+                double g = span > s->mon_gap[k] ? span : s->mon_gap[k];
+                if (rng[k] || missing[k]) s->mon_gap[k] = g + 1.0;
+                else s->mon_gap[k] = 1.0, s->mon_prev[k] = d[k];
+            }
             mon_errors(s, field, pred, e);
             mon_rebuilt(s, u, field, pred);
             return;
@@ -1226,9 +1236,6 @@ static void mon_sample(tc_state *s, double u[], double dt) {
     for (k = 0; k < NM; k++) s->mon_hist[pos][k] = d[k];
     s->mon_pos = (pos + 1) % MW;
     s->mon_count++;
-    /* a gap in time: the step judged as that many one-sample steps, and a sensor's own
-       missing samples since its last reading too */
-    if (!s->first && dt > MON_GAP_PERIODS * MON_PERIOD) span = dt / MON_PERIOD > 1.0 ? dt / MON_PERIOD : 1.0;
     for (k = 0; k < NM; k++) {
         gap[k] = (span > s->mon_gap[k]) ? span : s->mon_gap[k];
         step[k] = d[k] - s->mon_prev[k];
@@ -1453,7 +1460,7 @@ static void mon_settled(tc_state *s, const double x[], double dt) {
    a blind sensor's settled level shift judged before it, its ring of readings after */
 static void monitor_step(tc_state *s, double u[], double dt) {
     double x[NM], ref[NM];
-    int k, r;
+    int k, r, count = s->mon_count;
     mon_clear(s);
     if (!MON_SETTLED) {
         mon_sample(s, u, dt);
@@ -1473,7 +1480,12 @@ static void monitor_step(tc_state *s, double u[], double dt) {
         s->mon_settle_age[k] = s->first || !(fabs(s->mon_ref[k] - ref[k]) <= 1e-12)
             ? 1 : s->mon_settle_age[k] + 1;
         for (r = 0; r < 2 * MW - 2; r++) s->mon_settle[r][k] = s->mon_settle[r + 1][k];
-        s->mon_settle[2 * MW - 2][k] = s->mon_hist[(s->mon_pos + MW - 1) % MW][k];   /* (NAN beyond range) */
+        /* the sample as read, NAN beyond range; (dep98) of one that passed the monitor by too
+           (its window untouched), as served: the window's last row again read a unit's
+           return (K -> degC) as a settled step */
+        s->mon_settle[2 * MW - 2][k] = s->first || s->mon_count != count
+            ? s->mon_hist[(s->mon_pos + MW - 1) % MW][k]
+            : (x[k] < MON_LO_LIM[k] || x[k] > MON_HI_LIM[k] ? NAN : x[k] - s->mon_ref[k]);
     }
 }
 
