@@ -98,25 +98,14 @@ def generators() -> dict:
     return {**bench_st97d.generators(), **bench_mon97.SEEN, **bench_audit97.FAULTED, **fresh}
 
 
-class Three(bench_st94.Both):
-    """The block, the BASE block and the C stepped together."""
-
-    def __init__(self, ss, block: str, base: str):
-        from test_export import StructuredText
-
-        super().__init__(ss, block)
-        self.base, self.base_first = StructuredText(base), True
+class Three(bench_st97d.Three):
+    """The block, the BASE block and the C stepped together (bench_st97d's)."""
 
     def rows(self, part):
         """Per row ``Both.rows``'s, then ``(whether an output differs from BASE's, BASE's (flag,
         rule, sensor))``."""
-        U, t = part[self.ss.inputs].to_numpy(float), part["time"].to_numpy(float)
-        for i, got in enumerate(super().rows(part)):
-            old = self.base(U[i], t[i], self.base_first)
-            self.base_first = False
-            v, b = self.fb.vars, self.base.vars
-            differs = not np.array_equal(np.asarray(got[0]), old, equal_nan=True) or any(
-                v[k] != b[k] for k in bench_st97d.OUTPUTS)
+        for got, (differs, *_) in super().rows(part):
+            b = self.base.vars
             yield got, (differs, (bool(b["mon_flag"]), int(b["mon_rule"]), int(b["mon_sensor"])))
 
 

@@ -751,17 +751,9 @@ IF MON_STEP_JUDGE AND NOT mon_lost THEN
         END_IF;
     END_FOR;
     IF mon_froze >= 0 THEN
-        (* out in the C (rebuilt, or held at its last reading: the frozen one), which the *)
-        (* block does not follow: its judgement ends here, marked by the flag *)
-        mon_flag := TRUE;
-        mon_lost := TRUE;
-        IF mon_rule = 0 THEN
-            mon_sensor := mon_froze;
-            mon_rule := RULE_BLIND;
-            IF MON_FREEZE_HELD[mon_froze] = 1 THEN
-                mon_rule := RULE_FREEZE;
-            END_IF;
-        END_IF;
+        (* the C names its freeze before a stepped error: the frozen one is the culprit, out *)
+        (* in the C (rebuilt, or held at its last reading, the frozen one), not followed *)
+        mon_culprit := mon_froze;
     END_IF;
     mon_take := -1;
     mon_take_set := -1;
@@ -772,7 +764,9 @@ IF MON_STEP_JUDGE AND NOT mon_lost THEN
         IF mon_rule = 0 THEN
             mon_sensor := mon_culprit;
             mon_rule := RULE_BLIND;
-            IF MON_STEP_HELD[mon_culprit] = 1 THEN
+            IF mon_froze >= 0 AND MON_FREEZE_HELD[mon_culprit] = 1 THEN
+                mon_rule := RULE_FREEZE;
+            ELSIF mon_froze < 0 AND MON_STEP_HELD[mon_culprit] = 1 THEN
                 mon_rule := RULE_STEP_OUT;
                 IF MON_FOLLOW_BACK THEN
                     mon_lost := FALSE;    (* (st95b) out alone, followed to its BACK *)
@@ -785,7 +779,6 @@ IF MON_STEP_JUDGE AND NOT mon_lost THEN
     (* reach the band (MON_FIELD_BAND): a sensor no other predicts that explains them out *)
     (* (BLIND_OUT); a judgement the block cannot follow ends this one (not the stepped one) *)
     mon_judge := MON_BLIND_JUDGE AND NOT mon_blind_lost AND mon_was < 0 AND mon_culprit < 0;
-    mon_judge := mon_judge AND mon_froze < 0;
     mon_judge := mon_judge AND mon_count + 1 >= MON_CONFIRM;
     mon_reach := FALSE;
     mon_zbest := -1.0;
