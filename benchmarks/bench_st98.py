@@ -67,6 +67,43 @@ BAR (written and committed BEFORE any of 9853-9857 was simulated; scored once, t
 4. Seen (above, already traced, restated): sw9776 / cr9763 / lr9376 / tr9828 mismatch 0, false 0.
 KEPT if 1-4 hold (with the test failing on BASE, PARSED_DIGEST, docs); REFUSED otherwise
 (benchmarks/st98_rule.patch, src as on BASE).
+
+Scored (2026-12-06, 2 cores shared by up to 8 helpers, load 12-22; the bar unchanged since its
+commit 00cf7e5e, the fresh records simulated after it by this bench, ``cases /tmp/st98/fresh
+sw9853 cr9854 sw9857`` and ``... lr9855 tr9856`` in two processes, once; 17.8 + 74.0 s CPU)::
+
+    record  test  rows (lead-in)  healthy diff rows  C first event (ST alike)   frozen    max|ST-C| um
+    sw9853  prod  1441 (0)        0                  none                       12 agree  3.55e-14
+    cr9854  C07   236 (0)         0                  none                       12 agree  2.13e-14
+    lr9855  R1b   4321 (3457)     0                  2688 STEP_OUT T_head_left  14 agree  1.19e-13
+    tr9856  W3    30240 (20160)   0                  none                       9 agree   1.85e-13
+    sw9857  prod  1441 (0)        0                  none                       12 agree  4.97e-14
+
+1 MET: 59 of 59 frozen cases agree (the C's FREEZE, every one held, named at its row with the
+sensor: row 11 from the onset 50, row 10 8, row 9 1), mismatch 0, false 0, ended 0 (the block
+judging at the onset on every fresh record), max|ST-C| <= 1.85e-13 um before the C's first event.
+BASE on the same cases: no FREEZE; the reading's return a JUMP at row 60 on 20, nothing on 39.  2
+MET: 0 diff rows on the five healthy frames, no FREEZE row of either.  3 MET: ``cases
+/tmp/st98/st97d`` on bench_st97d's 11 records (154.6 s CPU): 0 healthy diff rows on each;
+``bench_st97d.py cases`` on them (147.6 s CPU): its docstring's a/m/o/n again, lr9823 7/3/4/10,
+lr9790 2/4/0/14, dl9768 9/0/5/18, dl9791 3/7/3/7, cr9792 1/0/0/23, lr9793 5/0/2/13, dl9794
+1/4/0/11, lr9820 5/0/3/12, dl9821 5/0/3/16, cr9822 0/0/0/24, dl9824 6/0/0/14, 0 diff rows, 0
+mon_stop rows (both on 00cf7e5e's block).  4 MET (above).  VERDICT: KEPT.
+
+Changed after the scoring, said: the block's freeze flag now goes through the stepped error's
+culprit path (the frozen sensor the culprit, one flag / rule path: duplicates' pair), the same
+outputs by construction; ``cases`` reprinted sw9853 / cr9854 / sw9857 / lr9855 line for line
+(31.8 s CPU, copies of the records) and the seen sw9776 / cr9763.
+
+Beside the bar, bench_st97d's records (seen; frozen cases): dl9768 14, cr9792 11, lr9793 14,
+lr9820 14, dl9821 13, cr9822 12, lr9823 14, dl9824 14 agree; ``ended`` 42: lr9790, dl9791 and
+dl9794 (14 each), whose block judgement ended before the onset (its own JUMP at 3607, STEP_OUT at
+986 / 4263): the freeze unnamed there as before (the block silent or the return's JUMP);
+``other`` 2 (cr9792 T_nc_z1_drive, dl9821 T_xdrive): the C's first event a new thermal state
+(flags 72, no rule) a row or two before its FREEZE, which the block names alike at its row (11).
+Seen cr9763 T_nc_z1_drive (``other``): the C's BLIND_OUT of T_nc_spindle_motor at row 5 (named
+alike), then its FREEZE of T_nc_z1_drive at row 10 as the second out: the block, one held out,
+judges no freeze (said in the rule) and is silent there.
 """
 
 from __future__ import annotations
