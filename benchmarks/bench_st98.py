@@ -104,6 +104,14 @@ dl9794 (14 each), whose block judgement ended before the onset (its own JUMP at 
 Seen cr9763 T_nc_z1_drive (``other``): the C's BLIND_OUT of T_nc_spindle_motor at row 5 (named
 alike), then its FREEZE of T_nc_z1_drive at row 10 as the second out: the block, one held out,
 judges no freeze (said in the rule) and is silent there.
+
+Traced after the verdict (seen only, not the rule, not in src): benchmarks/st98_after_lost.patch
+judges the two run rules (``MON_DITHER_RUN``; ``MON_BLIND_RUN`` of one no other predicts) also
+after the block's judgement ended, once a run (at run + 1), of a sensor the block does not hold
+re-referenced out (``mon_out``), where no rule named the row.  ``cases /tmp/st98/exprec lr9790
+dl9791 dl9794`` on it (48.8 s CPU): the 42 ``ended`` cases all ``agree`` (FREEZE at the C's row
+10-11), healthy diff rows 0 on the three.  A candidate for a next stop, with its own bar and fresh
+seeds: the C may hold a sensor out there that the block cannot see (its freeze then not the C's).
 """
 
 from __future__ import annotations
