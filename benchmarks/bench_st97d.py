@@ -110,11 +110,11 @@ def generators() -> dict:
     return {**bench_st95b.FRESH, **bench_st96.FRESH, **bench_st96b.FRESH, **bench_st97b.FRESH}
 
 
-def base_block(deployed) -> str:
-    """``deployed``'s block as BASE's st_watch.py wrote it (its ``OUTPUTS`` and ``BLOCK``)."""
+def base_block(deployed, base: str = BASE) -> str:
+    """``deployed``'s block as ``base``'s st_watch.py wrote it (its ``OUTPUTS`` and ``BLOCK``)."""
     from thermocomp.apps.deploy.export import exported_files, st
 
-    text = subprocess.run(["git", "show", f"{BASE}:{WATCH}"], cwd=HERE.parent, check=True,
+    text = subprocess.run(["git", "show", f"{base}:{WATCH}"], cwd=HERE.parent, check=True,
                           capture_output=True, text=True).stdout
     said = {t.id: ast.literal_eval(node.value) for node in ast.parse(text).body
             if isinstance(node, ast.Assign) for t in node.targets

@@ -1,8 +1,9 @@
 """The ST block's campaign counters do not wrap on a long campaign (stop 97 review): a PLC's INT
 wraps after 32767 samples (9 h at 1 s), and a wrapped ``mon_count`` turns ``mon_count + 1 >=
 MON_CONFIRM`` false (the block stops judging) and passes through 1 again (its first-sample
-branch).  The counters that grow with the campaign are DINT, and the sample count is held at its
-top rather than incremented past it."""
+branch).  The counters that grow with the campaign are DINT (st98: each sensor's run of equal
+readings too, ``mon_frun``), and the sample count is held at its top rather than incremented past
+it."""
 
 from __future__ import annotations
 
@@ -10,11 +11,11 @@ import re
 
 from thermocomp.apps.deploy.export import st_watch
 
-GROWING = ("mon_count", "mon_stop_row", "mon_calm", "mon_run", "mon_run_was")
+GROWING = ("mon_count", "mon_stop_row", "mon_calm", "mon_run", "mon_run_was", "mon_frun")
 
 
 def _declared(text: str) -> dict[str, str]:
-    return dict(re.findall(r"^\s*(\w+) : (\w+);$", text, re.M))
+    return dict(re.findall(r"^\s*(\w+) : (?:ARRAY\[[^\]]*\] OF )?(\w+);$", text, re.M))
 
 
 def test_the_counters_that_grow_with_a_campaign_are_dint():

@@ -47,7 +47,14 @@ Per sample, of each monitored sensor ``k`` (the input ``MON_INPUT[k]``, the C's 
   conditions (its reference unmoved for ``2 MON_WINDOW - 1`` samples, no gap, the reading before
   the sample's BENT): named, not flagged (a re-reference, as BENT), and re-referenced as the C
   does (``mon_shift``, the window ``mon_ring``; the band test reads a row from before it on its
-  reference, as the C's stored errors), the block judging on.
+  reference, as the C's stored errors), the block judging on;
+* (st98) the C's freeze, judged while the field is whole and none is held out
+  (:func:`freeze_constants`): a sensor whose reading, in range, has equalled its last one
+  (``mon_frun``, the C's run) past ``MON_DITHER_RUN`` (mon97: a reading that dithers), past
+  ``MON_BLIND_RUN`` (one no other predicts), or for ``MON_SEEN_RUN`` samples while the others'
+  prediction of it with every sensor in moved by its warning band since the run began
+  (``mon_fpred``, the C's ``run_pred``): ``FREEZE`` (``BLIND`` where the C does not hold it out),
+  flagged, the block's judgement ending there (the C rebuilds it or holds it).
 
 ``mon_flag`` says the sample's fault, ``mon_rule`` its rule (the C's ``mon_rule`` codes, named
 by ``TC_MONITOR_REASONS``) and ``mon_sensor`` its monitored sensor ``k`` (-1: none): the first,
@@ -68,9 +75,9 @@ the sensor continuous with its last reading and a spike's return undoes it; a pa
 (the C re-references them by their step less the change the others predict, and rebuilds them:
 the block parts from the C after the pair's sample, as after any jump the C excludes).  The block
 keeps no count of the sensors the C holds out (it cannot tell the C's re-admission): a pair is
-judged as the C judges it with none out but the jumpers.  The freeze, the
-drift, the re-admission and the rest judge a sensor by the others' prediction of it over a set
-the block does not know (the POD): not in the ST, they stay with the served model
+judged as the C judges it with none out but the jumpers.  The freeze with a
+sensor out, the drift, the re-admission and the rest judge a sensor by the others' prediction
+of it over a set the block does not know (the POD): not in the ST, they stay with the served model
 (``provenance.not_in_code``).  (st94b) The stepped self-prediction error is judged while the
 field is whole only: from the first exclusion the block flags (a jump, a dropout, a reading beyond range, a
 stepped error not followed to its ``BACK``) to the campaign's end the C judges it with a sensor out
@@ -91,6 +98,7 @@ from .watch import (
     COMMON,
     COMMON_STEP,
     DROPOUT,
+    FREEZE,
     GLITCH,
     JUMP,
     MISSING_FIRST,
@@ -151,6 +159,29 @@ def back_constants(watch: dict, n: int, stepped: bool, constant) -> list[str]:
             f"    MON_MAX_BACKOFF : INT := {int(watch.get('max_backoff', 10))};",
             constant("MON_BACK_BAND", band.tolist(), (n,)),
             constant("MON_FREEZE_RUN", runs.tolist(), (n,), "INT")]
+
+
+def freeze_constants(watch: dict, n: int, constant) -> list[str]:
+    """(st98) What the block needs to judge a freeze as the C does with every sensor in (the
+    mirror's ``frozen``): each sensor's runs as whole samples -- ``seen_run`` (one the others
+    predict, while their prediction of it moved by its warning band: a run at least it), and
+    ``blind_run`` (one they do not) and ``dither_run`` (mon97: one whose reading dithers; none
+    elsewhere, an export before it) that a run must pass -- and whether the C holds it out for
+    it (``MON_FREEZE_HELD``: the others predict it, or cmon84 one no other predicts held at its
+    last reading; else the C flags it ``BLIND``).  No run bound: DINT's top, never reached."""
+    top = 2**31 - 1
+    blind = ~np.asarray(watch.get("predictable", [True] * n), bool)
+    drops = blind & bool(watch.get("blind_drop")) & (n - 1 >= watch.get("min_active", n))
+    held = np.asarray(watch.get("ported_out", [0] * n), bool) | drops
+
+    def runs(key: str, whole) -> list[int]:
+        values = np.asarray(watch.get(key, [np.inf] * n), float)
+        return [int(whole(v)) if np.isfinite(v) and v < top else top for v in values]
+
+    return [constant("MON_SEEN_RUN", runs("seen_run", np.ceil), (n,), "DINT"),
+            constant("MON_BLIND_RUN", runs("blind_run", np.floor), (n,), "DINT"),
+            constant("MON_DITHER_RUN", runs("dither_run", np.floor), (n,), "DINT"),
+            constant("MON_FREEZE_HELD", held.astype(int).tolist(), (n,), "INT")]
 
 
 def blind_constants(watch: dict, n: int, stepped: bool, literal, constant) -> list[str]:
@@ -216,7 +247,7 @@ def constants(watch: dict, literal, constant) -> list[str]:
              ("DROPOUT", DROPOUT), ("MISSING_FIRST", MISSING_FIRST), ("OFF_RANGE", OFF_RANGE),
              ("RANGE", RANGE), ("SPIKE", SPIKE), ("BENT", BENT),
              ("STEP_OUT", STEP_OUT), ("BLIND", BLIND), ("BLIND_OUT", BLIND_OUT),
-             ("SETTLED", SETTLED))
+             ("SETTLED", SETTLED), ("FREEZE", FREEZE))
     # (st94) no bound where the export has none (before step93, a sensor the others predict):
     # the largest LREAL, as ST has no infinity
     bends = np.asarray(watch.get("bend_lim", []) if watch.get("bent") else [np.inf] * n, float)
@@ -238,6 +269,7 @@ def constants(watch: dict, literal, constant) -> list[str]:
             constant("MON_STEP_HELD", [int(p) for p in watch.get("ported_out", [])], (n,), "INT"),
             *back_constants(watch, alarm.size, stepped, constant),
             *blind_constants(watch, alarm.size, stepped, literal, constant),
+            *freeze_constants(watch, alarm.size, constant),
             f"    MON_PERIOD : LREAL := {literal(watch.get('period', 1.0))};",
             f"    MON_GAP_PERIODS : LREAL := {literal(watch.get('gap_periods', 1.5))};",
             f"    MON_COMMON_MIN : INT := {int(watch.get('common_min', 3))};",
@@ -328,6 +360,10 @@ VARS = """    mon_last : ARRAY[{nm}] OF LREAL;
     mon_since : ARRAY[{nm}] OF INT;
     mon_sback : ARRAY[{nm}] OF LREAL;
     mon_undo : LREAL;
+    mon_frun : ARRAY[{nm}] OF DINT;
+    mon_fpred : ARRAY[{nm}] OF LREAL;
+    mon_froze : INT;
+    mon_still : BOOL;
 """
 
 # before the refusal: the sample's monitored readings judged (the block's first == a campaign's)
@@ -375,6 +411,13 @@ FOR mk := 0 TO MON_N - 1 DO
     mon_x := u[j];
     mon_big[mk] := FALSE;
     mon_bent[mk] := 0.0;
+    (* (st98) its readings standing still, in range: the C's run (its reading its last one) *)
+    mon_still := mon_x >= MON_LO_LIM[mk] AND mon_x <= MON_HI_LIM[mk] AND mon_x = mon_last[mk];
+    IF first OR NOT mon_still THEN
+        mon_frun[mk] := 0;
+    ELSIF mon_frun[mk] < 2147483646 THEN
+        mon_frun[mk] := mon_frun[mk] + 1;
+    END_IF;
     IF NOT (mon_x >= -U_LIMIT[j] AND mon_x <= U_LIMIT[j]) THEN
         IF mon_rule = 0 THEN
             mon_sensor := mk;
@@ -681,6 +724,37 @@ IF MON_STEP_JUDGE AND NOT mon_lost THEN
         mon_prev_e[mk] := mon_e[mk];
     END_FOR;
     mon_e_known := TRUE;
+    (* (st98) the C's freeze with every sensor in, none held out: a reading standing still past *)
+    (* its run (MON_BLIND_RUN of one no other predicts, MON_DITHER_RUN of one whose reading *)
+    (* dithers), or, of one the others predict, MON_SEEN_RUN samples while their prediction *)
+    (* of it moved by its warning band since the run began; the first frozen named *)
+    mon_froze := -1;
+    FOR mk := 0 TO MON_N - 1 DO
+        mon_x := mon_d[mk] - mon_e[mk];    (* the others' prediction of it (MON_JUDGED) *)
+        IF mon_frun[mk] = 1 THEN
+            mon_fpred[mk] := mon_x;
+        END_IF;
+        IF mon_frun[mk] > 0 AND mon_was < 0 AND mon_froze < 0 THEN
+            mon_off := mon_x - mon_fpred[mk];
+            IF mon_off < 0.0 THEN
+                mon_off := -mon_off;
+            END_IF;
+            mon_ev := mon_frun[mk] > MON_DITHER_RUN[mk];
+            IF MON_JUDGED[mk] = 1 THEN
+                mon_ev := mon_ev OR (mon_off >= MON_WARN[mk] AND mon_frun[mk] >= MON_SEEN_RUN[mk]);
+            ELSE
+                mon_ev := mon_ev OR mon_frun[mk] > MON_BLIND_RUN[mk];
+            END_IF;
+            IF mon_ev THEN
+                mon_froze := mk;
+            END_IF;
+        END_IF;
+    END_FOR;
+    IF mon_froze >= 0 THEN
+        (* the C names its freeze before a stepped error: the frozen one is the culprit, out *)
+        (* in the C (rebuilt, or held at its last reading, the frozen one), not followed *)
+        mon_culprit := mon_froze;
+    END_IF;
     mon_take := -1;
     mon_take_set := -1;
     IF mon_culprit >= 0 THEN
@@ -690,7 +764,9 @@ IF MON_STEP_JUDGE AND NOT mon_lost THEN
         IF mon_rule = 0 THEN
             mon_sensor := mon_culprit;
             mon_rule := RULE_BLIND;
-            IF MON_STEP_HELD[mon_culprit] = 1 THEN
+            IF mon_froze >= 0 AND MON_FREEZE_HELD[mon_culprit] = 1 THEN
+                mon_rule := RULE_FREEZE;
+            ELSIF mon_froze < 0 AND MON_STEP_HELD[mon_culprit] = 1 THEN
                 mon_rule := RULE_STEP_OUT;
                 IF MON_FOLLOW_BACK THEN
                     mon_lost := FALSE;    (* (st95b) out alone, followed to its BACK *)
