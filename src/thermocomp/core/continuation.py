@@ -30,6 +30,7 @@ import pandas as pd
 from ..base.log import logger, once_per_run, say
 from .io.contract import TIME, Dataset, role
 from .io.instants import START, start_instants
+from .restart import RESTARTED
 from .timerule import median_step
 
 CONTINUES = "continues"
@@ -52,7 +53,8 @@ def predecessors(ds: Dataset) -> dict[str, str]:
     A campaign continues another when the manifest's ``continues`` names it, when its
     ``time`` does not restart at 0 but starts one sample period after the other's last
     ``time`` (one clock), or when its ``start`` is the other's start + last ``time`` + one
-    period (within half a period)."""
+    period (within half a period).  A link found by time that ``data.reference=auto`` read as a
+    restart (``ds.meta``'s :data:`~.restart.RESTARTED`, :func:`time_links`) is left out."""
     ids = set(ds.ids())
     out: dict[str, str] = {}
     man = ds.manifest
@@ -85,8 +87,16 @@ def predecessors(ds: Dataset) -> dict[str, str]:
                 continue
             found[cid] = [prev for prev, (end, period) in ends.items()
                           if prev != cid and abs((t0 - end).total_seconds()) <= period / 2]
-    out.update(_unambiguous(found))
+    restarted = ds.meta.get(RESTARTED, {})
+    out.update({c: p for c, p in _unambiguous(found).items() if c not in restarted})
     return out
+
+
+def time_links(ds: Dataset) -> dict[str, str]:
+    """The links of :func:`predecessors` found by time alone (not named in ``continues``)."""
+    named = ds.manifest[CONTINUES] if CONTINUES in ds.manifest.columns else {}
+    return {c: p for c, p in predecessors(ds).items()
+            if not (isinstance(named.get(c), str) and named.get(c).strip() == p)}
 
 
 # a step at a junction this many times the largest one-sample step inside the two campaigns
