@@ -43,6 +43,36 @@ lr9862, pm9863; scored ONCE with ``auto``; figures the mean over targets of the 
     hammerstein and lagbank; every link a restart); lr9862 and pm9863 as (2) (continuing, RMSE
     = base's to 1e-9 µm).
 KEPT if (1)-(4) hold; one fresh record failing its clause: REFUSED (patch saved, src reverted).
+
+Measured (2026-12-06, nice, OMP_NUM_THREADS=1, load 23-25 on 2 cores; ``auto`` 2.8-6.6 s CPU a
+record; base = ``git archive 6c78e132 src conf``; tr9827/tr9828/tr6301/lr9211 = ham98's files).
+Mean over targets of the test RMSE, µm: base as scored (warm) / base cold -> rule (rule / cold)::
+
+  SEEN   tr9827 hammerstein 1.900 / 1.384 -> 0.383 (0.28)  lagbank 1.939 / 1.430 -> 0.524 (0.37)
+         tr9828 hammerstein 1.276 / 0.739 -> 0.363 (0.49)  lagbank 1.109 / 1.038 -> 0.557 (0.54)
+         tr6301 hammerstein 0.991 / 0.649 -> 0.350 (0.54)  lagbank 1.003 / 0.668 -> 0.555 (0.83)
+         pr6401 hammerstein 13.635 / 9.852 -> 4.861 (0.49) lagbank 15.265 / 12.852 -> 8.315 (0.65)
+         mlr (no state) 1.946 -> 1.275, 1.183 -> 1.224 (+3.4 %), 1.148 -> 1.125; pr6401 16.309 -> 10.817
+  FRESH  tr9859 hammerstein 1.114 / 0.766 -> 0.346 (0.45)  lagbank 1.004 / 0.655 -> 0.514 (0.79)
+         tr9860 hammerstein 1.047 / 1.567 -> 0.388 (0.25)  lagbank 1.159 / 1.410 -> 0.850 (0.60)
+         tr9861 hammerstein 1.141 / 0.972 -> 0.546 (0.56)  lagbank 1.199 / 1.038 -> 0.602 (0.58)
+         mlr 1.181 -> 1.196 (+1.3 %), 1.600 -> 1.285, 1.464 -> 1.326
+
+Every trunnion63 and pr6401 link (W2 <- W1, W3 <- W2) read as a restart, auto -> first_sample,
+``run`` saying ``data.reference=auto: W2 restarts after W1: every error starts at 0 (E_Y +1.2 ->
++0.2; 1.34e+06:1 against running on), no state carried over; W3 restarts after W2: ... (E_Z -1.9
+-> +0.1; 223:1 ...)`` then ``data.reference=auto: first_sample (no test or val campaign continues
+another; W3 restarts)`` (tr9827).  Continuing, seen lr9211, fl, pm6401 (= pm12) and fresh lr9862,
+pm9863: reference none, the same links and chains, every RMSE (scored and cold, 3 families) equal
+to base's to 0.0 µm (lr9862 hammerstein 0.463 warm / 2.263 cold; pm9863 3.864 / 4.663).
+``makerun``: E_X / E_Y / E_Z 0.75 / 1.42 / 5.80 on both (auto: first_sample, as on base).
+
+Against the bar (unchanged after its commit 6d669bce): (1) met (rule 0.28-0.83 x cold), (2) met,
+(3) met, (4) met on all five fresh (rule 0.25-0.79 x cold; lr9862 / pm9863 equal).  KEPT.
+After the bar's commit only the run's line was reworded (the "; W3 restarts" in the resolved
+line, "an explicit data.reference=none"), before tr9860; no decision of the rule changed.
+Not in the bar: MLR (no state) moves with the frame, not the carried state: first_sample is
++3.4 % on tr9828 and +1.3 % on tr9859, better on the other six (-2 % to -34 %).
 """
 
 from __future__ import annotations
@@ -52,11 +82,9 @@ import os
 import sys
 from pathlib import Path
 
-import numpy as np
-
 HERE = Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE)]
-from _cli import made_folder, project_root, run_commands  # noqa: E402
+from _cli import project_root, run_commands  # noqa: E402
 
 FAMILIES = ("hammerstein", "lagbank", "mlr")
 LIGHT = ["track=false", "plots=none"]
@@ -104,9 +132,9 @@ def _overrides(root: Path, record: str) -> list[str]:
 
 def auto(root: str, record: str, *families: str) -> None:
     """Per family: reference=auto as resolved, links carried, restarts, RMSE as scored / cold."""
+    import bench_ham98
     from hydra import compose, initialize_config_dir
 
-    import bench_ham98
     import thermocomp.shell.cli  # noqa: F401  (registers the config's resolvers)
     from thermocomp.base.paths import conf_dir
     from thermocomp.core import continuation
@@ -144,7 +172,7 @@ def makerun(root: str) -> None:
     """``simulate`` + ``run`` of the default config in ROOT; prints the run's table."""
     import subprocess
 
-    folder = made_folder(root)
+    folder = project_root(root)       # (its conf/ linked in: the default config)
     env = dict(os.environ, THERMOCOMP_ROOT=str(folder))
     for stage in ("simulate", "run"):
         done = subprocess.run([sys.executable, "-m", "thermocomp", stage, *LIGHT], cwd=folder,

@@ -43,7 +43,8 @@ def test_a_week_whose_errors_start_again_at_zero_is_read_as_a_restart_and_said(t
     assert metrics["reference"] == "first_sample" and metrics["carry_over"] == {}
     err = capsys.readouterr().err
     assert "week2 restarts after week1: every error starts at 0 (E_dZ" in err
-    assert "data.reference=auto: first_sample (no test or val campaign continues" in err
+    assert ("data.reference=auto: first_sample (no test or val campaign continues another; "
+            "week2 restarts)") in err
     assert "by its time, but" not in err        # (no junction warning for a link not carried)
 
 

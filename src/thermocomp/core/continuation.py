@@ -16,7 +16,9 @@ user's own files without that column, when its ``start`` (ISO 8601) is the
 other's end -- start + last ``time`` + one sample period -- within half a
 period.  State is carried over only with ``data.reference=none``: in the
 first-sample frame each file is referenced to its own first sample and the
-joined campaign is not in that frame.
+joined campaign is not in that frame.  Under ``data.reference=auto`` a link found
+by time whose later file's errors all start again at 0 is a restart
+(:mod:`.restart`), left out of :func:`predecessors`.
 """
 
 from __future__ import annotations

@@ -170,7 +170,7 @@ def resolve_reference(cfg: DictConfig, ds) -> str:
     given = cfg.data.reference
     if given == AUTO_REFERENCE and (restarted := restarts(ds, time_links(ds))):
         ds.meta[RESTARTED] = restarted
-        say(f"data.reference=auto: {'; '.join(restarted.values())} (data.reference=none "
+        say(f"data.reference=auto: {'; '.join(restarted.values())} (an explicit data.reference=none "
             "carries the state over)")
     links = predecessors(ds)
     if str(cfg.data.reference) != "first_sample":   # (each file restarts: no junction)
@@ -178,8 +178,11 @@ def resolve_reference(cfg: DictConfig, ds) -> str:
     scored = [c for c in ds.ids() if c in links and ds.manifest.loc[c, "split"] in ("test", "val")]
     if given == AUTO_REFERENCE:
         resolved = "none" if scored else "first_sample"
+        restarting = [c for c in ds.meta.get(RESTARTED, {})
+                      if ds.manifest.loc[c, "split"] in ("test", "val")]
         why = (f"{scored[0]} continues {links[scored[0]]}: its state is carried over" if scored
-               else "no test or val campaign continues another")
+               else "no test or val campaign continues another"
+               + (f"; {restarting[0]} restarts" if restarting else ""))
         say(f"data.reference=auto: {resolved} ({why})")
         with open_dict(cfg):
             cfg.data.reference = resolved
