@@ -16,7 +16,9 @@ user's own files without that column, when its ``start`` (ISO 8601) is the
 other's end -- start + last ``time`` + one sample period -- within half a
 period.  State is carried over only with ``data.reference=none``: in the
 first-sample frame each file is referenced to its own first sample and the
-joined campaign is not in that frame.
+joined campaign is not in that frame.  Under ``data.reference=auto`` a link found
+by time whose later file's errors all start again at 0 is a restart
+(:mod:`.restart`), left out of :func:`predecessors`.
 """
 
 from __future__ import annotations
@@ -30,6 +32,7 @@ import pandas as pd
 from ..base.log import logger, once_per_run, say
 from .io.contract import TIME, Dataset, role
 from .io.instants import START, start_instants
+from .restart import RESTARTED
 from .timerule import median_step
 
 CONTINUES = "continues"
@@ -52,7 +55,8 @@ def predecessors(ds: Dataset) -> dict[str, str]:
     A campaign continues another when the manifest's ``continues`` names it, when its
     ``time`` does not restart at 0 but starts one sample period after the other's last
     ``time`` (one clock), or when its ``start`` is the other's start + last ``time`` + one
-    period (within half a period)."""
+    period (within half a period).  A link found by time that ``data.reference=auto`` read as a
+    restart (``ds.meta``'s :data:`~.restart.RESTARTED`, :func:`time_links`) is left out."""
     ids = set(ds.ids())
     out: dict[str, str] = {}
     man = ds.manifest
@@ -85,8 +89,16 @@ def predecessors(ds: Dataset) -> dict[str, str]:
                 continue
             found[cid] = [prev for prev, (end, period) in ends.items()
                           if prev != cid and abs((t0 - end).total_seconds()) <= period / 2]
-    out.update(_unambiguous(found))
+    restarted = ds.meta.get(RESTARTED, {})
+    out.update({c: p for c, p in _unambiguous(found).items() if c not in restarted})
     return out
+
+
+def time_links(ds: Dataset) -> dict[str, str]:
+    """The links of :func:`predecessors` found by time alone (not named in ``continues``)."""
+    named = ds.manifest[CONTINUES] if CONTINUES in ds.manifest.columns else {}
+    return {c: p for c, p in predecessors(ds).items()
+            if not (isinstance(named.get(c), str) and named.get(c).strip() == p)}
 
 
 # a step at a junction this many times the largest one-sample step inside the two campaigns

@@ -161,18 +161,28 @@ def reference(cfg: DictConfig) -> str:
 def resolve_reference(cfg: DictConfig, ds) -> str:
     """``data.reference=auto`` made ``none`` where a test or val campaign of ``ds`` continues
     another (its state is carried over, :mod:`thermocomp.core.continuation`), else ``first_sample``;
-    said in one line.  An explicit ``first_sample`` there is warned about: each part restarts."""
-    from ..core.continuation import predecessors, said_junction_steps
+    said in one line.  A link found by time whose later file's errors all start again at 0 is
+    read there as a restart (:mod:`thermocomp.core.restart`; left out of every stage's links,
+    said).  An explicit ``first_sample`` there is warned about: each part restarts."""
+    from ..core.continuation import predecessors, said_junction_steps, time_links
+    from ..core.restart import RESTARTED, restarts
 
+    given = cfg.data.reference
+    if given == AUTO_REFERENCE and (restarted := restarts(ds, time_links(ds))):
+        ds.meta[RESTARTED] = restarted
+        say(f"data.reference=auto: {'; '.join(restarted.values())} (an explicit data.reference=none "
+            "carries the state over)")
     links = predecessors(ds)
     if str(cfg.data.reference) != "first_sample":   # (each file restarts: no junction)
         said_junction_steps(ds, links)
     scored = [c for c in ds.ids() if c in links and ds.manifest.loc[c, "split"] in ("test", "val")]
-    given = cfg.data.reference
     if given == AUTO_REFERENCE:
         resolved = "none" if scored else "first_sample"
+        restarting = [c for c in ds.meta.get(RESTARTED, {})
+                      if ds.manifest.loc[c, "split"] in ("test", "val")]
         why = (f"{scored[0]} continues {links[scored[0]]}: its state is carried over" if scored
-               else "no test or val campaign continues another")
+               else "no test or val campaign continues another"
+               + (f"; {restarting[0]} restarts" if restarting else ""))
         say(f"data.reference=auto: {resolved} ({why})")
         with open_dict(cfg):
             cfg.data.reference = resolved
