@@ -272,9 +272,7 @@ def monitor_fields(deployed, inputs: list) -> dict:
         "period": float(deployed.period_s), "gap_periods": GAP_PERIODS, "readmit": READMIT,
         "drift": 1, "pairs": [list(p) for p in pairs], "new_state": int(mon.new_state),
         "new_state_others": int(mon.new_state_others), "max_backoff": MAX_BACKOFF,
-        "tau": EXCURSION_TAU_S, "growth": EXCURSION_GROWTH,
-        # (mon98) a lone fault blinding its partner within band, taken where it departed slowly
-        "slow_share": float(getattr(mon, "slow_share", np.inf)), "novel": 1, "blind_out": 1, "thawed": 1,
+        "tau": EXCURSION_TAU_S, "growth": EXCURSION_GROWTH, "novel": 1, "blind_out": 1, "thawed": 1,
         "blind_drop": 1, "solve": 1, "stepped": 1, "cleared": 1, "blind_jump": 1, "second_jump": 1,
         "second_instant": 1,
         "blind_range": 1,
@@ -410,7 +408,6 @@ class CodeMonitor:
         a.setdefault("bend_lim", np.full(n, np.inf))
         a.setdefault("settle_lim", np.full(n, np.inf))
         a.setdefault("dither_run", np.full(n, np.inf))   # (before mon97: frozen by the field)
-        a.setdefault("slow_share", np.float64(np.inf))   # (before mon98: no slow departure)
         a.setdefault("settle_steady", np.float64(0))   # (before settle95: a fast ramp settled)
         # (jump94b) the sensors no other predicts whose level shift two windows tell
         self.settles = np.flatnonzero(bool(a["settled"]) & np.isfinite(a["settle_lim"]))
@@ -1358,25 +1355,11 @@ class CodeMonitor:
         hidden = out & (z < 0.7 * z[j]) & (np.arange(len(z)) == likelier)
         hides = bool(level[j] < WARNING) and self._resolves(j, hidden)
         for k in np.argsort(-z):
-            if k == j or z[k] < 0 or level[k] < WARNING or likelier != k:
-                continue
-            if self._resolves(int(k), judged,   # (mon84b: every judged sensor)
-                              float(np.max(np.delete(size, k), initial=0.0))):
-                return int(k), True
-            # (mon98: a slow departure, every one out of band still judged)
-            if self._slow_departure(int(k), err) and self._resolves(
-                    int(k), out, float(np.max(np.delete(np.where(out, size, 0.0), k), initial=0.0))):
+            if (k != j and z[k] >= 0 and level[k] >= WARNING and likelier == k
+                    and self._resolves(int(k), judged,   # (mon84b: every judged sensor)
+                                       float(np.max(np.delete(size, k), initial=0.0)))):
                 return int(k), True
         return (-1, True) if doubted else (j, hides)
-
-    def _slow_departure(self, k: int, err) -> bool:
-        """(mon98) The served ``_slow_departure``: the field's memory held, on the same side, at
-        least ``slow_share`` of ``k``'s error over the last ``confirm`` samples."""
-        if not self.slow_known:
-            return False
-        M, _, _, _, scale = self._set()
-        past = (self.slow[k] - M[k] @ self.slow) * scale[k]
-        return bool(past * np.sign(err[k]) >= self.a["slow_share"] * abs(err[k]))
 
     def _fold(self, d, first, dt) -> None:
         """The served monitor's memory of the field (``EXCURSION_TAU_S``), the sample ``d``."""

@@ -115,9 +115,7 @@ def monitor_arrays(ss) -> list[tuple[str, object, tuple, str]]:
                ("MON_BLIND_RANGE", "blind_range", 0, "int"),
                ("MON_SPIKE", "spike", 0, "int"), ("MON_BENT", "bent", 0, "int"),
                ("MON_PAIR_JUMP", "pair_jump", 0, "int"), ("MON_SETTLED", "settled", 0, "int"),
-               ("MON_SETTLE_STEADY", "settle_steady", 0.0, "real"),
-               # (mon98) a lone fault blinding its partner, taken on a slow departure (before: never)
-               ("MON_SLOW_SHARE", "slow_share", math.inf, "real"))
+               ("MON_SETTLE_STEADY", "settle_steady", 0.0, "real"))
     modes = max(int(m.get("modes", 1)), 1)
     return [("MON_M", m.get("M", []), (n + 1 + len(pairs), n, n), "real"),
             ("MON_LEV", m.get("lev", []), (n + 1 + len(pairs), n), "real"),
@@ -858,7 +856,6 @@ static int mon_resolves(const tc_state *s, int j, const int seen[], double alone
 }
 
 static int mon_hovers(const tc_state *s, const int level[]);   /* (below) */
-static int mon_slow_departure(const tc_state *s, int k);         /* (below) */
 
 /* the served monitor's _lone_fault, every sensor in: the sensor (j: the largest |E|(1 - h), z
    its ranks) whose exclusion explains the bands, *resolves whether it does */
@@ -898,11 +895,6 @@ static int mon_lone_fault(const tc_state *s, int j, const double z[], const int 
             if (m != k && size[m] > alone) alone = size[m];
         /* (mon84b: tested on every judged sensor, none left unjudged) */
         if (mon_resolves(s, k, jd, alone)) return *resolves = 1, k;
-        /* (mon98: a slow departure, every one out of band still judged) */
-        alone = 0.0;
-        for (int m = 0; m < NM; m++)
-            if (m != k && out[m] && size[m] > alone) alone = size[m];
-        if (mon_slow_departure(s, k) && mon_resolves(s, k, out, alone)) return *resolves = 1, k;
     }
     return doubted ? (*resolves = 1, -1) : (*resolves = hides, j);
 }
@@ -924,18 +916,6 @@ static int mon_within_rounding(const tc_state *s, int j, int field) {
     for (m = 0; m < NM; m++) past += s->mon_M[j][m] * s->mon_slow[m];
     past = (s->mon_slow[j] - past) * scale[j];
     return past * (sum > 0 ? 1.0 : sum < 0 ? -1.0 : 0.0) >= band - MON_ROUNDING[j];
-}
-
-/* (mon98) the served _slow_departure: the field's memory held, on the same side, at least
-   MON_SLOW_SHARE of sensor k's error over the last MON_CONFIRM samples */
-static int mon_slow_departure(const tc_state *s, int k) {
-    double scale[NM], past = 0.0, e = mon_mean_err(s, k);
-    int a[NM], o[NM], jd[NM], m;
-    if (!s->mon_slow_known) return 0;
-    mon_set(s, a, o, jd, scale);
-    for (m = 0; m < NM; m++) past += s->mon_M[k][m] * s->mon_slow[m];
-    past = (s->mon_slow[k] - past) * scale[k];
-    return past * (e > 0 ? 1.0 : e < 0 ? -1.0 : 0.0) >= MON_SLOW_SHARE * fabs(e);
 }
 
 /* the served monitor's _excursion_hovers: every judged sensor out of band has an error no larger

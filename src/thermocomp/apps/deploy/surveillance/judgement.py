@@ -153,34 +153,12 @@ class Judgement:
         # judged sensor unjudged (its coupled partner past max_leverage) takes that partner
         # out with it on no evidence of the partner's own (mon84b: a column's T_left1, the
         # likelier fault at an unseen source's onset, blinded T_left3 within its band)
-        # (mon98) unless its departure is slow (:meth:`_slow_departure`): a drifting sensor's
-        # coupled partner, left unjudged within its band, carries the drift's leak, not a fault
-        # of its own (tr9828's T_ram +1 K/h, T_trunnion +2.51 °C beside its +2.50: read as a new
-        # thermal state for 11 h); the partner is then vouched for as mon84b's are not, and the
-        # lone fault off the field by the largest error of those out of band at least
         for k in np.argsort(-z):
-            if k == j or z[k] < 0 or level[k] < WARNING or likelier != k:
-                continue
-            if self._resolves(int(k), self._judging,
-                              alone=float(np.max(np.delete(size, k), initial=0.0))):
-                return int(k), True
-            if self._slow_departure(int(k), err) and self._resolves(
-                    int(k), out, alone=float(np.max(np.delete(np.where(out, size, 0.0), k),
-                                                    initial=0.0))):
+            if (k != j and z[k] >= 0 and level[k] >= WARNING and likelier == k
+                    and self._resolves(int(k), self._judging,
+                                       alone=float(np.max(np.delete(size, k), initial=0.0)))):
                 return int(k), True
         return (-1, None) if doubted else (j, hides)
-
-    def _slow_departure(self, k: int, err: np.ndarray) -> bool:
-        """Whether sensor ``k``'s error departed slowly (mon98): the field's memory
-        (:mod:`.excursion`, ``EXCURSION_TAU_S``) already held, on the same side, at least
-        ``slow_share`` of its error over the last ``confirm`` samples (``err``).  A drift builds its
-        error over hours, so the memory of it half an hour back keeps most of it (tr9828's T_ram
-        1.77 of 2.50 °C, cr9763's T_amb 0.14 of 0.42); the onset of a source training never saw
-        steps it up within minutes (bench_mon84b's column: T_left1's 0.11 of 0.65 °C)."""
-        if not self._slow_ok:
-            return False
-        past = (self._slow[k] - self._M[k] @ self._slow[self._active]) * self._scale[k]
-        return bool(past * np.sign(err[k]) >= self.slow_share * abs(err[k]))
 
     def _resolves(self, j: int, seen: np.ndarray | None = None,
                   alone: float | None = None) -> bool:

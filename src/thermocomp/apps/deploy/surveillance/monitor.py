@@ -18,18 +18,7 @@ from .faults import InstantFaults
 from .judgement import Judgement
 from .readmission import Readmission
 from .settled import Settled, largest_separation
-from .states import (
-    ALARM,
-    COMMON_MIN,
-    DITHER,
-    EXCLUDED,
-    MAX_BACKOFF,
-    OK,
-    SLOW_SHARE,
-    SPREAD_FACTOR,
-    STATES,
-    WARNING,
-)
+from .states import ALARM, COMMON_MIN, DITHER, EXCLUDED, MAX_BACKOFF, OK, SPREAD_FACTOR, STATES, WARNING
 
 
 class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion, Settled):
@@ -127,8 +116,6 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion, Settled):
         if "dithered" not in state:    # pickled before mon97: a predicted sensor's freeze by the field
             self.dithered = np.zeros(len(self.names), dtype=bool)
             self._dither_run = np.full(len(self.names), np.inf)
-        if "slow_share" not in state:  # pickled before mon98: a blinding lone fault never taken
-            self.slow_share = np.inf
         if "max_settle_c" not in state:   # pickled before jump94b: no level shift judged
             self.max_settle_c = np.full(len(self.names), np.inf)
             self._set_settle_lim()
@@ -181,7 +168,6 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion, Settled):
         if int(new_state_others) < 1:
             raise ValueError(f"new_state_others must be >= 1, got {new_state_others}")
         self.new_state, self.new_state_others = bool(new_state), int(new_state_others)
-        self.slow_share = SLOW_SHARE     # (mon98) a drift's slow departure: judgement.py
         self._lo_lim = self.lo_c - self.range_margin_c
         self._hi_lim = self.hi_c + self.range_margin_c
         self._jump_lim = self.jump_factor * self.max_step_c

@@ -15,6 +15,3 @@ NEW_STATE, TRAINED = "new thermal state", "trained"   # the field's states (even
 # an excursion out of band hovers (a regime) unless its error's share of its rise grew past this
 # factor of the share it had EXCURSION_TAU_S seconds ago (excursion.py; mon73)
 EXCURSION_TAU_S, EXCURSION_GROWTH = 1800.0, 1.5
-# (mon98) a lone fault whose exclusion blinds its coupled partner within band is taken where its
-# error departed slowly: the field's memory (EXCURSION_TAU_S) held this share of it already
-SLOW_SHARE = 0.25
