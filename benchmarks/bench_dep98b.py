@@ -47,6 +47,43 @@ D3. fresh tr9864 (trunnion63 seed 9864, the same kind: the card cases need blind
     sensors) scored once.
 Verdict rule: KEPT only with a built C + mirror rule meeting D1-D3; TRACED where the mend is not
 small (the trace says where it lives).
+
+Seen tr9852 (10:08 UTC, 21.9 s CPU) and fresh tr9864 (trunnion63 seed 9864, simulated and its mlr
+run into ROOT by this command, traced ONCE at 10:09-10:10 UTC, 23.4 s CPU; its predictable set
+differs: T_spindle_front predicted, T_amb blind, so its cards are motor / coolant / amb and
+front / ram / column)::
+
+  record  case        served out sets (rows)            max|C - served| kelvin / hold (µm)
+                                                        main            stand-in C (rows > 1e-9)
+  tr9852  card_blind  the 3, then front alone         113.6 / 93.38   0 / 8.218 (1 of 40)
+  tr9852  card_pred   the 3 (rows 0-40)                 20.47 / 14.91   5.1e-13 / 4.0e-13 (0 of 41)
+  tr9864  card_blind  the 3, then coolant alone       9.382 / 0.8248  0 / 0.5637 (1 of 40)
+  tr9864  card_pred   the 3, then column alone        125 / 102       1.1e-13 / 1.331 (1 of 40)
+
+No fallback is served while the three are out (rebuilds False, every record and case); served's
+re-admission judges the three together and may leave the worst one out longer (the printed sets;
+the stand-in's one row off says one sample): then 8 are in (= min_active), the field is rebuilt
+and that sensor's fallback served where it has one (tr9852 card_blind: T_spindle_front's; tr9864
+card_blind: T_coolant_return's; tr9864 card_pred: T_column rebuilt from the 8, no fallback).  The
+stand-in counterfactual keeps the three out to the last re-admission and serves no fallback, hence
+its one row off on those three cases.  On the 10 rows after served's re-admission the stand-in C
+= served (<= 2e-13 µm) in every case; main there: card_pred 2.02 (tr9828) / 1.07 (tr9852) µm,
+dep98's guard rate, 0 elsewhere.
+
+VERDICT: TRACED (no rule built; src unchanged, so D2 holds trivially).  D1 on main fails on every
+record and case (above).  What a C = served needs is state, not arithmetic: the operator of any set
+(``_solved`` / ``mon_operator``) and the guard already agree to 1e-12 µm once the model reads
+served's stand-ins.  Where it lives: the C's monitor holds at most two out (``mon_out`` /
+``mon_out2``; mirror ``CodeMonitor._active`` / ``_outs``), and a sample with several readings
+beyond range is passed by (``CodeMonitor._beyond`` -> None, C ``mon_beyond`` < 0, flagged RANGE).
+The mend: an out SET (any k), excluded as dropouts at the sample, stand-ins by
+``mon_rebuilt``'s rule (already per sensor: blind held ``mon_last``, predicted ``pred`` of the
+set's solved operator), ``mon_serving`` counting the set (no fallback below ``min_active``),
+re-admission of the set judged together as served (mirror ``_returning`` / ``_pass_once_back``;
+the C's readmission, the leak rule of blind ones out for range, cmon89b), a partial return handing
+the rest to the one / two-out paths -- and every other rule's behaviour while 3+ are out (judged
+with the set out, or flagged).  It touches the 36 uses of ``mon_out2`` in watch_c.py and the
+mirror's two-out paths: not small.
 """
 
 from __future__ import annotations
@@ -94,15 +131,9 @@ def stand_in(run, card: list[int], rows: range):
 
 def trace(root: str, record: str = "tr9828") -> None:
     """The card lines (module doc)."""
-    from bench_cmon92 import Stepped, faulted_cell, made
-
-    bench_audit97._trunnion_env()
-    base = Path(root).resolve()
-    made(base, record, "mlr", RECORDS)
-    deployed, ss, frame, lead, start, cid = faulted_cell(base, record, "mlr-none")
+    deployed, ss, frame, lead, start, cid, run = bench_dep98.stepped_cell(root, record, RECORDS)
     mon = deployed.monitor
     names = list(mon.names)
-    run = Stepped(deployed, ss)
     for _ in run.rows(frame.iloc[:start]):
         pass
     print(f"{record} mlr-none, test campaign {cid}: fault row {start}, monitored {names}, predictable "
