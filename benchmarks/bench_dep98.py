@@ -161,17 +161,24 @@ def _max(a) -> str:
     return f"{max(a):.3g}" if len(a) else "-"
 
 
-def back(root: str, record: str = "tr9828") -> None:
-    """The K-then-back lines (module doc)."""
+def stepped_cell(root: str, record: str, records: dict | None = None):
+    """RECORD's mlr-none cell under ROOT (simulated and run where missing; ``records``: the
+    record table, :data:`RECORDS`): ``(deployed, ss, frame, lead, start, cid, run)``, ``run``
+    bench_cmon92's ``Stepped`` of the served model and the C's mirror, both reset."""
     from bench_cmon92 import Stepped, faulted_cell, made
 
     bench_audit97._trunnion_env()
     base = Path(root).resolve()
-    made(base, record, "mlr", RECORDS)
+    made(base, record, "mlr", records or RECORDS)
     deployed, ss, frame, lead, start, cid = faulted_cell(base, record, "mlr-none")
+    return deployed, ss, frame, lead, start, cid, Stepped(deployed, ss)
+
+
+def back(root: str, record: str = "tr9828") -> None:
+    """The K-then-back lines (module doc)."""
+    deployed, ss, frame, lead, start, cid, run = stepped_cell(root, record)
     mon = deployed.monitor
     names = list(mon.names)
-    run = Stepped(deployed, ss)
     lead_in = max(float(np.max(np.abs(c - want))) for c, want, *_ in run.rows(frame.iloc[:start]))
     healthy = stepped(copy.deepcopy(run), frame.iloc[start:])
     print(f"{record} mlr-none, test campaign {cid}: fault row {start} ({lead} lead-in), monitored "
