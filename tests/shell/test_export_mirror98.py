@@ -67,3 +67,24 @@ def test_a_sample_gets_the_same_read_only_arrays_and_a_mask_it_may_mark(served):
     mask = w._active()
     mask[0] = False              # (a caller's trial set: the next mask is whole again)
     assert w._active().all() and w._active() is not w._active()
+
+
+def test_an_exclusion_within_a_sample_makes_the_judgement_again(served):  # noqa: F811
+    """A sensor taken out (``_exclude``: out, the window's errors and bands made again) within a
+    sample, at the same window position: ``_judge`` and ``_set`` answer for the new set, as made
+    anew, not as made before it (a memo keyed on the window's position alone fails here)."""
+    _, ss, campaign = served
+    sim = Simulator(ss)
+    sim.reset()
+    for u, t in zip(campaign[ss.inputs].to_numpy(float)[:25], campaign["time"].to_numpy(float)):
+        sim.step(u, t)
+    w = sim.watch
+    level, err = w._judge()
+    w._put_out(1)
+    w._recompute()
+    got = w._judge(), w._set()
+    w._judge_memo = w._set_memo = None
+    anew = w._judge(), w._set()
+    assert not w._set()[1][1] and not np.array_equal(got[0][1], err, equal_nan=True)
+    for mine, fresh in zip((*got[0], *got[1][1:]), (*anew[0], *anew[1][1:])):
+        assert np.array_equal(mine, fresh, equal_nan=True)
