@@ -43,6 +43,15 @@ def _trace(ss, frame, anew: bool = False) -> list[bytes]:
     return rows
 
 
+def _monitor_after(ss, campaign, rows: int) -> CodeMonitor:
+    """The mirror's monitor after ``campaign``'s first ``rows`` samples."""
+    sim = Simulator(ss)
+    sim.reset()
+    for u, t in zip(campaign[ss.inputs].to_numpy(float)[:rows], campaign["time"].to_numpy(float)):
+        sim.step(u, t)
+    return sim.watch
+
+
 def test_the_mirror_gives_what_it_gave_with_its_arrays_made_anew(served):  # noqa: F811
     _, ss, campaign = served
     flagged = 0
@@ -56,12 +65,7 @@ def test_the_mirror_gives_what_it_gave_with_its_arrays_made_anew(served):  # noq
 
 def test_a_sample_gets_the_same_read_only_arrays_and_a_mask_it_may_mark(served):  # noqa: F811
     """Fails on 16d3b58d: each call made new arrays (``_set() is _set()`` false)."""
-    _, ss, campaign = served
-    sim = Simulator(ss)
-    sim.reset()
-    for u, t in zip(campaign[ss.inputs].to_numpy(float)[:5], campaign["time"].to_numpy(float)):
-        sim.step(u, t)
-    w = sim.watch
+    w = _monitor_after(*served[1:], 5)
     assert w._set() is w._set() and w._judge() is w._judge()
     assert not any(a.flags.writeable for a in (*w._set()[1:], *w._judge()))
     mask = w._active()
@@ -73,12 +77,7 @@ def test_an_exclusion_within_a_sample_makes_the_judgement_again(served):  # noqa
     """A sensor taken out (``_exclude``: out, the window's errors and bands made again) within a
     sample, at the same window position: ``_judge`` and ``_set`` answer for the new set, as made
     anew, not as made before it (a memo keyed on the window's position alone fails here)."""
-    _, ss, campaign = served
-    sim = Simulator(ss)
-    sim.reset()
-    for u, t in zip(campaign[ss.inputs].to_numpy(float)[:25], campaign["time"].to_numpy(float)):
-        sim.step(u, t)
-    w = sim.watch
+    w = _monitor_after(*served[1:], 25)
     level, err = w._judge()
     w._put_out(1)
     w._recompute()
