@@ -577,11 +577,22 @@ class Simulator:
         self.lag_input = np.asarray(ss.lag_input, int)
         self.lag_rest = np.asarray(ss.lag_rest or [0] * len(ss.taus), bool)
         self.lag_of = np.asarray(ss.lag_of or [-1] * len(ss.taus), int)
+        self.cascade = np.flatnonzero(self.lag_of >= 0)
+        # (ci98) the intercept in the measured channel, the autoregressive gains: made once
+        self.intercept = np.outer([1.0, 0.0], ss.intercept)
+        self.ar = np.asarray(ss.ar)
+        self.outright = np.asarray(ss.clamp_outright or [0] * m, bool)
         self.output = Output(ss)       # guard and reference update: what is learned stays
         self.clock = SampleClock(ss.time_period, judge=ss.substitute_time)
         self.switches = Switches(ss) if ss.forest_target else None
         self.cells = Cells(ss) if ss.lstm_target else None
         self.watch = CodeMonitor(ss.monitor) if ss.monitor else None   # the code's sensor monitor
+        # (ci98) the per-input masks and limits each sample reads, made once
+        self.held = np.asarray(ss.held or [0] * n, bool)
+        self.limits = np.asarray(ss.limits, float)
+        self.watched = np.zeros(n, bool)
+        if self.watch is not None:
+            self.watched[self.watch.idx] = True
         self.reset()
 
     def reset(self, ambient_c: float = float("nan")) -> None:
@@ -604,12 +615,9 @@ class Simulator:
         true): nothing remembered changes and the last corrections given are returned (0 before a
         campaign's first sample)."""
         u = np.asarray(u, float)
-        ss = self.ss
-        held = np.asarray(ss.held or [0] * len(u), bool)
-        measured = ss.measured(u)
-        watched = np.zeros(len(u), bool)
+        ss, held, watched = self.ss, self.held, self.watched
+        measured = self._measured(u)
         if self.watch is not None:       # a monitored reading missing: the monitor's (cdrop77)
-            watched[self.watch.idx] = True
             u = np.where(watched & ~measured, np.nan, u)
         # A0 not given where the code has no input for it: no campaign starts (the stream's refusal)
         self.refused = not measured[~held & ~watched].all() or (
@@ -625,7 +633,7 @@ class Simulator:
         now, dt, _ = self.clock.step(float(time))
         if self.watch is not None:      # the monitored inputs as the model reads them
             u = self.watch.step(u, self.first, dt)
-            measured = ss.measured(u)
+            measured = self._measured(u)
             self.serving = self.watch.serving()
         self.last = np.where(measured, u, self.last)
         u = np.where(measured, u, np.where(self.seen, self.last, 0.0))     # a held signal
@@ -645,6 +653,11 @@ class Simulator:
         self.c = self.output.step(y, first, dt, allow,
                                   self.watch is not None and self.watch.novel)
         return self.c.copy()
+
+    def _measured(self, u: np.ndarray) -> np.ndarray:
+        """:meth:`StateSpace.measured` of the sample ``u`` (floats), on the limits made once."""
+        with np.errstate(invalid="ignore"):
+            return np.abs(u) <= self.limits
 
     def _model(self, u, v, measured, now: float, lag_dt: float, time: float
                ) -> tuple[np.ndarray, np.ndarray]:
@@ -693,8 +706,8 @@ class Simulator:
             xe = np.r_[xe, self._transient(v, measured, now)]
         self._held_states(v, excess)
         # two channels of one system: the measured inputs, and their excess (no powers, no intercept)
-        xs = np.vstack([xe, np.r_[excess, np.zeros(len(ss.powers)), of_excess,
-                                  np.zeros(len(ss.initial))]])
+        xs = np.vstack([xe, np.concatenate([excess, np.zeros(len(ss.powers)), of_excess,
+                                            np.zeros(len(ss.initial))])])
         xl = xs[:, self.lag_input]
         first = self.first
         e = None if self.first else np.exp(-lag_dt / self.taus)
@@ -704,13 +717,13 @@ class Simulator:
             self.bound = np.zeros((self.sets, len(ss.targets)))     # each set's own
         else:
             z = e * self.z + (1.0 - e) * xl
-        for k in np.flatnonzero(self.lag_of >= 0):     # a cascade: on its source's new value
+        for k in self.cascade:     # a cascade: on its source's new value
             xl[:, k] = z[:, self.lag_of[k]]
             z[:, k] = xl[:, k] if e is None else e[k] * self.z[:, k] + (1.0 - e[k]) * xl[:, k]
         self.z = z
-        y = (np.outer([1.0, 0.0], ss.intercept) + xs @ self.b0.T
+        y = (self.intercept + xs @ self.b0.T
              + np.einsum("tdi,sdi->st", self.bd, self.hist) + (self.z - xl) @ self.g.T
-             + np.asarray(ss.ar) * self.y)
+             + self.ar * self.y)
         if ss.depth:
             self.hist = np.concatenate([xs[:, None, :len(x)], self.hist[:, :-1]], axis=1)
         self.y, self.first = y, False
@@ -724,7 +737,7 @@ class Simulator:
         if excess.any():            # back in range, the bound of the excess's last sample holds
             gain = self.clamp_gain + np.einsum("s,rsi->ri", self.by_held, self.state_gain)
             self.bound = np.abs([self._summed(gain @ excess, k) for k in range(self.sets)])
-        outright = np.asarray(ss.clamp_outright or [0] * len(y[0]), bool) | self.by_outright
+        outright = self.outright | self.by_outright
         bound = np.where(outright, np.inf, self.bound[self.serving])
         if ss.clamp_spread and np.count_nonzero(excess) >= 2:     # a heat source's: carried on
             bound = np.where(np.asarray(ss.clamp_spread, bool), 0.0, bound)

@@ -447,6 +447,9 @@ class CodeMonitor:
         # (cmon85) the POD basis (n x modes): any other set's operator solved at run time
         self.solve = bool(a["solve"]) and "basis" in arrays
         self.phi = np.asarray(arrays.get("basis", np.zeros((n, 0))), float).reshape(n, -1)
+        # (ci98) the active masks by the sensors out, the active set's and the judgement's arrays
+        # as last made (:meth:`_set`, :meth:`_judge`)
+        self._actives, self._set_memo, self._judge_memo = {}, None, None
         self.reset()
 
     def reset(self) -> None:
@@ -553,18 +556,37 @@ class CodeMonitor:
         return M, lev
 
     def _active(self) -> np.ndarray:
-        active = np.ones(self.n, bool)
-        active[[k for k in (self.out, self.out2) if k >= 0]] = False
-        return active
+        """The sensors in (a copy: callers mark a trial set in it)."""
+        return self._active_of(self.out, self.out2).copy()
+
+    def _active_of(self, out: int, out2: int) -> np.ndarray:
+        """The sensors in with ``out`` and ``out2`` out (-1: none), made once per pair and read
+        only (ci98: the mirror asks for it some twenty times a sample)."""
+        got = self._actives.get((out, out2))
+        if got is None:
+            got = np.ones(self.n, bool)
+            got[[k for k in (out, out2) if k >= 0]] = False
+            got.flags.writeable = False
+            self._actives[(out, out2)] = got
+        return got
 
     def _set(self):
+        """``(M, active, observable, judged, scale)`` of the active set, read only: made again
+        only where the sensors out or the operator changed (ci98: the same arrays, asked for
+        seven times a sample)."""
+        key, memo = (self.out, self.out2), self._set_memo
+        if memo is not None and memo[0] == key and memo[1] is self.Mc and memo[2] is self.levc:
+            return memo[3]
         lev = self.levc
-        active = self._active()
+        active = self._active_of(*key)
         observable = lev < self.max_lev
         judged = active & observable
         scale = np.where(judged, 1.0 / np.maximum(1 - lev, 1e-12), 1.0)
         scale[active & ~observable] = np.nan
-        return self.Mc, active, observable, judged, scale
+        for made in (observable, judged, scale):
+            made.flags.writeable = False
+        self._set_memo = (key, self.Mc, self.levc, (self.Mc, active, observable, judged, scale))
+        return self._set_memo[3]
 
     def _judging(self) -> np.ndarray:
         """(quiet94c) The judged sensors whose error is the drift rule's evidence, as served
@@ -620,14 +642,24 @@ class CodeMonitor:
         return (self.pos - 1 - np.arange(min(self.count, self.confirm))) % self.window
 
     def _judge(self) -> tuple[np.ndarray, np.ndarray]:
-        """``(level, error)``: the band the last ``confirm`` errors all exceed, their mean."""
+        """``(level, error)``: the band the last ``confirm`` errors all exceed, their mean (read
+        only; ci98: made again only where the window, its errors or the bands changed, the
+        window's row written in place clearing it)."""
+        memo = self._judge_memo
+        if (memo is not None and memo[0] == (self.pos, self.count) and memo[1] is self.err
+                and memo[2] is self.warn and memo[3] is self.alarm):
+            return memo[4]
         rows = self._rows()
         err = self.err[rows].sum(axis=0) / max(len(rows), 1)
         if len(rows) < self.confirm:
-            return np.zeros(self.n, int), err
-        a = np.abs(self.err[rows]).min(axis=0)
-        with np.errstate(invalid="ignore"):
-            return (a >= self.warn).astype(int) + (a >= self.alarm), err
+            level = np.zeros(self.n, int)
+        else:
+            a = np.abs(self.err[rows]).min(axis=0)
+            with np.errstate(invalid="ignore"):
+                level = (a >= self.warn).astype(int) + (a >= self.alarm)
+        level.flags.writeable = err.flags.writeable = False
+        self._judge_memo = ((self.pos, self.count), self.err, self.warn, self.alarm, (level, err))
+        return level, err
 
     def _clear(self) -> None:
         """The sample's flags, its first event and its first rule not in the code cleared (the
@@ -758,6 +790,8 @@ class CodeMonitor:
             dt > a["gap_periods"] * a["period"]) else self.gap
         rows = np.vstack([self.settle[:, cols], x[cols] - self.ref[cols]])
         parted, shift = (v[0] for v in level_shift(rows, w, a["settle_lim"][cols], a["settle_steady"]))
+        if not parted.any():       # nearly every sample: none fires (as served)
+            return
         active = self._active()[cols]
         fire = ((active | (self.jumps[cols] == 0)) & parted
                 & (gap[cols] == 1) & (self.settle_age[cols] >= 2 * w - 1))
@@ -868,6 +902,7 @@ class CodeMonitor:
         self.calm[instant] = 0
         pred, e = self._errors(d)
         self.err[pos] = e
+        self._judge_memo = None          # (the window's errors changed in place)
         self.froze[instant] = False      # another detector fired on it: out for that now
         self.off = np.where(self.froze & np.isfinite(d) & (d != self.held), self.off + 1, 0)
         # freeze: constant while the field (its prediction from the others) moves
