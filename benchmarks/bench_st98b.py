@@ -64,6 +64,31 @@ BAR (written and committed BEFORE any of 9865-9869 was simulated; scored once, t
    prints its a/m/o/n (2/4/0/14, 3/7/3/7, 1/4/0/11) with 0 diff rows and 0 mon_stop rows.
 KEPT if 1-3 hold (with a test failing on 289e984a, PARSED_DIGEST, docs); REFUSED otherwise
 (benchmarks/st98b_rule.patch, src as on 289e984a).
+
+Scored (2026-12-06, 2 cores shared by up to 8 helpers, load 10-11; the bar and the rule unchanged
+since their commit f232b458, the fresh records simulated after it by this bench, ``cases
+/tmp/st98b/fresh lr9865 cr9867 lr9868`` and ``... dl9866 dl9869`` in two processes, once; 48.9 +
+80.8 s CPU, the making included)::
+
+    record  test  rows (lead-in)  healthy diff rows  spiked (row)          after cases  diff rows
+    lr9865  R1b   4321 (3457)     0                  T_head_left (3653)    13 agree     0
+    dl9866  R1b   7200 (5760)     0                  T_head_left (6100)    13 agree     0
+    cr9867  C10   205 (0)         0                  T_amb (31)            11 agree     0
+    lr9868  R1b   4321 (3457)     0                  T_head_left (3653)    13 agree     0
+    dl9869  R1b   7200 (5760)     0                  T_head_right (6100)   13 agree     0
+
+1 MET: 63 of 63 cases agree (the C's FREEZE, every one held, named at its row and sensor: row 11
+from the onset on 56, row 10 on 7), mismatch 0, false 0, diff rows besides the
+named 0; ``mon_lost`` TRUE at every onset.  BASE: no FREEZE in any case.  2 MET: 0 diff rows on
+the five healthy frames, no block FREEZE row.  3 MET: ``bench_st98.py cases`` sw9853 / cr9854
+(10.6 s CPU): its 28 lines identical to st98's scoring run (12 agree each, healthy diff 0);
+lr9790 / dl9791 / dl9794 (51.7 s CPU): the 42 ``ended`` now 42 ``agree`` (FREEZE at the C's row
+10-11), healthy diff rows 0; ``bench_st97d.py cases`` on them (48.8 s CPU): 2/4/0/14, 3/7/3/7,
+1/4/0/11 (a/m/o/n), 0 diff rows, 0 mon_stop rows.  VERDICT: KEPT.
+
+Not reached (seen, before the bar): a sensor the others predict that the C names frozen by the
+field's rule before its run passes (lr9132's dithered case: C row 10, block row 11); on the five
+fresh records no C freeze came by that rule in these cases.
 """
 
 from __future__ import annotations

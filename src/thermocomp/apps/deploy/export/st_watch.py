@@ -54,7 +54,12 @@ Per sample, of each monitored sensor ``k`` (the input ``MON_INPUT[k]``, the C's 
   ``MON_BLIND_RUN`` (one no other predicts), or for ``MON_SEEN_RUN`` samples while the others'
   prediction of it with every sensor in moved by its warning band since the run began
   (``mon_fpred``, the C's ``run_pred``): ``FREEZE`` (``BLIND`` where the C does not hold it out),
-  flagged, the block's judgement ending there (the C rebuilds it or holds it).
+  flagged, the block's judgement ending there (the C rebuilds it or holds it);
+* (st98b) after the block's own earlier flag (``mon_lost``), the C's two run rules alone, written
+  once for both paths (``mon_fpast``: the run past ``MON_DITHER_RUN``, or ``MON_BLIND_RUN`` of
+  one no other predicts; ``mon_fnew``: its first sample past them): ``FREEZE`` (``BLIND``) there,
+  once a run, where no rule named the sample, of a sensor the block does not hold re-referenced
+  out (``mon_out``).  Not the field's rule: it needs the set the C judges.
 
 ``mon_flag`` says the sample's fault, ``mon_rule`` its rule (the C's ``mon_rule`` codes, named
 by ``TC_MONITOR_REASONS``) and ``mon_sensor`` its monitored sensor ``k`` (-1: none): the first,
