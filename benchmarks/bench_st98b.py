@@ -41,9 +41,10 @@ SEEN / FRESH.  FRESH (never simulated before this bar): lr9865, dl9866, cr9867, 
 Seen, traced before the bar (this tree's block; copies of st98's records in /tmp/st98b/seen):
 ``bench_st98.py cases`` lr9790 / dl9791: 14 + 14 of st98's ``ended`` cases now ``agree`` (FREEZE
 at the C's row 10-11), healthy diff rows 0 (dl9794 still running at the bar's commit).
-``bench_st98b.py cases`` lr9790 (T_head_left spiked at 3653, lost at onset): 13 agree, diff
-rows 0 (23.6 s CPU).  lr9132 (tests/shell/test_export_st94.py's fixture), its first sensor the others predict spiked 20
-rows before START, then its first dithered sensor the others predict frozen: the C names FREEZE
+This bench's ``cases`` on lr9790 (T_head_left spiked at 3653, lost at onset): 13 agree, diff
+rows 0 (23.6 s CPU).  lr9132 (tests/shell/test_export_st94.py's fixture), its first sensor the
+others predict spiked 20 rows before START, then its first dithered sensor the others predict
+frozen: the C names FREEZE
 at row 10 by the field's rule (``seen_run`` 3, the prediction moved), the block at row 11 by
 the run rule (``dither_run`` 10): a ``mismatch`` the rule cannot reach (the field's rule after
 the block's judgement ended needs the C's set).  The test uses a sensor no other predicts.
@@ -99,7 +100,6 @@ from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE), str(HERE.parent / "tests" / "shell"), str(HERE.parent / "tests")]
-import bench_st97d  # noqa: E402
 import bench_st98  # noqa: E402
 from _cli import run_commands  # noqa: E402
 
@@ -134,30 +134,16 @@ def _freezes(rows) -> dict:
     return out
 
 
-def _kind(got: dict) -> str:
-    if got["st"] is not None and (got["c"] is None or got["st"][0] < got["c"][0]):
-        return "false"
-    if got["c"] is None:
-        return "none"
-    return "agree" if got["st"] == got["c"] else "mismatch"
-
-
 def cases(root: str, *records: str) -> None:
     """The ``cases`` lines (module doc)."""
-    import bench_audit97
-    from bench_cmon92 import SPIKE_C, SPIKE_ROWS, faulted_cell, made, planted
+    from bench_cmon92 import SPIKE_C, SPIKE_ROWS, planted
 
-    from thermocomp.apps.deploy.export import exported_files
     from thermocomp.apps.deploy.export.watch import FREEZE
 
     base_root = Path(root).resolve()
     for record in records:
-        if record.startswith("tr"):
-            bench_audit97._trunnion_env()
-        made(base_root, record, "mlr", generators())
-        deployed, ss, frame, lead, start, cid = faulted_cell(base_root, record, "mlr-none")
-        names = [ss.inputs[i] for i in ss.monitor["inputs"]]
-        block, base = exported_files(deployed, "st")["compensator.st"], bench_st97d.base_block(deployed, BASE)
+        made = bench_st98.cell(base_root, record, generators(), BASE)
+        ss, frame, lead, start, cid, names, block, base = made
         three = bench_st98.Three(ss, block, base)
         healthy = list(three.rows(frame))
         st_freeze = [i for i, (got, _) in enumerate(healthy) if got[2][1] == FREEZE]
@@ -175,7 +161,7 @@ def cases(root: str, *records: str) -> None:
         for sensor in [n for n in names if n != spiked]:
             run = copy.deepcopy(three)
             got = _freezes(list(run.rows(planted(frame, start, (sensor,), "freeze"))))
-            kind = _kind(got)
+            kind = bench_st98._kind(got)    # (never other: the C's first FREEZE / BLIND)
             tally[kind] = tally.get(kind, 0) + 1
             rows += got["rows"]
             print(f"  frozen {sensor:<20} C {bench_st98._said(got['c'], names):<28} ST "

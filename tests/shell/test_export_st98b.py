@@ -9,17 +9,12 @@ bench_st98b.py measures the rule on seen and fresh records."""
 
 from __future__ import annotations
 
-import numpy as np
-
 from test_export_st94 import record  # noqa: F401 (the module's fixture)
 from test_export_st96 import START, _stepped
+from test_export_st98 import HELD, _lost
 from thermocomp.apps.deploy.export.watch import EXCLUDED, FREEZE, JUMP
 
-HELD, LEAD, SPIKE_C, SPIKE_ROWS = 60, 20, 5.0, 10     # bench_st98b's case (bench_cmon92's faults)
-
-
-def _lost(v) -> bool:
-    return bool(v["mon_lost"])
+LEAD, SPIKE_C, SPIKE_ROWS = 20, 5.0, 10     # bench_st98b's case (bench_cmon92's spike)
 
 
 def test_the_block_names_a_freeze_after_its_own_earlier_flag(record):  # noqa: F811
