@@ -197,21 +197,31 @@ def _said(event, names) -> str:
     return f"{i} {RULES[rule] if rule else '-'} {names[sensor] if sensor >= 0 else '-'}"
 
 
-def cases(root: str, *records: str) -> None:
-    """The ``cases`` lines (module doc)."""
+def cell(root: Path, record: str, made_by: dict, base_rev: str = BASE):
+    """``record`` made under ``root`` (bench_cmon92's ``made`` with ``made_by``'s words, once) and
+    its first test campaign as bench_cmon92's ``faulted_cell``: ``(ss, fed frame, lead-in rows,
+    onset, campaign, monitored names, block, ``base_rev``'s block)``."""
     import bench_audit97
-    from bench_cmon92 import faulted_cell, made, planted
+    from bench_cmon92 import faulted_cell, made
 
     from thermocomp.apps.deploy.export import exported_files
 
+    if record.startswith("tr"):
+        bench_audit97._trunnion_env()
+    made(root, record, "mlr", made_by)
+    deployed, ss, frame, lead, start, cid = faulted_cell(root, record, "mlr-none")
+    names = [ss.inputs[i] for i in ss.monitor["inputs"]]
+    block = exported_files(deployed, "st")["compensator.st"]
+    return ss, frame, lead, start, cid, names, block, bench_st97d.base_block(deployed, base_rev)
+
+
+def cases(root: str, *records: str) -> None:
+    """The ``cases`` lines (module doc)."""
+    from bench_cmon92 import planted
+
     base_root = Path(root).resolve()
     for record in records:
-        if record.startswith("tr"):
-            bench_audit97._trunnion_env()
-        made(base_root, record, "mlr", generators())
-        deployed, ss, frame, lead, start, cid = faulted_cell(base_root, record, "mlr-none")
-        names = [ss.inputs[i] for i in ss.monitor["inputs"]]
-        block, base = exported_files(deployed, "st")["compensator.st"], bench_st97d.base_block(deployed, BASE)
+        ss, frame, lead, start, cid, names, block, base = cell(base_root, record, generators())
         three = Three(ss, block, base)
         head = list(three.rows(frame.iloc[:start]))
         at_start = copy.deepcopy(three)

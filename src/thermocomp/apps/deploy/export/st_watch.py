@@ -54,7 +54,12 @@ Per sample, of each monitored sensor ``k`` (the input ``MON_INPUT[k]``, the C's 
   ``MON_BLIND_RUN`` (one no other predicts), or for ``MON_SEEN_RUN`` samples while the others'
   prediction of it with every sensor in moved by its warning band since the run began
   (``mon_fpred``, the C's ``run_pred``): ``FREEZE`` (``BLIND`` where the C does not hold it out),
-  flagged, the block's judgement ending there (the C rebuilds it or holds it).
+  flagged, the block's judgement ending there (the C rebuilds it or holds it);
+* (st98b) after the block's own earlier flag (``mon_lost``), the C's two run rules alone, written
+  once for both paths (``mon_fpast``: the run past ``MON_DITHER_RUN``, or ``MON_BLIND_RUN`` of
+  one no other predicts; ``mon_fnew``: its first sample past them): ``FREEZE`` (``BLIND``) there,
+  once a run, where no rule named the sample, of a sensor the block does not hold re-referenced
+  out (``mon_out``).  Not the field's rule: it needs the set the C judges.
 
 ``mon_flag`` says the sample's fault, ``mon_rule`` its rule (the C's ``mon_rule`` codes, named
 by ``TC_MONITOR_REASONS``) and ``mon_sensor`` its monitored sensor ``k`` (-1: none): the first,
@@ -362,6 +367,8 @@ VARS = """    mon_last : ARRAY[{nm}] OF LREAL;
     mon_undo : LREAL;
     mon_frun : ARRAY[{nm}] OF DINT;
     mon_fpred : ARRAY[{nm}] OF LREAL;
+    mon_fpast : ARRAY[{nm}] OF BOOL;
+    mon_fnew : ARRAY[{nm}] OF BOOL;
     mon_froze : INT;
     mon_still : BOOL;
 """
@@ -418,6 +425,12 @@ FOR mk := 0 TO MON_N - 1 DO
     ELSIF mon_frun[mk] < 2147483646 THEN
         mon_frun[mk] := mon_frun[mk] + 1;
     END_IF;
+    (* its run past the C's run rules (MON_DITHER_RUN: a reading that dithers; MON_BLIND_RUN: *)
+    (* one no other predicts), whatever the block's field; (st98b) mon_fnew: its first sample *)
+    mon_ev := mon_frun[mk] > MON_DITHER_RUN[mk];
+    mon_ev := mon_ev OR (MON_JUDGED[mk] = 0 AND mon_frun[mk] > MON_BLIND_RUN[mk]);
+    mon_fnew[mk] := mon_ev AND NOT mon_fpast[mk];
+    mon_fpast[mk] := mon_ev;
     IF NOT (mon_x >= -U_LIMIT[j] AND mon_x <= U_LIMIT[j]) THEN
         IF mon_rule = 0 THEN
             mon_sensor := mk;
@@ -577,6 +590,21 @@ IF mon_held >= 0 THEN
     IF mon_lost THEN
         mon_held := -1;
     END_IF;
+END_IF;
+IF MON_STEP_JUDGE AND mon_lost AND mon_rule = 0 THEN
+    (* (st98b) after the block's own earlier flag: the run rules alone (the field's rule needs *)
+    (* the set the C judges, not the block's), named once a run, the first sensor past them *)
+    (* that the block does not hold re-referenced out *)
+    FOR mk := 0 TO MON_N - 1 DO
+        IF mon_fnew[mk] AND NOT mon_out[mk] AND mon_rule = 0 THEN
+            mon_flag := TRUE;
+            mon_sensor := mk;
+            mon_rule := RULE_BLIND;
+            IF MON_FREEZE_HELD[mk] = 1 THEN
+                mon_rule := RULE_FREEZE;
+            END_IF;
+        END_IF;
+    END_FOR;
 END_IF;
 IF MON_STEP_JUDGE AND NOT mon_lost THEN
     FOR mk := 0 TO MON_N - 1 DO
@@ -739,12 +767,8 @@ IF MON_STEP_JUDGE AND NOT mon_lost THEN
             IF mon_off < 0.0 THEN
                 mon_off := -mon_off;
             END_IF;
-            mon_ev := mon_frun[mk] > MON_DITHER_RUN[mk];
-            IF MON_JUDGED[mk] = 1 THEN
-                mon_ev := mon_ev OR (mon_off >= MON_WARN[mk] AND mon_frun[mk] >= MON_SEEN_RUN[mk]);
-            ELSE
-                mon_ev := mon_ev OR mon_frun[mk] > MON_BLIND_RUN[mk];
-            END_IF;
+            mon_ev := MON_JUDGED[mk] = 1 AND mon_off >= MON_WARN[mk];
+            mon_ev := mon_fpast[mk] OR (mon_ev AND mon_frun[mk] >= MON_SEEN_RUN[mk]);
             IF mon_ev THEN
                 mon_froze := mk;
             END_IF;
