@@ -93,7 +93,6 @@ where small and clear, with a test failing on 16d3b58d (< 10 s), KEPT; else list
 
 from __future__ import annotations
 
-import json
 import os
 import sys
 from pathlib import Path
@@ -167,18 +166,7 @@ def two_mode(word: str, data: Path, models: str, tag: str) -> None:
         done = sh(clone, f".venv/bin/thermocomp {line}")
         print(f"  {line.split()[0]} exit {done.returncode}: "
               f"{[x for x in done.stderr.splitlines() if 'rank' in x or 'error' in x][:3]}", flush=True)
-    promoted = json.loads((clone / tag / "promote/promote.json").read_text())
-    replayed = json.loads((clone / tag / "replay/replay.json").read_text())["targets"]
-    for job in sorted(p.parent.parent for p in (clone / multirun).glob("*/.hydra/overrides.yaml")):
-        metrics = json.loads((job / "metrics.json").read_text())["targets"]
-        sim = [(b.get("validation_simulation") or b.get("validation") or {}).get("rmse", np.nan)
-               for b in metrics.values()]
-        print(f"  job {job.name} {(job / '.hydra/overrides.yaml').read_text().split()}: sim val "
-              f"mean {np.mean(sim):.6g}", flush=True)
-    print("  promote:", {k: promoted.get(k) for k in ("version", "run_id", "moved", "ranked_by")})
-    print(f"  promote's as deployed test RMSE (mean over targets) "
-          f"{promoted['candidate']['test_reported']['rmse']!r}, replay of @champion "
-          f"{float(np.mean([b['rmse'] for b in replayed.values()]))!r}", flush=True)
+    bench_audit97.two_mode_figures(clone, multirun, clone / tag)
 
 
 def lab_header(column: str) -> str:
@@ -222,7 +210,10 @@ def lab(root: str, seed: str, families: str = ",".join(LAB_FAMILIES)) -> None:
             print(f"seed {seed} {family} {path.name}: {got['said']}; {got.get('keys', '')}", flush=True)
             if "C" not in got:
                 continue
-            _compare(rows, got, path.name == "contract.csv", reference)
+            c = [col for col in got["C"].columns if col.startswith("C_")]   # targets in order
+            pairs = list(zip([t for t in rows.columns if t.startswith("E_")], c, got["run"]))
+            bench_audit97.compare_to_contract(rows, got, pairs, path.name == "contract.csv",
+                                              reference, named=True)
     init = base / f"{NAME_ONLY}-init"
     done = bench_audit97._cli("init", str(base / f"{NAME_ONLY}.csv"), f"out={init}")
     conf = next(iter((init / "conf" / "data").glob("*.yaml")), None) if init.exists() else None
@@ -231,29 +222,6 @@ def lab(root: str, seed: str, families: str = ",".join(LAB_FAMILIES)) -> None:
     print(f"{NAME_ONLY}.csv: init exit {done.returncode}: "
           f"{_refusal(done)[:400] if done.returncode else done.stderr.strip()[-400:]}; config "
           f"{period}; wrote {bench_audit96._held(init)}", flush=True)
-
-
-def _compare(rows: pd.DataFrame, got: dict, is_contract: bool, reference: dict) -> None:
-    """Cell L2's line per target: run, plain, replay and the C's RMSE, |C - replay|, replay / run,
-    clamp + guard, and the distance to the contract's figures and corrections (targets in order)."""
-    n = got["n_test"]
-    c = got["C"][[col for col in got["C"].columns if col.startswith("C_")]]
-    contract = [t for t in rows.columns if t.startswith("E_")]
-    for t, col, lab_t in zip(contract, c.columns, got["run"]):
-        f = {"run": got["run"][lab_t], "plain": got["plain"].get(lab_t, np.nan),
-             "replay": got["replay"][lab_t],
-             "C": float(np.sqrt(np.mean((rows[t].to_numpy(float)[-n:]
-                                         + c[col].to_numpy(float)[-n:]) ** 2)))}
-        if is_contract:
-            reference[t] = (f, c[col].to_numpy(float))
-        ref_f, ref_c = reference.get(t, (f, c[col].to_numpy(float)))
-        off = max(abs(v - ref_f[k]) for k, v in f.items() if np.isfinite(v))
-        dc = (f"{np.max(np.abs(c[col].to_numpy(float) - ref_c)):.2g}"
-              if len(ref_c) == len(c) else f"rows differ {len(c)} vs {len(ref_c)}")
-        print(f"  {t} ({lab_t}, {col}) " + " ".join(f"{k} {v:.9f}" for k, v in f.items())
-              + f"  |C-replay| {abs(f['C'] - f['replay']):.1e} replay/run-1 "
-              f"{f['replay'] / f['run'] - 1:+.2%} clamp+guard {got['clamp'][lab_t]}  "
-              f"max|fig - contract's| {off:.2g}  max|C - C(contract)| {dc}", flush=True)
 
 
 def fault_cases(frame: pd.DataFrame, start: int, names: list[str]) -> dict[str, tuple]:
