@@ -385,6 +385,32 @@ def lab_stage(base: Path, path: Path, family: str) -> dict:
     return row
 
 
+def compare_to_contract(rows: pd.DataFrame, got: dict, pairs: list[tuple[str, str, str]],
+                        is_contract: bool, reference: dict, named: bool = False) -> None:
+    """Cell L2's line per target ``(contract target, C column, the lab's target)`` of ``pairs``:
+    run, plain, replay and the C's RMSE over the test rows, |C - replay|, replay / run, clamp +
+    guard, and the distance to the contract's figures and corrections (``reference``, filled by
+    the contract's own stage, ``is_contract``); ``named``: the lab's names in the line too
+    (bench_audit98's cell L)."""
+    n = got["n_test"]
+    for t, col, lab_t in pairs:
+        corr = got["C"][col].to_numpy(float)
+        f = {"run": got["run"][lab_t], "plain": got["plain"].get(lab_t, np.nan),
+             "replay": got["replay"][lab_t],
+             "C": float(np.sqrt(np.mean((rows[t].to_numpy(float)[-n:] + corr[-n:]) ** 2)))}
+        if is_contract:
+            reference[t] = (f, corr)
+        ref_f, ref_c = reference.get(t, (f, corr))
+        off = max(abs(v - ref_f[k]) for k, v in f.items() if np.isfinite(v))
+        dc = (f"{np.max(np.abs(corr - ref_c)):.2g}" if len(ref_c) == len(corr)
+              else f"rows differ {len(corr)} vs {len(ref_c)}")
+        print(f"  {t} " + (f"({lab_t}, {col}) " if named else "")
+              + " ".join(f"{k} {v:.9f}" for k, v in f.items())
+              + f"  |C-replay| {abs(f['C'] - f['replay']):.1e} replay/run-1 "
+              f"{f['replay'] / f['run'] - 1:+.2%} clamp+guard {got['clamp'][lab_t]}  "
+              f"max|fig - contract's| {off:.2g}  max|C - C(contract)| {dc}", flush=True)
+
+
 def lab(root: str, seed: str, families: str = ",".join(LAB_FAMILIES)) -> None:
     """Cell L (module doc)."""
     import bench_audit91
@@ -399,26 +425,13 @@ def lab(root: str, seed: str, families: str = ",".join(LAB_FAMILIES)) -> None:
             print(f"seed {seed} {family} {path.name}: {got['said']}; {got.get('keys', '')}", flush=True)
             if "C" not in got:
                 continue
-            n = got["n_test"]
-            c = got["C"][[col for col in got["C"].columns if col.startswith("C_")]]
-            for col in c.columns:
+            c = [col for col in got["C"].columns if col.startswith("C_")]
+            pairs = []
+            for col in c:
                 axis = col.removesuffix("_um")[-1]              # a lab's name ends with its axis
-                t = f"E_{axis}"
-                lab_t = next(k for k in got["run"] if k.removesuffix("_um")[-1] == axis)
-                f = {"run": got["run"][lab_t], "plain": got["plain"].get(lab_t, np.nan),
-                     "replay": got["replay"][lab_t],
-                     "C": float(np.sqrt(np.mean((rows[t].to_numpy(float)[-n:]
-                                                 + c[col].to_numpy(float)[-n:]) ** 2)))}
-                if path.name == "contract.csv":
-                    reference[t] = (f, c[col].to_numpy(float))
-                ref_f, ref_c = reference.get(t, (f, c[col].to_numpy(float)))
-                off = max(abs(v - ref_f[k]) for k, v in f.items() if np.isfinite(v))
-                dc = (f"{np.max(np.abs(c[col].to_numpy(float) - ref_c)):.2g}"
-                      if len(ref_c) == len(c) else f"rows differ {len(c)} vs {len(ref_c)}")
-                print(f"  {t} " + " ".join(f"{k} {v:.9f}" for k, v in f.items())
-                      + f"  |C-replay| {abs(f['C'] - f['replay']):.1e} replay/run-1 "
-                      f"{f['replay'] / f['run'] - 1:+.2%} clamp+guard {got['clamp'][lab_t]}  "
-                      f"max|fig - contract's| {off:.2g}  max|C - C(contract)| {dc}", flush=True)
+                pairs.append((f"E_{axis}", col,
+                              next(k for k in got["run"] if k.removesuffix("_um")[-1] == axis)))
+            compare_to_contract(rows, got, pairs, path.name == "contract.csv", reference)
     for name in ("bad_date",):
         for folder in (base / f"{name}-init", base / f"{name}-run"):
             shutil.rmtree(folder, ignore_errors=True)
@@ -466,8 +479,15 @@ def twomode(word: str, root: str) -> None:
               "replay.model=models:/thermocomp-compensator@champion out=audit97/replay")
     sh(clone, ".venv/bin/thermocomp export export.model=models:/thermocomp-compensator@champion "
               "export.format=st out=plc/")
-    promoted = json.loads((clone / "audit97/promote/promote.json").read_text())
-    replayed = json.loads((clone / "audit97/replay/replay.json").read_text())["targets"]
+    two_mode_figures(clone, multirun, clone / "audit97")
+
+
+def two_mode_figures(clone: Path, multirun: str, tag: Path) -> None:
+    """Cell P's lines: each job's simulation-mode validation (mean over targets), what
+    ``promote`` registered (``tag/promote``) and its "as deployed" figure beside ``replay`` of
+    @champion (``tag/replay``); bench_audit98's cell P too."""
+    promoted = json.loads((tag / "promote/promote.json").read_text())
+    replayed = json.loads((tag / "replay/replay.json").read_text())["targets"]
     for job in sorted(p.parent.parent for p in (clone / multirun).glob("*/.hydra/overrides.yaml")):
         metrics = json.loads((job / "metrics.json").read_text())["targets"]
         sim = [(b.get("validation_simulation") or b.get("validation") or {}).get("rmse", np.nan)

@@ -152,26 +152,29 @@ def check_not_utf8(head: bytes, encoding: str, path: Path) -> None:
 
 
 def undecodable(path: Path, delimiter: str, names: list[str] | None = None,
-                encoding: str = UTF8) -> ContractError:
+                encoding: str = UTF8, header_at: int = 0) -> ContractError:
     """The error naming the line (1-based, of the file) and field of the first byte
-    ``encoding`` does not read, and the ``data.encoding`` that reads it."""
+    ``encoding`` does not read, and the ``data.encoding`` that reads it; ``header_at``: the
+    lines above the header (a logger's preamble), where ``names`` is None."""
     encoding = own(path, encoding)
     with open(path, "rb") as f:
         if f.read(2) == GZIP_MAGIC:
             return gzipped(path)
-    return (first_undecodable(path, delimiter, names, encoding)
+    return (first_undecodable(path, delimiter, names, encoding, header_at)
             or ContractError(f"file is not {encoding} text (set data.encoding)", file=path))
 
 
 def first_undecodable(path: Path, delimiter: str, names: list[str] | None,
-                      encoding: str = UTF8) -> ContractError | None:
+                      encoding: str = UTF8, header_at: int = 0) -> ContractError | None:
     """:func:`undecodable`'s error, or None if every line reads (line by line, so a large file
     is never held whole)."""
     encoding = own(path, encoding)
     with open(path, "rb") as f:
         header = names
         for line_no, line in enumerate(f):
-            if header is None:  # the file's own header names the fields
+            # the file's own header names the fields; a preamble line above it has none
+            # (audit98: a '# Sample period: 60 s' line above the header was named the column)
+            if header is None and line_no >= header_at:
                 header = fields(line.decode(text_codec(encoding), "replace").lstrip("\ufeff"),
                                delimiter)
             try:

@@ -386,7 +386,7 @@ def peek_csv(path: Path, delimiter: str, encoding: str) -> tuple[list[str], list
             if doubled and first is not None:        # (a header written twice: every row read)
                 header = same_cells(header, doubled, chain(below[described:], rows))
     except UnicodeDecodeError:
-        raise undecodable(path, delimiter, encoding=encoding) from None
+        raise undecodable(path, delimiter, encoding=encoding, header_at=preamble) from None
     except csv.Error as exc:       # binary content (a gzip named .csv): no CSV text
         raise ContractError(f"not a CSV text file ({exc}); a compressed or binary file "
                             "must be unpacked or saved as .parquet", file=path) from None
