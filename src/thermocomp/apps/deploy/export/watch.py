@@ -120,6 +120,10 @@ The served adaptive compensator judges every ``T_`` input before the model reads
   (``blind_range``: ``ranges``): read as missing, held at its last reading, back after a calm
   window only where its leak onto the others passes (:meth:`CodeMonitor._leak_passes`, the
   served ``Readmission._leak_passes``).  An export before it flags the reading (``BLIND``).
+* (mon98b) ... **and as the second out** (``second_range``: with one sensor out, cmon89's path,
+  the field rebuilt without both), as served: its return judged by its leak, the first's by its
+  own rule in the same sample (a drifting ``T_amb`` out of range took the blind ``T_table``, out
+  as explaining, back in served).  An export before it flags the reading (``RANGE``).
 * (mon89; kept by bar91b) a sensor the others predict, out for jumps alone, whose next jump
   within a window brings its reading, on its reference before the first (``ref0``), within
   its re-admission band of the field: a **spike** (``spike``), in again at once with that
