@@ -26,7 +26,8 @@ before).  A sensor no other predicts that the code holds out for a range reading
 without both, ``min_active`` left in, the set's operator solved), read as missing while it stays
 beyond, its return judged by its leak (``_leak_passes``) as the first's is.  The re-admission of
 the first in the same sample is the code's existing ``_returning``: one mechanism, the served
-one.  The ST block lags: it holds no second out for a range (``RANGE`` flagged there, as before).
+one.  The ST block lags: it flags the reading (``OFF_RANGE``) and holds no re-admission
+(corrected after the fresh run: the bar's draft said ``RANGE``; the bar unchanged).
 
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is that tree's)::
 
@@ -57,6 +58,39 @@ B4. bench_mon98 ``cases`` on its seen tr9828 / sw9776 / cr9763 / lr9376, bench_d
 B5. tests/shell/test_export_mon98b.py: the compiled C = served on every row with a range reading
     of a blind sensor as the second out; fails on da1272c3.
 KEPT if B1-B5 hold; else REFUSED (benchmarks/mon98b_rule.patch, src as da1272c3).
+
+Seen (before the bar; dl9845 rebuilt by da1272c3's tree into one ROOT, copied for the rule;
+21.6-23.7 s CPU each): ambient case max|C - served| 10.6 µm, 208 rows apart -> 6.39e-14 µm, 0 rows;
+its healthy frame and drift case as main's line for line (3.2e-14 µm, 0 rows).
+
+Scored (fresh 9870-9872, once, after the bar's commit 8f429640; the rule unchanged since; main =
+``git archive da1272c3``, the records simulated and run by it, the ROOT copied for the rule; CPU
+50.5 s main, 45.9 + 8.9 s rule, 2026-12-06 10:23-10:31 UTC under a load of 10-12 on 2 cores)::
+
+    record  case     main: max|C - served|, rows apart   rule             served: T_amb out / first out
+    dl9870  healthy  0 µm, 0                              the same         (14 events, the generator's)
+    dl9870  drift    2.84e-14, 0                          the same
+    dl9870  ambient  2.97 µm, 243 rows                    2.84e-14, 0      837 (range) / T_bed_left at 3
+    dl9871  healthy  2.84e-14, 0                          the same         (14 events)
+    dl9871  drift    2.84e-14, 0                          the same
+    dl9871  ambient  2.97 µm, 125 rows                    1.07e-14, 0      955 (range) / T_zdrive at 687
+    sw9872  healthy  0 µm, 0                              the same         (0 events)
+    sw9872  drift    2.38e-13, 0                          the same
+    sw9872  ambient  1.46e-13, 0                          the same         751 / T_nc_cabinet at 26
+
+On main the C names ``T_amb`` at the served row of both dl parts (its ``RANGE`` flag: the rule
+path for a blind range with one out), so each parting was flagged, not silent.  Every served
+line (events, rows named, RMSE) is the same on both trees: the rule changes the export only.
+B1 MET (above).  B2 MET (every fresh case 0 rows apart, <= 2.4e-13 µm on the rule).  B3 MET
+(healthy lines identical).  B4 MET: bench_mon98 ``cases`` on tr9828 / sw9776 / cr9763 / lr9376
+(53.4 / 53.0 s CPU), bench_dep98 ``back`` tr9828 (11.1 / 11.1 s), bench_kelvin97 ``faults``
+(49.4 / 49.7 s): every line the same, main and rule.  B5 MET: test_export_mon98b's compiled-C
+case fails on da1272c3 (``RANGE`` flagged from the fault's row 721), passes on the rule.
+Beside the bar: on da1272c3 bench_mon98's seen tr9828 drift line is no longer its docstring's
+(16d3b58d: new state at 148, C = served): served takes ``T_coolant_return`` out at 130 and the C
+parts from served by up to 19.9 µm over 6743 rows, on main and rule alike (not this rule's).
+
+VERDICT: KEPT (B1-B5 met).  The ST block lags (flags ``OFF_RANGE``, holds no re-admission).
 """
 
 from __future__ import annotations
