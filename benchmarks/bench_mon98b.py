@@ -89,6 +89,13 @@ case fails on da1272c3 (``RANGE`` flagged from the fault's row 721), passes on t
 Beside the bar: on da1272c3 bench_mon98's seen tr9828 drift line is no longer its docstring's
 (16d3b58d: new state at 148, C = served): served takes ``T_coolant_return`` out at 130 and the C
 parts from served by up to 19.9 µm over 6743 rows, on main and rule alike (not this rule's).
+Its cause is restart98 (8cd3b84a; 289e984a, 9f59f14f and 16d3b58d give the old line): W3 is no
+longer warmed on W2 (0 lead-in rows, 20160 before).  Traced on the rule's tree (/tmp/mon98b
+``tr.py``): the same defect as dl9845's with a sensor the others predict: ``T_coolant_return``
+(blind) out as explaining at 130, ``T_ram`` beyond its range at 817; served takes ``T_ram`` out and
+``T_coolant_return`` back, the C flags ``RANGE`` at 817 (its first parting, 6.77 µm: flagged, not
+silent) and keeps ``T_coolant_return`` out.  This rule does not reach it (the C flags ``RANGE``
+there on the rule too: not traced why); next: the first's return judged before the refusal.
 
 VERDICT: KEPT (B1-B5 met).  The ST block lags (flags ``OFF_RANGE``, holds no re-admission).
 """
