@@ -231,8 +231,9 @@ def _said(rows, names, sensor) -> str:
             f"max|C-served| {max(r[0] for r in rows):.3g} µm, rows mirror != served {differ}")
 
 
-def cases(root: str, *records: str) -> None:
-    """The ``cases`` rows (module doc)."""
+def cases(root: str, *records: str, generators: dict | None = None) -> None:
+    """The ``cases`` rows (module doc); ``generators``: the records' simulate words (default
+    :data:`SEEN` and :data:`FRESH`; bench_mon98b's own)."""
     from bench_cmon92 import faulted_cell, made
 
     from thermocomp.apps.deploy.export.watch import RULES
@@ -243,7 +244,7 @@ def cases(root: str, *records: str) -> None:
             os.environ["THERMOCOMP_TARGETS"] = TRUNNION[0].split("=", 1)[1]
         else:
             os.environ.pop("THERMOCOMP_TARGETS", None)
-        made(base, record, "mlr", {**SEEN, **FRESH})
+        made(base, record, "mlr", generators or {**SEEN, **FRESH})
         deployed, ss, frame, lead, start, cid = faulted_cell(base, record, "mlr-none")
         mon = deployed.monitor
         names, targets = list(mon.names), list(deployed.targets_)

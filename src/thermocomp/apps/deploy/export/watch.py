@@ -120,6 +120,10 @@ The served adaptive compensator judges every ``T_`` input before the model reads
   (``blind_range``: ``ranges``): read as missing, held at its last reading, back after a calm
   window only where its leak onto the others passes (:meth:`CodeMonitor._leak_passes`, the
   served ``Readmission._leak_passes``).  An export before it flags the reading (``BLIND``).
+* (mon98b) ... **and as the second out** (``second_range``: with one sensor out, cmon89's path,
+  the field rebuilt without both), as served: its return judged by its leak, the first's by its
+  own rule in the same sample (a drifting ``T_amb`` out of range took the blind ``T_table``, out
+  as explaining, back in served).  An export before it flags the reading (``RANGE``).
 * (mon89; kept by bar91b) a sensor the others predict, out for jumps alone, whose next jump
   within a window brings its reading, on its reference before the first (``ref0``), within
   its re-admission band of the field: a **spike** (``spike``), in again at once with that
@@ -276,6 +280,7 @@ def monitor_fields(deployed, inputs: list) -> dict:
         "blind_drop": 1, "solve": 1, "stepped": 1, "cleared": 1, "blind_jump": 1, "second_jump": 1,
         "second_instant": 1,
         "blind_range": 1,
+        "second_range": 1,
         "spike": 1,
         "bent": 1, "bend_lim": mon._bend_lim.tolist(),
         "settled": int(getattr(mon, "_settles", False)),
@@ -400,6 +405,7 @@ class CodeMonitor:
                      ("second_jump", 0),   # (before cmon88: a jump with one out flagged)
                      ("second_instant", 0),   # (before cmon89: a dropout, ... flagged)
                      ("blind_range", 0),   # (before cmon89b: a blind sensor's range flagged)
+                     ("second_range", 0),  # (before mon98b: ... with one out, flagged RANGE)
                      ("spike", 0),         # (before bar91b: a spike's return re-referenced)
                      ("bent", 0),          # (before step93: a step off its own read as heat)
                      ("settled", 0),       # (before jump94b: a blind level shift read as heat)
@@ -437,6 +443,9 @@ class CodeMonitor:
         # (cmon89b) ... and for a reading beyond its range, back only where its leak onto the
         # others passes (:meth:`_leak_passes`), as served
         self.ranges = self.drops & bool(a["blind_range"])
+        # (mon98b) ... and as the second out where the first is out for explaining the others'
+        # errors: served takes it out and the first back in one sample (dl9845's drifting T_amb)
+        self.second_range = self.ranges & bool(a["second_range"])
         # (cmon85, cmon86) the rules that take a second sensor out beside one; (cmon88) a jump too
         self.seconds = (DRIFT_OUT, FREEZE, STEP_OUT) + ((JUMP,) if a["second_jump"] else ())
         # (cmon89) a dropout or a reading beyond its range as the second out, and the jump of
@@ -700,7 +709,8 @@ class CodeMonitor:
         (cmon89) for a dropout or a range reading only where the field is rebuilt without both
         (served feeds a dropped sensor's returned reading where it is not), and for a jump one no
         other predicts there too (held at its last reading, as served)."""
-        blind = rule == JUMP and self.instant and not self.ported[j] and self.spikes[j]
+        blind = self.instant and not self.ported[j] and bool(
+            self.spikes[j] if rule == JUMP else rule == OFF_RANGE and self.second_range[j])
         if rule not in (DROPOUT, OFF_RANGE) and not blind:
             return bool(self.ported[j])
         rebuilds = self._active().sum() - 1 >= self.a["min_active"]
@@ -1084,7 +1094,8 @@ class CodeMonitor:
                 and self._second_held(j))):
             self._flag(NOT_IN_CODE, j, RANGE)
             return None
-        if j in outs and not (self.predictable[j] or (j == self.out and self.ranges[j])):
+        if j in outs and not (self.predictable[j] or (j == self.out and self.ranges[j])
+                              or (j == self.out2 and self.second_range[j])):
             self._flag(NOT_IN_CODE, j, BLIND)    # (served: its leak judges its return)
             return None
         if j in outs:                    # out already: read as missing

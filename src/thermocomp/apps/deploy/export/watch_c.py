@@ -113,6 +113,7 @@ def monitor_arrays(ss) -> list[tuple[str, object, tuple, str]]:
                ("MON_SECOND_JUMP", "second_jump", 0, "int"),
                ("MON_SECOND_INSTANT", "second_instant", 0, "int"),
                ("MON_BLIND_RANGE", "blind_range", 0, "int"),
+               ("MON_SECOND_RANGE", "second_range", 0, "int"),
                ("MON_SPIKE", "spike", 0, "int"), ("MON_BENT", "bent", 0, "int"),
                ("MON_PAIR_JUMP", "pair_jump", 0, "int"), ("MON_SETTLED", "settled", 0, "int"),
                ("MON_SETTLE_STEADY", "settle_steady", 0.0, "real"))
@@ -336,6 +337,12 @@ static int mon_ranges(int k) {
     return MON_BLIND_RANGE && mon_drops(k);
 }
 
+/* (mon98b) 1: sensor k, as mon_ranges, held out as the second too (served takes it out and may
+   take back the first, out for explaining the others' errors, in the same sample) */
+static int mon_second_range(int k) {
+    return MON_SECOND_RANGE && mon_ranges(k);
+}
+
 /* (cmon87) sensor k, no other predicts it, back: its jumps undone as served (several are noise or
    a spike; of one, the reading nearer its held value taken), its reference restored and d[k]
    and its window shifted back */
@@ -400,7 +407,8 @@ static int mon_second_held(const tc_state *s, int k) {
    no other predicts there too (held at its last reading, as served) */
 static int mon_second_kind(const tc_state *s, int k, int rule) {
     int m, in = 0;
-    int blind = rule == TC_MON_JUMP && MON_SECOND_INSTANT && !MON_PORTED[k] && mon_spikes(k);
+    int blind = MON_SECOND_INSTANT && !MON_PORTED[k] && (
+        rule == TC_MON_JUMP ? mon_spikes(k) : rule == TC_MON_OFF_RANGE && mon_second_range(k));
     if (!(rule == TC_MON_DROPOUT || rule == TC_MON_OFF_RANGE || blind)) return MON_PORTED[k];
     for (m = 0; m < NM; m++) in += m != s->mon_out && m != s->mon_out2;
     return in - 1 >= MON_MIN_ACTIVE && (MON_PORTED[k] || blind);
@@ -639,7 +647,8 @@ static int mon_beyond(tc_state *s, const double x[], const double d[], int j, in
         mon_flag(s, TC_MON_NOT_IN_CODE, j, TC_MON_RANGE);
         return -1;
     }
-    if (mon_is_out(s, j) && !MON_PREDICTABLE[j] && !(j == s->mon_out && mon_ranges(j))) {
+    if (mon_is_out(s, j) && !MON_PREDICTABLE[j] && !(j == s->mon_out && mon_ranges(j))
+            && !(j == s->mon_out2 && mon_second_range(j))) {
         /* (served: its leak judges its return) */
         mon_flag(s, TC_MON_NOT_IN_CODE, j, TC_MON_BLIND);
         return -1;
