@@ -95,6 +95,10 @@ sensor is first excluded, served = mirror on every row (0 rows apart, max|C - se
     lr9376  drift   T_head_left  27                               27                 0.9403 -> 0.9403 (0.9776)
     lr9376  ambient T_amb        never / 126 T_col_back out       the same           1.9104 -> 1.9104
 
+Since restart98 (8cd3b84a) tr9828's W3 is read as a restart (no lead-in): its drift line on main
+is now first 130 (T_coolant_return out), named 817 by served and C, max|C - served| 22.7 µm over
+6743 rows, RMSE 2.3982 (healthy 1.0979) µm (the lead, on a4724a2a's src; traced in bench_mon98c).
+
 Healthy frames identical line for line (0 events on tr / cr / sw, lr9376's 6).  fl_thermal (the
 adaptive MLR of tests/conftest.py, its test campaign, /tmp/mon98 ``fl.py``): +1, +0.5 and
 +0.25 K/h on each of its 13 predicted sensors from row 100: every exclusion and new state as on
