@@ -230,6 +230,13 @@ class _System:
     ambient_optional: bool = False
 
 
+def within_limits(u, limits: np.ndarray) -> np.ndarray:
+    """Per input, whether the raw value ``u`` is one a sensor reads: ``|u| <= limits`` (NaN, an
+    infinity, a temperature's overload mark: missing); one rule for the state space and its
+    sample-by-sample :class:`Simulator` (which makes ``limits`` once)."""
+    with np.errstate(invalid="ignore"):
+        return np.abs(np.asarray(u, float)) <= limits
+
 @dataclass
 class StateSpace(MonitorArrays, NetArrays, ForestArrays, _System):
     """Arrays of the exported system (module doc); lists, so that it is its own JSON.  After the
@@ -247,8 +254,7 @@ class StateSpace(MonitorArrays, NetArrays, ForestArrays, _System):
     def measured(self, u) -> np.ndarray:
         """Per input, whether the raw value ``u`` is one a sensor reads: within its
         ``input_limit`` (NaN, an infinity, a temperature's overload mark: missing)."""
-        with np.errstate(invalid="ignore"):
-            return np.abs(np.asarray(u, float)) <= np.asarray(self.limits, float)
+        return within_limits(u, np.asarray(self.limits, float))
 
     @property
     def limits(self) -> list:
@@ -655,9 +661,8 @@ class Simulator:
         return self.c.copy()
 
     def _measured(self, u: np.ndarray) -> np.ndarray:
-        """:meth:`StateSpace.measured` of the sample ``u`` (floats), on the limits made once."""
-        with np.errstate(invalid="ignore"):
-            return np.abs(u) <= self.limits
+        """:meth:`StateSpace.measured` of the sample ``u``, on the limits made once."""
+        return within_limits(u, self.limits)
 
     def _model(self, u, v, measured, now: float, lag_dt: float, time: float
                ) -> tuple[np.ndarray, np.ndarray]:
