@@ -6,6 +6,10 @@ that states it, a keyword and a number WITH its unit, is evidence: ``thermocomp 
 into the config saying the line, and the reader's refusal quotes it (stranger73: a lab's export
 said ``Abtastrate 15 s`` on its first line, and both said only "set data.sample_period_s").
 A number without a unit, or lines stating different periods, propose nothing.
+
+A file NAME is weaker evidence (``spindle_60s.csv``: 60 s between rows, or a 60 s run?): the
+refusal mentions it as a question and nothing is written (audit98: the name went unmentioned).
+Hours are left out: ``lathe_48h.csv`` names a test's length far more often than its period.
 """
 
 from __future__ import annotations
@@ -72,7 +76,27 @@ def stated_period(path: Path, delimiter: str, encoding: str) -> StatedPeriod | N
     return found[0]
 
 
+# a number with its unit as one token of a file's stem: 'spindle_60s', 'rig-10Hz', 'log 1,5min'
+_NAMED = re.compile(r"(?:^|[\s_.-])(?P<token>(?P<value>\d+(?:[.,]\d+)?)\s?(?P<unit>ms|s|secs?|min|"
+                    r"khz|hz))(?=$|[\s_.-])", re.I)
+
+
+def named_period(path: Path) -> tuple[str, float] | None:
+    """``(token, seconds)`` of the one period-like token of ``path``'s stem ('60s' in
+    ``spindle_60s.csv``), None where none or several differ (a hint only, never adopted)."""
+    found = {(m["token"], _seconds(f"rate {m['value']} {m['unit']}"))
+             for m in _NAMED.finditer(path.stem)}
+    found = {(t, s) for t, s in found if s is not None and s > 0}
+    return found.pop() if len({s for _, s in found}) == 1 and len(found) == 1 else None
+
+
 def period_hint(path: Path, delimiter: str, encoding: str) -> str:
-    """``; line 1 says 'Abtastrate 15 s': data.sample_period_s=15`` for a refusal, or ''."""
+    """``; line 1 says 'Abtastrate 15 s': data.sample_period_s=15`` for a refusal, else the file
+    name's question (``; the file name says '60s': if that is the time between rows,
+    data.sample_period_s=60``), or ''."""
     said = stated_period(path, delimiter, encoding)
-    return f"; {said.said()}: data.sample_period_s={said.seconds:g}" if said else ""
+    if said:
+        return f"; {said.said()}: data.sample_period_s={said.seconds:g}"
+    named = named_period(path)
+    return (f"; the file name says {named[0]!r}: if that is the time between rows, "
+            f"data.sample_period_s={named[1]:g}" if named else "")
