@@ -150,22 +150,32 @@ def cell(y, blend, mlr, weights: dict, regions: dict, handed=None) -> dict:
     return out
 
 
-def trace(root: str, out: str, *records: str) -> None:
+def fitted(root: str, name: str) -> tuple:
+    """``(auto, dataset, train, measured, auto's prediction, MLR's)`` of a record of bench_auto98's
+    table (``_with_root`` done): ``model=auto`` and MLR alone fitted on its train part as ``run``
+    fits it, scored on its own test (bench_auto_rank's ``_test``: a test that continues the train
+    part continues its stream)."""
     import bench_auto96
     import bench_auto_rank as rank
-    from bench_auto98 import _with_root
     from sklearn.base import clone
 
     from thermocomp.shell.builders import build_compensator
 
+    cfg, ds, train = bench_auto96._setup(name, root)
+    auto = build_compensator(cfg, ds=ds).fit(train)
+    mlr = clone(auto).set_params(estimator=rank._mlr()).fit(train)
+    meas, pred = rank._test(auto, ds)
+    return auto, ds, train, meas, pred, rank._test(mlr, ds)[1]
+
+
+def trace(root: str, out: str, *records: str) -> None:
+    import bench_auto_rank as rank
+    from bench_auto98 import _with_root
+
     _with_root(root, records)
     Path(out).mkdir(parents=True, exist_ok=True)
     for name in records:
-        cfg, ds, train = bench_auto96._setup(name, root)
-        auto = build_compensator(cfg, ds=ds).fit(train)
-        mlr = clone(auto).set_params(estimator=rank._mlr()).fit(train)
-        meas, pred = rank._test(auto, ds)
-        _, base = rank._test(mlr, ds)
+        auto, ds, train, meas, pred, base = fitted(root, name)
         _, lagless = rank._test(without_lag(auto), ds)
         m_fit = auto.stacked(train)
         m_test = auto.stacked({c: ds.campaigns[c] for c in ds.ids("test")})
@@ -234,20 +244,27 @@ def rule(root: str, out: str, *records: str) -> None:
         print(name, {t: {k: round(v, 4) for k, v in c.items()} for t, c in rep.items()}, flush=True)
 
 
-def trace22(root: str, main_work: str, out: str, *records: str) -> None:
+def framed(root: str, work: Path, name: str) -> tuple:
+    """A 22-table record (bench_auto98.with_new_campaigns's) with an MLR compensator fitted on its
+    train part for the frame and columns only: ``(cfg, dataset, scored dataset, scored ids, the
+    compensator, the train rows stacked, the scored rows stacked)``."""
     import bench_auto_rank as rank
-    from bench_auto91 import stored_targets
     from bench_auto98 import with_new_campaigns
 
     from thermocomp.shell.builders import build_compensator
 
+    cfg, ds, train, full, ids = with_new_campaigns(root, work, name)
+    comp = build_compensator(cfg, ds=ds).set_params(estimator=rank._mlr()).fit(train)
+    return cfg, ds, full, ids, comp, comp.stacked(train), comp.stacked({c: full.campaigns[c] for c in ids})
+
+
+def trace22(root: str, main_work: str, out: str, *records: str) -> None:
+    from bench_auto91 import stored_targets
+
     work = Path(main_work).resolve()
     Path(out).mkdir(parents=True, exist_ok=True)
     for name in records:
-        cfg, ds, train, full, ids = with_new_campaigns(root, work, name)
-        comp = build_compensator(cfg, ds=ds)
-        comp = comp.set_params(estimator=rank._mlr()).fit(train)   # the frame and columns only
-        m_fit, m_all = comp.stacked(train), comp.stacked({c: full.campaigns[c] for c in ids})
+        *_, comp, m_fit, m_all = framed(root, work, name)
         rep = {}
         for t, w, a, y_new, new, _ in stored_targets(work, name):
             X = m_all.X[comp.selected_[t]].to_numpy()

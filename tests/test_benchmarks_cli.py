@@ -32,7 +32,7 @@ COMMAND_BENCHES = (
     "bench_auto88b", "bench_auto89", "bench_auto91", "bench_auto92", "bench_auto92b", "bench_auto92c",
     "bench_auto93", "bench_auto93b", "bench_auto93c", "bench_auto93d", "bench_auto94", "bench_auto94b",
     "bench_auto94c", "bench_auto95", "bench_auto95b", "bench_auto95c", "bench_auto96", "bench_auto96b",
-    "bench_auto97", "bench_auto98", "bench_auto98b", "bench_auto_ati58", "bench_auto_hmc59",
+    "bench_auto97", "bench_auto98", "bench_auto98b", "bench_auto99", "bench_auto_ati58", "bench_auto_hmc59",
     "bench_auto_hmc60",
     "bench_auto_vtl60",
     "bench_autoati75", "bench_autocheck65", "bench_autofb72", "bench_autoloss68", "bench_automore69",
