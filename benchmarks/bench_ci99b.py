@@ -48,6 +48,7 @@ Measured (2026-12-06, 4fafc59a, 2 cores shared by up to 8 helpers, load 2-12; on
   calibrate_folder 0.30-0.39 (its read most of it), edit 0.18-0.21; 67 calibrate_folder calls and
   34 edits in the module.  The read is spread over 1483 columns: pyarrow's read 18.5 % of it,
   the role naming 17.4 %, to_pandas 12.4 %, gap repair 9.3 %, unit steps 7.9 %, value checks 6.8 %.
+  One deep copy of a run's composed config (model=mlr, its hydra node in): 0.016 s CPU (20 copies).
 
 Against the bar, what an exact cut would give: (1) test_calibrate's ``edit`` through the file's
 own arrow schema, only the changed columns converted -- the same table (``Table.equals``, metadata
