@@ -170,6 +170,26 @@ def retimed(frame: pd.DataFrame, start: int) -> pd.DataFrame:
     return part
 
 
+def _case(deployed, ss, part: pd.DataFrame, expected: np.ndarray, start: int, after: int | None
+          ) -> str:
+    """A case's line (module doc) from the fault row ``start`` (``expected``: the healthy
+    correction each row should give; ``after``: the first row 10 after a burst, None: no burst)."""
+    got = _stepped(deployed, ss, part)
+    replay = _replayed(deployed, ss, part)
+    events = got["events"][start:]
+    named = sorted({e.get("sensor") or e.get("reason", "")[:30] for r in events for e in r})
+    off = np.abs(got["served"] - expected)
+    return (f"served sensor events {sum(map(len, events))}"
+            f"{f' {named[:6]}' if after is not None else ''}; mirror flagged rows "
+            f"{int((got['flags'][start:] != 0).sum())}; max|C - served| "
+            f"{np.abs(got['c'] - got['served']).max():.3g} µm; |served - healthy| {off.max():.3g} µm"
+            + (f", from 10 rows after the burst {off[after:].max():.3g} µm" if after is not None
+               else "")
+            + f"; replay - served {np.abs(replay - got['served']).max():.3g} µm"
+            + (f"; repeats counted served {got['n_served']} C {got['n_c']}" if after is not None
+               else ""))
+
+
 def repeats(root: str, *records: str) -> None:
     """The ``repeats`` lines (module doc)."""
     base = Path(root).resolve()
@@ -183,29 +203,13 @@ def repeats(root: str, *records: str) -> None:
               f"{np.abs(healthy['c'] - healthy['served']).max():.3g} µm", flush=True)
         want = healthy["served"]
         for n in BURSTS:
-            part = burst(frame, start, n)
-            got = _stepped(deployed, ss, part)
             # the healthy correction each row should give: the fault row's over the burst
             expected = np.vstack([want[:start], want[[start] * n], want[start + 1:]])
-            tail = slice(start, None)
-            events = sorted({e.get("sensor") or e.get("reason", "")[:30]
-                             for r in got["events"][tail] for e in r})
-            replay = _replayed(deployed, ss, part)
-            print(f"  burst {n:>2}: served sensor events {sum(map(len, got['events'][tail]))} "
-                  f"{events[:6]}; mirror flagged rows {int((got['flags'][tail] != 0).sum())}; "
-                  f"max|C - served| {np.abs(got['c'] - got['served']).max():.3g} µm; |served - "
-                  f"healthy| {np.abs(got['served'] - expected).max():.3g} µm, from 10 rows after "
-                  f"the burst {np.abs(got['served'] - expected)[start + n + 10:].max():.3g} µm; "
-                  f"replay - served {np.abs(replay - got['served']).max():.3g} µm; repeats "
-                  f"counted served {got['n_served']} C {got['n_c']}", flush=True)
-        part = retimed(frame, start)
-        got = _stepped(deployed, ss, part)
-        replay = _replayed(deployed, ss, part)
-        print(f"  retime  : served sensor events {sum(map(len, got['events'][start:]))}; mirror "
-              f"flagged rows {int((got['flags'][start:] != 0).sum())}; max|C - served| "
-              f"{np.abs(got['c'] - got['served']).max():.3g} µm; |served - healthy| "
-              f"{np.abs(got['served'] - want).max():.3g} µm; replay - served "
-              f"{np.abs(replay - got['served']).max():.3g} µm", flush=True)
+            print(f"  burst {n:>2}: "
+                  f"{_case(deployed, ss, burst(frame, start, n), expected, start, start + n + 10)}",
+                  flush=True)
+        print(f"  retime  : {_case(deployed, ss, retimed(frame, start), want, start, None)}",
+              flush=True)
 
 
 def _digest(*arrays) -> str:
