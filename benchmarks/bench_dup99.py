@@ -79,6 +79,45 @@ R2. healthy frames (pt9851, cr9763, lr9376, sw9776, fl_thermal): served correcti
 R3. fresh scored once (R1 and R2's healthy line on each fresh record), main -> rule.
 Reported beside the bar: ``retime`` (a repeated time, other values), main -> rule.
 KEPT if R1-R3 hold; else REFUSED (benchmarks/dup99_rule.patch, src as on 4fafc59a).
+
+Status: the bar above was committed in 4666594a before any of 9879-9881 was simulated; unchanged.
+After it: the rule (5665c093) and one function for a case's line (ec6956ef: the same text, checked
+on pt9851 before the fresh run).  Fresh scored once on ec6956ef, main's tree first (4fafc59a's src,
+``git archive``), each tree its own ROOT.
+
+Seen (pt9851; main -> rule): burst 12 / 30 / 40: served sensor events 20 / 20 / 20 -> 0, mirror
+flagged rows 3 / 20 / 30 -> 0, max|C - served| 4.77 / 6.69 / 6.69 -> 0 µm, |served - healthy|
+3.13 / 6.69 / 6.69 -> 0 µm; burst 5: 0 on both; repeats counted 4 / 11 / 29 / 39 (served = C);
+replay - served 3.4e-13 µm on both.  R2 healthy digests equal line for line (pt9851, cr9763,
+lr9376 with its own 6 events / 35 flagged rows, sw9776, fl_thermal), 0 repeats counted.
+
+Scored (2026-12-06 11:47-12:13 UTC, 2 cores shared by up to 8 helpers, load 10-14, ``nice``;
+main -> rule; bursts 5 / 12 / 30 / 40; burst 5 is 0 on both everywhere)::
+
+  record  burst  served sensor events  mirror flagged rows  max|C - served| µm  |served - healthy| µm
+  pt9879  12     24 -> 0               6 -> 0               104 -> 0            96.2 -> 0
+          30/40  20 -> 0               21/31 -> 0           2.7e-13 -> 0        5.96 -> 0
+  tr9880  12     18 -> 0               4 -> 0               5.28 -> 0           4.58 -> 0
+          30/40  18 -> 0               21/31 -> 0           0.319 -> 0          0.85 -> 0
+  cr9881  12     24 -> 0               4 -> 0               0.739 -> 0          1.54 -> 0
+          30/40  24 -> 0               21/31 -> 0           1.36 -> 0           1.36 -> 0
+
+Every case equal to healthy again 10 rows after the burst on main too (the MLR is static: what
+parts is the monitor's exclusion over the burst).  Rule: repeats counted 4 / 11 / 29 / 39, served
+= mirror, on every record; the replay path (``run_rows``) = the served steps to 4.8e-13 /
+5.7e-14 / 5.3e-15 µm on both trees.  ``retime`` (a repeated time, other values): 0 events, 0
+flags, C = served = healthy on both trees (the time rule takes it one period on, where it was).
+R2 on the fresh healthy frames: served, events and mirror digests equal main -> rule (pt9879
+18bedd1f, tr9880 d4e383ff, cr9881 67abbf37), 0 events, 0 repeats counted.  The compiled C and the
+ST (with the monitor) = the record without the copies to 1e-9 µm on a lag bank's burst:
+tests/shell/test_repeat99.py (7.74 µm in every form on 4fafc59a).  CPU of the bench process
+(simulate / run subprocesses not counted): repeats 28.9 -> 29.4 s, healthy 16.2 -> 16.6 s.
+
+VERDICT: KEPT (R1-R3 hold).  Left alone: a plain stream (``monitor.adaptive=false``) steps a row
+written again one period on in every form, as before (no monitor to misjudge it; a lag bank's
+lags move: the test's 'plain' case); a stream without a time steps it too (``run`` scores every
+row of such a file); a reference measurement on a row written again is still taken, by the
+served ``adapt`` and by ``tc_reference`` after the skipped sample (not measured here).
 """
 
 from __future__ import annotations
