@@ -27,6 +27,16 @@ form against the others).
 A reader that has the whole record takes such a first time as the next time read less one
 period per sample: the same steps (:func:`stream_start` says where the stream's clock starts).
 
+* (dup99) A row written again -- its time not after the last one read and every input equal to
+  those of the last sample stepped on in the campaign (a logger re-sending its last sample) -- is
+  no new sample (:func:`repeats`, :data:`C_REPEAT_RULE`, :data:`ST_REPEAT_RULE`): the stream
+  that skips repeats (the adaptive compensator's; ``skip_repeats`` in the code) takes it before
+  this rule, nothing remembered changes and the last corrections are given again.  The record
+  scored has no such row (the contract refuses a time that repeats: the row written twice is to
+  be deleted), so skipping it is what ``run`` scored.  A repeated time with other values stays a
+  sample, one period on; a stream without a time cannot tell a re-sent row from a machine
+  standing still (``run`` scores every row of such a file), and steps it.
+
 The period is the training's sample period, :func:`median_step` of its times: the one
 definition every reader, model and report of a time column's period uses.
 """
@@ -70,6 +80,16 @@ def step_time(clock: tuple, time: float, period_s: float, judge: bool = False
         back = time if math.isfinite(time) and not first else math.nan
     dt = math.nan if first else now - t_prev
     return (False, now, t_read, shift, back), now, dt, why
+
+
+def repeats(clock: tuple, time: float, x: np.ndarray, last: np.ndarray | None) -> bool:
+    """(dup99) Whether a sample is a row written again (module doc): on a clock's state ``clock``
+    (:meth:`SampleClock.snapshot`) its ``time`` finite and not after the last time read, and
+    its inputs ``x`` every one equal to ``last``, those of the last sample stepped on in the
+    campaign (None: none yet; a missing value, NaN, equals nothing)."""
+    first, _, t_read = clock[:3]
+    return (not first and last is not None and math.isfinite(time) and math.isfinite(t_read)
+            and time <= t_read and bool(np.all(np.asarray(x) == last)))
 
 
 class SampleClock:
@@ -184,6 +204,45 @@ C_TIME_RULE = """\
         s->t_back = (isfinite(time) && !s->first) ? time : NAN;
     }
     dt = s->first ? NAN : now - s->t;
+"""
+
+# (dup99) :func:`repeats` in C, before anything of tc_step (TC_SKIP_REPEATS; state s->u_last,
+# the inputs of the last sample stepped on, s->repeated, s->n_repeated).
+C_REPEAT_RULE = """\
+    /* (dup99) a row written again (timerule.repeats): its time not after the last one read and
+       every input equal to the last sample's stepped on (a NAN equals nothing) is no new sample:
+       skipped, nothing remembered changes, c the last corrections given */
+    s->repeated = TC_SKIP_REPEATS && !s->first && isfinite(time) && isfinite(s->t_read)
+                  && time <= s->t_read;
+    for (j = 0; j < TC_N_INPUTS && s->repeated; j++)
+        if (!(u[j] == s->u_last[j])) s->repeated = 0;
+    if (s->repeated) {
+        s->n_repeated++;
+        s->refused = 0;
+        for (i = 0; i < TC_N_OUTPUTS; i++) c[i] = s->c[i];
+        return 0;
+    }
+"""
+
+# ... in Structured Text, around the whole scan (``IF NOT repeated THEN`` ... ``END_IF;``).
+ST_REPEAT_RULE = """\
+(* (dup99) a row written again (timerule.repeats): its time not after the last one read and every *)
+(* input equal to the last sample's stepped on is no new sample: skipped, nothing remembered *)
+(* changes, c keeps the last corrections *)
+repeated := SKIP_REPEATS AND NOT first AND has_time AND read_valid;
+IF repeated THEN
+    repeated := time_s <= t_read;
+END_IF;
+FOR j := 0 TO N_INPUTS - 1 DO
+    IF repeated AND NOT (u[j] = u_last[j]) THEN
+        repeated := FALSE;
+    END_IF;
+END_FOR;
+IF repeated THEN
+    n_repeated := n_repeated + 1;
+    n_clamped := 0;
+    refused := FALSE;
+END_IF;
 """
 
 # The same steps in Structured Text (no NaN: ``has_time``, ``read_valid``, ``shift_valid``).

@@ -7,7 +7,11 @@ by its POD reconstruction from the healthy ones), and behind it a
 :class:`~.guard.CorrectionGuard` (bounded, rate-limited correction).  It also
 checks ``time`` (NaN, repeated or backwards: taken as the previous time plus
 the sampling period, :mod:`thermocomp.core.timerule`) and holds a missing non-temperature
-input (``S_`` signal) at its last value.  A correction is produced for every sample.
+input (``S_`` signal) at its last value.  A correction is produced for every sample.  (dup99) A
+row written again (its time not after the last read, every input as the last sample's:
+:func:`~thermocomp.core.timerule.repeats`) is skipped before all of it, the last correction
+given again, counted in ``n_repeated_`` (an event ``time`` -> ``repeated`` at a burst's first row):
+a logger re-sending its last sample 12 times was ten sensors frozen.
 
 It has the interface of the streaming compensator (``columns_``, ``targets_``,
 ``reset``, ``step``, ``predict``), so ``replay``, ``promote`` and the pyfunc use
@@ -25,7 +29,7 @@ import pandas as pd
 
 from ...core.context import TIME, step_gain
 from ...core.io.own_headers import as_named
-from ...core.timerule import SampleClock
+from ...core.timerule import SampleClock, repeats
 from .fallback import sensor_fallbacks
 from .guard import CorrectionGuard
 from .pod import ThermalPOD
@@ -58,6 +62,9 @@ class AdaptiveCompensator:
     """
 
     lab_names_: dict = {}      # replaced, never mutated (older pickles have none)
+    n_repeated_ = 0            # (dup99; older pickles have none of these three)
+    _u_last = None
+    _repeating = False
     lab_units_: dict = {}      # the lab's headers in another unit (naming.lab_units): likewise
     derived_: dict = {}        # data.derive's targets, computed from a block's errors: likewise
     bits_: dict = {}           # data.bits, a status word a served block decodes: likewise (bits85)
@@ -180,6 +187,9 @@ class AdaptiveCompensator:
         self.last_events_: list[dict] = []
         self.rows_events_: list[dict] = []
         self.n_samples_ = 0
+        self.n_repeated_ = 0
+        self._u_last = None       # (dup99) the inputs of the last sample stepped on, as read
+        self._repeating = False   # the last row was one written again
 
     def __setstate__(self, state: dict) -> None:
         if "_clock" not in state:     # pickled before the time rule (timerule.py)
@@ -195,15 +205,19 @@ class AdaptiveCompensator:
                 None if self._late is None else self._late.copy(), self._clock.snapshot(),
                 self._held.copy(), self._held_state.copy(), self._time_bad,
                 None if self._y is None else self._y.copy(), self.n_samples_,
-                {s: f._snapshot() for s, f in self.fallbacks_.items()})
+                {s: f._snapshot() for s, f in self.fallbacks_.items()},
+                (self._u_last, self._repeating, self.n_repeated_))
 
     def _restore(self, snap: tuple) -> None:
         if not isinstance(snap[5], tuple):   # taken before the time rule (an older model's)
             snap = (*snap[:5], _clock_of(snap[5], snap[6]), *snap[7:])
         if len(snap) == 11:     # taken before the fallbacks (fallback.py): none to restore
             snap = (*snap, {})
+        if len(snap) == 12:     # taken before dup99: no row to repeat yet
+            snap = (*snap, (None, False, 0))
         (s, m, g, self._base, self._late, clock, self._held,
-         self._held_state, self._time_bad, self._y, self.n_samples_, falls) = snap
+         self._held_state, self._time_bad, self._y, self.n_samples_, falls, repeat) = snap
+        self._u_last, self._repeating, self.n_repeated_ = repeat
         for sensor, fallback in self.fallbacks_.items():
             if sensor in falls:
                 fallback._restore(falls[sensor])
@@ -222,6 +236,9 @@ class AdaptiveCompensator:
     def _step(self, x: np.ndarray, time: float) -> tuple[np.ndarray, int]:
         self.last_events_: list[dict] = []    # a step that fails reports none, not the last ones
         events: list[dict] = []
+        if self._repeated(x, float(time), events):
+            self.last_events_ = events
+            return self._y, 0
         t, dt = self._check_time(float(time), events)
         read = x if self._mon_all else x[self._mon]
         x = self._inputs(x, t, events, dt)
@@ -244,6 +261,22 @@ class AdaptiveCompensator:
                 y, take = falls[out], getattr(self.fallbacks_[out], "last_take_", None)
         self._output(y, dt, t, self._allowance(stepped), events, take)
         return self._y, clamped
+
+    def _repeated(self, x: np.ndarray, time: float, events: list) -> bool:
+        """(dup99) Whether the row is one written again (module doc), counted, its event added
+        at a burst's first; else it is the last row read."""
+        if self._u_last is None or not repeats(
+                self._clock.snapshot(), time, x, self._u_last):
+            self._u_last, self._repeating = np.array(x, dtype=float), False
+            return False
+        if not self._repeating:
+            events.append({"time": self._clock.t, "sensor": TIME, "from": "ok", "to": "repeated",
+                           "reason": f"row written again (time {time:.6g} s not after the last "
+                                     "read, every input as the last sample's): skipped, the last "
+                                     "correction given again"})
+        self._repeating = True
+        self.n_repeated_ += 1
+        return True
 
     def _fallen_back(self, read: np.ndarray) -> str | None:
         """The excluded sensor whose fallback gives the correction (the first of the monitor's
@@ -321,6 +354,8 @@ class AdaptiveCompensator:
         fallen = np.full(n, None, dtype=object)     # the fallback each row reads (none: the model)
         events: dict[int, list] = {}
         done = np.ones(n, dtype=bool)
+        skipped = np.zeros(n, dtype=bool)      # (dup99) rows written again
+        given = self._y                        # the last correction given before the rows
         i = 0
         while i < n:
             m = self._inputs_block(X, time, i, xs, ts, dts, novel)
@@ -328,6 +363,10 @@ class AdaptiveCompensator:
                 i += m
                 continue
             events[i] = row_events = []
+            if self._repeated(X[i], float(time[i]), row_events):
+                skipped[i], done[i] = True, False
+                i += 1
+                continue
             try:
                 ts[i], dts[i] = self._check_time(float(time[i]), row_events)
                 xs[i] = self._inputs(xs[i], ts[i], row_events, dts[i])
@@ -357,6 +396,9 @@ class AdaptiveCompensator:
         clamped = np.zeros(n, dtype=np.int64)
         clamped[rows] = clamps
         self._guard_rows(rows, y, dx, dts, ts, novel, refused, events, out, takes)
+        for i in np.flatnonzero(skipped):      # the last correction given again
+            before = rows[rows < i]
+            out[i] = out[before[-1]] if len(before) else (np.nan if given is None else given)
         self.last_events_ = events.get(n - 1, []) if n else []
         # every row's, in order: what the monitor did over a lead-in it was warmed on (deploy88)
         self.rows_events_ = [e for k in sorted(events) for e in events[k]]
@@ -406,6 +448,7 @@ class AdaptiveCompensator:
         xs[rows], ts[rows], dts[rows] = block, now, np.diff(np.r_[t_prev, now])
         novel[rows] = mon is not None and mon.new_state_
         self._clock.restore((False, float(now[-1]), float(t[m - 1]), shift))
+        self._u_last, self._repeating = np.array(X[start + m - 1], dtype=float), False
         if len(self._other):
             self._held = block[-1, self._other].copy()
         return m

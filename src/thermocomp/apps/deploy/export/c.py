@@ -13,7 +13,7 @@ import math
 from ....core.io import marks as missing_marks
 from ....core.io.derived import rendered
 from ....core.io.derived import sources as sources_of
-from ....core.timerule import C_TIME_RULE
+from ....core.timerule import C_REPEAT_RULE, C_TIME_RULE
 from .forest import forest_arrays
 from .laws import UNBOUNDED
 from .recurrent import net_arrays, net_inputs
@@ -214,6 +214,7 @@ def header(ss: StateSpace) -> str:
 #define TC_WIDTH (TC_N_INPUTS + TC_N_POWERS + TC_N_DERIVED + TC_N_INITIAL)   /* a law's inputs */
 #define TC_USES_TIME {int(ss.uses_time)}
 #define TC_SUBSTITUTE_TIME {int(ss.substitute_time)}   /* a bad time: previous + one period */
+#define TC_SKIP_REPEATS {int(ss.skip_repeats)}   /* (dup99) a row written again: skipped */
 #define TC_GUARD {int(ss.guard)}   /* correction bound and rate limit */
 #define TC_GUARD_INPUTS {int(ss.guard and ss.guard_inputs)}   /* the bound follows the inputs (pattern) */
 #define TC_ADAPT {ADAPT_CODES[ss.adapt]}   /* learned from reference measurements: 1 bias, 2 gain and bias */
@@ -265,6 +266,9 @@ typedef struct {{
     double cov[TC_N_OUTPUTS][2][2];             /* covariance of (gain, bias) (TC_ADAPT 2) */
     double c[TC_N_OUTPUTS];                     /* the last corrections given (0 at a campaign's start) */
     int refused;                                /* 1: the last sample was refused (an input not finite) */
+    double u_last[TC_N_INPUTS];                 /* (dup99) the inputs of the last sample stepped on */
+    int repeated;                               /* 1: the last sample was a row written again, skipped */
+    long n_repeated;                            /* ... in this campaign (TC_SKIP_REPEATS) */
 {monitor_state(ss)}}} tc_state;
 
 static const char *const TC_INPUT_NAMES[TC_N_INPUTS] = {{{names}}};
@@ -363,6 +367,8 @@ void tc_reset(tc_state *s) {{
     int i;
     s->first = 1;
     s->refused = 0;
+    s->repeated = 0;
+    s->n_repeated = 0;
     s->ambient_c = NAN;
     for (i = 0; i < TC_N_OUTPUTS; i++) s->c[i] = 0.0;
 }}
@@ -517,7 +523,7 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
     double dt, now, lag_dt;
     int i, j, l, h, r, clamped = 0, between = 0, serving = 0;
     tc_state committed;
-    /* an input not measured refuses the sample before anything is remembered: one NaN would
+{C_REPEAT_RULE}    /* an input not measured refuses the sample before anything is remembered: one NaN would
        otherwise stay in the lags, the AR feedback and the guard to the campaign's end; so does
        a campaign's first sample without its given ambient (TC_AMBIENT_GIVEN) */
     s->refused = TC_AMBIENT_GIVEN && !TC_AMBIENT_OPTIONAL && s->first && !isfinite(s->ambient_c);
@@ -528,6 +534,7 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
         for (i = 0; i < TC_N_OUTPUTS; i++) c[i] = s->c[i];
         return -1;
     }}
+    for (j = 0; j < TC_N_INPUTS; j++) s->u_last[j] = u[j];   /* (dup99) as read */
 {C_TIME_RULE}    /* the sensor monitor (TC_MONITOR): the monitored inputs as the model reads them */
     if (TC_MONITOR) {{   /* (a monitored reading not measured: missing, NAN) */
         for (j = 0; j < TC_N_INPUTS; j++) um[j] = (measured(u, j) || !mon_watched(j)) ? u[j] : NAN;

@@ -1023,6 +1023,9 @@ int main(int argc, char **argv) {
     static char stamp[2 * MAX_CELL + 2];
     int ambient_col = -1;
     int said_back = 0;         /* rows said whose time is not after the last read */
+    int back = 0;              /* 1: this row's time is not after the last read */
+    int repeating = 0;         /* (dup99) the row before was one written again */
+    int said_repeat = 0;       /* (dup99) bursts of rows written again said */
     long footer_at = 0;        /* the first line of a `#` block under the rows (0: none yet) */
     int sampled = 0;           /* a sample row read (rows describing channels are above it) */
     int unit_rowed = 0;        /* a unit row under the header (rows describing channels: below) */
@@ -1439,8 +1442,34 @@ int main(int argc, char **argv) {
             restart(&s, 1);
             if (row_time(cells, time_col, clock_col, stamp, row, &t) != 0) return 2;
         }
-        if (TC_SUBSTITUTE_TIME && isfinite(t) && !s.first && isfinite(s.t_read) && t <= s.t_read
-            && !isfinite(s.t_back) && said_back++ < 5)
+        back = TC_SUBSTITUTE_TIME && isfinite(t) && !s.first && isfinite(s.t_read)
+               && t <= s.t_read && !isfinite(s.t_back);
+        if (TC_AMBIENT_GIVEN && s.first) {     /* the campaign's ambient, at its first row */
+            double a0 = ambient_col >= 0 ? value(cells[ambient_col], &ignored) : NAN;
+            if (!isfinite(a0)) a0 = ambient;
+            if (!isfinite(a0) && !TC_AMBIENT_OPTIONAL) {
+                fprintf(stderr, "stream: line %ld starts a campaign without its ambient_c (and no "
+                        "--ambient)\n", row);
+                return 2;
+            }
+            tc_set_ambient(&s, a0);
+        }
+        repeating = s.repeated;
+        if (tc_step(&s, u, t, c) < 0 && TC_MONITOR && s.mon_rule) {
+            /* (cdrop77) a monitored sensor's missing reading its monitor cannot rebuild here */
+            fprintf(stderr, "stream: line %ld: input %s has no finite value, which the code's "
+                    "sensor monitor does not rebuild here (%s): the row is refused (the served "
+                    "model rebuilds it)\n", row, TC_INPUT_NAMES[TC_MONITORED[s.mon_sensor]],
+                    TC_MONITOR_REASONS[s.mon_rule]);
+            return 2;
+        }
+        if (s.repeated && !repeating && said_repeat++ < 5)
+            /* (dup99) a row written again (timerule.repeats): skipped, said at a burst's first */
+            fprintf(stderr, "stream: line %ld: the same time (%.10g s) and values as the row "
+                    "before it (a row written again): skipped, the last corrections given again "
+                    "(as the served model; run refuses a time that repeats)%s\n", row, t,
+                    said_repeat == 5 ? " (no more said)" : "");
+        if (back && !s.repeated && said_back++ < 5)
             /* (restart66) the time rule (timerule.py): said where it sets in */
             /* (lab77) a date and time without an offset set back by up to an hour: said as the
                reader says it (its 'the clock set back by an hour, daylight saving time
@@ -1455,25 +1484,7 @@ int main(int argc, char **argv) {
                     "(a logger's own clock, as the served model): give the times with their "
                     "offset (2026-10-25T02:00:00+01:00) or in UTC" : "",
                     said_back == 5 ? " (no more said)" : "");
-        if (TC_AMBIENT_GIVEN && s.first) {     /* the campaign's ambient, at its first row */
-            double a0 = ambient_col >= 0 ? value(cells[ambient_col], &ignored) : NAN;
-            if (!isfinite(a0)) a0 = ambient;
-            if (!isfinite(a0) && !TC_AMBIENT_OPTIONAL) {
-                fprintf(stderr, "stream: line %ld starts a campaign without its ambient_c (and no "
-                        "--ambient)\n", row);
-                return 2;
-            }
-            tc_set_ambient(&s, a0);
-        }
-        if (tc_step(&s, u, t, c) < 0 && TC_MONITOR && s.mon_rule) {
-            /* (cdrop77) a monitored sensor's missing reading its monitor cannot rebuild here */
-            fprintf(stderr, "stream: line %ld: input %s has no finite value, which the code's "
-                    "sensor monitor does not rebuild here (%s): the row is refused (the served "
-                    "model rebuilds it)\n", row, TC_INPUT_NAMES[TC_MONITORED[s.mon_sensor]],
-                    TC_MONITOR_REASONS[s.mon_rule]);
-            return 2;
-        }
-        if (TC_MONITOR) said_monitor(&s, row);
+        if (TC_MONITOR && !s.repeated) said_monitor(&s, row);
         for (i = 0; i < TC_N_OUTPUTS; i++) printf("%s%.17g", i ? "," : "", c[i]);
         printf("\n");
         if (check_.f != NULL && (failed = check_row(row, c)) != 0) {

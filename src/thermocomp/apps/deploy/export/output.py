@@ -70,9 +70,12 @@ def guard_fields(deployed, n_states: int = 0, pattern: bool = False) -> dict:
 def time_fields(deployed, lag_period: float) -> dict:
     """Every stream's rule for a bad ``time`` (missing, or not after the last one read): taken as
     the previous time plus ``time_period`` (:mod:`thermocomp.core.timerule`): the adaptive
-    compensator's sample period, a plain stream's its lag bank's ``lag_period``."""
-    period = deployed.period_s if isinstance(deployed, AdaptiveCompensator) else lag_period
-    return {"substitute_time": True, "time_period": float(period)}
+    compensator's sample period, a plain stream's its lag bank's ``lag_period``; and (dup99)
+    ``skip_repeats``, the adaptive compensator's: a row written again is skipped."""
+    adaptive = isinstance(deployed, AdaptiveCompensator)
+    period = deployed.period_s if adaptive else lag_period
+    # (dup99) a row written again skipped where the served stream skips it: the adaptive one's
+    return {"substitute_time": True, "time_period": float(period), "skip_repeats": adaptive}
 
 
 def adapt_fields(deployed) -> dict:

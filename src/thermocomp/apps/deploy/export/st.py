@@ -20,7 +20,7 @@ that overflows stops many PLCs).
 
 from __future__ import annotations
 
-from ....core.timerule import ST_TIME_RULE
+from ....core.timerule import ST_REPEAT_RULE, ST_TIME_RULE
 from .forest import forest_arrays
 from .recurrent import net_arrays, net_inputs
 from .st_watch import BLOCK as MONITOR_BLOCK
@@ -292,6 +292,7 @@ def function_block(ss: StateSpace, watch: dict | None = None) -> str:
         *_forest_constants(ss),
         *_lstm_constants(ss),
         f"    SUBSTITUTE_TIME : BOOL := {'TRUE' if ss.substitute_time else 'FALSE'};",
+        f"    SKIP_REPEATS : BOOL := {'TRUE' if ss.skip_repeats else 'FALSE'};",
         f"    TIME_PERIOD : LREAL := {literal(ss.time_period)};",
         f"    GRID_PERIOD : LREAL := {literal(ss.grid_period)};",
         f"    USE_GUARD : BOOL := {'TRUE' if ss.guard else 'FALSE'};",
@@ -335,9 +336,12 @@ VAR_OUTPUT
     c : ARRAY[{_dims(m)}] OF LREAL;
     n_clamped : INT;
     refused : BOOL;
+    repeated : BOOL;
+    n_repeated : DINT;
 {MONITOR_OUTPUTS}END_VAR
 VAR
     first : BOOL := TRUE;
+    u_last : ARRAY[{_dims(n)}] OF LREAL;
     buf : ARRAY[{_dims(taps, n)}] OF LREAL;
     ref : ARRAY[{_dims(n)}] OF LREAL;
     v0 : ARRAY[{_dims(n)}] OF LREAL;
@@ -455,6 +459,7 @@ IF reset THEN
         c[i] := 0.0;
     END_FOR;
 END_IF;
+{ST_REPEAT_RULE}IF NOT repeated THEN
 {MONITOR_BLOCK}\
 (* an input not measured refuses the sample, as tc_step: not finite (NaN, infinity: every IEEE *)
 (* comparison false) or beyond its U_LIMIT (a temperature's 10000 degC: an overload mark) *)
@@ -477,6 +482,9 @@ IF AMBIENT_GIVEN AND NOT AMBIENT_OPTIONAL AND first THEN
     END_IF;
 END_IF;
 IF NOT refused THEN
+    FOR j := 0 TO N_INPUTS - 1 DO   (* (dup99) the inputs as read *)
+        u_last[j] := u[j];
+    END_FOR;
 {_indent(ST_TIME_RULE)}    n_clamped := 0;
     (* a missing signal of derived inputs only (HELD) is held at the campaign's last value, *)
     (* 0 before any (its derived inputs 0), as the diagnosed model holds its context *)
@@ -1016,5 +1024,6 @@ IF NOT refused THEN
     END_IF;
     first := FALSE;
 END_IF;
+END_IF;   (* NOT repeated *)
 END_FUNCTION_BLOCK
 """

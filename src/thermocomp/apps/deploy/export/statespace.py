@@ -86,7 +86,7 @@ import numpy as np
 from ....core.frame import ambient_c0
 from ....core.gains import GainTerm, gain_at, gain_terms
 from ....core.io.values import reading_limit
-from ....core.timerule import SampleClock, on_grid
+from ....core.timerule import SampleClock, on_grid, repeats
 from ..adaptive import AdaptiveCompensator
 from ..streaming import Envelope
 from .derived import CLAMPED, DERIVED, INITIAL, OVER
@@ -179,6 +179,7 @@ class _System:
     pattern_tol: float = 0.0
     # what follows the system: the correction guard and the reference update (:mod:`.output`)
     substitute_time: bool = False    # a non-increasing time too is substituted (timerule.py)
+    skip_repeats: bool = False       # (dup99) a row written again is skipped (timerule.repeats)
     time_period: float = 0.0         # s: a sample without time is this after the previous
     # s: the training period a model with a memory steps on (cadence72): a sample less than it
     # after the last one stepped (timerule.on_grid) is answered by the model's step from that
@@ -607,7 +608,9 @@ class Simulator:
         self.first = True
         self.ambient_c = float(ambient_c)
         self.c = np.zeros(len(self.ss.targets))      # the last corrections given
-        self.refused = False
+        self.refused = self.repeated = False
+        self.u_last = None        # (dup99) the inputs of the last sample stepped on, as read
+        self.n_repeated = 0       # rows written again in this campaign, skipped (skip_repeats)
 
     def reference(self, measured) -> None:
         """A reference measurement of the error per target (NaN: none) at the last sample (none
@@ -619,9 +622,17 @@ class Simulator:
         """Correction ``C`` (µm, = -predicted error) per target for one sample.  A sample with
         an input not measured (not finite, or beyond its ``input_limit``) is refused (``refused``
         true): nothing remembered changes and the last corrections given are returned (0 before a
-        campaign's first sample)."""
+        campaign's first sample).  A row written again (``skip_repeats``, :func:`~thermocomp.core.
+        timerule.repeats`) is skipped (``repeated`` true): the same, counted in ``n_repeated``."""
         u = np.asarray(u, float)
         ss, held, watched = self.ss, self.held, self.watched
+        self.repeated = bool(ss.skip_repeats and not self.first
+                             and repeats(self.clock.snapshot(), float(time), u, self.u_last))
+        if self.repeated:
+            self.n_repeated += 1
+            self.refused = False
+            return self.c.copy()
+        read = u
         measured = self._measured(u)
         if self.watch is not None:       # a monitored reading missing: the monitor's (cdrop77)
             u = np.where(watched & ~measured, np.nan, u)
@@ -633,6 +644,7 @@ class Simulator:
             self.refused = bool(self.watch.refuses(u, self.first)) or self.refused
         if self.refused:
             return self.c.copy()
+        self.u_last = read
         if self.first:
             self.clock.reset()
             self.seen, self.last = np.zeros(len(u), bool), np.zeros(len(u))
