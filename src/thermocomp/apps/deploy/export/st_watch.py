@@ -90,10 +90,11 @@ keeps no count of the sensors the C holds out (it cannot tell the C's re-admissi
 judged as the C judges it with none out but the jumpers.  The freeze with a
 sensor out (but a ``BLIND_OUT`` the block holds: st99), the drift, the re-admission and the
 rest judge a sensor by the others' prediction of it over a set the block does not know (the
-POD): not in the ST, they stay with the served model (``provenance.not_in_code``).  (st94b) The stepped self-prediction error is judged while the
-field is whole only: from the first exclusion the block flags (a jump, a dropout, a reading beyond range, a
-stepped error not followed to its ``BACK``) to the campaign's end the C judges it with a sensor out
-(or re-admitted by a band the block does not hold), and the block does not; that flag marks the row
+POD): not in the ST, they stay with the served model (``provenance.not_in_code``).  (st94b)
+The stepped self-prediction error is judged while the field is whole only: from the first
+exclusion the block flags (a jump, a dropout, a reading beyond range, a stepped error not
+followed to its ``BACK``) to the campaign's end the C judges it with a sensor out (or
+re-admitted by a band the block does not hold), and the block does not; that flag marks the row
 its judgement ends (st95b: or, while one is out, a rule named or its reading standing still).
 """
 
