@@ -83,6 +83,37 @@ BAR (written and committed BEFORE any of 9882-9886 was simulated; scored once, t
 4. Seen (above, restated): cr9763's FREEZE of T_nc_z1_drive named at the C's row 10.
 KEPT if 1-4 hold (with the test failing on 4fafc59a, PARSED_DIGEST, docs); REFUSED otherwise
 (benchmarks/st99_rule.patch, src as on 4fafc59a).
+
+Scored (2026-12-06, 2 cores shared by up to 8 helpers, load 12-14; the bar and the rule unchanged
+since their commit f3c545a0, the fresh records simulated after it by this bench, ``cases
+/tmp/st99/fresh lr9882 cr9884 lr9885`` and ``... dl9883 dl9886`` in two processes, once; 24.4 +
+39.3 s CPU, the making included)::
+
+    record  test  rows (lead-in)  healthy diff rows  holds (row, sensor)       held cases
+    lr9882  R1b   4321 (3457)     0                  -                         -
+    dl9883  R1b   7200 (5760)     0                  -                         -
+    cr9884  C10   221 (0)         0                  -                         -
+    lr9885  R1b   4321 (3457)     0                  -                         -
+    dl9886  R1b   7200 (5760)     0                  (747, T_spindle_rear)     10 agree in hold, 3 agree
+
+1 NOT MET by its count: on the one record with a hold (dl9886) every case agrees -- the 10 in
+hold named at the C's row 10-11 (FREEZE 6: T_head_left at 10, the others 11; SECOND 4: T_amb,
+T_spindle_front, T_motor, T_table, the C's flag of a second one no other predicts), the 3 not in
+hold (the C's FREEZE at row 3-4, before the hold, as BASE) -- mismatch 0, false 0, again 0; but
+10 cases were in hold, under the 13 the bar set (it counted one hold's 13 others; 3 froze before
+the hold began).  BASE on the 10: FREEZE at row 16 (its hold lost at a warning band; the run rule
+after it: 4 of them a FREEZE where the C flags SECOND) or nothing (T_head_left).  2 MET: 0 diff rows
+on the five healthy frames, no block FREEZE row.  3 MET: ``bench_st98.py cases`` sw9853 / cr9854
+(10.0 s CPU): its 28 lines identical to st98's scoring run; ``bench_st98b.py cases`` cr9867 (4.4 s
+CPU): its 13 lines identical to st98b's; ``bench_st97d.py cases`` lr9790 / dl9791 / dl9794 (41.3 s
+CPU): 2/4/0/14, 3/7/3/7, 1/4/0/11, 0 diff rows, 0 mon_stop rows.  4 MET (above).
+VERDICT: REFUSED (clause 1's count; no case of the rule wrong).  The rule and its test are
+benchmarks/st99_rule.patch; src as on 4fafc59a.
+
+Seen beside the bar (after it, the same tree's block): lr9749 (holds 1438 T_spindle_rear, 2915
+T_spindle_front) 20 agree in hold, 6 agree; dl9768 (holds 502, 3220 T_motor) 22 agree in hold, 4
+agree; again 0 on both.  A next stop's bar: plant the hold (test_export_st96's bump of a sensor
+no other predicts, its BLIND_OUT) rather than wait for one, so that every fresh record tests it.
 """
 
 from __future__ import annotations
