@@ -177,10 +177,9 @@ def _case(three, part) -> dict:
 
 
 def _kind(got: dict) -> str:
-    if got["st"] is not None and (got["c"] is None or got["st"][0] < got["c"][0]):
-        return "false"
-    if got["c"] is None:
-        return "none"
+    first = bench_st98._kind(got)       # (its ``false`` / ``none`` whatever the C's rule)
+    if first in ("false", "none"):
+        return first
     if got["st"] == got["c"]:
         return "agree"
     return "as BASE" if got["st"] == got["base"] and not got["in_hold"] else "mismatch"
