@@ -112,7 +112,10 @@ benchmarks/st99_rule.patch; src as on 4fafc59a.
 
 Seen beside the bar (after it, the same tree's block): lr9749 (holds 1438 T_spindle_rear, 2915
 T_spindle_front) 20 agree in hold, 6 agree; dl9768 (holds 502, 3220 T_motor) 22 agree in hold, 4
-agree; again 0 on both.  A next stop's bar: plant the hold (test_export_st96's bump of a sensor
+agree; again 0 on both.  BASE's second naming of a field-rule freeze (bench_st98's frozen cases,
+a FREEZE flag after the block's first on a row with no C event): sw9853 1, cr9854 1 (T_headstock,
+C and block at row 10 / 9, BASE again at 11), the patch 0 (a scratch count, 4fafc59a's src and the
+patch applied to it).  A next stop's bar: plant the hold (test_export_st96's bump of a sensor
 no other predicts, its BLIND_OUT) rather than wait for one, so that every fresh record tests it.
 """
 
