@@ -20,7 +20,7 @@ import pandas as pd
 import pytest
 
 from test_export import adaptive_mlr, built_stream, needs_cc
-from thermocomp.apps.deploy.export import exported_files, not_in_code, state_space
+from thermocomp.apps.deploy.export import Simulator, exported_files, not_in_code, state_space
 from thermocomp.apps.deploy.export.pack import conformance_pack, corrections
 from thermocomp.apps.deploy.export.watch import CodeMonitor
 from thermocomp.apps.deploy.report import stream_rows
@@ -104,11 +104,13 @@ def test_a_reading_beyond_its_range_and_a_common_step_are_what_the_code_does_as_
     # freeze (cmon85) kept whole: T_a's freeze seen while T_b is out is a second sensor out the
     # code holds (before: cut at row 31); and (cmon88) the jump: T_a's jump in the row T_b goes
     # beyond its range is a second sensor out for a jump the code holds, its change judged by
-    # the set in before T_b's exclusion, as served (before: cut at row 21)
+    # the set in before T_b's exclusion, as served (before: cut at row 21); (dep99) T_a beyond
+    # its range while T_b is out for its own: a second out for a range reading the code holds
+    # where the field is not rebuilt without both, as served (before: cut at row 21)
     assert [(e["campaign"], e["rows"], e["cut"] is None) for e in summary["campaigns"]] == [
         ("spike", 40, True), ("beyond", 40, True), ("common", 40, True), ("hotter", 40, True),
         ("spike.jump.T_a", 40, True), ("spike.freeze.T_a", 40, True),
-        ("spike.dropout.T_a", 20, False), ("spike.range.T_a", 20, False),
+        ("spike.dropout.T_a", 20, False), ("spike.range.T_a", 40, True),
         ("spike.common.step", 20, False)]
     stream = built_stream(tmp_path, {**exported_files(deployed, "c"), **files})
     for k, f in faults.items():
@@ -152,13 +154,19 @@ def test_the_pack_plants_a_reading_beyond_its_range_and_a_common_step(served, tm
     assert "line 22: monitor: T_a: common step: re-referenced, kept in" in script.stderr
 
 
-def test_a_reading_beyond_its_range_with_another_sensor_out_is_named_and_cut(served):
+def test_a_reading_beyond_its_range_with_another_sensor_out_is_held_as_served(served):
+    """(dep99) T_b beyond its range while T_a is out for a dropout: the second out where the
+    field is not rebuilt without both (before: cut at row 20, not in the code); T_a's returned
+    reading read meanwhile, as served (``_rebuilds``)."""
     deployed, ss, campaign = served
-    _, summary = conformance_pack(deployed, ss, {"K06": _faulty(campaign, "second")})
-    assert summary["campaigns"][0]["cut"] == {
-        "row": 20, "why": "the served model's sensor monitor acted there, which is not in the code "
-                          "(a reading beyond its training range at a campaign's first sample, of "
-                          "several sensors at once or with another sensor out)"}
+    frame = _faulty(campaign, "second")
+    _, summary = conformance_pack(deployed, ss, {"K06": frame})
+    assert summary["campaigns"][0]["cut"] is None
+    want = corrections(ss, stream_rows(deployed, frame, "K06").y)
+    sim = Simulator(ss)
+    sim.reset()
+    U, t = frame[ss.inputs].to_numpy(float), frame["time"].to_numpy(float)
+    assert np.max(np.abs(np.array([sim.step(U[i], t[i]) for i in range(len(frame))]) - want)) < 1e-9
 
 
 def test_a_machine_hotter_than_training_is_read_as_the_served_monitor_reads_it(served):

@@ -88,9 +88,9 @@ The served adaptive compensator judges every ``T_`` input before the model reads
   POD basis's ``modes`` columns; :meth:`CodeMonitor._solved`, the C's ``mon_operator``): a
   Cholesky of ``Phi_a^T Phi_a``, as the served ``pod.operator``.  With it the drift judgement
   goes on with a sensor out (its explaining, lone fault and veto sets solved), a second culprit
-  (or a second sensor's freeze) out beside the first, as served; at most two out (a third
-  flagged).  An export before it (no ``solve``) flags a drift with a sensor out (``DRIFT``) and a
-  second sensor out (``SECOND``).
+  (or a second sensor's freeze) out beside the first, as served; at most two out by these
+  rules (a third flagged).  An export before it (no ``solve``) flags a drift with a sensor out
+  (``DRIFT``) and a second sensor out (``SECOND``).
 * (cmon86) a **stepped error** (``stepped``): a judged sensor's error stepping past its alarm band
   in one sample (the served ``_check_stepped``), each such sensor fired on; the culprit (the
   largest step times ``sqrt(1 - h)``) out as a drift exclusion is (its wait doubled, no field to
@@ -124,6 +124,16 @@ The served adaptive compensator judges every ``T_`` input before the model reads
   the field rebuilt without both), as served: its return judged by its leak, the first's by its
   own rule in the same sample (a drifting ``T_amb`` out of range took the blind ``T_table``, out
   as explaining, back in served).  An export before it flags the reading (``RANGE``).
+* (dep99) an **out set of any size** (``gone``, the C's ``mon_out_set`` / ``mon_nout``: the
+  sensors out in the order they went, fixed arrays bounded by the sensor count; ``out`` /
+  ``out2`` its first two places): several readings beyond range in one sample (a logger card in
+  kelvin) each read as missing and out in the monitor's order, and one beside any number out,
+  wherever the set's operator is had (solved), as served (``_instant``: no cap, no fallback below
+  ``min_active``: :meth:`CodeMonitor.serving`); the model reads each by :meth:`CodeMonitor._rebuilt`'s
+  rule (held at its last reading in, or rebuilt by the set's operator; where too few are in to
+  rebuild the field, one out for a dropout alone whose reading is back and moved read, as served
+  ``_rebuilds``), the set re-admitted together (:meth:`CodeMonitor._returning`).  The one- and
+  two-out paths are its first places; the other rules still take at most two.
 * (mon89; kept by bar91b) a sensor the others predict, out for jumps alone, whose next jump
   within a window brings its reading, on its reference before the first (``ref0``), within
   its re-admission band of the field: a **spike** (``spike``), in again at once with that
@@ -144,14 +154,15 @@ The served adaptive compensator judges every ``T_`` input before the model reads
   ``warn_only``) judges it as any other sensor.
 
 What else the served monitor does it flags, ``NOT_IN_CODE`` with the rule (:data:`REASONS`), and
-goes on by its own rules: a reading beyond its range at a campaign's first sample, of several
-sensors at once or with another sensor out (its sample passes the monitor by, the state as it was,
-so that the reading's return is no jump), several sensors jumping at once that are no common step
+goes on by its own rules: a reading beyond its range at a campaign's first sample, of every sensor
+at once (kelvin97: nothing to rebuild from, the model reads the last field) or beside those out
+where the code does not hold it (its sample passes the monitor by, the state as it was, so that
+the reading's return is no jump), several sensors jumping at once that are no common step
 (cmon93: three or more, or two it cannot hold), a jump at the reference's next sample, a stepped
 self-prediction error whose culprit would be a third out (or one it does not hold out), a drift
 beyond the band that takes a third sensor out (cmon85: with one out, as served), of more than one
-blind partner, a second culprit beyond the alarm band, a second sensor out for a dropout or its
-range where the field is not rebuilt without both (cmon89), a third for a jump, and a sensor no
+blind partner, a second culprit beyond the alarm band, a second sensor out for a dropout where
+the field is not rebuilt without both (cmon89), a third for a jump, and a sensor no
 other predicts out for any other rule (its range; cmon84: too few left to rebuild the field without
 it), or with a fallback model the code does not hold.  A missing reading the code cannot rebuild (at
 a campaign's first sample, with another sensor out or missing, of a sensor it does not hold out) is
@@ -188,7 +199,7 @@ REASONS = ("", "jump: re-referenced and excluded", "freeze: excluded",
            "re-admitted: within half its warning band for a window (its whole band after a "
            "dropout, or out as a culprit within it)",
            "not in the code: a reading beyond its training range at a campaign's first sample, "
-           "of several sensors at once or with another sensor out",
+           "of every sensor at once, or beside those out where the code does not hold it",
            "not in the code: several sensors jumping in one sample (no common step)",
            "not in the code: a jump at the sample after the reference",
            "not in the code: a self-prediction error stepped past the alarm band",
@@ -464,9 +475,10 @@ class CodeMonitor:
     def reset(self) -> None:
         n, w = self.n, self.window
         self.ref = self.base = self.ref0 = None    # (ref0: the reference before a first jump)
-        # (cmon82: out2 its blind partner, cmon85 or a second out by drift; Mc / levc the active
-        # set's operator and leverages)
-        self.out, self.out2 = -1, -1
+        # (dep99) the sensors out, in the order they went out (any number: a logger card beyond
+        # range takes several at once, as served; cmon82: the second its blind partner, cmon85 or
+        # a second out by drift); Mc / levc the active set's operator and leverages
+        self.gone: list[int] = []
         self.Mc, self.levc = self.M[0], self.lev[0]
         # (mon86) the bands the active set is judged against
         self.warn, self.alarm = self.a["warning"], self.a["alarm"]
@@ -564,30 +576,40 @@ class CodeMonitor:
                 lev[k] = M[k, k]
         return M, lev
 
+    @property
+    def out(self) -> int:
+        """The first sensor out (-1: none): the out set's first place."""
+        return self.gone[0] if self.gone else -1
+
+    @property
+    def out2(self) -> int:
+        """The second sensor out (-1: fewer than two out): the out set's second place."""
+        return self.gone[1] if len(self.gone) > 1 else -1
+
     def _active(self) -> np.ndarray:
         """The sensors in (a copy: callers mark a trial set in it)."""
-        return self._active_of(self.out, self.out2).copy()
+        return self._active_of(tuple(sorted(self.gone))).copy()
 
-    def _active_of(self, out: int, out2: int) -> np.ndarray:
-        """The sensors in with ``out`` and ``out2`` out (-1: none), made once per pair and read
-        only (ci98: the mirror asks for it some twenty times a sample)."""
-        got = self._actives.get((out, out2))
+    def _active_of(self, gone: tuple) -> np.ndarray:
+        """The sensors in with the sensors ``gone`` out, made once per set and read only (ci98:
+        the mirror asks for it some twenty times a sample)."""
+        got = self._actives.get(gone)
         if got is None:
             got = np.ones(self.n, bool)
-            got[[k for k in (out, out2) if k >= 0]] = False
+            got[list(gone)] = False
             got.flags.writeable = False
-            self._actives[(out, out2)] = got
+            self._actives[gone] = got
         return got
 
     def _set(self):
         """``(M, active, observable, judged, scale)`` of the active set, read only: made again
         only where the sensors out or the operator changed (ci98: the same arrays, asked for
         seven times a sample)."""
-        key, memo = (self.out, self.out2), self._set_memo
+        key, memo = tuple(sorted(self.gone)), self._set_memo
         if memo is not None and memo[0] == key and memo[1] is self.Mc and memo[2] is self.levc:
             return memo[3]
         lev = self.levc
-        active = self._active_of(*key)
+        active = self._active_of(key)
         observable = lev < self.max_lev
         judged = active & observable
         scale = np.where(judged, 1.0 / np.maximum(1 - lev, 1e-12), 1.0)
@@ -689,7 +711,7 @@ class CodeMonitor:
         held = self.ported[j] or (rule in (DROPOUT, FREEZE) and self.drops[j]) or (
             rule == JUMP and self.spikes[j]) or (rule == OFF_RANGE and self.ranges[j])
         second = self.out >= 0 and not (rule in self.seconds and self._second_kind(j, rule)
-                                        and self._second_held(j))
+                                        and self._second_held(j, rule))
         if second or not held:
             self._flag(NOT_IN_CODE, j, SECOND if second else BLIND)
             return False
@@ -705,35 +727,34 @@ class CodeMonitor:
         return JUMP in self.seconds and self._second_kind(j, JUMP) and self._second_held(j)
 
     def _second_kind(self, j: int, rule: int) -> bool:
-        """Whether the code takes ``j`` out as the second for ``rule``: one the others predict;
-        (cmon89) for a dropout or a range reading only where the field is rebuilt without both
-        (served feeds a dropped sensor's returned reading where it is not), and for a jump one no
-        other predicts there too (held at its last reading, as served)."""
+        """Whether the code takes ``j`` out beside those out for ``rule``: one the others
+        predict; (cmon89) for a dropout or a jump of one no other predicts (held at its last
+        reading, as served) only where the field is rebuilt without them (served feeds a dropped
+        sensor's returned reading where it is not); (dep99) for a range reading wherever it is
+        (read as missing while beyond, never fed back: the stand-ins served makes)."""
         blind = self.instant and not self.ported[j] and bool(
             self.spikes[j] if rule == JUMP else rule == OFF_RANGE and self.second_range[j])
         if rule not in (DROPOUT, OFF_RANGE) and not blind:
             return bool(self.ported[j])
-        rebuilds = self._active().sum() - 1 >= self.a["min_active"]
+        rebuilds = rule == OFF_RANGE or self._active().sum() - 1 >= self.a["min_active"]
         return bool(rebuilds and (self.ported[j] or blind))
 
     def _outs(self) -> list[int]:
         """The sensors out whose missing reading (or range) is read as such: the first; (cmon89)
-        the second too."""
-        return [k for k in ((self.out, self.out2) if self.instant else (self.out,)) if k >= 0]
+        every one out."""
+        return list(self.gone if self.instant else self.gone[:1])
 
-    def _second_held(self, j: int) -> bool:
-        """(cmon85) ``j`` out (a drift exclusion, a freeze) with one sensor out already: the
-        code's second place free and the set's operator solved."""
-        return self.solve and self.out2 < 0 and self._operator(
+    def _second_held(self, j: int, rule: int = 0) -> bool:
+        """(cmon85) ``j`` out (a drift exclusion, a freeze) beside those out: a place free (the
+        second; dep99: any, for a reading beyond range, as served) and the set's operator solved."""
+        return self.solve and (self.out2 < 0 or rule == OFF_RANGE) and self._operator(
             ~self._active() | (np.arange(self.n) == j)) is not None
 
     def _put_out(self, j: int) -> None:
-        """``j`` in the first free place out (the second: cmon85), its calm count and its
-        within-band mark (mon85b) cleared: the served ``_exclude``'s, whatever took it out."""
-        if self.out < 0:
-            self.out = j
-        else:
-            self.out2 = j
+        """``j`` in the out set (its last place), its calm count and its within-band mark
+        (mon85b) cleared: the served ``_exclude``'s, whatever took it out."""
+        if j not in self.gone:
+            self.gone.append(j)
         self.calm[j], self.hid[j] = 0, False
 
     def refuses(self, u: np.ndarray, first: bool) -> int:
@@ -756,7 +777,7 @@ class CodeMonitor:
             rule = MISSING_FIRST
         elif new.sum() > 1 or (new.any() and (rng.any() or self.out >= 0 and not (
                 DROPOUT in self.seconds and self._second_kind(j, DROPOUT)
-                and self._second_held(j)))):
+                and self._second_held(j, DROPOUT)))):
             rule = MISSING_SECOND
         elif new.any() and not (self.ported[j] or self.drops[j]):
             rule = MISSING_BLIND
@@ -869,8 +890,8 @@ class CodeMonitor:
                 # out for a freeze: the served monitor marks it dropped or not by the path it
                 # takes (its band on re-admission), which the code does not follow
                 self._flag(NOT_IN_CODE, j, MISSING_FROZEN)
-        if rng.any() and (j := int(np.argmax(rng))) not in self._outs():
-            self._exclude(j, OFF_RANGE)       # (cmon80: read as missing, as a dropout)
+        for j in [int(k) for k in np.flatnonzero(rng) if k not in self._outs()]:
+            self._exclude(j, OFF_RANGE)   # (cmon80: read as missing, as a dropout; dep99: each)
         if big.sum() == 2 and a["pair_jump"] and not gone.any() and self.count != 2 and (
                 (held := self._pair_jump(x, d, step, big)) is not None):
             instant |= held
@@ -932,7 +953,7 @@ class CodeMonitor:
         if level[judged].any():
             self.flags |= BAND
         self._judgement()
-        for j in [k for k in (self.out, self.out2) if k >= 0 and self.count >= self.window]:
+        for j in [k for k in self.gone if self.count >= self.window]:
             self._thaw(j, gone, instant)
         due = ~self._active() & ~gone & (self.run == 0) & ~instant & (self.calm >= self.dwell)
         if due.any() and self.count >= self.window:
@@ -1009,15 +1030,15 @@ class CodeMonitor:
     def _pair_held(self, ins: np.ndarray) -> bool:
         """(cmon93) Whether the code takes every sensor of ``ins`` out for a jump, in the
         monitor's order, as the first out (one it holds out) or the second (cmon88)."""
-        saved = self.out, self.out2
+        saved = list(self.gone)
         try:
             for j in np.flatnonzero(ins):
                 if not (self._jump_held(int(j)) if self.out >= 0 else self.ported[j] or self.spikes[j]):
                     return False
-                self.out, self.out2 = (j, -1) if self.out < 0 else (self.out, j)
+                self.gone.append(int(j))
             return True
         finally:
-            self.out, self.out2 = saved
+            self.gone = saved
 
     def _spike_back(self, j: int, x, d) -> bool:
         """(mon89) ``j``, out for jumps alone and the others predicting it, jumping back within a
@@ -1085,33 +1106,46 @@ class CodeMonitor:
     def _beyond(self, x, d, rng):
         """(cmon80) The readings beyond their range that are read as missing (``rng`` less a
         machine hotter than training, as the served monitor's ``_hotter``), or None where the
-        code does not hold it (flagged): several at once, one with another sensor out, one of
-        a sensor it does not hold out."""
-        j, a = int(np.argmax(rng)), self.a
-        outs = self._outs()
-        if rng.sum() > 1 or (self.out >= 0 and j not in outs and not (
-                OFF_RANGE in self.seconds and self._second_kind(j, OFF_RANGE)
-                and self._second_held(j))):
-            self._flag(NOT_IN_CODE, j, RANGE)
+        code does not hold them (flagged): every reading beyond (kelvin97: nothing to rebuild
+        from), one of a sensor it does not hold out, or beside those out where the set's
+        operator is not had.  (dep99) Several at once are each out, in the monitor's order, the
+        set of any size, as served (``_instant``: a logger card of three in kelvin)."""
+        a = self.a
+        if rng.all():
+            self._flag(NOT_IN_CODE, int(np.argmax(rng)), RANGE)
             return None
-        if j in outs and not (self.predictable[j] or (j == self.out and self.ranges[j])
-                              or (j == self.out2 and self.second_range[j])):
-            self._flag(NOT_IN_CODE, j, BLIND)    # (served: its leak judges its return)
-            return None
-        if j in outs:                    # out already: read as missing
-            return rng
-        inside = self._active() & (np.arange(self.n) != j)
-        # predicted from the others in, all within range (cmon89: one out already, set solved)
-        if inside.sum() >= a["min_active"] and (op := self._operator(~inside)) is not None:
-            p = (x - d)[j] + op[0][j] @ np.where(inside, d, 0.0)
-            up = x[j] > a["hi_c"][j]
-            edge = a["hi_c"][j] if up else a["lo_c"][j]
-            beyond = (p - edge if up else edge - p) > a["warning"][j]
-            if beyond and abs(x[j] - p) < 0.5 * abs(x[j] - edge):
-                return np.zeros_like(rng)     # a machine hotter than training: read
-        if not (self.ported[j] or self.ranges[j]):
-            self._flag(NOT_IN_CODE, j, BLIND)
-            return None
+        # predicted from the others in and within range (cmon89: one out already, set solved)
+        inside = self._active() & ~rng & np.isfinite(d)
+        op = self._operator(~inside) if inside.sum() >= a["min_active"] else None
+        saved, rng = list(self.gone), rng.copy()
+        try:        # (the set grown in the monitor's order, as the caller takes them out)
+            for j in map(int, np.flatnonzero(rng)):
+                outs = self._outs()
+                if self.gone and j not in outs and not (
+                        OFF_RANGE in self.seconds and self._second_kind(j, OFF_RANGE)
+                        and self._second_held(j, OFF_RANGE)):
+                    self._flag(NOT_IN_CODE, j, RANGE)
+                    return None
+                if j in outs:            # out already: read as missing (served: its leak
+                    if not (self.predictable[j] or self.ranges[j] and (   # judges its return)
+                            j == self.out or self.second_range[j])):
+                        self._flag(NOT_IN_CODE, j, BLIND)
+                        return None
+                    continue
+                if op is not None:
+                    p = (x - d)[j] + op[0][j] @ np.where(inside, d, 0.0)
+                    up = x[j] > a["hi_c"][j]
+                    edge = a["hi_c"][j] if up else a["lo_c"][j]
+                    beyond = (p - edge if up else edge - p) > a["warning"][j]
+                    if beyond and abs(x[j] - p) < 0.5 * abs(x[j] - edge):
+                        rng[j] = False       # a machine hotter than training: read
+                        continue
+                if not (self.ported[j] or self.ranges[j]):
+                    self._flag(NOT_IN_CODE, j, BLIND)
+                    return None
+                self.gone.append(j)
+        finally:
+            self.gone = saved
         return rng
 
     def _common_step(self, d, step, big, pos):
@@ -1151,13 +1185,18 @@ class CodeMonitor:
         return big | again
 
     def _rebuilt(self, u, d, pred=None):
-        """``u`` with the monitored inputs as the model reads them: the reading, the sensor out
-        rebuilt from the others (``pred``: their predictions)."""
+        """``u`` with the monitored inputs as the model reads them: the reading, a sensor out
+        rebuilt from the others (``pred``: their predictions), one no other predicts held at its
+        last reading in (cmon82c); (dep99) where too few are in to rebuild the field (a set
+        out), one out for a dropout alone whose reading is back and moved, as served (its
+        ``_rebuilds``: nearer the truth than a held value)."""
         if pred is None:
             pred = self._errors(d)[0]
-        v = u.copy()      # (one no other predicts: held at its last reading, cmon82c)
-        v[self.idx] = self.base + np.where(self._active(), d,
-                                           np.where(self.predictable, pred, self.last))
+        v = u.copy()
+        read = self._active()
+        if read.sum() < self.a["min_active"]:
+            read |= self.dropped & np.isfinite(d) & (self.run == 0)
+        v[self.idx] = self.base + np.where(read, d, np.where(self.predictable, pred, self.last))
         if self.out >= 0:
             self.flags |= OUT
         if self.novel:
@@ -1290,7 +1329,7 @@ class CodeMonitor:
     def _readmit(self, j: int, rule: int) -> None:
         """``j`` back in (``rule``: why), its partner's place kept, the window re-judged."""
         self.by_field[j], self.explains[j], self.ranged[j] = False, False, False
-        self.out, self.out2 = (self.out2, -1) if j == self.out else (self.out, -1)
+        self.gone.remove(j)
         self._recompute()
         self._flag(READMITTED, j, rule)
 
@@ -1307,7 +1346,7 @@ class CodeMonitor:
         a = self.a
         judged = self._judging()
         if (u := self._explaining(level, field)) is not None:
-            if a["blind_out"] and (self.out < 0 or self._second_held(u)):
+            if a["blind_out"] and (self.out < 0 or self._second_held(u, DRIFT_OUT)):
                 self._blind_out(u)
             else:
                 self._flag(NOT_IN_CODE, u, DRIFT)

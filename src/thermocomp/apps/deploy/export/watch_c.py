@@ -59,11 +59,13 @@ STATE = """    /* the sensor monitor (TC_MONITOR): referenced readings d = u - m
     int mon_froze[NM], mon_off[NM];   /* (freeze84) out for a freeze alone, its readings in a
                                          row off the one it held (mon_held) */
     double mon_held[NM];
-    int mon_out;                                /* the sensor out (-1: none) */
-    /* (cmon82) its blind partner out with it (-1: none), the active set's operator (MON_M's
-       index: now mon_M), out by a drift exclusion, its exclusions so, the calm samples it needs to return,
+    /* (dep99) the sensors out, in the order they went out (mon_nout of them, any number: a
+       logger card beyond range takes several at once, as served; cmon82: the second a blind
+       partner, cmon85 a second out by drift) */
+    int mon_out_set[NM], mon_nout;
+    /* (cmon82) out by a drift exclusion, its exclusions so, the calm samples it needs to return,
        the sample count at its drift exclusion (-1: none) */
-    int mon_out2, mon_by_field[NM], mon_outs[NM], mon_dwell[NM], mon_since[NM];
+    int mon_by_field[NM], mon_outs[NM], mon_dwell[NM], mon_since[NM];
     /* (cmon85) the active set's operator and leverages (MON_M's, or solved: mon_operator); the
        second out may be any sensor out by a drift exclusion or a freeze */
     double mon_M[NM][NM], mon_lev[NM];
@@ -141,14 +143,27 @@ def monitor_arrays(ss) -> list[tuple[str, object, tuple, str]]:
 FUNCTIONS = r"""
 #define NM (TC_N_MONITORED > 0 ? TC_N_MONITORED : 1)   /* (no monitor: never called) */
 #define MW TC_MON_WINDOW
-/* the active set (mon_out: -1 every sensor in, j sensor j out): which sensors are in, judged
-   (the others predict them) and each error's scale 1 / (1 - h) (an active one no other
-   predicts: NAN, not judged) */
+/* (dep99) 1: sensor k is in the out set */
+static int mon_out_of(const tc_state *s, int k) {
+    int p;
+    for (p = 0; p < s->mon_nout; p++)
+        if (s->mon_out_set[p] == k) return 1;
+    return 0;
+}
+
+/* (dep99) the sensor in place p of the out set (0 the first out; -1: fewer out) */
+static int mon_place(const tc_state *s, int p) {
+    return p < s->mon_nout ? s->mon_out_set[p] : -1;
+}
+
+/* the active set (every sensor not in the out set): which sensors are in, judged (the others
+   predict them) and each error's scale 1 / (1 - h) (an active one no other predicts: NAN, not
+   judged) */
 static void mon_set(const tc_state *s, int active[], int observable[], int judged[], double scale[]) {
     int k;
     for (k = 0; k < NM; k++) {
         double lev = s->mon_lev[k];
-        active[k] = k != s->mon_out && k != s->mon_out2;
+        active[k] = !mon_out_of(s, k);
         observable[k] = lev < MON_MAX_LEV;
         judged[k] = active[k] && observable[k];
         scale[k] = judged[k] ? 1.0 / (1.0 - lev > 1e-12 ? 1.0 - lev : 1e-12) : (active[k] ? NAN : 1.0);
@@ -265,7 +280,7 @@ static void mon_bands(const int in[], double warn[], double alarm[]) {
 /* (mon86) the active set's bands, a culprit out within its band (mon_hid) counted in */
 static void mon_set_bands(tc_state *s) {
     int in[NM], k;
-    for (k = 0; k < NM; k++) in[k] = (k != s->mon_out && k != s->mon_out2) || s->mon_hid[k];
+    for (k = 0; k < NM; k++) in[k] = !mon_out_of(s, k) || s->mon_hid[k];
     mon_bands(in, s->mon_warn, s->mon_alarm);
 }
 
@@ -273,7 +288,7 @@ static void mon_set_bands(tc_state *s) {
 static void mon_recompute(tc_state *s) {
     double pred[NM];
     int w, out[NM];
-    for (w = 0; w < NM; w++) out[w] = w == s->mon_out || w == s->mon_out2;
+    for (w = 0; w < NM; w++) out[w] = mon_out_of(s, w);
     mon_operator(out, s->mon_M, s->mon_lev);
     for (w = 0; w < MW; w++) {
         double e[NM];
@@ -382,42 +397,45 @@ static int mon_spike_back(tc_state *s, int k, const double x[], const double d[]
     return 1;
 }
 
-/* sensor k back in (rule: why), its partner's place kept, the window re-judged (the numpy
-   mirror's _readmit) */
+/* sensor k back in (rule: why), out of the out set (the others' order kept), the window
+   re-judged (the numpy mirror's _readmit) */
 static void mon_readmit(tc_state *s, int k, int rule) {
+    int p, q = 0;
     s->mon_by_field[k] = s->mon_explains[k] = s->mon_ranged[k] = 0;
-    if (k == s->mon_out) s->mon_out = s->mon_out2;
-    s->mon_out2 = -1;
+    for (p = 0; p < s->mon_nout; p++)
+        if (s->mon_out_set[p] != k) s->mon_out_set[q++] = s->mon_out_set[p];
+    s->mon_nout = q;
     mon_recompute(s);
     mon_flag(s, TC_MON_READMITTED, k, rule);
 }
 
-/* (cmon85) 1: sensor k out (a drift exclusion, a freeze) with one out already: the second place
-   free and the set's operator solved */
-static int mon_second_held(const tc_state *s, int k) {
+/* (cmon85) 1: sensor k out for rule (a drift exclusion, a freeze) beside those out: a place free
+   (the second; dep99: any, for a reading beyond range, as served) and the set's operator solved */
+static int mon_second_held(const tc_state *s, int k, int rule) {
     double M[NM][NM], lev[NM];
     int out[NM], m;
-    if (!MON_SOLVE || s->mon_out2 >= 0) return 0;
-    for (m = 0; m < NM; m++) out[m] = m == k || m == s->mon_out || m == s->mon_out2;
+    if (!MON_SOLVE || (s->mon_nout >= 2 && rule != TC_MON_OFF_RANGE)) return 0;
+    for (m = 0; m < NM; m++) out[m] = m == k || mon_out_of(s, m);
     return mon_operator(out, M, lev);
 }
 
-/* 1: the code takes sensor k out as the second for rule: one the others predict; (cmon89) for
-   a dropout or a range reading only where the field is rebuilt without both, and for a jump one
-   no other predicts there too (held at its last reading, as served) */
+/* 1: the code takes sensor k out beside those out for rule: one the others predict; (cmon89) for
+   a dropout or a jump of one no other predicts (held at its last reading, as served) only where
+   the field is rebuilt without them; (dep99) for a range reading wherever it is (read as missing
+   while beyond, never fed back) */
 static int mon_second_kind(const tc_state *s, int k, int rule) {
     int m, in = 0;
     int blind = MON_SECOND_INSTANT && !MON_PORTED[k] && (
         rule == TC_MON_JUMP ? mon_spikes(k) : rule == TC_MON_OFF_RANGE && mon_second_range(k));
     if (!(rule == TC_MON_DROPOUT || rule == TC_MON_OFF_RANGE || blind)) return MON_PORTED[k];
-    for (m = 0; m < NM; m++) in += m != s->mon_out && m != s->mon_out2;
-    return in - 1 >= MON_MIN_ACTIVE && (MON_PORTED[k] || blind);
+    for (m = 0; m < NM; m++) in += !mon_out_of(s, m);
+    return (rule == TC_MON_OFF_RANGE || in - 1 >= MON_MIN_ACTIVE) && (MON_PORTED[k] || blind);
 }
 
 /* (cmon88) 1: sensor k's jump with one out already held by the code: re-referenced and out as
    the second, as served, where the others predict it and the set is solved */
 static int mon_jump_held(const tc_state *s, int k) {
-    return MON_SECOND_JUMP && mon_second_kind(s, k, TC_MON_JUMP) && mon_second_held(s, k);
+    return MON_SECOND_JUMP && mon_second_kind(s, k, TC_MON_JUMP) && mon_second_held(s, k, TC_MON_JUMP);
 }
 
 /* (cmon85, cmon86, cmon88; cmon89) 1: rule takes a second sensor out beside one */
@@ -427,16 +445,15 @@ static int mon_second_rule(int rule) {
            || ((rule == TC_MON_DROPOUT || rule == TC_MON_OFF_RANGE) && MON_SECOND_INSTANT);
 }
 
-/* (cmon89) 1: sensor k out the first, or the second where an instant fault may take one */
+/* (cmon89) 1: sensor k out the first, or any out where an instant fault may take one beside */
 static int mon_is_out(const tc_state *s, int k) {
-    return k >= 0 && (k == s->mon_out || (MON_SECOND_INSTANT && k == s->mon_out2));
+    return k >= 0 && (k == mon_place(s, 0) || (MON_SECOND_INSTANT && mon_out_of(s, k)));
 }
 
-/* k in the first free place out (the second: cmon85), its calm count and its within-band mark
-   (mon85b) cleared: the served _exclude's, whatever took it out */
+/* k in the out set (its last place), its calm count and its within-band mark (mon85b)
+   cleared: the served _exclude's, whatever took it out */
 static void mon_put_out(tc_state *s, int k) {
-    if (s->mon_out < 0) s->mon_out = k;
-    else s->mon_out2 = k;
+    if (!mon_out_of(s, k) && s->mon_nout < NM) s->mon_out_set[s->mon_nout++] = k;
     s->mon_calm[k] = s->mon_hid[k] = 0;
 }
 
@@ -447,8 +464,8 @@ static void mon_exclude(tc_state *s, int k, int rule) {
     int blind = ((rule == TC_MON_DROPOUT || rule == TC_MON_FREEZE) && mon_drops(k))
                 || (rule == TC_MON_JUMP && mon_spikes(k))
                 || (rule == TC_MON_OFF_RANGE && mon_ranges(k));
-    int second = s->mon_out >= 0 && !(mon_second_rule(rule) && mon_second_kind(s, k, rule)
-                                      && mon_second_held(s, k));
+    int second = s->mon_nout > 0 && !(mon_second_rule(rule) && mon_second_kind(s, k, rule)
+                                      && mon_second_held(s, k, rule));
     if (second || !(MON_PORTED[k] || blind)) {
         mon_flag(s, TC_MON_NOT_IN_CODE, k, second ? TC_MON_SECOND : TC_MON_BLIND);
         return;
@@ -465,7 +482,7 @@ static int mon_blind_for_frozen(const tc_state *s, int j, const int trial[]) {
     double M[NM][NM], L[NM];
     int k, m, out[NM];
     for (k = 0; k < NM; k++) {
-        if (trial[k] || (k != s->mon_out && k != s->mon_out2) || !(s->mon_run[k] > MON_BLIND_RUN[k]))
+        if (trial[k] || !mon_out_of(s, k) || !(s->mon_run[k] > MON_BLIND_RUN[k]))
             continue;
         for (m = 0; m < NM; m++) out[m] = !trial[m] && m != k;
         if (mon_operator(out, M, L) && L[j] < MON_MAX_LEV) return 1;
@@ -542,11 +559,11 @@ static void mon_pass_once_back(const tc_state *s, const int trial[], int ok[], d
     /* (mon88) one out by the field's judgement, blind only for want of a partner out frozen */
     for (k = 0; k < NM && MON_CLEARED; k++)
         if (trial[k] && L[k] >= MON_MAX_LEV && s->mon_by_field[k] && !s->mon_explains[k]
-            && (k == s->mon_out || k == s->mon_out2))
+            && mon_out_of(s, k))
             ok[k] = mon_blind_for_frozen(s, k, trial);
     /* (cmon89b) one no other predicts, out of range: back where its leak passes, as served */
     for (k = 0; k < NM; k++)
-        if (ok[k] && (k == s->mon_out || k == s->mon_out2) && mon_ranges(k) && s->mon_ranged[k])
+        if (ok[k] && mon_out_of(s, k) && mon_ranges(k) && s->mon_ranged[k])
             ok[k] = mon_leak_passes(s, k, trial, M, L);
 }
 
@@ -555,7 +572,7 @@ static void mon_pass_once_back(const tc_state *s, const int trial[], int ok[], d
 static void mon_returning(const tc_state *s, const int due[], int back[]) {
     int trial[NM], ok[NM], k;
     double worst[NM];
-    for (k = 0; k < NM; k++) trial[k] = (k != s->mon_out && k != s->mon_out2) || due[k];
+    for (k = 0; k < NM; k++) trial[k] = !mon_out_of(s, k) || due[k];
     for (;;) {
         int bad = -1;
         mon_pass_once_back(s, trial, ok, worst);
@@ -593,22 +610,28 @@ static int mon_refuses(tc_state *s, const double u[]) {
     }
     if (miss < 0) return 0;
     if (s->first) rule = TC_MON_MISSING_FIRST;
-    else if (nnew > 1 || (nnew && (rng || (s->mon_out >= 0 && !(
+    else if (nnew > 1 || (nnew && (rng || (s->mon_nout > 0 && !(
                  MON_SECOND_INSTANT && mon_second_kind(s, j, TC_MON_DROPOUT)
-                 && mon_second_held(s, j))))))
+                 && mon_second_held(s, j, TC_MON_DROPOUT))))))
         rule = TC_MON_MISSING_SECOND;   /* (cmon89: a dropout as the second out taken) */
     else if (nnew && !MON_PORTED[j] && !mon_drops(j)) rule = TC_MON_MISSING_BLIND;
     if (rule) mon_flag(s, TC_MON_NOT_IN_CODE, j >= 0 ? j : miss, rule);
     return rule;
 }
 
-/* the monitored inputs of u as the model reads them: the reading, the sensor out rebuilt */
+/* the monitored inputs of u as the model reads them: the reading, a sensor out rebuilt (one no
+   other predicts held at its last reading in); (dep99) where too few are in to rebuild the field,
+   one out for a dropout alone whose reading is back and moved read, as served (_rebuilds) */
 static void mon_rebuilt(tc_state *s, double u[], const double d[], const double pred[]) {
-    int k;
-    for (k = 0; k < NM; k++)
-        u[TC_MONITORED[k]] = s->mon_base[k] + (k == s->mon_out || k == s->mon_out2
-                                               ? (MON_PREDICTABLE[k] ? pred[k] : s->mon_last[k]) : d[k]);
-    if (s->mon_out >= 0) s->mon_flags |= TC_MON_OUT;
+    int k, in = 0;
+    for (k = 0; k < NM; k++) in += !mon_out_of(s, k);
+    for (k = 0; k < NM; k++) {
+        int read = !mon_out_of(s, k) || (in < MON_MIN_ACTIVE && s->mon_dropped[k]
+                                         && isfinite(d[k]) && s->mon_run[k] == 0);
+        u[TC_MONITORED[k]] = s->mon_base[k] + (read ? d[k]
+                                               : MON_PREDICTABLE[k] ? pred[k] : s->mon_last[k]);
+    }
+    if (s->mon_nout) s->mon_flags |= TC_MON_OUT;
     if (s->mon_novel) s->mon_flags |= TC_MON_NEW_STATE;
     for (k = 0; k < NM && s->mon_fell; k++)   /* the served correction is the fallback's */
         if (MON_FALLBACK[k]) {
@@ -623,55 +646,75 @@ static void mon_rebuilt(tc_state *s, double u[], const double d[], const double 
    window; one whose model is not in the code: 0, flagged FALLBACK); 0: the model's */
 static int mon_serving(const tc_state *s) {
     int k, in = 0;
-    for (k = 0; k < NM; k++) in += k != s->mon_out && k != s->mon_out2;
+    for (k = 0; k < NM; k++) in += !mon_out_of(s, k);
     if (in < MON_MIN_ACTIVE) return 0;
     for (k = 0; k < NM; k++)
-        if ((k == s->mon_out || k == s->mon_out2) && MON_FALLBACK[k]
+        if (mon_out_of(s, k) && MON_FALLBACK[k]
                 && !(s->mon_dropped[k] && s->mon_read[k])) return MON_FALLBACK_SET[k];
     return 0;
 }
 
-/* (cmon80) a reading beyond its range (rng: which, nrng of them) after a campaign's first
-   sample: 1 read as missing, 0 read (the others predict it beyond the same training edge by
-   more than its warning band and it reads nearer that than half its distance from the edge: a
-   machine hotter than training), -1 not in the code (flagged): several at once, one with
-   another sensor out, one of a sensor the code does not hold out */
-static int mon_beyond(tc_state *s, const double x[], const double d[], int j, int nrng) {
+/* (cmon80) the readings beyond their range (rng[]: which, nrng of them) after a campaign's
+   first sample: 1 each still in rng[] read as missing, those read cleared from it (the others in
+   and within range predict it beyond the same training edge by more than its warning band and
+   it reads nearer that than half its distance from the edge: a machine hotter than training),
+   -1 not in the code (flagged; rng[] as it was): every reading beyond (kelvin97), one of a sensor
+   the code does not hold out, or beside those out where the set's operator is not had.  (dep99)
+   Several at once are each out, in the monitor's order, the set of any size, as served */
+static int mon_beyond(tc_state *s, const double x[], const double d[], int rng[], int nrng) {
     double M[NM][NM], lev[NM];
-    int m, out[NM], nin = 0;
-    if (j < 0) return 0;   /* (none beyond; said so that gcc -O2 -Warray-bounds, inlining
-                              this into the step, does not index MON_PREDICTABLE[-1]) */
-    if (nrng > 1 || (s->mon_out >= 0 && !mon_is_out(s, j) && !(
-            MON_SECOND_INSTANT && mon_second_kind(s, j, TC_MON_OFF_RANGE)
-            && mon_second_held(s, j)))) {
+    int m, j, out[NM], kept[NM], saved[NM], nsaved = s->mon_nout, nin = 0, op, r = 1;
+    for (j = 0; j < NM && !rng[j]; j++) ;
+    if (j == NM) return 0;   /* (none beyond; said so that gcc -O2 -Warray-bounds, inlining
+                                this into the step, does not index MON_PREDICTABLE[NM]) */
+    if (nrng == NM) {
         mon_flag(s, TC_MON_NOT_IN_CODE, j, TC_MON_RANGE);
         return -1;
     }
-    if (mon_is_out(s, j) && !MON_PREDICTABLE[j] && !(j == s->mon_out && mon_ranges(j))
-            && !(j == s->mon_out2 && mon_second_range(j))) {
-        /* (served: its leak judges its return) */
-        mon_flag(s, TC_MON_NOT_IN_CODE, j, TC_MON_BLIND);
-        return -1;
-    }
-    if (mon_is_out(s, j)) return 1;   /* out already: read as missing */
-    for (m = 0; m < NM; m++) {
-        out[m] = m == j || m == s->mon_out || m == s->mon_out2;
+    for (m = 0; m < NM; m++) {   /* predicted from the others in and within range */
+        out[m] = mon_out_of(s, m) || rng[m] || !isfinite(d[m]);
         nin += !out[m];
+        kept[m] = rng[m];
+        saved[m] = s->mon_out_set[m];
     }
-    /* predicted from the others in, all within range (cmon89: one out already, the set solved) */
-    if (nin >= MON_MIN_ACTIVE && mon_operator(out, M, lev)) {
-        double p = 0.0, edge;
-        int up = x[j] > MON_HI_C[j], beyond;
-        for (m = 0; m < NM; m++) p += M[j][m] * (out[m] ? 0.0 : d[m]);
-        p += x[j] - d[j];
-        edge = up ? MON_HI_C[j] : MON_LO_C[j];
-        beyond = (up ? p - edge : edge - p) > MON_WARNING[j];
-        if (beyond && fabs(x[j] - p) < 0.5 * fabs(x[j] - edge)) return 0;
+    op = nin >= MON_MIN_ACTIVE && mon_operator(out, M, lev);
+    for (j = 0; j < NM && r > 0; j++) {   /* (the set grown as the caller takes them out) */
+        if (!rng[j]) continue;
+        if (s->mon_nout > 0 && !mon_is_out(s, j) && !(
+                MON_SECOND_INSTANT && mon_second_kind(s, j, TC_MON_OFF_RANGE)
+                && mon_second_held(s, j, TC_MON_OFF_RANGE))) {
+            mon_flag(s, TC_MON_NOT_IN_CODE, j, TC_MON_RANGE);
+            r = -1;
+        } else if (mon_is_out(s, j)) {   /* out already: read as missing */
+            if (!MON_PREDICTABLE[j] && !(mon_ranges(j) && (j == mon_place(s, 0)
+                                                          || mon_second_range(j)))) {
+                /* (served: its leak judges its return) */
+                mon_flag(s, TC_MON_NOT_IN_CODE, j, TC_MON_BLIND);
+                r = -1;
+            }
+        } else {
+            if (op) {
+                double p = 0.0, edge;
+                int up = x[j] > MON_HI_C[j], beyond;
+                for (m = 0; m < NM; m++) p += M[j][m] * (out[m] ? 0.0 : d[m]);
+                p += x[j] - d[j];
+                edge = up ? MON_HI_C[j] : MON_LO_C[j];
+                beyond = (up ? p - edge : edge - p) > MON_WARNING[j];
+                if (beyond && fabs(x[j] - p) < 0.5 * fabs(x[j] - edge)) {
+                    kept[j] = 0;   /* a machine hotter than training: read */
+                    continue;
+                }
+            }
+            if (!MON_PORTED[j] && !mon_ranges(j)) {
+                mon_flag(s, TC_MON_NOT_IN_CODE, j, TC_MON_BLIND);
+                r = -1;
+            } else if (s->mon_nout < NM) s->mon_out_set[s->mon_nout++] = j;
+        }
     }
-    if (!MON_PORTED[j] && !mon_ranges(j)) {
-        mon_flag(s, TC_MON_NOT_IN_CODE, j, TC_MON_BLIND);
-        return -1;
-    }
+    s->mon_nout = nsaved;
+    for (m = 0; m < NM; m++) s->mon_out_set[m] = saved[m];
+    if (r < 0) return -1;
+    for (m = 0; m < NM; m++) rng[m] = kept[m];
     return 1;
 }
 
@@ -692,11 +735,11 @@ static void mon_common_step(tc_state *s, double d[], double step[], int big[], i
     common = n % 2 ? v[n / 2] : (v[n / 2 - 1] + v[n / 2]) / 2.0;
     for (k = 0; k < NM; k++) {
         r = common != 0.0 ? step[k] / common : 0.0;
-        took[k] = k != s->mon_out && k != s->mon_out2 && r >= 1.0 / MON_COMMON_SPREAD
+        took[k] = !mon_out_of(s, k) && r >= 1.0 / MON_COMMON_SPREAD
                   && r <= MON_COMMON_SPREAD;
         ntook += took[k];
         njump += took[k] && big[k];
-        nread += k != s->mon_out && k != s->mon_out2 && isfinite(d[k]);
+        nread += !mon_out_of(s, k) && isfinite(d[k]);
     }
     if (njump < MON_COMMON_MIN || 2 * ntook <= nread) return;
     for (k = 0; k < NM; k++) {
@@ -740,7 +783,7 @@ static int mon_unjumped(const tc_state *s, const double d[], const int big[], do
     double M[NM][NM], lev[NM], Mj[NM][NM], levj[NM];
     int out[NM], k, m, nbase = 0;
     for (k = 0; k < NM; k++) {
-        out[k] = k == s->mon_out || k == s->mon_out2 || big[k] || !isfinite(s->mon_prev[k]);
+        out[k] = mon_out_of(s, k) || big[k] || !isfinite(s->mon_prev[k]);
         nbase += !out[k];
         expected[k] = NAN;
     }
@@ -762,14 +805,13 @@ static int mon_unjumped(const tc_state *s, const double d[], const int big[], do
 /* (cmon93) 1: the code takes every sensor of ins[] out for a jump, in the monitor's order, as
    the first out (one it holds out) or the second (cmon88's rule); the state as it was */
 static int mon_pair_held(tc_state *s, const int ins[]) {
-    int out = s->mon_out, out2 = s->mon_out2, k, ok = 1;
+    int n = s->mon_nout, k, ok = 1;
     for (k = 0; k < NM && ok; k++) {
         if (!ins[k]) continue;
-        ok = s->mon_out >= 0 ? mon_jump_held(s, k) : MON_PORTED[k] || mon_spikes(k);
-        if (s->mon_out < 0) s->mon_out = k;
-        else s->mon_out2 = k;
+        ok = s->mon_nout > 0 ? mon_jump_held(s, k) : MON_PORTED[k] || mon_spikes(k);
+        if (s->mon_nout < NM) s->mon_out_set[s->mon_nout++] = k;
     }
-    s->mon_out = out, s->mon_out2 = out2;
+    s->mon_nout = n;   /* (the places past n are free: never read) */
     return ok;
 }
 
@@ -844,7 +886,7 @@ static double mon_loo(double M[][NM], const double lev[], int k, const double x[
 static int mon_resolves(const tc_state *s, int j, const int seen[], double alone) {
     double X[MW][NM], M[NM][NM], lev[NM], off = 0.0;
     int out[NM], k, r, m, n = 0, rows = mon_rows(s, X);
-    for (k = 0; k < NM; k++) out[k] = k == j || k == s->mon_out || k == s->mon_out2, n += !out[k];
+    for (k = 0; k < NM; k++) out[k] = k == j || mon_out_of(s, k), n += !out[k];
     if (n < MON_MIN_ACTIVE) return 1;
     if (!mon_operator(out, M, lev)) return 0;
     for (k = 0; k < NM; k++)   /* (seen: each of them still judged) */
@@ -1029,7 +1071,7 @@ static void mon_drift(tc_state *s, const int level[], int field) {
     double scale[NM], z[NM], Mp[NM][NM], lp[NM];
     int a[NM], o[NM], jd[NM], lv[NM], k, j = 0, u, nblind = 0, partner = -1;
     if ((u = mon_explaining(s, level, field)) >= 0) {
-        if (!MON_BLIND_OUT || (s->mon_out >= 0 && !mon_second_held(s, u))) {
+        if (!MON_BLIND_OUT || (s->mon_nout > 0 && !mon_second_held(s, u, TC_MON_DRIFT_OUT))) {
             mon_flag(s, TC_MON_NOT_IN_CODE, u, TC_MON_DRIFT);
             return;
         }
@@ -1070,7 +1112,7 @@ static void mon_drift(tc_state *s, const int level[], int field) {
             return;   /* a regime, not a fault */
     }
     mon_exclude(s, j, TC_MON_DRIFT_OUT);
-    if (s->mon_out != j && s->mon_out2 != j) return;   /* (flagged) */
+    if (!mon_out_of(s, j)) return;   /* (flagged) */
     mon_by_drift(s, j);
     s->mon_hid[j] = level[j] < 1;   /* (mon85b) it passed its own band */
     mon_set_bands(s);
@@ -1081,7 +1123,7 @@ static void mon_drift(tc_state *s, const int level[], int field) {
     if (nblind && mon_levels(s, lv, jd) > MON_MIN_ACTIVE) {
         int out[NM];
         for (k = 0; k < NM; k++) out[k] = !a[k] || k == partner;
-        if (nblind > 1 || s->mon_out2 >= 0 || !MON_PORTED[partner] || !mon_operator(out, Mp, lp)) {
+        if (nblind > 1 || s->mon_nout >= 2 || !MON_PORTED[partner] || !mon_operator(out, Mp, lp)) {
             mon_flag(s, TC_MON_NOT_IN_CODE, partner, TC_MON_DRIFT);
             return;
         }
@@ -1126,7 +1168,7 @@ static void mon_stepped(tc_state *s, const double e[], int instant[]) {
     }
     if (j < 0) return;
     mon_exclude(s, j, TC_MON_STEP_OUT);
-    if (s->mon_out != j && s->mon_out2 != j) return;   /* (flagged) */
+    if (!mon_out_of(s, j)) return;   /* (flagged) */
     since = s->mon_since[j];
     mon_by_drift(s, j);
     s->mon_since[j] = since;   /* (no field follows it) */
@@ -1139,12 +1181,12 @@ static void mon_stepped(tc_state *s, const double e[], int instant[]) {
    its warning band */
 static void mon_judgement(tc_state *s) {
     int level[NM], jd[NM], k, n, field = 0, leaving = 0;
-    for (k = 0; k < NM; k++) field |= (k == s->mon_out || k == s->mon_out2) && s->mon_by_field[k];
+    for (k = 0; k < NM; k++) field |= mon_out_of(s, k) && s->mon_by_field[k];
     field = field ? 2 : MON_EXCLUDE_LEVEL;
     n = mon_levels(s, level, jd);
     for (k = 0; k < NM && !(MON_NEW_STATE && s->mon_novel); k++)
         if (jd[k] && level[k] >= field && n > MON_MIN_ACTIVE) {
-            if (!MON_DRIFT || (s->mon_out >= 0 && !MON_SOLVE))
+            if (!MON_DRIFT || (s->mon_nout > 0 && !MON_SOLVE))
                 mon_flag(s, TC_MON_NOT_IN_CODE, k, TC_MON_DRIFT);
             else mon_drift(s, level, field);
             break;
@@ -1153,7 +1195,7 @@ static void mon_judgement(tc_state *s) {
     mon_levels(s, level, jd);
     for (k = 0; k < NM; k++) {
         leaving += jd[k] && level[k] >= 1;
-        if ((k != s->mon_out && k != s->mon_out2) || s->mon_count - s->mon_since[k] > MW)
+        if (!mon_out_of(s, k) || s->mon_count - s->mon_since[k] > MW)
             s->mon_since[k] = -1;
     }
     for (k = 0; k < NM; k++) {
@@ -1182,7 +1224,7 @@ static void mon_sample(tc_state *s, double u[], double dt) {
     int k, pos, nbig = 0, jumped = -1, lost = -1, far = -1, nrng = 0;
     int gone[NM], was_in[NM];
     if (s->first) {
-        s->mon_out = s->mon_out2 = -1;
+        s->mon_nout = 0;
         s->mon_pos = s->mon_count = 0;
         for (k = 0; k < NM; k++) {
             int w;
@@ -1221,7 +1263,7 @@ static void mon_sample(tc_state *s, double u[], double dt) {
        missing samples since its last reading too */
     if (!s->first && dt > MON_GAP_PERIODS * MON_PERIOD) span = dt / MON_PERIOD > 1.0 ? dt / MON_PERIOD : 1.0;
     if (nrng && !s->first) {   /* (cmon80) beyond its range: read as missing, or as read */
-        int r = mon_beyond(s, x, d, far, nrng);
+        int r = mon_beyond(s, x, d, rng, nrng);
         if (r < 0) {   /* not in the code: the sample passes the monitor by, its state as it
                           was, so that the reading's return is no jump; (kelvin97) every
                           reading beyond its range: nothing to rebuild from, the model reads
@@ -1238,7 +1280,8 @@ static void mon_sample(tc_state *s, double u[], double dt) {
             mon_rebuilt(s, u, field, pred);
             return;
         }
-        if (!r) rng[far] = 0, far = -1;
+        for (far = -1, k = 0; k < NM; k++)
+            if (rng[k] && far < 0) far = k;   /* (the first still read as missing) */
     }
     for (k = 0; k < NM; k++) gone[k] = missing[k] || rng[k];   /* read as missing */
     pos = s->mon_pos;
@@ -1257,7 +1300,7 @@ static void mon_sample(tc_state *s, double u[], double dt) {
         mon_common_step(s, d, step, big, pos);
         for (nbig = 0, k = 0; k < NM; k++) nbig += big[k];
     }
-    for (k = 0; k < NM; k++) was_in[k] = k != s->mon_out && k != s->mon_out2;
+    for (k = 0; k < NM; k++) was_in[k] = !mon_out_of(s, k);
     if (MON_BENT) {   /* (step93) a step off its own: re-referenced and kept in; a second, a jump */
         mon_bent(s, d, step, big, gone, gap, pos);
         for (nbig = 0, k = 0; k < NM; k++) nbig += big[k];
@@ -1276,7 +1319,8 @@ static void mon_sample(tc_state *s, double u[], double dt) {
         else if (!s->mon_dropped[lost] && !s->mon_jumps[lost])
             mon_flag(s, TC_MON_NOT_IN_CODE, lost, TC_MON_MISSING_FROZEN);
     }
-    if (far >= 0 && !mon_is_out(s, far)) mon_exclude(s, far, TC_MON_OFF_RANGE);   /* (cmon80) */
+    for (k = 0; k < NM && far >= 0; k++)   /* (cmon80; dep99: each beyond range) */
+        if (rng[k] && !mon_is_out(s, k)) mon_exclude(s, k, TC_MON_OFF_RANGE);
     if (nbig == 2 && MON_PAIR_JUMP && lost < 0 && far < 0 && s->mon_count != 2
             && mon_pair_jump(s, x, d, step, big, instant)) {   /* (cmon93) */
         for (k = 0; k < NM; k++) s->mon_hist[pos][k] = d[k];
@@ -1292,7 +1336,7 @@ static void mon_sample(tc_state *s, double u[], double dt) {
                 d[k] = x[k] - s->mon_ref[k];
                 mon_readmit(s, k, TC_MON_SPIKE);
             }
-            else if (a[k] && !(s->mon_out >= 0 ? mon_jump_held(s, k) : MON_PORTED[k] || mon_spikes(k)))
+            else if (a[k] && !(s->mon_nout > 0 ? mon_jump_held(s, k) : MON_PORTED[k] || mon_spikes(k)))
                 mon_exclude(s, k, TC_MON_JUMP);   /* flagged */
             else {   /* re-referenced by its step less its change as the others predict it */
                 double expected, offset;
@@ -1312,11 +1356,10 @@ static void mon_sample(tc_state *s, double u[], double dt) {
         }
         break;
     }
-    if (far >= 0) {   /* read as missing from here (neither a step's last reading nor in the
-                         window that decides re-admission), as served */
-        d[far] = NAN;
-        s->mon_hist[pos][far] = NAN;
-    }
+    for (k = 0; k < NM && far >= 0; k++)   /* read as missing from here (neither a step's last
+                                              reading nor in the window that decides
+                                              re-admission), as served */
+        if (rng[k]) d[k] = s->mon_hist[pos][k] = NAN;
     if (jumped >= 0) instant[jumped] = 1;
     for (k = 0; k < NM; k++) {
         s->mon_run[k] = same[k] ? s->mon_run[k] + 1 : 0;
@@ -1341,7 +1384,7 @@ static void mon_sample(tc_state *s, double u[], double dt) {
         if (!frozen || instant[k]) continue;
         instant[k] = 1;
         if (a[k]) mon_exclude(s, k, TC_MON_FREEZE);
-        if (a[k] && (s->mon_out == k || s->mon_out2 == k)) {
+        if (a[k] && mon_out_of(s, k)) {
             s->mon_froze[k] = 1;
             s->mon_held[k] = d[k];
             s->mon_off[k] = 0;
@@ -1351,12 +1394,12 @@ static void mon_sample(tc_state *s, double u[], double dt) {
     for (k = 0; k < NM; k++)
         if (jd[k] && mon_level(s, k)) s->mon_flags |= TC_MON_BAND;
     mon_judgement(s);   /* (cmon82) a drift exclusion */
-    {   /* (freeze84) out for a freeze alone, off its held value: back at once (either out) */
-        int two[2], i;
-        two[0] = s->mon_out, two[1] = s->mon_out2;
-        for (i = 0; i < 2; i++) {
-            k = two[i];
-            if (k < 0 || s->mon_count < MW || !s->mon_froze[k] || gone[k] || instant[k]
+    {   /* (freeze84) out for a freeze alone, off its held value: back at once (any out) */
+        int outs[NM], i, n = s->mon_nout;
+        for (i = 0; i < n; i++) outs[i] = s->mon_out_set[i];
+        for (i = 0; i < n; i++) {
+            k = outs[i];
+            if (s->mon_count < MW || !s->mon_froze[k] || gone[k] || instant[k]
                 || s->mon_off[k] < TC_MON_THAW) continue;
             if (!MON_THAWED) mon_flag(s, TC_MON_NOT_IN_CODE, k, TC_MON_NO_THAW);
             else {
@@ -1365,10 +1408,10 @@ static void mon_sample(tc_state *s, double u[], double dt) {
             }
         }
     }
-    if (s->mon_out >= 0 && s->mon_count >= MW) {   /* re-admission, the due sensors together */
+    if (s->mon_nout > 0 && s->mon_count >= MW) {   /* re-admission, the due sensors together */
         int due[NM], back[NM];
         for (k = 0; k < NM; k++)
-            due[k] = (k == s->mon_out || k == s->mon_out2) && s->mon_run[k] == 0 && !instant[k]
+            due[k] = mon_out_of(s, k) && s->mon_run[k] == 0 && !instant[k]
                      && !gone[k] && s->mon_calm[k] >= s->mon_dwell[k];
         mon_returning(s, due, back);
         for (k = 0; k < NM; k++) {
