@@ -112,9 +112,10 @@ and replay had run); cell R ran sweeps.md's skipped ``serve`` block in the foreg
 server up, the block waiting): its request (line 258) was sent by hand while it served, then the
 server stopped; a ``serve`` block now runs in the background.
 
-Scored (2026-12-06, 11:45-13:00 UTC; 4fafc59a's src, in cells whose later commands started
+Scored (2026-12-06, 11:45-12:25 UTC; 4fafc59a's src, in cells whose later commands started
 after a mend's edit that mend's src: 6f4d7fba and f5116588 change a refusal and a log line,
-which no scored path took; 2 cores shared by up to 8 helpers, load 10-17, every job ``nice``):
+which no scored path took (5c3b9b46 came after every cell); 2 cores shared by up to 8
+helpers, load 10-17, every job ``nice``):
 
 R1, clone of 4e486e8f (README, then the nav's pages, in one clone): every block exit 0 with its
 ``expect`` / ``output`` met: ``make run`` 290 s wall (E_Z 5.46 2.60, the table to every line),
@@ -187,13 +188,14 @@ mirror stepped over the same rows 0 flagged rows (``/tmp/audit99/h_flags.py``). 
 (bench_st93, reported): spike / dropout / range 9 of 9 hit each, freeze 9 served as other, 0
 false.  H1 holds.
 
-VERDICT: KEPT (two mends, each with a test failing on 4fafc59a: a one-campaign manifest's
+VERDICT: KEPT (three mends, each with a test failing on 4fafc59a: a one-campaign manifest's
 refusal names the file to give, 6f4d7fba; a folder's line no longer says the last by name is
-held out, f5116588); every clause of the bar holds.  Findings left for the lead: a sweep's
-failed job's reason is kept nowhere ("their errors are in the sweep's log": no such file);
-a malformed thousands grouping takes two tries (the first refusal names data row 1, the info
-line the odd cell without its row); ``auto`` on mt9888 (10.28 / 10.61 µm) misses the planted
-B-angle product that diagnose's refit finds (3.04 / 3.33 µm); stream.c prints no monitor flag.
+held out, f5116588; a failed sweep job leaves failed.json with the line it was refused with in
+its folder, and compare points there, not to "the sweep's log", which was kept nowhere,
+5c3b9b46); every clause of the bar holds.  Findings left for the lead: a malformed thousands
+grouping takes two tries (the first refusal names data row 1, the info line the odd cell without
+its row); ``auto`` on mt9888 (10.28 / 10.61 µm) misses the planted B-angle product that
+diagnose's refit finds (3.04 / 3.33 µm); stream.c's output rows carry no monitor flag.
 """
 
 from __future__ import annotations
