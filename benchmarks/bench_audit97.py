@@ -489,6 +489,9 @@ def two_mode_figures(clone: Path, multirun: str, tag: Path) -> None:
     promoted = json.loads((tag / "promote/promote.json").read_text())
     replayed = json.loads((tag / "replay/replay.json").read_text())["targets"]
     for job in sorted(p.parent.parent for p in (clone / multirun).glob("*/.hydra/overrides.yaml")):
+        if not (job / "metrics.json").exists():     # a refused job (bench_audit99: auto + ati)
+            print(f"  job {job.name}: no metrics.json (refused)", flush=True)
+            continue
         metrics = json.loads((job / "metrics.json").read_text())["targets"]
         sim = [(b.get("validation_simulation") or b.get("validation") or {}).get("rmse", np.nan)
                for b in metrics.values()]

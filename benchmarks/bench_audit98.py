@@ -233,21 +233,22 @@ def twomode(word: str, root: str) -> None:
     two_mode(word, Path(root).resolve() / "data" / "pt9849", TWO_MODE, "audit98")
 
 
-def two_mode(word: str, data: Path, models: str, tag: str) -> None:
-    """``run -m model=MODELS eval.mode=simulation,one_step`` on ``data`` in CLONE ``word``, then
-    ``compare``, ``promote``, ``replay`` and ``export st`` of @champion (cell P)."""
+def two_mode(word: str, data: Path, models: str, tag: str, axes: str = "eval.mode=simulation,one_step",
+             extra: str = "") -> None:
+    """``run -m model=MODELS AXES`` on ``data`` (``extra``: more words of every command that reads
+    it) in CLONE ``word``, then ``compare``, ``promote``, ``replay`` and ``export st`` of
+    @champion (cell P; bench_audit99's cell P: ``ati=none,cmeans``, the last run held out)."""
     from bench_audit96b import sh
 
     clone = bench_audit97.clone_of(word)
     multirun = f"{tag}/multirun"
-    done = sh(clone, f".venv/bin/thermocomp run -m model={models} "
-                     f"eval.mode=simulation,one_step hydra/launcher=joblib plots=none "
-                     f"data.path={data} hydra.sweep.dir={multirun}")
+    done = sh(clone, f".venv/bin/thermocomp run -m model={models} {axes} hydra/launcher=joblib "
+                     f"plots=none data.path={data} {extra} hydra.sweep.dir={multirun}")
     print(f"  run -m exit {done.returncode}: {done.stderr.strip()[-200:]}", flush=True)
     done = sh(clone, f".venv/bin/thermocomp compare compare.sweep={multirun}")
     print("\n".join("  " + x for x in done.stdout.splitlines()[:12]))
-    for line in (f"promote data.path={data} out={tag}/promote",
-                 f"replay data.path={data} replay.model=models:/thermocomp-compensator@champion "
+    for line in (f"promote data.path={data} {extra} out={tag}/promote",
+                 f"replay data.path={data} {extra} replay.model=models:/thermocomp-compensator@champion "
                  f"out={tag}/replay",
                  "export export.model=models:/thermocomp-compensator@champion export.format=st "
                  "out=plc/"):
@@ -284,6 +285,25 @@ def write_lab(base: Path, seed: int) -> pd.DataFrame:
     return rows
 
 
+def lab_families(base: Path, rows: pd.DataFrame, seed: str, families: str, files: list[Path],
+                 offset_um: dict | None = None) -> None:
+    """Cell L2's lines: per family of ``families`` (comma-separated) ``contract.csv`` then each of
+    ``files`` through bench_audit97's ``lab_stage``, compared to the contract's (``rows``);
+    ``offset_um`` ``{file name: µm}`` (bench_audit99's gauge) added back to a file's C."""
+    for family in families.split(","):
+        reference: dict = {}
+        for path in (base / "contract.csv", *files):
+            got = bench_audit97.lab_stage(base, path, family)
+            print(f"seed {seed} {family} {path.name}: {got['said']}; {got.get('keys', '')}", flush=True)
+            if "C" not in got:
+                continue
+            c = [col for col in got["C"].columns if col.startswith("C_")]   # targets in order
+            got["C"][c] += (offset_um or {}).get(path.name, 0.0)
+            pairs = list(zip([t for t in rows.columns if t.startswith("E_")], c, got["run"]))
+            bench_audit97.compare_to_contract(rows, got, pairs, path.name == "contract.csv",
+                                              reference, named=True)
+
+
 def lab(root: str, seed: str, families: str = ",".join(LAB_FAMILIES)) -> None:
     """Cell L (module doc)."""
     import bench_audit91
@@ -291,17 +311,7 @@ def lab(root: str, seed: str, families: str = ",".join(LAB_FAMILIES)) -> None:
 
     base = bench_audit91.lab_root(root, seed)
     rows = write_lab(base, int(seed))
-    for family in families.split(","):
-        reference: dict = {}
-        for path in (base / "contract.csv", *(base / f"{n}.csv" for n in LAB_FILES)):
-            got = bench_audit97.lab_stage(base, path, family)
-            print(f"seed {seed} {family} {path.name}: {got['said']}; {got.get('keys', '')}", flush=True)
-            if "C" not in got:
-                continue
-            c = [col for col in got["C"].columns if col.startswith("C_")]   # targets in order
-            pairs = list(zip([t for t in rows.columns if t.startswith("E_")], c, got["run"]))
-            bench_audit97.compare_to_contract(rows, got, pairs, path.name == "contract.csv",
-                                              reference, named=True)
+    lab_families(base, rows, seed, families, [base / f"{n}.csv" for n in LAB_FILES])
     init = base / f"{NAME_ONLY}-init"
     done = bench_audit97._cli("init", str(base / f"{NAME_ONLY}.csv"), f"out={init}")
     conf = next(iter((init / "conf" / "data").glob("*.yaml")), None) if init.exists() else None

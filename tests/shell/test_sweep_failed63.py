@@ -18,7 +18,11 @@ def test_compare_and_promote_say_the_jobs_a_sweep_lost(tmp_path):
                       *LIGHT_EVAL, f"hydra.sweep.dir={sweep}", check=False)
     assert proc.returncode == 2
     shown = thermocomp("compare", f"tracking_uri={uri}", f"compare.sweep={sweep}")
-    assert "1 runs (1 of its 2 jobs failed: their errors are in the sweep's log)" in shown.stdout
+    assert "1 runs (1 of its 2 jobs failed: why in each one's folder, failed.json)" in shown.stdout
+    # (audit99) the refused job's reason kept in its folder: "the sweep's log" was kept nowhere
+    note = json.loads((sweep / "1" / "failed.json").read_text())
+    assert note["exit"] == 2 and note["said"].startswith("thermocomp: error: ")
+    assert str(tmp_path / "moved") in note["said"] and not (sweep / "0" / "failed.json").exists()
     table = json.loads((sweep / "compare.json").read_text())
     assert (table["n_runs"], table["failed_jobs"], table["jobs"]) == (1, 1, 2)
     chosen = thermocomp("promote", f"data.path={dataset}", f"tracking_uri={uri}",

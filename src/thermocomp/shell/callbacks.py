@@ -28,6 +28,7 @@ from omegaconf import DictConfig, OmegaConf
 from .tracking import enabled, sweep_name
 
 FAILED_JOBS_ENV = "THERMOCOMP_FAILED_JOBS"   # folder where a sweep's failed jobs leave a note
+FAILED_JOB = "failed.json"    # in a failed sweep job's own folder: its overrides, exit, why
 SWEEP_PID_ENV = "THERMOCOMP_SWEEP_PID"       # the process that launches a sweep's jobs
 
 

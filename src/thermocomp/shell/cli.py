@@ -100,8 +100,11 @@ def _print_keys(stage: str, group: str | None) -> int:
 
 
 def _fail(msg: str):
-    print(f"thermocomp: error: {' '.join(str(msg).split())}", file=sys.stderr)
-    sys.exit(2)
+    said = ' '.join(str(msg).split())
+    print(f"thermocomp: error: {said}", file=sys.stderr)
+    refused = SystemExit(2)
+    refused.said = f"thermocomp: error: {said}"   # a sweep job's reason, kept in its folder
+    raise refused
 
 
 def _guarded(fn, *args):
@@ -217,7 +220,7 @@ def _job_failed(exc: BaseException) -> float:
 
     from ..base.files import write_json
     from ..base.log import logger
-    from .callbacks import FAILED_JOBS_ENV
+    from .callbacks import FAILED_JOB, FAILED_JOBS_ENV
 
     code = exc.code if isinstance(exc, SystemExit) and isinstance(exc.code, int) else 1
     job = HydraConfig.get().job
@@ -226,10 +229,17 @@ def _job_failed(exc: BaseException) -> float:
         traceback.print_exc()
     logger.error("sweep job %s (%s) failed with exit status %d; the sweep goes on",
                  job.num, " ".join(overrides), code)
+    note = {"job": job.num, "overrides": overrides, "exit": code,
+            "said": getattr(exc, "said", None) or (f"{type(exc).__name__}: {exc}"
+                                                   if not isinstance(exc, SystemExit) else None)}
+    # (audit99) why, in the job's own folder: a job refused on its data has no child run, and
+    # compare's "their errors are in the sweep's log" named a log no sweep with a failed job keeps
+    own = Path(HydraConfig.get().runtime.output_dir)
+    if own.is_dir():
+        write_json(own / FAILED_JOB, note)
     folder = os.environ.get(FAILED_JOBS_ENV)
     if folder and Path(folder).is_dir():    # absent on a remote node (Ray, SLURM): MLflow has it
-        write_json(Path(folder) / f"{job.num}.json", {"job": job.num, "overrides": overrides,
-                                                       "exit": code})
+        write_json(Path(folder) / f"{job.num}.json", note)
     return float("nan")
 
 

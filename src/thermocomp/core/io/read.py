@@ -693,8 +693,13 @@ def _source(path: Path, opts: ReadOptions, campaigns=None) -> tuple[Path, pd.Dat
         return path, manifest.loc[ids], ((c, *parts.pop(c)) for c in ids)
     manifest = folder_splits(path, opts, listed)
     if not (path / MANIFEST).is_file():      # said once per read, not per look at the folder
+        # (audit99) not "holds the last out" after the hold-out line above: the last by time
+        # is held out, which a file named first may be ('Lauf 02.02.2023.csv')
         logger.info(f"{path.name}: no {MANIFEST}; its {len(manifest)} campaign files read as "
-                    "train campaigns in name order (data.test_fraction holds the last out)")
+                    "campaigns, listed in name order, "
+                    + ("train but those held out above" if shares(opts) else
+                       "every one train (data.test_fraction holds the last out, by start time "
+                       "where each file has one)"))
         below = subfolder_runs(path)
         if below:        # half a lab's runs in a month folder were left out without a word
             logger.warning(f"{path}: its sub-folders hold {sum(below.values())} more run files "

@@ -177,6 +177,20 @@ def _missing_cells(part: pa.Table, columns) -> dict[str, int]:
     return {c: n for c, n in counts.items() if n}
 
 
+def _too_few(manifest: pd.DataFrame, pool: pd.Index, counts: dict[str, int], root: Path) -> str:
+    """The refusal of :func:`hold_out` where the train campaigns ``pool`` are fewer than the
+    splits of ``counts`` (train and those held out, a whole campaign each): what to give
+    instead; the file of a manifest's one campaign, cut in time as one record's is."""
+    said = (f"{len(pool)} train campaign(s) are too few to hold out whole campaigns for "
+            f"{', '.join(s for s in counts if s != 'train')} and keep one for train, whatever "
+            "data.test_fraction / data.val_fraction")
+    only = root / str(manifest.loc[pool[0], "file"]) if len(manifest) == 1 else None
+    if only is not None and (root / MANIFEST).is_file() and only.is_file():
+        return (f"{said}: give the campaign's file, data.path={only} (one record: its last share "
+                "is held out, continuing the rest)")
+    return f"{said}: a folder of more campaigns, or their split set in {MANIFEST}"
+
+
 def hold_out(manifest: pd.DataFrame, opts, root: Path, starts: pd.Series | None = None,
              listed: str = "in the order listed") -> pd.DataFrame:
     """``manifest`` with the chronologically last train campaigns made test (and val) as the
@@ -205,6 +219,11 @@ def hold_out(manifest: pd.DataFrame, opts, root: Path, starts: pd.Series | None 
     if starts is not None and starts[pool].notna().all():
         pool, order = starts[pool].sort_values(kind="stable").index, "by start time"
     counts = _counts(len(pool), opts)
+    if len(pool) < len(counts):
+        # (audit99) no fraction helps: each held-out split takes one whole campaign at least,
+        # where "lower data.test_fraction" was said of a manifest's one campaign (a simulated
+        # one-record machine's folder), which any fraction leaves with no train campaign
+        raise ContractError(_too_few(manifest, pool, counts, root), file=root / MANIFEST)
     if min(counts.values()) < 1:
         raise ContractError(f"{len(pool)} train campaign(s) cannot be split "
                             + ", ".join(f"{s} {c}" for s, c in counts.items())

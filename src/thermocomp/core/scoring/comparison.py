@@ -80,6 +80,6 @@ def headline_line(parent_id: str, n_runs: int, sort_by: str, target: str, basis:
             else "a TEST figure, as asked: do not choose a model by it")
     within = (f" on {datasets} datasets, ranked within each (figures of different data do not "
               f"compare)" if datasets > 1 else "")
-    failed = f" ({failed}: their errors are in the sweep's log)" if failed else ""
+    failed = f" ({failed}: why in each one's folder, failed.json)" if failed else ""
     return (f"sweep {parent_id}: {n_runs} runs{failed}{within}, sorted by {sort_by} "
             f"(target {target}, {said}); test: columns are reported, not used to choose")

@@ -38,8 +38,8 @@ def compare_sweep(cfg: DictConfig, parent_id: str, out=None) -> pd.DataFrame:
     rows = sweep_rows(client, uri, parent_id, str(opts.target), found)
     if not rows:
         note = failed_note(*failed_jobs(client, parent_id))
-        raise ConfigError(f"sweep {parent_id} has no child runs" + (f" ({note}: their errors are "
-                                                                     "in the sweep's log)" if note else ""))
+        raise ConfigError(f"sweep {parent_id} has no child runs" + (f" ({note}: why in each one's "
+                                                                     "folder, failed.json)" if note else ""))
     try:
         table = rank(rows, str(opts.sort_by), opts.get("descending"))
     except KeyError as exc:
