@@ -1133,16 +1133,18 @@ class CodeMonitor:
         self.froze[j] = False
         self._readmit(j, THAWED)
 
-    def _beyond(self, x, d, rng, gap):
+    def _beyond(self, x, d, rng, gap=None):
         """(cmon80) The readings beyond their range that are read as missing (``rng`` less a
         machine hotter than training, as the served monitor's ``_hotter``), or None where the
         code does not hold it (flagged): several at once, one with another sensor out (swap99:
-        but the sample's swap, :meth:`_swapped`), one of a sensor it does not hold out."""
+        but the sample's swap, :meth:`_swapped`; ``gap``: the samples each step spans, None the
+        sensors' own), one of a sensor it does not hold out."""
         j, a = int(np.argmax(rng)), self.a
         outs = self._outs()
         if rng.sum() > 1 or (self.out >= 0 and j not in outs and not (
                 OFF_RANGE in self.seconds and self._second_held(j)
-                and (self._second_kind(j, OFF_RANGE) or self._swapped(j, x, d, gap)))):
+                and (self._second_kind(j, OFF_RANGE)
+                     or self._swapped(j, x, d, self.gap if gap is None else gap)))):
             self._flag(NOT_IN_CODE, j, RANGE)
             return None
         if j in outs and not (self.predictable[j] or (j == self.out and self.ranges[j])
