@@ -27,21 +27,22 @@ sensor within its band with it in) and comes back; then 8 in, ``T_ram`` the only
 nothing served does in between changes what it decides but the re-admission, judged in the set
 without ``T_ram`` on the window with the sample's row (``T_ram`` read as missing).
 
-RULE (mirror ``CodeMonitor._swapped``, called by ``_beyond`` where the count refuses; C
-``mon_swapped`` called by ``mon_beyond``; compensator.json ``monitor.range_swap`` = 1, absent: 0,
-flagged ``RANGE`` as before).  With one sensor out and a range reading of a sensor the code would
-hold as the second but for the count (one the others predict, or mon98b's blind one), the set of
-the two out solved and ``out2`` free: where nothing else fires in the sample (every reading there,
-no other beyond its range, no step past its jump limit) and the first is due as the
-re-admission asks (its reading moved, its wait out, the window full), the code's own
-``_returning`` / ``mon_returning`` judges it on the window as the re-admission will read it (the
-sample's row in place, the range sensor read as missing and out as the second, its within-band
-mark cleared, the runs stepped), then restores it.  Where the first passes, the range sensor goes
-out as the second (``_second_kind`` / ``mon_second_kind`` take the sample's swap for the count) and
-the sample runs its ordinary course: the re-admission brings the first back and the range sensor
-is the only one out.  One mechanism: the re-admission's rules are not copied.  Should the first not
-come back after all (something in the sample the judgement did not see), ``RANGE`` is flagged
-there.  The ST block lags (it flags ``OFF_RANGE`` and holds no re-admission).
+RULE (in benchmarks/swap99_rule.patch; mirror ``CodeMonitor._swapped``, called by ``_beyond`` where
+the count refuses; C ``mon_swapped`` called by ``mon_beyond``; compensator.json
+``monitor.range_swap`` = 1, absent: 0, flagged ``RANGE`` as before). With one sensor out and a
+range reading of a sensor the code would hold as the second but for the count (one the others
+predict, or mon98b's blind one), the set of the two out solved and ``out2`` free: where nothing
+else fires in the sample (every reading there, no other beyond its range, no step past its jump
+limit) and the first is due as the re-admission asks (its reading moved, its wait out, the window
+full), the code's own ``_returning`` / ``mon_returning`` judges it on the window as the
+re-admission will read it (the sample's row in place, the range sensor read as missing and out as
+the second, its within-band mark cleared, the runs stepped), then restores it. Where the first
+passes, the range sensor goes out as the second (``_second_kind`` / ``mon_second_kind`` take the
+sample's swap for the count) and the sample runs its ordinary course: the re-admission brings the
+first back and the range sensor is the only one out. One mechanism: the re-admission's rules are
+not copied. Should the first not come back after all (something in the sample the judgement did not
+see), ``RANGE`` is flagged there. The ST block lags (it flags ``OFF_RANGE`` and holds no
+re-admission).
 
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is that tree's)::
 
@@ -91,6 +92,49 @@ Seen (before the bar, the rule's tree, ROOT built by 4fafc59a's ``cases tr9828``
 in the code" (ambient 5.68e-14), CPU 26.4 s.  tests/shell/test_export_swap99.py (the six-sensor
 machine, 4 modes): served swaps at its row 114; the mirror and the compiled C = served on every
 row; on 4fafc59a the mirror flags ``RANGE`` at rows 115-117 (1 of 4 cases fails there).
+
+Scored (fresh 9876-9878, once, after the bar's commit c9d0070f; the rule unchanged since but for
+``_beyond``'s ``gap`` default, 2026-12-06 11:58-12:27 UTC under a load of 11-17 on 2 cores; main =
+``git archive 4fafc59a src``, which simulated and ran the records into one ROOT, the rule's tree
+then read it; ``cases`` CPU 110.2 s main, 97.5 s rule; ``compiled`` 22.6 / 29.5 / 10.9 s)::
+
+    record  case     main: max|C - served|, rows apart   rule                 compiled C (rule)
+    tr9876  healthy  0 µm, 0                              the same
+    tr9876  drift    2.84e-14, 0 (T_ram named 823)        the same             5.68e-14
+    tr9876  ambient  49.2, 6836 (T_amb 724)               the same             49.2, RANGE at 724
+    tr9877  healthy  0, 0                                 the same
+    tr9877  drift    7.11e-14, 0 (T_ram 826)              the same             1.71e-13
+    tr9877  ambient  24.6, 6842 (T_amb 718)               the same             24.6, RANGE at 718
+    dl9878  healthy  0, 0 (6 events, the generator's)     the same
+    dl9878  drift    1.42e-13, 0                          the same             1.46e-13
+    dl9878  ambient  19.3, 254 (T_amb 827)                the same             19.3, SECOND at 824
+
+No fresh case took the swap (no ``swap`` line): the fresh drifts of ``T_ram`` pass through a new
+thermal state, no blind sensor out when it leaves its range.  The three ambient partings are
+main's, line for line, and the C flags each at its first parting row.  Traced after the score
+(tr9876 ambient, the rule unchanged): at drift row 724 ``T_amb`` (blind) leaves its range while
+the healthy ``T_column`` is out (since 693); served takes ``T_amb`` out and does NOT bring
+``T_column`` back (7 in, below ``min_active`` 8: served then serves a field it does not rebuild),
+so the rule's judgement refuses the swap and ``RANGE`` is flagged, as on main: another defect
+(the C holds no set below ``min_active``, dep98b's), not this rule's.  dl9878's parting starts at a
+jump of ``T_bed_right`` with ``T_col_back`` out (``SECOND``, 824), then ``T_amb``'s range at 827.
+
+S1 MET: tr9828 drift max|C - served| 22.7 µm, 6743 rows -> 2.84e-14 µm, 0 rows (mirror, bench_mon98
+``cases``); compiled C 5.68e-14 µm, nothing said.  S2 MET: every other bench_mon98 (tr9828 ambient,
+sw9776, cr9763, lr9376), bench_mon98b (dl9845, dl9870, dl9871, sw9872) and bench_dep98 ``back`` line
+identical, main / rule (``diff`` of the outputs but the CPU lines: S1's line only); healthy frames
+0 rows apart.  S3 NOT MET as written: 3 of 9 fresh cases are apart on the rule (49.2, 24.6, 19.3
+µm), as on main, each flagged, none on the swap's path.  S4 in part: test_export_swap99 4 passed
+(1 fails on 4fafc59a); the export suites (test_export.py, 20 C monitor modules, mirror98) in one
+run: 84 passed, test_export_cmon80's ``_beyond`` call failed (a TypeError: ``gap`` then defaulted,
+cmon80 + mon98b 7 passed) and test_export_mon98b's fixture errored 3 times ("assignment destination
+is read-only", pandas) in that run only (alone, and with cmon85: passed; not traced).
+
+VERDICT: REFUSED (S3 not met as written).  The rule, its test and its docs are in
+benchmarks/swap99_rule.patch (``git apply`` on 4fafc59a); src as on 4fafc59a.  What stands: served
+judges nothing in the in-between set of the swap (7 modes, 7 sensors: every leverage 1) but the
+re-admission, and the rule gives C = served on tr9828 and on the test's machine; the fresh
+partings are served below ``min_active`` (T_amb out, T_column not back), which the C cannot hold.
 """
 
 from __future__ import annotations

@@ -124,13 +124,6 @@ The served adaptive compensator judges every ``T_`` input before the model reads
   the field rebuilt without both), as served: its return judged by its leak, the first's by its
   own rule in the same sample (a drifting ``T_amb`` out of range took the blind ``T_table``, out
   as explaining, back in served).  An export before it flags the reading (``RANGE``).
-* (swap99) ... **as the swap** (``range_swap``): with one out, a range reading of a sensor the
-  code takes as the second (one the others predict, or mon98b's) where the field is not rebuilt
-  without both (``min_active``), but the first, judged in the set without it, comes back in the
-  same sample by the code's own re-admission (:meth:`CodeMonitor._swapped`: ``_returning`` on the
-  window as the re-admission reads it, nothing else firing in the sample): out as the second, the
-  first back, it the only one out, as served (tr9828's ``T_ram`` beyond its range while the blind
-  ``T_coolant_return`` was out as explaining).  An export before it flags the reading (``RANGE``).
 * (mon89; kept by bar91b) a sensor the others predict, out for jumps alone, whose next jump
   within a window brings its reading, on its reference before the first (``ref0``), within
   its re-admission band of the field: a **spike** (``spike``), in again at once with that
@@ -288,7 +281,6 @@ def monitor_fields(deployed, inputs: list) -> dict:
         "second_instant": 1,
         "blind_range": 1,
         "second_range": 1,
-        "range_swap": 1,
         "spike": 1,
         "bent": 1, "bend_lim": mon._bend_lim.tolist(),
         "settled": int(getattr(mon, "_settles", False)),
@@ -414,7 +406,6 @@ class CodeMonitor:
                      ("second_instant", 0),   # (before cmon89: a dropout, ... flagged)
                      ("blind_range", 0),   # (before cmon89b: a blind sensor's range flagged)
                      ("second_range", 0),  # (before mon98b: ... with one out, flagged RANGE)
-                     ("range_swap", 0),    # (before swap99: ... the first not back, flagged RANGE)
                      ("spike", 0),         # (before bar91b: a spike's return re-referenced)
                      ("bent", 0),          # (before step93: a step off its own read as heat)
                      ("settled", 0),       # (before jump94b: a blind level shift read as heat)
@@ -455,10 +446,6 @@ class CodeMonitor:
         # (mon98b) ... and as the second out where the first is out for explaining the others'
         # errors: served takes it out and the first back in one sample (dl9845's drifting T_amb)
         self.second_range = self.ranges & bool(a["second_range"])
-        # (swap99) such a second (or one the others predict) where the field is rebuilt without it
-        # alone: the first, out already, back in the same sample (tr9828's T_ram beyond its range
-        # while the blind T_coolant_return was out as explaining; 8 in, 7 without both)
-        self.swaps = bool(a["range_swap"])
         # (cmon85, cmon86) the rules that take a second sensor out beside one; (cmon88) a jump too
         self.seconds = (DRIFT_OUT, FREEZE, STEP_OUT) + ((JUMP,) if a["second_jump"] else ())
         # (cmon89) a dropout or a reading beyond its range as the second out, and the jump of
@@ -684,11 +671,9 @@ class CodeMonitor:
         return level, err
 
     def _clear(self) -> None:
-        """The sample's flags, its first event and its first rule not in the code cleared, and
-        its swap (swap99, :meth:`_swapped`; the C's ``mon_clear``): by :meth:`refuses` and
-        :meth:`step`, whichever reads it first."""
+        """The sample's flags, its first event and its first rule not in the code cleared (the
+        C's ``mon_clear``): by :meth:`refuses` and :meth:`step`, whichever reads it first."""
         self.flags, self.sensor, self.rule, self.missed = 0, -1, 0, 0
-        self.swap = -1
 
     def _flag(self, bit: int, sensor: int, rule: int) -> None:
         self.flags |= bit
@@ -722,14 +707,13 @@ class CodeMonitor:
     def _second_kind(self, j: int, rule: int) -> bool:
         """Whether the code takes ``j`` out as the second for ``rule``: one the others predict;
         (cmon89) for a dropout or a range reading only where the field is rebuilt without both
-        (served feeds a dropped sensor's returned reading where it is not; swap99: or, ``j`` the
-        sample's swap, without ``j`` alone: :meth:`_swapped`), and for a jump one no other
-        predicts there too (held at its last reading, as served)."""
+        (served feeds a dropped sensor's returned reading where it is not), and for a jump one no
+        other predicts there too (held at its last reading, as served)."""
         blind = self.instant and not self.ported[j] and bool(
             self.spikes[j] if rule == JUMP else rule == OFF_RANGE and self.second_range[j])
         if rule not in (DROPOUT, OFF_RANGE) and not blind:
             return bool(self.ported[j])
-        rebuilds = j == self.swap or self._active().sum() - 1 >= self.a["min_active"]
+        rebuilds = self._active().sum() - 1 >= self.a["min_active"]
         return bool(rebuilds and (self.ported[j] or blind))
 
     def _outs(self) -> list[int]:
@@ -742,39 +726,6 @@ class CodeMonitor:
         code's second place free and the set's operator solved."""
         return self.solve and self.out2 < 0 and self._operator(
             ~self._active() | (np.arange(self.n) == j)) is not None
-
-    def _swapped(self, j: int, x, d, gap) -> bool:
-        """(swap99) Whether a range reading of ``j`` with one out, refused as the second only for
-        the count (too few left in without both to rebuild the field, the served ``_rebuilds``),
-        is served's swap: ``j`` out, and the first, judged in the set without ``j``, back by its
-        ordinary re-admission in the same sample, ``j`` the only one out after it.  Judged before
-        the refusal by the code's own :meth:`_returning` on the window as the re-admission reads
-        it (the sample's row, ``j`` read as missing; the first due: its reading there and moved,
-        its wait out, the window full), where nothing else fires in the sample (no other reading
-        missing or beyond range, no step past its jump limit).  ``self.swap``: ``j`` (the
-        sample's; its second place then taken by :meth:`_exclude`), else -1."""
-        f, n = self.out, self.n
-        step = d - self.prev
-        with np.errstate(invalid="ignore"):
-            still = not (np.abs(step) > self.a["jump_lim"] * gap)[np.arange(n) != j].any()
-        self.swap = j                   # (its kind asked, the count waived)
-        if not (self.swaps and self._second_kind(j, OFF_RANGE) and still and np.isfinite(x).all()
-                and step[f] != 0 and self.calm[f] + 1 >= self.dwell[f]
-                and self.count + 1 >= self.window):
-            self.swap = -1
-            return False
-        row = d.copy()
-        row[j] = np.nan
-        saved = self.hist[self.pos].copy(), self.run, bool(self.hid[j])
-        self.hist[self.pos], self.run, self.hid[j] = row, np.where(step == 0, self.run + 1, 0), False
-        self.out2 = j
-        try:
-            back = bool(self._returning(np.arange(n) == f)[f])
-        finally:
-            self.hist[self.pos], self.run, self.hid[j] = saved
-            self.out2 = -1
-        self.swap = j if back else -1
-        return back
 
     def _put_out(self, j: int) -> None:
         """``j`` in the first free place out (the second: cmon85), its calm count and its
@@ -881,7 +832,7 @@ class CodeMonitor:
             not first and dt > a["gap_periods"] * a["period"]) else self.gap
         if rng.any() and not first:
             every, far = bool(rng.all()), rng | missing
-            rng = self._beyond(x, d, rng, gap)
+            rng = self._beyond(x, d, rng)
             if rng is None:  # not in the code: the sample passes the monitor by, its state as it
                 # was (so that the return is no jump); (kelvin97) every reading beyond its range:
                 # nothing to rebuild from, the model reads the last field, as served (``_clean``);
@@ -990,8 +941,6 @@ class CodeMonitor:
                     self._undone(int(j), d)
                 self.jumps[j], self.froze[j] = 0, False
                 self._readmit(int(j), BACK)
-        if self.swap >= 0 and self.out2 >= 0:     # (swap99) the first not back after all: flagged
-            self._flag(NOT_IN_CODE, self.swap, RANGE)
         pred, e = self._errors(d)
         _, active, _, judged, _ = self._set()
         self.prev_other = np.where(judged, d - e, np.nan)
@@ -1133,18 +1082,16 @@ class CodeMonitor:
         self.froze[j] = False
         self._readmit(j, THAWED)
 
-    def _beyond(self, x, d, rng, gap=None):
+    def _beyond(self, x, d, rng):
         """(cmon80) The readings beyond their range that are read as missing (``rng`` less a
         machine hotter than training, as the served monitor's ``_hotter``), or None where the
-        code does not hold it (flagged): several at once, one with another sensor out (swap99:
-        but the sample's swap, :meth:`_swapped`; ``gap``: the samples each step spans, None the
-        sensors' own), one of a sensor it does not hold out."""
+        code does not hold it (flagged): several at once, one with another sensor out, one of
+        a sensor it does not hold out."""
         j, a = int(np.argmax(rng)), self.a
         outs = self._outs()
         if rng.sum() > 1 or (self.out >= 0 and j not in outs and not (
-                OFF_RANGE in self.seconds and self._second_held(j)
-                and (self._second_kind(j, OFF_RANGE)
-                     or self._swapped(j, x, d, self.gap if gap is None else gap)))):
+                OFF_RANGE in self.seconds and self._second_kind(j, OFF_RANGE)
+                and self._second_held(j))):
             self._flag(NOT_IN_CODE, j, RANGE)
             return None
         if j in outs and not (self.predictable[j] or (j == self.out and self.ranges[j])

@@ -83,9 +83,6 @@ STATE = """    /* the sensor monitor (TC_MONITOR): referenced readings d = u - m
     /* (cmon92b) the sample's first rule not in the code and its sensor, where its first event
        (mon_rule) is another (an exclusion in the same sample): stream.c names both */
     int mon_missed, mon_missed_sensor;
-    /* (swap99) the sample's swap: the sensor whose range reading takes it out as the second where
-       the first comes back in the same sample (mon_swapped; -1: none) */
-    int mon_swap;
 """
 
 
@@ -117,7 +114,6 @@ def monitor_arrays(ss) -> list[tuple[str, object, tuple, str]]:
                ("MON_SECOND_INSTANT", "second_instant", 0, "int"),
                ("MON_BLIND_RANGE", "blind_range", 0, "int"),
                ("MON_SECOND_RANGE", "second_range", 0, "int"),
-               ("MON_RANGE_SWAP", "range_swap", 0, "int"),
                ("MON_SPIKE", "spike", 0, "int"), ("MON_BENT", "bent", 0, "int"),
                ("MON_PAIR_JUMP", "pair_jump", 0, "int"), ("MON_SETTLED", "settled", 0, "int"),
                ("MON_SETTLE_STEADY", "settle_steady", 0.0, "real"))
@@ -310,11 +306,10 @@ static double mon_mean_err(const tc_state *s, int k) {
 }
 
 /* the sample's monitor fields cleared (flags, its first event and its first rule not in the
-   code, cmon92b; its swap, swap99): by mon_refuses and monitor_step, whichever reads the sample
-   first */
+   code, cmon92b): by mon_refuses and monitor_step, whichever reads the sample first */
 static void mon_clear(tc_state *s) {
     s->mon_flags = s->mon_rule = s->mon_missed = 0;
-    s->mon_sensor = s->mon_missed_sensor = s->mon_swap = -1;
+    s->mon_sensor = s->mon_missed_sensor = -1;
 }
 
 static void mon_flag(tc_state *s, int bit, int k, int rule) {
@@ -408,16 +403,15 @@ static int mon_second_held(const tc_state *s, int k) {
 }
 
 /* 1: the code takes sensor k out as the second for rule: one the others predict; (cmon89) for
-   a dropout or a range reading only where the field is rebuilt without both (swap99: or, k the
-   sample's swap, without k alone: mon_swapped), and for a jump one no other predicts there too
-   (held at its last reading, as served) */
+   a dropout or a range reading only where the field is rebuilt without both, and for a jump one
+   no other predicts there too (held at its last reading, as served) */
 static int mon_second_kind(const tc_state *s, int k, int rule) {
     int m, in = 0;
     int blind = MON_SECOND_INSTANT && !MON_PORTED[k] && (
         rule == TC_MON_JUMP ? mon_spikes(k) : rule == TC_MON_OFF_RANGE && mon_second_range(k));
     if (!(rule == TC_MON_DROPOUT || rule == TC_MON_OFF_RANGE || blind)) return MON_PORTED[k];
     for (m = 0; m < NM; m++) in += m != s->mon_out && m != s->mon_out2;
-    return (k == s->mon_swap || in - 1 >= MON_MIN_ACTIVE) && (MON_PORTED[k] || blind);
+    return in - 1 >= MON_MIN_ACTIVE && (MON_PORTED[k] || blind);
 }
 
 /* (cmon88) 1: sensor k's jump with one out already held by the code: re-referenced and out as
@@ -637,58 +631,19 @@ static int mon_serving(const tc_state *s) {
     return 0;
 }
 
-/* (swap99) 1: a range reading of sensor j with one out, refused as the second only for the count
-   (too few left in without both to rebuild the field: the served _rebuilds), is served's swap: j
-   out, and the first, judged in the set without j, back by its ordinary re-admission in the same
-   sample, j the only one out after it.  Judged before the refusal by the code's own mon_returning
-   on the window as the re-admission reads it (the sample's row, j read as missing; the first due:
-   its reading there and moved, its wait out, the window full), where nothing else fires in the
-   sample (no other reading missing or beyond range, no step past its jump limit over span).
-   s->mon_swap: j (the sample's; its second place then taken by mon_exclude), else -1 */
-static int mon_swapped(tc_state *s, const double x[], const double d[], int j, double span) {
-    double row[NM];
-    int run[NM], due[NM], back[NM], k, f = s->mon_out, hid = s->mon_hid[j], still = 1, pos = s->mon_pos;
-    for (k = 0; k < NM; k++) {
-        double gap = span > s->mon_gap[k] ? span : s->mon_gap[k];
-        if (!isfinite(x[k]) || (k != j && fabs(d[k] - s->mon_prev[k]) > MON_JUMP_LIM[k] * gap)) still = 0;
-    }
-    s->mon_swap = j;   /* (its kind asked, the count waived) */
-    if (!(MON_RANGE_SWAP && mon_second_kind(s, j, TC_MON_OFF_RANGE) && still
-          && d[f] - s->mon_prev[f] != 0.0 && s->mon_calm[f] + 1 >= s->mon_dwell[f]
-          && s->mon_count + 1 >= MW)) {
-        s->mon_swap = -1;
-        return 0;
-    }
-    for (k = 0; k < NM; k++) {
-        row[k] = s->mon_hist[pos][k], run[k] = s->mon_run[k], due[k] = k == f;
-        s->mon_hist[pos][k] = k == j ? NAN : d[k];
-        s->mon_run[k] = d[k] - s->mon_prev[k] == 0.0 ? run[k] + 1 : 0;
-    }
-    s->mon_hid[j] = 0;
-    s->mon_out2 = j;
-    mon_returning(s, due, back);
-    for (k = 0; k < NM; k++) s->mon_hist[pos][k] = row[k], s->mon_run[k] = run[k];
-    s->mon_hid[j] = hid;
-    s->mon_out2 = -1;
-    if (!back[f]) s->mon_swap = -1;
-    return back[f];
-}
-
 /* (cmon80) a reading beyond its range (rng: which, nrng of them) after a campaign's first
    sample: 1 read as missing, 0 read (the others predict it beyond the same training edge by
    more than its warning band and it reads nearer that than half its distance from the edge: a
    machine hotter than training), -1 not in the code (flagged): several at once, one with
-   another sensor out (swap99: but the sample's swap, mon_swapped; span: the samples the step
-   spans), one of a sensor the code does not hold out */
-static int mon_beyond(tc_state *s, const double x[], const double d[], int j, int nrng,
-                      double span) {
+   another sensor out, one of a sensor the code does not hold out */
+static int mon_beyond(tc_state *s, const double x[], const double d[], int j, int nrng) {
     double M[NM][NM], lev[NM];
     int m, out[NM], nin = 0;
     if (j < 0) return 0;   /* (none beyond; said so that gcc -O2 -Warray-bounds, inlining
                               this into the step, does not index MON_PREDICTABLE[-1]) */
     if (nrng > 1 || (s->mon_out >= 0 && !mon_is_out(s, j) && !(
-            MON_SECOND_INSTANT && mon_second_held(s, j)
-            && (mon_second_kind(s, j, TC_MON_OFF_RANGE) || mon_swapped(s, x, d, j, span))))) {
+            MON_SECOND_INSTANT && mon_second_kind(s, j, TC_MON_OFF_RANGE)
+            && mon_second_held(s, j)))) {
         mon_flag(s, TC_MON_NOT_IN_CODE, j, TC_MON_RANGE);
         return -1;
     }
@@ -1266,7 +1221,7 @@ static void mon_sample(tc_state *s, double u[], double dt) {
        missing samples since its last reading too */
     if (!s->first && dt > MON_GAP_PERIODS * MON_PERIOD) span = dt / MON_PERIOD > 1.0 ? dt / MON_PERIOD : 1.0;
     if (nrng && !s->first) {   /* (cmon80) beyond its range: read as missing, or as read */
-        int r = mon_beyond(s, x, d, far, nrng, span);
+        int r = mon_beyond(s, x, d, far, nrng);
         if (r < 0) {   /* not in the code: the sample passes the monitor by, its state as it
                           was, so that the reading's return is no jump; (kelvin97) every
                           reading beyond its range: nothing to rebuild from, the model reads
@@ -1423,8 +1378,6 @@ static void mon_sample(tc_state *s, double u[], double dt) {
             mon_readmit(s, k, TC_MON_BACK);
         }
     }
-    if (s->mon_swap >= 0 && s->mon_out2 >= 0)   /* (swap99) the first not back after all */
-        mon_flag(s, TC_MON_NOT_IN_CODE, s->mon_swap, TC_MON_RANGE);
     mon_errors(s, d, pred, e);
     mon_set(s, a, o, jd, scale);
     for (k = 0; k < NM; k++) {
