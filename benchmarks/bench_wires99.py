@@ -9,6 +9,7 @@ healthy corrections over all 120 rows".
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is that tree's)::
 
     python benchmarks/bench_wires99.py swaps ROOT RECORD [RECORD ...]
+    python benchmarks/bench_wires99.py exchanged ROOT RECORD [RECORD ...]   # the rule's shape, patched
 
 ``swaps``: per record (:data:`SEEN` or :data:`FRESH`, simulated into ``ROOT/data`` and ``run
 model=mlr`` into ``ROOT/reports`` by this tree, each once; bench_cmon92's ``made`` /
@@ -23,6 +24,9 @@ monitor's rebuilt field gives without them, the floor of any rule that excludes 
 case: what the monitor said at the fault row of each swapped sensor (its step, jump limit, the
 change the others predicted, its reason), its re-admissions, who is out at the end, max|served
 - healthy| per target (µm), max|served - drop| and max|C - served|.
+``exchanged``: the same healthy frame and cases, the served model with the rule's shape of the
+TRACE below patched into :class:`SensorMonitor` in this process only (:func:`exchange_wires`;
+no src change, no C): whether it fires on the healthy frame, and |served - healthy| per case.
 
 TRACE (seen; pt9851 on 9392d903's src, W3 read as a restart since restart98: no lead-in; by
 hand, /tmp/wires99/trace*.py).  The finding's premise does not hold: T_motor IS excluded at the
@@ -78,6 +82,51 @@ by reading the wires exchanged); W2 no new event on the healthy records (bench_m
 fl_thermal), bench_mon98 / bench_dep98 lines unchanged; W3 fresh once, C = served.
 
 FRESH: pt9890 (portal64), tr9891 (trunnion63), cr9892 (the climate room of bench_mon97).
+
+Status: the bar above was committed in dffa38a3 before 9890-9892 were simulated; unchanged.
+``exchanged`` was added after the scoring (a measurement of the rule's shape, not scored).
+
+Scored (2026-12-06 12:33 UTC, 9392d903's src, once; ``swaps ROOT pt9890 tr9891 cr9892``, 24.4 s
+CPU).  Every healthy frame: 0 served sensor events, 0 mirror flags, C = served 0 µm (T3
+holds).  Per case (|served - healthy| max over targets, µm; drop the same two missing)::
+
+  record  case  pair (at the fault row, °C)                    re-admitted   served   drop  C - served
+  pt9890  far   T_rail_drive 34.98 <-> T_bed 12.89              rail_drive 1  12.487  25.89   109
+  pt9890  near  T_col_L 13.95 <-> T_spindle 26.87               none           9.712  9.712   1.6e-12
+  tr9891  far   T_spindle_motor 30.41 <-> T_amb 19.76           both 1x        3.075  0.681   157
+  tr9891  near  (the same pair)                                 both 1x        3.075  0.681   157
+  cr9892  far   T_amb 30.91 <-> T_nc_spindle_motor 42.69        motor 1x       2.502  1.99    2.8e-14
+  cr9892  near  T_toolholder2 32.69 <-> T_nc_spindle_motor 42.69 motor 1x      1.194  2.068   7.1e-15
+
+T1 fails on 3 of 3 fresh records: pt9851's "both out, served = drop" held there because both
+sensors are predicted by the others; a sensor no other predicts (pt9890's T_rail_drive,
+tr9891's T_amb, cr9892's T_nc_spindle_motor) is re-admitted after its window (rows 10 / 24 /
+10: "no detector fired for 10 samples ... no band judges its reading"), reading its partner's
+wire on its jump's re-reference; on tr9891 the partner T_spindle_motor follows at row 26
+("within ±2.41 °C for 26 samples": against a field that now holds the exchanged T_amb).  T2 (reported): the near swap re-admitted a sensor in 2 of 3 (tr9891
+above drop, cr9892 below it: the motor's re-referenced reading of the toolholder beat holding
+it).  Beside the bar, the mirror parts from served on 2 of 3 fresh records by 109 / 157 µm
+(pt9890 far: at the swap row the C flags OFF_RANGE T_bed and keeps T_rail_drive's jump, 64.8
+µm; seen pt9851 near: C flags COMMON T_spindle at row 0, 29.9 µm): deployed != scored under a
+swap, whatever rule comes next.
+
+``exchanged`` (after the scoring, the rule's shape patched in, served only): two sensors
+flagged in one sample (a one-sample step past the jump limit or a reading out of range), every
+sensor in before it, each reading within the OTHER's jump limit of the reading the sensors
+without both predict for the other (its last reading plus the change they predict; its last
+reading where they cannot predict it) -> the two readings exchanged from that sample on, before
+every check.  The POD of pt9851 has 8 modes for 10 sensors: with two out, 8 left, below the
+monitor's ``min_active_`` 9 (``_unjumped_change`` gives NaN there), so the prediction is taken
+at any count.  Measured: healthy frames 0 fires (pt9851, pt9890, tr9891, cr9892); every far /
+near case of the four records fires at the swap sample and served = healthy to 0.0 µm (seen
+pt9851 9.497 / 77.66 -> 0; the fresh records post hoc, not scored).  At the swap sample the
+prediction was within 0.03 °C of the exchanged readings (pt9851: T_motor's predicted 38.253
+for T_bed's 38.22, T_bed's 13.911 for 13.88).  Not measured: fl_thermal and bench_mon98's
+seen records (W2), a swap in the C / ST, a second exchange (wires put back).
+
+VERDICT: TRACED (no src change).  Next stop: the rule above as one mechanism with the jump rule
+(``faults.py``; an event ``wires exchanged``), in the C + numpy mirror + ST the same stop or
+behind a key off by default; and the mirror's parting from served at a two-sensor sample.
 """
 
 from __future__ import annotations
@@ -196,8 +245,75 @@ def swaps(root: str, *records: str) -> None:
                   f"{np.abs(got['c'] - got['served']).max():.3g} µm", flush=True)
 
 
+def exchange_wires() -> list[tuple]:
+    """Patch the rule's shape (module doc, ``exchanged``) into :class:`SensorMonitor` for this
+    process: its ``update`` takes the readings through the monitor's permutation (none at a
+    reset), first exchanging two flagged sensors' readings where each lands where the other's
+    field is.  Returns the list the patch appends ``(time, a, b)`` to where it fires."""
+    from thermocomp.apps.deploy.surveillance.monitor import SensorMonitor
+
+    update, reset, fired = SensorMonitor.update, SensorMonitor.reset, []
+
+    def predicted(mon, x, base, j):
+        with_j = base.copy()
+        with_j[j] = True
+        if mon._operator(with_j)[1][j] >= mon.pod.max_leverage:
+            return mon._ref[j] + mon._prev[j]          # no other predicts it: its last reading
+        M, _ = mon._operator(base)
+        return mon._ref[j] + mon._prev[j] + M[j] @ ((x - mon._ref)[base] - mon._prev[base])
+
+    def exchanged(mon, reading, time=float("nan")):
+        raw = np.asarray(reading, float)
+        perm = getattr(mon, "_perm", None)
+        x = raw if perm is None else raw[perm]
+        if mon._count and mon._ref is not None and mon._active.all() and np.isfinite(x).all():
+            flagged = ((np.abs(x - mon._ref - mon._prev) > mon._jump_lim * mon._gap)
+                       | (x < mon._lo_lim) | (x > mon._hi_lim))
+            if flagged.sum() == 2:
+                a, b = np.flatnonzero(flagged)
+                base = ~flagged
+                if (abs(x[b] - predicted(mon, x, base, a)) < mon._jump_lim[a]
+                        and abs(x[a] - predicted(mon, x, base, b)) < mon._jump_lim[b]):
+                    perm = np.arange(len(x)) if perm is None else perm.copy()
+                    perm[[a, b]] = perm[[b, a]]
+                    mon._perm, x = perm, raw[perm]
+                    fired.append((time, mon.names[a], mon.names[b]))
+        return update(mon, x, time)
+
+    def reset_too(mon):
+        reset(mon)
+        mon._perm = None
+
+    SensorMonitor.update, SensorMonitor.reset = exchanged, reset_too
+    return fired
+
+
+def exchanged(root: str, *records: str) -> None:
+    """The ``exchanged`` lines (module doc)."""
+    from bench_cmon92 import faulted_cell, made
+
+    fired = exchange_wires()
+    base = Path(root).resolve()
+    for record in records:
+        _targets_env(record)
+        made(base, record, "mlr", {**SEEN, **FRESH})
+        deployed, ss, frame, _, start, _ = faulted_cell(base, record, "mlr-none")
+        frame = frame.iloc[:start + ROWS].reset_index(drop=True)
+        fired.clear()
+        healthy = _stepped(deployed, ss, frame)
+        print(f"{record} mlr: healthy frame, the patch fired {len(fired)}x", flush=True)
+        for kind, ((a, b), part) in cases(frame, start, deployed.monitor).items():
+            fired.clear()
+            got = _stepped(deployed, ss, pd.concat([frame.iloc[:start], part]))
+            off = np.abs(got["served"][start:] - healthy["served"][start:]).max(axis=0)
+            print(f"  {kind:<4} {a} <-> {b}: fired {fired[:2]}; served sensor events "
+                  f"{sum(len(r) for r in got['events'][start:])}; |served - healthy| per target "
+                  f"{np.round(off, 3).tolist()} µm; out at the end {deployed.monitor.excluded}",
+                  flush=True)
+
+
 def main(argv: list[str]) -> int:
-    return run_commands(__doc__, {"swaps": swaps}, argv, cpu=sys.stderr)
+    return run_commands(__doc__, {"swaps": swaps, "exchanged": exchanged}, argv, cpu=sys.stderr)
 
 
 if __name__ == "__main__":
