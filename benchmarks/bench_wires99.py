@@ -103,12 +103,13 @@ sensors are predicted by the others; a sensor no other predicts (pt9890's T_rail
 tr9891's T_amb, cr9892's T_nc_spindle_motor) is re-admitted after its window (rows 10 / 24 /
 10: "no detector fired for 10 samples ... no band judges its reading"), reading its partner's
 wire on its jump's re-reference; on tr9891 the partner T_spindle_motor follows at row 26
-("within ±2.41 °C for 26 samples": against a field that now holds the exchanged T_amb).  T2 (reported): the near swap re-admitted a sensor in 2 of 3 (tr9891
-above drop, cr9892 below it: the motor's re-referenced reading of the toolholder beat holding
-it).  Beside the bar, the mirror parts from served on 2 of 3 fresh records by 109 / 157 µm
-(pt9890 far: at the swap row the C flags OFF_RANGE T_bed and keeps T_rail_drive's jump, 64.8
-µm; seen pt9851 near: C flags COMMON T_spindle at row 0, 29.9 µm): deployed != scored under a
-swap, whatever rule comes next.
+("within ±2.41 °C for 26 samples": against a field that now holds the exchanged T_amb).  T2
+(reported): the near swap re-admitted a sensor in 2 of 3 (tr9891 above drop, cr9892 below it:
+the motor's re-referenced reading of the toolholder beat holding it).  Beside the bar, the
+mirror parts from served on 2 of 3 fresh records by 109 / 157 µm (pt9890 far: at the swap row
+the C flags OFF_RANGE T_bed alone while served excludes T_rail_drive for its jump too, 64.8 µm
+there; seen pt9851 near: the C flags COMMON T_spindle at row 0, 29.9 µm): deployed != scored
+under a swap, whatever rule comes next.
 
 ``exchanged`` (after the scoring, the rule's shape patched in, served only): two sensors
 flagged in one sample (a one-sample step past the jump limit or a reading out of range), every
