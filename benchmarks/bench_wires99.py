@@ -14,7 +14,7 @@ Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is
 ``swaps``: per record (:data:`SEEN` or :data:`FRESH`, simulated into ``ROOT/data`` and ``run
 model=mlr`` into ``ROOT/reports`` by this tree, each once; bench_cmon92's ``made`` /
 ``faulted_cell``: the first test campaign after its lead-in, the fault row a quarter in), the
-served model and the C's numpy mirror stepped together (bench_audit95's ``_stepped``) over the
+served model and the C's numpy mirror stepped together (bench_dup99's ``_stepped``) over the
 healthy frame, then per case of :func:`cases` :data:`ROWS` rows from the fault row: ``far``
 (bench_audit98's swap: the two monitored sensors that differ most at the fault row, exchanged),
 ``near`` (the two that differ most among the pairs whose readings, exchanged, stay within each
@@ -143,7 +143,7 @@ sys.path[:0] = [str(HERE)]
 from _cli import run_commands  # noqa: E402
 from bench_audit97 import TRUNNION  # noqa: E402
 from bench_audit98 import FAULTED, PORTAL, fault_cases  # noqa: E402
-from bench_dup99 import _targets_env  # noqa: E402
+from bench_dup99 import _stepped, _targets_env  # noqa: E402
 from bench_mon97 import CR  # noqa: E402
 
 SEEN = dict(FAULTED)
@@ -182,18 +182,15 @@ def cases(frame: pd.DataFrame, start: int, mon) -> dict[str, tuple[tuple[str, st
     return out
 
 
-def _stepped(deployed, ss, frame: pd.DataFrame) -> dict:
-    """Per row the served corrections, the C's, the served events, the mirror's flags."""
-    from bench_cmon92 import Stepped
+def _cell(root: Path, record: str):
+    """``(deployed, state space, frame to the fault row + ROWS, lead-in rows, fault row, test
+    campaign)`` of ``record``, simulated and run by this tree once (module doc)."""
+    from bench_cmon92 import faulted_cell, made
 
-    run = Stepped(deployed, ss)
-    got: dict = {"served": [], "c": [], "events": [], "flags": []}
-    for c, want, flags, *_ in run.rows(frame):
-        got["served"].append(want)
-        got["c"].append(c)
-        got["events"].append(list(deployed.last_events_))
-        got["flags"].append(int(flags))
-    return {k: v if k == "events" else np.array(v) for k, v in got.items()}
+    _targets_env(record)
+    made(root, record, "mlr", {**SEEN, **FRESH})
+    deployed, ss, frame, lead, start, cid = faulted_cell(root, record, "mlr-none")
+    return deployed, ss, frame.iloc[:start + ROWS].reset_index(drop=True), lead, start, cid
 
 
 def _said(events: list[dict], sensor: str) -> str:
@@ -203,21 +200,14 @@ def _said(events: list[dict], sensor: str) -> str:
 
 def swaps(root: str, *records: str) -> None:
     """The ``swaps`` lines (module doc)."""
-    from bench_cmon92 import faulted_cell, made
-
     base = Path(root).resolve()
-    known = {**SEEN, **FRESH}
     for record in records:
-        _targets_env(record)
-        made(base, record, "mlr", known)
-        deployed, ss, frame, lead, start, cid = faulted_cell(base, record, "mlr-none")
+        deployed, ss, frame, lead, start, cid = _cell(base, record)
         mon = deployed.monitor
         names = list(mon.names)
-        frame = frame.iloc[:start + ROWS].reset_index(drop=True)
         healthy = _stepped(deployed, ss, frame)
         print(f"{record} mlr, test campaign {cid}: {len(frame)} rows fed ({lead} lead-in), fault "
-              f"row {start}; healthy: served sensor events "
-              f"{sum(1 for r in healthy['events'] for e in r if e.get('sensor') != 'time')}, "
+              f"row {start}; healthy: served sensor events {sum(map(len, healthy['events']))}, "
               f"mirror flagged rows {int((healthy['flags'] != 0).sum())}, max|C - served| "
               f"{np.abs(healthy['c'] - healthy['served']).max():.3g} µm", flush=True)
         want = healthy["served"][start:]
@@ -291,15 +281,10 @@ def exchange_wires() -> list[tuple]:
 
 def exchanged(root: str, *records: str) -> None:
     """The ``exchanged`` lines (module doc)."""
-    from bench_cmon92 import faulted_cell, made
-
     fired = exchange_wires()
     base = Path(root).resolve()
     for record in records:
-        _targets_env(record)
-        made(base, record, "mlr", {**SEEN, **FRESH})
-        deployed, ss, frame, _, start, _ = faulted_cell(base, record, "mlr-none")
-        frame = frame.iloc[:start + ROWS].reset_index(drop=True)
+        deployed, ss, frame, _, start, _ = _cell(base, record)
         fired.clear()
         healthy = _stepped(deployed, ss, frame)
         print(f"{record} mlr: healthy frame, the patch fired {len(fired)}x", flush=True)
