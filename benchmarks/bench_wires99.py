@@ -122,8 +122,12 @@ at any count.  Measured: healthy frames 0 fires (pt9851, pt9890, tr9891, cr9892)
 near case of the four records fires at the swap sample and served = healthy to 0.0 µm (seen
 pt9851 9.497 / 77.66 -> 0; the fresh records post hoc, not scored).  At the swap sample the
 prediction was within 0.03 °C of the exchanged readings (pt9851: T_motor's predicted 38.253
-for T_bed's 38.22, T_bed's 13.911 for 13.88).  Not measured: fl_thermal and bench_mon98's
-seen records (W2), a swap in the C / ST, a second exchange (wires put back).
+for T_bed's 38.22, T_bed's 13.911 for 13.88).  W2 for the shape (bench_dup99's ``healthy`` lines
+with and without the patch, /tmp/wires99/w2.py; bench_mon98's seen records and fl_thermal's
+served test campaign): fl 1112 rows, cr9763 221, lr9376 4321 (its own 6 events, 35 flagged
+rows), sw9776 1441, pt9851 10080: 0 fires, served / events / mirror digests identical (fl
+1fd9f6ec900b1c01, lr9376 534cdecc8e59936b ...).  Not measured: the shape in the C / ST, a second
+exchange (wires put back), a swap where the two readings are not each other's exactly.
 
 VERDICT: TRACED (no src change).  Next stop: the rule above as one mechanism with the jump rule
 (``faults.py``; an event ``wires exchanged``), in the C + numpy mirror + ST the same stop or
