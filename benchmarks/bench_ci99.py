@@ -56,6 +56,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _cli import made_folder, run_commands  # noqa: E402
 from bench_ci98 import MODULES, THREADS, cpu  # noqa: E402
+from bench_ci98 import table as ci98_table  # noqa: E402
 
 BAR = 20.0        # (1): the modules' summed CPU down by at least this many per cent
 PLUGIN = '''"""ci99: each conformance_pack call's md5 (files and summary) on $CI99_PACKS."""
@@ -101,21 +102,10 @@ def packs(tree: str, tag: str, out: str, *modules: str) -> None:
 
 
 def table(out: str, before: str = "base", after: str = "after") -> None:
-    """Per module the last ``before`` and ``after`` CPU (user + sys; tags of ``cpu``), the sum,
-    bar (1); the pack digests of both tags (``packs``) compared."""
-    folder, seen = Path(out), {}
-    for line in (folder / "cpu.txt").read_text().splitlines():
-        tag, module, user, system = line.split()[:4]
-        seen[(tag, module)] = float(user) + float(system)
-    rows = [m for m in MODULES if (before, m) in seen and (after, m) in seen]
-    for m in rows:
-        b, a = seen[(before, m)], seen[(after, m)]
-        print(f"{m:8s} {b:6.1f} -> {a:6.1f}  {100 * (a / b - 1):+5.1f} %")
-    b, a = (sum(seen[(tag, m)] for m in rows) for tag in (before, after))
-    cut = 100 * (1 - a / b) if rows else 0.0
-    print(f"sum      {b:6.1f} -> {a:6.1f}  -{cut:.1f} % over {len(rows)} modules: "
-          f"bar (1) {'met' if cut >= BAR else 'not met'} (>= {BAR:g} %)")
-    made = [folder / f"packs-{tag}.txt" for tag in (before, after)]
+    """bench_ci98's table at :data:`BAR` (per module the last ``before`` and ``after`` CPU, the
+    sum, bar (1)); the pack digests of both tags (``packs``) compared."""
+    ci98_table(out, before, after, BAR)
+    made = [Path(out) / f"packs-{tag}.txt" for tag in (before, after)]
     if all(p.exists() for p in made):
         b, a = (p.read_text().splitlines() for p in made)
         print(f"packs: {len(b)} calls {before}, {len(a)} {after}: "
