@@ -8,7 +8,6 @@ import os
 import shutil
 import subprocess
 import sys
-import weakref
 from pathlib import Path
 from subprocess import CompletedProcess
 from subprocess import run as run_process
@@ -470,34 +469,6 @@ def deployed_as_replay(cfg) -> tuple:
     train = {c: ds.campaigns[c] for c in train_ids}
     stream = deploy_stream(cfg, build_compensator(cfg, ds=ds).fit(train), train)
     return deployable(cfg, stream, train, ds), ds, test_ids
-
-
-def frame_digest(frame: pd.DataFrame) -> str:
-    """A digest of ``frame``'s columns, attributes, index and values (NaN alike): equal frames,
-    equal digests."""
-    import hashlib
-
-    values = pd.util.hash_pandas_object(frame, index=True).to_numpy()
-    head = repr((list(frame.columns), frame.attrs)).encode()
-    return hashlib.sha1(head + values.tobytes()).hexdigest()
-
-
-_SERVED = weakref.WeakKeyDictionary()     # {deployed: {(cid, frame, lead-in digests): Streamed}}
-
-
-def served_rows(deployed, frame: pd.DataFrame, cid: str = "", lead_in: pd.DataFrame | None = None):
-    """``report.stream_rows(deployed, frame, cid, lead_in=lead_in)``, streamed once for equal
-    inputs while ``deployed`` lives: it resets ``deployed`` before the stream (``streaming.warm``)
-    and reads nothing else, so a module's tests that each read the same served stream (the exported
-    code's tests: 2-4 times a record of 4321 rows, ~1.8 s of CPU each) share one.  Read it, never
-    change it."""
-    from thermocomp.apps.deploy.report import stream_rows
-
-    key = (cid, frame_digest(frame), None if lead_in is None else frame_digest(lead_in))
-    streams = _SERVED.setdefault(deployed, {})
-    if key not in streams:
-        streams[key] = stream_rows(deployed, frame, cid, lead_in=lead_in)
-    return streams[key]
 
 
 # the measured spindle (datasets/fl_thermal, its last 10 % the test campaign), adaptive MLR

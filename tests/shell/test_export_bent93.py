@@ -15,8 +15,9 @@ from test_export_mon88 import assert_code_as_served
 from test_monitor_readmit88 import deployed_record
 from thermocomp.apps.deploy.export import Simulator, state_space
 from thermocomp.apps.deploy.export.pack import fed
+from thermocomp.apps.deploy.export.served import ServedStreams
 from thermocomp.apps.deploy.export.watch import BENT, REREFERENCED
-from thermocomp.apps.deploy.report import plain, stream_rows
+from thermocomp.apps.deploy.report import plain
 from thermocomp.core.continuation import lead_ins
 
 MOTOR = "T_nc_spindle_motor"
@@ -36,6 +37,12 @@ def record(tmp_path_factory):
             lead_ins(plain(deployed).compensator, ds, test_ids), row)
 
 
+@pytest.fixture(scope="module")
+def streams(record):
+    """The served streams of ``record``'s model, made once for the module's tests and packs."""
+    return ServedStreams(record[0])
+
+
 def _mirror_bent_rows(ss, frame, lead: int) -> list[int]:
     """The rows (0-based, of the campaign after ``lead`` rows of lead-in) where the numpy mirror
     re-references a sensor for a step off its own."""
@@ -49,21 +56,21 @@ def _mirror_bent_rows(ss, frame, lead: int) -> list[int]:
     return rows
 
 
-def test_served_re_references_the_step_and_keeps_the_motor_in(record):
+def test_served_re_references_the_step_and_keeps_the_motor_in(record, streams):
     deployed, _, tests, leads, row = record
     (cid, frame), = tests.items()
-    got = stream_rows(deployed, fed(frame, leads.get(cid)), cid)
+    got = streams.rows(fed(frame, leads.get(cid)), cid)
     said = [(e["sensor"], e["to"]) for e in got.events if e.get("sensor")]
     assert said == [(MOTOR, "re-referenced")], said          # before: nothing (read as heat)
 
 
 @needs_cc
-def test_the_code_reads_the_step_as_served(record, tmp_path):
+def test_the_code_reads_the_step_as_served(record, streams, tmp_path):
     deployed, ss, tests, leads, row = record
     (cid, campaign), = tests.items()
     frame = fed(campaign, leads.get(cid))
     assert _mirror_bent_rows(ss, frame, len(frame) - len(campaign)) == [row]
-    assert_code_as_served(deployed, ss, tests, leads, tmp_path)
+    assert_code_as_served(deployed, ss, tests, leads, tmp_path, streams)
 
 
 def test_an_export_before_step93_reads_the_step_as_heat(record):

@@ -22,6 +22,7 @@ import pytest
 from test_export import adaptive_mlr, built_stream, needs_cc
 from thermocomp.apps.deploy.export import Simulator, exported_files, not_in_code, state_space
 from thermocomp.apps.deploy.export.pack import conformance_pack, corrections
+from thermocomp.apps.deploy.export.served import ServedStreams
 from thermocomp.apps.deploy.export.watch import CodeMonitor
 from thermocomp.apps.deploy.report import stream_rows
 
@@ -59,12 +60,13 @@ def _streamed(binary, frame, inputs):
     return pd.read_csv(pd.io.common.StringIO(run.stdout)).to_numpy(float), run.stderr
 
 
-def streamed_as_served(folder, deployed, ss, campaign: str, frame, want) -> tuple[dict, str]:
+def streamed_as_served(folder, deployed, ss, campaign: str, frame, want,
+                       served: ServedStreams | None = None) -> tuple[dict, str]:
     """``frame``'s conformance pack (as test campaign ``campaign``) not cut, and the compiled C
     (built in ``folder``) = ``want`` (the served corrections) on every row with nothing flagged
     as not in the code: the pack's summary and what the code said on stderr, for a test's own
-    assertions on them."""
-    files, summary = conformance_pack(deployed, ss, {campaign: frame})
+    assertions on them.  ``served``: the served streams of ``deployed`` made so far, if any."""
+    files, summary = conformance_pack(deployed, ss, {campaign: frame}, served=served)
     assert summary["campaigns"][0]["cut"] is None
     stream = built_stream(folder, {**exported_files(deployed, "c"), **files})
     c, said = _streamed(stream, frame, ss.inputs)
@@ -73,10 +75,11 @@ def streamed_as_served(folder, deployed, ss, campaign: str, frame, want) -> tupl
     return summary, said
 
 
-def assert_packed_as_served(folder, deployed, ss, campaign: str, frame, want) -> None:
+def assert_packed_as_served(folder, deployed, ss, campaign: str, frame, want,
+                            served: ServedStreams | None = None) -> None:
     """:func:`streamed_as_served`, the pack whole (every row of ``frame``), and ``check.sh``
     passing."""
-    summary, _ = streamed_as_served(folder, deployed, ss, campaign, frame, want)
+    summary, _ = streamed_as_served(folder, deployed, ss, campaign, frame, want, served)
     assert summary["campaigns"][0]["rows"] == len(frame)
     script = subprocess.run(["sh", "check/check.sh"], cwd=folder, capture_output=True, text=True)
     assert script.returncode == 0, script.stderr

@@ -18,11 +18,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from conftest import deployed_as_replay, frame_digest, served_rows
+from conftest import deployed_as_replay
 from test_export import _compose, needs_cc
 from test_export_cmon80 import assert_packed_as_served
 from thermocomp.apps.deploy.export import Simulator, state_space
 from thermocomp.apps.deploy.export.pack import conformance_pack, corrections
+from thermocomp.apps.deploy.export.served import ServedStreams, frame_digest
 from thermocomp.apps.deploy.export.watch import (
     DRIFT,
     DRIFT_OUT,
@@ -77,6 +78,12 @@ def record(tmp_path_factory):
     return column_record(tmp_path_factory, "dropout")
 
 
+@pytest.fixture(scope="module")
+def streams(record):
+    """The served streams of ``record``'s model, made once for the module's tests and packs."""
+    return ServedStreams(record[0])
+
+
 _LEADS: dict = {}       # {(id(ss), the lead-in's digest): (ss, the mirror after it, got, out, missed)}
 
 
@@ -113,11 +120,11 @@ def _mirror(ss, frame, lead: int = 0):
     return np.array(got + rest[0]), out + rest[1], missed + rest[2]
 
 
-def _served_out(deployed, frame) -> list[tuple[int, str, str]]:
+def _served_out(streams: ServedStreams, frame) -> list[tuple[int, str, str]]:
     """The served monitor's exclusions: ``(row, sensor, why)``, 1-based."""
     times = frame["time"].to_numpy(float)
     return [(int(np.searchsorted(times, e["time"])) + 1, e["sensor"], e["reason"].split(":")[0])
-            for e in served_rows(deployed, frame, "test").events
+            for e in streams.rows(frame, "test").events
             if e.get("sensor") and e["to"] == "excluded"]
 
 
@@ -135,25 +142,25 @@ def test_the_solved_operator_is_the_served_one(record):
 
 
 @needs_cc
-def test_a_drift_with_a_sensor_out_is_followed_by_the_code_as_served(record, tmp_path):
+def test_a_drift_with_a_sensor_out_is_followed_by_the_code_as_served(record, streams, tmp_path):
     deployed, ss, frame = record
-    served = _served_out(deployed, frame)
+    served = _served_out(streams, frame)
     # the served monitor: the sensor out for its dropout, then a drift exclusion while it is out
     assert served[0][2] == "dropout" and any(why == "drift" for _, _, why in served[1:]), served
-    want = corrections(ss, served_rows(deployed, frame, "test").y)
+    want = corrections(ss, streams.rows(frame, "test").y)
     got, out, missed = _mirror(ss, frame)
     assert not missed and np.max(np.abs(got - want)) < 1e-9
     assert [(r, s) for r, s, _ in out] == [(r, s) for r, s, _ in served]
     assert [rule for *_, rule in out][:1] == [DROPOUT] and DRIFT_OUT in [rule for *_, rule in out]
-    assert_packed_as_served(tmp_path, deployed, ss, "test", frame, want)
+    assert_packed_as_served(tmp_path, deployed, ss, "test", frame, want, streams)
 
 
-def test_an_export_before_cmon85_flags_the_drift_with_a_sensor_out(record):
+def test_an_export_before_cmon85_flags_the_drift_with_a_sensor_out(record, streams):
     """Arrays without ``solve``: the drift beyond the band with the dropout out flagged (``DRIFT``)
     at the served exclusion's row or before, and the pack cut there."""
     deployed, ss, frame = record
-    row = next(r for r, _, why in _served_out(deployed, frame) if why == "drift")
+    row = next(r for r, _, why in _served_out(streams, frame) if why == "drift")
     _, _, missed = _mirror(without(ss, "solve"), frame)
     assert missed and missed[0][1] == DRIFT and missed[0][0] <= row
-    _, summary = conformance_pack(deployed, without(ss, "solve"), {"test": frame})
+    _, summary = conformance_pack(deployed, without(ss, "solve"), {"test": frame}, served=streams)
     assert summary["campaigns"][0]["rows"] < row

@@ -16,12 +16,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from conftest import served_rows
 from test_export import needs_cc
 from test_export_cmon80 import assert_packed_as_served
 from test_export_cmon85 import _mirror, _served_out, column_record, without
 from thermocomp.apps.deploy.export import Simulator
 from thermocomp.apps.deploy.export.pack import conformance_pack, corrections
+from thermocomp.apps.deploy.export.served import ServedStreams
 from thermocomp.apps.deploy.export.watch import STEPPED
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "benchmarks"))
@@ -33,6 +33,12 @@ SEED = 8841
 def record(tmp_path_factory):
     """``(deployed, its system with the monitor, the test campaign with the drift)``."""
     return column_record(tmp_path_factory, "drift")
+
+
+@pytest.fixture(scope="module")
+def streams(record):
+    """The served streams of ``record``'s model, made once for the module's tests and packs."""
+    return ServedStreams(record[0])
 
 
 def _outs(ss, frame) -> list[tuple[int, str, bool]]:
@@ -60,11 +66,11 @@ def _stepped_row(served) -> tuple[int, str]:
 
 
 @needs_cc
-def test_a_stepped_culprit_is_followed_by_the_code_as_served(record, tmp_path):
+def test_a_stepped_culprit_is_followed_by_the_code_as_served(record, streams, tmp_path):
     deployed, ss, frame = record
-    served = _served_out(deployed, frame)
+    served = _served_out(streams, frame)
     row, sensor = _stepped_row(served)
-    want = corrections(ss, served_rows(deployed, frame, "test").y)
+    want = corrections(ss, streams.rows(frame, "test").y)
     got, _, missed = _mirror(ss, frame)
     assert not missed and np.max(np.abs(got - want)) < 1e-9
     out = _outs(ss, frame)
@@ -72,15 +78,16 @@ def test_a_stepped_culprit_is_followed_by_the_code_as_served(record, tmp_path):
     # the culprit out by its error (its wait doubled), beside the one out for its range
     assert sorted((s, by) for r, s, by in out if r == row) == sorted(
         [(s, s == sensor) for r, s, _ in served if r == row])
-    assert_packed_as_served(tmp_path, deployed, ss, "test", frame, want)
+    assert_packed_as_served(tmp_path, deployed, ss, "test", frame, want, streams)
 
 
-def test_an_export_before_cmon86_flags_the_stepped_error(record):
+def test_an_export_before_cmon86_flags_the_stepped_error(record, streams):
     """Arrays without ``stepped``: the stepped error flagged (``STEPPED``) at the served
     exclusion's row, and the pack cut there."""
     deployed, ss, frame = record
-    row, _ = _stepped_row(_served_out(deployed, frame))
+    row, _ = _stepped_row(_served_out(streams, frame))
     _, _, missed = _mirror(without(ss, "stepped"), frame)
     assert missed and missed[0] == (row, STEPPED)
-    _, summary = conformance_pack(deployed, without(ss, "stepped"), {"test": frame})
+    _, summary = conformance_pack(deployed, without(ss, "stepped"), {"test": frame},
+                                  served=streams)
     assert summary["campaigns"][0]["rows"] < row

@@ -15,12 +15,13 @@ import subprocess
 import numpy as np
 import pytest
 
-from conftest import deployed_as_replay, served_rows
+from conftest import deployed_as_replay
 from test_export import _compose, built_stream, needs_cc
 from test_export_cmon80 import _streamed
 from test_export_cmon85 import _mirror, without
 from thermocomp.apps.deploy.export import exported_files, state_space
 from thermocomp.apps.deploy.export.pack import conformance_pack, corrections, fed
+from thermocomp.apps.deploy.export.served import ServedStreams
 from thermocomp.apps.deploy.export.watch import BLIND, JUMP
 from thermocomp.apps.deploy.report import plain
 from thermocomp.core.continuation import lead_ins
@@ -31,6 +32,12 @@ SEED = 9032
 @pytest.fixture(scope="module")
 def record(tmp_path_factory):
     return long_record(tmp_path_factory, SEED)
+
+
+@pytest.fixture(scope="module")
+def streams(record):
+    """The served streams of ``record``'s model, made once for the module's tests and packs."""
+    return ServedStreams(record[0])
 
 
 def long_record(tmp_path_factory, seed: int):
@@ -59,14 +66,14 @@ def deployed_mlr(*words: str):
             len(frame) - len(ds.campaigns[test]), {test: ds.campaigns[test]}, leads)
 
 
-def _served_spike(deployed, ss, tests, leads, lead) -> tuple[int, int, str]:
+def _served_spike(streams, ss, tests, leads, lead) -> tuple[int, int, str]:
     """The served exclusion of a sensor no other predicts for a jump: ``(row, its return's row,
     sensor)``, 1-based in the fed frame (R1b after ``lead`` rows); its jumps undone on its
     return."""
     (test, campaign), = tests.items()
     times = campaign["time"].to_numpy(float) - campaign["time"].iloc[0]
     blind = {ss.inputs[i] for i, p in zip(ss.monitor["inputs"], ss.monitor["predictable"]) if not p}
-    events = [e for e in served_rows(deployed, campaign, test, lead_in=leads[test]).events
+    events = [e for e in streams.rows(campaign, test, lead_in=leads[test]).events
               if e.get("sensor") in blind]
     out = next(e for e in events if e["to"] == "excluded" and e["reason"].startswith("jump"))
     back = next(e for e in events if e["to"] == "ok" and e["sensor"] == out["sensor"]
@@ -76,15 +83,18 @@ def _served_spike(deployed, ss, tests, leads, lead) -> tuple[int, int, str]:
     return row(out["time"]), row(back["time"]), out["sensor"]
 
 
-def held_as_served(record, folder) -> tuple[list, str, dict]:
+def held_as_served(record, folder, streams: ServedStreams | None = None
+                   ) -> tuple[list, str, dict]:
     """The mirror and the compiled C of ``record`` equal to the served corrections on every row,
     nothing flagged, R1b's pack entry whole and its check passing (in ``folder``): ``(the
-    mirror's exclusions (row, sensor, rule), the stream's stderr, the pack's summary)``."""
+    mirror's exclusions (row, sensor, rule), the stream's stderr, the pack's summary)``.
+    ``streams``: the served streams of ``record``'s model made so far (else new ones)."""
     deployed, ss, frame, lead, tests, leads = record
-    want = corrections(ss, served_rows(deployed, frame, "R1b").y)
+    streams = ServedStreams(deployed) if streams is None else streams
+    want = corrections(ss, streams.rows(frame, "R1b").y)
     got, out, missed = _mirror(ss, frame)
     assert not missed and np.max(np.abs(got - want)) < 1e-9
-    files, summary = conformance_pack(deployed, ss, tests, leads)
+    files, summary = conformance_pack(deployed, ss, tests, leads, served=streams)
     entry = summary["campaigns"][0]
     assert (entry["rows"], entry["cut"]) == (len(frame), None)
     stream = built_stream(folder, {**exported_files(deployed, "c"), **files})
@@ -97,24 +107,25 @@ def held_as_served(record, folder) -> tuple[list, str, dict]:
 
 
 @needs_cc
-def test_a_spiking_sensor_no_other_predicts_is_held_by_the_code_as_served(record, tmp_path):
+def test_a_spiking_sensor_no_other_predicts_is_held_by_the_code_as_served(record, streams,
+                                                                           tmp_path):
     deployed, ss, frame, lead, tests, leads = record
-    row, back, sensor = _served_spike(deployed, ss, tests, leads, lead)
-    out, _, summary = held_as_served(record, tmp_path)
+    row, back, sensor = _served_spike(streams, ss, tests, leads, lead)
+    out, _, summary = held_as_served(record, tmp_path, streams)
     assert (row, sensor, JUMP) in out
     assert all(e["cut"] is None for e in summary["campaigns"])
 
 
-def test_an_export_before_cmon87_flags_the_spike(record):
+def test_an_export_before_cmon87_flags_the_spike(record, streams):
     """Arrays without ``blind_jump``: the jump flagged (``BLIND``) at the served exclusion's row,
     the correction parting from the served one while the sensor is out, and the pack cut there."""
     deployed, ss, frame, lead, tests, leads = record
-    row, back, _ = _served_spike(deployed, ss, tests, leads, lead)
+    row, back, _ = _served_spike(streams, ss, tests, leads, lead)
     old = without(ss, "blind_jump")
     got, _, missed = _mirror(old, frame)
     assert missed and missed[0] == (row, BLIND)
-    want = corrections(ss, served_rows(deployed, frame, "R1b").y)
+    want = corrections(ss, streams.rows(frame, "R1b").y)
     parted = np.flatnonzero(np.abs(got - want).max(axis=1) > 1e-9) + 1
     assert parted.min() == row and parted.max() < back
-    _, summary = conformance_pack(deployed, old, tests, leads)
+    _, summary = conformance_pack(deployed, old, tests, leads, served=streams)
     assert summary["campaigns"][0]["rows"] == row - 1

@@ -21,6 +21,7 @@ from test_export_cmon85 import _mirror, without
 from test_export_cmon87 import long_record
 from thermocomp.apps.deploy.export import exported_files
 from thermocomp.apps.deploy.export.pack import conformance_pack, fed
+from thermocomp.apps.deploy.export.served import ServedStreams
 from thermocomp.apps.deploy.export.watch import MISSING_SECOND, RANGE, SECOND, planted
 
 SEED = 9132
@@ -38,18 +39,25 @@ def record(tmp_path_factory):
     return deployed, ss, lead, {test: campaign}, leads
 
 
+@pytest.fixture(scope="module")
+def streams(record):
+    """The served streams of ``record``'s model, made once for the module's tests and packs."""
+    return ServedStreams(record[0])
+
+
 def _copies(summary) -> dict[str, dict]:
     """The pack's planted copies by fault (``jump``, ``freeze``, ``dropout``, ``range``)."""
     return {e["campaign"].split(".")[1]: e for e in summary["campaigns"] if "planted" in e}
 
 
 @needs_cc
-def test_an_instant_fault_as_the_second_out_is_what_the_code_does_as_served(record, tmp_path):
+def test_an_instant_fault_as_the_second_out_is_what_the_code_does_as_served(record, streams,
+                                                                           tmp_path):
     """Every planted copy kept whole (on main the dropout and the range copies were cut at the
     dropout's first row, the freeze copy at ``T_zdrive``'s jump), and the compiled C gives the
     served corrections on every row of every campaign of the pack."""
     deployed, ss, lead, tests, leads = record
-    files, summary = conformance_pack(deployed, ss, tests, leads)
+    files, summary = conformance_pack(deployed, ss, tests, leads, served=streams)
     copies = _copies(summary)
     assert {"freeze", "dropout", "range"} <= set(copies)
     for fault, entry in copies.items():
@@ -60,7 +68,7 @@ def test_an_instant_fault_as_the_second_out_is_what_the_code_does_as_served(reco
     assert script.returncode == 0, script.stderr
 
 
-def test_an_export_before_cmon89_flags_the_second_instant_fault(record):
+def test_an_export_before_cmon89_flags_the_second_instant_fault(record, streams):
     """Arrays without ``second_instant``: the copies' second outs flagged where served takes them
     out (a dropout refused, a range reading and a blind sensor's jump flagged), as before."""
     deployed, ss, lead, tests, leads = record
@@ -76,6 +84,6 @@ def test_an_export_before_cmon89_flags_the_second_instant_fault(record):
             assert missed and missed[0] == want[fault], fault
             _, _, now = _mirror(ss, fed(df, leads.get(test)), lead)
             assert not now, (fault, now[:3])
-    _, summary = conformance_pack(deployed, old, tests, leads)
+    _, summary = conformance_pack(deployed, old, tests, leads, served=streams)
     assert {f: e["rows"] for f, e in _copies(summary).items() if f in want} == {
         f: row - 1 for f, (row, _) in want.items()}

@@ -14,11 +14,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from conftest import served_rows
 from test_export import needs_cc
 from test_export_cmon85 import _mirror, column_system, without
 from test_export_cmon87 import held_as_served
 from thermocomp.apps.deploy.export.pack import conformance_pack, corrections
+from thermocomp.apps.deploy.export.served import ServedStreams
 from thermocomp.apps.deploy.export.watch import BLIND, OFF_RANGE
 
 SENSOR = "T_front3"
@@ -37,37 +37,44 @@ def record(tmp_path_factory):
     return (deployed, ss, frame, 0, {"test": frame}, {}), mid + 1
 
 
-def _served(deployed, frame) -> tuple[np.ndarray, list[dict]]:
-    rows = served_rows(deployed, frame, "test")
+@pytest.fixture(scope="module")
+def streams(record):
+    """The served streams of ``record``'s model, made once for the module's tests and packs."""
+    return ServedStreams(record[0][0])
+
+
+def _served(streams, frame) -> tuple[np.ndarray, list[dict]]:
+    rows = streams.rows(frame, "test")
     return rows.y, [e for e in rows.events if e.get("sensor") == SENSOR]
 
 
-def test_the_fault_is_of_a_sensor_no_other_predicts_served_out_and_back_by_its_leak(record):
+def test_the_fault_is_of_a_sensor_no_other_predicts_served_out_and_back_by_its_leak(record,
+                                                                                     streams):
     (deployed, ss, frame, *_), row = record
     names = [ss.inputs[i] for i in ss.monitor["inputs"]]
     assert not ss.monitor["predictable"][names.index(SENSOR)]
-    _, events = _served(deployed, frame)
+    _, events = _served(streams, frame)
     assert [e["to"] for e in events[:2]] == ["excluded", "ok"]
     assert "leak" in events[1]["reason"]
 
 
 @needs_cc
-def test_the_code_holds_the_range_reading_and_its_return_as_served(record, tmp_path):
+def test_the_code_holds_the_range_reading_and_its_return_as_served(record, streams, tmp_path):
     """The mirror and the compiled C equal to the served corrections on every row, nothing
     flagged, the pack whole and its check passing (test_export_cmon87's ``held_as_served``)."""
     system, row = record
-    out, _, _ = held_as_served(system, tmp_path)
+    out, _, _ = held_as_served(system, tmp_path, streams)
     assert (row, SENSOR, OFF_RANGE) in out
 
 
-def test_an_export_before_cmon89b_flags_the_range_reading(record):
+def test_an_export_before_cmon89b_flags_the_range_reading(record, streams):
     """Arrays without ``blind_range``: flagged ``BLIND`` at the fault's row, the correction parting
     from the served one there, the pack cut at it."""
     (deployed, ss, frame, _, tests, _), row = record
     old = without(ss, "blind_range")
     got, _, missed = _mirror(old, frame)
     assert missed and missed[0] == (row, BLIND)
-    want = corrections(ss, _served(deployed, frame)[0])
+    want = corrections(ss, _served(streams, frame)[0])
     assert (np.flatnonzero(np.abs(got - want).max(axis=1) > 1e-9) + 1).min() == row
-    _, summary = conformance_pack(deployed, old, tests, {})
+    _, summary = conformance_pack(deployed, old, tests, {}, served=streams)
     assert summary["campaigns"][0]["rows"] == row - 1

@@ -15,11 +15,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from conftest import served_rows
 from test_export import needs_cc
 from test_export_cmon85 import _mirror, without
 from test_export_cmon87 import held_as_served, long_record
 from thermocomp.apps.deploy.export.pack import conformance_pack, corrections, fed
+from thermocomp.apps.deploy.export.served import ServedStreams
 from thermocomp.apps.deploy.export.watch import COMMON, JUMP, SPIKE
 
 SEED = 9032
@@ -41,11 +41,17 @@ def record(tmp_path_factory):
     return (deployed, ss, frame, lead, {test: campaign}, leads), lead + start + 1
 
 
+@pytest.fixture(scope="module")
+def streams(record):
+    """The served streams of ``record``'s model, made once for the module's tests and packs."""
+    return ServedStreams(record[0][0])
+
+
 @needs_cc
-def test_two_sensors_jumping_in_one_sample_are_held_as_served(record, tmp_path):
+def test_two_sensors_jumping_in_one_sample_are_held_as_served(record, streams, tmp_path):
     (deployed, ss, frame, *_), row = record
     # every row through the compiled C = served, nothing flagged, the pack whole and passing
-    out, said, _ = held_as_served(record[0], tmp_path)
+    out, said, _ = held_as_served(record[0], tmp_path, streams)
     assert (row, PAIR[0], JUMP) in out
     assert f"line {row + 1}: monitor: {PAIR[0]}: jump: re-referenced and excluded" in said
     # their return SPIKE_ROWS later read as a spike's (the jump undone), as served
@@ -67,15 +73,15 @@ def _readmitted(ss, frame) -> list[tuple[int, int, int]]:
     return back
 
 
-def test_an_export_before_cmon93_flags_the_pair(record):
+def test_an_export_before_cmon93_flags_the_pair(record, streams):
     """Arrays without ``pair_jump``: ``COMMON`` flagged at the fault's row, the corrections
     parting from the served ones there, and the pack cut there."""
     (deployed, ss, frame, _, tests, leads), row = record
     old = without(ss, "pair_jump")
     got, _, missed = _mirror(old, frame)
     assert missed and missed[0] == (row, COMMON)
-    want = corrections(ss, served_rows(deployed, frame, "R1b").y)
+    want = corrections(ss, streams.rows(frame, "R1b").y)
     parted = np.flatnonzero(np.abs(got - want).max(axis=1) > 1e-9) + 1
     assert parted.min() >= row and np.abs(got - want).max() > 1e-3
-    _, summary = conformance_pack(deployed, old, tests, leads)
+    _, summary = conformance_pack(deployed, old, tests, leads, served=streams)
     assert summary["campaigns"][0]["rows"] == parted.min() - 1

@@ -28,8 +28,8 @@ from test_export import needs_cc
 from test_export_cmon80 import streamed_as_served
 from thermocomp.apps.deploy.export import Simulator
 from thermocomp.apps.deploy.export.pack import corrections
+from thermocomp.apps.deploy.export.served import ServedStreams
 from thermocomp.apps.deploy.export.watch import EXCLUDED, NOT_IN_CODE, READMITTED
-from thermocomp.apps.deploy.report import stream_rows
 
 # °C a 15 s row from row ONSET for RISE rows, then back as fast: T_t1 2.7 K/h, T_t7 1 K/h
 ONSET, RISE, DRIFTS, CULPRIT = 240, 60, {"T_t1": 40 / 3600, "T_t7": 15 / 3600}, "T_t2"
@@ -72,7 +72,8 @@ def _mirror(ss, frame, hid: bool = True):
 @needs_cc
 def test_a_culprit_out_within_its_band_is_back_within_it_served_mirror_and_c(served, tmp_path):
     deployed, ss, frame = served
-    run = stream_rows(deployed, frame, "K06")
+    streams = ServedStreams(deployed)         # (the pack's stream of the frame: this one)
+    run = streams.rows(frame, "K06")
     times = frame["time"].to_numpy(float) - frame["time"].iloc[0]
     moves = [(int(np.searchsorted(times, e["time"])) + 1, e["to"]) for e in run.events
              if e.get("sensor") == CULPRIT and "excluded" in (e["from"], e["to"])]
@@ -88,7 +89,7 @@ def test_a_culprit_out_within_its_band_is_back_within_it_served_mirror_and_c(ser
     assert not any(to == "ok" and r <= moves[1][0] for r, to, _ in before), before
     want = corrections(ss, run.y)
     assert np.max(np.abs(got - want)) < 1e-9
-    _, said = streamed_as_served(tmp_path, deployed, ss, "K06", frame, want)
+    _, said = streamed_as_served(tmp_path, deployed, ss, "K06", frame, want, streams)
     # the code's own word on the served rows (its line = the row + the header's)
     assert [int(m.split(":")[1].split()[-1]) - 1 for m in said.splitlines()
             if f"{CULPRIT}: re-admitted" in m][:1] == [moves[1][0]]

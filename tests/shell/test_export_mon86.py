@@ -17,8 +17,8 @@ from test_export import needs_cc
 from test_export_cmon80 import streamed_as_served
 from test_export_mon85b import ONSET, served  # noqa: F401  (the module's fixture)
 from thermocomp.apps.deploy.export.pack import corrections
+from thermocomp.apps.deploy.export.served import ServedStreams
 from thermocomp.apps.deploy.export.watch import CodeMonitor
-from thermocomp.apps.deploy.report import stream_rows
 from thermocomp.shell.source import read_streamed
 
 
@@ -71,6 +71,6 @@ def test_a_frozen_sensor_out_the_rest_judged_in_its_set_served_mirror_and_c(serv
         mon.update(row, float(frame["time"].iloc[i]))
         wider += int((mon._warn > mon.warning_c).any())
     assert mon.excluded == ["T_t12"] and wider          # the set's bands judged the rest
-    run = stream_rows(deployed, frame, "K06")
-    want = corrections(ss, run.y)
-    streamed_as_served(tmp_path, deployed, ss, "K06", frame, want)
+    streams = ServedStreams(deployed)         # (the pack's stream of the frame: this one)
+    want = corrections(ss, streams.rows(frame, "K06").y)
+    streamed_as_served(tmp_path, deployed, ss, "K06", frame, want, streams)

@@ -17,6 +17,7 @@ from test_export_cmon80 import _streamed
 from test_monitor_readmit88 import ROOM, deployed_record, frozen_amb, undithered
 from thermocomp.apps.deploy.export import Simulator, exported_files, state_space
 from thermocomp.apps.deploy.export.pack import conformance_pack, corrections, fed
+from thermocomp.apps.deploy.export.served import ServedStreams
 from thermocomp.apps.deploy.report import stream_rows
 
 
@@ -45,13 +46,16 @@ def _mirror_out(ss, frame) -> list[str]:
     return [names[k] for k in (sim.watch.out, sim.watch.out2) if k >= 0]
 
 
-def assert_code_as_served(deployed, ss, tests: dict, leads: dict, folder) -> None:
+def assert_code_as_served(deployed, ss, tests: dict, leads: dict, folder,
+                          served: ServedStreams | None = None) -> None:
     """The compiled C of ``deployed`` (built in ``folder``) streams the one test campaign of
-    ``tests`` after its lead-in as served, every row, nothing flagged "not in the code"."""
+    ``tests`` after its lead-in as served, every row, nothing flagged "not in the code".
+    ``served``: the served streams of ``deployed`` made so far (else new ones)."""
     (cid, campaign), = tests.items()
     frame = fed(campaign, leads.get(cid))
-    want = corrections(ss, stream_rows(deployed, frame, cid).y)
-    files, summary = conformance_pack(deployed, ss, tests, leads)
+    served = ServedStreams(deployed) if served is None else served
+    want = corrections(ss, served.rows(frame, cid).y)
+    files, summary = conformance_pack(deployed, ss, tests, leads, served=served)
     entry = next(e for e in summary["campaigns"] if e["campaign"] == cid)
     assert entry["cut"] is None and entry["rows"] == len(frame)
     stream = built_stream(folder, {**exported_files(deployed, "c"), **files})

@@ -14,11 +14,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from conftest import served_rows
 from test_export import needs_cc
 from test_export_cmon85 import _mirror, column_system, without
 from test_export_cmon87 import held_as_served
 from thermocomp.apps.deploy.export.pack import corrections
+from thermocomp.apps.deploy.export.served import ServedStreams
 from thermocomp.apps.deploy.export.watch import OFF_RANGE, RANGE
 
 SENSOR = "T_front3"
@@ -39,26 +39,32 @@ def record(tmp_path_factory):
     return (deployed, ss, frame, 0, {"test": frame}, {}), dropped, mid + 1
 
 
-def test_served_takes_the_range_reading_out_as_the_second(record):
+@pytest.fixture(scope="module")
+def streams(record):
+    """The served streams of ``record``'s model, made once for the module's tests and packs."""
+    return ServedStreams(record[0][0])
+
+
+def test_served_takes_the_range_reading_out_as_the_second(record, streams):
     (deployed, ss, frame, *_), dropped, row = record
-    rows = served_rows(deployed, frame, "test")
+    rows = streams.rows(frame, "test")
     out = [e["sensor"] for e in rows.events if e.get("to") == "excluded"]
     assert out[:2] == [dropped, SENSOR]
 
 
 @needs_cc
-def test_the_code_holds_it_as_the_second_as_served(record, tmp_path):
+def test_the_code_holds_it_as_the_second_as_served(record, streams, tmp_path):
     """The mirror and the compiled C equal to the served corrections on every row, nothing
     flagged, the pack whole and its check passing (fails on da1272c3: ``RANGE`` flagged)."""
     system, _, row = record
-    out, _, _ = held_as_served(system, tmp_path)
+    out, _, _ = held_as_served(system, tmp_path, streams)
     assert (row, SENSOR, OFF_RANGE) in out
 
 
-def test_an_export_before_mon98b_flags_the_range_reading(record):
+def test_an_export_before_mon98b_flags_the_range_reading(record, streams):
     """Arrays without ``second_range``: flagged ``RANGE`` at the fault's row, parting there."""
     (deployed, ss, frame, *_), _, row = record
     got, _, missed = _mirror(without(ss, "second_range"), frame)
     assert missed and missed[0] == (row, RANGE)
-    want = corrections(ss, served_rows(deployed, frame, "test").y)
+    want = corrections(ss, streams.rows(frame, "test").y)
     assert (np.flatnonzero(np.abs(got - want).max(axis=1) > 1e-9) + 1).min() == row

@@ -59,6 +59,7 @@ from ..naming import correction_column
 from ..report import stream_rows
 from ..streaming import OutOfEnvelopeError
 from .output import not_in_code
+from .served import ServedLead, ServedStreams
 from .statespace import Simulator, StateSpace
 from .watch import NOT_IN_CODE, REASONS, planted
 
@@ -187,71 +188,48 @@ def _times(frame: pd.DataFrame) -> np.ndarray:
     return frame["time"].to_numpy(float) if "time" in frame.columns else np.full(len(frame), np.nan)
 
 
-def _stepped(served, frame: pd.DataFrame, y: np.ndarray, start: int) -> None:
-    """``y[start:]``: the served model's ``_step`` (as :func:`stream_rows` steps it) of ``frame``'s
-    rows from ``start`` on, from the state it is in (raises ``OutOfEnvelopeError`` as it does)."""
-    X, t = frame[served.columns_].to_numpy(float), _times(frame)
-    for i in range(start, len(X)):
-        y[i] = served._step(X[i], t[i])[0]
-
-
 class _Lead:
     """A lead-in shared by campaigns (a test campaign and its planted copies, perf87b): streamed
-    once through the served model and the :class:`Simulator`, each campaign's stream started from
-    a deep copy of their states; its rows formatted once.  Each campaign's pack is as streamed
+    once through the served model (``served``: :class:`~.served.ServedLead`, once per lead-in of
+    a :class:`~.served.ServedStreams`) and the :class:`Simulator`, each campaign's stream started
+    from a deep copy of their states; its rows formatted once.  Each campaign's pack is as streamed
     from its start (the whole stream is taken instead wherever the shortcut does not apply: a cut
     within the lead-in, a refusal, a column not float)."""
 
-    def __init__(self, deployed, ss: StateSpace, frame: pd.DataFrame, rows: int, monitor: bool):
-        self.rows, self.served, self.sim, self.parted, self.text = rows, None, None, None, {}
-        lead = frame.iloc[:rows]
-        y = np.empty((rows, len(deployed.targets_)))
-        deployed.reset(manifest_ambient(frame))       # (stream_rows' warm without a lead-in)
-        try:
-            _stepped(deployed, lead, y, 0)
-        except OutOfEnvelopeError:
-            deployed.reset()
-            return                                   # (the whole stream raises it, named)
-        self.served, self.y = copy.deepcopy(deployed), y
-        deployed.reset()
-        if monitor:
+    def __init__(self, served: ServedLead, ss: StateSpace, frame: pd.DataFrame, monitor: bool):
+        self.served, self.rows, self.sim, self.parted = served, served.rows, None, None
+        if served.state is not None and monitor:
             sim = Simulator(ss)
             sim.reset(manifest_ambient(frame))
-            self.parted = _parted(ss, lead, corrections(ss, y), 0, sim)
+            self.parted = _parted(ss, frame.iloc[:self.rows], corrections(ss, served.y), 0, sim)
             self.sim = sim
 
     def fits(self, frame: pd.DataFrame) -> bool:
         """Whether ``frame`` (the lead-in's rows first) can start from the lead-in's states."""
-        return self.served is not None and len(frame) > self.rows and self.parted is None
-
-    def stream(self, frame: pd.DataFrame) -> np.ndarray:
-        """The served model's ``y`` for every row of ``frame``, its rows after the lead-in streamed
-        from a copy of the state the lead-in left (``OutOfEnvelopeError`` as ``_step`` raises)."""
-        served = copy.deepcopy(self.served)
-        y = np.empty((len(frame), len(served.targets_)))
-        y[:self.rows] = self.y
-        _stepped(served, frame, y, self.rows)
-        return y
+        return self.served.state is not None and len(frame) > self.rows and self.parted is None
 
     def csv(self, frame: pd.DataFrame) -> str:
         """:func:`csv_text` of ``frame`` (the lead-in's rows first), those rows formatted once
         (float columns only: each value formatted on its own, so the text is the same)."""
-        key = tuple(frame.columns)
+        key, text = tuple(frame.columns), self.served.text
         if not all(frame.dtypes == np.float64):
             return csv_text(frame)
-        if key not in self.text:
-            self.text[key] = csv_text(frame.iloc[:self.rows])
+        if key not in text:
+            text[key] = csv_text(frame.iloc[:self.rows])
         rest = csv_text(frame.iloc[self.rows:])
-        return self.text[key] + rest[rest.index("\n") + 1:]
+        return text[key] + rest[rest.index("\n") + 1:]
 
 
 def conformance_pack(deployed, ss: StateSpace, campaigns: Mapping[str, pd.DataFrame],
                      lead_ins: Mapping[str, pd.DataFrame] | None = None,
-                     files: Mapping[str, object] | None = None, script: bool = True
-                     ) -> tuple[dict[str, str], dict]:
+                     files: Mapping[str, object] | None = None, script: bool = True,
+                     served: ServedStreams | None = None) -> tuple[dict[str, str], dict]:
     """``({path under out: text}, check.json's dict)`` of the pack for ``campaigns`` streamed
     through ``deployed`` (module doc); ``ss``: its exported system; ``files``: each campaign's
-    file, for a refusal's message; ``script``: ``check/check.sh`` too (the C's ``stream``)."""
+    file, for a refusal's message; ``script``: ``check/check.sh`` too (the C's ``stream``);
+    ``served``: the served streams of ``deployed`` another pack or the caller made already (an
+    explicit cache, :class:`~.served.ServedStreams`; ci99), else this pack's own."""
+    served = ServedStreams(deployed) if served is None else served
     lead_ins = dict(lead_ins or {})
     faults = planted(ss, campaigns)     # (the code's monitor checked on planted faults, cmon76)
     for cid, (_, _, source) in faults.items():
@@ -291,16 +269,16 @@ def conformance_pack(deployed, ss: StateSpace, campaigns: Mapping[str, pd.DataFr
         if lead and sum(s is lead_ins.get(cid) for s in lead_ins.values()) > 1:
             key = id(lead_ins[cid])
             if key not in leads:
-                leads[key] = _Lead(deployed, ss, frame, lead, monitor)
+                leads[key] = _Lead(served.lead(frame, lead), ss, frame, monitor)
             shared = leads[key] if leads[key].fits(frame) else None
-        y = None
         if shared is not None:
             try:
-                y = shared.stream(frame)
+                y = served.y(frame, lambda: shared.served.stream(frame))
             except OutOfEnvelopeError:
                 shared = None            # (the whole stream below raises it, file and row named)
-        if y is None:
-            y = stream_rows(deployed, frame, str(cid), (files or {}).get(cid)).y
+        if shared is None:
+            y = served.y(frame, lambda: stream_rows(deployed, frame, str(cid),
+                                                    (files or {}).get(cid)).y)
         want = corrections(ss, y)
         if monitor:
             parted = (_parted(ss, frame, want, lead, copy.deepcopy(shared.sim)) if shared
