@@ -58,6 +58,25 @@ BAR (written and committed BEFORE any of 9893-9897 is simulated; scored once, th
    (a/m/o/n 2/4/0/14, 3/7/3/7, 1/4/0/11; 0 diff rows, 0 mon_stop rows).
 KEPT if 0-4 hold (with test_export_st99 failing on 9dcc741e, PARSED_DIGEST, docs); REFUSED
 otherwise (benchmarks/st99_rule.patch, src as on 9dcc741e).
+
+Scored (2026-12-06, 2 cores shared by up to 8 helpers; the bar and the rule unchanged since their
+commit 7036611b, the fresh records simulated after it by this bench, ``cases /tmp/st99b/fresh lr9893
+cr9895 lr9896`` and ``cases /tmp/st99b/fresh2 dl9894 dl9897`` in two processes, once; 38.2 + 47.2 s
+CPU, the making included)::
+
+    record  test  rows (lead-in)  healthy diff rows  planted (sensor, size, onset -> hold)     held cases
+    lr9893  R1b   4321 (3457)     0                  T_spindle_front +6 C, 3673 -> 3692         13 agree in hold
+    dl9894  R1b   7200 (5760)     0                  T_spindle_front +6 C, 6120 -> 6137         13 agree in hold
+    cr9895  C10   202 (0)         0                  T_nc_spindle_motor +12 C, 50 -> 63         11 agree in hold
+    lr9896  R1b   4321 (3457)     0                  no hold (+6 / +12 / +24 C)                 -
+    dl9897  R1b   7200 (5760)     0                  T_spindle_front +6 C, 6120 -> 6133         13 agree in hold
+
+0 MET: a hold on 4 of 5 (lr9896 none, not scored).  1 MET: 50 of 50 cases in hold agree (100 %;
+the C's FREEZE 38, SECOND 12, at rows 8-11 from the plant), mismatch 0, false 0, no case out of
+hold.  BASE on the 50: 22 nothing, 26 a FREEZE at rows 49-58 (the frozen reading's run rule, its
+hold lost), 2 a FREEZE at row 11 (1 = the C's).  2 MET: again 0.  3 MET: 0 diff rows on the five
+healthy frames, no block FREEZE row.  4 MET (run before the bar, above).
+VERDICT: KEPT.
 """
 
 from __future__ import annotations
