@@ -64,12 +64,12 @@ commit 7036611b, the fresh records simulated after it by this bench, ``cases /tm
 cr9895 lr9896`` and ``cases /tmp/st99b/fresh2 dl9894 dl9897`` in two processes, once; 38.2 + 47.2 s
 CPU, the making included)::
 
-    record  test  rows (lead-in)  healthy diff rows  planted (sensor, size, onset -> hold)     held cases
-    lr9893  R1b   4321 (3457)     0                  T_spindle_front +6 C, 3673 -> 3692         13 agree in hold
-    dl9894  R1b   7200 (5760)     0                  T_spindle_front +6 C, 6120 -> 6137         13 agree in hold
-    cr9895  C10   202 (0)         0                  T_nc_spindle_motor +12 C, 50 -> 63         11 agree in hold
-    lr9896  R1b   4321 (3457)     0                  no hold (+6 / +12 / +24 C)                 -
-    dl9897  R1b   7200 (5760)     0                  T_spindle_front +6 C, 6120 -> 6133         13 agree in hold
+    record  test  rows (lead-in)  healthy diff  planted (sensor, size, onset -> hold)     held cases
+    lr9893  R1b   4321 (3457)     0             T_spindle_front +6 C, 3673 -> 3692         13 agree in hold
+    dl9894  R1b   7200 (5760)     0             T_spindle_front +6 C, 6120 -> 6137         13 agree in hold
+    cr9895  C10   202 (0)         0             T_nc_spindle_motor +12 C, 50 -> 63         11 agree in hold
+    lr9896  R1b   4321 (3457)     0             no hold (+6 / +12 / +24 C)                 -
+    dl9897  R1b   7200 (5760)     0             T_spindle_front +6 C, 6120 -> 6133         13 agree in hold
 
 0 MET: a hold on 4 of 5 (lr9896 none, not scored).  1 MET: 50 of 50 cases in hold agree (100 %;
 the C's FREEZE 38, SECOND 12, at rows 8-11 from the plant), mismatch 0, false 0, no case out of
