@@ -125,8 +125,6 @@ def _hold(at_start, ss, frame, start, names):
 
 def cases(root: str, *records: str) -> None:
     """The ``cases`` lines (module doc)."""
-    from bench_cmon92 import planted
-
     from thermocomp.apps.deploy.export.watch import FREEZE
 
     base_root = Path(root).resolve()
@@ -147,16 +145,8 @@ def cases(root: str, *records: str) -> None:
         if hold is None:
             continue
         df, bumped_sensor, _, row, three = hold
-        tally, again = {}, 0
-        for sensor in [n for n in names if n != bumped_sensor]:
-            got = bench_st99._case(copy.deepcopy(three), planted(df, row - LEAD + 1, (sensor,), "freeze"))
-            kind = bench_st99._kind(got)
-            key = f"{kind}{' in hold' if got['in_hold'] else ''}"
-            tally[key] = tally.get(key, 0) + 1
-            again += got["again"]
-            print(f"  {row} frozen {sensor:<20} C {bench_st98._said(got['c'], names):<28} ST "
-                  f"{bench_st98._said(got['st'], names):<28} BASE {bench_st98._said(got['base'], names):<28} "
-                  f"{kind:<8} in hold {got['in_hold']!s:<5} again {got['again']}", flush=True)
+        tally = {}
+        again = bench_st99.held_cases(three, df, row, bumped_sensor, names, tally)
         print(f"  {record} held: {tally}; again {again}", flush=True)
 
 
