@@ -77,6 +77,12 @@ hold.  BASE on the 50: 22 nothing, 26 a FREEZE at rows 49-58 (the frozen reading
 hold lost), 2 a FREEZE at row 11 (1 = the C's).  2 MET: again 0.  3 MET: 0 diff rows on the five
 healthy frames, no block FREEZE row.  4 MET (run before the bar, above).
 VERDICT: KEPT.
+
+Traced after the score (lr9896, now seen; /tmp/st99b scratch): its no-hold is st96's, not st99's.
+T_spindle_front +6 °C from 3673: the C's BLIND_OUT of it at 3686, held to its BACK at 3741; the
+block and BASE silent on every row (no flag, ``mon_held`` -1, not lost).  +6 °C on T_motor: the C's
+BLIND_OUT at 3686 too (the block not holding it); on T_amb / T_spindle_rear / T_table the C's first
+is a DRIFT_OUT of another sensor or a JUMP.  A next stop: why the block misses that BLIND_OUT.
 """
 
 from __future__ import annotations
