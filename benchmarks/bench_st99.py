@@ -188,10 +188,28 @@ def _kind(got: dict) -> str:
     return "as BASE" if got["st"] == got["base"] and not got["in_hold"] else "mismatch"
 
 
-def cases(root: str, *records: str) -> None:
-    """The ``cases`` lines (module doc)."""
+def held_cases(state, frame, row: int, held: str, names: list, tally: dict) -> int:
+    """From ``state`` (the three ``LEAD`` rows before the hold's first ``row``), each monitored
+    sensor but ``held`` frozen in turn on ``frame`` (bench_cmon92's ``planted``): a line per case,
+    its class counted into ``tally``; the cases' ``again`` summed."""
     from bench_cmon92 import planted
 
+    again = 0
+    for sensor in [n for n in names if n != held]:
+        got = _case(copy.deepcopy(state), planted(frame, row - LEAD + 1, (sensor,), "freeze"))
+        kind = _kind(got)
+        key = f"{kind}{' in hold' if got['in_hold'] else ''}"
+        tally[key] = tally.get(key, 0) + 1
+        again += got["again"]
+        print(f"  {row} frozen {sensor:<20} C {bench_st98._said(got['c'], names):<28} ST "
+              f"{bench_st98._said(got['st'], names):<28} "
+              f"BASE {bench_st98._said(got['base'], names):<28} "
+              f"{kind:<8} in hold {got['in_hold']!s:<5} again {got['again']}", flush=True)
+    return again
+
+
+def cases(root: str, *records: str) -> None:
+    """The ``cases`` lines (module doc)."""
     from thermocomp.apps.deploy.export.watch import FREEZE
 
     base_root = Path(root).resolve()
@@ -218,16 +236,7 @@ def cases(root: str, *records: str) -> None:
                 if i in marks:
                     at[marks[i]] = copy.deepcopy(three)
         for (row, held), state in at.items():
-            for sensor in [n for k, n in enumerate(names) if k != held]:
-                got = _case(copy.deepcopy(state), planted(frame, row - LEAD + 1, (sensor,), "freeze"))
-                kind = _kind(got)
-                key = f"{kind}{' in hold' if got['in_hold'] else ''}"
-                tally[key] = tally.get(key, 0) + 1
-                again += got["again"]
-                print(f"  {row} frozen {sensor:<20} C {bench_st98._said(got['c'], names):<28} ST "
-                      f"{bench_st98._said(got['st'], names):<28} "
-                      f"BASE {bench_st98._said(got['base'], names):<28} "
-                      f"{kind:<8} in hold {got['in_hold']!s:<5} again {got['again']}", flush=True)
+            again += held_cases(state, frame, row, names[held], names, tally)
         print(f"  {record} held: {tally or '-'}; again {again}", flush=True)
 
 

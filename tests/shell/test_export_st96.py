@@ -26,14 +26,15 @@ def _held(v) -> int:
     return -2 if v["mon_lost"] else int(v["mon_held"])
 
 
-def bumped(frame, sensor: str):
-    """``frame`` with ``sensor`` bumped smoothly from ``START``: up ``RISE_C`` over ``RISE`` rows,
-    held ``HOLD`` rows, down again; and the bump's last row."""
+def bumped(frame, sensor: str, start: int = START, size: float = RISE_C):
+    """``frame`` with ``sensor`` bumped smoothly from ``start``: up ``size`` (°C) over ``RISE``
+    rows, held ``HOLD`` rows, down again; and the bump's last row (benchmarks/bench_st99b.py
+    plants it in fresh records)."""
     df = frame.copy()
-    rise = RISE_C * (1 - np.cos(np.pi * np.arange(RISE) / RISE)) / 2
-    bump = np.concatenate([rise, np.full(HOLD, RISE_C), rise[::-1]])
-    df.loc[START:START + len(bump) - 1, sensor] += bump
-    return df, START + len(bump) - 1
+    rise = size * (1 - np.cos(np.pi * np.arange(RISE) / RISE)) / 2
+    bump = np.concatenate([rise, np.full(HOLD, size), rise[::-1]])
+    df.loc[start:start + len(bump) - 1, sensor] += bump
+    return df, start + len(bump) - 1
 
 
 def _stepped(ss, block, frame, kept=_held):

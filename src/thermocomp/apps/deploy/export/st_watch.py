@@ -59,7 +59,14 @@ Per sample, of each monitored sensor ``k`` (the input ``MON_INPUT[k]``, the C's 
   once for both paths (``mon_fpast``: the run past ``MON_DITHER_RUN``, or ``MON_BLIND_RUN`` of
   one no other predicts; ``mon_fnew``: its first sample past them): ``FREEZE`` (``BLIND``) there,
   once a run, where no rule named the sample, of a sensor the block does not hold re-referenced
-  out (``mon_out``).  Not the field's rule: it needs the set the C judges.
+  out (``mon_out``).  Not the field's rule: it needs the set the C judges;
+* (st99) while the block holds a ``BLIND_OUT`` (the C's set without it, ``mon_fset``), st98's
+  freeze judged in that set (its prediction ``MON_OUT_SELF`` / ``MON_OUT_SCALE``, its warning band
+  ``MON_OUT_WARN``, "no other predicts" read there too): the C's second out, ``FREEZE`` where it
+  holds it (``MON_OUT_FREEZE_HELD``: the set of the two had, fixed per pair), else ``SECOND``;
+  and the hold judged on past one sensor at its warning band, to where the C could act (one at
+  its alarm band, ``MON_FOLLOW_OTHERS`` at their warning band, a stepped error).  A freeze named
+  by the field's rule is named once a run (``mon_fpast`` kept to the run's end).
 
 ``mon_flag`` says the sample's fault, ``mon_rule`` its rule (the C's ``mon_rule`` codes, named
 by ``TC_MONITOR_REASONS``) and ``mon_sensor`` its monitored sensor ``k`` (-1: none): the first,
@@ -81,12 +88,13 @@ the sensor continuous with its last reading and a spike's return undoes it; a pa
 the block parts from the C after the pair's sample, as after any jump the C excludes).  The block
 keeps no count of the sensors the C holds out (it cannot tell the C's re-admission): a pair is
 judged as the C judges it with none out but the jumpers.  The freeze with a
-sensor out, the drift, the re-admission and the rest judge a sensor by the others' prediction
-of it over a set the block does not know (the POD): not in the ST, they stay with the served model
-(``provenance.not_in_code``).  (st94b) The stepped self-prediction error is judged while the
-field is whole only: from the first exclusion the block flags (a jump, a dropout, a reading beyond range, a
-stepped error not followed to its ``BACK``) to the campaign's end the C judges it with a sensor out
-(or re-admitted by a band the block does not hold), and the block does not; that flag marks the row
+sensor out (but a ``BLIND_OUT`` the block holds: st99), the drift, the re-admission and the
+rest judge a sensor by the others' prediction of it over a set the block does not know (the
+POD): not in the ST, they stay with the served model (``provenance.not_in_code``).  (st94b)
+The stepped self-prediction error is judged while the field is whole only: from the first
+exclusion the block flags (a jump, a dropout, a reading beyond range, a stepped error not
+followed to its ``BACK``) to the campaign's end the C judges it with a sensor out (or
+re-admitted by a band the block does not hold), and the block does not; that flag marks the row
 its judgement ends (st95b: or, while one is out, a rule named or its reading standing still).
 """
 
@@ -109,6 +117,7 @@ from .watch import (
     MISSING_FIRST,
     OFF_RANGE,
     RANGE,
+    SECOND,
     SETTLED,
     SPIKE,
     STEP_OUT,
@@ -208,8 +217,8 @@ def blind_constants(watch: dict, n: int, stepped: bool, literal, constant) -> li
     # (the C's candidates: in, no other predicts it, its error evidence, enough left without it)
     blinds = [u for u in range(n) if judge and not judged[u] and not warned[u]
               and n - 1 >= watch["min_active"]]
-    self_m, scale, judging, warn, alarm = (np.zeros((max(len(blinds), 1), n, n)),
-                                           *(np.zeros((max(len(blinds), 1), n)) for _ in range(4)))
+    self_m, scale, judging, warn, alarm, second = (np.zeros((max(len(blinds), 1), n, n)),
+                                                   *(np.zeros((max(len(blinds), 1), n)) for _ in range(5)))
     for b, u in enumerate(blinds):
         out = np.arange(n) == u
         M, lu = mon._operator(out)
@@ -217,6 +226,10 @@ def blind_constants(watch: dict, n: int, stepped: bool, literal, constant) -> li
         scale[b] = np.where(~out & (lu < mon.max_lev), 1.0 / np.maximum(1.0 - lu, 1e-12), 0.0)
         judging[b] = (scale[b] > 0) & ~mon.warn_only
         warn[b], alarm[b] = mon._bands(~out)
+        # (st99) a freeze with it out: the second out where the C holds it (one the others
+        # predict, the set of the two had: cmon85's _second_held, static per pair), else SECOND
+        second[b] = [k != u and mon.ported[k] and mon.solve and FREEZE in mon.seconds
+                     and mon._operator(out | (np.arange(n) == k)) is not None for k in range(n)]
     field = (watch.get("warning") if int(watch.get("exclude_level", 2)) == 1 else watch.get("alarm"))
     nb = len(blinds)
     w = max(int(watch.get("window", 1)), 1)
@@ -241,7 +254,9 @@ def blind_constants(watch: dict, n: int, stepped: bool, literal, constant) -> li
             constant("MON_OUT_SCALE", scale.tolist(), (nb, n)),
             constant("MON_OUT_JUDGING", judging.astype(int).tolist(), (nb, n), "INT"),
             constant("MON_OUT_WARN", warn.tolist(), (nb, n)),
-            constant("MON_OUT_ALARM", alarm.tolist(), (nb, n))]
+            constant("MON_OUT_ALARM", alarm.tolist(), (nb, n)),
+            constant("MON_OUT_FREEZE_HELD", second.astype(int).tolist(), (nb, n), "INT"),
+            f"    MON_FOLLOW_OTHERS : INT := {int(watch.get('new_state_others', 2))};"]
 
 
 def constants(watch: dict, literal, constant) -> list[str]:
@@ -252,7 +267,7 @@ def constants(watch: dict, literal, constant) -> list[str]:
              ("DROPOUT", DROPOUT), ("MISSING_FIRST", MISSING_FIRST), ("OFF_RANGE", OFF_RANGE),
              ("RANGE", RANGE), ("SPIKE", SPIKE), ("BENT", BENT),
              ("STEP_OUT", STEP_OUT), ("BLIND", BLIND), ("BLIND_OUT", BLIND_OUT),
-             ("SETTLED", SETTLED), ("FREEZE", FREEZE))
+             ("SETTLED", SETTLED), ("FREEZE", FREEZE), ("SECOND", SECOND))
     # (st94) no bound where the export has none (before step93, a sensor the others predict):
     # the largest LREAL, as ST has no infinity
     bends = np.asarray(watch.get("bend_lim", []) if watch.get("bent") else [np.inf] * n, float)
@@ -371,6 +386,8 @@ VARS = """    mon_last : ARRAY[{nm}] OF LREAL;
     mon_fnew : ARRAY[{nm}] OF BOOL;
     mon_froze : INT;
     mon_still : BOOL;
+    mon_fset : INT;
+    mon_warned : INT;
 """
 
 # before the refusal: the sample's monitored readings judged (the block's first == a campaign's)
@@ -405,6 +422,12 @@ IF first THEN
     mon_held := -1;
     mon_held_set := -1;
 END_IF;
+(* (st99) the set the C judges a freeze by: every sensor in (-1), or without the BLIND_OUT *)
+(* the block holds (its set, MON_OUT_SELF's): the C's second out *)
+mon_fset := -1;
+IF mon_held >= 0 AND NOT mon_lost THEN
+    mon_fset := mon_held_set;
+END_IF;
 (* a gap in time: each step judged as that many one-sample steps, as the C *)
 mon_span := 1.0;
 IF has_time AND mon_t_known AND NOT first THEN
@@ -427,10 +450,15 @@ FOR mk := 0 TO MON_N - 1 DO
     END_IF;
     (* its run past the C's run rules (MON_DITHER_RUN: a reading that dithers; MON_BLIND_RUN: *)
     (* one no other predicts), whatever the block's field; (st98b) mon_fnew: its first sample *)
+    (* (st99: "no other predicts" in the set in force, mon_fset) *)
+    mon_still := MON_JUDGED[mk] = 1;
+    IF mon_fset >= 0 THEN
+        mon_still := MON_OUT_SCALE[mon_fset, mk] > 0.0;
+    END_IF;
     mon_ev := mon_frun[mk] > MON_DITHER_RUN[mk];
-    mon_ev := mon_ev OR (MON_JUDGED[mk] = 0 AND mon_frun[mk] > MON_BLIND_RUN[mk]);
+    mon_ev := mon_ev OR (NOT mon_still AND mon_frun[mk] > MON_BLIND_RUN[mk]);
     mon_fnew[mk] := mon_ev AND NOT mon_fpast[mk];
-    mon_fpast[mk] := mon_ev;
+    mon_fpast[mk] := mon_ev OR (mon_fpast[mk] AND mon_frun[mk] > 0);    (* (st99) or named *)
     IF NOT (mon_x >= -U_LIMIT[j] AND mon_x <= U_LIMIT[j]) THEN
         IF mon_rule = 0 THEN
             mon_sensor := mk;
@@ -755,22 +783,35 @@ IF MON_STEP_JUDGE AND NOT mon_lost THEN
     (* (st98) the C's freeze with every sensor in, none held out: a reading standing still past *)
     (* its run (MON_BLIND_RUN of one no other predicts, MON_DITHER_RUN of one whose reading *)
     (* dithers), or, of one the others predict, MON_SEEN_RUN samples while their prediction *)
-    (* of it moved by its warning band since the run began; the first frozen named *)
+    (* of it moved by its warning band since the run began; the first frozen named; (st99) *)
+    (* also of one in while a BLIND_OUT is held, by the set without it (mon_fset) *)
     mon_froze := -1;
     FOR mk := 0 TO MON_N - 1 DO
         mon_x := mon_d[mk] - mon_e[mk];    (* the others' prediction of it (MON_JUDGED) *)
+        mon_ev := MON_JUDGED[mk] = 1;
+        mon_lim := MON_WARN[mk];
+        IF mon_fset >= 0 THEN
+            mon_x := 0.0;
+            FOR mj := 0 TO MON_N - 1 DO
+                mon_x := mon_x + MON_OUT_SELF[mon_fset, mk, mj] * mon_d[mj];
+            END_FOR;
+            mon_x := mon_d[mk] - (mon_d[mk] - mon_x) * MON_OUT_SCALE[mon_fset, mk];
+            mon_ev := MON_OUT_SCALE[mon_fset, mk] > 0.0;
+            mon_lim := MON_OUT_WARN[mon_fset, mk];
+        END_IF;
         IF mon_frun[mk] = 1 THEN
             mon_fpred[mk] := mon_x;
         END_IF;
-        IF mon_frun[mk] > 0 AND mon_was < 0 AND mon_froze < 0 THEN
+        IF mon_frun[mk] > 0 AND (mon_was < 0 OR mon_fset >= 0) AND mk <> mon_was AND mon_froze < 0 THEN
             mon_off := mon_x - mon_fpred[mk];
             IF mon_off < 0.0 THEN
                 mon_off := -mon_off;
             END_IF;
-            mon_ev := MON_JUDGED[mk] = 1 AND mon_off >= MON_WARN[mk];
+            mon_ev := mon_ev AND mon_off >= mon_lim;
             mon_ev := mon_fpast[mk] OR (mon_ev AND mon_frun[mk] >= MON_SEEN_RUN[mk]);
             IF mon_ev THEN
                 mon_froze := mk;
+                mon_fpast[mk] := TRUE;    (* (st99) named once a run: not by its run again *)
             END_IF;
         END_IF;
     END_FOR;
@@ -788,7 +829,14 @@ IF MON_STEP_JUDGE AND NOT mon_lost THEN
         IF mon_rule = 0 THEN
             mon_sensor := mon_culprit;
             mon_rule := RULE_BLIND;
-            IF mon_froze >= 0 AND MON_FREEZE_HELD[mon_culprit] = 1 THEN
+            IF mon_froze >= 0 AND mon_fset >= 0 THEN
+                (* (st99) the second out beside the BLIND_OUT held: held where the C has the *)
+                (* set of the two (MON_OUT_FREEZE_HELD), else the C's SECOND *)
+                mon_rule := RULE_SECOND;
+                IF MON_OUT_FREEZE_HELD[mon_fset, mon_culprit] = 1 THEN
+                    mon_rule := RULE_FREEZE;
+                END_IF;
+            ELSIF mon_froze >= 0 AND MON_FREEZE_HELD[mon_culprit] = 1 THEN
                 mon_rule := RULE_FREEZE;
             ELSIF mon_froze < 0 AND MON_STEP_HELD[mon_culprit] = 1 THEN
                 mon_rule := RULE_STEP_OUT;
@@ -902,6 +950,7 @@ IF MON_STEP_JUDGE AND NOT mon_lost THEN
                 END_FOR;
             END_FOR;
             mon_ok := TRUE;
+            mon_warned := 0;
             FOR mk := 0 TO MON_N - 1 DO
                 IF mb < 0 THEN
                     (* the C's _judge (the band its last errors all reach), _explaining's z *)
@@ -928,10 +977,14 @@ IF MON_STEP_JUDGE AND NOT mon_lost THEN
                     END_IF;
                 ELSE
                     (* one held out by its BLIND_OUT: where the C, judging the set without it, *)
-                    (* may take a second out or let it back another way (a stepped error, a *)
-                    (* sensor at its warning band: _stepped, _drift, _follow_field), no more *)
+                    (* may take a second out or let it back another way (a stepped error, *)
+                    (* _stepped; (st99) a sensor at its alarm band, _drift's with one out by *)
+                    (* the field; MON_FOLLOW_OTHERS at their warning band, _follow_field), no more *)
                     IF MON_OUT_JUDGING[mon_set, mk] = 1 AND mon_min[mk] >= MON_OUT_WARN[mon_set, mk] THEN
-                        mon_ok := FALSE;
+                        mon_warned := mon_warned + 1;
+                        IF mon_min[mk] >= MON_OUT_ALARM[mon_set, mk] OR mon_warned >= MON_FOLLOW_OTHERS THEN
+                            mon_ok := FALSE;
+                        END_IF;
                     END_IF;
                     mon_x := mon_eu[mk] - mon_prev_eu[mk];
                     IF mon_x < 0.0 THEN
