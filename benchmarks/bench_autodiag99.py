@@ -3,8 +3,10 @@ autodiag99; audit99's finding 2).
 
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``)::
 
+    python benchmarks/bench_autodiag99.py simulate ROOT RECORD ...    # fresh mt<seed> / yr<seed> into ROOT/data
     python benchmarks/bench_autodiag99.py diag ROOT OUT RECORD ...    # diagnose model=mlr per record
     python benchmarks/bench_autodiag99.py trace ROOT OUT RECORD ...   # auto main vs auto + diagnosed
+    python benchmarks/bench_autodiag99.py deployed ROOT OUT RECORD    # the rule's model streamed, exported
 
 RECORD: ``mt<seed>`` (an mtc68 record simulated by ``bench_audit99.py machine``, read from
 ``ROOT/data/mt<seed>``, its last run held out by ``data.test_fraction=0.1``) or a record of the
@@ -42,6 +44,7 @@ Measured: see the end of this docstring (filled in after the runs).
 from __future__ import annotations
 
 import json
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -53,14 +56,17 @@ HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 
 MT_HOLD = "data.test_fraction=0.1"        # mtc68's 8 runs all train: the last held out (bench_audit99)
+YEAR = ["sim=yearround_spindle", "sim.generator.n_campaigns=12"]   # the clean fresh kind (yr<seed>)
 
 
 def _overrides(root: str, name: str) -> list[str]:
     """The record's overrides (model chosen by the caller)."""
     from bench_automore69 import OVERRIDES
 
-    if name.startswith("mt"):
+    if re.fullmatch(r"mt\d+", name):
         return [f"data.path={Path(root).resolve() / 'data' / name}", MT_HOLD]
+    if re.fullmatch(r"yr\d+", name):                  # its manifest holds its test campaigns
+        return [f"data.path={Path(root).resolve() / 'data' / name}"]
     return [o.format(root=Path(root).resolve()) for o in OVERRIDES[name]]
 
 
@@ -69,7 +75,8 @@ def diag(root: str, out: str, *records: str) -> None:
     for name in records:
         where = Path(out, name, "diagnose").resolve()
         if not (where / "diagnosis.json").exists():
-            done = subprocess.run([sys.executable, "-m", "thermocomp", "diagnose", *_overrides(root, name),
+            given = [o for o in _overrides(root, name) if not o.startswith("model.candidates=")]
+            done = subprocess.run([sys.executable, "-m", "thermocomp", "diagnose", *given,
                                    "model=mlr", "track=false", "plots=none", f"out={where}"],
                                   capture_output=True, text=True)
             print(f"{name}: diagnose exit {done.returncode}; "
@@ -153,6 +160,72 @@ def trace(root: str, out: str, *records: str) -> None:
             for t in rep["main"]) + f"; weights {rep.get('rule_weights', rep['main_weights'])}", flush=True)
 
 
+def deployed(root: str, out: str, name: str) -> None:
+    """The rule's fitted compensator on ``name`` deployed as ``replay`` deploys it: its plain
+    stream against the batch test prediction, the exported arrays' numpy mirror (the reference
+    the C / ST are read against, :class:`~thermocomp.apps.deploy.export.Simulator`) against the
+    stream, and whether ``exported_files`` writes C and ST (module doc: deployed = scored)."""
+    import bench_auto_rank as rank
+    from sklearn.base import clone
+
+    from thermocomp.apps.deploy.export import Simulator, exported_files, state_space
+    from thermocomp.apps.deploy.export.members import described, members
+    from thermocomp.apps.deploy.streaming import replay
+    from thermocomp.apps.diagnose import AugmentedRegressor
+    from thermocomp.core.models import MLR
+    from thermocomp.core.models.auto import AutoRegressor
+    from thermocomp.shell.builders import build_compensator, deploy_stream
+
+    found = accepted(Path(out, name, "diagnose").resolve())
+    sys.argv[2:] = _overrides(root, name)
+    cfg, ds, train = rank.setup(_overrides(root, name))
+    auto = build_compensator(cfg, ds=ds)
+    aug = AugmentedRegressor(MLR(), effects={t: f["effects"] for t, f in found.items()},
+                             alpha={t: f["alpha"] for t, f in found.items()})
+    plus = _auto_with({t: aug.for_target(t) for t in found})(**auto.estimator.get_params(deep=False))
+    rule = clone(auto).set_params(estimator=plus).fit(train)
+    for est in rule.estimators_.values():
+        est.__class__ = AutoRegressor       # fitted as AutoRegressor fits: the src class streams it
+    meas, pred = rank._test(rule, ds)
+    stream = deploy_stream(cfg, rule, train)
+    ss = state_space(stream)
+    sim = Simulator(ss)
+    targets = list(stream.targets_)
+    for c in ds.ids("test"):
+        df = ds.campaigns[c]
+        streamed = replay(stream, df)[targets].to_numpy(float)      # the predicted error
+        sim.reset()
+        mirror = np.array([sim.step(u, t) for u, t in zip(df[stream.columns_].to_numpy(float),
+                                                           df["time"].to_numpy(float))])
+        batch = np.column_stack([pred[t] for t in targets])
+        print(f"{name} {c}: max|stream-batch| {np.max(np.abs(streamed - batch)):.3g}, "
+              f"max|mirror+stream| {np.max(np.abs(mirror + streamed)):.3g} um (the code's C = -E); streamed RMSE "
+              + ", ".join(f"{t} {np.sqrt(np.mean((meas[t] - streamed[:, i]) ** 2)):.3f}"
+                          for i, t in enumerate(targets)), flush=True)
+    for fmt in ("c", "st"):
+        files = exported_files(stream, fmt)
+        print(f"export {fmt}: {sorted(files)} ({sum(len(v) for v in files.values())} chars)", flush=True)
+    for t, est in rule.estimators_.items():
+        print(f"  {t}: {described(members(est))}", flush=True)
+
+
+def simulate(root: str, *records: str) -> None:
+    """Simulate fresh records into ROOT/data: ``mt<seed>`` as bench_audit99's ``machine`` does
+    (mtc68, 8 runs, the B-angle effect planted), ``yr<seed>`` a 12-campaign year-round spindle
+    (:data:`YEAR`, nothing planted: the clean kind)."""
+    from bench_audit86b import stage
+    from bench_audit99 import MTC, _targets
+
+    _targets("mtc68.")
+    for name in records:
+        data = Path(root).resolve() / "data" / name
+        if data.exists():
+            continue
+        kind = MTC if name.startswith("mt") else YEAR
+        rc, said = stage("simulate", *kind, f"seed={name[2:]}", f"data.path={data}")
+        print(f"{name}: simulate exit {rc} {said}", flush=True)
+
+
 def _scores(rank, comp, ds) -> dict:
     meas, pred = rank._test(comp, ds)
     return {t: float(np.sqrt(np.mean((meas[t] - pred[t]) ** 2))) for t in meas}
@@ -161,7 +234,7 @@ def _scores(rank, comp, ds) -> dict:
 def main(argv: list[str]) -> int:
     from _cli import run_commands
 
-    return run_commands(__doc__, {"diag": diag, "trace": trace}, argv)
+    return run_commands(__doc__, {"simulate": simulate, "diag": diag, "trace": trace, "deployed": deployed}, argv)
 
 
 if __name__ == "__main__":
