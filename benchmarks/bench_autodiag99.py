@@ -3,7 +3,7 @@ autodiag99; audit99's finding 2).
 
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``)::
 
-    python benchmarks/bench_autodiag99.py simulate ROOT RECORD ...    # fresh mt<seed> / yr<seed> into ROOT/data
+    python benchmarks/bench_autodiag99.py simulate ROOT RECORD ...    # fresh mt<seed> / yr<seed>: ROOT/data
     python benchmarks/bench_autodiag99.py diag ROOT OUT RECORD ...    # diagnose model=mlr per record
     python benchmarks/bench_autodiag99.py trace ROOT OUT RECORD ...   # auto main vs auto + diagnosed
     python benchmarks/bench_autodiag99.py deployed ROOT OUT RECORD    # the rule's model streamed, exported
@@ -38,7 +38,47 @@ seen trace meets A1 and A2):
   C / ST export, as ``thermocomp export`` of diagnose's refit); else the rule goes behind a key,
   off by default.
 
-Measured: see the end of this docstring (filled in after the runs).
+TRACED (no src change): the rule is traced with diagnose's effects handed in; built, it needs the
+closed loop's search on auto's train rows, which ``apps.diagnose.diagnosis._diagnose`` does not
+offer (``require_split(ds, "test")``: it reads the test split's temperatures for sensor health and
+scores the test) and ``core`` may not import (``AutoRegressor.fit`` is core; the search is apps):
+the hook is ``shell.config.candidates.build_candidates`` / the run stage, plus ``AutoRegressor.
+for_target`` handing each candidate its ``for_target`` (the trace's ``AutoPlus``, 4 lines).
+
+Measured (2026-12-06, a34a16b7 + this bench; nice, ``OMP_NUM_THREADS=1``, 2 cores shared, load 7-10;
+ROOT /tmp/autodiag99/root: bench_auto96's records linked, mt9888 from /tmp/audit99/root; OUT
+/tmp/autodiag99/out).  Test RMSE (um), per target: MLR / diagnose's refit alone / auto main -> rule
+(rule / main); ``diag`` seconds = diagnose's own (diagnosis_*.json ``seconds``)::
+
+  SEEN
+  mt9888  E_X 16.605 / 3.041 / 10.277 -> 3.225 (0.314)  E_Y 0.427 / 0.264 / 0.283 -> 0.252 (0.888)
+          E_Z 16.288 / 3.325 / 10.612 -> 3.325 (0.313)          (diagnose 77.9 s)
+  grind_a, grind_b, hmc: nothing accepted -> no candidate, auto = main (diagnose 24.4 / 23.2 / 26.2 s)
+          grind_a main E_X 0.451 E_Y 0.499 E_Z 0.448
+  lab records with logged states (accepted: products / lags of S_ signals, low-pass dynamics, a square):
+  iso_a   E_Y1 0.414 -> 0.340 (0.820), E_Tilt_A 0.510 -> 0.198 (0.388), E_X1 E_Z E_Tilt_B 1.000 (36.4 s)
+  mtc_a   E_dX 5.754 -> 1.861 (0.323), E_dY 0.521 -> 0.470 (0.902), E_dZ 7.012 -> 1.665 (0.237) (40.5 s)
+  tsc_a2  E_dX1 0.788, E_dZ1 1.000 (diagnosed alone 1.541, auto 0.560: not voted), E_dX2 0.974,
+          E_dZ2 6.530 -> 1.609 (0.246)                           (44.7 s)
+  lab5401 E_X 2.639 -> 2.182 (0.827), E_Y E_Z 1.000             (3.9 s)
+  FRESH (scored once, after 8ea22bcd)
+  mt9898  E_X 13.746 / 4.029 / 10.275 -> 5.103 (0.497)  E_Y 0.490 / 0.245 / 0.222 -> 0.225 (1.012)
+          E_Z 14.469 / 2.478 / 8.309 -> 2.478 (0.298)           (17.8 s)
+  mt9899  E_X 11.494 / 3.370 / 5.923 -> 3.370 (0.569)   E_Y 0.441 / 0.358 / 0.352 -> 0.352 (1.001)
+          E_Z 12.784 / 2.748 / 5.385 -> 2.748 (0.510)           (8.3 s)
+  yr9900  nothing accepted: auto = main (E_X 0.788, E_Y 0.831, E_Z 0.849)   (1.6 s)
+
+Bar: A1 met (E_X 3.225 <= 3.34, E_Z 3.325 <= 3.66).  A2: the 1 % clause met on every seen record
+(no target above 1.000 x main); "nothing accepted" met on grind_a (and grind_b, hmc) but not on
+iso_a / mtc_a (nor tsc_a2, lab5401): these lab records log machine states, and what diagnose
+accepted there lowered the test error, never raised it.  A3 (fresh once): yr9900 met; mt9899 met
+(every accepted target within 10 % of diagnose's refit); mt9898 E_Z met, E_X NOT (5.103 = 1.27 x
+diagnose's 4.029, though 0.497 x main: the votes gave the diagnosed member 0.742, hammerstein
+0.207), E_Y 1.012 x main.  Deployed = scored (``deployed`` on mt9888): the rule's fitted model
+(blends of hammerstein / mlr / lagbank with the diagnosed member) streamed = batch to 2.84e-14 um,
+the exported arrays' numpy mirror = the stream to 2.13e-14 um, ``exported_files`` writes C and ST
+(the path: ``apps.deploy.export.members`` takes a blend's diagnosed member, ``export.derived`` its
+product) -- streamed RMSE 3.225 / 0.252 / 3.325 as scored.
 """
 
 from __future__ import annotations
@@ -199,7 +239,8 @@ def deployed(root: str, out: str, name: str) -> None:
                                                            df["time"].to_numpy(float))])
         batch = np.column_stack([pred[t] for t in targets])
         print(f"{name} {c}: max|stream-batch| {np.max(np.abs(streamed - batch)):.3g}, "
-              f"max|mirror+stream| {np.max(np.abs(mirror + streamed)):.3g} um (the code's C = -E); streamed RMSE "
+              f"max|mirror+stream| {np.max(np.abs(mirror + streamed)):.3g} um (the code's C = -E); "
+              "streamed RMSE "
               + ", ".join(f"{t} {np.sqrt(np.mean((meas[t] - streamed[:, i]) ** 2)):.3f}"
                           for i, t in enumerate(targets)), flush=True)
     for fmt in ("c", "st"):
@@ -234,7 +275,8 @@ def _scores(rank, comp, ds) -> dict:
 def main(argv: list[str]) -> int:
     from _cli import run_commands
 
-    return run_commands(__doc__, {"simulate": simulate, "diag": diag, "trace": trace, "deployed": deployed}, argv)
+    return run_commands(__doc__, {"simulate": simulate, "diag": diag, "trace": trace,
+                                  "deployed": deployed}, argv)
 
 
 if __name__ == "__main__":
