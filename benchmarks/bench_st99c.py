@@ -121,12 +121,12 @@ def _outcome(log: list, names) -> str:
 def trace(root: str, *records: str) -> None:
     """The ``trace`` lines (module doc)."""
     from test_export_st96 import bumped
-
     from thermocomp.apps.deploy.export.watch import BLIND_OUT
 
     base_root = Path(root).resolve()
     for record in records:
-        ss, frame, lead, start, cid, names, block, base = bench_st98.cell(base_root, record, generators(), BASE)
+        made = bench_st98.cell(base_root, record, generators(), BASE)
+        ss, frame, lead, start, cid, names, block, base = made
         frame = frame.reset_index(drop=True)
         log: list = []
         with Logged(log):
@@ -155,8 +155,8 @@ def trace(root: str, *records: str) -> None:
                     c = c or ((i, names[ck]) if crule == BLIND_OUT else None)
                     st = st or ((i, names[k]) if flag and rule == BLIND_OUT else None)
                     log.clear()
-                print(f"  planted {sensor} +6 C: C BLIND_OUT {c or '-'}, ST {st or '-'} (stopped before: {lost})",
-                      flush=True)
+                print(f"  planted {sensor} +6 C: C BLIND_OUT {c or '-'}, ST {st or '-'} "
+                      f"(stopped before: {lost})", flush=True)
 
 
 def main(argv: list[str]) -> int:
