@@ -36,14 +36,53 @@ of the C's BLIND_OUTs, false 0, healthy diff rows 0; st99b / st98 / st97d lines 
 is built (below: the mend is not small), so the bar is not scored; the fresh lines are main's
 share, measured once after this docstring's commit, the baseline for a next rule.
 
-Seen, traced (2026-12-06, this tree = 90cf3c74's block; ``trace /tmp/st99c/seen lr9896``): the
-block's judgement stops at lead-in row 1867 (``mon_stop_row`` 1868), where the C's drift judgement
-with every sensor in reaches the band (T_head_left), no blind sensor explaining it: lone fault
-T_head_left, resolves, 2 others beyond their warning band >= ``new_state_others`` 2: the C's veto,
-nothing excluded, ``novel`` False, no sensor out, its state as before.  The block ends its
-``BLIND_OUT`` judgement there for the campaign (st96's "a drift judgement it cannot follow",
-st97d's ``mon_stop``) and never judges again; the C judges on: a new thermal state at 2900 (flags
-72), its end, then at 3686 the ``BLIND_OUT`` of the bumped T_spindle_front the block cannot name.
+Measured (2026-12-06, 2 cores shared by up to 8 helpers; this tree's block = 90cf3c74's, diff rows
+0 on every frame).  Fresh, once, after this docstring's bar (commit 2ed6d191; ``trace
+/tmp/st99c/fresh lr9904 dl9905 cr9906``, 31.8 s CPU, the making included; the stop line's warning
+count and the "C's first" note were added after it, on seen records only): no stop on any;
+the C's BLIND_OUT in 3 planted cases, all dl9905 (6134 T_spindle_front, 6132 T_motor, 6129
+T_spindle_front for T_table's bump), the block naming each on the same row and sensor (3 of 3,
+main; the brief's fresh clause is met by main, the records cannot tell a rule from it).
+
+Seen (``trace /tmp/st99c/seen lr9896 lr9893 dl9894 cr9895 dl9897``, 58.0 s CPU; ``trace
+/tmp/st99c/st97d lr9823 dl9821``, 25.5 s; copies of st99b's and st97d's records)::
+
+    record  stop (0-based row), the C there          warned  C BLIND_OUT planted   ST names
+    lr9896  1867: veto (lone T_head_left, 2 others)   3       3                     0
+    lr9823  379: new thermal state                    3       2                     0
+    dl9821  4543: new thermal state                   1       0                     -
+    lr9893  never                                     -       3                     3
+    dl9894  never                                     -       3                     2
+    dl9897  never                                     -       3                     3
+    cr9895  never                                     -       0                     -
+
+(warned: judged sensors at their warning band on the stop's row; ``new_state_others`` 2.)  Of 14
+seen BLIND_OUTs the block names 8, each on the C's row and sensor.  The 6 missed: 4 after the
+stop alone (lr9896 T_spindle_front and T_motor at 3686; lr9823 T_spindle_front 3690, T_table
+3684); 2 after the C's JUMP of the bumped T_table (lr9896 3681, dl9894 6131), the C's BLIND_OUT
+following its BACK (3698, 6142): the block's ``mon_lost`` TRUE there (dl9894: it names the JUMP
+at 6131 and its judgement ends, st94b's documented end), another class than lr9896's.
+
+The place.  lr9896: the C's drift judgement (watch.py ``_drift``) with every sensor in reaches
+the band at 1867 (T_head_left), no blind sensor explaining it; its lone fault T_head_left
+resolves, and 2 other judged sensors are beyond their warning band (``_others`` >=
+``new_state_others``, watch.py line 1367): the veto, nothing excluded, ``novel`` False, no sensor
+out.  The block (st_watch.py ``BLOCK``, the ``mb = MON_BLINDS`` branch, line 862: ``mon_reach AND
+mon_take_set < 0``) cannot tell that veto from the C's new thermal state or ``DRIFT_OUT`` and sets
+``mon_blind_lost`` (st96's rule, st97d's ``mon_stop``); line 853 (``mon_judge := ... NOT
+mon_blind_lost``) never judges a BLIND_OUT again that campaign.  The C judges on: a new state at
+2900 (ended 2910), STEP_OUT / BACK at 2702 / 2714 and 3248 / 3259 (the block names each STEP_OUT),
+then the BLIND_OUT at 3686.
+
+Not mended (TRACED).  Following the C past that row needs its outcome: veto (state unchanged),
+new thermal state (no drift exclusion until a window with every judged sensor within its warning
+band, ``_follow_field``) or ``DRIFT_OUT``.  Telling them apart is ``_lone_fault`` / ``_resolves``
+(an operator with each judged sensor out) and ``_hovers`` (the field's memory): not small.  A
+narrower next rule: where at least ``new_state_others`` + 1 judged sensors are at their warning
+band (lr9896 3, lr9823 3; not dl9821's 1), no ``DRIFT_OUT`` can follow whatever the culprit, only
+a veto or a new state: the block could pause to a window with none at its warning band (the C's
+end of a new state) and judge on; a reach in the pause still ends it.  That moves st97d's
+``mon_stop`` rows (lr9823 380) by design: a next stop's own bar.
 """
 
 from __future__ import annotations
@@ -118,10 +157,20 @@ def _outcome(log: list, names) -> str:
     return "none"
 
 
+def _warned(watch) -> tuple[int, int]:
+    """The judged sensors at their warning band on the C's row (its ``_judge``), and
+    ``new_state_others``: at least one more than it, the C's ``_others`` veto holds whatever its
+    culprit, no ``DRIFT_OUT`` (a veto or a new thermal state only)."""
+    from thermocomp.apps.deploy.export.watch import WARNING
+
+    level, _ = watch._judge()
+    return int((watch._judging() & (level >= WARNING)).sum()), int(watch.a["new_state_others"])
+
+
 def trace(root: str, *records: str) -> None:
     """The ``trace`` lines (module doc)."""
     from test_export_st96 import bumped
-    from thermocomp.apps.deploy.export.watch import BLIND_OUT
+    from thermocomp.apps.deploy.export.watch import BLIND_OUT, RULES
 
     base_root = Path(root).resolve()
     for record in records:
@@ -136,7 +185,7 @@ def trace(root: str, *records: str) -> None:
                 diff += differs
                 v = three.fb.vars
                 if v["mon_stop"]:
-                    stop = (i, int(v["mon_stop_row"]), _outcome(log, names))
+                    stop = (i, int(v["mon_stop_row"]), _outcome(log, names), *_warned(three.sim.watch))
                 elif stop and any(name == "_explaining" for name, _ in log):    # (a drift judgement)
                     kind = _outcome(log, names).split(" (")[0]
                     after.setdefault(kind, []).append(i)
@@ -144,19 +193,24 @@ def trace(root: str, *records: str) -> None:
                 log.clear()
             print(f"{record} {cid}: {len(frame)} fed rows ({lead} lead-in), onset {start}, diff rows {diff}",
                   flush=True)
-            print(f"  stop: {'row %d (mon_stop_row %d), the C: %s' % stop if stop else 'never'}")
+            said = "row %d (mon_stop_row %d), the C: %s; at their warning band %d (new_state_others %d)"
+            print(f"  stop: {said % stop if stop else 'never'}")
             print("  after: " + ("; ".join(f"{k} {len(r)} (first {r[0]})" for k, r in after.items()) or "-"))
             lost = bool(at_start.fb.vars["mon_blind_lost"]) if at_start else None
             for sensor in [n for n, p in zip(names, ss.monitor["predictable"]) if not p]:
                 df, end = bumped(frame, sensor, start)
-                three, c, st = copy.deepcopy(at_start), None, None
+                three, c, st, first, lost_at = copy.deepcopy(at_start), None, None, None, None
                 for i, ((_, _, (flag, rule, k), (_, crule, ck), _), _) in enumerate(
                         three.rows(df.iloc[start:end + 31]), start):
-                    c = c or ((i, names[ck]) if crule == BLIND_OUT else None)
+                    first = first or ((i, RULES[crule]) if crule else None)
+                    if c is None and crule == BLIND_OUT:
+                        c, lost_at = (i, names[ck]), bool(three.fb.vars["mon_lost"])
                     st = st or ((i, names[k]) if flag and rule == BLIND_OUT else None)
                     log.clear()
+                after_other = c and first != (c[0], "BLIND_OUT")     # (the C's first event another)
+                before = f", the C's first {first}, ST mon_lost {lost_at}" if after_other else ""
                 print(f"  planted {sensor} +6 C: C BLIND_OUT {c or '-'}, ST {st or '-'} "
-                      f"(stopped before: {lost})", flush=True)
+                      f"(stopped before: {lost}{before})", flush=True)
 
 
 def main(argv: list[str]) -> int:
