@@ -76,7 +76,7 @@ COMMAND_BENCHES = (
     "bench_restart98", "bench_review95", "bench_review96", "bench_rigdiag70", "bench_settle95",
     "bench_settle96", "bench_speedsq68", "bench_st93", "bench_st93b", "bench_st94", "bench_st94b",
     "bench_st95", "bench_st95b", "bench_st96", "bench_st96b", "bench_st97", "bench_st97b", "bench_st97c",
-    "bench_st97d", "bench_st98", "bench_st98b", "bench_st99", "bench_st99b", "bench_stable67",
+    "bench_st97d", "bench_st98", "bench_st98b", "bench_st99", "bench_st99b", "bench_st99c", "bench_stable67",
     "bench_step93", "bench_step93b", "bench_stranger63", "bench_stranger64", "bench_stranger65",
     "bench_stranger66", "bench_stranger68", "bench_stranger69", "bench_stranger74", "bench_stranger75",
     "bench_stranger76", "bench_stranger77", "bench_stranger78", "bench_stranger80", "bench_stranger81",
