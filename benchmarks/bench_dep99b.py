@@ -32,12 +32,12 @@ with served, 827 ``T_amb`` out: every row 823-829 <= 2.3e-13 µm.
 
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is that tree's)::
 
-    python benchmarks/bench_dep99b.py trace ROOT [LO HI]          # dl9878 ambient, drift rows
+    python benchmarks/bench_dep99b.py trace ROOT [LO HI [RECORD]]  # dl9878 ambient, drift rows
     python benchmarks/bench_dep99b.py cases ROOT RECORD [...]     # bench_mon98's cases
     python benchmarks/bench_dep99b.py compiled ROOT RECORD        # the compiled C's drifts
 
-``trace``: dl9878 (swap99's fresh; simulated and run into ROOT where missing) ambient case, drift
-rows LO..HI-1 (default 815 830): served's out set and events, the C mirror's set, rule and
+``trace``: RECORD's (default dl9878, swap99's fresh; simulated and run into ROOT where missing)
+ambient case, drift rows LO..HI-1 (default 815 830): served's out set and events, the C mirror's set, rule and
 sensor, the readings beyond range, |C - served| (µm).  ``cases`` / ``compiled``: bench_swap99's
 (bench_mon98's healthy / drift / ambient cases; the compiled C, gcc -Werror) with :data:`FRESH`
 added to its records.
@@ -64,6 +64,39 @@ B5. a test (tests/shell/test_export_dep99b.py, < 10 s) that fails on 90cf3c74 an
     test_benchmarks_cli pass.
 KEPT if B1-B5 hold (src + C + test + docs); else REFUSED (benchmarks/dep99b_rule.patch, src as
 90cf3c74), the numbers kept here.
+
+Scored (bar 2020e389, the rule 04b32f9f committed after it, before any fresh seed was simulated;
+2026-12-06 12:56-13:07 UTC under a load of 3-8 on 2 cores; main = ``git archive 90cf3c74 src``;
+the fresh simulated and run by main's tree, the rule's read a copy of that ROOT).  CPU (user +
+sys): ``card`` 13.6 / 16.9 s main / rule, ``cases`` tr9876 tr9877 dl9878 92.8 / 101.4 s, fresh
+``cases`` 54.9 / 50.9 s, ``compiled`` dl9878 13.7 s, ``trace`` 7-8 s::
+
+    record  case     main: max|C - served|, rows apart   rule
+    dl9878  healthy  0 µm, 0                              the same
+    dl9878  drift    1.42e-13, 0                          the same; compiled C 1.46e-13
+    dl9878  ambient  19.3, 1 (row 824, SECOND)            1.06e-12, 0; compiled C 1.05e-12, nothing said
+    tr9876  3 cases  0 / 2.84e-14 / 6.22e-12, 0 rows      the same (every line)
+    tr9877  3 cases  0 / 7.11e-14 / 1.08e-12, 0 rows      the same (every line)
+    card    tr9828 / tr9873 (bench_dep99)                 the same (every line, ``diff``)
+    fresh   dl9901 healthy / drift / ambient              0 / 2.84e-14 / 2.84e-14, 0 rows: the same
+    fresh   dl9902 healthy / drift                        0 / 2.84e-14, 0 rows: the same
+    fresh   dl9902 ambient                                3.54 µm, 20 rows: the same (apart on both)
+    fresh   dl9903 healthy / drift / ambient              0 / 2.84e-14 / 2.84e-14, 0 rows: the same
+
+dl9902 ambient, traced after the score (``trace ROOT 993 996 dl9902``, the rule unchanged): at
+drift row 994, ``T_col_back`` and ``T_amb`` (beyond range) out, served's stepped check (cmon86's
+rule: its reason "jump: self-prediction error stepped +2.54 °C in one sample", four others
+alarmed) takes ``T_head_left`` out as the third; the C's ``STEP_OUT`` keeps the two-slot cap:
+``SECOND``, 3.54 µm that row, 0.04-0.09 µm on the rows after, 20 rows apart.  Not the one-sample
+reading jump (``JUMP``) this rule lifts; the same shape of defect in another rule.
+
+B1 MET (19.3 µm, 1 row -> 1.06e-12, 0; compiled C 1.05e-12 ambient, 1.46e-13 drift, nothing
+"not in the code").  B2 MET (every line as main's).  B3 MET (every healthy frame 0 µm, 0 rows).
+B4 MET as worded: no fresh case farther from served on the rule (every line identical to main's);
+the one case apart on both parts at served's stepped-error rule (the C's ``STEP_OUT``), not at a
+reading's jump (note: served words it "jump: self-prediction error stepped").  B5: see the report
+(test_export_dep99b: 2.6 s call, fails on 90cf3c74 with ``SECOND`` at its row 35).
+Next: the stepped rule (``STEP_OUT``) beside two or more out, as here (dl9902's row 994).
 """
 
 from __future__ import annotations
@@ -83,16 +116,16 @@ FRESH = {"dl9901": _dl(9901), "dl9902": _dl(9902), "dl9903": _dl(9903)}
 bench_swap99.RECORDS.update(FRESH)      # swap99's commands read its records: the fresh ones too
 
 
-def trace(root: str, lo: str = "815", hi: str = "830") -> None:
+def trace(root: str, lo: str = "815", hi: str = "830", record: str = "dl9878") -> None:
     """The ``trace`` lines (module doc)."""
     from bench_cmon92 import Stepped
 
     from thermocomp.apps.deploy.export.watch import RULES
 
-    deployed, ss, frame, start, names, drifts = bench_swap99._cell(root, "dl9878")
+    deployed, ss, frame, start, names, drifts = bench_swap99._cell(root, record)
     mon = deployed.monitor
     sensor, full = drifts["ambient"]
-    print(f"dl9878 ambient: {sensor} from fed row {start}; n {len(names)}, modes {mon.pod.n_modes_}, "
+    print(f"{record} ambient: {sensor} from fed row {start}; n {len(names)}, modes {mon.pod.n_modes_}, "
           f"min_active {mon.min_active_}")
     run = Stepped(deployed, ss)
     X = full[ss.inputs].to_numpy(float)
