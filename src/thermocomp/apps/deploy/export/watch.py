@@ -724,7 +724,7 @@ class CodeMonitor:
     def _jump_held(self, j: int) -> bool:
         """(cmon88) ``j``'s jump with one sensor out already held by the code: re-referenced and
         out as the second, as served, where the others predict it and the set is solved."""
-        return JUMP in self.seconds and self._second_kind(j, JUMP) and self._second_held(j)
+        return JUMP in self.seconds and self._second_kind(j, JUMP) and self._second_held(j, JUMP)
 
     def _second_kind(self, j: int, rule: int) -> bool:
         """Whether the code takes ``j`` out beside those out for ``rule``: one the others
@@ -746,8 +746,9 @@ class CodeMonitor:
 
     def _second_held(self, j: int, rule: int = 0) -> bool:
         """(cmon85) ``j`` out (a drift exclusion, a freeze) beside those out: a place free (the
-        second; dep99: any, for a reading beyond range, as served) and the set's operator solved."""
-        return self.solve and (self.out2 < 0 or rule == OFF_RANGE) and self._operator(
+        second; dep99: any, for a reading beyond range, as served; dep99b: and for a jump, which
+        served re-references and takes out whatever the set) and the set's operator solved."""
+        return self.solve and (self.out2 < 0 or rule in (OFF_RANGE, JUMP)) and self._operator(
             ~self._active() | (np.arange(self.n) == j)) is not None
 
     def _put_out(self, j: int) -> None:
