@@ -33,7 +33,7 @@ COMMAND_BENCHES = (
     "bench_auto93d", "bench_auto94", "bench_auto94b", "bench_auto94c", "bench_auto95", "bench_auto95b",
     "bench_auto95c", "bench_auto96", "bench_auto96b", "bench_auto97", "bench_auto98", "bench_auto98b",
     "bench_auto99", "bench_auto_ati58", "bench_auto_hmc59", "bench_auto_hmc60", "bench_auto_vtl60",
-    "bench_autoati75", "bench_autocheck65", "bench_autodiag99", "bench_autofb72", "bench_autoloss68",
+    "bench_autoati75", "bench_autocheck65", "bench_autodiag99", "bench_autodiag99b", "bench_autofb72", "bench_autoloss68",
     "bench_automore69", "bench_autorep65", "bench_autorule69", "bench_badin96", "bench_bar91",
     "bench_bar91b", "bench_between73", "bench_between74", "bench_bits85", "bench_blame95", "bench_blame95b",
     "bench_blame96", "bench_blocks68", "bench_cadence72", "bench_cadence74", "bench_cascade81",

@@ -1,0 +1,143 @@
+"""autodiag99's traced candidate built into ``model=auto`` behind ``model.diagnosed`` (issue 34;
+stop 99, autodiag99b; follow-up of ``bench_autodiag99.py``, TRACED).
+
+Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the tree measured)::
+
+    python benchmarks/bench_autodiag99b.py on ROOT OUT TRACE RECORD       # run model=auto model.diagnosed=true
+    python benchmarks/bench_autodiag99b.py off ROOT OUT BASE RECORD       # key off: this tree vs BASE's src
+    python benchmarks/bench_autodiag99b.py replay ROOT OUT RECORD         # replay of ``on``'s model.pkl
+
+RECORD as bench_autodiag99's (``mt<seed>``: ``ROOT/data/mt<seed>``, its last run held out by
+``data.test_fraction=0.1``; or a record of bench_automore69's table).  ``on`` runs ``thermocomp run
+model=auto model.diagnosed=true`` into ``OUT/<record>/on`` and compares each target's test RMSE
+(metrics.json) and the votes with bench_autodiag99's ``trace`` file ``TRACE/<record>.json``
+(``rule``, ``rule_weights``).  ``off`` runs ``thermocomp run model=auto`` (key off) with this
+tree into ``OUT/<record>/off`` and with ``BASE/src`` (``git archive <base> src conf``) into
+``OUT/<record>/base`` and compares every file the two wrote, byte by byte (``thermocomp.log``:
+its lines without the timings).  ``replay`` runs ``thermocomp replay replay.model=OUT/<record>/
+on/model.pkl`` and compares the streamed test RMSE with ``on``'s metrics.json (deployed = scored).
+
+The rule as built: ``model.diagnosed=true`` (``conf/model/auto.yaml``, default false) gives auto
+one more candidate per target, ``diagnosed`` (``thermocomp.core.models.base.ForTargets``:
+``AutoRegressor.for_target`` passes ``for_target`` on to its candidates, a candidate with nothing
+for a target leaves it out): MLR (``conf/model/mlr.yaml``) with the effects and penalty
+``thermocomp.apps.diagnose.search_train`` accepts on the run's train split -- the very search
+and acceptance test of ``diagnose`` (``_search``, which ``_diagnose`` now calls), without a test
+split -- built in the shell (``shell.builders.diagnosed_candidate``; core never imports apps).
+
+BAR (written and committed before the key-on numbers below beyond the first smoke run; no fresh
+seeds, autodiag99 scored them):
+
+* B1 (seen mt9888): ``run model=auto model.diagnosed=true`` gives autodiag99's traced test RMSE
+  per target (E_X 3.2247, E_Y 0.2517, E_Z 3.3253 um) to 1e-9, and its votes to 1e-9.
+* B2 (key off, mt9888): every file ``run model=auto`` writes byte-identical to BASE 717a94c0's
+  (``thermocomp.log`` without its timings).
+* B3 (deployed = scored): ``replay`` of the key-on model.pkl streams each target's test RMSE
+  as ``run`` scored it, to 1e-9 um.
+KEPT if B1-B3 are met, with a test that fails on 717a94c0; else REFUSED (the patch kept).
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE))
+
+QUIET = ["track=false", "plots=none"]
+TIMING = re.compile(r"time \(s\)|seconds|\d+\.\d+ s\b")     # log lines that carry a timing
+
+
+def _overrides(root: str, name: str) -> list[str]:
+    from bench_autodiag99 import _overrides as record
+
+    return record(root, name)
+
+
+def _stage(stage: str, args: list[str], src: str | None = None) -> subprocess.CompletedProcess:
+    env = dict(os.environ)
+    if src is not None:
+        env["PYTHONPATH"] = str(Path(src).resolve() / "src")
+    return subprocess.run([sys.executable, "-m", "thermocomp", stage, *args], capture_output=True,
+                          text=True, env=env)
+
+
+def _tested(where: Path) -> dict:
+    metrics = json.loads((where / "metrics.json").read_text())
+    return {t: (e["test"]["rmse"], e.get("auto", {}).get("weights", {}))
+            for t, e in metrics["targets"].items()}
+
+
+def on(root: str, out: str, trace: str, name: str) -> None:
+    """B1: the key on against autodiag99's trace (module doc)."""
+    where = Path(out, name, "on").resolve()
+    done = _stage("run", [*_overrides(root, name), "model=auto", "model.diagnosed=true", *QUIET,
+                          f"out={where}"])
+    print(f"{name}: run exit {done.returncode}; "
+          + " | ".join(line for line in done.stderr.splitlines() if "model.diagnosed" in line), flush=True)
+    traced = json.loads(Path(trace, f"{name}.json").read_text())
+    for t, (rmse, weights) in _tested(where).items():
+        votes = traced.get("rule_weights", traced.get("main_weights", {})).get(t, {})
+        dw = max(abs(weights.get(n, 0.0) - votes.get(n, 0.0)) for n in set(weights) | set(votes))
+        print(f"  {t}: run {rmse:.6f} traced {traced['rule'][t]:.6f} |d| {abs(rmse - traced['rule'][t]):.3g} um; "
+              f"votes {weights} |d| {dw:.3g}", flush=True)
+
+
+def off(root: str, out: str, base: str, name: str) -> None:
+    """B2: the key off, this tree against BASE's src, every file (module doc)."""
+    args = [*_overrides(root, name), "model=auto", *QUIET]
+    for which, src in (("off", None), ("base", base)):
+        done = _stage("run", [*args, f"out={Path(out, name, which).resolve()}"], src)
+        print(f"{name} {which}: run exit {done.returncode}", flush=True)
+    a, b = Path(out, name, "off"), Path(out, name, "base")
+    files = sorted({p.relative_to(a) for p in a.rglob("*") if p.is_file()}
+                   | {p.relative_to(b) for p in b.rglob("*") if p.is_file()})
+    for rel in files:
+        x, y = a / rel, b / rel
+        if not (x.exists() and y.exists()):
+            print(f"  {rel}: only in {'off' if x.exists() else 'base'}")
+            continue
+        same = _content(x) == _content(y)
+        print(f"  {rel}: {'identical' if same else 'DIFFERS'} ({x.stat().st_size} / {y.stat().st_size} bytes)")
+
+
+def _content(path: Path) -> bytes:
+    if path.name != "thermocomp.log":
+        return path.read_bytes()
+    lines = path.read_text().splitlines()
+    return "\n".join(re.sub(r"^\S+ \S+ ", "", line) for line in lines if not TIMING.search(line)).encode()
+
+
+def replay(root: str, out: str, name: str) -> None:
+    """B3: the key-on model.pkl replayed on the test split against its run (module doc)."""
+    where = Path(out, name, "on").resolve()
+    done = _stage("replay", [*_overrides(root, name), f"replay.model={where / 'model.pkl'}", *QUIET,
+                             f"out={Path(out, name, 'replay').resolve()}"])
+    print(f"{name}: replay exit {done.returncode} " + " | ".join(done.stderr.strip().splitlines()[-3:]))
+    streamed = json.loads(Path(out, name, "replay", "replay.json").read_text())
+    print(json.dumps(_replayed(streamed))[:2000])
+    for t, (rmse, _) in _tested(where).items():
+        got = _replayed(streamed).get(t)
+        print(f"  {t}: run {rmse:.9f} replay {got if got is None else f'{got:.9f}'}"
+              + ("" if got is None else f" |d| {abs(got - rmse):.3g} um"), flush=True)
+
+
+def _replayed(doc: dict) -> dict:
+    """``{target: streamed test RMSE}`` of ``replay.json``."""
+    targets = doc.get("targets", {})
+    return {t: e.get("rmse", e.get("test_rmse")) for t, e in targets.items() if isinstance(e, dict)}
+
+
+def main(argv: list[str]) -> int:
+    from _cli import run_commands
+
+    return run_commands(__doc__, {"on": on, "off": off, "replay": replay}, argv)
+
+
+if __name__ == "__main__":
+    raise SystemExit(main(sys.argv[1:]))
