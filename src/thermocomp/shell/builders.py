@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 from omegaconf import DictConfig, OmegaConf
+from sklearn.base import clone
 
 from ..base.errors import ConfigError, ContractError, ThermocompError, listed
 from ..base.log import logger, say
@@ -30,12 +31,17 @@ def auto_scheme(cfg: DictConfig, ds) -> dict:
     return {"scheme": holdout_scheme(ds)}
 
 
-def build_compensator(cfg: DictConfig, ati: bool = True, ds=None) -> Compensator:
+def build_compensator(cfg: DictConfig, ati: bool = True, ds=None, search: bool = True) -> Compensator:
     """The configured compensator; ``ati=False`` leaves out the ATI wrapper (``ati=cmeans``).
-    ``ds``: the dataset it will be fitted on, whose split ``model=auto`` validates like."""
+    ``ds``: the dataset it will be fitted on, whose split ``model=auto`` validates like (and,
+    with ``model.diagnosed=true`` and ``search``, whose train split the closed loop searches for
+    the ``diagnosed`` candidate: :func:`diagnosed_candidate`)."""
     estimator = build(cfg.model.estimator, "model.estimator")
     if is_auto(cfg):           # model=auto: the families it chooses among, from their configs
-        estimator = estimator(candidates=build_candidates(cfg), **auto_scheme(cfg, ds))
+        candidates = build_candidates(cfg)
+        if search and ds is not None and cfg.model.get("diagnosed", False):
+            candidates |= diagnosed_candidate(cfg, ds)
+        estimator = estimator(candidates=candidates, **auto_scheme(cfg, ds))
     if ati and cfg.get("ati") is not None and cfg.ati.estimator is not None:
         estimator = build(cfg.ati.estimator, "ati.estimator")(base_estimator=estimator)
     comp = Compensator(
@@ -54,9 +60,53 @@ def build_compensator(cfg: DictConfig, ati: bool = True, ds=None) -> Compensator
 
 def validation_template(cfg: DictConfig, fitted: Compensator, ds) -> Compensator:
     """What a run's validation refits per fold: the configured compensator, with the family
-    model=auto chose per target in ``fitted`` (:func:`~.auto.as_chosen`); validated like the
-    test split of ``ds`` unless a val split scores ``fitted`` itself."""
-    return as_chosen(build_compensator(cfg, ds=None if ds.ids("val") else ds), fitted)
+    model=auto chose per target in ``fitted`` (:func:`~.auto.as_chosen`; its ``diagnosed``
+    candidate taken from ``fitted``, not searched again); validated like the test split of
+    ``ds`` unless a val split scores ``fitted`` itself."""
+    return as_chosen(build_compensator(cfg, ds=None if ds.ids("val") else ds, search=False), fitted)
+
+
+def diagnosed_candidate(cfg: DictConfig, ds) -> dict:
+    """``{"diagnosed": ForTargets}`` (none where nothing is accepted): per target, MLR with the
+    effects and penalty the closed loop accepts on the train split of ``ds``
+    (:func:`~thermocomp.apps.diagnose.search_train`, ``diagnose``'s own search and acceptance
+    test with its ``diagnose.*`` keys, on ``model=mlr`` with this run's data, inputs and
+    reference), validated and voted by auto's folds like any candidate (``model.diagnosed``;
+    autodiag99: mt9888 E_X 10.28 -> 3.22 µm).  Sensors the search finds faulty stay in (a
+    candidate cannot change the inputs).  The search costs 1.6-78 s per record; ``run`` composes
+    no ``diagnose`` group, so it searches with ``conf/diagnose/default.yaml``."""
+    from ..apps.diagnose import AugmentedRegressor, search_train
+    from ..core.models.auto import BASELINE
+    from ..core.models.base import ForTargets
+    from ..base.paths import conf_dir
+    from .build import load_node
+    from .config.candidates import family_estimator
+    from .stages.diagnose import search_options
+
+    if ds.ids("val"):
+        raise ConfigError("model.diagnosed=true: the val split scores auto's candidates on every "
+                          "target alike; the diagnosed candidate is per target (use the folds: "
+                          "no val campaigns in the manifest, or model.diagnosed=false)")
+    mlr = family_estimator(cfg, BASELINE)
+    template = Compensator(estimator=mlr, selector=build(cfg.select.selector, "select.selector"),
+                           inputs=list(cfg.data.inputs),
+                           targets=None if cfg.data.targets is None else list(cfg.data.targets),
+                           reference=reference(cfg), denoiser=build_denoiser(cfg),
+                           offsets="drop" if identified_targets(cfg) else "predict")
+    # diagnose's keys: the command's own where it composes them, else conf/diagnose/default.yaml
+    dcfg = cfg.get("diagnose") or load_node(conf_dir() / "diagnose" / "default.yaml",
+                                            cfg.get("seed", 0), "model.diagnosed")
+    found = search_train(ds, template, search_options(dcfg), str(cfg.eval.mode)).found
+    by_target = {}
+    for target, result in found.items():
+        effects = [e.to_dict() for e in result.effects if e.transform != "remove"]
+        if effects:
+            by_target[target] = AugmentedRegressor(clone(mlr), effects, str(cfg.data.reference),
+                                                   result.alpha or None)
+        say(f"model.diagnosed: {target}: "
+            + (", ".join(e.title for e in result.effects if e.transform != "remove") or "nothing")
+            + " accepted on the train split")
+    return {"diagnosed": ForTargets(by_target)} if by_target else {}
 
 
 def identified_targets(cfg: DictConfig) -> bool:
