@@ -3,7 +3,7 @@ stop 99, autodiag99b; follow-up of ``bench_autodiag99.py``, TRACED).
 
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the tree measured)::
 
-    python benchmarks/bench_autodiag99b.py on ROOT OUT TRACE RECORD       # run model=auto model.diagnosed=true
+    python benchmarks/bench_autodiag99b.py on ROOT OUT TRACE RECORD       # model.diagnosed=true
     python benchmarks/bench_autodiag99b.py off ROOT OUT BASE RECORD       # key off: this tree vs BASE's src
     python benchmarks/bench_autodiag99b.py replay ROOT OUT RECORD         # replay of ``on``'s model.pkl
 
@@ -92,7 +92,8 @@ def on(root: str, out: str, trace: str, name: str) -> None:
     for t, (rmse, weights) in _tested(where).items():
         votes = traced.get("rule_weights", traced.get("main_weights", {})).get(t, {})
         dw = max(abs(weights.get(n, 0.0) - votes.get(n, 0.0)) for n in set(weights) | set(votes))
-        print(f"  {t}: run {rmse:.6f} traced {traced['rule'][t]:.6f} |d| {abs(rmse - traced['rule'][t]):.3g} um; "
+        d = abs(rmse - traced["rule"][t])
+        print(f"  {t}: run {rmse:.6f} traced {traced['rule'][t]:.6f} |d| {d:.3g} um; "
               f"votes {weights} |d| {dw:.3g}", flush=True)
 
 

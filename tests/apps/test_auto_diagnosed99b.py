@@ -11,6 +11,7 @@ import pandas as pd
 from hydra import compose, initialize_config_dir
 
 import thermocomp.shell.cli  # noqa: F401  (registers the config's resolvers)
+from test_diagnose_few import few
 from thermocomp.apps.diagnose import AugmentedRegressor
 from thermocomp.base.paths import conf_dir
 from thermocomp.core.compensator import Compensator
@@ -18,8 +19,6 @@ from thermocomp.core.models import MLR
 from thermocomp.core.models.auto import AutoRegressor
 from thermocomp.core.models.base import ForTargets
 from thermocomp.shell.builders import build_compensator
-
-from test_diagnose_few import few
 
 
 def _campaigns(n: int = 4, rows: int = 120) -> dict:

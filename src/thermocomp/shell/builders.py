@@ -8,13 +8,14 @@ from sklearn.base import clone
 
 from ..base.errors import ConfigError, ContractError, ThermocompError, listed
 from ..base.log import logger, say
-from ..base.params import check_params
+from ..base.params import check_params, check_values, subset
 from ..base.paths import resolve
 from ..core.compensator import Compensator
 from ..core.continuation import fit_joined
 from ..core.models.auto import as_chosen
 from ..core.scoring.auto_validation import val_split_scores
 from .build import build
+from .config import rules
 from .config.candidates import build_candidates, is_auto
 from .model_store import load_model, model_family
 from .source import is_volumetric, reference, slashed_time
@@ -38,10 +39,7 @@ def build_compensator(cfg: DictConfig, ati: bool = True, ds=None, search: bool =
     the ``diagnosed`` candidate: :func:`diagnosed_candidate`)."""
     estimator = build(cfg.model.estimator, "model.estimator")
     if is_auto(cfg):           # model=auto: the families it chooses among, from their configs
-        candidates = build_candidates(cfg)
-        if search and ds is not None and cfg.model.get("diagnosed", False):
-            candidates |= diagnosed_candidate(cfg, ds)
-        estimator = estimator(candidates=candidates, **auto_scheme(cfg, ds))
+        estimator = estimator(candidates=build_candidates(cfg), **auto_scheme(cfg, ds))
     if ati and cfg.get("ati") is not None and cfg.ati.estimator is not None:
         estimator = build(cfg.ati.estimator, "ati.estimator")(base_estimator=estimator)
     comp = Compensator(
@@ -53,6 +51,9 @@ def build_compensator(cfg: DictConfig, ati: bool = True, ds=None, search: bool =
         denoiser=build_denoiser(cfg),
         offsets="drop" if identified_targets(cfg) else "predict",
     )
+    if is_auto(cfg) and search and ds is not None and cfg.model.get("diagnosed", False):
+        comp.estimator.set_params(candidates={**comp.estimator.candidates,
+                                              **diagnosed_candidate(cfg, ds, comp)})
     if is_auto(cfg) and ds is not None and ds.ids("val"):   # chosen on the val split, as validated
         comp.estimator.set_params(val_scores=val_split_scores(comp, ds))
     return comp
@@ -66,33 +67,40 @@ def validation_template(cfg: DictConfig, fitted: Compensator, ds) -> Compensator
     return as_chosen(build_compensator(cfg, ds=None if ds.ids("val") else ds, search=False), fitted)
 
 
-def diagnosed_candidate(cfg: DictConfig, ds) -> dict:
+def search_options(dcfg):
+    """``diagnose.*`` -> SearchOptions (the ``diagnose`` stage's and ``model.diagnosed``'s); a
+    value outside its rule is a ConfigError (exit 2).  Every stage checks
+    ``rules.DIAGNOSE_RULES``; the families are the closed loop's (``targets`` is also checked
+    against the modelled targets)."""
+    from ..apps.diagnose import outputs
+    from ..apps.diagnose.features import KINDS
+
+    check_values(dcfg, {**rules.DIAGNOSE_RULES, "families": subset(KINDS)}, "diagnose")
+    return outputs.search_options(OmegaConf.to_container(dcfg, resolve=True))
+
+
+def diagnosed_candidate(cfg: DictConfig, ds, comp: Compensator) -> dict:
     """``{"diagnosed": ForTargets}`` (none where nothing is accepted): per target, MLR with the
     effects and penalty the closed loop accepts on the train split of ``ds``
     (:func:`~thermocomp.apps.diagnose.search_train`, ``diagnose``'s own search and acceptance
-    test with its ``diagnose.*`` keys, on ``model=mlr`` with this run's data, inputs and
-    reference), validated and voted by auto's folds like any candidate (``model.diagnosed``;
+    test with its ``diagnose.*`` keys, on ``comp`` -- this run's data, inputs and reference --
+    with MLR), validated and voted by auto's folds like any candidate (``model.diagnosed``;
     autodiag99: mt9888 E_X 10.28 -> 3.22 µm).  Sensors the search finds faulty stay in (a
     candidate cannot change the inputs).  The search costs 1.6-78 s per record; ``run`` composes
     no ``diagnose`` group, so it searches with ``conf/diagnose/default.yaml``."""
     from ..apps.diagnose import AugmentedRegressor, search_train
+    from ..base.paths import conf_dir
     from ..core.models.auto import BASELINE
     from ..core.models.base import ForTargets
-    from ..base.paths import conf_dir
     from .build import load_node
     from .config.candidates import family_estimator
-    from .stages.diagnose import search_options
 
     if ds.ids("val"):
         raise ConfigError("model.diagnosed=true: the val split scores auto's candidates on every "
                           "target alike; the diagnosed candidate is per target (use the folds: "
                           "no val campaigns in the manifest, or model.diagnosed=false)")
     mlr = family_estimator(cfg, BASELINE)
-    template = Compensator(estimator=mlr, selector=build(cfg.select.selector, "select.selector"),
-                           inputs=list(cfg.data.inputs),
-                           targets=None if cfg.data.targets is None else list(cfg.data.targets),
-                           reference=reference(cfg), denoiser=build_denoiser(cfg),
-                           offsets="drop" if identified_targets(cfg) else "predict")
+    template = clone(comp).set_params(estimator=mlr)       # ``comp`` (auto) as model=mlr
     # diagnose's keys: the command's own where it composes them, else conf/diagnose/default.yaml
     dcfg = cfg.get("diagnose") or load_node(conf_dir() / "diagnose" / "default.yaml",
                                             cfg.get("seed", 0), "model.diagnosed")

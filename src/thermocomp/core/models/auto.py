@@ -19,8 +19,16 @@ from sklearn.utils.validation import check_is_fitted
 from ...base.errors import ConfigError, ParameterError
 from ...base.log import logger
 from ...base.params import check_estimator, choice, integer, number
-from ..context import (AMBIENT_C0, SideInputs, context_columns, for_target, groups_of, step_gain,
-                       stream_steps, subset)
+from ..context import (
+    AMBIENT_C0,
+    SideInputs,
+    context_columns,
+    for_target,
+    groups_of,
+    step_gain,
+    stream_steps,
+    subset,
+)
 from ..gains import gain_terms
 from ..metrics import PERSISTENCE, rmse
 from ..model_selection import BlockedForward, LeaveBlockOut, LeaveCampaignsOut
@@ -632,9 +640,11 @@ def as_chosen(template, fitted):
     if not chosen or None in chosen.values() or "chosen" not in template.estimator.get_params(deep=False):
         return template
     # a candidate ``fitted`` had beyond the config's (``diagnosed``, searched on its train rows)
-    given, had = template.estimator.candidates or {}, getattr(fitted.estimator, "candidates", None) or {}
+    given = getattr(template.estimator, "candidates", None) or {}
+    had = getattr(getattr(fitted, "estimator", None), "candidates", None) or {}
     if any(n not in given for n in had):
-        template.set_params(estimator__candidates={**given, **{n: c for n, c in had.items() if n not in given}})
+        template.set_params(estimator__candidates={**given, **{n: c for n, c in had.items()
+                                                               if n not in given}})
     return template.set_params(estimator__chosen=chosen)
 
 
