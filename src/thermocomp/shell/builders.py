@@ -109,7 +109,7 @@ def diagnosed_candidate(cfg: DictConfig, ds, comp: Compensator) -> dict:
     for target, result in found.items():
         effects = [e.to_dict() for e in result.effects if e.transform != "remove"]
         if effects:
-            by_target[target] = AugmentedRegressor(clone(mlr), effects, str(cfg.data.reference),
+            by_target[target] = AugmentedRegressor(clone(mlr), effects, comp.reference,
                                                    result.alpha or None)
         say(f"model.diagnosed: {target}: "
             + (", ".join(e.title for e in result.effects if e.transform != "remove") or "nothing")
