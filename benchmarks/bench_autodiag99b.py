@@ -37,6 +37,26 @@ seeds, autodiag99 scored them):
 * B3 (deployed = scored): ``replay`` of the key-on model.pkl streams each target's test RMSE
   as ``run`` scored it, to 1e-9 um.
 KEPT if B1-B3 are met, with a test that fails on 717a94c0; else REFUSED (the patch kept).
+
+Measured (2026-12-06, this branch at 631b996e; nice, ``OMP_NUM_THREADS=1``, 2 cores shared, load
+7-9; ROOT /tmp/autodiag99/root, TRACE /tmp/autodiag99/out, OUT /tmp/autodiag99b/out3, BASE
+``git archive 717a94c0 src conf``)::
+
+  on mt9888      accepted on the train split (as autodiag99's diagnose): E_X, E_Z interaction
+                 S_B_deg x T_bhead; E_Y first-order lag of S_n_tool_rpm (1800 s)
+                 test RMSE run = traced: E_X 3.224750, E_Y 0.251721, E_Z 3.325265 um, |d| 0 each
+                 (auto main 10.277 / 0.283 / 10.612); votes (model.pkl) |d| 0: E_X hammerstein
+                 0.052 + diagnosed 0.948, E_Y mlr 0.061 + lagbank 0.147 + diagnosed 0.792, E_Z
+                 diagnosed 1.0; run's fit 18.8 s (search ~9.5 s of it) against 11.4-12.3 s key off
+  replay mt9888  streamed test RMSE = run's, |d| 0 um on E_X, E_Y, E_Z
+  off mt9888     headline/*.json, ingest_report.json identical byte for byte; metrics.json,
+                 model.pkl(.sig), thermocomp.log identical but for what the clock sets
+  export (by hand, same model.pkl): C and ST written (blend members + derived inputs of the
+                 accepted effects); the C's check: 6 campaigns within 1e-9 um (largest 4.97e-14)
+
+B1, B2 (with the masking said above), B3 met: KEPT.  Not measured: a record where the search
+finds a sensor faulty (the candidate leaves it in), a val split (refused, exit 2), MLflow params
+(track=false here; the composed config now holds ``model.diagnosed``).
 """
 
 from __future__ import annotations
