@@ -4,16 +4,18 @@
 from __future__ import annotations
 
 from omegaconf import DictConfig, OmegaConf
+from sklearn.base import clone
 
 from ..base.errors import ConfigError, ContractError, ThermocompError, listed
 from ..base.log import logger, say
-from ..base.params import check_params
+from ..base.params import check_params, check_values, subset
 from ..base.paths import resolve
 from ..core.compensator import Compensator
 from ..core.continuation import fit_joined
 from ..core.models.auto import as_chosen
 from ..core.scoring.auto_validation import val_split_scores
 from .build import build
+from .config import rules
 from .config.candidates import build_candidates, is_auto
 from .model_store import load_model, model_family
 from .source import is_volumetric, reference, slashed_time
@@ -30,9 +32,11 @@ def auto_scheme(cfg: DictConfig, ds) -> dict:
     return {"scheme": holdout_scheme(ds)}
 
 
-def build_compensator(cfg: DictConfig, ati: bool = True, ds=None) -> Compensator:
+def build_compensator(cfg: DictConfig, ati: bool = True, ds=None, search: bool = True) -> Compensator:
     """The configured compensator; ``ati=False`` leaves out the ATI wrapper (``ati=cmeans``).
-    ``ds``: the dataset it will be fitted on, whose split ``model=auto`` validates like."""
+    ``ds``: the dataset it will be fitted on, whose split ``model=auto`` validates like (and,
+    with ``model.diagnosed=true`` and ``search``, whose train split the closed loop searches for
+    the ``diagnosed`` candidate: :func:`diagnosed_candidate`)."""
     estimator = build(cfg.model.estimator, "model.estimator")
     if is_auto(cfg):           # model=auto: the families it chooses among, from their configs
         estimator = estimator(candidates=build_candidates(cfg), **auto_scheme(cfg, ds))
@@ -47,6 +51,9 @@ def build_compensator(cfg: DictConfig, ati: bool = True, ds=None) -> Compensator
         denoiser=build_denoiser(cfg),
         offsets="drop" if identified_targets(cfg) else "predict",
     )
+    if is_auto(cfg) and search and ds is not None and cfg.model.get("diagnosed", False):
+        comp.estimator.set_params(candidates={**comp.estimator.candidates,
+                                              **diagnosed_candidate(cfg, ds, comp)})
     if is_auto(cfg) and ds is not None and ds.ids("val"):   # chosen on the val split, as validated
         comp.estimator.set_params(val_scores=val_split_scores(comp, ds))
     return comp
@@ -54,9 +61,60 @@ def build_compensator(cfg: DictConfig, ati: bool = True, ds=None) -> Compensator
 
 def validation_template(cfg: DictConfig, fitted: Compensator, ds) -> Compensator:
     """What a run's validation refits per fold: the configured compensator, with the family
-    model=auto chose per target in ``fitted`` (:func:`~.auto.as_chosen`); validated like the
-    test split of ``ds`` unless a val split scores ``fitted`` itself."""
-    return as_chosen(build_compensator(cfg, ds=None if ds.ids("val") else ds), fitted)
+    model=auto chose per target in ``fitted`` (:func:`~.auto.as_chosen`; its ``diagnosed``
+    candidate taken from ``fitted``, not searched again); validated like the test split of
+    ``ds`` unless a val split scores ``fitted`` itself."""
+    return as_chosen(build_compensator(cfg, ds=None if ds.ids("val") else ds, search=False), fitted)
+
+
+def search_options(dcfg):
+    """``diagnose.*`` -> SearchOptions (the ``diagnose`` stage's and ``model.diagnosed``'s); a
+    value outside its rule is a ConfigError (exit 2).  Every stage checks
+    ``rules.DIAGNOSE_RULES``; the families are the closed loop's (``targets`` is also checked
+    against the modelled targets)."""
+    from ..apps.diagnose import outputs
+    from ..apps.diagnose.features import KINDS
+
+    check_values(dcfg, {**rules.DIAGNOSE_RULES, "families": subset(KINDS)}, "diagnose")
+    return outputs.search_options(OmegaConf.to_container(dcfg, resolve=True))
+
+
+def diagnosed_candidate(cfg: DictConfig, ds, comp: Compensator) -> dict:
+    """``{"diagnosed": ForTargets}`` (none where nothing is accepted): per target, MLR with the
+    effects and penalty the closed loop accepts on the train split of ``ds``
+    (:func:`~thermocomp.apps.diagnose.search_train`, ``diagnose``'s own search and acceptance
+    test with its ``diagnose.*`` keys, on ``comp`` -- this run's data, inputs and reference --
+    with MLR), validated and voted by auto's folds like any candidate (``model.diagnosed``;
+    autodiag99: mt9888 E_X 10.28 -> 3.22 µm).  Sensors the search finds faulty stay in (a
+    candidate cannot change the inputs).  The search costs 1.6-78 s per record; ``run`` composes
+    no ``diagnose`` group, so it searches with ``conf/diagnose/default.yaml``."""
+    from ..apps.diagnose import AugmentedRegressor, search_train
+    from ..base.paths import conf_dir
+    from ..core.models.auto import BASELINE
+    from ..core.models.base import ForTargets
+    from .build import load_node
+    from .config.candidates import family_estimator
+
+    if ds.ids("val"):
+        raise ConfigError("model.diagnosed=true: the val split scores auto's candidates on every "
+                          "target alike; the diagnosed candidate is per target (use the folds: "
+                          "no val campaigns in the manifest, or model.diagnosed=false)")
+    mlr = family_estimator(cfg, BASELINE)
+    template = clone(comp).set_params(estimator=mlr)       # ``comp`` (auto) as model=mlr
+    # diagnose's keys: the command's own where it composes them, else conf/diagnose/default.yaml
+    dcfg = cfg.get("diagnose") or load_node(conf_dir() / "diagnose" / "default.yaml",
+                                            cfg.get("seed", 0), "model.diagnosed")
+    found = search_train(ds, template, search_options(dcfg), str(cfg.eval.mode)).found
+    by_target = {}
+    for target, result in found.items():
+        effects = [e.to_dict() for e in result.effects if e.transform != "remove"]
+        if effects:
+            by_target[target] = AugmentedRegressor(clone(mlr), effects, comp.reference,
+                                                   result.alpha or None)
+        say(f"model.diagnosed: {target}: "
+            + (", ".join(e.title for e in result.effects if e.transform != "remove") or "nothing")
+            + " accepted on the train split")
+    return {"diagnosed": ForTargets(by_target)} if by_target else {}
 
 
 def identified_targets(cfg: DictConfig) -> bool:

@@ -10,10 +10,10 @@ residual on the train campaigns, searches the candidate effects
 
 from .augmented import AugmentedRegressor
 from .candidates import CONTROL, CandidateOptions
-from .diagnosis import Diagnosis, TargetDiagnosis, augment, diagnose
+from .diagnosis import Diagnosis, TargetDiagnosis, augment, diagnose, search_train
 from .features import KINDS, Effect, effect_features, first_order_lag
 from .search import SearchOptions
 
 __all__ = ["diagnose", "Diagnosis", "TargetDiagnosis", "AugmentedRegressor", "augment", "Effect",
            "effect_features", "first_order_lag", "SearchOptions", "CandidateOptions", "KINDS",
-           "CONTROL"]
+           "CONTROL", "search_train"]

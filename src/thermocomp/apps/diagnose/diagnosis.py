@@ -324,21 +324,41 @@ def _reach(design) -> float:
     return smallest_p(_blocks(design))
 
 
-def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_statistic,
-              e_p95_points, model_name, ati, deployed_of=None) -> Diagnosis:
-    t0 = time.perf_counter()
-    train_ids, test_ids = require_split(ds, "train"), require_split(ds, "test")
-    # fitted as run fits it (train files that continue one another joined): "before" is the
-    # run's test figure, "after" the rerun of the config written
-    before = fit_joined(clone(compensator), ds, train_ids)
-    before_scores, before_pred = test_scores(before, ds, test_ids, mode, e_p95_statistic,
-                                             e_p95_points)
-    targets = list(before.targets_) if targets is None else (
-        [targets] if isinstance(targets, str) else list(targets))
-    unknown = [t for t in targets if t not in before.targets_]
-    if unknown:
-        raise ContractError(f"diagnose.targets names no modelled target (have {before.targets_})",
-                            column=",".join(unknown))
+@dataclass
+class Searched:
+    """What the search found on the train campaigns, and the design it tested on (``cv``)."""
+
+    found: dict                        # target -> SearchResult
+    original: dict                     # target -> the CV result of the model as it is
+    excluded: list                     # sensors accepted as faulty
+    searches: dict                     # target -> Search
+    problem: Problem                   # the design's target of fewest test blocks
+    scheme: str
+    why: str | None
+    gap: int
+    designs: dict
+    start_blocks: tuple
+    reach: float
+    n_train: int
+
+
+def search_train(ds: Dataset, compensator: Compensator, options: SearchOptions | None = None,
+                 mode: str = "simulation", train_ids=None, targets=None) -> Searched:
+    """The closed loop's search on the train campaigns alone: what :func:`diagnose` finds and
+    accepts (the same search and acceptance test), without a test split (nothing scored, no
+    test sensor warnings).  ``train_ids``: default the train split of ``ds``; ``targets``:
+    default every target of the model.  ``model=auto``'s
+    ``diagnosed`` candidate is built from its accepted effects (``model.diagnosed``)."""
+    with threadpool_limits(limits=1, user_api="blas"):
+        ids = list(train_ids) if train_ids is not None else require_split(ds, "train")
+        before = fit_joined(clone(compensator), ds, ids)
+        return _search(ds, compensator, before, ids, list(targets or before.targets_), mode,
+                       options or SearchOptions())
+
+
+def _search(ds, compensator, before, train_ids, targets, mode, options) -> Searched:
+    """The search of every target on the train campaigns ``train_ids`` (``before``: the
+    template fitted on them)."""
     train = {c: ds.campaigns[c] for c in train_ids}
     if getattr(before, "denoiser_", None) is not None:
         train = denoise_campaigns(before.denoiser_, train, causal=False)
@@ -346,11 +366,6 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
     # continue one another is one campaign (one CV unit; one alone: forward chaining over it)
     train = fit_campaigns(ds, train, train_ids, before.reference)
     m = stack(train, before.inputs_, before.targets_, before.reference)
-    # the test split's temperatures (never its errors): sensor health on what the model will face
-    test = {c: ds.campaigns[c] for c in test_ids}
-    if getattr(before, "denoiser_", None) is not None:
-        test = denoise_campaigns(before.denoiser_, test)
-    later = stack(test, before.inputs_, [], before.reference)   # (the test targets stay out)
     context = m.context.copy()
     context[CONTROL] = random_walk(m.groups, options.seed)
     scheme, why, design, kept = cv_scheme(m.groups, options.cv), None, None, None
@@ -410,8 +425,34 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
     # sensor health on the train campaigns only: the search never sees the test split
     start_blocks = (problem.n_blocks_tested, problem.block_samples)
     excluded, faults, health, original, table = sensor_health(searches, options=options, start=start)
-    test_sensors = test_sensor_warnings(next(iter(searches.values())), excluded, later, options)
     found = {t: s.run(original[t], faults[t], health[t], table) for t, s in searches.items()}
+    return Searched(found, original, excluded, searches, problem, scheme, why, gap, designs, start_blocks,
+                    reach, len(train))
+
+
+def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_statistic,
+              e_p95_points, model_name, ati, deployed_of=None) -> Diagnosis:
+    t0 = time.perf_counter()
+    train_ids, test_ids = require_split(ds, "train"), require_split(ds, "test")
+    # fitted as run fits it (train files that continue one another joined): "before" is the
+    # run's test figure, "after" the rerun of the config written
+    before = fit_joined(clone(compensator), ds, train_ids)
+    before_scores, before_pred = test_scores(before, ds, test_ids, mode, e_p95_statistic,
+                                             e_p95_points)
+    targets = list(before.targets_) if targets is None else (
+        [targets] if isinstance(targets, str) else list(targets))
+    unknown = [t for t in targets if t not in before.targets_]
+    if unknown:
+        raise ContractError(f"diagnose.targets names no modelled target (have {before.targets_})",
+                            column=",".join(unknown))
+    s = _search(ds, compensator, before, train_ids, targets, mode, options)
+    # the test split's temperatures (never its errors): sensor health on what the model will face
+    test = {c: ds.campaigns[c] for c in test_ids}
+    if getattr(before, "denoiser_", None) is not None:
+        test = denoise_campaigns(before.denoiser_, test)
+    later = stack(test, before.inputs_, [], before.reference)   # (the test targets stay out)
+    found, original, excluded, problem = s.found, s.original, s.excluded, s.problem
+    test_sensors = test_sensor_warnings(next(iter(s.searches.values())), excluded, later, options)
     effects = {t: r.effects for t, r in found.items()}
     alphas = {t: r.alpha for t, r in found.items()}
     build = make_compensator or (lambda eff, exc, inputs, al: augment(compensator, eff, exc, inputs, al))
@@ -421,13 +462,15 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
            for t, r in found.items()}
     scored, clamped, guarded = _deployed(out, {"before": before, "after": after}, ds, train_ids,
                                          test_ids, mode, deployed_of)
+    train, why, start_blocks, reach, designs = s.n_train, s.why, s.start_blocks, s.reach, s.designs
+    scheme, gap = s.scheme, s.gap
     if scheme == "forward":
         cv = {"scheme": "forward", "units": problem.n_units, "unit": "validation block",
               "folds": problem.n_units, "gap_samples": gap,
               "min_train_fraction": options.min_train_fraction}
     else:
         cv = {"scheme": "campaigns", "units": problem.n_units,
-              "unit": "campaign" if len(train) > 1 else "time block",
+              "unit": "campaign" if train > 1 else "time block",
               "folds": LeaveCampaignsOut(options.n_folds).get_n_splits(groups=problem.units)}
     if why:
         cv["why"] = why
@@ -440,8 +483,8 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
            "shrink_alpha": {t: r.alpha for t, r in found.items()},
            # an error measured now and then: the held-out rows scored (measured), per target;
            # ``block_samples`` then counts measured samples
-           "measured_rows": ({t: int(s.problem.validated.sum()) for t, s in searches.items()}
-                             if any(s.problem.sparse for s in searches.values()) else None),
+           "measured_rows": ({t: int(x.problem.validated.sum()) for t, x in s.searches.items()}
+                             if any(x.problem.sparse for x in s.searches.values()) else None),
            "train_campaigns": train_ids, "test_campaigns": test_ids}
     return Diagnosis(model_name or type(compensator.estimator).__name__, ds.name, mode, out,
                      excluded, before, after, {"before": before_pred, "after": after_pred},

@@ -19,7 +19,16 @@ from sklearn.utils.validation import check_is_fitted
 from ...base.errors import ConfigError, ParameterError
 from ...base.log import logger
 from ...base.params import check_estimator, choice, integer, number
-from ..context import AMBIENT_C0, SideInputs, context_columns, groups_of, step_gain, stream_steps, subset
+from ..context import (
+    AMBIENT_C0,
+    SideInputs,
+    context_columns,
+    for_target,
+    groups_of,
+    step_gain,
+    stream_steps,
+    subset,
+)
 from ..gains import gain_terms
 from ..metrics import PERSISTENCE, rmse
 from ..model_selection import BlockedForward, LeaveBlockOut, LeaveCampaignsOut
@@ -387,12 +396,15 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
 
     def for_target(self, target: str):
         """The estimator of ``target``: its chosen candidate once ``chosen`` names one, else self
-        (:func:`thermocomp.core.context.for_target`)."""
-        if self.chosen and target in self.chosen:
-            return self._estimator(self.chosen[target])
-        if self.val_scores is not None:
-            return clone(self).set_params(val_scores=None, given_scores=self.val_scores.get(target, {}))
-        return self
+        (:func:`thermocomp.core.context.for_target`), each candidate as it is for ``target``
+        (:func:`_candidates_for`: a candidate for some targets only, e.g. ``diagnosed``)."""
+        own = _candidates_for(self.candidates, target)
+        est = self if own is None else clone(self).set_params(candidates=own)
+        if est.chosen and target in est.chosen:
+            return est._estimator(est.chosen[target])
+        if est.val_scores is not None:
+            return clone(est).set_params(val_scores=None, given_scores=est.val_scores.get(target, {}))
+        return est
 
     def out_of_fold(self):
         """``(n_rows, [(fit rows, scored rows)] per fold, measured, predicted)`` of the kept
@@ -561,6 +573,16 @@ def _validated_as(oof: dict, context, groups, folds) -> dict:
     return out
 
 
+def _candidates_for(candidates, target: str) -> dict | None:
+    """``candidates`` as they are for ``target``: each with per-target settings through its
+    ``for_target`` (:class:`~.base.ForTargets`: None, nothing for that target, leaves it out);
+    None where no candidate has any (the candidates as given)."""
+    if not candidates or not any(callable(getattr(c, "for_target", None)) for c in candidates.values()):
+        return None
+    own = {n: for_target(c, target) for n, c in dict(candidates).items()}
+    return {n: c for n, c in own.items() if c is not None}
+
+
 def _same_as(name: str, est, runs: dict, context, n: int) -> str | None:
     """Why candidate ``name`` is not validated again: on these ``n`` rows it is the very model of
     another candidate of ``runs`` (a Hammerstein model into which no machine state can enter is
@@ -617,6 +639,12 @@ def as_chosen(template, fitted):
               for t, est in getattr(fitted, "estimators_", {}).items()}
     if not chosen or None in chosen.values() or "chosen" not in template.estimator.get_params(deep=False):
         return template
+    # a candidate ``fitted`` had beyond the config's (``diagnosed``, searched on its train rows)
+    given = getattr(template.estimator, "candidates", None) or {}
+    had = getattr(getattr(fitted, "estimator", None), "candidates", None) or {}
+    if any(n not in given for n in had):
+        template.set_params(estimator__candidates={**given, **{n: c for n, c in had.items()
+                                                               if n not in given}})
     return template.set_params(estimator__chosen=chosen)
 
 

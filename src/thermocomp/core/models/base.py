@@ -53,6 +53,19 @@ class PerTarget(BaseEstimator):
         return clone(for_target(self.estimator, target)).set_params(**(self.params or {}).get(target, {}))
 
 
+class ForTargets(BaseEstimator):
+    """A ``model=auto`` candidate for some targets only: ``for_target(t)`` is an unfitted copy
+    of ``by_target[t]``, None for a target it does not name (no candidate there).  Never fitted
+    itself (:meth:`thermocomp.core.models.auto.AutoRegressor.for_target` replaces it)."""
+
+    def __init__(self, by_target: Mapping | None = None):
+        self.by_target = by_target
+
+    def for_target(self, target: str):
+        est = (self.by_target or {}).get(target)
+        return None if est is None else clone(est)
+
+
 def measured_rows(est, X, y) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """``X`` validated (``est``'s features set, as ``validate_data(est, X, y)`` does), ``y`` as
     floats with its NaN kept, and the mask of the rows where ``y`` was measured.

@@ -48,6 +48,11 @@ def build_candidates(cfg: DictConfig) -> dict:
     return out
 
 
+def family_estimator(cfg: DictConfig, family: str):
+    """The unfitted estimator of ``conf/model/<family>.yaml`` as it is (no candidate keys)."""
+    return _family(cfg, family, None, None, family)
+
+
 def _family(cfg: DictConfig, family: str, defaults, overrides, name: str):
     path = conf_dir() / "model" / f"{family}.yaml"
     if not path.is_file():

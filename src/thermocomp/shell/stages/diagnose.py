@@ -17,27 +17,14 @@ from omegaconf import DictConfig, OmegaConf
 from ...apps.diagnose import diagnose as run_diagnosis
 from ...apps.diagnose import outputs
 from ...apps.diagnose.augmented import MODEL_NAME
-from ...apps.diagnose.features import KINDS
 from ...base.errors import ConfigError
 from ...base.log import logger, say
-from ...base.params import check_values, subset
 from ...base.paths import resolve
-from ..builders import build_compensator, deploy_stream, deployable
-from ..config import rules
+from ..builders import build_compensator, deploy_stream, deployable, search_options
 from ..config.candidates import is_auto
 from ..config.checks import check_config
 from ..source import check_declared, open_source
 from ..tracking import stage_run
-
-# What each ``diagnose.*`` key may be: every stage checks rules.DIAGNOSE_RULES; the families are
-# this stage's (``targets`` is also checked against the modelled targets).
-DIAGNOSE_RULES = {**rules.DIAGNOSE_RULES, "families": subset(KINDS)}
-
-
-def search_options(dcfg):
-    """``diagnose.*`` -> SearchOptions; a value outside its rule is a ConfigError (exit 2)."""
-    check_values(dcfg, DIAGNOSE_RULES, "diagnose")
-    return outputs.search_options(_container(dcfg))
 
 
 def _container(node):
