@@ -64,7 +64,10 @@ def column_system(tmp_path_factory):
     cfg = _compose(f"data.path={data}", "track=false", "model=mlr")
     deployed, ds, test_ids = deployed_as_replay(cfg)
     ss = state_space(deployed, monitor=True)
-    return deployed, ss, ds.campaigns[test_ids[0]].reset_index(drop=True)
+    # a copy of its own, as conftest.fl_thermal_served's: the reader's columns are Arrow's
+    # read-only buffers, written in place once ``ds`` is collected (mon98b's fixture failed so
+    # in a full run, "assignment destination is read-only", as the collector's timing had it)
+    return deployed, ss, ds.campaigns[test_ids[0]].reset_index(drop=True).copy()
 
 
 def without(ss, feature: str):
