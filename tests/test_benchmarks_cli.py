@@ -58,7 +58,7 @@ COMMAND_BENCHES = (
     "bench_diag92e", "bench_diag93", "bench_diag93b", "bench_diag94", "bench_diag94b", "bench_diag94c",
     "bench_diag95", "bench_diag95b", "bench_diag95c", "bench_diag95d", "bench_diag96", "bench_diag96b",
     "bench_diag97", "bench_diag98", "bench_diagfault65", "bench_diagfault72", "bench_diagpower67",
-    "bench_diagref65", "bench_drift74", "bench_dup99", "bench_env92", "bench_env92b", "bench_env93",
+    "bench_diagref65", "bench_drift74", "bench_dup99", "bench_effects99", "bench_env92", "bench_env92b", "bench_env93",
     "bench_env93b", "bench_env94", "bench_env94b", "bench_env94c", "bench_fault70", "bench_faults71",
     "bench_freeze83", "bench_freeze83b", "bench_freeze83c", "bench_freeze84", "bench_freeze90",
     "bench_freeze91", "bench_freeze92", "bench_fresh69", "bench_gate71", "bench_gate77", "bench_guard95",
