@@ -31,7 +31,23 @@ BAR (committed before the key-on runs below):
 * E3 (key off, mt9888): every file byte-identical to BASE 4b0de502's but clock-set fields.
 KEPT if E1-E3 are met with a test that fails on 4b0de502.
 
-Measured: see the bottom of this docstring (filled after the runs).
+Measured (2026-12-06, this branch's src at b8cb5cbb + the change of 9b16bbdf, uncommitted then;
+nice, ``OMP_NUM_THREADS=1``, 2 cores shared, load 3.5-5.5; ROOT /tmp/autodiag99/root, OUT
+/tmp/effects99/out, BASE ``git archive 4b0de502 src conf``)::
+
+  on mt9888   metrics.json targets.<t>.auto.diagnosed = the log's model.diagnosed lines:
+              E_X, E_Z interaction:S_B_deg product(T_bhead rise) (absolute), p 5.0e-05 (= p_value
+              = min_p 5.0e-05), alpha 0.0316 / 0.1; E_Y signal:S_n_tool_rpm first_order_lag(tau=
+              1800s) (absolute), p 5.0e-05, alpha 0 (min_p 5.0e-05); a table line per target;
+              test RMSE E_X 3.224750, E_Y 0.251721, E_Z 3.325265 um = autodiag99b's run |d| 0,
+              auto's candidates and weights equal; run + bench 47 s wall (13:41:51-13:42:38)
+  on yr9900   (clean) nothing accepted on E_X, E_Y, E_Z: "accepted": [], alpha null, min_p
+              0.00024 / 0.0039 / 0.0039; the table says "nothing accepted on the train split"
+  off mt9888  headline/*.json, ingest_report.json identical byte for byte; metrics.json,
+              model.pkl(.sig), thermocomp.log identical but for what the clock sets (54 s wall, 2 runs)
+
+E1, E2, E3 met: KEPT.  Not measured: a record read with lab headers through the key (the lab
+naming is covered by the test's stub only), fleet (data.group_by) runs with the key.
 """
 
 from __future__ import annotations
