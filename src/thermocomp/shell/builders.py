@@ -3,6 +3,8 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 from omegaconf import DictConfig, OmegaConf
 from sklearn.base import clone
 
@@ -80,7 +82,8 @@ def search_options(dcfg):
 
 
 def diagnosed_candidate(cfg: DictConfig, ds, comp: Compensator) -> dict:
-    """``{"diagnosed": ForTargets}`` (none where nothing is accepted): per target, MLR with the
+    """``{"diagnosed": ForTargets}`` (no model for a target where nothing is accepted; its
+    ``about``: :func:`accepted_entry` per target, for ``metrics.json``): per target, MLR with the
     effects and penalty the closed loop accepts on the train split of ``ds``
     (:func:`~thermocomp.apps.diagnose.search_train`, ``diagnose``'s own search and acceptance
     test with its ``diagnose.*`` keys, on ``comp`` -- this run's data, inputs and reference --
@@ -90,6 +93,7 @@ def diagnosed_candidate(cfg: DictConfig, ds, comp: Compensator) -> dict:
     no ``diagnose`` group, so it searches with ``conf/diagnose/default.yaml``."""
     from ..apps.diagnose import AugmentedRegressor, search_train
     from ..base.paths import conf_dir
+    from ..core.io.own_headers import lab_names
     from ..core.models.auto import BASELINE
     from ..core.models.base import ForTargets
     from .build import load_node
@@ -104,17 +108,38 @@ def diagnosed_candidate(cfg: DictConfig, ds, comp: Compensator) -> dict:
     # diagnose's keys: the command's own where it composes them, else conf/diagnose/default.yaml
     dcfg = cfg.get("diagnose") or load_node(conf_dir() / "diagnose" / "default.yaml",
                                             cfg.get("seed", 0), "model.diagnosed")
-    found = search_train(ds, template, search_options(dcfg), str(cfg.eval.mode)).found
-    by_target = {}
-    for target, result in found.items():
+    searched = search_train(ds, template, search_options(dcfg), str(cfg.eval.mode))
+    by_target, about = {}, {}
+    for target, result in searched.found.items():
         effects = [e.to_dict() for e in result.effects if e.transform != "remove"]
         if effects:
             by_target[target] = AugmentedRegressor(clone(mlr), effects, comp.reference,
                                                    result.alpha or None)
+        about[target] = accepted_entry(result, searched.designs[target]["min_p"], lab_names(cfg, ds))
         say(f"model.diagnosed: {target}: "
             + (", ".join(e.title for e in result.effects if e.transform != "remove") or "nothing")
             + " accepted on the train split")
-    return {"diagnosed": ForTargets(by_target)} if by_target else {}
+    # kept where nothing is accepted too: metrics.json says so (effects99)
+    return {"diagnosed": ForTargets(by_target, about)}
+
+
+def accepted_entry(result, min_p: float, lab: dict) -> dict:
+    """``targets.<t>.auto.diagnosed`` of ``metrics.json`` (effects99): the effects the search
+    accepted for one target (``result``, a SearchResult), in acceptance order, named with the
+    lab's headers where the record has them (``lab``: ``lab_names``), each with its acceptance
+    p (family-wise over its round, as ``diagnosis.json``'s ``p_value_family``) and its own
+    sign-flip p; the penalty on the effect features (``alpha``, None: least squares) and the
+    smallest p the design's test can give (``min_p``, as ``diagnose`` reports it)."""
+    from ..apps.deploy.naming import raw_names
+
+    def named(column):
+        return None if column is None else (raw_names(lab, column) or [column])[0]
+
+    accepted = [{"effect": replace(ev.effect, column=named(ev.effect.column),
+                                   other=named(ev.effect.other)).title,
+                 "p": ev.p_family, "p_value": ev.p_value}
+                for ev in result.accepted if ev.effect.transform != "remove"]
+    return {"accepted": accepted, "alpha": result.alpha if accepted else None, "min_p": min_p}
 
 
 def identified_targets(cfg: DictConfig) -> bool:

@@ -625,9 +625,13 @@ def _scheme(scheme: str, groups) -> str:
 def add_choices(comp, targets: dict) -> dict:
     """``targets[t]["auto"]``: each target's choice of a model=auto compensator, as
     ``metrics.json`` holds it (run's and each fleet group's); any other leaves ``targets`` as is."""
+    given = getattr(getattr(comp, "estimator", None), "candidates", None) or {}
     for t, est in getattr(comp, "estimators_", {}).items():
         if hasattr(est, "family_"):
             targets[t]["auto"] = est.report()
+            # a candidate's own entry for the target (ForTargets.about: the diagnosed effects)
+            targets[t]["auto"].update({n: c.about[t] for n, c in dict(given).items()
+                                       if t in (getattr(c, "about", None) or {})})
     return targets
 
 

@@ -56,10 +56,14 @@ class PerTarget(BaseEstimator):
 class ForTargets(BaseEstimator):
     """A ``model=auto`` candidate for some targets only: ``for_target(t)`` is an unfitted copy
     of ``by_target[t]``, None for a target it does not name (no candidate there).  Never fitted
-    itself (:meth:`thermocomp.core.models.auto.AutoRegressor.for_target` replaces it)."""
+    itself (:meth:`thermocomp.core.models.auto.AutoRegressor.for_target` replaces it).
+    ``about``: ``{target: entry}``, what ``metrics.json`` says of the candidate for a target
+    (``targets.<t>.auto.<name>``, :func:`~thermocomp.core.models.auto.add_choices`; effects99:
+    the effects the ``diagnosed`` search accepted, or that it accepted none)."""
 
-    def __init__(self, by_target: Mapping | None = None):
+    def __init__(self, by_target: Mapping | None = None, about: Mapping | None = None):
         self.by_target = by_target
+        self.about = about
 
     def for_target(self, target: str):
         est = (self.by_target or {}).get(target)

@@ -300,7 +300,18 @@ def auto_table(metrics: dict) -> list[str]:
     lines += [f"  skipped {n}: {w}" for n, w in skipped.items()]
     tied = {n: w for a in rows.values() for n, w in a.get("validated_as", {}).items()}
     lines += [f"  {n} {w}" for n, w in tied.items()]
+    lines += [f"  {t} diagnosed: {_accepted(a['diagnosed'])}" for t, a in rows.items() if "diagnosed" in a]
     return lines
+
+
+def _accepted(entry: dict) -> str:
+    """One line of what ``model.diagnosed``'s search accepted for a target (effects99)."""
+    design = f"the design's smallest p {entry['min_p']:.2g}"
+    if not entry["accepted"]:
+        return f"nothing accepted on the train split ({design})"
+    effects = ", ".join(f"{e['effect']} (p {e['p']:.2g})" for e in entry["accepted"])
+    alpha = "least squares" if entry["alpha"] is None else f"alpha {entry['alpha']:.3g}"
+    return f"{effects}; {alpha}; {design}"
 
 
 _VOLUMETRIC_BLOCKS = ("distance_error", "vce")
