@@ -16,14 +16,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-import test_export
-from conftest import deployed_as_replay
-from test_export import built_stream, needs_cc
-from test_export_cmon80 import _streamed
-from test_export_dep99b import K_ROWS, ONSET, SPIKE, _machine
-from thermocomp.apps.deploy.export import Simulator, exported_files, state_space
+from test_export import needs_cc
+from test_export_dep99b import SPIKE, faulted, held_as_served
 from thermocomp.apps.deploy.export.pack import corrections
-from thermocomp.apps.deploy.export.watch import NOT_IN_CODE, STEP_OUT
+from thermocomp.apps.deploy.export.watch import STEP_OUT
 from thermocomp.apps.deploy.report import stream_rows
 
 STEP = 0.85
@@ -31,14 +27,10 @@ STEP = 0.85
 
 @pytest.fixture(scope="module")
 def served(tmp_path_factory):
-    """``(adaptive MLR as replay deploys it, its system with the monitor, the faulted campaign)``."""
-    folder = _machine(tmp_path_factory.mktemp("step99") / "data")
-    deployed, ds, test_ids = deployed_as_replay(test_export._compose(
-        f"data.path={folder}", "track=false", "monitor.adaptive=true", "monitor.fallbacks=none"))
-    frame = ds.campaigns[test_ids[-1]].reset_index(drop=True)
-    frame.loc[ONSET:ONSET + K_ROWS - 1, ["T_e", "T_f"]] += 273.15
-    frame.loc[SPIKE:, "T_c"] += STEP
-    return deployed, state_space(deployed, monitor=True), frame
+    """test_export_dep99b's :func:`faulted` with ``T_c`` stepped ``STEP`` for good at ``SPIKE``."""
+    def step(frame):
+        frame.loc[SPIKE:, "T_c"] += STEP
+    return faulted(tmp_path_factory.mktemp("step99") / "data", step)
 
 
 @needs_cc
@@ -54,17 +46,4 @@ def test_a_stepped_error_with_two_out_is_held_as_served(served, tmp_path):
         "jump: self-prediction error stepped")
     assert {s for r, s, to, _ in moves if to == "excluded" and r < SPIKE} == {"T_e", "T_f"}
     assert not any(s in ("T_e", "T_f") and to == "ok" for r, s, to, _ in moves if r <= SPIKE)
-    sim = Simulator(ss)
-    sim.reset()
-    U, t = frame[ss.inputs].to_numpy(float), frame["time"].to_numpy(float)
-    mirror = []
-    for i in range(len(frame)):
-        mirror.append(sim.step(U[i], t[i]))
-        w = sim.watch
-        assert not w.flags & NOT_IN_CODE, (i, w.missed)          # 4b0de502: SECOND at the step
-        if i == SPIKE:
-            assert (w.rule, len(w.gone)) == (STEP_OUT, 3)
-    assert np.max(np.abs(np.array(mirror) - want)) < 1e-9                    # every row
-    got, said = _streamed(built_stream(tmp_path, exported_files(deployed, "c")), frame, ss.inputs)
-    assert got.shape == want.shape and np.max(np.abs(got - want)) < 1e-9     # every row
-    assert "not in the code" not in said
+    held_as_served(deployed, ss, frame, want, STEP_OUT, tmp_path)     # 4b0de502: SECOND at the step
