@@ -50,6 +50,35 @@ S5. a test (tests/shell/test_export_step99.py, < 5 s) that fails on 4b0de502 and
     test_lint, test_benchmarks_cli pass.
 KEPT if S1-S5 hold (src + C + test + docs); else REFUSED (benchmarks/step99_rule.patch, src as
 4b0de502), the numbers kept here.
+
+Scored (bar 053a0b9c, the rule d2c34dd2 committed after it, before any of 9907-9909 was
+simulated; 2026-12-06 13:43-13:54 UTC under a load of 4-6 on 2 cores; main = ``git archive
+4b0de502 src``; the seen ROOT a copy of bench_dep99b's, the fresh simulated and run by main's
+tree, the rule's read a copy of that ROOT).  CPU (user + sys): seen ``cases`` 132.5 / 145.9 s
+main / rule, fresh ``cases`` 90.7 / 76.3 s, ``compiled`` dl9902 11.9 s::
+
+    record  case     main: max|C - served|, rows apart   rule
+    dl9902  healthy / drift   0 / 2.84e-14, 0             the same
+    dl9902  ambient  3.54 µm, 20 rows (row 994, SECOND)  1.42e-13, 0; compiled C 1.92e-13 (drift
+                                                         1.28e-13), nothing "not in the code"
+    dl9901, dl9903, dl9878, tr9876, tr9877 (15 lines)    the same (every line, ``diff``)
+    fresh   dl9907 healthy / drift / ambient   2.84e-14 / 2.84e-14 / 8.53e-14, 0   the same
+    fresh   tr9908 healthy / drift / ambient   0 / 5.68e-14 / 9.77e-15, 0          the same
+    fresh   dl9909 healthy / drift / ambient   0 / 2.84e-14 / 2.84e-14, 0          the same
+
+S1 MET (3.54 µm, 20 rows -> 1.42e-13, 0; compiled C <= 1.92e-13).  S2 MET (every line as
+main's).  S3 MET (every healthy frame <= 2.84e-14 µm, 0 rows).  S4 MET: every fresh line
+identical to main's, none apart on either (the fresh seeds did not part at a stepped error with
+two out, so they test only that the rule changes nothing else).  S5: test_export_step99 fails on
+4b0de502 (``SECOND`` at its row 35, mirror 0.175 µm off served on 45 rows), passes on the rule.
+
+Drift and freeze beside two out, checked on test_export_step99's machine (rule tree, not built):
+served's drift judgement excludes while more than ``min_active`` are in and its freeze check
+has no cap, the C keeps the two-slot cap for both: ``T_d`` +0.85 °C for good (a drift exclusion
+as the third) ``SECOND`` rows 36-39, 1.37 µm on 4 rows (the same on 4b0de502); ``T_c`` +0.6 °C
+0.153 µm on 44 rows; ``T_a`` frozen with ``T_e`` / ``T_f`` out 30 rows: ``SECOND`` 1.09 µm on 24
+rows.  They part the same way.  Not the same one line: the C's blind-out drift path
+(``mon_second_held(u, TC_MON_DRIFT_OUT)``) and the ST's static freeze pairs read the same clause.
 """
 
 from __future__ import annotations
