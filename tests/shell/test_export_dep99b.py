@@ -54,16 +54,44 @@ def _machine(root):
     return root
 
 
-@pytest.fixture(scope="module")
-def served(tmp_path_factory):
-    """``(adaptive MLR as replay deploys it, its system with the monitor, the faulted campaign)``."""
-    folder = _machine(tmp_path_factory.mktemp("dep99b") / "data")
+def faulted(folder, fault):
+    """``(adaptive MLR as replay deploys it, its system with the monitor, the faulted campaign)``:
+    the machine under ``folder``, its last test campaign with ``T_e`` / ``T_f`` in kelvin and
+    ``fault(frame)`` applied (step99's stepped error shares it)."""
     deployed, ds, test_ids = deployed_as_replay(test_export._compose(
-        f"data.path={folder}", "track=false", "monitor.adaptive=true", "monitor.fallbacks=none"))
+        f"data.path={_machine(folder)}", "track=false", "monitor.adaptive=true",
+        "monitor.fallbacks=none"))
     frame = ds.campaigns[test_ids[-1]].reset_index(drop=True)
     frame.loc[ONSET:ONSET + K_ROWS - 1, ["T_e", "T_f"]] += 273.15
-    frame.loc[SPIKE, "T_c"] += 3.0
+    fault(frame)
     return deployed, state_space(deployed, monitor=True), frame
+
+
+def held_as_served(deployed, ss, frame, want, rule, tmp_path):
+    """The mirror and the compiled C give ``want`` on every row, nothing flagged as not in the
+    code, ``rule`` at ``SPIKE`` with three out."""
+    sim = Simulator(ss)
+    sim.reset()
+    U, t = frame[ss.inputs].to_numpy(float), frame["time"].to_numpy(float)
+    mirror = []
+    for i in range(len(frame)):
+        mirror.append(sim.step(U[i], t[i]))
+        w = sim.watch
+        assert not w.flags & NOT_IN_CODE, (i, w.missed)          # the base: SECOND at SPIKE
+        if i == SPIKE:
+            assert (w.rule, len(w.gone)) == (rule, 3)
+    assert np.max(np.abs(np.array(mirror) - want)) < 1e-9                    # every row
+    got, said = _streamed(built_stream(tmp_path, exported_files(deployed, "c")), frame, ss.inputs)
+    assert got.shape == want.shape and np.max(np.abs(got - want)) < 1e-9     # every row
+    assert "not in the code" not in said
+
+
+@pytest.fixture(scope="module")
+def served(tmp_path_factory):
+    """:func:`faulted` with a one-sample +3 °C spike of ``T_c`` at ``SPIKE``."""
+    def spike(frame):
+        frame.loc[SPIKE, "T_c"] += 3.0
+    return faulted(tmp_path_factory.mktemp("dep99b") / "data", spike)
 
 
 @needs_cc
@@ -78,17 +106,4 @@ def test_a_jump_with_two_out_is_held_as_served(served, tmp_path):
     assert (SPIKE, "T_c", "excluded", "jump:") in moves and (SPIKE + 1, "T_c", "ok", "re-ad") in moves
     assert {s for r, s, to, _ in moves if to == "excluded" and r < SPIKE} == {"T_e", "T_f"}
     assert not any(s in ("T_e", "T_f") and to == "ok" for r, s, to, _ in moves if r <= SPIKE)
-    sim = Simulator(ss)
-    sim.reset()
-    U, t = frame[ss.inputs].to_numpy(float), frame["time"].to_numpy(float)
-    mirror = []
-    for i in range(len(frame)):
-        mirror.append(sim.step(U[i], t[i]))
-        w = sim.watch
-        assert not w.flags & NOT_IN_CODE, (i, w.missed)          # 90cf3c74: SECOND at the spike
-        if i == SPIKE:
-            assert (w.rule, len(w.gone)) == (JUMP, 3)
-    assert np.max(np.abs(np.array(mirror) - want)) < 1e-9                    # every row
-    got, said = _streamed(built_stream(tmp_path, exported_files(deployed, "c")), frame, ss.inputs)
-    assert got.shape == want.shape and np.max(np.abs(got - want)) < 1e-9     # every row
-    assert "not in the code" not in said
+    held_as_served(deployed, ss, frame, want, JUMP, tmp_path)     # 90cf3c74: SECOND at the spike
