@@ -100,10 +100,10 @@ def _print_keys(stage: str, group: str | None) -> int:
 
 
 def _fail(msg: str):
-    said = ' '.join(str(msg).split())
-    print(f"thermocomp: error: {said}", file=sys.stderr)
+    said = f"thermocomp: error: {' '.join(str(msg).split())}"
+    print(said, file=sys.stderr)
     refused = SystemExit(2)
-    refused.said = f"thermocomp: error: {said}"   # a sweep job's reason, kept in its folder
+    refused.said = said       # a sweep job's reason, kept in its folder
     raise refused
 
 

@@ -462,22 +462,20 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
            for t, r in found.items()}
     scored, clamped, guarded = _deployed(out, {"before": before, "after": after}, ds, train_ids,
                                          test_ids, mode, deployed_of)
-    train, why, start_blocks, reach, designs = s.n_train, s.why, s.start_blocks, s.reach, s.designs
-    scheme, gap = s.scheme, s.gap
-    if scheme == "forward":
+    if s.scheme == "forward":
         cv = {"scheme": "forward", "units": problem.n_units, "unit": "validation block",
-              "folds": problem.n_units, "gap_samples": gap,
+              "folds": problem.n_units, "gap_samples": s.gap,
               "min_train_fraction": options.min_train_fraction}
     else:
         cv = {"scheme": "campaigns", "units": problem.n_units,
-              "unit": "campaign" if train > 1 else "time block",
+              "unit": "campaign" if s.n_train > 1 else "time block",
               "folds": LeaveCampaignsOut(options.n_folds).get_n_splits(groups=problem.units)}
-    if why:
-        cv["why"] = why
-    cv |= {"test_blocks": start_blocks[0], "block_samples": start_blocks[1], "min_p": reach,
+    if s.why:
+        cv["why"] = s.why
+    cv |= {"test_blocks": s.start_blocks[0], "block_samples": s.start_blocks[1], "min_p": s.reach,
            # each target's own starting test blocks (their residuals' memory, diag82; each
            # round's own in its ``rounds``); the above: fewest
-           "designs": designs,
+           "designs": s.designs,
            "in_range_share": float(problem.in_range[problem.validated].mean()),
            "mode": "simulation",   # the search scores what the machine runs, whatever ``mode`` is
            "shrink_alpha": {t: r.alpha for t, r in found.items()},

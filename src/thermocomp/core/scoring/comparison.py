@@ -30,6 +30,9 @@ from .leaderboard import (
     ranking_line,
 )
 
+# where a sweep's failed jobs say why (each job's folder: shell.callbacks.FAILED_JOB)
+FAILED_WHERE = "why in each one's folder, failed.json"
+
 
 def shown_table(table: pd.DataFrame, baselines: list[dict]) -> pd.DataFrame:
     """The ranked runs as printed (short run ids), the persistence baseline below them (never
@@ -80,6 +83,6 @@ def headline_line(parent_id: str, n_runs: int, sort_by: str, target: str, basis:
             else "a TEST figure, as asked: do not choose a model by it")
     within = (f" on {datasets} datasets, ranked within each (figures of different data do not "
               f"compare)" if datasets > 1 else "")
-    failed = f" ({failed}: why in each one's folder, failed.json)" if failed else ""
+    failed = f" ({failed}: {FAILED_WHERE})" if failed else ""
     return (f"sweep {parent_id}: {n_runs} runs{failed}{within}, sorted by {sort_by} "
             f"(target {target}, {said}); test: columns are reported, not used to choose")

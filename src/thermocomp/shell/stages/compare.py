@@ -18,7 +18,7 @@ from ...base.log import say
 from ...base.params import BOOLEAN, optional, text
 from ...base.paths import resolve
 from ...core.figures.plotdata import write_compare
-from ...core.scoring.comparison import compare_json, headline_line, shown_table
+from ...core.scoring.comparison import FAILED_WHERE, compare_json, headline_line, shown_table
 from ...core.scoring.leaderboard import baseline_rows, fit_width, rank, ranked_by, to_markdown
 from ..config.apart import check_apart
 from ..config.checks import _check_writable
@@ -38,8 +38,8 @@ def compare_sweep(cfg: DictConfig, parent_id: str, out=None) -> pd.DataFrame:
     rows = sweep_rows(client, uri, parent_id, str(opts.target), found)
     if not rows:
         note = failed_note(*failed_jobs(client, parent_id))
-        raise ConfigError(f"sweep {parent_id} has no child runs" + (f" ({note}: why in each one's "
-                                                                     "folder, failed.json)" if note else ""))
+        raise ConfigError(f"sweep {parent_id} has no child runs"
+                          + (f" ({note}: {FAILED_WHERE})" if note else ""))
     try:
         table = rank(rows, str(opts.sort_by), opts.get("descending"))
     except KeyError as exc:

@@ -238,6 +238,7 @@ def within_limits(u, limits: np.ndarray) -> np.ndarray:
     with np.errstate(invalid="ignore"):
         return np.abs(np.asarray(u, float)) <= limits
 
+
 @dataclass
 class StateSpace(MonitorArrays, NetArrays, ForestArrays, _System):
     """Arrays of the exported system (module doc); lists, so that it is its own JSON.  After the

@@ -172,6 +172,7 @@ may part from the served model; the conformance pack cuts there (:func:`~.pack.c
 
 from __future__ import annotations
 
+import contextlib
 import math
 from dataclasses import dataclass, field
 
@@ -1032,13 +1033,20 @@ class CodeMonitor:
     def _pair_held(self, ins: np.ndarray) -> bool:
         """(cmon93) Whether the code takes every sensor of ``ins`` out for a jump, in the
         monitor's order, as the first out (one it holds out) or the second (cmon88)."""
-        saved = list(self.gone)
-        try:
+        with self._trial():
             for j in np.flatnonzero(ins):
                 if not (self._jump_held(int(j)) if self.out >= 0 else self.ported[j] or self.spikes[j]):
                     return False
                 self.gone.append(int(j))
             return True
+
+    @contextlib.contextmanager
+    def _trial(self):
+        """The out set grown for a trial (each sensor judged beside those taken before it, in
+        the monitor's order: cmon93's pair, dep99's readings beyond range), as it was after."""
+        saved = list(self.gone)
+        try:
+            yield
         finally:
             self.gone = saved
 
@@ -1119,8 +1127,9 @@ class CodeMonitor:
         # predicted from the others in and within range (cmon89: one out already, set solved)
         inside = self._active() & ~rng & np.isfinite(d)
         op = self._operator(~inside) if inside.sum() >= a["min_active"] else None
-        saved, rng = list(self.gone), rng.copy()
-        try:        # (the set grown in the monitor's order, as the caller takes them out)
+        rng = rng.copy()
+        # the set grown in the monitor's order, as the caller takes them out
+        with self._trial():
             for j in map(int, np.flatnonzero(rng)):
                 outs = self._outs()
                 if self.gone and j not in outs and not (
@@ -1146,8 +1155,6 @@ class CodeMonitor:
                     self._flag(NOT_IN_CODE, j, BLIND)
                     return None
                 self.gone.append(j)
-        finally:
-            self.gone = saved
         return rng
 
     def _common_step(self, d, step, big, pos):
