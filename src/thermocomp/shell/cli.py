@@ -100,10 +100,12 @@ def _print_keys(stage: str, group: str | None) -> int:
 
 
 def _fail(msg: str):
-    said = f"thermocomp: error: {' '.join(str(msg).split())}"
-    print(said, file=sys.stderr)
+    # The error line is spelled out at the print: test_no_bare_print_for_progress_in_src
+    # tells an error line from a progress print by it.
+    said = ' '.join(str(msg).split())
+    print(f"thermocomp: error: {said}", file=sys.stderr)
     refused = SystemExit(2)
-    refused.said = said       # a sweep job's reason, kept in its folder
+    refused.said = f"thermocomp: error: {said}"   # a sweep job's reason, kept in its folder
     raise refused
 
 
