@@ -506,7 +506,7 @@ class Search:
         Past its transient a lag from the initial thermal state ("start lag") is one constant per
         campaign, ``w'(c(0) - A_0)``: its gain in the held-out campaigns' means is evidence of one
         number per campaign, picked among the round's start lags.  With 8 train campaigns that
-        evidence cannot pass a family-wise test (``2^-8`` times ~200 start lags screened); where
+        evidence cannot pass a family-wise test (``2^-8`` times ~110 start lags screened); where
         it cannot, :meth:`_within_checks` credits a start lag mostly by its gain within the
         campaigns: its within gain must reach :data:`START_WITHIN_SHARE` of its pooled gain (in %
         of each RMSE).  make run's scenario trains on 16 campaigns (``2^-16`` times its start
