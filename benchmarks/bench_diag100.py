@@ -331,14 +331,9 @@ def draws(root: str, label: str, name: str) -> None:
 def bar(root: str, main: str, rule: str) -> None:
     """The bar (module doc) on ``ROOT/{seen,fresh,default}-{MAIN,RULE}.jsonl``; clause (4) is a
     pytest run, reported beside it."""
-    from bench_diag98 import _changes, fresh_items, print_moved
+    from bench_diag98 import _changes, fresh_items, print_moved, seen_worse
 
-    items = []
-    seen = {n: _changes(root, "seen", n) for n in (main, rule)}
-    assert seen[main].keys() == seen[rule].keys(), "the seen rows differ"
-    worse = {n: sorted(k for k, v in seen[n].items() if v > 2.0) for n in seen}
-    items.append((f"(1) seen rows > 2 % worse {len(worse[main])} -> {len(worse[rule])} {worse[rule]} <= 2",
-                  len(worse[rule]) <= 2))
+    seen, items = seen_worse(root, main, rule)
     helpful = [k for k, v in seen[main].items() if v < 0]
     g = {n: -float(np.mean([seen[n][k] for k in helpful])) for n in seen}
     items.append((f"(2) seen helpful rows' mean gain ({len(helpful)} rows) {g[main]:.2f} -> {g[rule]:.2f} "

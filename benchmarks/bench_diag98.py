@@ -351,6 +351,15 @@ def _changes(root: str, name: str, label: str) -> dict:
     return {(c, t): _change(v) for c, r in rows.items() for t, v in r["targets"].items()}
 
 
+def seen_worse(root: str, main: str, rule: str) -> tuple[dict, list]:
+    """The seen rows' changes of both labels and clause (1): the rule's rows > 2 % worse <= 2."""
+    seen = {n: _changes(root, "seen", n) for n in (main, rule)}
+    assert seen[main].keys() == seen[rule].keys(), "the seen rows differ"
+    worse = {n: sorted(k for k, v in seen[n].items() if v > 2.0) for n in seen}
+    return seen, [(f"(1) seen rows > 2 % worse {len(worse[main])} -> {len(worse[rule])} {worse[rule]} <= 2",
+                   len(worse[rule]) <= 2)]
+
+
 def print_moved(name: str, a: dict, b: dict) -> None:
     """The rows whose change moved more than 0.05 points from ``a`` to ``b``."""
     for k in sorted(a):
@@ -377,12 +386,7 @@ def fresh_items(root: str, main: str, rule: str, first: int) -> list:
 
 def bar(root: str, main: str, rule: str) -> None:
     """The bar (module doc) on ``ROOT/{seen,fresh,default}-{MAIN,RULE}.jsonl``."""
-    items = []
-    seen = {n: _changes(root, "seen", n) for n in (main, rule)}
-    assert seen[main].keys() == seen[rule].keys(), "the seen rows differ"
-    worse = {n: sorted(k for k, v in seen[n].items() if v > 2.0) for n in seen}
-    items.append((f"(1) seen rows > 2 % worse {len(worse[main])} -> {len(worse[rule])} {worse[rule]} <= 2",
-                  len(worse[rule]) <= 2))
+    seen, items = seen_worse(root, main, rule)
     dflt = {n: _changes(root, "default", n)[("default:0", "E_Y")] for n in (main, rule)}
     items.append((f"(2) make run's E_Y {dflt[main]:+.1f} -> {dflt[rule]:+.1f} % (within 2 points)",
                   dflt[rule] <= dflt[main] + 2.0))
