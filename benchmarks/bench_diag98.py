@@ -351,14 +351,42 @@ def _changes(root: str, name: str, label: str) -> dict:
     return {(c, t): _change(v) for c, r in rows.items() for t, v in r["targets"].items()}
 
 
-def bar(root: str, main: str, rule: str) -> None:
-    """The bar (module doc) on ``ROOT/{seen,fresh,default}-{MAIN,RULE}.jsonl``."""
-    items = []
+def seen_worse(root: str, main: str, rule: str) -> tuple[dict, list]:
+    """The seen rows' changes of both labels and clause (1): the rule's rows > 2 % worse <= 2."""
     seen = {n: _changes(root, "seen", n) for n in (main, rule)}
     assert seen[main].keys() == seen[rule].keys(), "the seen rows differ"
     worse = {n: sorted(k for k, v in seen[n].items() if v > 2.0) for n in seen}
-    items.append((f"(1) seen rows > 2 % worse {len(worse[main])} -> {len(worse[rule])} {worse[rule]} <= 2",
-                  len(worse[rule]) <= 2))
+    return seen, [(f"(1) seen rows > 2 % worse {len(worse[main])} -> {len(worse[rule])} {worse[rule]} <= 2",
+                   len(worse[rule]) <= 2)]
+
+
+def print_moved(name: str, a: dict, b: dict) -> None:
+    """The rows whose change moved more than 0.05 points from ``a`` to ``b``."""
+    for k in sorted(a):
+        if abs(a[k] - b[k]) > 0.05:
+            print(f"  {name} {k[0]} {k[1]}: {a[k]:+.1f} -> {b[k]:+.1f} %")
+
+
+def fresh_items(root: str, main: str, rule: str, first: int) -> list:
+    """The fresh clauses ``(first)`` rows > 2 % worse no more than main's and ``(first + 1)`` the mean
+    change within main's + 1 point, on ``ROOT/fresh-{MAIN,RULE}.jsonl`` (none before the rule's
+    fresh rows exist); the rows that moved printed."""
+    if not (Path(root) / f"fresh-{rule}.jsonl").exists():
+        return []
+    fresh = {n: _changes(root, "fresh", n) for n in (main, rule)}
+    assert fresh[main].keys() == fresh[rule].keys(), "the fresh rows differ"
+    fw = {n: sorted(k for k, v in fresh[n].items() if v > 2.0) for n in fresh}
+    m = {n: float(np.mean(list(fresh[n].values()))) for n in fresh}
+    print_moved("fresh", fresh[main], fresh[rule])
+    return [(f"({first}) fresh rows > 2 % worse {len(fw[main])} {fw[main]} -> {len(fw[rule])} {fw[rule]}",
+             len(fw[rule]) <= len(fw[main])),
+            (f"({first + 1}) fresh mean change ({len(fresh[main])} rows) {m[main]:+.2f} -> {m[rule]:+.2f} %",
+             m[rule] <= m[main] + 1.0)]
+
+
+def bar(root: str, main: str, rule: str) -> None:
+    """The bar (module doc) on ``ROOT/{seen,fresh,default}-{MAIN,RULE}.jsonl``."""
+    seen, items = seen_worse(root, main, rule)
     dflt = {n: _changes(root, "default", n)[("default:0", "E_Y")] for n in (main, rule)}
     items.append((f"(2) make run's E_Y {dflt[main]:+.1f} -> {dflt[rule]:+.1f} % (within 2 points)",
                   dflt[rule] <= dflt[main] + 2.0))
@@ -366,22 +394,8 @@ def bar(root: str, main: str, rule: str) -> None:
     g = {n: -float(np.mean([seen[n][k] for k in helpful])) for n in seen}
     items.append((f"(3) seen helpful rows' mean gain ({len(helpful)} rows) {g[main]:.2f} -> {g[rule]:.2f} "
                   f"(>= {0.8 * g[main]:.2f})", g[rule] >= 0.8 * g[main]))
-    for k in sorted(seen[main]):
-        if abs(seen[main][k] - seen[rule][k]) > 0.05:
-            print(f"  seen {k[0]} {k[1]}: {seen[main][k]:+.1f} -> {seen[rule][k]:+.1f} %")
-    fresh_file = Path(root) / f"fresh-{rule}.jsonl"
-    if fresh_file.exists():
-        fresh = {n: _changes(root, "fresh", n) for n in (main, rule)}
-        assert fresh[main].keys() == fresh[rule].keys(), "the fresh rows differ"
-        fw = {n: sorted(k for k, v in fresh[n].items() if v > 2.0) for n in fresh}
-        items.append((f"(4) fresh rows > 2 % worse {len(fw[main])} {fw[main]} -> {len(fw[rule])} {fw[rule]}",
-                      len(fw[rule]) <= len(fw[main])))
-        m = {n: float(np.mean(list(fresh[n].values()))) for n in fresh}
-        items.append((f"(5) fresh mean change ({len(fresh[main])} rows) {m[main]:+.2f} -> {m[rule]:+.2f} %",
-                      m[rule] <= m[main] + 1.0))
-        for k in sorted(fresh[main]):
-            if abs(fresh[main][k] - fresh[rule][k]) > 0.05:
-                print(f"  fresh {k[0]} {k[1]}: {fresh[main][k]:+.1f} -> {fresh[rule][k]:+.1f} %")
+    print_moved("seen", seen[main], seen[rule])
+    items += fresh_items(root, main, rule, 4)
     for text, ok in items:
         print(f"  {text}: {'met' if ok else 'FAILS'}")
     print(f"  bar ({len(items)} of 5 clauses read): {'HOLDS' if all(ok for _, ok in items) else 'FAILS'}")

@@ -71,7 +71,7 @@ from scipy.stats import t as student_t
 from ...core.metrics import reduction_pct
 from ...core.model_selection.blocks import BETWEEN_CAMPAIGNS, between_campaign_share, decorrelation_length
 from .candidates import CONTROL, CandidateOptions, candidates
-from .cv import CrossValidator, CVResult, Problem, sign_flip_maxt, sign_flip_pvalues
+from .cv import CrossValidator, CVResult, Problem, sign_flip_maxt, sign_flip_pvalues, smallest_p
 from .features import Effect
 from .sensors import self_prediction
 
@@ -317,6 +317,20 @@ def _same_effect(ev, other) -> bool:
     return ev.effect.column == other.effect.column
 
 
+#: Where the campaigns cannot resolve a start lag's gain in their means (:meth:`Search._means_resolved`),
+#: its within-campaign CV gain must reach this share of its pooled CV gain (both in % of RMSE).
+#: Read off seen rows (bench_diag100): the 8 start lags of bench_diag92's 70 draws that left their
+#: target > 2 % worse read 0.28-0.90, the third highest 0.650 (planted 9046 E_X); the helpful round-1
+#: start lags 0.96-1.30 but one (spent planted 9811 E_X, 0.46); diag98's bound 1 refused real lags
+#: at 0.96-0.98 (fresh 9838 / 9839 E_X).  Round-2 start lags after a position effect read 0.27-0.60.
+START_WITHIN_SHARE = 2.0 / 3.0
+
+
+def _start_lag(effect: Effect) -> bool:
+    """A lag from the initial thermal state (``initial_state``: the campaign's start transient)."""
+    return effect.kind == "dynamics" and bool(effect.initial_state)
+
+
 def _orthonormal(Z: np.ndarray) -> np.ndarray:
     """Orthonormal basis of the column space of ``Z`` (rank-revealing, via SVD)."""
     U, s, _ = np.linalg.svd(Z, full_matrices=False)
@@ -339,6 +353,8 @@ def screen_r2(Q: np.ndarray, r_perp: np.ndarray, F: np.ndarray) -> tuple[float, 
 
 class Search:
     """The loop of one target (see the module docstring)."""
+
+    start_lags_screened: int = 1      # the current round's start lags (:meth:`_means_resolved`)
 
     def __init__(self, problem: Problem, estimator, selector, declared: list[str],
                  options: SearchOptions, excluded=()):
@@ -479,6 +495,26 @@ class Search:
         if self.problem.scheme == "campaigns":    # and not from one campaign (clean69)
             ev.gain_pct_within_rest = self._within_gain(current, ev.result, less_best=True)
             ev.clears_bar = ev.clears_bar and ev.gain_pct_within_rest >= self.options.min_gain_pct
+            if _start_lag(ev.effect) and not self._means_resolved():   # (diag98, diag100)
+                ev.clears_bar = ev.clears_bar and ev.gain_pct_within >= START_WITHIN_SHARE * ev.gain_pct
+
+    def _means_resolved(self) -> bool:
+        """True when the campaigns can resolve a start lag's gain in their means: the sign-flip
+        test's smallest p with one unit per campaign, times the start lags the round screened,
+        at most ``alpha`` (diag98).
+
+        Past its transient a lag from the initial thermal state ("start lag") is one constant per
+        campaign, ``w'(c(0) - A_0)``: its gain in the held-out campaigns' means is evidence of one
+        number per campaign, picked among the round's start lags.  With 8 train campaigns that
+        evidence cannot pass a family-wise test (``2^-8`` times ~110 start lags screened); where
+        it cannot, :meth:`_within_checks` credits a start lag mostly by its gain within the
+        campaigns: its within gain must reach :data:`START_WITHIN_SHARE` of its pooled gain (in %
+        of each RMSE).  make run's scenario trains on 16 campaigns (``2^-16`` times its start
+        lags: resolved), and its T_motor1 start lag on ``E_Y`` (0.76; -25.3 % on the test, -24.5 %
+        on 128 new campaigns in diag70) is weighed as before (``benchmarks/bench_diag98.py``,
+        ``benchmarks/bench_diag100.py``)."""
+        p = self.problem
+        return smallest_p(p.n_units) * max(self.start_lags_screened, 1) <= self.options.alpha
 
     def _within_gain(self, current: CVResult, result: CVResult, campaigns: bool = False,
                      less_best: bool = False) -> float:
@@ -618,6 +654,7 @@ class Search:
                 current = self.cv._result(current.prediction, current.alpha)
             names = self.cv.selection(self.inputs(), None)
             cands = candidates(p, names, set(self.excluded), self.effects, opts.candidates, used)
+            self.start_lags_screened = sum(_start_lag(e) for e in cands)
             if not self._bank_untestable(len(names)):
                 cands = [e for e in cands if e.over is None]
             ok = p.validated                  # the rows CV scores (forward: not the first part)
