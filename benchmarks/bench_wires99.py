@@ -186,13 +186,14 @@ def cases(frame: pd.DataFrame, start: int, mon) -> dict[str, tuple[tuple[str, st
     return out
 
 
-def _cell(root: Path, record: str):
+def _cell(root: Path, record: str, generators: dict | None = None):
     """``(deployed, state space, frame to the fault row + ROWS, lead-in rows, fault row, test
-    campaign)`` of ``record``, simulated and run by this tree once (module doc)."""
+    campaign)`` of ``record``, simulated (its words in ``generators``, default :data:`SEEN` and
+    :data:`FRESH`) and run by this tree once (module doc)."""
     from bench_cmon92 import faulted_cell, made
 
     _targets_env(record)
-    made(root, record, "mlr", {**SEEN, **FRESH})
+    made(root, record, "mlr", generators or {**SEEN, **FRESH})
     deployed, ss, frame, lead, start, cid = faulted_cell(root, record, "mlr-none")
     return deployed, ss, frame.iloc[:start + ROWS].reset_index(drop=True), lead, start, cid
 
