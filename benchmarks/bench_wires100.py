@@ -1,7 +1,9 @@
 """Two sensors' wires exchanged mid-stream, read as an exchange: served, the numpy mirror and the
 C alike (issue 34; stop 100, wires100; bench_wires99's rule shape made one mechanism with the jump).
 
-RULE (served ``surveillance/faults.py`` ``InstantFaults._exchanged``, called first in
+RULE (REFUSED, see VERDICT: src reverted, the rule kept as ``benchmarks/wires100_rule.patch``, the
+git diff of src / tests / docs against 9bbbb214; served ``surveillance/faults.py``
+``InstantFaults._exchanged``, called first in
 ``SensorMonitor.update``; the mirror ``export/watch.py`` ``CodeMonitor._exchanged``; the C
 ``mon_exchange`` in ``watch_c.py``, first in ``monitor_step``).  Every sensor in, every reading there,
 exactly two sensors flagged at one sample (a step past the jump limit times the samples it spans,
@@ -76,6 +78,51 @@ Key: none, X2 holding; if X2 fails, the rule goes behind ``monitor.exchanged`` (
 
 FRESH: pt9910 (portal64), tr9911 (trunnion63), cr9912 (the climate room of bench_mon97); the
 fault row a quarter into the first test campaign (bench_cmon92's ``faulted_cell``), fixed here.
+
+Status: the bar above was committed in d681b93c (with the rule's src) before 9910-9912 were
+simulated; unchanged.  Scored once (2026-12-06 15:41-15:51 UTC, d681b93c's src, ``swaps
+/tmp/wires100/fresh pt9910 tr9911 cr9912``, 39.7 s CPU); main = 9bbbb214's src on the same data
+and models after it (34.0 s CPU; its "compiled" column read the rule's binary, left out here).
+|served - healthy| (max over targets, µm) main -> rule, the drop's, max|C - served| main -> rule::
+
+  record  case  pair (°C at the swap row)                          main -> rule   drop    C - served
+  pt9910  far   T_rail_drive 35.75 <-> T_bed 12.42                  14.48 -> 0     14.8    151 -> 0
+  pt9910  near  T_motor 30.16 <-> T_hall 16.88                      98.03 -> 0     97.77   55 -> 0
+  tr9911  far   T_bed 19.90 <-> T_trunnion 24.74 (= near)           0.6891 -> 0    0.6891  1.4e-14 -> 0
+  cr9912  far   T_nc_tool_motor 19.49 <-> T_nc_cabinet 21.58        2.152 -> 2.152 2.457   0 -> 0
+  cr9912  near  T_nc_z1_drive 19.91 <-> T_nc_cabinet 21.58         2.573 -> 0     2.532   7.0e-14 -> 0
+
+X1 FAILS on 1 of 3: cr9912's far swap (2.09 °C apart, the room's largest gap) is no two-flag sample:
+the blind ``T_nc_tool_motor``'s step is under its jump limit and the C re-references it as a
+step off its own (``BENT``), so the rule does not fire (served as main's, 2.152 against the
+drop's 2.457: ratio 0.876 > 0.5); pt9910 / tr9911 0 (ratio 0).  X2 holds (bench_dup99 ``healthy``
+lines identical main -> rule; bench_mon98 / bench_dep98 lines: see W2 below; fresh healthy frames 0
+events, 0 flags).  X3 holds: C = served 0 µm on every healthy / far / near case (main parted by
+151 / 55 µm on pt9910), compiled C = mirror <= 2.8e-13 µm; the drop case parts C from served by
+18.6 / 102 / 11.1 / 1.78 / 1.81 µm (the code refuses a second missing reading in one sample,
+``MISSING_SECOND``; the same on main).  X4 holds: far named at the swap row on 2 of 3 (pt9910,
+tr9911), near on 3 of 3, served = healthy (0 <= 0.25 x the drop's) on each.  X5 (the ST, which
+holds no monitor of its own and compensates with the readings as read): it flags the swap row on
+every case (OFF_RANGE / COMMON / JUMP / BENT: rule 16 / 5 / 1 / 26 / 1), then compensates with the
+exchanged readings, flagging 119 / 58 / 0 / 0 / 0 of the 119 rows after it; max|ST - served|
+after it 29 / 98.3 / 0.254 / 1.41 / 2.77 µm (main 17 / 116 / 0.393 / 1.41 / 1.5).
+
+W2 (main -> rule, each on the same data and models): bench_dup99 ``healthy`` fl, cr9763, lr9376,
+sw9776, pt9851 identical (digests above); bench_mon98 ``cases`` tr9828 sw9776 cr9763 lr9376 and
+bench_dep98 ``back`` tr9828 identical but the CPU lines (47.7 / 51.0 s, 10.1 / 10.4 s; their data
+and models copied from /tmp/mon98/seenr and /tmp/dep98/faults); ~6 min wall for both trees.
+
+VERDICT: REFUSED (X1 not met on cr9912, as the bar was written: per record).  The rule never made
+a case worse (cr9912 far as main's); where two flags meet it reads every swap, seen and fresh, to
+0 µm and the C with it.  What a next rule would need: a swap of two close readings, where one
+sensor's step stays under its jump limit (a blind sensor's, judged by its bend), is no two-flag
+sample; the pair test would have to start from one flagged (or bent) sensor whose reading is
+where the field puts another.  The patch applies to 9bbbb214 as it was measured; with it,
+tests/shell/test_export_wires100.py (2 cases, both failing on 9bbbb214: served reads jumps at
+the swap row, the mirror flags JUMP), test_monitor_two_jumps57, test_export_cmon93 and
+test_export.py (PARSED_DIGEST unchanged): 36 passed.  bench_wires99's cases are framed once
+(:func:`~bench_wires99.framed_cases`) and headed once (:func:`~bench_wires99.headline`,
+duplicates' two pairs): its seen pt9851 lines, and this bench's cr9912 lines on 9bbbb214, as before.
 """
 
 from __future__ import annotations
@@ -95,7 +142,7 @@ from bench_audit98 import PORTAL  # noqa: E402
 from bench_mon97 import CR  # noqa: E402
 from bench_wires99 import FRESH as WIRES99  # noqa: E402
 from bench_wires99 import SEEN as FAULTED  # noqa: E402
-from bench_wires99 import _cell, cases  # noqa: E402
+from bench_wires99 import _cell, framed_cases, headline  # noqa: E402
 
 SEEN = {**FAULTED, **WIRES99}
 FRESH = {"pt9910": [*PORTAL, "seed=9910"], "tr9911": [*TRUNNION[1:], "seed=9911"],
@@ -156,17 +203,12 @@ def swaps(root: str, *records: str) -> None:
         healthy = _rows(deployed, ss, frame, block)
         n_ev = sum(map(len, healthy["events"]))
         n_ex = sum(e["to"] == "exchanged" for r in healthy["events"] for e in r)
-        print(f"{record} mlr, test campaign {cid}: {len(frame)} rows fed ({lead} lead-in), fault "
-              f"row {start}; healthy: served sensor events {n_ev} (exchanged {n_ex}), mirror flagged "
-              f"rows {sum(f != 0 for f, _, _ in healthy['said'])}, max|C - served| "
-              f"{np.abs(healthy['c'] - healthy['served']).max():.3g} µm", flush=True)
+        headline(record, cid, frame, lead, start, f"{n_ev} (exchanged {n_ex})",
+                 sum(f != 0 for f, _, _ in healthy["said"]), np.abs(healthy["c"] - healthy["served"]).max())
         want = healthy["served"][start:]
-        for kind, ((a, b), part) in cases(frame, start, mon).items():
-            drop = part.copy()
-            drop[[a, b]] = np.nan
-            swapped = pd.concat([frame.iloc[:start], part])
+        for kind, (a, b), swapped, dropped in framed_cases(frame, start, mon):
             got = _rows(deployed, ss, swapped, block)
-            gone = _rows(deployed, ss, pd.concat([frame.iloc[:start], drop]), None)
+            gone = _rows(deployed, ss, dropped, None)
             off = np.abs(got["served"][start:] - want).max()
             floor = np.abs(gone["served"][start:] - want).max()
             named = sorted(e["sensor"] for e in got["events"][start] if e["to"] == "exchanged")
