@@ -186,15 +186,33 @@ def cases(frame: pd.DataFrame, start: int, mon) -> dict[str, tuple[tuple[str, st
     return out
 
 
-def _cell(root: Path, record: str):
+def framed_cases(frame: pd.DataFrame, start: int, mon):
+    """Per case of :func:`cases`: ``(kind, (a, b), the frame to the fault row then the case's
+    rows, the same with a and b missing from the fault row: the drop)``."""
+    for kind, ((a, b), part) in cases(frame, start, mon).items():
+        drop = part.copy()
+        drop[[a, b]] = np.nan
+        yield kind, (a, b), pd.concat([frame.iloc[:start], part]), pd.concat([frame.iloc[:start], drop])
+
+
+def _cell(root: Path, record: str, generators: dict | None = None):
     """``(deployed, state space, frame to the fault row + ROWS, lead-in rows, fault row, test
-    campaign)`` of ``record``, simulated and run by this tree once (module doc)."""
+    campaign)`` of ``record``, simulated (its words in ``generators``, default :data:`SEEN` and
+    :data:`FRESH`) and run by this tree once (module doc)."""
     from bench_cmon92 import faulted_cell, made
 
     _targets_env(record)
-    made(root, record, "mlr", {**SEEN, **FRESH})
+    made(root, record, "mlr", generators or {**SEEN, **FRESH})
     deployed, ss, frame, lead, start, cid = faulted_cell(root, record, "mlr-none")
     return deployed, ss, frame.iloc[:start + ROWS].reset_index(drop=True), lead, start, cid
+
+
+def headline(record, cid, frame, lead, start, events, flagged, parted) -> None:
+    """A record's first line: its cell, the fault row, the healthy frame's served sensor
+    ``events``, mirror ``flagged`` rows and max|C - served| (``parted``, µm)."""
+    print(f"{record} mlr, test campaign {cid}: {len(frame)} rows fed ({lead} lead-in), fault "
+          f"row {start}; healthy: served sensor events {events}, mirror flagged rows {flagged}, "
+          f"max|C - served| {parted:.3g} µm", flush=True)
 
 
 def _said(events: list[dict], sensor: str) -> str:
@@ -210,17 +228,14 @@ def swaps(root: str, *records: str) -> None:
         mon = deployed.monitor
         names = list(mon.names)
         healthy = _stepped(deployed, ss, frame)
-        print(f"{record} mlr, test campaign {cid}: {len(frame)} rows fed ({lead} lead-in), fault "
-              f"row {start}; healthy: served sensor events {sum(map(len, healthy['events']))}, "
-              f"mirror flagged rows {int((healthy['flags'] != 0).sum())}, max|C - served| "
-              f"{np.abs(healthy['c'] - healthy['served']).max():.3g} µm", flush=True)
+        headline(record, cid, frame, lead, start, sum(map(len, healthy["events"])),
+                 int((healthy["flags"] != 0).sum()), np.abs(healthy["c"] - healthy["served"]).max())
         want = healthy["served"][start:]
-        for kind, ((a, b), part) in cases(frame, start, mon).items():
-            drop = part.copy()
-            drop[[a, b]] = np.nan
-            got = _stepped(deployed, ss, pd.concat([frame.iloc[:start], part]))
+        for kind, (a, b), swapped, dropped in framed_cases(frame, start, mon):
+            part = swapped.iloc[start:]
+            got = _stepped(deployed, ss, swapped)
             out_end = list(mon.excluded)
-            gone = _stepped(deployed, ss, pd.concat([frame.iloc[:start], drop]))
+            gone = _stepped(deployed, ss, dropped)
             served, floor = got["served"][start:], gone["served"][start:]
             ev = got["events"][start:]
             back = {s: sum(1 for r in ev for e in r if e.get("sensor") == s and e["to"] == "ok"
