@@ -473,13 +473,38 @@ def _deployed_cell(data: Path, model: Path):
     return deployed, ds, train_ids, test_ids
 
 
+def monitored_and_exported(reports: Path, data: Path, model: Path, cut: list[str]) -> Path | None:
+    """Cell H's ``monitor`` (its events) and ``export`` C with its check pack, built and run,
+    under ``reports`` (``cut``: the keys of the test split); the C's folder, None if refused
+    (bench_audit100's cell H too)."""
+    from bench_data88 import _refusal
+
+    out = reports / "monitor"
+    done = bench_audit97._cli("monitor", f"data.path={data}", f"monitor.model={model}",
+                              "track=false", *cut, f"out={out}")
+    said = json.loads((out / "monitor.json").read_text()) if (out / "monitor.json").exists() else {}
+    events = said.get("events", [])
+    print(f"monitor exit {done.returncode}: {_refusal(done) if done.returncode else ''}; "
+          f"{len(events)} events {events[:5]}", flush=True)
+    c_dir = reports / "c"
+    done = bench_audit97._cli("export", f"data.path={data}", f"export.model={model}",
+                              "export.format=c", "export.check=true", *cut, f"out={c_dir}")
+    print(f"export c exit {done.returncode}: {_refusal(done) if done.returncode else ''}", flush=True)
+    if done.returncode:
+        return None
+    subprocess.run(["gcc", "-O2", "compensator.c", "stream.c", "-lm", "-o", "stream"], cwd=c_dir,
+                   check=True, capture_output=True)
+    pack = subprocess.run(["sh", "check/check.sh"], cwd=c_dir, capture_output=True, text=True)
+    print(f"check pack exit {pack.returncode}: {(pack.stdout + pack.stderr).strip()[-300:]}", flush=True)
+    return c_dir
+
+
 def healthy(root: str, seed: str) -> None:
     """Cell H (module doc)."""
     import io
 
     import bench_st93
     from bench_audit86b import stage
-    from bench_data88 import _refusal
 
     _targets("edm65.")
     record = f"ed{seed}"
@@ -495,23 +520,9 @@ def healthy(root: str, seed: str) -> None:
         assert rc == 0, said
     bench_st93.deployed_cell = lambda *_: _deployed_cell(data, model)
     bench_st93.trace(str(base), record)
-    out = base / "reports" / record / "monitor"
-    done = bench_audit97._cli("monitor", f"data.path={data}", f"monitor.model={model}",
-                              "track=false", *CUT, f"out={out}")
-    said = json.loads((out / "monitor.json").read_text()) if (out / "monitor.json").exists() else {}
-    events = said.get("events", [])
-    print(f"monitor exit {done.returncode}: {_refusal(done) if done.returncode else ''}; "
-          f"{len(events)} events {events[:5]}", flush=True)
-    c_dir = base / "reports" / record / "c"
-    done = bench_audit97._cli("export", f"data.path={data}", f"export.model={model}",
-                              "export.format=c", "export.check=true", *CUT, f"out={c_dir}")
-    print(f"export c exit {done.returncode}: {_refusal(done) if done.returncode else ''}", flush=True)
-    if done.returncode:
+    c_dir = monitored_and_exported(base / "reports" / record, data, model, CUT)
+    if c_dir is None:
         return
-    subprocess.run(["gcc", "-O2", "compensator.c", "stream.c", "-lm", "-o", "stream"], cwd=c_dir,
-                   check=True, capture_output=True)
-    pack = subprocess.run(["sh", "check/check.sh"], cwd=c_dir, capture_output=True, text=True)
-    print(f"check pack exit {pack.returncode}: {(pack.stdout + pack.stderr).strip()[-300:]}", flush=True)
     for name in (data.name,):                          # the whole record, from a cold start
         with data.open("rb") as raw:
             fed = subprocess.run([str(c_dir / "stream")], stdin=raw, capture_output=True)

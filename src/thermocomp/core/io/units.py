@@ -15,9 +15,10 @@ import re
 
 from .contract import role
 
-# unit (lower case, no spaces) -> (scale, offset) to the contract's unit
+# unit (lower case, no spaces) -> (scale, offset) to the contract's unit; a micrometre as a
+# keyboard without µ spells it, 'um', 'mu m' ('mum' once its space is gone: audit100), 'micron'
 UNITS = {
-    "E": {**dict.fromkeys(("µm", "μm", "um", "micron", "microns"), (1.0, 0.0)), "mm": (1e3, 0.0),
+    "E": {**dict.fromkeys(("µm", "μm", "um", "mum", "micron", "microns"), (1.0, 0.0)), "mm": (1e3, 0.0),
           "m": (1e6, 0.0), "nm": (1e-3, 0.0)},
     # (the degree sign as a lab's keyboard gives it: º, U+00BA on a Spanish or Italian one, and
     # ˚, U+02DA, look like ° in a header and in the message refusing them)
