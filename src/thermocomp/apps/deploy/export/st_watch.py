@@ -388,6 +388,9 @@ VARS = """    mon_last : ARRAY[{nm}] OF LREAL;
     mon_still : BOOL;
     mon_fset : INT;
     mon_warned : INT;
+    mon_field_warned : INT;
+    mon_pause : BOOL;
+    mon_quiet : DINT;
 """
 
 # before the refusal: the sample's monitored readings judged (the block's first == a campaign's)
@@ -416,6 +419,8 @@ IF first THEN
     END_FOR;
     mon_lost := FALSE;
     mon_blind_lost := FALSE;
+    mon_pause := FALSE;
+    mon_quiet := 0;
     mon_e_known := FALSE;
     mon_pos := 0;
     mon_spos := 0;
@@ -853,14 +858,23 @@ IF MON_STEP_JUDGE AND NOT mon_lost THEN
     mon_judge := MON_BLIND_JUDGE AND NOT mon_blind_lost AND mon_was < 0 AND mon_culprit < 0;
     mon_judge := mon_judge AND mon_count + 1 >= MON_CONFIRM;
     mon_reach := FALSE;
+    mon_field_warned := 0;
     mon_zbest := -1.0;
     FOR mb := -1 TO MON_BLINDS DO
         (* -1: every sensor in; 0 .. MON_BLINDS - 1: each candidate out; MON_BLINDS: the one out *)
         mon_set := mb;
         mon_go := mon_judge;
         IF mb = MON_BLINDS THEN
-            IF mon_reach AND mon_take_set < 0 THEN
-                mon_blind_lost := TRUE;    (* the C's lone fault, veto or new state: not here *)
+            IF mon_reach AND mon_take_set < 0 AND mon_field_warned > MON_FOLLOW_OTHERS THEN
+                (* (st100) new_state_others + 1 at their warning band: whatever its culprit, *)
+                (* the C's _others vetoes it or it declares a new thermal state; nothing out, *)
+                (* no DRIFT_OUT: paused to a calm window (the C's end of a new state) *)
+                mon_pause := TRUE;
+            ELSIF (mon_reach AND mon_take_set < 0) OR (mon_pause AND (mon_reach OR NOT mon_judge)) THEN
+                (* the C's lone fault, veto or new state: not here; (st100) in the pause any *)
+                (* other reach (the C, not in a new state, may take one out) or a sensor out *)
+                mon_blind_lost := TRUE;
+                mon_pause := FALSE;
                 (* (st97d) said, once, with its row: the block silent from here is not "healthy" *)
                 mon_stop := TRUE;
                 mon_stop_row := mon_count + 1;
@@ -871,6 +885,18 @@ IF MON_STEP_JUDGE AND NOT mon_lost THEN
                     mon_sensor := MON_BLIND[mon_take_set];
                     mon_rule := RULE_BLIND_OUT;
                     mon_take := mon_sensor;
+                END_IF;
+            END_IF;
+            IF mon_pause THEN
+                (* (st100) calm: no judged sensor at its warning band (the C's _follow_field: *)
+                (* every sensor in, mon_min over MON_CONFIRM rows), MON_WINDOW rows in a row *)
+                mon_quiet := mon_quiet + 1;
+                IF mon_field_warned > 0 THEN
+                    mon_quiet := 0;
+                END_IF;
+                IF mon_quiet >= MON_WINDOW THEN
+                    mon_pause := FALSE;    (* the C judges from the next row: so the block *)
+                    mon_quiet := 0;
                 END_IF;
             END_IF;
             IF mon_take >= 0 AND NOT mon_lost THEN
@@ -953,7 +979,11 @@ IF MON_STEP_JUDGE AND NOT mon_lost THEN
             mon_warned := 0;
             FOR mk := 0 TO MON_N - 1 DO
                 IF mb < 0 THEN
-                    (* the C's _judge (the band its last errors all reach), _explaining's z *)
+                    (* the C's _judge (the band its last errors all reach), _explaining's z; *)
+                    (* (st100) and the judged at their warning band, every sensor in *)
+                    IF MON_JUDGING[mk] = 1 AND mon_min[mk] >= MON_WARN[mk] THEN
+                        mon_field_warned := mon_field_warned + 1;
+                    END_IF;
                     mon_over[mk] := MON_JUDGING[mk] = 1 AND mon_min[mk] >= MON_FIELD_BAND[mk];
                     IF mon_over[mk] THEN
                         mon_reach := TRUE;
