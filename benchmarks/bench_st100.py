@@ -56,14 +56,30 @@ the rows where the block's flag / rule / sensor differ from main's, extra flags 
 ``cases``: that, then the planted lines: the C's first ``BLIND_OUT`` to the bump's end + 30 rows,
 the block's and main's, whether main's judgement had stopped before the plant, extra flags.
 
-Measured (2026-12-06, 2 cores shared by up to 8 helpers).  Seen, before the BAR's commit
-(``cases /tmp/st100/seen lr9896 lr9893 dl9894 cr9895 dl9897``, ``cases /tmp/st100/st97d lr9823
-dl9821``: copies of st99c's records): lr9896 pauses at 1867 (the C's veto, 3 warned) and 2900 (a
-new state, 4), resumed 1877 / 2910, never stops (main: 1867); lr9823 pauses at 379 (new state, 3)
-and 2799 (veto, 4), resumed 390 / 2810 (main stops 379).  S1: lr9896 T_spindle_front and T_motor
-named at 3686, lr9823 T_spindle_front 3690, T_table 3684: 4 of 4 (main 0).  S2 so far: lr9893 3
-of 3, dl9894 2 of 2 on the C's rows (its T_table, the C's JUMP first: unnamed as on main).
-Healthy frames so far: 0 rows differing from main's block, extra flags 0.
+Measured (2026-12-06, 2 cores shared by up to 8 helpers, load 8-30).  Seen, before the BAR's
+commit (8639fec5; ``cases /tmp/st100/seen lr9896 lr9893 dl9894 cr9895 dl9897``, 68.4 s CPU;
+``cases /tmp/st100/st97d lr9823 dl9821``, 32.6 s: copies of st99c's records): lr9896 pauses at
+1867 (the C's veto, 3 warned) and 2900 (a new state, 4), resumed 1877 / 2910, never stops (main:
+1867); lr9823 pauses at 379 (new state, 3) and 2799 (veto, 4), resumed 390 / 2810 (main stops at
+379); dl9821 stops at 4543 as main (a new state, 1 warned: not paused).
+
+* S1 MET: lr9896 T_spindle_front and T_motor named at 3686, lr9823 T_spindle_front 3690, T_table
+  3684, each on the C's row and sensor: 4 of 4 (main 0).
+* S2 MET: lr9893 3692 / 3683 / 3697, dl9894 6137 / 6132, dl9897 6133 / 6128 / 6136: 8 of 8 as
+  main, the same rows and sensors.  (Unnamed by both, out of scope: the T_table bumps whose C's
+  first event is a JUMP, lr9896 3698, dl9894 6142.)
+* S3 MET: every healthy frame 0 rows where the block's flag / rule / sensor differ from main's,
+  extra flags 0 (rule and main): the 7 above, ``healthy`` on st97d's other 9 (107.1 s), bench_mon98's
+  9 (``healthy /tmp/st100/mon98 ...``), fl_thermal (6.3 s; no pause), the 6 fresh.  In every
+  planted window the rule's extra flags = main's (0 new; the T_amb / T_table windows' 1-9 are
+  main's too, not traced).
+* S4 VOID, fresh scored once (``cases /tmp/st100/fresh lr9916 lr9917 lr9918``, 42.4 s; ``... dl9916
+  dl9917 dl9918``, 64.2 s): no pause and no stop on any of the 6 (rule and main), so no case after
+  a main stop.  The C's ``BLIND_OUT`` in 18 planted cases; the rule names 10, main the same 10, at
+  the C's rows (lr9916 2 / 2, dl9916 4 / 4, lr9918 3 / 4, dl9917 0 / 4, lr9917 0 / 4, dl9918 none).
+  lr9917's 4: the block's JUMP of T_amb at lead-in row 3554 (the C's too) ended its judgement
+  (``mon_lost`` at the onset; st94b's class, not this rule's); dl9917's and lr9918's T_table not
+  traced (main's alike).
 """
 
 from __future__ import annotations

@@ -42,6 +42,11 @@ Per sample, of each monitored sensor ``k`` (the input ``MON_INPUT[k]``, the C's 
   judged sensor's error with every sensor in is within its warning band over the ring; while it
   is out the set without it judged, the block's judgement ending where the C could act on it.
   A drift judgement it cannot follow ends the ``BLIND_OUT`` judgement to the campaign's end;
+  (st100) but one with ``MON_FOLLOW_OTHERS`` + 1 judged sensors at their warning band
+  (``mon_field_warned``), where whatever its culprit the C vetoes or declares a new thermal
+  state and takes nothing out, pauses it (``mon_pause``) to a calm window: ``MON_WINDOW`` rows in
+  a row with none at its warning band (``mon_quiet``, the C's ``calm_field``); in the pause such
+  a reach pauses on, any other reach or a sensor out ends it;
 * (st96b) the C's level shift of a sensor no other predicts (``SETTLED``), told by the C's test
   over ``2 MON_WINDOW`` readings (``mon_settle_ring``, ``settled.level_shift``) on the C's
   conditions (its reference unmoved for ``2 MON_WINDOW - 1`` samples, no gap, the reading before
@@ -75,7 +80,7 @@ TRUE on the one sample where the ``BLIND_OUT`` judgement ends for the campaign (
 veto or new thermal state, which the block does not follow), ``mon_stop_row`` that sample's
 number in the campaign (1 the first; 0 while it judges): said once, no fault flagged with it, so
 that the block's silence from there is not read as "healthy".  The counters that grow with the campaign
-(``mon_count``, ``mon_stop_row``, ``mon_calm``, ``mon_run``) are DINT: an INT wraps after 32767
+(``mon_count``, ``mon_stop_row``, ``mon_calm``, ``mon_run``, ``mon_quiet``) are DINT: an INT wraps after 32767
 samples (9 h at 1 s), and a wrapped count stops the judgement (``mon_count + 1 >= MON_CONFIRM``).
 
 What the block does then, without the POD that rebuilds a sensor in the C: a reading not
