@@ -70,7 +70,8 @@ commit (8639fec5; ``cases /tmp/st100/seen lr9896 lr9893 dl9894 cr9895 dl9897``, 
   first event is a JUMP, lr9896 3698, dl9894 6142.)
 * S3 MET: every healthy frame 0 rows where the block's flag / rule / sensor differ from main's,
   extra flags 0 (rule and main): the 7 above, ``healthy`` on st97d's other 9 (107.1 s), bench_mon98's
-  9 (``healthy /tmp/st100/mon98 ...``), fl_thermal (6.3 s; no pause), the 6 fresh.  In every
+  9 (``healthy /tmp/st100/mon98 ...``, 89.6 s; lr9376 stops at 431 as main, a DRIFT_OUT with fewer
+  warned; no pause on any), fl_thermal (6.3 s; no pause), the 6 fresh.  In every
   planted window the rule's extra flags = main's (0 new; the T_amb / T_table windows' 1-9 are
   main's too, not traced).
 * S4 VOID, fresh scored once (``cases /tmp/st100/fresh lr9916 lr9917 lr9918``, 42.4 s; ``... dl9916
@@ -78,8 +79,8 @@ commit (8639fec5; ``cases /tmp/st100/seen lr9896 lr9893 dl9894 cr9895 dl9897``, 
   a main stop.  The C's ``BLIND_OUT`` in 18 planted cases; the rule names 10, main the same 10, at
   the C's rows (lr9916 2 / 2, dl9916 4 / 4, lr9918 3 / 4, dl9917 0 / 4, lr9917 0 / 4, dl9918 none).
   lr9917's 4: the block's JUMP of T_amb at lead-in row 3554 (the C's too) ended its judgement
-  (``mon_lost`` at the onset; st94b's class, not this rule's); dl9917's and lr9918's T_table not
-  traced (main's alike).
+  (``mon_lost`` at the onset; st94b's class, not this rule's), dl9917's 4 the same (its JUMP of
+  T_amb at 5923); lr9918's T_table not traced (main's alike).
 """
 
 from __future__ import annotations
