@@ -76,7 +76,7 @@ commit (8639fec5; ``cases /tmp/st100/seen lr9896 lr9893 dl9894 cr9895 dl9897``, 
   main's too, not traced).
 * S4 VOID, fresh scored once (``cases /tmp/st100/fresh lr9916 lr9917 lr9918``, 42.4 s; ``... dl9916
   dl9917 dl9918``, 64.2 s): no pause and no stop on any of the 6 (rule and main), so no case after
-  a main stop.  The C's ``BLIND_OUT`` in 18 planted cases; the rule names 10, main the same 10, at
+  a main stop.  The C's ``BLIND_OUT`` in 18 planted cases; the rule names 9, main the same 9, at
   the C's rows (lr9916 2 / 2, dl9916 4 / 4, lr9918 3 / 4, dl9917 0 / 4, lr9917 0 / 4, dl9918 none).
   lr9917's 4: the block's JUMP of T_amb at lead-in row 3554 (the C's too) ended its judgement
   (``mon_lost`` at the onset; st94b's class, not this rule's), dl9917's 4 the same (its JUMP of
