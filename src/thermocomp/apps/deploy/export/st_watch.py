@@ -42,6 +42,11 @@ Per sample, of each monitored sensor ``k`` (the input ``MON_INPUT[k]``, the C's 
   judged sensor's error with every sensor in is within its warning band over the ring; while it
   is out the set without it judged, the block's judgement ending where the C could act on it.
   A drift judgement it cannot follow ends the ``BLIND_OUT`` judgement to the campaign's end;
+  (st100) but one with ``MON_FOLLOW_OTHERS`` + 1 judged sensors at their warning band
+  (``mon_field_warned``), where whatever its culprit the C vetoes or declares a new thermal
+  state and takes nothing out, pauses it (``mon_pause``) to a calm window: ``MON_WINDOW`` rows in
+  a row with none at its warning band (``mon_quiet``, the C's ``calm_field``); in the pause such
+  a reach pauses on, any other reach or a sensor out ends it;
 * (st96b) the C's level shift of a sensor no other predicts (``SETTLED``), told by the C's test
   over ``2 MON_WINDOW`` readings (``mon_settle_ring``, ``settled.level_shift``) on the C's
   conditions (its reference unmoved for ``2 MON_WINDOW - 1`` samples, no gap, the reading before
@@ -75,7 +80,7 @@ TRUE on the one sample where the ``BLIND_OUT`` judgement ends for the campaign (
 veto or new thermal state, which the block does not follow), ``mon_stop_row`` that sample's
 number in the campaign (1 the first; 0 while it judges): said once, no fault flagged with it, so
 that the block's silence from there is not read as "healthy".  The counters that grow with the campaign
-(``mon_count``, ``mon_stop_row``, ``mon_calm``, ``mon_run``) are DINT: an INT wraps after 32767
+(``mon_count``, ``mon_stop_row``, ``mon_calm``, ``mon_run``, ``mon_quiet``) are DINT: an INT wraps after 32767
 samples (9 h at 1 s), and a wrapped count stops the judgement (``mon_count + 1 >= MON_CONFIRM``).
 
 What the block does then, without the POD that rebuilds a sensor in the C: a reading not
@@ -388,6 +393,9 @@ VARS = """    mon_last : ARRAY[{nm}] OF LREAL;
     mon_still : BOOL;
     mon_fset : INT;
     mon_warned : INT;
+    mon_field_warned : INT;
+    mon_pause : BOOL;
+    mon_quiet : DINT;
 """
 
 # before the refusal: the sample's monitored readings judged (the block's first == a campaign's)
@@ -416,6 +424,8 @@ IF first THEN
     END_FOR;
     mon_lost := FALSE;
     mon_blind_lost := FALSE;
+    mon_pause := FALSE;
+    mon_quiet := 0;
     mon_e_known := FALSE;
     mon_pos := 0;
     mon_spos := 0;
@@ -853,14 +863,23 @@ IF MON_STEP_JUDGE AND NOT mon_lost THEN
     mon_judge := MON_BLIND_JUDGE AND NOT mon_blind_lost AND mon_was < 0 AND mon_culprit < 0;
     mon_judge := mon_judge AND mon_count + 1 >= MON_CONFIRM;
     mon_reach := FALSE;
+    mon_field_warned := 0;
     mon_zbest := -1.0;
     FOR mb := -1 TO MON_BLINDS DO
         (* -1: every sensor in; 0 .. MON_BLINDS - 1: each candidate out; MON_BLINDS: the one out *)
         mon_set := mb;
         mon_go := mon_judge;
         IF mb = MON_BLINDS THEN
-            IF mon_reach AND mon_take_set < 0 THEN
-                mon_blind_lost := TRUE;    (* the C's lone fault, veto or new state: not here *)
+            IF mon_reach AND mon_take_set < 0 AND mon_field_warned > MON_FOLLOW_OTHERS THEN
+                (* (st100) new_state_others + 1 at their warning band: whatever its culprit, *)
+                (* the C's _others vetoes it or it declares a new thermal state; nothing out, *)
+                (* no DRIFT_OUT: paused to a calm window (the C's end of a new state) *)
+                mon_pause := TRUE;
+            ELSIF (mon_reach AND mon_take_set < 0) OR (mon_pause AND (mon_reach OR NOT mon_judge)) THEN
+                (* the C's lone fault, veto or new state: not here; (st100) in the pause any *)
+                (* other reach (the C, not in a new state, may take one out) or a sensor out *)
+                mon_blind_lost := TRUE;
+                mon_pause := FALSE;
                 (* (st97d) said, once, with its row: the block silent from here is not "healthy" *)
                 mon_stop := TRUE;
                 mon_stop_row := mon_count + 1;
@@ -871,6 +890,18 @@ IF MON_STEP_JUDGE AND NOT mon_lost THEN
                     mon_sensor := MON_BLIND[mon_take_set];
                     mon_rule := RULE_BLIND_OUT;
                     mon_take := mon_sensor;
+                END_IF;
+            END_IF;
+            IF mon_pause THEN
+                (* (st100) calm: no judged sensor at its warning band (the C's _follow_field: *)
+                (* every sensor in, mon_min over MON_CONFIRM rows), MON_WINDOW rows in a row *)
+                mon_quiet := mon_quiet + 1;
+                IF mon_field_warned > 0 THEN
+                    mon_quiet := 0;
+                END_IF;
+                IF mon_quiet >= MON_WINDOW THEN
+                    mon_pause := FALSE;    (* the C judges from the next row: so the block *)
+                    mon_quiet := 0;
                 END_IF;
             END_IF;
             IF mon_take >= 0 AND NOT mon_lost THEN
@@ -953,7 +984,11 @@ IF MON_STEP_JUDGE AND NOT mon_lost THEN
             mon_warned := 0;
             FOR mk := 0 TO MON_N - 1 DO
                 IF mb < 0 THEN
-                    (* the C's _judge (the band its last errors all reach), _explaining's z *)
+                    (* the C's _judge (the band its last errors all reach), _explaining's z; *)
+                    (* (st100) and the judged at their warning band, every sensor in *)
+                    IF MON_JUDGING[mk] = 1 AND mon_min[mk] >= MON_WARN[mk] THEN
+                        mon_field_warned := mon_field_warned + 1;
+                    END_IF;
                     mon_over[mk] := MON_JUDGING[mk] = 1 AND mon_min[mk] >= MON_FIELD_BAND[mk];
                     IF mon_over[mk] THEN
                         mon_reach := TRUE;

@@ -1,0 +1,52 @@
+"""The Structured Text block pauses where the C vetoes a drift or declares a new thermal state, to
+a calm window, and judges ``BLIND_OUT`` on (st100, issue 34): before st100 a drift judgement with
+every sensor in that reached the band, no sensor no other predicts explaining it, ended the
+block's ``BLIND_OUT`` judgement for the campaign (``mon_stop``), though with ``new_state_others``
++ 1 judged sensors at their warning band the C takes nothing out there and judges on.
+
+lr9132 (``thermocomp simulate sim=long_record``, seed 9132, 3 days), MLR deployed adaptive with
+``data.reference=none``, its first 1100 fed rows (tests/shell/test_export_st94.py's fixture): three
+sensors the others predict bumped -2 °C from row 300 (test_export_st96's bump), where the C
+declares a new thermal state, then test_export_st96's bump of a sensor no other predicts from row
+600, the C's ``BLIND_OUT`` (benchmarks/bench_st100.py measures the rule on seen and fresh records)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from test_export import TOLERANCE_UM
+from test_export_st94 import record  # noqa: F401 (the module's fixture)
+from test_export_st96 import BLIND, START, _stepped, bumped
+from thermocomp.apps.deploy.export.watch import BLIND_OUT, EXCLUDED, NOVEL, OUT
+
+FIELD, AT, SIZE = ("T_head_left", "T_col_front_top", "T_bed_right"), 300, -2.0
+
+
+def _judging(v) -> tuple:
+    """``(mon_stop, mon_blind_lost, mon_pause)`` (an export before st100: no pause)."""
+    return bool(v["mon_stop"]), bool(v["mon_blind_lost"]), bool(v.get("mon_pause", False))
+
+
+def test_the_block_pauses_at_the_cs_new_state_and_names_a_blind_out_after_it(record):  # noqa: F811
+    _, ss, frame, block = record
+    k = [ss.inputs[i] for i in ss.monitor["inputs"]].index(BLIND)
+    df = frame
+    for sensor in FIELD:
+        df, _ = bumped(df, sensor, AT, SIZE)
+    df, end = bumped(df, BLIND)
+    st, st_said, judging, c, c_said = _stepped(ss, block, df.iloc[:end + 1], _judging)
+    # the C: a new thermal state from the field's bump (nothing out), ended by a calm window,
+    # then its BLIND_OUT of the bumped sensor no other predicts
+    novel = [i for i, s in enumerate(c_said) if s[0] & NOVEL]
+    assert novel and AT < novel[0] and novel == list(range(novel[0], novel[-1] + 1)) and novel[-1] < START
+    assert not any(s[0] & EXCLUDED for s in c_said[:START])
+    out = next(i for i, s in enumerate(c_said) if s[1] == BLIND_OUT)
+    assert START < out <= end and c_said[out] == (EXCLUDED | OUT, BLIND_OUT, k)
+    assert np.max(np.abs(st[:out] - c[:out])) <= TOLERANCE_UM
+    # the block names it on the C's row (before st100: its judgement had ended at the new state)
+    assert st_said[out] == (True, BLIND_OUT, k)
+    assert [i for i, s in enumerate(st_said[:out + 1]) if s[0]] == [out]
+    # never stopped: paused from the C's new state to its end (the calm window), judging on
+    assert {(s, lost) for s, lost, _ in judging} == {(False, False)}
+    paused = [i for i, (_, _, p) in enumerate(judging) if p]
+    assert paused == list(range(novel[0], novel[-1] + 1))
