@@ -84,6 +84,47 @@ D5. a test (tests/shell/test_export_dep100.py, < 5 s) that fails on 9bbbb214 (``
     (PARSED_DIGEST: the ST text unchanged), test_lint, test_benchmarks_cli pass.
 KEPT if D1-D5 hold (src + C + test + docs); else REFUSED (benchmarks/dep100_rule.patch, src as
 9bbbb214), the numbers kept here.
+
+Scored (bar 97c6d14a, the rule b52fdfe9 committed after it, before any of 9913-9915 was
+simulated; 2026-12-06 15:33-15:36 UTC under a load of 15-27 on 2 cores; main = ``git archive
+9bbbb214 src``, which simulated and ran the fresh records into one ROOT, the rule's tree then read
+a copy of it).  CPU (user + sys): ``planted`` 16.6 / 14.0 s main / rule, ``machine`` 3.4 / 3.5 s::
+
+    case                    main: max|C - served|, rows apart (first, rule)   rule (b52fdfe9)
+    machine drift_d         1.37 µm, 4 (36 SECOND); compiled the same          1.42e-14, 0 (compiled too)
+    machine drift_c         0.153, 44 (36 SECOND)                              7.11e-15, 0
+    machine freeze_a        0.940, 14 (46 SECOND)                              1.78e-14, 0
+    machine freeze_u        0.177, 16 (46 SECOND: one no other predicts)       the same (not in the bar)
+    dl9913 healthy/two_out  0 / 2.84e-14, 0                                    the same
+    dl9913 drift            18.2, 294 (66 SECOND)                              5.68e-14, 0
+    dl9913 freeze           3.74, 329 (31 SECOND)                              8.53e-14, 0
+    sw9914 healthy/two_out  0 / 8.53e-14, 0                                    the same
+    sw9914 drift            39.4, 295 (65 SECOND)                              64.9, 295 (65 DRIFT_OUT)
+    sw9914 freeze           11.1, 329 (31 SECOND)                              3.84e-13, 0
+    cr9915 healthy/two_out  0 / 7.11e-14, 0                                    the same
+    cr9915 drift            3.81, 114 (44 SECOND)                              7.82e-14, 0
+    cr9915 freeze           14.3, 128 (31 SECOND)                              1.71e-13, 0
+
+(dl9913: n 14, 8 modes, ``min_active`` 9, kelvin ``T_spindle_rear`` / ``T_head_left``, third
+``T_head_right``; sw9914 and cr9915: n 12, 7 modes, ``min_active`` 8, kelvin ``T_headstock`` /
+``T_guidebush``, third ``T_toolholder1``.)  The ST, ``machine``: the same main / rule (flags
+``OFF_RANGE`` on the kelvin rows, nothing at the third; 3.24 / 6.29 µm, 60 rows apart).
+
+Traced after the score (sw9914 drift, fed rows 63-68 from the fault row, the rule's tree): at 65
+served takes ``T_toolholder2`` out by drift (-0.67 °C, the culprit) and, in the same judgement,
+the drifting ``T_toolholder1`` (+0.82 °C, "no other sensor predicts it once T_toolholder2 is
+out", ``_exclude_by_judgement``'s blind loop, no cap) as the fourth.  The rule takes the culprit
+out as the third (``DRIFT_OUT``) and flags the partner: ``_drift``'s partner loop keeps its own
+cap (``self.out2 >= 0``, C ``mon_drift``'s ``s->mon_nout >= 2``), a second clause of the drift
+path this rule did not lift; the drifting sensor stays in the C, 64.9 µm (main refused both,
+``SECOND``, 39.4 µm).  The rule lifting that clause too (after the score; in
+benchmarks/dep100_rule.patch, measured, NOT scored): sw9914 drift 4.54e-12 µm, 0 rows; every
+other fresh line as the rule's; ``machine`` as the rule's.
+
+D1 MET (mirror and compiled C <= 1.78e-14 µm, 0 rows, nothing "not in the code").  D4 NOT MET:
+sw9914 drift apart on the rule (64.9 µm, 295 rows, the partner's cap), the other five planted
+cases <= 3.84e-13 µm, 0 rows.  D5: test_export_dep100 (2 cases) fails on 9bbbb214 (``SECOND`` at
+rows 36 / 46), passes on the rule.
 """
 
 from __future__ import annotations

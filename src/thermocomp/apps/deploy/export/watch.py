@@ -745,14 +745,12 @@ class CodeMonitor:
         every one out."""
         return list(self.gone if self.instant else self.gone[:1])
 
-    def _second_held(self, j: int, rule: int) -> bool:
+    def _second_held(self, j: int, rule: int = 0) -> bool:
         """(cmon85) ``j`` out (a drift exclusion, a freeze) beside those out: a place free (the
         second; dep99: any, for a reading beyond range, as served; dep99b: and for a jump, which
         served re-references and takes out whatever the set; step99: and for a stepped error,
-        served's stepped check having no cap either; dep100: and for a drift exclusion, its
-        blind-out too, and a freeze, served's judgement and freeze check having none) and the
-        set's operator solved.  A dropout alone keeps the cap."""
-        return self.solve and (self.out2 < 0 or rule != DROPOUT) and self._operator(
+        served's stepped check having no cap either) and the set's operator solved."""
+        return self.solve and (self.out2 < 0 or rule in (OFF_RANGE, JUMP, STEP_OUT)) and self._operator(
             ~self._active() | (np.arange(self.n) == j)) is not None
 
     def _put_out(self, j: int) -> None:

@@ -412,13 +412,12 @@ static void mon_readmit(tc_state *s, int k, int rule) {
 /* (cmon85) 1: sensor k out for rule (a drift exclusion, a freeze) beside those out: a place free
    (the second; dep99: any, for a reading beyond range, as served; dep99b: and for a jump, which
    served re-references and takes out whatever the set; step99: and for a stepped error, served's
-   stepped check having no cap either; dep100: and for a drift exclusion, its blind-out too, and a
-   freeze, served's judgement and freeze check having none) and the set's operator solved; a
-   dropout alone keeps the cap */
+   stepped check having no cap either) and the set's operator solved */
 static int mon_second_held(const tc_state *s, int k, int rule) {
     double M[NM][NM], lev[NM];
     int out[NM], m;
-    if (!MON_SOLVE || (s->mon_nout >= 2 && rule == TC_MON_DROPOUT)) return 0;
+    if (!MON_SOLVE || (s->mon_nout >= 2 && rule != TC_MON_OFF_RANGE && rule != TC_MON_JUMP
+                       && rule != TC_MON_STEP_OUT)) return 0;
     for (m = 0; m < NM; m++) out[m] = m == k || mon_out_of(s, m);
     return mon_operator(out, M, lev);
 }
