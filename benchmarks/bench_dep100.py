@@ -160,7 +160,6 @@ def _machine_frames(scratch: Path):
     import test_export
     from conftest import deployed_as_replay
     from test_export_dep99b import ONSET, SPIKE, _machine
-
     from thermocomp.apps.deploy.export import state_space
 
     folder = scratch / "data"
@@ -191,7 +190,7 @@ def machine(scratch: str) -> None:
     _tests_on_path()
     from test_export import StructuredText, built_stream
     from test_export_cmon80 import _streamed
-
+    from test_export_dep99b import SPIKE
     from thermocomp.apps.deploy.export import Simulator, exported_files
     from thermocomp.apps.deploy.export.pack import corrections
     from thermocomp.apps.deploy.export.watch import RULES
@@ -199,7 +198,6 @@ def machine(scratch: str) -> None:
 
     root = Path(scratch).resolve()
     deployed, ss, frames = _machine_frames(root)
-    from test_export_dep99b import SPIKE
     code = root / "c"
     code.mkdir(parents=True, exist_ok=True)
     binary = built_stream(code, exported_files(deployed, "c"))
