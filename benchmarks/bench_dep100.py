@@ -121,10 +121,24 @@ path this rule did not lift; the drifting sensor stays in the C, 64.9 µm (main 
 benchmarks/dep100_rule.patch, measured, NOT scored): sw9914 drift 4.54e-12 µm, 0 rows; every
 other fresh line as the rule's; ``machine`` as the rule's.
 
-D1 MET (mirror and compiled C <= 1.78e-14 µm, 0 rows, nothing "not in the code").  D4 NOT MET:
-sw9914 drift apart on the rule (64.9 µm, 295 rows, the partner's cap), the other five planted
-cases <= 3.84e-13 µm, 0 rows.  D5: test_export_dep100 (2 cases) fails on 9bbbb214 (``SECOND`` at
-rows 36 / 46), passes on the rule.
+D2 (2026-12-06 15:27-16:13 UTC, load 13-30; the ROOT step99's and dep99b's seen and fresh,
+copied per src; CPU ``cases`` 249.5 / 249.0 s, ``card`` 17.2 / 16.2 s main / rule): the 81 lines
+of ``bench_step99.py cases`` on the nine records and the 6 of ``bench_dep99.py card`` tr9828 /
+tr9873 identical (``diff``), every drift / ambient case there <= 6.22e-12 µm, 0 rows apart on
+both.  The partner-clause variant: its first 29 lines (dl9902, dl9901) the same; the rest not run.
+
+D1 MET (mirror and compiled C <= 1.78e-14 µm, 0 rows, nothing "not in the code").  D2 MET.  D3
+MET (the nine records' healthy lines and the three ``planted`` healthy lines as main's: 0 µm, the
+same served events; 0 on the fresh).  D4 NOT MET: sw9914 drift apart on the rule (64.9 µm, 295
+rows, the partner's cap), the other five planted cases <= 3.84e-13 µm, 0 rows (main 3.74-18.2
+µm).  D5: test_export_dep100 (2 cases, in the patch) fails on 9bbbb214 (``SECOND`` at rows 36 /
+46), passes on the rule; with the partner clause, it and test_export_dep99b / step99 / dep99 /
+cmon85 / cmon86 / cmon88 / cmon82c / st99: 15 passed.  PARSED_DIGEST: the ST text untouched.
+VERDICT: REFUSED (D4).  benchmarks/dep100_rule.patch (``git apply`` on 9bbbb214): the rule, the
+partner clause (after the score) and the test; src as 9bbbb214.  Next: the two clauses together
+(one cap for the drift path: the culprit, its blind-out and its partner), scored on new fresh
+seeds with the same ``planted`` cases; a freeze of one no other predicts beside two out
+(``freeze_u``, ``_second_kind``) stays ``SECOND`` either way.
 """
 
 from __future__ import annotations
