@@ -115,9 +115,10 @@ def command(repeat: str = "10") -> None:
 
     root = Path(__file__).resolve().parents[1]
     sys.path[:0] = [str(root / "tests"), str(root / "tests" / "shell")]
-    import conftest
     import hydra.core.hydra_config as hydra_config
     import hydra.core.utils as hydra_utils
+
+    import conftest
     from test_hostile import make_dataset
     from thermocomp.shell.cli import main
     from thermocomp.shell.config import overrides
