@@ -30,8 +30,51 @@ REPEAT times each after one warm-up, and what Hydra's per-command work takes of 
 ``copy.deepcopy`` (the task's config, the Hydra config), ``HydraConfig.set_config`` (twice a
 command) and the composition (tests/hydra_cache.py on, as in the suite).
 
-MEASURED (2026-12-06, base = 9bbbb214 as a git clone, 2 cores shared by 8 helpers, load 7-31;
-CPU s user + sys incl. children; MEASURED_MODULES below)
+Measured (2026-12-06, base = 9bbbb214 as a git clone, 2 cores shared by 8 helpers, load 2-31;
+CPU s user + sys incl. children, each module alone, one run; every module passed)::
+
+  test_readme (9 tests, 7 pages)  148.5    test_sweep           38.4    test_volumetric_run  27.5
+  shell/test_dvc_metrics           62.7    test_replay          32.0    test_tracking        22.1
+  test_calibrate                   43.4    test_hostile         31.8    test_opcua67         16.2
+  test_hostile_procs               34.5    test_hostile_numeric 27.7    19 test_stranger*   116.1
+  test_monitor_cli                 29.6    sum over the 31 modules: 630.4 s
+
+Where it goes:
+
+- test_readme: the blocks' commands, each a process, are 133 of its 148.5 s (``blocks``):
+  sweeps.md's sweep + compare + 2 promotes 25.0, its lathe simulate + replay 10.6;
+  simulation.md's simulate + diagnose 16.0; diagnose.md 14.1 + 7.4; README's make run 9.1,
+  fl_thermal run 6.7, export + cc 3.3, twin + connect 5.8; own-data.md 20.2 in 5 blocks;
+  monitoring.md 7.5 + 5.7; the pages' PREPARE (simulate) 1.5 once; a fresh clone 0.5-0.8 each.
+  No page runs another's command and none runs one twice: nothing is computed twice to share
+  (the README's dataset already reaches the docs pages as a copy).
+- test_dvc_metrics: the study's fixture (``dvc repro``, 7 stage processes) is 312 of its 557 s
+  wall, the param rerun (3 stages) 89, the sweep pipeline (2 stage processes, 6 jobs) 79; a
+  stage process pays the stack's imports (an untracked ``ingest`` on SHORT: 2.8 s CPU under
+  ``-X importtime``; it
+  imports sklearn and thermocomp.apps.volumetric.source), ``dvc version`` 0.56 s CPU.  The
+  processes are the test's point (DVC as a user types it).
+- test_calibrate: ``read_dataset`` of its 1483-column volumetric record 0.42 s CPU a read
+  (cProfile: the parquet load ~50 %, the roles' naming ~21 %, the missing-value pass ~17 %);
+  the residual-scatter test is 64 of the module's 465 s wall (14 %; 3 calibrations, a run).
+- test_hostile (146 tests): 184 in-process commands, ``cli.main`` 23.1 of the process's 26.1 s
+  CPU; in it Hydra's per-command work: run_job's two deep copies 3.3 s, ``set_config`` (twice a
+  command, a masked copy each) 1.8 s, the composition 8.4 s (misses included) -- 13.5 s, 52 % of
+  the process.  ``command`` (16:00, load ~30): an ingest 0.114-0.134 s CPU, a refused run
+  0.096-0.098, a FAST run 0.146-0.165; deep copies 0.017-0.035, set_config 0.008-0.011, compose
+  0.013-0.029 a command.  A pickle round trip of the default root config costs 0.0096 s against
+  0.0167 for its deep copy.  test_hostile_numeric: 19 commands, ``cli.main`` 3.2 of 25.9 s.
+- test_stranger*: 3.4-13.4 s each, of which ~1.7 s is pytest's start and collection
+  (``--co`` of stranger47: 1.70 s CPU of its 3.91), paid per module only when run alone.
+
+Against the bar: no rule built, nothing scored.  The cuts seen and why none was built:
+(1) run_job's task-config copy as a pickle round trip (a tests/hydra_cache.py wrapper):
+~0.007 s a command, ~1.3 s of test_hostile's 31.8 (-4 %); (2) a thermocomp run_job without
+Hydra's two copies and second set_config: a src change under every command, at most the 5.1 s
+of test_hostile (-16 %; 0.8 % of the 630 s; the other modules' in-process commands were not
+counted); (3) the wide parquet read: ~11 % of test_calibrate at twice the speed (ci99b), ~0.8 %
+of the sum; (4) the pages and DVC: their processes are the tests' point.  None reaches 12 % of
+the 630 s; what was counted of (2) and (3) together is ~10 s (~1.6 %).
 """
 from __future__ import annotations
 
