@@ -230,16 +230,19 @@ REASONS = ("", "jump: re-referenced and excluded", "freeze: excluded",
            "step off its own: a sensor no other predicts re-referenced by its step less its last, "
            "kept in",
            "settled off its own: a sensor no other predicts whose last window lies wholly off the "
-           "window before, re-referenced by their medians' difference, kept in")
+           "window before, re-referenced by their medians' difference, kept in",
+           "wires exchanged: two sensors flagged in one sample, each reading where the others "
+           "predict the other, read exchanged from here")
 RULES = ("", "JUMP", "FREEZE", "BACK", "RANGE", "COMMON", "GLITCH", "STEPPED", "DRIFT", "SECOND",
          "BLIND", "DROPOUT", "MISSING_FIRST", "MISSING_SECOND", "MISSING_BLIND",
          "MISSING_FROZEN", "OFF_RANGE", "COMMON_STEP", "DRIFT_OUT",
          "FOLLOWED", "BLIND_OUT", "FALLBACK",
          "THAWED", "NO_THAW", "STEP_OUT", "SPIKE", "BENT",
-         "SETTLED")   # their names in the C (TC_MON_JUMP ...)
+         "SETTLED", "WIRES_EXCHANGED")   # their names in the C (TC_MON_JUMP ...)
 (JUMP, FREEZE, BACK, RANGE, COMMON, GLITCH, STEPPED, DRIFT, SECOND, BLIND, DROPOUT, MISSING_FIRST,
  MISSING_SECOND, MISSING_BLIND, MISSING_FROZEN, OFF_RANGE, COMMON_STEP, DRIFT_OUT, FOLLOWED,
- BLIND_OUT, FALLBACK, THAWED, NO_THAW, STEP_OUT, SPIKE, BENT, SETTLED) = range(1, len(RULES))
+ BLIND_OUT, FALLBACK, THAWED, NO_THAW, STEP_OUT, SPIKE, BENT, SETTLED,
+ WIRES_EXCHANGED) = range(1, len(RULES))
 
 
 @dataclass
@@ -299,6 +302,7 @@ def monitor_fields(deployed, inputs: list) -> dict:
         "settle_lim": getattr(mon, "_settle_lim", np.full(n, np.inf)).tolist(),
         "settle_steady": STEADY,
         "pair_jump": 1,
+        "exchange": 1,
         # (quiet94c) the ambient of a one-campaign training: its drift warned, not acted on
         "warn_only": [int(w) for w in getattr(mon, "drift_warn_only", np.zeros(n, bool))],
         "modes": int(mon.pod.n_modes_),
@@ -421,7 +425,8 @@ class CodeMonitor:
                      ("spike", 0),         # (before bar91b: a spike's return re-referenced)
                      ("bent", 0),          # (before step93: a step off its own read as heat)
                      ("settled", 0),       # (before jump94b: a blind level shift read as heat)
-                     ("pair_jump", 0)):    # (before cmon93: two jumping in one sample flagged)
+                     ("pair_jump", 0),     # (before cmon93: two jumping in one sample flagged)
+                     ("exchange", 0)):     # (before wires100: two wires exchanged read as jumps)
             a.setdefault(k, np.float64(v))
         a.setdefault("bend_lim", np.full(n, np.inf))
         a.setdefault("settle_lim", np.full(n, np.inf))
@@ -516,6 +521,7 @@ class CodeMonitor:
         self.hid = np.zeros(n, bool)
         self.fell = False      # one whose fallback model the code lacks went out: flagged to the end
         self.read = np.ones(n, bool)     # (cmon84) the sample's monitored readings there
+        self.perm = np.arange(n)         # (wires100) the monitored readings' order as read
         self._clear()
 
     # the active set's operator, leverages, which sensors are judged and the errors' scale
@@ -766,7 +772,7 @@ class CodeMonitor:
         at a campaign's first sample, with another sensor out or missing (or out of range), of a
         sensor it does not hold out.  The reason is flagged; nothing else changes."""
         self._clear()
-        x = np.asarray(u, float)[self.idx]
+        x = np.asarray(u, float)[self.idx if first else self.idx[self.perm]]
         missing = ~np.isfinite(x)
         if not missing.any():
             return 0
@@ -797,6 +803,8 @@ class CodeMonitor:
         self._clear()
         u = np.asarray(u, float)
         with np.errstate(invalid="ignore"):
+            if not first:
+                u = self._exchanged(u, dt)
             if not len(self.settles):
                 return self._step(u, first, dt, self.a)
             x = u[self.idx]
@@ -1016,19 +1024,67 @@ class CodeMonitor:
         that did not jump predict it (one operator on that set, the served
         ``_unjumped_change``); NaN where they cannot (fewer than ``min_active`` of them, or its
         leverage with them at the limit); None where the code has no operator of a set."""
-        expected = np.full(self.n, np.nan)
         base = self._active() & ~big & np.isfinite(self.prev)
         if base.sum() < self.a["min_active"]:
-            return expected
+            return np.full(self.n, np.nan)
+        return self._change_seen(d, base, big)
+
+    def _change_seen(self, d, base, which) -> np.ndarray | None:
+        """The change since the last sample of each ``which`` sensor as the sensors ``base``
+        predict it (one operator on that set), NaN where they cannot (its leverage with them at
+        the limit); None where the code has no operator of a set: the jump's expected change
+        (:meth:`_unjumped_change`) and (wires100) the exchanged wires' prediction alike, as
+        served (``InstantFaults._change_seen``)."""
+        expected = np.full(self.n, np.nan)
         if (op := self._operator(~base)) is None:
             return None
         change = np.where(base, d - self.prev, 0.0)
-        for j in np.flatnonzero(big):
+        for j in np.flatnonzero(which):
             if (own := self._operator(~base & (np.arange(self.n) != j))) is None:
                 return None
             if own[1][j] < self.max_lev:
                 expected[j] = op[0][j] @ change
         return expected
+
+    def _exchanged(self, u, dt):
+        """(wires100) ``u`` with the monitored readings as read from two wires exchanged, as
+        served (``InstantFaults._exchanged``): every sensor in and read, exactly two flagged at
+        one sample (a step past the jump limit times the samples it spans, or a reading beyond
+        range), each reading within the OTHER's jump limit of the reading the sensors without
+        both predict for the other (its last reading where no other predicts it): read exchanged
+        from that sample on (``perm``), flagged ``REREFERENCED`` / ``WIRES_EXCHANGED`` on the
+        first of the two (``perm`` names the other).  A set the code cannot solve: flagged
+        ``NOT_IN_CODE``, read as before."""
+        a = self.a
+        x = u[self.idx[self.perm]]
+        if self.gone or not self.count or not a["exchange"]:
+            return self._permuted(u)
+        gap = np.maximum(self.gap, max(1.0, dt / a["period"])) if (
+            dt > a["gap_periods"] * a["period"]) else self.gap
+        d = x - self.ref
+        lim = a["jump_lim"] * gap
+        flagged = (np.abs(d - self.prev) > lim) | (x < a["lo_lim"]) | (x > a["hi_lim"])
+        if flagged.sum() != 2 or not np.isfinite(d - self.prev).all():
+            return self._permuted(u)
+        i, k = np.flatnonzero(flagged)
+        change = self._change_seen(d, ~flagged, flagged)
+        if change is None:
+            self._flag(NOT_IN_CODE, int(i), WIRES_EXCHANGED)
+            return self._permuted(u)
+        seen = self.ref + self.prev + np.nan_to_num(change)
+        if abs(x[k] - seen[i]) < lim[i] and abs(x[i] - seen[k]) < lim[k]:
+            self.perm = self.perm.copy()
+            self.perm[[i, k]] = self.perm[[k, i]]
+            self._flag(REREFERENCED, int(i), WIRES_EXCHANGED)
+        return self._permuted(u)
+
+    def _permuted(self, u):
+        """``u`` with the monitored readings in the order ``perm`` reads them (wires100)."""
+        if (self.perm == np.arange(self.n)).all():
+            return u
+        u = u.copy()
+        u[self.idx] = u[self.idx[self.perm]]
+        return u
 
     def _pair_held(self, ins: np.ndarray) -> bool:
         """(cmon93) Whether the code takes every sensor of ``ins`` out for a jump, in the

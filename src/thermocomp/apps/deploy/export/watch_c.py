@@ -82,6 +82,7 @@ STATE = """    /* the sensor monitor (TC_MONITOR): referenced readings d = u - m
     double mon_last[NM];
     int mon_read[NM];   /* (cmon84) the sample's monitored readings there (not missing) */
     int mon_flags, mon_sensor, mon_rule;        /* the last sample's (TC_MON_*) */
+    int mon_perm[NM];   /* (wires100) monitored k reads sensor mon_perm[k]'s wire (exchanged) */
     /* (cmon92b) the sample's first rule not in the code and its sensor, where its first event
        (mon_rule) is another (an exclusion in the same sample): stream.c names both */
     int mon_missed, mon_missed_sensor;
@@ -118,6 +119,7 @@ def monitor_arrays(ss) -> list[tuple[str, object, tuple, str]]:
                ("MON_SECOND_RANGE", "second_range", 0, "int"),
                ("MON_SPIKE", "spike", 0, "int"), ("MON_BENT", "bent", 0, "int"),
                ("MON_PAIR_JUMP", "pair_jump", 0, "int"), ("MON_SETTLED", "settled", 0, "int"),
+               ("MON_EXCHANGE", "exchange", 0, "int"),
                ("MON_SETTLE_STEADY", "settle_steady", 0.0, "real"))
     modes = max(int(m.get("modes", 1)), 1)
     return [("MON_M", m.get("M", []), (n + 1 + len(pairs), n, n), "real"),
@@ -602,8 +604,9 @@ static int mon_refuses(tc_state *s, const double u[]) {
     int k, j = -1, nnew = 0, miss = -1, rng = 0, rule = 0;
     mon_clear(s);
     for (k = 0; k < TC_N_MONITORED; k++) {
-        double x = u[TC_MONITORED[k]];
-        if (!measured(u, TC_MONITORED[k])) {
+        int input = TC_MONITORED[s->first ? k : s->mon_perm[k]];   /* (wires100: as read) */
+        double x = u[input];
+        if (!measured(u, input)) {
             if (miss < 0) miss = k;
             if (s->first || !mon_is_out(s, k)) {
                 if (j < 0) j = k;
@@ -782,18 +785,31 @@ static void mon_bent(tc_state *s, double d[], double step[], int big[], const in
    not jump predict it (one operator on that set, as served: _unjumped_change), in expected[]:
    NAN where they cannot (fewer than MON_MIN_ACTIVE of them, or its leverage with them at the
    limit).  0: the code has no operator of a set (expected[] not to be read) */
+static int mon_change_seen(const tc_state *s, const double d[], int out[], const int which[],
+                           double expected[]);   /* (below) */
 static int mon_unjumped(const tc_state *s, const double d[], const int big[], double expected[]) {
-    double M[NM][NM], lev[NM], Mj[NM][NM], levj[NM];
-    int out[NM], k, m, nbase = 0;
+    int out[NM], k, nbase = 0;
     for (k = 0; k < NM; k++) {
         out[k] = mon_out_of(s, k) || big[k] || !isfinite(s->mon_prev[k]);
         nbase += !out[k];
         expected[k] = NAN;
     }
     if (nbase < MON_MIN_ACTIVE) return 1;
+    return mon_change_seen(s, d, out, big, expected);
+}
+
+/* the change since the last sample of each which[] sensor as the sensors not out[] predict it
+   (one operator on that set), NAN where they cannot (its leverage with them at the limit): the
+   jump's expected change (mon_unjumped) and (wires100) the exchanged wires' prediction alike.
+   0: the code has no operator of a set */
+static int mon_change_seen(const tc_state *s, const double d[], int out[], const int which[],
+                           double expected[]) {
+    double M[NM][NM], lev[NM], Mj[NM][NM], levj[NM];
+    int k, m;
+    for (k = 0; k < NM; k++) expected[k] = NAN;
     if (!mon_operator(out, M, lev)) return 0;
     for (k = 0; k < NM; k++) {
-        if (!big[k]) continue;
+        if (!which[k]) continue;
         out[k] = 0;   /* (its leverage with the set) */
         if (!mon_operator(out, Mj, levj)) return 0;
         out[k] = 1;
@@ -1510,6 +1526,56 @@ static void mon_settled(tc_state *s, const double x[], double dt) {
     }
 }
 
+/* (wires100) the monitored readings of u as read from two wires exchanged, as served
+   (InstantFaults._exchanged): every sensor in and read, exactly two flagged at one sample (a step
+   past the jump limit times the samples it spans, or a reading beyond range), each reading within
+   the OTHER's jump limit of the reading the sensors without both predict for the other (its last
+   reading where no other predicts it): read exchanged from that sample on (mon_perm), flagged
+   REREFERENCED / WIRES_EXCHANGED on the first of the two (mon_perm names the other).  A set the
+   code cannot solve: flagged NOT_IN_CODE, read as before.  u's monitored inputs in mon_perm's
+   order after it */
+static void mon_exchange(tc_state *s, double u[], double dt) {
+    double x[NM], d[NM], lim[NM], seen[NM], change[NM], g;
+    int k, out[NM], nflag = 0, i = -1, j = -1;
+    if (s->first) {
+        for (k = 0; k < NM; k++) s->mon_perm[k] = k;
+        return;
+    }
+    for (k = 0; k < NM; k++) x[k] = u[TC_MONITORED[s->mon_perm[k]]];
+    if (MON_EXCHANGE && s->mon_nout == 0 && s->mon_count > 0) {
+        for (k = 0; k < NM; k++) {
+            g = s->mon_gap[k];
+            if (dt > MON_GAP_PERIODS * MON_PERIOD && dt / MON_PERIOD > g) g = dt / MON_PERIOD;
+            if (g < 1.0) g = 1.0;
+            d[k] = x[k] - s->mon_ref[k];
+            lim[k] = MON_JUMP_LIM[k] * g;
+            out[k] = fabs(d[k] - s->mon_prev[k]) > lim[k] || x[k] < MON_LO_LIM[k]
+                     || x[k] > MON_HI_LIM[k];
+            if (!isfinite(d[k] - s->mon_prev[k])) nflag = NM + 1;
+            if (out[k]) {
+                if (i < 0) i = k; else j = k;
+                nflag++;
+            }
+        }
+        if (nflag == 2) {
+            if (!mon_change_seen(s, d, out, out, change)) {
+                mon_flag(s, TC_MON_NOT_IN_CODE, i, TC_MON_WIRES_EXCHANGED);
+            } else {
+                for (k = 0; k < NM; k++)
+                    seen[k] = s->mon_ref[k] + s->mon_prev[k] + (isfinite(change[k]) ? change[k] : 0.0);
+                if (fabs(x[j] - seen[i]) < lim[i] && fabs(x[i] - seen[j]) < lim[j]) {
+                    int t = s->mon_perm[i];
+                    s->mon_perm[i] = s->mon_perm[j];
+                    s->mon_perm[j] = t;
+                    mon_flag(s, TC_MON_REREFERENCED, i, TC_MON_WIRES_EXCHANGED);
+                    g = x[i], x[i] = x[j], x[j] = g;
+                }
+            }
+        }
+    }
+    for (k = 0; k < NM; k++) u[TC_MONITORED[k]] = x[k];
+}
+
 /* one sample of the monitored inputs of u, replaced by what the model reads (the reading, or
    its POD reconstruction while it is out), as the served monitor (watch.py's slice); (jump94b)
    a blind sensor's settled level shift judged before it, its ring of readings after */
@@ -1517,6 +1583,7 @@ static void monitor_step(tc_state *s, double u[], double dt) {
     double x[NM], ref[NM];
     int k, r, count = s->mon_count;
     mon_clear(s);
+    mon_exchange(s, u, dt);
     if (!MON_SETTLED) {
         mon_sample(s, u, dt);
         return;

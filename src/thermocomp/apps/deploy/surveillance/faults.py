@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .states import COMMON_MIN, COMMON_SPREAD, OK, STATES
+from .states import COMMON_MIN, COMMON_SPREAD, EXCHANGED, OK, STATES
 
 
 class InstantFaults:
@@ -232,6 +232,58 @@ class InstantFaults:
                       f"{self.max_step_c[j]:.3g} °C); re-referenced")
         return out
 
+    def _exchanged(self, x: np.ndarray, time, events: list) -> np.ndarray:
+        """The reading ``x`` (order of ``names``) as read from two wires exchanged (wires100).
+        Every sensor in and read, exactly two flagged at one sample (a step past the jump limit,
+        or a reading beyond range), and each reading within the OTHER's jump limit of the reading
+        the sensors without both predict for the other (its last reading plus the change they
+        predict, :meth:`_change_seen`; its last reading where no other predicts it): no two
+        offsets but two wires exchanged.  From that sample on the two readings are read
+        exchanged (``_perm``), before every check, an event per sensor (``to`` ``exchanged``)
+        naming the other.  Read as two jumps (re-referenced as offsets), the pair came back on
+        each other's dynamics (wires99: pt9851 77.66 µm off the healthy corrections) or stayed
+        out, rebuilt (9.497 µm)."""
+        if self._perm is not None:
+            x = x[self._perm]
+        if not (self._count and self._all_active):
+            return x
+        d = x - self._ref
+        flagged = ((np.abs(d - self._prev) > self._jump_lim * self._gap)
+                   | (x < self._lo_lim) | (x > self._hi_lim))
+        if flagged.sum() != 2 or not np.isfinite(d - self._prev).all():
+            return x
+        a, b = np.flatnonzero(flagged)
+        seen = self._ref + self._prev + np.nan_to_num(self._change_seen(d, ~flagged, flagged))
+        lim = self._jump_lim * self._gap
+        if not (abs(x[b] - seen[a]) < lim[a] and abs(x[a] - seen[b]) < lim[b]):
+            return x
+        perm = np.arange(len(x)) if self._perm is None else self._perm.copy()
+        perm[[a, b]] = perm[[b, a]]
+        self._perm = perm
+        for j, k in ((a, b), (b, a)):
+            events.append({"time": float(time), "sensor": self.names[j], "from": STATES[self._state[j]],
+                           "to": EXCHANGED, "reason": f"wires exchanged with {self.names[k]}: it read "
+                           f"{x[j]:.4g} °C where the others predict {self.names[k]} ({seen[k]:.4g} °C), "
+                           f"{self.names[k]} {x[k]:.4g} °C where they predict it ({seen[j]:.4g} °C); "
+                           "read exchanged from here"})
+        x = x.copy()
+        x[[a, b]] = x[[b, a]]
+        return x
+
+    def _change_seen(self, d, base, which) -> np.ndarray:
+        """The change since the last sample of each ``which`` sensor as the sensors ``base``
+        predict it (one operator on that set), NaN where they cannot (its leverage with them at
+        the POD's limit): the jump's expected change (:meth:`_unjumped_change`) and the
+        exchanged wires' prediction (:meth:`_exchanged`) alike."""
+        expected = np.full(len(d), np.nan)
+        M, _ = self._operator(base)
+        for j in np.flatnonzero(which):
+            with_j = base.copy()
+            with_j[j] = True
+            if self._operator(with_j)[1][j] < self.pod.max_leverage:
+                expected[j] = M[j] @ (d[base] - self._prev[base])
+        return expected
+
     def _unjumped_change(self, d, finite, rng, big) -> np.ndarray:
         """The change since the last sample of each of the ``big`` sensors (jumping in the same
         sample) as the active sensors that did not jump predict it, NaN where they cannot (its
@@ -239,14 +291,7 @@ class InstantFaults:
         prediction leaned on its jumping partners: two +3 K jumps on yearround's T_motor2 and
         T_bearing_f2 were re-referenced by 3.108 / 3.076 K, their own 0.11 / 0.09 K of true change
         taken with the offset for good (E_3 1.53x the healthy error on K09)."""
-        expected = np.full(len(d), np.nan)
         base = self._active & finite & ~rng & ~big & np.isfinite(self._prev)
         if base.sum() < self.min_active_:
-            return expected
-        M, _ = self._operator(base)
-        for j in np.flatnonzero(big):
-            with_j = base.copy()
-            with_j[j] = True
-            if self._operator(with_j)[1][j] < self.pod.max_leverage:
-                expected[j] = M[j] @ (d[base] - self._prev[base])
-        return expected
+            return np.full(len(d), np.nan)
+        return self._change_seen(d, base, big)

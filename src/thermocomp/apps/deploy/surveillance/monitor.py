@@ -116,6 +116,8 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion, Settled):
         if "dithered" not in state:    # pickled before mon97: a predicted sensor's freeze by the field
             self.dithered = np.zeros(len(self.names), dtype=bool)
             self._dither_run = np.full(len(self.names), np.inf)
+        if "_perm" not in state:       # pickled before wires100: the readings in their order
+            self._perm = None
         if "max_settle_c" not in state:   # pickled before jump94b: no level shift judged
             self.max_settle_c = np.full(len(self.names), np.inf)
             self._set_settle_lim()
@@ -269,7 +271,7 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion, Settled):
               "_last_good", "_by_field", "_jumps", "_ref0", "_dropped", "_gap", "_gapped", "_dwell",
               "_outs", "_explains", "_novel", "_calm_field", "_since", "_slow", "_slow_t",
               "_slow_ok", "_ranged", "_froze", "_held", "_off", "_hid", "_last_step", "_settle",
-              "_settle_age")
+              "_settle_age", "_perm")
 
     def _set_settle_lim(self) -> None:
         # a sensor no other predicts: a level shift told by two windows (.settled)
@@ -313,6 +315,7 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion, Settled):
         self._jumps = np.zeros(n, dtype=np.int64)    # jumps since it was last admitted
         self._ref0 = np.full(n, np.nan)              # its reference before the first of them
         self._run_pred = np.full(n, np.nan)
+        self._perm = None            # (wires100) the readings' order where wires were exchanged
         self._clean = np.zeros(n)
         self._quiet = False          # every sensor active and ok: the fast path may run
         self._novel = False          # a new thermal state is declared (module doc)
@@ -465,6 +468,7 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion, Settled):
         x = np.asarray(reading, dtype=float)
         settled: list[dict] = []
         with np.errstate(invalid="ignore"):    # NaN (missing, unobservable) compares False
+            x = self._exchanged(x, time, settled)     # (wires100) before every check
             if self._settles:
                 self._settled(x, time, settled)
                 ref = None if self._ref is None else self._ref.copy()
@@ -569,6 +573,8 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion, Settled):
         the rows' times (s), for the memory of the field (:mod:`.excursion`; none: unknown)."""
         n = len(self.names)
         X = np.asarray(X, dtype=float)
+        if self._perm is not None:      # (wires100) two wires read exchanged
+            X = X[:, self._perm]
         if (not self._quiet or not self._all_active or self._M is None
                 or self._count < self.confirm or not len(X)):
             return np.empty((0, n))

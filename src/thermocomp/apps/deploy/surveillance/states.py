@@ -12,6 +12,7 @@ STATES = ("ok", "warning", "alarm", "excluded")
 COMMON_MIN = 3        # jumping sensors, at least, that a common step (a logger's fault) needs
 COMMON_SPREAD = 2.0   # ... each within this factor of their median step (about the same size)
 NEW_STATE, TRAINED = "new thermal state", "trained"   # the field's states (events, sensor None)
+EXCHANGED = "exchanged"   # (wires100) an event's "to": two sensors' wires read exchanged from here
 # an excursion out of band hovers (a regime) unless its error's share of its rise grew past this
 # factor of the share it had EXCURSION_TAU_S seconds ago (excursion.py; mon73)
 EXCURSION_TAU_S, EXCURSION_GROWTH = 1800.0, 1.5
