@@ -22,8 +22,8 @@ Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is
     python benchmarks/bench_cflags100.py flags ROOT RECORD BASE_SRC   # the F1-F3 lines
     python benchmarks/bench_cflags100.py export ROOT RECORD FOLDER    # RECORD's C into FOLDER
 
-``flags``: RECORD's mlr-none cell under ROOT (bench_swap99's ``_cell``: bench_mon98's healthy /
-drift / ambient cases), its C exported by this tree (``stream --flags``) and by BASE_SRC (a
+``flags``: RECORD's mlr-none cell under ROOT (bench_swap99's ``_cell``: bench_mon98's healthy
+frame, its drift and ambient cases), its C exported by this tree (``stream --flags``) and by BASE_SRC (a
 ``git archive`` of main's src; ``export`` run by BASE_SRC's python path), both compiled (gcc
 -Werror), each case streamed through both; per case the rows whose printed flags differ from the
 mirror's (``Simulator.watch``: each kind's bit, the out set's names in order), the rows flagged,
@@ -31,7 +31,8 @@ and whether the correction columns are BASE's bytes.
 
 Records (SEEN only; no fresh seed simulated): dl9878 (bench_dep99b's traced record), dl9902
 (bench_step99's traced record), ROOT a copy of those benches' ROOTs (/tmp/dep99b/root,
-/tmp/step99/rule).
+/tmp/step99/rule); measured after the bar, outside it: tr9876 (swap99's, its healthy frame
+without an event) and ``fl`` (fl_thermal's served MLR, tests/conftest.py ``fl_thermal_served``).
 
 BAR (written and committed before measuring; BASE = cd356319's src)
 ---
@@ -62,11 +63,26 @@ from bench_mon98b import _dl  # noqa: E402
 bench_swap99.RECORDS.update({"dl9902": _dl(9902)})      # bench_step99's seen record
 
 
+def _cell(root: str, record: str) -> tuple:
+    """``(deployed, ss, names, start, {case: (sensor, frame)})``: bench_swap99's cell (its healthy
+    frame, drift and ambient cases) or, for ``fl``, fl_thermal's served MLR (tests/conftest.py),
+    its test campaign healthy only."""
+    if record == "fl":
+        sys.path[:0] = [str(HERE.parent / "tests"), str(HERE.parent / "tests" / "shell")]
+        from conftest import fl_thermal_served
+
+        os.environ.pop("THERMOCOMP_TARGETS", None)
+        deployed, ss, frame = fl_thermal_served()
+        return deployed, ss, list(deployed.monitor.names), 0, {"healthy": ("-", frame)}
+    deployed, ss, frame, start, names, drifts = bench_swap99._cell(root, record)
+    return deployed, ss, names, start, {"healthy": ("-", frame), **drifts}
+
+
 def export(root: str, record: str, folder: str) -> None:
     """RECORD's cell exported as C into FOLDER by this python path's src, and compiled."""
     from thermocomp.apps.deploy.export import exported_files
 
-    deployed = bench_swap99._cell(root, record)[0]
+    deployed = _cell(root, record)[0]
     out = Path(folder)
     out.mkdir(parents=True, exist_ok=True)
     for name, text in exported_files(deployed, "c").items():
@@ -76,31 +92,27 @@ def export(root: str, record: str, folder: str) -> None:
 
 
 def _mirror_flags(deployed, ss, full, names) -> list[tuple]:
-    """Per row the mirror's ``(bit per kind..., out names joined by ';')``."""
+    """Per row the mirror's ``watch.flag_row`` (the served model stepped beside it)."""
     from bench_cmon92 import Stepped
 
-    from thermocomp.apps.deploy.export.watch import FLAG_KINDS
+    from thermocomp.apps.deploy.export.watch import flag_row
 
-    run, rows = Stepped(deployed, ss), []
-    for _ in run.rows(full):
-        w = run.sim.watch
-        rows.append((*(int(bool(w.flags & bit)) for _, bit in FLAG_KINDS),
-                     ";".join(names[k] for k in w.gone)))
-    return rows
+    run = Stepped(deployed, ss)
+    return [flag_row(run.sim.watch, names) for _ in run.rows(full)]
 
 
 def flags(root: str, record: str, base_src: str) -> None:
     """The ``flags`` lines (module doc)."""
     from thermocomp.apps.deploy.export.watch import FLAG_KINDS
 
-    deployed, ss, _frame, start, names, drifts = bench_swap99._cell(root, record)
+    deployed, ss, names, start, cases = _cell(root, record)
     folder = Path(root).resolve() / "cflags" / record
     export(root, record, str(folder / "rule"))
     env = {**os.environ, "PYTHONPATH": f"{Path(base_src).resolve()}{os.pathsep}{HERE}"}
     subprocess.run([sys.executable, __file__, "export", root, record, str(folder / "base")],
                    env=env, check=True)
     n_out, kinds = len(ss.targets), [f"mon_{k}" for k, _ in FLAG_KINDS]
-    for case, (sensor, full) in drifts.items():
+    for case, (sensor, full) in cases.items():
         rows = full[["time", *ss.inputs]].to_csv(index=False, float_format="%.17g")
         got = subprocess.run([str(folder / "rule" / "stream"), "--flags"], input=rows,
                              capture_output=True, text=True, check=True).stdout
@@ -111,12 +123,12 @@ def flags(root: str, record: str, base_src: str) -> None:
         said = [(*(int(v) for v in r[kinds]), r["excluded_inputs"]) for _, r in printed.iterrows()]
         mirror = _mirror_flags(deployed, ss, full, names)
         differ = [i for i, (a, b) in enumerate(zip(said, mirror)) if a != b]
-        flagged = sum(any(r[:-1]) or bool(r[-1]) for r in said)
+        flagged = [i for i, r in enumerate(said) if any(r[:-1]) or r[-1]]
         print(f"{record} {case} ({sensor}): {len(said)} rows (mirror {len(mirror)}); flags != mirror "
               f"{len(differ)} rows{f' (first fed row {differ[0] - start} of the drift)' if differ else ''}; "
-              f"rows flagged {flagged} (from drift row "
-              f"{next((i - start for i, r in enumerate(said) if any(r[:-1]) or r[-1]), '-')}); "
-              f"corrections = BASE's bytes: {cut == base}", flush=True)
+              f"rows flagged {len(flagged)} (first at drift row "
+              f"{flagged[0] - start if flagged else '-'}); corrections = BASE's bytes: {cut == base}",
+              flush=True)
 
 
 def main(argv: list[str]) -> int:

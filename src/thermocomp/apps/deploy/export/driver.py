@@ -911,14 +911,15 @@ static void said_monitor(const tc_state *s, long row) {
 }
 
 /* (cflags100) --flags: the monitor's state after a row's corrections, as numbers and names a
-   control's integrator splits at ',' (0/1 per kind; no quoting needed); NULL: the header's names */
+   control's integrator splits at ',' (0/1 per kind; no quoting needed); NULL: the header's names.
+   Without TC_MONITOR the state's monitor fields are never set: 0 and none out. */
 static void printed_flags(const tc_state *s) {
-    int k;
+    int k, on = s != NULL && TC_MONITOR;
     for (k = 0; k < TC_N_FLAG_KINDS; k++)
         if (s == NULL) printf(",%s", TC_FLAG_NAMES[k]);
-        else printf(",%d", (s->mon_flags & TC_FLAG_BITS[k]) != 0);
+        else printf(",%d", on && (s->mon_flags & TC_FLAG_BITS[k]) != 0);
     printf(",%s", s == NULL ? "excluded_inputs" : "");
-    for (k = 0; s != NULL && k < s->mon_nout; k++)
+    for (k = 0; on && k < s->mon_nout; k++)
         printf("%s%s", k ? ";" : "", TC_INPUT_NAMES[TC_MONITORED[s->mon_out_set[k]]]);
 }
 

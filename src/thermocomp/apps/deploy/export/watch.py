@@ -245,6 +245,14 @@ RULES = ("", "JUMP", "FREEZE", "BACK", "RANGE", "COMMON", "GLITCH", "STEPPED", "
  BLIND_OUT, FALLBACK, THAWED, NO_THAW, STEP_OUT, SPIKE, BENT, SETTLED) = range(1, len(RULES))
 
 
+def flag_row(watch, names: list[str]) -> tuple:
+    """What ``stream --flags`` prints after a sample's corrections, as the mirror ``watch`` (a
+    :class:`CodeMonitor`) has it: one 0/1 per :data:`FLAG_KINDS`, then the names of the sensors
+    out (``names``: the monitored ones) in the order they went out, joined by ``;``."""
+    return (*(int(bool(watch.flags & bit)) for _, bit in FLAG_KINDS),
+            ";".join(names[k] for k in watch.gone))
+
+
 @dataclass
 class MonitorArrays:
     """:class:`~.statespace.StateSpace`'s monitor (:func:`monitor_fields`; empty: none in the

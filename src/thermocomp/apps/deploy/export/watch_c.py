@@ -6,8 +6,18 @@ from __future__ import annotations
 import math
 
 from ..surveillance.states import THAW
-from .watch import (BAND, EXCLUDED, FLAG_KINDS, NOT_IN_CODE, NOVEL, OUT, READMITTED, REASONS,
-                    REREFERENCED, RULES)
+from .watch import (
+    BAND,
+    EXCLUDED,
+    FLAG_KINDS,
+    NOT_IN_CODE,
+    NOVEL,
+    OUT,
+    READMITTED,
+    REASONS,
+    REREFERENCED,
+    RULES,
+)
 
 
 def header_part(ss) -> str:
