@@ -6,16 +6,16 @@ Before: ``stream.c`` printed the corrections ``C_<axis>`` only; the code's monit
 (``CodeMonitor``), and a control engineer reading the rows could not see that a sensor went out
 (stderr names events, not the state of each row).
 
-RULE (cflags100; C ``printed_flags`` in export/driver.py, the kinds ``watch.FLAG_KINDS`` in
-``compensator.h``'s ``TC_FLAG_NAMES`` / ``TC_FLAG_BITS``): ``./stream --flags`` appends to each row,
-after the corrections, one 0/1 column per kind of ``mon_flags`` (``mon_excluded``,
-``mon_readmitted``, ``mon_out``, ``mon_band``, ``mon_not_in_code``, ``mon_rereferenced``,
-``mon_new_state``) and ``excluded_inputs``: the monitored sensors out, in the order they went
-out, ``;`` between them (the served model's column of that name and its sensor names; served
-joins by ``,``, which would need CSV quoting).  Numbers and names a CNC integrator splits at
-``,`` without a CSV library.  Opt-in: without ``--flags`` the output is byte for byte as before
-(tests and benches read the rows whole as numbers of TC_N_OUTPUTS columns: ``_streamed``,
-``bench_swap99.compiled``).
+RULE (cflags100; REFUSED: in benchmarks/cflags100_rule.patch, not in src; C ``printed_flags`` in
+export/driver.py, the kinds ``watch.FLAG_KINDS`` in ``compensator.h``'s ``TC_FLAG_NAMES`` /
+``TC_FLAG_BITS``): ``./stream --flags`` appends to each row, after the corrections, one 0/1
+column per kind of ``mon_flags`` (``mon_excluded``, ``mon_readmitted``, ``mon_out``,
+``mon_band``, ``mon_not_in_code``, ``mon_rereferenced``, ``mon_new_state``) and
+``excluded_inputs``: the monitored sensors out, in the order they went out, ``;`` between them
+(the served model's column of that name and its sensor names; served joins by ``,``, which would
+need CSV quoting).  Numbers and names a CNC integrator splits at ``,`` without a CSV library.
+Opt-in: without ``--flags`` the output is byte for byte as before (tests and benches read the
+rows whole as numbers of TC_N_OUTPUTS columns: ``_streamed``, ``bench_swap99.compiled``).
 
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is that tree's)::
 
@@ -43,6 +43,41 @@ F3. every case: the correction columns of ``--flags`` byte-identical to BASE's s
 F4. the PARSED_DIGEST / ST untouched (no ST change; tests/shell/test_export.py passes).
 F5. a test (tests/shell/test_export_cflags100.py, < 5 s) that fails on cd356319 and passes here.
 KEPT if F1-F5 hold (src + test + docs); else REFUSED (benchmarks/cflags100_rule.patch).
+
+Scored (bar b876db82; then, before any measurement, b3701907: without TC_MONITOR ``--flags``
+prints 0 and none out, the monitor's state never being set there, and ``watch.flag_row`` shared
+by the test and the bench; 2026-12-06 16:14-16:21 UTC under a load of 7-10 on 2 cores; BASE =
+``git archive cd356319 src``; ROOT /tmp/cflags100/root).  Rows flagged: any kind 1 or a sensor
+out.  CPU (user + sys) / wall of ``flags``: dl9878 44.2 / 145 s, dl9902 39.3 / 110 s, tr9876
+57.9 / 132 s, fl 13.9 / 65 s (its fit)::
+
+    record  case     rows   printed flags != mirror   rows flagged        corrections = BASE's bytes
+    dl9878  healthy  7200   0 rows                    17 (from row 3249)  yes
+    dl9878  drift    7200   0 rows                    1067                yes
+    dl9878  ambient  7200   0 rows                    965                 yes
+    dl9902  healthy  7200   0 rows                    57 (from row 989)   yes
+    dl9902  drift    7200   0 rows                    1077                yes
+    dl9902  ambient  7200   0 rows                    996                 yes
+    outside the bar (measured after it):
+    tr9876  healthy  10080  0 rows                    0                   yes
+    tr9876  drift    10080  0 rows                    7420 (from 140)     yes
+    tr9876  ambient  10080  0 rows                    6885 (from 670)     yes
+    fl      healthy  1112   0 rows                    0                   yes
+
+F1 MET (0 rows differ in 4 cases, 28800 rows).  F2 NOT MET as worded: dl9878's and dl9902's
+healthy frames (bench_mon98's "healthy": no planted drift) carry their generator's faults
+(bench_swap99 / bench_step99 logs: served 6 and 32 events, the mirror 6 and 8 flagged rows), and
+the C prints them, as the mirror (0 rows differ): 17 and 57 rows flagged.  A clause aimed wrong
+(it should have named frames without served events); the frames without any event, tr9876's
+healthy and fl_thermal's test campaign, print no flag (outside the bar).  F3 MET (every case's
+corrections byte-identical to BASE's).  F4 MET (no ST change; with the rule test_export.py
+(PARSED_DIGEST), test_export_dep99b / cmon80 / cmon92b and test_lint: 37 passed).  F5 MET
+(test_export_cflags100: 4.13 s call under a load of 7.5; fails on cd356319: ``--flags`` is a
+usage error, exit 2).
+VERDICT: REFUSED (F2 as worded).  The rule, its test and docs: benchmarks/cflags100_rule.patch
+(``git apply`` on cd356319); ``flags`` / ``export`` need it applied (``watch.FLAG_KINDS``,
+``flag_row``).  Next: a bar that names frames without served events for "no flag", and the
+conformance pack's check.sh comparing these columns (not built).
 """
 
 from __future__ import annotations
