@@ -74,7 +74,7 @@ COMMAND_BENCHES = (
     "bench_mon86b", "bench_mon87", "bench_mon88", "bench_mon89", "bench_mon89b", "bench_mon91b",
     "bench_mon97", "bench_mon97b", "bench_mon98", "bench_mon98b", "bench_mon98c", "bench_monb92",
     "bench_monb92b", "bench_monb93", "bench_monb93b", "bench_monb94", "bench_moretest68", "bench_names96",
-    "bench_names97", "bench_names97b", "bench_nested63", "bench_pair70", "bench_pair82", "bench_pde66",
+    "bench_names97", "bench_names97b", "bench_nested63", "bench_notes100", "bench_pair70", "bench_pair82", "bench_pde66",
     "bench_pen0b69", "bench_perf87", "bench_perf87b", "bench_perf88", "bench_planted69", "bench_planted72",
     "bench_power78", "bench_quiet93", "bench_quiet93b", "bench_quiet94", "bench_quiet94b", "bench_quiet94c",
     "bench_range73", "bench_range77", "bench_rate71", "bench_rate83", "bench_remeasure62",
