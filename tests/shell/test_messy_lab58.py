@@ -90,8 +90,10 @@ def test_a_map_key_beyond_ascii_on_the_command_line_names_the_config_file(tmp_pa
     line = refused(["ingest", f"data.path={folder}", "data.columns={Spindelkopf [°C]: T_Spindel}",
                     f"data.interim={tmp_path / 'interim'}"], capsys,
                    "a map's key beyond ASCII is not read on the command line",
-                   "(columns: {'Spindelkopf [°C]': T_Spindel})")
+                   "\"columns: {'Spindelkopf [°C]': T_Spindel}\"")
     assert "read only quoted" not in line
+    # notes100: a form that works where init refused the file, so wrote no config
+    assert "'defaults: [default]'" in line and "hydra.searchpath=[file://$PWD/myconf]" in line
 
 
 def test_init_says_each_sample_period_of_runs_logged_at_two(tmp_path, capsys):

@@ -19,6 +19,16 @@ def closest(word: str, options, n: int = 1) -> list[str]:
     return difflib.get_close_matches(str(word), [str(o) for o in options], n=n, cutoff=0.6)
 
 
+def config_file_form(section: str, entry: str) -> str:
+    """How to give a config entry the command line cannot take (a map's key with spaces,
+    brackets or letters beyond ASCII: Hydra's grammar reads it by no quoting): the file's lines
+    and how to pass it.  (notes100: the hint named the config ``thermocomp init`` writes, which
+    ``init``, refusing the file, had not written.)"""
+    return (f"myconf/{section}/mine.yaml with the two lines 'defaults: [default]' and "
+            f"\"{entry}\", then pass \"hydra.searchpath=[file://$PWD/myconf]\" {section}=mine "
+            f"(or put it in the {section} config `thermocomp init` writes)")
+
+
 class ThermocompError(ValueError):
     """Bad input or bad configuration: exit status 2 with the one-line message."""
 

@@ -25,6 +25,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ...base.errors import listed
+from ...base.log import logger
 from ..metrics import angular
 from . import campbell
 from .contract import TIME, ContractError, role
@@ -43,11 +44,14 @@ from .timestamps import (
 from .units import (
     AMBIGUOUS,
     LETTER_UNITS,
+    NOTE,
     STATE_UNITS,
     UNITS,
     VOLTS,
     ambiguity,
+    bracket_reading,
     is_known_unit,
+    note_ambiguity,
     role_by_unit,
 )
 
@@ -271,6 +275,7 @@ def naming(headers: Sequence[str], roles: Mapping, columns: Mapping, first: Mapp
     short = shortened(headers, columns)
     run = _run_header(headers, roles, columns, problems)
     in_units: set[str] = set()      # the names before a unit derived so far (:func:`again_in`)
+    noted: list[str] = []           # temperature headers whose bracket is a note, no unit
     for header in headers:
         base, unit = split_unit(header)
         unit = units.get(header, unit)
@@ -341,6 +346,14 @@ def naming(headers: Sequence[str], roles: Mapping, columns: Mapping, first: Mapp
             if kind == AMBIGUOUS:
                 problems.append(ambiguity(header, base))
                 continue
+        if kind in ("temperature", "ambient") and header not in units:
+            reading = bracket_reading(unit)       # (notes100: 'T1 (front)', a note, no unit)
+            if reading == AMBIGUOUS:
+                problems.append(note_ambiguity(header, base, unit))
+                continue
+            if reading == NOTE:
+                base, unit = header.strip(), None
+                noted.append(header)
         if unit is None and kind in ("temperature", "ambient"):
             base, unit = _letter_unit(header, first.get(header), decimal) or (base, unit)
         if unit is not None:
@@ -364,6 +377,9 @@ def naming(headers: Sequence[str], roles: Mapping, columns: Mapping, first: Mapp
     _duplicates(out.names, problems, by_role)
     if problems:
         raise _refusal(problems, by_role, out.names, out.roles, file)
+    for header in noted:
+        logger.info("%s: the bracket read as part of the name, no unit: °C assumed (%s)",
+                  repr(header), out.names[header])
     return out
 
 

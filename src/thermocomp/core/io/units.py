@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import re
 
+from ...base.errors import config_file_form
 from .contract import role
 
 # unit (lower case, no spaces) -> (scale, offset) to the contract's unit; a micrometre as a
@@ -175,3 +176,34 @@ def ambiguity(header: str, base: str) -> str:
     """What a message says of an :data:`AMBIGUOUS` header, with the two settings to choose."""
     return (f"{header!r} is a length named by its axis alone: the error "
             f"(data.roles.error=[{base!r}]) or its position (data.roles.state=[{base!r}])?")
+
+
+# notes100 (audit100): a lab's note in a temperature header's brackets, where the sensor sits
+# or what it is on ('T1 (front)', 'Spindel (Gehäuse)', 'T1 (front/left)'): a word of three or
+# more letters that is no unit, read as part of the column's name
+NOTE = "note"
+_NOTE_WORD = re.compile(r"[^\W\d_]{3,}")
+_NOTE_SPLIT = re.compile(r"[\s/,;+.\-]+")
+
+
+def bracket_reading(unit: str | None) -> str | None:
+    """How a temperature header's bracket ``unit`` reads: None where it is a unit (known, or one
+    written as a unit, :func:`foreign_unit`: today's reading), :data:`NOTE` where it is a note
+    (a word that is no unit), :data:`AMBIGUOUS` where it could be either (a temperature's unit
+    beside a word, ``(K Kühlung)``, ``(°C front)``; a token of one or two letters or figures
+    that is no unit, ``(R)``, ``(li)``: a unit the reader does not know, or an abbreviation)."""
+    if not unit or not unit.strip() or is_known_unit(unit) or foreign_unit(unit):
+        return None
+    words = [w for w in _NOTE_SPLIT.split(unit.strip().lower()) if w]
+    if any(w in UNITS["T"] for w in words):
+        return AMBIGUOUS
+    return NOTE if any(_NOTE_WORD.search(w) for w in words) else AMBIGUOUS
+
+
+def note_ambiguity(header: str, base: str, unit: str) -> str:
+    """What a refusal says of a temperature header whose bracket :func:`bracket_reading` finds
+    :data:`AMBIGUOUS`: the two readings and the key for each."""
+    return (f"{header!r}: ({unit}) reads as a unit the reader does not know or as a note, part "
+            f"of the name: give its unit, data.units={{{header!r}: °C}} (or K, °F), or its name, "
+            f"data.columns={{{header!r}: T_<name>}}: in a data config file, "
+            + config_file_form("data", f"columns: {{{header!r}: T_<name>}}"))

@@ -11,13 +11,14 @@ from __future__ import annotations
 
 import logging
 import time
+from pathlib import Path
 
 import numpy as np
 from sklearn.base import BaseEstimator, RegressorMixin, clone
 from sklearn.utils.validation import check_is_fitted
 
 from ...base.errors import ConfigError, ParameterError
-from ...base.log import logger
+from ...base.log import logger, once_per_run
 from ...base.params import check_estimator, choice, integer, number
 from ..context import (
     AMBIENT_C0,
@@ -48,6 +49,10 @@ FORWARD_ONE = "forward-chaining (one record)"
 MIN_IN_RANGE_ROWS = 20   # validation_rows='in_range': a fold with fewer in-range rows is scored whole
 BLOCKS_ONE = {"blocks": "leave-block-out (one record)", "late_blocks": "leave-late-block-out (one record)"}
 CAMPAIGN_FOLDS = ("blocked forward", "leave-campaigns-out")   # folds holding out whole campaigns
+
+# a candidate that does not apply (ATI over fewer ambient levels) is said once a run, not once
+# per target each fit of auto tells it (notes100)
+once_per_run(Path(__file__))
 
 
 class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
@@ -225,8 +230,10 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
 
             runs[BASELINE] = MLR()
         for name, est in runs.items():
-            why = _not_applicable(name, context, groups) or _same_as(name, est, runs, context,
-                                                                      len(y))
+            why = _not_applicable(name, context, groups)
+            if why is not None:    # (notes100: said in metrics.json's `skipped` alone before)
+                logger.info("auto: %s skipped: %s", name, why)
+            why = why or _same_as(name, est, runs, context, len(y))
             if why is None:
                 why = self._validate(name, est, X, y, context, folds)
                 _said(name, self.fit_seconds_.get(name, 0.0), self.validation_.get(name), why)

@@ -17,7 +17,7 @@ import itertools
 import os
 import re
 
-from ...base.errors import ConfigError, closest
+from ...base.errors import ConfigError, closest, config_file_form
 from ...base.extras import missing
 from ...base.paths import conf_dir, resolve
 from .commands import MODEL_KEYS, READ_ONLY_BY, groups_of, register, root_name
@@ -307,8 +307,8 @@ def _quoted_hint(exc: BaseException, msg: str) -> str:
                          for k, sep, v in pairs)      # (a key the user quoted: quoted once)
         letters = "beyond ASCII" if not value.isascii() else "with spaces or brackets"
         return (f"{msg}; a map's key {letters} is not read on the command line, quoted or "
-                f"not (Hydra's grammar): write the entry into a config file, e.g. the "
-                f"{section} config `thermocomp init` writes ({entry}: {{{yaml}}})")
+                f"not (Hydra's grammar): write the entry into a config file, "
+                f"{config_file_form(section, f'{entry}: {{{yaml}}}')}")
 
     def quoted(v: str) -> str:
         plain = v.isascii() and not any(c in v for c in " []()")
