@@ -17,7 +17,6 @@ import pandas as pd
 import pytest
 
 import durations
-import gcc_cache
 import hydra_cache
 from thermocomp.base.lifetime import collect_less
 
@@ -385,14 +384,6 @@ def pytest_collection_modifyitems(items):
     units = list(dict.fromkeys(_unit(item.nodeid) for item in items))
     rank = {u: i for i, u in enumerate(durations.longest_first(units, durations.load()))}
     items.sort(key=lambda item: rank[_unit(item.nodeid)])
-
-
-@pytest.fixture(scope="session", autouse=True)
-def gcc_objects(tmp_path_factory):
-    """The compiled objects of the exported C, one folder per run (tests/gcc_cache.py): under
-    pytest's base temporary folder, xdist's workers sharing it (their base folders' parent)."""
-    base = tmp_path_factory.getbasetemp()
-    gcc_cache.use((base.parent if os.environ.get("PYTEST_XDIST_WORKER") else base) / "gcc-objects")
 
 
 @pytest.fixture

@@ -26,7 +26,6 @@ import pandas as pd
 import pytest
 from hydra import compose, initialize_config_dir
 
-import gcc_cache
 from conftest import FAST, deployed_as_replay, refused
 from thermocomp.apps.deploy.export import Simulator, exported_files, state_space
 from thermocomp.apps.deploy.streaming import replay
@@ -56,8 +55,6 @@ PUSH_C = 30.0          # added to one sensor from mid-campaign: far outside the 
 # test_envelope_pattern.py)
 EVERY_EXCURSION = "promote.envelope.pattern=false"
 needs_cc = pytest.mark.skipif(shutil.which("gcc") is None, reason="no C compiler")
-# what a control's build does: warnings as errors (tests/gcc_cache.py compiles each content once)
-CONTROL_BUILD = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-O2"]
 
 
 def built_stream(folder: Path, files: dict | None = None) -> Path:
@@ -66,7 +63,9 @@ def built_stream(folder: Path, files: dict | None = None) -> Path:
     for name, text in (files or {}).items():
         (folder / name).parent.mkdir(parents=True, exist_ok=True)
         (folder / name).write_text(text)
-    return gcc_cache.build(folder, ["compensator.c", "stream.c"], CONTROL_BUILD)
+    subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", "compensator.c",
+                    "stream.c", "-lm", "-o", "stream"], cwd=folder, check=True, capture_output=True)
+    return folder / "stream"
 
 
 def adaptive_mlr(folder: Path) -> tuple:
@@ -270,7 +269,11 @@ def _stdin(stream, tests, reset_column: bool = False) -> str:
 
 
 def _compiled(stream, folder: Path) -> Path:
-    return built_stream(folder, exported_files(stream, "c"))
+    for name, text in exported_files(stream, "c").items():
+        (folder / name).write_text(text)
+    subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", "compensator.c",
+                    "stream.c", "-lm", "-o", "stream"], cwd=folder, check=True, capture_output=True)
+    return folder / "stream"
 
 
 def _streamed(binary: Path, text: str) -> pd.DataFrame:

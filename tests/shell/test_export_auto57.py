@@ -67,18 +67,12 @@ def deployed(path, *overrides, pushed: str | None = None):
     train = {c: ds.campaigns[c] for c in train_ids}
     comp = build_compensator(cfg, ds=ds).fit(train)
     stream = deploy_stream(cfg, comp, train)
-    return stream, pushed_tests(ds, test_ids, pushed or stream.columns_[0]), comp
-
-
-def pushed_tests(ds, test_ids, column: str) -> list:
-    """Copies of the test campaigns of ``ds``, ``column`` pushed out of the envelope half-way
-    (:func:`deployed`'s; a diagnosed model's tests take them without fitting the plain one)."""
     tests = []
     for c in test_ids:
         df = ds.campaigns[c].reset_index(drop=True).copy()
-        df.loc[len(df) // 2:, column] += PUSH_C
+        df.loc[len(df) // 2:, pushed or stream.columns_[0]] += PUSH_C
         tests.append(df)
-    return tests
+    return stream, tests, comp
 
 
 def _deployed(data, dataset: str, *overrides):

@@ -19,9 +19,9 @@ import numpy as np
 import pytest
 from sklearn.base import clone
 
-from test_export import EVERY_EXCURSION, _compose, checked_pack, needs_cc, parses_as_the_parsed_block
+from test_export import _compose, checked_pack, needs_cc, parses_as_the_parsed_block
 from test_export_ati63 import ATI, NET, _levels_with_a_door
-from test_export_auto57 import TOLERANCE_UM, _proved, pushed_tests
+from test_export_auto57 import TOLERANCE_UM, _proved, deployed
 from test_export_effects59 import (
     AMBIENT_LAW,
     INPUT_LAG,
@@ -37,7 +37,7 @@ from test_export_rest60 import INITIAL, LOWPASS_INITIAL, STEP
 from thermocomp.apps.deploy.export import Simulator, exported_files, state_space
 from thermocomp.apps.diagnose import AugmentedRegressor
 from thermocomp.core.models.lstm import LSTM
-from thermocomp.shell.builders import build_compensator, deploy_stream
+from thermocomp.shell.builders import deploy_stream
 from thermocomp.shell.cli import main
 from thermocomp.shell.model_store import save_model
 from thermocomp.shell.source import read_streamed
@@ -129,15 +129,11 @@ def _ati_diagnosed(tmp_path, effects):
     """``diagnose ati=cmeans`` around lstm: each interval's network on ``[Z, Z (A0 - 20)]``
     (with the interaction), ``Z`` the inputs and the effects' features."""
     data = _levels_with_a_door(tmp_path / "data")
+    _, tests, ati = deployed(data, "model=lstm", *NET, *ATI, pushed="T_a")
     cfg = _compose(f"data.path={data}", "track=false", "monitor.adaptive=false",
                    "promote.envelope.pattern=false")
-    ds, train_ids, test_ids, _ = read_streamed(cfg)
-    tests = pushed_tests(ds, test_ids, "T_a")
+    ds, train_ids, _, _ = read_streamed(cfg)
     train = {c: ds.campaigns[c] for c in train_ids}
-    # the ATI lstm's compensator unfitted: a fit of it (deployed()) only to clone it was the
-    # same parameters, and the same dataset read again (ci100)
-    ati = build_compensator(_compose(f"data.path={data}", "track=false", "monitor.adaptive=false",
-                                     EVERY_EXCURSION, "model=lstm", *NET, *ATI))
     comp = clone(ati).set_params(estimator=AugmentedRegressor(ati.estimator,
                                                               effects={"E_X": effects}))
     return deploy_stream(cfg, comp.fit(train), train), tests

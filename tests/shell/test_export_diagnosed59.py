@@ -14,16 +14,17 @@ it and the route that runs it (the served model).
 from __future__ import annotations
 
 import pytest
+from sklearn.base import clone
 
 from conftest import refused
 from test_export import _compose, needs_cc
 from test_export_ati57 import _levels
-from test_export_auto57 import TOLERANCE_UM, _proved, pushed_tests
+from test_export_auto57 import TOLERANCE_UM, _proved, deployed
 from test_export_refusal59 import OwnMLR
 from thermocomp.apps.deploy.export import NotExportable, state_space
 from thermocomp.apps.diagnose import AugmentedRegressor
 from thermocomp.core.models import MLR
-from thermocomp.shell.builders import build_compensator, deploy_stream
+from thermocomp.shell.builders import deploy_stream
 from thermocomp.shell.model_store import save_model
 from thermocomp.shell.source import read_streamed
 
@@ -42,14 +43,12 @@ def data(tmp_path_factory):
 def _diagnosed(data, effects: list, alpha=None, base=None):
     """``(stream as replay deploys it, test campaigns with T_a pushed out half-way, compensator)``
     of ``base`` (MLR) with ``effects`` for E_X, the way diagnose's written config builds it."""
+    _, tests, mlr = deployed(data, "model=mlr", pushed="T_a")
     cfg = _compose(f"data.path={data}", "track=false", "monitor.adaptive=false",
                    "promote.envelope.pattern=false")
-    ds, train_ids, test_ids, _ = read_streamed(cfg)
-    tests = pushed_tests(ds, test_ids, "T_a")
+    ds, train_ids, _, _ = read_streamed(cfg)
     train = {c: ds.campaigns[c] for c in train_ids}
-    # the plain MLR's compensator unfitted: a fit of it (deployed()) only to clone it was the
-    # same parameters, and the same dataset read again (ci100)
-    comp = build_compensator(cfg).set_params(estimator=AugmentedRegressor(
+    comp = clone(mlr).set_params(estimator=AugmentedRegressor(
         base if base is not None else MLR(), effects={"E_X": effects},
         alpha=None if alpha is None else {"E_X": alpha}))
     comp.fit(train)

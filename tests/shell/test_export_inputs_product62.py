@@ -19,6 +19,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 import pytest
+from sklearn.base import clone
 
 from test_export import (
     EVERY_EXCURSION,
@@ -32,13 +33,13 @@ from test_export import (
     parses_as_the_parsed_block,
 )
 from test_export_ati57 import CAMPAIGNS, write_manifest
-from test_export_auto57 import TOLERANCE_UM, _proved, pushed_tests
+from test_export_auto57 import TOLERANCE_UM, _proved, deployed
 from test_export_effects59 import _json_proved
 from test_export_guard import EVERY, OFFSET_UM, _rows, _served, _simulated, _st
 from thermocomp.apps.deploy.export import exported_files, state_space
 from thermocomp.apps.diagnose import AugmentedRegressor
 from thermocomp.core.models import ARX, MLR, LagBank
-from thermocomp.shell.builders import build_compensator, deploy_stream, deployable
+from thermocomp.shell.builders import deploy_stream, deployable
 from thermocomp.shell.cli import main
 from thermocomp.shell.model_store import save_model
 from thermocomp.shell.source import read_streamed
@@ -77,12 +78,11 @@ def _diagnosed(data, effects, base=None, *overrides, adaptive: bool = False, pus
     ``None``: healthy), the fitted compensator)`` of ``base`` (MLR) with ``effects`` for E_X, as
     diagnose's config builds it; ``adaptive``: the adaptive compensator around the stream."""
     common = (f"data.path={data}", "track=false", EVERY_EXCURSION, *overrides)
+    _, tests, mlr = deployed(data, "model=mlr", *overrides, pushed="T_a")
     cfg = _compose(*common, f"monitor.adaptive={str(adaptive).lower()}")
     ds, train_ids, test_ids, _ = read_streamed(cfg)
-    tests = pushed_tests(ds, test_ids, "T_a")
     train = {c: ds.campaigns[c] for c in train_ids}
-    # the plain MLR's compensator unfitted (test_export_diagnosed59._diagnosed: ci100)
-    comp = build_compensator(cfg).set_params(estimator=AugmentedRegressor(
+    comp = clone(mlr).set_params(estimator=AugmentedRegressor(
         base if base is not None else MLR(), effects={"E_X": effects}))
     comp.fit(train)
     stream = deploy_stream(cfg, comp, train)

@@ -20,16 +20,17 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from sklearn.base import clone
 
 from test_export import _compose, needs_cc
-from test_export_auto57 import TOLERANCE_UM, _proved, pushed_tests
+from test_export_auto57 import TOLERANCE_UM, _proved, deployed
 from test_export_effects59 import LAG, LOWPASS, PRODUCT, _diagnosed, _door, _json_proved
 from thermocomp.apps.deploy.export import exported_files, state_space
 from thermocomp.apps.diagnose import AugmentedRegressor
 from thermocomp.apps.diagnose.features import as_effect
 from thermocomp.core.models import MLR, LagBank
 from thermocomp.core.models.ati import ATIRegressor
-from thermocomp.shell.builders import build_compensator, deploy_stream
+from thermocomp.shell.builders import deploy_stream
 from thermocomp.shell.source import read_streamed
 
 # the door's lag from the initial distances of T_a and the door (missing at tests[0]'s first
@@ -140,13 +141,12 @@ def test_two_effects_on_one_signal_add_up_in_the_code(data, tmp_path, base):
 def test_a_transient_of_denoised_sensors_and_a_step_equal_replay(data, tmp_path):
     """With the causal FIR denoiser a declared sensor's ``c(0)`` is its filtered first value,
     as the stream's model reads its context (the door, no declared input, as read)."""
+    _, tests, comp = deployed(data, "model=mlr", "denoise=emd", pushed="T_a")
     cfg = _compose(f"data.path={data}", "denoise=emd", "track=false", "monitor.adaptive=false",
                    "promote.envelope.pattern=false")
-    ds, train_ids, test_ids, _ = read_streamed(cfg)
-    tests = pushed_tests(ds, test_ids, "T_a")
+    ds, train_ids, _, _ = read_streamed(cfg)
     train = {c: ds.campaigns[c] for c in train_ids}
-    # the plain MLR's compensator unfitted (test_export_diagnosed59._diagnosed: ci100)
-    comp = build_compensator(cfg).set_params(estimator=AugmentedRegressor(
+    comp = clone(comp).set_params(estimator=AugmentedRegressor(
         MLR(), effects={"E_X": [PER_SENSOR, INITIAL, STEP]})).fit(train)
     stream = deploy_stream(cfg, comp, train)
     tests[0].loc[[0, 1], "S_door"] = np.nan
