@@ -55,6 +55,7 @@ from __future__ import annotations
 
 import hashlib
 import os
+import re
 import subprocess
 import sys
 from concurrent.futures import ThreadPoolExecutor
@@ -100,10 +101,18 @@ def pair(before: str, after: str, out: str, rep: str, *modules: str) -> None:
         print(*lines, sep="\n", flush=True)
 
 
+def _text(path: Path, base: Path) -> bytes:
+    """``path``'s text without what differs between two runs of the same code: the run's base
+    folder (the banner's model path) and the export's time stamp."""
+    text = path.read_text().replace(str(base), "<base>")
+    return re.sub(r"\d{4}-\d\d-\d\dT\d\d:\d\d:\d\d(\.\d+)?Z?", "<time>", text).encode()
+
+
 def sources(out: str, tag: str, module: str) -> None:
-    """md5 of every exported text the module's run left under its base folder, sorted."""
-    base = Path(out) / "bt" / f"{tag}-{module}"
-    digests = sorted(f"{p.name} {hashlib.md5(p.read_bytes()).hexdigest()}"
+    """md5 of every exported text the module's run left under its base folder (:func:`_text`),
+    with its path below that folder, sorted; their count and the md5 of that list."""
+    base = Path(out).resolve() / "bt" / f"{tag}-{module}"
+    digests = sorted(f"{p.relative_to(base)} {hashlib.md5(_text(p, base)).hexdigest()}"
                      for name in WRITTEN for p in base.rglob(name))
     print(len(digests), hashlib.md5("\n".join(digests).encode()).hexdigest(), tag, module)
 
