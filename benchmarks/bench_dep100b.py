@@ -49,6 +49,37 @@ D4. fresh dl9934 / sw9935 / cr9936 ``planted``, scored once: on the rule, every 
 KEPT if D1-D4 hold and test_export_dep100 (the patch's: fails on 83570289, SECOND at rows 36 / 46)
 passes with the export suites named in the brief (src + C + test + docs); else REFUSED
 (benchmarks/dep100b_rule.patch, src as 83570289), the numbers kept here.
+
+Scored (bar 00679ab1, the rule 72614c58 committed after it, before any of 9934-9936 was simulated;
+2026-12-06 16:23-16:25 UTC, load 5-8 on 2 cores; main = ``git archive 83570289 src``, which
+simulated and ran the fresh records into one ROOT, the rule's tree then read a copy of it).  CPU
+(user + sys): ``planted`` 20.2 / 16.0 s main / rule, ``machine`` 3.6 s (rule)::
+
+    case                    main 83570289: max|C - served|, rows (first, rule)   rule (72614c58)
+    machine drift_d         (9bbbb214, bench_dep100: 1.37, 4 (36 SECOND))        1.42e-14, 0 (compiled too)
+    machine drift_c         (9bbbb214: 0.153, 44 (36 SECOND))                    7.11e-15, 0
+    machine freeze_a        (9bbbb214: 0.940, 14 (46 SECOND))                    1.78e-14, 0
+    machine freeze_u        (one no other predicts; not in the bar)              0.177, 16 (46 SECOND)
+    dl9934 healthy/two_out  0 / 2.84e-14, 0                                      the same
+    dl9934 drift            13.7, 326 (34 SECOND)                                4.55e-13, 0
+    dl9934 freeze           1.31, 329 (31 SECOND)                                4.55e-13, 0
+    sw9935 healthy/two_out  0 / 8.53e-14, 0                                      the same
+    sw9935 drift            48.1, 292 (68 SECOND; served: culprit + partner)     3.2e-12, 0 (out 4 / 4)
+    sw9935 freeze           22.3, 329 (31 SECOND)                                7.67e-13, 0
+    cr9936 healthy/two_out  0 / 5.68e-14, 0                                      the same
+    cr9936 drift            6.38, 125 (52 SECOND)                                5.68e-14, 0
+    cr9936 freeze           7.09, 146 (31 SECOND)                                5.68e-14, 0
+
+(dl9934: n 14, 9 modes, ``min_active`` 10, kelvin ``T_spindle_rear`` / ``T_head_right``, third
+``T_col_front_top``; sw9935 / cr9936: n 12, 7 / 6 modes, ``min_active`` 8 / 7, kelvin
+``T_headstock`` / ``T_guidebush``, third ``T_toolholder1``.)  Every case apart on main parts at
+``SECOND`` (the cap), ``two_out`` is 0 rows apart on both.  sw9935's drift is sw9914's shape again:
+served takes ``T_toolholder2`` and its blind partner ``T_toolholder1`` out at 68, the partner
+clause holds both (out at the end 4 / 4).
+
+D1 MET (mirror and compiled C <= 1.78e-14 µm, 0 rows, nothing "not in the code").  D3 MET for
+``planted`` (healthy 0 µm, no served event, main and rule).  D4 MET: the six fresh drift / freeze
+cases <= 3.2e-12 µm, 0 rows (main 1.31-48.1 µm, 125-329 rows).
 """
 
 from __future__ import annotations
