@@ -80,6 +80,16 @@ clause holds both (out at the end 4 / 4).
 D1 MET (mirror and compiled C <= 1.78e-14 µm, 0 rows, nothing "not in the code").  D3 MET for
 ``planted`` (healthy 0 µm, no served event, main and rule).  D4 MET: the six fresh drift / freeze
 cases <= 3.2e-12 µm, 0 rows (main 1.31-48.1 µm, 125-329 rows).
+
+D2 (2026-12-06 16:22-16:31 UTC, load 2-9; ROOT dep100's seen roots copied per src, /tmp/dep100/seenM;
+CPU ``cases`` 227.6 / 227.3 s, ``card`` 13.3 / 13.3 s main / rule): the 81 lines of
+``bench_step99.py cases`` on dl9902 dl9901 dl9903 tr9876 tr9877 dl9907 tr9908 dl9909 dl9878 and the 6
+of ``bench_dep99.py card`` tr9828 / tr9873 identical main 83570289 / rule (``diff``), every drift /
+ambient case there <= 6.22e-12 µm, 0 rows apart; main 83570289's lines are also 9bbbb214's (bench_dep100's
+log, the same lines).  D2 MET; D3 MET (the nine healthy lines 0 / 2.84e-14 µm, 0 rows, as main's).
+test_export_dep100 (2 cases) fails on 83570289 (``SECOND`` flagged at rows 36 / 46), passes on the rule.
+VERDICT: KEPT (D1-D4 met, bar unchanged).  A freeze of one no other predicts beside two out
+(``freeze_u``, ``_second_kind``) stays ``SECOND``, 0.177 µm: left, as dep100.
 """
 
 from __future__ import annotations
