@@ -270,14 +270,15 @@ def _planted_parts(frame, start: int, names: list[str], predictable) -> tuple[li
     return chosen, {"healthy": part0, "two_out": two, "drift": drift, "freeze": freeze}
 
 
-def planted(root: str, *records: str) -> None:
-    """The ``planted`` lines (module doc)."""
+def planted(root: str, *records: str, table: dict | None = None) -> None:
+    """The ``planted`` lines (module doc); ``table``: the records' simulate arguments (:data:`FRESH`;
+    bench_dep100b passes its own fresh seeds)."""
     from bench_dep98 import stepped_cell
 
     from thermocomp.apps.deploy.export.watch import RULES
 
     for record in records:
-        deployed, ss, frame, lead, start, cid, run = stepped_cell(root, record, FRESH)
+        deployed, ss, frame, lead, start, cid, run = stepped_cell(root, record, table or FRESH)
         mon = deployed.monitor
         names = list(mon.names)
         before = max(float(np.max(np.abs(c - want))) for c, want, *_ in run.rows(frame.iloc[:start]))

@@ -67,9 +67,9 @@ def faulted(folder, fault):
     return deployed, state_space(deployed, monitor=True), frame
 
 
-def held_as_served(deployed, ss, frame, want, rule, tmp_path):
+def held_as_served(deployed, ss, frame, want, rule, tmp_path, at=SPIKE):
     """The mirror and the compiled C give ``want`` on every row, nothing flagged as not in the
-    code, ``rule`` at ``SPIKE`` with three out."""
+    code, ``rule`` at row ``at`` with three out."""
     sim = Simulator(ss)
     sim.reset()
     U, t = frame[ss.inputs].to_numpy(float), frame["time"].to_numpy(float)
@@ -78,7 +78,7 @@ def held_as_served(deployed, ss, frame, want, rule, tmp_path):
         mirror.append(sim.step(U[i], t[i]))
         w = sim.watch
         assert not w.flags & NOT_IN_CODE, (i, w.missed)          # the base: SECOND at SPIKE
-        if i == SPIKE:
+        if i == at:
             assert (w.rule, len(w.gone)) == (rule, 3)
     assert np.max(np.abs(np.array(mirror) - want)) < 1e-9                    # every row
     got, said = _streamed(built_stream(tmp_path, exported_files(deployed, "c")), frame, ss.inputs)

@@ -751,12 +751,14 @@ class CodeMonitor:
         every one out."""
         return list(self.gone if self.instant else self.gone[:1])
 
-    def _second_held(self, j: int, rule: int = 0) -> bool:
+    def _second_held(self, j: int, rule: int) -> bool:
         """(cmon85) ``j`` out (a drift exclusion, a freeze) beside those out: a place free (the
         second; dep99: any, for a reading beyond range, as served; dep99b: and for a jump, which
         served re-references and takes out whatever the set; step99: and for a stepped error,
-        served's stepped check having no cap either) and the set's operator solved."""
-        return self.solve and (self.out2 < 0 or rule in (OFF_RANGE, JUMP, STEP_OUT)) and self._operator(
+        served's stepped check having no cap either; dep100: and for a drift exclusion, its
+        blind-out too, and a freeze, served's judgement and freeze check having none) and the
+        set's operator solved.  A dropout alone keeps the cap."""
+        return self.solve and (self.out2 < 0 or rule != DROPOUT) and self._operator(
             ~self._active() | (np.arange(self.n) == j)) is not None
 
     def _put_out(self, j: int) -> None:
@@ -1443,7 +1445,8 @@ class CodeMonitor:
         for i in blind:
             if active.sum() <= a["min_active"]:
                 continue
-            if len(blind) > 1 or self.out2 >= 0 or not self.ported[i] \
+            # (dep100) the partner out beside any number out, as served: no cap, the set solved
+            if len(blind) > 1 or not self.ported[i] \
                     or self._operator(~active | (np.arange(self.n) == i)) is None:
                 self._flag(NOT_IN_CODE, int(i), DRIFT)
                 return

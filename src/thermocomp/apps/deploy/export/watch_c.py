@@ -414,12 +414,13 @@ static void mon_readmit(tc_state *s, int k, int rule) {
 /* (cmon85) 1: sensor k out for rule (a drift exclusion, a freeze) beside those out: a place free
    (the second; dep99: any, for a reading beyond range, as served; dep99b: and for a jump, which
    served re-references and takes out whatever the set; step99: and for a stepped error, served's
-   stepped check having no cap either) and the set's operator solved */
+   stepped check having no cap either; dep100: and for a drift exclusion, its blind-out too, and a
+   freeze, served's judgement and freeze check having none) and the set's operator solved; a
+   dropout alone keeps the cap */
 static int mon_second_held(const tc_state *s, int k, int rule) {
     double M[NM][NM], lev[NM];
     int out[NM], m;
-    if (!MON_SOLVE || (s->mon_nout >= 2 && rule != TC_MON_OFF_RANGE && rule != TC_MON_JUMP
-                       && rule != TC_MON_STEP_OUT)) return 0;
+    if (!MON_SOLVE || (s->mon_nout >= 2 && rule == TC_MON_DROPOUT)) return 0;
     for (m = 0; m < NM; m++) out[m] = m == k || mon_out_of(s, m);
     return mon_operator(out, M, lev);
 }
@@ -1142,7 +1143,8 @@ static void mon_drift(tc_state *s, const int level[], int field) {
     if (nblind && mon_levels(s, lv, jd) > MON_MIN_ACTIVE) {
         int out[NM];
         for (k = 0; k < NM; k++) out[k] = !a[k] || k == partner;
-        if (nblind > 1 || s->mon_nout >= 2 || !MON_PORTED[partner] || !mon_operator(out, Mp, lp)) {
+        /* (dep100) the partner out beside any number out, as served: no cap, the set solved */
+        if (nblind > 1 || !MON_PORTED[partner] || !mon_operator(out, Mp, lp)) {
             mon_flag(s, TC_MON_NOT_IN_CODE, partner, TC_MON_DRIFT);
             return;
         }
