@@ -67,9 +67,14 @@ DRIVER = r"""/* stream.c: CSV rows of raw inputs on stdin -> corrections C_<axis
  * A model that reads no ambient sensor and picks its laws by a campaign's initial ambient
  * (TC_AMBIENT_GIVEN: the manifest's ambient_c) takes it from an `ambient_c` column (degC, its
  * value on a campaign's first row; the pack's rows.csv carry it), else from `--ambient C`.
+ * (extension, cflags100) With `--flags` each row carries, after the corrections, the code's sensor
+ * monitor's state at that sample (tc_state.mon_flags): one 0/1 column per flag kind
+ * (TC_FLAG_NAMES: mon_excluded, mon_readmitted, mon_out, mon_band, mon_not_in_code,
+ * mon_rereferenced, mon_new_state) and excluded_inputs, the monitored sensors out in the order
+ * they went out, ';' between them (the served model's column of that name, which joins by ',').
  * Build: cc compensator.c stream.c -lm -o stream
  * Run:   ./stream [--state FILE] [--check FILE [--tolerance UM] [--relative R]]
- *                 [--ambient C] < rows.csv
+ *                 [--ambient C] [--flags] < rows.csv
  */
 #include <math.h>
 #include <stdio.h>
@@ -905,6 +910,19 @@ static void said_monitor(const tc_state *s, long row) {
     flagged = now;
 }
 
+/* (cflags100) --flags: the monitor's state after a row's corrections, as numbers and names a
+   control's integrator splits at ',' (0/1 per kind; no quoting needed); NULL: the header's names.
+   Without TC_MONITOR the state's monitor fields are never set: 0 and none out. */
+static void printed_flags(const tc_state *s) {
+    int k, on = s != NULL && TC_MONITOR;
+    for (k = 0; k < TC_N_FLAG_KINDS; k++)
+        if (s == NULL) printf(",%s", TC_FLAG_NAMES[k]);
+        else printf(",%d", on && (s->mon_flags & TC_FLAG_BITS[k]) != 0);
+    printf(",%s", s == NULL ? "excluded_inputs" : "");
+    for (k = 0; on && k < s->mon_nout; k++)
+        printf("%s%s", k ? ";" : "", TC_INPUT_NAMES[TC_MONITORED[s->mon_out_set[k]]]);
+}
+
 /* (cdrop77) 1: input i is one the sensor monitor judges, its missing reading tc_step's */
 static int monitored(int i) {
     int k;
@@ -1023,6 +1041,7 @@ int main(int argc, char **argv) {
     static char stamp[2 * MAX_CELL + 2];
     int ambient_col = -1;
     int said_back = 0;         /* rows said whose time is not after the last read */
+    int flags = 0;             /* (cflags100) --flags: the monitor's state on each row */
     int back = 0;              /* 1: this row's time is not after the last read */
     int repeating = 0;         /* (dup99) the row before was one written again */
     int said_repeat = 0;       /* (dup99) bursts of rows written again said */
@@ -1040,6 +1059,10 @@ int main(int argc, char **argv) {
     for (i = 1; i < argc; i++) {
         if (strcmp(argv[i], "--state") == 0 && i + 1 < argc && argv[i + 1][0]) {
             state_path = argv[++i];
+            continue;
+        }
+        if (strcmp(argv[i], "--flags") == 0) {
+            flags = 1;
             continue;
         }
         if (strcmp(argv[i], "--check") == 0 && i + 1 < argc && argv[i + 1][0]) {
@@ -1063,7 +1086,7 @@ int main(int argc, char **argv) {
             }
         }
         fprintf(stderr, "usage: %s [--state FILE] [--check FILE [--tolerance UM] [--relative R]]"
-                " [--ambient C] < rows.csv\n", argv[0]);
+                " [--ambient C] [--flags] < rows.csv\n", argv[0]);
         return 2;
     }
     if (check_.path != NULL && !check_open()) return 2;
@@ -1296,6 +1319,7 @@ int main(int argc, char **argv) {
     if (TC_USES_TIME && time_col < 0)
         fprintf(stderr, "stream: no time column: samples taken one period apart\n");
     for (i = 0; i < TC_N_OUTPUTS; i++) printf("%s%s", i ? "," : "", TC_OUTPUT_NAMES[i]);
+    if (flags) printed_flags(NULL);
     printf("\n");
     tc_init(&s);
     if (state_path != NULL && (restored = restore_state(state_path, &s, run)) < 0) {
@@ -1486,6 +1510,7 @@ int main(int argc, char **argv) {
                     said_back == 5 ? " (no more said)" : "");
         if (TC_MONITOR && !s.repeated) said_monitor(&s, row);
         for (i = 0; i < TC_N_OUTPUTS; i++) printf("%s%.17g", i ? "," : "", c[i]);
+        if (flags) printed_flags(&s);
         printf("\n");
         if (check_.f != NULL && (failed = check_row(row, c)) != 0) {
             fflush(stdout);

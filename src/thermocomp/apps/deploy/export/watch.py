@@ -195,6 +195,9 @@ from ..surveillance.states import (
 # what the code's monitor reports per sample (bits of tc_state.mon_flags; REREFERENCED: a common
 # step, cmon80; NOVEL: a new thermal state declared, cmon82b)
 EXCLUDED, READMITTED, OUT, BAND, NOT_IN_CODE, REREFERENCED, NOVEL = 1, 2, 4, 8, 16, 32, 64
+# (cflags100) the flag kinds as ``stream --flags`` prints them, one 0/1 column each (``mon_<kind>``)
+FLAG_KINDS = (("excluded", EXCLUDED), ("readmitted", READMITTED), ("out", OUT), ("band", BAND),
+              ("not_in_code", NOT_IN_CODE), ("rereferenced", REREFERENCED), ("new_state", NOVEL))
 # the reason of a flagged event (tc_state.mon_rule): what the code did, then what it does not do
 REASONS = ("", "jump: re-referenced and excluded", "freeze: excluded",
            "re-admitted: within half its warning band for a window (its whole band after a "
@@ -243,6 +246,14 @@ RULES = ("", "JUMP", "FREEZE", "BACK", "RANGE", "COMMON", "GLITCH", "STEPPED", "
  MISSING_SECOND, MISSING_BLIND, MISSING_FROZEN, OFF_RANGE, COMMON_STEP, DRIFT_OUT, FOLLOWED,
  BLIND_OUT, FALLBACK, THAWED, NO_THAW, STEP_OUT, SPIKE, BENT, SETTLED,
  WIRES_EXCHANGED) = range(1, len(RULES))
+
+
+def flag_row(watch, names: list[str]) -> tuple:
+    """What ``stream --flags`` prints after a sample's corrections, as the mirror ``watch`` (a
+    :class:`CodeMonitor`) has it: one 0/1 per :data:`FLAG_KINDS`, then the names of the sensors
+    out (``names``: the monitored ones) in the order they went out, joined by ``;``."""
+    return (*(int(bool(watch.flags & bit)) for _, bit in FLAG_KINDS),
+            ";".join(names[k] for k in watch.gone))
 
 
 @dataclass

@@ -6,7 +6,18 @@ from __future__ import annotations
 import math
 
 from ..surveillance.states import THAW
-from .watch import BAND, EXCLUDED, NOT_IN_CODE, NOVEL, OUT, READMITTED, REASONS, REREFERENCED, RULES
+from .watch import (
+    BAND,
+    EXCLUDED,
+    FLAG_KINDS,
+    NOT_IN_CODE,
+    NOVEL,
+    OUT,
+    READMITTED,
+    REASONS,
+    REREFERENCED,
+    RULES,
+)
 
 
 def header_part(ss) -> str:
@@ -15,6 +26,8 @@ def header_part(ss) -> str:
     n = len(m.get("inputs", []))
     reasons = ", ".join(f'"{r}"' for r in REASONS)        # (plain ASCII, no quote in them)
     rules = "\n".join(f"#define TC_MON_{name} {k}" for k, name in enumerate(RULES) if k)
+    kinds = ", ".join(f'"mon_{kind}"' for kind, _ in FLAG_KINDS)
+    bits = ", ".join(str(bit) for _, bit in FLAG_KINDS)
     return f"""#define TC_MONITOR {int(bool(m))}   /* the sensor monitor in the code (docs/monitoring.md) */
 #define TC_N_MONITORED {n}
 #define TC_MON_WINDOW {max(int(m.get("window", 1)), 1)}
@@ -36,6 +49,10 @@ def header_part(ss) -> str:
    input TC_MONITORED[k] */
 {rules}
 static const char *const TC_MONITOR_REASONS[{len(REASONS)}] = {{{reasons}}};
+/* (cflags100) stream --flags: one 0/1 column per kind of mon_flags, named so (docs/cli.md) */
+#define TC_N_FLAG_KINDS {len(FLAG_KINDS)}
+static const char *const TC_FLAG_NAMES[{len(FLAG_KINDS)}] = {{{kinds}}};
+static const int TC_FLAG_BITS[{len(FLAG_KINDS)}] = {{{bits}}};
 static const int TC_MONITORED[{max(n, 1)}] = {{{", ".join(str(i) for i in m.get("inputs", [])) or "0"}}};
 """
 
