@@ -133,8 +133,11 @@ def tries(root: str, seed: str, label: str, fresh: str = "") -> None:
 
 def compare(main_json: str, rule_json: str) -> None:
     """R1 / R3: main's tries against the rule's: tries, the config and table, every figure."""
-    main, rule = (json.loads(Path(p).read_text()) for p in (main_json, rule_json))
-    print(f"tries: main {len(main['tries'])} + {main['tries'][-1].get('keys')} / rule "
+    # (each run's paths under its own ROOT: compared with ROOT written as <ROOT>)
+    main, rule = (json.loads(Path(p).read_text().replace(str(Path(p).resolve().parent), "<ROOT>"))
+                  for p in (main_json, rule_json))
+    print(f"tries: main {len(main['tries'])} (the last following the keys each refusal named, "
+          f"one init each: {main['tries'][-1].get('keys')}) / rule "
           f"{len(rule['tries'])} (line exit {rule['tries'][-1].get('exit')})")
     print(f"config yaml equal: {main.get('yaml') == rule.get('yaml')}; column table equal: "
           f"{main.get('table') == rule.get('table')}")
