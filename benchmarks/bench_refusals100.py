@@ -101,10 +101,12 @@ def tries(root: str, seed: str, label: str, fresh: str = "") -> None:
     out: dict = {"tree": os.environ.get("PYTHONPATH"), "tries": []}
     t0 = time.time()
     done = _cli("init", str(path), f"out={init}")
-    out["tries"].append({"keys": [], "exit": done.returncode, "said": _refusal(done) if done.returncode else ""})
+    out["tries"].append({"keys": [], "exit": done.returncode,
+                         "said": _refusal(done) if done.returncode else ""})
     line = next((m.group(1) for m in map(LINE.search, done.stderr.splitlines()) if m), None)
     if done.returncode and line:
-        ran = subprocess.run(["sh", "-c", line], capture_output=True, text=True, env=_shim(Path(root)), cwd=base)
+        ran = subprocess.run(["sh", "-c", line], capture_output=True, text=True, env=_shim(Path(root)),
+                             cwd=base)
         out["tries"].append({"line": line, "exit": ran.returncode, "said": ran.stderr.strip()[-600:]})
         ok = ran.returncode == 0
         out["table"] = [ln for ln in ran.stdout.splitlines() if ln.startswith("  ")]

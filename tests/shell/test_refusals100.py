@@ -60,7 +60,7 @@ def test_the_clock_and_an_empty_column_are_refused_at_once_and_the_line_given_re
 
 def test_a_refusal_no_key_settles_stays_alone_and_the_keys_are_read_as_hydra_reads_them(
         tmp_path, capsys):
-    from thermocomp.shell.stages.gathered import named_keys, override   # (new: not on 063630e6)
+    from thermocomp.shell.stages.gathered import named_keys, override  # (new: not on 063630e6)
 
     empty = tmp_path / "empty.csv"
     empty.write_text("Zeit;Spindel (°C);Weg X (um)\n")
