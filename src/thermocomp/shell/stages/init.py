@@ -83,6 +83,7 @@ from ...core.io.workbook import csv_options
 from ...core.timerule import median_step
 from ..config.checks import check_config, data_options
 from ..source import check_declared, open_source
+from .gathered import gathered
 
 
 def lone_file(src, manifest, opts) -> bool:
@@ -368,10 +369,17 @@ def init(cfg: DictConfig) -> dict:
         with ExitStack() as held:
             return _init(cfg, held)
     except ContractError as exc:     # (it said "no 'time' column", which no setting mends)
-        raise layout_refusal(exc, resolve(cfg.data.path)) or exc from None
+        # (refusals100) the refusals a key settles, gathered: one try for a lab's file
+        raise layout_refusal(exc, resolve(cfg.data.path)) or gathered(exc, cfg, _looked) from None
 
 
-def _init(cfg: DictConfig, held: ExitStack) -> dict:
+def _looked(cfg: DictConfig) -> None:
+    """:func:`_init`'s read of ``cfg`` that writes nothing (:func:`.gathered.gathered`'s look)."""
+    with ExitStack() as held:
+        _init(cfg, held, write=False)
+
+
+def _init(cfg: DictConfig, held: ExitStack, write: bool = True) -> dict:
     check_config(cfg)         # out never holds data.path: the lab's record is never written beside
     src = resolve(cfg.data.path)
     given = data_options(cfg)
@@ -603,6 +611,8 @@ def _init(cfg: DictConfig, held: ExitStack) -> dict:
         print(f"probe pairs {', '.join(f'{a} / {b}' for a, b, _ in pairs)}: their tilts as "
               f"targets, data.derive={{{pairs[0][2]}: '({pairs[0][0]} - {pairs[0][1]}) / "
               "<spacing in m>'}, proposed as a comment in the config")
+    if not write:
+        return {"config": None, "columns": plan.names}
     atomic_write_text(path, f"# written by `thermocomp init {src}`\n{text}")
     period = median_step([df[TIME].to_numpy(float) for df in ds.campaigns.values()]) or float("nan")
     # (stranger83: a DAQ file's 3 scans of 60 s were said to span 2700 s, the probe's 900 s rows)
