@@ -73,3 +73,12 @@ def test_a_refusal_no_key_settles_stays_alone_and_the_keys_are_read_as_hydra_rea
     assert named_keys("data.columns={'a b': T_x}") is None          # not a key followed
     assert named_keys("data.dayfirst=true or data.dayfirst=false") is None   # the lab's choice
     assert override("data.roles.ignore", ["Motor Spindel"]) == "\"data.roles.ignore=['Motor Spindel']\""
+
+
+def test_the_line_keeps_the_users_own_entries_of_a_list_key(tmp_path, capsys):
+    lab = tmp_path / "excel.csv"
+    _excel_like(lab)
+    assert main(["init", str(lab), "data.roles.ignore=[Bett]", f"out={tmp_path / 'init'}"]) == 2
+    said = next(ln for ln in capsys.readouterr().err.splitlines() if "all the keys together" in ln)
+    words = shlex.split(said.split("with which it reads the file: ")[1])
+    assert "data.roles.ignore=['Bett','Reserve']" in words, words

@@ -62,13 +62,18 @@ def _merged(keys: dict, more: dict) -> dict | None:
     return out
 
 
+def _full(cfg: DictConfig, keys: dict) -> dict:
+    """``keys`` as the command must give them: a list key's entries after the config's own
+    (the user's ``data.roles.ignore=[KW]`` kept beside ``Reserve``)."""
+    return {key: list(dict.fromkeys([*(OmegaConf.select(cfg, key) or []), *value]))
+            if isinstance(value, list) else value for key, value in keys.items()}
+
+
 def _with(cfg: DictConfig, keys: dict) -> DictConfig:
-    """A copy of ``cfg`` with ``keys`` set (a list key's entries added to the config's own)."""
+    """A copy of ``cfg`` with ``keys`` (:func:`_full`) set."""
     out = cfg.copy()
     with open_dict(out):
         for key, value in keys.items():
-            if isinstance(value, list):
-                value = [*(OmegaConf.select(out, key) or []), *value]
             OmegaConf.update(out, key, value, merge=False, force_add=True)
     return out
 
@@ -115,7 +120,7 @@ def gathered(first: ContractError, cfg: DictConfig,
     refusals, last = [first], None
     while len(refusals) < MOST:
         try:
-            _quietly(read, _with(cfg, keys))
+            _quietly(read, _with(cfg, _full(cfg, keys)))
             break
         except ContractError as exc:
             more = named_keys(str(exc))
@@ -133,4 +138,4 @@ def gathered(first: ContractError, cfg: DictConfig,
     runs = "" if last is not None else ", with which it reads the file"
     return ContractError(f"{len(refusals)} refusals of the file at once (each is settled by its "
                          f"key; check that each is right for your record): {said}{after}; all "
-                         f"the keys together{runs}: {command_line(keys)}")
+                         f"the keys together{runs}: {command_line(_full(cfg, keys))}")
