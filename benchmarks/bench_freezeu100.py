@@ -12,7 +12,8 @@ range reading of one no other predicts: a freeze of ``T_u`` with two out is ``SE
 code), flagged at 46-50 and on, 0.177 µm / 16 rows apart on 063630e6 (compiled C the same, 2 "not in
 the code" lines).  With ONE out (cmon84) the C already holds such a freeze (``drops``); the cap is
 ``_second_kind``'s, not the held place.  Served is right by docs/monitoring.md's contract (a
-frozen sensor out whatever the count, while ``min_active`` stay in): the C is the one to mend.
+sensor no other predicts, once excluded, "is held at its last good reading ... for a frozen one
+that is the frozen value"; served's ``_exclude`` has no count cap): the C is the one to mend.
 
 RULE (freezeu100; mirror ``CodeMonitor._second_kind``, C ``mon_second_kind``): a freeze of one no
 other predicts (``drops``: held at its last reading) counts as its dropout's kind beside those out
@@ -71,6 +72,22 @@ Seen, measured before this bar (the rule built; 2026-12-06 16:37 UTC, load < 3; 
 
 (served takes the frozen one out at 31 as the third in each; the count out at the end 3 / 2 on
 main, 3 / 3 on the rule.)
+
+Scored (bar b27a5efe, the rule 9d364796 committed after it, before any of 9943-9945 was simulated;
+2026-12-06 16:38-16:43 UTC under a load of 8-13 on 2 cores; main = ``git archive 063630e6 src``,
+which simulated and ran the fresh records into one ROOT, the rule's src then read a copy of it).
+CPU (user + sys) ``planted`` 18.4 / 13.2 s main / rule::
+
+    case                    main: max|C - served|, rows apart (first, rule)   rule (9d364796)
+    dl9943 freeze_u         30.2 µm, 329 (31 SECOND; T_spindle_front)          5.68e-14, 0
+    sw9944 freeze_u         2.77, 329 (31 SECOND; T_nc_spindle_motor)          9.86e-12, 0
+    cr9945 freeze_u         9.68, 137 (31 SECOND; T_nc_spindle_motor)          1.95e-14, 0
+    healthy / two_out / freeze_1 (all three)  0 / <= 1.28e-13 / 0, 0 rows     the same lines (diff)
+
+(dl9943: n 14, 8 modes, ``min_active`` 9, kelvin ``T_spindle_rear`` / ``T_head_left``; sw9944 and
+cr9945: n 12, 7 modes, ``min_active`` 8, kelvin ``T_headstock`` / ``T_guidebush``; served takes
+the frozen one out at 31, 12 samples constant, in each.)
+SCORED_D2
 """
 
 from __future__ import annotations
