@@ -87,7 +87,21 @@ CPU (user + sys) ``planted`` 18.4 / 13.2 s main / rule::
 (dl9943: n 14, 8 modes, ``min_active`` 9, kelvin ``T_spindle_rear`` / ``T_head_left``; sw9944 and
 cr9945: n 12, 7 modes, ``min_active`` 8, kelvin ``T_headstock`` / ``T_guidebush``; served takes
 the frozen one out at 31, 12 samples constant, in each.)
-SCORED_D2
+F1 / F2 (2026-12-06 16:35-16:58 UTC, load 1-19; ``machine`` into fresh SCRATCH per src, CPU 2.7 /
+3.0 s main / rule; ``bench_step99.py cases`` on copies of dep100's seen ROOT per src, CPU 154.7 /
+156.4 s): ``machine``'s drift_d / drift_c / freeze_a lines identical main / rule (``diff``); the
+37 lines of ``cases`` dl9902 dl9901 dl9903 tr9876 tr9877 identical (``diff``, CPU line aside),
+every case there <= 6.22e-12 µm on both.
+
+F1 MET (freeze_u 0.177 µm / 16 -> 7.11e-15 / 0, compiled C too, 0 "not in the code" lines).  F2
+MET.  F3 MET (every healthy / two_out / freeze_1 line as main's, seen and fresh).  F4 MET (fresh
+freeze_u <= 9.86e-12 µm, 0 rows; served took the frozen one out by freeze in all three).  F5: the
+test fails on 063630e6 (AssertionError (46, 9): ``SECOND`` at 46) and passes on the rule (its call
+7.3 s wall under a load of 12, the whole pytest process 5.4 s CPU with imports: the "< 5 s" not
+shown on an idle machine); its export suites, test_export.py, test_lint, test_benchmarks_cli pass.
+VERDICT: KEPT (F1-F4; F5 but for the idle timing).  Left alone: a freeze of one no other predicts
+where the field is not rebuilt without it (``in - 1 < min_active``) stays ``SECOND``, as its
+dropout (served has no cap there); the ST (no out set, dep99).
 """
 
 from __future__ import annotations
