@@ -270,9 +270,10 @@ def _planted_parts(frame, start: int, names: list[str], predictable) -> tuple[li
     return chosen, {"healthy": part0, "two_out": two, "drift": drift, "freeze": freeze}
 
 
-def planted(root: str, *records: str, table: dict | None = None) -> None:
+def planted(root: str, *records: str, table: dict | None = None, parts=None) -> None:
     """The ``planted`` lines (module doc); ``table``: the records' simulate arguments (:data:`FRESH`;
-    bench_dep100b passes its own fresh seeds)."""
+    bench_dep100b passes its own fresh seeds); ``parts``: the cases' maker (:func:`_planted_parts`;
+    bench_freezeu100 passes its own)."""
     from bench_dep98 import stepped_cell
 
     from thermocomp.apps.deploy.export.watch import RULES
@@ -282,12 +283,12 @@ def planted(root: str, *records: str, table: dict | None = None) -> None:
         mon = deployed.monitor
         names = list(mon.names)
         before = max(float(np.max(np.abs(c - want))) for c, want, *_ in run.rows(frame.iloc[:start]))
-        chosen, parts = _planted_parts(frame, start, names, mon._predictable)
+        chosen, cases = (parts or _planted_parts)(frame, start, names, mon._predictable)
         print(f"{record} mlr-none, test campaign {cid}: fault row {start}, n {len(names)}, modes "
               f"{mon.pod.n_modes_}, min_active {mon.min_active_}; kelvin {chosen[:2]}, third "
               f"{chosen[2:]}; before the fault row max|C - served| {before:.3g} µm", flush=True)
         period = float(np.median(np.diff(frame["time"].to_numpy(float))))
-        for case, part in parts.items():
+        for case, part in cases.items():
             r = copy.deepcopy(run)
             dif, rules, events = [], [], []
             times = part["time"].to_numpy(float)

@@ -749,9 +749,12 @@ class CodeMonitor:
         predict; (cmon89) for a dropout or a jump of one no other predicts (held at its last
         reading, as served) only where the field is rebuilt without them (served feeds a dropped
         sensor's returned reading where it is not); (dep99) for a range reading wherever it is
-        (read as missing while beyond, never fed back: the stand-ins served makes)."""
+        (read as missing while beyond, never fed back: the stand-ins served makes); (freezeu100)
+        for a freeze of one no other predicts as for its dropout (served's freeze check has no
+        cap and holds it at its last reading, the one it held at)."""
         blind = self.instant and not self.ported[j] and bool(
-            self.spikes[j] if rule == JUMP else rule == OFF_RANGE and self.second_range[j])
+            self.spikes[j] if rule == JUMP else self.drops[j] if rule == FREEZE
+            else rule == OFF_RANGE and self.second_range[j])
         if rule not in (DROPOUT, OFF_RANGE) and not blind:
             return bool(self.ported[j])
         rebuilds = rule == OFF_RANGE or self._active().sum() - 1 >= self.a["min_active"]

@@ -445,11 +445,13 @@ static int mon_second_held(const tc_state *s, int k, int rule) {
 /* 1: the code takes sensor k out beside those out for rule: one the others predict; (cmon89) for
    a dropout or a jump of one no other predicts (held at its last reading, as served) only where
    the field is rebuilt without them; (dep99) for a range reading wherever it is (read as missing
-   while beyond, never fed back) */
+   while beyond, never fed back); (freezeu100) for a freeze of one no other predicts as for its
+   dropout (served's freeze check has no cap and holds it at its last reading) */
 static int mon_second_kind(const tc_state *s, int k, int rule) {
     int m, in = 0;
     int blind = MON_SECOND_INSTANT && !MON_PORTED[k] && (
-        rule == TC_MON_JUMP ? mon_spikes(k) : rule == TC_MON_OFF_RANGE && mon_second_range(k));
+        rule == TC_MON_JUMP ? mon_spikes(k) : rule == TC_MON_FREEZE ? mon_drops(k)
+        : rule == TC_MON_OFF_RANGE && mon_second_range(k));
     if (!(rule == TC_MON_DROPOUT || rule == TC_MON_OFF_RANGE || blind)) return MON_PORTED[k];
     for (m = 0; m < NM; m++) in += !mon_out_of(s, m);
     return (rule == TC_MON_OFF_RANGE || in - 1 >= MON_MIN_ACTIVE) && (MON_PORTED[k] || blind);
