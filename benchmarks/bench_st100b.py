@@ -54,27 +54,29 @@ Measured (2026-12-06, 2 cores shared, load 8-13; seen records only, no src chang
   the onset), the C's BACK follows, its ``BLIND_OUT`` of T_table at 3698 / 6142 with none out.
 * ``resume`` (the oracle; lr9917 14.6 s, lr9896 + dl9894 37.4 s CPU): the C's ``BLIND_OUT`` after
   the block's own JUMP named on the C's row and sensor: lr9917 4 of 4 (3685, 3686, 3684, 3681),
-  dl9917 4 of 4 (6132, 6133, 6132, 6131), lr9896 T_table 3699 (the C 3698), dl9894 T_table 6142:
-  the brief's 10 of 10 (main 0).  More of the class on st97d's / bench_mon98's records
-  (``resume /tmp/st100b/st97d ...``, ``... /tmp/st100b/mon98 ...``): lr9790 (its JUMP before the
-  onset, resumed 3618) 4 of 4 (main 0); dl9845 T_table 0 of 1 (the C 6150, 9 rows after the
-  BACK at 6141; the resumed block 6184).  14 of 15.  The ones main names stay named on the same
-  rows (lr9896 3686 x2, dl9894 6137 / 6132).  Healthy frames, the onset on: extra flags 0 (main
-  0) on every record run (lr9917 dl9917 lr9896 dl9894, lr9790 dl9791 cr9792 lr9793, sw9776 cr9763
-  sw9841 cr9843 lr9376 lr9842 dl9845).
-* Not a rule: in bumped windows where the resumed block takes up its judgement 1-2 rows after a
-  BACK inside the bump, it raises flags the C does not: lr9917 T_amb 3734 JUMP T_amb, T_table
-  3697 BLIND_OUT T_motor; lr9896 T_table 3751 BLIND_OUT T_table (resumed 3749); dl9894 T_table
-  2 more than main; dl9845 T_amb 2 (6151 BLIND_OUT T_table), T_table 1.  Why: the oracle resumes
-  on the rings the block left at its JUMP (``mon_d``, the error ring, the ``MON_CONFIRM``
-  evidence, 12+ rows old), where the C kept its window through the hold (the set without the
-  sensor, ``hist`` shifted back at ``_undone``).  A rule needs (a) the block's field computed
-  through the hold (its rings current), judging nothing or the set without the sensor
-  (``MON_OUT_SELF`` exists for each ``MON_BLIND`` candidate); (b) the C's BACK of a sensor no
-  other predicts out for a jump (watch.py l.982: ``calm >= dwell``, the window doubled per
-  earlier drift exclusion, its reading moving that row; ``_pass_once_back`` passes one no other
-  predicts); (c) the C's ``_undone`` at the BACK (the block's spike's return undoes it earlier:
-  same references from the BACK on, lr9917 / dl9917).
+  dl9917 4 of 4 (6132, 6133, 6132, 6131), lr9896 T_table 3699 (the C 3698), dl9894 T_table 6142: the
+  brief's 10 of 10 (main 0). More of the class on st97d's / bench_mon98's records (``resume
+  /tmp/st100b/st97d lr9790 ... dl9768``, ``... /tmp/st100b/mon98 sw9776 ... tr9844``, 98.4 s CPU,
+  st97d's 157.1 s): lr9790 (its JUMP before the onset, resumed 3618) 4 of 4, dl9794 (resumed 6060) 2
+  of 2 (main 0 each); dl9845 T_table 0 of 1 (the C 6150, 9 rows after its BACK at 6141; the resumed
+  block 6184): 16 of 17. The ones main names stay named on the same rows (lr9896 3686 x2, dl9894
+  6137 / 6132). Healthy frames, whole: extra flags 0 (main 0) on all 24 records run (lr9917
+  dl9917 lr9896 dl9894; lr9790 dl9791 cr9792 lr9793 dl9794 lr9820 dl9821 cr9822 lr9823 dl9824
+  dl9768; sw9776 cr9763 sw9841 cr9843 lr9376 lr9842 dl9845 tr9828 tr9844).
+* Not a rule: in 10 bumped windows the resumed block raises 1-2 flags the C does not (where the
+  row is printed, 1-37 rows after a resume at a BACK inside the bump): lr9917 T_amb (3734 JUMP
+  T_amb) and T_table (3697 BLIND_OUT T_motor); lr9896 T_table (3751 BLIND_OUT T_table, resumed
+  3749); dl9894 T_table +2; dl9845 T_amb +2 (6151 BLIND_OUT T_table), T_table +1; dl9794 T_table
+  (6165 BLIND_OUT T_motor); lr9823 T_table +1; dl9824 T_amb +1, T_table +1.  Not traced row by
+  row; the likely cause: the oracle resumes on the state the block left at its JUMP (``mon_d``,
+  the rings, the ``MON_CONFIRM`` evidence, 12+ rows old, its ``mon_out``), where the C kept its
+  window through the hold (the set without the sensor, ``hist`` shifted back at ``_undone``).
+  A rule needs (a) the block's field computed through the hold (its rings current), judging nothing
+  or the set without the sensor (``MON_OUT_SELF`` exists for each ``MON_BLIND`` candidate); (b) the
+  C's BACK of a sensor no other predicts out for a jump (watch.py l.982: ``calm >= dwell``, the
+  window doubled per earlier drift exclusion, its reading moving that row; ``_pass_once_back``
+  passes one no other predicts); (c) the C's ``_undone`` at the BACK (the block's spike's return
+  undoes it earlier: same references from the BACK on, lr9917 / dl9917).
 """
 
 from __future__ import annotations
