@@ -43,6 +43,48 @@ B3 fresh pt9937 / tr9938 / cr9939 (bench_wires100's FRESH generators on new seed
    every case where the C names ``WIRES_EXCHANGED``.
 B4 the swap-row-on tail (max|ST - C| from the swap row) reported, not the bar.
 PARSED_DIGEST updated; tests/shell/test_export_stwires100.py fails on 063630e6.
+
+Status: the bar above committed in 0a550f05 before 9937-9939 were simulated; unchanged, the rule
+unchanged after the fresh run.  Measured 2026-12-06 (2 cores, load 10-16), main = 063630e6's src
+extracted (``PYTHONPATH``), the rule this tree's, the same data and models.
+
+B1 MET, seen (``swaps /tmp/stwires100/seen pt9851 pt9890 tr9891 cr9892 pt9910 tr9911 cr9912``,
+bench_wires100's data and models copied; 51.5 s CPU, main 45.3 s).  max|ST - C| (µm, max over targets) on the
+row where the C names ``WIRES_EXCHANGED`` (the swap row, the only one), main -> rule, and from
+the swap row to the frame's end; the block at the swap row main -> rule::
+
+  record  case  pair                                   at the row       from it          block
+  pt9851  far   T_motor <-> T_bed                      1.39 -> 8.5e-14  35.5 -> 2.6e-13  OFF_RANGE -> WE
+  pt9851  near  T_spindle <-> T_hall                   0.965 -> 8.5e-14 78.1 -> 2.6e-13  COMMON -> WE
+  pt9890  far   T_rail_drive <-> T_bed                 6.94 -> 2.8e-14  65.1 -> 2.6e-13  OFF_RANGE -> WE
+  pt9890  near  T_col_L <-> T_spindle                  0.157 -> 2.8e-14 53.2 -> 2.6e-13  JUMP -> WE
+  tr9891  far   T_spindle_motor <-> T_amb (= near)     0.0708 -> 3.6e-15 59.6 -> 2.8e-14 COMMON -> WE
+  cr9892  far   T_amb <-> T_nc_spindle_motor           0.517 -> 7.1e-15 5.84 -> 2.8e-14  OFF_RANGE -> WE
+  cr9892  near  T_toolholder2 <-> T_nc_spindle_motor   0.0332 -> 7.1e-15 2.57 -> 2.8e-14 JUMP -> WE
+  pt9910  far   T_rail_drive <-> T_bed                 3.71 -> 5.7e-14  29 -> 2.8e-13    OFF_RANGE -> WE
+  pt9910  near  T_motor <-> T_hall                     4.21 -> 5.7e-14  98.3 -> 2.8e-13  COMMON -> WE
+  tr9911  far   T_bed <-> T_trunnion (= near)          0.123 -> 4.4e-16 0.254 -> 2.8e-14 JUMP -> WE
+  cr9912  near  T_nc_z1_drive <-> T_nc_cabinet         0.328 -> 2.8e-17 2.77 -> 8.9e-16  JUMP -> WE
+
+(WE: ``WIRES_EXCHANGED`` named, not flagged; the rule's block flags no row after it on any of
+these, main's 0-119 of 119.)  cr9912's far swap: the C names no exchange (wires100's X1 case, a
+BENT sensor): the block as main's, 1.41 µm from the swap row, flagged BENT there.
+
+B2 MET on what was run: ``healthy /tmp/stwires100/st lr9893 dl9894 cr9895 lr9896 dl9897
+fl_thermal`` (bench_st100's data and models copied; 69.5 s CPU): 0 rows where the block's (flag,
+rule, sensor) differ from main's on each, extra flags 0 / 0, lr9896's two pauses as main's.
+
+B3 MET, fresh scored once (``swaps /tmp/stwires100/fresh pt9937 tr9938 cr9939``, 16:45-16:49
+UTC, 26.7 s CPU; main on the same data after it, 19.9 s)::
+
+  pt9937  far   T_rail_drive <-> T_bed                 1.39 -> 4.3e-14  61.9 -> 1.4e-13  OFF_RANGE -> WE
+  pt9937  near  T_motor <-> T_hall                     1.73 -> 4.3e-14  69.2 -> 1.4e-13  COMMON -> WE
+  tr9938  far   T_spindle_motor <-> T_amb (= near)     0.039 -> 3.6e-15 2.54 -> 1.4e-14  COMMON -> WE
+  cr9939  far   T_frame1 <-> T_nc_spindle_motor (= near) 0.123 -> 3.6e-15 9.81 -> 2.8e-14 JUMP -> WE
+
+B4: from the swap row on, the block = the C to <= 2.8e-13 µm on every case the C names (main
+2.54-98.3 µm).  VERDICT: KEPT (B1-B3 met).  Not followed: a swap after the block's first
+exclusion (``mon_lost``: it cannot tell the C's outs), read as jumps and flagged, as main.
 """
 
 from __future__ import annotations

@@ -23,6 +23,14 @@ Per sample, of each monitored sensor ``k`` (the input ``MON_INPUT[k]``, the C's 
   after the reference, each one in taken out by the C (:func:`pair_places`): ``JUMP`` on the
   first in (the C's exclusion, where before ``COMMON``); where both were re-referenced by jumps,
   each first tried as a spike's return, one not back re-referenced again with no new fault;
+* (stwires100) two wires exchanged, the C's ``mon_exchange``: where the export has ``exchange``
+  and the block knows the C has none out (``NOT mon_lost``, none held), every input measured,
+  exactly two sensors flagged (a step past the jump limit, a reading beyond range), each reading
+  within the other's jump limit of the other's last reading plus the change the rest predict
+  for it (:func:`exchange_constants`): read exchanged from there (``mon_perm``, ``u`` reordered
+  before every check and the model; st.py's ``u_read`` keeps them as read for the repeat rule),
+  ``WIRES_EXCHANGED`` named on the first, not flagged (the C's ``REREFERENCED``); after the
+  block's first exclusion it cannot tell the C's outs, and reads them as jumps, as before;
 * (st94b) while the field is whole -- no reading missing, beyond its range or jumping since the
   campaign's first sample, nor a stepped error flagged (a BENT re-reference keeps it whole) -- a
   judged sensor's self-prediction error ``e = (d - M d) / (1 - h)`` stepping past its alarm
