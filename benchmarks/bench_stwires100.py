@@ -72,7 +72,9 @@ BENT sensor): the block as main's, 1.41 µm from the swap row, flagged BENT ther
 
 B2 MET on what was run: ``healthy /tmp/stwires100/st lr9893 dl9894 cr9895 lr9896 dl9897
 fl_thermal`` (bench_st100's data and models copied; 69.5 s CPU): 0 rows where the block's (flag,
-rule, sensor) differ from main's on each, extra flags 0 / 0, lr9896's two pauses as main's.
+rule, sensor) differ from main's on each, extra flags 0 / 0, lr9896's two pauses as main's;
+bench_st100's fresh ``healthy ... lr9916 dl9916 lr9917 dl9917 lr9918 dl9918`` (95.7 s CPU): the same,
+0 rows on each.  bench_st100's other healthy sets (st97d's 11, bench_mon98's 9) not run (time).
 
 B3 MET, fresh scored once (``swaps /tmp/stwires100/fresh pt9937 tr9938 cr9939``, 16:45-16:49
 UTC, 26.7 s CPU; main on the same data after it, 19.9 s)::
