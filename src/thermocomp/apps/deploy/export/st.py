@@ -342,6 +342,7 @@ VAR_OUTPUT
 VAR
     first : BOOL := TRUE;
     u_last : ARRAY[{_dims(n)}] OF LREAL;
+    u_read : ARRAY[{_dims(n)}] OF LREAL;
     buf : ARRAY[{_dims(taps, n)}] OF LREAL;
     ref : ARRAY[{_dims(n)}] OF LREAL;
     v0 : ARRAY[{_dims(n)}] OF LREAL;
@@ -460,6 +461,9 @@ IF reset THEN
     END_FOR;
 END_IF;
 {ST_REPEAT_RULE}IF NOT repeated THEN
+FOR j := 0 TO N_INPUTS - 1 DO   (* (stwires100) as read: the monitor may read two exchanged *)
+    u_read[j] := u[j];
+END_FOR;
 {MONITOR_BLOCK}\
 (* an input not measured refuses the sample, as tc_step: not finite (NaN, infinity: every IEEE *)
 (* comparison false) or beyond its U_LIMIT (a temperature's 10000 degC: an overload mark) *)
@@ -483,7 +487,7 @@ IF AMBIENT_GIVEN AND NOT AMBIENT_OPTIONAL AND first THEN
 END_IF;
 IF NOT refused THEN
     FOR j := 0 TO N_INPUTS - 1 DO   (* (dup99) the inputs as read *)
-        u_last[j] := u[j];
+        u_last[j] := u_read[j];
     END_FOR;
 {_indent(ST_TIME_RULE)}    n_clamped := 0;
     (* a missing signal of derived inputs only (HELD) is held at the campaign's last value, *)

@@ -23,6 +23,14 @@ Per sample, of each monitored sensor ``k`` (the input ``MON_INPUT[k]``, the C's 
   after the reference, each one in taken out by the C (:func:`pair_places`): ``JUMP`` on the
   first in (the C's exclusion, where before ``COMMON``); where both were re-referenced by jumps,
   each first tried as a spike's return, one not back re-referenced again with no new fault;
+* (stwires100) two wires exchanged, the C's ``mon_exchange``: where the export has ``exchange``
+  and the block knows the C has none out (``NOT mon_lost``, none held), every input measured,
+  exactly two sensors flagged (a step past the jump limit, a reading beyond range), each reading
+  within the other's jump limit of the other's last reading plus the change the rest predict
+  for it (:func:`exchange_constants`): read exchanged from there (``mon_perm``, ``u`` reordered
+  before every check and the model; st.py's ``u_read`` keeps them as read for the repeat rule),
+  ``WIRES_EXCHANGED`` named on the first, not flagged (the C's ``REREFERENCED``); after the
+  block's first exclusion it cannot tell the C's outs, and reads them as jumps, as before;
 * (st94b) while the field is whole -- no reading missing, beyond its range or jumping since the
   campaign's first sample, nor a stepped error flagged (a BENT re-reference keeps it whole) -- a
   judged sensor's self-prediction error ``e = (d - M d) / (1 - h)`` stepping past its alarm
@@ -126,6 +134,7 @@ from .watch import (
     SETTLED,
     SPIKE,
     STEP_OUT,
+    WIRES_EXCHANGED,
 )
 
 
@@ -203,6 +212,32 @@ def freeze_constants(watch: dict, n: int, constant) -> list[str]:
             constant("MON_FREEZE_HELD", held.astype(int).tolist(), (n,), "INT")]
 
 
+def exchange_constants(watch: dict, n: int, constant) -> list[str]:
+    """(stwires100) What the block needs to read two exchanged wires as the C (``mon_exchange``,
+    the mirror's ``CodeMonitor._exchanged``): ``MON_XCH_CHANGE[i, k, m]``, the weight of sensor
+    ``m``'s one-sample change in the change the set without ``i`` and ``k`` predicts for ``i``
+    (row ``i`` of its operator on the others; 0 where ``i``'s leverage without ``k`` is at the
+    limit: the C reads its last reading), and ``MON_XCH_SOLVED[i, k]``, whether the C has the
+    operators (``_change_seen``: None, the C's ``NOT_IN_CODE``).  Off (``MON_EXCHANGE``) for an
+    export before wires100."""
+    from .watch import CodeMonitor
+
+    on = bool(n and watch.get("exchange"))
+    change, solved = np.zeros((n, n, n)), np.zeros((n, n), int)
+    mon = CodeMonitor(watch) if on else None
+    for i, k in ((i, k) for i in range(n) for k in range(n) if on and i != k):
+        pair = np.isin(np.arange(n), (i, k))
+        op, own = mon._operator(pair), mon._operator(np.arange(n) == k)
+        if op is None or own is None or mon._operator(np.arange(n) == i) is None:
+            continue
+        solved[i, k] = 1
+        if own[1][i] < mon.max_lev:
+            change[i, k] = np.where(pair, 0.0, op[0][i])
+    return [f"    MON_EXCHANGE : BOOL := {'TRUE' if on else 'FALSE'};",
+            constant("MON_XCH_CHANGE", change.tolist(), (n, n, n)),
+            constant("MON_XCH_SOLVED", solved.tolist(), (n, n), "INT")]
+
+
 def blind_constants(watch: dict, n: int, stepped: bool, literal, constant) -> list[str]:
     """(st96) What the block needs to take out, as the C's drift judgement does with every sensor
     in, a sensor no other predicts that explains the others' errors (``BLIND_OUT``, the C's
@@ -272,7 +307,8 @@ def constants(watch: dict, literal, constant) -> list[str]:
              ("DROPOUT", DROPOUT), ("MISSING_FIRST", MISSING_FIRST), ("OFF_RANGE", OFF_RANGE),
              ("RANGE", RANGE), ("SPIKE", SPIKE), ("BENT", BENT),
              ("STEP_OUT", STEP_OUT), ("BLIND", BLIND), ("BLIND_OUT", BLIND_OUT),
-             ("SETTLED", SETTLED), ("FREEZE", FREEZE), ("SECOND", SECOND))
+             ("SETTLED", SETTLED), ("FREEZE", FREEZE), ("SECOND", SECOND),
+             ("WIRES_EXCHANGED", WIRES_EXCHANGED))
     # (st94) no bound where the export has none (before step93, a sensor the others predict):
     # the largest LREAL, as ST has no infinity
     bends = np.asarray(watch.get("bend_lim", []) if watch.get("bent") else [np.inf] * n, float)
@@ -295,6 +331,7 @@ def constants(watch: dict, literal, constant) -> list[str]:
             *back_constants(watch, alarm.size, stepped, constant),
             *blind_constants(watch, alarm.size, stepped, literal, constant),
             *freeze_constants(watch, alarm.size, constant),
+            *exchange_constants(watch, alarm.size, constant),
             f"    MON_PERIOD : LREAL := {literal(watch.get('period', 1.0))};",
             f"    MON_GAP_PERIODS : LREAL := {literal(watch.get('gap_periods', 1.5))};",
             f"    MON_COMMON_MIN : INT := {int(watch.get('common_min', 3))};",
@@ -396,6 +433,14 @@ VARS = """    mon_last : ARRAY[{nm}] OF LREAL;
     mon_field_warned : INT;
     mon_pause : BOOL;
     mon_quiet : DINT;
+    mon_perm : ARRAY[{nm}] OF INT;
+    mon_xr : ARRAY[{nm}] OF LREAL;
+    mon_xlim : ARRAY[{nm}] OF LREAL;
+    mon_xn : INT;
+    mon_xi : INT;
+    mon_xk : INT;
+    mon_xsi : LREAL;
+    mon_xsk : LREAL;
 """
 
 # before the refusal: the sample's monitored readings judged (the block's first == a campaign's)
@@ -444,6 +489,79 @@ IF has_time AND mon_t_known AND NOT first THEN
     IF time_s - mon_t_prev > MON_GAP_PERIODS * MON_PERIOD THEN
         mon_span := (time_s - mon_t_prev) / MON_PERIOD;
     END_IF;
+END_IF;
+(* (stwires100) two wires exchanged, as the C's mon_exchange: the monitored readings read in *)
+(* mon_perm's order (u rewritten: every check and the model read them so); where the block *)
+(* knows the C has none out (its field whole, none held), every input measured, exactly two *)
+(* flagged (a step past the jump limit, a reading beyond range), each reading within the *)
+(* OTHER's jump limit of the other's last reading plus the change the rest predict for it: *)
+(* read exchanged from here, named WIRES_EXCHANGED (not flagged: the C's REREFERENCED) *)
+IF first THEN
+    FOR mk := 0 TO MON_N - 1 DO
+        mon_perm[mk] := mk;
+    END_FOR;
+ELSE
+    mon_xn := 0;
+    FOR j := 0 TO N_INPUTS - 1 DO
+        IF HELD[j] = 0 AND NOT (u[j] >= -U_LIMIT[j] AND u[j] <= U_LIMIT[j]) THEN
+            mon_xn := MON_N + 1;    (* refused or missing: the C reads no pair *)
+        END_IF;
+    END_FOR;
+    FOR mk := 0 TO MON_N - 1 DO
+        mon_xr[mk] := u[MON_INPUT[mon_perm[mk]]];
+    END_FOR;
+    mon_xi := -1;
+    mon_xk := -1;
+    IF MON_EXCHANGE AND NOT mon_lost AND mon_held < 0 AND mon_count > 0 THEN
+        FOR mk := 0 TO MON_N - 1 DO
+            mon_xlim[mk] := MON_JUMP_LIM[mk] * mon_gap[mk];
+            IF mon_span > mon_gap[mk] THEN
+                mon_xlim[mk] := MON_JUMP_LIM[mk] * mon_span;
+            END_IF;
+            mon_x := mon_xr[mk] - mon_last[mk];
+            mon_ev := mon_xr[mk] < MON_LO_LIM[mk] OR mon_xr[mk] > MON_HI_LIM[mk];
+            IF mon_ev OR mon_x > mon_xlim[mk] OR mon_x < -mon_xlim[mk] THEN
+                IF mon_xi < 0 THEN
+                    mon_xi := mk;
+                ELSE
+                    mon_xk := mk;
+                END_IF;
+                mon_xn := mon_xn + 1;
+            END_IF;
+        END_FOR;
+    END_IF;
+    IF mon_xn = 2 THEN
+        IF MON_XCH_SOLVED[mon_xi, mon_xk] = 0 THEN
+            mon_flag := TRUE;    (* a set the C cannot solve: its NOT_IN_CODE, read as before *)
+            mon_sensor := mon_xi;
+            mon_rule := RULE_WIRES_EXCHANGED;
+        ELSE
+            (* each one's last reading plus the change the others predict (MON_XCH_CHANGE) *)
+            mon_xsi := mon_last[mon_xi];
+            mon_xsk := mon_last[mon_xk];
+            FOR mk := 0 TO MON_N - 1 DO
+                mon_x := mon_xr[mk] - mon_last[mk];
+                mon_xsi := mon_xsi + MON_XCH_CHANGE[mon_xi, mon_xk, mk] * mon_x;
+                mon_xsk := mon_xsk + MON_XCH_CHANGE[mon_xk, mon_xi, mk] * mon_x;
+            END_FOR;
+            mon_xsi := mon_xr[mon_xk] - mon_xsi;
+            mon_xsk := mon_xr[mon_xi] - mon_xsk;
+            mon_ev := mon_xsi < mon_xlim[mon_xi] AND mon_xsi > -mon_xlim[mon_xi];
+            IF mon_ev AND mon_xsk < mon_xlim[mon_xk] AND mon_xsk > -mon_xlim[mon_xk] THEN
+                mk := mon_perm[mon_xi];
+                mon_perm[mon_xi] := mon_perm[mon_xk];
+                mon_perm[mon_xk] := mk;
+                mon_x := mon_xr[mon_xi];
+                mon_xr[mon_xi] := mon_xr[mon_xk];
+                mon_xr[mon_xk] := mon_x;
+                mon_sensor := mon_xi;
+                mon_rule := RULE_WIRES_EXCHANGED;
+            END_IF;
+        END_IF;
+    END_IF;
+    FOR mk := 0 TO MON_N - 1 DO
+        u[MON_INPUT[mk]] := mon_xr[mk];
+    END_FOR;
 END_IF;
 mon_jumps := 0;
 FOR mk := 0 TO MON_N - 1 DO
@@ -500,7 +618,8 @@ FOR mk := 0 TO MON_N - 1 DO
                     mon_bent[mk] := mon_off;
                     mon_step[mk] := mon_step[mk] - mon_off;
                     mon_rerefd[mk] := TRUE;
-                    IF mon_rule <> RULE_BENT THEN    (* the C judges it before a dropout *)
+                    IF mon_rule <> RULE_BENT AND mon_rule <> RULE_WIRES_EXCHANGED THEN
+                        (* the C judges it before a dropout, after the exchange *)
                         mon_sensor := mk;
                         mon_rule := RULE_BENT;
                     END_IF;
