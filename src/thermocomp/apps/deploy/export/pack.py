@@ -38,6 +38,11 @@ Of a model that reads no ambient sensor and picks its laws by a campaign's initi
 (``ambient_given``: the manifest's ``ambient_c``), each campaign's value is in check.json's entry
 and in an ``ambient_c`` column of its rows.csv, which ``stream.c`` reads at a campaign's first row.
 
+(packflags100) Where the code holds the sensor monitor, each campaign's ``flags.csv`` beside its
+``expected.csv`` holds per row the monitor's flags as ``stream --flags`` prints them
+(:func:`~.watch.flag_row` of the :class:`Simulator` :func:`_parted` steps), which ``stream
+--check-flags`` compares exactly: a build with right corrections and wrong flags fails.
+
 ``check/check.json`` lists the campaigns (rows, cuts and why) and the tolerance
 (:data:`TOLERANCE_UM`, :data:`TOLERANCE_RELATIVE`); with the C, ``check/check.sh`` runs
 ``stream --check`` on each.
