@@ -54,6 +54,36 @@ P4. the cost said: pack CPU rule / BASE and the bytes of flags.csv against the p
 P5. a test (tests/shell/test_export_packflags100.py, < 5 s call) that fails on 063630e6 and passes
     here.
 KEPT if P1-P3 and P5 hold and P4 is stated; else REFUSED (benchmarks/packflags100_rule.patch).
+
+Scored (bar dff896bc, unchanged; the rule as committed there, test and docs after it;
+2026-12-06 16:36-17:04 UTC under a load of 8-21 on 2 cores; BASE = ``git archive 063630e6 src``;
+ROOT /tmp/packflags100/root, a copy of /tmp/cflags100/root).  Campaigns: the record's cases and
+the planted copies the pack adds (jump, freeze, dropout, range, common step of the first case).
+Wall of ``pack``: dl9878 718 s, dl9902 750 s, tr9876 817 s, fl 220 s; ``plain`` fl 85 s,
+dl9878 89 s::
+
+    record  campaigns  check.sh  corrections-only  swap: check.sh, first failure (input line)
+    dl9878  8          exit 0    8 x exit 0        exit 1, mon_excluded = 1, expected 0 (3252)
+    dl9902  7          exit 0    7 x exit 0        exit 1, mon_excluded = 1, expected 0 (992)
+    tr9876  8          exit 0    8 x exit 0        exit 1, mon_excluded = 1, expected 0 (3346)
+    fl      5          exit 0    5 x exit 0        exit 1, mon_excluded = 1, expected 0 (559)
+    name: check.sh exit 1, excluded_inputs = printed vs expected (input line); corrections-only all 0:
+    dl9878 'T_col_front_top' vs 'T_head_right' (3251); dl9902 'T_table' vs 'T_bed_right' (991);
+    tr9876 'T_column' vs 'T_ram' (3345); fl 'T_t2' vs 'T_t1' (558)
+    (every campaign's flags.csv rows = its expected.csv rows; BASE's check.sh exit 0 on each)
+
+    P3 without the monitor: fl 4 pack files, dl9878 8: = BASE's bytes, no flags.csv, check.sh exit 0
+
+    P4 pack CPU rule / BASE (s): dl9878 45.0 / 43.1, dl9902 36.6 / 36.5, tr9876 66.9 / 71.5,
+       fl 3.7 / 4.6 (within the load's noise); bytes: flags.csv 954092 of 14813282 (6.4 %),
+       861959 of 13009651 (6.6 %), 1377976 of 18050650 (7.6 %), 87344 of 2196050 (4.0 %).
+
+P1 MET (4 records, 28 campaigns).  P2 MET (every break named with its row, flag and both values;
+the corrections-only check exit 0 on every campaign; also on tr9876 and fl, outside P2's
+records).  P3 MET.  P4 stated: +4.0-7.6 % bytes, CPU within noise.  P5 MET
+(test_export_packflags100: 4.16 s call at load 0.9, 11.8 s under a load of 8; fails on
+063630e6: KeyError 'check/K06/flags.csv').
+VERDICT: KEPT.
 """
 
 from __future__ import annotations
