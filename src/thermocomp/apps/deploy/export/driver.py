@@ -942,6 +942,19 @@ static void printed_flags(const tc_state *s) {
     printf(",%s", s == NULL ? "excluded_inputs" : out_names(s));
 }
 
+/* The input ended at line `row`: 1 (said) where a --check file still holds a row after its
+   line `line`, else 0. */
+static int holds_more(FILE *f, const char *path, long line, long row) {
+    static char text[MAX_LINE];
+    while (fgets(text, sizeof text, f))
+        if (text[strspn(text, " \t\r\n")] != '\0') {
+            fprintf(stderr, "stream: check: the input ended at line %ld, %s holds more rows "
+                    "(from its line %ld)\n", row, path, line + 1);
+            return 1;
+        }
+    return 0;
+}
+
 /* (packflags100) --check-flags FILE: the monitor's flags the mirror expects per row (a pack's
    check/<campaign>/flags.csv: a header naming TC_FLAG_NAMES and excluded_inputs, then per row
    0/1 per kind and the sensors out, ';' between them), compared as --flags prints them. */
@@ -1018,13 +1031,7 @@ static int flags_row(long row, const tc_state *s) {
 
 /* The input ended: 0 when FILE ended too (said), else 1. */
 static int flags_end(long row) {
-    static char text[MAX_LINE];
-    while (fgets(text, sizeof text, flags_.f))
-        if (text[strspn(text, " \t\r\n")] != '\0') {
-            fprintf(stderr, "stream: check: the input ended at line %ld, %s holds more rows "
-                    "(from its line %ld)\n", row, flags_.path, flags_.line + 1);
-            return 1;
-        }
+    if (holds_more(flags_.f, flags_.path, flags_.line, row)) return 1;
     fprintf(stderr, "stream: flag check passed: %ld rows' monitor flags as %s\n", flags_.rows,
             flags_.path);
     return 0;
@@ -1082,13 +1089,7 @@ static int check_row(long row, const double *c) {
 
 /* The input ended: 0 when FILE ended too (the largest difference said), else 1. */
 static int check_end(long row) {
-    static char text[MAX_LINE];
-    while (fgets(text, sizeof text, check_.f))
-        if (text[strspn(text, " \t\r\n")] != '\0') {
-            fprintf(stderr, "stream: check: the input ended at line %ld, %s holds more rows "
-                    "(from its line %ld)\n", row, check_.path, check_.line + 1);
-            return 1;
-        }
+    if (holds_more(check_.f, check_.path, check_.line, row)) return 1;
     fprintf(stderr, "stream: check passed: %ld rows within %.3g um + %.3g x |expected| of %s "
             "(largest |difference| %.3g um, %s at input line %ld)\n", check_.rows, check_.um,
             check_.relative, check_.path, check_.worst,
