@@ -72,9 +72,13 @@ DRIVER = r"""/* stream.c: CSV rows of raw inputs on stdin -> corrections C_<axis
  * (TC_FLAG_NAMES: mon_excluded, mon_readmitted, mon_out, mon_band, mon_not_in_code,
  * mon_rereferenced, mon_new_state) and excluded_inputs, the monitored sensors out in the order
  * they went out, ';' between them (the served model's column of that name, which joins by ',').
+ * (extension, packflags100) With `--check-flags FILE` (a pack's check/<campaign>/flags.csv, export
+ * writes it beside expected.csv where the code holds the monitor) each row's flags as `--flags`
+ * prints them are compared with FILE's: the first row that differs is named on stderr with the
+ * flag and both values, exit 1.
  * Build: cc compensator.c stream.c -lm -o stream
  * Run:   ./stream [--state FILE] [--check FILE [--tolerance UM] [--relative R]]
- *                 [--ambient C] [--flags] < rows.csv
+ *                 [--check-flags FILE] [--ambient C] [--flags] < rows.csv
  */
 #include <math.h>
 #include <stdio.h>
@@ -913,14 +917,124 @@ static void said_monitor(const tc_state *s, long row) {
 /* (cflags100) --flags: the monitor's state after a row's corrections, as numbers and names a
    control's integrator splits at ',' (0/1 per kind; no quoting needed); NULL: the header's names.
    Without TC_MONITOR the state's monitor fields are never set: 0 and none out. */
+static int flag_on(const tc_state *s, int k) {
+    return TC_MONITOR && (s->mon_flags & TC_FLAG_BITS[k]) != 0;
+}
+
+/* The monitored sensors out, in the order they went out, ';' between them ("" none). */
+static const char *out_names(const tc_state *s) {
+    static char text[MAX_LINE];
+    int k;
+    text[0] = '\0';
+    for (k = 0; TC_MONITOR && k < s->mon_nout; k++) {
+        if (k) strcat(text, ";");
+        strncat(text, TC_INPUT_NAMES[TC_MONITORED[s->mon_out_set[k]]],
+                sizeof text - strlen(text) - 2);
+    }
+    return text;
+}
+
 static void printed_flags(const tc_state *s) {
-    int k, on = s != NULL && TC_MONITOR;
+    int k;
     for (k = 0; k < TC_N_FLAG_KINDS; k++)
         if (s == NULL) printf(",%s", TC_FLAG_NAMES[k]);
-        else printf(",%d", on && (s->mon_flags & TC_FLAG_BITS[k]) != 0);
-    printf(",%s", s == NULL ? "excluded_inputs" : "");
-    for (k = 0; on && k < s->mon_nout; k++)
-        printf("%s%s", k ? ";" : "", TC_INPUT_NAMES[TC_MONITORED[s->mon_out_set[k]]]);
+        else printf(",%d", flag_on(s, k));
+    printf(",%s", s == NULL ? "excluded_inputs" : out_names(s));
+}
+
+/* The input ended at line `row`: 1 (said) where a --check file still holds a row after its
+   line `line`, else 0. */
+static int holds_more(FILE *f, const char *path, long line, long row) {
+    static char text[MAX_LINE];
+    while (fgets(text, sizeof text, f))
+        if (text[strspn(text, " \t\r\n")] != '\0') {
+            fprintf(stderr, "stream: check: the input ended at line %ld, %s holds more rows "
+                    "(from its line %ld)\n", row, path, line + 1);
+            return 1;
+        }
+    return 0;
+}
+
+/* (packflags100) --check-flags FILE: the monitor's flags the mirror expects per row (a pack's
+   check/<campaign>/flags.csv: a header naming TC_FLAG_NAMES and excluded_inputs, then per row
+   0/1 per kind and the sensors out, ';' between them), compared as --flags prints them. */
+static struct {
+    FILE *f;
+    const char *path;
+    long rows, line;
+} flags_ = {NULL, NULL, 0, 1};
+
+/* 1: FILE opened and its header names the flag columns; 0 after saying why not. */
+static int flags_open(void) {
+    static char text[MAX_LINE];
+    char *cells[MAX_COLS];
+    int n, k;
+    flags_.f = fopen(flags_.path, "r");
+    if (flags_.f == NULL) {
+        fprintf(stderr, "stream: cannot read %s\n", flags_.path);
+        return 0;
+    }
+    n = fgets(text, sizeof text, flags_.f) ? split_by(text, cells, ',') : 0;
+    for (k = 0; n == TC_N_FLAG_KINDS + 1 && k < TC_N_FLAG_KINDS; k++)
+        if (strcmp(cells[k], TC_FLAG_NAMES[k]) != 0) break;
+    if (n != TC_N_FLAG_KINDS + 1 || k < TC_N_FLAG_KINDS || strcmp(cells[k], "excluded_inputs")) {
+        fprintf(stderr, "stream: %s does not name this build's flags (", flags_.path);
+        for (k = 0; k < TC_N_FLAG_KINDS; k++) fprintf(stderr, "%s,", TC_FLAG_NAMES[k]);
+        fprintf(stderr, "excluded_inputs) on its first line\n");
+        return 0;
+    }
+    return 1;
+}
+
+/* The monitor's state s after input line `row` against FILE's next row: 0 as expected, 1 (a
+   flag or the sensors out differ: the row, the flag and both values named) or 2 (FILE
+   unreadable there). */
+static int flags_row(long row, const tc_state *s) {
+    static char text[MAX_LINE];
+    char *cells[MAX_COLS];
+    int k, bad = 0;
+    double want;
+    flags_.line++;
+    if (!fgets(text, sizeof text, flags_.f)) {
+        fprintf(stderr, "stream: check: %s ends at line %ld, before the flags of input line "
+                "%ld\n", flags_.path, flags_.line - 1, row);
+        return 1;
+    }
+    if (split_by(text, cells, ',') != TC_N_FLAG_KINDS + 1) {
+        fprintf(stderr, "stream: check: %s line %ld has not %d cells\n", flags_.path,
+                flags_.line, TC_N_FLAG_KINDS + 1);
+        return 2;
+    }
+    for (k = 0; k < TC_N_FLAG_KINDS; k++) {
+        want = value(cells[k], &bad);
+        if (bad || (want != 0.0 && want != 1.0)) {
+            fprintf(stderr, "stream: check: %s line %ld: %s is not 0 or 1\n", flags_.path,
+                    flags_.line, TC_FLAG_NAMES[k]);
+            return 2;
+        }
+        if (flag_on(s, k) != (int)want) {
+            fprintf(stderr, "stream: flag check failed at input line %ld (row %ld of the stream): "
+                    "%s = %d, expected %d (%s line %ld)\n", row, flags_.rows + 1,
+                    TC_FLAG_NAMES[k], flag_on(s, k), (int)want, flags_.path, flags_.line);
+            return 1;
+        }
+    }
+    if (strcmp(out_names(s), cells[k]) != 0) {
+        fprintf(stderr, "stream: flag check failed at input line %ld (row %ld of the stream): "
+                "excluded_inputs = '%s', expected '%s' (%s line %ld)\n", row, flags_.rows + 1,
+                out_names(s), cells[k], flags_.path, flags_.line);
+        return 1;
+    }
+    flags_.rows++;
+    return 0;
+}
+
+/* The input ended: 0 when FILE ended too (said), else 1. */
+static int flags_end(long row) {
+    if (holds_more(flags_.f, flags_.path, flags_.line, row)) return 1;
+    fprintf(stderr, "stream: flag check passed: %ld rows' monitor flags as %s\n", flags_.rows,
+            flags_.path);
+    return 0;
 }
 
 /* (cdrop77) 1: input i is one the sensor monitor judges, its missing reading tc_step's */
@@ -975,13 +1089,7 @@ static int check_row(long row, const double *c) {
 
 /* The input ended: 0 when FILE ended too (the largest difference said), else 1. */
 static int check_end(long row) {
-    static char text[MAX_LINE];
-    while (fgets(text, sizeof text, check_.f))
-        if (text[strspn(text, " \t\r\n")] != '\0') {
-            fprintf(stderr, "stream: check: the input ended at line %ld, %s holds more rows "
-                    "(from its line %ld)\n", row, check_.path, check_.line + 1);
-            return 1;
-        }
+    if (holds_more(check_.f, check_.path, check_.line, row)) return 1;
     fprintf(stderr, "stream: check passed: %ld rows within %.3g um + %.3g x |expected| of %s "
             "(largest |difference| %.3g um, %s at input line %ld)\n", check_.rows, check_.um,
             check_.relative, check_.path, check_.worst,
@@ -1065,6 +1173,10 @@ int main(int argc, char **argv) {
             flags = 1;
             continue;
         }
+        if (strcmp(argv[i], "--check-flags") == 0 && i + 1 < argc && argv[i + 1][0]) {
+            flags_.path = argv[++i];
+            continue;
+        }
         if (strcmp(argv[i], "--check") == 0 && i + 1 < argc && argv[i + 1][0]) {
             check_.path = argv[++i];
             continue;
@@ -1086,10 +1198,11 @@ int main(int argc, char **argv) {
             }
         }
         fprintf(stderr, "usage: %s [--state FILE] [--check FILE [--tolerance UM] [--relative R]]"
-                " [--ambient C] [--flags] < rows.csv\n", argv[0]);
+                " [--check-flags FILE] [--ambient C] [--flags] < rows.csv\n", argv[0]);
         return 2;
     }
     if (check_.path != NULL && !check_open()) return 2;
+    if (flags_.path != NULL && !flags_open()) return 2;
     if (state_path != NULL) {
         state_tmp = malloc(strlen(state_path) + 5);
         if (state_tmp == NULL) { fprintf(stderr, "stream: out of memory\n"); return 2; }
@@ -1516,6 +1629,10 @@ int main(int argc, char **argv) {
             fflush(stdout);
             return failed;
         }
+        if (flags_.f != NULL && (failed = flags_row(row, &s)) != 0) {
+            fflush(stdout);
+            return failed;
+        }
         for (k = 0; k < TC_N_SOURCES; k++)
             r[k] = source_col[k] >= 0 ? converted(cells, source_col[k], &ignored) : NAN;
         for (i = measured = 0; i < TC_N_OUTPUTS; i++) {
@@ -1536,6 +1653,7 @@ int main(int argc, char **argv) {
     if (footer_at)
         fprintf(stderr, "stream: lines %ld-%ld: a '#' block under the rows (a logger's summary): "
                 "left out\n", footer_at, row);
-    return check_.f != NULL ? check_end(row) : 0;
+    failed = check_.f != NULL ? check_end(row) : 0;
+    return failed ? failed : flags_.f != NULL ? flags_end(row) : 0;
 }
 """

@@ -38,6 +38,11 @@ Of a model that reads no ambient sensor and picks its laws by a campaign's initi
 (``ambient_given``: the manifest's ``ambient_c``), each campaign's value is in check.json's entry
 and in an ``ambient_c`` column of its rows.csv, which ``stream.c`` reads at a campaign's first row.
 
+(packflags100) Where the code holds the sensor monitor, each campaign's ``flags.csv`` beside its
+``expected.csv`` holds per row the monitor's flags as ``stream --flags`` prints them
+(:func:`~.watch.flag_row` of the :class:`Simulator` :func:`_parted` steps), which ``stream
+--check-flags`` compares exactly: a build with right corrections and wrong flags fails.
+
 ``check/check.json`` lists the campaigns (rows, cuts and why) and the tolerance
 (:data:`TOLERANCE_UM`, :data:`TOLERANCE_RELATIVE`); with the C, ``check/check.sh`` runs
 ``stream --check`` on each.
@@ -61,7 +66,7 @@ from ..streaming import OutOfEnvelopeError
 from .output import not_in_code
 from .served import ServedLead, ServedStreams
 from .statespace import Simulator, StateSpace
-from .watch import NOT_IN_CODE, REASONS, planted
+from .watch import FLAG_KINDS, NOT_IN_CODE, REASONS, flag_row, planted
 
 CHECK = "check"
 # |C - expected| <= TOLERANCE_UM + TOLERANCE_RELATIVE * |expected| (um).  float64 arithmetic in
@@ -85,6 +90,16 @@ GIVEN = ("the model reads no ambient sensor: each campaign's initial ambient A0 
          "manifest ambient_c) is its ambient_c here and the ambient_c column of its rows.csv (the "
          "same value on every row), given before its first sample: C tc_set_ambient after "
          "tc_reset (stream.c reads the column), ST the input ambient_c")
+
+# (packflags100) check/<campaign>/flags.csv: per row the code's monitor flags as ``stream --flags``
+# prints them (watch.flag_row of the mirror, :class:`Simulator`), where the code holds the monitor
+FLAGS = "flags.csv"
+FLAG_COLUMNS = [*(f"mon_{kind}" for kind, _ in FLAG_KINDS), "excluded_inputs"]
+FLAGS_WHY = ("the code holds the sensor monitor: each campaign's flags.csv is, per row of its "
+             "rows.csv, the monitor's flags the exported arithmetic (numpy) sets there, as stream "
+             "--flags prints them (0/1 per kind, the sensors out in the order they went out, ';' "
+             "between them); stream --check-flags compares them exactly, the first row that "
+             "differs named with the flag and both values")
 
 _UNSAFE = re.compile(r"[^A-Za-z0-9._-]+")
 
@@ -159,17 +174,21 @@ def beyond(got: np.ndarray, want: np.ndarray) -> np.ndarray:
 
 
 def _parted(ss: StateSpace, frame: pd.DataFrame, want: np.ndarray, start: int = 0,
-            sim: Simulator | None = None) -> dict | None:
+            sim: Simulator | None = None, flags: list | None = None) -> dict | None:
     """The cut (``row``, ``why``) before the first row where the exported arithmetic
     (:class:`Simulator`) parts from ``want`` or refuses the row (a missing reading its monitor
     cannot rebuild), naming the rule not in the code its monitor flagged there.  ``sim``: a
-    Simulator already stepped over the first ``start`` rows (a shared lead-in, :class:`_Lead`)."""
+    Simulator already stepped over the first ``start`` rows (a shared lead-in, :class:`_Lead`);
+    ``flags``: each row's :func:`~.watch.flag_row` appended to it (its first ``start`` given)."""
     if sim is None:
         sim, start = Simulator(ss), 0
         sim.reset(manifest_ambient(frame))
     U, t = frame[ss.inputs].to_numpy(float), _times(frame)
+    names = [ss.inputs[k] for k in ss.monitor.get("inputs", [])] if ss.monitor else []
     for i in range(start, len(frame)):
         c = sim.step(U[i], t[i])
+        if flags is not None and sim.watch is not None:
+            flags.append(flag_row(sim.watch, names))
         if sim.refused or beyond(c, want[i]).any():
             w = sim.watch
             flagged = w is not None and w.flags & NOT_IN_CODE
@@ -198,10 +217,12 @@ class _Lead:
 
     def __init__(self, served: ServedLead, ss: StateSpace, frame: pd.DataFrame, monitor: bool):
         self.served, self.rows, self.sim, self.parted = served, served.rows, None, None
+        self.flags: list = []         # (packflags100) the mirror's flags of the lead-in's rows
         if served.state is not None and monitor:
             sim = Simulator(ss)
             sim.reset(manifest_ambient(frame))
-            self.parted = _parted(ss, frame.iloc[:self.rows], corrections(ss, served.y), 0, sim)
+            self.parted = _parted(ss, frame.iloc[:self.rows], corrections(ss, served.y), 0, sim,
+                                  self.flags)
             self.sim = sim
 
     def fits(self, frame: pd.DataFrame) -> bool:
@@ -279,10 +300,10 @@ def conformance_pack(deployed, ss: StateSpace, campaigns: Mapping[str, pd.DataFr
         if shared is None:
             y = served.y(frame, lambda: stream_rows(deployed, frame, str(cid),
                                                     (files or {}).get(cid)).y)
-        want = corrections(ss, y)
+        want, flags = corrections(ss, y), list(shared.flags) if shared else []
         if monitor:
-            parted = (_parted(ss, frame, want, lead, copy.deepcopy(shared.sim)) if shared
-                      else _parted(ss, frame, want))
+            parted = (_parted(ss, frame, want, lead, copy.deepcopy(shared.sim), flags) if shared
+                      else _parted(ss, frame, want, flags=flags))
             if parted is not None:
                 cut = parted
                 frame, want = frame.iloc[:cut["row"] - 1], want[:cut["row"] - 1]
@@ -293,6 +314,9 @@ def conformance_pack(deployed, ss: StateSpace, campaigns: Mapping[str, pd.DataFr
                 shared.csv(frame[columns]) if shared and len(frame) > lead
                 else csv_text(frame[columns]))
             out[f"{entry['folder']}/expected.csv"] = csv_text(pd.DataFrame(want, columns=outputs))
+            if ss.monitor:     # (packflags100) the code's monitor flags the mirror expects
+                out[f"{entry['folder']}/{FLAGS}"] = csv_text(
+                    pd.DataFrame(flags[:len(frame)], columns=FLAG_COLUMNS))
     written = [e for e in listed if e["rows"]]
     summary = {"campaigns": listed, "inputs": ["time", *ss.inputs, *[AMBIENT_C] * ss.ambient_given],
                "outputs": outputs,
@@ -303,17 +327,23 @@ def conformance_pack(deployed, ss: StateSpace, campaigns: Mapping[str, pd.DataFr
                "reference_measurements": "none fed: what was learned stays as exported"}
     if ss.ambient_given:
         summary["ambient"] = GIVEN
+    if ss.monitor:
+        summary["flags"] = FLAGS_WHY
+        summary["command"] += f" --check-flags <folder>/{FLAGS}"
     out[f"{CHECK}/check.json"] = json.dumps(summary, indent=1, ensure_ascii=False) + "\n"
     if script:
-        out[f"{CHECK}/check.sh"] = _script([e["folder"] for e in written])
+        out[f"{CHECK}/check.sh"] = _script([e["folder"] for e in written], bool(ss.monitor))
     return out, summary
 
 
-def _script(folders: list[str]) -> str:
+def _script(folders: list[str], flags: bool = False) -> str:
     """``check/check.sh``: every campaign of the pack through ``./stream --check`` (run from the
-    folder ``stream`` was built in); the first that fails stops it, its message on stderr."""
+    folder ``stream`` was built in), ``flags``: its monitor's flags too (``--check-flags``); the
+    first that fails stops it, its message on stderr."""
     lines = ["#!/bin/sh", "# Run from the folder of the built stream: sh check/check.sh",
              "set -e"]
-    lines += [f"./stream --check '{f}/expected.csv' < '{f}/rows.csv' > /dev/null" for f in folders]
+    lines += [f"./stream --check '{f}/expected.csv'"
+              + (f" --check-flags '{f}/{FLAGS}'" if flags else "")
+              + f" < '{f}/rows.csv' > /dev/null" for f in folders]
     lines.append(f"echo 'check: {len(folders)} campaign(s) within tolerance'")
     return "\n".join(lines) + "\n"
