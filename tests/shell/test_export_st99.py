@@ -1,7 +1,8 @@
 """The Structured Text block names a freeze while it holds a ``BLIND_OUT`` out, as the C does
 (st99, issue 34): a sensor no other predicts bumped (the C's and the block's ``BLIND_OUT``, held
 out), then, while it is out, another sensor frozen -- the C takes one the others predict out as
-the second (``FREEZE``) and flags one no other predicts (``SECOND``: it holds no such second) --
+the second (``FREEZE``), and (freezeu100) one no other predicts too, as its dropout, where the
+field is rebuilt without the two (before it the C flagged ``SECOND`` while served took it out) --
 and the block names it alike at that row, once, its judgement ending there.  Before st99 the
 block judged no freeze while one was held, and ended its judgement, silent, at the first sensor
 at its warning band of the set without the held one.
@@ -13,11 +14,11 @@ from __future__ import annotations
 
 from test_export_st94 import record  # noqa: F401 (the module's fixture)
 from test_export_st96 import BLIND, _stepped, bumped
-from thermocomp.apps.deploy.export.watch import BLIND_OUT, EXCLUDED, FREEZE, NOT_IN_CODE, SECOND
+from thermocomp.apps.deploy.export.watch import BLIND_OUT, EXCLUDED, FREEZE
 
 HELD = 60      # rows a reading is held (bench_cmon92's freeze)
 # one the others predict (the C's second out beside BLIND, the set of the two solved) and one no
-# other predicts (frozen past its run: the C's SECOND)
+# other predicts (frozen past its run: out as its dropout, freezeu100)
 HELD_SECOND, NOT_HELD = "T_head_left", "T_amb"
 
 
@@ -30,7 +31,7 @@ def test_the_block_names_a_freeze_while_it_holds_a_blind_out(record):  # noqa: F
     c_said = _stepped(ss, block, df.iloc[:end])[4]
     out = next(i for i, s in enumerate(c_said) if s[1])
     for f, rule, bit in ((names.index(HELD_SECOND), FREEZE, EXCLUDED),
-                         (names.index(NOT_HELD), SECOND, NOT_IN_CODE)):
+                         (names.index(NOT_HELD), FREEZE, EXCLUDED)):
         dff = df.iloc[:out + 1 + HELD].copy()
         dff.loc[out + 1:, names[f]] = dff.loc[out + 1, names[f]]
         _, st_said, held, _, c_said = _stepped(ss, block, dff)

@@ -267,8 +267,11 @@ def blind_constants(watch: dict, n: int, stepped: bool, literal, constant) -> li
         judging[b] = (scale[b] > 0) & ~mon.warn_only
         warn[b], alarm[b] = mon._bands(~out)
         # (st99) a freeze with it out: the second out where the C holds it (one the others
-        # predict, the set of the two had: cmon85's _second_held, static per pair), else SECOND
-        second[b] = [k != u and mon.ported[k] and mon.solve and FREEZE in mon.seconds
+        # predict; freezeu100: or one no other predicts, as its dropout, where the field is
+        # rebuilt without the two: _second_kind; the set of the two had: cmon85's _second_held,
+        # static per pair), else SECOND
+        kind = mon.ported | (mon.instant & mon.drops & (n - 2 >= watch["min_active"]))
+        second[b] = [k != u and kind[k] and mon.solve and FREEZE in mon.seconds
                      and mon._operator(out | (np.arange(n) == k)) is not None for k in range(n)]
     field = (watch.get("warning") if int(watch.get("exclude_level", 2)) == 1 else watch.get("alarm"))
     nb = len(blinds)
