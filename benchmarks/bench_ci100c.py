@@ -66,7 +66,7 @@ COMMANDS = [
     ["promote", DATA, "out=reports/p"],
     ["replay", DATA, "model_path=models/r.pkl", "out=reports/rp"],
     ["monitor", DATA, "model_path=models/r.pkl", "out=reports/mo"],
-    ["export", "model_path=models/r.pkl", "out=exports/c"],
+    ["export", "export.model=models/r.pkl", "out=exports/c"],
     ["init", "data/raw/s"],
 ]
 
