@@ -52,8 +52,15 @@ def _set_output_dir(node: DictConfig, output_dir: str) -> None:
 def run_job(task_function, config: DictConfig, hydra_context):
     """Hydra's ``run_job(task_function, config, "hydra.run.dir", None, hydra_context)``."""
     from hydra.core.hydra_config import HydraConfig
-    from hydra.core.utils import (JobReturn, JobRuntime, JobStatus, _flush_loggers, _save_config,
-                                  configure_log, env_override)
+    from hydra.core.utils import (
+        JobReturn,
+        JobRuntime,
+        JobStatus,
+        _flush_loggers,
+        _save_config,
+        configure_log,
+        env_override,
+    )
 
     callbacks = hydra_context.callbacks
     old_cwd = os.getcwd()
