@@ -109,7 +109,8 @@ def test_a_quoted_map_key_is_quoted_once_in_the_hint(capsys):
     code = main(["ingest", "data.columns={'T Wasser [°C]': T_x}"])
     err = capsys.readouterr().err
     assert code == 2
-    assert "(columns: {'T Wasser [°C]': T_x})" in err and "{''" not in err, err
+    # (notes100) the entry as the config file's line to write, the key quoted once
+    assert "\"columns: {'T Wasser [°C]': T_x}\"" in err and "{''" not in err, err
 
 
 def test_a_libreoffice_error_cell_is_named_a_missing_value_mark(tmp_path):
