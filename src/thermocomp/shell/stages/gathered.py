@@ -36,7 +36,7 @@ def named_keys(said: str) -> dict | None:
     """``{key: value}`` of the ``key=value`` settings a refusal's text names, the value as Hydra
     reads it; None where it names none, a key not :data:`FOLLOWED`, or two values of one key
     (alternatives: the lab's to choose)."""
-    keys: dict = {}
+    keys: dict | None = {}
     for key, text in _KEY.findall(said):
         if key not in FOLLOWED:
             return None
@@ -44,9 +44,8 @@ def named_keys(said: str) -> dict | None:
             value = OverridesParser.create().parse_override(f"{key}={text}").value()
         except Exception:          # (a hint Hydra's grammar does not read: not followed)
             return None
-        if isinstance(value, list):
-            keys[key] = [*keys.get(key, []), *(v for v in value if v not in keys.get(key, []))]
-        elif keys.setdefault(key, value) != value:
+        keys = _merged(keys, {key: value})
+        if keys is None:
             return None
     return keys or None
 
