@@ -866,17 +866,23 @@ static struct {
     int worst_output;
 } check_ = {NULL, NULL, CHECK_UM, CHECK_RELATIVE, 0.0, 0, 0, 1, 0};
 
+/* PATH opened into *f and its first line split into cells (text holds them): their number;
+   -1 after saying why not.  (The expected corrections' and flags' files alike.) */
+static int open_headed(const char *path, FILE **f, char *text, int size, char **cells) {
+    *f = fopen(path, "r");
+    if (*f == NULL) {
+        fprintf(stderr, "stream: cannot read %s\n", path);
+        return -1;
+    }
+    return fgets(text, size, *f) ? split_by(text, cells, ',') : 0;
+}
+
 /* 1: FILE opened and its header names this build's outputs; 0 after saying why not. */
 static int check_open(void) {
     static char text[MAX_LINE];
     char *cells[MAX_COLS];
     int n, i;
-    check_.f = fopen(check_.path, "r");
-    if (check_.f == NULL) {
-        fprintf(stderr, "stream: cannot read %s\n", check_.path);
-        return 0;
-    }
-    n = fgets(text, sizeof text, check_.f) ? split_by(text, cells, ',') : 0;
+    if ((n = open_headed(check_.path, &check_.f, text, sizeof text, cells)) < 0) return 0;
     for (i = 0; n == TC_N_OUTPUTS && i < n; i++)
         if (strcmp(cells[i], TC_OUTPUT_NAMES[i]) != 0) break;
     if (n != TC_N_OUTPUTS || i < n) {
@@ -969,12 +975,7 @@ static int flags_open(void) {
     static char text[MAX_LINE];
     char *cells[MAX_COLS];
     int n, k;
-    flags_.f = fopen(flags_.path, "r");
-    if (flags_.f == NULL) {
-        fprintf(stderr, "stream: cannot read %s\n", flags_.path);
-        return 0;
-    }
-    n = fgets(text, sizeof text, flags_.f) ? split_by(text, cells, ',') : 0;
+    if ((n = open_headed(flags_.path, &flags_.f, text, sizeof text, cells)) < 0) return 0;
     for (k = 0; n == TC_N_FLAG_KINDS + 1 && k < TC_N_FLAG_KINDS; k++)
         if (strcmp(cells[k], TC_FLAG_NAMES[k]) != 0) break;
     if (n != TC_N_FLAG_KINDS + 1 || k < TC_N_FLAG_KINDS || strcmp(cells[k], "excluded_inputs")) {
