@@ -173,6 +173,7 @@ may part from the served model; the conformance pack cuts there (:func:`~.pack.c
 from __future__ import annotations
 
 import contextlib
+import functools
 import math
 from dataclasses import dataclass, field
 
@@ -552,47 +553,9 @@ class CodeMonitor:
         return self._solved(~np.asarray(out, bool)) if self.solve else None
 
     def _solved(self, active: np.ndarray):
-        """(cmon85) The served ``pod.operator`` of ``active``, as the C solves it: ``r = min(modes,
-        s)`` modes, the Cholesky ``L`` of ``G = Phi_a^T Phi_a`` (``r x r``), ``w_k = L^-1 phi_k``,
-        ``M[k, m] = w_k . w_m`` for ``m`` in, the leverage ``w_k . w_k`` (1 out); None where ``G``
-        is not positive definite (a pivot within 1e-12 of its diagonal's scale)."""
-        n, ins = self.n, np.flatnonzero(active)
-        r = min(self.phi.shape[1], len(ins))
-        phi = self.phi.tolist()          # (python floats: the C's arithmetic, in its order)
-        G = [[0.0] * r for _ in range(r)]
-        for i in ins:
-            for p in range(r):
-                for q in range(r):
-                    G[p][q] += phi[i][p] * phi[i][q]
-        L = [[0.0] * r for _ in range(r)]
-        for p in range(r):
-            for q in range(p + 1):
-                v = G[p][q]
-                for c in range(q):
-                    v -= L[p][c] * L[q][c]
-                if p != q:
-                    L[p][q] = v / L[q][q]
-                elif not v > 1e-12 * max(G[p][p], 1e-300):
-                    return None
-                else:
-                    L[p][p] = math.sqrt(v)
-        W = [[0.0] * r for _ in range(n)]
-        for k in range(n):
-            for p in range(r):
-                v = phi[k][p]
-                for c in range(p):
-                    v -= L[p][c] * W[k][c]
-                W[k][p] = v / L[p][p]
-        M, lev = np.zeros((n, n)), np.ones(n)
-        for k in range(n):
-            for m in ins:
-                v = 0.0
-                for p in range(r):
-                    v += W[k][p] * W[m][p]
-                M[k, m] = v
-            if active[k]:
-                lev[k] = M[k, k]
-        return M, lev
+        """:func:`_solved_operator` of this basis and ``active`` (its arrays read-only)."""
+        return _solved_operator(self.phi.tobytes(), self.phi.shape,
+                                np.asarray(active, bool).tobytes())
 
     @property
     def out(self) -> int:
@@ -1639,3 +1602,53 @@ class CodeMonitor:
             if z[u] > best_z:
                 best, best_z = int(u), float(z[u])
         return best
+
+
+@functools.lru_cache(maxsize=1024)
+def _solved_operator(basis: bytes, shape: tuple, active_mask: bytes):
+    """(cmon85) The served ``pod.operator`` of the set ``active_mask`` (bool bytes) of the basis
+    ``basis`` (``shape``: sensors x modes), as the C solves it: ``r = min(modes, s)`` modes, the
+    Cholesky ``L`` of ``G = Phi_a^T Phi_a`` (``r x r``), ``w_k = L^-1 phi_k``, ``M[k, m] = w_k .
+    w_m`` for ``m`` in, the leverage ``w_k . w_k`` (1 out); None where ``G`` is not positive
+    definite (a pivot within 1e-12 of its diagonal's scale)."""
+    # memoized by the basis's and the set's bytes: the mirror asks for the same few sets on many
+    # rows (a sensor out for a stretch), and these loops are the C's order, slow in Python (ci101)
+    active = np.frombuffer(active_mask, bool)
+    n, ins = shape[0], np.flatnonzero(active)
+    r = min(shape[1], len(ins))
+    phi = np.frombuffer(basis).reshape(shape).tolist()   # (python floats: the C's order)
+    G = [[0.0] * r for _ in range(r)]
+    for i in ins:
+        for p in range(r):
+            for q in range(r):
+                G[p][q] += phi[i][p] * phi[i][q]
+    L = [[0.0] * r for _ in range(r)]
+    for p in range(r):
+        for q in range(p + 1):
+            v = G[p][q]
+            for c in range(q):
+                v -= L[p][c] * L[q][c]
+            if p != q:
+                L[p][q] = v / L[q][q]
+            elif not v > 1e-12 * max(G[p][p], 1e-300):
+                return None
+            else:
+                L[p][p] = math.sqrt(v)
+    W = [[0.0] * r for _ in range(n)]
+    for k in range(n):
+        for p in range(r):
+            v = phi[k][p]
+            for c in range(p):
+                v -= L[p][c] * W[k][c]
+            W[k][p] = v / L[p][p]
+    M, lev = np.zeros((n, n)), np.ones(n)
+    for k in range(n):
+        for m in ins:
+            v = 0.0
+            for p in range(r):
+                v += W[k][p] * W[m][p]
+            M[k, m] = v
+        if active[k]:
+            lev[k] = M[k, k]
+    M.flags.writeable = lev.flags.writeable = False     # shared by every caller of the memo
+    return M, lev
