@@ -24,6 +24,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from cbuild import compiled
 from conftest import FAST, UNTRACKED, refused, thermocomp
 
 REL = 1e-9
@@ -121,8 +122,7 @@ def test_the_exported_c_streams_the_record_as_run_scores_its_test_part(runs, dat
     code = tmp_path / "code"
     thermocomp("export", f"export.model={out / 'model.pkl'}", *data["record"], "export.format=c",
                *PLAIN, f"out={code}", *UNTRACKED)
-    subprocess.run(["cc", "-O2", "compensator.c", "stream.c", "-lm", "-o", "stream"], cwd=code,
-                   check=True)
+    compiled(code)
     with record.open() as rows:
         streamed = subprocess.run([str(code / "stream")], stdin=rows, capture_output=True, text=True,
                                   check=True).stdout

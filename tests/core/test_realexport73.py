@@ -14,6 +14,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from cbuild import compiled
 from conftest import LIGHT, UNTRACKED, thermocomp
 from thermocomp.core.io.lvm import lvm_records
 from thermocomp.core.io.stdin import stream_stamps
@@ -54,8 +55,7 @@ def test_the_exported_c_reads_the_tables_timestamps_as_the_model_did(tmp_path):
     code = tmp_path / "code"
     thermocomp("export", f"export.model={tmp_path / 'run' / 'model.pkl'}", *data,
                "export.format=c", *UNTRACKED, f"out={code}")
-    subprocess.run(["cc", "-O2", "compensator.c", "stream.c", "-lm", "-o", "stream"], cwd=code,
-                   check=True)
+    compiled(code)
     with FLUX.open() as rows:
         streamed = subprocess.run([str(code / "stream")], stdin=rows, capture_output=True,
                                   text=True, check=True).stdout

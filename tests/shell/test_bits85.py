@@ -20,6 +20,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from cbuild import compiled
 from conftest import refused
 from test_deploy import mlflow_store
 from thermocomp.shell.cli import main
@@ -99,7 +100,7 @@ def stream_c(promoted, tmp_path_factory):
     assert main(["export", *promoted["data"], f"export.model={promoted['model_uri']}",
                  f"tracking_uri={promoted['uri']}", "export.format=c", "export.check=false",
                  f"out={out}"]) == 0
-    subprocess.run(["cc", "compensator.c", "stream.c", "-lm", "-o", "stream"], cwd=out, check=True)
+    compiled(out)
     return out
 
 

@@ -15,6 +15,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from cbuild import compiled
 from conftest import FAST
 from test_export import needs_cc
 from thermocomp.core.io import ContractError, read_dataset
@@ -84,8 +85,7 @@ def test_the_compiled_stream_says_a_clock_set_back_as_the_reader_does(tmp_path):
                  "export.format=c", f"export.model={tmp_path / 'run' / 'model.pkl'}",
                  f"out={tmp_path / 'code'}"]) == 0
     code = tmp_path / "code"
-    subprocess.run(["gcc", "-std=c99", "-O1", "compensator.c", "stream.c", "-lm", "-o", "stream"],
-                   cwd=code, check=True, capture_output=True)
+    compiled(code)
     autumn = local_log(tmp_path / "autumn.csv", "2026-10-24 20:00", "Europe/Berlin")
     done = subprocess.run([str(code / "stream")], input=autumn.read_bytes(), capture_output=True)
     assert done.returncode == 0, done.stderr

@@ -26,6 +26,7 @@ import pandas as pd
 import pytest
 from hydra import compose, initialize_config_dir
 
+from cbuild import CONTROL, compiled
 from conftest import FAST, deployed_as_replay, refused
 from thermocomp.apps.deploy.export import Simulator, exported_files, state_space
 from thermocomp.apps.deploy.streaming import replay
@@ -58,13 +59,12 @@ needs_cc = pytest.mark.skipif(shutil.which("gcc") is None, reason="no C compiler
 
 
 def built_stream(folder: Path, files: dict | None = None) -> Path:
-    """``files`` (name -> text) written into ``folder`` and its C compiled as a control's build
-    would (warnings as errors): the ``stream`` program."""
+    """``files`` (name -> text) written into ``folder`` and its C compiled warnings as errors at
+    the tests' level (tests/cbuild.py): the ``stream`` program."""
     for name, text in (files or {}).items():
         (folder / name).parent.mkdir(parents=True, exist_ok=True)
         (folder / name).write_text(text)
-    subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", "compensator.c",
-                    "stream.c", "-lm", "-o", "stream"], cwd=folder, check=True, capture_output=True)
+    compiled(folder)
     return folder / "stream"
 
 
@@ -76,7 +76,7 @@ def adaptive_mlr(folder: Path) -> tuple:
 
 
 def checked_pack(out: Path) -> str:
-    """``out``'s C compiled as a control's build would (warnings as errors) and its check pack
+    """``out``'s C compiled warnings as errors (:func:`built_stream`) and its check pack
     (``check/check.sh``) run: the pack's messages, after asserting it passed."""
     built_stream(out)
     script = subprocess.run(["sh", "check/check.sh"], cwd=out, capture_output=True, text=True)
@@ -271,8 +271,7 @@ def _stdin(stream, tests, reset_column: bool = False) -> str:
 def _compiled(stream, folder: Path) -> Path:
     for name, text in exported_files(stream, "c").items():
         (folder / name).write_text(text)
-    subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", "compensator.c",
-                    "stream.c", "-lm", "-o", "stream"], cwd=folder, check=True, capture_output=True)
+    compiled(folder, level=CONTROL)
     return folder / "stream"
 
 
@@ -452,7 +451,7 @@ def test_export_writes_code_that_builds_with_cc_and_carries_its_provenance(datas
     assert len(coefficients["provenance"]["dataset_hash"]) == 64
     header = (out / "compensator.h").read_text()
     assert all(c in header for c in ("T_a", "lagbank", coefficients["provenance"]["dataset_hash"]))
-    subprocess.run(["cc", "compensator.c", "stream.c", "-lm", "-o", "stream"], cwd=out, check=True)
+    compiled(out)
     rows = pd.read_csv(dataset / "K05.csv").drop(columns=["E_X", "E_Z", "S_door"])
     got = _streamed(out / "stream", rows.to_csv(index=False))
     assert list(got.columns) == ["C_X", "C_Z"] and len(got) == len(rows)
@@ -475,6 +474,23 @@ def test_export_writes_code_that_builds_with_cc_and_carries_its_provenance(datas
         assert (tmp_path / fmt / name).is_file()
         again = json.loads((tmp_path / fmt / "compensator.json").read_text())
         assert again["g"] == coefficients["g"] and again["fir"] == coefficients["fir"]
+
+
+@needs_cc
+def test_optimization_levels_stream_the_same_bytes(dataset, tmp_path):
+    """The tests build at ``-O0`` (tests/cbuild.py), a control at ``-O2``: the same bytes out of
+    both on every campaign of a monitored export's pack (adaptive MLR, the pack's planted jump and
+    freeze), so the level is no part of what the tests hold."""
+    out = _exported_code(dataset, tmp_path, "c", "mlr", "monitor.adaptive=true")
+    checked_pack(out)                                     # at the tests' level, its check passing
+    built = [compiled(out, program=f"stream{level}", level=level) for level in ("-O0", CONTROL)]
+    folders = sorted((out / "check").glob("*/rows.csv"))
+    assert len(folders) >= 3                              # the record's own and the planted copies
+    for rows in folders:
+        runs = [subprocess.run([str(b)], stdin=rows.open("rb"), capture_output=True)
+                for b in built]
+        assert runs[0].returncode == 0 and runs[0].stdout.count(b"\n") > 10
+        assert runs[0].stdout == runs[1].stdout and runs[0].stderr == runs[1].stderr, rows
 
 
 @pytest.mark.parametrize("model,extra,says", [

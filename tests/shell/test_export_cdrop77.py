@@ -15,6 +15,7 @@ import subprocess
 import numpy as np
 import pytest
 
+from cbuild import compiled
 from test_export import adaptive_mlr, built_stream, needs_cc
 from thermocomp.apps.deploy.export import Simulator, exported_files, not_in_code, state_space
 from thermocomp.apps.deploy.export.pack import conformance_pack, corrections
@@ -93,8 +94,7 @@ def test_where_the_code_cannot_rebuild_a_reading_it_refuses_the_row_and_names_wh
                            "the served model rebuilds it)"}
     for name, text in exported_files(deployed, "c").items():
         (tmp_path / name).write_text(text)
-    subprocess.run(["gcc", "-std=c99", "-O2", "compensator.c", "stream.c", "-lm", "-o", "stream"],
-                   cwd=tmp_path, check=True, capture_output=True)
+    compiled(tmp_path)
     cols = ["time", *ss.inputs]
     run = subprocess.run([str(tmp_path / "stream")], capture_output=True, text=True,
                          input=two[cols].to_csv(index=False, float_format="%.17g"))

@@ -15,6 +15,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from cbuild import compiled
 from thermocomp.shell.cli import main
 
 ROWS, PERIOD_S, DAY_S = 120, 60, 86400
@@ -45,8 +46,7 @@ def _built(root, data: list[str]):
     out = root / "c"
     assert main(["export", *data, f"export.model={root / 'run' / 'model.pkl'}",
                  "export.format=c", "export.check=false", f"out={out}"]) == 0
-    subprocess.run(["cc", "-Werror", "compensator.c", "stream.c", "-lm", "-o", "stream"],
-                   cwd=out, check=True)
+    compiled(out)
     return out
 
 

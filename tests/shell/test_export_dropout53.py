@@ -21,6 +21,7 @@ import subprocess
 import numpy as np
 import pytest
 
+from cbuild import compiled
 from test_export import TOLERANCE_UM, StructuredText, _make_dataset, needs_cc
 from test_export_guard import _adaptive, _simulated
 from thermocomp.apps.deploy.export import Simulator, exported_files, state_space
@@ -71,8 +72,7 @@ def _c(deployed, folder, tests, columns, monitor=False) -> tuple[np.ndarray, np.
     for name, text in exported_files(deployed, "c", monitor=monitor).items():
         (folder / name).write_text(text)
     (folder / "harness.c").write_text(HARNESS)
-    subprocess.run(["gcc", "-std=c99", "-O2", "compensator.c", "harness.c", "-lm", "-o", "harness"],
-                   cwd=folder, check=True, capture_output=True)
+    compiled(folder, ("compensator.c", "harness.c"), "harness", warnings=False)
     return _c_run(folder, tests, columns)
 
 

@@ -11,6 +11,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
+import cbuild
 from conftest import FAST
 from test_export import _compose, needs_cc
 from test_run_column52 import _long, _runs
@@ -30,10 +31,7 @@ def compiled(tmp_path, path):
     assert main(["run", *common, "model=lagbank", *FAST, f"out={tmp_path / 'run'}"]) == 0
     assert main(["export", *common, "monitor.adaptive=false", "export.format=c", "track=false",
                  f"export.model={tmp_path / 'run' / 'model.pkl'}", f"out={tmp_path / 'code'}"]) == 0
-    code = tmp_path / "code"
-    subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", "compensator.c",
-                    "stream.c", "-lm", "-o", "stream"], cwd=code, check=True, capture_output=True)
-    return code / "stream"
+    return cbuild.compiled(tmp_path / "code")
 
 
 @needs_cc

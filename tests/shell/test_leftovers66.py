@@ -22,6 +22,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from cbuild import compiled
 from conftest import FAST
 from test_export import needs_cc
 from thermocomp.shell.cli import main
@@ -138,9 +139,7 @@ def test_the_compiled_stream_holds_a_mark_in_a_held_signal_as_replay_holds_it(do
     assert ss.held[ss.inputs.index("S_door")] == 1 and sum(ss.held) == 1
     for name, text in exported_files(stream, "c", {"missing_values": ["---"]}).items():
         (tmp_path / name).write_text(text)
-    subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", "compensator.c",
-                    "stream.c", "-lm", "-o", "stream"], cwd=tmp_path, check=True,
-                   capture_output=True)
+    compiled(tmp_path)
     door_col = ["time", *stream.columns_].index("S_door")
     text = _stdin(stream, tests)          # the door's missing cells empty: held, as replay holds
     lines = text.split("\n")

@@ -26,6 +26,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from cbuild import compiled
 from conftest import FAST, refused
 from test_export import needs_cc
 from test_stranger66 import ROLES, folders
@@ -110,8 +111,7 @@ def lab_stream(tmp_path_factory):
     assert main(["run", *args, "model=lagbank", "plots=none", f"out={tmp_path / 'run'}"]) == 0
     assert main(["export", *args, f"export.model={tmp_path / 'run' / 'model.pkl'}",
                  "export.format=c", "export.check=false", f"out={code}"]) == 0
-    subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", "compensator.c",
-                    "stream.c", "-lm", "-o", "stream"], cwd=code, check=True, capture_output=True)
+    compiled(code)
     return code / "stream", daq, plain
 
 

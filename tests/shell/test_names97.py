@@ -17,6 +17,7 @@ import sys
 import numpy as np
 import pandas as pd
 
+from cbuild import compiled
 from conftest import FAST, refused
 from test_export import _compose, _make_dataset, needs_cc
 from thermocomp.shell.cli import main
@@ -57,8 +58,7 @@ def test_stream_c_refuses_a_bare_header_two_columns_share_but_for_their_unit(tmp
                tmp_path / "model.pkl")
     export(cfg)
     code = tmp_path / "code"
-    subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-O0", "compensator.c",
-                    "stream.c", "-lm", "-o", "stream"], cwd=code, check=True, capture_output=True)
+    compiled(code)
 
     def fed(headers):
         lines = text.splitlines(keepends=True)

@@ -17,6 +17,7 @@ import subprocess
 import numpy as np
 import pandas as pd
 
+from cbuild import compiled
 from test_export import _compose, needs_cc
 
 UNITS = ("s", "°C", "K", "°C", "µm")
@@ -59,9 +60,7 @@ def _deployed(tmp_path, headers, columns: dict):
     deployed = deployable_model(cfg, ds, train, None, "serve.model")[0]
     save_model(plain(deployed).compensator, tmp_path / "model.pkl")
     export(cfg)
-    subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-O0", "compensator.c",
-                    "stream.c", "-lm", "-o", "stream"], cwd=tmp_path / "code", check=True,
-                   capture_output=True)
+    compiled(tmp_path / "code")
     return tmp_path / "code", CompensatorModel(copy.deepcopy(deployed)), rows
 
 

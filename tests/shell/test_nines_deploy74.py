@@ -11,6 +11,7 @@ import subprocess
 import numpy as np
 import pandas as pd
 
+from cbuild import compiled
 from conftest import FAST
 from test_export import _compose, needs_cc
 from test_nines74 import FLUX, ROLES, nines
@@ -46,8 +47,7 @@ def built_stream(tmp_path, common: list[str]) -> None:
     assert main(["run", *common, *FAST, "plots=none", f"out={tmp_path / 'run'}"]) == 0
     assert main(["export", *common, "track=false", "export.format=c",
                  f"export.model={tmp_path / 'run' / 'model.pkl'}", f"out={tmp_path / 'code'}"]) == 0
-    subprocess.run(["cc", "-O2", "compensator.c", "stream.c", "-lm", "-o", "stream"],
-                   cwd=tmp_path / "code", check=True)
+    compiled(tmp_path / "code")
 
 
 @needs_cc

@@ -16,6 +16,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from cbuild import compiled
 from thermocomp.shell.cli import main
 
 PERIOD_S = 60.0
@@ -114,8 +115,7 @@ def test_the_zero_correction_replays_and_exports_as_zero(record, auto_run, tmp_p
     assert main(["export", f"data.path={record}", f"export.model={model}", "export.format=c",
                  "export.check=true", f"out={code}", *BASE, *DEPLOY]) == 0
     assert "none (no correction" in (code / "compensator.json").read_text()
-    subprocess.run(["cc", "-O2", "compensator.c", "stream.c", "-lm", "-o", "stream"], cwd=code,
-                   check=True, capture_output=True)
+    compiled(code)
     check = subprocess.run(["sh", "check/check.sh"], cwd=code, capture_output=True, text=True)
     assert check.returncode == 0, check.stdout + check.stderr
     for path in (code / "check").glob("*/expected.csv"):

@@ -5,12 +5,12 @@ from __future__ import annotations
 
 import io
 import re
-import subprocess
 
 import numpy as np
 import pandas as pd
 import pytest
 
+from cbuild import compiled
 from conftest import FAST
 from test_export import _compose, needs_cc
 from test_lab_export53 import _clock_file, _streamed
@@ -56,9 +56,7 @@ def _c_against_replay(tmp_path, path, *data) -> float:
     assert main(["run", *common, "model=lagbank", *FAST, f"out={tmp_path / 'run'}"]) == 0
     assert main(["export", *common, "monitor.adaptive=false", "export.format=c", "track=false",
                  f"export.model={tmp_path / 'run' / 'model.pkl'}", f"out={tmp_path / 'code'}"]) == 0
-    subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", "compensator.c",
-                    "stream.c", "-lm", "-o", "stream"], cwd=tmp_path / "code", check=True,
-                   capture_output=True)
+    compiled(tmp_path / "code")
     cfg = _compose(*common, "model=lagbank", "monitor.adaptive=false", "track=false")
     ds, train_ids, test_ids, _ = read_streamed(cfg)
     stream = deploy_stream(cfg, load_model(tmp_path / "run" / "model.pkl"),

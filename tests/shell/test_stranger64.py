@@ -9,6 +9,7 @@ import numpy as np
 import pandas as pd
 import yaml
 
+from cbuild import compiled
 from conftest import FAST, refused
 from test_export import needs_cc
 from thermocomp.shell.cli import main
@@ -145,9 +146,7 @@ def test_the_compiled_stream_skips_a_loggers_preamble_as_the_reader_does(tmp_pat
     assert main(["run", *common, *FAST, "plots=none", f"out={tmp_path / 'run'}"]) == 0
     assert main(["export", *common, "track=false", "export.format=c",
                  f"export.model={tmp_path / 'run' / 'model.pkl'}", f"out={tmp_path / 'code'}"]) == 0
-    subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", "compensator.c",
-                    "stream.c", "-lm", "-o", "stream"], cwd=tmp_path / "code", check=True,
-                   capture_output=True)
+    compiled(tmp_path / "code")
     lines = path.read_text(encoding="utf-8").splitlines(keepends=True)
     out = {}
     for name, text in (("as written", "".join(lines)), ("without it", "".join(lines[4:]))):

@@ -12,6 +12,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from cbuild import compiled
 from conftest import FAST, refused
 from test_export import needs_cc
 from thermocomp.shell.cli import main
@@ -110,8 +111,7 @@ def test_the_compiled_stream_reads_the_time_of_a_comment_header(tmp_path):
     assert main(["run", *args, "model=lagbank", "plots=none", f"out={tmp_path / 'run'}"]) == 0
     assert main(["export", *args, f"export.model={tmp_path / 'run' / 'model.pkl'}",
                  "export.format=c", f"out={code}"]) == 0
-    subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", "compensator.c",
-                    "stream.c", "-lm", "-o", "stream"], cwd=code, check=True, capture_output=True)
+    compiled(code)
     lines = sorted(daq.glob("*.txt"))[-1].read_text().splitlines(keepends=True)
     del lines[7 + 60]                                    # a sample not taken: 120 s apart
     # and the DAQ's block and header written again (a restart), left out as the reader does

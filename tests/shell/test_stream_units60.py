@@ -12,6 +12,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from cbuild import compiled
 from conftest import FAST, refused
 from test_export import _compose, needs_cc
 from test_run_column52 import _long, _runs
@@ -51,8 +52,7 @@ def test_the_compiled_c_streams_a_labs_file_in_degf_k_mm_and_minutes_as_replay(t
     common, code = _exported(tmp_path, path)
     assert code == 0
     folder = tmp_path / "code"
-    subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", "compensator.c",
-                    "stream.c", "-lm", "-o", "stream"], cwd=folder, check=True, capture_output=True)
+    compiled(folder)
     cfg = _compose(*common, "model=lagbank", "monitor.adaptive=false", "track=false")
     ds, train_ids, test_ids, _ = read_streamed(cfg)
     assert test_ids == ["Lauf_3", "Lauf_4"]
@@ -81,9 +81,7 @@ def test_the_compiled_c_streams_a_labs_file_in_degf_k_mm_and_minutes_as_replay(t
     assert main(["export", *common, "monitor.adaptive=false", "adapt.method=bias",
                  "export.format=c", "track=false", f"export.model={tmp_path / 'run' / 'model.pkl'}",
                  f"out={tmp_path / 'adapt'}"]) == 0
-    subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", "compensator.c",
-                    "stream.c", "-lm", "-o", "stream"], cwd=tmp_path / "adapt", check=True,
-                   capture_output=True)
+    compiled(tmp_path / "adapt")
     learned = _stream(tmp_path / "adapt" / "stream", raw)
     frame = pd.read_csv(io.StringIO(raw), sep=";", decimal=",")
     frame["dX [mm]"] *= 1e3

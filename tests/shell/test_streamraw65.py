@@ -12,6 +12,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from cbuild import compiled
 from conftest import FAST
 from test_export import needs_cc
 from test_stranger65 import _compiled_stream_equals_its_pack
@@ -55,8 +56,7 @@ def _mlr_stream(tmp_path, common) -> Path:
     assert main(["export", *common, "track=false", "export.format=c", "export.check=false",
                  f"export.model={tmp_path / 'run' / 'model.pkl'}", f"out={tmp_path / 'code'}"]) == 0
     code = tmp_path / "code"
-    subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", "compensator.c",
-                    "stream.c", "-lm", "-o", "stream"], cwd=code, check=True, capture_output=True)
+    compiled(code)
     return code
 
 
