@@ -1,0 +1,188 @@
+"""A train-side check for ``model.diagnosed``'s lags: the diagnosed candidate must also beat MLR
+on the start of a one-record train split (issue 34; stop 101, auto101; follow-up of
+``bench_autodiag100.py``, TRACED: key on, 6 of 36 seen records > 2 % worse, CPU 1.93x).
+
+The rule (``AutoRegressor(start_checked=...)``, ``conf/model/auto.yaml``
+``model.estimator.start_checked: [diagnosed]``): where auto's folds are one record's (one train
+campaign; ``forward`` or ``late_blocks``: no fold scores the record's start), each named candidate
+that was validated is fitted once more on the record less its first quarter
+(``auto.START_FRACTION``), MLR alike, and the record is predicted from its start; a candidate whose
+mean squared error on that first quarter exceeds MLR's is skipped (``start_check_``, the reason in
+``skipped_``).  Folds over campaigns predict every held-out campaign from its start already: there
+nothing is added.  The check fits only where the search accepted an effect for the target (the
+candidate exists only there).  Traced on the SEEN records (``/tmp/auto101/explore*.py``, the
+search's accepted effects, key on): the first-quarter ratio is 1.92 / 10.3 on col1514 E_X / E_Z,
+9.7 on swiss303 E_X / E_Y, 20.8 on mill1514 E_Y, 1.44 on lr9641 E_Z (the losses), 0.63-0.92 on
+the wins col1403 E_Y, col1514 E_Y, col6511 E_Y/E_Z/E_Z_mid, lr9587, lr9639; but 0.78 on col5791 E_X
+and 0.64 on sw9696 E_X (losses it cannot see: their every time block of the train record wins,
+leave-block-out 0.35-0.46 on sw9696), and 6.5 on swiss5454 (a win it drops).  The same quarter
+over every campaign of a multi-campaign record flagged the planted wins (tsc_a2 E_dZ1 3.4,
+mtc_a E_dX 1.2): hence one record only.
+
+Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the tree with the rule)::
+
+    python benchmarks/bench_auto101.py seen ROOT MAIN_WORK OFF OUT RECORD ...   # key on, the check
+    python benchmarks/bench_auto101.py table OUT RECORD ...                     # the bar's figures
+    python benchmarks/bench_auto101.py fresh ROOT OUT RECORD ...                # FRESH: off and on
+
+``seen``: each record fitted key on (``model.diagnosed=true``) with the rule, as
+bench_autodiag100 fits it (same seeds, splits and scoring: a 22-table record on its NEW campaigns,
+``bench_auto98.with_new_campaigns``, MAIN_WORK = ``/tmp/auto96/seen``; any other on its own test);
+key off is bench_autodiag100's measured row (OFF = its ``seen22`` or ``ways`` directory, the
+src of key off unchanged by the rule).  A record where bench_autodiag100's search accepted nothing
+is that row unchanged (the search is untouched: key on = key off), not refitted.  A target where
+the check skipped the candidate and the votes gave it nothing must give key off's RMSE again
+(``reproduced``, to 1e-9).  OUT/RECORD.json: per target the RMSE, ``start_check_``, the votes;
+the CPU of build (the search) and fit.  ``table``: the record figure (mean over targets of key on
+/ mean of key off), geometric mean, records > 2 % worse, 22-table losers (auto / stored MLR > 1)
+and CPU sums.  ``fresh``: ``bench_autodiag100.ways`` on the FRESH records (off and on fitted).
+
+BAR (the brief's, committed before the FRESH seeds 9795-9804 are simulated; the default of
+``model.diagnosed`` turns to true only if all four hold):
+
+* A1 (the 36 seen records of bench_autodiag100: its 22-table and its 14 ``ways`` records): no
+  record's key-on / key-off figure > 1.02, and their geometric mean <= 0.95.
+* A2 (22-table): losers (key-on auto / MLR > 1.0) <= 6 (main 8, key on without the check 5).
+* A3 (22-table): CPU build + fit summed, key on with the check <= 1.5 x key off (118.0 s,
+  bench_autodiag100); or, the brief's alternative, the check costs only where diagnosis runs: its
+  fits only on targets with an accepted effect, and key on with the check within 1.10 x
+  bench_autodiag100's key on without it (227.9 s).
+* A4 (FRESH 9795-9804: lr9795-9797, sw9798-9799, col9800-9801, year6_9802, climate9803, lab9804,
+  bench_auto98's FRESH), scored ONCE with ``fresh``: no record's on / off > 1.02, geometric mean
+  <= 1.0.
+The FRESH seeds are simulated only if A1-A3 hold on the seen records (else they stay fresh, as
+bench_autodiag100 left them).  A1-A4: KEPT with the default flipped; else REFUSED
+(``benchmarks/auto101_rule.patch``, src reverted).
+
+Measured: (below, after the run).
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+HERE = Path(__file__).resolve().parent
+sys.path[:0] = [str(HERE)]
+os.environ.setdefault("OMP_NUM_THREADS", "1")
+from _cli import run_commands  # noqa: E402
+from bench_auto96 import _geo  # noqa: E402
+from bench_auto98 import _rmse  # noqa: E402   (NaN rows left out)
+from bench_autodiag100 import _measured, _predicted, _setup  # noqa: E402
+
+
+def _fit_on(cfg, ds, train) -> tuple:
+    """``(auto fitted key on with the rule, report)``: CPU of build (the search) and fit, the
+    accepted effects, per target the votes and ``start_check_``."""
+    from omegaconf import open_dict
+
+    from thermocomp.shell.builders import build_compensator
+
+    with open_dict(cfg):
+        cfg.model.diagnosed = True
+    t0 = time.process_time()
+    built = build_compensator(cfg, ds=ds)
+    rep = {"cpu_search": time.process_time() - t0}
+    diagnosed = built.estimator.candidates["diagnosed"]
+    rep["accepted"] = {t: [e["effect"] for e in a["accepted"]] for t, a in (diagnosed.about or {}).items()}
+    t0 = time.process_time()
+    on = built.fit(train)
+    rep["cpu_fit_on"] = time.process_time() - t0
+    rep["cpu_on"] = rep["cpu_search"] + rep["cpu_fit_on"]
+    rep["weights_on"] = {t: e.weights_ for t, e in on.estimators_.items()}
+    rep["start_check"] = {t: getattr(e, "start_check_", {}) for t, e in on.estimators_.items()}
+    return on, rep
+
+
+def seen(root: str, main_work: str, off_dir: str, out: str, *records: str) -> None:
+    """Key on with the rule per record (module doc): OUT/RECORD.json."""
+    from bench_auto91 import stored_targets
+    from bench_auto98 import with_new_campaigns
+
+    work = Path(main_work).resolve()
+    Path(out).mkdir(parents=True, exist_ok=True)
+    for name in records:
+        path = Path(out, f"{name}.json")
+        if path.exists():
+            continue
+        off = json.loads(Path(off_dir, f"{name}.json").read_text())
+        if not any(off["accepted"].values()):      # nothing accepted: key on is key off
+            rep = {**off, "refitted": False}
+            path.write_text(json.dumps(rep, indent=1, default=float))
+            continue
+        table22 = "mlr" in next(iter(off["targets"].values()))
+        if table22:
+            cfg, ds, train, full, ids = with_new_campaigns(root, work, name)
+        else:
+            cfg, ds, train = _setup(root, name)
+        comp, rep = _fit_on(cfg, ds, train)
+        rep.update(refitted=True, cpu_off=off["cpu_off"], targets={})
+        if table22:
+            pred = _predicted(comp, full, ids)
+            scored = {t: (y_new[new], pred[t][new]) for t, _, _, y_new, new, _ in stored_targets(work, name)}
+        else:
+            ids = ds.ids("test")
+            y, pred = _measured(comp, ds, ids), _predicted(comp, ds, ids)
+            scored = {t: (y[t], pred[t]) for t in y}
+        for t, (y_t, p_t) in scored.items():
+            cell = {k: v for k, v in off["targets"][t].items() if k != "on"}
+            cell["on"] = _rmse(y_t, p_t)
+            if not rep["weights_on"][t].get("diagnosed"):     # no diagnosed vote: key off's model
+                cell["reproduced"] = abs(cell["on"] - cell["off"]) < 1e-9
+            rep["targets"][t] = cell
+        path.write_text(json.dumps(rep, indent=1, default=float))
+        print(f"{name}: cpu on {rep['cpu_on']:.1f} s (search {rep['cpu_search']:.1f}); "
+              + "; ".join(f"{t} {c['off']:.4g} -> {c['on']:.4g} start {rep['start_check'][t]}"
+                          for t, c in rep["targets"].items() if rep["accepted"].get(t)), flush=True)
+
+
+def table(out: str, *records: str) -> None:
+    """Per record key on (the rule) / key off, then the bar's figures (module doc)."""
+    ratios, worse, losers, cpu = [], [], [0, 0], [0.0, 0.0]
+    for name in records:
+        rep = json.loads(Path(out, f"{name}.json").read_text())
+        cells = list(rep["targets"].values())
+        off, on = np.mean([c["off"] for c in cells]), np.mean([c["on"] for c in cells])
+        ratios.append(on / off)
+        line = f"{name:11s} on/off {on / off:.4f}  mean RMSE {off:.4g} -> {on:.4g}"
+        if "mlr" in cells[0]:
+            mlr = np.mean([c["mlr"] for c in cells])
+            losers[0] += off / mlr > 1
+            losers[1] += on / mlr > 1
+            cpu[0] += rep["cpu_off"]
+            cpu[1] += rep["cpu_on"]
+            line += f"  auto/MLR off {off / mlr:.3f} on {on / mlr:.3f}"
+        if on / off > 1.02:
+            worse.append(name)
+        skipped = {t: round(v["diagnosed"], 3) for t, v in rep.get("start_check", {}).items()
+                   if v.get("diagnosed", 0) > 1}
+        same = all(c.get("reproduced", True) for c in cells)
+        print(f"{line}  cpu {rep['cpu_off']:.1f} -> {rep['cpu_on']:.1f} s  refitted {rep.get('refitted', False)}"
+              f"  skipped by the check {skipped or 'none'}  reproduced {same}")
+    print(f"{len(ratios)} records: geo on/off {_geo(ratios):.4f}, worst {max(ratios):.4f}, "
+          f"> 2 % worse {len(worse)} {worse}")
+    if cpu[0]:
+        print(f"22-table part: losers off {losers[0]} on {losers[1]}; CPU off {cpu[0]:.1f} s on {cpu[1]:.1f} s "
+              f"({cpu[1] / cpu[0]:.2f} x)")
+
+
+def fresh(root: str, out: str, *records: str) -> None:
+    """FRESH records (A4): key off and key on with the rule, on their own test
+    (``bench_autodiag100.ways``; ``table OUT ...`` scores them)."""
+    from bench_autodiag100 import ways
+
+    ways(root, out, *records)
+
+
+def main(argv: list[str]) -> int:
+    commands = {"seen": seen, "table": table, "fresh": fresh}
+    return run_commands(__doc__, commands, argv, cpu=sys.stderr)
+
+
+if __name__ == "__main__":
+    raise SystemExit(main(sys.argv[1:]))
