@@ -162,13 +162,14 @@ def table(out: str, *records: str) -> None:
         skipped = {t: round(v["diagnosed"], 3) for t, v in rep.get("start_check", {}).items()
                    if v.get("diagnosed", 0) > 1}
         same = all(c.get("reproduced", True) for c in cells)
-        print(f"{line}  cpu {rep['cpu_off']:.1f} -> {rep['cpu_on']:.1f} s  refitted {rep.get('refitted', False)}"
-              f"  skipped by the check {skipped or 'none'}  reproduced {same}")
+        print(f"{line}  cpu {rep['cpu_off']:.1f} -> {rep['cpu_on']:.1f} s  "
+              f"refitted {rep.get('refitted', False)}  skipped by the check {skipped or 'none'}  "
+              f"reproduced {same}")
     print(f"{len(ratios)} records: geo on/off {_geo(ratios):.4f}, worst {max(ratios):.4f}, "
           f"> 2 % worse {len(worse)} {worse}")
     if cpu[0]:
-        print(f"22-table part: losers off {losers[0]} on {losers[1]}; CPU off {cpu[0]:.1f} s on {cpu[1]:.1f} s "
-              f"({cpu[1] / cpu[0]:.2f} x)")
+        print(f"22-table part: losers off {losers[0]} on {losers[1]}; CPU off {cpu[0]:.1f} s "
+              f"on {cpu[1]:.1f} s ({cpu[1] / cpu[0]:.2f} x)")
 
 
 def fresh(root: str, out: str, *records: str) -> None:
