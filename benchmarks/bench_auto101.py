@@ -71,7 +71,6 @@ HERE = Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE)]
 os.environ.setdefault("OMP_NUM_THREADS", "1")
 from _cli import run_commands  # noqa: E402
-from bench_auto96 import _geo  # noqa: E402
 from bench_auto98 import _rmse  # noqa: E402   (NaN rows left out)
 from bench_autodiag100 import _measured, _predicted, _setup  # noqa: E402
 
@@ -99,17 +98,19 @@ def _fit_on(cfg, ds, train) -> tuple:
     return on, rep
 
 
+def _pending(out: str, records) -> list:
+    """``(record, OUT/record.json)`` of the records not measured yet (OUT made if missing)."""
+    Path(out).mkdir(parents=True, exist_ok=True)
+    return [(n, Path(out, f"{n}.json")) for n in records if not Path(out, f"{n}.json").exists()]
+
+
 def seen(root: str, main_work: str, off_dir: str, out: str, *records: str) -> None:
     """Key on with the rule per record (module doc): OUT/RECORD.json."""
     from bench_auto91 import stored_targets
     from bench_auto98 import with_new_campaigns
 
     work = Path(main_work).resolve()
-    Path(out).mkdir(parents=True, exist_ok=True)
-    for name in records:
-        path = Path(out, f"{name}.json")
-        if path.exists():
-            continue
+    for name, path in _pending(out, records):
         off = json.loads(Path(off_dir, f"{name}.json").read_text())
         if not any(off["accepted"].values()):      # nothing accepted: key on is key off
             rep = {**off, "refitted": False}
@@ -142,34 +143,23 @@ def seen(root: str, main_work: str, off_dir: str, out: str, *records: str) -> No
 
 
 def table(out: str, *records: str) -> None:
-    """Per record key on (the rule) / key off, then the bar's figures (module doc)."""
-    ratios, worse, losers, cpu = [], [], [0, 0], [0.0, 0.0]
+    """bench_autodiag100's table of OUT (key on / off per record, geometric mean, > 2 % worse,
+    22-table losers and CPU sums: the bar's figures), then per record the records > 2 % worse and
+    the targets the check skipped (its first-quarter MSE ratio)."""
+    from bench_autodiag100 import table as figures
+
+    figures(out, *records)
     for name in records:
         rep = json.loads(Path(out, f"{name}.json").read_text())
         cells = list(rep["targets"].values())
-        off, on = np.mean([c["off"] for c in cells]), np.mean([c["on"] for c in cells])
-        ratios.append(on / off)
-        line = f"{name:11s} on/off {on / off:.4f}  mean RMSE {off:.4g} -> {on:.4g}"
-        if "mlr" in cells[0]:
-            mlr = np.mean([c["mlr"] for c in cells])
-            losers[0] += off / mlr > 1
-            losers[1] += on / mlr > 1
-            cpu[0] += rep["cpu_off"]
-            cpu[1] += rep["cpu_on"]
-            line += f"  auto/MLR off {off / mlr:.3f} on {on / mlr:.3f}"
-        if on / off > 1.02:
-            worse.append(name)
+        ratio = np.mean([c["on"] for c in cells]) / np.mean([c["off"] for c in cells])
         skipped = {t: round(v["diagnosed"], 3) for t, v in rep.get("start_check", {}).items()
                    if v.get("diagnosed", 0) > 1}
-        same = all(c.get("reproduced", True) for c in cells)
-        print(f"{line}  cpu {rep['cpu_off']:.1f} -> {rep['cpu_on']:.1f} s  "
-              f"refitted {rep.get('refitted', False)}  skipped by the check {skipped or 'none'}  "
-              f"reproduced {same}")
-    print(f"{len(ratios)} records: geo on/off {_geo(ratios):.4f}, worst {max(ratios):.4f}, "
-          f"> 2 % worse {len(worse)} {worse}")
-    if cpu[0]:
-        print(f"22-table part: losers off {losers[0]} on {losers[1]}; CPU off {cpu[0]:.1f} s "
-              f"on {cpu[1]:.1f} s ({cpu[1] / cpu[0]:.2f} x)")
+        kept = {t: round(v["diagnosed"], 3) for t, v in rep.get("start_check", {}).items()
+                if 0 < v.get("diagnosed", 0) <= 1}
+        print(f"{name:11s} {'> 2 % WORSE ' if ratio > 1.02 else ''}refitted {rep.get('refitted', False)}  "
+              f"skipped by the check {skipped or 'none'}  passed {kept or 'none'}  "
+              f"reproduced {all(c.get('reproduced', True) for c in cells)}")
 
 
 def fresh(root: str, out: str, *records: str) -> None:
