@@ -49,9 +49,6 @@ FORWARD_ONE = "forward-chaining (one record)"
 MIN_IN_RANGE_ROWS = 20   # validation_rows='in_range': a fold with fewer in-range rows is scored whole
 BLOCKS_ONE = {"blocks": "leave-block-out (one record)", "late_blocks": "leave-late-block-out (one record)"}
 CAMPAIGN_FOLDS = ("blocked forward", "leave-campaigns-out")   # folds holding out whole campaigns
-# start_checked: the share of one record's rows at its start held out (auto101's trace on the seen
-# one-campaign records: the first quarter, the later rows fitted, the record predicted from its start)
-START_FRACTION = 0.25
 
 # a candidate that does not apply (ATI over fewer ambient levels) is said once a run, not once
 # per target each fit of auto tells it (notes100)
@@ -131,14 +128,6 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         A candidate whose folds take longer than this is not validated further
         (skipped, its time recorded): a time budget for the slow families.
     combine : {'vote', 'best'}, default 'vote'
-    start_checked : list of candidate names, default ()
-        (extension, auto101) With one train record whose folds never score its start (``forward``,
-        ``late_blocks``), each named candidate that was validated is also fitted on the record
-        less its first :data:`START_FRACTION` and the record predicted from its start, MLR
-        alike; a candidate whose mean squared error on those first rows exceeds MLR's is
-        skipped (``start_check_``: that ratio per candidate).  The forward folds fit on the
-        record's start and score only later rows: an effect's law that holds there but not at
-        the start is never seen out of fold.  ``model.diagnosed`` names its candidate here.
     keep_oof : bool, default False
         Pickle the candidates' out-of-fold predictions with the model (``oof_``, ``oof_y_``,
         ``oof_fold_``, ``oof_folds_``, ``oof_in_range_``, ``oof_campaign_``: the campaign code of
@@ -191,7 +180,6 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
                    "combine": choice("vote", "best"), "keep_oof": choice(True, False),
                    "uncompensated": choice("zero", "keep"), "fallback": choice("one_se", "none"),
                    "validation_rows": choice("all", "in_range")}
-    start_checked = ()       # a model pickled before the key
 
     uncompensated = "keep"   # a model pickled before the key: refitted as it was fitted
     fallback = "none"        # likewise
@@ -201,8 +189,7 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
                  max_seconds: float | None = None, min_gain_pct: float = 1.0, chosen=None,
                  val_scores=None, given_scores=None, combine: str = "vote", keep_oof: bool = False,
                  one_record: str = "forward", validation_rows: str = "all",
-                 uncompensated: str = "zero", fallback: str = "one_se", start_checked=()):
-        self.start_checked = start_checked
+                 uncompensated: str = "zero", fallback: str = "one_se"):
         self.fallback = fallback
         self.uncompensated = uncompensated
         self.validation_rows = validation_rows
@@ -252,7 +239,6 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
                 _said(name, self.fit_seconds_.get(name, 0.0), self.validation_.get(name), why)
             if why is not None:
                 self.skipped_[name] = why
-        self._check_start(X, y, context, runs)
         self.validated_as_ = _validated_as(self.oof_, context, groups, folds)
         held = np.any([score for *_, score in folds], axis=0)
         last = persistence(y, groups)
@@ -457,39 +443,16 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
             return LeaveBlockOut(self.n_folds, start, self.gap_blocks).folds(n)
         return BlockedForward(self.n_folds, self.min_train_fraction, self.gap_blocks).folds(groups, n)
 
-    def _check_start(self, X, y, context, runs: dict) -> None:
-        """``start_checked``: skip a named candidate that loses to MLR on the start of one record
-        (class doc), where no fold scored it; ``start_check_``: its MSE there over MLR's."""
-        self.start_check_ = {}
-        names = [n for n in self.start_checked or () if n in self.oof_ and n != BASELINE]
-        if not names or self.scheme_ in CAMPAIGN_FOLDS or self.scheme_ == BLOCKS_ONE["blocks"]:
-            return
-        rows = np.arange(len(y))
-        start = rows < int(np.ceil(START_FRACTION * len(y)))
-        fold = (~start, np.ones(len(y), bool), start & np.isfinite(y))
-        if not fold[2].any() or not fold[0].any():
-            return
-        base = _fold_predicted(runs[BASELINE], X, y, context, *fold)
-        for name in names:
-            mine = _fold_predicted(runs[name], X, y, context, *fold)
-            ratio = (np.inf if isinstance(mine, str) or isinstance(base, str) else
-                     float(np.mean((y[fold[2]] - mine) ** 2) / np.mean((y[fold[2]] - base) ** 2)))
-            self.start_check_[name] = ratio
-            if ratio > 1:
-                self.skipped_[name] = (f"loses to MLR on the record's first {START_FRACTION:.0%} (fitted "
-                                       f"on the rest, predicted from the start): MSE {ratio:.3g} x "
-                                       "MLR's (start_checked)")
-                del self.oof_[name], self.validation_[name]
-                logger.info("auto: %s %s", name, self.skipped_[name])
-
     def _validate(self, name, est, X, y, context, folds) -> str | None:
         """Record ``name``'s pooled validation RMSE; the reason when it cannot be validated."""
         residual, predicted, t0 = [], [], time.perf_counter()
         for fit, pred, score in folds:
-            yhat = _fold_predicted(est, X, y, context, fit, pred, score)
-            if isinstance(yhat, str):
-                return yhat
-            predicted.append(yhat)
+            try:
+                model = clone(est).fit(X[fit], y[fit], context=subset(context, fit))
+                yhat = np.asarray(model.predict(X[pred], context=subset(context, pred)), float)
+            except (ValueError, ArithmeticError, np.linalg.LinAlgError) as exc:
+                return f"cannot fit: {' '.join(str(exc).split())}"
+            predicted.append(yhat[score[pred]])
             residual.append(y[score] - predicted[-1])
             spent = time.perf_counter() - t0
             over = self.max_seconds is not None and spent > float(self.max_seconds)
@@ -546,17 +509,6 @@ def _said(name: str, seconds: float, score: float | None, why: str | None) -> No
     what = f"skipped, {why}" if why is not None else f"validation RMSE {score:.4g}"
     logger.log(logging.INFO if seconds >= SAY_AFTER_S else logging.DEBUG,
                "auto: %s validated in %.0f s: %s", name, seconds, what)
-
-
-def _fold_predicted(est, X, y, context, fit, pred, score):
-    """``est`` fitted on the rows ``fit``, its prediction of the rows ``pred`` (free run from their
-    start) on the rows ``score``; the reason as a string when it cannot fit."""
-    try:
-        model = clone(est).fit(X[fit], y[fit], context=subset(context, fit))
-        yhat = np.asarray(model.predict(X[pred], context=subset(context, pred)), float)
-    except (ValueError, ArithmeticError, np.linalg.LinAlgError) as exc:
-        return f"cannot fit: {' '.join(str(exc).split())}"
-    return yhat[score[pred]]
 
 
 def in_range_rows(in_range: np.ndarray, fold: np.ndarray, min_rows: int = MIN_IN_RANGE_ROWS,
