@@ -22,12 +22,12 @@ mean squared error on that first quarter exceeds MLR's is skipped (``start_check
 ``skipped_``).  Folds over campaigns predict every held-out campaign from its start already: there
 nothing is added.  The check fits only where the search accepted an effect for the target (the
 candidate exists only there).  Traced on the SEEN records (``/tmp/auto101/explore*.py``, the
-search's accepted effects, key on): the first-quarter ratio is 1.92 / 10.3 on col1514 E_X / E_Z,
-9.7 on swiss303 E_X / E_Y, 20.8 on mill1514 E_Y, 1.44 on lr9641 E_Z (the losses), 0.63-0.92 on
-the wins col1403 E_Y, col1514 E_Y, col6511 E_Y/E_Z/E_Z_mid, lr9587, lr9639; but 0.78 on col5791 E_X
-and 0.64 on sw9696 E_X (losses it cannot see: their every time block of the train record wins,
-leave-block-out 0.35-0.46 on sw9696), and 6.5 on swiss5454 (a win it drops).  The same quarter
-over every campaign of a multi-campaign record flagged the planted wins (tsc_a2 E_dZ1 3.4,
+search's accepted effects, key on): the first quarter's RMSE over MLR's is 1.92 / 10.3 on col1514
+E_X / E_Z, 9.7 on swiss303 E_X / E_Y, 20.8 on mill1514 E_Y, 1.44 on lr9641 E_Z (the losses),
+0.40-0.995 on the wins col1403 E_Y, col1514 E_Y, col6511 E_Y/E_Z/E_Z_mid, lr9587, lr9639; but 0.78
+on col5791 E_X and 0.64 on sw9696 E_X (losses it cannot see: on sw9696 every leave-block-out block
+of the train record wins, MSE 0.35-0.46 x MLR's), and 6.5 on swiss5454 (a win it drops).  The same
+quarter over every campaign of a multi-campaign record flagged the planted wins (tsc_a2 E_dZ1 3.4,
 mtc_a E_dX 1.2): hence one record only.
 
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the tree with the rule)::
