@@ -26,9 +26,9 @@ the same again with that key (the lab's fix as it is told).
 ``bracket``: three small CSVs of SEED (40 rows of 60 s, two temperatures, one error in µm):
 ``empty.csv`` with ``T_spindle [front, no sensor]`` all empty, ``leer.csv`` with ``Reserve
 (leer)`` all empty, ``mixed.csv`` with a filled ``T3 (rear)`` (a note, read) beside an empty
-``Reserve (leer)`` and an empty ``T9 [°C]``; per file ``init FILE`` and ``run data.path=FILE data.roles.error=[E_*]``:
-exit, the stderr lines saying "bracket read as part of the name", the ``thermocomp: error``
-lines, and the files under ``out``.
+``Reserve (leer)`` and an empty ``T9 [°C]``; per file ``init FILE`` and ``run data.path=FILE
+data.roles.error=[E_*]``: exit, the stderr lines saying "bracket read as part of the name",
+the ``thermocomp: error`` lines, and the files under ``out``.
 
 BAR (written and committed BEFORE the rule is written and before the fresh cases are run;
 seen: fl_thermal with 02b2e099's mlr model.pkl, replayed by 7676398c (replay RMSE = 02b2e099's:
@@ -43,8 +43,8 @@ A1. (a) An old model.pkl on its own record: replay (adaptive and plain) and the 
 B1. (b) ``bracket``: a file whose only fault is an empty noted column exits 2 (init and run)
     with ONE ``thermocomp: error`` line, the refusal naming the file, the column (its header)
     and that every cell is empty; no "bracket read as part of the name" line for that column
-    (stderr's other lines as main's); nothing written under ``out``.  A filled noted column (``T3 (rear)``) is still
-    said once where the run reads it.  Seen seed 101; fresh seed 10103, scored once.
+    (stderr's other lines as main's); nothing written under ``out``.  A filled noted column
+    (``T3 (rear)``) is still said once where the run reads it.  Seen seed 101; fresh seed 10103, scored once.
 B2. bench_notes100's ``init`` of audit100's b.csv and amb.csv and bench_refusals100's ``tries``
     of seen 9921: every line as on main but the dropped note of the empty ``Reserve (leer)``.
 B3. Tests (<= 5 s CPU) that fail on 7676398c; lint, benchmarks_cli, notes100, refusals100,
@@ -63,9 +63,7 @@ run 3); mixed.csv: notes for 'T3 (rear)' and 'Reserve (leer)', then one refusal 
 
 from __future__ import annotations
 
-import contextlib
 import io
-import os
 import re
 import subprocess
 import sys
@@ -79,25 +77,12 @@ sys.path[:0] = [str(HERE)]
 from _cli import run_commands  # noqa: E402
 from bench_data88 import LIGHT, _cli, _refusal  # noqa: E402
 from bench_data92 import deployed_and_fed  # noqa: E402
+from bench_data95 import _tree  # noqa: E402  (the CLI runs another tree's src in a block)
 
 REPO = HERE.parent
 FL = REPO / "datasets" / "fl_thermal" / "spindle_test.csv"
 NOTE_SAID = "bracket read as part of the name"
 FAILED = re.compile(r"Traceback|KeyError|AttributeError")
-
-
-@contextlib.contextmanager
-def _src(path: Path):
-    """The CLI's subprocesses run the tree ``path`` (its ``src``) while in the block."""
-    was = os.environ.get("PYTHONPATH")
-    os.environ["PYTHONPATH"] = str(path)
-    try:
-        yield
-    finally:
-        if was is None:
-            os.environ.pop("PYTHONPATH")
-        else:
-            os.environ["PYTHONPATH"] = was
 
 
 def _old_tree(root: Path, commit: str) -> Path:
@@ -124,7 +109,7 @@ def _renamed_copy(root: Path) -> Path:
 
 def _deployed(tree: Path, search: list[str], out: Path, record: Path) -> dict:
     """bench_data92's ``deployed_and_fed`` of ``out/model.pkl`` by ``tree``'s src."""
-    with _src(tree / "src"):
+    with _tree(str(tree / "src")):
         row = deployed_and_fed(search, out, record)
     if "fed" in row:
         fed = row.pop("fed")
@@ -172,7 +157,7 @@ def pickled(root: str, commit: str, family: str, renamed: str = "") -> None:
     search = ["data=fl_thermal", *LIGHT] + ([f"data.path={record}"] if renamed else [])
     made = base / f"{commit}-{family}{'-renamed' if renamed else ''}"
     if not (made / "model.pkl").exists():
-        with _src(tree / "src"):
+        with _tree(str(tree / "src")):
             done = _cli("run", *search, f"model={family}", f"out={made}")
         print(f"{commit} run {family}: exit {done.returncode} "
               f"{_refusal(done)[:300] if done.returncode else ''}", flush=True)
