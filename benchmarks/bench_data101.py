@@ -22,7 +22,9 @@ and this one, bench_data92's ``deployed_and_fed`` of that model.pkl on the same 
 adaptive and plain, ``export export.format=c``, the C built and fed the record's raw file):
 each stage's exit and refusal, and max |this - old| of the replay RMSEs and the C's
 corrections.  Where this tree refuses naming ``data.columns={...}`` that keeps the old names,
-the same again with that key (the lab's fix as it is told).
+the same again with that key (the lab's fix as it is told), and where Hydra refuses it on the
+command line (a map's key beyond ASCII, ``°C``) with its entries in a data config file
+(``defaults: [fl_thermal]``, as the second refusal tells; harness added after the fresh run).
 ``bracket``: three small CSVs of SEED (40 rows of 60 s, two temperatures, one error in µm):
 ``empty.csv`` with ``T_spindle [front, no sensor]`` all empty, ``leer.csv`` with ``Reserve
 (leer)`` all empty, ``mixed.csv`` with a filled ``T3 (rear)`` (a note, read) beside an empty
@@ -59,6 +61,35 @@ replay = plain = 4.606174652924943 / 3.956404670961124 / 4.350733096531935 / 4.3
 at init and run; empty.csv / leer.csv: the note line, then the refusal (init 2 stderr lines,
 run 3); mixed.csv: notes for 'T3 (rear)' and 'Reserve (leer)', then one refusal naming
 'Reserve (leer)' and 'T9 [°C]' empty; nothing written under out; 52 s wall.
+
+SCORED (bar c3c774e4 unchanged; rule 43d0e724; main = 7676398c's src by ``git archive``; 2 cores
+shared, load ~15, ``nice``):
+A1 fresh, once.  ``pickled ROOT 02b2e099 lagbank`` (pre-names97): both trees exit 0 at every
+   stage, replay = plain = 5.408662043196664 / 5.021721670392852 / 4.607038937280193 /
+   6.0527241141851995 / 2.824593144332179 µm, max |this - old| RMSE 0, C 0 µm (11115 rows).
+   ``pickled ROOT 34af1fcb mlr renamed`` (pre-data95, 't1 Temperatur(°C)' .. 't16 ...'): the old
+   tree exits 0 (replay 4.606174652924943 / ... / 3.0537871860988277 µm, as 02b2e099's mlr);
+   this tree: replay exit 2, "file .../fl_renamed.csv: replay.model=.../model.pkl:
+   T_t1_Temperatur, ... are no columns of ..., the derived names are T_t1 ('t1 Temperatur(°C)'),
+   ...: name them so, or keep the old names, data.columns={...}" -- file, model, each column, no
+   KeyError / traceback.  That key on the command line: exit 2 again, Hydra cannot read a map's
+   key beyond ASCII (°C), and the refusal then says to write it into a data config file (a
+   second try: the data95 refusal does not say so itself).  Harness added after this fresh run
+   (the rule untouched): the 16 entries in a data config file (``defaults: [fl_thermal]``):
+   replay, plain and C = the old tree's, max |d| 0 µm.  A1 met; (a) TRACED: no src change.
+B1 fresh seed 10103, once: main (7676398c) as on seed 101 (empty.csv / leer.csv: the note then
+   the refusal; mixed.csv: 2 notes then the refusal); rule: each file exit 2 at init and run, ONE
+   ``thermocomp: error`` line naming file, column, header and "every cell is empty", no note for
+   the empty column (init 1 stderr line, run 2), nothing written under out; mixed.csv still says
+   'T3 (rear)' once.  Seen 101: the same.  Met.
+B2 bench_notes100 ``init`` b.csv / amb.csv: stderr and table identical main -> rule (3 / 1
+   lines; both notes of b.csv said once).  bench_refusals100 ``tries`` 9921: both tries equal
+   (the gathered refusal's text, its line exit 0), yaml and column table equal, mlr 1.63843805 /
+   1.09911010, lagbank 1.24522030 / 0.92571841 µm (|d| 0).  Met.
+B3 tests/core/test_notes100.py: +1 case (0.14 s call; fails on 7676398c, the note said before the
+   refusal); suites in the report.  Met.
+Wall: ``pickled`` 4-5 min a case (11115 rows through replay x2 and the C, two trees), ``bracket``
+~1.7 min (6 CLI runs).
 """
 
 from __future__ import annotations
@@ -175,6 +206,19 @@ def pickled(root: str, commit: str, family: str, renamed: str = "") -> None:
                           record)
         _said(f"this tree with data.columns={kept[1][:80]}...", again)
         _compared(old, again, "this tree, the key given")
+        if "into a config file" in again.get("said", ""):    # (Hydra: a key beyond ASCII)
+            conf = base / "myconf" / "data"
+            conf.mkdir(parents=True, exist_ok=True)
+            entries = dict(re.findall(r"'([^']+)': (\w+)", kept[1]))
+            (conf / "kept.yaml").write_text(
+                "defaults: [fl_thermal]\n" + f"path: {record}\n"
+                + "columns: {" + ", ".join(f"'{k}': {v}" for k, v in entries.items()) + "}\n",
+                encoding="utf-8")
+            filed = [f"hydra.searchpath=[file://{conf.parent}]", "data=kept", *LIGHT]
+            again = _deployed(REPO, filed, _model_copy(made, made.with_name(made.name + "-filed")),
+                              record)
+            _said(f"this tree with the {len(entries)} entries in a data config file", again)
+            _compared(old, again, "this tree, the key in a config file")
 
 
 def bracket_files(base: Path, seed: int) -> list[Path]:
