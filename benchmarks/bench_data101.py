@@ -88,6 +88,11 @@ B2 bench_notes100 ``init`` b.csv / amb.csv: stderr and table identical main -> r
    1.09911010, lagbank 1.24522030 / 0.92571841 µm (|d| 0).  Met.
 B3 tests/core/test_notes100.py: +1 case (0.14 s call; fails on 7676398c, the note said before the
    refusal); suites in the report.  Met.
+Follow-up, NOT applied (found by A1's fresh run; the rule scored is 43d0e724's):
+``benchmarks/data101_followup.patch`` -- the data95 refusal of an earlier name adds, where a header
+is beyond ASCII, the key as a data config file's lines (base.errors.config_file_form), so the
+fix takes one try, not two; test_lab_names95 (18 passed; its stored-model case fails on
+7676398c).  The lead's call.
 Wall: ``pickled`` 4-5 min a case (11115 rows through replay x2 and the C, two trees), ``bracket``
 ~1.7 min (6 CLI runs).
 """
