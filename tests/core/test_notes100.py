@@ -3,7 +3,9 @@
 audit100: ``T1 (front)``, ``Spindel (Gehäuse)`` were refused as foreign units ("unit 'front' is
 not a temperature's"), with a hint to write ``data.columns`` into the config ``init`` writes,
 which ``init``, refusing, never wrote; ``model=auto`` said why it skipped ``ati`` in
-metrics.json alone.  Both tests fail on fb0ed988.
+metrics.json alone.  Both tests fail on fb0ed988.  data101: an all-empty column whose bracket is
+a note ('Reserve (leer)') was said "read as part of the name", then refused as empty; the last
+test fails on 7676398c.
 """
 
 from __future__ import annotations
@@ -17,6 +19,7 @@ import pytest
 from thermocomp.base.errors import ThermocompError
 from thermocomp.core.context import AMBIENT_C0
 from thermocomp.core.io.options import _roles
+from thermocomp.core.io.read import read_campaign
 from thermocomp.core.io.roles import naming
 from thermocomp.core.models import MLR
 from thermocomp.core.models.auto import AutoRegressor
@@ -34,7 +37,8 @@ def test_a_note_in_brackets_is_part_of_the_name_and_an_ambiguous_one_is_refused(
     assert plan.names["Spindel (Gehäuse)"] == "T_Spindel_Gehäuse"
     assert "T_T1_front" not in plan.scales                    # no unit: °C, the contract's
     assert plan.names["T2 (K)"] == "T_T2" and plan.scales["T_T2"] == (1.0, -273.15)   # a unit
-    assert "'T1 (front)': the bracket read as part of the name, no unit: °C assumed" in caplog.text
+    # (said by the reader once the column is read: data101)
+    assert plan.noted == {"T1 (front)": "T_T1_front", "Spindel (Gehäuse)": "T_Spindel_Gehäuse"}
     for note in ("(R)", "(K Kühlung)"):        # a unit not known, or a note: both readings named
         header = f"T3 {note}"
         with pytest.raises(ThermocompError) as refused:
@@ -56,3 +60,23 @@ def test_auto_says_in_the_log_why_it_skipped_ati(caplog):
         auto = AutoRegressor({"mlr": MLR(), "ati": MLR()}).fit(X, y, context=context)
     assert "span 2 ambient level(s)" in auto.skipped_["ati"]
     assert f"auto: ati skipped: {auto.skipped_['ati']}" in caplog.text
+
+
+def test_an_empty_column_with_a_note_is_refused_as_empty_and_not_said_named(tmp_path, caplog):
+    rows = [f"{60 * i},{20 + 0.1 * i:.1f},,{0.3 * i:.1f}" for i in range(12)]
+    path = tmp_path / "lab.csv"
+    path.write_text("\n".join(["time [s],T1 (front),Reserve (leer),dX [µm]", *rows]) + "\n",
+                    encoding="utf-8")
+    cfg = {"roles": {"error": ["dX*"]}}
+    with caplog.at_level(logging.INFO, logger="thermocomp"), pytest.raises(ThermocompError) as no:
+        read_campaign(path, cfg)
+    said = str(no.value)
+    assert "'T_Reserve_leer'" in said and "every cell is empty" in said and "lab.csv" in said
+    assert "'Reserve (leer)'" in said                          # its header in the file
+    assert "Reserve (leer)': the bracket read" not in caplog.text    # 7676398c said it first
+    caplog.clear()
+    with caplog.at_level(logging.INFO, logger="thermocomp"):
+        table, _ = read_campaign(path, {**cfg, "roles": {**cfg["roles"], "ignore": ["Reserve*"]}})
+    assert "T_T1_front" in table.column_names
+    assert caplog.text.count("'T1 (front)': the bracket read as part of the name, no unit: °C "
+                             "assumed (T_T1_front)") == 1

@@ -20,7 +20,7 @@ import fnmatch
 import functools
 import re
 from collections import Counter
-from collections.abc import Mapping, Sequence
+from collections.abc import Collection, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -96,6 +96,9 @@ class Naming:
     names: dict[str, str] = field(default_factory=dict)    # raw -> contract (ignored: absent)
     scales: dict[str, tuple[float, float]] = field(default_factory=dict)  # contract -> to its unit
     roles: dict[str, str] = field(default_factory=dict)    # raw -> why (role or "data.columns")
+    # raw -> contract: a temperature header whose bracket is a note, no unit (notes100), said
+    # by the reader once its column is read (:func:`said_notes`), not of an all-empty one
+    noted: dict[str, str] = field(default_factory=dict)
 
 
 @functools.lru_cache(maxsize=8192)     # pure; a wide record asks it ~5 times per header per read
@@ -377,10 +380,19 @@ def naming(headers: Sequence[str], roles: Mapping, columns: Mapping, first: Mapp
     _duplicates(out.names, problems, by_role)
     if problems:
         raise _refusal(problems, by_role, out.names, out.roles, file)
-    for header in noted:
-        logger.info("%s: the bracket read as part of the name, no unit: °C assumed (%s)",
-                  repr(header), out.names[header])
+    out.noted = {header: out.names[header] for header in noted}
     return out
+
+
+def said_notes(noted: Mapping[str, str], empty: Collection[str] = ()) -> None:
+    """Say that each header of ``noted`` (:attr:`Naming.noted`) is named with its bracket, but
+    those whose column (contract name) is in ``empty``: an all-empty column is refused as such,
+    and the note said before the refusal was of no use (data101: 'Reserve (leer)', read as
+    ``T_Reserve_leer``, then refused because every cell is empty)."""
+    for header, name in noted.items():
+        if name not in empty:
+            logger.info("%s: the bracket read as part of the name, no unit: °C assumed (%s)",
+                        repr(header), name)
 
 
 def again_in(base: str, taken: set[str]) -> str:

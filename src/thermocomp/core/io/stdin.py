@@ -50,7 +50,7 @@ from .lvm import is_lvm_text, lvm_as_csv
 from .options import RUN_ROLE
 from .own_headers import as_named
 from .rates import said_if_rows_missing
-from .roles import RUN, active, left_out, named_as_time, naming, split_unit
+from .roles import RUN, active, left_out, named_as_time, naming, said_notes, split_unit
 from .runs import run_blocks, run_values
 from .scope import is_scope_text, scope_as_csv
 from .separators import UNICODE_MINUS, grouped
@@ -490,6 +490,7 @@ def _named(df: pd.DataFrame, opts) -> tuple[pd.DataFrame, dict, list | None]:
              else str(_with_decimal(df[c].iloc[:1], opts.decimal).iloc[0]) for c in df.columns}
     roles = _runs_if_named(list(df.columns), opts.roles)
     plan = naming(list(df.columns), roles, opts.columns, first, ".", SOURCE, opts.units)
+    said_notes(plan.noted)          # (a stream: its cells still to come)
     df = df[[c for c in df.columns if c in plan.names]].rename(columns=plan.names)
     df.attrs[HEADERS] = {name: raw for raw, name in plan.names.items() if raw != name}
     run = next((raw for raw, name in plan.names.items() if name == RUN), None)

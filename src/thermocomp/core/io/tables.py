@@ -39,7 +39,7 @@ from .lines import Lines
 from .options import _OTHER_DELIMITERS, ROLE_ORDER, ReadOptions, _first_line
 from .own_headers import with_own_header
 from .period_line import period_hint
-from .roles import RUN, active, excel_days_header, naming, split_unit
+from .roles import RUN, active, excel_days_header, naming, said_notes, split_unit
 from .separators import UNICODE_MINUS, misgrouped, reads_as_number, thousands_hint, ungrouped
 from .slashed_rows import read_in, said_by, settled
 from .sniff import head_lines, resolved
@@ -88,9 +88,11 @@ def shortened(line: str, most: int = 60) -> str:
 
 
 def _contract_names(raw_names: list[str], opts: ReadOptions, file: Path, *,
-                    first: dict | None = None) -> tuple[list[str | None], dict]:
-    """Contract names of the file's columns (None: left out by ``data.roles.ignore``) and the
-    unit conversions (:mod:`.roles`), checked against the contract's vocabulary."""
+                    first: dict | None = None) -> tuple[list[str | None], dict, dict]:
+    """Contract names of the file's columns (None: left out by ``data.roles.ignore``), the
+    unit conversions (:mod:`.roles`), checked against the contract's vocabulary, and the
+    headers whose bracket is a note (:attr:`.roles.Naming.noted`: said once read,
+    :func:`said_read`)."""
     # one logger's file of a run of two: data.units may name the other file's headers
     units = {h: u for h, u in opts.units.items() if h in raw_names} if opts.half else opts.units
     plan = naming(raw_names, opts.roles, opts.columns, first, opts.decimal, file, units)
@@ -136,7 +138,7 @@ def _contract_names(raw_names: list[str], opts: ReadOptions, file: Path, *,
                                 "writes both)", file=file)
         raise ContractError(NO_TIME_COLUMN + period_hint(file, opts.delimiter, opts.encoding),
                             file=file)
-    return names, plan.scales
+    return names, plan.scales, plan.noted
 
 
 def _converted(columns: dict, scales: dict) -> dict:
@@ -184,7 +186,7 @@ def _renamed(header: list[str], first_row: list[str], opts: ReadOptions, path: P
     """The file's headers -> contract names where they differ ({} where they do not read): what
     a refusal of a cell names besides the contract name."""
     try:
-        named, _ = _contract_names(header, opts, path, first=dict(zip(header, first_row)))
+        named = _contract_names(header, opts, path, first=dict(zip(header, first_row)))[0]
     except ContractError:
         return {}
     return _renames(header, named)
@@ -194,7 +196,8 @@ def _typed_columns(path: Path, header: list[str], first_row: list[str], opts: Re
                    lines: Lines) -> tuple:
     if len(header) == 1:
         _check_delimiter(header[0], opts.delimiter.join(first_row), path, opts)
-    named, scales = _contract_names(header, opts, path, first=dict(zip(header, first_row)))
+    named, scales, noted = _contract_names(header, opts, path,
+                                           first=dict(zip(header, first_row)))
     for line in said_twice(header, {h: n for h, n in zip(header, named) if n}):
         logger.warning(f"{path}: {line}")
     said, cut = footer(path, opts.delimiter, len(header), opts.encoding)
@@ -254,6 +257,7 @@ def _typed_columns(path: Path, header: list[str], first_row: list[str], opts: Re
     columns.update({n: pc.cast(columns[n], pa.float64()) for n in flags})
     columns.update(_unmarked(columns, types, opts, path, lines,
                              {n: h for n, h in zip(names, header)}))
+    said_read(noted, columns)
     try:
         if CLOCK in columns:
             columns[TIME] = _joined_time(columns[TIME], columns.pop(CLOCK), path, opts)
@@ -328,6 +332,20 @@ def _without_empty_rows(table: pa.Table, path: Path, lines: Lines) -> pa.Table:
     logger.warning(f"{path}, {lines.at(int(np.argmax(flags)) + 1)}: {int(flags.sum())} row(s) of "
                    "empty cells left out, as blank lines are (rows after it counted without)")
     return table.filter(pc.invert(empty))
+
+
+def said_read(noted: dict, columns: dict) -> None:
+    """The notes of ``noted`` (:attr:`.roles.Naming.noted`) said, now that ``columns`` are read,
+    but of an all-empty one: it is refused as empty (:func:`.values._refuse_empty`), which the
+    note would only precede (data101)."""
+    said_notes(noted, {name for name in noted.values()
+                       if name in columns and all_empty(columns[name])})
+
+
+def all_empty(column) -> bool:
+    """No cell of ``column`` holds a value (empty, or NaN)."""
+    valid = len(column) - column.null_count
+    return valid == 0 or valid == (pc.sum(pc.is_nan(column)).as_py() or 0)
 
 
 def _check_unnamed_empty(table: pa.Table, header: list[str], names: list[str], unnamed: dict,
@@ -767,7 +785,7 @@ def _load_parquet(path: Path, opts: ReadOptions) -> dict:
         raise ContractError(f"unreadable Parquet file ({reason})", file=path) from None
     table = without_pandas_index(table)
     first = {c: _first_text(table.column(c)) for c in table.column_names}
-    named, scales = _contract_names(table.column_names, opts, path, first=first)
+    named, scales, noted = _contract_names(table.column_names, opts, path, first=first)
     table = table.drop_columns([c for c, n in zip(table.column_names, named) if n is None])
     names = [n for n in named if n is not None]
     # column by column into a dict: Table.set_column copies the schema each time (quadratic in
@@ -776,6 +794,7 @@ def _load_parquet(path: Path, opts: ReadOptions) -> dict:
     raw = ((TIME, CLOCK) if CLOCK in names else ()) + (RUN,)
     columns = {name: col if name in raw else _parquet_time(col, path, opts) if name == TIME
                else _parquet_numbers(col, name, path) for name, col in zip(names, table.columns)}
+    said_read(noted, columns)
     if CLOCK in columns:
         columns[TIME] = _joined_time(columns[TIME], columns.pop(CLOCK), path, opts)
     return _converted(columns, scales), _renames(list(first), named), _rescaled(scales), None

@@ -23,7 +23,7 @@ from .options import ReadOptions
 from .rates import period_groups, said_if_rate_changes, said_if_rows_missing
 from .roles import time_unit
 from .sparse import intermittent, probe_cycle
-from .tables import PIPED_HINT, _chunks, _values
+from .tables import PIPED_HINT, _chunks, _values, all_empty
 from .timestamps import (
     DAY_S,
     ELAPSED,
@@ -356,7 +356,7 @@ def _warn_error_ranges(ranges: dict, files: Mapping, root: Path) -> None:
 def _refuse_empty(columns: dict, path: Path) -> None:
     """Refuse the columns whose every cell is empty, all of them in one message (a logger's
     unused channels: one refusal per channel, a run of the command each, before)."""
-    empty = [name for name, column in columns.items() if name != TIME and _empty(column)]
+    empty = [name for name, column in columns.items() if name != TIME and all_empty(column)]
     if not empty:
         return
     others = f", nor {'has' if len(empty) == 2 else 'have'} {listed(map(repr, empty[1:]))}" \
@@ -364,12 +364,6 @@ def _refuse_empty(columns: dict, path: Path) -> None:
     raise ContractError(f"column has no valid value (every cell is empty){others}: not measured? "
                         f"leave {'it' if len(empty) == 1 else 'them'} out (data.roles.ignore)",
                         file=path, column=empty[0])
-
-
-def _empty(column) -> bool:
-    """No cell of ``column`` holds a value (empty, or NaN)."""
-    valid = len(column) - column.null_count
-    return valid == 0 or valid == (pc.sum(pc.is_nan(column)).as_py() or 0)
 
 
 def _check_values(values: np.ndarray, name: str, path: Path, opts: ReadOptions) -> np.ndarray:
