@@ -101,5 +101,8 @@ def test_a_stored_model_naming_an_earlier_name_is_refused_saying_the_name_now(tm
     said = " ".join(capsys.readouterr().err.split())
     assert code == 2 and "the derived name is T_Luft (header 'Temp. Luft [°C]')" in said
     assert "data.columns={'Temp. Luft [°C]': T_Temp._Luft}" in said
+    # (data101) a key beyond ASCII Hydra does not read on the command line: the file's lines
+    assert ("in a data config file: myconf/data/mine.yaml with the two lines 'defaults: "
+            "[default]' and \"columns: {'Temp. Luft [°C]': T_Temp._Luft}\"") in said
     # the old name kept as said: replayed
     assert main(["replay", *old, *given, f"out={tmp_path / 'kept'}"]) == 0

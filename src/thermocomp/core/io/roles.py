@@ -24,7 +24,7 @@ from collections.abc import Collection, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from ...base.errors import listed
+from ...base.errors import config_file_form, listed
 from ...base.log import logger
 from ..metrics import angular
 from . import campbell
@@ -629,9 +629,13 @@ def former_said(names: Sequence[str], column_map: Mapping, file) -> str | None:
     else:
         said = (f"{', '.join(old for old, _, _ in hits)} are no columns of {file}, the derived "
                 f"names are {', '.join(f'{new} ({raw!r})' for _, new, raw in hits)}")
+    # (data101) a header beyond ASCII ('t1 Temperatur(°C)') is no map key Hydra reads on the
+    # command line: the key as a config file's lines, not a second refusal of the key
+    filed = "" if all(raw.isascii() for _, _, raw in hits) else (
+        ", in a data config file: " + config_file_form("data", f"columns: {{{keep}}}"))
     return (f"{said}: a temperature's word (Temp, Temperatur, ...) is no longer repeated "
             f"after T_; name {'it' if len(hits) == 1 else 'them'} so, or keep the old name"
-            f"{'s' * (len(hits) > 1)}, data.columns={{{keep}}}")
+            f"{'s' * (len(hits) > 1)}, data.columns={{{keep}}}{filed}")
 
 
 def _derived(kind: str, base: str, several_ambient: bool, short: bool = False) -> str:
