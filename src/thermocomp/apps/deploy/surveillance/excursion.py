@@ -59,18 +59,12 @@ class Excursion:
         rise than ``EXCURSION_TAU_S`` ago (the memory's error against its rise then), within
         ``EXCURSION_GROWTH``: a regime, not a fault.  False where the memory is not known."""
         out = np.flatnonzero(self._judging & (level >= WARNING))
-        past = self._memory_error()
-        if past is None or not len(out):
+        if not self._slow_ok or not np.isfinite(self._slow_t) or not len(out):
             return False
+        slow = self._slow[self._active]
+        past = (self._slow - self._M @ slow) * self._scale          # the memory's own error
         rows = self._hist[self._recent[self._pos, :min(self._count, self.confirm)]]
         rise = np.abs(rows.mean(axis=0))
         now = np.abs(err[out]) * np.abs(self._slow[out])
         then = np.maximum(past[out] * np.sign(err[out]), 0.0) * rise[out]
         return bool(np.all(now <= EXCURSION_GROWTH * then))
-
-    def _memory_error(self) -> np.ndarray | None:
-        """The memory's own self-prediction error per sensor (the field ``EXCURSION_TAU_S`` ago
-        on the average; the errors are linear in the readings); None where it is not known."""
-        if not self._slow_ok or not np.isfinite(self._slow_t):
-            return None
-        return (self._slow - self._M @ self._slow[self._active]) * self._scale

@@ -52,10 +52,8 @@ class Judgement:
             if (self.new_state and (level[j] < WARNING or self._within_rounding(j))
                     and self._excursion_hovers(level, err)):
                 break
-            # out by the sum of its errors, within its band (trend.py): say so
-            summed = self._trend_said(j) if level[j] >= WARNING and abs(err[j]) < self._warn[j] else ""
             self._exclude(j, f"drift: self-prediction error {err[j]:+.2g} °C over the last "
-                             f"{self.confirm} samples{summed}", time, events, by_field=True)
+                             f"{self.confirm} samples", time, events, by_field=True)
             self._since[j] = self._count
             self._hid[j] = bool(level[j] < WARNING)   # it passed its own band (readmission.py)
             self._set_bands()

@@ -18,12 +18,10 @@ from .faults import InstantFaults
 from .judgement import Judgement
 from .readmission import Readmission
 from .settled import Settled, largest_separation
-from .states import (ALARM, COMMON_MIN, DITHER, EXCLUDED, MAX_BACKOFF, OK, SPREAD_FACTOR, STATES,
-                     TREND_ALLOW, TREND_SUM, WARNING)
-from .trend import Trend
+from .states import ALARM, COMMON_MIN, DITHER, EXCLUDED, MAX_BACKOFF, OK, SPREAD_FACTOR, STATES, WARNING
 
 
-class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion, Settled, Trend):
+class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion, Settled):
     """Stateful monitor of ``names`` (see module doc).
 
     Parameters
@@ -124,9 +122,6 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion, Settled, T
             self.max_settle_c = np.full(len(self.names), np.inf)
             self._set_settle_lim()
             self._settle_reset()
-        if "trend_sum" not in state:   # pickled before mon101: no drift told by its sum
-            self.trend_allow, self.trend_sum = TREND_ALLOW, np.inf
-            self._trend_reset()
 
     def __init__(self, pod: ThermalPOD, names: Sequence[str], *, warning_c=0.4, alarm_c=0.8,
                  window: int = 10, confirm: int = 2, adaptive: bool = True,
@@ -135,8 +130,7 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion, Settled, T
                  lo_c=None, hi_c=None, first_c=None, jump_factor: float = 3.0,
                  freeze_factor: float = 2.0, range_margin_c: float = 10.0,
                  new_state: bool = True, new_state_others: int = 2, rounding_c=0.0,
-                 floor_c=0.0, moment=None, drift_warn_only=None, dithered=None,
-                 trend_allow: float = TREND_ALLOW, trend_sum: float = TREND_SUM):
+                 floor_c=0.0, moment=None, drift_warn_only=None, dithered=None):
         n = len(names)
         if pod.n_features_in_ != n:
             raise ValueError(f"POD has {pod.n_features_in_} sensors, names {n}")
@@ -176,7 +170,6 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion, Settled, T
         if int(new_state_others) < 1:
             raise ValueError(f"new_state_others must be >= 1, got {new_state_others}")
         self.new_state, self.new_state_others = bool(new_state), int(new_state_others)
-        self.trend_allow, self.trend_sum = float(trend_allow), float(trend_sum)   # (trend.py)
         self._lo_lim = self.lo_c - self.range_margin_c
         self._hi_lim = self.hi_c + self.range_margin_c
         self._jump_lim = self.jump_factor * self.max_step_c
@@ -278,7 +271,7 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion, Settled, T
               "_last_good", "_by_field", "_jumps", "_ref0", "_dropped", "_gap", "_gapped", "_dwell",
               "_outs", "_explains", "_novel", "_calm_field", "_since", "_slow", "_slow_t",
               "_slow_ok", "_ranged", "_froze", "_held", "_off", "_hid", "_last_step", "_settle",
-              "_settle_age", "_perm", "_trend")
+              "_settle_age", "_perm")
 
     def _set_settle_lim(self) -> None:
         # a sensor no other predicts: a level shift told by two windows (.settled)
@@ -402,7 +395,6 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion, Settled, T
         self._scale = np.where(self._judged, 1.0 / np.maximum(1 - lev, 1e-12), 1.0)
         self._scale[active & ~self._observable] = np.nan
         self._std = np.sqrt(np.abs(1 - lev))
-        self._trend_reset()          # the errors mean another thing now: their sums restart
         if self._count:
             H = np.where(np.isfinite(self._hist), self._hist, 0.0)
             pred = H[:, active] @ M.T if M is not None else np.full_like(H, np.nan)
@@ -435,10 +427,10 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion, Settled, T
     def restore(self, snap: tuple) -> None:
         for k, v in zip(self._STATE, snap):
             setattr(self, k, np.copy(v) if isinstance(v, np.ndarray) else v)
-        count, trend = self._count, self._trend
+        count = self._count
         self._count = 0          # the window's errors are restored, not recomputed
         self._set_operator()
-        self._count, self._trend = count, trend
+        self._count = count
 
     # -- one sample ---------------------------------------------------------------------------
     def _errors(self, d: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -459,7 +451,7 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion, Settled, T
         if k < self.confirm:
             return np.zeros(len(err), dtype=np.int8), err
         a = np.abs(last).min(axis=0)          # NaN (unobservable) compares False
-        return self._trend_level((a >= self._warn).view(np.int8) + (a >= self._alarm), err), err
+        return (a >= self._warn).view(np.int8) + (a >= self._alarm), err
 
     def skipped(self, periods: float) -> None:
         """The next sample comes ``periods`` sampling periods after the last one (a gap in the
@@ -534,8 +526,6 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion, Settled, T
             if (self._froze & ((d != self._held) | (self._off > 0))).any():
                 return None                  # one out for a freeze reads off its held value
         same = step == 0
-        if not self._trend_quiet(e):
-            return None                      # a sum of errors to keep (trend.py)
         if same.any():
             other = np.where(self._judged, d - e, pred)
             run_pred = np.where(same & (self._run == 0), other, self._run_pred)
@@ -586,7 +576,7 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion, Settled, T
         if self._perm is not None:      # (wires100) two wires read exchanged
             X = X[:, self._perm]
         if (not self._quiet or not self._all_active or self._M is None
-                or self._count < self.confirm or not len(X) or self._trend.any()):
+                or self._count < self.confirm or not len(X)):
             return np.empty((0, n))
         c, window = self.confirm, self.window
         with np.errstate(invalid="ignore"):     # NaN (unobservable, a missing limit) compares False
@@ -610,7 +600,6 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion, Settled, T
             for o in range(c - 1):
                 a = np.minimum(a, past[o:o + len(e)])
             ok &= ~((ae >= self.alarm_c).any(axis=1) | (a >= self.warning_c).any(axis=1))
-            ok &= ~(self._judging & (ae > self.trend_allow * self.warning_c)).any(axis=1)   # trend.py
             # the runs of equal readings and the field at each run's start (the freeze rule)
             same = step == 0
             rows = np.arange(len(d))[:, None]
@@ -702,7 +691,6 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion, Settled, T
         if not all_finite:
             self._reference_late(x, d, e, pred, finite, rng, pos)
         self._err[pos] = e
-        self._trend_step(e)
         self._check_freeze(x, d, e, pred, same, instant, time, events)
         self._check_stepped(e, instant, time, events)
         level, err = self._exclude_by_judgement(time, events)
@@ -780,8 +768,6 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion, Settled, T
         smallest = float(np.abs(self._err[self._recent[self._pos, :k], j]).min())
         if level > OK:
             band = (self._warn if level == WARNING else self._alarm)[j]
-            if smallest < band:              # out by the sum of its errors (trend.py)
-                return self._trend_said(j)
             return f", all beyond ±{band:.3g} °C (the smallest {smallest:.3g})"
         return f", the smallest {smallest:.3g} within ±{self._warn[j]:.3g} °C"
 

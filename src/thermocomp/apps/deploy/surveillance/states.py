@@ -16,7 +16,3 @@ EXCHANGED = "exchanged"   # (wires100) an event's "to": two sensors' wires read 
 # an excursion out of band hovers (a regime) unless its error's share of its rise grew past this
 # factor of the share it had EXCURSION_TAU_S seconds ago (excursion.py; mon73)
 EXCURSION_TAU_S, EXCURSION_GROWTH = 1800.0, 1.5
-# (mon101, trend.py) a slow drift: each judged error's excess beyond this share of its warning
-# band, summed over the samples, judged out of band once the sum reaches TREND_SUM x the band
-TREND_ALLOW, TREND_SUM = 0.5, 0.5
-TREND_GROWTH = 0.125   # ... while its error is beyond the memory's (excursion.py) by this x the band
