@@ -72,6 +72,8 @@ exclusions before the source's onset.
 MEASURED (2026-12-06, after the bar 1053102d; main = 7676398c's src (``git archive``), the rule
 = 1053102d's; load 15-22 on 2 cores).  VERDICT: REFUSED -- M2 and M3 fail on SEEN records, so
 the fresh seeds 9953-9955 were NOT simulated (unspent: scoring them could not change the verdict).
+The rule and the xfail's removal: ``benchmarks/mon101_rule.patch`` (``git apply`` on 7676398c);
+src is 7676398c's.
 ---
 M1 MET: ``drift`` worst ratio main -> rule 1.793 -> 1.326 (+0.5 K/h), 1.847 -> 1.463 (+0.2 K/h);
    named 5-8 rows after onset at +0.5 (main 7-11), 9-18 at +0.2 (main 18-30); T_motor1 still
