@@ -93,6 +93,36 @@ D4. Fresh pt9950 (portal64, bench_audit98's PORTAL), tr9951 (trunnion63, bench_a
 KEPT if D1-D4 hold and the new case of tests/shell/test_export_wires100.py (the drop on its
 fixture: fails on 7676398c, ``MISSING_SECOND`` at row 40) passes with the suites the brief
 names; else REFUSED (benchmarks/dep101_rule.patch, src as 7676398c), the numbers kept here.
+
+Scored (bar 622fa89c, committed before any of 9950-9952 was simulated; 2026-12-06 18:47-18:57
+UTC, load 14-20 on 2 cores; main = ``git archive 7676398c src`` simulated and ran the fresh records
+into /tmp/dep101/fM, the rule read a copy, /tmp/dep101/fR; CPU 19.6 s main, 15.7 s rule).  Every
+healthy frame 0 flagged rows, C = served 0 µm, main and rule.  max|C - served| (µm), rows past
+1e-9, main -> rule; the rule's compiled C - mirror; the set's cond and max|M C - served|::
+
+  record  case  pair                                  main   rows   rule      rows  compiled  cond   M apart
+  pt9950  far   T_rail_drive + T_bed                  22.6   120    4.55e-13  0     2.6e-13   106    8.9e-12
+  pt9950  near  T_col_R + T_spindle                   32.7   120    7.39e-13  0     5.4e-13   61.7   5.5e-13
+  tr9951  far   T_spindle_motor + T_amb               69.4   120    0         0     5.7e-14   28.1   1.3e-13
+  tr9951  near  T_spindle_motor + T_coolant_return    70.7   120    0         0     5.7e-14   104    8.8e-12
+  cr9952  far   T_amb + T_nc_spindle_motor            5.83   120    8.95e-13  0     1.8e-14   121    1.9e-10
+  cr9952  near  T_toolholder1 + T_nc_spindle_motor    5.66   120    7.82e-14  0     3.9e-14   106    1.9e-11
+
+Main refused each at the fault row (``MISSING_SECOND``, 120 rows, ``stream`` exit 2 there); the
+rule names ``DROPOUT`` there, 0 rows ``NOT_IN_CODE``.  D4 MET (every fresh drop case <= 8.95e-13
+µm, 0 rows; the rounding clause not needed).  D3 MET (seen and fresh healthy frames as main's: 0
+flagged, 0 µm).  D1 MET with its rounding clause: 13 of 14 seen cases <= 8.61e-10 µm, 0 rows;
+pt9910 near 3.29e-9 µm on 74 rows (<= 1e-7; compiled = mirror 1.05e-12; 0 ``NOT_IN_CODE``; its
+set's M apart 4.0e-8, cond 1496: the solver's rounding), measured again after the bar with the
+printed figures (7.8 s CPU): the same.  By the brief's bare 1e-9 that case is not met.
+D2 MET (2026-12-06 18:37-18:57 UTC; main / rule on copies of the same roots: dep100b's
+/tmp/dep100b/fM, dep100's /tmp/dep100/seenM, wires100's pt9851): bench_dep100b ``planted`` dl9934
+sw9935 cr9936 (16 lines) and bench_dep99 ``card`` tr9828 tr9873 (7 lines) identical (``diff``);
+bench_wires100 ``swaps`` pt9851: its 4 lines identical but the two ``drop's`` C - served figures,
+29.4 -> 1.36e-12 and 31.6 -> 4.66e-12 µm.  CPU main / rule: planted 12.4 / 13.2 s, card 18.7 /
+18.0 s, swaps 19.1 / 18.3 s.
+VERDICT: KEPT (D1-D4 as committed in 622fa89c, D1 through its rounding clause on pt9910 near,
+which departs from the brief's bare 1e-9 and is the lead's call).
 """
 
 from __future__ import annotations

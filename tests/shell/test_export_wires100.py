@@ -18,10 +18,10 @@ import test_export
 from conftest import deployed_as_replay
 from test_export import built_stream, needs_cc
 from test_export_cmon80 import _streamed
-from test_export_dep99b import _machine
+from test_export_dep99b import _machine, held_as_served
 from thermocomp.apps.deploy.export import Simulator, exported_files, state_space, watch
 from thermocomp.apps.deploy.export.pack import corrections
-from thermocomp.apps.deploy.export.watch import NOT_IN_CODE, REREFERENCED
+from thermocomp.apps.deploy.export.watch import DROPOUT, NOT_IN_CODE, REREFERENCED
 from thermocomp.apps.deploy.report import stream_rows
 
 SWAP, PAIR = 40, ["T_a", "T_f"]
@@ -101,14 +101,4 @@ def test_both_readings_missing_in_one_sample_held_by_the_mirror_and_the_c_as_ser
     dropped.loc[SWAP:, PAIR] = np.nan
     want, moves = _served(deployed, ss, dropped)
     assert [m for m in moves if m[0] == SWAP] == [(SWAP, "T_a", "excluded"), (SWAP, "T_f", "excluded")]
-    sim = Simulator(ss)
-    sim.reset()
-    U, t = dropped[ss.inputs].to_numpy(float), dropped["time"].to_numpy(float)
-    mirror = []
-    for i in range(len(dropped)):
-        mirror.append(sim.step(U[i], t[i]))
-        assert not sim.watch.flags & NOT_IN_CODE, (i, watch.RULES[sim.watch.missed])
-    assert np.max(np.abs(np.array(mirror) - want)) < 1e-9
-    got, said = _streamed(stream, dropped, ss.inputs)
-    assert got.shape == want.shape and np.max(np.abs(got - want)) < 1e-9
-    assert "not in the code" not in said
+    held_as_served(deployed, ss, dropped, want, DROPOUT, None, at=SWAP, out=2, built=stream)
