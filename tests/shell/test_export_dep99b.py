@@ -67,9 +67,10 @@ def faulted(folder, fault):
     return deployed, state_space(deployed, monitor=True), frame
 
 
-def held_as_served(deployed, ss, frame, want, rule, tmp_path, at=SPIKE):
-    """The mirror and the compiled C give ``want`` on every row, nothing flagged as not in the
-    code, ``rule`` at row ``at`` with three out."""
+def held_as_served(deployed, ss, frame, want, rule, tmp_path, at=SPIKE, out=3, built=None):
+    """The mirror and the compiled C (``built``: its ``stream``, else built in ``tmp_path``) give
+    ``want`` on every row, nothing flagged as not in the code, ``rule`` at row ``at`` with ``out``
+    out."""
     sim = Simulator(ss)
     sim.reset()
     U, t = frame[ss.inputs].to_numpy(float), frame["time"].to_numpy(float)
@@ -79,9 +80,10 @@ def held_as_served(deployed, ss, frame, want, rule, tmp_path, at=SPIKE):
         w = sim.watch
         assert not w.flags & NOT_IN_CODE, (i, w.missed)          # the base: SECOND at SPIKE
         if i == at:
-            assert (w.rule, len(w.gone)) == (rule, 3)
+            assert (w.rule, len(w.gone)) == (rule, out)
     assert np.max(np.abs(np.array(mirror) - want)) < 1e-9                    # every row
-    got, said = _streamed(built_stream(tmp_path, exported_files(deployed, "c")), frame, ss.inputs)
+    got, said = _streamed(built or built_stream(tmp_path, exported_files(deployed, "c")), frame,
+                          ss.inputs)
     assert got.shape == want.shape and np.max(np.abs(got - want)) < 1e-9     # every row
     assert "not in the code" not in said
 

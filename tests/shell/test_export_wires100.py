@@ -1,5 +1,6 @@
 """Two sensors' wires exchanged mid-stream, read as an exchange by served, the numpy mirror and
-the compiled C alike (wires100, issue 34; benchmarks/bench_wires100.py).  Before it, served read
+the compiled C alike (wires100, issue 34; benchmarks/bench_wires100.py); and (dep101) both
+readings missing in one sample held as served (benchmarks/bench_dep101.py).  Before it, served read
 the two steps as two offsets (each re-referenced, out, back on the other's dynamics: wires99's
 pt9851 77.66 µm off the healthy corrections) and the C parted from served at the swap sample.
 
@@ -17,10 +18,10 @@ import test_export
 from conftest import deployed_as_replay
 from test_export import built_stream, needs_cc
 from test_export_cmon80 import _streamed
-from test_export_dep99b import _machine
+from test_export_dep99b import _machine, held_as_served
 from thermocomp.apps.deploy.export import Simulator, exported_files, state_space, watch
 from thermocomp.apps.deploy.export.pack import corrections
-from thermocomp.apps.deploy.export.watch import NOT_IN_CODE, REREFERENCED
+from thermocomp.apps.deploy.export.watch import DROPOUT, NOT_IN_CODE, REREFERENCED
 from thermocomp.apps.deploy.report import stream_rows
 
 SWAP, PAIR = 40, ["T_a", "T_f"]
@@ -34,6 +35,12 @@ def served(tmp_path_factory):
         f"data.path={_machine(tmp_path_factory.mktemp('wires100') / 'data')}", "track=false",
         "monitor.adaptive=true", "monitor.fallbacks=none"))
     return deployed, state_space(deployed, monitor=True), ds.campaigns[test_ids[-1]].reset_index(drop=True)
+
+
+@pytest.fixture(scope="module")
+def stream(served, tmp_path_factory):
+    """The compiled C of ``served`` (``stream.c``), built once for the module's cases."""
+    return built_stream(tmp_path_factory.mktemp("wires100c"), exported_files(served[0], "c"))
 
 
 def _served(deployed, ss, frame):
@@ -62,7 +69,7 @@ def test_served_reads_two_wires_exchanged_as_an_exchange(served):
 
 
 @needs_cc
-def test_the_mirror_and_the_compiled_c_read_them_exchanged_as_served(served, tmp_path):
+def test_the_mirror_and_the_compiled_c_read_them_exchanged_as_served(served, stream):
     deployed, ss, frame = served
     healthy, _ = _served(deployed, ss, frame)
     swapped = _swapped(frame)
@@ -79,6 +86,19 @@ def test_the_mirror_and_the_compiled_c_read_them_exchanged_as_served(served, tmp
         # 9bbbb214: the two jumps at the swap row (JUMP), their returns after
         assert said == ((REREFERENCED, WIRES_EXCHANGED, "T_a") if i == SWAP else (0, 0, None)), i
     assert np.max(np.abs(np.array(mirror) - healthy)) < 1e-9          # served's, every row
-    got, said = _streamed(built_stream(tmp_path, exported_files(deployed, "c")), swapped, ss.inputs)
+    got, said = _streamed(stream, swapped, ss.inputs)
     assert got.shape == healthy.shape and np.max(np.abs(got - healthy)) < 1e-9
     assert "not in the code" not in said
+
+
+@needs_cc
+def test_both_readings_missing_in_one_sample_held_by_the_mirror_and_the_c_as_served(served, stream):
+    """(dep101) The drop: ``T_a`` and ``T_f`` both missing from row ``SWAP`` on.  Served takes
+    both out and rebuilds them from the field; the mirror and the compiled C hold them so too
+    (7676398c refused the sample and every one after it: ``MISSING_SECOND``)."""
+    deployed, ss, frame = served
+    dropped = frame.copy()
+    dropped.loc[SWAP:, PAIR] = np.nan
+    want, moves = _served(deployed, ss, dropped)
+    assert [m for m in moves if m[0] == SWAP] == [(SWAP, "T_a", "excluded"), (SWAP, "T_f", "excluded")]
+    held_as_served(deployed, ss, dropped, want, DROPOUT, None, at=SWAP, out=2, built=stream)

@@ -116,6 +116,13 @@ The served adaptive compensator judges every ``T_`` input before the model reads
   last reading (cmon87's path), as served; the second out missing (or beyond its range) again is
   read as missing, as the first is.  An export before it (no ``second_instant``) refuses the
   missing reading (``MISSING_SECOND``) and flags the range (``RANGE``) and the jump (``SECOND``).
+* (dep101) **several readings missing in one sample** (a pair's both, the drop): each out in
+  the monitor's order where the code holds it in turn (:meth:`CodeMonitor._pair_held`, cmon93's
+  trial of the out set, for a dropout): the first as a lone dropout, each after it by cmon89's
+  path beside those out, the set's operator held (``pairs``) or solved; a dropout beside those
+  out wherever it is (the field rebuilt or not: served's ``_instant`` takes every missing reading
+  out, a returned one read where too few are in, dep99) and of one no other predicts too (held
+  at its last reading).  A dropout beside two out, or a set not solved: refused as before.
 * (cmon89b) a sensor no other predicts, every other in, **out for a reading beyond its range**
   (``blind_range``: ``ranges``): read as missing, held at its last reading, back after a calm
   window only where its leak onto the others passes (:meth:`CodeMonitor._leak_passes`, the
@@ -161,13 +168,14 @@ the reading's return is no jump), several sensors jumping at once that are no co
 (cmon93: three or more, or two it cannot hold), a jump at the reference's next sample, a stepped
 self-prediction error whose culprit would be a third out (or one it does not hold out), a drift
 beyond the band that takes a third sensor out (cmon85: with one out, as served), of more than one
-blind partner, a second culprit beyond the alarm band, a second sensor out for a dropout where
-the field is not rebuilt without both (cmon89), a third for a jump, and a sensor no
+blind partner, a second culprit beyond the alarm band, a third sensor out for a dropout (dep101:
+the second is held, the field rebuilt or not), a third for a jump, and a sensor no
 other predicts out for any other rule (its range; cmon84: too few left to rebuild the field without
-it), or with a fallback model the code does not hold.  A missing reading the code cannot rebuild (at
-a campaign's first sample, with another sensor out or missing, of a sensor it does not hold out) is
-refused as before (:meth:`CodeMonitor.refuses`: the sample is not read).  From such a row on the code
-may part from the served model; the conformance pack cuts there (:func:`~.pack.conformance_pack`).
+it), or with a fallback model the code does not hold.  A missing reading the code cannot rebuild
+(at a campaign's first sample, with two sensors out or a set it cannot solve, of a sensor it does
+not hold out) is refused as before (:meth:`CodeMonitor.refuses`: the sample is not read).  From
+such a row on the code may part from the served model; the conformance pack cuts there
+(:func:`~.pack.conformance_pack`).
 """
 
 from __future__ import annotations
@@ -714,13 +722,16 @@ class CodeMonitor:
         sensor's returned reading where it is not); (dep99) for a range reading wherever it is
         (read as missing while beyond, never fed back: the stand-ins served makes); (freezeu100)
         for a freeze of one no other predicts as for its dropout (served's freeze check has no
-        cap and holds it at its last reading, the one it held at)."""
+        cap and holds it at its last reading, the one it held at); (dep101) for a dropout wherever
+        it is, of one no other predicts too (served's ``_instant`` takes every missing reading
+        out, rebuilt by the set's operator or held at its last reading; a returned one read where
+        too few are in: :meth:`_rebuilt`, dep99)."""
         blind = self.instant and not self.ported[j] and bool(
-            self.spikes[j] if rule == JUMP else self.drops[j] if rule == FREEZE
+            self.spikes[j] if rule == JUMP else self.drops[j] if rule in (FREEZE, DROPOUT)
             else rule == OFF_RANGE and self.second_range[j])
         if rule not in (DROPOUT, OFF_RANGE) and not blind:
             return bool(self.ported[j])
-        rebuilds = rule == OFF_RANGE or self._active().sum() - 1 >= self.a["min_active"]
+        rebuilds = rule in (OFF_RANGE, DROPOUT) or self._active().sum() - 1 >= self.a["min_active"]
         return bool(rebuilds and (self.ported[j] or blind))
 
     def _outs(self) -> list[int]:
@@ -763,10 +774,9 @@ class CodeMonitor:
             rng = (x < self.a["lo_lim"]) | (x > self.a["hi_lim"])
         if first:
             rule = MISSING_FIRST
-        elif new.sum() > 1 or (new.any() and (rng.any() or self.out >= 0 and not (
-                DROPOUT in self.seconds and self._second_kind(j, DROPOUT)
-                and self._second_held(j, DROPOUT)))):
-            rule = MISSING_SECOND
+        elif new.any() and (rng.any() or (new.sum() > 1 or self.out >= 0)
+                            and not self._pair_held(new, DROPOUT)):
+            rule = MISSING_SECOND       # (dep101: several new ones, each out in turn, taken)
         elif new.any() and not (self.ported[j] or self.drops[j]):
             rule = MISSING_BLIND
         else:
@@ -873,10 +883,10 @@ class CodeMonitor:
         if missing.any():   # (refuses() let one through: a new one, or the sensor out again)
             new = missing.copy()
             new[self._outs()] = False
-            j = int(np.argmax(new if new.any() else missing))
-            if j not in self._outs():
-                self._exclude(j, DROPOUT)
-            elif not self.dropped[j] and not self.jumps[j]:
+            if new.any():   # (dep101) each new one out in the monitor's order, as served
+                for j in np.flatnonzero(new):
+                    self._exclude(int(j), DROPOUT)
+            elif not self.dropped[j := int(np.argmax(missing))] and not self.jumps[j]:
                 # out for a freeze: the served monitor marks it dropped or not by the path it
                 # takes (its band on re-admission), which the code does not follow
                 self._flag(NOT_IN_CODE, j, MISSING_FROZEN)
@@ -1065,12 +1075,17 @@ class CodeMonitor:
         u[self.idx] = u[self.idx[self.perm]]
         return u
 
-    def _pair_held(self, ins: np.ndarray) -> bool:
-        """(cmon93) Whether the code takes every sensor of ``ins`` out for a jump, in the
-        monitor's order, as the first out (one it holds out) or the second (cmon88)."""
+    def _pair_held(self, ins: np.ndarray, rule: int = JUMP) -> bool:
+        """(cmon93) Whether the code takes every sensor of ``ins`` out for ``rule`` (a jump;
+        dep101: a dropout, several readings missing in one sample), in the monitor's order, as
+        the first out (one it holds out: the others predict it, or cmon84 / cmon87 one no other
+        predicts) or beside those out (cmon88 / cmon89's second, the set solved)."""
+        blind = self.spikes if rule == JUMP else self.drops
         with self._trial():
             for j in np.flatnonzero(ins):
-                if not (self._jump_held(int(j)) if self.out >= 0 else self.ported[j] or self.spikes[j]):
+                if not ((rule in self.seconds and self._second_kind(int(j), rule)
+                         and self._second_held(int(j), rule)) if self.out >= 0
+                        else self.ported[j] or blind[j]):
                     return False
                 self.gone.append(int(j))
             return True

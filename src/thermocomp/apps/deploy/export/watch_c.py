@@ -446,15 +446,19 @@ static int mon_second_held(const tc_state *s, int k, int rule) {
    a dropout or a jump of one no other predicts (held at its last reading, as served) only where
    the field is rebuilt without them; (dep99) for a range reading wherever it is (read as missing
    while beyond, never fed back); (freezeu100) for a freeze of one no other predicts as for its
-   dropout (served's freeze check has no cap and holds it at its last reading) */
+   dropout (served's freeze check has no cap and holds it at its last reading); (dep101) for a
+   dropout wherever it is, of one no other predicts too (served's _instant takes every missing
+   reading out; a returned one read where too few are in: mon_rebuilt, dep99) */
 static int mon_second_kind(const tc_state *s, int k, int rule) {
     int m, in = 0;
     int blind = MON_SECOND_INSTANT && !MON_PORTED[k] && (
-        rule == TC_MON_JUMP ? mon_spikes(k) : rule == TC_MON_FREEZE ? mon_drops(k)
+        rule == TC_MON_JUMP ? mon_spikes(k)
+        : rule == TC_MON_FREEZE || rule == TC_MON_DROPOUT ? mon_drops(k)
         : rule == TC_MON_OFF_RANGE && mon_second_range(k));
     if (!(rule == TC_MON_DROPOUT || rule == TC_MON_OFF_RANGE || blind)) return MON_PORTED[k];
     for (m = 0; m < NM; m++) in += !mon_out_of(s, m);
-    return (rule == TC_MON_OFF_RANGE || in - 1 >= MON_MIN_ACTIVE) && (MON_PORTED[k] || blind);
+    return (rule == TC_MON_OFF_RANGE || rule == TC_MON_DROPOUT || in - 1 >= MON_MIN_ACTIVE)
+           && (MON_PORTED[k] || blind);
 }
 
 /* (cmon88) 1: sensor k's jump with one out already held by the code: re-referenced and out as
@@ -468,6 +472,23 @@ static int mon_second_rule(int rule) {
     return rule == TC_MON_DRIFT_OUT || rule == TC_MON_FREEZE || rule == TC_MON_STEP_OUT
            || (rule == TC_MON_JUMP && MON_SECOND_JUMP)
            || ((rule == TC_MON_DROPOUT || rule == TC_MON_OFF_RANGE) && MON_SECOND_INSTANT);
+}
+
+/* (cmon93) 1: the code takes every sensor of ins[] out for rule (a jump; dep101: a dropout,
+   several readings missing in one sample), in the monitor's order, as the first out (one it
+   holds out: the others predict it, or cmon84 / cmon87 one no other predicts) or beside those
+   out (cmon88 / cmon89's second, the set solved); the state as it was */
+static int mon_pair_held(tc_state *s, const int ins[], int rule) {
+    int n = s->mon_nout, k, ok = 1;
+    for (k = 0; k < NM && ok; k++) {
+        if (!ins[k]) continue;
+        ok = s->mon_nout > 0 ? mon_second_rule(rule) && mon_second_kind(s, k, rule)
+                               && mon_second_held(s, k, rule)
+                             : MON_PORTED[k] || (rule == TC_MON_JUMP ? mon_spikes(k) : mon_drops(k));
+        if (s->mon_nout < NM) s->mon_out_set[s->mon_nout++] = k;
+    }
+    s->mon_nout = n;   /* (the places past n are free: never read) */
+    return ok;
 }
 
 /* (cmon89) 1: sensor k out the first, or any out where an instant fault may take one beside */
@@ -621,25 +642,27 @@ static int mon_watched(int j) {
    cannot rebuild (0: taken): at a campaign's first sample, with another sensor out or missing
    (or out of range), of a sensor the code does not hold out; flagged in mon_flags / mon_rule */
 static int mon_refuses(tc_state *s, const double u[]) {
-    int k, j = -1, nnew = 0, miss = -1, rng = 0, rule = 0;
+    int k, j = -1, nnew = 0, miss = -1, rng = 0, rule = 0, fresh[NM];
     mon_clear(s);
     for (k = 0; k < TC_N_MONITORED; k++) {
         int input = TC_MONITORED[s->first ? k : s->mon_perm[k]];   /* (wires100: as read) */
         double x = u[input];
+        fresh[k] = 0;
         if (!measured(u, input)) {
             if (miss < 0) miss = k;
             if (s->first || !mon_is_out(s, k)) {
                 if (j < 0) j = k;
                 nnew++;
+                fresh[k] = 1;
             }
         } else if (x < MON_LO_LIM[k] || x > MON_HI_LIM[k]) rng = 1;
     }
     if (miss < 0) return 0;
     if (s->first) rule = TC_MON_MISSING_FIRST;
-    else if (nnew > 1 || (nnew && (rng || (s->mon_nout > 0 && !(
-                 MON_SECOND_INSTANT && mon_second_kind(s, j, TC_MON_DROPOUT)
-                 && mon_second_held(s, j, TC_MON_DROPOUT))))))
-        rule = TC_MON_MISSING_SECOND;   /* (cmon89: a dropout as the second out taken) */
+    else if (nnew && (rng || ((nnew > 1 || s->mon_nout > 0)
+                              && !mon_pair_held(s, fresh, TC_MON_DROPOUT))))
+        rule = TC_MON_MISSING_SECOND;   /* (cmon89: a dropout as the second out taken; dep101:
+                                           several new ones, each out in turn) */
     else if (nnew && !MON_PORTED[j] && !mon_drops(j)) rule = TC_MON_MISSING_BLIND;
     if (rule) mon_flag(s, TC_MON_NOT_IN_CODE, j >= 0 ? j : miss, rule);
     return rule;
@@ -841,19 +864,6 @@ static int mon_change_seen(const tc_state *s, const double d[], int out[], const
     return 1;
 }
 
-/* (cmon93) 1: the code takes every sensor of ins[] out for a jump, in the monitor's order, as
-   the first out (one it holds out) or the second (cmon88's rule); the state as it was */
-static int mon_pair_held(tc_state *s, const int ins[]) {
-    int n = s->mon_nout, k, ok = 1;
-    for (k = 0; k < NM && ok; k++) {
-        if (!ins[k]) continue;
-        ok = s->mon_nout > 0 ? mon_jump_held(s, k) : MON_PORTED[k] || mon_spikes(k);
-        if (s->mon_nout < NM) s->mon_out_set[s->mon_nout++] = k;
-    }
-    s->mon_nout = n;   /* (the places past n are free: never read) */
-    return ok;
-}
-
 /* (cmon93) two sensors jumping in one sample (big[]), no common step, every reading there and in
    range, as the served monitor reads a sample's instant faults together (_spike_back, _instant):
    where both are out, each tried as a spike's return first (mon89, in the monitor's order, the
@@ -881,7 +891,7 @@ static int mon_pair_jump(tc_state *s, const double x[], double d[], const double
     if (nleft == 2 && !mon_unjumped(s, d, left, expected)) return 0;
     mon_set(s, a, o, jd, scale);
     for (k = 0; k < NM; k++) ins[k] = left[k] && a[k];
-    if (!mon_pair_held(s, ins)) return 0;
+    if (!mon_pair_held(s, ins, TC_MON_JUMP)) return 0;
     for (k = 0; k < NM; k++) {
         double offset;
         if (!left[k]) continue;
@@ -1262,7 +1272,7 @@ static void mon_sample(tc_state *s, double u[], double dt) {
     int a[NM], o[NM], jd[NM], big[NM], same[NM], instant[NM], rng[NM], missing[NM];
     double scale[NM];
     int k, pos, nbig = 0, jumped = -1, lost = -1, far = -1, nrng = 0;
-    int gone[NM], was_in[NM];
+    int gone[NM], was_in[NM], fresh[NM];
     if (s->first) {
         s->mon_nout = 0;
         s->mon_pos = s->mon_count = 0;
@@ -1354,10 +1364,13 @@ static void mon_sample(tc_state *s, double u[], double dt) {
     /* (cdrop77) a missing reading: excluded, rebuilt from the others (the sensor out, missing
        again: rebuilt as it was; out for a freeze, flagged: its re-admission band is the served
        monitor's path, not held here) */
-    if (lost >= 0) {
-        if (!mon_is_out(s, lost)) mon_exclude(s, lost, TC_MON_DROPOUT);
-        else if (!s->mon_dropped[lost] && !s->mon_jumps[lost])
+    if (lost >= 0 && mon_is_out(s, lost)) {
+        if (!s->mon_dropped[lost] && !s->mon_jumps[lost])
             mon_flag(s, TC_MON_NOT_IN_CODE, lost, TC_MON_MISSING_FROZEN);
+    } else if (lost >= 0) {   /* (dep101) each new one out in the monitor's order, as served */
+        for (k = 0; k < NM; k++) fresh[k] = missing[k] && !mon_is_out(s, k);
+        for (k = 0; k < NM; k++)
+            if (fresh[k]) mon_exclude(s, k, TC_MON_DROPOUT);
     }
     for (k = 0; k < NM && far >= 0; k++)   /* (cmon80; dep99: each beyond range) */
         if (rng[k] && !mon_is_out(s, k)) mon_exclude(s, k, TC_MON_OFF_RANGE);
