@@ -51,7 +51,7 @@ COMMAND_BENCHES = (
     "bench_data93", "bench_data94", "bench_data95", "bench_dates85", "bench_dep100", "bench_dep100b",
     "bench_dep93", "bench_dep95", "bench_dep98", "bench_dep98b", "bench_dep99", "bench_dep99b",
     "bench_deploy73", "bench_deploy87", "bench_deploy88", "bench_deploy89", "bench_derive71",
-    "bench_diag100", "bench_diag70", "bench_diag73", "bench_diag74", "bench_diag75", "bench_diag76",
+    "bench_diag100", "bench_diag101", "bench_diag70", "bench_diag73", "bench_diag74", "bench_diag75", "bench_diag76",
     "bench_diag77", "bench_diag81b", "bench_diag81c", "bench_diag82", "bench_diag82b", "bench_diag82c",
     "bench_diag82d", "bench_diag82e", "bench_diag82f", "bench_diag82g", "bench_diag83", "bench_diag83b",
     "bench_diag84", "bench_diag84b", "bench_diag85", "bench_diag85b", "bench_diag86", "bench_diag86b",
