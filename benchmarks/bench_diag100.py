@@ -244,14 +244,15 @@ def _rounds_read(store: dict):
         search_module.Search._family_bar = original
 
 
-def trace(root: str, name: str) -> None:
-    """The accepted effects' train reads on :data:`SETS` ``name`` (module doc)."""
+def trace(root: str, name: str, cases=None) -> None:
+    """The accepted effects' train reads on :data:`SETS` ``name`` (module doc); ``cases``, if given,
+    the (kind, seed) pairs traced instead (bench_diag101's sets)."""
     from thermocomp.apps.diagnose import diagnose
     from thermocomp.core.compensator import Compensator
     from thermocomp.core.models import MLR
 
     with open(made_folder(root) / f"trace-{name}.jsonl", "w") as out:
-        for kind, seed in SETS[name]:
+        for kind, seed in SETS[name] if cases is None else cases:
             ds, options = _dataset(kind, seed)
             store: dict = {}
             with _rounds_read(store):
