@@ -7,7 +7,8 @@ NOT mon_lost`` skipped the whole field to the campaign's end, while the C holds 
 after the onset missed (lr9917, dl9917 4 each; lr9896 3698, dl9894 6142).  An oracle resuming at
 the C's BACK on the state left at the JUMP named 16 of 17, but raised 1-2 extra flags in 10 windows.
 
-RULE (st_watch.py ``BLOCK``; no key, on wherever the block judges the field, ``MON_STEP_JUDGE``).
+RULE (REFUSED: kept as benchmarks/st101_rule.patch, ``git apply`` it on 7676398c to measure it;
+st_watch.py ``BLOCK``, no key, on wherever the block judges the field, ``MON_STEP_JUDGE``).
 (a) The block's own ``JUMP`` of one sensor the C holds out alone for a jump (``MON_JUMP_HELD``:
 cmon87's, no other predicts it), its field whole before it (not ``mon_lost``), none held, no
 pause, ``BLIND_OUT`` judged: the sensor held (``mon_jheld``) and the field computed on through the
@@ -48,7 +49,34 @@ extra flags.  ``healthy``: the record's line alone (``fl_thermal``: tests/confte
 ``fl_thermal_served``, its test campaign).  ``planted``: ``cases`` on the frame with
 :func:`planted_jump` first.
 
-Measured: (below, after the runs)
+Measured (2026-12-06, 2 cores shared, load 12-22; the rule = e48f5e0e's src, the patch; VERDICT
+REFUSED: S1-S3 met, S4 named met, S4's 0 extra flags not met by 1):
+
+* S1 MET, seen (``cases``): the C's ``BLIND_OUT`` after the block's own JUMP named on its row and
+  sensor 17 of 17 (main 0): lr9917 4 (3685, 3686, 3684, 3681), dl9917 4 (6132, 6133, 6132, 6131),
+  lr9896 T_table 3698, dl9894 T_table 6142, lr9790 4 (3684, 3681, 3685, 3686), dl9794 2 (6130,
+  6131), dl9845 T_table 6150 (st100b's oracle: 16, 6184 there).  Each hold's BACK on the C's row:
+  lr9917 T_amb 3554->3566, dl9917 5923->5935, lr9790 T_motor 3607->3618, dl9794 T_table 6047->6060.
+* S2 MET: the 12 named on main stay named on the same rows (lr9896 3686 x2, dl9894 6137 / 6132,
+  lr9893 3692 / 3683 / 3697, dl9897 6133 / 6128 / 6136, dl9845 6128 / 6133).
+* S3 MET: 0 rows differing from main, extra flags 0 (main 0), on every healthy frame run: st99c's
+  5, st97d's 11, bench_mon98's 8 (sw9776 cr9763 sw9841 cr9843 lr9376 lr9842 tr9828 tr9844), lr9916
+  (dl9916 lr9918 dl9918 fl_thermal: see the report).  Holds in them end at the C's BACK (dl9768
+  T_spindle_front 6646->6658, lr9790's second T_spindle_rear 3753->3767).
+* New extra flags in seen bumped windows: lr9917 T_amb 3734 JUMP T_amb (main there SPIKE): the
+  C undoes the bump's jumps at its BACK (several: ``_undone``), so do the rule's block; the fall's
+  jumps of the sensor the C holds out then are flagged by both blocks (main 6, the rule 7).
+* S4 fresh, scored once (``planted /tmp/st101/fresh lr9947 lr9948 lr9949``, 42.0 s CPU with the
+  simulation; ``... dl9947 dl9948 dl9949``, 61.6 s): the planted T_amb held and back on the C's
+  row on 5 of 6 (dl9948: no hold, its field not whole before it, main alike).  The C's
+  ``BLIND_OUT`` named 20 of 21 (95 %; main 0): lr9947 1/1, lr9948 4/4, lr9949 7/7, dl9947 4/4,
+  dl9948 0/1 (T_table at 6130, the rule silent as main), dl9949 4/4.  Extra flags: 1 new, lr9948
+  T_table 3733 JUMP T_table (main: SPIKE there): the bump's rise jumped twice (3684, 3686), the C
+  undid them at its BACK (3696), as the block; the C's BLIND_OUT (3697) holds T_table out, and its
+  fall's jumps (3729, 3733) the C does not flag, the blocks do (main at 3729 only: its stale
+  shift made 3733 a spike's return).  NOT MET: "0 extra flags".
+* Next rule: a jump of the sensor the block holds out by BLIND_OUT is the C's silent re-reference
+  (out already): not flagged, its hold followed (calm from the jump, its ``_undone`` at the BACK).
 """
 
 from __future__ import annotations
@@ -56,6 +84,8 @@ from __future__ import annotations
 import copy
 import sys
 from pathlib import Path
+
+import numpy as np
 
 HERE = Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE), str(HERE.parent / "tests" / "shell"), str(HERE.parent / "tests")]
@@ -69,24 +99,24 @@ JUMP_LIMITS, SPIKE_ROWS, BEFORE = 3.0, 2, 100    # the planted jump: size, rows 
 
 
 def _fresh() -> dict:
-    from bench_cmon91 import FRESH as CMON91
-
-    lr, dl = (next(words for record, words in CMON91.items() if record.startswith(kind))
-              for kind in ("lr", "dl"))
-    return {f"{kind}{seed}": [f"seed={seed}" if w.startswith("seed=") else w for w in words]
-            for seed in range(9947, 9950) for kind, words in (("lr", lr), ("dl", dl))}
+    """bench_st100's :data:`FRESH` (bench_cmon91's lr and dl generators) on seeds 31 further."""
+    return {f"{record[:2]}{int(record[2:]) + 31}": [
+        f"seed={int(w[5:]) + 31}" if w.startswith("seed=") else w for w in words]
+        for record, words in bench_st100.FRESH.items()}
 
 
 FRESH = _fresh()     # lr9947, dl9947, lr9948, dl9948, lr9949, dl9949 (chosen before any was simulated)
 
 
 def planted_jump(ss, frame, start: int):
-    """``frame`` with a spike on the first sensor the C holds out alone for a jump: up
+    """``frame`` with a spike on the first sensor the C holds out alone for a jump (the rule's
+    ``MON_JUMP_HELD``, :file:`st101_rule.patch`): up
     :data:`JUMP_LIMITS` times its jump limit for :data:`SPIKE_ROWS` rows, :data:`BEFORE` rows
     before the onset ``start``; and the sensor's name."""
-    from thermocomp.apps.deploy.export.st_watch import jump_held
-
-    k = int(jump_held(ss.monitor).argmax())
+    watch = ss.monitor    # (cmon87's: one no other predicts, out alone for a jump in the C)
+    held = bool(watch.get("blind_drop")) and bool(watch.get("blind_jump"))
+    held = held and len(watch["inputs"]) - 1 >= watch["min_active"]
+    k = int((~np.asarray(watch["predictable"], bool) & held).argmax())
     name = ss.inputs[ss.monitor["inputs"][k]]
     df = frame.copy()
     at = start - BEFORE
@@ -213,7 +243,8 @@ def planted(root: str, *records: str) -> None:
 
 def main(argv: list[str]) -> int:
     """The command ``argv`` names (module doc; none: the usage, status 2)."""
-    return run_commands(__doc__, {"cases": cases, "healthy": healthy, "planted": planted}, argv, cpu=sys.stderr)
+    commands = {"cases": cases, "healthy": healthy, "planted": planted}
+    return run_commands(__doc__, commands, argv, cpu=sys.stderr)
 
 
 if __name__ == "__main__":

@@ -11,8 +11,7 @@ import re
 
 from thermocomp.apps.deploy.export import st_watch
 
-GROWING = ("mon_count", "mon_stop_row", "mon_calm", "mon_run", "mon_run_was", "mon_frun", "mon_quiet",
-           "mon_jcalm")
+GROWING = ("mon_count", "mon_stop_row", "mon_calm", "mon_run", "mon_run_was", "mon_frun", "mon_quiet")
 
 
 def _declared(text: str) -> dict[str, str]:
