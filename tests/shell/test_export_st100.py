@@ -8,7 +8,12 @@ lr9132 (``thermocomp simulate sim=long_record``, seed 9132, 3 days), MLR deploye
 ``data.reference=none``, its first 1100 fed rows (tests/shell/test_export_st94.py's fixture): three
 sensors the others predict bumped -2 °C from row 300 (test_export_st96's bump), where the C
 declares a new thermal state, then test_export_st96's bump of a sensor no other predicts from row
-600, the C's ``BLIND_OUT`` (benchmarks/bench_st100.py measures the rule on seen and fresh records)."""
+600, the C's ``BLIND_OUT`` (benchmarks/bench_st100.py measures the rule on seen and fresh records).
+
+(st101) The block's own ``JUMP`` of a sensor no other predicts ended its judgement of the field
+for the campaign (``mon_lost``), while the C holds the sensor out to its ``BACK`` and judges on:
+the same record, a spike of the sensor the C holds out for a jump 150 rows before the bump
+(benchmarks/bench_st101.py)."""
 
 from __future__ import annotations
 
@@ -17,9 +22,10 @@ import numpy as np
 from test_export import TOLERANCE_UM
 from test_export_st94 import record  # noqa: F401 (the module's fixture)
 from test_export_st96 import BLIND, START, _stepped, bumped
-from thermocomp.apps.deploy.export.watch import BLIND_OUT, EXCLUDED, NOVEL, OUT
+from thermocomp.apps.deploy.export.watch import BACK, BLIND_OUT, EXCLUDED, JUMP, NOVEL, OUT
 
 FIELD, AT, SIZE = ("T_head_left", "T_col_front_top", "T_bed_right"), 300, -2.0
+JUMPED, JUMP_AT, JUMP_LIMITS = "T_amb", START - 150, 3.0    # (st101) its spike: 2 rows, 3 jump limits
 
 
 def _judging(v) -> tuple:
@@ -50,3 +56,31 @@ def test_the_block_pauses_at_the_cs_new_state_and_names_a_blind_out_after_it(rec
     assert {(s, lost) for s, lost, _ in judging} == {(False, False)}
     paused = [i for i, (_, _, p) in enumerate(judging) if p]
     assert paused == list(range(novel[0], novel[-1] + 1))
+
+
+def _jumped(v) -> tuple:
+    """``(mon_lost, mon_jheld)`` (an export before st101: no hold, -1)."""
+    return bool(v["mon_lost"]), int(v.get("mon_jheld", -1))
+
+
+def test_the_block_holds_its_own_jump_to_the_cs_back_and_names_a_blind_out_after_it(record):  # noqa: F811
+    _, ss, frame, block = record
+    names = [ss.inputs[i] for i in ss.monitor["inputs"]]
+    k, j = names.index(BLIND), names.index(JUMPED)    # (one the C holds out for a jump)
+    df = frame.copy()
+    df.loc[JUMP_AT:JUMP_AT + 1, names[j]] += JUMP_LIMITS * float(ss.monitor["jump_lim"][j])
+    df, end = bumped(df, BLIND)
+    st, st_said, judging, c, c_said = _stepped(ss, block, df.iloc[:end + 1], _jumped)
+    # the C: the sensor out for its jump, back after its wait, then its BLIND_OUT of the bump
+    assert c_said[JUMP_AT][1:] == (JUMP, j)
+    back = next(i for i in range(JUMP_AT + 1, START) if c_said[i][1])
+    assert c_said[back][1:] == (BACK, j) and back >= JUMP_AT + ss.monitor["window"]
+    out = next(i for i in range(back + 1, len(c_said)) if c_said[i][1])
+    assert START < out <= end and c_said[out][1:] == (BLIND_OUT, k)
+    # the block names it on the C's row (before st101: its judgement ended at its own JUMP)
+    assert st_said[out] == (True, BLIND_OUT, k)
+    assert [i for i, s in enumerate(st_said[:out + 1]) if s[0]] == [JUMP_AT, out]
+    # held from its JUMP to the C's BACK (the field computed, not judged), then the C's again
+    assert [i for i, (_, held) in enumerate(judging) if held >= 0] == list(range(JUMP_AT, back))
+    assert judging[back] == (False, -1)
+    assert np.max(np.abs(st[back:out] - c[back:out])) <= TOLERANCE_UM

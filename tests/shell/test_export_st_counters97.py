@@ -11,7 +11,8 @@ import re
 
 from thermocomp.apps.deploy.export import st_watch
 
-GROWING = ("mon_count", "mon_stop_row", "mon_calm", "mon_run", "mon_run_was", "mon_frun", "mon_quiet")
+GROWING = ("mon_count", "mon_stop_row", "mon_calm", "mon_run", "mon_run_was", "mon_frun", "mon_quiet",
+           "mon_jcalm")
 
 
 def _declared(text: str) -> dict[str, str]:

@@ -55,6 +55,12 @@ Per sample, of each monitored sensor ``k`` (the input ``MON_INPUT[k]``, the C's 
   state and takes nothing out, pauses it (``mon_pause``) to a calm window: ``MON_WINDOW`` rows in
   a row with none at its warning band (``mon_quiet``, the C's ``calm_field``); in the pause such
   a reach pauses on, any other reach or a sensor out ends it;
+* (st101) the block's own JUMP of one sensor the C holds out alone for a jump (``MON_JUMP_HELD``,
+  cmon87: one no other predicts), its field whole before it, held (``mon_jheld``): the field
+  computed on through the hold and not judged, to the C's ``BACK`` (``mon_jcalm`` rows since its
+  last jump at least the C's wait, a full window counted, its reading moving), the C's ``_undone``
+  there, the block judging on from the next row; anything else named or flagged in the hold (but
+  BENT) ends it as before;
 * (st96b) the C's level shift of a sensor no other predicts (``SETTLED``), told by the C's test
   over ``2 MON_WINDOW`` readings (``mon_settle_ring``, ``settled.level_shift``) on the C's
   conditions (its reference unmoved for ``2 MON_WINDOW - 1`` samples, no gap, the reading before
@@ -88,8 +94,9 @@ TRUE on the one sample where the ``BLIND_OUT`` judgement ends for the campaign (
 veto or new thermal state, which the block does not follow), ``mon_stop_row`` that sample's
 number in the campaign (1 the first; 0 while it judges): said once, no fault flagged with it, so
 that the block's silence from there is not read as "healthy".  The counters that grow with the campaign
-(``mon_count``, ``mon_stop_row``, ``mon_calm``, ``mon_run``, ``mon_quiet``) are DINT: an INT wraps after 32767
-samples (9 h at 1 s), and a wrapped count stops the judgement (``mon_count + 1 >= MON_CONFIRM``).
+(``mon_count``, ``mon_stop_row``, ``mon_calm``, ``mon_run``, ``mon_quiet``, ``mon_jcalm``) are
+DINT: an INT wraps after 32767 samples (9 h at 1 s), and a wrapped count stops the judgement
+(``mon_count + 1 >= MON_CONFIRM``).
 
 What the block does then, without the POD that rebuilds a sensor in the C: a reading not
 measured or beyond the range refuses the sample (``refused``: ``c`` holds the last correction,
@@ -106,9 +113,10 @@ rest judge a sensor by the others' prediction of it over a set the block does no
 POD): not in the ST, they stay with the served model (``provenance.not_in_code``).  (st94b)
 The stepped self-prediction error is judged while the field is whole only: from the first
 exclusion the block flags (a jump, a dropout, a reading beyond range, a stepped error not
-followed to its ``BACK``) to the campaign's end the C judges it with a sensor out (or
-re-admitted by a band the block does not hold), and the block does not; that flag marks the row
-its judgement ends (st95b: or, while one is out, a rule named or its reading standing still).
+followed to its ``BACK``; st101: a jump it holds to the C's ``BACK`` neither) to the campaign's
+end the C judges it with a sensor out (or re-admitted by a band the block does not hold), and the
+block does not; that flag marks the row its judgement ends (st95b: or, while one is out, a rule
+named or its reading standing still).
 """
 
 from __future__ import annotations
@@ -149,12 +157,20 @@ def pair_places(watch: dict) -> tuple[np.ndarray, np.ndarray]:
     if not watch.get("pair_jump") or not n:
         return np.zeros(n, bool), np.zeros(n, bool)
     ported = np.asarray(watch["ported_out"], bool)
-    blind = ~np.asarray(watch["predictable"], bool)
-    held = bool(watch.get("blind_drop")) and bool(watch.get("blind_jump"))
-    spikes = blind & held & (n - 1 >= watch["min_active"])
+    spikes = jump_held(watch)
     second = bool(watch.get("second_jump")) and bool(watch.get("solve")) and "basis" in watch
     instant = bool(watch.get("second_instant")) & spikes & (n - 2 >= watch["min_active"])
     return ported | spikes, second & (ported | instant)
+
+
+def jump_held(watch: dict) -> np.ndarray:
+    """(cmon87) The sensors no other predicts that the C holds out alone for a jump, back at its
+    ``BACK`` with the jump undone (``blind_jump``, with ``blind_drop``: held at the last reading,
+    every other in); all False for an export before it (the C flags the jump ``BLIND``)."""
+    n = len(watch.get("inputs", []))
+    blind = ~np.asarray(watch.get("predictable", [True] * n), bool)
+    held = bool(watch.get("blind_drop")) and bool(watch.get("blind_jump"))
+    return blind & held & (n - 1 >= watch.get("min_active", n))
 
 
 def self_prediction(watch: dict) -> tuple:
@@ -186,7 +202,8 @@ def back_constants(watch: dict, n: int, stepped: bool, constant) -> list[str]:
             f"    MON_WINDOW : INT := {max(int(watch.get('window', 1)), 1)};",
             f"    MON_MAX_BACKOFF : INT := {int(watch.get('max_backoff', 10))};",
             constant("MON_BACK_BAND", band.tolist(), (n,)),
-            constant("MON_FREEZE_RUN", runs.tolist(), (n,), "INT")]
+            constant("MON_FREEZE_RUN", runs.tolist(), (n,), "INT"),
+            constant("MON_JUMP_HELD", jump_held(watch).astype(int).tolist(), (n,), "INT")]
 
 
 def freeze_constants(watch: dict, n: int, constant) -> list[str]:
@@ -436,6 +453,12 @@ VARS = """    mon_last : ARRAY[{nm}] OF LREAL;
     mon_field_warned : INT;
     mon_pause : BOOL;
     mon_quiet : DINT;
+    mon_jheld : INT;
+    mon_jcalm : DINT;
+    mon_jn : INT;
+    mon_jdwell : INT;
+    mon_jshift0 : LREAL;
+    mon_jlast : LREAL;
     mon_perm : ARRAY[{nm}] OF INT;
     mon_xr : ARRAY[{nm}] OF LREAL;
     mon_xlim : ARRAY[{nm}] OF LREAL;
@@ -479,6 +502,7 @@ IF first THEN
     mon_spos := 0;
     mon_held := -1;
     mon_held_set := -1;
+    mon_jheld := -1;
 END_IF;
 (* (st99) the set the C judges a freeze by: every sensor in (-1), or without the BLIND_OUT *)
 (* the block holds (its set, MON_OUT_SELF's): the C's second out *)
@@ -730,6 +754,23 @@ mon_flag := mon_flag OR mon_gone;
 (* (st94b) the self-prediction error stepped past the alarm band (the C's STEP_OUT), judged *)
 (* while the field is whole: any exclusion since the campaign's first sample ends it, but *)
 (* (st95b) one sensor out alone by the block's own STEP_OUT, followed to the C's BACK *)
+(* (st101) the block's own JUMP of one sensor no other predicts, its field whole before it *)
+(* (none held, no pause, BLIND_OUT judged): out in the C as here (MON_JUMP_HELD), the field *)
+(* computed on through the hold and not judged (mon_jheld), to the C's BACK below *)
+IF MON_STEP_JUDGE AND NOT mon_lost AND mon_rule = RULE_JUMP AND mon_jumps = 1 AND NOT mon_gone THEN
+    IF MON_JUMP_HELD[mon_sensor] = 1 AND mon_held < 0 AND NOT mon_pause AND NOT mon_blind_lost THEN
+        mon_jheld := mon_sensor;
+        mon_jn := 0;
+        mon_jshift0 := mon_shift[MON_INPUT[mon_sensor]] - mon_step[mon_sensor];
+        mon_jlast := mon_last[mon_sensor] - mon_base[mon_sensor] - mon_jshift0;
+        mon_jdwell := MON_WINDOW;    (* the C's wait: the window, doubled per drift exclusion *)
+        FOR mr := 2 TO mon_field_outs[mon_sensor] DO
+            IF mr <= MON_MAX_BACKOFF + 1 THEN
+                mon_jdwell := mon_jdwell * 2;
+            END_IF;
+        END_FOR;
+    END_IF;
+END_IF;
 IF mon_gone OR mon_jumps > 0 THEN
     mon_lost := TRUE;
 END_IF;
@@ -766,7 +807,20 @@ IF MON_STEP_JUDGE AND mon_lost AND mon_rule = 0 THEN
         END_IF;
     END_FOR;
 END_IF;
-IF MON_STEP_JUDGE AND NOT mon_lost THEN
+(* (st101) the jumped sensor held: its own jump or return starts the C's calm again; anything *)
+(* else named or flagged is not followed (lost as before) *)
+IF mon_jheld >= 0 THEN
+    IF mon_big[mon_jheld] AND mon_jumps = 1 AND NOT mon_gone THEN
+        mon_jcalm := 0;
+        mon_jn := mon_jn + 1;
+        mon_sage[mon_jheld] := 0;    (* its reference moved: the C's age 1 on this row *)
+    ELSIF mon_flag OR (mon_rule <> 0 AND mon_rule <> RULE_BENT) THEN
+        mon_jheld := -1;
+    ELSIF mon_jcalm < 2147483646 THEN
+        mon_jcalm := mon_jcalm + 1;
+    END_IF;
+END_IF;
+IF MON_STEP_JUDGE AND (NOT mon_lost OR mon_jheld >= 0) THEN
     FOR mk := 0 TO MON_N - 1 DO
         j := MON_INPUT[mk];
         mon_d[mk] := u[j] - mon_base[mk] - mon_shift[j];
@@ -777,6 +831,7 @@ IF MON_STEP_JUDGE AND NOT mon_lost THEN
             mon_since[mk] := mon_since[mk] + 1;
         END_IF;
         mon_go := mon_span = 1.0 AND mon_gap[mk] = 1.0;    (* no gap *)
+        mon_go := mon_go AND mk <> mon_jheld;    (* (st101) out for its jump: not in the C *)
         IF MON_SETTLES[mk] = 1 AND mon_sage[mk] >= 2 * MON_WINDOW - 1 AND mon_go THEN
             (* (st96) the C's level shift (SETTLED): the window ending here parted from the *)
             (* one before by MON_SETTLE_LIM and moved past MON_SETTLE_STEADY x their spread *)
@@ -894,7 +949,7 @@ IF MON_STEP_JUDGE AND NOT mon_lost THEN
             mon_x := mon_x + MON_SELF[mk, mj] * mon_d[mj];
         END_FOR;
         mon_e[mk] := (mon_d[mk] - mon_x) * MON_SCALE[mk];
-        IF mon_e_known AND MON_JUDGED[mk] = 1 AND mon_held < 0 THEN
+        IF mon_e_known AND MON_JUDGED[mk] = 1 AND mon_held < 0 AND mon_jheld < 0 THEN
             mon_off := mon_e[mk] - mon_prev_e[mk];
             IF mon_off < 0.0 THEN
                 mon_off := -mon_off;
@@ -934,7 +989,8 @@ IF MON_STEP_JUDGE AND NOT mon_lost THEN
         IF mon_frun[mk] = 1 THEN
             mon_fpred[mk] := mon_x;
         END_IF;
-        IF mon_frun[mk] > 0 AND (mon_was < 0 OR mon_fset >= 0) AND mk <> mon_was AND mon_froze < 0 THEN
+        mon_go := mon_froze < 0 AND mon_jheld < 0;    (* (st101) none judged while one is held *)
+        IF mon_frun[mk] > 0 AND (mon_was < 0 OR mon_fset >= 0) AND mk <> mon_was AND mon_go THEN
             mon_off := mon_x - mon_fpred[mk];
             IF mon_off < 0.0 THEN
                 mon_off := -mon_off;
@@ -983,6 +1039,7 @@ IF MON_STEP_JUDGE AND NOT mon_lost THEN
     (* reach the band (MON_FIELD_BAND): a sensor no other predicts that explains them out *)
     (* (BLIND_OUT); a judgement the block cannot follow ends this one (not the stepped one) *)
     mon_judge := MON_BLIND_JUDGE AND NOT mon_blind_lost AND mon_was < 0 AND mon_culprit < 0;
+    mon_judge := mon_judge AND mon_jheld < 0;
     mon_judge := mon_judge AND mon_count + 1 >= MON_CONFIRM;
     mon_reach := FALSE;
     mon_field_warned := 0;
@@ -1202,6 +1259,41 @@ IF MON_STEP_JUDGE AND NOT mon_lost THEN
                 mon_held := -1;
             END_IF;
         END_IF;
+    END_IF;
+END_IF;
+(* (st101) the C's BACK of the jumped sensor: calm for its wait, a full window counted, its *)
+(* reading moving (one no other predicts passes); the C's _undone there: its jumps undone where *)
+(* it jumped more than once, or where its reading on the reference before them is nearer its *)
+(* last one in; the block judging on from the next row, as the C *)
+IF mon_jheld >= 0 AND mon_jcalm >= mon_jdwell AND mon_count + 1 >= MON_WINDOW THEN
+    mk := mon_jheld;
+    j := MON_INPUT[mk];
+    IF u[j] <> mon_last[mk] THEN
+        mon_off := mon_shift[j] - mon_jshift0;
+        mon_x := mon_d[mk] + mon_off - mon_jlast;
+        mon_lim := mon_d[mk] - mon_jlast;
+        IF mon_jn > 1 OR (mon_off <> 0.0 AND mon_x * mon_x < mon_lim * mon_lim) THEN
+            mon_sage[mk] := 1;    (* the C's reference moved back on this row *)
+            mon_shift[j] := mon_jshift0;
+            mon_d[mk] := mon_d[mk] + mon_off;
+            FOR mr := 0 TO MON_WINDOW - 1 DO
+                mon_ring[mr, mk] := mon_ring[mr, mk] + mon_off;
+            END_FOR;
+            FOR mr := 0 TO 2 * MON_WINDOW - 1 DO
+                mon_settle_ring[mr, mk] := mon_settle_ring[mr, mk] + mon_off;
+            END_FOR;
+            mon_out[mk] := FALSE;    (* its re-reference gone; else kept: a return is a spike's *)
+            mon_rerefd[mk] := FALSE;
+            FOR mi := 0 TO MON_N - 1 DO    (* the errors the next row steps from, as the C's *)
+                mon_x := 0.0;
+                FOR mj := 0 TO MON_N - 1 DO
+                    mon_x := mon_x + MON_SELF[mi, mj] * mon_d[mj];
+                END_FOR;
+                mon_prev_e[mi] := (mon_d[mi] - mon_x) * MON_SCALE[mi];
+            END_FOR;
+        END_IF;
+        mon_lost := FALSE;
+        mon_jheld := -1;
     END_IF;
 END_IF;
 (* a return is stepped from the last reading, over the samples it spans *)
