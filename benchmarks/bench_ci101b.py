@@ -163,12 +163,12 @@ def rows(out: str, tag: str, reps: str = "2") -> None:
     work = Path(tempfile.mkdtemp(prefix=f"rows-{tag}-", dir=folder))
     lines = []
     for name, (deployed, ss, frame, lead, tests, leads) in _records(work, TIMED).items():
-        (cid, campaign), = tests.items()
+        (cid, _), = tests.items()
         for kind in ("served", "mirror"):
             start = time.process_time()
             for _ in range(int(reps)):
-                if kind == "served":
-                    stream_rows(deployed, campaign, cid, None, leads.get(cid))
+                if kind == "served":            # (from a reset, the lead-in's rows its first)
+                    stream_rows(deployed, frame, cid)
                 else:
                     _mirror(ss, frame)
             spent = time.process_time() - start
