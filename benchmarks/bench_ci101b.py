@@ -33,7 +33,8 @@ Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is
     python benchmarks/bench_ci101b.py same OUT BASE AFTER    # (1): two ``outputs`` compared, bytes
     python benchmarks/bench_ci101b.py rows OUT TAG           # (2): OUT/rows.txt, a line a stream
     python benchmarks/bench_ci101b.py rowtable OUT [BEFORE AFTER]
-    python benchmarks/bench_ci100b.py cpu TREE TAG OUT SPEC...   # (3), bench_ci100b's; its table
+
+(3) is bench_ci100b's ``cpu TREE TAG OUT SPEC`` (each module alone) and its ``table``.
 """
 from __future__ import annotations
 
@@ -194,6 +195,10 @@ def rowtable(out: str, before: str = "base", after: str = "after") -> None:
                   f"(bar -25 %: {'met' if ua <= 0.75 * ub else 'NOT met'})")
 
 
+def main(argv: list[str]) -> int:
+    return run_commands(__doc__, {"outputs": outputs, "same": same, "rows": rows,
+                                  "rowtable": rowtable}, argv, cpu=sys.stderr)
+
+
 if __name__ == "__main__":
-    sys.exit(run_commands(__doc__, {"outputs": outputs, "same": same, "rows": rows,
-                                    "rowtable": rowtable}, sys.argv[1:], cpu=sys.stderr))
+    sys.exit(main(sys.argv[1:]))
