@@ -35,6 +35,43 @@ Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is
     python benchmarks/bench_ci101b.py rowtable OUT [BEFORE AFTER]
 
 (3) is bench_ci100b's ``cpu TREE TAG OUT SPEC`` (each module alone) and its ``table``.
+
+Verdict: REFUSED ((1) met; (2) and (3) not).  The rule (01f5d1c1, its test d556ed87, its docs
+6a989b91) is saved as benchmarks/ci101b_rule.patch (src, tests/shell/test_monitor_settled97b.py's
+case, docs/monitoring.md; applies to 7676398c); src, tests and docs are 7676398c's.  As built:
+``settled.level_shift_now`` (the one sample's parting from the two windows' extremes in place, the
+ring stacked for the medians only where one parted; served ``Settled._settled`` and the mirror's
+``CodeMonitor._settled``), ``streaming._step`` / ``_models`` ``count_nonzero`` before an index,
+``guard.rate_span``'s scalar path, the mirror's ``_errors`` kept per (set, ``d`` bytes) read only,
+``_in()`` (the active set without a copy where the step only reads it), ``big`` counted once,
+``_judge``'s rows indexed once, ``Simulator`` without ``vstack``.
+
+Measured (2026-12-06 18:40-19:20; base = git archive of 7676398c, after = of 01f5d1c1; 2 cores
+shared, load 15-20; CPU s user + sys):
+(1) ``outputs`` base / after (the src of 01f5d1c1, in this tree) and ``same``: every item of the 7 records the same
+    (lr8841, lr9032, lr9126, lr9132 4321 rows each, default 89, column_moving_source 1441,
+    fl_thermal 1112; served y / clamped / guarded / events, mirror corrections + flags, 20 pack
+    files each, 17 of fl_thermal, check.json's summary): MET, 0 items differ.
+(2) ``rows`` (base, after, base, after; 8642 rows a record and kind a run)::
+
+      rep 1: served 4.426 -> 3.705 s, mirror 6.701 -> 6.597 s
+      rep 2: served 3.996 -> 3.495 s, mirror 6.053 -> 5.822 s
+      served 243.6 -> 208.3 us/row -14.5 %; mirror 369.0 -> 359.3 us/row -2.6 %: NOT met
+
+    Beside the bar (a script, lr9126 alone, min of 5 runs, base / after twice in turn):
+    mirror 1.494, 1.554 -> 1.349, 1.340 s (-11.5 %), served 0.934, 0.913 -> 0.766, 0.768 s
+    (-17 %).  An earlier try (18:37, ``rows`` then streaming the served one warmed on its
+    lead-in, not from a reset as this docstring says: fixed before the bar's runs) read -38 /
+    -37 %: the load's noise, not the rule.
+(3) 9 modules, each alone, -n 0, nice, base / after back to back; rep 1 cmon85 -> st94, rep 2
+    st94 -> cmon85 (a second lane); every run passed::
+
+      cmon85 18.5 -> 16.7 (-9.6 %)    cmon86 17.9 -> 18.3 (+2.5 %)   cmon87 18.6 -> 17.3 (-6.7 %)
+      cmon88 20.8 -> 18.3 (-11.9 %)   cmon89 21.4 -> 18.8 (-11.9 %)  cmon92b 11.1 -> 10.1 (-9.1 %)
+      cmon93 20.1 -> 17.8 (-11.0 %)   st93 11.4 -> 10.7 (-6.0 %)     st94 9.6 -> 10.0 (+4.1 %)
+      sum 149.2 -> 138.1 (-7.4 %; rep 1 148.8 -> 138.8 -6.7 %, rep 2 149.6 -> 137.4 -8.1 %): NOT met
+
+    (a third cmon85 pair, 15.8 -> 13.6, ran before the lane was stopped: not counted.)
 """
 from __future__ import annotations
 
