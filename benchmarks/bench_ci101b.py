@@ -48,8 +48,8 @@ ring stacked for the medians only where one parted; served ``Settled._settled`` 
 
 Measured (2026-12-06 18:40-19:20; base = git archive of 7676398c, after = of 01f5d1c1; 2 cores
 shared, load 15-20; CPU s user + sys):
-(1) ``outputs`` base / after (the src of 01f5d1c1, in this tree) and ``same``: every item of the 7 records the same
-    (lr8841, lr9032, lr9126, lr9132 4321 rows each, default 89, column_moving_source 1441,
+(1) ``outputs`` base / after (01f5d1c1's src, in this tree) and ``same``: every item of the 7
+    records the same (lr8841, lr9032, lr9126, lr9132 4321 rows each, default 89, column_moving_source 1441,
     fl_thermal 1112; served y / clamped / guarded / events, mirror corrections + flags, 20 pack
     files each, 17 of fl_thermal, check.json's summary): MET, 0 items differ.
 (2) ``rows`` (base, after, base, after; 8642 rows a record and kind a run)::
