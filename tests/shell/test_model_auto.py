@@ -61,9 +61,28 @@ def _run(data: Path, out: Path, *extra: str) -> dict:
 
 @pytest.fixture(scope="module")
 def two_targets(tmp_path_factory):
+    """``run model=auto`` of :data:`PAIR`, validated (the model it fits and its test scores are
+    the same either way; the validation reuses the choice's folds): data, metrics, folder."""
     root = tmp_path_factory.mktemp("auto")
     data = make_two_targets(root / "data")
-    return data, _run(data, root / "auto", "model=auto", PAIR), root
+    return data, _run(data, root / "auto", "model=auto", PAIR, "eval.validation=true"), root
+
+
+@pytest.fixture(scope="module")
+def pair_fitted(two_targets):
+    """The train campaigns, the unfitted :data:`PAIR` auto compensator and it fitted on them, in
+    this process (read by two tests; each clones the template before fitting it)."""
+    from sklearn.base import clone
+
+    from thermocomp.core.compensator import Compensator
+    from thermocomp.core.io import read_dataset
+    from thermocomp.core.models import MLR, LagBank
+    from thermocomp.core.models.auto import AutoRegressor
+
+    ds, _ = read_dataset(two_targets[0])
+    train = {c: ds.campaigns[c] for c in ds.ids("train")}
+    template = Compensator(AutoRegressor({"mlr": MLR(), "lagbank": LagBank()}))
+    return train, template, clone(template).fit(train)
 
 
 def test_each_target_keeps_the_family_with_the_best_free_run_validation(two_targets):
@@ -218,27 +237,21 @@ def test_auto_validates_as_the_test_split_is_held_out(two_targets, tmp_path):
     assert {m["auto"]["scheme"] for m in other["targets"].values()} == {"leave-campaigns-out"}
 
 
-def test_the_run_validates_the_families_auto_chose_as_they_validated(two_targets, tmp_path):
-    data, _, _ = two_targets
-    metrics = _run(data, tmp_path / "auto", "model=auto", PAIR, "eval.validation=true")
+def test_the_run_validates_the_families_auto_chose_as_they_validated(two_targets):
+    metrics = two_targets[1]        # the fixture's run: model=auto, PAIR, eval.validation=true
     for m in metrics["targets"].values():    # the chosen family on the same folds: its own score
         assert m["validation"]["method"].startswith("blocked forward (3 folds); model=auto: its members'")
         chosen = m["auto"]["candidates"][m["auto"]["chosen"]]
         assert m["validation"]["rmse"] == pytest.approx(chosen, rel=1e-9)
 
 
-def test_the_run_refits_the_chosen_families_not_the_whole_choice(two_targets):
+def test_the_run_refits_the_chosen_families_not_the_whole_choice(pair_fitted):
     from sklearn.base import clone
 
-    from thermocomp.core.compensator import Compensator
-    from thermocomp.core.io import read_dataset
     from thermocomp.core.models import MLR, LagBank
-    from thermocomp.core.models.auto import AutoRegressor, as_chosen
+    from thermocomp.core.models.auto import as_chosen
 
-    ds, _ = read_dataset(two_targets[0])
-    train = {c: ds.campaigns[c] for c in ds.ids("train")}
-    template = Compensator(AutoRegressor({"mlr": MLR(), "lagbank": LagBank()}))
-    fitted = clone(template).fit(train)
+    train, template, fitted = pair_fitted
     refit = as_chosen(clone(template), fitted).fit(train)
     assert {t: type(e) for t, e in refit.estimators_.items()} == {"E_A": MLR, "E_B": LagBank}
     for t in ("E_A", "E_B"):     # the same fit as the chosen family's inside the auto model
@@ -292,18 +305,14 @@ def test_with_a_val_split_auto_chooses_on_it_as_the_run_validates(two_targets, t
         assert m["validation"]["rmse"] == pytest.approx(scores[m["auto"]["chosen"]], rel=1e-9)
 
 
-def test_mutual_prediction_fits_each_targets_chosen_family_with_its_chosen_penalty(two_targets):
+def test_mutual_prediction_fits_each_targets_chosen_family_with_its_chosen_penalty(pair_fitted):
     from sklearn.base import clone
 
-    from thermocomp.core.compensator import Compensator, with_chosen_hyperparameters
-    from thermocomp.core.io import read_dataset
+    from thermocomp.core.compensator import with_chosen_hyperparameters
     from thermocomp.core.models import MLR, LagBank
-    from thermocomp.core.models.auto import AutoRegressor, as_chosen
+    from thermocomp.core.models.auto import as_chosen
 
-    ds, _ = read_dataset(two_targets[0])
-    train = {c: ds.campaigns[c] for c in ds.ids("train")}
-    template = Compensator(AutoRegressor({"mlr": MLR(), "lagbank": LagBank()}))
-    fitted = clone(template).fit(train)
+    train, template, fitted = pair_fitted
     single = clone(with_chosen_hyperparameters(as_chosen(clone(template), fitted), fitted))
     one = {c: train[c] for c in list(train)[:1]}
     models = single.fit(one).estimators_

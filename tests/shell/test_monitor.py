@@ -90,6 +90,26 @@ def _stream(model, df):
     return np.array(y), events
 
 
+@pytest.fixture(scope="module")
+def healthy_streams(deployed):
+    """Per test campaign, the deployed compensator's stream of it as recorded: ``(y, events)``
+    (``_stream`` resets first, so it is the same whatever streamed before).  Every fault test
+    scores its faulty stream against it; the arrays are read-only."""
+    adaptive, _, test, _ = deployed
+    streams = {cid: _stream(adaptive, df) for cid, df in test.items()}
+    for y, _ in streams.values():
+        y.flags.writeable = False
+    return streams
+
+
+@pytest.fixture(scope="module")
+def second_sensor(deployed) -> str:
+    """The second most influential sensor, as the fixture ranks the first (its influence)."""
+    _, comp, test, sensor = deployed
+    effect = influence(comp, test)
+    return max((c for c in effect if not c.startswith("T_amb") and c != sensor), key=effect.get)
+
+
 def _faulty(df, sensor, kind):
     df, n = df.copy(), len(df)
     k0 = n // 2
@@ -112,11 +132,11 @@ def _faulty(df, sensor, kind):
     return df, k0
 
 
-def test_healthy_test_campaigns_raise_no_event_and_change_nothing(deployed):
+def test_healthy_test_campaigns_raise_no_event_and_change_nothing(deployed, healthy_streams):
     adaptive, comp, test, _ = deployed
     fixed = adaptive.streaming
     for cid, df in test.items():
-        y, events = _stream(adaptive, df)
+        y, events = healthy_streams[cid]
         assert events == [], (cid, events[:3])
         batch = comp.predict({cid: df})[cid][adaptive.targets_].to_numpy()
         assert np.allclose(y, batch, atol=1e-9)
@@ -124,7 +144,8 @@ def test_healthy_test_campaigns_raise_no_event_and_change_nothing(deployed):
 
 
 @pytest.mark.parametrize("kind", FAULTS)
-def test_a_fault_on_the_most_influential_sensor_is_reported_bounded_and_compensated(deployed, kind):
+def test_a_fault_on_the_most_influential_sensor_is_reported_bounded_and_compensated(deployed, kind,
+                                                                                   healthy_streams):
     adaptive, comp, test, sensor = deployed
     measured = comp.measured(test)
     g = adaptive.guard
@@ -141,7 +162,7 @@ def test_a_fault_on_the_most_influential_sensor_is_reported_bounded_and_compensa
         if kind == "dropout":
             assert "dropout" in mine[0]["reason"]
         m = measured[cid][adaptive.targets_].to_numpy()
-        healthy, _ = _stream(adaptive, df)
+        healthy, _ = healthy_streams[cid]
         ratios.append(np.sqrt(np.mean((m - y) ** 2, 0)) / np.sqrt(np.mean((m - healthy) ** 2, 0)))
     assert np.max(ratios) <= 1.5, (kind, ratios)   # drift too: no runtime xfail hiding a regression
 
@@ -192,10 +213,10 @@ SLOW_DRIFT = pytest.mark.xfail(strict=True, reason=(
                                   "two_jumps",
                                   pytest.param("drift_0.5", marks=SLOW_DRIFT),
                                   pytest.param("drift_0.2", marks=SLOW_DRIFT)])
-def test_faults_of_other_shapes_stay_bounded_and_cost_at_most_1_5x_the_healthy_error(deployed, kind):
+def test_faults_of_other_shapes_stay_bounded_and_cost_at_most_1_5x_the_healthy_error(
+        deployed, kind, healthy_streams, second_sensor):
     adaptive, comp, test, sensor = deployed
-    effect = influence(comp, test)   # the second most influential sensor, as the fixture ranks the first
-    second = max((c for c in effect if not c.startswith("T_amb") and c != sensor), key=effect.get)
+    second = second_sensor
     measured, g, rng = comp.measured(test), adaptive.guard, np.random.default_rng(7)
     worst = 0.0
     for cid, df in test.items():
@@ -205,7 +226,7 @@ def test_faults_of_other_shapes_stay_bounded_and_cost_at_most_1_5x_the_healthy_e
         if kind != "noisy":                    # the noise stays within the bands on some campaigns
             assert any(e["sensor"] in (sensor, second) for e in events), (cid, kind)
         m = measured[cid][adaptive.targets_].to_numpy()
-        healthy, _ = _stream(adaptive, df)
+        healthy, _ = healthy_streams[cid]
         ratio = np.sqrt(np.mean((m - y) ** 2, 0)) / np.sqrt(np.mean((m - healthy) ** 2, 0))
         worst = max(worst, float(ratio.max()))
     assert worst <= 1.5, worst
@@ -213,7 +234,8 @@ def test_faults_of_other_shapes_stay_bounded_and_cost_at_most_1_5x_the_healthy_e
 
 @pytest.mark.parametrize("sensor", ["T_amb", "most_influential"])
 @pytest.mark.parametrize("reading", [+50.0, -50.0, "open"])
-def test_an_out_of_range_reading_is_no_measurement_and_its_return_no_jump(deployed, sensor, reading):
+def test_an_out_of_range_reading_is_no_measurement_and_its_return_no_jump(deployed, sensor, reading,
+                                                                         healthy_streams):
     # a one-sample spike far outside the training range (or an open circuit reading 850 °C for
     # 5 samples): the sensor is out while it lasts and comes back as it was.  Before, the
     # spike became the previous value, its return read as a jump, and the ambient sensor (which
@@ -240,13 +262,14 @@ def test_an_out_of_range_reading_is_no_measurement_and_its_return_no_jump(deploy
         assert not any(e["to"] == "re-referenced" or e["reason"].startswith("jump") for e in events)
         assert adaptive.excluded_inputs == []          # back in by the end of the campaign
         m = measured[cid][adaptive.targets_].to_numpy()
-        healthy, _ = _stream(adaptive, df)
+        healthy, _ = healthy_streams[cid]
         ratio = np.sqrt(np.mean((m - y) ** 2, 0)) / np.sqrt(np.mean((m - healthy) ** 2, 0))
         worst = max(worst, float(ratio.max()))
     assert worst <= 1.25, worst
 
 
-def test_an_offset_inside_the_band_moves_the_correction_by_the_reported_cost_and_no_more(deployed):
+def test_an_offset_inside_the_band_moves_the_correction_by_the_reported_cost_and_no_more(deployed,
+                                                                                        healthy_streams):
     # what monitor.json's undetected_offset_um says: the fault the monitor cannot see, priced
     adaptive, comp, test, sensor = deployed
     mon = adaptive.monitor
@@ -259,7 +282,7 @@ def test_an_offset_inside_the_band_moves_the_correction_by_the_reported_cost_and
         y, events = _stream(adaptive, faulty)
         if any(e["to"] == "excluded" for e in events):
             continue                 # the offset plus the model error left the band here
-        healthy, _ = _stream(adaptive, df)
+        healthy, _ = healthy_streams[cid]
         unseen.append(np.abs(y - healthy).max(axis=0))
     assert len(unseen) >= len(test) - 2
     change = np.max(unseen, axis=0)
@@ -294,7 +317,7 @@ def test_freeze_and_drift_are_reported_within_10_samples_of_becoming_observable(
     ("T_amb", "first_row_missing", 1.25), ("most_influential", "first_row_missing", 1.5),
     ("T_amb", "noise_burst", 1.25)])
 def test_a_sensor_missing_at_the_start_or_noisy_for_a_while_comes_back_as_it_reads(
-        deployed, sensor, kind, bound):
+        deployed, sensor, kind, bound, healthy_streams):
     # missing at the reference sample: it was never referenced, so it stayed out for good and
     # the ambient sensor, which no other predicts, was held at the start value (9.5x the healthy
     # error); a ±0.5 °C noise burst of 10 samples on it: each noisy step beyond the jump limit
@@ -322,7 +345,7 @@ def test_a_sensor_missing_at_the_start_or_noisy_for_a_while_comes_back_as_it_rea
         else:
             assert np.isfinite(adaptive.monitor._ref[j])
         m = measured[cid][adaptive.targets_].to_numpy()
-        healthy, _ = _stream(adaptive, df)
+        healthy, _ = healthy_streams[cid]
         sq.append((m - y) ** 2)
         sq_healthy.append((m - healthy) ** 2)
     pooled = np.sqrt(np.mean(np.vstack(sq), 0) / np.mean(np.vstack(sq_healthy), 0))

@@ -64,6 +64,31 @@ def test_the_two_window_test_answers_as_every_window_did():
     assert fired > 100          # the steps settle: the comparison is not of empty masks
 
 
+@pytest.mark.filterwarnings("ignore::RuntimeWarning")
+def test_the_one_sample_test_without_the_stacked_ring_answers_as_level_shift():
+    """(ci101b) ``level_shift_now(ring, row)``: the served monitor's and the mirror's sample, its
+    parting asked of the two windows' extremes in place, is ``level_shift`` of the ring with the
+    row stacked, its first row: the same mask, the same shift where one parted."""
+    rng = np.random.default_rng(101)
+    fired = 0
+    for case in range(400):
+        w, cols = int(rng.integers(1, 13)), int(rng.integers(1, 5))
+        a = np.cumsum(rng.normal(size=(2 * w, cols)), 0) * rng.choice([1e-3, 1.0, 100.0])
+        if case % 4 == 0:
+            a[w:] += rng.normal(size=cols) * 20                    # steps that part the windows
+        if case % 5 == 0:
+            a.flat[rng.integers(0, a.size, size=2)] = np.nan
+        if case % 7 == 0:
+            a.flat[rng.integers(0, a.size)] = rng.choice([np.inf, -np.inf])
+        lim, steady = rng.random(cols) * rng.choice([0.1, 1.0, 10.0]), rng.choice([0.0, settled.STEADY])
+        want, want_shift = (v[0] for v in settled.level_shift(a, w, lim, steady))
+        got, shift = settled.level_shift_now(a[:-1], a[-1], w, lim, steady)
+        assert np.array_equal(got, want), case
+        assert shift.tobytes() == want_shift.tobytes(), case      # bitwise, NaN where none parted
+        fired += int(want.sum())
+    assert fired > 50
+
+
 @pytest.fixture(scope="module")
 def adaptive(short_dataset):
     ds, _ = io.read_dataset(short_dataset, {})

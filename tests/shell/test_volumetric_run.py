@@ -38,6 +38,14 @@ def run(raw, tmp_path_factory):
     return _run(raw, tmp_path_factory.mktemp("volrun_out"), "plots=none")
 
 
+@pytest.fixture(scope="module")
+def two_parameters(raw, tmp_path_factory):
+    """The run modelling two parameters, with its figures (read by two tests, written by none):
+    the figures' test reads its folder, the stages' test its numbers (figures change none)."""
+    return _run(raw, tmp_path_factory.mktemp("volrun_two"), "plots=summary",
+                "data.targets=[E_ZZ1,E_XZ1]", "eval.validation=false")
+
+
 def test_the_targets_are_the_identified_parameters_and_the_table_is_written(run):
     metrics, out = run
     vol = metrics["volumetric"]
@@ -116,11 +124,10 @@ def test_trajectories_and_the_a3_test_before_and_after(run):
     assert a3["range_before_max"] >= a3["range_before"]
 
 
-def test_figures_headline_and_every_key_documented(raw, run, tmp_path):
+def test_figures_headline_and_every_key_documented(run, two_parameters):
     assert not (run[1] / "volumetric").exists()                     # plots=none: no figure
     # two parameters modelled: the others count uncompensated in every figure
-    metrics, out = _run(raw, tmp_path, "plots=summary", "data.targets=[E_ZZ1,E_XZ1]",
-                        "eval.validation=false")
+    metrics, out = two_parameters
     table = metrics["volumetric"]["parameters"]
     assert set(table) == set(run[0]["volumetric"]["parameters"])     # every identified one
     assert {n for n, row in table.items() if row["n_inputs"]} == {"E_ZZ1", "E_XZ1"}
@@ -150,7 +157,7 @@ def test_figures_headline_and_every_key_documented(raw, run, tmp_path):
 
 
 @pytest.mark.parametrize("prior", ["null", "${design.ranges}"])
-def test_the_separate_stages_give_the_volumetric_section_as_run_does(raw, tmp_path, prior):
+def test_the_separate_stages_give_the_volumetric_section_as_run_does(raw, tmp_path, prior, request):
     """ingest calibrates into data.interim, train models the parameters, evaluate validates them
     against the distances: the same section as `run` with the same settings (a prior too)."""
     common = ["experiment=volumetric_large_mill", f"data.path={raw}", f"data.interim={tmp_path / 'interim'}",
@@ -164,8 +171,11 @@ def test_the_separate_stages_give_the_volumetric_section_as_run_does(raw, tmp_pa
     assert main(["train", *common]) == 0
     assert main(["evaluate", *common, f"out={tmp_path / 'staged'}"]) == 0
     staged = json.loads((tmp_path / "staged" / "metrics.json").read_text())
-    whole, _ = _run(raw, tmp_path / "run", "plots=none", "data.targets=[E_ZZ1,E_XZ1]",
-                    f"calibrate.prior={prior}", "eval.validation=false")
+    if prior == "null":     # the default: the figures' run (its numbers are plots=none's)
+        whole, _ = request.getfixturevalue("two_parameters")
+    else:
+        whole, _ = _run(raw, tmp_path / "run", "plots=none", "data.targets=[E_ZZ1,E_XZ1]",
+                        f"calibrate.prior={prior}", "eval.validation=false")
     for block in ("distance_error", "vce", "vce_identified"):
         for k in ("rms_before", "rms_after"):
             assert staged["volumetric"][block][k] == pytest.approx(whole["volumetric"][block][k], rel=1e-9)

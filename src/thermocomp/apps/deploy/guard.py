@@ -30,6 +30,7 @@ no injected fault of benchmarks/bench_deploy_faults.py moves.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 
 import numpy as np
@@ -209,6 +210,8 @@ def rate_span(dt, period_s: float):
     trained on 300 s rows and fed 60 s rows was rate-limited 88 times on a healthy run).  The one
     rule of the guard, of the exported code (:mod:`.export.output`, the C, the ST) and of the
     offsets ``connect`` writes (:class:`thermocomp.apps.machine.offsets.OffsetLimiter`, connect72)."""
+    if isinstance(dt, float):       # one step's (ci101b): the same choice, no array made
+        return np.float64(dt if math.isfinite(dt) and dt > period_s else period_s)
     with np.errstate(invalid="ignore"):
         return np.where(np.isfinite(dt) & (np.asarray(dt) > period_s), dt, period_s)
 

@@ -557,9 +557,9 @@ class StreamingCompensator:
             j = int(np.flatnonzero(~np.isfinite(checked))[0])
             raise MissingValueError(f"input {self.columns_[j]} has no finite value at row "
                                      f"{self.n_samples_} (sensor dropout?)")
-        beyond = np.flatnonzero(np.abs(checked) > self._limits())
-        if len(beyond):
-            j = int(beyond[0])
+        beyond = np.abs(checked) > self._limits()
+        if np.count_nonzero(beyond):                # (ci101b: its index only where one is)
+            j = int(np.flatnonzero(beyond)[0])
             raise MissingValueError(f"input {self.columns_[j]} reads {checked[j]:g} at row "
                                      f"{self.n_samples_}, beyond {MAX_ABS_T_C:g} °C, which no "
                                      "sensor reads (an overload or open-circuit mark?)")
@@ -608,7 +608,7 @@ class StreamingCompensator:
         env = self.envelope
         if env is not None and self.policy != "off":
             out = (dx < env.lo) | (dx > env.hi)
-            if out.any():
+            if np.count_nonzero(out):
                 if self.policy == "refuse":
                     j = int(np.flatnonzero(out)[0])
                     frame = " (change since the first sample)" if self._is_ref[j] else ""

@@ -659,7 +659,7 @@ class Simulator:
         if self.first:
             self.buf = np.tile(u, (len(self.fir), 1))
         else:
-            self.buf = np.vstack([u[None, :], self.buf[:-1]])
+            self.buf = np.concatenate((u[None, :], self.buf[:-1]))
         v = (self.buf * self.fir).sum(axis=0)
         first, model, lag_dt = self.first, self, dt
         if not first and ss.grid_period:      # the training grid (cadence72): lags by the time
@@ -724,8 +724,8 @@ class Simulator:
             xe = np.r_[xe, self._transient(v, measured, now)]
         self._held_states(v, excess)
         # two channels of one system: the measured inputs, and their excess (no powers, no intercept)
-        xs = np.vstack([xe, np.concatenate([excess, np.zeros(len(ss.powers)), of_excess,
-                                            np.zeros(len(ss.initial))])])
+        xs = np.concatenate([xe, excess, np.zeros(len(ss.powers)), of_excess,
+                             np.zeros(len(ss.initial))]).reshape(2, -1)
         xl = xs[:, self.lag_input]
         first = self.first
         e = None if self.first else np.exp(-lag_dt / self.taus)

@@ -188,7 +188,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..adaptive import GAP_PERIODS, AdaptiveCompensator
-from ..surveillance.settled import STEADY, advanced, level_shift
+from ..surveillance.settled import STEADY, advanced, level_shift_now
 from ..surveillance.states import (
     ALARM,
     COMMON_MIN,
@@ -496,6 +496,7 @@ class CodeMonitor:
         # (ci98) the active masks by the sensors out, the active set's and the judgement's arrays
         # as last made (:meth:`_set`, :meth:`_judge`)
         self._actives, self._set_memo, self._judge_memo = {}, None, None
+        self._errors_memo = None
         self.reset()
 
     def reset(self) -> None:
@@ -577,7 +578,11 @@ class CodeMonitor:
 
     def _active(self) -> np.ndarray:
         """The sensors in (a copy: callers mark a trial set in it)."""
-        return self._active_of(tuple(sorted(self.gone))).copy()
+        return self._in().copy()
+
+    def _in(self) -> np.ndarray:
+        """The sensors in, read only (ci101b: the step's own reads, no copy made)."""
+        return self._active_of(tuple(sorted(self.gone)))
 
     def _active_of(self, gone: tuple) -> np.ndarray:
         """The sensors in with the sensors ``gone`` out, made once per set and read only (ci98:
@@ -614,9 +619,17 @@ class CodeMonitor:
         return self._set()[3] & ~self.warn_only
 
     def _errors(self, d):
-        M, _, _, _, scale = self._set()
+        """``(pred, error)`` of the sample ``d`` under the active set, read only (ci101b: kept
+        for the last ``d`` and set; a sample asks again with neither changed)."""
+        made, key, memo = self._set(), d.tobytes(), self._errors_memo
+        if memo is not None and memo[0] is made and memo[1] == key:
+            return memo[2]
+        M, _, _, _, scale = made
         pred = M @ np.where(np.isfinite(d), d, 0.0)      # (a missing reading is out: column 0)
-        return pred, (d - pred) * scale
+        e = (d - pred) * scale
+        pred.flags.writeable = e.flags.writeable = False
+        self._errors_memo = (made, key, (pred, e))
+        return pred, e
 
     def _others_seen(self, d) -> np.ndarray:
         """Each judged sensor's reading as the other active ones predict it (NaN: not judged)."""
@@ -670,11 +683,12 @@ class CodeMonitor:
                 and memo[2] is self.warn and memo[3] is self.alarm):
             return memo[4]
         rows = self._rows()
-        err = self.err[rows].sum(axis=0) / max(len(rows), 1)
+        last = self.err[rows]
+        err = last.sum(axis=0) / max(len(rows), 1)
         if len(rows) < self.confirm:
             level = np.zeros(self.n, int)
         else:
-            a = np.abs(self.err[rows]).min(axis=0)
+            a = np.abs(last).min(axis=0)
             with np.errstate(invalid="ignore"):
                 level = (a >= self.warn).astype(int) + (a >= self.alarm)
         level.flags.writeable = err.flags.writeable = False
@@ -819,8 +833,8 @@ class CodeMonitor:
         w, a, cols = self.window, self.a, self.settles
         gap = np.maximum(self.gap, max(1.0, dt / a["period"])) if (
             dt > a["gap_periods"] * a["period"]) else self.gap
-        rows = np.vstack([self.settle[:, cols], x[cols] - self.ref[cols]])
-        parted, shift = (v[0] for v in level_shift(rows, w, a["settle_lim"][cols], a["settle_steady"]))
+        parted, shift = level_shift_now(self.settle[:, cols], x[cols] - self.ref[cols], w,
+                                        a["settle_lim"][cols], a["settle_steady"])
         if not parted.any():       # nearly every sample: none fires (as served)
             return
         active = self._active()[cols]
@@ -874,12 +888,13 @@ class CodeMonitor:
         instant = missing | rng
         if big.sum() >= a["common_min"]:
             big = self._common_step(d, step, big, pos)
-        was_in = self._active()
+        was_in = self._in()
         if a["bent"]:
             big = self._bent(d, step, big, gone, gap, pos)
         # a lone jump's change as the others see it, judged by the set in before this sample's
         # dropout or range exclusion, as served (its instant faults read first, then excluded)
-        other = self._others_seen(d) if big.sum() == 1 else None
+        n_big = int(big.sum())      # (big as judged from here; ci101b: counted once)
+        other = self._others_seen(d) if n_big == 1 else None
         if missing.any():   # (refuses() let one through: a new one, or the sensor out again)
             new = missing.copy()
             new[self._outs()] = False
@@ -892,11 +907,11 @@ class CodeMonitor:
                 self._flag(NOT_IN_CODE, j, MISSING_FROZEN)
         for j in [int(k) for k in np.flatnonzero(rng) if k not in self._outs()]:
             self._exclude(j, OFF_RANGE)   # (cmon80: read as missing, as a dropout; dep99: each)
-        if big.sum() == 2 and a["pair_jump"] and not gone.any() and self.count != 2 and (
+        if n_big == 2 and a["pair_jump"] and not gone.any() and self.count != 2 and (
                 (held := self._pair_jump(x, d, step, big)) is not None):
             instant |= held
             self.hist[pos] = d
-        elif big.sum() > 1:
+        elif n_big > 1:
             self._flag(NOT_IN_CODE, int(np.argmax(big)), COMMON)
         elif big.any() and self.count == 2:
             self._flag(NOT_IN_CODE, int(np.argmax(big)), GLITCH)
@@ -955,7 +970,7 @@ class CodeMonitor:
         self._judgement()
         for j in [k for k in self.gone if self.count >= self.window]:
             self._thaw(j, gone, instant)
-        due = ~self._active() & ~gone & (self.run == 0) & ~instant & (self.calm >= self.dwell)
+        due = ~self._in() & ~gone & (self.run == 0) & ~instant & (self.calm >= self.dwell)
         if due.any() and self.count >= self.window:
             for j in np.flatnonzero(self._returning(due)):
                 if a["blind_jump"]:
@@ -1346,7 +1361,7 @@ class CodeMonitor:
         """The served monitor's drift exclusion where the code holds it, else flagged."""
         a = self.a
         level, err = self._judge()
-        active, judged = self._active(), self._judging()
+        active, judged = self._in(), self._judging()
         field = ALARM if (self.by_field & ~active).any() else a["exclude_level"]
         # (cmon82b) in a new thermal state no drift exclusion at all (served: every one vetoed)
         if (judged & (level >= field)).any() and active.sum() > a["min_active"] and not (
@@ -1366,7 +1381,7 @@ class CodeMonitor:
         with every judged sensor within band (flagged by an export before cmon82b)."""
         a = self.a
         level, _ = self._judge()
-        active, judged = self._active(), self._judging()
+        active, judged = self._in(), self._judging()
         self.since[active | (self.count - self.since > self.window)] = -1
         out = int((judged & (level >= WARNING)).sum())
         for j in np.flatnonzero(self.since >= 0):
@@ -1477,7 +1492,7 @@ class CodeMonitor:
         while too few are in to rebuild the field, nor of one out for a dropout that reads again:
         cmon84, its held reading the model's while it waits out its window; one that has none in
         the code: 0, flagged ``FALLBACK``); 0: the model's."""
-        active = self._active()
+        active = self._in()
         if active.sum() < self.a["min_active"]:
             return 0
         back = self.dropped & self.read

@@ -84,6 +84,24 @@ def level_shift(a: np.ndarray, w: int, lim, steady: float = STEADY) -> tuple[np.
     return parted & (np.abs(shift) > steady * spread), shift
 
 
+def level_shift_now(ring: np.ndarray, row: np.ndarray, w: int, lim,
+                    steady: float = STEADY) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`level_shift` of the one sample ``row`` after the ring of the ``2 w - 1`` before it
+    (per column: parted, its shift), the sample's test of the served monitor and of the code's
+    mirror.  Whether a window parted is asked first of the two windows' extremes as they stand
+    (ci101b: no stacked copy of the ring a sample; a minimum and a maximum are the same whatever
+    the order they are taken in, NaN where one is missing); only where one parted is the ring
+    stacked and :func:`level_shift` asked (nearly never)."""
+    lo_b, hi_b = ring[:w].min(0), ring[:w].max(0)
+    after = ring[w:]
+    lo_a = np.minimum(after.min(0), row) if len(after) else row
+    hi_a = np.maximum(after.max(0), row) if len(after) else row
+    parted = np.maximum(lo_a - hi_b, lo_b - hi_a) > lim
+    if not parted.any():
+        return parted, np.full(parted.shape, np.nan)
+    return tuple(v[0] for v in level_shift(np.vstack([ring, row]), w, lim, steady))
+
+
 def largest_separation(arrays, w: int, n: int) -> np.ndarray:
     """Each sensor's largest training :func:`separation` (never below 0; inf: no campaign holds
     two windows)."""
@@ -127,8 +145,8 @@ class Settled:
         if self._ref is None:
             return
         w, cols = self.window, self._settle_cols
-        rows = np.vstack([self._settle[:, cols], x[cols] - self._ref[cols]])
-        parted, shift = (v[0] for v in level_shift(rows, w, self._settle_lim[cols]))
+        parted, shift = level_shift_now(self._settle[:, cols], x[cols] - self._ref[cols], w,
+                                        self._settle_lim[cols])
         if not parted.any():       # nearly every sample: nothing to re-reference
             return
         fire = ((self._active[cols] | (self._jumps[cols] == 0)) & parted
