@@ -40,16 +40,17 @@ Usage (from the repository root; the bench sets ``PYTHONPATH`` to ``<tree>/src``
 
     python benchmarks/bench_ci101.py pair BASE AFTER OUT REP [MOD...]   # base, after together
     python benchmarks/bench_ci101.py table OUT                          # per module, sums, bars
-    python benchmarks/bench_ci101.py fit ROOT                           # the 3 records' models
+    python benchmarks/bench_ci101.py fit ROOT                           # the records' models
     python benchmarks/bench_ci101.py export TREE ROOT OUT               # their check/ md5
 
 ``BASE`` / ``AFTER`` are checkouts (``git archive``).  ``pair`` runs ``/usr/bin/time nice pytest -q
 -n 0 -p no:cacheprovider -p bench_ci101 --basetemp=OUT/bt/<tag>-<MOD> <module>`` in each tree,
 both at once; the plugin (this module, ``CI101_PACKS`` set) wraps ``conformance_pack`` and appends
 ``TAG MOD TEST CALL CPU`` to OUT/pack_cpu.txt and ``TAG MOD TEST CALL PATH MD5`` to OUT/packs.txt;
-``TAG MOD user sys wall result`` goes to OUT/cpu.txt.  ``fit`` simulates and fits the records
-once (with the tree on ``PYTHONPATH``; the fit is not the rule's); ``export`` runs each record's
-export with ``TREE`` and prints the md5 of every file under ``check/``.
+``TAG MOD user sys wall result`` goes to OUT/cpu.txt.  ``fit`` simulates and fits the two
+records (the default, fl_thermal; ``run`` reads no monitor group: it is export's) once, with the
+tree on ``PYTHONPATH`` (the fit is not the rule's); ``export`` runs each record's export with
+``TREE`` and prints the md5 of the list of its ``check/`` files' md5.
 """
 from __future__ import annotations
 
@@ -70,10 +71,10 @@ MODULES = {"scored44": "tests/apps/test_deployed_as_scored44.py",
                "cmon85", "cmon86", "cmon87", "cmon88", "cmon89", "cmon89b", "cmon93", "mon98b",
                "atiprod65", "guard")}}
 THREADS = {k: "1" for k in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS")}
-# the records of bar (1)'s exports: (name, data config, run's and export's overrides)
-RECORDS = (("default", "data=default", ()),
-           ("fl_thermal_monitor", "data=fl_thermal", ("monitor.adaptive=true",)),
-           ("default_monitor", "data=default", ("monitor.adaptive=true",)))
+# the records of bar (1)'s exports: (name, data config, the fitted run, export's overrides)
+RECORDS = (("default", "data=default", "default", ()),
+           ("fl_thermal_monitor", "data=fl_thermal", "fl_thermal", ("monitor.adaptive=true",)),
+           ("default_monitor", "data=default", "default", ("monitor.adaptive=true",)))
 
 
 # --- the pytest plugin (``-p bench_ci101``, active where CI101_PACKS names the output folder) ---
@@ -197,22 +198,22 @@ def fit(root: str) -> None:
     if not (folder / "datasets").exists():
         (folder / "datasets").symlink_to(Path(__file__).resolve().parents[1] / "datasets")
     _thermocomp(folder, "simulate")
-    for name, data, extra in RECORDS:
-        _thermocomp(folder, "run", data, *extra, f"out=reports/{name}")
+    for name, data in {(run, data) for _, data, run, _ in RECORDS}:
+        _thermocomp(folder, "run", data, f"out=reports/{name}")
         print(name, "fitted", flush=True)
 
 
 def export(tree: str, root: str, out: str) -> None:
     """Each record's ``export`` (C, its check pack) with ``TREE``'s code: md5 of check/'s files."""
     folder, target = Path(root).resolve(), made_folder(out)
-    for name, data, extra in RECORDS:
+    for name, data, run, extra in RECORDS:
         dest = target / name
         subprocess.run(["rm", "-rf", str(dest)], check=True)
         env = {**os.environ, **THREADS, "PYTHONPATH": str(Path(tree).resolve() / "src"),
                "THERMOCOMP_ROOT": str(folder)}
         start = time.perf_counter()
         subprocess.run([sys.executable, "-m", "thermocomp", "-q", "export", data, *extra,
-                        f"export.model={folder / 'reports' / name / 'model.pkl'}",
+                        f"export.model={folder / 'reports' / run / 'model.pkl'}",
                         "export.format=c", "export.check=true", "track=false", f"out={dest}"],
                        cwd=folder, env=env, check=True, capture_output=True)
         files = sorted(p for p in (dest / "check").rglob("*") if p.is_file())
