@@ -26,7 +26,10 @@ long export, a workbook) reaches the code as the CSV ``stream.c`` takes.
 Of an export whose code holds the sensor monitor (the C's, :mod:`.watch`), two copies of the
 first campaign with a fault planted follow (:func:`~.watch.planted`: a jump, a freeze and a
 dropout of a monitored sensor from its middle row on, ``planted`` in their entries), the served
-model's monitor acting on them: every pack checks the code's monitor, cut where it parts.
+model's monitor acting on them: every pack checks the code's monitor, cut where it parts.  A copy
+is its source up to the plant: their shared rows (and a shared lead-in, perf87b) are streamed once
+and each goes on from a copy of the states there (:func:`_shares`, :class:`_Lead`; ci101), the
+pack the same as each streamed from its start.
 
 (deploy89) Each campaign that continues others follows once more as ``<campaign>.cold``, streamed
 from a reset at its first row, not warmed on their rows (``cold_start`` in its entry: the campaign
@@ -217,14 +220,19 @@ class _Lead:
     instead wherever the shortcut does not apply: a cut within the prefix, a refusal, a column
     not float)."""
 
-    def __init__(self, served: ServedLead, ss: StateSpace, frame: pd.DataFrame, monitor: bool):
+    def __init__(self, served: ServedLead, ss: StateSpace, frame: pd.DataFrame, monitor: bool,
+                 after: _Lead | None = None):
         self.served, self.rows, self.sim, self.parted = served, served.rows, None, None
-        self.flags: list = []         # (packflags100) the mirror's flags of the lead-in's rows
+        self.flags: list = []         # (packflags100) the mirror's flags of the prefix's rows
         if served.state is not None and monitor:
-            sim = Simulator(ss)
-            sim.reset(manifest_ambient(frame))
-            self.parted = _parted(ss, frame.iloc[:self.rows], corrections(ss, served.y), 0, sim,
-                                  self.flags)
+            if after is not None and after.sim is not None and after.parted is None:
+                sim, start = copy.deepcopy(after.sim), after.rows    # (from a shorter prefix)
+                self.flags = list(after.flags)
+            else:
+                sim, start = Simulator(ss), 0
+                sim.reset(manifest_ambient(frame))
+            self.parted = _parted(ss, frame.iloc[:self.rows], corrections(ss, served.y), start,
+                                  sim, self.flags)
             self.sim = sim
 
     def fits(self, frame: pd.DataFrame) -> bool:
@@ -255,29 +263,30 @@ def _same_rows(campaign: pd.DataFrame, changed: pd.DataFrame) -> int:
 
 
 def _shares(campaigns: Mapping[str, pd.DataFrame], lead_ins: Mapping[str, pd.DataFrame | None],
-            faults: Mapping[str, tuple]) -> dict[str, tuple[object, int]]:
-    """``{campaign: (key, rows)}``: the first ``rows`` of the campaign's fed rows, the same for
-    every campaign of ``key``, to be streamed once (:class:`_Lead`): a lead-in shared by campaigns
-    (perf87b); a campaign with planted copies (``faults``, :func:`~.watch.planted`), its lead-in
-    and its own rows before the first a copy changes, shared by it and its copies (ci101: a copy
-    is its source up to the plant).  Only keys of more than one campaign."""
-    out = {}
+            faults: Mapping[str, tuple]) -> dict[str, list[tuple[object, int]]]:
+    """``{campaign: [(key, rows), ...]}``, shortest first: the first ``rows`` of the campaign's
+    fed rows, the same for every campaign of ``key``, to be streamed once (:class:`_Lead`), each
+    from the one before: a lead-in shared by campaigns (perf87b); of a campaign with planted
+    copies (``faults``, :func:`~.watch.planted`), its lead-in and its own rows before the first a
+    copy changes, shared by it and its copies (ci101: a copy is its source up to the plant).
+    Only keys of more than one campaign."""
+    out: dict[str, list] = {}
     for cid in campaigns:
         lead = lead_ins.get(cid)
         if lead is not None and len(lead):
-            out[cid] = (id(lead), len(lead))
+            out[cid] = [(id(lead), len(lead))]
     copies: dict[str, list[str]] = {}
     for cid, (frame, _, source) in faults.items():
         if campaigns.get(cid) is frame and source in campaigns:
             copies.setdefault(source, []).append(cid)
     for source, planted_ in copies.items():
         lead = lead_ins.get(source)
-        rows = (0 if lead is None else len(lead)) + min(
-            _same_rows(campaigns[source], campaigns[c]) for c in planted_)
-        if rows:
-            out.update({c: (("planted", source), rows) for c in (source, *planted_)})
-    counts = Counter(key for key, _ in out.values())
-    return {c: (key, rows) for c, (key, rows) in out.items() if counts[key] > 1}
+        before = min(_same_rows(campaigns[source], campaigns[c]) for c in planted_)
+        for cid in (source, *planted_) if before else ():
+            out.setdefault(cid, []).append(
+                (("planted", source), (0 if lead is None else len(lead)) + before))
+    counts = Counter(key for shares in out.values() for key, _ in shares)
+    return {c: [s for s in shares if counts[s[0]] > 1] for c, shares in out.items()}
 
 
 def conformance_pack(deployed, ss: StateSpace, campaigns: Mapping[str, pd.DataFrame],
@@ -326,11 +335,15 @@ def conformance_pack(deployed, ss: StateSpace, campaigns: Mapping[str, pd.DataFr
         if not len(frame):
             listed.append({**entry, "rows": 0, "cut": cut})
             continue
-        shared, (key, rows) = None, shares.get(cid, (None, 0))
-        if key is not None and len(frame) > rows:     # (not a frame cut within the prefix)
+        shared = after = None
+        for key, rows in shares.get(cid, ()):     # shortest first; the longest that fits taken
+            if len(frame) <= rows:                # (a frame cut within the prefix)
+                break
             if key not in leads:
-                leads[key] = _Lead(served.lead(frame, rows), ss, frame, monitor)
-            shared = leads[key] if leads[key].fits(frame) else None
+                leads[key] = _Lead(served.lead(frame, rows, after and after.served), ss, frame,
+                                   monitor, after)
+            after = leads[key]
+            shared = after if after.fits(frame) else shared
         if shared is not None:
             try:
                 y = served.y(frame, lambda: shared.served.stream(frame))
