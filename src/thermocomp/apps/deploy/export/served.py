@@ -48,26 +48,18 @@ def stepped(served, frame: pd.DataFrame, y: np.ndarray, start: int) -> None:
 class ServedLead:
     """The served model streamed over a lead-in (the first ``rows`` of a fed frame) from its
     reset: ``state`` (a copy of the model after it; None where a row was refused) and ``y``; and
-    the lead-in's rows as CSV text by columns (``text``, filled by the pack).  ``after``: the
-    :class:`ServedLead` of the frame's first rows (fewer), the stream going on from a copy of its
-    state (ci101: a planted copy's prefix after the lead-in it shares)."""
+    the lead-in's rows as CSV text by columns (``text``, filled by the pack)."""
 
-    def __init__(self, deployed, frame: pd.DataFrame, rows: int, after: ServedLead | None = None):
+    def __init__(self, deployed, frame: pd.DataFrame, rows: int):
         self.rows, self.state, self.y, self.text = rows, None, None, {}
         y = np.empty((rows, len(deployed.targets_)))
-        if after is not None:
-            if after.state is None:
-                return                               # (refused in its rows: as a whole stream)
-            served, y[:after.rows] = copy.deepcopy(after.state), after.y
-        else:
-            served = deployed
-            deployed.reset(manifest_ambient(frame))   # (stream_rows' warm without a lead-in)
+        deployed.reset(manifest_ambient(frame))       # (stream_rows' warm without a lead-in)
         try:
-            stepped(served, frame.iloc[:rows], y, 0 if after is None else after.rows)
+            stepped(deployed, frame.iloc[:rows], y, 0)
         except OutOfEnvelopeError:
             deployed.reset()
             return                                   # (the whole stream raises it, named)
-        self.state, self.y = (copy.deepcopy(deployed) if after is None else served), y
+        self.state, self.y = copy.deepcopy(deployed), y
         deployed.reset()
 
     def stream(self, frame: pd.DataFrame) -> np.ndarray:
@@ -111,10 +103,10 @@ class ServedStreams:
             self._y[digest] = make()
         return self._y[digest]
 
-    def lead(self, frame: pd.DataFrame, rows: int, after: ServedLead | None = None) -> ServedLead:
+    def lead(self, frame: pd.DataFrame, rows: int) -> ServedLead:
         """The :class:`ServedLead` of ``frame``'s first ``rows`` (their digest holds the frame's
-        attributes: its manifest ambient too), going on from ``after`` where made anew."""
+        attributes: its manifest ambient too)."""
         key = frame_digest(frame.iloc[:rows])
         if key not in self._leads:
-            self._leads[key] = ServedLead(self.deployed, frame, rows, after)
+            self._leads[key] = ServedLead(self.deployed, frame, rows)
         return self._leads[key]
