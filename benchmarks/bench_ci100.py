@@ -121,13 +121,14 @@ def _timed(tree: Path, tag: str, module: str, folder: Path) -> str:
     return f"{tag} {module} {user} {system} {wall} {result}"
 
 
-def pair(before: str, after: str, out: str, rep: str, *modules: str) -> None:
-    """Each module's base and after started together (the same load): OUT/cpu.txt lines."""
-    folder = made_folder(out)
+def pair(before: str, after: str, out: str, rep: str, *modules: str, timed=None) -> None:
+    """Each module's base and after started together (the same load): OUT/cpu.txt lines.
+    ``timed``: a module's run as :func:`_timed` (another bench's: bench_ci101's, with its plugin)."""
+    folder, timed = made_folder(out), timed or _timed
     trees = {"base": Path(before).resolve(), "after": Path(after).resolve()}
     for module in modules or MODULES:
         with ThreadPoolExecutor(2) as pool:
-            lines = list(pool.map(lambda t: _timed(trees[t], f"{t}-{rep}", module, folder), trees))
+            lines = list(pool.map(lambda t: timed(trees[t], f"{t}-{rep}", module, folder), trees))
         with open(folder / "cpu.txt", "a") as f:
             f.write("".join(line + "\n" for line in lines))
         print(*lines, sep="\n", flush=True)
