@@ -1,7 +1,7 @@
 """A broken wire in the exported C (cdrop77): a monitored sensor's missing reading after a
 campaign's first sample is excluded, rebuilt from the others and re-admitted by the code's sensor
 monitor as the served adaptive model's monitor does it; where the code cannot rebuild it (the
-first sample, a second sensor out or missing) the row is refused, the rule named.
+first sample, every sensor missing at once) the row is refused, the rule named.
 
 On test_export's three-sensor record (MLR, deployed adaptive): ``T_b`` empty for four rows of a
 test campaign.  Before, the C refused the first of them (``stream`` exit 2) and the pack cut the
@@ -83,13 +83,16 @@ def test_a_missing_reading_is_excluded_rebuilt_and_readmitted_by_the_code_as_ser
 def test_where_the_code_cannot_rebuild_a_reading_it_refuses_the_row_and_names_why(served,
                                                                                  tmp_path):
     deployed, ss, campaign = served
+    # (dep101) two of the three missing in one sample are held as served; all three are not
     first, two = _lost(campaign, [0]), _lost(campaign, [20], ("T_a", "T_b"))
-    _, summary = conformance_pack(deployed, ss, {"first": first, "two": two})
+    every = _lost(campaign, [20], ss.inputs)
+    _, summary = conformance_pack(deployed, ss, {"first": first, "two": two, "every": every})
     cuts = {e["campaign"]: e["cut"] for e in summary["campaigns"]}
+    assert cuts["two"] is None
     assert cuts["first"] == {"row": 1, "why": "T_b has no value there, which the code refuses (a "
                              "missing reading at a campaign's first sample; stream.c stops; the "
                              "served model rebuilds it)"}
-    assert cuts["two"] == {"row": 21, "why": "T_a has no value there, which the code refuses (a "
+    assert cuts["every"] == {"row": 21, "why": "T_a has no value there, which the code refuses (a "
                            "missing reading with another sensor out or missing; stream.c stops; "
                            "the served model rebuilds it)"}
     for name, text in exported_files(deployed, "c").items():
@@ -97,7 +100,7 @@ def test_where_the_code_cannot_rebuild_a_reading_it_refuses_the_row_and_names_wh
     compiled(tmp_path)
     cols = ["time", *ss.inputs]
     run = subprocess.run([str(tmp_path / "stream")], capture_output=True, text=True,
-                         input=two[cols].to_csv(index=False, float_format="%.17g"))
+                         input=every[cols].to_csv(index=False, float_format="%.17g"))
     assert run.returncode == 2 and len(run.stdout.splitlines()) == 21    # header, 20 rows
     assert run.stderr.strip() == (
         "stream: line 22: input T_a has no finite value, which the code's sensor monitor does not "
