@@ -1,6 +1,7 @@
 """The conformance pack streams a lead-in shared by campaigns once (perf87b): a test campaign and
-the copies it plants faults on start from a copy of the states the lead-in left, in the served
-model and in the numpy model of the code, and the pack is the one each whole stream gives."""
+the copies it plants faults on start from a copy of the states the lead-in left (and, ci101, the
+source's rows before the plant), in the served model and in the numpy model of the code, and the
+pack is the one each whole stream gives."""
 
 from __future__ import annotations
 
@@ -52,14 +53,17 @@ def test_the_lead_in_is_streamed_once_and_the_pack_is_the_whole_streams(continue
     entries = [e for e in entries if "cold_start" not in e]
     assert [e["lead_in_rows"] for e in cold] == [0]
     assert len(entries) > 2 and {e["lead_in_rows"] for e in entries} == {lead}   # copies planted
-    # the lead-in's rows once, each campaign's own rows once (none cut before its stream)
-    assert len(served) == lead + len(entries) * rows + rows
-    assert len(simulated) == lead + sum(e["rows"] - lead for e in entries) + rows
+    # the lead-in's rows once and, a planted copy being its source up to the plant (from the
+    # middle row on, watch.planted), the source's rows before it once (ci101); each campaign's
+    # rows after that once (none cut before its stream); the cold start whole
+    half = rows // 2
+    assert len(served) == lead + half + len(entries) * (rows - half) + rows
+    assert len(simulated) == lead + half + sum(e["rows"] - lead - half for e in entries) + rows
     # the whole stream per campaign, as before: the same files to the byte
     before = len(served)
     monkeypatch.setattr(pack_module._Lead, "fits", lambda self, frame: False)
     whole = conformance_pack(deployed, ss, campaigns, lead_ins)
-    assert len(served) - before == lead + len(entries) * (lead + rows) + rows   # (the lead-in's too)
+    assert len(served) - before == lead + half + len(entries) * (lead + rows) + rows  # (the prefix)
     assert whole[0] == files and whole[1] == summary
     for e in entries:
         text = files[f"{e['folder']}/rows.csv"]

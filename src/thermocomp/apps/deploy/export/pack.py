@@ -26,7 +26,10 @@ long export, a workbook) reaches the code as the CSV ``stream.c`` takes.
 Of an export whose code holds the sensor monitor (the C's, :mod:`.watch`), two copies of the
 first campaign with a fault planted follow (:func:`~.watch.planted`: a jump, a freeze and a
 dropout of a monitored sensor from its middle row on, ``planted`` in their entries), the served
-model's monitor acting on them: every pack checks the code's monitor, cut where it parts.
+model's monitor acting on them: every pack checks the code's monitor, cut where it parts.  A copy
+is its source up to the plant: their shared rows (and a shared lead-in, perf87b) are streamed once
+and each goes on from a copy of the states there (:func:`_shares`, :class:`_Lead`; ci101), the
+pack the same as each streamed from its start.
 
 (deploy89) Each campaign that continues others follows once more as ``<campaign>.cold``, streamed
 from a reset at its first row, not warmed on their rows (``cold_start`` in its entry: the campaign
@@ -54,6 +57,7 @@ import copy
 import io
 import json
 import re
+from collections import Counter
 from collections.abc import Mapping
 
 import numpy as np
@@ -208,29 +212,35 @@ def _times(frame: pd.DataFrame) -> np.ndarray:
 
 
 class _Lead:
-    """A lead-in shared by campaigns (a test campaign and its planted copies, perf87b): streamed
-    once through the served model (``served``: :class:`~.served.ServedLead`, once per lead-in of
-    a :class:`~.served.ServedStreams`) and the :class:`Simulator`, each campaign's stream started
-    from a deep copy of their states; its rows formatted once.  Each campaign's pack is as streamed
-    from its start (the whole stream is taken instead wherever the shortcut does not apply: a cut
-    within the lead-in, a refusal, a column not float)."""
+    """A prefix shared by campaigns (:func:`_shares`: a lead-in, perf87b; a campaign and its
+    planted copies up to the plant, ci101): streamed once through the served model (``served``:
+    :class:`~.served.ServedLead`, once per prefix of a :class:`~.served.ServedStreams`) and the
+    :class:`Simulator`, each campaign's stream started from a deep copy of their states; its rows
+    formatted once.  Each campaign's pack is as streamed from its start (the whole stream is taken
+    instead wherever the shortcut does not apply: a cut within the prefix, a refusal, a column
+    not float)."""
 
-    def __init__(self, served: ServedLead, ss: StateSpace, frame: pd.DataFrame, monitor: bool):
+    def __init__(self, served: ServedLead, ss: StateSpace, frame: pd.DataFrame, monitor: bool,
+                 after: _Lead | None = None):
         self.served, self.rows, self.sim, self.parted = served, served.rows, None, None
-        self.flags: list = []         # (packflags100) the mirror's flags of the lead-in's rows
+        self.flags: list = []         # (packflags100) the mirror's flags of the prefix's rows
         if served.state is not None and monitor:
-            sim = Simulator(ss)
-            sim.reset(manifest_ambient(frame))
-            self.parted = _parted(ss, frame.iloc[:self.rows], corrections(ss, served.y), 0, sim,
-                                  self.flags)
+            if after is not None and after.sim is not None and after.parted is None:
+                sim, start = copy.deepcopy(after.sim), after.rows    # (from a shorter prefix)
+                self.flags = list(after.flags)
+            else:
+                sim, start = Simulator(ss), 0
+                sim.reset(manifest_ambient(frame))
+            self.parted = _parted(ss, frame.iloc[:self.rows], corrections(ss, served.y), start,
+                                  sim, self.flags)
             self.sim = sim
 
     def fits(self, frame: pd.DataFrame) -> bool:
-        """Whether ``frame`` (the lead-in's rows first) can start from the lead-in's states."""
+        """Whether ``frame`` (the prefix's rows first) can start from the prefix's states."""
         return self.served.state is not None and len(frame) > self.rows and self.parted is None
 
     def csv(self, frame: pd.DataFrame) -> str:
-        """:func:`csv_text` of ``frame`` (the lead-in's rows first), those rows formatted once
+        """:func:`csv_text` of ``frame`` (the prefix's rows first), those rows formatted once
         (float columns only: each value formatted on its own, so the text is the same)."""
         key, text = tuple(frame.columns), self.served.text
         if not all(frame.dtypes == np.float64):
@@ -239,6 +249,44 @@ class _Lead:
             text[key] = csv_text(frame.iloc[:self.rows])
         rest = csv_text(frame.iloc[self.rows:])
         return text[key] + rest[rest.index("\n") + 1:]
+
+
+def _same_rows(campaign: pd.DataFrame, changed: pd.DataFrame) -> int:
+    """How many first rows of ``changed`` equal ``campaign``'s (every column, NaN alike; 0 where
+    their columns or attributes differ)."""
+    if list(campaign.columns) != list(changed.columns) or repr(campaign.attrs) != repr(changed.attrs):
+        return 0
+    n = min(len(campaign), len(changed))
+    a, b = campaign.iloc[:n].to_numpy(), changed.iloc[:n].to_numpy()
+    differ = (~((a == b) | (pd.isna(a) & pd.isna(b)))).any(axis=1)
+    return int(np.argmax(differ)) if differ.any() else n
+
+
+def _shares(campaigns: Mapping[str, pd.DataFrame], lead_ins: Mapping[str, pd.DataFrame | None],
+            faults: Mapping[str, tuple]) -> dict[str, list[tuple[object, int]]]:
+    """``{campaign: [(key, rows), ...]}``, shortest first: the first ``rows`` of the campaign's
+    fed rows, the same for every campaign of ``key``, to be streamed once (:class:`_Lead`), each
+    from the one before: a lead-in shared by campaigns (perf87b); of a campaign with planted
+    copies (``faults``, :func:`~.watch.planted`), its lead-in and its own rows before the first a
+    copy changes, shared by it and its copies (ci101: a copy is its source up to the plant).
+    Only keys of more than one campaign."""
+    out: dict[str, list] = {}
+    for cid in campaigns:
+        lead = lead_ins.get(cid)
+        if lead is not None and len(lead):
+            out[cid] = [(id(lead), len(lead))]
+    copies: dict[str, list[str]] = {}
+    for cid, (frame, _, source) in faults.items():
+        if campaigns.get(cid) is frame and source in campaigns:
+            copies.setdefault(source, []).append(cid)
+    for source, planted_ in copies.items():
+        lead = lead_ins.get(source)
+        before = min(_same_rows(campaigns[source], campaigns[c]) for c in planted_)
+        for cid in (source, *planted_) if before else ():
+            out.setdefault(cid, []).append(
+                (("planted", source), (0 if lead is None else len(lead)) + before))
+    counts = Counter(key for shares in out.values() for key, _ in shares)
+    return {c: [s for s in shares if counts[s[0]] > 1] for c, shares in out.items()}
 
 
 def conformance_pack(deployed, ss: StateSpace, campaigns: Mapping[str, pd.DataFrame],
@@ -260,6 +308,7 @@ def conformance_pack(deployed, ss: StateSpace, campaigns: Mapping[str, pd.DataFr
     campaigns = {**campaigns, **{c: f[0] for c, f in faults.items() if c not in campaigns},
                  **{c: f[0] for c, f in colds.items()}}
     folders = folder_names(campaigns)
+    shares = _shares(campaigns, lead_ins, faults)
     outputs = [correction_column(t) for t in ss.targets]
     monitor = bool(not_in_code(deployed))
     out, listed, leads = {}, [], {}
@@ -286,12 +335,15 @@ def conformance_pack(deployed, ss: StateSpace, campaigns: Mapping[str, pd.DataFr
         if not len(frame):
             listed.append({**entry, "rows": 0, "cut": cut})
             continue
-        shared = None
-        if lead and sum(s is lead_ins.get(cid) for s in lead_ins.values()) > 1:
-            key = id(lead_ins[cid])
+        shared = after = None
+        for key, rows in shares.get(cid, ()):     # shortest first; the longest that fits taken
+            if len(frame) <= rows:                # (a frame cut within the prefix)
+                break
             if key not in leads:
-                leads[key] = _Lead(served.lead(frame, lead), ss, frame, monitor)
-            shared = leads[key] if leads[key].fits(frame) else None
+                leads[key] = _Lead(served.lead(frame, rows, after and after.served), ss, frame,
+                                   monitor, after)
+            after = leads[key]
+            shared = after if after.fits(frame) else shared
         if shared is not None:
             try:
                 y = served.y(frame, lambda: shared.served.stream(frame))
@@ -302,7 +354,8 @@ def conformance_pack(deployed, ss: StateSpace, campaigns: Mapping[str, pd.DataFr
                                                     (files or {}).get(cid)).y)
         want, flags = corrections(ss, y), list(shared.flags) if shared else []
         if monitor:
-            parted = (_parted(ss, frame, want, lead, copy.deepcopy(shared.sim), flags) if shared
+            parted = (_parted(ss, frame, want, shared.rows, copy.deepcopy(shared.sim), flags)
+                      if shared
                       else _parted(ss, frame, want, flags=flags))
             if parted is not None:
                 cut = parted
@@ -311,7 +364,7 @@ def conformance_pack(deployed, ss: StateSpace, campaigns: Mapping[str, pd.DataFr
         listed.append(entry)
         if len(frame):
             out[f"{entry['folder']}/rows.csv"] = (
-                shared.csv(frame[columns]) if shared and len(frame) > lead
+                shared.csv(frame[columns]) if shared and len(frame) > shared.rows
                 else csv_text(frame[columns]))
             out[f"{entry['folder']}/expected.csv"] = csv_text(pd.DataFrame(want, columns=outputs))
             if ss.monitor:     # (packflags100) the code's monitor flags the mirror expects

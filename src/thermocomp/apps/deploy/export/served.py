@@ -48,18 +48,26 @@ def stepped(served, frame: pd.DataFrame, y: np.ndarray, start: int) -> None:
 class ServedLead:
     """The served model streamed over a lead-in (the first ``rows`` of a fed frame) from its
     reset: ``state`` (a copy of the model after it; None where a row was refused) and ``y``; and
-    the lead-in's rows as CSV text by columns (``text``, filled by the pack)."""
+    the lead-in's rows as CSV text by columns (``text``, filled by the pack).  ``after``: the
+    :class:`ServedLead` of the frame's first rows (fewer), the stream going on from a copy of its
+    state (ci101: a planted copy's prefix after the lead-in it shares)."""
 
-    def __init__(self, deployed, frame: pd.DataFrame, rows: int):
+    def __init__(self, deployed, frame: pd.DataFrame, rows: int, after: ServedLead | None = None):
         self.rows, self.state, self.y, self.text = rows, None, None, {}
         y = np.empty((rows, len(deployed.targets_)))
-        deployed.reset(manifest_ambient(frame))       # (stream_rows' warm without a lead-in)
+        if after is not None:
+            if after.state is None:
+                return                               # (refused in its rows: as a whole stream)
+            served, y[:after.rows] = copy.deepcopy(after.state), after.y
+        else:
+            served = deployed
+            deployed.reset(manifest_ambient(frame))   # (stream_rows' warm without a lead-in)
         try:
-            stepped(deployed, frame.iloc[:rows], y, 0)
+            stepped(served, frame.iloc[:rows], y, 0 if after is None else after.rows)
         except OutOfEnvelopeError:
             deployed.reset()
             return                                   # (the whole stream raises it, named)
-        self.state, self.y = copy.deepcopy(deployed), y
+        self.state, self.y = (copy.deepcopy(deployed) if after is None else served), y
         deployed.reset()
 
     def stream(self, frame: pd.DataFrame) -> np.ndarray:
@@ -103,10 +111,10 @@ class ServedStreams:
             self._y[digest] = make()
         return self._y[digest]
 
-    def lead(self, frame: pd.DataFrame, rows: int) -> ServedLead:
+    def lead(self, frame: pd.DataFrame, rows: int, after: ServedLead | None = None) -> ServedLead:
         """The :class:`ServedLead` of ``frame``'s first ``rows`` (their digest holds the frame's
-        attributes: its manifest ambient too)."""
+        attributes: its manifest ambient too), going on from ``after`` where made anew."""
         key = frame_digest(frame.iloc[:rows])
         if key not in self._leads:
-            self._leads[key] = ServedLead(self.deployed, frame, rows)
+            self._leads[key] = ServedLead(self.deployed, frame, rows, after)
         return self._leads[key]
