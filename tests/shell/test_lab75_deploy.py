@@ -59,8 +59,8 @@ def halle_code(tmp_path_factory):
 @needs_cc
 def test_the_exported_stream_reads_an_infinity_as_an_empty_cell(halle_code):
     """``stream.c`` fed the raw TOA5 file: an ``INF`` cell (line 9) is what an empty cell there
-    is (since cmon84 the code's monitor takes the sensor out as a dropout and goes on, to the
-    next missing input it refuses, exit 2)."""
+    is (since cmon84 the code's monitor takes the sensor out as a dropout and goes on, since
+    dep101 a second one too, to the next missing input it refuses, exit 2)."""
     lines = HALLE.read_text().splitlines()
 
     def fed(cell: str) -> subprocess.CompletedProcess:
@@ -76,8 +76,10 @@ def test_the_exported_stream_reads_an_infinity_as_an_empty_cell(halle_code):
     for cell in ('"INF"', '"-INF"', "inf", "Infinity"):
         got = fed(cell)
         assert (got.returncode, got.stdout, got.stderr) == (2, empty.stdout, empty.stderr), cell
-    assert b"line 12: input T_column_Avg has no finite value" in empty.stderr
-    assert len(empty.stdout.splitlines()) == 8        # the header and rows 1-7 (lines 5-11)
+    # (dep101) a second sensor missing beside the first is held too, as served; the third not
+    assert b"line 12: monitor: T_column_Avg: dropout: no finite value, excluded" in empty.stderr
+    assert b"line 15: input T_air_Avg has no finite value" in empty.stderr
+    assert len(empty.stdout.splitlines()) == 11       # the header and rows 1-10 (lines 5-14)
 
 
 @needs_cc
