@@ -713,8 +713,7 @@ class CodeMonitor:
         cmon86 a stepped error or cmon88 a jump); else flagged."""
         held = self.ported[j] or (rule in (DROPOUT, FREEZE) and self.drops[j]) or (
             rule == JUMP and self.spikes[j]) or (rule == OFF_RANGE and self.ranges[j])
-        second = self.out >= 0 and not (rule in self.seconds and self._second_kind(j, rule)
-                                        and self._second_held(j, rule))
+        second = self.out >= 0 and not self._second_taken(j, rule)
         if second or not held:
             self._flag(NOT_IN_CODE, j, SECOND if second else BLIND)
             return False
@@ -724,10 +723,11 @@ class CodeMonitor:
         self.fell = self.fell or bool(self.fallback[j] and not self.fallset[j])
         return True
 
-    def _jump_held(self, j: int) -> bool:
-        """(cmon88) ``j``'s jump with one sensor out already held by the code: re-referenced and
-        out as the second, as served, where the others predict it and the set is solved."""
-        return JUMP in self.seconds and self._second_kind(j, JUMP) and self._second_held(j, JUMP)
+    def _second_taken(self, j: int, rule: int) -> bool:
+        """``j`` taken out for ``rule`` beside those out, as served: the rule takes a second, the
+        others predict ``j`` (or cmon89's kinds) and the set is held or solved (the C's
+        ``mon_second_taken``; cmon88: a jump, re-referenced and out as the second)."""
+        return rule in self.seconds and self._second_kind(j, rule) and self._second_held(j, rule)
 
     def _second_kind(self, j: int, rule: int) -> bool:
         """Whether the code takes ``j`` out beside those out for ``rule``: one the others
@@ -920,7 +920,7 @@ class CodeMonitor:
             active = self._active()
             if not active[j] and a["spike"] and not gone.any() and self._spike_back(j, x, d):
                 self._readmit(j, SPIKE)
-            elif active[j] and not (self._jump_held(j) if self.out >= 0
+            elif active[j] and not (self._second_taken(j, JUMP) if self.out >= 0
                                   else self.ported[j] or self.spikes[j]):
                 self._exclude(j, JUMP)       # flagged: not in the code; the sensor stays as read
             else:
@@ -1098,8 +1098,7 @@ class CodeMonitor:
         blind = self.spikes if rule == JUMP else self.drops
         with self._trial():
             for j in np.flatnonzero(ins):
-                if not ((rule in self.seconds and self._second_kind(int(j), rule)
-                         and self._second_held(int(j), rule)) if self.out >= 0
+                if not (self._second_taken(int(j), rule) if self.out >= 0
                         else self.ported[j] or blind[j]):
                     return False
                 self.gone.append(int(j))
@@ -1197,9 +1196,7 @@ class CodeMonitor:
         with self._trial():
             for j in map(int, np.flatnonzero(rng)):
                 outs = self._outs()
-                if self.gone and j not in outs and not (
-                        OFF_RANGE in self.seconds and self._second_kind(j, OFF_RANGE)
-                        and self._second_held(j, OFF_RANGE)):
+                if self.gone and j not in outs and not self._second_taken(j, OFF_RANGE):
                     self._flag(NOT_IN_CODE, j, RANGE)
                     return None
                 if j in outs:            # out already: read as missing (served: its leak

@@ -461,17 +461,17 @@ static int mon_second_kind(const tc_state *s, int k, int rule) {
            && (MON_PORTED[k] || blind);
 }
 
-/* (cmon88) 1: sensor k's jump with one out already held by the code: re-referenced and out as
-   the second, as served, where the others predict it and the set is solved */
-static int mon_jump_held(const tc_state *s, int k) {
-    return MON_SECOND_JUMP && mon_second_kind(s, k, TC_MON_JUMP) && mon_second_held(s, k, TC_MON_JUMP);
-}
-
 /* (cmon85, cmon86, cmon88; cmon89) 1: rule takes a second sensor out beside one */
 static int mon_second_rule(int rule) {
     return rule == TC_MON_DRIFT_OUT || rule == TC_MON_FREEZE || rule == TC_MON_STEP_OUT
            || (rule == TC_MON_JUMP && MON_SECOND_JUMP)
            || ((rule == TC_MON_DROPOUT || rule == TC_MON_OFF_RANGE) && MON_SECOND_INSTANT);
+}
+
+/* 1: sensor k taken out for rule beside those out, as served: the rule takes a second, the
+   others predict k (or cmon89's kinds) and the set is held or solved (cmon88: a jump) */
+static int mon_second_taken(const tc_state *s, int k, int rule) {
+    return mon_second_rule(rule) && mon_second_kind(s, k, rule) && mon_second_held(s, k, rule);
 }
 
 /* (cmon93) 1: the code takes every sensor of ins[] out for rule (a jump; dep101: a dropout,
@@ -482,8 +482,7 @@ static int mon_pair_held(tc_state *s, const int ins[], int rule) {
     int n = s->mon_nout, k, ok = 1;
     for (k = 0; k < NM && ok; k++) {
         if (!ins[k]) continue;
-        ok = s->mon_nout > 0 ? mon_second_rule(rule) && mon_second_kind(s, k, rule)
-                               && mon_second_held(s, k, rule)
+        ok = s->mon_nout > 0 ? mon_second_taken(s, k, rule)
                              : MON_PORTED[k] || (rule == TC_MON_JUMP ? mon_spikes(k) : mon_drops(k));
         if (s->mon_nout < NM) s->mon_out_set[s->mon_nout++] = k;
     }
@@ -510,8 +509,7 @@ static void mon_exclude(tc_state *s, int k, int rule) {
     int blind = ((rule == TC_MON_DROPOUT || rule == TC_MON_FREEZE) && mon_drops(k))
                 || (rule == TC_MON_JUMP && mon_spikes(k))
                 || (rule == TC_MON_OFF_RANGE && mon_ranges(k));
-    int second = s->mon_nout > 0 && !(mon_second_rule(rule) && mon_second_kind(s, k, rule)
-                                      && mon_second_held(s, k, rule));
+    int second = s->mon_nout > 0 && !mon_second_taken(s, k, rule);
     if (second || !(MON_PORTED[k] || blind)) {
         mon_flag(s, TC_MON_NOT_IN_CODE, k, second ? TC_MON_SECOND : TC_MON_BLIND);
         return;
@@ -1389,7 +1387,8 @@ static void mon_sample(tc_state *s, double u[], double dt) {
                 d[k] = x[k] - s->mon_ref[k];
                 mon_readmit(s, k, TC_MON_SPIKE);
             }
-            else if (a[k] && !(s->mon_nout > 0 ? mon_jump_held(s, k) : MON_PORTED[k] || mon_spikes(k)))
+            else if (a[k] && !(s->mon_nout > 0 ? mon_second_taken(s, k, TC_MON_JUMP)
+                                                : MON_PORTED[k] || mon_spikes(k)))
                 mon_exclude(s, k, TC_MON_JUMP);   /* flagged */
             else {   /* re-referenced by its step less its change as the others predict it */
                 double expected, offset;
