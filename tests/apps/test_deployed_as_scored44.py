@@ -112,7 +112,7 @@ def test_replay_of_runs_model_pkl_streams_runs_test_rmse(runs, data, tmp_path, m
 EXPORTABLE = ("mlr", "pcr", "arx", "lagbank", "hammerstein")
 
 
-@pytest.mark.skipif(shutil.which("cc") is None, reason="no C compiler")
+@pytest.mark.skipif(shutil.which("gcc") is None, reason="no C compiler")
 @pytest.mark.parametrize("model", EXPORTABLE)
 def test_the_exported_c_streams_the_record_as_run_scores_its_test_part(runs, data, record, tmp_path,
                                                                          model):

@@ -46,7 +46,7 @@ def test_a_stream_reads_the_tables_digits_as_its_timestamps():
     assert np.diff(ns).tolist() == [1800 * 10**9] * 15
 
 
-@pytest.mark.skipif(shutil.which("cc") is None, reason="no C compiler")
+@pytest.mark.skipif(shutil.which("gcc") is None, reason="no C compiler")
 def test_the_exported_c_reads_the_tables_timestamps_as_the_model_did(tmp_path):
     """``stream.c`` fed the raw table gives the check pack's corrections (a lag bank: its lags in
     seconds); before, it read ``202503280000`` as seconds, 70 s after ``202503272330``."""

@@ -94,7 +94,7 @@ def test_the_served_model_decodes_the_labs_word_as_the_reader(promoted, capsys):
 @pytest.fixture(scope="module")
 def stream_c(promoted, tmp_path_factory):
     """The promoted model exported as C (no pack) and built: the folder."""
-    if shutil.which("cc") is None:
+    if shutil.which("gcc") is None:
         pytest.skip("no C compiler")
     out = tmp_path_factory.mktemp("c")
     assert main(["export", *promoted["data"], f"export.model={promoted['model_uri']}",

@@ -109,7 +109,7 @@ def test_the_zero_correction_replays_and_exports_as_zero(record, auto_run, tmp_p
     replayed = json.loads((tmp_path / "replay" / "replay.json").read_text())["targets"]
     for t in ("E_N", "E_G"):
         assert replayed[t]["rmse"] == pytest.approx(targets[t]["test"]["rmse"], rel=1e-9)
-    if shutil.which("cc") is None:
+    if shutil.which("gcc") is None:
         return
     code = tmp_path / "c"
     assert main(["export", f"data.path={record}", f"export.model={model}", "export.format=c",
