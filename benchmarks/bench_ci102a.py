@@ -35,6 +35,47 @@ Usage (from the repository root; ``PYTHONPATH=<tree>/src``)::
     python benchmarks/bench_ci102a.py plant TREE FILE OLD NEW SPEC   # bench_ci101c's plant
     python benchmarks/bench_ci102a.py parts SEED [FEATURE]           # a long record's parts
 
+Rule built (tests only; REFUSED, saved as benchmarks/ci102a_rule.patch, which applies to d85f1799;
+the five modules are back to d85f1799 on the branch): test_export_cmon87's ``long_record`` /
+``deployed_mlr`` take ``lead_rows`` (default None: R1a whole, as before), R1b's lead-in cut to its
+last rows; cmon87, cmon88, cmon89, cmon92b and cmon93 pass ``LEAD_ROWS = 864`` (R1b's length; R1a
+is 3457 of the 4321 fed rows).  Each subject at the same R1b rows with 864 and with 3457 lead-in
+rows (lr9032's spike ``T_table`` out 397 / back 408; lr9126's second ``T_bed_left`` 820 / 821;
+lr9132 frozen pair: the rule not in the code beside ``T_table``'s exclusion at 443); cmon89's and
+cmon93's rows are R1b's (``lead + ...``) and their tests pass.  No assertion touched.
+
+Trace (``parts 9032``, base's lead-in, CPU s in one process, load ~12): record 1.21, served stream
+of the fed campaign 0.81, mirror (ss) 1.46, mirror without blind_jump 1.32, pack (ss, its served
+copies first) 3.79, pack without blind_jump 2.32, the pack's stepping of R1b alone 1.26: the
+pack's planted and cold copies are ~1 s of the "export before" test's pack; the lead-in 80 % of
+every per-row stream.
+
+Measured (2026-12-06 21:56-22:17, base = git archive of d85f1799, after = 480f2956; paired: base
+and after started together, 2 reps, ``cpu``'s command line; CPU s user + sys incl. children;
+load 11-16)::
+
+  module                  rep 1           rep 2           mean
+  test_export_cmon87      15.88 -> 11.02  15.04 ->  9.77  15.5 -> 10.4  -32.8 %
+  test_export_cmon93      19.12 -> 10.62  15.89 -> 10.41  17.5 -> 10.5  -39.9 %
+  test_export_cmon89      19.27 -> 14.19  16.43 -> 11.30  17.9 -> 12.7  -28.6 %
+  test_export_cmon88      15.26 -> 13.66  13.81 -> 11.53  14.5 -> 12.6  -13.3 %
+  test_export_cmon92b      8.26 ->  6.78   7.85 ->  5.72   8.1 ->  6.2  -22.4 %
+  sum                     77.8 -> 56.3    69.0 -> 48.7    73.4 -> 52.5  -28.5 %
+
+Against the bar: (1) kept: ``asserts`` 12/6/7/6/4, tests 2/2/2/2/1 on both sides, no assertion
+edited, the same 9 tests pass; docstrings say what the cut lead-in holds.  (2) NOT met: -28.5 % of
+the five modules' CPU (-27.7 % rep 1, -29.4 % rep 2) against >= 30 %.  (3) met, 9 plants (one per
+changed test, on 480f2956's copy), each failed its test: watch.py ``spikes`` without blind_jump ->
+cmon87's held test; pack.py ``_parted``'s cut row + 1 -> each "export before" test (cmon87, 88,
+89, 93); watch.py ``seconds`` without JUMP -> cmon88's held test; ``pair_jump`` branch off ->
+cmon93's held test; ``instant`` False -> cmon89's held test; watch_c.py ``mon_missed`` never set
+-> cmon92b's test.  Bench CPU: 252 s of paired pytest runs, 9 plants (35-99 s wall each),
+parts 13.9 s.
+
+Why short: the lead-in's cut removes 60 % of the fed rows, but a module also pays pytest's start
+and imports (~2-3 s), the record (simulate + fit, 1.2 s), the C build and the pack's planted and
+cold copies of R1b (unchanged); cmon88's cut was -10 % and -17 % in the two reps (the load).
+
 ``parts``: in this process, the CPU of each computation a long-record module makes
 (test_export_cmon87's ``long_record`` of SEED; FEATURE: the monitor key its "export before" test
 drops, default ``blind_jump``): the record (simulate + fit + deploy), the served stream of the
