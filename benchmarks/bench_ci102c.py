@@ -52,7 +52,36 @@ Usage (from the repository root; ``PYTHONPATH=<tree>/src``)::
     python benchmarks/bench_ci102c.py asserts BASE SPEC...           # bench_ci101c's asserts
     python benchmarks/bench_ci102c.py plant TREE FILE OLD NEW SPEC   # bench_ci101c's plant
 
-Measured: (after the bar's commit; below, once run).
+Rule built (tests only; REFUSED, saved as benchmarks/ci102c_rule.patch, which applies to
+d85f1799; test_dvc_metrics.py is back to d85f1799 on the branch).  Found after the bar, before
+the measurement: copy_project already sets ``mutual_prediction: false`` in the copy's
+conf/eval/default.yaml, so the rule's real cut is the ATI baselines, ISO A.3 and the adaptive
+diagnosis: the 6-job sweep stage 6.96 -> 6.52 s by hand (-0.4 s), not the -2.55 s traced above.
+
+Measured (2026-12-06 21:52-22:07, base = git archive of d85f1799, after = 3841eac8; paired:
+base and after started together, ``cpu``'s command line, load 8-11; CPU s user + sys incl.
+children)::
+
+  module                    rep 1             rep 2             mean
+  test_dvc_metrics          65.69 -> 64.66    70.41 -> 69.35    68.0 -> 67.0  -1.5 %   7 / 7 passed
+
+Against the bar: (1) kept: ``asserts`` 34 -> 35 (the rule's own ``n == 1`` check added),
+refused( 0 -> 0, tests 7 -> 7; no assertion edited; the same 7 pass.  (2) NOT met: -1.5 %
+against >= 30 %.  (3) met, after a first plant that could not fail: headline.py ``"cv_after":
+d["after"]`` -> ``d["before"]`` passed 7 of 7 (the short study's diagnosis accepts nothing, so
+before == after: a blind plant, not a missed break); then ``"test_after": d["after"][TEST_RMSE]``
+-> ``d["after"]["cv_rmse"]`` (diagnose) and results.py's dvc headline ``(TEST_RSD_SD, "test",
+RSD_SD)`` -> ``RSD_MEAN`` (evaluate) each failed test_headline_numbers_are_the_full_reports_numbers;
+plotdata.py's compare_plot ``val_rmse`` reversed failed
+test_the_sweep_pipeline_runs_every_job_and_the_comparison_then_nothing.  (bench_ci101c's
+``plant`` now copies .dvc/ and pipelines/ too: copy_project reads them; without them the module's
+fixture errored, 1 error in 23 s, and a plant proved nothing.)
+
+Why so little: the module's CPU is its processes' start-up.  One interpreter importing sklearn +
+pandas is 1.38-1.43 s of CPU, with MLflow 2.56-2.60 s (two runs each); a stage on the SHORT
+study is ~2.6-3.5 s, the figures of evaluate ~2 s of it (asserted: DVC shows the PNGs).  The
+module starts 12 thermocomp processes (7 stages, 3 reruns, sweep and compare) and 11 dvc ones;
+every other module of the group already runs LIGHT/FAST jobs, one process per subject.
 """
 from __future__ import annotations
 
