@@ -125,7 +125,7 @@ def plant(tree: str, file: str, old: str, new: str, spec: str) -> None:
     with tempfile.TemporaryDirectory(prefix="ci101c-plant-") as scratch:
         copy = Path(scratch) / "tree"
         for item in ("src", "tests", "conf", "benchmarks", "docs", "datasets", "pyproject.toml",
-                     "README.md", "Makefile", "dvc.yaml"):
+                     "README.md", "Makefile", "dvc.yaml", ".dvc", "pipelines"):  # (copy_project's)
             source = tree_path / item
             if source.is_dir():
                 shutil.copytree(source, copy / item, ignore=shutil.ignore_patterns("__pycache__"))
