@@ -1,0 +1,102 @@
+"""CI time (issue 34; stop 102, ci102d): the docs pages' commands (tests/test_readme.py) made to
+compute no more than their pages show.
+
+ci100b (bench_ci100b.py) traced the pages: no command runs twice, so the cost is what the
+commands compute.  This bench measures the group's modules (tests/test_readme.py, test_docs.py,
+shell/test_stage_imports.py) on d85f1799 and the pages' cuts against them.
+
+Rule (docs pages + their test; no src change): a page's example computes only what the page
+shows, its commands still what a user runs and the page still true:
+
+- sweeps.md: the sweep of 2 jobs (``model=mlr,arx``) instead of 4 (``select=all,pearson`` too):
+  a sweep, its comparison and promotion (twice: no new version) need two runs; the page's CPU
+  figure of the 4-job sweep said of that sweep;
+- own-data.md: the fl_thermal roles run is README.md's ``run data=fl_thermal`` (the page says
+  ``data=fl_thermal`` says the same; conf/data/fl_thermal.yaml holds these keys, out the same):
+  shown, not run (``skip`` with that reason); README's block runs it and checks its E_ch5;
+- ``plots=none`` where the page never shows the run's figures: README.md's fl_thermal run,
+  own-data.md's lab run, diagnose.md's diagnosed rerun, simulation.md's diagnose (its page
+  names no file the diagnose writes); never the pages that show them (diagnose.md's report,
+  monitoring.md's figures) and never README's ``make run``.
+
+BAR (the brief's, written and committed here before any after-measurement; the base run of
+the three modules, d85f1799 alone, is the trace):
+
+1. every test id stays and passes (test_readme's 9: 7 pages + 2), every assertion of
+   test_readme.py stays (``asserts``: no fewer asserts, the same tests), every page's
+   ``expect``/``output`` directive stays (its regex and table unchanged), each page still holds
+   its subject (a sweep compared and promoted twice; the door diagnosed and re-run; the column
+   diagnosed; the lab and the fl_thermal record run) and says what the smaller example holds;
+2. the changed modules' summed pytest CPU (user + sys of ``/usr/bin/time nice pytest -q -n 0 -p
+   no:cacheprovider -m "not full"``, per module; base = a git clone of d85f1799 in
+   /tmp/ci102d/base, a clone since test_readme copies the tree with ``git ls-files``) down
+   >= 30 %, base and after started together (paired); 1 rep for the whole set;
+3. every plant caught: one planted break of src per changed page (a changed constant, a skipped
+   branch in what that page's commands run), each failing that page's test (``plant``).
+
+No seeds (nothing is scored: the same commands give the same numbers).
+
+Usage (from the repository root; ``PYTHONPATH=<tree>/src``)::
+
+    python benchmarks/bench_ci102d.py cpu TREE TAG OUT SPEC...       # bench_ci100b's cpu
+    python benchmarks/bench_ci102d.py table OUT [BEFORE AFTER BAR]    # bench_ci100b's table
+    python benchmarks/bench_ci102d.py blocks OUT                      # bench_ci100b's blocks
+    python benchmarks/bench_ci102d.py asserts BASE SPEC...            # bench_ci101c's asserts
+    python benchmarks/bench_ci102d.py plant TREE FILE OLD NEW SPEC    # a break, in a git clone
+
+``plant``: bench_ci101c's, in a ``git clone`` of TREE's HEAD (test_readme lists the files to
+copy with git), OLD -> NEW (first one) in FILE, then ``SPEC``'s tests (``-x``).
+
+Trace (d85f1799 alone, 2026-12-06 21:44-21:58, load 5-15, ``cpu``; CPU s user + sys incl.
+children): test_readme 144.1 (9 passed; blocks: sweeps.md sweep + compare + 2 promotes 25.7,
+its lathe replay 7.9), test_docs 10.6 (45 passed), shell/test_stage_imports 11.2 (9 passed).
+Single commands in a page's copy (probe, load 5-15): the 4-job sweep 11.5 / 23.1 s, the 2-job
+one 17.7 / 16.8 s, compare 2.8, promote 4.1 and 4.0; ``run data=fl_thermal`` 7.0, with
+``plots=none`` 4.4; simulation.md's diagnose 14.7, with ``plots=none`` 10.7 (the same table);
+its scenario at half the hours (simulate + diagnose) 12.9: not taken (its numbers would change
+for ~3 s).
+"""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _cli import run_commands  # noqa: E402
+from bench_ci100b import THREADS, blocks, cpu, table  # noqa: E402
+from bench_ci101c import asserts  # noqa: E402
+
+
+def plant(tree: str, file: str, old: str, new: str, spec: str) -> None:
+    """Run ``spec``'s tests on a git clone of ``tree``'s HEAD with OLD -> NEW (first) in ``file``."""
+    with tempfile.TemporaryDirectory(prefix="ci102d-plant-") as scratch:
+        copy = Path(scratch) / "tree"
+        subprocess.run(["git", "clone", "-q", str(Path(tree).resolve()), str(copy)], check=True)
+        target = copy / file
+        text = target.read_text()
+        if old not in text:
+            raise SystemExit(f"{file}: {old!r} not found")
+        target.write_text(text.replace(old, new, 1))
+        env = {**os.environ, **THREADS, "PYTHONPATH": str(copy / "src")}
+        run = subprocess.run(["nice", sys.executable, "-m", "pytest", "-q", "-n", "0", "-p",
+                              "no:cacheprovider", "-m", "not full", "-x",
+                              f"--basetemp={Path(scratch) / 'bt'}", f"tests/{spec}"],
+                             cwd=copy, env=env, capture_output=True, text=True)
+        tail = (run.stdout.strip().splitlines() or ["?"])[-1]
+        print(f"plant {file} {old!r} -> {new!r} on {spec}: exit {run.returncode}, {tail}")
+        for line in run.stdout.splitlines():
+            if line.startswith("FAILED") or line.startswith("E  ") and "AssertionError" in line:
+                print("  ", line[:160])
+
+
+def main(argv: list[str]) -> int:
+    return run_commands(__doc__, {"cpu": cpu, "table": table, "blocks": blocks, "asserts": asserts,
+                                  "plant": plant}, argv, cpu=sys.stdout)
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
