@@ -42,10 +42,11 @@ Usage (from the repository root; ``PYTHONPATH=<tree>/src``)::
     python benchmarks/bench_ci102d.py table OUT [BEFORE AFTER BAR]    # bench_ci100b's table
     python benchmarks/bench_ci102d.py blocks OUT                      # bench_ci100b's blocks
     python benchmarks/bench_ci102d.py asserts BASE SPEC...            # bench_ci101c's asserts
-    python benchmarks/bench_ci102d.py plant TREE FILE OLD NEW SPEC    # a break, in a git clone
+    python benchmarks/bench_ci102d.py plant TREE FILE OLD NEW SPEC OUT  # a break, in a git clone
 
-``plant``: bench_ci101c's, in a ``git clone`` of TREE's HEAD (test_readme lists the files to
-copy with git), OLD -> NEW (first one) in FILE, then ``SPEC``'s tests (``-x``).
+``plant``: ``cpu`` (tag ``plant``) of SPEC in a ``git clone`` of TREE's HEAD (test_readme lists
+the files it copies with git, so bench_ci101c's copy of the tree would not do) with OLD -> NEW
+(the first one) in FILE; the failed tests from its log.
 
 Trace (d85f1799 alone, 2026-12-06 21:44-21:58, load 5-15, ``cpu``; CPU s user + sys incl.
 children): test_readme 144.1 (9 passed; blocks: sweeps.md sweep + compare + 2 promotes 25.7,
@@ -59,7 +60,6 @@ for ~3 s).
 
 from __future__ import annotations
 
-import os
 import subprocess
 import sys
 import tempfile
@@ -67,12 +67,13 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _cli import run_commands  # noqa: E402
-from bench_ci100b import THREADS, blocks, cpu, table  # noqa: E402
+from bench_ci100b import _key, blocks, cpu, table  # noqa: E402
 from bench_ci101c import asserts  # noqa: E402
 
 
-def plant(tree: str, file: str, old: str, new: str, spec: str) -> None:
-    """Run ``spec``'s tests on a git clone of ``tree``'s HEAD with OLD -> NEW (first) in ``file``."""
+def plant(tree: str, file: str, old: str, new: str, spec: str, out: str) -> None:
+    """``cpu``'s run of ``spec`` (tag ``plant``, into OUT) on a git clone of ``tree``'s HEAD with
+    OLD -> NEW (the first one) in ``file``; the failed tests from its log."""
     with tempfile.TemporaryDirectory(prefix="ci102d-plant-") as scratch:
         copy = Path(scratch) / "tree"
         subprocess.run(["git", "clone", "-q", str(Path(tree).resolve()), str(copy)], check=True)
@@ -81,16 +82,10 @@ def plant(tree: str, file: str, old: str, new: str, spec: str) -> None:
         if old not in text:
             raise SystemExit(f"{file}: {old!r} not found")
         target.write_text(text.replace(old, new, 1))
-        env = {**os.environ, **THREADS, "PYTHONPATH": str(copy / "src")}
-        run = subprocess.run(["nice", sys.executable, "-m", "pytest", "-q", "-n", "0", "-p",
-                              "no:cacheprovider", "-m", "not full", "-x",
-                              f"--basetemp={Path(scratch) / 'bt'}", f"tests/{spec}"],
-                             cwd=copy, env=env, capture_output=True, text=True)
-        tail = (run.stdout.strip().splitlines() or ["?"])[-1]
-        print(f"plant {file} {old!r} -> {new!r} on {spec}: exit {run.returncode}, {tail}")
-        for line in run.stdout.splitlines():
-            if line.startswith("FAILED") or line.startswith("E  ") and "AssertionError" in line:
-                print("  ", line[:160])
+        print(f"plant {file} {old!r} -> {new!r}")
+        cpu(str(copy), "plant", out, spec)
+    log = Path(out) / "log" / f"plant-{_key(spec)}.txt"
+    print("\n".join(f"   {line[:160]}" for line in log.read_text().splitlines() if line.startswith("FAILED")))
 
 
 def main(argv: list[str]) -> int:
