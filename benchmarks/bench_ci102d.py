@@ -1,4 +1,4 @@
-"""CI time (issue 34; stop 102, ci102d): the docs pages' commands (tests/test_readme.py) made to
+r"""CI time (issue 34; stop 102, ci102d): the docs pages' commands (tests/test_readme.py) made to
 compute no more than their pages show.
 
 ci100b (bench_ci100b.py) traced the pages: no command runs twice, so the cost is what the
@@ -56,6 +56,37 @@ one 17.7 / 16.8 s, compare 2.8, promote 4.1 and 4.0; ``run data=fl_thermal`` 7.0
 ``plots=none`` 4.4; simulation.md's diagnose 14.7, with ``plots=none`` 10.7 (the same table);
 its scenario at half the hours (simulate + diagnose) 12.9: not taken (its numbers would change
 for ~3 s).
+
+Rule built (docs pages + a comment of test_readme.py; REFUSED, saved as
+benchmarks/ci102d_rule.patch, which applies to d85f1799; README.md, docs/ and test_readme.py are
+back to d85f1799 on the branch).
+
+Measured (2026-12-06 21:57-22:14, paired: base = git clone of d85f1799, after = cc491ff4,
+started together by two ``cpu`` processes, load 14-21; CPU s user + sys incl. children, 1 rep)::
+
+  module            base     after    cut      tests
+  test_readme.py    150.3 -> 128.3    -14.6 %  9 passed / 9 passed
+  its blocks (``blocks``, commands only)  139.2 -> 117.3 (-21.9 s)
+
+Per changed block, base -> after (CPU s, that pair): sweeps.md's sweep + compare + 2 promotes
+27.7 -> 23.0; README's fl_thermal run 7.9 -> 6.2; own-data.md's lab run 5.7 -> 3.8, its
+fl_thermal roles run 6.7 -> 0 (shown, not run); simulation.md's simulate + diagnose 16.1 -> 10.4;
+diagnose.md's rerun 7.5 -> 5.4.  The unchanged blocks moved by -1.6 .. +1.3 s (load).
+
+Against the bar: (1) met: the same 9 test ids pass; ``asserts``: test_readme 12 -> 12 asserts,
+3 -> 3 tests (only a comment changed); every ``expect``/``output`` directive kept but
+own-data.md's ``expect E_ch5`` on the fl_thermal run, whose computation README's block runs with
+the stronger ``expect E_ch5\s.*->\s+3\.0\d`` (the same keys, out and numbers); each page still
+holds its subject and says what the smaller example holds.  (2) NOT met: -14.6 % against
+>= 30 %.  (3) met, 5 of 5 (``plant``, one per changed page; each failed at the changed block):
+results.py ``val_rsd_mean`` renamed -> sweeps.md line 3 failed; units.py ``"um"`` dropped ->
+README.md line 75 failed; tables.py ``decimal_point="."`` -> own-data.md line 27 failed;
+diagnose outputs.py the experiment written under another name -> diagnose.md line 758 failed;
+outputs.py ``else None`` for the figures of ``plots=none`` -> simulation.md line 79 failed.
+
+Why so little: what the pages' commands compute beyond what they show was ~22 s of ~139; the
+rest is the commands a page shows, most of each one its process's start (``ingest`` 3.9 s CPU in
+a page's copy: ``import mlflow`` 2.0 s, sklearn + scipy + pandas 2.3 s), ~25 processes.
 """
 
 from __future__ import annotations
