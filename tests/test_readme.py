@@ -206,8 +206,8 @@ def _user_env(home: Path) -> dict:
 # A user's machine of one CPU: a joblib sweep's `n_jobs=-1` (hydra/launcher=joblib) is then one job
 # at a time in the command's process (as in test_dvc_metrics' sweep). Beside the other xdist worker, two
 # loky workers each importing the stack and opening the store gain no time and cost CPU:
-# docs/sweeps.md's sweep 25-31 s of CPU on two, 17.6 s on one (a joblib sweep on two workers is
-# tests/shell/test_sweep.py's).
+# docs/sweeps.md's sweep (4 jobs then; 2 since ci102d) 25-31 s of CPU on two, 17.6 s on one (a
+# joblib sweep on two workers is tests/shell/test_sweep.py's).
 ONE_CPU = {"LOKY_MAX_CPU_COUNT": "1"}
 
 

@@ -6,7 +6,9 @@ was cut there (benchmarks/bench_cmon87.py).
 
 bench_audit86b's lr9032 (``thermocomp simulate sim=long_record``, seed 9032, 3 days, R1b the last
 fifth continuing R1a), MLR deployed adaptive with ``data.reference=none``: the simulator's own
-one-sample spike on a sensor no other predicts in R1b, which R1b is streamed after R1a."""
+one-sample spike on a sensor no other predicts in R1b, which R1b is streamed after R1a's last
+864 rows (:data:`LEAD_ROWS`, ci102a; R1a whole before): the served monitor takes ``T_table`` out
+at R1b's row 397 and back at 408, the same rows as after R1a whole."""
 
 from __future__ import annotations
 
@@ -27,11 +29,12 @@ from thermocomp.apps.deploy.report import plain
 from thermocomp.core.continuation import lead_ins
 
 SEED = 9032
+LEAD_ROWS = 864     # R1b's lead-in: its last 864 rows (R1b's length), not R1a's 3457 (ci102a)
 
 
 @pytest.fixture(scope="module")
 def record(tmp_path_factory):
-    return long_record(tmp_path_factory, SEED)
+    return long_record(tmp_path_factory, SEED, LEAD_ROWS)
 
 
 @pytest.fixture(scope="module")
@@ -40,26 +43,32 @@ def streams(record):
     return ServedStreams(record[0])
 
 
-def long_record(tmp_path_factory, seed: int):
+def long_record(tmp_path_factory, seed: int, lead_rows: int | None = None):
     """``(deployed, its system with the monitor, R1b after its lead-in, the lead-in's rows,
-    R1b, the lead-ins by campaign)`` of the long record ``seed``."""
+    R1b, the lead-ins by campaign)`` of the long record ``seed``.  ``lead_rows``: R1b's lead-in
+    cut to its last rows (ci102a: R1a's 3457 rows are 80 % of a module's streaming, streamed
+    before the fault the test is about; the served stream, the mirror, the pack and the C all
+    start from the cut lead-in's first row), else R1a whole."""
     from thermocomp.shell.cli import main
 
     data = tmp_path_factory.mktemp(f"lr{seed}") / "data"
     assert main(["-q", "simulate", f"seed={seed}", f"data.path={data}", "track=false",
                  "sim=long_record", "sim.generator.duration_days=3.0",
                  "sim.generator.test_fraction=0.2"]) == 0
-    return deployed_mlr(f"data.path={data}", "data.reference=none")
+    return deployed_mlr(f"data.path={data}", "data.reference=none", lead_rows=lead_rows)
 
 
-def deployed_mlr(*words: str):
+def deployed_mlr(*words: str, lead_rows: int | None = None):
     """MLR run with ``words`` and deployed as ``replay`` deploys it: ``(deployed, its system with
     the monitor, the first test campaign after its lead-in, the lead-in's rows, that campaign by
-    its name, the lead-ins by campaign)`` (quiet94c: a one-file record too)."""
+    its name, the lead-ins by campaign)`` (quiet94c: a one-file record too); ``lead_rows``: each
+    lead-in's last rows only (:func:`long_record`)."""
 
     cfg = _compose(*words, "track=false", "model=mlr")
     deployed, ds, test_ids = deployed_as_replay(cfg)
     leads = lead_ins(plain(deployed).compensator, ds, test_ids)
+    if lead_rows is not None:
+        leads = {c: lead.iloc[-lead_rows:] for c, lead in leads.items()}
     test = test_ids[0]
     frame = fed(ds.campaigns[test], leads.get(test))
     return (deployed, state_space(deployed, monitor=True), frame,

@@ -5,9 +5,10 @@ parted from the served corrections once the served monitor took it back (benchma
 bench_cmon88.py).
 
 lr9126 as drawn (``thermocomp simulate sim=long_record``, seed 9126, 3 days, R1b the last fifth
-continuing R1a), MLR deployed adaptive with ``data.reference=none``, R1b streamed after R1a: the
-simulator's own outliers put a stepped self-prediction error (``T_zdrive`` out) three rows before
-a -2.31 degC one-sample jump of ``T_bed_left``."""
+continuing R1a), MLR deployed adaptive with ``data.reference=none``, R1b streamed after R1a's last
+864 rows (:data:`LEAD_ROWS`, ci102a; R1a whole before): the simulator's own outliers put a stepped
+self-prediction error (``T_zdrive`` out) three rows before a -2.31 degC one-sample jump of
+``T_bed_left``, taken out at R1b's row 820 and back at 821, as after R1a whole."""
 
 from __future__ import annotations
 
@@ -22,11 +23,12 @@ from thermocomp.apps.deploy.export.served import ServedStreams
 from thermocomp.apps.deploy.export.watch import JUMP, SECOND
 
 SEED = 9126
+LEAD_ROWS = 864     # R1b's lead-in: its last 864 rows (R1b's length), not R1a's 3457 (ci102a)
 
 
 @pytest.fixture(scope="module")
 def record(tmp_path_factory):
-    return long_record(tmp_path_factory, SEED)
+    return long_record(tmp_path_factory, SEED, LEAD_ROWS)
 
 
 @pytest.fixture(scope="module")

@@ -8,7 +8,9 @@ lr9132 (``thermocomp simulate sim=long_record``, seed 9132, 3 days, R1b the last
 R1a), MLR deployed adaptive with ``data.reference=none``, with one spike planted in R1b: ``T_motor``
 (no other sensor predicts it) -2.18 degC at row 430, three rows before the middle row from which
 the pack plants its faults on ``T_head_left``; the simulator's own +2.41 degC outlier of
-``T_zdrive`` (no other predicts it) at row 666 meets the planted freeze's drift exclusion."""
+``T_zdrive`` (no other predicts it) at row 666 meets the planted freeze's drift exclusion.  R1b
+streamed after R1a's last 864 rows (:data:`LEAD_ROWS`, ci102a; R1a whole before): the rows the
+tests read are R1b's, the same on both."""
 
 from __future__ import annotations
 
@@ -25,13 +27,14 @@ from thermocomp.apps.deploy.export.served import ServedStreams
 from thermocomp.apps.deploy.export.watch import MISSING_SECOND, RANGE, SECOND, planted
 
 SEED = 9132
+LEAD_ROWS = 864     # R1b's lead-in: its last 864 rows (R1b's length), not R1a's 3457 (ci102a)
 SPIKE = ("T_motor", 430, -2.18)     # (sensor, R1b's row 1-based, degC)
 
 
 @pytest.fixture(scope="module")
 def record(tmp_path_factory):
     """lr9132 with its spike in R1b: ``(deployed, ss, R1b's lead-in rows, {R1b: frame}, leads)``."""
-    deployed, ss, _, lead, tests, leads = long_record(tmp_path_factory, SEED)
+    deployed, ss, _, lead, tests, leads = long_record(tmp_path_factory, SEED, LEAD_ROWS)
     (test, campaign), = tests.items()
     sensor, row, size = SPIKE
     campaign = campaign.copy()

@@ -11,7 +11,9 @@ R1b's middle row: the code takes one out for its freeze and, in the same sample,
 second sensor out it does not hold (found with the numpy mirror, benchmarks/bench_cmon92b.py).
 Since freezeu100 the code takes that second out too, as served (a freeze of one no other predicts
 as its dropout, ``second_instant``): the case is made with arrays exported before cmon89 (no
-``second_instant``), and the current export sets no rule not in the code at an exclusion."""
+``second_instant``), and the current export sets no rule not in the code at an exclusion.
+R1b streamed after R1a's last 864 rows (:data:`LEAD_ROWS`, ci102a; R1a whole before): the rule not
+in the code sets in beside ``T_table``'s exclusion at R1b's row 443 on both."""
 
 from __future__ import annotations
 
@@ -28,13 +30,14 @@ from thermocomp.apps.deploy.export.pack import fed
 from thermocomp.apps.deploy.export.watch import EXCLUDED, NOT_IN_CODE, REASONS
 
 SEED = 9132
+LEAD_ROWS = 864     # R1b's lead-in: its last 864 rows (R1b's length), not R1a's 3457 (ci102a)
 FROZEN = ("T_table", "T_xdrive")
 
 
 @pytest.fixture(scope="module")
 def record(tmp_path_factory):
     """``(deployed, ss, the fed frame with the two sensors frozen from R1b's middle row)``."""
-    deployed, ss, _, _, tests, leads = long_record(tmp_path_factory, SEED)
+    deployed, ss, _, _, tests, leads = long_record(tmp_path_factory, SEED, LEAD_ROWS)
     (test, campaign), = tests.items()
     campaign = campaign.copy()
     half = campaign.index[len(campaign) // 2:]

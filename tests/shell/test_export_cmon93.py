@@ -8,7 +8,8 @@ benchmarks/bench_cmon93.py).
 bench_audit86b's lr9032 (``thermocomp simulate sim=long_record``, seed 9032, 3 days, R1b the last
 fifth continuing R1a), MLR deployed adaptive with ``data.reference=none``; ``T_head_left`` and
 ``T_head_right`` (the others predict both) read 5 degC high together for 10 samples from R1b's
-row a quarter in (bench_cmon92's spike)."""
+row a quarter in (bench_cmon92's spike); R1b streamed after R1a's last 864 rows (:data:`LEAD_ROWS`,
+ci102a; R1a whole before: the same rows held, the module's tests pass on both)."""
 
 from __future__ import annotations
 
@@ -23,6 +24,7 @@ from thermocomp.apps.deploy.export.served import ServedStreams
 from thermocomp.apps.deploy.export.watch import COMMON, JUMP, SPIKE
 
 SEED = 9032
+LEAD_ROWS = 864     # R1b's lead-in: its last 864 rows (R1b's length), not R1a's 3457 (ci102a)
 PAIR = ("T_head_left", "T_head_right")
 SPIKE_C, SPIKE_ROWS = 5.0, 10
 
@@ -31,7 +33,7 @@ SPIKE_C, SPIKE_ROWS = 5.0, 10
 def record(tmp_path_factory):
     """``long_record``'s tuple with R1b spiked on :data:`PAIR`, and the fault's row (1-based in
     the fed frame)."""
-    deployed, ss, _, lead, tests, leads = long_record(tmp_path_factory, SEED)
+    deployed, ss, _, lead, tests, leads = long_record(tmp_path_factory, SEED, LEAD_ROWS)
     (test, campaign), = tests.items()
     campaign = campaign.copy()
     start = len(campaign) // 4
