@@ -111,11 +111,12 @@ def test_the_cases_cover_every_pair_of_values():
     every = set().union(*(_pairs(case) for case in product(*AXES)))
     assert set().union(*(_pairs(case) for case in CASES)) == every
     assert len(set(CASES)) == len(CASES)
-    # a case's config as Hydra composes it (a case that takes every wrapper's other option)
-    case = ("lstm", "cmeans", "emd", "cluster_grey")
+    # a case's config as Hydra composes it: hammerstein's composition picks every wrapper's
+    # default, so each of this case's wrapper nodes (and SMALL_ATI's value) is another's
+    case = ("hammerstein", "cmeans", "emd", "pearson")
     assert case in CASES
-    composed = _compose(*(f"{g}={o}" for g, o in zip(("model", *GROUPS), case)), *SMALL["lstm"],
-                        *SMALL_ATI["lstm", "cmeans"])
+    composed = _compose(*(f"{g}={o}" for g, o in zip(("model", *GROUPS), case)),
+                        *SMALL_ATI["hammerstein", "cmeans"])
     assert OmegaConf.to_container(_case_config(*case)) == OmegaConf.to_container(composed)
 
 
