@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import copy
 import json
 import pickle
 from functools import lru_cache
@@ -10,7 +9,6 @@ from itertools import combinations, product
 
 import pytest
 from hydra import compose, initialize_config_dir
-from omegaconf import OmegaConf
 
 from conftest import cli
 from thermocomp.apps.deploy import StreamingCompensator
@@ -69,40 +67,6 @@ def _compose(*overrides):
         return compose(config_name="config", overrides=list(overrides))
 
 
-GROUPS = ("ati", "denoise", "select")     # the wrapper axes, each axis's first value the default
-
-
-@lru_cache(maxsize=1)
-def _compositions() -> tuple[dict, dict]:
-    """Each model's config and each wrapper option's node, from 7 compositions, not 28: every
-    case names other config groups, so each was a miss of the suite's composition cache (~0.17 s
-    of CPU). Each model is composed once with one of the 5 non-default wrapper options."""
-    others = [(group, option) for group, values in zip(GROUPS, AXES[1:]) for option in values[1:]]
-    models, nodes = {}, {}
-    for model, chosen in zip(MODELS, [*others, *[None] * (len(MODELS) - len(others))]):
-        picks = {group: values[0] for group, values in zip(GROUPS, AXES[1:])}
-        if chosen:
-            picks[chosen[0]] = chosen[1]
-        models[model] = _compose(f"model={model}", *SMALL.get(model, []),
-                                 *(f"{group}={option}" for group, option in picks.items()))
-        nodes.update({(group, option): models[model][group] for group, option in picks.items()})
-    return models, nodes
-
-
-def _case_config(model, ati, denoise, select):
-    """The config Hydra composes for a case (``model=... ati=... denoise=... select=...`` with its
-    SMALL and SMALL_ATI values): its model's composition with the case's wrapper nodes (the
-    groups are independent: test_a_case_is_configured_as_hydra_composes_it checks one case)."""
-    models, nodes = _compositions()
-    cfg = copy.deepcopy(models[model])
-    for group, option in zip(GROUPS, (ati, denoise, select)):
-        cfg[group] = copy.deepcopy(nodes[group, option])
-    for override in SMALL_ATI.get((model, ati), []):
-        key, value = override.split("=")
-        OmegaConf.update(cfg, key, int(value))
-    return cfg
-
-
 def _pairs(case) -> set:
     return {(i, case[i], j, case[j]) for i, j in combinations(range(len(case)), 2)}
 
@@ -111,18 +75,12 @@ def test_the_cases_cover_every_pair_of_values():
     every = set().union(*(_pairs(case) for case in product(*AXES)))
     assert set().union(*(_pairs(case) for case in CASES)) == every
     assert len(set(CASES)) == len(CASES)
-    # a case's config as Hydra composes it: hammerstein's composition picks every wrapper's
-    # default, so each of this case's wrapper nodes (and SMALL_ATI's value) is another's
-    case = ("hammerstein", "cmeans", "emd", "pearson")
-    assert case in CASES
-    composed = _compose(*(f"{g}={o}" for g, o in zip(("model", *GROUPS), case)),
-                        *SMALL_ATI["hammerstein", "cmeans"])
-    assert OmegaConf.to_container(_case_config(*case)) == OmegaConf.to_container(composed)
 
 
 @pytest.mark.parametrize("model, ati, denoise, select", CASES)
 def test_every_configuration_streams_exactly_as_it_predicts(door_data, model, ati, denoise, select):
-    cfg = _case_config(model, ati, denoise, select)
+    cfg = _compose(f"model={model}", f"ati={ati}", f"denoise={denoise}", f"select={select}",
+                   *SMALL.get(model, []), *SMALL_ATI.get((model, ati), []))
     ds = _dataset(str(door_data))
     comp = build_compensator(cfg).fit({c: ds.campaigns[c] for c in ds.ids("train")})
     streaming = StreamingCompensator.from_training(comp, {c: ds.campaigns[c] for c in ds.ids("train")})

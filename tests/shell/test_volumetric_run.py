@@ -35,9 +35,7 @@ def _run(raw, out, *extra):
 
 @pytest.fixture(scope="session")
 def run(raw, tmp_path_factory):
-    """The run of every identified parameter, without the validation folds (no test reads them:
-    the model, the test scores and the volumetric section are the same with them)."""
-    return _run(raw, tmp_path_factory.mktemp("volrun_out"), "plots=none", "eval.validation=false")
+    return _run(raw, tmp_path_factory.mktemp("volrun_out"), "plots=none")
 
 
 @pytest.fixture(scope="module")
@@ -212,15 +210,12 @@ def test_replay_and_monitor_stream_the_parameters_the_run_models(raw, run, tmp_p
     assert fixed == pytest.approx({n: table[n]["rms_after"] for n in table}, rel=1e-2)
 
 
-def test_a_distance_the_calibration_left_out_is_no_distance_error(raw, two_parameters, tmp_path):
+def test_a_distance_the_calibration_left_out_is_no_distance_error(raw, run, tmp_path):
     """One validation distance mis-probed by 1 mm (an outside probe's finding): the calibration
     flags it, so the distance errors leave it out, in `run` and in ingest/train/evaluate, and
     in its first cycle too, where it would have shifted the cycles after it.  Before, it was
-    scored (the probe's RMS after 0.95 -> 4.96 µm, p2p 1003 µm).  Two parameters modelled, as
-    in the clean ``two_parameters`` run compared with: the calibration and the distances scored
-    are the whole dataset's whatever is modelled, and the 1 mm would show in either."""
-    clean = two_parameters[0]["volumetric"]["distance_error"]
-    two = ["plots=none", "eval.validation=false", "data.targets=[E_ZZ1,E_XZ1]"]
+    scored (the probe's RMS after 0.95 -> 4.96 µm, p2p 1003 µm)."""
+    clean = run[0]["volumetric"]["distance_error"]
     for row in (1, 20):                        # the first validation cycle, and a later one
         data = tmp_path / f"row{row}" / "raw"
         shutil.copytree(raw, data)
@@ -229,14 +224,15 @@ def test_a_distance_the_calibration_left_out_is_no_distance_error(raw, two_param
         column = next(c for c in df.columns if c.startswith("E_S2x1d1_"))
         df.loc[row - 1, column] += 1000.0
         df.to_parquet(f, index=False)
-        got, _ = _run(data, tmp_path / f"row{row}" / "run", *two)
+        got, _ = _run(data, tmp_path / f"row{row}" / "run", "plots=none", "eval.validation=false")
         err = got["volumetric"]["distance_error"]
         assert err["p2p_after"] < 5 * clean["p2p_after"] and err["p2p_after"] < 100
         assert err["rms_after"] == pytest.approx(clean["rms_after"], rel=0.02)
         assert err["rms_before"] == pytest.approx(clean["rms_before"], rel=0.02)
     common = ["experiment=volumetric_large_mill", f"data.path={data}",
               f"data.interim={tmp_path / 'interim'}", f"model_path={tmp_path / 'model.pkl'}",
-              "track=false", "eval.mutual_prediction=false", "eval.ati_baselines=false", *two]
+              "track=false", "eval.mutual_prediction=false", "eval.ati_baselines=false", "plots=none",
+              "eval.validation=false"]
     assert main(["ingest", *common]) == 0 and main(["train", *common]) == 0
     assert main(["evaluate", *common, f"out={tmp_path / 'staged'}"]) == 0
     staged = json.loads((tmp_path / "staged" / "metrics.json").read_text())["volumetric"]
