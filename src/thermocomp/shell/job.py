@@ -48,8 +48,7 @@ def run_job(task_function, config: DictConfig, callbacks):
     """Hydra's ``run_job(task_function, config, "hydra.run.dir", None, HydraContext(None,
     callbacks))`` for a :func:`lean` config; its ``JobReturn``."""
     from hydra.core.hydra_config import HydraConfig
-    from hydra.core.utils import (JobReturn, JobRuntime, JobStatus, _flush_loggers, configure_log,
-                                  env_override)
+    from hydra.core.utils import JobReturn, JobRuntime, JobStatus, _flush_loggers, configure_log, env_override
 
     hydra = HydraConfig.instance()
     before = hydra.cfg
