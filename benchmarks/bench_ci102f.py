@@ -44,7 +44,38 @@ Usage (from the repository root; ``PYTHONPATH=<tree>/src``)::
 tests on the path: a warm-up of each case, then N commands of each through the tree's own
 conftest ``thermocomp`` (in process, its hydra_cache installed), CPU s a command.
 
-Measured: see the end of this docstring (filled after the measurement).
+Verdict: REFUSED (bar (2) met for the refused run only, (3) not met; (1) met).  Rule (a) is saved
+as benchmarks/ci102f_rule.patch (src/thermocomp/shell/job.py, cli._run_job, tests/shell/test_job.py,
+docs/architecture.md + layout.md; applies to d85f1799); src, tests and docs are d85f1799's.
+Rule (b) was built after the bar's commit and dropped before any after-measurement: counted in the
+suite (a pytest plugin on its calls), test_hostile composed 184 times with 18 repeats, the other
+five modules of (3) 187 times with 10 repeats; a hit saves ~0.011 s and every miss pays ~0.002-0.004
+s (the pickle, a second digest of conf/), a loss outside a bench that repeats one command 20 times
+(there, unpaired, at load ~10: FAST run 0.104 s, refused 0.020 s with (a)).
+
+Measured (2026-12-06 21:57-22:27, base = git archive of d85f1799, after = of fcaab12d (rule (a));
+2 cores shared with the other helpers, load 10-16; CPU s user + sys incl. children)::
+
+  (2) command, 5 reps x 20, paired     base (5 reps)                  after
+      FAST run   .158 .165 .185 .185 .148  min .148   .136 .154 .159 .139 .140  min .136   -8.0 %
+      refused    .056 .055 .070 .063 .065  min .055   .032 .036 .044 .031 .031  min .031  -43.9 %
+  (3) cpu, 1 rep, -n 0, paired per module (base then after)
+      test_hostile 32.0 -> 28.9 (-9.8 %)    test_hostile_numeric 26.6 -> 26.7 (+0.6 %)
+      test_hostile_units 14.9 -> 13.8 (-7.5 %)    test_bad_input96 4.0 -> 3.9 (-0.8 %)
+      test_cli 16.8 -> 16.0 (-4.8 %)    test_config_schema 9.5 -> 8.7 (-8.2 %)
+      sum 103.7 -> 98.0 (-5.5 %): not met (>= 10 %)
+  (1) ``diff`` of ``same`` base / after: the same exit statuses and files but for compare's fit
+      timings, replay's timing column, an MLflow log line's time stamp and the model's logged own
+      source (cli.py's docstring, the new job.py); the listed test files + test_job.py on the
+      rule: 576 passed, 1 failed (test_cli_shell's launcher test wants the tree's .venv, which a
+      worktree lacks: it fails the same on d85f1799's copy).
+
+Why (2)'s FAST run moved less than traced: the copies are ~0.025 s of its ~0.14; on the loaded
+machine the run-to-run spread of the stage itself (0.14-0.19 s on base) is as large as the cut.
+What is left of a FAST run's fixed CPU on the rule: the composition 0.017-0.020 (test cache on),
+one set_config 0.004, OmegaConf inside the stage ~0.020 (nine ``build`` calls 0.008: instantiate's
+copy, check_built's to_container, inspect.signature; check_targets' and data_options'
+to_container 0.004; check_schema 0.002).
 """
 from __future__ import annotations
 
