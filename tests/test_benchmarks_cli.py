@@ -79,7 +79,7 @@ COMMAND_BENCHES = (
     "bench_quiet93b", "bench_quiet94", "bench_quiet94b", "bench_quiet94c", "bench_range73", "bench_range77",
     "bench_rate71", "bench_rate83", "bench_refusals100", "bench_remeasure62", "bench_restart98",
     "bench_review95", "bench_review96", "bench_rigdiag70", "bench_settle95", "bench_settle96",
-    "bench_speedsq68", "bench_st100", "bench_st100b", "bench_st101", "bench_st93", "bench_st93b",
+    "bench_speedsq68", "bench_st100", "bench_st100b", "bench_st101", "bench_st102", "bench_st93", "bench_st93b",
     "bench_st94", "bench_st94b", "bench_st95", "bench_st95b", "bench_st96", "bench_st96b", "bench_st97",
     "bench_st97b", "bench_st97c", "bench_st97d", "bench_st98", "bench_st98b", "bench_st99", "bench_st99b",
     "bench_st99c", "bench_stable67", "bench_step93", "bench_step93b", "bench_step99", "bench_stranger63",

@@ -1,0 +1,225 @@
+"""The ST block follows the C's silent re-reference of a sensor it holds by ``BLIND_OUT`` (st102, issue 34).
+
+st101 (bench_st101.py, applied in ac04b0e9 over its refused bar): one new extra flag on fresh
+lr9948, row 3733 ``JUMP T_table``.  Traced (seen, before the bar: its rows stepped one by one): the bump's
+rise jumped twice (3684, 3686), held by the block (``mon_jheld``) to the C's ``BACK`` (3696) and
+undone; the C's ``BLIND_OUT`` of T_table (3697) named by the block, which holds it out
+(``mon_held``).  The bump's fall jumps at 3729 and 3733: the C (watch.py ``_step``: a lone jump
+of a sensor not active, no other predicting it, ``blind_jump``) re-references it by its whole step
+(``ref0`` kept from its first jump, ``jumps`` counted, ``calm`` 0), flags nothing, and names its
+``BACK`` at 3743 (calm 10, its wait), its jumps undone there (``_undone``: two); main's block flags
+``JUMP`` at both, ends its judgement (``mon_lost``) and keeps the re-reference (max|C - ST| 6.44 um
+after the C's ``BACK``).
+
+RULE (st_watch.py ``BLOCK``, no key; on where the block holds a ``BLIND_OUT``, ``MON_BLIND_JUDGE``):
+a lone jump (no other reading jumping, missing or beyond range) of the sensor the block holds out
+by its ``BLIND_OUT`` (``mon_held``, its set ``mon_held_set``), one the C holds out for a jump
+(``MON_JUMP_HELD``, cmon87's ``blind_jump``), is the C's silent re-reference: not flagged, no rule
+named (no spike's return read: the C has none of one no other predicts), re-referenced by its
+whole step, counted (``mon_jn``, the shift before the first ``mon_jshift0``), its calm started
+again (``mon_calm``, the C's ``calm`` 0) and its settle age too; the hold and the judgement go on.
+At the hold's ``BACK`` (st95b/st96's) the C's ``_undone``: st101's undo (its jumps undone where it
+jumped more than once, or where its reading on the reference before them is nearer its last
+reading in, ``mon_jlast``: the row before the ``BLIND_OUT``), written once for both holds.
+
+BAR (the brief's, st100b/st101's S1-S4; committed before fresh lr/dl 9961-9963 are simulated):
+
+* S1 seen, named / silent as the C on its row (+-2 rows): lr9948 T_table 3733 (and 3729) silent
+  as the C; st101's 17 ``BLIND_OUT`` after the block's own JUMP (lr9917 4, dl9917 4, lr9896 3698,
+  dl9894 6142, lr9790 4, dl9794 2, dl9845 6150) still named.  lr9917 T_amb 3734, named by the brief
+  as a sibling, was traced before this bar and is NOT of the class: the C took T_col_back out at
+  3698 (``DRIFT_OUT`` of one others predict, where the block says ``mon_stop``: it cannot follow
+  the C's set) and T_amb at 3729 as the second out for its jump (the C's flag, the block's too);
+  the block holds nothing there.  The rule leaves it as main; its clause is reported, not scored.
+* S2 every ``BLIND_OUT`` named on main (d85f1799) stays named, the same rows.
+* S3 bench_st100's healthy sets (32 frames, bench_st101's): 0 rows where the block's (flag, rule,
+  sensor) differs from main's.
+* S4 fresh :data:`FRESH` (lr/dl 9961-9963), scored once, planted as chosen here before any was
+  drawn: bench_st101's jump (the first ``MON_JUMP_HELD`` sensor, +3 jump limits for 2 rows, 100
+  rows before the onset), then per sensor no other predicts (a) test_export_st96's bump (+6 C)
+  from the onset and (b) :func:`dropped`: the same rise and hold, then back in one row (the
+  sensor jumps back while the C holds it out).  >= 75 % of the C's first ``BLIND_OUT`` of each
+  window named (sensor, +-2 rows) and 0 extra flags not main's (a block flag whose rule and sensor
+  the C does not raise within 2 rows).
+
+Usage (from the repository root; ``PYTHONPATH=<tree>/src``)::
+
+    python benchmarks/bench_st102.py cases ROOT RECORD [RECORD ...]
+    python benchmarks/bench_st102.py healthy ROOT RECORD [RECORD ...]
+    python benchmarks/bench_st102.py planted ROOT RECORD [RECORD ...]
+
+ROOT holds the records as bench_cmon92's ``made`` makes them (each once; bench_st100's generators,
+bench_st101's and this :data:`FRESH`).  bench_st101's lines (its ``Walk``: the block, main's block
+d85f1799 and the C), each window then once more as :func:`dropped`: the C's first ``BLIND_OUT``,
+the block's, main's, named; on the row it jumps back the C's, the block's and main's (flag, rule);
+the C's ``BACK`` of that sensor after it and the block's hold's end; max|C - ST| (um) over the 20
+rows from the C's ``BACK``; extra flags.  ``healthy`` and ``planted`` as bench_st101's.
+
+Measured: (to come, after the rule; the fresh seeds scored once).
+"""
+
+from __future__ import annotations
+
+import copy
+import sys
+from pathlib import Path
+
+import numpy as np
+
+HERE = Path(__file__).resolve().parent
+sys.path[:0] = [str(HERE), str(HERE.parent / "tests" / "shell"), str(HERE.parent / "tests")]
+import bench_st98  # noqa: E402
+import bench_st100  # noqa: E402
+import bench_st101  # noqa: E402
+from _cli import run_commands  # noqa: E402
+
+BASE = "d85f1799"     # main
+bench_st101.BASE = BASE     # (its Walk's main block and records: main's)
+AFTER = 20                  # rows from the C's BACK over which max|C - ST| is said
+
+
+def _fresh() -> dict:
+    """bench_st100's :data:`FRESH` (bench_cmon91's lr and dl generators) on seeds 45 further."""
+    return {f"{record[:2]}{int(record[2:]) + 45}": [
+        f"seed={int(w[5:]) + 45}" if w.startswith("seed=") else w for w in words]
+        for record, words in bench_st100.FRESH.items()}
+
+
+FRESH = _fresh()     # lr9961, dl9961, lr9962, dl9962, lr9963, dl9963 (chosen before any was simulated)
+
+
+def dropped(frame, sensor: str, start: int):
+    """``frame`` with test_export_st96's bump of ``sensor`` from ``start``, its rise and hold, then
+    back in one row (a jump); and that row."""
+    from test_export_st96 import HOLD, RISE, bumped
+
+    df, _ = bumped(frame, sensor, start)
+    back = start + RISE + HOLD
+    df.loc[back:back + RISE - 1, sensor] = frame.loc[back:back + RISE - 1, sensor]
+    return df, back
+
+
+def _cell(root: str, record: str):
+    """bench_st101's ``_cell``, :data:`FRESH` too."""
+    if record not in FRESH:
+        return bench_st101._cell(root, record)
+    made = bench_st98.cell(Path(root).resolve(), record, FRESH, BASE)
+    return (made[0], made[1].reset_index(drop=True), *made[2:])
+
+
+class Walk(bench_st101.Walk):
+    """bench_st101's, and per row ``(max|C - ST|, the block's mon_held)`` (``kept``)."""
+
+    def __init__(self, ss, block: str, base: str):
+        super().__init__(ss, block, base)
+        self.kept: list = []
+
+    def step(self, part, first: int = 0) -> None:
+        rows = self.three.rows
+
+        def teed(p):
+            for got in rows(p):
+                self.kept.append((float(np.max(np.abs(got[0][0] - got[0][1]))),
+                                  int(self.three.fb.vars["mon_held"])))
+                yield got
+        self.three.rows = teed
+        try:
+            super().step(part, first)
+        finally:
+            del self.three.rows
+
+
+def _said(s) -> str:
+    from thermocomp.apps.deploy.export.watch import RULES
+
+    return RULES[s[1]] if s[1] else ("flag" if s[0] else "-")
+
+
+def _dropped(kept: Walk, names, sensor: str, frame, start: int) -> None:
+    """The :func:`dropped` line of ``sensor`` (module doc)."""
+    from thermocomp.apps.deploy.export.watch import BACK, BLIND_OUT
+
+    df, back = dropped(frame, sensor, start)
+    if back + 61 >= len(df):
+        return
+    run = copy.deepcopy(kept)
+    run.said, run.kept = [], []
+    run.step(df.iloc[start:back + 61], start)
+    c, st, main = (bench_st101._first(run.said, w, BLIND_OUT, start) for w in (2, 0, 1))
+    hit = bool(c and st and st[1] == c[1] and abs(st[0] - c[0]) <= bench_st101.NEAR)
+    show = [f"{x[0]} {names[x[1]]}" if x else "-" for x in (c, st, main)]
+    at = run.said[back - start]
+    cback = next((i for i, s in enumerate(run.said[back - start:], back) if c and s[2] == (BACK, c[1])), None)
+    ended = next((i for i in range(back, back + 61) if run.kept[i - start][1] < 0
+                  and run.kept[i - start - 1][1] >= 0), None)
+    after = run.kept[cback - start:cback - start + AFTER] if cback else []
+    diff = max((d for d, _ in after), default=np.nan)
+    print(f"  dropped {sensor} (back at {back}): C BLIND_OUT {show[0]}, block {show[1]}, main {show[2]}, "
+          f"named {hit if c else '-'}; at {back} C {_said((0, at[2][0]))}, block {_said(at[0])}, main "
+          f"{_said(at[1])}; C BACK {cback if cback else '-'}, block's hold ended {ended if ended else '-'}, "
+          f"max|C-ST| {diff:.3g} um over {AFTER} rows from the C's BACK; "
+          f"{bench_st101._extra_line(run.said, names, start)}", flush=True)
+
+
+def _record(root: str, record: str, plant: bool, bumps: bool = True) -> None:
+    """bench_st101's lines of ``record`` (its ``_record``), then the :func:`dropped` lines."""
+    from test_export_st96 import bumped
+    from thermocomp.apps.deploy.export.watch import BLIND_OUT
+
+    ss, frame, lead, start, cid, names, block, base = _cell(root, record)
+    said = ""
+    if plant:
+        frame, jumped = bench_st101.planted_jump(ss, frame, start)
+        said = f"; planted {jumped} at {start - bench_st101.BEFORE}"
+    walk = Walk(ss, block, base)
+    walk.step(frame.iloc[:start])
+    kept = copy.deepcopy(walk) if bumps else None
+    walk.step(frame.iloc[start:], start)
+    holds = [f"{names[k]} {j}->{b} (C {c})" for j, b, c, k in walk.holds]
+    differ = [i for i, s in enumerate(walk.said) if s[0] != s[1]]
+    print(f"{record} {cid}: {len(frame)} rows ({lead} lead-in), onset {start}{said}; holds "
+          f"{holds or '-'}; rows differing from main {len(differ)} {differ[:6] or ''}; "
+          f"{bench_st101._extra_line(walk.said, names, 0)}", flush=True)
+    blind = [n for n, p in zip(names, ss.monitor["predictable"]) if not p and bumps]
+    for sensor in blind:
+        df, end = bumped(frame, sensor, start)
+        if end + 30 >= len(df):
+            continue
+        run = copy.deepcopy(kept)
+        run.said, run.kept = [], []
+        run.step(df.iloc[start:end + 31], start)
+        c, st, main = (bench_st101._first(run.said, w, BLIND_OUT, start) for w in (2, 0, 1))
+        hit = bool(c and st and st[1] == c[1] and abs(st[0] - c[0]) <= bench_st101.NEAR)
+        show = [f"{x[0]} {names[x[1]]}" if x else "-" for x in (c, st, main)]
+        print(f"  bumped {sensor}: C BLIND_OUT {show[0]}, block {show[1]}, main {show[2]}, named "
+              f"{hit if c else '-'}; {bench_st101._extra_line(run.said, names, start)}", flush=True)
+    for sensor in blind:
+        _dropped(kept, names, sensor, frame, start)
+
+
+def cases(root: str, *records: str) -> None:
+    """The ``cases`` lines (module doc)."""
+    for record in records:
+        _record(root, record, False)
+
+
+def healthy(root: str, *records: str) -> None:
+    """The ``healthy`` lines (module doc)."""
+    for record in records:
+        _record(root, record, False, bumps=False)
+
+
+def planted(root: str, *records: str) -> None:
+    """The ``planted`` lines (module doc)."""
+    for record in records:
+        _record(root, record, True)
+
+
+def main(argv: list[str]) -> int:
+    """The command ``argv`` names (module doc; none: the usage, status 2)."""
+    commands = {"cases": cases, "healthy": healthy, "planted": planted}
+    return run_commands(__doc__, commands, argv, cpu=sys.stderr)
+
+
+if __name__ == "__main__":
+    raise SystemExit(main(sys.argv[1:]))
