@@ -61,6 +61,10 @@ Per sample, of each monitored sensor ``k`` (the input ``MON_INPUT[k]``, the C's 
   last jump at least the C's wait, a full window counted, its reading moving), the C's ``_undone``
   there, the block judging on from the next row; anything else named or flagged in the hold (but
   BENT) ends it as before;
+* (st102) a lone jump of the sensor the block holds out by its ``BLIND_OUT``, one the C holds out
+  for a jump (``MON_JUMP_HELD``): the C's silent re-reference of a sensor out (``mon_hjump``), not
+  flagged, no spike's return read, re-referenced by its whole step and counted (``mon_jn``), its
+  calm from it; at the hold's ``BACK`` the C's ``_undone``, st101's (``mon_jk``);
 * (st96b) the C's level shift of a sensor no other predicts (``SETTLED``), told by the C's test
   over ``2 MON_WINDOW`` readings (``mon_settle_ring``, ``settled.level_shift``) on the C's
   conditions (its reference unmoved for ``2 MON_WINDOW - 1`` samples, no gap, the reading before
