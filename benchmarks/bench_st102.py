@@ -163,37 +163,10 @@ def _dropped(kept: Walk, names, sensor: str, frame, start: int) -> None:
 
 def _record(root: str, record: str, plant: bool, bumps: bool = True) -> None:
     """bench_st101's lines of ``record`` (its ``_record``), then the :func:`dropped` lines."""
-    from test_export_st96 import bumped
-    from thermocomp.apps.deploy.export.watch import BLIND_OUT
-
-    ss, frame, lead, start, cid, names, block, base = _cell(root, record)
-    said = ""
-    if plant:
-        frame, jumped = bench_st101.planted_jump(ss, frame, start)
-        said = f"; planted {jumped} at {start - bench_st101.BEFORE}"
-    walk = Walk(ss, block, base)
-    walk.step(frame.iloc[:start])
-    kept = copy.deepcopy(walk) if bumps else None
-    walk.step(frame.iloc[start:], start)
-    holds = [f"{names[k]} {j}->{b} (C {c})" for j, b, c, k in walk.holds]
-    differ = [i for i, s in enumerate(walk.said) if s[0] != s[1]]
-    print(f"{record} {cid}: {len(frame)} rows ({lead} lead-in), onset {start}{said}; holds "
-          f"{holds or '-'}; rows differing from main {len(differ)} {differ[:6] or ''}; "
-          f"{bench_st101._extra_line(walk.said, names, 0)}", flush=True)
-    blind = [n for n, p in zip(names, ss.monitor["predictable"]) if not p and bumps]
-    for sensor in blind:
-        df, end = bumped(frame, sensor, start)
-        if end + 30 >= len(df):
-            continue
-        run = copy.deepcopy(kept)
-        run.said, run.kept = [], []
-        run.step(df.iloc[start:end + 31], start)
-        c, st, main = (bench_st101._first(run.said, w, BLIND_OUT, start) for w in (2, 0, 1))
-        hit = bool(c and st and st[1] == c[1] and abs(st[0] - c[0]) <= bench_st101.NEAR)
-        show = [f"{x[0]} {names[x[1]]}" if x else "-" for x in (c, st, main)]
-        print(f"  bumped {sensor}: C BLIND_OUT {show[0]}, block {show[1]}, main {show[2]}, named "
-              f"{hit if c else '-'}; {bench_st101._extra_line(run.said, names, start)}", flush=True)
-    for sensor in blind:
+    kept, frame, start, names = bench_st101._record(root, record, plant, bumps, _cell, Walk)
+    if not bumps:
+        return
+    for sensor in [n for n, p in zip(names, kept.three.ss.monitor["predictable"]) if not p]:
         _dropped(kept, names, sensor, frame, start)
 
 
