@@ -61,6 +61,7 @@ Measured: (to come, after the rule; the fresh seeds scored once).
 from __future__ import annotations
 
 import copy
+import functools
 import sys
 from pathlib import Path
 
@@ -74,7 +75,6 @@ import bench_st101  # noqa: E402
 from _cli import run_commands  # noqa: E402
 
 BASE = "d85f1799"     # main
-bench_st101.BASE = BASE     # (its Walk's main block and records: main's)
 AFTER = 20                  # rows from the C's BACK over which max|C - ST| is said
 
 
@@ -100,8 +100,9 @@ def dropped(frame, sensor: str, start: int):
 
 
 def _cell(root: str, record: str):
-    """bench_st101's ``_cell``, :data:`FRESH` too."""
+    """bench_st101's ``_cell`` (main's block :data:`BASE`), :data:`FRESH` too."""
     if record not in FRESH:
+        bench_st101.BASE = BASE
         return bench_st101._cell(root, record)
     made = bench_st98.cell(Path(root).resolve(), record, FRESH, BASE)
     return (made[0], made[1].reset_index(drop=True), *made[2:])
@@ -170,27 +171,18 @@ def _record(root: str, record: str, plant: bool, bumps: bool = True) -> None:
         _dropped(kept, names, sensor, frame, start)
 
 
-def cases(root: str, *records: str) -> None:
-    """The ``cases`` lines (module doc)."""
+def _records(root: str, *records: str, plant: bool = False, bumps: bool = True) -> None:
+    """:func:`_record` of each record: the commands (module doc)."""
     for record in records:
-        _record(root, record, False)
+        _record(root, record, plant, bumps)
 
 
-def healthy(root: str, *records: str) -> None:
-    """The ``healthy`` lines (module doc)."""
-    for record in records:
-        _record(root, record, False, bumps=False)
-
-
-def planted(root: str, *records: str) -> None:
-    """The ``planted`` lines (module doc)."""
-    for record in records:
-        _record(root, record, True)
+COMMANDS = {"cases": {}, "healthy": {"bumps": False}, "planted": {"plant": True}}
 
 
 def main(argv: list[str]) -> int:
     """The command ``argv`` names (module doc; none: the usage, status 2)."""
-    commands = {"cases": cases, "healthy": healthy, "planted": planted}
+    commands = {name: functools.partial(_records, **kw) for name, kw in COMMANDS.items()}
     return run_commands(__doc__, commands, argv, cpu=sys.stderr)
 
 
