@@ -11,7 +11,8 @@ of a sensor not active, no other predicting it, ``blind_jump``) re-references it
 ``JUMP`` at both, ends its judgement (``mon_lost``) and keeps the re-reference (max|C - ST| 6.44 um
 after the C's ``BACK``).
 
-RULE (st_watch.py ``BLOCK``, no key; on where the block holds a ``BLIND_OUT``, ``MON_BLIND_JUDGE``):
+RULE (REFUSED: kept as benchmarks/st102_rule.patch, ``git apply`` it on d85f1799 to measure it;
+st_watch.py ``BLOCK``, no key; on where the block holds a ``BLIND_OUT``, ``MON_BLIND_JUDGE``):
 a lone jump (no other reading jumping, missing or beyond range) of the sensor the block holds out
 by its ``BLIND_OUT`` (``mon_held``, its set ``mon_held_set``), one the C holds out for a jump
 (``MON_JUMP_HELD``, cmon87's ``blind_jump``), is the C's silent re-reference: not flagged, no rule
@@ -55,7 +56,38 @@ the block's, main's, named; on the row it jumps back the C's, the block's and ma
 the C's ``BACK`` of that sensor after it and the block's hold's end; max|C - ST| (um) over the 20
 rows from the C's ``BACK``; extra flags.  ``healthy`` and ``planted`` as bench_st101's.
 
-Measured: (to come, after the rule; the fresh seeds scored once).
+Measured (2026-12-06, 2 cores shared, load 8-19; the rule = bbeda32b's src, the patch, unchanged
+after the fresh score; VERDICT REFUSED: S1-S3 met, S4's 0 new extra flags met, S4 named not met):
+
+* S1 MET (``planted /tmp/st102/seen101f lr9948``, st101's fresh, now seen): lr9948 T_table's fall
+  jumps 3729 / 3733 silent as the C (main: ``JUMP`` at both); the block held it to the C's
+  ``BACK`` at 3743, its two jumps undone there; max|C - ST| on the rows after it 6.44 um (main) ->
+  <= 5.5e-14; that window's extra flags main 2 -> 0.  st101's 17 still named on the C's row:
+  lr9917 4 (3685, 3686, 3684, 3681), dl9917 4 (6132, 6133, 6132, 6131), lr9896 T_table 3698,
+  dl9894 T_table 6142, lr9790 4 (3684, 3681, 3685, 3686), dl9794 2 (6130, 6131), dl9845 T_table
+  6150.  lr9917 T_amb (not the class, above): extra flags 7, main 7, 3734 as main.
+* S2 MET: on the 11 seen records with windows (lr9917 dl9917 lr9896 dl9894 lr9893 cr9895 dl9897
+  lr9790 dl9794 dl9845 lr9948) every window's ``BLIND_OUT`` named by main is named by the rule on
+  the same row (33 bumps, 33 dropped; planted lr9896 3 + 3).  Extra flags in those windows main 49
+  -> rule 22, none new (planted lr9896: 10 -> 4); in the dropped windows the rule is silent on 21
+  jumps back the C re-references silently and main flags, and flags none the C does not.
+* S3 MET: 0 rows differing from main, extra flags 0 (main 0), on all 32 healthy frames (st97d's 11,
+  bench_mon98's 9, seen99c's 5, lr/dl 9916-9918, fl_thermal).
+* S4 fresh, scored once (``planted /tmp/st102/fresh lr9961 lr9962 lr9963``, 33.8 s CPU with the
+  simulation; ``... dl9961 dl9962 dl9963``, 54.1 s): the C's first ``BLIND_OUT`` named in 0 of 38
+  windows (19 bumps, 19 dropped; main 0 of 38): NOT MET; extra flags 22, main 22, new 0: met.  No
+  fresh window held a ``BLIND_OUT`` in the block, so none where the rule acts: traced after the
+  score (no change made): on 5 records the block's ``BLIND_OUT`` judgement stopped in the lead-in
+  (``mon_stop`` at the C's ``DRIFT_OUT`` of a sensor others predict: lr9961 row 252, lr9962 1371,
+  lr9963 589, dl9961 419, dl9962 2284), and the planted T_amb jump read beyond its range
+  (``OFF_RANGE``, the C's too) on lr9961, lr9963, dl9961, dl9963 (dl9963: the judgement ended
+  there, ``mon_lost``); no planted jump held (``holds -`` on all 6).
+* CPU: ``cases`` seen 39.3 s (lr/dl9917), 87.3 s (seen99c's 5), 38.0 s (lr9790 dl9794), 25.4 s
+  (dl9845); ``healthy`` 119.8 s (st97d), 66.0 s (mon98), 66.0 s (lr/dl 9916 / 9918, fl_thermal).
+* Next: the fresh draw met the block's older limits before this rule's case (a drift exclusion
+  of a sensor others predict ends the ``BLIND_OUT`` judgement; the +3 jump limit plant beyond
+  range).  A held sensor's reading beyond its range is the C's silence too (the C reads it as
+  missing, the block flags ``OFF_RANGE`` and ends: seen on lr9132 while building the test).
 """
 
 from __future__ import annotations
