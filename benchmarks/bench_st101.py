@@ -195,16 +195,18 @@ def _cell(root: str, record: str):
     return (ss, frame, 0, len(frame), "test", names, block, bench_st97d.base_block(deployed, BASE))
 
 
-def _record(root: str, record: str, plant: bool, bumps: bool = True) -> None:
+def _record(root: str, record: str, plant: bool, bumps: bool = True, cell=None, walker=None):
+    """The lines of ``record`` (module doc; ``cell`` / ``walker`` for :func:`_cell` / :class:`Walk`:
+    bench_st102's); and ``(the walk at the onset, the frame, the onset, the names)``."""
     from test_export_st96 import bumped
     from thermocomp.apps.deploy.export.watch import BLIND_OUT
 
-    ss, frame, lead, start, cid, names, block, base = _cell(root, record)
+    ss, frame, lead, start, cid, names, block, base = (cell or _cell)(root, record)
     said = ""
     if plant:
         frame, jumped = planted_jump(ss, frame, start)
         said = f"; planted {jumped} at {start - BEFORE}"
-    walk = Walk(ss, block, base)
+    walk = (walker or Walk)(ss, block, base)
     walk.step(frame.iloc[:start])
     kept = copy.deepcopy(walk) if bumps else None
     walk.step(frame.iloc[start:], start)
@@ -225,6 +227,7 @@ def _record(root: str, record: str, plant: bool, bumps: bool = True) -> None:
         show = [f"{x[0]} {names[x[1]]}" if x else "-" for x in (c, st, main)]
         print(f"  bumped {sensor}: C BLIND_OUT {show[0]}, block {show[1]}, main {show[2]}, named "
               f"{hit if c else '-'}; {_extra_line(run.said, names, start)}", flush=True)
+    return kept, frame, start, names
 
 
 def cases(root: str, *records: str) -> None:
