@@ -13,7 +13,11 @@ declares a new thermal state, then test_export_st96's bump of a sensor no other 
 (st101) The block's own ``JUMP`` of a sensor no other predicts ended its judgement of the field
 for the campaign (``mon_lost``), while the C holds the sensor out to its ``BACK`` and judges on:
 the same record, a spike of the sensor the C holds out for a jump 150 rows before the bump
-(benchmarks/bench_st101.py)."""
+(benchmarks/bench_st101.py).
+
+(st102) A jump of the sensor the block holds out by its ``BLIND_OUT`` was flagged ``JUMP`` and
+ended the block's judgement, where the C re-references it silently and names its ``BACK`` with the
+jumps undone: the bump, and a spike of the bumped sensor while it is out (benchmarks/bench_st102.py)."""
 
 from __future__ import annotations
 
@@ -26,6 +30,7 @@ from thermocomp.apps.deploy.export.watch import BACK, BLIND_OUT, EXCLUDED, JUMP,
 
 FIELD, AT, SIZE = ("T_head_left", "T_col_front_top", "T_bed_right"), 300, -2.0
 JUMPED, JUMP_AT, JUMP_LIMITS = "T_amb", START - 150, 3.0    # (st101) its spike: 2 rows, 3 jump limits
+HELD_AT, HELD_LIMITS = START + 30, -1.2    # (st102) the bumped one's spike while out (up: beyond range)
 
 
 def _judging(v) -> tuple:
@@ -84,3 +89,28 @@ def test_the_block_holds_its_own_jump_to_the_cs_back_and_names_a_blind_out_after
     assert [i for i, (_, held) in enumerate(judging) if held >= 0] == list(range(JUMP_AT, back))
     assert judging[back] == (False, -1)
     assert np.max(np.abs(st[back:out] - c[back:out])) <= TOLERANCE_UM
+
+
+def _held(v) -> tuple:
+    """``(mon_lost, mon_held)``."""
+    return bool(v["mon_lost"]), int(v["mon_held"])
+
+
+def test_the_block_follows_the_cs_silent_re_reference_of_the_blind_out_it_holds(record):  # noqa: F811
+    _, ss, frame, block = record
+    k = [ss.inputs[i] for i in ss.monitor["inputs"]].index(BLIND)
+    df, end = bumped(frame, BLIND)
+    df.loc[HELD_AT:HELD_AT + 1, BLIND] += HELD_LIMITS * float(ss.monitor["jump_lim"][k])
+    st, st_said, held, c, c_said = _stepped(ss, block, df.iloc[:end + 40], _held)
+    # the C: its BLIND_OUT, then the held sensor's spike re-referenced twice, silently (cmon87),
+    # and its BACK after its wait from the second, its jumps undone there
+    out = next(i for i, s in enumerate(c_said) if s[1])
+    assert c_said[out][1:] == (BLIND_OUT, k) and START < out < HELD_AT
+    back = next(i for i in range(out + 1, len(c_said)) if c_said[i][1])
+    assert c_said[back][1:] == (BACK, k) and back >= HELD_AT + 2 + ss.monitor["window"]
+    # the block: the same BLIND_OUT, nothing flagged at the jumps (before st102: JUMP at the
+    # first, its judgement ended there), held to the C's BACK, the C's corrections after it
+    assert [i for i, s in enumerate(st_said) if s[0]] == [out]
+    assert st_said[HELD_AT] == st_said[HELD_AT + 2] == (False, 0, -1)
+    assert held[out:back] == [(False, k)] * (back - out) and held[back] == (False, -1)
+    assert np.max(np.abs(st[back:] - c[back:])) <= TOLERANCE_UM

@@ -61,6 +61,10 @@ Per sample, of each monitored sensor ``k`` (the input ``MON_INPUT[k]``, the C's 
   last jump at least the C's wait, a full window counted, its reading moving), the C's ``_undone``
   there, the block judging on from the next row; anything else named or flagged in the hold (but
   BENT) ends it as before;
+* (st102) a lone jump of the sensor the block holds out by its ``BLIND_OUT``, one the C holds out
+  for a jump (``MON_JUMP_HELD``): the C's silent re-reference of a sensor out (``mon_hjump``), not
+  flagged, no spike's return read, re-referenced by its whole step and counted (``mon_jn``), its
+  calm from it; at the hold's ``BACK`` the C's ``_undone``, st101's (``mon_jk``);
 * (st96b) the C's level shift of a sensor no other predicts (``SETTLED``), told by the C's test
   over ``2 MON_WINDOW`` readings (``mon_settle_ring``, ``settled.level_shift``) on the C's
   conditions (its reference unmoved for ``2 MON_WINDOW - 1`` samples, no gap, the reading before
@@ -459,6 +463,8 @@ VARS = """    mon_last : ARRAY[{nm}] OF LREAL;
     mon_jdwell : INT;
     mon_jshift0 : LREAL;
     mon_jlast : LREAL;
+    mon_hjump : BOOL;
+    mon_jk : INT;
     mon_perm : ARRAY[{nm}] OF INT;
     mon_xr : ARRAY[{nm}] OF LREAL;
     mon_xlim : ARRAY[{nm}] OF LREAL;
@@ -477,6 +483,7 @@ mon_rule := 0;
 mon_sensor := -1;
 mon_stop := FALSE;
 mon_gone := FALSE;
+mon_jk := -1;
 IF first THEN
     mon_count := 0;
     mon_stop_row := 0;
@@ -696,12 +703,19 @@ IF MON_PAIR_JUMP AND mon_jumps = 2 AND NOT mon_gone AND mon_count <> 1 THEN
         END_IF;
     END_FOR;
 END_IF;
+(* (st102) a lone jump of the sensor the block holds out by its BLIND_OUT, one the C holds out *)
+(* for a jump (MON_JUMP_HELD): the C's silent re-reference of one out (its whole step, no *)
+(* spike's return of one no other predicts), no fault; the hold and the judgement go on *)
+mon_hjump := mon_held >= 0 AND mon_held_set >= 0 AND NOT mon_lost AND mon_jumps = 1;
+IF mon_hjump THEN
+    mon_hjump := MON_JUMP_HELD[mon_held] = 1 AND mon_big[mon_held] AND NOT mon_gone AND mon_rule = 0;
+END_IF;
 (* the spikes' returns first (named first, as the C re-admits them before it excludes) *)
 FOR mk := 0 TO MON_N - 1 DO
     j := MON_INPUT[mk];
     mon_spike[mk] := FALSE;
     mon_back := FALSE;
-    IF mon_big[mk] AND mon_out[mk] THEN
+    IF mon_big[mk] AND mon_out[mk] AND NOT mon_hjump THEN
         mon_back := mon_jumps = 1 OR (mon_pair AND mon_outs = 2);
     END_IF;
     IF mon_back THEN
@@ -725,8 +739,12 @@ FOR mk := 0 TO MON_N - 1 DO
     j := MON_INPUT[mk];
     IF mon_big[mk] AND NOT mon_spike[mk] THEN
         (* re-referenced by its whole step: the model reads it on from its last reading *)
+        IF mon_hjump AND mon_jn = 0 THEN
+            mon_jshift0 := mon_shift[j];    (* (st102) the C's ref0: before its first jump *)
+        END_IF;
         mon_shift[j] := mon_shift[j] + mon_step[mk];
         mon_back := mon_pair AND mon_out[mk];  (* a pair's out already: no new fault, as the C *)
+        mon_back := mon_back OR mon_hjump;    (* (st102) the held one's: the C's, silent *)
         mon_out[mk] := TRUE;
         mon_rerefd[mk] := TRUE;
         IF NOT mon_back AND mon_jumps < MON_COMMON_MIN THEN
@@ -771,7 +789,10 @@ IF MON_STEP_JUDGE AND NOT mon_lost AND mon_rule = RULE_JUMP AND mon_jumps = 1 AN
         END_FOR;
     END_IF;
 END_IF;
-IF mon_gone OR mon_jumps > 0 THEN
+IF mon_hjump THEN
+    mon_jn := mon_jn + 1;    (* (st102) its jumps in the hold, undone at its BACK as the C's *)
+    mon_sage[mon_held] := 0;    (* its reference moved: the C's age 1 on this row *)
+ELSIF mon_gone OR mon_jumps > 0 THEN
     mon_lost := TRUE;
 END_IF;
 mon_was := mon_held;
@@ -832,6 +853,7 @@ IF MON_STEP_JUDGE AND (NOT mon_lost OR mon_jheld >= 0) THEN
         END_IF;
         mon_go := mon_span = 1.0 AND mon_gap[mk] = 1.0;    (* no gap *)
         mon_go := mon_go AND mk <> mon_jheld;    (* (st101) out for its jump: not in the C *)
+        mon_go := mon_go AND (mk <> mon_held OR mon_jn = 0);    (* (st102) nor jumped out *)
         IF MON_SETTLES[mk] = 1 AND mon_sage[mk] >= 2 * MON_WINDOW - 1 AND mon_go THEN
             (* (st96) the C's level shift (SETTLED): the window ending here parted from the *)
             (* one before by MON_SETTLE_LIM and moved past MON_SETTLE_STEADY x their spread *)
@@ -1088,6 +1110,8 @@ IF MON_STEP_JUDGE AND (NOT mon_lost OR mon_jheld >= 0) THEN
                 (* each exclusion of it by judgement (at most MON_MAX_BACKOFF times) *)
                 mon_held := mon_take;
                 mon_held_set := mon_take_set;
+                mon_jn := 0;    (* (st102) its jumps while held, and its last reading in (the C's last) *)
+                mon_jlast := mon_last[mon_take] - mon_base[mon_take] - mon_shift[MON_INPUT[mon_take]];
                 mon_calm := 0;
                 mon_run_was := 0;
                 mon_dwell := MON_WINDOW;
@@ -1230,6 +1254,9 @@ IF MON_STEP_JUDGE AND (NOT mon_lost OR mon_jheld >= 0) THEN
         (* on every row of the window, with every sensor in, its error within MON_BACK_BAND *)
         (* (st96: one out by BLIND_OUT, every judged sensor's within its warning band) *)
         mon_calm := mon_calm + 1;
+        IF mon_big[mon_was] THEN
+            mon_calm := 0;    (* (st102) its silent jump: the C's calm from it *)
+        END_IF;
         IF mon_calm >= mon_dwell AND mon_count + 1 >= MON_WINDOW AND mon_run = 0 THEN
             mon_ok := TRUE;
             FOR mr := 0 TO MON_WINDOW - 1 DO
@@ -1257,43 +1284,50 @@ IF MON_STEP_JUDGE AND (NOT mon_lost OR mon_jheld >= 0) THEN
             END_FOR;
             IF mon_ok THEN
                 mon_held := -1;
+                IF mon_jn > 0 THEN
+                    mon_jk := mon_was;    (* (st102) jumped while held: the C's _undone below *)
+                END_IF;
             END_IF;
         END_IF;
     END_IF;
 END_IF;
 (* (st101) the C's BACK of the jumped sensor: calm for its wait, a full window counted, its *)
-(* reading moving (one no other predicts passes); the C's _undone there: its jumps undone where *)
-(* it jumped more than once, or where its reading on the reference before them is nearer its *)
-(* last one in; the block judging on from the next row, as the C *)
+(* reading moving (one no other predicts passes); the block judging on from the next row *)
 IF mon_jheld >= 0 AND mon_jcalm >= mon_jdwell AND mon_count + 1 >= MON_WINDOW THEN
-    mk := mon_jheld;
-    j := MON_INPUT[mk];
-    IF u[j] <> mon_last[mk] THEN
-        mon_off := mon_shift[j] - mon_jshift0;
-        mon_x := mon_d[mk] + mon_off - mon_jlast;
-        mon_lim := mon_d[mk] - mon_jlast;
-        IF mon_jn > 1 OR (mon_off <> 0.0 AND mon_x * mon_x < mon_lim * mon_lim) THEN
-            mon_sage[mk] := 1;    (* the C's reference moved back on this row *)
-            mon_shift[j] := mon_jshift0;
-            mon_d[mk] := mon_d[mk] + mon_off;
-            FOR mr := 0 TO MON_WINDOW - 1 DO
-                mon_ring[mr, mk] := mon_ring[mr, mk] + mon_off;
-            END_FOR;
-            FOR mr := 0 TO 2 * MON_WINDOW - 1 DO
-                mon_settle_ring[mr, mk] := mon_settle_ring[mr, mk] + mon_off;
-            END_FOR;
-            mon_out[mk] := FALSE;    (* its re-reference gone; else kept: a return is a spike's *)
-            mon_rerefd[mk] := FALSE;
-            FOR mi := 0 TO MON_N - 1 DO    (* the errors the next row steps from, as the C's *)
-                mon_x := 0.0;
-                FOR mj := 0 TO MON_N - 1 DO
-                    mon_x := mon_x + MON_SELF[mi, mj] * mon_d[mj];
-                END_FOR;
-                mon_prev_e[mi] := (mon_d[mi] - mon_x) * MON_SCALE[mi];
-            END_FOR;
-        END_IF;
+    IF u[MON_INPUT[mon_jheld]] <> mon_last[mon_jheld] THEN
+        mon_jk := mon_jheld;
         mon_lost := FALSE;
         mon_jheld := -1;
+    END_IF;
+END_IF;
+(* the C's _undone at that BACK, or (st102) at the BACK of a BLIND_OUT that jumped while held: *)
+(* its jumps undone where it jumped more than once, or where its reading on the reference *)
+(* before them is nearer its last one in *)
+IF mon_jk >= 0 THEN
+    mk := mon_jk;
+    j := MON_INPUT[mk];
+    mon_off := mon_shift[j] - mon_jshift0;
+    mon_x := mon_d[mk] + mon_off - mon_jlast;
+    mon_lim := mon_d[mk] - mon_jlast;
+    IF mon_jn > 1 OR (mon_off <> 0.0 AND mon_x * mon_x < mon_lim * mon_lim) THEN
+        mon_sage[mk] := 1;    (* the C's reference moved back on this row *)
+        mon_shift[j] := mon_jshift0;
+        mon_d[mk] := mon_d[mk] + mon_off;
+        FOR mr := 0 TO MON_WINDOW - 1 DO
+            mon_ring[mr, mk] := mon_ring[mr, mk] + mon_off;
+        END_FOR;
+        FOR mr := 0 TO 2 * MON_WINDOW - 1 DO
+            mon_settle_ring[mr, mk] := mon_settle_ring[mr, mk] + mon_off;
+        END_FOR;
+        mon_out[mk] := FALSE;    (* its re-reference gone; else kept: a return is a spike's *)
+        mon_rerefd[mk] := FALSE;
+        FOR mi := 0 TO MON_N - 1 DO    (* the errors the next row steps from, as the C's *)
+            mon_x := 0.0;
+            FOR mj := 0 TO MON_N - 1 DO
+                mon_x := mon_x + MON_SELF[mi, mj] * mon_d[mj];
+            END_FOR;
+            mon_prev_e[mi] := (mon_d[mi] - mon_x) * MON_SCALE[mi];
+        END_FOR;
     END_IF;
 END_IF;
 (* a return is stepped from the last reading, over the samples it spans *)
