@@ -26,6 +26,7 @@ import pandas as pd
 import pytest
 from sklearn.ensemble import RandomForestRegressor
 
+from cbuild import LEVEL
 from test_export import (
     StructuredText,
     _compiled,
@@ -172,7 +173,7 @@ def test_the_adaptive_code_learns_a_bias_around_it_as_the_served_model(data, tmp
     assert ss.adapt == "bias" and ss.clamp_states and set(ss.law_ambient) == {0, 1}
     text = _rows([df.assign(**{t: e[:, i] for i, t in enumerate(targets)})
                   for df, e in zip(tests, references)], [*cols, *targets])
-    got = _streamed(_compiled(deployed_, tmp_path), text)
+    got = _streamed(_compiled(deployed_, tmp_path, LEVEL), text)
     assert np.max(np.abs(got.to_numpy(float) - expected)) <= TOLERANCE_UM
     assert np.max(np.abs(_simulated(ss, tests, cols, references) - expected)) <= TOLERANCE_UM
     fb = StructuredText(exported_files(deployed_, "st")["compensator.st"])

@@ -18,6 +18,7 @@ import json
 import numpy as np
 import pytest
 
+from cbuild import LEVEL
 from conftest import refused
 from test_export import (
     EVERY_EXCURSION,
@@ -87,7 +88,7 @@ def _proved(stream, tests, folder) -> float:
     assert all(s["n_clamped"].iloc[len(s) // 2:].gt(0).all() for s in streamed)
     expected = np.vstack([-s[stream.targets_].to_numpy(float) for s in streamed])
     cols = stream.columns_
-    got = [_streamed(_compiled(stream, folder), _stdin(stream, tests)).to_numpy(float)]
+    got = [_streamed(_compiled(stream, folder, LEVEL), _stdin(stream, tests)).to_numpy(float)]
     sim, rows = Simulator(state_space(stream)), []
     fb = StructuredText(exported_files(stream, "st")["compensator.st"])
     st = []

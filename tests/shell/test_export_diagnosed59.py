@@ -40,15 +40,29 @@ def data(tmp_path_factory):
     return _levels(tmp_path_factory.mktemp("diagnosed") / "data")
 
 
+_PLAIN: dict = {}
+
+
+def _plain(data) -> tuple:
+    """``(test campaigns with T_a pushed out half-way, plain MLR's compensator, the config, the
+    train campaigns)`` of ``data``, made once per dataset (ci102b: every diagnosed model of a
+    module fitted this same MLR and read the same record again); callers get copies."""
+    if str(data) not in _PLAIN:
+        _, tests, mlr = deployed(data, "model=mlr", pushed="T_a")
+        cfg = _compose(f"data.path={data}", "track=false", "monitor.adaptive=false",
+                       "promote.envelope.pattern=false")
+        ds, train_ids, _, _ = read_streamed(cfg)
+        _PLAIN[str(data)] = tests, mlr, cfg, {c: ds.campaigns[c] for c in train_ids}
+    tests, mlr, cfg, train = _PLAIN[str(data)]
+    return ([df.copy() for df in tests], clone(mlr), cfg,
+            {c: df.copy() for c, df in train.items()})
+
+
 def _diagnosed(data, effects: list, alpha=None, base=None):
     """``(stream as replay deploys it, test campaigns with T_a pushed out half-way, compensator)``
     of ``base`` (MLR) with ``effects`` for E_X, the way diagnose's written config builds it."""
-    _, tests, mlr = deployed(data, "model=mlr", pushed="T_a")
-    cfg = _compose(f"data.path={data}", "track=false", "monitor.adaptive=false",
-                   "promote.envelope.pattern=false")
-    ds, train_ids, _, _ = read_streamed(cfg)
-    train = {c: ds.campaigns[c] for c in train_ids}
-    comp = clone(mlr).set_params(estimator=AugmentedRegressor(
+    tests, mlr, cfg, train = _plain(data)
+    comp = mlr.set_params(estimator=AugmentedRegressor(
         base if base is not None else MLR(), effects={"E_X": effects},
         alpha=None if alpha is None else {"E_X": alpha}))
     comp.fit(train)

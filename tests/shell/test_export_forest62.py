@@ -19,6 +19,7 @@ import json
 import numpy as np
 import pytest
 
+from cbuild import LEVEL
 from test_export import (
     StructuredText,
     _compiled,
@@ -100,7 +101,7 @@ def test_the_code_compares_the_feature_cast_to_float32_as_the_trees_do(data, tmp
                                 "model.estimator.tau_s=1000.0")
     assert _on_a_float32_tie(stream, tests) >= 1
     expected = np.vstack([-replay(stream, df)[stream.targets_].to_numpy(float) for df in tests])
-    got = _streamed(_compiled(stream, tmp_path), _stdin(stream, tests)).to_numpy(float)
+    got = _streamed(_compiled(stream, tmp_path, LEVEL), _stdin(stream, tests)).to_numpy(float)
     assert np.max(np.abs(got - expected)) <= TOLERANCE_UM
     fb = StructuredText(exported_files(stream, "st")["compensator.st"])
     rows = [fb(r, t, k == 0) for df in tests

@@ -20,6 +20,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from cbuild import LEVEL
 from conftest import deployed_as_replay
 from test_export import (
     CAMPAIGNS,
@@ -141,7 +142,7 @@ def test_the_code_of_an_adaptive_model_streams_as_its_guarded_replay(dataset, tm
     ss = state_space(deployed)
     assert ss.guard and ss.guard_lo == deployed.guard.lo.tolist()
     cols = deployed.columns_
-    got = _streamed(_compiled(deployed, tmp_path), _rows(tests, cols))
+    got = _streamed(_compiled(deployed, tmp_path, LEVEL), _rows(tests, cols))
     assert np.max(np.abs(got.to_numpy(float) - expected)) <= TOLERANCE_UM
     assert np.max(np.abs(_simulated(ss, tests, cols) - expected)) <= TOLERANCE_UM
     fb = StructuredText(exported_files(deployed, "st")["compensator.st"])
@@ -183,7 +184,7 @@ def test_the_code_learns_from_reference_measurements_as_the_served_model(dataset
     cols = deployed.columns_
     text = _rows([df.assign(**{t: e[:, i] for i, t in enumerate(targets)})
                   for df, e in zip(tests, references)], [*cols, *targets])
-    got = _streamed(_compiled(deployed, tmp_path), text)
+    got = _streamed(_compiled(deployed, tmp_path, LEVEL), text)
     assert np.max(np.abs(got.to_numpy(float) - expected)) <= TOLERANCE_UM
     assert np.max(np.abs(_simulated(ss, tests, cols, references) - expected)) <= TOLERANCE_UM
     fb = StructuredText(exported_files(deployed, "st")["compensator.st"])
@@ -233,7 +234,7 @@ def test_the_code_of_a_hammerstein_model_streams_as_replay(tmp_path, denoise):
     ss = state_space(stream)
     assert 2.0 in [e for _, _, e in ss.powers] and ss.inputs[-1] == "S_spindle_rpm"
     cols = stream.columns_
-    got = _streamed(_compiled(stream, tmp_path), _rows(tests, cols))
+    got = _streamed(_compiled(stream, tmp_path, LEVEL), _rows(tests, cols))
     assert np.max(np.abs(got.to_numpy(float) - expected)) <= TOLERANCE_UM
     assert np.max(np.abs(_simulated(ss, tests, cols) - expected)) <= TOLERANCE_UM
     fb = StructuredText(exported_files(stream, "st")["compensator.st"])
