@@ -9,7 +9,7 @@ import pandas as pd
 import pytest
 import yaml
 
-from conftest import FAST, refused, thermocomp
+from conftest import refused, thermocomp
 from thermocomp.core.io import ContractError, read_dataset
 from thermocomp.core.io.bits import looks_like_bits
 
@@ -148,8 +148,7 @@ def test_export_says_the_code_reads_each_bit_as_its_own_column(tmp_path, capsys)
 
     folder, keys = _folder(tmp_path)
     out = tmp_path / "out"
-    # FAST: what is asserted is the export's header and message, not the run's report extras
-    assert main(["run", f"data.path={folder}", *keys, *FAST, f"out={out}"]) == 0
+    assert main(["run", f"data.path={folder}", *keys, f"out={out}"]) == 0
     assert main(["export", f"data.path={folder}", *keys, f"export.model={out / 'model.pkl'}",
                  "export.format=c", "export.check=false", f"out={tmp_path / 'c'}"]) == 0
     header = (tmp_path / "c" / "compensator.h").read_text()

@@ -16,9 +16,8 @@ from thermocomp.shell.cli import main
 
 @pytest.fixture(scope="module")
 def raw(tmp_path_factory):
-    """8 h of training, 4 h of test, a cycle every 20 min (24 train cycles: every candidate is
-    fitted and one chosen per parameter, what the volumetric section read; a day showed the same)."""
-    gen = LargeMillVolumetric(train_hours=8.0, test_hours=4.0, seed=96)
+    """A day of training, half a day of validation, a cycle every 20 min."""
+    gen = LargeMillVolumetric(train_hours=24.0, test_hours=12.0, seed=96)
     return simulated(gen, tmp_path_factory.mktemp("volauto") / "raw")
 
 
