@@ -80,9 +80,9 @@ its targets -> sim_cli[large_mill_week].
 
 Why so little: a tail module's CPU alone is ~1.4-2.1 s of pytest start and imports that no test
 edit cuts, and what is left is mostly its subject; the computations no assertion reads were
-0.0-0.7 s of CPU a module here (paired).  The xdist profile (modules_cpu.txt) counts the imports once per worker, so
-a tail module's measured CPU alone is its profile CPU plus that floor: -30 % of it asks for more
-than half of a module's own computation.
+0.0-0.7 s of CPU a module here (paired).  The xdist profile (modules_cpu.txt) counts the imports
+once per worker, so a tail module's measured CPU alone is its profile CPU plus that floor: -30 %
+of it asks for more than half of a module's own computation.
 
 ``cpu`` writes OUT/cpu.txt (``TAG SPEC user sys wall result``) and pytest's output to OUT/log/;
 paired: a shell starts the base's and the branch's ``cpu`` at once, each on its tree.
