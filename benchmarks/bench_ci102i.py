@@ -70,6 +70,10 @@ paired: base and after started together, each with ``cpu``; load 9-13; one rep):
   test_sim_cli                 5.7 ->  5.1   -11.4 %    4 / 4
   sum                         26.8 -> 25.1    -6.2 %
 
+A 2nd paired rep of the two modules changed most (22:39-22:41, after = git archive of 4ed307d4,
+load ~13): test_sim_cli 6.24 -> 5.77 (-7.5 %), test_promote_adapt63 9.45 -> 9.41 (-0.4 %); the
+two reps' means: sim_cli 5.98 -> 5.42 (-9.4 %), promote_adapt63 9.27 -> 8.97 (-3.2 %).
+
 Against the bar: (1) met: ``asserts`` 7/23/3/2 asserts, 0/1/0/0 refused(, as on 506ffb01, no
 assert edited, the same ids pass, no ``full`` mark. (2) NOT met: -6.2 % against >= 30 %. (3)
 met: each plant on a copy failed a changed test -- promotion.py's test figures streamed with
