@@ -40,7 +40,7 @@ COMMAND_BENCHES = (
     "bench_blame96", "bench_blocks68", "bench_cadence72", "bench_cadence74", "bench_cascade81",
     "bench_catman70", "bench_cdrop77", "bench_cflags100", "bench_ci100", "bench_ci100b", "bench_ci100c",
     "bench_ci101", "bench_ci101b", "bench_ci101c", "bench_ci102a", "bench_ci102c", "bench_ci102d",
-    "bench_ci102e", "bench_ci98", "bench_ci99", "bench_ci99b", "bench_clamp74", "bench_clamp75",
+    "bench_ci102e", "bench_ci102j", "bench_ci98", "bench_ci99", "bench_ci99b", "bench_clamp74", "bench_clamp75",
     "bench_clamp78", "bench_clean69", "bench_clockset71", "bench_cmon76", "bench_cmon80", "bench_cmon82",
     "bench_cmon82b", "bench_cmon82c", "bench_cmon83", "bench_cmon84", "bench_cmon85", "bench_cmon86",
     "bench_cmon87", "bench_cmon88", "bench_cmon89", "bench_cmon89b", "bench_cmon91", "bench_cmon92",
