@@ -92,12 +92,6 @@ def small_year():
     return ds
 
 
-def _six(ds):
-    """Six of ``small_year``'s campaigns (its first four train, first two test): every figure
-    kind and key of a report, a 6 x 6 mutual-prediction matrix, fewer fits and figures."""
-    return ds.subset([*ds.ids("train")[:4], *ds.ids("test")[:2]])
-
-
 @pytest.mark.parametrize("ati, level", [("none", "all"), ("cmeans", "test")])
 def test_report_has_every_key_and_figure(small_year, tmp_path, ati, level, capsys):
     from thermocomp.shell.builders import build_compensator
@@ -106,11 +100,10 @@ def test_report_has_every_key_and_figure(small_year, tmp_path, ati, level, capsy
     from thermocomp.shell.tracking import _Null
 
     # one target with ATI keeps the test fast; the layout does not depend on the target, and two
-    # without (not three: plots=all draws every campaign's residual per target) say each has its own,
-    # on six campaigns (plots=all draws each: six make the point as nine did); ATI keeps all nine
+    # without (not three: plots=all draws every campaign's residual per target) say each has its own
     extra = ["data.targets=[E_Z]"] if ati == "cmeans" else ["data.targets=[E_X,E_Z]"]
     cfg = _compose([f"out={tmp_path / 'out'}", f"ati={ati}", "track=false", f"plots={level}", *extra])
-    ds = small_year if ati == "cmeans" else _six(small_year)
+    ds = small_year
     comp = build_compensator(cfg).fit({c: ds.campaigns[c] for c in ds.ids("train")})
     metrics = _report(cfg, comp, ds, _Null())
     on_disk = json.loads((tmp_path / "out" / "metrics.json").read_text())  # strict JSON
@@ -122,14 +115,13 @@ def test_report_has_every_key_and_figure(small_year, tmp_path, ati, level, capsy
 
 
 def test_plots_none_writes_no_figure_and_the_same_numbers(small_year, tmp_path):
-    """``plots=none``: no plots folder at all; metrics.json as with the default figures (six
-    campaigns: the figures and numbers of any)."""
+    """``plots=none``: no plots folder at all; metrics.json as with the default figures."""
     from thermocomp.shell.builders import build_compensator
     from thermocomp.shell.cli import _compose
     from thermocomp.shell.stages.modelling import _report
     from thermocomp.shell.tracking import _Null
 
-    ds = _six(small_year)
+    ds = small_year
     light = ["track=false", "data.targets=[E_Z]", "eval.mutual_prediction=false"]
     reports = {}
     for level in ("none", "summary"):
