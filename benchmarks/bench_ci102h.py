@@ -1,0 +1,61 @@
+"""CI time (issue 34; stop 102, ci102h): the export MONITOR modules ci102a left, and what they
+compute beyond what their assertions read.
+
+The group: tests/shell/test_export_{spike89,st93,st94,st9*,mon98b,cmon85,cmon86,cmon89b,mon86,
+mon85b,bent93,step99,lab75_deploy}.py (CPU of the fresh-clone CI of d85f1799:
+/work/notes/prof102/modules_cpu.txt; st93 6.9 s, st94 5.1, spike89 7.3, mon98b 8.8, cmon89b 10.2,
+cmon86 8.9, cmon85 6.6).
+
+Trace (506ffb01, ``--durations=0``, -n 0, nice, load ~7-10, wall s): st93 + st94 one process
+14.5 s CPU, 63 s wall: the Structured Text interpreter and the numpy mirror stepping 1100 fed rows
+(50 of the 57 s of calls), the record (simulate + fit + deploy of lr9132) 4.7 + 2.3 s of setup;
+mon98b / cmon89b / spike89 / cmon86's held tests (C build, pack with its planted and cold copies,
+C stream) 40.7 / 17.2 / 15.1 / 11.8 s of calls.
+
+Rule (candidates, tests only unless exact): a test computes no more than its assertions read:
+st93 / st94 feed the first ROWS of lr9132's fed rows with a fault planted at FAULT (1100 and 1000
+on 506ffb01): fewer rows before the fault, the fault and what follows it the same in number; the
+healthy rows before it still healthy (asserted).  No key.
+
+BAR (the brief's, written and committed here before any after-measurement):
+
+1. every test id stays and passes; each assertion stays or is replaced by one at least as
+   strong (``asserts``: no fewer ``assert`` statements per changed module; each replaced one
+   listed in the report); a test whose subject is shrunk still holds it (the planted fault, the
+   effect, the rule's trigger) and its docstring says what the smaller data holds; a ``full``
+   mark only where a named CI test covers it end to end (reported apart, seconds moved);
+2. the changed modules' summed pytest CPU (user + sys incl. children of ``/usr/bin/time nice
+   pytest -q -n 0 -p no:cacheprovider -m "not full"``, each module alone; base tree = ``git
+   archive 506ffb01`` into /tmp/ci102h/base) down >= 30 %, base and after paired (started
+   together); one rep for the whole set, a 2nd rep for the modules changed most if time allows;
+3. every changed test fails on a planted break of what it checks (``plant``: one per changed
+   test, or per changed fixture for many small ones); src changes only where exact (the same
+   outputs to the bit on the module's inputs, shown) and measured.
+
+No seeds: nothing is scored.
+
+Usage (from the repository root; ``PYTHONPATH=<tree>/src``)::
+
+    python benchmarks/bench_ci102h.py cpu TREE TAG OUT SPEC...      # bench_ci100b's cpu
+    python benchmarks/bench_ci102h.py table OUT [BEFORE AFTER BAR]   # bench_ci100b's table
+    python benchmarks/bench_ci102h.py asserts BASE SPEC...           # bench_ci101c's asserts
+    python benchmarks/bench_ci102h.py plant TREE FILE OLD NEW SPEC   # bench_ci101c's plant
+"""
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _cli import run_commands  # noqa: E402
+from bench_ci100b import cpu, table  # noqa: E402
+from bench_ci101c import asserts, plant  # noqa: E402
+
+
+def main(argv: list[str]) -> int:
+    return run_commands(__doc__, {"cpu": cpu, "table": table, "asserts": asserts, "plant": plant},
+                        argv, cpu=sys.stdout)
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
