@@ -1,7 +1,10 @@
 """The exported C follows mon89's spike as served (benchmarks/bench_mon89.py ``pack``): a sensor
 out for a jump whose next jump brings it back to the field on its reference before the first is
 in again at once, its reference put back (``spike``).  The record is
-tests/shell/test_monitor_spike89.py's lr9211 (MLR), R1b fed after its lead-in R1a."""
+tests/shell/test_monitor_spike89.py's lr9211 (MLR), R1b fed after its lead-in R1a's last 864 rows
+(test_export_cmon87's ``LEAD_ROWS``, ci102h; R1a's 3457 before): the spike the same, ``T_head_left``
+out at R1b's row 581 and back a sample later, served and in the mirror, as after R1a whole (the
+export before mon89 holds it out 11 rows, 17 after R1a whole: both past the calm window of 10)."""
 
 from __future__ import annotations
 
@@ -10,6 +13,7 @@ import dataclasses
 import pytest
 
 from test_export import needs_cc
+from test_export_cmon87 import LEAD_ROWS
 from test_export_mon88 import assert_code_as_served
 from test_monitor_readmit88 import deployed_record
 from test_monitor_spike89 import LONG
@@ -21,13 +25,14 @@ from thermocomp.core.continuation import lead_ins
 
 @pytest.fixture(scope="module")
 def record(tmp_path_factory):
-    """``(deployed, ss, {R1b: frame}, {R1b: lead-in})`` of lr9211."""
+    """``(deployed, ss, {R1b: frame}, {R1b: its lead-in's last LEAD_ROWS})`` of lr9211."""
     deployed, ds, test_ids = deployed_record(tmp_path_factory.mktemp("lr9211") / "data", LONG,
                                              ("data.reference=none",))
     (test,) = test_ids
     return (deployed, state_space(deployed, monitor=True),
             {test: ds.campaigns[test].reset_index(drop=True)},
-            lead_ins(plain(deployed).compensator, ds, test_ids))
+            {c: lead.iloc[-LEAD_ROWS:]
+             for c, lead in lead_ins(plain(deployed).compensator, ds, test_ids).items()})
 
 
 def _mirror_out_rows(ss, frame, lead: int) -> list[int]:

@@ -6,7 +6,10 @@ before st94 the block read the first as heat and flagged the second ``COMMON``.
 
 lr9132 (``thermocomp simulate sim=long_record``, seed 9132, 3 days), MLR deployed adaptive with
 ``data.reference=none``, its first 1100 fed rows, as tests/shell/test_export_st93.py
-(benchmarks/bench_st94.py scores both rules on fresh records)."""
+(benchmarks/bench_st94.py scores both rules on fresh records); the fixture and FAULT are
+st94b-st100's too.  This module's own two tests read the first 300 of them with the faults
+planted at row 201 (:data:`HEAD`, :data:`AT`; ci102h: 1100 and 1001 before): the C's BENT and
+its two jumps at the fault's row, nothing before it, as then."""
 
 from __future__ import annotations
 
@@ -20,6 +23,7 @@ from thermocomp.apps.deploy.export.watch import BAND, BENT, EXCLUDED, JUMP, RERE
 
 SEED = 9132
 ROWS, FAULT, LOST = 1100, 1000, 5       # rows fed, the fault's first (0-based), rows a spike lasts
+HEAD, AT = 300, 200     # this module's tests: the rows they feed, their fault's first (ci102h)
 
 
 @pytest.fixture(scope="module")
@@ -49,46 +53,48 @@ def _both(ss, block, frame):
 
 def test_a_blind_sensors_step_off_its_own_is_re_referenced_as_the_c_does(record):
     deployed, ss, frame, block = record
+    frame = frame.iloc[:HEAD]
     m, mon = ss.monitor, deployed.monitor
     names = [ss.inputs[i] for i in m["inputs"]]
-    # the sensors no other predicts, each stepped twice its largest training step from FAULT on
+    # the sensors no other predicts, each stepped twice its largest training step from AT on
     # (bench_step93's 2x: under the jump limit of 3x), the first the C re-references as BENT
     for k in [k for k, p in enumerate(m["predictable"]) if not p]:
         df = frame.copy()
-        df.loc[FAULT:, names[k]] += 2.0 * float(mon.max_step_c[k])
+        df.loc[AT:, names[k]] += 2.0 * float(mon.max_step_c[k])
         st, st_said, shifts, c, c_said = _both(ss, block, df)
-        if c_said[FAULT] == (REREFERENCED, BENT, k):
+        if c_said[AT] == (REREFERENCED, BENT, k):
             break
     else:
         pytest.fail("no blind sensor's step re-referenced by the C")
     # the C nothing else on these rows: the block = the C on every row, the step's included
-    assert all(s == (0, 0, -1) for i, s in enumerate(c_said) if i != FAULT)
+    assert all(s == (0, 0, -1) for i, s in enumerate(c_said) if i != AT)
     assert np.max(np.abs(st - c)) <= TOLERANCE_UM
     # named at its row (kept in: no fault flagged), re-referenced there and only there
-    assert st_said[FAULT] == (False, BENT, k)
-    assert [i for i, s in enumerate(st_said) if s != (False, 0, -1)] == [FAULT]
+    assert st_said[AT] == (False, BENT, k)
+    assert [i for i, s in enumerate(st_said) if s != (False, 0, -1)] == [AT]
     moved = np.flatnonzero(np.any(np.diff(shifts, axis=0) != 0.0, axis=1)) + 1
-    assert moved.tolist() == [FAULT]
+    assert moved.tolist() == [AT]
 
 
 def test_two_sensors_jumping_in_one_sample_are_flagged_as_the_c_excludes_them(record):
     _, ss, frame, block = record
+    frame = frame.iloc[:HEAD]
     m = ss.monitor
     names = [ss.inputs[i] for i in m["inputs"]]
     a, b = [k for k, p in enumerate(m["ported_out"]) if p][:2]     # two the others predict
     df = frame.copy()
     for k in (a, b):             # twice its jump limit for LOST rows, then back
-        df.loc[FAULT:FAULT + LOST - 1, names[k]] += 2.0 * m["jump_lim"][k]
+        df.loc[AT:AT + LOST - 1, names[k]] += 2.0 * m["jump_lim"][k]
     st, st_said, shifts, c, c_said = _both(ss, block, df)
     # the C excludes both, the first named; nothing before, the block = the C there
-    assert c_said[FAULT][1:] == (JUMP, a) and c_said[FAULT][0] & EXCLUDED
-    assert all(s == (0, 0, -1) for s in c_said[:FAULT])
-    assert np.max(np.abs(st[:FAULT] - c[:FAULT])) <= TOLERANCE_UM
+    assert c_said[AT][1:] == (JUMP, a) and c_said[AT][0] & EXCLUDED
+    assert all(s == (0, 0, -1) for s in c_said[:AT])
+    assert np.max(np.abs(st[:AT] - c[:AT])) <= TOLERANCE_UM
     # the block: a jump of the first (not COMMON), both re-referenced; their return the spikes'
     # end (not flagged), the jumps undone
-    assert st_said[FAULT] == (True, JUMP, a)
-    assert set(np.flatnonzero(shifts[FAULT] != shifts[FAULT - 1])) == {a, b}
-    back = FAULT + LOST
+    assert st_said[AT] == (True, JUMP, a)
+    assert set(np.flatnonzero(shifts[AT] != shifts[AT - 1])) == {a, b}
+    back = AT + LOST
     assert st_said[back] == (False, SPIKE, a)
-    assert [i for i, s in enumerate(st_said) if s[0]] == [FAULT]
+    assert [i for i, s in enumerate(st_said) if s[0]] == [AT]
     assert np.all(shifts[back:, [a, b]] == 0.0)
