@@ -133,6 +133,9 @@ def table(out: str) -> None:
           f"{slower or ''}")
 
 
+def main(argv: list[str]) -> int:
+    return run_commands(__doc__, {"setup": setup, "measure": measure, "table": table}, argv)
+
+
 if __name__ == "__main__":
-    sys.exit(run_commands(__doc__, {"setup": setup, "measure": measure, "table": table},
-                          sys.argv[1:]))
+    raise SystemExit(main(sys.argv[1:]))

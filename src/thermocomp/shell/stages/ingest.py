@@ -34,7 +34,8 @@ def ingest(cfg: DictConfig) -> dict:
         return {"reference": resolve_reference(cfg, ds)}
 
     if is_volumetric(cfg):
-        from ...apps.volumetric.source import ingest_series   # the calibration: SciPy's linalg
+        # here: the adapter's calibration (SciPy's linear algebra) is a volumetric folder's
+        from ...apps.volumetric.source import ingest_series
 
         report = ingest_series(open_source(cfg), dest, made, finish)
     else:

@@ -131,7 +131,8 @@ def _report(cfg: DictConfig, comp, ds, tracker, clock: Clock | None = None,
     if notes:
         extra["warnings"] = notes
     if volumetric is not None:
-        from ...apps.volumetric.section import validate   # the calibration: a volumetric run's
+        # here: the section's calibration module is a volumetric run's alone
+        from ...apps.volumetric.section import validate
 
         extra["volumetric"], curves = validate(comp, ds, *volumetric, str(cfg.eval.mode),
                                                *reversed(simulated_truth(cfg)))
