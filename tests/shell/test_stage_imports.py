@@ -45,8 +45,7 @@ def _loaded_after_each(steps: dict[str, str], env: dict | None = None) -> dict[s
 def chained(tmp_path_factory):
     """The steps of this module that load no MLflow in one interpreter: ``(loaded after each, a
     scratch folder)``.  The order keeps each check exact: ``--cfg job`` first (it must load the
-    tracking module), ingest and simulate before anything loads scikit-learn or SciPy, the MLR
-    run before any other
+    tracking module), simulate before anything loads scikit-learn, the MLR run before any other
     family, the model classes last (they must load what no step before loads)."""
     tmp = tmp_path_factory.mktemp("stage_imports")
     data = make_dataset(tmp / "ds")
@@ -60,9 +59,6 @@ def chained(tmp_path_factory):
         "out of domain": "from thermocomp.shell.cli import main\n"
                          f"assert main(['run', 'track=false', 'out={tmp / 'out'}', "
                          "'eval.mode=simulaton']) == 2",
-        "ingest": "from thermocomp.shell.cli import main\n"
-                  f"assert main(['ingest', 'data.path={data}', 'track=false', "
-                  f"'data.interim={tmp / 'interim'}', 'out={tmp / 'ingest'}']) == 0",
         "simulate": "from thermocomp.shell.cli import main\n"
                     f"assert main(['simulate', 'data.path={tmp / 'sim'}', 'track=false', "
                     "'sim.generator.n_campaigns=3', 'sim.generator.duration_h=[1.0,1.0]']) == 0",
@@ -99,16 +95,6 @@ def test_a_value_out_of_its_domain_is_refused_before_the_stage_loads_its_librari
     assert not (tmp_path / "out").exists()
 
 
-def test_ingesting_a_csv_folder_imports_no_model_library_nor_the_volumetric_adapter(chained):
-    """``ingest`` fits nothing: it builds no configured model, denoiser nor selector to check
-    them (scikit-learn, ~1.7 s of CPU under load; the stage that fits them checks them), and a
-    folder without ``volumetric.json`` needs no calibration (SciPy's linear algebra)."""
-    loaded, tmp_path = chained[0]["ingest"], chained[1]
-    assert (tmp_path / "interim" / "ingest_report.json").is_file()
-    assert not {"sklearn", "scipy", "thermocomp.core.models", "thermocomp.core.select",
-                "thermocomp.apps.volumetric.source", "thermocomp.apps.volumetric.calibration"} & loaded
-
-
 def test_simulate_imports_no_scikit_learn(chained):
     loaded, tmp_path = chained[0]["simulate"], chained[1]
     assert (tmp_path / "sim").is_dir()
@@ -119,16 +105,13 @@ def test_simulate_imports_no_scikit_learn(chained):
 def test_an_mlr_run_imports_no_other_familys_library(chained):
     """``thermocomp.core.models`` imports a family on first use: an MLR run (and ``init``, which
     builds the configured MLR to check it) loads neither arx_rf's forest (``sklearn.ensemble``,
-    ~0.2 s of CPU) nor SciPy's ``signal`` (the dynamic families' filter), nor the lag bank
-    (~0.18 s) for its notes; the names of the
+    ~0.2 s of CPU) nor SciPy's ``signal`` (the dynamic families' filter); the names of the
     package resolve all the same (the next test)."""
     loaded, tmp_path = chained[0]["mlr run"], chained[1]
     assert (tmp_path / "run" / "metrics.json").is_file() and (tmp_path / "init" / "conf").is_dir()
     assert "sklearn.linear_model" in loaded           # it did fit the MLR
     assert not {"sklearn.ensemble", "scipy.signal", "thermocomp.core.models.arx_rf",
-                "thermocomp.core.models.arx", "thermocomp.core.models.lstm",
-                # the report's notes need no lag bank
-                "thermocomp.core.models.lagbank", "thermocomp.core.models.hammerstein"} & loaded
+                "thermocomp.core.models.arx", "thermocomp.core.models.lstm"} & loaded
 
 
 def test_the_model_classes_resolve_by_name_and_load_their_family_then(chained):

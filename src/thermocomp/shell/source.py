@@ -17,8 +17,8 @@ from pathlib import Path
 
 from omegaconf import DictConfig, OmegaConf, open_dict
 
-from ..apps.volumetric.folder import SETTINGS
-from ..apps.volumetric.folder import is_volumetric as _volumetric_folder
+from ..apps.volumetric.source import SETTINGS
+from ..apps.volumetric.source import is_volumetric as _volumetric_folder
 from ..base.errors import ConfigError
 from ..base.files import folder_digest
 from ..base.log import logger, say

@@ -20,13 +20,20 @@ from pathlib import Path
 from ...base.files import folder_digest
 from ...base.log import logger
 from ...core import io
+from .artefact import SETUP_FILE
 from .calibration import calibrate_folder, fitted, prior_sd
-from .folder import SETTINGS
 from .identify import ArtefactCalibration
 from .series import check_columns, load_setup
 
+# the calibrate.* settings a parameter series depends on (calibrate.format: how it is written)
+SETTINGS = ("outlier_z", "column_share", "require_seen", "prior")
 _CACHE: dict[tuple, tuple[io.Dataset, list]] = {}   # and the log records it made
 _CACHED = 2      # datasets kept: a fleet's or a test's, not every folder a process ever read
+
+
+def is_volumetric(root: str | Path) -> bool:
+    """``root`` is a volumetric dataset (``volumetric.json`` in it)."""
+    return (Path(root) / SETUP_FILE).is_file()
 
 
 def open_volumetric(root: str | Path, options: Mapping | None, settings: Mapping) -> io.Dataset:

@@ -32,6 +32,7 @@ from ..context import (
 )
 from ..gains import gain_terms
 from ..metrics import PERSISTENCE, rmse
+from ..model_selection import BlockedForward, LeaveBlockOut, LeaveCampaignsOut
 from ..model_selection.extrapolation import within_range
 from .blend import Blend, fold_ratios, mean_fold_ratio, vote_weights
 from .one_step import persistence
@@ -433,10 +434,6 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
 
     def _folds(self, groups, n: int) -> list:
         """``(fit, predict, score)`` row masks: held out as the test split is (``scheme``)."""
-        # here, not at the top: every run imports this module (its report's choices), only a
-        # fit of auto needs the splitters (scikit-learn's model_selection, ~0.2 s of CPU)
-        from ..model_selection import BlockedForward, LeaveBlockOut, LeaveCampaignsOut
-
         if self.scheme_ == "leave-campaigns-out":     # two or more campaigns (_scheme)
             return [(~held, held, held) for held in
                     (np.isin(np.arange(n), rows) for _, rows in

@@ -87,16 +87,3 @@ def measured_rows(est, X, y) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     if not measured.any():
         raise ContractError(f"{type(est).__name__}: the target is measured on no row")
     return X, y, measured
-
-
-def without_states_note(comp) -> str | None:
-    """One line where a fitted compensator ``comp`` holds a Hammerstein model into which no
-    machine state entered (none in the record, or each constant): it is the plain lag bank,
-    ``model=lagbank``'s very fit, which a run says rather than report it as another family."""
-    for est in getattr(comp, "estimators_", {}).values():
-        # a Hammerstein's fit alone sets it: its module (the lag bank's) is not imported for it
-        why = getattr(est, "without_states_", None)
-        if why:
-            return (f"model=hammerstein: {why}: the plain lag bank was fitted, the same model as "
-                    "model=lagbank (its states are what it adds)")
-    return None

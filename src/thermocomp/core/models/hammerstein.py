@@ -295,3 +295,15 @@ class Hammerstein(SideInputs, RegressorMixin, BaseEstimator):
         lead[:self.n_features_in_] = lead_taus
         gain = self.lagbank_.lagged_step_gain(lead, horizon_s, period_s)
         return None if gain is None else gain[:self.n_features_in_]
+
+
+def without_states_note(comp) -> str | None:
+    """One line where a fitted compensator ``comp`` holds a Hammerstein model into which no
+    machine state entered (none in the record, or each constant): it is the plain lag bank,
+    ``model=lagbank``'s very fit, which a run says rather than report it as another family."""
+    for est in getattr(comp, "estimators_", {}).values():
+        why = getattr(est, "without_states_", None) if isinstance(est, Hammerstein) else None
+        if why:
+            return (f"model=hammerstein: {why}: the plain lag bank was fitted, the same model as "
+                    "model=lagbank (its states are what it adds)")
+    return None

@@ -25,8 +25,7 @@ COMPONENTS = ("model.estimator", "ati.estimator", "denoise.denoiser", "select.se
 
 
 def check_config(cfg: DictConfig, outputs: tuple[str, ...] = ("out",),
-                 inputs: tuple[str, ...] = (), existing_store: bool = False,
-                 components: tuple[str, ...] = COMPONENTS) -> None:
+                 inputs: tuple[str, ...] = (), existing_store: bool = False) -> None:
     """Refuse bad choices before anything is read or written.
 
     ``outputs`` are the config keys of what the stage writes: folders (``out``,
@@ -35,18 +34,16 @@ def check_config(cfg: DictConfig, outputs: tuple[str, ...] = ("out",),
     ``inputs`` are the keys of what it reads besides ``data.path``: no output (nor
     ``out``, where its log goes) is, lies inside or holds one (:mod:`.apart`).
     ``existing_store``: the stage reads runs from the store, which must be there.
-    ``components``: the keys of :data:`COMPONENTS` the stage builds, each built and checked
-    here (``ingest`` builds none: neither they nor their libraries are loaded for it).
     """
     check_schema(cfg)        # every group, whatever the stage: replay streams with promote.* too
     io.ReadOptions.from_cfg(data_options(cfg))      # data.*: before any file is read
     store = ("tracking_uri",) if enabled(cfg) else ()    # a SQLite store and its artifacts
     check_apart(cfg, (*outputs, "out", *store), inputs)
-    for key in components:
+    for key in COMPONENTS:
         node = OmegaConf.select(cfg, key)
         if node is not None:
             check_component(build(node, key), key)
-    if "model.estimator" in components and is_auto(cfg):
+    if is_auto(cfg):
         for name, candidate in build_candidates(cfg).items():
             check_component(candidate, f"model.candidates.{name}")
     for key in outputs:

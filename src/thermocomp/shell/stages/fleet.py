@@ -22,7 +22,7 @@ from ...base.log import logger, say
 from ...base.paths import resolve
 from ...core import io
 from ...core.metrics import VALIDATION
-from ...core.models.base import without_states_note
+from ...core.models.hammerstein import without_states_note
 from ...core.scoring.evaluation import VAL_FOLDS, require_split, validation_report
 from ...core.scoring.results import TargetResult
 from ..builders import validation_template

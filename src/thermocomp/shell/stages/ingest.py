@@ -12,6 +12,7 @@ from __future__ import annotations
 
 from omegaconf import DictConfig
 
+from ...apps.volumetric.source import ingest_series
 from ...base.files import check_replaceable
 from ...base.log import say
 from ...base.paths import resolve
@@ -23,8 +24,7 @@ from ..tracking import stage_run
 
 def ingest(cfg: DictConfig) -> dict:
     """Validate ``data.path`` and write it as Parquet to ``data.interim`` with a report."""
-    # data.path: always an input; no model, denoiser nor selector built (checked where fitted)
-    check_config(cfg, outputs=("data.interim",), components=())
+    check_config(cfg, outputs=("data.interim",))   # data.path: always an input
     src, dest = resolve(cfg.data.path), resolve(cfg.data.interim)
     check_replaceable(dest, io.INGEST_REPORT, "data.interim")
     say(f"ingesting {src} -> {dest}")
@@ -34,9 +34,6 @@ def ingest(cfg: DictConfig) -> dict:
         return {"reference": resolve_reference(cfg, ds)}
 
     if is_volumetric(cfg):
-        # here: the adapter's calibration (SciPy's linear algebra) is a volumetric folder's
-        from ...apps.volumetric.source import ingest_series
-
         report = ingest_series(open_source(cfg), dest, made, finish)
     else:
         report = io.ingest(src, dest, data_options(cfg), extra=made, finish=finish)

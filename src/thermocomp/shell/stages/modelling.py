@@ -23,7 +23,7 @@ from ...base.paths import resolve
 from ...core import io
 from ...core.first_probe import late_first_note
 from ...core.models.auto import add_choices, as_chosen
-from ...core.models.base import without_states_note
+from ...core.models.hammerstein import without_states_note
 from ...core.run_report import Refits, ReportSettings, report_run
 from ...core.scoring.evaluation import require_split
 from ...core.scoring.results import EvaluationResult
@@ -123,6 +123,8 @@ def _report(cfg: DictConfig, comp, ds, tracker, clock: Clock | None = None,
     """Score ``comp`` on ``ds``, write ``metrics.json`` and the figures under ``out`` at once
     (``stage_files(folder)``: the run's other outputs), log and print them.  ``volumetric``:
     ``(distance dataset, calibration, its report)``, for the ``volumetric`` section."""
+    from ...apps.volumetric.section import validate
+
     out, clock, extra = resolve(cfg.out), clock or Clock(), dict(extra or {})
     notes = [n for n in (without_states_note(comp),
                          late_first_note(comp.reference, comp.targets_, ds.campaigns)) if n]
@@ -131,9 +133,6 @@ def _report(cfg: DictConfig, comp, ds, tracker, clock: Clock | None = None,
     if notes:
         extra["warnings"] = notes
     if volumetric is not None:
-        # here: the section's calibration module is a volumetric run's alone
-        from ...apps.volumetric.section import validate
-
         extra["volumetric"], curves = validate(comp, ds, *volumetric, str(cfg.eval.mode),
                                                *reversed(simulated_truth(cfg)))
         clock.lap("volumetric")
