@@ -41,8 +41,9 @@ core/models/base.py (duck-typed on ``without_states_``: the lag bank, ~0.18 s of
 loaded by an MLR run's report), auto's splitters imported in ``AutoRegressor._folds``, and the
 volumetric section imported for a volumetric run only.
 
-Measured (2026-12-06, ``setup`` by the after tree, ``measure /tmp/ci102g/b BASE=d85f1799's src
-and conf, AFTER=d703b10d``; a loaded 2-core machine, nice; min of 3 rounds after one warm-up)::
+Measured (2026-12-06, ``setup`` by the after tree, ``measure`` with BASE = d85f1799's src and
+conf, AFTER = d703b10d, whose b453c92e comment-only edits landed in the warm-up round; a loaded
+2-core machine, nice; min of 3 rounds after one warm-up)::
 
   process           base  after  ratio   (min of 3, CPU s: user + sys of the process)
   ingest            1.70   0.84  0.494
