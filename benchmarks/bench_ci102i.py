@@ -97,14 +97,11 @@ import sys
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _cli import run_commands  # noqa: E402
-from bench_ci100b import cpu, table  # noqa: E402
-from bench_ci101c import asserts, plant  # noqa: E402
+from bench_ci101c import measured  # noqa: E402
 
 
 def main(argv: list[str]) -> int:
-    return run_commands(__doc__, {"cpu": cpu, "table": table, "asserts": asserts, "plant": plant},
-                        argv, cpu=sys.stdout)
+    return measured(__doc__, argv)
 
 
 if __name__ == "__main__":
