@@ -39,7 +39,25 @@ ROOT holds the records as bench_cmon92's ``made`` makes them (each once).  Per r
 record line and bump lines, then bench_st102's dropped lines, then the gate line: ``mon_stop``
 (its row) and ``mon_lost`` at the onset, and whether the record is scored.
 
-Measured: (after the score).
+Measured (2026-12-06, 2 cores shared, load 0.5-3.5; the tree = 14ea84f3, st102's rule as applied in
+67a9c7e6; BAR b1ffa009 unchanged; scored once; VERDICT KEPT: F1-F4 met):
+
+* ``fresh /tmp/st102b/fresh lr9964 lr9965 lr9966 lr9967`` (52.4 s CPU with the simulation);
+  ``... dl9964 dl9965`` (44.5 s), ``... dl9966 dl9967`` (41.4 s).  The gate scored all 8.
+* F1 MET: 17 reached cases (lr9964 6, lr9967 2, dl9964 6, dl9966 3), the tree as the C on the back
+  row 17 of 17 (the C silent on all 17; d85f1799 flags ``JUMP`` on 11, as the C on 6).  Not
+  reached: lr9966 T_motor (the C's ``BLIND_OUT`` 3764, after the back row 3723); lr9965 (no
+  ``BLIND_OUT`` in any window); dl9965 and dl9967, 9 of the C's ``BLIND_OUT`` named by neither block.
+* F2 MET: 106 windows' lines, new extra flags 0; extra flags the tree 21, d85f1799 37.
+* F3 MET: every ``BLIND_OUT`` d85f1799 names, the tree names on the same row (35 windows, both).
+* F4 MET: 0 rows differing from d85f1799 on the 8 healthy streams; extra flags 0 (d85f1799 0).
+* The gate as written read ``mon_stop``, TRUE on the one sample where the judgement ends
+  (st_watch.py doc), not ``mon_stop_row`` (> 0 from there): it passed lr9965 (judgement ended at
+  2470), dl9965 (5696) and dl9967 (3117), read after the score.  None of the 17 is on them; gated on
+  ``mon_stop_row`` 0 the score is the same 17 of 17 on 5 records.
+* Traced after the score (seen now; ``PYTHONPATH=<d85f1799>/src ... fresh ROOT dl9964``, 20.9 s):
+  dl9964 T_spindle_rear (``BLIND_OUT`` 6156, no jump at the back row, the C's ``BACK`` 6175) has
+  max|C - ST| 5.07 um over the 20 rows from the C's ``BACK`` in both trees: not st102's; next step.
 """
 
 from __future__ import annotations
