@@ -68,11 +68,16 @@ def deployed_mlr(*words: str, lead_rows: int | None = None):
     deployed, ds, test_ids = deployed_as_replay(cfg)
     leads = lead_ins(plain(deployed).compensator, ds, test_ids)
     if lead_rows is not None:
-        leads = {c: lead.iloc[-lead_rows:] for c, lead in leads.items()}
+        leads = last_rows(leads, lead_rows)
     test = test_ids[0]
     frame = fed(ds.campaigns[test], leads.get(test))
     return (deployed, state_space(deployed, monitor=True), frame,
             len(frame) - len(ds.campaigns[test]), {test: ds.campaigns[test]}, leads)
+
+
+def last_rows(leads: dict, rows: int = LEAD_ROWS) -> dict:
+    """Each lead-in of ``leads`` (by campaign) cut to its last ``rows`` (ci102a)."""
+    return {c: lead.iloc[-rows:] for c, lead in leads.items()}
 
 
 def _served_spike(streams, ss, tests, leads, lead) -> tuple[int, int, str]:

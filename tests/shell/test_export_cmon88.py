@@ -17,13 +17,12 @@ import pytest
 
 from test_export import needs_cc
 from test_export_cmon85 import _mirror, without
-from test_export_cmon87 import held_as_served, long_record
+from test_export_cmon87 import LEAD_ROWS, held_as_served, long_record
 from thermocomp.apps.deploy.export.pack import conformance_pack, corrections
 from thermocomp.apps.deploy.export.served import ServedStreams
 from thermocomp.apps.deploy.export.watch import JUMP, SECOND
 
 SEED = 9126
-LEAD_ROWS = 864     # R1b's lead-in: its last 864 rows (R1b's length), not R1a's 3457 (ci102a)
 
 
 @pytest.fixture(scope="module")

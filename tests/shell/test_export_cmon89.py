@@ -20,14 +20,13 @@ import pytest
 
 from test_export import built_stream, needs_cc
 from test_export_cmon85 import _mirror, without
-from test_export_cmon87 import long_record
+from test_export_cmon87 import LEAD_ROWS, long_record
 from thermocomp.apps.deploy.export import exported_files
 from thermocomp.apps.deploy.export.pack import conformance_pack, fed
 from thermocomp.apps.deploy.export.served import ServedStreams
 from thermocomp.apps.deploy.export.watch import MISSING_SECOND, RANGE, SECOND, planted
 
 SEED = 9132
-LEAD_ROWS = 864     # R1b's lead-in: its last 864 rows (R1b's length), not R1a's 3457 (ci102a)
 SPIKE = ("T_motor", 430, -2.18)     # (sensor, R1b's row 1-based, degC)
 
 

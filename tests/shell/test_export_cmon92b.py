@@ -24,13 +24,12 @@ import pytest
 
 from test_export import built_stream, needs_cc
 from test_export_cmon85 import _mirror, without
-from test_export_cmon87 import long_record
+from test_export_cmon87 import LEAD_ROWS, long_record
 from thermocomp.apps.deploy.export import Simulator, c, exported_files
 from thermocomp.apps.deploy.export.pack import fed
 from thermocomp.apps.deploy.export.watch import EXCLUDED, NOT_IN_CODE, REASONS
 
 SEED = 9132
-LEAD_ROWS = 864     # R1b's lead-in: its last 864 rows (R1b's length), not R1a's 3457 (ci102a)
 FROZEN = ("T_table", "T_xdrive")
 
 

@@ -13,6 +13,8 @@ it and the route that runs it (the served model).
 
 from __future__ import annotations
 
+import functools
+
 import pytest
 from sklearn.base import clone
 
@@ -40,20 +42,21 @@ def data(tmp_path_factory):
     return _levels(tmp_path_factory.mktemp("diagnosed") / "data")
 
 
-_PLAIN: dict = {}
+@functools.cache
+def _plain_made(data) -> tuple:
+    """:func:`_plain`'s objects of ``data``, made once per dataset (read-only)."""
+    _, tests, mlr = deployed(data, "model=mlr", pushed="T_a")
+    cfg = _compose(f"data.path={data}", "track=false", "monitor.adaptive=false",
+                   "promote.envelope.pattern=false")
+    ds, train_ids, _, _ = read_streamed(cfg)
+    return tests, mlr, cfg, {c: ds.campaigns[c] for c in train_ids}
 
 
 def _plain(data) -> tuple:
     """``(test campaigns with T_a pushed out half-way, plain MLR's compensator, the config, the
     train campaigns)`` of ``data``, made once per dataset (ci102b: every diagnosed model of a
     module fitted this same MLR and read the same record again); callers get copies."""
-    if str(data) not in _PLAIN:
-        _, tests, mlr = deployed(data, "model=mlr", pushed="T_a")
-        cfg = _compose(f"data.path={data}", "track=false", "monitor.adaptive=false",
-                       "promote.envelope.pattern=false")
-        ds, train_ids, _, _ = read_streamed(cfg)
-        _PLAIN[str(data)] = tests, mlr, cfg, {c: ds.campaigns[c] for c in train_ids}
-    tests, mlr, cfg, train = _PLAIN[str(data)]
+    tests, mlr, cfg, train = _plain_made(data)
     return ([df.copy() for df in tests], clone(mlr), cfg,
             {c: df.copy() for c, df in train.items()})
 

@@ -13,7 +13,7 @@ import dataclasses
 import pytest
 
 from test_export import needs_cc
-from test_export_cmon87 import LEAD_ROWS
+from test_export_cmon87 import last_rows
 from test_export_mon88 import assert_code_as_served
 from test_monitor_readmit88 import deployed_record
 from test_monitor_spike89 import LONG
@@ -31,8 +31,7 @@ def record(tmp_path_factory):
     (test,) = test_ids
     return (deployed, state_space(deployed, monitor=True),
             {test: ds.campaigns[test].reset_index(drop=True)},
-            {c: lead.iloc[-LEAD_ROWS:]
-             for c, lead in lead_ins(plain(deployed).compensator, ds, test_ids).items()})
+            last_rows(lead_ins(plain(deployed).compensator, ds, test_ids)))
 
 
 def _mirror_out_rows(ss, frame, lead: int) -> list[int]:
