@@ -35,7 +35,6 @@ from .guard import CorrectionGuard
 from .pod import ThermalPOD
 from .streaming import OutOfEnvelopeError, StreamingCompensator, step_block
 from .surveillance import SensorMonitor
-from .surveillance.lean import leans
 
 INPUT_ROWS = 4096    # rows the monitor reads in one go at most (a failed try costs little per row)
 # a sample this many sampling periods after the one before follows a gap in the record (a
@@ -118,8 +117,6 @@ class AdaptiveCompensator:
             X = comp.stacked(campaigns, targets=[]).X     # the envelope's data, before its margin
             g.follow_inputs(input_gains(streaming), X.min().to_numpy(float),
                             X.max().to_numpy(float))
-        if mon is not None and streaming.envelope is not None:
-            mon.price_bands(_leans(streaming, names, campaigns, predicted, measured))
         out = cls(streaming, mon, g, g.period_s)
         if mon is not None:
             out.fallbacks_ = sensor_fallbacks(streaming, mon, campaigns, fallbacks)
@@ -591,20 +588,6 @@ def input_gains(streaming: StreamingCompensator) -> np.ndarray:
         if gain is not None:
             out[k, np.arange(gain.size) if idx is None else np.asarray(idx)] = gain
     return out
-
-
-def _leans(streaming: StreamingCompensator, names: list[str], campaigns: Mapping,
-           predicted: Mapping, measured: Mapping) -> np.ndarray:
-    """(mon103) The model's lean on each of ``names`` (:func:`~.surveillance.lean.leans`): its
-    step gain per target over the target's residual RMS on the training ``campaigns``."""
-    targets = streaming.targets_
-    residual = np.vstack([measured[c][targets].to_numpy(float) - predicted[c][targets].to_numpy(float)
-                          for c in campaigns])
-    rms = np.sqrt(np.nanmean(residual ** 2, axis=0))
-    gains = input_gains(streaming)
-    if gains.shape[1] != len(streaming.columns_):
-        return np.zeros(len(names))
-    return leans(gains[:, [streaming.columns_.index(c) for c in names]], rms)
 
 
 def _clock_of(last_time: float, last_read: float) -> tuple:

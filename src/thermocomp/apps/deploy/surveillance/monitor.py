@@ -16,7 +16,6 @@ from ..pod import ThermalPOD, windowed_mean
 from .excursion import Excursion
 from .faults import InstantFaults
 from .judgement import Judgement
-from .lean import priced_bands
 from .readmission import Readmission
 from .settled import Settled, largest_separation
 from .states import ALARM, COMMON_MIN, DITHER, EXCLUDED, MAX_BACKOFF, OK, SPREAD_FACTOR, STATES, WARNING
@@ -265,13 +264,6 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion, Settled):
                    max_settle_c=settle, longest_run=runs,
                    lo_c=lo, hi_c=hi,
                    first_c=first, **options)
-
-    def price_bands(self, lean) -> None:
-        """(mon103, :mod:`.lean`) Each warning band at most what the model's ``lean`` on its
-        sensor (per name: training residuals per °C) prices; the state reset."""
-        ambient = np.array([is_ambient(c) for c in self.names])
-        self.warning_c = priced_bands(self.warning_c, self.floor_c, np.asarray(lean, float), ambient)
-        self.reset()
 
     # -- state ------------------------------------------------------------------------------
     _STATE = ("_ref", "_active", "_state", "_hist", "_err", "_pos", "_count", "_prev",

@@ -16,6 +16,3 @@ EXCHANGED = "exchanged"   # (wires100) an event's "to": two sensors' wires read 
 # an excursion out of band hovers (a regime) unless its error's share of its rise grew past this
 # factor of the share it had EXCURSION_TAU_S seconds ago (excursion.py; mon73)
 EXCURSION_TAU_S, EXCURSION_GROWTH = 1800.0, 1.5
-# (mon103, lean.py) the drift a warning band lets through costs at most this many of training's
-# residual RMS of a target through the model's gain; the band never below this share of its floor
-LEAN_HARM, LEAN_FLOOR = 1.0, 0.8
