@@ -49,6 +49,31 @@ reached 1 of its 7 windows): said, the trace resting on the seen rows.  Seen (``
 /tmp/st103/seen dl9964``, 22.4 s CPU): dl9964 T_spindle_rear P1 6175, P2 <= 3.6e-14, P3 <= 6.4e-14
 (15 of its 20 rows serving a fallback set, max|C - C0| 5.1 um); no other of its windows reached.
 
+Scored once (2026-12-07, 2 cores shared, load 8.5-9.8; the tree = 4a21da2b's src, no change; the
+prediction a0e623a6 unchanged; ``trace /tmp/st103/fresh lr9973 dl9973 lr9974 dl9974 lr9975
+dl9975``, 99.4 s CPU with the simulation).  The gate scored all 6; 34 windows, 17 with the C's
+first ``BLIND_OUT`` named by the block, 2 reached BACKs (both dl9975): VOID (under 3).  VERDICT
+TRACED (no src change), on the seen rows; the fresh two said below.
+
+* dl9975 T_xdrive: ``BLIND_OUT`` 6158, the C's ``BACK`` 6201, the block's hold ended 6201 (P1 met);
+  20 rows, none serving a fallback set: max|C - ST| 5.0e-14 (P2 met), max|C0 - ST held| 5.0e-14
+  (P3 met); the brief's S4 met there.
+* dl9975 T_col_back (the C's ``BLIND_OUT`` is of T_table, 6128, named alike): the C's ``BACK`` of
+  T_table 6138, the block's hold ended 6129: P1 NOT met; 20 rows, 6 serving a fallback set: max|C -
+  ST| 5.1 um (serving 0: 3.2e-14, P2 met), max|C0 - ST held| 0.91 um: P3 NOT met; S4 not met.
+  Traced after the score (rows 6125-6160, seen now): at 6129 the bumped T_col_back jumps while
+  T_table is held; the C takes it out as its second out (``JUMP``, held to its ``BACK`` at 6144,
+  serving its fallback set 5), the block flags ``JUMP T_col_back``, which ends its hold and its
+  judgement (``mon_lost``: anything named in a hold, st95b's rule).  The 0.91 um is on 6138-6143,
+  the C holding T_col_back at its last reading in, the block reading it re-referenced by its
+  step; from 6144 |C - ST| <= 3.2e-14.  A second class, not the fallback's: a jump of another
+  sensor no other predicts while a ``BLIND_OUT`` is held (st101 holds one only where none is).
+* Seen, the rest of st102b's records (``trace /tmp/st103/seen lr9964 lr9965 lr9966 lr9967 dl9965
+  dl9966 dl9967``, 96.5 s CPU): no reached BACK (gate: lr9965 2470, dl9965 5696, dl9967 3117 not
+  scored, as st102b's traced gate read right).
+* Size of the next step (seen dl9964, its MLR): the ST's state space has 1 law; with the monitor's
+  fallbacks (``state_space(..., monitor=True)``, the C's) 8, in law sets 0-7.
+
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``)::
 
     python benchmarks/bench_st103.py trace ROOT RECORD [RECORD ...]
