@@ -13,10 +13,10 @@ data.sample_period_s``) or a temperature whose bracket reads both as a unit and 
 (``T1 (K Kühlung)``) is refused alone, and an empty column beside it comes on the next try
 (seen hand files ``notime_empty.csv``, ``amb_empty.csv``: 2 tries each on main).
 
-RULE (``src/thermocomp/shell/stages/gathered.py``: :func:`~thermocomp.shell.stages.gathered.
-looked_past`; no key): where init's refusal is one no key settles but a look can step past (no
+RULE (benchmarks/data103_rule.patch, not applied: ``src/thermocomp/shell/stages/gathered.py``'s
+``looked_past``; no key): where init's refusal is one no key settles but a look can step past (no
 time column: a look with ``data.sample_period_s=1``; a bracket read both ways,
-:data:`~thermocomp.core.io.units.TWO_READINGS`: a look with that column left out), the file is
+``core.io.units.TWO_READINGS``: a look with that column left out), the file is
 looked at past it (nothing written, nothing printed; those keys are never given as its fix) and
 the refusals after it are gathered as refusals100 gathers them: ONE exit-2 message, each refusal
 as the reader words it (file, column, row), the open ones marked "yours to settle", then one
@@ -65,6 +65,43 @@ B3. No existing test changes behaviour but the messages improved: tests/shell/
     ``reads as a unit``) pass unchanged or with their message updated (said which).
 B4. auto's skip line printed under the result table and in the log (``skipped ati: ...``).
 KEPT only if B1-B4 hold; else REFUSED (benchmarks/data103_rule.patch, src reverted).
+
+Status: the bar above was committed in 05b977d8 before seed 9979's file was made; unchanged.
+The rule (ada720d0, after the bar) was not changed after the fresh run.
+
+Scored (2026-12-07 00:00-00:30 UTC by the machine's clock; 2 cores shared, load 6-9, ``nice``;
+main = 4a21da2b's src by ``git archive``, the rule = this branch's)::
+
+  B1 b.csv: init (no key) exit 0 in one try on main and rule (T_T1_front, T_Spindel_Gehäuse:
+     notes100's).  excel.csv 9921 (md5 a5d94232..., = audit100's file byte for byte): main = rule,
+     ONE message "2 refusals of the file at once" (column 'time', line 783 (data row 781),
+     data.timezone=Europe/Berlin; column 'T_Reserve_leer', data.roles.ignore=['Reserve']), its
+     line as written exit 0 (refusals100's).  notime_empty.csv: main the period alone; rule one
+     message, (1) no time column (yours to settle), (2) 'T_Reserve' empty with its key, nothing
+     written.  amb_empty.csv: main the bracket 'T1 (K Kühlung)' alone; rule one message, (1) the
+     bracket's two readings, (2) 'T_Reserve'.  back_empty.csv: the time running back (data row
+     101) alone on both (no key steps past it: left).  B1 holds.
+  B2 fresh 9979 (logger.csv, 520 rows, climate_room's last run), scored once: main: try 1 the
+     period alone, try 2 (with it) the empty 'Reserve (frei)' alone, try 3 exit 0; rule: ONE
+     message, (1) no time column, (2) column 'T_Reserve_frei' with data.roles.ignore=['Reserve'],
+     exit 2, nothing written; with data.sample_period_s=60 and the line's key exit 0, the yaml =
+     main's third try's.  run mlr test RMSE E_Weg_X 0.41896361075837835, E_Weg_Z
+     0.4853870195531236 µm = the contract file's = main's (|d| 0).  replay of the model:
+     0.4189579999253169 / 0.4856469339816076 µm, |run - replay| 5.6e-06 / 2.6e-04 µm > 1e-9:
+     the clause MISSED.  Why: replay's rmse_batch = run's (|d| 0), stream - batch 5.7e-14 /
+     4.3e-14 µm, and 2 of the 52 test samples are clamped by the deployed envelope (policy clamp,
+     margin 0.1: the 10 % test cut of one run leaves the train range); the same figures on main's
+     third try and on the contract file (every digit): not the rule's (it acts on init's refusal
+     alone, never on a file init reads), a clause the bar should have put on rmse_batch.
+  B3 the 14 test files that run init and assert a missing time column / sample period or a bracket
+     read both ways: 185 passed, none changed; test_refusals100 + test_notes100: 7 passed (the new
+     case fails on 4a21da2b: the time column alone).  lint + benchmarks_cli + docs: see the report.
+  B4 main = rule: under the table "  skipped ati: no campaign ambient (a T_amb sensor) to choose an
+     interval by", in thermocomp.log "auto: ati skipped: ..." (notes100's).  B4 holds.
+
+VERDICT: REFUSED by the letter of B2 (|run - replay| <= 1e-9 missed by the deployed clamp, main's
+alike); every clause the rule acts on held.  The rule, its test and docs are
+benchmarks/data103_rule.patch (src, tests, docs reverted); the lead's call to apply it.
 """
 
 from __future__ import annotations
