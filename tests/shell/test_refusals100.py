@@ -82,3 +82,25 @@ def test_the_line_keeps_the_users_own_entries_of_a_list_key(tmp_path, capsys):
     said = next(ln for ln in capsys.readouterr().err.splitlines() if "all the keys together" in ln)
     words = shlex.split(said.split("with which it reads the file: ")[1])
     assert "data.roles.ignore=['Bett','Reserve']" in words, words
+
+
+def test_no_time_column_and_an_empty_column_are_refused_at_once(tmp_path, capsys):
+    """(data103) a refusal no key settles (no time column: the period is the lab's to give) no
+    longer hides the empty column after it: one message, then the line with the others' keys
+    and the period read the file.  Fails on 4a21da2b: the missing time column alone."""
+    lab = tmp_path / "logger.csv"
+    t = np.arange(60) / 60
+    frame = pd.DataFrame({"T1 (front)": 20 + 3 * t, "Spindel (Gehäuse)": 21 + np.sin(6 * t),
+                          "dX [µm]": 4 * t + np.sin(9 * t), "Reserve (frei)": [""] * 60})
+    lab.write_text(frame.to_csv(sep="\t", index=False, float_format="%.4f"), encoding="utf-8")
+    out = tmp_path / "init"
+    assert main(["init", str(lab), f"out={out}"]) == 2
+    said = next(ln for ln in capsys.readouterr().err.splitlines() if ln.startswith("thermocomp: error:"))
+    assert not out.exists()                                   # nothing half-written
+    assert "2 refusals of the file at once ((1): yours to settle" in said
+    assert re.search(r"\(1\) file \S+logger\.csv: no 'time' column.*data\.sample_period_s", said)
+    assert re.search(r"\(2\) file \S+logger\.csv, column 'T_Reserve_frei'.*data\.roles\.ignore", said)
+    words = shlex.split(said.split("with (1) settled too: ")[1])
+    assert "data.roles.ignore=['Reserve']" in words
+    assert main([*words[1:], "data.sample_period_s=60"]) == 0
+    assert (out / "conf" / "data" / "logger.yaml").exists()

@@ -182,6 +182,8 @@ def ambiguity(header: str, base: str) -> str:
 # or what it is on ('T1 (front)', 'Spindel (Gehäuse)', 'T1 (front/left)'): a word of three or
 # more letters that is no unit, read as part of the column's name
 NOTE = "note"
+# what a refusal says of such a bracket read both ways (init looks past it: shell/stages/gathered)
+TWO_READINGS = "reads as a unit the reader does not know or as a note"
 _NOTE_WORD = re.compile(r"[^\W\d_]{3,}")
 _NOTE_SPLIT = re.compile(r"[\s/,;+.\-]+")
 
@@ -203,7 +205,7 @@ def bracket_reading(unit: str | None) -> str | None:
 def note_ambiguity(header: str, base: str, unit: str) -> str:
     """What a refusal says of a temperature header whose bracket :func:`bracket_reading` finds
     :data:`AMBIGUOUS`: the two readings and the key for each."""
-    return (f"{header!r}: ({unit}) reads as a unit the reader does not know or as a note, part "
+    return (f"{header!r}: ({unit}) {TWO_READINGS}, part "
             f"of the name: give its unit, data.units={{{header!r}: °C}} (or K, °F), or its name, "
             f"data.columns={{{header!r}: T_<name>}}: in a data config file, "
             + config_file_form("data", f"columns: {{{header!r}: T_<name>}}"))
