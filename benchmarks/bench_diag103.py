@@ -92,13 +92,35 @@ docs/diagnose.md); else REFUSED (``benchmarks/diag103_rule.patch``, src reverted
 and default rows are bench_diag101's ``main`` rows (/tmp/diag101/rows; the diagnose, core, sim
 packages and conf unchanged 5586e97a..4a21da2b); MAIN's fresh rows drawn with 4a21da2b's src
 (``git archive``).
+
+Measured (2026-12-07; MAIN = 4a21da2b's src, RULE = a61be554's; nice, 2 cores shared, load ~1.5-2)
+-----------------------------------------------------------------------------------------------
+The bar at a61be554 (00:16 UTC); then the seen and default rule runs (00:17-00:21), fresh main and
+rule (00:21-00:22), scored once; bar and rule unchanged.  CPU: ``draws seen`` rule 86.8 s;
+``default`` rule 6.8 s; ``draws fresh`` main 7.5 s, rule 7.2 s; ``draws spent`` (outside the bar)
+main 14.8 s, rule 13.2 s.
+
+``bar /tmp/diag103/rows main rule``::
+
+  seen planted:9342 E_X: +13.9 -> +0.0 %
+  G1 seen rows > 2 % worse 2 -> 1 [('lag:9443', 'E_Y')] (<= 1, none new): met
+  G2 seen helpful rows' mean gain (44 rows) 49.37 -> 49.37 (>= 47): met
+  G2 make run's E_Y -25.3 -> -25.3 % (within 1 point): met
+  G3 fresh rows > 2 % worse 0 [] -> 0 []: met
+  G3 fresh mean change (15 rows) -7.25 -> -7.25 %: met
+
+No fresh row moved: the rule was not exercised there (``trace ROOT fresh`` after the score,
+explains only: the one fresh start lag taken, lag 9972 E_X's T_box1 14400 s, reads 44.1 forward
+within; its cleared rivals 34.3-41.3).  Position found 1 -> 1 (planted 9970), clean accepting 0 -> 0.
+Spent draws (seen, outside the bar; main and rule drawn here): 9813 E_Y -2.2 -> 0 %, every other
+row as main; mean change -15.05 -> -14.99 %, rows > 2 % worse 0 -> 0.  G4: see the report
+(tests/apps/test_diagnose_few.py, test_diagnose_startshare100.py with the rule).
 """
 
 from __future__ import annotations
 
 import json
 import sys
-from contextlib import contextmanager
 from pathlib import Path
 
 import numpy as np
@@ -223,36 +245,22 @@ def stability(search, ev) -> dict:
             if spread > 0 else float("nan")}
 
 
-@contextmanager
-def _rounds_read(store: dict):
-    """Every cleared start lag's reads, by ``id`` of its Evaluation -> ``store``."""
+def _reads(search, ev, current) -> dict:
+    """bench_diag100's reads of ``ev`` and this bench's (module doc)."""
     from bench_diag100 import reads
 
-    from thermocomp.apps.diagnose import search as search_module
-
-    original = search_module.Search._family_bar
-
-    def wrapped(self, evals, current):
-        original(self, evals, current)
-        for ev in evals:
-            if ev.clears_bar and not ev.control and _start_lag(ev.effect):
-                r = reads(self, ev, current)
-                r.update(chained(self, ev, current), **chained(self, ev, current, backwards=True),
-                         **stability(self, ev), effect=ev.effect.title, round=len(self.effects) + 1,
-                         target=self.problem.target, resolved=self._means_resolved())
-                store[id(ev)] = (ev, r)
-
-    search_module.Search._family_bar = wrapped
-    try:
-        yield store
-    finally:
-        search_module.Search._family_bar = original
+    r = reads(search, ev, current)
+    r.update(chained(search, ev, current), **chained(search, ev, current, backwards=True),
+             **stability(search, ev), effect=ev.effect.title, round=len(search.effects) + 1,
+             target=search.problem.target, resolved=search._means_resolved())
+    return r
 
 
 def trace(root: str, name: str) -> None:
     """The cleared start lags' reads on :data:`SETS` ``name`` (module doc), the accepted ones
     marked, with their target's test change as run (explains only)."""
     from bench_diag98 import _dataset
+    from bench_diag100 import _rounds_read
 
     from thermocomp.apps.diagnose import diagnose
     from thermocomp.core.compensator import Compensator
@@ -262,7 +270,7 @@ def trace(root: str, name: str) -> None:
         for kind, seed in SETS[name]:
             ds, options = _dataset(kind, seed)
             store: dict = {}
-            with _rounds_read(store):
+            with _rounds_read(store, _reads, _start_lag):
                 d = diagnose(ds, Compensator(MLR()), options=options)
             tests = {}
             for t in d.targets:
