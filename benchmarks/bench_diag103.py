@@ -113,8 +113,12 @@ No fresh row moved: the rule was not exercised there (``trace ROOT fresh`` after
 explains only: the one fresh start lag taken, lag 9972 E_X's T_box1 14400 s, reads 44.1 forward
 within; its cleared rivals 34.3-41.3).  Position found 1 -> 1 (planted 9970), clean accepting 0 -> 0.
 Spent draws (seen, outside the bar; main and rule drawn here): 9813 E_Y -2.2 -> 0 %, every other
-row as main; mean change -15.05 -> -14.99 %, rows > 2 % worse 0 -> 0.  G4: see the report
-(tests/apps/test_diagnose_few.py, test_diagnose_startshare100.py with the rule).
+row as main; mean change -15.05 -> -14.99 %, rows > 2 % worse 0 -> 0.  G4 with the rule:
+``pytest -n 0 tests/apps/test_diagnose_few.py tests/apps/test_diagnose_startshare100.py`` first
+20 passed, 1 failed: startshare100's stub Search (test_diagnose_within67's, no ``cv``) crashed at
+the new clause (AttributeError), no verdict of the rule; the stub now says it has no refits
+(``closed_form`` False: the forward read not asked), and with the two new cases: 23 passed (met).
+The bar HOLDS: **KEPT** -- for 9342 E_X only; 9443 E_Y (+13.3 %) stays, unseparated.
 """
 
 from __future__ import annotations
