@@ -225,17 +225,20 @@ def reads(search, ev, current) -> dict:
 
 
 @contextmanager
-def _rounds_read(store: dict):
-    """Every cleared family member's reads, by ``id`` of its Evaluation -> ``store``."""
+def _rounds_read(store: dict, read=None, kept=None):
+    """Every cleared family member's reads (``read(search, ev, current)``, default :func:`reads`),
+    by ``id`` of its Evaluation -> ``store``; ``kept(effect)``: the members read (default every
+    effect but a sensor's removal; bench_diag103 reads the start lags)."""
     from thermocomp.apps.diagnose import search as search_module
 
     original = search_module.Search._family_bar
+    read, kept = read or reads, kept or (lambda effect: effect.transform != "remove")
 
     def wrapped(self, evals, current):
         original(self, evals, current)
         for ev in evals:
-            if ev.clears_bar and not ev.control and ev.effect.transform != "remove":
-                store[id(ev)] = (ev, reads(self, ev, current))
+            if ev.clears_bar and not ev.control and kept(ev.effect):
+                store[id(ev)] = (ev, read(self, ev, current))
 
     search_module.Search._family_bar = wrapped
     try:

@@ -7,12 +7,14 @@ factors of the pieces of rows its training holds (``CrossValidator._pieces``); i
 the path the fold's rows give, in both CV schemes, with collinear inputs too.
 """
 
+from dataclasses import replace
+
 import numpy as np
 import pandas as pd
 import pytest
 
 from thermocomp.apps.diagnose.cv import CrossValidator, Problem
-from thermocomp.apps.diagnose.features import Effect
+from thermocomp.apps.diagnose.features import Effect, initial_offsets, principal_directions, transient
 from thermocomp.apps.diagnose.shrink import ALPHAS, PartialRidgePath
 from thermocomp.core.models import MLR
 from thermocomp.core.models._campaign_ls import CampaignLeastSquares
@@ -89,3 +91,27 @@ def test_the_cv_from_row_pieces_equals_the_cv_fitted_on_each_folds_rows(monkeypa
     np.testing.assert_allclose(fast.prediction[ok], plain.prediction[ok], rtol=0,
                                atol=1e-9 * np.abs(plain.prediction[ok]).max())
     np.testing.assert_allclose(fast.rmse, plain.rmse, rtol=1e-9)
+
+
+def test_the_forward_read_scores_each_later_campaign_by_the_fit_on_the_campaigns_before_it():
+    # diag103 (Search._forward_within_gain): campaigns C3, C4, C5 of six, each by the fit on the
+    # ones before it, a start lag's initial direction learned on those too; within: less its mean
+    p = problem("campaigns")
+    cv, names = CrossValidator(p, MLR()), ["T_a", "T_b", "T_c"]
+    lag = Effect("dynamics", "first_order_lag", "T_a", tau_s=1200.0, initial_state=("T_a", "T_b", "T_c"),
+                 initial_directions=1)
+    camps, time = np.asarray(p.campaigns), p.context["time"].to_numpy(float)
+    offsets = initial_offsets(p.context, lag.initial_state, camps)
+    plain = cv.features(replace(lag, initial_state=None, initial_directions=None), names)
+    want, learned_on_all = [], []
+    for j in (3, 4, 5):
+        train, test = np.isin(camps, [f"C{k}" for k in range(j)]), camps == f"C{j}"
+        for out, rows in ((want, train), (learned_on_all, np.ones(len(camps), bool))):
+            w = principal_directions(offsets[rows], camps[rows], 1)
+            Z = np.hstack([p.X.to_numpy(float), plain, transient(offsets, w, time, camps, 1200.0)])
+            r = p.y[test] - PartialRidgePath(Z[train], p.y[train], 3).predict(Z[test], [0.01])[:, 0]
+            out.append(np.sum((r - r.mean()) ** 2))
+    got = cv.forward_within(names, [lag], 0.01)
+    np.testing.assert_allclose(got, want, rtol=1e-9)
+    assert not np.allclose(got, learned_on_all, rtol=1e-6)     # the directions are the earlier ones'
+    assert cv.forward_within(names[:2], [], None).shape == (3,)

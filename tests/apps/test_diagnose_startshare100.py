@@ -13,6 +13,8 @@ T_motor1 start lag on ``E_Y`` (-25.3 % on test) is weighed as before.
 
 from __future__ import annotations
 
+from types import SimpleNamespace
+
 import numpy as np
 import pytest
 from hydra import compose, initialize_config_dir
@@ -66,6 +68,25 @@ def test_a_start_lag_clears_on_its_means_only_where_resolved_else_by_two_thirds_
     assert lag_07.clears_bar                       # 2/3 within or more: clears (diag98's 1 refused it)
     assert same_shares.gain_pct_within == pytest.approx(same_shares.gain_pct) and same_shares.clears_bar
     assert other_kind.clears_bar                   # the rule asks start lags only
+
+
+@pytest.mark.parametrize("forward_gain, clears", [(20.0, False), (40.0, True)])
+def test_an_unresolved_start_lag_must_also_gain_forward_within_the_later_campaigns(forward_gain, clears):
+    # diag103: where the means are unresolved, a start lag that clears diag100's 2/3 (~0.7 here)
+    # must also gain START_FORWARD_WITHIN_PCT (28 %) within the later train campaigns, each fitted
+    # on the ones before it (planted 9342 E_X's 1800 s lag: 24.1 %, +13.9 % on test)
+    current, _, mostly_within, _ = (_result(r) for r in _residuals())
+    s = _search("campaigns")
+    s.start_lags_screened, s.declared, s.excluded, s.effects = 110, ["T_nose", "T_box1"], [], []
+    share = (1.0 - forward_gain / 100.0) ** 2
+    s.cv = SimpleNamespace(closed_form=True, forward_within=lambda inputs, effects, alpha:
+                           np.array([2.0, 1.0, 3.0]) * (share if effects else 1.0))
+    lag = _evaluation(START_LAG, current, mostly_within)
+    s._family_bar([lag], current)
+    assert lag.gain_pct_within >= 2.0 / 3.0 * lag.gain_pct and lag.p_family <= s.options.alpha
+    assert lag.gain_pct_forward_within == pytest.approx(forward_gain)
+    assert lag.clears_bar == clears
+    assert lag.entry()["evidence"]["forward_gain_pct_within"] == pytest.approx(forward_gain)
 
 
 def test_clean_8170s_start_lag_on_8_train_campaigns_is_no_longer_accepted():

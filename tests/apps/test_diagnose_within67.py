@@ -27,6 +27,7 @@ def _search(scheme: str) -> Search:
                                 n_units=N_UNITS, n_blocks_tested=N_UNITS, scheme=scheme,
                                 units_trained=N_UNITS - 1, shared_ranked=False)
     s.options = SearchOptions()
+    s.cv = SimpleNamespace(closed_form=False)   # no refits here: diag103's forward read not asked
     return s
 
 

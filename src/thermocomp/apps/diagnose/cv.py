@@ -319,31 +319,38 @@ class CrossValidator:
             self._features[key] = self.problem.X[list(names)].to_numpy(float)
         return self._features[key]
 
-    def features(self, effect: Effect, names: list[str], fold: int | None = None) -> np.ndarray:
+    def features(self, effect: Effect, names: list[str], fold: int | None = None,
+                 rows: np.ndarray | None = None) -> np.ndarray:
         """Features of ``effect`` on all train rows (cached; input effects per input set).
 
         An effect that ``learns`` (initial directions) learns from the training
-        rows of ``fold`` (all rows for None), as the fitted model would.
+        rows of ``fold`` (all rows for None), as the fitted model would; ``rows`` (a mask): from
+        those rows instead (:meth:`forward_within`'s fits; not cached).
         """
+        if rows is not None and effect.learns:
+            return self._start_features(effect, names, rows)
         fold = fold if effect.learns else None
         key = (effect, tuple(names) if effect.uses_inputs else None, fold)
         if key not in self._features:
             p = self.problem
             if effect.initial_state:     # the lag (cached once) + the initial-state transient
-                lag = self.features(replace(effect, initial_state=None, initial_directions=None), names)
-                offsets = self._offsets(effect.initial_state)
-                weights = None
-                if effect.learns:
-                    rows = p.train_rows(fold)
-                    weights = principal_directions(offsets[rows], p.campaigns[rows],
-                                                   effect.initial_directions)
-                start = transient(offsets, weights, p.context["time"].to_numpy(float), p.campaigns,
-                                  effect.tau_s)
-                self._features[key] = np.hstack([lag, start])
+                self._features[key] = self._start_features(
+                    effect, names, p.train_rows(fold) if effect.learns else None)
             else:
                 X = self.inputs_matrix(names) if effect.uses_inputs else np.empty((len(p.y), 0))
                 self._features[key] = effect_features(effect, X, p.context, p.campaigns, p.reference)
         return self._features[key]
+
+    def _start_features(self, effect: Effect, names: list[str], rows: np.ndarray | None) -> np.ndarray:
+        """A lag from the initial state: its lag (cached once) and the transient, its initial
+        directions learned from ``rows`` (None: one column per sensor)."""
+        p = self.problem
+        lag = self.features(replace(effect, initial_state=None, initial_directions=None), names)
+        offsets = self._offsets(effect.initial_state)
+        weights = (None if rows is None
+                   else principal_directions(offsets[rows], p.campaigns[rows], effect.initial_directions))
+        start = transient(offsets, weights, p.context["time"].to_numpy(float), p.campaigns, effect.tau_s)
+        return np.hstack([lag, start])
 
     def _offsets(self, columns: tuple) -> np.ndarray:
         key = ("offsets", columns)
@@ -352,8 +359,30 @@ class CrossValidator:
             self._features[key] = initial_offsets(p.context, columns, p.campaigns)
         return self._features[key]
 
-    def design(self, names: list[str], effects, fold: int | None = None) -> np.ndarray:
-        return np.hstack([self.inputs_matrix(names)] + [self.features(e, names, fold) for e in effects])
+    def design(self, names: list[str], effects, fold: int | None = None,
+               rows: np.ndarray | None = None) -> np.ndarray:
+        return np.hstack([self.inputs_matrix(names)] + [self.features(e, names, fold, rows) for e in effects])
+
+    def forward_within(self, inputs, effects, alpha: float | None) -> np.ndarray:
+        """The closed-form MLR's within-campaign squared error on the later half of the train
+        campaigns, forward: each such campaign (in their stacked order, the calendar's) scored by
+        the fit on the campaigns before it (learned initial directions too) at penalty ``alpha``
+        on the effect features, its residual less its own mean; one sum per scored campaign
+        (empty with fewer than 4 campaigns).  :meth:`~.search.Search._forward_within_gain`."""
+        p = self.problem
+        labels = np.asarray(p.campaigns, dtype=object)
+        order = list(dict.fromkeys(labels[p.validated].tolist()))
+        names = self.selection(tuple(inputs), None)
+        fit_intercept = for_target(self.estimator, p.target).fit_intercept
+        out = []
+        for j in range(len(order) // 2, len(order) if len(order) >= 4 else 0):
+            train, test = np.isin(labels, order[:j]), (labels == order[j]) & p.validated
+            Z = self.design(names, effects, rows=train)
+            fit = train & p.measured
+            path = PartialRidgePath(Z[fit], p.y[fit], len(names), fit_intercept)
+            r = p.y[test] - path.predict(Z[test], [alpha or 0.0])[:, 0]
+            out.append(float(np.sum((r - r.mean()) ** 2)))
+        return np.array(out)
 
     def _context(self, fold: int, train: bool) -> pd.DataFrame:
         key = (fold, train)
