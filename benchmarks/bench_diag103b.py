@@ -49,6 +49,36 @@ runs; one process per label, PARENT then MAIN, back to back): MAIN <= 1.15 x PAR
 KEPT (no src change) if V1-V3 hold; REFUSED if V1 or V2 fails (``benchmarks/diag103b_revert.patch``
 takes the rule and its tests out, NOT applied: the lead decides); V3 alone failing: the cost is
 reported.  VOID if fewer than 6 decisions are reached in 10 draws.
+
+Measured (2026-12-07; MAIN = 6b25ee8e's src, PARENT = 4a21da2b's; nice, 2 cores shared, load 4-7)
+--------------------------------------------------------------------------------------------
+The bar at 4ada1479 (00:40 UTC); then ``fresh ROOT main`` (9.5 s CPU; 00:41): 7 decisions after 8
+draws (9986-9993; 9994-9995 not drawn), ``fresh ROOT parent main`` (10.8 s), ``cpu`` parent then
+main (8.9 / 8.5 s), scored once; bar and src unchanged.  ``bar /tmp/diag103b/rows main parent``::
+
+  fresh planted:9988 E_Y: -17.2 -> -41.0 %
+  wall 3.35 -> 3.56 s; main's CPU inside forward_within 0.056 s
+  start lags the clause refused: 7 [13.6, 16.2, 17.4, 18.3, 19.4, 19.7, 25.3]
+  decisions 7 (enough 6) on 7 rows [('lag:9986', 'E_X'), ('lag:9987', 'E_X'), ('lag:9990', 'E_X'),
+    ('lag:9992', 'E_X'), ('lag:9993', 'E_X'), ('lag:9993', 'E_Y'), ('planted:9988', 'E_Y')];
+    every row's mean change -11.81 -> -12.80 %
+  V1 fresh rows > 2 % worse (24 rows) 0 [] -> 0 []: met
+  V2 reached rows' mean change (7 rows) -32.78 -> -36.17 %: met
+  V3 diagnose CPU on 3 records 1.96 -> 1.91 s (0.974 x): met
+  verdict: KEPT
+
+The decisions (``decisions-fresh-main.jsonl``; explains only): the 5 lag draws' E_X start lags
+(T_box1 / T_box2 / T_nose 1440 s, T_bearing_f1) read 40.2-80.3 forward within, all above 28, and were taken as
+on the parent.  Two decisions refused every start lag weighed: planted 9988 E_Y round 2, after the
+position effect, T_box2 / T_box1 / T_amb 1800 s at 17.4-25.3 (the parent took T_box2 1800 s there:
+test 3.169 -> 2.623 µm, the position effect alone 1.870: the rule's one moved row, 24 points
+better), and lag 9993 E_Y round 1, T_box2 3600 s / T_motor1 at 13.6 / 16.2 (the parent took
+nothing there either).  No fresh decision read between 28 and 40: the bound's own value was not
+tested closely, only that real E_X start lags clear it and a round-2 start lag after the position
+effect (diag100: 0.27-0.60 within / pooled on seen 8885 / 9103, helpful there) does not.
+CPU: the forward read costs 0.011 / 0.030 / 0.015 s per diagnosis on 9342 / 9443 / 9972 (a base
+read and one per start lag weighed): ~3 % of diagnose's 0.58-0.76 s; main's total
+0.974 x the parent's, within the runs' noise (the parent's 9342 runs 0.64-0.81 s).
 """
 
 from __future__ import annotations
@@ -167,9 +197,12 @@ def cpu(root: str, label: str) -> None:
                       f"{row['wall_s']:.2f} s, forward_within {row['forward_cpu_s']}", flush=True)
 
 
-def _cpu_sum(root: str, label: str) -> float:
+def _cpu_sum(root: str, label: str, key: str = "cpu_s") -> float | None:
+    """The sum over the records of each one's median ``key`` (None where the src has no such read)."""
     rows = [json.loads(line) for line in open(Path(root) / f"cpu-{label}.jsonl")]
-    return sum(statistics.median(r["cpu_s"] for r in rows if r["case"] == c)
+    if any(r[key] is None for r in rows):
+        return None
+    return sum(statistics.median(r[key] for r in rows if r["case"] == c)
                for c in dict.fromkeys(r["case"] for r in rows))
 
 
@@ -194,6 +227,11 @@ def bar(root: str, main: str, parent: str) -> None:
               mean[main] <= mean[parent] + 1.0),
              (f"V3 diagnose CPU on {len(CPU_CASES)} records {c[parent]:.2f} -> {c[main]:.2f} s "
               f"({c[main] / c[parent]:.3f} x)", c[main] <= 1.15 * c[parent])]
+    print(f"  wall {_cpu_sum(root, parent, 'wall_s'):.2f} -> {_cpu_sum(root, main, 'wall_s'):.2f} s; main's "
+          f"CPU inside forward_within {_cpu_sum(root, main, 'forward_cpu_s'):.3f} s")
+    refused = [lag["forward_within"] for r in dec for v in r["decisions"].values() for d in v
+               for lag in d["lags"] if lag["forward_within"] < 28.0]
+    print(f"  start lags the clause refused: {len(refused)} {sorted(round(x, 1) for x in refused)}")
     print(f"  decisions {n_dec} (enough {ENOUGH}) on {len(reached)} rows {reached}; every row's mean change "
           f"{every[parent]:+.2f} -> {every[main]:+.2f} %")
     for text, ok in items:
