@@ -54,6 +54,41 @@ drift / ambient line (T_ram 817, T_amb 708; T_headstock 920, T_amb 744; cr none 
 T_head_left 27); fl_thermal 90/10 RMSE 1.012-1.035x MLR's (mean 4.060 -> 4.149 um).
 The rule scored on the fresh seeds, fixed here before any is simulated: ``fresh ROOT 1.5e-4:2``.
 
+MEASURED (2026-12-07, main = 2f31a299's src; forms emulated in this bench, src untouched).
+VERDICT: TRACED -- no form meets the bar; nothing in src.
+---
+(a) the soft hold, SEEN (factor 1, every priced sensor): M1 met (1.793 / 1.847 -> 1.280 / 1.409;
+   named rows as main's, 0 flags before onset).  M2: default test campaigns 0 rows held, 0 events,
+   corrections main's; bench_mon98 healthy frames events as main's (0 / 0 / 0 / 6), rows held tr 0,
+   sw 11, cr 0, lr 1, RMSE hold / main <= 1.008 (sw9776); fl_thermal healthy events 2 = 2, 5 rows
+   held, RMSE <= 1.001x; the column's 16 flags as main's, 0 before Q3, RMSE before Q3 <= 1.000x,
+   but the whole record E_X_mid 1.425x (NOT MET, every seen variant: 1.216-1.552x).  M3 met: named
+   rows as main's on every bench_mon98 line.  Beside the bar: sw9776's T_headstock drift RMSE
+   1.992 -> 3.007 um (892 rows held), lr9376 ambient 1.910 -> 2.111, cr9763 ambient 19.21 -> 1.34.
+   Export: the hold is not in watch.py / C / ST, so C != served wherever it holds (the brief's
+   clause: refused unless the export follows).
+(b) the grouped ridge 1.5e-4:2, SEEN: as the trace above (M1, M2, M3 met; the column's 1.047 the
+   thinnest).  FRESH 9953-9955, scored once (``fresh ROOT 1.5e-4:2``; the most influential sensor
+   T_bearing_r on every seed, +0.2 K/h): worst ratio main -> ridge 2.056 -> 1.701, 3.329 -> 2.588,
+   3.580 -> 3.641 (M4 NOT MET on 9955: K09 E_Z); no flag before onset on any (met); named rows as
+   MLR's (9955 K09 never, as MLR); healthy events 0 = 0; healthy RMSE ridge / MLR worst 1.108,
+   1.116, 1.070 (means 0.977, 0.995, 0.954): past M2's 1.05 on fresh healthy campaigns too.
+After the fresh score (a trace, not a verdict: (a) was not the rule scored): the soft hold on the
+   same fresh seeds (``hold`` on ROOT/seed<SEED>, +0.5 / +0.2 K/h on T_bearing_r): 1.140 / 1.230,
+   1.672 / 1.893, 1.473 / 1.571; their healthy test campaigns 0 rows held.
+CPU (user + sys of the process; subprocesses of simulate not counted): ``hold`` 1.4 s, ``column``
+   2.1 s, ``cases`` (4 records) 41.9 s, ``fl`` 7.7 s, ``ridge`` (2 alphas) 2.9 s, ``flridge``
+   0.5 s, ``ridgecases`` (4 records) 31.5 s, ``fresh`` (3 seeds) 3.2 s.
+What the trace says: the cost of a slow drift on a leaned-on sensor is cut most by the soft hold
+(a) (fresh +0.2 K/h worst 3.58 -> 1.57, seen 1.85 -> 1.41) at no cost on any healthy record but
+one: a healthy never-trained source (the column's Q3) moves the judged errors past the prices for
+hundreds of rows and the without-sensor fallback is worse there (E_X_mid 0.79 -> 1.13 um).  A
+penalty at fit time (b) is a weaker lever: enough to halve the lean on T_motor2 costs up to 1.12x
+on fresh healthy campaigns and does not bound a drift's cost on another seed's sensor.  Next: (a)
+with the hold ended where the error stops growing (a regime hovers, excursion.py) or the
+fallback chosen only where training showed it no worse than the model on that sensor's error
+band, and the hold put in the export (watch.py / C / ST already carry the fallbacks).
+
 BAR (committed before any of the fresh seeds 9953-9955 is simulated; scored once)
 ---
 M1. SLOW_DRIFT: tests/shell/test_monitor.py drift_0.5 and drift_0.2 worst ratio <= 1.5 (the
