@@ -216,18 +216,29 @@ def _ratio(m, y, healthy):
     return np.sqrt(np.mean((m - y) ** 2, 0)) / np.sqrt(np.mean((m - healthy) ** 2, 0))
 
 
-def hold(root: str, factor: str = "1", lean_min: str = "0", top: str = "0") -> None:
-    """Form (a) on the default scenario: healthy RMSE hold / main, rows held, events; the
-    xfail's drifts (worst ratio to the hold's own healthy stream, as the test scores)."""
-    path = _simulated(root, "default")
+def _held(root: str, name: str, words: tuple, *over: str):
+    """``ROOT/name``'s adaptive MLR (as the fixture's), main's test streams, then the hold put on
+    it (``words``: factor, lean_min, top): ``(adaptive, comp, test, sensor, path, measured, main's
+    streams, rows held)``; the prices and holds printed."""
+    path = _simulated(root, name, *over)
     adaptive, comp, test, sensor = _deployed(path)
     train = _train(path)
     measured = comp.measured(test)
     main_y = {cid: _stream(adaptive, df) for cid, df in test.items()}
+    factor, lean_min, top = words
     price = prices(adaptive, train, float(factor), float(lean_min), int(top))
-    print(f"most influential {sensor}; prices (degC) {({s: round(v, 3) for s, v in price.items()})}")
+    print(f"most influential {sensor}; targets {adaptive.targets_}; prices (degC) "
+          f"{({s: round(float(v), 3) for s, v in price.items()})}")
     held, fitted = with_hold(adaptive, train, price)
     print(f"holds fitted for {fitted}")
+    return adaptive, comp, test, sensor, path, measured, main_y, held
+
+
+def hold(root: str, factor: str = "1", lean_min: str = "0", top: str = "0") -> None:
+    """Form (a) on the default scenario: healthy RMSE hold / main, rows held, events; the
+    xfail's drifts (worst ratio to the hold's own healthy stream, as the test scores)."""
+    adaptive, comp, test, sensor, _, measured, main_y, held = _held(root, "default",
+                                                                     (factor, lean_min, top))
     mine = {}
     for cid, df in test.items():
         held.clear()
@@ -259,16 +270,9 @@ def column(root: str, factor: str = "1", lean_min: str = "0", top: str = "0") ->
     """Form (a) on the healthy column (``column_moving_source``, adaptive MLR built as the
     fixture's): per test campaign, rows held and by which sensor, events, RMSE hold / main before
     Q3's onset and over the whole campaign."""
-    path = _simulated(root, "column", "sim=column_moving_source")
-    adaptive, comp, test, _ = _deployed(path)
-    train = _train(path)
+    adaptive, comp, test, _, path, measured, main_y, held = _held(
+        root, "column", (factor, lean_min, top), "sim=column_moving_source")
     truth = json.loads(path.with_name(path.name + ".truth.json").read_text())
-    measured = comp.measured(test)
-    main_y = {cid: _stream(adaptive, df) for cid, df in test.items()}
-    price = prices(adaptive, train, float(factor), float(lean_min), int(top))
-    print(f"targets {adaptive.targets_}; prices (degC) {({s: round(float(v), 3) for s, v in price.items()})}")
-    held, fitted = with_hold(adaptive, train, price)
-    print(f"holds fitted for {fitted}")
     for cid, df in test.items():
         held.clear()
         y, events = _stream(adaptive, df)
@@ -293,27 +297,38 @@ def _named(events, sensor):
                 None)
 
 
+def _mon98_cells(root: str, records):
+    """bench_mon98's ``cases`` cell per record, made where missing: ``(record, deployed mlr, fed
+    frame, lead-in rows, drift onset row, test campaign, the model.pkl)``."""
+    from bench_mon98 import record_cell
+
+    base = Path(root).resolve()
+    for record in records:
+        deployed, _, frame, lead, start, cid = record_cell(base, record)
+        yield (record, deployed, frame, lead, start, cid,
+               base / "reports" / record / "mlr-none" / "model.pkl")
+
+
+def _rmse_after(frame, targets, lead: int):
+    """``rmse(y, first)``: per target over the rows from ``first`` (the lead-in's end by default),
+    bench_mon98's RMSE (E + C, C = -y)."""
+    m = frame[targets].to_numpy(float)[lead:]
+
+    def rmse(z, first=lead):
+        return np.sqrt(np.nanmean((m[first - lead:] - z[first:]) ** 2, axis=0))
+
+    return rmse
+
+
 def cases(root: str, *records: str) -> None:
     """Form (a) on bench_mon98's records (its ``cases`` cell: the first test campaign after its
     lead-in, mlr as ``export`` deploys it): the healthy frame's events, rows held, RMSE hold /
     main after the lead-in; its drift / ambient cases' named rows main -> hold and RMSE."""
-    import os
-
-    from bench_audit97 import TRUNNION
     from bench_cmon91 import deployed_cell
-    from bench_cmon92 import faulted_cell, made
-    from bench_mon98 import FRESH, SEEN, _drifts
+    from bench_mon98 import _drifts
 
-    base = Path(root).resolve()
-    for record in records:
-        if record.startswith("tr"):
-            os.environ["THERMOCOMP_TARGETS"] = TRUNNION[0].split("=", 1)[1]
-        else:
-            os.environ.pop("THERMOCOMP_TARGETS", None)
-        made(base, record, "mlr", {**SEEN, **FRESH})
-        deployed, _, frame, lead, start, cid = faulted_cell(base, record, "mlr-none")
-        model = base / "reports" / record / "mlr-none" / "model.pkl"
-        _, ds, train_ids, _ = deployed_cell(base, record, model)
+    for record, deployed, frame, lead, start, cid, model in _mon98_cells(root, records):
+        _, ds, train_ids, _ = deployed_cell(Path(root).resolve(), record, model)
         faults = {case: (sensor, pd.concat([frame.iloc[:start], part])) for case, (sensor, part)
                   in _drifts(frame, start, list(deployed.monitor.names),
                              deployed.monitor._predictable).items()}
@@ -347,12 +362,7 @@ def fl(root: str) -> None:
 
 def _compare(label, deployed, train, frame, lead, start, faults) -> None:
     """The ``cases`` lines of one cell: main's streams, then the hold's (``deployed`` patched)."""
-    targets = list(deployed.targets_)
-    m = frame[targets].to_numpy(float)[lead:]     # bench_mon98's RMSE: E + C, C = -y
-
-    def rmse(z, first=lead):
-        return np.sqrt(np.nanmean((m[first - lead:] - z[first:]) ** 2, axis=0))
-
+    rmse = _rmse_after(frame, list(deployed.targets_), lead)
     main_y, main_ev = _stream(deployed, frame)
     mains = {case: _stream(deployed, f) for case, (_, f) in faults.items()}
     price = prices(deployed, train)
@@ -503,12 +513,8 @@ def ridgecases(root: str, alpha: str, *records: str) -> None:
     with the ridge ``alpha`` (train files that continue one another joined, as ``run``) and
     deployed as ``export`` deploys it; healthy events and RMSE ridge / MLR after the lead-in per
     target, the drift / ambient cases' named rows and RMSE."""
-    import os
-
-    from bench_audit97 import TRUNNION
     from bench_cmon91 import extra_of
-    from bench_cmon92 import faulted_cell, made
-    from bench_mon98 import FRESH, SEEN, _drifts
+    from bench_mon98 import _drifts
     from hydra import compose, initialize_config_dir
     from sklearn.base import clone
 
@@ -521,14 +527,7 @@ def ridgecases(root: str, alpha: str, *records: str) -> None:
     from thermocomp.shell.stages.export import lead_ins
 
     base = Path(root).resolve()
-    for record in records:
-        if record.startswith("tr"):
-            os.environ["THERMOCOMP_TARGETS"] = TRUNNION[0].split("=", 1)[1]
-        else:
-            os.environ.pop("THERMOCOMP_TARGETS", None)
-        made(base, record, "mlr", {**SEEN, **FRESH})
-        deployed, _, frame, lead, start, cid = faulted_cell(base, record, "mlr-none")
-        model = base / "reports" / record / "mlr-none" / "model.pkl"
+    for record, deployed, frame, lead, start, cid, model in _mon98_cells(root, records):
         with initialize_config_dir(config_dir=str(HERE.parent / "conf"), version_base="1.3"):
             cfg = compose(config_name="config", overrides=[f"data.path={base / 'data' / record}",
                                                            "track=false", *extra_of(record)])
@@ -538,12 +537,7 @@ def ridgecases(root: str, alpha: str, *records: str) -> None:
         ridged = deployable_model(cfg, ds, train_ids, str(model), "export.model", comp)[0]
         rframe = fed(ds.campaigns[cid], lead_ins(plain(ridged).compensator, ds, [cid]).get(cid))
         assert len(rframe) == len(frame), (len(rframe), len(frame))
-        targets = list(deployed.targets_)
-        m = frame[targets].to_numpy(float)[lead:]     # bench_mon98's RMSE: E + C, C = -y
-
-        def rmse(z, first=lead):
-            return np.sqrt(np.nanmean((m[first - lead:] - z[first:]) ** 2, axis=0))
-
+        rmse = _rmse_after(frame, list(deployed.targets_), lead)
         streams = {}
         for who, dep in (("mlr", deployed), ("ridge", ridged)):
             faults = {case: (sensor, pd.concat([frame.iloc[:start], part])) for case, (sensor, part)
