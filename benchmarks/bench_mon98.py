@@ -235,21 +235,27 @@ def _said(rows, names, sensor) -> str:
             f"max|C-served| {max(r[0] for r in rows):.3g} µm, rows mirror != served {differ}")
 
 
+def record_cell(base: Path, record: str, generators: dict | None = None) -> tuple:
+    """The ``cases`` cell of ``record`` (its data and ``run model=mlr`` made under ``base`` where
+    missing; a trunnion record's targets set): bench_cmon92's ``faulted_cell`` of it."""
+    from bench_cmon92 import faulted_cell, made
+
+    if record.startswith("tr"):
+        os.environ["THERMOCOMP_TARGETS"] = TRUNNION[0].split("=", 1)[1]
+    else:
+        os.environ.pop("THERMOCOMP_TARGETS", None)
+    made(base, record, "mlr", generators or {**SEEN, **FRESH})
+    return faulted_cell(base, record, "mlr-none")
+
+
 def cases(root: str, *records: str, generators: dict | None = None) -> None:
     """The ``cases`` rows (module doc); ``generators``: the records' simulate words (default
     :data:`SEEN` and :data:`FRESH`; bench_mon98b's own)."""
-    from bench_cmon92 import faulted_cell, made
-
     from thermocomp.apps.deploy.export.watch import RULES
 
     base = Path(root).resolve()
     for record in records:
-        if record.startswith("tr"):
-            os.environ["THERMOCOMP_TARGETS"] = TRUNNION[0].split("=", 1)[1]
-        else:
-            os.environ.pop("THERMOCOMP_TARGETS", None)
-        made(base, record, "mlr", generators or {**SEEN, **FRESH})
-        deployed, ss, frame, lead, start, cid = faulted_cell(base, record, "mlr-none")
+        deployed, ss, frame, lead, start, cid = record_cell(base, record, generators)
         mon = deployed.monitor
         names, targets = list(mon.names), list(deployed.targets_)
         healthy = _rows(deployed, ss, frame)
