@@ -11,6 +11,7 @@ Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is
 
     python benchmarks/bench_audit103.py readme CLONE              # cell R
     python benchmarks/bench_audit103.py models ROOT [FAMILY ...]  # cell M (fresh lm9980)
+    python benchmarks/bench_audit103.py st ROOT                   # cell M's ST line (lm9980's mlr-none)
     python benchmarks/bench_audit103.py faults ROOT PORT          # cell F (lm9980's mlr-none)
     python benchmarks/bench_audit103.py healthy ROOT SEED         # cell H (fresh gp9981)
     python benchmarks/bench_audit103.py lab ROOT SEED [FAMILIES]  # cell L (fresh 9982)
@@ -25,9 +26,9 @@ fl_thermal 90/10 row (mean test RMSE over ch1..ch5, 4.06 µm for mlr; 16.7 befor
 ``models``: bench_deploy88's sweep (run -> replay warm / cold -> plain -> promote -> export st /
 onnx / C + pack -> the compiled C fed the chain and the raw file) on :data:`RECORDS` with the
 wrappers of :data:`WRAPPERS` (none, ``ati=cmeans``, ``eval.mode=one_step``), every family of
-bench_deploy88's ``FAMILIES`` (its light lstm / arx_rf settings; ``arx_rf``'s state column is
-this machine's :data:`STATE`); ``sim`` the run's simulation-mode test figure (metrics.json's
-``test_simulation`` where the run scored one-step, else ``run``) and ``dmax`` the largest
+bench_deploy88's ``FAMILIES`` (its light lstm / arx_rf settings; ``arx_rf``'s state column
+:data:`STATE`: none, this machine logs no state); ``sim`` the run's simulation-mode test figure
+(metrics.json's ``test_simulation`` where the run scored one-step, else ``run``) and ``dmax`` the largest
 relative difference of ``sim``, ``promo``, ``C`` from ``replay``.
 ``faults``: lm9980's ``mlr-none`` cell (from ``models``): its compiled ``stream`` (``--flags``)
 fed the test campaign's file with one fault of :data:`FAULTS` planted each (:func:`faulted`), and
@@ -84,6 +85,92 @@ L2. Per family (mlr, lagbank) every figure (run, plain, replay, the C by ``rows`
     naming the row and the fix: a documented refusal, not a break).
 A cell breaking one of these is a finding, named with command, file, row and numbers; mended where
 small and clear (a test failing on 4a21da2b, < 3 s of CPU), KEPT; else listed for the lead.
+
+Status: the bar above was committed in 5f4a364e before any of 9980-9982 was simulated (the harness
+probed on seen records only: large_mill_week seed 0 as ``lm0``, bench_audit100's lab 9921);
+unchanged.  After it, harness changes only (no rule, no figure chosen): the served block's other
+columns filtered to the rows that say something; cell F's faults ``twice`` (a column sent twice)
+and ``blank`` (a blank line above data row 200, the C alone) added after the seen probe showed
+them, before lm9980's cell F ran; the ``st`` command (bench_st93's trace on lm9980's mlr-none)
+added; ``arx_rf``'s state column first ``S_spindle_rpm``, refused in one line (exit 2, "is no
+column of .../lm9980 (its S_ columns: none): name one, or null"), then ``null``.
+
+Scored (2026-12-07, 00:14-00:45 UTC; 2 cores shared, load 6-10, every job ``nice``; 4a21da2b's
+src plus this branch's mends, made after the seen probes: serve's column sent twice (8983b13b)
+before cell F ran, stream.c's blank-line line (499c8dc1) after it):
+
+R1-R2 (clone of /work/main at 4a21da2b): README's 6 blocks and own-data.md's 6 exit 0, every
+expectation met, the make-run table printed line by line as quoted; fl_thermal 90/10 mlr mean
+test RMSE 4.0600 (4.06 quoted), before 16.7278 (16.7).  ``make run`` 195 s wall the first time
+(MLflow's database made), 37.2 s wall and 8.7 s CPU (user 7.8 + sys 0.9) again under load 10
+(README: "about 6 s", 7.5-7.6 s CPU on stop 64's code).  R1, R2 hold.
+
+M1 (lm9980; ``sim`` = ``run`` but for one_step; ``replay`` = ``promo`` = ``C`` = ``cold`` =
+``Craw`` to the 7 digits printed in every cell; pack 0, st 0, onnx 2 in every cell; 0 events)::
+
+  cell                    run(1-step)  sim        replay     dmax
+  mlr-none / -ati         -            2.152918   2.153772   4.0e-4
+  mlr-one_step            0.8219285    2.152918   2.153772   4.0e-4
+  pcr-none / -ati         -            8.033509   8.031103   3.0e-4
+  pcr-one_step            0.7113929    8.033509   8.031103   3.0e-4
+  arx-none / -ati         -            2.477267   2.474306   1.2e-3
+  arx-one_step            0.7686364    2.477267   2.474306   1.2e-3
+  lagbank-none / -ati     -            4.080173   4.078666   3.7e-4
+  lagbank-one_step        1.954351     4.080173   4.078666   3.7e-4
+  hammerstein-* (= lagbank's figures, the lag bank's laws)
+  arx_rf-none (null)      -            2.477818   2.475174   1.1e-3   (-ati, -one_step: not run)
+  lstm-none / -ati        -            2.154048   2.154909   4.0e-4
+  lstm-one_step           0.8218426    2.154048   2.154909   4.0e-4
+  auto-none               -            2.11962    2.120524   4.3e-4
+  auto-one_step           0.8210034    2.11962    2.120524   4.3e-4
+  auto-ati                refused, exit 2 in one line (by design: name ati in model.candidates)
+
+``replay`` leaves ``sim`` by <= 0.12 % with no event: the deployed envelope's clamp (policy
+clamp, margin 0.1; the test week is months later): ``plain`` (envelope off) = ``run`` to the bit
+(mlr: E_X/E_Y/E_Z 3.5708/1.6381/1.2498 plain = run; 3.5675/1.6376/1.2562 clamped).  ``ati=cmeans``
+= none in every cell: one train campaign, one ambient level, said in the log (FallbackWarning: "too
+few to cross-validate ... one model").  ST (``st``): 0 false flags over the test week, max |ST - C|
+4.26e-14 µm; planted spike / dropout / range 52/52 served and hit each; freeze 0 of 52 served
+(the ST "other" 52; bench_st93's planted freeze: not scored).  M1 holds.
+
+F1-F2 (lm9980 mlr-none, T_table_01 from data row 200; C: ``./stream --flags``; served: one block of
+rows 0-219 from a reset):
+
+  fault    C                                                  served
+  nan      exit 0, flagged row 200 (dropout), |dC| <= 0.142   200, excluded + event row 200
+  stuck    exit 0, flagged row 211 (freeze), |dC| <= 0.302    200, excluded + event row 211 (0.204)
+  range    exit 0, flagged row 200 (out of range), <= 0.142   200, excluded + event row 200
+  missing  exit 2 "the header ... lacks input column T_table_01"   400 "Model is missing inputs"
+  text     exit 2 "line 202: input T_table_01: 'n/a' is no number" 400 naming column, row 201
+  order    exit 0, stderr "line 202: the time (11910 s) is not after the last read ...: taken
+           one period after", no flag column, |dC| 0                200, time event row 200, |dC| 0
+  twice    exit 0, |dC| 0 (the copy equal: left out as the reader does)   400 naming both columns
+  blank    exit 0, NOTHING said, |dC| 8.5 at row 200, <= 8.68 after: a BREAK (below)
+
+(|dC|: largest |correction - healthy correction| at / after the fault, µm.)  Server stderr 0
+tracebacks.  Seen lm0 before the mends: served ``twice`` answered 400 "'DataFrame' object has no
+attribute 'dtype'" (unclear: a break, mended 8983b13b); the C's ``blank`` 9.15 µm off, while
+``replay`` of the same file read it as one campaign (2.094/1.489/1.175 µm, as without the blank
+line): mended as far as said (499c8dc1: the C now names the line; its corrections, the
+documented campaign break, unchanged).  Extra seen probes (lm0, C): ``NaN``/``inf``/``1e400``/
+``-999`` flagged; ``21,5`` in a ``,`` file exit 2 "line 202 has not 56 cells"; ``true`` exit 2
+naming it; an empty time cell taken silently (corrections unchanged; served says it as an event).
+Not mended (a finding): the header naming ``T_table_01`` twice, the copy 5 °C apart: ``replay``
+exit 2 ("columns 2 and 57 have the same header ..., different values: name the second"), the C
+exit 0 reading the first column; a refusal in the C (``benchmarks/audit103_rule.patch``) would
+also refuse a lab file read by roles, where ``replay`` reads the copy as ``T_Luft_2`` and
+accepts (seen: test_audit86's german export): not kept.  F1 broken by ``blank`` (said now, not
+flagged in ``--flags``), F2 holds after 8983b13b.
+
+H1 (gp9981, mlr): monitor 0 events; export C + pack 0 (1.78e-14 µm); the C fed run08.csv exit 0,
+its mirror 0 flagged rows; ST 0 false flags, max |ST - C| 1.78e-14 µm (planted freeze 0 of 7
+served: not scored).  H1 holds.
+
+L1-L2 (lab 9982, logger.txt): ``init`` with no key exit 0: the 7-line metadata block left out
+(header on line 8), ``h:mm:ss`` past 24 h read as data.time=elapsed (60 s, 1441 rows),
+``data.thousands=','`` (2642 cells), the trailing empty column left out, ``Umgebung`` the ambient;
+mlr and lagbank: every figure (run, plain, replay, C by rows, C fed the raw bytes) = contract's to
+0 (mlr E_X/E_Y 1.705990358/1.187995677, lagbank 2.298891427/1.388952085 µm).  L1, L2 hold.
 """
 
 from __future__ import annotations
@@ -110,12 +197,13 @@ MAIN = Path("/work/main")
 PORTS = {"5002": "5103", "5001": "5113", "4840": "4903"}
 README_PAGES = ("README.md", "docs/own-data.md")
 FL_QUOTED = {"mlr": 4.06, "before": 16.7}        # README's 90/10 row (mean over ch1..ch5, µm)
-STATE = "S_spindle_rpm"
+STATE = "null"      # large_mill_week has no S_ column (S_spindle_rpm was refused naming it, exit 2)
 RECORDS = {"lm9980": ["sim=large_mill_week", "seed=9980", "sim.generator.train_hours=48",
                       "sim.generator.test_hours=24", "sim.generator.sample_period_s=60"]}
 WRAPPERS = {"none": [], "ati": ["ati=cmeans"], "one_step": ["eval.mode=one_step"]}
 FAULT_ROW = 200                                   # the test file's data row a fault starts at
-FAULTS = ("nan", "stuck", "range", "missing", "text", "order")
+FAULTS = ("nan", "stuck", "range", "missing", "text", "order", "twice")
+C_ONLY = ("blank",)                               # a blank line: the C's campaign break (no JSON form)
 
 
 def readme(word: str) -> None:
@@ -167,7 +255,8 @@ def faulted(frame: pd.DataFrame, fault: str, sensor: str) -> pd.DataFrame:
     """``frame`` (a test file's rows, as text cells) with ``fault`` planted in ``sensor`` from data
     row :data:`FAULT_ROW` on: ``nan`` one empty cell; ``stuck`` the value held to the end;
     ``range`` one reading of 900 °C; ``missing`` the column gone; ``text`` one cell ``n/a``;
-    ``order`` the row's time set before its predecessor's."""
+    ``order`` the row's time set before its predecessor's; ``twice`` the column given twice (a
+    lab's export listing a channel twice)."""
     out = frame.astype(object).copy()
     r = FAULT_ROW
     if fault == "nan":
@@ -182,6 +271,8 @@ def faulted(frame: pd.DataFrame, fault: str, sensor: str) -> pd.DataFrame:
         out.loc[r, sensor] = "n/a"
     elif fault == "order":
         out.loc[r, "time"] = float(frame.loc[r - 1, "time"]) - 30.0
+    elif fault == "twice":
+        out = pd.concat([out, out[[sensor]]], axis=1)
     return out
 
 
@@ -215,8 +306,11 @@ def faults(root: str, port: str) -> None:
     scratch = root_path / "faults"
     scratch.mkdir(exist_ok=True)
 
-    def fed(rows: pd.DataFrame) -> tuple[subprocess.CompletedProcess, pd.DataFrame]:
-        done = subprocess.run([str(c_dir / "stream"), "--flags"], input=rows.to_csv(index=False).encode(),
+    def fed(rows: pd.DataFrame, blank: bool = False) -> tuple[subprocess.CompletedProcess, pd.DataFrame]:
+        lines = rows.to_csv(index=False).splitlines()
+        if blank:                     # an empty line above data row FAULT_ROW (line FAULT_ROW + 2)
+            lines.insert(FAULT_ROW + 1, "")
+        done = subprocess.run([str(c_dir / "stream"), "--flags"], input=("\n".join(lines) + "\n").encode(),
                               capture_output=True)
         got = pd.read_csv(io.BytesIO(done.stdout)) if done.stdout.strip() else pd.DataFrame()
         return done, got
@@ -228,10 +322,9 @@ def faults(root: str, port: str) -> None:
     flagged = (healthy[flag_cols].apply(pd.to_numeric, errors="coerce").fillna(0) != 0).any(axis=1)
     print(f"C healthy {file}: {len(healthy)} rows, flags in {flag_cols}, flagged rows {int(flagged.sum())}; "
           f"sensor {sensor}, row {FAULT_ROW}", flush=True)
-    for fault in FAULTS:
-        rows = faulted(raw, fault, sensor)
-        rows.to_csv(scratch / f"{fault}.csv", index=False)
-        done, got = fed(rows)
+    for fault in (*FAULTS, *C_ONLY):
+        rows = raw if fault == "blank" else faulted(raw, fault, sensor)
+        done, got = fed(rows, blank=fault == "blank")
         flags = (got[flag_cols].apply(pd.to_numeric, errors="coerce").fillna(0)
                  if set(flag_cols) <= set(got) else None)
         first = (int(np.flatnonzero((flags != 0).any(axis=1).to_numpy())[0]) if flags is not None
@@ -270,7 +363,7 @@ def served(model: Path, data: Path, raw: pd.DataFrame, inputs: list[str], sensor
                 c = preds[[k for k in preds.columns if k.startswith("C_")]].to_numpy(float)
                 at, after = _off(np.vstack([c, np.full((len(healthy_c) - len(c), c.shape[1]), np.nan)]),
                                  healthy_c)
-                said_rows = {k: [(i, e) for i, e in enumerate(preds[k]) if e not in (None, "", "[]", [])]
+                said_rows = {k: [(i, e) for i, e in enumerate(preds[k]) if e not in (None, "", "[]", [], 0)]
                              for k in preds.columns if not k.startswith("C_")}
                 print(f"  served [{fault}] HTTP {status}: |C - healthy| at {at:.3g} after {after:.3g} um; "
                       f"other columns (row, value) {str(said_rows)[:400]}", flush=True)
@@ -293,6 +386,20 @@ def _cell_value(v):
         return float(v)
     except ValueError:
         return v
+
+
+def st(root: str) -> None:
+    """Cell M's ST line (added after the bar): bench_st93's ``trace`` on lm9980's ``mlr-none``
+    (the ST block stepped with the served model over the test campaign, against the C's mirror;
+    then its planted faults)."""
+    import bench_st93
+
+    base = Path(root).resolve()
+    record = next(iter(RECORDS))
+    data, model = base / "data" / record, base / "reports" / record / "mlr-none" / "model.pkl"
+    bench_audit99.CUT[:] = []                      # (the record's own train / test split)
+    bench_st93.deployed_cell = lambda *_: bench_audit99._deployed_cell(data, model)
+    bench_st93.trace(str(base), record)
 
 
 def healthy(root: str, seed: str) -> None:
@@ -345,7 +452,7 @@ def lab(root: str, seed: str, families: str = "mlr,lagbank") -> None:
 
 
 def main(argv: list[str]) -> int:
-    return run_commands(__doc__, {"readme": readme, "models": models, "faults": faults,
+    return run_commands(__doc__, {"readme": readme, "models": models, "st": st, "faults": faults,
                                   "healthy": healthy, "lab": lab}, argv, cpu=sys.stderr)
 
 
