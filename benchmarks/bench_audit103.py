@@ -105,7 +105,7 @@ test RMSE 4.0600 (4.06 quoted), before 16.7278 (16.7).  ``make run`` 195 s wall 
 (MLflow's database made), 37.2 s wall and 8.7 s CPU (user 7.8 + sys 0.9) again under load 10
 (README: "about 6 s", 7.5-7.6 s CPU on stop 64's code).  R1, R2 hold.
 
-M1 (lm9980; ``sim`` = ``run`` but for one_step; ``replay`` = ``promo`` = ``C`` = ``cold`` =
+M1 (lm9980, 23 cells; ``sim`` = ``run`` but for one_step; ``replay`` = ``promo`` = ``C`` = ``cold`` =
 ``Craw`` to the 7 digits printed in every cell; pack 0, st 0, onnx 2 in every cell; 0 events)::
 
   cell                    run(1-step)  sim        replay     dmax
@@ -118,7 +118,8 @@ M1 (lm9980; ``sim`` = ``run`` but for one_step; ``replay`` = ``promo`` = ``C`` =
   lagbank-none / -ati     -            4.080173   4.078666   3.7e-4
   lagbank-one_step        1.954351     4.080173   4.078666   3.7e-4
   hammerstein-* (= lagbank's figures, the lag bank's laws)
-  arx_rf-none (null)      -            2.477818   2.475174   1.1e-3   (-ati, -one_step: not run)
+  arx_rf-none / -ati      -            2.477818   2.475174   1.1e-3   (state column null)
+  arx_rf-one_step         0.7687625    2.477818   2.475174   1.1e-3
   lstm-none / -ati        -            2.154048   2.154909   4.0e-4
   lstm-one_step           0.8218426    2.154048   2.154909   4.0e-4
   auto-none               -            2.11962    2.120524   4.3e-4
