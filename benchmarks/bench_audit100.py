@@ -207,6 +207,7 @@ import time
 import urllib.error
 import urllib.request
 from pathlib import Path
+from typing import Callable
 
 import numpy as np
 import pandas as pd
@@ -377,7 +378,7 @@ def _lab_stage(base: Path, path: Path, family: str, keys: list[str] | None = Non
     init, keys = _init_tries(base, path, keys)
     if init is None:
         return {"said": f"init refused with keys {keys}"}
-    row = _initialised(base, path.stem, family)
+    row = _initialised(base, path.stem, family, path.suffix)
     row["keys"] = keys
     if "C" in row:
         row["C_raw"] = row.pop("C")
@@ -401,12 +402,19 @@ def lab(root: str, seed: str, families: str = ",".join(LAB_FAMILIES)) -> None:
 
     base = bench_audit91.lab_root(root, seed)
     rows = write_excel(base, int(seed))
+    lab_against_contract(base, rows, base / "excel.csv", families, _lab_name)
+
+
+def lab_against_contract(base: Path, rows: pd.DataFrame, path: Path, families: str,
+                         lab_name: Callable[[str], str]) -> None:
+    """Cell L's stages and lines: the lab's file ``path`` (its header ``lab_name`` of each contract
+    column) against ``contract.csv``'s ``rows`` per family (bench_audit103's lab file too)."""
     for family in families.split(","):
-        got = _lab_stage(base, base / "excel.csv", family)
+        got = _lab_stage(base, path, family)
         # the contract's run leaves out what the lab's file had to (the same sensors, compared)
         ignored = [v for k in got.get("keys", []) if k.startswith("data.roles.ignore=")
                    for v in k.partition("=")[2].strip("[]").split(",")]
-        contract_of = {_lab_name(c).split(" (")[0].split(" [")[0]: c for c in rows.columns}
+        contract_of = {lab_name(c).split(" (")[0].split(" [")[0]: c for c in rows.columns}
         left = [contract_of[v] for v in ignored if v in contract_of]
         ref = _lab_stage(base, base / "contract.csv", family,
                          [f"data.roles.ignore=[{','.join(left)}]"] if left else None)
@@ -532,10 +540,15 @@ def machine(word: str, root: str, seed: str, port: str) -> None:
 
 def healthy(root: str, seed: str, only_mirror: str = "") -> None:
     """Cell H (module doc): bench_audit99's ``healthy`` on tsc66's runs, the last held out."""
+    healthy_of(root, seed, "tsc66", only_mirror)
+
+
+def healthy_of(root: str, seed: str, kind: str, only_mirror: str = "") -> None:
+    """Cell H on KIND's runs (:data:`KINDS`; bench_audit103's cell H: gpg69)."""
     import bench_st93
     from bench_audit86b import stage
 
-    data = simulated(root, "tsc66", seed)
+    data = simulated(root, kind, seed)
     record = data.name
     base = Path(root).resolve()
     model = base / "reports" / record / "mlr-none" / "model.pkl"

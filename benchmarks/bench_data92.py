@@ -154,9 +154,10 @@ def _stage(base: Path, label: str, family: str, keys: tuple[str, ...]) -> dict:
     return _initialised(base, label, family)
 
 
-def _initialised(base: Path, label: str, family: str) -> dict:
-    """``_stage`` after init (its data config under ``<label>-init``; bench_names97b edits it)."""
-    path = base / f"{label}.csv"
+def _initialised(base: Path, label: str, family: str, suffix: str = ".csv") -> dict:
+    """``_stage`` after init (its data config under ``<label>-init``; bench_names97b edits it) of
+    the file ``<label><suffix>`` (bench_audit103's ``logger.txt``)."""
+    path = base / f"{label}{suffix}"
     init = base / f"{label}-init"
     data = next((init / "conf" / "data").glob("*.yaml")).stem
     search = [f"hydra.searchpath=[file://{init / 'conf'}]", f"data={data}", *LIGHT,

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 
+import pandas as pd
 import pytest
 
 from test_hostile_stream import _asgi, _split, deployed, scoring  # noqa: F401 (fixtures)
@@ -42,3 +43,26 @@ def test_a_time_that_is_no_time_is_refused_with_its_row_of_the_block_not_of_stdi
     status, answer, _ = _asgi(RequestLimits(app, max_body_bytes=len(body), max_rows=10), body)
     assert status == 400 and "<stdin>" not in answer["message"]
     assert answer["message"].startswith("column 'time', data row 3 of the block: value 'abc' is not")
+
+
+@pytest.mark.parametrize("form", ["json", "csv"])
+def test_a_column_sent_twice_is_refused_naming_it_and_where(scoring, form):  # noqa: F811
+    """audit103: a block naming a sensor column twice (a lab's export with the channel listed
+    twice) answered HTTP 400 "'DataFrame' object has no attribute 'dtype'" (MLflow's schema check);
+    now the column and both places, in JSON and in CSV."""
+    _, app, rows = scoring
+    column = [c for c in rows.columns if c.startswith("T_")][1]
+    block = pd.concat([rows.head(4), rows.head(4)[[column]]], axis=1)
+    at = [i + 1 for i, c in enumerate(block.columns) if c == column]
+    if form == "json":
+        body = json.dumps({"dataframe_split": {"columns": list(block.columns),
+                                               "data": block.to_numpy(float).tolist()},
+                           "params": {"session": "lab", "reset": True}}).encode()
+        kind = "application/json"
+    else:
+        body, kind = block.to_csv(index=False).encode(), "text/csv"
+    status, answer, _ = _asgi(RequestLimits(app, max_body_bytes=len(body), max_rows=10), body,
+                              content_type=kind)
+    assert status == 400
+    assert answer["message"] == (f"column '{column}' is sent twice in the block: columns {at[0]} and "
+                                 f"{at[1]} of {len(block.columns)} (send each column once)")

@@ -292,12 +292,30 @@ def unconverted_row(message: str, body: bytes, from_csv: bool = False) -> str | 
             f"number ({found['type']}; {how})")
 
 
+def twice_sent(body: bytes) -> str | None:
+    """A ``dataframe_split`` (or CSV) block naming a column twice, as its refusal (``column 'X' is
+    sent twice in the block: columns 2 and 12 of 12``; MLflow's schema check answered
+    ``'DataFrame' object has no attribute 'dtype'``, audit103); None where no name repeats."""
+    try:
+        columns = list(json.loads(body)["dataframe_split"]["columns"])
+    except (ValueError, TypeError, KeyError):
+        return None
+    first: dict[str, int] = {}
+    for at, name in enumerate(map(str, columns), start=1):
+        if name in first:
+            return (f"column {name!r} is sent twice in the block: columns {first[name]} and {at} "
+                    f"of {len(columns)} (send each column once)")
+        first[name] = at
+    return None
+
+
 def one_line_refusals(send, body: bytes = b"", from_csv: bool = False):
     """``send`` with an HTTP 400 answer's ``message`` cut to its reason: MLflow's app quotes
     the whole block before it (a sensor column missing from 35 rows: 3 KB on 37 lines, the reason
     last), which a caller's log cannot show in one line; a value that is no number said with its
     row of the request ``body`` (MLflow names the column alone; ``from_csv``: the body came as CSV,
-    the hint says how a CSV cell is written); every other answer as it is."""
+    the hint says how a CSV cell is written), a block naming a column twice said so
+    (:func:`twice_sent`); every other answer as it is."""
     held: list = []
 
     async def cut(message):
@@ -316,7 +334,10 @@ def one_line_refusals(send, body: bytes = b"", from_csv: bool = False):
             answer = json.loads(answered)
         except ValueError:
             answer = None
-        if isinstance(answer, dict) and str(answer.get("message", "")).startswith(QUOTED):
+        if isinstance(answer, dict) and (twice := twice_sent(body)):
+            answer["message"] = twice
+            answered = json.dumps(answer).encode()
+        elif isinstance(answer, dict) and str(answer.get("message", "")).startswith(QUOTED):
             reason = answer["message"].rpartition("Error: ")[2]
             answer["message"] = " ".join(reason.split())
             answered = json.dumps(answer).encode()

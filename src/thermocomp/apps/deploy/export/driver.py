@@ -1143,6 +1143,8 @@ int main(int argc, char **argv) {
        comments (or blank); one of them a `#` comment; the header written as one; `#` lines
        among the rows said */
     int pending = 0, again = 0, commented = 1, noted = 0, hashed = 0, said_hash = 0;
+    long blank_at = 0;         /* (audit103) a blank line after a sample: its line, said at the next row */
+    int said_blank = 0;
     /* (audit96) the preamble's lines above the header (Excel's `sep=;`, a logger's title), to
        know them written again above it; the line of a row held as one (0: none) */
     static char above[MAX_LINE];
@@ -1512,9 +1514,19 @@ int main(int argc, char **argv) {
         }
         if (line[strspn(line, " \t\r\n")] == '\0') {
             restart(&s, 1);
+            if (sampled && !blank_at) blank_at = row;
             if (!saved(state_path, state_tmp, &s, run)) return 2;
             continue;
         }
+        /* (audit103) said, not silent: a logger's stray blank line restarted the stream (the
+           state reset, the next row the reference: 8.5 um off on a large mill's MLR) where
+           run and replay read the file as one campaign; a blank line at the end says nothing */
+        if (blank_at && said_blank++ < 5)
+            fprintf(stderr, "stream: line %ld: a blank line: a new campaign starts at line %ld "
+                    "(the state reset, that row the reference), as between the campaigns "
+                    "thermocomp rows writes; run and replay read a file's blank line as nothing%s\n",
+                    blank_at, row, said_blank == 5 ? " (no more said)" : "");
+        blank_at = 0;
         sampled = 1;
         if (split(line, cells) != ncols) {
             fprintf(stderr, "stream: line %ld has not %d cells\n", row, ncols);
