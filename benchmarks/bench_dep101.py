@@ -185,7 +185,8 @@ def _stream(folder: Path, deployed, ss, frame) -> tuple[np.ndarray, str]:
 
 
 def _rounding(deployed, ss, pair) -> str:
-    """The condition of the basis rows left with ``pair`` out and max|M| apart between the C's
+    """The condition of the basis rows left with ``pair`` out (dep103: any out set; their first
+    ``min(modes, left)`` columns, the modes both solvers use) and max|M| apart between the C's
     operator of that set (its Cholesky of the normal system, :func:`~.watch._solved_operator`)
     and served's (``pod.operator``: a pseudo-inverse)."""
     from thermocomp.apps.deploy.export.watch import _solved_operator
@@ -196,7 +197,7 @@ def _rounding(deployed, ss, pair) -> str:
     ours = _solved_operator(phi.tobytes(), phi.shape, active.tobytes())
     if ours is None:
         return "the set not solved"
-    return (f"cond {np.linalg.cond(phi[active]):.4g}, max|M C - served| "
+    return (f"cond {np.linalg.cond(phi[active][:, :active.sum()]):.4g}, max|M C - served| "
             f"{np.abs(ours[0][:, active] - mon._operator(active)[0]).max():.2g}")
 
 
