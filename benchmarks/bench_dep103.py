@@ -50,8 +50,8 @@ monitor's first sensor not in the pair):
 
 the mirror's rule at the dropout rows, its rows flagged ``NOT_IN_CODE`` (the first, its rule),
 max|C - served| (µm, over rows and targets) and the rows past 1e-9 (the first), max|compiled C -
-mirror| (gcc, ``stream.c``; where ``stream`` stopped, what it said), and the largest out set's
-square-truncated condition and max|M C - served| (bench_dep101's ``_rounding``).
+mirror| (gcc, ``stream.c``; where ``stream`` stopped, what it said), and each out set's (the pair's;
+with ``c``) square-truncated condition and max|M C - served| (bench_dep101's ``_rounding``).
 
 BAR (written and committed BEFORE fresh seeds 9976-9978 are simulated; scored once; main =
 ``git archive 4a21da2b src``, the rule this branch's src; the fresh records simulated and run by
@@ -61,10 +61,13 @@ D1. Seen (the 10 records above), every ``back``, ``beside`` and ``third`` case o
     served| <= 1e-9 µm, 0 rows past it, 0 rows ``NOT_IN_CODE``, compiled C = mirror <= 1e-9 µm.
     ROUNDING CLAUSE: dep101's, reused (a case past 1e-9 counts as met where compiled = mirror <=
     1e-9, 0 rows ``NOT_IN_CODE``, and its set's printed max|M C - served| is past 1e-9: the C's
-    solver parting from served's pseudo-inverse), its bound widened from dep101's 1e-7 to 1e-5
-    µm: written after the seen trace (pt9890 far ``third`` 1.05e-6 µm, M apart 1.4e-4), before any
-    fresh seed; a departure from the brief's 1e-9 and from dep101's 1e-7, each such case named in
-    the verdict, the lead's call.
+    solver parting from served's pseudo-inverse; AMENDED before any fresh seed, after this bench's
+    seen run on the rule: the set out on those rows, the pair's before ``c``'s row, the three's
+    after, both printed: pt9910 near ``third``'s rows past 1e-9 lie before ``c``'s, the pair's
+    set 4e-8 apart, the three's 1.1e-10, the first wording naming the three's alone), its bound
+    widened from dep101's 1e-7 to 1e-5 µm: written after the seen trace (pt9890 far ``third``
+    1.05e-6 µm, M apart 1.4e-4), before any fresh seed; a departure from the brief's 1e-9 and
+    from dep101's 1e-7, each such case named in the verdict, the lead's call.
 D2. Lines other than these cases identical main / rule (``diff``, CPU lines aside): bench_dep101
     ``drops`` on its 10 records, bench_dep100b ``planted`` dl9934 sw9935 cr9936, bench_wires100
     ``swaps`` pt9851, bench_dep99 ``card`` tr9828 tr9873.
@@ -138,15 +141,19 @@ def returns(root: str, *records: str) -> None:
                 dropped, at = planted(frame, start, (a, b), c, plant)
                 got = _walk(deployed, ss, dropped)
                 worst, rows, first = _apart(got)
+                gap = np.abs(got["c"] - got["served"]).max(axis=1)
+                last = int(np.flatnonzero(gap > APART)[-1]) if rows else -1
                 missed = np.flatnonzero(got["flags"] & NOT_IN_CODE)
                 compiled, stopped = _stream(base / "c" / record, deployed, ss, dropped)
                 said = f" (first {missed[0]}, {RULES[got['missed'][missed[0]]]})" if len(missed) else ""
                 rules = "/".join(RULES[got["rule"][i]] or "nothing" for i in at)
                 print(f"  {kind:<4} {plant:<6} {a} + {b}, {c}: mirror {rules} at {at}; NOT_IN_CODE rows "
                       f"{len(missed)}{said}; max|C - served| {worst:.3g} µm, rows past {rows}"
-                      f"{f' (first {first})' if rows else ''}; max|compiled - mirror| "
-                      f"{np.abs(compiled - got['c'][:len(compiled)]).max():.3g} µm{stopped}; "
-                      f"{_rounding(deployed, ss, [a, b] if plant == 'back' else [a, b, c])}", flush=True)
+                      f"{f' ({first}-{last})' if rows else ''}; max|compiled - mirror| "
+                      f"{np.abs(compiled - got['c'][:len(compiled)]).max():.3g} µm{stopped}; pair out: "
+                      f"{_rounding(deployed, ss, [a, b])}"
+                      f"{'' if plant == 'back' else f'; with {c}: ' + _rounding(deployed, ss, [a, b, c])}",
+                      flush=True)
 
 
 def main(argv: list[str]) -> int:
