@@ -201,6 +201,17 @@ def _rounding(deployed, ss, pair) -> str:
             f"{np.abs(ours[0][:, active] - mon._operator(active)[0]).max():.2g}")
 
 
+def _healthy(record, deployed, ss, frame, lead, start, cid) -> dict:
+    """The record's first line (its cell, the fault row, the healthy frame's mirror flagged rows
+    and max|C - served|); the healthy walk (:func:`_walk`)."""
+    healthy = _walk(deployed, ss, frame)
+    worst, rows, _ = _apart(healthy)
+    print(f"{record} mlr, test campaign {cid}: {len(frame)} rows fed ({lead} lead-in), fault row "
+          f"{start}; healthy: mirror flagged rows {int((healthy['flags'] != 0).sum())}, "
+          f"max|C - served| {worst:.3g} µm ({rows} rows past {APART:g})", flush=True)
+    return healthy
+
+
 def drops(root: str, *records: str) -> None:
     """The ``drops`` lines (module doc)."""
     from thermocomp.apps.deploy.export.watch import NOT_IN_CODE, RULES
@@ -208,11 +219,7 @@ def drops(root: str, *records: str) -> None:
     base = Path(root).resolve()
     for record in records:
         deployed, ss, frame, lead, start, cid = _cell(base, record, {**SEEN, **FRESH})
-        healthy = _walk(deployed, ss, frame)
-        worst, rows, _ = _apart(healthy)
-        print(f"{record} mlr, test campaign {cid}: {len(frame)} rows fed ({lead} lead-in), fault row "
-              f"{start}; healthy: mirror flagged rows {int((healthy['flags'] != 0).sum())}, "
-              f"max|C - served| {worst:.3g} µm ({rows} rows past {APART:g})", flush=True)
+        healthy = _healthy(record, deployed, ss, frame, lead, start, cid)
         for kind, (a, b), _, dropped in framed_cases(frame, start, deployed.monitor):
             got = _walk(deployed, ss, dropped)
             worst, rows, first = _apart(got)

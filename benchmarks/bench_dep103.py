@@ -82,6 +82,45 @@ KEPT if D1-D4 hold and the new case of tests/shell/test_export_wires100.py (its 
 dropped for 10 rows, a third beside it; fails on 4a21da2b, ``MISSING_SECOND`` at the third's row)
 passes with the suites the brief names; else REFUSED (benchmarks/dep103_rule.patch, src as
 4a21da2b), the numbers kept here.
+
+Scored (bar c3b8b631, its clause amended in 30179de2, both before any of 9976-9978 was simulated;
+fresh 2026-12-07 00:23-00:27 UTC, load 6-11 on 2 cores: main = ``git archive 4a21da2b src``
+simulated and ran them into /tmp/dep103/fM, the rule read a copy, /tmp/dep103/fR; CPU 28.2 s main,
+24.5 s rule; seen ``returns`` 77.2 / 75.8 s main / rule).  Every healthy frame, seen and fresh,
+main and rule: 0 flagged rows, C = served 0 µm (D3 MET).  max|C - served| (µm), rows past 1e-9::
+
+  fresh   case  plant    main (4a21da2b)                        rule       rows  compiled - mirror
+  pt9976  far   back     5.3e-12, 0                             5.3e-12    0     2.0e-13
+  pt9976  far   beside   45.4, 118 (MISSING_SECOND at 2522)     8.3e-10    0     1.9e-12
+  pt9976  far   third    63.6, 115 (MISSING_SECOND at 2525)     8.32e-10   0     2.2e-12
+  pt9976  near  back     2.27e-13, 0                            2.27e-13   0     2.0e-13
+  pt9976  near  beside   23.2, 118                              1.93e-12   0     2.0e-13
+  pt9976  near  third    22.9, 115                              2.16e-12   0     3.4e-13
+  tr9977  far / near (the same pair)  back 1.42e-14; beside 1.19, 118; third 1.25, 115 -> <= 2.13e-14, 0
+  cr9978  far / near (the same pair)  back 9.24e-14; beside 5.97, 118; third 7.66, 115 -> <= 9.24e-14, 0
+
+Main refused each ``beside`` / ``third`` at the third's row (``MISSING_SECOND``, ``stream`` exit 2
+naming the input); the rule names ``DROPOUT`` there, 0 rows ``NOT_IN_CODE`` on every case.  D4
+MET (every fresh case <= 8.32e-10 µm, 0 rows; the rounding clause not needed; no set unsolved).
+D1 MET through its rounding clause: 60 seen cases, 0 rows ``NOT_IN_CODE``, compiled = mirror <=
+7.32e-11; 53 <= 2.84e-10 µm, 0 rows; 7 past 1e-9, each with the out set on its rows (the mirror's
+and served's out sets printed per row for pt9890 far and pt9851 near ``beside``: the same)
+solved apart from served's pinv by more than 1e-9: pt9851 near ``beside`` 1.16e-9 (1 row) /
+``third`` 1.2e-9 (3; three out, M 6.3e-8), pt9890 far ``beside`` 6.74e-7 (10) / ``third``
+1.05e-6 (6; three out, cond 2.05e4, M 1.4e-4), pt9910 far ``beside`` 2.58e-8 (58) / ``third``
+3.7e-8 (48; three out, M 3.2e-7), pt9910 near ``back`` 2.61e-9 (6) / ``third`` 2.35e-9 (3; the
+pair out, M 4e-8).  By dep101's 1e-7 bound the two pt9890 far cases are not met; by the brief's
+bare 1e-9, none of the seven.  Main on the same: every ``back`` held (<= 2.84e-10 but pt9910 near
+2.61e-9), every ``beside`` 1.17-99 µm / 118 rows and ``third`` 0.977-107 µm / 115 rows refused.
+D2 MET (rule 00:16-00:31, main 00:31-00:40 UTC, copies of the same roots): bench_dep101 ``drops``
+on the 10 seen records (30 lines), bench_dep100b ``planted`` dl9934 sw9935 cr9936 (15), bench_wires100
+``swaps`` pt9851 (5), bench_dep99 ``card`` tr9828 tr9873 (6), not counting the stage's log lines:
+identical (``diff``, CPU lines aside).  CPU rule / main: drops 37.8 / 43.2 s, planted 9.9 / 11.9, swaps
+14.8 / 16.3, card 16.9 / 14.8.
+VERDICT: KEPT (D1-D4 as committed in c3b8b631 / 30179de2; D1 through its rounding clause, whose
+1e-5 µm bound departs from dep101's 1e-7 and the brief's 1e-9 on the seven seen cases named: the
+lead's call).  Next: the C's solve of a square, ill-conditioned set (the normal system squares
+its condition; a QR of the basis rows would not).
 """
 
 from __future__ import annotations
@@ -96,7 +135,9 @@ sys.path[:0] = [str(HERE), str(HERE.parent / "tests"), str(HERE.parent / "tests"
 from _cli import run_commands  # noqa: E402
 from bench_audit97 import TRUNNION  # noqa: E402
 from bench_audit98 import PORTAL  # noqa: E402
-from bench_dep101 import APART, SEEN as DEP101_SEEN, FRESH as DEP101, _apart, _rounding, _stream, _walk  # noqa: E402
+from bench_dep101 import APART, _apart, _healthy, _rounding, _stream, _walk  # noqa: E402
+from bench_dep101 import FRESH as DEP101  # noqa: E402
+from bench_dep101 import SEEN as DEP101_SEEN  # noqa: E402
 from bench_mon97 import CR  # noqa: E402
 from bench_wires99 import _cell, framed_cases  # noqa: E402
 
@@ -130,11 +171,7 @@ def returns(root: str, *records: str) -> None:
     for record in records:
         deployed, ss, frame, lead, start, cid = _cell(base, record, {**SEEN, **FRESH})
         names = list(deployed.monitor.names)
-        healthy = _walk(deployed, ss, frame)
-        worst, rows, _ = _apart(healthy)
-        print(f"{record} mlr, test campaign {cid}: {len(frame)} rows fed ({lead} lead-in), fault row "
-              f"{start}; healthy: mirror flagged rows {int((healthy['flags'] != 0).sum())}, "
-              f"max|C - served| {worst:.3g} µm ({rows} rows past {APART:g})", flush=True)
+        _healthy(record, deployed, ss, frame, lead, start, cid)
         for kind, (a, b), _, _ in framed_cases(frame, start, deployed.monitor):
             c = next(n for n in names if n not in (a, b))
             for plant in PLANTS:

@@ -173,9 +173,9 @@ blind partner, a second culprit beyond the alarm band, a third for a jump, and a
 other predicts out for any other rule (its range; cmon84: too few left to rebuild the field without
 it), or with a fallback model the code does not hold.  A missing reading the code cannot rebuild
 (at a campaign's first sample, beside those out where it cannot solve the set (dep103: beside
-any number out where it can), of a sensor it does not hold out) is refused as before (:meth:`CodeMonitor.refuses`: the sample is not read).  From
-such a row on the code may part from the served model; the conformance pack cuts there
-(:func:`~.pack.conformance_pack`).
+any number out where it can), of a sensor it does not hold out) is refused as before
+(:meth:`CodeMonitor.refuses`: the sample is not read).  From such a row on the code may part
+from the served model; the conformance pack cuts there (:func:`~.pack.conformance_pack`).
 """
 
 from __future__ import annotations
