@@ -185,7 +185,8 @@ def _stream(folder: Path, deployed, ss, frame) -> tuple[np.ndarray, str]:
 
 
 def _rounding(deployed, ss, pair) -> str:
-    """The condition of the basis rows left with ``pair`` out and max|M| apart between the C's
+    """The condition of the basis rows left with ``pair`` out (dep103: any out set; their first
+    ``min(modes, left)`` columns, the modes both solvers use) and max|M| apart between the C's
     operator of that set (its Cholesky of the normal system, :func:`~.watch._solved_operator`)
     and served's (``pod.operator``: a pseudo-inverse)."""
     from thermocomp.apps.deploy.export.watch import _solved_operator
@@ -196,8 +197,19 @@ def _rounding(deployed, ss, pair) -> str:
     ours = _solved_operator(phi.tobytes(), phi.shape, active.tobytes())
     if ours is None:
         return "the set not solved"
-    return (f"cond {np.linalg.cond(phi[active]):.4g}, max|M C - served| "
+    return (f"cond {np.linalg.cond(phi[active][:, :active.sum()]):.4g}, max|M C - served| "
             f"{np.abs(ours[0][:, active] - mon._operator(active)[0]).max():.2g}")
+
+
+def _healthy(record, deployed, ss, frame, lead, start, cid) -> dict:
+    """The record's first line (its cell, the fault row, the healthy frame's mirror flagged rows
+    and max|C - served|); the healthy walk (:func:`_walk`)."""
+    healthy = _walk(deployed, ss, frame)
+    worst, rows, _ = _apart(healthy)
+    print(f"{record} mlr, test campaign {cid}: {len(frame)} rows fed ({lead} lead-in), fault row "
+          f"{start}; healthy: mirror flagged rows {int((healthy['flags'] != 0).sum())}, "
+          f"max|C - served| {worst:.3g} µm ({rows} rows past {APART:g})", flush=True)
+    return healthy
 
 
 def drops(root: str, *records: str) -> None:
@@ -207,11 +219,7 @@ def drops(root: str, *records: str) -> None:
     base = Path(root).resolve()
     for record in records:
         deployed, ss, frame, lead, start, cid = _cell(base, record, {**SEEN, **FRESH})
-        healthy = _walk(deployed, ss, frame)
-        worst, rows, _ = _apart(healthy)
-        print(f"{record} mlr, test campaign {cid}: {len(frame)} rows fed ({lead} lead-in), fault row "
-              f"{start}; healthy: mirror flagged rows {int((healthy['flags'] != 0).sum())}, "
-              f"max|C - served| {worst:.3g} µm ({rows} rows past {APART:g})", flush=True)
+        healthy = _healthy(record, deployed, ss, frame, lead, start, cid)
         for kind, (a, b), _, dropped in framed_cases(frame, start, deployed.monitor):
             got = _walk(deployed, ss, dropped)
             worst, rows, first = _apart(got)
