@@ -179,3 +179,30 @@ def _merge_nets(ss, fb, laws: int, col, where: list) -> None:
               "lstm_head_bias", "lstm_y_scale"):
         setattr(ss, k, list(getattr(ss, k)) + list(getattr(fb, k)))
     ss.lstm_hidden, ss.lstm_layers, ss.lstm_width = fb.lstm_hidden, fb.lstm_layers, W
+
+
+def with_st_fallbacks(ss, deployed, watch: dict) -> None:
+    """(st103b) The ST block's fallback models: :func:`with_fallbacks` into ``ss`` (made without
+    a monitor) by the block's monitor ``watch``, which gets the ``fallback_set``; one with a
+    forest or a network is left out, and every one where the model has them (the block's forest
+    walk and networks count whatever set is served): the block serves the model's laws for their
+    sensors, as before (``provenance.not_in_code``)."""
+    from .statespace import state_space
+
+    if not watch:
+        return
+    watch["fallback_set"] = [0] * len(watch["inputs"])
+    if ss.forest_target or ss.lstm_target:
+        return
+
+    def system(fb):
+        out = state_space(fb)
+        if out.forest_target or out.lstm_target:
+            raise NotExportable("a fallback with a forest or a network: not in the ST block")
+        return out
+
+    ss.monitor = watch
+    try:
+        with_fallbacks(ss, deployed, system)
+    finally:
+        ss.monitor = {}
