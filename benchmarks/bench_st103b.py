@@ -53,6 +53,35 @@ BAR (committed before fresh lr/dl 9983-9985 are simulated; scored once):
 * Size, reported: the generated ST's lines and ``N_LAWS`` main -> tree per record; the ST tests'
   CPU (tests/shell/test_export_st*.py, test_export.py) may grow by at most 3 s.
 
+Measured (2026-12-07, 2 cores shared, load 5-6; the rule = 11bb3581's src, unchanged after the
+fresh score (later commits: tests, docs, ``provenance.not_in_code``); BAR 11bb3581, scored once;
+VERDICT KEPT: S1-S4 met):
+
+* S1 MET (``score /tmp/st103b/seen dl9964``, 17.8 s CPU): T_spindle_rear's 70 hold rows max|C - ST|
+  7.1e-14 um (main 5.7); the other clean reached holds there T_spindle_front 1.1e-13 (main 36),
+  T_motor 7.1e-14 (11), T_xdrive 7.1e-14 (5.8), T_zdrive 7.8e-14 (1.7); flag rows differing 0.
+* S2 MET: 0 flag rows differing from main on every window and lead-in of the scored records:
+  dl9964's 7, the rest of st102b's (``score /tmp/st103b/seen lr9964 lr9965 lr9966 lr9967 dl9965
+  dl9966 dl9967``, 90.3 s CPU; gate NOT scored: lr9965 2470, dl9965 5696, dl9967 3117) 24 windows,
+  12 reached holds, 11 clean, all 11 <= 1.4e-13 um (main 0.15 .. 37); not clean: lr9966 T_motor
+  (the C's ``BLIND_OUT`` 3764 after 8.5 um apart before it; its hold rows 5e-14, main 8.4).
+* S3 MET (``healthy /tmp/st103b/seen`` the 8, 110.8 s CPU): 0 rows outside the holds whose c
+  differs from main's, 0 flag rows differing; the block held a ``BLIND_OUT`` on 3 of the 8
+  healthy streams (lr9964 10 rows, dl9964 11, dl9967 10): there max|C - ST| <= 7.1e-14 um (main
+  0.099, 1.7, 2.9).  st102's 32 frames not run (said in the bar).
+* S4 MET, scored once (``score /tmp/st103b/fresh lr9983 dl9983 lr9984 dl9984 lr9985 dl9985``,
+  76.2 s CPU with the simulation): gate NOT scored dl9983 (``mon_stop_row`` 681), dl9984
+  (``mon_lost``); 23 windows, 9 reached holds, 8 clean, all 8 max|C - ST| <= 9.9e-14 um on their
+  hold rows (main 1.3 .. 34); flag rows differing from main 0.  Not clean: lr9985 T_table (the
+  C's ``JUMP`` hold before its ``BLIND_OUT`` 3696, 30 um apart there, main alike; hold rows 18 um,
+  main 37): dl9964 T_table's class.
+* Size: the ST 2206 -> 2226 lines on every record; ``N_LAWS`` 1 -> 5 .. 9 (dl9964 8).  The ST
+  tests (tests/shell/test_export_st*.py, test_export.py: 54 tests) 93.5 s CPU on 9fd4ff7d ->
+  92.2 s on the tree (load 5-6): no growth past the noise.
+* Next: the C serves a fallback set during its ``JUMP`` hold of a sensor no other predicts (the
+  block's ``mon_jheld``, or a jump it flags and loses: dl9964 / lr9985 T_table) and its
+  ``STEP_OUT`` hold; the block serves the model's laws there, as before.
+
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``)::
 
     python benchmarks/bench_st103b.py score ROOT RECORD [RECORD ...]
