@@ -22,7 +22,7 @@ from test_export import needs_cc
 from test_export_cmon80 import assert_packed_as_served
 from test_export_cmon82c import _deployed, _machine, _served_moves
 from test_export_cmon83 import _mirror, _plain
-from thermocomp.apps.deploy.export import state_space
+from thermocomp.apps.deploy.export import exported_files, not_in_code, state_space
 from thermocomp.apps.deploy.export.fallbacks import _merge
 from thermocomp.apps.deploy.export.pack import conformance_pack, corrections
 from thermocomp.apps.deploy.export.watch import FALLBACK
@@ -68,6 +68,16 @@ def test_the_code_serves_an_arx_rf_fallback_with_its_forest(served, tmp_path):
     _, summary = conformance_pack(deployed, old, {"K06": frame})
     cut = summary["campaigns"][0]["cut"]
     assert cut["row"] >= out and "model fitted without" in cut["why"], cut
+
+
+def test_the_structured_text_leaves_an_arx_rf_fallback_out_and_says_so(served):
+    """(st103b) The ST block serves a fallback model while it holds its sensor out, but not one
+    with a forest (its forest walk counts whatever set is served): the model's laws alone, as
+    before, and ``provenance.not_in_code`` says so (the C's message is as it was)."""
+    deployed = served[0]
+    assert "N_SETS : INT := 1;" in exported_files(deployed, "st")["compensator.st"]
+    assert "a forest or a network" in not_in_code(deployed, "st")[0]
+    assert "a forest or a network" not in not_in_code(deployed)[0]
 
 
 @pytest.mark.parametrize("into", ["model", "fallback"])

@@ -1,7 +1,8 @@
 """The Structured Text block takes out, as the C's drift judgement does, a sensor no other
 predicts that explains the others' errors (``BLIND_OUT``), holds it out alone to the C's ``BACK``
 and judges on (st96, issue 34): before st96 the block did not see the C's exclusion and judged
-the field as whole while the C held the sensor out.
+the field as whole while the C held the sensor out.  (st103b) While it holds the sensor out the
+block serves the C's fallback law set on the sensor's last reading in, as the C (bench_st103b.py).
 
 lr9132 (``thermocomp simulate sim=long_record``, seed 9132, 3 days), MLR deployed adaptive with
 ``data.reference=none``, its first 1100 fed rows, as tests/shell/test_export_st95b.py
@@ -73,6 +74,10 @@ def test_the_block_takes_out_a_blind_sensor_as_the_c_and_follows_its_back(record
     assert c_said[back][0] & READMITTED and (RULES[c_said[back][1]], c_said[back][2]) == ("BACK", k)
     # the block held it out up to that row and lets it back there, judging on
     assert held[out:back] == [k] * (back - out) and held[back] == -1
+    # (st103b) while it holds it out, the block = the C: the sensor read at its last reading in,
+    # the correction its fallback model's (before st103b: the model's laws on the live reading)
+    assert ss.monitor["fallback_set"][k] > 0
+    assert np.max(np.abs(st[out:back] - c[out:back])) <= TOLERANCE_UM
     # back in, the block = the C again (the C served its fallback while it was out)
     assert np.max(np.abs(st[back:PULSE] - c[back:PULSE])) <= TOLERANCE_UM
     # the pulse: the C's STEP_OUT, named alike by the block; no other block flag

@@ -70,6 +70,15 @@ def exported_files(deployed, fmt: str, provenance: dict | None = None,
     ``monitor``, its sensor monitor's slice: :mod:`.watch`)."""
     _check_format(fmt)
     ss = state_space(deployed, provenance, monitor=monitor and fmt == "c")
+    # (st93) the ST block's monitor: its detection, as outputs; (st103b) with the fallback
+    # models' laws beside the model's, served while the block holds their sensor out
+    watch = {}
+    if fmt == "st" and monitor:
+        from .fallbacks import with_st_fallbacks
+        from .watch import monitor_fields
+
+        watch = monitor_fields(deployed, list(ss.inputs)).get("monitor", {})
+        with_st_fallbacks(ss, deployed, watch)
     files = {"compensator.json": json.dumps(ss.to_dict(), indent=1) + "\n"}
     if fmt == "c":
         from . import c
@@ -79,9 +88,6 @@ def exported_files(deployed, fmt: str, provenance: dict | None = None,
                       "stream.c": DRIVER})
     elif fmt == "st":
         from . import st
-        from .watch import monitor_fields
 
-        # (st93) the monitor's detection, as outputs; the model's laws are the plain ones
-        watch = monitor_fields(deployed, list(ss.inputs)).get("monitor", {}) if monitor else {}
         files["compensator.st"] = st.function_block(ss, watch)
     return files

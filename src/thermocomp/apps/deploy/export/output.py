@@ -39,6 +39,7 @@ import numpy as np
 from ..adaptive import AdaptiveCompensator
 from ..guard import rate_span, widening
 from .errors import NotExportable
+from .fallbacks import st_leaves_fallbacks
 
 UNBOUNDED = sys.float_info.max   # a machine state's range: never beyond it
 
@@ -126,6 +127,10 @@ def not_in_code(deployed, fmt: str | None = None) -> list[str]:
                 "sensor no other predicts out for another rule, or with a fallback model (the "
                 "model fitted without it) of a kind the code does not step beside the model "
                 "(an lstm network of another shape, other inputs)"]
+    if fmt == "st" and st_leaves_fallbacks(deployed):
+        return ["sensor monitor (exclusion, reconstruction of a sensor from the others; a fallback "
+                "model with a forest or a network, or any of a model with them: the ST serves the "
+                "model's laws while it holds its sensor out)"]
     return ["sensor monitor (exclusion, reconstruction of a sensor from the others)"]
 
 

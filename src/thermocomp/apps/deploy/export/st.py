@@ -203,8 +203,21 @@ def _memory(ss: StateSpace) -> list[tuple[str, str, tuple]]:
             ("by_held", "LREAL", (nb,)), ("excessed", "BOOL", ()), ("by_outright", "BOOL", (m,)),
             ("init_start", "LREAL", (qi,)), ("init_started", "BOOL", (qi,)),
             ("hist", "LREAL", (2, d, n)), ("z", "LREAL", (2, k)), ("y_prev", "LREAL", (2, r)),
-            ("bound_held", "LREAL", (m,)), ("sw_on", "BOOL", (ns,)), ("sw_changed", "BOOL", (ns,)),
+            ("bound_held", "LREAL", (_sets(ss), m)), ("sw_on", "BOOL", (ns,)), ("sw_changed", "BOOL", (ns,)),
             ("sw_t0", "LREAL", (ns,)), ("lstm_h", "LREAL", cells), ("lstm_c", "LREAL", cells)]
+
+
+def _sets(ss: StateSpace) -> int:
+    """The law sets of ``ss``: the model's, and each fallback model's (:mod:`.fallbacks`)."""
+    return max(ss.law_set or [0]) + 1
+
+
+def _served_sets(watch: dict) -> list[int]:
+    """(st103b) Per monitored sensor the law set served while the block holds it out: its
+    fallback model's (the monitor's ``fallback_set``), 0 where the others left in are too few to
+    rebuild the field (the C's ``mon_serving``)."""
+    n = len(watch.get("inputs", []))
+    return [int(s) if n - 1 >= watch.get("min_active", n) else 0 for s in watch.get("fallback_set", [])]
 
 
 def _copied(ss: StateSpace, back: bool, indent: str = "        ") -> str:
@@ -234,6 +247,7 @@ def function_block(ss: StateSpace, watch: dict | None = None) -> str:
     p, r, qi = len(ss.powers), len(ss.laws), len(ss.initial)
     q = len(ss.derived) + qi       # the derived inputs, then the transients' (N_DERIVED first)
     nb = len(ss.clamp_states)      # states whose value scales the clamp's gain (inputs_product)
+    sets = _sets(ss)
     consts = "\n".join([
         f"    N_INPUTS : INT := {n};", f"    N_OUTPUTS : INT := {m};", f"    N_LAWS : INT := {r};",
         f"    TAPS : INT := {taps};",
@@ -260,6 +274,8 @@ def function_block(ss: StateSpace, watch: dict | None = None) -> str:
         _constant("LAG_OF", ss.lag_of or [-1] * k, (k,), "INT"),
         _constant("INTERCEPT", ss.intercept, (r,)), _constant("B0", ss.b0, (r, n + p + q)),
         _constant("LAW_TARGET", ss.laws, (r,), "INT"),
+        f"    N_SETS : INT := {sets};", _constant("LAW_SET", ss.law_set or [0] * r, (r,), "INT"),
+        _constant("MON_FALLBACK_SET", _served_sets(watch), (len(watch.get("inputs", [])),), "INT"),
         _constant("LAW_LO", ss.law_lo or [-LREAL_MAX] * r, (r,)),
         _constant("LAW_HI", ss.law_hi or [LREAL_MAX] * r, (r,)),
         _constant("LAW_AMBIENT", ss.law_ambient or [0] * r, (r,), "INT"),
@@ -365,7 +381,8 @@ VAR
     z : ARRAY[{_dims(2, k)}] OF LREAL;
     y_prev : ARRAY[{_dims(2, r)}] OF LREAL;
     ysum : ARRAY[{_dims(2, m)}] OF LREAL;
-    excess : ARRAY[{_dims(m)}] OF LREAL;
+    excess : ARRAY[{_dims(sets, m)}] OF LREAL;
+    serving : INT;
     factor : ARRAY[{_dims(r)}] OF LREAL;
     a0 : LREAL;
     a0_known : BOOL;
@@ -388,7 +405,7 @@ VAR
     x : ARRAY[{_dims(2, n + p + q)}] OF LREAL;
     ych : ARRAY[{_dims(2)}] OF LREAL;
     bound : LREAL;
-    bound_held : ARRAY[{_dims(m)}] OF LREAL;
+    bound_held : ARRAY[{_dims(sets, m)}] OF LREAL;
     pat_z : ARRAY[{_dims(n)}] OF LREAL;
     pat_r : ARRAY[{_dims(n)}] OF LREAL;
     pat_p : LREAL;
@@ -505,6 +522,13 @@ IF NOT refused THEN
             uu[j] := 0.0;
         END_IF;
     END_FOR;
+    (* (st103b) a sensor no other predicts held out by BLIND_OUT: read at its last reading in, *)
+    (* the correction its fallback model's (MON_FALLBACK_SET; 0: the model's), as the C's *)
+    serving := 0;
+    IF mon_held >= 0 AND mon_held_set >= 0 THEN
+        uu[MON_INPUT[mon_held]] := mon_base[mon_held] + mon_jlast;
+        serving := MON_FALLBACK_SET[mon_held];
+    END_IF;
     (* causal FIR denoiser: newest raw sample first *)
     FOR l := TAPS - 1 TO 0 BY -1 DO
         FOR j := 0 TO N_INPUTS - 1 DO
@@ -800,9 +824,12 @@ IF NOT refused THEN
     FOR i := 0 TO N_OUTPUTS - 1 DO
         ysum[0, i] := 0.0;
         ysum[1, i] := 0.0;
-        excess[i] := 0.0;
+        FOR l := 0 TO N_SETS - 1 DO
+            excess[l, i] := 0.0;
+        END_FOR;
     END_FOR;
-    (* each law (its own feedback), times its factor, summed into its target *)
+    (* each law (its own feedback), times its factor, summed into its target where its set is *)
+    (* served (LAW_SET: a fallback model's laws step beside the model's from the campaign's start) *)
     FOR r := 0 TO N_LAWS - 1 DO
         i := LAW_TARGET[r];
         pg := 0.0;
@@ -814,7 +841,7 @@ IF NOT refused THEN
             pg := pg + gsum * x[1, j];
         END_FOR;
         IF factor[r] <> 0.0 THEN
-            excess[i] := excess[i] + factor[r] * pg;
+            excess[LAW_SET[r], i] := excess[LAW_SET[r], i] + factor[r] * pg;
         END_IF;
         FOR h := 0 TO 1 DO
             IF h = 0 THEN
@@ -835,7 +862,7 @@ IF NOT refused THEN
             END_FOR;
             ych[h] := ych[h] + AR[r] * y_prev[h, r];
             y_prev[h, r] := ych[h];
-            IF factor[r] <> 0.0 THEN
+            IF factor[r] <> 0.0 AND LAW_SET[r] = serving THEN
                 ysum[h, i] := ysum[h, i] + factor[r] * ych[h];
             END_IF;
         END_FOR;
@@ -905,15 +932,17 @@ IF NOT refused THEN
     FOR i := 0 TO N_OUTPUTS - 1 DO
         ych[0] := ysum[0, i];
         ych[1] := ysum[1, i];
-        bound := excess[i];
-        IF bound < 0.0 THEN
-            bound := -bound;
-        END_IF;
-        (* back in range, the bound of the excess's last sample holds *)
+        (* back in range, the bound of the excess's last sample holds (each set's) *)
         IF first OR n_clamped > 0 THEN
-            bound_held[i] := bound;
+            FOR l := 0 TO N_SETS - 1 DO
+                bound := excess[l, i];
+                IF bound < 0.0 THEN
+                    bound := -bound;
+                END_IF;
+                bound_held[l, i] := bound;
+            END_FOR;
         END_IF;
-        bound := bound_held[i];
+        bound := bound_held[serving, i];
         IF CLAMP_OUTRIGHT[i] <> 0 OR by_outright[i] THEN
             (* a model without a step gain: the response to the excess taken out whole *)
             bound := REAL_LIMIT;

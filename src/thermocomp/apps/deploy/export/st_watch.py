@@ -114,7 +114,9 @@ keeps no count of the sensors the C holds out (it cannot tell the C's re-admissi
 judged as the C judges it with none out but the jumpers.  The freeze with a
 sensor out (but a ``BLIND_OUT`` the block holds: st99), the drift, the re-admission and the
 rest judge a sensor by the others' prediction of it over a set the block does not know (the
-POD): not in the ST, they stay with the served model (``provenance.not_in_code``).  (st94b)
+POD): not in the ST, they stay with the served model (``provenance.not_in_code``); (st103b) but
+while the block holds a sensor out by its ``BLIND_OUT`` the model reads it at its last reading in
+and the outputs sum its fallback model's laws, as the C's (st.py ``serving``).  (st94b)
 The stepped self-prediction error is judged while the field is whole only: from the first
 exclusion the block flags (a jump, a dropout, a reading beyond range, a stepped error not
 followed to its ``BACK``; st101: a jump it holds to the C's ``BACK`` neither) to the campaign's
