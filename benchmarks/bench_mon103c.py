@@ -65,6 +65,28 @@ M5. C = served <= 1e-9 um on the seen cases (tests/shell/test_export.py, cmon*, 
     (surveillance + watch.py mirror + C, + ST where the ST serves fallbacks) is built only if
     the rule meets M1-M2 on seen; else TRACED, src untouched.
 
+MEASURED (2026-12-07, main = 8afba209's src; the rule emulated in this bench, src untouched).
+VERDICT: TRACED -- the rule met M1-M3 on seen, M4 not on fresh 10000; step 2 (src, the watch.py
+mirror, C, ST) not built, so M5 unmeasured and nothing in src.
+---
+SEEN (the trace above, rule gate:1.05+err:1.1): M1 met 1.793 / 1.847 -> 1.280 / 1.409; M2 met
+   (column worst target 1.013, default 1.000, bench_mon98 <= 1.000, fl <= 1.001; 0 new events);
+   M3 met (every named row as main's).
+FRESH 9998-10000, scored once (``fresh ROOT 9998 9999 10000``; 24 test campaigns x 2 rates):
+   most leaned-on T_bearing_f2 / T_bearing_f3 / T_box2 (lean 6.92 / 6.15 / 7.36 per degC);
+   worst ratio main -> rule +0.5 K/h 1.368 -> 1.146, 1.884 -> 1.109, 1.702 -> 1.556; +0.2 K/h
+   2.368 -> 1.146, 1.781 -> 1.153, 2.151 -> 1.920: <= main's on all six (met), <= 1.5 where
+   main's > 1.5 on 4 of 6 (NOT met: 10000 on both rates).  No flag before onset (0 of 48 lines);
+   named rows as main's on all 48; healthy test campaigns 0 flags (main 0), 0 rows held, RMSE
+   1.000x.  Seed 10000's T_box2 was gated out: its fallback's training RMSE 1.018 / 1.048 /
+   1.066x the model's (E_X / E_Y / E_Z), past 1.05.
+AFTER the fresh score (a trace, not a verdict): gate 1.1 (or none) with err:1.1 on 10000 1.702 ->
+   1.274, 2.151 -> 1.364; 9998 / 9999 as the rule's; the column as gate 1.05's (no column sensor's
+   fallback falls between 1.043 and 1.12).  Seen put no sensor between 1.035 (the default's
+   largest) and 1.12 (the column's smallest dropped): 1.05 was a point in that gap, not a fit.
+CPU (user + sys of the process): ``hold`` 1.8 s, ``column`` 2.6 s, ``cases`` (4 records) 41.7
+   s, ``fl`` 9.8 s, ``fresh`` (3 seeds, simulate subprocesses not counted) 6.9 s.
+
 Usage (repository root; ``PYTHONPATH=<tree>/src``)::
 
     python benchmarks/bench_mon103c.py hold ROOT            # default scenario: healthy + drifts
