@@ -150,12 +150,9 @@ def _train(path: Path) -> dict:
     return {c: ds.campaigns[c] for c in ds.ids("train")}
 
 
-def prices(adaptive, train: dict, factor: float = 1.0, lean_min: float = 0.0, top: int = 0
-           ) -> dict[str, float]:
-    """mon103's price per non-ambient monitored sensor whose priced level is below its warning
-    band: ``factor`` training residual RMS over the model's gain (largest over targets), never
-    below ``LEAN_FLOOR`` x the band's floor (°C); only sensors leaned on by ``lean_min``
-    residuals per °C at least; ``top`` > 0: the ``top`` most leaned-on of them only."""
+def leans(adaptive, train: dict) -> dict[str, float]:
+    """mon103's lean per non-ambient monitored sensor: the model's step gain over the training
+    residual RMS (simulation mode), largest over targets (1/°C)."""
     from thermocomp.apps.deploy.adaptive import input_gains
 
     comp, targets = adaptive.compensator, adaptive.targets_
@@ -165,25 +162,35 @@ def prices(adaptive, train: dict, factor: float = 1.0, lean_min: float = 0.0, to
                      for c in train])
     rms = np.sqrt(np.nanmean(res ** 2, axis=0))
     gains = input_gains(adaptive.streaming)
-    mon, out, lean_of = adaptive.monitor, {}, {}
-    for j, name in enumerate(mon.names):
-        if name.startswith("T_amb"):
-            continue
-        lean = float(np.max(np.abs(gains[:, adaptive.columns_.index(name)]) / rms))
+    return {name: float(np.max(np.abs(gains[:, adaptive.columns_.index(name)]) / rms))
+            for name in adaptive.monitor.names if not name.startswith("T_amb")}
+
+
+def prices(adaptive, train: dict, factor: float = 1.0, lean_min: float = 0.0, top: int = 0
+           ) -> dict[str, float]:
+    """mon103's price per non-ambient monitored sensor whose priced level is below its warning
+    band: ``factor`` training residual RMS over the model's gain (largest over targets), never
+    below ``LEAN_FLOOR`` x the band's floor (°C); only sensors leaned on by ``lean_min``
+    residuals per °C at least; ``top`` > 0: the ``top`` most leaned-on of them only."""
+    mon, out, lean_of = adaptive.monitor, {}, leans(adaptive, train)
+    for name, lean in lean_of.items():
+        j = mon.names.index(name)
         level = max(factor / lean if lean > 0 else np.inf, LEAN_FLOOR * mon.floor_c[j])
         if level < mon.warning_c[j] and lean >= lean_min:
-            out[name], lean_of[name] = float(level), lean
+            out[name] = float(level)
     if top > 0:
         out = {s: out[s] for s in sorted(out, key=lean_of.get, reverse=True)[:top]}
     return out
 
 
-def with_hold(adaptive, train: dict, price: dict[str, float]):
+def with_hold(adaptive, train: dict, price: dict[str, float], ended=None):
     """Form (a), emulated on the served stream: each priced sensor's without-sensor fallback
     (fallback.py's ``without_sensor``) streamed beside the model; while an active sensor's judged
     error (``monitor.last_error_``) is past its price the correction is that fallback's (the one
-    furthest past, by error over price), silently; main's fallbacks as they were.  Returns the
-    rows on a hold, counted per stream (a list the caller resets)."""
+    furthest past, by error over price), silently; main's fallbacks as they were.  ``ended``
+    (mon103c): ``ended(monitor, err, over)`` -> the sensors of ``over`` (name -> index, those past
+    their price this row) whose hold has ended.  Returns the rows on a hold, counted per stream
+    (a list the caller resets), and the sensors with a fallback."""
     from thermocomp.apps.deploy.adaptive import AdaptiveCompensator
     from thermocomp.apps.deploy.fallback import without_sensor
 
@@ -202,8 +209,10 @@ def with_hold(adaptive, train: dict, price: dict[str, float]):
         if out is not None or not mon._rebuilds:
             return out
         err = mon.last_error_
-        over = [(abs(err[j]) / price[s], s) for s, j in where.items()
-                if mon._active[j] and np.isfinite(err[j]) and abs(err[j]) > price[s]]
+        past = {s: j for s, j in where.items()
+                if mon._active[j] and np.isfinite(err[j]) and abs(err[j]) > price[s]}
+        done = ended(mon, err, past) if ended is not None else ()
+        over = [(abs(err[j]) / price[s], s) for s, j in past.items() if s not in done]
         if over:
             held.append(max(over)[1])
         return max(over)[1] if over else None
