@@ -38,11 +38,11 @@ from ...core.io.bits import parsed as parsed_bits
 from ...core.io.contract import TIME
 from ...core.io.dayfirst import ORDER
 from ...core.io.derived import sources as derived_sources
+from ...core.io.options import ReadOptions
 from ...core.io.roles import RUN
 from ...core.io.source import check_streamed_columns
-from ...core.io.twins import copy_refused
-from ...core.io.options import ReadOptions
 from ...core.io.timestamps import CLOCK, OF_DAY_KIND, names_seconds_of_day, names_time_of_day
+from ...core.io.twins import copy_refused
 from ...core.scoring.evaluation import require_split
 from ..builders import deployable_model, is_registered, with_model_bits
 from ..config.checks import check_config, data_options
