@@ -24,7 +24,7 @@ Rule (src/thermocomp/apps/deploy/export: ``TC_TWIN_REFUSED`` in compensator.h, s
 
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is that tree's)::
 
-    python benchmarks/bench_cin103.py record ROOT NAME [SEED]   # cell R: a large_mill_week record
+    python benchmarks/bench_cin103.py record ROOT NAME PORT [SEED]   # cell R: large_mill_week
     python benchmarks/bench_cin103.py lab ROOT SEED             # cell L: a role-read lab file
 
 ``record``: NAME's mlr model (ROOT/reports/NAME/mlr-none/model.pkl and its data ROOT/data/NAME;
@@ -34,8 +34,8 @@ src``, /tmp/cin103/base); both streams fed the test file healthy and with one od
 data row 200 in the first non-ambient T_ column as audit103 planted them: ``twice`` (the column
 written again, the copy 5 degC above from row 200), ``same`` (the copy equal), ``notime`` (row
 200's time cell empty), ``order`` (row 200's time 30 s before row 199's); ``replay`` of the
-``twice`` / ``same`` files (exit, message); served events (the model in-process,
-``serve``'s pyfunc, one block from a reset) for ``notime`` / ``order``.
+``twice`` / ``same`` files (exit, message); served events (bench_audit103's cell F2: the model
+served on PORT, rows 0-219 posted as one block from a reset) for ``notime`` / ``order``.
 ``lab``: test_audit86's german export of seed SEED (roles: error dX/dZ, ambient 'T Luft') with
 'T Luft [°C]' written again 5 degC above: run -> export C; replay and the C fed the file with and
 without the copy.
@@ -71,7 +71,7 @@ import pandas as pd
 
 HERE = Path(__file__).resolve().parent
 REPO = HERE.parent
-sys.path[:0] = [str(HERE), str(REPO / "tests")]
+sys.path[:0] = [str(HERE), str(REPO / "tests"), str(REPO / "tests" / "shell")]
 from _cli import run_commands  # noqa: E402
 
 BASE_SRC = Path("/tmp/cin103/base/src")           # git archive 90800103 src
@@ -123,26 +123,17 @@ def _frame(stdout: str) -> pd.DataFrame:
             else pd.DataFrame())
 
 
-def _served_events(model: Path, frame: pd.DataFrame, inputs: list[str]) -> list[tuple]:
-    """The served model's time events on ``frame``'s rows (one block from a reset): (row, from,
-    to)."""
-    import pickle
+def _served(model: Path, data: Path, raw: pd.DataFrame, inputs: list[str], sensor: str,
+            healthy_c: np.ndarray, port: str, scratch: Path) -> None:
+    """bench_audit103's cell F2 (the model served on ``port``, each odd row's block of rows 0-219
+    posted from a reset, the events printed) for ``notime`` and ``order``."""
+    import bench_audit103
 
-    with open(model, "rb") as f:
-        deployed = pickle.load(f)
-    block = frame[["time", *inputs]].replace("", np.nan).astype(float)
-    deployed.reset()
-    out = deployed.predict_rows(block) if hasattr(deployed, "predict_rows") else deployed.predict(block)
-    events = out["events"] if "events" in out else []
-    said = []
-    for i, e in enumerate(events):
-        for ev in (e if isinstance(e, list) else []):
-            if ev.get("sensor") == "time":
-                said.append((i, ev.get("from"), ev.get("to")))
-    return said
+    bench_audit103.FAULTS, bench_audit103.faulted = ("notime", "order"), odd
+    bench_audit103.served(model, data, raw, inputs, sensor, healthy_c, int(port), scratch)
 
 
-def record(root: str, name: str, seed: str | None = None) -> None:
+def record(root: str, name: str, port: str, seed: str | None = None) -> None:
     """Cell R (module doc)."""
     base = Path(root).resolve()
     data, cell = base / "data" / name, base / "reports" / name / "mlr-none"
@@ -189,12 +180,9 @@ def record(root: str, name: str, seed: str | None = None) -> None:
                               f"out={scratch / ('replay-' + kind)}", "track=false")
             tail = [ln for ln in rep.stderr.splitlines() if ln.strip()][-1:] or [""]
             print(f"    replay exit {rep.returncode}: {tail[0][:300]!r}", flush=True)
-        if kind in ("notime", "order"):
-            try:
-                print(f"    served time events {_served_events(cell / 'model.pkl', rows, inputs)}",
-                      flush=True)
-            except Exception as exc:  # noqa: BLE001 -- a probe: said, not hidden
-                print(f"    served: {type(exc).__name__}: {exc}"[:300], flush=True)
+        if kind == "healthy":
+            healthy_c = _frame(a.stdout).to_numpy(float)
+    _served(cell / "model.pkl", data, raw, ["time", *inputs], sensor, healthy_c, port, scratch)
 
 
 def lab(root: str, seed: str) -> None:
