@@ -57,6 +57,35 @@ C3. Healthy files: the C's output without ``--flags`` byte-identical to main's; 
 C4. Fresh (scored once): large_mill_week seeds 9996 and 9997 (cell R) and the lab file of seeds
     9996 and 9997 (cell L): C1-C2 hold.
 KEPT if C1-C4 hold; else REFUSED (benchmarks/cin103_rule.patch) or TRACED.
+
+Status: the bar committed in 3b5550b5 before seeds 9996-9997 were simulated; unchanged.  After
+it, harness only (18b4c8cc, before any fresh run): served events through bench_audit103's cell
+F2 over HTTP (the in-process probe named no API the model has), tests/shell on the path.
+
+Scored (2026-12-07, 00:53-01:06 UTC; 2 cores shared, load 6-9, every job ``nice``; rule a43d5194;
+main = 90800103's src)::
+
+  record          twice: C / main / replay   same: C   notime: time_read   order: time_read
+  lm0 (seen)      2 / 0 / 2, replay's words  = main    1 at row 200         2 at row 200
+  lm9980 (seen)   2 / 0 / 2                  = main    1 at row 200         2 at row 200
+  lm9996 (fresh)  2 / 0 / 2                  = main    1 at row 200         2 at row 200
+  lm9997 (fresh)  2 / 0 / 2                  = main    1 at row 200         2 at row 200
+
+In every record: the C's ``twice`` message ``stream: line 202: columns 2 and 57 have the same
+header 'T_table_01', different values ('24.46', '29.46'): name the second,
+data.columns={'T_table_01#2': T_<name>} ...`` (values per record), replay's ``columns 2 and 57
+have the same header 'T_table_01', different values: name the second, data.columns=
+{'T_table_01#2': T_<name>}``; ``same`` replay exit 0; served's time events ``ok -> substituted``
+at row 200 and ``substituted -> ok`` at row 201 for ``notime`` and ``order``, the C's
+``time_read`` non-zero at row 200 alone; corrections of every healthy / same / notime / order
+file byte-identical to main's C without ``--flags``, and with it main's columns identical
+(|C - main| 0 µm), ``time_read`` 0 on every healthy row; served |C - healthy| <= 5.3e-15 µm, 0
+tracebacks.  Lab files (german export, roles; 'T Luft [°C]' copied 5 °C above):
+9020 (seen), 9996, 9997 (fresh): C exit 0, corrections = without the copy to 0 µm; replay exit
+0 with and without the copy, replay.json equal in every figure but ``us_per_sample``
+(TC_TWIN_REFUSED there: ``T_amb``, ``T_Spindel``, ``T_Lager``, the contract names; the lab's
+headers not).  C1-C4 hold: KEPT.  Wall / CPU: ``record`` 49 s wall, 24 s user of its children
+(lm9980); ``lab`` 49 s wall, 12 s user.
 """
 
 from __future__ import annotations
