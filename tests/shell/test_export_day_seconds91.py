@@ -122,3 +122,21 @@ def test_a_blank_line_in_a_file_is_said_where_the_stream_starts_a_campaign_at_it
         "stream: line 62: a blank line: a new campaign starts at line 63 (the state reset, that "
         "row the reference), as between the campaigns thermocomp rows writes; run and replay "
         "read a file's blank line as nothing"]
+
+
+def test_an_inputs_column_written_twice_apart_is_refused_as_the_reader_refuses_it(exported):
+    """cin103 (audit103's finding 2): a contract-named file writing input ``T_a`` twice, the copy
+    5 °C apart from row 10: the reader (run, replay) refuses the file, the stream read the first
+    column on (exit 0).  Now refused at the first row apart in replay's words; a copy equal to
+    the first is left out, as the reader leaves it out."""
+    record = pd.read_csv(exported["record"], dtype=str).iloc[:20]
+    plain = _stream(exported["out"], record.to_csv(index=False))
+    copied = pd.concat([record, record[["T_a"]]], axis=1)
+    same = _stream(exported["out"], copied.to_csv(index=False))
+    assert same.returncode == 0 and same.stdout == plain.stdout, same.stderr
+    copied.iloc[10:, -1] = [f"{float(v) + 5:.6f}" for v in record["T_a"].iloc[10:]]
+    apart = _stream(exported["out"], copied.to_csv(index=False))
+    assert apart.returncode == 2 and apart.stdout.splitlines() == plain.stdout.splitlines()[:11]
+    assert apart.stderr.startswith("stream: line 12: columns 2 and 5 have the same header 'T_a', "
+                                   "different values ("), apart.stderr
+    assert "name the second, data.columns={'T_a#2': T_<name>}" in apart.stderr

@@ -7,6 +7,8 @@ left_out` / :func:`.roles.first_of`, which name the headers).  A header holding 
 empty one, Excel's trailing separators) is left as it is.  (twins98) One name written in two
 units (``T [°C]``, ``T [K]``) keeps its headers, unique already; the second's contract name is
 numbered as a twin's (:func:`.roles.again_in`: ``T_T``, ``T_2``), said here too.
+(cin103) :func:`copy_refused` asks the reader whether it refuses a header's copy holding other
+values: the exported stream.c refuses the file where the reader does and reads it where it reads.
 """
 
 from __future__ import annotations
@@ -14,7 +16,8 @@ from __future__ import annotations
 import re
 from collections.abc import Iterable, Sequence
 
-from .roles import first_of, left_out, split_unit
+from .contract import ContractError
+from .roles import first_of, left_out, naming, split_unit
 
 
 def occurrences(header: Sequence[str]) -> tuple[list[str], dict[int, int]]:
@@ -55,6 +58,27 @@ def same_cells(names: list[str], twins: dict[int, int], rows: Iterable[Sequence[
         if not any(alike.values()):
             break
     return [f"{n} [= column {twins[i] + 1}]" if alike.get(i) else n for i, n in enumerate(names)]
+
+
+def copy_refused(header: str, roles, columns) -> bool:
+    """(cin103) Whether the reader refuses a file writing ``header`` twice, the copy's values
+    apart from the first's (the copy ``<name>#2`` read by no ``data.roles`` pattern nor
+    ``data.columns`` entry: ``columns 2 and 57 have the same header ..., different values``);
+    False where it reads the copy (a roles-read lab file: ``T Luft#2 [°C]`` as ``T_Luft_2``).
+
+    Parameters
+    ----------
+    header : str
+        A header the model's inputs are read by (a contract name, a lab's header).
+    roles, columns
+        ``ReadOptions.roles`` and ``ReadOptions.columns`` of the model's data config.
+    """
+    names, _ = occurrences([header, header])
+    try:
+        naming(names, roles, columns, first=dict.fromkeys(names, "0"))
+    except ContractError as exc:
+        return f"have the same header {header!r}, different values" in exc.reason
+    return False
 
 
 def _cell(row: Sequence[str], i: int) -> str:

@@ -109,7 +109,19 @@ def _lab_names(ss: StateSpace) -> str:
             f"static const char *const TC_THOUSANDS = "
             f"{c_string(ss.provenance.get('thousands') or '')};"
             "  /* data.thousands: the digits' grouping mark (\"\": none) */\n"
-            + _raw_file(ss))
+            + _twins_refused(ss) + _raw_file(ss))
+
+
+def _twins_refused(ss: StateSpace) -> str:
+    """(cin103) The headers an input is read by whose copy, its values apart, the model's reader
+    refuses (:func:`thermocomp.core.io.twins.copy_refused`, from the provenance): stream.c
+    compares such a copy with the input's column row by row and refuses the file where they
+    differ."""
+    heads = list(ss.provenance.get("twins_refused") or [])
+    items = ", ".join(c_string(h) for h in heads) or '""'
+    return (f"#define TC_N_TWINS_REFUSED {len(heads)}\n"
+            f"static const char *const TC_TWIN_REFUSED[{max(len(heads), 1)}] = {{{items}}};"
+            "  /* a copy of these headers, its values apart: refused, as the reader refuses it */\n")
 
 
 def _derived_references(ss: StateSpace) -> str:

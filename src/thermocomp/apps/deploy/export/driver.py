@@ -72,6 +72,11 @@ DRIVER = r"""/* stream.c: CSV rows of raw inputs on stdin -> corrections C_<axis
  * (TC_FLAG_NAMES: mon_excluded, mon_readmitted, mon_out, mon_band, mon_not_in_code,
  * mon_rereferenced, mon_new_state) and excluded_inputs, the monitored sensors out in the order
  * they went out, ';' between them (the served model's column of that name, which joins by ',').
+ * (extension, cin103) then time_read, what the row's time was taken as (the served model's
+ * `time` events): 0 read as given; 1 no time (an empty cell) and 2 a time not after the last one
+ * read, each taken one period after the previous row (served: `ok -> substituted` at the row it
+ * sets in, `substituted -> ok` at the row it ends); 3 a row written again, skipped (served:
+ * `repeated`).
  * (extension, packflags100) With `--check-flags FILE` (a pack's check/<campaign>/flags.csv, export
  * writes it beside expected.csv where the code holds the monitor) each row's flags as `--flags`
  * prints them are compared with FILE's: the first row that differs is named on stderr with the
@@ -940,12 +945,26 @@ static const char *out_names(const tc_state *s) {
     return text;
 }
 
-static void printed_flags(const tc_state *s) {
+/* (cin103) what a row's time was taken as, `time_read` after the monitor's columns */
+enum { TIME_AS_GIVEN, TIME_NONE, TIME_NOT_AFTER, TIME_REPEATED };
+
+static void printed_flags(const tc_state *s, int time_read) {
     int k;
     for (k = 0; k < TC_N_FLAG_KINDS; k++)
         if (s == NULL) printf(",%s", TC_FLAG_NAMES[k]);
         else printf(",%d", flag_on(s, k));
     printf(",%s", s == NULL ? "excluded_inputs" : out_names(s));
+    if (s == NULL) printf(",time_read");
+    else printf(",%d", time_read);
+}
+
+/* (cin103) The row of TC_TWIN_REFUSED holding `header` (-1: none): a copy of it whose values
+   are apart from the first's is refused, as the model's reader refuses the file. */
+static int twin_refused(const char *header) {
+    int k;
+    for (k = 0; k < TC_N_TWINS_REFUSED; k++)
+        if (strcmp(header, TC_TWIN_REFUSED[k]) == 0) return k;
+    return -1;
 }
 
 /* The input ended at line `row`: 1 (said) where a --check file still holds a row after its
@@ -1133,6 +1152,9 @@ int main(int argc, char **argv) {
     char *cells[MAX_COLS], *state_path = NULL, *state_tmp = NULL, *end;
     int where[TC_N_INPUTS], error_col[TC_N_OUTPUTS], time_col = -1, reset_col = -1, run_col = -1;
     int word_of[TC_N_INPUTS];   /* an input read from a status word: its TC_WORD_BITS row (-1: none) */
+    int twin_col[TC_N_INPUTS];  /* (cin103) a copy of its column the reader refuses apart (-1: none) */
+    int twin_head[TC_N_INPUTS]; /* ... its row of TC_TWIN_REFUSED */
+    int time_read = TIME_AS_GIVEN;    /* (cin103) --flags' time_read of the row */
     int source_col[TC_N_SOURCES + 1], k;
     double r[TC_N_SOURCES + 1];        /* a row's error columns of derived targets (um) */
     int clock_col = -1;        /* a time of day beside the date (TC_CLOCK_COLUMN): joined */
@@ -1411,6 +1433,22 @@ int main(int argc, char **argv) {
                     TC_LAB_NAMES[alike_of[j][1]][0]);
             return 2;
         }
+    /* (cin103) an input's header written again (no unit row: the same text), the copy no input
+       of the model: the reader leaves it out where each of its cells equals the first's; where
+       one differs it refuses the file (which is the sensor?) if the copy is read by no role
+       pattern nor data.columns (TC_TWIN_REFUSED, export asked the reader), else reads it under
+       a name of its own (a lab's roles-read file: `T Luft#2 [degC]` as T_Luft_2) and the input
+       from the first column, as here.  Compared row by row below (the stream read the first on) */
+    for (i = 0; i < TC_N_INPUTS; i++) {
+        twin_col[i] = -1;
+        twin_head[i] = unit_rowed || where[i] < 0 || word_of[i] >= 0 ? -1
+                       : twin_refused(trimmed(raw[where[i]]));
+        for (j = where[i] + 1; twin_head[i] >= 0 && j < ncols && twin_col[i] < 0; j++) {
+            if (strcmp(trimmed(raw[j]), TC_TWIN_REFUSED[twin_head[i]]) != 0) continue;
+            for (k = 0; k < TC_N_INPUTS && where[k] != j; k++) {}
+            if (k == TC_N_INPUTS) twin_col[i] = j;
+        }
+    }
     for (i = 0; i < TC_N_OUTPUTS; i++) {
         error_col[i] = -1;
         for (j = 0; TC_ADAPT && j < ncols; j++)
@@ -1435,7 +1473,7 @@ int main(int argc, char **argv) {
     if (TC_USES_TIME && time_col < 0)
         fprintf(stderr, "stream: no time column: samples taken one period apart\n");
     for (i = 0; i < TC_N_OUTPUTS; i++) printf("%s%s", i ? "," : "", TC_OUTPUT_NAMES[i]);
-    if (flags) printed_flags(NULL);
+    if (flags) printed_flags(NULL, 0);
     printf("\n");
     tc_init(&s);
     if (state_path != NULL && (restored = restore_state(state_path, &s, run)) < 0) {
@@ -1532,6 +1570,18 @@ int main(int argc, char **argv) {
             fprintf(stderr, "stream: line %ld has not %d cells\n", row, ncols);
             return 2;
         }
+        for (i = 0; i < TC_N_INPUTS; i++)
+            if (twin_col[i] >= 0
+                && strcmp(trimmed(cells[where[i]]), trimmed(cells[twin_col[i]])) != 0) {
+                /* (cin103) replay's words (roles.naming); the rows above printed, a stream */
+                fprintf(stderr, "stream: line %ld: columns %d and %d have the same header '%s', "
+                        "different values ('%s', '%s'): name the second, data.columns={'%s': "
+                        "T_<name>}, and fit and export again (the model's reader refuses the "
+                        "file, as replay does: which is input %s's sensor?)\n", row, where[i] + 1,
+                        twin_col[i] + 1, TC_TWIN_REFUSED[twin_head[i]], trimmed(cells[where[i]]),
+                        trimmed(cells[twin_col[i]]), twins[twin_col[i]], TC_INPUT_NAMES[i]);
+                return 2;
+            }
         if (reset_col >= 0 && value(cells[reset_col], &ignored) == 1.0) restart(&s, 1);
         if (run_col >= 0 && strcmp(cells[run_col], run) != 0) {    /* the next run */
             /* (not at the first line under the header; a restored stream was in another run) */
@@ -1594,6 +1644,11 @@ int main(int argc, char **argv) {
         }
         back = TC_SUBSTITUTE_TIME && isfinite(t) && !s.first && isfinite(s.t_read)
                && t <= s.t_read && !isfinite(s.t_back);
+        /* (cin103) the time rule's verdict (timerule.py, as C_TIME_RULE takes it in tc_step) */
+        time_read = time_col >= 0 && !isfinite(t) ? TIME_NONE
+                    : TC_SUBSTITUTE_TIME && isfinite(t) && !s.first && isfinite(s.t_read)
+                      && t <= s.t_read && !(isfinite(s.t_back) && t > s.t_back) ? TIME_NOT_AFTER
+                    : TIME_AS_GIVEN;
         if (TC_AMBIENT_GIVEN && s.first) {     /* the campaign's ambient, at its first row */
             double a0 = ambient_col >= 0 ? value(cells[ambient_col], &ignored) : NAN;
             if (!isfinite(a0)) a0 = ambient;
@@ -1636,7 +1691,7 @@ int main(int argc, char **argv) {
                     said_back == 5 ? " (no more said)" : "");
         if (TC_MONITOR && !s.repeated) said_monitor(&s, row);
         for (i = 0; i < TC_N_OUTPUTS; i++) printf("%s%.17g", i ? "," : "", c[i]);
-        if (flags) printed_flags(&s);
+        if (flags) printed_flags(&s, s.repeated ? TIME_REPEATED : time_read);
         printf("\n");
         if (check_.f != NULL && (failed = check_row(row, c)) != 0) {
             fflush(stdout);
