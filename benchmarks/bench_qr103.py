@@ -1,0 +1,159 @@
+"""The C's POD operator of a solved set by a QR of the basis rows, not the normal equations
+(issue 34; stop 103, qr103; dep103's next step).
+
+dep101 / dep103 (bench_dep101.py, bench_dep103.py, KEPT through a rounding clause) held a drop,
+its return and a dropout beside two or more out as served, but the C (``watch_c.py``
+``mon_operator``) and its mirror (``export/watch.py`` ``_solved_operator``) solve a set the code
+does not hold by the Cholesky ``L`` of ``G = Phi_a^T Phi_a``: the normal system squares the
+condition of ``Phi_a``.  On square, ill-conditioned sets the operator parts from served's
+``pod.operator`` (``np.linalg.pinv(phi[active])``) and so do the corrections: dep103's seen
+pt9890 far ``third`` 1.05e-6 µm (three out, cond 2.05e4, M 1.4e-4 apart), 7 of 60 seen cases past
+1e-9 µm; dep101's pt9910 near 2.6e-9..3.3e-9 (cond 1496).
+
+RULE (``mon_operator`` and ``_solved_operator``, the same arithmetic in the same order): ``R`` of a
+modified Gram-Schmidt QR of ``Phi_a`` (s x r, worked in the rows of the fixed array ``W``;
+``R^T R = G``, ``G`` never formed), ``w_k = R^-T phi_k`` (forward substitution, as ``L^-1 phi_k``
+was), ``M[k, m] = w_k . w_m``, the leverage ``w_k . w_k``.  The refusal keeps its meaning:
+Cholesky's pivot at ``p`` IS ``R[p, p]^2`` (the squared part of column ``p`` the earlier columns
+do not span), and it refused where that was not above 1e-12 times ``G[p, p]`` (column ``p``'s
+squared norm over the set); the QR refuses where ``R[p, p]^2`` (its squared norm of the residual
+column) is not above 1e-12 times the same ``G[p, p]``: in exact arithmetic the same sets.  Fixed
+arrays (``R``, ``g`` replace ``G``, ``L``), no allocation; about ``2 s r^2`` multiply-adds for the
+QR where ``G`` and ``L`` took ``s r^2 + r^3 / 6``, at a change of the out set only.  No key; the
+ST (no solve of its own) untouched.
+
+Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is that tree's)::
+
+    python benchmarks/bench_qr103.py compare BEFORE_LOG AFTER_LOG
+    python benchmarks/bench_qr103.py cpu ROOT RECORD REPEATS
+
+``compare``: two logs of the same bench command (bench_dep103 ``returns``, bench_dep101
+``drops``, bench_dep100b ``planted``, bench_wires100 ``swaps``, bench_dep99 ``card``), main's then
+the rule's, line by line (``CPU`` lines aside): the lines whose text differs, each line's
+``max|C - served|`` (µm), ``max|compiled - mirror|`` and ``max|M C - served|`` before -> after,
+those that moved by more than 1e-9 µm and whether toward served; then the count of lines, of
+identical lines, of lines closer / farther, and the largest ``max|C - served|`` and
+``max|compiled - mirror|`` after.  ``cpu``: bench_dep103's ``third`` case ``far`` of ``RECORD``
+(the pair and ``c`` out: the solved set), the C (``stream``, built into ``ROOT/cpu/RECORD``
+by this tree) fed its rows ``REPEATS`` times: CPU (user + sys of the children) per row.
+
+BAR (written and committed BEFORE any measurement of the rule on a seen case; no fresh seed: the
+brief's seen cases only.  main = ``git archive 8afba209 src``; its numbers are dep103's logs
+(``/tmp/dep103/log``: its final returns run and its D2 rule runs, on 68156a2b whose ``watch.py``,
+``watch_c.py`` and ``pod.py`` are 8afba209's), the rule's from copies of the same roots
+(``data``, ``reports``; no ``c``: every stream built anew by the rule's tree))
+---
+Q1. Every seen ``back`` / ``beside`` / ``third`` case of bench_dep103 ``returns`` and ``drop``
+    case of bench_dep101 ``drops`` (the 10 records: pt9851 pt9890 tr9891 cr9892 pt9910 tr9911
+    cr9912 pt9950 tr9951 cr9952): max|C - served| <= 1e-9 µm (main <= 1.05e-6), 0 rows past it,
+    0 rows ``NOT_IN_CODE``, compiled C = mirror <= 1e-12 µm.  No rounding clause.
+Q2. Every other line of dep103's D2 benches (bench_dep101 ``drops`` on the 10, bench_dep100b
+    ``planted`` dl9934 sw9935 cr9936, bench_wires100 ``swaps`` pt9851, bench_dep99 ``card`` tr9828
+    tr9873): its max|C - served| the same as main's or closer to served (``compare``); each line
+    that moves by more than 1e-9 µm listed.  A set main solved not refused by the rule, nor the
+    reverse (a ``MISSING_SECOND`` / ``the set not solved`` that appears or goes is listed).
+Q3. The healthy frames of every record above: 0 rows flagged, max|C - served| 0 µm.
+Q4. tests/shell/test_export.py (PARSED_DIGEST unchanged: the ST is not touched) and
+    test_export_{wires100,dep100,dep99b,freezeu100,cmon85,cmon86,cmon88,cmon89,cmon93,step99}.py
+    pass on the rule's tree.
+Q5. ``cpu`` on pt9890 (a seen record of 2640 rows, its ``third`` set cond 2.05e4), REPEATS 20,
+    under main's tree and the rule's, alternately, twice each: the rule's per-row CPU (the lower
+    of its two) not above 1.2 x main's (the lower of its two).
+KEPT if Q1-Q5 hold and a sharpened existing test (tests/shell/test_export_wires100.py, its
+fixture) fails on 8afba209 and passes here, <= 1 s CPU added; else REFUSED
+(benchmarks/qr103_rule.patch, src as 8afba209), the numbers kept here.
+"""
+
+from __future__ import annotations
+
+import re
+import resource
+import subprocess
+import sys
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+sys.path[:0] = [str(HERE), str(HERE.parent / "tests"), str(HERE.parent / "tests" / "shell")]
+from _cli import run_commands  # noqa: E402
+
+APART = 1e-9     # µm: C and served alike (bench_dep101's)
+FIELDS = ("max|C - served|", "max|compiled - mirror|", "max|M C - served|")
+NUMBER = r" ([-+0-9.eE]+|nan|inf)"
+
+
+def _numbers(line: str) -> dict[str, list[float]]:
+    """Each of :data:`FIELDS` in ``line``: the numbers printed after it, in order."""
+    return {f: [float(x) for x in re.findall(re.escape(f) + NUMBER, line)] for f in FIELDS}
+
+
+def _lines(path: str) -> list[str]:
+    return [line.rstrip("\n") for line in Path(path).read_text().splitlines()
+            if line.strip() and not line.startswith("CPU")]
+
+
+def compare(before: str, after: str) -> None:
+    """The ``compare`` lines (module doc)."""
+    old, new = _lines(before), _lines(after)
+    if len(old) != len(new):
+        print(f"line counts differ: {len(old)} before, {len(new)} after")
+    same = closer = farther = 0
+    worst, compiled = 0.0, 0.0
+    for i, (a, b) in enumerate(zip(old, new)):
+        na, nb = _numbers(a), _numbers(b)
+        served = list(zip(na[FIELDS[0]], nb[FIELDS[0]]))
+        worst = max([worst, *nb[FIELDS[0]]])
+        compiled = max([compiled, *nb[FIELDS[1]]])
+        if a == b:
+            same += 1
+            continue
+        moved = [(x, y) for x, y in served if abs(y - x) > APART]
+        closer += any(y < x for x, y in moved)
+        farther += any(y > x for x, y in moved)
+        refused = [w for w in ("MISSING_SECOND", "the set not solved") if (w in a) != (w in b)]
+        print(f"line {i + 1}: {b[:70].strip()}")
+        for f in FIELDS:
+            if na[f] != nb[f]:
+                print(f"    {f} {' '.join(f'{x:.3g}' for x in na[f])} -> "
+                      f"{' '.join(f'{y:.3g}' for y in nb[f])}")
+        if moved:
+            print(f"    moved past {APART:g} µm: " + ", ".join(
+                f"{x:.3g} -> {y:.3g} ({'closer' if y < x else 'FARTHER'})" for x, y in moved))
+        if refused:
+            print(f"    refusal changed: {', '.join(refused)}")
+    print(f"{len(new)} lines, {same} identical, {closer} moved closer to served by > {APART:g} µm, "
+          f"{farther} farther; after: max|C - served| {worst:.3g} µm, max|compiled - mirror| "
+          f"{compiled:.3g} µm")
+
+
+def cpu(root: str, record: str, repeats: str) -> None:
+    """The ``cpu`` line (module doc)."""
+    from bench_dep101 import FRESH, SEEN
+    from bench_dep103 import planted
+    from bench_wires99 import _cell, framed_cases
+    from bench_wires100 import _compiled
+
+    base = Path(root).resolve()
+    deployed, ss, frame, _, start, _ = _cell(base, record, {**SEEN, **FRESH})
+    names = list(deployed.monitor.names)
+    kind, (a, b), _, _ = next(iter(framed_cases(frame, start, deployed.monitor)))
+    c = next(n for n in names if n not in (a, b))
+    dropped, _ = planted(frame, start, (a, b), c, "third")
+    folder = base / "cpu" / record
+    _compiled(folder, deployed, ss, dropped)        # builds stream once
+    text = dropped[["time", *ss.inputs]].to_csv(index=False, float_format="%.17g")
+    used = resource.getrusage(resource.RUSAGE_CHILDREN)
+    for _ in range(int(repeats)):
+        subprocess.run([str(folder / "stream")], input=text, text=True, capture_output=True,
+                       check=True)
+    now = resource.getrusage(resource.RUSAGE_CHILDREN)
+    seconds = now.ru_utime + now.ru_stime - used.ru_utime - used.ru_stime
+    print(f"{record} {kind} third ({a} + {b}, {c} out): {len(dropped)} rows x {repeats}: "
+          f"{seconds:.3f} s CPU, {seconds / len(dropped) / int(repeats) * 1e6:.2f} µs per row")
+
+
+def main(argv: list[str]) -> int:
+    return run_commands(__doc__, {"compare": compare, "cpu": cpu}, argv, cpu=sys.stderr)
+
+
+if __name__ == "__main__":
+    raise SystemExit(main(sys.argv[1:]))
