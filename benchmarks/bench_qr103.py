@@ -26,6 +26,7 @@ Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is
 
     python benchmarks/bench_qr103.py compare BEFORE_LOG AFTER_LOG
     python benchmarks/bench_qr103.py cpu ROOT RECORD REPEATS
+    python benchmarks/bench_qr103.py solves ROOT RECORD [RECORD ...]
 
 ``compare``: two logs of the same bench command (bench_dep103 ``returns``, bench_dep101
 ``drops``, bench_dep100b ``planted``, bench_wires100 ``swaps``, bench_dep99 ``card``), main's then
@@ -36,6 +37,11 @@ identical lines, of lines closer / farther, and the largest ``max|C - served|`` 
 ``max|compiled - mirror|`` after.  ``cpu``: bench_dep103's ``third`` case ``far`` of ``RECORD``
 (the pair and ``c`` out: the solved set), the C (``stream``, built into ``ROOT/cpu/RECORD``
 by this tree) fed its rows ``REPEATS`` times: CPU (user + sys of the children) per row.
+``solves`` (a trace, written after the rule's seen run; not part of the bar): per case of
+``RECORD`` (bench_wires99's ``far`` / ``near``) and out set (the pair; with ``c``), the set's
+M by served's pinv, this tree's solve, the Cholesky of 8afba209 and two Householder QRs (numpy),
+each against the exact M (mpmath, 40 digits): max|M - exact| and the error of the out sensors
+rebuilt from the readings (less the first row's) from the fault row on.
 
 BAR (written and committed BEFORE any measurement of the rule on a seen case; no fresh seed: the
 brief's seen cases only.  main = ``git archive 8afba209 src``; its numbers are dep103's logs
@@ -151,8 +157,65 @@ def cpu(root: str, record: str, repeats: str) -> None:
           f"{seconds:.3f} s CPU, {seconds / len(dropped) / int(repeats) * 1e6:.2f} µs per row")
 
 
+def _solves(phi, active, served) -> dict:
+    """M of the set ``active`` (its columns) by each solve :func:`solves` compares."""
+    import numpy as np
+
+    from thermocomp.apps.deploy.export.watch import _solved_operator
+
+    r = min(phi.shape[1], int(active.sum()))
+    P, Pa = phi[:, :r], phi[active][:, :r]
+    q, R = np.linalg.qr(Pa)                                   # Householder (LAPACK)
+    outside = np.linalg.solve(R.T, P.T).T                     # w_k = R^-T phi_k, every row
+    L = np.linalg.cholesky(Pa.T @ Pa)
+    tree = _solved_operator(phi.tobytes(), phi.shape, active.tobytes())
+    return {"served (pinv)": served,
+            "this tree's C / mirror": None if tree is None else tree[0][:, active],
+            "Cholesky, L^-1 phi_k (8afba209)": np.linalg.solve(L, P.T).T @ np.linalg.solve(L, Pa.T),
+            "Householder, R^-T phi_k every row": outside @ np.linalg.solve(R.T, Pa.T),
+            "Householder, R^-T phi_k, Q's rows in": outside @ q.T}
+
+
+def solves(root: str, *records: str) -> None:
+    """The ``solves`` lines (module doc)."""
+    import mpmath
+    import numpy as np
+    from bench_dep101 import FRESH, SEEN
+    from bench_wires99 import _cell, framed_cases
+
+    mpmath.mp.dps = 40
+    base = Path(root).resolve()
+    for record in records:
+        deployed, ss, frame, _, start, _ = _cell(base, record, {**SEEN, **FRESH})
+        mon, names = deployed.monitor, list(deployed.monitor.names)
+        phi = np.asarray(ss.monitor["basis"], float)
+        T = frame[names].to_numpy(float)
+        D = T[start:] - T[0]
+        for kind, (a, b), _, _ in framed_cases(frame, start, mon):
+            c = next(n for n in names if n not in (a, b))
+            for out in ([a, b], [a, b, c]):
+                active = ~np.isin(np.asarray(names), out)
+                r = min(phi.shape[1], int(active.sum()))
+                A = mpmath.matrix(phi[active][:, :r].tolist())
+                exact = mpmath.matrix(phi[:, :r].tolist()) * (A.T * A) ** -1 * A.T
+                want = np.array([[float(mpmath.fsum(exact[k, j] * mpmath.mpf(float(d[j]))
+                                                    for j in range(int(active.sum()))))
+                                  for k in np.flatnonzero(~active)] for d in D[:, active]])
+                print(f"{record} {kind:<4} {' + '.join(out)} out: cond "
+                      f"{np.linalg.cond(phi[active][:, :r]):.3g}", flush=True)
+                for name, M in _solves(phi, active, mon._operator(active)[0]).items():
+                    if M is None:
+                        print(f"    {name:<38} the set not solved")
+                        continue
+                    M_exact = np.array(exact.tolist(), dtype=float)
+                    print(f"    {name:<38} max|M - exact| {np.abs(M - M_exact).max():.2g}, the out "
+                          f"sensors rebuilt from the fault row on: max|error| "
+                          f"{np.abs(D[:, active] @ M[~active].T - want).max():.2g} °C", flush=True)
+
+
 def main(argv: list[str]) -> int:
-    return run_commands(__doc__, {"compare": compare, "cpu": cpu}, argv, cpu=sys.stderr)
+    return run_commands(__doc__, {"compare": compare, "cpu": cpu, "solves": solves}, argv,
+                        cpu=sys.stderr)
 
 
 if __name__ == "__main__":

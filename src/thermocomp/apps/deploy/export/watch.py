@@ -86,11 +86,12 @@ The served adaptive compensator judges every ``T_`` input before the model reads
   freeze (``BLIND``).
 * (cmon85) the operator of a set the code does not hold, **solved** (``solve``, ``basis``: the
   POD basis's ``modes`` columns; :meth:`CodeMonitor._solved`, the C's ``mon_operator``): a
-  QR of ``Phi_a`` (qr103; a Cholesky of ``Phi_a^T Phi_a`` before), as the served ``pod.operator``.  With it the drift judgement
-  goes on with a sensor out (its explaining, lone fault and veto sets solved), a second culprit
-  (or a second sensor's freeze) out beside the first, as served; at most two out by these
-  rules (a third flagged).  An export before it (no ``solve``) flags a drift with a sensor out
-  (``DRIFT``) and a second sensor out (``SECOND``).
+  QR of ``Phi_a`` (qr103; a Cholesky of ``Phi_a^T Phi_a`` before), as the served
+  ``pod.operator``.  With it the drift judgement goes on with a sensor out (its explaining,
+  lone fault and veto sets solved), a second culprit (or a second sensor's freeze) out beside
+  the first, as served; at most two out by these rules (a third flagged).  An export before it
+  (no ``solve``) flags a drift with a sensor out (``DRIFT``) and a second sensor out
+  (``SECOND``).
 * (cmon86) a **stepped error** (``stepped``): a judged sensor's error stepping past its alarm band
   in one sample (the served ``_check_stepped``), each such sensor fired on; the culprit (the
   largest step times ``sqrt(1 - h)``) out as a drift exclusion is (its wait doubled, no field to
