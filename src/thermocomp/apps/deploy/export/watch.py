@@ -1636,9 +1636,9 @@ class CodeMonitor:
 def _solved_operator(basis: bytes, shape: tuple, active_mask: bytes):
     """(cmon85) The served ``pod.operator`` of the set ``active_mask`` (bool bytes) of the basis
     ``basis`` (``shape``: sensors x modes), as the C solves it: ``r = min(modes, s)`` modes, (qr103)
-    ``R`` of a modified Gram-Schmidt QR of ``Phi_a`` (``s x r``; ``R^T R = G = Phi_a^T Phi_a``, G
-    never formed: its condition is not squared), ``w_k = R^-T phi_k``, ``M[k, m] = w_k . w_m`` for
-    ``m`` in, the leverage ``w_k . w_k`` (1 out); None where ``Phi_a`` is rank-deficient
+    ``Q R`` of ``Phi_a`` (``s x r``) by Gram-Schmidt twice (``R^T R = G = Phi_a^T Phi_a``, G never
+    formed: its condition is not squared), ``w_k`` Q's row for ``k`` in, ``R^-T phi_k`` for ``k``
+    out, ``M[k, m] = w_k . w_m`` for ``m`` in, the leverage ``w_k . w_k`` (1 out); None where ``Phi_a`` is rank-deficient
     (``R[p, p]^2`` within 1e-12 of column ``p``'s squared norm ``G[p, p]``: the Cholesky pivot test
     it replaced)."""
     # memoized by the basis's and the set's bytes: the mirror asks for the same few sets on many
@@ -1654,23 +1654,24 @@ def _solved_operator(basis: bytes, shape: tuple, active_mask: bytes):
             W[i][p] = phi[i][p]
             g[p] += W[i][p] * W[i][p]
     R = [[0.0] * r for _ in range(r)]
-    for p in range(r):
+    for q in range(r):
+        for _ in range(2):          # twice: Q's columns orthonormal to rounding (once: eps cond)
+            for p in range(q):
+                v = 0.0
+                for i in ins:
+                    v += W[i][p] * W[i][q]
+                R[p][q] += v
+                for i in ins:
+                    W[i][q] -= v * W[i][p]
         v = 0.0
         for i in ins:
-            v += W[i][p] * W[i][p]
-        if not v > 1e-12 * max(g[p], 1e-300):
+            v += W[i][q] * W[i][q]
+        if not v > 1e-12 * max(g[q], 1e-300):
             return None
-        R[p][p] = math.sqrt(v)
+        R[q][q] = math.sqrt(v)
         for i in ins:
-            W[i][p] /= R[p][p]
-        for q in range(p + 1, r):
-            v = 0.0
-            for i in ins:
-                v += W[i][p] * W[i][q]
-            R[p][q] = v
-            for i in ins:
-                W[i][q] -= v * W[i][p]
-    for k in range(n):
+            W[i][q] /= R[q][q]
+    for k in np.flatnonzero(~active):   # the rows in keep Q's: R^-T phi_k would undo it
         for p in range(r):
             v = phi[k][p]
             for c in range(p):

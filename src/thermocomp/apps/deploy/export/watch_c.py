@@ -225,11 +225,11 @@ static int mon_op_of(const int out[]) {
 
 /* (cmon85) the operator M and leverages lev of the set with the sensors out[] out: one the code
    holds copied (MON_M), another solved from the POD basis (MON_SOLVE), as the served
-   pod.operator: r = min(TC_MON_MODES, s) modes (s in), (qr103) R of a modified Gram-Schmidt QR
-   of Phi_a (s x r, worked in W's rows: R^T R = G = Phi_a^T Phi_a, G never formed, so its
-   condition is not squared), w_k = R^-T phi_k, M[k][m] = w_k . w_m for m in, the leverage
-   w_k . w_k (1 out).  Fixed-size arrays, no allocation; at most 2 s r^2 + NM r^2 / 2 + NM^2 r
-   multiply-adds.  0: neither (rank-deficient: R[p][p]^2, the part of column p the earlier ones do
+   pod.operator: r = min(TC_MON_MODES, s) modes (s in), (qr103) Q R of Phi_a (s x r) by
+   Gram-Schmidt twice (each column projected off the earlier ones two times, worked in W's rows:
+   R^T R = G = Phi_a^T Phi_a, G never formed, so its condition is not squared), w_k = Q's row for
+   k in, R^-T phi_k for k out, M[k][m] = w_k . w_m for m in, the leverage w_k . w_k (1 out).
+   Fixed-size arrays, no allocation; at most 2 s r^2 + NM r^2 / 2 + NM^2 r multiply-adds.  0: neither (rank-deficient: R[p][p]^2, the part of column p the earlier ones do
    not span, within 1e-12 of its squared norm G[p][p]: the Cholesky pivot test it replaces) */
 static int mon_operator(const int out[], double M[][NM], double lev[]) {
     double R[TC_MON_MODES][TC_MON_MODES], g[TC_MON_MODES], W[NM][TC_MON_MODES], v;
@@ -250,23 +250,25 @@ static int mon_operator(const int out[], double M[][NM], double lev[]) {
             W[k][p] = MON_PHI[k][p];
             g[p] += W[k][p] * W[k][p];
         }
-    for (p = 0; p < r; p++) {
+    for (q = 0; q < r; q++) {
+        for (p = 0; p < q; p++) R[p][q] = 0.0;
+        for (c = 0; c < 2; c++)         /* twice: Q's columns orthonormal to rounding */
+            for (p = 0; p < q; p++) {
+                for (v = 0.0, k = 0; k < NM; k++)
+                    if (!out[k]) v += W[k][p] * W[k][q];
+                R[p][q] += v;
+                for (k = 0; k < NM; k++)
+                    if (!out[k]) W[k][q] -= v * W[k][p];
+            }
         for (v = 0.0, k = 0; k < NM; k++)
-            if (!out[k]) v += W[k][p] * W[k][p];
-        if (!(v > 1e-12 * (g[p] > 1e-300 ? g[p] : 1e-300))) return 0;
-        R[p][p] = sqrt(v);
+            if (!out[k]) v += W[k][q] * W[k][q];
+        if (!(v > 1e-12 * (g[q] > 1e-300 ? g[q] : 1e-300))) return 0;
+        R[q][q] = sqrt(v);
         for (k = 0; k < NM; k++)
-            if (!out[k]) W[k][p] /= R[p][p];
-        for (q = p + 1; q < r; q++) {
-            for (v = 0.0, k = 0; k < NM; k++)
-                if (!out[k]) v += W[k][p] * W[k][q];
-            R[p][q] = v;
-            for (k = 0; k < NM; k++)
-                if (!out[k]) W[k][q] -= v * W[k][p];
-        }
+            if (!out[k]) W[k][q] /= R[q][q];
     }
-    for (k = 0; k < NM; k++)
-        for (p = 0; p < r; p++) {
+    for (k = 0; k < NM; k++)            /* the rows in keep Q's: R^-T phi_k would undo it */
+        for (p = 0; p < r && out[k]; p++) {
             v = MON_PHI[k][p];
             for (c = 0; c < p; c++) v -= R[c][p] * W[k][c];
             W[k][p] = v / R[p][p];
