@@ -187,8 +187,8 @@ def _stream(folder: Path, deployed, ss, frame) -> tuple[np.ndarray, str]:
 def _rounding(deployed, ss, pair) -> str:
     """The condition of the basis rows left with ``pair`` out (dep103: any out set; their first
     ``min(modes, left)`` columns, the modes both solvers use) and max|M| apart between the C's
-    operator of that set (its solve, :func:`~.watch._solved_operator`: the normal system's
-    Cholesky before qr103, a QR since) and served's (``pod.operator``: a pseudo-inverse)."""
+    operator of that set (its Cholesky of the normal system, :func:`~.watch._solved_operator`)
+    and served's (``pod.operator``: a pseudo-inverse)."""
     from thermocomp.apps.deploy.export.watch import _solved_operator
 
     mon = deployed.monitor

@@ -68,6 +68,51 @@ Q5. ``cpu`` on pt9890 (a seen record of 2640 rows, its ``third`` set cond 2.05e4
 KEPT if Q1-Q5 hold and a sharpened existing test (tests/shell/test_export_wires100.py, its
 fixture) fails on 8afba209 and passes here, <= 1 s CPU added; else REFUSED
 (benchmarks/qr103_rule.patch, src as 8afba209), the numbers kept here.
+
+SCORED (bar ea7a33ed, unchanged; 2026-12-07 00:53-01:11 UTC, load 4-10 on 2 cores; main = dep103's
+logs, /tmp/dep103/log; the rule's runs from copies of the same roots, /tmp/qr103/R*, logs
+/tmp/qr103/log).  THE BAR'S RULE (one Gram-Schmidt pass, ``w_k = R^-T phi_k`` for every row) FAILS
+Q1.  max|C - served| (µm) of the seen cases past 1e-9, main -> rule::
+
+  pt9890 far  beside / third (three out, cond 2.05e4)   6.74e-7 / 1.05e-6 -> 1.03e-6 / 1.32e-6
+  pt9910 far  beside / third (three out, cond 1971)     2.58e-8 / 3.7e-8  -> 3.64e-8 / 3.68e-8
+  pt9910 near back / third (the pair out, cond 1496)    2.61e-9 / 2.35e-9 -> 1.44e-9 / 1.44e-9
+  pt9910 near drop (bench_dep101)                       3.29e-9           -> 1.59e-9
+  pt9851 near beside / third                            1.16e-9 / 1.2e-9  -> 2.98e-11 / 7.25e-11
+
+0 rows ``NOT_IN_CODE``; compiled - mirror <= 4.99e-11 (4 of 60 ``returns`` cases past 1e-12, as
+main's 4, <= 7.32e-11).  The set's M came 5000 x closer to served's (pt9890 far three out:
+max|M C - served| 1.4e-4 -> 2.7e-8) but the corrections did not.  ``solves`` (the trace, after this
+run) says why: the rows in, ``R^-T phi_k``, give a Q no more orthogonal than one Gram-Schmidt
+pass's (eps cond), and M's error then lies along the readings: the out sensors rebuilt from
+pt9890's readings are 1.4e-6 °C from exact (served's pinv 1.6e-9, 8afba209's Cholesky 1.2e-5),
+the same with a Householder R (1.7e-6); with Householder's Q kept for the rows in, 3.8e-10.
+Q2 met (no line farther by > 1e-9 µm; drops pt9910 near 3.29e-9 -> 1.59e-9 closer; planted <=
+4.65e-12, swaps / card changes < 4e-12 µm, read by eye: ``compare`` reads no ``kelvin`` / ``drop's``
+field); Q3 met (10 healthy frames 0 flags, 0 µm); Q4 not run on it; Q5 met (``cpu`` pt9890, the
+lower of two: main 3.92, rule 3.94 µs per row).  VERDICT: REFUSED (benchmarks/qr103_rule.patch:
+src and the cmon85 test of ea7a33ed / 09b7a1a6; src back to 8afba209).
+
+RULE 2, built AFTER the bar's rule was measured on these very cases (so not the bar's rule, not
+called kept; benchmarks/qr103_rule2.patch, a6a53721): Gram-Schmidt twice (each column projected
+off the earlier ones two times), Q's rows kept for the sensors in, ``R^-T phi_k`` for those out;
+the same refusal test.  ``solves``: pt9890 far three out rebuilt 8.6e-10 °C from exact (M 4.9e-9).
+The bar's clauses on it (logs ``*_R2.log``, roots /tmp/qr103/S*):
+Q1 C - served: every seen case <= 1.12e-10 µm (pt9890 far third; beside 4.29e-11, pt9910 far
+   <= 2.9e-11, pt9910 near <= 1.55e-11, drops <= 1.84e-11), 0 rows past 1e-9, 0 ``NOT_IN_CODE``;
+   compiled = mirror NOT <= 1e-12: 4 ``returns`` cases 4.97e-12..7.32e-11 (pt9890 / pt9910 far
+   beside / third) and 1 drop 1.17e-12 -- main had the same cases past it, 7.32e-11 the same
+   number: outside the solve.  Not traced to the row; a candidate measured: on pt9890's three-out
+   set (max|M| 1.47e4) numpy's ``D @ M.T`` (the mirror's products, e.g. ``watch.py`` l.644) and
+   the C's sequential sums part by up to 6.6e-11 °C in the out sensors.
+Q2 met: 8 ``returns`` lines closer by > 1e-9, 0 farther; drops pt9910 near 3.29e-9 -> 1.84e-11;
+   planted <= 5.61e-12, swaps / card changes < 4e-12 µm; no refusal appears or goes.
+Q3 met.  Q4 met: 52 passed (the 11 modules, 274 s wall; PYTHONPATH = a6a53721's src).
+Q5 met: 4.00 µs per row against main's 3.92 (1.02 x).
+Tests of both patches: test_export_cmon85's square sets (20 drawn, < 2 eps cond max|M| from served's
+pinv) fail on 8afba209 (2.79e-10 against a bound of 1.0e-10 on a drawn set), pass on both rules;
+0.05 s call.  The wires100 / dep101 cases could not be sharpened to fail on 8afba209: their sets
+have cond 1.5-1.6 (the test machine's 3 modes), C = served 2e-14 on main already.
 """
 
 from __future__ import annotations
@@ -201,13 +246,13 @@ def solves(root: str, *records: str) -> None:
                 want = np.array([[float(mpmath.fsum(exact[k, j] * mpmath.mpf(float(d[j]))
                                                     for j in range(int(active.sum()))))
                                   for k in np.flatnonzero(~active)] for d in D[:, active]])
+                M_exact = np.array(exact.tolist(), dtype=float)
                 print(f"{record} {kind:<4} {' + '.join(out)} out: cond "
                       f"{np.linalg.cond(phi[active][:, :r]):.3g}", flush=True)
                 for name, M in _solves(phi, active, mon._operator(active)[0]).items():
                     if M is None:
                         print(f"    {name:<38} the set not solved")
                         continue
-                    M_exact = np.array(exact.tolist(), dtype=float)
                     print(f"    {name:<38} max|M - exact| {np.abs(M - M_exact).max():.2g}, the out "
                           f"sensors rebuilt from the fault row on: max|error| "
                           f"{np.abs(D[:, active] @ M[~active].T - want).max():.2g} °C", flush=True)
