@@ -50,6 +50,32 @@ Compiled C = mirror is measured (``max|compiled - mirror|``) and reported, not a
 its 7.32e-11 µm gap lies outside the solve, on main the same).
 KEPT if Q1-Q5 hold (src: rule 2, its cmon85 test, docs/to-the-machine.md naming the solve); else
 REFUSED (benchmarks/qr103b_rule.patch, src as a8719dae), the numbers kept here.
+
+SCORED (bar e1c23c02, unchanged, committed 01:22:10 UTC before any fresh seed was simulated;
+2026-12-07 01:22-01:31 UTC, load 5-9 on 2 cores; main = /tmp/qr103b/base/src simulated and ran the
+three into /tmp/qr103b/fM, the rule read a copy, /tmp/qr103b/fR; ``fresh`` CPU 101.3 s main, 91.1 s
+rule).  Q1 MET: 30 lines (18 ``returns`` cases, 6 ``drops``, 6 healthy headlines), every case on
+the rule <= 1.12e-11 µm, 0 rows past 1e-9, 0 rows ``NOT_IN_CODE``; ``compare`` main -> rule: 0
+lines farther by > 1e-9, the 6 headlines identical.  max|C - served| (µm), main -> rule::
+
+  pt10004 far (T_rail_drive + T_bed; + T_col_L, cond 586.9 / 334.6)
+          back 6.62e-11 -> 1.86e-12, beside 5.37e-10 -> 1.09e-11, third 5.67e-10 -> 1.12e-11,
+          drop 8.74e-11 -> 2.15e-12 (pair's M apart 7.5e-9 -> 4.1e-12)
+  pt10004 near (cond 2.42 / 28.8)      <= 8.53e-13 -> <= 5.68e-13
+  tr10005 far / near (cond 4.8-22.5)   <= 2.22e-12 -> <= 5.68e-13
+  cr10006 far / near (cond 16.0)       returns 3.55e-14..2.59e-13 -> 3.55e-14..2.56e-13;
+          drops 3.55e-14 -> 3.91e-14 (farther by 3.6e-15, under the clause's 1e-9)
+
+Main too was within 1e-9 on every fresh case (its worst 5.67e-10): these draws have no set as
+ill-conditioned as seen pt9890's (cond 2.05e4), so they tell no failure of main's apart; the rule
+is 50 x closer on pt10004 far.  compiled - mirror <= 7.01e-12 µm on the rule (main 6.95e-12).
+Q2 MET: ``returns`` pt9851 pt9890 pt9910 on this tree (/tmp/qr103b/Q2, CPU 42.5 s): its 20
+lines ``diff``-identical to those records' lines of /tmp/qr103/log/returns_R2.log (compiled
+numbers too; worst 1.12e-10, pt9890 far ``third``).  Q3 MET: 9 healthy headlines (fresh x 2
+commands, the 3 seen), 0 flagged rows, 0 µm.  Q4 MET: 52 passed (243.5 s wall, 01:22-01:26);
+the cmon85 square-set case fails on a8719dae (AssertionError).  Q5 MET: ``cpu`` pt9890 far
+``third``, 20 x 2640 rows, alternately: main 4.38 / 4.21, rule 4.02 / 4.60 µs per row; lower
+4.02 against 4.21 (0.95 x).  VERDICT: KEPT.
 """
 
 from __future__ import annotations

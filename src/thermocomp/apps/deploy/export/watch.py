@@ -1638,9 +1638,9 @@ def _solved_operator(basis: bytes, shape: tuple, active_mask: bytes):
     ``basis`` (``shape``: sensors x modes), as the C solves it: ``r = min(modes, s)`` modes, (qr103)
     ``Q R`` of ``Phi_a`` (``s x r``) by Gram-Schmidt twice (``R^T R = G = Phi_a^T Phi_a``, G never
     formed: its condition is not squared), ``w_k`` Q's row for ``k`` in, ``R^-T phi_k`` for ``k``
-    out, ``M[k, m] = w_k . w_m`` for ``m`` in, the leverage ``w_k . w_k`` (1 out); None where ``Phi_a`` is rank-deficient
-    (``R[p, p]^2`` within 1e-12 of column ``p``'s squared norm ``G[p, p]``: the Cholesky pivot test
-    it replaced)."""
+    out, ``M[k, m] = w_k . w_m`` for ``m`` in, the leverage ``w_k . w_k`` (1 out); None where
+    ``Phi_a`` is rank-deficient (``R[p, p]^2`` within 1e-12 of column ``p``'s squared norm
+    ``G[p, p]``: the Cholesky pivot test it replaced)."""
     # memoized by the basis's and the set's bytes: the mirror asks for the same few sets on many
     # rows (a sensor out for a stretch), and these loops are the C's order, slow in Python (ci101)
     active = np.frombuffer(active_mask, bool)

@@ -229,8 +229,9 @@ static int mon_op_of(const int out[]) {
    Gram-Schmidt twice (each column projected off the earlier ones two times, worked in W's rows:
    R^T R = G = Phi_a^T Phi_a, G never formed, so its condition is not squared), w_k = Q's row for
    k in, R^-T phi_k for k out, M[k][m] = w_k . w_m for m in, the leverage w_k . w_k (1 out).
-   Fixed-size arrays, no allocation; at most 2 s r^2 + NM r^2 / 2 + NM^2 r multiply-adds.  0: neither (rank-deficient: R[p][p]^2, the part of column p the earlier ones do
-   not span, within 1e-12 of its squared norm G[p][p]: the Cholesky pivot test it replaces) */
+   Fixed-size arrays, no allocation; at most 2 s r^2 + NM r^2 / 2 + NM^2 r multiply-adds.  0:
+   neither (rank-deficient: R[p][p]^2, the part of column p the earlier ones do not span, within
+   1e-12 of its squared norm G[p][p]: the Cholesky pivot test it replaces) */
 static int mon_operator(const int out[], double M[][NM], double lev[]) {
     double R[TC_MON_MODES][TC_MON_MODES], g[TC_MON_MODES], W[NM][TC_MON_MODES], v;
     int k, m, p, q, c, r = 0, op = mon_op_of(out);
