@@ -86,11 +86,12 @@ The served adaptive compensator judges every ``T_`` input before the model reads
   freeze (``BLIND``).
 * (cmon85) the operator of a set the code does not hold, **solved** (``solve``, ``basis``: the
   POD basis's ``modes`` columns; :meth:`CodeMonitor._solved`, the C's ``mon_operator``): a
-  Cholesky of ``Phi_a^T Phi_a``, as the served ``pod.operator``.  With it the drift judgement
-  goes on with a sensor out (its explaining, lone fault and veto sets solved), a second culprit
-  (or a second sensor's freeze) out beside the first, as served; at most two out by these
-  rules (a third flagged).  An export before it (no ``solve``) flags a drift with a sensor out
-  (``DRIFT``) and a second sensor out (``SECOND``).
+  QR of ``Phi_a`` (qr103; a Cholesky of ``Phi_a^T Phi_a`` before), as the served
+  ``pod.operator``.  With it the drift judgement goes on with a sensor out (its explaining,
+  lone fault and veto sets solved), a second culprit (or a second sensor's freeze) out beside
+  the first, as served; at most two out by these rules (a third flagged).  An export before it
+  (no ``solve``) flags a drift with a sensor out (``DRIFT``) and a second sensor out
+  (``SECOND``).
 * (cmon86) a **stepped error** (``stepped``): a judged sensor's error stepping past its alarm band
   in one sample (the served ``_check_stepped``), each such sensor fired on; the culprit (the
   largest step times ``sqrt(1 - h)``) out as a drift exclusion is (its wait doubled, no field to
@@ -1634,40 +1635,48 @@ class CodeMonitor:
 @functools.lru_cache(maxsize=1024)
 def _solved_operator(basis: bytes, shape: tuple, active_mask: bytes):
     """(cmon85) The served ``pod.operator`` of the set ``active_mask`` (bool bytes) of the basis
-    ``basis`` (``shape``: sensors x modes), as the C solves it: ``r = min(modes, s)`` modes, the
-    Cholesky ``L`` of ``G = Phi_a^T Phi_a`` (``r x r``), ``w_k = L^-1 phi_k``, ``M[k, m] = w_k .
-    w_m`` for ``m`` in, the leverage ``w_k . w_k`` (1 out); None where ``G`` is not positive
-    definite (a pivot within 1e-12 of its diagonal's scale)."""
+    ``basis`` (``shape``: sensors x modes), as the C solves it: ``r = min(modes, s)`` modes, (qr103)
+    ``Q R`` of ``Phi_a`` (``s x r``) by Gram-Schmidt twice (``R^T R = G = Phi_a^T Phi_a``, G never
+    formed: its condition is not squared), ``w_k`` Q's row for ``k`` in, ``R^-T phi_k`` for ``k``
+    out, ``M[k, m] = w_k . w_m`` for ``m`` in, the leverage ``w_k . w_k`` (1 out); None where
+    ``Phi_a`` is rank-deficient (``R[p, p]^2`` within 1e-12 of column ``p``'s squared norm
+    ``G[p, p]``: the Cholesky pivot test it replaced)."""
     # memoized by the basis's and the set's bytes: the mirror asks for the same few sets on many
     # rows (a sensor out for a stretch), and these loops are the C's order, slow in Python (ci101)
     active = np.frombuffer(active_mask, bool)
     n, ins = shape[0], np.flatnonzero(active)
     r = min(shape[1], len(ins))
     phi = np.frombuffer(basis).reshape(shape).tolist()   # (python floats: the C's order)
-    G = [[0.0] * r for _ in range(r)]
+    W = [[0.0] * r for _ in range(n)]
+    g = [0.0] * r
     for i in ins:
         for p in range(r):
-            for q in range(r):
-                G[p][q] += phi[i][p] * phi[i][q]
-    L = [[0.0] * r for _ in range(r)]
-    for p in range(r):
-        for q in range(p + 1):
-            v = G[p][q]
-            for c in range(q):
-                v -= L[p][c] * L[q][c]
-            if p != q:
-                L[p][q] = v / L[q][q]
-            elif not v > 1e-12 * max(G[p][p], 1e-300):
-                return None
-            else:
-                L[p][p] = math.sqrt(v)
-    W = [[0.0] * r for _ in range(n)]
-    for k in range(n):
+            W[i][p] = phi[i][p]
+            g[p] += W[i][p] * W[i][p]
+    R = [[0.0] * r for _ in range(r)]
+    for q in range(r):
+        for _ in range(2):          # twice: Q's columns orthonormal to rounding (once: eps cond)
+            for p in range(q):
+                v = 0.0
+                for i in ins:
+                    v += W[i][p] * W[i][q]
+                R[p][q] += v
+                for i in ins:
+                    W[i][q] -= v * W[i][p]
+        v = 0.0
+        for i in ins:
+            v += W[i][q] * W[i][q]
+        if not v > 1e-12 * max(g[q], 1e-300):
+            return None
+        R[q][q] = math.sqrt(v)
+        for i in ins:
+            W[i][q] /= R[q][q]
+    for k in np.flatnonzero(~active):   # the rows in keep Q's: R^-T phi_k would undo it
         for p in range(r):
             v = phi[k][p]
             for c in range(p):
-                v -= L[p][c] * W[k][c]
-            W[k][p] = v / L[p][p]
+                v -= R[c][p] * W[k][c]
+            W[k][p] = v / R[p][p]
     M, lev = np.zeros((n, n)), np.ones(n)
     for k in range(n):
         for m in ins:

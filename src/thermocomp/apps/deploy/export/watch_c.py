@@ -225,12 +225,15 @@ static int mon_op_of(const int out[]) {
 
 /* (cmon85) the operator M and leverages lev of the set with the sensors out[] out: one the code
    holds copied (MON_M), another solved from the POD basis (MON_SOLVE), as the served
-   pod.operator: r = min(TC_MON_MODES, s) modes (s in), the Cholesky L of G = Phi_a^T Phi_a,
-   w_k = L^-1 phi_k, M[k][m] = w_k . w_m for m in, the leverage w_k . w_k (1 out).  Fixed-size
-   arrays, no allocation; at most r^3 / 6 + NM r^2 / 2 + NM^2 r multiply-adds (and NM r^2 for G).
-   0: neither (G not positive definite: a pivot within 1e-12 of its diagonal) */
+   pod.operator: r = min(TC_MON_MODES, s) modes (s in), (qr103) Q R of Phi_a (s x r) by
+   Gram-Schmidt twice (each column projected off the earlier ones two times, worked in W's rows:
+   R^T R = G = Phi_a^T Phi_a, G never formed, so its condition is not squared), w_k = Q's row for
+   k in, R^-T phi_k for k out, M[k][m] = w_k . w_m for m in, the leverage w_k . w_k (1 out).
+   Fixed-size arrays, no allocation; at most 2 s r^2 + NM r^2 / 2 + NM^2 r multiply-adds.  0:
+   neither (rank-deficient: R[p][p]^2, the part of column p the earlier ones do not span, within
+   1e-12 of its squared norm G[p][p]: the Cholesky pivot test it replaces) */
 static int mon_operator(const int out[], double M[][NM], double lev[]) {
-    double G[TC_MON_MODES][TC_MON_MODES], L[TC_MON_MODES][TC_MON_MODES], W[NM][TC_MON_MODES], v;
+    double R[TC_MON_MODES][TC_MON_MODES], g[TC_MON_MODES], W[NM][TC_MON_MODES], v;
     int k, m, p, q, c, r = 0, op = mon_op_of(out);
     if (op >= 0) {
         for (k = 0; k < NM; k++) {
@@ -242,24 +245,34 @@ static int mon_operator(const int out[], double M[][NM], double lev[]) {
     if (!MON_SOLVE) return 0;
     for (k = 0; k < NM; k++) r += !out[k];
     if (r > TC_MON_MODES) r = TC_MON_MODES;
-    for (p = 0; p < r; p++)
-        for (q = 0; q < r; q++) G[p][q] = 0.0;
+    for (p = 0; p < r; p++) g[p] = 0.0;
     for (k = 0; k < NM; k++)
-        for (p = 0; p < r && !out[k]; p++)
-            for (q = 0; q < r; q++) G[p][q] += MON_PHI[k][p] * MON_PHI[k][q];
-    for (p = 0; p < r; p++)
-        for (q = 0; q <= p; q++) {
-            v = G[p][q];
-            for (c = 0; c < q; c++) v -= L[p][c] * L[q][c];
-            if (p != q) L[p][q] = v / L[q][q];
-            else if (!(v > 1e-12 * (G[p][p] > 1e-300 ? G[p][p] : 1e-300))) return 0;
-            else L[p][p] = sqrt(v);
+        for (p = 0; p < r && !out[k]; p++) {
+            W[k][p] = MON_PHI[k][p];
+            g[p] += W[k][p] * W[k][p];
         }
-    for (k = 0; k < NM; k++)
-        for (p = 0; p < r; p++) {
+    for (q = 0; q < r; q++) {
+        for (p = 0; p < q; p++) R[p][q] = 0.0;
+        for (c = 0; c < 2; c++)         /* twice: Q's columns orthonormal to rounding */
+            for (p = 0; p < q; p++) {
+                for (v = 0.0, k = 0; k < NM; k++)
+                    if (!out[k]) v += W[k][p] * W[k][q];
+                R[p][q] += v;
+                for (k = 0; k < NM; k++)
+                    if (!out[k]) W[k][q] -= v * W[k][p];
+            }
+        for (v = 0.0, k = 0; k < NM; k++)
+            if (!out[k]) v += W[k][q] * W[k][q];
+        if (!(v > 1e-12 * (g[q] > 1e-300 ? g[q] : 1e-300))) return 0;
+        R[q][q] = sqrt(v);
+        for (k = 0; k < NM; k++)
+            if (!out[k]) W[k][q] /= R[q][q];
+    }
+    for (k = 0; k < NM; k++)            /* the rows in keep Q's: R^-T phi_k would undo it */
+        for (p = 0; p < r && out[k]; p++) {
             v = MON_PHI[k][p];
-            for (c = 0; c < p; c++) v -= L[p][c] * W[k][c];
-            W[k][p] = v / L[p][p];
+            for (c = 0; c < p; c++) v -= R[c][p] * W[k][c];
+            W[k][p] = v / R[p][p];
         }
     for (k = 0; k < NM; k++) {
         for (m = 0; m < NM; m++) {
