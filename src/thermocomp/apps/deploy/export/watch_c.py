@@ -445,12 +445,12 @@ static void mon_readmit(tc_state *s, int k, int rule) {
    (the second; dep99: any, for a reading beyond range, as served; dep99b: and for a jump, which
    served re-references and takes out whatever the set; step99: and for a stepped error, served's
    stepped check having no cap either; dep100: and for a drift exclusion, its blind-out too, and a
-   freeze, served's judgement and freeze check having none; dep103: and for a dropout, served's
-   _instant having none) and the set's operator solved (a set not solved: refused) */
-static int mon_second_held(const tc_state *s, int k) {
+   freeze, served's judgement and freeze check having none) and the set's operator solved; a
+   dropout alone keeps the cap */
+static int mon_second_held(const tc_state *s, int k, int rule) {
     double M[NM][NM], lev[NM];
     int out[NM], m;
-    if (!MON_SOLVE) return 0;
+    if (!MON_SOLVE || (s->mon_nout >= 2 && rule == TC_MON_DROPOUT)) return 0;
     for (m = 0; m < NM; m++) out[m] = m == k || mon_out_of(s, m);
     return mon_operator(out, M, lev);
 }
@@ -484,7 +484,7 @@ static int mon_second_rule(int rule) {
 /* 1: sensor k taken out for rule beside those out, as served: the rule takes a second, the
    others predict k (or cmon89's kinds) and the set is held or solved (cmon88: a jump) */
 static int mon_second_taken(const tc_state *s, int k, int rule) {
-    return mon_second_rule(rule) && mon_second_kind(s, k, rule) && mon_second_held(s, k);
+    return mon_second_rule(rule) && mon_second_kind(s, k, rule) && mon_second_held(s, k, rule);
 }
 
 /* (cmon93) 1: the code takes every sensor of ins[] out for rule (a jump; dep101: a dropout,
@@ -742,7 +742,7 @@ static int mon_beyond(tc_state *s, const double x[], const double d[], int rng[]
         if (!rng[j]) continue;
         if (s->mon_nout > 0 && !mon_is_out(s, j) && !(
                 MON_SECOND_INSTANT && mon_second_kind(s, j, TC_MON_OFF_RANGE)
-                && mon_second_held(s, j))) {
+                && mon_second_held(s, j, TC_MON_OFF_RANGE))) {
             mon_flag(s, TC_MON_NOT_IN_CODE, j, TC_MON_RANGE);
             r = -1;
         } else if (mon_is_out(s, j)) {   /* out already: read as missing */
@@ -1131,7 +1131,7 @@ static void mon_drift(tc_state *s, const int level[], int field) {
     double scale[NM], z[NM], Mp[NM][NM], lp[NM];
     int a[NM], o[NM], jd[NM], lv[NM], k, j = 0, u, nblind = 0, partner = -1;
     if ((u = mon_explaining(s, level, field)) >= 0) {
-        if (!MON_BLIND_OUT || (s->mon_nout > 0 && !mon_second_held(s, u))) {
+        if (!MON_BLIND_OUT || (s->mon_nout > 0 && !mon_second_held(s, u, TC_MON_DRIFT_OUT))) {
             mon_flag(s, TC_MON_NOT_IN_CODE, u, TC_MON_DRIFT);
             return;
         }
