@@ -38,14 +38,13 @@ from ...core.io.bits import parsed as parsed_bits
 from ...core.io.contract import TIME
 from ...core.io.dayfirst import ORDER
 from ...core.io.derived import sources as derived_sources
-from ...core.io.options import ReadOptions
 from ...core.io.roles import RUN
 from ...core.io.source import check_streamed_columns
 from ...core.io.timestamps import CLOCK, OF_DAY_KIND, names_seconds_of_day, names_time_of_day
 from ...core.io.twins import copy_refused
 from ...core.scoring.evaluation import require_split
 from ..builders import deployable_model, is_registered, with_model_bits
-from ..config.checks import check_config, data_options
+from ..config.checks import check_config
 from ..model_store import load_model, model_family
 from ..registry import registered_version
 from ..source import read_streamed, slashed_time
@@ -323,11 +322,11 @@ def export(cfg: DictConfig) -> dict:
         # (stranger65: stream.c joins the date and its time of day, as the reader does; the
         # export was refused)
         provenance.update(clock_column=str(clock[0]) if clock else None)
-        # (cin103) the headers an input is read by whose copy, its values apart, the model's
-        # reader refuses (stream.c refused none of them: exit 0, the first column read)
-        opts = ReadOptions.from_cfg(data_options(cfg))
-        provenance.update(twins_refused=[h for c in stream.columns_ for h in (c, *raw_names(named, c))
-                                         if copy_refused(h, opts.roles, opts.columns)])
+        # (cin103) the contract names of the inputs whose copy, its values apart, the reader
+        # refuses (stream.c refused none of them: exit 0, the first column read).  A lab's
+        # header is read by the lab's roles, which the model does not carry (an export from the
+        # registry has none): its copy is read as the first, as a roles-read file's copy is.
+        provenance.update(twins_refused=[c for c in stream.columns_ if copy_refused(c, {}, {})])
     # (bits85) the inputs a PLC's status word packs, as the model declares them (a model
     # pickled before it carried none: the config's): stream.c names the word where they lack
     declared = getattr(deployed, "bits_", None) or parsed_bits(cfg.data.get("bits"))

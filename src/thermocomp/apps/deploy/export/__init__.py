@@ -32,7 +32,7 @@ import json
 
 from .errors import NotExportable
 from .laws import EXPORTED_FAMILIES
-from .output import not_in_code
+from .left_out import not_in_code, with_st_fallbacks
 from .statespace import FORMATS, LINEAR_FAMILIES, Simulator, StateSpace, state_space
 
 __all__ = ["FORMATS", "LINEAR_FAMILIES", "NotExportable", "Simulator", "StateSpace", "check_exportable",
@@ -74,7 +74,6 @@ def exported_files(deployed, fmt: str, provenance: dict | None = None,
     # models' laws beside the model's, served while the block holds their sensor out
     watch = {}
     if fmt == "st" and monitor:
-        from .fallbacks import with_st_fallbacks
         from .watch import monitor_fields
 
         watch = monitor_fields(deployed, list(ss.inputs)).get("monitor", {})

@@ -1436,7 +1436,7 @@ int main(int argc, char **argv) {
     /* (cin103) an input's header written again (no unit row: the same text), the copy no input
        of the model: the reader leaves it out where each of its cells equals the first's; where
        one differs it refuses the file (which is the sensor?) if the copy is read by no role
-       pattern nor data.columns (TC_TWIN_REFUSED, export asked the reader), else reads it under
+       pattern nor data.columns (TC_TWIN_REFUSED: the inputs' contract names), else reads it under
        a name of its own (a lab's roles-read file: `T Luft#2 [degC]` as T_Luft_2) and the input
        from the first column, as here.  Compared row by row below (the stream read the first on) */
     for (i = 0; i < TC_N_INPUTS; i++) {

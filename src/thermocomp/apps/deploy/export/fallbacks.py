@@ -16,7 +16,7 @@ derived inputs, a cascade of lags, a state times the inputs' rises, a forest ram
 clock, an lstm network of another shape) is left out: its exclusion stays flagged ``FALLBACK``
 (:mod:`.watch`).  An export before a fallback's laws were merged has none in its
 ``fallback_set`` (0): it flags as it did.  (st103b) The ST block holds them too
-(:func:`with_st_fallbacks`), served while it holds their sensor out by ``BLIND_OUT``.
+(:func:`.left_out.with_st_fallbacks`), served while it holds their sensor out by ``BLIND_OUT``.
 """
 
 from __future__ import annotations
@@ -180,51 +180,3 @@ def _merge_nets(ss, fb, laws: int, col, where: list) -> None:
               "lstm_head_bias", "lstm_y_scale"):
         setattr(ss, k, list(getattr(ss, k)) + list(getattr(fb, k)))
     ss.lstm_hidden, ss.lstm_layers, ss.lstm_width = fb.lstm_hidden, fb.lstm_layers, W
-
-
-def _stepped_in_st(system) -> bool:
-    """Whether the ST block steps ``system``'s laws beside another's: no forest, no network (its
-    forest walk and networks count whatever set is served)."""
-    return not (system.forest_target or system.lstm_target)
-
-
-def st_leaves_fallbacks(deployed) -> bool:
-    """(st103b) Whether the ST block leaves out a fallback model of ``deployed`` that has a forest
-    or a network, or every one of a model with them (:func:`with_st_fallbacks`)."""
-    from .statespace import state_space
-
-    falls = getattr(deployed, "fallbacks_", {}) or {}
-    systems = []
-    for fb in [deployed, *falls.values()] if falls else []:
-        try:
-            systems.append(state_space(fb))
-        except NotExportable:
-            continue
-    return not all(_stepped_in_st(s) for s in systems)
-
-
-def with_st_fallbacks(ss, deployed, watch: dict) -> None:
-    """(st103b) The ST block's fallback models: :func:`with_fallbacks` into ``ss`` (made without
-    a monitor) by the block's monitor ``watch``, which gets the ``fallback_set``; one with a
-    forest or a network is left out, and every one where the model has them (the block's forest
-    walk and networks count whatever set is served): the block serves the model's laws for their
-    sensors, as before (``provenance.not_in_code``)."""
-    from .statespace import state_space
-
-    if not watch:
-        return
-    watch["fallback_set"] = [0] * len(watch["inputs"])
-    if not _stepped_in_st(ss):
-        return
-
-    def system(fb):
-        out = state_space(fb)
-        if not _stepped_in_st(out):
-            raise NotExportable("a fallback with a forest or a network: not in the ST block")
-        return out
-
-    ss.monitor = watch
-    try:
-        with_fallbacks(ss, deployed, system)
-    finally:
-        ss.monitor = {}

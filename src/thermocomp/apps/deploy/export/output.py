@@ -39,7 +39,6 @@ import numpy as np
 from ..adaptive import AdaptiveCompensator
 from ..guard import rate_span, widening
 from .errors import NotExportable
-from .fallbacks import st_leaves_fallbacks
 
 UNBOUNDED = sys.float_info.max   # a machine state's range: never beyond it
 
@@ -95,43 +94,6 @@ def adapt_fields(deployed) -> dict:
             "adapt_cov": [p.tolist() for p in a._P] if rls else None,
             "adapt_forgetting": a.forgetting, "adapt_max_bias": a.max_bias_um,
             "adapt_max_gain_change": a.max_gain_change, "adapt_var_cap": float(np.trace(a._prior))}
-
-
-def not_in_code(deployed, fmt: str | None = None) -> list[str]:
-    """What the served model does that the exported code (of format ``fmt``) does not: its
-    sensor monitor, of which the C holds a slice (:mod:`.watch`, cmon76)."""
-    if not (isinstance(deployed, AdaptiveCompensator) and deployed.monitor is not None):
-        return []
-    if fmt == "c" and deployed.monitor.adaptive:
-        # (quiet94c) the ambient of a one-campaign training, warned and not excluded by its
-        # drift (quiet94), is held by the code too (``warn_only``): not named here any more
-        return ["sensor monitor rules (the C holds the jump, the freeze, a missing reading, "
-                "a reading beyond its training range, a common step, one sensor out "
-                "reconstructed from the others and its re-admission, a drift exclusion while no "
-                "sensor is out, of one sensor or of it and its blind partner, a new thermal "
-                "state, a sensor no other predicts out for a dropout, a freeze or a jump, a stepped "
-                "self-prediction error's culprit out, a second sensor out for a jump, two sensors "
-                "jumping in one sample, one or two out, the drift of an ambient sensor of a "
-                "one-campaign training warned and not excluded, a sensor no other predicts "
-                "re-referenced when its level settles off its own): a missing "
-                "reading at a campaign's first sample, with another sensor out or missing, or of a "
-                "sensor the code does not hold out (the code refuses the row), a missing reading of "
-                "a sensor out for a freeze (its re-admission band), a reading beyond its training "
-                "range at a campaign's first sample, of every sensor at once or beside those out "
-                "where the code does not hold it, several sensors jumping at once that are no "
-                "common step (three or more, or two the code cannot hold), "
-                "a jump at the sample after the reference, a stepped self-prediction "
-                "error whose culprit would be a third out, a drift beyond the band with a "
-                "sensor out, of a sensor no other predicts, of more than one blind partner, a "
-                "second sensor out for another rule, a third out, a "
-                "sensor no other predicts out for another rule, or with a fallback model (the "
-                "model fitted without it) of a kind the code does not step beside the model "
-                "(an lstm network of another shape, other inputs)"]
-    if fmt == "st" and st_leaves_fallbacks(deployed):
-        return ["sensor monitor (exclusion, reconstruction of a sensor from the others; a fallback "
-                "model with a forest or a network, or any of a model with them: the ST serves the "
-                "model's laws while it holds its sensor out)"]
-    return ["sensor monitor (exclusion, reconstruction of a sensor from the others)"]
 
 
 class Output:

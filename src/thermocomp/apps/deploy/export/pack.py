@@ -67,7 +67,7 @@ from ....core.io.contract import AMBIENT_C, manifest_ambient
 from ..naming import correction_column
 from ..report import stream_rows
 from ..streaming import OutOfEnvelopeError
-from .output import not_in_code
+from .left_out import not_in_code
 from .served import ServedLead, ServedStreams
 from .statespace import Simulator, StateSpace
 from .watch import FLAG_KINDS, NOT_IN_CODE, REASONS, flag_row, planted
