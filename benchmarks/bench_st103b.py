@@ -129,34 +129,34 @@ FRESH = _fresh()     # lr9983, dl9983, ..., lr9985, dl9985
 MADE_BY = {**bench_st102b.FRESH, **bench_st103.FRESH, **FRESH}
 
 
-def main_block(deployed) -> str:
-    """``deployed``'s block as :data:`MAIN` wrote it: its st.py (loaded in the package, beside
-    the tree's st_watch.py, unchanged) on the plain model."""
+def main_block(deployed, sha: str = MAIN) -> str:
+    """``deployed``'s block as ``sha`` (:data:`MAIN`) wrote it: its st.py (loaded in the
+    package, beside the tree's st_watch.py, unchanged) on the plain model."""
     from thermocomp.apps.deploy.export import state_space
     from thermocomp.apps.deploy.export.watch import monitor_fields
 
     path = "src/thermocomp/apps/deploy/export/st.py"
-    text = subprocess.run(["git", "show", f"{MAIN}:{path}"], cwd=HERE.parent, check=True,
+    text = subprocess.run(["git", "show", f"{sha}:{path}"], cwd=HERE.parent, check=True,
                           capture_output=True, text=True).stdout
     spec = importlib.util.spec_from_loader("thermocomp.apps.deploy.export._st_main", loader=None)
     module = importlib.util.module_from_spec(spec)
     module.__package__ = "thermocomp.apps.deploy.export"
-    exec(compile(text, f"{MAIN}:{path}", "exec"), module.__dict__)
+    exec(compile(text, f"{sha}:{path}", "exec"), module.__dict__)
     ss = state_space(deployed)
     return module.function_block(ss, monitor_fields(deployed, list(ss.inputs)).get("monitor", {}))
 
 
-def _cell(root: str, record: str):
+def _cell(root: str, record: str, sha: str = MAIN, made_by: dict | None = None):
     """``(deployed, ss, frame, start, names, tree block, main block)`` of ``record`` made once."""
     from bench_cmon92 import faulted_cell, made
 
     from thermocomp.apps.deploy.export import exported_files
 
     base = Path(root).resolve()
-    made(base, record, "mlr", MADE_BY)
+    made(base, record, "mlr", made_by or MADE_BY)
     deployed, ss, frame, lead, start, cid = faulted_cell(base, record, "mlr-none")
     names = [ss.inputs[i] for i in ss.monitor["inputs"]]
-    tree, main = exported_files(deployed, "st")["compensator.st"], main_block(deployed)
+    tree, main = exported_files(deployed, "st")["compensator.st"], main_block(deployed, sha)
     laws = [next(x for x in b.splitlines() if "N_LAWS : INT" in x).split(":= ")[1].rstrip(";")
             for b in (main, tree)]
     print(f"{record} {cid}: {len(frame)} rows ({lead} lead-in), onset {start}; ST lines "
