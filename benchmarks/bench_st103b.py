@@ -129,12 +129,9 @@ FRESH = _fresh()     # lr9983, dl9983, ..., lr9985, dl9985
 MADE_BY = {**bench_st102b.FRESH, **bench_st103.FRESH, **FRESH}
 
 
-def main_block(deployed, sha: str = MAIN) -> str:
-    """``deployed``'s block as ``sha`` (:data:`MAIN`) wrote it: its st.py (loaded in the
-    package, beside the tree's st_watch.py, unchanged) on the plain model."""
-    from thermocomp.apps.deploy.export import state_space
-    from thermocomp.apps.deploy.export.watch import monitor_fields
-
+def st_module(sha: str = MAIN):
+    """st.py as ``sha`` (:data:`MAIN`) wrote it, loaded in the package (beside the tree's
+    st_watch.py, unchanged)."""
     path = "src/thermocomp/apps/deploy/export/st.py"
     text = subprocess.run(["git", "show", f"{sha}:{path}"], cwd=HERE.parent, check=True,
                           capture_output=True, text=True).stdout
@@ -142,12 +139,23 @@ def main_block(deployed, sha: str = MAIN) -> str:
     module = importlib.util.module_from_spec(spec)
     module.__package__ = "thermocomp.apps.deploy.export"
     exec(compile(text, f"{sha}:{path}", "exec"), module.__dict__)
+    return module
+
+
+def main_block(deployed) -> str:
+    """``deployed``'s block as :data:`MAIN` wrote it: its st.py (:func:`st_module`) on the plain
+    model."""
+    from thermocomp.apps.deploy.export import state_space
+    from thermocomp.apps.deploy.export.watch import monitor_fields
+
     ss = state_space(deployed)
-    return module.function_block(ss, monitor_fields(deployed, list(ss.inputs)).get("monitor", {}))
+    return st_module().function_block(ss, monitor_fields(deployed, list(ss.inputs)).get("monitor", {}))
 
 
-def _cell(root: str, record: str, sha: str = MAIN, made_by: dict | None = None):
-    """``(deployed, ss, frame, start, names, tree block, main block)`` of ``record`` made once."""
+def _cell(root: str, record: str, made_by: dict | None = None, main_of=None):
+    """``(deployed, ss, frame, start, names, tree block, main block)`` of ``record`` made once
+    (by ``made_by``'s words, default :data:`MADE_BY`; main's block by ``main_of``, default
+    :func:`main_block`)."""
     from bench_cmon92 import faulted_cell, made
 
     from thermocomp.apps.deploy.export import exported_files
@@ -156,7 +164,7 @@ def _cell(root: str, record: str, sha: str = MAIN, made_by: dict | None = None):
     made(base, record, "mlr", made_by or MADE_BY)
     deployed, ss, frame, lead, start, cid = faulted_cell(base, record, "mlr-none")
     names = [ss.inputs[i] for i in ss.monitor["inputs"]]
-    tree, main = exported_files(deployed, "st")["compensator.st"], main_block(deployed, sha)
+    tree, main = exported_files(deployed, "st")["compensator.st"], (main_of or main_block)(deployed)
     laws = [next(x for x in b.splitlines() if "N_LAWS : INT" in x).split(":= ")[1].rstrip(";")
             for b in (main, tree)]
     print(f"{record} {cid}: {len(frame)} rows ({lead} lead-in), onset {start}; ST lines "

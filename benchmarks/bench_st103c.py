@@ -79,6 +79,20 @@ FRESH = _fresh()     # lr10007, dl10007, ..., lr10009, dl10009
 MADE_BY = {**bench_st103b.MADE_BY, **FRESH}
 
 
+def main_block(deployed) -> str:
+    """``deployed``'s block as :data:`MAIN` exports it: its st.py (loaded as bench_st103b's
+    :func:`~bench_st103b.main_block` does) on the system with the fallbacks' laws
+    (fallbacks.py ``with_st_fallbacks``, unchanged since)."""
+    from thermocomp.apps.deploy.export import state_space
+    from thermocomp.apps.deploy.export.fallbacks import with_st_fallbacks
+    from thermocomp.apps.deploy.export.watch import monitor_fields
+
+    ss = state_space(deployed)
+    watch = monitor_fields(deployed, list(ss.inputs)).get("monitor", {})
+    with_st_fallbacks(ss, deployed, watch)
+    return bench_st103b.st_module(MAIN).function_block(ss, watch)
+
+
 def _rows(kept, part):
     """bench_st103b's :meth:`~bench_st103b.Three.rows`, each with the tree's ``mon_jheld``."""
     for r in kept.rows(part):
@@ -129,7 +143,7 @@ def score(root: str, *records: str) -> None:
     """The ``score`` lines (module doc)."""
     tally = {"windows": 0, "reached": 0, "met": 0, "clean": 0, "clean_met": 0, "flags": 0}
     for record in records:
-        _, ss, frame, start, names, tree, main = bench_st103b._cell(root, record, MAIN, MADE_BY)
+        _, ss, frame, start, names, tree, main = bench_st103b._cell(root, record, MADE_BY, main_block)
         kept = bench_st103b.Three(ss, tree, main)
         head = list(kept.rows(frame.iloc[:start]))
         v = kept.tree.vars
@@ -158,7 +172,7 @@ def score(root: str, *records: str) -> None:
 def healthy(root: str, *records: str) -> None:
     """The ``healthy`` lines (module doc)."""
     for record in records:
-        _, ss, frame, _, _, tree, main = bench_st103b._cell(root, record, MAIN, MADE_BY)
+        _, ss, frame, _, _, tree, main = bench_st103b._cell(root, record, MADE_BY, main_block)
         rows = list(_rows(bench_st103b.Three(ss, tree, main), frame))
         out = [r for r in rows if not r[6] and r[7] < 0]
         held = [r for r in rows if r[6] or r[7] >= 0]
