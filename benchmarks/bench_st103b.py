@@ -231,11 +231,11 @@ def _window(kept: Three, names, sensor: str, frame, start: int) -> dict | None:
             "flags": flags}
 
 
-def score(root: str, *records: str) -> None:
-    """The ``score`` lines (module doc)."""
-    tally = {"windows": 0, "reached": 0, "clean": 0, "met": 0, "flags": 0}
+def windows(root: str, records, window=None, made_by: dict | None = None, main_of=None):
+    """Per record its size and gate lines (module doc); per window of the records the gate
+    scores, ``window``'s counts (default :func:`_window`; ``made_by``, ``main_of``: :func:`_cell`'s)."""
     for record in records:
-        _, ss, frame, start, names, tree, main = _cell(root, record)
+        _, ss, frame, start, names, tree, main = _cell(root, record, made_by, main_of)
         kept = Three(ss, tree, main)
         head = list(kept.rows(frame.iloc[:start]))
         v = kept.tree.vars
@@ -246,14 +246,20 @@ def score(root: str, *records: str) -> None:
         if stop or lost:
             continue
         for sensor in [n for n, p in zip(names, ss.monitor["predictable"]) if not p]:
-            got = _window(kept, names, sensor, frame, start)
-            if got is None:
-                continue
-            tally["windows"] += 1
-            tally["flags"] += got["flags"]
-            tally["reached"] += got["reached"]
-            tally["clean"] += got["clean"]
-            tally["met"] += got["clean"] and got["hold"] <= TOL
+            got = (window or _window)(kept, names, sensor, frame, start)
+            if got is not None:
+                yield got
+
+
+def score(root: str, *records: str) -> None:
+    """The ``score`` lines (module doc)."""
+    tally = {"windows": 0, "reached": 0, "clean": 0, "met": 0, "flags": 0}
+    for got in windows(root, records):
+        tally["windows"] += 1
+        tally["flags"] += got["flags"]
+        tally["reached"] += got["reached"]
+        tally["clean"] += got["clean"]
+        tally["met"] += got["clean"] and got["hold"] <= TOL
     print(f"total: {tally['windows']} windows, {tally['reached']} reached holds, {tally['clean']} clean, "
           f"{tally['met']} of them with "
           f"max|C-ST| <= {TOL:g} um on the hold rows; flag rows differing from main {tally['flags']}",

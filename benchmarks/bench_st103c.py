@@ -34,6 +34,40 @@ BAR (committed before fresh lr/dl 10007-10009 are simulated; scored once):
 * S4 fresh lr/dl 10007-10009: every reached JUMP hold max|C - ST| <= 1e-6 um on its JUMP-hold rows
   (VOID under 3 reached: said, the verdict resting on S1-S3); 0 flag rows differing from main.
 
+Measured (2026-12-07, 2 cores shared, load 2-7; the rule = 0dd50736's src, unchanged after the
+fresh score; BAR 0dd50736, unchanged; VERDICT KEPT: S1-S4 met).  Main's block, fixed after the bar
+(18760083) while the fresh run ran: at 0dd50736 it was a8719dae's st.py on the plain model (no
+fallback laws: 9fd4ff7d's serving), now a8719dae's export (:func:`main_block`); the tree's columns
+are the same in both; the numbers below are the fixed main's.
+
+* S1 MET (``score /tmp/st103c/seen dl9964 lr9985``, 39.6 s CPU): T_table's JUMP-hold rows max|C -
+  ST| dl9964 5.3e-14 um on 13 rows (main 33), lr9985 3.6e-14 on 12 (main 30); their ``BLIND_OUT``
+  hold after it 8.5e-14 / 5.7e-14 (main 30 / 18: the rate limit carried the jump hold's gap).
+* S2 MET: clean reached ``BLIND_OUT`` holds 10 of 10 (dl9964, lr9985) and 12 of 12 (``score
+  /tmp/st103c/seen lr9964 lr9965 lr9966 lr9967 dl9965 dl9966 dl9967``, 114.3 s CPU; gate NOT scored
+  lr9965, dl9965, dl9967 as bench_st103b) <= 1.4e-13 um, main the same; flag rows differing from
+  main 0 on every window and lead-in.  There, 4 more reached JUMP holds: lr9966 T_amb 8.2e-14 (main
+  2.1), T_motor 5e-14 (8.5), T_table 5.7e-14 (27), dl9966 T_table 6.4e-14 (35).
+* S3 MET (``healthy /tmp/st103c/seen`` the 8, 138.0 s CPU): 0 rows outside the holds whose c
+  differs from main's, 0 flag rows differing; hold rows on lr9964 / dl9964 / dl9967 (10 / 11 / 10)
+  <= 7.1e-14 um, main the same.
+* S4 MET, scored once (``score /tmp/st103c/fresh lr10007 dl10007 lr10008 dl10008 lr10009
+  dl10009``, 92.1 s CPU with the simulation; main's columns again with the fixed main on the 3
+  scored, 45.2 s): gate NOT scored dl10008 (``mon_stop_row`` 668), lr10009 and dl10009
+  (``mon_lost``); 17 windows, 4 reached JUMP holds (lr10008 T_amb, T_spindle_front, T_motor,
+  T_table), max|C - ST| 5e-14, 4.3e-14, 4.4e-14, 5.3e-14 um on their JUMP-hold rows (main 0.42, 33,
+  9.9, 30); 6 clean reached ``BLIND_OUT`` holds <= 8.9e-14 (main the same); flag rows differing 0.
+* Not reached (the C names ``JUMP``, the block holds none there; not traced), main alike: fresh
+  lr10007 T_table (31 um on the window's rows), T_amb (2.0), dl10007 T_amb (3.2), lr10008 T_xdrive
+  (8.0); seen lr9985 T_spindle_rear (21), lr9967 T_spindle_front (29), T_motor (5.5), T_xdrive
+  (6.4), lr9964 / dl9964 / dl9966 T_amb (3.9 / 4.3 / 1.1).  Reached, but the rows after the JUMP
+  hold apart (not traced): seen lr9966 T_table 40 um, dl9966 T_table 36 (main the same).  The
+  lead-ins of fresh lr10007 / dl10007: 11 c rows differ from main; on lr10007 (``healthy
+  /tmp/st103c/fresh lr10007``, after the score, 13.3 s CPU) they are 11 hold rows, max|C - ST|
+  3.7e-14 um (main 0.32), 0 rows outside the holds differing, 0 flag rows (dl10007 not run).
+* Size: the ST 2226 -> 2234 lines; ``N_LAWS`` as main's.  The ST tests (tests/shell/test_export_st*.py,
+  test_export_step99.py, test_export.py: 54) passed in 122.8 s wall (load 2-7; CPU not measured).
+
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``)::
 
     python benchmarks/bench_st103c.py score ROOT RECORD [RECORD ...]
@@ -142,27 +176,13 @@ def _window(kept, names, sensor: str, frame, start: int) -> dict | None:
 def score(root: str, *records: str) -> None:
     """The ``score`` lines (module doc)."""
     tally = {"windows": 0, "reached": 0, "met": 0, "clean": 0, "clean_met": 0, "flags": 0}
-    for record in records:
-        _, ss, frame, start, names, tree, main = bench_st103b._cell(root, record, MADE_BY, main_block)
-        kept = bench_st103b.Three(ss, tree, main)
-        head = list(kept.rows(frame.iloc[:start]))
-        v = kept.tree.vars
-        stop, lost = int(v["mon_stop_row"]), bool(v["mon_lost"])
-        print(f"  gate: mon_stop_row {stop}, mon_lost {lost}: {'NOT scored' if stop or lost else 'scored'}; "
-              f"lead-in to the onset: flag rows differing {sum(r[4] != r[5] for r in head)}, c rows "
-              f"differing {sum(bool(np.any(r[0] != r[1])) for r in head)}", flush=True)
-        if stop or lost:
-            continue
-        for sensor in [n for n, p in zip(names, ss.monitor["predictable"]) if not p]:
-            got = _window(kept, names, sensor, frame, start)
-            if got is None:
-                continue
-            tally["windows"] += 1
-            tally["flags"] += got["flags"]
-            tally["reached"] += got["reached"]
-            tally["met"] += got["reached"] and got["jump"] <= TOL
-            tally["clean"] += got["clean"]
-            tally["clean_met"] += got["clean"] and got["held"] <= 1e-12
+    for got in bench_st103b.windows(root, records, _window, MADE_BY, main_block):
+        tally["windows"] += 1
+        tally["flags"] += got["flags"]
+        tally["reached"] += got["reached"]
+        tally["met"] += got["reached"] and got["jump"] <= TOL
+        tally["clean"] += got["clean"]
+        tally["clean_met"] += got["clean"] and got["held"] <= 1e-12
     print(f"total: {tally['windows']} windows, {tally['reached']} reached JUMP holds, {tally['met']} "
           f"with max|C-ST| <= {TOL:g} um on their jump-hold rows; {tally['clean']} clean reached "
           f"BLIND_OUT holds, {tally['clean_met']} <= 1e-12 um; flag rows differing from main "
