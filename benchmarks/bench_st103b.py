@@ -129,34 +129,42 @@ FRESH = _fresh()     # lr9983, dl9983, ..., lr9985, dl9985
 MADE_BY = {**bench_st102b.FRESH, **bench_st103.FRESH, **FRESH}
 
 
-def main_block(deployed) -> str:
-    """``deployed``'s block as :data:`MAIN` wrote it: its st.py (loaded in the package, beside
-    the tree's st_watch.py, unchanged) on the plain model."""
-    from thermocomp.apps.deploy.export import state_space
-    from thermocomp.apps.deploy.export.watch import monitor_fields
-
+def st_module(sha: str = MAIN):
+    """st.py as ``sha`` (:data:`MAIN`) wrote it, loaded in the package (beside the tree's
+    st_watch.py, unchanged)."""
     path = "src/thermocomp/apps/deploy/export/st.py"
-    text = subprocess.run(["git", "show", f"{MAIN}:{path}"], cwd=HERE.parent, check=True,
+    text = subprocess.run(["git", "show", f"{sha}:{path}"], cwd=HERE.parent, check=True,
                           capture_output=True, text=True).stdout
     spec = importlib.util.spec_from_loader("thermocomp.apps.deploy.export._st_main", loader=None)
     module = importlib.util.module_from_spec(spec)
     module.__package__ = "thermocomp.apps.deploy.export"
-    exec(compile(text, f"{MAIN}:{path}", "exec"), module.__dict__)
+    exec(compile(text, f"{sha}:{path}", "exec"), module.__dict__)
+    return module
+
+
+def main_block(deployed) -> str:
+    """``deployed``'s block as :data:`MAIN` wrote it: its st.py (:func:`st_module`) on the plain
+    model."""
+    from thermocomp.apps.deploy.export import state_space
+    from thermocomp.apps.deploy.export.watch import monitor_fields
+
     ss = state_space(deployed)
-    return module.function_block(ss, monitor_fields(deployed, list(ss.inputs)).get("monitor", {}))
+    return st_module().function_block(ss, monitor_fields(deployed, list(ss.inputs)).get("monitor", {}))
 
 
-def _cell(root: str, record: str):
-    """``(deployed, ss, frame, start, names, tree block, main block)`` of ``record`` made once."""
+def _cell(root: str, record: str, made_by: dict | None = None, main_of=None):
+    """``(deployed, ss, frame, start, names, tree block, main block)`` of ``record`` made once
+    (by ``made_by``'s words, default :data:`MADE_BY`; main's block by ``main_of``, default
+    :func:`main_block`)."""
     from bench_cmon92 import faulted_cell, made
 
     from thermocomp.apps.deploy.export import exported_files
 
     base = Path(root).resolve()
-    made(base, record, "mlr", MADE_BY)
+    made(base, record, "mlr", made_by or MADE_BY)
     deployed, ss, frame, lead, start, cid = faulted_cell(base, record, "mlr-none")
     names = [ss.inputs[i] for i in ss.monitor["inputs"]]
-    tree, main = exported_files(deployed, "st")["compensator.st"], main_block(deployed)
+    tree, main = exported_files(deployed, "st")["compensator.st"], (main_of or main_block)(deployed)
     laws = [next(x for x in b.splitlines() if "N_LAWS : INT" in x).split(":= ")[1].rstrip(";")
             for b in (main, tree)]
     print(f"{record} {cid}: {len(frame)} rows ({lead} lead-in), onset {start}; ST lines "
@@ -223,11 +231,11 @@ def _window(kept: Three, names, sensor: str, frame, start: int) -> dict | None:
             "flags": flags}
 
 
-def score(root: str, *records: str) -> None:
-    """The ``score`` lines (module doc)."""
-    tally = {"windows": 0, "reached": 0, "clean": 0, "met": 0, "flags": 0}
+def windows(root: str, records, window=None, made_by: dict | None = None, main_of=None):
+    """Per record its size and gate lines (module doc); per window of the records the gate
+    scores, ``window``'s counts (default :func:`_window`; ``made_by``, ``main_of``: :func:`_cell`'s)."""
     for record in records:
-        _, ss, frame, start, names, tree, main = _cell(root, record)
+        _, ss, frame, start, names, tree, main = _cell(root, record, made_by, main_of)
         kept = Three(ss, tree, main)
         head = list(kept.rows(frame.iloc[:start]))
         v = kept.tree.vars
@@ -238,14 +246,20 @@ def score(root: str, *records: str) -> None:
         if stop or lost:
             continue
         for sensor in [n for n, p in zip(names, ss.monitor["predictable"]) if not p]:
-            got = _window(kept, names, sensor, frame, start)
-            if got is None:
-                continue
-            tally["windows"] += 1
-            tally["flags"] += got["flags"]
-            tally["reached"] += got["reached"]
-            tally["clean"] += got["clean"]
-            tally["met"] += got["clean"] and got["hold"] <= TOL
+            got = (window or _window)(kept, names, sensor, frame, start)
+            if got is not None:
+                yield got
+
+
+def score(root: str, *records: str) -> None:
+    """The ``score`` lines (module doc)."""
+    tally = {"windows": 0, "reached": 0, "clean": 0, "met": 0, "flags": 0}
+    for got in windows(root, records):
+        tally["windows"] += 1
+        tally["flags"] += got["flags"]
+        tally["reached"] += got["reached"]
+        tally["clean"] += got["clean"]
+        tally["met"] += got["clean"] and got["hold"] <= TOL
     print(f"total: {tally['windows']} windows, {tally['reached']} reached holds, {tally['clean']} clean, "
           f"{tally['met']} of them with "
           f"max|C-ST| <= {TOL:g} um on the hold rows; flag rows differing from main {tally['flags']}",

@@ -13,7 +13,8 @@ declares a new thermal state, then test_export_st96's bump of a sensor no other 
 (st101) The block's own ``JUMP`` of a sensor no other predicts ended its judgement of the field
 for the campaign (``mon_lost``), while the C holds the sensor out to its ``BACK`` and judges on:
 the same record, a spike of the sensor the C holds out for a jump 150 rows before the bump
-(benchmarks/bench_st101.py).
+(benchmarks/bench_st101.py); (st103c) while it holds it, the block serves the C's fallback law set
+on its last reading in, as the C (benchmarks/bench_st103c.py).
 
 (st102) A jump of the sensor the block holds out by its ``BLIND_OUT`` was flagged ``JUMP`` and
 ended the block's judgement, where the C re-references it silently and names its ``BACK`` with the
@@ -88,6 +89,10 @@ def test_the_block_holds_its_own_jump_to_the_cs_back_and_names_a_blind_out_after
     # held from its JUMP to the C's BACK (the field computed, not judged), then the C's again
     assert [i for i, (_, held) in enumerate(judging) if held >= 0] == list(range(JUMP_AT, back))
     assert judging[back] == (False, -1)
+    # (st103c) while it holds it, the block = the C: the sensor read at its last reading in, the
+    # correction its fallback model's (before st103c: the model's laws on the live reading)
+    assert ss.monitor["fallback_set"][j] > 0
+    assert np.max(np.abs(st[JUMP_AT:back] - c[JUMP_AT:back])) <= TOLERANCE_UM
     assert np.max(np.abs(st[back:out] - c[back:out])) <= TOLERANCE_UM
 
 

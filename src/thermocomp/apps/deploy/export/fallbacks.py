@@ -16,7 +16,8 @@ derived inputs, a cascade of lags, a state times the inputs' rises, a forest ram
 clock, an lstm network of another shape) is left out: its exclusion stays flagged ``FALLBACK``
 (:mod:`.watch`).  An export before a fallback's laws were merged has none in its
 ``fallback_set`` (0): it flags as it did.  (st103b) The ST block holds them too
-(:func:`.left_out.with_st_fallbacks`), served while it holds their sensor out by ``BLIND_OUT``.
+(:func:`.left_out.with_st_fallbacks`), served while it holds their sensor out by ``BLIND_OUT`` or
+(st103c) by its ``JUMP``.
 """
 
 from __future__ import annotations

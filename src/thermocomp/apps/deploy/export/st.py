@@ -383,6 +383,7 @@ VAR
     ysum : ARRAY[{_dims(2, m)}] OF LREAL;
     excess : ARRAY[{_dims(sets, m)}] OF LREAL;
     serving : INT;
+    serving_k : INT;    (* (st103c) the held sensor whose set is served; -1: none *)
     factor : ARRAY[{_dims(r)}] OF LREAL;
     a0 : LREAL;
     a0_known : BOOL;
@@ -522,12 +523,19 @@ IF NOT refused THEN
             uu[j] := 0.0;
         END_IF;
     END_FOR;
-    (* (st103b) a sensor no other predicts held out by BLIND_OUT: read at its last reading in, *)
-    (* the correction its fallback model's (MON_FALLBACK_SET; 0: the model's), as the C's *)
+    (* (st103b) a sensor no other predicts held out by BLIND_OUT, or (st103c) by its JUMP *)
+    (* (mon_jheld, to the C's BACK): read at its last reading in, the correction its fallback *)
+    (* model's (MON_FALLBACK_SET; 0: the model's), as the C's *)
     serving := 0;
+    serving_k := -1;
     IF mon_held >= 0 AND mon_held_set >= 0 THEN
-        uu[MON_INPUT[mon_held]] := mon_base[mon_held] + mon_jlast;
-        serving := MON_FALLBACK_SET[mon_held];
+        serving_k := mon_held;
+    ELSIF mon_jheld >= 0 THEN
+        serving_k := mon_jheld;
+    END_IF;
+    IF serving_k >= 0 THEN
+        uu[MON_INPUT[serving_k]] := mon_base[serving_k] + mon_jlast;
+        serving := MON_FALLBACK_SET[serving_k];
     END_IF;
     (* causal FIR denoiser: newest raw sample first *)
     FOR l := TAPS - 1 TO 0 BY -1 DO
