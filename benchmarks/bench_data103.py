@@ -1,6 +1,9 @@
 """audit100's three findings on a lab's own file, re-measured and mended where still open
 (data103, issue 34).
 
+LEAD (stop 103): REFUSED below by B2's letter (run = replay to 1e-9, which main's deployed clamp
+breaks with or without the rule); the rule applied as the lead's call (c8a569df).
+
 audit100 listed: (1) ``T1 (front)`` refused as a unit, no command-line route; (2) init's
 refusals one at a time (excel.csv: 3 tries); (3) ``model=auto``'s reason for skipping ``ati`` in
 metrics.json only.  Traced on 4a21da2b (main) before any rule: (1) notes100 (1aa1f903) reads a

@@ -1,6 +1,12 @@
 """A dropped pair whose readings come back, and a dropout beside two or more out, held by the numpy
 mirror and the C as served (issue 34; stop 103, dep103; dep101's path extended).
 
+LEAD (stop 103): KEPT by the bar below, then its src REVERTED (2b62ad30): the full CI found three
+tests outside the bar's modules failing on it -- test_export_kelvin97's whole dropout (every reading
+out: C - served 11.8 um), test_export_cdrop77 (the C holding a row where served's monitor acts
+otherwise) and test_lab75_deploy (an infinity read with exit 0 where the C refused).  A next rule
+runs those modules in its bar.
+
 dep101 (bench_dep101.py, KEPT) held both readings of a pair missing in one sample (the drop) as
 served, the pair never back.  It left (a) the drop whose readings come back, a return with too few
 sensors left to rebuild the field (portal / trunnion: ``min_active`` = n - 1), and (b) a dropout
