@@ -60,22 +60,16 @@ def same_cells(names: list[str], twins: dict[int, int], rows: Iterable[Sequence[
     return [f"{n} [= column {twins[i] + 1}]" if alike.get(i) else n for i, n in enumerate(names)]
 
 
-def copy_refused(header: str, roles, columns) -> bool:
+def copy_refused(header: str) -> bool:
     """(cin103) Whether the reader refuses a file writing ``header`` twice, the copy's values
-    apart from the first's (the copy ``<name>#2`` read by no ``data.roles`` pattern nor
-    ``data.columns`` entry: ``columns 2 and 57 have the same header ..., different values``);
-    False where it reads the copy (a roles-read lab file: ``T Luft#2 [°C]`` as ``T_Luft_2``).
-
-    Parameters
-    ----------
-    header : str
-        A header the model's inputs are read by (a contract name, a lab's header).
-    roles, columns
-        ``ReadOptions.roles`` and ``ReadOptions.columns`` of the model's data config.
-    """
+    apart from the first's, with no ``data.roles`` pattern nor ``data.columns`` entry to read the
+    copy (``columns 2 and 57 have the same header ..., different values``): a file of contract
+    names, the one an exported model reads without its lab's roles (which it does not carry; a
+    roles-read lab file's copy, ``T Luft#2 [°C]``, is read as ``T_Luft_2``, the input from the
+    first column)."""
     names, _ = occurrences([header, header])
     try:
-        naming(names, roles, columns, first=dict.fromkeys(names, "0"))
+        naming(names, {}, {}, first=dict.fromkeys(names, "0"))
     except ContractError as exc:
         return f"have the same header {header!r}, different values" in exc.reason
     return False

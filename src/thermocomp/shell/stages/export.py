@@ -326,7 +326,7 @@ def export(cfg: DictConfig) -> dict:
         # refuses (stream.c refused none of them: exit 0, the first column read).  A lab's
         # header is read by the lab's roles, which the model does not carry (an export from the
         # registry has none): its copy is read as the first, as a roles-read file's copy is.
-        provenance.update(twins_refused=[c for c in stream.columns_ if copy_refused(c, {}, {})])
+        provenance.update(twins_refused=[c for c in stream.columns_ if copy_refused(c)])
     # (bits85) the inputs a PLC's status word packs, as the model declares them (a model
     # pickled before it carried none: the config's): stream.c names the word where they lack
     declared = getattr(deployed, "bits_", None) or parsed_bits(cfg.data.get("bits"))

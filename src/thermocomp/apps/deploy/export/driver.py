@@ -1176,6 +1176,7 @@ int main(int argc, char **argv) {
     int said_back = 0;         /* rows said whose time is not after the last read */
     int flags = 0;             /* (cflags100) --flags: the monitor's state on each row */
     int back = 0;              /* 1: this row's time is not after the last read */
+    int not_after;             /* (cin103) its time not after the last read (back: the first such) */
     int repeating = 0;         /* (dup99) the row before was one written again */
     int said_repeat = 0;       /* (dup99) bursts of rows written again said */
     long footer_at = 0;        /* the first line of a `#` block under the rows (0: none yet) */
@@ -1642,12 +1643,12 @@ int main(int argc, char **argv) {
             restart(&s, 1);
             if (row_time(cells, time_col, clock_col, stamp, row, &t) != 0) return 2;
         }
-        back = TC_SUBSTITUTE_TIME && isfinite(t) && !s.first && isfinite(s.t_read)
-               && t <= s.t_read && !isfinite(s.t_back);
+        not_after = TC_SUBSTITUTE_TIME && isfinite(t) && !s.first && isfinite(s.t_read)
+                    && t <= s.t_read;
+        back = not_after && !isfinite(s.t_back);
         /* (cin103) the time rule's verdict (timerule.py, as C_TIME_RULE takes it in tc_step) */
         time_read = time_col >= 0 && !isfinite(t) ? TIME_NONE
-                    : TC_SUBSTITUTE_TIME && isfinite(t) && !s.first && isfinite(s.t_read)
-                      && t <= s.t_read && !(isfinite(s.t_back) && t > s.t_back) ? TIME_NOT_AFTER
+                    : not_after && !(isfinite(s.t_back) && t > s.t_back) ? TIME_NOT_AFTER
                     : TIME_AS_GIVEN;
         if (TC_AMBIENT_GIVEN && s.first) {     /* the campaign's ambient, at its first row */
             double a0 = ambient_col >= 0 ? value(cells[ambient_col], &ignored) : NAN;
