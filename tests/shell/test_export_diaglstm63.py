@@ -15,6 +15,8 @@ the code, ``lstm_in`` and ``lstm_in_law``.)
 
 from __future__ import annotations
 
+import copy
+
 import numpy as np
 import pytest
 from sklearn.base import clone
@@ -43,9 +45,21 @@ def _net() -> LSTM:
     return LSTM(max_epochs=2, hidden_size=4, chunk=16, validation_fraction=0.0)
 
 
+_REMOVED: dict = {}
+
+
 def _with_removal(data, removed: str, with_model: bool = False):
     """``(stream, test campaigns)`` of the lstm with the ambient law and ``removed`` left out of
-    the inputs, as diagnose's ``augment`` writes an accepted sensor_fault."""
+    the inputs, as diagnose's ``augment`` writes an accepted sensor_fault: a deep copy, fitted
+    once per record and sensor (two tests read it)."""
+    key = (str(data), removed)
+    if key not in _REMOVED:
+        _REMOVED[key] = _fitted_without(data, removed)
+    stream, tests, comp = copy.deepcopy(_REMOVED[key])
+    return (stream, tests) + ((comp,) if with_model else ())
+
+
+def _fitted_without(data, removed: str) -> tuple:
     _, tests, mlr = deployed(data, "model=mlr", pushed="T_a")
     cfg = _compose(f"data.path={data}", "track=false", "monitor.adaptive=false",
                    "promote.envelope.pattern=false")
@@ -57,7 +71,7 @@ def _with_removal(data, removed: str, with_model: bool = False):
     tests = [df.copy() for df in tests]
     tests[0].loc[[0, 1], "S_door"] = np.nan
     tests[1].loc[[20, 21, 22], "S_door"] = np.nan
-    return (deploy_stream(cfg, comp, train), tests) + ((comp,) if with_model else ())
+    return deploy_stream(cfg, comp, train), tests, comp
 
 
 def _the_net_reads_x_and_its_ambient_law(ss, n_read: int) -> None:

@@ -125,11 +125,20 @@ def test_the_network_counts_in_what_the_code_gives(data):
     assert np.max(np.abs(own - corrections(moved))) > 1e3 * TOLERANCE_UM
 
 
-def _ati_diagnosed(tmp_path, effects):
+@pytest.fixture(scope="module")
+def levels(tmp_path_factory):
+    """test_export_ati63's record, with its plain ATI lstm's pushed test campaigns and
+    compensator (``deployed`` once: both effect sets clone it, the tests get copies)."""
+    data = _levels_with_a_door(tmp_path_factory.mktemp("diaglstm64_ati") / "data")
+    _, tests, ati = deployed(data, "model=lstm", *NET, *ATI, pushed="T_a")
+    return data, tests, ati
+
+
+def _ati_diagnosed(levels, effects):
     """``diagnose ati=cmeans`` around lstm: each interval's network on ``[Z, Z (A0 - 20)]``
     (with the interaction), ``Z`` the inputs and the effects' features."""
-    data = _levels_with_a_door(tmp_path / "data")
-    _, tests, ati = deployed(data, "model=lstm", *NET, *ATI, pushed="T_a")
+    data, tests, ati = levels
+    tests = [df.copy() for df in tests]
     cfg = _compose(f"data.path={data}", "track=false", "monitor.adaptive=false",
                    "promote.envelope.pattern=false")
     ds, train_ids, _, _ = read_streamed(cfg)
@@ -142,9 +151,9 @@ def _ati_diagnosed(tmp_path, effects):
 @needs_cc
 @pytest.mark.parametrize("effects", [[AMBIENT_LAW], [LAG, AMBIENT_LAW, STEP]],
                          ids=["ambient-law", "lag-law-step"])
-def test_effects_around_an_ati_lstms_interaction_stream_as_replay(tmp_path, effects):
+def test_effects_around_an_ati_lstms_interaction_stream_as_replay(levels, tmp_path, effects):
     """The ambient law's block times the interaction is ``x (A0 - 20)^2``, the laws' own factor."""
-    stream, tests = _ati_diagnosed(tmp_path, effects)
+    stream, tests = _ati_diagnosed(levels, effects)
     est = stream._plan[0][1]
     assert all(est.estimator_.interactions_)
     ss = state_space(stream)                                  # refused before

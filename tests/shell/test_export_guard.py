@@ -73,6 +73,18 @@ def _adaptive(dataset, family, *extra):
     return deployed, tests
 
 
+_ADAPTIVE: dict = {}
+
+
+def _adaptive_copy(dataset, family):
+    """A copy of :func:`_adaptive` ``(dataset, family)``, fitted once for this module's tests
+    (the tight guard replaces the copy's)."""
+    key = (str(dataset), family)
+    if key not in _ADAPTIVE:
+        _ADAPTIVE[key] = _adaptive(dataset, family)
+    return copy.deepcopy(_ADAPTIVE[key])
+
+
 def _tight(deployed, tests) -> list:
     """Replace the guard by one whose bound is the middle half of the free corrections and whose
     rate limit is half their median rate (first campaign): both act.  Returns the free corrections."""
@@ -131,7 +143,7 @@ def _simulated(ss, tests, columns, references=None) -> np.ndarray:
 @pytest.mark.parametrize("family", FAMILIES)
 def test_the_code_of_an_adaptive_model_streams_as_its_guarded_replay(dataset, tmp_path, family,
                                                                      limits):
-    deployed, tests = _adaptive(dataset, family)
+    deployed, tests = _adaptive_copy(dataset, family)
     if limits == "tight":
         free = np.vstack([-f for f in _tight(deployed, tests)])
     expected, events = _guarded(deployed, tests)

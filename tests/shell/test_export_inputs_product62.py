@@ -74,12 +74,27 @@ def data(tmp_path_factory):
     return _gantry(tmp_path_factory.mktemp("inputs_product") / "data")
 
 
+_PLAIN: dict = {}
+
+
+def _plain(data, overrides: tuple) -> tuple:
+    """``(copies of the test campaigns with T_a pushed out half-way, the plain MLR compensator)``,
+    :func:`deployed` once per dataset and overrides (the diagnosed model is fitted on a clone of
+    the compensator, which it leaves as it was; the tests get copies, which they shift)."""
+    key = (str(data), overrides)
+    if key not in _PLAIN:
+        _, tests, mlr = deployed(data, "model=mlr", *overrides, pushed="T_a")
+        _PLAIN[key] = tests, mlr
+    tests, mlr = _PLAIN[key]
+    return [df.copy() for df in tests], mlr
+
+
 def _diagnosed(data, effects, base=None, *overrides, adaptive: bool = False, pushed_from="half"):
     """``(deployed, test campaigns with T_a pushed out from row ``pushed_from`` (half-way;
     ``None``: healthy), the fitted compensator)`` of ``base`` (MLR) with ``effects`` for E_X, as
     diagnose's config builds it; ``adaptive``: the adaptive compensator around the stream."""
     common = (f"data.path={data}", "track=false", EVERY_EXCURSION, *overrides)
-    _, tests, mlr = deployed(data, "model=mlr", *overrides, pushed="T_a")
+    tests, mlr = _plain(data, overrides)
     cfg = _compose(*common, f"monitor.adaptive={str(adaptive).lower()}")
     ds, train_ids, test_ids, _ = read_streamed(cfg)
     train = {c: ds.campaigns[c] for c in train_ids}
