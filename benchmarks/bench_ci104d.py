@@ -26,6 +26,28 @@ BAR (the brief's, written and committed here before any after-measurement):
 
 KEPT when (1) and (2) hold; below 15 % the exact cuts are still committed and the lead decides.
 
+Cuts built (tests only, exact; 6506e60c, 45ffccb3; saved as benchmarks/ci104d_rule.patch):
+the 8 ``diagnose`` calls of test_diagnose_cli (door fixture, the one_step pair, the lab rerun),
+test_diagnose_sparse61, test_deploy_diagnosed and test_diagnose57's ATI header stream the plain
+deployed stream (conftest.PLAIN_DIAGNOSE): each run both ways on its record, every figure of
+diagnosis_<target>.json equal (970-2038 keys a call; only paths, seconds and the absent
+test_rows_guarded differ); test_stranger66's plain-CSV run made once for its two readers;
+test_sparse_targets61's sparse FAST run per family made once (the lagbank one read twice).
+
+Measured (2026-12-07, load 6-17; ``cpu``'s command line; CPU s user + sys incl. children):
+rep 0, the whole slice, base (03:45-04:02) then after (04:02-04:17): 209.5 -> 205.6 s (-1.8 %;
+unchanged modules -9 % .. +10 %: the load's noise).  Reps 1-2, the 6 changed modules, base and
+after interleaved module by module: 52.7 -> 50.1 (-4.9 %), 52.1 -> 49.7 (-4.6 %); mean of reps
+0-2: diagnose_sparse61 8.21 -> 6.96 (-15.2 %), diagnose57 5.15 -> 4.80, deploy_diagnosed 5.66
+-> 5.34, diagnose_cli 12.01 -> 11.42, sparse_targets61 9.56 -> 9.19, stranger66 11.94 -> 11.67;
+sum 52.5 -> 49.4 s: 3.1 s saved, 1.5 % of the slice.  Bar (1) NOT met: REFUSED.
+
+Trace: pytest's start and collection is 1.2-2.3 s CPU of each module run alone (``--co``), ~40 s
+of the 209.5 (paid per module in this bench, once per xdist worker in CI); a diagnosis of
+test_diagnose_few (cProfile) spreads over the search's fits with no hot spot (2.3 s, 0.7 of it
+scipy.signal's import).  The acceptance modules (diagnose_scenarios, diagnose_few, pde66) compute
+what their premises state; no ``full`` move was made (none planted and checked in the time).
+
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``)::
 
     python benchmarks/bench_ci104d.py cpu TREE TAG OUT SPEC...      # bench_ci100b's cpu
