@@ -4,7 +4,7 @@ import pickle
 
 import pytest
 
-from conftest import FAST, thermocomp
+from conftest import FAST, PLAIN_DIAGNOSE, thermocomp
 from thermocomp.apps.deploy.streaming import StreamingCompensator, streaming_deviation
 from thermocomp.core import io
 
@@ -15,7 +15,8 @@ def test_diagnosed_model_streams_exactly_as_it_predicts(door_dataset, tmp_path):
     data, out = door_dataset, tmp_path / "out"
     # one target (E_Y: S_door accepted, test_diagnose_cli), no figures, no validation folds: the
     # streaming of the rerun model is what is asserted, not the diagnosis' report
-    thermocomp("diagnose", f"data.path={data}", f"out={out}", "diagnose.targets=[E_Y]", *FAST)
+    thermocomp("diagnose", f"data.path={data}", f"out={out}", "diagnose.targets=[E_Y]", *FAST,
+               *PLAIN_DIAGNOSE)
     thermocomp("run", f"hydra.searchpath=[file://{out / 'diagnosis' / 'conf'}]", "experiment=diagnosed",
                f"data.path={data}", f"out={out / 'rerun'}", *FAST)
     comp = pickle.loads((out / "rerun" / "model.pkl").read_bytes())

@@ -5,6 +5,8 @@ from __future__ import annotations
 
 import pytest
 
+from conftest import PLAIN_DIAGNOSE
+
 pytestmark = pytest.mark.slow
 
 
@@ -27,7 +29,7 @@ def test_the_ati_wrapper_is_named_in_the_printed_header(short_door_dataset, tmp_
     from thermocomp.shell.cli import main
     assert main(["diagnose", f"data.path={short_door_dataset}", f"out={tmp_path}", "track=false",
                  "plots=none", "ati=cmeans", "diagnose.targets=[E_Y]", "diagnose.families=[signal]",
-                 "diagnose.max_effects=1"]) == 0
+                 "diagnose.max_effects=1", *PLAIN_DIAGNOSE]) == 0
     said = capsys.readouterr()
     assert "model=mlr ati=cmeans  dataset=" in said.out
     assert "diagnosing mlr ati=cmeans (" in said.err

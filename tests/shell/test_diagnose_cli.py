@@ -6,7 +6,7 @@ import json
 
 import pytest
 
-from conftest import LIGHT, thermocomp
+from conftest import LIGHT, PLAIN_DIAGNOSE, thermocomp
 
 pytestmark = pytest.mark.slow
 
@@ -22,7 +22,7 @@ def door(short_door_dataset, tmp_path_factory):
     out = root / "out"
     uri = f"sqlite:///{root / 'mlruns' / 'mlflow.db'}"
     proc = thermocomp("diagnose", f"data.path={data}", f"out={out}", f"tracking_uri={uri}",
-                      "diagnose.targets=[E_Y]")
+                      "diagnose.targets=[E_Y]", *PLAIN_DIAGNOSE)
     return data, out, uri, proc
 
 
@@ -90,7 +90,8 @@ def test_one_step_scores_the_test_split_only_and_says_the_search_stays_in_simula
     for mode in ("simulation", "one_step"):
         out = tmp_path / mode
         assert main(["diagnose", f"data.path={data}", f"out={out}", "track=false", "plots=none",
-                     f"eval.mode={mode}", "diagnose.max_effects=1", "diagnose.targets=[E_Y]"]) == 0
+                     f"eval.mode={mode}", "diagnose.max_effects=1", "diagnose.targets=[E_Y]",
+                     *PLAIN_DIAGNOSE]) == 0
         runs[mode] = (json.loads((out / "diagnosis.json").read_text()), capsys.readouterr())
     (sim, _), (one, said) = runs["simulation"], runs["one_step"]
     assert sim["cv"]["mode"] == one["cv"]["mode"] == "simulation" and one["mode"] == "one_step"
@@ -119,7 +120,7 @@ def test_the_printed_rerun_reads_the_data_as_the_diagnosis_did(door, tmp_path):
     diag = tmp_path / "diag"
     thermocomp("diagnose", f"hydra.searchpath=[file://{tmp_path / 'myconf'}]", "data=lab",
                f"data.path={lab}", f"out={diag}", "track=false", "diagnose.targets=[E_Y]",
-               "data.max_gap_samples=0")
+               "data.max_gap_samples=0", *PLAIN_DIAGNOSE)
     j = json.loads((diag / "diagnosis.json").read_text())
     words = shlex.split(j["rerun"])
     assert words[:2] == ["thermocomp", "run"] and "data=lab" in words

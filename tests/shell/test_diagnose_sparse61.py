@@ -15,7 +15,7 @@ import json
 import numpy as np
 import pytest
 
-from conftest import FAST, UNTRACKED, thermocomp
+from conftest import FAST, PLAIN_DIAGNOSE, UNTRACKED, thermocomp
 from thermocomp.apps.sim.probe import probe_cycle_copy
 from thermocomp.core.io.read import read_dataset
 from thermocomp.core.model_selection.blocks import cut_blocks, decorrelation_length
@@ -38,7 +38,7 @@ def records(tmp_path_factory):
 
 def diagnosed(data, out):
     proc = thermocomp("diagnose", f"data.path={data}", f"out={out}", *UNTRACKED, "plots=none",
-                      "diagnose.targets=[E_Y]", check=False)
+                      "diagnose.targets=[E_Y]", *PLAIN_DIAGNOSE, check=False)
     assert proc.returncode == 0, proc.stderr[-2000:]
     return json.loads((out / "diagnosis.json").read_text()), proc
 

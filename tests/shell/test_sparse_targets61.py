@@ -37,6 +37,22 @@ def sparse(dense, tmp_path_factory):
                    lambda rows: rows % EVERY == 0)
 
 
+@pytest.fixture(scope="module")
+def sparse_run(sparse, tmp_path_factory):
+    """``run`` of the sparse record with a family, FAST: ``(its folder, the finished process)``,
+    each family's made once in the module (the lagbank's is read by two tests)."""
+    made = {}
+
+    def run(family: str):
+        if family not in made:
+            out = tmp_path_factory.mktemp(f"sparse-{family}")
+            args = [f"model={family}", *FAST, *(["model.candidates=[mlr,arx,lagbank]"]
+                                                if family == "auto" else [])]
+            made[family] = out, thermocomp("run", f"data.path={sparse}", f"out={out}", *args)
+        return made[family]
+    return run
+
+
 def test_read_as_a_probe_cycle_never_interpolated(sparse):
     """Even where data.max_gap_samples would bridge the gaps, the empty cells stay empty (an
     interpolated error is a line nobody measured), and the report counts the measured rows."""
@@ -98,7 +114,7 @@ def test_the_fit_sees_the_measured_rows_only(sparse):
 
 
 @pytest.mark.parametrize("family", ["mlr", "arx", "lagbank", "auto"])
-def test_a_sparse_record_runs_and_scores_its_measured_rows(family, dense, sparse, tmp_path):
+def test_a_sparse_record_runs_and_scores_its_measured_rows(family, dense, sparse, sparse_run, tmp_path):
     """End to end; the test RMSE on the measured rows stays close to that of the same family
     fitted on the dense record, scored on the same rows (it fits on 1/30 of them).  Bound 1.5:
     benchmarks/bench_sparse61.py measured the ratio sparse / dense at 1 row in 30 on this
@@ -108,9 +124,9 @@ def test_a_sparse_record_runs_and_scores_its_measured_rows(family, dense, sparse
     args = [f"model={family}", *FAST, *(["model.candidates=[mlr,arx,lagbank]"]
                                         if family == "auto" else [])]
     thermocomp("run", f"data.path={dense}", f"out={tmp_path / 'dense'}", *args)
-    run = thermocomp("run", f"data.path={sparse}", f"out={tmp_path / 'sparse'}", *args)
+    out, run = sparse_run(family)
     assert "E_X measured on 1 row in 30" in run.stderr
-    metrics = json.loads((tmp_path / "sparse" / "metrics.json").read_text())
+    metrics = json.loads((out / "metrics.json").read_text())
     comp = load_model(tmp_path / "dense" / "model.pkl")
     ds, _ = read_dataset(sparse)
     test = {c: ds.campaigns[c] for c in ds.ids("test")}
@@ -166,13 +182,13 @@ def test_an_ar_term_is_refused_in_one_line(sparse, tmp_path):
     assert run.returncode == 2 and "ARX.ar=true needs the error measured at every sample" in run.stderr
 
 
-def test_replay_streams_the_dense_inputs_and_scores_the_measured_rows(sparse, tmp_path):
+def test_replay_streams_the_dense_inputs_and_scores_the_measured_rows(sparse, sparse_run, tmp_path):
     """Replay streams every row and compares on the measured ones: as the batch scored it."""
-    thermocomp("run", f"data.path={sparse}", f"out={tmp_path / 'run'}", "model=lagbank", *FAST)
-    thermocomp("replay", f"replay.model={tmp_path / 'run' / 'model.pkl'}", f"data.path={sparse}",
+    run, _ = sparse_run("lagbank")                   # run model=lagbank, FAST
+    thermocomp("replay", f"replay.model={run / 'model.pkl'}", f"data.path={sparse}",
                f"out={tmp_path / 'replay'}", *UNTRACKED, "plots=none", "adapt.method=bias")
     replay = json.loads((tmp_path / "replay" / "replay.json").read_text())
-    metrics = json.loads((tmp_path / "run" / "metrics.json").read_text())
+    metrics = json.loads((run / "metrics.json").read_text())
     for target, r in replay["targets"].items():
         assert r["measured_rows"] == metrics["targets"][target]["test"]["measured_rows"]
         assert r["n_samples"] == metrics["targets"][target]["test"]["rows"]
