@@ -10,9 +10,11 @@ test_scale_fleet 4.0, test_sweep_failed63 3.5, test_scale_launchers 3.4.
 
 How a module is measured: ``/usr/bin/time -f '%U %S' python -m pytest -q -n 0 -p no:cacheprovider
 -m "not full" MODULE`` run from the tree's root with ``PYTHONPATH=<tree>/src`` and
-OMP/OPENBLAS/MKL_NUM_THREADS=1 and TMPDIR a fresh empty folder (removed after, unmeasured): pytest's
-session end deletes the oldest numbered folders of ``$TMPDIR/pytest-of-$USER``, on this shared
-machine other sessions' gigabytes, which would land in the measured CPU; a CI runner starts empty.
+OMP/OPENBLAS/MKL_NUM_THREADS=1 and TMPDIR a folder of the tree's own under OUT's folder (its
+``pytest-of-*`` removed after each module, unmeasured): pytest's session end deletes the oldest
+numbered folders of ``$TMPDIR/pytest-of-$USER``, on this shared machine other sessions'
+gigabytes, which would land in the measured CPU; what the suite keeps once per user there (the
+migrated MLflow template, thermocomp-<uid>-mlflow) stays warm from module to module, as in CI.
 Its CPU is user + sys (children included: ``time`` waits for pytest, which waits for its stage
 processes).  Paired: for each module the base tree's run, then
 the changed tree's, one after the other (same load); the pytest outcome line of each is kept.
@@ -43,7 +45,6 @@ import os
 import shutil
 import subprocess
 import sys
-import tempfile
 from pathlib import Path
 
 SLICE = tuple(f"tests/shell/test_{name}.py" for name in (
@@ -53,17 +54,18 @@ SLICE = tuple(f"tests/shell/test_{name}.py" for name in (
 PYTEST = ("-m", "pytest", "-q", "-n", "0", "-p", "no:cacheprovider", "-m", "not full")
 
 
-def module_cpu(tree: Path, module: str) -> tuple[float, float, str]:
+def module_cpu(tree: Path, module: str, tmp: Path) -> tuple[float, float, str]:
     """User and sys CPU seconds of the module's pytest process and its children, and pytest's
-    last line (its outcome)."""
-    tmp = Path(tempfile.mkdtemp(prefix="ci104e-"))
+    last line (its outcome); ``tmp``: its TMPDIR."""
+    tmp.mkdir(parents=True, exist_ok=True)
     env = dict(os.environ, PYTHONPATH=str(tree / "src"), OMP_NUM_THREADS="1",
                OPENBLAS_NUM_THREADS="1", MKL_NUM_THREADS="1", TMPDIR=str(tmp))
     try:
         run = subprocess.run(["/usr/bin/time", "-f", "TIME %U %S", sys.executable, *PYTEST, module],
                              cwd=tree, env=env, capture_output=True, text=True)
     finally:
-        shutil.rmtree(tmp, ignore_errors=True)
+        for made in tmp.glob("pytest-of-*"):
+            shutil.rmtree(made, ignore_errors=True)
     timed = [line for line in run.stderr.splitlines() if line.startswith("TIME ")][-1].split()
     outcome = [line for line in run.stdout.splitlines() if line.strip()][-1]
     return float(timed[1]), float(timed[2]), outcome
@@ -78,7 +80,7 @@ def main(argv: list[str]) -> int:
     for module in argv[3:] or SLICE:
         seconds = {}
         for tag, tree in (("base", base), ("after", after)):
-            user, system, outcome = module_cpu(tree, module)
+            user, system, outcome = module_cpu(tree, module, out.parent / f"tmp-{tag}")
             seconds[tag] = user + system
             sums[tag] += user + system
             with open(out, "a") as lines:
