@@ -95,33 +95,11 @@ def test_params_are_the_meaningful_leaves_plus_what_was_overridden():
     assert not any(k.startswith("ati.estimator") or k.endswith("_target_") for k in params)
 
 
-@pytest.fixture(scope="module")
-def recorded(tmp_path_factory, dataset):
-    """One tracked run (``seed=1 select=pearson``) whose first attempt to write its end status
-    meets a locked store (another process reading it): ``(store uri, out folder, the statuses
-    set_terminated was called with)``.  Two tests read it (ci104e: each made a run of its own)."""
-    from mlflow import MlflowClient
-
-    real = MlflowClient.set_terminated
-    calls = []
-
-    def locked_once(self, run_id, status=None, end_time=None):
-        calls.append(status)
-        if len(calls) == 1:
-            raise sqlite3.OperationalError("database is locked")
-        return real(self, run_id, status, end_time)
-
-    root = tmp_path_factory.mktemp("recorded")
-    uri, out = mlflow_store(root), root / "out"
-    with pytest.MonkeyPatch.context() as patch:
-        patch.setattr(MlflowClient, "set_terminated", locked_once)
-        assert main(["run", f"data.path={dataset}", f"tracking_uri={uri}", f"out={out}", "seed=1",
-                     "select=pearson", *LIGHT_EVAL]) == 0
-    return uri, out, calls
-
-
-def test_a_run_records_its_name_stage_dataset_headline_metrics_and_signed_model(recorded, dataset):
-    uri, out, _ = recorded
+def test_a_run_records_its_name_stage_dataset_headline_metrics_and_signed_model(tmp_path, dataset):
+    uri = mlflow_store(tmp_path)
+    out = tmp_path / "out"
+    assert main(["run", f"data.path={dataset}", f"tracking_uri={uri}", f"out={out}", "seed=1",
+                 "select=pearson", *LIGHT_EVAL]) == 0
     from mlflow import MlflowClient
 
     client = MlflowClient(uri)
@@ -231,10 +209,24 @@ def test_a_run_interrupted_by_ctrl_c_ends_killed(tmp_path, dataset):
     assert not (tmp_path / "o" / "metrics.json").exists()
 
 
-def test_a_locked_store_while_a_run_ends_still_ends_it(recorded):
+def test_a_locked_store_while_a_run_ends_still_ends_it(tmp_path, dataset, monkeypatch):
     """The store is locked (another process reading it) on the first attempt to write the end
     status: the retry writes it (a retried `mlflow.end_run` had popped the run and ended nothing)."""
-    uri, _, calls = recorded
+    from mlflow import MlflowClient
+
+    real = MlflowClient.set_terminated
+    calls = []
+
+    def locked_once(self, run_id, status=None, end_time=None):
+        calls.append(status)
+        if len(calls) == 1:
+            raise sqlite3.OperationalError("database is locked")
+        return real(self, run_id, status, end_time)
+
+    monkeypatch.setattr(MlflowClient, "set_terminated", locked_once)
+    uri = mlflow_store(tmp_path)
+    assert main(["run", f"data.path={dataset}", f"tracking_uri={uri}", f"out={tmp_path / 'o'}",
+                 *LIGHT_EVAL]) == 0
     assert calls[:2] == ["FINISHED", "FINISHED"] and _statuses(uri) == ["FINISHED"]
 
 
