@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import functools
 import math
+import shutil
 import warnings
 from pathlib import Path
 
@@ -194,18 +195,34 @@ def test_a_hostile_number_is_refused_in_one_line_by_the_stage_that_reads_it(tmp_
     assert not out.exists()
 
 
+@pytest.fixture(scope="module")
+def signed_run(tmp_path_factory):
+    """``(dataset, run folder)``: a FAST run on the hostile matrix's dataset, its model.pkl signed
+    with a key of the test's own, made once; each case plants its signature on a copy of the
+    folder (ci104e: each case made the same run)."""
+    from test_hostile import FAST, make_dataset
+    from thermocomp.base import signing
+
+    root = tmp_path_factory.mktemp("signed_run")
+    data = make_dataset(root / "ds")
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setenv(signing.KEY_ENV, "k" * 40)
+        assert main(["run", f"data.path={data}", f"out={root / 'run'}", *FAST]) == 0
+    return data, root / "run"
+
+
 @pytest.mark.parametrize("signature, says", [("/dev/zero", "not signed by this project"),
                                              ("huge", "model.pkl.sig is larger than a signature")])
 def test_a_signature_with_no_end_is_refused_without_reading_it(tmp_path, capsys, monkeypatch,
-                                                               signature, says):
+                                                               signed_run, signature, says):
     """A ``model.pkl.sig`` that is ``/dev/zero`` was read until memory ran out (MemoryError,
     exit 1): a signature is read bounded, and a device is never read."""
-    from test_hostile import FAST, make_dataset
+    from test_hostile import FAST
     from thermocomp.base import signing
     monkeypatch.setenv(signing.KEY_ENV, "k" * 40)
-    data = make_dataset(tmp_path / "ds")
+    data = signed_run[0]
+    shutil.copytree(signed_run[1], tmp_path / "run")
     model = tmp_path / "run" / "model.pkl"
-    assert main(["run", f"data.path={data}", f"out={model.parent}", *FAST]) == 0
     sig = signing.sig_path(model)
     sig.unlink()
     if signature == "huge":                  # a regular file: 8 MB of a valid line repeated

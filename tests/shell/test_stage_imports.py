@@ -10,7 +10,7 @@ import sys
 
 import pytest
 
-from conftest import FAST, thermocomp
+from conftest import FAST
 from test_hostile import make_dataset
 
 SHOW = "import sys\nprint(' '.join(sorted({*sys.modules, *(m.split('.')[0] for m in sys.modules)})))"
@@ -137,12 +137,13 @@ def _user_env(config_home) -> dict:
 
 
 @pytest.fixture(scope="module")
-def exported(tmp_path_factory):
+def exported(chained):
     """An export of a model.pkl, then ``--version`` and MLflow's telemetry client, in one
-    interpreter of a user's environment: ``(loaded after each, a scratch folder)``."""
-    tmp = tmp_path_factory.mktemp("exported")
-    data = make_dataset(tmp / "ds")
-    thermocomp("run", f"data.path={data}", f"out={tmp / 'run'}", *FAST)
+    interpreter of a user's environment: ``(loaded after each, a scratch folder)``.  The model.pkl
+    is the one ``chained``'s MLR run wrote (the default model, FAST, on make_dataset's data; ci104e:
+    this fixture made the same run again, in this process)."""
+    tmp = chained[1]
+    data = tmp / "ds"
     steps = {
         "export": "from thermocomp.shell.cli import main\n"
                   f"assert main(['export', 'data.path={data}', 'track=false', "

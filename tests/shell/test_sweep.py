@@ -129,12 +129,21 @@ def test_four_job_joblib_sweep_makes_one_parent_four_children_and_a_table(four_j
     assert len(MlflowClient(uri).search_model_versions("name='thermocomp-compensator'")) == 1
 
 
+@pytest.fixture(scope="module")
+def second_sweep(tmp_path_factory, four_jobs, dataset):
+    """A second two-job joblib sweep on two workers in this process, after four_jobs', its table
+    sent to ``compare.out`` and an ``out=`` given: ``(folder, _sweep's results)``.  Two tests
+    read it (ci104e: the compare.out test ran a two-job sweep of its own, one worker)."""
+    root = tmp_path_factory.mktemp("second_sweep")
+    return root, _sweep(root, dataset, 2, "model.estimator.fit_intercept=true,false",
+                        f"compare.out={root / 'table'}", f"out={root / 'ignored'}")
+
+
 @pytest.mark.slow
-def test_a_sweep_writes_its_table_where_compare_out_says_and_says_out_is_per_job(tmp_path, dataset):
+def test_a_sweep_writes_its_table_where_compare_out_says_and_says_out_is_per_job(second_sweep):
     # both were silently ignored: the table went to the sweep folder, out= nowhere
+    tmp_path, (_, sweep_dir, proc, _, children) = second_sweep
     table = tmp_path / "table"
-    _, sweep_dir, proc, _, children = _sweep(tmp_path, dataset, 1, "model.estimator.fit_intercept=true,false",
-                                             f"compare.out={table}", f"out={tmp_path / 'ignored'}")
     assert len(children) == 2 and (table / "compare.csv").is_file()
     assert not (sweep_dir / "compare.csv").exists() and not (tmp_path / "ignored").exists()
     assert "out= is not used" in proc.stderr
@@ -248,15 +257,13 @@ def test_launcher_configs_compose_slurm_documented_not_run():
 
 
 @pytest.mark.slow
-def test_a_second_joblib_sweep_in_one_process_attaches_its_jobs_to_its_own_parent(four_jobs, tmp_path,
-                                                                                  dataset):
+def test_a_second_joblib_sweep_in_one_process_attaches_its_jobs_to_its_own_parent(four_jobs, second_sweep):
     # joblib's (loky) workers outlive a sweep and are reused by the next one with the environment
     # of their start: the second sweep's jobs took the FIRST sweep's parent run id (a run of
     # another store: "Run ... not found", no child; CI, two in-process sweeps on one pytest worker).
-    # The first: four_jobs' (two workers, as here; its own parent and children checked above).
+    # The first: four_jobs' (two workers, as the second; its own parent and children checked above).
     _, (_, _, _, first, _) = four_jobs
-    _, sweep_dir, _, parents, children = _sweep(tmp_path, dataset, 2,
-                                                "model.estimator.fit_intercept=true,false")
+    _, (_, sweep_dir, _, parents, children) = second_sweep
     assert len(parents) == 1 and len(children) == 2
     parent_id = parents["run_id"].iloc[0]
     assert parent_id != first["run_id"].iloc[0]
