@@ -156,13 +156,18 @@ def _replayed(promoted, name: str, *data: str) -> float:
     return json.loads((out / "replay.json").read_text())["targets"]["E_dX"]["rmse"]
 
 
-def test_a_replay_without_the_declaration_decodes_the_word_as_the_model_declares_it(promoted):
+@pytest.fixture(scope="module")
+def keyed(promoted) -> float:
+    """The registered model replayed with data.bits given: its RMSE (two tests read it)."""
+    return _replayed(promoted, "replay-keyed", *promoted["data"])
+
+
+def test_a_replay_without_the_declaration_decodes_the_word_as_the_model_declares_it(promoted, keyed):
     """The registered model replayed on a data config without data.bits: the word decoded by
     the declaration the model carries, as with the key (data86; before: refused, "lacks 3
     columns the deployed model reads ... give data.bits={Status: ...}")."""
     data = [d for d in promoted["data"] if not d.startswith("++data.bits")]
-    assert _replayed(promoted, "replay-bare", *data) == _replayed(promoted, "replay-keyed",
-                                                                   *promoted["data"])
+    assert _replayed(promoted, "replay-bare", *data) == keyed
 
 
 def _monitored(promoted, name: str, *args: str, model: str | None = None) -> float:
@@ -173,7 +178,7 @@ def _monitored(promoted, name: str, *args: str, model: str | None = None) -> flo
 
 
 def test_a_monitor_of_the_registered_model_decodes_the_word_as_the_model_declares_it(
-        promoted, monkeypatch):
+        promoted, keyed, monkeypatch):
     """``monitor monitor.model=models:/...`` (and its pyfunc folder) without data.bits, on the
     record's test run and on the lab's run3.csv piped in: the word decoded by the model's
     declaration, its fixed stream the one replay scores (data86b; before: refused, "a model.pkl
@@ -181,7 +186,7 @@ def test_a_monitor_of_the_registered_model_decodes_the_word_as_the_model_declare
     import mlflow
 
     data = [d for d in promoted["data"] if not d.startswith("++data.bits")]
-    scored = _replayed(promoted, "replay-scored", *promoted["data"])
+    scored = keyed                  # the replay with data.bits given
     assert _monitored(promoted, "monitor-bare", *data) == pytest.approx(scored, rel=1e-9)
     mlflow.set_tracking_uri(promoted["uri"])
     folder = mlflow.artifacts.download_artifacts(artifact_uri=promoted["model_uri"],

@@ -286,13 +286,24 @@ def _set_cells(path: Path, split: str, column: str, rows: slice, value: float) -
     return cid, file
 
 
-def test_an_open_circuit_streams_from_a_test_file_and_is_refused_in_a_train_one(small, tmp_path, capsys):
+@pytest.fixture(scope="module")
+def open_circuit(small, tmp_path_factory) -> tuple[Path, str, str, dict]:
+    """``small`` with T_motor2 at 850 °C for 5 samples of its first test campaign: ``(the
+    dataset, the campaign, its file, its monitor.json with plots=none)``; two tests read the
+    monitor's report (each edits a copy of the dataset)."""
+    path = tmp_path_factory.mktemp("open_circuit") / "ds"
+    shutil.copytree(small, path)
+    cid, file = _set_cells(path, "test", "T_motor2", slice(40, 44), 850.0)
+    return path, cid, file, run_monitor(path, path.parent / "out", "plots=none")
+
+
+def test_an_open_circuit_streams_from_a_test_file_and_is_refused_in_a_train_one(open_circuit, tmp_path,
+                                                                              capsys):
     # 850 °C for 5 samples: a failing sensor, not kelvin (the column's median is in °C); the
     # deployed compensator is there to catch it, so a recorded test campaign streams with it
     path = tmp_path / "ds"
-    shutil.copytree(small, path)
-    cid, _ = _set_cells(path, "test", "T_motor2", slice(40, 44), 850.0)
-    report = run_monitor(path, tmp_path / "out", "plots=none")
+    shutil.copytree(open_circuit[0], path)
+    _, cid, _, report = open_circuit
     mine = [e for e in report["events"] if e["campaign"] == cid and e["sensor"] == "T_motor2"]
     assert mine and mine[0]["to"] == "excluded" and mine[0]["reason"].startswith("out of range")
     assert all(t["all_finite"] for t in report["targets"].values())
@@ -437,18 +448,18 @@ def test_data_the_monitor_cannot_use_is_refused(small, tmp_path, capsys, case):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["ds"]
 
 
-def test_event_times_are_seconds_from_the_campaign_start_whatever_the_file_clock(small, tmp_path):
+def test_event_times_are_seconds_from_the_campaign_start_whatever_the_file_clock(open_circuit, tmp_path):
     # CLI.md, monitor.json: "`time` is in seconds from the campaign start"
     path = tmp_path / "ds"
-    shutil.copytree(small, path)
-    cid, file = _set_cells(path, "test", "T_motor2", slice(40, 44), 850.0)
+    shutil.copytree(open_circuit[0], path)
+    _, cid, file, unshifted = open_circuit          # its monitor on the file's own clock
     t = pd.read_csv(path / file)["time"].to_numpy(float)
     times = {}
     for shift in (0.0, 36000.0):
         df = pd.read_csv(path / file)
         df["time"] = t + shift
         df.to_csv(path / file, index=False)
-        report = run_monitor(path, tmp_path / f"mon{shift:g}", "plots=none")
+        report = run_monitor(path, tmp_path / f"mon{shift:g}", "plots=none") if shift else unshifted
         cli("replay", f"data.path={path}", f"out={tmp_path / f'rep{shift:g}'}", "track=false",
                    "monitor.adaptive=true")
         replayed = json.loads((tmp_path / f"rep{shift:g}" / "replay.json").read_text())["events"]

@@ -214,21 +214,26 @@ def test_a_distance_the_calibration_left_out_is_no_distance_error(raw, run, tmp_
     """One validation distance mis-probed by 1 mm (an outside probe's finding): the calibration
     flags it, so the distance errors leave it out, in `run` and in ingest/train/evaluate, and
     in its first cycle too, where it would have shifted the cycles after it.  Before, it was
-    scored (the probe's RMS after 0.95 -> 4.96 µm, p2p 1003 µm)."""
+    scored (the probe's RMS after 0.95 -> 4.96 µm, p2p 1003 µm).  Both cycles in one dataset
+    (one calibration and run, not two): either one scored shows its 1 mm in the errors."""
     clean = run[0]["volumetric"]["distance_error"]
-    for row in (1, 20):                        # the first validation cycle, and a later one
-        data = tmp_path / f"row{row}" / "raw"
-        shutil.copytree(raw, data)
-        f = data / "validation_week.parquet"
-        df = pd.read_parquet(f)
-        column = next(c for c in df.columns if c.startswith("E_S2x1d1_"))
+    data = tmp_path / "raw"
+    shutil.copytree(raw, data)
+    f = data / "validation_week.parquet"
+    df = pd.read_parquet(f)
+    column = next(c for c in df.columns if c.startswith("E_S2x1d1_"))
+    rows = (1, 20)                             # the first validation cycle, and a later one
+    for row in rows:
         df.loc[row - 1, column] += 1000.0
-        df.to_parquet(f, index=False)
-        got, _ = _run(data, tmp_path / f"row{row}" / "run", "plots=none", "eval.validation=false")
-        err = got["volumetric"]["distance_error"]
-        assert err["p2p_after"] < 5 * clean["p2p_after"] and err["p2p_after"] < 100
-        assert err["rms_after"] == pytest.approx(clean["rms_after"], rel=0.02)
-        assert err["rms_before"] == pytest.approx(clean["rms_before"], rel=0.02)
+    df.to_parquet(f, index=False)
+    got, out = _run(data, tmp_path / "run", "plots=none", "eval.validation=false")
+    flagged = json.loads((out / "ingest_report.json").read_text())["calibration"]["outliers"]
+    assert [(o["campaign"], o["row"], o["column"]) for o in flagged] == [
+        ("validation_week", row, column) for row in rows]
+    err = got["volumetric"]["distance_error"]
+    assert err["p2p_after"] < 5 * clean["p2p_after"] and err["p2p_after"] < 100
+    assert err["rms_after"] == pytest.approx(clean["rms_after"], rel=0.02)
+    assert err["rms_before"] == pytest.approx(clean["rms_before"], rel=0.02)
     common = ["experiment=volumetric_large_mill", f"data.path={data}",
               f"data.interim={tmp_path / 'interim'}", f"model_path={tmp_path / 'model.pkl'}",
               "track=false", "eval.mutual_prediction=false", "eval.ati_baselines=false", "plots=none",
