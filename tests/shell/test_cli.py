@@ -112,8 +112,9 @@ def test_foreign_headerless_time_csv_through_mapping_config(tmp_path):
         "defaults:\n  - default\n"
         "columns: {T0: T_0, T1: T_1, \"delta L\": E_L}\nsample_period_s: 60\n")
     out = tmp_path / "out"
+    # plots=none: no assertion reads a figure (test_simulate_then_run_writes_valid_metrics does)
     thermocomp("run", f"hydra.searchpath=[file://{tmp_path / 'myconf'}]", "data=lab",
-               f"data.path={ds}", f"out={out}", "track=false")
+               f"data.path={ds}", f"out={out}", "track=false", "plots=none")
     m = json.loads((out / "metrics.json").read_text())
     _check_metrics_layout(m, ["E_L"])
     assert m["targets"]["E_L"]["test"]["e_p95"]["window_s"][0] == 60.0

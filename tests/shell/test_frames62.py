@@ -48,6 +48,21 @@ def late(dense, tmp_path_factory):
     return probe_cycle_copy(dense, tmp_path_factory.mktemp("frames62") / "late", late_probe)
 
 
+@pytest.fixture(scope="module")
+def lagbank_run(late, tmp_path_factory):
+    """``run`` of the lag bank on ``late`` (the replay test's overrides), made once: the replay
+    test and the export test read its model.pkl and metrics (neither edits them)."""
+    out = tmp_path_factory.mktemp("frames62") / "run"
+    thermocomp("run", f"data.path={late}", EDGE, "model=lagbank", f"out={out}", *UNTRACKED, "plots=none")
+    return out
+
+
+@pytest.fixture(scope="module")
+def plain(late, tmp_path_factory):
+    """``late`` without its ``S_`` columns, written once (read by two tests)."""
+    return _without_states(late, tmp_path_factory.mktemp("frames62") / "plain")
+
+
 def _without_states(source, dest):
     """``source``'s campaigns without their ``S_`` columns (a record of temperatures and errors
     only)."""
@@ -85,22 +100,25 @@ def test_a_dense_records_missing_edge_is_still_refused(dense, tmp_path):
     assert run.returncode == 2 and "3 incomplete rows at the campaign start" in run.stderr
 
 
-def _run_and_replay(data: list[str], family: str, tmp_path) -> tuple[dict, dict]:
-    thermocomp("run", *data, f"model={family}", f"out={tmp_path / 'run'}", *UNTRACKED,
-               "plots=none")
-    thermocomp("replay", *data, f"replay.model={tmp_path / 'run' / 'model.pkl'}",
+def _run_and_replay(data: list[str], family: str, tmp_path, run=None) -> tuple[dict, dict]:
+    """``run`` then ``replay`` of its model.pkl; ``run``: a folder where that run was made."""
+    if run is None:
+        run = tmp_path / "run"
+        thermocomp("run", *data, f"model={family}", f"out={run}", *UNTRACKED, "plots=none")
+    thermocomp("replay", *data, f"replay.model={run / 'model.pkl'}",
                f"out={tmp_path / 'replay'}", *UNTRACKED, "plots=none")
-    return (json.loads((tmp_path / "run" / "metrics.json").read_text())["targets"],
+    return (json.loads((run / "metrics.json").read_text())["targets"],
             json.loads((tmp_path / "replay" / "replay.json").read_text())["targets"])
 
 
 @pytest.mark.parametrize("family", ["lagbank", "arx"])
-def test_run_scores_what_replay_streams(family, late, tmp_path):
+def test_run_scores_what_replay_streams(family, late, tmp_path, request):
     """The test file continues the train one: run predicts it joined to its predecessor, replay
     warms the stream on it; both from the same rows now, so run's test RMSE is replay's batch
     RMSE and its stream's.  (Before: run trimmed the 13 rows before each file's first probe,
     replay streamed the test file's; lagbank E_Z 1.79 against 1.77 um on seed 62.)"""
-    metrics, replay = _run_and_replay([f"data.path={late}", EDGE], family, tmp_path)
+    made = request.getfixturevalue("lagbank_run") if family == "lagbank" else None
+    metrics, replay = _run_and_replay([f"data.path={late}", EDGE], family, tmp_path, made)
     for target, r in replay.items():
         test = metrics[target]["test"]
         assert r["n_samples"] == test["rows"] and r["measured_rows"] == test["measured_rows"]
@@ -125,10 +143,9 @@ def test_a_one_file_records_cut_is_the_batchs(late, tmp_path):
     assert abs(replay["E_Z"]["rmse_batch"] - test["rmse"]) < 1e-9
 
 
-def test_hammerstein_without_states_says_it_is_the_lag_bank(late, tmp_path):
+def test_hammerstein_without_states_says_it_is_the_lag_bank(plain, tmp_path):
     """No S_ column: one warning line, in run's output and metrics.json; the figures are the lag
     bank's."""
-    plain = _without_states(late, tmp_path / "plain")
     runs = {}
     for family in ("hammerstein", "lagbank"):
         run = thermocomp("run", f"data.path={plain}", EDGE, f"model={family}",
@@ -142,11 +159,10 @@ def test_hammerstein_without_states_says_it_is_the_lag_bank(late, tmp_path):
     assert metrics["targets"]["E_Z"]["test"]["rmse"] == runs["lagbank"][1]["targets"]["E_Z"]["test"]["rmse"]
 
 
-def test_auto_validates_the_lag_bank_once(late, tmp_path):
+def test_auto_validates_the_lag_bank_once(plain, tmp_path):
     """model=auto among mlr, lagbank and hammerstein on a record without S_ columns: hammerstein
     is skipped as lagbank's very model, not validated a second time; the blend is of the
     validated candidates, its weights summing to 1."""
-    plain = _without_states(late, tmp_path / "plain")
     thermocomp("run", f"data.path={plain}", EDGE, "model=auto",
                "model.candidates=[mlr,lagbank,hammerstein]", f"out={tmp_path / 'auto'}", *FAST)
     auto = json.loads((tmp_path / "auto" / "metrics.json").read_text())["targets"]["E_Z"]["auto"]
@@ -156,23 +172,21 @@ def test_auto_validates_the_lag_bank_once(late, tmp_path):
     assert sum(auto["weights"].values()) == pytest.approx(1.0, abs=1e-3)
 
 
-def test_the_export_packs_corrections_are_what_run_scored(late, tmp_path):
+def test_the_export_packs_corrections_are_what_run_scored(late, lagbank_run, tmp_path):
     """export's check pack feeds the code the test file after its lead-in (the train file it
     continues): its expected corrections on the test file's rows are minus run's predictions
     there, row for row, from the first row (before: run's test file started 13 rows later)."""
     from thermocomp.core import continuation
     from thermocomp.shell.model_store import load_model
 
-    thermocomp("run", f"data.path={late}", EDGE, "model=lagbank", f"out={tmp_path / 'run'}",
-               *FAST)
     thermocomp("export", f"data.path={late}", EDGE, *UNTRACKED, "monitor.adaptive=false",
-               f"export.model={tmp_path / 'run' / 'model.pkl'}", "export.format=c",
+               f"export.model={lagbank_run / 'model.pkl'}", "export.format=c",
                f"out={tmp_path / 'code'}")
     pack = json.loads((tmp_path / "code" / "check" / "check.json").read_text())
     entry = next(e for e in pack["campaigns"] if e["campaign"] == "R1b")
     expected = pd.read_csv(tmp_path / "code" / entry["folder"] / "expected.csv")
     own = expected.iloc[entry["lead_in_rows"]:].to_numpy(float)
     ds, _ = read_dataset(late, {"max_edge_samples": 50})
-    predicted, _ = continuation.predict(load_model(tmp_path / "run" / "model.pkl"), ds, ["R1b"])
+    predicted, _ = continuation.predict(load_model(lagbank_run / "model.pkl"), ds, ["R1b"])
     assert entry["cut"] is None and own.shape == (len(predicted["R1b"]), 1)
     assert np.abs(own[:, 0] + predicted["R1b"]["E_Z"].to_numpy()).max() < 1e-9
