@@ -9,6 +9,7 @@ the tests appended in one file, the time as dates, silent between the tests)
 from __future__ import annotations
 
 import codecs
+import contextlib
 import datetime as dt
 import io
 import json
@@ -96,37 +97,45 @@ def test_a_catman_easy_folder_reads_its_names_over_the_units_and_the_comments_ro
     np.testing.assert_allclose(frame.iloc[:, 1:].to_numpy(), _values(2))
 
 
-def test_init_names_catmans_time_channel_and_run_fits_the_probes(tmp_path, capsys):
+@pytest.fixture(scope="module")
+def easy_run(tmp_path_factory) -> tuple[Path, str, Path]:
+    """The catman Easy folder, what ``init`` said of it and ``run``'s out folder (model=mlr on
+    init's config), made once: the init and run tests below only read them."""
+    tmp_path = tmp_path_factory.mktemp("easy_run")
+    folder = _easy_folder(tmp_path / "rig")
+    said = io.StringIO()
+    with contextlib.redirect_stdout(said):
+        assert main(["init", str(folder), f"out={tmp_path / 'init'}"]) == 0
+    assert main(["run", f"hydra.searchpath=[file://{tmp_path / 'init' / 'conf'}]", "data=rig",
+                 "model=mlr", *FAST, f"out={tmp_path / 'out'}"]) == 0
+    return folder, said.getvalue(), tmp_path
+
+
+def test_init_names_catmans_time_channel_and_run_fits_the_probes(easy_run):
     """Before: refused; with the table found, catman's time channel ``Zeit  1 -
     Standardmessrate [s]`` was 'not read' (no time header), one more try for data.roles.time."""
-    folder = _easy_folder(tmp_path / "rig")
-    assert main(["init", str(folder), f"out={tmp_path / 'init'}"]) == 0
-    said = capsys.readouterr().out
+    _, said, tmp_path = easy_run
     assert "header on line 6 (5 line(s) above it left out), units from line 7; rows counted " \
            "from line 9" in said
     assert "time: 'Zeit  1 - Standardmessrate [s]', in s" in said
     assert "  Drehzahl [1/min]                state        S_Drehzahl" in said
-    assert main(["run", f"hydra.searchpath=[file://{tmp_path / 'init' / 'conf'}]", "data=rig",
-                 "model=mlr", *FAST, f"out={tmp_path / 'out'}"]) == 0
     metrics = json.loads((tmp_path / "out" / "metrics.json").read_text())
     assert set(metrics["targets"]) == {"E_Sonde_X1", "E_Sonde_Z"}
     assert metrics["targets"]["E_Sonde_X1"]["test"]["rmse"] < 0.2     # (the map is linear)
 
 
-def test_a_catman_file_piped_into_monitor_streams_as_the_folder_reads(tmp_path, capsys,
+def test_a_catman_file_piped_into_monitor_streams_as_the_folder_reads(easy_run, tmp_path,
                                                                       monkeypatch):
     """Before: 'file <stdin>: 6 column(s) not read: 'T Luft [°C]' is not numeric ('MX1609 Typ
     K')' (the comments row under the units read as a sample)."""
-    folder = _easy_folder(tmp_path / "rig")
-    assert main(["init", str(folder), f"out={tmp_path / 'init'}"]) == 0
-    data = [f"hydra.searchpath=[file://{tmp_path / 'init' / 'conf'}]", "data=rig"]
-    assert main(["run", *data, "model=mlr", *FAST, f"out={tmp_path / 'out'}"]) == 0
+    folder, _, made = easy_run
+    data = [f"hydra.searchpath=[file://{made / 'init' / 'conf'}]", "data=rig"]
     text = (folder / "Spindeltest_03.TXT").read_bytes().decode("cp1252")
     monkeypatch.setattr(sys, "stdin", io.StringIO(text))
     assert main(["monitor", *data, "monitor.input=-", "track=false",
                  "promote.envelope.policy=off",        # (test 3 runs faster than the others)
-                 f"monitor.model={tmp_path / 'out' / 'model.pkl'}", f"out={tmp_path / 'mon'}"]) == 0
-    run = json.loads((tmp_path / "out" / "metrics.json").read_text())["targets"]
+                 f"monitor.model={made / 'out' / 'model.pkl'}", f"out={tmp_path / 'mon'}"]) == 0
+    run = json.loads((made / "out" / "metrics.json").read_text())["targets"]
     report = json.loads((tmp_path / "mon" / "monitor.json").read_text())
     assert report["events"] == []
     for target, r in report["targets"].items():

@@ -58,9 +58,22 @@ def _run_rmse(record: Path, out: Path, model: str) -> dict:
     return {t: m["test"]["rmse"] for t, m in metrics["targets"].items()}
 
 
+@pytest.fixture(scope="module")
+def run_rmse(record, tmp_path_factory):
+    """``run_rmse(model)``: ``_run_rmse`` of a model, run once in the module (the replay case and
+    the monitor test of the lag bank compare their streams with the same run)."""
+    runs: dict = {}
+
+    def rmse(model: str) -> dict:
+        if model not in runs:
+            runs[model] = _run_rmse(record, tmp_path_factory.mktemp(f"run_{model}"), model)
+        return runs[model]
+    return rmse
+
+
 @pytest.mark.parametrize("model", ["mlr", "arx", "lagbank"])
-def test_replay_of_a_continuing_campaign_scores_as_run(record, tmp_path, capsys, model):
-    run = _run_rmse(record, tmp_path / "run", model)
+def test_replay_of_a_continuing_campaign_scores_as_run(record, run_rmse, tmp_path, capsys, model):
+    run = run_rmse(model)
     replay = _stage("replay", record, tmp_path / "replay", f"model={model}")["targets"]
     for t, rmse in run.items():
         assert replay[t]["rmse"] == pytest.approx(rmse, rel=0.01)
@@ -75,8 +88,8 @@ def test_replay_of_a_continuing_campaign_scores_as_run(record, tmp_path, capsys,
     assert float(row[4]) == pytest.approx(run["E_ch1"], abs=1e-3)
 
 
-def test_monitor_streams_a_continuing_campaign_as_run_scores_it(record, tmp_path):
-    run = _run_rmse(record, tmp_path / "run", "lagbank")
+def test_monitor_streams_a_continuing_campaign_as_run_scores_it(record, run_rmse, tmp_path):
+    run = run_rmse("lagbank")
     monitor = _stage("monitor", record, tmp_path / "monitor", "model=lagbank")["targets"]
     for t, rmse in run.items():
         assert monitor[t]["rmse_fixed"] == pytest.approx(rmse, rel=0.01)

@@ -25,12 +25,18 @@ def _monitor(args: list[str], out, stdin: str | None, monkeypatch) -> dict:
     return json.loads((out / "monitor.json").read_text())["targets"]
 
 
-def test_a_stdin_stream_that_continues_a_campaign_is_warmed_on_it(record, tmp_path, monkeypatch,
-                                                                  capsys):
+@pytest.fixture(scope="module")
+def from_file(record, tmp_path_factory) -> dict:
+    """monitor's targets for the test file B streamed from data.path (warmed on A, which it
+    continues), made once: the two stdin tests below compare their streams with it."""
+    return _monitor([f"data.path={record}"], tmp_path_factory.mktemp("from_file"), None, None)
+
+
+def test_a_stdin_stream_that_continues_a_campaign_is_warmed_on_it(record, from_file, tmp_path,
+                                                                  monkeypatch, capsys):
     # the test file B continues A: streamed from data.path it is warmed on A (as run scores it);
     # the same rows on stdin, said to continue A, must stream alike
     args = [f"data.path={record}"]
-    from_file = _monitor(args, tmp_path / "file", None, monkeypatch)
     rows = (record / "B.csv").read_text()
     piped = _monitor([*args, "monitor.input=-", "monitor.continues=A"], tmp_path / "piped", rows,
                      monkeypatch)
@@ -224,12 +230,11 @@ def test_monitor_refuses_a_stdin_stream_for_a_model_on_the_manifest_ambient(
 
 
 def test_a_stdin_stream_that_continues_a_campaign_without_its_first_time_streams_alike(
-        record, tmp_path, monkeypatch):
+        record, from_file, tmp_path, monkeypatch):
     # the lead-in was moved to end one period before the stream's first time, NaN: every
     # lead-in time was lost, the guard ran it from 0 s and the stream's second row came
     # (lead-in rows x period) before its first (stranger48, session 49)
     args = [f"data.path={record}"]
-    from_file = _monitor(args, tmp_path / "file", None, monkeypatch)
     lines = (record / "B.csv").read_text().splitlines(keepends=True)
     lines[1] = "," + lines[1].split(",", 1)[1]          # row 1 without its time
     piped = _monitor([*args, "monitor.input=-", "monitor.continues=A"], tmp_path / "piped",

@@ -45,22 +45,32 @@ def _marked(path, at: int) -> str:
     return "".join(lines[:at] + [MARK] + lines[at:])
 
 
+@pytest.fixture(scope="module")
+def plain_run(tmp_path_factory):
+    """``(out, daq, plain)``: a lag bank run on the plain export of the DAQ's runs, made once: the
+    comment test compares the marked DAQ file's run with it, lab_stream exports it."""
+    tmp_path = tmp_path_factory.mktemp("leftovers67c")
+    daq, plain = folders(tmp_path)
+    out = tmp_path / "run"
+    assert main(["run", f"data.path={plain}", *ROLES, *FAST, "model=lagbank", "plots=none",
+                 f"out={out}"]) == 0
+    return out, daq, plain
+
+
 def test_a_comment_among_the_rows_of_a_commented_file_is_left_out_by_file_and_stream(
-        tmp_path, monkeypatch, capsys):
+        plain_run, tmp_path, monkeypatch, capsys):
     # before: the file reader refused the DAQ's run ("line 108 (data row 101): expected 7
     # fields, got 1"); the stream left it out, unsaid; now both leave it out and say its line
     daq, plain = folders(tmp_path)
     test = sorted(daq.glob("*.txt"))[-1]
     marked = _marked(test, 7 + 100)
     args = [*ROLES, *FAST, "model=lagbank"]
-    assert main(["run", f"data.path={plain}", *args, "plots=none",
-                 f"out={tmp_path / 'out-plain'}"]) == 0
     test.write_text(marked)
     assert main(["run", f"data.path={daq}", *args, "plots=none", f"out={tmp_path / 'out-daq'}"]) == 0
     said = "line 108: a '#' comment among the rows (the file writes '#' comments"
     assert f"{test}, {said}" in capsys.readouterr().err
-    got, want = (json.loads((tmp_path / name / "metrics.json").read_text())["targets"]["E_dZ1"]
-                 for name in ("out-daq", "out-plain"))
+    got, want = (json.loads((out / "metrics.json").read_text())["targets"]["E_dZ1"]
+                 for out in (tmp_path / "out-daq", plain_run[0]))    # (plain_run: the same run)
     for split in ("train", "test"):
         assert got[split]["rmse"] == pytest.approx(want[split]["rmse"], rel=1e-12)
     monitor = ["monitor", f"data.path={plain}", *args]
@@ -101,15 +111,13 @@ def test_a_hash_line_in_a_file_without_comments_is_refused_alike_by_file_and_str
 # -- 1 and 2. the compiled stream: a '#' comment among the rows; the file's own line numbers -------
 
 @pytest.fixture(scope="module")
-def lab_stream(tmp_path_factory):
-    """``(stream, daq, plain)``: ``stream`` compiled from a lag bank run on the plain export of
-    the DAQ's runs (its lags read the time)."""
-    tmp_path = tmp_path_factory.mktemp("leftovers67c")
-    daq, plain = folders(tmp_path)
+def lab_stream(plain_run):
+    """``(stream, daq, plain)``: ``stream`` compiled from plain_run's lag bank (its lags read the
+    time)."""
+    run, daq, plain = plain_run
     args = [f"data.path={plain}", *ROLES, *FAST]
-    code = tmp_path / "c"
-    assert main(["run", *args, "model=lagbank", "plots=none", f"out={tmp_path / 'run'}"]) == 0
-    assert main(["export", *args, f"export.model={tmp_path / 'run' / 'model.pkl'}",
+    code = run.parent / "c"
+    assert main(["export", *args, f"export.model={run / 'model.pkl'}",
                  "export.format=c", "export.check=false", f"out={code}"]) == 0
     compiled(code)
     return code / "stream", daq, plain

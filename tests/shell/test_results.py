@@ -26,12 +26,14 @@ QUICK = ["track=false", "plots=none", "eval.mutual_prediction=false", "eval.ati_
 def _string_literals(path: Path) -> set[str]:
     """Every string constant of a module but its docstrings (f-string parts and
     expressions included: ``f"{m['rmse']}"`` holds the constant ``rmse``)."""
-    tree = ast.parse(path.read_text(encoding="utf-8"))
-    docs = {id(node.body[0].value) for node in ast.walk(tree)
-            if isinstance(node, (ast.Module, ast.ClassDef, ast.FunctionDef, ast.AsyncFunctionDef))
-            and ast.get_docstring(node, clean=False) is not None}
-    return {n.value for n in ast.walk(tree)
-            if isinstance(n, ast.Constant) and isinstance(n.value, str) and id(n) not in docs}
+    docs, constants = set(), []
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):    # one walk, not two
+        if isinstance(node, ast.Constant) and isinstance(node.value, str):
+            constants.append(node)
+        elif isinstance(node, (ast.Module, ast.ClassDef, ast.FunctionDef, ast.AsyncFunctionDef)) \
+                and ast.get_docstring(node, clean=False) is not None:
+            docs.add(id(node.body[0].value))
+    return {n.value for n in constants if id(n) not in docs}
 
 
 def test_score_keys_are_spelled_out_in_two_modules_only():

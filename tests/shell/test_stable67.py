@@ -7,10 +7,13 @@ below it; the run's validation reports the uncompensated error's RMS on the same
 
 from __future__ import annotations
 
+import contextlib
+import io
 import json
 import re
 import shutil
 import subprocess
+from pathlib import Path
 
 import numpy as np
 import pandas as pd
@@ -90,11 +93,24 @@ def test_uncompensated_keep_keeps_the_fitted_model(record, tmp_path):
     assert noise["validation"]["rmse"] > noise["validation"]["rms_before"]
 
 
-def test_run_says_plainly_when_a_model_validates_worse_than_no_compensation(record, tmp_path,
-                                                                           capsys):
-    targets = _run(record, tmp_path / "out", "model=mlr")
-    said = capsys.readouterr()
-    line = next(x for x in (said.out + said.err).splitlines() if "WORSE THAN NO COMPENSATION" in x)
+@pytest.fixture(scope="module")
+def tracked_mlr(record, tmp_path_factory) -> tuple[str, Path, dict, str]:
+    """``(tracking uri, out, targets, what it printed)`` of one tracked ``run model=mlr`` (E_N
+    validates worse than no correction): the run test reads its message, the promote test
+    promotes it."""
+    root = tmp_path_factory.mktemp("tracked_mlr")
+    uri = f"sqlite:///{root / 'mlruns.db'}"
+    out, err = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+        assert main(["run", f"data.path={record}", f"tracking_uri={uri}", "plots=none",
+                     "data.reference=first_sample", "model=mlr", f"out={root / 'run'}"]) == 0
+    targets = json.loads((root / "run" / "metrics.json").read_text())["targets"]
+    return uri, root / "run", targets, out.getvalue() + err.getvalue()
+
+
+def test_run_says_plainly_when_a_model_validates_worse_than_no_compensation(tracked_mlr):
+    _, _, targets, said = tracked_mlr
+    line = next(x for x in said.splitlines() if "WORSE THAN NO COMPENSATION" in x)
     v = targets["E_N"]["validation"]
     assert v["rmse"] > v["rms_before"]
     assert f"E_N {v['rmse']:.3g} > {v['rms_before']:.3g}" in line
@@ -123,12 +139,12 @@ def test_the_zero_correction_replays_and_exports_as_zero(record, auto_run, tmp_p
         assert (expected["C_N"] == 0).all() and (expected["C_G"] != 0).any()
 
 
-def test_promote_warns_of_a_candidate_worse_than_no_compensation(record, tmp_path, capsys):
-    uri = f"sqlite:///{tmp_path / 'mlruns.db'}"
+def test_promote_warns_of_a_candidate_worse_than_no_compensation(record, tracked_mlr, tmp_path,
+                                                                 capsys):
+    uri, _, _, said = tracked_mlr
     args = [f"data.path={record}", f"tracking_uri={uri}", "plots=none",
             "data.reference=first_sample"]
-    assert main(["run", *args, "model=mlr", f"out={tmp_path / 'run'}"]) == 0
-    run_id = re.search(r"MLflow run (\w+)", capsys.readouterr().err).group(1)
+    run_id = re.search(r"MLflow run (\w+)", said).group(1)
     assert main(["promote", *args, f"promote.run_id={run_id}",
                  f"out={tmp_path / 'promote'}"]) == 0
     err = capsys.readouterr().err
