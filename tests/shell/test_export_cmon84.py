@@ -41,6 +41,19 @@ def record(tmp_path_factory):
     return _machine(tmp_path_factory.mktemp("cmon84") / "data")
 
 
+@pytest.fixture(scope="module")
+def deployments(record):
+    """``_deployed(record, fallbacks)``, made once per ``fallbacks`` for the module's tests, which
+    read it (ci104b: five fits of two models before); its frame copied by :func:`_lost`."""
+    made: dict = {}
+
+    def deployed(fallbacks: str):
+        if fallbacks not in made:
+            made[fallbacks] = _deployed(record, fallbacks)
+        return made[fallbacks]
+    return deployed
+
+
 def _lost(frame, kind: str = "dropout"):
     """The record as simulated (test_export_cmon82c's ramp undone), ``T_u`` missing (or held at
     its reading there: a freeze) ``LOST`` rows from the middle row."""
@@ -70,9 +83,9 @@ def _mirror(ss, frame):
 @needs_cc
 @pytest.mark.parametrize("kind", ["dropout", "freeze"])
 @pytest.mark.parametrize("fallbacks", ["unobservable", "none"])
-def test_a_sensor_no_other_predicts_is_held_out_by_the_code_as_served(record, tmp_path, fallbacks,
-                                                                      kind):
-    deployed, frame = _deployed(record, fallbacks)
+def test_a_sensor_no_other_predicts_is_held_out_by_the_code_as_served(deployments, tmp_path,
+                                                                      fallbacks, kind):
+    deployed, frame = deployments(fallbacks)
     frame = _lost(frame, kind)
     ss = state_space(deployed, monitor=True)
     k = [ss.inputs[i] for i in ss.monitor["inputs"]].index("T_u")
@@ -93,10 +106,10 @@ def test_a_sensor_no_other_predicts_is_held_out_by_the_code_as_served(record, tm
     assert_packed_as_served(tmp_path, deployed, ss, "K06", frame, want)
 
 
-def test_an_export_before_cmon84_refuses_the_missing_reading_and_flags_the_freeze(record):
+def test_an_export_before_cmon84_refuses_the_missing_reading_and_flags_the_freeze(deployments):
     """Arrays without ``blind_drop``: the first missing reading refused (``MISSING_BLIND``), the
     freeze flagged (``BLIND``) where the served monitor excludes it; the pack cut there."""
-    deployed, frame = _deployed(record, "unobservable")
+    deployed, frame = deployments("unobservable")
     ss = state_space(deployed, monitor=True)
     old = dataclasses.replace(ss, monitor={k: v for k, v in ss.monitor.items() if k != "blind_drop"})
     for kind, rule in (("dropout", MISSING_BLIND), ("freeze", BLIND)):

@@ -90,14 +90,18 @@ def streams(record):
 _LEADS: dict = {}       # {(id(ss), the lead-in's digest): (ss, the mirror after it, got, out, missed)}
 
 
-def _mirror(ss, frame, lead: int = 0):
+def _mirror(ss, frame, lead: int = 0, rows: int | None = None, each=None):
     """The numpy mirror's corrections, its exclusions ``(row, sensor, rule)`` and the rows it
     flags ``(row, rule)`` not in the code.  ``lead``: ``frame``'s first rows are a lead-in other
     calls feed ``ss`` too (a record's planted copies): stepped once, the mirror's state after it
     deep-copied for each (as the pack's ``_Lead`` shares it; cmon89: 6 of 4321 rows, 3457 the
-    lead-in)."""
+    lead-in).  ``rows``: only ``frame``'s first rows stepped (ci104b: a test reading the first
+    flag needs no row after it; a row's outputs depend on no later row).  ``each(i, sim)``:
+    called after each row's step (0-based ``i``; ``lead`` 0 only), for a test's own reading of
+    the same pass (ci104b: no second pass of the same rows)."""
     names = [ss.inputs[i] for i in ss.monitor["inputs"]]
     U, times = frame[ss.inputs].to_numpy(float), frame["time"].to_numpy(float)
+    end = len(frame) if rows is None else min(rows, len(frame))
 
     def stepped(sim, start: int, stop: int) -> tuple[list, list, list]:
         got, out, missed = [], [], []
@@ -108,18 +112,21 @@ def _mirror(ss, frame, lead: int = 0):
                 out.append((i + 1, names[w.sensor], w.rule))
             if w.flags & NOT_IN_CODE:
                 missed.append((i + 1, w.missed))
+            if each is not None:
+                each(i, sim)
         return got, out, missed
 
     sim = Simulator(ss)
     sim.reset()
     if not lead:
-        got, out, missed = stepped(sim, 0, len(frame))
+        got, out, missed = stepped(sim, 0, end)
         return np.array(got), out, missed
+    assert each is None and end > lead, "each / rows within the lead-in: with lead=0 only"
     key = (id(ss), frame_digest(frame.iloc[:lead]))
     if key not in _LEADS:           # (ss kept: its id names no other system while cached)
         _LEADS[key] = (ss, sim, *stepped(sim, 0, lead))
     _, at_lead, got, out, missed = _LEADS[key]
-    rest = stepped(copy.deepcopy(at_lead), lead, len(frame))
+    rest = stepped(copy.deepcopy(at_lead), lead, end)
     return np.array(got + rest[0]), out + rest[1], missed + rest[2]
 
 
@@ -179,7 +186,7 @@ def test_an_export_before_cmon85_flags_the_drift_with_a_sensor_out(record, strea
     at the served exclusion's row or before, and the pack cut there."""
     deployed, ss, frame = record
     row = next(r for r, _, why in _served_out(streams, frame) if why == "drift")
-    _, _, missed = _mirror(without(ss, "solve"), frame)
+    _, _, missed = _mirror(without(ss, "solve"), frame, rows=row)       # (its first flag)
     assert missed and missed[0][1] == DRIFT and missed[0][0] <= row
     _, summary = conformance_pack(deployed, without(ss, "solve"), {"test": frame}, served=streams)
     assert summary["campaigns"][0]["rows"] < row

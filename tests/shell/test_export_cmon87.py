@@ -97,16 +97,17 @@ def _served_spike(streams, ss, tests, leads, lead) -> tuple[int, int, str]:
     return row(out["time"]), row(back["time"]), out["sensor"]
 
 
-def held_as_served(record, folder, streams: ServedStreams | None = None
+def held_as_served(record, folder, streams: ServedStreams | None = None, each=None
                    ) -> tuple[list, str, dict]:
     """The mirror and the compiled C of ``record`` equal to the served corrections on every row,
     nothing flagged, R1b's pack entry whole and its check passing (in ``folder``): ``(the
     mirror's exclusions (row, sensor, rule), the stream's stderr, the pack's summary)``.
-    ``streams``: the served streams of ``record``'s model made so far (else new ones)."""
+    ``streams``: the served streams of ``record``'s model made so far (else new ones); ``each``:
+    :func:`_mirror`'s, a test's own reading of the mirror's pass."""
     deployed, ss, frame, lead, tests, leads = record
     streams = ServedStreams(deployed) if streams is None else streams
     want = corrections(ss, streams.rows(frame, "R1b").y)
-    got, out, missed = _mirror(ss, frame)
+    got, out, missed = _mirror(ss, frame, each=each)
     assert not missed and np.max(np.abs(got - want)) < 1e-9
     files, summary = conformance_pack(deployed, ss, tests, leads, served=streams)
     entry = summary["campaigns"][0]

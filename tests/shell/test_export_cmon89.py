@@ -82,7 +82,7 @@ def test_an_export_before_cmon89_flags_the_second_instant_fault(record, streams)
     for cid, (df, _, _) in planted(ss, tests).items():
         fault = cid.split(".")[1]
         if fault in want:
-            _, _, missed = _mirror(old, fed(df, leads.get(test)), lead)
+            _, _, missed = _mirror(old, fed(df, leads.get(test)), lead, want[fault][0])  # (its flag)
             assert missed and missed[0] == want[fault], fault
             _, _, now = _mirror(ss, fed(df, leads.get(test)), lead)
             assert not now, (fault, now[:3])

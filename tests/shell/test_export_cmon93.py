@@ -52,26 +52,25 @@ def streams(record):
 def test_two_sensors_jumping_in_one_sample_are_held_as_served(record, streams, tmp_path):
     (deployed, ss, frame, *_), row = record
     # every row through the compiled C = served, nothing flagged, the pack whole and passing
-    out, said, _ = held_as_served(record[0], tmp_path, streams)
+    back, each = _readmitted()
+    out, said, _ = held_as_served(record[0], tmp_path, streams, each)
     assert (row, PAIR[0], JUMP) in out
     assert f"line {row + 1}: monitor: {PAIR[0]}: jump: re-referenced and excluded" in said
     # their return SPIKE_ROWS later read as a spike's (the jump undone), as served
-    assert (row + SPIKE_ROWS, SPIKE) in [(r, rule) for r, _, rule in _readmitted(ss, frame)]
+    assert (row + SPIKE_ROWS, SPIKE) in [(r, rule) for r, _, rule in back]
 
 
-def _readmitted(ss, frame) -> list[tuple[int, int, int]]:
-    """The mirror's re-admissions ``(row, sensor, rule)``, 1-based."""
-    from thermocomp.apps.deploy.export import Simulator
+def _readmitted() -> tuple[list[tuple[int, int, int]], object]:
+    """The mirror's re-admissions ``(row, sensor, rule)``, 1-based, filled by the second item,
+    the ``each`` of ``held_as_served``'s mirror pass (ci104b: read from it, not a second pass)."""
     from thermocomp.apps.deploy.export.watch import READMITTED
 
-    sim = Simulator(ss)
-    sim.reset()
     back = []
-    for i, (u, t) in enumerate(zip(frame[ss.inputs].to_numpy(float), frame["time"])):
-        sim.step(u, t)
+
+    def each(i, sim):
         if sim.watch.flags & READMITTED:
             back.append((i + 1, sim.watch.sensor, sim.watch.rule))
-    return back
+    return back, each
 
 
 def test_an_export_before_cmon93_flags_the_pair(record, streams):

@@ -45,16 +45,17 @@ def served():
     return deployed, ss, frame
 
 
-def _mirror(ss, frame, hid: bool = True):
+def _mirror(ss, frame, hid: bool = True, rows: int | None = None):
     """The numpy mirror's corrections and its ``(row, flag)`` moves of ``CULPRIT`` (1-based;
     excluded, re-admitted), each with whether it was out as a culprit within its band there,
     and the rows it flags a rule not in the code (with that rule);
-    ``hid=False``: that mark wiped every row (the code before mon85b)."""
+    ``hid=False``: that mark wiped every row (the code before mon85b); ``rows``: the first rows
+    only (ci104b: a row's step reads no later row)."""
     sim = Simulator(ss)
     sim.reset()
     k = [ss.inputs[i] for i in ss.monitor["inputs"]].index(CULPRIT)
     got, moves = [], []
-    for i, (u, t) in enumerate(zip(frame[ss.inputs].to_numpy(float), frame["time"])):
+    for i, (u, t) in enumerate(zip(frame[ss.inputs].to_numpy(float)[:rows], frame["time"].iloc[:rows])):
         if not hid:
             sim.watch.hid[:] = False
         was = bool(sim.watch.hid[k])
@@ -84,7 +85,7 @@ def test_a_culprit_out_within_its_band_is_back_within_it_served_mirror_and_c(ser
     # is by the whole band: without the mark it is not back there
     assert [(r, to) for r, to, _ in code] == moves
     assert code[0][2] and code[1][2]
-    _, before = _mirror(ss, frame, hid=False)
+    _, before = _mirror(ss, frame, hid=False, rows=moves[1][0])      # (to the rows it reads)
     assert before[0] == code[0], before
     assert not any(to == "ok" and r <= moves[1][0] for r, to, _ in before), before
     want = corrections(ss, run.y)

@@ -64,7 +64,7 @@ def test_the_code_holds_it_as_the_second_as_served(record, streams, tmp_path):
 def test_an_export_before_mon98b_flags_the_range_reading(record, streams):
     """Arrays without ``second_range``: flagged ``RANGE`` at the fault's row, parting there."""
     (deployed, ss, frame, *_), _, row = record
-    got, _, missed = _mirror(without(ss, "second_range"), frame)
+    got, _, missed = _mirror(without(ss, "second_range"), frame, rows=row)    # (to the fault)
     assert missed and missed[0] == (row, RANGE)
-    want = corrections(ss, streams.rows(frame, "test").y)
+    want = corrections(ss, streams.rows(frame, "test").y)[:row]      # (the rows stepped)
     assert (np.flatnonzero(np.abs(got - want).max(axis=1) > 1e-9) + 1).min() == row

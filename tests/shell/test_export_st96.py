@@ -12,9 +12,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from test_export import TOLERANCE_UM, StructuredText
-from test_export_st94 import FAULT, record  # noqa: F401 (the module's fixture)
-from thermocomp.apps.deploy.export import Simulator
+from test_export import TOLERANCE_UM
+from test_export_st94 import FAULT, record, resumed  # noqa: F401 (the module's fixture)
 from thermocomp.apps.deploy.export.watch import BAND, BLIND_OUT, EXCLUDED, READMITTED, RULES, STEP_OUT
 
 BLIND = "T_spindle_rear"     # one no other predicts (lr9132)
@@ -42,17 +41,15 @@ def _stepped(ss, block, frame, kept=_held):
     """Per row: the block's corrections, ``(mon_flag, mon_rule, mon_sensor)`` and what ``kept``
     reads of its memory (default :func:`_held`); the C mirror's corrections and ``(flags, rule,
     sensor)``."""
-    fb, sim = StructuredText(block), Simulator(ss)
-    sim.reset()
-    st, st_said, held, c, c_said = [], [], [], [], []
-    for i, (u, t) in enumerate(zip(frame[ss.inputs].to_numpy(float), frame["time"])):
-        st.append(fb(u, t, i == 0))
+    def read(fb, sim, u, t, i):
+        st = fb(u, t, i == 0)
         v = fb.vars
-        st_said.append((bool(v["mon_flag"]), int(v["mon_rule"]), int(v["mon_sensor"])))
-        held.append(kept(v))
-        c.append(sim.step(u, t))
-        c_said.append((int(sim.watch.flags) & ~BAND, int(sim.watch.rule), int(sim.watch.sensor)))
-    return np.array(st), st_said, held, np.array(c), c_said
+        said = (bool(v["mon_flag"]), int(v["mon_rule"]), int(v["mon_sensor"]))
+        held = kept(v)
+        c = sim.step(u, t)
+        return st, said, held, c, (int(sim.watch.flags) & ~BAND, int(sim.watch.rule), int(sim.watch.sensor))
+    st, st_said, held, c, c_said = zip(*resumed(ss, block, frame, read, kept))   # (shared rows once)
+    return np.array(st), list(st_said), list(held), np.array(c), list(c_said)
 
 
 def test_the_block_takes_out_a_blind_sensor_as_the_c_and_follows_its_back(record):  # noqa: F811
