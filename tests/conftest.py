@@ -3,6 +3,9 @@
 from __future__ import annotations
 
 import contextlib
+import copy
+import functools
+import inspect
 import io
 import os
 import shutil
@@ -454,6 +457,23 @@ def parsed_block(tmp_path_factory) -> str:
 
     data = _make_dataset(tmp_path_factory.mktemp("parsed_block") / "data")
     return exported_files(_deployed(data, *PARSED_BLOCK)[0], "st")["compensator.st"]
+
+
+def copied_once(make):
+    """``make`` run once per its arguments (their values, defaults filled in) for the tests of a
+    worker, each call answered with a deep copy of that result: a module's tests share one fit
+    and may step, reset or change what they get."""
+    made, signature = {}, inspect.signature(make)
+
+    @functools.wraps(make)
+    def copy_of(*args, **kwargs):
+        bound = signature.bind(*args, **kwargs)
+        bound.apply_defaults()
+        key = repr(bound.arguments)
+        if key not in made:
+            made[key] = make(*args, **kwargs)
+        return copy.deepcopy(made[key])
+    return copy_of
 
 
 def deployed_as_replay(cfg) -> tuple:

@@ -21,14 +21,13 @@ the adaptive code (``adapt.method=bias``) learns from reference measurements as 
 
 from __future__ import annotations
 
-import copy
-
 import numpy as np
 import pandas as pd
 import pytest
 from sklearn.ensemble import RandomForestRegressor
 
 from cbuild import LEVEL
+from conftest import copied_once
 from test_export import (
     StructuredText,
     _compiled,
@@ -75,23 +74,13 @@ def data(tmp_path_factory):
     return _gantry(tmp_path_factory.mktemp("atiprod65") / "data")
 
 
-_AROUND: dict = {}
-
-
+@copied_once
 def _around_ati(data, family: str, interaction: bool, *overrides, effects=(PRODUCT,),
                 pushed_from="half", adaptive: bool = False):
     """``(stream, test campaigns, compensator)``: the diagnosed model ``diagnose ati=cmeans``
     builds (the effects around an ATI model of two intervals of ``family``), T_a pushed out
     half-way, each test campaign's temperatures shifted out of the train campaigns' ambients.
     A deep copy, made once per arguments (three tests read the lag bank's with the interaction)."""
-    key = repr((str(data), family, interaction, overrides, effects, pushed_from, adaptive))
-    if key not in _AROUND:
-        _AROUND[key] = _made_around_ati(data, family, interaction, *overrides, effects=effects,
-                                        pushed_from=pushed_from, adaptive=adaptive)
-    return copy.deepcopy(_AROUND[key])
-
-
-def _made_around_ati(data, family, interaction, *overrides, effects, pushed_from, adaptive):
     ati = ATIRegressor(FAMILIES[family](), n_intervals=2, ambient_interaction=interaction)
     stream, tests, comp = _diagnosed(data, list(effects), ati, *overrides, pushed_from=pushed_from,
                                      adaptive=adaptive)

@@ -15,12 +15,11 @@ the code, ``lstm_in`` and ``lstm_in_law``.)
 
 from __future__ import annotations
 
-import copy
-
 import numpy as np
 import pytest
 from sklearn.base import clone
 
+from conftest import copied_once
 from test_export import _compose, checked_pack, needs_cc
 from test_export_auto57 import TOLERANCE_UM, _proved, deployed
 from test_export_effects59 import AMBIENT_LAW, _diagnosed, _door
@@ -45,20 +44,15 @@ def _net() -> LSTM:
     return LSTM(max_epochs=2, hidden_size=4, chunk=16, validation_fraction=0.0)
 
 
-_REMOVED: dict = {}
-
-
 def _with_removal(data, removed: str, with_model: bool = False):
     """``(stream, test campaigns)`` of the lstm with the ambient law and ``removed`` left out of
     the inputs, as diagnose's ``augment`` writes an accepted sensor_fault: a deep copy, fitted
     once per record and sensor (two tests read it)."""
-    key = (str(data), removed)
-    if key not in _REMOVED:
-        _REMOVED[key] = _fitted_without(data, removed)
-    stream, tests, comp = copy.deepcopy(_REMOVED[key])
+    stream, tests, comp = _fitted_without(data, removed)
     return (stream, tests) + ((comp,) if with_model else ())
 
 
+@copied_once
 def _fitted_without(data, removed: str) -> tuple:
     _, tests, mlr = deployed(data, "model=mlr", pushed="T_a")
     cfg = _compose(f"data.path={data}", "track=false", "monitor.adaptive=false",

@@ -6,11 +6,10 @@ exported C of a lag bank on large_mill_week: up to 1.06 µm off, decaying)."""
 
 from __future__ import annotations
 
-import copy
-
 import numpy as np
 import pytest
 
+from conftest import copied_once
 from test_export import StructuredText, _compiled, _compose, _make_dataset, _streamed, needs_cc
 from test_export_guard import _rows, _simulated, _st
 from thermocomp.apps.deploy.export import exported_files, state_space
@@ -28,20 +27,11 @@ def dataset(tmp_path_factory):
     return _make_dataset(tmp_path_factory.mktemp("first_time") / "data")
 
 
-_DEPLOYED: dict = {}
-
-
+@copied_once
 def _deployed(dataset, adaptive: bool):
     """``(lag bank deployed as replay deploys it, its first test campaign on the logger's clock)``:
     a copy, fitted once per dataset and ``adaptive`` (six tests read two fits; a test steps,
     resets and restores its copy)."""
-    key = (str(dataset), adaptive)
-    if key not in _DEPLOYED:
-        _DEPLOYED[key] = _fitted(dataset, adaptive)
-    return copy.deepcopy(_DEPLOYED[key])
-
-
-def _fitted(dataset, adaptive: bool):
     cfg = _compose(f"data.path={dataset}", "track=false", f"monitor.adaptive={str(adaptive).lower()}",
                    "model=lagbank", "model.estimator.n_taus=3")
     ds, train_ids, test_ids, _ = read_streamed(cfg)

@@ -21,7 +21,7 @@ import pandas as pd
 import pytest
 
 from cbuild import LEVEL
-from conftest import deployed_as_replay
+from conftest import copied_once, deployed_as_replay
 from test_export import (
     CAMPAIGNS,
     EVERY_EXCURSION,
@@ -73,16 +73,9 @@ def _adaptive(dataset, family, *extra):
     return deployed, tests
 
 
-_ADAPTIVE: dict = {}
-
-
-def _adaptive_copy(dataset, family):
-    """A copy of :func:`_adaptive` ``(dataset, family)``, fitted once for this module's tests
-    (the tight guard replaces the copy's)."""
-    key = (str(dataset), family)
-    if key not in _ADAPTIVE:
-        _ADAPTIVE[key] = _adaptive(dataset, family)
-    return copy.deepcopy(_ADAPTIVE[key])
+# a copy of _adaptive, fitted once for this module's tests (the tight guard replaces the copy's);
+# _adaptive itself stays a fresh fit for the modules that import it
+_adaptive_copy = copied_once(_adaptive)
 
 
 def _tight(deployed, tests) -> list:
