@@ -35,3 +35,113 @@ BAR (written and committed before any fresh number; fresh seeds 10022-10024, MLR
      (the decision function applied to the window the monitor holds at re-admission).
   KEPT only if 1-4 all hold; else REFUSED (src reverted, ``benchmarks/mon105b_rule.patch``).
 """
+
+from __future__ import annotations
+
+import os
+import sys
+from pathlib import Path
+
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
+import numpy as np  # noqa: E402
+import pandas as pd  # noqa: E402
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import bench_ambient_step55 as s55  # noqa: E402
+from _cli import made_folder, run_commands, seed_list  # noqa: E402
+
+from thermocomp.apps.deploy.surveillance.monitor import SensorMonitor  # noqa: E402
+from thermocomp.apps.sim.scenario import write_scenario  # noqa: E402
+
+AIR, SIZES = s55.AIR, (2.0, -2.0)
+
+
+def _shipped(run):
+    """``run()`` with the rule off (the monitor as on 4b70457f)."""
+    rule = SensorMonitor._air_followed
+    SensorMonitor._air_followed = lambda self, j, shift: (False, float("nan"))
+    try:
+        return run()
+    finally:
+        SensorMonitor._air_followed = rule
+
+
+def _taken(events) -> bool:
+    return any("taken as measured" in e["reason"] for e in events)
+
+
+def _stream(deployed, df, err, cid):
+    s = s55.stream_rows(deployed, df, cid)
+    h = len(df) // 2
+    r = err[s55.TARGETS].to_numpy(float)[h:] - s.y[h:]
+    return float(np.sqrt((r ** 2).sum(axis=1).mean())), s.events
+
+
+def take_rate(mon: SensorMonitor, frames, size: float) -> float:
+    """Share of (row, sign) of ``frames`` at which a ``size`` offset of the air starting there
+    would be taken as real: the decision on the window the monitor holds at re-admission."""
+    names, j = list(mon.names), list(mon.names).index(AIR)
+    model, w, taken = mon.air_inputs_[j], mon.window, []
+    for f in frames:
+        a = f[names].to_numpy(float)
+        for k in range(1, len(a) - w):
+            for J in (size, -size):
+                # the air read as an offset: the window's rows as they are (no jump in the air)
+                taken.append(model.real(a[k + 1:k + 1 + w], J)[0])
+    return float(np.mean(taken))
+
+
+def score(root: Path, seeds) -> bool:
+    ok = True
+    for seed in seeds:
+        r = root / f"s{seed}"
+        data = s55.made(r, seed)
+        forms = s55._forms(r, "mlr")
+        mon = forms["true"].monitor
+        listed = pd.read_csv(data / "campaigns.csv")
+        tests = list(listed.loc[listed["split"] == "test", "campaign"])
+        healthy = [pd.read_csv(data / f"{c}.csv") for c in tests]
+        j = list(mon.names).index(AIR)
+        rate = take_rate(mon, healthy, 2.0)
+        print(f"seed {seed}: modes {len(mon.air_inputs_[j].V)}, training bound "
+              f"{mon.air_inputs_[j].bound:.3f} K; take-rate of +-2 K offsets on the healthy test rows "
+              f"{rate:.1%}", flush=True)
+        ok &= rate <= 0.05
+        for cid, raw in zip(tests, healthy):
+            for J in SIZES:
+                p = r / f"air_{cid}_{J:+g}"
+                if not p.exists():
+                    write_scenario(s55._scenario(seed, cid=cid, step_c=J), p)
+                cases = {"real": (pd.read_csv(p / f"{cid}.csv"),) * 2}
+                off = raw.copy()
+                off.loc[len(raw) // 2:, AIR] += J
+                cases["offset"] = (off, raw)
+                for kind, (df, err) in cases.items():
+                    rule, ev = _stream(forms["true"], df, err, cid)
+                    shipped, _ = _shipped(lambda: _stream(forms["true"], df, err, cid))
+                    plain, _ = _stream(forms["false"], df, err, cid)
+                    good = (rule <= 1.1 * plain) if kind == "real" else (not _taken(ev) and rule == shipped)
+                    ok &= good
+                    print(f"  {seed} {cid} {kind:6s} {J:+g} K  shipped {shipped:6.3f}  rule {rule:6.3f}  "
+                          f"plain {plain:6.3f}  rule/plain {rule / plain:5.2f}  taken {_taken(ev)}  "
+                          f"{'PASS' if good else 'FAIL'}", flush=True)
+    print("BAR 2-4:", "PASS" if ok else "FAIL")
+    return ok
+
+
+def seen(root: str) -> None:
+    score(made_folder(root), [5353, 4242])
+
+
+def fresh(root: str, seeds: str) -> None:
+    score(made_folder(root), seed_list(seeds))
+
+
+def main(argv: list[str]) -> int:
+    """Run the command ``argv`` names (the module doc's Usage); 2 and the usage without one."""
+    return run_commands(__doc__, {"seen": seen, "fresh": fresh}, argv, cpu=sys.stdout)
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
