@@ -34,6 +34,33 @@ BAR (written and committed before any fresh number; fresh seeds 10022-10024, MLR
      campaigns, a +-2 K offset of ``T_amb`` starting there taken as real at <= 5 % of the rows
      (the decision function applied to the window the monitor holds at re-admission).
   KEPT only if 1-4 all hold; else REFUSED (src reverted, ``benchmarks/mon105b_rule.patch``).
+
+Measured 2026-12-07 (mon105b; the bar above committed first, b096d2e1, not changed; the rule's
+code committed bb2b8bdd before the fresh run; one run each, CPU user+sys of the bench process
+2.4 s seen / 7.5 s fresh, records and MLR made under /tmp).  RMS (µm) shipped / rule / plain.
+
+  SEEN 5353 / 4242 (training bound 0.99 / 0.47 K): take-rate 0.0 % / 0.0 %; no offset taken (12);
+  real +-2 K taken 0 of 6 on 5353 (as shipped; K03 -2 5.36 vs plain 3.93, K06 +2 5.87 vs 3.08
+  fail 1.1x; session 55's oracle, real at re-admission, reads K06 +2 3.94: 1.28x, so no rule
+  deciding at re-admission meets it there) and 4 of 6 on 4242 (K03 +2 11.06 -> 10.42, plain
+  10.33; K06 +2 6.87 -> 5.73 (5.54); K06 -2 6.24 -> 4.90 (4.73); K09 +2 12.92 -> 12.20 (11.44)).
+  test_ambient_step54: the +5 K step taken, the xfail passes (mark removed on the branch).
+
+  FRESH 10022-10024 (scored once): FAIL on items 2, 3 and 4.
+    * item 4: take-rate of +-2 K offsets on the healthy test rows 10.6 / 26.3 / 9.6 % (training
+      bounds 0.50 / 0.58 / 0.57 K): the healthy test campaigns' innovations leave training's
+      largest window, the limit of monitor68 and amb94 again.
+    * item 3: 2 of 18 offsets taken for real air: 10023 K03 +2 5.99 -> 8.00 (plain 8.56),
+      10024 K03 +2 9.99 -> 7.82 (plain 5.79; taken, and better there).
+    * item 2: 13 of 18 real steps taken; 13 of 18 within 1.1x plain; failing: 10023 K06 -2
+      (taken) 8.00 -> 6.13 vs 4.99 (1.23x), K09 +2 (not taken) 6.73 vs 4.18; 10024 K03 +2
+      (taken) 10.63 -> 7.64 vs 4.51, K09 +2 (not taken) 9.24 vs 3.21.  Taken and worse than
+      shipped: 10024 K06 +2 11.36 -> 15.64 (plain 16.88), K09 -2 6.92 -> 9.31 (plain 11.01):
+      where the MLR reading the true air is worse than re-referenced, following it costs.
+    * healthy test campaigns: no jump, the rule never runs (it acts at a re-admission after a
+      jump only).
+  Verdict: REFUSED.  Run it with ``git apply benchmarks/mon105b_rule.patch`` first (the rule is
+  not in src).
 """
 
 from __future__ import annotations

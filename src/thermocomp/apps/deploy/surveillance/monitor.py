@@ -13,7 +13,6 @@ import numpy as np
 
 from ....core.io.contract import is_ambient
 from ..pod import ThermalPOD, windowed_mean
-from .air import air_inputs
 from .excursion import Excursion
 from .faults import InstantFaults
 from .judgement import Judgement
@@ -91,7 +90,6 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion, Settled):
     """
 
     new_state, new_state_others = False, 2   # a monitor pickled before them judged as before
-    air_inputs_: dict = {}   # pickled before mon105b: no jump of the air taken as real
 
     def __setstate__(self, state: dict) -> None:
         self.__dict__.update(state)
@@ -132,9 +130,8 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion, Settled):
                  lo_c=None, hi_c=None, first_c=None, jump_factor: float = 3.0,
                  freeze_factor: float = 2.0, range_margin_c: float = 10.0,
                  new_state: bool = True, new_state_others: int = 2, rounding_c=0.0,
-                 floor_c=0.0, moment=None, drift_warn_only=None, dithered=None, air_inputs=None):
+                 floor_c=0.0, moment=None, drift_warn_only=None, dithered=None):
         n = len(names)
-        self.air_inputs_ = dict(air_inputs or {})
         if pod.n_features_in_ != n:
             raise ValueError(f"POD has {pod.n_features_in_} sensors, names {n}")
         self.pod, self.names = pod, list(names)
@@ -263,8 +260,7 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion, Settled):
                    "moment": W.T @ W / len(W), "drift_warn_only": warn_only, **options,
                    "warning_c": warn, "alarm_c": alarm}
         settle = largest_separation(arrays, int(options.get("window", 10)), len(names))
-        air = air_inputs(arrays, names, is_ambient, pod.n_modes_, int(options.get("window", 10)))
-        return cls(pod, names, air_inputs=air, max_step_c=steps.max(0), max_bend_c=bends.max(0),
+        return cls(pod, names, max_step_c=steps.max(0), max_bend_c=bends.max(0),
                    max_settle_c=settle, longest_run=runs,
                    lo_c=lo, hi_c=hi,
                    first_c=first, **options)

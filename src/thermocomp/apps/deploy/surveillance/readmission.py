@@ -44,17 +44,7 @@ class Readmission:
         for j in np.flatnonzero(back):
             why = self._why_back(j, band, bool(blind[j]))
             shift = self._ref[j] - self._ref0[j]
-            real, s = self._air_followed(j, shift)
-            if real:
-                # a real step of the air (mon105b): the others took in its heat, so the reading
-                # is the air; re-referenced, the model read the air stepped back for good
-                self._ref[j] = self._ref0[j]
-                d[j] += shift
-                self._hist[:, j] += shift
-                why += (f"; taken as measured: the others' heat input called for {s:+.3g} °C of "
-                        f"air (in training at most ±{self.air_inputs_[j].bound:.3g}), its "
-                        f"{self._jumps[j]} jump(s) undone ({shift:+.3g} °C)")
-            elif not self._predictable[j] and (self._jumps[j] > 1 or (
+            if not self._predictable[j] and (self._jumps[j] > 1 or (
                     self._jumps[j] and abs(d[j] + shift - self._last_good[j])
                     < abs(d[j] - self._last_good[j]))):
                 # a sensor no other predicts: its outage's jumps were re-referenced one by
@@ -75,18 +65,6 @@ class Readmission:
             self._ranged[j] = False
             self._set_operator()
         return bool(back.any()) or thawed
-
-    def _air_followed(self, j: int, shift: float) -> tuple[bool, float]:
-        """Whether the air's sensor ``j``, out for jumps of ``shift`` in all, comes back as
-        measured: the ring's rows read as an offset (the air ``shift`` lower) leave the others
-        taking in the heat of a step that follows it (:class:`.air.AirInput`)."""
-        model = self.air_inputs_.get(j)
-        if model is None or not self._jumps[j] or not shift or self._count < self.window + 1:
-            return False, float("nan")
-        order = (self._pos + np.arange(self.window)) % self.window     # oldest first
-        rows = self._hist[order] + self._ref
-        rows[:, j] = self._hist[order, j] + self._ref0[j]
-        return model.real(rows, shift)
 
     def _thawed(self, finite, instant, time, events) -> bool:
         """Those out for a freeze alone, ``THAW`` readings in a row off the value they held,
