@@ -53,6 +53,36 @@ M3. seen, with the rule: default drifts <= 1.5 on both rates; default healthy 0 
     main's +-2.
 VERDICT: TRACED either way (no src this stop: a pass says step 2 is to be built, a fail says not).
 
+MEASURED (2026-12-07, src = 4b70457f's, untouched; the rule emulated here on bench_mon103c's
+harness).  VERDICT: TRACED with a FAIL -- M1 not met on fresh (4 of 6 <= 1.5, need 5); M2, M3
+met.  Step 2 (surveillance, the watch.py mirror, C) is not to be built on this rule.
+---
+FRESH 10019-10021, scored once (``fresh ROOT train:1.6 10019 10020 10021``; bar ad8160c1, rule
+unchanged): most leaned-on T_bearing_r on all three (lean 6.59 / 7.84 / 6.72 per degC), gated
+in.  Drift cost main -> rule:
+   +0.5 K/h 1.736 -> 1.384, 2.169 -> 1.378, 1.281 -> 1.106
+   +0.2 K/h 2.332 -> 1.553, 2.444 -> 1.665, 1.530 -> 1.201
+M1 NOT met: <= 1.5 on 4 of 6 (10019 and 10020 at +0.2 past), <= main's on 6 of 6 (met).  No flag
+   before onset (0 of 48 lines); named rows as main's on all 48.
+M2 met: healthy 0 flags (main 0), 0 rows held, RMSE rule / main 1.000 on all 24.
+SEEN (with the rule): M3 met.  Default 1.280 / 1.409, 8 healthy 0 held, 0 events; column 159 rows
+   held, worst target 1.015, flags 16 = 16; bench_mon98 events 0 / 0 / 0 / 6 = main's, RMSE
+   <= 1.001x, named rows as main's (T_ram 817, T_amb 708; T_headstock 920, T_amb 744; cr9763 none
+   / none; T_head_left 27), rows held healthy 0 / 9 / 0 / 1 (mon103d 0 / 5 / 0 / 1); fl events 2
+   = 2, 5 rows held, RMSE <= 1.001x.
+AFTER the score (a trace, not a verdict): T_bearing_r's training reach on the fresh seeds is
+   0.72 / 0.69 / 0.66 >= 1 / 1.6, so its start is its price: ``fresh ROOT scale:1`` (mon103d's
+   rule) gives the same six numbers.  bench_mon103d's ``phases``: 10020 K09 +0.2 E_Y 1.665,
+   onset -> first held row (17 rows) 80.0 (healthy 14.1), held 5.1 (2.8); 10019 K15 +0.2 E_Z
+   1.553, onset -> held (16 rows) 837.2 (202.4), held 369.5 (123.3).  As mon103d: the cost is
+   the rows before the hold; a drift's judged error stays below a healthy campaign's for them.
+What src would need (not built): a start signal that tells a slow drift from a healthy
+   excursion below the price.  The judged error does not (the trace above): healthy test
+   campaigns reach up to 1.00 of the price, a +0.2 K/h drift passes 0.8 only 9 rows after onset.
+CPU (user + sys of the process; simulate subprocesses not counted): ``fresh`` 3 seeds 10.0 s,
+   9 seen seeds 26.0 s; ``hold`` 3.0 s; ``column`` 4.7 s; ``cases`` (4 records) 46.3 s; ``fl``
+   15.2 s; ``margins`` 2.9 s for two names.
+
 Usage (repository root; ``PYTHONPATH=<tree>/src``)::
 
     python benchmarks/bench_mon105.py margins ROOT NAME ...   # seen: healthy / drift err over price
