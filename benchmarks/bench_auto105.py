@@ -2,10 +2,19 @@
 ``lam * W + (1 - lam) * MLR``, ``lam`` chosen on out-of-fold predictions of auto's whole choice
 made WITHOUT the fold they score (issue 34; stop 105, auto105).
 
+REFUSED on the SEEN gate (1): losers 8 -> 7 (bar: at most 6), geo 0.8257 -> 0.8259; the hedge moves
+losses rather than removing them (col1514, hmc, mtc_b out; col6511, iso_b in) and costs 5 records
+> 1 % (iso_b 1.160, tsc_a2 1.126 x main).  Fresh 10030-10034 NOT drawn (they stay fresh).  src as
+on 4b70457f; the rule built is ``benchmarks/auto105_rule.patch`` (against 4b70457f:
+``model.estimator.hedge`` none | nested, ``core/models/hedge.py``, ``AutoRegressor._hedged``,
+conf/model/auto.yaml, ``tests/core/test_auto_hedge105.py`` 2 cases, 1.8 s CPU with the import).
+
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the vote code is that tree's)::
 
     python benchmarks/bench_auto91.py rows ROOT STORE RECORD ...   # the 22-table's rows (main's auto)
     python benchmarks/bench_auto105.py replay STORE                # main / hedge / sign probe, the 22
+    python benchmarks/bench_auto105.py probes STORE                # after the fact: two probes
+    python benchmarks/bench_auto105.py seen1 OUT                   # after the fact: 10 one-campaign
     python benchmarks/bench_auto105.py fl OUT                      # fl_thermal 90/10 + authors' split
     python benchmarks/bench_auto105.py fresh OUT                   # seeds 10030-10034, once (bar)
 
@@ -52,6 +61,42 @@ the rule is KEPT only if all hold, else REFUSED):
     kind), year10034 (``yearround_spindle``: year6511's kind): no record's hedge / main > 1.01.
 KEPT would still need the rule built in ``AutoRegressor._blend`` (export unchanged: the weights
 change); until then it is a bench-only rule.
+
+Measured (2026-12-07, 4b70457f's src; nice, ``OMP_NUM_THREADS=1``, 2 cores shared, load 7-19; CPU:
+``rows`` of the 22 283 s (ROOT's writes not timed), ``replay`` 6.1 s, ``probes`` 4.1 s, ``fl`` 61.6 s (the
+90/10 fits) + 14.4 s, ``seen1`` 44.9 s).  Main's rows were drawn again here: they read geo 0.8257,
+col5791 1.245 (the brief: 0.8264, 1.258), the same 8 losers.
+
+(1) SEEN 22 (``replay /tmp/auto105/main``), auto / MLR on the new campaigns, main -> hedge::
+
+  col5791 1.245 -> 1.184   col1403 1.311 -> 1.298   col1514 1.019 -> 0.997   col6511 0.995 -> 1.002
+  col6512 1.005 -> 1.003   hmc 1.005 -> 0.954       iso_a 1.083 -> 1.073     iso_b 0.862 -> 1.000
+  mtc_a 0.704 -> 0.675     mtc_b 1.075 -> 0.901     tsc_a2 0.376 -> 0.423    swiss303 0.569 -> 0.547
+  swiss5454 0.950 -> 0.984 year6_5411 0.518 -> 0.537  year6511 0.348 -> 0.367  lab5401 1.070 (1 fold)
+  the other 6 within 0.1 %
+  losers 8 -> 7; geo 0.8257 -> 0.8259; > 1 % worse than main: swiss5454 1.036, year6_5411 1.038,
+  year6511 1.055, tsc_a2 1.126, iso_b 1.160.  NOT met (losers).
+
+  lam over the 49 hedged targets: 1.00 on 11, 0.00 on 6 (year6511 E_X, col1514 E_Z_mid, col6511 /
+  col6512 E_Z_mid, iso_a E_Y1, iso_b E_Z).  With 2 folds the nested choice is one fold's and
+  says little (iso_b, tsc_a2 lose their wins).  The losers' own blends win their nested folds, so
+  lam stays high there (col1403 0.89-1.00, col5791 E_Z_mid 0.75): what bench_auto87b found for the
+  votes holds for a mix too.
+  Sign probe (brief's second idea, not barred): losers 3 but geo 0.8686, tsc_a2 2.660, mtc_a 1.421,
+  year6511 1.133 x main: with 2-3 folds no win can pass a sign test.
+(2) fl_thermal: 90/10 mean RMSE 2.481 -> 2.929 (38.9 % -> 27.9 % under MLR's 4.060; >= 25 %: met,
+    lam 0.65 0.47 0.80 0.70 0.005); the authors' split keeps the best on its val split (every
+    target's ``scheme_`` 'val split'): the hedge cannot act there, main's MAE stands (not re-run).
+(3) FRESH: not drawn.
+
+After the bar failed (no bar, no rule; for a next stop, on its own fresh seeds): ``probes`` on the
+22 -- only with >= 3 folds: losers 6, geo 0.8163 (swiss5454 1.036, year6_5411 1.038, year6511
+1.055 x main); lam on W's own out-of-fold prediction (not nested): 6, 0.8161 (year6_5411 1.102,
+tsc_a2 1.061); both: 6, 0.8146 (year6_5411 1.102); fl 90/10 plain 2.556.  ``seen1``, the 10 seen
+one-campaign records (own test, main -> hedge): sw9697 1.044 -> 1.029, lr9587 1.059 -> 1.014 (still
+losers), lr9640 0.858 -> 0.962, lr9641 0.637 -> 0.681; geo 0.7654 -> 0.7717, losers 2 -> 2; the
+plain probe 0.7770 (lr9212 1.066, lr9641 1.068 x main).  Every form moves a loss to MLR's side
+somewhere and costs a win elsewhere by more than 1 %.
 """
 
 from __future__ import annotations
@@ -105,12 +150,15 @@ def _active(a: dict, kept: dict) -> bool:
             and b87._nonzero(kept) != {"mlr": 1.0})
 
 
-def hedge_weight(a: dict, kept: dict) -> float:
-    """lam of the rule (1: W as on main)."""
-    if not _active(a, kept):
+def hedge_weight(a: dict, kept: dict, min_folds: int = 2, plain: bool = False) -> float:
+    """lam of the rule (1: W as on main).  ``min_folds`` / ``plain`` (lam on W's own out-of-fold
+    prediction, not the nested one): the after-the-fact probes of ``probes``, not the rule."""
+    if not _active(a, kept) or np.unique(a["oof_fold"]).size < min_folds:
         return 1.0
     y, f, m = a["oof_y"], a["oof_fold"], a["oof_mlr"]
-    e, d = y - m, nested(a) - m
+    own = b87._deployed({k[4:]: v for k, v in a.items() if k.startswith("oof_")} | {
+        f"pred_{k[4:]}": v for k, v in a.items() if k.startswith("oof_")}, kept) if plain else None
+    e, d = y - m, (nested(a) if own is None else own) - m
     num = den = 0.0
     for j in np.unique(f):
         on = f == j
@@ -178,6 +226,32 @@ def replay(store: str) -> None:
     print(f"BAR (1) seen: {'met' if ok else 'NOT met'}")
 
 
+PROBES = {"hedge": {}, "k>=3": {"min_folds": 3}, "plain": {"plain": True},
+          "plain k>=3": {"plain": True, "min_folds": 3}}
+
+
+def probes(store: str) -> None:
+    """AFTER the bar failed, on the same 22 (no bar, no rule): the hedge only with >= 3 folds (a
+    nested choice on 2 folds is one fold's), and lam on W's own out-of-fold prediction."""
+    store_p = Path(store)
+    got = {}
+    for name, row in b87._load(store_p).items():
+        fig = {k: [] for k in ("mlr", "main", *PROBES)}
+        for t, w in row["weights"].items():
+            a = b87._arrays(store_p, name, t)
+            fig["mlr"].append(b87._new(a, row, a["pred_mlr"]))
+            fig["main"].append(b87._new(a, row, b87._deployed(a, w)))
+            for k, kw in PROBES.items():
+                fig[k].append(b87._new(a, row, b87._deployed(a, mixed(w, hedge_weight(a, w, **kw)))))
+        got[name] = {k: float(np.mean(fig[k]) / np.mean(fig["mlr"])) for k in ("main", *PROBES)}
+        print(f"{name:12s} " + "  ".join(f"{k} {v:.3f}" for k, v in got[name].items()), flush=True)
+    for k in ("main", *PROBES):
+        r = np.array([g[k] for g in got.values()])
+        worse = {n: round(g[k] / g["main"], 3) for n, g in got.items() if g[k] > 1.01 * g["main"]}
+        print(f"{k:10s} losers {int((r > 1).sum())}; geo {_geo(r):.4f}; > 1 % worse than main: "
+              f"{worse or 'none'}")
+
+
 def _rank(out: Path, name: str, overrides: list[str]) -> dict:
     """bench_auto_rank's ``main`` into OUT (auto with keep_oof, every candidate alone, own test)."""
     import bench_auto_rank as rank
@@ -187,24 +261,46 @@ def _rank(out: Path, name: str, overrides: list[str]) -> dict:
     return rank.main(name, overrides)
 
 
-def _own(out: Path, name: str) -> dict:
-    """Per record from OUT: mean over targets of the test RMSE, MLR / main / hedge, and the lams."""
+def _own(out: Path, name: str, ways: dict | None = None) -> dict:
+    """Per record from OUT: mean over targets of the test RMSE, MLR / main / each of ``ways``
+    (default the rule alone), and the rule's lams."""
+    ways = ways or {"hedge": {}}
     rep = json.loads((out / f"{name}.json").read_text())
-    fig, lams = {"mlr": [], "main": [], "hedge": []}, {}
+    fig, lams = {k: [] for k in ("mlr", "main", *ways)}, {}
     for t, row in rep["targets"].items():
         with np.load(out / f"{name}.{t}.npz", allow_pickle=True) as z:
             a = {k: z[k] for k in z.files}
         w = {n: float(v) for n, v in row["auto"]["weights"].items()}
-        lam = hedge_weight(a, w)
-        lams[t] = round(lam, 3)
+        lams[t] = round(hedge_weight(a, w), 3)
         y = a["test_y"]
 
         def dep(ws: dict):
             return sum(v * a[f"test_{n}"] for n, v in ws.items()) if sum(ws.values()) > 0 else 0.0
         fig["mlr"].append(b87._rmse(y - a["test_mlr"]))
         fig["main"].append(b87._rmse(y - dep(w)))
-        fig["hedge"].append(b87._rmse(y - dep(mixed(w, lam))))
+        for k, kw in ways.items():
+            fig[k].append(b87._rmse(y - dep(mixed(w, hedge_weight(a, w, **kw)))))
     return {"record": name, **{k: float(np.mean(v)) for k, v in fig.items()}, "lam": lams}
+
+
+def seen1(out: str) -> None:
+    """AFTER the bar failed: the 10 seen one-campaign records (bench_auto94c's :data:`RECORDS`,
+    own test), main / the rule / the probes, each over MLR."""
+    from bench_auto94c import RECORDS as ONE
+
+    out_p = Path(out).resolve()
+    rows = []
+    for name, ov in ONE.items():
+        if not (out_p / f"{name}.json").exists():
+            _rank(out_p, name, list(ov))
+        rows.append(_own(out_p, name, PROBES))
+        r = rows[-1]
+        print(f"{name:8s} " + "  ".join(f"{k} {r[k] / r['mlr']:.3f}" for k in ("main", *PROBES)), flush=True)
+    for k in ("main", *PROBES):
+        g = [r[k] / r["mlr"] for r in rows]
+        worse = {r["record"]: round(r[k] / r["main"], 3) for r in rows if r[k] > 1.01 * r["main"]}
+        print(f"{k:10s} losers {sum(x > 1 for x in g)}; geo {_geo(g):.4f}; > 1 % worse than main: "
+              f"{worse or 'none'}")
 
 
 def fresh(out: str) -> None:
@@ -235,10 +331,11 @@ def fl(out: str) -> None:
     out_p = Path(out).resolve()
     if not (out_p / "fl9010.json").exists():
         _rank(out_p, "fl9010", FL)
-    r = _own(out_p, "fl9010")
+    r = _own(out_p, "fl9010", PROBES)
     print(f"fl_thermal 90/10 mean RMSE: MLR {r['mlr']:.3f} main {r['main']:.3f} "
           f"({1 - r['main'] / r['mlr']:.1%} under MLR) hedge {r['hedge']:.3f} "
-          f"({1 - r['hedge'] / r['mlr']:.1%} under MLR); lam {r['lam']}")
+          f"({1 - r['hedge'] / r['mlr']:.1%} under MLR); lam {r['lam']}; after the fact: "
+          + ", ".join(f"{k} {r[k]:.3f}" for k in PROBES if k != "hedge"))
     import bench_auto_rank as rank
 
     from thermocomp.shell.builders import build_compensator
@@ -252,6 +349,8 @@ def fl(out: str) -> None:
 
 def main(argv: list[str]) -> int:
     return run_commands(__doc__, {"replay": lambda store: replay(store),
+                                  "probes": lambda store: probes(store),
+                                  "seen1": lambda out: seen1(out),
                                   "fresh": lambda out: fresh(out),
                                   "fl": lambda out: fl(out)}, argv, cpu=sys.stderr)
 
