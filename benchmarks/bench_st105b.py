@@ -198,7 +198,14 @@ def _window(kept, names, sensor: str, frame, start: int) -> dict | None:
         return None
     df, back = bench_st102.dropped(frame, sensor, start)
     rows = list(_rows(copy.deepcopy(kept), df.iloc[start:back + 61]))
-    return {**said, **_judge(rows, start, names)}
+    got = _judge(rows, start, names)
+    moved = [start + i for i, r in enumerate(rows) if bool(np.any(r[0] != r[1]))]
+    if got["c_moved"]:
+        gaps = [(float(np.max(np.abs(r[2] - r[0]))), float(np.max(np.abs(r[2] - r[1])))) for r in rows
+                if bool(np.any(r[0] != r[1]))]
+        print(f"    c rows moved off L2 holds {got['c_moved']} (rows {moved[0]}..{moved[-1]}): max|C-ST| "
+              f"{max(g[0] for g in gaps):.2g}, main {max(g[1] for g in gaps):.2g}", flush=True)
+    return {**said, **got}
 
 
 def windows(root: str, *records: str) -> None:
