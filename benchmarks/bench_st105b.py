@@ -63,6 +63,33 @@ the tree's gate scores (``mon_stop_row`` 0, not ``mon_lost`` at the onset).
   windows.  L1-L3 on seen and fresh: KEPT.  VOID on fresh (no ``DRIFT_OUT`` followed there): said,
   the verdict resting on seen and L3 fresh.  L1 or L2 not met on seen: REFUSED.
 
+Measured (2026-12-07, 2 cores shared, load 14-18; the rule = f0a9c5f8's src, c08b9953's with one
+line split; BAR c08b9953, unchanged; VERDICT REFUSED: L1 and L3 not met on seen windows; fresh
+10016-10018 NOT drawn, unspent).
+
+* Healthy (``healthy /tmp/st105b/seen dl9965 dl9967``, 38.0 s CPU; the other 8, 7 in one run):
+  dl9965 ``DRIFT_OUT T_spindle_rear`` 5695 named as the C, back on its row 5715; dl9967 ``DRIFT_OUT
+  T_col_back`` 3116, back 3128, then ``BLIND_OUT T_bed_right`` 3505 named as the C (main silent),
+  its 11 hold rows max|C - ST| 5e-14 um, back 3516 as the C.  L1 2 of 2, L2 1 of 1.  dl9975,
+  lr9964-9967, dl9964, dl9966: nothing followed, 0 flag rows and 0 c rows moved.  lr9965 still
+  stops at 2470: the C's ``_lone_fault`` returns -1 there (the likelier fault out of band, its
+  ``_hovers`` False: nothing taken out), which the block cannot tell without the memory.
+* Windows (``windows ... dl9965 dl9967 dl9964``, gate now scoring dl9965 and dl9967): 19 windows,
+  14 clean reached ``BLIND_OUT`` holds, all <= 9.9e-14 um; 8 ``BLIND_OUT`` named where main had
+  stopped, all on the C's row and <= 1e-12 um on their holds (L2 8 of 8).  3 ``DRIFT_OUT``
+  followed (the T_amb windows of dl9965 6127, dl9967 6130, dl9964 6129: the C's lone fault
+  T_col_back), named as the C; L1 1 of 3: on dl9965 / dl9964 the C takes T_amb out as its second
+  (``JUMP``) while T_col_back is out; the block flags the same ``JUMP`` and its judgement ends
+  there (``mon_lost``), the C's ``BACK`` of T_col_back past the window: NOT MET by the letter.
+* L3 NOT MET: dl9965's T_col_front_low window: the block's ``BLIND_OUT T_motor`` 6130 (= the C,
+  1.8e-14 um) meets the C's ``FOLLOWED`` at 6133 (the field followed the exclusion: a new thermal
+  state); the block's hold judgement ends (st99's rule), silent, so at 6179 it misses the C's
+  ``SETTLED T_col_front_low`` that main names (1 flag row); its c differs from main's on 52 rows
+  (2.4 um off the C, main 2.7).  dl9965's T_table window: 11 c rows differ from main's (the C's
+  ``JUMP`` hold, st101, now reached: 2.8e-14 um off the C, main 28): better, but not L2 rows.
+* Test (in benchmarks/st105b_rule.patch): test_export_st97d +1 case, 1.2 s CPU added (paired, 2
+  reps: 4.0 / 4.4 -> 5.3 / 5.6 s for the module); fails on 4b70457f.
+
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``)::
 
     python benchmarks/bench_st105b.py healthy ROOT RECORD [RECORD ...]

@@ -137,7 +137,6 @@ from .watch import (
     BLIND_OUT,
     COMMON,
     COMMON_STEP,
-    DRIFT_OUT,
     DROPOUT,
     FREEZE,
     GLITCH,
@@ -326,37 +325,6 @@ def blind_constants(watch: dict, n: int, stepped: bool, literal, constant) -> li
             f"    MON_FOLLOW_OTHERS : INT := {int(watch.get('new_state_others', 2))};"]
 
 
-def lone_constants(watch: dict, n: int, stepped: bool, constant) -> list[str]:
-    """(st105b) What the block needs to tell, where no sensor no other predicts explains the
-    field's reach, the C's lone fault that it takes out by ``DRIFT_OUT`` (watch.py ``_drift`` /
-    ``_lone_fault``, every sensor in): per sensor ``j`` the operator of the set without it and
-    each sensor's scale there (``1 / (1 - h)``, 0: not judged there: the C's ``_resolves``), each
-    sensor's rounding bound (``_within_rounding``), and whether the C holds ``j`` out for it alone
-    (``MON_LONE``: the others predict it and the C ports it, its set solved, enough left, and no
-    sensor judged with every one in blind without it: no partner taken beside it)."""
-    from .watch import CodeMonitor
-
-    judge = bool(n and stepped and watch.get("blind_out") and watch.get("drift"))
-    mon = CodeMonitor(watch) if judge else None
-    self_m, scale, lone = np.zeros((n, n, n)), np.zeros((n, n)), np.zeros(n, int)
-    for j in range(n if judge else 0):
-        out = np.arange(n) == j
-        op = mon._operator(out) if mon.ported[j] and n - 1 >= watch["min_active"] else None
-        if op is None:
-            continue
-        M, lu = op
-        seen = ~out & (lu < mon.max_lev)
-        self_m[j] = M
-        scale[j] = np.where(seen & ~mon.warn_only, 1.0 / np.maximum(1.0 - lu, 1e-12), 0.0)
-        every = (np.asarray(watch["lev"][0], float) < mon.max_lev) & ~mon.warn_only
-        lone[j] = int(not (every & ~out & ~seen).any())
-    rounding = np.asarray(watch.get("rounding", [0.0] * n), float) if n else np.zeros(0)
-    return [constant("MON_LONE", lone.tolist(), (n,), "INT"),
-            constant("MON_LONE_SELF", self_m.tolist(), (n, n, n)),
-            constant("MON_LONE_SCALE", scale.tolist(), (n, n)),
-            constant("MON_ROUNDING", np.broadcast_to(rounding, (n,)).tolist(), (n,))]
-
-
 def constants(watch: dict, literal, constant) -> list[str]:
     """The monitor's constants (``watch``: :func:`.watch.monitor_fields`'s ``monitor``, empty:
     none, ``MON_N`` 0) in the block's ``VAR CONSTANT``."""
@@ -365,7 +333,7 @@ def constants(watch: dict, literal, constant) -> list[str]:
              ("DROPOUT", DROPOUT), ("MISSING_FIRST", MISSING_FIRST), ("OFF_RANGE", OFF_RANGE),
              ("RANGE", RANGE), ("SPIKE", SPIKE), ("BENT", BENT),
              ("STEP_OUT", STEP_OUT), ("BLIND", BLIND), ("BLIND_OUT", BLIND_OUT),
-             ("SETTLED", SETTLED), ("FREEZE", FREEZE), ("SECOND", SECOND), ("DRIFT_OUT", DRIFT_OUT),
+             ("SETTLED", SETTLED), ("FREEZE", FREEZE), ("SECOND", SECOND),
              ("WIRES_EXCHANGED", WIRES_EXCHANGED))
     # (st94) no bound where the export has none (before step93, a sensor the others predict):
     # the largest LREAL, as ST has no infinity
@@ -388,7 +356,6 @@ def constants(watch: dict, literal, constant) -> list[str]:
             constant("MON_STEP_HELD", [int(p) for p in watch.get("ported_out", [])], (n,), "INT"),
             *back_constants(watch, alarm.size, stepped, constant),
             *blind_constants(watch, alarm.size, stepped, literal, constant),
-            *lone_constants(watch, alarm.size, stepped, constant),
             *freeze_constants(watch, alarm.size, constant),
             *exchange_constants(watch, alarm.size, constant),
             f"    MON_PERIOD : LREAL := {literal(watch.get('period', 1.0))};",
@@ -464,9 +431,6 @@ VARS = """    mon_last : ARRAY[{nm}] OF LREAL;
     mon_r : ARRAY[{nm}] OF LREAL;
     mon_z : ARRAY[{nm}] OF LREAL;
     mon_over : ARRAY[{nm}] OF BOOL;
-    mon_lvl : ARRAY[{nm}] OF BOOL;
-    mon_es : ARRAY[{nm}] OF LREAL;
-    mon_lone : INT;
     mon_eu : ARRAY[{nm}] OF LREAL;
     mon_prev_eu : ARRAY[{nm}] OF LREAL;
     mon_settle_ring : ARRAY[{settle}] OF LREAL;
@@ -1115,62 +1079,6 @@ IF MON_STEP_JUDGE AND (NOT mon_lost OR mon_jheld >= 0) THEN
                 (* no DRIFT_OUT: paused to a calm window (the C's end of a new state) *)
                 mon_pause := TRUE;
             ELSIF (mon_reach AND mon_take_set < 0) OR (mon_pause AND (mon_reach OR NOT mon_judge)) THEN
-                (* (st105b) the C's lone fault where the block can tell it (:func:`lone_constants`): *)
-                (* the culprit (the largest mean error) at its warning band and past the band by *)
-                (* more than its rounding, one the C holds out alone, fewer than MON_FOLLOW_OTHERS *)
-                (* others at their band, and with it out every other judged mean error within its *)
-                (* warning band (the C's _resolves): out by DRIFT_OUT, held as a STEP_OUT to its BACK *)
-                mon_lone := -1;
-                mon_x := -1.0;
-                FOR mk := 0 TO MON_N - 1 DO
-                    mon_off := mon_es[mk];
-                    IF mon_off < 0.0 THEN
-                        mon_off := -mon_off;
-                    END_IF;
-                    IF MON_JUDGING[mk] = 1 AND mon_off > mon_x THEN
-                        mon_x := mon_off;
-                        mon_lone := mk;
-                    END_IF;
-                END_FOR;
-                mon_ok := mon_reach AND NOT mon_pause AND mon_lone >= 0;
-                IF mon_ok THEN
-                    mon_ok := MON_LONE[mon_lone] = 1 AND mon_lvl[mon_lone];
-                    mon_ok := mon_ok AND mon_field_warned <= MON_FOLLOW_OTHERS;    (* no veto *)
-                END_IF;
-                IF mon_ok THEN
-                    FOR mk := 0 TO MON_N - 1 DO
-                        IF MON_LONE_SCALE[mon_lone, mk] > 0.0 THEN
-                            mon_x := 0.0;
-                            FOR mi := 1 TO MON_CONFIRM DO
-                                mr := mon_pos - mi;
-                                IF mr < 0 THEN
-                                    mr := mr + MON_WINDOW;
-                                END_IF;
-                                mon_off := mon_ring[mr, mk];
-                                FOR mj := 0 TO MON_N - 1 DO
-                                    mon_off := mon_off - MON_LONE_SELF[mon_lone, mk, mj] * mon_ring[mr, mj];
-                                END_FOR;
-                                mon_x := mon_x + mon_off * MON_LONE_SCALE[mon_lone, mk];
-                            END_FOR;
-                            mon_x := mon_x / MON_CONFIRM;
-                            IF mon_x < 0.0 THEN
-                                mon_x := -mon_x;
-                            END_IF;
-                            IF mon_x >= MON_WARN[mk] THEN
-                                mon_ok := FALSE;
-                            END_IF;
-                        END_IF;
-                    END_FOR;
-                END_IF;
-                IF mon_ok THEN
-                    mon_flag := TRUE;
-                    mon_lost := mon_rule <> 0;
-                    IF mon_rule = 0 THEN
-                        mon_sensor := mon_lone;
-                        mon_rule := RULE_DRIFT_OUT;
-                        mon_take := mon_lone;
-                    END_IF;
-                ELSE
                 (* the C's lone fault, veto or new state: not here; (st100) in the pause any *)
                 (* other reach (the C, not in a new state, may take one out) or a sensor out *)
                 mon_blind_lost := TRUE;
@@ -1178,7 +1086,6 @@ IF MON_STEP_JUDGE AND (NOT mon_lost OR mon_jheld >= 0) THEN
                 (* (st97d) said, once, with its row: the block silent from here is not "healthy" *)
                 mon_stop := TRUE;
                 mon_stop_row := mon_count + 1;
-                END_IF;
             ELSIF mon_take_set >= 0 THEN
                 mon_flag := TRUE;
                 mon_lost := mon_rule <> 0;
@@ -1228,9 +1135,6 @@ IF MON_STEP_JUDGE AND (NOT mon_lost OR mon_jheld >= 0) THEN
             FOR mk := 0 TO MON_N - 1 DO
                 mon_min[mk] := -1.0;
                 mon_r[mk] := 0.0;
-                IF mb < 0 THEN
-                    mon_es[mk] := 0.0;
-                END_IF;
             END_FOR;
             FOR mi := 1 TO MON_CONFIRM DO
                 mr := mon_pos - mi;
@@ -1262,9 +1166,6 @@ IF MON_STEP_JUDGE AND (NOT mon_lost OR mon_jheld >= 0) THEN
                         IF mi > mon_since[mk] THEN
                             mon_x := mon_x + mon_sback[mk];
                         END_IF;
-                        IF mb < 0 THEN
-                            mon_es[mk] := mon_es[mk] + mon_x;    (* (st105b) the C's err, _drift's z *)
-                        END_IF;
                     END_IF;
                     IF mon_set < 0 THEN
                         mon_off := mon_x * MON_SCALE[mk];
@@ -1294,9 +1195,6 @@ IF MON_STEP_JUDGE AND (NOT mon_lost OR mon_jheld >= 0) THEN
                         mon_field_warned := mon_field_warned + 1;
                     END_IF;
                     mon_over[mk] := MON_JUDGING[mk] = 1 AND mon_min[mk] >= MON_FIELD_BAND[mk];
-                    (* (st105b) at its warning band, past the field's by more than its rounding *)
-                    mon_lvl[mk] := mon_min[mk] >= MON_WARN[mk];
-                    mon_lvl[mk] := mon_lvl[mk] AND mon_min[mk] >= MON_FIELD_BAND[mk] + MON_ROUNDING[mk];
                     IF mon_over[mk] THEN
                         mon_reach := TRUE;
                     END_IF;
