@@ -72,6 +72,50 @@ B5 tests/apps/test_diagnose_few.py, test_diagnose_startshare100.py and the modul
 search pass with the rule.
 KEPT if B1-B5 hold (src, a test failing on 4b70457f, docs/diagnose.md); else REFUSED
 (``benchmarks/diag105_rule.patch``, src reverted).
+
+Measured (2026-12-07; nice, 2 cores shared, load 11-21; MAIN = 4b70457f's src by ``git archive``)
+------------------------------------------------------------------------------------------------
+Part (1), ``fresh ROOT 28`` (13.4 s CPU), ``fresh ROOT 40 28`` (14.0), ``fresh ROOT 0 28`` (15.1):
+10025-10029 held 2 band reads, so 9476-9478 were drawn (9478 brought 7): 8 draws, 24 rows, 9 band
+reads.  ``score ROOT fresh``: bound 28 and 40 give the same 24 rows (every band read was a cleared
+rival behind a start lag read 42.8-70.6; none accepted); bound 0 moves one row, 10025 E_Y +0.0 ->
++1.1 % (T_motor1 36 s start lag at 22.2).  ``whatif ROOT fresh`` (17.7 s; each start lag that
+reached the clause, taken alone in its round, the test read here only) -- the band reads: 10028 E_X
+31.7 / 33.5 -> -20.5 / -27.3 %; 9478 E_X 37.3 / 33.4 / 34.6 -> -49.6 / -53.7 / -38.3; 9478 E_Y 35.0
+/ 37.8 / 32.1 / 31.5 -> -32.2 / -29.5 / -27.3 / -19.6: 9 of 9 helpful, 0 harmful.  Below 28: 10025
+E_Y's two (22.2 / 22.0) +1.1 % each.  NOTE: ``whatif ROOT fresh`` walked all of :data:`FRESH` and so
+also drew 9479 (planted: no start lag reached the clause) and 9480 (lag: 6 E_X reads 47.9-68.1, none
+in the band) outside the stop rule: spent, counted in no table here.  Seen / spent, ``whatif``
+(start 33.6 s, spent 23.4 s; ``forward`` 27.5 / 18.1 s, ``trace`` 30.6 / 18.5 s), the band:
+seen 6 helpful (9443 E_X 38.8, 9193 E_X 39.8 / 38.1, 9290
+E_X 35.1 / 34.7, 9445 E_X 37.3: -31.5 .. -67.7 %), 4 harmful (9443 E_Y's four, 32.0-37.5: +4.1 ..
++13.3); spent 3 helpful + 1 neutral (9959's four), 2 harmful (9838 E_Z 38.6 / 38.8: +28.5 / +24.7,
+not taken: E_Z accepted nothing).  Harmful start lags also read above 40 (9932 E_Z 41.8-59.1, +12.1
+.. +16.6 %; 9838 E_Z 40.6 / 42.9; 9933 E_X T_amb 46.7, +13.3), all kept out by other checks.  So the
+bound at 28 did not bite on the fresh draws, everything they read in 28-40 would have helped, and
+only 9443 E_Y puts harms in the band; the forward read does not separate harm from help in general.
+
+Part (2), ``bar /tmp/diag105/bar main rule`` (``draws`` seen main / rule 87.1 / 87.5 s CPU, run
+side by side; spent 17.2 / 17.0; default 7.6 / 7.6; scored 8.5 / 8.4; user + sys, ``/usr/bin/time``)::
+
+  seen lag:9443 E_Y: +13.3 -> -0.9 %
+  spent lag:9839 E_X: -59.4 -> -54.9 %
+  spent lag:9840 E_X: -59.3 -> -64.1 %
+  spent lag:9933 E_X: -38.2 -> -57.0 %
+  scored lag:9481 E_X: -36.1 -> -31.7 %
+  B1 seen rows > 2 % worse 1 [('lag:9443', 'E_Y')] -> 0 [] (0, none new): met
+  B2 seen rows main helps (44): lost []; mean gain 49.37 -> 49.37 (>= main - 1): met
+  B2 make run's E_Y -25.3 -> -25.3 % (within 1 point): met
+  B2 spent rows > 2 % worse [] -> []: met
+  B3 seen clean rows accepting 0 -> 0: met
+  B4 scored rows > 2 % worse [] -> []: met
+  B4 scored mean change (15 rows) -14.01 -> -13.71 %: met
+  B4 scored clean rows accepting 0 -> 0: met
+  B1-B4 (8 of 8 items): HOLD
+
+The one scored row the rule moved went the wrong way by 4.4 points (9481 E_X T_box2 -> T_box1
+1440 s, still helpful): of the 5 rows moved in all (seen, spent, scored) 3 gained (9443 E_Y 14.2
+points, 9933 18.8, 9840 4.8) and 2 lost 4.4-4.5 points (9839, 9481).  Verdict: KEPT.
 """
 
 from __future__ import annotations
