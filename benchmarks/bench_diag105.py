@@ -292,30 +292,10 @@ def _reads2(search, ev, current) -> dict:
 
 def trace(root: str, name: str) -> None:
     """The cleared start lags' part-(2) reads on :data:`SETS` ``name``, the accepted ones marked,
-    with their target's test change as run (explains only)."""
-    from bench_diag98 import _dataset
-    from bench_diag100 import _rounds_read
-    from bench_diag103 import _start_lag
+    with their target's test change as run (bench_diag103's trace; explains only)."""
+    from bench_diag103 import trace as trace_103
 
-    from thermocomp.apps.diagnose import diagnose
-    from thermocomp.core.compensator import Compensator
-    from thermocomp.core.models import MLR
-
-    with open(made_folder(root) / f"trace-{name}.jsonl", "w") as out:
-        for kind, seed in SETS[name]:
-            ds, options = _dataset(kind, seed)
-            store: dict = {}
-            with _rounds_read(store, _reads2, _start_lag):
-                d = diagnose(ds, Compensator(MLR()), options=options)
-            tests = {}
-            for t in d.targets:
-                j = d.to_json(t)
-                tests[t] = 100 * (j["after"]["test_rmse"] / j["before"]["test_rmse"] - 1)
-            accepted = {id(ev) for x in d.targets.values() for ev in x.accepted}
-            for key, (ev, r) in store.items():
-                r = dict(r, case=f"{kind}:{seed}", test=tests[r["target"]], accepted=key in accepted)
-                print(json.dumps(r, default=float), file=out, flush=True)
-                print(_line2(r), flush=True)
+    trace_103(root, name, sets=SETS, read=_reads2, line=_line2)
 
 
 def _line2(r: dict) -> str:
