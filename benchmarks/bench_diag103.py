@@ -260,9 +260,10 @@ def _reads(search, ev, current) -> dict:
     return r
 
 
-def trace(root: str, name: str) -> None:
+def trace(root: str, name: str, *, sets=None, read=None, line=None) -> None:
     """The cleared start lags' reads on :data:`SETS` ``name`` (module doc), the accepted ones
-    marked, with their target's test change as run (explains only)."""
+    marked, with their target's test change as run (explains only); ``sets`` / ``read`` /
+    ``line`` stand in for :data:`SETS` / :func:`_reads` / :func:`_line` (bench_diag105's reads)."""
     from bench_diag98 import _dataset
     from bench_diag100 import _rounds_read
 
@@ -271,10 +272,10 @@ def trace(root: str, name: str) -> None:
     from thermocomp.core.models import MLR
 
     with open(made_folder(root) / f"trace-{name}.jsonl", "w") as out:
-        for kind, seed in SETS[name]:
+        for kind, seed in (sets or SETS)[name]:
             ds, options = _dataset(kind, seed)
             store: dict = {}
-            with _rounds_read(store, _reads, _start_lag):
+            with _rounds_read(store, read or _reads, _start_lag):
                 d = diagnose(ds, Compensator(MLR()), options=options)
             tests = {}
             for t in d.targets:
@@ -284,7 +285,7 @@ def trace(root: str, name: str) -> None:
             for key, (ev, r) in store.items():
                 r = dict(r, case=f"{kind}:{seed}", test=tests[r["target"]], accepted=key in accepted)
                 print(json.dumps(r, default=float), file=out, flush=True)
-                print(_line(r), flush=True)
+                print((line or _line)(r), flush=True)
 
 
 def _f(v, spec: str) -> str:

@@ -13,6 +13,7 @@ T_motor1 start lag on ``E_Y`` (-25.3 % on test) is weighed as before.
 
 from __future__ import annotations
 
+import dataclasses
 from types import SimpleNamespace
 
 import numpy as np
@@ -25,6 +26,7 @@ from test_diagnose_within67 import N_UNITS, ROWS, _evaluation, _result, _search
 from thermocomp.apps.diagnose import SearchOptions, diagnose
 from thermocomp.apps.diagnose.cv import smallest_p
 from thermocomp.apps.diagnose.features import Effect
+from thermocomp.apps.diagnose.search import forward_first
 from thermocomp.base.paths import conf_dir
 from thermocomp.core.compensator import Compensator
 from thermocomp.core.models import MLR
@@ -87,6 +89,29 @@ def test_an_unresolved_start_lag_must_also_gain_forward_within_the_later_campaig
     assert lag.gain_pct_forward_within == pytest.approx(forward_gain)
     assert lag.clears_bar == clears
     assert lag.entry()["evidence"]["forward_gain_pct_within"] == pytest.approx(forward_gain)
+
+
+def test_an_unresolved_start_lag_beaten_forward_in_every_later_campaign_gives_way():
+    # diag105: lag:9443 E_Y took T_bearing_f3 3600 s (forward within 33.3, test +13.3 %) where
+    # T_motor2 beat it forward within in each of the 4 later train campaigns (taken: -0.9 %)
+    current, _, mostly_within, _ = (_result(r) for r in _residuals())
+    s = _search("campaigns")
+    s.start_lags_screened, s.declared, s.excluded, s.effects = 110, ["T_nose", "T_box1"], [], []
+    per_campaign = {900.0: [1.0, 0.5, 1.5],     # the first choice: 29 % forward
+                    1800.0: [0.2, 0.9, 0.9],    # 42 % in all, but worse in the second campaign
+                    3600.0: [0.6, 0.3, 0.9]}    # 45 %: better in every campaign
+    s.cv = SimpleNamespace(closed_form=True, forward_within=lambda inputs, effects, alpha: np.array(
+        per_campaign[effects[-1].tau_s] if effects else [2.0, 1.0, 3.0]))
+    first, uneven, every = (_evaluation(dataclasses.replace(START_LAG, tau_s=tau), current, mostly_within)
+                            for tau in per_campaign)
+    s._family_bar([first, uneven, every], current)
+    assert all(ev.clears_bar for ev in (first, uneven, every))
+    assert first.gain_pct_forward_within < every.gain_pct_forward_within
+    order = lambda evs: [id(ev) for ev in forward_first(evs)]    # noqa: E731
+    assert order([first, uneven, every]) == [id(every), id(first), id(uneven)]
+    assert order([first, uneven]) == [id(first), id(uneven)]       # better in sum only: no tie broken
+    other = _evaluation(Effect("signal", "raw", "S_pos_Y"), current, mostly_within)
+    assert order([other, first, every]) == [id(other), id(first), id(every)]   # the first read no forward
 
 
 def test_clean_8170s_start_lag_on_8_train_campaigns_is_no_longer_accepted():
