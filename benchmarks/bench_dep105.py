@@ -62,6 +62,43 @@ E5 (the brief's): test_export_kelvin97, test_export_cdrop77, test_lab75_deploy u
    test_export_wires100's dep103 case restored (fails on 4b70457f), + test_lint,
    test_benchmarks_cli -k dep105.
 KEPT if E1-E5 hold; else REFUSED (benchmarks/dep105_rule.patch, src as 4b70457f).
+
+SCORED (bar dff3c7b7, committed 05:52 UTC before fresh 10010-10012 were simulated from 06:16;
+unchanged; 06:16-06:33 UTC, load 12-20 on 2 cores; main = ``git archive 4b70457f src`` in
+/tmp/dep105/main, it simulated and ran every root (sM seen, fM fresh, dM D2's), the rule read
+copies (sR, fR, dR) with its own C built; CPU (user + sys, /usr/bin/time) main / rule: seen
+``returns`` 134.2 (with simulation) / 104.0 s, fresh 39.4 (with simulation) / 32.3 s).
+
+E1 MET: 60 seen cases on the rule max|C - served| <= 1.12e-10 µm (pt9890 far ``third``, as
+qr103b's Q2), 0 rows past 1e-9, 0 rows ``NOT_IN_CODE``, compiled C - mirror <= 7.32e-11 µm.  Main
+on the same: ``back`` <= 1.49e-11 µm (held already), ``beside`` 1.17-99.0 µm / 118 rows and
+``third`` 0.977-107 µm / 115 rows refused (``MISSING_SECOND`` at the third's row, ``stream``
+exit 2).  The rule's ``back`` lines equal main's.
+E2 MET: ``diff`` main / rule identical: bench_dep101 ``drops`` (10 records, 30 lines; CPU 43.9 /
+40.8 s), bench_dep100b ``planted`` (15 lines; 17.4 / 14.1 s), bench_wires100 ``swaps`` pt9851 (5;
+17.2 / 17.0 s), bench_dep99 ``card`` tr9828 tr9873 (6; 21.5 / 18.4 s; main's two with
+simulation).
+E3 MET: every healthy frame (10 seen, 3 fresh), main and rule: 0 flagged rows, C = served 0 µm.
+E4 MET (fresh, scored once): pt10010 / tr10011 / cr10012, 18 cases: main ``back`` <= 8.81e-13
+µm, ``beside`` 16.6-74.0 µm / 118 rows, ``third`` 0.858-62.8 µm / 115 rows (12 refused,
+``MISSING_SECOND``) -> rule <= 2.5e-11 µm (pt10010 far ``beside``), 0 rows past, 0 rows
+``NOT_IN_CODE``, compiled - mirror <= 1.04e-11 µm; no set unsolved.
+E5 MET: kelvin97 + cdrop77 + lab75_deploy + the 39 test_export_* modules importing watch /
+watch_c + test_lint: 98 passed (CPU 141.8 s); test_export_wires100's dep103 case restored
+(fails on 4b70457f: AssertionError (45, 13), ``MISSING_SECOND`` at T_b's row; 0.57 s call under
+load 13); test_benchmarks_cli -k dep105 2 passed; test_docs 45 passed.
+
+``whole`` (reported, not scored; seen pt9851 / tr9891 / cr9892, 10 / 9 / 12 monitored; CPU 10.6 /
+10.3 s): ``every`` (every reading missing in one sample): refused at its first row on main and
+rule alike (``MISSING_SECOND``, ``stream`` exit 2), C = served 0 µm before.  ``cascade``: main
+refuses the third (row start + 2); the rule holds each dropout down to one sensor in and refuses
+the last, the one that would leave none in (rows 2529 / 2528 / 67 = start + n - 1), before it
+max|C - served| 1.46e-11 / 1.12e-12 / 2.34e-13 µm, 0 rows ``NOT_IN_CODE``, compiled - mirror <=
+1.11e-12 µm.
+VERDICT: KEPT (E1-E5 as committed in dff3c7b7).  Left: the all-out case itself (served reads its
+last field, ``_clean``; the code refuses: a held field in the C's state would mend it); with
+fewer than two out the cap is main's (a two-sensor monitor's second dropout leaves none in and
+is still held by the empty solve, as read in the code: not measured here).
 """
 
 from __future__ import annotations

@@ -109,7 +109,7 @@ def test_a_third_dropout_beside_the_pair_and_their_return_held_as_served(served,
     """(dep103) The drop for ``BACK`` rows, the pair's readings then back, and ``T_b`` missing from
     ``SWAP`` + 5 on: a dropout beside two out.  Served takes ``T_b`` out as the third and the pair
     back later; the mirror and the compiled C hold them so too (4a21da2b refused ``T_b``'s row and
-    every one after it: ``MISSING_SECOND``, the two-slot cap kept for a dropout)."""
+    every one after it: ``MISSING_SECOND``, the two-slot cap kept for a dropout; 4b70457f too)."""
     deployed, ss, frame = served
     dropped = frame.copy()
     dropped.loc[SWAP:SWAP + BACK - 1, PAIR] = np.nan
