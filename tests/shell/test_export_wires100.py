@@ -24,7 +24,7 @@ from thermocomp.apps.deploy.export.pack import corrections
 from thermocomp.apps.deploy.export.watch import DROPOUT, NOT_IN_CODE, REREFERENCED
 from thermocomp.apps.deploy.report import stream_rows
 
-SWAP, PAIR = 40, ["T_a", "T_f"]
+SWAP, PAIR, BACK = 40, ["T_a", "T_f"], 10
 WIRES_EXCHANGED = getattr(watch, "WIRES_EXCHANGED", -1)    # (9bbbb214: no such rule)
 
 
@@ -102,3 +102,19 @@ def test_both_readings_missing_in_one_sample_held_by_the_mirror_and_the_c_as_ser
     want, moves = _served(deployed, ss, dropped)
     assert [m for m in moves if m[0] == SWAP] == [(SWAP, "T_a", "excluded"), (SWAP, "T_f", "excluded")]
     held_as_served(deployed, ss, dropped, want, DROPOUT, None, at=SWAP, out=2, built=stream)
+
+
+@needs_cc
+def test_a_third_dropout_beside_the_pair_and_their_return_held_as_served(served, stream):
+    """(dep103) The drop for ``BACK`` rows, the pair's readings then back, and ``T_b`` missing from
+    ``SWAP`` + 5 on: a dropout beside two out.  Served takes ``T_b`` out as the third and the pair
+    back later; the mirror and the compiled C hold them so too (4a21da2b refused ``T_b``'s row and
+    every one after it: ``MISSING_SECOND``, the two-slot cap kept for a dropout; 4b70457f too)."""
+    deployed, ss, frame = served
+    dropped = frame.copy()
+    dropped.loc[SWAP:SWAP + BACK - 1, PAIR] = np.nan
+    dropped.loc[SWAP + 5:, "T_b"] = np.nan
+    want, moves = _served(deployed, ss, dropped)
+    assert (SWAP + 5, "T_b", "excluded") in moves
+    assert {s for r, s, to in moves if to == "ok" and r >= SWAP + BACK} == set(PAIR)   # back
+    held_as_served(deployed, ss, dropped, want, DROPOUT, None, at=SWAP + 5, out=3, built=stream)

@@ -123,7 +123,9 @@ The served adaptive compensator judges every ``T_`` input before the model reads
   path beside those out, the set's operator held (``pairs``) or solved; a dropout beside those
   out wherever it is (the field rebuilt or not: served's ``_instant`` takes every missing reading
   out, a returned one read where too few are in, dep99) and of one no other predicts too (held
-  at its last reading).  A dropout beside two out, or a set not solved: refused as before.
+  at its last reading).  (dep105) A dropout beside two or more out too, each in turn, and a
+  pair's readings back read where too few are in (dep99), as served, where a sensor is left in;
+  one that would leave none in (served holds its last field) or a set not solved: refused.
 * (cmon89b) a sensor no other predicts, every other in, **out for a reading beyond its range**
   (``blind_range``: ``ranges``): read as missing, held at its last reading, back after a calm
   window only where its leak onto the others passes (:meth:`CodeMonitor._leak_passes`, the
@@ -169,14 +171,14 @@ the reading's return is no jump), several sensors jumping at once that are no co
 (cmon93: three or more, or two it cannot hold), a jump at the reference's next sample, a stepped
 self-prediction error whose culprit would be a third out (or one it does not hold out), a drift
 beyond the band that takes a third sensor out (cmon85: with one out, as served), of more than one
-blind partner, a second culprit beyond the alarm band, a third sensor out for a dropout (dep101:
-the second is held, the field rebuilt or not), a third for a jump, and a sensor no
+blind partner, a second culprit beyond the alarm band, a third for a jump, and a sensor no
 other predicts out for any other rule (its range; cmon84: too few left to rebuild the field without
 it), or with a fallback model the code does not hold.  A missing reading the code cannot rebuild
-(at a campaign's first sample, with two sensors out or a set it cannot solve, of a sensor it does
-not hold out) is refused as before (:meth:`CodeMonitor.refuses`: the sample is not read).  From
-such a row on the code may part from the served model; the conformance pack cuts there
-(:func:`~.pack.conformance_pack`).
+(at a campaign's first sample, beside two or more out where it would leave no sensor in
+(dep105: beside any number out where one is left in and the set solves), a set it cannot solve,
+of a sensor it does not hold out) is refused as before (:meth:`CodeMonitor.refuses`: the sample
+is not read).  From such a row on the code may part from the served model; the conformance pack
+cuts there (:func:`~.pack.conformance_pack`).
 """
 
 from __future__ import annotations
@@ -759,10 +761,15 @@ class CodeMonitor:
         second; dep99: any, for a reading beyond range, as served; dep99b: and for a jump, which
         served re-references and takes out whatever the set; step99: and for a stepped error,
         served's stepped check having no cap either; dep100: and for a drift exclusion, its
-        blind-out too, and a freeze, served's judgement and freeze check having none) and the
-        set's operator solved.  A dropout alone keeps the cap."""
-        return self.solve and (self.out2 < 0 or rule != DROPOUT) and self._operator(
-            ~self._active() | (np.arange(self.n) == j)) is not None
+        blind-out too, and a freeze, served's judgement and freeze check having none; dep105:
+        and for a dropout beside two or more out where a sensor is left in, served's ``_instant``
+        having none) and the set's operator solved.  A dropout that would leave none in beside
+        two out is refused (``MISSING_SECOND``): served, no operator left, holds its last field
+        (``_clean``) where the code's solve of the empty set would read every sensor at its
+        reference (dep103's whole dropout, kelvin97: 11.8 µm)."""
+        out = ~self._active() | (np.arange(self.n) == j)
+        return self.solve and (rule != DROPOUT or self.out2 < 0 or not out.all()) and (
+            self._operator(out) is not None)
 
     def _put_out(self, j: int) -> None:
         """``j`` in the out set (its last place), its calm count and its within-band mark

@@ -445,13 +445,19 @@ static void mon_readmit(tc_state *s, int k, int rule) {
    (the second; dep99: any, for a reading beyond range, as served; dep99b: and for a jump, which
    served re-references and takes out whatever the set; step99: and for a stepped error, served's
    stepped check having no cap either; dep100: and for a drift exclusion, its blind-out too, and a
-   freeze, served's judgement and freeze check having none) and the set's operator solved; a
-   dropout alone keeps the cap */
+   freeze, served's judgement and freeze check having none; dep105: and for a dropout beside two
+   or more out where a sensor is left in, served's _instant having none) and the set's operator
+   solved; a dropout that would leave none in beside two out is refused: served, no operator left,
+   holds its last field where the solve of the empty set would read every sensor at its reference */
 static int mon_second_held(const tc_state *s, int k, int rule) {
     double M[NM][NM], lev[NM];
-    int out[NM], m;
-    if (!MON_SOLVE || (s->mon_nout >= 2 && rule == TC_MON_DROPOUT)) return 0;
-    for (m = 0; m < NM; m++) out[m] = m == k || mon_out_of(s, m);
+    int out[NM], m, left = 0;
+    if (!MON_SOLVE) return 0;
+    for (m = 0; m < NM; m++) {
+        out[m] = m == k || mon_out_of(s, m);
+        left += !out[m];
+    }
+    if (rule == TC_MON_DROPOUT && s->mon_nout >= 2 && !left) return 0;
     return mon_operator(out, M, lev);
 }
 
