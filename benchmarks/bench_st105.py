@@ -67,6 +67,31 @@ BAR (committed before fresh lr/dl 10013-10015 are simulated; scored once):
 * Reported, no bar: A events (main vs tree on their hold rows), flag rows differing from main and
   new extra flags (a tree flag the C does not raise within NEAR rows, not main's) per window.
 
+Measured (2026-12-07, 2 cores shared, load 7-19; the rule and the bar = 61a08e53, unchanged after
+the fresh score; VERDICT KEPT: S1-S4 met; CPU user + sys of each command, /usr/bin/time):
+
+* S1 MET (``score /tmp/st105/seen lr9985 dl9964 lr9964 lr9966 lr9967 dl9966 dl10007 lr10007
+  lr10008``, 129.2 s CPU): 54 windows, 30 C JUMPs (main's classes as the trace: held 11, A 10, B 3,
+  PAUSE 4, LOST 2); 8 ALONE, all held by the tree, max|C - ST| on their hold rows <= 6e-14 um
+  (main): lr9985 T_spindle_rear 6e-14 (21), lr9967 T_xdrive 5e-14 (6.3) and its LOST 2.8e-14
+  (6.4), lr10008 T_xdrive 4.3e-14 (4.8), lr9966 T_amb 5.2e-14 (2.7), T_table 5.2e-14 (40), dl9966
+  T_table 2.5e-14 (36), lr10008 T_amb 4.6e-14 (0.58); their after rows <= 8.5e-14 (main to 15).
+* S2 MET: 28 clean reached ``BLIND_OUT`` holds <= 1.1e-13 um; 0 flag rows differing from main on
+  every window (54), 0 new extra flags.
+* S3 MET (``healthy /tmp/st105/seen`` st102b's 8, 119.2 s CPU): 0 rows outside the holds whose c
+  differs from main's, 0 flag rows differing; hold rows (lr9964 10, dl9964 11, dl9967 10) <= 7.1e-14.
+* S4 MET, scored once (``score /tmp/st105/fresh lr10013 dl10013 lr10014 dl10014 lr10015
+  dl10015``, 81.1 s CPU; simulated before by bench_cmon92's ``made``): gate NOT scored lr10014
+  (``mon_stop_row`` 160); 27 windows, 18 C JUMPs; 3 ALONE, all <= 7.6e-14 um (main): dl10013
+  T_table PAUSE 5.7e-14 (38), dl10014 T_amb B 2.8e-14 (2.2), lr10015 T_table B 7.6e-14 (30); 15
+  clean reached ``BLIND_OUT`` holds <= 1e-13; 0 flag rows differing, 0 new extra flags.
+* A (reported): the tree holds the jump, still off the C (the POD's rebuild): seen 10 events 0.18 ..
+  1.26 um (main 0.4 .. 30.6), 9 nearer, lr10007 T_amb farther (0.91, main 0.71); fresh 8: 0.32 ..
+  2.0 (main 0.44 .. 36.9), all nearer.  Not ALONE, B: fresh dl10014 T_spindle_front (off by 1.6 um
+  before the JUMP): 1.6 (main 31).
+* Tests: test_export_st100 +1 case (fails on 4b70457f: no hold); the module 5.7-6.1 s CPU without
+  it, 6.3-6.6 with it (two paired runs: +0.2, +0.9 s).  The ST line count 2234 -> 2235.
+
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``)::
 
     python benchmarks/bench_st105.py trace ROOT RECORD [RECORD ...]
