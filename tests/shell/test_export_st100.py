@@ -18,7 +18,11 @@ on its last reading in, as the C (benchmarks/bench_st103c.py).
 
 (st102) A jump of the sensor the block holds out by its ``BLIND_OUT`` was flagged ``JUMP`` and
 ended the block's judgement, where the C re-references it silently and names its ``BACK`` with the
-jumps undone: the bump, and a spike of the bumped sensor while it is out (benchmarks/bench_st102.py)."""
+jumps undone: the bump, and a spike of the bumped sensor while it is out (benchmarks/bench_st102.py).
+
+(st105) The block's own JUMP while its ``BLIND_OUT`` judgement is paused (or stopped) was not held
+(lost), while the C holds the sensor out alone to its ``BACK``: st101's spike inside the C's new
+state (benchmarks/bench_st105.py)."""
 
 from __future__ import annotations
 
@@ -32,11 +36,14 @@ from thermocomp.apps.deploy.export.watch import BACK, BLIND_OUT, EXCLUDED, JUMP,
 FIELD, AT, SIZE = ("T_head_left", "T_col_front_top", "T_bed_right"), 300, -2.0
 JUMPED, JUMP_AT, JUMP_LIMITS = "T_amb", START - 150, 3.0    # (st101) its spike: 2 rows, 3 jump limits
 HELD_AT, HELD_LIMITS = START + 30, -1.2    # (st102) the bumped one's spike while out (up: beyond range)
+PAUSED_AT = AT + 18    # (st105) st101's spike 10 rows into the C's new state (from AT + 8)
 
 
 def _judging(v) -> tuple:
-    """``(mon_stop, mon_blind_lost, mon_pause)`` (an export before st100: no pause)."""
-    return bool(v["mon_stop"]), bool(v["mon_blind_lost"]), bool(v.get("mon_pause", False))
+    """``(mon_stop, mon_blind_lost, mon_pause, mon_jheld)`` (an export before st100: no pause;
+    before st101: no hold, -1)."""
+    return (bool(v["mon_stop"]), bool(v["mon_blind_lost"]), bool(v.get("mon_pause", False)),
+            int(v.get("mon_jheld", -1)))
 
 
 def test_the_block_pauses_at_the_cs_new_state_and_names_a_blind_out_after_it(record):  # noqa: F811
@@ -59,9 +66,36 @@ def test_the_block_pauses_at_the_cs_new_state_and_names_a_blind_out_after_it(rec
     assert st_said[out] == (True, BLIND_OUT, k)
     assert [i for i, s in enumerate(st_said[:out + 1]) if s[0]] == [out]
     # never stopped: paused from the C's new state to its end (the calm window), judging on
-    assert {(s, lost) for s, lost, _ in judging} == {(False, False)}
-    paused = [i for i, (_, _, p) in enumerate(judging) if p]
+    assert {(s, lost) for s, lost, _, _ in judging} == {(False, False)}
+    paused = [i for i, (_, _, p, _) in enumerate(judging) if p]
     assert paused == list(range(novel[0], novel[-1] + 1))
+
+
+def test_the_block_holds_its_own_jump_in_the_pause_to_the_cs_back(record):  # noqa: F811
+    """(st105) The same, and st101's spike of the sensor the C holds out for a jump inside the C's
+    new state: before st105 the block held no jump while paused (or stopped), flagged it and lost
+    its field, while the C holds it out alone to its BACK, serving its fallback set."""
+    _, ss, frame, block = record
+    names = [ss.inputs[i] for i in ss.monitor["inputs"]]
+    j = names.index(JUMPED)
+    df = frame
+    for sensor in FIELD:
+        df, _ = bumped(df, sensor, AT, SIZE)
+    df, end = bumped(df, BLIND)
+    df.loc[PAUSED_AT:PAUSED_AT + 1, JUMPED] += JUMP_LIMITS * float(ss.monitor["jump_lim"][j])
+    st, st_said, judging, c, c_said = _stepped(ss, block, df.iloc[:end + 1], _judging)
+    # the C: the jump in its new state, the sensor out alone to its BACK after its wait
+    assert c_said[PAUSED_AT][0] & NOVEL and c_said[PAUSED_AT][1:] == (JUMP, j)
+    back = next(i for i in range(PAUSED_AT + 1, len(c_said)) if c_said[i][1])
+    assert c_said[back][1:] == (BACK, j) and back >= PAUSED_AT + ss.monitor["window"]
+    after = next(i for i in range(back + 1, len(c_said)) if c_said[i][1])
+    # the block paused there, names the JUMP, holds it to the C's BACK (its pause stopped: a
+    # sensor out in a pause, st100), and = the C from the jump to the C's next event
+    assert judging[PAUSED_AT - 1][2] and st_said[PAUSED_AT] == (True, JUMP, j)
+    assert [i for i, x in enumerate(judging) if x[3] >= 0] == list(range(PAUSED_AT, back))
+    assert judging[PAUSED_AT][:3] == (True, True, False)
+    assert ss.monitor["fallback_set"][j] > 0
+    assert np.max(np.abs(st[PAUSED_AT:after] - c[PAUSED_AT:after])) <= TOLERANCE_UM
 
 
 def _jumped(v) -> tuple:

@@ -60,7 +60,8 @@ Per sample, of each monitored sensor ``k`` (the input ``MON_INPUT[k]``, the C's 
   computed on through the hold and not judged, to the C's ``BACK`` (``mon_jcalm`` rows since its
   last jump at least the C's wait, a full window counted, its reading moving), the C's ``_undone``
   there, the block judging on from the next row; anything else named or flagged in the hold (but
-  BENT) ends it as before;
+  BENT) ends it as before; (st105) held too where its ``BLIND_OUT`` judgement is paused or stopped
+  (a pause stops there, as at any sensor out: st100);
 * (st102) a lone jump of the sensor the block holds out by its ``BLIND_OUT``, one the C holds out
   for a jump (``MON_JUMP_HELD``): the C's silent re-reference of a sensor out (``mon_hjump``), not
   flagged, no spike's return read, re-referenced by its whole step and counted (``mon_jn``), its
@@ -775,10 +776,11 @@ mon_flag := mon_flag OR mon_gone;
 (* while the field is whole: any exclusion since the campaign's first sample ends it, but *)
 (* (st95b) one sensor out alone by the block's own STEP_OUT, followed to the C's BACK *)
 (* (st101) the block's own JUMP of one sensor no other predicts, its field whole before it *)
-(* (none held, no pause, BLIND_OUT judged): out in the C as here (MON_JUMP_HELD), the field *)
-(* computed on through the hold and not judged (mon_jheld), to the C's BACK below *)
+(* (none held): out in the C as here (MON_JUMP_HELD), the field computed on through the hold *)
+(* and not judged (mon_jheld), to the C's BACK below; (st105) its BLIND_OUT judgement paused *)
+(* or stopped too (the C holds it alone where it took none out): a pause stops at the hold *)
 IF MON_STEP_JUDGE AND NOT mon_lost AND mon_rule = RULE_JUMP AND mon_jumps = 1 AND NOT mon_gone THEN
-    IF MON_JUMP_HELD[mon_sensor] = 1 AND mon_held < 0 AND NOT mon_pause AND NOT mon_blind_lost THEN
+    IF MON_JUMP_HELD[mon_sensor] = 1 AND mon_held < 0 THEN
         mon_jheld := mon_sensor;
         mon_jn := 0;
         mon_jshift0 := mon_shift[MON_INPUT[mon_sensor]] - mon_step[mon_sensor];
