@@ -50,6 +50,49 @@ M5. fresh cr10038, sw10039, lr10040 (bench_mon97's generators, these seeds), eac
     every case, and lower than main's on every still-room case (an ambient case where main's
     ``hold`` beats main's stand-in by more than 1 %).
 KEPT if M1-M5 hold; else REFUSED (benchmarks/mon105c_rule.patch, src as on 4b70457f).
+
+Measured (2026-12-07; ``frozen`` on one ROOT /tmp/mon105c/root, its models fitted once by main's
+src, ``PYTHONPATH`` main = ``git archive 4b70457f src``, then this branch, one after the other;
+CPU user+sys: dev 8 records 27.5 / 29.7 s, fresh 3 records 14.9 (simulation included) / 13.0 s).
+RMSE µm over the case's 120 rows, main -> rule (main's ``hold``)::
+
+    seen   cr9763  T_amb           1.6133 -> 1.3041 (1.3041)   M1 met: = held
+           cr9763  T_headstock     1.4994 -> 1.4994 (7.2011)
+           sw9776  T_amb           0.6545 -> 0.6466 (0.6466)   -1.2 %
+           sw9776  T_headstock     0.6397 -> 0.6397 (0.6514)
+           lr9376  T_head_left     0.4908 -> 0.4908 (0.5677)
+    spent  sw9815  T_amb           0.8555 -> 0.8518 (0.8518)   -0.4 %
+           sw9815  T_headstock     0.8558 -> 0.8558 (0.8512)
+           cr9816  T_amb           2.6239 -> 2.6271 (2.6278)   +0.12 %
+           cr9816  T_headstock     2.6327 -> 2.6327 (4.4433)
+           lr9817  T_spindle_rear  1.2112 -> 1.2128 (1.2128)   +0.13 %
+           sw9818  T_amb           1.4646 -> 1.4589 (1.4589)   -0.4 %
+           sw9818  T_headstock     1.4691 -> 1.4691 (1.4672)
+           cr9819  T_amb           1.7956 -> 1.7956 (1.7064)   (its past moved: stand-in)
+           cr9819  T_headstock     1.8179 -> 1.8179 (1.9017)
+    fresh  cr10038 T_amb           5.1005 -> 5.0995 (5.0995)   -0.02 %
+           cr10038 T_headstock     4.9883 -> 4.9883 (6.0903)
+           sw10039 T_amb           1.5250 -> 1.5305 (1.5311)   +0.36 %
+           sw10039 T_headstock     1.5293 -> 1.5293 (1.5587)
+           lr10040 T_head_right    0.8045 -> 0.7955 (0.7824)   -1.1 % (no predicted ambient there)
+
+M1 met.  M2 met (worst +0.13 %, lr9817).  M3 met: every healthy frame's and every frozen case's
+served events identical, main and rule (diffed).  M4 met: tests/apps/test_monitor_*.py (with
+the new test_monitor_frozen_hold105) and tests/shell/test_monitor*.py 130 passed 2 xfailed.
+M5 met: no fresh case worse than main by more than 1 % (worst sw10039 T_amb +0.36 %); its
+still-room clause had no case to score: no fresh ambient case had main's ``hold`` better than its
+stand-in by more than 1 % (cr10038 0.02 %, sw10039 worse), so "better on the still-room ones"
+is met only vacuously.  The one fresh case where holding paid (lr10040's structure sensor,
+hold -2.7 %) the rule took -1.1 %.
+
+VERDICT: KEPT (served only).  The mirror and the C read the stand-in still: served and code now
+part on a still sensor's frozen rows (by up to the stand-in's bias; the tests that compare them
+freeze a warming ambient, where both read the stand-in).  What they need: ``spread_c`` per
+sensor (``floor_c`` / ``SPREAD_FACTOR``) in compensator.json's monitor; a ring of TREND_ROWS
+referenced readings and their times in the code's state (128 x n doubles + 128 times); the
+least-squares rate at a run-alone freeze exclusion and its ``hold_to`` time; the clean row's
+held value while ``time <= hold_to`` and no reading off it; an export without the key: the
+stand-in, as before.
 """
 
 from __future__ import annotations
