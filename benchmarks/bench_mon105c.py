@@ -86,8 +86,10 @@ is met only vacuously.  The one fresh case where holding paid (lr10040's structu
 hold -2.7 %) the rule took -1.1 %.
 
 VERDICT: KEPT (served only).  The mirror and the C read the stand-in still: served and code now
-part on a still sensor's frozen rows (by up to the stand-in's bias; the tests that compare them
-freeze a warming ambient, where both read the stand-in).  What they need: ``spread_c`` per
+part on a still sensor's frozen rows, by the stand-in's bias (the export suites that compare
+them, 99 tests, pass: none of their frozen sensors is held).  Cost per served row: one ring
+write; ``SensorMonitor.update`` over 2 x 20000 rows, 3 pairs main / rule 14.95 / 15.59 s CPU
+(+4 %, within the pairs' own spread 4.7-6.0 s).  What they need: ``spread_c`` per
 sensor (``floor_c`` / ``SPREAD_FACTOR``) in compensator.json's monitor; a ring of TREND_ROWS
 referenced readings and their times in the code's state (128 x n doubles + 128 times); the
 least-squares rate at a run-alone freeze exclusion and its ``hold_to`` time; the clean row's

@@ -535,7 +535,9 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion, Settled):
         if self._settles:
             self._settle_push(ref)
         self._slow_step(self._hist[(self._pos - 1) % self.window], float(time))
-        self._past_push(self._hist[(self._pos - 1) % self.window][None], [float(time)])
+        p = self._past_pos                   # one row kept (the ring of _past_push)
+        self._past[p], self._past_t[p] = self._hist[(self._pos - 1) % self.window], time
+        self._past_pos = (p + 1) % TREND_ROWS
         if clean is None:    # a new thermal state counts its calm samples on the full path
             self._quiet = self._rebuilds and not self._novel and not self._state[self._active].any()
         if settled:          # the next sample on the full path
