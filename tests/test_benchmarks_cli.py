@@ -93,7 +93,7 @@ COMMAND_BENCHES = (
     "bench_stranger84", "bench_stwires100", "bench_sub71", "bench_swap99", "bench_sweepdvc63",
     "bench_twins98", "bench_twolog70", "bench_verify82", "bench_volfleet63", "bench_volstranger66",
     "bench_wires100", "bench_wires99", "bench_within67", "bench_zerocheck67", "bench_zerofew67",
-    "bench_zerofold68",
+    "bench_zerofold68", "bench_audit105",
 )
 
 # Run in the child: per bench, main([])'s status and what it printed, and, for every usage line of
