@@ -12,7 +12,7 @@ C and the ST.  The bar was written first.
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is that tree's)::
 
     python benchmarks/bench_audit105.py readme CLONE              # cell R
-    python benchmarks/bench_audit105.py models ROOT [FAMILY ...]  # cell M (fresh ed10035)
+    python benchmarks/bench_audit105.py models ROOT [WORD ...]    # cell M (fresh ed10035)
     python benchmarks/bench_audit105.py faults ROOT PORT          # cell F (ed10035's mlr-none)
     python benchmarks/bench_audit105.py healthy ROOT              # cell H (fresh ed10036)
     python benchmarks/bench_audit105.py lab ROOT [FAMILIES]       # cell L (fresh lab 10037)
@@ -29,7 +29,7 @@ compiled C fed the chain and the raw test files) with bench_audit103's ``sim`` /
 family of bench_deploy88's ``FAMILIES`` (its light lstm; ``arx_rf``'s state the record's first
 ``S_`` column) x :data:`WRAPPERS`: ``none``, ``ati`` (``ati=cmeans``, the defaults) and
 ``interval`` (``ati=cmeans`` with no ambient interaction and 2..6 intervals: one model per
-interval, paper 003's setting).
+interval, paper 003's setting); WORDs name the families and the wrappers to run (default: all).
 ``faults``: ed10035's ``mlr-none`` cell: its compiled ``stream --flags`` fed the first test
 file's text with one fault of :data:`FAULTS` planted each (:func:`faulted_lines`, from data row
 :data:`FAULT_ROW`); the served model (on PORT) fed the fault's rows up to 20 past it: as one block
@@ -144,13 +144,13 @@ def readme(word: str) -> None:
 
 def day_files(data: Path) -> None:
     """``data``'s one record re-cut into day files D1.. (each ``continues`` the one before, its
-    time from 0, ``ambient_c`` its first ``T_amb``-like reading); the last :data:`TEST_DAYS` test."""
+    time from 0, ``ambient_c`` its first hall reading); the last :data:`TEST_DAYS` test."""
     manifest = pd.read_csv(data / "campaigns.csv")
     if len(manifest) > 1:
         return                                        # (cut already)
     first = manifest.iloc[0]
     frame = pd.read_csv(data / first.file)
-    amb = next((c for c in frame.columns if c.startswith("T_amb")), None)
+    amb = next((c for c in frame.columns if c.startswith(("T_amb", "T_hall"))), None)   # edm65: T_hall
     starts = np.arange(0.0, frame["time"].iloc[-1], 86400.0)
     rows, previous = [], ""
     for k, start in enumerate(starts, start=1):
@@ -198,9 +198,10 @@ def models(root: str, *chosen: str) -> None:
     columns = ["run", "sim", "replay", "promo", "C", "dmax", "cold", "Craw", "pack", "st", "onnx",
                "events", "cpu"]
     families = [f for f in bench_deploy88.FAMILIES if f in chosen] or list(bench_deploy88.FAMILIES)
+    wrappers = [w for w in WRAPPERS if w in chosen] or list(WRAPPERS)
     print(f"{'cell':<26}" + "".join(f"{c:>10}" for c in columns) + "  note", flush=True)
     for family in families:
-        for wrapper in WRAPPERS:
+        for wrapper in wrappers:
             r = bench_audit103._cell(base, RECORD, family, wrapper, data)
             if "cold" in r and "Craw" in r:
                 r["dcold"] = abs(r["Craw"] - r["cold"]) / abs(r["cold"])
@@ -307,7 +308,7 @@ def _said(status: int, text: str, healthy_c: np.ndarray, offset: int = 0) -> str
         answer = json.loads(text)
         preds = pd.DataFrame(answer.get("predictions", answer))
         c = preds[[k for k in preds.columns if k.startswith("C_")]].to_numpy(float)
-        full = np.full((len(healthy_c), c.shape[1]), np.nan)
+        full = healthy_c.copy()                 # (rows not sent: healthy's, so they count 0)
         full[offset:offset + len(c)] = c
         at, after, _ = _off(full, healthy_c)
         other = {k: [(i + offset, e) for i, e in enumerate(preds[k]) if e not in (None, "", "[]", [], 0)]
@@ -340,8 +341,9 @@ def served(model: Path, data: Path, frame: pd.DataFrame, inputs: list[str], sens
                 tail = rows.iloc[FAULT_ROW:].rename(columns={sensor: sensor + "_new"})
                 body = {"dataframe_split": {"columns": renamed, "data": _block(tail, renamed)},
                         "params": {"session": "m1"}}
+                print(f"  served [{fault}] first block {_said(status, text, healthy_c)[:300]}", flush=True)
                 status, text = bench_audit100._post(port, json.dumps(body).encode())
-                print(f"  served [{fault}] first block {status}; second "
+                print(f"  served [{fault}] second block "
                       f"{_said(status, text, healthy_c, FAULT_ROW)}", flush=True)
                 continue
             if fault == "back1":
@@ -356,7 +358,10 @@ def served(model: Path, data: Path, frame: pd.DataFrame, inputs: list[str], sens
             status, text = bench_audit100._post(port, json.dumps(body).encode())
             if fault == "repeat" and status == 200:
                 answer = json.loads(text)
-                preds = pd.DataFrame(answer.get("predictions", answer)).drop(index=FAULT_ROW)
+                preds = pd.DataFrame(answer.get("predictions", answer))
+                said = preds.drop(columns=[c for c in preds if c.startswith("C_")]).iloc[FAULT_ROW]
+                print(f"  served [{fault}] the copy's row {FAULT_ROW}: {said.to_dict()}", flush=True)
+                preds = preds.drop(index=FAULT_ROW)
                 text = json.dumps({"predictions": preds.reset_index(drop=True).to_dict(orient="records")})
             print(f"  served [{fault}] {_said(status, text, healthy_c)}", flush=True)
     finally:
