@@ -89,6 +89,72 @@ L2. Per family (mlr, lagbank) every figure (run, plain, replay, the C by ``rows`
 Each break: named with command, file, row and numbers; mended where small and clear (a test
 failing on 4b70457f, < 3 s of CPU, in the module of the code at fault), else listed for the lead
 with the reason it was left.
+
+Status: the bar above was committed in a16c10f1 before any of 10035-10037 was simulated; unchanged.
+Harness changes after it (no rule, no figure chosen): the day files' ``ambient_c`` read from
+``T_hall`` (edm65 names its hall so; written into ed10035's manifest before any ATI cell ran);
+served blocks scored over the rows sent; the ``repeat`` copy's served event shown; wrappers
+selectable by word; each cell promotes its own run (``params.out``: two sweeps sharing ROOT had
+promoted each other's last run, arx_rf-none and lagbank-none, redone).
+
+Scored (2026-12-07, 05:51-07:20 UTC; 2 cores shared, load 7-19, every job ``nice``; 4b70457f's
+src, cell F's C also with this branch's stream.c mend, 02b5aac4):
+
+R1 (clone at 4b70457f; shims, nothing installed: the shared venv is the one ``make run`` would make
+from this tree's pyproject, its stamps touched): README's 6 blocks and own-data.md's 5 exit 0 and
+meet their expectations, the make-run table printed line by line as quoted, fl_thermal 90/10 mlr
+4.0600 (4.06), before 16.7278 (16.7) -- but README:118 (twin + connect, 40 samples/s) at load 19:
+"E_Z: RMS 37.887 -> 14.355 µm compensated, 89 stale samples" (the client behind the twin).  Run
+again as written at load 6.7 (the harness's user env and HOME): 37.887 -> 3.112 µm, 8 stale:
+met.  A load-bound expectation, not a break.  R1 holds.
+
+M1 (ed10035; the test days D7-D8 are the weekend: machine and chiller off, a state the train
+week saw only on Saturday afternoon)::
+
+  cell                run        replay=promo=C  dmax     cold=Craw   pack st onnx events
+  mlr-none/ati/interval 2.822357 2.968202        4.9e-2   2.822357    0    0  2    18
+  pcr-none/ati        2.344971   2.305208        1.7e-2   2.344971    0    0  2    18
+  arx-none            2.822754   2.96848         4.9e-2   2.822754    0    0  2    18
+  lagbank-none        2.638882   2.881782        8.4e-2   2.06534     0    0  2    18
+  hammerstein-none    1.795115   1.919882        6.5e-2   1.957477    0    0  2    18
+  auto-ati/interval   run refused, exit 2, one line (name ati in model.candidates)
+
+replay = promo = C to the 7 digits printed and cold = Craw (<= 1.5e-14 relative) in every cell;
+but replay leaves run by 1.7-8.4 %: the same 18 monitor events in every cell (the stream warmed
+on D1-D6): T_hall, then T_cabinet (no other sensor predicts them) excluded as "drift: its
+reading explains the others' self-prediction errors (T_bed +0.51 °C over the last 2 samples)",
+held at their last good reading up to 458 samples; ``plain`` (no monitor, no envelope) = run to
+the bit (mlr).  ``monitor`` on the healthy record says the same (18 events, 9 exclusions, 18.8
+per 100 h, first T_hall at D7 7.63 h).  From a cold start (D7 alone) no event.  M1 BROKEN by a
+false alarm (not mended: the monitor's drift judgement, a rule for a monitor stop).  ati and
+interval = none in every cell run: the six train days continue each other and are fitted as one
+campaign ("ATI: 1 training campaign(s) with 1 distinct ambient(s) ...; one model", beside the
+line "train campaigns that continue one another fitted as one"): said, not a break.
+
+F1-F2 (ed10035 mlr-none, T_hall from D7's data row 200): C: back1 exit 0, time_read 2 at row
+200, |dC| 0; repeat exit 0, time_read 3 on the copy (skipped, said), |dC| 0; huge (1e308) exit 2
+"line 202: input T_hall: 1e+308 degC is beyond 10000 degC ... list it in data.missing_values"
+(as the reader refuses it; the served model holds it instead); header_again exit 0, said, |dC|
+0; nonl exit 0, 1440 rows = healthy; renamed exit 2 "line 202: input T_hall: 'T_hall_new' is no
+number (a mark for a value not measured?)": unclear, MENDED (02b5aac4: "line 202 is a header
+other than the first (another file's: a column renamed?): column 2 reads 'T_hall_new' where the
+header named input T_hall: ..."; replay refuses the file as a header written again).  Served:
+back1 200, time event rows 200-201; repeat 200, event "repeated" on the copy; huge 200, T_hall
+excluded (out of range), |dC| 0.279 at the row, <= 0.305 after; renamed (a second block of the
+session) 400 "Model is missing inputs ['T_hall'] ... extra inputs [..., 'T_hall_new']"; server
+stderr 0 tracebacks.  F1 holds after the mend, F2 holds.
+
+H1 (ed10036, mlr): monitor 0 events; export C + pack 0 (7.64e-14 µm, flags as packed); the C
+``--flags`` fed D7 1440 rows, 0 flagged; its mirror 0; the ST over D7 after its 8640-row lead-in
+0 false flags, max |ST - C| 8.53e-14 µm (planted spike / dropout / range 9/9 hit; freeze 0 of 9
+served, "other": not scored).  H1 holds.
+
+L1-L2 (lab 10037, export.csv): init with no key exit 0: cp1252 found, ``;`` and ``,`` found, the
+units row read as units (rows from line 3), Datum + Uhrzeit one timestamp (60 s, 1441 rows across
+midnight), the trailing empty column left out, Umgebung the ambient, T_Führungsbuchse / S_Tür
+names, 0 replacement characters.  mlr and lagbank: run, plain, replay, C by rows, C fed the raw
+bytes = contract's to 0 (mlr E_X/E_Y replay 1.839430846/1.286942479 µm); promote exit 0, "as
+deployed" 1.563186663 = replay's (relative 0).  L1, L2 hold.
 """
 
 from __future__ import annotations
@@ -186,11 +252,26 @@ def simulated(root: Path, record: str) -> Path:
     return data
 
 
+def _cell_run_id(root: Path) -> str:
+    """The tracked run of the cell :func:`models` runs (its ``out``): bench_deploy88's
+    ``last_run_id`` took the latest run of ROOT, another process's where two sweeps share it."""
+    import mlflow
+
+    mlflow.set_tracking_uri(f"sqlite:///{root}/mlruns/mlflow.db")
+    runs = mlflow.search_runs(experiment_names=["thermocomp"], order_by=["start_time DESC"], max_results=1,
+                              filter_string=f"tags.stage = 'run' and params.out = '{_CELL_OUT[0]}'")
+    return str(runs.iloc[0]["run_id"])
+
+
+_CELL_OUT = [""]
+
+
 def models(root: str, *chosen: str) -> None:
     """Cell M (module doc)."""
     import bench_audit91
 
     base = project_root(root, REPO / "conf")
+    bench_deploy88.last_run_id = _cell_run_id
     data = simulated(base, RECORD)
     bench_deploy88.FAMILIES["arx_rf"] = ["model.estimator.forest.n_estimators=10",
                                          f"model.estimator.state_column={bench_audit91.state_column(data)}"]
@@ -202,6 +283,7 @@ def models(root: str, *chosen: str) -> None:
     print(f"{'cell':<26}" + "".join(f"{c:>10}" for c in columns) + "  note", flush=True)
     for family in families:
         for wrapper in wrappers:
+            _CELL_OUT[0] = str(base / "reports" / RECORD / f"{family}-{wrapper}")
             r = bench_audit103._cell(base, RECORD, family, wrapper, data)
             if "cold" in r and "Craw" in r:
                 r["dcold"] = abs(r["Craw"] - r["cold"]) / abs(r["cold"])
