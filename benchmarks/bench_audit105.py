@@ -97,7 +97,7 @@ served blocks scored over the rows sent; the ``repeat`` copy's served event show
 selectable by word; each cell promotes its own run (``params.out``: two sweeps sharing ROOT had
 promoted each other's last run, arx_rf-none and lagbank-none, redone).
 
-Scored (2026-12-07, 05:51-07:20 UTC; 2 cores shared, load 7-19, every job ``nice``; 4b70457f's
+Scored (2026-12-07, 05:51-06:54 UTC; 2 cores shared, load 7-19, every job ``nice``; 4b70457f's
 src, cell F's C also with this branch's stream.c mend, 02b5aac4):
 
 R1 (clone at 4b70457f; shims, nothing installed: the shared venv is the one ``make run`` would make
@@ -119,6 +119,7 @@ week saw only on Saturday afternoon)::
   hammerstein-none    1.795115   1.919882        6.5e-2   1.957477    0    0  2    18
   arx_rf-none         2.762651   2.873406        3.9e-2   2.762651    0    0  2    18
   lstm-none           2.822357   2.825192 (C 2.849269)  8.5e-3   2.822357    0    0  2    18
+  auto-none           2.505014   2.615854        4.2e-2   2.395838    0    0  2    18
   auto-ati/interval   run refused, exit 2, one line (name ati in model.candidates)
 
 replay = promo = C to the 7 digits printed (lstm: C 0.85 % off replay, within the 1 %) and cold =
