@@ -140,3 +140,18 @@ def test_an_inputs_column_written_twice_apart_is_refused_as_the_reader_refuses_i
     assert apart.stderr.startswith("stream: line 12: columns 2 and 5 have the same header 'T_a', "
                                    "different values ("), apart.stderr
     assert "name the second, data.columns={'T_a#2': T_<name>}" in apart.stderr
+
+
+def test_a_header_with_a_column_renamed_mid_stream_is_said_for_what_it_is(exported):
+    """audit105: a header written again under the rows with input ``T_a`` renamed (``T_a_new``: a
+    logger reconfigured, two files joined) was refused as "input T_a: 'T_a_new' is no number (a
+    mark for a value not measured?)"; replay refuses the file as a header written again.  Now
+    said as the other header it is, the renamed column named, at the same line (exit 2)."""
+    lines = pd.read_csv(exported["record"]).iloc[:20].to_csv(index=False).splitlines()
+    lines.insert(11, lines[0].replace("T_a", "T_a_new"))          # line 12, above data row 11
+    fed = _stream(exported["out"], "\n".join(lines) + "\n")
+    assert fed.returncode == 2 and len(fed.stdout.splitlines()) == 1 + 10
+    assert fed.stderr == (
+        "stream: line 12 is a header other than the first (another file's: a column renamed?): "
+        "column 2 reads 'T_a_new' where the header named input T_a: stream each file by itself, "
+        "--state FILE carries the campaign from one to the next\n")

@@ -408,8 +408,13 @@ static int word_holds(const char *cell, int i) {
     return 0;
 }
 
+/* The first input of TC_INPUT_NAMES the line inputs_named_over last looked at does not name
+   (-1: it names every one), and that line's cell in the header's column of it (audit105). */
+static int unnamed_input = -1;
+
 /* How many inputs of TC_INPUT_NAMES `line` (not changed) names, with the unit row `units` under
-   it where `units` is one (NULL: none; unit_named) (sets `sep` to the line's). */
+   it where `units` is one (NULL: none; unit_named) (sets `sep` to the line's, and
+   unnamed_input). */
 static int inputs_named_over(const char *line, const char *units) {
     static char text[MAX_LINE];
     char *cells[MAX_COLS];
@@ -422,9 +427,11 @@ static int inputs_named_over(const char *line, const char *units) {
         cells[0] = uncommented(cells[0]);
     for (j = 0; j < ncols; j++) names[j] = named(twin(cells, j), j);
     if (units != NULL) unit_named(cells, ncols, units, names);
+    unnamed_input = -1;
     for (i = 0; i < TC_N_INPUTS; i++) {
         for (found = 0, j = 0; j < ncols && !found; j++)
             found = strcmp(names[j], TC_INPUT_NAMES[i]) == 0 || word_holds(cells[j], i);
+        if (!found && unnamed_input < 0) unnamed_input = i;
         n += found;
     }
     return n;
@@ -1602,10 +1609,17 @@ int main(int argc, char **argv) {
                 }
                 u[i] = (double)(((unsigned long long)u[i] >> TC_WORD_BIT[word_of[i]]) & 1ULL);
             }
-            if (bad && names_every_input(row_raw)) {   /* (names_every_input set sep: the same) */
+            /* another header: one naming every input, or (audit105) at least half of them, the
+               rest renamed (`T_hall_new` was refused as "no number", no word of a header) */
+            if (bad && 2 * inputs_named(row_raw) >= TC_N_INPUTS) {   /* (sets sep: the same) */
                 fprintf(stderr, "stream: line %ld is a header other than the first (another "
-                        "file's: a column renamed?): stream each file by itself, --state FILE "
-                        "carries the campaign from one to the next\n", row);
+                        "file's: a column renamed?)", row);
+                if (unnamed_input >= 0 && where[unnamed_input] >= 0)
+                    fprintf(stderr, ": column %d reads '%s' where the header named input %s",
+                            where[unnamed_input] + 1, trimmed(cells[where[unnamed_input]]),
+                            TC_INPUT_NAMES[unnamed_input]);
+                fprintf(stderr, ": stream each file by itself, --state FILE carries the campaign "
+                        "from one to the next\n");
                 return 2;
             }
             if (bad) {    /* (streamraw65: read as missing before; the reader refuses it) */
