@@ -37,6 +37,30 @@ were run on this rule and before seeds 10030-10034 were simulated; KEPT only if 
 (4) FRESH 10030-10034 (bench_auto105's :data:`FRESH`, the 22 table's kinds, own test, scored once):
     no record a new loser (main / MLR <= 1 and hedge / MLR > 1), and the geometric mean of
     hedge / MLR at most main's.
+
+Measured (2026-12-07; main = a copy of 0efa0fc4 for every fit, the rule replayed from its stored
+arrays; ``OMP_NUM_THREADS=1``, 2 shared cores, load 6-9; CPU user+sys: rows 226.7 s, ``replay``
+12.5, ``seen1`` 34.8 (rows) + 4.4, ``fl`` 46.1, ``authors`` 13.5 (this tree's src), ``fresh`` 31.3).
+KEPT: all four hold.
+
+(1) SEEN 22 (``replay /tmp/auto105/root /tmp/auto105b/main``; main's rows as 4b70457f's: geo
+    0.8257, the same 8 losers): hedged 15 targets of 8 records (year6_5411, year6511, year6512,
+    jig_grinder, hmc, mtc_a, mtc_b, grind_b; lam 0.00-0.99), main -> rule: hmc 1.005 -> 0.954, mtc_b
+    1.075 -> 0.901, mtc_a 0.704 -> 0.675, year6_5411 0.518 -> 0.537, year6511 0.348 -> 0.367,
+    year6512 0.376 -> 0.378, the other 16 within 0.1 % (14 untouched: one train campaign, 2 folds,
+    or 1 fold); losers 8 -> 6, geo 0.8257 -> 0.8192: met.  (No bar on it: 2 records > 1 % worse
+    than main, year6_5411 1.038, year6511 1.055 -- both still far under MLR.)
+(2) SEEN one-campaign (``seen1``): every record 1.000 x main (one train campaign: never hedged);
+    geo 0.7654 both: met.
+(3) fl_thermal 90/10 (one train record): 2.481 (38.9 % under MLR's 4.060), unchanged: met.  The
+    authors' 60/20/20 split re-run with the rule on: MAE 1.170 / 1.411 / 4.078 / 1.399 / 2.529,
+    mean 2.117 (GRU 3.752), below the GRU on 4 of 5 and the mean: met (a val split: no hedge).
+(4) FRESH 10030-10034 (drawn once, after the bar and the seen results): col10030 0.819, sw10031
+    0.558, lab10032 1.227 (one fold), untouched; year6_10033 0.337 -> 0.323 (E_X lam 0), year10034
+    0.298 -> 0.297 (E_X lam 0.93); no new loser, geo 0.5626 -> 0.5576: met.
+
+The built key agrees with the replay: ``hedge=campaigns`` fitted on mtc_b and hmc gives the
+bench's mixed weights to 4 decimals (mtc_b E_dY lagbank 0.2464, hammerstein 0.4913, mlr 0.2622).
 """
 
 from __future__ import annotations
