@@ -34,7 +34,7 @@ from ..gains import gain_terms
 from ..metrics import PERSISTENCE, rmse
 from ..model_selection import BlockedForward, LeaveBlockOut, LeaveCampaignsOut
 from ..model_selection.extrapolation import within_range
-from .blend import Blend, fold_ratios, mean_fold_ratio, vote_weights
+from .blend import FOLD_MARGIN, Blend, fold_ratios, one_se_mean, vote_weights, zero_margin
 from .hedge import hedge_weight
 from .one_step import persistence
 
@@ -42,10 +42,6 @@ ATI = "ati"              # a candidate name: the ATI wrapper (conf/ati/cmeans.ya
 BASELINE = "mlr"         # always validated beside the candidates, with persistence
 AUTO = "auto"            # the model that chooses: no candidate of its own
 NONE = "none"            # no correction: validated beside them, kept where nothing beats it
-# the zero undone only where the kept model's per-fold measure is below 1/FOLD_MARGIN of no
-# correction's: a stable axis's folds sit near 1 against each other (grinder 0.89 / 0.92, whose zero
-# tested better), a fold every model extrapolates beside folds they correct 17-580x (iso67)
-FOLD_MARGIN = 2.0
 FORWARD_ONE = "forward-chaining (one record)"
 MIN_IN_RANGE_ROWS = 20   # validation_rows='in_range': a fold with fewer in-range rows is scored whole
 BLOCKS_ONE = {"blocks": "leave-block-out (one record)", "late_blocks": "leave-late-block-out (one record)"}
@@ -313,9 +309,10 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
             return False
         r = fold_ratios((self.oof_y_[rows] - predicted[rows]) ** 2,
                         (self.oof_y_[rows] - self.oof_[BASELINE][rows]) ** 2, self.oof_fold_[rows])
-        if r.size < 2:
+        read = one_se_mean(r)
+        if read is None:
             return False
-        mean, se = float(np.mean(r)), float(np.std(r, ddof=1) / np.sqrt(r.size))
+        mean, se = read
         if not mean + se >= 1.0:
             return False
         self.reason_ += (f"; one-SE rule: the blend's mean fold MSE over MLR's {mean:.4g} ± "
@@ -362,9 +359,7 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         if self.uncompensated != "zero" or none is None or not kept >= none:
             return
         if predicted is not None and BASELINE in self.oof_:
-            base = (self.oof_y_ - self.oof_[BASELINE]) ** 2
-            q_kept = mean_fold_ratio((self.oof_y_ - predicted) ** 2, base, self.oof_fold_)
-            q_none = mean_fold_ratio(self.oof_y_ ** 2, base, self.oof_fold_)
+            q_kept, q_none = zero_margin(self.oof_y_, predicted, self.oof_[BASELINE], self.oof_fold_)
             if FOLD_MARGIN * q_kept < q_none:
                 self.reason_ += (f"; kept though its pooled validation RMSE {kept:.4g} is not below "
                                  f"no correction's {none:.4g}: fold by fold it is (mean fold MSE "

@@ -169,6 +169,30 @@ def mean_fold_ratio(squared: np.ndarray, base: np.ndarray, fold: np.ndarray) -> 
     return float(np.mean(fold_ratios(squared, base, fold)))
 
 
+def one_se_mean(ratios: np.ndarray) -> tuple[float, float] | None:
+    """The one-SE rule's read of per-fold ratios (:func:`fold_ratios`): their mean and standard
+    error std(ddof=1) / sqrt(k); None with fewer than 2 folds.  Mean + SE >= 1: the simpler model
+    (MLR) unless the other is better by more than one SE (auto80)."""
+    if ratios.size < 2:
+        return None
+    return float(np.mean(ratios)), float(np.std(ratios, ddof=1) / np.sqrt(ratios.size))
+
+
+# the zero undone only where the kept model's per-fold measure is below 1/FOLD_MARGIN of no
+# correction's: a stable axis's folds sit near 1 against each other (grinder 0.89 / 0.92, whose zero
+# tested better), a fold every model extrapolates beside folds they correct 17-580x (iso67)
+FOLD_MARGIN = 2.0
+
+
+def zero_margin(y: np.ndarray, predicted: np.ndarray, mlr: np.ndarray, fold: np.ndarray
+                ) -> tuple[float, float]:
+    """The zero rule's fold-by-fold read: the kept model's (``predicted``) and no correction's mean
+    fold MSE over MLR's (:func:`mean_fold_ratio`); the zero is undone where ``FOLD_MARGIN`` times
+    the first is below the second."""
+    base = (y - mlr) ** 2
+    return mean_fold_ratio((y - predicted) ** 2, base, fold), mean_fold_ratio(y ** 2, base, fold)
+
+
 def _nested_resamples(squared, y, fold, base, n_resamples, blocks: bool) -> np.ndarray:
     """resample x candidate: the folds resampled, each drawn fold's ratio (its squared error
     summed over its units relative to ``base``'s, the last column of ``squared``) taken on a

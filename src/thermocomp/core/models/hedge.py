@@ -7,9 +7,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..metrics import rmse
-from .blend import fold_ratios, mean_fold_ratio, vote_weights
-
-FOLD_MARGIN = 2.0     # auto.FOLD_MARGIN (the zero rule's), repeated: auto imports this module
+from .blend import FOLD_MARGIN, fold_ratios, one_se_mean, vote_weights, zero_margin
 
 
 def chosen_weights(preds, y, fold, base_column: int, min_folds: int) -> np.ndarray:
@@ -19,13 +17,12 @@ def chosen_weights(preds, y, fold, base_column: int, min_folds: int) -> np.ndarr
     w = vote_weights(preds, y, fold, mlr, base_column=base_column, min_folds=min_folds)
     alone = np.eye(preds.shape[1])[base_column]
     if not np.allclose(w, alone):
-        r = fold_ratios((y - preds @ w) ** 2, (y - mlr) ** 2, fold)
-        if r.size >= 2 and np.mean(r) + np.std(r, ddof=1) / np.sqrt(r.size) >= 1.0:
+        read = one_se_mean(fold_ratios((y - preds @ w) ** 2, (y - mlr) ** 2, fold))
+        if read is not None and sum(read) >= 1.0:
             w = alone
     if rmse(y - preds @ w) >= rmse(y):
-        base = (y - mlr) ** 2
-        if not FOLD_MARGIN * mean_fold_ratio((y - preds @ w) ** 2, base, fold) < mean_fold_ratio(
-                y ** 2, base, fold):
+        q_kept, q_none = zero_margin(y, preds @ w, mlr, fold)
+        if not FOLD_MARGIN * q_kept < q_none:
             w = np.zeros_like(w)
     return w
 
