@@ -541,6 +541,9 @@ class CodeMonitor:
         # (cmon82c) out for explaining the others' errors (no other predicts it), and each
         # sensor's last reading while it was in (what the model reads of one no other predicts)
         self.explains, self.last = np.zeros(n, bool), np.zeros(n)
+        # (dep105b) the field the model read at the last sample (referenced; 0 before the first,
+        # as served's ``_clean``): what it reads where nothing is left to rebuild a sensor from
+        self.clean = np.zeros(n)
         # (mon85b) out as a culprit within its own warning band: its whole band to return
         self.hid = np.zeros(n, bool)
         self.fell = False      # one whose fallback model the code lacks went out: flagged to the end
@@ -642,6 +645,9 @@ class CodeMonitor:
     def _recompute(self) -> None:
         """The window's errors under the new operator (an exclusion, a re-admission)."""
         self.Mc, self.levc = self._operator(~self._active())
+        if not self._in().any():     # (dep105b) no operator, as served's (``M`` None): every
+            # prediction and error NaN, where the solve of the empty set would read 0
+            self.Mc = np.full((self.n, self.n), np.nan)
         M, _, _, _, scale = self._set()
         H = np.where(np.isfinite(self.hist), self.hist, 0.0)
         self.err = (self.hist - H @ M.T) * scale
@@ -649,7 +655,9 @@ class CodeMonitor:
 
     def _set_bands(self) -> None:
         """(mon86) The active set's bands, a culprit out within its band counted in (served)."""
-        self.warn, self.alarm = self._bands(self._active() | self.hid)
+        # (dep105b) none in: the whole set's, as served (whatever culprit is counted in)
+        self.warn, self.alarm = (self._bands(self._active() | self.hid) if self._in().any()
+                                 else (self.a["warning"], self.a["alarm"]))
 
     def _bands(self, ins: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(mon86) ``(warning, alarm)`` of the set ``ins``, the served ``_bands_of``: each floor
@@ -763,13 +771,11 @@ class CodeMonitor:
         served's stepped check having no cap either; dep100: and for a drift exclusion, its
         blind-out too, and a freeze, served's judgement and freeze check having none; dep105:
         and for a dropout beside two or more out where a sensor is left in, served's ``_instant``
-        having none) and the set's operator solved.  A dropout that would leave none in beside
-        two out is refused (``MISSING_SECOND``): served, no operator left, holds its last field
-        (``_clean``) where the code's solve of the empty set would read every sensor at its
-        reference (dep103's whole dropout, kelvin97: 11.8 µm)."""
+        having none) and the set's operator solved; (dep105b) a dropout that leaves none in
+        too: served, no operator left, holds its last field (``_clean``), as the code now does
+        (:meth:`_recompute`, :meth:`_rebuilt`; before, refused: ``MISSING_SECOND``)."""
         out = ~self._active() | (np.arange(self.n) == j)
-        return self.solve and (rule != DROPOUT or self.out2 < 0 or not out.all()) and (
-            self._operator(out) is not None)
+        return self.solve and self._operator(out) is not None
 
     def _put_out(self, j: int) -> None:
         """``j`` in the out set (its last place), its calm count and its within-band mark
@@ -1275,7 +1281,10 @@ class CodeMonitor:
         read = self._active()
         if read.sum() < self.a["min_active"]:
             read |= self.dropped & np.isfinite(d) & (self.run == 0)
-        v[self.idx] = self.base + np.where(read, d, np.where(self.predictable, pred, self.last))
+        field = np.where(read, d, np.where(self.predictable, pred, self.last))
+        # (dep105b) nothing to rebuild from (none in: no operator): the last field, as served
+        self.clean = field = np.where(np.isfinite(field), field, self.clean)
+        v[self.idx] = self.base + field
         if self.out >= 0:
             self.flags |= OUT
         if self.novel:
