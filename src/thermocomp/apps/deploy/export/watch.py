@@ -125,7 +125,10 @@ The served adaptive compensator judges every ``T_`` input before the model reads
   out, a returned one read where too few are in, dep99) and of one no other predicts too (held
   at its last reading).  (dep105) A dropout beside two or more out too, each in turn, and a
   pair's readings back read where too few are in (dep99), as served, where a sensor is left in;
-  one that would leave none in (served holds its last field) or a set not solved: refused.
+  a set not solved: refused.  (dep105b) One that leaves none in too: served, no operator
+  left, holds its last field (``_clean``), and so does the code (``clean``, the C's
+  ``mon_clean``: the field the model read at the last sample, where nothing rebuilds a sensor),
+  the readings back read and every sensor re-admitted together a window on, as served.
 * (cmon89b) a sensor no other predicts, every other in, **out for a reading beyond its range**
   (``blind_range``: ``ranges``): read as missing, held at its last reading, back after a calm
   window only where its leak onto the others passes (:meth:`CodeMonitor._leak_passes`, the
@@ -174,11 +177,10 @@ beyond the band that takes a third sensor out (cmon85: with one out, as served),
 blind partner, a second culprit beyond the alarm band, a third for a jump, and a sensor no
 other predicts out for any other rule (its range; cmon84: too few left to rebuild the field without
 it), or with a fallback model the code does not hold.  A missing reading the code cannot rebuild
-(at a campaign's first sample, beside two or more out where it would leave no sensor in
-(dep105: beside any number out where one is left in and the set solves), a set it cannot solve,
-of a sensor it does not hold out) is refused as before (:meth:`CodeMonitor.refuses`: the sample
-is not read).  From such a row on the code may part from the served model; the conformance pack
-cuts there (:func:`~.pack.conformance_pack`).
+(at a campaign's first sample, beside those out where it cannot solve the set, of a sensor
+it does not hold out; dep105b: no longer where it would leave no sensor in) is refused as
+before (:meth:`CodeMonitor.refuses`: the sample is not read).  From such a row on the code may
+part from the served model; the conformance pack cuts there (:func:`~.pack.conformance_pack`).
 """
 
 from __future__ import annotations
