@@ -50,6 +50,35 @@ W3 every tests/shell/test_export_* module importing watch / watch_c passes, with
 W4 healthy frames: 0 rows flagged (W1/W2's healthy lines).
 W5 fresh pt10044 (PORTAL), tr10045 (TRUNNION), cr10046 (CR), ``whole``: as W1, scored once.
 KEPT if W1-W5 hold; else REFUSED (benchmarks/dep105b_rule.patch, src as 7a8d6cf2).
+
+SCORED (bar cc73c5e0, committed 06:44 UTC before the rule was measured and before fresh
+10044-10046 were simulated from 06:58; unchanged.  base = ``git archive 7a8d6cf2 src``, rule =
+b1b39ec2 + bab05ee7 (now dep105b_rule.patch); roots: dep105's seen roots copied, each tree building
+its own C; fresh simulated by base, the rule reading a copy.  CPU (user + sys, /usr/bin/time)
+base / rule: seen ``whole`` 12.5 / 12.2 s, ``returns`` pt9851 10.7 / 10.9 s, fresh ``whole``
+27.7 (with simulation) / 24.7 s; load 6-8 on 2 cores).
+
+W1 MET: seen pt9851 / tr9891 / cr9892: base refuses ``every`` at its first row and ``cascade`` at
+the last sensor (``MISSING_SECOND``, ``stream`` exit 2); the rule refuses none: ``every`` max|C -
+served| 0 um on all 2640 / 2640 / 176 rows (5 held, the return, cr9892's 12 re-admitted at rows
+70 and 72), ``cascade`` <= 1.46e-11 um, 0 rows past 1e-9, 0 ``NOT_IN_CODE``, compiled - mirror
+<= 1.11e-12 um.  Fixtures: kelvin97 ``whole_dropout`` C = served every row (re-admitted as served),
+cdrop77 ``every`` not cut, C = served every row, lab75's raw file C = served on its 24 rows (base:
+exit 2 at line 15); those three tests fail on 7a8d6cf2.
+W2 MET: bench_dep105 ``returns`` pt9851: 7 lines identical base / rule (``diff``).
+W3 MET: 44 tests/shell/test_export_* modules importing watch / watch_c + kelvin97 + cdrop77 +
+lab75_deploy + test_lint: 107 passed (CPU 118.4 s); test_docs + test_benchmarks_cli -k dep105b
+47 passed.
+W4 MET: pt9851's healthy frame 0 rows flagged, C = served 0 um (W2's line).
+W5 NOT MET (fresh, scored once): tr10045 and cr10046 as W1 (``every`` 0 um, ``cascade`` <= 5.86e-14
+um, 0 rows, 0 ``NOT_IN_CODE``; base refused both).  pt10044 fails the bound: max|C - served| 14.7
+um (``every``) / 53.4 um (``cascade``), 2640 rows past, 1 row ``NOT_IN_CODE``.  Those rows part
+on BASE too, before the fault (2520 rows past from W3's first row, 1 ``NOT_IN_CODE``: the reader
+warns "W3 continues W2 ... its first row steps 4 temperature(s) more than 3x": a restart read as
+a jump), so the held rows cannot be judged on that record; the bar had no clause for a cell
+parted before the fault, and none is added now.
+VERDICT: REFUSED (W5 on pt10044).  src, tests, docs as 7a8d6cf2; the rule and its test changes
+in benchmarks/dep105b_rule.patch (C state + NM doubles: 2264 -> 2288 bytes at 3 monitored).
 """
 
 from __future__ import annotations
