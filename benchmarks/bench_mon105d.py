@@ -37,3 +37,74 @@ D5. the ST: said whether it serves the stand-in or the held value; if the stand-
     / docs say so.
 KEPT if D1-D5 hold; else TRACED / REFUSED as the brief says. The C's state growth (bytes) reported.
 """
+
+from __future__ import annotations
+
+import sys
+import tempfile
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+HERE = Path(__file__).resolve().parent
+sys.path[:0] = [str(HERE)]
+from _cli import run_commands  # noqa: E402
+
+
+def _three(deployed, ss, binary: Path, frame: pd.DataFrame) -> tuple[float, float, str, int]:
+    """``(max |served - mirror|, max |served - C|, rows the mirror flags and their kinds, rows
+    held)`` over ``frame`` (µm; held: a row where the mirror reads a sensor at its held value)."""
+    from _ccode import streamed
+    from bench_cmon92 import Stepped
+
+    from thermocomp.apps.deploy.export.watch import FLAG_KINDS
+
+    run, served, mirror, flagged, held, bits = Stepped(deployed, ss), [], [], 0, 0, 0
+    for c, want, flags, *_ in run.rows(frame):
+        w = run.sim.watch
+        served.append(want)
+        mirror.append(c)
+        flagged, bits = flagged + bool(flags), bits | flags
+        if hasattr(w, "hold_to"):      # (a tree before mon105d: never held)
+            held += bool((w.froze & ~w._active() & (w.off == 0) & (w.now <= w.hold_to)).any())
+    served, mirror = np.array(served), np.array(mirror)
+    code = streamed(binary, frame[["time", *ss.inputs]])
+    assert code.shape == served.shape, (code.shape, served.shape)
+    return (float(np.max(np.abs(served - mirror))), float(np.max(np.abs(served - code))),
+            f"{flagged} (bits {[k for k, b in FLAG_KINDS if bits & b]})", held)
+
+
+def agree(root: str, *records: str) -> None:
+    """The ``agree`` rows (module doc)."""
+    from _ccode import built
+    from bench_cmon92 import faulted_cell, made, planted
+    from bench_mon97 import FRESH as SPENT
+    from bench_mon97 import SEEN
+    from bench_mon105c import FRESH, frozen_sensors
+
+    from thermocomp.apps.deploy.export import exported_files
+
+    base = Path(root).resolve()
+    for record in records:
+        made(base, record, "mlr", {**SEEN, **SPENT, **FRESH})
+        deployed, ss, frame, lead, start, cid = faulted_cell(base, record, "mlr-none")
+        with tempfile.TemporaryDirectory(prefix="mon105d-") as tmp:
+            binary = built(Path(tmp), exported_files(deployed, "c"))
+            m, c, flagged, held = _three(deployed, ss, binary, frame)
+            print(f"{record} campaign {cid} healthy: |served-mirror| {m:.3g} |served-C| {c:.3g} µm, "
+                  f"mirror flagged rows {flagged}, held rows {held}", flush=True)
+            for sensor in frozen_sensors(deployed.monitor):
+                whole = pd.concat([frame.iloc[:start], planted(frame, start, (sensor,), "freeze")])
+                m, c, flagged, held = _three(deployed, ss, binary, whole)
+                print(f"  {sensor:<18} |served-mirror| {m:.3g} |served-C| {c:.3g} µm, "
+                      f"mirror flagged rows {flagged}, held rows {held}", flush=True)
+
+
+def main(argv: list[str]) -> int:
+    return run_commands(__doc__, {"agree": agree}, argv, cpu=sys.stderr)
+
+
+if __name__ == "__main__":
+    raise SystemExit(main(sys.argv[1:]))
+

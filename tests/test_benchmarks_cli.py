@@ -71,6 +71,7 @@ COMMAND_BENCHES = (
     "bench_initlag67", "bench_iso67", "bench_jig68", "bench_jump94", "bench_jump94b", "bench_kelvin97",
     "bench_keysight70", "bench_lab83", "bench_lagwithin68", "bench_margin67", "bench_mon101", "bench_mon103",
     "bench_mon103b", "bench_mon103c", "bench_mon103d", "bench_mon105", "bench_mon105b", "bench_mon105c",
+    "bench_mon105d",
     "bench_mon71", "bench_mon72", "bench_mon73", "bench_mon74", "bench_mon75", "bench_mon77", "bench_mon81",
     "bench_mon81g", "bench_mon82", "bench_mon82b", "bench_mon82c", "bench_mon82d", "bench_mon83",
     "bench_mon83b", "bench_mon83c", "bench_mon83d", "bench_mon84", "bench_mon84b", "bench_mon84c",

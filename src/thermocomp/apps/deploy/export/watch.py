@@ -71,6 +71,11 @@ The served adaptive compensator judges every ``T_`` input before the model reads
   where a partner out, frozen by the rule for one no other predicts (constant longer than
   ``blind_run``), would predict it (``cleared``), as served (``Readmission._blind_for_frozen``).
   An export before it (no ``cleared``) keeps it out, as before.
+* (mon105d) a sensor out for a freeze by its run alone (not where the field moved past its band
+  while it held) is read at its held value instead of its stand-in while the rate fitted to its
+  own last ``TREND_ROWS`` readings within ``tau`` before its run projects a drift, over at least
+  the span fitted, within ``spread`` (the served ``_hold_until`` / ``_read_held``; the time the
+  time rule's ``now``).  An export before it (no ``spread``) reads the stand-in, as before.
 * (freeze84) a sensor out for a **freeze alone** (no other detector fired on it since) is
   re-admitted once ``THAW`` readings in a row are off the value it held (``THAWED``), judged from
   there as an active one, as served (``Readmission._thawed``).  An export before it (no
