@@ -36,6 +36,28 @@ D4. healthy frames: 0 flags from the code's monitor (mirror) on the records abov
 D5. the ST: said whether it serves the stand-in or the held value; if the stand-in, not_in_code
     / docs say so.
 KEPT if D1-D5 hold; else TRACED / REFUSED as the brief says. The C's state growth (bytes) reported.
+
+Measured (2026-12-07; ``agree`` on mon105c's ROOT, its models fitted once by main's src; this
+branch's src; 11 records 42.8 + 1.4 s CPU, the C builds included).  max |served - mirror| /
+max |served - C| over the campaign (µm), rows where the mirror reads a held value::
+
+    cr9763  T_amb 0 / 2.1e-14, 49 held    T_headstock 2.8e-14 / 3.4e-14, 0
+    sw9776  T_amb 0 / 2.8e-14, 50 held    T_headstock 0 / 2.8e-14, 0
+    lr9376  T_head_left 0 / 1.6e-13, 0
+    spent and fresh (sw9815 cr9816 lr9817 sw9818 cr9819 cr10038 sw10039 lr10040; 15 cases):
+            all <= 1.0e-13, held rows 43-49 where served holds (lr9817 T_spindle_rear 49,
+            lr10040 T_head_right 43), 0 on cr9819 (its past moved)
+
+D1 met (worst 1.6e-13 µm; the pack's K09.freeze.T_b: test_export_inputs_product62 and
+test_export_atiprod65 pass, 7 cases each: D2).  D3: the 45 test_export_* modules importing watch
+105 passed; 29 more exercising the pack / Simulator 213 passed (test_export's PARSED_DIGEST
+unchanged: the ST is not touched).  D4: healthy frames 0 flagged rows on the cr / sw records; lr9376
+(35 rows), lr9817 (58) and lr10040 (13) flag rows (sensors excluded and re-admitted on the
+healthy frame) on ecd7ec36's src alike (each measured on both): the bar's wording missed them; the
+change adds none.  D5: the ST holds no stand-in: it reads the frozen reading as read (the held value) and flags
+the freeze where its judgement ends (st98), unchanged.  The C's state: sizeof(tc_state) 8,656 ->
+22,080 bytes with 12 monitored sensors (cr9763, sw9776), 10,144 -> 25,632 with 14 (lr9376): 128
+rows x (8 NM + 8) + 8 NM + 12 (and padding); an export without ``spread`` keeps one row.
 """
 
 from __future__ import annotations
