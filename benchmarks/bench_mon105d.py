@@ -55,9 +55,10 @@ unchanged: the ST is not touched).  D4: healthy frames 0 flagged rows on the cr 
 (35 rows), lr9817 (58) and lr10040 (13) flag rows (sensors excluded and re-admitted on the
 healthy frame) on ecd7ec36's src alike (each measured on both): the bar's wording missed them; the
 change adds none.  D5: the ST holds no stand-in: it reads the frozen reading as read (the held
-value) and flags the freeze where its judgement ends (st98), unchanged.  The C's state: sizeof(tc_state) 8,656 ->
-22,080 bytes with 12 monitored sensors (cr9763, sw9776), 10,144 -> 25,632 with 14 (lr9376): 128
-rows x (8 NM + 8) + 8 NM + 12 (and padding); an export without ``spread`` keeps one row.
+value) and flags the freeze where its judgement ends (st98), unchanged.  The C's state:
+sizeof(tc_state) 8,656 -> 22,080 bytes with 12 monitored sensors (cr9763, sw9776), 10,144 ->
+25,632 with 14 (lr9376): 128 rows x (8 NM + 8) + 8 NM + 12 (and padding); an export without
+``spread`` keeps one row.
 """
 
 from __future__ import annotations
