@@ -44,9 +44,10 @@ max |served - C| over the campaign (µm), rows where the mirror reads a held val
     cr9763  T_amb 0 / 2.1e-14, 49 held    T_headstock 2.8e-14 / 3.4e-14, 0
     sw9776  T_amb 0 / 2.8e-14, 50 held    T_headstock 0 / 2.8e-14, 0
     lr9376  T_head_left 0 / 1.6e-13, 0
-    spent and fresh (sw9815 cr9816 lr9817 sw9818 cr9819 cr10038 sw10039 lr10040; 15 cases):
-            all <= 1.0e-13, held rows 43-49 where served holds (lr9817 T_spindle_rear 49,
-            lr10040 T_head_right 43), 0 on cr9819 (its past moved)
+    spent and fresh (sw9815 cr9816 lr9817 sw9818 cr9819 cr10038 sw10039 lr10040; 14 cases):
+            all <= 1.0e-13; held rows 43-50 on each record's ambient or first sensor (lr9817
+            T_spindle_rear 49, lr10040 T_head_right 43), 0 on cr9819 (its past moved) and on
+            every T_headstock
 
 D1 met (worst 1.6e-13 µm; the pack's K09.freeze.T_b: test_export_inputs_product62 and
 test_export_atiprod65 pass, 7 cases each: D2).  D3: the 45 test_export_* modules importing watch
