@@ -116,3 +116,35 @@ def test_an_export_before_freeze84_flags_the_return(served):
     _, moves = _mirror(dataclasses.replace(ss, monitor=old), frame)
     assert (back, NOT_IN_CODE, NO_THAW) in moves
     assert not [m for m in moves if m[1] == READMITTED and m[0] <= back]
+
+
+def _still_then_frozen(frame, at: int, rows: int, hold: int):
+    """``frame`` with every sensor standing still (its reading at ``at``, dithering 0.02 °C on the
+    0.01 °C logger) for ``rows`` rows from ``at``, ``T_2`` held at its reading from ``at + rows -
+    hold`` on (mon105d: a frozen sensor whose own past stood still)."""
+    still = frame.copy()
+    rng = np.random.default_rng(7)
+    cols = [f"T_{k}" for k in range(6)]
+    level = still.loc[at, cols].to_numpy(float)
+    still.loc[at:at + rows - 1, cols] = np.round(level + rng.normal(scale=0.02, size=(rows, 6)), 2)
+    first = at + rows - hold
+    still.loc[first:at + rows - 1, "T_2"] = still.loc[first, "T_2"]
+    return still.iloc[:at + rows].reset_index(drop=True)
+
+
+@needs_cc
+def test_a_still_sensor_frozen_by_its_run_is_read_held_by_the_code_as_served(served, tmp_path):
+    """(mon105d) Out for a freeze by its run alone after its own readings stood still, the served
+    model reads ``T_2`` at its held value (mon105c); the mirror and the C read it so too: the
+    served corrections on every row, nothing flagged as not in the code.  An export before it (no
+    ``spread``) reads its stand-in there and parts from the served model."""
+    deployed, ss, frame = served
+    still = _still_then_frozen(frame, 100, 60, 40)
+    want = corrections(ss, stream_rows(deployed, still, "K06").y)
+    got, moves = _mirror(ss, still)
+    assert [m[1:] for m in moves] == [(EXCLUDED, FREEZE)], moves
+    assert np.max(np.abs(got - want)) < 1e-9
+    old = {k: v for k, v in ss.monitor.items() if k != "spread"}
+    before, _ = _mirror(dataclasses.replace(ss, monitor=old), still)
+    assert np.max(np.abs(before - want)) > 1e-3           # the held value moved the correction
+    streamed_as_served(tmp_path, deployed, ss, "K06", still, want)

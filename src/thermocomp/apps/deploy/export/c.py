@@ -550,7 +550,7 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
 {C_TIME_RULE}    /* the sensor monitor (TC_MONITOR): the monitored inputs as the model reads them */
     if (TC_MONITOR) {{   /* (a monitored reading not measured: missing, NAN) */
         for (j = 0; j < TC_N_INPUTS; j++) um[j] = (measured(u, j) || !mon_watched(j)) ? u[j] : NAN;
-        monitor_step(s, um, dt);
+        monitor_step(s, um, dt, now);
         u = um;
         serving = mon_serving(s);   /* (cmon83) the law set served: a fallback model's, or 0 */
     }}

@@ -651,7 +651,7 @@ class Simulator:
             self.seen, self.last = np.zeros(len(u), bool), np.zeros(len(u))
         now, dt, _ = self.clock.step(float(time))
         if self.watch is not None:      # the monitored inputs as the model reads them
-            u = self.watch.step(u, self.first, dt)
+            u = self.watch.step(u, self.first, dt, now)
             measured = self._measured(u)
             self.serving = self.watch.serving()
         self.last = np.where(measured, u, self.last)

@@ -71,6 +71,11 @@ The served adaptive compensator judges every ``T_`` input before the model reads
   where a partner out, frozen by the rule for one no other predicts (constant longer than
   ``blind_run``), would predict it (``cleared``), as served (``Readmission._blind_for_frozen``).
   An export before it (no ``cleared``) keeps it out, as before.
+* (mon105d) a sensor out for a freeze by its run alone (not where the field moved past its band
+  while it held) is read at its held value instead of its stand-in while the rate fitted to its
+  own last ``TREND_ROWS`` readings within ``tau`` before its run projects a drift, over at least
+  the span fitted, within ``spread`` (the served ``_hold_until`` / ``_read_held``; the time the
+  time rule's ``now``).  An export before it (no ``spread``) reads the stand-in, as before.
 * (freeze84) a sensor out for a **freeze alone** (no other detector fired on it since) is
   re-admitted once ``THAW`` readings in a row are off the value it held (``THAWED``), judged from
   there as an active one, as served (``Readmission._thawed``).  An export before it (no
@@ -200,7 +205,9 @@ from ..surveillance.states import (
     EXCURSION_TAU_S,
     MAX_BACKOFF,
     READMIT,
+    SPREAD_FACTOR,
     THAW,
+    TREND_ROWS,
     WARNING,
 )
 
@@ -332,6 +339,8 @@ def monitor_fields(deployed, inputs: list) -> dict:
         "basis": mon.pod.basis_[:, :int(mon.pod.n_modes_)].tolist(),
         "fallback": [int(c in falls) for c in mon.names],
         "rounding": np.broadcast_to(getattr(mon, "rounding_c", 0.0), (n,)).tolist(),
+        # (mon105d) the stand-in's training spread: a frozen sensor's held value read within it
+        "spread": (np.broadcast_to(mon.floor_c, (n,)) / SPREAD_FACTOR).tolist(),
         **_set_bands(mon)}}
 
 
@@ -458,6 +467,7 @@ class CodeMonitor:
         # (jump94b) the sensors no other predicts whose level shift two windows tell
         self.settles = np.flatnonzero(bool(a["settled"]) & np.isfinite(a["settle_lim"]))
         a.setdefault("rounding", np.zeros(n))    # (before mon83: no culprit held for rounding)
+        a.setdefault("spread", np.zeros(n))      # (before mon105d: a frozen sensor's stand-in)
         # (before mon86: every set judged by the whole set's bands)
         a.setdefault("floor", np.zeros(n))
         a.setdefault("q_full", np.zeros(n))
@@ -546,6 +556,12 @@ class CodeMonitor:
         self.fell = False      # one whose fallback model the code lacks went out: flagged to the end
         self.read = np.ones(n, bool)     # (cmon84) the sample's monitored readings there
         self.perm = np.arange(n)         # (wires100) the monitored readings' order as read
+        # (mon105d) the last TREND_ROWS referenced rows and their times (a ring), the sample's
+        # time (the time rule's) and, per sensor out for a freeze, until when its held value is
+        # read instead of its stand-in (the served _hold_until)
+        self.past, self.past_t = np.full((TREND_ROWS, n), np.nan), np.full(TREND_ROWS, np.nan)
+        self.past_pos, self.now = 0, np.nan
+        self.hold_to = np.full(n, -np.inf)
         self._clear()
 
     # the active set's operator, leverages, which sensors are judged and the errors' scale
@@ -806,11 +822,41 @@ class CodeMonitor:
         self._flag(NOT_IN_CODE, j, rule)
         return rule
 
-    def step(self, u: np.ndarray, first: bool, dt: float) -> np.ndarray:
+    def step(self, u: np.ndarray, first: bool, dt: float, now: float = np.nan) -> np.ndarray:
         """The inputs ``u`` (order of the code's; a missing monitored reading NaN, one that
-        :meth:`refuses` takes) with the monitored ones as the model reads them."""
+        :meth:`refuses` takes) with the monitored ones as the model reads them; ``now`` the
+        sample's time (the time rule's; NaN: unknown, a frozen sensor's stand-in)."""
         if first:
             self.reset()
+        self.now = float(now)
+        out = self._sample(u, first, dt)
+        p = self.past_pos        # (mon105d) the row kept, as the served update keeps it
+        self.past[p], self.past_t[p] = self.hist[(self.pos - 1) % self.window], self.now
+        self.past_pos = (p + 1) % TREND_ROWS
+        return out
+
+    def _hold_until(self, j: int) -> float:
+        """(mon105d) Until when sensor ``j``, just out for a freeze by its run alone, is read at
+        its held value (the served ``_hold_until``, the same arithmetic): its rate fitted to its
+        readings over the ``tau`` before its run began; -inf: never (its stand-in)."""
+        spread = self.a["spread"][j]
+        order = (self.past_pos + np.arange(TREND_ROWS)) % TREND_ROWS    # oldest first
+        first = TREND_ROWS - int(self.run[j])      # the run's first reading (this row not kept yet)
+        if first < 2 or not spread > 0:
+            return -np.inf
+        t, x = self.past_t[order[:first + 1]], self.past[order[:first + 1], j]
+        t0 = t[-1]
+        use = np.isfinite(t) & np.isfinite(x) & (t >= t0 - self.a["tau"])
+        if use.sum() < 3:
+            return -np.inf
+        t, x = t[use] - t0, x[use]
+        tc = t - t.mean()
+        rate = abs(float(tc @ (x - x.mean()) / (tc @ tc))) if tc @ tc > 0 else np.inf
+        if not rate * -float(t[0]) <= spread:
+            return -np.inf
+        return t0 + (spread / rate if rate > 0 else np.inf)
+
+    def _sample(self, u: np.ndarray, first: bool, dt: float) -> np.ndarray:
         self._clear()
         u = np.asarray(u, float)
         with np.errstate(invalid="ignore"):
@@ -971,6 +1017,10 @@ class CodeMonitor:
             instant[j] = True
             if active[j] and self._exclude(int(j), FREEZE):
                 self.froze[j], self.held[j], self.off[j] = True, d[j], 0
+                # (mon105d) its held value read while its own past says it stood still; never
+                # where the field moved past its band while it held
+                by_field = observable[j] and moved[j] >= self.warn[j]
+                self.hold_to[j] = -np.inf if by_field else self._hold_until(int(j))
         self._stepped(e, instant)
         level = self._level()
         if level[judged].any():
@@ -1275,7 +1325,9 @@ class CodeMonitor:
         read = self._active()
         if read.sum() < self.a["min_active"]:
             read |= self.dropped & np.isfinite(d) & (self.run == 0)
-        v[self.idx] = self.base + np.where(read, d, np.where(self.predictable, pred, self.last))
+        # (mon105d) one out for a freeze alone read at its held value while its past allows
+        held = self.froze & ~self._active() & (self.off == 0) & (self.now <= self.hold_to)
+        v[self.idx] = self.base + np.where(read, d, np.where(self.predictable & ~held, pred, self.last))
         if self.out >= 0:
             self.flags |= OUT
         if self.novel:

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import math
 
-from ..surveillance.states import THAW
+from ..surveillance.states import THAW, TREND_ROWS
 from .watch import (
     BAND,
     EXCLUDED,
@@ -33,6 +33,8 @@ def header_part(ss) -> str:
 #define TC_MON_WINDOW {max(int(m.get("window", 1)), 1)}
 #define TC_MON_MODES {max(int(m.get("modes", 1)), 1)}   /* the POD basis's modes (cmon85: MON_PHI) */
 #define TC_MON_THAW {THAW}   /* readings in a row off its held value that end a freeze (freeze84) */
+/* (mon105d) the rows kept for the rate of a sensor that freezes (1: an export without spread) */
+#define TC_MON_TREND {TREND_ROWS if any(v > 0 for v in m.get("spread", [])) else 1}
 /* tc_state.mon_flags, per sample: a sensor excluded, re-admitted, one out (the model reads its
    reconstruction), a judged sensor beyond its warning band, a rule of the served monitor that
    is not in the code fired (from here the code may part from the served model), sensors
@@ -103,6 +105,11 @@ STATE = """    /* the sensor monitor (TC_MONITOR): referenced readings d = u - m
     /* (cmon92b) the sample's first rule not in the code and its sensor, where its first event
        (mon_rule) is another (an exclusion in the same sample): stream.c names both */
     int mon_missed, mon_missed_sensor;
+    /* (mon105d) the last TC_MON_TREND referenced rows and their times (a ring at mon_past_pos),
+       the sample's time, and per sensor out for a freeze until when its held value is read
+       instead of its stand-in (-INFINITY: never) */
+    double mon_past[TC_MON_TREND][NM], mon_past_t[TC_MON_TREND], mon_now, mon_hold_to[NM];
+    int mon_past_pos;
 """
 
 
@@ -116,7 +123,8 @@ def monitor_arrays(ss) -> list[tuple[str, object, tuple, str]]:
     n = len(m.get("inputs", []))
     pairs = m.get("pairs", [])
     vectors = ("warning", "alarm", "jump_lim", "lo_lim", "hi_lim", "lo_c", "hi_c", "seen_run",
-               "blind_run", "rounding", "floor", "q_full", "bend_lim", "settle_lim")
+               "blind_run", "rounding", "floor", "q_full", "bend_lim", "settle_lim",
+               "spread")   # (mon105d: an export before it 0, a frozen sensor's stand-in)
     scalars = (("MON_MAX_LEV", "max_leverage", 1.0, "real"), ("MON_MIN_ACTIVE", "min_active", 0, "int"),
                ("MON_CONFIRM", "confirm", 1, "int"), ("MON_EXCLUDE_LEVEL", "exclude_level", 1, "int"),
                ("MON_PERIOD", "period", 1.0, "real"), ("MON_GAP_PERIODS", "gap_periods", 1.5, "real"),
@@ -694,8 +702,10 @@ static void mon_rebuilt(tc_state *s, double u[], const double d[], const double 
     for (k = 0; k < NM; k++) {
         int read = !mon_out_of(s, k) || (in < MON_MIN_ACTIVE && s->mon_dropped[k]
                                          && isfinite(d[k]) && s->mon_run[k] == 0);
+        /* (mon105d) out for a freeze alone: its held value while its past allows */
+        int held = s->mon_froze[k] && s->mon_off[k] == 0 && s->mon_now <= s->mon_hold_to[k];
         u[TC_MONITORED[k]] = s->mon_base[k] + (read ? d[k]
-                                               : MON_PREDICTABLE[k] ? pred[k] : s->mon_last[k]);
+                                               : MON_PREDICTABLE[k] && !held ? pred[k] : s->mon_last[k]);
     }
     if (s->mon_nout) s->mon_flags |= TC_MON_OUT;
     if (s->mon_novel) s->mon_flags |= TC_MON_NEW_STATE;
@@ -1282,6 +1292,30 @@ static void mon_judgement(tc_state *s) {
     if (s->mon_novel && s->mon_calm_field >= MW) s->mon_novel = 0;
 }
 
+/* (mon105d) until when sensor j, just out for a freeze by its run alone, is read at its held
+   value (watch.py's _hold_until): its rate (least squares) over its readings within MON_TAU s
+   before its run began, the drift it projects over at least that span within MON_SPREAD[j] */
+static double mon_hold_until(const tc_state *s, int j) {
+    double t[TC_MON_TREND], x[TC_MON_TREND], t0, tm = 0.0, xm = 0.0, sxy = 0.0, sxx = 0.0, rate;
+    int first = TC_MON_TREND - s->mon_run[j], i, n = 0;
+    if (first < 2 || !(MON_SPREAD[j] > 0.0)) return -INFINITY;
+    t0 = s->mon_past_t[(s->mon_past_pos + first) % TC_MON_TREND];
+    for (i = 0; i <= first; i++) {   /* oldest first, to the run's first reading */
+        int r = (s->mon_past_pos + i) % TC_MON_TREND;
+        if (!isfinite(s->mon_past_t[r]) || !isfinite(s->mon_past[r][j])
+            || !(s->mon_past_t[r] >= t0 - MON_TAU)) continue;
+        t[n] = s->mon_past_t[r] - t0;
+        x[n++] = s->mon_past[r][j];
+    }
+    if (n < 3) return -INFINITY;
+    for (i = 0; i < n; i++) tm += t[i], xm += x[i];
+    tm /= n, xm /= n;
+    for (i = 0; i < n; i++) sxy += (t[i] - tm) * (x[i] - xm), sxx += (t[i] - tm) * (t[i] - tm);
+    rate = sxx > 0.0 ? fabs(sxy / sxx) : INFINITY;
+    if (!(rate * -t[0] <= MON_SPREAD[j])) return -INFINITY;
+    return t0 + (rate > 0.0 ? MON_SPREAD[j] / rate : INFINITY);
+}
+
 /* one sample of the monitored inputs of u, replaced by what the model reads (the reading, or
    its POD reconstruction while it is out), as the served monitor (watch.py's slice) */
 static void mon_sample(tc_state *s, double u[], double dt) {
@@ -1309,8 +1343,12 @@ static void mon_sample(tc_state *s, double u[], double dt) {
             s->mon_novel = s->mon_calm_field = s->mon_fell = 0;
             s->mon_explains[k] = s->mon_hid[k] = 0;
             s->mon_last[k] = 0.0;
+            s->mon_hold_to[k] = -INFINITY;
             for (w = 0; w < MW; w++) s->mon_hist[w][k] = s->mon_err[w][k] = NAN;
+            for (w = 0; w < TC_MON_TREND; w++) s->mon_past[w][k] = NAN;
         }
+        for (k = 0; k < TC_MON_TREND; k++) s->mon_past_t[k] = NAN;
+        s->mon_past_pos = 0;
         mon_recompute(s);   /* (every sensor in: MON_M[0]; the window all NAN) */
     }
     for (k = 0; k < NM; k++) {
@@ -1459,6 +1497,9 @@ static void mon_sample(tc_state *s, double u[], double dt) {
             s->mon_froze[k] = 1;
             s->mon_held[k] = d[k];
             s->mon_off[k] = 0;
+            /* (mon105d) never where the field moved past its band while it held */
+            s->mon_hold_to[k] = o[k] && fabs(other[k] - s->mon_run_pred[k]) >= s->mon_warn[k]
+                                ? -INFINITY : mon_hold_until(s, k);
         }
     }
     mon_stepped(s, e, instant);   /* (cmon86) a stepped error's culprit out */
@@ -1631,7 +1672,21 @@ static void mon_exchange(tc_state *s, double u[], double dt) {
 /* one sample of the monitored inputs of u, replaced by what the model reads (the reading, or
    its POD reconstruction while it is out), as the served monitor (watch.py's slice); (jump94b)
    a blind sensor's settled level shift judged before it, its ring of readings after */
-static void monitor_step(tc_state *s, double u[], double dt) {
+static void monitor_sample(tc_state *s, double u[], double dt);
+
+static void monitor_step(tc_state *s, double u[], double dt, double now) {
+    s->mon_now = now;
+    monitor_sample(s, u, dt);
+    {   /* (mon105d) the row kept, as the served update keeps it */
+        int k, p = s->mon_past_pos;
+        for (k = 0; k < NM; k++) s->mon_past[p][k] = s->mon_hist[(s->mon_pos + MW - 1) % MW][k];
+        s->mon_past_t[p] = now;
+        s->mon_past_pos = (p + 1) % TC_MON_TREND;
+    }
+}
+
+/* monitor_step's sample (mon105d: monitor_step keeps its row and time after it) */
+static void monitor_sample(tc_state *s, double u[], double dt) {
     double x[NM], ref[NM];
     int k, r, count = s->mon_count;
     mon_clear(s);

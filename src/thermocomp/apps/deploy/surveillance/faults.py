@@ -181,6 +181,9 @@ class InstantFaults:
                 self._exclude(j, why, time, events)
                 # its return: readmission.py's _thawed, on readings off the value it held
                 self._froze[j], self._held[j], self._off[j] = self.adaptive, d[j], 0
+                # (mon105c) its held value read while its own past says it stood still; none
+                # where the field moved past its band while it held (the field contradicts it)
+                self._hold_to[j] = -np.inf if by_field or not self.adaptive else self._hold_until(j)
 
     def _check_stepped(self, e, instant, time, events) -> None:
         """A self-prediction error that steps past the alarm band in one sample."""

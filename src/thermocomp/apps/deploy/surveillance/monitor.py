@@ -18,7 +18,19 @@ from .faults import InstantFaults
 from .judgement import Judgement
 from .readmission import Readmission
 from .settled import Settled, largest_separation
-from .states import ALARM, COMMON_MIN, DITHER, EXCLUDED, MAX_BACKOFF, OK, SPREAD_FACTOR, STATES, WARNING
+from .states import (
+    ALARM,
+    COMMON_MIN,
+    DITHER,
+    EXCLUDED,
+    EXCURSION_TAU_S,
+    MAX_BACKOFF,
+    OK,
+    SPREAD_FACTOR,
+    STATES,
+    TREND_ROWS,
+    WARNING,
+)
 
 
 class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion, Settled):
@@ -122,6 +134,8 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion, Settled):
             self.max_settle_c = np.full(len(self.names), np.inf)
             self._set_settle_lim()
             self._settle_reset()
+        if "_past" not in state:       # pickled before mon105c: a frozen sensor's stand-in, as before
+            self._past_reset()
 
     def __init__(self, pod: ThermalPOD, names: Sequence[str], *, warning_c=0.4, alarm_c=0.8,
                  window: int = 10, confirm: int = 2, adaptive: bool = True,
@@ -271,7 +285,7 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion, Settled):
               "_last_good", "_by_field", "_jumps", "_ref0", "_dropped", "_gap", "_gapped", "_dwell",
               "_outs", "_explains", "_novel", "_calm_field", "_since", "_slow", "_slow_t",
               "_slow_ok", "_ranged", "_froze", "_held", "_off", "_hid", "_last_step", "_settle",
-              "_settle_age", "_perm")
+              "_settle_age", "_perm", "_past", "_past_t", "_past_pos", "_hold_to")
 
     def _set_settle_lim(self) -> None:
         # a sensor no other predicts: a level shift told by two windows (.settled)
@@ -323,7 +337,51 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion, Settled):
         self._since = np.full(n, -1, dtype=np.int64)   # sample count at its drift exclusion
         self._slow_reset()
         self._settle_reset()
+        self._past_reset()
         self._set_operator()
+
+    def _past_reset(self) -> None:
+        """(mon105c) No readings kept yet; no held value read for a frozen sensor."""
+        self._past = np.full((TREND_ROWS, len(self.names)), np.nan)   # referenced readings, ring
+        self._past_t = np.full(TREND_ROWS, np.nan)                   # ... their times (s)
+        self._past_pos = 0
+        self._hold_to = np.full(len(self.names), -np.inf)   # time until its held value is read
+
+    def _past_push(self, D: np.ndarray, times) -> None:
+        """Keep the rows ``D`` (referenced) taken at ``times`` (None: unknown) in the ring."""
+        D = D[-TREND_ROWS:]
+        where = (self._past_pos + np.arange(len(D))) % TREND_ROWS
+        self._past[where] = D
+        self._past_t[where] = np.nan if times is None else np.asarray(times, float)[-len(D):]
+        self._past_pos = int((self._past_pos + len(D)) % TREND_ROWS)
+
+    def _hold_until(self, j: int) -> float:
+        """(mon105c) Until when (s) the model reads sensor ``j``'s held value, just excluded for a
+        freeze, instead of its stand-in: its rate fitted to its own readings over the
+        ``EXCURSION_TAU_S`` before its constant run began, the drift that rate projects, over
+        at least the span fitted, within the stand-in's training spread (-inf: never; a still
+        ambient's held reading beat its drifting stand-in, a falling structure sensor's did not)."""
+        spread = self.floor_c[j] / SPREAD_FACTOR
+        order = (self._past_pos + np.arange(TREND_ROWS)) % TREND_ROWS    # oldest first
+        first = TREND_ROWS - int(self._run[j])      # the run's first reading (this row not kept yet)
+        if first < 2 or not spread > 0:
+            return -np.inf
+        t, x = self._past_t[order[:first + 1]], self._past[order[:first + 1], j]
+        t0 = t[-1]
+        use = np.isfinite(t) & np.isfinite(x) & (t >= t0 - EXCURSION_TAU_S)
+        if use.sum() < 3:
+            return -np.inf
+        t, x = t[use] - t0, x[use]
+        tc = t - t.mean()
+        rate = abs(float(tc @ (x - x.mean()) / (tc @ tc))) if tc @ tc > 0 else np.inf
+        span = -float(t[0])
+        if not rate * span <= spread:
+            return -np.inf
+        return t0 + (spread / rate if rate > 0 else np.inf)
+
+    def _read_held(self, time: float) -> np.ndarray:
+        """Sensors out for a freeze alone whose held value the model reads (:meth:`_hold_until`)."""
+        return self._froze & ~self._active & (self._off == 0) & (time <= self._hold_to)
 
     def _operator(self, subset: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """The POD operator of the sensors ``subset`` and every sensor's leverage in it (1, no
@@ -472,11 +530,14 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion, Settled):
             if self._settles:
                 self._settled(x, time, settled)
                 ref = None if self._ref is None else self._ref.copy()
-            clean = self._fast(x) if self._quiet else None
+            clean = self._fast(x, time) if self._quiet else None
             out = (clean, []) if clean is not None else self._update(x, time)
         if self._settles:
             self._settle_push(ref)
         self._slow_step(self._hist[(self._pos - 1) % self.window], float(time))
+        p = self._past_pos                   # one row kept (the ring of _past_push)
+        self._past[p], self._past_t[p] = self._hist[(self._pos - 1) % self.window], time
+        self._past_pos = (p + 1) % TREND_ROWS
         if clean is None:    # a new thermal state counts its calm samples on the full path
             self._quiet = self._rebuilds and not self._novel and not self._state[self._active].any()
         if settled:          # the next sample on the full path
@@ -493,7 +554,7 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion, Settled):
         err = self._err[self._recent[self._pos, :k]].sum(axis=0) / k
         return np.where(self._judged | ~self._active, err, np.nan)
 
-    def _fast(self, x: np.ndarray):
+    def _fast(self, x: np.ndarray, time: float = float("nan")):
         """The usual sample, every sensor active and ok, nothing firing: the field as read.
         ``None`` (nothing changed) when any check needs the full path of :meth:`_update`."""
         if self._count < self.confirm:
@@ -554,7 +615,7 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion, Settled):
             self._gap, self._gapped = np.where(finite, 1.0, self._gap + 1), True
         self._prev_e = e
         clean = d if self._all_active else np.where(
-            self._active, d, np.where(self._predictable, pred, self._last_good))
+            self._active, d, np.where(self._predictable & ~self._read_held(time), pred, self._last_good))
         if self._all_active:
             self._last_good = d
         else:
@@ -632,6 +693,7 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion, Settled):
             self._gap, self._gapped = np.ones(n), False
         self._last_good = self._clean = d[m - 1]
         self._slow_block(d[:m], None if times is None else np.asarray(times, float)[:m])
+        self._past_push(d[:m], None if times is None else np.asarray(times, float)[:m])
         if self._settles:
             self._settle_commit(d[:m])
         return d[:m]
@@ -720,7 +782,7 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion, Settled):
             good = good | (self._dropped & finite & (self._run == 0))
         # an excluded sensor: rebuilt from the field, or held where the others cannot predict it
         clean = d if (self._all_active and all_finite) else np.where(
-            good, d, np.where(self._predictable, pred, self._last_good))
+            good, d, np.where(self._predictable & ~self._read_held(time), pred, self._last_good))
         if not np.isfinite(clean.sum()):
             clean = np.where(np.isfinite(clean), clean, self._clean)   # nothing to rebuild from
         self._clean = clean

@@ -16,3 +16,6 @@ EXCHANGED = "exchanged"   # (wires100) an event's "to": two sensors' wires read 
 # an excursion out of band hovers (a regime) unless its error's share of its rise grew past this
 # factor of the share it had EXCURSION_TAU_S seconds ago (excursion.py; mon73)
 EXCURSION_TAU_S, EXCURSION_GROWTH = 1800.0, 1.5
+# (mon105c) readings of each sensor kept for the rate of one that freezes: its held value is read
+# instead of its stand-in while that rate's drift stays within the stand-in's spread (monitor.py)
+TREND_ROWS = 128
