@@ -196,6 +196,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..adaptive import GAP_PERIODS, AdaptiveCompensator
+from ..surveillance.frozen_hold import held_until
 from ..surveillance.settled import STEADY, advanced, level_shift_now
 from ..surveillance.states import (
     ALARM,
@@ -839,22 +840,8 @@ class CodeMonitor:
         """(mon105d) Until when sensor ``j``, just out for a freeze by its run alone, is read at
         its held value (the served ``_hold_until``, the same arithmetic): its rate fitted to its
         readings over the ``tau`` before its run began; -inf: never (its stand-in)."""
-        spread = self.a["spread"][j]
-        order = (self.past_pos + np.arange(TREND_ROWS)) % TREND_ROWS    # oldest first
-        first = TREND_ROWS - int(self.run[j])      # the run's first reading (this row not kept yet)
-        if first < 2 or not spread > 0:
-            return -np.inf
-        t, x = self.past_t[order[:first + 1]], self.past[order[:first + 1], j]
-        t0 = t[-1]
-        use = np.isfinite(t) & np.isfinite(x) & (t >= t0 - self.a["tau"])
-        if use.sum() < 3:
-            return -np.inf
-        t, x = t[use] - t0, x[use]
-        tc = t - t.mean()
-        rate = abs(float(tc @ (x - x.mean()) / (tc @ tc))) if tc @ tc > 0 else np.inf
-        if not rate * -float(t[0]) <= spread:
-            return -np.inf
-        return t0 + (spread / rate if rate > 0 else np.inf)
+        return held_until(self.past_t, self.past[:, j], self.past_pos, int(self.run[j]),
+                          self.a["tau"], self.a["spread"][j])
 
     def _sample(self, u: np.ndarray, first: bool, dt: float) -> np.ndarray:
         self._clear()

@@ -15,6 +15,7 @@ from ....core.io.contract import is_ambient
 from ..pod import ThermalPOD, windowed_mean
 from .excursion import Excursion
 from .faults import InstantFaults
+from .frozen_hold import held_until
 from .judgement import Judgement
 from .readmission import Readmission
 from .settled import Settled, largest_separation
@@ -361,23 +362,8 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion, Settled):
         ``EXCURSION_TAU_S`` before its constant run began, the drift that rate projects, over
         at least the span fitted, within the stand-in's training spread (-inf: never; a still
         ambient's held reading beat its drifting stand-in, a falling structure sensor's did not)."""
-        spread = self.floor_c[j] / SPREAD_FACTOR
-        order = (self._past_pos + np.arange(TREND_ROWS)) % TREND_ROWS    # oldest first
-        first = TREND_ROWS - int(self._run[j])      # the run's first reading (this row not kept yet)
-        if first < 2 or not spread > 0:
-            return -np.inf
-        t, x = self._past_t[order[:first + 1]], self._past[order[:first + 1], j]
-        t0 = t[-1]
-        use = np.isfinite(t) & np.isfinite(x) & (t >= t0 - EXCURSION_TAU_S)
-        if use.sum() < 3:
-            return -np.inf
-        t, x = t[use] - t0, x[use]
-        tc = t - t.mean()
-        rate = abs(float(tc @ (x - x.mean()) / (tc @ tc))) if tc @ tc > 0 else np.inf
-        span = -float(t[0])
-        if not rate * span <= spread:
-            return -np.inf
-        return t0 + (spread / rate if rate > 0 else np.inf)
+        return held_until(self._past_t, self._past[:, j], self._past_pos, int(self._run[j]),
+                          EXCURSION_TAU_S, self.floor_c[j] / SPREAD_FACTOR)
 
     def _read_held(self, time: float) -> np.ndarray:
         """Sensors out for a freeze alone whose held value the model reads (:meth:`_hold_until`)."""
