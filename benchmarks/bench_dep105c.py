@@ -51,6 +51,34 @@ P3 test_export_cmon93 (+ the new test, <= ~3 s CPU, failing on 6c013931), every
    tests/shell/test_export_* module importing watch / watch_c, tests/shell/test_replay*.py,
    test_lint, test_benchmarks_cli -k dep105c: pass.
 KEPT if P1-P3 hold; else REFUSED (benchmarks/dep105c_rule.patch, src as 6c013931).
+
+SCORED (bar 4fb41d9a, committed before the rule ran on any record but pt10044; unchanged; base =
+``git archive 6c013931 src``, rule = a74364a7; roots: dep105b's seen and fresh roots copied, one
+per tree, each building its own C; no fresh seed drawn; CPU (user + sys, /usr/bin/time, base /
+rule, run side by side): ``healthy`` 46.5 / 46.6 s (8 records) + 5.6 / 5.7 s (5: one call printed
+8 of its 13 lines and ended without an error; the other 5 were run again in a second call),
+``whole`` 13.6 / 13.3 s, ``returns`` 12.0 / 11.7 s).
+
+P1 MET: pt10044 mirror - served 3.06e-13 um, compiled - served 8.53e-13 um over 12720 rows, 0
+past 1e-9, 0 ``NOT_IN_CODE`` (base: 14.7 um, 2640 rows past, ``COMMON`` at row 10080).
+P2 MET: ``healthy`` on the 10 seen + tr10045 / cr10046 identical base / rule (``diff``: only
+pt10044's line differs); ``whole`` (5 records, 10 lines) and ``returns`` pt9851 (7 lines) identical.
+P3 MET: 40 tests/shell/test_export_* modules importing watch / watch_c + kelvin97 + cdrop77 +
+lab75_deploy + test_replay + test_replay_run_name63 + test_lint: 137 passed (130.1 + 3.7 s CPU);
+test_docs 45 passed; test_benchmarks_cli -k dep105c 2 passed; test_nines_deploy74, test_export_st94,
+test_export_monitor76 7 passed.  New test (test_export_cmon93, five sensors stepping in one sample,
+T_table no other predicts, too few left after the fourth): + 1.4 s CPU (module 8.0 -> 9.3 s, same
+load); on 6c013931 it fails (``COMMON`` at row 1381).
+Reported, not in the bar: bench_cmon94 ``trace`` pt9851 mlr-none sizes 2,3 (seen; 14.5 / 14.5 s):
+spiked pairs same 32 -> 45 (13 flagged ``COMMON`` -> 0), spiked triples same 0 -> 41 (41 ``COMMON``
+-> 0), freezes unchanged (32/13, 13/28), silent 0 both.  bench_dep105b ``whole`` pt10044: before the
+fault max|C - served| 14.7 / 53.4 um, 2520 / 2529 rows past -> 3.06e-13 / 1.31e-12 um, 0 rows;
+the whole dropout is still refused (``MISSING_SECOND``; dep105b's rule is not applied here).
+How this differs from cmon94's patch (TRACED, not refused): cmon94 changed the mirror's ``== 2``
+alone when the code had two places out, so nothing was held; dep101 / dep105 have since given the
+code an out set of NM places, and this rule changes the C too and lifts the rebuild gate for a
+blind jump.
+VERDICT: KEPT.
 """
 
 from __future__ import annotations
