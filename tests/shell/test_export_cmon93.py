@@ -16,9 +16,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from test_export import needs_cc
+from test_export import built_stream, needs_cc
+from test_export_cmon80 import _streamed
 from test_export_cmon85 import _mirror, without
 from test_export_cmon87 import LEAD_ROWS, held_as_served, long_record
+from thermocomp.apps.deploy.export import exported_files
 from thermocomp.apps.deploy.export.pack import conformance_pack, corrections, fed
 from thermocomp.apps.deploy.export.served import ServedStreams
 from thermocomp.apps.deploy.export.watch import COMMON, JUMP, SPIKE
@@ -85,3 +87,30 @@ def test_an_export_before_cmon93_flags_the_pair(record, streams):
     assert parted.min() >= row and np.abs(got - want).max() > 1e-3
     _, summary = conformance_pack(deployed, old, tests, leads, served=streams)
     assert summary["campaigns"][0]["rows"] == parted.min() - 1
+
+
+# (dep105c) steps for good in one sample, past each sensor's jump limit (pt10044's W3 first row:
+# a restart read as one record); T_table no other predicts, and with the four before it out too
+# few are left to rebuild the field (``min_active`` 10 of 14)
+STEPS = {"T_head_left": -1.8, "T_head_right": -2.5, "T_col_front_low": -1.5, "T_col_back": -1.0,
+         "T_table": -2.2}
+
+
+@needs_cc
+def test_five_sensors_stepping_in_one_sample_are_held_as_served(record, streams, tmp_path):
+    """dep105c: the five re-referenced and out together (the last where the field is not
+    rebuilt: held at its last reading, as served), C = mirror = served on every row; on 6c013931
+    ``COMMON`` flagged at their row (not in the code) and read unreferenced for good."""
+    (deployed, ss, frame, *_), row = record
+    frame = frame.copy()
+    at = row + 300       # (1-based; after the spike's return)
+    for sensor, step in STEPS.items():
+        frame.loc[frame.index[at - 1:], sensor] += step
+    want = corrections(ss, streams.rows(frame, "R1b").y)
+    got, out, missed = _mirror(ss, frame)
+    assert not missed and np.abs(got - want).max() < 1e-9 and (at, "T_head_left", JUMP) in out
+    # (no pack: the mirror's and the stream's rows are the pack's check; ~3 s CPU saved)
+    c, said = _streamed(built_stream(tmp_path, exported_files(deployed, "c")), frame, ss.inputs)
+    assert c.shape == want.shape and np.abs(c - want).max() < 1e-9
+    assert f"line {at + 1}: monitor: T_head_left: jump: re-referenced and excluded" in said
+    assert "not in the code" not in said

@@ -765,7 +765,9 @@ class CodeMonitor:
             else rule == OFF_RANGE and self.second_range[j])
         if rule not in (DROPOUT, OFF_RANGE) and not blind:
             return bool(self.ported[j])
-        rebuilds = rule in (OFF_RANGE, DROPOUT) or self._active().sum() - 1 >= self.a["min_active"]
+        # (dep105c) a jump wherever the field is: served holds a jumper at its last reading and
+        # serves no fallback while too few are in (the rebuild is a dropout's: its reading fed)
+        rebuilds = rule in (OFF_RANGE, DROPOUT, JUMP) or self._active().sum() - 1 >= self.a["min_active"]
         return bool(rebuilds and (self.ported[j] or blind))
 
     def _outs(self) -> list[int]:
@@ -948,7 +950,7 @@ class CodeMonitor:
                 self._flag(NOT_IN_CODE, j, MISSING_FROZEN)
         for j in [int(k) for k in np.flatnonzero(rng) if k not in self._outs()]:
             self._exclude(j, OFF_RANGE)   # (cmon80: read as missing, as a dropout; dep99: each)
-        if n_big == 2 and a["pair_jump"] and not gone.any() and self.count != 2 and (
+        if n_big >= 2 and a["pair_jump"] and not gone.any() and self.count != 2 and (
                 (held := self._pair_jump(x, d, step, big)) is not None):
             instant |= held
             self.hist[pos] = d
@@ -1052,7 +1054,7 @@ class CodeMonitor:
                 if self._spike_back(int(j), x, d):
                     self._readmit(int(j), SPIKE)
                     left[j] = False
-        expected = self._unjumped_change(d, left) if left.sum() == 2 else np.full(self.n, np.nan)
+        expected = self._unjumped_change(d, left) if left.sum() >= 2 else np.full(self.n, np.nan)
         if expected is None or not self._pair_held(left & self._active()):
             return None
         for j in np.flatnonzero(left):

@@ -484,8 +484,10 @@ static int mon_second_kind(const tc_state *s, int k, int rule) {
         : rule == TC_MON_OFF_RANGE && mon_second_range(k));
     if (!(rule == TC_MON_DROPOUT || rule == TC_MON_OFF_RANGE || blind)) return MON_PORTED[k];
     for (m = 0; m < NM; m++) in += !mon_out_of(s, m);
-    return (rule == TC_MON_OFF_RANGE || rule == TC_MON_DROPOUT || in - 1 >= MON_MIN_ACTIVE)
-           && (MON_PORTED[k] || blind);
+    /* (dep105c) a jump wherever the field is: served holds a jumper at its last reading, no
+       fallback while too few are in (the rebuild is a dropout's: its returned reading fed) */
+    return (rule == TC_MON_OFF_RANGE || rule == TC_MON_DROPOUT || rule == TC_MON_JUMP
+            || in - 1 >= MON_MIN_ACTIVE) && (MON_PORTED[k] || blind);
 }
 
 /* (cmon85, cmon86, cmon88; cmon89) 1: rule takes a second sensor out beside one */
@@ -915,7 +917,7 @@ static int mon_pair_jump(tc_state *s, const double x[], double d[], const double
         left[k] = 0;
     }
     for (k = 0; k < NM; k++) nleft += left[k], expected[k] = NAN;
-    if (nleft == 2 && !mon_unjumped(s, d, left, expected)) return 0;
+    if (nleft >= 2 && !mon_unjumped(s, d, left, expected)) return 0;
     mon_set(s, a, o, jd, scale);
     for (k = 0; k < NM; k++) ins[k] = left[k] && a[k];
     if (!mon_pair_held(s, ins, TC_MON_JUMP)) return 0;
@@ -1429,7 +1431,7 @@ static void mon_sample(tc_state *s, double u[], double dt) {
     }
     for (k = 0; k < NM && far >= 0; k++)   /* (cmon80; dep99: each beyond range) */
         if (rng[k] && !mon_is_out(s, k)) mon_exclude(s, k, TC_MON_OFF_RANGE);
-    if (nbig == 2 && MON_PAIR_JUMP && lost < 0 && far < 0 && s->mon_count != 2
+    if (nbig >= 2 && MON_PAIR_JUMP && lost < 0 && far < 0 && s->mon_count != 2
             && mon_pair_jump(s, x, d, step, big, instant)) {   /* (cmon93) */
         for (k = 0; k < NM; k++) s->mon_hist[pos][k] = d[k];
         nbig = 0;
