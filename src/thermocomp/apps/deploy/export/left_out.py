@@ -35,7 +35,7 @@ def not_in_code(deployed, fmt: str | None = None) -> list[str]:
                 "a sensor out for a freeze (its re-admission band), a reading beyond its training "
                 "range at a campaign's first sample, of every sensor at once or beside those out "
                 "where the code does not hold it, several sensors jumping at once that are no "
-                "common step (three or more, or two the code cannot hold), "
+                "common step (two or more the code cannot hold: a set it cannot solve), "
                 "a jump at the sample after the reference, a stepped self-prediction "
                 "error whose culprit would be a third out, a drift beyond the band with a "
                 "sensor out, of a sensor no other predicts, of more than one blind partner, a "

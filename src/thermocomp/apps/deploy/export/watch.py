@@ -171,20 +171,19 @@ The served adaptive compensator judges every ``T_`` input before the model reads
 What else the served monitor does it flags, ``NOT_IN_CODE`` with the rule (:data:`REASONS`), and
 goes on by its own rules: a reading beyond its range at a campaign's first sample, of every sensor
 at once (kelvin97: nothing to rebuild from, the model reads the last field) or beside those out
-where the code does not hold it (its sample passes the monitor by, the state as it was, so that
-the reading's return is no jump), several sensors jumping at once that are no common step
-(cmon93: three or more, or two it cannot hold), a jump at the reference's next sample, a stepped
-self-prediction error whose culprit would be a third out (or one it does not hold out), a drift
-beyond the band that takes a third sensor out (cmon85: with one out, as served), of more than one
-blind partner, a second culprit beyond the alarm band, a third for a jump, and a sensor no
+where the code does not hold it (its sample passes the monitor by, the state as it was, so that the
+reading's return is no jump), several sensors jumping at once that are no common step (cmon93;
+dep105c: two or more it cannot hold, a set not solved), a jump at the reference's next sample, a
+stepped self-prediction error whose culprit would be a third out (or one it does not hold out), a
+drift beyond the band that takes a third sensor out (cmon85: with one out, as served), of more than
+one blind partner, a second culprit beyond the alarm band, a third for a jump, and a sensor no
 other predicts out for any other rule (its range; cmon84: too few left to rebuild the field without
 it), or with a fallback model the code does not hold.  A missing reading the code cannot rebuild
-(at a campaign's first sample, beside two or more out where it would leave no sensor in
-(dep105: beside any number out where one is left in and the set solves), a set it cannot solve,
-of a sensor it does not hold out) is refused as before (:meth:`CodeMonitor.refuses`: the sample
-is not read).  From such a row on the code may part from the served model; the conformance pack
-cuts there (:func:`~.pack.conformance_pack`).
-"""
+(at a campaign's first sample, beside two or more out where it would leave no sensor in (dep105:
+beside any number out where one is left in and the set solves), a set it cannot solve, of a sensor
+it does not hold out) is refused as before (:meth:`CodeMonitor.refuses`: the sample is not read).
+From such a row on the code may part from the served model; the conformance pack cuts there
+(:func:`~.pack.conformance_pack`). """
 
 from __future__ import annotations
 
