@@ -350,11 +350,12 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion, Settled):
 
     def _past_push(self, D: np.ndarray, times) -> None:
         """Keep the rows ``D`` (referenced) taken at ``times`` (None: unknown) in the ring."""
+        n = len(D)          # the ring where n rows one by one leave it: the last TREND_ROWS kept
         D = D[-TREND_ROWS:]
-        where = (self._past_pos + np.arange(len(D))) % TREND_ROWS
+        where = (self._past_pos + n - len(D) + np.arange(len(D))) % TREND_ROWS
         self._past[where] = D
         self._past_t[where] = np.nan if times is None else np.asarray(times, float)[-len(D):]
-        self._past_pos = int((self._past_pos + len(D)) % TREND_ROWS)
+        self._past_pos = int((self._past_pos + n) % TREND_ROWS)
 
     def _hold_until(self, j: int) -> float:
         """(mon105c) Until when (s) the model reads sensor ``j``'s held value, just excluded for a
