@@ -27,6 +27,28 @@ W3 every tests/shell/test_export_* module importing watch / watch_c passes, with
 W4 healthy frames: 0 rows flagged (W1/W2's healthy lines).
 W5 fresh pt10050 (PORTAL), tr10051 (TRUNNION), cr10052 (CR), ``whole``: as W1, scored once.
 KEPT if W1-W5 hold; else REFUSED (benchmarks/dep105d_rule.patch, src as a4796752).
+
+SCORED (bar a0a8e539, committed 07:46 UTC before the rule was measured and before fresh 10050-10052
+were simulated from 07:48; unchanged.  base = ``git archive a4796752 src``, rule = 1014b62b; roots:
+dep105c's rB (seen records) copied twice without C, each tree building its own; fresh simulated by
+base, the rule reading a copy.  CPU (user + sys, /usr/bin/time, load 0.6-1.4) base / rule: seen
+``whole`` 23.4 / 22.9 s, ``returns`` 10.4 / 9.6 s, fresh ``whole`` 22.2 (with simulation) / 18.8 s.)
+
+W1 MET: pt9851 / tr9891 / cr9892 / pt10044: base refuses ``every`` at the fault row and ``cascade``
+at the last sensor (``MISSING_SECOND``, stream exit 2); the rule refuses none: ``every`` max|C -
+served| <= 3.06e-13 um, ``cascade`` <= 1.46e-11 um, 0 rows past 1e-9, 0 ``NOT_IN_CODE``, compiled -
+mirror <= 1.11e-12 um (pt10044: 3.06e-13 / 1.31e-12 um; dep105b's 14.7 / 53.4 um are gone).
+Fixtures: kelvin97 ``whole_dropout``, cdrop77 ``every``, lab75 line 15 pass; all 3 fail on a4796752.
+W2 MET: bench_dep105 ``returns`` pt9851: 7 lines identical base / rule (``diff``).
+W3 MET: 44 test_export_* modules (watch / watch_c) + lab75_deploy + test_warm_batch59 +
+test_replay*.py + test_lint: 168 passed (CPU 127.3 s); test_docs + test_benchmarks_cli -k dep105d:
+47 passed.  The 3 changed modules, paired x2: base 5.9 / 5.3 vs rule 5.8 / 5.7 s CPU; no new test.
+W4 MET: pt9851's healthy line 0 rows flagged, C = served 0 um.
+W5 MET (fresh, scored once): pt10050 / tr10051 / cr10052: base refuses both plants; the rule none:
+``every`` <= 2.42e-13 um, ``cascade`` <= 2.32e-11 um, 0 rows past, 0 ``NOT_IN_CODE``, compiled -
+mirror <= 1.22e-12 um.  (pt10050's W3 first row steps 8 temperatures: the reader's restart warning;
+C = served there on base too, dep105c's rule.)
+VERDICT: KEPT.  C state + NM doubles: 6400 -> 6424 bytes at 3 monitored (sizeof(tc_state)).
 """
 
 from __future__ import annotations
