@@ -1,7 +1,8 @@
 """A broken wire in the exported C (cdrop77): a monitored sensor's missing reading after a
 campaign's first sample is excluded, rebuilt from the others and re-admitted by the code's sensor
 monitor as the served adaptive model's monitor does it; where the code cannot rebuild it (the
-first sample, every sensor missing at once) the row is refused, the rule named.
+first sample) the row is refused, the rule named; (dep105b) every sensor missing at once is held
+as served: its last field read, the sensors re-admitted together.
 
 On test_export's three-sensor record (MLR, deployed adaptive): ``T_b`` empty for four rows of a
 test campaign.  Before, the C refused the first of them (``stream`` exit 2) and the pack cut the
@@ -10,9 +11,11 @@ every row, and so on the dropout the pack plants."""
 
 from __future__ import annotations
 
+import io
 import subprocess
 
 import numpy as np
+import pandas as pd
 import pytest
 
 from cbuild import compiled
@@ -83,27 +86,35 @@ def test_a_missing_reading_is_excluded_rebuilt_and_readmitted_by_the_code_as_ser
 def test_where_the_code_cannot_rebuild_a_reading_it_refuses_the_row_and_names_why(served,
                                                                                  tmp_path):
     deployed, ss, campaign = served
-    # (dep101) two of the three missing in one sample are held as served; all three are not
+    # (dep101) two of the three missing in one sample are held as served; (dep105b) all three too
     first, two = _lost(campaign, [0]), _lost(campaign, [20], ("T_a", "T_b"))
     every = _lost(campaign, [20], ss.inputs)
     _, summary = conformance_pack(deployed, ss, {"first": first, "two": two, "every": every})
     cuts = {e["campaign"]: e["cut"] for e in summary["campaigns"]}
-    assert cuts["two"] is None
+    assert cuts["two"] is None and cuts["every"] is None     # (dep105b: before, cut at row 21)
     assert cuts["first"] == {"row": 1, "why": "T_b has no value there, which the code refuses (a "
                              "missing reading at a campaign's first sample; stream.c stops; the "
                              "served model rebuilds it)"}
-    assert cuts["every"] == {"row": 21, "why": "T_a has no value there, which the code refuses (a "
-                           "missing reading with another sensor out or missing; stream.c stops; "
-                           "the served model rebuilds it)"}
     for name, text in exported_files(deployed, "c").items():
         (tmp_path / name).write_text(text)
     compiled(tmp_path)
     cols = ["time", *ss.inputs]
     run = subprocess.run([str(tmp_path / "stream")], capture_output=True, text=True,
                          input=every[cols].to_csv(index=False, float_format="%.17g"))
-    assert run.returncode == 2 and len(run.stdout.splitlines()) == 21    # header, 20 rows
-    assert run.stderr.strip() == (
-        "stream: line 22: input T_a has no finite value, which the code's sensor monitor does not "
-        "rebuild here (not in the code: a missing reading with another sensor out or missing): "
-        "the row is refused (the served model rebuilds it)")
+    # (dep105b) served holds its last field at row 20 (none left in to rebuild from), reads the
+    # readings back from row 21 and re-admits all three a window on: the C the same, every row
+    # (before: exit 2 at line 22, 'a missing reading with another sensor out or missing')
+    done = stream_rows(deployed, every, "K06")
+    back = {e["sensor"]: int(np.flatnonzero(every["time"] == e["time"])[0])
+            for e in done.events if e.get("to") == "ok"}
+    assert back == {"T_a": 30, "T_b": 30, "T_amb": 30}, done.events
+    assert run.returncode == 0, run.stderr
+    got = pd.read_csv(io.StringIO(run.stdout)).to_numpy(float)
+    want = corrections(ss, done.y)
+    assert got.shape == want.shape and np.max(np.abs(got - want)) < 1e-9
+    # (the stream names a sample's first event: T_a's, at both lines)
+    assert run.stderr.splitlines() == [
+        "stream: line 22: monitor: T_a: dropout: no finite value, excluded",
+        "stream: line 32: monitor: T_a: re-admitted: within half its warning band for a window "
+        "(its whole band after a dropout, or out as a culprit within it)"]
     assert "a missing reading at a campaign's first sample" in not_in_code(deployed, "c")[0]

@@ -9,8 +9,10 @@ the sensors' return is not in the code).
 
 On test_export's three-sensor record (MLR, deployed adaptive, test_export_cmon80's fixture).  The
 unit case fails on f59b6361 (the C parts from the served correction from the change's row on);
-the whole logger's dropout (every input missing: the mirror's correction held as served, the C's
-``tc_step`` refusing the rows) holds before and after."""
+the whole logger's dropout (every input missing) held the mirror's correction as served while the
+C's ``tc_step`` refused the rows (``stream`` exit 2 at the first); (dep105b) now the mirror and the
+C read the last field there, as served, and re-admit the sensors a window after the readings'
+return: the C's stream passes it (fails on 7a8d6cf2: exit 2)."""
 
 from __future__ import annotations
 
@@ -51,10 +53,13 @@ def test_every_reading_out_holds_the_correction_as_served(served, tmp_path, kind
     U, t = frame[ss.inputs].to_numpy(float), frame["time"].to_numpy(float)
     mirror = np.array([sim.step(U[i], t[i]) for i in range(len(frame))])
     assert np.max(np.abs(mirror - want)) < 1e-9                              # every row
-    if kind != "kelvin":       # the C's tc_step refuses the rows, its correction held (the
-        return                 # stream program stops at the first: exit 2, as replay's)
     stream = built_stream(tmp_path, exported_files(deployed, "c"))
     got, said = _streamed(stream, frame, ss.inputs)
     assert got.shape == want.shape and np.max(np.abs(got - want)) < 1e-9      # every row
+    if kind != "kelvin":       # (dep105b) held, then all three re-admitted together, as served
+        back = [e["sensor"] for e in stream_rows(deployed, frame, "K06").events if e.get("to") == "ok"]
+        assert back == ["T_a", "T_b", "T_amb"] and "not in the code" not in said
+        assert "re-admitted" in said
+        return
     # flagged: the sensors' return is the served monitor's alone
     assert "not in the code: a reading beyond its training range" in said

@@ -60,7 +60,8 @@ def halle_code(tmp_path_factory):
 def test_the_exported_stream_reads_an_infinity_as_an_empty_cell(halle_code):
     """``stream.c`` fed the raw TOA5 file: an ``INF`` cell (line 9) is what an empty cell there
     is (since cmon84 the code's monitor takes the sensor out as a dropout and goes on, since
-    dep101 a second one too, to the next missing input it refuses, exit 2)."""
+    dep101 a second one too; since dep105b the third, which leaves none in, too: the last field
+    read as served, to the end of the file, the served corrections on every row)."""
     lines = HALLE.read_text().splitlines()
 
     def fed(cell: str) -> subprocess.CompletedProcess:
@@ -71,15 +72,30 @@ def test_the_exported_stream_reads_an_infinity_as_an_empty_cell(halle_code):
                               capture_output=True)
 
     empty = fed("")
-    assert empty.returncode == 2
+    assert empty.returncode == 0, empty.stderr
     assert b"line 9: monitor: T_spindle_Avg: dropout: no finite value, excluded" in empty.stderr
     for cell in ('"INF"', '"-INF"', "inf", "Infinity"):
         got = fed(cell)
-        assert (got.returncode, got.stdout, got.stderr) == (2, empty.stdout, empty.stderr), cell
-    # (dep101) a second sensor missing beside the first is held too, as served; the third not
+        assert (got.returncode, got.stdout, got.stderr) == (0, empty.stdout, empty.stderr), cell
+    # (dep101) a second sensor missing beside the first is held too, as served; (dep105b) the
+    # third, none left in, too (before: 'line 15: input T_air_Avg has no finite value', exit 2)
     assert b"line 12: monitor: T_column_Avg: dropout: no finite value, excluded" in empty.stderr
-    assert b"line 15: input T_air_Avg has no finite value" in empty.stderr
-    assert len(empty.stdout.splitlines()) == 11       # the header and rows 1-10 (lines 5-14)
+    assert b"line 15: monitor: T_air_Avg: dropout: no finite value, excluded" in empty.stderr
+    got = pd.read_csv(io.BytesIO(empty.stdout))
+    from thermocomp.apps.deploy.pyfunc import CompensatorModel
+    from thermocomp.shell.builders import deployable_model
+    from thermocomp.shell.source import read_streamed
+
+    cfg = _compose(*COMMON, "track=false")
+    ds, train, _, _ = read_streamed(cfg, test=False)
+    deployed = deployable_model(cfg, ds, train, None, "serve.model")[0]
+    lines[8] = lines[8].replace('"INF"', "", 1)
+    frame = read_stream("\n".join(lines) + "\n", ["T_spindle_Avg"], ReadOptions.from_cfg(
+        {"roles": {"error": ["d*"], "ignore": ["SW_in_Avg", "WS_ms"]}}))[0]
+    served = CompensatorModel(deployed).predict(None, frame, {"reset": True})
+    assert len(got) == len(served) == 24 and "T_air_Avg" in served["events"].iloc[10]
+    np.testing.assert_allclose(got.to_numpy(float), served[list(got.columns)].to_numpy(float),
+                               rtol=0, atol=1e-9)
 
 
 @needs_cc

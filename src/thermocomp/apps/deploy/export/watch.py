@@ -130,7 +130,10 @@ The served adaptive compensator judges every ``T_`` input before the model reads
   out, a returned one read where too few are in, dep99) and of one no other predicts too (held
   at its last reading).  (dep105) A dropout beside two or more out too, each in turn, and a
   pair's readings back read where too few are in (dep99), as served, where a sensor is left in;
-  one that would leave none in (served holds its last field) or a set not solved: refused.
+  a set not solved: refused.  (dep105b) One that leaves none in too: served, no operator
+  left, holds its last field (``_clean``), and so does the code (``clean``, the C's
+  ``mon_clean``: the field the model read at the last sample, where nothing rebuilds a sensor),
+  the readings back read and every sensor re-admitted together a window on, as served.
 * (cmon89b) a sensor no other predicts, every other in, **out for a reading beyond its range**
   (``blind_range``: ``ranges``): read as missing, held at its last reading, back after a calm
   window only where its leak onto the others passes (:meth:`CodeMonitor._leak_passes`, the
@@ -179,11 +182,11 @@ drift beyond the band that takes a third sensor out (cmon85: with one out, as se
 one blind partner, a second culprit beyond the alarm band, a third for a jump, and a sensor no
 other predicts out for any other rule (its range; cmon84: too few left to rebuild the field without
 it), or with a fallback model the code does not hold.  A missing reading the code cannot rebuild
-(at a campaign's first sample, beside two or more out where it would leave no sensor in (dep105:
-beside any number out where one is left in and the set solves), a set it cannot solve, of a sensor
-it does not hold out) is refused as before (:meth:`CodeMonitor.refuses`: the sample is not read).
-From such a row on the code may part from the served model; the conformance pack cuts there
-(:func:`~.pack.conformance_pack`). """
+(at a campaign's first sample, beside those out where it cannot solve the set, of a sensor
+it does not hold out; dep105b: no longer where it would leave no sensor in) is refused as
+before (:meth:`CodeMonitor.refuses`: the sample is not read).  From such a row on the code may
+part from the served model; the conformance pack cuts there (:func:`~.pack.conformance_pack`).
+"""
 
 from __future__ import annotations
 
@@ -551,6 +554,9 @@ class CodeMonitor:
         # (cmon82c) out for explaining the others' errors (no other predicts it), and each
         # sensor's last reading while it was in (what the model reads of one no other predicts)
         self.explains, self.last = np.zeros(n, bool), np.zeros(n)
+        # (dep105b) the field the model read at the last sample (referenced; 0 before the first,
+        # as served's ``_clean``): what it reads where nothing is left to rebuild a sensor from
+        self.clean = np.zeros(n)
         # (mon85b) out as a culprit within its own warning band: its whole band to return
         self.hid = np.zeros(n, bool)
         self.fell = False      # one whose fallback model the code lacks went out: flagged to the end
@@ -658,6 +664,9 @@ class CodeMonitor:
     def _recompute(self) -> None:
         """The window's errors under the new operator (an exclusion, a re-admission)."""
         self.Mc, self.levc = self._operator(~self._active())
+        if not self._in().any():     # (dep105b) no operator, as served's (``M`` None): every
+            # prediction and error NaN, where the solve of the empty set would read 0
+            self.Mc = np.full((self.n, self.n), np.nan)
         M, _, _, _, scale = self._set()
         H = np.where(np.isfinite(self.hist), self.hist, 0.0)
         self.err = (self.hist - H @ M.T) * scale
@@ -665,7 +674,9 @@ class CodeMonitor:
 
     def _set_bands(self) -> None:
         """(mon86) The active set's bands, a culprit out within its band counted in (served)."""
-        self.warn, self.alarm = self._bands(self._active() | self.hid)
+        # (dep105b) none in: the whole set's, as served (whatever culprit is counted in)
+        self.warn, self.alarm = (self._bands(self._active() | self.hid) if self._in().any()
+                                 else (self.a["warning"], self.a["alarm"]))
 
     def _bands(self, ins: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(mon86) ``(warning, alarm)`` of the set ``ins``, the served ``_bands_of``: each floor
@@ -781,13 +792,11 @@ class CodeMonitor:
         served's stepped check having no cap either; dep100: and for a drift exclusion, its
         blind-out too, and a freeze, served's judgement and freeze check having none; dep105:
         and for a dropout beside two or more out where a sensor is left in, served's ``_instant``
-        having none) and the set's operator solved.  A dropout that would leave none in beside
-        two out is refused (``MISSING_SECOND``): served, no operator left, holds its last field
-        (``_clean``) where the code's solve of the empty set would read every sensor at its
-        reference (dep103's whole dropout, kelvin97: 11.8 µm)."""
+        having none) and the set's operator solved; (dep105b) a dropout that leaves none in
+        too: served, no operator left, holds its last field (``_clean``), as the code now does
+        (:meth:`_recompute`, :meth:`_rebuilt`; before, refused: ``MISSING_SECOND``)."""
         out = ~self._active() | (np.arange(self.n) == j)
-        return self.solve and (rule != DROPOUT or self.out2 < 0 or not out.all()) and (
-            self._operator(out) is not None)
+        return self.solve and self._operator(out) is not None
 
     def _put_out(self, j: int) -> None:
         """``j`` in the out set (its last place), its calm count and its within-band mark
@@ -1315,7 +1324,10 @@ class CodeMonitor:
             read |= self.dropped & np.isfinite(d) & (self.run == 0)
         # (mon105d) one out for a freeze alone read at its held value while its past allows
         held = self.froze & ~self._active() & (self.off == 0) & (self.now <= self.hold_to)
-        v[self.idx] = self.base + np.where(read, d, np.where(self.predictable & ~held, pred, self.last))
+        field = np.where(read, d, np.where(self.predictable & ~held, pred, self.last))
+        # (dep105b) nothing to rebuild from (none in: no operator): the last field, as served
+        self.clean = field = np.where(np.isfinite(field), field, self.clean)
+        v[self.idx] = self.base + field
         if self.out >= 0:
             self.flags |= OUT
         if self.novel:

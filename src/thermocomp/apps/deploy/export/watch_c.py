@@ -99,6 +99,9 @@ STATE = """    /* the sensor monitor (TC_MONITOR): referenced readings d = u - m
     double mon_warn[NM], mon_alarm[NM];   /* (mon86) the bands of the set judged (mon_bands) */
     int mon_explains[NM], mon_fell;   /* (mon_fell: one whose fallback model the code lacks went out) */
     double mon_last[NM];
+    /* (dep105b) the field the model read at the last sample (referenced; 0 before the first, as
+       served's _clean): what it reads where nothing is left to rebuild a sensor from */
+    double mon_clean[NM];
     int mon_read[NM];   /* (cmon84) the sample's monitored readings there (not missing) */
     int mon_flags, mon_sensor, mon_rule;        /* the last sample's (TC_MON_*) */
     int mon_perm[NM];   /* (wires100) monitored k reads sensor mon_perm[k]'s wire (exchanged) */
@@ -321,6 +324,8 @@ static void mon_bands(const int in[], double warn[], double alarm[]) {
 static void mon_set_bands(tc_state *s) {
     int in[NM], k;
     for (k = 0; k < NM; k++) in[k] = !mon_out_of(s, k) || s->mon_hid[k];
+    if (s->mon_nout >= NM)      /* (dep105b) none in: the whole set's, as served */
+        for (k = 0; k < NM; k++) in[k] = 1;
     mon_bands(in, s->mon_warn, s->mon_alarm);
 }
 
@@ -330,6 +335,12 @@ static void mon_recompute(tc_state *s) {
     int w, out[NM];
     for (w = 0; w < NM; w++) out[w] = mon_out_of(s, w);
     mon_operator(out, s->mon_M, s->mon_lev);
+    if (s->mon_nout >= NM) {    /* (dep105b) none in: no operator, as served's (M None): every
+                                   prediction and error NAN, where the empty solve reads 0 */
+        int k;
+        for (w = 0; w < NM; w++)
+            for (k = 0; k < NM; k++) s->mon_M[w][k] = NAN;
+    }
     for (w = 0; w < MW; w++) {
         double e[NM];
         int k;
@@ -455,17 +466,14 @@ static void mon_readmit(tc_state *s, int k, int rule) {
    stepped check having no cap either; dep100: and for a drift exclusion, its blind-out too, and a
    freeze, served's judgement and freeze check having none; dep105: and for a dropout beside two
    or more out where a sensor is left in, served's _instant having none) and the set's operator
-   solved; a dropout that would leave none in beside two out is refused: served, no operator left,
-   holds its last field where the solve of the empty set would read every sensor at its reference */
+   solved; (dep105b) a dropout that leaves none in too: served, no operator left, holds its last
+   field, as the code now does (mon_recompute, mon_rebuilt; before, refused) */
 static int mon_second_held(const tc_state *s, int k, int rule) {
     double M[NM][NM], lev[NM];
-    int out[NM], m, left = 0;
+    int out[NM], m;
+    (void)rule;
     if (!MON_SOLVE) return 0;
-    for (m = 0; m < NM; m++) {
-        out[m] = m == k || mon_out_of(s, m);
-        left += !out[m];
-    }
-    if (rule == TC_MON_DROPOUT && s->mon_nout >= 2 && !left) return 0;
+    for (m = 0; m < NM; m++) out[m] = m == k || mon_out_of(s, m);
     return mon_operator(out, M, lev);
 }
 
@@ -706,8 +714,11 @@ static void mon_rebuilt(tc_state *s, double u[], const double d[], const double 
                                          && isfinite(d[k]) && s->mon_run[k] == 0);
         /* (mon105d) out for a freeze alone: its held value while its past allows */
         int held = s->mon_froze[k] && s->mon_off[k] == 0 && s->mon_now <= s->mon_hold_to[k];
-        u[TC_MONITORED[k]] = s->mon_base[k] + (read ? d[k]
-                                               : MON_PREDICTABLE[k] && !held ? pred[k] : s->mon_last[k]);
+        double v = read ? d[k] : MON_PREDICTABLE[k] && !held ? pred[k] : s->mon_last[k];
+        if (!isfinite(v)) v = s->mon_clean[k];   /* (dep105b) nothing to rebuild from: the last
+                                                   field, as served */
+        s->mon_clean[k] = v;
+        u[TC_MONITORED[k]] = s->mon_base[k] + v;
     }
     if (s->mon_nout) s->mon_flags |= TC_MON_OUT;
     if (s->mon_novel) s->mon_flags |= TC_MON_NEW_STATE;
@@ -1344,7 +1355,7 @@ static void mon_sample(tc_state *s, double u[], double dt) {
             s->mon_slow[k] = 0.0;
             s->mon_novel = s->mon_calm_field = s->mon_fell = 0;
             s->mon_explains[k] = s->mon_hid[k] = 0;
-            s->mon_last[k] = 0.0;
+            s->mon_last[k] = s->mon_clean[k] = 0.0;
             s->mon_hold_to[k] = -INFINITY;
             for (w = 0; w < MW; w++) s->mon_hist[w][k] = s->mon_err[w][k] = NAN;
             for (w = 0; w < TC_MON_TREND; w++) s->mon_past[w][k] = NAN;
