@@ -757,7 +757,7 @@ class CodeMonitor:
         """``j`` taken out for ``rule`` beside those out, as served: the rule takes a second, the
         others predict ``j`` (or cmon89's kinds) and the set is held or solved (the C's
         ``mon_second_taken``; cmon88: a jump, re-referenced and out as the second)."""
-        return rule in self.seconds and self._second_kind(j, rule) and self._second_held(j, rule)
+        return rule in self.seconds and self._second_kind(j, rule) and self._second_held(j)
 
     def _second_kind(self, j: int, rule: int) -> bool:
         """Whether the code takes ``j`` out beside those out for ``rule``: one the others
@@ -785,7 +785,7 @@ class CodeMonitor:
         every one out."""
         return list(self.gone if self.instant else self.gone[:1])
 
-    def _second_held(self, j: int, rule: int) -> bool:
+    def _second_held(self, j: int) -> bool:
         """(cmon85) ``j`` out (a drift exclusion, a freeze) beside those out: a place free (the
         second; dep99: any, for a reading beyond range, as served; dep99b: and for a jump, which
         served re-references and takes out whatever the set; step99: and for a stepped error,
@@ -794,7 +794,8 @@ class CodeMonitor:
         and for a dropout beside two or more out where a sensor is left in, served's ``_instant``
         having none) and the set's operator solved; (dep105b) a dropout that leaves none in
         too: served, no operator left, holds its last field (``_clean``), as the code now does
-        (:meth:`_recompute`, :meth:`_rebuilt`; before, refused: ``MISSING_SECOND``)."""
+        (:meth:`_recompute`, :meth:`_rebuilt`; before, refused: ``MISSING_SECOND``): whatever the
+        rule now, so the rule is no argument."""
         out = ~self._active() | (np.arange(self.n) == j)
         return self.solve and self._operator(out) is not None
 
@@ -1477,7 +1478,7 @@ class CodeMonitor:
         a = self.a
         judged = self._judging()
         if (u := self._explaining(level, field)) is not None:
-            if a["blind_out"] and (self.out < 0 or self._second_held(u, DRIFT_OUT)):
+            if a["blind_out"] and (self.out < 0 or self._second_held(u)):
                 self._blind_out(u)
             else:
                 self._flag(NOT_IN_CODE, u, DRIFT)

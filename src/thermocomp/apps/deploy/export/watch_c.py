@@ -460,18 +460,18 @@ static void mon_readmit(tc_state *s, int k, int rule) {
     mon_flag(s, TC_MON_READMITTED, k, rule);
 }
 
-/* (cmon85) 1: sensor k out for rule (a drift exclusion, a freeze) beside those out: a place free
+/* (cmon85) 1: sensor k out (a drift exclusion, a freeze) beside those out: a place free
    (the second; dep99: any, for a reading beyond range, as served; dep99b: and for a jump, which
    served re-references and takes out whatever the set; step99: and for a stepped error, served's
    stepped check having no cap either; dep100: and for a drift exclusion, its blind-out too, and a
    freeze, served's judgement and freeze check having none; dep105: and for a dropout beside two
    or more out where a sensor is left in, served's _instant having none) and the set's operator
    solved; (dep105b) a dropout that leaves none in too: served, no operator left, holds its last
-   field, as the code now does (mon_recompute, mon_rebuilt; before, refused) */
-static int mon_second_held(const tc_state *s, int k, int rule) {
+   field, as the code now does (mon_recompute, mon_rebuilt; before, refused): whatever the rule
+   now, so the rule is no argument */
+static int mon_second_held(const tc_state *s, int k) {
     double M[NM][NM], lev[NM];
     int out[NM], m;
-    (void)rule;
     if (!MON_SOLVE) return 0;
     for (m = 0; m < NM; m++) out[m] = m == k || mon_out_of(s, m);
     return mon_operator(out, M, lev);
@@ -508,7 +508,7 @@ static int mon_second_rule(int rule) {
 /* 1: sensor k taken out for rule beside those out, as served: the rule takes a second, the
    others predict k (or cmon89's kinds) and the set is held or solved (cmon88: a jump) */
 static int mon_second_taken(const tc_state *s, int k, int rule) {
-    return mon_second_rule(rule) && mon_second_kind(s, k, rule) && mon_second_held(s, k, rule);
+    return mon_second_rule(rule) && mon_second_kind(s, k, rule) && mon_second_held(s, k);
 }
 
 /* (cmon93) 1: the code takes every sensor of ins[] out for rule (a jump; dep101: a dropout,
@@ -771,7 +771,7 @@ static int mon_beyond(tc_state *s, const double x[], const double d[], int rng[]
         if (!rng[j]) continue;
         if (s->mon_nout > 0 && !mon_is_out(s, j) && !(
                 MON_SECOND_INSTANT && mon_second_kind(s, j, TC_MON_OFF_RANGE)
-                && mon_second_held(s, j, TC_MON_OFF_RANGE))) {
+                && mon_second_held(s, j))) {
             mon_flag(s, TC_MON_NOT_IN_CODE, j, TC_MON_RANGE);
             r = -1;
         } else if (mon_is_out(s, j)) {   /* out already: read as missing */
@@ -1160,7 +1160,7 @@ static void mon_drift(tc_state *s, const int level[], int field) {
     double scale[NM], z[NM], Mp[NM][NM], lp[NM];
     int a[NM], o[NM], jd[NM], lv[NM], k, j = 0, u, nblind = 0, partner = -1;
     if ((u = mon_explaining(s, level, field)) >= 0) {
-        if (!MON_BLIND_OUT || (s->mon_nout > 0 && !mon_second_held(s, u, TC_MON_DRIFT_OUT))) {
+        if (!MON_BLIND_OUT || (s->mon_nout > 0 && !mon_second_held(s, u))) {
             mon_flag(s, TC_MON_NOT_IN_CODE, u, TC_MON_DRIFT);
             return;
         }
