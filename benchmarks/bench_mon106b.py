@@ -89,6 +89,25 @@ F2 the same three seeds without Q3: no row of new state in their test cycles.
 F3 per fresh record, the probe's figure (mean over targets of test RMSE over MLR's) <= 1.01 x auto's;
    and where auto's second half loses to MLR (> 1.000), the probe's excess there at most half of
    auto's (if no fresh record's second half loses, this clause is vacuous and said so).
+
+FRESH (2026-12-07, scored once after the bar's commit 43737304; ``fresh 10079 10080 10081``, CPU
+user + sys 30.6 s): F1 MET (onset +11 / +14 / +16 samples, 349 / 346 / 344 of Q3's 360 rows, 0 rows
+before Q3), F2 MET (0 rows of new state without Q3 on all three), F3 NOT MET: record auto / MLR ->
+probe (probe / auto): s10079 0.898 -> 0.999 (1.112), s10080 0.968 -> 0.999 (1.032), s10081 1.001 ->
+1.000 (0.999); second halves 0.895 -> 1.002, 0.966 -> 0.999, 1.002 -> 1.000 (the one losing half's
+excess 0.002 -> 0.000).  On the fresh records the blends WIN while flagged: s10079 E_Z (lagbank .88)
+0.778 flagged (1.299 not), E_Y (lagbank .11) 0.871, E_Y_mid (lstm .68) 0.941; s10080 E_Z_mid
+(lagbank .18) 0.894, E_Z (hammerstein .09) 0.961; only s10079 E_X_mid 1.018 and s10081 E_Z_mid
+1.016 lose there.
+
+VERDICT: TRACED (no src).  The monitor does say it: the new thermal state is raised on 68 of 68
+test cycles with Q3 (65 seen, 3 fresh), 9-20 samples (15-33 min) after the source starts on 65,
+103-123 on three of col1403's (a sensor excluded first); before it only on col1403 (20 rows of one
+campaign); never where no unseen source runs (17 column records without Q3, 6 other simulated
+records, 13 climate rooms).  But the flag marks the unseen source, not the blend's loss in it: the
+same lag families that lose 3x in col5791's Q3 rows win 22 % in s10079's.  Falling back to MLR while
+raised mends the seen losers and costs the fresh winners 3-11 % (F3): the rule was not built, and
+fresh 10079-10081 are spent.
 """
 
 from __future__ import annotations
