@@ -9,6 +9,7 @@ Usage (from the repository root, ``PYTHONPATH=<tree>/src``: the code measured is
     python benchmarks/bench_diag106.py code ROOT            # each diagnosed model as C -> ROOT/code.jsonl
     python benchmarks/bench_diag106.py whatif ROOT CASE LABEL OVERRIDES  # a trace: diagnose again
     python benchmarks/bench_diag106.py campaigns ROOT CASE TARGET  # per test campaign, before / after
+    python benchmarks/bench_diag106.py loco ROOT CASE SENSOR TARGET  # MLR by hand, with / without SENSOR
     python benchmarks/bench_diag106.py table ROOT           # the rows and the bar
 
 ``audit``: for each seed of ``SEEDS`` (``10074-10078``) its kind of :data:`KINDS`, twice: PLANTED
@@ -65,6 +66,9 @@ frame scores it (residual ``E(t) - E(0) + C(t)``, pooled over the test campaigns
 space-separated ``thermocomp`` overrides, e.g. ``diagnose.families=[...]``) into
 ``ROOT/out/CASE/whatif-LABEL``; the test read only to say what the break costs.  ``campaigns``: the
 plain model's ``run`` (``ROOT/out/CASE/before``) and the diagnosed one's test RMSE per campaign.
+``loco``: plain least squares on the first-sample-referenced ``T_`` columns, with and without SENSOR:
+leave-one-train-campaign-out RMSE per campaign, the test RMSE per campaign (it reproduces ``run``'s
+MLR figures), SENSOR's coefficient.
 
 Reported, not the bar: run's / replay's / C's figures against diagnose's (deployed = scored to 1e-6 µm),
 CPU of each command (user + sys of the child, ``resource.RUSAGE_CHILDREN``).
@@ -111,7 +115,7 @@ within-campaign clause) to 0.95.  The control clears on none of the 24.
 
 B1 FAILS (found 2 of 5: 10075, 10076); B2 met; B3 met; B4 FAILS (10076 E_Z +18.9 %).  TRACED.
 
-The breaks, named (``whatif`` / ``campaigns`` / a leave-one-campaign-out MLR by hand, traces only):
+The breaks, named (``whatif`` / ``campaigns`` / ``loco``, traces only):
 
 * 10074 E_X (missed): the planted signal CLEARS -- S_hydraulic_temp_C x T_headstock 1 reg., CV gain
   15.8 %, p_fam 0.0017; its 900 s lag 14.1 %, 0.0031 -- but the round's best CV errors (1.641 /
@@ -393,6 +397,41 @@ def campaigns(root: str, case: str, target: str) -> None:
         print(f"  {case} {target} {cid}: {b:.4f} -> {a:.4f} ({100 * (a / b - 1):+.1f} %)")
 
 
+def loco(root: str, case: str, sensor: str, target: str) -> None:
+    """Leave-one-campaign-out MLR of TARGET with / without SENSOR (a trace of a removal)."""
+    import numpy as np
+    import pandas as pd
+
+    folder = Path(root)
+    rows = map(json.loads, (folder / "rows.jsonl").read_text().splitlines())
+    row = next(r for r in rows if r["case"] == case)
+
+    def load(cid):
+        frame = pd.read_csv(folder / "data" / case / f"{cid}.csv")
+        return frame - frame.iloc[0]
+
+    def design(frame, inputs):
+        return np.column_stack([np.ones(len(frame)), frame[inputs].to_numpy()])
+
+    def fit(frames, inputs):
+        x = np.vstack([design(f, inputs) for f in frames])
+        return np.linalg.lstsq(x, np.concatenate([f[target].to_numpy() for f in frames]), rcond=None)[0]
+
+    def rmse(b, frame, inputs):
+        return float(np.sqrt(np.mean((frame[target].to_numpy() - design(frame, inputs) @ b) ** 2)))
+
+    train, test = {c: load(c) for c in row["train"]}, {c: load(c) for c in row["test"]}
+    every = [c for c in train[row["train"][0]].columns if c.startswith("T_")]
+    for name, inputs in (("with", every), ("without", [c for c in every if c != sensor])):
+        cv = {c: rmse(fit([f for o, f in train.items() if o != c], inputs), train[c], inputs) for c in train}
+        b = fit(list(train.values()), inputs)
+        pooled = float(np.sqrt(np.mean(np.square(list(cv.values())))))
+        coef = round(float(b[1 + inputs.index(sensor)]), 3) if sensor in inputs else None
+        held = {c: round(v, 3) for c, v in cv.items()}
+        scored = {c: round(rmse(b, f, inputs), 3) for c, f in test.items()}
+        print(f"  {case} {target} {name} {sensor}: CV {pooled:.3f} {held}; test {scored}; coefficient {coef}")
+
+
 def _num(x):
     return None if x is None else float(f"{x:.4g}")
 
@@ -429,8 +468,9 @@ def table(root: str) -> None:
 
 
 def main(argv: list[str]) -> int:
-    return run_commands(__doc__, {"audit": audit, "code": code, "whatif": whatif,
-                                   "campaigns": campaigns, "table": table}, argv, cpu=sys.stderr)
+    commands = {"audit": audit, "code": code, "whatif": whatif, "campaigns": campaigns, "loco": loco,
+                "table": table}
+    return run_commands(__doc__, commands, argv, cpu=sys.stderr)
 
 
 if __name__ == "__main__":
