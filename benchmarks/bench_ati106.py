@@ -17,9 +17,17 @@ block's interval gives the output; the stream does the same step by step (served
 replay of a continuing test equals run.  The C / ST / ONNX export of such a model is refused (exit
 2, one line); an ATI model without ``unit_h`` exports as before.
 
+Refined on the seen records before any fresh seed was drawn (the bar below unchanged): with
+``unit_h`` the elbow also leaves the units out with the base model alone (one interval, no ambient
+interaction: what ati=none fits) and keeps it where its SM + SD is at most the chosen count's
+(``ATIRegressor._plain_guard``).  ed10035 E_X had chosen 2 intervals at 9.32 µm (one interval
+with the interaction 100.4: a slope fitted on 2.5 K of six days) where the base alone scored 6.38;
+tested 4.353 against 3.970 (E_Y 1.805 / 1.675).  With the guard both = base; lr5 unchanged.
+
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``)::
 
     python benchmarks/bench_ati106.py cells ROOT RECORD [CELL ...]
+    python benchmarks/bench_ati106.py ratios ROOT RECORD
 
 RECORD: one of :data:`RECORDS` (simulated under ROOT/data once and cut into day files); CELL: of
 :data:`CELLS` (default all).  Per cell: ``thermocomp run`` (its metrics.json test RMSE per target,
@@ -58,21 +66,116 @@ Status: bar committed before the rule was written; scores below.
 
 from __future__ import annotations
 
+import json
+import os
+import subprocess
 import sys
 from pathlib import Path
 
+import numpy as np
+
 HERE = Path(__file__).resolve().parent
-sys.path[:0] = [str(HERE)]
+REPO = HERE.parent
+sys.path[:0] = [str(HERE), str(REPO / "tests")]
 from _cli import run_commands  # noqa: E402
+
+LONG = ["sim=long_record", "sim.generator.duration_days=28"]
+RECORDS = {            # name: (kind, simulate overrides, run overrides)
+    "ed10035": ("edm", [], ["data.roles.ambient=[T_hall]"]),
+    "lr5": ("long", ["sim=long_record"], []),
+    "lr10060": ("long", LONG, []),
+    "la10061": ("long", [*LONG, "sim.generator.effects=[ambient_law]"], []),
+    "ed10062": ("edm", [], ["data.roles.ambient=[T_hall]"]),
+}
+UNIT = ["ati=cmeans", "ati.estimator.unit_h=24"]
+CELLS = {
+    "base": ["model=mlr", "ati=cmeans"],         # run on BASE's src (module doc)
+    "cmeans": ["model=mlr", "ati=cmeans"],       # B4: the same on this tree
+    "plain": ["model=mlr"],
+    "ati": ["model=mlr", *UNIT],
+    "interval": ["model=mlr", *UNIT, "ati.estimator.ambient_interaction=false",
+                 "ati.estimator.candidates=[2,3,4,5,6]"],
+    "auto": ["model=auto"],
+}
+REPLAYED = ("ati", "interval", "base")
+
+
+def simulated(root: Path, record: str) -> Path:
+    """``record``'s day files under ROOT/data (made once)."""
+    kind, sim, _ = RECORDS[record]
+    data = root / "data" / record
+    seed = "".join(ch for ch in record if ch.isdigit())
+    if kind == "edm":
+        import bench_audit105
+        return bench_audit105.simulated(root, record)
+    if not data.exists():
+        _thermocomp("simulate", *sim, f"seed={seed}", f"data.path={data}")
+    import bench_deploy88
+    import pandas as pd
+    if len(pd.read_csv(data / "campaigns.csv")) == 2:
+        bench_deploy88.day_files(data)
+    return data
+
+
+def _thermocomp(*args: str) -> None:
+    """``thermocomp ARGS`` in a child on this process's PYTHONPATH (the tree measured), from that
+    tree's root (its ``conf``: BASE's has no ``unit_h``)."""
+    import thermocomp
+
+    env = {**os.environ, "OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
+    done = subprocess.run([sys.executable, "-m", "thermocomp", *args], capture_output=True, text=True,
+                          env=env, cwd=Path(thermocomp.__file__).resolve().parents[2])
+    if done.returncode:
+        raise SystemExit(f"thermocomp {args[0]} exit {done.returncode}: {done.stderr[-600:]}")
+
+
+def _intervals(metrics: dict) -> dict:
+    """Per target: the ATI intervals kept and the units the fit saw (from metrics.json's ati)."""
+    ati = metrics.get("ati") or {}
+    return {t: (e.get("n_intervals"), len(e.get("campaign_ambient_c0") or {}))
+            for t, e in (ati.get("targets") or {}).items()}
 
 
 def cells(root: str, record: str, *chosen: str) -> None:
     """Cells of RECORD (module doc)."""
-    raise NotImplementedError("written after the bar")
+    base = Path(root).resolve()
+    data = simulated(base, record)
+    extra = RECORDS[record][2]
+    for cell in [c for c in CELLS if c in chosen] or list(CELLS):
+        out = base / "reports" / record / cell
+        _thermocomp("run", f"data.path={data}", f"out={out}", "plots=none", *CELLS[cell], *extra)
+        metrics = json.loads((out / "metrics.json").read_text())
+        run = {t: v["test"]["rmse"] for t, v in metrics["targets"].items()}
+        line = f"{record} {cell:<9} run " + " ".join(f"{t} {v:.6f}" for t, v in run.items())
+        line += f"  intervals/units {_intervals(metrics)}"
+        if cell == "auto":
+            line += "  chosen " + json.dumps({t: v.get("auto", {}).get("chosen")
+                                              for t, v in metrics["targets"].items()})
+        if cell in REPLAYED:
+            for how, keys in (("replay", []), ("plain", ["monitor.adaptive=false",
+                                                         "promote.envelope.policy=off"])):
+                _thermocomp("replay", f"data.path={data}", f"out={out}-{how}",
+                            f"replay.model={out / 'model.pkl'}", *keys, *extra)
+                rep = json.loads((out.parent / f"{cell}-{how}" / "replay.json").read_text())["targets"]
+                line += f"  {how} " + " ".join(
+                    f"{t} {rep[t]['rmse']:.6f} ({rep[t]['rmse'] / run[t] - 1:+.2%})" for t in run)
+        print(line, flush=True)
+
+
+def ratios(root: str, record: str) -> None:
+    """RMSE of each cell of RECORD / base's, per target (the bar's B1 / B2), from metrics.json."""
+    folder = Path(root).resolve() / "reports" / record
+    got = {c: json.loads((folder / c / "metrics.json").read_text())["targets"]
+           for c in CELLS if (folder / c / "metrics.json").exists()}
+    for cell, targets in got.items():
+        r = {t: targets[t]["test"]["rmse"] / got["base"][t]["test"]["rmse"] for t in targets}
+        geo = float(np.exp(np.mean(np.log(list(r.values())))))
+        print(f"{record} {cell:<9} / base " + " ".join(f"{t} {v:.4f}" for t, v in r.items())
+              + f"  geo {geo:.4f}", flush=True)
 
 
 def main(argv: list[str]) -> int:
-    return run_commands(__doc__, {"cells": cells}, argv, cpu=sys.stderr)
+    return run_commands(__doc__, {"cells": cells, "ratios": ratios}, argv, cpu=sys.stderr)
 
 
 if __name__ == "__main__":
