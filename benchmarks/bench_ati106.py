@@ -61,7 +61,52 @@ KEPT only if B1-B4 hold.  ``interval`` and ``auto`` are reported, not barred (au
 key: its ``ati`` candidate is skipped on one train campaign, as on BASE).  Otherwise REFUSED (src
 reverted, this bench and ``benchmarks/ati106_rule.patch`` kept) or TRACED.
 
-Status: bar committed before the rule was written; scores below.
+Status: bar committed in db57046d before the rule was written and before any fresh seed was drawn;
+the rule (cd0340e4, with the guard) committed before the fresh draw; neither moved.  VERDICT: REFUSED
+(B1 fails on lr10060).  src reverted; the rule, its tests and the params test's hostile value are
+``benchmarks/ati106_rule.patch`` (applies to this tree; its 4 tests pass with it, fail on 898240b4).
+
+Scored (2026-12-07 08:46-09:00 UTC, 2 cores shared, load 8-10; ``cells ROOT R cmeans plain ati
+interval`` on cd0340e4's src, ``cells ROOT R base`` on ``git archive 898240b4 src conf``; test RMSE
+in µm from each run's metrics.json; replay = ``thermocomp replay`` of the run's model.pkl (monitor
+and envelope on), plain = the same with ``monitor.adaptive=false promote.envelope.policy=off``)::
+
+  record   target  base      plain     ati (unit_h=24)      interval (unit_h=24)  ati/base  interval/base
+  lr10060  E_Z     0.930944  0.930944  0.989766 (1, inter)  0.900173 (2)          1.0632    0.9669
+  la10061  E_Z     2.249770  2.249770  1.785697 (2)         2.110439 (3)          0.7937    0.9381
+  ed10062  E_X     1.008399  1.008399  1.008399 (guard: 1)  1.008399 (guard: 1)   1.0000    1.0000
+  ed10062  E_Y     0.458404  0.458404  0.458404 (guard: 1)  0.458404 (guard: 1)   1.0000    1.0000
+
+  seen:
+  lr5      E_Z     0.856458  0.856458  0.776908 (1, inter)  0.801189 (2)          0.9071    0.9355
+  ed10035  E_X     3.969851  3.969851  3.969851 (guard: 1)  3.969851 (guard: 1)   1.0000    1.0000
+  ed10035  E_Y     1.674863  1.674863  1.674863 (guard: 1)  1.674863 (guard: 1)   1.0000    1.0000
+
+(n) = intervals kept; inter = one interval with the ambient interaction; guard = the base model
+alone kept by the elbow's base-alone guard.  Units seen by the fit: 26 days (lr/la 10060-1), 6
+(ed), 19 (lr5); BASE and ``cmeans`` saw 1.
+
+B1 FAILS: lr10060 ati/base 1.0632 (> 1.01).  The elbow's leave-one-day-out had the one interval
+with the interaction at SM + SD 0.901 against 1.017 for the base alone (11 % better), yet R1b (the
+last 2.8 days) tested 6.3 % worse.  Not an ambient key outside the train span: R1b's blocks start
+at 17.78 / 17.57 / 17.30 °C, inside the train days' 12.7-20.0 (R1b's air dips to 11.2 °C inside
+a block, which the key does not read).  Not traced further: 26 days' CV did not foresee 3 days.
+B2 met: la10061 0.7937 (the planted ambient law: 2 intervals at 17.2 °C).  B3 met: replay = run on
+every fresh ati / interval cell (and lr5's) to <= 1.7e-7 relative (ed10062, monitor on; else
+<= 8e-16); seen ed10035's replay is +1.5 / +1.1 % off run on BASE and on the rule alike (the
+monitor's events, audit105's; the guard kept the base model there), its plain replay = run.
+B4 met: ``cmeans`` = base to 0 (relative) on all three.
+``interval`` (paper 003's piecewise setting, reported, not barred): 0.9669 / 0.9381 / 1.0 on the
+fresh three, 0.9355 on lr5 (it would have met B1-B2; it is not the barred cell).  auto: not run;
+its ``ati`` candidate is built from conf/ati/cmeans.yaml (``unit_h: null`` in the patch), so it is
+skipped on one train campaign as on BASE (read from the code, not measured).
+
+CPU (user + sys, /usr/bin/time, the bench process and its children): per fresh record, the four
+tree cells (4 runs + 8 replays) 47.0-47.4 s (ed10062 32.4), the base cell (1 run + 2 replays)
+11.9-15.0 s.  The export of a unit_h model: c and st exit 2 in one line (lr5's ati model).
+Neighbours of the rule (41 modules: every test module importing ATIRegressor / the ati wrapper /
+the export laws, and test_lint): 670 passed, 1 failed (test_estimator_params: the new key lacked a
+hostile value; added in the patch, 12 passed after), 782.9 s wall, 185.0 s CPU.
 """
 
 from __future__ import annotations
