@@ -29,7 +29,9 @@ Usage (from the repository root; ``PYTHONPATH=<tree>/src``)::
     python benchmarks/bench_ati106.py cells ROOT RECORD [CELL ...]
     python benchmarks/bench_ati106.py ratios ROOT RECORD
 
-RECORD: one of :data:`RECORDS` (simulated under ROOT/data once and cut into day files); CELL: of
+The cells ``ati`` / ``interval`` need the rule: ``git apply benchmarks/ati106_rule.patch`` first
+(REFUSED: not in src).  RECORD: one of :data:`RECORDS` (simulated under ROOT/data once and cut into
+day files); CELL: of
 :data:`CELLS` (default all).  Per cell: ``thermocomp run`` (its metrics.json test RMSE per target,
 the intervals kept and the units' count) and, for the rule's cells, ``thermocomp replay`` of the run
 (replay's test RMSE per target against run's).
