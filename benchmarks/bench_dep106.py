@@ -94,13 +94,14 @@ RECORDS = {**{f"cr{s}p10": _at(10, [*CR, f"seed={s}"]) for s in (9763, 9816, 981
            "cr10059p1": _at(1, [*CR, "seed=10059", *CR1])}
 
 
-def _fitted(past_t, past, pos, run, tau):
-    """The times (s, the run's first reading at 0) the rule fits on: the tree's own where it names
-    them (``frozen_hold.fitted``), else mon105d's 128-row selection."""
+def _fitted(*args):
+    """The times (s, the fit's newest at 0) the rule fits on: the tree's own where it names them
+    (``frozen_hold.fitted``, dep106's), else mon105d's 128-row selection."""
     from thermocomp.apps.deploy.surveillance import frozen_hold
 
     if hasattr(frozen_hold, "fitted"):
-        return frozen_hold.fitted(past_t, past, pos, run, tau)[0]
+        return frozen_hold.fitted(*args)[0]
+    past_t, past, pos, run, tau = args
     rows = len(past_t)
     order = (pos + np.arange(rows)) % rows
     first = rows - int(run)
@@ -125,9 +126,9 @@ class Way:
             monitor.TREND_ROWS = frozen_hold.TREND_ROWS = self.rows
         rule = self.saved[2]
 
-        def traced(past_t, past, pos, run, tau, spread, *more):
-            t = _fitted(past_t, past, pos, run, tau)
-            until = -np.inf if self.name == "stand-in" else rule(past_t, past, pos, run, tau, spread, *more)
+        def traced(*args):     # (past_t, past[, past_n], pos, run or first_n, tau, spread)
+            t = _fitted(*args[:-1])
+            until = -np.inf if self.name == "stand-in" else rule(*args)
             self.fits.append((float(-t[0]) if len(t) else 0.0, len(t), until))
             return until
 
