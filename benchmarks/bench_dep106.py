@@ -58,6 +58,30 @@ B6. tests: tests/apps/test_warm_batch59.py passes; a new test (<= ~3 s CPU) fail
 KEPT if B1-B6 hold; else REFUSED (src reverted, benchmarks/dep106_rule.patch).
 Fresh (chosen before drawing, scored once): cr10057p10 (climate_room at 10 s), sw10058p10
 (swiss_lathe_door at 10 s), cr10059p1 (climate_room at 1 s, 2-3 h runs).
+
+Measured (2026-12-07, after the bar; ``cost`` with 898240b4's src (``git archive``) and this
+branch's, one after the other on one ROOT, /tmp/dep106/root; RMSE µm, rows read held):
+B1 met: the fitted span 1800 s (65 rows) on all 16 dev and 6 fresh cases, 10 s and 1 s alike
+    (898240b4: 1170 s / 117 s).
+B2 met.  Dev: the fix parts from the 128-row ring on the same 4 cases the full window did:
+    sw9776p10 T_amb 0 -> 181 rows, 0.8930 -> 0.8813 (stand-in 0.8930); sw9818p10 T_amb 211 -> 350,
+    1.8194 -> 1.8181 (stand-in 1.8188); sw9776p1 T_amb 165 -> 0, 1.4054 -> 1.4051 (= stand-in);
+    sw9776p1 T_headstock 188 -> 0, 1.4292 both.  The other 12 read identically (cr9763p1 T_amb
+    still 2.1165 held vs 2.0862 stand-in, as disclosed).  Fresh (scored once): cr10057p10 both
+    cases and sw10058p10 T_headstock identical; sw10058p10 T_amb 186 -> 237 rows, 1.0489 ->
+    1.0488 (stand-in 1.0492); cr10059p1 T_amb 138 -> 0 rows, 1.0947 -> 1.0958 (+0.10 %, = the
+    stand-in and the full window); cr10059p1 T_headstock 2236 -> 3589 rows, 0.9796 -> 0.9687
+    (-1.1 %; stand-in 0.9847, = the full window).  Worst fix vs ring: +0.10 %.
+B3 met: ``agree`` on the 11 records at 60 s: output identical to 898240b4's (diff); worst
+    |served - mirror| 2.8e-14, |served - C| 1.6e-13 µm.
+B4 met: ``agree`` cr9763p10 / sw9776p10: |served - mirror| <= 1.4e-14, |served - C| <= 3.6e-14 µm
+    on every row; sw9776p10 T_amb now read held (49 rows; 0 on 898240b4), served = mirror = C.
+B5: sizeof(tc_state), cr9763's mlr-none export (12 monitored), gcc: 22,176 -> 23,208 bytes
+    (+128 sample numbers and the row count: 8 x 129).
+B6: see the report (tests).  CPU (user + sys): dev cost 898240b4 11.8 + 24.9 + 44.8 s, fix
+    (8 records) 69.0 s; fresh 898240b4 32.1 s (simulations and fits included) / fix 26.6 s.
+    Served per row: ``SensorMonitor.update`` 20000 rows at 60 s, 2 pairs 898240b4 / fix 2.09 /
+    2.16, 2.22 / 2.17 s.
 """
 
 from __future__ import annotations
