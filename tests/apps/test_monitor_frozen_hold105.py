@@ -2,7 +2,8 @@
 mon97b's cr9763: a still room's frozen ambient cost 24 % more on its stand-in than held).  Out
 for a freeze by its run alone, the model reads the held value while the rate fitted to the
 sensor's own readings over the 1800 s before its run projects a drift within its stand-in's
-training spread; a sensor that moved reads its stand-in, as before.  Rows of 60 s."""
+training spread; a sensor that moved reads its stand-in, as before.  Rows of 60 s (dep106: and
+10 s, its ring one row a 28.125 s step)."""
 
 from __future__ import annotations
 
@@ -86,3 +87,30 @@ def test_a_monitor_pickled_before_the_rule_reads_the_stand_in():
     loaded = SensorMonitor.__new__(SensorMonitor)
     loaded.__setstate__(pickle.loads(pickle.dumps(state)))
     assert np.isneginf(loaded._hold_to).all() and np.isnan(loaded._past).all()
+
+
+def _fast_case(rise: float, period: float = 10.0):
+    """(dep106) A 10 s logger: the room rose ``rise`` °C over 600 s ending 1200 s before T_amb
+    freezes (in the rule's 1800 s, out of a 128-row ring's 1170 s), then stood still."""
+    rng = np.random.default_rng(3)
+    t = period * np.arange(AT + 2 * HELD)
+    at = t[AT]
+    room = 20 + rise * np.clip((t - (at - 1800)) / 600, 0, 1)
+    heat = 1.5 * (1 - np.exp(-t / 5400)) + 0.4 * np.sin(t / 2770)
+    x = np.c_[room, room[:, None] + heat[:, None] * np.linspace(0.3, 1.2, 6)]
+    record = np.round((x + rng.normal(scale=0.03, size=x.shape)) / 0.01) * 0.01
+    record[AT:AT + HELD, 0] = record[AT, 0]
+    out = []
+    for mon in (_monitor(), _standin(_monitor())):
+        read = [mon.update(row, ti)[0][0] for row, ti in zip(record, t)]
+        out.append(np.array(read))
+    return out, record[AT, 0] - record[0, 0]
+
+
+def test_a_fast_loggers_freeze_is_judged_on_the_whole_rate_window():
+    """The rise 1200-1800 s before the run is in the rule's window at a 10 s logger too (the
+    128-row ring of one row a sample saw 1170 s, a still room, and read the held value)."""
+    (rule, old), held = _fast_case(rise=0.3)
+    np.testing.assert_array_equal(rule, old)
+    (rule, old), held = _fast_case(rise=0.0)       # a still room: its held value still read
+    assert (rule[AT:AT + HELD] == held).sum() >= HELD // 2, rule[AT:AT + HELD] - held

@@ -195,6 +195,23 @@ def test_the_adaptive_stream_in_one_go_equals_its_row_by_row_stream(data, faults
     assert a.last_events_ == events
 
 
+def test_a_fast_loggers_lead_in_in_one_go_keeps_the_freeze_rings_rows_as_row_by_row(data):
+    """(dep106) At 10 s the monitor's ring keeps one row per 28.125 s: in one go the same rows,
+    their numbers and times, as row by row."""
+    camps, train = data
+    train = {k: v.assign(time=v["time"] / 6) for k, v in train.items()}
+    a = AdaptiveCompensator.from_training(
+        StreamingCompensator.from_training(_family("mlr").fit(train), train, policy="clamp"), train)
+    X, t = _rows(a, camps["K01"].assign(time=camps["K01"]["time"] / 6))
+    a.reset()
+    looped = np.array([a._step(X[i], t[i])[0] for i in range(len(X))])
+    expected = a._snapshot()
+    assert 0 < np.isfinite(a.monitor._past_n).sum() < len(X) / 2      # rows were skipped
+    a.reset()
+    np.testing.assert_allclose(a.run_rows(X, t)[0], looped, rtol=1e-9, atol=1e-9)
+    for got, want in zip(a._snapshot(), expected):
+        _same(got, want)
+
 def test_lag_bank_block_equals_its_steps_on_irregular_and_missing_times():
     rng = np.random.default_rng(59)
     n, p = 300, 3

@@ -73,9 +73,12 @@ The served adaptive compensator judges every ``T_`` input before the model reads
   An export before it (no ``cleared``) keeps it out, as before.
 * (mon105d) a sensor out for a freeze by its run alone (not where the field moved past its band
   while it held) is read at its held value instead of its stand-in while the rate fitted to its
-  own last ``TREND_ROWS`` readings within ``tau`` before its run projects a drift, over at least
-  the span fitted, within ``spread`` (the served ``_hold_until`` / ``_read_held``; the time the
-  time rule's ``now``).  An export before it (no ``spread``) reads the stand-in, as before.
+  readings within ``tau`` before its run projects a drift, over at least the span fitted, within
+  ``spread`` (the served ``_hold_until`` / ``_read_held``; the time the time rule's ``now``).  An
+  export before it (no ``spread``) reads the stand-in, as before.  (dep106) Its ring of
+  ``TREND_ROWS`` keeps one row per ``tau / (TREND_ROWS // 2)`` s (``frozen_hold.keeps``), each
+  with its sample's number, so half of it spans ``tau`` at any logger (every row at 28.1 s or
+  slower, as before).
 * (freeze84) a sensor out for a **freeze alone** (no other detector fired on it since) is
   re-admitted once ``THAW`` readings in a row are off the value it held (``THAWED``), judged from
   there as an active one, as served (``Readmission._thawed``).  An export before it (no
@@ -198,7 +201,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..adaptive import GAP_PERIODS, AdaptiveCompensator
-from ..surveillance.frozen_hold import held_until
+from ..surveillance.frozen_hold import held_until, keeps
 from ..surveillance.settled import STEADY, advanced, level_shift_now
 from ..surveillance.states import (
     ALARM,
@@ -567,6 +570,8 @@ class CodeMonitor:
         # read instead of its stand-in (the served _hold_until)
         self.past, self.past_t = np.full((TREND_ROWS, n), np.nan), np.full(TREND_ROWS, np.nan)
         self.past_pos, self.now = 0, np.nan
+        # (dep106) the ring keeps a row a step of time (frozen_hold.keeps), each with its number
+        self.past_n, self.rows = np.full(TREND_ROWS, np.nan), 0
         self.hold_to = np.full(n, -np.inf)
         self._clear()
 
@@ -843,16 +848,18 @@ class CodeMonitor:
         self.now = float(now)
         out = self._sample(u, first, dt)
         p = self.past_pos        # (mon105d) the row kept, as the served update keeps it
-        self.past[p], self.past_t[p] = self.hist[(self.pos - 1) % self.window], self.now
-        self.past_pos = (p + 1) % TREND_ROWS
+        if keeps(self.now, self.past_t[p - 1], self.a["tau"]):
+            self.past[p], self.past_t[p] = self.hist[(self.pos - 1) % self.window], self.now
+            self.past_n[p], self.past_pos = self.rows, (p + 1) % TREND_ROWS
+        self.rows += 1
         return out
 
     def _hold_until(self, j: int) -> float:
         """(mon105d) Until when sensor ``j``, just out for a freeze by its run alone, is read at
         its held value (the served ``_hold_until``, the same arithmetic): its rate fitted to its
         readings over the ``tau`` before its run began; -inf: never (its stand-in)."""
-        return held_until(self.past_t, self.past[:, j], self.past_pos, int(self.run[j]),
-                          self.a["tau"], self.a["spread"][j])
+        return held_until(self.past_t, self.past[:, j], self.past_n, self.past_pos,
+                          self.rows - int(self.run[j]), self.a["tau"], self.a["spread"][j])
 
     def _sample(self, u: np.ndarray, first: bool, dt: float) -> np.ndarray:
         self._clear()

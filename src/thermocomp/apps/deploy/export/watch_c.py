@@ -35,6 +35,8 @@ def header_part(ss) -> str:
 #define TC_MON_THAW {THAW}   /* readings in a row off its held value that end a freeze (freeze84) */
 /* (mon105d) the rows kept for the rate of a sensor that freezes (1: an export without spread) */
 #define TC_MON_TREND {TREND_ROWS if any(v > 0 for v in m.get("spread", [])) else 1}
+/* (dep106) ... one a step of MON_TAU / TC_MON_HALF s (frozen_hold.keeps: half spans tau) */
+#define TC_MON_HALF {TREND_ROWS // 2}
 /* tc_state.mon_flags, per sample: a sensor excluded, re-admitted, one out (the model reads its
    reconstruction), a judged sensor beyond its warning band, a rule of the served monitor that
    is not in the code fired (from here the code may part from the served model), sensors
@@ -108,10 +110,12 @@ STATE = """    /* the sensor monitor (TC_MONITOR): referenced readings d = u - m
     /* (cmon92b) the sample's first rule not in the code and its sensor, where its first event
        (mon_rule) is another (an exclusion in the same sample): stream.c names both */
     int mon_missed, mon_missed_sensor;
-    /* (mon105d) the last TC_MON_TREND referenced rows and their times (a ring at mon_past_pos),
-       the sample's time, and per sensor out for a freeze until when its held value is read
-       instead of its stand-in (-INFINITY: never) */
+    /* (mon105d) the last TC_MON_TREND referenced rows kept and their times (a ring at
+       mon_past_pos), the sample's time, and per sensor out for a freeze until when its held
+       value is read instead of its stand-in (-INFINITY: never); (dep106) one row a step of time,
+       with its sample's number (mon_past_n), mon_rows the samples seen */
     double mon_past[TC_MON_TREND][NM], mon_past_t[TC_MON_TREND], mon_now, mon_hold_to[NM];
+    double mon_past_n[TC_MON_TREND], mon_rows;
     int mon_past_pos;
 """
 
@@ -1310,7 +1314,10 @@ static void mon_judgement(tc_state *s) {
    before its run began, the drift it projects over at least that span within MON_SPREAD[j] */
 static double mon_hold_until(const tc_state *s, int j) {
     double t[TC_MON_TREND], x[TC_MON_TREND], t0, tm = 0.0, xm = 0.0, sxy = 0.0, sxx = 0.0, rate;
-    int first = TC_MON_TREND - s->mon_run[j], i, n = 0;
+    double first_n = s->mon_rows - s->mon_run[j];   /* the run's first reading's number */
+    int first = -1, i, n = 0;
+    for (i = 0; i < TC_MON_TREND; i++)   /* (dep106) the newest row kept up to it */
+        if (s->mon_past_n[(s->mon_past_pos + i) % TC_MON_TREND] <= first_n) first = i;
     if (first < 2 || !(MON_SPREAD[j] > 0.0)) return -INFINITY;
     t0 = s->mon_past_t[(s->mon_past_pos + first) % TC_MON_TREND];
     for (i = 0; i <= first; i++) {   /* oldest first, to the run's first reading */
@@ -1360,8 +1367,8 @@ static void mon_sample(tc_state *s, double u[], double dt) {
             for (w = 0; w < MW; w++) s->mon_hist[w][k] = s->mon_err[w][k] = NAN;
             for (w = 0; w < TC_MON_TREND; w++) s->mon_past[w][k] = NAN;
         }
-        for (k = 0; k < TC_MON_TREND; k++) s->mon_past_t[k] = NAN;
-        s->mon_past_pos = 0;
+        for (k = 0; k < TC_MON_TREND; k++) s->mon_past_t[k] = s->mon_past_n[k] = NAN;
+        s->mon_past_pos = 0, s->mon_rows = 0.0;
         mon_recompute(s);   /* (every sensor in: MON_M[0]; the window all NAN) */
     }
     for (k = 0; k < NM; k++) {
@@ -1690,11 +1697,15 @@ static void monitor_sample(tc_state *s, double u[], double dt);
 static void monitor_step(tc_state *s, double u[], double dt, double now) {
     s->mon_now = now;
     monitor_sample(s, u, dt);
-    {   /* (mon105d) the row kept, as the served update keeps it */
+    {   /* (mon105d) the row kept, as the served update keeps it; (dep106) one a step of time */
         int k, p = s->mon_past_pos;
-        for (k = 0; k < NM; k++) s->mon_past[p][k] = s->mon_hist[(s->mon_pos + MW - 1) % MW][k];
-        s->mon_past_t[p] = now;
-        s->mon_past_pos = (p + 1) % TC_MON_TREND;
+        double step = MON_TAU / TC_MON_HALF;
+        if (!(floor(now / step) == floor(s->mon_past_t[(p + TC_MON_TREND - 1) % TC_MON_TREND] / step))) {
+            for (k = 0; k < NM; k++) s->mon_past[p][k] = s->mon_hist[(s->mon_pos + MW - 1) % MW][k];
+            s->mon_past_t[p] = now, s->mon_past_n[p] = s->mon_rows;
+            s->mon_past_pos = (p + 1) % TC_MON_TREND;
+        }
+        s->mon_rows += 1.0;
     }
 }
 

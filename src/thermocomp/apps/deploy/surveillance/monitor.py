@@ -15,7 +15,7 @@ from ....core.io.contract import is_ambient
 from ..pod import ThermalPOD, windowed_mean
 from .excursion import Excursion
 from .faults import InstantFaults
-from .frozen_hold import held_until
+from .frozen_hold import held_until, keeps, kept
 from .judgement import Judgement
 from .readmission import Readmission
 from .settled import Settled, largest_separation
@@ -135,7 +135,7 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion, Settled):
             self.max_settle_c = np.full(len(self.names), np.inf)
             self._set_settle_lim()
             self._settle_reset()
-        if "_past" not in state:       # pickled before mon105c: a frozen sensor's stand-in, as before
+        if not {"_past", "_past_n"} <= state.keys():   # pickled before mon105c's ring / dep106's
             self._past_reset()
 
     def __init__(self, pod: ThermalPOD, names: Sequence[str], *, warning_c=0.4, alarm_c=0.8,
@@ -286,7 +286,8 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion, Settled):
               "_last_good", "_by_field", "_jumps", "_ref0", "_dropped", "_gap", "_gapped", "_dwell",
               "_outs", "_explains", "_novel", "_calm_field", "_since", "_slow", "_slow_t",
               "_slow_ok", "_ranged", "_froze", "_held", "_off", "_hid", "_last_step", "_settle",
-              "_settle_age", "_perm", "_past", "_past_t", "_past_pos", "_hold_to")
+              "_settle_age", "_perm", "_past", "_past_t", "_past_n", "_past_pos", "_past_rows",
+              "_hold_to")
 
     def _set_settle_lim(self) -> None:
         # a sensor no other predicts: a level shift told by two windows (.settled)
@@ -345,17 +346,21 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion, Settled):
         """(mon105c) No readings kept yet; no held value read for a frozen sensor."""
         self._past = np.full((TREND_ROWS, len(self.names)), np.nan)   # referenced readings, ring
         self._past_t = np.full(TREND_ROWS, np.nan)                   # ... their times (s)
-        self._past_pos = 0
+        self._past_n = np.full(TREND_ROWS, np.nan)      # ... their samples' numbers (dep106)
+        self._past_pos, self._past_rows = 0, 0          # (rows seen, kept or not)
         self._hold_to = np.full(len(self.names), -np.inf)   # time until its held value is read
 
     def _past_push(self, D: np.ndarray, times) -> None:
-        """Keep the rows ``D`` (referenced) taken at ``times`` (None: unknown) in the ring."""
-        n = len(D)          # the ring where n rows one by one leave it: the last TREND_ROWS kept
-        D = D[-TREND_ROWS:]
-        where = (self._past_pos + n - len(D) + np.arange(len(D))) % TREND_ROWS
-        self._past[where] = D
-        self._past_t[where] = np.nan if times is None else np.asarray(times, float)[-len(D):]
+        """Keep the rows ``D`` (referenced) taken at ``times`` (None: unknown) in the ring, those
+        :func:`~.frozen_hold.kept` keeps (the ring where they one by one leave it)."""
+        t = np.full(len(D), np.nan) if times is None else np.asarray(times, float)
+        keep = np.flatnonzero(kept(t, self._past_t[(self._past_pos - 1) % TREND_ROWS], EXCURSION_TAU_S))
+        n, keep = len(keep), keep[-TREND_ROWS:]
+        where = (self._past_pos + n - len(keep) + np.arange(len(keep))) % TREND_ROWS
+        self._past[where], self._past_t[where] = D[keep], t[keep]
+        self._past_n[where] = self._past_rows + keep
         self._past_pos = int((self._past_pos + n) % TREND_ROWS)
+        self._past_rows += len(D)
 
     def _hold_until(self, j: int) -> float:
         """(mon105c) Until when (s) the model reads sensor ``j``'s held value, just excluded for a
@@ -363,8 +368,9 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion, Settled):
         ``EXCURSION_TAU_S`` before its constant run began, the drift that rate projects, over
         at least the span fitted, within the stand-in's training spread (-inf: never; a still
         ambient's held reading beat its drifting stand-in, a falling structure sensor's did not)."""
-        return held_until(self._past_t, self._past[:, j], self._past_pos, int(self._run[j]),
-                          EXCURSION_TAU_S, self.floor_c[j] / SPREAD_FACTOR)
+        return held_until(self._past_t, self._past[:, j], self._past_n, self._past_pos,
+                          self._past_rows - int(self._run[j]), EXCURSION_TAU_S,
+                          self.floor_c[j] / SPREAD_FACTOR)
 
     def _read_held(self, time: float) -> np.ndarray:
         """Sensors out for a freeze alone whose held value the model reads (:meth:`_hold_until`)."""
@@ -522,9 +528,11 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion, Settled):
         if self._settles:
             self._settle_push(ref)
         self._slow_step(self._hist[(self._pos - 1) % self.window], float(time))
-        p = self._past_pos                   # one row kept (the ring of _past_push)
-        self._past[p], self._past_t[p] = self._hist[(self._pos - 1) % self.window], time
-        self._past_pos = (p + 1) % TREND_ROWS
+        p = self._past_pos                   # the row, where the ring of _past_push keeps it
+        if keeps(time, self._past_t[p - 1], EXCURSION_TAU_S):
+            self._past[p], self._past_t[p] = self._hist[(self._pos - 1) % self.window], time
+            self._past_n[p], self._past_pos = self._past_rows, (p + 1) % TREND_ROWS
+        self._past_rows += 1
         if clean is None:    # a new thermal state counts its calm samples on the full path
             self._quiet = self._rebuilds and not self._novel and not self._state[self._active].any()
         if settled:          # the next sample on the full path
