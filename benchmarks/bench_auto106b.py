@@ -7,6 +7,7 @@ Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the vote and hedge c
     python benchmarks/bench_auto106b.py fl STORE                             # fl_thermal 90/10, replayed
     python benchmarks/bench_auto106b.py authors OUT     # fl_thermal 60/20/20 run (bench_auto105b's)
     python benchmarks/bench_auto106b.py fresh OUT       # seeds 10069-10073, fitted and scored ONCE
+    python benchmarks/bench_auto106b.py cost ROWS       # the hedge's CPU on a white one-fold residual
 
 STORE22 / STOREONE: bench_auto106's (bench_auto105b's ``/tmp/auto105b/main``: the 22 table, and
 ``/tmp/auto105b/one``: the 10 one-campaign records); STORE: more own-test stores (auto105b's scored
@@ -45,6 +46,30 @@ and lab10032 1.227 -> 1.037, was seen before the bar):
     one family there and the rule cannot act.  Each fitted twice, main's key
     (``hedge=campaigns``) and the rule's (the default), scored once on its own test: no new loser
     (main / MLR <= 1 < rule / MLR) and geo rule / MLR <= geo main / MLR over the five.
+
+Measured (2026-12-07, this tree's src; ``OMP_NUM_THREADS=1``, 2 shared cores, load ~7; CPU user +
+sys: ``seen`` 3.7 s, ``fl`` 1.2, ``authors`` 9.6, ``fresh`` 21.2).  KEPT: all five hold.
+(1) SEEN 22 (``seen /tmp/auto105b/main /tmp/auto105b/one /tmp/auto105b/fresh``): lab5401, the one
+    one-fold record, keeps lam 1 on E_X / E_Y / E_Z (4-6 blocks): losers 6, geo 0.8192, as main: met.
+(2) worst seen rule / main 1.0000 over 37 records (lab10032 0.845 x main: 1.227 -> 1.037 x MLR; E_X
+    lam 0.97, E_Y 0.39 (0.891 -> 0.955), E_Z 0.17 (1.793 -> 1.135)): met.
+(3) the 10 one-campaign records: no target hedged, geo 0.7654 both: met.
+(4) fl_thermal 90/10 (one train record: not hedged) 2.481, 38.9 % under MLR's 4.060; authors'
+    60/20/20 re-run: MAE 1.170 / 1.411 / 4.078 / 1.399 / 2.529, mean 2.117 (GRU 3.752), 4 of 5: met
+    (a val split: auto keeps one family by its val RMSE, no blend, so nothing to hedge).
+(5) FRESH (drawn once, after the bar and (1)-(4)), auto / MLR main -> rule: lab10069 1.204 -> 1.007,
+    lab10070 1.500 -> 1.539, lab10071 1.386 -> 1.181, year4_10072 0.616 -> 0.756, year4_10073 0.553 ->
+    0.538; every one a one-fold record (3-63 blocks); no new loser, geo 0.9689 -> 0.9425: met.  The
+    built key's weights equal the replay's lam to the digits printed (lab10070 E_X lam 0.510: arx
+    0.792 -> 0.404).  Not in the bar, said: 2 of 5 worse than main, year4_10072 by 23 % (E_Z lam 0.33:
+    pcr's win cut), lab10070 by 2.6 % (already a loser).
+Cost and a weakness (``cost``, after the fresh): each block is one nested vote, so the fit costs
+blocks x one vote; on a white one-fold residual (one-row blocks) 500 rows 6.5 s, 2,000 rows 108 s CPU
+per target, and lam falls to ~0 though the candidate has 0.81 of MLR's MSE: a block's share of the
+measure is its error over MLR's, ruled by rows where MLR is near right (vote_weights' docstring says
+the same of per-block ratios).  The scored records had 3-63 blocks (year4_10073 E_X: 63 one-row
+blocks, lam 0, 1.01 -> 0.637 x MLR on that target).  Not changed after the fresh: a bound on the
+blocks or the fold's pooled measure is a next stop's rule, on its own seeds.
 """
 
 from __future__ import annotations
@@ -178,10 +203,27 @@ def fresh(out: str) -> None:
           f"{'met' if not new and g_rule <= g_main else 'NOT met'}")
 
 
+def cost(rows: str) -> None:
+    """The one-fold hedge on ROWS rows of a white residual: MLR, a candidate with 0.9 of its noise
+    s.d., one with 1.1; the blocks, lam and the CPU seconds of fold_blocks + hedge_weight."""
+    import time
+
+    from thermocomp.core.models.hedge import fold_blocks, hedge_weight
+
+    n, rng = int(rows), np.random.default_rng(1)
+    y = rng.normal(0.0, 5.0, n)
+    preds = np.column_stack([y + rng.normal(0.0, s, n) for s in (1.0, 0.9, 1.1)])
+    t0 = time.process_time()
+    units = fold_blocks(y, preds[:, 0])
+    lam = hedge_weight(preds, y, np.zeros(n, int), 0, a105.N_FOLDS, units)
+    print(f"{n} rows: {np.unique(units).size} blocks, lam {lam:.3f}, {time.process_time() - t0:.1f} s CPU")
+
+
 def main(argv: list[str]) -> int:
     return run_commands(__doc__, {"seen": seen, "fl": lambda s: fl(s),
                                   "authors": lambda out: a105b.authors(out),
-                                  "fresh": lambda out: fresh(out)}, argv, cpu=sys.stderr)
+                                  "fresh": lambda out: fresh(out), "cost": lambda n: cost(n)},
+                        argv, cpu=sys.stderr)
 
 
 if __name__ == "__main__":
