@@ -70,6 +70,14 @@ measure is its error over MLR's, ruled by rows where MLR is near right (vote_wei
 the same of per-block ratios).  The scored records had 3-63 blocks (year4_10073 E_X: 63 one-row
 blocks, lam 0, 1.01 -> 0.637 x MLR on that target).  Not changed after the fresh: a bound on the
 blocks or the fold's pooled measure is a next stop's rule, on its own seeds.
+
+Lead's verdict (after the helper's KEPT): REFUSED, src reverted, the rule kept as
+``benchmarks/auto106b_rule.patch``.  The bar's letter held, but what the helper measured after it
+is a defect of the rule, not of one record: its cost grows as blocks x one vote (108 s CPU per
+target at 2,000 white rows, where a lab's long fold is ordinary), and on one-row blocks its measure
+is ruled by rows where MLR is near right, so lam falls to ~0 against a candidate at 0.81 of MLR's
+MSE; 2 of the 5 fresh records got worse than main (year4_10072 by 23 %).  A next rule bounds the
+blocks or pools the fold's measure, on its own fresh seeds (10069-10073 are spent).
 """
 
 from __future__ import annotations
