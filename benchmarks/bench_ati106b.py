@@ -54,6 +54,38 @@ B5. Where the rule does not act, BASE unchanged: ``cmeans`` on this tree = ``bas
     every fresh record, and the existing ATI / export tests pass.
 KEPT only if B1-B5 hold; else REFUSED (src reverted; this bench and ``ati106b_rule.patch`` kept).
 
+Status: the bar and the rule committed in 765d1ef9 before 10087-10089 were simulated; neither moved.
+VERDICT: REFUSED (B1 fails on la10087 by 83 %; B3 as written fails on lw10088, BASE's replay too).
+src and conf reverted; the rule (ati106_rule.patch's code + conf/ati/days.yaml + the test
+``test_ati_days_is_the_per_interval_setting_over_a_chained_records_days``) is
+``benchmarks/ati106b_rule.patch`` (applies to 1707a192; its 5 tests pass with it, all 5 fail on 1707a192).
+
+Scored (2026-12-07 09:08-09:35 UTC, 2 cores shared, load 8-12; ``cells ROOT R cmeans plain days`` on
+765d1ef9's tree, ``cells ROOT R base`` on ``git archive 1707a192 src conf``; test RMSE µm, metrics.json)::
+
+  record   target  base      cmeans    plain     days (intervals, units)  days/base  replay/run-1 (mon on/off)
+  la10087  E_Z     1.164794  1.164794  1.164794  2.132893 (5, 26)         1.8311     -3.5e-05 / -2.2e-16
+  lw10088  E_Z     1.043432  1.043432  1.043432  0.977374 (2, 26)         0.9367     -1.39e-02 / -5.6e-16
+  fl10089  E_X     0.200533  (= base in every cell: the guard kept the base   1.0000     -1.1e-16
+  fl10089  E_Y     0.213119   model alone; 24 units)                          1.0000     0
+  fl10089  E_Z     0.496328                                                   1.0000     +1.3e-15
+
+B1 FAILS: la10087 1.8311.  The elbow (leave-one-day-out over 26 days) had 5 intervals at SM + SD
+2.083 against 2.759 for the base model alone (25 % better); each interval's model was fitted on 2-6
+days, and R1b's three blocks, keyed 20.57 / 19.62 / 20.39 °C, straddle the boundary at 19.63 °C
+(its middle day in another interval's model).  The same kind drawn by ati106 (la10061) read 0.938.
+B2 met (lw10088 0.9367).  B3: la10087 and fl10089 met; lw10088's replay (monitor on) is 1.39 % below
+run -- the monitor's warm-up events, not the rule: BASE's own model replays 1.47 % below run there
+(1.028098 vs 1.043432; 20 monitor events in the lead-in), and with ``monitor.adaptive=false
+promote.envelope.policy=off`` the rule's replay = run to 5.6e-16.  B4 met: la10087 / lw10088 C and
+ST exit 2 in one line naming ``ati.estimator.unit_h=24``; fl10089 (base model kept) C and ST exit 0
+(with ``data.path``: the first try without it exited 2 on the missing default data folder; the bench
+now passes it; the C built and its check.sh run: 17 campaigns within 1e-9, largest 2.1e-13 µm).
+B5 met: ``cmeans`` = ``base`` to 0 relative on all three.
+
+CPU (user + sys, /usr/bin/time): tree cells (3 runs, 1 replay, 2 exports) la 30.6 s, lw 30.3 s, fl 76.5 s;
+base cell la 6.0, lw 6.2, fl 23.2 s; fl10089's exports with their check rows: C 182.4 s, ST 95.0 s.
+
 Usage (repository root, ``PYTHONPATH=<tree>/src``; the ``base`` cell on BASE's tree)::
 
     python benchmarks/bench_ati106b.py cells ROOT RECORD [CELL ...]
@@ -139,7 +171,7 @@ def cells(root: str, record: str, *chosen: str) -> None:
                 f"{t} {rep[t]['rmse']:.6f} ({rep[t]['rmse'] / run[t] - 1:+.2e})" for t in run)
             for fmt in ("c", "st"):
                 done = _thermocomp("export", f"export.model={out / 'model.pkl'}", f"export.format={fmt}",
-                                   f"out={out}-{fmt}", check=False)
+                                   f"data.path={data}", f"out={out}-{fmt}", check=False)
                 said = (done.stderr.strip().splitlines() or [""])[-1][:160]
                 line += f"\n  export {fmt}: exit {done.returncode} {said if done.returncode else ''}"
         print(line, flush=True)

@@ -36,7 +36,7 @@ HOSTILE = {
     "validation_fraction": 1.0, "n_threads": 0, "n_taus": 0, "tau_min_s": -1, "tau_max_s": 0,
     "alphas": [], "n_splits": 1, "sample_period_s": float("nan"), "level_penalty": -0.5,
     "n_intervals": "knee",
-    "candidates": [0], "clustering": "spectral", "fuzziness": 1.0, "elbow_tolerance": -0.1, "unit_h": 0.0,
+    "candidates": [0], "clustering": "spectral", "fuzziness": 1.0, "elbow_tolerance": -0.1,
     "ambient_interaction": "yes", "min_campaigns": 0, "n_imfs": 0, "sensors": "T_*", "stopping": "never",
     "max_siftings": 0, "s_number": 0, "sd_threshold": 0, "end_effect": "none", "pad": -1,
     "spline": "quintic", "causal": "foo", "causal_taps": 0, "causal_window": 3, "online": "no",

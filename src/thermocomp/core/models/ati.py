@@ -19,22 +19,9 @@ from sklearn.cluster import KMeans
 from sklearn.utils.validation import check_is_fitted, validate_data
 
 from ...base.errors import ContractError, FallbackWarning, listed
-from ...base.params import (
-    BOOLEAN,
-    NON_NEGATIVE,
-    POSITIVE,
-    check_estimator,
-    choice,
-    either,
-    integer,
-    integers,
-    number,
-    optional,
-)
+from ...base.params import BOOLEAN, NON_NEGATIVE, check_estimator, choice, either, integer, integers, number
 from ..context import (
     AMBIENT_C0,
-    CAMPAIGN,
-    TIME,
     SideInputs,
     context_columns,
     groups_of,
@@ -44,10 +31,8 @@ from ..context import (
     subset,
 )
 from ..gains import AMBIENT_CENTRE_C, gain_at, gain_terms, within
-from ..io.contract import is_ambient
 from ..metrics import rsd, sm_sd
 from ._campaign_ls import CampaignLeastSquares
-from .ati_units import block_ambient, block_of, units
 from .base import measured_rows
 from .linear import MLR
 
@@ -242,13 +227,6 @@ class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
         (:func:`merge_thin_intervals`), in the final fit and in the elbow's folds alike, so
         ``n_intervals_`` may be below the count asked or chosen; 1 keeps every interval
         (paper 003 fits each interval's model on one campaign).
-    unit_h : float or None, default None
-        Hours: the units clustered by ambient and left out by the elbow are blocks of this
-        length of each campaign's own time, each keyed by its own initial ambient
-        (:mod:`.ati_units`; a record of day files chained by ``continues`` is one campaign, its
-        days its 24 h blocks); predicted, every interval's model runs through the whole
-        campaign, its state carried across the blocks, and the block's interval gives the output.
-        Needs an ambient sensor (``T_amb``).  None: a campaign is one unit.
 
     Attributes
     ----------
@@ -273,7 +251,7 @@ class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
                    "candidates": integers(1), "clustering": choice(*CLUSTERINGS),
                    "fuzziness": number(1.0, open_lo=True), "elbow_tolerance": NON_NEGATIVE,
                    "ambient_interaction": BOOLEAN, "random_state": integer(0, 2 ** 32 - 1),
-                   "min_campaigns": integer(1), "unit_h": optional(POSITIVE)}
+                   "min_campaigns": integer(1)}
     # the elbow's MLR folds from per-campaign QR factors (_HeldOutFits); False: every fold
     # fitted on its rows by ``_fit_base`` (the reference the fast path is tested against)
     _fast_elbow = True
@@ -281,7 +259,7 @@ class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
     def __init__(self, base_estimator=None, n_intervals="elbow", candidates=(2, 3, 4, 5, 6),
                  clustering: str = "fuzzy", fuzziness: float = 2.0, elbow_tolerance: float = 0.10,
                  random_state: int = 0, ambient_interaction: bool = False,
-                 min_campaigns: int = MIN_CAMPAIGNS, unit_h: float | None = None):
+                 min_campaigns: int = MIN_CAMPAIGNS):
         self.base_estimator = base_estimator
         self.n_intervals = n_intervals
         self.candidates = candidates
@@ -291,7 +269,6 @@ class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
         self.random_state = random_state
         self.ambient_interaction = ambient_interaction
         self.min_campaigns = min_campaigns
-        self.unit_h = unit_h
 
     # -- fitting ----------------------------------------------------------------------------
     def _base(self):
@@ -308,8 +285,7 @@ class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
 
     def _interacts_at(self, a0_rows) -> bool:
         """:meth:`_interacts` for rows whose ``ambient_c0`` are ``a0_rows``."""
-        return bool(self.ambient_interaction) and not getattr(self, "plain_kept_", False) \
-            and ambient_levels(np.unique(a0_rows)) >= MIN_AMBIENTS
+        return bool(self.ambient_interaction) and ambient_levels(np.unique(a0_rows)) >= MIN_AMBIENTS
 
     @staticmethod
     def _design(X, context, interacts: bool) -> np.ndarray:
@@ -343,12 +319,9 @@ class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
         # measured rows, the elbow's held-out Rsd is scored on them (metrics.rsd)
         X, y, _ = measured_rows(self, X, y)
         self.elbow_ = None
-        self.unit_ambient_, self.plain_kept_ = [], False
         if context is None or AMBIENT_C0 not in context:
             self.campaign_ambient_ = {}
             return self._fit_intervals(X, y, np.empty(0), np.zeros(len(y), int), context)
-        if self.unit_h is not None:
-            context = self._as_units(context)
         campaign = groups_of(context)
         if campaign is None:
             campaign = np.zeros(len(y), dtype=object)
@@ -387,26 +360,10 @@ class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
                                     "ambient_min": min(amb) if amb else None,
                                     "ambient_max": max(amb) if amb else None,
                                     "campaigns": [str(c) for c in members]})
-        keyed = self.n_intervals_ > 1 or any(self.interactions_)
-        blocks = [TIME, *self.unit_ambient_] if keyed and self.unit_h is not None else []
-        self.context_columns_ = merge_columns([AMBIENT_C0, *blocks] if keyed else [],
+        self.context_columns_ = merge_columns([AMBIENT_C0] if self.n_intervals_ > 1
+                                              or any(self.interactions_) else [],
                                               *(context_columns(e) for e in self.estimators_))
         return self
-
-    def _as_units(self, context) -> pd.DataFrame:
-        """``context`` with each block of ``unit_h`` hours its own campaign and initial ambient
-        (:func:`.ati_units.units`): the units the fit clusters and the elbow leaves out."""
-        self.unit_ambient_ = [c for c in context.columns if is_ambient(c)]
-        if not self.unit_ambient_ or TIME not in context:
-            raise ContractError("ATI unit_h keys each block by the ambient at its first row: it "
-                                "needs an air sensor (T_amb / T_amb_*; data.roles.ambient=[<its "
-                                "header>]) and the time column", column="T_amb")
-        label, a0 = units(context, float(self.unit_h), self.unit_ambient_)
-        return context.assign(**{CAMPAIGN: label, AMBIENT_C0: a0})
-
-    def _blocks_keyed(self) -> bool:
-        """Whether predictions key each block by its own ambient (``unit_h``, a model that reads it)."""
-        return self.unit_h is not None and AMBIENT_C0 in self.context_columns_
 
     @staticmethod
     def _ambient(context) -> np.ndarray:
@@ -479,27 +436,7 @@ class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
         chosen = feasible[int(np.flatnonzero(score <= (1 + self.elbow_tolerance) * best)[0])]
         self.elbow_ = {"n_intervals": feasible, "sm": sm, "sd": sd, "chosen": chosen,
                        "single_model": {"sm": single[0], "sd": single[1]}, "reason": None}
-        if self.unit_h is not None:
-            return self._plain_guard(X, y, campaign, a0, context, chosen, score[feasible.index(chosen)])
         return chosen
-
-    def _plain_guard(self, X, y, campaign, a0, context, chosen: int, score: float) -> int:
-        """``chosen``, or 1 with ``plain_kept_`` where the base model alone (one interval, no
-        ambient interaction: what ati=none fits) leaves the units out with an SM + SD at most the
-        chosen count's.  With ``unit_h`` the units are a record's days: edm65's six (ed10035)
-        chose 2 intervals at SM + SD 9.3 µm (E_X; one interval with the interaction 100, its slope
-        fitted on 2.5 K) where the base model alone scored 6.4; tested 4.35 against 3.97."""
-        plain = clone(self).set_params(ambient_interaction=False)
-        m, s = sm_sd(plain._cv_rsd(X, y, campaign, a0, 1, context))
-        self.elbow_["plain_model"] = {"sm": m, "sd": s}
-        if not m + s <= score:
-            return chosen
-        self.plain_kept_ = True
-        self.elbow_["reason"] = (f"the base model alone leaves the units out at SM + SD {m + s:.4g} "
-                                 f"<= {score:.4g} ({chosen} interval(s)); one model, no interaction")
-        warnings.warn(f"ATI: {self.elbow_['reason']} (the model ati=none fits)", FallbackWarning,
-                      stacklevel=3)
-        return 1
 
     # -- prediction -------------------------------------------------------------------------
     def _row_intervals(self, n_rows: int, context) -> np.ndarray:
@@ -513,8 +450,6 @@ class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
     def predict(self, X, context=None):
         check_is_fitted(self)
         X = validate_data(self, X, reset=False)
-        if self._blocks_keyed():
-            return self._predict_blocks(X, context)
         which = self._row_intervals(X.shape[0], context)
         out = np.empty(X.shape[0])
         for m in np.unique(which):
@@ -523,75 +458,20 @@ class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
                                            context)
         return out
 
-    def _predict_blocks(self, X, context):
-        """:meth:`predict` with ``unit_h``: each block's interval by its own initial ambient,
-        every interval's model run through each whole campaign (its state carried)."""
-        if context is None:
-            raise ValueError("this ATI model keys each block by its ambient: predict needs `context`")
-        _, a0 = units(context, float(self.unit_h), self.unit_ambient_)
-        ctx = context.assign(**{AMBIENT_C0: a0})
-        which = interval_of(a0, self.boundaries_)
-        out = np.empty(X.shape[0])
-        every = np.ones(X.shape[0], bool)
-        for m in np.unique(which):
-            rows = which == m
-            out[rows] = self._predict_base((self.estimators_[m], self.interactions_[m]), X, every,
-                                           ctx)[rows]
-        return out
-
     # -- streaming (deployment) -------------------------------------------------------------
     def stream_init(self, context=None):
         """State for :meth:`stream_step`: the interval of the context's ``ambient_c0`` and its
-        model's state (with ``unit_h``: every interval's model's, the first row's time and block)."""
+        model's state."""
         check_is_fitted(self)
         a0 = scalar(context, AMBIENT_C0)
         if AMBIENT_C0 in self.context_columns_ and not np.isfinite(a0):
             raise ContractError("this ATI model needs the campaign's initial ambient temperature "
                                 "(°C) to start a stream: no T_amb / T_amb_* value", column=AMBIENT_C0)
         m = 0 if self.n_intervals_ == 1 else int(interval_of([a0], self.boundaries_)[0])
-        if self._blocks_keyed():
-            inner = [e.stream_init(context) for e in self.estimators_]
-            return m, a0, inner, scalar(context, TIME), 0
         return m, a0, self.estimators_[m].stream_init(context)
-
-    def _next_block(self, state, time: float, readings):
-        """``state`` at a row at ``time`` whose ambient sensors read ``readings``: a new block
-        keyed by its ambient."""
-        m, a0, inner, first, block = state
-        k = int(block_of([time], first, float(self.unit_h))[0])
-        if k == block:
-            return state
-        a0 = block_ambient(a0, readings)
-        m = 0 if self.n_intervals_ == 1 else int(interval_of([a0], self.boundaries_)[0])
-        return m, a0, inner, first, k
-
-    def _block_steps(self, X, state, context):
-        """Rows of one block (the state's) through every interval's model: ``(y, state)``."""
-        m, a0, inner, first, block = state
-        context = {**(context or {}), AMBIENT_C0: a0}
-        y, stepped = None, []
-        for k, est in enumerate(self.estimators_):
-            Z = np.hstack([X, X * (a0 - AMBIENT_CENTRE_C)]) if self.interactions_[k] else X
-            out, s = stream_steps(est, Z, inner[k], context)
-            stepped.append(s)
-            y = out if k == m else y
-        return y, (m, a0, stepped, first, block)
 
     def stream_step(self, x_row, state, context=None):
         """One sample: ``(y_hat, state)``, as :meth:`predict` in simulation mode."""
-        if self._blocks_keyed():
-            state = self._next_block(state, scalar(context, TIME),
-                                     [scalar(context, c) for c in self.unit_ambient_])
-            m, a0, inner, first, block = state
-            x = np.asarray(x_row, dtype=float).ravel()
-            context = {**(context or {}), AMBIENT_C0: a0}
-            out, stepped = [], []
-            for k, est in enumerate(self.estimators_):
-                z = np.concatenate([x, x * (a0 - AMBIENT_CENTRE_C)]) if self.interactions_[k] else x
-                y_k, s = est.stream_step(z, inner[k], context)
-                out.append(float(y_k))
-                stepped.append(s)
-            return out[m], (m, a0, stepped, first, block)
         m, a0, inner = state
         x = np.asarray(x_row, dtype=float).ravel()
         if self.interactions_[m]:
@@ -601,30 +481,12 @@ class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
 
     def stream_steps(self, X, state, context=None):
         """A block of rows at once (:func:`thermocomp.core.context.stream_steps`)."""
-        X = np.asarray(X, dtype=float)
-        if self._blocks_keyed():
-            return self._keyed_steps(X, state, context)
         m, a0, inner = state
+        X = np.asarray(X, dtype=float)
         if self.interactions_[m]:
             X = np.hstack([X, X * (a0 - AMBIENT_CENTRE_C)])
         y, inner = stream_steps(self.estimators_[m], X, inner, context)
         return y, (m, a0, inner)
-
-    def _keyed_steps(self, X, state, context):
-        """:meth:`stream_steps` with ``unit_h``: the rows cut at the blocks' edges."""
-        n = len(X)
-        cols = dict(context or {})
-        time = np.broadcast_to(np.asarray(cols[TIME], float), (n,))
-        block = block_of(time, state[3], float(self.unit_h))
-        edges = [*np.flatnonzero(np.r_[True, block[1:] != block[:-1]]), n] if n else [0]
-        y = np.empty(n)
-        for lo, hi in zip(edges[:-1], edges[1:]):
-            part = {k: v[lo:hi] if isinstance(v, np.ndarray) and v.ndim == 1 and len(v) == n else v
-                    for k, v in cols.items()}
-            readings = [np.broadcast_to(np.asarray(cols[c], float), (n,))[lo] for c in self.unit_ambient_]
-            state = self._next_block(state, float(time[lo]), readings)
-            y[lo:hi], state = self._block_steps(X[lo:hi], state, part)
-        return y, state
 
     def gain_terms(self, horizon_s: float = np.inf, lead=None, period_s: float = 1.0) -> list:
         """The step gain split by the campaign's initial ambient (:mod:`thermocomp.core.gains`):

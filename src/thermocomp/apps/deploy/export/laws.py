@@ -21,7 +21,6 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ....core.context import AMBIENT_C0
 from ....core.models import ARX, MLR, PCR, Hammerstein, LagBank
 from ....core.models.ati import AMBIENT_CENTRE_C, ATIRegressor
 from .derived import (
@@ -192,20 +191,9 @@ def _intervals(est) -> list:
         return _diagnosed(est)
     if not isinstance(est, ATIRegressor):
         return [(-UNBOUNDED, UNBOUNDED, est, False, Derived())]
-    _not_block_keyed(est)
     edges = [-UNBOUNDED, *map(float, est.boundaries_), UNBOUNDED]
     return [(edges[m], edges[m + 1], e, bool(est.interactions_[m]), Derived())
             for m, e in enumerate(est.estimators_)]
-
-
-def _not_block_keyed(est: ATIRegressor) -> None:
-    """Refuse an ATI model that keys each block of ``unit_h`` hours by its own ambient (ati106):
-    the code picks a campaign's laws once, at its first sample."""
-    if getattr(est, "unit_h", None) is not None and AMBIENT_C0 in getattr(est, "context_columns_", []):
-        raise NotExportable(f"ati.estimator.unit_h={est.unit_h:g}: the model keys each block of "
-                            f"{est.unit_h:g} h by its own ambient, which the exported code does not "
-                            "(it keys a campaign once, at its first sample); the served model runs it "
-                            "(thermocomp serve, replay), or fit without unit_h")
 
 
 def _diagnosed(est) -> list:
@@ -234,7 +222,6 @@ def _diagnosed(est) -> list:
         base = est.estimator_
         if not isinstance(base, ATIRegressor):
             return [(-UNBOUNDED, UNBOUNDED, base, False, derived)]
-        _not_block_keyed(base)
         edges = [-UNBOUNDED, *map(float, base.boundaries_), UNBOUNDED]
         return [(edges[m], edges[m + 1], e, bool(base.interactions_[m]), derived)
                 for m, e in enumerate(base.estimators_)]
