@@ -8,6 +8,10 @@ Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the vote and hedge c
     python benchmarks/bench_auto106c.py authors OUT     # fl_thermal 60/20/20 run (bench_auto105b's)
     python benchmarks/bench_auto106c.py fresh OUT       # seeds 10095-10099, fitted and scored ONCE
     python benchmarks/bench_auto106c.py cost ROWS       # the hedge's CPU on a white one-fold residual
+    python benchmarks/bench_auto106c.py trace STORE RECORD   # per target: blocks, lam, per-block errors
+
+The rule is REFUSED and its src is ``benchmarks/auto106c_rule.patch``: ``git apply`` it first (every
+command but ``authors`` calls its ``one_fold_weight`` / ``fold_blocks``).
 
 STORE22 / STOREONE / STORE: as bench_auto106b's (``/tmp/auto105b/main``, ``/tmp/auto105b/one``,
 ``/tmp/auto105b/fresh``) and auto106b's fresh main-key fits of seeds 10069-10073 (seen now; a store
@@ -47,10 +51,38 @@ seeds 10095-10099 were simulated; KEPT only if all hold):
     geo main / MLR over the five, AND no fresh record rule / main > 1.05.
 (6) Cost (``cost 500``, ``cost 2000``: fold_blocks + one_fold_weight, CPU per target): at most 8
     blocks, and at most 10 x one vote (``vote_weights`` on the same rows, timed there too).
+
+Measured (2026-12-07, the rule's src (now ``benchmarks/auto106c_rule.patch``); ``OMP_NUM_THREADS=1``,
+2 shared cores, load ~9-12; CPU user + sys by ``/usr/bin/time``: ``seen`` 4.3 s, ``fl`` 1.5 s).
+REFUSED: (2) fails.
+(1) SEEN 22 (``seen /tmp/auto105b/main /tmp/auto105b/one /tmp/auto105b/fresh /tmp/auto106c/fresh106b``):
+    lab5401 keeps lam 1; losers 6, geo 0.8192, as main: met.
+(2) worst seen rule / main 1.0183 over 42 records (lab10032 1.227 -> 1.250 x MLR): NOT met.  The
+    others moved: lab10069 1.204 -> 1.169, lab10070 1.500 -> 1.510, lab10071 1.386 -> 1.335,
+    year4_10073 0.553 -> 0.546 (year4_10072 unchanged, 0.616).
+(3) the 10 one-campaign records: no target hedged, geo 0.7654 both: met.
+(4) fl_thermal 90/10 (one train record, 5 time-block folds: not hedged) 2.481, 38.9 % under MLR's
+    4.060: met.  The authors' 60/20/20 (a val split, auto keeps one family: the rule cannot act) not
+    re-run after (2) failed.
+(5) FRESH 10095-10099 NOT drawn: the verdict was fixed by (2), and the seeds stay fresh for a next rule.
+(6) ``cost 500``: 7 blocks, lam 0.576, hedge 0.08 s CPU = 5.2 x one vote; ``cost 2000``: 8 blocks,
+    lam 0.556, 0.39 s = 6.7 x one vote (auto106b: 108 s, lam ~0): met.  lam ~0.55 is the right mix
+    there (independent errors of variance 1 and 0.81: 1 / 1.81).
+Why (2) fails (``trace /tmp/auto105b/fresh lab10032``, after the verdict): the pooled measure is
+ruled by the blocks where MLR's error is LARGEST, the mirror of auto106b's defect.  E_Z (W 1.793 x
+MLR on the test): 7 blocks of 171 rows; W (arx 0.84) loses 4 of 7 blocks (A / MLR 1.30-2.00 where
+MLR's MSE is 2.5-4.4) but wins the two heavy ones (MSE 30 and 51: A / MLR 0.57, 0.42), so the
+pooled lam is 1 and the loss the test shows is left.  E_Y (W 0.891 on the test): one block holds
+most of the fold's squared error (MLR MSE 214 of the six blocks' 347 summed) and there A ~ MLR; A
+loses blocks 0, 1, 2, 5, so lam 0.537 and the test goes 0.891 -> 0.939.  Neither measure (mean of
+per-block ratios: ruled by small-error blocks; pooled: by large-error ones) picks the test's side
+here; a next rule could give each block one equal say (a rank or sign measure over <= 8 blocks),
+on its own seeds.
 """
 
 from __future__ import annotations
 
+import json
 import sys
 import time
 from pathlib import Path
@@ -152,10 +184,42 @@ def cost(rows: str) -> None:
           f"{'met' if blocks <= 8 and t2 - t1 <= 10 * (t1 - t0) else 'NOT met'}")
 
 
+def trace(store: str, record: str) -> None:
+    """Per target of RECORD in STORE: the fold's blocks, the rule's lam, and per block MLR's MSE with
+    A's (the choice made without the block) and the kept W's over it; the test at lam 1 and the rule's."""
+    from thermocomp.core.models.hedge import fold_blocks, nested_prediction, one_fold_weight
+
+    rep = json.loads((Path(store) / f"{record}.json").read_text())
+    for t, r in rep["targets"].items():
+        with np.load(Path(store) / f"{record}.{t}.npz", allow_pickle=True) as z:
+            a = {k: z[k] for k in z.files}
+        w = {n: float(v) for n, v in r["auto"]["weights"].items()}
+        names = [n for n in b87.ORDER if f"oof_{n}" in a]
+        preds, y = np.column_stack([a[f"oof_{n}"] for n in names]), a["oof_y"]
+        base, one = names.index("mlr"), np.zeros(len(a["oof_y"]), int)
+        units = fold_blocks(y, preds[:, base])
+        lam = one_fold_weight(preds, y, base, a105.N_FOLDS)
+        e = y - preds[:, base]
+        nested = nested_prediction(preds, y, one, base, a105.N_FOLDS, units)
+        kept = sum(v * a[f"oof_{n}"] for n, v in w.items())
+        print(f"{t}: {len(y)} rows, {np.unique(units).size} blocks, lam {lam:.3f}, kept W "
+              f"{ {n: round(v, 2) for n, v in w.items()} }")
+        for j in np.unique(units):
+            on, ee = units == j, float(np.mean(e[units == j] ** 2))
+            a_, w_ = np.mean((y[on] - nested[on]) ** 2) / ee, np.mean((y[on] - kept[on]) ** 2) / ee
+            print(f"   block {j}: {on.sum()} rows, MLR MSE {ee:.3g}, A / MLR {a_:.3f}, W / MLR {w_:.3f}")
+        test = sum(v * a[f"test_{n}"] for n, v in w.items())
+        for lam_ in (1.0, lam):
+            mix = lam_ * test + (1 - lam_) * a["test_mlr"]
+            print(f"   test RMSE / MLR at lam {lam_:.3f}: "
+                  f"{b87._rmse(a['test_y'] - mix) / b87._rmse(a['test_y'] - a['test_mlr']):.3f}")
+
+
 def main(argv: list[str]) -> int:
     return run_commands(__doc__, {"seen": seen, "fl": lambda s: fl(s),
                                   "authors": lambda out: a105b.authors(out),
-                                  "fresh": lambda out: fresh(out), "cost": lambda n: cost(n)},
+                                  "fresh": lambda out: fresh(out), "cost": lambda n: cost(n),
+                                  "trace": trace},
                         argv, cpu=sys.stderr)
 
 
