@@ -51,9 +51,8 @@ at least ``fault_ratio`` and the model without the sensor is not worse by
 ``min_gain_pct`` % or more, over all held-out rows *and* over those where no
 fold extrapolates (a CV that improves only where held-out campaigns leave the
 training range -- a climate room's extreme runs -- removed four healthy
-sensors of a lathe, CV 21.8 -> 11.4 µm, and raised its test error, 12.6 -> 13.4 µm), and
-not only in the pooled point estimate: the held-out units' changes must show it at ``alpha``
-(:func:`not_worse_pvalue`; diag106b); a sensor fault that clears is taken first.
+sensors of a lathe, CV 21.8 -> 11.4 µm, and raised its test error, 12.6 -> 13.4 µm); a
+sensor fault that clears is taken first.
 
 The in-sample F-test is not used for the bar: thermal residuals are strongly
 autocorrelated, so a random walk passes it (spurious regression).  Campaigns
@@ -120,7 +119,6 @@ class Evaluation:
     gain_pct_within_rest: float | None = None  # the same without the campaign gaining most there
     gain_pct_forward_within: float | None = None   # a start lag's, forward (Search._forward_within_gain)
     forward_within_sse: tuple | None = field(default=None, repr=False)   # ... its SSE per later campaign
-    p_not_worse: float | None = None   # a removal's: p of costing less than min_gain_pct (diag106b)
 
     def entry(self) -> dict:
         """The ``effects`` entry of ``diagnosis.json`` (CLI.md keys first)."""
@@ -143,8 +141,6 @@ class Evaluation:
             out["columns"] = [e.column, e.other]
         if self.jump_ratio is not None:
             out["evidence"]["self_prediction_jump_ratio"] = self.jump_ratio
-        if self.p_not_worse is not None:
-            out["evidence"]["p_value_not_worse"] = self.p_not_worse
         if self.gain_pct_within is not None:
             out["evidence"]["cv_rmse_gain_pct_within"] = self.gain_pct_within
         if self.gain_pct_within_rest is not None:
@@ -245,24 +241,6 @@ def margin_pvalue(mse_before, mse_after, margin_pct: float, seed: int = 0) -> fl
     and refused: they let a stand-in through that made the hot blocks worse, a hydraulics
     product for a gantry's hidden Y axis, p 0.0013, test error +5.8 %.)"""
     return float(_flip_pvalues(mse_before, mse_after, margin_pct, seed)[1])
-
-
-def not_worse_pvalue(unit_mse_before, unit_mse_after, margin_pct: float, seed: int = 0) -> float:
-    r"""One-sided p-value that a change costs less than ``margin_pct`` % of the CV RMSE, over the
-    held-out units (campaigns; forward: validation blocks): a non-inferiority test.
-
-    The null is that the unit MSEs after are at least :math:`(1 + m)^2` of those before on
-    average (the RMSE ``m`` worse or more); each unit's :math:`(1 + m)^2\,\mathrm{MSE}_k -
-    \mathrm{MSE}^{+}_k` has mean :math:`\le 0` under it, tested by flipping the units' signs
-    (:func:`margin_pvalue`'s test, the margin on the other side).  A sensor removal is judged by
-    it (diag106b): its pooled CV point estimate let a drifting sensor that a target reads go,
-    on fresh 10076 ``E_Z`` 5.00 -> 4.89 µm pooled while the 8 held-out campaigns ran -38 ... +39 %,
-    and the test error rose 4.565 -> 5.430 µm (``benchmarks/bench_diag106b.py``).  A removal
-    need not GAIN (diag75: the model may already discount the broken sensor); it must be shown
-    not to cost."""
-    b, a = np.asarray(unit_mse_before, float), np.asarray(unit_mse_after, float)
-    e = (1.0 + margin_pct / 100.0) ** 2 * b - a
-    return float(sign_flip_pvalues([e], seed=seed)[0]) if np.isfinite(e).sum() >= 1 else 1.0
 
 
 def _flip_pvalues(mse_before, mse_after, margin_pct: float, seed: int = 0) -> tuple:
@@ -443,18 +421,10 @@ class Search:
                         gain_pct_in_range=inside)
         self._block_evidence(ev, current)
         if effect.transform == "remove":   # evidence of the fault is the self-prediction jump
-            ev.p_not_worse = not_worse_pvalue(current.unit_mse, res.unit_mse, self.options.min_gain_pct,
-                                              self.options.seed)
             ev.clears_bar = bool(jump is not None and jump >= self.options.candidates.fault_ratio
                                  and pct > -self.options.min_gain_pct
-                                 and inside > -self.options.min_gain_pct   # NaN (no such row): refused
-                                 and ev.p_not_worse <= self._not_worse_level(current.unit_mse))
+                                 and inside > -self.options.min_gain_pct)   # NaN (no such row): refused
         return ev
-
-    def _not_worse_level(self, unit_mse) -> float:
-        """The level a removal's :func:`not_worse_pvalue` must reach: ``alpha``, or where the units
-        cannot reach it (fewer than 7) their smallest p -- every unit within the margin."""
-        return max(self.options.alpha, smallest_p(int(np.isfinite(unit_mse).sum())))
 
     def _block_evidence(self, ev: Evaluation, current: CVResult) -> None:
         """``ev``'s sign-flip p, margin p and lower bounds over the current test blocks, and the
@@ -799,8 +769,7 @@ def sensor_health(searches: dict, options: SearchOptions | None = None, start: d
 
     Self-prediction on the train campaigns (:mod:`.sensors`) nominates the sensor with the largest
     jump ratio at or above ``fault_ratio``; it is excluded when no target's
-    model gets worse without it by ``min_gain_pct`` % or more (CV RMSE; shown over the held-out
-    units at ``alpha``, :func:`not_worse_pvalue`), and
+    model gets worse without it by ``min_gain_pct`` % or more (CV RMSE), and
     the table is recomputed without it (a nominee clears there and in the first table, every
     sensor in: cascade81); a nominee that fails is kept and the next one is tried.  Returns
     the excluded sensors in order, per target the
