@@ -161,7 +161,7 @@ def auto(root: str) -> None:
     done = cli("run", "-m", f"data.path={data}", "model=auto,mlr", "eval.mode=simulation,one_step",
                "plots=none")
     print(f"sweep exit {done.returncode}\n    {_ends(done, 20)}", flush=True)
-    sweeps = sorted((base / "reports" / "multirun").glob("*/*"), key=lambda p: p.stat().st_mtime)
+    sweeps = sorted(p for p in (base / "reports" / "multirun").glob("*") if p.is_dir())
     sweep = sweeps[-1] if sweeps else None
     jobs = {}
     for metrics in sorted(sweep.rglob("metrics.json")) if sweep else []:
@@ -449,21 +449,25 @@ def write_export(base: Path, seed: int) -> pd.DataFrame:
     DUPLICATE_ROW written twice; the truth's rows."""
     import bench_audit91
 
-    if not (base / "contract.csv").exists():
+    if not (base / "whole.csv").exists():
         bench_audit91.lab_files(base, seed)
-    rows = pd.read_csv(base / "contract.csv")
+        (base / "contract.csv").rename(base / "whole.csv")
+    rows = pd.read_csv(base / "whole.csv")
     rows = rows.drop(index=range(*GAP)).reset_index(drop=True)
-    rows.to_csv(base / "truth.csv", index=False, float_format="%.17g")
+    rows.to_csv(base / "contract.csv", index=False, float_format="%.17g")
     cols = [c for c in rows.columns if c != "time"]
     stamps = (START_UTC + pd.to_timedelta(rows["time"].round(), unit="s")).dt.tz_convert(ZONE)
     out = rows[cols].rename(columns=_export_name)
     out.insert(0, "Timestamp", stamps)
     dup = DUPLICATE_ROW - (GAP[1] - GAP[0] if DUPLICATE_ROW >= GAP[1] else 0)
-    out = pd.concat([out.iloc[:dup + 1], out.iloc[[dup]], out.iloc[dup + 1:]], ignore_index=True)
-    text = out.assign(Timestamp=out["Timestamp"].map(lambda t: t.isoformat())).to_csv(
-        sep="\t", index=False, float_format="%.17g", lineterminator="\n")
-    (base / "export.tsv").write_text(text, encoding="utf-8")
-    out.to_parquet(base / "export.parquet", index=False)
+    # the lab's files, and each with its copy deleted, as the reader's refusal tells the lab to
+    for name, frame in (("export", pd.concat([out.iloc[:dup + 1], out.iloc[[dup]], out.iloc[dup + 1:]],
+                                             ignore_index=True)), ("once", out)):
+        text = frame.assign(Timestamp=frame["Timestamp"].map(lambda t: t.isoformat())).to_csv(
+            sep="\t", index=False, float_format="%.17g", lineterminator="\n")
+        (base / f"{name}.tsv").write_text(text, encoding="utf-8")
+        frame.to_parquet(base / f"{name}{'' if name == 'export' else '_pq'}.parquet", index=False)
+    out = frame
     lines = text.splitlines()
     print(f"wrote export.tsv / export.parquet: {len(out)} rows; {lines[0]!r}; row 1 {lines[1][:60]!r}; "
           f"around the change {[ln.split(chr(9))[0] for ln in lines[120:123]]}; the copy at data row "
@@ -477,11 +481,13 @@ def lab(root: str, families: str = "mlr,lagbank") -> None:
 
     base = bench_audit91.lab_root(root, str(LAB_SEED))
     rows = write_export(base, LAB_SEED)
-    for path in (base / "export.tsv", base / "export.parquet"):
+    for path in (base / "export.tsv", base / "export.parquet"):        # the copy in: init alone
+        done = cli("init", str(path), f"out={base / path.stem}-{path.suffix[1:]}-init")
+        print(f"== {path.name}: init exit {done.returncode}\n    {_ends(done, 6)}", flush=True)
+    for path in (base / "once.tsv", base / "once_pq.parquet", base / "contract.csv"):
         print(f"== {path.name}", flush=True)
-        if path.suffix == ".parquet":
-            (base / "truth-parquet.csv").write_bytes((base / "truth.csv").read_bytes())
-        bench_audit100.lab_against_contract(base, rows, path, families, _export_name)
+        if path.name != "contract.csv":
+            bench_audit100.lab_against_contract(base, rows, path, families, _export_name)
         init = base / f"{path.stem}-init"
         conf = next((init / "conf" / "data").glob("*.yaml"), None) if init.exists() else None
         if conf is None:
