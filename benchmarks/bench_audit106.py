@@ -93,6 +93,76 @@ H1. cr10067 (mlr, healthy): ``monitor`` 0 events; export C + pack 0; the C fed t
 Each break: named with command, file, row and numbers; mended where small and clear (a test
 failing on BASE, < 3 s of CPU, in the module of the code at fault), else listed for the lead with
 the reason it was left.
+
+Status: the bar above was committed in cbeebfcc before any of 10066-10068 was simulated; unchanged.
+Harness changes after it (no rule, no figure chosen): cell L's contract is the whole record with
+the gap's rows left out (``whole.csv`` kept), and, as both files' refusal of the row written twice
+says to delete it, ``once.tsv`` / ``once_pq.parquet`` are the same files without the copy (the
+files with it go through ``init`` alone); cell A's job listing read the sweep folder (its first
+glob read a job's: its figures were read again from the jobs' metrics.json).  Probes by hand,
+outside the bench (commands in the report): the served model of cell L's ``once`` across its gap,
+``monitor.input=-`` of ``once.tsv``, unit and timestamp variants of ``once.tsv``.
+
+Scored (2026-12-07, 08:36-09:30 UTC; 2 cores shared, load 5-12, every job ``nice``; 898240b4's
+src, then this branch's mends where said):
+
+A1 (cr10066, 13 train / 3 test runs): the sweep exit 0, 4 jobs, 0 failed; auto's E_Z "hedged
+towards MLR by the nested weight 0.852 (5 campaign folds)" (E_X: ati 1.00, no hedge said);
+``compare`` exit 0 (val_mode simulation for every job, test_mode each job's own); ``promote`` #1
+exit 0, v1 @champion: "ranked by val_rmse of the simulation-mode validation (the deployed mode,
+whatever eval.mode a run was scored in)", the auto simulation job (val 0.7449); #2 "already
+registered, no new version".  As deployed 0.8984394 = replay 0.8984394 (0 events) = the C fed the
+raw test files 0.8984394 = the job's test figure 0.8984394 (dmax 3.7e-16); pack 0; st 0; onnx exit
+2 in one line.  A1 holds.
+D1 (clone at 898240b4, shims): ``dvc repro`` exit 0 (simulate .. diagnose), again "Data and
+pipelines are up to date.", ``dvc metrics show`` exit 0 (test_rmse 0.75043 / 1.42353 / 5.80191,
+the README's table).  D1 holds.
+L1-L2 (lab 10068): export.tsv and export.parquet: ``init`` exit 2, "file .../export.tsv, column
+'time', line 603 (data row 602): duplicate time 2027-03-28T11:00:00+02:00 = 2027-03-28 09:00:00
+UTC (same as row 601): ... delete the row written twice"; the Parquet's named the instant at the
+first row's offset, "2027-03-28T10:00:00+01:00", a time the lab's clock never showed: MENDED
+(335b2807, values._zoned_cell: as the TSV's).  Without the copy, ``init`` with no key: tab, the
+bracketed units read (dX [µm] -> E_dX; mm, K, °F, um variants converted: test RMSE the same to
+1e-9), the time across the change to summer time in 60 s steps, the 3 h gap a pause
+(runs_at_pauses: true written, 2 runs, said).  mlr, lagbank: run, plain, replay, the C by rows and
+fed the raw bytes = the contract's to 0 (mlr E_X 2.230013729, the C scored against the run's
+first-sample reference; the Parquet's raw bytes refused by the C, documented); lagbank's replay
+1.9195 vs run 1.8202 (+5.5 %, the contract's too): 4 "correction bounded" envelope events, said;
+``monitor`` 0 events.  BREAKS: (1) ``monitor.input=-`` of once.tsv streamed one campaign, E_dX
+1.494 um where its two runs give 1.685, the pause unsaid: MENDED (6617bef1, stdin._pause_runs);
+(2) the served model across the gap (data rows 880-960 as one block): 2.82 um off the C, no event:
+MENDED (pyfunc: a session starts a campaign at a pause of the model's ``pause_s_``, said; the C
+from the registry gets TC_PAUSE_S from it too): 8.9e-16 um, event "new campaign".
+M1 (cr10066, 898240b4's src but hammerstein-interval run again with the mend; every cell: run = sim
+= replay = promo = C = cold = Craw to 7 digits, dmax <= 6.6e-15, pack 0, st 0, onnx 2, 0 events;
+ati: mlr's E_X one interval with the ambient interaction; interval: mlr 5, hammerstein 4
+intervals of E_X, the 13 train runs starting at 15.8-33.2 °C)::
+
+  family        none       ati        interval
+  mlr           1.110744   0.8876381  1.120702
+  pcr           2.369369   1.567839   1.115048
+  arx           1.112251   0.8028852  0.6697127
+  lagbank       0.8209203  0.6747787  0.6387432
+  hammerstein   0.8209203  0.6036422  0.7138839 (base: export c / st exit 2, below)
+  arx_rf        0.9454528  0.5711252  0.5804958
+  lstm          1.057008   0.8131621  1.01385
+  auto          0.8984384  run exit 2 in one line (name ati in model.candidates): documented
+
+BREAK: hammerstein-interval: export c and st exit 2, "a machine state's power starts at rest in
+one model and steady in another; one exported power has one start" (one interval's model saw the
+spindle stopped, another's not): MENDED (laws._powered: two powers, each with its start): pack 0,
+st 0, C = replay 0.7138839.
+F1-F2 (cr10066 mlr-none, T_headstock from C14's data row 200): C: nan / NaN / three empty cells
+exit 0, flagged row 200 (dropout), re-admitted at 210/212; negperiod exit 0, time_read 2 at row
+200, said, |dC| 0; adcmax (327.67, held) exit 0, out of range at row 200; |dC| <= 0.179 um, 0 at
+unflagged rows, all finite.  By hand: stuck at 150 / 100 / 85 / 0 / -327.68 the same; a time of
+NaN / nan / inf / empty: time_read 1; data.sample_period_s / resample_s / sim.generator's period
+-60, 0, nan: exit 2 naming the key.  Served: every fault 200 with its event (a JSON NaN too);
+a CSV body / truncated JSON / empty: 400 "Invalid input. Ensure that input is a valid JSON
+formatted string", the next healthy block = healthy; 8 sessions at once = each alone (0 um);
+two blocks of one session at once, 4 times: = in order; 0 tracebacks.  F1, F2 hold.
+H1 (cr10067, mlr): monitor 0 events; export C + pack 0 (2.13e-14 um); the C --flags fed C14, C15,
+C16: 0 flagged; the mirror 0; the ST 0 false flags, max |ST - C| 2.13e-14 um.  H1 holds.
 """
 
 from __future__ import annotations
