@@ -131,7 +131,7 @@ first-sample reference; the Parquet's raw bytes refused by the C, documented); l
 ``monitor`` 0 events.  BREAKS: (1) ``monitor.input=-`` of once.tsv streamed one campaign, E_dX
 1.494 um where its two runs give 1.685, the pause unsaid: MENDED (6617bef1, stdin._pause_runs);
 (2) the served model across the gap (data rows 880-960 as one block): 2.82 um off the C, no event:
-MENDED (pyfunc: a session starts a campaign at a pause of the model's ``pause_s_``, said; the C
+MENDED (a16ebcdc, pyfunc: a session starts a campaign at a pause of the model's ``pause_s_``, said; the C
 from the registry gets TC_PAUSE_S from it too): 8.9e-16 um, event "new campaign".
 M1 (cr10066, 898240b4's src but hammerstein-interval run again with the mend; every cell: run = sim
 = replay = promo = C = cold = Craw to 7 digits, dmax <= 6.6e-15, pack 0, st 0, onnx 2, 0 events;
@@ -150,7 +150,7 @@ intervals of E_X, the 13 train runs starting at 15.8-33.2 °C)::
 
 BREAK: hammerstein-interval: export c and st exit 2, "a machine state's power starts at rest in
 one model and steady in another; one exported power has one start" (one interval's model saw the
-spindle stopped, another's not): MENDED (laws._powered: two powers, each with its start): pack 0,
+spindle stopped, another's not): MENDED (56270234, laws._powered: two powers, each with its start): pack 0,
 st 0, C = replay 0.7138839.
 F1-F2 (cr10066 mlr-none, T_headstock from C14's data row 200): C: nan / NaN / three empty cells
 exit 0, flagged row 200 (dropout), re-admitted at 210/212; negperiod exit 0, time_read 2 at row
