@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import pandas as pd
 import pytest
 
 from thermocomp.core.io import read_dataset
@@ -65,3 +66,23 @@ def test_a_row_written_out_of_place_is_to_be_sorted_not_cut_as_a_clock_set_back(
     record(tmp_path / "lab.csv", [60 * i for i in range(60)] + [60 * i + 30 for i in range(29, 45)])
     with pytest.raises(ContractError, match="would mix its stretches"):
         read_dataset(tmp_path / "lab.csv")
+
+
+def test_a_parquet_time_with_its_zone_is_named_on_that_zone_s_clock(tmp_path):
+    # audit106: a lab's Parquet copy, its timestamps on Europe/Berlin's clock across the change to
+    # summer time, a row written twice at 11:00+02:00; the refusal named "10:00:00+01:00" (the
+    # first row's offset kept), a time that clock never showed
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    stamps = pd.date_range("2027-03-28 01:00", periods=12, freq="30min", tz="Europe/Berlin").tolist()
+    stamps = stamps[:8] + stamps[7:11]                       # the 8th (05:30+02:00) twice
+    table = pa.table({"time": pa.array(stamps, pa.timestamp("ns", "Europe/Berlin")),
+                      "T_spindle": [20.0 + 0.1 * i for i in range(12)],
+                      "E_X": [0.2 * i for i in range(12)]})
+    pq.write_table(table, tmp_path / "lab.parquet")
+    with pytest.raises(ContractError) as refused:
+        read_dataset(tmp_path / "lab.parquet")
+    assert refused.value.row == 9
+    assert refused.value.reason.startswith(
+        "duplicate time 2027-03-28T05:30:00+02:00 = 2027-03-28 03:30:00 UTC (same as row 8)")

@@ -75,3 +75,26 @@ def test_it_streams_as_it_predicts_from_rest():
     ham, _, X, test, batch = _held_out("rest")
     assert test.groupby("campaign")["S_spindle_rpm"].first().gt(0).any()
     np.testing.assert_allclose(stream_context(ham, X, test), batch, rtol=0, atol=1e-9)
+
+
+def test_a_power_at_rest_in_one_model_and_steady_in_another_exports_as_two():
+    # audit106: ATI's one model per interval (cr10066's hammerstein-interval): an interval whose
+    # spindle stood still starts its speed's power at rest, one where it always turned steady;
+    # the C and ST export refused both, "one exported power has one start"
+    from thermocomp.apps.deploy.export.laws import Powers, _powered
+
+    X, y, ctx = _runs(0, n_campaigns=4)
+    turning = ctx.assign(S_spindle_rpm=ctx["S_spindle_rpm"].replace(0.0, 2000.0))
+    fitted = [Hammerstein(lagbank=LagBank(n_taus=2), state_start="rest", choose_exponents=False)
+              .fit(X, y, context=c) for c in (ctx, turning)]
+    at_rest, steady = fitted
+    assert at_rest.rest_states_ == ["S_spindle_rpm"] and steady.rest_states_ == []
+    assert list(at_rest.state_scale_) == list(steady.state_scale_)     # the same power, but its start
+    powers = Powers()
+    inputs = list(at_rest.state_columns_)
+    (_, rest_feats), (_, steady_feats) = (_powered(h, inputs, powers) for h in fitted)
+    speed = inputs.index("S_spindle_rpm")
+    starts = {k[3] if len(k) > 3 else "first" for k in powers if k[0] == speed}
+    assert starts == {"first", "steady"}                     # two features of the speed's power
+    assert set(rest_feats) & powers.rest and not set(steady_feats) & powers.rest
+    assert not powers.rest & powers.steady

@@ -5,6 +5,7 @@ starting each run, as replay streams the runs."""
 from __future__ import annotations
 
 import io
+import json
 import subprocess
 
 import numpy as np
@@ -123,3 +124,38 @@ def test_the_served_model_reads_a_labs_wall_clock_times_as_replay_does(tmp_path)
     # (stranger74) a column the request lacks is named as the lab sends it, not only as T_T0
     with pytest.raises(MlflowException, match=r"lacks column\(s\) \['T0 \[°C\]' \(read as T_T0\)\]"):
         served.predict(rows.drop(columns="T0 [°C]"), params={"reset": True})
+
+
+def test_the_served_model_starts_a_campaign_where_the_time_pauses_as_the_c_does(tmp_path):
+    # audit106: a record read with data.runs_at_pauses (init writes it for a file that pauses):
+    # the reader and stream.c (TC_PAUSE_S) start a campaign at each pause, a served session went
+    # on as one campaign without a word (a lab's 3 h gap: 2.82 um off the C)
+    from test_monitor_runs52 import _long as _days_apart
+    from thermocomp.apps.deploy.pyfunc import CompensatorModel
+    from thermocomp.shell.builders import deployable
+
+    path = _days_apart(tmp_path / "alle.csv", clock=True)
+    raw = pd.read_csv(path, sep=";", decimal=",")
+    raw.drop(columns="Lauf").to_csv(path, sep=";", decimal=",", index=False)   # a day apart, no counter
+    common = (f"data.path={path}", "data.roles.error=[dX]", "data.runs_at_pauses=true",
+              "data.test_fraction=0.5")
+    assert main(["run", *common, "model=mlr", *FAST, f"out={tmp_path / 'run'}"]) == 0
+    cfg = _compose(*common, "model=mlr", "track=false")
+    ds, train_ids, _, _ = read_streamed(cfg)
+    train = {c: ds.campaigns[c] for c in train_ids}
+    deployed = deployable(cfg, deploy_stream(cfg, load_model(tmp_path / "run" / "model.pkl"), train),
+                          train, ds)
+    assert deployed.pause_s_ == 100 * 60.0
+    served = CompensatorModel(deployed)
+    rows = raw[raw["Lauf"] >= 3].drop(columns=["Lauf", "dX [µm]"]).reset_index(drop=True)
+    run3, run4 = rows.iloc[:30], rows.iloc[30:]
+    want = pd.concat([served.predict(None, run3, {"session": "a", "reset": True}),
+                      served.predict(None, run4, {"session": "b", "reset": True})], ignore_index=True)
+    one = served.predict(None, rows, {"session": "one", "reset": True})          # within a block
+    two = pd.concat([served.predict(None, run3, {"session": "two", "reset": True}),
+                     served.predict(None, run4, {"session": "two"})], ignore_index=True)   # between
+    for got in (one, two):
+        assert np.abs(got[["C_dX"]].to_numpy(float) - want[["C_dX"]].to_numpy(float)).max() <= 1e-12
+        said = json.loads(got["events"].iloc[30])
+        assert said[0]["to"] == "new campaign" and "pauses 23.5 h" in said[0]["reason"]
+    assert all(e == "[]" for e in one["events"].iloc[:30])

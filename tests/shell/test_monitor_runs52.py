@@ -96,3 +96,26 @@ def test_untimed_rows_on_stdin_are_a_period_apart_from_each_runs_start(tmp_path)
     with pytest.raises(ContractError, match=r"file <stdin>: no 'time' column .*set "
                                             r"data.sample_period_s"):
         stream_campaigns(text, ["T_T0"], ReadOptions.from_cfg({"roles": roles}))
+
+
+def test_a_long_file_on_stdin_is_split_at_its_pauses_as_the_file_is(tmp_path, monkeypatch):
+    # audit106: with data.runs_at_pauses (which `init` writes for a file that pauses), the file
+    # and stream.c start a campaign at each pause, the stream on stdin went on as one campaign
+    # 'stdin' without a word (a lab export's 3 h gap: monitor 1.494 um where its runs give 1.685)
+    path = _long(tmp_path / "alle.csv", clock=True)
+    frame = pd.read_csv(path, sep=";", decimal=",").drop(columns="Lauf")
+    frame.to_csv(path, sep=";", decimal=",", index=False)          # the runs a day apart, no counter
+    common = [f"data.path={path}", "data.roles.error=[dX]", "data.runs_at_pauses=true",
+              "data.test_fraction=0.5", "model=lagbank", *FAST]
+    assert main(["monitor", f"out={tmp_path / 'file'}", *common]) == 0
+    lines = path.read_text(encoding="utf-8").splitlines()
+    monkeypatch.setattr("sys.stdin", io.StringIO("\n".join([lines[0], *lines[61:]]) + "\n"))
+    assert main(["monitor", f"out={tmp_path / 'stdin'}", *common, "monitor.input=-"]) == 0
+    want, got = (json.loads((tmp_path / k / "monitor.json").read_text()) for k in ("file", "stdin"))
+    assert want["campaigns"] == ["alle_3", "alle_4"] and got["campaigns"] == ["stdin_1", "stdin_2"]
+    assert want["events"] == got["events"] == []
+    for key, value in want["targets"]["E_dX"].items():
+        assert got["targets"]["E_dX"][key] == pytest.approx(value, rel=1e-9, abs=1e-12), key
+    one, _ = stream_campaigns("\n".join(lines[:31]) + "\n", ["T_T0"], ReadOptions.from_cfg(
+        {"roles": {"error": ["dX"]}, "runs_at_pauses": True}))
+    assert list(one) == ["stdin"]                    # a stream of one run: no pause, one campaign

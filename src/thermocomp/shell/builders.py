@@ -235,10 +235,29 @@ def deployable(cfg: DictConfig, streaming, train: dict, ds=None):
     deployed.derived_ = parsed_derive(cfg.data.get("derive"))   # a reference's derived targets
     deployed.bits_ = parsed_bits(cfg.data.get("bits"))   # a served block's status word (bits85)
     deployed.slashed_ = slashed_time(cfg, ds)     # a served block's dates read in its order
+    deployed.pause_s_ = pause_seconds(cfg, ds)    # a served session's runs, as stream.c's (audit106)
     deployed.missing_values_ = [str(m) for m in cfg.data.get("missing_values") or ()]   # (-9999)
     # served: every row that carries a measured error is a reference (no schedule)
     deployed.adapt_ = adapt_from_config(cfg.get("adapt"), len(deployed.targets_), scheduled=False)
     return deployed
+
+
+def pause_seconds(cfg: DictConfig, ds, deployed=None) -> float:
+    """``TC_PAUSE_S`` and a served model's ``pause_s_``: with ``data.runs_at_pauses``, the step of
+    the time after which the reader starts the next run (:func:`.runs.pause_blocks`: PAUSE_PERIODS
+    of the record's period), so that the lab's file of appended tests streams each as the campaign
+    it was scored as; without the record read (a registered model), the ``deployed`` model's own
+    (audit106: it travels with the model, as its lab's names do); 0 without it."""
+    if ds is None:
+        return float(getattr(deployed, "pause_s_", 0.0) or 0.0)
+    if not cfg.data.get("runs_at_pauses"):
+        return 0.0
+    from ..core.context import TIME
+    from ..core.io.rates import PAUSE_PERIODS
+    from ..core.timerule import median_step
+
+    first = next(iter(ds.campaigns.values()))
+    return PAUSE_PERIODS * float(median_step(first[TIME].to_numpy(float)) or 0.0)
 
 
 def is_registered(source) -> bool:

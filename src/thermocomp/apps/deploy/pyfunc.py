@@ -46,6 +46,12 @@ campaign's end state in the model, ``end_states_``); the session's ``time`` is
 then shifted so that its first row follows that campaign's last sample by one
 sample period (event times are given back in the caller's clock).
 
+(audit106) A model whose record was read with ``data.runs_at_pauses`` (``pause_s_``, the step
+of the time after which the reader starts a run) starts a campaign from a reset where a
+session's time pauses longer, between blocks or within one, as the file's read and ``stream.c``
+(``TC_PAUSE_S``) do, said in an event of that row (``to``: ``new campaign``); it went on as one
+campaign without a word (a lab's 3 h gap: 2.82 µm off the C).
+
 A model that needs the campaign's ambient (ATI) but reads no ambient sensor (its
 record had the manifest's ``ambient_c``) takes it as ``params={"ambient_c": <°C>}``
 when a session starts (new or ``reset``); without it the session's rows are refused.
@@ -165,7 +171,7 @@ class CompensatorModel(mlflow.pyfunc.PythonModel):
         return ends[campaign]
 
     def _state(self, session: str, reset: bool, continues: str = "", ambient_c=None) -> list:
-        """``[stream state, time shift, learned, clock origin, time of day]`` of ``session``,
+        """``[stream state, time shift, learned, clock origin, time of day, last time]`` of ``session``,
         most recent last (the origin: the campaign's first timestamp, ns, once a block gave one;
         data91, the time of day: the last read and the days added, :func:`_no_clock`): a fresh one
         when new or reset (with the campaign's ``ambient_c``, for a model that reads no ambient
@@ -175,12 +181,14 @@ class CompensatorModel(mlflow.pyfunc.PythonModel):
         learned = self._sessions[session][2] if session in self._sessions else self._learned0
         if continues:
             end = self._end_state(continues)
-            self._sessions[session] = [copy.deepcopy(end.state), end, learned, None, _no_clock()]
+            self._sessions[session] = [copy.deepcopy(end.state), end, learned, None, _no_clock(),
+                                       float("nan")]
         elif reset or session not in self._sessions:
             if not reset:
                 log.warning(unheld_session(session))
             self.streaming.reset(float("nan") if ambient_c is None else float(ambient_c))
-            self._sessions[session] = [self.streaming._snapshot(), 0.0, learned, None, _no_clock()]
+            self._sessions[session] = [self.streaming._snapshot(), 0.0, learned, None, _no_clock(),
+                                       float("nan")]
         while len(self._sessions) > MAX_SESSIONS:
             self._sessions.popitem(last=False)
         self._sessions.move_to_end(session)
@@ -204,35 +212,56 @@ class CompensatorModel(mlflow.pyfunc.PythonModel):
             raise MlflowException(str(exc), error_code=INVALID_PARAMETER_VALUE) from exc
         # Serving may call from several threads: one session's samples in order, one at a time.
         with self._lock:
-            state = self._state(session, bool(params.get("reset")), str(params.get("continues") or ""),
-                                params.get("ambient_c"))
-            carried = list(state[4])        # (kept below only where the block is taken)
-            if TIME in frame.columns:
-                frame = _on_campaign_clock(frame, state, self.streaming.slashed_, carried)
-            if isinstance(state[1], EndState):
-                # a continuing campaign's clock follows its predecessor's last sample by one
-                # period, as `run` joins them (the client's own clock may restart at 0)
-                end = state[1]
-                state[1] = (end.time + end.period - float(frame[TIME].iloc[0])
-                            if TIME in frame.columns and len(frame) else 0.0)
-            shift = state[1]
-            if shift and TIME in frame.columns:
-                frame = frame.assign(**{TIME: pd.to_numeric(frame[TIME], errors="coerce") + shift})
-            self.streaming._restore(state[0])
-            try:
-                pred = self.streaming.predict(frame)
-            except ValueError as exc:  # OutOfEnvelopeError, ContractError: the caller's input
-                raise MlflowException(str(exc), error_code=INVALID_PARAMETER_VALUE) from exc
-            finally:  # a refused block leaves the session where it was (predict rolls back)
-                state[0] = self.streaming._snapshot()
-            state[4] = carried
-            adapt = getattr(self.streaming, "adapt_", None)
-            if adapt is not None:
-                targets = self.streaming.targets_
-                adapt.restore(state[2])
-                pred[targets] = adapt.correct(pred[targets].to_numpy(float), np.full(len(pred), np.nan),
-                                              references(frame, targets))
-                state[2] = adapt.snapshot()
+            reset, continues = bool(params.get("reset")), str(params.get("continues") or "")
+            outs, paused = [], None
+            while frame is not None:
+                state = self._state(session, reset, continues, params.get("ambient_c"))
+                out, frame, gap = self._block(state, frame)
+                if paused is not None and len(out) and "events" in out:
+                    out.loc[out.index[0], "events"] = _with_event(out["events"].iloc[0], paused)
+                outs.append(out)
+                reset, continues, paused = True, "", gap
+        outs = [out for out in outs if len(out)] or outs[:1]    # (a pause before the block's first row)
+        return outs[0] if len(outs) == 1 else pd.concat(outs, ignore_index=True)
+
+    def _block(self, state: list, frame: pd.DataFrame
+               ) -> tuple[pd.DataFrame, pd.DataFrame | None, dict | None]:
+        """The corrections of ``frame``'s rows in ``state``'s campaign up to a pause (the model's
+        ``pause_s_``, :func:`_pause_at`), the rows from it (None: none) and its event."""
+        raw, carried = frame, list(state[4])        # (kept below only where the block is taken)
+        if TIME in frame.columns:
+            frame = _on_campaign_clock(frame, state, self.streaming.slashed_, carried)
+        if isinstance(state[1], EndState):
+            # a continuing campaign's clock follows its predecessor's last sample by one
+            # period, as `run` joins them (the client's own clock may restart at 0)
+            end = state[1]
+            state[1] = (end.time + end.period - float(frame[TIME].iloc[0])
+                        if TIME in frame.columns and len(frame) else 0.0)
+        shift = state[1]
+        if shift and TIME in frame.columns:
+            frame = frame.assign(**{TIME: pd.to_numeric(frame[TIME], errors="coerce") + shift})
+        cut, gap = _pause_at(frame, state[5], getattr(self.streaming, "pause_s_", 0.0) or 0.0, shift)
+        rest = None
+        if cut is not None:
+            frame, rest = frame.iloc[:cut], raw.iloc[cut:].reset_index(drop=True)
+        self.streaming._restore(state[0])
+        try:
+            pred = self.streaming.predict(frame)
+        except ValueError as exc:  # OutOfEnvelopeError, ContractError: the caller's input
+            raise MlflowException(str(exc), error_code=INVALID_PARAMETER_VALUE) from exc
+        finally:  # a refused block leaves the session where it was (predict rolls back)
+            state[0] = self.streaming._snapshot()
+        state[4] = carried
+        if TIME in frame.columns and len(frame):
+            read = pd.to_numeric(frame[TIME], errors="coerce").dropna()
+            state[5] = float(read.iloc[-1]) if len(read) else state[5]
+        adapt = getattr(self.streaming, "adapt_", None)
+        if adapt is not None:
+            targets = self.streaming.targets_
+            adapt.restore(state[2])
+            pred[targets] = adapt.correct(pred[targets].to_numpy(float), np.full(len(pred), np.nan),
+                                          references(frame, targets))
+            state[2] = adapt.snapshot()
         out = pd.DataFrame({correction_column(t): -pred[t].to_numpy(float)
                             for t in self.streaming.targets_})
         out["n_clamped"] = pred["n_clamped"].to_numpy(np.int64)
@@ -241,7 +270,33 @@ class CompensatorModel(mlflow.pyfunc.PythonModel):
                 out[c] = pred[c].to_numpy(object)
             if shift:      # event times in the caller's clock
                 out["events"] = [_shifted(e, -shift) for e in out["events"]]
-        return out
+        return out, rest, gap
+
+
+def _pause_at(frame: pd.DataFrame, last: float, pause_s: float, shift: float
+              ) -> tuple[int | None, dict | None]:
+    """(audit106) The first row of ``frame`` whose time is more than ``pause_s`` after the last
+    read (``last``, the session's before the block), as stream.c's ``TC_PAUSE_S`` starts a
+    campaign there, and the event that says it (the time in the caller's clock); ``(None,
+    None)`` where none (or ``pause_s`` 0: the record was not read with data.runs_at_pauses)."""
+    if not pause_s or TIME not in frame.columns:
+        return None, None
+    times = pd.to_numeric(frame[TIME], errors="coerce").to_numpy(float)
+    read = np.flatnonzero(np.isfinite(times))
+    steps = np.diff(np.r_[last, times[read]])        # (NaN before a session's first time)
+    hit = np.flatnonzero(steps > pause_s)
+    if not hit.size:
+        return None, None
+    row, gap = int(read[hit[0]]), float(steps[hit[0]])
+    return row, {"time": float(times[row]) - shift, "sensor": TIME, "from": "ok", "to": "new campaign",
+                 "reason": f"the time pauses {gap / 3600:.3g} h, more than {pause_s:g} s "
+                           "(data.runs_at_pauses): a campaign started from a reset here, as the "
+                           "record's read and stream.c start one"}
+
+
+def _with_event(events: str, event: dict) -> str:
+    """A row's events (JSON list) with ``event`` first."""
+    return json.dumps([event, *json.loads(events or "[]")], ensure_ascii=False)
 
 
 def unheld_session(session: str) -> str:

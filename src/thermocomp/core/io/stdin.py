@@ -72,6 +72,7 @@ from .timestamps import (
     maybe_elapsed,
     on_local_clock,
     parsed,
+    pauses,
     seconds_of_day,
     time_kind,
     time_type,
@@ -347,18 +348,42 @@ def stream_campaigns(text: str, columns: list[str], opts, recorded: str | None =
     file's are (:mod:`.runs`), so each starts from a reset as a file's run does (:func:`read_stream`;
     ``recorded``: the training record's order of dates with slashes; ``lab``: as there)."""
     df, counts, blocks, origins = _read_runs(text, columns, opts, recorded, lab)
+    if blocks is None and opts.runs_at_pauses and TIME in df.columns:
+        blocks, origins = _pause_runs(df, origins[0])
     check_streamed(df[without_derived(df.columns, opts.derive)], blocks, opts, SOURCE,
                    df.attrs.get(HEADERS, {}))        # (data87) as a streamed file's values
     if blocks is None:
         df.attrs[TIME_ORIGIN] = origins[0]
         return {STDIN: df}, ({STDIN: counts} if counts else {})
-    parts = {cid: df.iloc[start:end].drop(columns=RUN).reset_index(drop=True)
+    parts = {cid: df.iloc[start:end].drop(columns=RUN, errors="ignore").reset_index(drop=True)
              for cid, start, end in blocks}
     for part, origin in zip(parts.values(), origins):
         part.attrs[TIME_ORIGIN] = origin
     missing = {cid: {c: int(n) for c, n in part[list(counts)].isna().sum().items() if n}
                for cid, part in parts.items()}
     return parts, {cid: n for cid, n in missing.items() if n}
+
+
+def _pause_runs(df: pd.DataFrame, origin) -> tuple[list | None, list]:
+    """(audit106) ``data.runs_at_pauses`` on a stream: its runs ``stdin_1``, ``stdin_2`` ... where
+    its time pauses (:func:`.runs.pause_blocks`' rule), each from its first sample as the file's
+    runs and stream.c's (``TC_PAUSE_S``) are, timestamps counted from it (a stream of one run: no
+    pause, one campaign); it went on as one campaign, the pause unsaid.  ``df``'s time re-based in
+    place; ``(blocks, each run's time origin)``."""
+    seconds = df[TIME].to_numpy(float)
+    found = pauses(seconds) + 1
+    if not found.size:
+        return None, [origin]
+    edges = [0, *map(int, found), len(seconds)]
+    blocks = [(f"{STDIN}_{k}", a, b) for k, (a, b) in enumerate(zip(edges, edges[1:]), 1)]
+    origins = [origin] * len(blocks)
+    if origin is not None:                     # a run's timestamps from its own first
+        for k, (_, a, b) in enumerate(blocks):
+            origins[k] = origin + pd.Timedelta(seconds=float(seconds[a]))
+            df.iloc[a:b, df.columns.get_loc(TIME)] = seconds[a:b] - seconds[a]
+    say(f"{SOURCE}: {len(blocks)} runs by the time's pauses (data.runs_at_pauses) streamed as "
+        "campaigns, each from a reset")
+    return blocks, origins
 
 
 def _table(text: str, sep: str) -> str:

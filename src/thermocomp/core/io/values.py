@@ -74,8 +74,8 @@ def _set_time_seconds(columns: dict, rows: int, path: Path, opts: ReadOptions,
         # timestamps on a local clock without an offset, and no data.timezone to read it
         local = (pa.types.is_timestamp(column.type) and column.type.tz is None
                  and opts.timezone is None)
-        _check_increasing(seconds, path, local, info.get("time_origin"),
-                          opts.max_duration_days, lines.time_cell if lines is not None else None)
+        _check_increasing(seconds, path, local, info.get("time_origin"), opts.max_duration_days,
+                          lines.time_cell if lines is not None else _zoned_cell(column))
         if local:
             said_if_clock_skips(seconds, path, at=at(lines), origin=info.get("time_origin"))
         if opts.resample_s is None:        # (on one grid, as the warning says to put it)
@@ -90,6 +90,17 @@ def _set_time_seconds(columns: dict, rows: int, path: Path, opts: ReadOptions,
     _check_duration(seconds, path, opts.max_duration_days)
     columns[TIME] = pa.array(seconds)
     return info
+
+
+def _zoned_cell(column: pa.ChunkedArray) -> Callable[[int], str] | None:
+    """(audit106) A data row's time as a table with no text (Parquet) holds it: a timestamp on its
+    zone's clock, ``+02:00`` after the change to summer time, not the first row's ``+01:00``, which
+    that clock never showed; None where the column is no timestamp with a zone."""
+    kind = column.type
+    if not (pa.types.is_timestamp(kind) and kind.tz):
+        return None
+    ns = pc.cast(pc.cast(column, pa.timestamp("ns", kind.tz)), pa.int64()).to_numpy()
+    return lambda row: pd.Timestamp(int(ns[row - 1]), tz="UTC").tz_convert(kind.tz).isoformat()
 
 
 def is_time_of_day(info: dict, header: str | None, written: str) -> bool:

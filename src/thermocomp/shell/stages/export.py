@@ -43,7 +43,7 @@ from ...core.io.source import check_streamed_columns
 from ...core.io.timestamps import CLOCK, OF_DAY_KIND, names_seconds_of_day, names_time_of_day
 from ...core.io.twins import copy_refused
 from ...core.scoring.evaluation import require_split
-from ..builders import deployable_model, is_registered, with_model_bits
+from ..builders import deployable_model, is_registered, pause_seconds, with_model_bits
 from ..config.checks import check_config
 from ..model_store import load_model, model_family
 from ..registry import registered_version
@@ -245,20 +245,6 @@ def _slashed(cfg: DictConfig, ds) -> int:
     return SLASHED.get(slashed_time(cfg, ds) or "", 0)
 
 
-def _pause_s(cfg: DictConfig, ds) -> float:
-    """``TC_PAUSE_S``: with ``data.runs_at_pauses``, the step of the time after which the reader
-    starts the next run (:func:`.runs.pause_blocks`: PAUSE_PERIODS of the record's period), so
-    that the lab's file of appended tests streams each as the campaign it was scored as; 0
-    without it (or without the record read)."""
-    if not cfg.data.get("runs_at_pauses") or ds is None:
-        return 0.0
-    from ...core.io.rates import PAUSE_PERIODS
-    from ...core.timerule import median_step
-
-    first = next(iter(ds.campaigns.values()))
-    return PAUSE_PERIODS * float(median_step(first[TIME].to_numpy(float)) or 0.0)
-
-
 def _day_seconds(cfg: DictConfig, ds, time_header) -> bool:
     """``TC_DAY_SECONDS``: ``data.time=of_day`` says the time is the time of day, or the record's
     time was read as seconds since midnight, a day added as it passed (the ingest report's
@@ -335,7 +321,7 @@ def export(cfg: DictConfig) -> dict:
     thousands = cfg.data.get("thousands")       # (the lab's 1.234,5: stream.c ungroups it)
     provenance.update(thousands=None if thousands is None else str(thousands)[:1],
                       elapsed=str(cfg.data.get("time") or "auto") == "elapsed",
-                      slashed=_slashed(cfg, ds), pause_s=_pause_s(cfg, ds),
+                      slashed=_slashed(cfg, ds), pause_s=pause_seconds(cfg, ds, deployed),
                       day_seconds=_day_seconds(cfg, ds, lab.get(TIME)))
     # (streamraw65: the lab's raw file as the reader reads it -- its character set and its marks
     # of a value not measured travel with the model, as data.thousands does)

@@ -372,17 +372,23 @@ def _target_law(est, n: int, period: float | None):
 
 def _powered(est, inputs: list, powers: dict) -> tuple[object, list[int]]:
     """``(linear estimator, its power features' indices)``: a Hammerstein model is its lag bank
-    on the inputs and the powers of its states (registered in ``powers``, shared by targets)."""
+    on the inputs and the powers of its states (registered in ``powers``, shared by targets).  A
+    power one model starts at rest and another steady (audit106: one ATI interval's model and
+    another's, ``rest_states_`` decided per fit) is two features, each with its start: the export
+    was refused, "one exported power has one start"."""
     if type(est) is not Hammerstein:
         return est, []
-    feats = [powers.setdefault((inputs.index(col), float(est.state_scale_[s]), float(e)), len(powers))
-             for e in est.exponents_ for s, col in enumerate(est.state_columns_)]
-    rest = [col in getattr(est, "rest_states_", ()) for _ in est.exponents_ for col in est.state_columns_]
-    for f, r in zip(feats, rest):
-        if f in powers.steady if r else f in powers.rest:
-            raise NotExportable("a machine state's power starts at rest in one model and steady in "
-                                "another; one exported power has one start")
-        (powers.rest if r else powers.steady).add(f)
+    rest = getattr(est, "rest_states_", ())
+    feats = []
+    for e in est.exponents_:
+        for s, col in enumerate(est.state_columns_):
+            at_rest = col in rest
+            key = (inputs.index(col), float(est.state_scale_[s]), float(e))
+            if key in powers and (powers[key] in powers.rest) != at_rest:
+                key = (*key, "rest" if at_rest else "steady")     # (its own start: a feature of its own)
+            f = powers.setdefault(key, len(powers))
+            (powers.rest if at_rest else powers.steady).add(f)
+            feats.append(f)
     return est.lagbank_, feats
 
 
