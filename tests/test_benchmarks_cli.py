@@ -89,7 +89,7 @@ COMMAND_BENCHES = (
     "bench_remeasure62", "bench_restart98", "bench_review95", "bench_review96", "bench_rigdiag70",
     "bench_settle95", "bench_settle96", "bench_speedsq68", "bench_st100", "bench_st100b", "bench_st101",
     "bench_st102", "bench_st102b", "bench_st103", "bench_st103b", "bench_st103c", "bench_st105",
-    "bench_st105b", "bench_st106",
+    "bench_st105b", "bench_st106", "bench_st106b",
     "bench_st93", "bench_st93b", "bench_st94", "bench_st94b", "bench_st95", "bench_st95b",
     "bench_st96", "bench_st96b", "bench_st97", "bench_st97b", "bench_st97c", "bench_st97d", "bench_st98",
     "bench_st98b", "bench_st99", "bench_st99b", "bench_st99c", "bench_stable67", "bench_step93",

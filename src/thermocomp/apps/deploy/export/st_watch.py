@@ -809,8 +809,9 @@ IF mon_held >= 0 THEN
     END_IF;
     mon_run_was := mon_run;
     (* anything else while it is out the block does not follow (a rule named) ends its *)
-    (* judgement, as before st95b *)
-    IF mon_rule <> 0 OR mon_run >= MON_FREEZE_RUN[mon_held] THEN
+    (* judgement, as before st95b; (st106b) not a run of one out by BLIND_OUT: the C keeps *)
+    (* it out, its fallback set served, and lets it back only once its reading moves *)
+    IF mon_rule <> 0 OR (mon_run >= MON_FREEZE_RUN[mon_held] AND mon_held_set < 0) THEN
         mon_lost := TRUE;
     END_IF;
     IF mon_lost THEN
