@@ -47,9 +47,11 @@ Per sample, of each monitored sensor ``k`` (the input ``MON_INPUT[k]``, the C's 
 * (st96) the C's drift judgement with every sensor in, none out (:func:`blind_constants`): a
   sensor no other predicts that explains the judged sensors beyond the band (the C's
   ``_explaining``) flagged ``BLIND_OUT`` and held out alone by the same hold, back where every
-  judged sensor's error with every sensor in is within its warning band over the ring; while it
-  is out the set without it judged, the block's judgement ending where the C could act on it.
-  A drift judgement it cannot follow ends the ``BLIND_OUT`` judgement to the campaign's end;
+  judged sensor's error with every sensor in is within its warning band over the ring, (st106b)
+  its reading standing still not ending this hold (the C names nothing for it, serving its
+  fallback set on, and lets it back once the reading moves); while it is out the set without it
+  judged, the block's judgement ending where the C could act on it.  A drift judgement it cannot
+  follow ends the ``BLIND_OUT`` judgement to the campaign's end;
   (st100) but one with ``MON_FOLLOW_OTHERS`` + 1 judged sensors at their warning band
   (``mon_field_warned``), where whatever its culprit the C vetoes or declares a new thermal
   state and takes nothing out, pauses it (``mon_pause``) to a calm window: ``MON_WINDOW`` rows in
