@@ -46,7 +46,32 @@ simulated; main = 477ce9a4's block, ``ROOT/main-src``):
 * KEPT where B1-B4 hold and a test fails on 477ce9a4; else REFUSED (src reverted, the rule in
   benchmarks/st106b_rule.patch).
 
-Measured: see below (filled after the runs).
+Measured (2026-12-07, 2 cores shared; the rule and the bar = e2fa2d75, unchanged after; main =
+477ce9a4; CPU user + sys of each command as it prints it; VERDICT REFUSED: B2 not met on one seen
+row, B1, B3, B4 met; src reverted, the rule, its test and docs in benchmarks/st106b_rule.patch):
+
+* B1 MET (``score /tmp/st106b/seen lr9985 dl9964 lr9964 lr9966 lr9967 dl9966 dl10007 lr10007
+  lr10008``, 101.8 s; st105's fresh ``lr10013 .. dl10015``, 76.1 s, gate NOT scored lr10014): 81
+  windows, 43 with hold rows (28 + 15; 4005 rows), all <= 1.4e-13 um (main 2.2 / 33 um), 0 rows
+  whose block set is not the C's (main 131 in 2 windows: lr9985 T_head_right 72, 1.2 um; lr9964
+  T_xdrive 59, 2.2 um; and 65 in 1: lr10015 T_spindle_front, 33 um).  0 rows beside another out.
+* B2 NOT MET: 2 flag rows differing from main.  lr9985 3732: main silent, the tree names the C's
+  ``SETTLED T_head_right`` (the C's own: allowed).  lr10015 3723 (the bump's fall, a jump of the
+  held sensor): main, lost at the run, flags ``JUMP T_spindle_front``; the tree, holding, re-
+  references it silently (st102) as the C, which names nothing there.  The tree = the C on that
+  row, but the bar lets only a silent main pass: "any other differing row fails".
+* B3 MET (``healthy /tmp/st106b/seen`` st102b's 8, 103.9 s): 0 rows outside the holds whose c
+  differs from main's, 0 flag rows differing; hold rows (lr9964 10, dl9964 11, dl9967 10) <= 7.1e-14.
+* B4 MET, scored once (``score /tmp/st106b/fresh lr10054 dl10054 lr10055 dl10055 lr10056
+  dl10056``, 70.4 s; ``healthy`` the same, 74.0 s; simulated after e2fa2d75 by bench_cmon92's
+  ``made``): gate NOT scored dl10055 (``mon_stop_row`` 4499), lr10056 (3117); 25 windows, 6 with
+  hold rows (592), all <= 8.2e-14 um (main 5.7); main's set off the C's in 1 (lr10054 T_zdrive, 81
+  rows, 5.7 um; the tree 5.9e-14); flag rows differing 1, the C's own (lr10054 3732 ``SETTLED
+  T_zdrive``); healthy 6 records: 0 c rows, 0 flag rows differing from main.
+* Test (in the patch): test_export_st100 +1 case, the bumped sensor's reading held 12 rows while
+  out; fails on 477ce9a4 (a FREEZE flagged at the run's 11th row where the C names nothing, the
+  hold lost, up to 0.41 um off the C).  The module 6.05 / 6.74 s without, 6.72 / 6.49 with (two
+  paired runs: +0.67, -0.25 s).  ST lines 2235 -> 2236; PARSED_DIGEST new (blark parses it).
 
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``)::
 
