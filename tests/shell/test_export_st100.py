@@ -37,6 +37,7 @@ FIELD, AT, SIZE = ("T_head_left", "T_col_front_top", "T_bed_right"), 300, -2.0
 JUMPED, JUMP_AT, JUMP_LIMITS = "T_amb", START - 150, 3.0    # (st101) its spike: 2 rows, 3 jump limits
 HELD_AT, HELD_LIMITS = START + 30, -1.2    # (st102) the bumped one's spike while out (up: beyond range)
 PAUSED_AT = AT + 18    # (st105) st101's spike 10 rows into the C's new state (from AT + 8)
+STILL_AT, STILL = START + 40, 12    # (st106b) the bumped one's reading standing still while out
 
 
 def _judging(v) -> tuple:
@@ -153,3 +154,27 @@ def test_the_block_follows_the_cs_silent_re_reference_of_the_blind_out_it_holds(
     assert st_said[HELD_AT] == st_said[HELD_AT + 2] == (False, 0, -1)
     assert held[out:back] == [(False, k)] * (back - out) and held[back] == (False, -1)
     assert np.max(np.abs(st[back:] - c[back:])) <= TOLERANCE_UM
+
+
+def test_the_block_holds_a_blind_out_whose_reading_stands_still(record):  # noqa: F811
+    """(st106b) The bumped sensor's reading standing still while the C holds it out by its
+    ``BLIND_OUT``: past st95b's ``MON_FREEZE_RUN`` the block ended the hold (``mon_lost``) and
+    served the model's set on the live reading, while the C names nothing there, keeps it out with
+    its fallback set served and lets it back only after its reading moves again."""
+    _, ss, frame, block = record
+    k = [ss.inputs[i] for i in ss.monitor["inputs"]].index(BLIND)
+    df, end = bumped(frame, BLIND)
+    df.loc[STILL_AT:STILL_AT + STILL - 1, BLIND] = df.loc[STILL_AT - 1, BLIND]
+    st, st_said, held, c, c_said = _stepped(ss, block, df.iloc[:end + 40], _held)
+    # the C: its BLIND_OUT before the run, nothing named in it, its BACK after it
+    out = next(i for i, s in enumerate(c_said) if s[1])
+    assert c_said[out][1:] == (BLIND_OUT, k) and START < out < STILL_AT
+    back = next(i for i in range(out + 1, len(c_said)) if c_said[i][1])
+    assert c_said[back][1:] == (BACK, k) and back > STILL_AT + STILL
+    # the block: held from the C's BLIND_OUT to its BACK through the run (before st106b: lost at
+    # the run's MON_FREEZE_RUN-th row, then flagged FREEZE past MON_BLIND_RUN, st98b, where
+    # the C names nothing), = the C all along, its fallback set served
+    assert [i for i, s in enumerate(st_said) if s[0]] == [out]
+    assert held[out:back] == [(False, k)] * (back - out) and held[back] == (False, -1)
+    assert ss.monitor["fallback_set"][k] > 0
+    assert np.max(np.abs(st - c)) <= TOLERANCE_UM

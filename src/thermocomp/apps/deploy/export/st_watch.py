@@ -47,9 +47,11 @@ Per sample, of each monitored sensor ``k`` (the input ``MON_INPUT[k]``, the C's 
 * (st96) the C's drift judgement with every sensor in, none out (:func:`blind_constants`): a
   sensor no other predicts that explains the judged sensors beyond the band (the C's
   ``_explaining``) flagged ``BLIND_OUT`` and held out alone by the same hold, back where every
-  judged sensor's error with every sensor in is within its warning band over the ring; while it
-  is out the set without it judged, the block's judgement ending where the C could act on it.
-  A drift judgement it cannot follow ends the ``BLIND_OUT`` judgement to the campaign's end;
+  judged sensor's error with every sensor in is within its warning band over the ring, (st106b)
+  its reading standing still not ending this hold (the C names nothing for it, serving its
+  fallback set on, and lets it back once the reading moves); while it is out the set without it
+  judged, the block's judgement ending where the C could act on it.  A drift judgement it cannot
+  follow ends the ``BLIND_OUT`` judgement to the campaign's end;
   (st100) but one with ``MON_FOLLOW_OTHERS`` + 1 judged sensors at their warning band
   (``mon_field_warned``), where whatever its culprit the C vetoes or declares a new thermal
   state and takes nothing out, pauses it (``mon_pause``) to a calm window: ``MON_WINDOW`` rows in
@@ -809,8 +811,9 @@ IF mon_held >= 0 THEN
     END_IF;
     mon_run_was := mon_run;
     (* anything else while it is out the block does not follow (a rule named) ends its *)
-    (* judgement, as before st95b *)
-    IF mon_rule <> 0 OR mon_run >= MON_FREEZE_RUN[mon_held] THEN
+    (* judgement, as before st95b; (st106b) not a run of one out by BLIND_OUT: the C keeps *)
+    (* it out, its fallback set served, and lets it back only once its reading moves *)
+    IF mon_rule <> 0 OR (mon_run >= MON_FREEZE_RUN[mon_held] AND mon_held_set < 0) THEN
         mon_lost := TRUE;
     END_IF;
     IF mon_lost THEN
