@@ -27,7 +27,7 @@ COMMAND_BENCHES = (
     "bench_audit86", "bench_audit86b", "bench_audit87", "bench_audit88", "bench_audit88b", "bench_audit89",
     "bench_audit91", "bench_audit93", "bench_audit94", "bench_audit95", "bench_audit96", "bench_audit96b",
     "bench_audit97", "bench_audit98", "bench_audit99", "bench_auto101", "bench_auto105", "bench_auto105b",
-    "bench_auto106", "bench_auto106b", "bench_auto106c", "bench_mon106b",
+    "bench_auto106", "bench_auto106b", "bench_auto106c", "bench_auto106d", "bench_mon106b",
     "bench_auto70", "bench_auto73", "bench_auto74", "bench_auto76", "bench_auto80", "bench_auto81b",
     "bench_auto82", "bench_auto82b", "bench_auto84", "bench_auto84b", "bench_auto84c", "bench_auto85",
     "bench_auto85b", "bench_auto85c", "bench_auto86", "bench_auto86b", "bench_auto87", "bench_auto87b",
