@@ -10,6 +10,9 @@ Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the vote and hedge c
     python benchmarks/bench_auto106d.py cost ROWS       # the hedge's CPU on a white one-fold residual
     python benchmarks/bench_auto106d.py trace STORE RECORD   # per target: blocks, lam, per-block errors
 
+The rule is REFUSED and its src is ``benchmarks/auto106d_rule.patch``: ``git apply`` it first (every
+command calls its ``one_fold_weight`` / ``fold_blocks``).
+
 STORE22 / STOREONE / STORE: as bench_auto106c's (``/tmp/auto105b/main``, ``/tmp/auto105b/one``,
 ``/tmp/auto105b/fresh`` and auto106b's fresh main-key fits of seeds 10069-10073, seen now).  main =
 the stored W with auto105b's hedge replayed.  The commands are bench_auto106c's, run with this tree's
@@ -51,6 +54,31 @@ before seeds 10095-10099 were simulated; KEPT only if all hold):
     (``hedge=campaigns``) and the rule's (the default), scored once on its own test: no new loser
     (main / MLR <= 1 < rule / MLR), geo rule / MLR <= geo main / MLR over the five, and no fresh
     record rule / main > 1.05.
+
+Measured (2026-12-07, the rule's src (now ``benchmarks/auto106d_rule.patch``); ``OMP_NUM_THREADS=1``,
+2 shared cores; CPU user + sys by ``/usr/bin/time``: ``seen`` 3.9 s, ``fl`` 1.2, ``fresh`` 23.7).
+REFUSED: (6) fails.
+(1) SEEN 22 (``seen /tmp/auto105b/main /tmp/auto105b/one /tmp/auto105b/fresh STORE106B``, STORE106B:
+    links to auto106b's ``fresh/main`` + its ``train_campaigns.json``): lab5401 keeps lam 1; losers 6,
+    geo 0.8192, as main: met.
+(2) worst seen rule / main 1.0005 over 42 records (year4_10072, E_Y lam 0.985): met.  Moved: lab10032
+    1.227 -> 1.016 x MLR (E_Y lam 0: 0.891 -> 1.000; E_Z lam 0: 1.793 -> 1.000), lab10069 1.204 ->
+    0.993, lab10070 1.500 -> 1.494, lab10071 1.386 -> 1.205.
+(3) the 10 one-campaign records: no target hedged, geo 0.7654 both: met.
+(4) fl_thermal 90/10 (one train record, 5 time-block folds: not hedged): 2.481 as main: met.
+(5) ``cost 2000``: 8 blocks, lam 0.534, hedge 0.37 s CPU = 6.7 x one vote (``cost 500``: 7 blocks,
+    lam 0.543, 5.4 x): met.
+(6) FRESH 10095-10099 (drawn once, after (1)-(5)), auto / MLR main -> rule: lab10095 1.595 -> 1.594,
+    lab10096 1.008 -> 1.015, lab10097 0.938 -> 0.953, year4_10098 1.131 -> 0.942, year4_10099 0.926 ->
+    0.986; no new loser, geo 1.0958 -> 1.0742, but year4_10099 1.065 x main (> 1.05): NOT met.
+Why (``trace STORE year4_10099`` and ``lab10096``, after the verdict): the median is a sign vote
+where A is near MLR.  year4_10099 E_Z: main W is MLR 0.96 + arx / lagbank 0.04; on the 7 blocks A /
+MLR is 0.996, 1.001, 1.001, 1.046, 1.008, 1.010, 1.000: A loses the median block by 0.1-1 %, so lam
+goes the whole way to 0 and the test's 0.917 x MLR goes to 1.000.  A block near ratio 1 does not sit
+out, as the rule assumed: it votes by the sign of a tiny margin.  lab10096 E_Z (3 blocks of 400): A /
+MLR 2.158, 0.723, 10.231 (the choice made on 2 of 3 blocks is not W: W / MLR 0.861 on block 2), lam 0,
+test 0.834 -> 1.000.  A next rule must weigh a block's say by how far its margin is from a tie
+(at least as the mean measures do), or leave lam near 1 where the margins are inside the noise.
 """
 
 from __future__ import annotations
