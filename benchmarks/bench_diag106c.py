@@ -63,6 +63,56 @@ BAR (committed before any of 10090-10094 is simulated; not moved after).  BASE =
 Fresh kinds (chosen before drawing; 8 train / 4 test runs, bench_diag106's ``CLIMATE``): 10090,
 10092, 10094 ``hidden_source`` (the kind the rule is for); 10091 ``lag_node``; 10093
 ``axis_position`` (harm guards: no veto expected to move there).
+
+Scored (2026-12-07; BASE = 1707a192's src, ``git archive``; RULE = 0f814b78's src, now
+``diag106c_rule.patch`` (src + tests/apps/test_diagnose_beyond106c.py); ROOT /tmp/diag106c/fresh;
+2 cores shared, load 5-7; CPU user + sys of the bench processes with their children, ``/usr/bin/time``:
+``draws`` BASE 59.1 s (simulate included), RULE 44.0 s; diagnose alone 45.8 / 43.9 s over the 10 draws)
+-------------------------------------------------------------------------------------------------
+No (draw, target) of the 20 differs between BASE and RULE (accepted effects and test RMSE)::
+
+  draw, target         round 1 (BASE = RULE)                                         test (µm)
+  10090 hydraulic E_X  ambient law 43.1 % (saturates); S_hyd 14400 s lag (absolute)  3.659, nothing
+                       34.8 %, p_fam 0.0117 over 8 campaign blocks: does not clear
+            E_Z        ambient law 58.5 %; S_hyd 14400 / 7200 s lags (absolute) CLEAR  8.394, nothing
+                       (51.9 / 48.7 %, p_fam 0.0039 / 0.0078), outside its band; on
+                       its residual -0.9 / -0.6 %: kept out by RULE too
+  10091 lag E_X        ambient intervals 54.4 %; no lag clears                         5.199, nothing
+  10092 hydraulic E_X  S_hyd 7200 s lag (absolute) first, 34.3 %, p_fam 0.039          2.959, nothing
+  10093 position E_Z   S_pos_Z x T_headstock, x T_frame1 (found, both)                 8.488 -> 1.719
+  10094 hydraulic E_X  ambient law 72-73 %; S_hyd 14400 s lag 46.2 %, p_fam 0.32        2.522, nothing
+  clean twins          nothing on any of 10 (draw, target), both
+
+K1 **FAILS** (found BASE 1 of 5, RULE 1: 10093; strict count the same); K2 met (clean nothing);
+K3 met (control never clears); K4 met (no row differs).  K5 (seen, reported): bench_diag88's
+``seen`` rows (21 case x target, the 4 SEEN draws' 12, 8885 E_Z / 9150 E_Z among them) identical;
+on bench_diag106's six climate draws RULE moves one row, 10074 E_X 3.639 -> 1.744 µm (the trace
+above), the clean twins nothing.  **REFUSED** (K1): src reverted, the rule and its test in
+``diag106c_rule.patch``.
+
+Why, traced (fresh draws read after the score; no rule designed on them):
+
+* The veto is not what keeps the hidden source out of fresh E_X: on 10090 / 10092 / 10094 its
+  reads (34-46 % CV gain, 1 regressor) do not clear at all -- their test blocks are the 8
+  campaigns (519-572 samples each), family-wise p 0.0117-0.32.  10074's 19 finer blocks (185
+  samples) let it reach 0.0017.  The limit there is the evidence, not the choice.
+* Where the veto does bite on fresh (10090 E_Z), the cleared reads are S_hyd's slow absolute
+  lags: the oil's level follows the room's, and beyond the ambient law they gain nothing
+  (-0.9 %): by the rule's own reading stand-ins for the level law.  Yet taken
+  (``bench_diag106.py whatif``, ``diagnose.families=[signal] diagnose.targets=[E_Z]``, BASE) the 14400 s
+  lag cuts E_Z's test 8.394 -> 5.095 µm (-39.3 %): a one-regressor read of the climate room's
+  level law helps where the 12-regressor law cannot be taken -- the other side of rule 1's
+  planted:8885 / 9150 E_Z, where such stand-ins raised the test.  The veto asks "is it the
+  same explanation?"; what decides the test is whether the law behind it is reachable at all.
+* The user's model: ``diagnose model=auto`` exits 2 ("diagnose the family auto kept,
+  model=<family>"); ``thermocomp run model=auto`` (9.9 / 7.2 s CPU) keeps on 10074 E_X
+  hammerstein (weight 0.77), E_Z ati (0.42); on 10078 E_X MLR (1.00), E_Z ati (1.00): a user
+  following auto's E_X choice diagnoses MLR and misses 10078's lag.  With
+  ``ati=cmeans`` (what auto keeps for E_Z, what docs/simulation.md reports best on the 43-run
+  room) fresh 10091 E_X finds T_nc_spindle_motor 7200 s +init (74.4 %, p_fam 0.0003), before
+  1.967 (MLR's 5.199) -> 1.230 µm; its clean twin nothing (ATI's before 0.331 against MLR's
+  0.294).  The message names ``model=<family>``, and ``ati`` is no ``model=`` (it is
+  ``ati=cmeans``): left, out of this task's scope.
 """
 
 from __future__ import annotations

@@ -119,7 +119,6 @@ class Evaluation:
     gain_pct_within_rest: float | None = None  # the same without the campaign gaining most there
     gain_pct_forward_within: float | None = None   # a start lag's, forward (Search._forward_within_gain)
     forward_within_sse: tuple | None = field(default=None, repr=False)   # ... its SSE per later campaign
-    gain_pct_beyond: float | None = None      # on a saturated best rival's residual (diag106c)
 
     def entry(self) -> dict:
         """The ``effects`` entry of ``diagnosis.json`` (CLI.md keys first)."""
@@ -148,8 +147,6 @@ class Evaluation:
             out["evidence"]["cv_rmse_gain_pct_within_rest"] = self.gain_pct_within_rest
         if self.gain_pct_forward_within is not None:
             out["evidence"]["forward_gain_pct_within"] = self.gain_pct_forward_within
-        if self.gain_pct_beyond is not None:
-            out["evidence"]["cv_rmse_gain_pct_beyond_rival"] = self.gain_pct_beyond
         out["effect"] = e.to_dict()
         return out
 
@@ -259,7 +256,7 @@ def _pct(gain: float, rmse: float) -> float:
     return 100.0 * gain / rmse if rmse > 0 else 0.0
 
 
-def choose(eligible: list, rivals: list = (), beyond=None) -> list:
+def choose(eligible: list, rivals: list = ()) -> list:
     """Order the candidates that cleared the bar, the one to accept first (empty: none).
 
     A broken sensor goes first (nothing should be fitted on it).  Otherwise
@@ -291,11 +288,6 @@ def choose(eligible: list, rivals: list = (), beyond=None) -> list:
     with 2 directions (CV MSE 0.627, outside the band of 0.603 of the lag of every input) over 3
     (0.588, inside), and the test error rose 1.28 -> 1.37 µm (lag:9270 E_X;
     ``benchmarks/bench_diag89.py``).
-
-    ``beyond(ev, best)`` (:meth:`Search._beyond_saturated`), where given: a best rival that did
-    not clear because it saturates the campaigns keeps out only the cleared candidates that, judged
-    on its residual (the rival taken first as the model's own), no longer clear.  One that still
-    clears adds its own explanation and is admitted as a same-effect read is (diag106c).
     """
     faults = [ev for ev in eligible if ev.effect.transform == "remove"]
     rest = [ev for ev in eligible if ev.effect.transform != "remove"]
@@ -307,7 +299,7 @@ def choose(eligible: list, rivals: list = (), beyond=None) -> list:
     limit = mse.mean() + (mse.std(ddof=1) / np.sqrt(mse.size) if mse.size > 1 else 0.0)
     good = [ev for ev in rest if ev is best or ev.result.unit_mse.mean() <= limit]
     if not good:   # the best is an uncleared rival and no cleared candidate is within its band
-        good = [ev for ev in rest if _same_effect(ev, best) or (beyond is not None and beyond(ev, best))]
+        good = [ev for ev in rest if _same_effect(ev, best)]
     return faults + sorted(good, key=lambda ev: (ev.n_features, -ev.gain_lcb))
 
 
@@ -737,7 +729,7 @@ class Search:
             control = next((ev for ev in evals if ev.control), None)
             bar = control.gain if control is not None else -np.inf
             eligible = forward_first(choose([ev for ev in evals if ev.clears_bar and not ev.control
-                                             and ev.gain > bar], rivals=evals, beyond=self._beyond_saturated))
+                                             and ev.gain > bar], rivals=evals))
             screened = [{"kind": e.kind, "column": e.column, "transform": e.label,
                          "screen_r2": r2} for e, r2 in sorted(
                              (s for s in scored if np.isfinite(s[1])), key=lambda s: -s[1])[:20]]
@@ -758,31 +750,6 @@ class Search:
             steps.append({"effect": best.effect.title, "cv_rmse": current.rmse})
         return SearchResult(p.target, original, self._deployed(current), accepted,
                             list(self.excluded), rounds, self_prediction_table, steps)
-
-    def _beyond_saturated(self, ev: Evaluation, rival: Evaluation) -> bool:
-        """True when ``rival`` did not clear, saturates the campaigns (:meth:`saturates`, asked as
-        :meth:`_clears` asks it) and ``ev`` clears the whole bar on its residual: the model with
-        the rival refitted with ``ev`` against the model with the rival, every check (gain, p,
-        margin, within the campaigns, a start lag's) as in a round (diag106c).
-
-        A saturating rival's CV gain may be a real law the campaigns cannot confirm (a climate
-        room's sensitivities falling with the level: the ambient law, 12 regressors on 8 train
-        campaigns, 29.0 % against 15.8 % for the hidden hydraulic source x T_headstock, which
-        cleared at family-wise p 0.0017 and was kept out, 10074 E_X stayed 3.64 µm); a candidate
-        that clears again once that law is in the model is no stand-in for it.  Dropping the veto
-        outright (bench_diag88c rule 1) let start lags in that stood in for such a law
-        (planted:8885 E_Z +10.6 %): those gain little once it is in."""
-        if rival.clears_bar or self.problem.shared_ranked or not self.saturates(rival.n_features):
-            return False
-        own = self.effects
-        self.effects = own + [rival.effect]
-        try:
-            nested = self._evaluate(ev.effect, rival.result, float("nan"))
-            self._within_checks(nested, rival.result)
-        finally:
-            self.effects = own
-        ev.gain_pct_beyond = nested.gain_pct
-        return bool(nested.clears_bar)
 
     def _deployed(self, current: CVResult) -> CVResult:
         """The final model's CV: with an MLR base and only effects of several features (a lag
