@@ -85,7 +85,12 @@ No (draw, target) of the 20 differs between BASE and RULE (accepted effects and 
 
 K1 **FAILS** (found BASE 1 of 5, RULE 1: 10093; strict count the same); K2 met (clean nothing);
 K3 met (control never clears); K4 met (no row differs).  K5 (seen, reported): bench_diag88's
-``seen`` rows (21 case x target, the 4 SEEN draws' 12, 8885 E_Z / 9150 E_Z among them) identical;
+``seen`` rows (21 case x target, the 4 SEEN draws' 12, 8885 E_Z / 9150 E_Z among them) identical
+(CPU 22.7 / 20.2 s); bench_remeasure62's ``diagnose`` rows (92 cases, 139 case x target: the rows
+bench_moretest68 re-scores) identical, accepted effects and test RMSE (CPU 237 / 207 s, BASE
+first, under more load: no cost is claimed either way); the diagnose test modules with RULE:
+tests/apps/test_diag*.py 91 passed (the new test among them; both its tests fail on BASE),
+tests/shell/test_diag*.py 56 passed;
 on bench_diag106's six climate draws RULE moves one row, 10074 E_X 3.639 -> 1.744 µm (the trace
 above), the clean twins nothing.  **REFUSED** (K1): src reverted, the rule and its test in
 ``diag106c_rule.patch``.
