@@ -21,6 +21,7 @@ def test_model_auto_is_refused_before_the_search_naming_what_to_diagnose(short_d
     err = capsys.readouterr().err
     assert code == 2
     assert "model=auto is not diagnosed" in err and "model=<family>" in err
+    assert "model=<family> ati=cmeans" in err     # an ATI candidate is no model= (diag106c)
     assert "Traceback" not in err and not (tmp_path / "diagnosis.json").exists()
 
 

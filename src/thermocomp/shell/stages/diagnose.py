@@ -110,6 +110,7 @@ def diagnose(cfg: DictConfig) -> dict:
         # unbuilt candidates inside the effects' wrapper, could not be fitted: a traceback
         raise ConfigError("diagnose: model=auto is not diagnosed (the diagnosed model around it "
                           "cannot be built); diagnose the family auto kept, model=<family> "
+                          "(for a kept `ati+<family>`: model=<family> ati=cmeans) "
                           "(metrics.json of `thermocomp run model=auto`)")
     dcfg = cfg.diagnose
     options = search_options(dcfg)
