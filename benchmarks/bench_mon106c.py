@@ -26,6 +26,7 @@ MEASURED (c668e59b's src, 2026-12-07, 2 cores shared; CPU user+sys 2.3-5.1 s a t
   record    model        replay/run-1  rows moved  rule (reason)                    dSSE µm²
   lw10088   mlr cmeans   -1.47 %       21 of 4032  _check_stepped (jump: self-pred.  -128.07
             (BASE)                     (R1b 2600-2620) error stepped -2.27 °C)      (-127.80 on 3 rows)
+  lw10088   mlr ati=days -1.39 %       21 (the same) _check_stepped                   -106.17
   la10087   mlr cmeans   -1.5e-05      20 of 4032  _check_stepped (-1.05 °C)         -0.16
   lr10060   mlr cmeans   0             0           none (0 events)                  0
   ed10035   mlr          +5.7 / +3.9 % 429 D7 + 738 D8  Judgement._explaining        +1770 +3539 (E_X)
