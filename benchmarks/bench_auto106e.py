@@ -8,6 +8,10 @@ Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the vote and hedge c
     python benchmarks/bench_auto106e.py fl STORE                             # fl_thermal 90/10, replayed
     python benchmarks/bench_auto106e.py fresh OUT       # seeds 10110-10114, fitted and scored ONCE
     python benchmarks/bench_auto106e.py cost ROWS       # the hedge's CPU on a white one-fold residual
+    python benchmarks/bench_auto106e.py trace STORE RECORD   # per target: blocks, lam, per-block p, q
+
+The rule is REFUSED and its src (with its test) is ``benchmarks/auto106e_rule.patch``: ``git apply``
+it first (every command calls its capped ``fold_blocks``; on c668e59b's src they fail).
 
 STORE22 / STOREONE / STORE: as bench_auto106d's (``/tmp/auto105b/main``, ``/tmp/auto105b/one``,
 ``/tmp/auto105b/fresh``, auto106b's fresh main-key fits of seeds 10069-10073) and auto106d's fresh
@@ -49,6 +53,38 @@ before seeds 10110-10114 were simulated; KEPT only if all hold):
     forward).  Drawn only if (1)-(5) hold.  Each fitted twice, main's key (``hedge=campaigns``) and
     the rule's (the default), scored once on its own test: no new loser (main / MLR <= 1 < rule /
     MLR), geo rule / MLR <= geo main / MLR over the five, and no fresh record rule / main > 1.05.
+
+Measured (2026-12-07, the rule's src, now ``benchmarks/auto106e_rule.patch``; ``OMP_NUM_THREADS=1``,
+2 shared cores; CPU user + sys by ``/usr/bin/time``: ``seen`` 4.0 s, ``fl`` 1.3 s, ``cost`` 1.4 /
+1.8 s).  REFUSED: (2) fails.
+(1) SEEN 22 (``seen /tmp/auto105b/main /tmp/auto105b/one /tmp/auto105b/fresh STORE106B STORE106D``;
+    STORE106B / STORE106D: links to auto106b's / auto106d's ``fresh/main`` + ``train_campaigns.json``):
+    lab5401 keeps lam 1; losers 6, geo 0.8192, as main: met.
+(2) worst seen rule / main 1.2262 over 47 records (year4_10072 0.616 -> 0.756 x MLR): NOT met.  Also
+    over 1.01: year4_10099 0.926 -> 0.986 (1.065 x main), lab10097 0.938 -> 0.966 (1.029), lab10070
+    1.500 -> 1.539 (1.026).  Better: lab10032 1.227 -> 1.037, lab10069 1.204 -> 1.007, lab10071
+    1.386 -> 1.181, lab10095 1.595 -> 1.254, year4_10098 1.131 -> 0.963, lab10096 1.008 -> 0.998,
+    year4_10073 0.553 -> 0.550.
+(3) the 10 one-campaign records: no target hedged, geo 0.7654 both: met.
+(4) fl_thermal 90/10 (one train record, 5 time-block folds: not hedged): 2.481 as main: met.
+(5) ``cost 2000``: 8 blocks, lam 0.553, hedge 0.37 s CPU = 6.2 x one vote (``cost 500``: 7 blocks,
+    lam 0.565, 5.0 x): met.
+(6) FRESH 10110-10114 NOT drawn: the verdict was fixed by (2); the seeds stay fresh for a next rule.
+Why (2) fails (``trace STORE RECORD``, after the verdict): the cap bounds the cost
+and the white-fold lam (5), but on the seen records it moves few blocks: of the 33 one-fold
+targets in the stores above, every lab fold (1,200 rows) has 3-8 blocks as before; only 6 year4
+targets (folds of 57-68 rows: year4_10073 E_X/E_Y, year4_10098 E_X/E_Y, year4_10099 E_X/E_Z) are
+capped.  The records auto106b scored keep its figures but year4_10073 (0.538 there, 0.550 here).
+Two defects of the mean of ratios remain, neither a matter of block count:
+- one block with small MLR error rules: year4_10072 E_Z, 3 blocks of 32 rows (decorrelation 27):
+  A / MLR 2.537, 0.362, 0.377 (MLR MSE 30, 67, 105); sum p 0.274, sum q 0.826, lam 0.333, test
+  0.524 -> 0.775 x MLR.
+- near a tie the mean is a sign vote too: year4_10099 E_Z (W = MLR 0.96 + 0.04 others), 7 blocks,
+  A / MLR 0.996-1.046, q ~ 0.000-0.001, sum p < 0, so lam = clip(sum p / sum q) = 0 and the test's
+  0.917 goes to 1.000: auto106d's failure, by the mean as well.  lab10070 E_Y (W MLR 0.66), q <=
+  0.25: lam 0.039, test 0.880 -> 0.995.
+A next rule would need the fold's evidence that A differs from MLR at all (q small on every block)
+before it moves lam, not another way to average the same <= 8 ratios.
 """
 
 from __future__ import annotations
@@ -100,9 +136,50 @@ def cost(rows: str) -> None:
           f"{'met' if blocks <= 8 and t2 - t1 <= 10 * (t1 - t0) else 'NOT met'}")
 
 
+def trace(store: str, record: str) -> None:
+    """Per one-fold target of RECORD in STORE: the blocks, lam, and per block MLR's MSE, A / MLR, the
+    kept W / MLR and the terms p_b, q_b of the mean; the test at lam 1 and at the rule's lam."""
+    import json
+
+    import bench_auto87b as b87
+
+    from thermocomp.core.models.hedge import fold_blocks, hedge_weight, nested_prediction
+
+    rep = json.loads((Path(store) / f"{record}.json").read_text())
+    for t, r in rep["targets"].items():
+        with np.load(Path(store) / f"{record}.{t}.npz", allow_pickle=True) as z:
+            a = {k: z[k] for k in z.files}
+        w = {n: float(v) for n, v in r["auto"]["weights"].items()}
+        if np.unique(a["oof_fold"]).size != 1 or b87._nonzero(w) == {"mlr": 1.0}:
+            print(f"{t}: not hedged (not one fold, or MLR alone)")
+            continue
+        names = [n for n in b87.ORDER if f"oof_{n}" in a]
+        preds, y = np.column_stack([a[f"oof_{n}"] for n in names]), a["oof_y"]
+        base, one = names.index("mlr"), np.zeros(len(y), int)
+        units = fold_blocks(y, preds[:, base])
+        lam = hedge_weight(preds, y, one, base, a105.N_FOLDS, units)
+        e = y - preds[:, base]
+        d = nested_prediction(preds, y, one, base, a105.N_FOLDS, units) - preds[:, base]
+        kept = sum(v * a[f"oof_{n}"] for n, v in w.items())
+        print(f"{t}: {len(y)} rows, {np.unique(units).size} blocks, lam {lam:.3f}, kept W "
+              f"{ {n: round(v, 2) for n, v in w.items()} }")
+        for j in np.unique(units):
+            on = units == j
+            ee = float(e[on] @ e[on])
+            p, q = float(e[on] @ d[on]) / ee, float(d[on] @ d[on]) / ee
+            print(f"   block {j}: {on.sum()} rows, MLR MSE {ee / on.sum():.3g}, A / MLR {1 - 2 * p + q:.3f}, "
+                  f"W / MLR {np.sum((y[on] - kept[on]) ** 2) / ee:.3f}, p {p:.3f}, q {q:.3f}")
+        test = sum(v * a[f"test_{n}"] for n, v in w.items())
+        for lam_ in (1.0, lam):
+            mix = lam_ * test + (1 - lam_) * a["test_mlr"]
+            print(f"   test RMSE / MLR at lam {lam_:.3f}: "
+                  f"{b87._rmse(a['test_y'] - mix) / b87._rmse(a['test_y'] - a['test_mlr']):.3f}")
+
+
 def main(argv: list[str]) -> int:
     return run_commands(__doc__, {"seen": a106b.seen, "fl": lambda s: a106b.fl(s),
-                                  "fresh": lambda out: fresh(out), "cost": lambda n: cost(n)},
+                                  "fresh": lambda out: fresh(out), "cost": lambda n: cost(n),
+                                  "trace": trace},
                         argv, cpu=sys.stderr)
 
 

@@ -1,22 +1,13 @@
 """``model=auto``'s kept blend hedged towards MLR by a nested convex weight (auto105; gated on
-campaign folds, auto105b: ``benchmarks/bench_auto105b.py``; one campaign fold by at most
-:data:`MAX_FOLD_BLOCKS` of its blocks, auto106e: ``benchmarks/bench_auto106e.py``):
-``lam * W + (1 - lam) * MLR``, ``lam`` from
-out-of-fold predictions of auto's choice made without the unit (a fold, or a block of the one
-fold) they score."""
+campaign folds, auto105b: ``benchmarks/bench_auto105b.py``): ``lam * W + (1 - lam) * MLR``, ``lam``
+from out-of-fold predictions of auto's choice made without the fold they score."""
 
 from __future__ import annotations
 
 import numpy as np
 
 from ..metrics import rmse
-from ..model_selection.blocks import cut_blocks, decorrelation_length
 from .blend import FOLD_MARGIN, fold_ratios, one_se_mean, vote_weights, zero_margin
-
-# one campaign fold: each block is one nested vote, so the blocks are capped (auto106b's one block
-# per decorrelation length cost 108 s CPU a target on a 2,000-row white fold, and one-row blocks
-# pulled lam toward MLR); 8 is the most the labs' folds had (3-8), so they keep theirs
-MAX_FOLD_BLOCKS = 8
 
 
 def chosen_weights(preds, y, fold, base_column: int, min_folds: int) -> np.ndarray:
@@ -36,40 +27,28 @@ def chosen_weights(preds, y, fold, base_column: int, min_folds: int) -> np.ndarr
     return w
 
 
-def fold_blocks(y, mlr, most: int = MAX_FOLD_BLOCKS) -> np.ndarray:
-    """The block of each row of ONE validation fold: contiguous stretches at least as long as MLR's
-    residual takes to decorrelate (about one independent look each), and at most ``most`` of them."""
-    one = np.zeros(len(y), int)
-    length = decorrelation_length(y - mlr, one, np.ones(len(y), bool))
-    return cut_blocks(one, one, max(length, -(-len(y) // most)))
-
-
-def nested_prediction(preds, y, fold, base_column: int, min_folds: int, units=None) -> np.ndarray:
-    """On each unit j (default: each fold), the prediction of auto's choice made on the rows
-    outside j alone, their folds as they are (one fold cut into blocks stays one fold)."""
-    units = fold if units is None else units
+def nested_prediction(preds, y, fold, base_column: int, min_folds: int) -> np.ndarray:
+    """On each fold j, the prediction of auto's choice made on the other folds alone."""
     out = np.zeros(len(y))
-    for j in np.unique(units):
-        on = units == j
+    for j in np.unique(fold):
+        on = fold == j
         w = chosen_weights(preds[~on], y[~on], np.unique(fold[~on], return_inverse=True)[1],
                            base_column, min_folds)
         out[on] = preds[on] @ w
     return out
 
 
-def hedge_weight(preds, y, fold, base_column: int, min_folds: int, units=None) -> float:
-    """``lam`` in [0, 1] least in the mean over the units (default: the folds) of the mix's
-    squared error over MLR's (the votes' measure), the mix of the nested prediction A and MLR:
-    with e = y - MLR and d = A - MLR, ``sum_j <e,d>_j/|e|_j^2 / sum_j |d|_j^2/|e|_j^2``; 1 with
-    fewer than 2 units."""
-    units = fold if units is None else units
-    if np.unique(units).size < 2:
+def hedge_weight(preds, y, fold, base_column: int, min_folds: int) -> float:
+    """``lam`` in [0, 1] least in the mean over the folds of the mix's squared error over MLR's
+    (the votes' measure), the mix of the nested prediction A and MLR: with e = y - MLR and
+    d = A - MLR, ``sum_j <e,d>_j/|e|_j^2 / sum_j |d|_j^2/|e|_j^2``; 1 with fewer than 2 folds."""
+    if np.unique(fold).size < 2:
         return 1.0
     e = y - preds[:, base_column]
-    d = nested_prediction(preds, y, fold, base_column, min_folds, units) - preds[:, base_column]
+    d = nested_prediction(preds, y, fold, base_column, min_folds) - preds[:, base_column]
     num = den = 0.0
-    for j in np.unique(units):
-        on = units == j
+    for j in np.unique(fold):
+        on = fold == j
         ee = max(float(e[on] @ e[on]), 1e-300)
         num, den = num + float(e[on] @ d[on]) / ee, den + float(d[on] @ d[on]) / ee
     return 1.0 if den <= 0 else float(np.clip(num / den, 0.0, 1.0))
