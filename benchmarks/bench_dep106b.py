@@ -39,21 +39,134 @@ Scored: (below, after the run)
 
 from __future__ import annotations
 
+import io
+import json
+import subprocess
 import sys
 from pathlib import Path
 
+import numpy as np
+import pandas as pd
+
 HERE = Path(__file__).resolve().parent
 REPO = HERE.parent
-sys.path[:0] = [str(HERE), str(REPO / "tests")]
+sys.path[:0] = [str(HERE), str(REPO / "tests"), str(REPO / "tests" / "shell")]
 from _cli import run_commands  # noqa: E402
 
 BASE = "c668e59b"
 LAB_SEED = 10118
 
 
+def _cli(*args: str) -> subprocess.CompletedProcess:
+    import bench_audit97
+
+    return bench_audit97._cli(*args)
+
+
+def _deployed(search: list[str], pkl: Path):
+    """The model made deployable as ``connect`` / ``replay`` make a model.pkl (the adaptive)."""
+    from thermocomp.shell.builders import deployable_model
+    from thermocomp.shell.cli import _compose
+    from thermocomp.shell.source import read_streamed
+
+    cfg = _compose([*search, f"connect.model={pkl}", "track=false"], "connect")
+    ds, train_ids = read_streamed(cfg, test=False)[:2]
+    return deployable_model(cfg, ds, train_ids, str(pkl), "connect.model")[0]
+
+
+def _connect(base: Path, search: list[str], pkl: Path, program: pd.DataFrame, deployed) -> tuple:
+    """``connect`` (a process) against tests' vendor server fed ``program`` (contract columns,
+    ``time``): the offsets in the registers at each row (µm) and connect.json."""
+    from asyncua import ua
+
+    from conftest import free_port
+    from vendor_machine import VendorMachine, connect_nodes, served_in_thread
+
+    sensors = {c: f"s=Lab.{c}" for c in deployed.columns_}
+    offsets = {t: (f"s=Lab.Offset_{t}", ua.VariantType.Double, 1.0) for t in deployed.targets_}
+    machine = VendorMachine({"LAB.MPF": program}, free_port(), sensors=sensors, offsets=offsets,
+                            wait_s=120.0)
+    machine.stop_pid = -1
+    thread = served_in_thread(machine)
+    out = base / "connect"
+    proc = subprocess.Popen([sys.executable, "-m", "thermocomp", "connect", *search, f"out={out}",
+                             f"connect.model={pkl}", f"connect.endpoint=opc.tcp://127.0.0.1:{machine.port}",
+                             "connect.retry_s=0.4", "connect.give_up_s=120", "connect.hold_s=600",
+                             "track=false", *connect_nodes(sensors, offsets)],
+                            stdout=subprocess.DEVNULL, stderr=open(base / "connect.err", "w"))
+    machine.stop_pid = proc.pid
+    try:
+        code = proc.wait(timeout=1800)
+    finally:
+        machine.closing.set()
+        thread.join(timeout=60)
+    link = json.loads((out / "connect.json").read_text()) if (out / "connect.json").is_file() else {}
+    print(f"  connect exit {code}, raised {machine.raised}, answered {int(np.sum(machine.served.answered))}"
+          f"/{len(machine.served.answered)} rows", flush=True)
+    return np.vstack(machine.served.offsets), link
+
+
 def lab(root: str) -> None:
     """Cell lab (module doc)."""
-    raise NotImplementedError("written after the bar")
+    import bench_audit91
+    import bench_audit106
+
+    import cbuild
+    from thermocomp.apps.deploy.pyfunc import CompensatorModel, save_compensator
+    from vendor_machine import as_published
+
+    base = bench_audit91.lab_root(root, str(LAB_SEED))
+    rows = bench_audit106.write_export(base, LAB_SEED)          # the contract's rows, the gap out
+    tsv = base / "once.tsv"
+    init = base / "once-init"
+    done = _cli("init", str(tsv), f"out={init}")
+    conf = next((init / "conf" / "data").glob("*.yaml"))
+    said = conf.read_text()
+    print(f"init exit {done.returncode}; runs_at_pauses in its config: {'runs_at_pauses: true' in said}",
+          flush=True)
+    search = [f"hydra.searchpath=[file://{init / 'conf'}]", f"data={conf.stem}"]
+    pkl = base / "run" / "model.pkl"
+    done = _cli("run", *search, "model=mlr", f"out={pkl.parent}", "track=false", "plots=none")
+    print(f"run exit {done.returncode}", flush=True)
+    deployed = _deployed(search, pkl)
+    print(f"pause_s_ {deployed.pause_s_:g} s; inputs {deployed.columns_}; targets {deployed.targets_}",
+          flush=True)
+    # the rows as the vendor server publishes them (Float nodes): every form reads the same
+    program = rows[["time", *deployed.columns_]].reset_index(drop=True)
+    seen = as_published({"LAB.MPF": program}, sensors={c: "" for c in deployed.columns_})["LAB.MPF"]
+    lab_rows = pd.read_csv(tsv, sep="\t", dtype={"Timestamp": str})
+    for c in deployed.columns_:
+        lab_rows[bench_audit106._export_name(c)] = seen[c].to_numpy(float)
+    fed = base / "published.tsv"
+    lab_rows.to_csv(fed, sep="\t", index=False, float_format="%.17g", lineterminator="\n")
+    targets = [bench_audit106._export_name(t).split(" [")[0] for t in rows.columns if t.startswith("E_")]
+    sent = lab_rows.drop(columns=[c for c in lab_rows.columns if c.split(" [")[0] in targets])
+    served = CompensatorModel(deployed).predict(None, sent, {"session": "lab", "reset": True})
+    cols = [c for c in served.columns if c.startswith("C_")]
+    events = [(i, e) for i, ev in enumerate(served["events"]) for e in json.loads(ev)
+              if e.get("to") == "new campaign"]
+    print(f"served: {len(served)} rows, 'new campaign' at rows {[i for i, _ in events]}", flush=True)
+    # b. the C from the registered pyfunc folder
+    folder = save_compensator(deployed, base / "registered") if not (base / "registered").exists() \
+        else base / "registered"
+    done = _cli("export", f"export.model={folder}", "export.format=c", "export.check=false",
+                "track=false", f"out={base / 'code'}")
+    header = (base / "code" / "compensator.h").read_text()
+    define = next((ln for ln in header.splitlines() if ln.startswith("#define TC_PAUSE_S")), "none")
+    stream = cbuild.compiled(base / "code")
+    ran = subprocess.run([str(stream)], input=fed.read_bytes(), capture_output=True)
+    c_out = pd.read_csv(io.BytesIO(ran.stdout))
+    print(f"export exit {done.returncode}: {define[:40]!r}; stream exit {ran.returncode} "
+          f"{ran.stderr.decode()[-200:]!r}", flush=True)
+    c_vals = c_out[cols].to_numpy(float)
+    print(f"b. |served - C| max {np.abs(served[cols].to_numpy(float) - c_vals).max():.3g} um over "
+          f"{len(c_vals)} rows", flush=True)
+    # a. connect
+    offsets, link = _connect(base, search, pkl, program, deployed)
+    pauses = [e for e in link.get("events", []) if e["event"] in ("pause", "clock_gap")]
+    print(f"a. |connect - C| max {np.abs(offsets + c_vals).max():.3g} um, |connect - served| max "
+          f"{np.abs(offsets + served[cols].to_numpy(float)).max():.3g} um; pause events "
+          f"{[(e['event'], e['sample'], e['detail'][:80]) for e in pauses]}", flush=True)
 
 
 def main(argv: list[str]) -> int:
