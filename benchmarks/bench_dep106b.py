@@ -34,7 +34,27 @@ BAR (written and committed BEFORE seed 10118 was built; not to move after):
   CPU each.  Fresh seed 10118 (scored once, after this bar is committed): a and b the same, to
   1e-9 µm.  KEPT where every case holds; else REFUSED (src reverted, the rule kept as a patch).
 
-Scored: (below, after the run)
+Harness after the bar (no rule, no figure chosen): every form is fed the rows as the vendor
+server publishes them (its sensor nodes are Float: the inputs rounded to float32, written back
+into the lab's TSV, ``published.tsv``, for the served model and the C), all 1261 rows of
+``once.tsv`` (both runs: the model is fitted on the first, the second is the test run; the pause
+is between them), connect as a process (the server sends it SIGTERM after the last row).
+
+Scored once (2026-12-07 ~10:05 UTC, 2 cores shared, load 10-13, ``nice``): seed 10118's
+``once.tsv``: init exit 0, ``runs_at_pauses: true``; ``run model=mlr`` exit 0 (12 inputs, E_dX
+E_dY); ``pause_s_`` 6000 s.  Served as one block from a reset: 'new campaign' at row 900 (the
+first after the 3.02 h gap).
+  b. the C from the registered pyfunc folder: ``#define TC_PAUSE_S 6000.0``; |served - C| max
+     2.84e-14 µm over 1261 rows.  Holds (on c668e59b the same: audit106's mend).
+  a. connect: 1261/1261 rows answered, exit 0; |connect - C| max 2.84e-14 µm, |connect -
+     served| max 2.22e-16 µm; one event ``pause`` ("the time paused 3.02 h, more than 6000 s")
+     at the sample before the first after the gap (899), no ``clock_gap``.  On c668e59b's src
+     (the same command, ROOT apart): |connect - C| max 32 µm, the gap said as ``clock_gap`` only
+     (one campaign streamed on).  Holds.
+  c. (tests/shell/test_pauses106.py, no seed) holds; connect and the C step one sample or row
+     at a time: what they answered before a refused row stands (docs/to-the-machine.md).
+CPU (user + sys, /usr/bin/time of the bench process, its connect child not counted): 19.2 +
+1.9 s (this tree), 17.5 + 1.5 s (c668e59b).  Verdict: KEPT.
 """
 
 from __future__ import annotations
