@@ -50,7 +50,9 @@ sample period (event times are given back in the caller's clock).
 of the time after which the reader starts a run) starts a campaign from a reset where a
 session's time pauses longer, between blocks or within one, as the file's read and ``stream.c``
 (``TC_PAUSE_S``) do, said in an event of that row (``to``: ``new campaign``); it went on as one
-campaign without a word (a lab's 3 h gap: 2.82 µm off the C).
+campaign without a word (a lab's 3 h gap: 2.82 µm off the C).  (dep106b) A block refused in its
+part after a pause leaves the session as it found it, the part before the pause not taken either
+(it kept that part's state, though the caller got no correction of the block).
 
 A model that needs the campaign's ambient (ATI) but reads no ambient sensor (its
 record had the manifest's ``ambient_c``) takes it as ``params={"ambient_c": <°C>}``
@@ -213,14 +215,22 @@ class CompensatorModel(mlflow.pyfunc.PythonModel):
         # Serving may call from several threads: one session's samples in order, one at a time.
         with self._lock:
             reset, continues = bool(params.get("reset")), str(params.get("continues") or "")
-            outs, paused = [], None
-            while frame is not None:
-                state = self._state(session, reset, continues, params.get("ambient_c"))
-                out, frame, gap = self._block(state, frame)
-                if paused is not None and len(out) and "events" in out:
-                    out.loc[out.index[0], "events"] = _with_event(out["events"].iloc[0], paused)
-                outs.append(out)
-                reset, continues, paused = True, "", gap
+            outs, paused, found = [], None, None
+            try:
+                while frame is not None:
+                    state = self._state(session, reset, continues, params.get("ambient_c"))
+                    found = list(state) if found is None else found   # (its fields are replaced, not changed)
+                    out, frame, gap = self._block(state, frame)
+                    if paused is not None and len(out) and "events" in out:
+                        out.loc[out.index[0], "events"] = _with_event(out["events"].iloc[0], paused)
+                    outs.append(out)
+                    reset, continues, paused = True, "", gap
+            except MlflowException:
+                # (dep106b) refused after a pause: the part before it is not taken either (no
+                # half state: the caller got no row's correction), as one part rolls back
+                if found is not None:
+                    self._sessions[session] = found
+                raise
         outs = [out for out in outs if len(out)] or outs[:1]    # (a pause before the block's first row)
         return outs[0] if len(outs) == 1 else pd.concat(outs, ignore_index=True)
 

@@ -177,6 +177,10 @@ class Connection:
         self.stopped = None          # the signal that stopped the client, if one did
         self._placed = ""            # how connect.warm's log was placed on the server's clock
         self.own = OwnClock(period_s)    # the client's clock against the server's (connect71)
+        # (dep106b) data.runs_at_pauses' step (the model's pause_s_, stream.c's TC_PAUSE_S): a
+        # longer one starts a campaign from a reset, as the record's read, the C and serve do
+        self.pause_s = float(getattr(deployed, "pause_s_", 0.0) or 0.0)
+        self._paused = None          # the pause (s) the next step starts a campaign after
 
     def _event(self, kind: str, detail: str, level: int = logging.INFO, **extra) -> None:
         e = {"wall_s": round(clock_now() - self._start, 3), "sample": self._last,
@@ -370,6 +374,9 @@ class Connection:
                         logging.WARNING)
             self._t0 -= self._at - at + self.period_s
             self._at = at - self.period_s
+        if (self.pause_s and not new and self._at is not None and math.isfinite(at)
+                and at - self._at > self.pause_s):
+            self._paused, new = at - self._at, True      # (dep106b) a campaign from here
         steps = (1 if self._at is None or new or not self.period_s
                  else max(1, round((at - self._at) / self.period_s)))
         if "sample" in value:
@@ -387,7 +394,8 @@ class Connection:
             self._t0, self._i = at, -1
             if self.warm is not None and "campaign_sample" not in value:
                 self._t0, self._i = self._joined(at, plan.clock is not None)
-        self._i = int(value["campaign_sample"]) if "campaign_sample" in value else self._i + steps
+        self._i = (int(value["campaign_sample"]) if "campaign_sample" in value and self._paused is None
+                   else self._i + steps)
         if now is not None:
             self.own.taken(None if new or told is not None or self._at is None else at - self._at,
                            now)
@@ -493,7 +501,13 @@ class Connection:
 
     def _step(self, cid: str, row: list[float], k: int, i: int) -> np.ndarray:
         d = self.deployed
-        if cid != self._campaign:
+        if cid != self._campaign or self._paused is not None:
+            if self._paused is not None:
+                self._event("pause", f"the time paused {self._paused / 3600:.3g} h, more than "
+                            f"{self.pause_s:g} s (data.runs_at_pauses): a campaign from a reset "
+                            "here, as the record's read, stream.c (TC_PAUSE_S) and serve start one",
+                            logging.WARNING, pause_s=self._paused)
+                self._paused = None
             d.reset()
             if self.adapt is not None:
                 self.adapt.start()      # what was learned is kept: the same machine
