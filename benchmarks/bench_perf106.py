@@ -29,6 +29,40 @@ of the old commit with the same outputs (``metrics.json`` but its seconds, the p
 their time stamps) and the module's tests passing; else TRACED with the table below.  The
 issue's acceptance is read off, not tuned: lagbank / mlr <= 3x on the 30 x 24 set (CPU and wall,
 medians of 3).
+
+Measured 2026-12-07 09:59-10:23 UTC (head de1b3055; 2 cores shared with the lead and other
+helpers, load 9-14; each pair back to back; CPU s = user + sys of the run's process)
+-------------------------------------------------------------------------------------------
+lathe43 (``families``' commands, by shell loop; bench_extras' defaults), head / 6430c4be:
+
+  mlr 8.3 / 8.3, pcr 9.3 / 8.5, arx 9.4 / 8.6, lagbank 11.8 / 10.6, hammerstein 16.1 / 15.7,
+  lstm 28.6 / 50.9, auto 28.7 / 40.7  (x mlr on the head: 1.00 / 1.12 / 1.13 / 1.42 / 1.94 /
+  3.45 / 3.46; bench_extras' record of 2026-11-30: 7.4 / 7.5 / 8.5 / 10.3 / 13.6 / 43.2 / 35.2)
+
+30 x 600 x 24 (``bench_lagbank.py --repeats 3``, medians; other families ``--repeats 1``),
+head / 6430c4be: mlr 3.22 / 2.65, lagbank 5.15 / 4.81; lagbank / mlr CPU 1.60x / 1.81x, wall
+1.98x / 1.92x (acceptance <= 3x: met); pcr 3.37 / 2.94, arx 3.46 / 3.13, hammerstein 5.18 /
+5.10, lstm 15.4 / 28.2, auto 15.0 / 28.0.  mlr again (``--models mlr --repeats 3``, two more
+pairs): 3.14 / 2.67 (+18 %), 2.99 / 2.34 (+28 %, the old run at a lower load: wall 4.7 s against
+9.4): +18 to +28 %, over 25 % in one pair of three, so not slower by the bar.  Where it goes
+(cProfile with a CPU clock, one run each, 9.06 / 7.80 s profiled): reading the 30 CSVs +0.62 s
+(``layout.header_line`` 0.41 / 0.08 s, its ``layout.cells`` 0.23 / 0.05; ``read._source``
++0.29), mutual prediction +0.33 (``shared_fits._digest`` 0.27 s hashing the rows of fits that
+cost less than their hash for MLR); the lathe43 mlr pair is 8.3 / 8.3.
+
+Lab record (``lab``'s steps, by shell loop), head / 50364abe, rep 1; rep 2:
+  run mlr 5.36 / 5.30; 5.72 / 5.18   export C (check pack) 21.5 / 25.2; 22.2 / 25.4
+  export ST 11.6 / 10.7; 11.9 / 10.6  gcc -O2 1.86 / 1.37; 1.89 / 1.42   replay 4.0 / 4.3; 4.4 / 4.1
+The head's pack holds 7 campaigns (the test day, 6 planted copies) against 6 and costs less.
+gcc alone, three alternated builds of each tree's exported C: 1.81 / 1.85 / 1.76 against
+1.41 / 1.26 / 1.25 s (+39 %): the code monitor grew (compensator.c 1,590 -> 2,250 lines,
+stream.c 1,285 -> 1,736; 185 function lines against 128, the new ones ``mon_*``), 46 commits to
+``export/watch_c.py`` since 50364abe (1,063 -> 1,747 lines), each a rule held in the C as
+served: behaviour, no one commit, nothing to mend.  The tests build at ``-O0`` (tests/cbuild.py).
+
+Verdict: TRACED.  Nothing but the C build is more than 25 % slower in two pairs; lstm and auto
+are 44-46 % cheaper than at 6430c4be (lstmspeed64's training defaults came after it), export
+C 12-15 % cheaper.
 """
 
 from __future__ import annotations
