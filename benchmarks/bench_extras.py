@@ -20,6 +20,9 @@ the one-record path, which these campaigns do not take)::
     arx_rf 24.8 / 429 (3.35), lagbank 10.3 / 595 (1.39), hammerstein 13.6 / 762 (1.84),
     lstm 43.2 / 769 (5.84), auto 35.2 / 1038 (4.76), mlr+ati 11.0 / 444 (1.49)
 
+(Measured again 2026-12-07 on de1b3055, paired with 6430c4be: ``bench_perf106.py``; lstm and
+auto 44-46 % cheaper now, the others within 0-11 %.)
+
 Every family fits in seconds: 7-43 s CPU, ~5 s of it start-up, reading and the figures.  The
 largest ratios are the methods' own: ``lstm`` trains a network per target and fold (validation
 19 s of its 43), ``auto`` fits every candidate's folds, ``arx_rf`` fits 100-tree forests
