@@ -25,6 +25,34 @@ scored once).  Tree = this branch, main = :data:`MAIN`'s export, the C beside.
 * Fresh lr/dl 10119-10121 (bench_st102b's FRESH words, seeds +155): B1 on their C JUMPs beside
   another out, B2-B4 alike.  All met: KEPT; B1 or B2 or B3 not met on seen: REFUSED.
 
+MEASURED (2026-12-07, 2 cores shared, load 4-11; rule = benchmarks/st106c_rule.patch on 07b7fbfb,
+made in a scratch src; BAR 0344cf7b, unchanged; CPU user + sys as each command prints it).
+VERDICT REFUSED: B1 not met on seen, st105's fresh nor new fresh; B2-B5 met.
+
+* B1 (``events``; seen 108.1 s, st105's fresh 81.3 s): the 10 seen events, block hold rows main
+  0.18 .. 1.3 -> tree 0.31 .. 5.5 um (worse on 5, equal on 4, 0.91 -> 0.71 on lr10007), after rows
+  main <= 5.1 -> tree <= 5.1; st105's fresh 8: hold main 0.32 .. 2.0 -> tree 0.44 .. 37 (dl10015
+  T_table 6170: 2.0 -> 37, after 2.3 -> 22).  A C JUMP with none beside (lr9985 T_spindle_rear
+  3723) goes 6e-14 -> 21 um.  Fresh 10119-10121 (scored once, 79.9 s; main 76.0 s): 8 events,
+  hold main 0.28 .. 2.8 -> tree 0.28 .. 9.7 (worse on 4: lr10120 T_motor 1.2 -> 9.7, T_xdrive
+  1.1 -> 8.5).  Far from 1e-9 um.
+* Why (``windows`` seen 32.8 + 90.5 s): the block names the C's DRIFT_OUT on its row 9 of 9 (B2),
+  0 flag rows where the C names nothing (B3); but its hold is the C's on 1 of 9 only.  5 end on
+  the C's JUMP of another sensor (3723 / 6130, the block's ``mon_rule <> 0`` ends a STEP_OUT hold;
+  the C keeps its DRIFT_OUT out to 3784 / 6231: st105b's L1, still there after st105); 3 end off
+  the C's BACK (lr9985 T_head_left 3723 vs 3687, lr10008 T_bed_right 3723 vs 3690, T_col_back 3784
+  vs 3686: the block's READMIT test is not the C's ``_pass_once_back``).  And while it holds the
+  sensor the block reads it live: the C rebuilds it (``mon_M d``, st106), so the gap st106 found
+  stays on those rows, and where the hold ends at the JUMP the block loses st105's JUMP hold too
+  (21 / 37 um).
+* B4 (``healthy``, 101.7 s): 8 records, 0 flag rows and 0 c rows moved off the C's own namings;
+  dl9965 DRIFT_OUT T_spindle_rear 5695 back 5715 and dl9967 T_col_back 3116 + BLIND_OUT T_bed_right
+  3505 (5e-14 um) as the C, as in st105b.
+* B5: with the rule test_export_st97d + st100 7 passed, st93..st99 + counters97 + cmon82/85 +
+  dep100 24 passed; PARSED_DIGEST 92997e7e... (blark parsed the block, 26.7 s); st97d's new case
+  fails on 07b7fbfb (block silent where the C names DRIFT_OUT) and costs +1.0 s CPU (paired, 2
+  reps: 3.39 / 3.37 -> 4.34 / 4.32 s for the module).
+
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``)::
 
     python benchmarks/bench_st106c.py events ROOT RECORD [RECORD ...]
