@@ -48,6 +48,9 @@ VERDICT REFUSED: B1 not met on seen, st105's fresh nor new fresh; B2-B5 met.
 * B4 (``healthy``, 101.7 s): 8 records, 0 flag rows and 0 c rows moved off the C's own namings;
   dl9965 DRIFT_OUT T_spindle_rear 5695 back 5715 and dl9967 T_col_back 3116 + BLIND_OUT T_bed_right
   3505 (5e-14 um) as the C, as in st105b.
+* Fresh B2-B4 (scored once; ``windows`` 88.0 s, ``healthy`` 81.6 s): 4 DRIFT_OUT named, all the
+  C's on its row, 0 flag rows where the C names nothing; every hold ends on the C's next JUMP
+  (6170 / 3723), the C's BACK 6231 / 3784 (0 of 4); healthy 6 records 0 flag / 0 c rows moved.
 * B5: with the rule test_export_st97d + st100 7 passed, st93..st99 + counters97 + cmon82/85 +
   dep100 24 passed; PARSED_DIGEST 92997e7e... (blark parsed the block, 26.7 s); st97d's new case
   fails on 07b7fbfb (block silent where the C names DRIFT_OUT) and costs +1.0 s CPU (paired, 2
