@@ -62,6 +62,31 @@ BAR (committed before any of 10105-10109 is simulated; not moved after).  BASE =
 
 Fresh kinds (chosen before drawing; 8 train / 4 test runs, bench_diag106's ``CLIMATE``): 10105,
 10107 ``hidden_source`` (E_X); 10106, 10108 ``lag_node`` (E_X); 10109 ``axis_position`` (E_Z).
+
+Scored (2026-12-07, once; BASE = c668e59b's src, ``git archive``; RULE = 4902653d's src, now
+``diag106e_rule.patch`` (src + tests/apps/test_diagnose_level106e.py + docs/diagnose.md); ROOT
+/tmp/diag106e/fresh; 2 cores shared, load ~5; CPU user + sys, ``/usr/bin/time`` of ``draws`` with its
+children: BASE 58.1 s (simulate included), RULE 52.2 s; diagnose alone 45.7 / 52.3 s over the 10 draws)
+-------------------------------------------------------------------------------------------------
+(draw, target) that differ, test RMSE µm (the other 14 identical, the 10 clean ones among them)::
+
+  10107 hydraulic E_X  3.141 -> BASE 3.141 (nothing) / RULE 1.095: ambient_scaled, S_hyd raw
+                  E_Z  6.143 -> 6.143 / 1.268: ambient_scaled, S_hyd raw, S_hyd x T_nc_spindle_motor rise
+  10108 lag       E_X  5.655 -> 5.655 / 0.822: ambient_scaled, T_nc_spindle_motor 7200 s lag +init
+                  E_Z  2.991 -> 2.991 / 0.550: ambient_scaled, T_nc_spindle_motor square
+  10109 position  E_X  1.634 -> 1.614 / 0.456: ambient_scaled
+                  E_Z  15.808 -> 6.477 (S_pos_Z x T_nc_spindle_motor over T_amb) / 2.875 (the same,
+                       then ambient_scaled)
+  10105 hydraulic (found by both, S_hyd x T_headstock on E_X, 2.894 -> 2.211), 10106 lag (nothing
+  cleared on E_X: 2.081): the same.
+
+E1 met (found BASE 2: 10105, 10109; RULE 4: + 10107, 10108).  E2 met (clean twins: nothing, not
+even the level law).  E4 met (no row worse; 6 better by 55-86 %).  **E3 FAILS**: the control (a
+random walk's 14400 s lag) clears on 10109 E_Z in round 2 (CV gain 23.2 %) -- with BASE too,
+the same round and numbers (there it then stopped the search: nothing beat it; with RULE
+ambient_scaled, 70.6 %, beat it and was taken).  The bar says "never with RULE", so it fails as
+written.  E5 and the tests: see the report (/work/notes/sec106/diag106e.md).  **REFUSED** (E3):
+src reverted, the rule, its test and its docs in ``diag106e_rule.patch``.
 """
 
 from __future__ import annotations

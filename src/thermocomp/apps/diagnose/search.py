@@ -325,9 +325,6 @@ def forward_first(eligible: list) -> list:
     return [best] + [ev for ev in eligible if ev is not best]
 
 
-LEAN_LEVEL = ("ambient_mean", "ambient_scaled")   # a room's level law in one regressor (diag106e)
-
-
 def _same_effect(ev, other) -> bool:
     """An effect traced to the same column, whatever its kind (a richer or leaner read of one
     sensor), or of the same kind on one column where ``other`` reads every model input (``column``
@@ -339,8 +336,6 @@ def _same_effect(ev, other) -> bool:
     rises (``interaction`` on S_pos_Y, 19.9 %) did not clear by ranks over 83 blocks, and kept
     S_pos_Y itself (``signal``, 11.8 %, family-wise p 0.0009), a leaner read of the same sensor,
     out (``benchmarks/bench_diag89d.py``).  An ambient law has no column: it keeps its veto."""
-    if ev.effect.transform in LEAN_LEVEL:      # the room's level law, leanly (diag106e)
-        return other.effect.kind == "ambient_interval"
     if ev.effect.column is None:
         return False
     if other.effect.column is None:
@@ -686,9 +681,7 @@ class Search:
                          and s[0].transform != "remove"), key=lambda s: -s[1])
         chosen, per_group = [], {}
         for e, r2 in ranked:
-            # the room's lean level law (one regressor) is no third read of the wide laws, which
-            # saturate 8 campaigns and fill the family's two places by their in-sample fit (diag106e)
-            g = (e.kind, e.column, e.transform in LEAN_LEVEL)
+            g = (e.kind, e.column)
             if len(chosen) < opts.shortlist and per_group.get(g, 0) < 2:
                 chosen.append((e, r2))
                 per_group[g] = per_group.get(g, 0) + 1
