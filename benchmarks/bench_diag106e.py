@@ -85,8 +85,20 @@ even the level law).  E4 met (no row worse; 6 better by 55-86 %).  **E3 FAILS**:
 random walk's 14400 s lag) clears on 10109 E_Z in round 2 (CV gain 23.2 %) -- with BASE too,
 the same round and numbers (there it then stopped the search: nothing beat it; with RULE
 ambient_scaled, 70.6 %, beat it and was taken).  The bar says "never with RULE", so it fails as
-written.  E5 and the tests: see the report (/work/notes/sec106/diag106e.md).  **REFUSED** (E3):
-src reverted, the rule, its test and its docs in ``diag106e_rule.patch``.
+written.  **E5 FAILS**: bench_remeasure62's ``diagnose`` rows (92 cases, 139 case x target; RULE
+195.0 s CPU; BASE rows = diag106c's of 1707a192, whose src/thermocomp/apps/diagnose is c668e59b's)
+differ on 11: 8 better (planted:4012 E_Y 2.709 -> 1.376, -49.2 %; 626 / 101 E_Y -13 %; 737 -9.2 %;
+lathe43 E_dZ -8.0 %; 4010 -6.5 %; 4006 / 4004 -1.6 / -1.5 %), 3 worse: planted:4011 E_Y 1.498 ->
+1.558 (+4.0 %), 1181 E_Y +1.6 %, lathe43m E_Z +1.5 % -- where the wide law (or a step) WAS
+taken (more campaigns than it saturates), the lean law is now the simpler within one SE and is
+taken instead.  bench_diag88's ``seen`` rows (33; RULE 22.3 s CPU): 6 better, none worse
+(planted:8457 / 8885 / 9150 / 9103 E_Z -72 ... -80 %, lag:8980 E_Z -78.6 %, 9046 E_Z -71.7 %:
+the year-round VMC's E_Z, 8885 / 9150 rule 1's harms).  Tests with RULE (46 modules: test_diag*,
+and every module importing the diagnose search, features, AugmentedRegressor or the export of
+diagnosed models): 407 passed (158.6 s CPU); the new test's two fail on c668e59b.  **REFUSED**
+(E3, E5): src reverted, the rule, its test and its docs in ``diag106e_rule.patch``.  Next: offer the
+lean law only where the wide one saturates (it is the wide one's stand-in there, not its rival),
+and a control that beats nothing once a real law is in.
 """
 
 from __future__ import annotations
