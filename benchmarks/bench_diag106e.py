@@ -86,7 +86,7 @@ random walk's 14400 s lag) clears on 10109 E_Z in round 2 (CV gain 23.2 %) -- wi
 the same round and numbers (there it then stopped the search: nothing beat it; with RULE
 ambient_scaled, 70.6 %, beat it and was taken).  The bar says "never with RULE", so it fails as
 written.  **E5 FAILS**: bench_remeasure62's ``diagnose`` rows (92 cases, 139 case x target; RULE
-195.0 s CPU; BASE rows = diag106c's of 1707a192, whose src/thermocomp/apps/diagnose is c668e59b's)
+194.1 s CPU; BASE rows = diag106c's of 1707a192, whose src/thermocomp/apps/diagnose is c668e59b's)
 differ on 11: 8 better (planted:4012 E_Y 2.709 -> 1.376, -49.2 %; 626 / 101 E_Y -13 %; 737 -9.2 %;
 lathe43 E_dZ -8.0 %; 4010 -6.5 %; 4006 / 4004 -1.6 / -1.5 %), 3 worse: planted:4011 E_Y 1.498 ->
 1.558 (+4.0 %), 1181 E_Y +1.6 %, lathe43m E_Z +1.5 % -- where the wide law (or a step) WAS
