@@ -201,7 +201,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..adaptive import GAP_PERIODS, AdaptiveCompensator
-from ..surveillance.frozen_hold import held_until, keeps
+from ..surveillance.frozen_hold import held_until, push_row
 from ..surveillance.settled import STEADY, advanced, level_shift_now
 from ..surveillance.states import (
     ALARM,
@@ -847,11 +847,9 @@ class CodeMonitor:
             self.reset()
         self.now = float(now)
         out = self._sample(u, first, dt)
-        p = self.past_pos        # (mon105d) the row kept, as the served update keeps it
-        if keeps(self.now, self.past_t[p - 1], self.a["tau"]):
-            self.past[p], self.past_t[p] = self.hist[(self.pos - 1) % self.window], self.now
-            self.past_n[p], self.past_pos = self.rows, (p + 1) % TREND_ROWS
-        self.rows += 1
+        self.past_pos, self.rows = push_row(     # (mon105d) the row kept, as the served update keeps it
+            self.past, self.past_t, self.past_n, self.past_pos, self.rows,
+            self.hist[(self.pos - 1) % self.window], self.now, self.a["tau"])
         return out
 
     def _hold_until(self, j: int) -> float:

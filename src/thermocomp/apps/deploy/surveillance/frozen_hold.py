@@ -27,6 +27,17 @@ def keeps(time: float, newest: float, tau: float) -> bool:
     return not np.floor(time / step) == np.floor(newest / step)
 
 
+def push_row(past: np.ndarray, past_t: np.ndarray, past_n: np.ndarray, pos: int, rows: int,
+             row: np.ndarray, time: float, tau: float) -> tuple[int, int]:
+    """One sample's ``row`` at ``time`` into the ring (in place) where :func:`keeps` keeps it,
+    with its number ``rows``; ``(pos, rows)`` after it.  The served monitor's row path and the
+    code's mirror step it alike (the C repeats it in ``monitor_step``)."""
+    if keeps(time, past_t[pos - 1], tau):
+        past[pos], past_t[pos], past_n[pos] = row, time, rows
+        pos = (pos + 1) % TREND_ROWS
+    return pos, rows + 1
+
+
 def kept(times: np.ndarray, newest: float, tau: float) -> np.ndarray:
     """Which of the rows at ``times`` (in order) the ring keeps after its newest row at ``newest``:
     each that starts a new step of :func:`trend_step` (one with no time, or after one, always)."""

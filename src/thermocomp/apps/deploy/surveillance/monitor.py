@@ -15,7 +15,7 @@ from ....core.io.contract import is_ambient
 from ..pod import ThermalPOD, windowed_mean
 from .excursion import Excursion
 from .faults import InstantFaults
-from .frozen_hold import held_until, keeps, kept
+from .frozen_hold import held_until, kept, push_row
 from .judgement import Judgement
 from .readmission import Readmission
 from .settled import Settled, largest_separation
@@ -528,11 +528,9 @@ class SensorMonitor(InstantFaults, Judgement, Readmission, Excursion, Settled):
         if self._settles:
             self._settle_push(ref)
         self._slow_step(self._hist[(self._pos - 1) % self.window], float(time))
-        p = self._past_pos                   # the row, where the ring of _past_push keeps it
-        if keeps(time, self._past_t[p - 1], EXCURSION_TAU_S):
-            self._past[p], self._past_t[p] = self._hist[(self._pos - 1) % self.window], time
-            self._past_n[p], self._past_pos = self._past_rows, (p + 1) % TREND_ROWS
-        self._past_rows += 1
+        self._past_pos, self._past_rows = push_row(       # the row, where _past_push keeps it
+            self._past, self._past_t, self._past_n, self._past_pos, self._past_rows,
+            self._hist[(self._pos - 1) % self.window], time, EXCURSION_TAU_S)
         if clean is None:    # a new thermal state counts its calm samples on the full path
             self._quiet = self._rebuilds and not self._novel and not self._state[self._active].any()
         if settled:          # the next sample on the full path
