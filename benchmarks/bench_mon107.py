@@ -79,6 +79,29 @@ B4. fresh, scored once and only where B1-B3 are met on seen (else unspent): benc
 B5. the rule in served and in the mirror / C (the bands as data), or named in not_in_code with
     C - served measured.
 KEPT: B1-B5 met.  Else REFUSED (src reverted, this bench and the patch kept).
+
+MEASURED (base: ROOT /tmp/mon107/root, ``git archive 570d5a78`` on PYTHONPATH; rule: ROOT
+/tmp/mon107/rule, the patch on 570d5a78, its own ``run`` models; same data; CPU user+sys by
+/usr/bin/time, OMP 1).  The rule's bands on ed10035 (warning, °C, base -> rule): T_bed 0.502 ->
+0.994, T_table 1.933 -> 5.848, T_col_front 1.140 -> 1.876, T_upper_arm 1.340 -> 2.803.
+B1 met.  ``seen``: base 18 events, 9 exclusions (T_hall, T_cabinet), replay mlr 2.8224 -> 2.9682
+  µm (+5.17 %), lagbank 2.6389 -> 2.8818 (+9.20 %); rule 0 events, replay = run (+0.00 % both).
+  CPU 11.7 / 11.1 s.
+B2 NOT met (``drifts``, rows after onset, base -> rule): T_hall D7 96 (explaining) -> 657 (range;
+  the bar 106); T_bed D8 649 (range) -> 33 (drift); T_cabinet D7 1240 -> 1240 (jump); T_bed D7
+  634 -> 634, T_table D7 633 -> 633, T_table D8 675 -> 675 (range); T_hall D8, T_cabinet D8 not
+  caught either way.  CPU 18.3 / 14.3 s.
+B3 NOT met: tests/apps/test_monitor_*.py + tests/shell/test_monitor*.py base 202 passed, 3
+  xfailed; rule 195 passed, 3 xfailed, 7 FAILED (test_monitor.py column alarm order,
+  healthy53 T_guidebush later than 1 h, bands86, new_state48 fl_thermal's T_t12 not excluded,
+  settled95 blind fast ramp, blame44, regime73): every band about 2x, every drift judged later.
+B4 not scored: 10063-10065 not simulated (unspent).  B5 moot (the bands are data: the mirror / C
+  would follow).  REFUSED.
+B1 against B2's T_hall D7 case: base's 96-row catch is the weekend's healthy T_bed error (+0.447
+of 0.502) plus 1.6 K x 0.0443 °C/K; by row 106 the drift adds 0.078 °C to T_bed's error, so a
+rule that keeps the weekend under T_bed's band meets that case only on evidence other than the
+field's leak (none the monitor holds for a sensor no other predicts, short of its range).
+``trace`` CPU 6.4 s.
 """
 
 from __future__ import annotations
