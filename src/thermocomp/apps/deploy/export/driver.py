@@ -23,9 +23,7 @@ DRIVER = r"""/* stream.c: CSV rows of raw inputs on stdin -> corrections C_<axis
  * campaign's first, as the served model reads it; every time of a stream in the form of its
  * first; with TC_ELAPSED (data.time=elapsed) a logger's h:mm:ss since the start, 59:59:00.5.
  * A cell that is no number (a time of day alone, 08:45:00) is refused with its row.
- * A blank row whose next row has no time or one not after the last (dep107: within a run, its
- * time going on, a blank row is nothing, as run and replay read it), a `reset` column holding 1,
- * a new value in the run-number column
+ * A blank row, a `reset` column holding 1, a new value in the run-number column
  * TC_RUN_COLUMN, or a time more than TC_PAUSE_S after the last (data.runs_at_pauses: a lab's
  * tests appended in one file, catman70) starts a campaign (the row is its reference).  With
  * TC_ADAPT, a row carrying a measured error in a TC_ERROR_NAMES column (E_<axis>, optional;
@@ -1561,14 +1559,20 @@ int main(int argc, char **argv) {
             return 2;
         }
         if (line[strspn(line, " \t\r\n")] == '\0') {
-            if (sampled) {          /* (dep107) decided at the next row, by its time (below) */
-                if (!blank_at) blank_at = row;
-                continue;
-            }
             restart(&s, 1);
+            if (sampled && !blank_at) blank_at = row;
             if (!saved(state_path, state_tmp, &s, run)) return 2;
             continue;
         }
+        /* (audit103) said, not silent: a logger's stray blank line restarted the stream (the
+           state reset, the next row the reference: 8.5 um off on a large mill's MLR) where
+           run and replay read the file as one campaign; a blank line at the end says nothing */
+        if (blank_at && said_blank++ < 5)
+            fprintf(stderr, "stream: line %ld: a blank line: a new campaign starts at line %ld "
+                    "(the state reset, that row the reference), as between the campaigns "
+                    "thermocomp rows writes; run and replay read a file's blank line as nothing%s\n",
+                    blank_at, row, said_blank == 5 ? " (no more said)" : "");
+        blank_at = 0;
         sampled = 1;
         if (split(line, cells) != ncols) {
             fprintf(stderr, "stream: line %ld has not %d cells\n", row, ncols);
@@ -1646,26 +1650,6 @@ int main(int argc, char **argv) {
             snprintf(stamp, sizeof stamp, "%s %s", trimmed(cells[time_col]),
                      trimmed(cells[clock_col]));
         if (row_time(cells, time_col, clock_col, stamp, row, &t) != 0) return 2;
-        if (blank_at) {
-            /* (dep107) a blank line after a sample starts a campaign where the row after it has
-               no time or one not after the last read (the campaigns thermocomp rows writes, each
-               from its time 0; monitor.input=- reads them so); a blank line within a run, its
-               time going on, is nothing, as run, replay and the served stream on stdin read it
-               (audit103 said it and restarted there: a lab's mlr 35.7 um off at once) */
-            int goes_on = isfinite(t) && !s.first && isfinite(s.t_read) && t > s.t_read;
-            if (said_blank++ < 5)
-                fprintf(stderr, "stream: line %ld: a blank line: %s%ld%s%s\n", blank_at, goes_on
-                        ? "read as nothing, the time going on at line " : "a new campaign starts "
-                          "at line ", row, goes_on ? " (a stray blank line within a run), as run, "
-                          "replay and the served stream read it" : " (the state reset, that row "
-                          "the reference: its time is not after the last read, as between the "
-                          "campaigns thermocomp rows writes)", said_blank == 5 ? " (no more said)" : "");
-            blank_at = 0;
-            if (!goes_on) {
-                restart(&s, 1);
-                if (row_time(cells, time_col, clock_col, stamp, row, &t) != 0) return 2;
-            }
-        }
         if (TC_PAUSE_S > 0 && isfinite(t) && !s.first && isfinite(s.t_read)
             && t - s.t_read > TC_PAUSE_S) {
             /* (catman70) the logger silent longer than data.runs_at_pauses' pause: the next
@@ -1743,10 +1727,6 @@ int main(int argc, char **argv) {
             measured |= isfinite(e[i]);
         }
         if (measured) tc_reference(&s, e);
-        if (!saved(state_path, state_tmp, &s, run)) return 2;
-    }
-    if (blank_at) {                 /* blank lines at the end: the state reset, said nothing */
-        restart(&s, 1);
         if (!saved(state_path, state_tmp, &s, run)) return 2;
     }
     if (held_row) {                 /* (audit96) the preamble's line last: refused, as before */
