@@ -232,7 +232,14 @@ def _seam2(base: Path, search, pkl: Path, plain, stream: Path, rows: pd.DataFram
     one, two = _state_cut(base, "connect-c", stream, header, body, k)
     offsets, link = _connect(base, search, pkl, program, plain.columns_, plain.targets_, bad)
     said = [(e["event"], e["sample"]) for e in link.get("events", []) if e["event"] in ("refused", "taken")]
+    np.save(base / "connect-offsets.npy", offsets)
     after = -offsets[k + 1:]
+    gap = np.abs(-offsets[:k] - served[0]).max(axis=1)
+    said_kinds = ("refused", "taken", "connected", "stopped")
+    print(f"2. before row {k}: |connect - served| past 1e-9 um at rows {np.flatnonzero(gap > 1e-9)[:8]} "
+          f"({int((gap > 1e-9).sum())} rows); events there "
+          f"{[(e['event'], e['sample']) for e in link.get('events', []) if e['event'] not in said_kinds]}",
+          flush=True)
     print(f"2. row {k} ({sensor} Bad): served {served[1]!r}; C exit {one[0]} ({one[2].strip()[-60:]!r}); "
           f"connect events {said}; |connect - served| after {np.abs(after - served[2]).max():.3g} um, "
           f"|connect - C cut| after {np.abs(after - two[1]).max():.3g} um; before "
@@ -306,11 +313,13 @@ def chain(root: str, record: str) -> None:
     import bench_audit98
     import bench_dep105b
     from bench_cmon92 import faulted_cell, made
+    from bench_dup99 import _targets_env
 
     from thermocomp.shell.source import read_streamed  # noqa: F401  (the stages' reader)
 
     base = Path(root).resolve()
     words = {**bench_dep105b.FRESH, "pt10130": [*bench_audit98.PORTAL, "seed=10130"]}
+    _targets_env(record)
     made(base, record, "mlr", words)
     out = base / "reports" / record / "mlr-none"
     replayed = base / "replay" / record
