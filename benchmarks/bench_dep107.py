@@ -332,12 +332,15 @@ def chain(root: str, record: str) -> None:
     metrics = json.loads((out / "metrics.json").read_text())
     rep = json.loads((replayed / "replay.json").read_text())
     for t, fig in rep["targets"].items():
-        test = metrics.get("test")
-        run_rmse = test.get(t, {}).get("rmse") if isinstance(test, dict) else None
-        print(f"3. {record} {t}: replay rmse {fig['rmse']:.6g} um, run {run_rmse}, max|replay - run| "
-              f"per row {fig['max_abs_stream_minus_batch']:.3g} um", flush=True)
-    print(f"3. {record}: events {len(rep.get('events', []))}; the run's words: "
-          f"{[s[-160:] for s in said][:3]}", flush=True)
+        run_rmse = metrics["targets"][t]["test"]["rmse"]
+        print(f"3. {record} {t}: test RMSE run {run_rmse:.6g} um, replay's plain stream "
+              f"{fig['rmse_batch']:.6g} (max|stream - batch| per row "
+              f"{fig['max_abs_stream_minus_batch']:.3g} um), replay adaptive (the monitor's) "
+              f"{fig['rmse']:.6g} um: replay - run {fig['rmse'] - run_rmse:+.4g} um", flush=True)
+    events = [(e.get("sensor"), e.get("campaign"), e.get("time"), e.get("reason", "")[:40])
+              for e in rep.get("events", [])]
+    print(f"3. {record}: replay's events {events[:8]}", flush=True)
+    print(f"3. {record}: the run's words: {[s[-200:] for s in said][:4]}", flush=True)
     deployed, ss, frame, lead, start, cid = faulted_cell(base, record, "mlr-none")
     from bench_cmon92 import Stepped
     from bench_dep101 import _stream
