@@ -22,6 +22,39 @@ BAR (written and committed BEFORE any seed of 10130-10132 is built; not to move 
       cell L writes it (``write_export``, as dep106b's 10118; seams 1, 2, 4).  Scored once.
   Verdict: KEPT where B1 and B2 hold with a src change; TRACED where nothing breaks.
 
+SCORED once (bar 6c130b8e, committed before any seed was built; not moved; 2026-12-07 11:42-11:52
+UTC, 2 cores shared, load 6-8; the harness first run on seen lab 10118 and pt10044).  Seeds drawn:
+10130-10132 only.
+  1. lab10131 / lab10132, adaptive and plain, rows 450 and 1100, nan / dup / back (24 cases): the
+     C cut by ``--state`` = the C uninterrupted (or, at a plain model's missing value, exit 2 at
+     the row, = the C without it) to 0 um in every case; = the served session (the row refused by
+     the plain model, taken by the adaptive) <= 6.4e-14 um.  Holds on 570d5a78 (no src change).
+  2. connect, plain, an input Bad at row 1100 -- on 570d5a78 it ends there (MissingValueError's
+     traceback, exit 1: tests/shell/test_opcua67.py).  Now 1261/1261 rows answered, one
+     ``refused`` / ``taken``; after the row |connect - served| 2.2e-16 / 4.4e-16 um, |connect - C
+     cut| 4.4e-15 / 3.6e-15 um; at it the C's last correction; before it 10131 parts on rows
+     998-1000 by 0.316 um: connect's limiter (the guard's rate, what may reach the machine),
+     which the plain served model and C do not apply (named in the docs); 10132 4.4e-16 um.
+  3. pt10044 (seen): W3 continues W2 (``data.reference=auto``: none; restart98's rule finds W2 a
+     restart after W1, not W3 after W2), no pause: by the contract one record; served re-references
+     the 4 jumpers (T_bed, T_col_L, T_col_R, T_rail) at W3's first row, the C does the same:
+     |C - served| 8.5e-13 um over 20160 rows.  |replay - run|: the plain stream = run to 5.1e-13
+     um per row (RMSE 7.468 / 7.112 / 27.961 um); the adaptive replay (the monitor's jump rule)
+     8.609 / 4.377 / 29.868 um (+1.14 / -2.73 / +1.91).  pt10130 (fresh): W3 read as a restart
+     (every error starts at 0, 2.95e279:1), first_sample, no jump: |C - served| 2.6e-13 um, replay
+     = run to 1.7e-13 um per row, RMSE equal.  Decision: no new rule; the contract already starts
+     a campaign where the errors restart (restart98), and a lab that knows its files restart says
+     ``data.reference=first_sample`` (the reader's warning names it).
+  4. ``thermocomp rows`` (2 campaigns, a blank line between): on 570d5a78 ``monitor.input=-``
+     reads one campaign (the fixture's 4 runs: 23 events, 3 exclusions); now ``stdin_1``,
+     ``stdin_2``, |C - served| 3.6e-14 / 6.4e-14 um.  A stray blank line at row 450: the C
+     restarts there (said), served and replay read it as nothing: |C - served| 28.6 / 32.6 um
+     after it (10118: 35.7): named, not mended (no time tells it from the blank line between
+     blocks of a one-clock run column's file; a stream.c rule was tried and reverted, 62d797b1).
+  CPU (user + sys, /usr/bin/time, connect's child included): lab 24.6+3.2 s / 24.3+3.3 s; chain
+  pt10130 14.2+0.9 s (with simulation) and 7.0+0.3 s (printing again), pt10044 11.6+0.3 s.
+  Verdict: KEPT (two breaks mended with tests, the rest measured or named).
+
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is that tree's)::
 
     python benchmarks/bench_dep107.py lab ROOT SEED          # seams 1, 2, 4 on a lab export
