@@ -119,3 +119,22 @@ def test_a_long_file_on_stdin_is_split_at_its_pauses_as_the_file_is(tmp_path, mo
     one, _ = stream_campaigns("\n".join(lines[:31]) + "\n", ["T_T0"], ReadOptions.from_cfg(
         {"roles": {"error": ["dX"]}, "runs_at_pauses": True}))
     assert list(one) == ["stdin"]                    # a stream of one run: no pause, one campaign
+
+
+def test_the_campaigns_thermocomp_rows_writes_stream_a_campaign_each_as_stream_c_reads_them(tmp_path):
+    # dep107: `thermocomp rows` writes each campaign from its time 0, a blank line between (where
+    # stream.c starts one); on stdin they were one campaign 'stdin', each start read as a clock
+    # set back and a common step of every sensor (the fixture's 4 runs: 23 events, 3 exclusions)
+    lines = _long(tmp_path / "alle.csv", clock=False).read_text(encoding="utf-8").splitlines()
+    runs = [[ln.split(";", 1)[1] for ln in lines[1:] if ln.split(";")[0] == k] for k in "1234"]
+    header = lines[0].split(";", 1)[1]
+    opts = ReadOptions.from_cfg({"roles": {"error": ["dX"]}})
+    text = "\n".join([header, *runs[0], "", *runs[1], "", *runs[2]]) + "\n\n"
+    parts, _ = stream_campaigns(text, ["T_T0"], opts)
+    assert list(parts) == ["stdin_1", "stdin_2", "stdin_3"]
+    assert [len(p) for p in parts.values()] == [30] * 3
+    assert [p["time"].iloc[0] for p in parts.values()] == [0.0] * 3
+    # a stray blank line within a run (its time going on) stays nothing, as the file's read
+    stray = "\n".join([header, *runs[0][:10], "", *runs[0][10:]]) + "\n"
+    parts, _ = stream_campaigns(stray, ["T_T0"], opts)
+    assert list(parts) == ["stdin"] and len(parts["stdin"]) == 30

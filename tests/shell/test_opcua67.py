@@ -153,6 +153,38 @@ def test_a_vendor_server_is_compensated_as_replay_streams_and_sigterm_ends_it(fi
     assert link["samples_missed"] == 0
 
 
+def test_a_plain_model_refuses_a_dropped_sensors_sample_and_holds_the_offsets(fitted, tmp_path):
+    """(dep107) ``monitor.adaptive=false``: the plain stream refuses a missing value.  T_bed Bad
+    over samples 12-14: connect ended at sample 12 with MissingValueError's traceback (exit 1),
+    the machine left with its last offsets for the rest of the programs; now each such sample
+    is refused as the served model refuses the row and the C's tc_step the sample (the last
+    corrections held, nothing stepped), and the stream goes on as the plain stream of the rows
+    without them does."""
+    from thermocomp.apps.deploy.report import stream_rows
+    from thermocomp.shell.builders import deployable_model
+    from thermocomp.shell.source import read_streamed
+
+    data, pkl = fitted
+    frames = programs(data)
+    bad = {"T_bed": (12, 14, ua.StatusCodes.BadSensorFailure)}
+    machine = VendorMachine(frames, free_port(), bad=bad)
+    code, link = run_connect(data, pkl, tmp_path, machine, "monitor.adaptive=false")
+    assert code == 0 and link["samples_refused"] == 3 and link["samples"] == 2 * ROWS - 3
+    said = [(e["event"], e["sample"]) for e in link["events"] if e["event"] in ("refused", "taken")]
+    assert said == [("refused", 12), ("taken", 15)]
+    cfg = _compose([f"data.path={data}", f"connect.model={pkl}", *FAST, "monitor.adaptive=false"],
+                   "connect")
+    ds, train_ids = read_streamed(cfg, test=False)[:2]
+    plain = deployable_model(cfg, ds, train_ids, str(pkl), "connect.model")[0]
+    published = as_published(frames, bad=bad)
+    first = next(iter(published))
+    taken = {p: df.drop(index=range(12, 15)) if p == first else df for p, df in published.items()}
+    ys = [stream_rows(plain, df.reset_index(drop=True)).y for df in taken.values()]
+    want = np.vstack([ys[0][:12], np.repeat(ys[0][11:12], 3, axis=0), ys[0][12:], *ys[1:]])
+    assert all(machine.served.answered)
+    written_as(np.vstack(machine.served.offsets), want)      # the refused rows: the last held
+
+
 def test_a_server_restart_is_spanned_and_sigint_ends_it(fitted, tmp_path):
     """The server down for 5 samples mid-program: the client reconnects (the namespace index
     resolved again), counts them missed, and streams on from its state across the gap (one

@@ -71,3 +71,29 @@ def test_a_state_file_this_build_did_not_write_is_refused(stream, tmp_path):
                          input="\n".join([header, *rows, ""]).encode(), capture_output=True)
     assert run.returncode == 2 and b"is no state this build wrote" in run.stderr
     assert state.read_bytes() == b"tcstat1\0" + bytes(40)        # left as it was
+
+
+@needs_cc
+@pytest.mark.parametrize("kind", ["time set back", "row written again", "missing value"])
+def test_a_state_file_written_at_a_row_the_stream_refuses_goes_on_as_one_stream(stream, tmp_path,
+                                                                                  kind):
+    # dep107: the state after a row the time rule takes over (its time set back, or the row
+    # written again: one period on) or that stream.c refuses (an input missing: exit 2, the
+    # state of the row before kept) goes on in a fresh process as the stream of the same rows
+    # uninterrupted, the refused row left out (as the served model refuses it and goes on)
+    binary, header, rows = stream
+    cells = rows[CUT - 1].split(";")
+    time_at, input_at = header.split(";").index("Zeit [s]"), header.split(";").index("T0 [°C]")
+    if kind == "time set back":
+        cells[time_at] = rows[CUT - 4].split(";")[time_at]
+    if kind == "missing value":
+        cells[input_at] = ""
+    odd = [rows[CUT - 1]] * 2 if kind == "row written again" else [";".join(cells)]
+    fed = [*rows[:CUT - 1], *odd, *rows[CUT:]]
+    state = tmp_path / "tc.state"
+    first = subprocess.run([str(binary), "--state", str(state)], capture_output=True,
+                           input="\n".join([header, *fed[:CUT - 1 + len(odd)], ""]).encode())
+    assert first.returncode == (2 if kind == "missing value" else 0), first.stderr
+    second = _stream(binary, rows[CUT:], header, "--state", str(state))
+    taken = [*rows[:CUT - 1], *rows[CUT:]] if kind == "missing value" else fed
+    assert second == _stream(binary, taken, header)[-len(rows[CUT:]):]

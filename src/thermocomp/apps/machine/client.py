@@ -51,6 +51,7 @@ from ...core.context import TIME
 from ...core.io.clocksets import after
 from ...core.io.rates import GAP_PERIODS, PAUSE_PERIODS
 from ...core.io.stdin import CLOCK_SETS, LAST_READ, TIME_ORIGIN
+from ..deploy.streaming import OutOfEnvelopeError
 from .clockset import OwnClock
 from .nodes import NodeMap, NodesUnknown, quiet_asyncua, resolve_id
 from .offsets import OffsetLimiter
@@ -165,6 +166,8 @@ class Connection:
         self._connected = False
         self._stale = False          # the offsets are decaying for want of fresh samples
         self.missed = 0              # samples the server published that this client never saw
+        self.refused = 0             # samples the compensator refused (a plain one's dropout)
+        self._refusing = False       # the last sample was refused (said once per run of them)
         self._start = clock_now()
         self._at = None              # the clock (s) of the last sample taken (no sample node)
         self._t0 = 0.0               # the clock (s) at the running campaign's first sample
@@ -336,7 +339,10 @@ class Connection:
                 if sample is not None:
                     cid, row, k, i = sample
                     y = self._step(cid, row, k, i)
-                    await self._write(client, plan, k, self.limiter.fresh(y, now(), self._step_s))
+                    # a refused sample (None) answered with the offsets held, as tc_step gives
+                    # the last corrections again (then decaying, as with no fresh sample)
+                    await self._write(client, plan, k, self.limiter.stale(now()) if y is None
+                                      else self.limiter.fresh(y, now(), self._step_s))
         finally:
             try:     # a dead link would keep the goodbye waiting for the request timeout
                 async with asyncio.timeout(self.retry_s):
@@ -499,7 +505,7 @@ class Connection:
             return math.nan
         return number(dv.Value.Value if dv.Value is not None else None)
 
-    def _step(self, cid: str, row: list[float], k: int, i: int) -> np.ndarray:
+    def _step(self, cid: str, row: list[float], k: int, i: int) -> np.ndarray | None:
         d = self.deployed
         if cid != self._campaign or self._paused is not None:
             if self._paused is not None:
@@ -533,7 +539,21 @@ class Connection:
         reads = len(d.columns_) + (TIME not in d.columns_)
         t = row[d.columns_.index(TIME)] if TIME in d.columns_ else row[reads - 1]
         before = self._clock_time(self._time)
-        y = d.step(x, t)
+        try:
+            y = d.step(x, t)
+        except OutOfEnvelopeError as exc:
+            # (dep107) a plain stream refuses a missing value (or, policy=refuse, an input out of
+            # its envelope): the sample is not taken, nothing remembered changes, as the served
+            # model refuses the row and the C's tc_step the sample; it ended the client
+            if not self._refusing:
+                self._event("refused", f"{exc}: the offsets held, the sample not taken (as serve "
+                            "and the C's tc_step refuse it)", logging.WARNING)
+            self._refusing = True
+            self.refused += 1
+            return None
+        if self._refusing:
+            self._event("taken", f"samples taken again ({self.refused} refused so far)")
+        self._refusing = False
         if self.adapt is not None:      # the correction first, then what its reference teaches
             measured = np.asarray(row[reads:], float)[None]
             y = self.adapt.correct(np.asarray(y, float)[None], np.array([t]), measured)[0]

@@ -88,6 +88,7 @@ HEADERS = "headers"             # frame attrs: contract name -> the stream's own
 # frame attrs: the instant (UTC) a campaign's timestamps count from (its first read), where its
 # time is timestamps: a stream said to continue a campaign is placed on that campaign's clock
 TIME_ORIGIN = "time_origin"
+BLANK_ROWS = "blank_rows"       # frame attrs: the data rows that follow a blank line (dep107)
 # frame attrs (deploy74): data.clock_sets' sets and the server's clock at the last timed row as
 # the rows have it (s since the epoch), where sets were given: a restarted connect's live
 # sample is read as the log's next row (:func:`.clocksets.after`)
@@ -219,6 +220,7 @@ def _read_runs(text: str, columns: list[str], opts, recorded: str | None = None,
         raise ContractError(f"stdin is not a CSV table with a header, data.delimiter="
                             f"{opts.delimiter!r} ({' '.join(str(exc).split())})",
                             file=SOURCE) from None
+    blank_rows = _after_blank_lines(text, len(df))
     df = _twins(df, header)
     df, scales, blocks = _named(df, opts)
     if opts.bits:             # a PLC's status word: its declared bits, as a file's (lab83)
@@ -261,7 +263,26 @@ def _read_runs(text: str, columns: list[str], opts, recorded: str | None = None,
             scale, offset = scales[c]
             df[c] = df[c] * scale + offset
     df = on_frame(df, opts.derive, SOURCE)      # data.derive: the same arithmetic as a file's
+    df.attrs[BLANK_ROWS] = blank_rows
     return df, {c: int(n) for c, n in df[numeric].isna().sum().items() if n}, blocks, origins
+
+
+def _after_blank_lines(table: str, rows: int) -> list[int]:
+    """(dep107) The data rows of ``table`` (its header first, as :func:`_table` gives it) that
+    follow a blank line among the rows (0-based; not after the last row); none where its lines
+    are not its ``rows`` one to one (the reader leaves blank lines out)."""
+    filled = [line.strip() != "" for line in table.split("\n")[1:]]
+    if sum(filled) != rows:
+        return []
+    after, row, blank = [], 0, False
+    for full in filled:
+        if full:
+            if blank and row:
+                after.append(row)
+            row, blank = row + 1, False
+        else:
+            blank = True
+    return after
 
 
 def _with_decimal(column: pd.Series, decimal: str) -> pd.Series:
@@ -348,8 +369,8 @@ def stream_campaigns(text: str, columns: list[str], opts, recorded: str | None =
     file's are (:mod:`.runs`), so each starts from a reset as a file's run does (:func:`read_stream`;
     ``recorded``: the training record's order of dates with slashes; ``lab``: as there)."""
     df, counts, blocks, origins = _read_runs(text, columns, opts, recorded, lab)
-    if blocks is None and opts.runs_at_pauses and TIME in df.columns:
-        blocks, origins = _pause_runs(df, origins[0])
+    if blocks is None and TIME in df.columns:
+        blocks, origins = _pause_runs(df, origins[0], opts.runs_at_pauses)
     check_streamed(df[without_derived(df.columns, opts.derive)], blocks, opts, SOURCE,
                    df.attrs.get(HEADERS, {}))        # (data87) as a streamed file's values
     if blocks is None:
@@ -364,14 +385,21 @@ def stream_campaigns(text: str, columns: list[str], opts, recorded: str | None =
     return parts, {cid: n for cid, n in missing.items() if n}
 
 
-def _pause_runs(df: pd.DataFrame, origin) -> tuple[list | None, list]:
+def _pause_runs(df: pd.DataFrame, origin, at_pauses: bool) -> tuple[list | None, list]:
     """(audit106) ``data.runs_at_pauses`` on a stream: its runs ``stdin_1``, ``stdin_2`` ... where
     its time pauses (:func:`.runs.pause_blocks`' rule), each from its first sample as the file's
     runs and stream.c's (``TC_PAUSE_S``) are, timestamps counted from it (a stream of one run: no
-    pause, one campaign); it went on as one campaign, the pause unsaid.  ``df``'s time re-based in
-    place; ``(blocks, each run's time origin)``."""
+    pause, one campaign); it went on as one campaign, the pause unsaid.  (dep107) With or without
+    the key, a blank line whose next row's time is not after the last (the campaigns ``thermocomp
+    rows`` writes, each from its time 0, a blank line between: where stream.c starts one) parts
+    them too; they were streamed as one campaign, each start read as a clock set back and a
+    common step of every sensor.  A stray blank line within a run (its time going on) stays
+    nothing, as the file's read leaves it out.  ``df``'s time re-based in place; ``(blocks, each
+    run's time origin)``."""
     seconds = df[TIME].to_numpy(float)
-    found = pauses(seconds) + 1
+    found = pauses(seconds) + 1 if at_pauses else np.array([], int)
+    anew = [r for r in df.attrs.get(BLANK_ROWS, []) if not seconds[r] > seconds[r - 1]]
+    found = np.union1d(found, np.asarray(anew, int)).astype(int)
     if not found.size:
         return None, [origin]
     edges = [0, *map(int, found), len(seconds)]
@@ -381,8 +409,11 @@ def _pause_runs(df: pd.DataFrame, origin) -> tuple[list | None, list]:
         for k, (_, a, b) in enumerate(blocks):
             origins[k] = origin + pd.Timedelta(seconds=float(seconds[a]))
             df.iloc[a:b, df.columns.get_loc(TIME)] = seconds[a:b] - seconds[a]
-    say(f"{SOURCE}: {len(blocks)} runs by the time's pauses (data.runs_at_pauses) streamed as "
-        "campaigns, each from a reset")
+    why = [*(["the time's pauses (data.runs_at_pauses)"] if len(anew) < len(found) else []),
+           *([f"{len(anew)} blank line(s) after which the time starts again (where stream.c starts "
+              "a campaign)"] if anew else [])]
+    say(f"{SOURCE}: {len(blocks)} runs by {' and '.join(why)} streamed as campaigns, each from a "
+        "reset")
     return blocks, origins
 
 

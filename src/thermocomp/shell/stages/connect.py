@@ -167,7 +167,8 @@ def connect(cfg: DictConfig) -> dict:
                           f"({exc}); nothing more was written") from None
     written = np.vstack(link.written) if link.written else np.empty((0, len(deployed.targets_)))
     report = {"model": name, "source": source, "endpoint": str(c.endpoint),
-              "samples": link.samples, "samples_missed": link.missed, "writes": int(len(written)),
+              "samples": link.samples, "samples_missed": link.missed,
+              "samples_refused": link.refused, "writes": int(len(written)),
               "max_abs_offset": {t: float(np.max(np.abs(written[:, j]))) if len(written) else 0.0
                                  for j, t in enumerate(deployed.targets_)},
               "bound": {t: [float(guard.lo[j]), float(guard.hi[j])]
