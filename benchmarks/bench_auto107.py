@@ -62,6 +62,36 @@ before seeds 10110-10114 were simulated; KEPT only if all hold):
     record rule / main > 1.05.
 (6) Cost (``cost 2000``, fold_blocks + one_fold_weight, CPU per target): at most 8 blocks and at most
     10 x one vote (``vote_weights`` on the same rows, timed there too).
+
+Measured (2026-12-07, this tree's src, after the bar's commit 7f04ce0e; ``OMP_NUM_THREADS=1``, 2
+shared cores; CPU user + sys by ``/usr/bin/time``: ``seen`` 4.1 s, ``fl`` 1.3, ``cost`` 1.3 / 1.7,
+``fresh`` 25.5).  KEPT by the bar: all six hold -- but the rule moved NO lam anywhere.
+(1) SEEN 22 (``seen /tmp/auto105b/main /tmp/auto105b/one /tmp/auto105b/fresh STORE106B STORE106D``;
+    STORE106B: links to auto106b's ``fresh/main`` + ``train_campaigns.json``, STORE106D: auto106d's
+    main-key fits, as auto106e used them): losers 6, geo 0.8192, as main: met.
+(2) worst seen rule / main 1.0000 over 47 records: met.  No target's lam left 1: lab10032 stays 1.227.
+(3) the 10 one-campaign records: no target hedged, geo 0.7654 both: met.
+(4) fl_thermal 90/10 (one train record, 5 time-block folds: not hedged): 2.481 as main: met.
+(5) FRESH 10110-10114 (drawn once, after (1)-(4), (6)), auto / MLR main -> rule: lab10110 1.107 ->
+    1.107, lab10111 1.723 -> 1.723, lab10112 1.037 -> 1.037, year4_10113 0.933 -> 0.933, year4_10114
+    1.200 -> 1.200; the built rule's weights equal main's on all 15 targets; no new loser, geo 1.1725
+    both, none > 5 % worse: met.
+(6) ``cost 2000``: 8 blocks, lam 1.000, hedge 0.37 s CPU = 5.4 x one vote (``cost 500``: 7 blocks,
+    5.1 x): met.
+Why nothing moved (``trace``, after the verdict): over the 33 blended one-fold targets seen and
+the 15 fresh, the largest t is 1.72 (lab10032 E_Y, a test WIN 0.891 that auto106e's lam cut to
+0.955), then 1.38 (year4_10099 E_Z), 1.29, 1.14, 1.00, 0.98; every crossing needs >= 1.89.  The
+targets that lose to MLR on the test show no loss in the fold's blocks: lab10032 E_Z (test 1.793
+x MLR) t 0.43, lab10069 E_Z (1.578) 0.68, lab10071 E_Y (1.833) -0.46, lab10095 E_Z (2.695) -0.02,
+lab10070 E_Z (2.973) -4.57; fresh lab10111 E_X (1.663) -2.94, E_Z (2.856) -4.02, year4_10114 E_Z
+(1.370) -1.99, lab10110 E_Y (1.259) 0.38, lab10112 E_Z (1.174) 0.30.  The refused measures moved
+some of them only because their optimum leaves 1 on ANY disagreement among blocks (the same
+moves cost year4_10072 / year4_10099).  And the fold's own votes make evidence rare: they choose by
+the blocks' mean ratio, so one candidate chosen outright without each of 8 blocks has a ratio sum
+below 7 over every 7 of them, hence below 8 over all 8, and cannot lose to MLR on average; A loses
+consistently only where the choice changes from block to block (tests/core/test_auto_hedge107.py:
+a candidate right on the first block only, 6 % worse on the rest).
+The one fold does not see the new campaign's loss; no hedge read from its blocks can.
 """
 
 from __future__ import annotations
