@@ -66,6 +66,10 @@ before seeds 10110-10114 were simulated; KEPT only if all hold):
 Measured (2026-12-07, this tree's src, after the bar's commit 7f04ce0e; ``OMP_NUM_THREADS=1``, 2
 shared cores; CPU user + sys by ``/usr/bin/time``: ``seen`` 4.1 s, ``fl`` 1.3, ``cost`` 1.3 / 1.7,
 ``fresh`` 25.5).  KEPT by the bar: all six hold -- but the rule moved NO lam anywhere.
+REFUSED by the lead (stop 107): a rule that leaves every measured weight as main's adds a
+config key, a code path and a test for no measured gain; src/conf/docs/test are in
+``benchmarks/auto107_rule.patch`` (applies to 570d5a78).  Its finding stands: the fold's
+blocks do not show the loss the new campaign shows, so no block-evidence hedge removes it.
 (1) SEEN 22 (``seen /tmp/auto105b/main /tmp/auto105b/one /tmp/auto105b/fresh STORE106B STORE106D``;
     STORE106B: links to auto106b's ``fresh/main`` + ``train_campaigns.json``, STORE106D: auto106d's
     main-key fits, as auto106e used them): losers 6, geo 0.8192, as main: met.

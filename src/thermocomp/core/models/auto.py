@@ -35,7 +35,7 @@ from ..metrics import PERSISTENCE, rmse
 from ..model_selection import BlockedForward, LeaveBlockOut, LeaveCampaignsOut
 from ..model_selection.extrapolation import within_range
 from .blend import FOLD_MARGIN, Blend, fold_ratios, one_se_mean, vote_weights, zero_margin
-from .hedge import fold_blocks, hedge_weight, one_fold_weight
+from .hedge import hedge_weight
 from .one_step import persistence
 
 ATI = "ati"              # a candidate name: the ATI wrapper (conf/ati/cmeans.yaml) of a family
@@ -49,9 +49,6 @@ CAMPAIGN_FOLDS = ("blocked forward", "leave-campaigns-out")   # folds holding ou
 # hedge: a weight of W against MLR is chosen on 2 folds by one fold alone (auto105: iso_b, tsc_a2
 # lost their wins); 3 campaigns are the fewest whose nested choice is made on 2 or more
 MIN_HEDGE_FOLDS = 3
-# hedge='campaigns_or_fold' (auto107): ONE campaign fold (2-3 train campaigns, forward) hedged over at
-# most 8 of its blocks, only where they show the choice worse than MLR (benchmarks/bench_auto107.py)
-HEDGES = ("none", "campaigns", "campaigns_or_fold")
 
 # a candidate that does not apply (ATI over fewer ambient levels) is said once a run, not once
 # per target each fit of auto tells it (notes100)
@@ -182,7 +179,7 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
                    "min_gain_pct": number(0.0, 100.0),
                    "combine": choice("vote", "best"), "keep_oof": choice(True, False),
                    "uncompensated": choice("zero", "keep"), "fallback": choice("one_se", "none"),
-                   "hedge": choice(*HEDGES), "validation_rows": choice("all", "in_range")}
+                   "hedge": choice("none", "campaigns"), "validation_rows": choice("all", "in_range")}
 
     uncompensated = "keep"   # a model pickled before the key: refitted as it was fitted
     fallback = "none"        # likewise
@@ -193,7 +190,7 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
                  max_seconds: float | None = None, min_gain_pct: float = 1.0, chosen=None,
                  val_scores=None, given_scores=None, combine: str = "vote", keep_oof: bool = False,
                  one_record: str = "forward", validation_rows: str = "all",
-                 uncompensated: str = "zero", fallback: str = "one_se", hedge: str = "campaigns_or_fold"):
+                 uncompensated: str = "zero", fallback: str = "one_se", hedge: str = "campaigns"):
         self.hedge = hedge
         self.fallback = fallback
         self.uncompensated = uncompensated
@@ -329,21 +326,12 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         predictions of this choice made without each fold), only where the folds are at least
         ``MIN_HEDGE_FOLDS`` whole campaigns: one record's time blocks share its conditions and its
         drift, and a weight chosen on them cost the one-campaign records up to 12 % (auto105).
-        ``'campaigns_or_fold'`` (auto107) also where the folds are ONE held-out campaign: the
-        choice made without each of its blocks (:func:`~thermocomp.core.models.hedge.fold_blocks`:
-        at most 8, each at least one decorrelation length) predicts that block; ``lam`` stays 1
-        unless a paired t test over the blocks shows that prediction worse than MLR's, and is then
-        least in the mean of the blocks' error ratios
-        (:func:`~thermocomp.core.models.hedge.one_fold_weight`).  Two folds: never.
         True where it changed the weights."""
-        k = np.unique(self.oof_fold_[rows]).size
-        one = k == 1 and self.hedge == "campaigns_or_fold"
-        if (self.hedge == "none" or base is None or self.weights_ == {BASELINE: 1.0}
-                or self.scheme_ not in CAMPAIGN_FOLDS or not (k >= MIN_HEDGE_FOLDS or one)):
+        if (self.hedge != "campaigns" or base is None or self.weights_ == {BASELINE: 1.0}
+                or self.scheme_ not in CAMPAIGN_FOLDS
+                or np.unique(self.oof_fold_[rows]).size < MIN_HEDGE_FOLDS):
             return False
-        y = self.oof_y_[rows]
-        lam = (one_fold_weight(preds[rows], y, base, int(self.n_folds)) if one
-               else hedge_weight(preds[rows], y, self.oof_fold_[rows], base, int(self.n_folds)))
+        lam = hedge_weight(preds[rows], self.oof_y_[rows], self.oof_fold_[rows], base, int(self.n_folds))
         if lam >= 1.0:
             return False
         w = {n: lam * v for n, v in self.weights_.items()}
@@ -351,9 +339,8 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         self.weights_ = {n: v for n, v in w.items() if v > 0}
         self.family_ = max(self.weights_, key=self.weights_.get)
         self.chosen_ = self.family_ if len(self.weights_) == 1 else self.weights_
-        where = (f"the one campaign fold's {np.unique(fold_blocks(y, preds[rows, base])).size} blocks, "
-                 "its choice worse than MLR by a paired t test" if one else f"{k} campaign folds")
-        self.reason_ += f"; hedged towards MLR by the nested weight {lam:.3g} ({where})"
+        self.reason_ += (f"; hedged towards MLR by the nested weight {lam:.3g} "
+                         f"({np.unique(self.oof_fold_[rows]).size} campaign folds)")
         return True
 
     def _none_unless_better(self, kept: float, predicted: np.ndarray | None = None) -> None:
