@@ -65,7 +65,6 @@ import sys
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-import bench_diag106c as d106c  # noqa: E402
 import bench_diag106e as d106e  # noqa: E402
 from _cli import made_folder, run_commands  # noqa: E402
 
@@ -84,7 +83,7 @@ CONTROL_WORDS = "random walk"     # the control's title (search.Evaluation.entry
 
 def draws(root: str, seeds: str, label: str) -> None:
     """Each seed's PLANTED then CLEAN draw diagnosed by this tree -> ROOT/rows-LABEL.jsonl."""
-    d106c.KINDS = KINDS
+    d106e.KINDS = KINDS       # d106e.draws hands its KINDS to bench_diag106c's rows
     d106e.draws(root, seeds, label)
 
 
