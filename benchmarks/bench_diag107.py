@@ -56,6 +56,44 @@ Fresh kinds (chosen before drawing; 8 train / 4 test runs, bench_diag106's ``CLI
 Trace asked (no rule): on seen 10109 E_Z the random-walk control clears the bar in round 2 on the
 shipped code (CV gain 23.2 %, "the level drift left").  Does the lean law, taken in round 1, leave
 the control below the bar?  (``lean_first`` on diag106e's 10109 data.)
+
+Scored (2026-12-07, once; BASE = 570d5a78's src + conf, RULE = 3ec02382's (= 2d5537a0's) src, both
+``git archive``; ROOT /tmp/diag107; 2 shared cores, load 8-15; CPU user + sys, ``/usr/bin/time`` with
+children)
+-------------------------------------------------------------------------------------------------
+Fresh 10122-10126 (``draws`` BASE 57.0 s CPU with simulate, RULE 48.8 s; diagnose alone 44.4 / 48.5 s):
+(draw, target) that differ, test RMSE µm (the other 16 identical, the 10 clean ones among them)::
+
+  10124 position  E_X  1.894 -> BASE 1.894 (nothing) / RULE 0.454: ambient_scaled
+  10125 hydraulic E_Z  8.908 -> 8.908 / 1.923: ambient_scaled, S_hydraulic_temp_C raw
+  10126 lag       E_X  4.719 -> 4.719 / 0.953: ambient_scaled, T_nc_spindle_motor 14400 s lag +init
+                  E_Z  2.552 -> 2.552 / 0.494: ambient_scaled, T_nc_spindle_motor square
+
+E1 met (found BASE 3: 10122, 10123, 10124; RULE 4: + 10126).  E2 met (clean twins: nothing, not even
+the level law).  E3 met (the control accepted nowhere, clears nowhere, BASE nor RULE).  E4 met (no
+row worse; 4 better by 76-81 %).  (10123 E_X: both take a start lag of T_nc_spindle_motor, 3.306 ->
+4.258, +28.8 %: BASE's, untouched here; 10125 E_X: nothing found by either, 3.989.)
+E5 met.  bench_remeasure62 ``diagnose`` (92 cases, 139 case x target; BASE 236.1 s CPU, RULE 221.2 s;
+BASE's rows equal diag106c's of 1707a192 on all 139): 1 differs, planted:737 E_Y 2.060 -> 1.871
+(-9.2 %, the lean mean law after the position product); planted:4011 / 1181 / lathe43m (diag106e's
++4.0 / +1.6 / +1.5 %) identical to BASE (the wide law can clear there: no lean law offered).
+bench_diag88 ``seen`` (33 rows; BASE 21.2 s, RULE 22.6 s): 6 better by 72-80 % (planted:8457 / 8885
+/ 9046 / 9103 / 9150 and lag:8980 E_Z), none worse, the rest identical.  Every row that differs
+takes a lean law, so it was offered there; the others are BASE's.  Tests with RULE: the 46 modules
+diag106e ran (test_diag*, every module importing the search, features, AugmentedRegressor or the
+export of diagnosed models) 407 passed (158.2 s CPU); test_diagnose_level107, test_docs,
+test_export_effects59, test_deploy_diagnosed, test_clamp_diagnosed60, test_lint 76 passed (20.1 s).
+**KEPT.**
+
+Trace, seen 10109 E_Z (diagnose as a user runs it; BASE 4.6 s CPU, RULE 5.5, lean_first 4.1): round 0
+removes T_nc_tool_motor (both); round 1 takes S_pos_Z x T_nc_spindle_motor over T_amb (51.3 %); round
+2 the control clears (CV gain 23.2 %, p 0.0039) -- BASE stops there (test 6.477).  RULE takes
+ambient_scaled in round 2 (70.6 %, beats the control) and in round 3 the control LOSES (-21.8 %, p
+0.9997): the lean law, once in, leaves the control far below the bar (test 2.875); it was the level
+drift left.  Taken literally "in round 1" it cannot be: with the position effect unexplained the lean
+laws gain -1.3 / -1.6 % (``lean_first``: round 1 only them and the control; nothing taken, test
+15.776 after the sensor removal).  The flag ``control_ever_clears_bar`` stays true on 10109 E_Z with
+RULE (round 2), as with BASE.
 """
 
 from __future__ import annotations
