@@ -23,7 +23,7 @@ from ...core.models._campaign_ls import LSTSQ_TOL
 from ...core.models.base import measured_rows
 from ...core.models.linear import MLR
 from ...core.timerule import CLOCK_START, median_step, step_time
-from .features import AMBIENT_CENTRE_C, Effect, as_effect, design, frames, initial_weights
+from .features import AMBIENT_CENTRE_C, Effect, as_effect, design, frames, initial_weights, level_weights
 from .shrink import PartialRidgePath
 
 MODEL_NAME = "diagnosed"   # the model diagnose writes (conf/model/diagnosed.yaml, "<family>+diagnosed")
@@ -132,7 +132,8 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
         time = context[TIME].to_numpy(float) if context is not None and TIME in context else None
         self.sample_period_s_ = (median_step(time, g) if time is not None else None) or 1.0
         self.initial_weights_ = [
-            initial_weights(context, e.initial_state, g, e.initial_directions) if e.learns else None
+            level_weights(X[measured], y[measured]) if e.transform == "ambient_scaled"
+            else initial_weights(context, e.initial_state, g, e.initial_directions) if e.learns else None
             for e in self.effects_]
         Z = self._design(X, context)
         base = self.estimator if self.estimator is not None else MLR()
@@ -156,7 +157,8 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
         # it where it is known, else the mean of its sensors' first values (features.initial_state),
         # as every deployed form does (stranger66: a record without an air sensor and without a
         # manifest ambient_c was diagnosed, and the stream refused every diagnosed model of it)
-        laws = any(e.transform in ("ambient_linear", "ambient_step") for e in self.effects_)
+        laws = any(e.transform in ("ambient_linear", "ambient_step", "ambient_mean", "ambient_scaled")
+                   for e in self.effects_)
         base = AMBIENT_C0 in context_columns(self.estimator_)
         self.ambient_optional_ = not (laws or base)
         ambient = laws or base or any(e.initial_state for e in self.effects_)
@@ -302,6 +304,10 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
                     out += within([term._replace(gain=block)], -np.inf, np.inf, power=1)
                 else:
                     out += within([term._replace(gain=block)], float(e.threshold_c), np.inf)
+            elif tr in ("ambient_mean", "ambient_scaled"):    # one column: a direction of x x (A0 - 20)
+                w = np.full(k, 1.0 / k) if tr == "ambient_mean" else self.initial_weights_[i]
+                out += within([term._replace(gain=gain[at] * w)], -np.inf, np.inf, power=1)
+                at += 1
             else:     # one column of the context, not of x
                 at += 1
             if tr in ("first_order_lag", "lowpass_inputs") and e.initial_state:
@@ -364,6 +370,10 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
                     parts.append(self._initial_state(i, e, context, a0, t, state))
             elif tr == "ambient_linear":
                 parts.append(x * (a0 - AMBIENT_CENTRE_C))
+            elif tr == "ambient_mean":
+                parts.append(np.array([x.mean() * (a0 - AMBIENT_CENTRE_C)]))
+            elif tr == "ambient_scaled":
+                parts.append(np.array([x @ self.initial_weights_[i] * (a0 - AMBIENT_CENTRE_C)]))
             elif tr == "ambient_step":
                 parts.append(x * float(a0 > e.threshold_c))
         z = np.concatenate(parts)

@@ -135,6 +135,11 @@ def candidates(problem, model_inputs: list[str], excluded: set, accepted: list[E
         by_unit = ctx["ambient_c0"].groupby(problem.units, sort=False).first()
         if by_unit.nunique() >= 2 * options.min_units_per_side:
             out.append(Effect("ambient_interval", "ambient_linear"))
+            # the room's level law leanly (diag106e): one regressor, for where the law of every input
+            # saturates the campaigns and so can never be taken, yet vetoes or buries real effects;
+            # elsewhere Search.run drops them (diag107: Search._bank_untestable)
+            out.append(Effect("ambient_interval", "ambient_mean"))
+            out.append(Effect("ambient_interval", "ambient_scaled"))
             out += [Effect("ambient_interval", "ambient_step", threshold_c=thr)
                     for thr in ambient_thresholds(by_unit, options.min_units_per_side)]
     if "interaction" in fam:

@@ -49,7 +49,15 @@ from ...core.models._campaign_ls import CampaignLeastSquares
 from ...core.models._memo import BoundedCache
 from ...core.models.linear import MLR
 from ...core.select import AllInputs
-from .features import Effect, effect_features, in_frame, initial_offsets, principal_directions, transient
+from .features import (
+    Effect,
+    effect_features,
+    in_frame,
+    initial_offsets,
+    level_weights,
+    principal_directions,
+    transient,
+)
 from .shrink import ALPHAS, PartialRidgePath, least_error, one_standard_error
 
 # Every candidate screened keeps its features (a column or a few per train row): on a year at
@@ -328,18 +336,27 @@ class CrossValidator:
         those rows instead (:meth:`forward_within`'s fits; not cached).
         """
         if rows is not None and effect.learns:
-            return self._start_features(effect, names, rows)
+            return (self._scaled_features(effect, names, rows) if effect.transform == "ambient_scaled"
+                    else self._start_features(effect, names, rows))
         fold = fold if effect.learns else None
         key = (effect, tuple(names) if effect.uses_inputs else None, fold)
         if key not in self._features:
             p = self.problem
-            if effect.initial_state:     # the lag (cached once) + the initial-state transient
+            if effect.transform == "ambient_scaled":   # its direction learned on the fold's rows
+                self._features[key] = self._scaled_features(effect, names, p.train_rows(fold))
+            elif effect.initial_state:     # the lag (cached once) + the initial-state transient
                 self._features[key] = self._start_features(
                     effect, names, p.train_rows(fold) if effect.learns else None)
             else:
                 X = self.inputs_matrix(names) if effect.uses_inputs else np.empty((len(p.y), 0))
                 self._features[key] = effect_features(effect, X, p.context, p.campaigns, p.reference)
         return self._features[key]
+
+    def _scaled_features(self, effect: Effect, names: list[str], rows: np.ndarray) -> np.ndarray:
+        """The level law on the inputs' least-squares fit, its weights learned on ``rows``."""
+        p, X = self.problem, self.inputs_matrix(names)
+        weights = level_weights(X[rows], np.asarray(p.y, float)[rows])
+        return effect_features(effect, X, p.context, p.campaigns, p.reference, weights)
 
     def _start_features(self, effect: Effect, names: list[str], rows: np.ndarray | None) -> np.ndarray:
         """A lag from the initial state: its lag (cached once) and the transient, its initial

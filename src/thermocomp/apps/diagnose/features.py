@@ -42,6 +42,9 @@ dynamics            ``lowpass_inputs``    :math:`L_\tau[x_i](t)` for every model
 (both lags)         ``initial_state``     also :math:`w_k^\top(c(0) - A_0)\,(1 - e^{-t/\tau})`
 ambient_interval    ``ambient_linear``    :math:`x_i(t)\,(A_0 - 20\,°C)` for every input
 ambient_interval    ``ambient_step``      :math:`x_i(t)\,[A_0 > A_{thr}]` for every input
+ambient_interval    ``ambient_mean``      :math:`\bar x(t)\,(A_0 - 20\,°C)`, the inputs' mean: one
+                                          regressor (diag106e: a room's level law 8 campaigns
+                                          can test, where ``ambient_linear`` saturates them)
 interaction         ``product``           :math:`\Delta c(t)\,\Delta o(t)`; with ``over``
                                           :math:`\Delta c(t)\,(\Delta o(t) - \Delta a(t))`
 interaction         ``inputs_product``    :math:`c(t)\,(x_i(t) - x_i(0))` for every input
@@ -86,7 +89,8 @@ from ...core.models._dynamics import first_order_lag, segment_bounds  # noqa: F4
 
 FRAMES = ("absolute", "referenced")   # frame of a state signal of its own (None: the data's)
 KINDS = ("signal", "dynamics", "ambient_interval", "interaction", "nonlinear", "sensor_fault")
-TRANSFORMS = ("raw", "first_order_lag", "lowpass_inputs", "ambient_linear", "ambient_step",
+TRANSFORMS = ("raw", "first_order_lag", "lowpass_inputs", "ambient_linear", "ambient_step", "ambient_mean",
+              "ambient_scaled",
               "product", "inputs_product", "square", "remove")
 
 
@@ -194,6 +198,8 @@ class Effect:
             "first_order_lag": f"first_order_lag({tau}){start}{frame}",
             "lowpass_inputs": f"first_order_lag({tau}) of the model inputs{start}",
             "ambient_linear": f"model inputs x (ambient_c0 - {AMBIENT_CENTRE_C:g}°C)",
+            "ambient_mean": f"model inputs' mean x (ambient_c0 - {AMBIENT_CENTRE_C:g}°C)",
+            "ambient_scaled": f"model inputs' least-squares fit x (ambient_c0 - {AMBIENT_CENTRE_C:g}°C)",
             "ambient_step": f"model inputs x [ambient_c0 > {self.threshold_c:.2f}°C]"
             if self.threshold_c is not None else "",
             "product": f"product({self.other}{' rise' if self.frame else ''}"
@@ -206,12 +212,14 @@ class Effect:
     @property
     def learns(self) -> bool:
         """True when the features hold a part learned from the training rows (initial directions)."""
-        return bool(self.initial_state) and self.initial_directions is not None
+        return (bool(self.initial_state) and self.initial_directions is not None) \
+            or self.transform == "ambient_scaled"
 
     @property
     def uses_inputs(self) -> bool:
         """True when the features are built from the model inputs ``X``."""
-        return self.transform in ("lowpass_inputs", "ambient_linear", "ambient_step", "inputs_product")
+        return self.transform in ("lowpass_inputs", "ambient_linear", "ambient_step", "ambient_mean",
+                                  "ambient_scaled", "inputs_product")
 
     @property
     def context_columns(self) -> list[str]:
@@ -415,7 +423,23 @@ def effect_features(effect: Effect, X, context: pd.DataFrame | None = None, grou
     a0 = _ambient(context, n)
     if tr == "ambient_linear":
         return X * (a0 - AMBIENT_CENTRE_C)[:, None]
+    if tr == "ambient_mean":
+        return (X.mean(axis=1) * (a0 - AMBIENT_CENTRE_C))[:, None]
+    if tr == "ambient_scaled":
+        if weights is None:
+            raise ParameterError("an ambient_scaled effect needs the inputs' least-squares weights "
+                                 "(level_weights), learned where the model is fitted")
+        return ((X @ np.asarray(weights, float)) * (a0 - AMBIENT_CENTRE_C))[:, None]
     return X * (a0 > effect.threshold_c)[:, None].astype(float)   # ambient_step
+
+
+def level_weights(X, y) -> np.ndarray:
+    """The inputs' least-squares coefficients on ``y`` (with an intercept, measured rows only):
+    ``ambient_scaled``'s direction, the base's own fit, which a level law scales (diag106e)."""
+    X, y = np.asarray(X, float), np.asarray(y, float)
+    ok = np.isfinite(y)
+    A = np.column_stack([np.ones(ok.sum()), X[ok]])
+    return np.linalg.lstsq(A, y[ok], rcond=None)[0][1:]
 
 
 def design(X, effects, context: pd.DataFrame | None = None, groups=None,

@@ -325,6 +325,9 @@ def forward_first(eligible: list) -> list:
     return [best] + [ev for ev in eligible if ev is not best]
 
 
+LEAN_LEVEL = ("ambient_mean", "ambient_scaled")   # a room's level law in one regressor (diag106e)
+
+
 def _same_effect(ev, other) -> bool:
     """An effect traced to the same column, whatever its kind (a richer or leaner read of one
     sensor), or of the same kind on one column where ``other`` reads every model input (``column``
@@ -336,6 +339,8 @@ def _same_effect(ev, other) -> bool:
     rises (``interaction`` on S_pos_Y, 19.9 %) did not clear by ranks over 83 blocks, and kept
     S_pos_Y itself (``signal``, 11.8 %, family-wise p 0.0009), a leaner read of the same sensor,
     out (``benchmarks/bench_diag89d.py``).  An ambient law has no column: it keeps its veto."""
+    if ev.effect.transform in LEAN_LEVEL:      # the room's level law, leanly (diag106e)
+        return other.effect.kind == "ambient_interval"
     if ev.effect.column is None:
         return False
     if other.effect.column is None:
@@ -672,7 +677,13 @@ class Search:
         year-round VMC's column tilt: R^2 .96-.98) and one sensor's rise does not (.82-.85), the
         rise over the air's in one regressor nearly (.94-.96).  Offered beside a bank that can be
         tested it was taken as the simpler within one standard error and read the tilt less well
-        (fresh 7298 / 7300: test +10.0 / +5.2 %; ``benchmarks/bench_planted72.py``)."""
+        (fresh 7298 / 7300: test +10.0 / +5.2 %; ``benchmarks/bench_planted72.py``).
+
+        The room's wide level law (every input x the initial ambient, ``ambient_linear``) has as
+        many regressors: only where it, too, can never clear is the law read leanly in one
+        (:data:`LEAN_LEVEL`, diag107).  Offered beside a wide law that could be taken, the lean
+        one was taken as the simpler within one standard error and read the law less well
+        (bench_remeasure62's planted:4011 E_Y +4.0 %, 1181 +1.6 %, lathe43m +1.5 %: diag106e)."""
         return not self.problem.shared_ranked and self.saturates(n_inputs)
 
     def _shortlist(self, scored: list[tuple[Effect, float]]) -> list[tuple[Effect, float]]:
@@ -681,7 +692,9 @@ class Search:
                          and s[0].transform != "remove"), key=lambda s: -s[1])
         chosen, per_group = [], {}
         for e, r2 in ranked:
-            g = (e.kind, e.column)
+            # the room's lean level law (one regressor) is no third read of the wide laws, which
+            # saturate 8 campaigns and fill the family's two places by their in-sample fit (diag106e)
+            g = (e.kind, e.column, e.transform in LEAN_LEVEL)
             if len(chosen) < opts.shortlist and per_group.get(g, 0) < 2:
                 chosen.append((e, r2))
                 per_group[g] = per_group.get(g, 0) + 1
@@ -712,8 +725,8 @@ class Search:
             names = self.cv.selection(self.inputs(), None)
             cands = candidates(p, names, set(self.excluded), self.effects, opts.candidates, used)
             self.start_lags_screened = sum(_start_lag(e) for e in cands)
-            if not self._bank_untestable(len(names)):
-                cands = [e for e in cands if e.over is None]
+            if not self._bank_untestable(len(names)):   # the wide forms can clear: no stand-ins
+                cands = [e for e in cands if e.over is None and e.transform not in LEAN_LEVEL]
             ok = p.validated                  # the rows CV scores (forward: not the first part)
             Z = np.column_stack([np.ones(len(p.y)), self.cv.design(names, self.effects)])[ok]
             Q = _orthonormal(Z)
