@@ -96,15 +96,30 @@ the reason it was left.
 
 from __future__ import annotations
 
+import io
+import json
+import os
+import signal
+import subprocess
 import sys
 from pathlib import Path
+
+import numpy as np
+import pandas as pd
 
 HERE = Path(__file__).resolve().parent
 REPO = HERE.parent
 sys.path[:0] = [str(HERE), str(REPO / "tests")]
-from _cli import run_commands  # noqa: E402
+import bench_audit99  # noqa: E402
+import bench_audit100  # noqa: E402
+import bench_audit103  # noqa: E402
+import bench_audit105  # noqa: E402
+import bench_audit106  # noqa: E402
+from _cli import project_root, run_commands  # noqa: E402
 
 BASE = "570d5a78"
+MAIN = Path("/work/main")
+PORTS = {"5002": "5107", "5001": "5117", "4840": "4907"}
 RECORD = "col10133"
 HEALTHY = "col10134"
 LAB_SEED = 10135
@@ -114,8 +129,310 @@ FL_TABLE = {"mlr": (9.18, 4.06), "pcr": (3.17, 6.48), "arx": (10.96, 4.81), "lag
             "hammerstein": (2.48, 2.95), "lstm": (9.07, 2.96), "auto": (2.12, 2.48)}
 
 
+def simulated(root: Path, record: str) -> Path:
+    """``record``'s column_moving_source draw under ROOT/data (made once)."""
+    from bench_audit86b import stage
+
+    data = root / "data" / record
+    if not data.exists():
+        rc, said = stage("simulate", "sim=column_moving_source", f"seed={record[3:]}", f"data.path={data}")
+        assert rc == 0, said
+    return data
+
+
+def cli(*args: str) -> subprocess.CompletedProcess:
+    import bench_audit97
+
+    return bench_audit97._cli(*args)
+
+
+def readme(word: str) -> None:
+    """Cell R (module doc)."""
+    clone = Path(word).resolve()
+    if not clone.exists():
+        subprocess.run(["git", "clone", "-q", str(MAIN), str(clone)], check=True)
+        subprocess.run(["git", "-C", str(clone), "checkout", "-q", BASE], check=True)
+    bench_audit105.BASE = BASE
+    bench_audit105.PORTS = PORTS
+    bench_audit105.readme(str(clone))
+
+
+def fltable(word: str, families: str = ",".join(FL_TABLE)) -> None:
+    """Cell T (module doc): the README's family table against what ``run`` prints in CLONE."""
+    import bench_audit97
+
+    clone = bench_audit97.clone_of(word)
+    splits = {"authors": ["data.split_order=[train,test,val]", "data.test_fraction=0.2",
+                          "data.val_fraction=0.2"], "cut": []}
+    for family in families.split(","):
+        got = {}
+        for split, keys in splits.items():
+            out = clone / "reports" / f"fltable-{family}-{split}"
+            done = subprocess.run(["nice", str(clone / ".venv/bin/thermocomp"), "run", "data=fl_thermal",
+                                   f"model={family}", *keys, "track=false", "plots=none", f"out={out}"],
+                                  cwd=clone, capture_output=True, text=True)
+            if done.returncode:
+                got[split] = f"exit {done.returncode}: {done.stderr.strip()[-200:]}"
+                continue
+            targets = json.loads((out / "metrics.json").read_text())["targets"]
+            test = [m["test"] for m in targets.values()]
+            got[split] = (np.mean([m["mae"] for m in test]), np.mean([m["rmse"] for m in test]),
+                          np.mean([m.get("rms_before", np.nan) for m in test]))
+        mae = got["authors"][0] if isinstance(got["authors"], tuple) else np.nan
+        rmse, before = got["cut"][1:] if isinstance(got["cut"], tuple) else (np.nan, np.nan)
+        quoted = FL_TABLE[family]
+        same = f"{mae:.2f}" == f"{quoted[0]:.2f}" and f"{rmse:.2f}" == f"{quoted[1]:.2f}"
+        print(f"  {family:<12} 60/20/20 MAE {mae:.4f} (README {quoted[0]}), 90/10 RMSE {rmse:.4f} (README "
+              f"{quoted[1]}), before {before:.4f} (README 16.7): {'as written' if same else 'DIFFERS'} "
+              f"{[v for v in got.values() if isinstance(v, str)]}", flush=True)
+
+
+def models(root: str, *chosen: str) -> None:
+    """Cell M (module doc)."""
+    base = project_root(root, REPO / "conf")
+    simulated(base, RECORD)
+    bench_audit105.RECORD = RECORD
+    bench_audit105.simulated = simulated
+    bench_audit105.models(root, *chosen)
+
+
+def healthy(root: str) -> None:
+    """Cell H (module doc)."""
+    bench_audit106.HEALTHY = HEALTHY
+    bench_audit106.simulated = simulated
+    bench_audit106.healthy(root)
+
+
+LAB_NAMES = {"E_X": ("Weg X", "µm"), "E_Y": ("Weg Y", "µm"), "S_door": ("Tür", "-"),
+             "S_spindle_rpm": ("Drehzahl Spindel", "1/min"), "S_tool_rpm": ("Drehzahl Werkzeug", "1/min"),
+             "T_amb": ("Umgebung", "°C")}
+START = pd.Timestamp("2026-12-07 13:05:00")
+UNPLUGGED = ("Reserve 7", "0,0")                   # a channel with no sensor on it: a constant
+COMMENTS = ("Anlauf – Spindel warm", "Serie läuft…", "Tür geöffnet „kurz“", "ok")   # cp1252-only marks
+
+
+def _export_name(column: str) -> str:
+    """The export's name of a contract column (its unit on the row below)."""
+    return LAB_NAMES.get(column, (f"Temp {column[2:].replace('_', ' ')}", ""))[0]
+
+
+def write_export(base: Path, seed: int) -> pd.DataFrame:
+    """``contract.csv`` (bench_audit91's) and ``export.csv`` (module doc): Windows-1252, CRLF,
+    ``Zeitstempel;<names>;Reserve 7;Bemerkung;`` then a units row, then ``07.12.2026 13:05:00;
+    21,53;...;0,0;<comment>;``; the contract's rows."""
+    import bench_audit91
+
+    if not (base / "contract.csv").exists():
+        bench_audit91.lab_files(base, seed)
+    rows = pd.read_csv(base / "contract.csv")
+    cols = [c for c in rows.columns if c != "time"]
+    units = [LAB_NAMES.get(c, ("", "°C" if c.startswith("T_") else ""))[1] for c in cols]
+    head = ";".join(["Zeitstempel", *(_export_name(c) for c in cols), UNPLUGGED[0], "Bemerkung"]) + ";"
+    unit_row = ";".join(["", *units, "°C", ""]) + ";"
+    body = []
+    for k, (t, r) in enumerate(zip(rows["time"], rows[cols].itertuples(index=False))):
+        at = START + pd.Timedelta(seconds=round(float(t)))
+        body.append(";".join([f"{at:%d.%m.%Y %H:%M:%S}", *(repr(float(v)).replace(".", ",") for v in r),
+                              UNPLUGGED[1], COMMENTS[k * len(COMMENTS) // len(rows)]]) + ";")
+    text = "".join(f"{ln}\r\n" for ln in [head, unit_row, *body])
+    (base / "export.csv").write_bytes(text.encode("cp1252"))
+    print(f"wrote {base / 'export.csv'}: {len(rows)} rows; {head!r}; {unit_row!r}; row 1 {body[0]!r}; "
+          f"last {body[-1][:40]!r}", flush=True)
+    return rows
+
+
+def lab(root: str, families: str = "mlr,lagbank") -> None:
+    """Cell L (module doc)."""
+    import bench_audit91
+    import bench_audit100
+
+    base = bench_audit91.lab_root(root, str(LAB_SEED))
+    rows = write_export(base, LAB_SEED)
+    bench_audit100.lab_against_contract(base, rows, base / "export.csv", families, _export_name)
+    init = base / "export-init"
+    conf = next((init / "conf" / "data").glob("*.yaml"), None) if init.exists() else None
+    if conf is None:
+        return
+    text = conf.read_text(encoding="utf-8", errors="replace")
+    print(f"  init's data config {conf.name}: replacement characters {text.count(chr(0xFFFD))}\n    "
+          + "\n    ".join(text.splitlines()[:60]), flush=True)
+    search = [f"hydra.searchpath=[file://{init / 'conf'}]", f"data={conf.stem}", "data.test_fraction=0.25"]
+    for family in families.split(","):
+        model = base / f"export-{family}" / "model.pkl"
+        done = cli("monitor", *search, f"monitor.model={model}", "track=false",
+                   f"out={base}/export-{family}-mon")
+        mon = base / f"export-{family}-mon" / "monitor.json"
+        events = json.loads(mon.read_text()).get("events", []) if mon.exists() else []
+        print(f"  monitor {family} exit {done.returncode}: {len(events)} events {str(events)[:400]}\n    "
+              f"{bench_audit106._ends(done, 4)}", flush=True)
+
+
+def faulted(frame: pd.DataFrame, fault: str, sensor: str, period: float) -> pd.DataFrame:
+    """``frame`` (a test file's cells as text) with ``fault``: ``reordered`` its columns in reverse;
+    ``extra`` an unknown sensor ``T_spare`` (20.5) after the time; ``comma`` the sensor's cell of
+    data row :data:`FAULT_ROW` with a decimal comma (``21,53``); ``isotime`` / ``dayfirst`` the time
+    as ISO 8601 / ``07.12.2026 13:05:00`` stamps from :data:`START`; ``period10`` every 10th row
+    from FAULT_ROW on (the record sampled 10x sparser)."""
+    out = frame.astype(object).copy()
+    if fault == "reordered":
+        return out[list(reversed(out.columns))]
+    if fault == "extra":
+        out.insert(1, "T_spare", "20.5")
+    elif fault == "comma":
+        out.loc[FAULT_ROW, sensor] = str(out.loc[FAULT_ROW, sensor]).replace(".", ",")
+    elif fault in ("isotime", "dayfirst"):
+        at = START + pd.to_timedelta(frame["time"].astype(float).round(), unit="s")
+        out["time"] = at.dt.strftime("%Y-%m-%dT%H:%M:%S" if fault == "isotime" else "%d.%m.%Y %H:%M:%S")
+    elif fault == "period10":
+        keep = list(range(FAULT_ROW)) + list(range(FAULT_ROW, len(out), 10))
+        out = out.iloc[keep].reset_index(drop=True)
+    return out
+
+
+def _c_fed(c_dir: Path, rows: pd.DataFrame) -> tuple[subprocess.CompletedProcess, pd.DataFrame]:
+    done = subprocess.run([str(c_dir / "stream"), "--flags"], input=rows.to_csv(index=False).encode(),
+                          capture_output=True)
+    try:
+        got = pd.read_csv(io.BytesIO(done.stdout)) if done.stdout.strip() else pd.DataFrame()
+    except ValueError:
+        got = pd.DataFrame()
+    return done, got
+
+
+def _rmse(rows: pd.DataFrame, corr: pd.DataFrame) -> float:
+    """Mean over targets of the RMSE of error + correction (the rows' measured errors from the
+    first row's, as run scores a campaign read from its first sample)."""
+    n = min(len(rows), len(corr))             # (a stream stopped early: the rows it answered)
+    measured = {t: rows[t].astype(float).to_numpy()[:n] - float(rows[t].iloc[0])
+                for t in rows.columns if t.startswith("E_")}
+    return float(np.mean([np.sqrt(np.mean((e + corr[f"C_{t[2:]}"].to_numpy(float)[:n]) ** 2))
+                          for t, e in measured.items()]))
+
+
+def faults(root: str, port: str, name: str = "mlr-none") -> None:
+    """Cell F (module doc)."""
+    base = project_root(root, REPO / "conf")
+    data, cell = base / "data" / RECORD, base / "reports" / RECORD / name
+    c_dir = cell.parent / f"{name}-c"
+    manifest = pd.read_csv(data / "campaigns.csv")
+    test_file = manifest.loc[manifest.split == "test", "file"].iloc[0]
+    frame = pd.read_csv(data / test_file, dtype=str, keep_default_na=False)
+    period = float(np.median(np.diff(frame["time"].astype(float))))
+    inputs = [c for c in frame.columns if not c.startswith("E_")]
+    sensor = next(c for c in inputs if c.startswith("T_") and not c.startswith("T_amb"))
+    _, healthy_c = _c_fed(c_dir, frame)
+    corr = [c for c in healthy_c.columns if c.startswith("C_")]
+    flag_cols = [c for c in healthy_c.columns if c not in corr and c != "time"]
+    print(f"{name}: C healthy {len(healthy_c)} rows, RMSE {_rmse(frame, healthy_c):.7g}, first flagged "
+          f"{bench_audit105._first_flag(healthy_c, flag_cols)[0]}; sensor {sensor}, period {period:g} s",
+          flush=True)
+    scratch = base / "faults" / name
+    scratch.mkdir(parents=True, exist_ok=True)
+    answers = {}
+    for fault in FAULTS:
+        rows = faulted(frame, fault, sensor, period)
+        done, got = _c_fed(c_dir, rows)
+        answers[fault] = got
+        err = bench_audit103._ends(done.stderr.decode(errors="replace"))
+        line = f"  C [{fault}] exit {done.returncode}: {err!r}"
+        if set(corr) <= set(got):
+            first, flagged = bench_audit105._first_flag(got, flag_cols)
+            line += f"; {len(got)} rows, first flagged {first}, RMSE {_rmse(rows, got):.7g}"
+            if len(got) == len(healthy_c):
+                off = np.abs(got[corr].to_numpy(float) - healthy_c[corr].to_numpy(float)).max(axis=1)
+                line += (f", max|C - healthy| {np.nanmax(off):.3g} um (unflagged "
+                         f"{np.nanmax(np.where(flagged, 0, off)):.3g}), finite "
+                         f"{bool(np.isfinite(off).all())}")
+        print(line, flush=True)
+        _stdin(base, cell, data, rows, fault, scratch)
+        if fault == "period10":
+            _replayed(base, cell, data, manifest, rows, test_file, scratch)
+    _served(cell / "model.pkl", data, frame, inputs, sensor, period, int(port), scratch, answers)
+
+
+def _stdin(base: Path, cell: Path, data: Path, rows: pd.DataFrame, fault: str, scratch: Path) -> None:
+    out = scratch / f"stdin-{fault}"
+    done = subprocess.run(["nice", sys.executable, "-m", "thermocomp", "monitor",
+                           f"monitor.model={cell / 'model.pkl'}",
+                           "monitor.input=-", f"data.path={data}", "track=false", "plots=none", f"out={out}"],
+                          input=rows.to_csv(index=False), capture_output=True, text=True)
+    said = json.loads((out / "monitor.json").read_text()) if (out / "monitor.json").exists() else {}
+    targets = said.get("targets") or {}
+    fixed, adaptive = (np.mean([v[k] for v in targets.values()]) if targets else np.nan
+                       for k in ("rmse_fixed", "rmse_adaptive"))
+    tail = [ln for ln in (done.stdout + done.stderr).splitlines() if "warning" in ln or "rror" in ln]
+    print(f"    stdin [{fault}] exit {done.returncode}: RMSE fixed {fixed:.7g} adaptive {adaptive:.7g}, "
+          f"events {len(said.get('events', []))}; "
+          f"{' | '.join(tail)[-400:]!r}", flush=True)
+
+
+def _replayed(base: Path, cell: Path, data: Path, manifest: pd.DataFrame, rows: pd.DataFrame, test_file: str,
+              scratch: Path) -> None:
+    """F2's reference: ``replay`` (and plain) of a copy of the record whose test file is ``rows``."""
+    copy = scratch / "data10"
+    copy.mkdir(exist_ok=True)
+    for f in manifest.file:
+        if f != test_file and not (copy / f).exists():
+            (copy / f).symlink_to(data / f)
+    rows.to_csv(copy / test_file, index=False)
+    (copy / "campaigns.csv").write_text((data / "campaigns.csv").read_text())
+    for label, keys in (("replay", []), ("plain", ["monitor.adaptive=false", "promote.envelope.policy=off"])):
+        out = scratch / f"period10-{label}"
+        done = cli("replay", f"data.path={copy}", f"replay.model={cell / 'model.pkl'}", f"out={out}", *keys)
+        rep = json.loads((out / "replay.json").read_text()) if (out / "replay.json").exists() else {}
+        rmse = np.mean([v["rmse"] for v in rep.get("targets", {}).values()]) if rep else np.nan
+        print(f"    {label} of the 10x rows exit {done.returncode}: RMSE {rmse:.7g}, events "
+              f"{len(rep.get('events', []))} {str(rep.get('events', []))[:300]}; "
+              f"{bench_audit106._ends(done, 2)!r}",
+              flush=True)
+
+
+def _served(model: Path, data: Path, frame: pd.DataFrame, inputs: list[str], sensor: str, period: float,
+            port: int, scratch: Path, answers: dict[str, pd.DataFrame]) -> None:
+    end = FAULT_ROW + 20
+    log = scratch / "serve.err"
+    with log.open("w") as err:
+        proc = subprocess.Popen(["nice", sys.executable, "-m", "thermocomp", "serve", f"serve.model={model}",
+                                 f"serve.port={port}", f"data.path={data}"], stdout=err, stderr=err,
+                                start_new_session=True)
+    try:
+        print(f"  serve up after {bench_audit99._wait_port(port, proc):.0f} s", flush=True)
+        for fault in FAULTS:
+            rows = faulted(frame, fault, sensor, period).iloc[:end]
+            cols = [c for c in rows.columns if not c.startswith("E_")]
+            status, text = bench_audit100._post(port, bench_audit106._json_block(rows, cols).encode())
+            got, c_said = _served_c(text), answers[fault].filter(like="C_").to_numpy(float)
+            said = f"HTTP {status}"
+            if got is not None and any(str(c).startswith("C_") for c in got):
+                corr = got.filter(like="C_").to_numpy(float)
+                n = min(len(corr), len(c_said))
+                events = [e for e in got.get("events", []) if e not in (None, "", "[]", [])]
+                said += (f"; {len(got)} rows, finite {bool(np.isfinite(corr).all())}, max|served - C on the "
+                         f"same rows| {np.abs(corr[:n] - c_said[:n]).max():.3g} um over {n}; "
+                         f"{len(events)} rows with events, first {str(events[:1])[:300]}")
+            else:
+                said += f": {text[:300]!r}"
+            print(f"  served [{fault}] {said}", flush=True)
+    finally:
+        if proc.poll() is None:
+            os.killpg(proc.pid, signal.SIGTERM)
+            proc.wait(timeout=60)
+    text = log.read_text(errors="replace")
+    print(f"  server stderr: {len(text.splitlines())} lines; tracebacks {text.count('Traceback')}",
+          flush=True)
+
+
+def _served_c(text: str) -> pd.DataFrame | None:
+    try:
+        answer = json.loads(text)
+        return pd.DataFrame(answer.get("predictions", answer) if isinstance(answer, dict) else answer)
+    except (ValueError, TypeError):
+        return None
+
+
 def main(argv: list[str]) -> int:
-    return run_commands(__doc__, {}, argv, cpu=sys.stderr)
+    return run_commands(__doc__, {"readme": readme, "fltable": fltable, "models": models,
+                                  "faults": faults, "healthy": healthy, "lab": lab}, argv, cpu=sys.stderr)
 
 
 if __name__ == "__main__":
