@@ -17,7 +17,7 @@ Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is
     python benchmarks/bench_audit107.py fltable CLONE [FAMILIES]  # cell T (the same clone)
     python benchmarks/bench_audit107.py models ROOT [WORD ...]    # cell M (fresh col10133)
     python benchmarks/bench_audit107.py faults ROOT PORT [CELL]   # cell F (col10133's cells)
-    python benchmarks/bench_audit107.py healthy ROOT              # cell H (fresh col10134)
+    python benchmarks/bench_audit107.py healthy ROOT [noq3]       # cell H (fresh col10134)
     python benchmarks/bench_audit107.py lab ROOT [FAMILIES]       # cell L (fresh lab 10135)
 
 Kinds (conf/sim): yearround_spindle, large_mill_week, swiss_lathe_door, column_moving_source,
@@ -123,6 +123,7 @@ PORTS = {"5002": "5107", "5001": "5117", "4840": "4907"}
 RECORD = "col10133"
 HEALTHY = "col10134"
 LAB_SEED = 10135
+NO_Q3 = "noq3"
 FAULT_ROW = 200
 FAULTS = ("reordered", "extra", "comma", "isotime", "dayfirst", "period10")
 FL_TABLE = {"mlr": (9.18, 4.06), "pcr": (3.17, 6.48), "arx": (10.96, 4.81), "lagbank": (3.08, 4.78),
@@ -135,7 +136,9 @@ def simulated(root: Path, record: str) -> Path:
 
     data = root / "data" / record
     if not data.exists():
-        rc, said = stage("simulate", "sim=column_moving_source", f"seed={record[3:]}", f"data.path={data}")
+        q3 = ["sim.generator.q3=false"] if record.endswith(NO_Q3) else []
+        rc, said = stage("simulate", "sim=column_moving_source", f"seed={record[3:8]}", *q3,
+                         f"data.path={data}")
         assert rc == 0, said
     return data
 
@@ -196,9 +199,9 @@ def models(root: str, *chosen: str) -> None:
     bench_audit105.models(root, *chosen)
 
 
-def healthy(root: str) -> None:
-    """Cell H (module doc)."""
-    bench_audit106.HEALTHY = HEALTHY
+def healthy(root: str, q3: str = "") -> None:
+    """Cell H (module doc); ``noq3``: the same draw without the scenario's test-half source."""
+    bench_audit106.HEALTHY = HEALTHY + (NO_Q3 if q3 == NO_Q3 else "")
     bench_audit106.simulated = simulated
     bench_audit106.healthy(root)
 
