@@ -92,6 +92,39 @@ H1. col10134 (mlr, healthy): ``monitor`` 0 events; export C + pack 0; the C fed 
 Each break: named with command, file, row and numbers; mended where small and clear (a test
 failing on BASE, < 3 s of CPU, in the module of the code at fault), else listed for the lead with
 the reason it was left.
+
+Status: the bar above was committed in 7b0f80cb before any of 10133-10135 was simulated; unchanged.
+Harness after it (no rule, no figure chosen): RMSEs of the C's rows scored from the first row's
+error (as run scores a campaign); the served answers compared with the C's on the same rows; cell
+H once more on ``col10134noq3`` (the same seed, ``sim.generator.q3=false``: col10134 as drawn holds
+the scenario's never-trained source Q3 in its test half, so it is no healthy record).
+
+Scored (2026-12-07, 11:23-12:05 UTC; 2 cores shared, load 7-14, every job ``nice``; 570d5a78's src,
+cell F's stdin rows also with 6802d823)::
+
+  R1  13 blocks exit 0, expectations met, the make-run table printed; README:118 (twin + connect,
+      40 samples/s) at load 12: E_Z 37.887 -> 12.204 um, 89 stale: NOT met; as written again at
+      load 9 (the harness's HOME): 37.887 -> 3.094, 3 stale: met (load-bound, as audit105 found)
+  T1  13 of 14 as written (mlr 9.1815 / 4.0600 ... auto 2.1174 / 2.4807, before 16.7278); lstm
+      60/20/20 MAE 9.0047 (README 9.07; ch1 8.66, ch2 6.76; twice the same): BREAK, docs mended
+  L1  init no key: cp1252, ';' ',', units from line 2, Zeitstempel day-first from 2026-12-07
+      13:05 (60 s, 1441 rows), Bemerkung and the empty column left out, T_Reserve_7 kept with
+      "constant over the whole campaign (a dead channel?)", 0 replacement characters: holds
+  L2  mlr, lagbank: run = plain = replay = C (rows) = C (raw bytes) = contract's to 2.2e-13 um;
+      pack 0; monitor 0 events; the C fed ISO stamps = day-first's byte for byte: holds
+  M1  24 cells: replay = promo = C = cold = Craw to 7 digits, pack 0, st 0, onnx 2, auto x ati 2
+      in one line, ati/interval "1 training campaign(s) ... one model"; replay - run -40.5 ..
+      +83.9 %: inputs clamped to the envelope on 465 of 1441 samples (Q3's half; said by replay),
+      198-204 events; plain = batch = run: holds
+  F1  reordered / extra / isotime / dayfirst: C = healthy (0 um), served = C (1.4e-13 um), stdin
+      the same RMSE and events (extra: "not read" warned; served: MLflow's "ignored"); comma: C
+      exit 2 line 202 T_front1, stdin exit 2 row 201 T_front1, served 400 row 201 T_front1: holds
+  F2  C = replay (stream) of the same rows: mlr 6.905731, lagbank 9.903773 (batch 5.055 / 11.075),
+      served = C 1.4e-13 um; the file reader says the change at data row 202; monitor.input=-
+      said nothing: BREAK, mended (6802d823); the C and served say nothing: left
+  H1  col10134 (Q3 on): monitor 203 events, the C 479 flagged rows from 729, T_right3 excluded at
+      line 731, re-admitted at 736 ("the field followed"); noq3: monitor 0, C 0, mirror 0, pack 0,
+      ST 0 false, |ST - C| 2.56e-13 um: holds on the healthy draw
 """
 
 from __future__ import annotations
