@@ -37,3 +37,25 @@ def test_a_sample_period_changing_inside_a_record_is_said_with_its_row(tmp_path,
     # one rate with a pause of hours (a logger restarted), or the record put on one grid: not said
     assert "sample period changes" not in said(caplog, path, {"resample_s": 60})
     assert "sample period changes" not in said(caplog, record(tmp_path / "pause.csv", PAUSED))
+
+
+def test_a_sample_period_changing_inside_a_stream_on_stdin_is_said_as_the_files(tmp_path, caplog):
+    # audit107: monitor.input=- streamed 100 s rows, then 1000 s ones, without a word where the
+    # file reader said the change of the same rows (replay of the file)
+    from thermocomp.core.io.options import ReadOptions
+    from thermocomp.core.io.stdin import stream_campaigns
+
+    text = record(tmp_path / "lab.csv", CHANGED).read_text(encoding="utf-8")
+    steady = "\n".join(text.splitlines()[:41]) + "\n"           # one rate throughout
+    said = []
+    for rows in (text, steady):
+        caplog.clear()
+        logger.addHandler(caplog.handler)
+        try:
+            streamed, _ = stream_campaigns(rows, ["T_spindle"], ReadOptions.from_cfg({}))
+        finally:
+            logger.removeHandler(caplog.handler)
+        said.append(caplog.text)
+    assert ("<stdin>, column 'time', data row 41: the sample period changes from 60 s to 10 s "
+            "here") in said[0]
+    assert "sample period changes" not in said[1] and len(streamed["stdin"]) == 40

@@ -49,7 +49,7 @@ from .layout import (
 from .lvm import is_lvm_text, lvm_as_csv
 from .options import RUN_ROLE
 from .own_headers import as_named
-from .rates import said_if_rows_missing
+from .rates import said_if_rate_changes, said_if_rows_missing
 from .roles import RUN, active, left_out, named_as_time, naming, said_notes, split_unit
 from .runs import run_blocks, run_values
 from .scope import is_scope_text, scope_as_csv
@@ -373,6 +373,7 @@ def stream_campaigns(text: str, columns: list[str], opts, recorded: str | None =
         blocks, origins = _pause_runs(df, origins[0], opts.runs_at_pauses)
     check_streamed(df[without_derived(df.columns, opts.derive)], blocks, opts, SOURCE,
                    df.attrs.get(HEADERS, {}))        # (data87) as a streamed file's values
+    _said_if_rate_changes(df, blocks)
     if blocks is None:
         df.attrs[TIME_ORIGIN] = origins[0]
         return {STDIN: df}, ({STDIN: counts} if counts else {})
@@ -383,6 +384,17 @@ def stream_campaigns(text: str, columns: list[str], opts, recorded: str | None =
     missing = {cid: {c: int(n) for c, n in part[list(counts)].isna().sum().items() if n}
                for cid, part in parts.items()}
     return parts, {cid: n for cid, n in missing.items() if n}
+
+
+def _said_if_rate_changes(df: pd.DataFrame, blocks: list | None) -> None:
+    """(audit107) A logger set to another sample rate within a run of the stream, said as the
+    file reader says it of the same rows, naming the stream's data row: 100 s rows, then 1000 s
+    ones from data row 202, were monitored without a word (``replay`` of the file said it)."""
+    if TIME not in df.columns:
+        return
+    for _, start, end in blocks or [(STDIN, 0, len(df))]:
+        said_if_rate_changes(df[TIME].to_numpy(float)[start:end], SOURCE,
+                             at=lambda row, start=start: position(row + start))
 
 
 def _pause_runs(df: pd.DataFrame, origin, at_pauses: bool) -> tuple[list | None, list]:
