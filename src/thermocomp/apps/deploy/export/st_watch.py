@@ -1325,18 +1325,19 @@ IF MON_STEP_JUDGE AND (NOT mon_lost OR mon_jheld >= 0) THEN
                         mon_ev := MON_OUT_SCALE[mon_bset, mk] > 0.0;
                         mon_lim := MON_OUT_WARN[mon_bset, mk];
                     END_IF;
-                    IF mon_ev AND mon_bset >= 0 THEN
+                    IF mon_ev THEN
                         mon_x := 0.0;
                         FOR mj := 0 TO MON_N - 1 DO
-                            mon_x := mon_x + MON_OUT_SELF[mon_bset, mk, mj] * mon_ring[mr, mj];
-                        END_FOR;
-                        mon_off := (mon_ring[mr, mk] - mon_x) * MON_OUT_SCALE[mon_bset, mk];
-                    ELSIF mon_ev THEN
-                        mon_x := 0.0;
-                        FOR mj := 0 TO MON_N - 1 DO
-                            mon_x := mon_x + MON_SELF[mk, mj] * mon_ring[mr, mj];
+                            IF mon_bset >= 0 THEN
+                                mon_x := mon_x + MON_OUT_SELF[mon_bset, mk, mj] * mon_ring[mr, mj];
+                            ELSE
+                                mon_x := mon_x + MON_SELF[mk, mj] * mon_ring[mr, mj];
+                            END_IF;
                         END_FOR;
                         mon_off := (mon_ring[mr, mk] - mon_x) * MON_SCALE[mk];
+                        IF mon_bset >= 0 THEN
+                            mon_off := (mon_ring[mr, mk] - mon_x) * MON_OUT_SCALE[mon_bset, mk];
+                        END_IF;
                         IF mon_off < 0.0 THEN
                             mon_off := -mon_off;
                         END_IF;
