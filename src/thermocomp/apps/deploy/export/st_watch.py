@@ -68,6 +68,14 @@ Per sample, of each monitored sensor ``k`` (the input ``MON_INPUT[k]``, the C's 
   for a jump (``MON_JUMP_HELD``): the C's silent re-reference of a sensor out (``mon_hjump``), not
   flagged, no spike's return read, re-referenced by its whole step and counted (``mon_jn``), its
   calm from it; at the hold's ``BACK`` the C's ``_undone``, st101's (``mon_jk``);
+* (st107) the block's own JUMP of another sensor while it holds a ``BLIND_OUT`` (not jumped in its
+  hold), one the C takes out beside it as its second (``MON_OUT_JUMP_HELD``, cmon88's second
+  jump), held as st101's beside it: both out, nothing judged, the second's own later jumps the
+  C's silent re-references (``mon_jbeside``); the ``BLIND_OUT``'s ``BACK`` judged in the set
+  without the second (``MON_OUT_SET``'s row of the ``MON_OUT_*`` constants, one added per sensor
+  held for a jump that is no candidate) unless that one is due back on the same row, the
+  second's ``BACK`` st101's; the model reads both at their last readings in (``mon_hlast``,
+  ``mon_jlast``), the C's served set (st.py);
 * (st96b) the C's level shift of a sensor no other predicts (``SETTLED``), told by the C's test
   over ``2 MON_WINDOW`` readings (``mon_settle_ring``, ``settled.level_shift``) on the C's
   conditions (its reference unmoved for ``2 MON_WINDOW - 1`` samples, no gap, the reading before
