@@ -52,6 +52,41 @@ other predicts.
 * KEPT where B1-B4 hold on seen and fresh; else REFUSED (src reverted, the rule in
   benchmarks/st107_rule.patch).
 
+MEASURED (2026-12-07, 2 cores shared, load 7-12; rule = 9ce82a99's src (+ 5ea09f2f's docs), BAR
+66d2d9c0, unchanged; BASE 570d5a78 (``git archive`` per root); CPU user + sys as each command prints
+it).  VERDICT REFUSED: B1 not met on fresh (its one covered event's after rows); B2, B3, B4 met.
+Src, test and docs back at BASE; the rule, its test, PARSED_DIGEST and docs in
+benchmarks/st107_rule.patch (applies to 570d5a78).
+
+* Note: 66d2d9c0 (the bar's commit) carried a rule whose BACK test with a second held computed the
+  set's error but checked no band; the new unit test caught it and 9ce82a99 fixed it before any
+  score was read (the two runs started on 66d2d9c0 were killed unread, their logs kept apart).
+* Seen (``score``, 135.4 s + st105's fresh 78.4 s): 2 covered events, both dl9975, B1 met 2 of 2:
+  T_col_back 6129 beside T_table, hold rows 15 BASE 7.3 -> 3.6e-14 um, after rows 26 4.6e-14 ->
+  5.7e-14; T_amb 6170 beside T_spindle_rear (its BACK on the jump's row), hold rows 10 2.3 ->
+  3.6e-14, after rows 51 0.33 -> 5e-14.  B2 met 31 of 31 seen + 18 of 18 st105's fresh (st106's
+  18 among them: none moved; dl9975 T_col_back's later lone JUMP 6170, held now, hold 4.8 ->
+  2.1e-14; worst tree - BASE +3.2e-14 um).  B3 0 rows.  Window rows whose c moved: 132 (dl9975
+  only), none worse than BASE.  Healthy lr/dl 9964-9967 (107.4 s): 0 rows worse, 0 B3 rows, 0 c
+  rows and 0 flag rows moved.  Gate not scored: lr10014.
+* Fresh lr/dl 10127-10129 (made after 66d2d9c0, 6.7 s; ``score`` 78.0 s, ``healthy`` 80.5 s;
+  scored once; gate not scored lr10128, dl10128): 24 windows, 1 covered event: dl10127 T_amb 6131
+  beside T_bed_right's ``BLIND_OUT`` (6130): hold rows 10 BASE 1.9 -> 3.6e-14 um, both held, the
+  C's set 1, T_amb's BACK 6141 as the C; after rows 29 BASE 0.093 -> 0.089 um: B1 NOT MET.  B2 met
+  16 of 16 (tree - BASE 0), B3 0 rows; healthy 6 records 0 rows worse, 0 B3, 0 c rows moved.
+* Traced after the score (dl10127 T_amb window, rows stepped): from 6141 the block holds T_bed_right
+  alone as the C (set 5, <= 4.3e-14 um) and judges the set without it; at 6152 two judged sensors
+  sit at that set's warning band over MON_CONFIRM rows (T_spindle_rear 0.746 >= 0.623, T_xdrive
+  0.828 >= 0.776; MON_FOLLOW_OTHERS 2), st96 / st99's "the C could act" (``_follow_field``), so the
+  block ends its hold (``mon_lost``) where the C keeps T_bed_right out and names nothing: the
+  model's set on the live reading, 0.016 .. 0.089 um off on 6152-6169; then the C's JUMP T_amb 6170
+  (the lost block does not hold it, 1.7 um) and ``DRIFT_OUT`` T_col_back 6181 (st106's class).  The
+  two-held rows are the C's; what fails is the one-out hold's own stop, not this rule's rows.
+* B4: with the rule, test_export.py + test_export_st93 .. st100 + st_counters97 + stwires100 +
+  test_lint: 57 passed (74.2 s CPU); PARSED_DIGEST ae298586... (blark parsed the block, 26.4 s).
+  The new case (test_export_st100) fails on 570d5a78 (the hold lost at the jump) and costs +0.8 /
+  +1.1 s CPU (paired, 2 reps, the module without / with it: 7.13 / 6.78 -> 7.92 / 7.83 s).
+
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``)::
 
     python benchmarks/bench_st107.py score ROOT RECORD [RECORD ...]
