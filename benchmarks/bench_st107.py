@@ -57,6 +57,11 @@ MEASURED (2026-12-07, 2 cores shared, load 7-12; rule = 9ce82a99's src (+ 5ea09f
 it).  VERDICT REFUSED: B1 not met on fresh (its one covered event's after rows); B2, B3, B4 met.
 Src, test and docs back at BASE; the rule, its test, PARSED_DIGEST and docs in
 benchmarks/st107_rule.patch (applies to 570d5a78).
+KEPT by the lead (stop 107) over B1's letter on fresh: the patch applied to main.  The one
+clause that failed is dl10127's after rows (0.093 -> 0.089 um), moved by the one-out hold's
+own stop (MON_FOLLOW_OTHERS), a rule the pick did not touch; every hold row the pick covers
+(dl9975 7.3 / 2.3, dl10127 1.9 um) is now the C's to 3.6e-14 um and no event or healthy
+record moved further from the C (B2-B4).  This reading is the lead's, after the numbers.
 
 * Note: 66d2d9c0 (the bar's commit) carried a rule whose BACK test with a second held computed the
   set's error but checked no band; the new unit test caught it and 9ce82a99 fixed it before any

@@ -178,3 +178,38 @@ def test_the_block_holds_a_blind_out_whose_reading_stands_still(record):  # noqa
     assert held[out:back] == [(False, k)] * (back - out) and held[back] == (False, -1)
     assert ss.monitor["fallback_set"][k] > 0
     assert np.max(np.abs(st - c)) <= TOLERANCE_UM
+
+
+
+def _both(v) -> tuple:
+    """``(mon_lost, mon_held, mon_jheld)`` (an export before st101: no jump held, -1)."""
+    return bool(v["mon_lost"]), int(v["mon_held"]), int(v.get("mon_jheld", -1))
+
+
+def test_the_block_holds_a_second_jump_beside_its_blind_out_to_each_back(record):  # noqa: F811
+    """(st107) st101's spike of the sensor the C holds out for a jump, while the block holds the
+    bumped one by its ``BLIND_OUT``: the C takes it out as its second (cmon88), holds both, serves
+    the first one's fallback set in the monitor's order and lets each back at its own ``BACK`` (the
+    bumped one's judged in the set without the other); before st107 the block flagged the jump,
+    ended its hold and its judgement (``mon_lost``) and read both live on the model's laws."""
+    _, ss, frame, block = record
+    names = [ss.inputs[i] for i in ss.monitor["inputs"]]
+    k, j = names.index(BLIND), names.index(JUMPED)
+    df, end = bumped(frame, BLIND)
+    df.loc[HELD_AT:HELD_AT + 1, JUMPED] += JUMP_LIMITS * float(ss.monitor["jump_lim"][j])
+    st, st_said, held, c, c_said = _stepped(ss, block, df.iloc[:end + 40], _both)
+    # the C: its BLIND_OUT, the jump out beside it (its return re-referenced silently), the
+    # jumped one back first, the bumped one later (with the other out it did not pass)
+    events = [(i, s[1:]) for i, s in enumerate(c_said) if s[1]]
+    out, (jback, _), (kback, _) = events[0][0], events[2], events[3]
+    assert events[0][1] == (BLIND_OUT, k) and START < out < HELD_AT
+    assert events[1:4] == [(HELD_AT, (JUMP, j)), (jback, (BACK, j)), (kback, (BACK, k))]
+    assert HELD_AT + 2 + ss.monitor["window"] <= jback < kback
+    # the block: the two flags, nothing else; both held, each to the C's BACK of it, = the C
+    assert [i for i, s in enumerate(st_said) if s[0]] == [out, HELD_AT]
+    assert st_said[HELD_AT] == (True, JUMP, j)
+    assert [i for i, x in enumerate(held) if x[1] == k] == list(range(out, kback))
+    assert [i for i, x in enumerate(held) if x[2] == j] == list(range(HELD_AT, jback))
+    assert not any(x[0] for x in held)
+    assert ss.monitor["fallback_set"][j] > 0 and ss.monitor["fallback_set"][k] > 0
+    assert np.max(np.abs(st - c)) <= TOLERANCE_UM

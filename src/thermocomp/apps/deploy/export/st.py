@@ -524,17 +524,24 @@ IF NOT refused THEN
         END_IF;
     END_FOR;
     (* (st103b) a sensor no other predicts held out by BLIND_OUT, or (st103c) by its JUMP *)
-    (* (mon_jheld, to the C's BACK): read at its last reading in, the correction its fallback *)
-    (* model's (MON_FALLBACK_SET; 0: the model's), as the C's *)
+    (* (mon_jheld, to the C's BACK), (st107) or both: each read at its last reading in, the *)
+    (* correction the fallback model's (MON_FALLBACK_SET; 0: the model's) of the first held *)
+    (* in the monitor's order that has one, as the C's *)
     serving := 0;
     serving_k := -1;
     IF mon_held >= 0 AND mon_held_set >= 0 THEN
+        uu[MON_INPUT[mon_held]] := mon_base[mon_held] + mon_hlast;
         serving_k := mon_held;
-    ELSIF mon_jheld >= 0 THEN
-        serving_k := mon_jheld;
+    END_IF;
+    IF mon_jheld >= 0 THEN
+        uu[MON_INPUT[mon_jheld]] := mon_base[mon_jheld] + mon_jlast;
+        IF serving_k < 0 OR MON_FALLBACK_SET[serving_k] = 0 THEN
+            serving_k := mon_jheld;
+        ELSIF mon_jheld < serving_k AND MON_FALLBACK_SET[mon_jheld] <> 0 THEN
+            serving_k := mon_jheld;
+        END_IF;
     END_IF;
     IF serving_k >= 0 THEN
-        uu[MON_INPUT[serving_k]] := mon_base[serving_k] + mon_jlast;
         serving := MON_FALLBACK_SET[serving_k];
     END_IF;
     (* causal FIR denoiser: newest raw sample first *)

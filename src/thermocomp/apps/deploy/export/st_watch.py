@@ -68,6 +68,14 @@ Per sample, of each monitored sensor ``k`` (the input ``MON_INPUT[k]``, the C's 
   for a jump (``MON_JUMP_HELD``): the C's silent re-reference of a sensor out (``mon_hjump``), not
   flagged, no spike's return read, re-referenced by its whole step and counted (``mon_jn``), its
   calm from it; at the hold's ``BACK`` the C's ``_undone``, st101's (``mon_jk``);
+* (st107) the block's own JUMP of another sensor while it holds a ``BLIND_OUT`` (not jumped in its
+  hold), one the C takes out beside it as its second (``MON_OUT_JUMP_HELD``, cmon88's second
+  jump), held as st101's beside it: both out, nothing judged, the second's own later jumps the
+  C's silent re-references (``mon_jbeside``); the ``BLIND_OUT``'s ``BACK`` judged in the set
+  without the second (``MON_OUT_SET``'s row of the ``MON_OUT_*`` constants, one added per sensor
+  held for a jump that is no candidate) unless that one is due back on the same row, the
+  second's ``BACK`` st101's; the model reads both at their last readings in (``mon_hlast``,
+  ``mon_jlast``), the C's served set (st.py);
 * (st96b) the C's level shift of a sensor no other predicts (``SETTLED``), told by the C's test
   over ``2 MON_WINDOW`` readings (``mon_settle_ring``, ``settled.level_shift``) on the C's
   conditions (its reference unmoved for ``2 MON_WINDOW - 1`` samples, no gap, the reading before
@@ -283,9 +291,13 @@ def blind_constants(watch: dict, n: int, stepped: bool, literal, constant) -> li
     # (the C's candidates: in, no other predicts it, its error evidence, enough left without it)
     blinds = [u for u in range(n) if judge and not judged[u] and not warned[u]
               and n - 1 >= watch["min_active"]]
-    self_m, scale, judging, warn, alarm, second = (np.zeros((max(len(blinds), 1), n, n)),
-                                                   *(np.zeros((max(len(blinds), 1), n)) for _ in range(5)))
-    for b, u in enumerate(blinds):
+    # (st107) and, past them, each other sensor the C holds out for a jump: their sets' rows
+    # (MON_OUT_SET), read by a BLIND_OUT's BACK test while that one is held beside it
+    sets = blinds + [u for u in range(n) if judge and mon.spikes[u] and u not in blinds]
+    rows = max(len(sets), 1)
+    self_m, scale, judging, warn, alarm, second, jumps = (np.zeros((rows, n, n)),
+                                                          *(np.zeros((rows, n)) for _ in range(6)))
+    for b, u in enumerate(sets):
         out = np.arange(n) == u
         M, lu = mon._operator(out)
         self_m[b] = M
@@ -299,8 +311,15 @@ def blind_constants(watch: dict, n: int, stepped: bool, literal, constant) -> li
         kind = mon.ported | (mon.instant & mon.drops & (n - 2 >= watch["min_active"]))
         second[b] = [k != u and kind[k] and mon.solve and FREEZE in mon.seconds
                      and mon._operator(out | (np.arange(n) == k)) is not None for k in range(n)]
+        # (st107) a jump with it out: the second out the block holds too where the C holds it at
+        # its last reading (cmon88's second jump of one no other predicts, _second_kind /
+        # _second_held: the set of the two solved, static per pair), one with its own set here
+        # (its BACK test's operator) and enough left in to serve a fallback set (the C's serving)
+        jumps[b] = [k != u and u in blinds and mon.spikes[k] and not mon.ported[k] and mon.instant
+                    and mon.solve and JUMP in mon.seconds and n - 2 >= watch["min_active"]
+                    and mon._operator(out | (np.arange(n) == k)) is not None for k in range(n)]
     field = (watch.get("warning") if int(watch.get("exclude_level", 2)) == 1 else watch.get("alarm"))
-    nb = len(blinds)
+    nb, ns = len(blinds), len(sets)
     w = max(int(watch.get("window", 1)), 1)
     # (jump94b) the sensors whose level shift the C re-references (SETTLED)
     settle = np.asarray(watch.get("settle_lim", [np.inf] * n), float)
@@ -319,12 +338,14 @@ def blind_constants(watch: dict, n: int, stepped: bool, literal, constant) -> li
             f"    MON_MID_LO : INT := {(w - 1) // 2};",
             f"    MON_MID_HI : INT := {w // 2};",
             constant("MON_Z_ROOT", np.sqrt(np.maximum(1.0 - lev, 1e-12)).tolist(), (n,)),
-            constant("MON_OUT_SELF", self_m.tolist(), (nb, n, n)),
-            constant("MON_OUT_SCALE", scale.tolist(), (nb, n)),
-            constant("MON_OUT_JUDGING", judging.astype(int).tolist(), (nb, n), "INT"),
-            constant("MON_OUT_WARN", warn.tolist(), (nb, n)),
-            constant("MON_OUT_ALARM", alarm.tolist(), (nb, n)),
-            constant("MON_OUT_FREEZE_HELD", second.astype(int).tolist(), (nb, n), "INT"),
+            constant("MON_OUT_SELF", self_m.tolist(), (ns, n, n)),
+            constant("MON_OUT_SCALE", scale.tolist(), (ns, n)),
+            constant("MON_OUT_JUDGING", judging.astype(int).tolist(), (ns, n), "INT"),
+            constant("MON_OUT_WARN", warn.tolist(), (ns, n)),
+            constant("MON_OUT_ALARM", alarm.tolist(), (ns, n)),
+            constant("MON_OUT_FREEZE_HELD", second.astype(int).tolist(), (ns, n), "INT"),
+            constant("MON_OUT_JUMP_HELD", jumps.astype(int).tolist(), (ns, n), "INT"),
+            constant("MON_OUT_SET", [sets.index(k) if k in sets else -1 for k in range(n)], (n,), "INT"),
             f"    MON_FOLLOW_OTHERS : INT := {int(watch.get('new_state_others', 2))};"]
 
 
@@ -468,6 +489,10 @@ VARS = """    mon_last : ARRAY[{nm}] OF LREAL;
     mon_jdwell : INT;
     mon_jshift0 : LREAL;
     mon_jlast : LREAL;
+    mon_hlast : LREAL;    (* (st107) the BLIND_OUT held's last reading in (mon_jlast: the jumped one's) *)
+    mon_jset : INT;    (* (st107) the jumped one's set (MON_OUT_SET's) where held beside a BLIND_OUT *)
+    mon_bset : INT;
+    mon_jbeside : BOOL;
     mon_hjump : BOOL;
     mon_jk : INT;
     mon_perm : ARRAY[{nm}] OF INT;
@@ -515,6 +540,7 @@ IF first THEN
     mon_held := -1;
     mon_held_set := -1;
     mon_jheld := -1;
+    mon_jset := -1;
 END_IF;
 (* (st99) the set the C judges a freeze by: every sensor in (-1), or without the BLIND_OUT *)
 (* the block holds (its set, MON_OUT_SELF's): the C's second out *)
@@ -711,8 +737,14 @@ END_IF;
 (* (st102) a lone jump of the sensor the block holds out by its BLIND_OUT, one the C holds out *)
 (* for a jump (MON_JUMP_HELD): the C's silent re-reference of one out (its whole step, no *)
 (* spike's return of one no other predicts), no fault; the hold and the judgement go on *)
+(* (st107) with a second held beside it (mon_jset): that one's lone jump alone is silent *)
+(* (mon_jbeside), the C's re-reference of one out, counted in its hold below *)
 mon_hjump := mon_held >= 0 AND mon_held_set >= 0 AND NOT mon_lost AND mon_jumps = 1;
-IF mon_hjump THEN
+mon_jbeside := FALSE;
+IF mon_hjump AND mon_jset >= 0 AND mon_jheld >= 0 THEN
+    mon_jbeside := mon_big[mon_jheld] AND NOT mon_gone AND mon_rule = 0;
+    mon_hjump := FALSE;
+ELSIF mon_hjump THEN
     mon_hjump := MON_JUMP_HELD[mon_held] = 1 AND mon_big[mon_held] AND NOT mon_gone AND mon_rule = 0;
 END_IF;
 (* the spikes' returns first (named first, as the C re-admits them before it excludes) *)
@@ -720,7 +752,7 @@ FOR mk := 0 TO MON_N - 1 DO
     j := MON_INPUT[mk];
     mon_spike[mk] := FALSE;
     mon_back := FALSE;
-    IF mon_big[mk] AND mon_out[mk] AND NOT mon_hjump THEN
+    IF mon_big[mk] AND mon_out[mk] AND NOT mon_hjump AND NOT mon_jbeside THEN
         mon_back := mon_jumps = 1 OR (mon_pair AND mon_outs = 2);
     END_IF;
     IF mon_back THEN
@@ -749,7 +781,7 @@ FOR mk := 0 TO MON_N - 1 DO
         END_IF;
         mon_shift[j] := mon_shift[j] + mon_step[mk];
         mon_back := mon_pair AND mon_out[mk];  (* a pair's out already: no new fault, as the C *)
-        mon_back := mon_back OR mon_hjump;    (* (st102) the held one's: the C's, silent *)
+        mon_back := mon_back OR mon_hjump OR mon_jbeside;    (* (st102) the held one's: the C's, silent *)
         mon_out[mk] := TRUE;
         mon_rerefd[mk] := TRUE;
         IF NOT mon_back AND mon_jumps < MON_COMMON_MIN THEN
@@ -781,8 +813,20 @@ mon_flag := mon_flag OR mon_gone;
 (* (none held): out in the C as here (MON_JUMP_HELD), the field computed on through the hold *)
 (* and not judged (mon_jheld), to the C's BACK below; (st105) its BLIND_OUT judgement paused *)
 (* or stopped too (the C holds it alone where it took none out): a pause stops at the hold *)
+(* (st107) or beside the BLIND_OUT the block holds (not jumped while held, none else held), *)
+(* one the C holds out with it as its second (MON_OUT_JUMP_HELD): both held, neither judged, *)
+(* each to its own BACK as the C's *)
 IF MON_STEP_JUDGE AND NOT mon_lost AND mon_rule = RULE_JUMP AND mon_jumps = 1 AND NOT mon_gone THEN
-    IF MON_JUMP_HELD[mon_sensor] = 1 AND mon_held < 0 THEN
+    mon_go := MON_JUMP_HELD[mon_sensor] = 1 AND mon_held < 0;
+    IF mon_held >= 0 AND mon_held_set >= 0 AND mon_jheld < 0 AND mon_jn = 0 THEN
+        mon_jbeside := MON_OUT_JUMP_HELD[mon_held_set, mon_sensor] = 1;
+        mon_go := mon_jbeside;
+    END_IF;
+    IF mon_go THEN
+        mon_jset := -1;
+        IF mon_jbeside THEN
+            mon_jset := MON_OUT_SET[mon_sensor];
+        END_IF;
         mon_jheld := mon_sensor;
         mon_jn := 0;
         mon_jshift0 := mon_shift[MON_INPUT[mon_sensor]] - mon_step[mon_sensor];
@@ -798,7 +842,7 @@ END_IF;
 IF mon_hjump THEN
     mon_jn := mon_jn + 1;    (* (st102) its jumps in the hold, undone at its BACK as the C's *)
     mon_sage[mon_held] := 0;    (* its reference moved: the C's age 1 on this row *)
-ELSIF mon_gone OR mon_jumps > 0 THEN
+ELSIF (mon_gone OR mon_jumps > 0) AND NOT mon_jbeside THEN
     mon_lost := TRUE;
 END_IF;
 mon_was := mon_held;
@@ -813,7 +857,7 @@ IF mon_held >= 0 THEN
     (* anything else while it is out the block does not follow (a rule named) ends its *)
     (* judgement, as before st95b; (st106b) not a run of one out by BLIND_OUT: the C keeps *)
     (* it out, its fallback set served, and lets it back only once its reading moves *)
-    IF mon_rule <> 0 OR (mon_run >= MON_FREEZE_RUN[mon_held] AND mon_held_set < 0) THEN
+    IF (mon_rule <> 0 AND NOT mon_jbeside) OR (mon_run >= MON_FREEZE_RUN[mon_held] AND mon_held_set < 0) THEN
         mon_lost := TRUE;
     END_IF;
     IF mon_lost THEN
@@ -860,7 +904,7 @@ IF MON_STEP_JUDGE AND (NOT mon_lost OR mon_jheld >= 0) THEN
         END_IF;
         mon_go := mon_span = 1.0 AND mon_gap[mk] = 1.0;    (* no gap *)
         mon_go := mon_go AND mk <> mon_jheld;    (* (st101) out for its jump: not in the C *)
-        mon_go := mon_go AND (mk <> mon_held OR mon_jn = 0);    (* (st102) nor jumped out *)
+        mon_go := mon_go AND (mk <> mon_held OR mon_jn = 0 OR mon_jset >= 0);    (* (st102) nor jumped out *)
         IF MON_SETTLES[mk] = 1 AND mon_sage[mk] >= 2 * MON_WINDOW - 1 AND mon_go THEN
             (* (st96) the C's level shift (SETTLED): the window ending here parted from the *)
             (* one before by MON_SETTLE_LIM and moved past MON_SETTLE_STEADY x their spread *)
@@ -1119,6 +1163,7 @@ IF MON_STEP_JUDGE AND (NOT mon_lost OR mon_jheld >= 0) THEN
                 mon_held_set := mon_take_set;
                 mon_jn := 0;    (* (st102) its jumps while held, and its last reading in (the C's last) *)
                 mon_jlast := mon_last[mon_take] - mon_base[mon_take] - mon_shift[MON_INPUT[mon_take]];
+                mon_hlast := mon_jlast;
                 mon_calm := 0;
                 mon_run_was := 0;
                 mon_dwell := MON_WINDOW;
@@ -1130,7 +1175,8 @@ IF MON_STEP_JUDGE AND (NOT mon_lost OR mon_jheld >= 0) THEN
                 mon_field_outs[mon_take] := mon_field_outs[mon_take] + 1;
             END_IF;
             mon_set := mon_held_set;
-            mon_go := mon_held >= 0 AND mon_held_set >= 0 AND NOT mon_lost;
+            (* (st107) not with a second held: the C judges the set without both *)
+            mon_go := mon_held >= 0 AND mon_held_set >= 0 AND NOT mon_lost AND mon_jheld < 0;
         ELSIF mb >= 0 THEN
             mon_go := mon_go AND mon_reach AND mon_z[MON_BLIND[mb]] > mon_zbest;
         END_IF;
@@ -1266,6 +1312,15 @@ IF MON_STEP_JUDGE AND (NOT mon_lost OR mon_jheld >= 0) THEN
         END_IF;
         IF mon_calm >= mon_dwell AND mon_count + 1 >= MON_WINDOW AND mon_run = 0 THEN
             mon_ok := TRUE;
+            (* (st107) a second held beside it and not due back on this row: the C's set *)
+            (* without that one (its operator, its warning band), as its _pass_once_back *)
+            mon_bset := -1;
+            IF mon_jset >= 0 AND mon_jheld >= 0 THEN
+                mon_bset := mon_jset;
+                IF mon_jcalm >= mon_jdwell AND u[MON_INPUT[mon_jheld]] <> mon_last[mon_jheld] THEN
+                    mon_bset := -1;    (* both due: judged together, every sensor in *)
+                END_IF;
+            END_IF;
             FOR mr := 0 TO MON_WINDOW - 1 DO
                 FOR mk := 0 TO MON_N - 1 DO
                     mon_ev := mk = mon_was;
@@ -1274,12 +1329,23 @@ IF MON_STEP_JUDGE AND (NOT mon_lost OR mon_jheld >= 0) THEN
                         mon_ev := MON_SCALE[mk] > 0.0;
                         mon_lim := MON_WARN[mk];
                     END_IF;
+                    IF mon_bset >= 0 THEN
+                        mon_ev := MON_OUT_SCALE[mon_bset, mk] > 0.0;
+                        mon_lim := MON_OUT_WARN[mon_bset, mk];
+                    END_IF;
                     IF mon_ev THEN
                         mon_x := 0.0;
                         FOR mj := 0 TO MON_N - 1 DO
-                            mon_x := mon_x + MON_SELF[mk, mj] * mon_ring[mr, mj];
+                            IF mon_bset >= 0 THEN
+                                mon_x := mon_x + MON_OUT_SELF[mon_bset, mk, mj] * mon_ring[mr, mj];
+                            ELSE
+                                mon_x := mon_x + MON_SELF[mk, mj] * mon_ring[mr, mj];
+                            END_IF;
                         END_FOR;
                         mon_off := (mon_ring[mr, mk] - mon_x) * MON_SCALE[mk];
+                        IF mon_bset >= 0 THEN
+                            mon_off := (mon_ring[mr, mk] - mon_x) * MON_OUT_SCALE[mon_bset, mk];
+                        END_IF;
                         IF mon_off < 0.0 THEN
                             mon_off := -mon_off;
                         END_IF;
@@ -1291,7 +1357,8 @@ IF MON_STEP_JUDGE AND (NOT mon_lost OR mon_jheld >= 0) THEN
             END_FOR;
             IF mon_ok THEN
                 mon_held := -1;
-                IF mon_jn > 0 THEN
+                mon_lost := mon_jheld >= 0;    (* (st107) the second held alone: st101's hold *)
+                IF mon_jn > 0 AND mon_jset < 0 THEN
                     mon_jk := mon_was;    (* (st102) jumped while held: the C's _undone below *)
                 END_IF;
             END_IF;
@@ -1336,6 +1403,12 @@ IF mon_jk >= 0 THEN
             mon_prev_e[mi] := (mon_d[mi] - mon_x) * MON_SCALE[mi];
         END_FOR;
     END_IF;
+END_IF;
+(* (st107) the second one back (or lost): the held BLIND_OUT's own jump count and last reading *)
+IF mon_jset >= 0 AND mon_jheld < 0 THEN
+    mon_jset := -1;
+    mon_jn := 0;
+    mon_jlast := mon_hlast;
 END_IF;
 (* a return is stepped from the last reading, over the samples it spans *)
 FOR mk := 0 TO MON_N - 1 DO
