@@ -6,6 +6,7 @@ Usage (from the repository root, ``PYTHONPATH=<tree>/src``: the code measured is
     python benchmarks/bench_diag107b.py room DATA            # diag107's test record, written as a record
     python benchmarks/bench_diag107b.py simulate DATA SEED   # a fresh climate_lag draw (KIND)
     python benchmarks/bench_diag107b.py chain ROOT DATA      # diagnose, run, export; C/ST/JSON vs replay
+    python benchmarks/bench_diag107b.py compare ROOT DATA    # chain's comparisons again on its output
 
 ``room``: the synthetic climate room of ``tests/apps/test_diagnose_level107.py`` (``_room(7)``: 7
 sensors and the air, 12 campaigns at levels 14-34 °C, every third a test), where diagnose takes
@@ -14,13 +15,22 @@ simulate`` as bench_diag107 draws its climate rooms (bench_diag106's ``CLIMATE``
 4 test) with :data:`KIND`'s effect.  ``chain``: as a user runs it, in the scratch root ROOT:
 ``thermocomp diagnose data.path=DATA plots=none track=false`` (MLR, every target); ``thermocomp run``
 of the config it wrote (``experiment=diagnosed``); ``thermocomp export`` of that run's model.pkl to
-``c`` and to ``st`` (each also writes ``compensator.json``); ``stream.c`` built with ``cc -std=c99
--Wall -Wextra -Werror -O2`` streams the test campaigns one after the other, the ST runs through the
-tests' transpiler (test_export's ``StructuredText``) and the JSON through the numpy reference
-(``Simulator``).  Each is compared with ``replay`` of the model.pkl deployed as ``export`` deploys
-it (``deployable_model``).  In every test campaign the stream's first input is pushed 30 °C out of the
-envelope from half-way on, so the clamp acts (its rows counted).  An export refused prints its
-message and exit status.
+``c`` and to ``st`` (each also writes ``compensator.json``).  Then (A) the files ``export`` wrote
+(the C with its sensor monitor, the ST with its detection and its fallback models' laws) on the test
+campaigns as recorded, against ``replay`` of the model.pkl deployed as ``export`` deploys it
+(``deployable_model``); (B) the tests' proof (test_export_auto57's ``_proved``): the plain stream
+(``deploy_stream`` of the model.pkl) exported to C, ST and JSON, the first input that is no ambient
+sensor pushed 30 °C out of the envelope from half-way in every test campaign (the clamp acting: its
+rows counted), against its ``replay``.  ``stream.c`` built with ``cc -std=c99 -Wall -Wextra -Werror
+-O2`` streams the test campaigns one after the other, the ST runs through the tests' transpiler
+(test_export's ``StructuredText``), the JSON through the numpy reference (``Simulator``).  An export
+refused prints its message and exit status.  ``compare``: (A) and (B) again on what ``chain`` left.
+(The harness as first committed pushed the first input into the export's files; on diag107's record
+that is the air ``T_amb``: the monitor took it out (no row clamped; the C = replay to 7.1e-15 µm)
+and the ST, which holds none of the C's rebuild of a sensor out (docs/to-the-machine.md), differed
+by 12.5 µm -- as a plain MLR's export of the same record does, no diagnosed effect (``run
+model=mlr``, T_amb pushed the same: |ST - replay| 9.87 µm, |C - replay| 7.1e-15): the monitor's ST
+path, not the law.  Split into (A) and (B) before 10156 was drawn; the bar below is as committed.)
 
 Why: diag107 (KEPT) made diagnose take a one-regressor level law (``ambient_mean``: ``(A0 - 20)
 mean(x)``; ``ambient_scaled``: ``(A0 - 20) x . w``, ``w`` learned at fit) on climate-room records
@@ -156,41 +166,78 @@ def chain(root: str, data: str) -> None:
     _compare(base, data, pkl, lean)
 
 
+def compare(root: str, data: str) -> None:
+    """``chain``'s comparisons again on what it left in ROOT (nothing diagnosed, run or exported)."""
+    base = project_root(root)
+    lean = {}
+    for path in sorted((base / "diagnosed" / "diagnosis").glob("diagnosis_*.json")):
+        taken = [e["transform"] for e in json.loads(path.read_text())["effects"] if e.get("accepted")]
+        lean[path.stem.removeprefix("diagnosis_")] = any("x (ambient_c0" in t and ("mean" in t or "fit" in t)
+                                                         for t in taken)
+    _compare(base, str(Path(data).resolve()), base / "run" / "model.pkl", lean)
+
+
 def _compare(base: Path, data: str, pkl: Path, lean: dict) -> None:
+    """(A) the files ``export`` wrote (its sensor monitor in the C, the ST's detection and fallback
+    laws) on the test campaigns as recorded, against ``replay`` of the model.pkl deployed as
+    ``export`` deploys it; (B) the plain stream (``deploy_stream``, as the tests' ``_proved``)
+    exported to C, ST and JSON, the first input that is no ambient sensor pushed 30 °C out from
+    half-way (the clamp acting), against its ``replay``."""
     from hydra import compose, initialize_config_dir
 
-    from thermocomp.apps.deploy.export import Simulator
-    from thermocomp.apps.deploy.export.statespace import StateSpace
-    from thermocomp.apps.deploy.streaming import replay
+    from thermocomp.apps.deploy.export import exported_files
     from thermocomp.base.paths import conf_dir
-    from thermocomp.shell.builders import deployable_model
+    from thermocomp.shell.builders import deploy_stream, deployable_model
+    from thermocomp.shell.model_store import load_model
     from thermocomp.shell.source import read_streamed
-
-    sys.path[:0] = [str(_tree() / "tests" / "shell"), str(_tree() / "tests")]
-    from test_export import StructuredText
 
     os.chdir(base)
     with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3"):
         cfg = compose(config_name="config", overrides=[f"data.path={data}", "track=false"])
     ds, train_ids, test_ids, _ = read_streamed(cfg)
+    recorded = [ds.campaigns[c].reset_index(drop=True) for c in test_ids]
     deployed = deployable_model(cfg, ds, train_ids, str(pkl), "export.model")[0]
     code = base / "code"
-    ss_json = json.loads((code / "compensator.json").read_text())
+    files = {n: (code / n).read_text() for n in ("compensator.c", "compensator.h", "stream.c",
+                                                  "compensator.st")}
+    _scored("A export's files, as recorded", deployed, recorded, files, code, lean, clamp=False)
+    train = {c: ds.campaigns[c] for c in train_ids}
+    plain = deploy_stream(cfg, load_model(pkl), train)
+    ambient = json.loads(exported_files(plain, "json")["compensator.json"]).get("ambient_inputs") or []
+    push = next(c for i, c in enumerate(plain.columns_) if i not in ambient)
+    files = {**exported_files(plain, "c"), **exported_files(plain, "st")}
+    _scored(f"B plain stream, {push} pushed {PUSH_C:g} degC from half-way", plain,
+            _pushed(recorded, push), files, base / "plain", lean, clamp=True)
+
+
+def _scored(what: str, deployed, tests: list, files: dict, folder: Path, lean: dict, clamp: bool) -> None:
+    """Max |C - replay|, |ST - replay| and |JSON - replay| per target over ``tests``."""
+    from thermocomp.apps.deploy.export import Simulator
+    from thermocomp.apps.deploy.export.statespace import StateSpace
+    from thermocomp.apps.deploy.streaming import replay
+
+    sys.path[:0] = [str(_tree() / "tests" / "shell"), str(_tree() / "tests")]
+    from test_export import StructuredText
+
+    folder.mkdir(parents=True, exist_ok=True)
+    for name, text in files.items():
+        (folder / name).write_text(text)
+    ss_json = json.loads(files["compensator.json"]) if "compensator.json" in files else json.loads(
+        (folder / "compensator.json").read_text())
     inputs = ss_json["inputs"]
-    tests = _pushed([ds.campaigns[c] for c in test_ids], inputs[0])
     replayed = [replay(deployed, df) for df in tests]
     targets = [t for t in replayed[0].columns if t.startswith("E_")]
     expected = np.vstack([-r[targets].to_numpy(float) for r in replayed])
     clamped = [int(r["n_clamped"].iloc[len(r) // 2:].gt(0).sum()) for r in replayed]
     subprocess.run(["cc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", "compensator.c", "stream.c",
-                    "-lm", "-o", "stream"], cwd=code, check=True)
+                    "-lm", "-o", "stream"], cwd=folder, check=True)
     parts = [df[["time", *inputs]].to_csv(index=False, float_format="%.17g") for df in tests]
     text = parts[0] + "".join("\n" + p.split("\n", 1)[1] for p in parts[1:])
-    c_out = pd.read_csv(io.StringIO(subprocess.run([str(code / "stream")], input=text, check=True,
+    c_out = pd.read_csv(io.StringIO(subprocess.run([str(folder / "stream")], input=text, check=True,
                                                    capture_output=True, text=True).stdout))
     got_c = c_out[[f"C_{t[2:]}" for t in targets]].to_numpy(float)
     sim = Simulator(StateSpace.from_dict(ss_json))
-    fb = StructuredText((code / "compensator.st").read_text())
+    fb = StructuredText(files["compensator.st"])
     js, st = [], []
     for df in tests:
         sim.reset()
@@ -198,9 +245,9 @@ def _compare(base: Path, data: str, pkl: Path, lean: dict) -> None:
             js.append(sim.step(u, t))
             st.append(fb(u, t, k == 0))
     js, st = np.array(js), np.array(st)
-    print(f"rows {len(expected)} in {len(tests)} test campaigns; clamped rows in each second half "
-          f"{clamped}; laws {len(ss_json['law_lo'])}, law_ambient {ss_json['law_ambient']}, "
-          f"outright {ss_json.get('clamp_outright')}")
+    print(f"{what}: rows {len(expected)} in {len(tests)} test campaigns; clamped rows in each second "
+          f"half {clamped}{' (the clamp must act)' if clamp else ''}; laws {len(ss_json['law_lo'])}, "
+          f"law_ambient {ss_json['law_ambient']}, outright {ss_json.get('clamp_outright')}")
     for i, t in enumerate(targets):
         print(f"  {t} (lean law {'taken' if lean.get(t) else 'not taken'}): max |C - replay| "
               f"{np.max(np.abs(got_c[:, i] - expected[:, i])):.2e}, |ST - replay| "
@@ -209,7 +256,8 @@ def _compare(base: Path, data: str, pkl: Path, lean: dict) -> None:
 
 
 def main(argv: list[str]) -> int:
-    return run_commands(__doc__, {"room": room, "simulate": simulate, "chain": chain}, argv,
+    return run_commands(__doc__, {"room": room, "simulate": simulate, "chain": chain,
+                                  "compare": compare}, argv,
                         cpu=sys.stderr)
 
 
