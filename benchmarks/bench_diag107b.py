@@ -70,6 +70,24 @@ BASE = e0cae356, RULE = this branch's src:
   beside other effects, around MLR, a lag bank and an ATI model with the interaction: C, ST and
   JSON = replay to <= 1e-9 µm with the clamp acting; fails on BASE (refused); <= ~3 s CPU.
   A clause not measured in the time is reported as not met.
+
+Scored (2026-12-07; BASE = e0cae356's src + conf, ``git archive``; RULE = 3649eefc's src; ROOT
+/tmp/diag107b; 2 shared cores; CPU user + sys of the bench with its children, ``/usr/bin/time``)
+-------------------------------------------------------------------------------------------------
+B1 met.  diag107's record: diagnose takes ``ambient_scaled`` on E_X (test 2.844 -> 0.240 µm, BASE
+and RULE alike).  BASE: ``export`` exit 2 ("the diagnosed effect ambient_interval:- model inputs'
+least-squares fit x (ambient_c0 - 20°C) does not export"; chain 7.2 s CPU).  RULE (chain 14.6 s):
+(A) the export's files, 480 test rows as recorded: max |C - replay| 7.1e-15, |ST - replay| 7.1e-15,
+|JSON - replay| 3.6e-15 µm (10 laws: the model's and 4 fallback models' of the ST, each with its
+ambient block); (B) plain stream, T_1 pushed: 240 of 240 second-half rows clamped (by the gain,
+none outright), C 2.8e-14, ST 2.8e-14, JSON 2.1e-14 µm.
+B2 met.  Fresh 10156 climate_lag (simulated once, 12 campaigns, 6,469 rows): E_Z takes
+``ambient_scaled`` (1.711 -> 0.625 µm), E_X nothing (2.844; the lag node not found).  BASE:
+``export`` exit 2 (the same refusal; chain 9.5 s).  RULE (chain 22.6 s, simulate 1.9 s): (A) 2,171
+test rows as recorded: E_Z C 2.8e-14, ST 2.8e-14, JSON 1.4e-14 µm; E_X C 2.1e-14, ST 2.1e-14, JSON
+7.1e-15; (B) T_headstock pushed, every second-half row clamped (1,087: 280 / 288 / 262 / 257;
+none outright): E_Z C 1.1e-13, ST 1.1e-13, JSON 9.9e-14 µm; E_X 3.6e-14 each.
+B3 and B4: in the report (/work/notes/sec107/diag107b.md).
 """
 
 from __future__ import annotations
@@ -124,7 +142,7 @@ def room(data: str) -> None:
 
 def simulate(data: str, seed: str) -> None:
     """``thermocomp simulate`` of the climate room, :data:`KIND`, ``seed`` -> DATA."""
-    root = made_folder(str(Path(data).parent))
+    root = project_root(str(Path(data).resolve().parent))
     status, out = _tc(root, "simulate", *CLIMATE, *KIND, f"seed={int(seed)}", f"data.path={data}",
                       "track=false")
     print(out.strip().splitlines()[-1] if out.strip() else "", f"(exit {status})")
