@@ -19,7 +19,8 @@ its skip path a law and its network's weights arrays the code steps per sample, 
 model, each interval's forest or network counting in its interval, and arx_rf under a diagnosed
 model's effects; (exportlstm64) lstm under a diagnosed model with any of those effects, its
 network reading the features the code computes for them (:func:`.recurrent.net_reads`);
-(exportprod65) a state times the inputs' rises around an ATI model too.
+(exportprod65) a state times the inputs' rises around an ATI model too; (diag107b) the lean level
+laws (``ambient_scaled``, ``ambient_mean``) as the ambient law's block (:mod:`.derived`).
 Every format also writes ``compensator.json``, the arrays the code was generated from.  Only the
 families of :data:`~.laws.LINEAR_FAMILIES` export, and what ``model=auto`` keeps of them (one, or
 a blend) and the ATI wrapper of them (:mod:`.laws`); any other model is refused

@@ -17,7 +17,10 @@ campaign that has one of them, ``A0`` the campaign's initial ambient, ``t0`` its
 time, as :meth:`~thermocomp.apps.diagnose.AugmentedRegressor.stream_step` computes it.  The
 inputs' ambient law ``x (A0 - 20)`` and an ambient step ``x [A0 > A_thr]`` are laws on ``x`` the
 campaign's initial ambient switches (:mod:`.laws`).  The base model's coefficients on them are
-the law's.
+the law's.  A lean level law (diag107b) is one column ``(A0 - 20) x . w`` (``ambient_scaled``: ``w``
+learned at fit; ``ambient_mean``: ``w = 1/k``): it is written as the ambient law's block, its k
+coefficients the base's one times ``w`` (:func:`canonical_order`'s factors), so the code holds it
+as it holds ``x (A0 - 20)``.
 """
 
 from __future__ import annotations
@@ -29,7 +32,10 @@ import numpy as np
 # what the code holds of diagnose's effects (the refusal names them)
 DERIVED_TRANSFORMS = ("first_order_lag", "product", "square", "raw", "inputs_product")
 AMBIENT_TRANSFORMS = ("ambient_linear", "ambient_step")     # laws on x the campaign's A0 switches
-EXPORTED_EFFECTS = ("a sensor's removal, the inputs' ambient law x (A0 - 20) and ambient step "
+# one column (A0 - 20) x . w: the ambient law's block, its coefficients the column's times w
+LEAN_TRANSFORMS = ("ambient_mean", "ambient_scaled")
+EXPORTED_EFFECTS = ("a sensor's removal, the inputs' ambient law x (A0 - 20) (its lean reads, "
+                    "the inputs' mean or fit x (A0 - 20), too) and ambient step "
                     "x [A0 > A_thr], a first-order lag of a signal or input and of all the inputs "
                     "(with or without its initial-state transient), a product of two columns "
                     "(the second's rise over the air's too), a state times the rises of all the "
@@ -45,7 +51,7 @@ def is_derived(e) -> bool:
 def exports(e) -> bool:
     """True for an effect the code holds (:data:`EXPORTED_EFFECTS`), around a plain base or an
     ATI model (an ``inputs_product`` around one too since exportprod65)."""
-    return is_derived(e) or e.transform in (*AMBIENT_TRANSFORMS, "lowpass_inputs")
+    return is_derived(e) or e.transform in (*AMBIENT_TRANSFORMS, *LEAN_TRANSFORMS, "lowpass_inputs")
 
 
 @dataclass
@@ -96,48 +102,84 @@ class Derived:
     # the blocks of x the campaign's A0 switches, after x: ("ambient", None) x (A0 - 20),
     # ("step", A_thr) x [A0 > A_thr]; None: an ATI interval's (its interaction or none)
     blocks: list | None = None
+    # per place of ``order``, the factor of its model column there (a lean law's w); None: all 1
+    factor: list | None = None
+
+    @property
+    def widened(self) -> int:
+        """The places a lean law's one column takes beyond it: the canonical columns less the
+        model's."""
+        return len(self.order) - (max(self.order) + 1) if self.order else 0
 
     def canonical(self, b0, delayed: dict, lags: list) -> tuple:
         """``(b0, delayed, lags)`` of the base model fitted on the features in the effects'
         order, its columns put in the order ``[x, ambient blocks, derived inputs, powers]``."""
         if self.order is None:
             return b0, delayed, lags
-        place = np.argsort(self.model_columns(len(b0)))     # a model column's canonical place
+        model = self.model_columns(len(b0))
+        factor = self._factors(len(model))
+        # a lag of a lean law's column is the lag of x . w times (A0 - 20): one per place, times w
         return (self.columns(b0), {d: self.columns(r) for d, r in delayed.items()},
-                [(tau, int(place[j]), g) for tau, j, g in lags])
+                [(tau, int(p), g * factor[p]) for tau, j, g in lags for p in np.flatnonzero(model == j)])
 
     def columns(self, row: np.ndarray | None) -> np.ndarray | None:
-        """``row`` over the model's columns in the canonical order (:meth:`canonical`)."""
+        """``row`` over the model's columns in the canonical order (:meth:`canonical`), a lean
+        law's column times its direction ``w`` on its block's places."""
         if self.order is None or row is None:
             return row
-        return np.asarray(row)[self.model_columns(len(row))]
+        out = np.asarray(row)[self.model_columns(len(row))]
+        return out if self.factor is None else out * self._factors(len(out))
 
     def model_columns(self, n: int) -> np.ndarray:
-        """The canonical place's model column, of ``n`` (none given: the same)."""
+        """The canonical place's model column, of ``n`` model columns (none given: the same)."""
         order = self.order or []
-        return np.r_[order, np.arange(len(order), n)].astype(int)
+        return np.r_[order, np.arange(len(order) - self.widened, n)].astype(int)
+
+    def _factors(self, n: int) -> np.ndarray:
+        """Per canonical place of ``n``, its column's factor (1 but a lean law's block)."""
+        out = np.ones(n)
+        if self.factor is not None:
+            out[:len(self.factor)] = self.factor
+        return out
 
 
-def canonical_order(effects: list, k: int, initial: list[int]) -> list[int]:
-    """The model's feature columns (``k`` inputs, then each effect's, in the effects' order:
-    :meth:`~thermocomp.apps.diagnose.AugmentedRegressor.stream_step`; ``initial[i]`` the
-    transient's directions after effect i's own) in the order ``[x, ambient blocks, derived
-    inputs, low-pass blocks]`` the laws are written in."""
+def canonical_order(effects: list, k: int, initial: list[int],
+                    weights: list | None = None) -> tuple[list[int], list[float] | None]:
+    """``(order, factor)``: the model's feature columns (``k`` inputs, then each effect's, in
+    the effects' order: :meth:`~thermocomp.apps.diagnose.AugmentedRegressor.stream_step`;
+    ``initial[i]`` the transient's directions after effect i's own) in the order ``[x, ambient
+    blocks, derived inputs, low-pass blocks]`` the laws are written in.  A lean level law's one
+    column is an ambient block's k places, each times its direction's weight (``weights[i]``,
+    the fitted ``initial_weights_``: ``ambient_scaled``'s ``w``; ``ambient_mean``'s ``1/k``):
+    ``factor`` per place, None where no lean law is (every factor 1)."""
     at, wide, derived, lowpass = k, [], [], []
-    for e, q in zip(effects, initial):
+    for e, q, w in zip(effects, initial, weights or [None] * len(effects)):
+        if e.transform in LEAN_TRANSFORMS:
+            wide.extend(zip([at] * k, lean_direction(e, w, k)))
+            at += 1
+            continue
         own = k if e.transform in (*AMBIENT_TRANSFORMS, "lowpass_inputs", "inputs_product") else 1
         group = wide if e.transform in AMBIENT_TRANSFORMS else (
             lowpass if e.transform == "lowpass_inputs" else derived)
-        group.extend(range(at, at + own))
-        derived.extend(range(at + own, at + own + q))
+        group.extend((j, 1.0) for j in range(at, at + own))
+        derived.extend((j, 1.0) for j in range(at + own, at + own + q))
         at += own + q
-    return [*range(k), *wide, *derived, *lowpass]
+    places = [*((j, 1.0) for j in range(k)), *wide, *derived, *lowpass]
+    lean = any(e.transform in LEAN_TRANSFORMS for e in effects)
+    return [j for j, _ in places], [float(f) for _, f in places] if lean else None
+
+
+def lean_direction(e, w, k: int) -> np.ndarray:
+    """The direction ``w`` of a lean level law over the ``k`` inputs: the fitted one of
+    ``ambient_scaled``, the mean's ``1/k`` (as ``AugmentedRegressor`` streams them)."""
+    return np.full(k, 1.0 / k) if e.transform == "ambient_mean" else np.asarray(w, float)
 
 
 def ambient_blocks(effects: list) -> list[tuple]:
-    """The blocks of x the campaign's initial ambient switches, in the effects' order."""
-    return [("ambient", None) if e.transform == "ambient_linear" else ("step", float(e.threshold_c))
-            for e in effects if e.transform in AMBIENT_TRANSFORMS]
+    """The blocks of x the campaign's initial ambient switches, in the effects' order (a lean
+    level law's: the ambient law's)."""
+    return [("step", float(e.threshold_c)) if e.transform == "ambient_step" else ("ambient", None)
+            for e in effects if e.transform in (*AMBIENT_TRANSFORMS, *LEAN_TRANSFORMS)]
 
 
 def derived_inputs(derived: Derived, inputs: list, powers: dict,

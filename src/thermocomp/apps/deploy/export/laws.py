@@ -203,22 +203,24 @@ def _diagnosed(est) -> list:
     stream does (:data:`DERIVED_TRANSFORMS`, a lag's initial-state transient:
     :func:`derived_inputs`), with a law on ``x`` per ambient law ``x (A0 - 20)`` or ambient step
     ``x [A0 > A_thr]`` (exportrest60: the step's law counts where ``A0 > A_thr``, what an ATI
-    interval is).  Around an ATI model (``diagnose ati=cmeans``), the same per interval of the
-    initial ambient, each interval's model fitted on the features (and, with the ambient
-    interaction, on the features times ``A0 - 20``: :func:`_member_laws`); a state times the
-    inputs' rises (``inputs_product``) there too (exportprod65), its clamp's gain per interval a
-    law's (:func:`with_gains`' ``by``: the ATI model's gain terms, each times the state's held
-    value, on the law of their interval and power of ``A0 - 20``).  Any other effect is refused,
-    naming it."""
+    interval is); a lean level law ``(A0 - 20) x . w`` (diag107b) the ambient law's, its
+    coefficients the base's one times ``w`` (:meth:`Derived.columns`).  Around an ATI model
+    (``diagnose ati=cmeans``), the same per interval of the initial ambient, each interval's
+    model fitted on the features (and, with the ambient interaction, on the features times ``A0
+    - 20``: :func:`_member_laws`); a state times the inputs' rises (``inputs_product``) there too
+    (exportprod65), its clamp's gain per interval a law's (:func:`with_gains`' ``by``: the ATI
+    model's gain terms, each times the state's held value, on the law of their interval and power
+    of ``A0 - 20``).  Any other effect is refused, naming it."""
     effects = list(est.effects_)
     if not effects:
         return _intervals(est.estimator_)
     if all(exports(e) for e in effects):
         feats, initial = features(est)
+        order, factor = canonical_order(effects, int(est.n_features_in_), initial, est.initial_weights_)
         derived = Derived(
-            feats, est.reference, float(getattr(est, "sample_period_s_", 1.0) or 1.0),
-            canonical_order(effects, int(est.n_features_in_), initial),
-            [e.tau_s for e in effects if e.transform == "lowpass_inputs"], ambient_blocks(effects))
+            feats, est.reference, float(getattr(est, "sample_period_s_", 1.0) or 1.0), order,
+            [e.tau_s for e in effects if e.transform == "lowpass_inputs"], ambient_blocks(effects),
+            factor)
         base = est.estimator_
         if not isinstance(base, ATIRegressor):
             return [(-UNBOUNDED, UNBOUNDED, base, False, derived)]
@@ -249,7 +251,8 @@ def _member_laws(est, interacts: bool, w: float, cols, inputs, powers, period, t
     k = len(cols)
     own_x = k * (1 + len(blocks))               # the inputs' (and the ambient blocks') columns
     end = own_x + len(extra)                    # then the derived inputs', the low-pass blocks'
-    width = end + k * len(derived.lowpass)
+    # the model's own columns: a lean level law's one column is its block's k (canonical) places
+    width = end + k * len(derived.lowpass) - derived.widened
     c, b0, delayed, lags, a, period = _target_law(linear, width * (1 + whole) + len(feats), period)
     if derived.lowpass or any(tau is not None for _, tau in extra) or any(
             f.initial is not None for f in derived.features):     # a transient's time too

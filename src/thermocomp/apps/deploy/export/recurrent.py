@@ -76,6 +76,10 @@ def net_reads(est, cols, inputs: list, powers: dict, interacts: bool, derived, l
     features the code computes for a linear base are what the network reads (exportlstm64)."""
     from .derived import derived_inputs
 
+    if derived.factor is not None:     # (A0 - 20) x . w: one column, a sum of the code's features
+        raise NotExportable("an lstm under a lean level law (the inputs' mean or fit x (A0 - 20)) "
+                            "does not export: its network reads that one column, which is no "
+                            "feature of the code; the served model runs it (thermocomp serve, connect)")
     extra = derived_inputs(derived, inputs, powers, cols)
     blocks = derived.blocks if derived.blocks is not None else [("ambient", None)] * interacts
     n, cols = len(inputs), [int(c) for c in cols]

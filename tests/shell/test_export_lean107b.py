@@ -1,0 +1,93 @@
+"""The climate room's lean level laws export as the ambient law's block (diag107b,
+benchmarks/bench_diag107b.py).
+
+diag107 made ``diagnose`` take ``ambient_scaled`` (``(A0 - 20) x . w``, ``w`` learned at fit) or
+``ambient_mean`` (``w = 1/k``) where the wide law ``x (A0 - 20)`` saturates the campaigns;
+``export`` refused them by name, so what diagnose scored could not reach the machine.  One column
+``(A0 - 20) x . w`` is the block ``x (A0 - 20)`` with coefficients ``b w``: the code holds it as it
+holds the wide law.  On diag107's record (test_diagnose_level107's ``_room``: diagnose takes
+``ambient_scaled`` there) the C, the ST and the JSON read back equal ``replay`` to 1e-9 µm, the
+clamp acting, alone, beside a lag around a lag bank (its lags of the lean column: the block's), and
+beside a step around an ATI model with its interaction (``x (A0 - 20)^2``).
+"""
+
+from __future__ import annotations
+
+import pytest
+
+from test_diagnose_level107 import _room
+from test_export import _compose, needs_cc
+from test_export_auto57 import TOLERANCE_UM, _proved
+from test_export_effects59 import _json_proved
+from thermocomp.apps.deploy.export import NotExportable, exported_files, state_space
+from thermocomp.apps.diagnose import AugmentedRegressor
+from thermocomp.core.models import MLR, LagBank
+from thermocomp.core.models.ati import ATIRegressor
+from thermocomp.shell.builders import build_compensator, deploy_stream
+from thermocomp.shell.source import read_streamed
+
+SCALED = {"kind": "ambient_interval", "transform": "ambient_scaled"}
+MEAN = {"kind": "ambient_interval", "transform": "ambient_mean"}
+LAG = {"kind": "dynamics", "transform": "first_order_lag", "column": "T_2", "tau_s": 1800.0}
+STEP = {"kind": "ambient_interval", "transform": "ambient_step", "threshold_c": 24.0}
+
+
+@pytest.fixture(scope="module")
+def room(tmp_path_factory):
+    """diag107's record (7 sensors and the air, 12 campaigns at 14-34 °C) as files."""
+    root = tmp_path_factory.mktemp("lean") / "data"
+    root.mkdir()
+    ds = _room(7)
+    for cid, df in ds.campaigns.items():
+        df.to_csv(root / f"{cid}.csv", index=False)
+    ds.manifest.reset_index().to_csv(root / "campaigns.csv", index=False)
+    return root
+
+
+def _stream(room, effects: list, base=None) -> tuple:
+    """``(stream as replay deploys it, test campaigns with T_1 pushed out half-way)`` of ``base``
+    (MLR) with ``effects`` for E_X, the way diagnose's written config builds it."""
+    cfg = _compose(f"data.path={room}", "track=false", "monitor.adaptive=false",
+                   "promote.envelope.pattern=false")
+    ds, train_ids, test_ids, _ = read_streamed(cfg)
+    train = {c: ds.campaigns[c] for c in train_ids}
+    comp = build_compensator(cfg, ds=ds).set_params(estimator=AugmentedRegressor(
+        base if base is not None else MLR(), effects={"E_X": effects})).fit(train)
+    tests = [ds.campaigns[c].reset_index(drop=True).copy() for c in test_ids]
+    for df in tests:
+        df.loc[len(df) // 2:, "T_1"] += 30.0
+    return deploy_stream(cfg, comp, train), tests
+
+
+@needs_cc
+@pytest.mark.parametrize("effects, base, ambient", [
+    ([SCALED], None, [0, 1]),
+    ([MEAN, LAG], LagBank(n_taus=2), [0, 1]),
+    ([STEP, SCALED], ATIRegressor(MLR(), n_intervals=2, ambient_interaction=True), None)],
+    ids=["scaled", "mean-lag-lagbank", "step-scaled-ati-interaction"])
+def test_a_lean_level_law_exports_as_the_ambient_block_and_equals_replay(room, tmp_path, effects,
+                                                                         base, ambient):
+    stream, tests = _stream(room, effects, base)
+    ss = state_space(stream)                                  # refused before
+    if ambient is not None:
+        assert ss.law_ambient == ambient                      # the ambient law's, times A0 - 20
+    else:                                                     # its block under the interaction
+        assert 2 in ss.law_ambient
+    assert not any(ss.clamp_outright)                         # clamped by its gain, as streamed
+    assert "x (ambient_c0 - 20 degC)" in exported_files(stream, "st")["compensator.st"].split("*)")[0]
+    assert _proved(stream, tests, tmp_path) <= TOLERANCE_UM   # C, ST, numpy; the clamp acting
+    assert _json_proved(stream, tests) <= TOLERANCE_UM
+
+
+def test_an_lstm_under_a_lean_level_law_is_refused_naming_it():
+    """Its network reads the one column ``(A0 - 20) x . w``, a sum of the code's features, where
+    ``lstm_in`` names one source per column: refused before any array is read (the served model
+    runs it)."""
+    from thermocomp.apps.deploy.export.derived import Derived, canonical_order
+    from thermocomp.apps.deploy.export.recurrent import net_reads
+    from thermocomp.apps.diagnose.features import as_effect
+
+    order, factor = canonical_order([as_effect(MEAN)], 2, [0], [None])
+    assert order == [0, 1, 2, 2] and factor == [1.0, 1.0, 0.5, 0.5]
+    with pytest.raises(NotExportable, match="an lstm under a lean level law"):
+        net_reads(None, [0, 1], ["T_1", "T_2"], {}, False, Derived(order=order, factor=factor), 0.0, 0.0)
