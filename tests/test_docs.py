@@ -335,3 +335,55 @@ def test_an_error_parameters_figure_the_docs_give_is_in_its_unit():
     wrong = [(doc.name, name, said) for doc in DOCS
              for name, said in pattern.findall(doc.read_text(encoding="utf-8")) if said != unit(name)]
     assert wrong == []
+
+
+# audit107b: the keys the docs set (`monitor.guard.margin=100`, `connect.nodes.sample=null`), beside
+# the group options above: a key a page sets that no config has is refused (exit 2) as written
+KEY_GROUPS = sorted(p.name for p in (ROOT / "conf").iterdir() if p.is_dir() and p.name != "hydra")
+SET_KEY = re.compile(r"(?:^|(?<=[\s`'\"\[(]))((?:%s)\.[A-Za-z_][\w.]*)=" % "|".join(KEY_GROUPS), re.M)
+
+
+def _has_key(node, parts: list[str]) -> bool:
+    """``parts`` is a path of ``node``, or of an entry a config leaves free (below a null or an
+    empty map: a scenario's ``effect_params.<name>``), or runs into a placeholder (``<t>``)."""
+    for part in parts:
+        if "<" in part or node is None:
+            return True
+        if not isinstance(node, dict):
+            return False                      # below a value
+        if part not in node:
+            return not node                   # an empty map's entries are free
+        node = node[part]
+    return True
+
+
+def _unknown_keys(text: str, whole: dict) -> list[str]:
+    """The ``group.key=`` of ``text``'s code spans and blocks that neither the whole config nor
+    any option of the group (``conf/<group>/*.yaml``) has, nor a free map (``FREE_MAPS``, whose
+    entries a user adds: ``sim.generator.effect_params.<effect>.<key>``) takes."""
+    from thermocomp.shell.config.overrides import FREE_MAPS
+
+    code = re.findall(r"```.*?```", text, flags=re.S)
+    code += re.findall(r"`([^`\n]+)`", re.sub(r"```.*?```", "", text, flags=re.S))
+    unknown = []
+    for key in dict.fromkeys(k for span in code for k in SET_KEY.findall(span)):
+        if key.startswith(tuple(f"{m}." for m in FREE_MAPS)):
+            continue
+        group, *rest = key.split(".")
+        options = [yaml.safe_load(f.read_text()) or {} for f in (ROOT / "conf" / group).rglob("*.yaml")]
+        if not _has_key(whole, key.split(".")) and not any(_has_key(o, rest) for o in options):
+            unknown.append(key)
+    return unknown
+
+
+def test_a_key_the_docs_set_is_one_a_config_has():
+    from thermocomp.shell.config.overrides import _whole_config
+
+    whole = _whole_config()
+    planted = ("`thermocomp monitor monitor.guard.margin=100 monitor.gaurd.margin=1`\n```bash\nthermocomp "
+               "simulate sim.generator.effect_params.door.rate_per_h=2 model.estimator.max_inputs=3\n```")
+    assert _unknown_keys(planted, whole) == ["monitor.gaurd.margin"]
+    pages = [p for p in DOCS if "measured" not in p.parts]      # the record keeps its days' keys
+    assert sum(len(SET_KEY.findall(p.read_text())) for p in pages) > 100
+    unknown = {p.name: keys for p in pages if (keys := _unknown_keys(p.read_text(), whole))}
+    assert unknown == {}, f"keys no config has: {unknown}"
