@@ -131,7 +131,7 @@ C. met (the position found on both planted draws; its p_fam below the starting d
    any target of the clean draws; the control clears nowhere).  E. met (no target worse; the two
    E_Y gains -36.0 / -54.7 %).
 
-Verdict: TRACED (docs only: docs/models.md's table gets the 2026-12-07 rows beside 12-01's).
+Verdict: KEPT (docs; no src change: docs/models.md's table gets the 2026-12-07 rows beside 12-01's).
 Skipped: ``halves``; intervals for the fresh records (own test only, as asked); diagnose on the
 lag kind and on more than 8 train campaigns; docs/diagnose.md (its acceptance figures are each
 dated by their stop, none stated as today's).
