@@ -29,6 +29,7 @@ COMMAND_BENCHES = (
     "bench_audit91", "bench_audit93", "bench_audit94", "bench_audit95", "bench_audit96", "bench_audit96b",
     "bench_audit97", "bench_audit98", "bench_audit99", "bench_auto101", "bench_auto105", "bench_auto105b",
     "bench_auto106", "bench_auto106b", "bench_auto106c", "bench_auto106d", "bench_auto106e", "bench_auto107",
+    "bench_auto107b",
     "bench_auto70", "bench_auto73", "bench_auto74", "bench_auto76", "bench_auto80", "bench_auto81b",
     "bench_auto82", "bench_auto82b", "bench_auto84", "bench_auto84b", "bench_auto84c", "bench_auto85",
     "bench_auto85b", "bench_auto85c", "bench_auto86", "bench_auto86b", "bench_auto87", "bench_auto87b",
