@@ -92,6 +92,29 @@ All: KEPT; else REFUSED (src reverted, ``benchmarks/diag107c_rule.patch``).
 
 Fresh kinds (chosen before drawing; bench_diag107's kinds and order, 8 train / 4 test runs):
 10157, 10160 ``hidden_source`` (E_X); 10158, 10161 ``lag_node`` (E_X); 10159 ``axis_position`` (E_Z).
+
+Scored (2026-12-07, once; bar at 9f388e38; BASE = e0cae356's src + conf, RULE = 9f388e38's src, both
+``git archive``; ROOT /tmp/diag107c; 2 shared cores, load ~10; CPU user + sys, ``/usr/bin/time``)
+-------------------------------------------------------------------------------------------------
+``draws ROOT 10123,10157-10161``: BASE 85.3 s (with simulate), RULE 65.7 s; diagnose alone 66.9 /
+65.7 s.  The rows that differ (test RMSE µm)::
+
+  climate_lag-planted-10123 E_X  before 3.306; BASE 4.258 (the start lag); RULE 3.306 (nothing)
+  climate_lag-planted-10123 E_Z  before 2.694; BASE 2.694 (nothing); RULE 0.592 (the level law's
+                                 least-squares fit, T_nc_spindle_motor 1800 s lag, its square)
+
+B1 met (10123 E_X +28.8 -> 0.0 %).  B2 met: every fresh row of the 20 identical in BASE and RULE, none
+above its before.  B3 met: found 2 of 5 either way (10157 hydraulic, 10159 position; the lag draws
+10158 / 10161 and hydraulic 10160 missed by both).  The control clears nowhere; the clean twins take
+nothing.  The start lags left the candidates of 11 of the 12 fresh / seen draws (``span``: 1st
+direction 1.5-2.7 sigma; planted 10161 reads 3.0 here and keeps them under the src's measure), and
+no row moved: BASE took no start lag on any fresh draw, so the fresh draws neither confirm nor
+contradict the rule beyond it costing nothing there.  B4 met: bench_diag88 ``seen`` 33 rows (RULE
+25.1 s) and bench_remeasure62 ``diagnose`` 139 case x target (RULE 273.2 s, load ~10; BASE 221.2 s
+at diag107, not paired) all identical to BASE (the VMC, grinder and jig records' first direction is
+spanned: their start lags, harmful jig_grinder E_DISP_Y +16.4 % included, stay).  B5 met: 485 passed
+(the 44 modules of test_diag* / importing candidates, features, search, with the docs, lint, export
+and deploy neighbours; 204.8 s CPU), test_benchmarks_cli -k diag107c 2 passed (4.8 s).  **KEPT.**
 """
 
 from __future__ import annotations
