@@ -32,7 +32,7 @@ import numpy as np
 import pandas as pd
 
 from ...core.io.contract import is_ambient
-from .features import Effect
+from .features import Effect, spanned_directions
 
 CONTROL = "control:random_walk"
 
@@ -122,9 +122,15 @@ def candidates(problem, model_inputs: list[str], excluded: set, accepted: list[E
         temps_in = tuple(c for c in model_inputs if c.startswith("T_"))
         field_temps = tuple(c for c in temps_in if not (c == "T_amb" or c.startswith("T_amb_")))
         n_campaigns = len(dict.fromkeys(problem.campaigns))
-        starts = [{}] + [{"initial_state": field_temps, "initial_directions": int(k)}
-                         for k in options.initial_directions
-                         if 1 <= k <= len(field_temps) and n_campaigns >= k + 3]
+        # a lag from the initial state only where the campaigns start in different states: where
+        # not even the first direction of their initial distances is spanned beyond the sensors'
+        # noise (a room that soaks the machine at each run's level) the block has no state to read
+        # and fits one level per campaign by chance (diag107c: climate_lag 10123 E_X +28.8 %)
+        wanted = [int(k) for k in options.initial_directions
+                  if 1 <= k <= len(field_temps) and n_campaigns >= k + 3]
+        if wanted and not spanned_directions(ctx, field_temps, problem.campaigns, 1):
+            wanted = []
+        starts = [{}] + [{"initial_state": field_temps, "initial_directions": k} for k in wanted]
         states_in = [c for c in model_inputs if c.startswith("S_") and c in s_cols]
         for t in taus:
             out += [Effect("dynamics", "lowpass_inputs", tau_s=t, **st) for st in starts]

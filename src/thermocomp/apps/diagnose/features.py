@@ -354,6 +354,44 @@ def principal_directions(offsets: np.ndarray, groups, k: int) -> np.ndarray:
     return W * np.where(signs == 0, 1.0, signs)[:, None]
 
 
+#: A direction the campaigns' starts spread over by no more than this many times the noise of the
+#: readings that place them is no state (three sigma; diag95d's measure, diag107c's use).
+SPAN_NOISE_FACTOR = 3.0
+
+
+def spanned_directions(context: pd.DataFrame | None, columns, groups, k: int) -> int:
+    """How many of the ``k`` leading principal directions of the initial distances ``c_j(0) - A_0``
+    the campaigns span beyond the sensors' noise, counted from the first (bench_diag95d).
+
+    Direction ``w`` is spanned when the s.d. of the campaigns' scores on it exceeds
+    :data:`SPAN_NOISE_FACTOR` times one reading's noise projected on ``w``: the robust s.d.
+    (1.4826 MAD) of the rows' first differences within the campaigns, over ``sqrt(2)`` (a
+    difference holds two readings' noise), floored at the projected resolution
+    ``sqrt(sum w_j^2 q_j^2 / 12)`` (``q_j`` the sensor's smallest step).
+    """
+    g = np.asarray(groups)
+    offsets = initial_offsets(context, columns, g)
+    starts = np.flatnonzero(np.r_[True, g[1:] != g[:-1]])
+    if len(starts) < 2:
+        return 0
+    W = principal_directions(offsets, g, k)
+    scores = (offsets[starts] - offsets[starts].mean(axis=0)) @ W.T
+    raw = np.column_stack([_context_column(context, c) for c in columns])
+    steps = np.diff(raw, axis=0)[g[1:] == g[:-1]]
+    steps = steps[np.isfinite(steps).all(axis=1)]
+    moved = np.abs(steps)
+    quantum = np.array([np.min(m[m > 0]) if np.any(m > 0) else 0.0 for m in moved.T])
+    spanned = 0
+    for w, s in zip(W, scores.T):
+        d = steps @ w
+        noise = 1.4826 * np.median(np.abs(d - np.median(d))) / np.sqrt(2) if len(d) else 0.0
+        floor = np.sqrt(np.sum(w ** 2 * quantum ** 2) / 12)
+        if np.std(s, ddof=1) <= SPAN_NOISE_FACTOR * max(noise, floor):
+            break
+        spanned += 1
+    return spanned
+
+
 def initial_weights(context: pd.DataFrame | None, columns, groups, k: int) -> np.ndarray:
     """The ``k`` leading principal directions of the initial distances ``c_j(0) - A_0`` over
     the campaigns of these rows (what a model with ``initial_directions`` learns)."""
