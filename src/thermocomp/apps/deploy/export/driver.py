@@ -831,8 +831,10 @@ static int row_time(char **cells, int time_col, int clock_col, const char *stamp
 /* --state FILE: what a restarted process needs to go on as if it had not stopped. The bytes
    are this build's (the sizes and a mark are checked), as tc_state is plain data; (dep107b) and
    a blank line read last, not yet decided (the next row's time decides it: a stream cut there
-   went on from a reset where the uninterrupted one reads a stray blank line as nothing).  A
-   state of the mark before (tcstat1) is refused as another build's. */
+   went on from a reset where the uninterrupted one reads a stray blank line as nothing), and a
+   time of day's last time and the days added (the days came back from the last time read,
+   but as a step back past midnight: a blank line pending then started a campaign, 4.55 um off
+   on a lag bank).  A state of the mark before (tcstat1) is refused as another build's. */
 static const char STATE_MARK[8] = "tcstat2";
 static int state_blank;        /* the blank line pending, as saved and restored */
 
@@ -849,6 +851,7 @@ static int restore_state(const char *path, tc_state *s, char *run) {
          && sizes[1] == sizeof clock_ && sizes[2] == MAX_CELL
          && fread(s, sizeof *s, 1, f) == 1 && fread(&clock_, sizeof clock_, 1, f) == 1
          && fread(run, MAX_CELL, 1, f) == 1 && fread(&state_blank, sizeof state_blank, 1, f) == 1
+         && fread(&day_last, sizeof day_last, 1, f) == 1 && fread(&day_added, sizeof day_added, 1, f) == 1
          && fgetc(f) == EOF;
     fclose(f);
     return ok ? 1 : -1;
@@ -864,7 +867,8 @@ static int save_state(const char *path, char *tmp, const tc_state *s, const char
     if (f == NULL) return 0;
     ok = fwrite(STATE_MARK, sizeof STATE_MARK, 1, f) == 1 && fwrite(sizes, sizeof sizes, 1, f) == 1
          && fwrite(s, sizeof *s, 1, f) == 1 && fwrite(&clock_, sizeof clock_, 1, f) == 1
-         && fwrite(run, MAX_CELL, 1, f) == 1 && fwrite(&state_blank, sizeof state_blank, 1, f) == 1;
+         && fwrite(run, MAX_CELL, 1, f) == 1 && fwrite(&state_blank, sizeof state_blank, 1, f) == 1
+         && fwrite(&day_last, sizeof day_last, 1, f) == 1 && fwrite(&day_added, sizeof day_added, 1, f) == 1;
     ok = fclose(f) == 0 && ok;
     if (ok && rename(tmp, path) != 0) ok = remove(path) == 0 && rename(tmp, path) == 0;
     return ok;
@@ -1499,7 +1503,6 @@ int main(int argc, char **argv) {
                 "remove it to start cold\n", state_path);
         return 2;
     }
-    if (restored) day_last = s.t_read;     /* (a file continuing past midnight: its days) */
     if (restored && state_blank) blank_at = -1;   /* (dep107b) the last input ended on a blank line */
     while (pending || next_line(line, sizeof line, row + 1)) {
         if (pending) strcpy(line, first_row), pending = 0;
