@@ -28,6 +28,32 @@ BAR (committed before anything new is run; not to move after):
   Seeds: none new (10118, 10131, 10132 seen: dep107's roots in /tmp/dep107/roots reused).
   Verdict: KEPT where B1-B4 hold with a src change; TRACED where nothing breaks.
 
+SCORED (bar 7a664d42, not moved; 2026-12-07 12:20-12:45 UTC, 2 cores shared with the neighbours'
+run; no new seed: dep107's lab roots copied to /tmp/dep107b/roots, the day records made here).
+  1. day (``day ROOT mlr|lagbank``): on f7b4121a (p1 probe, same records) the C cut after every
+     line (359 / 119 cuts; as written, a stray blank line at data row 90, at row 120) = the C
+     uninterrupted to 0 um, mlr and lag bank: the days came back from the last time read (the
+     restore's ``day_last = t_read``).  With item 2's rule a pending blank line at the cut past
+     midnight read the days as the clock going back: lag bank hms1 4.55 um after the cut (line
+     90).  Mended: the state (mark tcstat2) carries day_last / day_added; now 0 um at every cut,
+     both models, both records, three variants.  C vs served (one session): hms1 1.3e-14 (mlr) /
+     5.9e-14 um (lagbank); seconds3 2.16 / 2.15 um -- the served session fed a numeric Seconds of
+     day in one block does not read the pause across midnight (22:00 -> 01:00) as a pause (run 2
+     on run 1's state; C = served per run from a reset to 8.9e-16 um): named, the served's.
+  2. blank (``blank ROOT 10118|10131``): one rule (stream.c, stdin, the file read): a blank line
+     is nothing where the next row's time goes on, a campaign where it is not after the last (or
+     none; a time of day gone back); ``thermocomp rows`` writes each block from time 0.  A stray
+     blank line at data row 450: |C - served| after it 4.97e-14 / 3.55e-14 um (f7b4121a: 35.7 /
+     28.6 um, dep107's); stdin reads the file as ['stdin_1', 'stdin_2'] (900, 361 rows) as
+     without it; rows: 2 campaigns each, |C - served| 4.97e-14 / 3.55e-14 um.  (bench_dep107's
+     seam-4 line still says "the C restarts": its words, not this tree's.)
+  3. limiter (``limiter ROOT SEED``): binds on 0 (10118), 3 (10131: rows 998-1000, 0.316 um),
+     0 (10132) of 1261 rows; = dep107's connect offsets to 4.0e-5 / 6.1e-5 um (float32 nodes).
+     Decision: kept, a machine-side safety (the docs' account: "what may reach the machine"),
+     named in docs/to-the-machine.md with the counts.
+  CPU (user + sys, /usr/bin/time): day mlr 22.6+21.7 s, lagbank 21.0+20.9 s (2 x 1800 C
+  processes); blank 9.7+1.1 / 9.2+1.0 s; limiter 4.2+0.5 s (10131).
+
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is that tree's)::
 
     python benchmarks/bench_dep107b.py day ROOT MODEL        # 1: the day clock cut by --state
