@@ -109,19 +109,60 @@ def test_data_time_of_day_exports_and_streams_the_raw_record(tmp_path, capsys, w
     np.testing.assert_allclose(got, expected, rtol=0, atol=1e-9)
 
 
-def test_a_blank_line_in_a_file_is_said_where_the_stream_starts_a_campaign_at_it(exported):
-    """audit103: a logger's stray blank line restarts the stream there (the state reset, the
+def test_a_blank_line_in_a_file_is_said_and_read_as_run_reads_it(exported):
+    """audit103: a logger's stray blank line restarted the stream there (the state reset, the
     next row the reference) where run and replay read the file as one campaign; it was silent
-    (8.5 µm off at once on a large mill's MLR: bench_audit103's ``faults``).  Now said with its
-    line; blank lines at the end say nothing."""
+    (8.5 µm off at once on a large mill's MLR: bench_audit103's ``faults``), then said.  dep107b:
+    within a run, its time going on, it is nothing, as run, replay and the served stream read it
+    (the corrections those of the file without it; a lab's mlr was 35.7 µm off at once); where
+    the next row's time is not after the last (the campaigns thermocomp rows writes, each from
+    its time 0) it starts a campaign, as before; blank lines at the end say nothing."""
     lines = exported["record"].read_text().splitlines()
-    lines.insert(61, "")                               # line 62, above data row 61
-    fed = _stream(exported["out"], "\n".join(lines) + "\n\n\n")
+    whole = _stream(exported["out"], "\n".join(lines) + "\n")
+    stray = [*lines[:61], "", *lines[61:]]                 # line 62, above data row 61
+    fed = _stream(exported["out"], "\n".join(stray) + "\n\n\n")
     assert fed.returncode == 0, fed.stderr
     assert [ln for ln in fed.stderr.splitlines() if "blank line" in ln] == [
-        "stream: line 62: a blank line: a new campaign starts at line 63 (the state reset, that "
-        "row the reference), as between the campaigns thermocomp rows writes; run and replay "
-        "read a file's blank line as nothing"]
+        "stream: line 62: a blank line: read as nothing, the time going on at line 63 (a stray "
+        "blank line within a run), as run, replay and the served stream read it"]
+    assert fed.stdout == whole.stdout
+    again = [*lines[:61], "", lines[1], *lines[62:]]       # the next row the run's first again
+    fed = _stream(exported["out"], "\n".join(again) + "\n")
+    assert "line 62: a blank line: a new campaign starts at line 63 (the state reset" in fed.stderr
+    assert fed.stdout.splitlines()[61] == whole.stdout.splitlines()[1]   # from a reset
+
+
+def _cut(out, state, header: str, first: list[str], then: list[str]) -> str:
+    """The C fed ``first`` then, a fresh process from ``state``, ``then``: the second's stdout."""
+    one = subprocess.run(["./stream", "--state", str(state)], cwd=out, capture_output=True, text=True,
+                         input="\n".join([header, *first]) + "\n")
+    two = subprocess.run(["./stream", "--state", str(state)], cwd=out, capture_output=True, text=True,
+                         input="\n".join([header, *then]) + "\n")
+    assert one.returncode == two.returncode == 0, one.stderr + two.stderr
+    return two.stdout
+
+
+def test_a_stream_cut_at_a_blank_line_goes_on_from_its_state_as_the_whole(exported, capsys, tmp_path):
+    """dep107b: the blank line is decided by the next row's time, so a stream cut just after it
+    (``--state``) carries it to the next process: a stray one within a run read as nothing, the
+    one between the campaigns ``thermocomp rows`` writes a campaign, as the whole stream reads
+    them.  Without it in the state a stray blank line restarted the cut stream alone; without a
+    time of day's days, the days read back counted as the clock passing midnight there."""
+    lines = exported["record"].read_text().splitlines()
+    header, body = lines[0], lines[1:]
+    whole = _stream(exported["out"], "\n".join(lines) + "\n").stdout.splitlines()
+    for k in (60, 150):                # in the first run; in the second, past midnight (its days)
+        got = _cut(exported["out"], tmp_path / f"stray{k}.state", header, [*body[:k], ""], body[k:])
+        assert got.splitlines()[1:] == whole[k + 1:], k
+    capsys.readouterr()
+    assert main(["rows", *exported["data"]]) == 0
+    rows = capsys.readouterr().out.rstrip("\n").split("\n")
+    at = rows.index("")
+    assert float(rows[at + 1].split(",")[0]) == 0.0 < float(rows[at - 1].split(",")[0])
+    fed = _stream(exported["out"], "\n".join(rows) + "\n").stdout.splitlines()
+    got = _cut(exported["out"], tmp_path / "rows.state", rows[0], rows[1:at + 1], rows[at + 1:])
+    assert got.splitlines()[1:] == fed[at:] and fed[at] == _stream(
+        exported["out"], "\n".join([rows[0], *rows[at + 1:]]) + "\n").stdout.splitlines()[1]
 
 
 def test_an_inputs_column_written_twice_apart_is_refused_as_the_reader_refuses_it(exported):

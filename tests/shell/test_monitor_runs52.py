@@ -138,3 +138,20 @@ def test_the_campaigns_thermocomp_rows_writes_stream_a_campaign_each_as_stream_c
     stray = "\n".join([header, *runs[0][:10], "", *runs[0][10:]]) + "\n"
     parts, _ = stream_campaigns(stray, ["T_T0"], opts)
     assert list(parts) == ["stdin"] and len(parts["stdin"]) == 30
+
+
+def test_rows_of_runs_under_one_clock_start_each_block_at_0_so_stdin_parts_them(tmp_path, capsys):
+    # dep107b: a run column's runs under one clock went on across `thermocomp rows`' blank line
+    # (1740 s, then 1800 s: one period on), which no reader tells from a stray blank line within
+    # a run (stdin read them as one campaign); each block now starts at 0, as the rows' contract
+    path = _long(tmp_path / "alle.csv", clock=False)
+    frame = pd.read_csv(path, sep=";", decimal=",")
+    frame["Zeit [s]"] = np.arange(len(frame)) * 60.0                       # one clock
+    frame.to_csv(path, sep=";", decimal=",", index=False)
+    capsys.readouterr()
+    assert main(["rows", f"data.path={path}", "data.roles.error=[dX]", "data.roles.campaign=Lauf"]) == 0
+    text = capsys.readouterr().out
+    lines = text.splitlines()
+    assert [float(lines[k + 1].split(",")[0]) for k, ln in enumerate(lines) if not ln] == [0.0] * 3
+    parts, _ = stream_campaigns(text, ["T_T0"], ReadOptions.from_cfg({}))
+    assert list(parts) == ["stdin_1", "stdin_2", "stdin_3", "stdin_4"]

@@ -23,7 +23,9 @@ DRIVER = r"""/* stream.c: CSV rows of raw inputs on stdin -> corrections C_<axis
  * campaign's first, as the served model reads it; every time of a stream in the form of its
  * first; with TC_ELAPSED (data.time=elapsed) a logger's h:mm:ss since the start, 59:59:00.5.
  * A cell that is no number (a time of day alone, 08:45:00) is refused with its row.
- * A blank row, a `reset` column holding 1, a new value in the run-number column
+ * A blank row whose next row has no time or one not after the last (dep107b: within a run, its
+ * time going on, a blank row is nothing, as run and replay read it), a `reset` column holding 1,
+ * a new value in the run-number column
  * TC_RUN_COLUMN, or a time more than TC_PAUSE_S after the last (data.runs_at_pauses: a lab's
  * tests appended in one file, catman70) starts a campaign (the row is its reference).  With
  * TC_ADAPT, a row carrying a measured error in a TC_ERROR_NAMES column (E_<axis>, optional;
@@ -744,12 +746,15 @@ static struct { int kind, started; long long origin; double origin_fraction; } c
    well a step back and is refused, as the reader refuses it.  A time past a day is taken as it
    is: the rows `thermocomp rows` and the check pack write carry the days already. */
 static double day_last = NAN, day_added = 0.0;
+static int day_passed;         /* (dep107b) the last row's clock passed midnight: it went back */
 
 static int of_day(double *t, long row) {
     double raw = *t;
+    day_passed = 0;
     if (!isfinite(raw)) return 0;
     *t = raw + day_added;
-    while (isfinite(day_last) && *t < day_last - 43200.0) day_added += 86400.0, *t += 86400.0;
+    while (isfinite(day_last) && *t < day_last - 43200.0)
+        day_added += 86400.0, *t += 86400.0, day_passed = 1;
     if (isfinite(day_last) && *t - day_last >= 43200.0) {
         fprintf(stderr, "stream: line %ld: the time of day (%.10g s, seconds since midnight) "
                 "steps %.3g h forward: as well %.3g h back, a day passed (no date to tell; "
@@ -824,8 +829,14 @@ static int row_time(char **cells, int time_col, int clock_col, const char *stamp
 }
 
 /* --state FILE: what a restarted process needs to go on as if it had not stopped. The bytes
-   are this build's (the sizes and a mark are checked), as tc_state is plain data. */
-static const char STATE_MARK[8] = "tcstat1";
+   are this build's (the sizes and a mark are checked), as tc_state is plain data; (dep107b) and
+   a blank line read last, not yet decided (the next row's time decides it: a stream cut there
+   went on from a reset where the uninterrupted one reads a stray blank line as nothing), and a
+   time of day's last time and the days added (the days came back from the last time read,
+   but as a step back past midnight: a blank line pending then started a campaign, 4.55 um off
+   on a lag bank).  A state of the mark before (tcstat1) is refused as another build's. */
+static const char STATE_MARK[8] = "tcstat2";
+static int state_blank;        /* the blank line pending, as saved and restored */
 
 /* 1: FILE read back into *s and the stream's clock and run; 0: no FILE (a cold start); -1: FILE
    is no state of this build (another model, compiler or machine; truncated). */
@@ -839,7 +850,9 @@ static int restore_state(const char *path, tc_state *s, char *run) {
          && fread(sizes, sizeof sizes, 1, f) == 1 && sizes[0] == sizeof *s
          && sizes[1] == sizeof clock_ && sizes[2] == MAX_CELL
          && fread(s, sizeof *s, 1, f) == 1 && fread(&clock_, sizeof clock_, 1, f) == 1
-         && fread(run, MAX_CELL, 1, f) == 1 && fgetc(f) == EOF;
+         && fread(run, MAX_CELL, 1, f) == 1 && fread(&state_blank, sizeof state_blank, 1, f) == 1
+         && fread(&day_last, sizeof day_last, 1, f) == 1 && fread(&day_added, sizeof day_added, 1, f) == 1
+         && fgetc(f) == EOF;
     fclose(f);
     return ok ? 1 : -1;
 }
@@ -854,7 +867,8 @@ static int save_state(const char *path, char *tmp, const tc_state *s, const char
     if (f == NULL) return 0;
     ok = fwrite(STATE_MARK, sizeof STATE_MARK, 1, f) == 1 && fwrite(sizes, sizeof sizes, 1, f) == 1
          && fwrite(s, sizeof *s, 1, f) == 1 && fwrite(&clock_, sizeof clock_, 1, f) == 1
-         && fwrite(run, MAX_CELL, 1, f) == 1;
+         && fwrite(run, MAX_CELL, 1, f) == 1 && fwrite(&state_blank, sizeof state_blank, 1, f) == 1
+         && fwrite(&day_last, sizeof day_last, 1, f) == 1 && fwrite(&day_added, sizeof day_added, 1, f) == 1;
     ok = fclose(f) == 0 && ok;
     if (ok && rename(tmp, path) != 0) ok = remove(path) == 0 && rename(tmp, path) == 0;
     return ok;
@@ -1489,7 +1503,7 @@ int main(int argc, char **argv) {
                 "remove it to start cold\n", state_path);
         return 2;
     }
-    if (restored) day_last = s.t_read;     /* (a file continuing past midnight: its days) */
+    if (restored && state_blank) blank_at = -1;   /* (dep107b) the last input ended on a blank line */
     while (pending || next_line(line, sizeof line, row + 1)) {
         if (pending) strcpy(line, first_row), pending = 0;
         row++;
@@ -1559,20 +1573,14 @@ int main(int argc, char **argv) {
             return 2;
         }
         if (line[strspn(line, " \t\r\n")] == '\0') {
+            if (sampled || restored) {   /* (dep107b) decided at the next row, by its time (below) */
+                if (!blank_at) blank_at = row;
+                continue;
+            }
             restart(&s, 1);
-            if (sampled && !blank_at) blank_at = row;
             if (!saved(state_path, state_tmp, &s, run)) return 2;
             continue;
         }
-        /* (audit103) said, not silent: a logger's stray blank line restarted the stream (the
-           state reset, the next row the reference: 8.5 um off on a large mill's MLR) where
-           run and replay read the file as one campaign; a blank line at the end says nothing */
-        if (blank_at && said_blank++ < 5)
-            fprintf(stderr, "stream: line %ld: a blank line: a new campaign starts at line %ld "
-                    "(the state reset, that row the reference), as between the campaigns "
-                    "thermocomp rows writes; run and replay read a file's blank line as nothing%s\n",
-                    blank_at, row, said_blank == 5 ? " (no more said)" : "");
-        blank_at = 0;
         sampled = 1;
         if (split(line, cells) != ncols) {
             fprintf(stderr, "stream: line %ld has not %d cells\n", row, ncols);
@@ -1650,6 +1658,30 @@ int main(int argc, char **argv) {
             snprintf(stamp, sizeof stamp, "%s %s", trimmed(cells[time_col]),
                      trimmed(cells[clock_col]));
         if (row_time(cells, time_col, clock_col, stamp, row, &t) != 0) return 2;
+        if (blank_at) {
+            /* (dep107b) a blank line after a sample starts a campaign where the row after it has
+               no time or one not after the last read (the campaigns thermocomp rows writes, each
+               from its time 0; monitor.input=- reads them so); a blank line within a run, its
+               time going on, is nothing, as run, replay and the served stream on stdin read it
+               (audit103 said it and restarted there: a lab's mlr 35.7 um off at once) */
+            int goes_on = isfinite(t) && !s.first && isfinite(s.t_read) && t > s.t_read
+                          && !(TC_DAY_SECONDS && day_passed);  /* (a time of day gone back) */
+            char at[64];
+            if (blank_at < 0) strcpy(at, "the last input's end (--state)");
+            else snprintf(at, sizeof at, "line %ld", blank_at);
+            if (said_blank++ < 5)
+                fprintf(stderr, "stream: %s: a blank line: %s%ld%s%s\n", at, goes_on
+                        ? "read as nothing, the time going on at line " : "a new campaign starts "
+                          "at line ", row, goes_on ? " (a stray blank line within a run), as run, "
+                          "replay and the served stream read it" : " (the state reset, that row "
+                          "the reference: its time is not after the last read, as between the "
+                          "campaigns thermocomp rows writes)", said_blank == 5 ? " (no more said)" : "");
+            blank_at = state_blank = 0;
+            if (!goes_on) {
+                restart(&s, 1);
+                if (row_time(cells, time_col, clock_col, stamp, row, &t) != 0) return 2;
+            }
+        }
         if (TC_PAUSE_S > 0 && isfinite(t) && !s.first && isfinite(s.t_read)
             && t - s.t_read > TC_PAUSE_S) {
             /* (catman70) the logger silent longer than data.runs_at_pauses' pause: the next
@@ -1727,6 +1759,10 @@ int main(int argc, char **argv) {
             measured |= isfinite(e[i]);
         }
         if (measured) tc_reference(&s, e);
+        if (!saved(state_path, state_tmp, &s, run)) return 2;
+    }
+    if (blank_at) {                 /* blank lines at the end: kept for the next row (dep107b) */
+        state_blank = 1;
         if (!saved(state_path, state_tmp, &s, run)) return 2;
     }
     if (held_row) {                 /* (audit96) the preamble's line last: refused, as before */

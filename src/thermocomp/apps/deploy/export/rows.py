@@ -55,9 +55,22 @@ def rows_text(ds, ids: list[str], reference: str, errors: bool = False
     texts, listed = [], []
     for (ids_, frame), a0 in zip(parts, ambient):
         frame = frame.reindex(columns=[c for c in header if c != AMBIENT_C])
+        if TIME in frame.columns:
+            frame[TIME] = from_zero(frame[TIME])
         if given:
             frame[AMBIENT_C] = a0
         text = csv_text(frame)
         texts.append(text if not texts else text.split("\n", 1)[1])
         listed.append({"campaigns": ids_, "rows": len(frame)})
     return "\n".join(texts), listed
+
+
+def from_zero(time: pd.Series) -> pd.Series:
+    """(dep107b) A block's time from its first (s): each block then starts at a time not after the
+    last of the one before, the boundary every reader of the rows (``stream.c``, a stream on
+    stdin) tells from a logger's stray blank line within a run, its time going on (read as
+    nothing, as ``run`` and ``replay`` read it).  A file's runs under one clock (a run column's)
+    went on across the blank line, one period on: no time told it from a stray one."""
+    seconds = pd.to_numeric(time, errors="coerce")
+    first = seconds[np.isfinite(seconds)]
+    return seconds - first.iloc[0] if len(first) else seconds
