@@ -43,6 +43,35 @@ H. healthy (both cells): no period nor gap line said by the C or served (no fals
 Each mend: a test failing on 1e995de3, passing here, <= ~3 s CPU (tests/cbuild.py for the C).
 KEPT where P, D, G, H hold; else REFUSED (src reverted, the rule kept as
 benchmarks/dep107c_rule.patch).
+
+Harness after the bar (no rule, no figure chosen): the served model also by HTTP (``PORT``:
+bench_audit107's route, ``thermocomp serve`` of the cell's model.pkl, its faults' first 220 rows)
+for D's 400 (the in-process predict takes no JSON: not run for ``comma``); what the file reader
+and stdin say of each fault's rows (``read_dataset`` of them written, ``stream_campaigns``).
+
+Scored once (2026-12-07 ~12:15 UTC, 2 cores shared, ``nice``; this tree 1a71d75d's src, then the
+same command on 1e995de3's src, OUT apart; the served corrections compared file by file)::
+
+  P  mlr-none, lagbank-none: the C says "line 203: the sample period changes from 100 s to 1000 s
+     here ..." (base: nothing); stdout = base byte for byte (--flags); served (in process, one
+     block and blocks of 50; HTTP) warns "session 'm1', column 'time', data row 202 of the block"
+     (blocks of 50: "data row 2", the same row), one event time -> period changed at 21000 s
+     (base: nothing); served corrections = 1e995de3's served exactly (np.array_equal, 12 arrays);
+     |served - C| 2.27e-13 / 1.99e-13 um (HTTP 1.42e-13, as audit107): holds
+  D  the C exit 2 "line 202: input T_front1: '22,61' is no number: a decimal comma? ..." (base:
+     "a mark for a value not measured?"); stdin "data row 201: ... '22,61' is not a number: a
+     decimal comma? set data.decimal=','" (base: no hint); HTTP 400 "column 'T_front1', data row
+     201 of the block: value '22,61' is not a number (float64; send numbers as JSON numbers ...)"
+     (unchanged): holds
+  G  the file reader "1 stretch(es) without rows (steps of 6 sample periods of 100 s ... before
+     line 302 (data row 301))"; the C "line 302: 6 sample periods of 100 s without rows before
+     this one ..."; served "data row 301 of the block" (blocks of 50: "data row 1"), event time ->
+     rows missing at 30500 s; stdin now the file reader's words, "before data row 301" (base: the
+     C, served and stdin said nothing); corrections as in P: holds
+  H  healthy: no period or gap line from the C, served, stdin or the file reader; stdout = base
+     byte for byte: holds
+CPU (user + sys, /usr/bin/time of the bench, both cells, its waited children in): 22.5 +
+2.9 s with HTTP (this tree), 12.0 + 0.6 s without (1e995de3).  Verdict: KEPT.
 """
 
 from __future__ import annotations
