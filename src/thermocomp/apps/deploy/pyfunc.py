@@ -101,6 +101,7 @@ from ...core.context import TIME
 from ...core.io import marks
 from ...core.io.bits import STATE, words_decoded
 from ...core.io.derived import on_frame
+from ...core.io.rates import StepWatch
 from ...core.io.slashed import stream_format
 from ...core.io.stdin import since, stream_stamps, with_clock_joined
 from ...core.io.timestamps import CLOCK
@@ -116,6 +117,7 @@ MAX_SESSIONS = 1024
 log = logging.getLogger(__name__)
 DEPLOYABLE = (StreamingCompensator, AdaptiveCompensator)   # what the model may hold
 REPORT_COLUMNS = ("excluded_inputs", "events")              # the adaptive compensator's extras
+SAID_AT_MOST = 5          # (dep107c) warnings of one kind of a session's time per campaign
 
 
 def is_adaptive(deployed) -> bool:
@@ -173,7 +175,8 @@ class CompensatorModel(mlflow.pyfunc.PythonModel):
         return ends[campaign]
 
     def _state(self, session: str, reset: bool, continues: str = "", ambient_c=None) -> list:
-        """``[stream state, time shift, learned, clock origin, time of day, last time]`` of ``session``,
+        """``[stream state, time shift, learned, clock origin, time of day, last time, step watch]`` of
+        ``session`` (dep107c: the watch, :class:`.rates.StepWatch`, says its time's rate and gaps),
         most recent last (the origin: the campaign's first timestamp, ns, once a block gave one;
         data91, the time of day: the last read and the days added, :func:`_no_clock`): a fresh one
         when new or reset (with the campaign's ``ambient_c``, for a model that reads no ambient
@@ -184,13 +187,13 @@ class CompensatorModel(mlflow.pyfunc.PythonModel):
         if continues:
             end = self._end_state(continues)
             self._sessions[session] = [copy.deepcopy(end.state), end, learned, None, _no_clock(),
-                                       float("nan")]
+                                       float("nan"), StepWatch()]
         elif reset or session not in self._sessions:
             if not reset:
                 log.warning(unheld_session(session))
             self.streaming.reset(float("nan") if ambient_c is None else float(ambient_c))
             self._sessions[session] = [self.streaming._snapshot(), 0.0, learned, None, _no_clock(),
-                                       float("nan")]
+                                       float("nan"), StepWatch()]
         while len(self._sessions) > MAX_SESSIONS:
             self._sessions.popitem(last=False)
         self._sessions.move_to_end(session)
@@ -215,12 +218,13 @@ class CompensatorModel(mlflow.pyfunc.PythonModel):
         # Serving may call from several threads: one session's samples in order, one at a time.
         with self._lock:
             reset, continues = bool(params.get("reset")), str(params.get("continues") or "")
-            outs, paused, found = [], None, None
+            outs, paused, found, done = [], None, None, 0
             try:
                 while frame is not None:
                     state = self._state(session, reset, continues, params.get("ambient_c"))
                     found = list(state) if found is None else found   # (its fields are replaced, not changed)
-                    out, frame, gap = self._block(state, frame)
+                    out, frame, gap = self._block(state, frame, session, done)
+                    done += len(out)
                     if paused is not None and len(out) and "events" in out:
                         out.loc[out.index[0], "events"] = _with_event(out["events"].iloc[0], paused)
                     outs.append(out)
@@ -234,10 +238,11 @@ class CompensatorModel(mlflow.pyfunc.PythonModel):
         outs = [out for out in outs if len(out)] or outs[:1]    # (a pause before the block's first row)
         return outs[0] if len(outs) == 1 else pd.concat(outs, ignore_index=True)
 
-    def _block(self, state: list, frame: pd.DataFrame
+    def _block(self, state: list, frame: pd.DataFrame, session: str = DEFAULT_SESSION, done: int = 0
                ) -> tuple[pd.DataFrame, pd.DataFrame | None, dict | None]:
         """The corrections of ``frame``'s rows in ``state``'s campaign up to a pause (the model's
-        ``pause_s_``, :func:`_pause_at`), the rows from it (None: none) and its event."""
+        ``pause_s_``, :func:`_pause_at`), the rows from it (None: none) and its event; ``done``:
+        the rows of the caller's block before ``frame`` (its rows named in the caller's block)."""
         raw, carried = frame, list(state[4])        # (kept below only where the block is taken)
         if TIME in frame.columns:
             frame = _on_campaign_clock(frame, state, self.streaming.slashed_, carried)
@@ -280,6 +285,8 @@ class CompensatorModel(mlflow.pyfunc.PythonModel):
                 out[c] = pred[c].to_numpy(object)
             if shift:      # event times in the caller's clock
                 out["events"] = [_shifted(e, -shift) for e in out["events"]]
+        if TIME in frame.columns:
+            state[6] = _said_steps(copy.deepcopy(state[6]), frame, out, session, done, shift)
         return out, rest, gap
 
 
@@ -302,6 +309,35 @@ def _pause_at(frame: pd.DataFrame, last: float, pause_s: float, shift: float
                  "reason": f"the time pauses {gap / 3600:.3g} h, more than {pause_s:g} s "
                            "(data.runs_at_pauses): a campaign started from a reset here, as the "
                            "record's read and stream.c start one"}
+
+
+def _said_steps(watch: StepWatch, frame: pd.DataFrame, out: pd.DataFrame, session: str, done: int,
+                shift: float) -> StepWatch:
+    """(dep107c) ``watch`` read on over ``frame``'s times (a taken block's, on the campaign's
+    clock): a sample period changing or a stretch without rows said in a warning naming the
+    session and the row of the caller's block, as the file reader and stream.c say it of the same
+    rows, and in an event of that row (``sensor`` time) where ``out`` has events (the adaptive
+    model); the corrections as they are.  It streamed on without a word (audit107: 100 s rows,
+    then 1000 s ones from data row 202, said by replay of the file)."""
+    times = pd.to_numeric(frame[TIME], errors="coerce").to_numpy(float)
+    for i, t in enumerate(times):
+        for kind, at, was, now in watch.read(float(t), i):
+            said = (f"the sample period changes from {was:g} s to {now:g} s here (the logger set to "
+                    "another rate?): a model whose lags count samples (arx, lstm) reads a sample as "
+                    f"{was:g} s before it and {now:g} s after" if kind == "period" else
+                    f"{was / now:.3g} sample periods of {now:g} s without rows before this one (a "
+                    "logger's outage?): a model whose lags count samples (arx, lstm) reads them as "
+                    "one period")
+            watch.said[kind] = watch.said.get(kind, 0) + 1
+            if watch.said[kind] <= SAID_AT_MOST:      # (as stream.c's: a jittery clock's gaps)
+                log.warning(f"session {session!r}, column {TIME!r}, data row {done + at + 1} of the "
+                            f"block: {said}; the corrections go on"
+                            + (" (no more said)" if watch.said[kind] == SAID_AT_MOST else ""))
+            if "events" in out:
+                event = {"time": float(times[at]) - shift, "sensor": TIME, "from": "ok",
+                         "to": "period changed" if kind == "period" else "rows missing", "reason": said}
+                out.loc[out.index[at], "events"] = _with_event(out["events"].iloc[at], event)
+    return watch
 
 
 def _with_event(events: str, event: dict) -> str:

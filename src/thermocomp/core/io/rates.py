@@ -97,3 +97,49 @@ def said_if_rows_missing(seconds: np.ndarray, file, at: Callable[[int], str] = p
                    f"before {at(k + 2)}): a logger's outage? The lag bank and Hammerstein read "
                    "the time; a model whose lags count samples (arx, lstm) reads each as one "
                    f"period; data.resample_s={period:g} fills them by linear interpolation{day}")
+
+
+class StepWatch:
+    """(dep107c) The two rules above read one row at a time, as a stream must (the served model;
+    ``stream.c`` holds the same rule, its ``watch_``): the file reader's words of a whole record
+    came from neither.  A campaign's period is the median of its first :data:`SETTLED` steps;
+    then the period changes where most of the last :data:`SETTLED` steps lie :data:`RATE_CHANGE`
+    times from it on one side (named at the first of them, the new period their median, held
+    from there); rows are missing where one step lies :data:`GAP_PERIODS` to :data:`PAUSE_PERIODS`
+    periods long (not an hour and a period: daylight saving time) and the next is shorter than
+    :data:`GAP_PERIODS` again (a run of long steps is a new rate, not a gap).  It says; it
+    changes no correction."""
+
+    def __init__(self) -> None:
+        self.last, self.period = float("nan"), float("nan")
+        self.steps: list[tuple[int, float]] = []      # (row, step): the first, then the last ones
+        self.gap: tuple[int, float] | None = None     # a long step waiting for the next
+        self.said: dict[str, int] = {}                # (the caller's count of what it said)
+
+    def read(self, time: float, row: int) -> list[tuple[str, int, float, float]]:
+        """What row ``row`` at ``time`` (s) shows: ``("period", row, before, after)`` (s) and
+        ``("gap", row, step, period)`` (s; ``row`` the first after the stretch)."""
+        if not np.isfinite(time) or (np.isfinite(self.last) and time <= self.last):
+            return []        # (a time missing or not after the last: the time rule's to say)
+        step, self.last = time - self.last, time
+        if not np.isfinite(step):
+            return []
+        self.steps.append((row, step))
+        if not np.isfinite(self.period):
+            if len(self.steps) == SETTLED:
+                self.period, self.steps = float(np.median([s for _, s in self.steps])), []
+            return []
+        period, found = self.period, []
+        if self.gap is not None and step < GAP_PERIODS * period:
+            found.append(("gap", *self.gap, period))
+        long = GAP_PERIODS * period <= step <= PAUSE_PERIODS * period
+        self.gap = (row, step) if long and abs(step - 3600.0 - period) > period / 2 else None
+        self.steps = self.steps[-SETTLED:]
+        for changed in ([rs for rs in self.steps if rs[1] >= RATE_CHANGE * period],
+                        [rs for rs in self.steps if rs[1] <= period / RATE_CHANGE]):
+            if len(changed) > SETTLED // 2:
+                self.period = float(np.median([s for _, s in changed]))
+                found.append(("period", changed[0][0], period, self.period))
+                self.steps, self.gap = [], None
+                break
+        return found

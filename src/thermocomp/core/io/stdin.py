@@ -253,7 +253,8 @@ def _read_runs(text: str, columns: list[str], opts, recorded: str | None = None,
         bad = pd.to_numeric(values, errors="coerce").isna() & df[c].notna()
         if bad.any():
             row = int(np.flatnonzero(bad)[0])
-            raise ContractError(f"non-numeric value: {df[c].iloc[row]!r} is not a number",
+            raise ContractError(f"non-numeric value: {df[c].iloc[row]!r} is not a number"
+                                + _comma_hint(df[c].iloc[row], opts.decimal),
                                 file=SOURCE, column=c, row=row + 1)
         df[c] = pd.to_numeric(values, errors="coerce")
         if c != TIME:          # data.missing_values' -9999, however written, and INF (.marks)
@@ -373,7 +374,7 @@ def stream_campaigns(text: str, columns: list[str], opts, recorded: str | None =
         blocks, origins = _pause_runs(df, origins[0], opts.runs_at_pauses)
     check_streamed(df[without_derived(df.columns, opts.derive)], blocks, opts, SOURCE,
                    df.attrs.get(HEADERS, {}))        # (data87) as a streamed file's values
-    _said_if_rate_changes(df, blocks)
+    _said_if_rate_changes(df, blocks, opts.time != OF_DAY_KIND)
     if blocks is None:
         df.attrs[TIME_ORIGIN] = origins[0]
         return {STDIN: df}, ({STDIN: counts} if counts else {})
@@ -386,15 +387,27 @@ def stream_campaigns(text: str, columns: list[str], opts, recorded: str | None =
     return parts, {cid: n for cid, n in missing.items() if n}
 
 
-def _said_if_rate_changes(df: pd.DataFrame, blocks: list | None) -> None:
+def _comma_hint(cell, decimal: str) -> str:
+    """(dep107c) The file reader's hint for a decimal comma the settings do not read
+    (tables._bad_cell_error): audit107's ``22,61`` was refused as no number, nothing more."""
+    if decimal == "," or not re.fullmatch(r"\s*[+-]?\d*,\d+\s*", str(cell)):
+        return ""
+    return ": a decimal comma? set data.decimal=','"
+
+
+def _said_if_rate_changes(df: pd.DataFrame, blocks: list | None, gaps: bool = True) -> None:
     """(audit107) A logger set to another sample rate within a run of the stream, said as the
     file reader says it of the same rows, naming the stream's data row: 100 s rows, then 1000 s
-    ones from data row 202, were monitored without a word (``replay`` of the file said it)."""
+    ones from data row 202, were monitored without a word (``replay`` of the file said it).
+    (dep107c) Else its stretches without rows, as the file reader says them (``gaps``: not
+    said already, as a time of day's are by :func:`seconds_and_origin`): 5 rows left out of a
+    100 s stream were monitored without a word."""
     if TIME not in df.columns:
         return
     for _, start, end in blocks or [(STDIN, 0, len(df))]:
-        said_if_rate_changes(df[TIME].to_numpy(float)[start:end], SOURCE,
-                             at=lambda row, start=start: position(row + start))
+        seconds, at = df[TIME].to_numpy(float)[start:end], (lambda row, start=start: position(row + start))
+        if not said_if_rate_changes(seconds, SOURCE, at=at) and gaps:
+            said_if_rows_missing(seconds, SOURCE, at=at)
 
 
 def _pause_runs(df: pd.DataFrame, origin, at_pauses: bool) -> tuple[list | None, list]:

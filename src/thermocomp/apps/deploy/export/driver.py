@@ -477,6 +477,20 @@ static double value(const char *cell, int *bad) {
     return is_number_mark(v) || isinf(v) ? NAN : v;
 }
 
+/* 1: `cell` (spaces and quotes round it dropped) reads as a number with a decimal comma, `22,61`
+   (the reader's hint: tables._bad_cell_error), in a stream whose separator is ','. */
+static int decimal_comma(const char *cell) {
+    const char *p;
+    while (*cell == ' ' || *cell == '"') cell++;
+    if (sep != ',' || *cell == '\0') return 0;
+    p = cell + (*cell == '+' || *cell == '-');
+    p += strspn(p, "0123456789");
+    if (*p++ != ',' || *p < '0' || *p > '9') return 0;
+    p += strspn(p, "0123456789");
+    while (*p == ' ' || *p == '"') p++;
+    return *p == '\0';
+}
+
 /* 1: `cell` is a channel property's label ('T0', 'dt', 'Delta t'): a letter, then letters,
    digits, '_' or '.', one space at most. */
 static int is_label(const char *cell) {
@@ -1139,9 +1153,91 @@ static int check_end(long row) {
 }
 
 /* A campaign starts: the compensator's (`reset`: what was learned kept) and its clock's. */
+/* (dep107c) the file reader's rules of a record's time (core/io/rates.py), read one row at a time
+   as rates.StepWatch reads them for the served model: a campaign's period is the median of its
+   first WATCH_STEPS steps; the period changes where most of the last WATCH_STEPS lie RATE_CHANGE
+   times from it on one side (said at the first of them; the new period their median); rows are
+   missing where one step lies GAP_PERIODS..PAUSE_PERIODS periods long (not an hour and a period)
+   and the next is shorter again.  Said on stderr, the corrections not changed: the stream went on
+   without a word where replay of the same rows said them (audit107). */
+#define WATCH_STEPS 10
+#define RATE_CHANGE 2.0
+#define GAP_PERIODS 1.5
+#define PAUSE_PERIODS 100.0
+static struct {
+    double last, period, steps[WATCH_STEPS], gap;
+    long rows[WATCH_STEPS], gap_row;
+    int n, said_rate, said_gap;
+} watch_;
+
+static void watch_reset(void) {
+    watch_.last = watch_.period = NAN;
+    watch_.n = 0;
+    watch_.gap_row = 0;
+}
+
+/* The median of the n values of `v` (n <= WATCH_STEPS) for which `pick` is 1 (NULL: all). */
+static double median_of(const double *v, const int *pick, int n) {
+    double sorted[WATCH_STEPS], x;
+    int i, j, m = 0;
+    for (i = 0; i < n; i++) {
+        if (pick != NULL && !pick[i]) continue;
+        for (x = v[i], j = m++; j > 0 && sorted[j - 1] > x; j--) sorted[j] = sorted[j - 1];
+        sorted[j] = x;
+    }
+    return m % 2 ? sorted[m / 2] : 0.5 * (sorted[m / 2 - 1] + sorted[m / 2]);
+}
+
+static void watched(double t, long row) {
+    double step, period = watch_.period;
+    int i, side, count, pick[WATCH_STEPS];
+    if (!isfinite(t) || (isfinite(watch_.last) && t <= watch_.last)) return;
+    step = t - watch_.last;
+    watch_.last = t;
+    if (!isfinite(step)) return;
+    if (watch_.n == WATCH_STEPS) {          /* the last WATCH_STEPS steps */
+        memmove(watch_.steps, watch_.steps + 1, (WATCH_STEPS - 1) * sizeof(double));
+        memmove(watch_.rows, watch_.rows + 1, (WATCH_STEPS - 1) * sizeof(long));
+        watch_.n--;
+    }
+    watch_.steps[watch_.n] = step;
+    watch_.rows[watch_.n++] = row;
+    if (!isfinite(period)) {
+        if (watch_.n == WATCH_STEPS) watch_.period = median_of(watch_.steps, NULL, watch_.n), watch_.n = 0;
+        return;
+    }
+    if (watch_.gap_row && step < GAP_PERIODS * period && watch_.said_gap++ < 5)
+        fprintf(stderr, "stream: line %ld: %.3g sample periods of %g s without rows before this "
+                "one (a logger's outage?), as the model's reader says of the same rows: a model "
+                "whose lags count samples (arx, lstm) reads them as one period; the corrections "
+                "go on%s\n", watch_.gap_row, watch_.gap / period, period,
+                watch_.said_gap == 5 ? " (no more said)" : "");
+    watch_.gap_row = step >= GAP_PERIODS * period && step <= PAUSE_PERIODS * period
+                     && fabs(step - 3600.0 - period) > period / 2 ? row : 0;
+    watch_.gap = step;
+    for (side = 0; side < 2; side++) {
+        for (i = count = 0; i < watch_.n; i++)
+            count += pick[i] = side ? watch_.steps[i] <= period / RATE_CHANGE
+                                    : watch_.steps[i] >= RATE_CHANGE * period;
+        if (2 * count <= WATCH_STEPS) continue;
+        for (i = 0; !pick[i]; i++) {}
+        watch_.period = median_of(watch_.steps, pick, watch_.n);
+        if (watch_.said_rate++ < 5)
+            fprintf(stderr, "stream: line %ld: the sample period changes from %g s to %g s here "
+                    "(the logger set to another rate?), as the model's reader says of the same "
+                    "rows: a model whose lags count samples (arx, lstm) reads a sample as %g s "
+                    "before it and %g s after; the corrections go on%s\n", watch_.rows[i], period,
+                    watch_.period, period, watch_.period, watch_.said_rate == 5 ? " (no more said)" : "");
+        watch_.n = 0;
+        watch_.gap_row = 0;
+        break;
+    }
+}
+
 static void restart(tc_state *s, int reset) {
     if (reset) tc_reset(s);
     clock_.started = 0;
+    watch_reset();
 }
 
 /* 1: `line` (not changed), a row under the header, describes the channels (catman70): a cell
@@ -1498,6 +1594,7 @@ int main(int argc, char **argv) {
     if (flags) printed_flags(NULL, 0);
     printf("\n");
     tc_init(&s);
+    watch_reset();
     if (state_path != NULL && (restored = restore_state(state_path, &s, run)) < 0) {
         fprintf(stderr, "stream: %s is no state this build wrote (another model or compiler?): "
                 "remove it to start cold\n", state_path);
@@ -1630,6 +1727,15 @@ int main(int argc, char **argv) {
                         "from one to the next\n");
                 return 2;
             }
+            if (bad && decimal_comma(cells[where[i]])) {
+                /* (dep107c) a decimal comma where the separator is ',': the reader's hint, not a
+                   missing value's (audit107: `22,61` was asked to be a mark) */
+                fprintf(stderr, "stream: line %ld: input %s: '%s' is no number: a decimal comma? "
+                        "this stream separates its cells with ',' and reads decimal points; a "
+                        "stream with decimal commas separates them with ';', a tab or '|'\n",
+                        row, TC_INPUT_NAMES[i], trimmed(cells[where[i]]));
+                return 2;
+            }
             if (bad) {    /* (streamraw65: read as missing before; the reader refuses it) */
                 fprintf(stderr, "stream: line %ld: input %s: '%s' is no number (a mark for a "
                         "value not measured? the model's data.missing_values lists %d)\n", row,
@@ -1736,6 +1842,7 @@ int main(int argc, char **argv) {
                     "(a logger's own clock, as the served model): give the times with their "
                     "offset (2026-10-25T02:00:00+01:00) or in UTC" : "",
                     said_back == 5 ? " (no more said)" : "");
+        if (time_read == TIME_AS_GIVEN && !s.repeated) watched(t, row);
         if (TC_MONITOR && !s.repeated) said_monitor(&s, row);
         for (i = 0; i < TC_N_OUTPUTS; i++) printf("%s%.17g", i ? "," : "", c[i]);
         if (flags) printed_flags(&s, s.repeated ? TIME_REPEATED : time_read);
