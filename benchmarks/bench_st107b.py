@@ -61,6 +61,23 @@ PARSED_DIGEST cases asking for the new digest, blark parsing the block (b392c884
 110.7 s CPU.  Its bar (no ST bench event or healthy record further from the C than on
 BASE) needs the st105-st107 benches, ~650 s CPU paired, not measurable here by 13:40 at load 10.6.
 
+BAR for the candidate (st107b's mend; committed before any regression run of it and before fresh
+10162-10164 are simulated; not moved after).  RULE = st107b_rule.patch applied, BASE = fb46731b.
+
+* B1 seen room (the record the rule was built on), ramp +10: block = C <= 1e-9 um on campaign 3's
+  rows 75-119, plain and diagnosed (BASE 4.51 / 3.94 um).
+* B2 fresh 10162 (bench_diag107b's CLIMATE), 10163 (CLIMATE + KIND, climate_lag), 10164 (CLIMATE),
+  each simulated once, ``plain`` in a BASE root and a RULE root, ``score`` of T_amb ``ramp`` +10 and
+  ``step`` +30: every event (a row where BASE's hold ends unsaid with the C still out): RULE = C
+  <= 1e-9 um from that row to the C's release of that sensor or the campaign's end; and no row
+  where |RULE - C| > |BASE - C| + 1e-9 um.  No event: the first clause VOID, said.
+* B3 bench_st107 ``score`` (st107's seen records and st105's fresh f105) and ``healthy`` (seen
+  lr/dl 9964-9967) with its BASE set to fb46731b: no event and no healthy row worse than BASE by
+  > 1e-9 um (its ``worse`` counts 0), B3 flag rows 0.
+* B4 the ST modules (export, st93-st100, counters97, stwires100) pass with PARSED_DIGEST re-asked
+  (blark parses); a test (<= ~3 s CPU) that fails on BASE.
+* KEPT where B1-B4 hold; a clause not measured by 13:35 UTC is not met (REFUSED, src at BASE).
+
 VERDICT: TRACED.  The 9.87 / 12.5 um are the ST's named refusal of an out-of-range reading (flagged
 and ``refused`` on every row it differs); the air sensor's own exclusions are named (``OFF_RANGE``,
 ``RANGE``, ``JUMP``, ``mon_stop``).  The one silent part is the one-out hold's stop (above).  No
