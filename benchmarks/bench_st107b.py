@@ -5,6 +5,8 @@ Usage (from the repository root, ``PYTHONPATH=<tree>/src``: the code measured is
     python benchmarks/bench_st107b.py room DATA                      # diag107's climate room (bench_diag107b)
     python benchmarks/bench_st107b.py plain ROOT DATA                # run model=mlr, export c and st
     python benchmarks/bench_st107b.py score ROOT DATA COLUMN PUSH MODE  # C - replay, ST - C per row
+    python benchmarks/bench_st107b.py simulate DATA SEED KIND       # a fresh climate room (KIND room / lag)
+    python benchmarks/bench_st107b.py paired BASE RULE COLUMN PUSH MODE  # two roots' scores, row by row
 
 diag107b (KEPT, bench_diag107b.py's docstring) saw on diag107's climate room that pushing the air
 sensor ``T_amb`` +30 degC from half-way made the ST differ from replay by 12.5 um (the diagnosed
@@ -51,15 +53,10 @@ Measured (2026-12-07, tree = fb46731b, no src change; ROOT /tmp/st107b/root (pla
   up to 4.51 um (diagnosed 3.94).  Not the air sensor's judgement: the class st107 traced (dl10127
   T_bed_right 0.016-0.089 um, "the C's ``_follow_field`` test in place of that stop").
 
-Candidate, not scored (benchmarks/st107b_rule.patch, src st_watch.py: 7 lines; src here at
+Candidate (benchmarks/st107b_rule.patch, src st_watch.py: 7 lines + PARSED_DIGEST; applies to
 fb46731b): where that stop ends the judgement the hold is kept (``mon_kept``), the model reading
 T_7 at its last reading in on the C's fallback set, as the C does to its ``BACK``, which needs the
-band that row broke.  Seen room, ramp: campaign 3's 45 rows 4.51 -> 0 um (diagnosed 3.94 -> 0);
-the rest unchanged.  Not known: where the C lets the sensor back later the kept hold parts from it
-(unsaid either way).  With it: export + st93-st100 + counters97 + stwires100, 53 passed and the 3
-PARSED_DIGEST cases asking for the new digest, blark parsing the block (b392c884..., in the patch);
-110.7 s CPU.  Its bar (no ST bench event or healthy record further from the C than on
-BASE) needs the st105-st107 benches, ~650 s CPU paired, not measurable here by 13:40 at load 10.6.
+band that row broke.  Risk: where the C lets the sensor back later the kept hold parts from it.
 
 BAR for the candidate (st107b's mend; committed before any regression run of it and before fresh
 10162-10164 are simulated; not moved after).  RULE = st107b_rule.patch applied, BASE = fb46731b.
@@ -78,11 +75,30 @@ BAR for the candidate (st107b's mend; committed before any regression run of it 
   (blark parses); a test (<= ~3 s CPU) that fails on BASE.
 * KEPT where B1-B4 hold; a clause not measured by 13:35 UTC is not met (REFUSED, src at BASE).
 
-VERDICT: TRACED.  The 9.87 / 12.5 um are the ST's named refusal of an out-of-range reading (flagged
-and ``refused`` on every row it differs); the air sensor's own exclusions are named (``OFF_RANGE``,
-``RANGE``, ``JUMP``, ``mon_stop``).  The one silent part is the one-out hold's stop (above).  No
-src change, no bar, fresh 10162-10164 not drawn.  CPU (user + sys, /usr/bin/time): ``plain`` 9.0 s
-(run + two exports), ``score`` 4.9-5.4 s each.
+SCORED (2026-12-07, bar 601d8f2a unchanged; RULE = the patch on fb46731b, BASE = fb46731b's
+src, ``git archive``; CPU user + sys as printed; load 3-10 on 2 cores):
+
+* B1 met: ramp +10, campaign 3's 45 rows 4.51 -> 0 um (plain), 3.94 -> 0 (diagnosed); step +30
+  unchanged (9.87 / 12.5, the named refusal); no row worse.
+* B2 VOID (said): fresh 10162 / 10163 (lag) / 10164 simulated once, BASE and RULE roots, T_amb
+  ramp +10 and step +30: no event (no hold of the block's ended unsaid), no row worse, RULE = BASE.
+  Step +30: every row the ST parts from the C is flagged OFF_RANGE and refused (ST - C 0 on the
+  rest; max 24.6 / 42.0 / 32.3 um): the trace holds on fresh.  Ramp +10: the C takes T_nc_cabinet
+  and T_amb out together by drift; the block says ``mon_stop`` at (or 1-3 rows before) that row,
+  every differing row after it (max 44.5 / 7.3 / 24.1 um, E_Z on 10162): named.
+* B3 NOT met: bench_st107 ``score`` (its BASE set to fb46731b): seen 10 records, 62 windows, 31
+  events, 0 worse, 0 rows moved (189.4 + 4.2 s); st105's f105 (97.9 + 6.7 s): dl10013 96 window
+  rows moved, all 96 worse than BASE by > 1e-9 um (the bench prints no size), the other 5 records
+  0.  ``healthy`` lr/dl 9964-9967 (153.5 + 3.3 s): 0 rows worse, 0 moved, 0 B3 rows.
+* B4 half: the ST modules with the rule 53 passed + the 3 digest cases (blark parses, new digest
+  b392c884..., in the patch; 107.6 + 3.2 s); no test written (none of the modules' fixtures was
+  found to reach that stop in the time).
+* VERDICT REFUSED: src back at fb46731b, the rule in benchmarks/st107b_rule.patch.
+
+The question's answer stands as traced: the 9.87 / 12.5 um are the ST's named refusal of an out-of-
+range reading; the air sensor's own exclusions are named (``OFF_RANGE``, ``RANGE``, ``JUMP``,
+``mon_stop``); the one silent part seen is the one-out hold's stop above.  CPU: ``plain`` 9.0 s
+(run + two exports), ``score`` 4.9-5.7 s each, ``simulate`` 1.4-1.9 s.
 """
 
 from __future__ import annotations
@@ -181,6 +197,10 @@ def score(root: str, data: str, column: str, push: str, mode: str) -> None:
             said.append((bool(v["mon_flag"]), int(v["mon_rule"]), int(v["mon_sensor"]), bool(v["mon_stop"]),
                          bool(v["refused"]), int(v["mon_held"]), int(v["mon_stop_row"])))
     st = np.array(st)
+    np.savez(base / f"score_{column}_{mode}_{float(push):g}.npz", st=st, c=got_c,
+             out=c_out["mon_out"].to_numpy(), excluded=c_out["excluded_inputs"].fillna("").to_numpy(str),
+             said=np.array(said),
+             edges=np.cumsum([0] + [len(df) for df in tests]))
     flag, stop, refused = (np.array([s[i] for s in said]) for i in (0, 3, 4))
     out = c_out["mon_out"].to_numpy() > 0
     print(f"{column} {mode} {float(push):+g} degC from half-way ({'row 0' if mode == 'all' else 'half'}): "
@@ -209,8 +229,42 @@ def score(root: str, data: str, column: str, push: str, mode: str) -> None:
               f"{[(k, 'C still out' if out[edges[c] + k] else 'C in') for k in ended]}")
 
 
+def simulate(data: str, seed: str, kind: str) -> None:
+    """``thermocomp simulate`` of bench_diag107b's climate room (``lag``: with its lag node) -> DATA."""
+    from bench_diag107b import CLIMATE, KIND, _tc
+
+    root = project_root(str(Path(data).resolve().parent))
+    status, out = _tc(root, "simulate", *CLIMATE, *(KIND if kind == "lag" else []), f"seed={int(seed)}",
+                      f"data.path={Path(data).resolve()}", "track=false")
+    print(out.strip().splitlines()[-1] if out.strip() else "", f"(exit {status})")
+
+
+def paired(base_root: str, rule_root: str, column: str, push: str, mode: str) -> None:
+    """BASE's and RULE's ``score`` files of one fault: the events (BASE's hold ended unsaid, the C still
+    out) with RULE - C from each to the C's release or the campaign's end; the rows RULE is worse."""
+    name = f"score_{column}_{mode}_{float(push):g}.npz"
+    b, r = (np.load(Path(root).resolve() / name) for root in (base_root, rule_root))
+    assert np.array_equal(b["c"], r["c"]), "the two roots' C differ"
+    gap_b, gap_r = np.abs(b["st"] - b["c"]).max(axis=1), np.abs(r["st"] - r["c"]).max(axis=1)
+    said, out, edges = b["said"], b["out"] > 0, b["edges"]
+    events = []
+    for c in range(len(edges) - 1):
+        for i in range(edges[c] + 1, edges[c + 1]):
+            if said[i - 1][5] >= 0 and said[i][5] < 0 and not said[i][0] and not said[i][3] and out[i]:
+                end = i
+                while end + 1 < edges[c + 1] and out[end + 1] and b["excluded"][end + 1] == b["excluded"][i]:
+                    end += 1
+                events.append((c, i - edges[c], end - i + 1, gap_b[i:end + 1].max(), gap_r[i:end + 1].max()))
+    worse = np.flatnonzero(gap_r > gap_b + 1e-9)
+    print(f"{column} {mode} {float(push):+g}: {len(gap_b)} rows; events (campaign, row, rows, BASE, RULE um) "
+          f"{[(c, k, n, float(f'{x:.3g}'), float(f'{y:.3g}')) for c, k, n, x, y in events]}; "
+          f"rows RULE worse than BASE by > 1e-9 um {len(worse)}; max |ST - C| BASE {gap_b.max():.3g} "
+          f"RULE {gap_r.max():.3g} um")
+
+
 def main(argv: list[str]) -> int:
-    return run_commands(__doc__, {"room": room, "plain": plain, "score": score}, argv, cpu=sys.stderr)
+    return run_commands(__doc__, {"room": room, "plain": plain, "score": score,
+                                  "simulate": simulate, "paired": paired}, argv, cpu=sys.stderr)
 
 
 if __name__ == "__main__":
