@@ -47,6 +47,33 @@ and these records).
 * KEPT where B1-B4 hold on seen and fresh; else REFUSED (src reverted, the rule in
   benchmarks/st107c_rule.patch).
 
+MEASURED (2026-12-07, 2 cores shared, load 7-11; rule = 408e365a's src, BAR f88ac767, unchanged;
+BASE 02d5ff8f (``git archive`` into ROOT/base); CPU user + sys as /usr/bin/time prints it).
+VERDICT KEPT: B1-B4 met on seen and fresh.
+
+* Seen (``score``, 22 records, 356.4 + 7.4 s): 113 windows (gate not scored: lr10014, lr10128,
+  dl10128).  B1: dl10127 T_amb 6131 beside T_bed_right: hold rows 10 3.6e-14 um (BASE 3.6e-14),
+  after rows 29 BASE 0.089 -> 7.8e-14 um, met; the 2 other covered events (dl9975) unmoved.  B2 65
+  of 65 (worst tree - BASE 0 um); dl10127's next C JUMP (T_amb 6170) now held as the C: hold rows
+  10 BASE 1.7 -> 4.6e-14 um, row before 0.06 -> 2.8e-14; its after rows 4.4 um both (st106's
+  DRIFT_OUT T_col_back 6181, not followed).  B3 0 rows.  Window rows whose c moved: 28, all
+  dl10127, none worse.  Healthy lr/dl 9964-9967 (123.3 + 1.7 s): 0 rows worse, 0 B3, 0 c rows moved.
+* Fresh lr/dl 10178-10180 (made after f88ac767, 8.1 + 0.7 s; ``score`` 98.7 + 2.3 s, ``healthy``
+  90.2 + 0.6 s; scored once; every gate scored): 35 windows, 2 covered events, both unmoved (tree =
+  BASE): lr10178 T_table 3684 (hold 8.5e-14, after 7.1e-14 um) and dl10178 T_amb 6170 beside
+  T_table (hold 5e-14 um, after rows 51 at 20 um on both: bench_st107's "B1 NOT met" line, not this
+  rule's rows; "no further" met).  B2 22 of 22 (tree - BASE 0), B3 0, 0 window rows moved; healthy
+  6 records 0 rows worse, 0 B3, 0 c rows moved.
+* B4: test_export.py 31 passed with PARSED_DIGEST dd97d423... (blark parsed the block when the old
+  digest failed: 82.1 + 2.7 s, then the 3 parse tests 31.2 + 0.8 s); test_export_st93 .. st100,
+  st_counters97, stwires100, cmon91, monitor76, lean107b and test_lint: 38 passed (36.1 + 1.0 s);
+  test_benchmarks_cli -k st107c 2 passed.  The new test_export_st100 case fails on 02d5ff8f (the
+  hold lost at row 650, 28 rows past the BLIND_OUT, 0.39 um off the C) and costs +1.1 / +1.6 s CPU
+  (paired, 2 reps, the module without / with it: 8.34 / 8.52 -> 9.44 / 10.13 s).
+* Left, traced on the test's record while choosing the bump: at -0.8 .. -1.5 °C the tree still ends
+  the hold where the C names nothing (a sensor at the set's alarm band: the C's ``_drift`` with
+  ``field = ALARM``, vetoed there), 0.03-0.38 um; not this rule's (the C may act there).
+
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``)::
 
     python benchmarks/bench_st107c.py score ROOT RECORD [RECORD ...]
