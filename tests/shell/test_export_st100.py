@@ -22,7 +22,12 @@ jumps undone: the bump, and a spike of the bumped sensor while it is out (benchm
 
 (st105) The block's own JUMP while its ``BLIND_OUT`` judgement is paused (or stopped) was not held
 (lost), while the C holds the sensor out alone to its ``BACK``: st101's spike inside the C's new
-state (benchmarks/bench_st105.py)."""
+state (benchmarks/bench_st105.py).
+
+(st107c) Two judged sensors at their warning band in the set without the ``BLIND_OUT`` ended the
+block's hold (the one-out stop, ``MON_FOLLOW_OTHERS``) where the C, past a window of the exclusion,
+keeps the sensor out and names nothing (its ``_follow_field`` lets it back only within one):
+benchmarks/bench_st107c.py."""
 
 from __future__ import annotations
 
@@ -38,6 +43,7 @@ JUMPED, JUMP_AT, JUMP_LIMITS = "T_amb", START - 150, 3.0    # (st101) its spike:
 HELD_AT, HELD_LIMITS = START + 30, -1.2    # (st102) the bumped one's spike while out (up: beyond range)
 PAUSED_AT = AT + 18    # (st105) st101's spike 10 rows into the C's new state (from AT + 8)
 STILL_AT, STILL = START + 40, 12    # (st106b) the bumped one's reading standing still while out
+FOLLOW_AT, FOLLOW_C = START + 36, -0.6    # (st107c) two of FIELD bumped while it is out
 
 
 def _judging(v) -> tuple:
@@ -212,4 +218,36 @@ def test_the_block_holds_a_second_jump_beside_its_blind_out_to_each_back(record)
     assert [i for i, x in enumerate(held) if x[2] == j] == list(range(HELD_AT, jback))
     assert not any(x[0] for x in held)
     assert ss.monitor["fallback_set"][j] > 0 and ss.monitor["fallback_set"][k] > 0
+    assert np.max(np.abs(st - c)) <= TOLERANCE_UM
+
+
+def _warned(v) -> tuple:
+    """``(mon_lost, mon_held, mon_warned)``: the judged sensors at their warning band in the set
+    without the one held, on the row's last judgement."""
+    return bool(v["mon_lost"]), int(v["mon_held"]), int(v["mon_warned"])
+
+
+def test_the_block_holds_its_blind_out_past_a_window_as_the_c_with_the_field_at_its_band(record):  # noqa: F811
+    """(st107c) Two sensors the others predict bumped (FOLLOW_C °C, test_export_st96's bump) while
+    the C holds the bumped one out by its ``BLIND_OUT``, more than a window after it: two judged
+    sensors at their warning band in the set without it, where the C (its ``_follow_field`` past
+    the window) keeps it out and names nothing to its ``BACK``; before st107c the block ended the
+    hold there (``mon_lost``) and read it live on the model's laws, 0.39 um off the C."""
+    _, ss, frame, block = record
+    k = [ss.inputs[i] for i in ss.monitor["inputs"]].index(BLIND)
+    df, end = bumped(frame, BLIND)
+    for sensor in FIELD[:2]:
+        df, _ = bumped(df, sensor, FOLLOW_AT, FOLLOW_C)
+    st, st_said, held, c, c_said = _stepped(ss, block, df.iloc[:end + 60], _warned)
+    # the C: its BLIND_OUT, then nothing but its BACK, after the two bumps' rise
+    events = [(i, s[1:]) for i, s in enumerate(c_said) if s[1]]
+    out, back = events[0][0], events[1][0]
+    assert events == [(out, (BLIND_OUT, k)), (back, (BACK, k))]
+    assert START < out < FOLLOW_AT - ss.monitor["window"] and back > FOLLOW_AT + 20
+    # the block: MON_FOLLOW_OTHERS (2) judged at their band while it holds, past the window
+    warned = [i for i in range(out, back) if held[i][2] >= 2]
+    assert warned and warned[0] > out + ss.monitor["window"]
+    # held from the C's BLIND_OUT to its BACK (before st107c: lost at the first of them), = the C
+    assert [i for i, s in enumerate(st_said) if s[0]] == [out]
+    assert held[out:back] == [(False, k, x[2]) for x in held[out:back]] and held[back][1] == -1
     assert np.max(np.abs(st - c)) <= TOLERANCE_UM

@@ -99,7 +99,11 @@ Per sample, of each monitored sensor ``k`` (the input ``MON_INPUT[k]``, the C's 
   ``MON_OUT_WARN``, "no other predicts" read there too): the C's second out, ``FREEZE`` where it
   holds it (``MON_OUT_FREEZE_HELD``: the set of the two had, fixed per pair), else ``SECOND``;
   and the hold judged on past one sensor at its warning band, to where the C could act (one at
-  its alarm band, ``MON_FOLLOW_OTHERS`` at their warning band, a stepped error).  A freeze named
+  its alarm band, ``MON_FOLLOW_OTHERS`` at their warning band, a stepped error); (st107c) the
+  warning-band count only within ``MON_WINDOW`` rows of its exclusion (``mon_hsince``, the C's
+  ``since``: its ``_follow_field`` lets a drift exclusion back for the field only there, and with
+  the field's level at the alarm band while one is out by the field, nothing else acts on it), past
+  them the hold kept as the C keeps it.  A freeze named
   by the field's rule is named once a run (``mon_fpast`` kept to the run's end).
 
 ``mon_flag`` says the sample's fault, ``mon_rule`` its rule (the C's ``mon_rule`` codes, named
@@ -109,9 +113,9 @@ TRUE on the one sample where the ``BLIND_OUT`` judgement ends for the campaign (
 veto or new thermal state, which the block does not follow), ``mon_stop_row`` that sample's
 number in the campaign (1 the first; 0 while it judges): said once, no fault flagged with it, so
 that the block's silence from there is not read as "healthy".  The counters that grow with the campaign
-(``mon_count``, ``mon_stop_row``, ``mon_calm``, ``mon_run``, ``mon_quiet``, ``mon_jcalm``) are
-DINT: an INT wraps after 32767 samples (9 h at 1 s), and a wrapped count stops the judgement
-(``mon_count + 1 >= MON_CONFIRM``).
+(``mon_count``, ``mon_stop_row``, ``mon_calm``, ``mon_run``, ``mon_quiet``, ``mon_jcalm``,
+``mon_hsince``) are DINT: an INT wraps after 32767 samples (9 h at 1 s), and a wrapped count stops
+the judgement (``mon_count + 1 >= MON_CONFIRM``).
 
 What the block does then, without the POD that rebuilds a sensor in the C: a reading not
 measured or beyond the range refuses the sample (``refused``: ``c`` holds the last correction,
@@ -433,6 +437,7 @@ VARS = """    mon_last : ARRAY[{nm}] OF LREAL;
     mon_held : INT;
     mon_was : INT;
     mon_calm : DINT;
+    mon_hsince : DINT;
     mon_run : DINT;
     mon_run_was : DINT;
     mon_dwell : INT;
@@ -1165,6 +1170,7 @@ IF MON_STEP_JUDGE AND (NOT mon_lost OR mon_jheld >= 0) THEN
                 mon_jlast := mon_last[mon_take] - mon_base[mon_take] - mon_shift[MON_INPUT[mon_take]];
                 mon_hlast := mon_jlast;
                 mon_calm := 0;
+                mon_hsince := mon_count;    (* (st107c) the C's since: its exclusion's row *)
                 mon_run_was := 0;
                 mon_dwell := MON_WINDOW;
                 FOR mr := 1 TO mon_field_outs[mon_take] DO
@@ -1271,9 +1277,14 @@ IF MON_STEP_JUDGE AND (NOT mon_lost OR mon_jheld >= 0) THEN
                     (* may take a second out or let it back another way (a stepped error, *)
                     (* _stepped; (st99) a sensor at its alarm band, _drift's with one out by *)
                     (* the field; MON_FOLLOW_OTHERS at their warning band, _follow_field), no more *)
+                    (* (st107c) the C's _follow_field lets it back for the field only within *)
+                    (* MON_WINDOW rows of its exclusion (its since); later it keeps it out *)
                     IF MON_OUT_JUDGING[mon_set, mk] = 1 AND mon_min[mk] >= MON_OUT_WARN[mon_set, mk] THEN
                         mon_warned := mon_warned + 1;
-                        IF mon_min[mk] >= MON_OUT_ALARM[mon_set, mk] OR mon_warned >= MON_FOLLOW_OTHERS THEN
+                        IF mon_min[mk] >= MON_OUT_ALARM[mon_set, mk] THEN
+                            mon_ok := FALSE;
+                        END_IF;
+                        IF mon_warned >= MON_FOLLOW_OTHERS AND mon_count - mon_hsince <= MON_WINDOW THEN
                             mon_ok := FALSE;
                         END_IF;
                     END_IF;
