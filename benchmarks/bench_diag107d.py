@@ -76,6 +76,29 @@ All: KEPT; else REFUSED (src reverted, ``benchmarks/diag107d_rule.patch``).
 
 Fresh kinds (chosen before drawing; bench_diag107c's order, 8 train / 4 test runs): 10173, 10176
 ``hidden_source`` (E_X); 10174, 10177 ``lag_node`` (E_X); 10175 ``axis_position`` (E_Z).
+
+Scored (2026-12-07, once; bar at d5648504; BASE = 02d5ff8f's src + conf, RULE = d5648504's src, both
+``git archive``; ROOT /tmp/diag107d; 2 shared cores, load 6-9; CPU user + sys, ``/usr/bin/time``)
+-------------------------------------------------------------------------------------------------
+``draws ROOT 10158,10160,10161,10173-10177``: BASE 124.0 s (simulating the 10 fresh draws), RULE
+94.5 s; diagnose alone 105.3 / 94.4 s.  The rows that differ (test RMSE µm; the other 27 identical)::
+
+  10158 lag   E_X  3.305 -> BASE 3.305 (nothing) / RULE 1.955  least-squares law + T_nc_z1_drive 7200 s
+  10160 hydr. E_X  3.177 -> 3.177 / 1.060  least-squares law + S_hydraulic_temp_C raw + its 900 s lag
+  10161 lag   E_X  3.298 -> 3.298 / 0.820  mean law + T_nc_z1_drive 7200 s start lag (2 directions)
+  10173 hydr. E_X  3.968 -> 3.968 / 0.920  least-squares law + S_hydraulic_temp_C raw
+  10176 hydr. E_X  2.248 -> 2.248 / 1.141  least-squares law + S_hydraulic_temp_C 900 s lag
+
+D1 met (the 3 seen planted found; none of their 12 rows worse).  D2 met: found BASE 3 (10174, 10175,
+10177) -> RULE 5 of 5.  D3 met (clean twins: nothing).  D4 met (the control accepted nowhere, clears
+nowhere).  D5 met (no fresh row worse; 2 of 20 better by 49-77 %).  D6 met: bench_diag88 ``seen`` 33
+rows (RULE 34.8 s) and bench_remeasure62 ``diagnose`` 139 (RULE 308.4 s) all identical to BASE (no
+row there has a round that takes nothing after a lean law gained and a pair that clears).  D7 met:
+the 66 modules (diag107c's 44 and neighbours, every test module naming the diagnose app, the new
+test) 904 passed, 1 failed: test_lab_sweep57's dvc launcher, which fails alike on BASE (the
+worktree has no .venv: environment); 359.4 s CPU; test_benchmarks_cli -k diag107d 2 passed, ruff
+clean.  The new test_diagnose_pair107d fails on 02d5ff8f and adds 0.2-0.5 s CPU (run less
+collect-only, 3 pairs).  **KEPT.**
 """
 
 from __future__ import annotations
