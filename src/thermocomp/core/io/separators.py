@@ -46,6 +46,15 @@ def grouped(mark: str, decimal: str) -> str:
     return rf"\s*[+-]?\d{{1,3}}(?:{m}\d{{3}})+(?:{d}\d*)?(?:[eE][+-]?\d+)?\s*"
 
 
+def decimal_comma_hint(value: str, decimal: str) -> str:
+    """``": a decimal comma? set data.decimal=','"`` where ``value`` is a number written with a
+    decimal comma the settings (``decimal``) do not read; else ``""``.  The file reader's hint and
+    a stream's (stdin, dep107c) alike."""
+    if decimal == "," or not re.fullmatch(r"\s*[+-]?\d*,\d+\s*", str(value)):
+        return ""
+    return ": a decimal comma? set data.decimal=','"
+
+
 def thousands_hint(value: str, column: pa.ChunkedArray, decimal: str) -> str | None:
     """``": a thousands separator? set data.thousands=','"`` when ``value`` groups its digits
     by three with a mark other than ``decimal``.  ``6,000`` could also be a decimal comma with

@@ -53,7 +53,7 @@ from .rates import said_if_rate_changes, said_if_rows_missing
 from .roles import RUN, active, left_out, named_as_time, naming, said_notes, split_unit
 from .runs import run_blocks, run_values
 from .scope import is_scope_text, scope_as_csv
-from .separators import UNICODE_MINUS, grouped
+from .separators import UNICODE_MINUS, decimal_comma_hint, grouped
 from .sinumerik import TRACE_ROOT
 from .slashed import stream_format
 from .sniff import SNIFF_LINES, detected
@@ -254,7 +254,7 @@ def _read_runs(text: str, columns: list[str], opts, recorded: str | None = None,
         if bad.any():
             row = int(np.flatnonzero(bad)[0])
             raise ContractError(f"non-numeric value: {df[c].iloc[row]!r} is not a number"
-                                + _comma_hint(df[c].iloc[row], opts.decimal),
+                                + decimal_comma_hint(df[c].iloc[row], opts.decimal),
                                 file=SOURCE, column=c, row=row + 1)
         df[c] = pd.to_numeric(values, errors="coerce")
         if c != TIME:          # data.missing_values' -9999, however written, and INF (.marks)
@@ -385,14 +385,6 @@ def stream_campaigns(text: str, columns: list[str], opts, recorded: str | None =
     missing = {cid: {c: int(n) for c, n in part[list(counts)].isna().sum().items() if n}
                for cid, part in parts.items()}
     return parts, {cid: n for cid, n in missing.items() if n}
-
-
-def _comma_hint(cell, decimal: str) -> str:
-    """(dep107c) The file reader's hint for a decimal comma the settings do not read
-    (tables._bad_cell_error): audit107's ``22,61`` was refused as no number, nothing more."""
-    if decimal == "," or not re.fullmatch(r"\s*[+-]?\d*,\d+\s*", str(cell)):
-        return ""
-    return ": a decimal comma? set data.decimal=','"
 
 
 def _said_if_rate_changes(df: pd.DataFrame, blocks: list | None, gaps: bool = True) -> None:

@@ -40,7 +40,14 @@ from .options import _OTHER_DELIMITERS, ROLE_ORDER, ReadOptions, _first_line
 from .own_headers import with_own_header
 from .period_line import period_hint
 from .roles import RUN, active, excel_days_header, naming, said_notes, split_unit
-from .separators import UNICODE_MINUS, misgrouped, reads_as_number, thousands_hint, ungrouped
+from .separators import (
+    UNICODE_MINUS,
+    decimal_comma_hint,
+    misgrouped,
+    reads_as_number,
+    thousands_hint,
+    ungrouped,
+)
 from .slashed_rows import read_in, said_by, settled
 from .sniff import head_lines, resolved
 from .timestamps import (
@@ -618,8 +625,7 @@ def _bad_cell_error(path, names, column, target, opts, types=None, texts=None) -
     # a thousands separator or a decimal comma the settings do not read: name the setting
     hint = thousands_hint(str(value), raw, opts.decimal) if number else None
     if hint is None:
-        hint = (": a decimal comma? set data.decimal=','" if opts.decimal != ","
-                and re.fullmatch(r"\s*[+-]?\d*,\d+\s*", str(value)) else "")
+        hint = decimal_comma_hint(str(value), opts.decimal)
     if _is_header(path, opts, str(value)):
         hint = (": the file's header written again under its data (a logger restarted?): delete "
                 "that line (and a unit row under it), or cut the file there into two files")
