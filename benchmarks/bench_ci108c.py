@@ -19,6 +19,34 @@ BAR (the brief's, written and committed here before any after-measurement):
    where the difference is under 10 %;
 3. tests/test_lint.py, tests/test_durations.py, tests/test_docs.py pass; ruff clean.
 
+Measured (2026-12-07 14:39-14:58 UTC, load 11-17 on 2 cores: other helpers' runs; CPU s user +
+sys incl. children, ``cpu``, nice; base = ``git archive 0dd05741`` in /tmp/ci108c/base).  The
+group as one process (``group``) was started and stopped at 55 s of CPU: under that load it
+would have taken over an hour of wall time; the group's base is not measured.  The three changed
+modules paired, base then after, two pairs each::
+
+  apps/test_diagnose_scenarios    24.84 / 26.01 -> 22.67 / 24.42   25.4 -> 23.5   -7.4 %
+  shell/test_calibrate            45.61 / 46.41 -> 48.19 / 44.52   46.0 -> 46.4   +0.7 % (noise)
+  shell/test_diagnose_deployed60   9.12 /  7.47 ->  7.86 /  6.94    8.3 ->  7.4  -10.8 %
+  sum                                                              79.7 -> 77.3   -3.0 %
+
+Against the bar: (1) met: every test of the three modules passes (16 + 70 + 3), none lost, no
+assertion weakened (diagnose_scenarios' ambient_law case asserts on both targets, deployed60
+asserts that the plain stream's diagnosis writes the default one's model); no data shrunk.
+(2) NOT met: the 2.4 s saved is under 0.5 % of the group (the ci7 run's durations give the
+group 1060 of the suite's 2280 test-seconds).  (3) met: test_lint, test_durations, test_docs
+pass (50), ruff clean.  Verdict REFUSED; the cuts stay on the branch (benchmarks/
+ci108c_rule.patch): exact, the lead can merge them.
+
+Why so little (traced, py-spy profile /tmp/prof1.raw of this morning's suite, the group's 266
+modules it sampled, 834 s): Hydra's per-command composition is 15 % of it (125 s), the diagnose
+searches 12 % (98 s), apps/volumetric (the calibrations) 8 % (63 s), parquet/csv reading and writing
+5 % (40 s).  The runs, fits and exports left are each a test's own claim (one family x wrapper,
+one fault, one refusal) or were shared at stops 98-104 (module fixtures in deployed_as_scored44,
+replay, volumetric_run, frames62, hostile_numeric, hostile_procs, opcua67); the process tests
+serve their OPC UA machines in threads already.  The lever left is generic, not per test:
+Hydra's per-command work (ci104's note: a wider compose cache and no config copies).
+
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``)::
 
     python benchmarks/bench_ci108c.py group TREE OUT            # the group's module list
