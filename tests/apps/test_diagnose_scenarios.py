@@ -69,7 +69,9 @@ def _no_random_signal_accepted(j):
 
 @pytest.mark.parametrize("effect", EFFECTS)
 def test_planted_effect_is_the_top_accepted_one_and_the_test_error_drops_to_60_percent(effect):
-    truth, result = diagnosis(effect)
+    # the ambient law's every-target diagnosis (the test below's): its E_X answer is the lone
+    # target's to the digit (only cv.designs and other_targets name E_Y), ~1.8 s of CPU once
+    truth, result = diagnosis(effect, all_targets=True) if effect == "ambient_law" else diagnosis(effect)
     planted = truth["undeclared_effects"][0]
     for target, j in result.items():
         accepted = _accepted(j)
