@@ -38,3 +38,155 @@ B. blank: a stream without a time column (``data.sample_period_s``) with a stray
 Each mend: a test failing on 0dd05741, passing here; the tests added cost <= 3 s CPU in all.
 KEPT where P, G, H, C (and B, or B traced as a separate verdict) hold; else REFUSED.
 """
+
+from __future__ import annotations
+
+import json
+import logging
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+HERE = Path(__file__).resolve().parent
+REPO = HERE.parent
+sys.path[:0] = [str(HERE), str(REPO / "tests"), str(REPO / "tests" / "shell")]
+import bench_dep107c  # noqa: E402
+from _cli import made_folder, run_commands  # noqa: E402
+
+FEEDS = ("healthy", "period10", "gap")
+BLANK_AFTER = 450                # B: the stray blank line under data row 450
+
+
+def _rows_said(lines: list[str]) -> list[tuple[str, int]]:
+    """``(period changed | rows missing, data row)`` of what a reader said."""
+    out = []
+    for ln in lines:
+        kind = ("period changed" if "period changes" in ln else "rows missing"
+                if "without rows" in ln else None)
+        row = re.search(r"data row (\d+)", ln)
+        if kind and row:
+            out.append((kind, int(row.group(1))))
+    return out
+
+
+def connected(data: Path, model: Path, rows: pd.DataFrame, out: Path) -> tuple[dict, np.ndarray, list]:
+    """``rows`` served by the vendor's server to ``thermocomp connect`` of ``model``: its
+    connect.json, the offsets the machine held at each row, the warnings it logged."""
+    from asyncua import ua
+
+    from conftest import free_port
+    from thermocomp.shell.cli import main as cli
+    from vendor_machine import VendorMachine, connect_nodes, served_in_thread
+
+    sensors = {c: f"s=CNC5000.{c}" for c in rows.columns if c != "time" and not c.startswith("E_")}
+    offsets = {t: (f"s=CNC5000.Offset.{t}", ua.VariantType.Double, 1.0)
+               for t in rows.columns if t.startswith("E_")}
+    machine = VendorMachine({"P1.MPF": rows}, free_port(), sensors=sensors, offsets=offsets)
+    handler = bench_dep107c.Said()
+    logging.getLogger("thermocomp").addHandler(handler)
+    thread = served_in_thread(machine)
+    try:
+        code = cli(["connect", f"data.path={data}", f"out={out}", "track=false", "plots=none",
+                     f"connect.model={model}", f"connect.endpoint=opc.tcp://127.0.0.1:{machine.port}",
+                     "connect.retry_s=0.4", "connect.give_up_s=60", "connect.hold_s=600",
+                     *connect_nodes(sensors, offsets)])
+    finally:
+        machine.closing.set()
+        thread.join(timeout=60)
+        logging.getLogger("thermocomp").removeHandler(handler)
+    assert code == 0 and not machine.raised, (code, machine.raised)
+    link = json.loads((out / "connect.json").read_text())
+    return link, np.vstack(machine.served.offsets), handler.lines
+
+
+def faults(cells: str, out: str, *chosen: str) -> None:
+    """Cells P, G, H (module doc); the offsets saved for C."""
+    root, scratch = Path(cells).resolve(), made_folder(out)
+    data = root / "data" / bench_dep107c.RECORD
+    manifest = pd.read_csv(data / "campaigns.csv")
+    test_file = manifest.loc[manifest.split == "test", "file"].iloc[0]
+    frame = pd.read_csv(data / test_file, dtype=str, keep_default_na=False)
+    sensor = next(c for c in frame.columns if c.startswith("T_") and not c.startswith("T_amb"))
+    inputs = [c for c in frame.columns if not c.startswith("E_")]
+    for name in chosen or bench_dep107c.CELLS:
+        model = root / "reports" / bench_dep107c.RECORD / name / "model.pkl"
+        for feed in FEEDS:
+            rows = bench_dep107c.rows_of(frame, feed, sensor).astype(float)
+            file_said, _ = bench_dep107c.read_as(rows, scratch / f"{feed}.csv", inputs)
+            link, held, logged = connected(data, model, rows, scratch / f"connect-{name}-{feed}")
+            np.save(scratch / f"{name}-{feed}.npy", held)
+            events = [e for e in link["events"] if e["event"] == "time"]
+            said = [ln for ln in logged if "column 'time'" in ln]
+            gaps = [e for e in link["events"] if e["event"] == "clock_gap"]
+            print(f"{name} [{feed}] {len(rows)} rows: file reader {_rows_said(file_said)}; connect "
+                  f"events {[(e['to'], e['row']) for e in events]}, warnings {_rows_said(said)}; "
+                  f"samples {link['samples']}, missed {link['samples_missed']}, clock_gap events "
+                  f"{len(gaps)}; offsets {held.shape}", flush=True)
+            for ln in said[:2]:
+                print(f"    connect said: {ln[:230]}", flush=True)
+            for ln in file_said[:1]:
+                print(f"    file reader said: {ln[:230]}", flush=True)
+
+
+def compare(base: str, this: str) -> None:
+    """Cell C: max |offsets here - BASE's| per cell and feed."""
+    for path in sorted(Path(this).glob("*.npy")):
+        b, t = np.load(Path(base) / path.name), np.load(path)
+        same = b.shape == t.shape and np.array_equal(np.isnan(b), np.isnan(t))
+        diff = float(np.nanmax(np.abs(b - t))) if same else float("nan")
+        print(f"{path.stem}: shape {t.shape} (base {b.shape}), NaN alike {same}, "
+              f"max |this - base| {diff:.3g} um", flush=True)
+
+
+def blank(out: str, cells: str = "/tmp/a107/root") -> None:
+    """Cell B: col10133's test rows without their time column, a blank line under data row
+    :data:`BLANK_AFTER`: the file reader, stdin and this tree's stream.c (built beside each
+    cell's compensator.c) against the same rows without it."""
+    from thermocomp.core.io import ReadOptions, read_dataset
+    from thermocomp.core.io.stdin import stream_campaigns
+
+    root, scratch = Path(cells).resolve(), made_folder(out)
+    data = root / "data" / bench_dep107c.RECORD
+    frame = pd.read_csv(data / "test_cycle.csv")
+    inputs = [c for c in frame.columns if not c.startswith("E_") and c != "time"]
+    lines = frame[inputs].to_csv(index=False).splitlines()
+    whole = "\n".join(lines) + "\n"
+    stray = "\n".join([*lines[:BLANK_AFTER + 1], "", *lines[BLANK_AFTER + 1:]]) + "\n"
+    (scratch / "stray.csv").write_text(stray)
+    for name, read in (("file reader", lambda: read_dataset(scratch / "stray.csv", {"sample_period_s": 100})),
+                       ("stdin", lambda: stream_campaigns(stray, inputs, ReadOptions.from_cfg(
+                           {"sample_period_s": 100})))):
+        handler = bench_dep107c.Said()
+        logging.getLogger("thermocomp").addHandler(handler)
+        try:
+            got = read()
+        finally:
+            logging.getLogger("thermocomp").removeHandler(handler)
+        parts = got[0] if name == "stdin" else got[0].campaigns
+        print(f"B {name}: campaigns {[(k, len(v)) for k, v in parts.items()]}; said "
+              f"{[ln[:200] for ln in handler.lines if 'blank' in ln]}", flush=True)
+        if name == "stdin":
+            alone, _ = stream_campaigns(whole, inputs, ReadOptions.from_cfg({"sample_period_s": 100}))
+            print(f"B stdin frames = those without the blank line: "
+                  f"{list(parts) == list(alone) and all(parts[k].equals(alone[k]) for k in alone)}")
+    for name in bench_dep107c.CELLS:
+        stream = bench_dep107c.built(root / "reports" / bench_dep107c.RECORD / f"{name}-c", scratch / name)
+        fed = [subprocess.run([str(stream)], input=t.encode(), capture_output=True) for t in (whole, stray)]
+        ys = [bench_dep107c.corrections(f.stdout) for f in fed]
+        said = [ln for ln in fed[1].stderr.decode().splitlines() if "blank" in ln]
+        print(f"B C {name}: exit {fed[1].returncode}, rows {len(ys[0])} / {len(ys[1])}, max |blank - "
+              f"without| {float(np.abs(ys[0] - ys[1]).max()):.3g} um; said {[ln[:200] for ln in said]}",
+              flush=True)
+
+
+def main(argv: list[str]) -> int:
+    return run_commands(__doc__, {"faults": faults, "compare": compare, "blank": blank}, argv,
+                        cpu=sys.stderr)
+
+
+if __name__ == "__main__":
+    raise SystemExit(main(sys.argv[1:]))
