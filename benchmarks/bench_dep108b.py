@@ -8,6 +8,7 @@ every sample after it, and on a ``time`` node, the twin's, nothing at all).  Sec
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is that tree's)::
 
     python benchmarks/bench_dep108b.py faults CELLS OUT [CELL ...]     # cells P, G, H
+    python benchmarks/bench_dep108b.py said OUT                         # what a faults OUT said
     python benchmarks/bench_dep108b.py compare OUT_BASE OUT_THIS        # corrections, both trees
     python benchmarks/bench_dep108b.py blank OUT                        # cell B
 
@@ -37,6 +38,32 @@ B. blank: a stream without a time column (``data.sample_period_s``) with a stray
    rows without the blank line (to 1e-9 um).  On BASE at least one reader restarts there.
 Each mend: a test failing on 0dd05741, passing here; the tests added cost <= 3 s CPU in all.
 KEPT where P, G, H, C (and B, or B traced as a separate verdict) hold; else REFUSED.
+
+Harness after the bar (no rule, no figure chosen): connect's warnings are read from its run's
+thermocomp.log (``said`` re-reads a faults OUT; the run's logging replaces a handler the bench
+adds); B's file reader reads the rows with their E_ columns (it refuses a record without one).
+
+Scored once (2026-12-07 ~14:34-14:40 UTC, 2 cores shared, ``nice``; this tree d14558d2's src, then
+the same command on 0dd05741's src and conf, OUT apart; ``said`` and ``compare`` of the two)::
+
+  P  period10, both cells: the file reader "line 203 (data row 202): the sample period changes
+     from 100 s to 1000 s"; connect "time: campaign P1.MPF, column 'time', data row 202 of those
+     read: the sample period changes from 100 s to 1000 s here ..." and one event (to: period
+     changed, row 202) (base: none; both also 124 clock_gap events, 1116 samples counted missed):
+     holds
+  G  gap, both cells: the file reader "(steps of 6 sample periods of 100 s ...) before line 302
+     (data row 301)"; connect "data row 301 of those read: 6 sample periods of 100 s without rows
+     before this one" and an event (rows missing, row 301) (base: none; 1 clock_gap both): holds
+  H  healthy, both cells: no time event, no warning: holds
+  C  offsets held, 6 runs x 6 targets (325 to 1441 rows): = base's exactly (max 0 um): holds
+  B  the file reader "line 451 (data row 450): a blank line under it is left out ..." (both
+     trees); stdin now "<stdin>, data row 450: a blank line under it is left out ..." (base:
+     nothing), its frames = those without the blank line (both); stream.c "line 452: a blank
+     line: left out, no time column: the rows from line 453 read one period after the row above
+     it ...", corrections = without it, 0 um, both cells (base: "a new campaign starts at line
+     453", mlr 281 um, lagbank 262 um off): holds
+CPU (user + sys, /usr/bin/time): faults 42.9 + 2.2 s (this tree), 43.3 + 1.9 s (base); blank
+3.3 + 0.8 s (this), 3.6 + 0.6 s (base).  Verdict: KEPT.
 """
 
 from __future__ import annotations
@@ -86,8 +113,6 @@ def connected(data: Path, model: Path, rows: pd.DataFrame, out: Path) -> tuple[d
     offsets = {t: (f"s=CNC5000.Offset.{t}", ua.VariantType.Double, 1.0)
                for t in rows.columns if t.startswith("E_")}
     machine = VendorMachine({"P1.MPF": rows}, free_port(), sensors=sensors, offsets=offsets)
-    handler = bench_dep107c.Said()
-    logging.getLogger("thermocomp").addHandler(handler)
     thread = served_in_thread(machine)
     try:
         code = cli(["connect", f"data.path={data}", f"out={out}", "track=false", "plots=none",
@@ -97,10 +122,23 @@ def connected(data: Path, model: Path, rows: pd.DataFrame, out: Path) -> tuple[d
     finally:
         machine.closing.set()
         thread.join(timeout=60)
-        logging.getLogger("thermocomp").removeHandler(handler)
     assert code == 0 and not machine.raised, (code, machine.raised)
-    link = json.loads((out / "connect.json").read_text())
-    return link, np.vstack(machine.served.offsets), handler.lines
+    return json.loads((out / "connect.json").read_text()), np.vstack(machine.served.offsets), warned(out)
+
+
+def warned(out: Path) -> list[str]:
+    """The warnings of connect's log (its ``thermocomp.log``: the run's logging replaces a
+    handler the bench would add)."""
+    log = (out / "thermocomp.log").read_text(errors="replace").splitlines()
+    return [ln.split(": ", 1)[1] for ln in log if " WARNING " in ln and ": " in ln]
+
+
+def said(out: str) -> None:
+    """What connect said of the rows' time in a ``faults`` OUT already run (its logs, events)."""
+    for run in sorted(Path(out).glob("connect-*")):
+        events = json.loads((run / "connect.json").read_text())["events"]
+        print(f"{run.name}: events {[(e['to'], e['row']) for e in events if e['event'] == 'time']}; "
+              f"warnings {_rows_said([ln for ln in warned(run) if ln.startswith('time: ')])}", flush=True)
 
 
 def faults(cells: str, out: str, *chosen: str) -> None:
@@ -120,7 +158,7 @@ def faults(cells: str, out: str, *chosen: str) -> None:
             link, held, logged = connected(data, model, rows, scratch / f"connect-{name}-{feed}")
             np.save(scratch / f"{name}-{feed}.npy", held)
             events = [e for e in link["events"] if e["event"] == "time"]
-            said = [ln for ln in logged if "column 'time'" in ln]
+            said = [ln for ln in logged if ln.startswith("time: ")]
             gaps = [e for e in link["events"] if e["event"] == "clock_gap"]
             print(f"{name} [{feed}] {len(rows)} rows: file reader {_rows_said(file_said)}; connect "
                   f"events {[(e['to'], e['row']) for e in events]}, warnings {_rows_said(said)}; "
@@ -153,7 +191,7 @@ def blank(out: str, cells: str = "/tmp/a107/root") -> None:
     data = root / "data" / bench_dep107c.RECORD
     frame = pd.read_csv(data / "test_cycle.csv")
     inputs = [c for c in frame.columns if not c.startswith("E_") and c != "time"]
-    lines = frame[inputs].to_csv(index=False).splitlines()
+    lines = frame.drop(columns="time").to_csv(index=False).splitlines()     # (E_: the file reader's)
     whole = "\n".join(lines) + "\n"
     stray = "\n".join([*lines[:BLANK_AFTER + 1], "", *lines[BLANK_AFTER + 1:]]) + "\n"
     (scratch / "stray.csv").write_text(stray)
@@ -184,7 +222,7 @@ def blank(out: str, cells: str = "/tmp/a107/root") -> None:
 
 
 def main(argv: list[str]) -> int:
-    return run_commands(__doc__, {"faults": faults, "compare": compare, "blank": blank}, argv,
+    return run_commands(__doc__, {"faults": faults, "said": said, "compare": compare, "blank": blank}, argv,
                         cpu=sys.stderr)
 
 
