@@ -132,6 +132,33 @@ def test_a_blank_line_in_a_file_is_said_and_read_as_run_reads_it(exported):
     assert fed.stdout.splitlines()[61] == whole.stdout.splitlines()[1]   # from a reset
 
 
+def test_a_blank_line_without_a_time_column_is_left_out_by_every_reader(exported, tmp_path, caplog):
+    """dep108b: rows without a time column (data.sample_period_s) and a stray blank line under
+    data row 61: the data contract's file reader leaves it out and says it (the rows after it one
+    period on); stream.c started a campaign there (the state reset: the mlr's corrections from
+    row 62 off), stdin left it out unsaid.  Now each leaves it out and says it, naming row 61, the
+    C's corrections those of the rows without it."""
+    import logging
+
+    from thermocomp.core.io import ReadOptions, read_dataset
+    from thermocomp.core.io.stdin import stream_campaigns
+
+    lines = [ln.split(",", 1)[1] for ln in exported["record"].read_text().splitlines()[:121]]
+    stray = [*lines[:62], "", *lines[62:]]                 # line 63, under data row 61 (2 in its run)
+    whole, fed = (_stream(exported["out"], "\n".join(rows) + "\n") for rows in (lines, stray))
+    assert fed.returncode == 0 and fed.stdout == whole.stdout, fed.stderr
+    assert "stream: line 63: a blank line: left out, no time column: the rows from line 64 read one " \
+        "period after the row above it" in fed.stderr
+    (tmp_path / "stray.csv").write_text("\n".join(stray) + "\n")
+    with caplog.at_level(logging.WARNING, logger="thermocomp"):
+        read_dataset(tmp_path / "stray.csv", {"sample_period_s": 60})
+        parts, _ = stream_campaigns("\n".join(stray) + "\n", ["T_a"], ReadOptions.from_cfg(
+            {"sample_period_s": 60}))
+    said = [r.getMessage() for r in caplog.records if "a blank line under it is left out" in r.getMessage()]
+    assert len(said) == 2 and all("data row 61" in m for m in said), said
+    assert list(parts) == ["stdin"] and len(parts["stdin"]) == 120
+
+
 def _cut(out, state, header: str, first: list[str], then: list[str]) -> str:
     """The C fed ``first`` then, a fresh process from ``state``, ``then``: the second's stdout."""
     one = subprocess.run(["./stream", "--state", str(state)], cwd=out, capture_output=True, text=True,

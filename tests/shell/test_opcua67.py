@@ -559,6 +559,58 @@ def test_a_server_clock_gone_on_hours_is_kept_as_a_files_gap_and_said(fitted, tm
     assert f"{3 * period:g} s" in gaps[1]["detail"] and "2 counted missed" in gaps[1]["detail"]
     assert link["samples"] == 2 * ROWS - 2 and link["samples_missed"] == 2
     assert [e["event"] for e in link["events"]].count("campaign") == 2
+    # (dep108b) the stretch said as the file reader says it of P06's rows (the 5 h: a pause, not)
+    assert time_said(link) == [("rows missing", 31)] == file_said(frames["P06.MPF"])
+    assert "campaign P06.MPF, column 'time', data row 31 of those read: 3 sample periods" in next(
+        e["detail"] for e in link["events"] if e["event"] == "time")
+
+
+def time_said(link: dict) -> list[tuple[str, int]]:
+    """(dep108b) What connect said of the rows' time: ``(its event's to, data row)``."""
+    return [(e["to"], e["row"]) for e in link["events"] if e["event"] == "time"]
+
+
+def file_said(frame: pd.DataFrame) -> list[tuple[str, int]]:
+    """What the file reader (core.io.rates) says of ``frame``'s time: ``(kind, data row)``."""
+    import logging
+
+    from thermocomp.core.io import rates
+
+    said = []
+
+    class Said(logging.Handler):
+        def emit(self, record):
+            said.append(record.getMessage())
+
+    handler, seconds = Said(logging.WARNING), frame["time"].to_numpy(float)
+    logging.getLogger("thermocomp").addHandler(handler)
+    try:
+        if not rates.said_if_rate_changes(seconds, "f"):
+            rates.said_if_rows_missing(seconds, "f")
+    finally:
+        logging.getLogger("thermocomp").removeHandler(handler)
+    return [("period changed" if "period changes" in m else "rows missing",
+             int(re.search(r"data row (\d+)", m).group(1))) for m in said]
+
+
+def test_a_period_change_is_said_at_the_files_row_and_the_offsets_go_on(fitted, tmp_path):
+    """(dep108b) P05 logged at 60 s, then at 600 s from its row 20 (the logger set to another
+    rate): connect says it as the file reader says it of the same rows, naming data row 21, in a
+    warning and a `time` event (`period changed`, the served model's); P06 (healthy) nothing; the
+    offsets replay's corrections.  Before, it said a `clock_gap` of 9 samples missed at each 600 s
+    step and no period change."""
+    data, pkl = fitted
+    frames = programs(data)
+    frames["P05.MPF"].loc[20:, "time"] = 19 * 60.0 + 600.0 * np.arange(1, ROWS - 19)
+    machine = VendorMachine(frames, free_port(), offsets=DOUBLES)
+    code, link = run_connect(data, pkl, tmp_path, machine, nodes=connect_nodes(offsets=DOUBLES))
+    assert code == 0 and all(machine.served.answered)
+    assert time_said(link) == [("period changed", 21)] == file_said(frames["P05.MPF"])
+    assert file_said(frames["P06.MPF"]) == []
+    detail = next(e["detail"] for e in link["events"] if e["event"] == "time")
+    assert "campaign P05.MPF" in detail and "from 60 s to 600 s" in detail
+    np.testing.assert_allclose(np.vstack(machine.served.offsets),
+                               corrections(data, pkl, as_published(frames)), rtol=0, atol=1e-12)
 
 
 DOUBLES = {t: (node.replace("_01um", ""), ua.VariantType.Double, 1.0)
@@ -710,3 +762,26 @@ def test_a_server_publishing_every_3_periods_gets_the_guards_rate_over_each_step
     assert link["samples_missed"] == 0 and all(machine.served.answered)
     replayed = corrections(data, pkl, as_published(frames))
     np.testing.assert_allclose(np.vstack(machine.served.offsets), replayed, rtol=0, atol=1e-12)
+
+
+def test_the_time_nodes_stretches_are_said_per_campaign_five_times_at_most(caplog):
+    """(dep108b) Offline, a `time` node (the twin's clock): a campaign at 10 s with 7 stretches of
+    3 periods, then another from its time 0: each stretch an event naming its data row, as the
+    file reader names the first; a warning for the first 5 only (as the served model and
+    stream.c); the next campaign's watch starts afresh (its first steps no gap)."""
+    import logging
+
+    from conftest import offline_connection
+
+    times = np.arange(100) * 10.0
+    for r in range(20, 90, 10):
+        times[r:] += 20.0             # rows 20, 30, ..., 80 each after a 30 s step
+    conn = offline_connection()
+    with caplog.at_level(logging.WARNING, logger="thermocomp"):
+        for k, (cid, t) in enumerate([*(("A", t) for t in times), *(("B", 10.0 * r) for r in range(30))]):
+            conn._step(cid, [20.0, t], k, k if cid == "A" else k - len(times))
+    said = [(e["to"], e["row"], e["time"]) for e in conn.events if e["event"] == "time"]
+    assert said == [("rows missing", r + 1, times[r]) for r in range(20, 90, 10)]
+    assert file_said(pd.DataFrame({"time": times}))[0] == said[0][:2]
+    warned = [r.getMessage() for r in caplog.records if r.getMessage().startswith("time: ")]
+    assert len(warned) == 5 and warned[-1].endswith("(no more said)")

@@ -101,7 +101,7 @@ from ...core.context import TIME
 from ...core.io import marks
 from ...core.io.bits import STATE, words_decoded
 from ...core.io.derived import on_frame
-from ...core.io.rates import StepWatch
+from ...core.io.rates import FOUND, SAID_AT_MOST, StepWatch, found_words
 from ...core.io.slashed import stream_format
 from ...core.io.stdin import since, stream_stamps, with_clock_joined
 from ...core.io.timestamps import CLOCK
@@ -117,7 +117,6 @@ MAX_SESSIONS = 1024
 log = logging.getLogger(__name__)
 DEPLOYABLE = (StreamingCompensator, AdaptiveCompensator)   # what the model may hold
 REPORT_COLUMNS = ("excluded_inputs", "events")              # the adaptive compensator's extras
-SAID_AT_MOST = 5          # (dep107c) warnings of one kind of a session's time per campaign
 
 
 def is_adaptive(deployed) -> bool:
@@ -322,12 +321,7 @@ def _said_steps(watch: StepWatch, frame: pd.DataFrame, out: pd.DataFrame, sessio
     times = pd.to_numeric(frame[TIME], errors="coerce").to_numpy(float)
     for i, t in enumerate(times):
         for kind, at, was, now in watch.read(float(t), i):
-            said = (f"the sample period changes from {was:g} s to {now:g} s here (the logger set to "
-                    "another rate?): a model whose lags count samples (arx, lstm) reads a sample as "
-                    f"{was:g} s before it and {now:g} s after" if kind == "period" else
-                    f"{was / now:.3g} sample periods of {now:g} s without rows before this one (a "
-                    "logger's outage?): a model whose lags count samples (arx, lstm) reads them as "
-                    "one period")
+            said = found_words(kind, was, now)
             watch.said[kind] = watch.said.get(kind, 0) + 1
             if watch.said[kind] <= SAID_AT_MOST:      # (as stream.c's: a jittery clock's gaps)
                 log.warning(f"session {session!r}, column {TIME!r}, data row {done + at + 1} of the "
@@ -335,7 +329,7 @@ def _said_steps(watch: StepWatch, frame: pd.DataFrame, out: pd.DataFrame, sessio
                             + (" (no more said)" if watch.said[kind] == SAID_AT_MOST else ""))
             if "events" in out:
                 event = {"time": float(times[at]) - shift, "sensor": TIME, "from": "ok",
-                         "to": "period changed" if kind == "period" else "rows missing", "reason": said}
+                         "to": FOUND[kind], "reason": said}
                 out.loc[out.index[at], "events"] = _with_event(out["events"].iloc[at], event)
     return watch
 

@@ -39,6 +39,7 @@ import math
 import signal
 import threading
 import time as clock
+from collections import deque
 from contextlib import contextmanager, suppress
 from dataclasses import dataclass
 from datetime import datetime, timezone
@@ -49,7 +50,7 @@ from asyncua import Client, ua
 
 from ...core.context import TIME
 from ...core.io.clocksets import after
-from ...core.io.rates import GAP_PERIODS, PAUSE_PERIODS
+from ...core.io.rates import FOUND, GAP_PERIODS, PAUSE_PERIODS, SAID_AT_MOST, SETTLED, StepWatch, found_words
 from ...core.io.stdin import CLOCK_SETS, LAST_READ, TIME_ORIGIN
 from ..deploy.streaming import OutOfEnvelopeError
 from .clockset import OwnClock
@@ -184,6 +185,9 @@ class Connection:
         # longer one starts a campaign from a reset, as the record's read, the C and serve do
         self.pause_s = float(getattr(deployed, "pause_s_", 0.0) or 0.0)
         self._paused = None          # the pause (s) the next step starts a campaign after
+        # (dep108b) the running campaign's time read as the file reader reads it (rates.StepWatch:
+        # the served model's and stream.c's rule), the rows read in it and the last ones' times
+        self._watch, self._rows, self._recent = StepWatch(), 0, deque(maxlen=SETTLED + 2)
 
     def _event(self, kind: str, detail: str, level: int = logging.INFO, **extra) -> None:
         e = {"wall_s": round(clock_now() - self._start, 3), "sample": self._last,
@@ -520,6 +524,7 @@ class Connection:
             # joined mid-way (i > 0) by a new process: rate-limited from what the machine holds
             self.limiter.new_campaign(self._kept if i > 0 and not self.limiter.started else None)
             self._campaign, self._time = cid, math.nan
+            self._watch, self._rows = StepWatch(), 0
             # a campaign that continues others comes after their rows (twin: its samples < 0)
             ahead = (f" ({-i} sample(s) of the campaign(s) it continues first, unscored)"
                      if i < 0 else "")
@@ -538,6 +543,7 @@ class Connection:
         x = np.asarray(row[:len(d.columns_)], float)
         reads = len(d.columns_) + (TIME not in d.columns_)
         t = row[d.columns_.index(TIME)] if TIME in d.columns_ else row[reads - 1]
+        self._watched(cid, t)
         before = self._clock_time(self._time)
         try:
             y = d.step(x, t)
@@ -564,6 +570,26 @@ class Connection:
         now = self._clock_time(t)
         self._step_s, self._time = now - before, now
         return y
+
+    def _watched(self, cid: str, t: float) -> None:
+        """(dep108b) The sample's time ``t`` (the stream's, s) read on by the campaign's watch
+        (:class:`~...core.io.rates.StepWatch`): a sample period that changes and a stretch without
+        rows said as the file reader says them of the machine's log, naming the campaign's data
+        row (the samples read in it, 1-based; not the campaign's sample, which counts periods of
+        the server's clock); an event ``time`` each (its ``to`` the served model's), a warning
+        the first :data:`~...core.io.rates.SAID_AT_MOST` of each kind.  The offsets as they are.
+        It said neither (a period change, on the server's clock: a ``clock_gap`` at every sample
+        after it; on a ``time`` node nothing)."""
+        self._recent.append((self._rows, t))
+        for kind, at, was, now in self._watch.read(float(t), self._rows):
+            said = self._watch.said[kind] = self._watch.said.get(kind, 0) + 1
+            when = dict(self._recent).get(at, t)
+            self._event("time", f"campaign {cid}, column {TIME!r}, data row {at + 1} of those read: "
+                        f"{found_words(kind, was, now)}; the offsets go on"
+                        + (" (no more said)" if said == SAID_AT_MOST else ""),
+                        logging.WARNING if said <= SAID_AT_MOST else logging.DEBUG,
+                        sensor=TIME, to=FOUND[kind], time=when, row=at + 1)
+        self._rows += 1
 
     def _clock_time(self, given: float) -> float:
         """The last sample's time on the compensator's clock (its time rule's: the adaptive's,

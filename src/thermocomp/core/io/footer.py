@@ -112,6 +112,12 @@ def _number(cell: str) -> bool:
     return True
 
 
+# (dep108b) what every reader of rows without a time column says of a blank line among them
+BLANK_UNTIMED = ("a blank line under it is left out, and the rows after it read data.sample_period_s "
+                 "earlier: if it is a sample not taken, leave its cells empty instead (a gap, "
+                 "data.max_gap_samples)")
+
+
 def blank_inside(path: Path, skip: int, cut: int) -> int | None:
     """The data row under which the first blank line among the data rows stands (``skip``:
     the lines above the first data row; ``cut``: the bytes before a footer), or None.  Arrow

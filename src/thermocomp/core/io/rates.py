@@ -25,6 +25,8 @@ from .timestamps import row_gaps
 
 RATE_CHANGE = 2.0    # the median steps before and after the change this far apart
 SETTLED = 10         # steps at least on each side of a change
+SAID_AT_MOST = 5     # (dep107c) a stream's warnings of one kind per campaign (a jittery clock's gaps)
+FOUND = {"period": "period changed", "gap": "rows missing"}    # a finding's event (``to``)
 
 
 def period_groups(periods: Mapping[str, float]) -> dict[float, list[str]]:
@@ -143,3 +145,15 @@ class StepWatch:
                 self.steps, self.gap = [], None
                 break
         return found
+
+
+def found_words(kind: str, was: float, now: float) -> str:
+    """(dep108b) What a stream says of a :meth:`StepWatch.read` finding (its ``kind``, then its
+    last two figures, s): the served model's and ``connect``'s words, one text."""
+    if kind == "period":
+        return (f"the sample period changes from {was:g} s to {now:g} s here (the logger set to "
+                "another rate?): a model whose lags count samples (arx, lstm) reads a sample as "
+                f"{was:g} s before it and {now:g} s after")
+    return (f"{was / now:.3g} sample periods of {now:g} s without rows before this one (a "
+            "logger's outage?): a model whose lags count samples (arx, lstm) reads them as "
+            "one period")

@@ -34,7 +34,7 @@ from .csvline import EMPTY, SPLIT, split_line
 from .dayfirst import ORDER, WAY, text_says
 from .derived import on_frame, without_derived
 from .encoding import AUTO, UTF8, check_text, decoded
-from .footer import TAIL_BYTES, footer_of
+from .footer import BLANK_UNTIMED, TAIL_BYTES, footer_of
 from .graphtec import graphtec_as_csv, is_graphtec_text
 from .labfile import RUN_HEADER
 from .layout import (
@@ -244,6 +244,8 @@ def _read_runs(text: str, columns: list[str], opts, recorded: str | None = None,
         origins = [origin for _, origin in timed]
     else:                         # (stranger73: a lab's untimed rows crashed the monitor)
         df.insert(0, TIME, _untimed(len(df), blocks, opts.sample_period_s))
+        if blank_rows:            # (dep108b) left out, said as the file reader and stream.c say it
+            logger.warning(f"{SOURCE}, {position(blank_rows[0])}: {BLANK_UNTIMED}")
     # every data column is numeric (the contract's T_, E_, S_ and time), not only those the
     # model reads: the measured errors and the context are read from the same frame
     numeric = list(dict.fromkeys([*columns, *(c for c in df.columns

@@ -25,7 +25,7 @@ from .campbell import units as campbell_units
 from .contract import TIME, ContractError, role
 from .csvline import SPLIT, split_line
 from .encoding import arrow_encoding, first_undecodable, own, text_codec, undecodable
-from .footer import blank_inside, footer, source
+from .footer import BLANK_UNTIMED, blank_inside, footer, source
 from .layout import (
     MAX_PROPERTY_ROWS,
     header_line,
@@ -215,9 +215,7 @@ def _typed_columns(path: Path, header: list[str], first_row: list[str], opts: Re
                        f"{shortened(said[0])!r})")
     blank = None if TIME in named else blank_inside(path, opts.skip_rows, cut)
     if blank is not None:
-        logger.warning(f"{path}, {lines.at(blank)}: a blank line under it is left out, and the "
-                       "rows after it read data.sample_period_s earlier: if it is a sample not "
-                       "taken, leave its cells empty instead (a gap, data.max_gap_samples)")
+        logger.warning(f"{path}, {lines.at(blank)}: {BLANK_UNTIMED}")
     if len(first_row) != len(named):
         raise ContractError(f"expected {len(named)} fields, got {len(first_row)}", file=path, row=1)
     # a column left out (data.roles.ignore) is read under a name no contract column can have

@@ -24,7 +24,8 @@ DRIVER = r"""/* stream.c: CSV rows of raw inputs on stdin -> corrections C_<axis
  * first; with TC_ELAPSED (data.time=elapsed) a logger's h:mm:ss since the start, 59:59:00.5.
  * A cell that is no number (a time of day alone, 08:45:00) is refused with its row.
  * A blank row whose next row has no time or one not after the last (dep107b: within a run, its
- * time going on, a blank row is nothing, as run and replay read it), a `reset` column holding 1,
+ * time going on, a blank row is nothing, as run and replay read it; dep108b: in a stream without
+ * a time column nothing, said, as the file reader says it), a `reset` column holding 1,
  * a new value in the run-number column
  * TC_RUN_COLUMN, or a time more than TC_PAUSE_S after the last (data.runs_at_pauses: a lab's
  * tests appended in one file, catman70) starts a campaign (the row is its reference).  With
@@ -1770,16 +1771,23 @@ int main(int argc, char **argv) {
                from its time 0; monitor.input=- reads them so); a blank line within a run, its
                time going on, is nothing, as run, replay and the served stream on stdin read it
                (audit103 said it and restarted there: a lab's mlr 35.7 um off at once) */
-            int goes_on = isfinite(t) && !s.first && isfinite(s.t_read) && t > s.t_read
-                          && !(TC_DAY_SECONDS && day_passed);  /* (a time of day gone back) */
+            /* (dep108b) without a time column no time tells a campaign's start: the blank line
+               is left out, the rows after it one period on, as the file reader and stdin read it
+               (the data contract's; it restarted here: col10133's mlr 281 um off) */
+            int timeless = time_col < 0 && clock_col < 0;
+            int goes_on = timeless || (isfinite(t) && !s.first && isfinite(s.t_read) && t > s.t_read
+                                       && !(TC_DAY_SECONDS && day_passed));  /* (a day gone back) */
             char at[64];
             if (blank_at < 0) strcpy(at, "the last input's end (--state)");
             else snprintf(at, sizeof at, "line %ld", blank_at);
             if (said_blank++ < 5)
-                fprintf(stderr, "stream: %s: a blank line: %s%ld%s%s\n", at, goes_on
+                fprintf(stderr, "stream: %s: a blank line: %s%ld%s%s\n", at, timeless
+                        ? "left out, no time column: the rows from line " : goes_on
                         ? "read as nothing, the time going on at line " : "a new campaign starts "
-                          "at line ", row, goes_on ? " (a stray blank line within a run), as run, "
-                          "replay and the served stream read it" : " (the state reset, that row "
+                          "at line ", row, timeless ? " read one period after the row above it, as "
+                          "run, replay and monitor.input=- read them (a sample not taken: leave its "
+                          "cells empty instead)" : goes_on ? " (a stray blank line within a run), as "
+                          "run, replay and the served stream read it" : " (the state reset, that row "
                           "the reference: its time is not after the last read, as between the "
                           "campaigns thermocomp rows writes)", said_blank == 5 ? " (no more said)" : "");
             blank_at = state_blank = 0;
