@@ -54,6 +54,38 @@ All: KEPT; else REFUSED (src reverted, ``benchmarks/diag108_rule.patch``).
 
 Fresh kinds (named before drawing; bench_diag107d's, 8 train / 4 test runs): 10181, 10184
 ``hidden_source`` (E_X); 10182, 10185 ``lag_node`` (E_X); 10183 ``axis_position`` (E_Z).
+
+Scored (2026-12-07, once; bar at 4535b46a, RULE = 4624acf2's src, BASE = 0dd05741's src by ``git
+archive``; 2 shared cores, load 9-17; CPU user + sys by ``/usr/bin/time`` or the rows' ``cpu_s``)
+-----------------------------------------------------------------------------------------------
+* B0 ``null 0 200`` (RULE's tree; both constructions read in one process, 76.8 s CPU): 97 of 200
+  rooms offer the lean laws.  Best-pair p <= .01 / .05 / .10: BASE .093 / .186 / .278, UNION .093 /
+  .165 / .258; on the 52 rooms the pair step would run (round 1 takes nothing, a law gained) BASE
+  6, UNION 5 at <= .01 (laws gaining 1-24 % by chance).  Accepted 0 of 97 both ways (the effect must
+  clear its own round too).  Clause 1 as written FAILS: the union's best pair is below BASE's on 18
+  rooms -- from the other law's pairs, which BASE never tested (every pair BASE tests has a p no
+  lower in the union, max-T over a superset; the clause should have said per pair).  Clause 2 met.
+  The union does not make the pair's p honest: ~10 % of null rooms reach .01.  The leak is not the
+  pick between the lean forms alone: the pair is tested on the same held-out campaigns whose CV gain
+  chose to run it (a law gained, nothing cleared) -- not chased here.
+* B1 met: ``draws /tmp/diag108/seen 10158,10160,10161,10173-10177`` (data of bench_diag107d's
+  draws): found 8 of 8 with BASE and RULE, the 32 rows identical.  Diagnose CPU (children, BASE
+  then RULE): 107.4 / 118.8 s (+10.6 %: the second law's round).
+* B2 met: fresh 10181-10185 planted found BASE 3 (10183, 10184, 10185) -> RULE 4 (+10182: E_X
+  3.267 -> 0.912 um, the least-squares law + T_nc_z1_drive 7200 s start lag, the pair of the law of
+  LESS gain, which BASE never tried).  10181 E_X missed by both (2.503).
+* B3 met (clean twins nothing; the control accepted nowhere, clears nowhere new).  B4 met (no fresh
+  row worse; 1 of 20 better by 72 %).  Fresh diagnose CPU 68.5 / 69.4 s (RULE one case behind BASE).
+* B5 NOT COMPLETED: bench_diag88 ``seen`` 33 target rows identical to BASE's (diag107d's rule rows;
+  no diagnose src changed 27baf084..0dd05741), RULE 41.5 s CPU.  bench_remeasure62 ``diagnose``:
+  BASE ran 72 rows, RULE 31 (both killed for time), all identical to BASE's; its CPU was not paired
+  (BASE and RULE rows ran 20-40 min apart under other load: +25 % on the 29 common ~1 s rows,
+  uniform across rows, i.e. load): the < +15 % clause is unmeasured.
+* B6: test_diagnose_pair107d (a new test failing on 0dd05741), _level107, _level106e, _few,
+  sign_draw_perf87, shell/test_diagnose, test_lint: 64 passed (28.9 s CPU); test_benchmarks_cli -k
+  diag108 2 passed; ruff clean.  diag107d's 66-module set was started and not finished (killed).
+**REFUSED** (B0 clause 1 fails as written, B5 unmeasured): src, test and docs reverted;
+``benchmarks/diag108_rule.patch`` holds them (the test module adds ~0 s CPU: one diagnose shared).
 """
 
 from __future__ import annotations

@@ -786,7 +786,7 @@ class Search:
 
     def _level_pair(self, evals: list, current: CVResult, used: set, step: int) -> list:
         """[(this round, the level law), (the next round, an effect)] where the room's lean level law
-        and an effect clear TOGETHER; [] elsewhere (diag107d, diag108).
+        and an effect clear TOGETHER; [] elsewhere (diag107d).
 
         Where the lean laws are offered (:meth:`_bank_untestable`) the level law and a planted
         effect can each hide the other: with 8 campaigns neither clears alone (the law loses in a
@@ -794,43 +794,32 @@ class Search:
         campaign offsets), and nothing is taken.  Fresh climate rooms 10158 / 10160 / 10161 E_X:
         the law gained 41-54 % at p 0.008-0.04; taken, the planted lag or hydraulic signal cleared
         the next round (47-65 %, p_fam <= 0.0039) and the pair gained 74-86 % in every held-out
-        campaign (``benchmarks/bench_diag107d.py``).  So where nothing clears and a lean law gained:
-        each lean law this round refitted is taken provisionally in turn and its next round is run as
-        any round; an eligible effect of it is taken with its law only if that law gained and the
-        PAIR clears the bar against this round's model as one candidate: each held-out campaign's
-        gain as a share of its MSE (one block per campaign, as :meth:`_family_bar`), the gain at
-        least ``min_gain_pct``, and sign flips family-wise (max-T) over EVERY (law, effect) pair of
-        every lean law's next round.  The family is the union, not the round of the law of most
-        gain (diag107d): that law was picked by its gain on the same campaigns, and testing only its
-        round leaves the pick out of the family-wise error.  The union is fixed by what this round
-        refitted, before any gain is read, so max-T over it holds the family-wise error of whichever
-        pair is taken at ``alpha`` (as a round's family does; the shortlist's screening is not
-        counted, as in any round); the pairs of a law that did not gain are in the family though
-        never taken.  Laws tried by gain, effects in ``choose``'s order; else the search stops."""
-        lean = sorted((ev for ev in evals if ev.effect.transform in LEAN_LEVEL), key=lambda ev: -ev.gain)
-        if not lean or lean[0].gain <= 0:
+        campaign (``benchmarks/bench_diag107d.py``).  So where nothing clears: the lean law of most
+        CV gain is taken provisionally, the next round is run as any round, and its eligible effect
+        is taken with the law only if the PAIR clears the bar against this round's model as one
+        candidate: each held-out campaign's gain as a share of its MSE (one block per campaign, as
+        :meth:`_family_bar`), sign flips family-wise over every pair of that round (max-T), the
+        gain at least ``min_gain_pct``.  Else the law is dropped and the search stops as before."""
+        lean = [ev for ev in evals if ev.effect.transform in LEAN_LEVEL and ev.gain > 0]
+        if not lean:
             return []
+        level = max(lean, key=lambda ev: ev.gain)
         p, saved = self.problem, (self.problem.block_samples, self.problem.block_index)
-        tried, family = [], []
-        for law in lean:
-            self.effects.append(law.effect)
-            try:
-                evals2, _, eligible, rnd = self._round(law.result, used, step)
-            finally:
-                self.effects.pop()
-            tried.append((law, eligible, rnd, (p.block_samples, p.block_index)))
-            family += [ev for ev in evals2 if not ev.control and ev.effect.transform != "remove"]
-            p.block_samples, p.block_index = saved
-        if family:
+        self.effects.append(level.effect)
+        try:
+            evals2, _, eligible, rnd = self._round(level.result, used, step)
+        finally:
+            self.effects.pop()
+        family = [ev for ev in evals2 if not ev.control and ev.effect.transform != "remove"]
+        if eligible and family:
             D = np.array([np.clip(1.0 - ev.result.unit_mse / np.maximum(current.unit_mse, 1e-300), -1, 1)
                           for ev in family])
             pf = dict(zip(map(id, family), sign_flip_maxt(D, seed=self.options.seed)))
-            for law, eligible, rnd, blocks in tried:
-                for ev in eligible if law.gain > 0 else ():
-                    gain_pct = _pct(current.rmse - ev.result.rmse, current.rmse)
-                    if pf[id(ev)] <= self.options.alpha and gain_pct >= self.options.min_gain_pct:
-                        p.block_samples, p.block_index = blocks   # the blocks its round tested on
-                        return [(None, law), (rnd, ev)]
+            for ev in eligible:
+                gain_pct = _pct(current.rmse - ev.result.rmse, current.rmse)
+                if pf[id(ev)] <= self.options.alpha and gain_pct >= self.options.min_gain_pct:
+                    return [(None, level), (rnd, ev)]
+        p.block_samples, p.block_index = saved
         return []
 
     def _deployed(self, current: CVResult) -> CVResult:
