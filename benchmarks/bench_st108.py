@@ -19,6 +19,13 @@ no src change, no bar committed, fresh 10189-10191 NOT drawn (unspent).
   st107c).  So dl10178's 20 um IS this class, with a partner out: two sensors out, not one.
 * ``rows`` dl10127 T_amb (same shape, 24.5 s): T_amb back 6180 as the C, ``DRIFT_OUT`` T_col_back
   (others predict it) 6181 = ``mon_stop_row`` 6182, alone, out to the window's end, 3.9 .. 4.4 um.
+* ``oracle`` dl10178 (bench_st106's, on this record; 23.5 + 0.4 s, again 20.2 s): the block fed, on
+  each row, the C's own read of every sensor the C holds out and the block does not hold (and the
+  C's served set) is within 7.1e-14 um of the C on T_amb 6170's 51 after rows (block 20 um): the
+  whole 20 um is the two sensors' reads. The same record's other windows show the class beside JUMPs
+  too (T_col_back 6170 with T_bed_right / T_bed_left out: hold 21, after 29 um, oracle <= 4.3e-14;
+  three JUMPs beside T_col_front_top 1.5 .. 2.2 um, oracle <= 7.1e-14): 4 events, all closed by the
+  oracle.
 * st106c's refused rule (benchmarks/st106c_rule.patch: the C's lone fault told in the block,
   ``MON_LONE`` / ``MON_LONE_SELF`` / ``MON_LONE_SCALE``, ``DRIFT_OUT`` named, the sensor held as a
   ``STEP_OUT`` to the block's BACK), applied to 3a560e8f in a scratch copy (src only): on dl10127
@@ -50,6 +57,7 @@ Usage (from the repository root; ``PYTHONPATH=<tree>/src``)::
 
     python benchmarks/bench_st108.py rows ROOT RECORD SENSOR FIRST LAST
     python benchmarks/bench_st108.py stops ROOT RECORD [RECORD ...]
+    python benchmarks/bench_st108.py oracle ROOT RECORD [RECORD ...]
 
 ROOT holds the records as bench_cmon92's ``made`` makes them (bench_st107c's records: its
 ``make``).  ``rows``: in ``SENSOR``'s window (bench_st103b's, the sensor bumped and dropped) the
@@ -58,7 +66,8 @@ and out set (each out sensor ``*`` where others predict it), the block's flag, r
 ``mon_stop_row``, ``mon_blind_lost``, ``mon_lost``, ``mon_held`` and max|C - ST| (um).
 ``stops``: per record, the whole stream (no fault added): the block's ``mon_stop_row``, the C's
 rows with a sensor out from that row on, their max|C - ST| and how many the block flags, the C's
-first events from there.
+first events from there.  ``oracle``: bench_st106's ``oracle`` on these records (bench_st107c's
+fresh among them).
 """
 
 from __future__ import annotations
@@ -148,9 +157,18 @@ def stops(root: str, *records: str) -> None:
               flush=True)
 
 
+def oracle(root: str, *records: str) -> None:
+    """bench_st106's ``oracle`` lines, on bench_st107's records (module doc)."""
+    import bench_st105
+    import bench_st106
+
+    bench_st105.MADE_BY = bench_st107.MADE_BY
+    bench_st106.oracle(root, *records)
+
+
 def main(argv: list[str]) -> int:
     """The command ``argv`` names (module doc; none: the usage, status 2)."""
-    return run_commands(__doc__, {"rows": rows, "stops": stops}, argv, cpu=sys.stderr)
+    return run_commands(__doc__, {"rows": rows, "stops": stops, "oracle": oracle}, argv, cpu=sys.stderr)
 
 
 if __name__ == "__main__":
