@@ -35,6 +35,24 @@ BAR (written and committed before the change was measured; not to move):
       10194 climate_position (bench_diag107d's climate kinds), scored once: deployed / batch ratio
       no worse than BASE on any target.
   Verdict: KEPT when G1-G5 hold; else REFUSED (src reverted, benchmarks/dep108c_rule.patch kept).
+
+MEASURED (2026-12-07, bar 9d128198 committed first; BASE = c117135c's src, the rule a37deb6e's;
+2 shared cores, load 6-13; deterministic figures, CPU user + sys by ``/usr/bin/time`` / the CLI
+children's rusage).  Seeds drawn: fresh 10192-10194 only (simulated once, scored once).
+  Today's gap (``families``, BASE, 16.6 + 1.1 s CPU): every ``ati`` and per-interval wrapper of mlr,
+  pcr, arx and lagbank gives a guard row of 0 on both targets (no gain without A0, a gain at 5/5
+  training A0s); ``none`` of those has its gain; lstm has none anywhere (0, before and after).  The
+  diagnosed level law: 10158 E_X (diag108b).  The rule: every ATI / per-interval row has a gain
+  (max 2.6-47.8 on E_X), the ``none`` rows unchanged to the printed digit, lstm 0.
+  G1 (``bench_diag108b.py stream``, 9.9 s CPU): 10158 planted E_X deployed 1.955 -> 1.0823 µm
+      (<= 1.198; batch 0.9500, plain stream 1.089), rows guarded 304 -> 27.  Met.
+  G2 (``rows`` on the 16 seen draws, BASE and rule): 31 of 32 rows deployed equal to the last
+      digit, 10158 planted E_X -44.6 %; worst change 0.0 %.  Met.
+  G3 the guard's tests and their neighbours (48 modules) pass: see the report.
+  G4 (``code``, 8.9 s CPU): max |C - served| 2.84e-14 µm over the 4 test campaigns (2261 rows).  Met.
+  G5 (``rows`` on 10192 climate_lag, 10193 climate_hydraulic, 10194 climate_position, planted):
+      deployed / batch 1.0000 on all 6 targets, BASE and rule equal to the last digit (an ambient
+      law accepted on 5 of 6 targets; no test row guarded either way).  Met.
 """
 
 from __future__ import annotations
