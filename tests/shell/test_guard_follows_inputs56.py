@@ -40,8 +40,8 @@ def _campaign(power: float, amb: float, rng) -> pd.DataFrame:
 
 
 @pytest.fixture(scope="module")
-def hotter(tmp_path_factory):
-    """``(adaptive compensator as replay deploys it (MLR), the hotter test campaign)``."""
+def hotter_data(tmp_path_factory):
+    """The folder of the five training campaigns and the hotter test campaign."""
     root = tmp_path_factory.mktemp("guard56") / "data"
     root.mkdir()
     rng = np.random.default_rng(56)
@@ -51,9 +51,19 @@ def hotter(tmp_path_factory):
     pd.DataFrame({"campaign": [f"K{i}" for i in range(len(SPLITS))],
                   "file": [f"K{i}.csv" for i in range(len(SPLITS))], "split": SPLITS,
                   "notes": ""}).to_csv(root / "campaigns.csv", index=False)
-    cfg = _compose(f"data.path={root}", "track=false", "monitor.adaptive=true", "model=mlr")
+    return root
+
+
+def _deployed(root, *model) -> tuple:
+    cfg = _compose(f"data.path={root}", "track=false", "monitor.adaptive=true", *model)
     deployed, ds, test_ids = deployed_as_replay(cfg)
     return deployed, ds.campaigns[test_ids[0]].reset_index(drop=True)
+
+
+@pytest.fixture(scope="module")
+def hotter(hotter_data):
+    """``(adaptive compensator as replay deploys it (MLR), the hotter test campaign)``."""
+    return _deployed(hotter_data, "model=mlr")
 
 
 def test_the_bound_follows_a_hotter_machine_and_not_one_sensor(hotter):
@@ -117,3 +127,27 @@ def test_the_machine_gets_the_correction_the_compensator_computed(hotter):
     np.testing.assert_allclose(written, computed, rtol=0, atol=1e-9)
     late = df["time"].iloc[-1] + 60.0 + 600.0        # held 60 s, then one time constant
     np.testing.assert_allclose(limiter.stale(now=late), written[-1] * np.exp(-1.0), rtol=1e-12)
+
+
+def test_the_bound_follows_a_model_whose_gain_needs_the_ambient(hotter_data):
+    """An ATI model (one interval, its ambient interaction: the gain is the base's plus the
+    interaction's times ``A0 - 20``) has no step gain before a campaign's ``A0`` is known; the
+    guard takes its largest |gain| over the training campaigns' ``A0`` (dep108c: a row of 0 kept
+    the bound as trained and cut a diagnosed climate room's right correction on every test row).
+    The exported code reads the same gain."""
+    deployed, df = _deployed(hotter_data, "model=mlr", "ati=cmeans", "ati.estimator.n_intervals=1")
+    est = deployed.streaming._plan[0][1]
+    assert type(est).__name__ == "ATIRegressor" and est.step_gain(None) is None
+    guard, env = deployed.guard, deployed.streaming.envelope
+    a0s = [pd.read_csv(hotter_data / f"K{i}.csv")["T_amb"].iloc[0] for i in range(5)]   # training's
+    at = [np.abs(est.step_gain(est.stream_init({"ambient_c0": a0}), env.horizon_s)) for a0 in a0s]
+    np.testing.assert_allclose(guard.in_gain[0], np.max(at, axis=0), rtol=1e-12)
+    assert guard.in_gain[0].max() > 1.0
+    free = replay(deployed.streaming, df)[deployed.targets_].to_numpy(float)
+    y = replay(deployed, df)[deployed.targets_].to_numpy(float)
+    assert free.max() > guard.hi.max() + 5.0
+    np.testing.assert_allclose(y, free, rtol=0, atol=1e-9)      # not cut to the trained bound
+    ss, cols = state_space(deployed), deployed.columns_
+    sim = Simulator(ss)
+    got = np.array([sim.step(u, t) for u, t in zip(df[cols].to_numpy(float), df["time"])])
+    assert np.max(np.abs(-got - y)) <= TOLERANCE_UM

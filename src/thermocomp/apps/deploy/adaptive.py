@@ -27,13 +27,14 @@ from contextlib import contextmanager
 import numpy as np
 import pandas as pd
 
-from ...core.context import TIME, step_gain
+from ...core.context import AMBIENT_C0, TIME, step_gain
+from ...core.frame import context_record
 from ...core.io.own_headers import as_named
 from ...core.timerule import SampleClock, repeats
 from .fallback import sensor_fallbacks
 from .guard import CorrectionGuard
 from .pod import ThermalPOD
-from .streaming import OutOfEnvelopeError, StreamingCompensator, step_block
+from .streaming import STREAM_ID, OutOfEnvelopeError, StreamingCompensator, step_block
 from .surveillance import SensorMonitor
 
 INPUT_ROWS = 4096    # rows the monitor reads in one go at most (a failed try costs little per row)
@@ -114,9 +115,9 @@ class AdaptiveCompensator:
             times, **guard,
             predicted=[predicted[c][streaming.targets_].to_numpy(float) for c in campaigns])
         if follow and streaming.envelope is not None:
-            X = comp.stacked(campaigns, targets=[]).X     # the envelope's data, before its margin
-            g.follow_inputs(input_gains(streaming), X.min().to_numpy(float),
-                            X.max().to_numpy(float))
+            m = comp.stacked(campaigns, targets=[])     # the envelope's data, before its margin
+            g.follow_inputs(input_gains(streaming, training_ambients(m)), m.X.min().to_numpy(float),
+                            m.X.max().to_numpy(float))
         out = cls(streaming, mon, g, g.period_s)
         if mon is not None:
             out.fallbacks_ = sensor_fallbacks(streaming, mon, campaigns, fallbacks)
@@ -578,16 +579,40 @@ def stream_allowance(guard: CorrectionGuard, streaming: StreamingCompensator,
     return guard.allowance(x, streaming.envelope)
 
 
-def input_gains(streaming: StreamingCompensator) -> np.ndarray:
+def input_gains(streaming: StreamingCompensator, ambients=()) -> np.ndarray:
     """(targets, inputs) step gains at the envelope's horizon, as the clamp's (0: a target
-    without one)."""
+    without one).
+
+    A model whose gain depends on the campaign's initial ambient ``A0`` (an ATI model's interval
+    and interaction, a diagnosed ambient law: no gain without ``A0``) takes, per input, the largest
+    |gain| at the training campaigns' ``ambients``: one fixed gain, which the exported code's
+    ``GUARD_GAIN`` carries as it is.  With a row of 0 the bound stayed as trained while the
+    inputs went past training (dep108c: climate room 10158 E_X, diagnosed, every test row cut to
+    67.04 µm, deployed 1.955 µm against 1.089 unguarded; every ATI wrapper of mlr, pcr, arx and
+    lagbank had 0).  The gain at each campaign's own ``A0`` would be the clamp's, but the C and
+    the ST would have to compute it per campaign; within the training ambients the largest
+    widens the bound at most by what another training campaign's model would."""
     n = len(streaming.envelope.lo)
     out = np.zeros((len(streaming.targets_), n))
+    horizon = streaming.envelope.horizon_s
     for k, (_, est, idx) in enumerate(streaming._plan):
-        gain = step_gain(est, None, streaming.envelope.horizon_s)
+        gain = step_gain(est, None, horizon)
+        if gain is None and len(ambients):
+            at = [step_gain(est, est.stream_init(context_record(STREAM_ID, 0.0, a0, {})), horizon)
+                  for a0 in ambients]
+            at = [np.abs(g) for g in at if g is not None]
+            gain = np.max(at, axis=0) if at else None
         if gain is not None:
             out[k, np.arange(gain.size) if idx is None else np.asarray(idx)] = gain
     return out
+
+
+def training_ambients(m) -> np.ndarray:
+    """The distinct finite initial ambients (°C) of stacked training campaigns ``m``."""
+    if m.context is None or AMBIENT_C0 not in m.context:
+        return np.array([])
+    a0 = m.context[AMBIENT_C0].to_numpy(float)
+    return np.unique(a0[np.isfinite(a0)])
 
 
 def _clock_of(last_time: float, last_read: float) -> tuple:
