@@ -176,8 +176,9 @@ def score(root: str, data: str, column: str, push: str, mode: str, basesrc: str)
             before += [r for r in rows if r < first and gap[r] > TOL]
         firsts = [int(np.flatnonzero(flag[edges[k]:edges[k + 1]])[0]) if flag[edges[k]:edges[k + 1]].any()
                   else None for k in range(len(tests))]
-        print(f"  {who}: max |C - replay| {gap.max():.3g} um; mon_not_in_code rows {int(flag.sum())} (first per "
-              f"campaign {firsts}); rows before a campaign's first flag > {TOL:g} um: {len(before)}")
+        print(f"  {who}: max |C - replay| {gap.max():.3g} um; mon_not_in_code rows {int(flag.sum())} "
+              f"(first per campaign {firsts}); rows before a campaign's first flag > {TOL:g} um: "
+              f"{len(before)}")
         if who == "RULE":
             js = np.abs(np.array(sim)[:, :len(targets)] - c).max()
             print(f"  RULE: max |JSON (Simulator) - C| {js:.3g} um")
