@@ -62,6 +62,22 @@ after).  BASE = 0dd05741's src (``git archive``), RULE = this branch's src.
 * B4 a test (<= ~3 s CPU, an export test's fixture, the C via tests/cbuild.py) that fails on BASE;
   the neighbours of watch.py / watch_c.py pass.  A clause not measured by 15:35 UTC is not met.
 * KEPT where B1-B4 hold; else REFUSED (src back at BASE, the rule in benchmarks/dep108_rule.patch).
+
+SCORED (2026-12-07, the bar 3f1fdd72 unchanged; BASE /tmp/dep108/basesrc = ``git archive 0dd05741
+src``; CPU user + sys of the bench with its children, ``/usr/bin/time``; load 10-12 on 2 cores):
+
+* B1 met.  ``all`` +30: BASE 11.5 um, 4 flag rows (each campaign's row 0); RULE 7.1e-15 um on all
+  480 rows, 0 flag rows; |JSON - C| 7.1e-15.  ``back`` +30 (rows 0-39): RULE flags first at row 40
+  in each campaign (the return), 0 rows > 1e-9 um before it (max after 0.064 um; BASE 11.5).
+* B2 met.  Fresh 10186 / 10187 / 10188 simulated once (room) and chained: diagnose took a lean law
+  on E_X and E_Z / E_Z only (E_X nothing) / E_X and E_Z.  ``all`` +30: BASE 33.2 / 29.3 / 33.4 um,
+  RULE 2.1e-14 / 1.8e-14 / 1.4e-14 um on 2161 / 2212 / 2204 rows, 0 flag rows.  ``step`` +30 and
+  ``ramp`` +10: stdout identical to BASE, 0 rows worse.  ~12.5 s CPU a score.
+* B3 met.  Seen room ``step`` +30, ``ramp`` +10, ``step`` +5: stdout identical, 0 rows worse.
+  ``healthy`` lr/dl 9964-9967, dl9975 lr9985 dl10007 lr10007 lr10008 (13 records, 113 + 7 s CPU):
+  no monitored reading beyond range at the first sample, C stdout byte-identical on each.
+* The ST on this case (not this task): the block flags ``RANGE`` on T_amb and refuses every row
+  (holds ``c``), now 21.5 um from the C (= replay) at most; before, 11.4 um from BASE's C.
 """
 
 from __future__ import annotations
