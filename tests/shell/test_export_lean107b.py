@@ -13,10 +13,16 @@ beside a step around an ATI model with its interaction (``x (A0 - 20)^2``).
 
 from __future__ import annotations
 
+import io
+import json
+import subprocess
+
+import numpy as np
+import pandas as pd
 import pytest
 
 from test_diagnose_level107 import _room
-from test_export import _compose, needs_cc
+from test_export import _compose, built_stream, needs_cc
 from test_export_auto57 import TOLERANCE_UM, _proved
 from test_export_effects59 import _json_proved
 from thermocomp.apps.deploy.export import NotExportable, exported_files, state_space
@@ -91,3 +97,37 @@ def test_an_lstm_under_a_lean_level_law_is_refused_naming_it():
     assert order == [0, 1, 2, 2] and factor == [1.0, 1.0, 0.5, 0.5]
     with pytest.raises(NotExportable, match="an lstm under a lean level law"):
         net_reads(None, [0, 1], ["T_1", "T_2"], {}, False, Derived(order=order, factor=factor), 0.0, 0.0)
+
+
+@needs_cc
+def test_the_air_beyond_its_range_from_the_first_sample_gives_the_c_replays_a0(room, tmp_path):
+    """(dep108) The monitored air T_amb +30 °C on every row from the campaign's first: replay's
+    monitor takes no reference of it and the model reads the training's first reading
+    (``first_c``) rebuilt from the others, the campaign's A0 too; the C read the reading itself
+    as A0 (11.5 µm off on diag107's record, flagged not in the code).  Now the C is replay's and
+    flags nothing; where the air reads within range again (row 40) replay references it late,
+    which the C does not: flagged there, not before."""
+    from thermocomp.apps.deploy.streaming import replay
+    from thermocomp.shell.builders import deployable
+
+    cfg = _compose(f"data.path={room}", "track=false")
+    ds, train_ids, test_ids, _ = read_streamed(cfg)
+    train = {c: ds.campaigns[c] for c in train_ids}
+    comp = build_compensator(cfg, ds=ds).set_params(estimator=AugmentedRegressor(
+        MLR(), effects={"E_X": [SCALED]})).fit(train)
+    deployed = deployable(cfg, deploy_stream(cfg, comp, train), train, ds)
+    files = exported_files(deployed, "c")
+    inputs = json.loads(files["compensator.json"])["inputs"]
+    binary = built_stream(tmp_path, files)
+    df = ds.campaigns[test_ids[0]].reset_index(drop=True)
+    for rows, back in ((slice(None), None), (slice(0, 39), 40)):
+        pushed = df.copy()
+        pushed.loc[rows, "T_amb"] += 30.0
+        expected = -replay(deployed, pushed)["E_X"].to_numpy(float)
+        feed = pushed[["time", *inputs]].to_csv(index=False, float_format="%.17g")
+        out = pd.read_csv(io.StringIO(subprocess.run([str(binary), "--flags"], input=feed, text=True,
+                                                     capture_output=True, check=True).stdout))
+        flagged = np.flatnonzero(out["mon_not_in_code"].to_numpy() > 0)
+        upto = len(df) if back is None else back
+        assert np.max(np.abs(out["C_X"].to_numpy(float) - expected)[:upto]) <= TOLERANCE_UM
+        assert (flagged[:1].tolist() == [back]) if back is not None else not len(flagged)

@@ -175,8 +175,10 @@ The served adaptive compensator judges every ``T_`` input before the model reads
   ``warn_only``) judges it as any other sensor.
 
 What else the served monitor does it flags, ``NOT_IN_CODE`` with the rule (:data:`REASONS`), and
-goes on by its own rules: a reading beyond its range at a campaign's first sample, of every sensor
-at once (kelvin97: nothing to rebuild from, the model reads the last field) or beside those out
+goes on by its own rules: a reading beyond its range at a campaign's first sample (dep108: read as
+served, the training's first reading ``first_c`` plus the rebuild, the campaign's A0 too, flagged
+only where it reads within range again, the served late reference), of every sensor at once
+(kelvin97: nothing to rebuild from, the model reads the last field) or beside those out
 where the code does not hold it (its sample passes the monitor by, the state as it was, so that the
 reading's return is no jump), several sensors jumping at once that are no common step (cmon93;
 dep105c: two or more it cannot hold, a set not solved), a jump at the reference's next sample, a
@@ -318,6 +320,8 @@ def monitor_fields(deployed, inputs: list) -> dict:
         "window": mon.window, "confirm": mon.confirm,
         "exclude_level": int(mon.exclude_level), "jump_lim": mon._jump_lim.tolist(),
         "lo_lim": mon._lo_lim.tolist(), "hi_lim": mon._hi_lim.tolist(),
+        # (dep108) the served stand-in of a reading beyond its range at a campaign's first sample
+        "first_c": mon.first_c.tolist(), "late": 1,
         "lo_c": mon.lo_c.tolist(), "hi_c": mon.hi_c.tolist(),
         "common_min": COMMON_MIN, "common_spread": COMMON_SPREAD,
         "seen_run": mon._seen_run.tolist(), "blind_run": mon._blind_run.tolist(),
@@ -467,6 +471,8 @@ class CodeMonitor:
                      ("exchange", 0)):     # (before wires100: two wires exchanged read as jumps)
             a.setdefault(k, np.float64(v))
         a.setdefault("bend_lim", np.full(n, np.inf))
+        a.setdefault("late", np.float64(0))      # (before dep108: beyond range at the first, flagged)
+        a.setdefault("first_c", np.zeros(n))
         a.setdefault("settle_lim", np.full(n, np.inf))
         a.setdefault("dither_run", np.full(n, np.inf))   # (before mon97: frozen by the field)
         a.setdefault("settle_steady", np.float64(0))   # (before settle95: a fast ramp settled)
@@ -525,6 +531,7 @@ class CodeMonitor:
         # range takes several at once, as served; cmon82: the second its blind partner, cmon85 or
         # a second out by drift); Mc / levc the active set's operator and leverages
         self.gone: list[int] = []
+        self.late = np.zeros(n, bool)     # (dep108) beyond its range since the first sample
         self.Mc, self.levc = self.M[0], self.lev[0]
         # (mon86) the bands the active set is judged against
         self.warn, self.alarm = self.a["warning"], self.a["alarm"]
@@ -914,9 +921,17 @@ class CodeMonitor:
         self.read = ~missing
         rng = (x < a["lo_lim"]) | (x > a["hi_lim"])
         if first:
-            if rng.any():   # not in the code: the served monitor references it late
+            # (dep108) beyond its range: the model reads the served stand-in (its training's
+            # first reading, the campaign's A0 too) rebuilt from the others while it stays beyond
+            self.late = rng & bool(a["late"])
+            if (rng & ~self.late).any():   # not in the code: the served monitor references it late
                 self._flag(NOT_IN_CODE, int(np.argmax(rng)), RANGE)
-            self.ref, self.base, self.ref0 = x.copy(), x.copy(), x.copy()
+            self.ref, self.base, self.ref0 = x.copy(), np.where(self.late, a["first_c"], x), x.copy()
+        elif self.late.any():
+            back = self.late & ~missing & ~rng   # in range again: the served reference made late,
+            for j in np.flatnonzero(back):        # not in the code
+                self._flag(NOT_IN_CODE, int(j), RANGE)
+            self.late &= ~back
         d = x - self.ref
         # a gap in time: each step judged as that many one-sample steps, and a sensor's own
         # missing samples since its last reading too (the served monitor's gap per sensor)

@@ -65,6 +65,7 @@ STATE = """    /* the sensor monitor (TC_MONITOR): referenced readings d = u - m
        inputs, their self-prediction errors over the last TC_MON_WINDOW samples (a ring) */
     double mon_ref[NM], mon_base[NM], mon_prev[NM], mon_prev_e[NM], mon_prev_other[NM];
     double mon_ref0[NM];   /* (cmon87) the reference before a sensor's first jump since it was in */
+    int mon_late[NM];      /* (dep108) beyond its range since the campaign's first sample */
     double mon_last_step[NM];   /* (step93) each sensor's last one-sample change */
     /* (jump94b) each sensor's last 2 TC_MON_WINDOW - 1 readings on its current reference
        (oldest first) and the samples since that reference moved */
@@ -131,7 +132,8 @@ def monitor_arrays(ss) -> list[tuple[str, object, tuple, str]]:
     pairs = m.get("pairs", [])
     vectors = ("warning", "alarm", "jump_lim", "lo_lim", "hi_lim", "lo_c", "hi_c", "seen_run",
                "blind_run", "rounding", "floor", "q_full", "bend_lim", "settle_lim",
-               "spread")   # (mon105d: an export before it 0, a frozen sensor's stand-in)
+               "spread",   # (mon105d: an export before it 0, a frozen sensor's stand-in)
+               "first_c")   # (dep108: the served stand-in of a reading beyond range at the first)
     scalars = (("MON_MAX_LEV", "max_leverage", 1.0, "real"), ("MON_MIN_ACTIVE", "min_active", 0, "int"),
                ("MON_CONFIRM", "confirm", 1, "int"), ("MON_EXCLUDE_LEVEL", "exclude_level", 1, "int"),
                ("MON_PERIOD", "period", 1.0, "real"), ("MON_GAP_PERIODS", "gap_periods", 1.5, "real"),
@@ -152,7 +154,7 @@ def monitor_arrays(ss) -> list[tuple[str, object, tuple, str]]:
                ("MON_SPIKE", "spike", 0, "int"), ("MON_BENT", "bent", 0, "int"),
                ("MON_PAIR_JUMP", "pair_jump", 0, "int"), ("MON_SETTLED", "settled", 0, "int"),
                ("MON_EXCHANGE", "exchange", 0, "int"),
-               ("MON_SETTLE_STEADY", "settle_steady", 0.0, "real"))
+               ("MON_SETTLE_STEADY", "settle_steady", 0.0, "real"), ("MON_LATE", "late", 0, "int"))
     modes = max(int(m.get("modes", 1)), 1)
     return [("MON_M", m.get("M", []), (n + 1 + len(pairs), n, n), "real"),
             ("MON_LEV", m.get("lev", []), (n + 1 + len(pairs), n), "real"),
@@ -1379,9 +1381,18 @@ static void mon_sample(tc_state *s, double u[], double dt) {
         rng[k] = x[k] < MON_LO_LIM[k] || x[k] > MON_HI_LIM[k];
         if (rng[k] && far < 0) far = k;
         nrng += rng[k];
-        if (rng[k] && s->first)   /* (not in the code: the served monitor references it late) */
-            mon_flag(s, TC_MON_NOT_IN_CODE, k, TC_MON_RANGE);
-        if (s->first) s->mon_ref[k] = s->mon_base[k] = s->mon_ref0[k] = x[k];
+        if (s->first) {   /* (dep108) beyond its range: the model reads the served stand-in (its
+                             training's first reading, the campaign's A0 too), rebuilt from the
+                             others while it stays beyond */
+            s->mon_late[k] = rng[k] && MON_LATE;
+            if (rng[k] && !MON_LATE)   /* (not in the code: the served monitor references it late) */
+                mon_flag(s, TC_MON_NOT_IN_CODE, k, TC_MON_RANGE);
+            s->mon_ref[k] = s->mon_ref0[k] = x[k];
+            s->mon_base[k] = s->mon_late[k] ? MON_FIRST_C[k] : x[k];
+        } else if (s->mon_late[k] && !missing[k] && !rng[k]) {   /* in range again: the served */
+            mon_flag(s, TC_MON_NOT_IN_CODE, k, TC_MON_RANGE);     /* reference made late, not */
+            s->mon_late[k] = 0;                                    /* in the code */
+        }
         d[k] = x[k] - s->mon_ref[k];
     }
     /* a gap in time: the step judged as that many one-sample steps, and a sensor's own
