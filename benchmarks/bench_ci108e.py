@@ -1,16 +1,17 @@
 """CI time (issue 34; stop 108, ci108e): conformance_pack's and the mirror's CPU, same output.
 
-The py-spy profile of the whole suite (1983 s CPU) puts 4.5 % in ``conformance_pack``: half of it
-the mirror (``_parted``: ``Simulator.step``, ``CodeMonitor.step``), a third the served model's
-streams of the planted copies, the rest CSV text.  Prefix sharing (ci101) is in; per-row trims of
+The py-spy profile of the whole suite (1983 s CPU) puts 4.5 % in ``conformance_pack``: 52 % of it
+the mirror (``_parted``: ``Simulator.step``, ``CodeMonitor.step``), 31 % the served model's
+streams (``ServedStreams.y``), 6.5 % CSV text.  Prefix sharing (ci101) is in; per-row trims of
 the served and mirror loops were refused at -2.6 % mirror (ci101b).
 
-Fixtures (``build``): cmon87's record (lr9032, R1b after its last 864 lead-in rows, 5 planted
-copies and a cold copy) and cmon85's column machine (seed 8841) with and without the dropout
-fault (no lead-in), each packed as its module packs it (``deployed, ss, {campaign: frame},
-lead-ins``).  ``run`` packs each fixture three times on one ``ServedStreams``: call 0 fresh (a
-user's ``export``), calls 1-2 with its served streams cached (the tests: a module fixture's
-streams); and steps the ``Simulator`` over the fixture's fed frame from a reset.
+Fixtures (``build``): cmon87's record (lr9032, R1b after its last 864 lead-in rows: 4 planted
+copies from row 433 and a cold copy; 4320 mirror steps a pack) and cmon85's column machine (seed
+8841) with and without the dropout fault (no lead-in; 5 and 4 copies from row 721), each packed as
+its module packs it (``deployed, ss, {campaign: frame}, lead-ins``). ``run`` packs each fixture
+three times on one ``ServedStreams``: call 0 fresh (a user's ``export``), calls 1-2 with its
+served streams cached (the tests: a module fixture's streams); and steps the ``Simulator`` over
+the fixture's fed frame from a reset.
 
 BAR (written and committed before any measurement of a change; no seeds, the rule is exact):
 (1) every pack file (md5 of the sorted ``path + text`` of the returned files, check.json in it)
@@ -27,6 +28,28 @@ fixtures)::
 
     python benchmarks/bench_ci108e.py build PICKLE      # the 3 fixtures, pickled
     python benchmarks/bench_ci108e.py run PICKLE        # pack CPU + md5s, mirror md5
+
+Measured (2026-12-07 15:21-15:27, base a1addf5a = the ``src`` of ``git archive``, load 1.6-3;
+``run`` once, CPU s by ``time.process_time``; splits by process_time wrappers on pack's module
+attributes and on ``CodeMonitor.step``/``refuses``/``serving``, scripts in the report)::
+
+  fixture           call 0  call 1  (call 2)  mirror of the fed frame from a reset
+  lr9032             2.62    1.64    1.72     1728 rows 0.63 s   404 us/row, monitor 69 %
+  col8841            4.55    2.24    2.21     1441 rows 0.52 s   431 us/row, monitor 67 %
+  col8841_dropout    4.19    2.13    2.20     1441 rows 0.56 s   487 us/row, monitor 70 %
+  calls 0 + 1, the 3 fixtures: 17.38 s
+  split, a second run (its totals 3.02/1.90, 5.43/2.71, 4.54/2.15), call 0 / call 1: mirror
+  (``_parted``, the ``_Lead``'s too) 1.67/1.72, 2.41/2.42, 2.15/1.93; served from a prefix 0.63/0,
+  2.54/0, 1.97/0; served prefix 0.32, 0.17, 0.16 / 0; whole served stream 0.22, 0, 0; csv_text
+  0.10/0.09, 0.20/0.19, 0.17/0.14; deepcopy <= 0.03.
+
+No change was made (TRACED): no work is done twice inside a pack any more (ci101 shares the
+copies' prefix and the lead-in; the cold copy starts from a reset), the mirror is 62 % of calls
+0 + 1 and its monitor 67-70 % of each mirror row, spread over some thirty methods (cProfile of lr9032's
+call 1: ``CodeMonitor._step``'s own lines 15 % of ``Simulator.step``, no other method above 8 %;
+32 numpy reductions a row).  The bar's -30 % needs the mirror's row ~48 % cheaper (the linear part alone,
+~130 us of ~430, cannot give it), i.e. the monitor's row about half its cost, to the last bit:
+per-row trims gave -2.6 % (ci101b).  Not attempted in this stop's time.
 """
 from __future__ import annotations
 
