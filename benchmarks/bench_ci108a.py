@@ -25,6 +25,29 @@ BAR (the brief's, written and committed here before any after-measurement):
 Verdict KEPT if 1-3 hold; else REFUSED (the clean cuts stay on the branch for the lead only if
 safe to merge, said so; the diff in benchmarks/ci108a_rule.patch) or TRACED.
 
+Trace (0dd05741, each module alone, base copy; CPU s user + sys incl. children, load 6-17 from
+the other helpers): test_readme 135.0 (its blocks 125.9 by readme_run.log: README 23.7, sweeps.md
+33.5, diagnose.md 19.2, own-data.md 21.4, simulation.md 12.8, monitoring.md 14.4, outputs.md 0.0,
+the prepared dataset 1.7), test_dvc_metrics 72.2 (its fixture's ``dvc repro`` 25.4 for 7 stage
+processes; alone in its project: train 2.4, evaluate 5.4, diagnose 4.0; each ``dvc`` show
+0.8-1.6), test_evaluate_report 26.6, test_config_schema 15.5, test_denoise_stages 13.7, the
+other modules 2-12 each.  ``import mlflow`` alone is 2.6 s CPU, sklearn 2.0, scipy.signal 1.4
+(same load): the docs walk's ~25 ``thermocomp`` processes and the DVC stages are bound by the
+stack's imports, one process each, which the pages and ``dvc repro`` exist to run.
+
+Rule built (tests only, exact): the README's page, first in a test process, hands what its
+``make run`` wrote under data/ (``$(BIN)/thermocomp simulate``, PREPARE's very command) to the
+docs pages as the prepared default dataset, instead of the first docs page running PREPARE again
+(``keep_written``; a docs page run without the README's page still runs PREPARE).  Checked: the
+README's data/ after its whole page and a PREPARE's output, 26 files, byte-identical (``cmp``,
+base run vs after run).  Saved as benchmarks/ci108a_rule.patch (applies to 0dd05741).
+
+Measured (test_readme, the only changed module; ``-n 0``, base then after, one after the other;
+the twins' and servers' fixed ports forbid running two test_readme at once)::
+
+  pair 1 (14:28-15:01, load 6-17; base = the worktree at 0dd05741): 135.0 -> 136.1 (+0.8 %);
+         blocks 125.9 -> 125.2 (the prepared simulate 1.7 -> 0: the cut; the rest is noise)
+
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``), bench_ci101c's commands::
 
     python benchmarks/bench_ci108a.py cpu TREE TAG OUT SPEC...      # each spec alone, /usr/bin/time
