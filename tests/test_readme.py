@@ -265,10 +265,13 @@ def test_readme_blocks_are_all_accounted_for():
 
 
 # What the README's `make run` leaves that the pages' commands read (the default dataset): in
-# each page's copy before its commands, so the pages run apart (xdist spreads them).  Made by
-# the first page of a test process; the next ones get a copy of what it wrote (the simulator is
-# deterministic: the same files, byte for byte, in every copy).
+# each page's copy before its commands, so the pages run apart (xdist spreads them).  The
+# README's page, first in a test process, leaves it (its `make run` runs this very command:
+# `$(BIN)/thermocomp simulate`); else the first page of the process runs it.  The next ones get
+# a copy of what it wrote (the simulator is deterministic: the same files, byte for byte, in
+# every copy; the README's data/ after its page and a PREPARE's were compared whole, ci108a).
 PREPARE = ".venv/bin/thermocomp simulate"
+DATA = Path("data")     # where PREPARE writes; what the README's page wrote there is handed on
 
 
 def runnable_pages() -> list[Path]:
@@ -316,16 +319,23 @@ def prepared(tmp_path_factory) -> Path:
 
 def prepare(clone: Path, env: dict, log: list[str], kept: Path) -> None:
     """:data:`PREPARE` in ``clone``: run there if ``kept`` is empty (then what it wrote is kept),
-    else a copy of what it wrote (file times kept, as a copy of the first clone's)."""
+    else a copy of what it (or the README's `make run`, :func:`keep_written`) wrote (file times
+    kept, as a copy of the first clone's)."""
     if any(kept.iterdir()):
         shutil.copytree(kept, clone, dirs_exist_ok=True)
-        log.append(f"--- (prepared) {PREPARE}: a copy of what it wrote in the first page's copy")
+        log.append(f"--- (prepared) {PREPARE}: a copy of what it wrote in an earlier page's copy")
         return
     before = _files(clone)
     run_blocks([{"kind": "run", "lang": "bash", "body": PREPARE + "\n", "arg": "", "line": 0,
                  "page": "(prepared)"}], clone, env, log)
+    keep_written(clone, before, kept)
+
+
+def keep_written(clone: Path, before: dict, kept: Path, under: Path | None = None) -> None:
+    """Copy into ``kept`` the files of ``clone`` (``under`` it only, if given) that are new or
+    changed since ``before`` (:func:`_files`)."""
     for rel, stamp in _files(clone).items():
-        if before.get(rel) != stamp:
+        if before.get(rel) != stamp and (under is None or under in rel.parents):
             (kept / rel).parent.mkdir(parents=True, exist_ok=True)
             shutil.copy2(clone / rel, kept / rel)
 
@@ -385,7 +395,12 @@ def test_page_commands_as_written(page, tmp_path, venv, project, prepared):
     try:
         if page != ROOT / "README.md":
             prepare(clone, env, log, prepared)
-        run_blocks(blocks, clone, env, log)
+            run_blocks(blocks, clone, env, log)
+        else:
+            before = _files(clone)
+            run_blocks(blocks, clone, env, log)
+            if not any(prepared.iterdir()):   # its `make run` simulated the default dataset
+                keep_written(clone, before, prepared, under=DATA)
     finally:
         (tmp_path / "readme_run.log").write_text("\n".join(log))
     assert not (clone / "mlflow.db").exists(), "a command left a stray ./mlflow.db"
