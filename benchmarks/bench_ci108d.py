@@ -20,6 +20,22 @@ BAR (written and committed before any after-measurement):
 3. the reader's test modules pass (tests/core/test_io_read.py, test_io_errors.py,
    test_raw_exports*.py, and every module that imports the changed functions), ruff clean.
 
+Measured (2026-12-07 15:29-15:32 UTC, load 3.7-4.6 on 2 cores, a pytest run of mine beside it;
+``cpu`` with ROUNDS=6, content caches emptied before each round; base = ``git archive a1addf5a``
+in /tmp/ci108d/base; the change = benchmarks/ci108d_rule.patch).  CPU s per round, base ->
+change, six pairs (three at 15:29:40, three at 15:31:30)::
+
+  0.4954 -> 0.3483 (0.703)   0.4845 -> 0.3595 (0.742)   0.4526 -> 0.3541 (0.782)
+  0.4549 -> 0.3608 (0.793)   0.5027 -> 0.3624 (0.721)   0.4722 -> 0.3524 (0.746)
+  mean ratio 0.748 (-25 %)
+
+Per dataset (one process per tree, 6 cold reads each, 15:31): (a) sim 0.155-0.161 -> 0.146,
+(b) fl_thermal 0.064 -> 0.062, (c) lab export 0.255-0.265 -> 0.164.  ``same``: all 13 datasets
+read alike (frames, dtypes, index, column order, attrs, manifest, meta, report, log lines,
+lab_bad's refusal word for word).  Against the bar: (1) NOT met (0.748 > 0.70); (2) met;
+(3) met (273 + 72 tests of the reader's modules pass, ruff clean).  Verdict REFUSED: src
+reverted, the change kept in benchmarks/ci108d_rule.patch.
+
 Usage::
 
     python benchmarks/bench_ci108d.py make OUT

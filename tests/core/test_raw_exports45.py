@@ -378,34 +378,3 @@ def test_init_proposes_a_torque_in_newton_metres_as_a_state_not_an_error_in_nano
     header = ["time", "Spindel [Nm]", "Motor Nm", "dX nm", "T1"]
     roles = proposed_roles(header, {h: "1" for h in header}, ReadOptions())
     assert (roles["state"], roles["error"]) == (["Spindel", "Motor"], ["dX"])
-
-
-@pytest.mark.parametrize("line", ['a,"b,c",d', 'a,"b""c"', 'a,b"c,d', "a,\rb", "a\0,b", "", ",,",
-                                  " a , b ", "a;b,c", 'x,"', "a,b\n"])
-def test_a_line_is_split_as_the_csv_module_splits_it(line):
-    # (ci108d: a line without a quote, a line end or a NUL is split without the csv module)
-    import csv
-
-    from thermocomp.core.io.csvline import EMPTY, RAISE, SPLIT, split_line
-    for delimiter in ",;\t":
-        try:
-            want = next(csv.reader([line], delimiter=delimiter), [])
-        except csv.Error:
-            want = None
-        assert split_line(line, delimiter, EMPTY) == ([] if want is None else want)
-        assert split_line(line, delimiter, SPLIT) == (line.split(delimiter) if want is None else want)
-        if want is not None:
-            assert split_line(line, delimiter, RAISE) == want
-
-
-def test_a_file_written_again_between_two_reads_is_sniffed_again(tmp_path):
-    # (ci108d) the separator and the header's line are kept per text read, not per file name
-    t, t1, t2, e = _record()
-    header = ["Zeit [s]", "T1 [°C]", "T2 [°C]", "dX [µm]"]
-    path = _write(tmp_path / "run.csv", header, [t, t1, t2, e], sep=";")
-    path.write_text(path.read_text().replace(".", ","))
-    first = _read(path, roles={"error": ["dX"]})
-    _write(path, header, [t, t1, t2, e], sep="\t")       # the same name, another table
-    path.write_text("Logger: XY-200\n" + path.read_text())
-    again = _read(path, roles={"error": ["dX"]})
-    pd.testing.assert_frame_equal(first, again, check_exact=False, atol=1e-5)

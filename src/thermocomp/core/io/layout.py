@@ -17,7 +17,6 @@ above the header, a units row and a processing row.
 
 from __future__ import annotations
 
-import functools
 import re
 
 from .campbell import environment
@@ -45,59 +44,35 @@ def cells(line: str, sep: str) -> list[str]:
 def header_line(lines: list[str], sep: str) -> int | None:
     """Index of the header among ``lines`` (the file's first, physical), None when no line
     starts a table of ``sep``-separated fields."""
-    return _header_line(tuple(lines), sep)
-
-
-# (ci108d) a read asks it of the same head several times (the separator sniffed, the dates'
-# order, the table): keyed on the text itself, so a file edited between two reads is read again
-@functools.lru_cache(maxsize=32)
-def _header_line(lines: tuple[str, ...], sep: str) -> int | None:
     if sep == "," and len(lines) > 1 and environment(lines[0]) is not None:
         return 1           # (a TOA5 environment line of the table's width was taken for its header)
-    split = [cells(ln, sep) if ln.strip() else None for ln in lines]     # each line split once
-    widths = [None if fields is None else len(fields) for fields in split]
-    numbered: dict[int, bool] = {}      # a line's fields: any a number (asked of a line again)
-
-    def has_number(fields: list[str]) -> bool:
-        if id(fields) not in numbered:
-            numbered[id(fields)] = any(any_number(c) for c in fields)
-        return numbered[id(fields)]
-
-    texts = [_text(ln) for ln in lines[:MAX_PREAMBLE + 1]]
-    # the rows a header's width is compared with: not blank, no '#' comment
-    counted = [(j, w) for j, (w, ln) in enumerate(zip(widths, lines))
-               if w is not None and not ln.lstrip().startswith("#")]
+    widths = [len(cells(ln, sep)) if ln.strip() else None for ln in lines]
     for k, width in enumerate(widths[:MAX_PREAMBLE + 1]):
-        if width is None or width < 2 or not _named(split[k]):
+        if width is None or width < 2 or not _named(cells(lines[k], sep)):
+            continue
+        if k and not _preamble(lines[:k + 1], lines[k + 1:], sep):
+            if not _text(lines[k]):        # bytes that are no text (a gzip file): no preamble
+                return None
             continue
         # (a '#' comment among the rows: a DAQ's block written again with its header, stranger66;
         # a line of the preamble so, audit96: a second export's Excel 'sep=;' above its header)
         above = set(lines[:k])
-        body = [w for j, w in counted if j > k and lines[j] not in above]
+        body = [w for w, ln in zip(widths[k + 1:], lines[k + 1:])
+                if w is not None and not ln.lstrip().startswith("#") and ln not in above]
         body = body[:-1] if len(body) > 1 else body        # the last may be cut short
-        even = all(w == width for w in body)
-        # (the cheap test first: rows of uneven width need no look for a preamble over them)
-        if k and (even or not texts[k]) and not _preamble(
-                all(texts[:k + 1]), [f for f in split[k + 1:k + MAX_PROPERTY_ROWS + 4] if f is not None],
-                split[k], has_number):
-            if not texts[k]:        # bytes that are no text (a gzip file): no preamble
-                return None
-            continue
-        if even:
+        if all(w == width for w in body):
             return k
     return None
 
 
-def _preamble(text: bool, rows: list[list[str]], header: list[str], has_number) -> bool:
-    """Lines of text (``text``: the lines down to the header are), the last a header (no number
-    in it: ``header``, its fields) over a row holding a number (under a unit row and rows of
-    channel properties, maybe); ``rows``: the non-blank of the lines below it, split;
-    ``has_number(fields)``: any of them a number."""
-    if not text or has_number(header):
-        return False
+def _preamble(above: list[str], below: list[str], sep: str) -> bool:
+    """Lines of text, the last a header (no number in it) over a row holding a number (under
+    a unit row and rows of channel properties, maybe)."""
+    rows = [cells(ln, sep) for ln in below[:MAX_PROPERTY_ROWS + 3] if ln.strip()]
     # (rows describing channels only under a unit row: a group row over the names is no header)
     samples = rows[1 + property_rows(rows[1:]):] if rows and is_unit_row(rows[0]) else []
-    return any(has_number(row) for row in rows[:2] + samples[:1])
+    return (all(map(_text, above)) and not any(any_number(c) for c in cells(above[-1], sep))
+            and any(any_number(c) for row in rows[:2] + samples[:1] for c in row))
 
 
 def property_rows(rows: list[list[str]]) -> int:
@@ -137,16 +112,11 @@ def _text(line: str) -> bool:
 def is_unit_row(row: list[str]) -> bool:
     """Every cell a unit (or empty), at least one."""
     units = [c.strip().lower().replace(" ", "") for c in row if c.strip()]
-    known = _known_units()
-    return bool(units) and all(u.strip("[]()") in known or is_time_format(u) or foreign_unit(u)
-                               for u in units)
-
-
-@functools.cache
-def _known_units() -> frozenset[str]:
     # (an axis' angle, '°', is a state's unit: stranger68's 'B axis' over '°' made the row data;
     # audit96: a coolant's 'l/min' among them did too, every column then refused as text)
-    return frozenset({u for table in UNITS.values() for u in table} | STATE_UNITS | ANGLE_UNITS | {"-"})
+    known = {u for table in UNITS.values() for u in table} | STATE_UNITS | ANGLE_UNITS | {"-"}
+    return bool(units) and all(u.strip("[]()") in known or is_time_format(u) or foreign_unit(u)
+                               for u in units)
 
 
 def is_time_format(cell: str) -> bool:

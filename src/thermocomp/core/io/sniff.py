@@ -3,7 +3,6 @@ is written with, read from its first lines (a lab's export: ``;`` and decimal co
 
 from __future__ import annotations
 
-import functools
 import re
 from dataclasses import replace
 from pathlib import Path
@@ -39,22 +38,13 @@ def resolved(path: Path, opts: ReadOptions) -> ReadOptions:
 
 def detected(lines: list[str], opts: ReadOptions, where) -> ReadOptions:
     """:func:`resolved` on the first (non-empty) lines of a CSV text; ``where`` names it."""
-    lines = tuple(ln for ln in lines if ln.strip())[:SNIFF_LINES]
-    delimiter, decimal, thousands = _marks(lines, opts.delimiter, opts.decimal, opts.thousands, where)
-    return replace(opts, delimiter=delimiter, decimal=decimal, thousands=thousands)
-
-
-# (ci108d) a read sniffs a file twice (the order of its dates, then its table): keyed on the
-# lines themselves, so a file edited between two reads is sniffed again; a refusal is not kept
-@functools.lru_cache(maxsize=64)
-def _marks(lines: tuple[str, ...], delimiter: str, decimal: str, thousands: str | None,
-           where) -> tuple[str, str, str | None]:
-    """``(delimiter, decimal, thousands)`` of :func:`detected`, each as given or detected."""
-    delimiter = _delimiter(lines, where) if delimiter == AUTO else delimiter
+    lines = [ln for ln in lines if ln.strip()][:SNIFF_LINES]
+    delimiter = _delimiter(lines, where) if opts.delimiter == AUTO else opts.delimiter
     body = lines[(header_line(lines, delimiter) or 0):]       # below a logger's preamble
-    decimal = _decimal(body, delimiter, where) if decimal == AUTO else decimal
-    thousands = _thousands(body, delimiter, decimal) if thousands == AUTO else thousands
-    return delimiter, decimal, thousands
+    decimal = _decimal(body, delimiter, where) if opts.decimal == AUTO else opts.decimal
+    thousands = (_thousands(body, delimiter, decimal) if opts.thousands == AUTO
+                 else opts.thousands)
+    return replace(opts, delimiter=delimiter, decimal=decimal, thousands=thousands)
 
 
 def head_lines(path: Path, encoding: str = UTF8) -> list[str]:
