@@ -21,6 +21,21 @@ BAR (committed before the change is measured; not to move after):
   Verdict: KEPT where B1-B5 hold with a src change; REFUSED (src reverted, the rule kept as
   benchmarks/dep108d_rule.patch) where not.
 
+SCORED (bar 40f0ac01, not moved; 2026-12-07 15:25-15:40 UTC, 2 cores shared; BASE = 4f56cd99's src
+extracted to /tmp, this tree 829e8879; ROOTs apart, each tree running, exporting and building its own):
+  B1 seconds3, every variant (plain, blank90, blank120): max |served - C| BASE 2.16 (mlr) / 2.15 um
+     (lagbank), 120 rows > 1e-9 (run 2, joined to run 1); now 8.88e-16 / 1.6e-14 um, one block and
+     blocks of 40: holds.
+  B2 hms1 served = BASE exactly (0 um, 12 arrays); bench_dep107c faults /tmp/a107/root: the 12 served
+     arrays (healthy, period10, gap x one block / 50) = BASE exactly (0 um); its words unchanged
+     (but the OUT paths): holds.  (seconds3's served differ from BASE by 2.16 / 2.15 um: B1's mend.)
+  B3 the C's stdout byte-identical to BASE's: 12 feeds here, 8 in bench_dep107c: holds.
+  B4 stdin's campaigns of seconds3: BASE [240, 120] (blank120: [120, 120, 120]); now [120, 120, 120]
+     every variant, as the file reader's 3 runs and the C's; hms1 [120] both: holds.
+  B5 test_export_day_seconds91's served/stdin test: fails on 4f56cd99 (2.16 um), passes here; +1.5 /
+     +1.6 s CPU (paired, the module's fixture test alone vs with it).  Verdict: KEPT.
+  CPU (user + sys, /usr/bin/time): day mlr 9.9 + 1.3 s, lagbank ~9.7 + 1.7 s (BASE alike).
+
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is that tree's)::
 
     python benchmarks/bench_dep108d.py day ROOT MODEL       # B1-B4 on the day records
