@@ -34,7 +34,7 @@ extracted to /tmp, this tree 829e8879; ROOTs apart, each tree running, exporting
      every variant, as the file reader's 3 runs and the C's; hms1 [120] both: holds.
   B5 test_export_day_seconds91's served/stdin test: fails on 4f56cd99 (2.16 um), passes here; +1.5 /
      +1.6 s CPU (paired, the module's fixture test alone vs with it).  Verdict: KEPT.
-  CPU (user + sys, /usr/bin/time): day mlr 9.9 + 1.3 s, lagbank ~9.7 + 1.7 s (BASE alike).
+  CPU (user + sys, /usr/bin/time): day mlr 9.9 + 1.3 s, lagbank 10.0 + 1.3 s (BASE 9.3 + 1.8, 9.8 + 1.8).
 
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is that tree's)::
 
