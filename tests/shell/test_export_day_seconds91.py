@@ -109,6 +109,39 @@ def test_data_time_of_day_exports_and_streams_the_raw_record(tmp_path, capsys, w
     np.testing.assert_allclose(got, expected, rtol=0, atol=1e-9)
 
 
+def test_the_served_session_and_stdin_read_seconds_of_day_past_midnight_as_the_c(exported):
+    """dep108d: the served session fed the raw record's plain ``Seconds of day`` (blocks of 90
+    rows, one across midnight) carries the day past midnight as stream.c (TC_DAY_SECONDS) and the
+    file reader do, so the run after the pause across midnight is a campaign of its own; stdin
+    reads its three runs too.  Before, both read midnight's step back as the clock going back:
+    the served 2.16 um off the C on the second run, stdin's campaigns 240 + 120 rows."""
+    from omegaconf import OmegaConf
+
+    from thermocomp.apps.deploy.pyfunc import CompensatorModel
+    from thermocomp.core.io import ReadOptions
+    from thermocomp.core.io.stdin import stream_campaigns
+    from thermocomp.shell.builders import deployable_model
+    from thermocomp.shell.cli import _compose
+    from thermocomp.shell.source import read_streamed
+
+    pkl = exported["root"] / "run" / "model.pkl"
+    cfg = _compose([*exported["data"], f"connect.model={pkl}", "track=false",
+                    "monitor.adaptive=false"], "connect")
+    ds, train = read_streamed(cfg, test=False)[:2]
+    deployed = deployable_model(cfg, ds, train, str(pkl), "connect.model")[0]
+    text = exported["record"].read_text()
+    want = pd.read_csv(io.StringIO(_stream(exported["out"], text).stdout))["C_X"].to_numpy()
+    frame, served = pd.read_csv(io.StringIO(text)).drop(columns="E_X"), CompensatorModel(deployed)
+    got = pd.concat([served.predict(None, frame.iloc[k:k + 90].reset_index(drop=True),
+                                    {"session": "d", "reset": k == 0})
+                     for k in range(0, len(frame), 90)], ignore_index=True)["C_X"]
+    assert np.abs(want).max() > 0.1
+    np.testing.assert_allclose(got, want, rtol=0, atol=1e-9)
+    parts, _ = stream_campaigns(text, list(deployed.columns_),
+                                ReadOptions.from_cfg(OmegaConf.to_container(cfg.data, resolve=True)))
+    assert [len(p) for p in parts.values()] == [ROWS] * 3
+
+
 def test_a_blank_line_in_a_file_is_said_and_read_as_run_reads_it(exported):
     """audit103: a logger's stray blank line restarted the stream there (the state reset, the
     next row the reference) where run and replay read the file as one campaign; it was silent

@@ -70,6 +70,7 @@ class AdaptiveCompensator:
     derived_: dict = {}        # data.derive's targets, computed from a block's errors: likewise
     bits_: dict = {}           # data.bits, a status word a served block decodes: likewise (bits85)
     slashed_ = None            # the record's order of dates with slashes (older pickles: none)
+    day_seconds_ = None        # (dep108d) its time plain seconds of the day (None: its header says)
     missing_values_: list = []  # data.missing_values, a served block's marks: likewise (lab74)
     end_states_: dict = {}
     adapt_ = None

@@ -85,6 +85,7 @@ from pathlib import Path, PurePosixPath
 import mlflow
 import numpy as np
 import pandas as pd
+import pyarrow as pa
 from mlflow.exceptions import MlflowException
 from mlflow.models import ModelSignature
 from mlflow.protos.databricks_pb2 import INVALID_PARAMETER_VALUE
@@ -104,7 +105,7 @@ from ...core.io.derived import on_frame
 from ...core.io.rates import FOUND, SAID_AT_MOST, StepWatch, found_words
 from ...core.io.slashed import stream_format
 from ...core.io.stdin import since, stream_stamps, with_clock_joined
-from ...core.io.timestamps import CLOCK
+from ...core.io.timestamps import CLOCK, continued, names_seconds_of_day
 from .adaptive import AdaptiveCompensator
 from .naming import accepted_names, correction_column, raw_names, to_contract
 from .streaming import EndState, StreamingCompensator
@@ -244,7 +245,8 @@ class CompensatorModel(mlflow.pyfunc.PythonModel):
         the rows of the caller's block before ``frame`` (its rows named in the caller's block)."""
         raw, carried = frame, list(state[4])        # (kept below only where the block is taken)
         if TIME in frame.columns:
-            frame = _on_campaign_clock(frame, state, self.streaming.slashed_, carried)
+            frame = _on_campaign_clock(frame, state, self.streaming.slashed_, carried,
+                                       _reads_day_seconds(self.streaming))
         if isinstance(state[1], EndState):
             # a continuing campaign's clock follows its predecessor's last sample by one
             # period, as `run` joins them (the client's own clock may restart at 0)
@@ -358,18 +360,32 @@ def _no_clock() -> list:
     return [float("nan"), 0.0]
 
 
+def _reads_day_seconds(streaming) -> bool:
+    """(dep108d) ``streaming``'s time is plain seconds of the day (its ``day_seconds_``; a model
+    pickled before it: its lab's time header says so, as ``export`` reads it for the C)."""
+    said = getattr(streaming, "day_seconds_", None)
+    if said is not None:
+        return bool(said)
+    return any(names_seconds_of_day(str(h)) for h in raw_names(streaming.lab_names_ or {}, TIME))
+
+
 def _on_campaign_clock(frame: pd.DataFrame, state: list, slashed: str | None = None,
-                       carried: list | None = None) -> pd.DataFrame:
+                       carried: list | None = None, day_seconds: bool = False) -> pd.DataFrame:
     """``frame`` with wall-clock times (a lab's logger: ``07.01.2023 08:45:00``, ISO 8601) as
     seconds since its campaign's first (the session's origin, kept over its blocks until a
     reset), as ``run`` and ``replay`` read a campaign's timestamps, dates with slashes in the
     record's order ``slashed`` (code71: a block's first row alone decided); seconds as they are.
     (data91) A time of day without its date (``h:mm:ss``) read on from the last the session
     read, ``carried`` (updated in place), a day added where it passes midnight, as a file's rows
-    are (each block was refused, read alone)."""
+    are (each block was refused, read alone); (dep108d) so plain seconds where ``day_seconds``
+    (the model's time is the time of day: stream.c's TC_DAY_SECONDS), by the same function."""
     try:
         stamps = stream_stamps(frame[TIME], stream_format(frame[TIME], slashed, "the request")
                                or "auto", served=True, carried=carried)
+        if stamps is None and day_seconds and carried is not None:
+            seconds = pd.to_numeric(frame[TIME], errors="coerce").to_numpy(float)
+            stamps = pd.Series(continued(pa.array(seconds, from_pandas=True), carried, "the request")
+                               .to_numpy(zero_copy_only=False), index=frame.index)
     except ContractError as exc:     # a time that is no time: its row of the block, not of stdin
         where = f"column {exc.column!r}, data row {exc.row} of the block: " if exc.row else ""
         raise MlflowException(where + exc.reason, error_code=INVALID_PARAMETER_VALUE) from exc

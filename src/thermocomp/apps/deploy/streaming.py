@@ -323,6 +323,11 @@ class StreamingCompensator:
         The strptime format of the record's dates with slashes (code71: ``data.time``, or the
         order its rows said, :func:`thermocomp.shell.source.slashed_time`): a served block's
         are read in that order (a block's first row alone decided); set by the stage that deploys.
+    day_seconds_ : bool or None
+        (dep108d) Its time is the time of day in plain seconds (``TC_DAY_SECONDS``,
+        :func:`thermocomp.shell.builders.day_seconds`): a served session's carried past midnight,
+        as the C's; None (older pickles): as the lab's header of the time says; set by the stage
+        that deploys.
     end_states_ : dict
         ``{campaign: EndState}`` of the record it was deployed on (:func:`end_states`), from
         which a served stream may continue; set by ``promote``.
@@ -343,6 +348,7 @@ class StreamingCompensator:
     derived_: dict = {}        # data.derive's targets, computed from a block's errors: likewise
     bits_: dict = {}           # data.bits, a status word a served block decodes: likewise (bits85)
     slashed_ = None            # the record's order of dates with slashes (older pickles: none)
+    day_seconds_ = None        # (dep108d) its time plain seconds of the day (None: its header says)
     missing_values_: list = []  # data.missing_values, a served block's marks: likewise (lab74)
     end_states_: dict = {}
     ambient_given_ = False

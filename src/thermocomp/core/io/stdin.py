@@ -238,7 +238,8 @@ def _read_runs(text: str, columns: list[str], opts, recorded: str | None = None,
                                                   for _, start, end in blocks]
         timed = [_sets_undone(*seconds_and_origin(t, _time_format(t, opts.time, recorded,
                                                                opts.dayfirst),
-                                                  opts.timezone), opts.clock_sets, df.attrs)
+                                                  opts.timezone, df.attrs.get(HEADERS, {}).get(TIME)),
+                                opts.clock_sets, df.attrs)
                  for t in runs]
         df[TIME] = pd.concat([seconds for seconds, _ in timed])
         origins = [origin for _, origin in timed]
@@ -637,17 +638,19 @@ def stream_seconds(time: pd.Series, time_format: str, zone: str | None = None) -
     return seconds_and_origin(time, time_format, zone)[0]
 
 
-def seconds_and_origin(time: pd.Series, time_format: str, zone: str | None = None
-                       ) -> tuple[pd.Series, pd.Timestamp | None]:
+def seconds_and_origin(time: pd.Series, time_format: str, zone: str | None = None,
+                       header: str | None = None) -> tuple[pd.Series, pd.Timestamp | None]:
     """:func:`stream_seconds` and the instant (UTC) they count from where ``time`` holds
     timestamps (a time without an offset as written, or on ``zone``'s clock: as a file's
-    ``time_origin`` becomes its ``start``, :mod:`.instants`), else None (seconds, elapsed)."""
+    ``time_origin`` becomes its ``start``, :mod:`.instants`), else None (seconds, elapsed).
+    (dep108d) Plain seconds of the day (``header``, the stream's own, or the values say so) are
+    carried past midnight as a file's are, by the file reader's function."""
     stamps = stream_stamps(time, time_format, zone)
-    if stamps is None and time_format == OF_DAY_KIND:     # (data91) as a file's are read
+    if stamps is None and time_format in ("auto", OF_DAY_KIND):     # (data91) as a file's are read
         # (data92) by the file's one function: a value outside a day refused with its row
         seconds = pd.to_numeric(time, errors="coerce").to_numpy(float)
-        stamps = pd.Series(seconds_of_day(seconds, SOURCE, pauses_said=False, kind=OF_DAY_KIND),
-                           index=time.index)
+        of_day = seconds_of_day(seconds, SOURCE, header, pauses_said=False, kind=time_format)
+        stamps = None if of_day is None else pd.Series(of_day, index=time.index)
     if time_format == OF_DAY_KIND and isinstance(stamps, pd.Series):
         # (data93) rows missing in a time of day: as well a day longer, said as a file's gap is
         said_if_rows_missing(stamps.to_numpy(float), SOURCE, dateless=True)

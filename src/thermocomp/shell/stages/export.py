@@ -40,10 +40,10 @@ from ...core.io.dayfirst import ORDER
 from ...core.io.derived import sources as derived_sources
 from ...core.io.roles import RUN
 from ...core.io.source import check_streamed_columns
-from ...core.io.timestamps import CLOCK, OF_DAY_KIND, names_seconds_of_day, names_time_of_day
+from ...core.io.timestamps import CLOCK, OF_DAY_KIND
 from ...core.io.twins import copy_refused
 from ...core.scoring.evaluation import require_split
-from ..builders import deployable_model, is_registered, pause_seconds, with_model_bits
+from ..builders import day_seconds, deployable_model, is_registered, pause_seconds, with_model_bits
 from ..config.checks import check_config
 from ..model_store import load_model, model_family
 from ..registry import registered_version
@@ -245,23 +245,6 @@ def _slashed(cfg: DictConfig, ds) -> int:
     return SLASHED.get(slashed_time(cfg, ds) or "", 0)
 
 
-def _day_seconds(cfg: DictConfig, ds, time_header) -> bool:
-    """``TC_DAY_SECONDS``: ``data.time=of_day`` says the time is the time of day, or the record's
-    time was read as seconds since midnight, a day added as it passed (the ingest report's
-    ``time``, data89b), or its lab header says so (a record
-    that never passed midnight, a registered model exported without its record: the machine's
-    log will); ``stream.c`` then reads the lab's raw file so (lead91: it took midnight's step
-    back for a clock set back, one period on, and a run after a pause across midnight for the
-    run before it)."""
-    if str(cfg.data.get("time")) == OF_DAY_KIND or ds is not None and ds.meta.get(
-            "seconds_of_day"):
-        return True
-    headers = [time_header] if isinstance(time_header, str) else list(time_header or ())
-    # (data92b) a time-of-day header alone (not joined to its date) reads as data.time=of_day
-    return any(names_seconds_of_day(str(h)) for h in headers) or (
-        isinstance(time_header, str) and names_time_of_day(time_header))
-
-
 def export(cfg: DictConfig) -> dict:
     """Write the export of ``export.model`` in ``export.format`` to ``out``; ``{file: path}``."""
     # a registered model is read from the store: none created (export logs no run)
@@ -322,7 +305,7 @@ def export(cfg: DictConfig) -> dict:
     provenance.update(thousands=None if thousands is None else str(thousands)[:1],
                       elapsed=str(cfg.data.get("time") or "auto") == "elapsed",
                       slashed=_slashed(cfg, ds), pause_s=pause_seconds(cfg, ds, deployed),
-                      day_seconds=_day_seconds(cfg, ds, lab.get(TIME)))
+                      day_seconds=day_seconds(cfg, ds, lab.get(TIME)))
     # (streamraw65: the lab's raw file as the reader reads it -- its character set and its marks
     # of a value not measured travel with the model, as data.thousands does)
     provenance.update(encoding=_stream_encoding(cfg, fmt),
