@@ -26,6 +26,36 @@ output is TRUE; *differs* where max|C - ST| > 1e-9 um.
   their healthy streams: B1, B2's count (<= 2 % of their rows) and B3; scored once, after this bar.
 * KEPT where B1-B4 hold on seen and fresh; else REFUSED (src reverted, benchmarks/st108b_rule.patch).
 
+RULE (st_watch.py, ``mon_unsure``; no key, no constant): TRUE while the block holds a ``STEP_OUT``
+(the C rebuilds it); and, from the block's ``mon_stop`` or ``mon_lost``, on each row it flags or
+where a judged sensor's error with every sensor in (``mon_e``) is at its warning band
+(``MON_WARN``), and ``2 MON_WINDOW`` rows after.  Not st106c's (which named the C's DRIFT_OUT and
+held one row): it tells nothing of the C's choice, it bounds where the C may act.  Built on seen
+dl9965 / dl9967 / lr9964 (the STEP_OUT hold and a JUMP's 2 rows after were seen there).
+
+MEASURED (2026-12-07, 2 cores shared, load 1-4; rule = ebb0bb1e's src, BAR e8e6ed03, unchanged;
+BASE 4f56cd99 (``git archive`` src); records: st108's root copied (data and reports, made by
+3a560e8f's src), fresh made here after ebb0bb1e (10.4 s); CPU user + sys as /usr/bin/time prints it).
+VERDICT KEPT: B1-B4 met on seen and fresh.
+
+* B1 seen: windows dl10127 T_amb 50 differing rows (max 4.41 um), dl10178 T_amb 50 (19.9 um),
+  dl10178 T_col_back 104 (31 um): unflagged BASE 50 / 50 / 103 -> 0 / 0 / 0 (13.1 + 15.4 s);
+  streams dl9965 31 rows (2.72 um: a STEP_OUT hold at 4113 and the DRIFT_OUT after the stop 5696)
+  BASE 30 -> 0 unflagged, dl9967 33 (3.17 um) BASE 32 -> 0.  The other 6 healthy streams too:
+  BASE 13 / 13 / 21 / 20 / 20 / 0 -> 0 (healthy 8: 42.1 + 40.1 s; BASE 74.5 s for all 8).
+* B2 healthy 8 (46084 rows): flagged and not differing 131 rows (0.28 %; BASE 3): lr9964 19,
+  dl9964 19, lr9966 18, dl9966 18, dl9965 2, dl9967 34, lr9965 21 (its stop, the C takes nothing
+  out), lr9967 0.
+* B3 ``same``: 0 c rows and 0 (flag, rule, sensor) rows differing from BASE on the 3 windows and 8
+  streams (and fresh 6).
+* Fresh lr/dl 10189-10191 (scored once; tree 28.2 + 34.3 s, BASE 25.9 + 29.2 s): differing rows 21 /
+  32 / 23 / 23 / 3 / 3 (max 4.67 um), unflagged BASE 19 / 29 / 21 / 21 / 1 / 1 -> 0 on all; flagged
+  and not differing 12 / 12 / 0 / 0 / 39 / 40 = 103 of 34563 rows (0.30 %; BASE 4); B3 0 / 0.
+* B4: PARSED_DIGEST b4860421... (blark parsed the block: the 3 parse tests failed on the old digest
+  only, 200 s wall); test_export_st97d's new case fails on 4f56cd99 (unflagged rows after the stop)
+  and costs no measurable CPU (it reads the module's resumed pass; the module without / with it,
+  paired, 2 reps: 5.31 / 4.93 -> 4.94 / 4.90 s); the ST modules: see the report (st108b.md).
+
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``)::
 
     python benchmarks/bench_st108b.py window ROOT OUT RECORD SENSOR [SENSOR ...]
