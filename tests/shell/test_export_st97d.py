@@ -21,8 +21,9 @@ DRIFTED = "T_head_left"      # one the others predict (lr9132): its drift is the
 
 
 def _stop(v) -> tuple:
-    """``(mon_stop, mon_stop_row, mon_blind_lost)``."""
-    return bool(v["mon_stop"]), int(v["mon_stop_row"]), bool(v["mon_blind_lost"])
+    """``(mon_stop, mon_stop_row, mon_blind_lost, mon_unsure)`` (before st108b: no mon_unsure)."""
+    return (bool(v["mon_stop"]), int(v["mon_stop_row"]), bool(v["mon_blind_lost"]),
+            bool(v.get("mon_unsure", False)))
 
 
 def test_the_block_says_once_with_its_row_where_its_blind_out_judgement_ends(record):  # noqa: F811
@@ -32,8 +33,9 @@ def test_the_block_says_once_with_its_row_where_its_blind_out_judgement_ends(rec
     # block does not follow: its BLIND_OUT judgement ends on that row, and it says so there
     df, end = bumped(frame, DRIFTED)
     # healthy: the judgement never ends, nothing said
-    assert set(_stepped(ss, block, frame.iloc[:end + 1], _stop)[2]) == {(False, 0, False)}
+    assert set(_stepped(ss, block, frame.iloc[:end + 1], _stop)[2]) == {(False, 0, False, False)}
     st, st_said, stop, c, c_said = _stepped(ss, block, df.iloc[:end + 1], _stop)
+    stop = [s[:3] for s in stop]
     out = next(i for i, s in enumerate(c_said) if s[1])
     assert START < out <= end and c_said[out] == (EXCLUDED | OUT, DRIFT_OUT, k)
     assert np.max(np.abs(st[:out] - c[:out])) <= TOLERANCE_UM
@@ -42,3 +44,18 @@ def test_the_block_says_once_with_its_row_where_its_blind_out_judgement_ends(rec
     assert stop[out + 1:] == [(False, out + 1, True)] * (len(stop) - out - 1)    # once
     # the status is all it says there: no fault flagged on that row (the C's is not the block's)
     assert st_said[out] == (False, 0, -1)
+
+
+def test_the_block_flags_every_row_after_its_stop_where_the_c_rebuilds_what_it_reads(record):  # noqa: F811
+    """(st108b) From its stop the C holds the drifted sensor out and rebuilds it from the others,
+    where the block reads it as measured: ``mon_unsure`` on every row where the block differs from
+    the C (before st108b none was flagged), none before the stop (the same pass as above)."""
+    _, ss, frame, block = record
+    df, end = bumped(frame, DRIFTED)
+    st, st_said, stop, c, _ = _stepped(ss, block, df.iloc[:end + 1], _stop)
+    at = next(i for i, s in enumerate(stop) if s[0])
+    off = np.max(np.abs(st - c), axis=1) > TOLERANCE_UM
+    assert off[at:].sum() >= 10 and not off[:at].any()
+    flagged = np.array([said[0] or s[3] for said, s in zip(st_said, stop)])
+    assert flagged[off].all()
+    assert not any(s[3] for s in stop[:at])

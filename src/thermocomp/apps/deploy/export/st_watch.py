@@ -112,7 +112,12 @@ in that order, as the C's ``tc_state`` names the sample's first event.  (st97d) 
 TRUE on the one sample where the ``BLIND_OUT`` judgement ends for the campaign (the C's lone fault,
 veto or new thermal state, which the block does not follow), ``mon_stop_row`` that sample's
 number in the campaign (1 the first; 0 while it judges): said once, no fault flagged with it, so
-that the block's silence from there is not read as "healthy".  The counters that grow with the campaign
+that the block's silence from there is not read as "healthy".  (st108b) ``mon_unsure`` is TRUE on
+the rows where the block's number may differ from the C's because the C may hold out and rebuild a
+sensor the block reads: a ``STEP_OUT`` it holds, and, from its stop or a flag that ends its
+judgement (``mon_lost``), each row it flags or where a judged sensor's error with every sensor in
+is at its warning band, and ``2 MON_WINDOW`` rows after (the C's first wait); it only says so.
+The counters that grow with the campaign
 (``mon_count``, ``mon_stop_row``, ``mon_calm``, ``mon_run``, ``mon_quiet``, ``mon_jcalm``,
 ``mon_hsince``) are DINT: an INT wraps after 32767 samples (9 h at 1 s), and a wrapped count stops
 the judgement (``mon_count + 1 >= MON_CONFIRM``).
@@ -397,6 +402,7 @@ OUTPUTS = """    mon_flag : BOOL;
     mon_sensor : INT;
     mon_stop : BOOL;
     mon_stop_row : DINT;
+    mon_unsure : BOOL;
 """
 
 VARS = """    mon_last : ARRAY[{nm}] OF LREAL;
@@ -508,6 +514,7 @@ VARS = """    mon_last : ARRAY[{nm}] OF LREAL;
     mon_xk : INT;
     mon_xsi : LREAL;
     mon_xsk : LREAL;
+    mon_usince : DINT;
 """
 
 # before the refusal: the sample's monitored readings judged (the block's first == a campaign's)
@@ -522,6 +529,7 @@ mon_jk := -1;
 IF first THEN
     mon_count := 0;
     mon_stop_row := 0;
+    mon_usince := 2147483646;
     mon_t_known := FALSE;
     FOR j := 0 TO N_INPUTS - 1 DO
         mon_shift[j] := 0.0;
@@ -1444,6 +1452,32 @@ FOR mk := 0 TO MON_N - 1 DO
         mon_gap[mk] := mon_gap[mk] + 1.0;
     END_IF;
 END_FOR;
+(* (st108b) where the block no longer judges (its stop, or a flag that ends its judgement) *)
+(* the C may take out a sensor the block reads (DRIFT_OUT, its partner, BLIND_OUT, STEP_OUT, *)
+(* a jump's) and rebuild it: mon_unsure where the block flags or a judged sensor's error with *)
+(* every sensor in reaches its warning band, and the C's first wait after (2 MON_WINDOW) *)
+mon_unsure := FALSE;
+IF mon_stop_row > 0 OR mon_lost THEN
+    IF mon_flag THEN
+        mon_usince := 0;
+    END_IF;
+    FOR mk := 0 TO MON_N - 1 DO
+        mon_x := mon_e[mk];
+        IF mon_x < 0.0 THEN
+            mon_x := -mon_x;
+        END_IF;
+        IF MON_JUDGED[mk] = 1 AND mon_x >= MON_WARN[mk] THEN
+            mon_usince := 0;
+        END_IF;
+    END_FOR;
+    mon_unsure := mon_usince <= 2 * MON_WINDOW;
+    IF mon_usince < 2147483646 THEN
+        mon_usince := mon_usince + 1;
+    END_IF;
+END_IF;
+IF mon_held >= 0 AND mon_held_set < 0 AND NOT mon_lost THEN
+    mon_unsure := TRUE;    (* a STEP_OUT it holds: the C rebuilds the sensor, the block reads it *)
+END_IF;
 (* a campaign's sample count, held at DINT's top: never wraps back through 1 *)
 IF mon_count < 2147483646 THEN
     mon_count := mon_count + 1;
