@@ -65,7 +65,7 @@ def faults(cells: str, out: str, *chosen: str) -> None:
             link, held, _ = bench_dep108b.connected(data, model, rows, scratch / f"connect-{name}-{feed}")
             np.save(scratch / f"{name}-{feed}.npy", held)
             gaps = [e for e in link["events"] if e["event"] == "clock_gap"]
-            after = [e for e in gaps if e["sample"] + 1 >= CHANGE_ROW] if feed == "period10" else []
+            after = [e for e in gaps if e["sample"] + 2 >= CHANGE_ROW] if feed == "period10" else []
             told = [(e["to"], e["row"]) for e in link["events"] if e["event"] == "time"]
             print(f"{name} [{feed}] {len(rows)} rows: clock_gap {len(gaps)} (period10: at or after "
                   f"row {CHANGE_ROW}: {len(after)}), missed {link['samples_missed']}, samples "
