@@ -789,3 +789,34 @@ def test_the_time_nodes_stretches_are_said_per_campaign_five_times_at_most(caplo
     assert file_said(pd.DataFrame({"time": times}))[0] == said[0][:2]
     warned = [r.getMessage() for r in caplog.records if r.getMessage().startswith("time: ")]
     assert len(warned) == 5 and warned[-1].endswith("(no more said)")
+
+
+def test_the_server_clocks_steps_are_read_against_the_watchs_period():
+    """(dep108e) Offline, the server's clock at 60 s: after a change to 600 s (row 21) no
+    `clock_gap` and no sample counted missed (before: one at each 600 s step, 9 missed each); a
+    stretch of 3 periods, and one of an hour and a period (a UTC clock: no daylight saving time),
+    each one `clock_gap` at the sample after it, its `row` the `time` event's, its periods missed."""
+    from datetime import datetime, timedelta, timezone
+
+    from conftest import offline_connection
+    from thermocomp.apps.machine.client import _Plan
+
+    epoch = datetime(2026, 3, 2, 6, 0, tzinfo=timezone.utc)
+    plan = _Plan(inputs=[object(), None], labels=["T_a", "time"], status={}, clock=object(),
+                 offsets=[], types=[], answered=None, watched=[], registers=np.zeros(0))
+
+    def run(times):
+        conn = offline_connection(clock="server", period_s=60.0)
+        for s in times:
+            got = conn._sample(plan, [ua.DataValue(ua.Variant(20.0, ua.VariantType.Float)),
+                                      ua.DataValue(ua.Variant(epoch + timedelta(seconds=float(s))))])
+            if got is not None:
+                conn._step(*got)
+        gaps = [(e["sample"], e.get("row")) for e in conn.events if e["event"] == "clock_gap"]
+        return gaps, time_said({"events": conn.events}), conn.missed
+
+    head = list(np.arange(20) * 60.0)
+    assert run(head + list(19 * 60.0 + 600.0 * np.arange(1, 31))) == ([], [("period changed", 21)], 0)
+    for step, missed in ((180.0, 2), (3660.0, 60)):
+        assert run(head + list(19 * 60.0 + step + np.arange(20) * 60.0)) == (
+            [(19, 21)], [("rows missing", 21)], missed)

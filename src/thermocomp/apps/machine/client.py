@@ -187,7 +187,7 @@ class Connection:
         self._paused = None          # the pause (s) the next step starts a campaign after
         # (dep108b) the running campaign's time read as the file reader reads it (rates.StepWatch:
         # the served model's and stream.c's rule), the rows read in it and the last ones' times
-        self._watch, self._rows, self._recent = StepWatch(), 0, deque(maxlen=SETTLED + 2)
+        self._watch, self._rows, self._recent = self._new_watch(), 0, deque(maxlen=SETTLED + 2)
         # (dep108e) a long step of the server's clock the watch has yet to call a gap (the next
         # step short again) or part of a new period: (its data row, the sample before, its s,
         # its steps, the period they count)
@@ -477,6 +477,11 @@ class Connection:
         self._at += step
         return step
 
+    def _new_watch(self) -> StepWatch:
+        """A campaign's watch; (dep108e) on the server's clock (UTC: no daylight saving time) a
+        step of an hour and a period is a stretch without samples, as ``clock_gap`` said it."""
+        return StepWatch(hour_steps=self.clock != "server")
+
     def _clock_period(self) -> float | None:
         """(dep108e) The period a step of the stream's time is read against: the one the
         campaign's watch has settled on (its first steps', the new one after a period change),
@@ -549,7 +554,7 @@ class Connection:
             # joined mid-way (i > 0) by a new process: rate-limited from what the machine holds
             self.limiter.new_campaign(self._kept if i > 0 and not self.limiter.started else None)
             self._campaign, self._time = cid, math.nan
-            self._watch, self._rows, self._owed = StepWatch(), 0, None
+            self._watch, self._rows, self._owed = self._new_watch(), 0, None
             # a campaign that continues others comes after their rows (twin: its samples < 0)
             ahead = (f" ({-i} sample(s) of the campaign(s) it continues first, unscored)"
                      if i < 0 else "")
