@@ -28,6 +28,23 @@ C. every feed, both cells: the offsets the machine held = BASE's (the same bench
    to 1e-12 um.
 The test added fails on 560e4f78, passes here, <= ~2 s CPU (test_opcua67's fixtures).
 KEPT where E, G, H, C hold; else REFUSED (src reverted, the rule kept as dep108e_rule.patch).
+
+Harness after the bar (no rule, no figure chosen): the "at or after row 202" count is of the
+events whose sample before + 2 >= 202 (the step into data row 202 counts; BASE's run printed it
+with + 1: 123 of its 124, all 124 from row 202 on).
+
+Scored once (2026-12-07 ~15:42-15:58 UTC, 2 cores shared, ``nice``; 560e4f78's src and conf
+extracted apart, then this tree at 6fe0fa3f, same command, OUT apart; ``compare`` of the two)::
+
+  E  period10, both cells: clock_gap 124 -> 0, samples_missed 1116 -> 0 (325 samples both);
+     time events [(period changed, 202)] both, = the file reader's: holds
+  G  gap, both cells: one clock_gap, 600 s = 6 periods of 100 s, 5 counted missed, sample before
+     299 (BASE the same, no row), now row 301 = the file reader's "before data row 301"; time
+     event (rows missing, 301) both; samples_missed 5 both: holds
+  H  healthy, both cells: no clock_gap, no time event, 0 missed (both): holds
+  C  offsets held, 6 runs x 6 targets (325 to 1441 rows): = BASE's exactly (max 0 um): holds
+CPU (user + sys, /usr/bin/time): faults 43.3 + 2.9 s (BASE), 32.8 + 1.8 s (this tree).
+Verdict: KEPT.
 """
 
 from __future__ import annotations
