@@ -553,6 +553,7 @@ def test_a_server_clock_gone_on_hours_is_kept_as_a_files_gap_and_said(fitted, tm
     written_as(np.vstack(machine.served.offsets), corrections(data, pkl, as_published(frames)))
     gaps = [e for e in link["events"] if e["event"] == "clock_gap"]
     assert [e["sample"] for e in gaps] == [19, ROWS + 29]     # each after its last sample before
+    assert [e["row"] for e in gaps] == [21, 31]       # (dep108e) the data row after it, the reader's
     assert f"{pause + period:g} s" in gaps[0]["detail"] and "pause" in gaps[0]["detail"]
     # (connect71) this server's clock runs ~1000 times the client's: a set not told, said
     assert "times the client's" in gaps[0]["detail"] and "not told" in gaps[0]["detail"]
@@ -598,7 +599,8 @@ def test_a_period_change_is_said_at_the_files_row_and_the_offsets_go_on(fitted, 
     rate): connect says it as the file reader says it of the same rows, naming data row 21, in a
     warning and a `time` event (`period changed`, the served model's); P06 (healthy) nothing; the
     offsets replay's corrections.  Before, it said a `clock_gap` of 9 samples missed at each 600 s
-    step and no period change."""
+    step and no period change; (dep108e) before that stop, with the change said, still a
+    `clock_gap` at each step after it (30 events, 270 samples counted missed): now none, 0 missed."""
     data, pkl = fitted
     frames = programs(data)
     frames["P05.MPF"].loc[20:, "time"] = 19 * 60.0 + 600.0 * np.arange(1, ROWS - 19)
@@ -607,6 +609,8 @@ def test_a_period_change_is_said_at_the_files_row_and_the_offsets_go_on(fitted, 
     assert code == 0 and all(machine.served.answered)
     assert time_said(link) == [("period changed", 21)] == file_said(frames["P05.MPF"])
     assert file_said(frames["P06.MPF"]) == []
+    assert [e for e in link["events"] if e["event"] == "clock_gap"] == []
+    assert link["samples_missed"] == 0 and link["samples"] == 2 * ROWS
     detail = next(e["detail"] for e in link["events"] if e["event"] == "time")
     assert "campaign P05.MPF" in detail and "from 60 s to 600 s" in detail
     np.testing.assert_allclose(np.vstack(machine.served.offsets),
@@ -785,3 +789,34 @@ def test_the_time_nodes_stretches_are_said_per_campaign_five_times_at_most(caplo
     assert file_said(pd.DataFrame({"time": times}))[0] == said[0][:2]
     warned = [r.getMessage() for r in caplog.records if r.getMessage().startswith("time: ")]
     assert len(warned) == 5 and warned[-1].endswith("(no more said)")
+
+
+def test_the_server_clocks_steps_are_read_against_the_watchs_period():
+    """(dep108e) Offline, the server's clock at 60 s: after a change to 600 s (row 21) no
+    `clock_gap` and no sample counted missed (before: one at each 600 s step, 9 missed each); a
+    stretch of 3 periods, and one of an hour and a period (a UTC clock: no daylight saving time),
+    each one `clock_gap` at the sample after it, its `row` the `time` event's, its periods missed."""
+    from datetime import datetime, timedelta, timezone
+
+    from conftest import offline_connection
+    from thermocomp.apps.machine.client import _Plan
+
+    epoch = datetime(2026, 3, 2, 6, 0, tzinfo=timezone.utc)
+    plan = _Plan(inputs=[object(), None], labels=["T_a", "time"], status={}, clock=object(),
+                 offsets=[], types=[], answered=None, watched=[], registers=np.zeros(0))
+
+    def run(times):
+        conn = offline_connection(clock="server", period_s=60.0)
+        for s in times:
+            got = conn._sample(plan, [ua.DataValue(ua.Variant(20.0, ua.VariantType.Float)),
+                                      ua.DataValue(ua.Variant(epoch + timedelta(seconds=float(s))))])
+            if got is not None:
+                conn._step(*got)
+        gaps = [(e["sample"], e.get("row")) for e in conn.events if e["event"] == "clock_gap"]
+        return gaps, time_said({"events": conn.events}), conn.missed
+
+    head = list(np.arange(20) * 60.0)
+    assert run(head + list(19 * 60.0 + 600.0 * np.arange(1, 31))) == ([], [("period changed", 21)], 0)
+    for step, missed in ((180.0, 2), (3660.0, 60)):
+        assert run(head + list(19 * 60.0 + step + np.arange(20) * 60.0)) == (
+            [(19, 21)], [("rows missing", 21)], missed)

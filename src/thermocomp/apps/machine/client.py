@@ -187,7 +187,11 @@ class Connection:
         self._paused = None          # the pause (s) the next step starts a campaign after
         # (dep108b) the running campaign's time read as the file reader reads it (rates.StepWatch:
         # the served model's and stream.c's rule), the rows read in it and the last ones' times
-        self._watch, self._rows, self._recent = StepWatch(), 0, deque(maxlen=SETTLED + 2)
+        self._watch, self._rows, self._recent = self._new_watch(), 0, deque(maxlen=SETTLED + 2)
+        # (dep108e) a long step of the server's clock the watch has yet to call a gap (the next
+        # step short again) or part of a new period: (its data row, the sample before, its s,
+        # its steps, the period they count)
+        self._owed = None
 
     def _event(self, kind: str, detail: str, level: int = logging.INFO, **extra) -> None:
         e = {"wall_s": round(clock_now() - self._start, 3), "sample": self._last,
@@ -387,8 +391,9 @@ class Connection:
         if (self.pause_s and not new and self._at is not None and math.isfinite(at)
                 and at - self._at > self.pause_s):
             self._paused, new = at - self._at, True      # (dep106b) a campaign from here
-        steps = (1 if self._at is None or new or not self.period_s
-                 else max(1, round((at - self._at) / self.period_s)))
+        period = self._clock_period()
+        steps = (1 if self._at is None or new or not period
+                 else max(1, round((at - self._at) / period)))
         if "sample" in value:
             k = int(value["sample"]) if value["sample"] is not None else -1
             if k <= self._last:
@@ -472,6 +477,17 @@ class Connection:
         self._at += step
         return step
 
+    def _new_watch(self) -> StepWatch:
+        """A campaign's watch; (dep108e) on the server's clock (UTC: no daylight saving time) a
+        step of an hour and a period is a stretch without samples, as ``clock_gap`` said it."""
+        return StepWatch(hour_steps=self.clock != "server")
+
+    def _clock_period(self) -> float | None:
+        """(dep108e) The period a step of the stream's time is read against: the one the
+        campaign's watch has settled on (its first steps', the new one after a period change),
+        ``connect.period_s`` before it has one."""
+        return self._watch.period if math.isfinite(self._watch.period) else self.period_s
+
     def _clock_gap(self, gap: float, steps: int) -> int:
         """(opcleft67) A step of the server's clock of :data:`~...core.io.rates.GAP_PERIODS`
         periods or more since the last sample is kept in the stream's time, as ``replay`` and
@@ -479,10 +495,25 @@ class Connection:
         (``clock_gap``) as the file reader says it: up to :data:`~...core.io.timestamps.PAUSE_PERIODS`
         periods a stretch without samples (a link or the server down: counted missed), beyond
         them a pause (the machine off, or its clock set forward: no sample was published that
-        the client did not see, none counted).  The samples the step spans (``steps``), or 1."""
-        if gap < GAP_PERIODS * self.period_s:
+        the client did not see, none counted).  The samples the step spans (``steps``), or 1.
+        (dep108e) The periods are the watch's (:meth:`_clock_period`); once it has one, a
+        stretch is the watch's: said and counted when the next step is short again (its
+        ``gap``), not where the steps go on long (a new period, said once as a ``time`` event;
+        before, every step after a change was a gap of the old period's)."""
+        period = self._clock_period()
+        if gap < GAP_PERIODS * period:
             return steps
-        paused = gap > PAUSE_PERIODS * self.period_s
+        paused = gap > PAUSE_PERIODS * period
+        if not paused and math.isfinite(self._watch.period):
+            self._owed = (self._rows, self._last, gap, steps, period)
+            return 1
+        self._said_gap(gap, steps, period, paused, self._last, self._rows + 1)
+        return 1 if paused else steps
+
+    def _said_gap(self, gap: float, steps: int, period: float, paused: bool, before: int,
+                  row: int) -> None:
+        """The ``clock_gap`` event of a step of ``gap`` s (``steps`` periods of ``period`` s)
+        after sample ``before``, the first sample after it the campaign's data ``row``."""
         why_not = self.own.why_not()    # '': the client's clock went on as much (connect71)
         what = (f"more than {PAUSE_PERIODS} periods: a pause (the machine off?) or its clock set "
                 "forward, no sample counted missed" if paused and why_not else
@@ -490,11 +521,10 @@ class Connection:
                 "the machine off, not its clock set), no sample counted missed" if paused else
                 f"a stretch without samples ({steps - 1} counted missed)")
         what += f" ({why_not})" if why_not else ""
-        self._event("clock_gap", f"the server's clock went on {gap:g} s ({gap / self.period_s:.4g} "
-                    f"periods of {self.period_s:g} s) since the last sample, {what}: the stream's "
+        self._event("clock_gap", f"the server's clock went on {gap:g} s ({gap / period:.4g} "
+                    f"periods of {period:g} s) since the last sample, {what}: the stream's "
                     "time keeps the step, as replay reads a file's (a lag model steps over it)",
-                    logging.WARNING)
-        return 1 if paused else steps
+                    logging.WARNING, sample=before, row=row)
 
     def _reading(self, label: str, dv) -> float:
         """A node's value as a number; NaN unless its StatusCode is Good."""
@@ -524,7 +554,7 @@ class Connection:
             # joined mid-way (i > 0) by a new process: rate-limited from what the machine holds
             self.limiter.new_campaign(self._kept if i > 0 and not self.limiter.started else None)
             self._campaign, self._time = cid, math.nan
-            self._watch, self._rows = StepWatch(), 0
+            self._watch, self._rows, self._owed = self._new_watch(), 0, None
             # a campaign that continues others comes after their rows (twin: its samples < 0)
             ahead = (f" ({-i} sample(s) of the campaign(s) it continues first, unscored)"
                      if i < 0 else "")
@@ -579,7 +609,8 @@ class Connection:
         the server's clock); an event ``time`` each (its ``to`` the served model's), a warning
         the first :data:`~...core.io.rates.SAID_AT_MOST` of each kind.  The offsets as they are.
         It said neither (a period change, on the server's clock: a ``clock_gap`` at every sample
-        after it; on a ``time`` node nothing)."""
+        after it; on a ``time`` node nothing).  (dep108e) On the server's clock its finding of a
+        gap is the one a ``clock_gap`` waits for once the watch has a period (:meth:`_clock_gap`)."""
         self._recent.append((self._rows, t))
         for kind, at, was, now in self._watch.read(float(t), self._rows):
             said = self._watch.said[kind] = self._watch.said.get(kind, 0) + 1
@@ -589,7 +620,21 @@ class Connection:
                         + (" (no more said)" if said == SAID_AT_MOST else ""),
                         logging.WARNING if said <= SAID_AT_MOST else logging.DEBUG,
                         sensor=TIME, to=FOUND[kind], time=when, row=at + 1)
+            if kind == "gap" and self._owed is not None and self._owed[0] == at:
+                self._gap_owed()
+        if self._owed is not None and self._owed[0] < self._rows:
+            self._owed = None        # (dep108e) the watch read the step on as a new period's
         self._rows += 1
+
+    def _gap_owed(self) -> None:
+        """(dep108e) The long step the watch calls a gap: said (``clock_gap``, the sample before
+        it and the data row after it, as the file reader names it) and its samples counted
+        missed; the samples' count goes on from the server's clock, as when it was said at once."""
+        row, before, gap, steps, period = self._owed
+        self._owed = None
+        self._said_gap(gap, steps, period, False, before, row + 1)
+        self.missed += steps - 1
+        self._last += steps - 1
 
     def _clock_time(self, given: float) -> float:
         """The last sample's time on the compensator's clock (its time rule's: the adaptive's,

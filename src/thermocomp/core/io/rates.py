@@ -110,10 +110,12 @@ class StepWatch:
     from there); rows are missing where one step lies :data:`GAP_PERIODS` to :data:`PAUSE_PERIODS`
     periods long (not an hour and a period: daylight saving time) and the next is shorter than
     :data:`GAP_PERIODS` again (a run of long steps is a new rate, not a gap).  It says; it
-    changes no correction."""
+    changes no correction.  (dep108e) ``hour_steps=False``: a clock without daylight saving time
+    (an OPC UA server's, UTC): a step of an hour and a period is rows missing too."""
 
-    def __init__(self) -> None:
+    def __init__(self, hour_steps: bool = True) -> None:
         self.last, self.period = float("nan"), float("nan")
+        self.hour_steps = hour_steps
         self.steps: list[tuple[int, float]] = []      # (row, step): the first, then the last ones
         self.gap: tuple[int, float] | None = None     # a long step waiting for the next
         self.said: dict[str, int] = {}                # (the caller's count of what it said)
@@ -135,7 +137,8 @@ class StepWatch:
         if self.gap is not None and step < GAP_PERIODS * period:
             found.append(("gap", *self.gap, period))
         long = GAP_PERIODS * period <= step <= PAUSE_PERIODS * period
-        self.gap = (row, step) if long and abs(step - 3600.0 - period) > period / 2 else None
+        dst = self.hour_steps and abs(step - 3600.0 - period) <= period / 2
+        self.gap = (row, step) if long and not dst else None
         self.steps = self.steps[-SETTLED:]
         for changed in ([rs for rs in self.steps if rs[1] >= RATE_CHANGE * period],
                         [rs for rs in self.steps if rs[1] <= period / RATE_CHANGE]):
