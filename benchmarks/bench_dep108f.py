@@ -1,0 +1,63 @@
+"""The C references a monitored sensor late where it reads in range again, as replay does
+(dep108f, issue 34 "deployed as scored").
+
+Usage (from the repository root, ``PYTHONPATH=<tree>/src``)::
+
+    python benchmarks/bench_dep108f.py score ROOT DATA COLUMN PUSH MODE BASESRC
+    python benchmarks/bench_dep108f.py healthy ROOT BASESRC RECORD [RECORD ...]
+
+Both are bench_dep108's commands unchanged (its MODE ``back``: +PUSH on rows ``0 .. n // 3 - 1``
+of each test campaign of ``n`` rows, read as recorded from row ``n // 3``, the return).
+
+TRACE (BASE = 560e4f78, bench_dep108's root: diag107's room, the chain's ``ambient_scaled``
+model; T_amb +30 on rows 0-39 of each of the 4 test campaigns, 120 rows each).  BASE's C is
+0.0637 um off replay after row 40 and flags ``TC_MON_NOT_IN_CODE`` (RANGE) at row 40.  Replay's
+monitor (surveillance/faults.py ``_reference_late``) on row 40 of campaign C03: T_amb had no
+reference (``_ref`` NaN: out of range at the first sample), so it reads as no finite value
+(``_instant``: a dropout's detector, calm 0; it is out already, OFF_RANGE) until, after the
+row's prediction from the others (``_errors``, T_amb out), it is referenced late: T_amb is
+predictable and its prediction finite, so its change is taken as the field's,
+``d = pred = -0.00212 degC``, ``_ref = x - pred = 19.4244 degC`` (x = 19.4223), the row's
+window entry ``d``, its error 0 (else, unpredictable: ``d`` = its last clean value, error NaN).
+It stays out and is re-admitted by the ordinary rule at row 50 (within 0.2 degC for 10
+samples).  BASE's C kept its reference at row 0's reading (49.x degC), so from row 40 T_amb
+read about -30 degC off the field, was never re-admitted and stayed rebuilt from the others.
+The model's ``_base`` (the served stand-in ``first_c``) is unchanged for a model of changes.
+
+RULE (watch_c.py, watch.py in step; served unchanged).  A sensor beyond range since the first
+sample (``late``) that reads in range again: ``d`` NaN on that row before the reference (no
+finite value; its detector as a dropout's: calm 0, no spike's return tried on that row), then
+after the row's prediction: ``d = pred`` (predictable, finite) else its last clean value,
+``ref = x - d``, the window's row and error as served; no flag.  The ST is not changed.
+
+BAR (committed before fresh 10195-10197 are drawn; not moved after).  BASE = 560e4f78's src
+(``git archive``), RULE = this branch's.
+* F1 seen: bench_dep108 root, T_amb ``back`` +30: RULE |C - replay| <= 1e-9 um on every one of
+  the 480 rows (BASE 0.0637 um), 0 rows flagged ``mon_not_in_code``; JSON = C to 1e-9 um.
+* F2 fresh 10195, 10196, 10197 (each ``bench_st107b.py simulate DATA SEED room`` once, then
+  ``bench_diag107b.py chain``), T_amb ``back`` +30, the return at row n // 3 of each test campaign
+  (named now): as F1 on every row; scored once.
+* F3 no other case changed: the seen root's ``all`` +30, ``step`` +30, ``ramp`` +10, ``step`` +5
+  C stdout (``--flags``) identical to BASE's; the 13 healthy records of bench_dep108 (lr/dl
+  9964-9967, dl9975 lr9985 dl10007 lr10007 lr10008) byte-identical.
+* F4 a test (<= ~2 s CPU, test_export_lean107b's room fixture) that fails on BASE; the
+  neighbours of watch.py / watch_c.py pass.  A clause not measured by 16:20 UTC is not met.
+* KEPT where F1-F4 hold; else REFUSED (src at BASE, the rule in benchmarks/dep108f_rule.patch).
+"""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _cli import run_commands  # noqa: E402
+from bench_dep108 import healthy, score  # noqa: E402
+
+
+def main(argv: list[str]) -> int:
+    return run_commands(__doc__, {"score": score, "healthy": healthy}, argv, cpu=sys.stderr)
+
+
+if __name__ == "__main__":
+    raise SystemExit(main(sys.argv[1:]))
