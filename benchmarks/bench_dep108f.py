@@ -43,6 +43,24 @@ BAR (committed before fresh 10195-10197 are drawn; not moved after).  BASE = 560
 * F4 a test (<= ~2 s CPU, test_export_lean107b's room fixture) that fails on BASE; the
   neighbours of watch.py / watch_c.py pass.  A clause not measured by 16:20 UTC is not met.
 * KEPT where F1-F4 hold; else REFUSED (src at BASE, the rule in benchmarks/dep108f_rule.patch).
+
+SCORED (2026-12-07, the bar ba9682a2 unchanged; BASE /tmp/dep108f/basesrc = ``git archive
+560e4f78 src``; CPU user + sys of the bench with its children, ``/usr/bin/time``):
+* F1 met.  BASE 0.0637 um, 4 flag rows (row 40 of each campaign); RULE 7.1e-15 um on all 480
+  rows, 0 flag rows; |JSON - C| 7.1e-15 um.  8.8 + 0.9 s CPU.
+* F2 met.  Fresh 10195 / 10196 / 10197 simulated once (room) and chained (diagnose took a lean
+  law on E_X and E_Z / E_Z only / E_X and E_Z); returns at rows 166 161 198 182 / 180 169 178 165
+  / 190 175 164 187.  BASE 1.41 / 0.0832 / 0.0442 um, a flag at each return; RULE 2.1e-14 /
+  2.1e-14 / 2.1e-14 um on 2125 / 2079 / 2151 rows, 0 flag rows; |JSON - C| <= 2.1e-14 um.
+* F3 met.  Seen ``all`` +30, ``step`` +30, ``ramp`` +10, ``step`` +5: C stdout identical to
+  BASE's (~10.5 s CPU each).  The 13 healthy records: C stdout byte-identical on each, none
+  beyond range at the first sample (81.5 + 6.8 s CPU).
+* F4: test_export_lean107b's dep108 test now asserts it (fails on BASE: 0.047 um); paired CPU of
+  that test, old vs new body, 2 reps: 5.60 / 5.32 vs 5.09 / 5.18 s (no cost measured).
+* The ST (not changed) on the seen ``back`` case, this tree's export: it flags RANGE on T_amb and
+  refuses rows 0-39; from the return on it neither flags, refuses nor says ``mon_unsure`` yet is
+  up to 7.97 / 4.28 / 6.11 / 4.25 um off the C on every row (320 rows): its A0 and reference stay
+  the out-of-range first reading.  Left for an ST task.
 """
 
 from __future__ import annotations
