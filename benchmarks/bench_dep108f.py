@@ -59,8 +59,9 @@ SCORED (2026-12-07, the bar ba9682a2 unchanged; BASE /tmp/dep108f/basesrc = ``gi
   that test, old vs new body, 2 reps: 5.60 / 5.32 vs 5.09 / 5.18 s (no cost measured).
 * The ST (not changed) on the seen ``back`` case, this tree's export: it flags RANGE on T_amb and
   refuses rows 0-39; from the return on it neither flags, refuses nor says ``mon_unsure`` yet is
-  up to 7.97 / 4.28 / 6.11 / 4.25 um off the C on every row (320 rows): its A0 and reference stay
-  the out-of-range first reading.  Left for an ST task.
+  up to 7.97 / 4.28 / 6.11 / 4.25 um off the C on every row (320 rows); the same with BASE (the
+  ST is unchanged; BASE's C was 0.064 um from this C).  Cause not traced (the block's A0 or
+  reference of T_amb from the out-of-range first reading, likely).  Left for an ST task.
 """
 
 from __future__ import annotations
