@@ -655,6 +655,19 @@ class CodeMonitor:
         (``SensorMonitor._judging``): a ``warn_only`` one's is warned (its band), not acted on."""
         return self._set()[3] & ~self.warn_only
 
+    def _referenced_late(self, x, d, pred, e, back, pos):
+        """(dep108f) The served late reference of the sensors ``back`` in range (beyond it since
+        the first sample): each agrees with the field where the others predict it, else goes on
+        from the value the model was given; ``d`` and the window's row ``pos`` changed in place."""
+        e = e.copy()
+        for j in np.flatnonzero(back):
+            by_field = bool(self.predictable[j] and np.isfinite(pred[j]))
+            d[j] = self.hist[pos, j] = pred[j] if by_field else self.clean[j]
+            self.ref[j] = x[j] - d[j]
+            e[j] = 0.0 if by_field else np.nan
+        self.late &= ~back
+        return self._errors(d)[0], e
+
     def _errors(self, d):
         """``(pred, error)`` of the sample ``d`` under the active set, read only (ci101b: kept
         for the last ``d`` and set; a sample asks again with neither changed)."""
@@ -927,12 +940,13 @@ class CodeMonitor:
             if (rng & ~self.late).any():   # not in the code: the served monitor references it late
                 self._flag(NOT_IN_CODE, int(np.argmax(rng)), RANGE)
             self.ref, self.base, self.ref0 = x.copy(), np.where(self.late, a["first_c"], x), x.copy()
-        elif self.late.any():
-            back = self.late & ~missing & ~rng   # in range again: the served reference made late,
-            for j in np.flatnonzero(back):        # not in the code
-                self._flag(NOT_IN_CODE, int(j), RANGE)
-            self.late &= ~back
+        # (dep108f) in range again: no reference yet (served: NaN), read as no finite value until
+        # referenced late (below)
+        back = self.late & ~missing & ~rng if not first and self.late.any() else None
+        back = back if back is not None and back.any() else None
         d = x - self.ref
+        if back is not None:
+            d[back] = np.nan
         # a gap in time: each step judged as that many one-sample steps, and a sensor's own
         # missing samples since its last reading too (the served monitor's gap per sensor)
         gap = np.maximum(self.gap, max(1.0, dt / a["period"])) if (
@@ -957,7 +971,7 @@ class CodeMonitor:
         big = (np.abs(step) > a["jump_lim"] * gap) & ~rng
         same = step == 0
         jumped = -1
-        instant = missing | rng
+        instant = missing | rng if back is None else missing | rng | back   # (served: a dropout's)
         if big.sum() >= a["common_min"]:
             big = self._common_step(d, step, big, pos)
         was_in = self._in()
@@ -990,7 +1004,8 @@ class CodeMonitor:
         elif big.any():
             j = int(np.argmax(big))
             active = self._active()
-            if not active[j] and a["spike"] and not gone.any() and self._spike_back(j, x, d):
+            if (not active[j] and a["spike"] and not gone.any() and back is None
+                    and self._spike_back(j, x, d)):
                 self._readmit(j, SPIKE)
             elif active[j] and not (self._second_taken(j, JUMP) if self.out >= 0
                                   else self.ported[j] or self.spikes[j]):
@@ -1019,6 +1034,8 @@ class CodeMonitor:
             instant[jumped] = True
         self.calm[instant] = 0
         pred, e = self._errors(d)
+        if back is not None:
+            pred, e = self._referenced_late(x, d, pred, e, back, pos)
         self.err[pos] = e
         self._judge_memo = None          # (the window's errors changed in place)
         self.froze[instant] = False      # another detector fired on it: out for that now

@@ -1345,7 +1345,7 @@ static void mon_sample(tc_state *s, double u[], double dt) {
     int a[NM], o[NM], jd[NM], big[NM], same[NM], instant[NM], rng[NM], missing[NM];
     double scale[NM];
     int k, pos, nbig = 0, jumped = -1, lost = -1, far = -1, nrng = 0;
-    int gone[NM], was_in[NM], fresh[NM];
+    int gone[NM], was_in[NM], fresh[NM], late[NM], nlate = 0;
     if (s->first) {
         s->mon_nout = 0;
         s->mon_pos = s->mon_count = 0;
@@ -1389,11 +1389,12 @@ static void mon_sample(tc_state *s, double u[], double dt) {
                 mon_flag(s, TC_MON_NOT_IN_CODE, k, TC_MON_RANGE);
             s->mon_ref[k] = s->mon_ref0[k] = x[k];
             s->mon_base[k] = s->mon_late[k] ? MON_FIRST_C[k] : x[k];
-        } else if (s->mon_late[k] && !missing[k] && !rng[k]) {   /* in range again: the served */
-            mon_flag(s, TC_MON_NOT_IN_CODE, k, TC_MON_RANGE);     /* reference made late, not */
-            s->mon_late[k] = 0;                                    /* in the code */
         }
-        d[k] = x[k] - s->mon_ref[k];
+        /* (dep108f) in range again: no reference yet (served: NaN), read as no finite value
+           until referenced late below */
+        late[k] = !s->first && s->mon_late[k] && !missing[k] && !rng[k];
+        nlate += late[k];
+        d[k] = late[k] ? NAN : x[k] - s->mon_ref[k];
     }
     /* a gap in time: the step judged as that many one-sample steps, and a sensor's own
        missing samples since its last reading too */
@@ -1429,7 +1430,7 @@ static void mon_sample(tc_state *s, double u[], double dt) {
         step[k] = d[k] - s->mon_prev[k];
         big[k] = fabs(step[k]) > MON_JUMP_LIM[k] * gap[k] && !rng[k];
         same[k] = step[k] == 0.0;
-        instant[k] = gone[k];
+        instant[k] = gone[k] || late[k];   /* (dep108f: served, a dropout's detector) */
         nbig += big[k];
     }
     if (nbig >= MON_COMMON_MIN) {   /* (cmon80) a common step re-referenced */
@@ -1471,7 +1472,7 @@ static void mon_sample(tc_state *s, double u[], double dt) {
         else if (s->mon_count == 2) mon_flag(s, TC_MON_NOT_IN_CODE, k, TC_MON_GLITCH);
         else {
             mon_set(s, a, o, jd, scale);
-            if (lost < 0 && far < 0 && mon_spike_back(s, k, x, d, pred, a)) {   /* (mon89) */
+            if (lost < 0 && far < 0 && !nlate && mon_spike_back(s, k, x, d, pred, a)) {   /* (mon89) */
                 d[k] = x[k] - s->mon_ref[k];
                 mon_readmit(s, k, TC_MON_SPIKE);
             }
@@ -1506,6 +1507,16 @@ static void mon_sample(tc_state *s, double u[], double dt) {
         s->mon_calm[k] = instant[k] ? 0 : s->mon_calm[k] + 1;
     }
     mon_errors(s, d, pred, e);
+    for (k = 0; k < NM && nlate; k++) {   /* (dep108f) the served late reference: the reading
+                                             agrees with the field where the others predict it,
+                                             else goes on from the value the model was given */
+        int by_field = late[k] && MON_PREDICTABLE[k] && isfinite(pred[k]);
+        if (!late[k]) continue;
+        d[k] = s->mon_hist[pos][k] = by_field ? pred[k] : s->mon_clean[k];
+        s->mon_ref[k] = x[k] - d[k];
+        e[k] = by_field ? 0.0 : NAN;
+        s->mon_late[k] = 0;
+    }
     for (k = 0; k < NM; k++) s->mon_err[pos][k] = e[k];
     /* freeze: constant while the field (its prediction from the others) moved by the band */
     mon_set(s, a, o, jd, scale);
