@@ -24,6 +24,35 @@ back + 60):
 * st103b: seen lr/dl 9964-9967 (windows), fresh lr/dl 9983-9985.
 * st105 healthy: lr/dl 9964-9967, streams whole (bench_st108b ``stream``).
 
+MEASURED (2026-12-07, 2 cores shared; BASE = 560e4f78's src; records: st108b's root copied
+(data and reports), st103b's fresh lr/dl 9983, 9984 and dl9985 made here by their MADE_BY words;
+CPU user + sys as each command prints it).  VERDICT TRACED: the windows are all flagged; one class
+is left, outside every set above, on a gated record's stream.
+
+* BASE, ``sets`` (seen 129.3 s, the rest 114.7 s), rows > 1e-9 um off the C and flagged by nothing:
+  st107 seen 0 of 1928 differing (15 of 16 records scored, gate: lr10014; 89 windows, 9879 rows);
+  st107 fresh 0 of 704 (4 of 6, gate: lr10128 dl10128; 24 windows); st103b seen 0 of 698 (5 of 8,
+  gate: lr9965 dl9965 dl9967; 31 windows); st103b fresh 0 of 761 (4 of 6, gate: dl9983 dl9984;
+  23 windows); st106's 18 events lie in the st107 seen windows (st106's records): 0 of 1179 on its
+  9 records.  Flagged where the ST equals the C (fault windows, no bar): 1487 / 524 / 463 / 745.
+* BASE, st105's 8 healthy streams (bench_st108b ``stream``, 62.2 s): 0 unflagged; flagged and not
+  differing 131 of 46084 rows (0.28 %), as st108b measured.
+* The gated records' streams (no fault; ``stream`` lr10014 lr10128 dl10128 dl9983 dl9984, 39.2 s):
+  0 unflagged except dl9984: 5 rows 3302-3306 (0.098 .. 0.244 um).  The class: the block holds
+  T_bed (k 2) out by its own ``STEP_OUT`` from 3297 (``mon_unsure`` on), and at 3302 its hold ends
+  by its loss (``mon_lost``, no flag on that row, the held reading standing still: st_watch's
+  ``MON_FREEZE_RUN`` clause), while the C keeps it out to its ``BACK`` at 3307.
+* A rule (benchmarks/st108c_rule.patch, on 560e4f78): each ``STEP_OUT`` hold row restarts
+  ``mon_usince`` and it counts every row, so a hold the block drops by its loss stays unsure for
+  ``2 MON_WINDOW`` rows.  Scored (built on dl9984; no fresh record): dl9984 5 -> 0 unflagged (20
+  rows more flagged); healthy 8 flagged-not-differing 131 -> 140 of 46084 (0.30 %; dl9967 +9);
+  130 windows and 13 streams: c and (flag, rule, sensor) byte-identical to BASE, ``mon_unsure``
+  only added; PARSED_DIGEST a3dd56b3... (blark parsed the block, 118 s wall).  Not KEPT: no test
+  on test_export_st97d's fixture that fails on BASE was found in the time (a one-row step held
+  still on lr9132 gave the C's ``BACK`` and no loss), so src stays at BASE.
+* ``MON_WINDOW`` = 10 rows (conf/monitor/default.yaml ``window: 10``); every record here is sampled
+  each 60 s, so ``2 MON_WINDOW`` = 20 rows = 20 min (``period``, 4.3 s).
+
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``)::
 
     python benchmarks/bench_st108c.py sets ROOT OUT RECORD [RECORD ...]

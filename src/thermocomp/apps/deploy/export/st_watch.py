@@ -1471,13 +1471,12 @@ IF mon_stop_row > 0 OR mon_lost THEN
         END_IF;
     END_FOR;
     mon_unsure := mon_usince <= 2 * MON_WINDOW;
+    IF mon_usince < 2147483646 THEN
+        mon_usince := mon_usince + 1;
+    END_IF;
 END_IF;
 IF mon_held >= 0 AND mon_held_set < 0 AND NOT mon_lost THEN
     mon_unsure := TRUE;    (* a STEP_OUT it holds: the C rebuilds the sensor, the block reads it *)
-    mon_usince := 0;       (* (st108c) a hold the block drops by its loss: the C's wait after *)
-END_IF;
-IF mon_usince < 2147483646 THEN
-    mon_usince := mon_usince + 1;
 END_IF;
 (* a campaign's sample count, held at DINT's top: never wraps back through 1 *)
 IF mon_count < 2147483646 THEN
