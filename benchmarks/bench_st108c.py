@@ -39,9 +39,9 @@ is left, outside every set above, on a gated record's stream.
   differing 131 of 46084 rows (0.28 %), as st108b measured.
 * The gated records' streams (no fault; ``stream`` lr10014 lr10128 dl10128 dl9983 dl9984, 39.2 s):
   0 unflagged except dl9984: 5 rows 3302-3306 (0.098 .. 0.244 um).  The class: the block holds
-  T_bed (k 2) out by its own ``STEP_OUT`` from 3297 (``mon_unsure`` on), and at 3302 its hold ends
-  by its loss (``mon_lost``, no flag on that row, the held reading standing still: st_watch's
-  ``MON_FREEZE_RUN`` clause), while the C keeps it out to its ``BACK`` at 3307.
+  T_spindle_rear (k 2) out by its own ``STEP_OUT`` from 3297 (``mon_unsure`` on); at 3302 the hold
+  ends by its loss (``mon_lost``, no flag on that row; its reading 18.61 on 3299-3302, a run of 3 =
+  its ``MON_FREEZE_RUN``), while the C keeps it out to its ``BACK`` at 3307.
 * A rule (benchmarks/st108c_rule.patch, on 560e4f78): each ``STEP_OUT`` hold row restarts
   ``mon_usince`` and it counts every row, so a hold the block drops by its loss stays unsure for
   ``2 MON_WINDOW`` rows.  Scored (built on dl9984; no fresh record): dl9984 5 -> 0 unflagged (20
