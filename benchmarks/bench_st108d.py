@@ -24,6 +24,20 @@ equal to the C to 1e-9 um on these cases per dep108 / dep108f).
   pass; a test (<= ~2 s CPU, test_export_lean107b's room fixture) failing on BASE; one docs line.
 * KEPT where S1-S4 hold; else REFUSED.  Porting MON_FIRST_C (numbers agree) only if time is left.
 
+SCORED (2026-12-07, the bar 3b1d5b3a unchanged; BASE /tmp/st108d/basesrc = ``git archive ab96d05d
+src``; CPU user + sys by /usr/bin/time).  No seeds drawn.
+* S1 met.  ``back`` +30: 480 rows, all differing (max 7.97 um); unflagged BASE 320 (rows 40-119 of
+  each campaign) -> RULE 0; mon_unsure rows 160 -> 480.  ``all`` +30: 480 differing (21.5 um),
+  unflagged 0 -> 0 (already refused / mon_lost on every row).  ``score`` 6.5 + 0.9 s CPU.
+* S2 met.  bench_st108b ``stream`` on /tmp/st108b_root's lr/dl 9964-9967 (46084 rows), tree and
+  BASE (69.4 + 0.9 / 67.9 + 0.9 s): 0 rows whose ``mon_unsure`` differs, printed lines identical.
+* S3 met.  ``back`` / ``all``: c, refused, flag, rule, sensor identical (``score``'s S3 line); the
+  8 streams: 0 rows whose c or (flag, rule, sensor) differ.
+* S4: see the report (/work/notes/sec108/st108d.md).
+* Found on the way: the block's ``first`` holds through refused rows to the first taken sample, so
+  the rule resets on ``reset`` (the campaign's start), not on ``first``; on ``back`` the block takes
+  T_amb afresh at row 40 (its reference there), hence 4.3-8.0 um off the C.  MON_FIRST_C not ported.
+
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``)::
 
     python benchmarks/bench_st108d.py score ROOT DATA BASESRC
