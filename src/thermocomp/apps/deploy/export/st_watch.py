@@ -515,6 +515,7 @@ VARS = """    mon_last : ARRAY[{nm}] OF LREAL;
     mon_xsi : LREAL;
     mon_xsk : LREAL;
     mon_usince : DINT;
+    mon_rfirst : BOOL;
 """
 
 # before the refusal: the sample's monitored readings judged (the block's first == a campaign's)
@@ -710,9 +711,18 @@ FOR mk := 0 TO MON_N - 1 DO
     END_IF;
 END_FOR;
 (* then a reading beyond the range (read as missing, as the C), then the jumps *)
+IF reset THEN    (* not first: that holds through the refused rows to the first taken one *)
+    mon_rfirst := FALSE;
+END_IF;
 FOR mk := 0 TO MON_N - 1 DO
     j := MON_INPUT[mk];
     mon_x := u[j];
+    IF first AND mon_x >= -U_LIMIT[j] AND mon_x <= U_LIMIT[j] THEN
+        (* (st108d) the C starts it from MON_FIRST_C and references it late: the block does not *)
+        IF mon_x < MON_LO_LIM[mk] OR mon_x > MON_HI_LIM[mk] THEN
+            mon_rfirst := TRUE;
+        END_IF;
+    END_IF;
     IF mon_rule = 0 AND mon_x >= -U_LIMIT[j] AND mon_x <= U_LIMIT[j] THEN
         IF mon_x < MON_LO_LIM[mk] OR mon_x > MON_HI_LIM[mk] THEN
             mon_sensor := mk;
@@ -1477,6 +1487,9 @@ IF mon_stop_row > 0 OR mon_lost THEN
 END_IF;
 IF mon_held >= 0 AND mon_held_set < 0 AND NOT mon_lost THEN
     mon_unsure := TRUE;    (* a STEP_OUT it holds: the C rebuilds the sensor, the block reads it *)
+END_IF;
+IF mon_rfirst THEN
+    mon_unsure := TRUE;    (* (st108d) a reading out of range at the first sample: the C's start differs *)
 END_IF;
 (* a campaign's sample count, held at DINT's top: never wraps back through 1 *)
 IF mon_count < 2147483646 THEN
