@@ -97,16 +97,21 @@ def _file_said(times: np.ndarray) -> list:
     return file_said(pd.DataFrame({"time": times}))
 
 
-def _at_once():
+def _at_once(first: bool = False):
     """The at-once variant (module doc): a Connection whose ``clock_gap``, once the watch has a
-    period, is said at the long step itself, and the watch's gap word with it."""
+    period, is said at the long step itself (``first``: a long step after a long one not said,
+    its one sample taken: the least it could say at a period change)."""
     from thermocomp.apps.machine.client import Connection
 
     class AtOnce(Connection):
+        long_before = False
+
         def _clock_gap(self, gap, steps):
             period = self._clock_period()
-            if gap < 1.5 * period:
-                return steps
+            long = gap >= 1.5 * period
+            again, self.long_before = first and long and self.long_before, long
+            if not long or again:
+                return steps if not long else 1
             paused = gap > 100 * period
             self._said_gap(gap, steps, period, paused, self._last, self._rows + 1)
             return 1 if paused else steps
@@ -146,14 +151,12 @@ def _connected(times: np.ndarray, period: float, route: str, kind=None) -> tuple
 
 def gap() -> None:
     """Cells G1-G3 (module doc)."""
-    import logging
-
-    logging.getLogger("thermocomp").setLevel(logging.ERROR)
     for name, times in _feeds().items():
         period = float(np.median(np.diff(times[:11])))
         print(f"{name}: file reader {_file_said(times)}", flush=True)
         for route in ("server", "node"):
-            for label, kind in (("connect", None), ("at-once variant", _at_once())):
+            for label, kind in (("connect", None), ("at-once variant", _at_once()),
+                                ("at-once, first long step only", _at_once(first=True))):
                 if label != "connect" and route == "node":
                     continue
                 said, missed = _connected(times, period, route, kind)
