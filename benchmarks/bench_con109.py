@@ -212,7 +212,8 @@ def blank(out: str) -> None:
                       if "a new campaign starts at line" in ln]
             parts, _ = stream_campaigns(text, list(deployed.columns_), opts)
             (scratch / f"{clock.replace(':', '')}-{feed}.pkl").write_bytes(pickle.dumps(parts))
-            ys = np.vstack([stream_rows(deployed, p.reset_index(drop=True)).y for p in parts.values()])
+            # (the C prints corrections: minus the errors stream_rows predicts)
+            ys = -np.vstack([stream_rows(deployed, p.reset_index(drop=True)).y for p in parts.values()])
             gap_um = float(np.abs(ys - c).max()) if ys.shape == c.shape else float("nan")
             print(f"{clock} [{feed}]: C exit {fed.returncode}, {len(c)} rows, new campaign at line(s) "
                   f"{starts}; stdin's campaigns {[len(p) for p in parts.values()]}; max |stdin's "
