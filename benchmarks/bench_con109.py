@@ -71,6 +71,9 @@ from _cli import made_folder, run_commands  # noqa: E402
 
 BLANKS = {"none": None, "midnight": 61, "within": 30, "minute_before": 60}   # before data row
 CLOCKS = {"numbers": "Seconds of day", "h:mm:ss": "t"}
+# (harness, after the bar: the bar's mlr reads no state, a campaign's start changes none of its
+# corrections; the lag bank's state does)
+MODELS = ("mlr", "lagbank")
 
 
 def _feeds() -> dict[str, np.ndarray]:
@@ -179,11 +182,25 @@ def _record(folder: Path, clock: str) -> tuple[list[str], Path]:
     return [f"data.path={path}", "data.time=of_day", "data.test_fraction=0.34"], path
 
 
+def _built(folder: Path, data: list[str], model: str) -> Path:
+    """test_export_day_seconds91's ``_built`` of ``model`` (its light run's words): the C's folder."""
+    import test_export_day_seconds91 as d
+
+    from cbuild import compiled
+    from thermocomp.shell.cli import main
+
+    assert main(["run", *data, f"model={model}", *d.LIGHT[1:], f"out={folder / 'run'}"]) == 0
+    code = folder / "c"
+    assert main(["export", *data, f"export.model={folder / 'run' / 'model.pkl'}",
+                 "export.format=c", "export.check=false", f"out={code}"]) == 0
+    compiled(code)
+    return code
+
+
 def blank(out: str) -> None:
     """Cells B1, B2 (module doc); stdin's frames saved for B3."""
     from omegaconf import OmegaConf
 
-    import test_export_day_seconds91 as d
     from thermocomp.apps.deploy.report import stream_rows
     from thermocomp.core.io import ReadOptions
     from thermocomp.core.io.stdin import stream_campaigns
@@ -192,10 +209,10 @@ def blank(out: str) -> None:
     from thermocomp.shell.source import read_streamed
 
     scratch = made_folder(out)
-    for clock in CLOCKS:
-        folder = scratch / clock.replace(":", "")
+    for model, clock in ((m, c) for m in MODELS for c in CLOCKS):
+        folder = scratch / model / clock.replace(":", "")
         data, path = _record(folder, clock)
-        code = d._built(folder, data)
+        code = _built(folder, data, model)
         pkl = folder / "run" / "model.pkl"
         cfg = _compose([*data, f"connect.model={pkl}", "track=false", "monitor.adaptive=false"],
                        "connect")
@@ -211,11 +228,11 @@ def blank(out: str) -> None:
             starts = [ln.split("starts at line ")[1].split()[0] for ln in fed.stderr.splitlines()
                       if "a new campaign starts at line" in ln]
             parts, _ = stream_campaigns(text, list(deployed.columns_), opts)
-            (scratch / f"{clock.replace(':', '')}-{feed}.pkl").write_bytes(pickle.dumps(parts))
+            (scratch / f"{model}-{clock.replace(':', '')}-{feed}.pkl").write_bytes(pickle.dumps(parts))
             # (the C prints corrections: minus the errors stream_rows predicts)
             ys = -np.vstack([stream_rows(deployed, p.reset_index(drop=True)).y for p in parts.values()])
             gap_um = float(np.abs(ys - c).max()) if ys.shape == c.shape else float("nan")
-            print(f"{clock} [{feed}]: C exit {fed.returncode}, {len(c)} rows, new campaign at line(s) "
+            print(f"{model} {clock} [{feed}]: C exit {fed.returncode}, {len(c)} rows, new campaign at line(s) "
                   f"{starts}; stdin's campaigns {[len(p) for p in parts.values()]}; max |stdin's "
                   f"corrections - C| {gap_um:.3g} um", flush=True)
 
