@@ -185,7 +185,6 @@ def _record(folder: Path, clock: str) -> tuple[list[str], Path]:
 def _built(folder: Path, data: list[str], model: str) -> Path:
     """test_export_day_seconds91's ``_built`` of ``model`` (its light run's words): the C's folder."""
     import test_export_day_seconds91 as d
-
     from cbuild import compiled
     from thermocomp.shell.cli import main
 
@@ -232,8 +231,8 @@ def blank(out: str) -> None:
             # (the C prints corrections: minus the errors stream_rows predicts)
             ys = -np.vstack([stream_rows(deployed, p.reset_index(drop=True)).y for p in parts.values()])
             gap_um = float(np.abs(ys - c).max()) if ys.shape == c.shape else float("nan")
-            print(f"{model} {clock} [{feed}]: C exit {fed.returncode}, {len(c)} rows, new campaign at line(s) "
-                  f"{starts}; stdin's campaigns {[len(p) for p in parts.values()]}; max |stdin's "
+            print(f"{model} {clock} [{feed}]: C exit {fed.returncode}, {len(c)} rows, new campaign "
+                  f"at line(s) {starts}; stdin's campaigns {[len(p) for p in parts.values()]}; max |stdin's "
                   f"corrections - C| {gap_um:.3g} um", flush=True)
 
 
