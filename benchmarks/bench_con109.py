@@ -51,6 +51,32 @@ B3. stdin's frames on the B2 feeds identical to BASE's (``same``); no C source c
     stdout is this tree's build of BASE's driver).
 The test added fails on 348af997, passes here, <= 0.5 s CPU, no server, no C build.
 (2) KEPT where B1-B3 hold; else REFUSED (src reverted, the rule kept as con109_rule.patch).
+
+Harness after the bar (no rule, no figure chosen): B1's corrections compared as the C prints them
+(minus what ``stream_rows`` predicts); B1 on the lag bank beside the bar's mlr (mlr reads no
+state: a campaign's start changes none of its corrections, 1.33e-14 um on both trees).
+
+SCORED (2026-12-07 ~17:50-18:02 UTC, 2 cores shared, ``nice``; BASE = 348af997's src extracted to
+/tmp, this tree 32fb8c0d's; OUT apart; ``gap`` printed identically by both trees)::
+
+  G1 gap feeds: the row named = the file reader's on every feed and route (seen 301, fresh 53),
+     missed 5 / 3 as BASE; said while the row AFTER it is read (rows late 1), by BASE and here.
+     The at-once variant says ``clock_gap`` at the row (late 0), the watch's ``rows missing`` still
+     1 late: not met by any tree or variant.
+  G2 period feeds: connect (both trees) no clock_gap, 0 missed, [(period changed, 202 / 140)] =
+     the reader's, said 5 rows on: holds.  The at-once variant: 6 clock_gaps, 54 / 12 missed; its
+     first-long-step form: 1 clock_gap at the change's first step, 9 / 2 missed: fails G2.
+  G3 healthy: nothing, 0 missed (all): holds.
+  (1): TRACED -- the sample after is the soonest a rule reading one sample at a time can tell a
+     stretch from a new period's first step (G1 and G2 cannot both hold); no src change.
+  B1 blank before 00:00 (numbers, h:mm:ss): the C a new campaign at line 63; stdin BASE [120],
+     here [60, 60]; |stdin's corrections - C| mlr 1.33e-14 both trees; lag bank BASE 2.91 um,
+     here 4e-14 um: holds.
+  B2 none / within / minute_before: stdin [120] = the C's one campaign = BASE's: holds.
+  B3 ``same``: the 12 B2 frames identical to BASE's (the 4 midnight ones differ: B1's mend); no C
+     source changed: holds.  Test: test_stdin_of_day92 (2 cases, 0.19 s CPU) fails on 348af997
+     ([48] != [30, 18]).  (2): KEPT.
+CPU (user + sys, /usr/bin/time): blank 13.2 s BASE, 11.8 s here; gap 2.4 / 1.9 s (process).
 """
 
 from __future__ import annotations
