@@ -9,12 +9,13 @@ from __future__ import annotations
 import io
 import sys
 
+import numpy as np
 import pytest
 
 from conftest import refused
 from test_data91 import DAY_S, _headerless, _record
 from thermocomp.core.io import ContractError, ReadOptions, read_dataset
-from thermocomp.core.io.stdin import read_stream
+from thermocomp.core.io.stdin import read_stream, stream_campaigns
 
 NAMES = ["T_a", "T_b", "T_c"]
 
@@ -52,3 +53,20 @@ def test_monitor_on_stdin_exits_2_naming_stdin_column_and_row(tmp_path, monkeypa
              "monitor.input=-", f"out={tmp_path / 'mon'}"], capsys,
             "<stdin>", "column 'time'", "data row 40", "no second of a day")
     assert not (tmp_path / "mon" / "monitor.json").exists()
+
+
+@pytest.mark.parametrize("written", ["seconds", "h:mm:ss"])
+def test_a_blank_line_before_midnights_step_back_starts_a_campaign_as_stream_c_does(written):
+    """con109: a blank line before the row where a time of day passes midnight (23:55 then
+    00:00) starts a campaign in ``stream.c`` (its ``day_passed``), as the data contract says
+    (dep108d: "... or starts where a blank line stands before the row"); stdin, carrying the time
+    of day on a day there (dep108d), read it as a stray blank line within a run: one campaign,
+    the lag bank 2.91 um off the C from that row (``benchmarks/bench_con109.py blank``)."""
+    lab = _headerless(_record(923)).rename(columns={"t": "time"})
+    day = int(np.flatnonzero(np.diff(lab["time"]) < 0)[0]) + 1    # the first row after midnight
+    if written == "h:mm:ss":
+        lab["time"] = [f"{s // 3600}:{s // 60 % 60:02d}:{s % 60:02d}" for s in lab["time"].astype(int)]
+    lines = lab.to_csv(index=False).splitlines()
+    text = "\n".join([*lines[:day + 1], "", *lines[day + 1:]]) + "\n"
+    parts, _ = stream_campaigns(text, NAMES, ReadOptions.from_cfg({"time": "of_day"}))
+    assert [len(p) for p in parts.values()] == [day, len(lab) - day]

@@ -76,6 +76,7 @@ from .timestamps import (
     seconds_of_day,
     time_kind,
     time_type,
+    written_seconds,
 )
 from .twins import occurrences, same_cells
 from .twins import said as said_twice
@@ -89,6 +90,7 @@ HEADERS = "headers"             # frame attrs: contract name -> the stream's own
 # time is timestamps: a stream said to continue a campaign is placed on that campaign's clock
 TIME_ORIGIN = "time_origin"
 BLANK_ROWS = "blank_rows"       # frame attrs: the data rows that follow a blank line (dep107)
+BLANK_BACK = "blank_back"       # frame attrs: those of them whose time as written goes back (con109)
 # frame attrs (deploy74): data.clock_sets' sets and the server's clock at the last timed row as
 # the rows have it (s since the epoch), where sets were given: a restarted connect's live
 # sample is read as the log's next row (:func:`.clocksets.after`)
@@ -233,7 +235,9 @@ def _read_runs(text: str, columns: list[str], opts, recorded: str | None = None,
                             + as_named(absent, lab or {}) + _unread(df, columns),
                             file=SOURCE, column=",".join(absent))
     origins = [None] * (1 if blocks is None else len(blocks))
+    back = []
     if TIME in df.columns:        # timestamps counted from each run's first, as a file's runs
+        back = _written_back(df[TIME], blank_rows)
         runs = [df[TIME]] if blocks is None else [df[TIME].iloc[start:end]
                                                   for _, start, end in blocks]
         timed = [_sets_undone(*seconds_and_origin(t, _time_format(t, opts.time, recorded,
@@ -267,7 +271,7 @@ def _read_runs(text: str, columns: list[str], opts, recorded: str | None = None,
             scale, offset = scales[c]
             df[c] = df[c] * scale + offset
     df = on_frame(df, opts.derive, SOURCE)      # data.derive: the same arithmetic as a file's
-    df.attrs[BLANK_ROWS] = blank_rows
+    df.attrs[BLANK_ROWS], df.attrs[BLANK_BACK] = blank_rows, back
     return df, {c: int(n) for c, n in df[numeric].isna().sum().items() if n}, blocks, origins
 
 
@@ -287,6 +291,14 @@ def _after_blank_lines(table: str, rows: int) -> list[int]:
         else:
             blank = True
     return after
+
+
+def _written_back(time: pd.Series, rows: list[int]) -> list[int]:
+    """(con109) The data rows of ``rows`` (those after a blank line) whose time as written (a
+    number, an ``h:mm:ss``) is not after the row above's: a time of day gone back past midnight,
+    which the reader carries on a day (:func:`.timestamps.past_midnight`), where ``stream.c``
+    (its ``day_passed``) starts a campaign at the blank line, as the data contract says."""
+    return [r for r in rows if written_seconds(time.iloc[r]) <= written_seconds(time.iloc[r - 1])]
 
 
 def _with_decimal(column: pd.Series, decimal: str) -> pd.Series:
@@ -414,11 +426,14 @@ def _pause_runs(df: pd.DataFrame, origin, at_pauses: bool) -> tuple[list | None,
     rows`` writes, each from its time 0, a blank line between: where stream.c starts one) parts
     them too; they were streamed as one campaign, each start read as a clock set back and a
     common step of every sensor.  A stray blank line within a run (its time going on) stays
-    nothing, as the file's read leaves it out.  ``df``'s time re-based in place; ``(blocks, each
-    run's time origin)``."""
+    nothing, as the file's read leaves it out.  (con109) A time of day carried past midnight
+    (dep108d) goes on, but as written it goes back: a blank line there parts them as in
+    stream.c (it was nothing, the C starting a campaign).  ``df``'s time re-based in place;
+    ``(blocks, each run's time origin)``."""
     seconds = df[TIME].to_numpy(float)
     found = pauses(seconds) + 1 if at_pauses else np.array([], int)
-    anew = [r for r in df.attrs.get(BLANK_ROWS, []) if not seconds[r] > seconds[r - 1]]
+    anew = [r for r in df.attrs.get(BLANK_ROWS, []) if not seconds[r] > seconds[r - 1]
+            or r in df.attrs.get(BLANK_BACK, ())]
     found = np.union1d(found, np.asarray(anew, int)).astype(int)
     if not found.size:
         return None, [origin]
@@ -430,8 +445,8 @@ def _pause_runs(df: pd.DataFrame, origin, at_pauses: bool) -> tuple[list | None,
             origins[k] = origin + pd.Timedelta(seconds=float(seconds[a]))
             df.iloc[a:b, df.columns.get_loc(TIME)] = seconds[a:b] - seconds[a]
     why = [*(["the time's pauses (data.runs_at_pauses)"] if len(anew) < len(found) else []),
-           *([f"{len(anew)} blank line(s) after which the time starts again (where stream.c starts "
-              "a campaign)"] if anew else [])]
+           *([f"{len(anew)} blank line(s) after which the time starts again or a time of day "
+              "passes midnight (where stream.c starts a campaign)"] if anew else [])]
     say(f"{SOURCE}: {len(blocks)} runs by {' and '.join(why)} streamed as campaigns, each from a "
         "reset")
     return blocks, origins

@@ -63,6 +63,18 @@ def looks_like_timestamp(text) -> bool:
     return bool(_STAMP.match(str(text or "")))
 
 
+def written_seconds(cell) -> float:
+    """(con109) A time cell as it is written, in s: a number as it is, an ``h:mm:ss`` its seconds
+    on the clock (no day added past midnight); NaN for anything else (a date and time)."""
+    try:
+        return float(cell)
+    except (TypeError, ValueError):
+        hms = _ELAPSED.fullmatch(str(cell))
+    if hms is None:
+        return float("nan")
+    return int(hms["h"]) * 3600.0 + int(hms["m"]) * 60.0 + float(hms["s"].replace(",", "."))
+
+
 def maybe_elapsed(value: str, kind: str) -> bool:
     """The time column's first cell may start an elapsed time (``h:mm:ss``): ``data.time``
     ``elapsed``, or ``auto``, the whole column telling it from a time of day
