@@ -4,6 +4,7 @@ honest").
 Usage (from the repository root, ``PYTHONPATH=<tree>/src``: the code measured is that tree's)::
 
     python benchmarks/bench_diag109.py null FIRST N      # bench_diag108's null rooms FIRST..FIRST+N-1
+    python benchmarks/bench_diag109.py first FIRST N     # the same rooms, round 1's candidates alone
     python benchmarks/bench_diag109.py pairs DATA...     # the same read on climate draws (planted sets)
 
 diag108 measured: the best pair's p (``Search._level_pair``, diag107d) <= .01 on ~9 % of the null rooms
@@ -37,6 +38,34 @@ BAR (committed before the rule is measured; not moved after).  BASE = 348af997's
 * N5 tests/apps/test_diagnose_pair107d.py: a null room where BASE's pair p <= .01, failing on BASE,
   < 3 s CPU; the diagnose pair/level modules pass.
 All: KEPT; else REFUSED (``benchmarks/diag109_rule.patch``).
+
+Scored (2026-12-07, once; RULE = the patch on 348af997, BASE = 348af997's src by ``git archive``; 2
+shared cores under other helpers' load; CPU user + sys)
+--------------------------------------------------------------------------------------------------
+* N1 FAILS: ``null 0 200`` (77.4 s CPU): 97 rooms offer the lean laws; best-pair p <= .01 / .05 / .10
+  on BASE 9 / 18 / 27, RULE 5 / 14 / 22, UNION (both laws' rounds + round 1) 5 / 16 / 23 of 200 rooms
+  (bar <= 4).  RULE's five: 16 (law 21.6 %, the pair + in all 8 campaigns, 1/256: no family on the same
+  flips can raise it), 106 and 156 (round 1 takes: no pair step), 188 and 199 (laws 2.7 / 1.0 %: the
+  effect's gain, 2/256).  Accepted 0 both ways.
+* ``first 0 200`` (66.1 s): round 1's SINGLE candidates, the same statistic (max-T of the campaigns'
+  gain shares): best p <= .01 / .05 / .10 on 12 / 31 / 46 of 200 rooms; the lean law alone 4 / 11 / 17.
+  The flips over 8 held-out campaigns are liberal here for any candidate (6 % at .01), the pair no
+  more than the rest.  And choosing inside the draw cannot help on these flips: counting only the
+  patterns where the law still gains (the selection redone) can only LOWER a p (the identity counts,
+  other hits drop), so BASE's p is already valid for its selection under the flip null: the excess is
+  the flip null failing on these rooms (why: not traced), not the selection.
+* N2 FAILS: ``pairs`` on the 18 planted draws (94.0 s): BASE's pair step accepts 9 (draw, target):
+  10122 E_Z (59.8 %, p .0078 -> .0078), 10123 E_X (65.0 %, .0078 -> .0117: LOST), 10125 E_X (67.8 %),
+  10158 E_X (81.7 %), 10160 E_X (74.1 %), 10161 E_X (78.8 %), 10173 E_X (66.1 %), 10176 E_X (59.9 %),
+  10181 E_Z (66.3 %), those seven at .0039 -> .0039.  Room 36 (null) and 10123 E_X (planted) both had
+  2/256: a family rule treats them alike.
+* N3 fresh 10204-10206 (16.1 s): no pair step runs (round 1 takes wherever a lean law is offered);
+  best pair p .0039 both ways.
+* N4 met: ``thermocomp diagnose`` short dataset, interleaved, BASE 5.03 s (mean of 6: 4.74-5.27),
+  RULE 4.91 s (6: 4.09-5.56): the pair step does not run there; the spread is load.
+* N5: the test (null room 36: RULE's best pair p 4/256 > .01) fails on BASE (no ``_pair_pvalues``;
+  BASE's own formula gives 2/256); the module 4.4 -> 5.0 s CPU (+0.5 s; alone with startup 4.5 s).
+**REFUSED** (N1, N2): src and test reverted; ``benchmarks/diag109_rule.patch`` holds them.
 """
 
 from __future__ import annotations
@@ -158,6 +187,43 @@ def null(first: str, count: str) -> None:
     _summary(reads, int(count))
 
 
+def first(first_room: str, count: str) -> None:
+    """The same null rooms, round 1 only: the best single candidate's p by the pair's statistic (max-T
+    over round 1's candidate effects, each held-out campaign's gain as a share of its MSE) and the lean
+    law of most gain's own p (a family of one): how often a CANDIDATE reaches .01 on nothing planted."""
+    from bench_diag105 import _searches
+
+    from thermocomp.apps.diagnose import SearchOptions, diagnose
+    from thermocomp.apps.diagnose import search as sm
+    from thermocomp.apps.diagnose.candidates import CandidateOptions
+    from thermocomp.apps.diagnose.cv import sign_flip_maxt
+    from thermocomp.core.compensator import Compensator
+    from thermocomp.core.models import MLR
+
+    warnings.filterwarnings("ignore")
+    families = ("ambient_interval", "signal")
+    options = SearchOptions(max_effects=2, candidates=CandidateOptions(families=families))
+    best, law_p = [], []
+    for seed in range(int(first_room), int(first_room) + int(count)):
+        store = {}
+        with _searches(store):
+            diagnose(d108.null_room(seed), Compensator(MLR()), options=options, targets=["E_X"])
+        s = store["E_X"]
+        s.effects = []
+        evals, current, _, _ = s._round(s.cv.run(s.inputs(), []), s._read_columns(), 1)
+        family = [ev for ev in evals if not ev.control and ev.effect.transform != "remove"]
+        D = [np.clip(1.0 - ev.result.unit_mse / np.maximum(current.unit_mse, 1e-300), -1, 1) for ev in family]
+        best.append(min(sign_flip_maxt(D), default=1.0))
+        lean = [i for i, ev in enumerate(family) if ev.effect.transform in sm.LEAN_LEVEL]
+        law = max(lean, key=lambda i: family[i].gain) if lean else None
+        law_p.append(1.0 if law is None else float(sign_flip_maxt([D[law]])[0]))
+        print(f"  room {seed}: best candidate p {best[-1]:.4f}, the law's own p {law_p[-1]:.4f}", flush=True)
+    for name, ps in (("best candidate (family)", best), ("lean law (alone)", law_p)):
+        ps = np.array(ps)
+        counts = " / ".join(str(int((ps <= a).sum())) for a in (0.01, 0.05, 0.10))
+        print(f"  {name} p <= .01 / .05 / .10: {counts} of {len(ps)} rooms")
+
+
 def pairs(*data: str) -> None:
     """Each DATA (a climate draw): every target's best pair's p three ways."""
     from bench_diag105 import _searches
@@ -177,7 +243,7 @@ def pairs(*data: str) -> None:
 
 
 def main(argv: list[str]) -> int:
-    return run_commands(__doc__, {"null": null, "pairs": pairs}, argv, cpu=sys.stderr)
+    return run_commands(__doc__, {"null": null, "first": first, "pairs": pairs}, argv, cpu=sys.stderr)
 
 
 if __name__ == "__main__":
