@@ -52,8 +52,9 @@ shared cores under other helpers' load; CPU user + sys)
   The flips over 8 held-out campaigns are liberal here for any candidate (6 % at .01), the pair no
   more than the rest.  And choosing inside the draw cannot help on these flips: counting only the
   patterns where the law still gains (the selection redone) can only LOWER a p (the identity counts,
-  other hits drop), so BASE's p is already valid for its selection under the flip null: the excess is
-  the flip null failing on these rooms (why: not traced), not the selection.
+  other hits drop), so under the flip null BASE's p already holds for the law-gained selection (the
+  pick of one of two laws aside: at most x2): the excess is the flip null failing on these rooms
+  (why: not traced), not the selection.
 * N2 FAILS: ``pairs`` on the 18 planted draws (94.0 s): BASE's pair step accepts 9 (draw, target):
   10122 E_Z (59.8 %, p .0078 -> .0078), 10123 E_X (65.0 %, .0078 -> .0117: LOST), 10125 E_X (67.8 %),
   10158 E_X (81.7 %), 10160 E_X (74.1 %), 10161 E_X (78.8 %), 10173 E_X (66.1 %), 10176 E_X (59.9 %),
