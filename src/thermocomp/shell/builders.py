@@ -263,16 +263,18 @@ def pause_seconds(cfg: DictConfig, ds, deployed=None) -> float:
     return PAUSE_PERIODS * float(median_step(first[TIME].to_numpy(float)) or 0.0)
 
 
-def day_seconds(cfg: DictConfig, ds, time_headers: list) -> bool:
-    """``TC_DAY_SECONDS`` and a served model's ``day_seconds_``: ``data.time=of_day`` says the
-    time is the time of day, or the record's time was read as seconds since midnight, a day
-    added as it passed (the ingest report's ``time``, data89b), or its lab headers say so (a
-    record that never passed midnight, a registered model exported without its record: the
-    machine's log will); ``stream.c`` and (dep108d) the served model then read the lab's plain
-    seconds so (lead91: the C took midnight's step back for a clock set back, one period on, and
-    a run after a pause across midnight for the run before it; dep108d: served, 2.16 um off)."""
+def day_seconds(cfg: DictConfig, ds, time_headers: list, deployed=None) -> bool:
+    """``TC_DAY_SECONDS`` and a served model's ``day_seconds_``: the ``deployed`` model's own (the
+    C reads the time as the model serves it, rev109); else ``data.time=of_day``, the record's
+    time read as seconds since midnight, a day added as it passed (data89b), or its lab headers
+    (a record that never passed midnight; a model pickled before dep108d) say it is the time of
+    day; ``stream.c`` and (dep108d) the served model then read plain seconds so (lead91: the C
+    took midnight's step back for a clock set back, one period on, and a run after a pause
+    across midnight for the run before it; dep108d: served, 2.16 um off)."""
     from ..core.io.timestamps import OF_DAY_KIND, names_day_seconds
 
+    if (said := getattr(deployed, "day_seconds_", None)) is not None:
+        return bool(said)
     return str(cfg.data.get("time")) == OF_DAY_KIND or bool(
         ds is not None and ds.meta.get("seconds_of_day")) or names_day_seconds(time_headers)
 
