@@ -8,6 +8,8 @@ the second's continuation: its corrections off by up to 31 µm on a simulated re
 from __future__ import annotations
 
 import io
+import json
+import pickle
 import shutil
 import subprocess
 
@@ -140,6 +142,61 @@ def test_the_served_session_and_stdin_read_seconds_of_day_past_midnight_as_the_c
     parts, _ = stream_campaigns(text, list(deployed.columns_),
                                 ReadOptions.from_cfg(OmegaConf.to_container(cfg.data, resolve=True)))
     assert [len(p) for p in parts.values()] == [ROWS] * 3
+
+
+def _deployed_of_day(root, header: str):
+    """The mlr deployed (plain stream) on three runs over midnight of plain seconds of the day
+    under ``header``, read with ``data.time=of_day``; and the record's rows as served."""
+    from thermocomp.shell.builders import deployable_model
+    from thermocomp.shell.cli import _compose
+    from thermocomp.shell.source import read_streamed
+
+    record = pd.read_csv(_runs(root / f"{header}.csv", [20, 25, 34.5]))
+    record.rename(columns={"Seconds of day": header}).to_csv(root / f"{header}.csv", index=False)
+    cfg = _compose([f"data.path={root / f'{header}.csv'}", "data.time=of_day", "data.runs_at_pauses=true",
+                    "data.test_fraction=0.34", "model=mlr", "track=false", "monitor.adaptive=false"],
+                   "connect")
+    ds, train = read_streamed(cfg, test=False)[:2]
+    return (deployable_model(cfg, ds, train, None, "connect.model")[0],
+            pd.read_csv(root / f"{header}.csv").drop(columns="E_X"))
+
+
+def _served(deployed, frame: pd.DataFrame) -> np.ndarray:
+    """``deployed``'s corrections of ``frame`` served in blocks of 90 rows, one session."""
+    from thermocomp.apps.deploy.pyfunc import CompensatorModel
+
+    served = CompensatorModel(deployed)
+    return pd.concat([served.predict(None, frame.iloc[k:k + 90].reset_index(drop=True),
+                                     {"session": "d", "reset": k == 0})
+                      for k in range(0, len(frame), 90)], ignore_index=True)["C_X"].to_numpy()
+
+
+def _exported_day_seconds(deployed, root, name: str) -> bool:
+    """``TC_DAY_SECONDS`` of ``deployed``'s pyfunc folder exported (json) without data.time."""
+    from thermocomp.apps.deploy.pyfunc import save_compensator
+
+    folder = save_compensator(deployed, root / f"{name}_pyfunc")
+    assert main(["export", f"export.model={folder}", "export.format=json", f"out={root / name}",
+                 "track=false"]) == 0
+    return json.loads((root / name / "compensator.json").read_text())["provenance"]["day_seconds"]
+
+
+def test_the_export_and_the_served_model_read_the_time_as_the_deployed_model_holds(tmp_path):
+    """rev109: the exported ``TC_DAY_SECONDS`` is what the deployed model serves by, its
+    ``day_seconds_``: deployed with ``data.time=of_day`` under ``t``, its pyfunc folder exported
+    without the key says 1 (0 before: the C read midnight as a clock set back, 8.69 um off the
+    served model on rev109's record).  A model pickled before dep108d carries none: the export
+    and the served model read its lab's headers by one rule, a lone ``Uhrzeit`` saying seconds
+    of the day, so it is served over midnight as the model deployed now is (before: as plain
+    seconds, 2.16 um off it here)."""
+    assert _exported_day_seconds(_deployed_of_day(tmp_path, "t")[0], tmp_path, "t") is True
+    now, frame = _deployed_of_day(tmp_path, "Uhrzeit")
+    old = pickle.loads(pickle.dumps(now))
+    del old.day_seconds_                    # as a model pickled before dep108d
+    assert _exported_day_seconds(old, tmp_path, "old") is True
+    want = _served(now, frame)
+    assert np.abs(want).max() > 0.1
+    np.testing.assert_allclose(_served(old, frame), want, rtol=0, atol=1e-9)
 
 
 def test_a_blank_line_in_a_file_is_said_and_read_as_run_reads_it(exported):

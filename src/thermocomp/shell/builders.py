@@ -238,8 +238,7 @@ def deployable(cfg: DictConfig, streaming, train: dict, ds=None):
     deployed.slashed_ = slashed_time(cfg, ds)     # a served block's dates read in its order
     deployed.pause_s_ = pause_seconds(cfg, ds)    # a served session's runs, as stream.c's (audit106)
     # (dep108d) plain seconds of the day carried past midnight, as stream.c's TC_DAY_SECONDS
-    times = raw_names(deployed.lab_names_, TIME)
-    deployed.day_seconds_ = day_seconds(cfg, ds, times[0] if len(times) == 1 else times)
+    deployed.day_seconds_ = day_seconds(cfg, ds, raw_names(deployed.lab_names_, TIME))
     deployed.missing_values_ = [str(m) for m in cfg.data.get("missing_values") or ()]   # (-9999)
     # served: every row that carries a measured error is a reference (no schedule)
     deployed.adapt_ = adapt_from_config(cfg.get("adapt"), len(deployed.targets_), scheduled=False)
@@ -264,23 +263,20 @@ def pause_seconds(cfg: DictConfig, ds, deployed=None) -> float:
     return PAUSE_PERIODS * float(median_step(first[TIME].to_numpy(float)) or 0.0)
 
 
-def day_seconds(cfg: DictConfig, ds, time_header) -> bool:
-    """``TC_DAY_SECONDS`` and a served model's ``day_seconds_``: ``data.time=of_day`` says the
-    time is the time of day, or the record's time was read as seconds since midnight, a day
-    added as it passed (the ingest report's ``time``, data89b), or its lab header says so (a
-    record that never passed midnight, a registered model exported without its record: the
-    machine's log will); ``stream.c`` and (dep108d) the served model then read the lab's plain
-    seconds so (lead91: the C took midnight's step back for a clock set back, one period on, and
-    a run after a pause across midnight for the run before it; dep108d: served, 2.16 um off)."""
-    from ..core.io.timestamps import OF_DAY_KIND, names_seconds_of_day, names_time_of_day
+def day_seconds(cfg: DictConfig, ds, time_headers: list, deployed=None) -> bool:
+    """``TC_DAY_SECONDS`` and a served model's ``day_seconds_``: the ``deployed`` model's own (the
+    C reads the time as the model serves it, rev109); else ``data.time=of_day``, the record's
+    time read as seconds since midnight, a day added as it passed (data89b), or its lab headers
+    (a record that never passed midnight; a model pickled before dep108d) say it is the time of
+    day; ``stream.c`` and (dep108d) the served model then read plain seconds so (lead91: the C
+    took midnight's step back for a clock set back, one period on, and a run after a pause
+    across midnight for the run before it; dep108d: served, 2.16 um off)."""
+    from ..core.io.timestamps import OF_DAY_KIND, names_day_seconds
 
-    if str(cfg.data.get("time")) == OF_DAY_KIND or ds is not None and ds.meta.get(
-            "seconds_of_day"):
-        return True
-    headers = [time_header] if isinstance(time_header, str) else list(time_header or ())
-    # (data92b) a time-of-day header alone (not joined to its date) reads as data.time=of_day
-    return any(names_seconds_of_day(str(h)) for h in headers) or (
-        isinstance(time_header, str) and names_time_of_day(time_header))
+    if (said := getattr(deployed, "day_seconds_", None)) is not None:
+        return bool(said)
+    return str(cfg.data.get("time")) == OF_DAY_KIND or bool(
+        ds is not None and ds.meta.get("seconds_of_day")) or names_day_seconds(time_headers)
 
 
 def is_registered(source) -> bool:

@@ -105,7 +105,7 @@ from ...core.io.derived import on_frame
 from ...core.io.rates import FOUND, SAID_AT_MOST, StepWatch, found_words
 from ...core.io.slashed import stream_format
 from ...core.io.stdin import since, stream_stamps, with_clock_joined
-from ...core.io.timestamps import CLOCK, continued, names_seconds_of_day
+from ...core.io.timestamps import CLOCK, continued, names_day_seconds
 from .adaptive import AdaptiveCompensator
 from .naming import accepted_names, correction_column, raw_names, to_contract
 from .streaming import EndState, StreamingCompensator
@@ -361,12 +361,10 @@ def _no_clock() -> list:
 
 
 def _reads_day_seconds(streaming) -> bool:
-    """(dep108d) ``streaming``'s time is plain seconds of the day (its ``day_seconds_``; a model
-    pickled before it: its lab's time header says so, as ``export`` reads it for the C)."""
-    said = getattr(streaming, "day_seconds_", None)
-    if said is not None:
+    """(dep108d) Its ``day_seconds_``; a model pickled before it: as its lab's headers say (the C's)."""
+    if (said := getattr(streaming, "day_seconds_", None)) is not None:
         return bool(said)
-    return any(names_seconds_of_day(str(h)) for h in raw_names(streaming.lab_names_ or {}, TIME))
+    return names_day_seconds(raw_names(streaming.lab_names_ or {}, TIME))
 
 
 def _on_campaign_clock(frame: pd.DataFrame, state: list, slashed: str | None = None,

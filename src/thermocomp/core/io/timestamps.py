@@ -320,6 +320,12 @@ def names_time_of_day(header: str | None) -> bool:
     return header is not None and _bare(header) in CLOCK_HEADERS
 
 
+def names_day_seconds(headers: list) -> bool:
+    """The lab's time headers say plain seconds of the day (one does, or a lone time of day: data92b)."""
+    return any(names_seconds_of_day(str(h)) for h in headers) or (
+        len(headers) == 1 and names_time_of_day(str(headers[0])))
+
+
 HOURS_OF_DAY = 24.0
 
 

@@ -305,7 +305,7 @@ def export(cfg: DictConfig) -> dict:
     provenance.update(thousands=None if thousands is None else str(thousands)[:1],
                       elapsed=str(cfg.data.get("time") or "auto") == "elapsed",
                       slashed=_slashed(cfg, ds), pause_s=pause_seconds(cfg, ds, deployed),
-                      day_seconds=day_seconds(cfg, ds, lab.get(TIME)))
+                      day_seconds=day_seconds(cfg, ds, raw_names(named, TIME), deployed))
     # (streamraw65: the lab's raw file as the reader reads it -- its character set and its marks
     # of a value not measured travel with the model, as data.thousands does)
     provenance.update(encoding=_stream_encoding(cfg, fmt),
