@@ -6,7 +6,7 @@ Usage (from the repository root, ``PYTHONPATH=<tree>/src``)::
     python benchmarks/bench_dep109.py score ROOT DATA COLUMN PUSH MODE BASESRC
     python benchmarks/bench_dep109.py healthy ROOT BASESRC RECORD [RECORD ...]
 
-bench_dep108's commands, with two MODEs more (the return row ``r = n // 3`` of each test campaign
+bench_dep108's commands, with three MODEs more (the return row ``r = n // 3`` of each test campaign
 of ``n`` rows; COLUMN +PUSH on rows ``0 .. r - 1`` as bench_dep108's ``back``):
 
 * ``backfar``: and on row ``r`` alone :data:`OTHERS` [0] +PUSH (beyond its range: the row the C
@@ -17,6 +17,11 @@ of ``n`` rows; COLUMN +PUSH on rows ``0 .. r - 1`` as bench_dep108's ``back``):
   (each out for a lone jump while the air is beyond range), both back on the return row: a pair
   jump of two sensors out, where the C's and the mirror's ``mon_pair_jump`` try a spike's return
   first; served (monitor.py ``_update``) tries none on a row with a value not finite (the late one).
+
+The sensors (fixed before any fresh record is scored): :data:`OTHERS` are the first two monitored
+sensors after COLUMN in the model's input order, :data:`SPIKERS` the first two of them the others
+predict (the monitor's ``predictable``: a spike's return is tried on those only); on the seen
+record T_1, T_2 and T_1, T_3.
 
 TRACE (BASE = 348af997, the seen record: bench_dep108f's, ``bench_st107b.py room`` +
 ``bench_diag107b.py chain`` in /tmp/dep109/droot; T_amb +30 on rows 0-39 of each of the 4 test
@@ -57,8 +62,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import bench_dep108  # noqa: E402
 from _cli import run_commands  # noqa: E402
 
-OTHERS = ("T_1", "T_2")
-SPIKERS = ("T_1", "T_3")
+OTHERS = ["T_1", "T_2"]     # (set per record by :func:`score`)
+SPIKERS = ["T_1", "T_3"]
 PAIR_STEP = 3.0     # degC: past each one's jump limit, within range
 _back = bench_dep108._changed
 
@@ -81,8 +86,36 @@ def _changed(df: pd.DataFrame, column: str, push: float, mode: str) -> pd.DataFr
 bench_dep108._changed = _changed
 
 
+def score(root: str, data: str, column: str, push: str, mode: str, basesrc: str) -> None:
+    """bench_dep108's ``score``, :data:`OTHERS` and :data:`SPIKERS` of this record's monitor."""
+    import os
+
+    from hydra import compose, initialize_config_dir
+
+    from thermocomp.apps.deploy.export import state_space
+    from thermocomp.base.paths import conf_dir
+    from thermocomp.shell.builders import deployable_model
+    from thermocomp.shell.source import read_streamed
+
+    base, here = bench_dep108.project_root(root), os.getcwd()
+    os.chdir(base)
+    with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3"):
+        cfg = compose(config_name="config", overrides=[f"data.path={Path(data).resolve()}", "track=false"])
+    ds, train_ids, _, _ = read_streamed(cfg)
+    deployed = deployable_model(cfg, ds, train_ids, str(base / "run" / "model.pkl"), "export.model")[0]
+    ss = state_space(deployed, monitor=True)
+    m = ss.monitor
+    names = [ss.inputs[i] for i in m["inputs"]]
+    after = [k for k, name in enumerate(names) if name != column]
+    OTHERS[:] = [names[k] for k in after[:2]]
+    SPIKERS[:] = [names[k] for k in after if m["predictable"][k]][:2]
+    print(f"OTHERS {OTHERS}, SPIKERS {SPIKERS}; {len(names)} monitored, min_active {m['min_active']}")
+    os.chdir(here)
+    bench_dep108.score(root, data, column, push, mode, basesrc)
+
+
 def main(argv: list[str]) -> int:
-    return run_commands(__doc__, {"score": bench_dep108.score, "healthy": bench_dep108.healthy}, argv,
+    return run_commands(__doc__, {"score": score, "healthy": bench_dep108.healthy}, argv,
                         cpu=sys.stderr)
 
 
