@@ -49,6 +49,28 @@ BAR (committed before fresh 10201-10203 are drawn; not moved after).  BASE = 348
 * KEPT where a src rule changes a case and H1-H4 hold; TRACED where BASE already meets H1-H2 (the
   by_field move kept if H3 holds); REFUSED where a rule misses (src at BASE, the rule in
   benchmarks/dep109_rule.patch).
+
+RULE (watch_c.py ``mon_pair_jump``, watch.py ``_pair_jump``, in step): no spike's return tried on
+a sample with a value not finite (the late row), as served; ``by_field`` after the ``continue``.
+
+SCORED (2026-12-07, the bar 4ffd5c68 / 7bc7f82f unchanged; BASE /tmp/dep109/basesrc = ``git
+archive 348af997 src``; CPU user + sys of the bench with its children, ``/usr/bin/time``):
+* H1 met.  Seen ``backfar`` / ``backpair`` / ``backspike``: BASE and RULE 8.0e-15 / 8.0e-15 /
+  2.2e-13 um, stdout identical, 0 flag rows; |JSON - C| <= 1.4e-14 um (~10.5 s CPU each).
+* H2 met.  Fresh 10201 / 10202 / 10203 (12 monitored, min_active 7; diagnose took a lean law on
+  E_X and E_Z each; OTHERS = SPIKERS = T_headstock, T_guidebush): ``backfar`` 4.3e-14 / 2.8e-14 /
+  1.1e-13 um and ``backpair`` 2.8e-14 / 3.6e-14 / 9.2e-14 um, BASE = RULE, stdout identical, 0 flag
+  rows: the C passes no such row by (it does only where it flags ``TC_MON_NOT_IN_CODE``).
+  ``backspike``: BASE 0.292 / 0.562 / 0.477 um off replay on 1443 / 1404 / 1477 rows, unflagged
+  (the pair read back in as spikes on the return row); RULE 3.6e-14 / 4.6e-14 / 1.0e-13 um, 0
+  flag rows; |JSON - C| <= 4.3e-14 um.  ~12-16 s CPU a score.
+* H3 met.  Seen ``back`` / ``all`` / ``step`` +30, ``ramp`` +10, ``step`` +5: stdout identical
+  (~10-13 s CPU each).  The 13 healthy records: C stdout byte-identical on each (121 s CPU).
+* H4 met.  test_export_lean107b ``test_two_sensors_back_from_a_jump_on_the_air_s_return_row_are_no_
+  spike_there`` (its record: diag107's with T_1, T_3, T_5 twinned, 6 campaigns): fails on BASE
+  (1.44 um), passes; marginal CPU 0.83 / 0.72 / 1.18 s (3 paired runs).
+* The ST (not changed) on the test's case: off the C on all 120 rows (<= 8.0 um), every one
+  flagged (``mon_unsure``, st108d's first-sample rule, or refused).
 """
 
 from __future__ import annotations
