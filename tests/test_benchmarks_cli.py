@@ -57,7 +57,7 @@ COMMAND_BENCHES = (
     "bench_data94", "bench_data95", "bench_dates85", "bench_dep100", "bench_dep100b", "bench_dep101",
     "bench_dep103", "bench_dep105", "bench_dep105b", "bench_dep105c", "bench_dep105d", "bench_dep106",
     "bench_dep106b", "bench_dep107", "bench_dep107b", "bench_dep107c", "bench_dep108", "bench_dep108b",
-    "bench_dep108c", "bench_dep108d", "bench_dep108e", "bench_dep108f", "bench_dep93", "bench_dep95",
+    "bench_dep108c", "bench_dep108d", "bench_dep108e", "bench_dep108f", "bench_dep109", "bench_dep93", "bench_dep95",
     "bench_dep98", "bench_dep98b", "bench_dep99", "bench_dep99b", "bench_deploy73", "bench_deploy87",
     "bench_deploy88", "bench_deploy89", "bench_derive71", "bench_diag100", "bench_diag101", "bench_diag103",
     "bench_diag103b", "bench_diag105", "bench_diag106", "bench_diag106b", "bench_diag106c", "bench_diag106d",

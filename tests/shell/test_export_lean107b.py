@@ -99,6 +99,20 @@ def test_an_lstm_under_a_lean_level_law_is_refused_naming_it():
         net_reads(None, [0, 1], ["T_1", "T_2"], {}, False, Derived(order=order, factor=factor), 0.0, 0.0)
 
 
+def _deployed_scaled(data) -> tuple:
+    """``(MLR with ambient_scaled on E_X, deployed as export deploys it with its monitor, the
+    first test campaign)`` of the record in ``data``."""
+    from thermocomp.shell.builders import deployable
+
+    cfg = _compose(f"data.path={data}", "track=false")
+    ds, train_ids, test_ids, _ = read_streamed(cfg)
+    train = {c: ds.campaigns[c] for c in train_ids}
+    comp = build_compensator(cfg, ds=ds).set_params(estimator=AugmentedRegressor(
+        MLR(), effects={"E_X": [SCALED]})).fit(train)
+    return deployable(cfg, deploy_stream(cfg, comp, train), train, ds), \
+        ds.campaigns[test_ids[0]].reset_index(drop=True)
+
+
 @needs_cc
 def test_the_air_beyond_its_range_from_the_first_sample_gives_the_c_replays_a0(room, tmp_path):
     """(dep108) The monitored air T_amb +30 °C on every row from the campaign's first: replay's
@@ -111,19 +125,12 @@ def test_the_air_beyond_its_range_from_the_first_sample_gives_the_c_replays_a0(r
     row 40, is off the C there and says ``mon_unsure`` on every such row (before, silent)."""
     from thermocomp.apps.deploy.export import Simulator
     from thermocomp.apps.deploy.streaming import replay
-    from thermocomp.shell.builders import deployable
 
-    cfg = _compose(f"data.path={room}", "track=false")
-    ds, train_ids, test_ids, _ = read_streamed(cfg)
-    train = {c: ds.campaigns[c] for c in train_ids}
-    comp = build_compensator(cfg, ds=ds).set_params(estimator=AugmentedRegressor(
-        MLR(), effects={"E_X": [SCALED]})).fit(train)
-    deployed = deployable(cfg, deploy_stream(cfg, comp, train), train, ds)
+    deployed, df = _deployed_scaled(room)
     files = exported_files(deployed, "c")
     inputs = json.loads(files["compensator.json"])["inputs"]
     binary = built_stream(tmp_path, files)
     ss = state_space(deployed, monitor=True)
-    df = ds.campaigns[test_ids[0]].reset_index(drop=True)
     for rows in (slice(None), slice(0, 39)):
         pushed = df.copy()
         pushed.loc[rows, "T_amb"] += 30.0
@@ -147,3 +154,50 @@ def test_the_air_beyond_its_range_from_the_first_sample_gives_the_c_replays_a0(r
                 off = abs(st(u, t, i == 0)[0] - mirror[i]) > TOLERANCE_UM
                 said.append((off, any(bool(st.vars[k]) for k in ("mon_flag", "mon_unsure", "refused"))))
             assert sum(off for off, _ in said[40:]) > 0 and all(flag for off, flag in said if off)
+
+
+@pytest.fixture(scope="module")
+def twinned_room(tmp_path_factory):
+    """diag107's record with T_1, T_3, T_5 each read again by a second sensor beside it (T_8-T_10):
+    11 monitored (min_active 8 of them), so that the air and two others out leave enough in
+    to rebuild it (the served monitor's ``_rebuilds``)."""
+    root = tmp_path_factory.mktemp("twinned") / "data"
+    root.mkdir()
+    ds, noise = _room(7, n_campaigns=6), np.random.default_rng(9)
+    for cid, df in ds.campaigns.items():
+        for i, twin in ((1, 8), (3, 9), (5, 10)):
+            df.insert(df.columns.get_loc("E_X"), f"T_{twin}",
+                      df[f"T_{i}"] + 0.02 * noise.standard_normal(len(df)))
+        df.to_csv(root / f"{cid}.csv", index=False)
+    ds.manifest.reset_index().to_csv(root / "campaigns.csv", index=False)
+    return root
+
+
+@needs_cc
+def test_two_sensors_back_from_a_jump_on_the_air_s_return_row_are_no_spike_there(twinned_room, tmp_path):
+    """(dep109) The air beyond range from the first sample (rows 0-39), T_1 and T_3 each out for
+    a +3 °C jump before its return (rows 34 / 35), both back on row 40 where the air reads within
+    range: replay tries no spike's return on a sample with a value not finite (the air's, until
+    its late reference) and reads the pair's step as two jumps; the C and its JSON mirror tried
+    each as a spike's return first and took them back in (1.44 µm off replay from row 40,
+    unflagged, on 348af997)."""
+    from thermocomp.apps.deploy.export import Simulator
+    from thermocomp.apps.deploy.streaming import replay
+
+    deployed, df = _deployed_scaled(twinned_room)
+    files, ss = exported_files(deployed, "c"), state_space(deployed, monitor=True)
+    df = df.copy()
+    df.loc[:39, "T_amb"] += 30.0
+    df.loc[34:39, "T_1"] += 3.0
+    df.loc[35:39, "T_3"] += 3.0
+    expected = -replay(deployed, df)["E_X"].to_numpy(float)
+    feed = df[["time", *json.loads(files["compensator.json"])["inputs"]]].to_csv(
+        index=False, float_format="%.17g")
+    out = pd.read_csv(io.StringIO(subprocess.run([str(built_stream(tmp_path, files)), "--flags"], input=feed,
+                                                 text=True, capture_output=True, check=True).stdout))
+    sim = Simulator(ss)
+    sim.reset()
+    mirror = [sim.step(u, t)[0] for u, t in zip(df[ss.inputs].to_numpy(float), df["time"].to_numpy(float))]
+    assert not (out["mon_not_in_code"].to_numpy() > 0).any()
+    assert np.max(np.abs(out["C_X"].to_numpy(float) - expected)) <= TOLERANCE_UM
+    assert np.max(np.abs(np.asarray(mirror) - expected)) <= TOLERANCE_UM

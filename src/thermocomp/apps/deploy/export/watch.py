@@ -1088,14 +1088,15 @@ class CodeMonitor:
         """(cmon93) Two sensors jumping in one sample (``big``), no common step, every reading
         there and in range, as the served monitor reads a sample's instant faults together
         (``_spike_back``, ``_instant``): where both are out, each tried as a spike's return first
-        (mon89, in the monitor's order, the field's prediction redone after a return); every
+        (mon89, in the monitor's order, the field's prediction redone after a return; dep109: none
+        on a sample with a value not finite, a late reference's, as served); every
         jumper left re-referenced by its step less its change as the active sensors that did
         not jump predict it (:meth:`_unjumped_change`; alone, its whole step), those in excluded
         in the monitor's order.  The jumpers re-referenced (they fired), or None where the code
         does not hold it (a third out, a set it cannot solve, one it does not hold out):
         nothing changed, flagged by the caller as before (``d`` changed in place)."""
         left = big.copy()
-        if self.a["spike"] and not (big & self._active()).any():
+        if self.a["spike"] and not (big & self._active()).any() and np.isfinite(d).all():
             for j in np.flatnonzero(big):
                 if self._spike_back(int(j), x, d):
                     self._readmit(int(j), SPIKE)

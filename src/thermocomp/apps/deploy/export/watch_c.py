@@ -913,7 +913,8 @@ static int mon_change_seen(const tc_state *s, const double d[], int out[], const
 /* (cmon93) two sensors jumping in one sample (big[]), no common step, every reading there and in
    range, as the served monitor reads a sample's instant faults together (_spike_back, _instant):
    where both are out, each tried as a spike's return first (mon89, in the monitor's order, the
-   field's prediction redone after a return); every jumper left re-referenced by its step less
+   field's prediction redone after a return; dep109: none on a sample with a value not finite, a
+   late reference's, as served); every jumper left re-referenced by its step less
    its change as the active sensors that did not jump predict it (mon_unjumped; alone, its whole
    step), those in excluded in the monitor's order.  1: held (instant[] the jumpers
    re-referenced, d[] changed); 0: not in the code (a third out, a set it cannot solve, one it
@@ -921,10 +922,11 @@ static int mon_change_seen(const tc_state *s, const double d[], int out[], const
 static int mon_pair_jump(tc_state *s, const double x[], double d[], const double step[],
                          const int big[], int instant[]) {
     double pred[NM], e[NM], expected[NM], scale[NM];
-    int a[NM], o[NM], jd[NM], left[NM], ins[NM], k, nleft = 0, anyin = 0;
+    int a[NM], o[NM], jd[NM], left[NM], ins[NM], k, nleft = 0, anyin = 0, unread = 0;
     mon_set(s, a, o, jd, scale);
-    for (k = 0; k < NM; k++) left[k] = big[k], anyin = anyin || (big[k] && a[k]);
-    for (k = 0; k < NM && MON_SPIKE && !anyin; k++) {   /* both out: a spike's return first */
+    for (k = 0; k < NM; k++)
+        left[k] = big[k], anyin = anyin || (big[k] && a[k]), unread = unread || !isfinite(d[k]);
+    for (k = 0; k < NM && MON_SPIKE && !anyin && !unread; k++) {   /* both out: a spike's return first */
         if (!big[k]) continue;
         mon_errors(s, d, pred, e);
         mon_set(s, a, o, jd, scale);
@@ -1510,8 +1512,9 @@ static void mon_sample(tc_state *s, double u[], double dt) {
     for (k = 0; k < NM && nlate; k++) {   /* (dep108f) the served late reference: the reading
                                              agrees with the field where the others predict it,
                                              else goes on from the value the model was given */
-        int by_field = late[k] && MON_PREDICTABLE[k] && isfinite(pred[k]);
+        int by_field;
         if (!late[k]) continue;
+        by_field = MON_PREDICTABLE[k] && isfinite(pred[k]);
         d[k] = s->mon_hist[pos][k] = by_field ? pred[k] : s->mon_clean[k];
         s->mon_ref[k] = x[k] - d[k];
         e[k] = by_field ? 0.0 : NAN;
