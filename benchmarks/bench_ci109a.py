@@ -22,6 +22,29 @@ BAR (written and committed before any measurement of a change; exact: same outpu
     tests/test_hydra_cache.py that name hydra or compose) pass unchanged.
 (1) not met: REFUSED (src reverted, the change kept as benchmarks/ci109a_rule.patch).
 
+Change tried (benchmarks/ci109a_rule.patch, applies to 0326e79e; not in src): a run's job
+(shell/job.py) is Hydra's ``run_job`` step by step without its copies nothing reads: HydraConfig set
+once (the run folder written into its copy as the second ``set_config`` would), the task's copy
+pickled (same nodes, metadata, flags, values and parents as the deepcopy on every command root,
+checked), ``hydra_cfg`` not copied again; tests/shell/test_job.py (in the patch) holds it to Hydra's
+``run_job`` (same task config, callbacks, HydraConfig in the task, ``.hydra/`` files, return) and
+pins run_job's source digest.
+
+Measured (2026-12-07 18:15-18:26, load from up to 7 other helpers; ``loop`` base = ``git archive``
+of 0326e79e, after = the worktree with the patch, one after the other per round; ms of CPU)::
+
+  round  cache-hit config path       (compose, run_job)          run_job outside task, all 12   loop s
+  1      83.7 -> 45.8  (0.55)   33.8, 49.8 -> 25.5, 20.2         36.8 -> 28.3                   7.49 -> 7.27
+  2      71.8 -> 44.3  (0.62)   30.6, 41.2 -> 24.5, 19.8         35.2 -> 32.3                   8.00 -> 8.03
+  3      50.6 -> 32.2  (0.64)   20.5, 30.1 -> 17.6, 14.6         30.8 -> 25.8                   6.85 -> 7.23
+  4      57.9 -> 37.6  (0.65)   25.6, 32.3 -> 21.5, 16.1         36.7 -> 24.7                   8.39 -> 6.64
+  (a round 2 whose after run met a planted break in the tree was dropped and run again: 2)
+
+run_job outside the task halves (0.41-0.50 on hits), but a hit's composition (Hydra's own
+override parsing, search path, ``hydra`` node; the test cache's file digests) stays: the config
+path is 0.55-0.65 x base, not <= 0.5.  Bar (1) not met: REFUSED.  The loop's total (6.6-8.6 s)
+moves by noise; the implied cut is ~12 x 15 ms = 0.2 s (~2.5 %).
+
 Usage (``PYTHONPATH=<tree>/src``; TREE: the checkout measured, its tests/ and conf/)::
 
     python benchmarks/bench_ci109a.py loop TREE      # 12 commands: CPU, config path's CPU

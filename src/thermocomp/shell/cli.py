@@ -269,18 +269,18 @@ def _task(stage: str, args: list[str], raised: list):
 
 def _run_job(stage: str, args: list[str], cfg) -> None:
     """A run: Hydra's own job runner on the config composed once (what ``hydra.main`` does for a
-    run after composing it twice more): its callbacks, job logging and run folder (:mod:`.job`:
-    Hydra's ``run_job`` without its copies of the config that nothing reads)."""
+    run after composing it twice more): its callbacks, job logging and run folder."""
     from hydra._internal.callbacks import Callbacks
-    from hydra.types import RunMode
-
-    from .job import run_job
+    from hydra.core.utils import run_job
+    from hydra.types import HydraContext, RunMode
 
     raised = []
     cfg.hydra.mode = RunMode.RUN
     callbacks = Callbacks(cfg)
     callbacks.on_run_start(config=cfg, config_name=root_name(stage))
-    ret = run_job(_task(stage, args, raised), cfg, callbacks)
+    ret = run_job(task_function=_task(stage, args, raised), config=cfg, job_dir_key="hydra.run.dir",
+                  job_subdir_key=None,     # run_job reads only the callbacks of its context
+                  hydra_context=HydraContext(config_loader=None, callbacks=callbacks))
     callbacks.on_run_end(config=cfg, config_name=root_name(stage), job_return=ret)
     _ = ret.return_value     # an exception that escaped the task: raised again, as Hydra's run does
     if raised:
