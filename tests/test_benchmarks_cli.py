@@ -96,7 +96,7 @@ COMMAND_BENCHES = (
     "bench_st100b", "bench_st101", "bench_st102", "bench_st102b", "bench_st103", "bench_st103b",
     "bench_st103c", "bench_st105", "bench_st105b", "bench_st106", "bench_st106b", "bench_st106c",
     "bench_st107", "bench_st107b", "bench_st107c", "bench_st108", "bench_st108b", "bench_st108c",
-    "bench_st108d", "bench_st93", "bench_st93b", "bench_st94", "bench_st94b", "bench_st95", "bench_st95b",
+    "bench_st108d", "bench_st109", "bench_st93", "bench_st93b", "bench_st94", "bench_st94b", "bench_st95", "bench_st95b",
     "bench_st96", "bench_st96b", "bench_st97", "bench_st97b", "bench_st97c", "bench_st97d", "bench_st98",
     "bench_st98b", "bench_st99", "bench_st99b", "bench_st99c", "bench_stable67", "bench_step93",
     "bench_step93b", "bench_step99", "bench_stranger63", "bench_stranger64", "bench_stranger65",
