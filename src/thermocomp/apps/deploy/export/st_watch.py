@@ -117,8 +117,13 @@ the rows where the block's number may differ from the C's because the C may hold
 sensor the block reads: a ``STEP_OUT`` it holds, and, from its stop or a flag that ends its
 judgement (``mon_lost``), each row it flags or where a judged sensor's error with every sensor in
 is at its warning band, and ``2 MON_WINDOW`` rows after (the C's first wait); it only says so.
+(st109) A reading beyond its range at a campaign's first sample, one alone of a sensor the
+others predict (:func:`late_constants`), is read as the C reads it (dep108 / dep108f): the
+stand-in ``MON_FIRST_C`` plus the others' prediction (``mon_late``, ``mon_lpred``: not refused),
+referenced late at its return and read so to the C's ``BACK``; anything else gone or named
+meanwhile sets ``mon_rfirst`` (st108d: ``mon_unsure`` to the campaign's end).
 The counters that grow with the campaign
-(``mon_count``, ``mon_stop_row``, ``mon_calm``, ``mon_run``, ``mon_quiet``, ``mon_jcalm``,
+(``mon_count``, ``mon_stop_row``, ``mon_calm``, ``mon_run``, ``mon_quiet``, ``mon_jcalm``, ``mon_lcalm``,
 ``mon_hsince``) are DINT: an INT wraps after 32767 samples (9 h at 1 s), and a wrapped count stops
 the judgement (``mon_count + 1 >= MON_CONFIRM``).
 
