@@ -37,6 +37,31 @@ dep108 / dep108f); *unflagged* where also neither ``mon_flag``, ``mon_unsure`` n
   test in test_export_lean107b (its dep108 case) failing on BASE.
 * KEPT where R1-R4 hold; else REFUSED (src at BASE, the rule in benchmarks/st109_rule.patch).
 
+SCORED (2026-12-07, the bar 9d4376da unchanged; BASE /tmp/st109/basesrc = ``git archive 348af997
+src conf``; CPU user + sys by /usr/bin/time; the machine shared, load ~14).
+* R1 met.  Seen ``back`` +30: 480 rows; BASE differing 480 (max 7.97 um; 160 refused, 480
+  ``mon_unsure``), RULE 0 (max 7.1e-15 um; 0 refused, 240 ``mon_unsure``: st108b's rule, the
+  block's OFF_RANGE flags on rows 0-39 and 2 MON_WINDOW after).  ``all`` +30: BASE 480 differing
+  (21.5 um, all refused), RULE 0 (7.1e-15 um; 480 ``mon_unsure``, every row flagged OFF_RANGE).
+  Unflagged 0 -> 0 in both.  ``score`` 9.4 + 0.8 s CPU.
+* R2 met.  Fresh 10198 / 10199 / 10200 simulated once (room) and chained (diagnose took the lean
+  law on E_X and E_Z each); ``back`` +30 (2177 / 2167 / 2178 rows): BASE differing on every row
+  (23.9 / 24.8 / 51.2 um), RULE 0 (<= 2.8e-14 um), 0 refused; ``all`` +30: BASE every row (35.5 /
+  35.6 / 40.2 um), RULE 0 (<= 2.1e-14 um).  Unflagged 0 -> 0.  ~17 s CPU each.
+* R3 healthy streams: bench_st108b ``stream`` on lr/dl 9964-9967 (46084 rows; records made here
+  by ``make``), BASE 92.8 s / RULE 82.4 s CPU: the saved st, c, flag, rule, sensor, mon_unsure and
+  stop arrays identical on every row of the 8 runs (so 0 unflagged, as BASE).
+* R3 bench_st108c ``sets`` on st107 fresh (lr/dl 10127-10129, made here by bench_st108c's
+  MADE_BY; gate lr10128 dl10128 as st108c): 24 windows, 2664 rows, 704 differing, 0 unflagged on
+  both; every saved array identical BASE / RULE (BASE 68.5 s, RULE 62.2 s CPU).  Not run (time):
+  st107 seen (16 records), st103b seen / fresh.  The rule is entered only at a first sample with
+  a monitored reading beyond range (st108d's ``mon_rfirst`` condition); elsewhere the healthy 8
+  and these 24 windows show the block unchanged, not measured on those sets.
+* R4 met.  PARSED_DIGEST 091f0ac4... (blark parsed the block, 51.3 s CPU once); test_export_st*,
+  test_export.py, lean107b, monitor76, step99, test_benchmarks_cli: 1063 passed (143.5 + 7.0 s
+  CPU, -n 2).  test_export_lean107b's dep108 case asserts |ST - mirror| <= 1e-9 um on every row:
+  fails on BASE (7.97 um); that test 7.1 s CPU (BASE, failing at its last line, 7.9 s): no cost.
+
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``)::
 
     python benchmarks/bench_st109.py score ROOT DATA BASESRC
