@@ -61,6 +61,13 @@ src conf``; CPU user + sys by /usr/bin/time; the machine shared, load ~14).
   test_export.py, lean107b, monitor76, step99, test_benchmarks_cli: 1063 passed (143.5 + 7.0 s
   CPU, -n 2).  test_export_lean107b's dep108 case asserts |ST - mirror| <= 1e-9 um on every row:
   fails on BASE (7.97 um); that test 7.1 s CPU (BASE, failing at its last line, 7.9 s): no cost.
+* Also tried on the seen model (a script, not a command): T_1 +30 on rows 0-39 (the others
+  predict it): the 3 campaigns where it is beyond range at the first sample 120 / 120 / 120
+  differing rows -> 0; T_2 +30 (none predicts it: not followed, st108d's flag) 0 unflagged.
+  Found, not this rule's (BASE the same): campaign C01, where T_1 + 30 is within range at the
+  first sample and beyond on rows 36-39 only, the ST is 9.8-13.8 um off the C on rows 40-99 and
+  60 of them unflagged (row 40's -30 step back over a 5-sample gap is no jump to the block; the C
+  takes T_1 out there and back at row 50).
 
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``)::
 
