@@ -64,10 +64,10 @@ src conf``; CPU user + sys by /usr/bin/time; the machine shared, load ~14).
 * Also tried on the seen model (a script, not a command): T_1 +30 on rows 0-39 (the others
   predict it): the 3 campaigns where it is beyond range at the first sample 120 / 120 / 120
   differing rows -> 0; T_2 +30 (none predicts it: not followed, st108d's flag) 0 unflagged.
-  Found, not this rule's (BASE the same): campaign C01, where T_1 + 30 is within range at the
-  first sample and beyond on rows 36-39 only, the ST is 9.8-13.8 um off the C on rows 40-99 and
-  60 of them unflagged (row 40's -30 step back over a 5-sample gap is no jump to the block; the C
-  takes T_1 out there and back at row 50).
+  Found, not this rule's (BASE the same, not traced): the first test campaign, where T_1 + 30 is
+  within range at the first sample (49.4 < 50.05) and beyond it later in rows 0-39, the ST is off
+  the C on rows 18-119 (max 21.1 um), rows 60-119 unflagged (the C takes T_1 out at row 40's
+  -30 step, back at row 50).
 
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``)::
 
