@@ -493,7 +493,8 @@ FOR j := 0 TO N_INPUTS - 1 DO
     END_IF;
 END_FOR;
 (* (st93) so does a monitored reading beyond the monitor's range: no sensor rebuilds it here *)
-IF mon_gone THEN
+(* (st109) but one beyond since the first sample, rebuilt as the C (mon_late) *)
+IF mon_gone AND mon_late < 0 THEN
     refused := TRUE;
 END_IF;
 (* so does a campaign's first sample without its ambient given (AMBIENT_GIVEN: no sensor) *)
@@ -529,6 +530,9 @@ IF NOT refused THEN
     (* in the monitor's order that has one, as the C's *)
     serving := 0;
     serving_k := -1;
+    IF mon_late >= 0 THEN    (* (st109) the C's stand-in plus the others' prediction of it *)
+        uu[MON_INPUT[mon_late]] := MON_FIRST_C[mon_late] + mon_lpred;
+    END_IF;
     IF mon_held >= 0 AND mon_held_set >= 0 THEN
         uu[MON_INPUT[mon_held]] := mon_base[mon_held] + mon_hlast;
         serving_k := mon_held;

@@ -117,8 +117,13 @@ the rows where the block's number may differ from the C's because the C may hold
 sensor the block reads: a ``STEP_OUT`` it holds, and, from its stop or a flag that ends its
 judgement (``mon_lost``), each row it flags or where a judged sensor's error with every sensor in
 is at its warning band, and ``2 MON_WINDOW`` rows after (the C's first wait); it only says so.
+(st109) A reading beyond its range at a campaign's first sample, one alone of a sensor the
+others predict (:func:`late_constants`), is read as the C reads it (dep108 / dep108f): the
+stand-in ``MON_FIRST_C`` plus the others' prediction (``mon_late``, ``mon_lpred``: not refused),
+referenced late at its return and read so to the C's ``BACK``; anything else gone or named
+meanwhile sets ``mon_rfirst`` (st108d: ``mon_unsure`` to the campaign's end).
 The counters that grow with the campaign
-(``mon_count``, ``mon_stop_row``, ``mon_calm``, ``mon_run``, ``mon_quiet``, ``mon_jcalm``,
+(``mon_count``, ``mon_stop_row``, ``mon_calm``, ``mon_run``, ``mon_quiet``, ``mon_jcalm``, ``mon_lcalm``,
 ``mon_hsince``) are DINT: an INT wraps after 32767 samples (9 h at 1 s), and a wrapped count stops
 the judgement (``mon_count + 1 >= MON_CONFIRM``).
 
@@ -358,6 +363,30 @@ def blind_constants(watch: dict, n: int, stepped: bool, literal, constant) -> li
             f"    MON_FOLLOW_OTHERS : INT := {int(watch.get('new_state_others', 2))};"]
 
 
+def late_constants(watch: dict, n: int, stepped: bool, constant) -> list[str]:
+    """(st109) What the block needs to start a sensor beyond its range at a campaign's first sample
+    as the C does (dep108 / dep108f, :meth:`.watch.CodeMonitor.step`'s ``late``): its stand-in
+    ``MON_FIRST_C`` (the training's first reading), the row of the set-without-it operator that
+    rebuilds it from the others (``MON_LATE_FIELD[k, m]``, 0 at ``m = k``) and whether the block
+    follows it (``MON_LATE_OK``: ``late`` exported, the others predict it, it has no fallback model,
+    enough are left without it, and, for the C's ``BACK`` test with every sensor in, ``stepped``
+    and it judged there)."""
+    from .watch import CodeMonitor
+
+    field, ok = np.zeros((n, n)), np.zeros(n, int)
+    late = bool(n and watch.get("late") and stepped)
+    mon = CodeMonitor(watch) if late else None
+    judged = np.asarray(watch["lev"][0], float) < float(watch["max_leverage"]) if late else ok
+    for k in (k for k in range(n) if late and n - 1 >= watch["min_active"]):
+        op = mon._operator(np.arange(n) == k)
+        if op is None or not (mon.predictable[k] and judged[k]) or watch.get("fallback", [0] * n)[k]:
+            continue
+        ok[k], field[k] = 1, np.where(np.arange(n) == k, 0.0, op[0][k])
+    return [constant("MON_FIRST_C", list(watch.get("first_c", [0.0] * n)), (n,)),
+            constant("MON_LATE_FIELD", field.tolist(), (n, n)),
+            constant("MON_LATE_OK", ok.tolist(), (n,), "INT")]
+
+
 def constants(watch: dict, literal, constant) -> list[str]:
     """The monitor's constants (``watch``: :func:`.watch.monitor_fields`'s ``monitor``, empty:
     none, ``MON_N`` 0) in the block's ``VAR CONSTANT``."""
@@ -391,6 +420,7 @@ def constants(watch: dict, literal, constant) -> list[str]:
             *blind_constants(watch, alarm.size, stepped, literal, constant),
             *freeze_constants(watch, alarm.size, constant),
             *exchange_constants(watch, alarm.size, constant),
+            *late_constants(watch, alarm.size, stepped, constant),
             f"    MON_PERIOD : LREAL := {literal(watch.get('period', 1.0))};",
             f"    MON_GAP_PERIODS : LREAL := {literal(watch.get('gap_periods', 1.5))};",
             f"    MON_COMMON_MIN : INT := {int(watch.get('common_min', 3))};",
@@ -516,6 +546,13 @@ VARS = """    mon_last : ARRAY[{nm}] OF LREAL;
     mon_xsk : LREAL;
     mon_usince : DINT;
     mon_rfirst : BOOL;
+    mon_late : INT;    (* (st109) the sensor beyond its range since the first sample, followed *)
+    mon_lback : BOOL;
+    mon_lcalm : DINT;
+    mon_lpred : LREAL;
+    mon_lgone : INT;
+    mon_lpos : INT;
+    mon_lring : ARRAY[{ring}] OF LREAL;
 """
 
 # before the refusal: the sample's monitored readings judged (the block's first == a campaign's)
@@ -677,7 +714,7 @@ FOR mk := 0 TO MON_N - 1 DO
         mon_gone := TRUE;
     ELSIF mon_x < MON_LO_LIM[mk] OR mon_x > MON_HI_LIM[mk] THEN
         mon_gone := TRUE;
-    ELSIF NOT first THEN
+    ELSIF NOT first AND (mk <> mon_late OR mon_lback) THEN    (* (st109) a late one's return: no step *)
         mon_lim := MON_JUMP_LIM[mk] * mon_gap[mk];
         IF mon_span > mon_gap[mk] THEN
             mon_lim := MON_JUMP_LIM[mk] * mon_span;
@@ -711,18 +748,9 @@ FOR mk := 0 TO MON_N - 1 DO
     END_IF;
 END_FOR;
 (* then a reading beyond the range (read as missing, as the C), then the jumps *)
-IF reset THEN    (* not first: that holds through the refused rows to the first taken one *)
-    mon_rfirst := FALSE;
-END_IF;
 FOR mk := 0 TO MON_N - 1 DO
     j := MON_INPUT[mk];
     mon_x := u[j];
-    IF first AND mon_x >= -U_LIMIT[j] AND mon_x <= U_LIMIT[j] THEN
-        (* (st108d) the C starts it from MON_FIRST_C and references it late: the block does not *)
-        IF mon_x < MON_LO_LIM[mk] OR mon_x > MON_HI_LIM[mk] THEN
-            mon_rfirst := TRUE;
-        END_IF;
-    END_IF;
     IF mon_rule = 0 AND mon_x >= -U_LIMIT[j] AND mon_x <= U_LIMIT[j] THEN
         IF mon_x < MON_LO_LIM[mk] OR mon_x > MON_HI_LIM[mk] THEN
             mon_sensor := mk;
@@ -1450,6 +1478,7 @@ FOR mk := 0 TO MON_N - 1 DO
     mon_has_step[mk] := mon_has_step[mk] AND NOT mon_big[mk] AND NOT mon_out[mk];
     (* (st95b) none of one out by a STEP_OUT, nor at its return (the C's last step) *)
     mon_has_step[mk] := mon_has_step[mk] AND mk <> mon_was AND mk <> mon_held;
+    mon_has_step[mk] := mon_has_step[mk] AND mk <> mon_late;    (* (st109) out in the C, or back now *)
     mon_last_step[mk] := mon_step[mk];
     IF first OR (mon_back AND mon_x >= MON_LO_LIM[mk] AND mon_x <= MON_HI_LIM[mk]) THEN
         mon_last[mk] := mon_x;
@@ -1462,6 +1491,98 @@ FOR mk := 0 TO MON_N - 1 DO
         mon_gap[mk] := mon_gap[mk] + 1.0;
     END_IF;
 END_FOR;
+(* (st109) a reading beyond its range at the first sample, as the C (dep108, dep108f): one *)
+(* alone of a sensor the others predict (MON_LATE_OK), read MON_FIRST_C + the others' *)
+(* prediction of it (mon_lpred) while beyond, referenced late at its return (its d the *)
+(* prediction), read so to the C's BACK; anything else gone or named meanwhile: not followed, *)
+(* mon_rfirst (mon_unsure to the campaign's end, as st108d; so a first sample not taken) *)
+IF reset THEN    (* not first: that holds through the refused rows to the first taken one *)
+    mon_rfirst := FALSE;
+END_IF;
+IF first THEN
+    mon_late := -1;
+    mon_lgone := 0;
+    FOR mk := 0 TO MON_N - 1 DO
+        j := MON_INPUT[mk];
+        IF NOT (u[j] >= -U_LIMIT[j] AND u[j] <= U_LIMIT[j]) THEN
+            mon_lgone := mon_lgone + 2;
+        ELSIF u[j] < MON_LO_LIM[mk] OR u[j] > MON_HI_LIM[mk] THEN
+            mon_lgone := mon_lgone + 1;
+            mon_late := mk;
+        END_IF;
+    END_FOR;
+    IF mon_late >= 0 THEN
+        IF mon_lgone > 1 OR MON_LATE_OK[mon_late] = 0 THEN
+            mon_rfirst := TRUE;
+            mon_late := -1;
+        ELSE
+            mon_base[mon_late] := MON_FIRST_C[mon_late];    (* the C's base: the stand-in *)
+            mon_lback := FALSE;
+        END_IF;
+    END_IF;
+ELSIF mon_late >= 0 THEN
+    mon_ok := mon_jumps = 0 AND (mon_rule = 0 OR (mon_rule = RULE_OFF_RANGE AND mon_sensor = mon_late));
+    FOR mk := 0 TO MON_N - 1 DO
+        j := MON_INPUT[mk];
+        mon_ev := NOT (u[j] >= -U_LIMIT[j] AND u[j] <= U_LIMIT[j]) OR mon_fnew[mk];
+        IF mk <> mon_late OR mon_lback THEN
+            mon_ev := mon_ev OR u[j] < MON_LO_LIM[mk] OR u[j] > MON_HI_LIM[mk];
+        END_IF;
+        IF mon_ev THEN
+            mon_ok := FALSE;
+        END_IF;
+    END_FOR;
+    IF NOT mon_ok THEN
+        mon_rfirst := TRUE;
+        mon_late := -1;
+    END_IF;
+END_IF;
+IF mon_late >= 0 THEN
+    mon_lpred := 0.0;
+    FOR mk := 0 TO MON_N - 1 DO
+        j := MON_INPUT[mk];
+        IF mk <> mon_late THEN
+            mon_lpred := mon_lpred + MON_LATE_FIELD[mon_late, mk] * (u[j] - mon_base[mk] - mon_shift[j]);
+        END_IF;
+    END_FOR;
+    j := MON_INPUT[mon_late];
+    IF NOT first AND NOT mon_lback AND u[j] >= MON_LO_LIM[mon_late] AND u[j] <= MON_HI_LIM[mon_late] THEN
+        mon_lback := TRUE;    (* its return: referenced late, its d the prediction *)
+        mon_lcalm := 0;
+        mon_lpos := 0;
+        mon_shift[j] := u[j] - mon_base[mon_late] - mon_lpred;
+    ELSIF mon_lback AND mon_lcalm < 2147483646 THEN
+        mon_lcalm := mon_lcalm + 1;
+    END_IF;
+END_IF;
+IF mon_late >= 0 AND mon_lback THEN
+    FOR mk := 0 TO MON_N - 1 DO    (* the C's window of readings since the return *)
+        j := MON_INPUT[mk];
+        mon_lring[mon_lpos, mk] := u[j] - mon_base[mk] - mon_shift[j];
+    END_FOR;
+    mon_lpos := mon_lpos + 1;
+    IF mon_lpos >= MON_WINDOW THEN
+        mon_lpos := 0;
+    END_IF;
+    (* the C's BACK: a window on, its reading moving, its error with every sensor in within *)
+    (* its band on every row of the window *)
+    IF mon_lcalm >= MON_WINDOW AND mon_frun[mon_late] = 0 AND mon_count + 1 >= MON_WINDOW THEN
+        mon_ok := TRUE;
+        FOR mr := 0 TO MON_WINDOW - 1 DO
+            mon_x := mon_lring[mr, mon_late];
+            FOR mj := 0 TO MON_N - 1 DO
+                mon_x := mon_x - MON_SELF[mon_late, mj] * mon_lring[mr, mj];
+            END_FOR;
+            mon_x := mon_x * MON_SCALE[mon_late];
+            IF NOT (mon_x < MON_BACK_BAND[mon_late] AND mon_x > -MON_BACK_BAND[mon_late]) THEN
+                mon_ok := FALSE;
+            END_IF;
+        END_FOR;
+        IF mon_ok THEN
+            mon_late := -1;    (* back: read as measured on its late reference *)
+        END_IF;
+    END_IF;
+END_IF;
 (* (st108b) where the block no longer judges (its stop, or a flag that ends its judgement) *)
 (* the C may take out a sensor the block reads (DRIFT_OUT, its partner, BLIND_OUT, STEP_OUT, *)
 (* a jump's) and rebuild it: mon_unsure where the block flags or a judged sensor's error with *)
@@ -1489,7 +1610,7 @@ IF mon_held >= 0 AND mon_held_set < 0 AND NOT mon_lost THEN
     mon_unsure := TRUE;    (* a STEP_OUT it holds: the C rebuilds the sensor, the block reads it *)
 END_IF;
 IF mon_rfirst THEN
-    mon_unsure := TRUE;    (* (st108d) a reading out of range at the first sample: the C's start differs *)
+    mon_unsure := TRUE;    (* (st108d) the C's start from a reading out of range not followed (st109) *)
 END_IF;
 (* a campaign's sample count, held at DINT's top: never wraps back through 1 *)
 IF mon_count < 2147483646 THEN
