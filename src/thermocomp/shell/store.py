@@ -96,8 +96,7 @@ def create_store(db: Path) -> None:
     creation cut short (disk full, SIGKILL) left a half-migrated ``mlflow.db`` that every
     later run failed on ("table ... already exists").  Its schema is a copy of
     :func:`schema_template` (MLflow's migrations, run once per MLflow version: 1.6-2 s of CPU
-    for every new store before), then its Default experiment is added, the row MLflow adds on a
-    migrated file (an ``SqlAlchemyStore`` opened on the copy to add it: 40 ms of CPU per store).
+    for every new store before), then MLflow adds its Default experiment as on a migrated file.
     """
     template = schema_template()
 
@@ -105,7 +104,7 @@ def create_store(db: Path) -> None:
         shutil.copyfile(template, tmp)
         try:
             # the Default experiment's artifacts beside the store, not in the working folder
-            _add_default_experiment(tmp, db.parent)
+            _open_store(tmp, db.parent)
         except Exception:       # a damaged template: the next creation migrates a new one
             template.unlink(missing_ok=True)
             raise
@@ -134,26 +133,6 @@ def _open_store(db: Path, artifacts: Path) -> None:
     from mlflow.store.tracking.sqlalchemy_store import SqlAlchemyStore
 
     SqlAlchemyStore(f"sqlite:///{db}", artifacts.as_uri()).engine.dispose()
-
-
-def _add_default_experiment(db: Path, artifacts: Path) -> None:
-    """Insert the row MLflow's ``SqlAlchemyStore`` gives a new store, experiment 0 ``Default``
-    with its artifacts under ``artifacts`` (``_create_default_experiment``, its constants)."""
-    from mlflow.entities import Experiment, LifecycleStage
-    from mlflow.store.tracking.sqlalchemy_store import SqlAlchemyStore
-    from mlflow.utils.uri import append_to_uri_path, resolve_uri_if_local
-    from mlflow.utils.workspace_utils import DEFAULT_WORKSPACE_NAME
-
-    location = append_to_uri_path(resolve_uri_if_local(artifacts.as_uri()), "0")
-    now = int(time.time() * 1000)
-    with closing(sqlite3.connect(db)) as con:
-        con.execute("INSERT INTO experiments (experiment_id, name, artifact_location, "
-                    "lifecycle_stage, creation_time, last_update_time, workspace) "
-                    "VALUES (?, ?, ?, ?, ?, ?, ?)",
-                    (int(SqlAlchemyStore.DEFAULT_EXPERIMENT_ID), Experiment.DEFAULT_EXPERIMENT_NAME,
-                     location, LifecycleStage.ACTIVE, now, now,
-                     DEFAULT_WORKSPACE_NAME))
-        con.commit()
 
 
 def template_folder() -> Path:
