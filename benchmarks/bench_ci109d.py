@@ -20,6 +20,31 @@ BAR (written and committed before any measurement of the change):
 (1) not met: REFUSED (the change kept as benchmarks/ci109d_rule.patch, tests/hydra_cache.py as at
 2811aa7c).
 
+Change tried (benchmarks/ci109d_rule.patch, applies to 2811aa7c; not in tests/): in
+tests/hydra_cache.py, each override text parsed once (``OverridesParser.parse_overrides``: a copy
+of the cached Override per call; a ``shuffle(`` text parsed every time), the root's own
+``hydra.searchpath`` read once per (search path's contents, root) with Hydra's code after the read
+(``_process_config_searchpath``, source sha256 pinned), a conf/ file hashed again only when its
+stat (size, mtime, ctime, inode, device) changed or its ctime was within 2 s of the last hash
+(a write sets ctime to the clock; ``os.utime`` cannot set it back), the search path's key read once
+per composition.  tests/test_hydra_cache.py (11 tests, plain Hydra's configs and errors, an edited
+file with size and mtime kept) passes with it.
+
+Measured (2026-12-07 18:51-18:53, ``hits TREE 3``, base = ``git archive`` of 2811aa7c, after =
+this worktree with the patch, one after the other per round; ms of CPU per hit)::
+
+  round  base   after  ratio
+  1      20.5   17.6   0.86
+  2      25.5   21.8   0.85
+  3      23.5   15.8   0.67
+
+Bar (1) not met in any round: REFUSED.  Why (cProfile of the after tree's hits): the suite's value
+overrides name fresh folders (``tmp_path``), so their texts are parsed anew on every command (the
+parse cache hits only the constant ones); what is left is Hydra filling the ``hydra`` node and
+applying the value overrides (OmegaConf ``_set_item_impl``, ~35 %: ``config_sources``,
+``overrides.task`` appends, ``choices``) and the cache's unpickle (~16 %), which no wrapper of the
+cache's kind removes without re-implementing ``_load_configuration_impl``.
+
 Usage (TREE: the checkout measured, its src/, tests/ and conf/)::
 
     python benchmarks/bench_ci109d.py hits TREE [ROUNDS]
@@ -49,6 +74,7 @@ def _tree(tree: str) -> Path:
 def hits(tree: str, rounds: str = "10") -> None:
     _tree(tree)
     import bench_ci109a
+
     import conftest  # noqa: F401  (installs the composition cache as the suite does)
     from thermocomp.shell.config import overrides
 
