@@ -38,6 +38,15 @@ this worktree with the patch, one after the other per round; ms of CPU per hit):
   2      25.5   21.8   0.85
   3      23.5   15.8   0.67
 
+  (ROUNDS 6)
+  4      21.3   20.1   0.95
+  5      21.7   22.2   1.02
+  6      20.9   17.3   0.83
+
+``ab TREE`` (TREE with the patch applied; one process, the patch's wrappers switched on and off
+per block of the 12 commands, 8 blocks each, order alternated): 24.0 -> 19.5 (0.81),
+26.6 -> 23.7 (0.89), 23.8 -> 21.9 (0.92) ms per hit.
+
 Bar (1) not met in any round: REFUSED.  Why (cProfile of the after tree's hits): the suite's value
 overrides name fresh folders (``tmp_path``), so their texts are parsed anew on every command (the
 parse cache hits only the constant ones); what is left is Hydra filling the ``hydra`` node and
@@ -49,10 +58,12 @@ Usage (TREE: the checkout measured, its src/, tests/ and conf/)::
 
     python benchmarks/bench_ci109d.py hits TREE [ROUNDS]
     python benchmarks/bench_ci109d.py loop TREE
+    python benchmarks/bench_ci109d.py ab TREE        # TREE with ci109d_rule.patch applied
 """
 
 from __future__ import annotations
 
+import hashlib
 import os
 import sys
 import tempfile
@@ -91,6 +102,47 @@ def hits(tree: str, rounds: str = "10") -> None:
     print(f"cache-hit compositions: {count}, CPU per hit: {spent / count * 1e3:.2f} ms")
 
 
+def ab(tree: str, blocks: str = "8") -> None:
+    _tree(tree)
+    import bench_ci109a
+    from hydra._internal.config_loader_impl import ConfigLoaderImpl
+    from hydra.core.override_parser.overrides_parser import OverridesParser
+
+    import conftest  # noqa: F401
+    import hydra_cache as cache
+    from thermocomp.shell.config import overrides
+
+    new = (cache._parse_overrides, cache._process_config_searchpath, cache._file_digest,
+           cache._sources_key)
+
+    def read_digest(file: str) -> bytes:       # 2811aa7c's rule: the bytes on every call
+        with open(file, "rb") as f:
+            return hashlib.blake2b(f.read()).digest()
+
+    def switch(on: bool) -> None:
+        OverridesParser.parse_overrides = new[0] if on else cache._original["parse"]
+        ConfigLoaderImpl._process_config_searchpath = new[1] if on else cache._original["searchpath"]
+        cache._file_digest = new[2] if on else read_digest
+        cache._sources_key = new[3] if on else cache._read_sources_key
+
+    base = Path(tempfile.mkdtemp(prefix="ci109d-"))
+    spent = {False: 0.0, True: 0.0}
+    for on in (False, True):
+        switch(on)
+        for args in bench_ci109a._commands(base / f"first{on}"):
+            overrides.compose_checked(list(args[1:]), args[0])
+    for n in range(int(blocks)):
+        for on in (n % 2 == 0, n % 2 == 1):
+            switch(on)
+            for args in bench_ci109a._commands(base / f"{n}{on}"):
+                start = time.process_time()
+                overrides.compose_checked(list(args[1:]), args[0])
+                spent[on] += time.process_time() - start
+    hits = 12 * int(blocks)
+    off, on = spent[False] / hits * 1e3, spent[True] / hits * 1e3
+    print(f"CPU per hit: wrappers off {off:.2f} ms, on {on:.2f} ms, ratio {on / off:.2f}")
+
+
 def loop(tree: str) -> None:
     import bench_ci109a
 
@@ -98,7 +150,7 @@ def loop(tree: str) -> None:
 
 
 def main(argv: list[str]) -> int:
-    return run_commands(__doc__, {"hits": hits, "loop": loop}, argv, cpu=sys.stdout)
+    return run_commands(__doc__, {"hits": hits, "loop": loop, "ab": ab}, argv, cpu=sys.stdout)
 
 
 if __name__ == "__main__":
