@@ -23,6 +23,33 @@ neither ``mon_flag``, ``mon_unsure`` nor ``refused`` is set.  A column is pushed
   unflagged differing row, failing on BASE.
 * KEPT where B1-B4 hold; else REFUSED (src at BASE, the change in benchmarks/st109b_rule.patch).
 
+RULE (st_watch.py): ``mon_rlater``, a monitored reading measured and beyond its range after the
+first sample (but the st109 followed one's before its return) sets ``mon_unsure`` to the
+campaign's end.  Why: the C reads such a reading on where the others predict it beyond the same
+training edge (cmon80 ``_beyond``, a machine hotter than training), so its last reading is the
+last one beyond and the return (T_1 -30 at row 40) is a JUMP: excluded, re-referenced by its step
+less the others' change, back at row 50; the block read it as OFF_RANGE (refused), stepped the
+return from row 17 over the gap (no jump), kept T_1 on its first reference: 9.8-21.1 um off to the
+end, its st108b flags ending at row 59.  Porting the C's read-on needs hi_c / lo_c and the set-
+without-k rows for every sensor, and the return's jump would still part (below): flagged instead.
+
+SCORED (2026-12-07, the bar 8c326703 unchanged; BASE /tmp/st109b/base = ``git archive 7d4346c5``).
+* B1 met.  Seen T_1: campaign 0 beyond rows 18-39; BASE differing 102 (21.1 um), unflagged 60
+  (rows 60-119); RULE differing 102, unflagged 0 (unsure 42 -> 102).  Campaigns 1-3 (beyond at
+  the first sample: st109's rule) 0 differing, unchanged.  5.9 s CPU.
+* B2 NOT met as worded.  Fresh 10207 (diagnose took the lean mean law + a lag on E_X), T_headstock
+  (the rule's pick): campaign 3, beyond rows 19-168: unflagged 319 -> 0 (differing 489, 20.7 um,
+  all flagged).  Campaigns 0 and 2 (never beyond: the -30 step at n // 3 a lone jump in range):
+  unflagged 329 / 351 (max 0.13 / 0.12 um) on BASE and RULE alike: another class (below).
+* B3 met.  bench_st108b ``stream`` lr/dl 9964-9967: every saved array (st, c, flag, rule, sensor,
+  mon_unsure, stop) identical (BASE 94.7 s, RULE 110.0 s CPU, loaded machine).  bench_st109
+  ``score`` on its seen chain: T_amb back / all 0 / 0 differing, unsure 240 / 480 on both.
+* B4 met.  PARSED_DIGEST 10f59d5a (blark parsed, 44.1 s CPU once); lean107b's dep108 test fails
+  on BASE (unflagged rows [60, 61, ...]), its added loop 0.09 s CPU.
+* Found, on BASE too: a lone JUMP of a sensor the others predict (seen T_1 -3 from row 60): the C
+  re-references by its step less the others' change (0.244 degC here), the block by its whole
+  step: 0.52 um off to the end, unflagged from row 81 (39 rows).
+
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``)::
 
     python benchmarks/bench_st109b.py seen BASESRC
@@ -80,9 +107,10 @@ def _score(deployed, campaigns: list, column: str, basesrc: str) -> None:
             gap = np.max(np.abs(r["c"] - r["st"]), axis=1)
             differ = gap > TOL
             lone = np.flatnonzero(differ & ~(r["flag"] | r["unsure"] | r["refused"]))
-            print(f"  {who} campaign {i}: {len(gap)} rows; differing {int(differ.sum())} (max {gap.max():.3g} "
-                  f"um), unflagged {len(lone)}{f' rows {lone.min()}-{lone.max()}' if len(lone) else ''}; "
-                  f"refused {int(r['refused'].sum())}, unsure {int(r['unsure'].sum())}", flush=True)
+            where = f" rows {lone.min()}-{lone.max()}" if len(lone) else ""
+            print(f"  {who} campaign {i}: {len(gap)} rows; differing {int(differ.sum())} (max "
+                  f"{gap.max():.3g} um), unflagged {len(lone)}{where}; refused {int(r['refused'].sum())}, "
+                  f"unsure {int(r['unsure'].sum())}", flush=True)
 
 
 def seen(basesrc: str) -> None:
