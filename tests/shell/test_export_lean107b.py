@@ -153,6 +153,19 @@ def test_the_air_beyond_its_range_from_the_first_sample_gives_the_c_replays_a0(r
             readings = zip(pushed[ss.inputs].to_numpy(float), pushed["time"].to_numpy(float))
             off = [abs(st(u, t, i == 0)[0] - mirror[i]) for i, (u, t) in enumerate(readings)]
             assert max(off) <= TOLERANCE_UM
+    # (st109b) T_1 +30 on rows 0-39: in range at the first sample, beyond it on rows 18-39, read on by
+    # the C (a machine hotter than training) and re-referenced at row 40: the ST says mon_unsure on
+    # every row it is off the C (before: rows 60-119 unflagged, 9.8-21.1 um off)
+    pushed = df.copy()
+    pushed.loc[:39, "T_1"] += 30.0
+    sim = Simulator(ss)
+    sim.reset()
+    unflagged = []
+    for i, (u, t) in enumerate(zip(pushed[ss.inputs].to_numpy(float), pushed["time"].to_numpy(float))):
+        off = np.max(np.abs(st(u, t, i == 0) - sim.step(u, t)))
+        if off > TOLERANCE_UM and not (st.vars["mon_flag"] or st.vars["mon_unsure"] or st.vars["refused"]):
+            unflagged.append(i)
+    assert unflagged == []
 
 
 

@@ -121,7 +121,9 @@ is at its warning band, and ``2 MON_WINDOW`` rows after (the C's first wait); it
 others predict (:func:`late_constants`), is read as the C reads it (dep108 / dep108f): the
 stand-in ``MON_FIRST_C`` plus the others' prediction (``mon_late``, ``mon_lpred``: not refused),
 referenced late at its return and read so to the C's ``BACK``; anything else gone or named
-meanwhile sets ``mon_rfirst`` (st108d: ``mon_unsure`` to the campaign's end).
+meanwhile sets ``mon_rfirst`` (st108d: ``mon_unsure`` to the campaign's end).  (st109b) So does a
+reading beyond its range after the first sample (``mon_rlater``; but the followed one's): the C
+may read it on as a machine hotter than training and re-reference it at its return.
 The counters that grow with the campaign
 (``mon_count``, ``mon_stop_row``, ``mon_calm``, ``mon_run``, ``mon_quiet``, ``mon_jcalm``, ``mon_lcalm``,
 ``mon_hsince``) are DINT: an INT wraps after 32767 samples (9 h at 1 s), and a wrapped count stops
@@ -546,6 +548,7 @@ VARS = """    mon_last : ARRAY[{nm}] OF LREAL;
     mon_xsk : LREAL;
     mon_usince : DINT;
     mon_rfirst : BOOL;
+    mon_rlater : BOOL;    (* (st109b) a reading beyond its range after the first sample *)
     mon_late : INT;    (* (st109) the sensor beyond its range since the first sample, followed *)
     mon_lback : BOOL;
     mon_lcalm : DINT;
@@ -1537,6 +1540,21 @@ ELSIF mon_late >= 0 THEN
         mon_late := -1;
     END_IF;
 END_IF;
+(* (st109b) a reading beyond its range after the first sample (but the followed one's): the C *)
+(* may read it on (a machine hotter than training, cmon80) and re-reference it at its return *)
+(* (a jump), which the block does not follow: mon_rlater (mon_unsure to the campaign's end) *)
+IF reset THEN
+    mon_rlater := FALSE;
+END_IF;
+IF NOT first THEN
+    FOR mk := 0 TO MON_N - 1 DO
+        j := MON_INPUT[mk];
+        mon_ev := u[j] >= -U_LIMIT[j] AND u[j] <= U_LIMIT[j] AND (mk <> mon_late OR mon_lback);
+        IF mon_ev AND (u[j] < MON_LO_LIM[mk] OR u[j] > MON_HI_LIM[mk]) THEN
+            mon_rlater := TRUE;
+        END_IF;
+    END_FOR;
+END_IF;
 IF mon_late >= 0 THEN
     mon_lpred := 0.0;
     FOR mk := 0 TO MON_N - 1 DO
@@ -1611,6 +1629,9 @@ IF mon_held >= 0 AND mon_held_set < 0 AND NOT mon_lost THEN
 END_IF;
 IF mon_rfirst THEN
     mon_unsure := TRUE;    (* (st108d) the C's start from a reading out of range not followed (st109) *)
+END_IF;
+IF mon_rlater THEN
+    mon_unsure := TRUE;    (* (st109b) the C may read a reading beyond its range on *)
 END_IF;
 (* a campaign's sample count, held at DINT's top: never wraps back through 1 *)
 IF mon_count < 2147483646 THEN
