@@ -303,9 +303,6 @@ def on_grid(elapsed, step, period_s: float):
     (the first at least ``period_s - step / 2`` after the last stepped); every other sample is
     stepped as it comes: the training period, a slower stream, a clock's jitter, a gap, a
     repeated or substituted time (a step of 0), a missing one (NaN)."""
-    if isinstance(elapsed, float) and isinstance(step, float):
-        # (ci109b) one sample, a served row's: the same comparisons without arrays (NaN: False)
-        return not (0.0 < step <= period_s / 2 and elapsed + step / 2 < period_s)
     elapsed, step = np.asarray(elapsed), np.asarray(step)
     with np.errstate(invalid="ignore"):
         return np.logical_not((step > 0) & (step <= period_s / 2) & (elapsed + step / 2 < period_s))

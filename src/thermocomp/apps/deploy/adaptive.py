@@ -192,10 +192,8 @@ class AdaptiveCompensator:
         self.n_repeated_ = 0
         self._u_last = None       # (dup99) the inputs of the last sample stepped on, as read
         self._repeating = False   # the last row was one written again
-        self._pending = []        # (ci109b) rows the fallbacks have yet to step (_fallbacks_stepped)
 
     def __setstate__(self, state: dict) -> None:
-        state.setdefault("_pending", [])   # (pickled before ci109b: none waiting)
         if "_clock" not in state:     # pickled before the time rule (timerule.py)
             state["_clock"] = SampleClock(state["period_s"])
             state["_clock"].restore(_clock_of(state.pop("_last_time", float("nan")),
@@ -203,7 +201,6 @@ class AdaptiveCompensator:
         self.__dict__.update(state)
 
     def _snapshot(self) -> tuple:
-        self._fallbacks_stepped()     # their states as of the last row (restored with none waiting)
         return (self.streaming._snapshot(), self.monitor.snapshot() if self.monitor else None,
                 self.guard.snapshot() if self.guard else None,
                 None if self._base is None else self._base.copy(),
@@ -223,7 +220,6 @@ class AdaptiveCompensator:
         (s, m, g, self._base, self._late, clock, self._held,
          self._held_state, self._time_bad, self._y, self.n_samples_, falls, repeat) = snap
         self._u_last, self._repeating, self.n_repeated_ = repeat
-        self._pending = []
         for sensor, fallback in self.fallbacks_.items():
             if sensor in falls:
                 fallback._restore(falls[sensor])
@@ -256,34 +252,17 @@ class AdaptiveCompensator:
             y, clamped, stepped = np.full(len(self.targets_), np.nan), 0, False
             events.append(_held_event(t, exc))
         if self.fallbacks_:
-            self._pending.append((x.copy(), t))
             out = self._fallen_back(read)
-            falls = self._fallbacks_stepped() if stepped and out is not None else {}
-            if out in falls:
+            falls = {}
+            for sensor, fallback in self.fallbacks_.items():
+                try:
+                    falls[sensor] = fallback._step(x, t, clocked=True)[0]
+                except ValueError:
+                    pass
+            if stepped and out in falls:
                 y, take = falls[out], getattr(self.fallbacks_[out], "last_take_", None)
         self._output(y, dt, t, self._allowance(stepped), events, take)
         return self._y, clamped
-
-    def _fallbacks_stepped(self) -> dict:
-        """Each fallback stepped over the rows it has yet to step (``_pending``), as
-        :meth:`_step` would have stepped it at each; ``{sensor: its correction of the last
-        row}``, a fallback that refused the last row left out.  (ci109b) A fallback's correction
-        is read only while its sensor is out: stepped when it is, or its state is asked
-        (:meth:`_snapshot`, :meth:`run_rows`), each row once and in order, so every correction
-        and state is the one stepping at each row gave; a reset drops the rows (the state they
-        led to is reset).  Half of a served row's CPU went to fallbacks whose correction no row
-        read."""
-        pending, self._pending = self._pending, []
-        falls = {}
-        for sensor, fallback in self.fallbacks_.items():
-            for k, (x, t) in enumerate(pending):
-                try:
-                    y = fallback._step(x, t, clocked=True)[0]
-                except ValueError:
-                    continue
-                if k == len(pending) - 1:
-                    falls[sensor] = y
-        return falls
 
     def _repeated(self, x: np.ndarray, time: float, events: list) -> bool:
         """(dup99) Whether the row is one written again (module doc), counted, its event added
@@ -309,8 +288,8 @@ class AdaptiveCompensator:
         out its window (its held reading, a window old at most, is the better stand-in: one
         empty logger row cost 1.35 against 1.30 µm, tests/shell/test_monitor_lab57.py)."""
         mon = self.monitor
-        if not self.fallbacks_ or mon is None or not mon._rebuilds or mon._active.all():
-            return None                       # (every sensor in: the usual row)
+        if not self.fallbacks_ or mon is None or not mon._rebuilds:
+            return None
         back = mon._dropped & np.isfinite(read)
         return next((s for s, out, b in zip(mon.names, ~mon._active, back)
                      if out and not b and s in self.fallbacks_), None)
@@ -370,7 +349,6 @@ class AdaptiveCompensator:
         row by row.  Each row's events are dropped but the last row's (``last_events_``).  A
         ``ValueError`` of the time rule or the monitor goes to ``on_refused(i, exc)`` (raised
         without it), as :meth:`_step` raises it."""
-        self._fallbacks_stepped()        # (their block below goes on from the last row)
         n = len(X)
         xs = np.array(X, dtype=float, copy=True)
         ts, dts = np.empty(n), np.empty(n)

@@ -166,7 +166,7 @@ class CorrectionGuard:
             lo, hi = lo - allowance, hi + allowance
         if self._free and prev is not None and np.isfinite(y.sum()):   # the usual case, fast
             lim = self.max_rate_per_s * rate_span(dt, self.period_s)
-            if ((np.abs(y - prev) <= lim) & (y >= lo) & (y <= hi)).all():
+            if (np.abs(y - prev) <= lim).all() and (y >= lo).all() and (y <= hi).all():
                 self._prev = y
                 return y, []
         held = ~np.isfinite(y)

@@ -154,27 +154,9 @@ class ThermalPOD(BaseEstimator):
         leverage of each active sensor.  Uses ``min(r, s)`` modes when fewer sensors remain."""
         active = np.asarray(active, dtype=bool)
         r = min(self.n_modes_ if r is None else r, int(active.sum()))
-        # (ci109b) one set's operator is asked again at every campaign's reset and at each
-        # exclusion and return of a served stream: kept per (basis, set, r), read-only
-        memo = self.__dict__.get("_operators")
-        if memo is None or memo[0] is not self.basis_:
-            memo = self._operators = (self.basis_, {})
-        key = (active.tobytes(), r)
-        if key not in memo[1]:
-            phi = self.basis_[:, :r]
-            pinv = np.linalg.pinv(phi[active])
-            M, h = phi @ pinv, leverage(phi[active])
-            M.setflags(write=False)
-            h.setflags(write=False)
-            memo[1][key] = (M, h)
-        return memo[1][key]
-
-    def __getstate__(self) -> dict:
-        """Its state without the operators kept (:meth:`operator`): a pickle or a copy
-        computes them again."""
-        state = super().__getstate__()
-        state.pop("_operators", None)
-        return state
+        phi = self.basis_[:, :r]
+        pinv = np.linalg.pinv(phi[active])
+        return phi @ pinv, leverage(phi[active])
 
     def reconstruct(self, T_subset, subset) -> np.ndarray:
         r"""Whole field from the sensors ``subset`` (indices or mask): :math:`\Phi_r\,\Phi_r[s]^+ T_s`.

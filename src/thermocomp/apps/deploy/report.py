@@ -44,7 +44,6 @@ from .streaming import (
     OutOfEnvelopeError,
     StreamingCompensator,
     batch_prediction,
-    input_rows,
     on_campaign_clock,
     warm,
     warm_events,
@@ -126,7 +125,7 @@ def stream_rows(deployed, campaign: pd.DataFrame, cid: str = "", file=None,
     envelope with ``policy=refuse``) raises :class:`ContractError` naming the
     campaign, its ``file``, the column and the row (1-based).
     """
-    X = input_rows(campaign, deployed.columns_)
+    X = campaign[deployed.columns_].to_numpy(float)
     t = campaign[TIME].to_numpy(float) if TIME in campaign.columns else np.full(len(campaign), np.nan)
     y = np.empty((len(X), len(deployed.targets_)))
     clamped = np.zeros(len(X), dtype=np.int64)

@@ -27,7 +27,7 @@ from ..deploy.report import (
     new_states,
     streamed_hours,
 )
-from ..deploy.streaming import input_rows, on_campaign_clock, warm, warm_events
+from ..deploy.streaming import on_campaign_clock, warm, warm_events
 from ..deploy.surveillance import STATES
 from .blind import undetected_offset_um
 from .placement import covariance_sensors, qr_sensors
@@ -49,7 +49,7 @@ def stream_campaign(model, df: pd.DataFrame, lead_in: pd.DataFrame | None = None
     a list given gets the sensor monitor's events while the stream was warmed on ``lead_in``
     (:func:`~thermocomp.apps.deploy.streaming.warm_events`, their times from the campaign's first
     row: negative), as ``replay`` reports them (deploy89)."""
-    X = input_rows(df, model.columns_)
+    X = df[model.columns_].to_numpy(float)
     t = df[TIME].to_numpy(float) if TIME in df.columns else np.arange(len(df), dtype=float)
     y = np.zeros((len(X), len(model.targets_)))
     events, states, errors = [], [], []

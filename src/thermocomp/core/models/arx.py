@@ -314,13 +314,10 @@ class ARX(SideInputs, RegressorMixin, BaseEstimator):
     def stream_step(self, x_row, state: dict, context=None) -> tuple[float, dict]:
         """One sample of simulation-mode ``predict``: ``(y_hat, new_state)``."""
         x_row = np.asarray(x_row, dtype=float).reshape(-1)
+        depth = max((d for _, d in self.terms_), default=0) + 1
         history = state["history"]
-        if history is None:
-            depth = max((d for _, d in self.terms_), default=0) + 1
-            history = np.tile(x_row, (depth, 1))
-        else:                                   # (its rows: the depth; a served row's cost)
-            depth = len(history)
-            history = np.concatenate((history[1:], x_row[None, :]))
+        history = np.tile(x_row, (depth, 1)) if history is None \
+            else np.vstack([history[1:], x_row[None, :]])
         u = self.intercept_
         for (j, d), b in zip(self.terms_, self.coef_):
             u += b * history[depth - 1 - d, j]

@@ -869,15 +869,13 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         x = np.asarray(x_row, dtype=float).reshape(-1)
         clock = state.get("clock") or _clock_of(state["t"])
         clock, _, dt, _ = step_time(clock, scalar(context, TIME), self.sample_period_s_)
-        # x once per lag (np.tile's values without its per-call cost: a served row's)
-        tiled = np.concatenate((x,) * self.taus_.size)
         if state["z"] is None:
             rest = self._rest(x.size)
-            z = tiled if rest is None else np.tile(np.where(rest, 0.0, x), self.taus_.size)
+            z = np.tile(x if rest is None else np.where(rest, 0.0, x), self.taus_.size)
         else:
-            a = np.exp(-dt / self.taus_).repeat(x.size)
-            z = a * state["z"] + (1.0 - a) * tiled
-        y_hat = float(np.concatenate([x, z - tiled]) @ self.coef_ + self.intercept_
+            a = np.repeat(np.exp(-dt / self.taus_), x.size)
+            z = a * state["z"] + (1.0 - a) * np.tile(x, self.taus_.size)
+        y_hat = float(np.concatenate([x, z - np.tile(x, self.taus_.size)]) @ self.coef_ + self.intercept_
                       + self.ar_coef_ * state["y_prev"])
         return y_hat, {"z": z, "clock": clock, "y_prev": y_hat}
 

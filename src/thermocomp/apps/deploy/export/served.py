@@ -25,7 +25,7 @@ import pandas as pd
 
 from ....core.io.contract import manifest_ambient
 from ..report import Streamed, stream_rows
-from ..streaming import OutOfEnvelopeError, input_rows
+from ..streaming import OutOfEnvelopeError
 
 
 def frame_digest(frame: pd.DataFrame) -> str:
@@ -39,7 +39,7 @@ def frame_digest(frame: pd.DataFrame) -> str:
 def stepped(served, frame: pd.DataFrame, y: np.ndarray, start: int) -> None:
     """``y[start:]``: the served model's ``_step`` (as :func:`stream_rows` steps it) of ``frame``'s
     rows from ``start`` on, from the state it is in (raises ``OutOfEnvelopeError`` as it does)."""
-    X = input_rows(frame, served.columns_)
+    X = frame[served.columns_].to_numpy(float)
     t = frame["time"].to_numpy(float) if "time" in frame.columns else np.full(len(X), np.nan)
     for i in range(start, len(X)):
         y[i] = served._step(X[i], t[i])[0]

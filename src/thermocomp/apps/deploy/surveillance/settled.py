@@ -145,10 +145,6 @@ class Settled:
         if self._ref is None:
             return
         w, cols = self.window, self._settle_cols
-        # (ci109b) none that may fire (its readings on one reference for the two windows, no gap
-        # of its own): nothing to compare, as at every campaign's first 2 w - 2 samples
-        if not ((self._settle_age[cols] >= 2 * w - 1) & (self._gap[cols] == 1)).any():
-            return
         parted, shift = level_shift_now(self._settle[:, cols], x[cols] - self._ref[cols], w,
                                         self._settle_lim[cols])
         if not parted.any():       # nearly every sample: nothing to re-reference
