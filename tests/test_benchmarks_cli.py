@@ -46,7 +46,7 @@ COMMAND_BENCHES = (
     "bench_ci102e", "bench_ci102f", "bench_ci102g", "bench_ci102h", "bench_ci102i", "bench_ci102j",
     "bench_ci104a", "bench_ci104b", "bench_ci104d", "bench_ci104f", "bench_ci104g", "bench_ci104h",
     "bench_ci108a", "bench_ci108b", "bench_ci108c", "bench_ci108d", "bench_ci108e", "bench_ci109a",
-    "bench_ci109c", "bench_ci109d", "bench_ci98", "bench_ci99", "bench_ci99b", "bench_cin103",
+    "bench_ci109b", "bench_ci109c", "bench_ci109d", "bench_ci98", "bench_ci99", "bench_ci99b", "bench_cin103",
     "bench_clamp74", "bench_clamp75", "bench_clamp78", "bench_clean69", "bench_clockset71", "bench_cmon76",
     "bench_cmon80", "bench_cmon82", "bench_cmon82b", "bench_cmon82c", "bench_cmon83", "bench_cmon84",
     "bench_cmon85", "bench_cmon86", "bench_cmon87", "bench_cmon88", "bench_cmon89", "bench_cmon89b",
