@@ -858,17 +858,33 @@ def test_the_parameter_dataset_never_replaces_data_or_a_folder_of_something_else
                  f"calibrate.dataset={target}"], capsys, says)
     assert sorted(p.name for p in other.iterdir()) == before
     assert (data / SETUP_FILE).is_file()
-    # its own earlier series (same campaigns) is replaced, as before
+    # its own earlier series (same campaigns) is replaced, as before.  The earlier series is the
+    # clean fixture's (the same calibration of the same distances, written to <out>/parameters),
+    # not a calibration of its own; a stray file in it shows the folder is replaced whole.
     series = tmp_path / "series"
-    for _ in range(2):
-        calibrate(data, tmp_path / "out", f"calibrate.dataset={series}")
-    assert (series / "campaigns.csv").is_file()
+    shutil.copytree(clean[1] / "parameters", series)
+    (series / "stray.txt").write_text("from before")
+    calibrate(data, tmp_path / "out", f"calibrate.dataset={series}")
+    assert (series / "campaigns.csv").is_file() and not (series / "stray.txt").exists()
 
 
-@pytest.mark.parametrize("stage", ["calibrate", "run", "ingest"])
-@pytest.mark.parametrize("prior, says", [
-    ("{positioning:10}", "missing ['straightness', 'squareness', 'angular']"),
-    ("{positioning:10,straightness:8,squareness:8,angular:6,bogus:1}", "unknown ['bogus']")])
+PRIOR_STAGES = ["calibrate", "run", "ingest"]
+PRIOR_FAULTS = [("{positioning:10}", "missing ['straightness', 'squareness', 'angular']"),
+                ("{positioning:10,straightness:8,squareness:8,angular:6,bogus:1}", "unknown ['bogus']")]
+
+
+def _stage_prior_cases():
+    """stage x fault, a covering set in make test: stage i with fault i mod 2 (every stage and
+    every fault at least once); the other pairs are full."""
+    kept = ", ".join(f"{stage}-{PRIOR_FAULTS[i % 2][0]}" for i, stage in enumerate(PRIOR_STAGES))
+    for i, stage in enumerate(PRIOR_STAGES):
+        for j, (prior, says) in enumerate(PRIOR_FAULTS):
+            marks = () if i % 2 == j else pytest.mark.full(
+                reason=f"stage x prior fault cross product; in make test: {kept}")
+            yield pytest.param(stage, prior, says, marks=marks)
+
+
+@pytest.mark.parametrize("stage, prior, says", _stage_prior_cases())
 def test_a_prior_without_every_kind_is_one_line_before_any_reading(raw, tmp_path, capsys, stage,
                                                                    prior, says):
     # it was found after the data had been read (a progress line first, then the error)

@@ -5,14 +5,21 @@ from __future__ import annotations
 
 import json
 
+import pytest
+
 from conftest import thermocomp
 from test_deploy import LIGHT_EVAL, mlflow_store, write_small_dataset
 
 
-def test_compare_and_promote_say_the_jobs_a_sweep_lost(tmp_path):
+@pytest.fixture(scope="module")
+def dataset(tmp_path_factory):
+    """The small dataset both tests sweep (read only: each moves no file of it)."""
+    return write_small_dataset(tmp_path_factory.mktemp("failed63") / "small")
+
+
+def test_compare_and_promote_say_the_jobs_a_sweep_lost(tmp_path, dataset):
     """Half of a sweep's jobs refused on their data (no child run): `compare` said '1 runs'
     and `promote` ranked '1 finished run(s)', nothing of the job that never ran."""
-    dataset = write_small_dataset(tmp_path / "small")
     uri, sweep = mlflow_store(tmp_path), tmp_path / "sweep"
     proc = thermocomp("run", "-m", f"data.path={dataset},{tmp_path / 'moved'}", f"tracking_uri={uri}",
                       *LIGHT_EVAL, f"hydra.sweep.dir={sweep}", check=False)
@@ -30,10 +37,9 @@ def test_compare_and_promote_say_the_jobs_a_sweep_lost(tmp_path):
     assert "1 of its 2 jobs failed; the candidate is the best of the runs that finished" in chosen.stderr
 
 
-def test_a_sweep_whose_every_job_failed_is_refused_saying_so(tmp_path):
+def test_a_sweep_whose_every_job_failed_is_refused_saying_so(tmp_path, dataset):
     """Every job refused on its data: 'sweep ... has no child runs' (compare) and 'no finished
     child run to promote' (promote), exit 2, without saying the jobs had failed."""
-    dataset = write_small_dataset(tmp_path / "small")
     uri, sweep = mlflow_store(tmp_path), tmp_path / "sweep"
     thermocomp("run", "-m", f"data.path={tmp_path / 'moved'}", "model=mlr,arx", f"tracking_uri={uri}",
                *LIGHT_EVAL, f"hydra.sweep.dir={sweep}", check=False)
