@@ -35,6 +35,13 @@ def served():
     return deployed, ss, frame, stepped
 
 
+@pytest.fixture(scope="module")
+def stepped_run(served):
+    """The deployed stream of the stepped campaign, run once: both tests assert on it."""
+    deployed, _, _, stepped = served
+    return stream_rows(deployed, stepped, "K06")
+
+
 def _events(run, frame) -> list[tuple[int, str, str]]:
     times = frame["time"].to_numpy(float) - frame["time"].iloc[0]
     return [(int(np.searchsorted(times, e["time"])), e["sensor"], e["to"]) for e in run.events
@@ -48,12 +55,12 @@ def _without_rule(deployed):
     return old
 
 
-def test_the_stepped_sensor_is_re_referenced_and_the_healthy_campaign_is_quiet(served):
+def test_the_stepped_sensor_is_re_referenced_and_the_healthy_campaign_is_quiet(served, stepped_run):
     deployed, ss, frame, stepped = served
     mon = deployed.monitor
     healthy = stream_rows(deployed, frame, "K06")
     assert _events(healthy, frame) == []
-    run = stream_rows(deployed, stepped, "K06")
+    run = stepped_run
     said = _events(run, stepped)
     assert said == [(ONSET + mon.window - 1, SENSOR, "re-referenced")], said
     j = mon.names.index(SENSOR)
@@ -82,9 +89,9 @@ def _mirror(ss, frame) -> tuple[np.ndarray, list[int]]:
 
 
 @needs_cc
-def test_the_code_re_references_the_step_as_served(served, tmp_path):
+def test_the_code_re_references_the_step_as_served(served, stepped_run, tmp_path):
     deployed, ss, _, stepped = served
-    run = stream_rows(deployed, stepped, "K06")
+    run = stepped_run
     want = corrections(ss, run.y)
     got, rows = _mirror(ss, stepped)
     assert rows == [ONSET + deployed.monitor.window - 1]

@@ -32,19 +32,26 @@ def long_record(tmp_path_factory):
             lead_ins(plain(deployed).compensator, ds, test_ids)[test])
 
 
-def test_the_spiked_sensor_is_back_at_the_spikes_end(long_record):
+@pytest.fixture(scope="module")
+def spiked(long_record):
+    """The deployed stream of R1b as recorded (the spike in it), run once: two tests read it."""
     deployed, frame, lead = long_record
+    return stream_rows(deployed, frame, "R1b", lead_in=lead)
+
+
+def test_the_spiked_sensor_is_back_at_the_spikes_end(long_record, spiked):
+    _, frame, _ = long_record
     period = float(np.median(np.diff(frame["time"])))
-    moves = _moves(stream_rows(deployed, frame, "R1b", lead_in=lead).events, "T_head_left")
+    moves = _moves(spiked.events, "T_head_left")
     assert [to for to, _ in moves] == ["excluded", "ok"], moves
     assert moves[1][1] - moves[0][1] == period            # the next sample, not a window later
 
 
-def test_deployed_reads_as_scored_but_for_the_spike(long_record):
+def test_deployed_reads_as_scored_but_for_the_spike(long_record, spiked):
     """MLR has no memory: the deployed stream equals the plain one (no monitor, as ``run``
     scores) on every row but the spike's, where the model reads the field's prediction."""
     deployed, frame, lead = long_record
-    got = stream_rows(deployed, frame, "R1b", lead_in=lead).y
+    got = spiked.y
     want = stream_rows(plain(deployed), frame, "R1b", lead_in=lead).y
     parted = np.flatnonzero(np.abs(got - want).max(axis=1) > 1e-9)
     spike = int(np.argmax(np.abs(np.diff(frame["T_head_left"].to_numpy(float))))) + 1
@@ -61,9 +68,9 @@ def test_a_step_that_stays_is_still_a_jump(long_record):
     stepped.loc[row + 1:, "T_head_left"] += series[row] - series[row - 1]
     mon = deployed.monitor
     period = float(np.median(np.diff(frame["time"])))
-    moves = _moves(stream_rows(deployed, stepped, "R1b", lead_in=lead).events, "T_head_left")
+    events = stream_rows(deployed, stepped, "R1b", lead_in=lead).events     # streamed once
+    moves = _moves(events, "T_head_left")
     assert moves[0][0] == "excluded"
     back = [t for to, t in moves if to == "ok"]
     assert back and back[0] - moves[0][1] >= mon.window * period, moves
-    assert all("spike" not in e["reason"] for e in stream_rows(
-        deployed, stepped, "R1b", lead_in=lead).events if e.get("sensor"))
+    assert all("spike" not in e["reason"] for e in events if e.get("sensor"))

@@ -81,15 +81,25 @@ def stamped(seconds):
     return [(EPOCH + timedelta(seconds=float(s))).isoformat() for s in seconds]
 
 
+@pytest.fixture(scope="module")
+def stamped_join(fitted, tmp_path_factory):  # noqa: F811
+    """``restarted`` with the server's timestamps at the default stop and gap, run once: two
+    tests assert on it (what the join streams, what its first Write holds); each reads only."""
+    data, pkl = fitted
+    return restarted(data, pkl, tmp_path_factory.mktemp("stamped_join"), stamped)
+
+
 @pytest.mark.parametrize("log_time", [stamped, lambda s: s], ids=["timestamps", "seconds"])
-def test_a_connect_restarted_mid_program_is_warmed_on_its_log(fitted, tmp_path, log_time):  # noqa: F811
+def test_a_connect_restarted_mid_program_is_warmed_on_its_log(fitted, tmp_path, log_time,  # noqa: F811
+                                                             request):
     """Before: without a campaign_sample node every client starts a campaign at its first
     sample, connect.warm unread and unsaid (the offsets after the restart from a reset).  Now
     the log's rows are stepped first: with the server's timestamps the offsets are replay's on
     the rows the clients saw (the gap spanned by the time step, as after a link drop); with
     seconds the join follows the log's last row by one period, said."""
     data, pkl = fitted
-    machine, first, second = restarted(data, pkl, tmp_path, log_time)
+    machine, first, second = (request.getfixturevalue("stamped_join") if log_time is stamped
+                              else restarted(data, pkl, tmp_path, log_time))
     answered = np.array(machine.served.answered)
     assert answered[:STOP + 1].all() and not answered[STOP + 1:STOP + GAP + 1].any()
     assert answered[STOP + GAP + 1:].all()
@@ -126,14 +136,13 @@ def test_the_offsets_after_a_warmed_join_move_at_the_guards_rate_over_the_gap(fi
     written_as(np.vstack(machine.served.offsets)[answered], corrections(data, pkl, seen))
 
 
-def test_a_connect_started_while_a_program_runs_keeps_the_offsets_until_its_first(fitted, tmp_path):  # noqa: F811
+def test_a_connect_started_while_a_program_runs_keeps_the_offsets_until_its_first(stamped_join):
     """(small69) A new connect process wrote the limiter's 0 to the offset nodes at its
     connection, before its first sample: the machine's correction dropped to 0 for up to a
     period (60 s here), then jumped back.  Now its first Write is its first computed offset
     (the one that answers the sample it joins), the registers keeping the first client's last
     offsets until then, said in the event offsets_kept."""
-    data, pkl = fitted
-    machine, first, second = restarted(data, pkl, tmp_path, stamped)
+    machine, first, second = stamped_join
     joined = STOP + GAP + 1
     offsets = np.vstack(machine.served.offsets)
     writes = machine.served.writes
