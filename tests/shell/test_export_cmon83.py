@@ -102,19 +102,33 @@ def _swapped_powers(ss):
                                b0=[[row[j] for j in order] for row in ss.b0])
 
 
+@pytest.fixture(scope="module")
+def merged_models(tmp_path_factory):
+    """``deployed(model)``: ``(model with T_u's fallback, the ramped record)`` on the door-state
+    record, fitted once per model for both ``into`` cases (scopec: each case fitted it again; the
+    tests read it only, their systems made afresh from it)."""
+    made: dict = {}
+
+    def deployed(model: str):
+        if model not in made:
+            root = _machine(tmp_path_factory.mktemp(f"cmon83{model}") / "data")
+            for csv in root.glob("K*.csv"):     # a state of many values (a door's 0 / 1: its powers alike)
+                df = pd.read_csv(csv)
+                df["S_door"] = (np.arange(len(df)) % 10) / 9.0
+                df.to_csv(csv, index=False)
+            made[model] = _deployed(root, "unobservable", model)
+        return made[model]
+    return deployed
+
+
 @pytest.mark.parametrize("model", ["hammerstein", "lstm"])
 @pytest.mark.parametrize("into", ["model", "fallback"])
-def test_a_merged_fallback_steps_as_its_own_system(tmp_path, model, into):
+def test_a_merged_fallback_steps_as_its_own_system(merged_models, model, into):
     """A model's fallback merged into the model's system, served, gives its own system's
     corrections, and the model's merged into its fallback's its own: a Hammerstein model's (its
     lags fewer: the model's appended; its powers in another order), an lstm's (its network of
     fewer inputs, padded)."""
-    root = _machine(tmp_path / "data")
-    for csv in root.glob("K*.csv"):       # a state of many values (a door's 0 / 1: its powers alike)
-        df = pd.read_csv(csv)
-        df["S_door"] = (np.arange(len(df)) % 10) / 9.0
-        df.to_csv(csv, index=False)
-    deployed, frame = _deployed(root, "unobservable", model)
+    deployed, frame = merged_models(model)
     own = dataclasses.replace(state_space(deployed), monitor={})
     fallback = state_space(deployed.fallbacks_["T_u"])
     if model == "hammerstein":

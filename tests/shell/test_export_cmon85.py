@@ -55,19 +55,26 @@ def _column(tmp_path_factory):
 
 def column_system(tmp_path_factory):
     """``(deployed, its system with the monitor, the test campaign)`` of the column machine of
-    seed :data:`SEED`."""
-    from thermocomp.shell.cli import main
+    seed :data:`SEED`: simulated and fitted once for a worker's tests, each caller given a deep
+    copy (scopec: four modules' fixtures simulated and fitted the same machine; a copy of its own
+    lets a module plant its fault in the frame)."""
+    if not _COLUMN:
+        from thermocomp.shell.cli import main
 
-    data = tmp_path_factory.mktemp(f"column{SEED}") / "data"
-    assert main(["-q", "simulate", f"seed={SEED}", f"data.path={data}", "track=false",
-                 "sim=column_moving_source"]) == 0
-    cfg = _compose(f"data.path={data}", "track=false", "model=mlr")
-    deployed, ds, test_ids = deployed_as_replay(cfg)
-    ss = state_space(deployed, monitor=True)
-    # a copy of its own, as conftest.fl_thermal_served's: the reader's columns are Arrow's
-    # read-only buffers, written in place once ``ds`` is collected (mon98b's fixture failed so
-    # in a full run, "assignment destination is read-only", as the collector's timing had it)
-    return deployed, ss, ds.campaigns[test_ids[0]].reset_index(drop=True).copy()
+        data = tmp_path_factory.mktemp(f"column{SEED}") / "data"
+        assert main(["-q", "simulate", f"seed={SEED}", f"data.path={data}", "track=false",
+                     "sim=column_moving_source"]) == 0
+        cfg = _compose(f"data.path={data}", "track=false", "model=mlr")
+        deployed, ds, test_ids = deployed_as_replay(cfg)
+        ss = state_space(deployed, monitor=True)
+        # a copy of its own, as conftest.fl_thermal_served's: the reader's columns are Arrow's
+        # read-only buffers, written in place once ``ds`` is collected (mon98b's fixture failed so
+        # in a full run, "assignment destination is read-only", as the collector's timing had it)
+        _COLUMN.append((deployed, ss, ds.campaigns[test_ids[0]].reset_index(drop=True).copy()))
+    return copy.deepcopy(_COLUMN[0])
+
+
+_COLUMN: list = []      # [column_system's tuple], once made
 
 
 def without(ss, feature: str):

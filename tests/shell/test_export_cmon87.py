@@ -12,6 +12,7 @@ at R1b's row 397 and back at 408, the same rows as after R1a whole."""
 
 from __future__ import annotations
 
+import copy
 import subprocess
 
 import numpy as np
@@ -48,14 +49,23 @@ def long_record(tmp_path_factory, seed: int, lead_rows: int | None = None):
     R1b, the lead-ins by campaign)`` of the long record ``seed``.  ``lead_rows``: R1b's lead-in
     cut to its last rows (ci102a: R1a's 3457 rows are 80 % of a module's streaming, streamed
     before the fault the test is about; the served stream, the mirror, the pack and the C all
-    start from the cut lead-in's first row), else R1a whole."""
-    from thermocomp.shell.cli import main
+    start from the cut lead-in's first row), else R1a whole.
 
-    data = tmp_path_factory.mktemp(f"lr{seed}") / "data"
-    assert main(["-q", "simulate", f"seed={seed}", f"data.path={data}", "track=false",
-                 "sim=long_record", "sim.generator.duration_days=3.0",
-                 "sim.generator.test_fraction=0.2"]) == 0
-    return deployed_mlr(f"data.path={data}", "data.reference=none", lead_rows=lead_rows)
+    Simulated and fitted once per seed for a worker's tests, each caller given a deep copy
+    (scopec: lr9132 was simulated and fitted by 12 modules' fixtures, lr9032 by two; the same
+    seed and words make the same record and fit, and a copy of its own lets a module change it)."""
+    if seed not in _LONG_RECORDS:
+        from thermocomp.shell.cli import main
+
+        data = tmp_path_factory.mktemp(f"lr{seed}") / "data"
+        assert main(["-q", "simulate", f"seed={seed}", f"data.path={data}", "track=false",
+                     "sim=long_record", "sim.generator.duration_days=3.0",
+                     "sim.generator.test_fraction=0.2"]) == 0
+        _LONG_RECORDS[seed] = _fitted_mlr(f"data.path={data}", "data.reference=none")
+    return _record(*copy.deepcopy(_LONG_RECORDS[seed]), lead_rows)
+
+
+_LONG_RECORDS: dict = {}     # {seed: _fitted_mlr's tuple}
 
 
 def deployed_mlr(*words: str, lead_rows: int | None = None):
@@ -63,16 +73,24 @@ def deployed_mlr(*words: str, lead_rows: int | None = None):
     the monitor, the first test campaign after its lead-in, the lead-in's rows, that campaign by
     its name, the lead-ins by campaign)`` (quiet94c: a one-file record too); ``lead_rows``: each
     lead-in's last rows only (:func:`long_record`)."""
+    return _record(*_fitted_mlr(*words), lead_rows)
 
+
+def _fitted_mlr(*words: str) -> tuple:
+    """``(deployed, its system with the monitor, the first test campaign's id, the dataset's
+    campaigns, the lead-ins by campaign)`` of MLR run with ``words``."""
     cfg = _compose(*words, "track=false", "model=mlr")
     deployed, ds, test_ids = deployed_as_replay(cfg)
     leads = lead_ins(plain(deployed).compensator, ds, test_ids)
+    return deployed, state_space(deployed, monitor=True), test_ids[0], ds.campaigns, leads
+
+
+def _record(deployed, ss, test, campaigns, leads, lead_rows: int | None) -> tuple:
+    """:func:`deployed_mlr`'s tuple of :func:`_fitted_mlr`'s, the lead-ins cut to ``lead_rows``."""
     if lead_rows is not None:
         leads = last_rows(leads, lead_rows)
-    test = test_ids[0]
-    frame = fed(ds.campaigns[test], leads.get(test))
-    return (deployed, state_space(deployed, monitor=True), frame,
-            len(frame) - len(ds.campaigns[test]), {test: ds.campaigns[test]}, leads)
+    frame = fed(campaigns[test], leads.get(test))
+    return deployed, ss, frame, len(frame) - len(campaigns[test]), {test: campaigns[test]}, leads
 
 
 def last_rows(leads: dict, rows: int = LEAD_ROWS) -> dict:

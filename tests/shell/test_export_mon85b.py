@@ -20,6 +20,8 @@ code flags as not in it (a drift judged with a sensor out, row 294) before that 
 
 from __future__ import annotations
 
+import copy
+
 import numpy as np
 import pytest
 
@@ -37,12 +39,19 @@ ONSET, RISE, DRIFTS, CULPRIT = 240, 60, {"T_t1": 40 / 3600, "T_t7": 15 / 3600}, 
 
 @pytest.fixture(scope="module")
 def served():
-    """``(deployed, its system with the monitor, the test campaign with the transient)``."""
-    deployed, ss, frame = fl_thermal_served()
+    """``(deployed, its system with the monitor, the test campaign with the transient)``: fitted
+    once for a worker's tests, each module given a deep copy (scopec: test_export_mon86 takes this
+    fixture, and fitted the same model again)."""
+    if not _FL_THERMAL:
+        _FL_THERMAL.append(fl_thermal_served())
+    deployed, ss, frame = copy.deepcopy(_FL_THERMAL[0])
     rows = np.arange(len(frame) - ONSET)
     for name, rate in DRIFTS.items():
         frame.loc[ONSET:, name] += np.clip(RISE - np.abs(rows - RISE), 0, None) * rate
     return deployed, ss, frame
+
+
+_FL_THERMAL: list = []      # [fl_thermal_served()'s tuple], once made
 
 
 def _mirror(ss, frame, hid: bool = True, rows: int | None = None):

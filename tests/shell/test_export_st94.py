@@ -30,10 +30,18 @@ HEAD, AT = 300, 200     # this module's tests: the rows they feed, their fault's
 
 @pytest.fixture(scope="module")
 def record(tmp_path_factory):
-    """``(deployed, ss, the fed rows, the ST block)``."""
-    deployed, ss, frame, *_ = long_record(tmp_path_factory, SEED)
-    block = exported_files(deployed, "st")["compensator.st"]
-    return deployed, ss, frame.iloc[:ROWS].reset_index(drop=True), block
+    """``(deployed, ss, the fed rows, the ST block)``: one tuple for the st modules of a worker,
+    which read it only (each plants its faults in a copy of the rows), so that :func:`resumed`
+    takes up another module's pass over the same healthy rows (scopec: its passes are keyed on
+    the system itself; each module stepped the rows before its faults again)."""
+    if not _RECORD:
+        deployed, ss, frame, *_ = long_record(tmp_path_factory, SEED)
+        block = exported_files(deployed, "st")["compensator.st"]
+        _RECORD.append((deployed, ss, frame.iloc[:ROWS].reset_index(drop=True), block))
+    return _RECORD[0]
+
+
+_RECORD: list = []      # [record's tuple], once made
 
 
 EVERY = 50          # rows between the states :func:`resumed` keeps of a pass
