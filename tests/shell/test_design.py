@@ -115,9 +115,17 @@ TINY = ["track=false", "design.n_machines=3", "design.n_jobs=1", "design.grid=[8
         "position_sets:{n_balls:[5],misalignment_deg:[0],position_sets:[S2]}}"]
 
 
-def test_the_command_writes_design_json_and_figures(tmp_path):
-    out = tmp_path / "d"
-    proc = thermocomp("design", *TINY, f"out={out}")
+@pytest.fixture(scope="module")
+def tiny_design(tmp_path_factory):
+    """``design`` of :data:`TINY` with its figures, once for the module: ``(process, out folder)``.
+    Read by the figures test and the CLI-reference test (which made the same study again with
+    ``plots=none``: the figures change nothing in design.json, whose keys it reads)."""
+    out = tmp_path_factory.mktemp("design") / "d"
+    return thermocomp("design", *TINY, f"out={out}"), out
+
+
+def test_the_command_writes_design_json_and_figures(tiny_design, tmp_path):
+    proc, out = tiny_design
     report = json.loads((out / "design.json").read_text())
     rows = report["strategies"]
     assert {(r["n_balls"], r["misalignment_deg"], r["position_set"]) for r in rows} == {
@@ -217,7 +225,7 @@ def _documented(key: str, text: str) -> bool:
     return re.search(rf'`[^`\n]*\b{re.escape(key)}\b[^`\n]*`|"{re.escape(key)}":', text) is not None
 
 
-def test_every_design_key_is_in_the_cli_reference(tmp_path):
+def test_every_design_key_is_in_the_cli_reference(tiny_design):
     cli = (ROOT / "docs" / "cli.md").read_text()
     conf = yaml.safe_load((ROOT / "conf" / "design" / "default.yaml").read_text())
     keys = [f"design.{k}" for k, v in conf.items() if not isinstance(v, dict)]
@@ -225,9 +233,7 @@ def test_every_design_key_is_in_the_cli_reference(tmp_path):
              for kk in v]
     missing = [k for k in keys + ["design.studies"] if f"| `{k}` |" not in cli]
     assert not missing, f"docs/cli.md lacks the design config keys {missing}"
-    out = tmp_path / "d"
-    thermocomp("design", *TINY, f"out={out}", "plots=none")
-    report = json.loads((out / "design.json").read_text())
+    report = json.loads((tiny_design[1] / "design.json").read_text())
     found = set(report) | set(report["strategies"][0]) | set(report["findings"]) | set(report["ve"])
     found |= set(next(iter(report["findings"]["misalignment"].values())))
     found |= set(report["artefact"]) | {"ranges_a", "decay"}
