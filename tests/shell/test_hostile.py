@@ -21,6 +21,7 @@ import pandas as pd
 import pytest
 
 from conftest import FAST, refused, thermocomp
+from covering import covering
 from thermocomp.base import files
 from thermocomp.core.io import load_interim, read_dataset
 from thermocomp.shell.cli import main
@@ -229,8 +230,11 @@ def previous_ingest(tmp_path_factory) -> Path:
     return root / "interim"
 
 
-@pytest.mark.parametrize("case", READ_CASES)
-@pytest.mark.parametrize("command", ["run", "ingest", "monitor"])
+# Each command reads through the same checks (run and monitor after ingest's reader): make test
+# keeps a Latin pairing of commands and cases, plus monitor's own wording of a single row.
+@pytest.mark.parametrize("command, case", covering(
+    ["run", "ingest", "monitor"], READ_CASES, "the same read checks under another command",
+    keep=[("monitor", "single-row campaign")]))
 def test_bad_data_is_refused_and_leaves_nothing(paths, capsys, previous_ingest, case, command):
     mutate, extra, says = READ_CASES[case]
     says = MONITOR_SAYS.get(case, says) if command == "monitor" else says
@@ -290,8 +294,8 @@ UNEVEN_CASES = {
 }
 
 
-@pytest.mark.parametrize("case", UNEVEN_CASES)
-@pytest.mark.parametrize("command", ["run", "train", "diagnose"])
+@pytest.mark.parametrize("command, case", covering(
+    ["run", "train", "diagnose"], UNEVEN_CASES, "the same uneven-column check under another command"))
 def test_a_declared_column_missing_from_some_campaigns_names_the_odd_file(paths, capsys, case,
                                                                           command):
     mutate, says = UNEVEN_CASES[case]

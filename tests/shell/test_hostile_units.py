@@ -16,6 +16,7 @@ import pandas as pd
 import pytest
 
 from conftest import refused
+from covering import covering
 from test_hostile import edit_csv, snapshot
 from thermocomp.core.io import ContractError, read_dataset
 from thermocomp.shell.cli import main
@@ -42,8 +43,8 @@ UNIT_CASES = {
 }
 
 
-@pytest.mark.parametrize("case", UNIT_CASES)
-@pytest.mark.parametrize("command", ["run", "ingest", "monitor"])
+@pytest.mark.parametrize("command, case", covering(
+    ["run", "ingest", "monitor"], UNIT_CASES, "the same step check under another command"))
 def test_a_unit_changed_inside_a_file_is_refused_at_its_row(paths, capsys, case, command):
     cid, column, convert, unit = UNIT_CASES[case]
     edit_csv(paths["ds"] / f"{cid}.csv", from_row(column, 15, convert))
