@@ -21,10 +21,11 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from conftest import FAST
+from conftest import FAST, thermocomp
 from thermocomp.shell.cli import main
 
 ROWS, TEST_ROWS = 400, 80
+SPLIT = ("data.split_order=[train,test,val]", "data.test_fraction=0.2", "data.val_fraction=0.2")
 
 
 @pytest.fixture(scope="module")
@@ -41,8 +42,7 @@ def record(tmp_path_factory) -> Path:
 
 
 def _stage(stage: str, record: Path, out: Path, *overrides: str) -> dict:
-    split = ["data.split_order=[train,test,val]", "data.test_fraction=0.2", "data.val_fraction=0.2"]
-    assert main([stage, f"data.path={record}", f"out={out}", *split, *FAST, *overrides]) == 0
+    assert main([stage, f"data.path={record}", f"out={out}", *SPLIT, *FAST, *overrides]) == 0
     name = {"run": "metrics", "replay": "replay", "diagnose": "diagnosis"}[stage]
     return json.loads((out / f"{name}.json").read_text())
 
@@ -52,14 +52,22 @@ def run_rmse(record, tmp_path_factory) -> float:
     return _stage("run", record, tmp_path_factory.mktemp("run"))["targets"]["E_X"]["test"]["rmse"]
 
 
-def test_replay_counts_the_rows_its_guard_bounded(record, run_rmse, tmp_path, capsys):
-    r = _stage("replay", record, tmp_path / "guarded")["targets"]["E_X"]
+@pytest.fixture(scope="module")
+def replayed(record, tmp_path_factory) -> tuple[dict, str]:
+    """The default replay (the adaptive stream, its guard): E_X's figures and what it printed,
+    read by both tests."""
+    out = tmp_path_factory.mktemp("replay")
+    printed = thermocomp("replay", f"data.path={record}", f"out={out}", *SPLIT, *FAST).stdout
+    return json.loads((out / "replay.json").read_text())["targets"]["E_X"], printed
+
+
+def test_replay_counts_the_rows_its_guard_bounded(record, run_rmse, replayed, tmp_path, capsys):
+    r, out = replayed
     assert r["n_samples"] == TEST_ROWS and r["clamped_samples"] == 0
     assert r["rmse_batch"] == pytest.approx(run_rmse, rel=1e-9)   # run's, the stream warmed
     assert r["max_abs_stream_minus_batch"] < 1e-9
     assert 0 < r["guarded_samples"] < TEST_ROWS
     assert r["rmse"] > 10 * r["rmse_batch"]          # the guard cut a right correction here
-    out = capsys.readouterr().out
     assert f"guarded: E_X {r['guarded_samples']} of {TEST_ROWS} samples" in out
     # the guard is the whole difference: bound wide, the deployed stream is the batch one
     wide = _stage("replay", record, tmp_path / "wide", "monitor.guard.margin=1000")["targets"]["E_X"]
@@ -69,10 +77,9 @@ def test_replay_counts_the_rows_its_guard_bounded(record, run_rmse, tmp_path, ca
     assert plain["guarded_samples"] is None          # no guard in the plain stream
 
 
-def test_diagnose_says_its_deployed_before_is_guarded_and_gives_run_s(record, run_rmse, tmp_path,
-                                                                       capsys):
-    replayed = _stage("replay", record, tmp_path / "replay")["targets"]["E_X"]
-    capsys.readouterr()
+def test_diagnose_says_its_deployed_before_is_guarded_and_gives_run_s(record, run_rmse, replayed,
+                                                                       tmp_path, capsys):
+    replayed, _ = replayed
     before = _stage("diagnose", record, tmp_path / "diagnose")["before"]
     assert before["test_rmse"] == pytest.approx(replayed["rmse"], rel=1e-9)
     assert before["test_rmse_as_run"] == pytest.approx(run_rmse, rel=1e-9)
