@@ -18,6 +18,7 @@ import pytest
 from hydra import compose, initialize_config_dir
 
 from conftest import cli
+from covering import covering
 from thermocomp.apps.deploy import StreamingCompensator
 from thermocomp.apps.deploy.report import plain, replay_report
 from thermocomp.apps.monitor import AdaptiveCompensator
@@ -86,24 +87,20 @@ def _check_bounded(report: dict) -> None:
 
 
 def _cases() -> list:
-    """Every family plain, and once wrapped: ATI on the cheap fits (static and dynamic), EMD on
-    the others.  The other wrapped families are marked ``full``: the adaptive layer is the same
-    for every wrapper (apps/deploy/adaptive.py talks to the plain stream only), and each family
-    streams with each wrapper exactly as it predicts in test_replay's
+    """Every family and every wrapper (plain, ATI, EMD) in `make test` by a Latin pairing
+    (covering.py); the other pairs are marked ``full``: the adaptive layer is the same for every
+    wrapper (apps/deploy/adaptive.py talks to the plain stream only), and each family streams
+    with each wrapper exactly as it predicts in test_replay's
     test_every_configuration_streams_exactly_as_it_predicts (its pairwise cases)."""
-    wrapped = {"ati_cmeans": ("mlr", "pcr", "arx"), "denoise_emd": ("arx_rf", "lstm", "lagbank")}
-    cases = []
-    for model in MODELS:
-        for name, (ati, denoise) in zip(("plain", *wrapped), WRAPPERS):
-            marks = () if name == "plain" or model in wrapped[name] else pytest.mark.full
-            cases.append(pytest.param(model, ati, denoise, marks=marks, id=f"{model}-{name}"))
-    return cases
+    return covering("the adaptive layer talks to the plain stream only, whatever wraps it",
+                    model={m: m for m in MODELS},
+                    wrapper=dict(zip(("plain", "ati_cmeans", "denoise_emd"), WRAPPERS)))
 
 
-@pytest.mark.parametrize("model,ati,denoise", _cases())
-def test_every_family_replays_faults_through_the_adaptive_compensator(faulty, tmp_path, model, ati,
-                                                                      denoise):
+@pytest.mark.parametrize("model, wrapper", _cases())
+def test_every_family_replays_faults_through_the_adaptive_compensator(faulty, tmp_path, model, wrapper):
     path, _, faults = faulty
+    ati, denoise = wrapper
     cfg = _compose(f"model={model}", f"ati={ati}", f"denoise={denoise}", f"data.path={path}",
                    f"out={tmp_path}", "track=false", *SMALL.get(model, []))
     report = replay(cfg)

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import pytest
 
+from covering import covering
 from test_export import needs_cc
 from test_export_effects59 import _door
 from test_export_rest60 import AMBIENT_LAW, INITIAL, STEP, _exported
@@ -24,9 +25,10 @@ def data(tmp_path_factory):
 
 
 @needs_cc
-@pytest.mark.parametrize("effects", [[AMBIENT_LAW], [AMBIENT_LAW, INITIAL, STEP]],
-                         ids=["alone", "with-a-transient-and-a-step"])
-@pytest.mark.parametrize("base", [MLR(), LagBank(n_taus=2)], ids=["mlr", "lagbank"])
+@pytest.mark.parametrize("base, effects", covering(
+    "the four kinds of law per interval are the base's laws on the same columns, whichever base",
+    base={"mlr": MLR(), "lagbank": LagBank(n_taus=2)},
+    effects={"alone": [AMBIENT_LAW], "with-a-transient-and-a-step": [AMBIENT_LAW, INITIAL, STEP]}))
 def test_the_ambient_law_around_an_ati_models_interaction_exports(data, tmp_path, effects, base):
     """Per interval four kinds of law: on ``x`` (power 0), the ambient law's block and the
     interaction's half on ``x`` (power 1), the interaction's half on the ambient law's block

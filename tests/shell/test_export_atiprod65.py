@@ -28,6 +28,7 @@ from sklearn.ensemble import RandomForestRegressor
 
 from cbuild import LEVEL
 from conftest import copied_once
+from covering import covering
 from test_export import (
     StructuredText,
     _compiled,
@@ -102,8 +103,10 @@ def _corrections(ss, stream, tests) -> np.ndarray:
 
 
 @needs_cc
-@pytest.mark.parametrize("interaction", [False, True], ids=["intervals", "interaction"])
-@pytest.mark.parametrize("family", FAMILIES)
+@pytest.mark.parametrize("family, interaction", covering(
+    "the state's gain is put on each interval's laws (and each power of A0 - 20) alike, whatever "
+    "family fitted them", family={f: f for f in FAMILIES},
+    interaction={"intervals": False, "interaction": True}))
 def test_a_state_times_the_rises_around_an_ati_model_streams_as_replay(data, tmp_path, family,
                                                                       interaction):
     stream, tests, comp = _around_ati(data, family, interaction)

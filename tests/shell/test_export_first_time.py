@@ -42,6 +42,22 @@ def _deployed(dataset, adaptive: bool):
     return deployed, test.assign(time=test["time"] + CLOCK_S)
 
 
+@pytest.fixture(scope="module")
+def code(dataset, tmp_path_factory):
+    """``code(adaptive)``: ``(the compiled C, the Structured Text)`` of that fit, built once for
+    the module's two tests of it (the same fit, so the same code; gcc's -O2 build is the
+    costliest step of a test)."""
+    made = {}
+
+    def built(adaptive: bool) -> tuple:
+        if adaptive not in made:
+            deployed, _ = _deployed(dataset, adaptive)
+            folder = tmp_path_factory.mktemp("first_time_code")
+            made[adaptive] = (_compiled(deployed, folder), exported_files(deployed, "st")["compensator.st"])
+        return made[adaptive]
+    return built
+
+
 def _corrections(deployed, df) -> np.ndarray:
     return -replay(deployed, df)[deployed.targets_].to_numpy(float)
 
@@ -49,7 +65,7 @@ def _corrections(deployed, df) -> np.ndarray:
 @needs_cc
 @pytest.mark.parametrize("adaptive", (True, False), ids=("adaptive", "plain"))
 def test_a_stream_without_its_first_time_steps_as_the_complete_record_in_every_form(
-        dataset, tmp_path, adaptive):
+        dataset, code, adaptive):
     deployed, complete = _deployed(dataset, adaptive)
     gap = complete.copy()
     gap.loc[0, "time"] = np.nan
@@ -60,15 +76,15 @@ def test_a_stream_without_its_first_time_steps_as_the_complete_record_in_every_f
     assert ss.uses_time and ss.substitute_time
     forms = {"python stream": _corrections(deployed, gap),
              "simulator": _simulated(ss, [gap], cols),
-             "c": _streamed(_compiled(deployed, tmp_path), _rows([gap], cols)).to_numpy(float),
-             "st": _st(StructuredText(exported_files(deployed, "st")["compensator.st"]), [gap], cols)}
+             "c": _streamed(code(adaptive)[0], _rows([gap], cols)).to_numpy(float),
+             "st": _st(StructuredText(code(adaptive)[1]), [gap], cols)}
     for form, got in forms.items():
         assert np.max(np.abs(got[1:] - expected[1:])) <= AGREE_UM, form
 
 
 @needs_cc
 @pytest.mark.parametrize("adaptive", (True, False), ids=("adaptive", "plain"))
-def test_a_time_set_back_is_a_missing_time_in_every_form(dataset, tmp_path, adaptive):
+def test_a_time_set_back_is_a_missing_time_in_every_form(dataset, code, adaptive):
     """A logger's clock set back an hour mid-campaign: every form takes that time as missing, one
     period after the previous sample, as a stream without it.  The plain stream took it as read:
     the lag bank's ``exp(-dt/tau)`` of dt = -3600 s gave ~1e12 µm of correction."""
@@ -82,8 +98,8 @@ def test_a_time_set_back_is_a_missing_time_in_every_form(dataset, tmp_path, adap
     cols, ss = deployed.columns_, state_space(deployed)
     forms = {"python stream": _corrections(deployed, back),
              "simulator": _simulated(ss, [back], cols),
-             "c": _streamed(_compiled(deployed, tmp_path), _rows([back], cols)).to_numpy(float),
-             "st": _st(StructuredText(exported_files(deployed, "st")["compensator.st"]), [back], cols)}
+             "c": _streamed(code(adaptive)[0], _rows([back], cols)).to_numpy(float),
+             "st": _st(StructuredText(code(adaptive)[1]), [back], cols)}
     for form, got in forms.items():
         assert np.max(np.abs(got - expected)) <= AGREE_UM, form
 

@@ -22,6 +22,7 @@ import pytest
 
 from cbuild import LEVEL
 from conftest import copied_once, deployed_as_replay
+from covering import covering
 from test_export import (
     CAMPAIGNS,
     EVERY_EXCURSION,
@@ -132,8 +133,9 @@ def _simulated(ss, tests, columns, references=None) -> np.ndarray:
 
 
 @needs_cc
-@pytest.mark.parametrize("limits", ("monitor", "tight"))
-@pytest.mark.parametrize("family", FAMILIES)
+@pytest.mark.parametrize("family, limits", covering(
+    "the guard's bound and rate limit act on the corrections, whatever family made them",
+    family={f: f for f in FAMILIES}, limits={"monitor": "monitor", "tight": "tight"}))
 def test_the_code_of_an_adaptive_model_streams_as_its_guarded_replay(dataset, tmp_path, family,
                                                                      limits):
     deployed, tests = _adaptive_copy(dataset, family)
@@ -167,8 +169,9 @@ def _served(deployed, tests, references) -> np.ndarray:
 
 
 @needs_cc
-@pytest.mark.parametrize("method", ("bias", "rls"))
-@pytest.mark.parametrize("family", FAMILIES)
+@pytest.mark.parametrize("family, method", covering(
+    "the reference update acts on the corrections, whatever family made them",
+    family={f: f for f in FAMILIES}, method={"bias": "bias", "rls": "rls"}))
 def test_the_code_learns_from_reference_measurements_as_the_served_model(dataset, tmp_path, family,
                                                                          method):
     deployed, tests = _adaptive(dataset, family, f"adapt.method={method}")

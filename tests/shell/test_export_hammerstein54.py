@@ -25,6 +25,7 @@ import pandas as pd
 import pytest
 
 from conftest import deployed_as_replay
+from covering import covering
 from test_export import EVERY_EXCURSION, _compose, needs_cc
 from test_export_cadence72 import FASTER, _faster
 from test_export_dropout53 import _c, _st
@@ -84,8 +85,9 @@ def _excursions(healthy, state_max) -> dict:
 
 
 @needs_cc
-@pytest.mark.parametrize("follows", ("plain", "guarded"))
-@pytest.mark.parametrize("variant", VARIANTS)
+@pytest.mark.parametrize("variant, follows", covering(
+    "the guard wraps the same excess channel and powers, whichever variant fed them",
+    variant={v: v for v in VARIANTS}, follows={"plain": "plain", "guarded": "guarded"}))
 def test_every_form_of_a_hammerstein_code_follows_its_stream_out_of_the_envelope(datasets, tmp_path,
                                                                                variant, follows):
     adaptive, healthy = _fitted(datasets[VARIANTS[variant][0]], variant)

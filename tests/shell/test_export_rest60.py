@@ -22,6 +22,7 @@ import numpy as np
 import pytest
 from sklearn.base import clone
 
+from covering import covering
 from test_export import _compose, needs_cc
 from test_export_auto57 import TOLERANCE_UM, _proved, deployed
 from test_export_effects59 import LAG, LOWPASS, PRODUCT, _diagnosed, _door, _json_proved
@@ -111,9 +112,11 @@ def test_a_lag_banks_lag_of_a_diagnosed_lag_exports_as_a_cascade(data, tmp_path,
 
 
 @needs_cc
-@pytest.mark.parametrize("interaction", [False, True], ids=["intervals", "with-interaction"])
-@pytest.mark.parametrize("effects", [[INITIAL, STEP], [PRODUCT, LOWPASS_INITIAL, DOOR_ONLY]],
-                         ids=["transient-and-step", "product-lowpass-door"])
+@pytest.mark.parametrize("effects, interaction", covering(
+    "each interval's laws count the effects' columns alike, with or without the interaction",
+    effects={"transient-and-step": [INITIAL, STEP],
+             "product-lowpass-door": [PRODUCT, LOWPASS_INITIAL, DOOR_ONLY]},
+    interaction={"intervals": False, "with-interaction": True}))
 def test_effects_around_an_ati_model_export_per_interval(data, tmp_path, effects, interaction):
     """``diagnose ati=cmeans`` puts the effects around the ATI model: each interval's model is
     fitted on the features (with the interaction, on the features times ``A0 - 20`` too), so
