@@ -1,11 +1,12 @@
 """A covering set of a test's parametrized cases for `make test` (the scope rule, stop 110).
 
 Every case stays collected.  `make test` runs the ``keep`` cases (those a test is named after) and
-the cases :func:`kept` picks: again and again the first case bringing the most values not yet picked
-(ties: the one whose values were picked the fewest times), until every value of every axis is.  On
-a full product that is the Latin pairing (case ``i`` takes each axis's value ``i`` modulo its
-length).  So every value of every axis runs in `make test`, chosen by that rule, not by cost.  The
-other cases are marked ``full`` (`make test-all`), their reason naming a kept case per value.
+the cases :func:`kept` picks: again and again the first case bringing the most values not yet
+picked (ties: the one whose values were picked the fewest times), until every value of every axis
+is.  On a full product that is the Latin pairing (case ``i`` takes each axis's value ``i`` modulo
+its length; checked up to 4 axes in tests/base/test_covering.py).  So every value of every axis
+runs in `make test`, chosen by that rule, not by cost.  The other cases are marked ``full``
+(`make test-all`), their reason naming a kept case per value.
 """
 
 from __future__ import annotations

@@ -37,17 +37,29 @@ def _check(params: list, cases: list[tuple], keep=()) -> None:
             assert all(value in held[axis] for axis, value in enumerate(by_id[p.id])), p.id
 
 
+def _latin(ids: list[list]) -> set[tuple]:
+    """Case ``i`` with each axis's value ``i`` modulo its length, ``i`` < the longest axis."""
+    return {tuple(a[i % len(a)] for a in ids) for i in range(max(map(len, ids)))}
+
+
 @pytest.mark.parametrize("shape", [(1,), (3, 2), (2, 5), (4, 4), (5, 3, 2), (2, 3, 4, 2)])
 def test_a_product_keeps_its_latin_pairing(shape):
     axes = {f"axis{k}": {f"v{k}{i}": (k, i) for i in range(n)} for k, n in enumerate(shape)}
     cases = list(product(*axes.values()))
     params = covering("why", **axes)
     _check(params, cases)
-    ids = [list(a) for a in axes.values()]
-    latin = {"-".join(a[i % len(a)] for a in ids) for i in range(max(shape))}
-    assert {p.id for p in params if not p.marks} == latin
+    latin = _latin([list(a) for a in axes.values()])
+    assert {p.id for p in params if not p.marks} == {"-".join(case) for case in latin}
     # the values, in the parametrize's argument order
     assert [p.values for p in params] == [tuple(axes[n][i] for n, i in zip(axes, c)) for c in cases]
+
+
+def test_the_rule_is_the_latin_pairing_on_every_small_product():
+    shapes = [s for k in (1, 2, 3) for s in product(range(1, 6), repeat=k)]
+    shapes += product(range(1, 4), repeat=4)
+    for shape in shapes:
+        ids = [[f"{k}.{i}" for i in range(n)] for k, n in enumerate(shape)]
+        assert set(kept(list(product(*ids)))) == _latin(ids), shape
 
 
 def test_keep_adds_the_cases_a_test_is_named_after():
