@@ -26,6 +26,7 @@ import pytest
 
 from cbuild import compiled
 from conftest import FAST, UNTRACKED, refused, thermocomp
+from covering import covering
 
 REL = 1e-9
 SMALL = {  # the point is the plumbing, not the accuracy
@@ -36,28 +37,15 @@ SMALL = {  # the point is the plumbing, not the accuracy
 # model=auto takes ATI as a candidate of its own (ati=cmeans with it is refused)
 AUTO_ATI = ("model.candidates=[mlr,ati]", "model.estimator.n_folds=2")
 FAMILIES = ("mlr", "pcr", "arx", "arx_rf", "lagbank", "hammerstein", "lstm", "auto")
-CELLS = ([(m, w, "campaigns") for m in FAMILIES for w in ("none", "cmeans")]
-         + [(m, "none", "record") for m in FAMILIES])
-# `make test` keeps a covering set of the cells: family i with the deployment (i mod 3) of
-# DEPLOYMENTS (a Latin pairing), so every family, both wrappers and both data layouts are
-# replayed (checked below), auto with ATI (its own candidate, AUTO_ATI) among them; the rest is
-# `full`.  The exported C below still runs every exportable family's record.
 DEPLOYMENTS = (("none", "campaigns"), ("cmeans", "campaigns"), ("none", "record"))
-KEPT = {(m, *DEPLOYMENTS[i % len(DEPLOYMENTS)]) for i, m in enumerate(FAMILIES)}
-
-
-def _cell(cell):
-    if cell in KEPT:
-        return pytest.param(*cell)
-    kept = "-".join(next(k for k in KEPT if k[0] == cell[0]))
-    same = "-".join(next(k for k in sorted(KEPT) if k[1:] == cell[1:]))
-    return pytest.param(*cell, marks=pytest.mark.full(
-        reason=f"a family x deployment cell past the covering set; in make test: {kept} (family), "
-               f"{same} (deployment)"))
-
-# checked at collection (a failed check fails the module), the same test count as before
-assert KEPT <= set(CELLS) and {m for m, _, _ in KEPT} == set(FAMILIES)
-assert {(w, where) for _, w, where in KEPT} == set(DEPLOYMENTS) and ("auto", "cmeans", "campaigns") in KEPT
+# family x deployment: `make test` replays its covering set (tests/covering.py), so every family,
+# both wrappers and both data layouts (checked below), and auto with ATI (its own candidate,
+# AUTO_ATI); the rest is `full`.  The exported C below still runs every exportable family's record.
+CELLS = covering("a family x deployment cell past the covering set", keep=[("auto", "cmeans-campaigns")],
+                 model=FAMILIES, deployment={"-".join(d): d for d in DEPLOYMENTS})
+KEPT = {(m, *d) for p in CELLS if not p.marks for m, d in [p.values]}
+# checked at collection (a failed check fails the module)
+assert {m for m, _, _ in KEPT} == set(FAMILIES) and {(w, where) for _, w, where in KEPT} == set(DEPLOYMENTS)
 PLAIN = ("monitor.adaptive=false", "promote.envelope.policy=off")
 # ATI's elbow refits the base model on every campaign left out for each number of intervals
 # (~7 s of CPU over the cells, the forest's and the LSTM's most; tests/shell/test_ati.py tests
@@ -110,8 +98,9 @@ def _test_rmse(out: Path) -> dict[str, float]:
     return {t: m["test"]["rmse"] for t, m in metrics["targets"].items()}
 
 
-@pytest.mark.parametrize("model, ati, where", [_cell(cell) for cell in CELLS])
-def test_replay_of_runs_model_pkl_streams_runs_test_rmse(runs, data, tmp_path, model, ati, where):
+@pytest.mark.parametrize("model, deployment", CELLS)
+def test_replay_of_runs_model_pkl_streams_runs_test_rmse(runs, data, tmp_path, model, deployment):
+    ati, where = deployment
     out = _run(runs, data, model, ati, where)
     plain = PLAIN if where == "record" else ()
     thermocomp("replay", *data[where], f"replay.model={out / 'model.pkl'}", f"out={tmp_path}",

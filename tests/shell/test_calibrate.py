@@ -13,6 +13,7 @@ import pytest
 import yaml
 
 from conftest import ROOT, refused, simulated
+from covering import covering
 from thermocomp.apps.sim.volumetric import LargeMillVolumetric, simulate_distances
 from thermocomp.apps.volumetric import (
     SETUP_FILE,
@@ -869,30 +870,23 @@ def test_the_parameter_dataset_never_replaces_data_or_a_folder_of_something_else
 
 
 PRIOR_STAGES = ["calibrate", "run", "ingest"]
-PRIOR_FAULTS = [("{positioning:10}", "missing ['straightness', 'squareness', 'angular']"),
-                ("{positioning:10,straightness:8,squareness:8,angular:6,bogus:1}", "unknown ['bogus']")]
+PRIOR_FAULTS = {"{positioning:10}": "missing ['straightness', 'squareness', 'angular']",
+                "{positioning:10,straightness:8,squareness:8,angular:6,bogus:1}": "unknown ['bogus']"}
 
 
-def _stage_prior_cases():
-    """stage x fault, a covering set in make test: stage i with fault i mod 2 (every stage and
-    every fault at least once); the other pairs are full."""
-    kept = ", ".join(f"{stage}-{PRIOR_FAULTS[i % 2][0]}" for i, stage in enumerate(PRIOR_STAGES))
-    for i, stage in enumerate(PRIOR_STAGES):
-        for j, (prior, says) in enumerate(PRIOR_FAULTS):
-            marks = () if i % 2 == j else pytest.mark.full(
-                reason=f"stage x prior fault cross product; in make test: {kept}")
-            yield pytest.param(stage, prior, says, marks=marks)
-
-
-@pytest.mark.parametrize("stage, prior, says", _stage_prior_cases())
+# stage x prior fault: make test keeps the covering set (tests/covering.py); ids name the message
+@pytest.mark.parametrize("stage, prior", covering(
+    "the same prior check under another stage", join=lambda ids: "-".join((*ids, PRIOR_FAULTS[ids[1]])),
+    stage=PRIOR_STAGES, prior=list(PRIOR_FAULTS)))
 def test_a_prior_without_every_kind_is_one_line_before_any_reading(raw, tmp_path, capsys, stage,
-                                                                   prior, says):
+                                                                   prior):
     # it was found after the data had been read (a progress line first, then the error)
     out = tmp_path / "out"
     code = main([stage, "experiment=volumetric_large_mill", f"data.path={raw}", f"out={out}",
                  f"data.interim={tmp_path / 'interim'}", "track=false", f"calibrate.prior={prior}"])
     err = capsys.readouterr().err.strip().splitlines()
     assert code == 2 and len(err) == 1, err
+    says = PRIOR_FAULTS[prior]
     assert err[0].startswith("thermocomp: error: calibrate.prior needs a range") and says in err[0]
     assert not out.exists() and not (tmp_path / "interim").exists()
 

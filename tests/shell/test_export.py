@@ -29,6 +29,7 @@ from hydra import compose, initialize_config_dir
 
 from cbuild import CONTROL, LEVEL, compiled
 from conftest import FAST, deployed_as_replay, refused
+from covering import covering_of
 from thermocomp.apps.deploy.export import Simulator, exported_files, state_space
 from thermocomp.apps.deploy.streaming import replay
 from thermocomp.base.paths import conf_dir
@@ -49,14 +50,10 @@ DENOISERS = ("none", "emd")
 # taps and the inputs a selector keeps per target are separate arrays of the export.
 CASES = [(family, DENOISERS[(f + s) % len(DENOISERS)], select)
          for f, family in enumerate(FAMILIES) for s, select in enumerate(SELECTORS)]
-def _covers(f: int, s: int) -> bool:
-    """`make test`'s covering set of :data:`CASES` (scopec): family ``f`` with selector ``s`` on the
-    diagonal, wrapping round one selector further past the last selector, so that each family, each
-    selector and both denoisers stream (checked below); the other cases are ``full``."""
-    return s == (f + f // len(SELECTORS)) % len(SELECTORS)
-
-
-COVERING = [case for k, case in enumerate(CASES) if _covers(*divmod(k, len(SELECTORS)))]
+# `make test` streams their covering set (tests/covering.py): each family, each selector and
+# both denoisers (checked below); the other cases are ``full``.
+PARAMS = covering_of("an all-pairs case past make test's covering set", {case: case for case in CASES})
+COVERING = [p.values for p in PARAMS if not p.marks]
 CAMPAIGNS = (("K01", "train"), ("K02", "train"), ("K03", "train"), ("K04", "train"),
              ("K05", "test"), ("K06", "test"))
 PUSH_C = 30.0          # added to one sensor from mid-campaign: far outside the training envelope
@@ -326,16 +323,8 @@ def test_the_cases_cover_every_pair_of_values():
     assert len(COVERING) == len(FAMILIES) and set(COVERING) <= set(CASES)
 
 
-def _case_params() -> list:
-    """:data:`CASES`, those beyond :data:`COVERING` marked ``full``."""
-    kept = ", ".join("-".join(case) for case in COVERING)
-    beyond = pytest.mark.full(reason="an all-pairs case past make test's covering set of every value of "
-                                     f"every axis; in make test: {kept}")
-    return [pytest.param(*case, marks=() if case in COVERING else beyond) for case in CASES]
-
-
 @needs_cc
-@pytest.mark.parametrize("family, denoise, select", _case_params())
+@pytest.mark.parametrize("family, denoise, select", PARAMS)
 def test_the_compiled_c_and_the_structured_text_stream_as_replay(dataset, tmp_path, family,
                                                                   denoise, select):
     stream, tests = _deployed(dataset, family, denoise, select)

@@ -16,6 +16,7 @@ import dataclasses
 import numpy as np
 import pytest
 
+from covering import covering
 from test_export import needs_cc
 from test_export_cmon80 import assert_packed_as_served
 from test_export_cmon82c import RAMP, RATE, ROWS, _deployed, _machine, _served_moves
@@ -83,18 +84,9 @@ def _mirror(ss, frame):
 KINDS, FALLBACKS = ("dropout", "freeze"), ("unobservable", "none")
 
 
-def _cases() -> list:
-    """``(fallbacks, kind)``: `make test` keeps the Latin pairing of the two axes (the i-th
-    ``fallbacks`` with the i-th ``kind``: each value of each once), `make test-all` all four."""
-    kept = [f"{f}-{k}" for f, k in zip(FALLBACKS, KINDS)]
-    beyond = pytest.mark.full(reason="past make test's Latin pairing of fallbacks x kind; in make "
-                                     f"test: {', '.join(kept)}")
-    return [pytest.param(f, k, id=f"{f}-{k}", marks=() if f"{f}-{k}" in kept else beyond)
-            for f in FALLBACKS for k in KINDS]
-
-
 @needs_cc
-@pytest.mark.parametrize("fallbacks, kind", _cases())
+@pytest.mark.parametrize("fallbacks, kind", covering(
+    "the same hold-out under the other fallbacks", fallbacks=FALLBACKS, kind=KINDS))
 def test_a_sensor_no_other_predicts_is_held_out_by_the_code_as_served(deployments, tmp_path,
                                                                       fallbacks, kind):
     deployed, frame = deployments(fallbacks)

@@ -14,6 +14,7 @@ import shutil
 import signal
 import subprocess
 import sys
+from itertools import product
 from pathlib import Path
 
 import numpy as np
@@ -21,7 +22,7 @@ import pandas as pd
 import pytest
 
 from conftest import FAST, refused, thermocomp
-from covering import covering
+from covering import covering, kept
 from thermocomp.base import files
 from thermocomp.core.io import load_interim, read_dataset
 from thermocomp.shell.cli import main
@@ -233,8 +234,8 @@ def previous_ingest(tmp_path_factory) -> Path:
 # Each command reads through the same checks (run and monitor after ingest's reader): make test
 # keeps a Latin pairing of commands and cases, plus monitor's own wording of a single row.
 @pytest.mark.parametrize("command, case", covering(
-    ["run", "ingest", "monitor"], READ_CASES, "the same read checks under another command",
-    keep=[("monitor", "single-row campaign")]))
+    "the same read checks under another command", keep=[("monitor", "single-row campaign")],
+    command=["run", "ingest", "monitor"], case=list(READ_CASES)))
 def test_bad_data_is_refused_and_leaves_nothing(paths, capsys, previous_ingest, case, command):
     mutate, extra, says = READ_CASES[case]
     says = MONITOR_SAYS.get(case, says) if command == "monitor" else says
@@ -295,7 +296,8 @@ UNEVEN_CASES = {
 
 
 @pytest.mark.parametrize("command, case", covering(
-    ["run", "train", "diagnose"], UNEVEN_CASES, "the same uneven-column check under another command"))
+    "the same uneven-column check under another command", command=["run", "train", "diagnose"],
+    case=list(UNEVEN_CASES)))
 def test_a_declared_column_missing_from_some_campaigns_names_the_odd_file(paths, capsys, case,
                                                                           command):
     mutate, says = UNEVEN_CASES[case]
@@ -396,10 +398,11 @@ def test_out_below_a_file_or_in_a_read_only_place_is_refused(paths, capsys, tmp_
 
 # Each kind of value Hydra parses a seed into that is no seed: a text, a float, a bool, a negative.
 BAD_SEEDS = ("abc", "1.5", "true", "-1")
+# every stage once, every kind by several stages: the covering rule's pick of the product
+STAGE_SEEDS = kept(list(product(STAGES, BAD_SEEDS)))
 
 
-@pytest.mark.parametrize("stage, seed", [(stage, BAD_SEEDS[k % len(BAD_SEEDS)])
-                                         for k, stage in enumerate(STAGES)])
+@pytest.mark.parametrize("stage, seed", STAGE_SEEDS)
 def test_a_non_integer_seed_is_refused_by_every_stage(stage, seed, capsys, tmp_path):
     """Every stage refuses a seed that is no integer, and every kind of bad seed is refused (by
     several stages): one call ``_run`` makes for any stage before any work, so each stage with
@@ -410,7 +413,8 @@ def test_a_non_integer_seed_is_refused_by_every_stage(stage, seed, capsys, tmp_p
 
 
 def test_every_bad_seed_is_tried_by_several_stages():
-    tried = [BAD_SEEDS[k % len(BAD_SEEDS)] for k in range(len(STAGES))]
+    assert sorted(stage for stage, _ in STAGE_SEEDS) == sorted(STAGES)
+    tried = [seed for _, seed in STAGE_SEEDS]
     assert all(tried.count(seed) >= 2 for seed in BAD_SEEDS), tried
 
 

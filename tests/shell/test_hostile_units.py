@@ -44,7 +44,8 @@ UNIT_CASES = {
 
 
 @pytest.mark.parametrize("command, case", covering(
-    ["run", "ingest", "monitor"], UNIT_CASES, "the same step check under another command"))
+    "the same step check under another command", command=["run", "ingest", "monitor"],
+    case=list(UNIT_CASES)))
 def test_a_unit_changed_inside_a_file_is_refused_at_its_row(paths, capsys, case, command):
     cid, column, convert, unit = UNIT_CASES[case]
     edit_csv(paths["ds"] / f"{cid}.csv", from_row(column, 15, convert))

@@ -11,6 +11,7 @@ from hydra.utils import instantiate
 from omegaconf import OmegaConf
 
 from conftest import ROOT, influence, thermocomp
+from covering import covering
 from thermocomp.apps.deploy import StreamingCompensator
 from thermocomp.apps.deploy.surveillance import NEW_STATE
 from thermocomp.apps.monitor import (
@@ -232,23 +233,11 @@ def test_faults_of_other_shapes_stay_bounded_and_cost_at_most_1_5x_the_healthy_e
     assert worst <= 1.5, worst
 
 
-def _out_of_range_cases() -> list:
-    """reading x sensor, a covering set in ``make test`` by a Latin pairing: reading ``i`` with
-    sensor ``(i + 1) % 2``, so every reading and both sensors run, and (-50, T_amb), the case the
-    test was written for (below), is one of them; the other three are ``full``."""
-    readings, sensors = (+50.0, -50.0, "open"), ("T_amb", "most_influential")
-    cases = []
-    for i, reading in enumerate(readings):
-        kept = f"{reading}-{sensors[(i + 1) % 2]}"
-        for sensor in sensors:
-            marks = () if sensor == sensors[(i + 1) % 2] else pytest.mark.full(
-                reason=f"reading x sensor covering set; in make test: [{kept}] and "
-                       f"[{-50.0 if sensor == 'T_amb' else 50.0}-{sensor}]")
-            cases.append(pytest.param(sensor, reading, marks=marks, id=f"{reading}-{sensor}"))
-    return cases
-
-
-@pytest.mark.parametrize("sensor, reading", _out_of_range_cases())
+# reading x sensor: make test keeps the covering set (tests/covering.py), and -50 on T_amb, the
+# case the test was written for (below)
+@pytest.mark.parametrize("reading, sensor", covering(
+    "the same out-of-range handling on another reading or sensor", keep=[("-50.0", "T_amb")],
+    reading={"50.0": 50.0, "-50.0": -50.0, "open": "open"}, sensor=["T_amb", "most_influential"]))
 def test_an_out_of_range_reading_is_no_measurement_and_its_return_no_jump(deployed, sensor, reading,
                                                                          healthy_streams):
     # a one-sample spike far outside the training range (or an open circuit reading 850 °C for

@@ -22,6 +22,7 @@ from hydra.utils import instantiate
 from omegaconf import OmegaConf
 
 from conftest import ROOT, cli, influence, refused
+from covering import covering
 from thermocomp.core import io as tio
 from thermocomp.core.compensator import Compensator
 from thermocomp.shell.cli import main
@@ -32,20 +33,22 @@ LAG = 10                                        # samples allowed between observ
 FAULT = "sim.generator.effect_params.sensor_faults"
 
 
-def covering(scenario: int) -> list:
-    """The kinds for scenario ``scenario`` (0 default, 1 the Swiss lathe) of the scenario x kind
-    cross product both fault tests below share (the same ``assert_caught``): a Latin pairing
-    keeps kind ``i`` in ``make test`` on scenario ``(i + 1) % 2``, so every kind and both
-    scenarios run there; dropout (i 1) lands on the default scenario, whose test adds its own
-    assertions (the missing counts).  The rest are ``full``, naming the id that covers them."""
-    other = ("test_a_simulated_fault_on_the_swiss_lathe_is_caught_bounded_and_compensated",
-             "test_a_simulated_fault_on_the_most_influential_sensor_is_caught_bounded_and_compensated")
-    params = []
-    for i, kind in enumerate(KINDS):
-        marks = [] if (i + 1) % 2 == scenario else [pytest.mark.full(
-            reason=f"scenario x kind covering set; in make test: {other[scenario]}[{kind}]")]
-        params.append(pytest.param(kind, marks=marks, id=kind))
-    return params
+# scenario x kind, the cross product both fault tests below share (the same ``assert_caught``):
+# make test keeps its covering set (tests/covering.py), so every kind and both scenarios run
+# there, and dropout on the default scenario, whose test adds its own assertions (the missing
+# counts); ids as the tests' own (``test[kind]``)
+FAULT_TESTS = {
+    "default": "test_a_simulated_fault_on_the_most_influential_sensor_is_caught_bounded_and_compensated",
+    "swiss": "test_a_simulated_fault_on_the_swiss_lathe_is_caught_bounded_and_compensated"}
+SCENARIO_KINDS = covering("the same assert_caught on the other scenario", keep=[("default", "dropout")],
+                          join=lambda ids: f"{FAULT_TESTS[ids[0]]}[{ids[1]}]",
+                          scenario=list(FAULT_TESTS), kind=KINDS)
+
+
+def kinds_on(scenario: str) -> list:
+    """:data:`SCENARIO_KINDS` of ``scenario``, by kind."""
+    return [pytest.param(p.values[1], marks=p.marks, id=p.values[1])
+            for p in SCENARIO_KINDS if p.values[0] == scenario]
 
 
 # -- helpers ----------------------------------------------------------------------------------
@@ -143,7 +146,7 @@ def test_the_healthy_default_data_raises_no_sensor_event_and_draws_the_figures(h
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("kind", covering(0))
+@pytest.mark.parametrize("kind", kinds_on("default"))
 def test_a_simulated_fault_on_the_most_influential_sensor_is_caught_bounded_and_compensated(
         healthy, default_dataset, tmp_path, kind):
     report_h, _, sensor = healthy
@@ -176,7 +179,7 @@ def swiss(tmp_path_factory):
 @pytest.mark.slow
 @pytest.mark.parametrize("kind", [pytest.param(*p.values, marks=[*p.marks, pytest.mark.xfail(
     reason=SWISS_GAPS[p.id], strict=True)] if p.id in SWISS_GAPS else p.marks, id=p.id)
-    for p in covering(1)])
+    for p in kinds_on("swiss")])
 def test_a_simulated_fault_on_the_swiss_lathe_is_caught_bounded_and_compensated(swiss, tmp_path, kind):
     healthy_path, report_h, sensor = swiss
     faults = simulate_fault(tmp_path / "faulty", kind, sensor, *SWISS)

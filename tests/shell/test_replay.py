@@ -11,6 +11,7 @@ import pytest
 from hydra import compose, initialize_config_dir
 
 from conftest import cli
+from covering import covering_of
 from thermocomp.apps.deploy import StreamingCompensator
 from thermocomp.apps.deploy.report import replay_report
 from thermocomp.apps.diagnose.augmented import AugmentedRegressor
@@ -34,23 +35,11 @@ AXES = (MODELS, ATIS, DENOISERS, SELECTORS)
 WRAPPERS = [(ati, denoise) for ati in ATIS for denoise in DENOISERS]
 CASES = [(model, *WRAPPERS[(m + s) % len(WRAPPERS)], select)
          for m, model in enumerate(MODELS) for s, select in enumerate(SELECTORS)]
-# `make test` keeps a covering set of them: model m with selector (m + m // 2) mod 4 (a Latin
-# pairing), so every model, every selector and every (ati, denoise) wrapper streams at least
-# once (checked below), arx_rf among them with ATI (the case named below); the rest is `full`.
-KEPT = {(MODELS[m], SELECTORS[(m + m // 2) % len(SELECTORS)]) for m in range(len(MODELS))}
-
-
-def _param(case):
-    if (case[0], case[3]) in KEPT:
-        return pytest.param(*case)
-    kept = [c for c in CASES if (c[0], c[3]) in KEPT]
-
-    def first(same) -> str:
-        return "-".join(next(c for c in kept if same(c)))
-    return pytest.param(*case, marks=pytest.mark.full(
-        reason="a pairwise case past the covering set; in make test: "
-               f"{first(lambda c: c[0] == case[0])} (model), {first(lambda c: c[1:3] == case[1:3])} "
-               f"(wrapper), {first(lambda c: c[3] == case[3])} (selector)"))
+# `make test` streams their covering set (tests/covering.py), the (ati, denoise) wrapper one axis:
+# every model, every selector and every wrapper (checked below), arx_rf among them with ATI (the
+# case named below); the rest is `full`.
+PARAMS = covering_of("a pairwise case past the covering set",
+                     {(m, f"{a}-{d}", s): (m, a, d, s) for m, a, d, s in CASES})
 SMALL = {  # keep every fit small: the point is the plumbing, not the accuracy
     "lstm": ["model.estimator.max_epochs=2", "model.estimator.hidden_size=4", "model.estimator.chunk=16"],
     "arx_rf": ["model.estimator.forest.n_estimators=5"],
@@ -92,13 +81,13 @@ def test_the_cases_cover_every_pair_of_values():
     every = set().union(*(_pairs(case) for case in product(*AXES)))
     assert set().union(*(_pairs(case) for case in CASES)) == every
     assert len(set(CASES)) == len(CASES)
-    kept = [case for case in CASES if (case[0], case[3]) in KEPT]
+    kept = [p.values for p in PARAMS if not p.marks]
     assert all({case[i] for case in kept} == set(axis) for i, axis in enumerate(AXES))
     assert {(a, d) for _, a, d, _ in kept} == set(WRAPPERS)
     assert ("arx_rf", "cmeans") in {(m, a) for m, a, _, _ in kept}
 
 
-@pytest.mark.parametrize("model, ati, denoise, select", [_param(case) for case in CASES])
+@pytest.mark.parametrize("model, ati, denoise, select", PARAMS)
 def test_every_configuration_streams_exactly_as_it_predicts(door_data, model, ati, denoise, select):
     cfg = _compose(f"model={model}", f"ati={ati}", f"denoise={denoise}", f"select={select}",
                    *SMALL.get(model, []), *SMALL_ATI.get((model, ati), []))
