@@ -54,8 +54,9 @@ run: $(CORE)
 TEST_WORKERS := 3
 TEST_THREADS := OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MKL_NUM_THREADS=1
 
-# `make test` (CI's) leaves out the tests marked `full`: end-to-end runs of what cheaper tests
-# in it already cover (each names them); `make test-all` runs every test.
+# `make test` (CI's) leaves out the tests marked `full`: what tests in it already cover (each
+# names them; the cases outside a cross product's covering set: tests/covering.py); `make test-all`
+# runs every test.
 test: $(STAMP)
 	$(TEST_THREADS) $(BIN)/python -m pytest -q -n $(TEST_WORKERS) --dist loadfile -m "not full"
 

@@ -347,8 +347,8 @@ def pytest_addoption(parser):
 
 def pytest_configure(config):
     # here, not in pyproject.toml's markers: the Makefile reinstalls the package when that changes
-    config.addinivalue_line("markers", "full: an end-to-end run of what cheaper tests cover "
-                                       "(named in its docstring): `make test-all`, not `make test` (CI)")
+    config.addinivalue_line("markers", "full: what tests in `make test` cover (named in its reason or "
+                                       "docstring; tests/covering.py): `make test-all`, not `make test` (CI)")
     if config.getoption("store_durations"):
         config.pluginmanager.register(durations.Recorder(_unit), "store-durations")
 
