@@ -93,7 +93,7 @@ def _cases() -> list:
     with each wrapper exactly as it predicts in test_replay's
     test_every_configuration_streams_exactly_as_it_predicts (its pairwise cases)."""
     return covering("the adaptive layer talks to the plain stream only, whatever wraps it",
-                    model={m: m for m in MODELS},
+                    model=MODELS,
                     wrapper=dict(zip(("plain", "ati_cmeans", "denoise_emd"), WRAPPERS)))
 
 

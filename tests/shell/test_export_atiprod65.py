@@ -105,7 +105,7 @@ def _corrections(ss, stream, tests) -> np.ndarray:
 @needs_cc
 @pytest.mark.parametrize("family, interaction", covering(
     "the state's gain is put on each interval's laws (and each power of A0 - 20) alike, whatever "
-    "family fitted them", family={f: f for f in FAMILIES},
+    "family fitted them", family=list(FAMILIES),
     interaction={"intervals": False, "interaction": True}))
 def test_a_state_times_the_rises_around_an_ati_model_streams_as_replay(data, tmp_path, family,
                                                                       interaction):

@@ -135,7 +135,7 @@ def _simulated(ss, tests, columns, references=None) -> np.ndarray:
 @needs_cc
 @pytest.mark.parametrize("family, limits", covering(
     "the guard's bound and rate limit act on the corrections, whatever family made them",
-    family={f: f for f in FAMILIES}, limits={"monitor": "monitor", "tight": "tight"}))
+    family=list(FAMILIES), limits=["monitor", "tight"]))
 def test_the_code_of_an_adaptive_model_streams_as_its_guarded_replay(dataset, tmp_path, family,
                                                                      limits):
     deployed, tests = _adaptive_copy(dataset, family)
@@ -171,7 +171,7 @@ def _served(deployed, tests, references) -> np.ndarray:
 @needs_cc
 @pytest.mark.parametrize("family, method", covering(
     "the reference update acts on the corrections, whatever family made them",
-    family={f: f for f in FAMILIES}, method={"bias": "bias", "rls": "rls"}))
+    family=list(FAMILIES), method=["bias", "rls"]))
 def test_the_code_learns_from_reference_measurements_as_the_served_model(dataset, tmp_path, family,
                                                                          method):
     deployed, tests = _adaptive(dataset, family, f"adapt.method={method}")

@@ -87,7 +87,7 @@ def _excursions(healthy, state_max) -> dict:
 @needs_cc
 @pytest.mark.parametrize("variant, follows", covering(
     "the guard wraps the same excess channel and powers, whichever variant fed them",
-    variant={v: v for v in VARIANTS}, follows={"plain": "plain", "guarded": "guarded"}))
+    variant=list(VARIANTS), follows=["plain", "guarded"]))
 def test_every_form_of_a_hammerstein_code_follows_its_stream_out_of_the_envelope(datasets, tmp_path,
                                                                                variant, follows):
     adaptive, healthy = _fitted(datasets[VARIANTS[variant][0]], variant)
