@@ -462,14 +462,17 @@ def parsed_block(tmp_path_factory) -> str:
 def copied_once(make):
     """``make`` run once per its arguments (their values, defaults filled in) for the tests of a
     worker, each call answered with a deep copy of that result: a module's tests share one fit
-    and may step, reset or change what they get."""
+    and may step, reset or change what they get.  A ``tmp_path_factory`` argument says where the
+    first call writes, not what it makes: no part of the key (so modules share a record they each
+    pass their factory for)."""
     made, signature = {}, inspect.signature(make)
 
     @functools.wraps(make)
     def copy_of(*args, **kwargs):
         bound = signature.bind(*args, **kwargs)
         bound.apply_defaults()
-        key = repr(bound.arguments)
+        key = repr({name: value for name, value in bound.arguments.items()
+                    if not isinstance(value, pytest.TempPathFactory)})
         if key not in made:
             made[key] = make(*args, **kwargs)
         return copy.deepcopy(made[key])

@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from conftest import deployed_as_replay
+from conftest import copied_once, deployed_as_replay
 from test_export import _compose, needs_cc
 from test_export_cmon80 import assert_packed_as_served
 from thermocomp.apps.deploy.export import Simulator, state_space
@@ -53,28 +53,24 @@ def _column(tmp_path_factory):
     return deployed, ss, _column_faults(frame, _sensor(ss))
 
 
+@copied_once
 def column_system(tmp_path_factory):
     """``(deployed, its system with the monitor, the test campaign)`` of the column machine of
     seed :data:`SEED`: simulated and fitted once for a worker's tests, each caller given a deep
     copy (scopec: four modules' fixtures simulated and fitted the same machine; a copy of its own
     lets a module plant its fault in the frame)."""
-    if not _COLUMN:
-        from thermocomp.shell.cli import main
+    from thermocomp.shell.cli import main
 
-        data = tmp_path_factory.mktemp(f"column{SEED}") / "data"
-        assert main(["-q", "simulate", f"seed={SEED}", f"data.path={data}", "track=false",
-                     "sim=column_moving_source"]) == 0
-        cfg = _compose(f"data.path={data}", "track=false", "model=mlr")
-        deployed, ds, test_ids = deployed_as_replay(cfg)
-        ss = state_space(deployed, monitor=True)
-        # a copy of its own, as conftest.fl_thermal_served's: the reader's columns are Arrow's
-        # read-only buffers, written in place once ``ds`` is collected (mon98b's fixture failed so
-        # in a full run, "assignment destination is read-only", as the collector's timing had it)
-        _COLUMN.append((deployed, ss, ds.campaigns[test_ids[0]].reset_index(drop=True).copy()))
-    return copy.deepcopy(_COLUMN[0])
-
-
-_COLUMN: list = []      # [column_system's tuple], once made
+    data = tmp_path_factory.mktemp(f"column{SEED}") / "data"
+    assert main(["-q", "simulate", f"seed={SEED}", f"data.path={data}", "track=false",
+                 "sim=column_moving_source"]) == 0
+    cfg = _compose(f"data.path={data}", "track=false", "model=mlr")
+    deployed, ds, test_ids = deployed_as_replay(cfg)
+    ss = state_space(deployed, monitor=True)
+    # a copy of its own, as conftest.fl_thermal_served's: the reader's columns are Arrow's
+    # read-only buffers, written in place once ``ds`` is collected (mon98b's fixture failed so
+    # in a full run, "assignment destination is read-only", as the collector's timing had it)
+    return deployed, ss, ds.campaigns[test_ids[0]].reset_index(drop=True).copy()
 
 
 def without(ss, feature: str):

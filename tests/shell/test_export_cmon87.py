@@ -12,13 +12,12 @@ at R1b's row 397 and back at 408, the same rows as after R1a whole."""
 
 from __future__ import annotations
 
-import copy
 import subprocess
 
 import numpy as np
 import pytest
 
-from conftest import deployed_as_replay
+from conftest import copied_once, deployed_as_replay
 from test_export import _compose, built_stream, needs_cc
 from test_export_cmon80 import _streamed
 from test_export_cmon85 import _mirror, without
@@ -54,18 +53,19 @@ def long_record(tmp_path_factory, seed: int, lead_rows: int | None = None):
     Simulated and fitted once per seed for a worker's tests, each caller given a deep copy
     (scopec: lr9132 was simulated and fitted by 12 modules' fixtures, lr9032 by two; the same
     seed and words make the same record and fit, and a copy of its own lets a module change it)."""
-    if seed not in _LONG_RECORDS:
-        from thermocomp.shell.cli import main
-
-        data = tmp_path_factory.mktemp(f"lr{seed}") / "data"
-        assert main(["-q", "simulate", f"seed={seed}", f"data.path={data}", "track=false",
-                     "sim=long_record", "sim.generator.duration_days=3.0",
-                     "sim.generator.test_fraction=0.2"]) == 0
-        _LONG_RECORDS[seed] = _fitted_mlr(f"data.path={data}", "data.reference=none")
-    return _record(*copy.deepcopy(_LONG_RECORDS[seed]), lead_rows)
+    return _record(*_simulated_mlr(tmp_path_factory, seed), lead_rows)
 
 
-_LONG_RECORDS: dict = {}     # {seed: _fitted_mlr's tuple}
+@copied_once
+def _simulated_mlr(tmp_path_factory, seed: int) -> tuple:
+    """:func:`_fitted_mlr`'s tuple of the long record ``seed``, simulated."""
+    from thermocomp.shell.cli import main
+
+    data = tmp_path_factory.mktemp(f"lr{seed}") / "data"
+    assert main(["-q", "simulate", f"seed={seed}", f"data.path={data}", "track=false",
+                 "sim=long_record", "sim.generator.duration_days=3.0",
+                 "sim.generator.test_fraction=0.2"]) == 0
+    return _fitted_mlr(f"data.path={data}", "data.reference=none")
 
 
 def deployed_mlr(*words: str, lead_rows: int | None = None):

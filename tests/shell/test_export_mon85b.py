@@ -20,12 +20,10 @@ code flags as not in it (a drift judged with a sensor out, row 294) before that 
 
 from __future__ import annotations
 
-import copy
-
 import numpy as np
 import pytest
 
-from conftest import fl_thermal_served
+from conftest import copied_once, fl_thermal_served
 from test_export import needs_cc
 from test_export_cmon80 import streamed_as_served
 from thermocomp.apps.deploy.export import Simulator
@@ -42,16 +40,14 @@ def served():
     """``(deployed, its system with the monitor, the test campaign with the transient)``: fitted
     once for a worker's tests, each module given a deep copy (scopec: test_export_mon86 takes this
     fixture, and fitted the same model again)."""
-    if not _FL_THERMAL:
-        _FL_THERMAL.append(fl_thermal_served())
-    deployed, ss, frame = copy.deepcopy(_FL_THERMAL[0])
+    deployed, ss, frame = _fl_thermal_copy()
     rows = np.arange(len(frame) - ONSET)
     for name, rate in DRIFTS.items():
         frame.loc[ONSET:, name] += np.clip(RISE - np.abs(rows - RISE), 0, None) * rate
     return deployed, ss, frame
 
 
-_FL_THERMAL: list = []      # [fl_thermal_served()'s tuple], once made
+_fl_thermal_copy = copied_once(fl_thermal_served)
 
 
 def _mirror(ss, frame, hid: bool = True, rows: int | None = None):
