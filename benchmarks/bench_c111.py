@@ -18,6 +18,27 @@ rows before ``s-1``) against the C (``stream --flags``, cc -O2) of the tree's an
 export on the same rows.  Per case: max |C - served|, the rows past :data:`TOL` and of those the
 ones not flagged ``mon_not_in_code`` on that row or earlier from ``s`` on (silent), per tree, and
 whether the two trees' stdout is identical.
+
+TRACE (why they agree).  Served (monitor.py ``_update``) tries a spike's return (faults.py
+``_spike_back``) only where every reading of the row is finite, referenced and in range; the C
+(watch_c.py, the single-jump branch) only where ``lost < 0 && far < 0 && !nlate``: no missing cell,
+none beyond range, none awaiting its late reference: the same condition.  On a row with a missing
+cell neither tries it: the spiker is re-referenced by the return's step and waits out a window,
+the missing sensor is out for a dropout, both back by the window rule on the same row.  Missing
+on an earlier row (s-1, s, r-1), the other is still out on the return row and both try the return
+against the set without it (C ``n >= MON_MIN_ACTIVE``, served ``_rebuilds``): e.g. lr9964 mlr,
+T_head_left L2, T_amb empty on row s: T_head_left back as a spike on row r in both; with
+min_active 13 of 14 (lr10216) neither tries it.
+
+SCORED (2026-12-07, the bar afdd8a03 unchanged; BASE = 1a0fc91a in a detached worktree, TREE =
+this branch, src unchanged; CPU user + sys of the bench with its children, ``/usr/bin/time``).
+* Seen lr9964 (mlr, lagbank; 14 monitored, min_active 10; spikers T_head_left (predicted) and
+  T_amb (not), others T_amb / T_spindle_front): 44 cases, max |C - served| 6.5e-13 um (= the
+  healthy cut's), 0 rows > 1e-9 um, 0 flags, BASE stdout = TREE's (24.4 s CPU, making the record
+  and both models included).
+* Fresh lr10214 / lr10215 / lr10216 (bench_st105's lr9964 words, seed replaced; each simulated,
+  run and scored once; min_active 10 / 8 / 13): 132 cases, max |C - served| 1.25e-12 um, 0 rows
+  > 1e-9 um, 0 flags, BASE stdout = TREE's on every case (72.0 s CPU).
 """
 
 from __future__ import annotations
