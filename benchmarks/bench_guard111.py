@@ -9,15 +9,16 @@ Usage (from the repository root, ``PYTHONPATH=<tree>/src``: the code measured is
 
     python benchmarks/bench_guard111.py cost OUT [DATA...]   # deployed vs unguarded, seen rooms
     python benchmarks/bench_guard111.py healthy OUT          # the training campaigns replayed
-    python benchmarks/bench_guard111.py code OUT             # the product model: C vs served
+    python benchmarks/bench_guard111.py code OUT WHICH       # lstm | product: C vs served
 
 ``cost``: per case x target the rows the guard changed on the test campaigns, the RMSE vs measured
 of the deployed (adaptive) compensator and of its plain stream (unguarded), and the guard's gain
 row.  Cases: ``lstm`` on bench_dep108c's made room (``families``) and on each DATA (a simulated
 climate room), ``product`` (MLR + one ``inputs_product`` of ``S_pos`` on E_X) on that room with a
-held factor added.  ``healthy``: the same models, their training campaigns replayed (inputs within
-training): a digest of the deployed corrections.  ``code``: the product model exported as C,
-built (tests/cbuild.py), fed the test campaign: max |C - served| (µm).
+held factor added (and ``product_flat``: without the room's level law).  ``healthy``: the same
+models, their training campaigns replayed (inputs within training): a digest of the deployed
+corrections.  ``code``: the lstm or product model as C, built (tests/cbuild.py), fed the test
+campaign: max |C - served| (µm).
 """
 
 from __future__ import annotations
@@ -39,16 +40,21 @@ LSTM = ("model=lstm", "model.estimator.hidden_size=4", "model.estimator.max_epoc
 PRODUCT = {"kind": "interaction", "transform": "inputs_product", "column": "S_pos", "frame": "absolute"}
 
 
-def _product_room(root: Path) -> Path:
+def _product_room(root: Path, flat: bool = False) -> Path:
     """bench_dep108c's room with a held factor: a saddle position ``S_pos`` (mm, a new place every
-    8 samples, 200-1800 in every campaign) through which ``T_a``'s rise reaches E_X."""
+    8 samples, 200-1800 in every campaign) through which ``T_a``'s rise reaches E_X; ``flat``: E_X
+    without the room's level law in A0 (which the product model does not have: added after the
+    bar, the first room's E_X being 20.6 µm off either way)."""
     dep._room(root)
     rng = np.random.default_rng(111)
     for f in sorted(root.glob("K*.csv")):
         df = pd.read_csv(f)
         pos = np.repeat(rng.uniform(200, 1800, len(df) // 8 + 1), 8)[:len(df)]
         df["S_pos"] = pos
-        df["E_X"] += 2e-3 * pos * (df["T_a"] - df["T_a"].iloc[0])
+        rise = df["T_a"] - df["T_a"].iloc[0]
+        if flat:      # the law's 0.4 (A0 - 20) per K of T_a's rise out (the room's A0s by file)
+            df["E_X"] -= 0.4 * (2.4 * int(f.stem[1:]) - 6.0) * rise
+        df["E_X"] += 2e-3 * pos * rise
         df.to_csv(f, index=False)
     return root
 
@@ -100,7 +106,9 @@ def _cases(out: str, datas: tuple) -> list:
     room = dep._room(folder / "room") if not (folder / "room").exists() else folder / "room"
     prod = folder / "product_room"
     prod = prod if prod.exists() else _product_room(prod)
-    return [("lstm", room), ("product", prod), *[("lstm", Path(d)) for d in datas]]
+    flat = folder / "product_flat"
+    flat = flat if flat.exists() else _product_room(flat, flat=True)
+    return [("lstm", room), ("product", prod), ("product", flat), *[("lstm", Path(d)) for d in datas]]
 
 
 def cost(out: str, *datas: str) -> None:
@@ -118,7 +126,7 @@ def healthy(out: str) -> None:
     """The training campaigns replayed through each made case: a digest of the corrections."""
     from thermocomp.apps.deploy.streaming import replay
 
-    for case, data in _cases(out, ())[:2]:
+    for case, data in _cases(out, ())[:3]:
         deployed, train, _ = _deployed(data, case)
         ys = [replay(deployed, df.reset_index(drop=True))[deployed.targets_].to_numpy(float)
               for df in train.values()]
@@ -127,16 +135,17 @@ def healthy(out: str) -> None:
         print(f"{case:8s} {data.name}: {len(y)} rows, sha1 {digest}", flush=True)
 
 
-def code(out: str) -> None:
-    """The product model exported as C and fed its test campaign: max |C - served| (µm)."""
+def code(out: str, which: str) -> None:
+    """WHICH (``lstm``: the made room's, ``product``: the flat product room's) exported as C and
+    fed its test campaign: max |C - served| (µm)."""
     sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
     from cbuild import compiled  # noqa: I001 (tests/ on the path first)
     from thermocomp.apps.deploy.export import exported_files
     from thermocomp.apps.deploy.streaming import replay
 
-    _, prod = _cases(out, ())[1]
-    deployed, _, tests = _deployed(prod, "product")
-    folder = made_folder(str(Path(out) / "c"))
+    case, data = _cases(out, ())[0 if which == "lstm" else 2]
+    deployed, _, tests = _deployed(data, case)
+    folder = made_folder(str(Path(out) / f"c-{which}"))
     for name, text in exported_files(deployed, "c").items():
         (folder / name).write_text(text)
     binary = compiled(folder)
