@@ -19,6 +19,18 @@ held factor added (and ``product_flat``: without the room's level law).  ``healt
 models, their training campaigns replayed (inputs within training): a digest of the deployed
 corrections.  ``code``: the lstm or product model as C, built (tests/cbuild.py), fed the test
 campaign: max |C - served| (µm).
+
+MEASURED (2026-12-07; bar benchmarks/guard111_bar.md committed first, 0d630f04; BASE = 1a0fc91a's
+src; 2 shared cores; CPU by the command's rusage line).  Seeds: 10158 seen; fresh 10227
+climate_lag, 10228 climate_hydraulic, 10229 climate_position drawn once after the rule, scored once.
+``cost`` (deployed / unguarded RMSE µm, rows guarded; BASE -> rule):
+  lstm room E_X 18.197 / 18.130 (8) -> 18.128 (1); E_Z 2.242 / 1.586 (23) -> 1.625 (27: as MLR's
+  own E_Z with its analytic gain); lstm 10158 E_X 3.654 / 3.256 (230) -> 3.249 (4), E_Z 1.414 = 1.414;
+  product room E_X 20.578 / 20.561 (1) -> 20.561 (0); product_flat E_X 6.179 / 5.853 (22) -> 5.843 (2).
+  CPU 8.5 -> 10.0 s (the held steps of lstm's two fits).
+Fresh (``cost`` lstm; bench_dep108c ``rows``, the CLI's diagnose): every target equal to BASE to the
+  printed / last digit, no row guarded either way.  ``healthy``: sha1 of the training replays equal.
+``code``: max |C - served| lstm 4.97e-14 µm, product_flat 1.42e-14 µm (BASE the same, gain 0).
 """
 
 from __future__ import annotations
