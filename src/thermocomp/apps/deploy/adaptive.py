@@ -33,6 +33,7 @@ from ...core.io.own_headers import as_named
 from ...core.timerule import SampleClock, repeats
 from .fallback import sensor_fallbacks
 from .guard import CorrectionGuard
+from .held_gains import held_factor_gain, stepped_gain
 from .pod import ThermalPOD
 from .streaming import STREAM_ID, OutOfEnvelopeError, StreamingCompensator, step_block
 from .surveillance import SensorMonitor
@@ -117,8 +118,8 @@ class AdaptiveCompensator:
             predicted=[predicted[c][streaming.targets_].to_numpy(float) for c in campaigns])
         if follow and streaming.envelope is not None:
             m = comp.stacked(campaigns, targets=[])     # the envelope's data, before its margin
-            g.follow_inputs(input_gains(streaming, training_ambients(m)), m.X.min().to_numpy(float),
-                            m.X.max().to_numpy(float))
+            gains = input_gains(streaming, training_ambients(m), m, g.period_s)
+            g.follow_inputs(gains, m.X.min().to_numpy(float), m.X.max().to_numpy(float))
         out = cls(streaming, mon, g, g.period_s)
         if mon is not None:
             out.fallbacks_ = sensor_fallbacks(streaming, mon, campaigns, fallbacks)
@@ -580,7 +581,8 @@ def stream_allowance(guard: CorrectionGuard, streaming: StreamingCompensator,
     return guard.allowance(x, streaming.envelope)
 
 
-def input_gains(streaming: StreamingCompensator, ambients=()) -> np.ndarray:
+def input_gains(streaming: StreamingCompensator, ambients=(), training=None, period_s: float = 1.0
+                ) -> np.ndarray:
     """(targets, inputs) step gains at the envelope's horizon, as the clamp's (0: a target
     without one).
 
@@ -592,7 +594,13 @@ def input_gains(streaming: StreamingCompensator, ambients=()) -> np.ndarray:
     67.04 µm, deployed 1.955 µm against 1.089 unguarded; every ATI wrapper of mlr, pcr, arx and
     lagbank had 0).  The gain at each campaign's own ``A0`` would be the clamp's, but the C and
     the ST would have to compute it per campaign; within the training ambients the largest
-    widens the bound at most by what another training campaign's model would."""
+    widens the bound at most by what another training campaign's model would.
+
+    (guard111) With the stacked ``training`` (its inputs as the model reads them, sampled every
+    ``period_s``): a diagnosed state times the inputs' rises takes its gain at the ends of the
+    state's training range, an ``lstm`` a numerical one (:mod:`.held_gains`); without them a
+    hotter day's correction was cut to the trained bound (climate room 10158, lstm E_X: 230 test
+    rows guarded)."""
     n = len(streaming.envelope.lo)
     out = np.zeros((len(streaming.targets_), n))
     horizon = streaming.envelope.horizon_s
@@ -603,9 +611,20 @@ def input_gains(streaming: StreamingCompensator, ambients=()) -> np.ndarray:
                   for a0 in ambients]
             at = [np.abs(g) for g in at if g is not None]
             gain = np.max(at, axis=0) if at else None
+        if gain is None and training is not None:
+            gain = _held_gain(est, idx, training, ambients, horizon, period_s)
         if gain is not None:
             out[k, np.arange(gain.size) if idx is None else np.asarray(idx)] = gain
     return out
+
+
+def _held_gain(est, idx, m, ambients, horizon_s: float, period_s: float) -> np.ndarray | None:
+    """:mod:`.held_gains`' gain of a model whose gain needs a stream state (None: none)."""
+    gain = held_factor_gain(est, m.context, ambients, horizon_s)
+    if gain is None:
+        X = m.X.to_numpy(float)
+        gain = stepped_gain(est, X if idx is None else X[:, np.asarray(idx)], m.context, horizon_s, period_s)
+    return gain
 
 
 def training_ambients(m) -> np.ndarray:

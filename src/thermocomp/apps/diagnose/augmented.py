@@ -23,7 +23,16 @@ from ...core.models._campaign_ls import LSTSQ_TOL
 from ...core.models.base import measured_rows
 from ...core.models.linear import MLR
 from ...core.timerule import CLOCK_START, median_step, step_time
-from .features import AMBIENT_CENTRE_C, Effect, as_effect, design, frames, initial_weights, level_weights
+from .features import (
+    AMBIENT_CENTRE_C,
+    Effect,
+    as_effect,
+    design,
+    frames,
+    in_frame,
+    initial_weights,
+    level_weights,
+)
 from .shrink import PartialRidgePath
 
 MODEL_NAME = "diagnosed"   # the model diagnose writes (conf/model/diagnosed.yaml, "<family>+diagnosed")
@@ -317,6 +326,19 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
             raise ContractError(f"the diagnosed model's features are {at} columns, its base's "
                                 f"gain {gain.size}")
         return [term._replace(gain=x), *out]
+
+    def held_ranges(self, context) -> dict:
+        """``{effect index: (lowest, highest)}``: each ``inputs_product``'s state over the stacked
+        training ``context``, in the frame the stream reads it (the guard's gain at the ends of the
+        range, :func:`thermocomp.apps.deploy.held_gains.held_factor_gain`)."""
+        check_is_fitted(self)
+        out = {}
+        for i, e in enumerate(self.effects_):
+            if e.transform == "inputs_product" and e.column in context:
+                own = frames(e, self.reference)[0]
+                c = in_frame(context[e.column].to_numpy(float), groups_of(context), own)
+                out[i] = (float(np.nanmin(c)), float(np.nanmax(c)))
+        return out
 
     def step_gain(self, state=None, horizon_s: float = np.inf) -> np.ndarray | None:
         """Gain per input (:func:`thermocomp.core.context.step_gain`) of a step held for

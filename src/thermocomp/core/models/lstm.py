@@ -159,6 +159,10 @@ class LSTM(SideInputs, RegressorMixin, BaseEstimator):
         Validation MSE before training (epoch 0) and after every epoch.
     """
 
+    # no analytic step gain (a recurrent net): the deploy guard reads one off the model by held
+    # steps (apps.deploy.held_gains.stepped_gain, guard111); the envelope clamp still has none
+    numeric_step_gain = True
+
     def __init__(self, hidden_size: int = 16, num_layers: int = 1, dropout: float = 0.0,
                  chunk: int = 128, learning_rate: float = 6e-3, weight_decay: float = 0.0,
                  batch_size: int = 16, max_epochs: int = 100, patience: int = 10,

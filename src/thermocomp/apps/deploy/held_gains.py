@@ -1,0 +1,79 @@
+"""The guard's gain for a model whose step gain needs a stream state (guard111).
+
+The correction guard's bound follows the inputs past training by ``|gain| @ d``
+(:meth:`.guard.CorrectionGuard.allowance`), the gain asked with no state
+(:func:`.adaptive.input_gains`).  Two models have none there, and their row of 0 kept the bound
+as trained while a hotter day's right correction was cut to it (bench_guard111):
+
+* a recurrent network (``lstm``): no analytic gain at all.  :func:`stepped_gain` reads it off the
+  model: from each training campaign's last state (its hottest operating point), each input held
+  one unit higher for the envelope's horizon; the largest |change| over those states, per input;
+* a diagnosed ``inputs_product`` (a state ``c`` times the inputs' rises): its gain is linear in
+  the held ``c``; :func:`held_factor_gain` takes the largest |gain| at the ends of ``c``'s
+  training range (the largest of a linear function on an interval is at an end).
+
+Either is one fixed gain, carried by the exported code's ``GUARD_GAIN`` as any other.
+"""
+
+from __future__ import annotations
+
+import itertools
+
+import numpy as np
+import pandas as pd
+
+from ...core.context import AMBIENT_C0, CAMPAIGN, TIME, groups_of, step_gain
+
+
+def held_factor_gain(est, context: pd.DataFrame | None, ambients, horizon_s: float) -> np.ndarray | None:
+    """Largest |step gain| of a diagnosed model over its ``inputs_product`` states held at the
+    ends of their training range (``context``: the training's stacked context), at each
+    training ambient (``ambients``; none: A0 unknown); None without such a state or a gain."""
+    ranges = getattr(est, "held_ranges", None)
+    if not callable(ranges) or context is None:
+        return None
+    ends = ranges(context)
+    if not ends:
+        return None
+    gains = []
+    for values in itertools.product(*ends.values()):
+        for a0 in (ambients if len(ambients) else [np.nan]):
+            state = {"state_of": dict(zip(ends, values)), AMBIENT_C0: float(a0)}
+            gain = step_gain(est, state, horizon_s)
+            if gain is None:
+                return None
+            gains.append(np.abs(gain))
+    return np.max(gains, axis=0)
+
+
+def stepped_gain(est, X: np.ndarray, context: pd.DataFrame | None, horizon_s: float,
+                 period_s: float) -> np.ndarray | None:
+    """Largest |response| per input of ``est`` (a model with ``numeric_step_gain``) to a unit step
+    held for ``horizon_s`` from each training campaign's last row (``X``: its training inputs as
+    the model reads them, ``context``: their stacked context); one batch ``predict`` of every
+    campaign's prefix and its held steps, each its own campaign (the stream's result to rounding)."""
+    if not getattr(est, "numeric_step_gain", False) or context is None or not len(X):
+        return None
+    X = np.asarray(X, dtype=float)
+    groups = groups_of(context)
+    groups = np.zeros(len(X)) if groups is None else groups
+    ends = np.r_[np.flatnonzero(groups[1:] != groups[:-1]), len(X) - 1]
+    starts = np.r_[0, ends[:-1] + 1]
+    held = max(1, int(np.ceil(horizon_s / period_s)) if np.isfinite(horizon_s)
+               else int(np.max(ends - starts + 1)))
+    p = X.shape[1]
+    blocks, ctx = [], []
+    for s, e in zip(starts, ends):
+        for j in range(-1, p):        # -1: the inputs held as they are
+            step = np.zeros(p) if j < 0 else np.eye(p)[j]
+            blocks.append(np.vstack([X[s:e + 1], np.tile(X[e] + step, (held, 1))]))
+            rows = context.iloc[np.r_[np.arange(s, e + 1), np.full(held, e)]].reset_index(drop=True)
+            rows = rows.assign(**{CAMPAIGN: f"step{s}:{j}"})
+            if TIME in rows:
+                t = rows[TIME].to_numpy(float)
+                rows[TIME] = np.r_[t[:e - s + 1], t[e - s] + period_s * np.arange(1, held + 1)]
+            ctx.append(rows)
+    y = np.asarray(est.predict(np.vstack(blocks), context=pd.concat(ctx, ignore_index=True)), float)
+    last = y[np.cumsum([len(b) for b in blocks]) - 1].reshape(len(starts), p + 1)
+    gain = np.max(np.abs(last[:, 1:] - last[:, :1]), axis=0)
+    return gain if np.isfinite(gain).all() else None
