@@ -17,6 +17,25 @@ lone jump of a judged sensor the C holds out (``MON_STEP_HELD``) is re-reference
 ``other``, which does not read its own ``d``); any other lone jump of a judged sensor sets
 ``mon_junsure`` (``mon_unsure`` to the campaign's end).
 
+SCORED (2026-12-07, the bar fc0afaf3 unchanged, the rule b78456d8; BASE /tmp/base-st111 = a worktree
+of 1a0fc91a; CPU user + sys by /usr/bin/time, 2 cores shared).
+* B1 seen T_1 -3 from row 60: per test campaign differing BASE 60 (max 1.4-6.5 um), unflagged 39
+  (rows 81-119) -> RULE differing 10 / 10 / 11 / 10, unflagged 0; the rows left are the jump's row
+  and the C's hold after it (the C rebuilds the excluded sensor, the block reads it: flagged
+  unsure), none after the C's BACK.  Bar's "differing after the jump's row -> 0": not met (9-10).
+  6.6 s CPU (both blocks).
+* B2 fresh 10207 (T_headstock): campaigns 0 / 2 unflagged 329 / 351 -> 0 / 0 (differing 350 / 372
+  -> 10 / 10); campaigns 1 / 3 unchanged (0 / 0 unflagged).  9.5 s CPU.
+* B3 fresh 10208 (T_headstock), 10209, 10210 (T_nc_spindle_motor), each scored once after b78456d8:
+  unflagged 0 on every campaign (BASE: 377 on 10208's campaign 1, differing 398 -> 10).
+* B4 bench_st108b ``stream`` lr/dl 9964-9967 (46084 rows; BASE 69.9 s, RULE 65.9 s CPU): flag,
+  rule, sensor, new output, stop identical; c changed on 12 rows (3 each of lr/dl9964 and lr/dl9966:
+  a spike's jump and the 2 rows of the C's hold before its return), every one flagged and off the C
+  in both (BASE 0.01-1.34 um, RULE 0.15-1.41 um: the C rebuilds the sensor there, the block reads
+  it); every other row identical.  Bar's "identical, or only flags": not met as worded.
+* B5 tests/shell/test_export_st111.py: fails on 1a0fc91a (0.41 um off the C from its BACK), adds
+  <= 0.2 s CPU to test_export_st94's run (paired, 2 reps); PARSED_DIGEST re-asked (blark parsed).
+
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``)::
 
     python benchmarks/bench_st111.py seen BASESRC
