@@ -549,6 +549,10 @@ VARS = """    mon_last : ARRAY[{nm}] OF LREAL;
     mon_usince : DINT;
     mon_rfirst : BOOL;
     mon_rlater : BOOL;    (* (st109b) a reading beyond its range after the first sample *)
+    mon_other : ARRAY[{nm}] OF LREAL;
+    mon_other_known : BOOL;    (* (st111) mon_other is the C's last one: its set whole on that row *)
+    mon_whole : BOOL;    (* (st111) the C's set whole before this row, as far as the block knows *)
+    mon_junsure : BOOL;    (* (st111) a lone jump re-referenced otherwise than the C *)
     mon_late : INT;    (* (st109) the sensor beyond its range since the first sample, followed *)
     mon_lback : BOOL;
     mon_lcalm : DINT;
@@ -595,6 +599,10 @@ IF first THEN
     mon_held_set := -1;
     mon_jheld := -1;
     mon_jset := -1;
+    mon_other_known := FALSE;
+END_IF;
+IF reset THEN    (* (st111) to the campaign's end, not first's (held through refused rows) *)
+    mon_junsure := FALSE;
 END_IF;
 (* (st99) the set the C judges a freeze by: every sensor in (-1), or without the BLIND_OUT *)
 (* the block holds (its set, MON_OUT_SELF's): the C's second out *)
@@ -801,6 +809,11 @@ IF mon_hjump AND mon_jset >= 0 AND mon_jheld >= 0 THEN
 ELSIF mon_hjump THEN
     mon_hjump := MON_JUMP_HELD[mon_held] = 1 AND mon_big[mon_held] AND NOT mon_gone AND mon_rule = 0;
 END_IF;
+(* (st111) the C's set whole before this row as far as the block knows: nothing flagged, held *)
+(* or followed late, no reading beyond its range, the others' last prediction known *)
+mon_whole := MON_STEP_JUDGE AND mon_other_known AND NOT mon_lost AND mon_held < 0 AND mon_jheld < 0;
+mon_whole := mon_whole AND mon_late < 0 AND NOT mon_rfirst AND NOT mon_rlater AND mon_count <> 1;
+mon_whole := mon_whole AND NOT mon_gone AND (mon_rule = 0 OR mon_rule = RULE_BENT);
 (* the spikes' returns first (named first, as the C re-admits them before it excludes) *)
 FOR mk := 0 TO MON_N - 1 DO
     j := MON_INPUT[mk];
@@ -833,7 +846,25 @@ FOR mk := 0 TO MON_N - 1 DO
         IF mon_hjump AND mon_jn = 0 THEN
             mon_jshift0 := mon_shift[j];    (* (st102) the C's ref0: before its first jump *)
         END_IF;
-        mon_shift[j] := mon_shift[j] + mon_step[mk];
+        mon_off := mon_step[mk];
+        IF mon_jumps = 1 AND NOT mon_hjump AND NOT mon_jbeside AND MON_JUDGED[mk] = 1 THEN
+            (* (st111) a lone jump of one the others predict: the C re-references one it holds *)
+            (* out (MON_STEP_HELD) by its step less the change they predict for it since the *)
+            (* last row (d - e does not read its own d), and none other; where the block cannot *)
+            (* tell that change, or the C does not re-reference, mon_unsure to the campaign's end *)
+            IF mon_whole AND MON_STEP_HELD[mk] = 1 THEN
+                mon_x := 0.0;
+                FOR mj := 0 TO MON_N - 1 DO
+                    mi := MON_INPUT[mj];
+                    mon_x := mon_x + MON_SELF[mk, mj] * (u[mi] - mon_base[mj] - mon_shift[mi]);
+                END_FOR;
+                mon_lim := u[j] - mon_base[mk] - mon_shift[j];
+                mon_off := mon_step[mk] - (mon_lim - (mon_lim - mon_x) * MON_SCALE[mk] - mon_other[mk]);
+            ELSE
+                mon_junsure := TRUE;
+            END_IF;
+        END_IF;
+        mon_shift[j] := mon_shift[j] + mon_off;
         mon_back := mon_pair AND mon_out[mk];  (* a pair's out already: no new fault, as the C *)
         mon_back := mon_back OR mon_hjump OR mon_jbeside;    (* (st102) the held one's: the C's, silent *)
         mon_out[mk] := TRUE;
@@ -1092,6 +1123,7 @@ IF MON_STEP_JUDGE AND (NOT mon_lost OR mon_jheld >= 0) THEN
         (* (st95b) its error with every sensor in, also while one is out: the C's last errors *)
         (* once it is back *)
         mon_prev_e[mk] := mon_e[mk];
+        mon_other[mk] := mon_d[mk] - mon_e[mk];    (* (st111) the C's prev_other, its set whole *)
     END_FOR;
     mon_e_known := TRUE;
     (* (st98) the C's freeze with every sensor in, none held out: a reading standing still past *)
@@ -1601,6 +1633,8 @@ IF mon_late >= 0 AND mon_lback THEN
         END_IF;
     END_IF;
 END_IF;
+(* (st111) mon_other is the C's last prediction where its set was whole through the row *)
+mon_other_known := MON_STEP_JUDGE AND NOT mon_lost AND mon_held < 0 AND mon_jheld < 0 AND mon_late < 0;
 (* (st108b) where the block no longer judges (its stop, or a flag that ends its judgement) *)
 (* the C may take out a sensor the block reads (DRIFT_OUT, its partner, BLIND_OUT, STEP_OUT, *)
 (* a jump's) and rebuild it: mon_unsure where the block flags or a judged sensor's error with *)
@@ -1632,6 +1666,9 @@ IF mon_rfirst THEN
 END_IF;
 IF mon_rlater THEN
     mon_unsure := TRUE;    (* (st109b) the C may read a reading beyond its range on *)
+END_IF;
+IF mon_junsure THEN
+    mon_unsure := TRUE;    (* (st111) a lone jump re-referenced otherwise than the C *)
 END_IF;
 (* a campaign's sample count, held at DINT's top: never wraps back through 1 *)
 IF mon_count < 2147483646 THEN
