@@ -111,13 +111,17 @@ class StepWatch:
     periods long (not an hour and a period: daylight saving time) and the next is shorter than
     :data:`GAP_PERIODS` again (a run of long steps is a new rate, not a gap).  It says; it
     changes no correction.  (dep108e) ``hour_steps=False``: a clock without daylight saving time
-    (an OPC UA server's, UTC): a step of an hour and a period is rows missing too."""
+    (an OPC UA server's, UTC): a step of an hour and a period is rows missing too.  (con111) While
+    it learns the period, a step is read against the median of the steps before it: a stretch in
+    the first :data:`SETTLED` steps (but the first) is said as the file reader says it, not lost
+    to the median; a run of long steps there is still no gap."""
 
     def __init__(self, hour_steps: bool = True) -> None:
         self.last, self.period = float("nan"), float("nan")
         self.hour_steps = hour_steps
         self.steps: list[tuple[int, float]] = []      # (row, step): the first, then the last ones
         self.gap: tuple[int, float] | None = None     # a long step waiting for the next
+        self.gap_period = float("nan")                # (con111) its period while one is learned
         self.said: dict[str, int] = {}                # (the caller's count of what it said)
 
     def read(self, time: float, row: int) -> list[tuple[str, int, float, float]]:
@@ -130,15 +134,11 @@ class StepWatch:
             return []
         self.steps.append((row, step))
         if not np.isfinite(self.period):
-            if len(self.steps) == SETTLED:
-                self.period, self.steps = float(np.median([s for _, s in self.steps])), []
-            return []
+            return self._learning(row, step)
         period, found = self.period, []
         if self.gap is not None and step < GAP_PERIODS * period:
             found.append(("gap", *self.gap, period))
-        long = GAP_PERIODS * period <= step <= PAUSE_PERIODS * period
-        dst = self.hour_steps and abs(step - 3600.0 - period) <= period / 2
-        self.gap = (row, step) if long and not dst else None
+        self.gap = (row, step) if self._long(step, period) else None
         self.steps = self.steps[-SETTLED:]
         for changed in ([rs for rs in self.steps if rs[1] >= RATE_CHANGE * period],
                         [rs for rs in self.steps if rs[1] <= period / RATE_CHANGE]):
@@ -148,6 +148,28 @@ class StepWatch:
                 self.steps, self.gap = [], None
                 break
         return found
+
+    def _learning(self, row: int, step: float) -> list[tuple[str, int, float, float]]:
+        """(con111) A step read before the campaign's period is learned: against the median of
+        the steps before it (the file reader's median, as far as the stream has read), a long
+        one said as a gap when the next is short again; the period learned at :data:`SETTLED`
+        steps, the last of them long waiting for the next as after.  Before, nothing was said
+        here, while ``connect``'s ``clock_gap`` and the file reader said the stretch."""
+        found = []
+        if self.gap is not None and step < GAP_PERIODS * self.gap_period:
+            found.append(("gap", *self.gap, self.gap_period))
+        self.gap_period = float(np.median([s for _, s in self.steps[:-1]])) if len(self.steps) > 1 else np.nan
+        self.gap = (row, step) if self._long(step, self.gap_period) else None
+        if len(self.steps) == SETTLED:
+            self.period, self.steps = float(np.median([s for _, s in self.steps])), []
+            self.gap = (row, step) if self._long(step, self.period) else None
+        return found
+
+    def _long(self, step: float, period: float) -> bool:
+        """Whether ``step`` (s) is a stretch without rows at ``period``: not a pause, nor (where
+        the clock keeps daylight saving time) an hour and a period."""
+        dst = self.hour_steps and abs(step - 3600.0 - period) <= period / 2
+        return bool(GAP_PERIODS * period <= step <= PAUSE_PERIODS * period) and not dst
 
 
 def found_words(kind: str, was: float, now: float) -> str:
