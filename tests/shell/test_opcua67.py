@@ -828,7 +828,9 @@ def test_a_stretch_in_a_campaigns_first_steps_is_said_by_the_watch_as_the_file_r
     ``step + 1`` (the watch still learning the period from its first 10 steps): the `time` event
     names the file reader's row, said one sample after it (where the next step tells it from a
     new period), beside the `clock_gap` said at once; 3 missed.  Before, the watch said nothing.
-    Early changes of period (to 10x, to 3x, from the same step) are still no gap of the watch."""
+    Early changes of period (to 10x, to 3x, from the same step) are still no gap of the watch,
+    nor, on a time node, a jittery clock's steps (50, 80, 50, 60, 60 s: 80 s is 1.6 times the 50 s
+    before it, not 1.5 times the record's median, 60 s, where the file reader says nothing)."""
     from datetime import datetime, timedelta, timezone
 
     from conftest import offline_connection
@@ -857,3 +859,7 @@ def test_a_stretch_in_a_campaigns_first_steps_is_said_by_the_watch_as_the_file_r
     for to in (600.0, 180.0):
         changed = np.r_[np.arange(step) * 60.0, (step - 1) * 60.0 + to * np.arange(1, 41 - step)]
         assert not [kind for kind, *_ in run(changed)[0] if kind == "rows missing"]
+    jittery, conn = np.arange(40) * 60.0 + np.tile([0.0, -10.0, 10.0, 0.0, 0.0], 8), offline_connection()
+    for k, t in enumerate(jittery):           # (on a time node: the server's clock takes 60 s steps)
+        conn._step("A", [20.0, t], k, k)
+    assert file_said(pd.DataFrame({"time": jittery})) == [] == time_said({"events": conn.events})

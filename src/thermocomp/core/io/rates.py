@@ -25,6 +25,7 @@ from .timestamps import row_gaps
 
 RATE_CHANGE = 2.0    # the median steps before and after the change this far apart
 SETTLED = 10         # steps at least on each side of a change
+LEARNING_GAP = 2.0   # (con111) a stretch while the period is learned: this many times the other steps
 SAID_AT_MOST = 5     # (dep107c) a stream's warnings of one kind per campaign (a jittery clock's gaps)
 FOUND = {"period": "period changed", "gap": "rows missing"}    # a finding's event (``to``)
 
@@ -112,16 +113,14 @@ class StepWatch:
     :data:`GAP_PERIODS` again (a run of long steps is a new rate, not a gap).  It says; it
     changes no correction.  (dep108e) ``hour_steps=False``: a clock without daylight saving time
     (an OPC UA server's, UTC): a step of an hour and a period is rows missing too.  (con111) While
-    it learns the period, a step is read against the median of the steps before it: a stretch in
-    the first :data:`SETTLED` steps (but the first) is said as the file reader says it, not lost
-    to the median; a run of long steps there is still no gap."""
+    it learns the period, a step :data:`LEARNING_GAP` times the others read is a stretch: one in
+    the first :data:`SETTLED` steps (but the first) is said as the file reader says it."""
 
     def __init__(self, hour_steps: bool = True) -> None:
         self.last, self.period = float("nan"), float("nan")
         self.hour_steps = hour_steps
         self.steps: list[tuple[int, float]] = []      # (row, step): the first, then the last ones
         self.gap: tuple[int, float] | None = None     # a long step waiting for the next
-        self.gap_period = float("nan")                # (con111) its period while one is learned
         self.said: dict[str, int] = {}                # (the caller's count of what it said)
 
     def read(self, time: float, row: int) -> list[tuple[str, int, float, float]]:
@@ -150,16 +149,19 @@ class StepWatch:
         return found
 
     def _learning(self, row: int, step: float) -> list[tuple[str, int, float, float]]:
-        """(con111) A step read before the campaign's period is learned: against the median of
-        the steps before it (the file reader's median, as far as the stream has read), a long
-        one said as a gap when the next is short again; the period learned at :data:`SETTLED`
-        steps, the last of them long waiting for the next as after.  Before, nothing was said
-        here, while ``connect``'s ``clock_gap`` and the file reader said the stretch."""
+        """(con111) A step read before the campaign's period is learned.  The step before it (but
+        the campaign's first) is a stretch without rows where it is :data:`LEARNING_GAP` times the
+        longest of the others read (the file reader's median is not known yet: a few steps of a
+        jittery clock lie 1.5 times apart; a run of long steps is a new period), said as the file
+        reader names it, its periods those of the others' median.  The period learned at
+        :data:`SETTLED` steps, the last of them long waiting for the next as after.  Before,
+        nothing was said here, while ``connect``'s ``clock_gap`` and the file reader said it."""
         found = []
-        if self.gap is not None and step < GAP_PERIODS * self.gap_period:
-            found.append(("gap", *self.gap, self.gap_period))
-        self.gap_period = float(np.median([s for _, s in self.steps[:-1]])) if len(self.steps) > 1 else np.nan
-        self.gap = (row, step) if self._long(step, self.gap_period) else None
+        if len(self.steps) >= 3:
+            (at, long), others = self.steps[-2], [s for _, s in self.steps[:-2]] + [step]
+            period = float(np.median(others))
+            if long >= LEARNING_GAP * max(others) and self._long(long, period):
+                found.append(("gap", at, long, period))
         if len(self.steps) == SETTLED:
             self.period, self.steps = float(np.median([s for _, s in self.steps])), []
             self.gap = (row, step) if self._long(step, self.period) else None

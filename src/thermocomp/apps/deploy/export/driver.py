@@ -1165,8 +1165,9 @@ static int check_end(long row) {
 #define RATE_CHANGE 2.0
 #define GAP_PERIODS 1.5
 #define PAUSE_PERIODS 100.0
+#define LEARNING_GAP 2.0
 static struct {
-    double last, period, steps[WATCH_STEPS], gap, gap_period;
+    double last, period, steps[WATCH_STEPS], gap;
     long rows[WATCH_STEPS], gap_row;
     int n, said_rate, said_gap;
 } watch_;
@@ -1220,12 +1221,22 @@ static void watched(double t, long row) {
     watch_.steps[watch_.n] = step;
     watch_.rows[watch_.n++] = row;
     if (!isfinite(period)) {
-        /* (con111) the period being learned: a step read against the median of those before it
-           (rates.StepWatch's _learning), so a stretch in the first steps is said as replay says it */
-        watch_gap_said(step, watch_.gap_period);
-        watch_.gap_period = watch_.n > 1 ? median_of(watch_.steps, NULL, watch_.n - 1) : NAN;
-        watch_.gap_row = watch_long(step, watch_.gap_period) ? row : 0;
-        watch_.gap = step;
+        /* (con111) the period being learned (rates.StepWatch's _learning): the step before this
+           one (not the campaign's first) a stretch where it is LEARNING_GAP times the longest of
+           the others, said as replay says it (a few steps of a jittery clock lie 1.5x apart) */
+        if (watch_.n >= 3) {
+            double most = 0.0, others;
+            for (i = 0; i < watch_.n; i++) {
+                pick[i] = i != watch_.n - 2;
+                if (pick[i] && watch_.steps[i] > most) most = watch_.steps[i];
+            }
+            others = median_of(watch_.steps, pick, watch_.n);
+            watch_.gap_row = watch_.rows[watch_.n - 2];
+            watch_.gap = watch_.steps[watch_.n - 2];
+            if (watch_.gap >= LEARNING_GAP * most && watch_long(watch_.gap, others))
+                watch_gap_said(0.0, others);
+            watch_.gap_row = 0;
+        }
         if (watch_.n == WATCH_STEPS) {
             watch_.period = median_of(watch_.steps, NULL, watch_.n), watch_.n = 0;
             watch_.gap_row = watch_long(step, watch_.period) ? row : 0;
