@@ -8,12 +8,29 @@ Usage (from the repository root; ``PYTHONPATH=<tree>/src``: the code measured is
 
     python benchmarks/bench_con111.py said OUT.json          # every feed, both routes -> OUT.json
     python benchmarks/bench_con111.py cells BASE.json THIS.json   # cells G1-G3 of two trees' OUT
+    python benchmarks/bench_con111.py jitter               # (after the bar) jittery healthy clocks
 
 ``said``: the feeds of the bar (the seen grid of gaps, bench_con109's, early period changes, the
 fresh ones of seed 10217) fed to an offline ``Connection`` (bench_con109's ``_connected``: the
 client's ``_sample``/``_step``, no server) on the server's clock and on a ``time`` node; per feed
 and route the events (kind, data row named, data row being read), the samples counted missed, and
 the file reader's words of the same rows.  ``cells`` scores them.
+
+``jitter`` (harness after the bar, beside G2): 2000 healthy campaigns of 60 rows at 100 s per
+jitter, each timestamp off by up to +-10 ... 30 % of the period (uniform; seed 10217, its own
+generator): the stretches said in data rows <= 11 by the watch (``rates.StepWatch``, connect's
+and the served model's rule) and by the file reader (``timestamps.row_gaps``), by both or by one.
+
+SCORED (2026-12-07 ~22:50-22:55 UTC, 2 cores shared; BASE = 1a0fc91a's src in a detached worktree,
+this tree d3761a2d's src; the script and tests the same)::
+
+  G1 seen grid (32 feeds x 2 routes): `time` "rows missing" at the file reader's row (3..10), said
+     while the row after it is read; BASE said none; missed as BASE (server 2..5, node 0).
+  G2 con109's healthy / period feeds and 16 early period changes: events and missed = BASE's.
+  G3 fresh (seed 10217: a 4-period gap into step 3, a change to 111 s from step 7): G1 / G2 hold.
+  57 feeds, 114 feed-routes, failed 0.  CPU of ``said``: BASE 2.75 s, here 2.90 s (process).
+  jitter (+-10 / 20 / 25 / 30 %): said by the watch only 0 / 1 / 5 / 46 of 2000 campaigns each
+  (BASE 0 / 0 / 0 / 0); by the file reader only 0 / 0 / 29 / 319 (BASE 0 / 0 / 31 / 357).
 """
 
 from __future__ import annotations
@@ -102,8 +119,28 @@ def cells(base: str, this: str) -> None:
     print(f"feeds {len(t)}, failed {len(failed)}: {failed}", flush=True)
 
 
+def jitter() -> None:
+    """Jittery healthy clocks (module doc): early stretches said by the watch and the file reader."""
+    from thermocomp.core.io.rates import StepWatch
+    from thermocomp.core.io.timestamps import row_gaps
+
+    rng = np.random.default_rng(SEED)
+    for a in (0.1, 0.2, 0.25, 0.3):
+        both = watch_only = file_only = 0
+        for _ in range(2000):
+            t = np.sort(np.arange(60) * 100.0 + rng.uniform(-a, a, 60) * 100.0)
+            w = StepWatch(hour_steps=False)
+            said = {f[1] + 1 for r, s in enumerate(t) for f in w.read(float(s), r) if f[0] == "gap"}
+            watch = {r for r in said if r <= 11}
+            file = {int(g) + 2 for g in row_gaps(t) if g + 2 <= 11}
+            both, watch_only, file_only = (both + len(watch & file), watch_only + len(watch - file),
+                                           file_only + len(file - watch))
+        print(f"jitter +-{a:.0%}: early stretches said by both {both}, by the watch only "
+              f"{watch_only}, by the file reader only {file_only}", flush=True)
+
+
 def main(argv: list[str]) -> int:
-    return run_commands(__doc__, {"said": said, "cells": cells}, argv, cpu=sys.stderr)
+    return run_commands(__doc__, {"said": said, "cells": cells, "jitter": jitter}, argv, cpu=sys.stderr)
 
 
 if __name__ == "__main__":
