@@ -820,3 +820,46 @@ def test_the_server_clocks_steps_are_read_against_the_watchs_period():
     for step, missed in ((180.0, 2), (3660.0, 60)):
         assert run(head + list(19 * 60.0 + step + np.arange(20) * 60.0)) == (
             [(19, 21)], [("rows missing", 21)], missed)
+
+
+@pytest.mark.parametrize("step", (2, 9))
+def test_a_stretch_in_a_campaigns_first_steps_is_said_by_the_watch_as_the_file_reader(step):
+    """(con111) Offline, the server's clock at 60 s, 4 periods without samples into data row
+    ``step + 1`` (the watch still learning the period from its first 10 steps): the `time` event
+    names the file reader's row, said one sample after it (where the next step tells it from a
+    new period), beside the `clock_gap` said at once; 3 missed.  Before, the watch said nothing.
+    Early changes of period (to 10x, to 3x, from the same step) are still no gap of the watch,
+    nor, on a time node, a jittery clock's steps (50, 80, 50, 60, 60 s: 80 s is 1.6 times the 50 s
+    before it, not 1.5 times the record's median, 60 s, where the file reader says nothing)."""
+    from datetime import datetime, timedelta, timezone
+
+    from conftest import offline_connection
+    from thermocomp.apps.machine.client import _Plan
+
+    epoch = datetime(2026, 3, 2, 6, 0, tzinfo=timezone.utc)
+    plan = _Plan(inputs=[object(), None], labels=["T_a", "time"], status={}, clock=object(),
+                 offsets=[], types=[], answered=None, watched=[], registers=np.zeros(0))
+
+    def run(times):
+        conn, said = offline_connection(clock="server", period_s=60.0), []
+        for r, s in enumerate(times):
+            got = conn._sample(plan, [ua.DataValue(ua.Variant(20.0, ua.VariantType.Float)),
+                                      ua.DataValue(ua.Variant(epoch + timedelta(seconds=float(s))))])
+            n = len(conn.events)
+            conn._step(*got)
+            said += [(e["to"], e["row"], r + 1) for e in conn.events[n:] if e["event"] == "time"]
+        gaps = [e["row"] for e in conn.events if e["event"] == "clock_gap"]
+        return said, gaps, conn.missed
+
+    times = np.arange(40) * 60.0
+    times[step:] += 3 * 60.0
+    said, gaps, missed = run(times)
+    assert file_said(pd.DataFrame({"time": times})) == [("rows missing", step + 1)]
+    assert (said, gaps, missed) == ([("rows missing", step + 1, step + 2)], [step + 1], 3)
+    for to in (600.0, 180.0):
+        changed = np.r_[np.arange(step) * 60.0, (step - 1) * 60.0 + to * np.arange(1, 41 - step)]
+        assert not [kind for kind, *_ in run(changed)[0] if kind == "rows missing"]
+    jittery, conn = np.arange(40) * 60.0 + np.tile([0.0, -10.0, 10.0, 0.0, 0.0], 8), offline_connection()
+    for k, t in enumerate(jittery):           # (on a time node: the server's clock takes 60 s steps)
+        conn._step("A", [20.0, t], k, k)
+    assert file_said(pd.DataFrame({"time": jittery})) == [] == time_said({"events": conn.events})

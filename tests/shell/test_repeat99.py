@@ -41,6 +41,7 @@ from thermocomp.core.io.stdin import stream_campaigns
 
 ROW, COPIES = 20, 8        # the row written again, how many times more
 SLOW_FROM, GAP = 20, range(25, 29)     # (dep107c) the row from which the period is 10x; rows left out
+EARLY = 22      # (con111) the gap this many rows sooner: into the watch's first steps
 
 
 @pytest.fixture(scope="module")
@@ -167,7 +168,7 @@ def _said_forms(deployed, df, stream_c, tmp_path) -> dict:
 
 
 @needs_cc
-@pytest.mark.parametrize("fault", ("period", "gap", "healthy"))
+@pytest.mark.parametrize("fault", ("period", "gap", "early_gap", "healthy"))
 def test_the_c_and_the_served_model_say_the_rows_time_as_the_file_reader(dataset, c_folder, burst,
                                                                           tmp_path, fault):
     deployed, test = _deployed(dataset, adaptive=True)
@@ -178,6 +179,8 @@ def test_the_c_and_the_served_model_say_the_rows_time_as_the_file_reader(dataset
         df["time"] = np.r_[t[:SLOW_FROM], t[SLOW_FROM - 1] + 1200.0 * np.arange(1, len(t) - SLOW_FROM + 1)]
     elif fault == "gap":           # data rows 26-29 left out: 5 periods before data row 26
         df = df.drop(index=list(GAP)).reset_index(drop=True)
+    elif fault == "early_gap":     # (con111) rows 4-7, while the period is learned: before data row 4
+        df = df.drop(index=[g - EARLY for g in GAP]).reset_index(drop=True)
     said = _said_forms(deployed, df, stream_c, tmp_path)
     c, served = said["corrections"]
     # the corrections as they were: the C = the served = replay of the same rows
@@ -189,7 +192,7 @@ def test_the_c_and_the_served_model_say_the_rows_time_as_the_file_reader(dataset
         assert said["events"] == []
         return
     words, row = (("the sample period changes from 120 s to 1200 s here", 21) if fault == "period"
-                  else ("5 sample periods of 120 s without rows", 26))
+                  else ("5 sample periods of 120 s without rows", 26 - EARLY * (fault == "early_gap")))
     file_words = words if fault == "period" else "steps of 5 sample periods of 120 s"
     assert f"line {row + 1} (data row {row})" in said["file"] and file_words in said["file"]
     assert said["stdin"].startswith("<stdin>, column 'time'") and f"data row {row}" in said["stdin"]

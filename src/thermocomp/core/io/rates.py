@@ -25,6 +25,7 @@ from .timestamps import row_gaps
 
 RATE_CHANGE = 2.0    # the median steps before and after the change this far apart
 SETTLED = 10         # steps at least on each side of a change
+LEARNING_GAP = 2.0   # (con111) a stretch while the period is learned: this many times the other steps
 SAID_AT_MOST = 5     # (dep107c) a stream's warnings of one kind per campaign (a jittery clock's gaps)
 FOUND = {"period": "period changed", "gap": "rows missing"}    # a finding's event (``to``)
 
@@ -111,7 +112,9 @@ class StepWatch:
     periods long (not an hour and a period: daylight saving time) and the next is shorter than
     :data:`GAP_PERIODS` again (a run of long steps is a new rate, not a gap).  It says; it
     changes no correction.  (dep108e) ``hour_steps=False``: a clock without daylight saving time
-    (an OPC UA server's, UTC): a step of an hour and a period is rows missing too."""
+    (an OPC UA server's, UTC): a step of an hour and a period is rows missing too.  (con111) While
+    it learns the period, a step :data:`LEARNING_GAP` times the others read is a stretch: one in
+    the first :data:`SETTLED` steps (but the first) is said as the file reader says it."""
 
     def __init__(self, hour_steps: bool = True) -> None:
         self.last, self.period = float("nan"), float("nan")
@@ -130,15 +133,11 @@ class StepWatch:
             return []
         self.steps.append((row, step))
         if not np.isfinite(self.period):
-            if len(self.steps) == SETTLED:
-                self.period, self.steps = float(np.median([s for _, s in self.steps])), []
-            return []
+            return self._learning(row, step)
         period, found = self.period, []
         if self.gap is not None and step < GAP_PERIODS * period:
             found.append(("gap", *self.gap, period))
-        long = GAP_PERIODS * period <= step <= PAUSE_PERIODS * period
-        dst = self.hour_steps and abs(step - 3600.0 - period) <= period / 2
-        self.gap = (row, step) if long and not dst else None
+        self.gap = (row, step) if self._long(step, period) else None
         self.steps = self.steps[-SETTLED:]
         for changed in ([rs for rs in self.steps if rs[1] >= RATE_CHANGE * period],
                         [rs for rs in self.steps if rs[1] <= period / RATE_CHANGE]):
@@ -148,6 +147,31 @@ class StepWatch:
                 self.steps, self.gap = [], None
                 break
         return found
+
+    def _learning(self, row: int, step: float) -> list[tuple[str, int, float, float]]:
+        """(con111) A step read before the campaign's period is learned.  The step before it (but
+        the campaign's first) is a stretch without rows where it is :data:`LEARNING_GAP` times the
+        longest of the others read (the file reader's median is not known yet: a few steps of a
+        jittery clock lie 1.5 times apart; a run of long steps is a new period), said as the file
+        reader names it, its periods those of the others' median.  The period learned at
+        :data:`SETTLED` steps, the last of them long waiting for the next as after.  Before,
+        nothing was said here, while ``connect``'s ``clock_gap`` and the file reader said it."""
+        found = []
+        if len(self.steps) >= 3:
+            (at, long), others = self.steps[-2], [s for _, s in self.steps[:-2]] + [step]
+            period = float(np.median(others))
+            if long >= LEARNING_GAP * max(others) and self._long(long, period):
+                found.append(("gap", at, long, period))
+        if len(self.steps) == SETTLED:
+            self.period, self.steps = float(np.median([s for _, s in self.steps])), []
+            self.gap = (row, step) if self._long(step, self.period) else None
+        return found
+
+    def _long(self, step: float, period: float) -> bool:
+        """Whether ``step`` (s) is a stretch without rows at ``period``: not a pause, nor (where
+        the clock keeps daylight saving time) an hour and a period."""
+        dst = self.hour_steps and abs(step - 3600.0 - period) <= period / 2
+        return bool(GAP_PERIODS * period <= step <= PAUSE_PERIODS * period) and not dst
 
 
 def found_words(kind: str, was: float, now: float) -> str:

@@ -1165,6 +1165,7 @@ static int check_end(long row) {
 #define RATE_CHANGE 2.0
 #define GAP_PERIODS 1.5
 #define PAUSE_PERIODS 100.0
+#define LEARNING_GAP 2.0
 static struct {
     double last, period, steps[WATCH_STEPS], gap;
     long rows[WATCH_STEPS], gap_row;
@@ -1189,6 +1190,22 @@ static double median_of(const double *v, const int *pick, int n) {
     return m % 2 ? sorted[m / 2] : 0.5 * (sorted[m / 2 - 1] + sorted[m / 2]);
 }
 
+/* Whether `step` is a stretch without rows at `period`: not a pause, nor an hour and a period. */
+static int watch_long(double step, double period) {
+    return step >= GAP_PERIODS * period && step <= PAUSE_PERIODS * period
+           && fabs(step - 3600.0 - period) > period / 2;
+}
+
+/* The long step waiting (its row, its period) said where the next `step` is short again. */
+static void watch_gap_said(double step, double period) {
+    if (watch_.gap_row && step < GAP_PERIODS * period && watch_.said_gap++ < 5)
+        fprintf(stderr, "stream: line %ld: %.3g sample periods of %g s without rows before this "
+                "one (a logger's outage?), as the model's reader says of the same rows: a model "
+                "whose lags count samples (arx, lstm) reads them as one period; the corrections "
+                "go on%s\n", watch_.gap_row, watch_.gap / period, period,
+                watch_.said_gap == 5 ? " (no more said)" : "");
+}
+
 static void watched(double t, long row) {
     double step, period = watch_.period;
     int i, side, count, pick[WATCH_STEPS];
@@ -1204,17 +1221,30 @@ static void watched(double t, long row) {
     watch_.steps[watch_.n] = step;
     watch_.rows[watch_.n++] = row;
     if (!isfinite(period)) {
-        if (watch_.n == WATCH_STEPS) watch_.period = median_of(watch_.steps, NULL, watch_.n), watch_.n = 0;
+        /* (con111) the period being learned (rates.StepWatch's _learning): the step before this
+           one (not the campaign's first) a stretch where it is LEARNING_GAP times the longest of
+           the others, said as replay says it (a few steps of a jittery clock lie 1.5x apart) */
+        if (watch_.n >= 3) {
+            double most = 0.0, others;
+            for (i = 0; i < watch_.n; i++) {
+                pick[i] = i != watch_.n - 2;
+                if (pick[i] && watch_.steps[i] > most) most = watch_.steps[i];
+            }
+            others = median_of(watch_.steps, pick, watch_.n);
+            watch_.gap_row = watch_.rows[watch_.n - 2];
+            watch_.gap = watch_.steps[watch_.n - 2];
+            if (watch_.gap >= LEARNING_GAP * most && watch_long(watch_.gap, others))
+                watch_gap_said(0.0, others);
+            watch_.gap_row = 0;
+        }
+        if (watch_.n == WATCH_STEPS) {
+            watch_.period = median_of(watch_.steps, NULL, watch_.n), watch_.n = 0;
+            watch_.gap_row = watch_long(step, watch_.period) ? row : 0;
+        }
         return;
     }
-    if (watch_.gap_row && step < GAP_PERIODS * period && watch_.said_gap++ < 5)
-        fprintf(stderr, "stream: line %ld: %.3g sample periods of %g s without rows before this "
-                "one (a logger's outage?), as the model's reader says of the same rows: a model "
-                "whose lags count samples (arx, lstm) reads them as one period; the corrections "
-                "go on%s\n", watch_.gap_row, watch_.gap / period, period,
-                watch_.said_gap == 5 ? " (no more said)" : "");
-    watch_.gap_row = step >= GAP_PERIODS * period && step <= PAUSE_PERIODS * period
-                     && fabs(step - 3600.0 - period) > period / 2 ? row : 0;
+    watch_gap_said(step, period);
+    watch_.gap_row = watch_long(step, period) ? row : 0;
     watch_.gap = step;
     for (side = 0; side < 2; side++) {
         for (i = count = 0; i < watch_.n; i++)
