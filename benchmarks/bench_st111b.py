@@ -1,0 +1,146 @@
+"""After the block's own ``mon_lost``, a second sensor's fault: does the ST flag every row it differs
+from the C (st111b, issue 34 "deployed as scored")?
+
+The gap named at stop 109: after ``mon_lost`` (st_watch.py, a dropout or a jump the block does not
+follow) the block judges no other sensor (``mon_e`` is no longer computed) while the C still does.
+
+CASES (a rule, fixed before any was run).  The model: test_export_lean107b's dep108 model (MLR +
+``ambient_scaled`` on E_X) on diag107's ``_room(7, seed=SEED)`` record (seen: seed 3, the module's;
+fresh: 10211-10213, each drawn once).  In each test campaign (n rows), A = the first monitored
+sensor but T_amb (monitor order), B = the next one:
+
+* first fault on A at ``r1 = n // 4``: ``drop`` (NaN on rows r1 .. r1 + 2) or ``jump`` (-3 K from
+  r1 to the end);
+* second fault on B at ``r2 = n // 2``: ``jump`` (+3 K from r2 to the end), ``drop`` (NaN on rows
+  r2 .. r2 + 4) or ``drift`` (+0.05 K per row from r2 on).
+
+A row *differs* where max |ST - C| > 1e-9 um (C = the JSON mirror ``Simulator``), is *flagged*
+where ``mon_flag``, ``mon_unsure`` or ``refused`` is TRUE.  Per case and block: rows from r2 that
+differ unflagged (``late``), of them those not so in the first fault alone (``added``: the second
+fault's), max |ST - C| there, and whether the block was ``mon_lost`` at row r2 - 1.
+
+Usage (from the repository root; ``PYTHONPATH=<tree>/src``)::
+
+    python benchmarks/bench_st111b.py score BASESRC SEED [SEED ...]
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+HERE = Path(__file__).resolve().parent
+sys.path[:0] = [str(HERE), str(HERE.parent / "tests" / "shell"), str(HERE.parent / "tests" / "apps"),
+                str(HERE.parent / "tests")]
+from _cli import run_commands  # noqa: E402
+
+TOL = 1e-9      # um
+FIRST = ("drop", "jump")
+SECOND = ("none", "jump", "drop", "drift")
+
+
+def faulted(df, a: str, b: str, first: str, second: str):
+    """``df`` with A's ``first`` fault at n // 4 and B's ``second`` at n // 2 (module doc)."""
+    df = df.reset_index(drop=True).copy()
+    n = len(df)
+    r1, r2 = n // 4, n // 2
+    if first == "drop":
+        df.loc[r1:r1 + 2, a] = np.nan
+    else:
+        df.loc[r1:, a] -= 3.0
+    if second == "jump":
+        df.loc[r2:, b] += 3.0
+    elif second == "drop":
+        df.loc[r2:r2 + 4, b] = np.nan
+    elif second == "drift":
+        df.loc[r2:, b] += 0.05 * (np.arange(r2, n) - r2 + 1)
+    return df
+
+
+def run(block: str, ss, df) -> dict:
+    """Per row: the block's c, its flags (flag, unsure, refused), mon_lost; the mirror's c."""
+    from test_export import StructuredText
+    from thermocomp.apps.deploy.export import Simulator
+
+    st, sim = StructuredText(block), Simulator(ss)
+    sim.reset()
+    U, t = df[ss.inputs].to_numpy(float), df["time"].to_numpy(float)
+    got = {k: [] for k in ("st", "c", "flagged", "lost")}
+    for i in range(len(df)):
+        a, c = st(U[i], t[i], i == 0), sim.step(U[i], t[i])
+        v = st.vars
+        got["st"].append(np.array(a, float))
+        got["c"].append(np.array(c, float))
+        got["flagged"].append(bool(v["mon_flag"]) or bool(v.get("mon_unsure", False)) or bool(v["refused"]))
+        got["lost"].append(bool(v["mon_lost"]))
+    return {k: np.array(x) for k, x in got.items()}
+
+
+def loose(r: dict) -> np.ndarray:
+    """Rows differing from the C and not flagged."""
+    return (np.max(np.abs(r["c"] - r["st"]), axis=1) > TOL) & ~r["flagged"]
+
+
+def _deployed(seed: int, tmp: str):
+    from test_diagnose_level107 import _room
+    from test_export import _compose
+    from test_export_lean107b import _deployed_scaled
+
+    from thermocomp.shell.source import read_streamed
+
+    root = Path(tmp) / "data"
+    root.mkdir()
+    ds = _room(7, seed=seed)
+    for cid, df in ds.campaigns.items():
+        df.to_csv(root / f"{cid}.csv", index=False)
+    ds.manifest.reset_index().to_csv(root / "campaigns.csv", index=False)
+    os.chdir(tmp)
+    deployed, _ = _deployed_scaled(root)
+    ds, _, test_ids, _ = read_streamed(_compose(f"data.path={root}", "track=false"))
+    return deployed, [ds.campaigns[c] for c in test_ids]
+
+
+def score(basesrc: str, *seeds: str) -> None:
+    """Per seed, case and block (BASE, RULE): the module doc's counts, summed over the campaigns."""
+    from bench_st108d import _block
+
+    from thermocomp.apps.deploy.export import state_space
+
+    for seed in map(int, seeds):
+        with tempfile.TemporaryDirectory() as tmp:
+            deployed, campaigns = _deployed(seed, tmp)
+            ss = state_space(deployed, monitor=True)
+            names = [ss.inputs[i] for i in ss.monitor["inputs"]]
+            a, b = [c for c in names if c != "T_amb"][:2]
+            blocks = {"BASE": _block(deployed, basesrc), "RULE": _block(deployed, None)}
+            for who, block in blocks.items():
+                for first in FIRST:
+                    alone = [run(block, ss, faulted(df, a, b, first, "none")) for df in campaigns]
+                    for second in SECOND:
+                        late = added = lost = 0
+                        worst = 0.0
+                        for df, r0 in zip(campaigns, alone):
+                            r = r0 if second == "none" else run(block, ss, faulted(df, a, b, first, second))
+                            r2 = len(df) // 2
+                            bad = loose(r)
+                            bad[:r2] = False
+                            late += int(bad.sum())
+                            added += int((bad & ~loose(r0)).sum())
+                            lost += int(r["lost"][r2 - 1])
+                            if bad.any():
+                                worst = max(worst, float(np.max(np.abs(r["c"] - r["st"])[bad])))
+                        print(f"seed {seed} {who} {a} {first} then {b} {second}: late unflagged {late}, "
+                              f"added {added} (max {worst:.3g} um); mon_lost at r2-1 in {lost} of "
+                              f"{len(campaigns)} campaigns", flush=True)
+
+
+def main(argv: list[str]) -> int:
+    return run_commands(__doc__, {"score": score}, argv, cpu=sys.stderr)
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
