@@ -22,6 +22,10 @@ fault's), max |ST - C| there, and whether the block was ``mon_lost`` at row r2 -
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``)::
 
     python benchmarks/bench_st111b.py score BASESRC SEED [SEED ...]
+    python benchmarks/bench_st111b.py stream ROOT BASESRC RECORD [RECORD ...]
+
+``stream``: the same rule on bench_st108b's healthy lr/dl streams (one campaign each), added after
+the room's seen cases were run (more seen cases, not the bar's fresh ones).
 """
 
 from __future__ import annotations
@@ -89,7 +93,6 @@ def _deployed(seed: int, tmp: str):
     from test_diagnose_level107 import _room
     from test_export import _compose
     from test_export_lean107b import _deployed_scaled
-
     from thermocomp.shell.source import read_streamed
 
     root = Path(tmp) / "data"
@@ -104,8 +107,33 @@ def _deployed(seed: int, tmp: str):
     return deployed, [ds.campaigns[c] for c in test_ids]
 
 
+def _cases(label: str, ss, campaigns: list, blocks: dict) -> None:
+    """Per case and block: the module doc's counts, summed over ``campaigns``."""
+    names = [ss.inputs[i] for i in ss.monitor["inputs"]]
+    a, b = [c for c in names if c != "T_amb"][:2]
+    for who, block in blocks.items():
+        for first in FIRST:
+            alone = [run(block, ss, faulted(df, a, b, first, "none")) for df in campaigns]
+            for second in SECOND:
+                late = added = lost = 0
+                worst = 0.0
+                for df, r0 in zip(campaigns, alone):
+                    r = r0 if second == "none" else run(block, ss, faulted(df, a, b, first, second))
+                    r2 = len(df) // 2
+                    bad = loose(r)
+                    bad[:r2] = False
+                    late += int(bad.sum())
+                    added += int((bad & ~loose(r0)).sum())
+                    lost += int(r["lost"][r2 - 1])
+                    if bad.any():
+                        worst = max(worst, float(np.max(np.abs(r["c"] - r["st"])[bad])))
+                print(f"{label} {who} {a} {first} then {b} {second}: late unflagged {late}, added {added} "
+                      f"(max {worst:.3g} um); mon_lost at r2-1 in {lost} of {len(campaigns)} campaigns",
+                      flush=True)
+
+
 def score(basesrc: str, *seeds: str) -> None:
-    """Per seed, case and block (BASE, RULE): the module doc's counts, summed over the campaigns."""
+    """The room record's cases per seed (module doc), BASE's block and the tree's."""
     from bench_st108d import _block
 
     from thermocomp.apps.deploy.export import state_space
@@ -113,33 +141,24 @@ def score(basesrc: str, *seeds: str) -> None:
     for seed in map(int, seeds):
         with tempfile.TemporaryDirectory() as tmp:
             deployed, campaigns = _deployed(seed, tmp)
-            ss = state_space(deployed, monitor=True)
-            names = [ss.inputs[i] for i in ss.monitor["inputs"]]
-            a, b = [c for c in names if c != "T_amb"][:2]
             blocks = {"BASE": _block(deployed, basesrc), "RULE": _block(deployed, None)}
-            for who, block in blocks.items():
-                for first in FIRST:
-                    alone = [run(block, ss, faulted(df, a, b, first, "none")) for df in campaigns]
-                    for second in SECOND:
-                        late = added = lost = 0
-                        worst = 0.0
-                        for df, r0 in zip(campaigns, alone):
-                            r = r0 if second == "none" else run(block, ss, faulted(df, a, b, first, second))
-                            r2 = len(df) // 2
-                            bad = loose(r)
-                            bad[:r2] = False
-                            late += int(bad.sum())
-                            added += int((bad & ~loose(r0)).sum())
-                            lost += int(r["lost"][r2 - 1])
-                            if bad.any():
-                                worst = max(worst, float(np.max(np.abs(r["c"] - r["st"])[bad])))
-                        print(f"seed {seed} {who} {a} {first} then {b} {second}: late unflagged {late}, "
-                              f"added {added} (max {worst:.3g} um); mon_lost at r2-1 in {lost} of "
-                              f"{len(campaigns)} campaigns", flush=True)
+            _cases(f"seed {seed}", state_space(deployed, monitor=True), campaigns, blocks)
+
+
+def stream(root: str, basesrc: str, *records: str) -> None:
+    """The same cases on bench_st108b's healthy streams (ROOT as its ``make`` makes them)."""
+    import bench_st103b
+    import bench_st108b
+    from bench_st108d import _block
+
+    for record in records:
+        _, ss, frame, _, _, tree, base = bench_st103b._cell(root, record, bench_st108b.MADE_BY,
+                                                            lambda d: _block(d, basesrc))
+        _cases(record, ss, [frame], {"BASE": base, "RULE": tree})
 
 
 def main(argv: list[str]) -> int:
-    return run_commands(__doc__, {"score": score}, argv, cpu=sys.stderr)
+    return run_commands(__doc__, {"score": score, "stream": stream}, argv, cpu=sys.stderr)
 
 
 if __name__ == "__main__":
