@@ -124,6 +124,9 @@ referenced late at its return and read so to the C's ``BACK``; anything else gon
 meanwhile sets ``mon_rfirst`` (st108d: ``mon_unsure`` to the campaign's end).  (st109b) So does a
 reading beyond its range after the first sample (``mon_rlater``; but the followed one's): the C
 may read it on as a machine hotter than training and re-reference it at its return.
+(st111b) After ``mon_lost`` the errors with every sensor in are computed on for that test (the C
+judges on), and a later jump of a sensor the others predict sets ``mon_rjump`` (``mon_unsure`` to
+the campaign's end: the C re-references it by its step less the others' change).
 The counters that grow with the campaign
 (``mon_count``, ``mon_stop_row``, ``mon_calm``, ``mon_run``, ``mon_quiet``, ``mon_jcalm``, ``mon_lcalm``,
 ``mon_hsince``) are DINT: an INT wraps after 32767 samples (9 h at 1 s), and a wrapped count stops
