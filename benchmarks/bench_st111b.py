@@ -19,6 +19,30 @@ where ``mon_flag``, ``mon_unsure`` or ``refused`` is TRUE.  Per case and block: 
 differ unflagged (``late``), of them those not so in the first fault alone (``added``: the second
 fault's), max |ST - C| there, and whether the block was ``mon_lost`` at row r2 - 1.
 
+SCORED (2026-12-07, bar ac9a6a38 unchanged; BASE = 1a0fc91a's src, a second worktree; load 13-17 on
+2 cores).  RULE (st_watch.py): after ``mon_lost`` the errors with every sensor in computed on for
+st108b's ``mon_unsure`` test (stale before: the C's later DRIFT_OUT / STEP_OUT went unflagged),
+and a jump after it of one the others predict (``MON_JUMP_HELD`` 0) sets ``mon_rjump``
+(``mon_unsure`` to the campaign's end).  c, flag, rule, sensor untouched.
+* seen seed 3: ``added`` 0 on all 8 cases, BASE and RULE alike (the room's T_2 is one no other
+  predicts: the C's hold ends after 10 rows, all flagged); the T_1 jump-first runs keep st111's
+  lone-jump rows (240 late unflagged, first fault alone).  12.5 s CPU.
+* seen stream lr9964 (A T_spindle_front, B T_spindle_rear, ``MON_JUMP_HELD`` 1): drop then drift
+  added 268 (0.193 um) -> 0; drop alone late 12 (1.28 um) -> 0; drop then jump 2119 (1.34 um) ->
+  1521 (0.061 um): NOT met (the C's hold of a held sensor and its undoing at BACK, not followed
+  after ``mon_lost``; not latched: this rule latches only sensors the others predict).
+  dl9965 (BASE only): drop then jump added 3569 (4.54 um).
+* fresh 10211-10213 (drawn once, after 83886f83's rule): 10212 drop then jump added 156
+  (0.525 um) -> 0; 10211 jump then jump 1, jump then drift 2 added rows on BASE and RULE alike;
+  every other case 0 on both.  25.6 s CPU.
+* B3 bench_st108b ``stream`` lr/dl 9964-9967 (BASE 69.5 s, RULE 68.5 s CPU): st, c, flag, rule,
+  sensor, stop identical on all 8 (``same``: 0 / 0); differing rows unchanged, all flagged on both;
+  ``mon_unsure`` rows 291 -> 1527 of 46084 (lr9964 33 -> 170, dl9964 33 -> 272, lr9966 42 -> 360,
+  dl9966 41 -> 583; the other 4 identical): the cost, flags on rows equal to the C.
+* B4 test_export_st97d's new case fails on BASE (rows 692-789 unflagged, 3 K jump of T_head_left
+  after a dropout), passes on RULE; module CPU without / with it 4.72 / 4.35 -> 4.72 / 4.45 s.
+  PARSED_DIGEST 320772ec (blark parsed, 30.9 s CPU).
+
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``)::
 
     python benchmarks/bench_st111b.py score BASESRC SEED [SEED ...]
