@@ -18,6 +18,7 @@ from test_export_st96 import START, _stepped, bumped
 from thermocomp.apps.deploy.export.watch import DRIFT_OUT, EXCLUDED, OUT
 
 DRIFTED = "T_head_left"      # one the others predict (lr9132): its drift is the C's lone fault
+LOST_AT = 670                # (st111b) a dropout there: the block's own mon_lost
 
 
 def _stop(v) -> tuple:
@@ -59,3 +60,23 @@ def test_the_block_flags_every_row_after_its_stop_where_the_c_rebuilds_what_it_r
     flagged = np.array([said[0] or s[3] for said, s in zip(st_said, stop)])
     assert flagged[off].all()
     assert not any(s[3] for s in stop[:at])
+
+
+def test_the_block_flags_every_row_where_the_c_parts_from_it_after_its_own_lost_judgement(record):  # noqa: F811
+    """(st111b) After the block's own ``mon_lost`` (here a dropout) it judges no sensor, while the
+    C goes on: a later jump of a sensor the others predict is excluded and rebuilt by the C, then
+    re-referenced by its step less the others' change, where the block re-references it by its
+    whole step.  Every row where the block differs from the C is flagged (before st111b the rows
+    past the jump's ``2 MON_WINDOW`` were not)."""
+    deployed, ss, frame, block = record
+    names = [ss.inputs[i] for i in ss.monitor["inputs"]]
+    dropped = next(c for c in names if c not in ("T_amb", DRIFTED))
+    k = names.index(DRIFTED)
+    df = frame.copy()
+    df.loc[LOST_AT:LOST_AT + 1, dropped] = np.nan
+    df.loc[LOST_AT + 20:, DRIFTED] += 3.0 * float(deployed.monitor.max_step_c[k])
+    st, st_said, stop, c, _ = _stepped(ss, block, df.iloc[:LOST_AT + 120], _stop)
+    off = np.max(np.abs(st - c), axis=1) > TOLERANCE_UM
+    flagged = np.array([said[0] or s[3] for said, s in zip(st_said, stop)])
+    assert off[LOST_AT + 20:].sum() >= 50
+    assert flagged[off].all()

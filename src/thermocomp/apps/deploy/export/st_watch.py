@@ -124,6 +124,9 @@ referenced late at its return and read so to the C's ``BACK``; anything else gon
 meanwhile sets ``mon_rfirst`` (st108d: ``mon_unsure`` to the campaign's end).  (st109b) So does a
 reading beyond its range after the first sample (``mon_rlater``; but the followed one's): the C
 may read it on as a machine hotter than training and re-reference it at its return.
+(st111b) After ``mon_lost`` the errors with every sensor in are computed on for that test (the C
+judges on), and a later jump of a sensor the others predict sets ``mon_rjump`` (``mon_unsure`` to
+the campaign's end: the C re-references it by its step less the others' change).
 The counters that grow with the campaign
 (``mon_count``, ``mon_stop_row``, ``mon_calm``, ``mon_run``, ``mon_quiet``, ``mon_jcalm``, ``mon_lcalm``,
 ``mon_hsince``) are DINT: an INT wraps after 32767 samples (9 h at 1 s), and a wrapped count stops
@@ -553,6 +556,8 @@ VARS = """    mon_last : ARRAY[{nm}] OF LREAL;
     mon_other_known : BOOL;    (* (st111) mon_other is the C's last one: its set whole on that row *)
     mon_whole : BOOL;    (* (st111) the C's set whole before this row, as far as the block knows *)
     mon_junsure : BOOL;    (* (st111) a lone jump re-referenced otherwise than the C *)
+    mon_rjump : BOOL;    (* (st111b) a jump of one the others predict after mon_lost *)
+    mon_efresh : BOOL;    (* (st111b) mon_e computed by the judgement this row *)
     mon_late : INT;    (* (st109) the sensor beyond its range since the first sample, followed *)
     mon_lback : BOOL;
     mon_lcalm : DINT;
@@ -928,6 +933,14 @@ IF mon_hjump THEN
     mon_jn := mon_jn + 1;    (* (st102) its jumps in the hold, undone at its BACK as the C's *)
     mon_sage[mon_held] := 0;    (* its reference moved: the C's age 1 on this row *)
 ELSIF (mon_gone OR mon_jumps > 0) AND NOT mon_jbeside THEN
+    (* (st111b) a jump after the block's own mon_lost (its value from the row before) of one *)
+    (* the others predict: the C re-references it by its step less the others' change, which *)
+    (* the block cannot compute here, the block by its whole step: apart to the campaign's end *)
+    FOR mk := 0 TO MON_N - 1 DO
+        IF mon_lost AND mon_big[mk] AND MON_JUMP_HELD[mk] = 0 THEN
+            mon_rjump := TRUE;
+        END_IF;
+    END_FOR;
     mon_lost := TRUE;
 END_IF;
 mon_was := mon_held;
@@ -977,7 +990,9 @@ IF mon_jheld >= 0 THEN
         mon_jcalm := mon_jcalm + 1;
     END_IF;
 END_IF;
+mon_efresh := FALSE;
 IF MON_STEP_JUDGE AND (NOT mon_lost OR mon_jheld >= 0) THEN
+    mon_efresh := TRUE;
     FOR mk := 0 TO MON_N - 1 DO
         j := MON_INPUT[mk];
         mon_d[mk] := u[j] - mon_base[mk] - mon_shift[j];
@@ -1577,6 +1592,7 @@ END_IF;
 (* (a jump), which the block does not follow: mon_rlater (mon_unsure to the campaign's end) *)
 IF reset THEN
     mon_rlater := FALSE;
+    mon_rjump := FALSE;
 END_IF;
 IF NOT first THEN
     FOR mk := 0 TO MON_N - 1 DO
@@ -1639,6 +1655,24 @@ mon_other_known := MON_STEP_JUDGE AND NOT mon_lost AND mon_held < 0 AND mon_jhel
 (* the C may take out a sensor the block reads (DRIFT_OUT, its partner, BLIND_OUT, STEP_OUT, *)
 (* a jump's) and rebuild it: mon_unsure where the block flags or a judged sensor's error with *)
 (* every sensor in reaches its warning band, and the C's first wait after (2 MON_WINDOW) *)
+(* (st111b) after mon_lost the block judges nothing but the C judges on: the errors with every *)
+(* sensor in still computed for the test below (a reading not measured or beyond its range at *)
+(* its last value), else the C's later exclusions (DRIFT_OUT, STEP_OUT, ...) would go unflagged *)
+IF MON_STEP_JUDGE AND mon_lost AND NOT mon_efresh THEN
+    FOR mk := 0 TO MON_N - 1 DO
+        j := MON_INPUT[mk];
+        IF u[j] >= MON_LO_LIM[mk] AND u[j] <= MON_HI_LIM[mk] THEN
+            mon_d[mk] := u[j] - mon_base[mk] - mon_shift[j];
+        END_IF;
+    END_FOR;
+    FOR mk := 0 TO MON_N - 1 DO
+        mon_x := 0.0;
+        FOR mj := 0 TO MON_N - 1 DO
+            mon_x := mon_x + MON_SELF[mk, mj] * mon_d[mj];
+        END_FOR;
+        mon_e[mk] := (mon_d[mk] - mon_x) * MON_SCALE[mk];
+    END_FOR;
+END_IF;
 mon_unsure := FALSE;
 IF mon_stop_row > 0 OR mon_lost THEN
     IF mon_flag THEN
@@ -1669,6 +1703,9 @@ IF mon_rlater THEN
 END_IF;
 IF mon_junsure THEN
     mon_unsure := TRUE;    (* (st111) a lone jump re-referenced otherwise than the C *)
+END_IF;
+IF mon_rjump THEN
+    mon_unsure := TRUE;    (* (st111b) a jump after mon_lost, re-referenced not as the C *)
 END_IF;
 (* a campaign's sample count, held at DINT's top: never wraps back through 1 *)
 IF mon_count < 2147483646 THEN
