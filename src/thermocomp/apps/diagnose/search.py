@@ -73,6 +73,7 @@ from ...core.model_selection.blocks import BETWEEN_CAMPAIGNS, between_campaign_s
 from .candidates import CONTROL, CandidateOptions, candidates
 from .cv import CrossValidator, CVResult, Problem, sign_flip_maxt, sign_flip_pvalues, smallest_p
 from .features import Effect
+from .refit_null import refit_pvalue
 from .sensors import self_prediction
 
 
@@ -112,6 +113,7 @@ class Evaluation:
     alpha: float | None = None
     result: CVResult | None = field(default=None, repr=False)
     p_family: float | None = None
+    p_refit: float | None = None             # the refit null's (a second gate: .refit_null)
     gain_pct_in_range: float = float("nan")   # the same on the rows no fold extrapolates to
     gain_lcb_alpha: float = float("nan")      # (1 - alpha) Student-t lower bound of the gain
     p_margin: float = float("nan")            # p of a gain of min_gain_pct at least (the margin)
@@ -132,7 +134,7 @@ class Evaluation:
                             "shrink_alpha": self.alpha, "p_value_family": self.p_family,
                             "cv_rmse_gain_pct_in_range": self.gain_pct_in_range,
                             "cv_rmse_gain_lcb_alpha": self.gain_lcb_alpha,
-                            "p_value_margin": self.p_margin},
+                            "p_value_margin": self.p_margin, "p_value_refit": self.p_refit},
                "accepted": self.accepted}
         if self.control:
             out["control"] = True
@@ -771,6 +773,10 @@ class Search:
         evals.sort(key=lambda ev: -ev.gain)
         control = next((ev for ev in evals if ev.control), None)
         bar_gain = control.gain if control is not None else -np.inf
+        for ev in evals:     # the refit null: only where everything else has cleared (its CPU)
+            if ev.clears_bar and not ev.control and ev.gain > bar_gain:
+                ev.p_refit = self._refit_p([ev.effect], ev.result.rmse)
+                ev.clears_bar = ev.p_refit is None or ev.p_refit <= self.options.alpha
         eligible = forward_first(choose([ev for ev in evals if ev.clears_bar and not ev.control
                                          and ev.gain > bar_gain], rivals=evals))
         screened = [{"kind": e.kind, "column": e.column, "transform": e.label,
@@ -818,9 +824,21 @@ class Search:
             for ev in eligible:
                 gain_pct = _pct(current.rmse - ev.result.rmse, current.rmse)
                 if pf[id(ev)] <= self.options.alpha and gain_pct >= self.options.min_gain_pct:
-                    return [(None, level), (rnd, ev)]
+                    ev.p_refit = self._refit_p([level.effect, ev.effect], ev.result.rmse)
+                    if ev.p_refit is None or ev.p_refit <= self.options.alpha:
+                        return [(None, level), (rnd, ev)]
         p.block_samples, p.block_index = saved
         return []
+
+    def _refit_p(self, tested: list, observed_rmse: float) -> float | None:
+        """The refit null's p of ``tested`` added to the search's effects (:mod:`.refit_null`) in the
+        ``campaigns`` scheme, where the flips' units are campaigns or blocks of them and a candidate
+        fitted on them gains there by their chance structure (diag109); None elsewhere (forward
+        chaining's blocks of one time line: no campaigns to permute)."""
+        if self.problem.scheme != "campaigns":
+            return None
+        return refit_pvalue(self.cv, self.inputs(), list(self.effects), tested, observed_rmse,
+                            seed=self.options.seed, alpha=self.options.alpha)
 
     def _deployed(self, current: CVResult) -> CVResult:
         """The final model's CV: with an MLR base and only effects of several features (a lag
