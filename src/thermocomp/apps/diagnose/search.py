@@ -41,7 +41,9 @@ once, at the end, to report before and after):
    simplest one within one standard error of the largest gain of every refitted candidate,
    cleared or not (fewest extra regressors; ties: the largest 95 % lower confidence bound of
    the gain, :func:`gain_lower_bound`; none when all are clearly worse than one that did not
-   clear) -- see :func:`choose`.  Refit and repeat, at most ``max_effects`` times.
+   clear) -- see :func:`choose`.  The one a round would take must also beat its drivers moved
+   among the train campaigns (the refit null, ``campaigns`` scheme: :mod:`.refit_null`, diag111;
+   refused, the next is asked).  Refit and repeat, at most ``max_effects`` times.
 
 A ``sensor_fault`` (removing a declared sensor) has its own bar: its evidence
 is the self-prediction jump (:mod:`.sensors`), since a sensor usually breaks
