@@ -9,14 +9,24 @@ against the model before it (every held-out campaign gains): both are taken.
 
 from __future__ import annotations
 
+import sys
+from pathlib import Path
+
 import numpy as np
 import pandas as pd
 
 from thermocomp.apps.diagnose import SearchOptions, diagnose
+from thermocomp.apps.diagnose import search as search_module
 from thermocomp.apps.diagnose.candidates import CandidateOptions
+from thermocomp.apps.diagnose.refit_null import refit_pvalue
 from thermocomp.core.compensator import Compensator
 from thermocomp.core.io.contract import Dataset
 from thermocomp.core.models import MLR
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "benchmarks"))
+from bench_diag108 import null_room  # noqa: E402 (the clean room of the benches diag108-111 count)
+
+FAMILIES = ("ambient_interval", "signal")
 
 
 def _room_with_source(n_inputs: int = 7, n_campaigns: int = 12, n: int = 120, seed: int = 3) -> Dataset:
@@ -44,12 +54,35 @@ def _room_with_source(n_inputs: int = 7, n_campaigns: int = 12, n: int = 120, se
 
 
 def test_the_level_law_and_a_source_masking_each_other_are_taken_together():
-    families = ("ambient_interval", "signal")
-    options = SearchOptions(max_effects=2, candidates=CandidateOptions(families=families))
+    options = SearchOptions(max_effects=2, candidates=CandidateOptions(families=FAMILIES))
     j = diagnose(_room_with_source(), Compensator(MLR()), options=options).to_json("E_X")
     first = j["rounds"][0]
     assert not any(e["evidence"]["clears_bar"] for e in first["evaluated"])
     law, source = [e for e in j["effects"] if e["accepted"]]
     assert law["kind"] == "ambient_interval" and law["evidence"]["n_features"] == 1
     assert source["column"] == "S_hyd" and source["evidence"]["clears_bar"]
+    assert source["evidence"]["p_value_refit"] <= 0.01        # the pair beat its moved drivers (diag111)
     assert j["after"]["test_rmse"] < 0.2 * j["before"]["test_rmse"]
+
+
+def test_a_level_law_clearing_the_flips_in_a_clean_room_does_not_beat_its_moved_ambients(monkeypatch):
+    """diag111: in bench_diag108's clean room 16 (campaign offsets independent of the air) the lean
+    level law gains 22 % in CV at a family-wise flip p <= 0.01; refitted with the campaigns'
+    starting ambients moved among them it does as well within the first permutations (refit p > 0.01),
+    while the planted pair above beats all 99."""
+    store = {}
+    run = search_module.Search.run
+
+    def kept(self, *args, **kwargs):
+        store[self.problem.target] = self
+        return run(self, *args, **kwargs)
+
+    monkeypatch.setattr(search_module.Search, "run", kept)
+    options = SearchOptions(max_effects=2, candidates=CandidateOptions(families=FAMILIES))
+    diagnose(null_room(16), Compensator(MLR()), options=options, targets=["E_X"])
+    s = store["E_X"]
+    s.effects = []
+    evals, _, _, _ = s._round(s.cv.run(s.inputs(), []), s._read_columns(), 1)
+    law = max((ev for ev in evals if ev.effect.transform in search_module.LEAN_LEVEL), key=lambda ev: ev.gain)
+    assert law.p_family <= 0.01 and law.gain_pct >= 5.0
+    assert refit_pvalue(s.cv, s.inputs(), [], [law.effect], law.result.rmse, alpha=0.01) > 0.01

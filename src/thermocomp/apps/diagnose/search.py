@@ -41,7 +41,9 @@ once, at the end, to report before and after):
    simplest one within one standard error of the largest gain of every refitted candidate,
    cleared or not (fewest extra regressors; ties: the largest 95 % lower confidence bound of
    the gain, :func:`gain_lower_bound`; none when all are clearly worse than one that did not
-   clear) -- see :func:`choose`.  Refit and repeat, at most ``max_effects`` times.
+   clear) -- see :func:`choose`.  The one a round would take must also beat its drivers moved
+   among the train campaigns (the refit null, ``campaigns`` scheme: :mod:`.refit_null`, diag111;
+   refused, the next is asked).  Refit and repeat, at most ``max_effects`` times.
 
 A ``sensor_fault`` (removing a declared sensor) has its own bar: its evidence
 is the self-prediction jump (:mod:`.sensors`), since a sensor usually breaks
@@ -73,6 +75,7 @@ from ...core.model_selection.blocks import BETWEEN_CAMPAIGNS, between_campaign_s
 from .candidates import CONTROL, CandidateOptions, candidates
 from .cv import CrossValidator, CVResult, Problem, sign_flip_maxt, sign_flip_pvalues, smallest_p
 from .features import Effect
+from .refit_null import refit_pvalue
 from .sensors import self_prediction
 
 
@@ -112,6 +115,7 @@ class Evaluation:
     alpha: float | None = None
     result: CVResult | None = field(default=None, repr=False)
     p_family: float | None = None
+    p_refit: float | None = None             # the refit null's (a second gate: .refit_null)
     gain_pct_in_range: float = float("nan")   # the same on the rows no fold extrapolates to
     gain_lcb_alpha: float = float("nan")      # (1 - alpha) Student-t lower bound of the gain
     p_margin: float = float("nan")            # p of a gain of min_gain_pct at least (the margin)
@@ -132,7 +136,7 @@ class Evaluation:
                             "shrink_alpha": self.alpha, "p_value_family": self.p_family,
                             "cv_rmse_gain_pct_in_range": self.gain_pct_in_range,
                             "cv_rmse_gain_lcb_alpha": self.gain_lcb_alpha,
-                            "p_value_margin": self.p_margin},
+                            "p_value_margin": self.p_margin, "p_value_refit": self.p_refit},
                "accepted": self.accepted}
         if self.control:
             out["control"] = True
@@ -771,8 +775,18 @@ class Search:
         evals.sort(key=lambda ev: -ev.gain)
         control = next((ev for ev in evals if ev.control), None)
         bar_gain = control.gain if control is not None else -np.inf
-        eligible = forward_first(choose([ev for ev in evals if ev.clears_bar and not ev.control
-                                         and ev.gain > bar_gain], rivals=evals))
+        while True:     # the refit null asked of the one the round would take (its CPU: 99 refits)
+            eligible = forward_first(choose([ev for ev in evals if ev.clears_bar and not ev.control
+                                             and ev.gain > bar_gain], rivals=evals))
+            if not eligible or eligible[0].p_refit is not None:
+                break
+            first = eligible[0]
+            first.p_refit = self._refit_p([first.effect], first.result.rmse)
+            if first.p_refit is None:
+                break
+            first.clears_bar = first.p_refit <= self.options.alpha
+            if first.clears_bar:
+                break
         screened = [{"kind": e.kind, "column": e.column, "transform": e.label,
                      "screen_r2": r2} for e, r2 in sorted(
                          (s for s in scored if np.isfinite(s[1])), key=lambda s: -s[1])[:20]]
@@ -818,9 +832,21 @@ class Search:
             for ev in eligible:
                 gain_pct = _pct(current.rmse - ev.result.rmse, current.rmse)
                 if pf[id(ev)] <= self.options.alpha and gain_pct >= self.options.min_gain_pct:
-                    return [(None, level), (rnd, ev)]
+                    ev.p_refit = self._refit_p([level.effect, ev.effect], ev.result.rmse)
+                    if ev.p_refit is None or ev.p_refit <= self.options.alpha:
+                        return [(None, level), (rnd, ev)]
         p.block_samples, p.block_index = saved
         return []
+
+    def _refit_p(self, tested: list, observed_rmse: float) -> float | None:
+        """The refit null's p of ``tested`` added to the search's effects (:mod:`.refit_null`) in the
+        ``campaigns`` scheme, where the flips' units are campaigns or blocks of them and a candidate
+        fitted on them gains there by their chance structure (diag109); None elsewhere (forward
+        chaining's blocks of one time line: no campaigns to permute)."""
+        if self.problem.scheme != "campaigns":
+            return None
+        return refit_pvalue(self.cv, self.inputs(), list(self.effects), tested, observed_rmse,
+                            seed=self.options.seed, alpha=self.options.alpha)
 
     def _deployed(self, current: CVResult) -> CVResult:
         """The final model's CV: with an MLR base and only effects of several features (a lag
