@@ -6,6 +6,7 @@ lstm and ``arx_rf`` kept a guard row of 0 (the bound as trained while the inputs
 
 Usage (from the repository root, ``PYTHONPATH=<tree>/src``: the code measured is that tree's)::
 
+    python benchmarks/bench_guard111b.py simulate ROOT SEEDS     # fresh climate rooms (KINDS)
     python benchmarks/bench_guard111b.py table OUT              # family x wrapper: the guard's rows
     python benchmarks/bench_guard111b.py cost OUT CASE DATA...  # deployed vs unguarded per target
     python benchmarks/bench_guard111b.py lathe OUT CASE         # deploy-time CPU, lathe-sized set
@@ -18,6 +19,24 @@ added) on each DATA (a room folder; ``room``, ``door_room``: the made ones): per
 guarded, deployed and unguarded RMSE vs measured.  ``lathe``:
 bench_lagbank's writer (43 campaigns x 600 rows x 24 sensors), CASE fitted, then the CPU of
 ``deployable`` (the adaptive compensator's training: POD, guard, its gains) alone.
+
+MEASURED (2026-12-07; bar benchmarks/guard111b_bar.md committed first, ee7594f1; BASE = 10826370's
+src; 2 cores shared with other helpers' runs; CPU user + sys by rusage).  Seeds: 10158 seen;
+fresh 10230 climate_lag, 10231 climate_hydraulic, 10232 climate_position drawn once after the rule
+(8d2887a9), scored once.
+``table`` (62 case x target rows): ZERO on BASE: arx_rf x {none, ati, per-interval, diagnosed},
+  lstm x {ati, per-interval, diagnosed} (both targets), auto vote / hedge E_Z (an lstm blend); all
+  have a gain after.  Every other row: gain and deployed sha1 equal to BASE.
+``cost`` (deployed / unguarded RMSE, BASE -> rule): 10158 E_X lstm/ati 1.275 -> 0.983,
+  lstm/per-interval 1.055 -> 0.988, lstm/diagnosed 1.275 -> 0.983, arx_rf (S_spindle_rpm) 1.118 ->
+  0.998, arx_rf/ati 1.091 -> 0.980; made room E_Z lstm/ati 1.424 -> 1.030, auto 1.413 ->
+  1.024, lstm/per-interval E_X 1.180 -> 0.977; left: made room E_X of the ATI / diagnosed wrappers
+  1.794 -> 1.567 (as MLR's analytic ATI: test A0 26 C past training's 14-23.6, the gain taken at
+  training's A0s), door room arx_rf E_Z 1.481 -> 1.123 (the forest's bumps past the linear gain).
+Fresh: every case x target equal to BASE to the printed digit, no row guarded either way.
+``code``: max |C - served| 7e-15 - 4.6e-14 um (lstm ati / per-interval / diagnosed, auto, arx_rf).
+``lathe`` (deployable CPU, BASE -> rule): lstm 10.0 / 8.7 (its held steps already on BASE),
+  arx_rf 2.8 -> 9.9 (+7.1 s), lstm per-interval 3.2 -> 15.4 (+12.3 s: over the bar's 10 s).
 """
 
 from __future__ import annotations
@@ -34,7 +53,7 @@ import pandas as pd
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import bench_dep108c as dep  # noqa: E402
 import bench_guard111 as g111  # noqa: E402
-from _cli import made_folder, run_commands  # noqa: E402
+from _cli import made_folder, run_commands, seed_list  # noqa: E402
 from cpu import cpu_seconds  # noqa: E402
 
 NET = ("model.estimator.hidden_size=4", "model.estimator.max_epochs=3")
@@ -44,6 +63,9 @@ AUTO = ("model=auto", "model.candidates=[mlr,lstm]",
         "model.candidate_params={lstm:{hidden_size:4,max_epochs:3}}")
 CASES = {**{f"{f}/{w}": (f"model={f}", *FAMILY[f], *WRAP[w]) for f in FAMILY for w in WRAP},
          "auto/vote": (*AUTO, "model.estimator.hedge=none"), "auto/hedge": AUTO}
+# the fresh seeds' kinds, named before any was drawn (bench_guard111's climate kinds)
+KINDS = {10230: ("climate_lag", dep.d107.LAG), 10231: ("climate_hydraulic", dep.d107.HIDDEN),
+         10232: ("climate_position", ["sim.generator.effects=[axis_position]"])}
 AMBIENT_LAW = {"kind": "ambient_interval", "transform": "ambient_linear"}
 
 
@@ -91,6 +113,20 @@ def _rooms(out: str) -> tuple[Path, Path]:
     return (room if room.exists() else dep._room(room)), (door if door.exists() else _door_room(door))
 
 
+def simulate(root: str, seeds: str) -> None:
+    """Each fresh seed's climate room (bench_dep108c's simulation, :data:`KINDS`) -> ROOT/<case>."""
+    import bench_diag106 as d106
+
+    logs = made_folder(str(Path(root) / "logs"))
+    for seed in seed_list(seeds):
+        kind, words = KINDS[seed]
+        data = Path(root) / f"{kind}-planted-{seed}"
+        if not data.exists():
+            d106._thermocomp(["simulate", *d106.CLIMATE, f"seed={seed}", f"data.path={data}", "track=false",
+                              *words], logs / f"{data.name}-simulate.log")
+        print(data)
+
+
 def table(out: str) -> None:
     """Per case x target: the guard's gain row and the deployed outputs' digest on the test."""
     from thermocomp.apps.deploy.streaming import replay
@@ -126,6 +162,11 @@ def lathe(out: str, case: str) -> None:
     data = made_folder(out) / "lathe"
     if not data.exists():
         bench_lagbank.write_campaigns(data, 43, 600, 24)
+        # each campaign's ambient for the ATI wrappers: its sensors' first row (they start there)
+        manifest = pd.read_csv(data / "campaigns.csv")
+        manifest["ambient_c"] = [pd.read_csv(data / f).filter(like="T_").iloc[0].mean()
+                                 for f in manifest["file"]]
+        manifest.to_csv(data / "campaigns.csv", index=False)
     deployed, *_, cpu = _deployed(data, case)
     row = deployed.guard.in_gain
     zero = int((~row.any(axis=1)).sum())
@@ -157,7 +198,7 @@ def code(out: str, case: str) -> None:
 
 
 def main(argv: list[str]) -> int:
-    commands = {"table": table, "cost": cost, "lathe": lathe, "code": code}
+    commands = {"simulate": simulate, "table": table, "cost": cost, "lathe": lathe, "code": code}
     return run_commands(__doc__, commands, argv, cpu=sys.stderr)
 
 
