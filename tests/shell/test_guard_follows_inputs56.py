@@ -172,3 +172,24 @@ def test_the_bound_follows_an_lstm_by_its_held_steps(hotter_data):
     sim = Simulator(state_space(deployed))
     got = np.array([sim.step(u, t) for u, t in zip(df[cols].to_numpy(float), df["time"])])
     assert env.basis is not None and np.max(np.abs(-got - y)) <= TOLERANCE_UM
+
+
+def test_the_bound_follows_an_ati_lstm_by_its_held_steps(hotter_data):
+    """Held steps are the one fallback of any model without an analytic gain, not lstm's alone
+    (guard111b): an ATI lstm (one interval, its ambient interaction) has no gain, with or without
+    a campaign's ``A0``; its row was 0 and the hotter machine's correction was cut to the trained
+    bound.  The code reads the same gain."""
+    deployed, df = _deployed(hotter_data, "model=lstm", "model.estimator.hidden_size=2",
+                             "model.estimator.max_epochs=1", "ati=cmeans", "ati.estimator.n_intervals=1")
+    est, guard = deployed.streaming._plan[0][1], deployed.guard
+    assert type(est).__name__ == "ATIRegressor"
+    assert est.step_gain(est.stream_init({"ambient_c0": 20.0}), np.inf) is None
+    cols = deployed.columns_
+    assert guard.in_gain[0, cols.index("T_a")] > 1.0 and guard.in_gain[0, cols.index("T_c")] > 0.5
+    free = replay(deployed.streaming, df)[deployed.targets_].to_numpy(float)
+    y = replay(deployed, df)[deployed.targets_].to_numpy(float)
+    assert free.max() > guard.hi.max() + 5.0
+    np.testing.assert_allclose(y, free, rtol=0, atol=1e-9)      # not cut to the trained bound
+    sim = Simulator(state_space(deployed))
+    got = np.array([sim.step(u, t) for u, t in zip(df[cols].to_numpy(float), df["time"])])
+    assert np.max(np.abs(-got - y)) <= TOLERANCE_UM

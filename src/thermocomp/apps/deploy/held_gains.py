@@ -2,12 +2,13 @@
 
 The correction guard's bound follows the inputs past training by ``|gain| @ d``
 (:meth:`.guard.CorrectionGuard.allowance`), the gain asked with no state
-(:func:`.adaptive.input_gains`).  Two models have none there, and their row of 0 kept the bound
+(:func:`.adaptive.input_gains`).  Some models have none there, and their row of 0 kept the bound
 as trained while a hotter day's right correction was cut to it (bench_guard111):
 
-* a recurrent network (``lstm``): no analytic gain at all.  :func:`stepped_gain` reads it off the
-  model: from each training campaign's last state (its hottest operating point), each input held
-  one unit higher for the envelope's horizon; the largest |change| over those states, per input;
+* any model without an analytic gain (``lstm``; guard111b: any wrapper or blend holding one,
+  ``arx_rf``): :func:`stepped_gain` reads it off the model's batch ``predict``: from each training
+  campaign's last state (its hottest operating point), each input held one unit higher for the
+  envelope's horizon; the largest |change| over those states, per input;
 * a diagnosed ``inputs_product`` (a state ``c`` times the inputs' rises): its gain is linear in
   the held ``c``; :func:`held_factor_gain` takes the largest |gain| at the ends of ``c``'s
   training range (the largest of a linear function on an interval is at an end).
@@ -48,11 +49,13 @@ def held_factor_gain(est, context: pd.DataFrame | None, ambients, horizon_s: flo
 
 def stepped_gain(est, X: np.ndarray, context: pd.DataFrame | None, horizon_s: float,
                  period_s: float) -> np.ndarray | None:
-    """Largest |response| per input of ``est`` (a model with ``numeric_step_gain``) to a unit step
-    held for ``horizon_s`` from each training campaign's last row (``X``: its training inputs as
-    the model reads them, ``context``: their stacked context); one batch ``predict`` of every
-    campaign's prefix and its held steps, each its own campaign (the stream's result to rounding)."""
-    if not getattr(est, "numeric_step_gain", False) or context is None or not len(X):
+    """Largest |response| per input of ``est`` (any model with a batch ``predict(X, context)`` over
+    campaigns) to a unit step held for ``horizon_s`` from each training campaign's last row (``X``:
+    its training inputs as the model reads them, ``context``: their stacked context); one batch
+    ``predict`` of every campaign's prefix and its held steps, each its own campaign (the stream's
+    result to rounding).  The one fallback of every model without an analytic gain (guard111b: an
+    ATI or blend of lstm, ``arx_rf``, a diagnosed lstm had a row of 0)."""
+    if not callable(getattr(est, "predict", None)) or context is None or not len(X):
         return None
     X = np.asarray(X, dtype=float)
     groups = groups_of(context)

@@ -160,8 +160,8 @@ class LSTM(SideInputs, RegressorMixin, BaseEstimator):
     """
 
     # no analytic step gain (a recurrent net): the deploy guard reads one off the model by held
-    # steps (apps.deploy.held_gains.stepped_gain, guard111); the envelope clamp still has none
-    numeric_step_gain = True
+    # steps, as of any model without one (apps.deploy.held_gains.stepped_gain, guard111b); the
+    # envelope clamp still has none
 
     def __init__(self, hidden_size: int = 16, num_layers: int = 1, dropout: float = 0.0,
                  chunk: int = 128, learning_rate: float = 6e-3, weight_decay: float = 0.0,
