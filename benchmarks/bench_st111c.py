@@ -15,6 +15,24 @@ readings and reference age, and where one with ``MON_SETTLES`` has its windows p
 CASES: bench_st111b's, the same rule and counts, plus per case and block the rows from r2 with
 ``mon_unsure`` (``unsure``), the cost the bar caps (benchmarks/st111c_bar.md).
 
+SCORED (2026-12-07, bar dd2a8770 unchanged, rule 68c8569b; BASE = 1a5fcb13's src, a worktree, run
+beside in the same process; CPU user + sys by /usr/bin/time, 2 cores shared, load 10-13).
+* C1 ``stream`` lr9964 (bench_st108b's root): drop then jump unflagged rows off the C 1521 (0.061
+  um) -> 0; its ``unsure`` rows from r2 631 -> 2152 (the C differs from row 2169 to the end, all
+  flagged); the other 7 cases: 0 unflagged and ``unsure`` identical on both.  93.4 s.
+* C2 ``score`` seed 3: added 0 on all 8 cases, BASE and RULE; ``unsure`` identical per case (368
+  rows from r2 summed, both).  14.4 s.
+* C3 fresh 10233, 10234, 10235 (each drawn and scored once, after 68c8569b): added 0 and late
+  unflagged 0 on all 24 cases, BASE and RULE; ``unsure`` identical per case.  40.7 s.
+* C4 bench_st108b ``stream`` lr/dl 9964-9967 (BASE 76.2 s, RULE 80.5 s): every saved array (st, c,
+  flag, rule, sensor, mon_unsure, stop) byte-identical (``same``: 0 / 0 on all 8; mon_unsure 1527
+  rows on both).
+* fresh 10211's 1 + 2 rows (st111b's, traced with aa013efc = 1a0fc91a + st111b): campaign 1, rows
+  118 (jump then jump) and 118-119 (jump then drift): the first fault's residual (T_1's lone jump
+  re-referenced by its whole step, 0.351 / 0.095 um: st111's class), which in the first fault alone
+  ends at row 118; not the second fault's.  On 1a5fcb13 (st111's port merged) 0 late unflagged rows
+  on all 12 jump-first runs of 10211, BASE and RULE.
+
 Usage (from the repository root; ``PYTHONPATH=<tree>/src``)::
 
     python benchmarks/bench_st111c.py score BASESRC SEED [SEED ...]
