@@ -15,10 +15,11 @@ import numpy as np
 from test_export import TOLERANCE_UM
 from test_export_st94 import record  # noqa: F401 (the module's fixture)
 from test_export_st96 import START, _stepped, bumped
-from thermocomp.apps.deploy.export.watch import DRIFT_OUT, EXCLUDED, OUT
+from thermocomp.apps.deploy.export.watch import DRIFT_OUT, EXCLUDED, OUT, SETTLED
 
 DRIFTED = "T_head_left"      # one the others predict (lr9132): its drift is the C's lone fault
 LOST_AT = 670                # (st111b) a dropout there: the block's own mon_lost
+SETTLING = "T_spindle_rear"  # (st111c) one no other predicts whose level shift the C re-references
 
 
 def _stop(v) -> tuple:
@@ -79,4 +80,25 @@ def test_the_block_flags_every_row_where_the_c_parts_from_it_after_its_own_lost_
     off = np.max(np.abs(st - c), axis=1) > TOLERANCE_UM
     flagged = np.array([said[0] or s[3] for said, s in zip(st_said, stop)])
     assert off[LOST_AT + 20:].sum() >= 50
+    assert flagged[off].all()
+
+
+def test_the_block_flags_the_cs_level_shift_after_its_own_lost_judgement(record):  # noqa: F811
+    """(st111c) After the block's own ``mon_lost`` (a dropout) a lasting step of a sensor no other
+    predicts, under its jump and bend limits: the C re-references it by its ``SETTLED`` test a few
+    rows later, where the block stopped that test at ``mon_lost`` and reads the step on.  Every row
+    where the block differs from the C is flagged (before st111c, from the C's SETTLED on, none)."""
+    deployed, ss, frame, block = record
+    names = [ss.inputs[i] for i in ss.monitor["inputs"]]
+    dropped = next(c for c in names if c not in ("T_amb", DRIFTED, SETTLING))
+    k = names.index(SETTLING)
+    df = frame.copy()
+    df.loc[LOST_AT:LOST_AT + 1, dropped] = np.nan
+    df.loc[LOST_AT + 20:, SETTLING] += float(deployed.monitor.max_step_c[k])
+    st, st_said, stop, c, c_said = _stepped(ss, block, df.iloc[:LOST_AT + 120], _stop)
+    settled = next(i for i in range(LOST_AT + 20, len(c_said)) if c_said[i][1] == SETTLED)
+    assert c_said[settled][2] == k and settled <= LOST_AT + 20 + ss.monitor["window"]
+    off = np.max(np.abs(st - c), axis=1) > TOLERANCE_UM
+    flagged = np.array([said[0] or s[3] for said, s in zip(st_said, stop)])
+    assert off[settled:].all()    # the C's reference moved: off to the end
     assert flagged[off].all()

@@ -127,6 +127,9 @@ may read it on as a machine hotter than training and re-reference it at its retu
 (st111b) After ``mon_lost`` the errors with every sensor in are computed on for that test (the C
 judges on), and a later jump of a sensor the others predict sets ``mon_rjump`` (``mon_unsure`` to
 the campaign's end: the C re-references it by its step less the others' change).
+(st111c) So does a level shift after ``mon_lost`` of one no other predicts (``mon_rsettle``: its
+windows parted past ``MON_SETTLE_LIM`` on the block's readings, the C's ``SETTLED`` test without its
+steadiness test): the C re-references it, by an amount the block cannot tell.
 The counters that grow with the campaign
 (``mon_count``, ``mon_stop_row``, ``mon_calm``, ``mon_run``, ``mon_quiet``, ``mon_jcalm``, ``mon_lcalm``,
 ``mon_hsince``) are DINT: an INT wraps after 32767 samples (9 h at 1 s), and a wrapped count stops
@@ -557,6 +560,9 @@ VARS = """    mon_last : ARRAY[{nm}] OF LREAL;
     mon_whole : BOOL;    (* (st111) the C's set whole before this row, as far as the block knows *)
     mon_junsure : BOOL;    (* (st111) a lone jump re-referenced otherwise than the C *)
     mon_rjump : BOOL;    (* (st111b) a jump of one the others predict after mon_lost *)
+    mon_rsettle : BOOL;    (* (st111c) the C's level shift possible after mon_lost *)
+    (* (st111c) each sensor's shift at the row before *)
+    mon_rshift : ARRAY[{nm}] OF LREAL;
     mon_efresh : BOOL;    (* (st111b) mon_e computed by the judgement this row *)
     mon_late : INT;    (* (st109) the sensor beyond its range since the first sample, followed *)
     mon_lback : BOOL;
@@ -1593,6 +1599,7 @@ END_IF;
 IF reset THEN
     mon_rlater := FALSE;
     mon_rjump := FALSE;
+    mon_rsettle := FALSE;
 END_IF;
 IF NOT first THEN
     FOR mk := 0 TO MON_N - 1 DO
@@ -1673,6 +1680,56 @@ IF MON_STEP_JUDGE AND mon_lost AND NOT mon_efresh THEN
         mon_e[mk] := (mon_d[mk] - mon_x) * MON_SCALE[mk];
     END_FOR;
 END_IF;
+(* (st111c) and so does its level shift (SETTLED) of one no other predicts (a step under its *)
+(* jump and bend limits): the C re-references it there, the block cannot tell by how much from *)
+(* its own readings (the C's reference may differ): where its two windows part past *)
+(* MON_SETTLE_LIM on one reference (the C's test without its steadiness test, so never on *)
+(* fewer rows), mon_rsettle (mon_unsure to the campaign's end) *)
+IF MON_STEP_JUDGE AND mon_lost AND NOT mon_efresh THEN
+    FOR mk := 0 TO MON_N - 1 DO
+        IF mon_shift[MON_INPUT[mk]] <> mon_rshift[mk] THEN
+            mon_sage[mk] := 0;    (* re-referenced on this row: the C's age 1 *)
+        END_IF;
+        mon_settle_ring[mon_spos, mk] := mon_d[mk];
+        mon_go := MON_SETTLES[mk] = 1 AND mon_sage[mk] >= 2 * MON_WINDOW - 1;
+        IF mon_go AND mon_span = 1.0 AND mon_gap[mk] = 1.0 THEN
+            FOR mw := 0 TO 1 DO
+                FOR mi := 0 TO MON_WINDOW - 1 DO
+                    mr := mon_spos - mi - mw * MON_WINDOW;
+                    IF mr < 0 THEN
+                        mr := mr + 2 * MON_WINDOW;
+                    END_IF;
+                    mon_x := mon_settle_ring[mr, mk];
+                    IF mi = 0 OR mon_x < mon_wlo[mw] THEN
+                        mon_wlo[mw] := mon_x;
+                    END_IF;
+                    IF mi = 0 OR mon_x > mon_whi[mw] THEN
+                        mon_whi[mw] := mon_x;
+                    END_IF;
+                END_FOR;
+            END_FOR;
+            mon_x := mon_wlo[0] - mon_whi[1];
+            IF mon_wlo[1] - mon_whi[0] > mon_x THEN
+                mon_x := mon_wlo[1] - mon_whi[0];
+            END_IF;
+            IF mon_x > MON_SETTLE_LIM[mk] THEN
+                mon_rsettle := TRUE;
+            END_IF;
+        END_IF;
+        IF mon_sage[mk] < 2 * MON_WINDOW THEN
+            mon_sage[mk] := mon_sage[mk] + 1;
+        END_IF;
+    END_FOR;
+    mon_spos := mon_spos + 1;
+    IF mon_spos >= 2 * MON_WINDOW THEN
+        mon_spos := 0;
+    END_IF;
+END_IF;
+IF MON_STEP_JUDGE THEN
+    FOR mk := 0 TO MON_N - 1 DO
+        mon_rshift[mk] := mon_shift[MON_INPUT[mk]];
+    END_FOR;
+END_IF;
 mon_unsure := FALSE;
 IF mon_stop_row > 0 OR mon_lost THEN
     IF mon_flag THEN
@@ -1706,6 +1763,9 @@ IF mon_junsure THEN
 END_IF;
 IF mon_rjump THEN
     mon_unsure := TRUE;    (* (st111b) a jump after mon_lost, re-referenced not as the C *)
+END_IF;
+IF mon_rsettle THEN
+    mon_unsure := TRUE;    (* (st111c) a level shift after mon_lost the C may re-reference *)
 END_IF;
 (* a campaign's sample count, held at DINT's top: never wraps back through 1 *)
 IF mon_count < 2147483646 THEN
