@@ -6,9 +6,10 @@ The correction guard's bound follows the inputs past training by ``|gain| @ d``
 as trained while a hotter day's right correction was cut to it (bench_guard111):
 
 * any model without an analytic gain (``lstm``; guard111b: any wrapper or blend holding one,
-  ``arx_rf``): :func:`stepped_gain` reads it off the model's batch ``predict``: from each training
-  campaign's last state (its hottest operating point), each input held one unit higher for the
-  envelope's horizon; the largest |change| over those states, per input;
+  ``arx_rf``): :func:`stepped_gain` reads it off the model: from each training campaign's last
+  state (its hottest operating point), each input held one unit higher for the envelope's
+  horizon; the largest |change| over those states, per input (guard111c: from the stream state,
+  the prefix once, for a model that streams a block from a state; else its batch ``predict``);
 * a diagnosed ``inputs_product`` (a state ``c`` times the inputs' rises): its gain is linear in
   the held ``c``; :func:`held_factor_gain` takes the largest |gain| at the ends of ``c``'s
   training range (the largest of a linear function on an interval is at an end).
