@@ -37,6 +37,15 @@ Fresh: every case x target equal to BASE to the printed digit, no row guarded ei
 ``code``: max |C - served| 7e-15 - 4.6e-14 um (lstm ati / per-interval / diagnosed, auto, arx_rf).
 ``lathe`` (deployable CPU, BASE -> rule): lstm 10.0 / 8.7 (its held steps already on BASE),
   arx_rf 2.8 -> 9.9 (+7.1 s), lstm per-interval 3.2 -> 15.4 (+12.3 s: over the bar's 10 s).
+
+guard111c (bar benchmarks/guard111c_bar.md, 9142ea0c; BASE = f34c934f's src, each pair run at
+once on the same load): the held steps from each campaign's last stream state, the prefix
+streamed once.  ``table``: all 60 rows (printed max, sha1) identical to BASE; full rows equal to
+<= 2.8e-15 of the row's max (lstm exact; arx_rf's ARX streamed, not batch-predicted: an input it
+does not read 0 where BASE had 8.9e-16 of rounding).  ``lathe`` (arx_rf with
+``model.estimator.state_column=null``: the set has no S_ column), BASE -> branch, two pairs:
+lstm per-interval 15.10 / 12.25 -> 4.92 / 4.46 s, arx_rf 9.61 / 9.10 -> 3.21 / 3.05 s, lstm
+10.77 / 10.45 -> 4.52 / 4.20 s.  ``code``: max |C - served| 7.1e-15 - 4.6e-14 um.
 """
 
 from __future__ import annotations

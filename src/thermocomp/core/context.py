@@ -164,6 +164,18 @@ def stream_steps(estimator, X: np.ndarray, state, context: Mapping | None = None
     return y, state
 
 
+def stream_branches(estimator, blocks: np.ndarray, state, context: Mapping | None = None) -> np.ndarray:
+    """``(b, n)`` outputs of each block of ``blocks`` (b, n, p) streamed from a copy of the same
+    ``state`` with the same block ``context`` (:func:`stream_steps`'): branches of one history
+    (the guard's held steps from a campaign's last row).  An estimator that defines
+    ``stream_branches(blocks, state, context)`` computes them at once (a network: one batch);
+    any other streams each block by :func:`stream_steps` from a deep copy (``state`` untouched)."""
+    method = getattr(estimator, "stream_branches", None)
+    if callable(method):
+        return np.asarray(method(blocks, state, context), dtype=float)
+    return np.stack([stream_steps(estimator, block, copy.deepcopy(state), context)[0] for block in blocks])
+
+
 def between_steps(estimator, X: np.ndarray, context, stepped: np.ndarray) -> np.ndarray:
     """The batch's answer at the rows not ``stepped`` (between two rows of the training grid,
     :func:`thermocomp.core.timerule.grid_rows`), as the stream gives it (between73): the

@@ -22,6 +22,8 @@ from ..context import (
     has,
     merge_columns,
     require,
+    stream_branches,
+    stream_steps,
     values,
     with_column,
 )
@@ -254,20 +256,44 @@ class ARXRF(SideInputs, RegressorMixin, BaseEstimator):
         machine state; static-input models take ``x_row`` only).
         """
         y_arx, arx_state = self.arx_.stream_step(x_row, state["arx"], context)
-        door, t0 = state["door"], state["t0"]
-        if self.state_column is None:
-            features = np.zeros((1, 1))
-        else:
-            value = float(require(context, self.state_column, "ARX+RF stream_step"))
-            t = float(require(context, TIME, "ARX+RF stream_step"))
-            on = (door if door is not None else False) if np.isnan(value) else value > 0.5
-            if door is not None and on != door:
-                t0 = t
-            door = on
-            taus = _taus(self.tau_s)
-            if t0 is None:
-                features = np.full((1, taus.size), float(on))
-            else:
-                features = expit((1.0 if on else -1.0) * (t - t0) / taus)[None, :]
+        features, door, t0 = self._stream_features(context, 1, state, "ARX+RF stream_step")
         y_hat = float(y_arx + _one_row_predict(self.forest_, features[0]))
         return y_hat, {"arx": arx_state, "door": door, "t0": t0}
+
+    def stream_steps(self, X, state: dict, context: Mapping | None = None) -> tuple[np.ndarray, dict]:
+        """A block of rows (:func:`thermocomp.core.context.stream_steps`; ``context``: arrays of
+        one value per row): the ARX's block, the forest once per distinct state feature row."""
+        y_arx, arx_state = stream_steps(self.arx_, X, state["arx"], context)
+        features, door, t0 = self._stream_features(context, len(y_arx), state, "ARX+RF stream_steps")
+        return y_arx + self._forest_rows(features), {"arx": arx_state, "door": door, "t0": t0}
+
+    def stream_branches(self, blocks, state: dict, context: Mapping | None = None) -> np.ndarray:
+        """Blocks (b, n, p) each from the same state (:func:`thermocomp.core.context.stream_branches`):
+        the state features read only the context, so the forest's part is the same for all."""
+        blocks = np.asarray(blocks, dtype=float)
+        features = self._stream_features(context, blocks.shape[1], state, "ARX+RF stream_branches")[0]
+        forest = self._forest_rows(features)
+        return stream_branches(self.arx_, blocks, state["arx"], context) + forest[None, :]
+
+    def _forest_rows(self, features: np.ndarray) -> np.ndarray:
+        """The forest on each row of ``features`` as :meth:`stream_step` walks it, once per distinct row."""
+        rows, inverse = np.unique(features, axis=0, return_inverse=True)
+        return np.array([_one_row_predict(self.forest_, r) for r in rows])[inverse.reshape(-1)]
+
+    def _stream_features(self, context, n: int, state: dict, who: str) -> tuple[np.ndarray, object, object]:
+        """The forest's features of ``n`` streamed rows (``context``: a sample's values or arrays
+        of ``n``) and the door state ``(door, t0)`` after them: the smoothed door from its last change."""
+        door, t0 = state["door"], state["t0"]
+        if self.state_column is None:
+            return np.zeros((n, 1)), door, t0
+        taus = _taus(self.tau_s)
+        value = np.broadcast_to(np.asarray(require(context, self.state_column, who), float), n)
+        t = np.broadcast_to(np.asarray(require(context, TIME, who), float), n)
+        out = np.empty((n, taus.size))
+        for i in range(n):
+            on = (door if door is not None else False) if np.isnan(value[i]) else bool(value[i] > 0.5)
+            if door is not None and on != door:
+                t0 = float(t[i])
+            door = on
+            out[i] = float(on) if t0 is None else expit((1.0 if on else -1.0) * (t[i] - t0) / taus)
+        return out, door, t0

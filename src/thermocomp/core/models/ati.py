@@ -27,6 +27,7 @@ from ..context import (
     groups_of,
     merge_columns,
     scalar,
+    stream_branches,
     stream_steps,
     subset,
 )
@@ -487,6 +488,15 @@ class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
             X = np.hstack([X, X * (a0 - AMBIENT_CENTRE_C)])
         y, inner = stream_steps(self.estimators_[m], X, inner, context)
         return y, (m, a0, inner)
+
+    def stream_branches(self, blocks, state, context=None):
+        """Blocks (b, n, p) each from the same state
+        (:func:`thermocomp.core.context.stream_branches`), by the interval's model."""
+        m, a0, inner = state
+        blocks = np.asarray(blocks, dtype=float)
+        if self.interactions_[m]:
+            blocks = np.concatenate([blocks, blocks * (a0 - AMBIENT_CENTRE_C)], axis=-1)
+        return stream_branches(self.estimators_[m], blocks, inner, context)
 
     def gain_terms(self, horizon_s: float = np.inf, lead=None, period_s: float = 1.0) -> list:
         """The step gain split by the campaign's initial ambient (:mod:`thermocomp.core.gains`):

@@ -363,3 +363,25 @@ class LSTM(SideInputs, RegressorMixin, BaseEstimator):
         with _torch_threads(int(self.n_threads)), torch.no_grad():
             y, _, hc = self.net_(torch.tensor(x[None, None, :], dtype=torch.float64), state["hc"])
         return float(y[0, 0]) * self.y_scale_ + self.y_mean_, {"hc": hc}
+
+    def stream_steps(self, X, state: dict, context=None) -> tuple[np.ndarray, dict]:
+        """A block of rows from the carried ``(h, c)`` in one pass of the recurrence
+        (:func:`thermocomp.core.context.stream_steps`)."""
+        y, hc = self._from_state(np.asarray(X, dtype=float)[None], state["hc"])
+        return y[0], {"hc": hc}
+
+    def stream_branches(self, blocks, state: dict, context=None) -> np.ndarray:
+        """Blocks (b, n, p) each from the same ``(h, c)``, as one batch of sequences
+        (:func:`thermocomp.core.context.stream_branches`)."""
+        blocks = np.asarray(blocks, dtype=float)
+        hc = None if state["hc"] is None else tuple(s.repeat(1, len(blocks), 1) for s in state["hc"])
+        return self._from_state(blocks, hc)[0]
+
+    def _from_state(self, blocks: np.ndarray, hc) -> tuple[np.ndarray, tuple]:
+        """Predictions (b, n) of ``blocks`` (b, n, p) from ``hc`` (None: at rest), and the state after."""
+        from ._lstm_net import _torch_threads, torch
+
+        xs = (blocks - self.x_mean_) / self.x_scale_
+        with _torch_threads(int(self.n_threads)), torch.no_grad():
+            y, _, hc = self.net_(torch.tensor(xs, dtype=torch.float64), hc)
+        return y.numpy() * self.y_scale_ + self.y_mean_, hc
