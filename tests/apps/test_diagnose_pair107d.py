@@ -14,11 +14,12 @@ from pathlib import Path
 
 import numpy as np
 import pandas as pd
+import pytest
 
 from thermocomp.apps.diagnose import SearchOptions, diagnose
 from thermocomp.apps.diagnose import search as search_module
 from thermocomp.apps.diagnose.candidates import CandidateOptions
-from thermocomp.apps.diagnose.refit_null import refit_pvalue
+from thermocomp.apps.diagnose.refit_null import MovedDrivers, Mover, _orders, drivers, refit_pvalue
 from thermocomp.core.compensator import Compensator
 from thermocomp.core.io.contract import Dataset
 from thermocomp.core.models import MLR
@@ -86,3 +87,24 @@ def test_a_level_law_clearing_the_flips_in_a_clean_room_does_not_beat_its_moved_
     law = max((ev for ev in evals if ev.effect.transform in search_module.LEAN_LEVEL), key=lambda ev: ev.gain)
     assert law.p_family <= 0.01 and law.gain_pct >= 5.0
     assert refit_pvalue(s.cv, s.inputs(), [], [law.effect], law.result.rmse, alpha=0.01) > 0.01
+    # diag111c: the permutations' refits share each fold's inputs factor and level weights; the
+    # same CV RMSE as refits that factor every fold anew, and the identity refits the observed
+    fits, orders = {}, _orders(len(set(s.cv.problem.campaigns.tolist())), 4, seed=0)
+    for order in orders:
+        shared, anew = _refit_rmse(s, [law.effect], order, fits), _refit_rmse(s, [law.effect], order, None)
+        assert shared == pytest.approx(anew, rel=1e-10, abs=0)
+    (head,) = fits.values()               # the lean law does not learn: the pieces' path, one head
+    assert len(head.factors) == len(set(s.cv.problem.campaigns.tolist()))   # a factor per campaign
+    identity = np.arange(len(orders[0]))
+    assert _refit_rmse(s, [law.effect], identity, {}) == pytest.approx(law.result.rmse, rel=1e-10, abs=0)
+
+
+def _refit_rmse(s, tested, order, fits):
+    """One permutation's refit of ``tested`` on ``s``'s CV: the folds' inputs factored once and
+    shared (``fits`` a dict), or lstsq in every fit (``fits`` None, diag111's refits)."""
+    p = s.cv.problem
+    names = list(dict.fromkeys(p.campaigns.tolist()))
+    columns = [c for e in tested for c in drivers(e, p.context.columns)]
+    cv = MovedDrivers(s.cv, Mover(p.context, p.campaigns, columns, names)(order), [], fits)
+    cv._fixed = fits
+    return cv.run(s.inputs(), tested).rmse

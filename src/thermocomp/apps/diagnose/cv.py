@@ -45,7 +45,7 @@ from ...core.context import CAMPAIGN, Y_MEASURED, for_target
 from ...core.model_selection import ForwardChaining, LeaveCampaignsOut
 from ...core.model_selection.blocks import cut_blocks, decorrelation_length
 from ...core.model_selection.extrapolation import within_range
-from ...core.models._campaign_ls import CampaignLeastSquares
+from ...core.models._campaign_ls import CampaignLeastSquares, FixedHead
 from ...core.models._memo import BoundedCache
 from ...core.models.linear import MLR
 from ...core.select import AllInputs
@@ -58,7 +58,7 @@ from .features import (
     principal_directions,
     transient,
 )
-from .shrink import ALPHAS, PartialRidgePath, least_error, one_standard_error
+from .shrink import ALPHAS, InputsFit, PartialRidgePath, least_error, one_standard_error
 
 # Every candidate screened keeps its features (a column or a few per train row): on a year at
 # 1 min that grew past 6 GB in diagnose (scale58). Past this bound the least recently used
@@ -300,6 +300,10 @@ class CrossValidator:
         self._selection: dict = {}
         self._features = BoundedCache(max_bytes=FEATURE_CACHE_BYTES)
         self._ctx: dict = {}
+        # what fits on other features of the same rows share: each fold's inputs factored once
+        # (names, fold) -> InputsFit, the pieces' head factors (:meth:`_head`); None: nothing
+        # shared (the search's own CV, as before; the refit null's permutations share: .refit_null)
+        self._fixed: dict | None = None
 
     @property
     def closed_form(self) -> bool:
@@ -343,7 +347,8 @@ class CrossValidator:
         if key not in self._features:
             p = self.problem
             if effect.transform == "ambient_scaled":   # its direction learned on the fold's rows
-                self._features[key] = self._scaled_features(effect, names, p.train_rows(fold))
+                self._features[key] = self._scaled_features(effect, names,
+                                                            weights=self.fold_level_weights(names, fold))
             elif effect.initial_state:     # the lag (cached once) + the initial-state transient
                 self._features[key] = self._start_features(
                     effect, names, p.train_rows(fold) if effect.learns else None)
@@ -352,11 +357,24 @@ class CrossValidator:
                 self._features[key] = effect_features(effect, X, p.context, p.campaigns, p.reference)
         return self._features[key]
 
-    def _scaled_features(self, effect: Effect, names: list[str], rows: np.ndarray) -> np.ndarray:
-        """The level law on the inputs' least-squares fit, its weights learned on ``rows``."""
+    def _scaled_features(self, effect: Effect, names: list[str], rows: np.ndarray | None = None,
+                         weights: np.ndarray | None = None) -> np.ndarray:
+        """The level law on the inputs' least-squares fit, its weights learned on ``rows``
+        (or given)."""
         p, X = self.problem, self.inputs_matrix(names)
-        weights = level_weights(X[rows], np.asarray(p.y, float)[rows])
+        if weights is None:
+            weights = level_weights(X[rows], np.asarray(p.y, float)[rows])
         return effect_features(effect, X, p.context, p.campaigns, p.reference, weights)
+
+    def fold_level_weights(self, names: list[str], fold: int | None) -> np.ndarray:
+        """``ambient_scaled``'s weights learned on ``fold``'s training rows (cached: they read the
+        inputs and the target only, not the context)."""
+        key = ("level", tuple(names), fold)
+        if key not in self._features:
+            rows = self.problem.train_rows(fold)
+            self._features[key] = level_weights(self.inputs_matrix(names)[rows],
+                                                np.asarray(self.problem.y, float)[rows])
+        return self._features[key]
 
     def _start_features(self, effect: Effect, names: list[str], rows: np.ndarray | None) -> np.ndarray:
         """A lag from the initial state: its lag (cached once) and the transient, its initial
@@ -455,7 +473,8 @@ class CrossValidator:
             else:
                 Z = self.design(names, effects, k)
             if path is None:
-                path = PartialRidgePath(Z[tr], p.y[tr], len(names), base.fit_intercept)
+                path = PartialRidgePath(Z[tr], p.y[tr], len(names), base.fit_intercept,
+                                        self._inputs_fit(names, k, Z, tr) if base.fit_intercept else None)
             pred[te] = path.predict(Z[te], alphas)
         err = (p.y[:, None] - pred) ** 2
         mse = np.nanmean(err, axis=0)
@@ -465,6 +484,15 @@ class CrossValidator:
         # a copy: as a view the column kept every penalty's predictions (18 x the rows) alive
         # in each result the search keeps (a year's diagnose: 5.3 GiB peak RSS, now 3.7)
         return self._result(pred[:, best].copy(), float(alphas[best]) if shrink else None)
+
+    def _inputs_fit(self, names, fold: int, Z: np.ndarray, rows: np.ndarray) -> InputsFit | None:
+        """The fold's inputs (``Z``'s first columns on ``rows``) factored once, where shared."""
+        if self._fixed is None:
+            return None
+        key = ("inputs", tuple(names), fold)
+        if key not in self._fixed:
+            self._fixed[key] = InputsFit.of(Z[rows][:, :len(names)])
+        return self._fixed[key]
 
     def _pieces(self, inputs, effects) -> tuple[CampaignLeastSquares, dict] | None:
         """The rows cut where any fold's training starts or stops, each piece's QR factor of
@@ -489,7 +517,13 @@ class CrossValidator:
         Z = self.design(names, effects, None)
         members = {k: [i for i, c in enumerate(sets.tolist()) if c >> bit & 1]
                    for bit, k in enumerate(folds)}
-        return CampaignLeastSquares(Z, p.y, rows, fit_intercept=True), members
+        head = self._head(names, effects)
+        return CampaignLeastSquares(Z, p.y, rows, fit_intercept=True, head=head), members
+
+    def _head(self, names, effects) -> FixedHead | None:
+        """The pieces' factors of the design's columns that the fits sharing :attr:`_fixed` keep
+        (:class:`~.refit_null.MovedDrivers`: the inputs and the kept effects); None: none shared."""
+        return None
 
     def _block_mse(self, err: np.ndarray) -> np.ndarray:
         """Each penalty block's mean of ``err`` (rows x columns): blocks x columns (the one-SE

@@ -67,6 +67,33 @@ def one_standard_error(mse, block_mse) -> int:
     return int(np.flatnonzero(mse <= mse[best] + se).max())
 
 
+class InputsFit:
+    """The least squares on the centred inputs of some rows, factored once (their SVD, lstsq's
+    cut-off): every fit of the same rows with other effect features shares it.  The refit null's
+    99 permutations refit each fold with only the candidate's moved columns new, and the inputs'
+    lstsq was the largest share of their CPU (diag111c).  ``None`` from :meth:`of` when a singular
+    value lies within a factor 100 of the cut-off (then only lstsq itself decides the rank)."""
+
+    @classmethod
+    def of(cls, X) -> "InputsFit | None":
+        A = np.asarray(X, float)
+        if not A.size:
+            return None
+        A = A - A.mean(axis=0)
+        U, s, Vt = np.linalg.svd(A, full_matrices=False)
+        rcond = np.finfo(float).eps * max(A.shape)      # lstsq's rcond=None
+        if at_cutoff(s, rcond, 100.0):
+            return None
+        keep = s > rcond * (s[0] if s.size else 0.0)
+        self = cls.__new__(cls)
+        self.U, self.s, self.Vt = U[:, keep], s[keep], Vt[keep]
+        return self
+
+    def solve(self, B) -> np.ndarray:
+        """The minimum-norm least-squares coefficients of every column of ``B`` (lstsq's)."""
+        return self.Vt.T @ ((self.U.T @ B) / self.s[:, None])
+
+
 class PartialRidgePath:
     """The fits of ``y`` on ``Z = [X, Phi]`` for every penalty on ``Phi``, on some rows.
 
@@ -77,9 +104,11 @@ class PartialRidgePath:
     y : ndarray (n,)
     n_free : int
     fit_intercept : bool, default True
+    inputs : InputsFit, optional
+        The centred inputs' factor on these rows (with an intercept), when already computed.
     """
 
-    def __init__(self, Z, y, n_free: int, fit_intercept: bool = True):
+    def __init__(self, Z, y, n_free: int, fit_intercept: bool = True, inputs: InputsFit | None = None):
         Z, y = np.asarray(Z, float), np.asarray(y, float)
         self.n_free, self.fit_intercept, self.n = int(n_free), fit_intercept, len(y)
         # centred on these rows with an intercept (the least-squares part then matches
@@ -88,7 +117,7 @@ class PartialRidgePath:
         self.y_mean = float(y.mean()) if fit_intercept else 0.0
         Zc = Z - self.z_mean
         A, F = Zc[:, :self.n_free], Zc[:, self.n_free:]
-        self._solve(A, F, F.std(axis=0), y - self.y_mean, None)
+        self._solve(A, F, F.std(axis=0), y - self.y_mean, None, inputs if fit_intercept else None)
 
     @classmethod
     def from_triangle(cls, R, n: int, mean, n_free: int) -> "PartialRidgePath | None":
@@ -106,16 +135,20 @@ class PartialRidgePath:
         sd = np.sqrt(np.sum(F ** 2, axis=0) / self.n)     # Q is orthogonal: the centred norms
         return self if self._solve(A, F, sd, R[:, -1], rcond) else None
 
-    def _solve(self, A, F, sd, yc, rcond) -> bool:
+    def _solve(self, A, F, sd, yc, rcond, inputs: InputsFit | None = None) -> bool:
         """Fill the path from the centred inputs ``A``, effect features ``F`` (their standard
         deviations ``sd``) and target ``yc`` -- on the rows, or rotated by ``Q^T`` (``rcond``
-        given: then False, nothing filled, where a singular value is at the cut-off)."""
+        given: then False, nothing filled, where a singular value is at the cut-off).  ``inputs``:
+        ``A``'s factor, computed before."""
         self.f_scale = np.where(sd > 0, sd, 1.0)
         Fs = F / self.f_scale
         # least squares of y and of every standardised feature on the inputs
-        coef, _, _, s = np.linalg.lstsq(A, np.column_stack([yc, Fs]), rcond=rcond)
-        if rcond is not None and at_cutoff(s, rcond, 100.0):
-            return False
+        if inputs is not None:
+            coef = inputs.solve(np.column_stack([yc, Fs]))
+        else:
+            coef, _, _, s = np.linalg.lstsq(A, np.column_stack([yc, Fs]), rcond=rcond)
+            if rcond is not None and at_cutoff(s, rcond, 100.0):
+                return False
         self.b_y, self.B_f = coef[:, 0], coef[:, 1:]
         ry, RF = yc - A @ self.b_y, Fs - A @ self.B_f
         if Fs.shape[1]:

@@ -56,6 +56,16 @@ def at_cutoff(s: np.ndarray, rcond: float, band: float) -> bool:
     return bool(np.any(np.abs(s - cut) <= band * cut))
 
 
+class FixedHead:
+    """Each campaign's QR of the intercept and the design's first ``n`` columns (shifted), kept for
+    fits whose later columns change on the same rows (the refit null's 99 permutations move only the
+    tested effect's columns: diag111c); the later columns are then projected on it, not factored
+    with it."""
+
+    def __init__(self, n: int):
+        self.n, self.factors = int(n), {}
+
+
 class CampaignLeastSquares:
     """OLS fits of ``y`` on the design ``Z`` restricted to unions of campaigns.
 
@@ -68,14 +78,17 @@ class CampaignLeastSquares:
     fit_intercept : bool, default True
     tol : float
         Relative cut-off of the singular values (``LinearRegression.tol``).
+    head : FixedHead, optional
+        The campaigns' factors of ``Z``'s first columns, shared with fits that differ after them.
     """
 
-    def __init__(self, Z, y, rows, fit_intercept: bool = True, tol: float = LSTSQ_TOL):
+    def __init__(self, Z, y, rows, fit_intercept: bool = True, tol: float = LSTSQ_TOL,
+                 head: FixedHead | None = None):
         self.Z = np.asarray(Z, float)
         self.y = np.asarray(y, float)
         self.rows = list(rows)
         self.fit_intercept = fit_intercept
-        self.tol = tol
+        self.tol, self.head = tol, head
         self._factors: dict[int, tuple[np.ndarray, np.ndarray]] = {}
         # with an intercept the columns are factored less their means over all rows: the same
         # least squares, and its rounding scales with the columns' spread, not their level
@@ -89,8 +102,10 @@ class CampaignLeastSquares:
     def _factor(self, c: int) -> tuple[np.ndarray, np.ndarray]:
         """The R of ``[1, Z_c, y_c]`` (``[Z_c, y_c]`` without intercept) and the column sums of
         ``[Z_c, y_c]``, computed once."""
+        rows, first = self.rows[c], int(self.fit_intercept)
+        if c not in self._factors and self.head is not None and len(rows) > first + self.Z.shape[1] + 1:
+            self._factors[c] = self._factor_on_head(c)
         if c not in self._factors:
-            rows, first = self.rows[c], int(self.fit_intercept)
             # one array, in LAPACK's column order: a piece may be half a long record
             zy = np.empty((len(rows), first + self.Z.shape[1] + 1), order="F")
             zy[:, :first] = 1.0
@@ -99,6 +114,33 @@ class CampaignLeastSquares:
             zy[:, first:] -= self.shift
             self._factors[c] = triangle(zy), zy[:, first:].sum(axis=0)
         return self._factors[c]
+
+    def _factor_on_head(self, c: int) -> tuple[np.ndarray, np.ndarray]:
+        """:meth:`_factor` from the head's ``Q1 R11`` of the first columns: the rest ``W`` (the later
+        columns and y) projected out of ``Q1`` twice (twice is enough: Giraud et al. 2005), then
+        factored alone, ``R = [[R11, Q1^T W], [0, R(W - Q1 Q1^T W)]]``: the same Gram matrix."""
+        rows, first, n = self.rows[c], int(self.fit_intercept), self.head.n
+        if c not in self.head.factors:
+            A = np.empty((len(rows), first + n), order="F")
+            A[:, :first] = 1.0
+            A[:, first:] = self.Z[rows, :n] - self.shift[:n]
+            Q, R = np.linalg.qr(A)
+            self.head.factors[c] = Q, R, A[:, first:].sum(axis=0)
+        Q, R11, sums = self.head.factors[c]
+        W = np.empty((len(rows), self.Z.shape[1] - n + 1), order="F")
+        W[:, :-1] = self.Z[rows, n:]
+        W[:, -1] = self.y[rows]
+        W -= self.shift[n:]
+        sums = np.r_[sums, W.sum(axis=0)]
+        R12 = Q.T @ W
+        W -= Q @ R12
+        again = Q.T @ W
+        R12 += again
+        W -= Q @ again
+        R22 = triangle(W)
+        top = np.hstack([R11, R12])
+        bottom = np.hstack([np.zeros((R22.shape[0], R11.shape[1])), R22])
+        return np.vstack([top, bottom]), sums
 
     def union(self, members) -> tuple[np.ndarray, int, np.ndarray]:
         """``(R, n, mean)`` of the rows of campaigns ``members``: the triangular factor of
