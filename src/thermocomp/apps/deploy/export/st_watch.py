@@ -574,6 +574,30 @@ VARS = """    mon_last : ARRAY[{nm}] OF LREAL;
 """
 
 # before the refusal: the sample's monitored readings judged (the block's first == a campaign's)
+# the C's level-shift test's first half (settled.level_shift): how far the settle ring's two
+# windows of sensor mk part (mon_x), one text where the block judges and where it only flags
+# after its own mon_lost (st111c)
+_WINDOWS_PARTED = """            FOR mw := 0 TO 1 DO
+                FOR mi := 0 TO MON_WINDOW - 1 DO
+                    mr := mon_spos - mi - mw * MON_WINDOW;
+                    IF mr < 0 THEN
+                        mr := mr + 2 * MON_WINDOW;
+                    END_IF;
+                    mon_x := mon_settle_ring[mr, mk];
+                    IF mi = 0 OR mon_x < mon_wlo[mw] THEN
+                        mon_wlo[mw] := mon_x;
+                    END_IF;
+                    IF mi = 0 OR mon_x > mon_whi[mw] THEN
+                        mon_whi[mw] := mon_x;
+                    END_IF;
+                END_FOR;
+            END_FOR;
+            mon_x := mon_wlo[0] - mon_whi[1];
+            IF mon_wlo[1] - mon_whi[0] > mon_x THEN
+                mon_x := mon_wlo[1] - mon_whi[0];
+            END_IF;
+"""
+
 BLOCK = """(* (st93) the sensor monitor's detection (the C's rules without the POD): a reading not *)
 (* measured, beyond the monitor's range, or a step from its last reading past its jump limit *)
 mon_flag := FALSE;
@@ -1015,25 +1039,7 @@ IF MON_STEP_JUDGE AND (NOT mon_lost OR mon_jheld >= 0) THEN
             (* (st96) the C's level shift (SETTLED): the window ending here parted from the *)
             (* one before by MON_SETTLE_LIM and moved past MON_SETTLE_STEADY x their spread *)
             (* (settled.level_shift), on one reference for 2 w - 1 samples, no gap *)
-            FOR mw := 0 TO 1 DO
-                FOR mi := 0 TO MON_WINDOW - 1 DO
-                    mr := mon_spos - mi - mw * MON_WINDOW;
-                    IF mr < 0 THEN
-                        mr := mr + 2 * MON_WINDOW;
-                    END_IF;
-                    mon_x := mon_settle_ring[mr, mk];
-                    IF mi = 0 OR mon_x < mon_wlo[mw] THEN
-                        mon_wlo[mw] := mon_x;
-                    END_IF;
-                    IF mi = 0 OR mon_x > mon_whi[mw] THEN
-                        mon_whi[mw] := mon_x;
-                    END_IF;
-                END_FOR;
-            END_FOR;
-            mon_x := mon_wlo[0] - mon_whi[1];
-            IF mon_wlo[1] - mon_whi[0] > mon_x THEN
-                mon_x := mon_wlo[1] - mon_whi[0];
-            END_IF;
+<<WINDOWS_PARTED>>
             IF mon_x > MON_SETTLE_LIM[mk] THEN
                 (* each window's median, then its readings' median deviation from it *)
                 FOR mw := 0 TO 1 DO
@@ -1693,25 +1699,7 @@ IF MON_STEP_JUDGE AND mon_lost AND NOT mon_efresh THEN
         mon_settle_ring[mon_spos, mk] := mon_d[mk];
         mon_go := MON_SETTLES[mk] = 1 AND mon_sage[mk] >= 2 * MON_WINDOW - 1;
         IF mon_go AND mon_span = 1.0 AND mon_gap[mk] = 1.0 THEN
-            FOR mw := 0 TO 1 DO
-                FOR mi := 0 TO MON_WINDOW - 1 DO
-                    mr := mon_spos - mi - mw * MON_WINDOW;
-                    IF mr < 0 THEN
-                        mr := mr + 2 * MON_WINDOW;
-                    END_IF;
-                    mon_x := mon_settle_ring[mr, mk];
-                    IF mi = 0 OR mon_x < mon_wlo[mw] THEN
-                        mon_wlo[mw] := mon_x;
-                    END_IF;
-                    IF mi = 0 OR mon_x > mon_whi[mw] THEN
-                        mon_whi[mw] := mon_x;
-                    END_IF;
-                END_FOR;
-            END_FOR;
-            mon_x := mon_wlo[0] - mon_whi[1];
-            IF mon_wlo[1] - mon_whi[0] > mon_x THEN
-                mon_x := mon_wlo[1] - mon_whi[0];
-            END_IF;
+<<WINDOWS_PARTED>>
             IF mon_x > MON_SETTLE_LIM[mk] THEN
                 mon_rsettle := TRUE;
             END_IF;
@@ -1775,7 +1763,7 @@ IF has_time THEN
     mon_t_prev := time_s;
     mon_t_known := TRUE;
 END_IF;
-"""
+""".replace("<<WINDOWS_PARTED>>\n", _WINDOWS_PARTED)
 
 
 def declarations(n_inputs: int, watch: dict, dims) -> str:
