@@ -598,7 +598,8 @@ def input_gains(streaming: StreamingCompensator, ambients=(), training=None, per
 
     (guard111) With the stacked ``training`` (its inputs as the model reads them, sampled every
     ``period_s``): a diagnosed state times the inputs' rises takes its gain at the ends of the
-    state's training range, an ``lstm`` a numerical one (:mod:`.held_gains`); without them a
+    state's training range, any other model without an analytic gain a numerical one, by held
+    steps (:mod:`.held_gains`; guard111b); without them a
     hotter day's correction was cut to the trained bound (climate room 10158, lstm E_X: 230 test
     rows guarded)."""
     n = len(streaming.envelope.lo)

@@ -46,15 +46,11 @@ def drivers(effect: Effect, columns) -> list[str]:
     return list(dict.fromkeys(own))
 
 
-def moved(context, campaigns, columns: list[str], order: np.ndarray, names: list):
-    """``context`` with ``columns`` of campaign ``names[i]`` taken from ``names[order[i]]``, at the
-    same elapsed time (held at the source's last sample past its end)."""
-    return Mover(context, campaigns, columns, names)(order)
-
-
 class Mover:
-    """:func:`moved` for one context, its campaigns' rows and elapsed times found once (per order
-    they were a fifth of the gate's CPU: diag111c); the context's other columns are not copied."""
+    """Called with an order: the context with ``columns`` of campaign ``names[i]`` taken from
+    ``names[order[i]]`` at the same elapsed time (held at the source's last sample past its end).
+    Its campaigns' rows and elapsed times are found once (per order they were a fifth of the gate's
+    CPU: diag111c); the context's other columns are not copied."""
 
     def __init__(self, context, campaigns, columns: list[str], names: list):
         labels = np.asarray(campaigns, dtype=object)

@@ -474,29 +474,30 @@ class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
     def stream_step(self, x_row, state, context=None):
         """One sample: ``(y_hat, state)``, as :meth:`predict` in simulation mode."""
         m, a0, inner = state
-        x = np.asarray(x_row, dtype=float).ravel()
-        if self.interactions_[m]:
-            x = np.concatenate([x, x * (a0 - AMBIENT_CENTRE_C)])
+        x = self._as_read(np.asarray(x_row, dtype=float).ravel(), m, a0)
         y_hat, inner = self.estimators_[m].stream_step(x, inner, context)
         return float(y_hat), (m, a0, inner)
 
     def stream_steps(self, X, state, context=None):
         """A block of rows at once (:func:`thermocomp.core.context.stream_steps`)."""
         m, a0, inner = state
-        X = np.asarray(X, dtype=float)
-        if self.interactions_[m]:
-            X = np.hstack([X, X * (a0 - AMBIENT_CENTRE_C)])
-        y, inner = stream_steps(self.estimators_[m], X, inner, context)
+        y, inner = stream_steps(self.estimators_[m], self._as_read(X, m, a0), inner, context)
         return y, (m, a0, inner)
 
     def stream_branches(self, blocks, state, context=None):
         """Blocks (b, n, p) each from the same state
         (:func:`thermocomp.core.context.stream_branches`), by the interval's model."""
         m, a0, inner = state
-        blocks = np.asarray(blocks, dtype=float)
-        if self.interactions_[m]:
-            blocks = np.concatenate([blocks, blocks * (a0 - AMBIENT_CENTRE_C)], axis=-1)
-        return stream_branches(self.estimators_[m], blocks, inner, context)
+        return stream_branches(self.estimators_[m], self._as_read(blocks, m, a0), inner, context)
+
+    def _as_read(self, X, m: int, a0: float) -> np.ndarray:
+        """Streamed rows ``X`` (a row, a block or blocks: inputs on the last axis) as interval
+        ``m``'s model reads them: with its ambient interaction, the inputs times ``A0`` less the
+        centre, appended."""
+        X = np.asarray(X, dtype=float)
+        if not self.interactions_[m]:
+            return X
+        return np.concatenate([X, X * (a0 - AMBIENT_CENTRE_C)], axis=-1)
 
     def gain_terms(self, horizon_s: float = np.inf, lead=None, period_s: float = 1.0) -> list:
         """The step gain split by the campaign's initial ambient (:mod:`thermocomp.core.gains`):

@@ -357,12 +357,8 @@ class LSTM(SideInputs, RegressorMixin, BaseEstimator):
 
     def stream_step(self, x_row, state: dict, context=None) -> tuple[float, dict]:
         """One LSTM step from the carried ``(h, c)``."""
-        from ._lstm_net import _torch_threads, torch
-
-        x = (np.asarray(x_row, dtype=float).reshape(-1) - self.x_mean_) / self.x_scale_
-        with _torch_threads(int(self.n_threads)), torch.no_grad():
-            y, _, hc = self.net_(torch.tensor(x[None, None, :], dtype=torch.float64), state["hc"])
-        return float(y[0, 0]) * self.y_scale_ + self.y_mean_, {"hc": hc}
+        y, hc = self._from_state(np.asarray(x_row, dtype=float).reshape(1, 1, -1), state["hc"])
+        return float(y[0, 0]), {"hc": hc}
 
     def stream_steps(self, X, state: dict, context=None) -> tuple[np.ndarray, dict]:
         """A block of rows from the carried ``(h, c)`` in one pass of the recurrence
