@@ -32,8 +32,9 @@ Made room, test K5 (A0 25.96 C; training 14.09-23.61), 80 rows, inputs past trai
   What-ifs: no pattern gate 6.6633; no rate limit 9.4505; both 7.7420 (= unguarded); plain stream
   without its envelope clamp 0.4723 um (the clamp's flips are the cost, unguarded included).
   E_Z: 27 rows cut, all rate pacing of the clamp's flips (no rate limit: = unguarded 1.5681).
-Climate room 10158 (test A0 15.8-23.6 C, inside training's 15.4-29.5): mlr/ati deployed <= unguarded
-  on every test campaign and target (C12 E_X 1.0822 vs 1.2990); no A0 past training there.
+Climate room 10158 (test A0 15.8-23.6 C, inside training's 15.4-29.5; 88 s CPU for lstm/ati):
+  mlr/ati and lstm/ati deployed <= unguarded on every test campaign and target (C12 E_X 1.0822 vs
+  1.2990, 1.0319 vs 1.2622; no other row cut); no A0 past training there.
 """
 
 from __future__ import annotations
