@@ -19,6 +19,27 @@ the client's ``_sample``/``_step``, no server) on the server's clock and on a ``
 named, data row being read) and the samples counted missed, with the file reader's words: its
 stretches without rows (``timestamps.row_gaps``, each data row and samples missed), said where it says no
 period change (``values.py``, ``stdin.py``), and its period change.
+
+The rule measured (REFUSED, not in src): benchmarks/con112_rule.patch, applied to 277c06b1 in a
+worktree (``git apply``) whose src is then put on PYTHONPATH.
+
+SCORED (2026-12-08 ~01:40 UTC, 2 cores shared; BASE 277c06b1's src in a detached worktree, the
+rule 2961d118's src; ``said`` CPU (user + sys) 6.7 s BASE, 7.5 s the rule)::
+
+  C1/C2 (24 feeds x 2 routes): BASE fails 24 (server: 2x and 3x at every step, a `clock_gap` at
+     each long step until the period is learned, 124 clock_gaps, 168 missed where the file reader
+     counts 15; 0.5x at steps 7-9; node: 0.5x at steps 2-6, the watch's).  The rule fails 6:
+     server 0.5x step 6 (BASE's at-once said it; 5 of 10 learned steps long: the learned median
+     75 s, not the file's 50 s), node 0.5x steps 2-6 (as BASE); 10 clock_gaps, 10 missed.
+  C3: healthy, 900 jittery (+-10/20/25 %), con109's and con111's gap feeds identical to BASE
+     (33 clock_gaps said one row later, owed to the watch); con111's 9 early-change feeds
+     (server) differ from BASE: its clock_gaps there are the fault (7 now = the file reader).
+  C4 seed 10266 (p 105.513 s, step 3, x3; drawn and scored once): the rule = the file reader
+     (nothing, 0 missed), BASE 8 clock_gaps / 16 missed; the healthy feed nothing on both.
+  Through a real asyncua server (test_opcua67's vendor machine, P05 changed): x3 from step 3
+     BASE 8 clock_gaps / 16 missed, the rule none / 0; x2 from step 8 BASE 3 / 3, the rule 0 / 0
+     (period changed at data row 12 on both = the file reader); x0.5 from step 4 (period_s 30)
+     BASE 13 / 13 (10 on the healthy P06), the rule 3 / 3 (= the file reader's stretches).
 """
 
 from __future__ import annotations
