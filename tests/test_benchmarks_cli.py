@@ -53,7 +53,7 @@ COMMAND_BENCHES = (
     "bench_cmon80", "bench_cmon82", "bench_cmon82b", "bench_cmon82c", "bench_cmon83", "bench_cmon84",
     "bench_cmon85", "bench_cmon86", "bench_cmon87", "bench_cmon88", "bench_cmon89", "bench_cmon89b",
     "bench_cmon91", "bench_cmon92", "bench_cmon92b", "bench_cmon93", "bench_cmon94", "bench_con109",
-    "bench_con111",
+    "bench_con111", "bench_con112",
     "bench_connect72", "bench_cvpick69", "bench_data101", "bench_data103", "bench_data86", "bench_data86b",
     "bench_data87", "bench_data88", "bench_data88b", "bench_data89", "bench_data89b", "bench_data90",
     "bench_data91", "bench_data92", "bench_data92b", "bench_data93", "bench_data94", "bench_data95",
