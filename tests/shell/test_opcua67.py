@@ -827,7 +827,7 @@ def test_a_stretch_in_a_campaigns_first_steps_is_said_by_the_watch_as_the_file_r
     """(con111) Offline, the server's clock at 60 s, 4 periods without samples into data row
     ``step + 1`` (the watch still learning the period from its first 10 steps): the `time` event
     names the file reader's row, said one sample after it (where the next step tells it from a
-    new period), beside the `clock_gap` said at once; 3 missed.  Before, the watch said nothing.
+    new period), beside the `clock_gap` (con112: said with it); 3 missed.  Before, the watch said nothing.
     Early changes of period (to 10x, to 3x, from the same step) are still no gap of the watch,
     nor, on a time node, a jittery clock's steps (50, 80, 50, 60, 60 s: 80 s is 1.6 times the 50 s
     before it, not 1.5 times the record's median, 60 s, where the file reader says nothing)."""
@@ -863,3 +863,39 @@ def test_a_stretch_in_a_campaigns_first_steps_is_said_by_the_watch_as_the_file_r
     for k, t in enumerate(jittery):           # (on a time node: the server's clock takes 60 s steps)
         conn._step("A", [20.0, t], k, k)
     assert file_said(pd.DataFrame({"time": jittery})) == [] == time_said({"events": conn.events})
+
+
+@pytest.mark.parametrize("step", (3, 8))
+def test_an_early_period_change_on_the_servers_clock_is_read_as_the_file_reader_reads_it(step):
+    """(con112) Offline, the server's clock (connect.period_s=60 s): the period goes from 60 s to
+    120 s and to 180 s from the step into data row ``step + 1``, while the watch learns it.  No
+    `clock_gap`, no sample counted missed, the `time` events the file reader's (a period change at
+    data row 12 where most of the first 10 steps stay at 60 s).  Before, each long step until the
+    period was learned was a `clock_gap` of 60 s periods, its samples counted missed.  The other
+    way (120 s, then 60 s): the file reader's stretches (its median 60 s: data rows 2..step) said
+    and counted when the period is learned, none where it says the period changes (step 8)."""
+    from datetime import datetime, timedelta, timezone
+
+    from conftest import offline_connection
+    from thermocomp.apps.machine.client import _Plan
+    from thermocomp.core.io.timestamps import row_gaps
+
+    epoch = datetime(2026, 3, 2, 6, 0, tzinfo=timezone.utc)
+    plan = _Plan(inputs=[object(), None], labels=["T_a", "time"], status={}, clock=object(),
+                 offsets=[], types=[], answered=None, watched=[], registers=np.zeros(0))
+
+    def run(times):
+        conn = offline_connection(clock="server", period_s=60.0)
+        for s in times:
+            got = conn._sample(plan, [ua.DataValue(ua.Variant(20.0, ua.VariantType.Float)),
+                                      ua.DataValue(ua.Variant(epoch + timedelta(seconds=float(s))))])
+            conn._step(*got)
+        gaps = sorted(e["row"] for e in conn.events if e["event"] == "clock_gap")
+        return gaps, time_said({"events": conn.events}), conn.missed
+
+    for before, after in ((60.0, 120.0), (60.0, 180.0), (120.0, 60.0)):
+        times = np.r_[np.arange(step) * before, (step - 1) * before + after * np.arange(1, 41 - step)]
+        changed = [w for w in file_said(pd.DataFrame({"time": times})) if w[0] == "period changed"]
+        stretches = [] if changed else [int(g) + 2 for g in row_gaps(times)]   # (as it says them)
+        assert run(times) == (stretches, changed, len(stretches))
+        assert bool(stretches) == (before > after and step == 3)     # (the file reader's words)

@@ -50,7 +50,16 @@ from asyncua import Client, ua
 
 from ...core.context import TIME
 from ...core.io.clocksets import after
-from ...core.io.rates import FOUND, GAP_PERIODS, PAUSE_PERIODS, SAID_AT_MOST, SETTLED, StepWatch, found_words
+from ...core.io.rates import (
+    FOUND,
+    GAP_PERIODS,
+    LEARNING_GAP,
+    PAUSE_PERIODS,
+    SAID_AT_MOST,
+    SETTLED,
+    StepWatch,
+    found_words,
+)
 from ...core.io.stdin import CLOCK_SETS, LAST_READ, TIME_ORIGIN
 from ..deploy.streaming import OutOfEnvelopeError
 from .clockset import OwnClock
@@ -188,10 +197,12 @@ class Connection:
         # (dep108b) the running campaign's time read as the file reader reads it (rates.StepWatch:
         # the served model's and stream.c's rule), the rows read in it and the last ones' times
         self._watch, self._rows, self._recent = self._new_watch(), 0, deque(maxlen=SETTLED + 2)
-        # (dep108e) a long step of the server's clock the watch has yet to call a gap (the next
-        # step short again) or part of a new period: (its data row, the sample before, its s,
-        # its steps, the period they count)
-        self._owed = None
+        # (dep108e) the long steps of the server's clock the watch has yet to call a gap (the next
+        # step short again) or part of a new period: {their data row: (the sample before, its s,
+        # its steps, the period they count, what the client's clock told of it then)}; (con112)
+        # while it learns the period, all of them
+        self._owed: dict[int, tuple[int, float, int, float, str]] = {}
+        self._passed = False         # (con112) a sample passed over since the last taken (too soon)
 
     def _event(self, kind: str, detail: str, level: int = logging.INFO, **extra) -> None:
         e = {"wall_s": round(clock_now() - self._start, 3), "sample": self._last,
@@ -401,9 +412,12 @@ class Connection:
         else:       # a sample each time the clock has gone a period on (or a campaign starts)
             if not math.isfinite(at) or (not new and self._at is not None
                                          and at - self._at < self.period_s * (1 - 1e-6)):
+                # (the clock gone on, not a period: a sample passed over; not the same clock read again)
+                self._passed = self._passed or (self._at is not None and math.isfinite(at) and at > self._at)
                 return None
             if plan.clock is not None and not new and self._at is not None:
                 steps = self._clock_gap(at - self._at, steps)
+            self._passed = False
             k = self._last + steps
         if new:
             self._t0, self._i = at, -1
@@ -499,22 +513,30 @@ class Connection:
         (dep108e) The periods are the watch's (:meth:`_clock_period`); once it has one, a
         stretch is the watch's: said and counted when the next step is short again (its
         ``gap``), not where the steps go on long (a new period, said once as a ``time`` event;
-        before, every step after a change was a gap of the old period's)."""
+        before, every step after a change was a gap of the old period's).  (con112) So too while
+        the watch learns the period (:meth:`_learned`, :meth:`_first_step`), but for a step over
+        a sample passed over: before, each step of a period changed in the first steps was a gap
+        of ``connect.period_s``'s, its samples counted missed, where the file reader and the
+        ``time`` node said none."""
         period = self._clock_period()
         if gap < GAP_PERIODS * period:
             return steps
         paused = gap > PAUSE_PERIODS * period
-        if not paused and math.isfinite(self._watch.period):
-            self._owed = (self._rows, self._last, gap, steps, period)
+        # (con112) while a period is learned, a step over a sample passed over (it came within a
+        # period: a jittery clock) tells no period: said at once, as before
+        if not paused and (math.isfinite(self._watch.period) or not self._passed):
+            self._owed[self._rows] = (self._last, gap, steps, period, self.own.why_not())
             return 1
         self._said_gap(gap, steps, period, paused, self._last, self._rows + 1)
         return 1 if paused else steps
 
     def _said_gap(self, gap: float, steps: int, period: float, paused: bool, before: int,
-                  row: int) -> None:
+                  row: int, why_not: str | None = None) -> None:
         """The ``clock_gap`` event of a step of ``gap`` s (``steps`` periods of ``period`` s)
-        after sample ``before``, the first sample after it the campaign's data ``row``."""
-        why_not = self.own.why_not()    # '': the client's clock went on as much (connect71)
+        after sample ``before``, the first sample after it the campaign's data ``row``;
+        ``why_not``: what the client's clock told of the step when it came (None: now)."""
+        if why_not is None:             # '': the client's clock went on as much (connect71)
+            why_not = self.own.why_not()
         what = (f"more than {PAUSE_PERIODS} periods: a pause (the machine off?) or its clock set "
                 "forward, no sample counted missed" if paused and why_not else
                 f"more than {PAUSE_PERIODS} periods: a pause (the client's clock went on as much: "
@@ -554,7 +576,8 @@ class Connection:
             # joined mid-way (i > 0) by a new process: rate-limited from what the machine holds
             self.limiter.new_campaign(self._kept if i > 0 and not self.limiter.started else None)
             self._campaign, self._time = cid, math.nan
-            self._watch, self._rows, self._owed = self._new_watch(), 0, None
+            self._short_campaign()
+            self._watch, self._rows, self._owed = self._new_watch(), 0, {}
             # a campaign that continues others comes after their rows (twin: its samples < 0)
             ahead = (f" ({-i} sample(s) of the campaign(s) it continues first, unscored)"
                      if i < 0 else "")
@@ -612,6 +635,7 @@ class Connection:
         after it; on a ``time`` node nothing).  (dep108e) On the server's clock its finding of a
         gap is the one a ``clock_gap`` waits for once the watch has a period (:meth:`_clock_gap`)."""
         self._recent.append((self._rows, t))
+        learning = not math.isfinite(self._watch.period)
         for kind, at, was, now in self._watch.read(float(t), self._rows):
             said = self._watch.said[kind] = self._watch.said.get(kind, 0) + 1
             when = dict(self._recent).get(at, t)
@@ -620,19 +644,58 @@ class Connection:
                         + (" (no more said)" if said == SAID_AT_MOST else ""),
                         logging.WARNING if said <= SAID_AT_MOST else logging.DEBUG,
                         sensor=TIME, to=FOUND[kind], time=when, row=at + 1)
-            if kind == "gap" and self._owed is not None and self._owed[0] == at:
-                self._gap_owed()
-        if self._owed is not None and self._owed[0] < self._rows:
-            self._owed = None        # (dep108e) the watch read the step on as a new period's
+            if kind == "gap" and at in self._owed:
+                self._gap_owed(at)
+        if learning and math.isfinite(self._watch.period):
+            self._learned()
+        elif learning and self._rows == 2 and 1 in self._owed and len(self._watch.steps) == 2:
+            self._first_step()
+        if math.isfinite(self._watch.period):   # (dep108e) read on as a new period's: not owed
+            self._owed = {r: owed for r, owed in self._owed.items() if r >= self._rows}
         self._rows += 1
 
-    def _gap_owed(self) -> None:
-        """(dep108e) The long step the watch calls a gap: said (``clock_gap``, the sample before
-        it and the data row after it, as the file reader names it) and its samples counted
-        missed; the samples' count goes on from the server's clock, as when it was said at once."""
-        row, before, gap, steps, period = self._owed
-        self._owed = None
-        self._said_gap(gap, steps, period, False, before, row + 1)
+    def _learned(self) -> None:
+        """(con112) The period just learned: the long steps still owed from the learning are read
+        against it, as the file reader reads a campaign's steps against their median.  A run of
+        them up to this step is the new period's first steps (this one stays owed: the watch's gap
+        waiting for the next); an earlier one long at the learned period is a stretch without
+        samples, said and counted now."""
+        period, run = self._watch.period, self._rows
+        while run in self._owed and self._watch.is_long(self._owed[run][1], period):
+            run -= 1
+        self._owed = {r: owed for r, owed in self._owed.items() if r <= run or r == self._rows}
+        for row in sorted(r for r in self._owed if r < self._rows):
+            if self._watch.is_long(self._owed[row][1], period):
+                self._gap_owed(row, period)
+
+    def _first_step(self) -> None:
+        """(con112) The campaign's first step owed (the watch's stretches while it learns are the
+        steps after the first): a stretch where the second is short, :data:`LEARNING_GAP` times
+        or more below it, its samples counted at the second's period, said now (one sample on)."""
+        second = self._watch.steps[-1][1]
+        if self._owed[1][1] >= LEARNING_GAP * second and self._watch.is_long(self._owed[1][1], second):
+            self._gap_owed(1, second)
+
+    def _short_campaign(self) -> None:
+        """(con112) A campaign over before its period was learned: the long steps still owed read
+        against the median of its steps, as the file reader reads a short campaign's."""
+        steps = [s for _, s in self._watch.steps]
+        if self._owed and not math.isfinite(self._watch.period) and steps:
+            period = float(np.median(steps))
+            for row in sorted(r for r, owed in self._owed.items() if self._watch.is_long(owed[1], period)):
+                self._gap_owed(row, period)
+
+    def _gap_owed(self, row: int, period: float | None = None) -> None:
+        """(dep108e) The long step into data row ``row`` the watch calls a gap: said (``clock_gap``,
+        the sample before it and the data row after it, as the file reader names it) and its
+        samples counted missed; the samples' count goes on from the server's clock, as when it was
+        said at once.  ``period``: the one its samples count (None: the one it was owed at)."""
+        before, gap, steps, owed_at, why_not = self._owed.pop(row)
+        if period is None:
+            period = owed_at
+        else:
+            steps = max(1, round(gap / period))
+        self._said_gap(gap, steps, period, False, before, row + 1, why_not)
         self.missed += steps - 1
         self._last += steps - 1
 

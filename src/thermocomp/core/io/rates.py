@@ -137,7 +137,7 @@ class StepWatch:
         period, found = self.period, []
         if self.gap is not None and step < GAP_PERIODS * period:
             found.append(("gap", *self.gap, period))
-        self.gap = (row, step) if self._long(step, period) else None
+        self.gap = (row, step) if self.is_long(step, period) else None
         self.steps = self.steps[-SETTLED:]
         for changed in ([rs for rs in self.steps if rs[1] >= RATE_CHANGE * period],
                         [rs for rs in self.steps if rs[1] <= period / RATE_CHANGE]):
@@ -160,14 +160,14 @@ class StepWatch:
         if len(self.steps) >= 3:
             (at, long), others = self.steps[-2], [s for _, s in self.steps[:-2]] + [step]
             period = float(np.median(others))
-            if long >= LEARNING_GAP * max(others) and self._long(long, period):
+            if long >= LEARNING_GAP * max(others) and self.is_long(long, period):
                 found.append(("gap", at, long, period))
         if len(self.steps) == SETTLED:
             self.period, self.steps = float(np.median([s for _, s in self.steps])), []
-            self.gap = (row, step) if self._long(step, self.period) else None
+            self.gap = (row, step) if self.is_long(step, self.period) else None
         return found
 
-    def _long(self, step: float, period: float) -> bool:
+    def is_long(self, step: float, period: float) -> bool:
         """Whether ``step`` (s) is a stretch without rows at ``period``: not a pause, nor (where
         the clock keeps daylight saving time) an hour and a period."""
         dst = self.hour_steps and abs(step - 3600.0 - period) <= period / 2
