@@ -13,7 +13,18 @@ p <= alpha.  ``forward``: round 1's take per record (bench_diag111d's read) with
 ``A`` leaves lags of the model inputs (kind ``dynamics``) to the flips (refit_null's drivers), ``B``
 (the default, the rule) shifts their column too.  ``planted``: ``thermocomp diagnose diagnose.cv=forward``
 on climate draws of 3 runs (2 train, 1 test; the kinds in :data:`FRESH`), each target's accepts.
-The bar: ``benchmarks/diag112b_bar.md``; the scored figures: the diag112b report.
+The bar: ``benchmarks/diag112b_bar.md``.
+
+Scored (2026-12-08, once; BASE = 277c06b1's src, RULE = this tree's; CPU user + sys per pass)
+* F1 ``forward 0 200``: taken BASE 4 (18, 31, 114, 169; 35.5 s), arm A 4 (the same; 47.0 s), arm B
+  1 (18: S_hyd's lag, p_shift .01; 51.2 s).  B refuses the three dynamics lags at p_shift >= .02.
+* F2 fresh 10246 axis_position, 10247 hidden_source, 10248 lag_node (3 runs, cv=forward): accepts
+  identical both ways: 10246 E_Z S_pos_Z product + T_nc_spindle_motor square (p_shift .01 each),
+  10247 E_X S_hydraulic_temp_C lag 900 s (.01), 10247 E_Z a lowpass of the inputs (reads X: flips
+  alone, None; test 4.28 -> 8.62 both ways); 10248 nothing either way.
+* F3 fresh clean 10249, 10250: no effect accepted either way (10249 E_Z removes a sensor: both).
+* F4 ``diagnose diagnose.cv=forward`` on SHORT, 3 runs interleaved: clean BASE 3.63 / RULE 3.65 s
+  (x1.01), door BASE 3.78 / RULE 4.43 s (x1.17; S_door taken both ways, p_shift .01).
 """
 
 from __future__ import annotations
