@@ -42,8 +42,9 @@ once, at the end, to report before and after):
    cleared or not (fewest extra regressors; ties: the largest 95 % lower confidence bound of
    the gain, :func:`gain_lower_bound`; none when all are clearly worse than one that did not
    clear) -- see :func:`choose`.  The one a round would take must also beat its drivers moved
-   among the train campaigns (the refit null, ``campaigns`` scheme: :mod:`.refit_null`, diag111;
-   refused, the next is asked).  Refit and repeat, at most ``max_effects`` times.
+   among the train campaigns (the refit null, ``campaigns`` scheme: :mod:`.refit_null`, diag111),
+   or shifted in time (``forward``: :mod:`.shift_null`, diag112b); refused, the next is asked.
+   Refit and repeat, at most ``max_effects`` times.
 
 A ``sensor_fault`` (removing a declared sensor) has its own bar: its evidence
 is the self-prediction jump (:mod:`.sensors`), since a sensor usually breaks
@@ -77,6 +78,7 @@ from .cv import CrossValidator, CVResult, Problem, sign_flip_maxt, sign_flip_pva
 from .features import Effect
 from .refit_null import refit_pvalue
 from .sensors import self_prediction
+from .shift_null import shift_pvalue
 
 
 @dataclass
@@ -115,7 +117,7 @@ class Evaluation:
     alpha: float | None = None
     result: CVResult | None = field(default=None, repr=False)
     p_family: float | None = None
-    p_refit: float | None = None             # the refit null's (a second gate: .refit_null)
+    p_refit: float | None = None             # the refit null's (a second gate: .refit_null, .shift_null)
     gain_pct_in_range: float = float("nan")   # the same on the rows no fold extrapolates to
     gain_lcb_alpha: float = float("nan")      # (1 - alpha) Student-t lower bound of the gain
     p_margin: float = float("nan")            # p of a gain of min_gain_pct at least (the margin)
@@ -839,12 +841,14 @@ class Search:
         return []
 
     def _refit_p(self, tested: list, observed_rmse: float) -> float | None:
-        """The refit null's p of ``tested`` added to the search's effects (:mod:`.refit_null`) in the
-        ``campaigns`` scheme, where the flips' units are campaigns or blocks of them and a candidate
-        fitted on them gains there by their chance structure (diag109); None elsewhere (forward
-        chaining's blocks of one time line: no campaigns to permute)."""
-        if self.problem.scheme != "campaigns":
-            return None
+        """The refit null's p of ``tested`` added to the search's effects: drivers moved among the
+        campaigns (:mod:`.refit_null`) in the ``campaigns`` scheme, where the flips' units are
+        campaigns or blocks of them and a candidate fitted on them gains there by their chance
+        structure (diag109); shifted in time on forward chaining's one time line (:mod:`.shift_null`,
+        diag112b).  None where it cannot gate (no driver, a floor above alpha)."""
+        if self.problem.scheme == "forward":
+            return shift_pvalue(self.cv, self.inputs(), list(self.effects), tested, observed_rmse,
+                                seed=self.options.seed, alpha=self.options.alpha)
         return refit_pvalue(self.cv, self.inputs(), list(self.effects), tested, observed_rmse,
                             seed=self.options.seed, alpha=self.options.alpha)
 
