@@ -120,6 +120,26 @@ def test_a_file_whose_decimal_mark_is_ambiguous_is_refused_naming_its_column_and
             "data row 4", "the decimal mark is ambiguous ('6.5' here")
 
 
+def test_a_number_written_otherwise_beside_grouped_speeds_is_named_where_it_is(tmp_path, capsys):
+    # audit112: a US-written '1,234.5' among run4's decimal commas and grouped speeds ('6.000')
+    # slipped past the decimal sniff (it holds both marks), so data.thousands=auto read no
+    # separator and the read refused '6.000' at row 1, advising a data.thousands='.' the other
+    # files refuse; init said "groups digits by three in '1,234.5' but not in '1,234.5'"
+    folder = _lab_folder(tmp_path / "runs", False)
+    text = (folder / "run4.csv").read_bytes().decode("cp1252").splitlines()
+    cells = text[10].split(";")
+    cells[5] = "1,234.5"              # dZ, data row 10
+    text[10] = ";".join(cells)
+    (folder / "run4.csv").write_bytes(("\n".join(text) + "\n").encode("cp1252"))
+    refused(["run", f"data.path={folder}", "data.encoding=auto", "data.thousands=auto",
+             "data.roles.error=[d*]", "data.test_fraction=0.25", "track=false", "plots=none",
+             f"out={tmp_path / 'out'}"], capsys, "run4.csv", "column 'dZ [µm]'", "data row 10",
+            "value '1,234.5' does not group its digits by three with '.'")
+    assert not (tmp_path / "out").exists()
+    assert main(["init", str(folder), f"out={tmp_path / 'init'}"]) == 2
+    said = capsys.readouterr()
+    assert "'.' groups digits by three in '6.000' but not in '1,234.5'" in said.out + said.err, said
+
 def test_a_stream_in_either_encoding_reads_with_data_encoding_auto():
     text = "Zeit [s];T Luft [°C];dX [µm]\n0;20,5;1,5\n"
     for code in ("utf-8", "cp1252"):

@@ -288,8 +288,9 @@ def _thousands(numbers: list[_Column], decimal: str, said: list) -> str | None:
         shown = repr(holding[0][0].first(holding[0][1]))
         bad = [(c, h & ~c.grouped[mark]) for c, h in holding if (h & ~c.grouped[mark]).any()]
         if bad:
-            if any((h & c.grouped[mark]).any() for c, h in holding):
-                said.append(f"{mark!r} groups digits by three in {shown} but not in "
+            good = [c.first(h & c.grouped[mark]) for c, h in holding if (h & c.grouped[mark]).any()]
+            if good:    # (audit112: shown was the first cell holding it, the odd one itself at times)
+                said.append(f"{mark!r} groups digits by three in {good[0]!r} but not in "
                             f"{bad[0][0].first(bad[0][1])!r}: no thousands separator guessed "
                             "(data.thousands)")
             continue

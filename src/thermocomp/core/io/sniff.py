@@ -42,7 +42,7 @@ def detected(lines: list[str], opts: ReadOptions, where) -> ReadOptions:
     delimiter = _delimiter(lines, where) if opts.delimiter == AUTO else opts.delimiter
     body = lines[(header_line(lines, delimiter) or 0):]       # below a logger's preamble
     decimal = _decimal(body, delimiter, where) if opts.decimal == AUTO else opts.decimal
-    thousands = (_thousands(body, delimiter, decimal) if opts.thousands == AUTO
+    thousands = (_thousands(body, delimiter, decimal, where) if opts.thousands == AUTO
                  else opts.thousands)
     return replace(opts, delimiter=delimiter, decimal=decimal, thousands=thousands)
 
@@ -118,13 +118,25 @@ def _where(lines: list[str], delimiter: str, cell: str) -> tuple[str, int, str]:
     return "", 0, cell
 
 
-def _thousands(lines: list[str], delimiter: str, decimal: str) -> str | None:
+def _thousands(lines: list[str], delimiter: str, decimal: str, where) -> str | None:
     """``data.thousands=auto`` (data87): the mark other than ``decimal`` where every number cell
     holding it groups its digits by three with it (a German Excel's ``6.000`` beside ``21,18``),
-    else None: a cell that holds it otherwise is refused by the read, naming its row."""
+    else None; a number that holds it otherwise beside cells it groups is refused here, naming
+    its column and row."""
     other = "." if decimal == "," else ","
     cells = [c for ln in lines[1:] for c in split_line(ln, delimiter, SPLIT)]
     marked = [c for c in cells if other in c and _MARKED.fullmatch(c)]   # (not a date's dots)
-    if marked and all(_GROUPED[other].fullmatch(c) for c in marked):
+    grouping = [c for c in marked if _GROUPED[other].fullmatch(c)]
+    if marked and len(grouping) == len(marked):
         return other
+    # (audit112) a number holding the mark otherwise ('1,234.5' beside '6.000'; a bare date's
+    # two dots are no number) is named here: left to the read, the first grouped cell was
+    # refused instead, '6.000' at row 1, with a data.thousands='.' the folder's other files refuse
+    odd = next((c for c in marked if c not in grouping and (decimal in c or c.count(other) == 1)),
+               None)
+    if grouping and odd is not None:
+        column, row, cell = _where(lines, delimiter, odd)
+        raise ContractError(f"value {cell.strip()!r} does not group its digits by three with "
+                            f"{other!r}, the thousands separator of this file's {grouping[0].strip()!r} "
+                            "(data.thousands=auto): mend that cell", file=where, column=column, row=row)
     return None
