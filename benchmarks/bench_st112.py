@@ -15,8 +15,23 @@ operator's row ``MON_SPIKE_FIELD``, within ``MON_READMIT x MON_WARN``): the C pu
 back as the block does, its set whole again.  The 4 healthy streams' rjumps were each such a
 3-row spike (lr9964 T_bed_right at 4163-4166, dl9964 6940, lr9966 3982, dl9966 6637).
 
-SCORED (2026-12-08, bar f77be8f2 unchanged, rule b6307c0b; BASE = 277c06b1's src, a worktree):
-see the report, /work/notes/sec112/st112.md (numbers filled in there and below).
+SCORED (2026-12-08, bar f77be8f2 unchanged, rule b6307c0b; BASE = 277c06b1's src, a worktree run
+beside; CPU user + sys, 2 cores shared, load 18-21).
+* BASE ``causes``: 1527 rows, 1308 of them ``mon_rjump`` (lr9964 155, dl9964 257, lr9966 336,
+  dl9966 560), none off the C; the rest st108b's band and held STEP_OUTs, as before st111b.
+* S1 bench_st108b ``stream`` lr/dl 9964-9967: ``mon_unsure`` 1527 -> 291 of 46,084 rows (lr9964
+  170 -> 33, dl9964 272 -> 33, lr9966 360 -> 42, dl9966 583 -> 41, the other 4 equal); ``same`` 0 / 0
+  on all 8 (c, flag, rule, sensor), stop equal; 0 rows off the C unflagged on both.  BASE 83.2 s,
+  RULE 75.6 s.
+* S2 0 unflagged rows off the C, BASE and RULE alike: bench_st111 ``seen`` (4 campaigns, unsure 21
+  each on both); bench_st111c ``score`` seed 3 (8 cases, unsure equal per case) and ``stream``
+  lr9964 (8 cases; unsure from r2 equal but jump-then-none / jump-then-jump 170 -> 33);
+  bench_st109b ``fresh`` 10207 (unsure equal per campaign).  ``score`` 3 here: 0 over whole
+  campaigns, unsure 1072 on both.
+* S3 ``score`` fresh 10263, 10264, 10265 (drawn and scored once, after b6307c0b): 0 unflagged rows
+  off the C on all 48 case runs, unsure equal per case (1275 / 852 / 1052 on both).  41.2 s.
+* The C's spike decision scanned on lr9132 (T_head_left, T_col_back, T_bed_right out 3 rows by 6
+  largest steps, back -0.3 .. +0.3 K by 0.01): the block's matched the C's on all 183 returns.
 
 ``score``: bench_st111c's cases (bench_st111b's faults on ``_room(7, seed)``, BASE's block and the
 tree's), counting also the unflagged rows off the C over the whole campaign (``all``, not only
