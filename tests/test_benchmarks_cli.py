@@ -104,7 +104,7 @@ COMMAND_BENCHES = (
     "bench_st103c", "bench_st105", "bench_st105b", "bench_st106", "bench_st106b", "bench_st106c",
     "bench_st107", "bench_st107b", "bench_st107c", "bench_st108", "bench_st108b", "bench_st108c",
     "bench_st108d", "bench_st109", "bench_st109b", "bench_st111",
-    "bench_st111b", "bench_st111c", "bench_st93", "bench_st93b", "bench_st94",
+    "bench_st111b", "bench_st111c", "bench_st112", "bench_st93", "bench_st93b", "bench_st94",
     "bench_st94b",
     "bench_st95", "bench_st95b", "bench_st96", "bench_st96b", "bench_st97", "bench_st97b", "bench_st97c",
     "bench_st97d", "bench_st98", "bench_st98b", "bench_st99", "bench_st99b", "bench_st99c", "bench_stable67",

@@ -15,7 +15,7 @@ import numpy as np
 from test_export import TOLERANCE_UM
 from test_export_st94 import record  # noqa: F401 (the module's fixture)
 from test_export_st96 import START, _stepped, bumped
-from thermocomp.apps.deploy.export.watch import DRIFT_OUT, EXCLUDED, OUT, SETTLED
+from thermocomp.apps.deploy.export.watch import DRIFT_OUT, EXCLUDED, OUT, SETTLED, SPIKE
 
 DRIFTED = "T_head_left"      # one the others predict (lr9132): its drift is the C's lone fault
 LOST_AT = 670                # (st111b) a dropout there: the block's own mon_lost
@@ -102,3 +102,35 @@ def test_the_block_flags_the_cs_level_shift_after_its_own_lost_judgement(record)
     flagged = np.array([said[0] or s[3] for said, s in zip(st_said, stop)])
     assert off[settled:].all()    # the C's reference moved: off to the end
     assert flagged[off].all()
+
+
+def _spiked(deployed, ss, block, frame, off: float):
+    """(st112) ``DRIFTED`` up 6 of its largest steps for 3 rows from LOST_AT (the block's own lone
+    jump, its ``mon_lost``), back ``off`` K off its readings: per row off the C, flagged,
+    ``mon_unsure``; the C's SPIKE row (None: not taken)."""
+    names = [ss.inputs[i] for i in ss.monitor["inputs"]]
+    df = frame.copy()
+    df.loc[LOST_AT:LOST_AT + 2, DRIFTED] += 6.0 * float(deployed.monitor.max_step_c[names.index(DRIFTED)])
+    df.loc[LOST_AT + 3:, DRIFTED] += off
+    st, st_said, stop, c, c_said = _stepped(ss, block, df.iloc[:LOST_AT + 80], _stop)
+    off_c = np.max(np.abs(st - c), axis=1) > TOLERANCE_UM
+    unsure = np.array([s[3] for s in stop])
+    flagged = np.array([said[0] for said in st_said]) | unsure
+    spike = next((i for i in range(LOST_AT, len(c_said)) if c_said[i][1] == SPIKE), None)
+    return off_c, flagged, unsure, spike
+
+
+def test_the_block_clears_its_flag_after_a_spike_the_c_takes_back(record):  # noqa: F811
+    """(st112) A lone jump of one the others predict ends the block's judgement; 3 rows later it
+    jumps back.  Where the C takes that as a spike (back within its re-admission band of the
+    others' prediction) its reference is put back as the block's: the block equals the C from
+    there and its flag ends with st108b's wait (before st112: ``mon_rjump``, to the campaign's
+    end).  Back 0.3 K off (past that band, under the jump limit) the C re-references it and holds
+    it out, the block reads it as back: every row off the C stays flagged."""
+    deployed, ss, frame, block = record
+    w = ss.monitor["window"]
+    off_c, flagged, unsure, spike = _spiked(deployed, ss, block, frame, 0.0)
+    assert spike == LOST_AT + 3 and not off_c[spike:].any() and flagged[off_c].all()
+    assert unsure[LOST_AT:LOST_AT + 2 * w].all() and not unsure[-20:].any()
+    off_c, flagged, unsure, spike = _spiked(deployed, ss, block, frame, 0.3)
+    assert spike is None and off_c[LOST_AT + 3:].all() and flagged[off_c].all()

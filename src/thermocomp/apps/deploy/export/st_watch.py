@@ -130,10 +130,14 @@ the campaign's end: the C re-references it by its step less the others' change).
 (st111c) So does a level shift after ``mon_lost`` of one no other predicts (``mon_rsettle``: its
 windows parted past ``MON_SETTLE_LIM`` on the block's readings, the C's ``SETTLED`` test without its
 steadiness test): the C re-references it, by an amount the block cannot tell.
+(st112) Not the return of a sensor whose lone jump, the set whole before it, ended the judgement
+within a window, nothing else since, where the C's spike test passes (:func:`spike_constants`:
+its prediction by the others within ``MON_READMIT`` of its warning band): the C puts its reference
+back as the block does and its set is whole again.
 The counters that grow with the campaign
 (``mon_count``, ``mon_stop_row``, ``mon_calm``, ``mon_run``, ``mon_quiet``, ``mon_jcalm``, ``mon_lcalm``,
-``mon_hsince``) are DINT: an INT wraps after 32767 samples (9 h at 1 s), and a wrapped count stops
-the judgement (``mon_count + 1 >= MON_CONFIRM``).
+``mon_hsince``, ``mon_sj_age``) are DINT: an INT wraps after 32767 samples (9 h at 1 s), and a wrapped
+count stops the judgement (``mon_count + 1 >= MON_CONFIRM``).
 
 What the block does then, without the POD that rebuilds a sensor in the C: a reading not
 measured or beyond the range refuses the sample (``refused``: ``c`` holds the last correction,
@@ -395,6 +399,26 @@ def late_constants(watch: dict, n: int, stepped: bool, constant) -> list[str]:
             constant("MON_LATE_OK", ok.tolist(), (n,), "INT")]
 
 
+def spike_constants(watch: dict, n: int, stepped: bool, literal, constant) -> list[str]:
+    """(st112) What the block needs to tell, after its own ``mon_lost``, that the C took a lone
+    jump's return as a spike (:meth:`.watch.CodeMonitor._spike_back` with every other sensor in):
+    per sensor the others predict (``MON_SPIKE_OK``: the C's spike rule on, judged with every sensor
+    in, enough left without it) the row of the set-without-it operator that predicts it
+    (``MON_SPIKE_FIELD``) and the C's re-admission factor (``MON_READMIT``, times ``MON_WARN``)."""
+    from .watch import CodeMonitor
+
+    field, ok = np.zeros((n, n)), np.zeros(n, int)
+    on = bool(n and stepped and watch.get("spike") and n - 1 >= watch["min_active"])
+    mon = CodeMonitor(watch) if on else None
+    for k in (k for k in range(n) if on and mon.predictable[k] and mon.lev[0][k] < mon.max_lev):
+        op = mon._operator(np.arange(n) == k)
+        if op is not None:
+            ok[k], field[k] = 1, op[0][k]
+    return [constant("MON_SPIKE_OK", ok.tolist(), (n,), "INT"),
+            constant("MON_SPIKE_FIELD", field.tolist(), (n, n)),
+            f"    MON_READMIT : LREAL := {literal(float(watch.get('readmit', 0.0)))};"]
+
+
 def constants(watch: dict, literal, constant) -> list[str]:
     """The monitor's constants (``watch``: :func:`.watch.monitor_fields`'s ``monitor``, empty:
     none, ``MON_N`` 0) in the block's ``VAR CONSTANT``."""
@@ -429,6 +453,7 @@ def constants(watch: dict, literal, constant) -> list[str]:
             *freeze_constants(watch, alarm.size, constant),
             *exchange_constants(watch, alarm.size, constant),
             *late_constants(watch, alarm.size, stepped, constant),
+            *spike_constants(watch, alarm.size, stepped, literal, constant),
             f"    MON_PERIOD : LREAL := {literal(watch.get('period', 1.0))};",
             f"    MON_GAP_PERIODS : LREAL := {literal(watch.get('gap_periods', 1.5))};",
             f"    MON_COMMON_MIN : INT := {int(watch.get('common_min', 3))};",
@@ -561,6 +586,8 @@ VARS = """    mon_last : ARRAY[{nm}] OF LREAL;
     mon_junsure : BOOL;    (* (st111) a lone jump re-referenced otherwise than the C *)
     mon_rjump : BOOL;    (* (st111b) a jump of one the others predict after mon_lost *)
     mon_rsettle : BOOL;    (* (st111c) the C's level shift possible after mon_lost *)
+    mon_sj : INT;    (* (st112) the one whose lone jump ended the judgement, its return awaited *)
+    mon_sj_age : DINT;    (* (st112) rows since that jump *)
     (* (st111c) each sensor's shift at the row before *)
     mon_rshift : ARRAY[{nm}] OF LREAL;
     mon_efresh : BOOL;    (* (st111b) mon_e computed by the judgement this row *)
@@ -638,6 +665,7 @@ IF first THEN
 END_IF;
 IF reset THEN    (* (st111) to the campaign's end, not first's (held through refused rows) *)
     mon_junsure := FALSE;
+    mon_sj := -1;
 END_IF;
 (* (st99) the set the C judges a freeze by: every sensor in (-1), or without the BLIND_OUT *)
 (* the block holds (its set, MON_OUT_SELF's): the C's second out *)
@@ -966,11 +994,38 @@ ELSIF (mon_gone OR mon_jumps > 0) AND NOT mon_jbeside THEN
     (* (st111b) a jump after the block's own mon_lost (its value from the row before) of one *)
     (* the others predict: the C re-references it by its step less the others' change, which *)
     (* the block cannot compute here, the block by its whole step: apart to the campaign's end *)
+    (* (st112) but not the return of one whose lone jump, the set whole before it, ended the *)
+    (* judgement within a window, nothing else since, where the C's spike test (its prediction *)
+    (* by the others, every other in, within MON_READMIT of its band) passes: the C's reference *)
+    (* put back as the block's (0), the set whole again *)
     FOR mk := 0 TO MON_N - 1 DO
-        IF mon_lost AND mon_big[mk] AND MON_JUMP_HELD[mk] = 0 THEN
+        mon_go := mon_sj = mk AND mon_spike[mk] AND mon_jumps = 1 AND NOT mon_gone AND mon_late < 0;
+        mon_go := mon_go AND mon_rule = RULE_SPIKE AND mon_sensor = mk AND mon_sj_age < MON_WINDOW;
+        IF mon_go THEN
+            mon_x := 0.0;
+            FOR mj := 0 TO MON_N - 1 DO
+                mi := MON_INPUT[mj];
+                mon_x := mon_x + MON_SPIKE_FIELD[mk, mj] * (u[mi] - mon_base[mj] - mon_rshift[mj]);
+            END_FOR;
+            mon_x := u[MON_INPUT[mk]] - mon_base[mk] - mon_x;
+            IF mon_x < 0.0 THEN
+                mon_x := -mon_x;
+            END_IF;
+            mon_go := mon_x < MON_READMIT * MON_WARN[mk] * 0.999999;    (* a margin: never on a tie *)
+        END_IF;
+        IF mon_lost AND mon_big[mk] AND MON_JUMP_HELD[mk] = 0 AND NOT mon_go THEN
             mon_rjump := TRUE;
         END_IF;
     END_FOR;
+    mon_sj := -1;
+    IF NOT mon_lost AND mon_whole AND mon_jumps = 1 AND mon_rule = RULE_JUMP AND NOT mon_junsure THEN
+        (* this jump ends the judgement: the C holds it out, re-referenced as here (st111) *)
+        mk := mon_sensor;
+        IF MON_SPIKE_OK[mk] = 1 AND MON_STEP_HELD[mk] = 1 AND mon_rshift[mk] = 0.0 THEN
+            mon_sj := mk;
+            mon_sj_age := 0;
+        END_IF;
+    END_IF;
     mon_lost := TRUE;
 END_IF;
 mon_was := mon_held;
@@ -1732,6 +1787,13 @@ IF mon_stop_row > 0 OR mon_lost THEN
             mon_usince := 0;
         END_IF;
     END_FOR;
+    (* (st112) anything after the jump but its return: the C's set not known at the return *)
+    IF mon_sj >= 0 AND mon_sj_age > 0 AND (mon_flag OR mon_rule <> 0 OR mon_usince = 0) THEN
+        mon_sj := -1;
+    END_IF;
+    IF mon_sj >= 0 AND mon_sj_age < 2147483646 THEN
+        mon_sj_age := mon_sj_age + 1;
+    END_IF;
     mon_unsure := mon_usince <= 2 * MON_WINDOW;
     IF mon_usince < 2147483646 THEN
         mon_usince := mon_usince + 1;
