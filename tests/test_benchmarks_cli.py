@@ -82,7 +82,7 @@ COMMAND_BENCHES = (
     "bench_fault70", "bench_faults71", "bench_freeze83", "bench_freeze83b", "bench_freeze83c",
     "bench_freeze84", "bench_freeze90", "bench_freeze91", "bench_freeze92", "bench_freezeu100",
     "bench_fresh69", "bench_gate71", "bench_gate77", "bench_guard111", "bench_guard111b", "bench_guard112",
-    "bench_guard112b", "bench_guard112c", "bench_guard95", "bench_guard96", "bench_ham98",
+    "bench_guard112b", "bench_guard112c", "bench_guard112d", "bench_guard95", "bench_guard96", "bench_ham98",
     "bench_initlag67", "bench_iso67", "bench_jig68", "bench_jump94", "bench_jump94b", "bench_kelvin97",
     "bench_keysight70", "bench_lab83", "bench_lagwithin68", "bench_margin67", "bench_mon101", "bench_mon103",
     "bench_mon103b", "bench_mon103c", "bench_mon103d", "bench_mon105", "bench_mon105b", "bench_mon105c",
