@@ -7,9 +7,11 @@ Usage (from the repository root, ``PYTHONPATH=<tree>/src``: the code measured is
     python benchmarks/bench_diag112.py planted ROOT LABEL MODEL SEED...   # climate draws, model=MODEL
 
 diag111's gate refitted the whole model 99 times for the candidate a round would take; with ARX+RF
-that was 47 of 52 s of CPU of test_diagnose_scenarios' arx_rf case.  The rule
-(:func:`thermocomp.apps.diagnose.refit_null.residual_fit_rmse`): a base without a closed form tests
-its CV residual's least-squares fit on the candidate's features, observed and moved alike.
+that was 47 of 52 s of CPU of test_diagnose_scenarios' arx_rf case.  The attempt, REFUSED and kept
+as ``benchmarks/diag112_rule.patch`` (``git apply`` it in a scratch tree to measure it): a base
+without a closed form tests its CV residual's least-squares fit, fitted once (observed and moved
+alike), on the inputs and the candidate's features (``residual_fit_rmse``).  Its first form (the
+features alone) refused BASE's planted hydraulic source on draw 10122 with model=arx (refit p .02).
 ``family``: the scenario test's ``every_model_family`` case (hidden source, one round): accepted
 effects, test RMSE, CPU.  ``first``: null rooms' round 1 with MODEL (mlr, arx, pcr) as the base: the
 best flip and gated p.  ``planted``: ``thermocomp diagnose model=MODEL`` on climate draws (arx_rf
