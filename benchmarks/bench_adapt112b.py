@@ -63,6 +63,7 @@ def planted(rule: str, root: str, record: str) -> None:
     sys.path.insert(0, str(tree / "src"))
     os.chdir(tree)
     from thermocomp.apps.deploy.adapt_choice import rms_columns, streamed
+
     from thermocomp.apps.deploy.report import plain, stream_rows
     from thermocomp.core.context import TIME
     from thermocomp.core.continuation import lead_ins
