@@ -8,12 +8,6 @@ line (time and campaign labels stay, and so do the base's inputs): the drivers k
 autocorrelation and lose their alignment with the error.  Its p is the share of those refits whose
 forward CV RMSE is at most its own, the observed counted once.
 
-A low-pass copy of every model input (``lowpass_inputs``) reads no context column: the base's
-inputs are its driver, and shifting those would move the base too.  So its own feature columns, the
-copies, are shifted instead (:class:`ShiftedCopies`, diag112c): they keep their shape and lose their
-alignment with the error.  That alone did not refuse fresh 10247 E_Z's 4 h copy (p .01; test 4.28 ->
-8.62 µm): it must also not lose on the train runs ahead (:mod:`.runs_ahead`), else p is 1.
-
 Offsets are whole samples at least one test block (the residual's decorrelation length) away from
 the identity either way, so ``n - 2 * length + 1`` distinct shifts: offsets of whole blocks would give
 22-29 on an 80 h record (floor ~.04, above alpha).  :data:`SHIFTS` are drawn without replacement
@@ -28,10 +22,8 @@ from .cv import CrossValidator
 from .features import Effect
 from .refit_null import PERMUTATIONS, MovedDrivers, _unmoved
 from .refit_null import drivers as campaign_drivers
-from .runs_ahead import loses_ahead
 
 SHIFTS = PERMUTATIONS      # p floor 0.01 = the default alpha
-COPIES = "lowpass_inputs"  # its features are shifted, not a driver column
 
 
 def drivers(effect: Effect, columns) -> list[str]:
@@ -42,20 +34,6 @@ def drivers(effect: Effect, columns) -> list[str]:
     if effect.kind != "dynamics":
         return campaign_drivers(effect, columns)
     return [c for c in effect.context_columns if c in columns]
-
-
-class ShiftedCopies(MovedDrivers):
-    """:class:`.refit_null.MovedDrivers` whose ``copies`` (tested ``lowpass_inputs`` effects) give
-    the base's features rolled by ``shift`` rows."""
-
-    def __init__(self, base: CrossValidator, context, kept, fixed: dict, copies, shift: int):
-        super().__init__(base, context, kept, fixed)
-        self.copies, self.shift = set(copies), int(shift)
-
-    def features(self, effect, names, fold=None, rows=None) -> np.ndarray:
-        if effect in self.copies:
-            return np.roll(self.base.features(effect, names, fold, rows), self.shift, axis=0)
-        return super().features(effect, names, fold, rows)
 
 
 def offsets(n: int, length: int, n_shifts: int, seed: int) -> np.ndarray:
@@ -78,18 +56,14 @@ def block_length(problem) -> int:
 def shift_pvalue(cv: CrossValidator, inputs, kept, tested, observed_rmse: float, seed: int = 0,
                  alpha: float = 1.0, n_shifts: int = SHIFTS) -> float | None:
     """p of ``tested`` (effects added together to ``kept``) reaching forward CV RMSE
-    ``observed_rmse``: the share of refits with the tested effects' drivers (a low-pass copy's own
-    columns) shifted by one offset (:func:`offsets`) that do as well, the observed counted once.
-    None where no tested effect has a driver or the shifts cannot resolve ``alpha``.  Stops once p
-    exceeds ``alpha`` for sure."""
+    ``observed_rmse``: the share of refits with the tested effects' drivers shifted by one offset
+    (:func:`offsets`) that do as well, the observed counted once.  None where no tested effect has
+    a driver or the shifts cannot resolve ``alpha``.  Stops once p exceeds ``alpha`` for sure."""
     p = cv.problem
     columns = list(dict.fromkeys(c for e in tested for c in drivers(e, p.context.columns)))
-    copies = [e for e in tested if e.transform == COPIES]
     shifts = offsets(len(p.y), block_length(p), n_shifts, seed)
     total = len(shifts) + 1                      # the observed, counted once
-    if copies and loses_ahead(cv, inputs, kept, tested):
-        return 1.0                               # refused before any shift: worse a run ahead
-    if not (columns or copies) or alpha * total < 1:
+    if not columns or alpha * total < 1:
         return None
     values = {c: p.context[c].to_numpy(float) for c in columns}
     hits, limit, fits = 0, alpha * total - 1, {}
@@ -97,7 +71,7 @@ def shift_pvalue(cv: CrossValidator, inputs, kept, tested, observed_rmse: float,
         context = p.context.copy(deep=False)
         for c in columns:
             context[c] = np.roll(values[c], int(shift))
-        refit = ShiftedCopies(cv, context, kept, fits, copies, shift)
+        refit = MovedDrivers(cv, context, kept, fits)
         hits += _unmoved(refit, cv, inputs, tested) or \
             bool(refit.run(inputs, list(kept) + list(tested)).rmse <= observed_rmse)
         if hits > limit:
