@@ -22,8 +22,8 @@ BENCHMARKS = Path(__file__).resolve().parents[1] / "benchmarks"
 
 # the benches whose first word is a command (converted to _cli.run_commands on stop 70)
 COMMAND_BENCHES = (
-    "bench_acc107", "bench_adapt112", "bench_adapt112b", "bench_amb94", "bench_anchor66", "bench_ati106",
-    "bench_ati106b", "bench_ati90",
+    "bench_acc107", "bench_acc112", "bench_adapt112", "bench_adapt112b", "bench_amb94", "bench_anchor66",
+    "bench_ati106", "bench_ati106b", "bench_ati90",
     "bench_audit100", "bench_audit103", "bench_audit105", "bench_audit106", "bench_audit107",
     "bench_audit107b", "bench_audit107c", "bench_audit86", "bench_audit86b", "bench_audit87", "bench_audit88",
     "bench_audit88b", "bench_audit89", "bench_audit91", "bench_audit93", "bench_audit94", "bench_audit95",
