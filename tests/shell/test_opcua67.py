@@ -40,6 +40,27 @@ CAMPAIGNS = (("P01", "train"), ("P02", "train"), ("P03", "train"), ("P04", "trai
 CLIENT = ["connect.retry_s=0.4", "connect.give_up_s=60", "connect.hold_s=600"]
 
 
+def _clock_plan():
+    """A connection's plan reading one input (``T_a``) and the server's clock: the offline
+    server-clock tests' (no server; ``_sample`` / ``_step`` fed by hand)."""
+    from thermocomp.apps.machine.client import _Plan
+
+    return _Plan(inputs=[object(), None], labels=["T_a", "time"], status={}, clock=object(),
+                 offsets=[], types=[], answered=None, watched=[], registers=np.zeros(0))
+
+
+def _server_read(s: float, value: float = 20.0, status=None) -> list:
+    """What the server answers ``s`` seconds after a fixed UTC epoch: ``T_a`` (with ``status``)
+    and its clock."""
+    from datetime import datetime, timedelta, timezone
+
+    epoch = datetime(2026, 3, 2, 6, 0, tzinfo=timezone.utc)
+    reading = ua.Variant(value, ua.VariantType.Float)
+    value_read = (ua.DataValue(reading) if status is None
+                  else ua.DataValue(reading, StatusCode=ua.StatusCode(status)))
+    return [value_read, ua.DataValue(ua.Variant(epoch + timedelta(seconds=float(s))))]
+
+
 def record(root: Path) -> Path:
     """Six campaigns of a four-sensor lathe, one row a minute; its errors lag the spindle's
     and the column's heating (a lag bank's), the last rows of each at a steady state (a
@@ -478,25 +499,16 @@ def test_the_server_clock_ticking_each_second_gives_a_sample_each_period():
     """A server's CurrentTime changes every second (asyncua's, most servers'): a sample each
     time it has gone connect.period_s on, its time the clock's seconds since the campaign's first
     sample; a clock set back (a reset RTC) goes on one period, said; a Bad input is NaN."""
-    from datetime import datetime, timedelta, timezone
-
     from conftest import offline_connection
-    from thermocomp.apps.machine.client import _Plan
 
     conn = offline_connection(clock="server", period_s=60.0)
-    plan = _Plan(inputs=[object(), None], labels=["T_a", "time"], status={}, clock=object(),
-                 offsets=[], types=[], answered=None, watched=[], registers=np.zeros(0))
-    epoch = datetime(2026, 3, 2, 6, 0, tzinfo=timezone.utc)
-
-    def read(s, status=ua.StatusCodes.Good):
-        value = ua.DataValue(ua.Variant(20.0 + s / 100, ua.VariantType.Float),
-                             StatusCode=ua.StatusCode(status))
-        return [value, ua.DataValue(ua.Variant(epoch + timedelta(seconds=s)))]
+    plan = _clock_plan()
 
     seconds = [*range(0, 126), *range(125 - 3600, 125 - 3600 + 130)]   # set back an hour at 125 s
     taken = []
     for s in seconds:
-        got = conn._sample(plan, read(s, ua.StatusCodes.BadSensorFailure if 60 <= s < 61 else 0))
+        got = conn._sample(plan, _server_read(s, 20.0 + s / 100,
+                                               ua.StatusCodes.BadSensorFailure if 60 <= s < 61 else 0))
         if got is not None:
             cid, row, k, i = got
             conn._step(cid, row, k, i)
@@ -716,15 +728,10 @@ def test_a_clock_set_back_and_a_new_process_on_the_clients_clock(monkeypatch):
     client's clock, the stream's time continuous, each said as `clock_set` (before: the hour
     forward a gap of 61 periods, 60 counted missed, the two back a sample at once, one period on).
     A new process (no step of the server's clock timed yet) cannot tell: the hour kept, said."""
-    from datetime import datetime, timedelta, timezone
-
     from conftest import offline_connection
     from thermocomp.apps.machine import client
-    from thermocomp.apps.machine.client import _Plan
 
-    epoch = datetime(2026, 3, 2, 6, 0, tzinfo=timezone.utc)
-    plan = _Plan(inputs=[object(), None], labels=["T_a", "time"], status={}, clock=object(),
-                 offsets=[], types=[], answered=None, watched=[], registers=np.zeros(0))
+    plan = _clock_plan()
     wall = [0.0]
     monkeypatch.setattr(client, "own_clock", lambda: wall[0], raising=False)
 
@@ -732,8 +739,7 @@ def test_a_clock_set_back_and_a_new_process_on_the_clients_clock(monkeypatch):
         conn, taken = offline_connection(clock="server", period_s=60.0), []
         for w, s in ticks:
             wall[0] = float(w)
-            got = conn._sample(plan, [ua.DataValue(ua.Variant(20.0, ua.VariantType.Float)),
-                                      ua.DataValue(ua.Variant(epoch + timedelta(seconds=s)))])
+            got = conn._sample(plan, _server_read(s))
             if got is not None:
                 conn._step(*got)
                 taken.append((w, got[2], got[1][1]))
@@ -796,20 +802,14 @@ def test_the_server_clocks_steps_are_read_against_the_watchs_period():
     `clock_gap` and no sample counted missed (before: one at each 600 s step, 9 missed each); a
     stretch of 3 periods, and one of an hour and a period (a UTC clock: no daylight saving time),
     each one `clock_gap` at the sample after it, its `row` the `time` event's, its periods missed."""
-    from datetime import datetime, timedelta, timezone
-
     from conftest import offline_connection
-    from thermocomp.apps.machine.client import _Plan
 
-    epoch = datetime(2026, 3, 2, 6, 0, tzinfo=timezone.utc)
-    plan = _Plan(inputs=[object(), None], labels=["T_a", "time"], status={}, clock=object(),
-                 offsets=[], types=[], answered=None, watched=[], registers=np.zeros(0))
+    plan = _clock_plan()
 
     def run(times):
         conn = offline_connection(clock="server", period_s=60.0)
         for s in times:
-            got = conn._sample(plan, [ua.DataValue(ua.Variant(20.0, ua.VariantType.Float)),
-                                      ua.DataValue(ua.Variant(epoch + timedelta(seconds=float(s))))])
+            got = conn._sample(plan, _server_read(s))
             if got is not None:
                 conn._step(*got)
         gaps = [(e["sample"], e.get("row")) for e in conn.events if e["event"] == "clock_gap"]
@@ -831,20 +831,14 @@ def test_a_stretch_in_a_campaigns_first_steps_is_said_by_the_watch_as_the_file_r
     Early changes of period (to 10x, to 3x, from the same step) are still no gap of the watch,
     nor, on a time node, a jittery clock's steps (50, 80, 50, 60, 60 s: 80 s is 1.6 times the 50 s
     before it, not 1.5 times the record's median, 60 s, where the file reader says nothing)."""
-    from datetime import datetime, timedelta, timezone
-
     from conftest import offline_connection
-    from thermocomp.apps.machine.client import _Plan
 
-    epoch = datetime(2026, 3, 2, 6, 0, tzinfo=timezone.utc)
-    plan = _Plan(inputs=[object(), None], labels=["T_a", "time"], status={}, clock=object(),
-                 offsets=[], types=[], answered=None, watched=[], registers=np.zeros(0))
+    plan = _clock_plan()
 
     def run(times):
         conn, said = offline_connection(clock="server", period_s=60.0), []
         for r, s in enumerate(times):
-            got = conn._sample(plan, [ua.DataValue(ua.Variant(20.0, ua.VariantType.Float)),
-                                      ua.DataValue(ua.Variant(epoch + timedelta(seconds=float(s))))])
+            got = conn._sample(plan, _server_read(s))
             n = len(conn.events)
             conn._step(*got)
             said += [(e["to"], e["row"], r + 1) for e in conn.events[n:] if e["event"] == "time"]
@@ -874,21 +868,15 @@ def test_an_early_period_change_on_the_servers_clock_is_read_as_the_file_reader_
     period was learned was a `clock_gap` of 60 s periods, its samples counted missed.  The other
     way (120 s, then 60 s): the file reader's stretches (its median 60 s: data rows 2..step) said
     and counted when the period is learned, none where it says the period changes (step 8)."""
-    from datetime import datetime, timedelta, timezone
-
     from conftest import offline_connection
-    from thermocomp.apps.machine.client import _Plan
     from thermocomp.core.io.timestamps import row_gaps
 
-    epoch = datetime(2026, 3, 2, 6, 0, tzinfo=timezone.utc)
-    plan = _Plan(inputs=[object(), None], labels=["T_a", "time"], status={}, clock=object(),
-                 offsets=[], types=[], answered=None, watched=[], registers=np.zeros(0))
+    plan = _clock_plan()
 
     def run(times):
         conn = offline_connection(clock="server", period_s=60.0)
         for s in times:
-            got = conn._sample(plan, [ua.DataValue(ua.Variant(20.0, ua.VariantType.Float)),
-                                      ua.DataValue(ua.Variant(epoch + timedelta(seconds=float(s))))])
+            got = conn._sample(plan, _server_read(s))
             conn._step(*got)
         gaps = sorted(e["row"] for e in conn.events if e["event"] == "clock_gap")
         return gaps, time_said({"events": conn.events}), conn.missed
