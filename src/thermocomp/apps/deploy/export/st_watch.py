@@ -588,6 +588,8 @@ VARS = """    mon_last : ARRAY[{nm}] OF LREAL;
     mon_rsettle : BOOL;    (* (st111c) the C's level shift possible after mon_lost *)
     mon_sj : INT;    (* (st112) the one whose lone jump ended the judgement, its return awaited *)
     mon_sj_age : DINT;    (* (st112) rows since that jump *)
+    mon_rb : INT := -1;    (* (st112b) the one the C holds out and rebuilds this row; -1: none *)
+    mon_rbx : LREAL;    (* (st112b) its rebuild: the others' prediction of it, its set without it *)
     (* (st111c) each sensor's shift at the row before *)
     mon_rshift : ARRAY[{nm}] OF LREAL;
     mon_efresh : BOOL;    (* (st111b) mon_e computed by the judgement this row *)
@@ -1774,6 +1776,7 @@ IF MON_STEP_JUDGE THEN
     END_FOR;
 END_IF;
 mon_unsure := FALSE;
+mon_rb := -1;
 IF mon_stop_row > 0 OR mon_lost THEN
     IF mon_flag THEN
         mon_usince := 0;
@@ -1794,7 +1797,18 @@ IF mon_stop_row > 0 OR mon_lost THEN
     IF mon_sj >= 0 AND mon_sj_age < 2147483646 THEN
         mon_sj_age := mon_sj_age + 1;
     END_IF;
-    mon_unsure := mon_usince <= 2 * MON_WINDOW;
+    (* (st112b) that jump's row and those after it, nothing else since, before the C's BACK can *)
+    (* come (its calm, 0 at the jump, under its wait, at least a window): the C holds it out and *)
+    (* feeds the model its rebuild from the others (the set without it, the C's order), as here *)
+    IF mon_sj >= 0 AND mon_sj_age <= MON_WINDOW AND NOT mon_rjump AND NOT mon_rsettle THEN
+        mon_rb := mon_sj;
+        mon_rbx := 0.0;
+        FOR mj := 0 TO MON_N - 1 DO
+            mi := MON_INPUT[mj];
+            mon_rbx := mon_rbx + MON_SPIKE_FIELD[mon_rb, mj] * (u[mi] - mon_base[mj] - mon_shift[mi]);
+        END_FOR;
+    END_IF;
+    mon_unsure := mon_usince <= 2 * MON_WINDOW AND mon_rb < 0;
     IF mon_usince < 2147483646 THEN
         mon_usince := mon_usince + 1;
     END_IF;
