@@ -594,6 +594,8 @@ VARS = """    mon_last : ARRAY[{nm}] OF LREAL;
     mon_rbok : DINT;    (* (st112b) rows in a row since its jump its error within its back band *)
     mon_rbdwell : DINT;    (* (st112b) the C's wait for it *)
     mon_rbu : LREAL;    (* (st112b) its reading on the row before *)
+    mon_rbk : INT;    (* (st112b) the one held *)
+    mon_rbrun : INT;    (* (st112b) rows its reading stood still *)
     mon_rbunsure : BOOL;    (* (st112b) the C's hold of it lost track of: unsure to the end *)
     (* (st111c) each sensor's shift at the row before *)
     mon_rshift : ARRAY[{nm}] OF LREAL;
@@ -1801,19 +1803,23 @@ IF mon_stop_row > 0 OR mon_lost THEN
     (* (st112b) where the C may hold it out still (no spike's return it takes), its set and *)
     (* hold no longer known: unsure to the campaign's end *)
     IF mon_sj >= 0 AND mon_sj_age > 0 AND (mon_flag OR mon_rule <> 0 OR mon_usince = 0) THEN
-        IF mon_rbheld AND NOT (mon_rule = RULE_SPIKE AND mon_sensor = mon_sj AND NOT mon_rjump) THEN
+        mon_sj := -1;
+    END_IF;
+    IF mon_rbheld AND mon_sj <> mon_rbk THEN
+        IF NOT (mon_rule = RULE_SPIKE AND mon_sensor = mon_rbk AND NOT mon_rjump) THEN
             mon_rbunsure := TRUE;
         END_IF;
         mon_rbheld := FALSE;
-        mon_sj := -1;
     END_IF;
     (* (st112b) the C holds that one out from its jump's row to its BACK: calm (rows since the *)
     (* jump) for its wait, a full window counted, its reading moving, and its error with every *)
     (* sensor in within MON_BACK_BAND on each row of the window (the C's _pass_once_back); *)
-    (* a near tie or a reading standing still (the C's run, its freeze) not followed: unsure *)
+    (* a near tie, or its reading standing still to its freeze run, not followed: unsure *)
     IF mon_sj >= 0 AND mon_sj_age = 0 THEN
         mon_rbheld := TRUE;
+        mon_rbk := mon_sj;
         mon_rbok := 0;
+        mon_rbrun := 0;
         mon_rbdwell := MON_WINDOW;    (* doubled per drift exclusion, as st101's *)
         FOR mr := 2 TO mon_field_outs[mon_sj] DO
             IF mr <= MON_MAX_BACKOFF + 1 THEN
@@ -1831,12 +1837,17 @@ IF mon_stop_row > 0 OR mon_lost THEN
         ELSE
             mon_rbok := 0;
         END_IF;
+        IF u[MON_INPUT[mk]] = mon_rbu THEN
+            mon_rbrun := mon_rbrun + 1;    (* (the C's run: no BACK on this row) *)
+        ELSE
+            mon_rbrun := 0;
+        END_IF;
         mon_go := mon_x >= MON_BACK_BAND[mk] * 0.999999 AND mon_x <= MON_BACK_BAND[mk] * 1.000001;
-        IF u[MON_INPUT[mk]] = mon_rbu OR mon_go THEN
+        IF (mon_rbrun > 0 AND mon_rbrun >= MON_FREEZE_RUN[mk]) OR mon_go THEN
             mon_rbunsure := TRUE;
             mon_rbheld := FALSE;
         ELSIF mon_sj_age >= mon_rbdwell AND mon_count + 1 >= MON_WINDOW AND mon_rbok >= MON_WINDOW THEN
-            mon_rbheld := FALSE;    (* its BACK: read as measured from this row *)
+            mon_rbheld := mon_rbrun > 0;    (* its BACK where its reading moved: measured from here *)
         END_IF;
     END_IF;
     IF mon_sj >= 0 THEN
@@ -1848,7 +1859,7 @@ IF mon_stop_row > 0 OR mon_lost THEN
     (* (st112b) held: the C feeds the model its rebuild from the others (the set without it, *)
     (* the C's order), as here *)
     IF mon_rbheld AND NOT mon_rjump AND NOT mon_rsettle THEN
-        mon_rb := mon_sj;
+        mon_rb := mon_rbk;
         mon_rbx := 0.0;
         FOR mj := 0 TO MON_N - 1 DO
             mi := MON_INPUT[mj];
