@@ -6,12 +6,24 @@ holds it out and feeds the model its rebuild from the others (watch_c.py ``mon_r
 ``pred[k]``, the set-without-it operator row) from the jump's row to its BACK (or a spike's
 return); the block read the measured value there, flagged (``mon_unsure``), 0.01-6.7 um off.
 
-RULE (st_watch.py ``mon_rb`` / ``mon_rbx``, st.py): where st112's ``mon_sj`` stands (a lone jump
-from a whole set ended the judgement, nothing flagged, named or in the warning band since), on the
-jump's row and each row after while the C's BACK cannot come yet (its calm, 0 at the jump, under a
-window: ``mon_sj_age <= MON_WINDOW``), no ``mon_rjump`` / ``mon_rsettle``: the model reads
-``mon_base + MON_SPIKE_FIELD[k] . (u - mon_base - mon_shift)`` (the C's sum, in its order) and its
-fallback set as the C serves it; ``mon_unsure`` FALSE there.  Anything else: flagged as before.
+RULE (st_watch.py ``mon_rb*``, st.py): where st112's ``mon_sj`` stands (a lone jump from a whole set
+ended the judgement, nothing flagged, named or in the warning band since), from the jump's row to
+the C's BACK as the block tells it (calm for its wait, a window of its error with every sensor in
+within ``MON_BACK_BAND``, its reading moving: ``_pass_once_back``), no ``mon_rjump`` /
+``mon_rsettle``: the model reads ``mon_base + MON_SPIKE_FIELD[k] . (u - mon_base - mon_shift)``
+(the C's sum, in its order), its fallback set as the C serves; ``mon_unsure`` FALSE there.  Where
+the hold is lost track of (anything named or at the band, a near tie, a run to its freeze run)
+``mon_rbunsure``: ``mon_unsure`` to the campaign's end.
+
+SCORED (2026-12-08; bar 8ad0c441 unchanged; BASE /tmp/base-st112b = fae9cdac; CPU user + sys).
+* d9fad4e1 (the hold to a window after the jump): seen 10/10/11/10 -> 0/0/0/0 rows off the C;
+  fresh 10275-10277 drawn and scored once here: 0 unflagged on 10276 / 10277, but 10275's T_1
+  jump-first cases 57 / 9 / 32 / 69 unflagged, as BASE (the C holds T_1 past st108b's wait).
+* 1f9594db (the BACK told, traced on 10275 campaign 0: 10275 no longer fresh): seen 0/0/0/0;
+  seed 3 jump-first off the C 41/83/97/41 -> 0/42/56/0, drop-first equal; 10275 unflagged
+  57/9/32/69 -> 0/0/0/0, off 121/288/163/121 -> 12/226/101/0; 10277 40/80/96/40 -> 0/40/56/0;
+  10276 equal; unflagged 0 everywhere.  bench_st108b healthy 8: c moved on the 12 spike-hold rows
+  only, now equal to the C; flag/rule/sensor identical; mon_unsure rows 291 -> 279.
 
 Bar: benchmarks/st112b_bar.md (committed first).  A row is *off the C* where max |ST - C| > 1e-9 um
 (C = the JSON mirror ``Simulator``), *unflagged* where off and none of ``mon_flag``, ``mon_unsure``,
