@@ -125,12 +125,13 @@ def test_the_block_clears_its_flag_after_a_spike_the_c_takes_back(record):  # no
     jumps back.  Where the C takes that as a spike (back within its re-admission band of the
     others' prediction) its reference is put back as the block's: the block equals the C from
     there and its flag ends with st108b's wait (before st112: ``mon_rjump``, to the campaign's
-    end).  Back 0.3 K off (past that band, under the jump limit) the C re-references it and holds
+    end); (st112b) on the jump's row and the 2 held, the C's rebuild, computed: not unsure.  Back
+    0.3 K off (past that band, under the jump limit) the C re-references it and holds
     it out, the block reads it as back: every row off the C stays flagged."""
     deployed, ss, frame, block = record
     w = ss.monitor["window"]
     off_c, flagged, unsure, spike = _spiked(deployed, ss, block, frame, 0.0)
-    assert spike == LOST_AT + 3 and not off_c[spike:].any() and flagged[off_c].all()
-    assert unsure[LOST_AT:LOST_AT + 2 * w].all() and not unsure[-20:].any()
+    assert spike == LOST_AT + 3 and not off_c[LOST_AT:].any() and flagged[off_c].all()
+    assert not unsure[LOST_AT:spike].any() and unsure[spike:LOST_AT + 2 * w].all() and not unsure[-20:].any()
     off_c, flagged, unsure, spike = _spiked(deployed, ss, block, frame, 0.3)
     assert spike is None and off_c[LOST_AT + 3:].all() and flagged[off_c].all()

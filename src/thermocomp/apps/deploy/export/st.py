@@ -545,6 +545,10 @@ IF NOT refused THEN
             serving_k := mon_jheld;
         END_IF;
     END_IF;
+    IF mon_rb >= 0 THEN    (* (st112b) one the C holds out after its lone jump: its rebuild *)
+        uu[MON_INPUT[mon_rb]] := mon_base[mon_rb] + mon_rbx;
+        serving_k := mon_rb;
+    END_IF;
     IF serving_k >= 0 THEN
         serving := MON_FALLBACK_SET[serving_k];
     END_IF;

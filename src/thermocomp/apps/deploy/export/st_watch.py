@@ -588,6 +588,15 @@ VARS = """    mon_last : ARRAY[{nm}] OF LREAL;
     mon_rsettle : BOOL;    (* (st111c) the C's level shift possible after mon_lost *)
     mon_sj : INT;    (* (st112) the one whose lone jump ended the judgement, its return awaited *)
     mon_sj_age : DINT;    (* (st112) rows since that jump *)
+    mon_rb : INT := -1;    (* (st112b) the one the C holds out and rebuilds this row; -1: none *)
+    mon_rbx : LREAL;    (* (st112b) its rebuild: the others' prediction of it, its set without it *)
+    mon_rbheld : BOOL;    (* (st112b) the C holds mon_sj out, its BACK not come *)
+    mon_rbok : DINT;    (* (st112b) rows in a row since its jump its error within its back band *)
+    mon_rbdwell : DINT;    (* (st112b) the C's wait for it *)
+    mon_rbu : LREAL;    (* (st112b) its reading on the row before *)
+    mon_rbk : INT;    (* (st112b) the one held *)
+    mon_rbrun : INT;    (* (st112b) rows its reading stood still *)
+    mon_rbunsure : BOOL;    (* (st112b) the C's hold of it lost track of: unsure to the end *)
     (* (st111c) each sensor's shift at the row before *)
     mon_rshift : ARRAY[{nm}] OF LREAL;
     mon_efresh : BOOL;    (* (st111b) mon_e computed by the judgement this row *)
@@ -1660,6 +1669,8 @@ END_IF;
 IF reset THEN
     mon_rlater := FALSE;
     mon_rjump := FALSE;
+    mon_rbunsure := FALSE;
+    mon_rbheld := FALSE;
     mon_rsettle := FALSE;
 END_IF;
 IF NOT first THEN
@@ -1774,6 +1785,7 @@ IF MON_STEP_JUDGE THEN
     END_FOR;
 END_IF;
 mon_unsure := FALSE;
+mon_rb := -1;
 IF mon_stop_row > 0 OR mon_lost THEN
     IF mon_flag THEN
         mon_usince := 0;
@@ -1788,13 +1800,73 @@ IF mon_stop_row > 0 OR mon_lost THEN
         END_IF;
     END_FOR;
     (* (st112) anything after the jump but its return: the C's set not known at the return *)
+    (* (st112b) where the C may hold it out still (no spike's return it takes), its set and *)
+    (* hold no longer known: unsure to the campaign's end *)
     IF mon_sj >= 0 AND mon_sj_age > 0 AND (mon_flag OR mon_rule <> 0 OR mon_usince = 0) THEN
         mon_sj := -1;
+    END_IF;
+    IF mon_rbheld AND mon_sj <> mon_rbk THEN
+        IF NOT (mon_rule = RULE_SPIKE AND mon_sensor = mon_rbk AND NOT mon_rjump) THEN
+            mon_rbunsure := TRUE;
+        END_IF;
+        mon_rbheld := FALSE;
+    END_IF;
+    (* (st112b) the C holds that one out from its jump's row to its BACK: calm (rows since the *)
+    (* jump) for its wait, a full window counted, its reading moving, and its error with every *)
+    (* sensor in within MON_BACK_BAND on each row of the window (the C's _pass_once_back); *)
+    (* a near tie, or its reading standing still to its freeze run, not followed: unsure *)
+    IF mon_sj >= 0 AND mon_sj_age = 0 THEN
+        mon_rbheld := TRUE;
+        mon_rbk := mon_sj;
+        mon_rbok := 0;
+        mon_rbrun := 0;
+        mon_rbdwell := MON_WINDOW;    (* doubled per drift exclusion, as st101's *)
+        FOR mr := 2 TO mon_field_outs[mon_sj] DO
+            IF mr <= MON_MAX_BACKOFF + 1 THEN
+                mon_rbdwell := mon_rbdwell * 2;
+            END_IF;
+        END_FOR;
+    ELSIF mon_sj >= 0 AND mon_rbheld THEN
+        mk := mon_sj;
+        mon_x := mon_e[mk];
+        IF mon_x < 0.0 THEN
+            mon_x := -mon_x;
+        END_IF;
+        IF mon_x < MON_BACK_BAND[mk] * 0.999999 THEN
+            mon_rbok := mon_rbok + 1;
+        ELSE
+            mon_rbok := 0;
+        END_IF;
+        IF u[MON_INPUT[mk]] = mon_rbu THEN
+            mon_rbrun := mon_rbrun + 1;    (* (the C's run: no BACK on this row) *)
+        ELSE
+            mon_rbrun := 0;
+        END_IF;
+        mon_go := mon_x >= MON_BACK_BAND[mk] * 0.999999 AND mon_x <= MON_BACK_BAND[mk] * 1.000001;
+        IF (mon_rbrun > 0 AND mon_rbrun >= MON_FREEZE_RUN[mk]) OR mon_go THEN
+            mon_rbunsure := TRUE;
+            mon_rbheld := FALSE;
+        ELSIF mon_sj_age >= mon_rbdwell AND mon_count + 1 >= MON_WINDOW AND mon_rbok >= MON_WINDOW THEN
+            mon_rbheld := mon_rbrun > 0;    (* its BACK where its reading moved: measured from here *)
+        END_IF;
+    END_IF;
+    IF mon_sj >= 0 THEN
+        mon_rbu := u[MON_INPUT[mon_sj]];
     END_IF;
     IF mon_sj >= 0 AND mon_sj_age < 2147483646 THEN
         mon_sj_age := mon_sj_age + 1;
     END_IF;
-    mon_unsure := mon_usince <= 2 * MON_WINDOW;
+    (* (st112b) held: the C feeds the model its rebuild from the others (the set without it, *)
+    (* the C's order), as here *)
+    IF mon_rbheld AND NOT mon_rjump AND NOT mon_rsettle THEN
+        mon_rb := mon_rbk;
+        mon_rbx := 0.0;
+        FOR mj := 0 TO MON_N - 1 DO
+            mi := MON_INPUT[mj];
+            mon_rbx := mon_rbx + MON_SPIKE_FIELD[mon_rb, mj] * (u[mi] - mon_base[mj] - mon_shift[mi]);
+        END_FOR;
+    END_IF;
+    mon_unsure := mon_usince <= 2 * MON_WINDOW AND mon_rb < 0;
     IF mon_usince < 2147483646 THEN
         mon_usince := mon_usince + 1;
     END_IF;
@@ -1816,6 +1888,9 @@ IF mon_rjump THEN
 END_IF;
 IF mon_rsettle THEN
     mon_unsure := TRUE;    (* (st111c) a level shift after mon_lost the C may re-reference *)
+END_IF;
+IF mon_rbunsure THEN
+    mon_unsure := TRUE;    (* (st112b) the C's hold after a lone jump not followed *)
 END_IF;
 (* a campaign's sample count, held at DINT's top: never wraps back through 1 *)
 IF mon_count < 2147483646 THEN
