@@ -13,13 +13,6 @@ CV RMSE is at most its own, the observed counted once: floor ``1 / (PERMUTATIONS
 (4: 24 orders) have no refit null: the flips alone, as before.
 Under "no effect" the drivers are exchangeable among campaigns, whatever chance structure the
 flips miss (``benchmarks/bench_diag111.py``).
-
-A base without a closed form (ARX, ARX+RF, PCR, LSTM) is not refitted: its gate's statistic is the
-*residual fit* (:func:`residual_fit_rmse`): the base's CV residual (with the kept effects, fitted
-once) regressed on the inputs and the tested effects' features by least squares in every fold, the
-same statistic for the observed and each permutation, so the p stays an exact permutation p of it.  The whole
-model refitted 99 times was 47 of 52 s of CPU of test_diagnose_scenarios' arx_rf case (structure
-selection 18 s, forests 17 s: a structure held fixed would still grow every forest; diag112).
 """
 
 from __future__ import annotations
@@ -122,8 +115,7 @@ def refit_pvalue(cv: CrossValidator, inputs, kept, tested, observed_rmse: float,
     for all of them) that do as well, the observed counted once.  None where no tested effect has
     a context driver or the campaigns' permutations cannot resolve ``alpha`` (n! < 1 / alpha:
     4 campaigns give 24).  Stops once p exceeds
-    ``alpha`` for sure: the p returned is then a lower bound, above ``alpha``.  A base without a
-    closed form tests the residual fit instead of ``observed_rmse`` (module doc)."""
+    ``alpha`` for sure: the p returned is then a lower bound, above ``alpha``."""
     p = cv.problem
     columns = list(dict.fromkeys(c for e in tested for c in drivers(e, p.context.columns)))
     names = list(dict.fromkeys(np.asarray(p.campaigns, dtype=object).tolist()))
@@ -133,46 +125,17 @@ def refit_pvalue(cv: CrossValidator, inputs, kept, tested, observed_rmse: float,
     total = len(orders) + 1                      # the observed, counted once
     hits, limit = 0, alpha * total - 1
     mover, fits = Mover(p.context, p.campaigns, columns, names), {}
-    residual = None
-    if not cv.closed_form:                       # the residual fit, observed included (module doc)
-        residual = cv.run(inputs, kept).residual
-        observed_rmse = residual_fit_rmse(cv, inputs, tested, residual)
     for order in orders:
         refit = MovedDrivers(cv, mover(order), kept, fits)
         # a move that leaves the features as they were (a drawn identity, ambients kept on their
         # side of a step's threshold) refits the observed: a hit, as it was when every refit
         # factored its folds anew (it had the observed RMSE to the last bit; shared factors
         # round it otherwise, 1e-14 relative: bench_diag111 first's room 68, diag111c)
-        if _unmoved(refit, cv, inputs, tested):
-            hits += 1
-        else:
-            rmse = (refit.run(inputs, list(kept) + list(tested)).rmse if residual is None
-                    else residual_fit_rmse(refit, inputs, tested, residual))
-            hits += bool(rmse <= observed_rmse)
+        hits += _unmoved(refit, cv, inputs, tested) or \
+            bool(refit.run(inputs, list(kept) + list(tested)).rmse <= observed_rmse)
         if hits > limit:
             break
     return (1 + hits) / total
-
-
-def residual_fit_rmse(cv: CrossValidator, inputs, tested, residual: np.ndarray) -> float:
-    """RMSE over the scored rows of ``residual`` less its least-squares fit (with an intercept) on
-    the fold's inputs and the ``tested`` effects' features, fitted in each fold on the fold's training
-    rows (the fold's own features, for an effect that learns) and predicted on its held-out rows."""
-    p = cv.problem
-    known = np.isfinite(residual) & p.measured
-    fitted = np.full(len(residual), np.nan)
-    effects = [e for e in tested if e.transform != "remove"]
-    for k in p.fold_ids:
-        names = cv.selection(tuple(inputs), k)
-        # the inputs too: the moved drivers keep the warm-up shape every campaign shares, which the
-        # inputs explain (on the features alone planted draw 10122's hydraulic source lost: p .02)
-        F = np.column_stack([np.ones(len(residual)), cv.inputs_matrix(names)]
-                            + [cv.features(e, names, k) for e in effects])
-        train, test = p.train_rows(k) & known, p.test_rows(k)
-        coef = np.linalg.lstsq(F[train], residual[train], rcond=None)[0]
-        fitted[test] = F[test] @ coef
-    left = (residual - fitted)[p.validated]
-    return float(np.sqrt(np.mean(left ** 2)))
 
 
 def _unmoved(refit: MovedDrivers, cv: CrossValidator, inputs, tested) -> bool:
