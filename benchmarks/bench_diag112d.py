@@ -7,7 +7,11 @@ Usage (from the repository root, ``PYTHONPATH=<tree>/src``: the code measured is
 ``planted`` is bench_diag112's, with the draws this one scores: bench_diag111's N2 planted draws
 (their kinds from bench_diag107/107d/108) and the fresh 10278-10280 (kinds named before drawing);
 MODEL ``lstm`` runs the tests' small LSTM.  bench_diag112's ``family`` and ``first MODEL`` give V3/V4.
-The bar: ``benchmarks/diag112d_bar.md``; the figures: the diag112d report.
+``git apply benchmarks/diag112d_rule.patch`` (= diag112_rule.patch, v2 unchanged) in a scratch tree to
+measure the rule.  REFUSED: with model=arx v2 refused two of BASE's takes on N2 draws, 10160 E_Z (the
+level law: refit p .02, BASE .01; test 6.813 stays, BASE 3.149) and 10161 E_X (the law + T_nc_z1_drive
+lag: 3.130 stays, BASE 1.374), though it was 3-5x cheaper.  The bar: ``benchmarks/diag112d_bar.md``;
+the figures: the diag112d report.
 """
 
 from __future__ import annotations
