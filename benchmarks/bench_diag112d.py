@@ -8,7 +8,7 @@ Usage (from the repository root, ``PYTHONPATH=<tree>/src``: the code measured is
 (their kinds from bench_diag107/107d/108) and the fresh 10278-10280 (kinds named before drawing);
 MODEL ``lstm`` runs the tests' small LSTM.  bench_diag112's ``family`` and ``first MODEL`` give V3/V4.
 ``git apply benchmarks/diag112d_rule.patch`` (= diag112_rule.patch, v2 unchanged) in a scratch tree to
-measure the rule.  REFUSED: it never took more than BASE but took less on 7 of the 28 (draw, target)
+measure the rule.  REFUSED: it never took more than BASE but took less on 7 of the 30 (draw, target)
 where BASE took something (model=arx, N2 but 10122): 10160 E_Z, 10161 E_X, 10175 E_Z, 10181 E_X+E_Z,
 10183 E_Z, 10185 E_X, mostly the level law or a law pair BASE's refits pass at .01 (10160 E_Z: v2
 refit p .02, test 6.813 kept vs BASE 3.149); fresh 10279 E_Z with arx_rf likewise (6.354 vs 1.874).
