@@ -66,7 +66,7 @@ COMMAND_BENCHES = (
     "bench_diag105", "bench_diag106", "bench_diag106b", "bench_diag106c", "bench_diag106d", "bench_diag106e",
     "bench_diag106f", "bench_diag107", "bench_diag107b", "bench_diag107c", "bench_diag107d", "bench_diag108",
     "bench_diag108b", "bench_diag109", "bench_diag111", "bench_diag111d", "bench_diag112", "bench_diag112b",
-    "bench_diag112c", "bench_diag112e",
+    "bench_diag112c", "bench_diag112d", "bench_diag112e",
     "bench_diag70", "bench_diag73", "bench_diag74",
     "bench_diag75", "bench_diag76", "bench_diag77", "bench_diag81b", "bench_diag81c", "bench_diag82",
     "bench_diag82b", "bench_diag82c", "bench_diag82d", "bench_diag82e", "bench_diag82f", "bench_diag82g",
