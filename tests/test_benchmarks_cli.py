@@ -113,7 +113,8 @@ COMMAND_BENCHES = (
     "bench_stranger65", "bench_stranger66", "bench_stranger68", "bench_stranger69", "bench_stranger74",
     "bench_stranger75", "bench_stranger76", "bench_stranger77", "bench_stranger78", "bench_stranger80",
     "bench_stranger81", "bench_stranger82", "bench_stranger82b", "bench_stranger83", "bench_stranger84",
-    "bench_stwires100", "bench_sub71", "bench_swap99", "bench_sweepdvc63", "bench_twins98", "bench_twolog70",
+    "bench_stwires100", "bench_sub71", "bench_swap99", "bench_sweepdvc63", "bench_trace112", "bench_twins98",
+    "bench_twolog70",
     "bench_verify82", "bench_volfleet63", "bench_volstranger66", "bench_wires100", "bench_wires99",
     "bench_within67", "bench_zerocheck67", "bench_zerofew67", "bench_zerofold68",
 )
