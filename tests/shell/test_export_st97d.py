@@ -132,6 +132,6 @@ def test_the_block_clears_its_flag_after_a_spike_the_c_takes_back(record):  # no
     w = ss.monitor["window"]
     off_c, flagged, unsure, spike = _spiked(deployed, ss, block, frame, 0.0)
     assert spike == LOST_AT + 3 and not off_c[LOST_AT:].any() and flagged[off_c].all()
-    assert not unsure[LOST_AT:spike].any() and unsure[spike:LOST_AT + 2 * w].all() and not unsure[-20:].any()
+    assert not unsure[LOST_AT:].any()    # (st112c) nor after the return: the C's set whole, known
     off_c, flagged, unsure, spike = _spiked(deployed, ss, block, frame, 0.3)
     assert spike is None and off_c[LOST_AT + 3:].all() and flagged[off_c].all()
