@@ -133,7 +133,9 @@ steadiness test): the C re-references it, by an amount the block cannot tell.
 (st112) Not the return of a sensor whose lone jump, the set whole before it, ended the judgement
 within a window, nothing else since, where the C's spike test passes (:func:`spike_constants`:
 its prediction by the others within ``MON_READMIT`` of its warning band): the C puts its reference
-back as the block does and its set is whole again.
+back as the block does and its set is whole again.  (st112c) Nor, from that return, st108b's
+wait: nothing at the band since the jump nor on the return row, the hold followed (st112b), the
+C's window recomputed with every sensor in is the block's ``mon_e``: only a new band row restarts it.
 The counters that grow with the campaign
 (``mon_count``, ``mon_stop_row``, ``mon_calm``, ``mon_run``, ``mon_quiet``, ``mon_jcalm``, ``mon_lcalm``,
 ``mon_hsince``, ``mon_sj_age``) are DINT: an INT wraps after 32767 samples (9 h at 1 s), and a wrapped
@@ -1808,6 +1810,11 @@ IF mon_stop_row > 0 OR mon_lost THEN
     IF mon_rbheld AND mon_sj <> mon_rbk THEN
         IF NOT (mon_rule = RULE_SPIKE AND mon_sensor = mon_rbk AND NOT mon_rjump) THEN
             mon_rbunsure := TRUE;
+        ELSIF mon_usince > 0 AND mon_stop_row = 0 THEN
+            (* (st112c) the spike's return the C takes, nothing at the band since its jump nor *)
+            (* on this row: the C's set whole again, its window's errors the block's with every *)
+            (* sensor in (recomputed at the re-admission), the hold followed: the wait ends *)
+            mon_usince := 2 * MON_WINDOW + 1;
         END_IF;
         mon_rbheld := FALSE;
     END_IF;
