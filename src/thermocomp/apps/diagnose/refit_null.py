@@ -123,22 +123,29 @@ def refit_pvalue(cv: CrossValidator, inputs, kept, tested, observed_rmse: float,
         return None
     orders = _orders(len(names), n_permutations, seed)
     total = len(orders) + 1                      # the observed, counted once
-    hits, limit = 0, alpha * total - 1
     mover, fits = Mover(p.context, p.campaigns, columns, names), {}
-    for order in orders:
-        refit = MovedDrivers(cv, mover(order), kept, fits)
+    refits = (MovedDrivers(cv, mover(order), kept, fits) for order in orders)
+    return moved_p(refits, cv, inputs, list(kept) + list(tested), tested, observed_rmse, total, alpha)
+
+
+def moved_p(refits, cv: CrossValidator, inputs, effects: list, tested: list, observed_rmse: float,
+            total: int, alpha: float) -> float:
+    """``(1 + hits) / total``: a hit is a refit of ``effects`` (each of ``refits``, made as asked)
+    whose CV RMSE is at most ``observed_rmse``; it stops once the p is above ``alpha``.  The one
+    count of the campaigns' moves and of forward's shifts (:mod:`.shift_null`)."""
+    hits, limit = 0, alpha * total - 1
+    for refit in refits:
         # a move that leaves the features as they were (a drawn identity, ambients kept on their
         # side of a step's threshold) refits the observed: a hit, as it was when every refit
         # factored its folds anew (it had the observed RMSE to the last bit; shared factors
         # round it otherwise, 1e-14 relative: bench_diag111 first's room 68, diag111c)
-        hits += _unmoved(refit, cv, inputs, tested) or \
-            bool(refit.run(inputs, list(kept) + list(tested)).rmse <= observed_rmse)
+        hits += unmoved(refit, cv, inputs, tested) or bool(refit.run(inputs, effects).rmse <= observed_rmse)
         if hits > limit:
             break
     return (1 + hits) / total
 
 
-def _unmoved(refit: MovedDrivers, cv: CrossValidator, inputs, tested) -> bool:
+def unmoved(refit: MovedDrivers, cv: CrossValidator, inputs, tested) -> bool:
     """True when every tested effect's features (each fold's, for one that learns) are the same
     after the move as before it."""
     for fold in [None] + list(cv.problem.fold_ids):

@@ -20,7 +20,7 @@ import numpy as np
 
 from .cv import CrossValidator
 from .features import Effect
-from .refit_null import PERMUTATIONS, MovedDrivers, _unmoved
+from .refit_null import PERMUTATIONS, MovedDrivers, moved_p
 from .refit_null import drivers as campaign_drivers
 
 SHIFTS = PERMUTATIONS      # p floor 0.01 = the default alpha
@@ -65,15 +65,13 @@ def shift_pvalue(cv: CrossValidator, inputs, kept, tested, observed_rmse: float,
     total = len(shifts) + 1                      # the observed, counted once
     if not columns or alpha * total < 1:
         return None
-    values = {c: p.context[c].to_numpy(float) for c in columns}
-    hits, limit, fits = 0, alpha * total - 1, {}
-    for shift in shifts:
+    values, fits = {c: p.context[c].to_numpy(float) for c in columns}, {}
+
+    def shifted(shift: int):
         context = p.context.copy(deep=False)
         for c in columns:
             context[c] = np.roll(values[c], int(shift))
-        refit = MovedDrivers(cv, context, kept, fits)
-        hits += _unmoved(refit, cv, inputs, tested) or \
-            bool(refit.run(inputs, list(kept) + list(tested)).rmse <= observed_rmse)
-        if hits > limit:
-            break
-    return (1 + hits) / total
+        return MovedDrivers(cv, context, kept, fits)
+
+    return moved_p((shifted(s) for s in shifts), cv, inputs, list(kept) + list(tested), tested,
+                   observed_rmse, total, alpha)
