@@ -125,15 +125,15 @@ def refit_pvalue(cv: CrossValidator, inputs, kept, tested, observed_rmse: float,
     total = len(orders) + 1                      # the observed, counted once
     mover, fits = Mover(p.context, p.campaigns, columns, names), {}
     refits = (MovedDrivers(cv, mover(order), kept, fits) for order in orders)
-    return moved_p(refits, cv, inputs, list(kept) + list(tested), tested, observed_rmse, total, alpha)
+    return moved_p(refits, cv, inputs, kept, tested, observed_rmse, total, alpha)
 
 
-def moved_p(refits, cv: CrossValidator, inputs, effects: list, tested: list, observed_rmse: float,
+def moved_p(refits, cv: CrossValidator, inputs, kept, tested, observed_rmse: float,
             total: int, alpha: float) -> float:
-    """``(1 + hits) / total``: a hit is a refit of ``effects`` (each of ``refits``, made as asked)
-    whose CV RMSE is at most ``observed_rmse``; it stops once the p is above ``alpha``.  The one
-    count of the campaigns' moves and of forward's shifts (:mod:`.shift_null`)."""
-    hits, limit = 0, alpha * total - 1
+    """``(1 + hits) / total``: a hit is a refit of ``kept`` and ``tested`` (each of ``refits``, made
+    as asked) whose CV RMSE is at most ``observed_rmse``; it stops once the p is above ``alpha``.
+    The one count of the campaigns' moves and of forward's shifts (:mod:`.shift_null`)."""
+    effects, hits, limit = list(kept) + list(tested), 0, alpha * total - 1
     for refit in refits:
         # a move that leaves the features as they were (a drawn identity, ambients kept on their
         # side of a step's threshold) refits the observed: a hit, as it was when every refit

@@ -73,5 +73,4 @@ def shift_pvalue(cv: CrossValidator, inputs, kept, tested, observed_rmse: float,
             context[c] = np.roll(values[c], int(shift))
         return MovedDrivers(cv, context, kept, fits)
 
-    return moved_p((shifted(s) for s in shifts), cv, inputs, list(kept) + list(tested), tested,
-                   observed_rmse, total, alpha)
+    return moved_p((shifted(s) for s in shifts), cv, inputs, kept, tested, observed_rmse, total, alpha)
